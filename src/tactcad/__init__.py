@@ -1,0 +1,8 @@
+"""tactcad: CAD-driven generator for spring-based tactile sensor arrays.
+
+Data flows one way: design file (TOML) -> validated plan (:mod:`tactcad.design`)
+-> geometry (:mod:`tactcad.parts`) -> exports and checks. Units are mm, N, MPa,
+N/mm and s throughout.
+"""
+
+__version__ = "0.1.0"

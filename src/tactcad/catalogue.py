@@ -1,0 +1,161 @@
+"""What each part is, without building it: name, process, colour, expected
+volume and bounding box (independent estimates the checks compare against),
+and the assembly's instances. No CAD kernel here.
+
+Expected volumes are computed from the plan by elementary formulas (profile
+area x thickness, cylinder and hexagon volumes), never from the solid itself.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .design import Placement, Plan
+from .profile import Profile, element_profile, rectangle_profile, u_plate_profile
+
+Bbox = tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax (mm)
+RGB = tuple[float, float, float]
+
+ALUMINIUM: RGB = (0.78, 0.80, 0.83)
+SPACER: RGB = (0.60, 0.64, 0.68)
+ANODISED_BLUE: RGB = (0.25, 0.40, 0.70)
+BLACK_OXIDE: RGB = (0.12, 0.12, 0.13)
+ZINC: RGB = (0.45, 0.46, 0.48)
+
+
+@dataclass(frozen=True)
+class PartSpec:
+    """A distinct part of a scene.
+
+    Attributes:
+        name: file and label name (``element_a4mm``, ``spacer``, ...).
+        kind: ``fabricated`` or ``purchased``.
+        process: how it is made (wire EDM, milling) or its catalogue reference.
+        material: material name.
+        color: RGB in 0 ... 1 for STEP/GLB.
+        builder: key of the builder in :mod:`tactcad.build`.
+        expected_volume_mm3: independent volume estimate.
+        expected_bbox_mm: designed bounding box in the part's own frame.
+        profile: planar profile (sketch plane z = 0) for extruded parts.
+        thickness_mm: extrusion thickness for extruded parts.
+    """
+
+    name: str
+    kind: str
+    process: str
+    material: str
+    color: RGB
+    builder: str
+    expected_volume_mm3: float
+    expected_bbox_mm: Bbox
+    profile: Profile | None = None
+    thickness_mm: float = 0.0
+
+
+@dataclass(frozen=True)
+class Instance:
+    """A part placed in the scene frame."""
+
+    name: str
+    part: str
+    placement: Placement
+
+
+def _prism_bbox(profile: Profile, thickness: float) -> Bbox:
+    x0, y0, x1, y1 = profile.bbox_mm
+    return (x0, y0, 0.0, x1, y1, thickness)
+
+
+def array_parts(plan: Plan) -> dict[str, PartSpec]:
+    """Every distinct part of the array assembly, keyed by part name."""
+    parts: dict[str, PartSpec] = {}
+    mat = plan.material.name
+    for name, g in plan.distinct_elements.items():
+        prof = element_profile(g)
+        parts[name] = PartSpec(
+            name=name, kind="fabricated", process="wire EDM from sheet", material=mat,
+            color=ALUMINIUM, builder="element",
+            expected_volume_mm3=prof.area_mm2 * g.sheet_thickness_mm,
+            expected_bbox_mm=_prism_bbox(prof, g.sheet_thickness_mm),
+            profile=prof, thickness_mm=g.sheet_thickness_mm)
+    s = plan.spacer
+    sp = rectangle_profile(s.length_mm, s.height_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
+    parts["spacer"] = PartSpec(
+        name="spacer", kind="fabricated", process="wire EDM or laser cut from sheet",
+        material=mat, color=SPACER, builder="spacer",
+        expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
+        expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm)
+    c = plan.clamp
+    cp = u_plate_profile(c.half_length_mm, c.window_half_width_mm, c.height_mm, c.bridge_height_mm,
+                         c.window_corner_radius_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
+    parts["clamp_plate"] = PartSpec(
+        name="clamp_plate", kind="fabricated", process="milling", material=mat,
+        color=ANODISED_BLUE, builder="clamp_plate",
+        expected_volume_mm3=cp.area_mm2 * c.thickness_mm,
+        expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm)
+    b = plan.bolt
+    L = plan.bolt_length_mm
+    socket_af = 0.75 * b.nominal_diameter_mm
+    bolt_vol = (math.pi * (b.head_diameter_mm / 2) ** 2 * b.head_height_mm
+                + math.pi * (b.nominal_diameter_mm / 2) ** 2 * L
+                - _hexagon_area(socket_af) * b.head_height_mm / 2)
+    rh = b.head_diameter_mm / 2
+    bolt_name = f"bolt_{b.size}x{L:g}"
+    parts[bolt_name] = PartSpec(
+        name=bolt_name, kind="purchased", process=f"ISO 4762 {b.size}x{L:g} socket head cap screw",
+        material="steel 8.8", color=BLACK_OXIDE, builder="bolt", expected_volume_mm3=bolt_vol,
+        expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, L))
+    s_af = b.nut_width_across_flats_mm
+    nut_vol = (_hexagon_area(s_af) - math.pi * (b.nominal_diameter_mm / 2) ** 2) * b.nut_height_mm
+    rc = s_af / math.sqrt(3)
+    nut_name = f"nut_{b.size}"
+    parts[nut_name] = PartSpec(
+        name=nut_name, kind="purchased", process=f"ISO 4032 {b.size} hex nut", material="steel 8",
+        color=ZINC, builder="nut", expected_volume_mm3=nut_vol,
+        expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm))
+    return parts
+
+
+def _hexagon_area(across_flats: float) -> float:
+    return math.sqrt(3) / 2 * across_flats**2
+
+
+def array_instances(plan: Plan) -> list[Instance]:
+    """Every placed part of the array assembly (array frame, mm)."""
+    out = [Instance(f"element_{s.number}", s.geometry.part_name, s.placement) for s in plan.slots]
+    for i, pl in enumerate(plan.spacer_placements, start=1):
+        out.append(Instance(f"spacer_{i}", "spacer", pl))
+    z_front, z_back = plan.clamp_plate_z_mm
+    out.append(Instance("clamp_plate_front", "clamp_plate", Placement(0.0, 0.0, z_front)))
+    out.append(Instance("clamp_plate_back", "clamp_plate", Placement(0.0, 0.0, z_back)))
+    bolt = f"bolt_{plan.bolt.size}x{plan.bolt_length_mm:g}"
+    nut = f"nut_{plan.bolt.size}"
+    z_nut = z_back + plan.clamp.thickness_mm
+    for i, (x, y) in enumerate(plan.bolt_positions_xy_mm, start=1):
+        out.append(Instance(f"bolt_{i}", bolt, Placement(x, y, z_front)))
+        out.append(Instance(f"nut_{i}", nut, Placement(x, y, z_nut)))
+    return out
+
+
+def array_contacts(plan: Plan) -> set[frozenset[str]]:
+    """Instance pairs the design declares as touching (face contact, zero volume)."""
+    inst = array_instances(plan)
+    names = {i.name for i in inst}
+    pairs: set[frozenset[str]] = set()
+    per_row = plan.columns
+    for s in plan.slots:
+        col = s.column
+        row_offset = s.row * (per_row - 1)
+        for k in (col, col + 1):  # spacer before / after the element in its row
+            if 1 <= k <= per_row - 1:
+                pairs.add(frozenset({f"element_{s.number}", f"spacer_{row_offset + k}"}))
+        if col == 0:
+            pairs.add(frozenset({f"element_{s.number}", "clamp_plate_front"}))
+        if col == per_row - 1:
+            pairs.add(frozenset({f"element_{s.number}", "clamp_plate_back"}))
+    for i in range(1, len(plan.bolt_positions_xy_mm) + 1):
+        pairs.add(frozenset({f"bolt_{i}", "clamp_plate_front"}))
+        pairs.add(frozenset({f"nut_{i}", "clamp_plate_back"}))
+        pairs.add(frozenset({f"bolt_{i}", f"nut_{i}"}))
+    return {p for p in pairs if p <= names}

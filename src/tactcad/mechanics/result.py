@@ -1,0 +1,31 @@
+"""The common result every element-stiffness estimator returns."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+
+@dataclass(frozen=True)
+class StiffnessResult:
+    """Tip stiffness of one sensing element for a force normal to the contact face.
+
+    Attributes:
+        element: paper element number (None for a bare geometry).
+        model: estimator name: closed-form, beam, fem2d or fem3d.
+        stiffness_N_per_mm: K, tip force / tip deflection along +y (N/mm).
+        gauge_strain_per_N: surface strain on the flat top face over the web
+            (the strain-gauge location) per newton of tip force (1/N).
+        error_estimate_rel: estimated relative error of K (e.g. Richardson
+            estimate for FEM, fitted residual for corrected closed forms).
+        wall_time_s: wall-clock time of the evaluation (s).
+    """
+
+    element: int | None
+    model: str
+    stiffness_N_per_mm: float
+    gauge_strain_per_N: float
+    error_estimate_rel: float
+    wall_time_s: float
+
+    def as_json(self) -> dict:
+        return asdict(self)

@@ -1,0 +1,267 @@
+"""The wire-cut flexure profile as exact lines and arcs (no CAD kernel).
+
+This one description feeds the solid (:mod:`tactcad.parts.element`), the
+wire-EDM DXF (:mod:`tactcad.export.dxf`), the FEM meshes and the closed-form
+web function, so all of them see the same contour. Element frame, mm (see
+:mod:`tactcad.design`).
+
+Outer contour, counter-clockwise from the base's lower back corner::
+
+                                        +--+  <- contact face (tip_width)
+    +-----------------------------------+  |   top face y = base_height:
+    |  o   o        base      web ^ (_) |  |   the gauge sits over the web
+    |                               / \_______|   arm underside
+    |                              |
+    +------------------------------+   notch: circle of radius R whose top
+                                        point is web_thickness below the top
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Iterable, Sequence
+
+from .design import ElementGeometry
+
+Point = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Line:
+    start: Point
+    end: Point
+
+    def length(self) -> float:
+        return math.dist(self.start, self.end)
+
+
+@dataclass(frozen=True)
+class Arc:
+    """Circular arc from ``start`` to ``end`` about ``centre``; ``ccw`` gives the sense."""
+
+    start: Point
+    end: Point
+    centre: Point
+    ccw: bool
+
+    @property
+    def radius(self) -> float:
+        return math.dist(self.start, self.centre)
+
+    @property
+    def sweep(self) -> float:
+        """Signed sweep angle (rad), positive counter-clockwise, |sweep| < 2 pi."""
+        a0 = math.atan2(self.start[1] - self.centre[1], self.start[0] - self.centre[0])
+        a1 = math.atan2(self.end[1] - self.centre[1], self.end[0] - self.centre[0])
+        d = a1 - a0
+        if self.ccw:
+            while d <= 0:
+                d += 2 * math.pi
+        else:
+            while d >= 0:
+                d -= 2 * math.pi
+        return d
+
+    @property
+    def midpoint(self) -> Point:
+        a0 = math.atan2(self.start[1] - self.centre[1], self.start[0] - self.centre[0])
+        am = a0 + self.sweep / 2
+        r = self.radius
+        return (self.centre[0] + r * math.cos(am), self.centre[1] + r * math.sin(am))
+
+    @property
+    def bulge(self) -> float:
+        """DXF LWPOLYLINE bulge: tan(sweep / 4), positive counter-clockwise."""
+        return math.tan(self.sweep / 4)
+
+    def length(self) -> float:
+        return abs(self.sweep) * self.radius
+
+
+Segment = Line | Arc
+
+
+@dataclass(frozen=True)
+class Circle:
+    centre: Point
+    radius: float
+
+
+@dataclass(frozen=True)
+class Profile:
+    """A planar part outline: one closed outer contour (CCW), round holes,
+    and the start hole drilled inside each closed cut-out for the wire."""
+
+    outer: tuple[Segment, ...]
+    holes: tuple[Circle, ...]
+    start_holes: tuple[Circle, ...]
+
+    @property
+    def area_mm2(self) -> float:
+        return contour_area(self.outer) - sum(math.pi * h.radius**2 for h in self.holes)
+
+    @property
+    def bbox_mm(self) -> tuple[float, float, float, float]:
+        """(xmin, ymin, xmax, ymax) of the outer contour, exact for arcs."""
+        return contour_bbox(self.outer)
+
+
+def contour_area(segments: Sequence[Segment]) -> float:
+    """Signed area (mm^2) of a closed chain of lines and arcs (positive if CCW).
+
+    Shoelace over the chord polygon plus, for each arc, the circular segment
+    between arc and chord: (r^2 / 2)(theta - sin theta), signed by the sweep.
+    """
+    area = 0.0
+    for s in segments:
+        (x0, y0), (x1, y1) = s.start, s.end
+        area += 0.5 * (x0 * y1 - x1 * y0)
+        if isinstance(s, Arc):
+            th = s.sweep
+            area += 0.5 * s.radius**2 * (th - math.sin(th))
+    return area
+
+
+def _arc_extremes(arc: Arc) -> list[Point]:
+    pts = [arc.start, arc.end]
+    a0 = math.atan2(arc.start[1] - arc.centre[1], arc.start[0] - arc.centre[0])
+    sweep = arc.sweep
+    r = arc.radius
+    for k in range(-8, 9):
+        ang = k * math.pi / 2
+        rel = (ang - a0) / sweep if sweep else -1
+        if 0 < rel < 1:
+            pts.append((arc.centre[0] + r * math.cos(ang), arc.centre[1] + r * math.sin(ang)))
+    return pts
+
+
+def contour_bbox(segments: Iterable[Segment]) -> tuple[float, float, float, float]:
+    pts: list[Point] = []
+    for s in segments:
+        pts.extend(_arc_extremes(s) if isinstance(s, Arc) else [s.start, s.end])
+    xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+    return (min(xs), min(ys), max(xs), max(ys))
+
+
+def _chain(points_and_arcs: list) -> tuple[Segment, ...]:
+    """Close a list of vertices, where an ``("arc", centre, ccw)`` marker between
+    two vertices makes that edge an arc, into a chain of segments."""
+    verts: list[Point] = []
+    kinds: list[tuple | None] = []
+    for item in points_and_arcs:
+        if isinstance(item, tuple) and item and item[0] == "arc":
+            kinds[-1] = item
+        else:
+            verts.append(item)
+            kinds.append(None)
+    segs: list[Segment] = []
+    for i, p in enumerate(verts):
+        q = verts[(i + 1) % len(verts)]
+        k = kinds[i]
+        segs.append(Line(p, q) if k is None else Arc(p, q, k[1], k[2]))
+    return tuple(segs)
+
+
+def element_profile(g: ElementGeometry) -> Profile:
+    """Exact wire-cut profile of a flexure sensing element.
+
+    Args:
+        g: element geometry from the plan (mm).
+
+    Returns:
+        :class:`Profile` with the CCW outer contour (lines and arcs only), the
+        bolt holes and one start hole at the centre of each bolt hole.
+    """
+    L, H = g.overall_length_mm, g.base_height_mm
+    R, t = g.notch_radius_mm, g.web_thickness_mm
+    xh, yc = g.hinge_x_mm, g.notch_centre_y_mm
+    w, r = g.tip_width_mm, g.inside_corner_radius_mm
+    y_arm = g.arm_underside_y_mm
+    y_tip = g.tip_top_y_mm
+    x_tip_l = L - w
+    outer = _chain([
+        (0.0, 0.0),
+        (xh - R, 0.0),                      # underside of the base
+        (xh - R, yc), ("arc", (xh, yc), False),   # notch: concave, clockwise over the top
+        (xh + R, yc),
+        (xh + R, y_arm),                    # notch front wall down to the arm underside
+        (L, y_arm),                         # arm underside
+        (L, y_tip),                         # tip front face
+        (x_tip_l, y_tip),                   # contact face
+        (x_tip_l, H + r), ("arc", (x_tip_l - r, H + r), False),  # tip-root fillet
+        (x_tip_l - r, H),
+        (0.0, H),                           # flat top face: gauge over the web
+    ])
+    holes = tuple(Circle((h.x_mm, h.y_mm), h.diameter_mm / 2) for h in g.bolt_holes)
+    starts = tuple(Circle(c.centre, g.start_hole_diameter_mm / 2) for c in holes)
+    return Profile(outer=outer, holes=holes, start_holes=starts)
+
+
+def web_thickness_at(g: ElementGeometry, x: float) -> float:
+    """Material height (mm) over the notch at ``x`` (element frame):
+    h(x) = t + R - sqrt(R^2 - (x - x_h)^2) for |x - x_h| <= R."""
+    d = x - g.hinge_x_mm
+    R = g.notch_radius_mm
+    if abs(d) > R:
+        raise ValueError(f"x = {x} mm is outside the notch ({g.hinge_x_mm - R} ... {g.hinge_x_mm + R} mm)")
+    return g.web_thickness_mm + R - math.sqrt(R * R - d * d)
+
+
+def inside_corners(segments: Sequence[Segment], tol_rad: float = 1e-9) -> list[tuple[Point, float]]:
+    """Concave (inside) corners of a CCW contour with the radius the wire cuts there.
+
+    A sharp concave vertex has radius 0. A concave (clockwise) arc is an inside
+    corner of its own radius. Returns a list of (location, radius_mm).
+    """
+    out: list[tuple[Point, float]] = []
+    n = len(segments)
+    for i, s in enumerate(segments):
+        if isinstance(s, Arc) and not s.ccw:
+            out.append((s.midpoint, s.radius))
+        nxt = segments[(i + 1) % n]
+        d_in = _tangent(s, at_end=True)
+        d_out = _tangent(nxt, at_end=False)
+        cross = d_in[0] * d_out[1] - d_in[1] * d_out[0]
+        dot = d_in[0] * d_out[0] + d_in[1] * d_out[1]
+        turn = math.atan2(cross, dot)
+        if turn < -tol_rad:  # right turn on a CCW contour: a concave vertex
+            out.append((s.end, 0.0))
+    return out
+
+
+def _tangent(s: Segment, at_end: bool) -> Point:
+    if isinstance(s, Line):
+        dx, dy = s.end[0] - s.start[0], s.end[1] - s.start[1]
+    else:
+        p = s.end if at_end else s.start
+        rx, ry = p[0] - s.centre[0], p[1] - s.centre[1]
+        dx, dy = (-ry, rx) if s.ccw else (ry, -rx)
+    n = math.hypot(dx, dy)
+    return (dx / n, dy / n)
+
+
+def rectangle_profile(length: float, height: float, holes: Iterable[tuple[float, float, float]]) -> Profile:
+    """Rectangle [0, length] x [0, height] (mm) with round holes (x, y, diameter)."""
+    outer = _chain([(0.0, 0.0), (length, 0.0), (length, height), (0.0, height)])
+    return Profile(outer=outer, holes=tuple(Circle((x, y), d / 2) for x, y, d in holes),
+                   start_holes=())
+
+
+def u_plate_profile(half_length: float, window_half_width: float, height: float,
+                    bridge_height: float, corner_radius: float,
+                    holes: Iterable[tuple[float, float, float]]) -> Profile:
+    """U-shaped plate centred on x = 0 (mm): two legs joined by a bridge of
+    ``bridge_height``; the window's inside corners are rounded to ``corner_radius``
+    (the milling cutter radius)."""
+    a, w, h, b, r = half_length, window_half_width, height, bridge_height, corner_radius
+    outer = _chain([
+        (-a, 0.0), (a, 0.0), (a, h), (w, h),
+        (w, b + r), ("arc", (w - r, b + r), False),
+        (w - r, b),
+        (-w + r, b), ("arc", (-w + r, b + r), False),
+        (-w, b + r),
+        (-w, h), (-a, h),
+    ])
+    return Profile(outer=outer, holes=tuple(Circle((x, y), d / 2) for x, y, d in holes),
+                   start_holes=())
