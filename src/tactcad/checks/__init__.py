@@ -1,0 +1,1 @@
+"""Checks of parts, DXF, STEP and assemblies; each returns CheckResult rows."""

@@ -1,0 +1,85 @@
+"""Pairwise interference of placed parts with OpenCascade booleans.
+
+Every pair whose bounding boxes overlap is intersected; the common volume
+must be <= 1e-6 mm^3. A boolean that fails or raises is a failure, never
+"no overlap". Declared contacts are additionally checked to touch.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import build123d as bd
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
+from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+from OCP.BRepGProp import BRepGProp
+from OCP.GProp import GProp_GProps
+
+from .result import CheckResult
+
+OVERLAP_TOL_MM3 = 1e-6
+CONTACT_TOL_MM = 1e-6
+
+
+@dataclass(frozen=True)
+class Placed:
+    name: str
+    shape: bd.Shape
+
+
+def _boxes_overlap(a: bd.BoundBox, b: bd.BoundBox, tol: float) -> bool:
+    return (a.min.X <= b.max.X + tol and b.min.X <= a.max.X + tol and
+            a.min.Y <= b.max.Y + tol and b.min.Y <= a.max.Y + tol and
+            a.min.Z <= b.max.Z + tol and b.min.Z <= a.max.Z + tol)
+
+
+def common_volume(a: bd.Shape, b: bd.Shape) -> float:
+    """Volume (mm^3) of the boolean common of two solids.
+
+    Raises:
+        RuntimeError: the boolean did not complete.
+    """
+    op = BRepAlgoAPI_Common(a.wrapped, b.wrapped)
+    if not op.IsDone():
+        raise RuntimeError("boolean common failed")
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(op.Shape(), props)
+    return abs(props.Mass())
+
+
+def distance(a: bd.Shape, b: bd.Shape) -> float:
+    d = BRepExtrema_DistShapeShape(a.wrapped, b.wrapped)
+    if not d.IsDone():
+        raise RuntimeError("distance computation failed")
+    return d.Value()
+
+
+def check_interference(placed: list[Placed], contacts: set[frozenset[str]]) -> list[CheckResult]:
+    """Overlap volume of every pair with overlapping boxes, and touching of declared contacts."""
+    out: list[CheckResult] = []
+    boxes = {p.name: p.shape.bounding_box() for p in placed}
+    tested = 0
+    for a, b in itertools.combinations(placed, 2):
+        pair = frozenset({a.name, b.name})
+        subject = f"{a.name} / {b.name}"
+        if not _boxes_overlap(boxes[a.name], boxes[b.name], CONTACT_TOL_MM):
+            if pair in contacts:
+                out.append(CheckResult("contact_touching", subject, False, "boxes apart"))
+            continue
+        tested += 1
+        try:
+            vol = common_volume(a.shape, b.shape)
+        except Exception as exc:
+            out.append(CheckResult("interference", subject, False, f"boolean failed: {exc}"))
+            continue
+        if vol > OVERLAP_TOL_MM3:
+            out.append(CheckResult("interference", subject, False, f"overlap {vol:.6g} mm3"))
+        if pair in contacts:
+            gap = distance(a.shape, b.shape)
+            out.append(CheckResult("contact_touching", subject, gap <= CONTACT_TOL_MM,
+                                   f"gap {gap:.1e} mm"))
+    out.append(CheckResult("interference", f"{len(placed)} parts", not any(
+        r.check == "interference" and not r.passed for r in out),
+        f"{tested} pairs intersected, overlap limit {OVERLAP_TOL_MM3:g} mm3"))
+    return out

@@ -1,0 +1,73 @@
+"""Per-part solid checks: validity is more than ``is_valid``.
+
+valid, exactly the expected number of solids, closed (no free boundaries),
+volume equal to an independent estimate, bounding box as designed, and a
+watertight, consistently wound triangle mesh.
+"""
+
+from __future__ import annotations
+
+import build123d as bd
+import numpy as np
+import trimesh
+from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
+from OCP.TopAbs import TopAbs_EDGE
+from OCP.TopExp import TopExp_Explorer
+
+from ..catalogue import PartSpec
+from .result import CheckResult
+
+VOLUME_RTOL = 1e-6
+BBOX_TOL_MM = 1e-6
+MESH_TOLERANCE_MM = 0.005
+MESH_VOLUME_RTOL = 5e-3  # chordal error of the tessellation on the arcs
+
+
+def free_edge_count(shape: bd.Shape) -> int:
+    """Edges on free boundaries (belonging to one face only); 0 for a closed solid."""
+    bounds = ShapeAnalysis_FreeBounds(shape.wrapped, 1e-7, False, False)
+    n = 0
+    for compound in (bounds.GetClosedWires(), bounds.GetOpenWires()):
+        ex = TopExp_Explorer(compound, TopAbs_EDGE)
+        while ex.More():
+            n += 1
+            ex.Next()
+    return n
+
+
+def to_trimesh(shape: bd.Shape, tolerance_mm: float = MESH_TOLERANCE_MM) -> trimesh.Trimesh:
+    """Triangle mesh of a shape (mm), vertices merged so edges can be paired."""
+    verts, tris = shape.tessellate(tolerance_mm, 0.2)
+    mesh = trimesh.Trimesh(np.array([tuple(v) for v in verts], dtype=float),
+                           np.array(tris, dtype=np.int64), process=True)
+    mesh.merge_vertices()
+    return mesh
+
+
+def bbox_tuple(shape: bd.Shape) -> tuple[float, ...]:
+    bb = shape.bounding_box(optimal=True)
+    return (bb.min.X, bb.min.Y, bb.min.Z, bb.max.X, bb.max.Y, bb.max.Z)
+
+
+def check_solid(spec: PartSpec, solid: bd.Shape, expected_solids: int = 1) -> list[CheckResult]:
+    """All solid checks of one part against its catalogue entry."""
+    name = spec.name
+    out = [CheckResult("is_valid", name, bool(solid.is_valid))]
+    n = len(solid.solids())
+    out.append(CheckResult("solid_count", name, n == expected_solids, f"{n} (expected {expected_solids})"))
+    free = free_edge_count(solid)
+    out.append(CheckResult("no_free_boundaries", name, free == 0, f"{free} free edges"))
+    vol = solid.volume
+    rel = abs(vol - spec.expected_volume_mm3) / spec.expected_volume_mm3
+    out.append(CheckResult("volume", name, vol > 0 and rel <= VOLUME_RTOL,
+                           f"{vol:.6f} mm3 vs {spec.expected_volume_mm3:.6f} (rel {rel:.1e})"))
+    bb = bbox_tuple(solid)
+    dev = max(abs(a - b) for a, b in zip(bb, spec.expected_bbox_mm))
+    out.append(CheckResult("bounding_box", name, dev <= BBOX_TOL_MM, f"max deviation {dev:.1e} mm"))
+    mesh = to_trimesh(solid)
+    mrel = abs(mesh.volume - vol) / vol
+    ok = mesh.is_watertight and mesh.is_winding_consistent and mrel <= MESH_VOLUME_RTOL
+    out.append(CheckResult("watertight_mesh", name, ok,
+                           f"watertight={mesh.is_watertight} winding={mesh.is_winding_consistent} "
+                           f"volume rel {mrel:.1e}"))
+    return out

@@ -1,0 +1,38 @@
+"""``tactcad check``: build, export to a scratch folder and run every check."""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+
+from . import add_design_arg
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("check", help="run part, DXF, STEP and interference checks",
+                       description="Export the design to a scratch folder (or --out) and run every "
+                                   "check; exit 1 if any fails.")
+    add_design_arg(p)
+    p.add_argument("--out", metavar="DIR", default=None,
+                   help="export here instead of a temporary folder")
+    p.add_argument("--failures-only", action="store_true", help="print failing checks only")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..checks.result import failures
+    from ..design import load_design
+    from ..exporter import export, run_checks
+
+    plan = load_design(args.design)
+    with tempfile.TemporaryDirectory() as tmp:
+        out = args.out or tmp
+        export(plan, out, log=lambda s: None)
+        results = run_checks(plan, out)
+    for r in results:
+        if r.passed and args.failures_only:
+            continue
+        print(r.line())
+    bad = failures(results)
+    print(f"{len(results) - len(bad)} passed, {len(bad)} failed")
+    return 1 if bad else 0

@@ -1,0 +1,28 @@
+"""``tactcad export``: write STEP, DXF and the manifest for a design."""
+
+from __future__ import annotations
+
+import argparse
+
+from . import add_design_arg
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("export", help="write STEP, wire-EDM DXF and manifest.json",
+                       description="Build the design's parts and write exports/: step/<part>.step, "
+                                   "step/array.step, dxf/element_<n>.dxf and manifest.json.")
+    add_design_arg(p)
+    p.add_argument("--out", metavar="DIR", default="exports", help="output folder (default: exports)")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..design import load_design
+    from ..exporter import export
+
+    plan = load_design(args.design)  # validation first: a bad design writes nothing
+    print(f"tactcad export: design {plan.name} ({plan.source}), sha256 {plan.design_hash[:12]}")
+    result = export(plan, args.out)
+    for line in result.summary_lines():
+        print(line)
+    return 0

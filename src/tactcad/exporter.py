@@ -1,0 +1,204 @@
+"""The main job: a plan -> STEP, wire-EDM DXF and a manifest, plus the checks.
+
+Every file is first written (atomically) into a staging folder beside the
+target; only when all of them exist are they moved into place one by one
+with ``os.replace``, the manifest last. A failed or interrupted build leaves
+the previous exports whole.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+import tempfile
+import time
+from dataclasses import dataclass, field
+from importlib import metadata
+from pathlib import Path
+from typing import Callable
+
+from . import __version__
+from .catalogue import PartSpec, array_contacts, array_instances, array_parts
+from .design import Plan
+
+STACK_PACKAGES = ("build123d", "cadquery", "cadquery-ocp", "ezdxf", "trimesh", "manifold3d",
+                  "numpy", "scipy", "scikit-fem", "gmsh")
+
+
+@dataclass
+class ExportResult:
+    out_dir: Path
+    files: list[dict] = field(default_factory=list)
+    seconds: float = 0.0
+
+    def summary_lines(self) -> list[str]:
+        lines = [f"{f['path']:<34} {f['bytes']:>9,d} B  {f['part']}" for f in self.files]
+        total = sum(f["bytes"] for f in self.files)
+        lines.append(f"{len(self.files)} files, {total:,d} B in {self.out_dir} ({self.seconds:.1f} s)")
+        return lines
+
+
+def stack_versions() -> dict[str, str]:
+    out = {}
+    for pkg in STACK_PACKAGES:
+        try:
+            out[pkg] = metadata.version(pkg)
+        except metadata.PackageNotFoundError:
+            out[pkg] = "not installed"
+    return out
+
+
+def _sha256(path: Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for chunk in iter(lambda: fh.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def element_dxf_name(number: int) -> str:
+    return f"dxf/element_{number}.dxf"
+
+
+def write_array_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> list[dict]:
+    """Build the array's parts and write STEP and DXF into ``staging``.
+
+    Returns the file records (relative path, part) in a fixed order.
+    """
+    from .build import PartCache, location
+    from .export.dxf import write_profile_dxf
+    from .export.step import StepInstance, StepPart, write_step
+
+    specs = array_parts(plan)
+    cache = PartCache(plan, specs)
+    records: list[dict] = []
+    step_parts = []
+    for name, spec in specs.items():
+        solid = cache.solid(name)
+        step_parts.append(StepPart(name, solid, spec.color))
+        rel = f"step/{name}.step"
+        write_step(staging / rel, [step_parts[-1]])
+        records.append({"path": rel, "part": name, "kind": "step-part"})
+        log(f"  wrote {rel}")
+    instances = [StepInstance(i.name, i.part, location(i.placement)) for i in array_instances(plan)]
+    write_step(staging / "step/array.step", step_parts, instances, "array")
+    records.append({"path": "step/array.step", "part": "array", "kind": "step-assembly"})
+    log("  wrote step/array.step")
+    for slot in plan.slots:
+        rel = element_dxf_name(slot.number)
+        spec = specs[slot.geometry.part_name]
+        write_profile_dxf(staging / rel, spec.profile, title=f"{plan.name} element {slot.number}")
+        records.append({"path": rel, "part": spec.name, "kind": "dxf-wire-edm",
+                        "element": slot.number})
+    log(f"  wrote {len(plan.slots)} DXF files in dxf/")
+    return records
+
+
+def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
+    """The manifest: every file with its sha256, its part, the design hash, the stack."""
+    specs = array_parts(plan)
+    inst = array_instances(plan)
+    counts: dict[str, int] = {}
+    for i in inst:
+        counts[i.part] = counts.get(i.part, 0) + 1
+    files = []
+    for r in records:
+        p = out_dir / r["path"]
+        files.append({**r, "sha256": _sha256(p), "bytes": p.stat().st_size})
+    parts = {n: _part_record(s, counts.get(n, 0)) for n, s in specs.items()}
+    return {
+        "design": {"name": plan.name, "source": plan.source, "sha256": plan.design_hash},
+        "tactcad_version": __version__,
+        "cad_stack": stack_versions(),
+        "units": "mm",
+        "files": files,
+        "parts": parts,
+        "assemblies": {"array": {
+            "file": "step/array.step",
+            "instances": len(inst),
+            "solids": len(inst),
+            "volume_mm3": sum(specs[i.part].expected_volume_mm3 for i in inst),
+            "labels": sorted({i.part for i in inst}),
+        }},
+        "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
+                    for d in plan.derived],
+        "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],
+    }
+
+
+def _part_record(spec: PartSpec, count: int) -> dict:
+    return {"kind": spec.kind, "process": spec.process, "material": spec.material,
+            "quantity": count, "volume_mm3": spec.expected_volume_mm3,
+            "bbox_mm": list(spec.expected_bbox_mm)}
+
+
+def export(plan: Plan, out_dir: str | Path, log: Callable[[str], None] = print) -> ExportResult:
+    """Write all exports of ``plan`` into ``out_dir`` (see module doc).
+
+    Raises:
+        DesignError: never here (the plan is already valid); OS errors propagate
+            and leave ``out_dir`` as it was.
+    """
+    t0 = time.perf_counter()
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=".staging-", dir=out_dir))
+    try:
+        records = write_array_files(plan, staging, log)
+        man = manifest(plan, staging, records)
+        man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
+        for r in records:
+            target = out_dir / r["path"]
+            target.parent.mkdir(parents=True, exist_ok=True)
+            os.replace(staging / r["path"], target)
+        from .export.atomic import write_bytes_atomic
+        write_bytes_atomic(out_dir / "manifest.json", man_bytes)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    result = ExportResult(out_dir, files=man["files"] + [{
+        "path": "manifest.json", "bytes": len(man_bytes), "part": "-"}])
+    result.seconds = time.perf_counter() - t0
+    return result
+
+
+def run_checks(plan: Plan, out_dir: str | Path) -> list:
+    """Every check of the array on the files in ``out_dir`` (written by :func:`export`)."""
+    from .build import PartCache, location
+    from .checks.dxf import check_profile_dxf
+    from .checks.interference import Placed, check_interference
+    from .checks.solids import check_solid
+    from .checks.step import check_step
+    from .parts.element import profile_face
+
+    out_dir = Path(out_dir)
+    specs = array_parts(plan)
+    cache = PartCache(plan, specs)
+    results = []
+    for name, spec in specs.items():
+        solid = cache.solid(name)
+        results += check_solid(spec, solid)
+        results += check_step(out_dir / f"step/{name}.step", f"step/{name}.step", 1,
+                              spec.expected_volume_mm3, spec.expected_bbox_mm, {name})
+    faces = {}
+    for slot in plan.slots:
+        spec = specs[slot.geometry.part_name]
+        if spec.name not in faces:
+            f = profile_face(spec.profile)
+            bb = f.bounding_box(optimal=True)
+            faces[spec.name] = (f.area, (bb.min.X, bb.min.Y, bb.max.X, bb.max.Y))
+        area, bbox = faces[spec.name]
+        results += check_profile_dxf(out_dir / element_dxf_name(slot.number),
+                                     f"element_{slot.number}.dxf", area, bbox, plan.edm,
+                                     slot.geometry.web_thickness_mm)
+    inst = array_instances(plan)
+    placed = [Placed(i.name, cache.solid(i.part).moved(location(i.placement))) for i in inst]
+    results += check_interference(placed, array_contacts(plan))
+    import build123d as bd
+    asm = bd.Compound([p.shape for p in placed])
+    from .checks.solids import bbox_tuple
+    results += check_step(out_dir / "step/array.step", "step/array.step", len(inst),
+                          sum(specs[i.part].expected_volume_mm3 for i in inst), bbox_tuple(asm),
+                          {i.part for i in inst})
+    return results
