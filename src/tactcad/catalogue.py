@@ -75,7 +75,7 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
         prof = element_profile(g)
         parts[name] = PartSpec(
             name=name, kind="fabricated", process="wire EDM from sheet", material=mat,
-            color=ALUMINIUM, builder="element",
+            color=_element_shade(g.arm_length_mm), builder="element",
             expected_volume_mm3=prof.area_mm2 * g.sheet_thickness_mm,
             expected_bbox_mm=_prism_bbox(prof, g.sheet_thickness_mm),
             profile=prof, thickness_mm=g.sheet_thickness_mm)
@@ -115,6 +115,14 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
         color=ZINC, builder="nut", expected_volume_mm3=nut_vol,
         expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm))
     return parts
+
+
+def _element_shade(arm_length_mm: float) -> RGB:
+    """Aluminium, a shade darker for a longer (softer) arm, so a reviewer can
+    tell the stiffness classes apart; distinct colours also keep the STEP
+    colour records independent of each other."""
+    k = (arm_length_mm - 4.0) / 4.0 * 0.25
+    return tuple(round(c - k * 0.6, 4) for c in ALUMINIUM)  # type: ignore[return-value]
 
 
 def _hexagon_area(across_flats: float) -> float:

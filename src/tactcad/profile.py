@@ -1,4 +1,4 @@
-"""The wire-cut flexure profile as exact lines and arcs (no CAD kernel).
+r"""The wire-cut flexure profile as exact lines and arcs (no CAD kernel).
 
 This one description feeds the solid (:mod:`tactcad.parts.element`), the
 wire-EDM DXF (:mod:`tactcad.export.dxf`), the FEM meshes and the closed-form

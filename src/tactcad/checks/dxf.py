@@ -193,18 +193,51 @@ def arc_line_distance(arc: Arc, line: Line) -> float:
     return min(cands)
 
 
-def thinnest_ligament(segments: tuple[Segment, ...]) -> float:
-    """Thinnest material section at a concave arc of a contour (mm): the minimum
-    distance from each concave arc to the non-adjacent straight edges. For a
-    flexure this is the web thickness of the notch hinge."""
-    n = len(segments)
+def _ray_hit(origin: Point, direction: Point, line: Line) -> float:
+    """Distance along a ray to a line segment (inf if it misses)."""
+    (x0, y0), (x1, y1) = line.start, line.end
+    ex, ey = x1 - x0, y1 - y0
+    dx, dy = direction
+    den = dx * ey - dy * ex
+    if abs(den) < 1e-15:
+        return math.inf
+    wx, wy = x0 - origin[0], y0 - origin[1]
+    t = (wx * ey - wy * ex) / den  # along the ray
+    u = (wx * dy - wy * dx) / den  # along the segment
+    return t if t > 1e-12 and -1e-12 <= u <= 1 + 1e-12 else math.inf
+
+
+def thinnest_ligament(segments: tuple[Segment, ...], samples: int = 720) -> float:
+    """Thinnest material section at a concave arc of a CCW contour (mm).
+
+    From points of each concave arc a ray goes radially outward (into the
+    material) to the first straight edge it meets; the shortest such chord is
+    the ligament. Candidate directions: the perpendicular foot on every edge
+    (where the exact minimum lies), the arc ends and ``samples`` directions in
+    between. For a notch flexure hinge this is the web thickness.
+    """
     best = math.inf
-    for i, s in enumerate(segments):
+    lines = [o for o in segments if isinstance(o, Line)]
+    for s in segments:
         if not (isinstance(s, Arc) and not s.ccw):
             continue
-        for j, o in enumerate(segments):
-            if isinstance(o, Line) and j not in (i, (i - 1) % n, (i + 1) % n):
-                best = min(best, arc_line_distance(s, o))
+        cx, cy = s.centre
+        a0 = math.atan2(s.start[1] - cy, s.start[0] - cx)
+        angles = [a0 + s.sweep * k / samples for k in range(samples + 1)]
+        for ln in lines:
+            (x0, y0), (x1, y1) = ln.start, ln.end
+            ex, ey = x1 - x0, y1 - y0
+            L2 = ex * ex + ey * ey
+            u = ((cx - x0) * ex + (cy - y0) * ey) / L2 if L2 else 0.0
+            fx, fy = x0 + u * ex, y0 + u * ey
+            angles.append(math.atan2(fy - cy, fx - cx))
+        for ang in angles:
+            direction = (math.cos(ang), math.sin(ang))
+            p = (cx + s.radius * direction[0], cy + s.radius * direction[1])
+            if not _angle_in_arc(s, p):
+                continue
+            hit = min(_ray_hit(p, direction, ln) for ln in lines)
+            best = min(best, hit)
     return best
 
 

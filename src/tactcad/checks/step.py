@@ -29,6 +29,8 @@ def check_step(path: str | Path, name: str, solids: int, volume_mm3: float,
         s = step_summary(path)
     except Exception as exc:  # an unreadable file is a failed check, not a crash
         return [CheckResult("step_reimport", name, False, f"{type(exc).__name__}: {exc}")]
+    if s["solids"] == 0:  # import_step reads an unparsable file as an empty shape
+        return [CheckResult("step_reimport", name, False, "no solid could be read")]
     rel = abs(s["volume_mm3"] - volume_mm3) / volume_mm3
     dev = max(abs(a - b) for a, b in zip(s["bbox_mm"], bbox_mm))
     return [

@@ -100,7 +100,48 @@ def _normalise(path: Path) -> None:
         m.group(0).split(b"','")[1].rstrip(b"'"), FIXED_TIMESTAMP.encode()), data, count=1)
     counter = iter(range(1, 1 << 30))
     data = _NAUO_RE.sub(lambda m: b"NEXT_ASSEMBLY_USAGE_OCCURRENCE('%d'" % next(counter), data)
-    path.write_bytes(data)
+    path.write_bytes(_canonical_styles(data))
+
+
+_ENTITY_RE = re.compile(rb"^#(\d+) = (.*?);\s*$", re.S | re.M)
+_REF_RE = re.compile(rb"#(\d+)")
+_STYLE_START = b"MECHANICAL_DESIGN_GEOMETRIC_PRESENTATION_REPRESENTATION"
+
+
+def _canonical_styles(data: bytes) -> bytes:
+    """Put the colour (styled item) groups in a fixed order and renumber them.
+
+    OpenCascade writes one group per coloured part, starting at a
+    MECHANICAL_DESIGN_GEOMETRIC_PRESENTATION_REPRESENTATION, in an order that
+    varies between runs. The groups are sorted by the shape representation
+    they style (whose id is stable) and renumbered. This assumes groups share
+    no entities, which holds when every part has its own colour (checked).
+    """
+    pos = data.find(_STYLE_START)
+    if pos < 0:
+        return data
+    first = data.rfind(b"\n#", 0, pos) + 1
+    end = data.find(b"ENDSEC;", first)
+    region = data[first:end]
+    entities = [(int(m.group(1)), m.group(2)) for m in _ENTITY_RE.finditer(region)]
+    groups: list[list[tuple[int, bytes]]] = []
+    for ent in entities:
+        if ent[1].startswith(_STYLE_START) or not groups:
+            groups.append([])
+        groups[-1].append(ent)
+    ids = {i for i, _ in entities}
+    for g in groups:  # a reference into another group would make the order matter
+        own = {i for i, _ in g}
+        for _, body in g:
+            if any(int(r) in ids - own for r in _REF_RE.findall(body)):
+                return data
+    key = lambda g: int(_REF_RE.findall(g[0][1])[-1])  # the styled shape representation
+    ordered = [e for g in sorted(groups, key=key) for e in g]
+    base = min(ids)
+    new_id = {old: base + k for k, (old, _) in enumerate(ordered)}
+    renum = lambda m: b"#%d" % new_id.get(int(m.group(1)), int(m.group(1)))
+    body = b"".join(b"#%d = %s;\n" % (new_id[i], _REF_RE.sub(renum, txt)) for i, txt in ordered)
+    return data[:first] + body + data[end:]
 
 
 def write_step(path: str | Path, parts: Sequence[StepPart],

@@ -1,0 +1,312 @@
+"""Level 1 (closed-form) stiffness: exactness, physics, correction hook, inverse."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from tactcad.design import load_design
+from tactcad.errors import DesignError
+from tactcad.mechanics import closed_form as cf
+from tactcad.mechanics.closed_form import (
+    ALPHA_SHEAR, IDENTITY, Correction, CorrectionRangeWarning, FitRange, apply_correction,
+    closed_form_compliance, closed_form_stiffness, estimate_closed_form, fit_correction,
+    gauge_strain_per_newton, load_correction, notch_integrals, web_for_stiffness)
+from tactcad.mechanics.result import StiffnessResult
+from tactcad.profile import web_thickness_at
+
+PLAN = load_design()
+MAT = PLAN.material
+G0 = PLAN.element(1).geometry
+E, NU, B = MAT.youngs_modulus_MPa, MAT.poisson_ratio, G0.sheet_thickness_mm
+KW = dict(arm_height_mm=G0.arm_height_mm, tip_width_mm=G0.tip_width_mm,
+          tip_height_mm=G0.tip_height_mm, E=E, nu=NU, b=B)
+
+
+def _geometry(t: float, R: float, a: float):
+    return dataclasses.replace(G0, web_thickness_mm=t, notch_radius_mm=R, arm_length_mm=a)
+
+
+def _gauss_over_notch(g, fun, n_gauss: int = 40) -> float:
+    """Composite Gauss-Legendre quadrature of fun(u, h(u)) du over the notch,
+    with h from the exact profile (tactcad.profile.web_thickness_at), in the
+    angle theta (u = R sin theta), panels graded towards the neck."""
+    R, t = g.notch_radius_mm, g.web_thickness_mm
+    w = math.sqrt(t / R)
+    cuts = [w * 2.0**k for k in range(-4, 8) if w * 2.0**k < 0.5 * math.pi]
+    bps = sorted({0.0, 0.5 * math.pi, -0.5 * math.pi, *cuts, *(-c for c in cuts)})
+    xg, wg = np.polynomial.legendre.leggauss(n_gauss)
+    total = 0.0
+    for lo, hi in zip(bps[:-1], bps[1:]):
+        th = 0.5 * (hi - lo) * xg + 0.5 * (hi + lo)
+        u = R * np.sin(th)
+        h = np.array([web_thickness_at(g, g.hinge_x_mm + ui) for ui in u])
+        total += 0.5 * (hi - lo) * np.sum(wg * fun(u, h) * R * np.cos(th))
+    return float(total)
+
+
+T_OVER_R = np.geomspace(0.01, 1.0, 9)
+CASES = [(s * R, R, a) for s in T_OVER_R for R, a in ((0.4, 4.0), (2.0, 8.0))]
+CASES += [(0.15, 0.15, 4.0), (0.15, 2.0, 8.0), (0.4, 0.4, 8.0), (0.4, 2.0, 4.0),
+          (0.25, 0.5, 6.0)]
+
+
+@pytest.mark.parametrize("t,R,a", CASES)
+def test_closed_form_matches_quadrature(t, R, a):
+    g = _geometry(t, R, a)
+    ni = notch_integrals(t, R)
+    q0 = _gauss_over_notch(g, lambda u, h: 1.0 / h**3)
+    q1 = _gauss_over_notch(g, lambda u, h: u / h**3)
+    q2 = _gauss_over_notch(g, lambda u, h: u * u / h**3)
+    qs = _gauss_over_notch(g, lambda u, h: 1.0 / h)
+    assert float(ni.inv_h3) == pytest.approx(q0, rel=1e-10)
+    assert abs(q1) <= 1e-12 * q0 * R  # odd moment vanishes: symmetric notch
+    assert float(ni.u2_h3) == pytest.approx(q2, rel=1e-10)
+    assert float(ni.inv_h) == pytest.approx(qs, rel=1e-10)
+    # full notch terms of the tip compliance: 12 (a - u)^2 / (E b h^3) and alpha / (G b h)
+    parts = closed_form_compliance(t, R, a, **KW)
+    qb = _gauss_over_notch(g, lambda u, h: 12.0 * (a - u) ** 2 / (E * B * h**3))
+    G = E / (2 * (1 + NU))
+    assert float(parts.notch_bending) == pytest.approx(qb, rel=1e-10)
+    assert float(parts.notch_shear) == pytest.approx(ALPHA_SHEAR / (G * B) * qs, rel=1e-10)
+
+
+def test_arm_terms_match_direct_integration():
+    t, R, a = 0.25, 0.5, 6.0
+    parts = closed_form_compliance(t, R, a, **KW)
+    ha, ht, w = G0.arm_height_mm, G0.arm_height_mm + G0.tip_height_mm, G0.tip_width_mm
+    d = np.linspace(w / 2, a - R, 200001)  # lever over the arm
+    f = 12 * d**2 / (E * B * ha**3)
+    arm = np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(d))
+    tip = 12 * (w / 2) ** 3 / 3 / (E * B * ht**3)
+    assert float(parts.arm_bending) == pytest.approx(arm + tip, rel=1e-8)
+
+
+def test_small_t_over_R_tends_to_classical_hinge_stiffness():
+    # k_theta -> 2 E b t^2.5 / (9 pi sqrt(2 R)) (single-sided notch) as t/R -> 0
+    R = 1.0
+    errs = []
+    for s in (1e-2, 1e-3, 1e-4):
+        t = s * R
+        c_rot = 12.0 / (E * B) * float(notch_integrals(t, R).inv_h3)
+        k_classic = 2 * E * B * t**2.5 / (9 * math.pi * math.sqrt(2 * R))
+        errs.append(abs(1.0 / c_rot / k_classic - 1))
+    assert errs[0] > errs[1] > errs[2]
+    assert errs[2] < 1e-3
+
+
+@pytest.mark.parametrize("t", [0.15, 0.25, 0.4])
+@pytest.mark.parametrize("a", [4.0, 8.0])
+def test_monotonic_in_web_arm_and_radius(t, a):
+    webs = np.linspace(0.15, 0.4, 26)
+    arms = np.linspace(4.0, 8.0, 21)
+    radii = np.linspace(t, 2.0, 30)
+    k_web = closed_form_stiffness(webs, 0.5, a, **KW)
+    k_arm = closed_form_stiffness(t, 0.5, arms, **KW)
+    k_rad = closed_form_stiffness(t, radii, a, **KW)
+    for k in (k_web, k_arm, k_rad):
+        assert np.all(np.isfinite(k)) and np.all(k > 0)
+    assert np.all(np.diff(k_web) > 0)   # thinner web -> softer
+    assert np.all(np.diff(k_arm) < 0)   # longer lever -> softer
+    # larger notch radius -> longer, more compliant hinge -> softer
+    assert np.all(np.diff(k_rad) < 0)
+
+
+def test_extremes_finite():
+    t = np.array([0.15, 0.4])[:, None, None]
+    R = np.array([0.4, 2.0])[None, :, None]
+    a = np.array([4.0, 8.0])
+    k = closed_form_stiffness(t, R, a, **KW)
+    assert k.shape == (2, 2, 2)
+    k_sharp = closed_form_stiffness(0.15, 0.15, a, **KW)  # t/R = 1 at the thinnest web
+    for kk in (k, k_sharp):
+        assert np.all(np.isfinite(kk)) and np.all(kk > 0)
+
+
+def test_broadcast_matches_scalar():
+    t = np.array([0.15, 0.25, 0.4])
+    a = np.array([[4.0], [8.0]])
+    k = closed_form_stiffness(t, 0.5, a, **KW)
+    assert k.shape == (2, 3)
+    for i in range(2):
+        for j in range(3):
+            ks = closed_form_stiffness(float(t[j]), 0.5, float(a[i, 0]), **KW)
+            assert np.ndim(ks) == 0
+            assert float(ks) == pytest.approx(k[i, j], rel=1e-15)
+
+
+@pytest.mark.parametrize("bad", [dict(web_mm=-0.1), dict(web_mm=np.nan), dict(notch_radius_mm=0.0),
+                                 dict(arm_length_mm=1.0), dict(nu=0.5)])
+def test_invalid_input_raises(bad):
+    args = dict(web_mm=0.25, notch_radius_mm=0.5, arm_length_mm=6.0, **KW)
+    args.update(bad)
+    with pytest.raises(ValueError):
+        closed_form_stiffness(args.pop("web_mm"), args.pop("notch_radius_mm"),
+                              args.pop("arm_length_mm"), **args)
+
+
+def test_gauge_strain_is_euler_bernoulli_and_proportional_to_lever():
+    arms = np.array([4.0, 5.0, 6.0, 7.0, 8.0])
+    eps = gauge_strain_per_newton(0.25, arms, E=E, b=B)
+    assert np.all(eps > 0)
+    np.testing.assert_allclose(eps / arms, eps[0] / arms[0], rtol=1e-14)
+    assert eps[0] == pytest.approx(6 * 4.0 / (E * B * 0.25**2), rel=1e-15)
+    # 2 N at arms 4 ... 8 mm: print next to the paper's ANSYS 0.2711 ... 0.6316 %
+    pct = 2.0 * eps * 100
+    print(f"gauge strain at 2 N, arms 4 ... 8 mm: {pct[0]:.4f} ... {pct[-1]:.4f} %")
+    # strain scales as 1/t^2
+    assert float(gauge_strain_per_newton(0.125, 4.0, E=E, b=B)) == pytest.approx(4 * eps[0])
+
+
+def test_estimate_closed_form_result(monkeypatch, tmp_path):
+    monkeypatch.setattr(cf, "CORRECTION_FILE", tmp_path / "absent.json")
+    for slot in PLAN.slots:
+        g = slot.geometry
+        r = estimate_closed_form(g, MAT, slot.number)
+        assert isinstance(r, StiffnessResult) and r.model == "closed-form"
+        assert r.element == slot.number
+        k = closed_form_stiffness(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm, **KW)
+        assert r.stiffness_N_per_mm == pytest.approx(float(k), rel=1e-14)
+        assert r.gauge_strain_per_N == pytest.approx(
+            6 * g.arm_length_mm / (E * B * g.web_thickness_mm**2), rel=1e-14)
+        assert r.error_estimate_rel == pytest.approx(
+            0.39 * g.web_thickness_mm / g.notch_radius_mm)
+        assert r.wall_time_s >= 0
+
+
+# ---------------------------------------------------------------------------
+# Correction hook
+# ---------------------------------------------------------------------------
+def test_identity_correction():
+    assert IDENTITY.is_identity and Correction() == IDENTITY
+    k = np.array([10.0, 20.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        out, inside = apply_correction(k, np.array([0.01, 5.0]), IDENTITY, web_mm=9.0, arm_mm=99.0)
+    np.testing.assert_array_equal(out, k)
+    assert inside.all()
+
+
+def _example_correction() -> Correction:
+    return Correction(coefficients=(0.39, 0.05, 0.09),
+                      fit_range=FitRange(t_over_R=(0.075, 1.0), web_mm=(0.15, 0.4),
+                                         arm_mm=(4.0, 8.0)),
+                      residual_rel=0.01, source="synthetic test data")
+
+
+def test_correction_factor_and_range_flag():
+    c = _example_correction()
+    s = np.array([0.1, 0.5, 2.0])
+    with pytest.warns(CorrectionRangeWarning, match="1 of 3"):
+        k, inside = apply_correction(np.ones(3), s, c)
+    np.testing.assert_allclose(k, 1.09 / (1 + 0.39 * s + 0.05 * s * s), rtol=1e-15)
+    np.testing.assert_array_equal(inside, [True, True, False])
+    with pytest.warns(CorrectionRangeWarning):
+        _, inside = apply_correction(np.ones(2), np.array([0.5, 0.5]), c, web_mm=0.25,
+                                     arm_mm=np.array([6.0, 9.0]))
+    np.testing.assert_array_equal(inside, [True, False])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        _, inside = apply_correction(np.ones(3), s, c, warn=False)
+    assert not inside.all()
+
+
+def test_correction_validation():
+    with pytest.raises(DesignError):
+        Correction(coefficients=(1.0, 2.0))
+    with pytest.raises(DesignError):
+        Correction(coefficients=(-2.0, 0.0, 0.0), fit_range=FitRange(t_over_R=(0.1, 1.0)))
+    with pytest.raises(DesignError):
+        FitRange(t_over_R=(1.0, 0.5))
+    with pytest.raises(ValueError):
+        Correction(coefficients=(-2.0, 0.0, 0.0)).factor(1.0)
+
+
+def test_correction_json_round_trip_and_loader(tmp_path):
+    c = _example_correction()
+    path = tmp_path / "stiffness_correction.json"
+    path.write_text(json.dumps(c.as_json()))
+    assert load_correction(path) == c
+    assert load_correction(tmp_path / "missing.json") == IDENTITY
+    bad = c.as_json()
+    del bad["fit_range"]
+    path.write_text(json.dumps(bad))
+    with pytest.raises(DesignError):
+        load_correction(path)
+    path.write_text("{not json")
+    with pytest.raises(DesignError):
+        load_correction(path)
+
+
+def test_fit_correction_recovers_coefficients():
+    rng = np.random.default_rng(1)
+    t = rng.uniform(0.15, 0.4, 40)
+    R = rng.uniform(0.4, 2.0, 40)
+    R = np.maximum(R, t)
+    a = rng.uniform(4, 8, 40)
+    k_eb = closed_form_stiffness(t, R, a, **KW)
+    s = t / R
+    k_ref = k_eb * 1.08 / (1 + 0.4 * s - 0.03 * s * s)
+    c = fit_correction(s, k_eb, k_ref, web_mm=t, arm_mm=a, source="synthetic")
+    np.testing.assert_allclose(c.coefficients, (0.4, -0.03, 0.08), atol=1e-10)
+    assert c.residual_rel < 1e-12
+    assert c.fit_range.web_mm == (t.min(), t.max())
+
+
+def test_estimate_closed_form_with_correction():
+    c = _example_correction()
+    g = G0
+    r0 = estimate_closed_form(g, MAT, corrected=False)
+    r1 = estimate_closed_form(g, MAT, correction=c)
+    s = g.web_thickness_mm / g.notch_radius_mm
+    assert r1.stiffness_N_per_mm == pytest.approx(
+        r0.stiffness_N_per_mm * 1.09 / (1 + 0.39 * s + 0.05 * s * s), rel=1e-14)
+    assert r1.error_estimate_rel == 0.01
+    assert r1.gauge_strain_per_N == r0.gauge_strain_per_N
+
+
+# ---------------------------------------------------------------------------
+# Web-thickness inverse
+# ---------------------------------------------------------------------------
+@pytest.mark.parametrize("t", [0.15, 0.25, 0.4])
+@pytest.mark.parametrize("element", [1, 4])
+def test_web_for_stiffness_round_trip(t, element):
+    g = dataclasses.replace(PLAN.element(element).geometry, web_thickness_mm=t)
+    k = estimate_closed_form(g, MAT, corrected=False).stiffness_N_per_mm
+    assert web_for_stiffness(k, g, MAT, corrected=False) == pytest.approx(t, abs=1e-8)
+    c = _example_correction()
+    k_c = estimate_closed_form(g, MAT, correction=c).stiffness_N_per_mm
+    assert web_for_stiffness(k_c, g, MAT, correction=c) == pytest.approx(t, abs=1e-8)
+
+
+def test_web_for_stiffness_out_of_range():
+    with pytest.raises(ValueError, match="allowed"):
+        web_for_stiffness(1e4, G0, MAT, corrected=False)
+    with pytest.raises(ValueError):
+        web_for_stiffness(-1.0, G0, MAT, corrected=False)
+    with pytest.warns(CorrectionRangeWarning):
+        t = web_for_stiffness(1.5, PLAN.element(4).geometry, MAT, correction=_example_correction())
+    assert t < 0.15
+
+
+# ---------------------------------------------------------------------------
+# Property test over the design domain
+# ---------------------------------------------------------------------------
+@settings(max_examples=200, deadline=None)
+@given(t=st.floats(0.15, 0.4), a=st.floats(4.0, 8.0), frac=st.floats(0.0, 1.0))
+def test_random_in_domain_positive(t, a, frac):
+    R = t + frac * (2.0 - t)
+    k = float(closed_form_stiffness(t, R, a, **KW))
+    eps = float(gauge_strain_per_newton(t, a, E=E, b=B))
+    assert math.isfinite(k) and k > 0
+    assert math.isfinite(eps) and eps > 0
+    parts = closed_form_compliance(t, R, a, **KW)
+    assert all(float(p) > 0 for p in parts)
+    assert float(parts.notch_bending) > 0.8 * float(parts.total)  # the hinge dominates

@@ -1,0 +1,109 @@
+"""The main job end to end: files, manifest, reproducibility, atomicity, checks."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from tactcad.checks.result import failures
+from tactcad.design import load_design
+from tactcad.exporter import export, run_checks
+
+
+def _hashes(folder):
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_expected_files(exported, plan):
+    out, _ = exported
+    names = {p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file()}
+    for part in plan.distinct_elements:
+        assert f"step/{part}.step" in names
+    assert {"step/spacer.step", "step/clamp_plate.step", "step/bolt_M2x30.step", "step/nut_M2.step",
+            "step/array.step", "manifest.json"} <= names
+    assert {f"dxf/element_{n}.dxf" for n in range(1, 11)} <= names
+    assert not [n for n in names if ".staging" in n or n.endswith(".part")]
+
+
+def test_manifest_lists_every_file_with_its_hash(exported, plan):
+    out, _ = exported
+    man = json.loads((out / "manifest.json").read_text())
+    assert man["design"]["sha256"] == plan.design_hash
+    assert man["cad_stack"]["build123d"] == "0.10.0"
+    assert man["cad_stack"]["cadquery-ocp"].startswith("7.8.1")
+    on_disk = {p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file()} - {"manifest.json"}
+    assert {f["path"] for f in man["files"]} == on_disk
+    for f in man["files"]:
+        assert hashlib.sha256((out / f["path"]).read_bytes()).hexdigest() == f["sha256"]
+        assert f["part"]
+    assert man["parts"]["spacer"]["quantity"] == 8
+    assert sum(p["quantity"] for p in man["parts"].values()) == man["assemblies"]["array"]["instances"]
+
+
+def test_step_header_in_mm_ap214_and_flat_instanced_assembly(exported):
+    out, _ = exported
+    text = (out / "step/array.step").read_text()
+    assert "AUTOMOTIVE_DESIGN" in text  # AP214
+    assert "SI_UNIT(.MILLI.,.METRE.)" in text
+    assert text.count("MANIFOLD_SOLID_BREP") == 9  # each distinct part stored once
+    assert text.count("NEXT_ASSEMBLY_USAGE_OCCURRENCE") == 28  # placed 28 times
+    assert "'element_8'" in text and "'clamp_plate_back'" in text
+
+
+def test_same_design_writes_identical_bytes_across_processes(exported, tmp_path):
+    out, _ = exported
+    again = tmp_path / "again"
+    env = dict(os.environ, PYTHONHASHSEED="12345")
+    subprocess.run([sys.executable, "-m", "tactcad.cli", "export", "--out", str(again)],
+                   check=True, env=env, capture_output=True)
+    assert _hashes(again) == _hashes(out)
+
+
+def test_failed_export_leaves_previous_files_whole(exported, tmp_path, monkeypatch, plan):
+    out = tmp_path / "ex"
+    export(plan, out, log=lambda s: None)
+    before = _hashes(out)
+    import tactcad.export.dxf as dxf_mod
+
+    calls = {"n": 0}
+    real = dxf_mod.write_profile_dxf
+
+    def flaky(path, profile, title=""):
+        calls["n"] += 1
+        if calls["n"] == 4:
+            raise OSError("disk full (simulated)")
+        return real(path, profile, title)
+
+    monkeypatch.setattr(dxf_mod, "write_profile_dxf", flaky)
+    thicker = load_design()  # same plan; the failure, not the content, is under test
+    with pytest.raises(OSError, match="simulated"):
+        export(thicker, out, log=lambda s: None)
+    assert _hashes(out) == before
+    assert not [p for p in out.iterdir() if p.name.startswith(".staging")]
+
+
+def test_all_checks_pass_on_the_default_design(exported, plan):
+    out, _ = exported
+    results = run_checks(plan, out)
+    assert not failures(results), "\n".join(r.line() for r in failures(results))
+    checks = {r.check for r in results}
+    assert {"is_valid", "no_free_boundaries", "volume", "watertight_mesh", "dxf_web_thickness",
+            "edm_start_holes", "edm_inside_radius", "step_volume", "interference",
+            "contact_touching"} <= checks
+
+
+def test_changed_web_reaches_the_dxf(tmp_path, design_data):
+    from tactcad.checks.dxf import read_dxf, thinnest_ligament
+    from tactcad.design import plan_from_dict, with_overrides
+
+    plan = plan_from_dict(with_overrides(design_data, {"element.web_thickness_mm": 0.31}))
+    export(plan, tmp_path, log=lambda s: None)
+    reading = read_dxf(tmp_path / "dxf/element_1.dxf")
+    outer = max(reading.contours, key=lambda c: len(c.segments))
+    assert thinnest_ligament(outer.segments) == pytest.approx(0.31, abs=1e-9)
