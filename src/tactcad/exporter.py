@@ -9,6 +9,7 @@ the previous exports whole.
 from __future__ import annotations
 
 import hashlib
+import importlib
 import json
 import os
 import shutil
@@ -22,6 +23,15 @@ from typing import Callable
 from . import __version__
 from .catalogue import PartSpec, array_contacts, array_instances, array_parts
 from .design import Plan
+
+# Writers of the main job, in order: "module:function", each called as
+# function(plan, staging_dir, log) -> list of file records (dicts with at least
+# "path", "part" and "kind"; STEP records also carry "solids", "volume_mm3",
+# "bbox_mm" and "labels" for review). Their modules import heavy libraries
+# only when called.
+WRITERS = (
+    "tactcad.exporter:write_array_files",
+)
 
 STACK_PACKAGES = ("build123d", "cadquery", "cadquery-ocp", "ezdxf", "trimesh", "manifold3d",
                   "numpy", "scipy", "scikit-fem", "gmsh")
@@ -80,11 +90,15 @@ def write_array_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> 
         step_parts.append(StepPart(name, solid, spec.color))
         rel = f"step/{name}.step"
         write_step(staging / rel, [step_parts[-1]])
-        records.append({"path": rel, "part": name, "kind": "step-part"})
+        records.append({"path": rel, "part": name, "kind": "step-part", "solids": 1,
+                        "volume_mm3": spec.expected_volume_mm3,
+                        "bbox_mm": list(spec.expected_bbox_mm), "labels": [name]})
         log(f"  wrote {rel}")
-    instances = [StepInstance(i.name, i.part, location(i.placement)) for i in array_instances(plan)]
+    inst = array_instances(plan)
+    instances = [StepInstance(i.name, i.part, location(i.placement)) for i in inst]
     write_step(staging / "step/array.step", step_parts, instances, "array")
-    records.append({"path": "step/array.step", "part": "array", "kind": "step-assembly"})
+    records.append({"path": "step/array.step", "part": "array", "kind": "step-assembly",
+                    **assembly_review(specs, inst)})
     log("  wrote step/array.step")
     for slot in plan.slots:
         rel = element_dxf_name(slot.number)
@@ -94,6 +108,21 @@ def write_array_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> 
                         "element": slot.number})
     log(f"  wrote {len(plan.slots)} DXF files in dxf/")
     return records
+
+
+def assembly_review(specs: dict[str, PartSpec], instances) -> dict:
+    """What a reviewer should find on re-import of an assembly STEP: solid
+    count, total volume (mm^3), bounding box (mm) and part labels. The box is
+    computed from the expected part boxes and placements, not from the CAD."""
+    corners = []
+    for i in instances:
+        x0, y0, z0, x1, y1, z1 = specs[i.part].expected_bbox_mm
+        corners += [i.placement.apply(x, y, z) for x in (x0, x1) for y in (y0, y1) for z in (z0, z1)]
+    lo = [min(c[k] for c in corners) for k in range(3)]
+    hi = [max(c[k] for c in corners) for k in range(3)]
+    return {"solids": len(instances),
+            "volume_mm3": sum(specs[i.part].expected_volume_mm3 for i in instances),
+            "bbox_mm": lo + hi, "labels": sorted({i.part for i in instances})}
 
 
 def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
@@ -115,13 +144,8 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
         "units": "mm",
         "files": files,
         "parts": parts,
-        "assemblies": {"array": {
-            "file": "step/array.step",
-            "instances": len(inst),
-            "solids": len(inst),
-            "volume_mm3": sum(specs[i.part].expected_volume_mm3 for i in inst),
-            "labels": sorted({i.part for i in inst}),
-        }},
+        "assemblies": {"array": {"file": "step/array.step", "instances": len(inst),
+                               **assembly_review(specs, inst)}},
         "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
                     for d in plan.derived],
         "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],
@@ -146,7 +170,10 @@ def export(plan: Plan, out_dir: str | Path, log: Callable[[str], None] = print) 
     out_dir.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=".staging-", dir=out_dir))
     try:
-        records = write_array_files(plan, staging, log)
+        records = []
+        for entry in WRITERS:
+            module, func = entry.split(":")
+            records += getattr(importlib.import_module(module), func)(plan, staging, log)
         man = manifest(plan, staging, records)
         man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
         for r in records:
