@@ -19,6 +19,7 @@ COMMAND_MODULES = (
     "tactcad.commands.export",
     "tactcad.commands.check",
     "tactcad.commands.mechanics",
+    "tactcad.commands.lumped",
 )
 
 

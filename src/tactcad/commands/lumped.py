@@ -1,0 +1,93 @@
+"""``tactcad lumped``: deflection ratio or object stiffness of a sensing unit (paper eq. 2-3).
+
+Examples::
+
+    tactcad lumped --km 15.25 --kr 80.38 --kobj 3.85
+    tactcad lumped --km 15.25 --kr 80.38 --r 2.283 --sigma-r 0.05 --json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+
+def register(subparsers) -> None:
+    """Add the ``lumped`` sub-command to an ``argparse`` sub-parser collection."""
+    p = subparsers.add_parser(
+        "lumped",
+        help="lumped model of a stiffness sensing unit: R from K_obj or K_obj from R",
+        description="Lumped spring model of a stiffness sensing unit (paper eq. 2-3). "
+                    "Given K_obj prints R = (K_r + K_obj)/(K_m + K_obj); given R prints "
+                    "K_obj = (K_r - R K_m)/(R - 1). Also prints the sensitivity dK_obj/dR "
+                    "and, with --sigma-r, the first-order uncertainty of K_obj. "
+                    "Domain: 0 < K_m < K_r, K_obj > 0, 1 < R < K_r/K_m.")
+    p.add_argument("--km", type=float, required=True, metavar="N_PER_MM",
+                   help="measuring-element stiffness K_m (N/mm)")
+    p.add_argument("--kr", type=float, required=True, metavar="N_PER_MM",
+                   help="reference-element stiffness K_r (N/mm), > K_m")
+    given = p.add_mutually_exclusive_group(required=True)
+    given.add_argument("--kobj", type=float, metavar="N_PER_MM",
+                       help="object stiffness K_obj (N/mm): print R")
+    given.add_argument("--r", type=float, metavar="R",
+                       help="measured deflection ratio R (dimensionless): print K_obj")
+    p.add_argument("--sigma-r", type=float, default=None, metavar="SIGMA",
+                   help="standard uncertainty of R: print sigma of K_obj (first order)")
+    p.add_argument("--json", action="store_true", help="print one JSON object instead of text")
+    p.set_defaults(func=run)
+
+
+def evaluate(k_m: float, k_r: float, k_obj: float | None = None, r: float | None = None,
+             sigma_r: float | None = None) -> dict:
+    """The numbers the command prints, as a dict (N/mm, dimensionless R).
+
+    Exactly one of ``k_obj`` and ``r`` is given.
+
+    Raises:
+        tactcad.mechanics.lumped.LumpedDomainError: an input out of the model's domain.
+    """
+    from tactcad.mechanics import lumped
+
+    if (k_obj is None) == (r is None):
+        raise ValueError("give exactly one of k_obj and r")
+    if r is None:
+        r = lumped.deflection_ratio(k_m, k_r, k_obj)
+        r_minus_one = lumped.deflection_ratio_excess(k_m, k_r, k_obj)
+    else:
+        k_obj = lumped.object_stiffness(r, k_m, k_r)
+        r_minus_one = r - 1.0
+    out = {
+        "k_m_N_per_mm": k_m,
+        "k_r_N_per_mm": k_r,
+        "k_r_over_k_m": k_r / k_m,
+        "k_obj_N_per_mm": k_obj,
+        "r": r,
+        "r_minus_one": r_minus_one,
+        "sensitivity_dk_obj_dr_N_per_mm": lumped.sensitivity(r, k_m, k_r),
+    }
+    if sigma_r is not None:
+        out["sigma_r"] = sigma_r
+        out["sigma_k_obj_N_per_mm"] = lumped.propagate_sigma(r, sigma_r, k_m, k_r)
+    return out
+
+
+def run(args: argparse.Namespace) -> int:
+    """Handler of ``tactcad lumped``; returns the exit code (0)."""
+    result = evaluate(args.km, args.kr, k_obj=args.kobj, r=args.r, sigma_r=args.sigma_r)
+    if args.json:
+        print(json.dumps(result, indent=2))
+        return 0
+    given_r = args.r is not None
+    print(f"K_m = {result['k_m_N_per_mm']:.6g} N/mm, K_r = {result['k_r_N_per_mm']:.6g} N/mm "
+          f"(K_r/K_m = {result['k_r_over_k_m']:.6g})")
+    if given_r:
+        print(f"R = {result['r']:.6g} (given)")
+        print(f"K_obj = {result['k_obj_N_per_mm']:.6g} N/mm (eq. 3)")
+    else:
+        print(f"K_obj = {result['k_obj_N_per_mm']:.6g} N/mm (given)")
+        print(f"R = {result['r']:.6g} (eq. 2), R - 1 = {result['r_minus_one']:.6g}")
+    print(f"dK_obj/dR = {result['sensitivity_dk_obj_dr_N_per_mm']:.6g} N/mm")
+    if "sigma_k_obj_N_per_mm" in result:
+        print(f"sigma_K_obj = {result['sigma_k_obj_N_per_mm']:.6g} N/mm "
+              f"(first order, sigma_R = {result['sigma_r']:.6g})")
+    return 0

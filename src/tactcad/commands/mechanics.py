@@ -1,0 +1,81 @@
+"""``tactcad stiffness`` and ``tactcad table1``: the element-stiffness ladder."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from . import add_design_arg
+
+MODELS = ("closed-form", "beam", "fem2d", "fem3d")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("stiffness", help="tip stiffness K (N/mm) of one element at a ladder level",
+                       description="Tip stiffness, gauge strain per newton, error estimate and wall "
+                                   "time of one sensing element. Units: N/mm, 1/N, s.")
+    p.add_argument("--element", type=int, required=True, help="paper element number (1-10)")
+    p.add_argument("--model", choices=MODELS, default="closed-form")
+    add_design_arg(p)
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=run_stiffness)
+
+    t = sub.add_parser("table1", help="predicted vs measured stiffness of every element (Table 1)",
+                       description="Every calibrated element of the paper's Table 1 at a ladder "
+                                   "level, with % error, plus the as-built web thickness and the "
+                                   "gauge strain at 2 N.")
+    t.add_argument("--model", choices=MODELS, default="closed-form")
+    add_design_arg(t)
+    t.add_argument("--json", action="store_true", help="print JSON")
+    t.set_defaults(func=run_table1)
+
+
+def run_stiffness(args: argparse.Namespace) -> int:
+    from ..design import load_design
+    from ..mechanics.ladder import estimate
+
+    plan = load_design(args.design)
+    slot = plan.element(args.element)
+    r = estimate(args.model, slot.geometry, plan.material, element=args.element)
+    if args.json:
+        print(json.dumps(r.as_json(), indent=2))
+    else:
+        print(f"element {r.element} ({slot.geometry.part_name}), model {r.model}")
+        print(f"  K                   {r.stiffness_N_per_mm:10.4f} N/mm")
+        print(f"  gauge strain        {r.gauge_strain_per_N * 1e6:10.2f} microstrain/N")
+        print(f"  error estimate      {100 * r.error_estimate_rel:10.3f} %")
+        print(f"  wall time           {r.wall_time_s:10.4f} s")
+    return 0
+
+
+def run_table1(args: argparse.Namespace) -> int:
+    from ..design import load_design
+    from ..mechanics.ladder import (PAPER_STRAIN_RANGE, as_built_webs, gauge_strain_at_paper_load,
+                                    table1_comparison, table2_predicted)
+
+    plan = load_design(args.design)
+    progress = (lambda s: print(f"  ... {s}", file=sys.stderr)) if not args.json else None
+    rows = table1_comparison(plan, args.model, progress=progress)
+    webs = as_built_webs(plan)
+    strains = gauge_strain_at_paper_load(plan)
+    t2 = table2_predicted(plan, args.model)
+    if args.json:
+        print(json.dumps({"model": args.model, "table1": [r.as_json() for r in rows],
+                          "as_built_web": webs, "gauge_strain_2N": strains, "table2": t2}, indent=2))
+        return 0
+    print(f"Table 1, model {args.model}: predicted vs measured K (N/mm)")
+    print(f"{'el':>3} {'arm mm':>7} {'measured':>9} {'predicted':>10} {'error %':>8} {'est. err %':>10}"
+          f" {'as-built web mm':>16}")
+    for r, w in zip(rows, webs):
+        print(f"{r.element:>3} {r.arm_length_mm:>7.1f} {r.measured_N_per_mm:>9.2f} "
+              f"{r.predicted.stiffness_N_per_mm:>10.2f} {r.error_percent:>8.1f} "
+              f"{100 * r.predicted.error_estimate_rel:>10.2f} {w['web_as_built_mm']:>16.4f}")
+    lo, hi = PAPER_STRAIN_RANGE
+    print(f"gauge strain at 2 N (closed form, %): "
+          + ", ".join(f"a={s['arm_length_mm']:g}: {s['strain_percent']:.3f}" for s in strains)
+          + f"   paper: {100 * lo:.4f}-{100 * hi:.4f}")
+    print(f"Table 2: eq. 2 with predicted K (K_r = {t2['k_r_predicted_N_per_mm']:.2f} N/mm): "
+          f"{t2['n_in_domain']}/48 rows in domain, mean |R error| {t2['mean_abs_error']:.3f}, "
+          f"max {t2['max_abs_error']:.3f}")
+    return 0

@@ -1,0 +1,465 @@
+"""Calibration of a sensing element against a commercial force sensor (paper eq. 4-6).
+
+The paper's procedure: a force sensor of stiffness K_s (Sauter FH5, 57.04 N/mm)
+on a Z axis is driven in 25 um steps to 150 um against the element tip; each
+run is repeated three times. Force sensor and element are two springs in
+series, so the element deflection is the Z travel minus the sensor's own
+deflection, Δ = z − F/K_s. Straight lines are fitted to force vs deflection
+(slope K, eq. 5) and bridge signal vs deflection (slope K_v, intercept V0,
+eq. 4). Then
+
+* eq. 4: Δ = (V − V0)/K_v
+* eq. 5: F = K Δ
+* eq. 6: F = (K/K_v)(V − V0)
+
+Units: Z travel in um at the interface (as the paper states it), deflection in
+mm, force in N, stiffness in N/mm, signal in V, K_v in V/mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple, Protocol
+
+import numpy as np
+
+from tactcad.errors import TactcadError
+
+from . import paper_data
+
+K_SENSOR_N_PER_MM = paper_data.K_SENSOR_N_PER_MM
+#: Default noise of the synthetic bridge signal (V): about three LSB of a
+#: 16-bit DAQ on its +-10 V range (assumption; the paper gives no figure).
+DEFAULT_NOISE_SIGNAL_V = 0.001
+
+
+class CalibrationError(TactcadError, ValueError):
+    """Calibration input that cannot be fitted or is physically impossible."""
+
+
+# ---------------------------------------------------------------------------
+# Data and results
+# ---------------------------------------------------------------------------
+def _readonly(values) -> np.ndarray:
+    a = np.array(values, dtype=float)
+    a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class CalibrationData:
+    """Raw calibration readings, one entry per reading (all arrays shape (n,)).
+
+    Attributes:
+        z_travel_um: Z-axis travel from first contact (um).
+        force_N: force read by the commercial sensor (N).
+        signal_V: element bridge signal after amplification (V).
+        k_sensor_N_per_mm: stiffness of the commercial sensor's load cell (N/mm).
+    """
+
+    z_travel_um: np.ndarray
+    force_N: np.ndarray
+    signal_V: np.ndarray
+    k_sensor_N_per_mm: float
+
+
+class SignalModel(Protocol):
+    """Anything carrying the three eq. 4-6 constants (e.g. :class:`Calibration`)."""
+
+    K_N_per_mm: float
+    K_v_V_per_mm: float
+    V0_V: float
+
+
+@dataclass(frozen=True)
+class PaperSignalModel:
+    """Eq. 4-6 constants as printed in paper Table 1 for one element.
+
+    Attributes:
+        element: element number.
+        K_N_per_mm: stiffness K (N/mm).
+        K_v_V_per_mm: signal per deflection K_v (V/mm).
+        V0_V: signal at zero deflection V0 (V).
+    """
+
+    element: int
+    K_N_per_mm: float
+    K_v_V_per_mm: float
+    V0_V: float
+
+
+@dataclass(frozen=True, eq=False)
+class Calibration:
+    """Least-squares calibration of one element (result of :func:`fit_calibration`).
+
+    Both fits are ordinary least-squares straight lines with intercept against
+    the element deflection Δ = z − F/K_s: F = K Δ + F0 and V = V0 + K_v Δ.
+    F0 is the force offset at zero deflection (ideally 0; eq. 5 has none).
+
+    Linearity error (independent, best-fit straight line): the largest absolute
+    residual from the fitted line divided by the fitted full-scale output span
+    (|slope| x (Δ_max − Δ_min)), in percent.
+
+    Attributes:
+        K_N_per_mm: element stiffness K (N/mm), eq. 5.
+        K_v_V_per_mm: signal sensitivity to deflection K_v (V/mm), eq. 4.
+        V0_V: signal at zero deflection V0 (V), eq. 4.
+        F0_N: force intercept of the force–deflection line (N).
+        k_sensor_N_per_mm: commercial sensor stiffness used for Δ (N/mm).
+        stderr_K_N_per_mm, stderr_K_v_V_per_mm, stderr_V0_V: standard errors
+            of the fitted parameters from the residual scatter (OLS covariance).
+        linearity_force_pct, linearity_signal_pct: linearity errors (% of
+            full-scale output) of the force and signal fits.
+        deflection_mm: element deflection of each reading, shape (n,) (mm).
+        residuals_force_N: F − (K Δ + F0), shape (n,) (N).
+        residuals_signal_V: V − (V0 + K_v Δ), shape (n,) (V).
+    """
+
+    K_N_per_mm: float
+    K_v_V_per_mm: float
+    V0_V: float
+    F0_N: float
+    k_sensor_N_per_mm: float
+    stderr_K_N_per_mm: float
+    stderr_K_v_V_per_mm: float
+    stderr_V0_V: float
+    linearity_force_pct: float
+    linearity_signal_pct: float
+    deflection_mm: np.ndarray
+    residuals_force_N: np.ndarray
+    residuals_signal_V: np.ndarray
+
+    @property
+    def K_over_K_v_N_per_V(self) -> float:
+        """K/K_v (N/V), the factor of eq. 6."""
+        return self.K_N_per_mm / self.K_v_V_per_mm
+
+    @property
+    def K_v_over_K_V_per_N(self) -> float:
+        """K_v/K (V/N), signal per unit force (Table 1 column K_v/K)."""
+        return self.K_v_V_per_mm / self.K_N_per_mm
+
+
+# ---------------------------------------------------------------------------
+# Fitting
+# ---------------------------------------------------------------------------
+class _Line(NamedTuple):
+    slope: float
+    intercept: float
+    stderr_slope: float
+    stderr_intercept: float
+    residuals: np.ndarray
+    linearity_pct: float
+
+
+def _fit_line(x: np.ndarray, y: np.ndarray) -> _Line:
+    """OLS y = slope x + intercept, with standard errors and linearity error."""
+    design = np.column_stack([x, np.ones_like(x)])
+    (slope, intercept), *_ = np.linalg.lstsq(design, y, rcond=None)
+    slope, intercept = float(slope), float(intercept)
+    residuals = y - (slope * x + intercept)
+    dof = x.size - 2
+    variance = float(residuals @ residuals) / dof
+    cov = variance * np.linalg.inv(design.T @ design)
+    span = abs(slope) * float(np.ptp(x))
+    linearity = 100.0 * float(np.max(np.abs(residuals))) / span if span > 0 else float("nan")
+    return _Line(slope, intercept, float(np.sqrt(cov[0, 0])),
+                 float(np.sqrt(cov[1, 1])), residuals, linearity)
+
+
+def _as_vector(name: str, values) -> np.ndarray:
+    a = np.asarray(values, dtype=float)
+    if a.ndim != 1:
+        raise CalibrationError(f"{name}: must be a 1-D sequence, got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise CalibrationError(f"{name}: all readings must be finite")
+    return a
+
+
+def fit_calibration(z_travel_um, force_N, signal_V,
+                    k_sensor_N_per_mm: float = K_SENSOR_N_PER_MM) -> Calibration:
+    """Fit K, K_v and V0 of one element from calibration readings (paper eq. 4-5).
+
+    Element deflection: Δ = z − F/K_s (commercial sensor and element are two
+    springs in series). Then OLS lines F = K Δ + F0 and V = V0 + K_v Δ over all
+    readings (repeated runs included as separate points, which gives the same
+    slopes as fitting the run averages when every step has the same number of
+    repeats).
+
+    Args:
+        z_travel_um: Z travel of each reading (um), shape (n,), n >= 3.
+        force_N: commercial sensor force of each reading (N), shape (n,).
+        signal_V: element signal of each reading (V), shape (n,).
+        k_sensor_N_per_mm: commercial sensor stiffness K_s (N/mm), > 0.
+
+    Returns:
+        :class:`Calibration`.
+
+    Raises:
+        CalibrationError: lengths differ, fewer than 3 readings, non-finite
+            readings, K_s <= 0, or all readings at the same deflection.
+    """
+    z_mm = _as_vector("z_travel_um", z_travel_um) * 1e-3
+    force = _as_vector("force_N", force_N)
+    signal = _as_vector("signal_V", signal_V)
+    if not (z_mm.size == force.size == signal.size):
+        raise CalibrationError(
+            f"readings: z_travel_um, force_N, signal_V must have equal lengths, "
+            f"got {z_mm.size}, {force.size}, {signal.size}")
+    if z_mm.size < 3:
+        raise CalibrationError(f"readings: need >= 3 for a line with a residual, got {z_mm.size}")
+    if not (np.isfinite(k_sensor_N_per_mm) and k_sensor_N_per_mm > 0):
+        raise CalibrationError(f"k_sensor_N_per_mm = {k_sensor_N_per_mm!r}: must be finite and > 0")
+    deflection = z_mm - force / k_sensor_N_per_mm
+    if np.ptp(deflection) == 0:
+        raise CalibrationError("readings: all at the same element deflection; no slope to fit")
+    f_line = _fit_line(deflection, force)
+    v_line = _fit_line(deflection, signal)
+    return Calibration(
+        K_N_per_mm=f_line.slope, K_v_V_per_mm=v_line.slope, V0_V=v_line.intercept,
+        F0_N=f_line.intercept, k_sensor_N_per_mm=float(k_sensor_N_per_mm),
+        stderr_K_N_per_mm=f_line.stderr_slope, stderr_K_v_V_per_mm=v_line.stderr_slope,
+        stderr_V0_V=v_line.stderr_intercept,
+        linearity_force_pct=f_line.linearity_pct, linearity_signal_pct=v_line.linearity_pct,
+        deflection_mm=_readonly(deflection), residuals_force_N=_readonly(f_line.residuals),
+        residuals_signal_V=_readonly(v_line.residuals))
+
+
+def deflection_from_signal(v, cal: SignalModel):
+    """Element deflection from its signal, paper eq. 4: Δ = (V − V0)/K_v.
+
+    Args:
+        v: signal (V), scalar or array.
+        cal: calibration constants (:class:`Calibration` or :class:`PaperSignalModel`).
+
+    Returns:
+        Δ (mm), float for scalar input, else ndarray of the shape of ``v``.
+    """
+    out = (np.asarray(v, dtype=float) - cal.V0_V) / cal.K_v_V_per_mm
+    return float(out) if out.ndim == 0 else out
+
+
+def force_from_signal(v, cal: SignalModel):
+    """Force on the element from its signal, paper eq. 6: F = (K/K_v)(V − V0).
+
+    Eq. 6 assumes F = K Δ (no force offset); a fitted ``F0_N`` is not added.
+
+    Args:
+        v: signal (V), scalar or array.
+        cal: calibration constants (:class:`Calibration` or :class:`PaperSignalModel`).
+
+    Returns:
+        F (N), float for scalar input, else ndarray of the shape of ``v``.
+    """
+    out = (cal.K_N_per_mm / cal.K_v_V_per_mm) * (np.asarray(v, dtype=float) - cal.V0_V)
+    return float(out) if out.ndim == 0 else out
+
+
+def paper_signal_model(element: int) -> PaperSignalModel:
+    """Eq. 4-6 constants of one element as printed in Table 1.
+
+    Raises:
+        CalibrationError: the element is not in Table 1 (5 did not work).
+    """
+    rows = paper_data.table1_by_element()
+    if element not in rows:
+        raise CalibrationError(f"element = {element!r}: must be one of {sorted(rows)} (Table 1)")
+    row = rows[element]
+    return PaperSignalModel(element, row.stiffness_N_per_mm, row.K_v_V_per_mm, row.V0_V)
+
+
+# ---------------------------------------------------------------------------
+# Two springs in series
+# ---------------------------------------------------------------------------
+def apparent_stiffness(k_element: float, k_sensor: float = K_SENSOR_N_PER_MM) -> float:
+    """Stiffness seen at the Z axis, element and force sensor in series (N/mm).
+
+    K_app = 1/(1/K + 1/K_s) = K K_s/(K + K_s).
+
+    Raises:
+        CalibrationError: a stiffness <= 0 or not finite.
+    """
+    _check_positive("k_element", k_element)
+    _check_positive("k_sensor", k_sensor)
+    return k_element * k_sensor / (k_element + k_sensor)
+
+
+def element_stiffness_from_series(k_apparent: float, k_sensor: float = K_SENSOR_N_PER_MM) -> float:
+    """Element stiffness from the series stiffness, K = 1/(1/K_app − 1/K_s) (N/mm).
+
+    Written as K_app K_s/(K_s − K_app).
+
+    Raises:
+        CalibrationError: a stiffness <= 0, or K_app >= K_s (a series
+            combination is softer than either spring).
+    """
+    _check_positive("k_apparent", k_apparent)
+    _check_positive("k_sensor", k_sensor)
+    if not k_apparent < k_sensor:
+        raise CalibrationError(
+            f"k_apparent = {k_apparent!r} N/mm: must be < k_sensor = {k_sensor!r} N/mm "
+            "(springs in series are softer than either)")
+    return k_apparent * k_sensor / (k_sensor - k_apparent)
+
+
+class SeriesAmplification(NamedTuple):
+    """How relative errors reach the element stiffness through the series correction.
+
+    With K = 1/(1/K_app − 1/K_s):
+
+    * ∂K/∂K_app = K²/K_app², and K/K_app = 1 + K/K_s, so
+      dK/K = (1 + K/K_s) dK_app/K_app;
+    * ∂K/∂K_s = −K²/K_s², so dK/K = −(K/K_s) dK_s/K_s.
+
+    Both grow with K/K_s: the stiffer the element relative to the sensor, the
+    more of the Z travel the sensor absorbs and the more an error in either
+    measured quantity is magnified.
+
+    Attributes:
+        k_element: element stiffness K (N/mm).
+        k_sensor: commercial sensor stiffness K_s (N/mm).
+        k_apparent: series stiffness K_app (N/mm).
+        from_k_apparent: (dK/K)/(dK_app/K_app) = 1 + K/K_s.
+        from_k_sensor: (dK/K)/(dK_s/K_s) = −K/K_s.
+        element_share_of_travel: fraction of the Z travel taken by the
+            element, K_s/(K + K_s).
+    """
+
+    k_element: float
+    k_sensor: float
+    k_apparent: float
+    from_k_apparent: float
+    from_k_sensor: float
+    element_share_of_travel: float
+
+
+def _check_positive(name: str, value: float) -> None:
+    if not (np.isfinite(value) and value > 0):
+        raise CalibrationError(f"{name} = {value!r} N/mm: must be finite and > 0")
+
+
+def series_error_amplification(k_element: float,
+                               k_sensor: float = K_SENSOR_N_PER_MM) -> SeriesAmplification:
+    """Error amplification of the series-spring correction for one element.
+
+    Args:
+        k_element: element stiffness K (N/mm), > 0.
+        k_sensor: commercial sensor stiffness K_s (N/mm), > 0.
+
+    Returns:
+        :class:`SeriesAmplification` (see its docstring for the derivation).
+
+    Raises:
+        CalibrationError: a stiffness <= 0 or not finite.
+    """
+    k_app = apparent_stiffness(k_element, k_sensor)
+    ratio = k_element / k_sensor
+    return SeriesAmplification(
+        k_element=float(k_element), k_sensor=float(k_sensor), k_apparent=float(k_app),
+        from_k_apparent=1.0 + ratio, from_k_sensor=-ratio,
+        element_share_of_travel=k_sensor / (k_element + k_sensor))
+
+
+def series_amplification_table1(k_sensor: float = K_SENSOR_N_PER_MM) -> dict[int, SeriesAmplification]:
+    """:func:`series_error_amplification` for every element of paper Table 1, keyed by element."""
+    return {row.element: series_error_amplification(row.stiffness_N_per_mm, k_sensor)
+            for row in paper_data.table1()}
+
+
+# ---------------------------------------------------------------------------
+# Table 1 self-consistency (eq. 6)
+# ---------------------------------------------------------------------------
+class KvOverKCheck(NamedTuple):
+    """Table 1's K_v/K column against K_v and K of the same row.
+
+    Attributes:
+        element: element number.
+        computed_V_per_N: K_v/K from the printed K_v and K.
+        printed_V_per_N: the printed K_v/K.
+        low_V_per_N, high_V_per_N: range of K_v/K over all K_v, K that round
+            to the printed values, widened by half a unit of the printed K_v/K.
+        consistent: low <= printed <= high.
+    """
+
+    element: int
+    computed_V_per_N: float
+    printed_V_per_N: float
+    low_V_per_N: float
+    high_V_per_N: float
+    consistent: bool
+
+
+#: Half a unit in the last printed digit of Table 1's K (N/mm), K_v (V/mm), K_v/K (V/N).
+TABLE1_HALF_UNIT = {"K": 0.005, "K_v": 0.05, "K_v_over_K": 0.0005}
+
+
+def table1_kv_over_k_check() -> tuple[KvOverKCheck, ...]:
+    """Check eq. 6's K_v/K column of Table 1 against its K and K_v, within the printed rounding.
+
+    The true K and K_v lie within half a unit of their printed values
+    (:data:`TABLE1_HALF_UNIT`); K_v/K over that box is bracketed by its corner
+    values (the quotient is monotonic in each argument for K > 0). A row is
+    consistent when the printed K_v/K, +- half its own unit, meets the bracket.
+    """
+    h = TABLE1_HALF_UNIT
+    out = []
+    for row in paper_data.table1():
+        corners = [(row.K_v_V_per_mm + a) / (row.stiffness_N_per_mm + b)
+                   for a in (-h["K_v"], h["K_v"]) for b in (-h["K"], h["K"])]
+        low = min(corners) - h["K_v_over_K"]
+        high = max(corners) + h["K_v_over_K"]
+        printed = row.K_v_over_K_V_per_N
+        out.append(KvOverKCheck(row.element, row.K_v_V_per_mm / row.stiffness_N_per_mm,
+                                printed, low, high, bool(low <= printed <= high)))
+    return tuple(out)
+
+
+# ---------------------------------------------------------------------------
+# Synthetic calibration runs
+# ---------------------------------------------------------------------------
+def synthetic_calibration(k_element: float, k_v: float, v0: float, *,
+                          noise_force_N: float = 0.001,
+                          noise_signal_V: float = DEFAULT_NOISE_SIGNAL_V,
+                          steps_um=paper_data.CALIBRATION_STEPS_UM,
+                          repeats: int = 3,
+                          seed: int | None = 0,
+                          k_sensor_N_per_mm: float = K_SENSOR_N_PER_MM) -> CalibrationData:
+    """Simulate the paper's calibration runs of one element, with Gaussian read-out noise.
+
+    For each Z step z (exact): the true force is F = K_app z with
+    K_app = K K_s/(K + K_s); the element deflects Δ = F/K; the sensor reads
+    F + N(0, noise_force_N²) and the bridge gives V0 + K_v Δ + N(0, noise_signal_V²).
+    The steps are run ``repeats`` times (readings concatenated run after run).
+
+    Args:
+        k_element: element stiffness K (N/mm), > 0.
+        k_v: signal sensitivity K_v (V/mm), any sign (Table 1 values are negative).
+        v0: signal at zero deflection V0 (V).
+        noise_force_N: standard deviation of the force reading (N), >= 0.
+        noise_signal_V: standard deviation of the signal (V), >= 0.
+        steps_um: Z travel of the steps (um); default 0, 25, ..., 150.
+        repeats: number of runs, >= 1.
+        seed: seed of ``numpy.random.default_rng``.
+        k_sensor_N_per_mm: commercial sensor stiffness K_s (N/mm), > 0.
+
+    Returns:
+        :class:`CalibrationData` with ``len(steps_um) * repeats`` readings.
+
+    Raises:
+        CalibrationError: a stiffness <= 0, negative noise, or repeats < 1.
+    """
+    _check_positive("k_element", k_element)
+    _check_positive("k_sensor_N_per_mm", k_sensor_N_per_mm)
+    for name, value in (("noise_force_N", noise_force_N), ("noise_signal_V", noise_signal_V)):
+        if not (np.isfinite(value) and value >= 0):
+            raise CalibrationError(f"{name} = {value!r}: must be finite and >= 0")
+    if repeats < 1:
+        raise CalibrationError(f"repeats = {repeats!r}: must be >= 1")
+    rng = np.random.default_rng(seed)
+    z_um = np.tile(np.asarray(steps_um, dtype=float), repeats)
+    force_true = apparent_stiffness(k_element, k_sensor_N_per_mm) * z_um * 1e-3
+    deflection_true = force_true / k_element
+    force = force_true + rng.normal(0.0, noise_force_N, z_um.size)
+    signal = v0 + k_v * deflection_true + rng.normal(0.0, noise_signal_V, z_um.size)
+    return CalibrationData(_readonly(z_um), _readonly(force), _readonly(signal),
+                           float(k_sensor_N_per_mm))
