@@ -255,7 +255,7 @@ def test_fit_correction_recovers_coefficients():
     s = t / R
     k_ref = k_eb * 1.08 / (1 + 0.4 * s - 0.03 * s * s)
     c = fit_correction(s, k_eb, k_ref, web_mm=t, arm_mm=a, source="synthetic")
-    np.testing.assert_allclose(c.coefficients, (0.4, -0.03, 0.08), atol=1e-10)
+    np.testing.assert_allclose(c.coefficients, (0.4, -0.03, 0.08, 0.0), atol=1e-10)
     assert c.residual_rel < 1e-12
     assert c.fit_range.web_mm == (t.min(), t.max())
 

@@ -1,0 +1,657 @@
+"""Level-3 stiffness estimator "fem2d": plane stress / plane strain FEM.
+
+Quadratic triangles (P2 displacement field: scikit-fem ``ElementTriP2`` basis
+in the dof numbering of ``ElementVector``) on a gmsh mesh of the cropped exact profile
+(:func:`tactcad.mechanics.fem_mesh.fem_region`), refined at the web of the
+flexure hinge. Geometry is isoparametric (``MeshTri2``: the midside node of
+every edge on the notch or fillet arc sits on the exact circle) unless
+``curved=False``. Straight-sided cells cut the notch's chords and leave a
+geometry error in the thin web: on the default meshes of the 4 and 8 mm arms
+they converge at order 1.9 with an estimated error of 0.5 %, the
+isoparametric cells at order 3.5 with 0.02 %.
+
+Boundary conditions: all displacements fixed on the clamp line
+``x = x_clamp``; a uniform traction along +y over the contact face (top face
+of the tip, width ``g.tip_width_mm``) with total force ``force_N`` through
+the sheet thickness b.
+
+Outputs:
+
+* tip stiffness from the energy (compliance) of the discrete solution,
+  ``K = F^2 / (f^T u)``, where ``f^T u`` = F x (mean deflection of the
+  contact face); this is the quantity that converges fastest and does not
+  depend on a single node;
+* gauge strain ``eps_xx`` on the flat top face at ``x = hinge_x`` (the P2
+  field's strain evaluated at that mesh vertex in each adjacent triangle
+  and averaged), per newton of tip force. The field value is negative (an
+  upward tip force compresses the top face over the web);
+  :class:`StiffnessResult` carries its magnitude, as the closed form and
+  the paper report it;
+* a Richardson-extrapolation error estimate from three meshes whose element
+  sizes shrink by a constant ratio r (default sqrt 2): observed order
+  ``p = ln((K1 - K2) / (K2 - K3)) / ln r``, ``K_ext = K3 + (K3 - K2) / (r^p - 1)``,
+  ``error_estimate_rel = |K3 - K_ext| / K_ext`` for the finest mesh K3, which
+  is the value reported.
+
+Plane stress uses ``lambda* = E nu / (1 - nu^2)``, plane strain the 3D Lamé
+``lambda = E nu / ((1 + nu)(1 - 2 nu))``; both with ``mu = E / (2 (1 + nu))``
+and thickness b.
+
+Sources: scikit-fem documentation (``Basis``, ``FacetBasis``,
+``ElementVector``, ``skfem.models.elasticity``, ``MeshTri2``); L. F.
+Richardson, "The deferred approach to the limit" (1927) and P. J. Roache,
+"Verification and Validation in Computational Science and Engineering"
+(observed order, grid convergence); plane stress / plane strain constitutive
+laws as in S. P. Timoshenko & J. N. Goodier, "Theory of Elasticity".
+
+Units: mm, N, MPa, N/mm, s.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import time
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from ..design import ElementGeometry, Material
+from .fem_mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
+                       mesh_region)
+from .result import StiffnessResult
+
+#: Refinement ratio between successive meshes of the Richardson sequence.
+REFINEMENT_RATIO = math.sqrt(2.0)
+
+#: Tip force (N) of the paper's FEM design study (the gauge strain is per N).
+DEFAULT_FORCE_N = 2.0
+
+PLANES = ("stress", "strain")
+
+
+# ---------------------------------------------------------------------------
+# Richardson extrapolation (shared with fem3d)
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Richardson:
+    """Richardson extrapolation of a quantity over a mesh sequence.
+
+    Attributes:
+        values: the quantity on each mesh, coarsest first.
+        ratio: element-size ratio between successive meshes (> 1).
+        order: observed order of convergence p (NaN if the last three values
+            do not converge monotonically).
+        extrapolated: K_ext, the extrapolated value (the finest value if the
+            order is undefined).
+        error_rel: |finest - K_ext| / K_ext; if the order is undefined, the
+            last difference |K3 - K2| / K3 (a conservative stand-in).
+    """
+
+    values: tuple[float, ...]
+    ratio: float
+    order: float
+    extrapolated: float
+    error_rel: float
+
+
+def richardson(values: Sequence[float], ratio: float, order: float | None = None) -> Richardson:
+    """Richardson extrapolation from the last three values of a mesh sequence.
+
+    Args:
+        values: quantity on meshes of element size h, h/r, h/r^2, ... (at
+            least 3; the last three are used).
+        ratio: r > 1.
+        order: assumed order; ``None`` uses the observed order
+            ``ln((f1 - f2)/(f2 - f3)) / ln r``.
+
+    Raises:
+        ValueError: fewer than three values or ratio <= 1.
+    """
+    if len(values) < 3:
+        raise ValueError("Richardson extrapolation needs at least three meshes")
+    if not ratio > 1:
+        raise ValueError(f"refinement ratio must be > 1, got {ratio!r}")
+    f1, f2, f3 = (float(v) for v in values[-3:])
+    d12, d23 = f1 - f2, f2 - f3
+    p = float("nan")
+    if order is not None:
+        p = float(order)
+    elif d23 != 0 and d12 / d23 > 1.0:
+        p = math.log(d12 / d23) / math.log(ratio)
+    if math.isfinite(p) and p > 0:
+        ext = f3 + (f3 - f2) / (ratio**p - 1.0)
+        err = abs(f3 - ext) / abs(ext)
+    else:
+        ext = f3
+        err = abs(f3 - f2) / abs(f3)
+    return Richardson(tuple(float(v) for v in values), float(ratio), p, ext, err)
+
+
+# ---------------------------------------------------------------------------
+# One solve
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class FemSolution:
+    """One FEM solve on one mesh.
+
+    Attributes:
+        stiffness_N_per_mm: K = F^2 / (f^T u) (N/mm).
+        tip_deflection_mm: mean deflection of the contact face along +y (mm).
+        gauge_strain: eps_xx at the gauge point under ``force_N`` (1; signed,
+            negative = compression).
+        force_N: total tip force (N).
+        n_dofs: number of displacement unknowns (before the clamp is applied).
+        n_cells: triangles (2D) or tetrahedra (3D).
+        neck_size_mm: element size at the neck (mm).
+        wall_time_s: mesh + assembly + solve (s).
+    """
+
+    stiffness_N_per_mm: float
+    tip_deflection_mm: float
+    gauge_strain: float
+    force_N: float
+    n_dofs: int
+    n_cells: int
+    neck_size_mm: float
+    wall_time_s: float
+
+
+def lame(material: Material, plane: str | None) -> tuple[float, float]:
+    """Lamé parameters (lambda, mu) in MPa for ``plane`` = "stress",
+    "strain", or ``None`` (3D).
+
+    Raises:
+        ValueError: unknown plane.
+    """
+    E, nu = material.youngs_modulus_MPa, material.poisson_ratio
+    mu = E / (2.0 * (1.0 + nu))
+    if plane is None or plane == "strain":
+        return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), mu
+    if plane == "stress":
+        return E * nu / (1.0 - nu * nu), mu
+    raise ValueError(f"plane must be one of {PLANES}, got {plane!r}")
+
+
+def skfem_mesh(rm: RegionMesh, curved: bool = True):
+    """scikit-fem mesh of a :class:`RegionMesh`: ``MeshTri2``/``MeshTet2``
+    with the arcs' midside nodes on the exact circles (``curved``), else the
+    linear ``MeshTri``/``MeshTet`` (straight-sided cells)."""
+    import skfem
+
+    dim = rm.p.shape[0]
+    lin = (skfem.MeshTri if dim == 2 else skfem.MeshTet)(rm.p, rm.t)
+    if not curved or not rm.arcs:
+        return lin
+    quad_cls = skfem.MeshTri2 if dim == 2 else skfem.MeshTet2
+    quad = quad_cls.from_mesh(lin)
+    nv = lin.p.shape[1]
+    edges = lin.facets if dim == 2 else lin.edges
+    doflocs = curved_doflocs(quad.doflocs, lin.p, edges, nv + np.arange(edges.shape[1]), rm.arcs)
+    return quad_cls(doflocs, quad.t)
+
+
+def assemble_p2_elasticity(sb, lam: float, mu: float, chunk: int = 4000):
+    """Stiffness matrix of isotropic linear elasticity for the vector P2 space
+    built on the scalar P2 basis ``sb``.
+
+    Global numbering is interleaved, ``dim * s + c`` for scalar dof s and
+    component c, which is scikit-fem's numbering for ``ElementVector``. The
+    local matrices are formed from the scalar basis gradients by one tensor
+    contraction per chunk of cells:
+    ``K[ia, jb] = sum_q w (lam g_ia g_jb + mu g_ib g_ja + mu delta_ab g_i . g_j)``.
+
+    Args:
+        sb: scikit-fem ``CellBasis`` of ``ElementTriP2``/``ElementTetP2``.
+        lam, mu: Lamé parameters (MPa).
+        chunk: cells per contraction (memory bound: chunk x (dim nbf)^2).
+
+    Returns:
+        ``scipy.sparse.csr_matrix`` of shape (dim N, dim N) (N = sb.N), N/mm
+        per unit thickness in 2D.
+    """
+    import scipy.sparse as sp
+
+    dim = sb.mesh.dim()
+    nbf = sb.Nbfun
+    G = np.array([sb.basis[i][0].grad for i in range(nbf)])  # (nbf, dim, nel, nq)
+    W = sb.dx  # (nel, nq)
+    edofs = sb.element_dofs  # (nbf, nel)
+    nel = edofs.shape[1]
+    n = dim * sb.N
+    A = sp.csr_matrix((n, n))
+    eye = np.eye(dim)
+    for e0 in range(0, nel, chunk):
+        sl = slice(e0, min(nel, e0 + chunk))
+        g = G[:, :, sl, :]
+        Mab = np.einsum("iaeq,jbeq,eq->eiajb", g, g, W[sl], optimize=True)
+        lap = np.einsum("eicjc->eij", Mab)
+        Kl = lam * Mab + mu * Mab.transpose(0, 1, 4, 3, 2) \
+            + mu * lap[:, :, None, :, None] * eye[None, None, :, None, :]
+        gd = (dim * edofs[:, sl].T[:, :, None] + np.arange(dim)[None, None, :])
+        gd = gd.reshape(-1, nbf * dim)
+        ne = gd.shape[0]
+        rows = np.broadcast_to(gd[:, :, None], (ne, nbf * dim, nbf * dim)).ravel()
+        cols = np.broadcast_to(gd[:, None, :], (ne, nbf * dim, nbf * dim)).ravel()
+        A = A + sp.csr_matrix((Kl.reshape(-1), (rows.astype(np.int32), cols.astype(np.int32))),
+                              shape=(n, n))
+    return A
+
+
+def vertex_gradient(sb, u_scalar_fields: Sequence[np.ndarray], vertex: int) -> np.ndarray:
+    """Gradient of P2 fields at a mesh vertex, averaged over the cells that
+    share it (the P2 gradient is discontinuous across cells).
+
+    Args:
+        sb: scalar P2 basis.
+        u_scalar_fields: one dof vector (length sb.N) per displacement
+            component.
+        vertex: vertex index.
+
+    Returns:
+        shape (dim, dim): G[i, j] = d u_i / d x_j.
+    """
+    from skfem import CellBasis
+
+    mesh = sb.mesh
+    dim = mesh.dim()
+    ref = mesh.init_refdom().p  # reference-cell vertices, shape (dim, dim + 1)
+    cells, local = np.nonzero(mesh.t.T == vertex)
+    if len(cells) == 0:
+        raise ValueError(f"vertex {vertex} belongs to no cell")
+    G = np.zeros((dim, dim))
+    for c, k in zip(cells, local):
+        cb = CellBasis(mesh, sb.elem, quadrature=(ref[:, [k]], np.ones(1)),
+                       elements=np.array([c]))
+        for i, ui in enumerate(u_scalar_fields):
+            gr = cb.interpolate(ui).grad
+            G[i] += [gr[j][0, 0] for j in range(dim)]
+    return G / len(cells)
+
+
+@contextlib.contextmanager
+def single_threaded_blas():
+    """Run the block with the process's OpenBLAS libraries on one thread.
+
+    The FEM iteration alternates single-threaded sparse products with small
+    BLAS calls; on two cores, idle-spinning BLAS threads slow it by about
+    2x. Works like threadpoolctl: the OpenBLAS builds that numpy and scipy
+    load expose ``*_set_num_threads``; the old count is restored on exit.
+    A no-op where no such library is found (e.g. not Linux).
+    """
+    import ctypes
+
+    restore = []
+    try:
+        with open("/proc/self/maps", encoding="utf-8") as fh:
+            paths = {ln.split()[-1] for ln in fh if "openblas" in ln.lower() and "/" in ln}
+    except OSError:
+        paths = set()
+    for path in sorted(paths):
+        try:
+            lib = ctypes.CDLL(path)
+        except OSError:
+            continue
+        for suffix in ("64_", ""):
+            for prefix in ("scipy_openblas", "openblas"):
+                setter = getattr(lib, f"{prefix}_set_num_threads{suffix}", None)
+                getter = getattr(lib, f"{prefix}_get_num_threads{suffix}", None)
+                if setter is not None and getter is not None:
+                    old = int(getter())
+                    setter(1)
+                    restore.append((setter, old))
+                    break
+            else:
+                continue
+            break
+    try:
+        yield
+    finally:
+        for setter, old in restore:
+            setter(old)
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    # einsum, not BLAS: a threaded BLAS level-1 call on two cores competes
+    # with the single-threaded sparse products of the iteration
+    return float(np.einsum("i,i->", a, b))
+
+
+def pcg(A, b: np.ndarray, M, rtol: float = 1e-9, maxiter: int = 2000) -> tuple[np.ndarray, int]:
+    """Preconditioned conjugate gradients for SPD ``A`` (Saad, Alg. 9.1).
+
+    Args:
+        A: SPD sparse matrix, shape (n, n).
+        b: right-hand side, shape (n,).
+        M: preconditioner, callable r -> M^-1 r (SPD).
+        rtol: stop when ||r|| <= rtol ||b||.
+        maxiter: iteration limit.
+
+    Returns:
+        (x, iterations).
+
+    Raises:
+        RuntimeError: not converged within ``maxiter`` or a breakdown
+            (non-positive curvature: A or M not SPD).
+    """
+    x = np.zeros_like(b)
+    r = b.copy()
+    bb = math.sqrt(_dot(b, b))
+    if bb == 0.0:
+        return x, 0
+    z = M(r)
+    p = z.copy()
+    rz = _dot(r, z)
+    for it in range(1, maxiter + 1):
+        Ap = A @ p
+        pAp = _dot(p, Ap)
+        if not pAp > 0:
+            raise RuntimeError("PCG breakdown: the system or preconditioner is not SPD")
+        alpha = rz / pAp
+        x += alpha * p
+        r -= alpha * Ap
+        if math.sqrt(_dot(r, r)) <= rtol * bb:
+            return x, it
+        z = M(r)
+        rz_new = _dot(r, z)
+        p *= rz_new / rz
+        p += z
+        rz = rz_new
+    raise RuntimeError(f"PCG did not converge in {maxiter} iterations")
+
+
+def _two_level_preconditioner(A, P, smooth_degree: int = 3):
+    """Symmetric two-level (p-multigrid) preconditioner for the P2 system.
+
+    Coarse space: the P1 (vertex) functions of the same mesh, embedded in P2
+    by ``P``; coarse operator ``P^T A P`` factorised once by SuperLU.
+    Smoother: Chebyshev polynomial of degree ``smooth_degree`` in D^-1 A
+    (D = diagonal), on [lambda_max / 30, lambda_max] with lambda_max from 20
+    power iterations times 1.2, applied before and
+    after the coarse correction, so the cycle is symmetric (usable in CG).
+    """
+    from scipy.sparse.linalg import splu
+
+    Ac = (P.T @ A @ P).tocsc()
+    lu = splu(Ac, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+              options={"SymmetricMode": True})
+    dinv = 1.0 / A.diagonal()
+    rng = np.random.default_rng(0)
+    v = rng.standard_normal(A.shape[0])
+    lmax = 1.0
+    v /= math.sqrt(_dot(v, v))
+    for _ in range(20):
+        w = dinv * (A @ v)
+        nw = math.sqrt(_dot(w, w))
+        lmax = nw  # ||v|| = 1
+        v = w / nw
+    hi, lo = 1.2 * lmax, 1.2 * lmax / 30.0  # power iteration underestimates lambda_max
+    theta, delta = 0.5 * (hi + lo), 0.5 * (hi - lo)
+    sigma = theta / delta
+
+    def cheb(r):
+        # Chebyshev iteration for A x = r from x = 0 (Saad, Alg. 12.1)
+        rho = 1.0 / sigma
+        d = dinv * r / theta
+        x = d.copy()
+        res = r - A @ d
+        for _ in range(smooth_degree - 1):
+            rho_new = 1.0 / (2.0 * sigma - rho)
+            d = rho_new * rho * d + 2.0 * rho_new / delta * (dinv * res)
+            rho = rho_new
+            x += d
+            res -= A @ d
+        return x
+
+    def apply(r):
+        x = cheb(r)
+        x += P @ lu.solve(P.T @ (r - A @ x))
+        x += cheb(r - A @ x)
+        return x
+
+    return apply
+
+
+def p1_embedding(mesh, nscalar: int):
+    """Sparse matrix (nscalar x n_vertices) taking vertex values of a P1
+    function to the P2 dofs (vertex dofs copy, edge dofs average the edge's
+    two vertices; exact for isoparametric P2 geometry as well)."""
+    import scipy.sparse as sp
+
+    nv = int(mesh.nvertices)
+    edges = mesh.facets if mesh.dim() == 2 else mesh.edges
+    ne = edges.shape[1]
+    if nv + ne != nscalar:
+        raise RuntimeError("unexpected P2 dof layout")
+    rows = np.concatenate([np.arange(nv), nv + np.arange(ne), nv + np.arange(ne)])
+    cols = np.concatenate([np.arange(nv), edges[0], edges[1]])
+    vals = np.concatenate([np.ones(nv), 0.5 * np.ones(ne), 0.5 * np.ones(ne)])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(nscalar, nv))
+
+
+def solve_elasticity(mesh, lam: float, mu: float, *, thickness: float, x_clamp: float,
+                     contact: tuple[float, float, float], traction_MPa: float,
+                     gauge_vertex: int | None, sym_plane_z: float | None = None,
+                     solver: str = "direct", intorder: int | None = None,
+                     rtol: float = 1e-10):
+    """Assemble and solve linear elasticity with P2 elements (BLAS on one
+    thread, see :func:`single_threaded_blas`).
+
+    Args:
+        mesh: scikit-fem triangle (2D; stiffness scaled by ``thickness``) or
+            tetrahedron mesh, linear or quadratic geometry.
+        lam, mu: Lamé parameters (MPa).
+        thickness: out-of-plane thickness b in 2D (mm); 1 in 3D.
+        x_clamp: clamp line/face, all displacements fixed (mm).
+        contact: (x_min, x_max, y) of the contact face (mm).
+        traction_MPa: uniform traction along +y on the contact face (MPa).
+        gauge_vertex: vertex index for the gauge strain (or None).
+        sym_plane_z: 3D only: z of a symmetry plane where u_z = 0.
+        solver: "direct" (SuperLU, symmetric mode, minimum-degree ordering on
+            A^T + A) or "pcg" (conjugate gradient with a two-level P2/P1
+            p-multigrid preconditioner, relative residual ``rtol``).
+        intorder: quadrature order (default 4 in 2D, 2 in 3D: exact for the
+            P1 x P1 gradient products of straight P2 cells).
+
+    Returns:
+        (f^T u in N mm, total modelled force f.sum() in N, eps_xx at the
+        gauge, number of dofs, CG iterations or 0). The mean contact-face
+        deflection is f^T u / f.sum().
+
+    Raises:
+        RuntimeError: contact face or clamp line not found in the mesh, or
+            CG did not converge.
+        ValueError: unknown solver.
+    """
+    with single_threaded_blas():
+        return _solve_elasticity(mesh, lam, mu, thickness=thickness, x_clamp=x_clamp,
+                                 contact=contact, traction_MPa=traction_MPa,
+                                 gauge_vertex=gauge_vertex, sym_plane_z=sym_plane_z,
+                                 solver=solver, intorder=intorder, rtol=rtol)
+
+
+def _solve_elasticity(mesh, lam, mu, *, thickness, x_clamp, contact, traction_MPa,
+                      gauge_vertex, sym_plane_z, solver, intorder, rtol):
+    import skfem
+    from skfem import Basis, FacetBasis, LinearForm, asm, condense
+
+    if solver not in ("direct", "pcg"):
+        raise ValueError(f"solver must be 'direct' or 'pcg', got {solver!r}")
+    dim = mesh.dim()
+    p2 = skfem.ElementTriP2() if dim == 2 else skfem.ElementTetP2()
+    if intorder is None:
+        intorder = 4 if dim == 2 else 2
+    sb = Basis(mesh, p2, intorder=intorder)
+    A = assemble_p2_elasticity(sb, lam, mu) * thickness
+    n = A.shape[0]
+
+    x0, x1, yc = contact
+    tol = 1e-7
+    cf = mesh.facets_satisfying(
+        lambda x: (np.abs(x[1] - yc) < tol) & (x[0] > x0 - tol) & (x[0] < x1 + tol),
+        boundaries_only=True)
+    clamp = mesh.facets_satisfying(lambda x: np.abs(x[0] - x_clamp) < tol, boundaries_only=True)
+    if len(cf) == 0 or len(clamp) == 0:
+        raise RuntimeError("contact face or clamp line not found in the mesh")
+    fb = FacetBasis(mesh, p2, facets=cf, intorder=intorder)
+    q = float(traction_MPa)
+    fy = asm(LinearForm(lambda v, w: q * v), fb) * thickness
+    f = np.zeros(n)
+    f[dim * np.arange(sb.N) + 1] = fy
+    cdofs = sb.get_dofs(clamp).all()
+    D = (dim * cdofs[:, None] + np.arange(dim)[None, :]).ravel()
+    if sym_plane_z is not None:
+        sym = mesh.facets_satisfying(lambda x: np.abs(x[2] - sym_plane_z) < tol,
+                                     boundaries_only=True)
+        D = np.union1d(D, dim * sb.get_dofs(sym).all() + 2)
+    u = np.zeros(n)
+    Ac, fc, _, I = condense(A, f, D=D)
+    iters = 0
+    if solver == "direct":
+        from scipy.sparse.linalg import splu
+
+        lu = splu(Ac.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                  options={"SymmetricMode": True})
+        u[I] = lu.solve(fc)
+    else:
+        import scipy.sparse as sp
+
+        Ps = p1_embedding(mesh, sb.N)
+        Pv = sp.kron(Ps, sp.eye(dim), format="csr")  # interleaved numbering
+        Pi = Pv[I]
+        # coarse (vertex) unknowns that are themselves fixed are dropped
+        fixed = np.zeros(n, dtype=bool)
+        fixed[D] = True
+        nv = int(mesh.nvertices)
+        vert_dofs = (dim * np.arange(nv)[:, None] + np.arange(dim)).ravel()
+        Pi = Pi[:, np.nonzero(~fixed[vert_dofs])[0]]
+        Acsr = Ac.tocsr()
+        M = _two_level_preconditioner(Acsr, Pi.tocsr())
+        u[I], iters = pcg(Acsr, fc, M, rtol=rtol)
+    compliance = float(f @ u)
+    force = float(f.sum())
+    eps_xx = float("nan")
+    if gauge_vertex is not None:
+        comps = [u[c::dim] for c in range(dim)]
+        eps_xx = float(vertex_gradient(sb, comps, gauge_vertex)[0, 0])
+    return compliance, force, eps_xx, n, iters
+
+
+def solve_fem2d(g: ElementGeometry, material: Material, *, plane: str = "stress",
+                size_factor: float = 1.0, web_divisions: float = WEB_DIVISIONS,
+                curved: bool = True, force_N: float = DEFAULT_FORCE_N,
+                region: FemRegion | None = None) -> FemSolution:
+    """One plane FEM solve (P2 triangles) of the element's tip stiffness.
+
+    Args:
+        g: element geometry (mm).
+        material: E (MPa), nu.
+        plane: "stress" or "strain".
+        size_factor: scales every element size (< 1 refines).
+        web_divisions: neck element size = web thickness / web_divisions
+            (before ``size_factor``).
+        curved: isoparametric P2 geometry on the arcs (else straight cells).
+        force_N: total tip force (N); K does not depend on it (linear).
+        region: cropped outline; ``None`` uses :func:`fem_region` (g).
+
+    Raises:
+        ValueError: unknown plane, non-positive force.
+    """
+    if plane not in PLANES:
+        raise ValueError(f"plane must be one of {PLANES}, got {plane!r}")
+    if not force_N > 0:
+        raise ValueError(f"force_N must be > 0, got {force_N!r}")
+    t0 = time.perf_counter()
+    region = fem_region(g) if region is None else region
+    rm = mesh_region(g, region, dim=2, size_factor=size_factor, web_divisions=web_divisions)
+    mesh = skfem_mesh(rm, curved=curved)
+    lam, mu = lame(material, plane)
+    L, w = g.overall_length_mm, g.tip_width_mm
+    b = g.sheet_thickness_mm
+    compliance, force, eps, n, _ = solve_elasticity(
+        mesh, lam, mu, thickness=b, x_clamp=region.x_clamp, contact=(L - w, L, g.tip_top_y_mm),
+        traction_MPa=force_N / (w * b), gauge_vertex=rm.gauge_vertex)
+    return FemSolution(stiffness_N_per_mm=force**2 / compliance,
+                       tip_deflection_mm=compliance / force,
+                       gauge_strain=eps, force_N=force_N, n_dofs=n, n_cells=rm.t.shape[1],
+                       neck_size_mm=rm.neck_size, wall_time_s=time.perf_counter() - t0)
+
+
+@dataclass(frozen=True)
+class Convergence:
+    """A mesh sequence and its Richardson estimate (coarsest first)."""
+
+    solutions: tuple[FemSolution, ...]
+    stiffness: Richardson
+    gauge_strain: Richardson
+    wall_time_s: float
+
+    @property
+    def finest(self) -> FemSolution:
+        return self.solutions[-1]
+
+
+def size_factors(levels: int, ratio: float) -> list[float]:
+    """Size factors r^(levels-1), ..., r, 1: the finest mesh is the default
+    mesh, the others are coarser by r and r^2."""
+    if levels < 3:
+        raise ValueError("at least three meshes are needed for Richardson extrapolation")
+    return [ratio**k for k in range(levels - 1, -1, -1)]
+
+
+def fem2d_convergence(g: ElementGeometry, material: Material, *, plane: str = "stress",
+                      web_divisions: float = WEB_DIVISIONS, ratio: float = REFINEMENT_RATIO,
+                      levels: int = 3, curved: bool = True, force_N: float = DEFAULT_FORCE_N,
+                      region: FemRegion | None = None) -> Convergence:
+    """Solve on ``levels`` meshes (sizes r^(levels-1) ... 1 times the default)
+    and Richardson-extrapolate K and the gauge strain."""
+    t0 = time.perf_counter()
+    region = fem_region(g) if region is None else region
+    with single_threaded_blas():
+        sols = tuple(solve_fem2d(g, material, plane=plane, size_factor=s,
+                                 web_divisions=web_divisions, curved=curved, force_N=force_N,
+                                 region=region)
+                     for s in size_factors(levels, ratio))
+    rk = richardson([s.stiffness_N_per_mm for s in sols], ratio)
+    rg = richardson([s.gauge_strain for s in sols], ratio)
+    return Convergence(sols, rk, rg, time.perf_counter() - t0)
+
+
+def estimate_fem2d(g: ElementGeometry, material: Material, element: int | None = None,
+                   plane: str = "stress", *, web_divisions: float = WEB_DIVISIONS,
+                   ratio: float = REFINEMENT_RATIO, curved: bool = True,
+                   force_N: float = DEFAULT_FORCE_N,
+                   margin_mm: float | None = None) -> StiffnessResult:
+    """Level-3 estimate: plane stress (or plane strain) P2 FEM, three meshes.
+
+    Args:
+        g: element geometry (mm).
+        material: E (MPa), nu.
+        element: paper element number, carried into the result.
+        plane: "stress" (the paper's FEM assumption) or "strain".
+        web_divisions: finest-mesh neck size = web thickness / web_divisions.
+        ratio: refinement ratio of the three meshes.
+        curved: isoparametric arcs.
+        force_N: tip force (N) for the gauge strain (reported per N).
+        margin_mm: clamp margin behind the notch (``None``: the default of
+            :func:`~tactcad.mechanics.fem_mesh.fem_region`).
+
+    Returns:
+        :class:`StiffnessResult` with model "fem2d" (plane stress) or
+        "fem2d-plane-strain": K of the finest mesh (N/mm), magnitude of the
+        gauge strain per N (1/N; compressive), Richardson error estimate of
+        K, total wall time (s).
+
+    Raises:
+        ValueError: unknown plane or bad margin.
+    """
+    region = fem_region(g, margin_mm)
+    conv = fem2d_convergence(g, material, plane=plane, web_divisions=web_divisions, ratio=ratio,
+                             curved=curved, force_N=force_N, region=region)
+    fin = conv.finest
+    return StiffnessResult(
+        element=element, model="fem2d" if plane == "stress" else "fem2d-plane-strain",
+        stiffness_N_per_mm=fin.stiffness_N_per_mm,
+        gauge_strain_per_N=abs(fin.gauge_strain) / force_N,
+        error_estimate_rel=conv.stiffness.error_rel, wall_time_s=conv.wall_time_s)
