@@ -7,10 +7,10 @@ STAMP  := $(VENV)/.installed-stamp
 DESIGN ?= hardware/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env export check test bench clean
+.PHONY: help env system-deps export docs-images check test bench clean
 
 help: ## list the targets
-	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-8s %s\n", $$1, $$2}'
+	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -23,13 +23,20 @@ env: $(STAMP) ## create .venv with the pinned CAD stack (build123d + cadquery on
 export: $(STAMP) ## build the default design (DESIGN=...) into exports/ (OUT=...)
 	$(BIN)/tactcad export --design $(DESIGN) --out $(OUT)
 
+docs-images: export ## refresh README's pictures (docs/images) from exports/images
+	cp $(OUT)/images/array.png $(OUT)/images/element_a4mm_drawing.png docs/images/
+
 check: $(STAMP) ## run the geometry, DXF and STEP checks on the design
 	$(BIN)/tactcad check --design $(DESIGN)
 
-test: $(STAMP) ## run the whole test suite
+system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd, via apt as root)
+	@sh scripts/install-system-deps.sh
+
+test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included)
 	$(BIN)/python -m pytest -q
 
-bench: $(STAMP) ## print the speed/accuracy benchmarks
+bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness ladder)
+	$(BIN)/tactcad bench export
 	$(BIN)/tactcad bench stiffness
 
 clean: ## remove generated files (exports/) and the environment

@@ -28,11 +28,6 @@ ORDER_BAND = (1.5, 4.5)
 ERROR_GOAL = 0.005  # 0.5 %
 
 
-@pytest.fixture(scope="module")
-def plan():
-    return load_design()
-
-
 def _elem(plan, arm):
     return next(g for g in plan.distinct_elements.values() if g.arm_length_mm == arm)
 

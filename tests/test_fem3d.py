@@ -11,7 +11,6 @@ import math
 
 import pytest
 
-from tactcad.design import load_design
 from tactcad.mechanics.correction_fit import grid_geometry
 from tactcad.mechanics.fem2d import (estimate_fem2d, lame, richardson, skfem_mesh,
                                      solve_elasticity)
@@ -20,11 +19,6 @@ from tactcad.mechanics.fem_mesh import fem_region, graded_layers, mesh_region
 
 ORDER_BAND = (1.5, 4.5)
 ERROR_GOAL = 0.005  # 0.5 %
-
-
-@pytest.fixture(scope="module")
-def plan():
-    return load_design()
 
 
 def _elem(plan, arm):

@@ -16,6 +16,7 @@ from .design import Placement, Plan
 from .parts.element import build_element
 from .parts.fasteners import build_bolt, build_nut
 from .parts.plates import build_clamp_plate, build_spacer
+from .rig_build import RIG_BUILDERS
 
 BUILD_COUNTS: Counter[str] = Counter()  # part name -> times built in this process
 
@@ -31,6 +32,7 @@ BUILDERS: dict[str, Callable[[Plan, PartSpec], bd.Solid]] = {
     "bolt": lambda plan, spec: build_bolt(plan.bolt, plan.bolt_length_mm),
     "nut": lambda plan, spec: build_nut(plan.bolt),
 }
+BUILDERS.update(RIG_BUILDERS)  # rig parts (spec.geometry carries their dimensions)
 
 
 class PartCache:

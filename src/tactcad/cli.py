@@ -18,6 +18,8 @@ from .errors import TactcadError
 COMMAND_MODULES = (
     "tactcad.commands.export",
     "tactcad.commands.check",
+    "tactcad.commands.scenes",
+    "tactcad.commands.bench",
     "tactcad.commands.mechanics",
     "tactcad.commands.lumped",
 )

@@ -372,20 +372,30 @@ def _check_number(name: str, value: Any, lo: float | None, hi: float | None, *,
     return v
 
 
-def _check_keys(data: Mapping[str, Any]) -> None:
+def check_keys(data: Mapping[str, Any], schema: Mapping[str, Any],
+               optional_sections: tuple[str, ...] = _OPTIONAL_SECTIONS, what: str = "<design>") -> None:
+    """Refuse unknown sections and keys and report missing ones.
+
+    Args:
+        data: the parsed TOML tables.
+        schema: section -> its keys (any iterable of key names).
+        optional_sections: sections that may be present but are not in ``schema``.
+        what: name of the whole file for the error when it is not a table.
+
+    Raises:
+        DesignError: naming the section or ``section.key``.
+    """
     if not isinstance(data, Mapping):
-        raise DesignError("<design>", type(data).__name__, "a TOML table")
+        raise DesignError(what, type(data).__name__, "a TOML table")
     for section in data:
-        if section not in _SCHEMA and section not in _OPTIONAL_SECTIONS:
+        if section not in schema and section not in optional_sections:
             raise DesignError(section, "<table>", "sections " + ", ".join(
-                [*_SCHEMA, *_OPTIONAL_SECTIONS]), "unknown section")
-    for section, keys in _SCHEMA.items():
-        if section not in data:
-            raise DesignError(section, None, f"a [{section}] table with keys " + ", ".join(keys),
-                              "missing section")
-        table = data[section]
+                [*schema, *optional_sections]), "unknown section")
+    for section, keys in schema.items():
+        table = data.get(section)
         if not isinstance(table, Mapping):
-            raise DesignError(section, table, "a TOML table")
+            raise DesignError(section, table, f"a [{section}] table with keys " + ", ".join(keys),
+                              "missing section" if table is None else "")
         for key in table:
             if key not in keys:
                 raise DesignError(f"{section}.{key}", table[key], "keys " + ", ".join(keys),
@@ -399,16 +409,23 @@ def _check_keys(data: Mapping[str, Any]) -> None:
 _ASSUMPTION_KEY = re.compile(r"^([a-z_]+)\.([A-Za-z0-9_]+)(\[\d+\])?$")
 
 
-def _read_assumptions(data: Mapping[str, Any]) -> tuple[tuple[str, str], ...]:
+def read_assumptions(data: Mapping[str, Any], schema: Mapping[str, Any],
+                     example: str = "element.notch_radius_mm") -> tuple[tuple[str, str], ...]:
+    """The ``[assumptions]`` table: ``"section.key" = "one-line reason"`` pairs,
+    each key naming a field of ``schema``.
+
+    Raises:
+        DesignError: a key naming no field, or an empty reason.
+    """
     table = data.get("assumptions", {})
     if not isinstance(table, Mapping):
         raise DesignError("assumptions", table, "a table of 'section.key' = \"reason\"")
     out = []
     for key, reason in table.items():
         m = _ASSUMPTION_KEY.match(key)
-        if not m or m.group(1) not in _SCHEMA or m.group(2) not in _SCHEMA[m.group(1)]:
+        if not m or m.group(1) not in schema or m.group(2) not in schema[m.group(1)]:
             raise DesignError(f"assumptions.{key}", reason,
-                              "keys naming a design field, e.g. 'element.notch_radius_mm'")
+                              f"keys naming a field of this file, e.g. '{example}'")
         if not isinstance(reason, str) or not reason.strip():
             raise DesignError(f"assumptions.{key}", reason, "a one-line reason (non-empty string)")
         out.append((key, reason.strip()))
@@ -460,9 +477,9 @@ def default_design_data() -> dict[str, Any]:
 
 def plan_from_dict(data: Mapping[str, Any], source: str = "<dict>") -> Plan:
     """Validate raw design tables and derive the plan. See :func:`load_design`."""
-    _check_keys(data)
+    check_keys(data, _SCHEMA)
     r = _Reader(data)
-    assumptions = _read_assumptions(data)
+    assumptions = read_assumptions(data, _SCHEMA)
     derived: list[Derived] = []
 
     name = r.text("design", "name")
@@ -614,7 +631,18 @@ def plan_from_dict(data: Mapping[str, Any], source: str = "<dict>") -> Plan:
     mount_d = hole_d
     clamp_holes = [Hole(-half + x, hole_y, hole_d) for x in hole_xs]
     clamp_holes += [Hole(half - x, hole_y, hole_d) for x in hole_xs]
-    clamp_holes += [Hole(sx * window / 2, bridge_h / 2, mount_d) for sx in (-1, 1)]
+    # Mounting bolts run through the whole stack below the arms, between the
+    # two rows' innermost base ends (shortest arm = longest base).
+    inner_end = half - max(base_lengths)
+    mount_x = inner_end / 2
+    if inner_end - mount_x - bolt.nominal_diameter_mm / 2 < arm_clear:
+        raise DesignError("clamp.bolt_size", bolt.size, "a smaller bolt",
+                          f"a mounting bolt at x = {_fmt(mount_x)} mm would pass within "
+                          f"{_fmt(arm_clear)} mm of the element bases ending at x = {_fmt(inner_end)} mm")
+    clamp_holes += [Hole(sx * mount_x, bridge_h / 2, mount_d) for sx in (-1, 1)]
+    derived.append(Derived("mounting_hole_x", mount_x, "mm",
+                           "mounting bolts centred between the two rows' innermost base ends, "
+                           "clear of every element"))
     if bridge_h / 2 - mount_d / 2 < 0.5:
         raise DesignError("clamp.bridge_height_mm", bridge_h, f">= {_fmt(mount_d + 1.0)} mm",
                           "mounting holes in the bridge need 0.5 mm of material around them")

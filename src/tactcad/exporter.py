@@ -31,10 +31,15 @@ from .design import Plan
 # only when called.
 WRITERS = (
     "tactcad.exporter:write_array_files",
+    "tactcad.scene_export:write_scene_files",
+    "tactcad.drawings:write_drawing_files",
+    "tactcad.render:write_image_files",
+    "tactcad.bom:write_bom_files",
 )
 
 STACK_PACKAGES = ("build123d", "cadquery", "cadquery-ocp", "ezdxf", "trimesh", "manifold3d",
-                  "numpy", "scipy", "scikit-fem", "gmsh")
+                  "numpy", "scipy", "scikit-fem", "gmsh", "svglib", "reportlab", "pypdfium2",
+                  "pillow")
 
 
 @dataclass

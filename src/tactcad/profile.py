@@ -174,7 +174,7 @@ def element_profile(g: ElementGeometry) -> Profile:
         bolt holes and one start hole at the centre of each bolt hole.
     """
     L, H = g.overall_length_mm, g.base_height_mm
-    R, t = g.notch_radius_mm, g.web_thickness_mm
+    R = g.notch_radius_mm
     xh, yc = g.hinge_x_mm, g.notch_centre_y_mm
     w, r = g.tip_width_mm, g.inside_corner_radius_mm
     y_arm = g.arm_underside_y_mm

@@ -16,6 +16,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", metavar="DIR", default=None,
                    help="export here instead of a temporary folder")
     p.add_argument("--failures-only", action="store_true", help="print failing checks only")
+    p.add_argument("--scene", metavar="NAME", action="append", default=None,
+                   help="check only this scene (repeatable): interference, geometry sanity, STEP "
+                        "and GLB read-back; without it the array and every scene are checked")
     p.set_defaults(func=run)
 
 
@@ -23,12 +26,19 @@ def run(args: argparse.Namespace) -> int:
     from ..checks.result import failures
     from ..design import load_design
     from ..exporter import export, run_checks
+    from ..scene_export import export_scenes, run_scene_checks
+    from ..scenes import SceneCache
 
     plan = load_design(args.design)
     with tempfile.TemporaryDirectory() as tmp:
         out = args.out or tmp
-        export(plan, out, log=lambda s: None)
-        results = run_checks(plan, out)
+        cache = SceneCache(plan)
+        if args.scene:
+            export_scenes(plan, out, args.scene, cache=cache)
+            results = run_scene_checks(plan, out, args.scene, cache=cache)
+        else:
+            export(plan, out, log=lambda s: None)
+            results = run_checks(plan, out) + run_scene_checks(plan, out, cache=cache)
     for r in results:
         if r.passed and args.failures_only:
             continue

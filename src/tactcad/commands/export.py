@@ -10,9 +10,13 @@ from . import add_design_arg
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("export", help="write STEP, wire-EDM DXF and manifest.json",
                        description="Build the design's parts and write exports/: step/<part>.step, "
-                                   "step/array.step, dxf/element_<n>.dxf and manifest.json.")
+                                   "step/array.step, dxf/element_<n>.dxf, scenes/<scene>.step and "
+                                   ".glb (see `tactcad scenes`) and manifest.json.")
     add_design_arg(p)
     p.add_argument("--out", metavar="DIR", default="exports", help="output folder (default: exports)")
+    p.add_argument("--scene", metavar="NAME", action="append", default=None,
+                   help="write only this scene: scenes/NAME.step and scenes/NAME.glb "
+                        "(repeatable; the manifest is left as it is). `tactcad scenes` lists them")
     p.set_defaults(func=run)
 
 
@@ -22,6 +26,12 @@ def run(args: argparse.Namespace) -> int:
 
     plan = load_design(args.design)  # validation first: a bad design writes nothing
     print(f"tactcad export: design {plan.name} ({plan.source}), sha256 {plan.design_hash[:12]}")
+    if args.scene:
+        from ..scene_export import export_scenes
+
+        for line in export_scenes(plan, args.out, args.scene).summary_lines():
+            print(line)
+        return 0
     result = export(plan, args.out)
     for line in result.summary_lines():
         print(line)

@@ -72,7 +72,7 @@ def run_table1(args: argparse.Namespace) -> int:
               f"{r.predicted.stiffness_N_per_mm:>10.2f} {r.error_percent:>8.1f} "
               f"{100 * r.predicted.error_estimate_rel:>10.2f} {w['web_as_built_mm']:>16.4f}")
     lo, hi = PAPER_STRAIN_RANGE
-    print(f"gauge strain at 2 N (closed form, %): "
+    print("gauge strain at 2 N (closed form, %): "
           + ", ".join(f"a={s['arm_length_mm']:g}: {s['strain_percent']:.3f}" for s in strains)
           + f"   paper: {100 * lo:.4f}-{100 * hi:.4f}")
     print(f"Table 2: eq. 2 with predicted K (K_r = {t2['k_r_predicted_N_per_mm']:.2f} N/mm): "

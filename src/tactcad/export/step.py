@@ -92,12 +92,18 @@ def _write_doc(doc: TDocStd_Document, path: Path, product_name: str) -> None:
 _NAUO_RE = re.compile(rb"NEXT_ASSEMBLY_USAGE_OCCURRENCE\('[^']*'")
 
 
+_NAUO_ENTITY_RE = re.compile(rb"NEXT_ASSEMBLY_USAGE_OCCURRENCE\(.*?\);", re.S)
+
+
 def _normalise(path: Path) -> None:
     """Fix what OpenCascade varies between runs: the header time stamp, and the
-    assembly-usage ids, which come from a process-wide counter."""
+    assembly-usage ids, which come from a process-wide counter. Those entities
+    are first put on one line each: OpenCascade wraps long lines, and where it
+    wrapped depends on how many digits the old id had."""
     data = path.read_bytes()
     data = _TIMESTAMP_RE.sub(lambda m: m.group(0).replace(
         m.group(0).split(b"','")[1].rstrip(b"'"), FIXED_TIMESTAMP.encode()), data, count=1)
+    data = _NAUO_ENTITY_RE.sub(lambda m: re.sub(rb"\r?\n\s*", b"", m.group(0)), data)
     counter = iter(range(1, 1 << 30))
     data = _NAUO_RE.sub(lambda m: b"NEXT_ASSEMBLY_USAGE_OCCURRENCE('%d'" % next(counter), data)
     path.write_bytes(_canonical_styles(data))

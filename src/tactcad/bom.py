@@ -1,0 +1,262 @@
+"""Bill of materials: one row per distinct item, quantities counted from the
+assemblies' instances (never from a separate list).
+
+Sources of parts and instances: the array (:func:`tactcad.catalogue.array_parts`,
+:func:`tactcad.catalogue.array_instances`) and every scene of
+:mod:`tactcad.scenes` (the array, its wire-cut layout and the test rigs; see
+:func:`design_assemblies`). The scenes are set-ups of one set of hardware, so
+an item's quantity is its largest count in any one assembly
+(:func:`part_quantities`); the Markdown shows the count per assembly.
+
+Files written by :func:`write_bom_files`:
+
+* ``bom.csv``: RFC 4180 CSV, UTF-8, ``\\n`` line ends, header row then one row
+  per item (fabricated parts first, then purchased, each in catalogue order);
+* ``bom.md``: the same table in Markdown, with a per-assembly breakdown.
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib
+import io
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Mapping, Sequence
+
+from .catalogue import Instance, PartSpec, array_instances, array_parts
+from .design import Plan
+from .drawings.sheet import fmt_mm
+
+BOM_COLUMNS = ("item", "part", "quantity", "type", "material", "process_or_reference",
+               "key_dimensions_mm", "files")
+
+
+@dataclass(frozen=True)
+class BomRow:
+    """One distinct item of the bill of materials."""
+
+    item: int
+    part: str
+    quantity: int
+    per_assembly: tuple[tuple[str, int], ...]
+    kind: str
+    material: str
+    process: str
+    key_dimensions: str
+    files: tuple[str, ...]
+
+    def as_dict(self) -> dict[str, str]:
+        return {"item": str(self.item), "part": self.part, "quantity": str(self.quantity),
+                "type": self.kind, "material": self.material,
+                "process_or_reference": self.process, "key_dimensions_mm": self.key_dimensions,
+                "files": " ".join(self.files)}
+
+
+def instance_counts(instances: Sequence) -> dict[str, int]:
+    """Number of placed instances of each part name, in order of first use."""
+    counts: dict[str, int] = {}
+    for inst in instances:
+        counts[inst.part] = counts.get(inst.part, 0) + 1
+    return counts
+
+
+def _scene_assemblies(plan: Plan) -> tuple[dict[str, PartSpec], dict[str, list]]:
+    """Parts and instances of every scene of the plan's scenes file
+    (:mod:`tactcad.scenes`: ``scene_names(plan)``, ``assemble(plan, name)``,
+    whose scene has ``specs`` and ``instances``); nothing if the project has
+    no scene module. Assembling places parts without building them."""
+    try:
+        scenes = importlib.import_module("tactcad.scenes")
+    except ModuleNotFoundError as exc:
+        if exc.name == "tactcad.scenes":
+            return {}, {}
+        raise
+    specs: dict[str, PartSpec] = {}
+    assemblies: dict[str, list] = {}
+    for name in scenes.scene_names(plan):
+        scene = scenes.assemble(plan, name)
+        for part, spec in scene.specs.items():
+            specs.setdefault(part, spec)
+        assemblies[name] = list(scene.instances)
+    return specs, assemblies
+
+
+def design_assemblies(plan: Plan) -> tuple[dict[str, PartSpec], dict[str, list]]:
+    """Every distinct part of the design and every assembly's instances.
+
+    Returns:
+        (parts by name, {assembly name: instances}): the array of the
+        catalogue first, then each scene of :mod:`tactcad.scenes` (instances
+        are anything with a ``part`` attribute naming a part).
+
+    Raises:
+        ValueError: an instance names a part no catalogue defines.
+    """
+    specs = dict(array_parts(plan))
+    assemblies: dict[str, list] = {"array": array_instances(plan)}
+    extra_specs, extra = _scene_assemblies(plan)
+    for name, spec in extra_specs.items():
+        specs.setdefault(name, spec)
+    assemblies.update(extra)  # a scene named "array" shows the same instances
+    for asm, inst in assemblies.items():
+        for i in inst:
+            if i.part not in specs:
+                raise ValueError(f"assembly {asm}: instance {i.name} names unknown part {i.part}")
+    return specs, assemblies
+
+
+def part_quantities(assemblies: Mapping[str, Sequence]) -> dict[str, int]:
+    """Quantity of each part to make or buy: its largest instance count in
+    any one assembly.
+
+    The assemblies are set-ups of one set of hardware (the array moves from
+    the array scene to the calibration and evaluation rigs, the rigs share
+    base plate and column), so counts are not added across assemblies.
+    """
+    total: dict[str, int] = {}
+    for inst in assemblies.values():
+        for part, n in instance_counts(inst).items():
+            total[part] = max(total.get(part, 0), n)
+    return total
+
+
+def key_dimensions(spec: PartSpec) -> str:
+    """``L x H x T`` (mm) of the part's designed bounding box, plus hole sizes
+    from its profile (``2x Ø2.4``)."""
+    x0, y0, z0, x1, y1, z1 = spec.expected_bbox_mm
+    text = " x ".join(fmt_mm(v, 2) for v in (x1 - x0, y1 - y0, z1 - z0))
+    if spec.profile is not None and spec.profile.holes:
+        sizes: dict[str, int] = {}
+        for h in spec.profile.holes:
+            d = fmt_mm(2 * h.radius, 2)
+            sizes[d] = sizes.get(d, 0) + 1
+        text += "; holes " + ", ".join(f"{n}x Ø{d}" for d, n in sizes.items())
+    return text
+
+
+def bom_rows(instances: Sequence[Instance] | Mapping[str, Sequence[Instance]],
+             specs: Mapping[str, PartSpec],
+             files: Callable[[PartSpec], Sequence[str]] = lambda spec: ()) -> list[BomRow]:
+    """BOM rows from placed instances.
+
+    Args:
+        instances: one assembly's instances, or ``{assembly: instances}``.
+        specs: part specs by name (every instance's part must be there).
+        files: the export files describing a part (drawing, DXF, STEP), paths
+            relative to the export folder.
+
+    Returns:
+        One row per distinct part used, fabricated first then purchased, in
+        ``specs`` order within each; quantity = its instance count, the
+        largest of any one assembly when several are given
+        (:func:`part_quantities`).
+
+    Raises:
+        KeyError: an instance names a part missing from ``specs``.
+    """
+    asm = dict(instances) if isinstance(instances, Mapping) else {"assembly": list(instances)}
+    per = {name: instance_counts(inst) for name, inst in asm.items()}
+    used = part_quantities(asm)
+    for part in used:
+        if part not in specs:
+            raise KeyError(f"instance part {part!r} has no PartSpec")
+    order = [n for n in specs if n in used]
+    order.sort(key=lambda n: 0 if specs[n].kind == "fabricated" else 1)
+    rows = []
+    for k, name in enumerate(order, start=1):
+        spec = specs[name]
+        rows.append(BomRow(
+            item=k, part=name, quantity=used[name],
+            per_assembly=tuple((a, c.get(name, 0)) for a, c in per.items()),
+            kind=spec.kind, material=spec.material, process=spec.process,
+            key_dimensions=key_dimensions(spec), files=tuple(files(spec))))
+    return rows
+
+
+def bom_csv(rows: Sequence[BomRow]) -> str:
+    """RFC 4180 CSV text of the rows (header :data:`BOM_COLUMNS`)."""
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=BOM_COLUMNS, lineterminator="\n")
+    w.writeheader()
+    for r in rows:
+        w.writerow(r.as_dict())
+    return buf.getvalue()
+
+
+def _md_cell(text: str) -> str:
+    return text.replace("|", "\\|")
+
+
+def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
+    """The BOM as a Markdown document: the item table, then instances per assembly."""
+    from . import __version__
+
+    lines = [f"# Bill of materials: {plan.name}", "",
+             f"Design sha256 `{plan.design_hash[:12]}`, tactcad {__version__}. Units: mm. "
+             "Quantities are counted from the assemblies' placed instances.", "",
+             "| Item | Part | Qty | Type | Material | Process / reference | Key dimensions (mm) "
+             "| Files |",
+             "| ---: | --- | ---: | --- | --- | --- | --- | --- |"]
+    for r in rows:
+        files = ", ".join(f"[{Path(f).name}]({f})" for f in r.files)
+        lines.append(f"| {r.item} | {_md_cell(r.part)} | {r.quantity} | {r.kind} | "
+                     f"{_md_cell(r.material)} | {_md_cell(r.process)} | "
+                     f"{_md_cell(r.key_dimensions)} | {files} |")
+    assemblies = [a for a, _ in rows[0].per_assembly] if rows else []
+    if len(assemblies) > 1:
+        lines += ["", "## Quantities per assembly", "",
+                  "| Part | " + " | ".join(assemblies) + " | Quantity (largest) |",
+                  "| --- | " + " | ".join("---:" for _ in assemblies) + " | ---: |"]
+        for r in rows:
+            lines.append(f"| {r.part} | " + " | ".join(str(n) for _, n in r.per_assembly)
+                         + f" | {r.quantity} |")
+    return "\n".join(lines) + "\n"
+
+
+def part_files(plan: Plan, staging: Path,
+               assemblies: Mapping[str, Sequence] | None = None) -> Callable[[PartSpec], list[str]]:
+    """The export files that describe a part, as found in ``staging``: its
+    drawing (SVG), its wire-EDM DXF files (elements: one per array position)
+    and its STEP model, or, for a part without a STEP file of its own, the
+    scene STEP files (``scenes/<scene>.step``) that show it. Only files that
+    exist are named."""
+    from .drawings import drawing_name
+    from .exporter import element_dxf_name
+
+    shown_in: dict[str, list[str]] = {}
+    for name, inst in (assemblies or {}).items():
+        for part in instance_counts(inst):
+            shown_in.setdefault(part, []).append(f"scenes/{name}.step")
+
+    def files(spec: PartSpec) -> list[str]:
+        cand = [drawing_name(spec.name)]
+        cand += [element_dxf_name(s.number) for s in plan.slots
+                 if s.geometry.part_name == spec.name]
+        cand += [f"dxf/{spec.name}.dxf", f"step/{spec.name}.step"]
+        found = [c for c in cand if (staging / c).is_file()]
+        if f"step/{spec.name}.step" not in found:
+            found += [c for c in shown_in.get(spec.name, []) if (staging / c).is_file()]
+        return found
+
+    return files
+
+
+def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> list[dict]:
+    """Write ``bom.csv`` and ``bom.md`` into ``staging`` (see module doc).
+
+    Run after the writers of the files it names (drawings, DXF, STEP): only
+    files present in ``staging`` are referenced.
+
+    Returns:
+        File records ``{"path", "part": "bom", "kind", "items"}``.
+    """
+    from .export.atomic import write_bytes_atomic
+
+    specs, assemblies = design_assemblies(plan)
+    rows = bom_rows(assemblies, specs, part_files(plan, staging, assemblies))
+    write_bytes_atomic(staging / "bom.csv", bom_csv(rows).encode("utf-8"))
+    write_bytes_atomic(staging / "bom.md", bom_markdown(plan, rows).encode("utf-8"))
+    log(f"  wrote bom.csv and bom.md ({len(rows)} items)")
+    return [{"path": "bom.csv", "part": "bom", "kind": "bom-csv", "items": len(rows)},
+            {"path": "bom.md", "part": "bom", "kind": "bom-markdown", "items": len(rows)}]

@@ -1,0 +1,103 @@
+"""Design review in FreeCAD: open exported STEP files with ``freecadcmd``
+(FreeCAD's headless command line, Debian package ``freecad-python3``) and
+compare what a reviewer sees (solid count, part labels, volume, bounding
+box) with the manifest's records.
+
+FreeCAD runs its own Python (the system ``python3``), so the review script
+(:mod:`tactcad.checks.freecad_script`, which imports nothing from tactcad)
+runs in a subprocess and writes its findings to a JSON file.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+from .result import CheckResult
+
+SCRIPT = Path(__file__).with_name("freecad_script.py")
+VOLUME_RTOL = 1e-6
+BBOX_TOL_MM = 1e-4
+
+
+class FreeCADUnavailable(RuntimeError):
+    """``freecadcmd`` is not installed."""
+
+
+def freecadcmd() -> str | None:
+    """Path of ``freecadcmd``, or ``None``."""
+    return shutil.which("freecadcmd") or shutil.which("FreeCADCmd")
+
+
+def run_freecad_review(paths: list[str | Path], timeout_s: float = 600.0) -> dict:
+    """Import every STEP file in FreeCAD; returns the script's JSON plus
+    ``wall_seconds`` (including FreeCAD's start).
+
+    Raises:
+        FreeCADUnavailable: no ``freecadcmd``.
+        RuntimeError: FreeCAD crashed or wrote no result (its output is in the message).
+    """
+    exe = freecadcmd()
+    if exe is None:
+        raise FreeCADUnavailable("freecadcmd not found (Debian package freecad-python3)")
+    with tempfile.TemporaryDirectory(prefix="tactcad-fc-") as tmp:
+        out = Path(tmp) / "review.json"
+        env = dict(os.environ, TACTCAD_FC_IN=json.dumps([str(Path(p).resolve()) for p in paths]),
+                   TACTCAD_FC_OUT=str(out), HOME=tmp)  # FreeCAD writes its user config there
+        env.pop("PYTHONPATH", None)
+        env.pop("PYTHONHOME", None)
+        t0 = time.perf_counter()
+        proc = subprocess.run([exe, str(SCRIPT)], env=env, cwd=tmp, capture_output=True,
+                              text=True, timeout=timeout_s)
+        wall = time.perf_counter() - t0
+        if not out.exists():
+            raise RuntimeError(f"freecadcmd exited {proc.returncode} without a result:\n"
+                               f"{proc.stdout[-2000:]}\n{proc.stderr[-2000:]}")
+        result = json.loads(out.read_text())
+    result["wall_seconds"] = wall
+    return result
+
+
+def compare(found: dict, record: dict, name: str) -> list[CheckResult]:
+    """Rows comparing FreeCAD's reading of one file with its manifest record."""
+    if "error" in found:
+        return [CheckResult("freecad_import", name, False, found["error"].strip().splitlines()[-1])]
+    out = [CheckResult("freecad_solids", name, found["solids"] == record["solids"],
+                       f"{found['solids']} (manifest {record['solids']})")]
+    rel = abs(found["volume_mm3"] - record["volume_mm3"]) / record["volume_mm3"]
+    out.append(CheckResult("freecad_volume", name, rel <= VOLUME_RTOL,
+                           f"{found['volume_mm3']:.4f} mm3, rel {rel:.1e}"))
+    dev = max(abs(a - b) for a, b in zip(found["bbox_mm"], record["bbox_mm"]))
+    out.append(CheckResult("freecad_bbox", name, dev <= BBOX_TOL_MM, f"max deviation {dev:.1e} mm"))
+    same = sorted(found["labels"]) == sorted(record["labels"])
+    out.append(CheckResult("freecad_labels", name, same,
+                           f"{len(found['labels'])} part labels" + ("" if same else
+                           f": {found['labels']} vs {record['labels']}")))
+    bare = found["shape_read"]
+    rel2 = abs(bare["volume_mm3"] - record["volume_mm3"]) / record["volume_mm3"]
+    out.append(CheckResult("freecad_shape_read", name,
+                           bare["solids"] == record["solids"] and rel2 <= VOLUME_RTOL,
+                           f"Part.read: {bare['solids']} solids, volume rel {rel2:.1e}"))
+    return out
+
+
+def review_exports(out_dir: str | Path) -> tuple[list[CheckResult], dict]:
+    """FreeCAD review of every STEP file listed in ``out_dir/manifest.json``.
+
+    Raises:
+        FreeCADUnavailable: no ``freecadcmd``.
+    """
+    out_dir = Path(out_dir)
+    man = json.loads((out_dir / "manifest.json").read_text())
+    records = [f for f in man["files"] if f["path"].endswith(".step") and "solids" in f]
+    found = run_freecad_review([out_dir / f["path"] for f in records])
+    rows = []
+    for f in records:
+        key = str((out_dir / f["path"]).resolve())
+        rows += compare(found["files"].get(key, {"error": "not reviewed"}), f, f["path"])
+    return rows, found

@@ -1,0 +1,202 @@
+"""Pairwise interference with manifold3d meshes, confirmed by OpenCascade.
+
+Fast path: every part is tessellated once (chordal tolerance
+:data:`MESH_TOLERANCE_MM`), turned into a manifold3d ``Manifold`` (double
+precision) and placed per instance; every pair with overlapping bounding
+boxes is intersected on the meshes. A tessellation is not conservative (the
+facets of a convex face lie inside it, those of a hole stand into the hole),
+so a pair goes to OpenCascade's exact boolean (:mod:`.interference`) when
+
+* its mesh overlap exceeds the limit (a collision, or two coincident curved
+  faces whose facets differ), or
+* its meshes come closer than :data:`NEAR_MM` (an overlap smaller than the
+  chordal error could hide there), or
+* the scene declares it a contact (it must touch: exact distance <= 1e-6 mm).
+
+The verdict of a confirmed pair is OpenCascade's; every other pair is clear
+on the meshes by more than the chordal error. A failed mesh (not a
+2-manifold) sends all its pairs to OpenCascade. A boolean that fails is a
+failure, never "no overlap".
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed, common_volume
+from .result import CheckResult
+
+MESH_TOLERANCE_MM = 0.01  # chordal deflection of the tessellation
+MESH_ANGULAR_TOLERANCE = 0.2  # rad
+NEAR_MM = 4 * MESH_TOLERANCE_MM  # closer meshes than this go to the exact check
+
+
+@dataclass
+class InterferenceReport:
+    """Rows plus the numbers the benchmark prints (seconds, pair counts)."""
+
+    results: list[CheckResult]
+    pairs_tested: int = 0
+    pairs_confirmed: int = 0
+    mesh_seconds: float = 0.0
+    confirm_seconds: float = 0.0
+    overlaps: dict[frozenset[str], float] = field(default_factory=dict)
+
+
+def tessellate(solid, tolerance_mm: float = MESH_TOLERANCE_MM) -> tuple[np.ndarray, np.ndarray]:
+    """Triangle mesh of a solid: vertices (n, 3) float64 in mm, triangles
+    (m, 3) int64, outward winding (OpenCascade's ``BRepMesh``)."""
+    verts, tris = solid.tessellate(tolerance_mm, MESH_ANGULAR_TOLERANCE)
+    return (np.array([tuple(p) for p in verts], dtype=np.float64).reshape(-1, 3),
+            np.array(tris, dtype=np.int64).reshape(-1, 3))
+
+
+def part_manifold(solid, tolerance_mm: float = MESH_TOLERANCE_MM, mesh=None):
+    """A part's solid as a manifold3d ``Manifold`` in its own frame (mm), or
+    ``None`` if its tessellation is not a closed 2-manifold. ``mesh``: the
+    solid's :func:`tessellate` result, if already made."""
+    import manifold3d
+
+    v, t = mesh if mesh is not None else tessellate(solid, tolerance_mm)
+    # OpenCascade meshes each face alone: merge the shared edge nodes by position
+    key, inverse = np.unique(np.round(v, 9), axis=0, return_inverse=True)
+    t = inverse.reshape(-1)[t]
+    t = t[(t[:, 0] != t[:, 1]) & (t[:, 1] != t[:, 2]) & (t[:, 0] != t[:, 2])]
+    m = manifold3d.Manifold(manifold3d.Mesh64(vert_properties=np.ascontiguousarray(key),
+                                              tri_verts=np.ascontiguousarray(t, dtype=np.uint64)))
+    if m.status() != manifold3d.Error.NoError or m.is_empty():
+        return None
+    return m
+
+
+def _affine(location) -> np.ndarray:
+    """3 x 4 affine matrix of a build123d ``Location``."""
+    trsf = location.wrapped.Transformation()
+    return np.array([[trsf.Value(i, j) for j in range(1, 5)] for i in range(1, 4)], dtype=np.float64)
+
+
+def _pose_key(a: str, b: str, part_of: dict, locations: dict) -> tuple:
+    """(part, part, relative pose rounded to 1e-9 mm) of an instance pair."""
+    a, b = sorted((a, b), key=lambda n: (part_of[n], n))
+    rel = _affine(locations[a].inverse() * locations[b])
+    return (part_of[a], part_of[b], tuple(np.round(rel, 9).ravel()))
+
+
+def touching_gap(a, b, tol: float = CONTACT_TOL_MM) -> float:
+    """Exact distance (mm) between two solids that do not overlap, computed on
+    the faces of each that come within ``tol`` of the other's bounding box:
+    a gap <= ``tol`` can only lie between such faces, so the answer to
+    "touching within ``tol``" is exact; ``inf`` when no face comes near."""
+    import build123d as bd
+    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+
+    def near(shape, box):
+        out = []
+        for f in shape.faces():
+            fb = f.bounding_box()
+            if _boxes_overlap((fb.min.X, fb.min.Y, fb.min.Z, fb.max.X, fb.max.Y, fb.max.Z),
+                              (box.min.X, box.min.Y, box.min.Z, box.max.X, box.max.Y, box.max.Z),
+                              tol):
+                out.append(f)
+        return out
+
+    fa, fb = near(a, b.bounding_box()), near(b, a.bounding_box())
+    if not fa or not fb:
+        return float("inf")
+    d = BRepExtrema_DistShapeShape(bd.Compound(fa).wrapped, bd.Compound(fb).wrapped)
+    if not d.IsDone():
+        raise RuntimeError("distance computation failed")
+    return d.Value()
+
+
+def _boxes_overlap(a, b, tol: float) -> bool:
+    return all(a[k] <= b[k + 3] + tol and b[k] <= a[k + 3] + tol for k in range(3))
+
+
+def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
+                            part_of: dict[str, str], part_solids: dict, locations: dict,
+                            confirm: bool = True, part_meshes: dict | None = None
+                            ) -> InterferenceReport:
+    """Overlap of every pair (fast path on meshes, exact confirmation), and
+    touching of the declared contacts.
+
+    Args:
+        placed: instances in the scene frame (name, placed solid).
+        contacts: declared touching pairs of instance names.
+        part_of: instance name -> part name (meshes are made once per part).
+        part_solids: part name -> solid in the part's frame.
+        locations: instance name -> build123d ``Location`` that placed it
+            (``placed`` holds ``part_solids[part].moved(location)``).
+        confirm: run the OpenCascade confirmation (off: mesh verdicts only,
+            for timing the fast path).
+        part_meshes: part name -> :func:`tessellate` result, if already made.
+    """
+    t0 = time.perf_counter()
+    part_meshes = part_meshes or {}
+    meshes = {name: part_manifold(s, mesh=part_meshes.get(name)) for name, s in part_solids.items()}
+    items = []
+    for p in placed:
+        base = meshes[part_of[p.name]]
+        m = None if base is None else base.transform(_affine(locations[p.name]))
+        bb = p.shape.bounding_box()
+        items.append((p, m, (bb.min.X, bb.min.Y, bb.min.Z, bb.max.X, bb.max.Y, bb.max.Z)))
+    out: list[CheckResult] = []
+    to_confirm: list[tuple[Placed, Placed, float | None]] = []
+    tested = 0
+    for (a, ma, ba), (b, mb, bb) in itertools.combinations(items, 2):
+        pair = frozenset({a.name, b.name})
+        if not _boxes_overlap(ba, bb, max(NEAR_MM, CONTACT_TOL_MM)):
+            if pair in contacts:
+                out.append(CheckResult("contact_touching", f"{a.name} / {b.name}", False,
+                                       "boxes apart"))
+            continue
+        tested += 1
+        if ma is None or mb is None:
+            to_confirm.append((a, b, None))
+            continue
+        vol = (ma ^ mb).volume()
+        if vol > OVERLAP_TOL_MM3 or pair in contacts or ma.min_gap(mb, NEAR_MM) < NEAR_MM:
+            to_confirm.append((a, b, vol))
+    t1 = time.perf_counter()
+    overlaps: dict[frozenset[str], float] = {}
+    memo: dict[tuple, tuple] = {}  # same two parts in the same relative pose: same answer
+    if confirm:
+        for a, b, mvol in to_confirm:
+            subject = f"{a.name} / {b.name}"
+            pair = frozenset({a.name, b.name})
+            mesh = "" if mvol is None else f" (mesh {mvol:.3g} mm3)"
+            key = _pose_key(a.name, b.name, part_of, locations) + (pair in contacts,)
+            if key not in memo:
+                try:
+                    vol = common_volume(a.shape, b.shape)
+                except Exception as exc:
+                    memo[key] = (exc, None)
+                else:
+                    gap = touching_gap(a.shape, b.shape) if pair in contacts else None
+                    memo[key] = (vol, gap)
+            vol, gap = memo[key]
+            if isinstance(vol, Exception):
+                out.append(CheckResult("interference", subject, False, f"boolean failed: {vol}"))
+                continue
+            if vol > OVERLAP_TOL_MM3:
+                overlaps[pair] = vol
+                out.append(CheckResult("interference", subject, False,
+                                       f"overlap {vol:.6g} mm3{mesh}"))
+            if gap is not None:
+                out.append(CheckResult("contact_touching", subject, gap <= CONTACT_TOL_MM,
+                                       f"gap {gap:.1e} mm"))
+    else:
+        for a, b, mvol in to_confirm:
+            if mvol is not None and mvol > OVERLAP_TOL_MM3 and frozenset({a.name, b.name}) not in contacts:
+                overlaps[frozenset({a.name, b.name})] = mvol
+    t2 = time.perf_counter()
+    ok = not any(r.check == "interference" and not r.passed for r in out)
+    out.append(CheckResult(
+        "interference", f"{len(placed)} parts", ok,
+        f"{tested} pairs on meshes ({t1 - t0:.2f} s), {len(to_confirm)} confirmed exactly "
+        f"({t2 - t1:.2f} s), overlap limit {OVERLAP_TOL_MM3:g} mm3"))
+    return InterferenceReport(out, tested, len(to_confirm), t1 - t0, t2 - t1, overlaps)

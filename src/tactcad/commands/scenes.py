@@ -1,0 +1,37 @@
+"""``tactcad scenes``: list the scenes of the exports, their groups and parts."""
+
+from __future__ import annotations
+
+import argparse
+
+from . import add_design_arg
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("scenes", help="list the scenes (array, wire-cut layout, test rigs) and their parts",
+                       description="List every scene of hardware/scenes.toml (beside the design "
+                                   "file): its rig, groups and parts with quantities and level of "
+                                   "detail. Builds no geometry.")
+    add_design_arg(p)
+    p.add_argument("name", nargs="?", default=None, help="show only this scene")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..design import load_design
+    from ..scenes import describe, get_scene_spec
+
+    plan = load_design(args.design)
+    lines = describe(plan)
+    if args.name is not None:
+        get_scene_spec(plan, args.name)  # SceneError (exit 2) lists the scenes
+        keep, show = [], False
+        for line in lines:
+            if not line.startswith(" "):
+                show = line.split()[0] == args.name
+            if show:
+                keep.append(line)
+        lines = keep
+    for line in lines:
+        print(line)
+    return 0

@@ -1,0 +1,23 @@
+"""Indenter of the force gauge: a cylindrical body seated on the gauge's shaft
+end and a rectangular tip whose end face is the 2 mm x 3 mm contact area
+(paper: the same contact area as a sensing element).
+
+Part frame: contact face at z = 0 (centred), tip along +z, then the body;
+the contact width lies along x, the depth along y. Dimensions:
+:class:`tactcad.rigs.IndenterGeometry`.
+"""
+
+from __future__ import annotations
+
+import build123d as bd
+
+from ..rigs import IndenterGeometry
+from .shapes import box, cylinder, fuse
+
+
+def build_indenter(g: IndenterGeometry) -> bd.Solid:
+    """Tip (contact face at z = 0) fused with the body above it (mm)."""
+    w, d, L = g.contact_width_mm, g.contact_depth_mm, g.tip_length_mm
+    tip = box(-w / 2, -d / 2, 0, w / 2, d / 2, L)
+    body = cylinder(g.body_diameter_mm / 2, (0, 0, L), (0, 0, 1), g.body_length_mm)
+    return fuse(tip, body)

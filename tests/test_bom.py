@@ -1,0 +1,174 @@
+"""Bill of materials: quantities are the assemblies' instance counts, every
+file it names exists, CSV and Markdown agree, scene assemblies are counted."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import re
+import sys
+import types
+from collections import Counter
+
+import pytest
+
+from tactcad.bom import BOM_COLUMNS, bom_csv, bom_rows, design_assemblies, part_quantities
+from tactcad.catalogue import Instance, array_instances, array_parts
+from tactcad.design import Placement, default_design_data, plan_from_dict, with_overrides
+
+
+def read_csv(path):
+    with open(path, newline="", encoding="utf-8") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _largest_counts(assemblies) -> dict[str, int]:
+    out: dict[str, int] = {}
+    for inst in assemblies.values():
+        for part, n in Counter(i.part for i in inst).items():
+            out[part] = max(out.get(part, 0), n)
+    return out
+
+
+def test_bom_quantities_are_the_assemblies_instance_counts(exported, plan):
+    out, _ = exported
+    rows = read_csv(out / "bom.csv")
+    q = {r["part"]: int(r["quantity"]) for r in rows}
+    _, assemblies = design_assemblies(plan)
+    assert q == _largest_counts(assemblies)
+    # the array's own parts: exactly its instance counts, which follow the design
+    array = Counter(i.part for i in array_instances(plan))
+    for part, n in array.items():
+        assert q[part] >= n
+    assert sum(q[n] for n in plan.distinct_elements) == plan.rows * plan.columns
+    assert q["spacer"] == plan.rows * (plan.columns - 1) == array["spacer"]
+    assert q["clamp_plate"] == 2
+
+
+def test_bom_agrees_with_manifest_for_array_parts(exported):
+    out, _ = exported
+    man = json.loads((out / "manifest.json").read_text())
+    q = {r["part"]: int(r["quantity"]) for r in read_csv(out / "bom.csv")}
+    for name, p in man["parts"].items():
+        if p["kind"] == "fabricated":
+            assert q[name] == p["quantity"], name
+
+
+def test_every_file_the_bom_names_exists(exported, plan):
+    out, _ = exported
+    rows = read_csv(out / "bom.csv")
+    assert list(rows[0]) == list(BOM_COLUMNS)
+    named = [f for r in rows for f in r["files"].split()]
+    assert named
+    for f in named:
+        assert (out / f).is_file(), f
+    md = (out / "bom.md").read_text()
+    links = re.findall(r"\]\(([^)]+)\)", md)
+    assert sorted(set(links)) == sorted(set(named))
+    # each fabricated part points to its drawing, each element to its DXF files
+    by_part = {r["part"]: r["files"].split() for r in rows}
+    for r in rows:
+        if r["type"] == "fabricated":
+            assert f"drawings/{r['part']}.svg" in by_part[r["part"]]
+    for slot in plan.slots:
+        assert f"dxf/element_{slot.number}.dxf" in by_part[slot.geometry.part_name]
+
+
+def test_markdown_table_matches_csv(exported):
+    out, _ = exported
+    rows = read_csv(out / "bom.csv")
+    md_rows = [line for line in (out / "bom.md").read_text().splitlines()
+               if re.match(r"\| \d+ \|", line)]
+    assert len(md_rows) == len(rows)
+    for line, r in zip(md_rows, rows):
+        cells = [c.strip() for c in line.strip("|").split(" | ")]
+        assert cells[1] == r["part"] and cells[2] == r["quantity"] and cells[3] == r["type"]
+
+
+def test_fabricated_rows_carry_process_and_purchased_a_catalogue_reference(exported):
+    out, _ = exported
+    rows = read_csv(out / "bom.csv")
+    kinds = [r["type"] for r in rows]
+    assert kinds == sorted(kinds, key=lambda k: k != "fabricated")  # fabricated first
+    for r in rows:
+        assert r["material"] and r["process_or_reference"] and r["key_dimensions_mm"]
+        if r["part"].startswith(("bolt_", "nut_")):
+            assert re.match(r"ISO \d+ ", r["process_or_reference"])
+    el = next(r for r in rows if r["part"] == "element_a4mm")
+    assert el["key_dimensions_mm"].startswith("22 x 11.5 x 3")
+    assert "2x Ø2.4" in el["key_dimensions_mm"]
+
+
+@pytest.mark.parametrize("columns", [1, 3, 5])
+def test_quantities_follow_the_design(columns):
+    data = default_design_data()
+    arms = data["arms"]["lengths_mm"]
+    lengths = arms[:columns] + arms[5:5 + columns]
+    plan = plan_from_dict(with_overrides(data, {"array.columns": columns,
+                                                "arms.lengths_mm": lengths}))
+    rows = bom_rows(array_instances(plan), array_parts(plan))
+    q = {r.part: r.quantity for r in rows}
+    assert sum(q[n] for n in plan.distinct_elements) == 2 * columns
+    assert q.get("spacer", 0) == 2 * (columns - 1)
+    assert q["clamp_plate"] == 2
+
+
+def test_bom_rows_count_instances_per_assembly():
+    plan = plan_from_dict(default_design_data())
+    specs = array_parts(plan)
+    p = Placement(0.0, 0.0, 0.0)
+    rig = [Instance(f"s{k}", "spacer", p) for k in range(2)] + \
+        [Instance(f"n{k}", "nut_M2", p) for k in range(6)]
+    asm = {"array": array_instances(plan), "rig": rig}
+    rows = {r.part: r for r in bom_rows(asm, specs)}
+    # one set of hardware serves every assembly: the largest count of any one
+    assert rows["spacer"].quantity == 8
+    assert rows["nut_M2"].quantity == 6
+    assert dict(rows["spacer"].per_assembly) == {"array": 8, "rig": 2}
+    assert dict(rows["nut_M2"].per_assembly) == {"array": 4, "rig": 6}
+    assert part_quantities(asm)["spacer"] == 8
+    with pytest.raises(KeyError, match="no PartSpec"):
+        bom_rows([Instance("x", "no_such_part", p)], specs)
+    text = bom_csv(list(rows.values()))
+    assert next(csv.DictReader(io.StringIO(text)))["part"] == "element_a4mm"
+
+
+def test_scene_assemblies_are_counted_and_drawn(monkeypatch, plan):
+    """The scene module's assemblies add their parts to the BOM and, for
+    fabricated ones, to the drawings, with quantities from their instances."""
+    import dataclasses
+
+    from tactcad.drawings import fabricated_parts
+
+    base = array_parts(plan)["spacer"]
+    plate = dataclasses.replace(base, name="rig_base_plate", builder="spacer", process="milling")
+    p = Placement(0.0, 0.0, 0.0)
+    scene = types.SimpleNamespace(
+        specs={"rig_base_plate": plate, "nut_M2": array_parts(plan)["nut_M2"]},
+        instances=[Instance("base", "rig_base_plate", p), Instance("base2", "rig_base_plate", p)]
+        + [Instance(f"n{k}", "nut_M2", p) for k in range(7)])
+    fake = types.ModuleType("tactcad.scenes")
+    fake.scene_names = lambda plan: ["test-rig"]
+    fake.assemble = lambda plan, name: scene
+    monkeypatch.setitem(sys.modules, "tactcad.scenes", fake)
+    specs, assemblies = design_assemblies(plan)
+    assert list(assemblies) == ["array", "test-rig"]
+    rows = {r.part: r for r in bom_rows(assemblies, specs)}
+    assert rows["rig_base_plate"].quantity == 2 and rows["rig_base_plate"].kind == "fabricated"
+    assert rows["nut_M2"].quantity == 7
+    parts, qty = fabricated_parts(plan)
+    assert "rig_base_plate" in [s.name for s in parts] and qty["rig_base_plate"] == 2
+
+
+def test_real_scenes_quantities(plan):
+    """With the project's scenes: every scene's count is at most the BOM's
+    quantity, and equal to it in at least one scene."""
+    pytest.importorskip("tactcad.scenes")
+    specs, assemblies = design_assemblies(plan)
+    rows = bom_rows(assemblies, specs)
+    for r in rows:
+        counts = [n for _, n in r.per_assembly]
+        assert r.quantity == max(counts) and r.quantity > 0
+    q = {r.part: r.quantity for r in rows}
+    assert q["spacer"] == 8 and q["clamp_plate"] == 2

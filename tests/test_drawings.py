@@ -1,0 +1,301 @@
+"""Fabrication drawings: SVGs parse, the PDF has a page per drawing and the
+pages are not blank, every dimension reads back as the plan's value, a changed
+design changes the drawing, title blocks carry quantity / hash / version."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import re
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+from tactcad import __version__
+from tactcad.bom import design_assemblies, instance_counts
+from tactcad.catalogue import array_instances, array_parts
+from tactcad.design import default_design_data, plan_from_dict, with_overrides
+
+SVG = "{http://www.w3.org/2000/svg}"
+NUMBER = re.compile(r"-?\d+(?:\.\d+)?")
+
+
+def texts_by_id(svg_text: str) -> dict[str, str]:
+    root = ET.fromstring(svg_text.encode("utf-8"))
+    return {el.get("id"): (el.text or "") for el in root.iter(f"{SVG}text") if el.get("id")}
+
+
+def dims(svg_text: str) -> dict[str, str]:
+    return {k[4:]: v for k, v in texts_by_id(svg_text).items() if k.startswith("dim-")}
+
+
+def printed_equals(text: str, value: float, index: int = 0) -> bool:
+    """The ``index``-th number printed in ``text`` equals ``value`` to the
+    drawings' printed precision: 3 decimals with trailing zeros dropped
+    (``22`` means 22.000), so the tolerance is half a unit of the 3rd decimal."""
+    nums = NUMBER.findall(text)
+    return abs(float(nums[index]) - value) <= 0.0005 + 1e-12
+
+
+def assert_dims(found: dict[str, str], expected: dict[str, float | tuple]) -> None:
+    missing = set(expected) - set(found)
+    assert not missing, f"dimensions missing from the drawing: {sorted(missing)}"
+    for name, want in expected.items():
+        values = want if isinstance(want, tuple) else (want,)
+        for k, v in enumerate(values):
+            assert printed_equals(found[name], v, k), f"{name}: drawing says {found[name]!r}, plan {v}"
+
+
+def element_expectations(g) -> dict:
+    """Plan values of an element's dimensions, by dimension name."""
+    h1, h2 = sorted(g.bolt_holes, key=lambda h: h.x_mm)
+    return {
+        "web_thickness": (g.web_thickness_mm, g.web_tolerance_mm),
+        "notch_radius": g.notch_radius_mm,
+        "arm_length": g.arm_length_mm,
+        "tip_width": g.tip_width_mm,
+        "contact_face": g.contact_face_mm,
+        "overall_length": g.overall_length_mm,
+        "overall_height": g.tip_top_y_mm,
+        "base_height": g.base_height_mm,
+        "arm_height": g.arm_height_mm,
+        "tip_height": g.tip_height_mm,
+        "corner_radius": g.inside_corner_radius_mm,
+        "hole_1_x": h1.x_mm,
+        "hole_2_x": h2.x_mm,
+        "hole_y": h1.y_mm,
+        "hole_diameter": (2, h1.diameter_mm),
+        "thickness": g.sheet_thickness_mm,
+    }
+
+
+@pytest.fixture(scope="module")
+def drawing_files(exported):
+    out, _ = exported
+    man = json.loads((out / "manifest.json").read_text())
+    svgs = {f["part"]: out / f["path"] for f in man["files"] if f["kind"] == "drawing-svg"}
+    return out, man, svgs
+
+
+def test_one_drawing_per_fabricated_part_and_every_svg_parses(drawing_files, plan):
+    out, man, svgs = drawing_files
+    specs, assemblies = design_assemblies(plan)
+    used = {i.part for inst in assemblies.values() for i in inst}
+    fabricated = {n for n, s in specs.items() if s.kind == "fabricated" and n in used}
+    assert set(svgs) == fabricated
+    assert {n for n, s in array_parts(plan).items() if s.kind == "fabricated"} <= set(svgs)
+    for part, path in svgs.items():
+        assert path.name == f"{part}.svg" and path.parent.name == "drawings"
+        root = ET.parse(path).getroot()
+        assert root.tag == f"{SVG}svg"
+        assert root.get("viewBox") == "0 0 420 297"
+        assert root.find(f".//{SVG}g[@id='view-front']/{SVG}path") is not None
+
+
+def test_views_carry_visible_and_hidden_lines(drawing_files):
+    _, _, svgs = drawing_files
+    root = ET.parse(svgs["element_a4mm"]).getroot()
+    top = root.find(f".//{SVG}g[@id='view-top']")
+    classes = [p.get("class") for p in top.iter(f"{SVG}path")]
+    assert classes.count("hidden") >= 4  # the two bolt holes seen from above
+    assert classes.count("visible") >= 4
+    assert all(p.get("stroke-dasharray") for p in top.iter(f"{SVG}path")
+               if p.get("class") == "hidden")
+
+
+def test_pdf_has_one_page_per_drawing_and_no_blank_page(drawing_files):
+    import pypdfium2 as pdfium
+    from pypdf import PdfReader
+
+    out, man, svgs = drawing_files
+    pdf = out / "drawings/drawings.pdf"
+    reader = PdfReader(pdf)
+    assert len(reader.pages) == len(svgs)
+    w, h = (float(v) for v in reader.pages[0].mediabox.upper_right)
+    assert abs(w - 420 / 25.4 * 72) < 1 and abs(h - 297 / 25.4 * 72) < 1  # A3 landscape
+    assert "element_a4mm" in reader.pages[0].extract_text()
+    order = [f["part"] for f in man["files"] if f["kind"] == "drawing-svg"]
+    for k in (0, len(order) - 1):
+        assert order[k] in reader.pages[k].extract_text()
+    doc = pdfium.PdfDocument(str(pdf))
+    try:
+        for k in range(len(doc)):
+            img = np.asarray(doc[k].render(scale=40 / 72).to_pil().convert("L"), dtype=float)
+            dark = (img < 128).mean()
+            assert img.std() > 10 and dark > 0.003, f"page {k + 1} looks blank"
+    finally:
+        doc.close()
+
+
+def test_element_dimensions_read_back_as_plan_values(drawing_files, plan):
+    _, _, svgs = drawing_files
+    for name, g in plan.distinct_elements.items():
+        assert_dims(dims(svgs[name].read_text()), element_expectations(g))
+
+
+def test_web_thickness_carries_tolerance_and_reason(drawing_files, plan):
+    _, _, svgs = drawing_files
+    text = svgs["element_a4mm"].read_text()
+    g = plan.distinct_elements["element_a4mm"]
+    assert dims(text)["web_thickness"] == "0.25 ±0.02"
+    notes = " ".join(v for k, v in texts_by_id(text).items() if k.startswith("note"))
+    all_text = " ".join(el.text or "" for el in ET.fromstring(text).iter(f"{SVG}text"))
+    assert "Table 1" in all_text and "40.12" in all_text and "80.38" in all_text
+    assert f"1. Web thickness {g.web_thickness_mm:g} ±{g.web_tolerance_mm:g}" in notes
+
+
+def test_plate_dimensions_read_back_as_plan_values(drawing_files, plan):
+    _, _, svgs = drawing_files
+    s = plan.spacer
+    h1, h2 = sorted(s.holes, key=lambda h: h.x_mm)
+    assert_dims(dims(svgs["spacer"].read_text()), {
+        "overall_length": s.length_mm, "overall_height": s.height_mm, "thickness": s.thickness_mm,
+        "hole_1_x": h1.x_mm, "hole_2_x": h2.x_mm, "hole_y": h1.y_mm,
+        "hole_diameter": (2, h1.diameter_mm)})
+    c = plan.clamp
+    found = dims(svgs["clamp_plate"].read_text())
+    expected = {"overall_length": 2 * c.half_length_mm, "overall_height": c.height_mm,
+                "thickness": c.thickness_mm, "window_width": 2 * c.window_half_width_mm,
+                "bridge_height": c.bridge_height_mm, "inside_radius": c.window_corner_radius_mm}
+    for i, h in enumerate(sorted(c.holes, key=lambda h: (h.y_mm, h.x_mm)), start=1):
+        expected |= {f"hole_{i}_x": h.x_mm, f"hole_{i}_y": h.y_mm, f"hole_{i}_d": h.diameter_mm}
+    assert_dims(found, expected)
+
+
+def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan):
+    _, _, svgs = drawing_files
+    specs, assemblies = design_assemblies(plan)
+    largest: dict[str, int] = {}
+    for inst in assemblies.values():
+        for part, n in instance_counts(inst).items():
+            largest[part] = max(largest.get(part, 0), n)
+    array_counts = instance_counts(array_instances(plan))
+    for part, path in svgs.items():
+        tb = texts_by_id(path.read_text())
+        assert tb["tb-part"] == part
+        assert int(tb["tb-quantity"]) == largest[part]
+        if part in array_counts:
+            assert int(tb["tb-quantity"]) == array_counts[part]
+        assert plan.design_hash[:12] in tb["tb-design"]
+        assert tb["tb-version"] == f"tactcad {__version__}"
+        assert tb["tb-tolerance"] == "ISO 2768-f"
+        assert tb["tb-units"] == "mm"
+        assert tb["tb-process"] == specs[part].process
+        assert tb["tb-material"].startswith(specs[part].material)
+        if specs[part].profile is not None:
+            assert f"{specs[part].thickness_mm:g} mm" in tb["tb-material"]
+        assert re.fullmatch(r"\d+:\d+(, detail \d+:\d+)?", tb["tb-scale"])
+    assert texts_by_id(svgs["element_a4mm"].read_text())["tb-scale"] == "5:1, detail 50:1"
+
+
+def _compose_first_element(plan):
+    from tactcad.build import PartCache
+    from tactcad.drawings.compose import compose
+
+    specs = array_parts(plan)
+    name = next(iter(plan.distinct_elements))
+    spec = specs[name]
+    solid = PartCache(plan, specs).solid(name)
+    qty = instance_counts(array_instances(plan))[name]
+    return name, compose(plan, spec, solid, qty).sheet.svg()
+
+
+@pytest.mark.parametrize("overrides", [
+    {"element.web_thickness_mm": 0.3},
+    {"element.web_thickness_mm": 0.18, "element.web_tolerance_mm": 0.01,
+     "element.notch_radius_mm": 0.8},
+    {"arms.lengths_mm": [5.5, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 5.5, 5.0, 7.0],
+     "element.tip_width_mm": 2.5},
+])
+def test_changed_design_changes_the_drawing(overrides):
+    plan = plan_from_dict(with_overrides(default_design_data(), overrides))
+    name, svg = _compose_first_element(plan)
+    found = dims(svg)
+    assert_dims(found, element_expectations(plan.distinct_elements[name]))
+    if "element.web_thickness_mm" in overrides:
+        assert found["web_thickness"].startswith(f"{overrides['element.web_thickness_mm']:g} ±")
+    assert texts_by_id(svg)["tb-design"].endswith(plan.design_hash[:12])
+
+
+def test_same_plan_gives_same_svg(plan):
+    assert _compose_first_element(plan) == _compose_first_element(plan)
+
+
+def test_reader_rejects_a_wrong_value():
+    assert printed_equals("0.25 ±0.02", 0.25) and printed_equals("0.25 ±0.02", 0.02, 1)
+    assert not printed_equals("0.25 ±0.02", 0.3)
+    assert not printed_equals("22", 22.6) and not printed_equals("6", 5.5)
+    assert printed_equals("1.333", 4 / 3)
+    with pytest.raises(AssertionError):
+        assert_dims({"web_thickness": "0.25 ±0.02"}, {"web_thickness": (0.25, 0.03)})
+
+
+def test_any_fabricated_part_gets_a_generic_drawing_from_its_solid(plan):
+    """A part with no dimension set of its own and no plan profile (as a rig
+    part may be) is dimensioned from its solid: sizes and holes."""
+    from tactcad.build import PartCache
+    from tactcad.drawings.compose import DIMENSION_SETS, compose
+
+    specs = array_parts(plan)
+    solid = PartCache(plan, specs).solid("spacer")
+    spec = dataclasses.replace(specs["spacer"], name="rig_test_plate", builder="rig_test_plate",
+                               profile=None, thickness_mm=0.0, process="milling")
+    assert spec.builder not in DIMENSION_SETS
+    svg = compose(plan, spec, solid, 3).sheet.svg()
+    s = plan.spacer
+    h1, h2 = sorted(s.holes, key=lambda h: h.x_mm)
+    assert_dims(dims(svg), {"overall_length": s.length_mm, "overall_height": s.height_mm,
+                            "thickness": s.thickness_mm, "hole_1_x": h1.x_mm,
+                            "hole_2_x": h2.x_mm, "hole_y": h1.y_mm,
+                            "hole_diameter": (2, h1.diameter_mm)})
+    tb = texts_by_id(svg)
+    assert tb["tb-part"] == "rig_test_plate" and tb["tb-quantity"] == "3"
+
+
+def test_purchased_parts_are_not_drawn(plan):
+    from tactcad.drawings.compose import compose
+
+    bolt = next(s for s in array_parts(plan).values() if s.kind == "purchased")
+    with pytest.raises(ValueError, match="purchased"):
+        compose(plan, bolt, None, 4)
+
+
+def test_pictures_exist_and_are_not_blank(exported, plan):
+    from PIL import Image
+
+    out, _ = exported
+    for rel, size in (("images/element_a4mm_drawing.png", (2480, 1754)),
+                      ("images/array.png", (1600, 1000))):
+        img = Image.open(out / rel)
+        assert abs(img.size[0] - size[0]) <= 1 and abs(img.size[1] - size[1]) <= 1
+        a = np.asarray(img.convert("L"), dtype=float)
+        assert a.std() > 10, rel
+    # the array picture shows the parts' colours (blue clamp plates, grey elements)
+    rgb = np.asarray(Image.open(out / "images/array.png").convert("RGB"), dtype=int)
+    blue = (rgb[..., 2] - rgb[..., 0] > 40).mean()
+    assert blue > 0.02
+
+
+def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan):
+    """Fabricated rig parts get drawings with their own dimension set
+    (indenter) or the generic one (sizes from the solid)."""
+    pytest.importorskip("tactcad.scenes")
+    _, _, svgs = drawing_files
+    specs, _ = design_assemblies(plan)
+    if "indenter" in svgs:
+        g = specs["indenter"].geometry
+        assert_dims(dims(svgs["indenter"].read_text()), {
+            "contact_width": g.contact_width_mm, "contact_depth": g.contact_depth_mm,
+            "tip_length": g.tip_length_mm, "body_diameter": g.body_diameter_mm,
+            "contact_face": (g.contact_width_mm, g.contact_depth_mm)})
+    rig = [n for n in svgs if n not in array_parts(plan)]
+    assert rig, "the scenes show fabricated rig parts"
+    for name in rig:
+        x0, y0, z0, x1, y1, z1 = specs[name].expected_bbox_mm
+        found = dims(svgs[name].read_text())
+        sizes = sorted([x1 - x0, y1 - y0, z1 - z0])
+        printed = [found[k] for k in ("overall_length", "overall_height", "thickness",
+                                      "outer_diameter") if k in found]
+        for text in printed:
+            assert any(printed_equals(text, v) for v in sizes), (name, text, sizes)
