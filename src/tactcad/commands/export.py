@@ -8,10 +8,12 @@ from . import add_design_arg
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("export", help="write STEP, wire-EDM DXF and manifest.json",
+    p = sub.add_parser("export", help="write STEP, wire-EDM DXF, scenes, drawings, BOM and manifest",
                        description="Build the design's parts and write exports/: step/<part>.step, "
                                    "step/array.step, dxf/element_<n>.dxf, scenes/<scene>.step and "
-                                   ".glb (see `tactcad scenes`) and manifest.json.")
+                                   ".glb (see `tactcad scenes`), drawings/<part>.svg and "
+                                   "drawings.pdf, bom.csv and bom.md, images/*.png and "
+                                   "manifest.json.")
     add_design_arg(p)
     p.add_argument("--out", metavar="DIR", default="exports", help="output folder (default: exports)")
     p.add_argument("--scene", metavar="NAME", action="append", default=None,
