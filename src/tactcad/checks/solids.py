@@ -65,7 +65,7 @@ def check_solid(spec: PartSpec, solid: bd.Shape, expected_solids: int = 1) -> li
     dev = max(abs(a - b) for a, b in zip(bb, spec.expected_bbox_mm))
     out.append(CheckResult("bounding_box", name, dev <= BBOX_TOL_MM, f"max deviation {dev:.1e} mm"))
     mesh = to_trimesh(solid)
-    mrel = abs(mesh.volume - vol) / vol
+    mrel = abs(mesh.volume - vol) / vol if vol > 0 else float("inf")  # an open shell has none
     ok = mesh.is_watertight and mesh.is_winding_consistent and mrel <= MESH_VOLUME_RTOL
     out.append(CheckResult("watertight_mesh", name, ok,
                            f"watertight={mesh.is_watertight} winding={mesh.is_winding_consistent} "
