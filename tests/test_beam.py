@@ -73,9 +73,13 @@ def test_beam_agrees_with_closed_form_for_default_design():
         assert float(parts.arm_bending / parts.total) < 0.01
         k_cf = _k_closed(g)
         assert r.stiffness_N_per_mm == pytest.approx(k_cf, rel=1e-3)
-        assert r.stiffness_N_per_mm > k_cf * (1 - r.error_estimate_rel)  # the fillet only stiffens
+        disc = beam_convergence(g, MAT).error_estimate_rel
+        assert r.stiffness_N_per_mm > k_cf * (1 - disc)  # the fillet only stiffens
         assert isinstance(r, StiffnessResult) and r.model == "beam" and r.element == num
-        assert 0 < r.error_estimate_rel < 1e-4
+        assert 0 < disc < 1e-4
+        # The reported error adds beam theory's model error at the notch (t/R = 0.5:
+        # Euler-Bernoulli about 15-25 % too stiff against 3D FEM).
+        assert 0.10 < r.error_estimate_rel - disc < 0.30
 
 
 @pytest.mark.parametrize("n", [16, 64, 256])
@@ -145,5 +149,7 @@ def test_random_in_domain(t, a, frac):
     r = estimate_beam(g, MAT, n_segments=64)
     assert math.isfinite(r.stiffness_N_per_mm) and r.stiffness_N_per_mm > 0
     assert math.isfinite(r.gauge_strain_per_N) and r.gauge_strain_per_N > 0
-    assert 0 <= r.error_estimate_rel < 1e-3
+    disc = beam_convergence(g, MAT, 64).error_estimate_rel
+    assert 0 <= disc < 1e-3
+    assert disc < r.error_estimate_rel < 1.0  # plus a finite model error
     assert r.stiffness_N_per_mm == pytest.approx(_k_closed(g), rel=2e-3)
