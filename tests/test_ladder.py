@@ -86,3 +86,17 @@ def test_closed_form_commands_do_not_import_the_cad_kernel():
             "print('CAD', any(m.split('.')[0] in ('build123d', 'cadquery', 'OCP') for m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip().endswith("CAD False")
+
+
+def test_table1_all_levels_side_by_side(plan, monkeypatch, capsys):
+    import tactcad.commands.mechanics as cmd
+
+    monkeypatch.setattr(cmd, "MODELS", ("closed-form", "beam"))  # the fast levels only
+    assert cmd._table1_all_levels(plan, True, None) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert set(data) == {"closed-form", "beam"}
+    for level in data.values():
+        assert [r["element"] for r in level] == [m.element for m in table1()]
+    # Beam theory (uncorrected) is stiffer than the 3D-corrected closed form everywhere.
+    assert all(b["predicted_N_per_mm"] > c["predicted_N_per_mm"]
+               for b, c in zip(data["beam"], data["closed-form"]))

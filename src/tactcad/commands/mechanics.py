@@ -25,7 +25,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                        description="Every calibrated element of the paper's Table 1 at a ladder "
                                    "level, with % error, plus the as-built web thickness and the "
                                    "gauge strain at 2 N.")
-    t.add_argument("--model", choices=MODELS, default="closed-form")
+    t.add_argument("--model", choices=MODELS + ("all",), default="closed-form",
+                   help="ladder level, or 'all' for every level side by side (fem3d takes ~30 s)")
     add_design_arg(t)
     t.add_argument("--json", action="store_true", help="print JSON")
     t.set_defaults(func=run_table1)
@@ -56,6 +57,8 @@ def run_table1(args: argparse.Namespace) -> int:
 
     plan = load_design(args.design)
     progress = (lambda s: print(f"  ... {s}", file=sys.stderr)) if not args.json else None
+    if args.model == "all":
+        return _table1_all_levels(plan, args.json, progress)
     rows = table1_comparison(plan, args.model, progress=progress)
     webs = as_built_webs(plan)
     strains = gauge_strain_at_paper_load(plan)
@@ -78,4 +81,21 @@ def run_table1(args: argparse.Namespace) -> int:
     print(f"Table 2: eq. 2 with predicted K (K_r = {t2['k_r_predicted_N_per_mm']:.2f} N/mm): "
           f"{t2['n_in_domain']}/48 rows in domain, mean |R error| {t2['mean_abs_error']:.3f}, "
           f"max {t2['max_abs_error']:.3f}")
+    return 0
+
+
+def _table1_all_levels(plan, as_json: bool, progress) -> int:
+    """Table 1 with every ladder level side by side: K (N/mm) and % error."""
+    from ..mechanics.ladder import table1_comparison
+
+    levels = {m: table1_comparison(plan, m, progress=progress) for m in MODELS}
+    if as_json:
+        print(json.dumps({m: [r.as_json() for r in rows] for m, rows in levels.items()}, indent=2))
+        return 0
+    print("Table 1: measured K vs every level, K in N/mm (error %)")
+    print(f"{'el':>3} {'arm mm':>7} {'measured':>9} " + " ".join(f"{m:>17}" for m in MODELS))
+    for i, r in enumerate(levels[MODELS[0]]):
+        cells = " ".join(f"{levels[m][i].predicted.stiffness_N_per_mm:>9.2f} ({levels[m][i].error_percent:+6.1f})"
+                         for m in MODELS)
+        print(f"{r.element:>3} {r.arm_length_mm:>7.1f} {r.measured_N_per_mm:>9.2f} {cells}")
     return 0
