@@ -45,10 +45,15 @@ class PartCache:
 
     def solid(self, name: str) -> bd.Solid:
         if name not in self._solids:
-            spec = self.specs[name]
-            self._solids[name] = BUILDERS[spec.builder](self.plan, spec)
-            BUILD_COUNTS[name] += 1
+            self._solids[name] = build_part(self.plan, self.specs[name])
         return self._solids[name]
+
+
+def build_part(plan: Plan, spec: PartSpec) -> bd.Solid:
+    """Build one part's solid and count the build in :data:`BUILD_COUNTS`."""
+    solid = BUILDERS[spec.builder](plan, spec)
+    BUILD_COUNTS[spec.name] += 1
+    return solid
 
 
 def location(p: Placement) -> bd.Location:

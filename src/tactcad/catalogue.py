@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .design import Placement, Plan
+from .design import BoltSpec, Placement, Plan
 from .profile import Profile, element_profile, rectangle_profile, u_plate_profile
 
 Bbox = tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax (mm)
@@ -96,25 +96,36 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
         expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm)
     b = plan.bolt
     L = plan.bolt_length_mm
-    socket_af = 0.75 * b.nominal_diameter_mm
-    bolt_vol = (math.pi * (b.head_diameter_mm / 2) ** 2 * b.head_height_mm
-                + math.pi * (b.nominal_diameter_mm / 2) ** 2 * L
-                - _hexagon_area(socket_af) * b.head_height_mm / 2)
     rh = b.head_diameter_mm / 2
-    bolt_name = f"bolt_{b.size}x{L:g}"
-    parts[bolt_name] = PartSpec(
-        name=bolt_name, kind="purchased", process=f"ISO 4762 {b.size}x{L:g} socket head cap screw",
-        material="steel 8.8", color=BLACK_OXIDE, builder="bolt", expected_volume_mm3=bolt_vol,
+    parts[bolt_name(b, L)] = PartSpec(
+        name=bolt_name(b, L), kind="purchased",
+        process=f"ISO 4762 {b.size}x{L:g} socket head cap screw", material="steel 8.8",
+        color=BLACK_OXIDE, builder="bolt", expected_volume_mm3=bolt_volume(b, L),
         expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, L))
     s_af = b.nut_width_across_flats_mm
-    nut_vol = (_hexagon_area(s_af) - math.pi * (b.nominal_diameter_mm / 2) ** 2) * b.nut_height_mm
+    nut_vol = (hexagon_area(s_af) - math.pi * (b.nominal_diameter_mm / 2) ** 2) * b.nut_height_mm
     rc = s_af / math.sqrt(3)
-    nut_name = f"nut_{b.size}"
-    parts[nut_name] = PartSpec(
-        name=nut_name, kind="purchased", process=f"ISO 4032 {b.size} hex nut", material="steel 8",
+    parts[nut_name(b)] = PartSpec(
+        name=nut_name(b), kind="purchased", process=f"ISO 4032 {b.size} hex nut", material="steel 8",
         color=ZINC, builder="nut", expected_volume_mm3=nut_vol,
         expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm))
     return parts
+
+
+def bolt_name(b: BoltSpec, length_mm: float) -> str:
+    return f"bolt_{b.size}x{length_mm:g}"
+
+
+def nut_name(b: BoltSpec) -> str:
+    return f"nut_{b.size}"
+
+
+def bolt_volume(b: BoltSpec, length_mm: float) -> float:
+    """Volume (mm^3) of the socket head cap screw envelope of
+    :func:`tactcad.parts.fasteners.build_bolt`: head + shank - half-depth socket."""
+    return (math.pi * (b.head_diameter_mm / 2) ** 2 * b.head_height_mm
+            + math.pi * (b.nominal_diameter_mm / 2) ** 2 * length_mm
+            - hexagon_area(b.socket_across_flats_mm) * b.head_height_mm / 2)
 
 
 def _element_shade(arm_length_mm: float) -> RGB:
@@ -125,7 +136,8 @@ def _element_shade(arm_length_mm: float) -> RGB:
     return tuple(round(c - k * 0.6, 4) for c in ALUMINIUM)  # type: ignore[return-value]
 
 
-def _hexagon_area(across_flats: float) -> float:
+def hexagon_area(across_flats: float) -> float:
+    """Area (mm^2) of a regular hexagon of the given width across flats."""
     return math.sqrt(3) / 2 * across_flats**2
 
 
@@ -137,8 +149,8 @@ def array_instances(plan: Plan) -> list[Instance]:
     z_front, z_back = plan.clamp_plate_z_mm
     out.append(Instance("clamp_plate_front", "clamp_plate", Placement(0.0, 0.0, z_front)))
     out.append(Instance("clamp_plate_back", "clamp_plate", Placement(0.0, 0.0, z_back)))
-    bolt = f"bolt_{plan.bolt.size}x{plan.bolt_length_mm:g}"
-    nut = f"nut_{plan.bolt.size}"
+    bolt = bolt_name(plan.bolt, plan.bolt_length_mm)
+    nut = nut_name(plan.bolt)
     z_nut = z_back + plan.clamp.thickness_mm
     for i, (x, y) in enumerate(plan.bolt_positions_xy_mm, start=1):
         out.append(Instance(f"bolt_{i}", bolt, Placement(x, y, z_front)))

@@ -50,6 +50,11 @@ class BoltSpec:
     nut_height_mm: float  # ISO 4032 m
     catalogue_lengths_mm: tuple[float, ...]  # ISO 4762 / DIN 912 stock lengths
 
+    @property
+    def socket_across_flats_mm(self) -> float:
+        """Hexagon socket size s of ISO 4762: about 0.75 d for the small sizes."""
+        return 0.75 * self.nominal_diameter_mm
+
 
 BOLTS: dict[str, BoltSpec] = {
     "M1.6": BoltSpec("M1.6", 1.6, 1.8, 0.35, 3.0, 1.6, 3.2, 1.3,
@@ -450,15 +455,24 @@ def load_design(path: str | Path | None = None) -> Plan:
             its allowed range (the message names field, value and range).
     """
     p = Path(path) if path is not None else DEFAULT_DESIGN
+    return plan_from_dict(read_toml(p, "design file"), source=str(p))
+
+
+def read_toml(path: Path, what: str) -> dict[str, Any]:
+    """Parse a TOML file.
+
+    Raises:
+        DesignError: naming ``what`` (e.g. "design file") and the path, when the
+            file cannot be read or is not valid TOML.
+    """
     try:
-        text = p.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8")
     except OSError as exc:
-        raise DesignError("design file", str(p), "a readable TOML file", exc.strerror or "") from None
+        raise DesignError(what, str(path), "a readable TOML file", exc.strerror or "") from None
     try:
-        data = tomllib.loads(text)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise DesignError("design file", str(p), "valid TOML", str(exc)) from None
-    return plan_from_dict(data, source=str(p))
+        raise DesignError(what, str(path), "valid TOML", str(exc)) from None
 
 
 def with_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:

@@ -227,10 +227,7 @@ def run_checks(plan: Plan, out_dir: str | Path) -> list:
     inst = array_instances(plan)
     placed = [Placed(i.name, cache.solid(i.part).moved(location(i.placement))) for i in inst]
     results += check_interference(placed, array_contacts(plan))
-    import build123d as bd
-    asm = bd.Compound([p.shape for p in placed])
-    from .checks.solids import bbox_tuple
-    results += check_step(out_dir / "step/array.step", "step/array.step", len(inst),
-                          sum(specs[i.part].expected_volume_mm3 for i in inst), bbox_tuple(asm),
-                          {i.part for i in inst})
+    review = assembly_review(specs, inst)  # what the manifest promises a reviewer
+    results += check_step(out_dir / "step/array.step", "step/array.step", review["solids"],
+                          review["volume_mm3"], tuple(review["bbox_mm"]), set(review["labels"]))
     return results

@@ -54,13 +54,13 @@ def mesh_instances(solids: Mapping[str, object], instances: Sequence, tolerance:
         per triangle, part names).
     """
     from .build import location
+    from .checks.mesh_interference import tessellate
 
     names = sorted({i.part for i in instances})
     local = {}
     for name in names:
-        verts, tris = solids[name].tessellate(tolerance, angular_tolerance)
-        v = np.array([(p.X, p.Y, p.Z) for p in verts], dtype=float)
-        local[name] = v[np.array(tris, dtype=int)]
+        v, t = tessellate(solids[name], tolerance, angular_tolerance)
+        local[name] = v[t]
     all_tris, owner, inst_ids = [], [], []
     for k, inst in enumerate(instances):
         loc = location(inst.placement)

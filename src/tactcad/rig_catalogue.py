@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from .catalogue import Bbox, PartSpec, RGB
+from .catalogue import RGB, Bbox, PartSpec, bolt_name, bolt_volume
 from .design import BoltSpec, Plan
 from .frames import Frame, face
 from .rigs import POCKET_CORNER_RADIUS_MM, RigDesign
@@ -68,19 +68,6 @@ def _sample_color(k: float, ks: tuple[float, ...]) -> RGB:
     lo, hi = min(ks), max(ks)
     t = 0.0 if hi == lo else (k - lo) / (hi - lo)
     return (round(0.95 - 0.35 * t, 4), round(0.60 - 0.30 * t, 4), round(0.65 - 0.30 * t, 4))
-
-
-def bolt_volume(b: BoltSpec, length_mm: float) -> float:
-    """Volume (mm^3) of the socket head cap screw envelope of
-    :func:`tactcad.parts.fasteners.build_bolt`: head + shank - half-depth socket."""
-    socket_af = 0.75 * b.nominal_diameter_mm
-    return (math.pi * (b.head_diameter_mm / 2) ** 2 * b.head_height_mm
-            + math.pi * (b.nominal_diameter_mm / 2) ** 2 * length_mm
-            - math.sqrt(3) / 2 * socket_af ** 2 * b.head_height_mm / 2)
-
-
-def bolt_name(b: BoltSpec, length_mm: float) -> str:
-    return f"bolt_{b.size}x{length_mm:g}"
 
 
 def _bolt_frames() -> dict[str, Frame]:

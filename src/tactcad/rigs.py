@@ -16,12 +16,12 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-from .design import BOLTS, BoltSpec, Derived, _check_number, _fmt, _Reader, check_keys, read_assumptions
+from .design import (BOLTS, BoltSpec, Derived, _check_number, _fmt, _Reader, check_keys,
+                     read_assumptions, read_toml)
 from .errors import DesignError
 
 DEFAULT_RIGS = Path(__file__).resolve().parents[2] / "hardware" / "rigs.toml"
@@ -369,14 +369,7 @@ def load_rigs(path: str | Path | None = None, *, array_plan=None) -> RigDesign:
             its allowed range (the message names field, value and range).
     """
     p = Path(path) if path is not None else DEFAULT_RIGS
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise DesignError("rigs file", str(p), "a readable TOML file", exc.strerror or "") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError("rigs file", str(p), "valid TOML", str(exc)) from None
+    data = read_toml(p, "rigs file")
     if array_plan is None:
         from .design import load_design
         array_plan = load_design()
@@ -689,7 +682,7 @@ def rigs_from_dict(data: Mapping[str, Any], plan, source: str = "<dict>") -> Rig
 
 def default_rigs_data() -> dict[str, Any]:
     """Raw TOML tables of the default rig file (a fresh copy)."""
-    return tomllib.loads(DEFAULT_RIGS.read_text(encoding="utf-8"))
+    return read_toml(DEFAULT_RIGS, "rigs file")
 
 
 def rigs_path_for(plan) -> Path:

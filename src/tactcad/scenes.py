@@ -26,16 +26,16 @@ y up (the array frame's convention).
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
-from .catalogue import PartSpec, array_contacts, array_instances, array_parts
-from .design import Placement, Plan
+from .catalogue import (PartSpec, array_contacts, array_instances, array_parts, bolt_name,
+                        nut_name)
+from .design import Placement, Plan, read_toml
 from .errors import DesignError, TactcadError
 from .frames import Frame
-from .rig_catalogue import (LEVELS, bolt_frames, bolt_name, level_of, nut_frames,
+from .rig_catalogue import (LEVELS, bolt_frames, level_of, nut_frames,
                             rig_parts, sample_name, wheel_tag)
 from .rigs import RigDesign, load_rigs, rigs_path_for
 
@@ -82,12 +82,7 @@ def load_scenes(path: str | Path | None = None) -> dict[str, SceneSpec]:
         DesignError: unreadable file, unknown key, bad rig or level.
     """
     p = Path(path) if path is not None else DEFAULT_SCENES
-    try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise DesignError("scenes file", str(p), "a readable TOML file", exc.strerror or "") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError("scenes file", str(p), "valid TOML", str(exc)) from None
+    data = read_toml(p, "scenes file")
     for key in data:
         if key not in ("detail", "scene"):
             raise DesignError(key, "<table>", "sections detail, scene", "unknown section")
@@ -359,7 +354,7 @@ class _Builder:
             self.specs[i.part] = self.ap[i.part]
         self.mate("array", "mount", "array_bracket", "array_mount")
         bolt = bolt_name(br.bolt, br.bolt_length_mm)
-        nut = f"nut_{br.bolt.size}"
+        nut = nut_name(br.bolt)
         for k in (1, 2):
             self.leaf(f"bracket_bolt_{k}", bolt, "bracket", bolt_frames())
             self.leaf(f"bracket_nut_{k}", nut, "bracket", nut_frames())
@@ -742,15 +737,14 @@ class SceneCache:
         return self._meshes[key]
 
     def solid(self, spec: PartSpec, level: str):
-        from .build import BUILD_COUNTS, BUILDERS
+        from .build import build_part
 
         key = (spec.name, level)
         if key not in self._solids:
             if level != level_of(spec):
                 raise SceneError(f"part {spec.name} is modelled at level {level_of(spec)}, "
                                  f"not {level}")
-            self._solids[key] = BUILDERS[spec.builder](self.plan, spec)
-            BUILD_COUNTS[spec.name] += 1
+            self._solids[key] = build_part(self.plan, spec)
         return self._solids[key]
 
 

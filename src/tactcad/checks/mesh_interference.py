@@ -47,10 +47,12 @@ class InterferenceReport:
     overlaps: dict[frozenset[str], float] = field(default_factory=dict)
 
 
-def tessellate(solid, tolerance_mm: float = MESH_TOLERANCE_MM) -> tuple[np.ndarray, np.ndarray]:
+def tessellate(solid, tolerance_mm: float = MESH_TOLERANCE_MM,
+               angular_tolerance: float = MESH_ANGULAR_TOLERANCE) -> tuple[np.ndarray, np.ndarray]:
     """Triangle mesh of a solid: vertices (n, 3) float64 in mm, triangles
-    (m, 3) int64, outward winding (OpenCascade's ``BRepMesh``)."""
-    verts, tris = solid.tessellate(tolerance_mm, MESH_ANGULAR_TOLERANCE)
+    (m, 3) int64, outward winding (OpenCascade's ``BRepMesh``); chordal
+    tolerance in mm, angular in rad."""
+    verts, tris = solid.tessellate(tolerance_mm, angular_tolerance)
     return (np.array([tuple(p) for p in verts], dtype=np.float64).reshape(-1, 3),
             np.array(tris, dtype=np.int64).reshape(-1, 3))
 

@@ -8,13 +8,13 @@ watertight, consistently wound triangle mesh.
 from __future__ import annotations
 
 import build123d as bd
-import numpy as np
 import trimesh
 from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
 from OCP.TopAbs import TopAbs_EDGE
 from OCP.TopExp import TopExp_Explorer
 
 from ..catalogue import PartSpec
+from .mesh_interference import tessellate
 from .result import CheckResult
 
 VOLUME_RTOL = 1e-6
@@ -37,9 +37,8 @@ def free_edge_count(shape: bd.Shape) -> int:
 
 def to_trimesh(shape: bd.Shape, tolerance_mm: float = MESH_TOLERANCE_MM) -> trimesh.Trimesh:
     """Triangle mesh of a shape (mm), vertices merged so edges can be paired."""
-    verts, tris = shape.tessellate(tolerance_mm, 0.2)
-    mesh = trimesh.Trimesh(np.array([tuple(v) for v in verts], dtype=float),
-                           np.array(tris, dtype=np.int64), process=True)
+    verts, tris = tessellate(shape, tolerance_mm)
+    mesh = trimesh.Trimesh(verts, tris, process=True)
     mesh.merge_vertices()
     return mesh
 

@@ -16,7 +16,7 @@ def build_bolt(spec: BoltSpec, length_mm: float) -> bd.Solid:
     head = bd.Solid.make_cylinder(spec.head_diameter_mm / 2, spec.head_height_mm,
                                   bd.Plane.XY.offset(-spec.head_height_mm))
     shank = bd.Solid.make_cylinder(spec.nominal_diameter_mm / 2, length_mm)
-    socket_af = 0.75 * spec.nominal_diameter_mm  # ISO 4762 s ~ 0.75 d for small sizes
+    socket_af = spec.socket_across_flats_mm
     socket = bd.Solid.extrude(
         bd.Face(bd.Wire.make_polygon(_hexagon(socket_af), close=True)).moved(
             bd.Location((0, 0, -spec.head_height_mm))),
@@ -37,7 +37,3 @@ def _hexagon(across_flats: float) -> list[tuple[float, float, float]]:
     r = across_flats / math.sqrt(3)  # corner radius of a regular hexagon
     return [(r * math.cos(k * math.pi / 3), r * math.sin(k * math.pi / 3), 0.0) for k in range(6)]
 
-
-def hexagon_area(across_flats: float) -> float:
-    """Area (mm^2) of a regular hexagon of the given width across flats."""
-    return math.sqrt(3) / 2 * across_flats**2
