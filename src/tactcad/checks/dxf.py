@@ -161,38 +161,6 @@ def _angle_in_arc(arc: Arc, p: Point) -> bool:
     return d <= abs(sweep) + 1e-12
 
 
-def _point_segment(p: Point, s: Line) -> float:
-    (x0, y0), (x1, y1) = s.start, s.end
-    dx, dy = x1 - x0, y1 - y0
-    L2 = dx * dx + dy * dy
-    u = 0.0 if L2 == 0 else max(0.0, min(1.0, ((p[0] - x0) * dx + (p[1] - y0) * dy) / L2))
-    return math.dist(p, (x0 + u * dx, y0 + u * dy))
-
-
-def _point_arc(p: Point, arc: Arc) -> float:
-    if _angle_in_arc(arc, p):
-        return abs(math.dist(p, arc.centre) - arc.radius)
-    return min(math.dist(p, arc.start), math.dist(p, arc.end))
-
-
-def arc_line_distance(arc: Arc, line: Line) -> float:
-    """Exact minimum distance (mm) between an arc and a line segment that do not cross."""
-    cands = [_point_segment(arc.start, line), _point_segment(arc.end, line),
-             _point_arc(line.start, arc), _point_arc(line.end, arc)]
-    (x0, y0), (x1, y1) = line.start, line.end
-    dx, dy = x1 - x0, y1 - y0
-    L2 = dx * dx + dy * dy
-    if L2 > 0:
-        cx, cy = arc.centre
-        u = ((cx - x0) * dx + (cy - y0) * dy) / L2
-        if 0 <= u <= 1:
-            foot = (x0 + u * dx, y0 + u * dy)
-            dist = math.dist(foot, arc.centre)
-            if dist > arc.radius and _angle_in_arc(arc, foot):
-                cands.append(dist - arc.radius)
-    return min(cands)
-
-
 def _ray_hit(origin: Point, direction: Point, line: Line) -> float:
     """Distance along a ray to a line segment (inf if it misses)."""
     (x0, y0), (x1, y1) = line.start, line.end

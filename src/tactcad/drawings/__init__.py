@@ -50,28 +50,6 @@ def fabricated_parts(plan, assembled=None):
     return [s for s in specs.values() if s.kind == "fabricated" and qty.get(s.name, 0) > 0], qty
 
 
-def drawings_svg(plan, cache=None) -> dict[str, str]:
-    """SVG text of every fabricated part's drawing, by part name (sheet order).
-
-    Raises:
-        KeyError: a part's builder is unknown to :data:`tactcad.build.BUILDERS`.
-    """
-    from ..build import PartCache
-    from .compose import compose
-
-    from ..bom import design_assemblies
-
-    assembled = design_assemblies(plan)
-    parts, qty = fabricated_parts(plan, assembled)
-    if cache is None:
-        cache = PartCache(plan, assembled[0])
-    out = {}
-    for k, spec in enumerate(parts, start=1):
-        d = compose(plan, spec, cache.solid(spec.name), qty[spec.name], k, len(parts))
-        out[spec.name] = d.sheet.svg()
-    return out
-
-
 def svgs_to_pdf(svg_texts: list[str], target: Path, title: str = "") -> None:
     """One PDF page per SVG, each page the SVG's own size.
 
