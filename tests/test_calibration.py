@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from tactcad.errors import TactcadError
-from tactcad.mechanics import calibration as cal
-from tactcad.mechanics import paper_data
-from tactcad.mechanics.calibration import CalibrationError
+from tactcad.mechanics.paper import calibration as cal
+from tactcad.mechanics.paper import data as paper_data
+from tactcad.mechanics.paper.calibration import CalibrationError
 
 K_S = paper_data.K_SENSOR_N_PER_MM
 TABLE1 = paper_data.table1()

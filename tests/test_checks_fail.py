@@ -13,7 +13,7 @@ from tactcad.checks.solids import check_solid
 from tactcad.checks.step import check_step
 from tactcad.export.dxf import write_profile_dxf
 from tactcad.parts.element import build_element, profile_face
-from tactcad.profile import element_profile
+from tactcad.geometry.profile import element_profile
 
 
 @pytest.fixture(scope="module")

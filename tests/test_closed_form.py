@@ -20,7 +20,7 @@ from tactcad.mechanics.closed_form import (
     closed_form_compliance, closed_form_stiffness, estimate_closed_form, fit_correction,
     gauge_strain_per_newton, load_correction, notch_integrals, web_for_stiffness)
 from tactcad.mechanics.result import StiffnessResult
-from tactcad.profile import web_thickness_at
+from tactcad.geometry.profile import web_thickness_at
 
 PLAN = load_design()
 MAT = PLAN.material
@@ -36,7 +36,7 @@ def _geometry(t: float, R: float, a: float):
 
 def _gauss_over_notch(g, fun, n_gauss: int = 40) -> float:
     """Composite Gauss-Legendre quadrature of fun(u, h(u)) du over the notch,
-    with h from the exact profile (tactcad.profile.web_thickness_at), in the
+    with h from the exact profile (tactcad.geometry.profile.web_thickness_at), in the
     angle theta (u = R sin theta), panels graded towards the neck."""
     R, t = g.notch_radius_mm, g.web_thickness_mm
     w = math.sqrt(t / R)

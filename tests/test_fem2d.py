@@ -18,11 +18,11 @@ import shapely.geometry as sg
 
 from tactcad.design import load_design
 from tactcad.mechanics.correction_fit import grid_geometry
-from tactcad.mechanics.fem2d import (estimate_fem2d, fem2d_convergence, richardson,
+from tactcad.mechanics.fem.fem2d import (estimate_fem2d, fem2d_convergence, richardson,
                                      solve_fem2d)
-from tactcad.mechanics.fem_mesh import (clip_chain, default_clamp_margin_mm, fem_region,
+from tactcad.mechanics.fem.mesh import (clip_chain, default_clamp_margin_mm, fem_region,
                                         mesh_region)
-from tactcad.profile import Arc, Line, contour_area, element_profile
+from tactcad.geometry.profile import Arc, Line, contour_area, element_profile
 
 ORDER_BAND = (1.5, 4.5)
 ERROR_GOAL = 0.005  # 0.5 %

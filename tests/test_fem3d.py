@@ -12,10 +12,10 @@ import math
 import pytest
 
 from tactcad.mechanics.correction_fit import grid_geometry
-from tactcad.mechanics.fem2d import (estimate_fem2d, lame, richardson, skfem_mesh,
+from tactcad.mechanics.fem.fem2d import (estimate_fem2d, lame, richardson, skfem_mesh,
                                      solve_elasticity)
-from tactcad.mechanics.fem3d import fem3d_convergence, solve_fem3d
-from tactcad.mechanics.fem_mesh import fem_region, graded_layers, mesh_region
+from tactcad.mechanics.fem.fem3d import fem3d_convergence, solve_fem3d
+from tactcad.mechanics.fem.mesh import fem_region, graded_layers, mesh_region
 
 ORDER_BAND = (1.5, 4.5)
 ERROR_GOAL = 0.005  # 0.5 %

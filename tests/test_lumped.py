@@ -16,8 +16,9 @@ from hypothesis import strategies as st
 
 from tactcad.commands import lumped as lumped_cmd
 from tactcad.errors import TactcadError
-from tactcad.mechanics import lumped, paper_data
-from tactcad.mechanics.lumped import LumpedDomainError
+from tactcad.mechanics.paper import lumped
+from tactcad.mechanics.paper import data as paper_data
+from tactcad.mechanics.paper.lumped import LumpedDomainError
 
 U = 2.0 ** -53  # unit round-off of float64
 # Second-order rounding terms (O(u^2)) are covered by this relative slack.

@@ -7,7 +7,7 @@ import math
 import pytest
 import shapely.geometry as sg
 
-from tactcad.profile import (Arc, contour_area, contour_bbox, element_profile, inside_corners,
+from tactcad.geometry.profile import (Arc, contour_area, contour_bbox, element_profile, inside_corners,
                              web_thickness_at)
 
 
@@ -48,7 +48,7 @@ def test_inside_corners_are_the_notch_and_the_tip_fillet(plan):
 
 
 def test_inside_corner_detector_finds_a_sharp_corner():
-    from tactcad.profile import _chain
+    from tactcad.geometry.profile import _chain
     l_shape = _chain([(0, 0), (2, 0), (2, 1), (1, 1), (1, 2), (0, 2)])
     corners = inside_corners(l_shape)
     assert corners == [((1, 1), 0.0)]

@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 
 from .design import BoltSpec, Placement, Plan
-from .profile import Profile, element_profile, rectangle_profile, u_plate_profile
+from .geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
 
 Bbox = tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax (mm)
 RGB = tuple[float, float, float]

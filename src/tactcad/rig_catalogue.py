@@ -14,7 +14,7 @@ from typing import Any, Mapping
 
 from .catalogue import RGB, Bbox, PartSpec, bolt_name, bolt_volume
 from .design import BoltSpec, Plan
-from .frames import Frame, face
+from .geometry.frames import Frame, face
 from .rigs import POCKET_CORNER_RADIUS_MM, RigDesign
 
 LEVELS = ("envelope", "full")
@@ -26,7 +26,7 @@ class RigPartSpec(PartSpec):
 
     Attributes:
         geometry: the frozen rig dataclass the builder reads.
-        frames: joint frames in the part's frame (see :mod:`tactcad.frames`).
+        frames: joint frames in the part's frame (see :mod:`tactcad.geometry.frames`).
         attributes: data carried with the part into manifest and GLB (e.g.
             ``stiffness_N_per_mm`` of a rubber sample).
     """

@@ -34,7 +34,7 @@ from .catalogue import (PartSpec, array_contacts, array_instances, array_parts, 
                         nut_name)
 from .design import Placement, Plan, read_toml
 from .errors import DesignError, TactcadError
-from .frames import Frame
+from .geometry.frames import Frame
 from .rig_catalogue import (LEVELS, bolt_frames, level_of, nut_frames,
                             rig_parts, sample_name, wheel_tag)
 from .rigs import RigDesign, load_rigs, rigs_path_for

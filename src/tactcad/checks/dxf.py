@@ -15,7 +15,7 @@ import shapely.geometry as sg
 
 from ..design import EdmRules
 from ..export.dxf import CUT_LAYER, START_LAYER
-from ..profile import Arc, Line, Point, Segment, contour_area, contour_bbox, inside_corners
+from ..geometry.profile import Arc, Line, Point, Segment, contour_area, contour_bbox, inside_corners
 from .result import CheckResult
 
 ALLOWED_TYPES = {"LINE", "ARC", "CIRCLE", "LWPOLYLINE"}

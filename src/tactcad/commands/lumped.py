@@ -44,9 +44,9 @@ def evaluate(k_m: float, k_r: float, k_obj: float | None = None, r: float | None
     Exactly one of ``k_obj`` and ``r`` is given.
 
     Raises:
-        tactcad.mechanics.lumped.LumpedDomainError: an input out of the model's domain.
+        tactcad.mechanics.paper.lumped.LumpedDomainError: an input out of the model's domain.
     """
-    from tactcad.mechanics import lumped
+    from tactcad.mechanics.paper import lumped
 
     if (k_obj is None) == (r is None):
         raise ValueError("give exactly one of k_obj and r")

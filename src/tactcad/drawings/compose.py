@@ -23,7 +23,7 @@ from typing import Callable
 
 from ..catalogue import PartSpec
 from ..design import ElementGeometry, Plan
-from ..profile import Arc
+from ..geometry.profile import Arc
 from .sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
 from .views import (CAMERAS, ISO_5455_SCALES, View, cameras_for, detail, orientation, project,
                     scale_text)

@@ -17,7 +17,7 @@ from typing import Iterator
 
 import ezdxf
 
-from ..profile import Arc, Circle, Profile, Segment
+from ..geometry.profile import Arc, Circle, Profile, Segment
 from .atomic import write_atomic
 
 CUT_LAYER = "CUT"

@@ -167,8 +167,8 @@ def grid_geometry(t: float, arm: float, R: float,
 
 
 def _evaluate_point(args) -> dict:
-    from .fem2d import fem2d_convergence
-    from .fem3d import fem3d_convergence
+    from .fem.fem2d import fem2d_convergence
+    from .fem.fem3d import fem3d_convergence
 
     t, arm, R, clearance, with_3d = args
     g, mat = grid_geometry(t, arm, R, clearance)

@@ -24,8 +24,8 @@ MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 _ENTRY = {
     "closed-form": ("tactcad.mechanics.closed_form", "estimate_closed_form"),
     "beam": ("tactcad.mechanics.beam", "estimate_beam"),
-    "fem2d": ("tactcad.mechanics.fem2d", "estimate_fem2d"),
-    "fem3d": ("tactcad.mechanics.fem3d", "estimate_fem3d"),
+    "fem2d": ("tactcad.mechanics.fem.fem2d", "estimate_fem2d"),
+    "fem3d": ("tactcad.mechanics.fem.fem3d", "estimate_fem3d"),
 }
 PAPER_LOAD_N = 2.0  # the paper's FEM design study load on the tip
 PAPER_STRAIN_RANGE = (0.2711e-2, 0.6316e-2)  # surface strain at 2 N, arms 4-8 mm
@@ -79,7 +79,7 @@ def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> 
 
     Distinct geometries are evaluated once (elements with equal arms share them).
     """
-    from .paper_data import table1
+    from .paper.data import table1
 
     cache: dict[str, StiffnessResult] = {}
     rows = []
@@ -103,7 +103,7 @@ def as_built_webs(plan: Plan) -> list[dict]:
     corrected closed form reproduce its measured K, and the deviation from the
     design web against the design tolerance (the fabrication spread it implies)."""
     from .closed_form import web_for_stiffness
-    from .paper_data import table1
+    from .paper.data import table1
 
     out = []
     for meas in table1():
@@ -140,8 +140,8 @@ def table2_predicted(plan: Plan, model: str = "closed-form") -> dict:
     """
     import numpy as np
 
-    from .lumped import deflection_ratio
-    from .paper_data import table2
+    from .paper.lumped import deflection_ratio
+    from .paper.data import table2
 
     rows = table2()
     k_pred = {r.element: r.predicted.stiffness_N_per_mm for r in table1_comparison(plan, model)}

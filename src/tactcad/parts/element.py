@@ -7,7 +7,7 @@ from __future__ import annotations
 import build123d as bd
 
 from ..design import ElementGeometry
-from ..profile import Arc, Circle, Profile, element_profile
+from ..geometry.profile import Arc, Circle, Profile, element_profile
 
 
 def _edges(profile_segments) -> list[bd.Edge]:

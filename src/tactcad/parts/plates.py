@@ -5,7 +5,7 @@ from __future__ import annotations
 import build123d as bd
 
 from ..design import ClampPlateGeometry, SpacerGeometry
-from ..profile import Profile, rectangle_profile, u_plate_profile
+from ..geometry.profile import Profile, rectangle_profile, u_plate_profile
 from .element import extrude_profile
 
 

@@ -22,7 +22,7 @@ import math
 from dataclasses import dataclass
 from typing import Iterable, Sequence
 
-from .design import ElementGeometry
+from ..design import ElementGeometry
 
 Point = tuple[float, float]
 

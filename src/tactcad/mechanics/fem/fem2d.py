@@ -2,7 +2,7 @@
 
 Quadratic triangles (P2 displacement field: scikit-fem ``ElementTriP2`` basis
 in the dof numbering of ``ElementVector``) on a gmsh mesh of the cropped exact profile
-(:func:`tactcad.mechanics.fem_mesh.fem_region`), refined at the web of the
+(:func:`tactcad.mechanics.fem.mesh.fem_region`), refined at the web of the
 flexure hinge. Geometry is isoparametric (``MeshTri2``: the midside node of
 every edge on the notch or fillet arc sits on the exact circle) unless
 ``curved=False``. Straight-sided cells cut the notch's chords and leave a
@@ -57,10 +57,10 @@ from typing import Sequence
 
 import numpy as np
 
-from ..design import ElementGeometry, Material
-from .fem_mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
+from ...design import ElementGeometry, Material
+from .mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
                        mesh_region)
-from .result import StiffnessResult
+from ..result import StiffnessResult
 
 #: Refinement ratio between successive meshes of the Richardson sequence.
 REFINEMENT_RATIO = math.sqrt(2.0)
@@ -635,7 +635,7 @@ def estimate_fem2d(g: ElementGeometry, material: Material, element: int | None =
         curved: isoparametric arcs.
         force_N: tip force (N) for the gauge strain (reported per N).
         margin_mm: clamp margin behind the notch (``None``: the default of
-            :func:`~tactcad.mechanics.fem_mesh.fem_region`).
+            :func:`~tactcad.mechanics.fem.mesh.fem_region`).
 
     Returns:
         :class:`StiffnessResult` with model "fem2d" (plane stress) or

@@ -8,7 +8,7 @@ clamp line ``x = x_clamp``. :func:`fem_region` is the one place that makes
 this choice; the 2D and 3D meshers both use it.
 
 The cropped outline is cut from the exact wire-cut profile
-(:func:`tactcad.profile.element_profile`, the same lines and arcs the DXF
+(:func:`tactcad.geometry.profile.element_profile`, the same lines and arcs the DXF
 exports): the closed chain is clipped against the half plane
 ``x >= x_clamp`` and closed by a line on the clamp line. Arcs stay arcs in
 gmsh (OpenCASCADE kernel, three-point circle arcs).
@@ -40,8 +40,8 @@ from typing import Iterator, NamedTuple, Sequence
 
 import numpy as np
 
-from ..design import ElementGeometry
-from ..profile import Arc, Line, Segment, contour_area, element_profile
+from ...design import ElementGeometry
+from ...geometry.profile import Arc, Line, Segment, contour_area, element_profile
 
 #: Default clamp margin, as a multiple of the larger of the notch radius and
 #: the arm height (see :func:`default_clamp_margin_mm`).
@@ -60,8 +60,8 @@ class FemRegion(NamedTuple):
     """Cropped outline that the FEM meshes, and where it is clamped.
 
     Attributes:
-        outline: closed CCW chain of :class:`~tactcad.profile.Line` /
-            :class:`~tactcad.profile.Arc` segments (mm); its last segment is
+        outline: closed CCW chain of :class:`~tactcad.geometry.profile.Line` /
+            :class:`~tactcad.geometry.profile.Arc` segments (mm); its last segment is
             the clamp line, running down ``x = x_clamp``.
         x_clamp: x of the clamp line (mm, element frame).
         reason: why the clamp line sits where it does.

@@ -50,7 +50,7 @@ import numpy as np
 
 from tactcad.errors import TactcadError
 
-from . import paper_data
+from . import data as paper_data
 
 
 class LumpedDomainError(TactcadError, ValueError):

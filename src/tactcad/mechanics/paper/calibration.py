@@ -25,7 +25,7 @@ import numpy as np
 
 from tactcad.errors import TactcadError
 
-from . import paper_data
+from . import data as paper_data
 
 K_SENSOR_N_PER_MM = paper_data.K_SENSOR_N_PER_MM
 #: Default noise of the synthetic bridge signal (V): about three LSB of a

@@ -2,7 +2,7 @@
 
 Quadratic tetrahedra (scikit-fem ``ElementTetP2``, isoparametric
 ``MeshTet2`` with the notch and fillet edges on the exact circles) on the
-cropped exact profile (:func:`tactcad.mechanics.fem_mesh.fem_region`)
+cropped exact profile (:func:`tactcad.mechanics.fem.mesh.fem_region`)
 extruded through the sheet.
 
 Half model: geometry, clamp and load are symmetric about the mid-plane
@@ -10,7 +10,7 @@ z = b/2 of the sheet, so only 0 <= z <= b/2 is meshed with ``u_z = 0`` on the
 mid-plane; the full element's stiffness is ``K = 2 F_h^2 / (f_h^T u_h)``
 (twice the force at the same deflection). This halves the unknowns.
 
-Mesh: the 2D mesh of :func:`~tactcad.mechanics.fem_mesh.mesh_region` (size
+Mesh: the 2D mesh of :func:`~tactcad.mechanics.fem.mesh.mesh_region` (size
 ``t / web_divisions`` at the neck) extruded in ``n_layers`` layers that grow
 geometrically from the free face z = 0 (where the through-thickness
 variation of the stress is largest: plane-stress-like at the free face,
@@ -27,7 +27,7 @@ face, ``tip_width x b``).
 Solver: conjugate gradients preconditioned by a symmetric two-level
 p-multigrid cycle (Chebyshev–Jacobi smoothing on P2, exact coarse solve on
 the P1 functions of the same mesh), see
-:func:`tactcad.mechanics.fem2d.solve_elasticity`. Measured on two cores:
+:func:`tactcad.mechanics.fem.fem2d.solve_elasticity`. Measured on two cores:
 SuperLU (symmetric mode, minimum-degree ordering) needs about 20 s and
 2.5 GiB at 7.6 x 10^4 unknowns and minutes and over 5 GiB at 1.4 x 10^5, as
 fill-in grows fast in 3D; PCG needs a few seconds and under 0.5 GiB at
@@ -41,7 +41,7 @@ Sources: scikit-fem documentation (``MeshTet2``, ``ElementTetP2``,
 ``Basis``, ``FacetBasis``, ``condense``); gmsh reference manual
 (OpenCASCADE ``extrude`` with layers); Y. Saad, "Iterative Methods for
 Sparse Linear Systems", 2nd ed. (Chebyshev acceleration, preconditioned CG);
-Richardson extrapolation as in :mod:`tactcad.mechanics.fem2d`.
+Richardson extrapolation as in :mod:`tactcad.mechanics.fem.fem2d`.
 
 Units: mm, N, MPa, N/mm, s.
 """
@@ -53,12 +53,12 @@ import resource
 import time
 from dataclasses import dataclass
 
-from ..design import ElementGeometry, Material
+from ...design import ElementGeometry, Material
 from .fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Convergence, FemSolution, lame,
                     richardson, single_threaded_blas, size_factors, skfem_mesh,
                     solve_elasticity)
-from .fem_mesh import FemRegion, fem_region, graded_layers, mesh_region
-from .result import StiffnessResult
+from .mesh import FemRegion, fem_region, graded_layers, mesh_region
+from ..result import StiffnessResult
 
 #: Finest-mesh neck size = web thickness / WEB_DIVISIONS_3D.
 WEB_DIVISIONS_3D = 6.0
@@ -97,7 +97,7 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
         solver: "pcg" (default) or "direct" (SuperLU; small meshes only).
 
     Returns:
-        :class:`~tactcad.mechanics.fem2d.FemSolution` for the full element
+        :class:`~tactcad.mechanics.fem.fem2d.FemSolution` for the full element
         (K, mean contact deflection, gauge strain under ``force_N``; n_dofs
         and n_cells of the half model).
 
@@ -130,7 +130,7 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
 
 @dataclass(frozen=True)
 class Convergence3D(Convergence):
-    """:class:`~tactcad.mechanics.fem2d.Convergence` plus the peak memory."""
+    """:class:`~tactcad.mechanics.fem.fem2d.Convergence` plus the peak memory."""
 
     peak_rss_mib: float = math.nan
 
@@ -189,7 +189,7 @@ def estimate_fem3d(g: ElementGeometry, material: Material, element: int | None =
         curved: isoparametric arcs.
         force_N: tip force (N) for the gauge strain (reported per N).
         margin_mm: clamp margin behind the notch (``None``: default of
-            :func:`~tactcad.mechanics.fem_mesh.fem_region`).
+            :func:`~tactcad.mechanics.fem.mesh.fem_region`).
         solver: "pcg" or "direct".
         verbose: print K, time and peak RSS of every mesh.
 

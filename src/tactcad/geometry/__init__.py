@@ -1,0 +1,1 @@
+"""Exact 2D profiles (lines and arcs) and joint frames: plain data, no CAD kernel."""
