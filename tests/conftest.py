@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from tactcad.design import default_design_data, load_design
+from tactcad.design.array import default_design_data, load_design
 
 
 @pytest.fixture(scope="session")
@@ -21,7 +21,7 @@ def design_data():
 @pytest.fixture(scope="session")
 def exported(plan, tmp_path_factory):
     """The default design exported once: (out_dir, ExportResult)."""
-    from tactcad.exporter import export
+    from tactcad.export.run import export
 
     out = tmp_path_factory.mktemp("exports")
     return out, export(plan, out, log=lambda s: None)

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tactcad.design import load_design
+from tactcad.design.array import load_design
 from tactcad.mechanics.beam import (
     beam_convergence, beam_mesh, estimate_beam, solve_beam, unit_load_compliance)
 from tactcad.mechanics.closed_form import closed_form_compliance, estimate_closed_form

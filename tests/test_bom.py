@@ -13,9 +13,9 @@ from collections import Counter
 
 import pytest
 
-from tactcad.bom import BOM_COLUMNS, bom_csv, bom_rows, design_assemblies, part_quantities
-from tactcad.catalogue import Instance, array_instances, array_parts
-from tactcad.design import Placement, default_design_data, plan_from_dict, with_overrides
+from tactcad.export.bom import BOM_COLUMNS, bom_csv, bom_rows, design_assemblies, part_quantities
+from tactcad.catalogue.array import Instance, array_instances, array_parts
+from tactcad.design.array import Placement, default_design_data, plan_from_dict, with_overrides
 
 
 def read_csv(path):
@@ -148,10 +148,10 @@ def test_scene_assemblies_are_counted_and_drawn(monkeypatch, plan):
         specs={"rig_base_plate": plate, "nut_M2": array_parts(plan)["nut_M2"]},
         instances=[Instance("base", "rig_base_plate", p), Instance("base2", "rig_base_plate", p)]
         + [Instance(f"n{k}", "nut_M2", p) for k in range(7)])
-    fake = types.ModuleType("tactcad.scenes")
+    fake = types.ModuleType("tactcad.assembly.scenes")
     fake.scene_names = lambda plan: ["test-rig"]
     fake.assemble = lambda plan, name: scene
-    monkeypatch.setitem(sys.modules, "tactcad.scenes", fake)
+    monkeypatch.setitem(sys.modules, "tactcad.assembly.scenes", fake)
     specs, assemblies = design_assemblies(plan)
     assert list(assemblies) == ["array", "test-rig"]
     rows = {r.part: r for r in bom_rows(assemblies, specs)}
@@ -164,7 +164,7 @@ def test_scene_assemblies_are_counted_and_drawn(monkeypatch, plan):
 def test_real_scenes_quantities(plan):
     """With the project's scenes: every scene's count is at most the BOM's
     quantity, and equal to it in at least one scene."""
-    pytest.importorskip("tactcad.scenes")
+    pytest.importorskip("tactcad.assembly.scenes")
     specs, assemblies = design_assemblies(plan)
     rows = bom_rows(assemblies, specs)
     for r in rows:

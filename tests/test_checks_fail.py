@@ -6,7 +6,7 @@ import build123d as bd
 import ezdxf
 import pytest
 
-from tactcad.catalogue import array_parts
+from tactcad.catalogue.array import array_parts
 from tactcad.checks.dxf import check_profile_dxf
 from tactcad.checks.interference import Placed, check_interference
 from tactcad.checks.solids import check_solid

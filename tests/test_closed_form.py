@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tactcad.design import load_design
+from tactcad.design.array import load_design
 from tactcad.errors import DesignError
 from tactcad.mechanics import closed_form as cf
 from tactcad.mechanics.closed_form import (

@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 
 from tactcad import __version__
-from tactcad.bom import design_assemblies, instance_counts
-from tactcad.catalogue import array_instances, array_parts
-from tactcad.design import default_design_data, plan_from_dict, with_overrides
+from tactcad.export.bom import design_assemblies, instance_counts
+from tactcad.catalogue.array import array_instances, array_parts
+from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
 
 SVG = "{http://www.w3.org/2000/svg}"
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?")
@@ -190,7 +190,7 @@ def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan):
 
 
 def _compose_first_element(plan):
-    from tactcad.build import PartCache
+    from tactcad.parts.registry import PartCache
     from tactcad.drawings.compose import compose
 
     specs = array_parts(plan)
@@ -234,7 +234,7 @@ def test_reader_rejects_a_wrong_value():
 def test_any_fabricated_part_gets_a_generic_drawing_from_its_solid(plan):
     """A part with no dimension set of its own and no plan profile (as a rig
     part may be) is dimensioned from its solid: sizes and holes."""
-    from tactcad.build import PartCache
+    from tactcad.parts.registry import PartCache
     from tactcad.drawings.compose import DIMENSION_SETS, compose
 
     specs = array_parts(plan)
@@ -280,7 +280,7 @@ def test_pictures_exist_and_are_not_blank(exported, plan):
 def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan):
     """Fabricated rig parts get drawings with their own dimension set
     (indenter) or the generic one (sizes from the solid)."""
-    pytest.importorskip("tactcad.scenes")
+    pytest.importorskip("tactcad.assembly.scenes")
     _, _, svgs = drawing_files
     specs, _ = design_assemblies(plan)
     if "indenter" in svgs:

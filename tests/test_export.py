@@ -11,8 +11,8 @@ import sys
 import pytest
 
 from tactcad.checks.result import failures
-from tactcad.design import load_design
-from tactcad.exporter import export, run_checks
+from tactcad.design.array import load_design
+from tactcad.export.run import export, run_checks
 
 
 def _hashes(folder):
@@ -100,7 +100,7 @@ def test_all_checks_pass_on_the_default_design(exported, plan):
 
 def test_changed_web_reaches_the_dxf(tmp_path, design_data):
     from tactcad.checks.dxf import read_dxf, thinnest_ligament
-    from tactcad.design import plan_from_dict, with_overrides
+    from tactcad.design.array import plan_from_dict, with_overrides
 
     plan = plan_from_dict(with_overrides(design_data, {"element.web_thickness_mm": 0.31}))
     export(plan, tmp_path, log=lambda s: None)

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import shapely.geometry as sg
 
-from tactcad.design import load_design
+from tactcad.design.array import load_design
 from tactcad.mechanics.correction_fit import grid_geometry
 from tactcad.mechanics.fem.fem2d import (estimate_fem2d, fem2d_convergence, richardson,
                                      solve_fem2d)

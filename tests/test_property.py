@@ -9,10 +9,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tactcad.catalogue import array_parts
+from tactcad.catalogue.array import array_parts
 from tactcad.checks.dxf import check_profile_dxf
 from tactcad.checks.solids import check_solid
-from tactcad.design import ARM_RANGE_MM, WEB_RANGE_MM, default_design_data, plan_from_dict, with_overrides
+from tactcad.design.array import ARM_RANGE_MM, WEB_RANGE_MM, default_design_data, plan_from_dict, with_overrides
 from tactcad.errors import DesignError
 from tactcad.export.dxf import write_profile_dxf
 from tactcad.parts.element import build_element, profile_face

@@ -9,8 +9,8 @@ import math
 import pytest
 
 from tactcad.errors import DesignError
-from tactcad.rig_catalogue import RigPartSpec, rig_parts, sample_name
-from tactcad.rigs import BEARINGS, default_rigs_data, load_rigs, rigs_from_dict
+from tactcad.catalogue.rigs import RigPartSpec, rig_parts, sample_name
+from tactcad.design.rigs import BEARINGS, default_rigs_data, load_rigs, rigs_from_dict
 
 PAPER_STIFFNESS = (10.01, 7.26, 6.28, 5.41, 4.51, 3.85, 3.57, 2.34)
 
@@ -103,7 +103,7 @@ def test_samples_carry_the_papers_stiffnesses(specs):
 
 
 def test_every_rig_part_is_a_valid_solid_of_the_expected_size(plan, specs):
-    from tactcad.build import BUILDERS
+    from tactcad.parts.registry import BUILDERS
     from tactcad.checks.solids import check_solid
 
     failed = []
@@ -117,7 +117,7 @@ def test_every_rig_part_is_a_valid_solid_of_the_expected_size(plan, specs):
 def test_cart_has_its_vacuum_clamping_features(plan, specs):
     """Removing the pocket, port, channel or suction holes changes the volume
     the formula expects: each feature is really cut."""
-    from tactcad.build import BUILDERS
+    from tactcad.parts.registry import BUILDERS
     from tactcad.checks.interference import common_volume
 
     spec = specs["cart"]

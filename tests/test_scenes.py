@@ -11,9 +11,9 @@ from collections import Counter
 import pytest
 
 from tactcad import cli
-from tactcad.design import load_design
+from tactcad.design.array import load_design
 from tactcad.errors import DesignError, TactcadError
-from tactcad.scenes import (SceneCache, SceneError, assemble, build_scene, describe, load_scenes,
+from tactcad.assembly.scenes import (SceneCache, SceneError, assemble, build_scene, describe, load_scenes,
                             placed_shapes, scene_names)
 
 SCENES = ["wirecut", "array", "calibration-rig", "sample-stiffness-rig", "array-evaluation-rig"]
@@ -31,7 +31,7 @@ def built(plan, cache):
 
 
 def _counts_during(fn) -> Counter:
-    from tactcad.build import BUILD_COUNTS
+    from tactcad.parts.registry import BUILD_COUNTS
 
     before = Counter(BUILD_COUNTS)
     fn()
@@ -141,7 +141,7 @@ def test_sanity_catches_a_tip_out_of_plane(built):
 
 def _bad_design_dir(tmp_path, edit):
     """Copy of the hardware folder with rigs.toml edited by ``edit(text)``."""
-    from tactcad.design import DEFAULT_DESIGN
+    from tactcad.design.array import DEFAULT_DESIGN
 
     hw = DEFAULT_DESIGN.parent
     for f in ("macro_array.toml", "scenes.toml"):
@@ -187,7 +187,7 @@ def test_bad_scenes_file(tmp_path, plan):
     text.write_text('[scene.x]\nrig = "trolley"\ndescription = "d"\ngroups = ["array"]\n')
     with pytest.raises(DesignError, match="scene.x.rig"):
         load_scenes(text)
-    from tactcad.scenes import SceneSpec, scene_model
+    from tactcad.assembly.scenes import SceneSpec, scene_model
 
     spec = SceneSpec("x", "sample-stiffness", "d", ("cart", "trolley"), {"fabricated": "full",
                                                                          "purchased": "envelope"})
@@ -222,7 +222,7 @@ def test_scene_step_is_flat_labelled_instanced(exported):
 
 
 def test_glb_content(exported):
-    from tactcad.scene_export import read_glb
+    from tactcad.export.scenes import read_glb
 
     out, _ = exported
     doc = read_glb(out / "scenes/sample-stiffness-rig.glb")
@@ -236,7 +236,7 @@ def test_glb_content(exported):
 
 
 def test_export_single_scene(tmp_path, plan):
-    from tactcad.scene_export import export_scenes
+    from tactcad.export.scenes import export_scenes
 
     res = export_scenes(plan, tmp_path, ["array"])
     assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*") if p.is_file()) \
@@ -254,7 +254,7 @@ def test_changed_rig_dimensions_assemble_or_fail_clearly(plan):
     from hypothesis import HealthCheck, Phase, given, settings
     from hypothesis import strategies as st
 
-    from tactcad.rigs import default_rigs_data, rigs_from_dict
+    from tactcad.design.rigs import default_rigs_data, rigs_from_dict
 
     base = default_rigs_data()
 

@@ -12,8 +12,8 @@ import argparse
 import importlib
 import sys
 
-from . import __version__
-from .errors import TactcadError
+from tactcad import __version__
+from tactcad.errors import TactcadError
 
 COMMAND_MODULES = (
     "tactcad.commands.export",

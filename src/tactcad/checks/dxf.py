@@ -13,10 +13,10 @@ from pathlib import Path
 import ezdxf
 import shapely.geometry as sg
 
-from ..design import EdmRules
-from ..export.dxf import CUT_LAYER, START_LAYER
-from ..geometry.profile import Arc, Line, Point, Segment, contour_area, contour_bbox, inside_corners
-from .result import CheckResult
+from tactcad.design.array import EdmRules
+from tactcad.export.dxf import CUT_LAYER, START_LAYER
+from tactcad.geometry.profile import Arc, Line, Point, Segment, contour_area, contour_bbox, inside_corners
+from tactcad.checks.result import CheckResult
 
 ALLOWED_TYPES = {"LINE", "ARC", "CIRCLE", "LWPOLYLINE"}
 CLOSE_TOL_MM = 1e-6

@@ -18,7 +18,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .result import CheckResult
+from tactcad.checks.result import CheckResult
 
 SCRIPT = Path(__file__).with_name("freecad_script.py")
 VOLUME_RTOL = 1e-6

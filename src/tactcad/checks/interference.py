@@ -16,7 +16,7 @@ from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.BRepGProp import BRepGProp
 from OCP.GProp import GProp_GProps
 
-from .result import CheckResult
+from tactcad.checks.result import CheckResult
 
 OVERLAP_TOL_MM3 = 1e-6
 CONTACT_TOL_MM = 1e-6

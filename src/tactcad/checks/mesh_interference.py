@@ -27,8 +27,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed, common_volume
-from .result import CheckResult
+from tactcad.checks.interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed, common_volume
+from tactcad.checks.result import CheckResult
 
 MESH_TOLERANCE_MM = 0.01  # chordal deflection of the tessellation
 MESH_ANGULAR_TOLERANCE = 0.2  # rad

@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import math
 
-from .interference import CONTACT_TOL_MM, common_volume, distance
-from .result import CheckResult
+from tactcad.checks.interference import CONTACT_TOL_MM, common_volume, distance
+from tactcad.checks.result import CheckResult
 
 PLANE_TOL_MM = 0.01
 PITCH_TOL_MM = 0.01

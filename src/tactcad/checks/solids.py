@@ -13,9 +13,9 @@ from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
 from OCP.TopAbs import TopAbs_EDGE
 from OCP.TopExp import TopExp_Explorer
 
-from ..catalogue import PartSpec
-from .mesh_interference import tessellate
-from .result import CheckResult
+from tactcad.catalogue.array import PartSpec
+from tactcad.checks.mesh_interference import tessellate
+from tactcad.checks.result import CheckResult
 
 VOLUME_RTOL = 1e-6
 BBOX_TOL_MM = 1e-6

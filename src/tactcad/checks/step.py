@@ -6,8 +6,8 @@ from pathlib import Path
 
 import build123d as bd
 
-from .result import CheckResult
-from .solids import bbox_tuple
+from tactcad.checks.result import CheckResult
+from tactcad.checks.solids import bbox_tuple
 
 VOLUME_RTOL = 1e-6
 BBOX_TOL_MM = 1e-5

@@ -13,7 +13,7 @@ from __future__ import annotations
 import argparse
 import importlib
 
-from . import add_design_arg
+from tactcad.commands import add_design_arg
 
 EXPORT_GOAL_S = 15.0
 MESH_GOAL_S = 1.0
@@ -57,7 +57,7 @@ def run_export(args: argparse.Namespace) -> int:
     import tempfile
     import time
 
-    from ..design import load_design
+    from tactcad.design.array import load_design
 
     plan = load_design(args.design)
     print(f"tactcad bench export: design {plan.name}, {os.cpu_count()} CPUs, "
@@ -78,7 +78,7 @@ def run_export(args: argparse.Namespace) -> int:
         print(f"  cold `tactcad export` (new process, all parts and scenes, {n} scene files): "
               f"{wall:6.2f} s   goal <= {EXPORT_GOAL_S:g} s: {flag}")
     code = ("import sys,time;t=time.perf_counter();from pathlib import Path;"
-            "from tactcad.design import load_design;from tactcad.scene_export import write_scene_files;"
+            "from tactcad.design.array import load_design;from tactcad.export.scenes import write_scene_files;"
             "p=load_design(sys.argv[1] if len(sys.argv)>1 and sys.argv[1] else None);"
             "write_scene_files(p,Path(sys.argv[2]),lambda s:None);print(time.perf_counter()-t)")
     with tempfile.TemporaryDirectory() as tmp:
@@ -96,9 +96,9 @@ def run_export(args: argparse.Namespace) -> int:
 def _bench_interference(plan) -> None:
     import time
 
-    from ..checks.interference import check_interference
-    from ..checks.mesh_interference import check_mesh_interference
-    from ..scenes import SceneCache, build_scene, placed_shapes, scene_names
+    from tactcad.checks.interference import check_interference
+    from tactcad.checks.mesh_interference import check_mesh_interference
+    from tactcad.assembly.scenes import SceneCache, build_scene, placed_shapes, scene_names
 
     cache = SceneCache(plan)
     largest = None

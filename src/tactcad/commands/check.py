@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import tempfile
 
-from . import add_design_arg
+from tactcad.commands import add_design_arg
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -23,11 +23,11 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..checks.result import failures
-    from ..design import load_design
-    from ..exporter import export, run_checks
-    from ..scene_export import export_scenes, run_scene_checks
-    from ..scenes import SceneCache
+    from tactcad.checks.result import failures
+    from tactcad.design.array import load_design
+    from tactcad.export.run import export, run_checks
+    from tactcad.export.scenes import export_scenes, run_scene_checks
+    from tactcad.assembly.scenes import SceneCache
 
     plan = load_design(args.design)
     with tempfile.TemporaryDirectory() as tmp:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from . import add_design_arg
+from tactcad.commands import add_design_arg
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -23,13 +23,13 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..design import load_design
-    from ..exporter import export
+    from tactcad.design.array import load_design
+    from tactcad.export.run import export
 
     plan = load_design(args.design)  # validation first: a bad design writes nothing
     print(f"tactcad export: design {plan.name} ({plan.source}), sha256 {plan.design_hash[:12]}")
     if args.scene:
-        from ..scene_export import export_scenes
+        from tactcad.export.scenes import export_scenes
 
         for line in export_scenes(plan, args.out, args.scene).summary_lines():
             print(line)

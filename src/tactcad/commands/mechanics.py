@@ -6,7 +6,7 @@ import argparse
 import json
 import sys
 
-from . import add_design_arg
+from tactcad.commands import add_design_arg
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 
@@ -33,8 +33,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run_stiffness(args: argparse.Namespace) -> int:
-    from ..design import load_design
-    from ..mechanics.ladder import estimate
+    from tactcad.design.array import load_design
+    from tactcad.mechanics.ladder import estimate
 
     plan = load_design(args.design)
     slot = plan.element(args.element)
@@ -51,8 +51,8 @@ def run_stiffness(args: argparse.Namespace) -> int:
 
 
 def run_table1(args: argparse.Namespace) -> int:
-    from ..design import load_design
-    from ..mechanics.ladder import (PAPER_STRAIN_RANGE, as_built_webs, gauge_strain_at_paper_load,
+    from tactcad.design.array import load_design
+    from tactcad.mechanics.ladder import (PAPER_STRAIN_RANGE, as_built_webs, gauge_strain_at_paper_load,
                                     table1_comparison, table2_predicted)
 
     plan = load_design(args.design)
@@ -86,7 +86,7 @@ def run_table1(args: argparse.Namespace) -> int:
 
 def _table1_all_levels(plan, as_json: bool, progress) -> int:
     """Table 1 with every ladder level side by side: K (N/mm) and % error."""
-    from ..mechanics.ladder import table1_comparison
+    from tactcad.mechanics.ladder import table1_comparison
 
     levels = {m: table1_comparison(plan, m, progress=progress) for m in MODELS}
     if as_json:

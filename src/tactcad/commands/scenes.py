@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from . import add_design_arg
+from tactcad.commands import add_design_arg
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -18,8 +18,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..design import load_design
-    from ..scenes import describe, get_scene_spec
+    from tactcad.design.array import load_design
+    from tactcad.assembly.scenes import describe, get_scene_spec
 
     plan = load_design(args.design)
     lines = describe(plan)

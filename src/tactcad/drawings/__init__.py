@@ -36,14 +36,14 @@ def drawing_png_name(part: str) -> str:
 
 def fabricated_parts(plan, assembled=None):
     """(part specs to draw in sheet order, quantity of each counted from the
-    assemblies' instances, see :func:`tactcad.bom.part_quantities`). Parts
+    assemblies' instances, see :func:`tactcad.export.bom.part_quantities`). Parts
     placed in no assembly are not drawn.
 
     Args:
-        assembled: the result of :func:`tactcad.bom.design_assemblies`, if
+        assembled: the result of :func:`tactcad.export.bom.design_assemblies`, if
             already at hand.
     """
-    from ..bom import design_assemblies, part_quantities
+    from tactcad.export.bom import design_assemblies, part_quantities
 
     specs, assemblies = assembled or design_assemblies(plan)
     qty = part_quantities(assemblies)
@@ -92,12 +92,12 @@ def write_drawing_files(plan, staging: Path, log: Callable[[str], None]) -> list
         ``quantity`` and ``scale``), ``drawing-pdf`` (with ``pages``) and
         ``image-png``.
     """
-    from ..build import PartCache
-    from ..bom import design_assemblies
-    from ..export.atomic import write_atomic, write_bytes_atomic
-    from ..render import pdf_page_png
-    from .compose import compose
-    from .views import scale_text
+    from tactcad.parts.registry import PartCache
+    from tactcad.export.bom import design_assemblies
+    from tactcad.atomic import write_atomic, write_bytes_atomic
+    from tactcad.export.render import pdf_page_png
+    from tactcad.drawings.compose import compose
+    from tactcad.drawings.views import scale_text
 
     t0 = time.perf_counter()
     assembled = design_assemblies(plan)

@@ -21,11 +21,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from ..catalogue import PartSpec
-from ..design import ElementGeometry, Plan
-from ..geometry.profile import Arc
-from .sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
-from .views import (CAMERAS, ISO_5455_SCALES, View, cameras_for, detail, orientation, project,
+from tactcad.catalogue.array import PartSpec
+from tactcad.design.array import ElementGeometry, Plan
+from tactcad.geometry.profile import Arc
+from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
+from tactcad.drawings.views import (CAMERAS, ISO_5455_SCALES, View, cameras_for, detail, orientation, project,
                     scale_text)
 
 GENERAL_TOLERANCE = "ISO 2768-f"
@@ -672,7 +672,7 @@ def draw_frame(d: Drawing) -> None:
 
 
 def draw_title_block(d: Drawing) -> None:
-    from .. import __version__
+    from tactcad import __version__
 
     sh = d.sheet
     plan, spec = d.plan, d.spec

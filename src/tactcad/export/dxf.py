@@ -17,8 +17,8 @@ from typing import Iterator
 
 import ezdxf
 
-from ..geometry.profile import Arc, Circle, Profile, Segment
-from .atomic import write_atomic
+from tactcad.geometry.profile import Arc, Circle, Profile, Segment
+from tactcad.atomic import write_atomic
 
 CUT_LAYER = "CUT"
 START_LAYER = "START_HOLE"

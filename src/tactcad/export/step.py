@@ -29,7 +29,7 @@ from OCP.XCAFApp import XCAFApp_Application
 from OCP.XCAFDoc import XCAFDoc_ColorType, XCAFDoc_DocumentTool
 from OCP.XSControl import XSControl_WorkSession
 
-from .atomic import write_atomic
+from tactcad.atomic import write_atomic
 
 FIXED_TIMESTAMP = "2000-01-01T00:00:00"
 _TIMESTAMP_RE = re.compile(rb"FILE_NAME\('([^']*)','[^']*'")

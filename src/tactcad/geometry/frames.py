@@ -6,7 +6,7 @@ reference direction in the face that fixes the rotation about the normal.
 Two parts mate face to face when the child's frame, flipped (turned 180
 degrees about its x axis), coincides with the parent's frame: the normals
 oppose and the reference directions agree. The assembly solver
-(:mod:`tactcad.scenes`) hands these frames to build123d joints.
+(:mod:`tactcad.assembly.scenes`) hands these frames to build123d joints.
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@ r"""The wire-cut flexure profile as exact lines and arcs (no CAD kernel).
 This one description feeds the solid (:mod:`tactcad.parts.element`), the
 wire-EDM DXF (:mod:`tactcad.export.dxf`), the FEM meshes and the closed-form
 web function, so all of them see the same contour. Element frame, mm (see
-:mod:`tactcad.design`).
+:mod:`tactcad.design.array`).
 
 Outer contour, counter-clockwise from the base's lower back corner::
 
@@ -22,7 +22,7 @@ import math
 from dataclasses import dataclass
 from typing import Iterable, Sequence
 
-from ..design import ElementGeometry
+from tactcad.design.array import ElementGeometry
 
 Point = tuple[float, float]
 

@@ -48,8 +48,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..design import ElementGeometry, Material
-from .result import StiffnessResult
+from tactcad.design.array import ElementGeometry, Material
+from tactcad.mechanics.result import StiffnessResult
 
 KAPPA_SHEAR = 5.0 / 6.0
 DEFAULT_SEGMENTS = 256
@@ -304,7 +304,7 @@ def estimate_beam(g: ElementGeometry, material: Material, element: int | None = 
     Raises:
         ValueError: invalid ``n_segments`` or geometry (see :func:`beam_mesh`).
     """
-    from .closed_form import load_correction
+    from tactcad.mechanics.closed_form import load_correction
 
     start = time.perf_counter()
     conv = beam_convergence(g, material, n_segments, clamp_x_mm=clamp_x_mm,

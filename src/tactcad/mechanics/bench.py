@@ -21,8 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..design import ElementGeometry, Material, load_design
-from .ladder import MODELS, estimate
+from tactcad.design.array import ElementGeometry, Material, load_design
+from tactcad.mechanics.ladder import MODELS, estimate
 
 WEBS_MM = (0.15, 0.25, 0.40)
 ARMS_MM = (4.0, 8.0)
@@ -55,7 +55,7 @@ def design_grid(base: ElementGeometry) -> list[ElementGeometry]:
 
 def closed_form_throughput(material: Material, base: ElementGeometry, n: int = 1_000_000) -> float:
     """Vectorised closed-form evaluations per second over ``n`` random in-domain designs."""
-    from .closed_form import closed_form_stiffness
+    from tactcad.mechanics.closed_form import closed_form_stiffness
 
     rng = np.random.default_rng(0)
     t = rng.uniform(*WEBS_MM[::2], n)
@@ -111,7 +111,7 @@ def summary(points: list[Point]) -> list[dict]:
 
 
 def _write_csv(path: Path, points: list[Point]) -> None:
-    from ..export.atomic import write_atomic
+    from tactcad.atomic import write_atomic
 
     def w(tmp: Path) -> None:
         with open(tmp, "w", newline="") as fh:
@@ -131,7 +131,7 @@ def _plot(path: Path, points: list[Point]) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..export.atomic import write_atomic
+    from tactcad.atomic import write_atomic
 
     fig, ax = plt.subplots(figsize=(6.4, 4.4), dpi=120)
     for model in dict.fromkeys(p.model for p in points):

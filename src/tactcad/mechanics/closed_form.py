@@ -68,9 +68,9 @@ from typing import Any, Mapping, NamedTuple
 import numpy as np
 from scipy.optimize import brentq
 
-from ..design import ElementGeometry, Material
-from ..errors import DesignError
-from .result import StiffnessResult
+from tactcad.design.array import ElementGeometry, Material
+from tactcad.errors import DesignError
+from tactcad.mechanics.result import StiffnessResult
 
 #: Shear correction of a rectangular section in the compliance integral
 #: (alpha = 1 / kappa, kappa = 5/6; Timoshenko & Gere, "Mechanics of

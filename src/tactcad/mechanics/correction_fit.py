@@ -63,7 +63,7 @@ from typing import Sequence
 
 import numpy as np
 
-from ..design import (ElementGeometry, Material, default_design_data, plan_from_dict,
+from tactcad.design.array import (ElementGeometry, Material, default_design_data, plan_from_dict,
                       with_overrides)
 
 #: Where the fitted correction is written (read by the closed-form estimator).
@@ -167,8 +167,8 @@ def grid_geometry(t: float, arm: float, R: float,
 
 
 def _evaluate_point(args) -> dict:
-    from .fem.fem2d import fem2d_convergence
-    from .fem.fem3d import fem3d_convergence
+    from tactcad.mechanics.fem.fem2d import fem2d_convergence
+    from tactcad.mechanics.fem.fem3d import fem3d_convergence
 
     t, arm, R, clearance, with_3d = args
     g, mat = grid_geometry(t, arm, R, clearance)

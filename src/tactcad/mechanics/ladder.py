@@ -16,9 +16,9 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass
 
-from ..design import ElementGeometry, Material, Plan
-from ..errors import TactcadError
-from .result import StiffnessResult
+from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.errors import TactcadError
+from tactcad.mechanics.result import StiffnessResult
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 _ENTRY = {
@@ -79,7 +79,7 @@ def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> 
 
     Distinct geometries are evaluated once (elements with equal arms share them).
     """
-    from .paper.data import table1
+    from tactcad.mechanics.paper.data import table1
 
     cache: dict[str, StiffnessResult] = {}
     rows = []
@@ -102,8 +102,8 @@ def as_built_webs(plan: Plan) -> list[dict]:
     """For each calibrated element, the web thickness (mm) that makes the
     corrected closed form reproduce its measured K, and the deviation from the
     design web against the design tolerance (the fabrication spread it implies)."""
-    from .closed_form import web_for_stiffness
-    from .paper.data import table1
+    from tactcad.mechanics.closed_form import web_for_stiffness
+    from tactcad.mechanics.paper.data import table1
 
     out = []
     for meas in table1():
@@ -140,8 +140,8 @@ def table2_predicted(plan: Plan, model: str = "closed-form") -> dict:
     """
     import numpy as np
 
-    from .paper.lumped import deflection_ratio
-    from .paper.data import table2
+    from tactcad.mechanics.paper.lumped import deflection_ratio
+    from tactcad.mechanics.paper.data import table2
 
     rows = table2()
     k_pred = {r.element: r.predicted.stiffness_N_per_mm for r in table1_comparison(plan, model)}

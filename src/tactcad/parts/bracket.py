@@ -9,7 +9,7 @@ on an XY stage (calibration) or hang it from the vertical linear axis
   hole is not modelled: the stage is an envelope without tapped holes). Part
   frame: the array frame shifted
   so that the origin lies on the ear's inner face at the mounting holes'
-  height (see :class:`tactcad.rigs.BracketGeometry`).
+  height (see :class:`tactcad.design.rigs.BracketGeometry`).
 * Carrier: an L plate on the linear block; the shelf carries the weights and
   the hanger bar. Part frame: x along the rail (up), y across, z away from
   the block (z = 0 on the block's top face), centred in x and y.
@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import build123d as bd
 
-from ..rigs import BracketGeometry, CarrierGeometry, HangerBarGeometry
-from .shapes import box, cylinder, fuse, single
+from tactcad.design.rigs import BracketGeometry, CarrierGeometry, HangerBarGeometry
+from tactcad.parts.shapes import box, cylinder, fuse, single
 
 
 def build_bracket(g: BracketGeometry) -> bd.Solid:

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import build123d as bd
 
-from ..design import ElementGeometry
-from ..geometry.profile import Arc, Circle, Profile, element_profile
+from tactcad.design.array import ElementGeometry
+from tactcad.geometry.profile import Arc, Circle, Profile, element_profile
 
 
 def _edges(profile_segments) -> list[bd.Edge]:

@@ -1,5 +1,5 @@
 """Simplified ISO metric fasteners (envelopes): ISO 4762 socket head cap screw
-and ISO 4032 hex nut. Dimensions from :data:`tactcad.design.BOLTS`."""
+and ISO 4032 hex nut. Dimensions from :data:`tactcad.design.array.BOLTS`."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import math
 
 import build123d as bd
 
-from ..design import BoltSpec
+from tactcad.design.array import BoltSpec
 
 
 def build_bolt(spec: BoltSpec, length_mm: float) -> bd.Solid:

@@ -4,15 +4,15 @@ end and a rectangular tip whose end face is the 2 mm x 3 mm contact area
 
 Part frame: contact face at z = 0 (centred), tip along +z, then the body;
 the contact width lies along x, the depth along y. Dimensions:
-:class:`tactcad.rigs.IndenterGeometry`.
+:class:`tactcad.design.rigs.IndenterGeometry`.
 """
 
 from __future__ import annotations
 
 import build123d as bd
 
-from ..rigs import IndenterGeometry
-from .shapes import box, cylinder, fuse
+from tactcad.design.rigs import IndenterGeometry
+from tactcad.parts.shapes import box, cylinder, fuse
 
 
 def build_indenter(g: IndenterGeometry) -> bd.Solid:

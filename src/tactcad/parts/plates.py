@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import build123d as bd
 
-from ..design import ClampPlateGeometry, SpacerGeometry
-from ..geometry.profile import Profile, rectangle_profile, u_plate_profile
-from .element import extrude_profile
+from tactcad.design.array import ClampPlateGeometry, SpacerGeometry
+from tactcad.geometry.profile import Profile, rectangle_profile, u_plate_profile
+from tactcad.parts.element import extrude_profile
 
 
 def spacer_profile(s: SpacerGeometry) -> Profile:

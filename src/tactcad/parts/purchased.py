@@ -1,7 +1,7 @@
 """Bought parts as simplified envelopes with catalogue dimensions.
 
 Each builder returns one solid in the part's own frame; the catalogue
-reference is the part's ``process`` (:mod:`tactcad.rig_catalogue`) and the
+reference is the part's ``process`` (:mod:`tactcad.catalogue.rigs`) and the
 sources are listed in ``hardware/purchased-parts.md``:
 
 * Sauter FH 5 force gauge: housing box with the measuring shaft (the paper's
@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import build123d as bd
 
-from ..rigs import (BearingSpec, ForceGaugeSpec, LinearAxisSpec, WeightSpec, XYStageSpec,
+from tactcad.design.rigs import (BearingSpec, ForceGaugeSpec, LinearAxisSpec, WeightSpec, XYStageSpec,
                     ZAxisSpec)
-from .shapes import box, cylinder, fuse, ring, single
+from tactcad.parts.shapes import box, cylinder, fuse, ring, single
 
 
 def build_force_gauge(g: ForceGaugeSpec) -> bd.Solid:

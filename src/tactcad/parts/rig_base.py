@@ -2,16 +2,16 @@
 
 Part frames: base plate x along the grooves, y across, z up from the
 underside, centred in x and y; column x through its thickness, y across,
-z up from its foot. Dimensions: :class:`tactcad.rigs.BasePlateGeometry`,
-:class:`tactcad.rigs.ColumnGeometry` (``hardware/rigs.toml``).
+z up from its foot. Dimensions: :class:`tactcad.design.rigs.BasePlateGeometry`,
+:class:`tactcad.design.rigs.ColumnGeometry` (``hardware/rigs.toml``).
 """
 
 from __future__ import annotations
 
 import build123d as bd
 
-from ..rigs import BasePlateGeometry, ColumnGeometry
-from .shapes import box, cylinder, single
+from tactcad.design.rigs import BasePlateGeometry, ColumnGeometry
+from tactcad.parts.shapes import box, cylinder, single
 
 
 def build_base_plate(g: BasePlateGeometry) -> bd.Solid:

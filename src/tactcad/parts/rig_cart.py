@@ -6,15 +6,15 @@ face under the sample, suction holes from the pocket floor down into a
 drilled channel at mid-thickness, and a tapped hose port on the -x end face
 feeding the channel. Tapped holes (wheel axles, sample holder screws, port)
 are modelled at the thread's nominal diameter. Dimensions:
-:class:`tactcad.rigs.CartGeometry`.
+:class:`tactcad.design.rigs.CartGeometry`.
 """
 
 from __future__ import annotations
 
 import build123d as bd
 
-from ..rigs import POCKET_CORNER_RADIUS_MM, CartGeometry
-from .shapes import box, cylinder, ring, rounded_rect_face, single
+from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, CartGeometry
+from tactcad.parts.shapes import box, cylinder, ring, rounded_rect_face, single
 
 
 def build_cart(g: CartGeometry) -> bd.Solid:

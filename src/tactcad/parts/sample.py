@@ -3,17 +3,17 @@
 Sample frame: block centred in x and y, z = 0 on its underside. Holder frame:
 the same, with the window (sample + clearance, milled corner radius) and two
 screw clearance holes on the y axis. The sample's measured stiffness is an
-attribute of its part (:mod:`tactcad.rig_catalogue`), not a geometry.
-Dimensions: :class:`tactcad.rigs.SampleGeometry`,
-:class:`tactcad.rigs.SampleHolderGeometry`.
+attribute of its part (:mod:`tactcad.catalogue.rigs`), not a geometry.
+Dimensions: :class:`tactcad.design.rigs.SampleGeometry`,
+:class:`tactcad.design.rigs.SampleHolderGeometry`.
 """
 
 from __future__ import annotations
 
 import build123d as bd
 
-from ..rigs import SampleGeometry, SampleHolderGeometry
-from .shapes import box, cylinder, rounded_rect_face, single
+from tactcad.design.rigs import SampleGeometry, SampleHolderGeometry
+from tactcad.parts.shapes import box, cylinder, rounded_rect_face, single
 
 
 def build_sample(g: SampleGeometry) -> bd.Solid:

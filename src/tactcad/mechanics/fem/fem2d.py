@@ -57,10 +57,10 @@ from typing import Sequence
 
 import numpy as np
 
-from ...design import ElementGeometry, Material
-from .mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
+from tactcad.design.array import ElementGeometry, Material
+from tactcad.mechanics.fem.mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
                        mesh_region)
-from ..result import StiffnessResult
+from tactcad.mechanics.result import StiffnessResult
 
 #: Refinement ratio between successive meshes of the Richardson sequence.
 REFINEMENT_RATIO = math.sqrt(2.0)

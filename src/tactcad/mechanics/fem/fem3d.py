@@ -53,12 +53,12 @@ import resource
 import time
 from dataclasses import dataclass
 
-from ...design import ElementGeometry, Material
-from .fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Convergence, FemSolution, lame,
+from tactcad.design.array import ElementGeometry, Material
+from tactcad.mechanics.fem.fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Convergence, FemSolution, lame,
                     richardson, single_threaded_blas, size_factors, skfem_mesh,
                     solve_elasticity)
-from .mesh import FemRegion, fem_region, graded_layers, mesh_region
-from ..result import StiffnessResult
+from tactcad.mechanics.fem.mesh import FemRegion, fem_region, graded_layers, mesh_region
+from tactcad.mechanics.result import StiffnessResult
 
 #: Finest-mesh neck size = web thickness / WEB_DIVISIONS_3D.
 WEB_DIVISIONS_3D = 6.0

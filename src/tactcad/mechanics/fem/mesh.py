@@ -22,7 +22,7 @@ coarse size on the arm and the base. ``size_factor`` scales every size,
 which gives the mesh sequence for Richardson extrapolation. In 3D the plane
 mesh is extruded in graded layers (prisms split into tetrahedra).
 
-Frames and units: element frame of :mod:`tactcad.design` (x along the arm,
+Frames and units: element frame of :mod:`tactcad.design.array` (x along the arm,
 y up, z through the sheet), mm.
 
 Sources: gmsh reference manual (OpenCASCADE kernel, ``extrude`` with
@@ -40,8 +40,8 @@ from typing import Iterator, NamedTuple, Sequence
 
 import numpy as np
 
-from ...design import ElementGeometry
-from ...geometry.profile import Arc, Line, Segment, contour_area, element_profile
+from tactcad.design.array import ElementGeometry
+from tactcad.geometry.profile import Arc, Line, Segment, contour_area, element_profile
 
 #: Default clamp margin, as a multiple of the larger of the notch radius and
 #: the arm height (see :func:`default_clamp_margin_mm`).

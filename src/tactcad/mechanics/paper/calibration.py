@@ -25,7 +25,7 @@ import numpy as np
 
 from tactcad.errors import TactcadError
 
-from . import data as paper_data
+from tactcad.mechanics.paper import data as paper_data
 
 K_SENSOR_N_PER_MM = paper_data.K_SENSOR_N_PER_MM
 #: Default noise of the synthetic bridge signal (V): about three LSB of a

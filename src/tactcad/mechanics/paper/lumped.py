@@ -50,7 +50,7 @@ import numpy as np
 
 from tactcad.errors import TactcadError
 
-from . import data as paper_data
+from tactcad.mechanics.paper import data as paper_data
 
 
 class LumpedDomainError(TactcadError, ValueError):

@@ -47,14 +47,14 @@ def mesh_instances(solids: Mapping[str, object], instances: Sequence, tolerance:
 
     Args:
         solids: build123d solids by part name (part frame, mm).
-        instances: :class:`tactcad.catalogue.Instance` objects.
+        instances: :class:`tactcad.catalogue.array.Instance` objects.
 
     Returns:
         (triangles (n, 3, 3) in mm, part index per triangle, instance index
         per triangle, part names).
     """
-    from .build import location
-    from .checks.mesh_interference import tessellate
+    from tactcad.parts.registry import location
+    from tactcad.checks.mesh_interference import tessellate
 
     names = sorted({i.part for i in instances})
     local = {}
@@ -239,9 +239,9 @@ def write_image_files(plan, staging: Path, log: Callable[[str], None]) -> list[d
         One file record ``{"path", "part": "array", "kind": "image-png",
         "triangles"}``.
     """
-    from .build import PartCache
-    from .catalogue import array_instances, array_parts
-    from .export.atomic import write_atomic
+    from tactcad.parts.registry import PartCache
+    from tactcad.catalogue.array import array_instances, array_parts
+    from tactcad.atomic import write_atomic
 
     specs = array_parts(plan)
     cache = PartCache(plan, specs)

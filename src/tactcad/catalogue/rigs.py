@@ -12,17 +12,17 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from .catalogue import RGB, Bbox, PartSpec, bolt_name, bolt_volume
-from .design import BoltSpec, Plan
-from .geometry.frames import Frame, face
-from .rigs import POCKET_CORNER_RADIUS_MM, RigDesign
+from tactcad.catalogue.array import RGB, Bbox, PartSpec, bolt_name, bolt_volume
+from tactcad.design.array import BoltSpec, Plan
+from tactcad.geometry.frames import Frame, face
+from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, RigDesign
 
 LEVELS = ("envelope", "full")
 
 
 @dataclass(frozen=True)
 class RigPartSpec(PartSpec):
-    """A rig part: a :class:`~tactcad.catalogue.PartSpec` plus what scenes need.
+    """A rig part: a :class:`~tactcad.catalogue.array.PartSpec` plus what scenes need.
 
     Attributes:
         geometry: the frozen rig dataclass the builder reads.

@@ -11,12 +11,12 @@ from typing import Callable
 
 import build123d as bd
 
-from .catalogue import PartSpec
-from .design import Placement, Plan
-from .parts.element import build_element
-from .parts.fasteners import build_bolt, build_nut
-from .parts.plates import build_clamp_plate, build_spacer
-from .rig_build import RIG_BUILDERS
+from tactcad.catalogue.array import PartSpec
+from tactcad.design.array import Placement, Plan
+from tactcad.parts.element import build_element
+from tactcad.parts.fasteners import build_bolt, build_nut
+from tactcad.parts.plates import build_clamp_plate, build_spacer
+from tactcad.parts.rig_registry import RIG_BUILDERS
 
 BUILD_COUNTS: Counter[str] = Counter()  # part name -> times built in this process
 

@@ -1,12 +1,12 @@
-"""Builders of the rig parts, keyed like :data:`tactcad.build.BUILDERS`:
+"""Builders of the rig parts, keyed like :data:`tactcad.parts.registry.BUILDERS`:
 ``builder(plan, spec) -> Solid`` with the rig geometry in ``spec.geometry``."""
 
 from __future__ import annotations
 
 from typing import Callable
 
-from .parts import bracket, indenter, purchased, rig_base, rig_cart, sample
-from .parts.fasteners import build_bolt
+from tactcad.parts import bracket, indenter, purchased, rig_base, rig_cart, sample
+from tactcad.parts.fasteners import build_bolt
 
 RIG_BUILDERS: dict[str, Callable] = {
     "base_plate": lambda plan, spec: rig_base.build_base_plate(spec.geometry),

@@ -16,10 +16,10 @@ or sub-assemblies such as the array) joined by
   rig: indenter on the element tip, tips on the sample ...). A position
   outside the slide's range raises :class:`SceneError`.
 
-Joint frames are data of the parts (:mod:`tactcad.rig_catalogue`, from the
+Joint frames are data of the parts (:mod:`tactcad.catalogue.rigs`, from the
 plan for the array), so placing a scene never builds a part; building a
 scene builds only the parts of its shown groups, once each per level of
-detail (counted in :data:`tactcad.build.BUILD_COUNTS`). Scene frame: mm,
+detail (counted in :data:`tactcad.parts.registry.BUILD_COUNTS`). Scene frame: mm,
 y up (the array frame's convention).
 """
 
@@ -30,16 +30,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
-from .catalogue import (PartSpec, array_contacts, array_instances, array_parts, bolt_name,
+from tactcad.catalogue.array import (PartSpec, array_contacts, array_instances, array_parts, bolt_name,
                         nut_name)
-from .design import Placement, Plan, read_toml
-from .errors import DesignError, TactcadError
-from .geometry.frames import Frame
-from .rig_catalogue import (LEVELS, bolt_frames, level_of, nut_frames,
+from tactcad.design.array import Placement, Plan, read_toml
+from tactcad.errors import DesignError, TactcadError
+from tactcad.geometry.frames import Frame
+from tactcad.catalogue.rigs import (LEVELS, bolt_frames, level_of, nut_frames,
                             rig_parts, sample_name, wheel_tag)
-from .rigs import RigDesign, load_rigs, rigs_path_for
+from tactcad.design.rigs import RigDesign, load_rigs, rigs_path_for
 
-DEFAULT_SCENES = Path(__file__).resolve().parents[2] / "hardware" / "scenes.toml"
+DEFAULT_SCENES = Path(__file__).resolve().parents[3] / "hardware" / "scenes.toml"
 RIGS = ("wirecut", "array", "calibration", "sample-stiffness", "array-evaluation")
 SOLVE_TOL_MM = 1e-9
 
@@ -521,7 +521,7 @@ def solve(model: RigModel) -> tuple[dict[str, Any], dict[str, Any], dict[str, fl
     """
     import build123d as bd
 
-    from .build import location
+    from tactcad.parts.registry import location
 
     carriers = {name: bd.Compound([], label=name) for name in model.nodes}
     slides = {s.name: s for s in model.steps if isinstance(s, Slide)}
@@ -718,7 +718,7 @@ def assemble(plan: Plan, name: str, rigs: RigDesign | None = None) -> Scene:
 
 class SceneCache:
     """Part solids of one plan, built on first request per (part, level) and
-    counted in :data:`tactcad.build.BUILD_COUNTS`; shared between scenes."""
+    counted in :data:`tactcad.parts.registry.BUILD_COUNTS`; shared between scenes."""
 
     def __init__(self, plan: Plan):
         self.plan = plan
@@ -729,7 +729,7 @@ class SceneCache:
         """The part's triangle mesh (vertices (n, 3) float64 in mm, triangles
         (m, 3) int64), tessellated once (chordal tolerance
         :data:`tactcad.checks.mesh_interference.MESH_TOLERANCE_MM`)."""
-        from .checks.mesh_interference import tessellate
+        from tactcad.checks.mesh_interference import tessellate
 
         key = (spec.name, level)
         if key not in self._meshes:
@@ -737,7 +737,7 @@ class SceneCache:
         return self._meshes[key]
 
     def solid(self, spec: PartSpec, level: str):
-        from .build import build_part
+        from tactcad.parts.registry import build_part
 
         key = (spec.name, level)
         if key not in self._solids:
@@ -767,7 +767,7 @@ def build_scene(plan: Plan, name: str, cache: SceneCache | None = None,
 def placed_shapes(scene: Scene, solids: Mapping[str, Any]) -> list:
     """Each shown instance's solid moved into the scene frame, as
     :class:`tactcad.checks.interference.Placed`."""
-    from .checks.interference import Placed
+    from tactcad.checks.interference import Placed
 
     return [Placed(i.name, solids[i.part].moved(i.location)) for i in scene.instances]
 

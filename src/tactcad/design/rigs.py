@@ -5,7 +5,7 @@ micro-stages, rubber-sample stiffness on a wheeled cart, array evaluation on
 a vertical linear axis with 100 g weights) need dimensions the paper does not
 give. They live in their own file, each with a one-line reason under
 ``[assumptions]``, and are checked here the same way as the array design
-(:mod:`tactcad.design`): every bad value raises :class:`DesignError` naming
+(:mod:`tactcad.design.array`): every bad value raises :class:`DesignError` naming
 the field, the value and the allowed range. No CAD kernel here.
 
 Units: mm, N, g.
@@ -20,11 +20,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-from .design import (BOLTS, BoltSpec, Derived, _check_number, _fmt, _Reader, check_keys,
+from tactcad.design.array import (BOLTS, BoltSpec, Derived, _check_number, _fmt, _Reader, check_keys,
                      read_assumptions, read_toml)
-from .errors import DesignError
+from tactcad.errors import DesignError
 
-DEFAULT_RIGS = Path(__file__).resolve().parents[2] / "hardware" / "rigs.toml"
+DEFAULT_RIGS = Path(__file__).resolve().parents[3] / "hardware" / "rigs.toml"
 
 POCKET_CORNER_RADIUS_MM = 1.0  # end mill radius of the cart's vacuum pocket
 
@@ -361,7 +361,7 @@ def load_rigs(path: str | Path | None = None, *, array_plan=None) -> RigDesign:
 
     Args:
         path: TOML rig file; ``None`` means ``hardware/rigs.toml``.
-        array_plan: the array's :class:`~tactcad.design.Plan`, needed for the
+        array_plan: the array's :class:`~tactcad.design.array.Plan`, needed for the
             bracket (mounting holes, bolt grip); ``None`` loads the default design.
 
     Raises:
@@ -371,7 +371,7 @@ def load_rigs(path: str | Path | None = None, *, array_plan=None) -> RigDesign:
     p = Path(path) if path is not None else DEFAULT_RIGS
     data = read_toml(p, "rigs file")
     if array_plan is None:
-        from .design import load_design
+        from tactcad.design.array import load_design
         array_plan = load_design()
     return rigs_from_dict(data, array_plan, source=str(p))
 

@@ -11,8 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .design import BoltSpec, Placement, Plan
-from .geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
+from tactcad.design.array import BoltSpec, Placement, Plan
+from tactcad.geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
 
 Bbox = tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax (mm)
 RGB = tuple[float, float, float]
@@ -34,7 +34,7 @@ class PartSpec:
         process: how it is made (wire EDM, milling) or its catalogue reference.
         material: material name.
         color: RGB in 0 ... 1 for STEP/GLB.
-        builder: key of the builder in :mod:`tactcad.build`.
+        builder: key of the builder in :mod:`tactcad.parts.registry`.
         expected_volume_mm3: independent volume estimate.
         expected_bbox_mm: designed bounding box in the part's own frame.
         profile: planar profile (sketch plane z = 0) for extruded parts.

@@ -27,9 +27,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
-from .errors import DesignError
+from tactcad.errors import DesignError
 
-DEFAULT_DESIGN = Path(__file__).resolve().parents[2] / "hardware" / "macro_array.toml"
+DEFAULT_DESIGN = Path(__file__).resolve().parents[3] / "hardware" / "macro_array.toml"
 
 
 # ---------------------------------------------------------------------------

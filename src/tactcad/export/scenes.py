@@ -32,7 +32,7 @@ def scene_glb_name(name: str) -> str:
 
 def write_scene_files(plan, staging: Path, log: Callable[[str], None],
                       names: Iterable[str] | None = None, cache=None) -> list[dict]:
-    """Writer of the main job (see :data:`tactcad.exporter.WRITERS`): every
+    """Writer of the main job (see :data:`tactcad.export.run.WRITERS`): every
     scene of the plan's scenes file (or ``names``) as STEP and GLB in
     ``staging/scenes/``.
 
@@ -44,8 +44,8 @@ def write_scene_files(plan, staging: Path, log: Callable[[str], None],
     Raises:
         SceneError: unknown scene or a rig that cannot be assembled.
     """
-    from .export.step import StepInstance, StepPart, write_step
-    from .scenes import SceneCache, build_scene, review_record, scene_names
+    from tactcad.export.step import StepInstance, StepPart, write_step
+    from tactcad.assembly.scenes import SceneCache, build_scene, review_record, scene_names
 
     cache = cache or SceneCache(plan)
     records: list[dict] = []
@@ -94,7 +94,7 @@ def export_scenes(plan, out_dir: str | Path, names: Iterable[str], cache=None,
     import tempfile
     import time
 
-    from .scenes import get_scene_spec
+    from tactcad.assembly.scenes import get_scene_spec
 
     names = list(names)
     for n in names:
@@ -152,7 +152,7 @@ def write_glb(path: str | Path, scene, part_meshes: dict) -> int:
     Raises:
         OSError: the file cannot be written.
     """
-    from .export.atomic import write_bytes_atomic
+    from tactcad.atomic import write_bytes_atomic
 
     bin_chunks: list[bytes] = []
     views, accessors, meshes, materials = [], [], [], []
@@ -235,13 +235,13 @@ def run_scene_checks(plan, out_dir: str | Path, names: Iterable[str] | None = No
     """Every check of the scenes on the files in ``out_dir``: rig part solids,
     interference (manifold3d fast path, OpenCascade confirmation), geometry
     sanity, STEP re-import and GLB read-back against the review records."""
-    from .checks.mesh_interference import check_mesh_interference
-    from .checks.result import CheckResult
-    from .checks.scene_sanity import check_scene_sanity
-    from .checks.solids import check_solid
-    from .checks.step import check_step
-    from .rig_catalogue import RigPartSpec
-    from .scenes import SceneCache, build_scene, placed_shapes, review_record, scene_names
+    from tactcad.checks.mesh_interference import check_mesh_interference
+    from tactcad.checks.result import CheckResult
+    from tactcad.checks.scene_sanity import check_scene_sanity
+    from tactcad.checks.solids import check_solid
+    from tactcad.checks.step import check_step
+    from tactcad.catalogue.rigs import RigPartSpec
+    from tactcad.assembly.scenes import SceneCache, build_scene, placed_shapes, review_record, scene_names
 
     out_dir = Path(out_dir)
     cache = cache or SceneCache(plan)

@@ -20,9 +20,9 @@ from importlib import metadata
 from pathlib import Path
 from typing import Callable
 
-from . import __version__
-from .catalogue import PartSpec, array_contacts, array_instances, array_parts
-from .design import Plan
+from tactcad import __version__
+from tactcad.catalogue.array import PartSpec, array_contacts, array_instances, array_parts
+from tactcad.design.array import Plan
 
 # Writers of the main job, in order: "module:function", each called as
 # function(plan, staging_dir, log) -> list of file records (dicts with at least
@@ -30,11 +30,11 @@ from .design import Plan
 # "bbox_mm" and "labels" for review). Their modules import heavy libraries
 # only when called.
 WRITERS = (
-    "tactcad.exporter:write_array_files",
-    "tactcad.scene_export:write_scene_files",
+    "tactcad.export.run:write_array_files",
+    "tactcad.export.scenes:write_scene_files",
     "tactcad.drawings:write_drawing_files",
-    "tactcad.render:write_image_files",
-    "tactcad.bom:write_bom_files",
+    "tactcad.export.render:write_image_files",
+    "tactcad.export.bom:write_bom_files",
 )
 
 STACK_PACKAGES = ("build123d", "cadquery", "cadquery-ocp", "ezdxf", "trimesh", "manifold3d",
@@ -82,9 +82,9 @@ def write_array_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> 
 
     Returns the file records (relative path, part) in a fixed order.
     """
-    from .build import PartCache, location
-    from .export.dxf import write_profile_dxf
-    from .export.step import StepInstance, StepPart, write_step
+    from tactcad.parts.registry import PartCache, location
+    from tactcad.export.dxf import write_profile_dxf
+    from tactcad.export.step import StepInstance, StepPart, write_step
 
     specs = array_parts(plan)
     cache = PartCache(plan, specs)
@@ -185,7 +185,7 @@ def export(plan: Plan, out_dir: str | Path, log: Callable[[str], None] = print) 
             target = out_dir / r["path"]
             target.parent.mkdir(parents=True, exist_ok=True)
             os.replace(staging / r["path"], target)
-        from .export.atomic import write_bytes_atomic
+        from tactcad.atomic import write_bytes_atomic
         write_bytes_atomic(out_dir / "manifest.json", man_bytes)
     finally:
         shutil.rmtree(staging, ignore_errors=True)
@@ -197,12 +197,12 @@ def export(plan: Plan, out_dir: str | Path, log: Callable[[str], None] = print) 
 
 def run_checks(plan: Plan, out_dir: str | Path) -> list:
     """Every check of the array on the files in ``out_dir`` (written by :func:`export`)."""
-    from .build import PartCache, location
-    from .checks.dxf import check_profile_dxf
-    from .checks.interference import Placed, check_interference
-    from .checks.solids import check_solid
-    from .checks.step import check_step
-    from .parts.element import profile_face
+    from tactcad.parts.registry import PartCache, location
+    from tactcad.checks.dxf import check_profile_dxf
+    from tactcad.checks.interference import Placed, check_interference
+    from tactcad.checks.solids import check_solid
+    from tactcad.checks.step import check_step
+    from tactcad.parts.element import profile_face
 
     out_dir = Path(out_dir)
     specs = array_parts(plan)

@@ -1,9 +1,9 @@
 """Bill of materials: one row per distinct item, quantities counted from the
 assemblies' instances (never from a separate list).
 
-Sources of parts and instances: the array (:func:`tactcad.catalogue.array_parts`,
-:func:`tactcad.catalogue.array_instances`) and every scene of
-:mod:`tactcad.scenes` (the array, its wire-cut layout and the test rigs; see
+Sources of parts and instances: the array (:func:`tactcad.catalogue.array.array_parts`,
+:func:`tactcad.catalogue.array.array_instances`) and every scene of
+:mod:`tactcad.assembly.scenes` (the array, its wire-cut layout and the test rigs; see
 :func:`design_assemblies`). The scenes are set-ups of one set of hardware, so
 an item's quantity is its largest count in any one assembly
 (:func:`part_quantities`); the Markdown shows the count per assembly.
@@ -24,9 +24,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
-from .catalogue import Instance, PartSpec, array_instances, array_parts
-from .design import Plan
-from .drawings.sheet import fmt_mm
+from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_parts
+from tactcad.design.array import Plan
+from tactcad.drawings.sheet import fmt_mm
 
 BOM_COLUMNS = ("item", "part", "quantity", "type", "material", "process_or_reference",
                "key_dimensions_mm", "files")
@@ -63,13 +63,13 @@ def instance_counts(instances: Sequence) -> dict[str, int]:
 
 def _scene_assemblies(plan: Plan) -> tuple[dict[str, PartSpec], dict[str, list]]:
     """Parts and instances of every scene of the plan's scenes file
-    (:mod:`tactcad.scenes`: ``scene_names(plan)``, ``assemble(plan, name)``,
+    (:mod:`tactcad.assembly.scenes`: ``scene_names(plan)``, ``assemble(plan, name)``,
     whose scene has ``specs`` and ``instances``); nothing if the project has
     no scene module. Assembling places parts without building them."""
     try:
-        scenes = importlib.import_module("tactcad.scenes")
+        scenes = importlib.import_module("tactcad.assembly.scenes")
     except ModuleNotFoundError as exc:
-        if exc.name == "tactcad.scenes":
+        if exc.name == "tactcad.assembly.scenes":
             return {}, {}
         raise
     specs: dict[str, PartSpec] = {}
@@ -87,7 +87,7 @@ def design_assemblies(plan: Plan) -> tuple[dict[str, PartSpec], dict[str, list]]
 
     Returns:
         (parts by name, {assembly name: instances}): the array of the
-        catalogue first, then each scene of :mod:`tactcad.scenes` (instances
+        catalogue first, then each scene of :mod:`tactcad.assembly.scenes` (instances
         are anything with a ``part`` attribute naming a part).
 
     Raises:
@@ -190,7 +190,7 @@ def _md_cell(text: str) -> str:
 
 def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
     """The BOM as a Markdown document: the item table, then instances per assembly."""
-    from . import __version__
+    from tactcad import __version__
 
     lines = [f"# Bill of materials: {plan.name}", "",
              f"Design sha256 `{plan.design_hash[:12]}`, tactcad {__version__}. Units: mm. "
@@ -221,8 +221,8 @@ def part_files(plan: Plan, staging: Path,
     and its STEP model, or, for a part without a STEP file of its own, the
     scene STEP files (``scenes/<scene>.step``) that show it. Only files that
     exist are named."""
-    from .drawings import drawing_name
-    from .exporter import element_dxf_name
+    from tactcad.drawings import drawing_name
+    from tactcad.export.run import element_dxf_name
 
     shown_in: dict[str, list[str]] = {}
     for name, inst in (assemblies or {}).items():
@@ -251,7 +251,7 @@ def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> li
     Returns:
         File records ``{"path", "part": "bom", "kind", "items"}``.
     """
-    from .export.atomic import write_bytes_atomic
+    from tactcad.atomic import write_bytes_atomic
 
     specs, assemblies = design_assemblies(plan)
     rows = bom_rows(assemblies, specs, part_files(plan, staging, assemblies))
