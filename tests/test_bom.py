@@ -7,13 +7,13 @@ import csv
 import io
 import json
 import re
-import sys
 import types
 from collections import Counter
 
 import pytest
 
-from tactcad.export.bom import BOM_COLUMNS, bom_csv, bom_rows, design_assemblies, part_quantities
+from tactcad.assembly.inventory import design_assemblies, part_quantities
+from tactcad.export.bom import BOM_COLUMNS, bom_csv, bom_rows
 from tactcad.catalogue.array import Instance, array_instances, array_parts
 from tactcad.design.array import Placement, default_design_data, plan_from_dict, with_overrides
 
@@ -134,30 +134,27 @@ def test_bom_rows_count_instances_per_assembly():
     assert next(csv.DictReader(io.StringIO(text)))["part"] == "element_a4mm"
 
 
-def test_scene_assemblies_are_counted_and_drawn(monkeypatch, plan):
-    """The scene module's assemblies add their parts to the BOM and, for
+def test_scene_assemblies_are_counted_and_drawn(plan):
+    """A scene's shown instances add their parts to the BOM and, for
     fabricated ones, to the drawings, with quantities from their instances."""
     import dataclasses
 
-    from tactcad.drawings import fabricated_parts
+    from tactcad.assembly.inventory import fabricated_parts
 
     base = array_parts(plan)["spacer"]
     plate = dataclasses.replace(base, name="rig_base_plate", builder="spacer", process="milling")
-    p = Placement(0.0, 0.0, 0.0)
-    scene = types.SimpleNamespace(
+    shown = [("base", "rig_base_plate", "base"), ("base2", "rig_base_plate", "base")]
+    shown += [(f"n{k}", "nut_M2", "nuts") for k in range(7)] + [("hidden", "nut_M2", "hidden")]
+    model = types.SimpleNamespace(
         specs={"rig_base_plate": plate, "nut_M2": array_parts(plan)["nut_M2"]},
-        instances=[Instance("base", "rig_base_plate", p), Instance("base2", "rig_base_plate", p)]
-        + [Instance(f"n{k}", "nut_M2", p) for k in range(7)])
-    fake = types.ModuleType("tactcad.assembly.scenes")
-    fake.scene_names = lambda plan: ["test-rig"]
-    fake.assemble = lambda plan, name: scene
-    monkeypatch.setitem(sys.modules, "tactcad.assembly.scenes", fake)
-    specs, assemblies = design_assemblies(plan)
+        instances=lambda: shown)
+    spec = types.SimpleNamespace(groups=("base", "nuts"))
+    specs, assemblies = design_assemblies(plan, {"test-rig": (spec, model)})
     assert list(assemblies) == ["array", "test-rig"]
     rows = {r.part: r for r in bom_rows(assemblies, specs)}
     assert rows["rig_base_plate"].quantity == 2 and rows["rig_base_plate"].kind == "fabricated"
-    assert rows["nut_M2"].quantity == 7
-    parts, qty = fabricated_parts(plan)
+    assert rows["nut_M2"].quantity == 7  # the hidden group is not counted
+    parts, qty = fabricated_parts(plan, (specs, assemblies))
     assert "rig_base_plate" in [s.name for s in parts] and qty["rig_base_plate"] == 2
 
 

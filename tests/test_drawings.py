@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from tactcad import __version__
-from tactcad.export.bom import design_assemblies, instance_counts
+from tactcad.assembly.inventory import design_assemblies, instance_counts
 from tactcad.catalogue.array import array_instances, array_parts
 from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
 
@@ -190,13 +190,13 @@ def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan):
 
 
 def _compose_first_element(plan):
-    from tactcad.parts.registry import PartCache
+    from tactcad.parts.cache import PartCache
     from tactcad.drawings.compose import compose
 
     specs = array_parts(plan)
     name = next(iter(plan.distinct_elements))
     spec = specs[name]
-    solid = PartCache(plan, specs).solid(name)
+    solid = PartCache(plan).solid(specs[name])
     qty = instance_counts(array_instances(plan))[name]
     return name, compose(plan, spec, solid, qty).sheet.svg()
 
@@ -234,11 +234,11 @@ def test_reader_rejects_a_wrong_value():
 def test_any_fabricated_part_gets_a_generic_drawing_from_its_solid(plan):
     """A part with no dimension set of its own and no plan profile (as a rig
     part may be) is dimensioned from its solid: sizes and holes."""
-    from tactcad.parts.registry import PartCache
+    from tactcad.parts.cache import PartCache
     from tactcad.drawings.compose import DIMENSION_SETS, compose
 
     specs = array_parts(plan)
-    solid = PartCache(plan, specs).solid("spacer")
+    solid = PartCache(plan).solid(specs["spacer"])
     spec = dataclasses.replace(specs["spacer"], name="rig_test_plate", builder="rig_test_plate",
                                profile=None, thickness_mm=0.0, process="milling")
     assert spec.builder not in DIMENSION_SETS

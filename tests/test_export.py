@@ -12,7 +12,8 @@ import pytest
 
 from tactcad.checks.result import failures
 from tactcad.design.array import load_design
-from tactcad.export.run import export, run_checks
+from tactcad.checks.array import run_checks
+from tactcad.export.run import export
 
 
 def _hashes(folder):

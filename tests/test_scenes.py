@@ -13,15 +13,19 @@ import pytest
 from tactcad import cli
 from tactcad.design.array import load_design
 from tactcad.errors import DesignError, TactcadError
-from tactcad.assembly.scenes import (SceneCache, SceneError, assemble, build_scene, describe, load_scenes,
-                            placed_shapes, scene_names)
+from tactcad.assembly.rigs import describe, scene_names
+from tactcad.assembly.scenes import assemble, build_scene
+from tactcad.checks.scenes import placed_shapes
+from tactcad.design.scenes import load_scenes
+from tactcad.errors import SceneError
+from tactcad.parts.cache import PartCache
 
 SCENES = ["wirecut", "array", "calibration-rig", "sample-stiffness-rig", "array-evaluation-rig"]
 
 
 @pytest.fixture(scope="module")
 def cache(plan):
-    return SceneCache(plan)
+    return PartCache(plan)
 
 
 @pytest.fixture(scope="module")
@@ -60,13 +64,13 @@ def test_unknown_scene_lists_the_scenes_and_exits_2(capsys):
 
 def test_a_scene_builds_only_its_parts(plan):
     """A fresh cache: `wirecut` never builds the cart, `array` never a bearing."""
-    wirecut = _counts_during(lambda: build_scene(plan, "wirecut", SceneCache(plan)))
+    wirecut = _counts_during(lambda: build_scene(plan, "wirecut", PartCache(plan)))
     assert wirecut and set(wirecut) == {*plan.distinct_elements, "spacer"}
     assert "cart" not in wirecut and "clamp_plate" not in wirecut
-    array = _counts_during(lambda: build_scene(plan, "array", SceneCache(plan)))
+    array = _counts_during(lambda: build_scene(plan, "array", PartCache(plan)))
     assert "bearing_624ZZ" not in array and "cart" not in array and "clamp_plate" in array
     assert all(v == 1 for v in array.values())  # once each
-    rig = _counts_during(lambda: build_scene(plan, "sample-stiffness-rig", SceneCache(plan)))
+    rig = _counts_during(lambda: build_scene(plan, "sample-stiffness-rig", PartCache(plan)))
     assert rig["bearing_624ZZ"] == 1 and "element_a4mm" not in rig  # 4 wheels, one build
 
 
@@ -222,7 +226,7 @@ def test_scene_step_is_flat_labelled_instanced(exported):
 
 
 def test_glb_content(exported):
-    from tactcad.export.scenes import read_glb
+    from tactcad.export.glb import read_glb
 
     out, _ = exported
     doc = read_glb(out / "scenes/sample-stiffness-rig.glb")
@@ -236,9 +240,9 @@ def test_glb_content(exported):
 
 
 def test_export_single_scene(tmp_path, plan):
-    from tactcad.export.scenes import export_scenes
+    from tactcad.export.run import export_scenes
 
-    res = export_scenes(plan, tmp_path, ["array"])
+    res = export_scenes(plan, tmp_path, ["array"], log=lambda s: None)
     assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*") if p.is_file()) \
         == ["scenes/array.glb", "scenes/array.step"]
     assert res.files[0]["solids"] == 28

@@ -27,5 +27,10 @@ class DesignError(TactcadError, ValueError):
         super().__init__(text)
 
 
+class SceneError(TactcadError):
+    """An unknown scene or group, a bad scenes file, or a rig that cannot be
+    assembled (a slide would leave its range)."""
+
+
 class CheckFailure(TactcadError):
     """A geometry, export or manufacturability check failed."""

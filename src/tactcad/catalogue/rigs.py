@@ -16,8 +16,7 @@ from tactcad.catalogue.array import RGB, Bbox, PartSpec, bolt_name, bolt_volume
 from tactcad.design.array import BoltSpec, Plan
 from tactcad.geometry.frames import Frame, face
 from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, RigDesign
-
-LEVELS = ("envelope", "full")
+from tactcad.design.scenes import LEVELS
 
 
 @dataclass(frozen=True)

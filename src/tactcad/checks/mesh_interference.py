@@ -27,11 +27,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from tactcad.parts.mesh import MESH_TOLERANCE_MM, tessellate
+
 from tactcad.checks.interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed, common_volume
 from tactcad.checks.result import CheckResult
 
-MESH_TOLERANCE_MM = 0.01  # chordal deflection of the tessellation
-MESH_ANGULAR_TOLERANCE = 0.2  # rad
 NEAR_MM = 4 * MESH_TOLERANCE_MM  # closer meshes than this go to the exact check
 
 
@@ -45,16 +45,6 @@ class InterferenceReport:
     mesh_seconds: float = 0.0
     confirm_seconds: float = 0.0
     overlaps: dict[frozenset[str], float] = field(default_factory=dict)
-
-
-def tessellate(solid, tolerance_mm: float = MESH_TOLERANCE_MM,
-               angular_tolerance: float = MESH_ANGULAR_TOLERANCE) -> tuple[np.ndarray, np.ndarray]:
-    """Triangle mesh of a solid: vertices (n, 3) float64 in mm, triangles
-    (m, 3) int64, outward winding (OpenCascade's ``BRepMesh``); chordal
-    tolerance in mm, angular in rad."""
-    verts, tris = solid.tessellate(tolerance_mm, angular_tolerance)
-    return (np.array([tuple(p) for p in verts], dtype=np.float64).reshape(-1, 3),
-            np.array(tris, dtype=np.int64).reshape(-1, 3))
 
 
 def part_manifold(solid, tolerance_mm: float = MESH_TOLERANCE_MM, mesh=None):

@@ -14,7 +14,7 @@ from OCP.TopAbs import TopAbs_EDGE
 from OCP.TopExp import TopExp_Explorer
 
 from tactcad.catalogue.array import PartSpec
-from tactcad.checks.mesh_interference import tessellate
+from tactcad.parts.mesh import tessellate
 from tactcad.checks.result import CheckResult
 
 VOLUME_RTOL = 1e-6

@@ -77,10 +77,11 @@ def run_export(args: argparse.Namespace) -> int:
         flag = "ok" if wall <= EXPORT_GOAL_S else "over goal"
         print(f"  cold `tactcad export` (new process, all parts and scenes, {n} scene files): "
               f"{wall:6.2f} s   goal <= {EXPORT_GOAL_S:g} s: {flag}")
-    code = ("import sys,time;t=time.perf_counter();from pathlib import Path;"
-            "from tactcad.design.array import load_design;from tactcad.export.scenes import write_scene_files;"
+    code = ("import sys,time;t=time.perf_counter();"
+            "from tactcad.design.array import load_design;from tactcad.export.run import export_scenes;"
+            "from tactcad.assembly.rigs import scene_names;"
             "p=load_design(sys.argv[1] if len(sys.argv)>1 and sys.argv[1] else None);"
-            "write_scene_files(p,Path(sys.argv[2]),lambda s:None);print(time.perf_counter()-t)")
+            "export_scenes(p,sys.argv[2],scene_names(p),lambda s:None);print(time.perf_counter()-t)")
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
         proc = subprocess.run([sys.executable, "-c", code, args.design or "", tmp],
@@ -98,9 +99,12 @@ def _bench_interference(plan) -> None:
 
     from tactcad.checks.interference import check_interference
     from tactcad.checks.mesh_interference import check_mesh_interference
-    from tactcad.assembly.scenes import SceneCache, build_scene, placed_shapes, scene_names
+    from tactcad.assembly.rigs import scene_names
+    from tactcad.assembly.scenes import build_scene
+    from tactcad.checks.scenes import placed_shapes
+    from tactcad.parts.cache import PartCache
 
-    cache = SceneCache(plan)
+    cache = PartCache(plan)
     largest = None
     for name in scene_names(plan):
         scene, solids = build_scene(plan, name, cache)

@@ -23,22 +23,23 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from tactcad.checks.array import run_checks
     from tactcad.checks.result import failures
+    from tactcad.checks.scenes import run_scene_checks
     from tactcad.design.array import load_design
-    from tactcad.export.run import export, run_checks
-    from tactcad.export.scenes import export_scenes, run_scene_checks
-    from tactcad.assembly.scenes import SceneCache
+    from tactcad.export.run import export, export_scenes
+    from tactcad.parts.cache import PartCache
 
     plan = load_design(args.design)
     with tempfile.TemporaryDirectory() as tmp:
         out = args.out or tmp
-        cache = SceneCache(plan)
+        cache = PartCache(plan)
         if args.scene:
-            export_scenes(plan, out, args.scene, cache=cache)
+            export_scenes(plan, out, args.scene, log=lambda s: None, parts=cache)
             results = run_scene_checks(plan, out, args.scene, cache=cache)
         else:
-            export(plan, out, log=lambda s: None)
-            results = run_checks(plan, out) + run_scene_checks(plan, out, cache=cache)
+            export(plan, out, log=lambda s: None, parts=cache)
+            results = run_checks(plan, out, cache) + run_scene_checks(plan, out, cache=cache)
     for r in results:
         if r.passed and args.failures_only:
             continue

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import json
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_cache_args, add_design_arg, store_from_args
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -19,22 +20,29 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--scene", metavar="NAME", action="append", default=None,
                    help="write only this scene: scenes/NAME.step and scenes/NAME.glb "
                         "(repeatable; the manifest is left as it is). `tactcad scenes` lists them")
+    add_cache_args(p)
+    p.add_argument("--json", action="store_true",
+                   help="print a JSON summary (seconds, jobs run and reused, builds, files)")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     from tactcad.design.array import load_design
-    from tactcad.export.run import export
+    from tactcad.export.run import export, export_scenes
 
     plan = load_design(args.design)  # validation first: a bad design writes nothing
-    print(f"tactcad export: design {plan.name} ({plan.source}), sha256 {plan.design_hash[:12]}")
+    log = (lambda s: None) if args.json else print
+    log(f"tactcad export: design {plan.name} ({plan.source}), sha256 {plan.design_hash[:12]}")
+    store = store_from_args(args)
     if args.scene:
-        from tactcad.export.scenes import export_scenes
-
-        for line in export_scenes(plan, args.out, args.scene).summary_lines():
-            print(line)
+        result = export_scenes(plan, args.out, args.scene, log=log, store=store)
+    else:
+        result = export(plan, args.out, log=log, store=store)
+    if args.json:
+        print(json.dumps(result.as_json(), indent=1))
         return 0
-    result = export(plan, args.out)
     for line in result.summary_lines():
         print(line)
+    if args.scene:
+        print("manifest.json not rewritten (full export only)")
     return 0

@@ -19,7 +19,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from tactcad.design.array import load_design
-    from tactcad.assembly.scenes import describe, get_scene_spec
+    from tactcad.assembly.rigs import describe, get_scene_spec
 
     plan = load_design(args.design)
     lines = describe(plan)

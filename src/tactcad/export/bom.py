@@ -1,12 +1,11 @@
 """Bill of materials: one row per distinct item, quantities counted from the
 assemblies' instances (never from a separate list).
 
-Sources of parts and instances: the array (:func:`tactcad.catalogue.array.array_parts`,
-:func:`tactcad.catalogue.array.array_instances`) and every scene of
-:mod:`tactcad.assembly.scenes` (the array, its wire-cut layout and the test rigs; see
-:func:`design_assemblies`). The scenes are set-ups of one set of hardware, so
-an item's quantity is its largest count in any one assembly
-(:func:`part_quantities`); the Markdown shows the count per assembly.
+Sources of parts and instances: the array and every scene
+(:func:`tactcad.assembly.inventory.design_assemblies`). The scenes are set-ups
+of one set of hardware, so an item's quantity is its largest count in any one
+assembly (:func:`tactcad.assembly.inventory.part_quantities`); the Markdown
+shows the count per assembly.
 
 Files written by :func:`write_bom_files`:
 
@@ -18,15 +17,18 @@ Files written by :func:`write_bom_files`:
 from __future__ import annotations
 
 import csv
-import importlib
 import io
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
-from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_parts
+from tactcad import __version__
+from tactcad.assembly.inventory import design_assemblies, instance_counts, part_quantities
+from tactcad.atomic import write_bytes_atomic
+from tactcad.catalogue.array import Instance, PartSpec
 from tactcad.design.array import Plan
 from tactcad.drawings.sheet import fmt_mm
+from tactcad.export.names import drawing_name, element_dxf_name, part_step_name, scene_step_name
 
 BOM_COLUMNS = ("item", "part", "quantity", "type", "material", "process_or_reference",
                "key_dimensions_mm", "files")
@@ -51,74 +53,6 @@ class BomRow:
                 "type": self.kind, "material": self.material,
                 "process_or_reference": self.process, "key_dimensions_mm": self.key_dimensions,
                 "files": " ".join(self.files)}
-
-
-def instance_counts(instances: Sequence) -> dict[str, int]:
-    """Number of placed instances of each part name, in order of first use."""
-    counts: dict[str, int] = {}
-    for inst in instances:
-        counts[inst.part] = counts.get(inst.part, 0) + 1
-    return counts
-
-
-def _scene_assemblies(plan: Plan) -> tuple[dict[str, PartSpec], dict[str, list]]:
-    """Parts and instances of every scene of the plan's scenes file
-    (:mod:`tactcad.assembly.scenes`: ``scene_names(plan)``, ``assemble(plan, name)``,
-    whose scene has ``specs`` and ``instances``); nothing if the project has
-    no scene module. Assembling places parts without building them."""
-    try:
-        scenes = importlib.import_module("tactcad.assembly.scenes")
-    except ModuleNotFoundError as exc:
-        if exc.name == "tactcad.assembly.scenes":
-            return {}, {}
-        raise
-    specs: dict[str, PartSpec] = {}
-    assemblies: dict[str, list] = {}
-    for name in scenes.scene_names(plan):
-        scene = scenes.assemble(plan, name)
-        for part, spec in scene.specs.items():
-            specs.setdefault(part, spec)
-        assemblies[name] = list(scene.instances)
-    return specs, assemblies
-
-
-def design_assemblies(plan: Plan) -> tuple[dict[str, PartSpec], dict[str, list]]:
-    """Every distinct part of the design and every assembly's instances.
-
-    Returns:
-        (parts by name, {assembly name: instances}): the array of the
-        catalogue first, then each scene of :mod:`tactcad.assembly.scenes` (instances
-        are anything with a ``part`` attribute naming a part).
-
-    Raises:
-        ValueError: an instance names a part no catalogue defines.
-    """
-    specs = dict(array_parts(plan))
-    assemblies: dict[str, list] = {"array": array_instances(plan)}
-    extra_specs, extra = _scene_assemblies(plan)
-    for name, spec in extra_specs.items():
-        specs.setdefault(name, spec)
-    assemblies.update(extra)  # a scene named "array" shows the same instances
-    for asm, inst in assemblies.items():
-        for i in inst:
-            if i.part not in specs:
-                raise ValueError(f"assembly {asm}: instance {i.name} names unknown part {i.part}")
-    return specs, assemblies
-
-
-def part_quantities(assemblies: Mapping[str, Sequence]) -> dict[str, int]:
-    """Quantity of each part to make or buy: its largest instance count in
-    any one assembly.
-
-    The assemblies are set-ups of one set of hardware (the array moves from
-    the array scene to the calibration and evaluation rigs, the rigs share
-    base plate and column), so counts are not added across assemblies.
-    """
-    total: dict[str, int] = {}
-    for inst in assemblies.values():
-        for part, n in instance_counts(inst).items():
-            total[part] = max(total.get(part, 0), n)
-    return total
 
 
 def key_dimensions(spec: PartSpec) -> str:
@@ -190,8 +124,6 @@ def _md_cell(text: str) -> str:
 
 def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
     """The BOM as a Markdown document: the item table, then instances per assembly."""
-    from tactcad import __version__
-
     lines = [f"# Bill of materials: {plan.name}", "",
              f"Design sha256 `{plan.design_hash[:12]}`, tactcad {__version__}. Units: mm. "
              "Quantities are counted from the assemblies' placed instances.", "",
@@ -221,39 +153,38 @@ def part_files(plan: Plan, staging: Path,
     and its STEP model, or, for a part without a STEP file of its own, the
     scene STEP files (``scenes/<scene>.step``) that show it. Only files that
     exist are named."""
-    from tactcad.drawings import drawing_name
-    from tactcad.export.run import element_dxf_name
-
     shown_in: dict[str, list[str]] = {}
     for name, inst in (assemblies or {}).items():
         for part in instance_counts(inst):
-            shown_in.setdefault(part, []).append(f"scenes/{name}.step")
+            shown_in.setdefault(part, []).append(scene_step_name(name))
 
     def files(spec: PartSpec) -> list[str]:
         cand = [drawing_name(spec.name)]
         cand += [element_dxf_name(s.number) for s in plan.slots
                  if s.geometry.part_name == spec.name]
-        cand += [f"dxf/{spec.name}.dxf", f"step/{spec.name}.step"]
+        cand += [f"dxf/{spec.name}.dxf", part_step_name(spec.name)]
         found = [c for c in cand if (staging / c).is_file()]
-        if f"step/{spec.name}.step" not in found:
+        if part_step_name(spec.name) not in found:
             found += [c for c in shown_in.get(spec.name, []) if (staging / c).is_file()]
         return found
 
     return files
 
 
-def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> list[dict]:
+def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None],
+                    assembled=None) -> list[dict]:
     """Write ``bom.csv`` and ``bom.md`` into ``staging`` (see module doc).
 
     Run after the writers of the files it names (drawings, DXF, STEP): only
     files present in ``staging`` are referenced.
 
+    Args:
+        assembled: :func:`tactcad.assembly.inventory.design_assemblies` of the plan, if at hand.
+
     Returns:
         File records ``{"path", "part": "bom", "kind", "items"}``.
     """
-    from tactcad.atomic import write_bytes_atomic
-
-    specs, assemblies = design_assemblies(plan)
+    specs, assemblies = assembled or design_assemblies(plan)
     rows = bom_rows(assemblies, specs, part_files(plan, staging, assemblies))
     write_bytes_atomic(staging / "bom.csv", bom_csv(rows).encode("utf-8"))
     write_bytes_atomic(staging / "bom.md", bom_markdown(plan, rows).encode("utf-8"))

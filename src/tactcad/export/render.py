@@ -14,11 +14,13 @@ the same bytes with the same library versions.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Callable, Mapping, Sequence
+from typing import Mapping, Sequence
 
 import numpy as np
 
-ARRAY_PNG = "images/array.png"
+from tactcad.assembly.placement import location, matrix
+from tactcad.parts.mesh import tessellate
+
 LIGHT = np.array([0.35, 0.8, 0.6])  # towards the light, assembly frame
 
 
@@ -53,9 +55,6 @@ def mesh_instances(solids: Mapping[str, object], instances: Sequence, tolerance:
         (triangles (n, 3, 3) in mm, part index per triangle, instance index
         per triangle, part names).
     """
-    from tactcad.parts.registry import location
-    from tactcad.checks.mesh_interference import tessellate
-
     names = sorted({i.part for i in instances})
     local = {}
     for name in names:
@@ -63,19 +62,13 @@ def mesh_instances(solids: Mapping[str, object], instances: Sequence, tolerance:
         local[name] = v[t]
     all_tris, owner, inst_ids = [], [], []
     for k, inst in enumerate(instances):
-        loc = location(inst.placement)
-        m = _matrix(loc)
+        m = matrix(location(inst.placement))
         t = local[inst.part]
         moved = t @ m[:3, :3].T + m[:3, 3]
         all_tris.append(moved)
         owner.append(np.full(len(t), names.index(inst.part)))
         inst_ids.append(np.full(len(t), k))
     return np.concatenate(all_tris), np.concatenate(owner), np.concatenate(inst_ids), names
-
-
-def _matrix(loc) -> np.ndarray:
-    trsf = loc.wrapped.Transformation()
-    return np.array([[trsf.Value(r, c) for c in range(1, 5)] for r in range(1, 4)] + [[0, 0, 0, 1]])
 
 
 def _camera(elev_deg: float, azim_deg: float) -> np.ndarray:
@@ -230,28 +223,3 @@ def render_assembly_png(solids: Mapping[str, object], instances: Sequence,
         ImageDraw.Draw(pil).text((24, 18), title, fill=(0, 0, 0), font=font)
     pil.save(target, format="PNG", optimize=False)
     return int(keep.sum())
-
-
-def write_image_files(plan, staging: Path, log: Callable[[str], None]) -> list[dict]:
-    """Write ``images/array.png``: the array assembly rendered from its solids.
-
-    Returns:
-        One file record ``{"path", "part": "array", "kind": "image-png",
-        "triangles"}``.
-    """
-    from tactcad.parts.registry import PartCache
-    from tactcad.catalogue.array import array_instances, array_parts
-    from tactcad.atomic import write_atomic
-
-    specs = array_parts(plan)
-    cache = PartCache(plan, specs)
-    inst = array_instances(plan)
-    solids = {i.part: cache.solid(i.part) for i in inst}
-    colors = {n: specs[n].color for n in solids}
-    title = (f"{plan.name}: {plan.rows} x {plan.columns} elements, pitch "
-             f"{plan.pitch_mm:g} mm (design {plan.design_hash[:12]})")
-    box = {}
-    write_atomic(staging / ARRAY_PNG, lambda tmp: box.setdefault(
-        "n", render_assembly_png(solids, inst, colors, tmp, title)))
-    log(f"  wrote {ARRAY_PNG} ({box['n']} triangles)")
-    return [{"path": ARRAY_PNG, "part": "array", "kind": "image-png", "triangles": box["n"]}]

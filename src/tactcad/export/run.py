@@ -1,45 +1,40 @@
-"""The main job: a plan -> STEP, wire-EDM DXF and a manifest, plus the checks.
+"""The main job: a plan -> every export file and the manifest.
 
-Every file is first written (atomically) into a staging folder beside the
-target; only when all of them exist are they moved into place one by one
-with ``os.replace``, the manifest last. A failed or interrupted build leaves
-the previous exports whole.
+A run is a list of jobs (:mod:`tactcad.export.jobs`): one STEP file, one DXF,
+one scene, one drawing ... each with a content key. A job found in the store
+(:mod:`tactcad.store`) is copied from it; any other job runs, sharing the
+run's one :class:`~tactcad.parts.cache.PartCache`, so each distinct part is
+built at most once per run, and only if some job needs it. The CAD kernel is
+imported only then: a run with nothing to rebuild never loads it.
+
+Every file is first written into a staging folder beside the target; only
+when all of them exist are they moved into place one by one with
+``os.replace``, the manifest last. A failed or interrupted run leaves the
+previous exports whole.
 """
 
 from __future__ import annotations
 
 import hashlib
-import importlib
 import json
 import os
 import shutil
 import tempfile
 import time
 from dataclasses import dataclass, field
-from importlib import metadata
 from pathlib import Path
-from typing import Callable
+from typing import Callable, Sequence
 
 from tactcad import __version__
-from tactcad.catalogue.array import PartSpec, array_contacts, array_instances, array_parts
+from tactcad.assembly.inventory import assembly_review, instance_counts
+from tactcad.atomic import write_bytes_atomic
+from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
-
-# Writers of the main job, in order: "module:function", each called as
-# function(plan, staging_dir, log) -> list of file records (dicts with at least
-# "path", "part" and "kind"; STEP records also carry "solids", "volume_mm3",
-# "bbox_mm" and "labels" for review). Their modules import heavy libraries
-# only when called.
-WRITERS = (
-    "tactcad.export.run:write_array_files",
-    "tactcad.export.scenes:write_scene_files",
-    "tactcad.drawings:write_drawing_files",
-    "tactcad.export.render:write_image_files",
-    "tactcad.export.bom:write_bom_files",
-)
-
-STACK_PACKAGES = ("build123d", "cadquery", "cadquery-ocp", "ezdxf", "trimesh", "manifold3d",
-                  "numpy", "scipy", "scikit-fem", "gmsh", "svglib", "reportlab", "pypdfium2",
-                  "pillow")
+from tactcad.export.job import Job, Log, Run
+from tactcad.assembly.rigs import get_scene_spec
+from tactcad.export.jobs import all_jobs, scene_jobs
+from tactcad.export.names import ARRAY_STEP, MANIFEST
+from tactcad.store import Store, stack_versions
 
 
 @dataclass
@@ -47,22 +42,25 @@ class ExportResult:
     out_dir: Path
     files: list[dict] = field(default_factory=list)
     seconds: float = 0.0
+    jobs_run: int = 0
+    jobs_reused: int = 0
+    builds: int = 0  # solids built in this run
+    distinct_parts: int = 0  # distinct parts of the design (array and scenes)
+
+    def as_json(self) -> dict:
+        """Summary for ``--json``: seconds, job and build counts, files (path, bytes, sha256)."""
+        return {"out": str(self.out_dir), "seconds": round(self.seconds, 3),
+                "jobs_run": self.jobs_run, "jobs_reused": self.jobs_reused,
+                "builds": self.builds, "distinct_parts": self.distinct_parts,
+                "files": [{k: f[k] for k in ("path", "bytes", "sha256", "part") if k in f}
+                          for f in self.files]}
 
     def summary_lines(self) -> list[str]:
         lines = [f"{f['path']:<34} {f['bytes']:>9,d} B  {f['part']}" for f in self.files]
         total = sum(f["bytes"] for f in self.files)
-        lines.append(f"{len(self.files)} files, {total:,d} B in {self.out_dir} ({self.seconds:.1f} s)")
+        lines.append(f"{len(self.files)} files, {total:,d} B in {self.out_dir} ({self.seconds:.1f} s; "
+                     f"{self.jobs_run} jobs run, {self.jobs_reused} reused from the cache)")
         return lines
-
-
-def stack_versions() -> dict[str, str]:
-    out = {}
-    for pkg in STACK_PACKAGES:
-        try:
-            out[pkg] = metadata.version(pkg)
-        except metadata.PackageNotFoundError:
-            out[pkg] = "not installed"
-    return out
 
 
 def _sha256(path: Path) -> str:
@@ -73,70 +71,11 @@ def _sha256(path: Path) -> str:
     return h.hexdigest()
 
 
-def element_dxf_name(number: int) -> str:
-    return f"dxf/element_{number}.dxf"
-
-
-def write_array_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> list[dict]:
-    """Build the array's parts and write STEP and DXF into ``staging``.
-
-    Returns the file records (relative path, part) in a fixed order.
-    """
-    from tactcad.parts.registry import PartCache, location
-    from tactcad.export.dxf import write_profile_dxf
-    from tactcad.export.step import StepInstance, StepPart, write_step
-
-    specs = array_parts(plan)
-    cache = PartCache(plan, specs)
-    records: list[dict] = []
-    step_parts = []
-    for name, spec in specs.items():
-        solid = cache.solid(name)
-        step_parts.append(StepPart(name, solid, spec.color))
-        rel = f"step/{name}.step"
-        write_step(staging / rel, [step_parts[-1]])
-        records.append({"path": rel, "part": name, "kind": "step-part", "solids": 1,
-                        "volume_mm3": spec.expected_volume_mm3,
-                        "bbox_mm": list(spec.expected_bbox_mm), "labels": [name]})
-        log(f"  wrote {rel}")
-    inst = array_instances(plan)
-    instances = [StepInstance(i.name, i.part, location(i.placement)) for i in inst]
-    write_step(staging / "step/array.step", step_parts, instances, "array")
-    records.append({"path": "step/array.step", "part": "array", "kind": "step-assembly",
-                    **assembly_review(specs, inst)})
-    log("  wrote step/array.step")
-    for slot in plan.slots:
-        rel = element_dxf_name(slot.number)
-        spec = specs[slot.geometry.part_name]
-        write_profile_dxf(staging / rel, spec.profile, title=f"{plan.name} element {slot.number}")
-        records.append({"path": rel, "part": spec.name, "kind": "dxf-wire-edm",
-                        "element": slot.number})
-    log(f"  wrote {len(plan.slots)} DXF files in dxf/")
-    return records
-
-
-def assembly_review(specs: dict[str, PartSpec], instances) -> dict:
-    """What a reviewer should find on re-import of an assembly STEP: solid
-    count, total volume (mm^3), bounding box (mm) and part labels. The box is
-    computed from the expected part boxes and placements, not from the CAD."""
-    corners = []
-    for i in instances:
-        x0, y0, z0, x1, y1, z1 = specs[i.part].expected_bbox_mm
-        corners += [i.placement.apply(x, y, z) for x in (x0, x1) for y in (y0, y1) for z in (z0, z1)]
-    lo = [min(c[k] for c in corners) for k in range(3)]
-    hi = [max(c[k] for c in corners) for k in range(3)]
-    return {"solids": len(instances),
-            "volume_mm3": sum(specs[i.part].expected_volume_mm3 for i in instances),
-            "bbox_mm": lo + hi, "labels": sorted({i.part for i in instances})}
-
-
 def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
     """The manifest: every file with its sha256, its part, the design hash, the stack."""
     specs = array_parts(plan)
     inst = array_instances(plan)
-    counts: dict[str, int] = {}
-    for i in inst:
-        counts[i.part] = counts.get(i.part, 0) + 1
+    counts = instance_counts(inst)
     files = []
     for r in records:
         p = out_dir / r["path"]
@@ -149,7 +88,7 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
         "units": "mm",
         "files": files,
         "parts": parts,
-        "assemblies": {"array": {"file": "step/array.step", "instances": len(inst),
+        "assemblies": {"array": {"file": ARRAY_STEP, "instances": len(inst),
                                **assembly_review(specs, inst)}},
         "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
                     for d in plan.derived],
@@ -163,71 +102,76 @@ def _part_record(spec: PartSpec, count: int) -> dict:
             "bbox_mm": list(spec.expected_bbox_mm)}
 
 
-def export(plan: Plan, out_dir: str | Path, log: Callable[[str], None] = print) -> ExportResult:
-    """Write all exports of ``plan`` into ``out_dir`` (see module doc).
+def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], int]:
+    """Run (or fetch from ``store``) every job in order; (records, jobs run)."""
+    records: list[dict] = []
+    ran = 0
+    for job in jobs:
+        got = store.fetch(job.key, run.staging)
+        if got is None:
+            got = job.make(run)
+            store.keep(job.key, run.staging, got)
+            ran += 1
+        records += got
+    return records, ran
 
-    Raises:
-        DesignError: never here (the plan is already valid); OS errors propagate
-            and leave ``out_dir`` as it was.
-    """
+
+def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, log: Log,
+               store: Store, with_manifest: bool, parts=None) -> ExportResult:
     t0 = time.perf_counter()
-    out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=".staging-", dir=out_dir))
     try:
-        records = []
-        for entry in WRITERS:
-            module, func = entry.split(":")
-            records += getattr(importlib.import_module(module), func)(plan, staging, log)
-        man = manifest(plan, staging, records)
-        man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
+        run = Run(plan, staging, log)
+        if parts is not None:
+            run.parts = parts  # share the caller's solids (e.g. with the checks)
+        jobs = jobs_of(run)
+        records, ran = run_jobs(run, jobs, store)
+        files = [{**r, "bytes": (staging / r["path"]).stat().st_size} for r in records]
+        man_bytes = b""
+        if with_manifest:
+            man = manifest(plan, staging, records)
+            man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
+            files = man["files"]
         for r in records:
             target = out_dir / r["path"]
             target.parent.mkdir(parents=True, exist_ok=True)
             os.replace(staging / r["path"], target)
-        from tactcad.atomic import write_bytes_atomic
-        write_bytes_atomic(out_dir / "manifest.json", man_bytes)
+        if with_manifest:
+            write_bytes_atomic(out_dir / MANIFEST, man_bytes)
+            files = files + [{"path": MANIFEST, "bytes": len(man_bytes), "part": "-"}]
     finally:
         shutil.rmtree(staging, ignore_errors=True)
-    result = ExportResult(out_dir, files=man["files"] + [{
-        "path": "manifest.json", "bytes": len(man_bytes), "part": "-"}])
-    result.seconds = time.perf_counter() - t0
-    return result
+    builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded
+    return ExportResult(out_dir, files, time.perf_counter() - t0, ran, len(jobs) - ran, builds,
+                        len(run.inventory[0]))
 
 
-def run_checks(plan: Plan, out_dir: str | Path) -> list:
-    """Every check of the array on the files in ``out_dir`` (written by :func:`export`)."""
-    from tactcad.parts.registry import PartCache, location
-    from tactcad.checks.dxf import check_profile_dxf
-    from tactcad.checks.interference import Placed, check_interference
-    from tactcad.checks.solids import check_solid
-    from tactcad.checks.step import check_step
-    from tactcad.parts.element import profile_face
+def export_scenes(plan: Plan, out_dir: str | Path, names: Sequence[str], log: Log = print,
+                  store: Store | None = None, parts=None) -> ExportResult:
+    """Write only the named scenes (``scenes/<name>.step`` and ``.glb``); the
+    manifest is left as it is.
 
-    out_dir = Path(out_dir)
-    specs = array_parts(plan)
-    cache = PartCache(plan, specs)
-    results = []
-    for name, spec in specs.items():
-        solid = cache.solid(name)
-        results += check_solid(spec, solid)
-        results += check_step(out_dir / f"step/{name}.step", f"step/{name}.step", 1,
-                              spec.expected_volume_mm3, spec.expected_bbox_mm, {name})
-    faces = {}
-    for slot in plan.slots:
-        spec = specs[slot.geometry.part_name]
-        if spec.name not in faces:
-            f = profile_face(spec.profile)
-            bb = f.bounding_box(optimal=True)
-            faces[spec.name] = (f.area, (bb.min.X, bb.min.Y, bb.max.X, bb.max.Y))
-        area, bbox = faces[spec.name]
-        results += check_profile_dxf(out_dir / element_dxf_name(slot.number),
-                                     f"element_{slot.number}.dxf", area, bbox, plan.edm,
-                                     slot.geometry.web_thickness_mm)
-    inst = array_instances(plan)
-    placed = [Placed(i.name, cache.solid(i.part).moved(location(i.placement))) for i in inst]
-    results += check_interference(placed, array_contacts(plan))
-    review = assembly_review(specs, inst)  # what the manifest promises a reviewer
-    results += check_step(out_dir / "step/array.step", "step/array.step", review["solids"],
-                          review["volume_mm3"], tuple(review["bbox_mm"]), set(review["labels"]))
-    return results
+    Raises:
+        SceneError: an unknown scene name (nothing is written); the message lists the scenes.
+    """
+    for n in names:
+        get_scene_spec(plan, n)  # unknown names fail before anything is written
+    return _write_set(Path(out_dir), lambda run: scene_jobs(run, names), plan, log,
+                      store or Store(None), with_manifest=False, parts=parts)
+
+
+def export(plan: Plan, out_dir: str | Path, log: Log = print,
+           store: Store | None = None, parts=None) -> ExportResult:
+    """Write all exports of ``plan`` into ``out_dir`` (see module doc).
+
+    Args:
+        store: finished jobs to reuse (``Store(None)`` or ``None``: build everything).
+        parts: a :class:`~tactcad.parts.cache.PartCache` of ``plan`` to share
+            (default: the run makes its own, only if a job needs a solid).
+
+    Raises:
+        OSError: the files cannot be written; ``out_dir`` is left as it was.
+    """
+    return _write_set(Path(out_dir), all_jobs, plan, log, store or Store(None),
+                      with_manifest=True, parts=parts)

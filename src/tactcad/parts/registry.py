@@ -1,8 +1,6 @@
-"""Builds part solids on demand, once each, and counts the builds.
-
-A scene asks for the parts it names; nothing else is built. The counter lets
-tests prove it.
-"""
+"""Every part family's builder, keyed by :attr:`PartSpec.builder`, and the one
+place where a solid is built (and counted, so tests can prove that a scene
+builds only its own parts and a run builds each part once)."""
 
 from __future__ import annotations
 
@@ -12,50 +10,53 @@ from typing import Callable
 import build123d as bd
 
 from tactcad.catalogue.array import PartSpec
-from tactcad.design.array import Placement, Plan
+from tactcad.design.array import Plan
+from tactcad.parts import bracket, indenter, purchased, rig_base, rig_cart, sample
 from tactcad.parts.element import build_element
 from tactcad.parts.fasteners import build_bolt, build_nut
 from tactcad.parts.plates import build_clamp_plate, build_spacer
-from tactcad.parts.rig_registry import RIG_BUILDERS
 
 BUILD_COUNTS: Counter[str] = Counter()  # part name -> times built in this process
 
+Builder = Callable[[Plan, PartSpec], bd.Solid]
 
-def _element(plan: Plan, spec: PartSpec) -> bd.Solid:
-    return build_element(plan.distinct_elements[spec.name])
-
-
-BUILDERS: dict[str, Callable[[Plan, PartSpec], bd.Solid]] = {
-    "element": _element,
+#: builder key -> builder(plan, spec). Array parts read the plan; rig parts
+#: carry their dimensions in ``spec.geometry``.
+BUILDERS: dict[str, Builder] = {
+    "element": lambda plan, spec: build_element(plan.distinct_elements[spec.name]),
     "spacer": lambda plan, spec: build_spacer(plan.spacer),
     "clamp_plate": lambda plan, spec: build_clamp_plate(plan.clamp),
     "bolt": lambda plan, spec: build_bolt(plan.bolt, plan.bolt_length_mm),
     "nut": lambda plan, spec: build_nut(plan.bolt),
+    "base_plate": lambda plan, spec: rig_base.build_base_plate(spec.geometry),
+    "column": lambda plan, spec: rig_base.build_column(spec.geometry),
+    "cart": lambda plan, spec: rig_cart.build_cart(spec.geometry),
+    "wheel_spacer": lambda plan, spec: rig_cart.build_wheel_spacer(spec.geometry),
+    "sample": lambda plan, spec: sample.build_sample(spec.geometry),
+    "sample_holder": lambda plan, spec: sample.build_sample_holder(spec.geometry),
+    "indenter": lambda plan, spec: indenter.build_indenter(spec.geometry),
+    "array_bracket": lambda plan, spec: bracket.build_bracket(spec.geometry),
+    "axis_carrier": lambda plan, spec: bracket.build_carrier(spec.geometry),
+    "hanger_bar": lambda plan, spec: bracket.build_hanger_bar(spec.geometry),
+    "force_gauge": lambda plan, spec: purchased.build_force_gauge(spec.geometry),
+    "z_stage_body": lambda plan, spec: purchased.build_z_body(spec.geometry),
+    "z_stage_carriage": lambda plan, spec: purchased.build_z_carriage(spec.geometry),
+    "xy_stage_base": lambda plan, spec: purchased.build_stage_base(spec.geometry),
+    "xy_stage_table": lambda plan, spec: purchased.build_stage_table(spec.geometry),
+    "rail": lambda plan, spec: purchased.build_rail(spec.geometry),
+    "block": lambda plan, spec: purchased.build_block(spec.geometry),
+    "weight": lambda plan, spec: purchased.build_weight(spec.geometry),
+    "bearing": lambda plan, spec: purchased.build_bearing(spec.geometry),
+    "rig_bolt": lambda plan, spec: build_bolt(*spec.geometry),
 }
-BUILDERS.update(RIG_BUILDERS)  # rig parts (spec.geometry carries their dimensions)
-
-
-class PartCache:
-    """Solids of one plan's parts, built on first request."""
-
-    def __init__(self, plan: Plan, specs: dict[str, PartSpec]):
-        self.plan = plan
-        self.specs = specs
-        self._solids: dict[str, bd.Solid] = {}
-
-    def solid(self, name: str) -> bd.Solid:
-        if name not in self._solids:
-            self._solids[name] = build_part(self.plan, self.specs[name])
-        return self._solids[name]
 
 
 def build_part(plan: Plan, spec: PartSpec) -> bd.Solid:
-    """Build one part's solid and count the build in :data:`BUILD_COUNTS`."""
+    """Build one part's solid (part frame, mm) and count the build in :data:`BUILD_COUNTS`.
+
+    Raises:
+        KeyError: the spec names no known builder (a catalogue error).
+    """
     solid = BUILDERS[spec.builder](plan, spec)
     BUILD_COUNTS[spec.name] += 1
     return solid
-
-
-def location(p: Placement) -> bd.Location:
-    """CAD location of a plan placement (turned = 180 degrees about y)."""
-    return bd.Location((p.dx_mm, p.dy_mm, p.dz_mm), (0, 180 if p.turned else 0, 0))

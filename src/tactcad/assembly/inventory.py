@@ -1,0 +1,111 @@
+"""Which assemblies the design has and how many of each part they hold,
+without the CAD kernel: the array and every scene of the scenes file.
+
+The scenes are set-ups of one set of hardware (the array moves from the array
+scene to the calibration and evaluation rigs; the rigs share base plate and
+column), so a part's quantity is its largest count in any one assembly, never
+the sum.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping, Sequence
+
+from tactcad.assembly.rigs import RigModel, scene_model, shown_instances
+from tactcad.catalogue.array import PartSpec, array_instances, array_parts
+from tactcad.design.array import Plan
+from tactcad.design.rigs import load_rigs, rigs_path_for
+from tactcad.design.scenes import SceneSpec, load_scenes, scenes_path_for
+
+
+@dataclass(frozen=True)
+class Shown:
+    """An instance of an assembly: its name and its part's name."""
+
+    name: str
+    part: str
+
+
+def instance_counts(instances: Sequence) -> dict[str, int]:
+    """Number of instances of each part name, in order of first use."""
+    counts: dict[str, int] = {}
+    for inst in instances:
+        counts[inst.part] = counts.get(inst.part, 0) + 1
+    return counts
+
+
+def scene_models(plan: Plan) -> dict[str, tuple[SceneSpec, RigModel]]:
+    """Every scene of the plan's scenes file with its rig model (rigs file read once).
+
+    Raises:
+        DesignError: a bad rigs or scenes file.
+        SceneError: a scene names a group its rig does not have.
+    """
+    scenes = load_scenes(scenes_path_for(plan))
+    rigs = None
+    if any(s.rig not in ("wirecut", "array") for s in scenes.values()):
+        rigs = load_rigs(rigs_path_for(plan), array_plan=plan)
+    return {name: (spec, scene_model(plan, spec, rigs)) for name, spec in scenes.items()}
+
+
+def design_assemblies(plan: Plan, models: Mapping[str, tuple[SceneSpec, RigModel]] | None = None
+                      ) -> tuple[dict[str, PartSpec], dict[str, list]]:
+    """Every distinct part of the design and every assembly's instances.
+
+    Args:
+        models: the result of :func:`scene_models`, if already at hand.
+
+    Returns:
+        (parts by name, {assembly name: instances}): the array of the
+        catalogue first, then each scene of the plan's scenes file (instances
+        have ``name`` and ``part``).
+
+    Raises:
+        DesignError: a bad rigs or scenes file.
+        SceneError: a scene names a group its rig does not have.
+    """
+    specs = dict(array_parts(plan))
+    assemblies: dict[str, list] = {"array": array_instances(plan)}
+    for name, (spec, model) in (models if models is not None else scene_models(plan)).items():
+        shown = shown_instances(model, spec)
+        for _, part, _ in shown:
+            specs.setdefault(part, model.specs[part])
+        assemblies[name] = [Shown(i, part) for i, part, _ in shown]
+    return specs, assemblies
+
+
+def part_quantities(assemblies: Mapping[str, Sequence]) -> dict[str, int]:
+    """Quantity of each part to make or buy: its largest instance count in any one assembly."""
+    total: dict[str, int] = {}
+    for inst in assemblies.values():
+        for part, n in instance_counts(inst).items():
+            total[part] = max(total.get(part, 0), n)
+    return total
+
+
+def fabricated_parts(plan: Plan, assembled=None) -> tuple[list[PartSpec], dict[str, int]]:
+    """(fabricated part specs in catalogue order, quantity of every part).
+    Parts placed in no assembly are left out.
+
+    Args:
+        assembled: the result of :func:`design_assemblies`, if already at hand.
+    """
+    specs, assemblies = assembled or design_assemblies(plan)
+    qty = part_quantities(assemblies)
+    return [s for s in specs.values() if s.kind == "fabricated" and qty.get(s.name, 0) > 0], qty
+
+
+def assembly_review(specs: dict[str, PartSpec], instances) -> dict:
+    """What a reviewer should find on re-import of an assembly STEP: solid
+    count, total volume (mm^3), bounding box (mm) and part labels. The box is
+    computed from the expected part boxes and placements, not from the CAD."""
+    corners = []
+    for i in instances:
+        x0, y0, z0, x1, y1, z1 = specs[i.part].expected_bbox_mm
+        corners += [i.placement.apply(x, y, z) for x in (x0, x1) for y in (y0, y1) for z in (z0, z1)]
+    lo = [min(c[k] for c in corners) for k in range(3)]
+    hi = [max(c[k] for c in corners) for k in range(3)]
+    return {"solids": len(instances),
+            "volume_mm3": sum(specs[i.part].expected_volume_mm3 for i in instances),
+            "bbox_mm": lo + hi, "labels": sorted({i.part for i in instances})}

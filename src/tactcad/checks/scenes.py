@@ -1,0 +1,68 @@
+"""Every check of the scenes on the files of an export: rig part solids,
+interference (manifold3d fast path, OpenCascade confirmation), geometry
+sanity, STEP re-import and GLB read-back against the review records."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Iterable, Mapping
+
+from tactcad.assembly.rigs import scene_names
+from tactcad.assembly.scenes import Scene, build_scene, review_record
+from tactcad.catalogue.rigs import RigPartSpec
+from tactcad.checks.interference import Placed
+from tactcad.checks.mesh_interference import check_mesh_interference
+from tactcad.checks.result import CheckResult
+from tactcad.checks.scene_sanity import check_scene_sanity
+from tactcad.checks.solids import check_solid
+from tactcad.checks.step import check_step
+from tactcad.design.array import Plan
+from tactcad.export.glb import read_glb
+from tactcad.export.names import scene_glb_name, scene_step_name
+from tactcad.parts.cache import PartCache
+
+
+def placed_shapes(scene: Scene, solids: Mapping[str, Any]) -> list[Placed]:
+    """Each shown instance's solid moved into the scene frame."""
+    return [Placed(i.name, solids[i.part].moved(i.location)) for i in scene.instances]
+
+
+def run_scene_checks(plan: Plan, out_dir: str | Path, names: Iterable[str] | None = None,
+                     cache: PartCache | None = None, confirm: bool = True) -> list[CheckResult]:
+    """Every check of the scenes on the files in ``out_dir``: rig part solids,
+    interference (manifold3d fast path, OpenCascade confirmation), geometry
+    sanity, STEP re-import and GLB read-back against the review records."""
+    out_dir = Path(out_dir)
+    cache = cache or PartCache(plan)
+    results = []
+    checked_parts: set[str] = set()
+    for name in (list(names) if names is not None else scene_names(plan)):
+        scene, solids = build_scene(plan, name, cache)
+        for pname, spec in scene.parts().items():
+            if isinstance(spec, RigPartSpec) and pname not in checked_parts:
+                checked_parts.add(pname)
+                results += check_solid(spec, solids[pname])
+        placed = placed_shapes(scene, solids)
+        rep = check_mesh_interference(
+            placed, scene.contacts, {i.name: i.part for i in scene.instances}, solids,
+            {i.name: i.location for i in scene.instances}, confirm=confirm,
+            part_meshes={i.part: cache.mesh(scene.specs[i.part]) for i in scene.instances})
+        results += [CheckResult(r.check, f"{name}: {r.subject}", r.passed, r.detail)
+                    for r in rep.results]
+        results += check_scene_sanity(scene, {p.name: p.shape for p in placed})
+        rec = review_record(scene)
+        step = out_dir / scene_step_name(name)
+        results += check_step(step, scene_step_name(name), rec["solids"], rec["volume_mm3"],
+                              tuple(rec["bbox_mm"]), set(rec["labels"]))
+        glb = out_dir / scene_glb_name(name)
+        try:
+            doc = read_glb(glb)
+            nodes = [n for n in doc["nodes"][1:]]
+            ok = (len(nodes) == len(scene.instances)
+                  and sorted(n["name"] for n in nodes) == sorted(i.name for i in scene.instances)
+                  and sorted(m["name"] for m in doc["meshes"]) == sorted(rec["labels"]))
+            detail = f"{len(nodes)} nodes, {len(doc['meshes'])} meshes"
+        except (OSError, ValueError, KeyError) as exc:
+            ok, detail = False, f"{type(exc).__name__}: {exc}"
+        results.append(CheckResult("glb_readback", scene_glb_name(name), ok, detail))
+    return results

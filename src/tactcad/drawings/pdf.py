@@ -1,0 +1,37 @@
+"""All drawing sheets in one PDF (svglib + reportlab)."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+from reportlab.graphics import renderPDF
+from reportlab.pdfgen import canvas
+from svglib.svglib import svg2rlg
+
+
+def svgs_to_pdf(svg_texts: list[str], target: Path, title: str = "") -> None:
+    """One PDF page per SVG, each page the SVG's own size.
+
+    The PDF is written in reportlab's invariant mode (fixed creation date and
+    document id), so the same SVGs give the same bytes.
+
+    Raises:
+        ValueError: an SVG could not be parsed.
+    """
+    drawings = []
+    for k, text in enumerate(svg_texts, start=1):
+        dr = svg2rlg(io.BytesIO(text.encode("utf-8")))
+        if dr is None:
+            raise ValueError(f"SVG page {k} could not be parsed")
+        drawings.append(dr)
+    c = canvas.Canvas(str(target), invariant=1, pageCompression=1)
+    c.setTitle(title)
+    c.setAuthor("tactcad")
+    c.setCreator("tactcad")
+    c.setProducer("tactcad (svglib, reportlab)")
+    for dr in drawings:
+        c.setPageSize((dr.width, dr.height))
+        renderPDF.draw(dr, c, 0, 0)
+        c.showPage()
+    c.save()

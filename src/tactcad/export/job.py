@@ -1,0 +1,54 @@
+"""What the jobs of one export run share (:class:`Run`) and what a job is (:class:`Job`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import Callable
+
+from tactcad.assembly.inventory import design_assemblies, scene_models
+from tactcad.assembly.rigs import RigModel
+from tactcad.catalogue.array import PartSpec
+from tactcad.design.array import Plan
+from tactcad.design.scenes import SceneSpec
+
+Log = Callable[[str], None]
+
+
+@dataclass
+class Run:
+    """What the jobs of one run share: the plan, the staging folder, the log,
+    the part inventory (kernel-free) and the part cache (kernel, made on first use)."""
+
+    plan: Plan
+    staging: Path
+    log: Log = print
+
+    @cached_property
+    def scenes(self) -> dict[str, tuple[SceneSpec, RigModel]]:
+        """Every scene with its rig model; see :func:`tactcad.assembly.inventory.scene_models`."""
+        return scene_models(self.plan)
+
+    @cached_property
+    def inventory(self) -> tuple[dict[str, PartSpec], dict[str, list]]:
+        """(every distinct part by name, {assembly: instances}); see
+        :func:`tactcad.assembly.inventory.design_assemblies`."""
+        return design_assemblies(self.plan, self.scenes)
+
+    @cached_property
+    def parts(self):
+        """The run's :class:`~tactcad.parts.cache.PartCache` (imports the CAD kernel)."""
+        from tactcad.parts.cache import PartCache
+
+        return PartCache(self.plan)
+
+
+@dataclass(frozen=True)
+class Job:
+    """One unit of output: ``make(run)`` writes its files into ``run.staging``
+    and returns their records (dicts with at least ``path``, ``part``, ``kind``)."""
+
+    name: str
+    key: str
+    make: Callable[[Run], list[dict]]

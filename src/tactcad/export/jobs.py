@@ -1,0 +1,207 @@
+"""Every job of an export run, in manifest order, each with its content key.
+
+A key names everything that shapes the job's bytes (see
+:func:`tactcad.store.content_key`): the part spec for a part's STEP file, the
+profile and title for a DXF, the scene's spec and rig model for a scene, the
+plan and the part for a drawing ... Planning the jobs needs no CAD kernel;
+the ``make`` functions import the writers (and with them the kernel) only
+when a job has to run.
+
+Order: part STEP files, the array STEP, the element DXFs, the scenes (STEP
+and GLB), the drawings (SVG, PDF, PNG), the array image, the BOM. The BOM
+comes last because it names the files the others wrote.
+"""
+
+from __future__ import annotations
+
+from tactcad.assembly.inventory import assembly_review, fabricated_parts
+from tactcad.catalogue.array import array_instances, array_parts
+from tactcad.export.names import (ARRAY_PNG, ARRAY_STEP, PDF_NAME, drawing_name,
+                                  drawing_png_name, element_dxf_name, part_step_name,
+                                  scene_glb_name, scene_step_name)
+from tactcad.export.job import Job, Run
+from tactcad.store import content_key
+
+PNG_DPI = 150
+
+
+def all_jobs(run: Run) -> list[Job]:
+    """The jobs of a full export of ``run.plan``."""
+    jobs = array_jobs(run) + scene_jobs(run) + drawing_jobs(run) + [image_job(run)]
+    return jobs + [bom_job(run, jobs)]
+
+
+# --- the array: part STEP files, the assembly, the wire-EDM profiles --------------------------
+def array_jobs(run: Run) -> list[Job]:
+    plan = run.plan
+    specs = array_parts(plan)
+    jobs = [Job(f"step:{name}", content_key("step-part", spec), _part_step(spec))
+            for name, spec in specs.items()]
+    inst = array_instances(plan)
+    jobs.append(Job("step:array", content_key("step-array", list(specs.values()), inst),
+                    _array_step(specs, inst)))
+    for slot in plan.slots:
+        spec = specs[slot.geometry.part_name]
+        title = f"{plan.name} element {slot.number}"
+        jobs.append(Job(f"dxf:element_{slot.number}",
+                        content_key("dxf", spec.profile, title, slot.number),
+                        _element_dxf(spec, title, slot.number)))
+    return jobs
+
+
+def _part_step(spec):
+    def make(run: Run) -> list[dict]:
+        from tactcad.export.step import StepPart, write_step
+
+        rel = part_step_name(spec.name)
+        write_step(run.staging / rel, [StepPart(spec.name, run.parts.solid(spec), spec.color)])
+        run.log(f"  wrote {rel}")
+        return [{"path": rel, "part": spec.name, "kind": "step-part", "solids": 1,
+                 "volume_mm3": spec.expected_volume_mm3,
+                 "bbox_mm": list(spec.expected_bbox_mm), "labels": [spec.name]}]
+    return make
+
+
+def _array_step(specs, inst):
+    def make(run: Run) -> list[dict]:
+        from tactcad.assembly.placement import location
+        from tactcad.export.step import StepInstance, StepPart, write_step
+
+        parts = [StepPart(n, run.parts.solid(s), s.color) for n, s in specs.items()]
+        instances = [StepInstance(i.name, i.part, location(i.placement)) for i in inst]
+        write_step(run.staging / ARRAY_STEP, parts, instances, "array")
+        run.log(f"  wrote {ARRAY_STEP}")
+        return [{"path": ARRAY_STEP, "part": "array", "kind": "step-assembly",
+                 **assembly_review(specs, inst)}]
+    return make
+
+
+def _element_dxf(spec, title: str, number: int):
+    def make(run: Run) -> list[dict]:
+        from tactcad.export.dxf import write_profile_dxf
+
+        rel = element_dxf_name(number)
+        write_profile_dxf(run.staging / rel, spec.profile, title=title)
+        run.log(f"  wrote {rel}")
+        return [{"path": rel, "part": spec.name, "kind": "dxf-wire-edm", "element": number}]
+    return make
+
+
+# --- scenes: STEP and GLB per scene ---------------------------------------------------------
+def scene_jobs(run: Run, names=None) -> list[Job]:
+    """One job per scene (all, or ``names`` in that order)."""
+    names = list(run.scenes) if names is None else list(names)
+    return [Job(f"scene:{n}", content_key("scene", *run.scenes[n]), _scene(n)) for n in names]
+
+
+def _scene(name: str):
+    def make(run: Run) -> list[dict]:
+        from tactcad.assembly.scenes import build_scene, review_record
+        from tactcad.export.glb import write_glb
+        from tactcad.export.step import StepInstance, StepPart, write_step
+
+        scene, solids = build_scene(run.plan, name, run.parts)
+        parts = [StepPart(n, solids[n], spec.color) for n, spec in scene.parts().items()]
+        inst = [StepInstance(i.name, i.part, i.location) for i in scene.instances]
+        rel = scene_step_name(name)
+        write_step(run.staging / rel, parts, inst, name)
+        rel_glb = scene_glb_name(name)
+        tri = write_glb(run.staging / rel_glb, scene,
+                        {n: run.parts.mesh(spec) for n, spec in scene.parts().items()})
+        run.log(f"  wrote {rel} and {rel_glb} ({len(scene.instances)} parts)")
+        return [{"path": rel, "part": name, "kind": "step-scene", **review_record(scene)},
+                {"path": rel_glb, "part": name, "kind": "glb-scene",
+                 "nodes": len(scene.instances), "meshes": len(parts), "triangles": tri}]
+    return make
+
+
+# --- drawings: one SVG per fabricated part, the PDF, the first element's page as PNG ----------
+def drawing_jobs(run: Run) -> list[Job]:
+    plan = run.plan
+    parts, qty = fabricated_parts(plan, run.inventory)
+    jobs = []
+    for k, spec in enumerate(parts, start=1):
+        jobs.append(Job(f"drawing:{spec.name}",
+                        content_key("drawing-svg", plan, spec, qty[spec.name], k, len(parts)),
+                        _drawing(spec, qty[spec.name], k, len(parts))))
+    svgs = [drawing_name(s.name) for s in parts]
+    pdf_key = content_key("drawing-pdf", plan.name, [j.key for j in jobs])
+    jobs.append(Job("drawings:pdf", pdf_key, _drawings_pdf(svgs)))
+    elements = [s for s in parts if s.builder == "element"]
+    if elements:
+        page = parts.index(elements[0])
+        jobs.append(Job("drawings:png", content_key("drawing-png", pdf_key, page, PNG_DPI),
+                        _drawing_png(elements[0].name, page)))
+    return jobs
+
+
+def _drawing(spec, quantity: int, sheet: int, sheets: int):
+    def make(run: Run) -> list[dict]:
+        from tactcad.atomic import write_bytes_atomic
+        from tactcad.drawings.compose import compose
+        from tactcad.drawings.views import scale_text
+
+        d = compose(run.plan, spec, run.parts.solid(spec), quantity, sheet, sheets)
+        rel = drawing_name(spec.name)
+        write_bytes_atomic(run.staging / rel, d.sheet.svg().encode("utf-8"))
+        run.log(f"  wrote {rel}")
+        return [{"path": rel, "part": spec.name, "kind": "drawing-svg", "quantity": quantity,
+                 "scale": scale_text(d.scale), "sheet": sheet}]
+    return make
+
+
+def _drawings_pdf(svgs: list[str]):
+    def make(run: Run) -> list[dict]:
+        from tactcad.atomic import write_atomic
+        from tactcad.drawings.pdf import svgs_to_pdf
+
+        texts = [(run.staging / rel).read_text(encoding="utf-8") for rel in svgs]
+        write_atomic(run.staging / PDF_NAME,
+                     lambda tmp: svgs_to_pdf(texts, tmp, f"{run.plan.name} fabrication drawings"))
+        run.log(f"  wrote {PDF_NAME} ({len(texts)} pages)")
+        return [{"path": PDF_NAME, "part": "drawings", "kind": "drawing-pdf", "pages": len(texts)}]
+    return make
+
+
+def _drawing_png(part: str, page: int):
+    def make(run: Run) -> list[dict]:
+        from tactcad.atomic import write_atomic
+        from tactcad.export.render import pdf_page_png
+
+        rel = drawing_png_name(part)
+        write_atomic(run.staging / rel,
+                     lambda tmp: pdf_page_png(run.staging / PDF_NAME, page, tmp, PNG_DPI))
+        run.log(f"  wrote {rel}")
+        return [{"path": rel, "part": part, "kind": "image-png"}]
+    return make
+
+
+# --- the array image and the bill of materials ----------------------------------------------
+def image_job(run: Run) -> Job:
+    plan = run.plan
+    specs = array_parts(plan)
+    inst = array_instances(plan)
+    title = (f"{plan.name}: {plan.rows} x {plan.columns} elements, pitch "
+             f"{plan.pitch_mm:g} mm (design {plan.design_hash[:12]})")
+
+    def make(run: Run) -> list[dict]:
+        from tactcad.atomic import write_atomic
+        from tactcad.export.render import render_assembly_png
+
+        solids = {i.part: run.parts.solid(specs[i.part]) for i in inst}
+        colors = {n: specs[n].color for n in solids}
+        box = {}
+        write_atomic(run.staging / ARRAY_PNG, lambda tmp: box.setdefault(
+            "n", render_assembly_png(solids, inst, colors, tmp, title)))
+        run.log(f"  wrote {ARRAY_PNG} ({box['n']} triangles)")
+        return [{"path": ARRAY_PNG, "part": "array", "kind": "image-png", "triangles": box["n"]}]
+    return Job("image:array", content_key("array-png", list(specs.values()), inst, title), make)
+
+
+def bom_job(run: Run, before: list[Job]) -> Job:
+    """The BOM names the files of the jobs before it, so its key holds theirs."""
+    def make(run: Run) -> list[dict]:
+        from tactcad.export.bom import write_bom_files
+
+        return write_bom_files(run.plan, run.staging, run.log, run.inventory)
+    return Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]), make)

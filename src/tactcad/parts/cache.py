@@ -1,0 +1,35 @@
+"""The solids of one run: each distinct part built once, on first request,
+and tessellated at most once. Every writer and check of a run shares one
+:class:`PartCache`."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from tactcad.catalogue.array import PartSpec
+from tactcad.design.array import Plan
+from tactcad.parts.mesh import tessellate
+from tactcad.parts.registry import build_part
+
+
+class PartCache:
+    """Solids (build123d, part frame, mm) and meshes of one plan's parts, by part name."""
+
+    def __init__(self, plan: Plan):
+        self.plan = plan
+        self._solids: dict[str, Any] = {}
+        self._meshes: dict[str, Any] = {}
+        self.builds = 0  # solids built by this cache
+    def solid(self, spec: PartSpec):
+        """The part's solid, built on first request."""
+        if spec.name not in self._solids:
+            self._solids[spec.name] = build_part(self.plan, spec)
+            self.builds += 1
+        return self._solids[spec.name]
+
+    def mesh(self, spec: PartSpec):
+        """The part's triangle mesh (vertices (n, 3) float64 mm, triangles (m, 3)
+        int64) at :data:`tactcad.parts.mesh.MESH_TOLERANCE_MM`, made once."""
+        if spec.name not in self._meshes:
+            self._meshes[spec.name] = tessellate(self.solid(spec))
+        return self._meshes[spec.name]

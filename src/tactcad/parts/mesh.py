@@ -1,0 +1,18 @@
+"""Triangle meshes of part solids (OpenCascade ``BRepMesh`` through build123d),
+shared by the interference checks, the GLB scenes and the rendered images."""
+
+from __future__ import annotations
+
+import numpy as np
+
+MESH_TOLERANCE_MM = 0.01  # chordal deflection of the tessellation
+MESH_ANGULAR_TOLERANCE = 0.2  # rad
+
+
+def tessellate(solid, tolerance_mm: float = MESH_TOLERANCE_MM,
+               angular_tolerance: float = MESH_ANGULAR_TOLERANCE) -> tuple[np.ndarray, np.ndarray]:
+    """Triangle mesh of a solid: vertices (n, 3) float64 in mm, triangles
+    (m, 3) int64, outward winding; chordal tolerance in mm, angular in rad."""
+    verts, tris = solid.tessellate(tolerance_mm, angular_tolerance)
+    return (np.array([tuple(p) for p in verts], dtype=np.float64).reshape(-1, 3),
+            np.array(tris, dtype=np.int64).reshape(-1, 3))

@@ -1,0 +1,145 @@
+"""Content-addressed store of finished output files, for incremental export.
+
+A job of the export run (one STEP file, one scene, one drawing ...) has a
+*key*: the sha256 of everything that shapes its output bytes, namely the
+job's kind, the data it reads (part specs, placements, titles), the versions
+of the CAD stack and a digest of tactcad's own code and data files (so a
+changed builder invalidates what it built). A job whose key is in the store
+is not run: its files and file records are copied from the store.
+
+Layout: ``<root>/<key[:2]>/<key>/records.json`` plus the job's files under
+their export-relative paths. An entry is written into a temporary folder and
+renamed into place, so a killed run never leaves a half entry; a damaged
+entry counts as a miss. Nothing here imports the CAD kernel.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import hashlib
+import json
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass
+from importlib import metadata
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+#: Default store folder, relative to the working directory (git-ignored).
+DEFAULT_STORE = Path(".tactcad-cache")
+
+STACK_PACKAGES = ("build123d", "cadquery", "cadquery-ocp", "ezdxf", "trimesh", "manifold3d",
+                  "numpy", "scipy", "scikit-fem", "gmsh", "svglib", "reportlab", "pypdfium2",
+                  "pillow")
+
+
+def stack_versions() -> dict[str, str]:
+    """Installed version of each package of the CAD stack (``not installed`` if absent)."""
+    out = {}
+    for pkg in STACK_PACKAGES:
+        try:
+            out[pkg] = metadata.version(pkg)
+        except metadata.PackageNotFoundError:
+            out[pkg] = "not installed"
+    return out
+
+
+@functools.lru_cache(maxsize=1)
+def code_digest() -> str:
+    """sha256 over tactcad's own source and data files (path and bytes), so
+    that any change of a builder or writer changes every key."""
+    root = Path(__file__).resolve().parent
+    h = hashlib.sha256()
+    for p in sorted(root.rglob("*")):
+        if p.is_file() and p.suffix in (".py", ".json", ".csv", ".toml"):
+            h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+@functools.lru_cache(maxsize=1)
+def _salt() -> str:
+    return json.dumps({"code": code_digest(), "stack": stack_versions()}, sort_keys=True)
+
+
+def stable_repr(obj: Any) -> str:
+    """A text of ``obj`` that is the same in every process: dataclasses field
+    by field, mappings in their order, sets sorted (their iteration order
+    follows string hashing, which varies between processes).
+
+    Raises:
+        TypeError: an object whose text would not be stable (a function, an
+            object printed with its address).
+    """
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        inner = ", ".join(f"{f.name}={stable_repr(getattr(obj, f.name))}"
+                          for f in dataclasses.fields(obj))
+        return f"{type(obj).__name__}({inner})"
+    if isinstance(obj, Mapping):
+        return "{" + ", ".join(f"{stable_repr(k)}: {stable_repr(v)}" for k, v in obj.items()) + "}"
+    if isinstance(obj, (set, frozenset)):
+        return "set(" + ", ".join(sorted(stable_repr(x) for x in obj)) + ")"
+    if isinstance(obj, (list, tuple)):
+        return "[" + ", ".join(stable_repr(x) for x in obj) + "]"
+    if obj is None or isinstance(obj, (str, int, float, bool, Path)):
+        return repr(obj)
+    raise TypeError(f"no stable key for {type(obj).__name__}")
+
+
+def content_key(kind: str, *material: Any) -> str:
+    """Key of a job: sha256 of its kind, its inputs (:func:`stable_repr`) and
+    the code and stack salt."""
+    h = hashlib.sha256(_salt().encode())
+    h.update(b"\0" + kind.encode())
+    for m in material:
+        h.update(b"\0" + stable_repr(m).encode())
+    return h.hexdigest()
+
+
+@dataclass(frozen=True)
+class Store:
+    """The store under ``root``; ``Store(None)`` stores nothing (``--no-cache``)."""
+
+    root: Path | None
+
+    def _entry(self, key: str) -> Path:
+        assert self.root is not None
+        return self.root / key[:2] / key
+
+    def fetch(self, key: str, staging: Path) -> list[dict] | None:
+        """Copy a stored job's files into ``staging``; its records, or ``None`` on a miss."""
+        if self.root is None:
+            return None
+        entry = self._entry(key)
+        try:
+            records = json.loads((entry / "records.json").read_text(encoding="utf-8"))
+            for r in records:
+                target = staging / r["path"]
+                target.parent.mkdir(parents=True, exist_ok=True)
+                shutil.copyfile(entry / "files" / r["path"], target)
+        except (OSError, ValueError, KeyError, TypeError):
+            return None
+        return records
+
+    def keep(self, key: str, staging: Path, records: Sequence[dict]) -> None:
+        """Store a finished job's files (found in ``staging``) and records.
+        Best effort: a store that cannot be written (read-only, disk full)
+        costs only the next run's time."""
+        if self.root is None:
+            return
+        entry = self._entry(key)
+        if entry.is_dir():
+            return
+        try:
+            entry.parent.mkdir(parents=True, exist_ok=True)
+            tmp = Path(tempfile.mkdtemp(prefix=".tmp-", dir=entry.parent))
+            for r in records:
+                target = tmp / "files" / r["path"]
+                target.parent.mkdir(parents=True, exist_ok=True)
+                shutil.copyfile(staging / r["path"], target)
+            (tmp / "records.json").write_text(json.dumps(list(records)),
+                                              encoding="utf-8")
+            os.rename(tmp, entry)
+        except OSError:
+            shutil.rmtree(locals().get("tmp", entry.parent / ".none"), ignore_errors=True)

@@ -1,0 +1,144 @@
+"""The package tree is the pipeline: every import of tactcad (function-local
+ones too) goes from a layer to one above it, and no modules import each other
+in a circle.
+
+Layers, top (imported by everything) to bottom:
+
+    foundation  tactcad, errors, atomic, store
+    design      design files -> plans
+    geometry    exact profiles, frames
+    catalogue   what each part is
+    parts       solids, one registry, one cache
+    assembly    rig models, joints, scenes
+    drawings    sheets and views
+    export      the run, writers
+    checks      verification
+    mechanics   reads plans only: foundation, design, geometry
+    commands    the CLI
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+import tactcad
+
+SRC = Path(tactcad.__file__).resolve().parent
+LAYERS = ["foundation", "design", "geometry", "catalogue", "parts", "assembly", "drawings",
+          "export", "checks", "mechanics", "commands"]
+FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store"}
+TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.sweeps": "commands"}
+MECHANICS_MAY_USE = {"foundation", "design", "geometry", "mechanics"}
+
+
+def module_name(path: Path) -> str:
+    parts = ("tactcad",) + path.relative_to(SRC).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def layer_of(module: str) -> str:
+    if module in FOUNDATION:
+        return "foundation"
+    if module in TOP_LEVEL:
+        return TOP_LEVEL[module]
+    top = module.split(".")[1]
+    if top not in LAYERS:
+        raise AssertionError(f"{module}: a module outside the layers {LAYERS}")
+    return top
+
+
+def imports_of(path: Path) -> set[str]:
+    """Every tactcad module ``path`` imports, anywhere in the file."""
+    me = module_name(path)
+    package = me if path.name == "__init__.py" else me.rsplit(".", 1)[0]
+    out = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join(anchor + ([base] if base else []))
+            # "from pkg import mod" imports the module pkg.mod when there is one
+            names = [base] + [f"{base}.{a.name}" for a in node.names]
+        else:
+            continue
+        out |= {n for n in names if n == "tactcad" or n.startswith("tactcad.")}
+    return {m for m in out if _exists(m)} - {me}
+
+
+def _exists(module: str) -> bool:
+    rel = Path(*module.split(".")[1:])
+    return module == "tactcad" or (SRC / rel).with_suffix(".py").is_file() \
+        or (SRC / rel / "__init__.py").is_file()
+
+
+def graph() -> dict[str, set[str]]:
+    return {module_name(p): imports_of(p) for p in sorted(SRC.rglob("*.py"))}
+
+
+def test_every_import_goes_up_the_layers():
+    bad = []
+    for mod, deps in graph().items():
+        mine = layer_of(mod)
+        for dep in sorted(deps):
+            theirs = layer_of(dep)
+            if mine == "mechanics":
+                ok = theirs in MECHANICS_MAY_USE
+            elif theirs == "mechanics":
+                ok = mine in ("commands",)
+            else:
+                ok = LAYERS.index(theirs) <= LAYERS.index(mine)
+            if not ok:
+                bad.append(f"{mod} ({mine}) imports {dep} ({theirs})")
+    assert not bad, "imports against the layer order:\n" + "\n".join(bad)
+
+
+def test_no_import_circle():
+    g = graph()
+    # a package's __init__ importing its own modules is not a circle of the pipeline
+    g = {m: {d for d in deps if not m.startswith(d + ".")} for m, deps in g.items()}
+    state: dict[str, int] = {}
+    stack: list[str] = []
+    circles = []
+
+    def visit(m: str) -> None:
+        state[m] = 1
+        stack.append(m)
+        for d in sorted(g.get(m, ())):
+            if state.get(d) == 1:
+                circles.append(stack[stack.index(d):] + [d])
+            elif d not in state:
+                visit(d)
+        stack.pop()
+        state[m] = 2
+
+    for m in sorted(g):
+        if m not in state:
+            visit(m)
+    assert not circles, "import circles:\n" + "\n".join(" -> ".join(c) for c in circles)
+
+
+def test_the_checker_sees_function_local_and_relative_imports(tmp_path, monkeypatch):
+    """The reader finds an import inside a function and resolves a relative one."""
+    pkg = tmp_path / "tactcad"
+    (pkg / "export").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "errors.py").write_text("")
+    (pkg / "export" / "__init__.py").write_text("")
+    (pkg / "export" / "names.py").write_text("")
+    f = pkg / "export" / "x.py"
+    f.write_text("def f():\n    from tactcad.errors import A\n    from .names import b\n")
+    monkeypatch.setattr(__import__(__name__), "SRC", pkg)
+    assert imports_of(f) == {"tactcad.errors", "tactcad.export.names"}
+
+
+@pytest.mark.parametrize("module,layer", [("tactcad.store", "foundation"),
+                                          ("tactcad.design.array", "design"),
+                                          ("tactcad.mechanics.fem.fem3d", "mechanics")])
+def test_layer_names(module, layer):
+    assert layer_of(module) == layer
