@@ -22,6 +22,8 @@ COMMAND_MODULES = (
     "tactcad.commands.bench",
     "tactcad.commands.mechanics",
     "tactcad.commands.lumped",
+    "tactcad.commands.evaluate",
+    "tactcad.commands.table2",
 )
 
 

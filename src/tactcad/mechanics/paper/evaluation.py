@@ -221,3 +221,98 @@ def simulate_rig(elements, k_obj: float, spec: SampleSpec, loads_N=None, referen
     ratio = deflection / deflection[:, [iref]]
     return RigResult(numbers, k, int(ref), float(k_obj), loads, travel, deflection, forces, ratio,
                      per_travel < 0)
+
+
+# ---------------------------------------------------------------------------
+# The whole experiment: every sample, every load step
+# ---------------------------------------------------------------------------
+def ladder_stiffness_by_element(plan, model: str = "closed-form") -> dict[int, float]:
+    """Predicted K (N/mm) of every element of the plan at a ladder level (distinct profiles once)."""
+    from .. import ladder
+
+    cache: dict[str, float] = {}
+    out = {}
+    for slot in plan.slots:
+        key = slot.geometry.part_name
+        if key not in cache:
+            cache[key] = ladder.estimate(model, slot.geometry, plan.material).stiffness_N_per_mm
+        out[slot.number] = cache[key]
+    return out
+
+
+def _rig_record(res: RigResult, spec: SampleSpec) -> dict:
+    modulus = None
+    if spec.coupling != "none":
+        modulus = modulus_from_punch_stiffness(res.k_obj_N_per_mm, *INDENTER_FACE_MM,
+                                               spec.poisson_ratio, spec.layer_thickness_mm,
+                                               spec.cell_mm)
+    return {
+        "K_obj_N_per_mm": res.k_obj_N_per_mm,
+        "youngs_modulus_MPa": modulus,
+        "loads_N": res.loads_N.tolist(),
+        "body_travel_um": (1e3 * res.body_travel_mm).tolist(),
+        "elements": [
+            {"element": int(n), "K_m_over_K_obj": float(k / res.k_obj_N_per_mm),
+             "R": res.ratio[:, i].tolist(), "deflection_um": (1e3 * res.deflection_mm[:, i]).tolist(),
+             "tip_force_N": res.tip_force_N[:, i].tolist(), "contact_lost": bool(res.contact_lost[i])}
+            for i, (n, k) in enumerate(zip(res.elements, res.stiffness_N_per_mm))],
+    }
+
+
+def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec: SampleSpec,
+                      n_steps: int = DEFAULT_LOAD_STEPS, fig6_sample: float = 3.85) -> dict:
+    """The simulated evaluation experiment for a plan: R per element, sample and load step.
+
+    Args:
+        plan: design plan (tip positions and contact faces).
+        stiffness: K per element number (N/mm), e.g. :func:`ladder_stiffness_by_element`.
+        samples_N_per_mm: sample stiffnesses K_obj (N/mm), each > 0.
+        spec: :class:`SampleSpec`.
+        n_steps: load steps (3.235 N, then +100 g each).
+        fig6_sample: the sample whose R against load is singled out as Fig. 6
+            (the listed sample nearest to it; the paper shows 3.85 N/mm).
+
+    Returns:
+        dict with the reference element, the elements' K and K_r/K_m, one
+        record per sample (loads, body travel, and per element R, deflection,
+        tip force per step), ``fig6`` and ``fig7`` series.
+
+    Raises:
+        ContactError: no sample, a stiffness <= 0, bad spec.
+    """
+    samples = [float(s) for s in samples_N_per_mm]
+    if not samples:
+        raise ContactError("samples", samples, "at least one K_obj > 0 N/mm")
+    for s in samples:
+        _check_k_obj(s)
+    elements = elements_from_plan(plan, stiffness)
+    _check_elements(elements)
+    ref = reference_element(elements)
+    k_ref = stiffness[ref]
+    unit = None if spec.coupling == "none" else unit_punch_compliance(elements, spec)
+    loads = load_steps_N(n_steps)
+    results = [simulate_rig(elements, s, spec, loads, ref, unit) for s in samples]
+    records = [_rig_record(r, spec) for r in results]
+    fig6_index = int(np.argmin([abs(s - fig6_sample) for s in samples]))
+    measuring = [e for e in elements if e.number != ref]
+    fig7 = [{"element": e.number, "label": f"element {e.number}, K_r/K_m = {k_ref / e.stiffness_N_per_mm:.3g}",
+             "K_r_over_K_m": k_ref / e.stiffness_N_per_mm,
+             "K_m_over_K_obj": [e.stiffness_N_per_mm / s for s in samples],
+             "R": [float(r.ratio[0, list(r.elements).index(e.number)]) for r in results]}
+            for e in measuring]
+    return {
+        "design": plan.name,
+        "coupling": spec.coupling,
+        "poisson_ratio": spec.poisson_ratio if spec.coupling != "none" else None,
+        "thickness_mm": spec.layer_thickness_mm,
+        "reference_element": ref,
+        "K_r_N_per_mm": k_ref,
+        "elements": [{"element": e.number, "K_N_per_mm": e.stiffness_N_per_mm,
+                      "K_r_over_K_m": k_ref / e.stiffness_N_per_mm,
+                      "tip_x_mm": e.punch.x_mm, "tip_z_mm": e.punch.z_mm} for e in elements],
+        "samples": records,
+        "fig6": {"K_obj_N_per_mm": samples[fig6_index], "loads_N": loads.tolist(),
+                 "R": {str(e["element"]): e["R"] for e in records[fig6_index]["elements"]
+                       if e["element"] != ref}},
+        "fig7": fig7,
+    }

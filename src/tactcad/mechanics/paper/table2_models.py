@@ -116,7 +116,8 @@ def _record(name: str, predicted: np.ndarray, rows: Rows, fitted: dict, held_out
     err = relative_errors(predicted, rows.r)
     rec = {"name": name, "fitted_parameters": fitted,
            "median_rel_error": float(np.median(err)), "max_rel_error": float(np.max(err)),
-           "held_out": held_out, "scored_rows": int(err.size), "scheme": scheme}
+           "held_out": held_out, "scored_rows": int(err.size), "scheme": scheme,
+           "predicted_R": [float(v) for v in predicted]}
     if extra:
         rec.update(extra)
     return rec
@@ -184,7 +185,9 @@ def table2_report(plan, model: str = "closed-form") -> dict:
     Returns:
         {"models": [record, ...], "rows": 48, ...}; each record has name,
         fitted_parameters, median_rel_error, max_rel_error, held_out, and
-        scheme ("none", "leave-one-sample-out", "leave-one-element-out").
+        scheme ("none", "leave-one-sample-out", "leave-one-element-out") and
+        predicted_R (the scored prediction of each row, table order); "table2"
+        lists the measured rows.
     """
     rows = Rows.table2()
     everything = np.arange(rows.r.size)
@@ -204,4 +207,6 @@ def table2_report(plan, model: str = "closed-form") -> dict:
                                          for j, name in enumerate(fm.parameters)}}
             records.append(_record(fm.name, predicted, rows, fitted, True, scheme, extra))
     return {"rows": int(rows.r.size), "k_r_N_per_mm": k_r,
+            "table2": [{"element": int(e), "K_m_N_per_mm": float(km), "K_obj_N_per_mm": float(ko),
+                        "R": float(r)} for e, km, ko, r in zip(rows.element, rows.k_m, rows.k_obj, rows.r)],
             "measured_r_below_one": int(np.count_nonzero(rows.r < 1.0)), "models": records}
