@@ -24,6 +24,7 @@ COMMAND_MODULES = (
     "tactcad.commands.lumped",
     "tactcad.commands.evaluate",
     "tactcad.commands.table2",
+    "tactcad.commands.calibrate",
 )
 
 
