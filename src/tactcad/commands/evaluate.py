@@ -41,6 +41,8 @@ def register(subparsers) -> None:
     p.add_argument("--steps", type=int, default=6, help="load steps (>= 1)")
     p.add_argument("--plot", metavar="PNG", default=None,
                    help="write a Fig. 7-like plot (R against K_m/K_obj per K_r/K_m) here")
+    p.add_argument("--plot-fig6", metavar="PNG", default=None,
+                   help="write a Fig. 6-like plot (R against grasping force, sample nearest 3.85 N/mm)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 
@@ -89,6 +91,14 @@ def run(args: argparse.Namespace) -> int:
         title = (f"{plan.name}: R against K_m/K_obj ({args.coupling} sample, K from "
                  f"{args.stiffness}, reference element {report['reference_element']})")
         report["plot"] = str(plot_ratio_map(report["fig7"], args.plot, title))
+    if args.plot_fig6:
+        from ..mechanics.paper.figures import plot_ratio_vs_load
+
+        fig6 = report["fig6"]
+        report["plot_fig6"] = str(plot_ratio_vs_load(
+            fig6["loads_N"], {f"element {k}": v for k, v in fig6["R"].items()}, args.plot_fig6,
+            f"{plan.name}: R against grasping force, K_obj = {fig6['K_obj_N_per_mm']:g} N/mm "
+            f"({args.coupling})"))
     if args.json:
         print(dumps(report))
         return 0
@@ -110,5 +120,6 @@ def _print_text(report: dict) -> None:
     lost = [e["element"] for s in report["samples"] for e in s["elements"] if e["contact_lost"]]
     if lost:
         print(f"warning: tensile tip force (contact lost) at elements {sorted(set(lost))}")
-    if "plot" in report:
-        print(f"plot: {report['plot']}")
+    for key in ("plot", "plot_fig6"):
+        if key in report:
+            print(f"{key.replace('_', ' ')}: {report[key]}")

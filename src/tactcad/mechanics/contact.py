@@ -29,6 +29,7 @@ Units: mm, N, MPa, N/mm.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -300,5 +301,13 @@ def modulus_from_punch_stiffness(k_obj_N_per_mm: float, width_x_mm: float, depth
     """
     if not (np.isfinite(k_obj_N_per_mm) and k_obj_N_per_mm > 0):
         raise ContactError("K_obj_N_per_mm", k_obj_N_per_mm, "> 0 N/mm")
+    return float(k_obj_N_per_mm * _unit_compliance(float(width_x_mm), float(depth_z_mm),
+                                                   float(poisson_ratio), thickness_mm, float(cell_mm)))
+
+
+@functools.lru_cache(maxsize=64)
+def _unit_compliance(width_x_mm: float, depth_z_mm: float, poisson_ratio: float,
+                     thickness_mm: float | None, cell_mm: float) -> float:
+    """Single-punch compliance at E = 1 MPa (mm/N), cached: samples differ only in E."""
     unit = Sample(1.0, poisson_ratio, thickness_mm)
-    return float(k_obj_N_per_mm * single_punch_compliance(width_x_mm, depth_z_mm, unit, cell_mm))
+    return single_punch_compliance(width_x_mm, depth_z_mm, unit, cell_mm)
