@@ -14,7 +14,7 @@ import math
 
 from . import add_design_arg
 
-LADDER_LEVELS = ("closed-form", "beam", "fem2d", "fem3d")
+from ..mechanics.ladder import MODELS as LADDER_LEVELS
 
 
 def register(subparsers) -> None:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import argparse
 
-LADDER_LEVELS = ("closed-form", "beam", "fem2d", "fem3d")
+from ..mechanics.ladder import MODELS as LADDER_LEVELS
 
 
 def register(subparsers) -> None:

@@ -49,17 +49,7 @@ def plot_ratio_map(series: list[dict], path: str | Path, title: str,
         ax.plot(m["K_m_over_K_obj"], m["R"], "o", ms=4,
                 color=colours.get(round(m["K_r_over_K_m"], 2), "k"),
                 label=m.get("label"))
-    ax.set_xlabel("K_m / K_obj")
-    ax.set_ylabel("R = (Δ − δ_m)/(Δ − δ_r)")
-    ax.set_title(title, fontsize=10)
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
-    fig.tight_layout()
-    out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out)
-    plt.close(fig)
-    return out
+    return _finish(plt, fig, ax, "K_m / K_obj", "R = (Δ − δ_m)/(Δ − δ_r)", title, path)
 
 
 def plot_ratio_vs_load(loads_N, ratios: dict[str, list[float]], path: str | Path, title: str) -> Path:
@@ -68,8 +58,13 @@ def plot_ratio_vs_load(loads_N, ratios: dict[str, list[float]], path: str | Path
     fig, ax = plt.subplots(figsize=(6.0, 4.0), dpi=120)
     for label, r in ratios.items():
         ax.plot(loads_N, r, "o-", ms=3, label=label)
-    ax.set_xlabel("grasping force W (N)")
-    ax.set_ylabel("R")
+    return _finish(plt, fig, ax, "grasping force W (N)", "R", title, path)
+
+
+def _finish(plt, fig, ax, xlabel: str, ylabel: str, title: str, path) -> Path:
+    """Label, grid and legend the axes, write the PNG (creating its folder), close the figure."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=10)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, ncol=2)

@@ -125,12 +125,9 @@ def _record(name: str, predicted: np.ndarray, rows: Rows, fitted: dict, held_out
 
 def paper_stiffness_by_element(plan, model: str = "closed-form") -> dict[int, float]:
     """Element stiffness (N/mm): Table 1 where measured, the ladder's estimate for the rest."""
-    from .. import ladder
-
     measured = {r.element: r.stiffness_N_per_mm for r in paper_data.table1()}
-    return {slot.number: measured.get(slot.number) or
-            ladder.estimate(model, slot.geometry, plan.material).stiffness_N_per_mm
-            for slot in plan.slots}
+    predicted = ev.ladder_stiffness_by_element(plan, model)
+    return {n: measured.get(n, k) for n, k in predicted.items()}
 
 
 class CoupledPredictor:
