@@ -43,6 +43,13 @@ def test_uniform_rectangle_matches_love_centre_formula(a, b):
     assert float(w) == pytest.approx(love_centre(a, b, 0.7, 3.0, 0.45), rel=1e-12)
 
 
+def test_single_cell_punch_compliance_is_love_centre_over_area():
+    # One pressure cell: the punch compliance is Love's centre displacement per unit force.
+    a, b, e, nu = 1.0, 1.5, 2.0, 0.3
+    one_cell = contact.single_punch_compliance(2 * a, 2 * b, contact.Sample(e, nu), cell_mm=10.0)
+    assert one_cell == pytest.approx(love_centre(a, b, 1.0, e, nu) / (4 * a * b), rel=1e-12)
+
+
 def test_uniform_square_centre_and_corner_match_johnson_coefficients():
     # Johnson, Contact Mechanics, sec. 3.3: square of side 2a, centre 2.24 and corner 1.12 x (1 - nu^2) p a / E.
     a, e, nu = 1.0, 1.0, 0.0
@@ -309,6 +316,23 @@ def test_evaluate_and_calibrate_run_on_another_design(tmp_path, capsys):
     assert cal_out["audit"]["flags"] == []
 
 
+def six_element_design(tmp_path) -> Path:
+    text = DEFAULT_TOML.read_text(encoding="utf-8")
+    text = text.replace("columns = 5\n", "columns = 3\n")
+    text = text.replace("lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0, 5.0, 7.0]",
+                        "lengths_mm = [4.0, 7.0, 6.0, 8.0, 5.0, 4.5]")
+    path = tmp_path / "six.toml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_table1_audit_on_a_smaller_array_skips_missing_elements(tmp_path, capsys):
+    assert main(["calibrate", "--design", str(six_element_design(tmp_path)), "--json"]) == 0
+    out = strict_json(capsys.readouterr().out)
+    assert out["skipped_elements"] == [7, 8, 9, 10]
+    assert [r["element"] for r in out["audit"]["elements"]] == [1, 2, 3, 4, 6]
+
+
 def test_evaluate_none_coupling_json_is_eq2(capsys):
     assert main(["evaluate", "--coupling", "none", "--stiffness", "table1", "--samples", "3.85",
                  "--json"]) == 0
@@ -333,11 +357,19 @@ def test_calibrate_table1_text(capsys):
     (["calibrate", "--data", "{wrong}"], "missing ['force_N', 'signal_V']"),
     (["calibrate", "--data", "{missing_file}"], "cannot be read"),
     (["calibrate", "--simulate", "--gain", "0"], "gauge_gain_V_per_strain = 0.0"),
+    (["calibrate", "--data", "{falling}"], "allowed > 0"),
+    (["calibrate", "--data", "{unknown_element}"], "element = 11"),
 ])
 def test_cli_errors_exit_2_with_field_and_value(argv, needle, tmp_path, capsys):
     (tmp_path / "empty.csv").write_text("", encoding="utf-8")
     (tmp_path / "wrong.csv").write_text("element,run,z_um\n1,1,0\n", encoding="utf-8")
+    header = "element,run,z_um,force_N,signal_V\n"
+    (tmp_path / "falling.csv").write_text(header + "1,1,0,0,0\n1,1,25,-0.5,0.1\n1,1,50,-1.0,0.2\n",
+                                          encoding="utf-8")
+    (tmp_path / "unknown.csv").write_text(header + "11,1,0,0,0\n11,1,25,0.5,0.1\n11,1,50,1.0,0.2\n",
+                                          encoding="utf-8")
     files = {"empty": tmp_path / "empty.csv", "wrong": tmp_path / "wrong.csv",
+             "falling": tmp_path / "falling.csv", "unknown_element": tmp_path / "unknown.csv",
              "missing_file": tmp_path / "nope.csv"}
     argv = [a.format(**files) for a in argv]
     assert main(argv) == 2

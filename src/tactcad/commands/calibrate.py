@@ -94,6 +94,10 @@ def run(args: argparse.Namespace) -> int:
             data = cal.read_calibration_csv(args.data)
             report["input"] = f"csv:{args.data}"
         fits = ca.fit_all(data)
+        report["fig4"] = [{"element": e, "z_um": d.z_travel_um.tolist(),
+                           "deflection_um": (1e3 * fits[e].deflection_mm).tolist(),
+                           "force_N": d.force_N.tolist(), "signal_V": d.signal_V.tolist()}
+                          for e, d in data.items()]
         report["fits"] = [_fit_record(e, c) for e, c in fits.items()]
         bad = [f for f in report["fits"] if not f["K_N_per_mm"] > 0]
         if bad:
@@ -104,7 +108,9 @@ def run(args: argparse.Namespace) -> int:
     else:
         report["input"] = "table1"
         report["table1_consistency"] = ca.table1_consistency()
-        calibrations = ca.from_table1()
+        present = {slot.number for slot in plan.slots}
+        calibrations = [c for c in ca.from_table1() if c.element in present]
+        report["skipped_elements"] = sorted({c.element for c in ca.from_table1()} - present)
     report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance)
     if args.json:
         print(dumps(report))

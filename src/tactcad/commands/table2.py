@@ -52,6 +52,8 @@ def run(args: argparse.Namespace) -> int:
         fitted = ", ".join(f"{k} = {v:.4g}" for k, v in m["fitted_parameters"].items()) or "-"
         print(f"{m['name']:34s} {m['scheme']:24s} {m['median_rel_error']:7.3f} "
               f"{m['max_rel_error']:7.3f}  {str(m['held_out']):8s}  {fitted}")
+    for m in report["skipped_models"]:
+        print(f"skipped {m['name']}: {m['reason']}")
     if "plot" in report:
         print(f"plot: {report['plot']}")
     return 0

@@ -33,6 +33,7 @@ from typing import Callable
 import numpy as np
 from scipy.optimize import least_squares
 
+from ...errors import DesignError
 from . import data as paper_data
 from . import evaluation as ev
 
@@ -134,6 +135,12 @@ class CoupledPredictor:
     """R of Table 2 rows from the coupled rig, the unit compliance cached per sample spec."""
 
     def __init__(self, plan, stiffness: dict[int, float]):
+        """Raises DesignError: the plan lacks an element of Table 2 or the reference element 8."""
+        needed = {r.element for r in paper_data.table2()} | {paper_data.REFERENCE_ELEMENT}
+        have = {slot.number for slot in plan.slots}
+        if not needed <= have:
+            raise DesignError("array", f"{len(have)} elements",
+                              f"elements {sorted(needed)} present (Table 2 needs them)")
         self.elements = ev.elements_from_plan(plan, stiffness)
         self._unit: dict[tuple, np.ndarray] = {}
 
@@ -154,21 +161,24 @@ class CoupledPredictor:
         return out
 
 
-def fitted_models(coupled: CoupledPredictor, k_r: float = paper_data.K_R_N_PER_MM) -> list[FittedModel]:
-    """The one-parameter models scored by cross-validation."""
+def fitted_models(coupled: CoupledPredictor | None,
+                  k_r: float = paper_data.K_R_N_PER_MM) -> list[FittedModel]:
+    """The one-parameter models scored by cross-validation (the coupled one only with ``coupled``)."""
     def layer(p, rows, idx):
         return coupled.ratios(rows, idx, ev.SampleSpec("layer", thickness_mm=float(p[0])))
 
-    return [
+    models = [
         FittedModel("eq2-effective-K_r", ("K_r_N_per_mm",), (k_r,),
                     lambda p, rows, idx: eq2(rows.k_m[idx], p[0], rows.k_obj[idx])),
         FittedModel("eq2-reference-gain", ("reference_gain",), (1.0,),
                     lambda p, rows, idx: p[0] * eq2(rows.k_m[idx], k_r, rows.k_obj[idx])),
         FittedModel("eq2-sample-scale", ("K_obj_scale",), (1.0,),
                     lambda p, rows, idx: eq2(rows.k_m[idx], k_r, p[0] * rows.k_obj[idx])),
-        FittedModel("coupled-layer-fitted-thickness", ("thickness_mm",), (5.0,), layer,
-                    grid=LAYER_THICKNESS_GRID_MM),
     ]
+    if coupled is not None:
+        models.append(FittedModel("coupled-layer-fitted-thickness", ("thickness_mm",), (5.0,), layer,
+                                  grid=LAYER_THICKNESS_GRID_MM))
+    return models
 
 
 def table2_report(plan, model: str = "closed-form") -> dict:
@@ -178,6 +188,9 @@ def table2_report(plan, model: str = "closed-form") -> dict:
         plan: design plan (tip positions and faces for the coupled models;
             element 5's stiffness from the ladder).
         model: ladder level for element 5's stiffness.
+
+    The coupled models need the paper's element numbers at the plan's tip
+    positions; a plan without them skips those models (``skipped_models``).
 
     Returns:
         {"models": [record, ...], "rows": 48, ...}; each record has name,
@@ -189,12 +202,18 @@ def table2_report(plan, model: str = "closed-form") -> dict:
     rows = Rows.table2()
     everything = np.arange(rows.r.size)
     k_r = paper_data.K_R_N_PER_MM
-    coupled = CoupledPredictor(plan, paper_stiffness_by_element(plan, model))
-    records = [
-        _record("eq2", eq2(rows.k_m, k_r, rows.k_obj), rows, {}, True, "none"),
-        _record("coupled-halfspace", coupled.ratios(rows, everything, ev.SampleSpec("halfspace")),
-                rows, {}, True, "none", {"poisson_ratio": ev.DEFAULT_POISSON_RATIO}),
-    ]
+    records = [_record("eq2", eq2(rows.k_m, k_r, rows.k_obj), rows, {}, True, "none")]
+    skipped = []
+    try:
+        coupled = CoupledPredictor(plan, paper_stiffness_by_element(plan, model))
+    except DesignError as exc:  # the coupled models need the paper's element numbers
+        coupled = None
+        skipped = [{"name": n, "reason": str(exc)}
+                   for n in ("coupled-halfspace", "coupled-layer-fitted-thickness")]
+    if coupled is not None:
+        records.append(_record(
+            "coupled-halfspace", coupled.ratios(rows, everything, ev.SampleSpec("halfspace")),
+            rows, {}, True, "none", {"poisson_ratio": ev.DEFAULT_POISSON_RATIO}))
     schemes = {"leave-one-sample-out": rows.k_obj, "leave-one-element-out": rows.element}
     for fm in fitted_models(coupled, k_r):
         for scheme, groups in schemes.items():
@@ -206,4 +225,5 @@ def table2_report(plan, model: str = "closed-form") -> dict:
     return {"rows": int(rows.r.size), "k_r_N_per_mm": k_r,
             "table2": [{"element": int(e), "K_m_N_per_mm": float(km), "K_obj_N_per_mm": float(ko),
                         "R": float(r)} for e, km, ko, r in zip(rows.element, rows.k_m, rows.k_obj, rows.r)],
-            "measured_r_below_one": int(np.count_nonzero(rows.r < 1.0)), "models": records}
+            "measured_r_below_one": int(np.count_nonzero(rows.r < 1.0)), "models": records,
+            "skipped_models": skipped}
