@@ -170,8 +170,11 @@ def test_simulated_design_calibration_is_recovered_within_noise(plan):
     data = ca.simulate_design_calibration(plan, noise_force_N=0.002, noise_signal_V=0.002, seed=3)
     truth = ev.ladder_stiffness_by_element(plan)
     fits = ca.fit_all(data)
+    k_eps = _ladder_k_eps(plan)
     for element, c in fits.items():
         assert abs(c.K_N_per_mm - truth[element]) < 4 * c.stderr_K_N_per_mm
+        k_v = ca.DEFAULT_GAUGE_GAIN_V_PER_STRAIN * k_eps[element][1] * k_eps[element][0]
+        assert abs(c.K_v_V_per_mm - k_v) < 4 * c.stderr_K_v_V_per_mm
     audit = ca.audit(plan, ca.from_fits(fits, "simulated"))
     assert audit["gauge_gain_V_per_strain"] == pytest.approx(ca.DEFAULT_GAUGE_GAIN_V_PER_STRAIN, rel=0.01)
     for r in audit["elements"]:

@@ -44,6 +44,8 @@ def register(subparsers) -> None:
                    help="with --simulate: also write the readings in the calibration CSV format")
     p.add_argument("--gain-tolerance", type=float, default=0.25,
                    help="relative disagreement of signal and force data that is flagged (default 0.25)")
+    p.add_argument("--plot", metavar="PNG", default=None,
+                   help="with --data or --simulate: write force and signal against deflection (Fig. 4)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 
@@ -74,6 +76,8 @@ def run(args: argparse.Namespace) -> int:
 
     if args.write_csv and not args.simulate:
         raise TactcadError("--write-csv = given without --simulate: allowed only with --simulate")
+    if args.plot and not (args.simulate or args.data):
+        raise TactcadError("--plot = given without --data or --simulate: allowed only with readings")
     plan = load_design(args.design)
     report: dict = {"design": plan.name, "model": args.model}
     if args.data or args.simulate:
@@ -112,6 +116,11 @@ def run(args: argparse.Namespace) -> int:
         calibrations = [c for c in ca.from_table1() if c.element in present]
         report["skipped_elements"] = sorted({c.element for c in ca.from_table1()} - present)
     report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance)
+    if args.plot:
+        from ..mechanics.paper.figures import plot_calibration
+
+        report["plot"] = str(plot_calibration(report["fig4"], args.plot,
+                                              f"{plan.name}: calibration readings"))
     if args.json:
         print(dumps(report))
         return 0
@@ -145,6 +154,8 @@ def _print_text(report: dict) -> None:
             print(f"  Table 1 element {c['element']}: F_max/δ_max = "
                   f"{c['secant_F_max_over_delta_max_N_per_mm']:.2f} N/mm vs K {c['K_N_per_mm']}; "
                   f"Z travel implied {c['z_travel_implied_um']:.1f} um vs 150 um")
+    if "plot" in report:
+        print(f"plot: {report['plot']}")
     print(f"flags ({len(audit['flags'])}):")
     for f in audit["flags"]:
         print(f"  - {f['text']}")

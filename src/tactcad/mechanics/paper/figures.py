@@ -74,3 +74,23 @@ def _finish(plt, fig, ax, xlabel: str, ylabel: str, title: str, path) -> Path:
     fig.savefig(out)
     plt.close(fig)
     return out
+
+
+def plot_calibration(readings: list[dict], path: str | Path, title: str) -> Path:
+    """Write force and signal against element deflection for each element (Fig. 4-like) to a PNG.
+
+    Args:
+        readings: records {"element", "deflection_um": [...], "force_N": [...], "signal_V": [...]}.
+        path: output PNG path; parent directories are created.
+        title: figure title.
+    """
+    plt = _pyplot()
+    fig, (ax_f, ax_v) = plt.subplots(1, 2, figsize=(10.0, 4.0), dpi=120)
+    for r in readings:
+        (line,) = ax_f.plot(r["deflection_um"], r["force_N"], "o", ms=3, label=f"element {r['element']}")
+        ax_v.plot(r["deflection_um"], r["signal_V"], "o", ms=3, color=line.get_color(),
+                  label=f"element {r['element']}")
+    ax_v.set_xlabel("element deflection Δ (um)")
+    ax_v.set_ylabel("signal V (V)")
+    ax_v.grid(True, alpha=0.3)
+    return _finish(plt, fig, ax_f, "element deflection Δ (um)", "force F (N)", title, path)
