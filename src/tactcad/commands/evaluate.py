@@ -111,10 +111,11 @@ def _print_text(report: dict) -> None:
           f"{report['reference_element']} (K_r = {report['K_r_N_per_mm']:.4g} N/mm)")
     numbers = [e["element"] for e in report["elements"]]
     print("R at the first load step (3.235 N); rows: K_obj (N/mm), columns: element")
-    print("  K_obj  " + "".join(f"{n:>8d}" for n in numbers))
+    print("  K_obj  " + "".join(f"{n:>8d}" for n in numbers) + "   E (MPa)")
     for s in report["samples"]:
         cells = "".join(f"{e['R'][0]:8.3f}" for e in s["elements"])
-        print(f"{s['K_obj_N_per_mm']:7.2f}  {cells}")
+        modulus = "-" if s["youngs_modulus_MPa"] is None else f"{s['youngs_modulus_MPa']:.3g}"
+        print(f"{s['K_obj_N_per_mm']:7.2f}  {cells}   {modulus:>7s}")
     spread = max(max(e["R"]) - min(e["R"]) for s in report["samples"] for e in s["elements"])
     print(f"largest change of R over the load steps: {spread:.2e} (the model is linear)")
     lost = [e["element"] for s in report["samples"] for e in s["elements"] if e["contact_lost"]]
