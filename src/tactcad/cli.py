@@ -22,6 +22,9 @@ COMMAND_MODULES = (
     "tactcad.commands.bench",
     "tactcad.commands.mechanics",
     "tactcad.commands.lumped",
+    "tactcad.commands.evaluate",
+    "tactcad.commands.table2",
+    "tactcad.commands.calibrate",
 )
 
 

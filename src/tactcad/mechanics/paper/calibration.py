@@ -463,3 +463,134 @@ def synthetic_calibration(k_element: float, k_v: float, v0: float, *,
     signal = v0 + k_v * deflection_true + rng.normal(0.0, noise_signal_V, z_um.size)
     return CalibrationData(_readonly(z_um), _readonly(force), _readonly(signal),
                            float(k_sensor_N_per_mm))
+
+
+# ---------------------------------------------------------------------------
+# Measured-calibration CSV: one reading per row
+# ---------------------------------------------------------------------------
+#: Columns of a calibration CSV, in order (see README "Calibration data format").
+CSV_COLUMNS = ("element", "run", "z_um", "force_N", "signal_V")
+#: Optional first comment line giving the force sensor stiffness, e.g. ``# k_sensor_N_per_mm = 57.04``.
+CSV_SENSOR_KEY = "k_sensor_N_per_mm"
+
+
+def _csv_number(value: str, column: str, line: int) -> float:
+    try:
+        x = float(value)
+    except ValueError:
+        raise CalibrationError(f"line {line}, column {column} = {value!r}: allowed a number") from None
+    if not np.isfinite(x):
+        raise CalibrationError(f"line {line}, column {column} = {value!r}: allowed a finite number")
+    return x
+
+
+def _csv_integer(value: str, column: str, line: int) -> int:
+    x = _csv_number(value, column, line)
+    if x != int(x) or x < 1:
+        raise CalibrationError(f"line {line}, column {column} = {value!r}: allowed an integer >= 1")
+    return int(x)
+
+
+def parse_calibration_csv(text: str, source: str = "<csv>") -> dict[int, CalibrationData]:
+    """Parse calibration readings in the CSV format of :data:`CSV_COLUMNS`.
+
+    Format: a header line ``element,run,z_um,force_N,signal_V`` then one
+    reading per line: element number (integer >= 1), run number (integer
+    >= 1), Z travel from first contact (um, >= 0), commercial sensor force
+    (N), element bridge signal (V). Lines starting with ``#`` are comments; a
+    comment ``# k_sensor_N_per_mm = 57.04`` sets the force sensor stiffness
+    (default: the paper's 57.04 N/mm).
+
+    Returns:
+        {element: :class:`CalibrationData`} in order of first appearance.
+
+    Raises:
+        CalibrationError: no data, a missing or unknown column, a value that is
+            not a number or out of range, fewer than 3 readings of an element.
+    """
+    import csv
+
+    k_sensor = K_SENSOR_N_PER_MM
+    lines = []
+    for n, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if stripped.startswith("#"):
+            body = stripped.lstrip("#").strip()
+            if body.startswith(CSV_SENSOR_KEY) and "=" in body:
+                k_sensor = _csv_number(body.split("=", 1)[1].strip(), CSV_SENSOR_KEY, n)
+                _check_positive(CSV_SENSOR_KEY, k_sensor)
+            continue
+        if stripped:
+            lines.append((n, line))
+    if not lines:
+        raise CalibrationError(f"{source}: no header and no readings; allowed a header "
+                               f"{','.join(CSV_COLUMNS)} and >= 3 readings per element")
+    header = [h.strip() for h in next(csv.reader([lines[0][1]]))]
+    missing = [c for c in CSV_COLUMNS if c not in header]
+    unknown = [c for c in header if c not in CSV_COLUMNS]
+    if missing or unknown:
+        raise CalibrationError(f"{source}: columns = {header}: allowed exactly {list(CSV_COLUMNS)} "
+                               f"(missing {missing}, unknown {unknown})")
+    if len(lines) == 1:
+        raise CalibrationError(f"{source}: readings = 0: allowed >= 3 readings per element")
+    readings: dict[int, list[tuple[float, float, float]]] = {}
+    for n, line in lines[1:]:
+        cells = next(csv.reader([line]))
+        if len(cells) != len(header):
+            raise CalibrationError(f"line {n}: {len(cells)} values: allowed {len(header)} "
+                                   f"({','.join(header)})")
+        row = dict(zip(header, (c.strip() for c in cells)))
+        element = _csv_integer(row["element"], "element", n)
+        _csv_integer(row["run"], "run", n)
+        z = _csv_number(row["z_um"], "z_um", n)
+        if z < 0:
+            raise CalibrationError(f"line {n}, column z_um = {z!r}: allowed >= 0 um")
+        readings.setdefault(element, []).append(
+            (z, _csv_number(row["force_N"], "force_N", n), _csv_number(row["signal_V"], "signal_V", n)))
+    out = {}
+    for element, rows in readings.items():
+        if len(rows) < 3:
+            raise CalibrationError(f"element {element}: readings = {len(rows)}: allowed >= 3")
+        z, f, v = (np.array(c) for c in zip(*rows))
+        out[element] = CalibrationData(_readonly(z), _readonly(f), _readonly(v), float(k_sensor))
+    return out
+
+
+def read_calibration_csv(path) -> dict[int, CalibrationData]:
+    """Read a calibration CSV file (format: :func:`parse_calibration_csv`).
+
+    Raises:
+        CalibrationError: the file cannot be read, or any error of
+            :func:`parse_calibration_csv`.
+    """
+    from pathlib import Path
+
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise CalibrationError(f"data = {str(p)!r}: cannot be read ({exc.strerror})") from None
+    return parse_calibration_csv(text, source=str(p))
+
+
+def format_calibration_csv(data: dict[int, CalibrationData], comments: tuple[str, ...] = ()) -> str:
+    """The CSV text of :func:`parse_calibration_csv` for readings keyed by element.
+
+    Readings of one element are numbered into runs by the repeats of its Z
+    steps (a reading whose Z is not above the previous one starts a new run).
+    """
+    sensors = {d.k_sensor_N_per_mm for d in data.values()}
+    if len(sensors) > 1:
+        raise CalibrationError(f"k_sensor_N_per_mm = {sorted(sensors)}: allowed one value per file")
+    lines = [f"# {c}" for c in comments]
+    if sensors:
+        lines.append(f"# {CSV_SENSOR_KEY} = {sensors.pop():g}")
+    lines.append(",".join(CSV_COLUMNS))
+    for element, d in data.items():
+        run, previous = 1, -np.inf
+        for z, f, v in zip(d.z_travel_um, d.force_N, d.signal_V):
+            if z <= previous:
+                run += 1
+            previous = z
+            lines.append(f"{element},{run},{z:g},{f:.4f},{v:.4f}")
+    return "\n".join(lines) + "\n"

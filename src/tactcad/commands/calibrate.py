@@ -1,0 +1,161 @@
+"""``tactcad calibrate``: fit and audit element calibrations (paper eq. 4-6, Table 1).
+
+Examples::
+
+    tactcad calibrate                                  # the paper's Table 1 as the measured input
+    tactcad calibrate --data hardware/calibration_example.csv --json
+    tactcad calibrate --simulate --write-csv /tmp/cal.csv --design my_array.toml
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from ..mechanics.ladder import MODELS as LADDER_LEVELS
+
+
+def register(subparsers) -> None:
+    """Add the ``calibrate`` sub-command."""
+    from . import add_design_arg
+
+    p = subparsers.add_parser(
+        "calibrate", help="fit K, K_v, V0 from calibration readings and audit them against the design",
+        description="Calibration rig of the paper (25 um steps to 150 um, force sensor of 57.04 N/mm "
+                    "in series, eq. 4-6). Fits K, K_v, V0 and linearity per element from a CSV "
+                    "(columns element,run,z_um,force_N,signal_V), or simulates the rig for the "
+                    "design, or takes the paper's Table 1; then audits each element: as-built web, "
+                    "signal per newton against the predicted gauge strain with one common gauge "
+                    "gain, twins of equal geometry, series-spring error amplification.")
+    add_design_arg(p)
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--data", metavar="CSV", default=None, help="measured calibration readings")
+    source.add_argument("--simulate", action="store_true",
+                        help="simulate the rig for the design (K and gauge strain from the ladder)")
+    p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form",
+                   help="ladder level for the as-built web and gauge strain (default closed-form)")
+    p.add_argument("--gain", type=float, default=None, metavar="V_PER_STRAIN",
+                   help="gauge gain of the simulated rig (V per unit strain), default -120")
+    p.add_argument("--noise-force", type=float, default=0.001, metavar="N",
+                   help="force noise of the simulated rig (N, one sigma)")
+    p.add_argument("--noise-signal", type=float, default=0.001, metavar="V",
+                   help="signal noise of the simulated rig (V, one sigma)")
+    p.add_argument("--seed", type=int, default=0, help="random seed of the simulated rig")
+    p.add_argument("--write-csv", metavar="CSV", default=None,
+                   help="with --simulate: also write the readings in the calibration CSV format")
+    p.add_argument("--gain-tolerance", type=float, default=0.25,
+                   help="relative disagreement of signal and force data that is flagged (default 0.25)")
+    p.add_argument("--plot", metavar="PNG", default=None,
+                   help="with --data or --simulate: write force and signal against deflection (Fig. 4)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=run)
+
+
+def _fit_record(element: int, c) -> dict:
+    from ..mechanics.paper import calibration as cal
+
+    amp = cal.series_error_amplification(c.K_N_per_mm, c.k_sensor_N_per_mm) if c.K_N_per_mm > 0 else None
+    return {"element": element, "K_N_per_mm": c.K_N_per_mm, "stderr_K_N_per_mm": c.stderr_K_N_per_mm,
+            "K_v_V_per_mm": c.K_v_V_per_mm, "stderr_K_v_V_per_mm": c.stderr_K_v_V_per_mm,
+            "V0_V": c.V0_V, "stderr_V0_V": c.stderr_V0_V, "F0_N": c.F0_N,
+            "K_v_over_K_V_per_N": c.K_v_over_K_V_per_N,
+            "linearity_force_pct": c.linearity_force_pct,
+            "linearity_signal_pct": c.linearity_signal_pct,
+            "max_deflection_um": float(1e3 * c.deflection_mm.max()),
+            "series_amplification": None if amp is None else amp.from_k_apparent}
+
+
+def run(args: argparse.Namespace) -> int:
+    """Handler of ``tactcad calibrate``; returns the exit code."""
+    from pathlib import Path
+
+    from ..design import load_design
+    from ..errors import TactcadError
+    from ..mechanics.paper import calibration as cal
+    from ..mechanics.paper import calibration_audit as ca
+    from .finite_json import dumps
+
+    if args.write_csv and not args.simulate:
+        raise TactcadError("--write-csv = given without --simulate: allowed only with --simulate")
+    if args.plot and not (args.simulate or args.data):
+        raise TactcadError("--plot = given without --data or --simulate: allowed only with readings")
+    plan = load_design(args.design)
+    report: dict = {"design": plan.name, "model": args.model}
+    if args.data or args.simulate:
+        if args.simulate:
+            gain = ca.DEFAULT_GAUGE_GAIN_V_PER_STRAIN if args.gain is None else args.gain
+            data = ca.simulate_design_calibration(plan, args.model, gain, args.noise_force,
+                                                  args.noise_signal, args.seed)
+            report["input"] = "simulated"
+            report["simulated_gauge_gain_V_per_strain"] = gain
+            if args.write_csv:
+                Path(args.write_csv).parent.mkdir(parents=True, exist_ok=True)
+                Path(args.write_csv).write_text(cal.format_calibration_csv(
+                    data, (f"simulated calibration of design {plan.name}, ladder {args.model}, "
+                           f"gauge gain {gain:g} V/strain, noise {args.noise_force:g} N, "
+                           f"{args.noise_signal:g} V, seed {args.seed}",)), encoding="utf-8")
+                report["written_csv"] = args.write_csv
+        else:
+            data = cal.read_calibration_csv(args.data)
+            report["input"] = f"csv:{args.data}"
+        fits = ca.fit_all(data)
+        report["fig4"] = [{"element": e, "z_um": d.z_travel_um.tolist(),
+                           "deflection_um": (1e3 * fits[e].deflection_mm).tolist(),
+                           "force_N": d.force_N.tolist(), "signal_V": d.signal_V.tolist()}
+                          for e, d in data.items()]
+        report["fits"] = [_fit_record(e, c) for e, c in fits.items()]
+        bad = [f for f in report["fits"] if not f["K_N_per_mm"] > 0]
+        if bad:
+            raise cal.CalibrationError(
+                f"element {bad[0]['element']}: fitted K = {bad[0]['K_N_per_mm']:.4g} N/mm: "
+                "allowed > 0 (force must rise with Z travel)")
+        calibrations = ca.from_fits(fits, "simulated" if args.simulate else "csv")
+    else:
+        report["input"] = "table1"
+        report["table1_consistency"] = ca.table1_consistency()
+        present = {slot.number for slot in plan.slots}
+        calibrations = [c for c in ca.from_table1() if c.element in present]
+        report["skipped_elements"] = sorted({c.element for c in ca.from_table1()} - present)
+    report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance)
+    if args.plot:
+        from ..mechanics.paper.figures import plot_calibration
+
+        report["plot"] = str(plot_calibration(report["fig4"], args.plot,
+                                              f"{plan.name}: calibration readings"))
+    if args.json:
+        print(dumps(report))
+        return 0
+    _print_text(report)
+    return 0
+
+
+def _fmt(x, spec: str) -> str:
+    return "-" if x is None else format(x, spec)
+
+
+def _print_text(report: dict) -> None:
+    audit = report["audit"]
+    print(f"design {report['design']}, input {report['input']}, ladder {report['model']}")
+    if "fits" in report:
+        print("fits (eq. 4-5, deflection = Z - F/K_s):")
+        print("  elem     K N/mm   ±       K_v V/mm   V0 V     lin F %  lin V %  amplif.")
+        for f in report["fits"]:
+            print(f"  {f['element']:4d} {f['K_N_per_mm']:9.3f} {f['stderr_K_N_per_mm']:6.3f} "
+                  f"{f['K_v_V_per_mm']:9.3f} {f['V0_V']:8.3f} {f['linearity_force_pct']:8.2f} "
+                  f"{f['linearity_signal_pct']:8.2f} {f['series_amplification']:8.2f}")
+    print(f"common gauge gain G = {_fmt(audit['gauge_gain_V_per_strain'], '.4g')} V per unit strain")
+    print("  elem  K N/mm  web mm  S V/N    eps/N     S/(G eps)  K from S  amplif.")
+    for r in audit["elements"]:
+        print(f"  {r['element']:4d} {r['K_N_per_mm']:7.2f} {_fmt(r['web_as_built_mm'], '7.3f')} "
+              f"{r['signal_per_N_V_per_N']:7.3f} {_fmt(r['gauge_strain_per_N'], '9.2e')} "
+              f"{_fmt(r.get('signal_ratio'), '9.2f')} {_fmt(r.get('K_implied_by_signal_N_per_mm'), '9.2f')} "
+              f"{r['series_amplification']:7.2f}")
+    for c in report.get("table1_consistency", []):
+        if abs(c["secant_over_K"] - 1) > 0.05 or abs(c["z_travel_implied_um"] - 150) > 10:
+            print(f"  Table 1 element {c['element']}: F_max/δ_max = "
+                  f"{c['secant_F_max_over_delta_max_N_per_mm']:.2f} N/mm vs K {c['K_N_per_mm']}; "
+                  f"Z travel implied {c['z_travel_implied_um']:.1f} um vs 150 um")
+    if "plot" in report:
+        print(f"plot: {report['plot']}")
+    print(f"flags ({len(audit['flags'])}):")
+    for f in audit["flags"]:
+        print(f"  - {f['text']}")

@@ -1,0 +1,126 @@
+"""``tactcad evaluate``: the paper's array evaluation rig, simulated for a design.
+
+Examples::
+
+    tactcad evaluate
+    tactcad evaluate --samples 10.01,3.85,2.34 --coupling layer --thickness 5 --json
+    tactcad evaluate --stiffness table1 --plot exports/reports/evaluate_fig7.png
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from . import add_design_arg
+
+from ..mechanics.ladder import MODELS as LADDER_LEVELS
+
+
+def register(subparsers) -> None:
+    """Add the ``evaluate`` sub-command."""
+    p = subparsers.add_parser(
+        "evaluate", help="simulate the array evaluation rig: R per element, sample and load step",
+        description="The paper's evaluation rig, simulated: the array pressed into rubber samples "
+                    "by 3.235 N then 100 g steps; each element's deflection over the reference "
+                    "(stiffest) element's gives R. Sample: independent springs (eq. 1-2) or rigid "
+                    "punches at the tips on an elastic half-space or layer (modulus from K_obj "
+                    "through a 2 x 3 mm punch). Units: N/mm, N, mm, um.")
+    add_design_arg(p)
+    p.add_argument("--samples", default=None, metavar="K1,K2,...",
+                   help="sample stiffnesses K_obj (N/mm); default the paper's eight")
+    p.add_argument("--coupling", choices=("none", "halfspace", "layer"), default="halfspace",
+                   help="sample model (default halfspace)")
+    p.add_argument("--poisson", type=float, default=0.5, help="sample Poisson ratio (0 ... 0.5)")
+    p.add_argument("--thickness", type=float, default=10.0, metavar="MM",
+                   help="sample thickness on its rigid base for --coupling layer (mm), default 10")
+    p.add_argument("--stiffness", choices=("ladder", "table1"), default="ladder",
+                   help="element K: the ladder's prediction for the design, or the paper's "
+                        "Table 1 (ladder for elements without a measurement)")
+    p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form", help="ladder level")
+    p.add_argument("--steps", type=int, default=6, help="load steps (>= 1)")
+    p.add_argument("--plot", metavar="PNG", default=None,
+                   help="write a Fig. 7-like plot (R against K_m/K_obj per K_r/K_m) here")
+    p.add_argument("--plot-fig6", metavar="PNG", default=None,
+                   help="write a Fig. 6-like plot (R against grasping force, sample nearest 3.85 N/mm)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=run)
+
+
+def parse_stiffness_list(field: str, text: str) -> list[float]:
+    """Comma-separated stiffnesses (N/mm), each finite and > 0.
+
+    Raises:
+        TactcadError: an entry that is not a number or not > 0, or an empty list.
+    """
+    from ..errors import DesignError
+
+    values = []
+    for part in text.split(","):
+        try:
+            v = float(part)
+        except ValueError:
+            raise DesignError(field, part.strip(), "numbers > 0 N/mm separated by commas") from None
+        if not (math.isfinite(v) and v > 0):
+            raise DesignError(field, v, "> 0 N/mm")
+        values.append(v)
+    if not values:
+        raise DesignError(field, text, "at least one number > 0 N/mm")
+    return values
+
+
+def run(args: argparse.Namespace) -> int:
+    """Handler of ``tactcad evaluate``; returns the exit code."""
+    from ..design import load_design
+    from ..mechanics.paper import data as paper_data
+    from ..mechanics.paper import evaluation as ev
+    from ..mechanics.paper.table2_models import paper_stiffness_by_element
+    from .finite_json import dumps
+
+    plan = load_design(args.design)
+    samples = (parse_stiffness_list("samples", args.samples) if args.samples
+               else list(paper_data.SAMPLE_STIFFNESSES_N_PER_MM))
+    spec = ev.SampleSpec(args.coupling, args.poisson,
+                         args.thickness if args.coupling == "layer" else None)
+    stiffness = (paper_stiffness_by_element(plan, args.model) if args.stiffness == "table1"
+                 else ev.ladder_stiffness_by_element(plan, args.model))
+    report = ev.evaluation_report(plan, stiffness, samples, spec, n_steps=args.steps)
+    if args.plot:
+        from ..mechanics.paper.figures import plot_ratio_map
+
+        title = (f"{plan.name}: R against K_m/K_obj ({args.coupling} sample, K from "
+                 f"{args.stiffness}, reference element {report['reference_element']})")
+        report["plot"] = str(plot_ratio_map(report["fig7"], args.plot, title))
+    if args.plot_fig6:
+        from ..mechanics.paper.figures import plot_ratio_vs_load
+
+        fig6 = report["fig6"]
+        report["plot_fig6"] = str(plot_ratio_vs_load(
+            fig6["loads_N"], {f"element {k}": v for k, v in fig6["R"].items()}, args.plot_fig6,
+            f"{plan.name}: R against grasping force, K_obj = {fig6['K_obj_N_per_mm']:g} N/mm "
+            f"({args.coupling})"))
+    if args.json:
+        print(dumps(report))
+        return 0
+    _print_text(report)
+    return 0
+
+
+def _print_text(report: dict) -> None:
+    print(f"design {report['design']}: sample model {report['coupling']}, reference element "
+          f"{report['reference_element']} (K_r = {report['K_r_N_per_mm']:.4g} N/mm)")
+    numbers = [e["element"] for e in report["elements"]]
+    print("R at the first load step (3.235 N); rows: K_obj (N/mm), columns: element")
+    print("  K_obj  " + "".join(f"{n:>8d}" for n in numbers) + "   E (MPa)")
+    for s in report["samples"]:
+        cells = "".join(f"{e['R'][0]:8.3f}" for e in s["elements"])
+        modulus = "-" if s["youngs_modulus_MPa"] is None else f"{s['youngs_modulus_MPa']:.3g}"
+        print(f"{s['K_obj_N_per_mm']:7.2f}  {cells}   {modulus:>7s}")
+    spread = max(max(e["R"]) - min(e["R"]) for s in report["samples"] for e in s["elements"])
+    print(f"largest change of R over the load steps: {spread:.2e} (the model is linear)")
+    lost = [e["element"] for s in report["samples"] for e in s["elements"] if e["contact_lost"]]
+    if lost:
+        print(f"warning: tensile tip force (contact lost) at elements {sorted(set(lost))}")
+    for key in ("plot", "plot_fig6"):
+        if key in report:
+            print(f"{key.replace('_', ' ')}: {report[key]}")

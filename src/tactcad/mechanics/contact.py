@@ -1,0 +1,313 @@
+"""Rigid flat rectangular punches on an elastic sample: half-space or layer on a rigid base.
+
+The sample surface is the plane (x, z) of the array frame (mm); the punches are
+the elements' contact faces pressed along y. The model is a boundary-element
+model with piecewise-constant pressure cells (collocation at cell centres):
+
+* half-space influence kernel: Love's (1929) closed-form surface displacement
+  of a uniformly loaded rectangle on an elastic half-space (A. E. H. Love,
+  "The stress produced in a semi-infinite solid by pressure on part of the
+  boundary", Phil. Trans. R. Soc. A 228, 1929; K. L. Johnson, *Contact
+  Mechanics*, 1985, sec. 3.3): with I = ∫∫ dA / r over the rectangle,
+  w = (1 − ν²) p I / (π E);
+* layer of thickness h on a rigid base: Steinbrenner's approximation
+  (W. Steinbrenner, *Die Strasse* 1, 1934; H. G. Poulos and E. H. Davis,
+  *Elastic Solutions for Soil and Rock Mechanics*, 1974, ch. 5): the surface
+  displacement of the layer is the half-space surface displacement minus the
+  half-space displacement at depth h under the same load (Boussinesq,
+  u_z = P (1 + ν) / (2 π E) [z²/ρ³ + 2 (1 − ν)/ρ], ρ = √(r² + z²)). It is an
+  engineering approximation: it ignores the base's shear condition and is
+  least accurate for thin, nearly incompressible layers (h much smaller than
+  the punch and ν → 0.5), where a bonded layer is stiffer than it predicts.
+
+A rigid punch moves its whole face by one displacement; the cells' pressures
+follow from the collocation equations and the punch forces from their sum.
+All compliances scale as 1/E; the functions work with a given modulus E (MPa).
+
+Units: mm, N, MPa, N/mm.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import TactcadError
+
+#: Cell edge the boundary-element mesh aims for (mm): 2 x 3 mm faces get 8 x 12 cells.
+DEFAULT_CELL_MM = 0.25
+#: Rigid square punch on a half-space: K = β (2/√π) E/(1 − ν²) √A with β = 1.012
+#: (J. R. Barber, *Contact Mechanics*, 2018, sec. 6.4, after King 1987; circle β = 1).
+SQUARE_PUNCH_BETA = 1.012
+
+
+class ContactError(TactcadError, ValueError):
+    """A contact-model input outside its range; names the field, value and allowed range."""
+
+    def __init__(self, field: str, value: object, allowed: str):
+        self.field, self.value, self.allowed = field, value, allowed
+        super().__init__(f"{field} = {value!r}: allowed {allowed}")
+
+
+@dataclass(frozen=True)
+class Punch:
+    """A rigid flat rectangular punch face on the sample surface (mm).
+
+    Attributes:
+        x_mm, z_mm: centre of the face in the surface plane.
+        width_x_mm, depth_z_mm: edge lengths along x and z, > 0.
+    """
+
+    x_mm: float
+    z_mm: float
+    width_x_mm: float
+    depth_z_mm: float
+
+
+@dataclass(frozen=True)
+class Sample:
+    """The elastic sample under the punches.
+
+    Attributes:
+        youngs_modulus_MPa: E (MPa), > 0.
+        poisson_ratio: ν, 0 <= ν <= 0.5 (rubber: about 0.5).
+        thickness_mm: layer thickness h on a rigid base (mm), > 0, or None
+            for a half-space.
+    """
+
+    youngs_modulus_MPa: float
+    poisson_ratio: float
+    thickness_mm: float | None = None
+
+
+def check_sample(sample: Sample) -> None:
+    """Raise :class:`ContactError` for a modulus <= 0, ν outside [0, 0.5] or thickness <= 0."""
+    if not (np.isfinite(sample.youngs_modulus_MPa) and sample.youngs_modulus_MPa > 0):
+        raise ContactError("youngs_modulus_MPa", sample.youngs_modulus_MPa, "> 0 MPa")
+    if not (np.isfinite(sample.poisson_ratio) and 0.0 <= sample.poisson_ratio <= 0.5):
+        raise ContactError("poisson_ratio", sample.poisson_ratio, "0 ... 0.5")
+    h = sample.thickness_mm
+    if h is not None and not (np.isfinite(h) and h > 0):
+        raise ContactError("thickness_mm", h, "> 0 mm (or none for a half-space)")
+
+
+# ---------------------------------------------------------------------------
+# Kernels
+# ---------------------------------------------------------------------------
+def _corner_primitive(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """F(u, v) with ∂²F/∂u∂v = 1/√(u² + v²), odd in u and in v, F = 0 on the axes.
+
+    F = u asinh(v/|u|) + v asinh(u/|v|) (each term 0 where its divisor is 0).
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = np.where(u != 0, u * np.arcsinh(v / np.abs(u)), 0.0)
+        b = np.where(v != 0, v * np.arcsinh(u / np.abs(v)), 0.0)
+    return a + b
+
+
+def rectangle_inverse_distance_integral(x, z, x1, x2, z1, z2):
+    """I = ∫∫ dξ dζ / √((ξ − x)² + (ζ − z)²) over the rectangle [x1, x2] x [z1, z2] (mm).
+
+    Closed form (Love 1929) from the corner primitive; exact at any point of
+    the plane, inside the rectangle included. Arguments broadcast.
+    """
+    x, z = np.asarray(x, float), np.asarray(z, float)
+    return (_corner_primitive(x2 - x, z2 - z) - _corner_primitive(x1 - x, z2 - z)
+            - _corner_primitive(x2 - x, z1 - z) + _corner_primitive(x1 - x, z1 - z))
+
+
+def love_rectangle_displacement(x, z, x1, x2, z1, z2, pressure_MPa: float,
+                                youngs_modulus_MPa: float, poisson_ratio: float):
+    """Surface displacement of a half-space under uniform pressure on a rectangle (mm).
+
+    Love (1929); Johnson, *Contact Mechanics*, eq. 3.25: w = (1 − ν²) p I/(π E)
+    with I from :func:`rectangle_inverse_distance_integral`.
+    """
+    scale = (1.0 - poisson_ratio ** 2) / (np.pi * youngs_modulus_MPa)
+    return scale * pressure_MPa * rectangle_inverse_distance_integral(x, z, x1, x2, z1, z2)
+
+
+def boussinesq_depth_displacement(r, depth_mm: float, youngs_modulus_MPa: float,
+                                  poisson_ratio: float):
+    """Vertical displacement per newton at depth z and radial distance r of a point load (mm/N).
+
+    Boussinesq: u_z = (1 + ν)/(2 π E) [z²/ρ³ + 2 (1 − ν)/ρ], ρ = √(r² + z²);
+    Johnson, *Contact Mechanics*, eq. 3.21. Requires depth > 0.
+    """
+    rho = np.sqrt(np.asarray(r, float) ** 2 + depth_mm ** 2)
+    return ((1 + poisson_ratio) / (2 * np.pi * youngs_modulus_MPa)
+            * (depth_mm ** 2 / rho ** 3 + 2 * (1 - poisson_ratio) / rho))
+
+
+# ---------------------------------------------------------------------------
+# Boundary-element model
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class CellMesh:
+    """Piecewise-constant pressure cells of a set of punches.
+
+    Attributes:
+        centres: cell centres (x, z), shape (n, 2) (mm).
+        half: half edge lengths (hx, hz) of each cell, shape (n, 2) (mm).
+        punch: index of the punch each cell belongs to, shape (n,).
+    """
+
+    centres: np.ndarray
+    half: np.ndarray
+    punch: np.ndarray
+
+    @property
+    def area_mm2(self) -> np.ndarray:
+        return 4.0 * self.half[:, 0] * self.half[:, 1]
+
+
+def _check_punches(punches) -> None:
+    if not punches:
+        raise ContactError("punches", len(punches), "at least one punch")
+    for i, p in enumerate(punches):
+        for name in ("width_x_mm", "depth_z_mm"):
+            value = getattr(p, name)
+            if not (np.isfinite(value) and value > 0):
+                raise ContactError(f"punches[{i}].{name}", value, "> 0 mm")
+
+
+def mesh_punches(punches, cell_mm: float = DEFAULT_CELL_MM) -> CellMesh:
+    """Split each punch face into a uniform grid of cells of edge about ``cell_mm``.
+
+    Raises:
+        ContactError: no punch, a face edge <= 0, or cell_mm <= 0.
+    """
+    _check_punches(punches)
+    if not (np.isfinite(cell_mm) and cell_mm > 0):
+        raise ContactError("cell_mm", cell_mm, "> 0 mm")
+    centres, half, owner = [], [], []
+    for k, p in enumerate(punches):
+        nx = max(1, int(round(p.width_x_mm / cell_mm)))
+        nz = max(1, int(round(p.depth_z_mm / cell_mm)))
+        hx, hz = p.width_x_mm / (2 * nx), p.depth_z_mm / (2 * nz)
+        xs = p.x_mm - p.width_x_mm / 2 + hx * (2 * np.arange(nx) + 1)
+        zs = p.z_mm - p.depth_z_mm / 2 + hz * (2 * np.arange(nz) + 1)
+        gx, gz = np.meshgrid(xs, zs, indexing="ij")
+        centres.append(np.column_stack([gx.ravel(), gz.ravel()]))
+        half.append(np.tile([hx, hz], (nx * nz, 1)))
+        owner.append(np.full(nx * nz, k))
+    return CellMesh(np.vstack(centres), np.vstack(half), np.concatenate(owner))
+
+
+def _layer_depth_term(mesh: CellMesh, sample: Sample, n_gauss: int) -> np.ndarray:
+    """Half-space displacement at depth h at each cell centre per unit pressure on each cell.
+
+    Gauss-Legendre quadrature over the loaded cell (the integrand is smooth,
+    ρ >= h); the order grows when cells are large against h.
+    """
+    h = float(sample.thickness_mm)
+    pts, wts = np.polynomial.legendre.leggauss(n_gauss)
+    c, hf = mesh.centres, mesh.half
+    out = np.zeros((len(c), len(c)))
+    for i, wi in enumerate(wts):
+        for j, wj in enumerate(wts):
+            qx = c[:, 0] + hf[:, 0] * pts[i]  # quadrature point in every source cell
+            qz = c[:, 1] + hf[:, 1] * pts[j]
+            r = np.hypot(c[:, None, 0] - qx[None, :], c[:, None, 1] - qz[None, :])
+            weight = wi * wj * hf[:, 0] * hf[:, 1]
+            out += weight[None, :] * boussinesq_depth_displacement(
+                r, h, sample.youngs_modulus_MPa, sample.poisson_ratio)
+    return out
+
+
+def influence_matrix(mesh: CellMesh, sample: Sample) -> np.ndarray:
+    """Displacement at each cell centre per unit pressure on each cell, shape (n, n) (mm/MPa).
+
+    Half-space: Love's rectangle formula. Layer: Steinbrenner's difference
+    of the surface and depth-h half-space displacements.
+    """
+    check_sample(sample)
+    c, hf = mesh.centres, mesh.half
+    x1, x2 = c[:, 0] - hf[:, 0], c[:, 0] + hf[:, 0]
+    z1, z2 = c[:, 1] - hf[:, 1], c[:, 1] + hf[:, 1]
+    a = love_rectangle_displacement(c[:, None, 0], c[:, None, 1], x1[None, :], x2[None, :],
+                                    z1[None, :], z2[None, :], 1.0, sample.youngs_modulus_MPa,
+                                    sample.poisson_ratio)
+    if sample.thickness_mm is not None:
+        cell = float(2 * hf.max())
+        n_gauss = int(min(12, max(3, np.ceil(4 * cell / sample.thickness_mm))))
+        a = a - _layer_depth_term(mesh, sample, n_gauss)
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class PunchSolution:
+    """Rigid punches on the sample.
+
+    Attributes:
+        stiffness_N_per_mm: punch stiffness matrix S, forces = S displacements, shape (m, m).
+        compliance_mm_per_N: C = S⁻¹, displacements = C forces, shape (m, m).
+        cell_pressure_MPa: cell pressures for a unit displacement of each punch alone, shape (n, m).
+        mesh: the cells.
+    """
+
+    stiffness_N_per_mm: np.ndarray
+    compliance_mm_per_N: np.ndarray
+    cell_pressure_MPa: np.ndarray
+    mesh: CellMesh
+
+
+def solve_punches(punches, sample: Sample, cell_mm: float = DEFAULT_CELL_MM) -> PunchSolution:
+    """Stiffness and compliance matrices of rigid flat punches on the sample (N/mm, mm/N).
+
+    Collocation: A p = B u, with A the influence matrix, B the cell-to-punch
+    incidence and u the punch displacements; forces F = Bᵀ diag(area) p.
+
+    Args:
+        punches: sequence of :class:`Punch` (m >= 1), non-overlapping faces.
+        sample: :class:`Sample`.
+        cell_mm: target cell edge (mm), > 0.
+
+    Returns:
+        :class:`PunchSolution`.
+
+    Raises:
+        ContactError: bad punch, sample or cell size.
+    """
+    mesh = mesh_punches(punches, cell_mm)
+    a = influence_matrix(mesh, sample)
+    incidence = np.zeros((len(mesh.punch), len(punches)))
+    incidence[np.arange(len(mesh.punch)), mesh.punch] = 1.0
+    pressure = np.linalg.solve(a, incidence)
+    stiffness = incidence.T @ (mesh.area_mm2[:, None] * pressure)
+    stiffness = 0.5 * (stiffness + stiffness.T)  # symmetric by reciprocity; remove round-off
+    return PunchSolution(stiffness, np.linalg.inv(stiffness), pressure, mesh)
+
+
+def single_punch_compliance(width_x_mm: float, depth_z_mm: float, sample: Sample,
+                            cell_mm: float = DEFAULT_CELL_MM) -> float:
+    """Compliance of one rigid rectangular punch alone on the sample (mm/N)."""
+    sol = solve_punches([Punch(0.0, 0.0, width_x_mm, depth_z_mm)], sample, cell_mm)
+    return float(sol.compliance_mm_per_N[0, 0])
+
+
+def modulus_from_punch_stiffness(k_obj_N_per_mm: float, width_x_mm: float, depth_z_mm: float,
+                                 poisson_ratio: float, thickness_mm: float | None = None,
+                                 cell_mm: float = DEFAULT_CELL_MM) -> float:
+    """Young's modulus E (MPa) of a sample whose single-punch stiffness is K_obj.
+
+    The paper measures K_obj with a 2 x 3 mm flat indenter; the compliance of
+    one punch scales as 1/E, so E = K_obj C(E = 1).
+
+    Raises:
+        ContactError: K_obj <= 0 or another input out of range.
+    """
+    if not (np.isfinite(k_obj_N_per_mm) and k_obj_N_per_mm > 0):
+        raise ContactError("K_obj_N_per_mm", k_obj_N_per_mm, "> 0 N/mm")
+    return float(k_obj_N_per_mm * _unit_compliance(float(width_x_mm), float(depth_z_mm),
+                                                   float(poisson_ratio), thickness_mm, float(cell_mm)))
+
+
+@functools.lru_cache(maxsize=64)
+def _unit_compliance(width_x_mm: float, depth_z_mm: float, poisson_ratio: float,
+                     thickness_mm: float | None, cell_mm: float) -> float:
+    """Single-punch compliance at E = 1 MPa (mm/N), cached: samples differ only in E."""
+    unit = Sample(1.0, poisson_ratio, thickness_mm)
+    return single_punch_compliance(width_x_mm, depth_z_mm, unit, cell_mm)

@@ -1,0 +1,96 @@
+"""Plots of the virtual experiments (matplotlib, Agg backend; PNG files).
+
+* :func:`plot_ratio_map`: a Fig. 7-like plot, R against K_m/K_obj, one line
+  per K_r/K_m, with optional measured points (paper Table 2).
+* :func:`plot_ratio_vs_load`: a Fig. 6-like plot, R of each element against
+  the grasping force (N) for one sample.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_ratio_map(series: list[dict], path: str | Path, title: str,
+                   measured: list[dict] | None = None) -> Path:
+    """Write R against K_m/K_obj, one line per element, to a PNG file.
+
+    Args:
+        series: records {"label", "K_r_over_K_m", "K_m_over_K_obj": [...], "R": [...]}
+            and optional "style" (matplotlib line style, default "-"); series
+            with equal K_r/K_m (2 decimals) share a colour.
+        path: output PNG path; parent directories are created.
+        title: plot title.
+        measured: optional records of the same form drawn as markers in the
+            colour of the series with the same K_r/K_m (rounded to 2 decimals).
+
+    Returns:
+        The written path.
+    """
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7.0, 4.8), dpi=120)
+    colours = {}
+    for s in sorted(series, key=lambda s: s["K_r_over_K_m"]):
+        order = sorted(range(len(s["R"])), key=lambda i: s["K_m_over_K_obj"][i])
+        key = round(s["K_r_over_K_m"], 2)
+        (line,) = ax.plot([s["K_m_over_K_obj"][i] for i in order], [s["R"][i] for i in order],
+                          s.get("style", "-"), label=s["label"], color=colours.get(key))
+        colours.setdefault(key, line.get_color())
+    for m in measured or []:
+        ax.plot(m["K_m_over_K_obj"], m["R"], "o", ms=4,
+                color=colours.get(round(m["K_r_over_K_m"], 2), "k"),
+                label=m.get("label"))
+    return _finish(plt, fig, ax, "K_m / K_obj", "R = (Δ − δ_m)/(Δ − δ_r)", title, path)
+
+
+def plot_ratio_vs_load(loads_N, ratios: dict[str, list[float]], path: str | Path, title: str) -> Path:
+    """Write R of each element against the grasping force (N) to a PNG file (Fig. 6-like)."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6.0, 4.0), dpi=120)
+    for label, r in ratios.items():
+        ax.plot(loads_N, r, "o-", ms=3, label=label)
+    return _finish(plt, fig, ax, "grasping force W (N)", "R", title, path)
+
+
+def _finish(plt, fig, ax, xlabel: str, ylabel: str, title: str, path) -> Path:
+    """Label, grid and legend the axes, write the PNG (creating its folder), close the figure."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out)
+    plt.close(fig)
+    return out
+
+
+def plot_calibration(readings: list[dict], path: str | Path, title: str) -> Path:
+    """Write force and signal against element deflection for each element (Fig. 4-like) to a PNG.
+
+    Args:
+        readings: records {"element", "deflection_um": [...], "force_N": [...], "signal_V": [...]}.
+        path: output PNG path; parent directories are created.
+        title: figure title.
+    """
+    plt = _pyplot()
+    fig, (ax_f, ax_v) = plt.subplots(1, 2, figsize=(10.0, 4.0), dpi=120)
+    for r in readings:
+        (line,) = ax_f.plot(r["deflection_um"], r["force_N"], "o", ms=3, label=f"element {r['element']}")
+        ax_v.plot(r["deflection_um"], r["signal_V"], "o", ms=3, color=line.get_color(),
+                  label=f"element {r['element']}")
+    ax_v.set_xlabel("element deflection Δ (um)")
+    ax_v.set_ylabel("signal V (V)")
+    ax_v.grid(True, alpha=0.3)
+    return _finish(plt, fig, ax_f, "element deflection Δ (um)", "force F (N)", title, path)
