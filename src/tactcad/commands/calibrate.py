@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import argparse
 
-from ..mechanics.ladder import MODELS as LADDER_LEVELS
+from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 
 
 def register(subparsers) -> None:
     """Add the ``calibrate`` sub-command."""
-    from . import add_design_arg
+    from tactcad.commands import add_design_arg
 
     p = subparsers.add_parser(
         "calibrate", help="fit K, K_v, V0 from calibration readings and audit them against the design",
@@ -51,7 +51,7 @@ def register(subparsers) -> None:
 
 
 def _fit_record(element: int, c) -> dict:
-    from ..mechanics.paper import calibration as cal
+    from tactcad.mechanics.paper import calibration as cal
 
     amp = cal.series_error_amplification(c.K_N_per_mm, c.k_sensor_N_per_mm) if c.K_N_per_mm > 0 else None
     return {"element": element, "K_N_per_mm": c.K_N_per_mm, "stderr_K_N_per_mm": c.stderr_K_N_per_mm,
@@ -68,11 +68,11 @@ def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad calibrate``; returns the exit code."""
     from pathlib import Path
 
-    from ..design import load_design
-    from ..errors import TactcadError
-    from ..mechanics.paper import calibration as cal
-    from ..mechanics.paper import calibration_audit as ca
-    from .finite_json import dumps
+    from tactcad.design import load_design
+    from tactcad.errors import TactcadError
+    from tactcad.mechanics.paper import calibration as cal
+    from tactcad.mechanics.paper import calibration_audit as ca
+    from tactcad.commands.finite_json import dumps
 
     if args.write_csv and not args.simulate:
         raise TactcadError("--write-csv = given without --simulate: allowed only with --simulate")
@@ -117,7 +117,7 @@ def run(args: argparse.Namespace) -> int:
         report["skipped_elements"] = sorted({c.element for c in ca.from_table1()} - present)
     report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance)
     if args.plot:
-        from ..mechanics.paper.figures import plot_calibration
+        from tactcad.mechanics.paper.figures import plot_calibration
 
         report["plot"] = str(plot_calibration(report["fig4"], args.plot,
                                               f"{plan.name}: calibration readings"))

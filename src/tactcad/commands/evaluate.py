@@ -12,9 +12,9 @@ from __future__ import annotations
 import argparse
 import math
 
-from . import add_design_arg
+from tactcad.commands import add_design_arg
 
-from ..mechanics.ladder import MODELS as LADDER_LEVELS
+from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 
 
 def register(subparsers) -> None:
@@ -53,7 +53,7 @@ def parse_stiffness_list(field: str, text: str) -> list[float]:
     Raises:
         TactcadError: an entry that is not a number or not > 0, or an empty list.
     """
-    from ..errors import DesignError
+    from tactcad.errors import DesignError
 
     values = []
     for part in text.split(","):
@@ -71,11 +71,11 @@ def parse_stiffness_list(field: str, text: str) -> list[float]:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad evaluate``; returns the exit code."""
-    from ..design import load_design
-    from ..mechanics.paper import data as paper_data
-    from ..mechanics.paper import evaluation as ev
-    from ..mechanics.paper.table2_models import paper_stiffness_by_element
-    from .finite_json import dumps
+    from tactcad.design import load_design
+    from tactcad.mechanics.paper import data as paper_data
+    from tactcad.mechanics.paper import evaluation as ev
+    from tactcad.mechanics.paper.table2_models import paper_stiffness_by_element
+    from tactcad.commands.finite_json import dumps
 
     plan = load_design(args.design)
     samples = (parse_stiffness_list("samples", args.samples) if args.samples
@@ -86,13 +86,13 @@ def run(args: argparse.Namespace) -> int:
                  else ev.ladder_stiffness_by_element(plan, args.model))
     report = ev.evaluation_report(plan, stiffness, samples, spec, n_steps=args.steps)
     if args.plot:
-        from ..mechanics.paper.figures import plot_ratio_map
+        from tactcad.mechanics.paper.figures import plot_ratio_map
 
         title = (f"{plan.name}: R against K_m/K_obj ({args.coupling} sample, K from "
                  f"{args.stiffness}, reference element {report['reference_element']})")
         report["plot"] = str(plot_ratio_map(report["fig7"], args.plot, title))
     if args.plot_fig6:
-        from ..mechanics.paper.figures import plot_ratio_vs_load
+        from tactcad.mechanics.paper.figures import plot_ratio_vs_load
 
         fig6 = report["fig6"]
         report["plot_fig6"] = str(plot_ratio_vs_load(

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import argparse
 
-from ..mechanics.ladder import MODELS as LADDER_LEVELS
+from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 
 
 def register(subparsers) -> None:
     """Add the ``table2`` sub-command."""
-    from . import add_design_arg
+    from tactcad.commands import add_design_arg
 
     p = subparsers.add_parser(
         "table2", help="each model's error against the paper's 48 measured R (Table 2)",
@@ -35,9 +35,9 @@ def register(subparsers) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad table2``; returns the exit code."""
-    from ..design import load_design
-    from ..mechanics.paper.table2_models import table2_report
-    from .finite_json import dumps
+    from tactcad.design import load_design
+    from tactcad.mechanics.paper.table2_models import table2_report
+    from tactcad.commands.finite_json import dumps
 
     report = table2_report(load_design(args.design), args.model)
     if args.plot:
@@ -61,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
 
 def write_plot(report: dict, path: str):
     """Measured R (markers), eq. 2 (solid) and eq. 2 with K_r fitted on the other samples (dashed)."""
-    from ..mechanics.paper.figures import plot_ratio_map
+    from tactcad.mechanics.paper.figures import plot_ratio_map
 
     rows = report["table2"]
     by_name = {(m["name"], m["scheme"]): m for m in report["models"]}

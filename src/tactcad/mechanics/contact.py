@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import TactcadError
+from tactcad.errors import TactcadError
 
 #: Cell edge the boundary-element mesh aims for (mm): 2 x 3 mm faces get 8 x 12 cells.
 DEFAULT_CELL_MM = 0.25

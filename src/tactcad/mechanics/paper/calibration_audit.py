@@ -34,8 +34,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq
 
-from . import calibration as cal
-from . import data as paper_data
+from tactcad.mechanics.paper import calibration as cal
+from tactcad.mechanics.paper import data as paper_data
 
 #: Gauge gain of the simulated rig (V per unit strain): quarter bridge at 2.5 V
 #: excitation, gauge factor 2.0 and an amplifier gain of 96 give 120 V per unit
@@ -103,7 +103,7 @@ def fit_all(data: dict[int, cal.CalibrationData]) -> dict[int, cal.Calibration]:
 # Ladder evaluations at a web thickness
 # ---------------------------------------------------------------------------
 def _at_web(model: str, g, material, web_mm: float):
-    from .. import ladder
+    from tactcad.mechanics import ladder
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # correction range warnings: the search leaves it on purpose

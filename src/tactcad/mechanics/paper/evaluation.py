@@ -29,8 +29,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact import ContactError, Punch, Sample, modulus_from_punch_stiffness, solve_punches
-from . import data as paper_data
+from tactcad.mechanics.contact import ContactError, Punch, Sample, modulus_from_punch_stiffness, solve_punches
+from tactcad.mechanics.paper import data as paper_data
 
 #: Weight of the moving axis with the array (N), the first grasping force.
 DEAD_WEIGHT_N = 3.235
@@ -228,7 +228,7 @@ def simulate_rig(elements, k_obj: float, spec: SampleSpec, loads_N=None, referen
 # ---------------------------------------------------------------------------
 def ladder_stiffness_by_element(plan, model: str = "closed-form") -> dict[int, float]:
     """Predicted K (N/mm) of every element of the plan at a ladder level (distinct profiles once)."""
-    from .. import ladder
+    from tactcad.mechanics import ladder
 
     cache: dict[str, float] = {}
     out = {}
