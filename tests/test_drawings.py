@@ -15,6 +15,7 @@ import pytest
 from tactcad import __version__
 from tactcad.assembly.inventory import design_assemblies, instance_counts
 from tactcad.catalogue.array import array_instances, array_parts
+from tactcad.drawings.compose import part_hash
 from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
 
 SVG = "{http://www.w3.org/2000/svg}"
@@ -177,7 +178,8 @@ def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan):
         assert int(tb["tb-quantity"]) == largest[part]
         if part in array_counts:
             assert int(tb["tb-quantity"]) == array_counts[part]
-        assert plan.design_hash[:12] in tb["tb-design"]
+        assert tb["tb-design"].endswith(part_hash(plan, specs[part])[:12])
+        assert tb["tb-number"] == f"{plan.name}-{part}"
         assert tb["tb-version"] == f"tactcad {__version__}"
         assert tb["tb-tolerance"] == "ISO 2768-f"
         assert tb["tb-units"] == "mm"
@@ -215,7 +217,24 @@ def test_changed_design_changes_the_drawing(overrides):
     assert_dims(found, element_expectations(plan.distinct_elements[name]))
     if "element.web_thickness_mm" in overrides:
         assert found["web_thickness"].startswith(f"{overrides['element.web_thickness_mm']:g} ±")
-    assert texts_by_id(svg)["tb-design"].endswith(plan.design_hash[:12])
+    assert texts_by_id(svg)["tb-design"].endswith(part_hash(plan, array_parts(plan)[name])[:12])
+
+
+def test_part_hash_follows_what_shapes_the_part(plan):
+    """The title block's hash covers every value that shapes the part, and no other:
+    another element's arm leaves element_a4mm's hash alone, its own web does not."""
+    data = default_design_data()
+    other_arm = plan_from_dict(with_overrides(data, {"arms.lengths_mm": [
+        4.0, 7.0, 6.0, 8.0, 6.5, 8.0, 5.0, 4.0, 5.0, 7.0]}))
+    thicker = plan_from_dict(with_overrides(data, {"element.web_thickness_mm": 0.3}))
+    renamed = plan_from_dict(with_overrides(data, {"design.name": "other_array"}))
+
+    def h(p, name="element_a4mm"):
+        return part_hash(p, array_parts(p)[name])
+
+    assert h(other_arm) == h(plan)
+    assert h(other_arm, "element_a6mm") != h(plan, "element_a6mm")  # used by one element now
+    assert h(thicker) != h(plan) and h(renamed) != h(plan)
 
 
 def test_same_plan_gives_same_svg(plan):

@@ -20,12 +20,15 @@ import functools
 import hashlib
 import json
 import os
+import pickle
 import shutil
 import tempfile
 from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
+
+from tactcad.atomic import write_bytes_atomic
 
 #: Default store folder, relative to the working directory (git-ignored).
 DEFAULT_STORE = Path(".tactcad-cache")
@@ -72,9 +75,10 @@ def stable_repr(obj: Any) -> str:
         TypeError: an object whose text would not be stable (a function, an
             object printed with its address).
     """
+    # fields declared repr=False (a plan's source path, its raw tables) shape no output
     if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
         inner = ", ".join(f"{f.name}={stable_repr(getattr(obj, f.name))}"
-                          for f in dataclasses.fields(obj))
+                          for f in dataclasses.fields(obj) if f.repr)
         return f"{type(obj).__name__}({inner})"
     if isinstance(obj, Mapping):
         return "{" + ", ".join(f"{stable_repr(k)}: {stable_repr(v)}" for k, v in obj.items()) + "}"
@@ -121,6 +125,25 @@ class Store:
         except (OSError, ValueError, KeyError, TypeError):
             return None
         return records
+
+    def memo(self, key: str, compute: Callable[[], Any]) -> Any:
+        """``compute()``, or its pickled result stored under ``key`` by an
+        earlier run (for intermediate results too costly to redo, such as a
+        drawing sheet converted for the PDF). Unreadable entries are recomputed."""
+        if self.root is None:
+            return compute()
+        path = self.root / "memo" / key[:2] / f"{key}.pickle"
+        try:
+            return pickle.loads(path.read_bytes())
+        except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError):
+            pass
+        value = compute()
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            write_bytes_atomic(path, pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
+        except OSError:
+            pass
+        return value
 
     def keep(self, key: str, staging: Path, records: Sequence[dict]) -> None:
         """Store a finished job's files (found in ``staging``) and records.

@@ -255,7 +255,7 @@ class Plan:
 
     name: str
     description: str
-    source: str
+    source: str = field(repr=False)  # where it was read from; shapes no output
     design_hash: str
     material: Material
     sheet_thickness_mm: float

@@ -9,19 +9,28 @@ from reportlab.graphics import renderPDF
 from reportlab.pdfgen import canvas
 from svglib.svglib import svg2rlg
 
+from tactcad.store import Store, content_key
 
-def svgs_to_pdf(svg_texts: list[str], target: Path, title: str = "") -> None:
+
+def svgs_to_pdf(svg_texts: list[str], target: Path, title: str = "",
+                store: Store | None = None) -> None:
     """One PDF page per SVG, each page the SVG's own size.
 
     The PDF is written in reportlab's invariant mode (fixed creation date and
     document id), so the same SVGs give the same bytes.
 
+    Args:
+        store: where each sheet's conversion (svglib) is kept for the next
+            run; a PDF with one changed sheet then converts only that one.
+
     Raises:
         ValueError: an SVG could not be parsed.
     """
+    store = store or Store(None)
     drawings = []
     for k, text in enumerate(svg_texts, start=1):
-        dr = svg2rlg(io.BytesIO(text.encode("utf-8")))
+        dr = store.memo(content_key("svg2rlg", text),
+                        lambda: svg2rlg(io.BytesIO(text.encode("utf-8"))))
         if dr is None:
             raise ValueError(f"SVG page {k} could not be parsed")
         drawings.append(dr)

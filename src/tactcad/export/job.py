@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
 from typing import Callable
@@ -12,6 +12,7 @@ from tactcad.assembly.rigs import RigModel
 from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import Plan
 from tactcad.design.scenes import SceneSpec
+from tactcad.store import Store
 
 Log = Callable[[str], None]
 
@@ -24,6 +25,7 @@ class Run:
     plan: Plan
     staging: Path
     log: Log = print
+    store: Store = field(default_factory=lambda: Store(None))  # also memoises costly steps
 
     @cached_property
     def scenes(self) -> dict[str, tuple[SceneSpec, RigModel]]:

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from tactcad.assembly.inventory import assembly_review, fabricated_parts
 from tactcad.catalogue.array import array_instances, array_parts
+from tactcad.drawings.compose import drawing_inputs
 from tactcad.export.names import (ARRAY_PNG, ARRAY_STEP, PDF_NAME, drawing_name,
                                   drawing_png_name, element_dxf_name, part_step_name,
                                   scene_glb_name, scene_step_name)
@@ -120,33 +121,34 @@ def drawing_jobs(run: Run) -> list[Job]:
     plan = run.plan
     parts, qty = fabricated_parts(plan, run.inventory)
     jobs = []
-    for k, spec in enumerate(parts, start=1):
+    for spec in parts:
         jobs.append(Job(f"drawing:{spec.name}",
-                        content_key("drawing-svg", plan, spec, qty[spec.name], k, len(parts)),
-                        _drawing(spec, qty[spec.name], k, len(parts))))
+                        content_key("drawing-svg", drawing_inputs(plan, spec), qty[spec.name]),
+                        _drawing(spec, qty[spec.name])))
     svgs = [drawing_name(s.name) for s in parts]
-    pdf_key = content_key("drawing-pdf", plan.name, [j.key for j in jobs])
-    jobs.append(Job("drawings:pdf", pdf_key, _drawings_pdf(svgs)))
-    elements = [s for s in parts if s.builder == "element"]
+    jobs.append(Job("drawings:pdf", content_key("drawing-pdf", plan.name, [j.key for j in jobs]),
+                    _drawings_pdf(svgs)))
+    elements = [k for k, s in enumerate(parts) if s.builder == "element"]
     if elements:
-        page = parts.index(elements[0])
-        jobs.append(Job("drawings:png", content_key("drawing-png", pdf_key, page, PNG_DPI),
-                        _drawing_png(elements[0].name, page)))
+        # the PNG shows one page: it depends on that page's drawing only
+        page = elements[0]
+        jobs.append(Job("drawings:png", content_key("drawing-png", jobs[page].key, PNG_DPI),
+                        _drawing_png(parts[page].name, page)))
     return jobs
 
 
-def _drawing(spec, quantity: int, sheet: int, sheets: int):
+def _drawing(spec, quantity: int):
     def make(run: Run) -> list[dict]:
         from tactcad.atomic import write_bytes_atomic
         from tactcad.drawings.compose import compose
         from tactcad.drawings.views import scale_text
 
-        d = compose(run.plan, spec, run.parts.solid(spec), quantity, sheet, sheets)
+        d = compose(run.plan, spec, run.parts.solid(spec), quantity)
         rel = drawing_name(spec.name)
         write_bytes_atomic(run.staging / rel, d.sheet.svg().encode("utf-8"))
         run.log(f"  wrote {rel}")
         return [{"path": rel, "part": spec.name, "kind": "drawing-svg", "quantity": quantity,
-                 "scale": scale_text(d.scale), "sheet": sheet}]
+                 "scale": scale_text(d.scale)}]
     return make
 
 
@@ -157,7 +159,8 @@ def _drawings_pdf(svgs: list[str]):
 
         texts = [(run.staging / rel).read_text(encoding="utf-8") for rel in svgs]
         write_atomic(run.staging / PDF_NAME,
-                     lambda tmp: svgs_to_pdf(texts, tmp, f"{run.plan.name} fabrication drawings"))
+                     lambda tmp: svgs_to_pdf(texts, tmp, f"{run.plan.name} fabrication drawings",
+                                             run.store))
         run.log(f"  wrote {PDF_NAME} ({len(texts)} pages)")
         return [{"path": PDF_NAME, "part": "drawings", "kind": "drawing-pdf", "pages": len(texts)}]
     return make
