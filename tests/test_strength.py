@@ -117,3 +117,23 @@ def test_closed_form_stress_matches_the_fem2d_field(plan, web, radius, arm):
     x, y = fem.peak_location_mm
     assert x == pytest.approx(g.hinge_x_mm, abs=radius / 4)
     assert y == pytest.approx(g.base_height_mm - web, abs=web / 4)
+
+
+def test_table1_comparison_uses_the_as_built_web(plan, capsys):
+    from tactcad.mechanics.paper.data import table1
+    from tactcad.mechanics.strength import peak_stress_per_newton, table1_force_comparison
+
+    rows = table1_force_comparison(plan)
+    assert [r["element"] for r in rows] == [m.element for m in table1()]
+    y = plan.material.yield_strength_MPa
+    for r, m in zip(rows, table1()):
+        s = float(peak_stress_per_newton(r["web_as_built_mm"], 0.5, r["arm_length_mm"], 3.0))
+        assert r["stress_MPa_at_max_support_force_as_built"] == pytest.approx(
+            s * m.max_support_force_N)
+        assert r["yield_safety_factor_at_max_support_force_as_built"] == pytest.approx(
+            y / (s * m.max_support_force_N))
+    # the thicker the as-built web, the larger the full-scale force at one arm length
+    four = sorted((r for r in rows if r["arm_length_mm"] == 4.0), key=lambda r: r["web_as_built_mm"])
+    assert four[0]["full_scale_force_as_built_N"] < four[-1]["full_scale_force_as_built_N"]
+    assert main(["strength", "--table1"]) == 0
+    assert "max support N" in capsys.readouterr().out

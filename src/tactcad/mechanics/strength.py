@@ -381,3 +381,46 @@ def strength_summary(plan: Plan, model: str = "closed-form") -> list[dict]:
             if isinstance(v, float) and not math.isfinite(v):
                 raise RuntimeError(f"non-finite {k} for element {r['element']}")
     return recs
+
+
+def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict]:
+    """The model's full-scale force against Table 1's "max support force" (the
+    largest force of each element's calibration), per calibrated element.
+
+    For each element: the full-scale force at ``model`` with the design web;
+    the as-built web that reproduces the measured K (corrected closed form,
+    :func:`tactcad.mechanics.ladder.as_built_webs`) and the closed-form
+    full-scale force and peak stress at the measured maximum force with that
+    web; and the yield safety factor the calibration ran at.
+
+    Returns:
+        one dict per Table 1 element (element 5 has no calibration).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    from dataclasses import replace
+
+    from .ladder import as_built_webs
+    from .paper.data import table1
+
+    y = _require_yield(plan.material)
+    sf = plan.strength.safety_factor
+    design = {r.element: r for r in plan_strength(plan, model)}
+    webs = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
+    out = []
+    for meas in table1():
+        g = plan.element(meas.element).geometry
+        t_built = webs[meas.element]
+        gb = replace(g, web_thickness_mm=t_built)
+        s_built = float(peak_stress_per_newton(t_built, gb.notch_radius_mm, gb.arm_length_mm,
+                                               gb.sheet_thickness_mm))
+        s_max = s_built * meas.max_support_force_N
+        out.append({"element": meas.element, "arm_length_mm": g.arm_length_mm,
+                    "max_support_force_N": meas.max_support_force_N,
+                    "full_scale_force_N": design[meas.element].full_scale_force_N,
+                    "web_as_built_mm": t_built,
+                    "full_scale_force_as_built_N": y / (s_built * sf),
+                    "stress_MPa_at_max_support_force_as_built": s_max,
+                    "yield_safety_factor_at_max_support_force_as_built": y / s_max})
+    return out
