@@ -155,3 +155,27 @@ def test_fem3d_peak_is_the_plane_strain_share_of_the_closed_form(plan):
     assert math.sqrt(1 - nu + nu * nu) - 0.01 < fem.stress_MPa_per_N / closed < 0.93
     x, y, _ = fem.peak_location_mm
     assert x == pytest.approx(g.hinge_x_mm, abs=0.1) and y == pytest.approx(9.75, abs=0.05)
+
+
+def test_force_limits_broadcast_and_match_the_records(plan):
+    from tactcad.mechanics.strength import force_limits
+
+    arms = np.array([4.0, 5.0, 6.0, 7.0, 8.0])
+    lim = force_limits(0.25, 0.5, arms, 3.0, plan.material, plan.strength)
+    recs = {r.arm_length_mm: r for r in plan_strength(plan)}
+    for i, a in enumerate(arms):
+        r = recs[a]
+        assert lim["yield"][i] == pytest.approx(r.full_scale_force_N)
+        assert lim["fatigue"][i] == pytest.approx(r.fatigue_force_N)
+        assert lim["gauge_fatigue"][i] == pytest.approx(r.gauge_fatigue_force_N)
+    # 6061-T6 at R = -1 binds before the gauge and yield
+    assert np.allclose(lim["binding"], lim["fatigue"])
+
+
+def test_closed_form_outside_the_kt_fit_range_warns(plan):
+    from tactcad.mechanics.strength import StrengthRangeWarning, closed_form_stress
+
+    g = dataclasses.replace(plan.element(1).geometry, web_thickness_mm=0.6, notch_radius_mm=0.5)
+    with pytest.warns(StrengthRangeWarning, match="outside the K_t fit range"):
+        es = closed_form_stress(g, plan.material)
+    assert es.stress_error_rel == pytest.approx(0.02)

@@ -53,6 +53,9 @@ KT_EXPONENT = 0.536
 #: Stated accuracy of the fitted K_t against converged FEM (largest residual
 #: of the fit 0.41 %, FEM error <= 0.22 %; Smith's 9/20 would be 3.2 % low at t/R = 1).
 KT_FIT_TOLERANCE = 0.01
+#: t/R range of the K_t fit (outside it the error estimate doubles and a
+#: StrengthRangeWarning is issued).
+KT_FIT_RANGE = (0.05, 1.0)
 #: The paper's FEM design-study tip load (N).
 PAPER_LOAD_N = 2.0
 #: Mesh refinement of the stress solves: finest neck size = web / divisions.
@@ -64,6 +67,10 @@ STRESS_WEB_DIVISIONS_2D = 24.0
 STRESS_WEB_DIVISIONS_3D = 6.0
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
+
+
+class StrengthRangeWarning(UserWarning):
+    """A closed-form stress outside the t/R range its K_t was fitted over."""
 
 
 # ---------------------------------------------------------------------------
@@ -125,6 +132,35 @@ def full_scale_force(yield_strength_MPa, stress_MPa_per_N, safety_factor) -> np.
     return y / (s * sf)
 
 
+def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Material,
+                 settings: StrengthSettings) -> dict[str, np.ndarray]:
+    """Closed-form tip-force limits (N) of element geometries, broadcast over
+    the geometry arrays (for design searches).
+
+    Returns:
+        ``yield``: full-scale force, yield / (peak stress per N x safety factor);
+        ``fatigue``: fatigue strength / peak stress per N (NaN without a
+        fatigue strength); ``gauge_max`` and ``gauge_fatigue``: the gauge's
+        maximum and fatigue strain / Euler-Bernoulli surface strain per N over
+        the web, 6 a / (E b t^2); ``binding``: the smallest of them.
+
+    Raises:
+        DesignError: the material has no yield strength.
+        ValueError: a non-finite or non-positive geometry value.
+    """
+    y = _require_yield(material)
+    s = peak_stress_per_newton(web_mm, notch_radius_mm, arm_length_mm, sheet_mm)
+    eps = nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm) / material.youngs_modulus_MPa
+    fat = material.fatigue_strength_MPa
+    out = {"yield": full_scale_force(y, s, settings.safety_factor),
+           "fatigue": (fat / s) if fat is not None else np.full_like(s, np.nan),
+           "gauge_max": settings.gauge.max_strain / eps,
+           "gauge_fatigue": settings.gauge.fatigue_strain / eps}
+    out["binding"] = np.fmin.reduce([out["yield"], out["fatigue"], out["gauge_max"],
+                                     out["gauge_fatigue"]])
+    return out
+
+
 def _positive(name: str, value) -> np.ndarray:
     arr = np.asarray(value, dtype=float)
     if not np.all(np.isfinite(arr)) or np.any(arr <= 0):
@@ -164,10 +200,19 @@ def closed_form_stress(g: ElementGeometry, material: Material, model: str = "clo
     ("closed-form" or "beam", which share the stress formula)."""
     from .ladder import estimate
 
+    import warnings
+
     r = estimate(model, g, material)
     s = float(peak_stress_per_newton(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,
                                      g.sheet_thickness_mm))
-    return ElementStress(model, s, KT_FIT_TOLERANCE, r.stiffness_N_per_mm, r.gauge_strain_per_N)
+    err = KT_FIT_TOLERANCE
+    t_over_r = g.web_thickness_mm / g.notch_radius_mm
+    if not KT_FIT_RANGE[0] <= t_over_r <= KT_FIT_RANGE[1]:
+        err = 2.0 * KT_FIT_TOLERANCE
+        warnings.warn(f"{g.part_name}: t/R = {t_over_r:.3g} is outside the K_t fit range "
+                      f"{KT_FIT_RANGE[0]:g} ... {KT_FIT_RANGE[1]:g}; estimated error "
+                      f"{100 * err:.0f} %", StrengthRangeWarning, stacklevel=2)
+    return ElementStress(model, s, err, r.stiffness_N_per_mm, r.gauge_strain_per_N)
 
 
 def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d", *,
