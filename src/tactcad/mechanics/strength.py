@@ -255,14 +255,14 @@ def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d"
                 sol = solve_fem3d(g, material, size_factor=s, region=region, keep_field=True,
                                   web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
             peaks.append(peak_notch_stress(sol.field, g))
-            sols.append(dataclass_without_field(sol))
+            sols.append(_without_field(sol))
     rich = richardson([p.per_newton_MPa_per_N for p in peaks], REFINEMENT_RATIO)
     fin = sols[-1]
     return ElementStress(model, rich.extrapolated, rich.error_rel, fin.stiffness_N_per_mm,
                          abs(fin.gauge_strain) / fin.force_N, peaks[-1].location_mm)
 
 
-def dataclass_without_field(sol):
+def _without_field(sol):
     """The solve's scalars without its field (frees the mesh and basis)."""
     from dataclasses import replace
 
