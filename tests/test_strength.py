@@ -179,3 +179,16 @@ def test_closed_form_outside_the_kt_fit_range_warns(plan):
     with pytest.warns(StrengthRangeWarning, match="outside the K_t fit range"):
         es = closed_form_stress(g, plan.material)
     assert es.stress_error_rel == pytest.approx(0.02)
+
+
+@pytest.mark.slow
+def test_kt_exponent_refits_from_fem(plan):
+    """A refit on three of the fit geometries (t/R = 0.1, 0.5, 1) lands on
+    the stored exponent, with residuals inside the stated tolerance."""
+    from tactcad.mechanics.strength import KT_EXPONENT, KT_FIT_GEOMETRIES, fit_kt_exponent
+
+    fit = fit_kt_exponent(plan.element(1).geometry, plan.material,
+                          [KT_FIT_GEOMETRIES[i] for i in (1, 4, 7)])
+    assert fit.exponent == pytest.approx(KT_EXPONENT, abs=0.01)
+    assert np.all(np.abs(fit.residual_rel) < KT_FIT_TOLERANCE)
+    assert fit.exponent > 0.45 + 0.05  # clearly above Smith's 9/20 for the double-sided notch
