@@ -17,8 +17,9 @@ Peak stress per newton of tip force, at every level of the ladder:
   notch. The single-sided notch of these elements concentrates more (its
   flat face carries no notch); the exponent :data:`KT_EXPONENT` is refitted
   to converged plane-stress P2 FEM (:func:`fem_peak_stress`, Richardson over
-  three meshes) by least squares on ln K_t over ten geometries, t/R = 0.05
-  ... 1, R = 0.4 ... 1.5 mm, arms 4 ... 8 mm (K_t from 1.014 to 1.240):
+  three meshes) by least squares on ln K_t over the ten geometries of
+  :data:`KT_FIT_GEOMETRIES` (:func:`fit_kt_exponent` reproduces p = 0.5365),
+  t/R = 0.05 ... 1, R = 0.4 ... 1.5 mm, arms 4 ... 8 mm (K_t from 1.014 to 1.240):
   largest residual 0.41 %, Richardson error of the FEM values <= 0.22 %;
   the tests check agreement within :data:`KT_FIT_TOLERANCE` (1 %).
   The free surface at the notch root is in uniaxial stress, so the peak von
