@@ -28,11 +28,19 @@ Peak stress per newton of tip force, at every level of the ladder:
   at the hinge from the P2 field (:mod:`tactcad.mechanics.fem.fields`),
   Richardson-extrapolated over three meshes refined by sqrt(2).
 
+The closed form is the plane-stress peak. A wide web (b/t = 12 in the
+default design) is close to plane strain at mid-width, where sigma_z ~ nu
+sigma_x lowers von Mises by sqrt(1 - nu + nu^2) = 0.88: fem3d's peak there is
+0.90 of the closed form, which is therefore conservative for wide webs.
+
 Full-scale force (N) = yield strength / (peak stress per N x safety factor);
 at it the gauge strain (gauge strain per N x force) is compared with the
 gauge's maximum and fatigue strain, and the stress with the fatigue
-strength; each exceedance becomes a warning of the record. The tip
-deflection at full scale is F / K at the same level.
+strength; each exceedance becomes a warning of the record. A sensing
+element is pressed one way (R ~ 0) while the library's fatigue strengths and
+the gauges' fatigue strains are mostly fully reversed amplitudes: comparing
+the peak with them is conservative. The tip deflection at full scale is
+F / K at the same level.
 
 Units: mm, N, MPa, N/mm; strain dimensionless.
 """
