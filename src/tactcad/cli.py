@@ -25,6 +25,7 @@ COMMAND_MODULES = (
     "tactcad.commands.evaluate",
     "tactcad.commands.table2",
     "tactcad.commands.calibrate",
+    "tactcad.commands.strength",
 )
 
 

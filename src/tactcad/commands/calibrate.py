@@ -68,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad calibrate``; returns the exit code."""
     from pathlib import Path
 
-    from tactcad.design import load_design
+    from tactcad.design.array import load_design
     from tactcad.errors import TactcadError
     from tactcad.mechanics.paper import calibration as cal
     from tactcad.mechanics.paper import calibration_audit as ca

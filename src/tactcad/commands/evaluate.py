@@ -71,7 +71,7 @@ def parse_stiffness_list(field: str, text: str) -> list[float]:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad evaluate``; returns the exit code."""
-    from tactcad.design import load_design
+    from tactcad.design.array import load_design
     from tactcad.mechanics.paper import data as paper_data
     from tactcad.mechanics.paper import evaluation as ev
     from tactcad.mechanics.paper.table2_models import paper_stiffness_by_element

@@ -35,7 +35,7 @@ def register(subparsers) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad table2``; returns the exit code."""
-    from tactcad.design import load_design
+    from tactcad.design.array import load_design
     from tactcad.mechanics.paper.table2_models import table2_report
     from tactcad.commands.finite_json import dumps
 
