@@ -26,6 +26,7 @@ from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import ElementGeometry, Plan
 from tactcad.store import stable_repr
 from tactcad.geometry.profile import Arc
+from tactcad.mechanics.strength import strength_summary
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
 from tactcad.drawings.views import (CAMERAS, ISO_5455_SCALES, View, cameras_for, detail, orientation, project,
                     scale_text)
@@ -593,6 +594,12 @@ def notes_for(d: Drawing) -> list[str]:
         n.append(f"Used as array element{'s' if len(used) > 1 else ''} "
                  + ", ".join(str(k) for k in used)
                  + ". A strain gauge is bonded on the flat top face over the web.")
+        st = next(r for r in strength_summary(plan) if r["part_name"] == spec.name)
+        n.append(f"Full-scale tip force {st['full_scale_force_N']:.2f} N: yield safety factor "
+                 f"{st['yield_safety_factor_at_full_scale']:g} on "
+                 f"{fmt_mm(plan.material.yield_strength_MPa)} MPa ({plan.material.grade}), peak "
+                 f"web stress {st['stress_MPa_per_N']:.0f} MPa/N ({st['model']}). Do not load "
+                 f"the tip beyond it.")
     elif spec.builder == "spacer":
         n.append(f"{_sentence(spec.process)}, {spec.material}. Thickness "
                  f"{fmt_mm(plan.spacer.thickness_mm)} = pitch {fmt_mm(plan.pitch_mm)} - sheet "
@@ -722,7 +729,8 @@ def drawing_inputs(plan: Plan, spec: PartSpec) -> tuple:
     inputs: tuple = (plan.name, spec)
     if spec.builder == "element":
         used = tuple(s.number for s in plan.slots if s.geometry.part_name == spec.name)
-        inputs += (plan.distinct_elements[spec.name], used, plan.edm)
+        inputs += (plan.distinct_elements[spec.name], used, plan.edm, plan.material,
+                   plan.strength)
     elif spec.builder == "spacer":
         inputs += (plan.spacer, plan.pitch_mm, plan.sheet_thickness_mm)
     elif spec.builder == "clamp_plate":

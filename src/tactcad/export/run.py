@@ -34,6 +34,7 @@ from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
 from tactcad.export.names import ARRAY_STEP, MANIFEST
+from tactcad.mechanics.strength import strength_summary
 from tactcad.store import Store, stack_versions
 
 
@@ -90,10 +91,19 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
         "parts": parts,
         "assemblies": {"array": {"file": ARRAY_STEP, "instances": len(inst),
                                **assembly_review(specs, inst)}},
+        "strength": [_strength_record(r) for r in strength_summary(plan)],
         "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
                     for d in plan.derived],
         "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],
     }
+
+
+def _strength_record(r: dict) -> dict:
+    """An element's full-scale force and safety factor for the manifest (closed form)."""
+    keys = ("element", "part_name", "model", "stress_MPa_per_N", "full_scale_force_N",
+            "yield_safety_factor_at_full_scale", "gauge_strain_at_full_scale",
+            "tip_deflection_mm_at_full_scale", "warnings")
+    return {k: r[k] for k in keys}
 
 
 def _part_record(spec: PartSpec, count: int) -> dict:
