@@ -25,7 +25,7 @@ import shutil
 import tempfile
 from dataclasses import dataclass
 from importlib import metadata
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 from typing import Any, Callable, Mapping, Sequence
 
 from tactcad.atomic import write_bytes_atomic
@@ -68,27 +68,47 @@ def _salt() -> str:
 
 def stable_repr(obj: Any) -> str:
     """A text of ``obj`` that is the same in every process: dataclasses field
-    by field, mappings in their order, sets sorted (their iteration order
-    follows string hashing, which varies between processes).
+    by field (fields declared ``repr=False`` left out: a plan's source path and
+    raw tables shape no output), mappings in their order, sets sorted (their
+    iteration order follows string hashing, which varies between processes).
 
     Raises:
         TypeError: an object whose text would not be stable (a function, an
             object printed with its address).
     """
-    # fields declared repr=False (a plan's source path, its raw tables) shape no output
-    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
-        inner = ", ".join(f"{f.name}={stable_repr(getattr(obj, f.name))}"
-                          for f in dataclasses.fields(obj) if f.repr)
-        return f"{type(obj).__name__}({inner})"
-    if isinstance(obj, Mapping):
-        return "{" + ", ".join(f"{stable_repr(k)}: {stable_repr(v)}" for k, v in obj.items()) + "}"
-    if isinstance(obj, (set, frozenset)):
-        return "set(" + ", ".join(sorted(stable_repr(x) for x in obj)) + ")"
-    if isinstance(obj, (list, tuple)):
-        return "[" + ", ".join(stable_repr(x) for x in obj) + "]"
-    if obj is None or isinstance(obj, (str, int, float, bool, Path)):
+    return _stable(obj, {})
+
+
+_FIELDS: dict[type, tuple[str, ...]] = {}
+_SCALARS = (str, int, float, bool, type(None), Path, PurePosixPath)
+
+
+def _stable(obj: Any, memo: dict[int, str]) -> str:
+    t = type(obj)
+    if t in _SCALARS or isinstance(obj, _SCALARS):
         return repr(obj)
-    raise TypeError(f"no stable key for {type(obj).__name__}")
+    if t is list or t is tuple:
+        return "[" + ", ".join(_stable(x, memo) for x in obj) + "]"
+    key = id(obj)  # the object lives through this call, so its id is its own
+    if key in memo:
+        return memo[key]
+    if hasattr(t, "__dataclass_fields__"):
+        names = _FIELDS.get(t)
+        if names is None:
+            names = _FIELDS[t] = tuple(f.name for f in dataclasses.fields(t) if f.repr)
+        text = t.__name__ + "(" + ", ".join(
+            f"{n}={_stable(getattr(obj, n), memo)}" for n in names) + ")"
+    elif isinstance(obj, Mapping):
+        text = "{" + ", ".join(f"{_stable(k, memo)}: {_stable(v, memo)}"
+                               for k, v in obj.items()) + "}"
+    elif isinstance(obj, (set, frozenset)):
+        text = "set(" + ", ".join(sorted(_stable(x, memo) for x in obj)) + ")"
+    elif isinstance(obj, (list, tuple)):
+        text = "[" + ", ".join(_stable(x, memo) for x in obj) + "]"
+    else:
+        raise TypeError(f"no stable key for {t.__name__}")
+    memo[key] = text
+    return text
 
 
 def content_key(kind: str, *material: Any) -> str:
@@ -96,8 +116,9 @@ def content_key(kind: str, *material: Any) -> str:
     the code and stack salt."""
     h = hashlib.sha256(_salt().encode())
     h.update(b"\0" + kind.encode())
+    memo: dict[int, str] = {}
     for m in material:
-        h.update(b"\0" + stable_repr(m).encode())
+        h.update(b"\0" + _stable(m, memo).encode())
     return h.hexdigest()
 
 

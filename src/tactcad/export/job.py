@@ -54,3 +54,5 @@ class Job:
     name: str
     key: str
     make: Callable[[Run], list[dict]]
+    needs: tuple[PartSpec, ...] = ()  # solids the job reads (built once, before any worker starts)
+    after: tuple[str, ...] = ()  # jobs whose files this one reads

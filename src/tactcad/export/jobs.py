@@ -15,6 +15,7 @@ comes last because it names the files the others wrote.
 from __future__ import annotations
 
 from tactcad.assembly.inventory import assembly_review, fabricated_parts
+from tactcad.assembly.rigs import shown_instances
 from tactcad.catalogue.array import array_instances, array_parts
 from tactcad.drawings.compose import drawing_inputs
 from tactcad.export.names import (ARRAY_PNG, ARRAY_STEP, PDF_NAME, drawing_name,
@@ -36,11 +37,11 @@ def all_jobs(run: Run) -> list[Job]:
 def array_jobs(run: Run) -> list[Job]:
     plan = run.plan
     specs = array_parts(plan)
-    jobs = [Job(f"step:{name}", content_key("step-part", spec), _part_step(spec))
+    jobs = [Job(f"step:{name}", content_key("step-part", spec), _part_step(spec), (spec,))
             for name, spec in specs.items()]
     inst = array_instances(plan)
     jobs.append(Job("step:array", content_key("step-array", list(specs.values()), inst),
-                    _array_step(specs, inst)))
+                    _array_step(specs, inst), tuple(specs.values())))
     for slot in plan.slots:
         spec = specs[slot.geometry.part_name]
         title = f"{plan.name} element {slot.number}"
@@ -92,7 +93,13 @@ def _element_dxf(spec, title: str, number: int):
 def scene_jobs(run: Run, names=None) -> list[Job]:
     """One job per scene (all, or ``names`` in that order)."""
     names = list(run.scenes) if names is None else list(names)
-    return [Job(f"scene:{n}", content_key("scene", *run.scenes[n]), _scene(n)) for n in names]
+    jobs = []
+    for n in names:
+        spec, model = run.scenes[n]
+        shown = {part: model.specs[part] for _, part, _ in shown_instances(model, spec)}
+        jobs.append(Job(f"scene:{n}", content_key("scene", spec, model), _scene(n),
+                        tuple(shown.values())))
+    return jobs
 
 
 def _scene(name: str):
@@ -124,16 +131,16 @@ def drawing_jobs(run: Run) -> list[Job]:
     for spec in parts:
         jobs.append(Job(f"drawing:{spec.name}",
                         content_key("drawing-svg", drawing_inputs(plan, spec), qty[spec.name]),
-                        _drawing(spec, qty[spec.name])))
+                        _drawing(spec, qty[spec.name]), (spec,)))
     svgs = [drawing_name(s.name) for s in parts]
     jobs.append(Job("drawings:pdf", content_key("drawing-pdf", plan.name, [j.key for j in jobs]),
-                    _drawings_pdf(svgs)))
+                    _drawings_pdf(svgs), after=tuple(j.name for j in jobs)))
     elements = [k for k, s in enumerate(parts) if s.builder == "element"]
     if elements:
         # the PNG shows one page: it depends on that page's drawing only
         page = elements[0]
         jobs.append(Job("drawings:png", content_key("drawing-png", jobs[page].key, PNG_DPI),
-                        _drawing_png(parts[page].name, page)))
+                        _drawing_png(parts[page].name, page), after=("drawings:pdf",)))
     return jobs
 
 
@@ -198,7 +205,8 @@ def image_job(run: Run) -> Job:
             "n", render_assembly_png(solids, inst, colors, tmp, title)))
         run.log(f"  wrote {ARRAY_PNG} ({box['n']} triangles)")
         return [{"path": ARRAY_PNG, "part": "array", "kind": "image-png", "triangles": box["n"]}]
-    return Job("image:array", content_key("array-png", list(specs.values()), inst, title), make)
+    return Job("image:array", content_key("array-png", list(specs.values()), inst, title), make,
+               tuple(specs.values()))
 
 
 def bom_job(run: Run, before: list[Job]) -> Job:
@@ -207,4 +215,5 @@ def bom_job(run: Run, before: list[Job]) -> Job:
         from tactcad.export.bom import write_bom_files
 
         return write_bom_files(run.plan, run.staging, run.log, run.inventory)
-    return Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]), make)
+    return Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]), make,
+               after=tuple(j.name for j in before))

@@ -113,17 +113,27 @@ def _part_record(spec: PartSpec, count: int) -> dict:
 
 
 def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], int]:
-    """Run (or fetch from ``store``) every job in order; (records, jobs run)."""
-    records: list[dict] = []
-    ran = 0
+    """Fetch every job from ``store`` or run it; (records in job order, jobs run).
+
+    Jobs run in order, each after the jobs it reads (``after``); the solids
+    they need are built first, once each.
+    """
+    done: dict[str, list[dict]] = {}
+    todo = []
     for job in jobs:
         got = store.fetch(job.key, run.staging)
         if got is None:
-            got = job.make(run)
-            store.keep(job.key, run.staging, got)
-            ran += 1
-        records += got
-    return records, ran
+            todo.append(job)
+        else:
+            done[job.name] = got
+    if todo:
+        for spec in {s.name: s for job in todo for s in job.needs}.values():
+            run.parts.solid(spec)
+        for job in todo:
+            done[job.name] = job.make(run)
+        for job in todo:
+            store.keep(job.key, run.staging, done[job.name])
+    return [r for job in jobs for r in done[job.name]], len(todo)
 
 
 def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, log: Log,
