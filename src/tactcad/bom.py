@@ -217,12 +217,15 @@ def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
 def part_files(plan: Plan, staging: Path,
                assemblies: Mapping[str, Sequence] | None = None) -> Callable[[PartSpec], list[str]]:
     """The export files that describe a part, as found in ``staging``: its
-    drawing (SVG), its wire-EDM DXF files (elements: one per array position)
-    and its STEP model, or, for a part without a STEP file of its own, the
+    drawing (SVG), its shop DXF files (the profile with its quantity and the
+    nested sheet it is cut from) and its STEP model, or, for a part without a STEP file of its own, the
     scene STEP files (``scenes/<scene>.step``) that show it. Only files that
     exist are named."""
     from .drawings import drawing_name
-    from .exporter import element_dxf_name
+    from .export.dxf_sheet import sheet_dxf_name, shop_profiles
+
+    dxf_of = {sp.part: [sp.file_name, sheet_dxf_name(sp.material, sp.thickness_mm)]
+              for sp in shop_profiles(plan)}
 
     shown_in: dict[str, list[str]] = {}
     for name, inst in (assemblies or {}).items():
@@ -231,9 +234,8 @@ def part_files(plan: Plan, staging: Path,
 
     def files(spec: PartSpec) -> list[str]:
         cand = [drawing_name(spec.name)]
-        cand += [element_dxf_name(s.number) for s in plan.slots
-                 if s.geometry.part_name == spec.name]
-        cand += [f"dxf/{spec.name}.dxf", f"step/{spec.name}.step"]
+        cand += dxf_of.get(spec.name, [])
+        cand += [f"step/{spec.name}.step"]
         found = [c for c in cand if (staging / c).is_file()]
         if f"step/{spec.name}.step" not in found:
             found += [c for c in shown_in.get(spec.name, []) if (staging / c).is_file()]

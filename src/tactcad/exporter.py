@@ -73,17 +73,12 @@ def _sha256(path: Path) -> str:
     return h.hexdigest()
 
 
-def element_dxf_name(number: int) -> str:
-    return f"dxf/element_{number}.dxf"
-
-
 def write_array_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> list[dict]:
     """Build the array's parts and write STEP and DXF into ``staging``.
 
     Returns the file records (relative path, part) in a fixed order.
     """
     from .build import PartCache, location
-    from .export.dxf import write_profile_dxf
     from .export.step import StepInstance, StepPart, write_step
 
     specs = array_parts(plan)
@@ -105,13 +100,9 @@ def write_array_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> 
     records.append({"path": "step/array.step", "part": "array", "kind": "step-assembly",
                     **assembly_review(specs, inst)})
     log("  wrote step/array.step")
-    for slot in plan.slots:
-        rel = element_dxf_name(slot.number)
-        spec = specs[slot.geometry.part_name]
-        write_profile_dxf(staging / rel, spec.profile, title=f"{plan.name} element {slot.number}")
-        records.append({"path": rel, "part": spec.name, "kind": "dxf-wire-edm",
-                        "element": slot.number})
-    log(f"  wrote {len(plan.slots)} DXF files in dxf/")
+    # --- shop DXF (tactcad.export.dxf_sheet) ---
+    from .export.dxf_sheet import write_shop_dxf_files
+    records += write_shop_dxf_files(plan, staging, log)
     return records
 
 
@@ -198,11 +189,9 @@ def export(plan: Plan, out_dir: str | Path, log: Callable[[str], None] = print) 
 def run_checks(plan: Plan, out_dir: str | Path) -> list:
     """Every check of the array on the files in ``out_dir`` (written by :func:`export`)."""
     from .build import PartCache, location
-    from .checks.dxf import check_profile_dxf
     from .checks.interference import Placed, check_interference
     from .checks.solids import check_solid
     from .checks.step import check_step
-    from .parts.element import profile_face
 
     out_dir = Path(out_dir)
     specs = array_parts(plan)
@@ -213,17 +202,9 @@ def run_checks(plan: Plan, out_dir: str | Path) -> list:
         results += check_solid(spec, solid)
         results += check_step(out_dir / f"step/{name}.step", f"step/{name}.step", 1,
                               spec.expected_volume_mm3, spec.expected_bbox_mm, {name})
-    faces = {}
-    for slot in plan.slots:
-        spec = specs[slot.geometry.part_name]
-        if spec.name not in faces:
-            f = profile_face(spec.profile)
-            bb = f.bounding_box(optimal=True)
-            faces[spec.name] = (f.area, (bb.min.X, bb.min.Y, bb.max.X, bb.max.Y))
-        area, bbox = faces[spec.name]
-        results += check_profile_dxf(out_dir / element_dxf_name(slot.number),
-                                     f"element_{slot.number}.dxf", area, bbox, plan.edm,
-                                     slot.geometry.web_thickness_mm)
+    # --- shop DXF (tactcad.checks.dxf_shop) ---
+    from .checks.dxf_shop import check_shop_dxf_files
+    results += check_shop_dxf_files(plan, out_dir)
     inst = array_instances(plan)
     placed = [Placed(i.name, cache.solid(i.part).moved(location(i.placement))) for i in inst]
     results += check_interference(placed, array_contacts(plan))

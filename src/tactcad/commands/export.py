@@ -10,7 +10,8 @@ from . import add_design_arg
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("export", help="write STEP, wire-EDM DXF, scenes, drawings, BOM and manifest",
                        description="Build the design's parts and write exports/: step/<part>.step, "
-                                   "step/array.step, dxf/element_<n>.dxf, scenes/<scene>.step and "
+                                   "step/array.step, dxf/<part>_qty<n>.dxf and dxf/sheet_<material>_<t>mm.dxf, "
+                                   "scenes/<scene>.step and "
                                    ".glb (see `tactcad scenes`), drawings/<part>.svg and "
                                    "drawings.pdf, bom.csv and bom.md, images/*.png and "
                                    "manifest.json.")
@@ -19,6 +20,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--scene", metavar="NAME", action="append", default=None,
                    help="write only this scene: scenes/NAME.step and scenes/NAME.glb "
                         "(repeatable; the manifest is left as it is). `tactcad scenes` lists them")
+    p.add_argument("--dxf-version", choices=("R2010", "R12"), default=None,
+                   help="DXF version of the shop files: R2010 (default) or R12 for old CAM "
+                        "(POLYLINE with bulges instead of LWPOLYLINE); same as "
+                        "TACTCAD_DXF_VERSION=R12")
     p.set_defaults(func=run)
 
 
@@ -26,6 +31,12 @@ def run(args: argparse.Namespace) -> int:
     from ..design import load_design
     from ..exporter import export
 
+    if args.dxf_version:
+        import os
+
+        from ..export.dxf_sheet import DXF_VERSION_ENV
+
+        os.environ[DXF_VERSION_ENV] = args.dxf_version
     plan = load_design(args.design)  # validation first: a bad design writes nothing
     print(f"tactcad export: design {plan.name} ({plan.source}), sha256 {plan.design_hash[:12]}")
     if args.scene:
