@@ -95,7 +95,8 @@ def write_array_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> 
                         "bbox_mm": list(spec.expected_bbox_mm), "labels": [name]})
         log(f"  wrote {rel}")
     inst = array_instances(plan)
-    instances = [StepInstance(i.name, i.part, location(i.placement)) for i in inst]
+    from .export.z_up import z_up_location
+    instances = [StepInstance(i.name, i.part, z_up_location() * location(i.placement)) for i in inst]
     write_step(staging / "step/array.step", step_parts, instances, "array")
     records.append({"path": "step/array.step", "part": "array", "kind": "step-assembly",
                     **assembly_review(specs, inst)})
@@ -108,7 +109,7 @@ def write_array_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> 
 
 def assembly_review(specs: dict[str, PartSpec], instances) -> dict:
     """What a reviewer should find on re-import of an assembly STEP: solid
-    count, total volume (mm^3), bounding box (mm) and part labels. The box is
+    count, total volume (mm^3), bounding box (mm, Z-up frame of the STEP) and part labels. The box is
     computed from the expected part boxes and placements, not from the CAD."""
     corners = []
     for i in instances:
@@ -116,9 +117,12 @@ def assembly_review(specs: dict[str, PartSpec], instances) -> dict:
         corners += [i.placement.apply(x, y, z) for x in (x0, x1) for y in (y0, y1) for z in (z0, z1)]
     lo = [min(c[k] for c in corners) for k in range(3)]
     hi = [max(c[k] for c in corners) for k in range(3)]
+    from .export.z_up import z_up_bbox
+
     return {"solids": len(instances),
             "volume_mm3": sum(specs[i.part].expected_volume_mm3 for i in instances),
-            "bbox_mm": lo + hi, "labels": sorted({i.part for i in instances})}
+            "bbox_mm": z_up_bbox(lo + hi),  # the STEP file is Z up
+            "labels": sorted({i.part for i in instances})}
 
 
 def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:

@@ -1,5 +1,6 @@
 """Scene exports: ``scenes/<scene>.step`` (flat, labelled, coloured,
-instanced STEP AP214 in mm, via :func:`tactcad.export.step.write_step`) and
+instanced STEP AP214 in mm, Z up (see :mod:`tactcad.export.z_up`), via
+:func:`tactcad.export.step.write_step`) and
 ``scenes/<scene>.glb`` (binary glTF 2.0 for a quick look), plus the scene
 checks.
 
@@ -46,13 +47,17 @@ def write_scene_files(plan, staging: Path, log: Callable[[str], None],
     """
     from .export.step import StepInstance, StepPart, write_step
     from .scenes import SceneCache, build_scene, review_record, scene_names
+    from .export.freecad_review import scene_review_assembly, write_review_files
+    from .export.z_up import z_up_location
 
+    z_up = z_up_location()  # STEP is Z up, the GLB keeps glTF's y up
     cache = cache or SceneCache(plan)
     records: list[dict] = []
+    review_assemblies = []  # FreeCAD review files (tactcad.export.freecad_review), written at the end
     for name in (list(names) if names is not None else scene_names(plan)):
         scene, solids = build_scene(plan, name, cache)
         parts = [StepPart(n, solids[n], spec.color) for n, spec in scene.parts().items()]
-        inst = [StepInstance(i.name, i.part, i.location) for i in scene.instances]
+        inst = [StepInstance(i.name, i.part, z_up * i.location) for i in scene.instances]
         rel = scene_step_name(name)
         write_step(staging / rel, parts, inst, name)
         review = review_record(scene)
@@ -64,6 +69,9 @@ def write_scene_files(plan, staging: Path, log: Callable[[str], None],
         records.append({"path": rel_glb, "part": name, "kind": "glb-scene",
                         "nodes": len(scene.instances), "meshes": len(parts), "triangles": tri})
         log(f"  wrote {rel} and {rel_glb} ({len(scene.instances)} parts)")
+        review_assemblies.append(scene_review_assembly(scene, solids, rel))
+    # --- FreeCAD review files (tactcad.export.freecad_review) ---
+    records += write_review_files(staging, review_assemblies, log)
     return records
 
 
