@@ -10,15 +10,17 @@ from . import add_design_arg
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("export", help="write STEP, wire-EDM DXF, scenes, drawings, BOM and manifest",
                        description="Build the design's parts and write exports/: step/<part>.step, "
-                                   "step/array.step, dxf/<part>_qty<n>.dxf and dxf/sheet_<material>_<t>mm.dxf, "
-                                   "scenes/<scene>.step and "
-                                   ".glb (see `tactcad scenes`), drawings/<part>.svg and "
+                                   "step/array.step, dxf/<part>_qty<n>.dxf and "
+                                   "dxf/sheet_<material>_<t>mm.dxf, scenes/<scene>.step (Z up) and "
+                                   ".glb (see `tactcad scenes`), review/<scene>.FCStd (when FreeCAD "
+                                   "is installed), drawings/<part>.svg and "
                                    "drawings.pdf, bom.csv and bom.md, images/*.png and "
                                    "manifest.json.")
     add_design_arg(p)
     p.add_argument("--out", metavar="DIR", default="exports", help="output folder (default: exports)")
     p.add_argument("--scene", metavar="NAME", action="append", default=None,
-                   help="write only this scene: scenes/NAME.step and scenes/NAME.glb "
+                   help="write only this scene: scenes/NAME.step, scenes/NAME.glb and "
+                        "review/NAME.FCStd "
                         "(repeatable; the manifest is left as it is). `tactcad scenes` lists them")
     p.add_argument("--dxf-version", choices=("R2010", "R12"), default=None,
                    help="DXF version of the shop files: R2010 (default) or R12 for old CAM "
