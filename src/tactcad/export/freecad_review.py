@@ -19,8 +19,13 @@ with a logged note, so an export works without FreeCAD.
 
 Reproducibility: FreeCAD stamps each save with creation and modification
 dates and a random document UUID; :func:`normalise_fcstd` replaces them with
-fixed values (UUID derived from the assembly name) and rewrites the zip
-archive with fixed member times, so the same design writes the same bytes.
+fixed values (UUID derived from the assembly name), numbers the object ids
+(a session-wide counter) from 1, sorts the view providers (written in memory
+order) by name and rewrites the zip archive with fixed member times, so the
+same design writes the same bytes with the same FreeCAD. What stays outside
+tactcad's hands: the file carries FreeCAD's version (``ProgramVersion``) and
+FreeCAD's own BREP and XML writers, so another FreeCAD release (or its
+OpenCascade) may write other bytes for the same model.
 """
 
 from __future__ import annotations
