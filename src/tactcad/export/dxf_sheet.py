@@ -33,7 +33,8 @@ from ..catalogue import PartSpec, array_instances, array_parts
 from ..design import ElementGeometry, Plan
 from ..geometry.profile import Circle, Line, Point, Profile, contour_points
 from ..errors import DesignError
-from .dxf import DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, circle_entry, write_dxf
+from .dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, circle_entry,
+                  placed_extents, write_dxf)
 
 DXF_VERSION_ENV = "TACTCAD_DXF_VERSION"  # the writer's option: R2010 (default) or R12
 LEAD_IN_MM = 1.0  # start point of the outer cut, this far outside the part
@@ -300,8 +301,8 @@ def write_shop_dxf_files(plan: Plan, staging: Path, log: Callable[[str], None],
         File records: ``{"path", "part", "kind": "dxf-profile", "quantity",
         "marks", "material", "thickness_mm", "dxf_version"}`` per profile and
         ``{"path", "part": "sheet", "kind": "dxf-sheet", "material",
-        "thickness_mm", "parts": {part: quantity}, "gap_mm", "dxf_version"}``
-        per sheet.
+        "thickness_mm", "parts": {part: quantity}, "gap_mm", "sheet_mm": [width,
+        height] (parts plus the gap as border), "dxf_version"}`` per sheet.
 
     Raises:
         DesignError: ``version`` is not ``R2010`` or ``R12``.
@@ -321,10 +322,12 @@ def write_shop_dxf_files(plan: Plan, staging: Path, log: Callable[[str], None],
         props = {"DESIGN": plan.name, "MATERIAL": material, "THICKNESS_MM": f"{t:g}",
                  "PARTS": ", ".join(f"{sp.part} x{sp.quantity}" for sp in group),
                  "GAP_MM": f"{gap:g}", "UNITS": "mm"}
-        write_dxf(staging / rel, DxfFile(tuple(nested_sheet(group, gap)),
-                                         f"{plan.name} sheet {material} {t:g} mm", props), version)
+        placed = tuple(nested_sheet(group, gap))
+        write_dxf(staging / rel, DxfFile(placed, f"{plan.name} sheet {material} {t:g} mm", props), version)
+        x0, y0, x1, y1 = placed_extents(placed)
         records.append({"path": rel, "part": "sheet", "kind": "dxf-sheet", "material": material,
                         "thickness_mm": t, "parts": {sp.part: sp.quantity for sp in group},
-                        "gap_mm": gap, "dxf_version": version})
+                        "gap_mm": gap, "sheet_mm": [round(x1 + gap, 3), round(y1 + gap, 3)],
+                        "dxf_version": version})
     log(f"  wrote {len(records)} DXF files in dxf/ ({version})")
     return records
