@@ -20,7 +20,7 @@ with a logged note, so an export works without FreeCAD.
 Reproducibility: FreeCAD stamps each save with creation and modification
 dates and a random document UUID; :func:`normalise_fcstd` replaces them with
 fixed values (UUID derived from the assembly name), numbers the object ids
-(a session-wide counter) from 1, sorts the view providers (written in memory
+(one counter per FreeCAD process) from 1, sorts the view providers (written in memory
 order) by name and rewrites the zip archive with fixed member times, so the
 same design writes the same bytes with the same FreeCAD. What stays outside
 tactcad's hands: the file carries FreeCAD's version (``ProgramVersion``) and
@@ -170,7 +170,7 @@ _FILE_RE = re.compile(rb'file="([A-Za-z]+)(\d*)"')
 
 
 def _renumber_ids(xml: bytes) -> bytes:
-    """Object ids count on from earlier documents of the FreeCAD session: number them 1, 2, ..."""
+    """Object ids count on across the documents of one FreeCAD process: number them 1, 2, ..."""
     counter = iter(range(1, 1 << 30))
     return _OBJECT_ID_RE.sub(lambda m: m.group(1) + str(next(counter)).encode() + m.group(3), xml)
 
