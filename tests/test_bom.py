@@ -71,8 +71,10 @@ def test_every_file_the_bom_names_exists(exported, plan):
     for r in rows:
         if r["type"] == "fabricated":
             assert f"drawings/{r['part']}.svg" in by_part[r["part"]]
-    for slot in plan.slots:
-        assert f"dxf/element_{slot.number}.dxf" in by_part[slot.geometry.part_name]
+    for part in plan.distinct_elements:
+        assert f"dxf/{part}_qty2.dxf" in by_part[part]
+        assert "dxf/sheet_aluminium_3mm.dxf" in by_part[part]
+    assert {"dxf/spacer_qty8.dxf", "dxf/sheet_aluminium_1mm.dxf"} <= set(by_part["spacer"])
 
 
 def test_markdown_table_matches_csv(exported):

@@ -50,7 +50,7 @@ def test_missing_start_hole_and_wrong_web_fail(tmp_path, plan, element):
     path = tmp_path / "nostart.dxf"
     write_profile_dxf(path, prof)
     doc = ezdxf.readfile(path)
-    for e in [e for e in doc.modelspace() if e.dxftype() == "CIRCLE"][:1]:
+    for e in [e for e in doc.modelspace() if e.dxf.layer == "START_HOLE"][:1]:
         doc.modelspace().delete_entity(e)
     doc.saveas(path)
     failed = _failed(check_profile_dxf(path, "x", area, bbox, plan.edm, g.web_thickness_mm + 0.01))
@@ -68,7 +68,7 @@ def test_too_small_inside_radius_fails(tmp_path, plan, element):
     f = profile_face(sp)
     b = f.bounding_box()
     failed = _failed(check_profile_dxf(path, "sharp", f.area, (b.min.X, b.min.Y, b.max.X, b.max.Y),
-                                       plan.edm, g.web_thickness_mm))
+                                       plan.edm, g.web_thickness_mm, lead_ins=False))
     assert failed == {"edm_inside_radius"}
 
 

@@ -28,7 +28,9 @@ def test_expected_files(exported, plan):
         assert f"step/{part}.step" in names
     assert {"step/spacer.step", "step/clamp_plate.step", "step/bolt_M2x30.step", "step/nut_M2.step",
             "step/array.step", "manifest.json"} <= names
-    assert {f"dxf/element_{n}.dxf" for n in range(1, 11)} <= names
+    assert {f"dxf/{part}_qty2.dxf" for part in plan.distinct_elements} <= names
+    assert {"dxf/spacer_qty8.dxf", "dxf/sheet_aluminium_3mm.dxf", "dxf/sheet_aluminium_1mm.dxf"} <= names
+    assert not [n for n in names if n.startswith("dxf/element_") and "_qty" not in n]
     assert not [n for n in names if ".staging" in n or n.endswith(".part")]
 
 
@@ -70,18 +72,18 @@ def test_failed_export_leaves_previous_files_whole(exported, tmp_path, monkeypat
     out = tmp_path / "ex"
     export(plan, out, log=lambda s: None)
     before = _hashes(out)
-    import tactcad.export.dxf as dxf_mod
+    import tactcad.export.dxf_sheet as dxf_mod
 
     calls = {"n": 0}
-    real = dxf_mod.write_profile_dxf
+    real = dxf_mod.write_dxf
 
-    def flaky(path, profile, title=""):
+    def flaky(path, content, version="R2010"):
         calls["n"] += 1
         if calls["n"] == 4:
             raise OSError("disk full (simulated)")
-        return real(path, profile, title)
+        return real(path, content, version)
 
-    monkeypatch.setattr(dxf_mod, "write_profile_dxf", flaky)
+    monkeypatch.setattr(dxf_mod, "write_dxf", flaky)
     thicker = load_design()  # same plan; the failure, not the content, is under test
     with pytest.raises(OSError, match="simulated"):
         export(thicker, out, log=lambda s: None)
@@ -96,7 +98,8 @@ def test_all_checks_pass_on_the_default_design(exported, plan):
     checks = {r.check for r in results}
     assert {"is_valid", "no_free_boundaries", "volume", "watertight_mesh", "dxf_web_thickness",
             "edm_start_holes", "edm_inside_radius", "step_volume", "interference",
-            "contact_touching"} <= checks
+            "contact_touching", "dxf_lead_in", "dxf_extents", "dxf_part_marks", "sheet_gap",
+            "sheet_copies"} <= checks
 
 
 def test_changed_web_reaches_the_dxf(tmp_path, design_data):
@@ -105,6 +108,6 @@ def test_changed_web_reaches_the_dxf(tmp_path, design_data):
 
     plan = plan_from_dict(with_overrides(design_data, {"element.web_thickness_mm": 0.31}))
     export(plan, tmp_path, log=lambda s: None)
-    reading = read_dxf(tmp_path / "dxf/element_1.dxf")
+    reading = read_dxf(tmp_path / "dxf/element_a4mm_qty2.dxf")
     outer = max(reading.contours, key=lambda c: len(c.segments))
     assert thinnest_ligament(outer.segments) == pytest.approx(0.31, abs=1e-9)

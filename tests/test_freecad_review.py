@@ -2,43 +2,16 @@
 ``freecadcmd`` matches its manifest record (solid count, part labels,
 volume, bounding box).
 
-FreeCAD is a system package (``freecad-python3``). ``make test`` installs it
-first (scripts/install-system-deps.sh); run alone, this test installs it
-when it is missing and the user is root, and skips only when it is missing
-and the user is not root.
+FreeCAD is a system package (``freecad-python3``); the ``freecad`` fixture
+(conftest.py) installs it when missing.
 """
 
 from __future__ import annotations
 
 import json
-import os
 import shutil
-import subprocess
-from pathlib import Path
 
-import pytest
-
-from tactcad.checks.freecad_review import freecadcmd, review_exports
-
-INSTALLER = Path(__file__).resolve().parents[1] / "scripts" / "install-system-deps.sh"
-
-
-@pytest.fixture(scope="module")
-def freecad():
-    exe = freecadcmd()
-    if exe is None:
-        if os.geteuid() != 0:
-            if os.environ.get("CI"):  # CI must review in FreeCAD, never skip it
-                pytest.fail("freecadcmd is missing in CI and this user cannot install it")
-            pytest.skip("freecadcmd is not installed and this user cannot install it "
-                        "(run as root: apt-get install -y freecad-python3)")
-        if shutil.which("apt-get") is None:
-            pytest.fail("freecadcmd is missing and there is no apt-get to install "
-                        "freecad-python3 with")
-        subprocess.run(["sh", str(INSTALLER)], check=True, timeout=900)
-        exe = freecadcmd()
-        assert exe is not None, "scripts/install-system-deps.sh did not install freecadcmd"
-    return exe
+from tactcad.checks.freecad_review import review_exports
 
 
 def test_freecad_opens_every_step_as_the_manifest_says(freecad, exported):

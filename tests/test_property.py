@@ -14,7 +14,7 @@ from tactcad.checks.dxf import check_profile_dxf
 from tactcad.checks.solids import check_solid
 from tactcad.design.array import ARM_RANGE_MM, WEB_RANGE_MM, default_design_data, plan_from_dict, with_overrides
 from tactcad.errors import DesignError
-from tactcad.export.dxf import write_profile_dxf
+from tactcad.export.dxf_sheet import shop_profiles, write_shop_profile
 from tactcad.parts.element import build_element, profile_face
 
 SETTINGS = settings(max_examples=12, deadline=None,
@@ -45,11 +45,12 @@ def test_in_domain_designs_build_valid_parts_and_dxf(overrides, tmp_path_factory
     bad = [r.line() for r in check_solid(spec, solid) if not r.passed]
     assert not bad, bad
     path = tmp / "e.dxf"
-    write_profile_dxf(path, spec.profile)
+    shop = next(sp for sp in shop_profiles(plan) if sp.part == g.part_name)
+    write_shop_profile(path, plan, shop)
     face = profile_face(spec.profile)
     bb = face.bounding_box()
     res = check_profile_dxf(path, "e", face.area, (bb.min.X, bb.min.Y, bb.max.X, bb.max.Y),
-                            plan.edm, g.web_thickness_mm)
+                            plan.edm, g.web_thickness_mm, marks=(shop.file_mark,))
     bad = [r.line() for r in res if not r.passed]
     assert not bad, bad
 

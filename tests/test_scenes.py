@@ -240,11 +240,13 @@ def test_glb_content(exported):
 
 
 def test_export_single_scene(tmp_path, plan):
+    from tactcad.export.freecad_review import freecadcmd
     from tactcad.export.run import export_scenes
 
     res = export_scenes(plan, tmp_path, ["array"], log=lambda s: None)
+    review = ["review/array.FCStd"] if freecadcmd() else []  # written when FreeCAD is installed
     assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*") if p.is_file()) \
-        == ["scenes/array.glb", "scenes/array.step"]
+        == review + ["scenes/array.glb", "scenes/array.step"]
     assert res.files[0]["solids"] == 28
     with pytest.raises(SceneError):
         export_scenes(plan, tmp_path / "other", ["array", "nope"])

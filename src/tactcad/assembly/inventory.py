@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
+from tactcad.assembly.z_up import z_up_bbox
 from tactcad.assembly.rigs import RigModel, scene_model, shown_instances
 from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
@@ -98,7 +99,7 @@ def fabricated_parts(plan: Plan, assembled=None) -> tuple[list[PartSpec], dict[s
 
 def assembly_review(specs: dict[str, PartSpec], instances) -> dict:
     """What a reviewer should find on re-import of an assembly STEP: solid
-    count, total volume (mm^3), bounding box (mm) and part labels. The box is
+    count, total volume (mm^3), bounding box (mm, the STEP's Z-up frame) and part labels. The box is
     computed from the expected part boxes and placements, not from the CAD."""
     corners = []
     for i in instances:
@@ -108,4 +109,5 @@ def assembly_review(specs: dict[str, PartSpec], instances) -> dict:
     hi = [max(c[k] for c in corners) for k in range(3)]
     return {"solids": len(instances),
             "volume_mm3": sum(specs[i.part].expected_volume_mm3 for i in instances),
-            "bbox_mm": lo + hi, "labels": sorted({i.part for i in instances})}
+            "bbox_mm": z_up_bbox(lo + hi),  # the STEP file is Z up
+            "labels": sorted({i.part for i in instances})}

@@ -15,6 +15,7 @@ from typing import Any, Mapping
 import build123d as bd
 
 from tactcad.assembly.placement import location
+from tactcad.assembly.z_up import z_up_bbox
 from tactcad.assembly.rigs import (SOLVE_TOL_MM, Mate, RigModel, Slide, get_scene_spec,
                                    scene_model, shown_instances)
 from tactcad.catalogue.array import PartSpec
@@ -224,7 +225,7 @@ def build_scene(plan: Plan, name: str, cache: PartCache | None = None,
 
 def review_record(scene: Scene) -> dict:
     """What a reviewer should find on re-import of the scene's STEP: solid
-    count, total volume (mm^3), bounding box (mm) and part labels, from the
+    count, total volume (mm^3), bounding box (mm, the STEP's Z-up frame) and part labels, from the
     expected part volumes and boxes and the solved placements (not from the CAD)."""
     lo = [math.inf] * 3
     hi = [-math.inf] * 3
@@ -244,7 +245,8 @@ def review_record(scene: Scene) -> dict:
                     "volume_mm3": s.expected_volume_mm3, **dict(getattr(s, "attributes", {}))}
     return {"solids": len(scene.instances),
             "volume_mm3": sum(scene.specs[i.part].expected_volume_mm3 for i in scene.instances),
-            "bbox_mm": [_r(v) for v in lo + hi], "labels": sorted(counts),
+            "bbox_mm": [_r(v) for v in z_up_bbox(lo + hi)],  # the STEP file is Z up
+            "labels": sorted(counts),
             "instances": len(scene.instances), "rig": scene.spec.rig,
             "groups": list(scene.spec.groups), "parts": parts,
             "slides_mm": {k: _r(v) for k, v in sorted(scene.slide_positions.items())},

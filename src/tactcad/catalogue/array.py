@@ -8,6 +8,7 @@ area x thickness, cylinder and hexagon volumes), never from the solid itself.
 
 from __future__ import annotations
 
+import colorsys
 import math
 from dataclasses import dataclass
 
@@ -129,11 +130,13 @@ def bolt_volume(b: BoltSpec, length_mm: float) -> float:
 
 
 def _element_shade(arm_length_mm: float) -> RGB:
-    """Aluminium, a shade darker for a longer (softer) arm, so a reviewer can
-    tell the stiffness classes apart; distinct colours also keep the STEP
-    colour records independent of each other."""
-    k = (arm_length_mm - 4.0) / 4.0 * 0.25
-    return tuple(round(c - k * 0.6, 4) for c in ALUMINIUM)  # type: ignore[return-value]
+    """A clearly distinct anodising colour per arm length (stiffness class),
+    the same in STEP, GLB and FreeCAD: the hue walks 0.19 of the colour wheel
+    per mm of arm, from violet (4 mm) through pink, orange and green to
+    turquoise (8 mm), away from the clamp plates' blue; deterministic, so a
+    design always shows the same colours."""
+    hue = (0.72 + (arm_length_mm - 4.0) * 0.19) % 1.0
+    return tuple(round(c, 4) for c in colorsys.hsv_to_rgb(hue, 0.65, 0.85))  # type: ignore[return-value]
 
 
 def hexagon_area(across_flats: float) -> float:

@@ -10,15 +10,14 @@ from pathlib import Path
 from tactcad.assembly.inventory import assembly_review
 from tactcad.assembly.placement import location
 from tactcad.catalogue.array import array_contacts, array_instances, array_parts
-from tactcad.checks.dxf import check_profile_dxf
+from tactcad.checks.dxf_shop import check_shop_dxf_files
 from tactcad.checks.interference import Placed, check_interference
 from tactcad.checks.result import CheckResult
 from tactcad.checks.solids import check_solid
 from tactcad.checks.step import check_step
 from tactcad.design.array import Plan
-from tactcad.export.names import ARRAY_STEP, element_dxf_name, part_step_name
+from tactcad.catalogue.files import ARRAY_STEP, part_step_name
 from tactcad.parts.cache import PartCache
-from tactcad.parts.element import profile_face
 
 
 def run_checks(plan: Plan, out_dir: str | Path, cache: PartCache | None = None) -> list[CheckResult]:
@@ -32,17 +31,7 @@ def run_checks(plan: Plan, out_dir: str | Path, cache: PartCache | None = None) 
         results += check_solid(spec, cache.solid(spec))
         results += check_step(out_dir / part_step_name(name), part_step_name(name), 1,
                               spec.expected_volume_mm3, spec.expected_bbox_mm, {name})
-    faces = {}
-    for slot in plan.slots:
-        spec = specs[slot.geometry.part_name]
-        if spec.name not in faces:
-            f = profile_face(spec.profile)
-            bb = f.bounding_box(optimal=True)
-            faces[spec.name] = (f.area, (bb.min.X, bb.min.Y, bb.max.X, bb.max.Y))
-        area, bbox = faces[spec.name]
-        results += check_profile_dxf(out_dir / element_dxf_name(slot.number),
-                                     f"element_{slot.number}.dxf", area, bbox, plan.edm,
-                                     slot.geometry.web_thickness_mm)
+    results += check_shop_dxf_files(plan, out_dir)
     inst = array_instances(plan)
     placed = [Placed(i.name, cache.solid(specs[i.part]).moved(location(i.placement))) for i in inst]
     results += check_interference(placed, array_contacts(plan))

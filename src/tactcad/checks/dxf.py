@@ -9,16 +9,20 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Sequence
 
 import ezdxf
 import shapely.geometry as sg
 
-from tactcad.design.array import EdmRules
-from tactcad.export.dxf import CUT_LAYER, START_LAYER
-from tactcad.geometry.profile import Arc, Line, Point, Segment, contour_area, contour_bbox, inside_corners
 from tactcad.checks.result import CheckResult
+from tactcad.design.array import EdmRules
+from tactcad.export.dxf import CUT_LAYER, LEAD_LAYER, MARK_LAYER, START_LAYER
+from tactcad.geometry.profile import (Arc, Line, Point, Segment, contour_area, contour_bbox,
+                                      contour_points, inside_corners)
 
-ALLOWED_TYPES = {"LINE", "ARC", "CIRCLE", "LWPOLYLINE"}
+ALLOWED_TYPES = {"LINE", "ARC", "CIRCLE", "LWPOLYLINE", "POLYLINE", "POINT", "TEXT"}
+NON_CUT_TYPES = {LEAD_LAYER: {"LINE", "POINT"}, MARK_LAYER: {"TEXT"}, START_LAYER: {"CIRCLE"}}
+LEAD_IN_CLEARANCE_MM = 1.0  # an entry point this far at least from the web and the contact face
 CLOSE_TOL_MM = 1e-6
 AREA_RTOL = 1e-6
 BBOX_TOL_MM = 1e-6
@@ -46,8 +50,12 @@ def bulge_segment(p0: Point, p1: Point, bulge: float) -> Segment:
 
 
 def _lwpolyline_contour(e) -> Contour:
-    pts = [(x, y, b) for x, y, _s, _e, b in e.get_points("xyseb")]
-    closed = bool(e.closed)
+    if e.dxftype() == "POLYLINE":  # R12: bulges on the VERTEX entities
+        pts = [(v.dxf.location[0], v.dxf.location[1], v.dxf.bulge) for v in e.vertices]
+        closed = bool(e.is_closed)
+    else:
+        pts = [(x, y, b) for x, y, _s, _e, b in e.get_points("xyseb")]
+        closed = bool(e.closed)
     if not closed and len(pts) > 2 and math.dist(pts[0][:2], pts[-1][:2]) <= CLOSE_TOL_MM:
         pts = pts[:-1]
         closed = True
@@ -109,6 +117,12 @@ class DxfReading:
     max_abs_z: float
     contours: list[Contour]
     start_holes: list[tuple[Point, float]]
+    lead_lines: list[tuple[Point, Point]]
+    lead_points: list[Point]
+    marks: list[str]
+    extents: tuple[float, float, float, float]
+    misplaced: list[str]  # "TYPE on LAYER" for entities on a layer that does not hold them
+    version: str
 
 
 def read_dxf(path: str | Path) -> DxfReading:
@@ -124,6 +138,10 @@ def read_dxf(path: str | Path) -> DxfReading:
     contours: list[Contour] = []
     loose: list[Segment] = []
     starts: list[tuple[Point, float]] = []
+    leads: list[tuple[Point, Point]] = []
+    points: list[Point] = []
+    marks: list[str] = []
+    misplaced: list[str] = []
     max_z = 0.0
     for e in msp:
         t = e.dxftype()
@@ -131,25 +149,42 @@ def read_dxf(path: str | Path) -> DxfReading:
         layer = e.dxf.layer
         if t == "LWPOLYLINE":
             max_z = max(max_z, abs(e.dxf.elevation))
+        elif t == "POLYLINE":
+            max_z = max([max_z] + [abs(v.dxf.location[2]) for v in e.vertices])
+        elif t in ("POINT", "TEXT"):
+            max_z = max(max_z, abs((e.dxf.location if t == "POINT" else e.dxf.insert)[2]))
         elif t in ("CIRCLE", "ARC"):
             max_z = max(max_z, abs(e.dxf.center[2]))
         elif t == "LINE":
             max_z = max(max_z, abs(e.dxf.start[2]), abs(e.dxf.end[2]))
         if hasattr(e.dxf, "extrusion") and tuple(e.dxf.extrusion) != (0.0, 0.0, 1.0):
             max_z = max(max_z, math.inf)
-        if layer == START_LAYER and t == "CIRCLE":
+        if layer in NON_CUT_TYPES and t not in NON_CUT_TYPES[layer]:
+            misplaced.append(f"{t} on {layer}")
+        elif layer == START_LAYER:
             starts.append(((e.dxf.center[0], e.dxf.center[1]), e.dxf.radius))
-        elif layer == CUT_LAYER:
-            if t == "LWPOLYLINE":
+        elif layer == LEAD_LAYER and t == "LINE":
+            leads.append((tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]))
+        elif layer == LEAD_LAYER:
+            points.append(tuple(e.dxf.location)[:2])
+        elif layer == MARK_LAYER:
+            marks.append(e.dxf.text)
+        elif layer != CUT_LAYER or t in ("POINT", "TEXT"):
+            misplaced.append(f"{t} on {layer}")
+        else:
+            if t in ("LWPOLYLINE", "POLYLINE"):
                 contours.append(_lwpolyline_contour(e))
             elif t == "CIRCLE":
                 contours.append(_circle_contour(e.dxf.center, e.dxf.radius))
             elif t in ("LINE", "ARC"):
                 loose.append(_loose_segment(e))
     contours.extend(_chain_loose(loose))
+    lo, hi = doc.header.get("$EXTMIN", (1e20,) * 3), doc.header.get("$EXTMAX", (-1e20,) * 3)
     return DxfReading(types=types, units=int(doc.header.get("$INSUNITS", 0)),
                       audit_errors=len(auditor.errors), max_abs_z=max_z, contours=contours,
-                      start_holes=starts)
+                      start_holes=starts, lead_lines=leads, lead_points=points, marks=marks,
+                      extents=(lo[0], lo[1], hi[0], hi[1]), misplaced=misplaced,
+                      version=doc.dxfversion)
 
 
 # --- geometry on exact segments -------------------------------------------------
@@ -210,55 +245,51 @@ def thinnest_ligament(segments: tuple[Segment, ...], samples: int = 720) -> floa
 
 
 def _polygon(segments: tuple[Segment, ...], sagitta: float = 1e-4) -> sg.Polygon:
-    pts: list[Point] = []
-    for s in segments:
-        pts.append(s.start)
-        if isinstance(s, Arc):
-            r, sweep = s.radius, s.sweep
-            n = max(2, int(math.ceil(abs(sweep) / (2 * math.acos(max(-1.0, 1 - sagitta / r))))))
-            a0 = math.atan2(s.start[1] - s.centre[1], s.start[0] - s.centre[0])
-            pts.extend((s.centre[0] + r * math.cos(a0 + sweep * k / n),
-                        s.centre[1] + r * math.sin(a0 + sweep * k / n)) for k in range(1, n))
-    return sg.Polygon(pts)
+    return sg.Polygon(contour_points(segments, sagitta))
 
 
-def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
-                      face_bbox_mm: tuple[float, float, float, float], edm: EdmRules,
-                      web_thickness_mm: float | None = None) -> list[CheckResult]:
-    """Every DXF check for one wire-cut profile.
-
-    Args:
-        path: the DXF file.
-        name: subject name for the report.
-        face_area_mm2, face_bbox_mm: area and (xmin, ymin, xmax, ymax) of the CAD face.
-        edm: wire-EDM rules of the design.
-        web_thickness_mm: the design's web thickness, when the part has a flexure hinge.
-    """
-    r = read_dxf(path)
+def _file_checks(r: DxfReading, name: str) -> list[CheckResult]:
+    """Checks of the file as a whole: auditor, entity types, layers, units, z = 0, extents."""
+    if r.version == "AC1009":  # R12 has no units variable: mm by the file's convention
+        units = CheckResult("dxf_units_mm", name, True, "R12: no $INSUNITS, mm by convention")
+    else:
+        units = CheckResult("dxf_units_mm", name, r.units == 4, f"$INSUNITS = {r.units}")
     out = [
         CheckResult("dxf_audit", name, r.audit_errors == 0, f"{r.audit_errors} auditor errors"),
         CheckResult("dxf_entity_types", name, r.types <= ALLOWED_TYPES, ", ".join(sorted(r.types))),
-        CheckResult("dxf_units_mm", name, r.units == 4, f"$INSUNITS = {r.units}"),
+        CheckResult("dxf_layers", name, not r.misplaced,
+                    "; ".join(sorted(set(r.misplaced))) or "cut, start hole, lead-in and mark layers apart"),
+        units,
         CheckResult("dxf_flat_z0", name, r.max_abs_z <= CLOSE_TOL_MM, f"max |z| {r.max_abs_z:.1e}"),
     ]
-    if not r.contours:
-        return out + [CheckResult("dxf_contours", name, False, f"no contour on layer {CUT_LAYER}")]
-    worst_gap = max(c.gap_mm for c in r.contours)
-    out.append(CheckResult("dxf_closed_contours", name, all(c.closed for c in r.contours),
-                           f"{len(r.contours)} contours, worst gap {worst_gap:.1e} mm"))
-    areas = [contour_area(c.segments) for c in r.contours]
-    outer_i = max(range(len(areas)), key=lambda i: abs(areas[i]))
-    outer = r.contours[outer_i]
-    inner = [c for i, c in enumerate(r.contours) if i != outer_i]
-    net = abs(areas[outer_i]) - sum(abs(a) for i, a in enumerate(areas) if i != outer_i)
+    if r.contours:
+        boxes = [contour_bbox(c.segments) for c in r.contours]
+        xs = [b[0] for b in boxes] + [b[2] for b in boxes] + [p[0] for p in r.lead_points]
+        ys = [b[1] for b in boxes] + [b[3] for b in boxes] + [p[1] for p in r.lead_points]
+        real = (min(xs), min(ys), max(xs), max(ys))
+        dev = max(abs(a - b) for a, b in zip(real, r.extents))
+        out.append(CheckResult("dxf_extents", name, dev <= BBOX_TOL_MM,
+                               f"$EXTMIN/$EXTMAX {tuple(round(float(v), 4) for v in r.extents)}, "
+                               f"drawn {tuple(round(float(v), 4) for v in real)}"))
+    return out
+
+
+def _net_area(outer: Contour, inner: list[Contour]) -> float:
+    return abs(contour_area(outer.segments)) - sum(abs(contour_area(c.segments)) for c in inner)
+
+
+def _ccw(segments: tuple[Segment, ...]) -> tuple[Segment, ...]:
+    return segments if contour_area(segments) > 0 else _reverse(segments)
+
+
+def _piece_checks(name: str, outer: Contour, inner: list[Contour], starts: list[tuple[Point, float]],
+                  face_area_mm2: float, edm: EdmRules, web_thickness_mm: float | None) -> list[CheckResult]:
+    """Area, wire-EDM rules and web of one part (outer contour and its cut-outs) read from a file."""
+    net = _net_area(outer, inner)
     rel = abs(net - face_area_mm2) / face_area_mm2
-    out.append(CheckResult("dxf_area", name, rel <= AREA_RTOL,
-                           f"{net:.6f} mm2 vs CAD face {face_area_mm2:.6f} (rel {rel:.1e})"))
-    bb = contour_bbox(outer.segments)
-    dev = max(abs(a - b) for a, b in zip(bb, face_bbox_mm))
-    out.append(CheckResult("dxf_bbox", name, dev <= BBOX_TOL_MM, f"max deviation {dev:.1e} mm"))
-    # Wire-EDM manufacturability, measured on the file.
-    segs = outer.segments if areas[outer_i] > 0 else _reverse(outer.segments)
+    out = [CheckResult("dxf_area", name, rel <= AREA_RTOL,
+                       f"{net:.6f} mm2 vs CAD face {face_area_mm2:.6f} (rel {rel:.1e})")]
+    segs = _ccw(outer.segments)
     corners = inside_corners(segs)
     min_r = min((rad for _, rad in corners), default=math.inf)
     for c in inner:
@@ -274,7 +305,7 @@ def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
     missing = 0
     for c in inner:
         poly = _polygon(c.segments)
-        if not any(poly.contains(sg.Point(p).buffer(rad)) for p, rad in r.start_holes):
+        if not any(poly.contains(sg.Point(p).buffer(rad)) for p, rad in starts):
             missing += 1
     out.append(CheckResult("edm_start_holes", name, missing == 0,
                            f"{len(inner)} closed cut-outs, {missing} without a start hole"))
@@ -282,6 +313,168 @@ def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
         web = thinnest_ligament(segs)
         out.append(CheckResult("dxf_web_thickness", name, abs(web - web_thickness_mm) <= WEB_TOL_MM,
                                f"measured {web:.6f} mm vs design {web_thickness_mm:.6f} mm"))
+    return out
+
+
+def _on_contour(p: Point, c: Contour) -> bool:
+    return _polygon(c.segments).exterior.distance(sg.Point(p)) <= 1e-3
+
+
+def _lead_in_checks(name: str, r: DxfReading, pieces: list[tuple[Contour, list[Contour]]],
+                    web_parts: list[bool]) -> list[CheckResult]:
+    """Each contour has exactly one lead-in: a LINE from a marked POINT to a
+    point on the contour, starting outside the part for the outer cut and
+    inside the cut-out for a hole. On a part with a web, every entry keeps
+    :data:`LEAD_IN_CLEARANCE_MM` from the concave arcs (notch over the web,
+    tip-root fillet) and is not on the topmost edge (the contact face)."""
+    problems: list[str] = []
+    unmatched = list(r.lead_lines)
+    starts = {(round(p[0], 6), round(p[1], 6)) for p in r.lead_points}
+    n_contours = 0
+    for (outer, inner), has_web in zip(pieces, web_parts):
+        outer_poly = _polygon(outer.segments)
+        keep = []
+        if has_web:
+            segs = _ccw(outer.segments)
+            keep = [s for s in segs if isinstance(s, Arc) and not s.ccw]
+            top = max(max(s.start[1], s.end[1]) for s in segs)
+            keep += [s for s in segs if isinstance(s, Line) and abs(s.start[1] - top) < 1e-9
+                     and abs(s.end[1] - top) < 1e-9]
+        for k, c in enumerate([outer] + inner):
+            n_contours += 1
+            hits = [ln for ln in unmatched if _on_contour(ln[1], c)]
+            if len(hits) != 1:
+                problems.append(f"{len(hits)} lead-ins on a contour")
+                continue
+            start, entry = hits[0]
+            unmatched.remove(hits[0])
+            inside = outer_poly.contains(sg.Point(start)) if k == 0 else _polygon(c.segments).contains(sg.Point(start))
+            if (k == 0 and inside) or (k > 0 and not inside):
+                problems.append(f"lead-in start {start} on the wrong side")
+            if (round(start[0], 6), round(start[1], 6)) not in starts:
+                problems.append(f"lead-in start {start} not marked by a POINT")
+            for s in keep:
+                d = sg.LineString(contour_points((s,))+[s.end]).distance(sg.Point(entry))
+                if d < LEAD_IN_CLEARANCE_MM - 1e-9:
+                    problems.append(f"entry {tuple(round(v, 3) for v in entry)} {d:.3f} mm from "
+                                    "the web or contact face")
+    if unmatched:
+        problems.append(f"{len(unmatched)} lead-ins on no contour")
+    return [CheckResult("dxf_lead_in", name, not problems,
+                        "; ".join(problems[:3]) or f"{n_contours} contours, one lead-in each, "
+                        "off the web and contact face")]
+
+
+def _pieces(contours: list[Contour]) -> list[tuple[Contour, list[Contour]]]:
+    """Outer contours (inside no other) with the contours they enclose."""
+    polys = [_polygon(c.segments) for c in contours]
+    outer_idx = [i for i, p in enumerate(polys)
+                 if not any(j != i and q.contains(p.representative_point()) and q.area > p.area
+                            for j, q in enumerate(polys))]
+    out = []
+    for i in outer_idx:
+        inner = [contours[j] for j in range(len(contours))
+                 if j not in outer_idx and polys[i].contains(polys[j].representative_point())]
+        out.append((contours[i], inner))
+    return out
+
+
+def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
+                      face_bbox_mm: tuple[float, float, float, float], edm: EdmRules,
+                      web_thickness_mm: float | None = None, lead_ins: bool = True,
+                      marks: Sequence[str] = ()) -> list[CheckResult]:
+    """Every DXF check for one wire-cut profile.
+
+    Args:
+        path: the DXF file.
+        name: subject name for the report.
+        face_area_mm2, face_bbox_mm: area and (xmin, ymin, xmax, ymax) of the CAD face.
+        edm: wire-EDM rules of the design.
+        web_thickness_mm: the design's web thickness, when the part has a flexure hinge.
+        lead_ins: whether the file must carry one lead-in per contour (shop files do).
+        marks: the part-mark texts the ``MARK`` layer must hold.
+    """
+    r = read_dxf(path)
+    out = _file_checks(r, name)
+    if not r.contours:
+        return out + [CheckResult("dxf_contours", name, False, f"no contour on layer {CUT_LAYER}")]
+    worst_gap = max(c.gap_mm for c in r.contours)
+    out.append(CheckResult("dxf_closed_contours", name, all(c.closed for c in r.contours),
+                           f"{len(r.contours)} contours, worst gap {worst_gap:.1e} mm"))
+    areas = [contour_area(c.segments) for c in r.contours]
+    outer_i = max(range(len(areas)), key=lambda i: abs(areas[i]))
+    outer = r.contours[outer_i]
+    inner = [c for i, c in enumerate(r.contours) if i != outer_i]
+    bb = contour_bbox(outer.segments)
+    dev = max(abs(a - b) for a, b in zip(bb, face_bbox_mm))
+    out.append(CheckResult("dxf_bbox", name, dev <= BBOX_TOL_MM, f"max deviation {dev:.1e} mm"))
+    out += _piece_checks(name, outer, inner, r.start_holes, face_area_mm2, edm, web_thickness_mm)
+    if lead_ins:
+        out += _lead_in_checks(name, r, [(outer, inner)], [web_thickness_mm is not None])
+    if marks:
+        out.append(CheckResult("dxf_part_marks", name, sorted(r.marks) == sorted(marks),
+                               f"MARK layer: {', '.join(r.marks) or 'none'}"))
+    return out
+
+
+@dataclass(frozen=True)
+class SheetPart:
+    """What a nested sheet must hold of one profile: face area (mm^2), width
+    and height of its bounding box (mm), web thickness (mm) or None, and the
+    mark of each copy."""
+
+    part: str
+    face_area_mm2: float
+    size_mm: tuple[float, float]
+    web_thickness_mm: float | None
+    marks: tuple[str, ...]
+
+
+def check_sheet_dxf(path: str | Path, name: str, parts: Sequence[SheetPart], edm: EdmRules,
+                    gap_mm: float) -> list[CheckResult]:
+    """Every check of a nested sheet, read from the file: file checks, closed
+    contours, one outer contour per copy matched to its profile by area and
+    box size, each copy's wire-EDM rules and web, lead-ins, part marks, and
+    the gap between copies (outer contours >= ``gap_mm`` apart, no lead-in
+    line crossing another copy)."""
+    r = read_dxf(path)
+    out = _file_checks(r, name)
+    out.append(CheckResult("dxf_closed_contours", name, bool(r.contours) and all(c.closed for c in r.contours),
+                           f"{len(r.contours)} contours"))
+    pieces = _pieces(r.contours)
+    expected = [p for p in parts for _ in p.marks]
+    out.append(CheckResult("sheet_copies", name, len(pieces) == len(expected),
+                           f"{len(pieces)} parts on the sheet, {len(expected)} expected"))
+    pool = list(expected)
+    web_flags = []
+    for k, (outer, inner) in enumerate(pieces):
+        net = _net_area(outer, inner)
+        x0, y0, x1, y1 = contour_bbox(outer.segments)
+        match = min(pool, key=lambda p: abs(p.face_area_mm2 - net) + abs(p.size_mm[0] - (x1 - x0))
+                    + abs(p.size_mm[1] - (y1 - y0)), default=None)
+        if match is None:
+            out.append(CheckResult("sheet_copies", f"{name}: part {k + 1}", False, "no such profile expected"))
+            web_flags.append(False)
+            continue
+        pool.remove(match)
+        sub = f"{name}: {match.part} at ({x0:.1f}, {y0:.1f})"
+        size_dev = max(abs(match.size_mm[0] - (x1 - x0)), abs(match.size_mm[1] - (y1 - y0)))
+        out.append(CheckResult("dxf_bbox", sub, size_dev <= BBOX_TOL_MM, f"size deviation {size_dev:.1e} mm"))
+        out += _piece_checks(sub, outer, inner, r.start_holes, match.face_area_mm2, edm,
+                             match.web_thickness_mm)
+        web_flags.append(match.web_thickness_mm is not None)
+    out += _lead_in_checks(name, r, pieces, web_flags)
+    polys = [_polygon(o.segments) for o, _ in pieces]
+    closest = min((polys[i].distance(polys[j]) for i in range(len(polys)) for j in range(i)),
+                  default=math.inf)
+    crossing = sum(1 for a, b in r.lead_lines
+                   if sum(1 for p in polys if p.intersects(sg.LineString([a, b]))) > 1)
+    out.append(CheckResult("sheet_gap", name, closest >= gap_mm - 1e-6 and crossing == 0,
+                           f"closest parts {closest:.3f} mm apart (>= {gap_mm:.3f} mm), "
+                           f"{crossing} lead-ins crossing another part"))
+    want = sorted(m for p in parts for m in p.marks)
+    out.append(CheckResult("dxf_part_marks", name, sorted(r.marks) == want,
+                           f"{len(r.marks)} marks on MARK, {len(want)} expected"))
     return out
 
 

@@ -5,20 +5,18 @@ box) with the manifest's records.
 
 FreeCAD runs its own Python (the system ``python3``), so the review script
 (:mod:`tactcad.checks.freecad_script`, which imports nothing from tactcad)
-runs in a subprocess and writes its findings to a JSON file.
+runs in a subprocess (:func:`tactcad.export.freecad_review.run_freecad_script`)
+and writes its findings to a JSON file.
 """
 
 from __future__ import annotations
 
 import json
-import os
-import shutil
-import subprocess
-import tempfile
 import time
 from pathlib import Path
 
 from tactcad.checks.result import CheckResult
+from tactcad.export.freecad_review import freecadcmd, run_freecad_script
 
 SCRIPT = Path(__file__).with_name("freecad_script.py")
 VOLUME_RTOL = 1e-6
@@ -29,11 +27,6 @@ class FreeCADUnavailable(RuntimeError):
     """``freecadcmd`` is not installed."""
 
 
-def freecadcmd() -> str | None:
-    """Path of ``freecadcmd``, or ``None``."""
-    return shutil.which("freecadcmd") or shutil.which("FreeCADCmd")
-
-
 def run_freecad_review(paths: list[str | Path], timeout_s: float = 600.0) -> dict:
     """Import every STEP file in FreeCAD; returns the script's JSON plus
     ``wall_seconds`` (including FreeCAD's start).
@@ -42,24 +35,11 @@ def run_freecad_review(paths: list[str | Path], timeout_s: float = 600.0) -> dic
         FreeCADUnavailable: no ``freecadcmd``.
         RuntimeError: FreeCAD crashed or wrote no result (its output is in the message).
     """
-    exe = freecadcmd()
-    if exe is None:
+    if freecadcmd() is None:
         raise FreeCADUnavailable("freecadcmd not found (Debian package freecad-python3)")
-    with tempfile.TemporaryDirectory(prefix="tactcad-fc-") as tmp:
-        out = Path(tmp) / "review.json"
-        env = dict(os.environ, TACTCAD_FC_IN=json.dumps([str(Path(p).resolve()) for p in paths]),
-                   TACTCAD_FC_OUT=str(out), HOME=tmp)  # FreeCAD writes its user config there
-        env.pop("PYTHONPATH", None)
-        env.pop("PYTHONHOME", None)
-        t0 = time.perf_counter()
-        proc = subprocess.run([exe, str(SCRIPT)], env=env, cwd=tmp, capture_output=True,
-                              text=True, timeout=timeout_s)
-        wall = time.perf_counter() - t0
-        if not out.exists():
-            raise RuntimeError(f"freecadcmd exited {proc.returncode} without a result:\n"
-                               f"{proc.stdout[-2000:]}\n{proc.stderr[-2000:]}")
-        result = json.loads(out.read_text())
-    result["wall_seconds"] = wall
+    t0 = time.perf_counter()
+    result = run_freecad_script(SCRIPT, [str(Path(p).resolve()) for p in paths], timeout_s)
+    result["wall_seconds"] = time.perf_counter() - t0
     return result
 
 

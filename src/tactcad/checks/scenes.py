@@ -18,7 +18,7 @@ from tactcad.checks.solids import check_solid
 from tactcad.checks.step import check_step
 from tactcad.design.array import Plan
 from tactcad.export.glb import read_glb
-from tactcad.export.names import scene_glb_name, scene_step_name
+from tactcad.catalogue.files import scene_glb_name, scene_step_name
 from tactcad.parts.cache import PartCache
 
 

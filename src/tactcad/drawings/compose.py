@@ -25,6 +25,7 @@ from typing import Callable
 from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import ElementGeometry, Plan
 from tactcad.store import stable_repr
+from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
 from tactcad.geometry.profile import Arc
 from tactcad.mechanics.strength import strength_summary
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
@@ -584,8 +585,8 @@ def notes_for(d: Drawing) -> list[str]:
                  f"(Table 1) of equal {fmt_mm(a)} mm arm measured {k0:.2f} and {k1:.2f} N/mm "
                  f"(x{ratio:.2f}). Measure the web of every part and record it.")
         n.append(f"Wire EDM from {fmt_mm(g.sheet_thickness_mm)} mm {spec.material} sheet along "
-                 f"the nominal contour of the DXF files "
-                 + ", ".join(f"element_{k}.dxf" for k in used)
+                 f"the nominal contour of {Path(profile_dxf_name(spec.name, len(used))).name} "
+                 f"(or the nested sheet {Path(sheet_dxf_name(spec.material, g.sheet_thickness_mm)).name})"
                  + f"; wire offset is the shop's CAM setting. Start holes "
                  f"Ø{fmt_mm(g.start_hole_diameter_mm)} at the bolt-hole centres.")
         n.append(f"Inside corners not dimensioned: R >= {fmt_mm(plan.edm.min_inside_radius_mm)} "

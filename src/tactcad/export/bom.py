@@ -28,7 +28,8 @@ from tactcad.atomic import write_bytes_atomic
 from tactcad.catalogue.array import Instance, PartSpec
 from tactcad.design.array import Plan
 from tactcad.drawings.sheet import fmt_mm
-from tactcad.export.names import drawing_name, element_dxf_name, part_step_name, scene_step_name
+from tactcad.catalogue.files import drawing_name, part_step_name, scene_step_name, sheet_dxf_name
+from tactcad.export.dxf_sheet import shop_profiles
 
 BOM_COLUMNS = ("item", "part", "quantity", "type", "material", "process_or_reference",
                "key_dimensions_mm", "files")
@@ -149,10 +150,13 @@ def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
 def part_files(plan: Plan, staging: Path,
                assemblies: Mapping[str, Sequence] | None = None) -> Callable[[PartSpec], list[str]]:
     """The export files that describe a part, as found in ``staging``: its
-    drawing (SVG), its wire-EDM DXF files (elements: one per array position)
-    and its STEP model, or, for a part without a STEP file of its own, the
+    drawing (SVG), its shop DXF files (the profile with its quantity and the
+    nested sheet it is cut from) and its STEP model, or, for a part without a STEP file of its own, the
     scene STEP files (``scenes/<scene>.step``) that show it. Only files that
     exist are named."""
+    dxf_of = {sp.part: [sp.file_name, sheet_dxf_name(sp.material, sp.thickness_mm)]
+              for sp in shop_profiles(plan)}
+
     shown_in: dict[str, list[str]] = {}
     for name, inst in (assemblies or {}).items():
         for part in instance_counts(inst):
@@ -160,9 +164,8 @@ def part_files(plan: Plan, staging: Path,
 
     def files(spec: PartSpec) -> list[str]:
         cand = [drawing_name(spec.name)]
-        cand += [element_dxf_name(s.number) for s in plan.slots
-                 if s.geometry.part_name == spec.name]
-        cand += [f"dxf/{spec.name}.dxf", part_step_name(spec.name)]
+        cand += dxf_of.get(spec.name, [])
+        cand += [part_step_name(spec.name)]
         found = [c for c in cand if (staging / c).is_file()]
         if part_step_name(spec.name) not in found:
             found += [c for c in shown_in.get(spec.name, []) if (staging / c).is_file()]

@@ -1,58 +1,193 @@
-"""DXF for wire EDM: the nominal contour as closed LWPOLYLINEs with bulges.
+"""DXF for wire EDM: the nominal contour as closed polylines with bulges.
 
 What a cutting shop expects: lines and arcs only (no SPLINE/ELLIPSE), each
-contour one closed chain, flat on z = 0, units mm (``$INSUNITS = 4``,
-``$MEASUREMENT = 1``). The contour is nominal: the wire offset (kerf / 2)
-is the shop's CAM setting. Layers:
+contour one closed chain, flat on z = 0, units mm. The contour is nominal:
+the wire offset (kerf / 2) is the shop's CAM setting. Layers:
 
-* ``CUT``: outer contour and closed cut-outs (bolt holes);
-* ``START_HOLE``: one drilled start hole (CIRCLE) inside each closed cut-out.
+* ``CUT``: outer contour (closed polyline with bulges) and round holes (CIRCLE);
+* ``START_HOLE``: one drilled start hole (CIRCLE) inside each closed cut-out;
+* ``LEAD_IN``: where the wire starts each cut: a POINT at the start and a LINE
+  from it to the entry point on the contour (outside the part for the outer
+  contour, from the start hole for an inner cut); the caller keeps the entry
+  off the flexure web and the contact face;
+* ``MARK``: part marks (TEXT), never cut.
+
+Two DXF versions: ``R2010`` (default; closed LWPOLYLINE, ``$INSUNITS = 4``,
+``$MEASUREMENT = 1``) and ``R12`` for old CAM (no LWPOLYLINE: a closed
+POLYLINE with per-vertex bulges; R12 has no units variable, the files are
+in mm). ``$EXTMIN``/``$EXTMAX`` hold the real extents of what is drawn.
 """
 
 from __future__ import annotations
 
 import contextlib
+import logging
+import math
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterator
+from typing import Iterator, Sequence
 
 import ezdxf
 
-from tactcad.geometry.profile import Arc, Circle, Profile, Segment
 from tactcad.atomic import write_atomic
+from tactcad.geometry.profile import Arc, Circle, Point, Profile, Segment, contour_bbox
 
 CUT_LAYER = "CUT"
 START_LAYER = "START_HOLE"
+LEAD_LAYER = "LEAD_IN"
+MARK_LAYER = "MARK"
+DXF_VERSIONS = ("R2010", "R12")
+DEFAULT_DXF_VERSION = "R2010"
+LAYER_COLOURS = {CUT_LAYER: 1, START_LAYER: 3, LEAD_LAYER: 6, MARK_LAYER: 5}
 
 
-def bulge_points(segments: tuple[Segment, ...]) -> list[tuple[float, float, float]]:
-    """(x, y, bulge) vertices of a closed chain; bulge belongs to the edge leaving the vertex."""
-    return [(s.start[0], s.start[1], s.bulge if isinstance(s, Arc) else 0.0) for s in segments]
+@dataclass(frozen=True)
+class LeadIn:
+    """Where the wire starts a cut (mm): ``start`` (POINT) and ``entry`` on the contour."""
+
+    start: Point
+    entry: Point
 
 
-def circle_points(c: Circle) -> list[tuple[float, float, float]]:
-    """A circle as a closed LWPOLYLINE of two half-circle bulges (counter-clockwise)."""
-    (x, y), r = c.centre, c.radius
-    return [(x + r, y, 1.0), (x - r, y, 1.0)]
+@dataclass(frozen=True)
+class Mark:
+    """A part mark: TEXT of ``height_mm`` with its lower-left corner at ``position``."""
+
+    text: str
+    position: Point
+    height_mm: float
 
 
-def profile_document(profile: Profile, title: str = "") -> ezdxf.document.Drawing:
-    """An in-memory DXF (R2010) of the profile: see module doc for layers and units."""
-    doc = ezdxf.new("R2010", setup=False)
-    doc.header["$INSUNITS"] = 4
-    doc.header["$MEASUREMENT"] = 1
+@dataclass(frozen=True)
+class PlacedProfile:
+    """A profile moved by ``offset`` (mm), with its lead-ins and marks in the
+    profile's own frame (they move with it)."""
+
+    profile: Profile
+    offset: Point = (0.0, 0.0)
+    lead_ins: tuple[LeadIn, ...] = ()
+    marks: tuple[Mark, ...] = ()
+
+
+@dataclass(frozen=True)
+class DxfFile:
+    """What one DXF file holds: placed profiles and header properties (name -> text,
+    written as custom header properties in R2010)."""
+
+    items: tuple[PlacedProfile, ...]
+    title: str = ""
+    properties: dict[str, str] = field(default_factory=dict)
+
+
+def bulge_points(segments: Sequence[Segment], offset: Point = (0.0, 0.0)) -> list[tuple[float, float, float]]:
+    """(x, y, bulge) vertices of a closed chain moved by ``offset``; the bulge
+    belongs to the edge leaving the vertex."""
+    dx, dy = offset
+    return [(s.start[0] + dx, s.start[1] + dy, s.bulge if isinstance(s, Arc) else 0.0)
+            for s in segments]
+
+
+def _moved(p: Point, offset: Point) -> Point:
+    return (p[0] + offset[0], p[1] + offset[1])
+
+
+def placed_extents(items: Sequence[PlacedProfile]) -> tuple[float, float, float, float]:
+    """(xmin, ymin, xmax, ymax) of what the file draws outside the marks: the
+    outer contours (exact for arcs) and the lead-in start points. Marks are
+    placed inside their part, so they do not widen it."""
+    xs: list[float] = []
+    ys: list[float] = []
+    for it in items:
+        x0, y0, x1, y1 = contour_bbox(it.profile.outer)
+        xs += [x0 + it.offset[0], x1 + it.offset[0]]
+        ys += [y0 + it.offset[1], y1 + it.offset[1]]
+        for li in it.lead_ins:
+            x, y = _moved(li.start, it.offset)
+            xs.append(x)
+            ys.append(y)
+    return (min(xs), min(ys), max(xs), max(ys))
+
+
+def _add_closed_chain(msp, version: str, segments: Sequence[Segment], offset: Point) -> None:
+    pts = bulge_points(segments, offset)
+    attribs = {"layer": CUT_LAYER}
+    if version == "R12":
+        msp.add_polyline2d(pts, format="xyb", close=True, dxfattribs=attribs)
+    else:
+        msp.add_lwpolyline(pts, format="xyb", close=True, dxfattribs=attribs)
+
+
+def _add_circle(msp, c: Circle, offset: Point, layer: str) -> None:
+    msp.add_circle(_moved(c.centre, offset), c.radius, dxfattribs={"layer": layer})
+
+
+def _add_item(msp, version: str, it: PlacedProfile) -> None:
+    p, off = it.profile, it.offset
+    _add_closed_chain(msp, version, p.outer, off)
+    for hole in p.holes:
+        _add_circle(msp, hole, off, CUT_LAYER)
+    for start in p.start_holes:
+        _add_circle(msp, start, off, START_LAYER)
+    for li in it.lead_ins:
+        s, e = _moved(li.start, off), _moved(li.entry, off)
+        msp.add_point(s, dxfattribs={"layer": LEAD_LAYER})
+        msp.add_line(s, e, dxfattribs={"layer": LEAD_LAYER})
+    for m in it.marks:
+        text = msp.add_text(m.text, height=m.height_mm, dxfattribs={"layer": MARK_LAYER})
+        text.dxf.insert = _moved(m.position, off)
+
+
+def dxf_document(content: DxfFile, version: str = DEFAULT_DXF_VERSION) -> ezdxf.document.Drawing:
+    """An in-memory DXF of ``content`` (see module doc for layers, units, versions).
+
+    Raises:
+        ValueError: ``version`` is not one of :data:`DXF_VERSIONS`.
+    """
+    if version not in DXF_VERSIONS:
+        raise ValueError(f"DXF version {version!r} is not one of {', '.join(DXF_VERSIONS)}")
+    with _quiet_units_warning():
+        doc = ezdxf.new(version, setup=False, units=4)  # mm, $MEASUREMENT = 1 (metric)
+    if version != "R12":  # R12 has no units variables; its files are mm by convention
+        for key, value in content.properties.items():
+            doc.header.custom_vars.append(key, value)
+        if content.title:
+            doc.header["$PROJECTNAME"] = content.title
     doc.header["$LUNITS"] = 2
-    doc.layers.add(CUT_LAYER, color=1)
-    doc.layers.add(START_LAYER, color=3)
-    if title:
-        doc.header["$PROJECTNAME"] = title
+    for name, colour in LAYER_COLOURS.items():
+        doc.layers.add(name, color=colour)
     msp = doc.modelspace()
-    cut = {"layer": CUT_LAYER}
-    msp.add_lwpolyline(bulge_points(profile.outer), format="xyb", close=True, dxfattribs=cut)
-    for hole in profile.holes:
-        msp.add_lwpolyline(circle_points(hole), format="xyb", close=True, dxfattribs=cut)
-    for start in profile.start_holes:
-        msp.add_circle(start.centre, start.radius, dxfattribs={"layer": START_LAYER})
+    for it in content.items:
+        _add_item(msp, version, it)
+    # ezdxf copies the modelspace's extents into the header on save, unless
+    # one of them is the origin (a false vector): set both places
+    x0, y0, x1, y1 = placed_extents(content.items)
+    msp.dxf.extmin, msp.dxf.extmax = (x0, y0, 0.0), (x1, y1, 0.0)
+    doc.header["$EXTMIN"], doc.header["$EXTMAX"] = (x0, y0, 0.0), (x1, y1, 0.0)
+    msp.dxf.limmin, msp.dxf.limmax = (x0, y0), (x1, y1)
     return doc
+
+
+class _DropUnitsWarning(logging.Filter):
+    def filter(self, record: logging.LogRecord) -> bool:
+        return "$INSUNITS" not in record.getMessage()
+
+
+@contextlib.contextmanager
+def _quiet_units_warning() -> Iterator[None]:
+    """ezdxf warns that R12 cannot store units; the module doc says so once."""
+    log = logging.getLogger("ezdxf")
+    f = _DropUnitsWarning()
+    log.addFilter(f)
+    try:
+        yield
+    finally:
+        log.removeFilter(f)
+
+
+def profile_document(profile: Profile, title: str = "",
+                     version: str = DEFAULT_DXF_VERSION) -> ezdxf.document.Drawing:
+    """An in-memory DXF of one profile at its own origin, without lead-ins or marks."""
+    return dxf_document(DxfFile((PlacedProfile(profile),), title), version)
 
 
 @contextlib.contextmanager
@@ -70,14 +205,36 @@ def _fixed_metadata() -> Iterator[None]:
 def _sort_classes(doc: ezdxf.document.Drawing) -> None:
     """ezdxf collects the CLASSES section from a set of type names, so its
     order follows Python's string hashing; register them now, in name order."""
+    if doc.dxfversion == ezdxf.const.DXF12:
+        return
     doc.classes.add_required_classes(doc.dxfversion)
     doc.classes.classes = dict(sorted(doc.classes.classes.items()))
 
 
-def write_profile_dxf(path: str | Path, profile: Profile, title: str = "") -> Path:
-    """Write the profile's DXF atomically and reproducibly: fixed time stamps
-    and GUIDs, sorted classes, so the same profile writes the same bytes."""
+def write_dxf(path: str | Path, content: DxfFile, version: str = DEFAULT_DXF_VERSION) -> Path:
+    """Write ``content`` as DXF atomically and reproducibly: fixed time stamps
+    and GUIDs, sorted classes, so the same content writes the same bytes.
+
+    Raises:
+        ValueError: unknown ``version``.
+    """
     with _fixed_metadata():
-        doc = profile_document(profile, title)
+        doc = dxf_document(content, version)
         _sort_classes(doc)
         return write_atomic(path, lambda tmp: doc.saveas(tmp))
+
+
+def write_profile_dxf(path: str | Path, profile: Profile, title: str = "",
+                      version: str = DEFAULT_DXF_VERSION) -> Path:
+    """Write one profile's DXF (no lead-ins, no marks): see :func:`write_dxf`."""
+    return write_dxf(path, DxfFile((PlacedProfile(profile),), title), version)
+
+
+def circle_entry(hole: Circle, away_from: Point | None) -> Point:
+    """The point of ``hole`` farthest from ``away_from`` (the -x point when None)."""
+    (cx, cy), r = hole.centre, hole.radius
+    if away_from is None or math.dist(away_from, hole.centre) == 0:
+        return (cx - r, cy)
+    dx, dy = cx - away_from[0], cy - away_from[1]
+    n = math.hypot(dx, dy)
+    return (cx + r * dx / n, cy + r * dy / n)

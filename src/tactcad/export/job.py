@@ -26,6 +26,7 @@ class Run:
     staging: Path
     log: Log = print
     store: Store = field(default_factory=lambda: Store(None))  # also memoises costly steps
+    dxf_version: str | None = None  # of the shop DXF files; None: R2010 (or $TACTCAD_DXF_VERSION)
 
     @cached_property
     def scenes(self) -> dict[str, tuple[SceneSpec, RigModel]]:

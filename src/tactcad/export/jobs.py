@@ -18,9 +18,11 @@ from tactcad.assembly.inventory import assembly_review, fabricated_parts
 from tactcad.assembly.rigs import shown_instances
 from tactcad.catalogue.array import array_instances, array_parts
 from tactcad.drawings.compose import drawing_inputs
-from tactcad.export.names import (ARRAY_PNG, ARRAY_STEP, PDF_NAME, drawing_name,
-                                  drawing_png_name, element_dxf_name, part_step_name,
-                                  scene_glb_name, scene_step_name)
+from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, PDF_NAME, drawing_name,
+                                    drawing_png_name, part_step_name, scene_glb_name,
+                                    scene_step_name)
+from tactcad.export.dxf_sheet import dxf_version_option, write_shop_dxf_files
+from tactcad.export.freecad_review import freecad_identity
 from tactcad.export.job import Job, Run
 from tactcad.store import content_key
 
@@ -42,12 +44,9 @@ def array_jobs(run: Run) -> list[Job]:
     inst = array_instances(plan)
     jobs.append(Job("step:array", content_key("step-array", list(specs.values()), inst),
                     _array_step(specs, inst), tuple(specs.values())))
-    for slot in plan.slots:
-        spec = specs[slot.geometry.part_name]
-        title = f"{plan.name} element {slot.number}"
-        jobs.append(Job(f"dxf:element_{slot.number}",
-                        content_key("dxf", spec.profile, title, slot.number),
-                        _element_dxf(spec, title, slot.number)))
+    version = run.dxf_version or dxf_version_option()
+    jobs.append(Job("dxf:shop", content_key("dxf-shop", plan, list(specs.values()), version),
+                    _shop_dxf(version)))
     return jobs
 
 
@@ -67,10 +66,12 @@ def _part_step(spec):
 def _array_step(specs, inst):
     def make(run: Run) -> list[dict]:
         from tactcad.assembly.placement import location
+        from tactcad.assembly.z_up import z_up_location
         from tactcad.export.step import StepInstance, StepPart, write_step
 
         parts = [StepPart(n, run.parts.solid(s), s.color) for n, s in specs.items()]
-        instances = [StepInstance(i.name, i.part, location(i.placement)) for i in inst]
+        z_up = z_up_location()  # STEP is Z up
+        instances = [StepInstance(i.name, i.part, z_up * location(i.placement)) for i in inst]
         write_step(run.staging / ARRAY_STEP, parts, instances, "array")
         run.log(f"  wrote {ARRAY_STEP}")
         return [{"path": ARRAY_STEP, "part": "array", "kind": "step-assembly",
@@ -78,14 +79,9 @@ def _array_step(specs, inst):
     return make
 
 
-def _element_dxf(spec, title: str, number: int):
+def _shop_dxf(version: str):
     def make(run: Run) -> list[dict]:
-        from tactcad.export.dxf import write_profile_dxf
-
-        rel = element_dxf_name(number)
-        write_profile_dxf(run.staging / rel, spec.profile, title=title)
-        run.log(f"  wrote {rel}")
-        return [{"path": rel, "part": spec.name, "kind": "dxf-wire-edm", "element": number}]
+        return write_shop_dxf_files(run.plan, run.staging, run.log, version)
     return make
 
 
@@ -99,18 +95,24 @@ def scene_jobs(run: Run, names=None) -> list[Job]:
         shown = {part: model.specs[part] for _, part, _ in shown_instances(model, spec)}
         jobs.append(Job(f"scene:{n}", content_key("scene", spec, model), _scene(n),
                         tuple(shown.values())))
+    # one FreeCAD process writes the review files of all these scenes
+    jobs.append(Job("review:" + ",".join(names),
+                    content_key("review-fcstd", [j.key for j in jobs], freecad_identity()),
+                    _review(names), tuple({s.name: s for j in jobs for s in j.needs}.values())))
     return jobs
 
 
 def _scene(name: str):
     def make(run: Run) -> list[dict]:
         from tactcad.assembly.scenes import build_scene, review_record
+        from tactcad.assembly.z_up import z_up_location
         from tactcad.export.glb import write_glb
         from tactcad.export.step import StepInstance, StepPart, write_step
 
         scene, solids = build_scene(run.plan, name, run.parts)
         parts = [StepPart(n, solids[n], spec.color) for n, spec in scene.parts().items()]
-        inst = [StepInstance(i.name, i.part, i.location) for i in scene.instances]
+        z_up = z_up_location()  # STEP is Z up, the GLB keeps glTF's y up
+        inst = [StepInstance(i.name, i.part, z_up * i.location) for i in scene.instances]
         rel = scene_step_name(name)
         write_step(run.staging / rel, parts, inst, name)
         rel_glb = scene_glb_name(name)
@@ -120,6 +122,19 @@ def _scene(name: str):
         return [{"path": rel, "part": name, "kind": "step-scene", **review_record(scene)},
                 {"path": rel_glb, "part": name, "kind": "glb-scene",
                  "nodes": len(scene.instances), "meshes": len(parts), "triangles": tri}]
+    return make
+
+
+def _review(names: list[str]):
+    def make(run: Run) -> list[dict]:
+        from tactcad.assembly.scenes import build_scene
+        from tactcad.export.freecad_review import scene_review_assembly, write_review_files
+
+        assemblies = []
+        for name in names:
+            scene, solids = build_scene(run.plan, name, run.parts)
+            assemblies.append(scene_review_assembly(scene, solids, scene_step_name(name)))
+        return write_review_files(run.staging, assemblies, run.log)
     return make
 
 

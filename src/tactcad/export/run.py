@@ -33,7 +33,7 @@ from tactcad.design.array import Plan
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
-from tactcad.export.names import ARRAY_STEP, MANIFEST
+from tactcad.catalogue.files import ARRAY_STEP, MANIFEST
 from tactcad.mechanics.strength import strength_summary
 from tactcad.store import Store, stack_versions
 
@@ -137,12 +137,13 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
 
 
 def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, log: Log,
-               store: Store, with_manifest: bool, parts=None) -> ExportResult:
+               store: Store, with_manifest: bool, parts=None,
+               dxf_version: str | None = None) -> ExportResult:
     t0 = time.perf_counter()
     out_dir.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=".staging-", dir=out_dir))
     try:
-        run = Run(plan, staging, log, store)
+        run = Run(plan, staging, log, store, dxf_version)
         if parts is not None:
             run.parts = parts  # share the caller's solids (e.g. with the checks)
         jobs = jobs_of(run)
@@ -182,16 +183,17 @@ def export_scenes(plan: Plan, out_dir: str | Path, names: Sequence[str], log: Lo
 
 
 def export(plan: Plan, out_dir: str | Path, log: Log = print,
-           store: Store | None = None, parts=None) -> ExportResult:
+           store: Store | None = None, parts=None, dxf_version: str | None = None) -> ExportResult:
     """Write all exports of ``plan`` into ``out_dir`` (see module doc).
 
     Args:
         store: finished jobs to reuse (``Store(None)`` or ``None``: build everything).
         parts: a :class:`~tactcad.parts.cache.PartCache` of ``plan`` to share
             (default: the run makes its own, only if a job needs a solid).
+        dxf_version: ``R2010`` (default) or ``R12`` for the shop DXF files.
 
     Raises:
         OSError: the files cannot be written; ``out_dir`` is left as it was.
     """
     return _write_set(Path(out_dir), all_jobs, plan, log, store or Store(None),
-                      with_manifest=True, parts=parts)
+                      with_manifest=True, parts=parts, dxf_version=dxf_version)

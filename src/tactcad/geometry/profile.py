@@ -123,6 +123,21 @@ def contour_area(segments: Sequence[Segment]) -> float:
     return area
 
 
+def contour_points(segments: Sequence[Segment], sagitta_mm: float = 1e-4) -> list[Point]:
+    """Vertices of a polygon through a closed chain (mm): arcs split so that
+    no chord departs from its arc by more than ``sagitta_mm``."""
+    pts: list[Point] = []
+    for s in segments:
+        pts.append(s.start)
+        if isinstance(s, Arc):
+            r, sweep = s.radius, s.sweep
+            n = max(2, int(math.ceil(abs(sweep) / (2 * math.acos(max(-1.0, 1 - sagitta_mm / r))))))
+            a0 = math.atan2(s.start[1] - s.centre[1], s.start[0] - s.centre[0])
+            pts.extend((s.centre[0] + r * math.cos(a0 + sweep * k / n),
+                        s.centre[1] + r * math.sin(a0 + sweep * k / n)) for k in range(1, n))
+    return pts
+
+
 def _arc_extremes(arc: Arc) -> list[Point]:
     pts = [arc.start, arc.end]
     a0 = math.atan2(arc.start[1] - arc.centre[1], arc.start[0] - arc.centre[0])

@@ -15,9 +15,15 @@ def part_step_name(part: str) -> str:
     return f"step/{part}.step"
 
 
-def element_dxf_name(number: int) -> str:
-    """``dxf/element_<n>.dxf``: the wire-EDM profile of array element ``n``."""
-    return f"dxf/element_{number}.dxf"
+def profile_dxf_name(part: str, quantity: int) -> str:
+    """``dxf/<part>_qty<n>.dxf``."""
+    return f"dxf/{part}_qty{quantity}.dxf"
+
+
+def sheet_dxf_name(material: str, thickness_mm: float) -> str:
+    """``dxf/sheet_<material>_<t>mm.dxf`` (decimal point written ``p``)."""
+    t = f"{thickness_mm:g}".replace(".", "p")
+    return f"dxf/sheet_{material.replace(' ', '_')}_{t}mm.dxf"
 
 
 def scene_step_name(name: str) -> str:

@@ -1,0 +1,323 @@
+"""DXF files for the cutting shop: one file per distinct cut profile, and a
+nested sheet per material and thickness.
+
+* ``dxf/<part>_qty<n>.dxf``: one distinct profile (five element variants,
+  the spacer), its quantity in the name, in the custom header properties
+  (R2010) and in the part mark. Elements 1 and 8 share ``element_a4mm``.
+* ``dxf/sheet_<material>_<t>mm.dxf``: every copy of every profile cut from
+  that sheet, laid out in shelves (rows of parts sorted by height) with a gap
+  of at least 2 x (wire radius + spark gap) + :data:`SHEET_MARGIN_MM`
+  between outer contours, each copy marked with its element number and arm
+  length (``E1 A4``) or part name on the ``MARK`` layer.
+
+Which parts: the elements (wire EDM) and the spacer (wire EDM or laser cut).
+The clamp plate is milled (pockets and window from the drawing), not cut from
+a profile, so it has no DXF here.
+
+Lead-ins (layer ``LEAD_IN``): the outer cut enters on the straight edge
+farthest from the flexure web and the contact face (for the elements the
+base's back face), from a start point :data:`LEAD_IN_MM` outside the part;
+each hole is entered from its start hole at the hole centre, on the side away
+from the web. Units mm throughout.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Callable, Sequence
+
+from tactcad.catalogue.array import PartSpec, array_instances, array_parts
+from tactcad.design.array import ElementGeometry, Plan
+from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_points
+from tactcad.errors import DesignError
+from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
+from tactcad.export.dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, circle_entry,
+                  placed_extents, write_dxf)
+
+DXF_VERSION_ENV = "TACTCAD_DXF_VERSION"  # the writer's option: R2010 (default) or R12
+LEAD_IN_MM = 1.0  # start point of the outer cut, this far outside the part
+SHEET_MARGIN_MM = 2.0  # added to two wire offsets between parts: room for the lead-ins
+MARK_HEIGHTS_MM = (1.0, 0.8, 0.6, 0.5)
+MARK_CHAR_WIDTH = 0.9  # width of a mark character / text height, an upper bound for simple fonts
+MARK_CLEARANCE_MM = 0.3  # between a mark and any cut edge
+
+
+@dataclass(frozen=True)
+class ShopProfile:
+    """One distinct cut profile and what the shop needs to know about it.
+
+    Attributes:
+        part: part name (``element_a4mm``, ``spacer``).
+        profile: nominal contour (mm), start holes included.
+        quantity: copies in the array.
+        material, thickness_mm: the sheet it is cut from.
+        copy_marks: one mark text per copy (``E1 A4``, ``E8 A4``; ``SPACER``).
+        file_mark: mark of the single-profile file (``E1/E8 A4 QTY 2``).
+        keep_out: points (mm, profile frame) the lead-ins stay away from: the
+            web (thinnest section over the notch) and the contact-face centre.
+        web_thickness_mm: the design web for elements, None otherwise.
+    """
+
+    part: str
+    profile: Profile
+    quantity: int
+    material: str
+    thickness_mm: float
+    copy_marks: tuple[str, ...]
+    keep_out: tuple[Point, ...]
+    file_mark: str
+    web_thickness_mm: float | None = None
+
+    @property
+    def file_name(self) -> str:
+        return profile_dxf_name(self.part, self.quantity)
+
+
+def element_keep_out(g: ElementGeometry) -> tuple[Point, ...]:
+    """The web (mid-thickness over the notch centre) and the contact-face centre (mm)."""
+    return ((g.hinge_x_mm, g.base_height_mm - g.web_thickness_mm / 2),
+            (g.tip_centre_x_mm, g.tip_top_y_mm))
+
+
+def _arm_mark(a_mm: float) -> str:
+    return "A" + f"{a_mm:g}".replace(".", "P")
+
+
+def _with_start_holes(profile: Profile, start_diameter_mm: float) -> Profile:
+    """A start hole at the centre of every hole, as the wire needs one for each closed cut-out."""
+    starts = tuple(Circle(h.centre, start_diameter_mm / 2) for h in profile.holes)
+    return replace(profile, start_holes=starts)
+
+
+def shop_profiles(plan: Plan) -> list[ShopProfile]:
+    """The cut profiles of ``plan``: the distinct elements in order of first use,
+    then the spacer. Quantities count the array's instances."""
+    specs = array_parts(plan)
+    counts: dict[str, int] = {}
+    for inst in array_instances(plan):
+        counts[inst.part] = counts.get(inst.part, 0) + 1
+    out = []
+    for name, g in plan.distinct_elements.items():
+        numbers = [s.number for s in plan.slots if s.geometry.part_name == name]
+        out.append(ShopProfile(
+            part=name, profile=specs[name].profile, quantity=counts[name],
+            material=specs[name].material, thickness_mm=specs[name].thickness_mm,
+            copy_marks=tuple(f"E{n} {_arm_mark(g.arm_length_mm)}" for n in numbers),
+            keep_out=element_keep_out(g), web_thickness_mm=g.web_thickness_mm,
+            file_mark=f"{'/'.join(f'E{n}' for n in numbers)} {_arm_mark(g.arm_length_mm)} "
+                      f"QTY {counts[name]}"))
+    sp: PartSpec = specs["spacer"]
+    out.append(ShopProfile(
+        part="spacer", profile=_with_start_holes(sp.profile, plan.edm.start_hole_diameter_mm),
+        quantity=counts["spacer"], material=sp.material, thickness_mm=sp.thickness_mm,
+        copy_marks=("SPACER",) * counts["spacer"], keep_out=(),
+        file_mark=f"SPACER QTY {counts['spacer']}"))
+    return out
+
+
+# --- lead-ins -------------------------------------------------------------------
+def _distance_to(points: Sequence[Point], p: Point) -> float:
+    return min((math.dist(p, q) for q in points), default=math.inf)
+
+
+def outer_lead_in(profile: Profile, keep_out: Sequence[Point], length_mm: float = LEAD_IN_MM) -> LeadIn:
+    """Lead-in of the outer cut: the entry is the middle of the straight edge
+    whose middle lies farthest from every keep-out point (the longest edge
+    when there is none); the start lies ``length_mm`` outside, on the normal.
+
+    Raises:
+        ValueError: the outer contour has no straight edge.
+    """
+    lines = [s for s in profile.outer if isinstance(s, Line)]
+    if not lines:
+        raise ValueError("outer contour has no straight edge for a lead-in")
+
+    def mid(s: Line) -> Point:
+        return ((s.start[0] + s.end[0]) / 2, (s.start[1] + s.end[1]) / 2)
+
+    best = max(lines, key=lambda s: (min(_distance_to(keep_out, mid(s)), 1e9), s.length()))
+    (x0, y0), (x1, y1) = best.start, best.end
+    n = best.length()
+    outward = ((y1 - y0) / n, -(x1 - x0) / n)  # right of the direction of a CCW contour
+    entry = mid(best)
+    return LeadIn((entry[0] + length_mm * outward[0], entry[1] + length_mm * outward[1]), entry)
+
+
+def hole_lead_ins(profile: Profile, keep_out: Sequence[Point]) -> tuple[LeadIn, ...]:
+    """One lead-in per hole: from its centre (the start hole) to the hole's
+    point farthest from the nearest keep-out point."""
+    out = []
+    for h in profile.holes:
+        nearest = min(keep_out, key=lambda q: math.dist(q, h.centre)) if keep_out else None
+        out.append(LeadIn(h.centre, circle_entry(h, nearest)))
+    return tuple(out)
+
+
+def lead_ins(sp: ShopProfile) -> tuple[LeadIn, ...]:
+    return (outer_lead_in(sp.profile, sp.keep_out),) + hole_lead_ins(sp.profile, sp.keep_out)
+
+
+# --- part marks -----------------------------------------------------------------
+def _cut_area(profile: Profile):
+    import shapely.geometry as sg
+
+    poly = sg.Polygon(contour_points(profile.outer))
+    for h in profile.holes:
+        poly = poly.difference(sg.Point(h.centre).buffer(h.radius, 64))
+    return poly
+
+
+def place_mark(profile: Profile, text: str, step_mm: float = 0.25) -> Mark:
+    """A mark inside the part, clear of every cut edge by :data:`MARK_CLEARANCE_MM`:
+    the largest height of :data:`MARK_HEIGHTS_MM` that fits, lowest then
+    leftmost position on a grid. When nothing fits, the mark goes just below
+    the part at the smallest height."""
+    import shapely.geometry as sg
+
+    area = _cut_area(profile).buffer(-MARK_CLEARANCE_MM)
+    x0, y0, x1, y1 = profile.bbox_mm
+    nx, ny = int((x1 - x0) / step_mm), int((y1 - y0) / step_mm)
+    for h in MARK_HEIGHTS_MM:
+        w = MARK_CHAR_WIDTH * h * len(text)
+        for j in range(ny + 1):
+            for i in range(nx + 1):
+                x, y = x0 + i * step_mm, y0 + j * step_mm
+                if area.contains(sg.box(x, y, x + w, y + h)):
+                    return Mark(text, (round(x, 6), round(y, 6)), h)
+    h = MARK_HEIGHTS_MM[-1]
+    return Mark(text, (x0, y0 - MARK_CLEARANCE_MM - h), h)
+
+
+# --- nesting --------------------------------------------------------------------
+def sheet_gap_mm(plan: Plan) -> float:
+    """Smallest gap between two parts' outer contours on a sheet (mm):
+    2 x (wire radius + spark gap) + :data:`SHEET_MARGIN_MM`."""
+    return 2 * plan.edm.min_inside_radius_mm + SHEET_MARGIN_MM
+
+
+def shelf_layout(sizes: Sequence[tuple[float, float]], gap_mm: float,
+                 row_width_mm: float | None = None) -> list[Point]:
+    """Lower-left corners (mm) of boxes ``sizes`` (width, height) packed in
+    shelves: boxes sorted by height (tallest first, then input order), filled
+    left to right with ``gap_mm`` between them and around the sheet border; a
+    new shelf starts when the next box would pass ``row_width_mm`` (default:
+    about a square sheet). Returns the corners in input order."""
+    if not sizes:
+        return []
+    if row_width_mm is None:
+        area = sum((w + gap_mm) * (h + gap_mm) for w, h in sizes)
+        row_width_mm = max(max(w for w, _ in sizes), math.sqrt(area) * 1.2)
+    order = sorted(range(len(sizes)), key=lambda i: (-sizes[i][1], i))
+    corners: list[Point] = [(0.0, 0.0)] * len(sizes)
+    x, y, shelf_h = gap_mm, gap_mm, 0.0
+    for i in order:
+        w, h = sizes[i]
+        if x > gap_mm and x + w > gap_mm + row_width_mm:
+            x, y, shelf_h = gap_mm, y + shelf_h + gap_mm, 0.0
+        corners[i] = (x, y)
+        x += w + gap_mm
+        shelf_h = max(shelf_h, h)
+    return corners
+
+
+def _lead_extents(sp: ShopProfile, leads: Sequence[LeadIn]) -> tuple[float, float, float, float]:
+    x0, y0, x1, y1 = sp.profile.bbox_mm
+    xs = [x0, x1] + [li.start[0] for li in leads]
+    ys = [y0, y1] + [li.start[1] for li in leads]
+    return (min(xs), min(ys), max(xs), max(ys))
+
+
+def nested_sheet(profiles: Sequence[ShopProfile], gap_mm: float) -> list[PlacedProfile]:
+    """Every copy of ``profiles`` placed on one sheet by :func:`shelf_layout`;
+    boxes include the lead-in start points, so the gap holds between parts
+    and from one part's lead-in to the next part."""
+    copies = []
+    for sp in profiles:
+        leads = lead_ins(sp)
+        ext = _lead_extents(sp, leads)
+        for text in sp.copy_marks:
+            copies.append((sp, leads, ext, place_mark(sp.profile, text)))
+    sizes = [(e[2] - e[0], e[3] - e[1]) for _, _, e, _ in copies]
+    corners = shelf_layout(sizes, gap_mm)
+    return [PlacedProfile(sp.profile, (round(cx - ext[0], 6), round(cy - ext[1], 6)), leads, (mark,))
+            for (sp, leads, ext, mark), (cx, cy) in zip(copies, corners)]
+
+
+# --- the writer -----------------------------------------------------------------
+def dxf_version_option() -> str:
+    """The DXF version the writer uses: ``$TACTCAD_DXF_VERSION`` (set by
+    ``tactcad export --dxf-version``), ``R2010`` when unset.
+
+    Raises:
+        DesignError: a version other than ``R2010`` or ``R12``.
+    """
+    version = os.environ.get(DXF_VERSION_ENV, DEFAULT_DXF_VERSION)
+    if version not in DXF_VERSIONS:
+        raise DesignError("--dxf-version", version, " or ".join(DXF_VERSIONS))
+    return version
+
+
+def _properties(plan: Plan, sp: ShopProfile) -> dict[str, str]:
+    return {"DESIGN": plan.name, "PART": sp.part, "QUANTITY": str(sp.quantity),
+            "MATERIAL": sp.material, "THICKNESS_MM": f"{sp.thickness_mm:g}",
+            "MARKS": ", ".join(sp.copy_marks), "UNITS": "mm"}
+
+
+def sheets(plan: Plan) -> dict[tuple[str, float], list[ShopProfile]]:
+    """Cut profiles grouped by (material, thickness mm), in order of first use."""
+    out: dict[tuple[str, float], list[ShopProfile]] = {}
+    for sp in shop_profiles(plan):
+        out.setdefault((sp.material, sp.thickness_mm), []).append(sp)
+    return out
+
+
+def write_shop_profile(path: Path, plan: Plan, sp: ShopProfile, version: str = DEFAULT_DXF_VERSION) -> Path:
+    """One profile's shop file: profile at its origin, lead-ins, the file mark,
+    quantity and material in the header (R2010)."""
+    item = PlacedProfile(sp.profile, (0.0, 0.0), lead_ins(sp), (place_mark(sp.profile, sp.file_mark),))
+    title = f"{plan.name} {sp.part} qty {sp.quantity}"
+    return write_dxf(path, DxfFile((item,), title, _properties(plan, sp)), version)
+
+
+def write_shop_dxf_files(plan: Plan, staging: Path, log: Callable[[str], None],
+                         version: str | None = None) -> list[dict]:
+    """Write the per-profile DXF files and the nested sheets into ``staging/dxf``
+    (``version`` None: :func:`dxf_version_option`).
+
+    Returns:
+        File records: ``{"path", "part", "kind": "dxf-profile", "quantity",
+        "marks", "material", "thickness_mm", "dxf_version"}`` per profile and
+        ``{"path", "part": "sheet", "kind": "dxf-sheet", "material",
+        "thickness_mm", "parts": {part: quantity}, "gap_mm", "sheet_mm": [width,
+        height] (parts plus the gap as border), "dxf_version"}`` per sheet.
+
+    Raises:
+        DesignError: ``version`` is not ``R2010`` or ``R12``.
+    """
+    version = version or dxf_version_option()
+    if version not in DXF_VERSIONS:
+        raise DesignError("--dxf-version", version, " or ".join(DXF_VERSIONS))
+    records: list[dict] = []
+    for (material, t), group in sheets(plan).items():
+        for sp in group:
+            write_shop_profile(staging / sp.file_name, plan, sp, version)
+            records.append({"path": sp.file_name, "part": sp.part, "kind": "dxf-profile",
+                            "quantity": sp.quantity, "marks": list(sp.copy_marks),
+                            "material": material, "thickness_mm": t, "dxf_version": version})
+        rel = sheet_dxf_name(material, t)
+        gap = sheet_gap_mm(plan)
+        props = {"DESIGN": plan.name, "MATERIAL": material, "THICKNESS_MM": f"{t:g}",
+                 "PARTS": ", ".join(f"{sp.part} x{sp.quantity}" for sp in group),
+                 "GAP_MM": f"{gap:g}", "UNITS": "mm"}
+        placed = tuple(nested_sheet(group, gap))
+        write_dxf(staging / rel, DxfFile(placed, f"{plan.name} sheet {material} {t:g} mm", props), version)
+        x0, y0, x1, y1 = placed_extents(placed)
+        records.append({"path": rel, "part": "sheet", "kind": "dxf-sheet", "material": material,
+                        "thickness_mm": t, "parts": {sp.part: sp.quantity for sp in group},
+                        "gap_mm": gap, "sheet_mm": [round(x1 + gap, 3), round(y1 + gap, 3)],
+                        "dxf_version": version})
+    log(f"  wrote {len(records)} DXF files in dxf/ ({version})")
+    return records

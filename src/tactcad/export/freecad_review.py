@@ -1,0 +1,289 @@
+"""FreeCAD review files: ``review/<assembly>.FCStd``, one per scene (the
+array scene included), written by ``freecadcmd`` (Debian ``freecad-python3``).
+
+What a reviewer finds on File > Open: a root ``App::Part`` named after the
+scene, turned Z up (:mod:`tactcad.assembly.z_up`); under it one ``App::Part``
+per group of the scene (``array``, ``cart``, ``xy_stage``, ...) holding one
+``App::Link`` per instance, labelled with the instance name (``element_1``,
+``clamp_plate_front``, ``bolt_1``); each distinct part is stored once, as a
+hidden ``Part::Feature`` in the ``parts`` folder, with its colour (every
+element variant its own). Geometry goes to FreeCAD as BREP of the same
+solids the STEP file holds.
+
+FreeCAD runs its own Python, so the document is built by
+``freecad_review_script.py`` (which imports nothing from tactcad) in a
+``freecadcmd`` subprocess; its main window is opened off screen
+(``QT_QPA_PLATFORM=offscreen``) because colours live in the view providers,
+which exist only with a GUI. Without ``freecadcmd`` the files are skipped
+with a logged note, so an export works without FreeCAD.
+
+Reproducibility: FreeCAD stamps each save with creation and modification
+dates and a random document UUID; :func:`normalise_fcstd` replaces them with
+fixed values (UUID derived from the assembly name), numbers the object ids
+(one counter per FreeCAD process) from 1, sorts the view providers (written in memory
+order) by name and rewrites the zip archive with fixed member times, so the
+same design writes the same bytes with the same FreeCAD. What stays outside
+tactcad's hands: the file carries FreeCAD's version (``ProgramVersion``) and
+FreeCAD's own BREP and XML writers, so another FreeCAD release (or its
+OpenCascade) may write other bytes for the same model.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import uuid
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable, Sequence
+
+from tactcad.atomic import write_bytes_atomic
+from tactcad.assembly.z_up import Z_UP_MATRIX
+
+SCRIPT = Path(__file__).with_name("freecad_review_script.py")
+FIXED_DATE = "2000-01-01T00:00:00Z"
+ZIP_TIME = (1980, 1, 1, 0, 0, 0)
+Matrix = tuple[tuple[float, ...], ...]  # row-major 4 x 4, mm
+
+
+@dataclass(frozen=True)
+class ReviewPart:
+    """A distinct part: name, solid (build123d shape, part frame, mm) and RGB colour in 0 ... 1."""
+
+    name: str
+    shape: Any
+    color: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class ReviewInstance:
+    """A placed part: instance name, part name, group and placement (scene frame)."""
+
+    name: str
+    part: str
+    group: str
+    matrix: Matrix
+
+
+@dataclass(frozen=True)
+class ReviewAssembly:
+    """One review file: ``review/<name>.FCStd`` for the STEP file ``step``."""
+
+    name: str
+    step: str
+    parts: tuple[ReviewPart, ...]
+    instances: tuple[ReviewInstance, ...]
+
+    def groups(self) -> dict[str, list[str]]:
+        """Group -> instance names, groups in order of first use."""
+        out: dict[str, list[str]] = {}
+        for i in self.instances:
+            out.setdefault(i.group, []).append(i.name)
+        return out
+
+
+def review_fcstd_name(name: str) -> str:
+    return f"review/{name}.FCStd"
+
+
+def location_matrix(location) -> Matrix:
+    """Row-major 4 x 4 matrix of a build123d ``Location`` (mm), rounded to 1e-12 mm."""
+    from tactcad.assembly.placement import matrix  # the kernel, only when a file is written
+
+    m = matrix(location)
+    rows = [tuple(round(float(m[i][j]), 12) + 0.0 for j in range(4)) for i in range(3)]
+    return tuple(rows) + ((0.0, 0.0, 0.0, 1.0),)
+
+
+def scene_review_assembly(scene, solids: dict, step: str) -> ReviewAssembly:
+    """The review assembly of a built scene (:mod:`tactcad.assembly.scenes`): its
+    shown parts with their solids and colours, its instances by group."""
+    parts = tuple(ReviewPart(n, solids[n], tuple(spec.color)) for n, spec in scene.parts().items())
+    inst = tuple(ReviewInstance(i.name, i.part, i.group, location_matrix(i.location))
+                 for i in scene.instances)
+    return ReviewAssembly(scene.name, step, parts, inst)
+
+
+def freecadcmd() -> str | None:
+    """Path of ``freecadcmd``, or ``None``."""
+    return shutil.which("freecadcmd") or shutil.which("FreeCADCmd")
+
+
+def freecad_identity() -> str | None:
+    """What identifies the installed FreeCAD for the export store (its
+    ``freecadcmd``'s resolved path, size and time), or ``None``: cheap, no
+    FreeCAD process started."""
+    exe = freecadcmd()
+    if exe is None:
+        return None
+    real = Path(exe).resolve()
+    st = real.stat()
+    return f"{real}:{st.st_size}:{int(st.st_mtime)}"
+
+
+def _write_brep(shape, path: Path) -> None:
+    from OCP.BRepTools import BRepTools
+    from OCP.TopTools import TopTools_FormatVersion
+
+    # Version 1 without triangulation: what FreeCAD's older OpenCascade reads.
+    if not BRepTools.Write_s(shape.wrapped, str(path), False, False,
+                             TopTools_FormatVersion.TopTools_FormatVersion_VERSION_1):
+        raise RuntimeError(f"OpenCascade could not write {path}")
+
+
+def _job(a: ReviewAssembly, staging: Path, folder: Path) -> dict:
+    folder.mkdir()
+    parts = []
+    for k, p in enumerate(a.parts):
+        brep = folder / f"p{k}.brep"
+        _write_brep(p.shape, brep)
+        parts.append({"name": p.name, "brep": str(brep), "color": list(p.color)})
+    groups = [{"name": g, "instances": [{"name": i.name, "part": i.part, "matrix": i.matrix}
+                                        for i in a.instances if i.group == g]}
+              for g in a.groups()]
+    return {"name": a.name, "out": str((staging / review_fcstd_name(a.name)).resolve()),
+            "root_matrix": Z_UP_MATRIX, "parts": parts, "groups": groups}
+
+
+def run_freecad_script(script: Path, payload: Any, timeout_s: float = 900.0) -> dict:
+    """Run ``script`` under ``freecadcmd`` with ``payload`` (JSON) in
+    ``$TACTCAD_FC_IN``; returns the JSON the script wrote to ``$TACTCAD_FC_OUT``.
+
+    Raises:
+        RuntimeError: no ``freecadcmd``, or FreeCAD wrote no result (its output
+            is in the message).
+    """
+    exe = freecadcmd()
+    if exe is None:
+        raise RuntimeError("freecadcmd not found (Debian package freecad-python3)")
+    with tempfile.TemporaryDirectory(prefix="tactcad-fc-") as tmp:
+        out = Path(tmp) / "result.json"
+        env = dict(os.environ, TACTCAD_FC_IN=json.dumps(payload), TACTCAD_FC_OUT=str(out),
+                   HOME=tmp, QT_QPA_PLATFORM="offscreen")  # FreeCAD's user config goes to HOME
+        env.pop("PYTHONPATH", None)
+        env.pop("PYTHONHOME", None)
+        proc = subprocess.run([exe, str(script)], env=env, cwd=tmp, capture_output=True,
+                              text=True, timeout=timeout_s)
+        if not out.exists():
+            raise RuntimeError(f"freecadcmd exited {proc.returncode} without a result:\n"
+                               f"{proc.stdout[-2000:]}\n{proc.stderr[-2000:]}")
+        return json.loads(out.read_text())
+
+
+_DATE_RE = re.compile(rb'(<Property name="(?:CreationDate|LastModifiedDate)" [^>]*>\s*<String value=")[^"]*(")')
+_UID_RE = re.compile(rb'(<Property name="Uid" [^>]*>\s*<Uuid value=")[^"]*(")')
+_OBJECT_ID_RE = re.compile(rb'(<Object type="[^"]+" name="[^"]+" id=")(\d+)(")')
+_VIEW_PROVIDERS_RE = re.compile(rb'(<ViewProviderData Count="\d+">\s*)(.*?)(\s*</ViewProviderData>)', re.S)
+_VIEW_PROVIDER_RE = re.compile(rb'<ViewProvider name="([^"]+)".*?</ViewProvider>', re.S)
+_FILE_RE = re.compile(rb'file="([A-Za-z]+)(\d*)"')
+
+
+def _renumber_ids(xml: bytes) -> bytes:
+    """Object ids count on across the documents of one FreeCAD process: number them 1, 2, ..."""
+    counter = iter(range(1, 1 << 30))
+    return _OBJECT_ID_RE.sub(lambda m: m.group(1) + str(next(counter)).encode() + m.group(3), xml)
+
+
+def _sort_view_providers(xml: bytes) -> tuple[bytes, dict[str, str]]:
+    """FreeCAD writes the view providers in memory order: sort them by object
+    name and rename their colour-list files (``DiffuseColor``, ``DiffuseColor1``,
+    ...) in the new order. Returns the XML and old -> new file names."""
+    m = _VIEW_PROVIDERS_RE.search(xml)
+    if m is None:
+        return xml, {}
+    blocks = [b.group(0) for b in _VIEW_PROVIDER_RE.finditer(m.group(2))]
+    blocks.sort(key=lambda b: _VIEW_PROVIDER_RE.match(b).group(1))
+    sep = b"\n        "
+    body = m.group(1) + sep.join(blocks) + m.group(3)
+    xml = xml[:m.start()] + body + xml[m.end():]
+    renamed: dict[str, str] = {}
+    seen: dict[bytes, int] = {}
+
+    def rename(f: re.Match) -> bytes:
+        base = f.group(1)
+        k = seen.get(base, 0)
+        seen[base] = k + 1
+        new = base + (str(k).encode() if k else b"")
+        renamed[(f.group(1) + f.group(2)).decode()] = new.decode()
+        return b'file="' + new + b'"'
+
+    return _FILE_RE.sub(rename, xml), renamed
+
+
+def normalise_fcstd(path: Path, name: str) -> None:
+    """Make a FreeCAD file reproducible (see module doc): fixed dates and
+    document UUID, object ids from 1, view providers in name order, zip
+    members with fixed times."""
+    uid = str(uuid.uuid5(uuid.NAMESPACE_URL, f"tactcad/review/{name}")).encode()
+    with zipfile.ZipFile(path) as zin:
+        members = {info.filename: zin.read(info.filename) for info in zin.infolist()}
+    doc = members["Document.xml"]
+    doc = _DATE_RE.sub(rb"\g<1>" + FIXED_DATE.encode() + rb"\g<2>", doc)
+    doc = _UID_RE.sub(rb"\g<1>" + uid + rb"\g<2>", doc)
+    members["Document.xml"] = _renumber_ids(doc)
+    # FreeCAD reads the members in the order it wrote them: Document.xml, its
+    # files, GuiDocument.xml, then the view providers' files in XML order.
+    renamed: dict[str, str] = {}
+    if "GuiDocument.xml" in members:
+        members["GuiDocument.xml"], renamed = _sort_view_providers(members["GuiDocument.xml"])
+    gui_files = [renamed_name for renamed_name in renamed.values()]  # in XML order
+    new_data = {renamed.get(n, n): data for n, data in members.items()}
+    order = [n for n in members if n not in renamed]
+    if gui_files:
+        at = order.index("GuiDocument.xml") + 1
+        order[at:at] = gui_files
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w") as zout:
+        zout.comment = b"FreeCAD Document"
+        for n in order:
+            info = zipfile.ZipInfo(n, ZIP_TIME)
+            info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = 0o644 << 16
+            zout.writestr(info, new_data[n], compresslevel=6)
+
+    write_bytes_atomic(path, buf.getvalue())
+
+
+def write_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],
+                       log: Callable[[str], None]) -> list[dict]:
+    """Write ``review/<name>.FCStd`` for each assembly into ``staging`` (one
+    ``freecadcmd`` run for all of them); see the module doc.
+
+    Returns:
+        File records ``{"path", "part": name, "kind": "freecad-review",
+        "step", "freecad_version", "groups": {group: [instance, ...]},
+        "instances", "colours": {part: [r, g, b]}}``; an empty list, with a logged note, when FreeCAD is not
+        installed.
+
+    Raises:
+        RuntimeError: FreeCAD is installed but failed (its output is in the message).
+    """
+    if not assemblies:
+        return []
+    if freecadcmd() is None:
+        log("  skipped review/*.FCStd: freecadcmd not found (install the Debian package "
+            "freecad-python3, e.g. scripts/install-system-deps.sh)")
+        return []
+    (staging / "review").mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix="tactcad-review-") as tmp:
+        jobs = [_job(a, staging, Path(tmp) / f"a{k}") for k, a in enumerate(assemblies)]
+        result = run_freecad_script(SCRIPT, jobs)
+    records = []
+    for a in assemblies:
+        found = result["files"].get(a.name, {"error": "not written"})
+        if "error" in found:
+            raise RuntimeError(f"FreeCAD could not write {review_fcstd_name(a.name)}:\n{found['error']}")
+        normalise_fcstd(staging / review_fcstd_name(a.name), a.name)
+        records.append({"path": review_fcstd_name(a.name), "part": a.name, "kind": "freecad-review",
+                        "step": a.step, "freecad_version": ".".join(result["freecad_version"]),
+                        "groups": a.groups(), "instances": len(a.instances),
+                        "colours": {p.name: list(p.color) for p in a.parts}})
+    log(f"  wrote {len(records)} FreeCAD review files in review/ "
+        f"(FreeCAD {'.'.join(result['freecad_version'])}, colours: {result['gui']})")
+    return records

@@ -1,0 +1,91 @@
+# Runs inside FreeCAD (``freecadcmd``), not in tactcad's Python: it imports
+# nothing from tactcad. Input and output come from the environment:
+#   TACTCAD_FC_IN   JSON list of jobs: {name, out, root_matrix, parts: [{name,
+#                   brep, color}], groups: [{name, instances: [{name, part,
+#                   matrix}]}]}; matrices row-major 4 x 4, mm
+#   TACTCAD_FC_OUT  JSON file to write: {freecad_version, gui, files: {name:
+#                   {objects} or {error}}}
+# See tactcad/export/freecad_review.py for the document layout.
+import json
+import os
+import re
+import traceback
+
+import FreeCAD
+import FreeCADGui
+
+try:  # off screen (QT_QPA_PLATFORM=offscreen): view providers keep the colours
+    FreeCADGui.showMainWindow()
+    GUI = True
+except Exception:
+    FreeCADGui.setupWithoutGUI()
+    GUI = False
+import Part  # noqa: E402
+
+# Group, part and instance may share a name (group "column", instance "column").
+DOCUMENT_PREFS = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Document")
+DOCUMENT_PREFS.SetBool("DuplicateLabels", True)
+DOCUMENT_PREFS.SetBool("CreateBackupFiles", False)  # no <name>.FCStd1 beside the file
+
+
+def object_name(prefix, name):
+    """A FreeCAD object name (letters, digits, underscores); the label keeps the real name."""
+    return prefix + re.sub(r"\W", "_", name)
+
+
+def placement(rows):
+    m = FreeCAD.Matrix(*[v for row in rows for v in row])
+    return FreeCAD.Placement(m)
+
+
+def build(job):
+    # hidden: no 3D view, whose teardown crashes without an OpenGL context
+    doc = FreeCAD.newDocument(object_name("review_", job["name"]), hidden=True)
+    doc.Label = job["name"]
+    library = doc.addObject("App::DocumentObjectGroup", "parts")
+    library.Label = "parts"
+    features = {}
+    for p in job["parts"]:
+        shape = Part.Shape()
+        shape.read(p["brep"])
+        f = doc.addObject("Part::Feature", object_name("part_", p["name"]))
+        f.Label = p["name"]
+        f.Shape = shape
+        f.Visibility = False  # shown through the links only
+        library.addObject(f)
+        if GUI:
+            f.ViewObject.ShapeColor = tuple(p["color"])
+        features[p["name"]] = f
+    root = doc.addObject("App::Part", object_name("scene_", job["name"]))
+    root.Label = job["name"]
+    root.Placement = placement(job["root_matrix"])  # Z up
+    for g in job["groups"]:
+        group = doc.addObject("App::Part", object_name("group_", g["name"]))
+        group.Label = g["name"]
+        root.addObject(group)
+        for inst in g["instances"]:
+            link = doc.addObject("App::Link", object_name("", inst["name"]))
+            link.Label = inst["name"]
+            link.LinkedObject = features[inst["part"]]
+            link.Placement = placement(inst["matrix"])
+            group.addObject(link)
+    doc.recompute()
+    doc.saveAs(job["out"])
+    n = len(doc.Objects)
+    FreeCAD.closeDocument(doc.Name)
+    return {"objects": n}
+
+
+def main():
+    jobs = json.loads(os.environ["TACTCAD_FC_IN"])
+    results = {"freecad_version": FreeCAD.Version()[:3], "gui": GUI, "files": {}}
+    for job in jobs:
+        try:
+            results["files"][job["name"]] = build(job)
+        except Exception:
+            results["files"][job["name"]] = {"error": traceback.format_exc()}
+    with open(os.environ["TACTCAD_FC_OUT"], "w") as fh:
+        json.dump(results, fh, indent=1, sort_keys=True)
+
+
+main()
