@@ -22,6 +22,9 @@ COMMAND_MODULES = (
     "tactcad.commands.bench",
     "tactcad.commands.mechanics",
     "tactcad.commands.lumped",
+    "tactcad.commands.tolerance",
+    "tactcad.commands.sweep",
+    "tactcad.commands.design",
 )
 
 

@@ -1,0 +1,85 @@
+"""Sweeps on Dask: grids validated as designs, the design chart, local vs existing cluster."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from tactcad.cli import main
+from tactcad.design import plan_from_dict
+from tactcad.errors import DesignError
+from tactcad.mechanics.inverse import design_variant
+from tactcad.sweeps import check_scheduler_address, design_grid, grid_points
+
+
+def test_grid_is_monotonic_in_web_and_arm(plan):
+    webs, arms = (0.15, 0.25, 0.4), (4.0, 6.0, 8.0)
+    rows = design_grid(plan, webs, arms)
+    k = {(r.web_mm, r.arm_mm): r.K_N_per_mm for r in rows}
+    assert [(r.web_mm, r.arm_mm) for r in rows] == [(t, a) for t in webs for a in arms]
+    for t in webs:
+        assert k[(t, 4.0)] > k[(t, 6.0)] > k[(t, 8.0)]
+    for a in arms:
+        assert k[(0.15, a)] < k[(0.25, a)] < k[(0.4, a)]
+
+
+def test_grid_points_raise_the_notch_radius_to_the_web(plan, design_data):
+    design_data["element"]["notch_radius_mm"] = 0.3
+    small_r = plan_from_dict(design_data)
+    assert [p.geometry.notch_radius_mm for p in grid_points(small_r, [0.2, 0.4], [5.0])] == [0.3, 0.4]
+    assert grid_points(small_r, [0.2], [5.0], notch_radii_mm=[1.0])[0].geometry.notch_radius_mm == 1.0
+    with pytest.raises(DesignError, match="--model"):
+        grid_points(plan, [0.25], [5.0], model="fem9d")
+
+
+def test_design_variant_grows_length_and_arm_height_only_when_needed(design_data):
+    same = design_variant(design_data, arms_mm=design_data["arms"]["lengths_mm"])
+    assert same == design_data
+    long = design_variant(design_data, web_mm=0.4, notch_radius_mm=1.8, arms_mm=[8.0] * 9 + [14.0])
+    assert long["element"]["overall_length_mm"] > design_data["element"]["overall_length_mm"]
+    assert long["element"]["arm_height_mm"] == pytest.approx(0.4 + 1.8 + 0.5)
+    assert design_data["element"]["web_thickness_mm"] == 0.25  # input untouched
+    with pytest.raises(DesignError, match="arms.lengths_mm"):  # still validated as a design
+        plan_from_dict(long)
+
+
+def test_malformed_scheduler_address_is_refused(capsys):
+    with pytest.raises(DesignError, match="--scheduler"):
+        check_scheduler_address("localhost 8786")
+    assert main(["tolerance", "--samples", "100", "--scheduler", "8786"]) == 2
+    assert "tactcad: error: --scheduler" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_local_cluster_and_existing_cluster_give_the_same_numbers(tmp_path, capsys):
+    """An existing scheduler + worker on 127.0.0.1, reached by address, against the
+    default LocalCluster: equal Monte Carlo JSON and equal grid CSV."""
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      scheduler_port=0, dashboard_address=None) as cluster:
+        address = cluster.scheduler_address
+        assert address.startswith("tcp://127.0.0.1:")
+        mc = ["tolerance", "--samples", "6000", "--seed", "5", "--json"]
+        assert main(mc + ["--scheduler", address]) == 0
+        remote = json.loads(capsys.readouterr().out)
+        grid = ["sweep", "grid", "--webs", "0.2", "0.3", "--arms", "4", "7", "--json"]
+        assert main(grid + ["--scheduler", address, "--out", str(tmp_path / "remote")]) == 0
+        remote_grid = json.loads(capsys.readouterr().out)
+    assert main(mc + ["--workers", "2"]) == 0
+    local = json.loads(capsys.readouterr().out)
+    assert main(mc) == 0  # in this process, no cluster
+    inproc = json.loads(capsys.readouterr().out)
+    assert main(grid + ["--out", str(tmp_path / "local")]) == 0
+    local_grid = json.loads(capsys.readouterr().out)
+    assert remote == local == inproc
+    assert remote["samples"] == 6000
+    drop = lambda rows: [{k: v for k, v in r.items() if k != "wall_time_s"} for r in rows]  # noqa: E731
+    assert drop(remote_grid) == drop(local_grid)
+    for d in ("remote", "local"):
+        assert (tmp_path / d / "design_chart.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    lines = (tmp_path / "local" / "design_grid.csv").read_text().splitlines()
+    assert lines[0].startswith("model,web_mm,arm_mm") and len(lines) == 5
+    assert Path(tmp_path / "remote" / "design_grid.csv").read_text() != ""
