@@ -22,6 +22,7 @@ COMMAND_MODULES = (
     "tactcad.commands.bench",
     "tactcad.commands.mechanics",
     "tactcad.commands.lumped",
+    "tactcad.commands.strength",
     "tactcad.commands.tolerance",
     "tactcad.commands.sweep",
     "tactcad.commands.design",

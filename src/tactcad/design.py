@@ -28,6 +28,8 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from .errors import DesignError
+from .materials import (StrengthSettings, assumption_schema, default_strength_settings,
+                        split_design_tables)
 
 DEFAULT_DESIGN = Path(__file__).resolve().parents[2] / "hardware" / "macro_array.toml"
 
@@ -91,9 +93,21 @@ class Derived:
 
 @dataclass(frozen=True)
 class Material:
+    """Sheet material (MPa, g/cm^3). The strength fields come from the
+    library grade (:mod:`tactcad.materials`) unless the design gives them;
+    None when neither does. ``fatigue_cycles`` and ``fatigue_R_ratio`` belong
+    to a library fatigue strength; ``sources`` names each value's document."""
+
     name: str
     youngs_modulus_MPa: float
     poisson_ratio: float
+    grade: str | None = None
+    yield_strength_MPa: float | None = None
+    fatigue_strength_MPa: float | None = None
+    fatigue_cycles: float | None = None
+    fatigue_R_ratio: float | None = None
+    density_g_per_cm3: float | None = None
+    sources: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -275,6 +289,7 @@ class Plan:
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
     raw: Mapping[str, Any] = field(repr=False, compare=False, hash=False, default_factory=dict)
+    strength: StrengthSettings = field(default_factory=default_strength_settings)
 
     def element(self, number: int) -> ElementSlot:
         """The slot of element ``number`` (1-based, paper numbering).
@@ -491,19 +506,25 @@ def default_design_data() -> dict[str, Any]:
 
 def plan_from_dict(data: Mapping[str, Any], source: str = "<dict>") -> Plan:
     """Validate raw design tables and derive the plan. See :func:`load_design`."""
-    check_keys(data, _SCHEMA)
-    r = _Reader(data)
-    assumptions = read_assumptions(data, _SCHEMA)
-    derived: list[Derived] = []
-
-    name = r.text("design", "name")
-    description = r.text("design", "description")
+    # --- materials library (tactcad.materials) -----------------------------
+    # [material] may name a grade and give yield/fatigue strength and density;
+    # [strength] is optional. The core tables below see name, E and nu only.
+    core, material_extra, strength = split_design_tables(data)
+    check_keys(core, _SCHEMA)
+    r = _Reader(core)
+    assumptions = read_assumptions(core, assumption_schema(_SCHEMA))
     material = Material(
         name=r.text("material", "name"),
         youngs_modulus_MPa=r.number("material", "youngs_modulus_MPa", 1e3, 1e6, unit="MPa"),
         poisson_ratio=r.number("material", "poisson_ratio", 0.0, 0.5, lo_open=True, hi_open=True,
                                unit=""),
+        **material_extra,
     )
+    # --- end materials library ----------------------------------------------
+    derived: list[Derived] = []
+
+    name = r.text("design", "name")
+    description = r.text("design", "description")
     sheet = r.number("sheet", "thickness_mm", 0.5, 10.0)
 
     rows = r.integer("array", "rows", 2, 2, why="the model is two clamped rows facing each other")
@@ -675,4 +696,5 @@ def plan_from_dict(data: Mapping[str, Any], source: str = "<dict>") -> Plan:
         bolt_positions_xy_mm=bolt_xy, spacer=spacer, spacer_placements=tuple(spacer_pl),
         clamp=clamp, clamp_plate_z_mm=(-plate_t, stack), stack_length_mm=stack,
         derived=tuple(derived), assumptions=assumptions, raw=copy.deepcopy(dict(data)),
+        strength=strength,
     )

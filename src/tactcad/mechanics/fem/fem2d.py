@@ -50,6 +50,7 @@ Units: mm, N, MPa, N/mm, s.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import math
 import time
 from dataclasses import dataclass
@@ -156,6 +157,30 @@ class FemSolution:
     n_cells: int
     neck_size_mm: float
     wall_time_s: float
+    field: "DisplacementField | None" = dataclasses.field(default=None, repr=False, compare=False)
+
+
+@dataclass(frozen=True, eq=False)
+class DisplacementField:
+    """The solved P2 displacement field of one solve, for stress recovery and VTU.
+
+    Attributes:
+        basis: scalar P2 ``CellBasis`` (scikit-fem) on the solve's mesh (mm).
+        displacement: dof vector, interleaved ``dim * s + c`` (mm), under the
+            solve's force.
+        lam, mu: Lame parameters used (MPa; ``lam`` is lambda* in plane stress).
+        plane: "stress", "strain" or None (3D).
+        force_N: total tip force of the solve (N; the full element in 3D).
+        sym_plane_z: 3D half model: z of the mid-plane (u_z = 0), else None.
+    """
+
+    basis: object
+    displacement: np.ndarray
+    lam: float
+    mu: float
+    plane: str | None
+    force_N: float
+    sym_plane_z: float | None = None
 
 
 def lame(material: Material, plane: str | None) -> tuple[float, float]:
@@ -464,15 +489,23 @@ def solve_elasticity(mesh, lam: float, mu: float, *, thickness: float, x_clamp: 
             CG did not converge.
         ValueError: unknown solver.
     """
+    return solve_elasticity_field(mesh, lam, mu, thickness=thickness, x_clamp=x_clamp,
+                                  contact=contact, traction_MPa=traction_MPa,
+                                  gauge_vertex=gauge_vertex, sym_plane_z=sym_plane_z,
+                                  solver=solver, intorder=intorder, rtol=rtol)[:5]
+
+
+def solve_elasticity_field(mesh, lam: float, mu: float, **kwargs):
+    """:func:`solve_elasticity` that also returns the field: a 6-tuple, the
+    five values of :func:`solve_elasticity` and ``(basis, u)``, the scalar P2
+    basis and the interleaved displacement vector (mm)."""
     with single_threaded_blas():
-        return _solve_elasticity(mesh, lam, mu, thickness=thickness, x_clamp=x_clamp,
-                                 contact=contact, traction_MPa=traction_MPa,
-                                 gauge_vertex=gauge_vertex, sym_plane_z=sym_plane_z,
-                                 solver=solver, intorder=intorder, rtol=rtol)
+        return _solve_elasticity(mesh, lam, mu, **kwargs)
 
 
 def _solve_elasticity(mesh, lam, mu, *, thickness, x_clamp, contact, traction_MPa,
-                      gauge_vertex, sym_plane_z, solver, intorder, rtol):
+                      gauge_vertex, sym_plane_z=None, solver="direct", intorder=None,
+                      rtol=1e-10):
     import skfem
     from skfem import Basis, FacetBasis, LinearForm, asm, condense
 
@@ -535,13 +568,13 @@ def _solve_elasticity(mesh, lam, mu, *, thickness, x_clamp, contact, traction_MP
     if gauge_vertex is not None:
         comps = [u[c::dim] for c in range(dim)]
         eps_xx = float(vertex_gradient(sb, comps, gauge_vertex)[0, 0])
-    return compliance, force, eps_xx, n, iters
+    return compliance, force, eps_xx, n, iters, (sb, u)
 
 
 def solve_fem2d(g: ElementGeometry, material: Material, *, plane: str = "stress",
                 size_factor: float = 1.0, web_divisions: float = WEB_DIVISIONS,
                 curved: bool = True, force_N: float = DEFAULT_FORCE_N,
-                region: FemRegion | None = None) -> FemSolution:
+                region: FemRegion | None = None, keep_field: bool = False) -> FemSolution:
     """One plane FEM solve (P2 triangles) of the element's tip stiffness.
 
     Args:
@@ -554,6 +587,7 @@ def solve_fem2d(g: ElementGeometry, material: Material, *, plane: str = "stress"
         curved: isoparametric P2 geometry on the arcs (else straight cells).
         force_N: total tip force (N); K does not depend on it (linear).
         region: cropped outline; ``None`` uses :func:`fem_region` (g).
+        keep_field: keep the displacement field in ``FemSolution.field``.
 
     Raises:
         ValueError: unknown plane, non-positive force.
@@ -569,13 +603,15 @@ def solve_fem2d(g: ElementGeometry, material: Material, *, plane: str = "stress"
     lam, mu = lame(material, plane)
     L, w = g.overall_length_mm, g.tip_width_mm
     b = g.sheet_thickness_mm
-    compliance, force, eps, n, _ = solve_elasticity(
+    compliance, force, eps, n, _, (sb, u) = solve_elasticity_field(
         mesh, lam, mu, thickness=b, x_clamp=region.x_clamp, contact=(L - w, L, g.tip_top_y_mm),
         traction_MPa=force_N / (w * b), gauge_vertex=rm.gauge_vertex)
+    field = DisplacementField(sb, u, lam, mu, plane, force_N) if keep_field else None
     return FemSolution(stiffness_N_per_mm=force**2 / compliance,
                        tip_deflection_mm=compliance / force,
                        gauge_strain=eps, force_N=force_N, n_dofs=n, n_cells=rm.t.shape[1],
-                       neck_size_mm=rm.neck_size, wall_time_s=time.perf_counter() - t0)
+                       neck_size_mm=rm.neck_size, wall_time_s=time.perf_counter() - t0,
+                       field=field)
 
 
 @dataclass(frozen=True)

@@ -54,9 +54,9 @@ import time
 from dataclasses import dataclass
 
 from ...design import ElementGeometry, Material
-from .fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Convergence, FemSolution, lame,
-                    richardson, single_threaded_blas, size_factors, skfem_mesh,
-                    solve_elasticity)
+from .fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Convergence, DisplacementField,
+                    FemSolution, lame, richardson, single_threaded_blas, size_factors,
+                    skfem_mesh, solve_elasticity_field)
 from .mesh import FemRegion, fem_region, graded_layers, mesh_region
 from ..result import StiffnessResult
 
@@ -79,7 +79,7 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
                 web_divisions: float = WEB_DIVISIONS_3D, n_layers: int = N_LAYERS,
                 grading: float = Z_GRADING, curved: bool = True,
                 force_N: float = DEFAULT_FORCE_N, region: FemRegion | None = None,
-                solver: str = "pcg") -> FemSolution:
+                solver: str = "pcg", keep_field: bool = False) -> FemSolution:
     """One 3D P2 solve (half model) of the element's tip stiffness.
 
     Args:
@@ -95,6 +95,8 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
         force_N: total tip force on the full element (N).
         region: cropped outline; ``None`` uses :func:`fem_region` (g).
         solver: "pcg" (default) or "direct" (SuperLU; small meshes only).
+        keep_field: keep the half model's displacement field in
+            ``FemSolution.field`` (mid-plane at z = b/2).
 
     Returns:
         :class:`~tactcad.mechanics.fem.fem2d.FemSolution` for the full element
@@ -117,15 +119,16 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
     mesh = skfem_mesh(rm, curved=curved)
     lam, mu = lame(material, None)
     L, w = g.overall_length_mm, g.tip_width_mm
-    compliance, force_h, eps, n, _ = solve_elasticity(
+    compliance, force_h, eps, n, _, (sb, u) = solve_elasticity_field(
         mesh, lam, mu, thickness=1.0, x_clamp=region.x_clamp,
         contact=(L - w, L, g.tip_top_y_mm), traction_MPa=force_N / (w * b),
         gauge_vertex=rm.gauge_vertex, sym_plane_z=b / 2, solver=solver, rtol=1e-9)
     deflection = compliance / force_h
+    field = DisplacementField(sb, u, lam, mu, None, 2.0 * force_h, b / 2) if keep_field else None
     return FemSolution(stiffness_N_per_mm=2.0 * force_h / deflection,
                        tip_deflection_mm=deflection, gauge_strain=eps, force_N=2.0 * force_h,
                        n_dofs=n, n_cells=rm.t.shape[1], neck_size_mm=rm.neck_size,
-                       wall_time_s=time.perf_counter() - t0)
+                       wall_time_s=time.perf_counter() - t0, field=field)
 
 
 @dataclass(frozen=True)

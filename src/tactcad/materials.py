@@ -1,0 +1,292 @@
+"""Material grades and strain gauges: the library a design file names.
+
+Data: ``tactcad/data/materials.toml``; every value carries the document it
+comes from (ASM Handbook, MMPDS, manufacturers' data sheets). This module
+imports only the standard library and :mod:`tactcad.errors`, so any layer
+(design, mechanics, commands) may use it.
+
+A design's ``[material]`` table may name a ``grade``; modulus, Poisson
+ratio, yield and fatigue strength and density then come from the library
+unless the table gives its own value. An optional ``[strength]`` table sets
+the ``safety_factor`` on yield and the ``gauge`` (a name from the library).
+:func:`split_design_tables` does that resolution for the design reader.
+
+Units: MPa, g/cm^3, strain dimensionless, ohm.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import tomllib
+from dataclasses import dataclass
+from importlib import resources
+from typing import Any, Mapping
+
+from .errors import DesignError
+
+MATERIALS_FILE = "materials.toml"
+
+#: Grade the paper's aluminium is taken to be (the paper gives only E and nu).
+DEFAULT_GRADE = "6061-T6"
+#: The paper's 120 ohm quarter-bridge foil gauge.
+DEFAULT_GAUGE = "constantan-foil"
+#: Factor on yield at full-scale force: a usual static design factor for a
+#: ductile metal part whose load is known (no impact).
+DEFAULT_SAFETY_FACTOR = 1.5
+
+#: Optional keys of a design's [material] table (besides name, E, nu).
+MATERIAL_OPTIONAL_KEYS = ("grade", "yield_strength_MPa", "fatigue_strength_MPa",
+                          "density_g_per_cm3")
+#: Keys of a design's optional [strength] table.
+STRENGTH_KEYS = ("safety_factor", "gauge")
+
+_CORE_MATERIAL_KEYS = ("name", "youngs_modulus_MPa", "poisson_ratio")
+_GRADE_FIELDS = ("youngs_modulus_MPa", "poisson_ratio", "yield_strength_MPa",
+                 "fatigue_strength_MPa", "density_g_per_cm3")
+_GAUGE_FIELDS = ("resistance_ohm", "gauge_factor", "max_strain", "fatigue_strain")
+
+# Ranges a design file's own values must fall in (MPa, g/cm^3).
+_STRENGTH_RANGE_MPA = (1.0, 5000.0)
+_DENSITY_RANGE = (0.5, 25.0)
+_SAFETY_FACTOR_RANGE = (1.0, 10.0)
+
+
+@dataclass(frozen=True)
+class MaterialGrade:
+    """One material grade of the library.
+
+    Attributes:
+        name: grade name, e.g. ``6061-T6``.
+        description: alloy, temper / heat treatment.
+        youngs_modulus_MPa: E (MPa). poisson_ratio: nu.
+        yield_strength_MPa: 0.2 % offset tensile yield (MPa).
+        fatigue_strength_MPa: stress amplitude of the smooth specimen at
+            ``fatigue_cycles`` cycles and stress ratio ``fatigue_R_ratio`` (MPa).
+        density_g_per_cm3: density (g/cm^3).
+        sources: (field, document) pairs naming where each value comes from.
+    """
+
+    name: str
+    description: str
+    youngs_modulus_MPa: float
+    poisson_ratio: float
+    yield_strength_MPa: float
+    fatigue_strength_MPa: float
+    fatigue_cycles: float
+    fatigue_R_ratio: float
+    density_g_per_cm3: float
+    sources: tuple[tuple[str, str], ...]
+
+    def source(self, field: str) -> str:
+        """Document a value comes from ('' if none is recorded)."""
+        return dict(self.sources).get(field, "")
+
+
+@dataclass(frozen=True)
+class StrainGauge:
+    """A foil strain gauge of the library.
+
+    Attributes:
+        name: library name. description: type and carrier.
+        alloy: foil alloy. resistance_ohm: nominal resistance (ohm).
+        gauge_factor: k, relative resistance change per unit strain.
+        bridge: Wheatstone bridge arrangement of the paper's elements.
+        max_strain: largest strain (magnitude) for a single excursion.
+        fatigue_strain: alternating strain amplitude survived for
+            ``fatigue_cycles`` cycles.
+        sources: (field, document) pairs.
+    """
+
+    name: str
+    description: str
+    alloy: str
+    resistance_ohm: float
+    gauge_factor: float
+    bridge: str
+    max_strain: float
+    fatigue_strain: float
+    fatigue_cycles: float
+    sources: tuple[tuple[str, str], ...]
+
+
+@dataclass(frozen=True)
+class StrengthSettings:
+    """A design's ``[strength]`` table, resolved.
+
+    Attributes:
+        safety_factor: factor on yield at the full-scale force (>= 1).
+        gauge: the strain gauge bonded over the web.
+    """
+
+    safety_factor: float
+    gauge: StrainGauge
+
+
+@functools.lru_cache(maxsize=1)
+def _library() -> dict[str, Any]:
+    text = resources.files("tactcad.data").joinpath(MATERIALS_FILE).read_text(encoding="utf-8")
+    return tomllib.loads(text)
+
+
+def _grade_from_table(name: str, t: Mapping[str, Any]) -> MaterialGrade:
+    return MaterialGrade(name=name, description=t["description"],
+                         fatigue_cycles=float(t["fatigue_cycles"]),
+                         fatigue_R_ratio=float(t["fatigue_R_ratio"]),
+                         sources=tuple(sorted(t["sources"].items())),
+                         **{k: float(t[k]) for k in _GRADE_FIELDS})
+
+
+def _gauge_from_table(name: str, t: Mapping[str, Any]) -> StrainGauge:
+    return StrainGauge(name=name, description=t["description"], alloy=t["alloy"],
+                       bridge=t["bridge"], fatigue_cycles=float(t["fatigue_cycles"]),
+                       sources=tuple(sorted(t["sources"].items())),
+                       **{k: float(t[k]) for k in _GAUGE_FIELDS})
+
+
+@functools.lru_cache(maxsize=1)
+def material_grades() -> dict[str, MaterialGrade]:
+    """Every grade of the library by name (file order)."""
+    return {n: _grade_from_table(n, t) for n, t in _library()["grades"].items()}
+
+
+@functools.lru_cache(maxsize=1)
+def strain_gauges() -> dict[str, StrainGauge]:
+    """Every strain gauge of the library by name (file order)."""
+    return {n: _gauge_from_table(n, t) for n, t in _library()["gauges"].items()}
+
+
+def material_grade(name: str, field: str = "material.grade") -> MaterialGrade:
+    """The library grade ``name``.
+
+    Raises:
+        DesignError: unknown grade, naming ``field`` and the allowed grades.
+    """
+    grades = material_grades()
+    if not isinstance(name, str) or name not in grades:
+        raise DesignError(field, name, "one of " + ", ".join(grades))
+    return grades[name]
+
+
+def strain_gauge(name: str, field: str = "strength.gauge") -> StrainGauge:
+    """The library strain gauge ``name``.
+
+    Raises:
+        DesignError: unknown gauge, naming ``field`` and the allowed gauges.
+    """
+    gauges = strain_gauges()
+    if not isinstance(name, str) or name not in gauges:
+        raise DesignError(field, name, "one of " + ", ".join(gauges))
+    return gauges[name]
+
+
+def default_strength_settings() -> StrengthSettings:
+    """Safety factor 1.5 on yield and the paper's constantan foil gauge."""
+    return StrengthSettings(DEFAULT_SAFETY_FACTOR, strain_gauge(DEFAULT_GAUGE))
+
+
+def _number(field: str, value: Any, lo: float, hi: float, unit: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+            or not lo <= value <= hi:
+        raise DesignError(field, value, f"a number {lo:g} ... {hi:g}{' ' + unit if unit else ''}")
+    return float(value)
+
+
+def material_fields(table: Mapping[str, Any]) -> dict[str, Any]:
+    """Strength fields of a design's ``[material]`` table, resolved.
+
+    With ``grade`` the library supplies yield and fatigue strength, fatigue
+    cycles and R ratio and density; the table's own ``yield_strength_MPa``,
+    ``fatigue_strength_MPa`` or ``density_g_per_cm3`` override them. Without a
+    grade only the table's own values are known (others are None).
+
+    Returns:
+        keyword arguments for :class:`tactcad.design.Material` beyond name, E
+        and nu: grade, yield_strength_MPa, fatigue_strength_MPa,
+        fatigue_cycles, fatigue_R_ratio, density_g_per_cm3, sources.
+
+    Raises:
+        DesignError: unknown grade (naming the allowed grades) or a value
+            outside its range.
+    """
+    out: dict[str, Any] = {"grade": None, "yield_strength_MPa": None,
+                           "fatigue_strength_MPa": None, "fatigue_cycles": None,
+                           "fatigue_R_ratio": None, "density_g_per_cm3": None, "sources": ()}
+    sources: dict[str, str] = {}
+    if "grade" in table:
+        g = material_grade(table["grade"])
+        out.update(grade=g.name, yield_strength_MPa=g.yield_strength_MPa,
+                   fatigue_strength_MPa=g.fatigue_strength_MPa, fatigue_cycles=g.fatigue_cycles,
+                   fatigue_R_ratio=g.fatigue_R_ratio, density_g_per_cm3=g.density_g_per_cm3)
+        sources.update(g.sources)
+    for key, (lo, hi), unit in (("yield_strength_MPa", _STRENGTH_RANGE_MPA, "MPa"),
+                                ("fatigue_strength_MPa", _STRENGTH_RANGE_MPA, "MPa"),
+                                ("density_g_per_cm3", _DENSITY_RANGE, "g/cm^3")):
+        if key in table:
+            out[key] = _number(f"material.{key}", table[key], lo, hi, unit)
+            sources[key] = "design file"
+            if key == "fatigue_strength_MPa":
+                out["fatigue_cycles"] = out["fatigue_R_ratio"] = None
+    for key in _CORE_MATERIAL_KEYS[1:]:
+        if key in table:
+            sources[key] = "design file"
+    out["sources"] = tuple(sorted(sources.items()))
+    return out
+
+
+def strength_settings(table: Any) -> StrengthSettings:
+    """A design's optional ``[strength]`` table; ``None`` gives the defaults.
+
+    Raises:
+        DesignError: not a table, an unknown key, a safety factor outside
+            1 ... 10, or an unknown gauge (naming the allowed gauges).
+    """
+    if table is None:
+        return default_strength_settings()
+    if not isinstance(table, Mapping):
+        raise DesignError("strength", table, "a [strength] table with keys " + ", ".join(STRENGTH_KEYS))
+    for key in table:
+        if key not in STRENGTH_KEYS:
+            raise DesignError(f"strength.{key}", table[key], "keys " + ", ".join(STRENGTH_KEYS),
+                              "unknown key")
+    sf = DEFAULT_SAFETY_FACTOR
+    if "safety_factor" in table:
+        sf = _number("strength.safety_factor", table["safety_factor"], *_SAFETY_FACTOR_RANGE, "")
+    return StrengthSettings(sf, strain_gauge(table.get("gauge", DEFAULT_GAUGE)))
+
+
+def split_design_tables(data: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, Any],
+                                                         StrengthSettings]:
+    """Separate the materials-library parts of raw design tables.
+
+    Returns:
+        (core, material_fields, strength): ``core`` is a shallow copy of
+        ``data`` whose ``[material]`` table holds only name, E and nu (E and nu
+        filled from the grade when the table omits them) and without
+        ``[strength]``; ``material_fields`` is :func:`material_fields` of the
+        table; ``strength`` is :func:`strength_settings` of ``[strength]``.
+
+    Raises:
+        DesignError: see :func:`material_fields` and :func:`strength_settings`.
+    """
+    core = {k: v for k, v in data.items() if k != "strength"}
+    table = data.get("material")
+    if not isinstance(table, Mapping):
+        return core, material_fields({}), strength_settings(data.get("strength"))
+    fields = material_fields(table)
+    mat = {k: v for k, v in table.items() if k not in MATERIAL_OPTIONAL_KEYS}
+    if fields["grade"] is not None:
+        g = material_grade(fields["grade"])
+        for key in _CORE_MATERIAL_KEYS[1:]:
+            mat.setdefault(key, getattr(g, key))
+    core["material"] = mat
+    return core, fields, strength_settings(data.get("strength"))
+
+
+def assumption_schema(schema: Mapping[str, tuple[str, ...]]) -> dict[str, tuple[str, ...]]:
+    """``schema`` plus the optional material keys and the [strength] keys, so
+    that ``[assumptions]`` may give reasons for them."""
+    out = dict(schema)
+    out["material"] = tuple(schema.get("material", ())) + MATERIAL_OPTIONAL_KEYS
+    out["strength"] = STRENGTH_KEYS
+    return out

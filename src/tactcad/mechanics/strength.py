@@ -1,0 +1,380 @@
+"""Strength of the sensing elements: peak stress at the flexure hinge, the
+full-scale force, and the gauge strain and tip deflection at full scale.
+
+Peak stress per newton of tip force, at every level of the ladder:
+
+* ``closed-form`` and ``beam``: nominal bending stress at the thinnest
+  section of the web, sigma_nom / F = 6 a / (b t^2) (moment F a at the notch
+  centre, Euler-Bernoulli section b x t), times the stress concentration
+  factor of the single-sided circular notch,
+
+      K_t = (1 + t / (2 R))^KT_EXPONENT.
+
+  The form is that of the circular-notch hinge in bending of S. T. Smith,
+  "Flexures: Elements of Elastic Mechanisms" (Gordon & Breach, 2000), from
+  the notch charts of Peterson's Stress Concentration Factors (W. D. Pilkey,
+  2nd ed., 1997), whose exponent 9/20 holds for the symmetric (double-sided)
+  notch. The single-sided notch of these elements concentrates more (its
+  flat face carries no notch); the exponent :data:`KT_EXPONENT` is refitted
+  to converged plane-stress P2 FEM (:func:`fem_peak_stress`, Richardson over
+  three meshes) by least squares on ln K_t over ten geometries, t/R = 0.05
+  ... 1, R = 0.4 ... 1.5 mm, arms 4 ... 8 mm (K_t from 1.014 to 1.240):
+  largest residual 0.41 %, Richardson error of the FEM values <= 0.22 %;
+  the tests check agreement within :data:`KT_FIT_TOLERANCE` (1 %).
+  The free surface at the notch root is in uniaxial stress, so the peak von
+  Mises stress equals the peak bending stress there.
+* ``fem2d`` (plane stress) and ``fem3d``: the largest vertex von Mises stress
+  at the hinge from the P2 field (:mod:`tactcad.mechanics.fem.fields`),
+  Richardson-extrapolated over three meshes refined by sqrt(2).
+
+Full-scale force (N) = yield strength / (peak stress per N x safety factor);
+at it the gauge strain (gauge strain per N x force) is compared with the
+gauge's maximum and fatigue strain, and the stress with the fatigue
+strength; each exceedance becomes a warning of the record. The tip
+deflection at full scale is F / K at the same level.
+
+Units: mm, N, MPa, N/mm; strain dimensionless.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from ..design import ElementGeometry, Material, Plan
+from ..errors import DesignError
+from ..materials import StrengthSettings
+
+#: Exponent of K_t = (1 + t/(2R))^p for the single-sided circular notch in
+#: bending, fitted to converged plane-stress P2 FEM (see the module docstring).
+KT_EXPONENT = 0.536
+#: Stated accuracy of the fitted K_t against converged FEM (largest residual
+#: of the fit 0.41 %, FEM error <= 0.22 %; Smith's 9/20 would be 3.2 % low at t/R = 1).
+KT_FIT_TOLERANCE = 0.01
+#: The paper's FEM design-study tip load (N).
+PAPER_LOAD_N = 2.0
+#: Mesh refinement of the stress solves: finest neck size = web / divisions
+#: (stress at a notch root needs a finer mesh than stiffness).
+STRESS_WEB_DIVISIONS_2D = 24.0
+STRESS_WEB_DIVISIONS_3D = 12.0
+
+MODELS = ("closed-form", "beam", "fem2d", "fem3d")
+
+
+# ---------------------------------------------------------------------------
+# Pure formulas (numpy broadcasting)
+# ---------------------------------------------------------------------------
+def stress_concentration_factor(web_mm, notch_radius_mm) -> np.ndarray:
+    """K_t of a single-sided circular notch hinge in bending (peak / nominal).
+
+    Args:
+        web_mm: web thickness t (mm). notch_radius_mm: notch radius R (mm).
+            Array-like, broadcast together.
+
+    Returns:
+        (1 + t / (2R))^KT_EXPONENT, dimensionless, >= 1.
+
+    Raises:
+        ValueError: a non-finite or non-positive input.
+
+    Source: form of S. T. Smith (2000), "Flexures", from Peterson's charts
+    (Pilkey 1997); exponent refitted to plane-stress P2 FEM for the
+    single-sided notch (:data:`KT_EXPONENT`).
+    """
+    t = _positive("web_mm", web_mm)
+    R = _positive("notch_radius_mm", notch_radius_mm)
+    return (1.0 + t / (2.0 * R)) ** KT_EXPONENT
+
+
+def nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm) -> np.ndarray:
+    """Nominal bending stress at the thinnest section per newton of tip force,
+    6 a / (b t^2) (MPa/N; Euler-Bernoulli, moment F a at the notch centre).
+
+    Raises:
+        ValueError: a non-finite or non-positive input.
+    """
+    t = _positive("web_mm", web_mm)
+    a = _positive("arm_length_mm", arm_length_mm)
+    b = _positive("sheet_mm", sheet_mm)
+    return 6.0 * a / (b * t * t)
+
+
+def peak_stress_per_newton(web_mm, notch_radius_mm, arm_length_mm, sheet_mm) -> np.ndarray:
+    """Closed-form peak von Mises stress at the notch root per newton (MPa/N):
+    :func:`stress_concentration_factor` x :func:`nominal_stress_per_newton`."""
+    return stress_concentration_factor(web_mm, notch_radius_mm) \
+        * nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm)
+
+
+def full_scale_force(yield_strength_MPa, stress_MPa_per_N, safety_factor) -> np.ndarray:
+    """Full-scale force (N) = yield / (peak stress per N x safety factor).
+
+    Raises:
+        ValueError: a non-finite or non-positive input, or a safety factor < 1.
+    """
+    y = _positive("yield_strength_MPa", yield_strength_MPa)
+    s = _positive("stress_MPa_per_N", stress_MPa_per_N)
+    sf = _positive("safety_factor", safety_factor)
+    if np.any(sf < 1.0):
+        raise ValueError(f"safety_factor must be >= 1; got {np.ravel(sf)[:3].tolist()}")
+    return y / (s * sf)
+
+
+def _positive(name: str, value) -> np.ndarray:
+    arr = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(arr)) or np.any(arr <= 0):
+        raise ValueError(f"{name} must be finite and > 0; got {np.ravel(arr)[:3].tolist()}")
+    return arr
+
+
+# ---------------------------------------------------------------------------
+# One element at one ladder level
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ElementStress:
+    """Per-newton response of one element geometry at one ladder level.
+
+    Attributes:
+        model: ladder level.
+        stress_MPa_per_N: peak von Mises stress at the hinge per N (MPa/N).
+        stress_error_rel: estimated relative error of the peak (Richardson
+            for FEM; the fit tolerance for the closed form).
+        stiffness_N_per_mm: K at the same level (N/mm).
+        gauge_strain_per_N: surface strain over the web per N (1/N).
+        peak_location_mm: where the peak is (element frame, mm); empty for
+            the closed form (the notch root, x = hinge_x).
+    """
+
+    model: str
+    stress_MPa_per_N: float
+    stress_error_rel: float
+    stiffness_N_per_mm: float
+    gauge_strain_per_N: float
+    peak_location_mm: tuple[float, ...] = ()
+
+
+def closed_form_stress(g: ElementGeometry, material: Material, model: str = "closed-form"
+                       ) -> ElementStress:
+    """Closed-form peak stress with K and gauge strain of ``model``
+    ("closed-form" or "beam", which share the stress formula)."""
+    from .ladder import estimate
+
+    r = estimate(model, g, material)
+    s = float(peak_stress_per_newton(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,
+                                     g.sheet_thickness_mm))
+    return ElementStress(model, s, KT_FIT_TOLERANCE, r.stiffness_N_per_mm, r.gauge_strain_per_N)
+
+
+def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d", *,
+                    web_divisions: float | None = None, levels: int = 3) -> ElementStress:
+    """Peak von Mises stress at the hinge from the FEM field, Richardson-
+    extrapolated over ``levels`` meshes (sizes sqrt(2)^k times the finest).
+
+    Args:
+        g, material: element and material.
+        model: "fem2d" (plane stress) or "fem3d".
+        web_divisions: finest neck size = web / web_divisions (default
+            :data:`STRESS_WEB_DIVISIONS_2D` / ``_3D``).
+        levels: number of meshes (>= 3).
+
+    Returns:
+        :class:`ElementStress`: the extrapolated peak per N (the finest mesh's
+        value when the sequence is not monotone), its Richardson error, K and
+        gauge strain of the finest mesh.
+
+    Raises:
+        ValueError: unknown model.
+    """
+    from .fem.fem2d import (REFINEMENT_RATIO, richardson, single_threaded_blas, size_factors,
+                            solve_fem2d)
+    from .fem.fields import peak_notch_stress
+    from .fem.mesh import fem_region
+
+    if model not in ("fem2d", "fem3d"):
+        raise ValueError(f"model must be fem2d or fem3d, got {model!r}")
+    region = fem_region(g)
+    peaks, sols = [], []
+    with single_threaded_blas():
+        for s in size_factors(levels, REFINEMENT_RATIO):
+            if model == "fem2d":
+                sol = solve_fem2d(g, material, size_factor=s, region=region, keep_field=True,
+                                  web_divisions=web_divisions or STRESS_WEB_DIVISIONS_2D)
+            else:
+                from .fem.fem3d import solve_fem3d
+
+                sol = solve_fem3d(g, material, size_factor=s, region=region, keep_field=True,
+                                  web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
+            peaks.append(peak_notch_stress(sol.field, g))
+            sols.append(dataclass_without_field(sol))
+    rich = richardson([p.per_newton_MPa_per_N for p in peaks], REFINEMENT_RATIO)
+    fin = sols[-1]
+    return ElementStress(model, rich.extrapolated, rich.error_rel, fin.stiffness_N_per_mm,
+                         abs(fin.gauge_strain) / fin.force_N, peaks[-1].location_mm)
+
+
+def dataclass_without_field(sol):
+    """The solve's scalars without its field (frees the mesh and basis)."""
+    from dataclasses import replace
+
+    return replace(sol, field=None)
+
+
+def element_stress(g: ElementGeometry, material: Material, model: str = "closed-form"
+                   ) -> ElementStress:
+    """Peak stress per N, K and gauge strain of one geometry at ``model``.
+
+    Raises:
+        ValueError: unknown model.
+    """
+    if model in ("closed-form", "beam"):
+        return closed_form_stress(g, material, model)
+    if model in ("fem2d", "fem3d"):
+        return fem_peak_stress(g, material, model)
+    raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+
+
+# ---------------------------------------------------------------------------
+# Full scale
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class StrengthRecord:
+    """Strength of one element of a plan at one ladder level.
+
+    Attributes (units in the names): see :func:`strength_record`.
+    ``warnings`` lists every limit exceeded, in words.
+    """
+
+    element: int
+    part_name: str
+    arm_length_mm: float
+    model: str
+    stress_MPa_per_N: float
+    stress_error_rel: float
+    stress_concentration_factor: float
+    full_scale_force_N: float
+    yield_safety_factor_at_full_scale: float
+    stress_MPa_at_full_scale: float
+    gauge_strain_at_full_scale: float
+    tip_deflection_mm_at_full_scale: float
+    stiffness_N_per_mm: float
+    fatigue_force_N: float | None
+    gauge_fatigue_force_N: float
+    stress_MPa_at_paper_load: float
+    yield_safety_factor_at_paper_load: float
+    warnings: tuple[str, ...] = field(default=())
+
+    def as_json(self) -> dict:
+        """Plain dict for JSON (all numbers finite; ``warnings`` a list)."""
+        d = asdict(self)
+        d["warnings"] = list(self.warnings)
+        return d
+
+
+def _require_yield(material: Material) -> float:
+    if material.yield_strength_MPa is None:
+        from ..materials import material_grades
+
+        raise DesignError("material.yield_strength_MPa", None,
+                          "a value in MPa, or a material.grade (one of "
+                          + ", ".join(material_grades()) + ")",
+                          "the full-scale force needs the yield strength")
+    return float(material.yield_strength_MPa)
+
+
+def strength_record(element: int, g: ElementGeometry, material: Material,
+                    settings: StrengthSettings, es: ElementStress) -> StrengthRecord:
+    """Full-scale figures of one element from its per-newton response.
+
+    full_scale_force_N = yield / (stress_MPa_per_N x safety factor);
+    yield_safety_factor_at_full_scale = yield / stress at full scale;
+    gauge_strain_at_full_scale = gauge strain per N x full-scale force;
+    tip_deflection_mm_at_full_scale = full-scale force / K;
+    fatigue_force_N = fatigue strength / stress per N (None without one);
+    gauge_fatigue_force_N = gauge fatigue strain / gauge strain per N;
+    stress and yield safety factor at the paper's 2 N load.
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    y = _require_yield(material)
+    gauge = settings.gauge
+    f_fs = float(full_scale_force(y, es.stress_MPa_per_N, settings.safety_factor))
+    s_fs = es.stress_MPa_per_N * f_fs
+    eps_fs = es.gauge_strain_per_N * f_fs
+    s_paper = es.stress_MPa_per_N * PAPER_LOAD_N
+    nominal = float(nominal_stress_per_newton(g.web_thickness_mm, g.arm_length_mm,
+                                              g.sheet_thickness_mm))
+    fat = material.fatigue_strength_MPa
+    warn = []
+    if s_paper > y:
+        warn.append(f"at the paper's {PAPER_LOAD_N:g} N the web reaches {s_paper:.0f} MPa, above "
+                    f"the yield strength {y:.0f} MPa of {material.grade or material.name}")
+    if fat is not None and s_fs > fat:
+        cyc = f" ({material.fatigue_cycles:.0e} cycles)" if material.fatigue_cycles else ""
+        warn.append(f"cycling to full scale ({s_fs:.0f} MPa) exceeds the fatigue strength "
+                    f"{fat:.0f} MPa{cyc}: cycle below {fat / es.stress_MPa_per_N:.3g} N")
+    if eps_fs > gauge.max_strain:
+        warn.append(f"gauge strain at full scale {eps_fs * 1e6:.0f} microstrain exceeds the "
+                    f"gauge's maximum {gauge.max_strain * 1e6:.0f} microstrain")
+    if eps_fs > gauge.fatigue_strain:
+        warn.append(f"gauge strain at full scale {eps_fs * 1e6:.0f} microstrain exceeds the "
+                    f"gauge's fatigue strain {gauge.fatigue_strain * 1e6:.0f} microstrain "
+                    f"({gauge.fatigue_cycles:.0e} cycles): cycle below "
+                    f"{gauge.fatigue_strain / es.gauge_strain_per_N:.3g} N")
+    return StrengthRecord(
+        element=element, part_name=g.part_name, arm_length_mm=g.arm_length_mm, model=es.model,
+        stress_MPa_per_N=es.stress_MPa_per_N, stress_error_rel=es.stress_error_rel,
+        stress_concentration_factor=es.stress_MPa_per_N / nominal,
+        full_scale_force_N=f_fs, yield_safety_factor_at_full_scale=y / s_fs,
+        stress_MPa_at_full_scale=s_fs, gauge_strain_at_full_scale=eps_fs,
+        tip_deflection_mm_at_full_scale=f_fs / es.stiffness_N_per_mm,
+        stiffness_N_per_mm=es.stiffness_N_per_mm,
+        fatigue_force_N=None if fat is None else fat / es.stress_MPa_per_N,
+        gauge_fatigue_force_N=gauge.fatigue_strain / es.gauge_strain_per_N,
+        stress_MPa_at_paper_load=s_paper, yield_safety_factor_at_paper_load=y / s_paper,
+        warnings=tuple(warn))
+
+
+def plan_strength(plan: Plan, model: str = "closed-form", progress=None) -> list[StrengthRecord]:
+    """:class:`StrengthRecord` of every element of the plan at ``model``;
+    distinct geometries are evaluated once.
+
+    Raises:
+        ValueError: unknown model.
+        DesignError: the material has no yield strength.
+    """
+    if model not in MODELS:
+        raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    _require_yield(plan.material)
+    cache: dict[str, ElementStress] = {}
+    out = []
+    for slot in plan.slots:
+        g = slot.geometry
+        if g.part_name not in cache:
+            if progress:
+                progress(f"{model}: {g.part_name}")
+            cache[g.part_name] = element_stress(g, plan.material, model)
+        out.append(strength_record(slot.number, g, plan.material, plan.strength,
+                                   cache[g.part_name]))
+    return out
+
+
+def strength_summary(plan: Plan, model: str = "closed-form") -> list[dict]:
+    """JSON-ready strength records of every element (for the CLI, the drawings
+    and the manifest): keys ``element``, ``stress_MPa_per_N``,
+    ``full_scale_force_N``, ``yield_safety_factor_at_full_scale``,
+    ``gauge_strain_at_full_scale``, ``tip_deflection_mm_at_full_scale`` and
+    the other fields of :class:`StrengthRecord`. All numbers are finite.
+
+    Raises:
+        ValueError: unknown model.
+        DesignError: the material has no yield strength.
+    """
+    recs = [r.as_json() for r in plan_strength(plan, model)]
+    for r in recs:
+        for k, v in r.items():
+            if isinstance(v, float) and not math.isfinite(v):
+                raise RuntimeError(f"non-finite {k} for element {r['element']}")
+    return recs

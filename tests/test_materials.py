@@ -1,0 +1,106 @@
+"""Material grades, strain gauges and their use in the design file."""
+
+from __future__ import annotations
+
+import pytest
+
+from tactcad.design import plan_from_dict
+from tactcad.errors import DesignError
+from tactcad.materials import (DEFAULT_GAUGE, DEFAULT_GRADE, material_grade, material_grades,
+                               strain_gauge, strain_gauges)
+
+REQUIRED_GRADES = ("6061-T6", "7075-T6", "17-4PH-H900", "Ti-6Al-4V-annealed", "CuBe-C17200-TF00")
+
+
+def test_library_has_the_grades_with_a_source_for_every_value():
+    grades = material_grades()
+    for name in REQUIRED_GRADES:
+        g = grades[name]
+        for field in ("youngs_modulus_MPa", "poisson_ratio", "yield_strength_MPa",
+                      "fatigue_strength_MPa", "density_g_per_cm3"):
+            assert g.source(field).strip(), (name, field)
+        assert 0 < g.fatigue_strength_MPa < g.yield_strength_MPa < g.youngs_modulus_MPa / 50
+        assert 0.2 < g.poisson_ratio < 0.4
+        assert 1.0 < g.density_g_per_cm3 < 10.0
+        assert g.fatigue_cycles >= 1e6 and -1.0 <= g.fatigue_R_ratio < 1.0
+
+
+def test_stiffer_grades_rank_as_expected():
+    g = material_grades()
+    assert g["6061-T6"].yield_strength_MPa < g["7075-T6"].yield_strength_MPa \
+        < g["Ti-6Al-4V-annealed"].yield_strength_MPa < g["17-4PH-H900"].yield_strength_MPa
+    assert g["6061-T6"].youngs_modulus_MPa < g["Ti-6Al-4V-annealed"].youngs_modulus_MPa \
+        < g["CuBe-C17200-TF00"].youngs_modulus_MPa < g["17-4PH-H900"].youngs_modulus_MPa
+
+
+def test_gauge_limits_and_sources():
+    gauge = strain_gauge(DEFAULT_GAUGE)
+    assert gauge.resistance_ohm == 120.0 and gauge.bridge == "quarter"
+    assert gauge.fatigue_strain == pytest.approx(1.5e-3)
+    for g in strain_gauges().values():
+        assert 0 < g.fatigue_strain < g.max_strain <= 0.05
+        assert dict(g.sources)["fatigue_strain"].strip()
+
+
+def test_unknown_grade_and_gauge_name_the_allowed_values():
+    with pytest.raises(DesignError) as exc:
+        material_grade("6082-T6")
+    assert "material.grade" in str(exc.value) and "7075-T6" in str(exc.value)
+    with pytest.raises(DesignError) as exc:
+        strain_gauge("karma")
+    assert "strength.gauge" in str(exc.value) and DEFAULT_GAUGE in str(exc.value)
+
+
+def test_default_design_is_the_papers_aluminium_as_6061_t6(plan):
+    m = plan.material
+    assert m.grade == DEFAULT_GRADE
+    assert (m.youngs_modulus_MPa, m.poisson_ratio) == (69000.0, 0.33)  # paper, not the grade's 68900
+    assert m.yield_strength_MPa == material_grade("6061-T6").yield_strength_MPa
+    assert dict(m.sources)["youngs_modulus_MPa"] == "design file"
+    assert any(k == "material.grade" for k, _ in plan.assumptions)
+    assert plan.strength.safety_factor == 1.5 and plan.strength.gauge.name == DEFAULT_GAUGE
+
+
+def test_grade_supplies_e_and_nu_and_design_values_override(design_data):
+    mat = design_data["material"]
+    del mat["youngs_modulus_MPa"], mat["poisson_ratio"]
+    mat["grade"] = "Ti-6Al-4V-annealed"
+    mat["yield_strength_MPa"] = 830.0
+    m = plan_from_dict(design_data).material
+    ti = material_grade("Ti-6Al-4V-annealed")
+    assert m.youngs_modulus_MPa == ti.youngs_modulus_MPa and m.poisson_ratio == ti.poisson_ratio
+    assert m.yield_strength_MPa == 830.0
+    assert m.fatigue_strength_MPa == ti.fatigue_strength_MPa
+    assert dict(m.sources)["yield_strength_MPa"] == "design file"
+
+
+def test_design_without_grade_has_only_its_own_values(design_data):
+    del design_data["material"]["grade"]
+    design_data["material"]["yield_strength_MPa"] = 240.0
+    del design_data["assumptions"]["material.grade"]
+    m = plan_from_dict(design_data).material
+    assert m.grade is None and m.yield_strength_MPa == 240.0 and m.fatigue_strength_MPa is None
+
+
+@pytest.mark.parametrize("section,key,value,words", [
+    ("material", "grade", "unobtainium", ["material.grade", "6061-T6", "CuBe-C17200-TF00"]),
+    ("material", "yield_strength_MPa", -5.0, ["material.yield_strength_MPa", "5000"]),
+    ("material", "density_g_per_cm3", float("nan"), ["material.density_g_per_cm3"]),
+    ("strength", "safety_factor", 0.8, ["strength.safety_factor", "1 ... 10"]),
+    ("strength", "gauge", "karma", ["strength.gauge", "constantan-foil"]),
+    ("strength", "margin", 2.0, ["strength.margin", "safety_factor"]),
+])
+def test_bad_material_and_strength_values_are_refused(design_data, section, key, value, words):
+    design_data[section][key] = value
+    with pytest.raises(DesignError) as exc:
+        plan_from_dict(design_data)
+    for w in words:
+        assert w in str(exc.value)
+
+
+def test_strength_table_is_optional(design_data):
+    del design_data["strength"]
+    for k in [k for k in design_data["assumptions"] if k.startswith("strength.")]:
+        del design_data["assumptions"][k]
+    s = plan_from_dict(design_data).strength
+    assert s.safety_factor == 1.5 and s.gauge.name == DEFAULT_GAUGE
