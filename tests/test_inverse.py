@@ -12,7 +12,7 @@ from tactcad.cli import main
 from tactcad.design import load_design
 from tactcad.errors import DesignError
 from tactcad.mechanics.inverse import (InverseDesignError, Targets, design_for_targets,
-                                       reference_elements, unit_resolution)
+                                       reference_elements, search_webs, unit_resolution)
 from tactcad.mechanics.ladder import estimate
 from tactcad.mechanics.paper.lumped import deflection_ratio
 from tactcad.mechanics.strength import strength_summary
@@ -42,7 +42,22 @@ def test_design_meets_targets_and_limits_at_the_closed_form(plan):
         eps_at_f = rec["gauge_strain_at_full_scale"] * FEASIBLE.full_scale_force_N \
             / rec["full_scale_force_N"]
         assert eps_at_f <= gauge.fatigue_strain
-    assert d.web_changed  # the 0.25 mm web cannot make K_m = 5.77 N/mm within 8 mm
+    search = search_webs(plan, FEASIBLE)
+    own = int(np.flatnonzero(np.isclose(search.webs_mm, 0.25))[0])
+    assert d.web_changed == (not search.feasible[own])
+
+
+def test_design_changes_the_web_when_the_design_web_breaks_a_limit(plan):
+    t = Targets(3.0, (5.0, 20.0), 0.6)  # 0.6 N: the 0.25 mm web's K_m arm overstrains the gauge
+    search = search_webs(plan, t)
+    own = int(np.flatnonzero(np.isclose(search.webs_mm, 0.25))[0])
+    assert not search.feasible[own]
+    d = design_for_targets(plan, t)
+    chosen = int(np.flatnonzero(np.isclose(search.webs_mm,
+                                           d.plan.element(1).geometry.web_thickness_mm))[0])
+    assert d.web_changed and search.feasible[chosen]
+    assert search.margin[chosen] == pytest.approx(search.margin[search.feasible].max())
+    assert "element.web_thickness_mm" in d.data["assumptions"]
 
 
 def test_design_keeps_the_web_when_arms_alone_meet_the_targets(plan):

@@ -41,8 +41,11 @@ def test_design_variant_grows_length_and_arm_height_only_when_needed(design_data
     assert long["element"]["overall_length_mm"] > design_data["element"]["overall_length_mm"]
     assert long["element"]["arm_height_mm"] == pytest.approx(0.4 + 1.8 + 0.5)
     assert design_data["element"]["web_thickness_mm"] == 0.25  # input untouched
-    with pytest.raises(DesignError, match="arms.lengths_mm"):  # still validated as a design
-        plan_from_dict(long)
+    plan = plan_from_dict(long)  # the grown length holds the bolt pattern
+    assert plan.element(10).geometry.arm_length_mm == 14.0
+    too_long = design_variant(design_data, arms_mm=[8.0] * 9 + [99.0])
+    with pytest.raises(DesignError, match="element.overall_length_mm"):  # still validated
+        plan_from_dict(too_long)
 
 
 def test_malformed_scheduler_address_is_refused(capsys):

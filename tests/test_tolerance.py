@@ -9,7 +9,7 @@ import pytest
 
 from tactcad.cli import main
 from tactcad.errors import DesignError
-from tactcad.mechanics.closed_form import load_correction
+from tactcad.mechanics.correction import load_correction
 from tactcad.mechanics.tolerance import (Tolerances, corrected_stiffness, nominal_stiffness,
                                          run_tolerance, sensing_units, web_tolerance_for_band)
 

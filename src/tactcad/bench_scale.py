@@ -36,7 +36,7 @@ def load_average() -> str:
 def closed_form_rate(plan, n: int = 2_000_000, repeat: int = 5, chunk: int = CHUNK) -> float:
     """Corrected closed-form K evaluations per second over ``n`` random designs
     (web 0.15-0.4 mm, arm 4-8 mm, notch radius web-2 mm), best of ``repeat``."""
-    from .mechanics.closed_form import load_correction
+    from .mechanics.correction import load_correction
     from .mechanics.tolerance import corrected_stiffness
 
     g, mat, corr = plan.element(1).geometry, plan.material, load_correction()

@@ -158,7 +158,7 @@ def evaluate_point(p: GridPoint) -> GridRow:
     """K of one grid point at its ladder level (runs on a worker)."""
     import warnings
 
-    from .mechanics.closed_form import CorrectionRangeWarning
+    from .mechanics.correction import CorrectionRangeWarning
     from .mechanics.ladder import estimate
 
     g = p.geometry
@@ -279,33 +279,57 @@ def plot_design_chart(path: str | Path, rows: Sequence[GridRow], plan: Plan,
 # ---------------------------------------------------------------------------
 # Correction refit
 # ---------------------------------------------------------------------------
-def correction_refit(mapper: Callable = map, grid=None, reference: str = "fem3d") -> dict:
-    """FEM points of the closed-form correction fit, then the fit.
+_DESIGN_KEYS = ("web_mm", "notch_radius_mm", "arm_mm", "sheet_mm", "poisson_ratio")
 
-    Uses the point evaluator and fit of :mod:`tactcad.mechanics.correction_fit`
-    (``evaluate_point`` if that module offers one, else its per-point
-    function); each point is one Dask task.
+
+def refit_point(job: tuple[Sequence[float], str]) -> dict:
+    """fem3d and the closed form's terms at one design (t, R, a, b, nu) with
+    its set label: :func:`tactcad.mechanics.correction_sweep.evaluate_point`
+    as a one-argument task."""
+    from .mechanics.correction_sweep import evaluate_point as correction_point
+
+    design, label = job
+    return correction_point(design, label)
+
+
+def correction_refit(mapper: Callable = map, n_fit: int = 64, n_holdout: int = 16,
+                     points_path: str | Path | None = None) -> dict:
+    """The fem3d sweep of the closed-form correction on a cluster, then the fit.
+
+    Designs are those of :func:`tactcad.mechanics.correction_sweep.plan_designs`;
+    designs already stored in ``points_path`` (JSON lines, default the
+    sweep's own file) are skipped, new points are appended in design order,
+    and :func:`tactcad.mechanics.correction.build_document` fits all of them.
+    The stored correction file is not touched.
 
     Returns:
-        ``{"points": [...], "fit": {...}, "wall_time_s": s}`` (nothing written).
+        ``{"new_points": n, "wall_time_s": s, "document": {...}}``.
 
     Raises:
-        TactcadError: the correction-fit module has no point evaluator.
-        DesignError: a grid point breaks the design rules.
+        ValueError: no fit points at all.
     """
-    from .mechanics import correction_fit as cf
+    import json
 
-    evaluator = getattr(cf, "evaluate_point", None) or getattr(cf, "_evaluate_point", None)
-    if evaluator is None:
-        raise TactcadError("tactcad.mechanics.correction_fit offers no point evaluator")
-    grid = cf.FitGrid() if grid is None else grid
-    jobs = [(t, a, R, grid.arm_height_clearance_mm, reference == "fem3d")
-            for t, a, R in grid.points()]
-    g0, _ = cf.grid_geometry(*jobs[0][:4])
+    from .mechanics import correction_sweep as cs
+    from .mechanics.correction import build_document
+
+    path = Path(cs.POINTS_FILE if points_path is None else points_path)
+
+    def key(values) -> tuple:
+        return tuple(round(float(v), 9) for v in values)
+
+    done = {key(r[k] for k in _DESIGN_KEYS) for r in cs.read_points(path)}
+    jobs = [(tuple(d), label) for d, label in cs.plan_designs(n_fit, n_holdout)
+            if key(d) not in done]
     t0 = time.perf_counter()
-    rows = list(mapper(evaluator, jobs))
-    fit = cf.fit_coefficients(rows, reference, g0.sheet_thickness_mm)
-    return {"points": rows, "fit": fit, "wall_time_s": time.perf_counter() - t0}
+    rows = list(mapper(refit_point, jobs))
+    wall = time.perf_counter() - t0
+    if rows:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with open(path, "a", encoding="utf-8") as fh:
+            fh.writelines(json.dumps(r) + "\n" for r in rows)
+    return {"new_points": len(rows), "wall_time_s": wall,
+            "document": build_document(cs.read_points(path))}
 
 
 def finite_or_none(x: float) -> float | None:

@@ -307,7 +307,8 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     Raises:
         DesignError: the plan's material has no yield strength.
     """
-    from .closed_form import gauge_strain_per_newton, load_correction
+    from .closed_form import gauge_strain_per_newton
+    from .correction import load_correction
     from .strength import peak_stress_per_newton
 
     corr = load_correction() if correction is None else correction

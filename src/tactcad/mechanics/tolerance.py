@@ -54,7 +54,8 @@ from scipy.optimize import brentq
 
 from ..design import ElementGeometry, Material, Plan
 from ..errors import DesignError
-from .closed_form import Correction, apply_correction, closed_form_stiffness, load_correction
+from .closed_form import closed_form_compliance
+from .correction import Correction, apply_correction, load_correction
 from .paper.lumped import deflection_ratio, object_stiffness
 
 #: Samples per independently seeded chunk (the unit of work of a Dask run).
@@ -178,13 +179,16 @@ def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_M
             :func:`~tactcad.mechanics.closed_form.closed_form_compliance`).
     """
     b = g.sheet_thickness_mm
-    k_eb = closed_form_stiffness(web_mm, notch_radius_mm, arm_length_mm,
-                                 arm_height_mm=g.arm_height_mm, tip_width_mm=g.tip_width_mm,
-                                 tip_height_mm=g.tip_height_mm, E=youngs_modulus_MPa,
-                                 nu=poisson_ratio, b=b)
+    parts = closed_form_compliance(web_mm, notch_radius_mm, arm_length_mm,
+                                   arm_height_mm=g.arm_height_mm, tip_width_mm=g.tip_width_mm,
+                                   tip_height_mm=g.tip_height_mm, E=youngs_modulus_MPa,
+                                   nu=poisson_ratio, b=b)
+    total = parts.total
     t = np.asarray(web_mm, float)
     R = np.asarray(notch_radius_mm, float)
-    k, _ = apply_correction(k_eb, t / R, correction, width_ratio=np.sqrt(t * R) / b, warn=False)
+    k, _ = apply_correction(1.0 / total, t / R, correction, width_ratio=np.sqrt(t * R) / b,
+                            poisson_ratio=poisson_ratio, notch_share=parts.notch_bending / total,
+                            warn=False)
     return k
 
 
