@@ -86,3 +86,41 @@ def test_local_cluster_and_existing_cluster_give_the_same_numbers(tmp_path, caps
     lines = (tmp_path / "local" / "design_grid.csv").read_text().splitlines()
     assert lines[0].startswith("model,web_mm,arm_mm") and len(lines) == 5
     assert Path(tmp_path / "remote" / "design_grid.csv").read_text() != ""
+
+
+def test_correction_refit_plans_stores_and_fits_without_rerunning(tmp_path):
+    """The driver with a stand-in evaluator (fem3d replaced by a known notch
+    softening, K = K_EB / (1 + 0.5 q t/R)): every planned design is evaluated
+    once, stored, skipped on the next run, and the fit recovers c1 = 0.5."""
+    from tactcad.mechanics.closed_form import closed_form_compliance
+    from tactcad.mechanics.correction_sweep import grid_geometry, plan_designs
+    from tactcad.sweeps import correction_refit
+
+    def known(job):
+        (t, R, a, b, nu), label = job
+        g, mat = grid_geometry(t, a, R, sheet_mm=b, poisson_ratio=nu)
+        p = closed_form_compliance(t, R, a, arm_height_mm=g.arm_height_mm,
+                                   tip_width_mm=g.tip_width_mm, tip_height_mm=g.tip_height_mm,
+                                   E=mat.youngs_modulus_MPa, nu=nu, b=b)
+        q = float(p.notch_bending / p.total)
+        return {"set": label, "web_mm": t, "notch_radius_mm": R, "arm_mm": a, "sheet_mm": b,
+                "poisson_ratio": nu, "C_notch_bending": float(p.notch_bending),
+                "C_notch_shear": float(p.notch_shear), "C_arm_bending": float(p.arm_bending),
+                "C_arm_shear": float(p.arm_shear), "err_fem3d": 0.0,
+                "arm_height_mm": g.arm_height_mm,
+                "K_fem3d": 1.0 / float(p.total) / (1.0 + 0.5 * q * t / R)}
+
+    calls = []
+
+    def mapper(func, jobs):
+        jobs = list(jobs)
+        calls.append(len(jobs))
+        return [known(j) for j in jobs]
+
+    points = tmp_path / "points.jsonl"
+    first = correction_refit(mapper, n_fit=8, n_holdout=2, points_path=points)
+    assert first["new_points"] == len(plan_designs(8, 2)) == calls[0]
+    assert first["document"]["coefficients"]["c1"] == pytest.approx(0.5, abs=1e-3)
+    again = correction_refit(mapper, n_fit=8, n_holdout=2, points_path=points)
+    assert calls[1] == 0 and again["new_points"] == 0
+    assert len(points.read_text().splitlines()) == calls[0]

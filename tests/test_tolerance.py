@@ -118,3 +118,13 @@ def test_cli_json_keys(capsys):
 def test_cli_refuses_bad_input(capsys):
     assert main(["tolerance", "--samples", "1"]) == 2
     assert "tactcad: error: samples" in capsys.readouterr().err
+
+
+def test_runs_on_a_design_other_than_the_paper(design_data):
+    from tactcad.design import plan_from_dict
+    from tactcad.mechanics.inverse import design_variant
+
+    plan = plan_from_dict(design_variant(design_data, arms_mm=[4.0] + [12.0] * 9))
+    rep = run_tolerance(plan, 500)
+    assert {u["reference"] for u in rep.units} == {1}
+    assert rep.table1_spread[0]["elements"] == [1, 8]  # Table 1 stays the paper's

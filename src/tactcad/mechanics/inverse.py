@@ -122,13 +122,22 @@ def design_variant(data: Mapping[str, Any], *, web_mm: float | None = None,
     if pitch_mm is not None:
         out["array"]["pitch_mm"] = float(pitch_mm)
     t, R = el["web_thickness_mm"], el["notch_radius_mm"]
+    why = out.get("assumptions")
     if el["arm_height_mm"] <= t + R:
         el["arm_height_mm"] = round(t + R + ARM_HEIGHT_CLEARANCE_MM, 6)
+        if isinstance(why, dict):
+            why["element.arm_height_mm"] = (
+                f"Raised to web + notch radius + {ARM_HEIGHT_CLEARANCE_MM:g} mm so the notch "
+                "opens below the arm.")
     arms = out["arms"]["lengths_mm"]
     if arms and all(isinstance(a, (int, float)) for a in arms):
         need = required_overall_length_mm(out, max(arms), R)
         if el["overall_length_mm"] < need:
             el["overall_length_mm"] = math.ceil(need / LENGTH_STEP_MM) * LENGTH_STEP_MM
+            if isinstance(why, dict):
+                why["element.overall_length_mm"] = (
+                    f"Raised to {el['overall_length_mm']:g} mm so the clamped base behind the "
+                    f"longest arm ({max(arms):g} mm) still holds the bolt pattern.")
     return out
 
 
