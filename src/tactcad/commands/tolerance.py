@@ -19,9 +19,6 @@ def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) ->
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    from ..mechanics.tolerance import (ARM_LENGTH_TOLERANCE_MM, DEFAULT_K_OBJ_N_PER_MM,
-                                       MODULUS_TOLERANCE_REL, NOTCH_RADIUS_TOLERANCE_MM)
-
     p = sub.add_parser(
         "tolerance", help="Monte Carlo of the tolerances: K per element, R per unit, K_obj band",
         description="Draws web thickness, notch radius, arm length (per element) and Young's "
@@ -34,8 +31,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--samples", type=int, default=10_000, help="as-built arrays drawn (default "
                                                                 "10000)")
     p.add_argument("--seed", type=int, default=0, help="seed of the draw (default 0)")
-    p.add_argument("--kobj", type=float, nargs="+", metavar="N_PER_MM",
-                   default=list(DEFAULT_K_OBJ_N_PER_MM),
+    p.add_argument("--kobj", type=float, nargs="+", metavar="N_PER_MM", default=None,
                    help="true object stiffnesses to report (default: the paper's 2.34, 5.41, "
                         "10.01 N/mm samples)")
     p.add_argument("--reference", type=int, default=None, metavar="ELEMENT",
@@ -43,12 +39,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "nearest one)")
     p.add_argument("--distribution", choices=("normal", "uniform"), default="normal",
                    help="normal with tolerance = 3 sigma (default) or uniform over +/-tolerance")
-    p.add_argument("--notch-radius-tol", type=float, default=NOTCH_RADIUS_TOLERANCE_MM,
-                   metavar="MM", help=f"+/- notch radius (default {NOTCH_RADIUS_TOLERANCE_MM} mm)")
-    p.add_argument("--arm-tol", type=float, default=ARM_LENGTH_TOLERANCE_MM, metavar="MM",
-                   help=f"+/- arm length (default {ARM_LENGTH_TOLERANCE_MM} mm)")
-    p.add_argument("--modulus-tol", type=float, default=MODULUS_TOLERANCE_REL, metavar="REL",
-                   help=f"+/- relative Young's modulus (default {MODULUS_TOLERANCE_REL})")
+    p.add_argument("--notch-radius-tol", type=float, default=None, metavar="MM",
+                   help="+/- notch radius (default 0.01 mm)")
+    p.add_argument("--arm-tol", type=float, default=None, metavar="MM",
+                   help="+/- arm length (default 0.02 mm)")
+    p.add_argument("--modulus-tol", type=float, default=None, metavar="REL",
+                   help="+/- relative Young's modulus (default 0.02)")
     p.add_argument("--json", action="store_true", help="print JSON")
     add_cluster_args(p)
     p.set_defaults(func=run)
@@ -58,15 +54,16 @@ def run(args: argparse.Namespace) -> int:
     import time
 
     from ..design import load_design
-    from ..mechanics.tolerance import Tolerances, run_tolerance
+    from ..mechanics.tolerance import DEFAULT_K_OBJ_N_PER_MM, Tolerances, run_tolerance
 
     plan = load_design(args.design)
-    tol = Tolerances.of_plan(plan, notch_radius_mm=args.notch_radius_tol,
-                             arm_length_mm=args.arm_tol, modulus_rel=args.modulus_tol,
-                             distribution=args.distribution)
+    given = {"notch_radius_mm": args.notch_radius_tol, "arm_length_mm": args.arm_tol,
+             "modulus_rel": args.modulus_tol}
+    tol = Tolerances.of_plan(plan, distribution=args.distribution,
+                             **{k: v for k, v in given.items() if v is not None})
     t0 = time.perf_counter()
-    kw = dict(samples=args.samples, seed=args.seed, tolerances=tol, k_obj=args.kobj,
-              reference=args.reference)
+    kw = dict(samples=args.samples, seed=args.seed, tolerances=tol,
+              k_obj=args.kobj or DEFAULT_K_OBJ_N_PER_MM, reference=args.reference)
     if args.scheduler or args.workers:
         from ..sweeps import LOCAL_WORKERS, dask_client, dask_mapper
 
