@@ -128,3 +128,12 @@ def test_runs_on_a_design_other_than_the_paper(design_data):
     rep = run_tolerance(plan, 500)
     assert {u["reference"] for u in rep.units} == {1}
     assert rep.table1_spread[0]["elements"] == [1, 8]  # Table 1 stays the paper's
+
+
+def test_vectorised_stiffness_equals_the_closed_form_estimator(plan):
+    from tactcad.mechanics.ladder import estimate
+
+    k = nominal_stiffness(plan, load_correction())
+    for slot, kv in zip(plan.slots, k):
+        ref = estimate("closed-form", slot.geometry, plan.material).stiffness_N_per_mm
+        assert kv == pytest.approx(ref, rel=1e-12)

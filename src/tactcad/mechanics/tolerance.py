@@ -55,7 +55,7 @@ from scipy.optimize import brentq
 from ..design import ElementGeometry, Material, Plan
 from ..errors import DesignError
 from .closed_form import closed_form_compliance
-from .correction import Correction, apply_correction, load_correction
+from .correction import Correction, load_correction
 from .paper.lumped import deflection_ratio, object_stiffness
 
 #: Samples per independently seeded chunk (the unit of work of a Dask run).
@@ -168,8 +168,10 @@ def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_M
         g: the element supplying the other dimensions (arm and tip height,
             tip width, sheet thickness).
         poisson_ratio: nu (-).
-        correction: the FEM-fitted correction (no range warning: a Monte
-            Carlo straddles the fit range edges by design).
+        correction: the fem3d-fitted correction; its factor is applied
+            without the range check (a Monte Carlo straddles the range
+            edges by design; the closed-form estimator warns for nominal
+            designs).
 
     Returns:
         K of the broadcast shape (N/mm).
@@ -186,10 +188,9 @@ def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_M
     total = parts.total
     t = np.asarray(web_mm, float)
     R = np.asarray(notch_radius_mm, float)
-    k, _ = apply_correction(1.0 / total, t / R, correction, width_ratio=np.sqrt(t * R) / b,
-                            poisson_ratio=poisson_ratio, notch_share=parts.notch_bending / total,
-                            warn=False)
-    return k
+    factor = correction.factor(t / R, np.sqrt(t * R) / b, poisson_ratio,
+                               parts.notch_bending / total)
+    return factor / total
 
 
 def stiffness_samples(plan: Plan, s: Samples, correction: Correction) -> np.ndarray:
