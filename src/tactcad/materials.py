@@ -156,16 +156,19 @@ def strain_gauges() -> dict[str, StrainGauge]:
     return {n: _gauge_from_table(n, t) for n, t in _library()["gauges"].items()}
 
 
+def _lookup(entries: Mapping[str, Any], name: Any, field: str):
+    if not isinstance(name, str) or name not in entries:
+        raise DesignError(field, name, "one of " + ", ".join(entries))
+    return entries[name]
+
+
 def material_grade(name: str, field: str = "material.grade") -> MaterialGrade:
     """The library grade ``name``.
 
     Raises:
         DesignError: unknown grade, naming ``field`` and the allowed grades.
     """
-    grades = material_grades()
-    if not isinstance(name, str) or name not in grades:
-        raise DesignError(field, name, "one of " + ", ".join(grades))
-    return grades[name]
+    return _lookup(material_grades(), name, field)
 
 
 def strain_gauge(name: str, field: str = "strength.gauge") -> StrainGauge:
@@ -174,10 +177,7 @@ def strain_gauge(name: str, field: str = "strength.gauge") -> StrainGauge:
     Raises:
         DesignError: unknown gauge, naming ``field`` and the allowed gauges.
     """
-    gauges = strain_gauges()
-    if not isinstance(name, str) or name not in gauges:
-        raise DesignError(field, name, "one of " + ", ".join(gauges))
-    return gauges[name]
+    return _lookup(strain_gauges(), name, field)
 
 
 def default_strength_settings() -> StrengthSettings:

@@ -6,6 +6,7 @@ import argparse
 import json
 import sys
 
+from ..errors import TactcadError
 from . import add_design_arg
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
@@ -19,6 +20,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--model", choices=MODELS, default="closed-form")
     add_design_arg(p)
     p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--vtk", metavar="DIR", default=None,
+                   help="fem2d/fem3d: also write the finest mesh's displacement and von Mises "
+                        "stress under 1 N as DIR/<part>_<model>.vtu (ParaView)")
     p.set_defaults(func=run_stiffness)
 
     t = sub.add_parser("table1", help="predicted vs measured stiffness of every element (Table 1)",
@@ -38,9 +42,22 @@ def run_stiffness(args: argparse.Namespace) -> int:
 
     plan = load_design(args.design)
     slot = plan.element(args.element)
+    if args.vtk is not None and args.model not in ("fem2d", "fem3d"):
+        raise TactcadError(f"--vtk {args.vtk}: allowed with --model fem2d or fem3d only "
+                           f"(got --model {args.model})")
     r = estimate(args.model, slot.geometry, plan.material, element=args.element)
+    vtu = None
+    if args.vtk is not None:
+        from ..mechanics.fem.fields import write_element_vtu
+
+        vtu = write_element_vtu(args.vtk, slot.geometry, plan.material, args.model).path
+        if not args.json:
+            print(f"wrote {vtu} (displacement, von Mises stress under 1 N)", file=sys.stderr)
     if args.json:
-        print(json.dumps(r.as_json(), indent=2))
+        out = r.as_json()
+        if vtu is not None:
+            out["vtu"] = str(vtu)
+        print(json.dumps(out, indent=2))
     else:
         print(f"element {r.element} ({slot.geometry.part_name}), model {r.model}")
         print(f"  K                   {r.stiffness_N_per_mm:10.4f} N/mm")

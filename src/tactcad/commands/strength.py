@@ -31,6 +31,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="ladder level (fem2d ~2 s, fem3d ~1 min per distinct element)")
     add_design_arg(p)
     p.add_argument("--json", action="store_true", help="print a JSON list of records")
+    p.add_argument("--table1", action="store_true",
+                   help="compare the full-scale force with Table 1's max support force per "
+                        "element (design web and as-built web)")
     p.set_defaults(func=run)
 
 
@@ -39,6 +42,8 @@ def run(args: argparse.Namespace) -> int:
     from ..mechanics.strength import plan_strength
 
     plan = load_design(args.design)
+    if args.table1:
+        return _run_table1(plan, args.model, args.json)
     progress = None if args.json else (lambda s: print(f"  ... {s}", file=sys.stderr))
     records = plan_strength(plan, args.model, progress=progress)
     if args.json:
@@ -64,6 +69,26 @@ def run(args: argparse.Namespace) -> int:
             if key not in seen:
                 seen.add(key)
                 print(f"warning: element {r.element} ({r.part_name}): {w}")
+    return 0
+
+
+def _run_table1(plan, model: str, as_json: bool) -> int:
+    from ..mechanics.strength import table1_force_comparison
+
+    rows = table1_force_comparison(plan, model)
+    if as_json:
+        print(json.dumps(rows, indent=2, allow_nan=False))
+        return 0
+    print(f"Full-scale force ({model}, design web; closed form, as-built web) against Table 1's "
+          f"max support force, safety factor {plan.strength.safety_factor:g}")
+    print(f"{'el':>3} {'arm mm':>6} {'max support N':>13} {'F_fs N':>7} {'web as built':>12} "
+          f"{'F_fs built N':>12} {'MPa at max':>10} {'SF at max':>9}")
+    for r in rows:
+        print(f"{r['element']:>3} {r['arm_length_mm']:>6.1f} {r['max_support_force_N']:>13.2f} "
+              f"{r['full_scale_force_N']:>7.3f} {r['web_as_built_mm']:>12.3f} "
+              f"{r['full_scale_force_as_built_N']:>12.3f} "
+              f"{r['stress_MPa_at_max_support_force_as_built']:>10.0f} "
+              f"{r['yield_safety_factor_at_max_support_force_as_built']:>9.2f}")
     return 0
 
 

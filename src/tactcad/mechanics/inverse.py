@@ -316,9 +316,8 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     Raises:
         DesignError: the plan's material has no yield strength.
     """
-    from .closed_form import gauge_strain_per_newton
     from .correction import load_correction
-    from .strength import peak_stress_per_newton
+    from .strength import force_limits
 
     corr = load_correction() if correction is None else correction
     g, mat = plan.element(1).geometry, plan.material
@@ -350,14 +349,12 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     sf, gauge = plan.strength.safety_factor, plan.strength.gauge
     # Stress and gauge limits on the arms the stiffness targets ask for, held
     # to the arm range where a target leaves it (those webs fail there anyway).
-    arms = [np.clip(np.nan_to_num(a, nan=-1.0), arm_lo, arm_hi) for a in (a_r, a_m)]
-    arms = [np.where(np.isnan(a_r), np.where(k_short < targets.k_r, arm_lo, arm_hi), arms[0]),
-            np.where(np.isnan(a_m), np.where(k_short < targets.k_m, arm_lo, arm_hi), arms[1])]
-    stress = np.maximum(*(peak_stress_per_newton(webs, radii, a, b) for a in arms)) * F
-    strain = np.maximum(*(gauge_strain_per_newton(webs, a, E=mat.youngs_modulus_MPa, b=b)
-                          for a in arms)) * F
-    allowed_stress = mat.yield_strength_MPa / sf
-    y_margin, g_margin = allowed_stress / stress, gauge.fatigue_strain / strain
+    arms = [np.where(np.isnan(a), np.where(k_short < k_t, arm_lo, arm_hi), a)
+            for a, k_t in ((a_r, targets.k_r), (a_m, targets.k_m))]
+    limits_r, limits_m = (force_limits(webs, radii, a, b, mat, plan.strength) for a in arms)
+    f_yield = np.minimum(limits_r["yield"], limits_m["yield"])
+    f_gauge = np.minimum(limits_r["gauge_fatigue"], limits_m["gauge_fatigue"])
+    y_margin, g_margin = f_yield / F, f_gauge / F
     i_thick, i_thin = int(np.argmax(webs)), int(np.argmin(webs))
     a_lo_txt = f"{arm_lo[i_thick]:.3g}"
     limits = (
@@ -379,12 +376,12 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
               f"{k_short[i_thick]:.4g} N/mm"),
         Limit(f"yield strength / safety factor {sf:g} at the full-scale force",
               "material.yield_strength_MPa, strength.safety_factor", y_margin >= 1.0,
-              f"peak notch stress at {F:g} N is at least {np.min(stress):.4g} MPa, allowed "
-              f"{allowed_stress:.4g} MPa"),
+              f"the stiffness targets' arms carry at most {np.max(f_yield):.3g} N at any web "
+              f"(yield {mat.yield_strength_MPa:g} MPa / {sf:g}), asked {F:g} N"),
         Limit(f"gauge fatigue strain ({gauge.name}) at the full-scale force", "strength.gauge",
               g_margin >= 1.0,
-              f"gauge strain at {F:g} N is at least {1e6 * np.min(strain):.0f} microstrain, "
-              f"allowed {1e6 * gauge.fatigue_strain:.0f} microstrain"),
+              f"the stiffness targets' arms carry at most {np.max(f_gauge):.3g} N at any web "
+              f"within {1e6 * gauge.fatigue_strain:.0f} microstrain, asked {F:g} N"),
     )
     return WebSearch(webs, radii, a_r, a_m, np.minimum(y_margin, g_margin), limits)
 

@@ -17,8 +17,9 @@ Peak stress per newton of tip force, at every level of the ladder:
   notch. The single-sided notch of these elements concentrates more (its
   flat face carries no notch); the exponent :data:`KT_EXPONENT` is refitted
   to converged plane-stress P2 FEM (:func:`fem_peak_stress`, Richardson over
-  three meshes) by least squares on ln K_t over ten geometries, t/R = 0.05
-  ... 1, R = 0.4 ... 1.5 mm, arms 4 ... 8 mm (K_t from 1.014 to 1.240):
+  three meshes) by least squares on ln K_t over the ten geometries of
+  :data:`KT_FIT_GEOMETRIES` (:func:`fit_kt_exponent` reproduces p = 0.5365),
+  t/R = 0.05 ... 1, R = 0.4 ... 1.5 mm, arms 4 ... 8 mm (K_t from 1.014 to 1.240):
   largest residual 0.41 %, Richardson error of the FEM values <= 0.22 %;
   the tests check agreement within :data:`KT_FIT_TOLERANCE` (1 %).
   The free surface at the notch root is in uniaxial stress, so the peak von
@@ -27,11 +28,19 @@ Peak stress per newton of tip force, at every level of the ladder:
   at the hinge from the P2 field (:mod:`tactcad.mechanics.fem.fields`),
   Richardson-extrapolated over three meshes refined by sqrt(2).
 
+The closed form is the plane-stress peak. A wide web (b/t = 12 in the
+default design) is close to plane strain at mid-width, where sigma_z ~ nu
+sigma_x lowers von Mises by sqrt(1 - nu + nu^2) = 0.88: fem3d's peak there is
+0.90 of the closed form, which is therefore conservative for wide webs.
+
 Full-scale force (N) = yield strength / (peak stress per N x safety factor);
 at it the gauge strain (gauge strain per N x force) is compared with the
 gauge's maximum and fatigue strain, and the stress with the fatigue
-strength; each exceedance becomes a warning of the record. The tip
-deflection at full scale is F / K at the same level.
+strength; each exceedance becomes a warning of the record. A sensing
+element is pressed one way (R ~ 0) while the library's fatigue strengths and
+the gauges' fatigue strains are mostly fully reversed amplitudes: comparing
+the peak with them is conservative. The tip deflection at full scale is
+F / K at the same level.
 
 Units: mm, N, MPa, N/mm; strain dimensionless.
 """
@@ -40,6 +49,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -53,14 +63,29 @@ KT_EXPONENT = 0.536
 #: Stated accuracy of the fitted K_t against converged FEM (largest residual
 #: of the fit 0.41 %, FEM error <= 0.22 %; Smith's 9/20 would be 3.2 % low at t/R = 1).
 KT_FIT_TOLERANCE = 0.01
+#: The geometries (web t mm, notch radius R mm, arm a mm) of the K_t fit;
+#: other dimensions are the default design's.
+KT_FIT_GEOMETRIES = ((0.075, 1.5, 8.0), (0.1, 1.0, 8.0), (0.2, 1.0, 8.0), (0.25, 0.714, 8.0),
+                     (0.25, 0.5, 8.0), (0.25, 0.5, 4.0), (0.3, 0.4, 8.0), (0.4, 0.4, 8.0),
+                     (0.15, 0.5, 6.0), (0.4, 1.0, 5.0))
+#: t/R range of the K_t fit (outside it the error estimate doubles and a
+#: StrengthRangeWarning is issued).
+KT_FIT_RANGE = (0.05, 1.0)
 #: The paper's FEM design-study tip load (N).
 PAPER_LOAD_N = 2.0
-#: Mesh refinement of the stress solves: finest neck size = web / divisions
-#: (stress at a notch root needs a finer mesh than stiffness).
+#: Mesh refinement of the stress solves: finest neck size = web / divisions.
+#: Plane: the notch-root stress needs a finer mesh than K (at t/6 the peak
+#: is 1-3 % low; t/24 is within 0.1 % of t/48). 3D: the stiffness meshes'
+#: t/6 (the 8 mm arm: 260.2 MPa/N, Richardson error 0.09 %; t/12 gives
+#: 260.9, +0.3 %, at 2.6 x the time).
 STRESS_WEB_DIVISIONS_2D = 24.0
-STRESS_WEB_DIVISIONS_3D = 12.0
+STRESS_WEB_DIVISIONS_3D = 6.0
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
+
+
+class StrengthRangeWarning(UserWarning):
+    """A closed-form stress outside the t/R range its K_t was fitted over."""
 
 
 # ---------------------------------------------------------------------------
@@ -122,6 +147,35 @@ def full_scale_force(yield_strength_MPa, stress_MPa_per_N, safety_factor) -> np.
     return y / (s * sf)
 
 
+def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Material,
+                 settings: StrengthSettings) -> dict[str, np.ndarray]:
+    """Closed-form tip-force limits (N) of element geometries, broadcast over
+    the geometry arrays (for design searches).
+
+    Returns:
+        ``yield``: full-scale force, yield / (peak stress per N x safety factor);
+        ``fatigue``: fatigue strength / peak stress per N (NaN without a
+        fatigue strength); ``gauge_max`` and ``gauge_fatigue``: the gauge's
+        maximum and fatigue strain / Euler-Bernoulli surface strain per N over
+        the web, 6 a / (E b t^2); ``binding``: the smallest of them.
+
+    Raises:
+        DesignError: the material has no yield strength.
+        ValueError: a non-finite or non-positive geometry value.
+    """
+    y = _require_yield(material)
+    s = peak_stress_per_newton(web_mm, notch_radius_mm, arm_length_mm, sheet_mm)
+    eps = nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm) / material.youngs_modulus_MPa
+    fat = material.fatigue_strength_MPa
+    out = {"yield": full_scale_force(y, s, settings.safety_factor),
+           "fatigue": (fat / s) if fat is not None else np.full_like(s, np.nan),
+           "gauge_max": settings.gauge.max_strain / eps,
+           "gauge_fatigue": settings.gauge.fatigue_strain / eps}
+    out["binding"] = np.fmin.reduce([out["yield"], out["fatigue"], out["gauge_max"],
+                                     out["gauge_fatigue"]])
+    return out
+
+
 def _positive(name: str, value) -> np.ndarray:
     arr = np.asarray(value, dtype=float)
     if not np.all(np.isfinite(arr)) or np.any(arr <= 0):
@@ -161,10 +215,19 @@ def closed_form_stress(g: ElementGeometry, material: Material, model: str = "clo
     ("closed-form" or "beam", which share the stress formula)."""
     from .ladder import estimate
 
+    import warnings
+
     r = estimate(model, g, material)
     s = float(peak_stress_per_newton(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,
                                      g.sheet_thickness_mm))
-    return ElementStress(model, s, KT_FIT_TOLERANCE, r.stiffness_N_per_mm, r.gauge_strain_per_N)
+    err = KT_FIT_TOLERANCE
+    t_over_r = g.web_thickness_mm / g.notch_radius_mm
+    if not KT_FIT_RANGE[0] <= t_over_r <= KT_FIT_RANGE[1]:
+        err = 2.0 * KT_FIT_TOLERANCE
+        warnings.warn(f"{g.part_name}: t/R = {t_over_r:.3g} is outside the K_t fit range "
+                      f"{KT_FIT_RANGE[0]:g} ... {KT_FIT_RANGE[1]:g}; estimated error "
+                      f"{100 * err:.0f} %", StrengthRangeWarning, stacklevel=2)
+    return ElementStress(model, s, err, r.stiffness_N_per_mm, r.gauge_strain_per_N)
 
 
 def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d", *,
@@ -207,14 +270,14 @@ def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d"
                 sol = solve_fem3d(g, material, size_factor=s, region=region, keep_field=True,
                                   web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
             peaks.append(peak_notch_stress(sol.field, g))
-            sols.append(dataclass_without_field(sol))
+            sols.append(_without_field(sol))
     rich = richardson([p.per_newton_MPa_per_N for p in peaks], REFINEMENT_RATIO)
     fin = sols[-1]
     return ElementStress(model, rich.extrapolated, rich.error_rel, fin.stiffness_N_per_mm,
                          abs(fin.gauge_strain) / fin.force_N, peaks[-1].location_mm)
 
 
-def dataclass_without_field(sol):
+def _without_field(sol):
     """The solve's scalars without its field (frees the mesh and basis)."""
     from dataclasses import replace
 
@@ -233,6 +296,41 @@ def element_stress(g: ElementGeometry, material: Material, model: str = "closed-
     if model in ("fem2d", "fem3d"):
         return fem_peak_stress(g, material, model)
     raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+
+
+class KtFit(NamedTuple):
+    """Least-squares fit of K_t = (1 + t/(2R))^p to FEM peaks.
+
+    Attributes:
+        exponent: p. t_over_R: shape (n,). kt_fem: FEM K_t (peak / nominal), shape (n,).
+        residual_rel: fitted / FEM - 1, shape (n,).
+    """
+
+    exponent: float
+    t_over_R: np.ndarray
+    kt_fem: np.ndarray
+    residual_rel: np.ndarray
+
+
+def fit_kt_exponent(g0: ElementGeometry, material: Material,
+                    geometries=KT_FIT_GEOMETRIES) -> KtFit:
+    """Refit :data:`KT_EXPONENT` from converged plane-stress FEM peaks
+    (:func:`fem_peak_stress`) at ``geometries`` ((t, R, a) in mm, the rest of
+    ``g0``): p minimises sum (ln K_t,FEM - p ln(1 + t/2R))^2, i.e.
+    p = sum(x y) / sum(x^2) with x = ln(1 + t/2R), y = ln K_t,FEM.
+    About 3 s per geometry on two cores."""
+    from dataclasses import replace
+
+    s, kt = [], []
+    for t, R, a in geometries:
+        g = replace(g0, web_thickness_mm=t, notch_radius_mm=R, arm_length_mm=a)
+        peak = fem_peak_stress(g, material, "fem2d").stress_MPa_per_N
+        s.append(t / R)
+        kt.append(peak / float(nominal_stress_per_newton(t, a, g.sheet_thickness_mm)))
+    s_arr, kt_arr = np.array(s), np.array(kt)
+    x, y = np.log1p(s_arr / 2.0), np.log(kt_arr)
+    p = float(x @ y / (x @ x))
+    return KtFit(p, s_arr, kt_arr, (1.0 + s_arr / 2.0) ** p / kt_arr - 1.0)
 
 
 # ---------------------------------------------------------------------------
@@ -378,3 +476,46 @@ def strength_summary(plan: Plan, model: str = "closed-form") -> list[dict]:
             if isinstance(v, float) and not math.isfinite(v):
                 raise RuntimeError(f"non-finite {k} for element {r['element']}")
     return recs
+
+
+def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict]:
+    """The model's full-scale force against Table 1's "max support force" (the
+    largest force of each element's calibration), per calibrated element.
+
+    For each element: the full-scale force at ``model`` with the design web;
+    the as-built web that reproduces the measured K (corrected closed form,
+    :func:`tactcad.mechanics.ladder.as_built_webs`) and the closed-form
+    full-scale force and peak stress at the measured maximum force with that
+    web; and the yield safety factor the calibration ran at.
+
+    Returns:
+        one dict per Table 1 element (element 5 has no calibration).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    from dataclasses import replace
+
+    from .ladder import as_built_webs
+    from .paper.data import table1
+
+    y = _require_yield(plan.material)
+    sf = plan.strength.safety_factor
+    design = {r.element: r for r in plan_strength(plan, model)}
+    webs = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
+    out = []
+    for meas in table1():
+        g = plan.element(meas.element).geometry
+        t_built = webs[meas.element]
+        gb = replace(g, web_thickness_mm=t_built)
+        s_built = float(peak_stress_per_newton(t_built, gb.notch_radius_mm, gb.arm_length_mm,
+                                               gb.sheet_thickness_mm))
+        s_max = s_built * meas.max_support_force_N
+        out.append({"element": meas.element, "arm_length_mm": g.arm_length_mm,
+                    "max_support_force_N": meas.max_support_force_N,
+                    "full_scale_force_N": design[meas.element].full_scale_force_N,
+                    "web_as_built_mm": t_built,
+                    "full_scale_force_as_built_N": y / (s_built * sf),
+                    "stress_MPa_at_max_support_force_as_built": s_max,
+                    "yield_safety_factor_at_max_support_force_as_built": y / s_max})
+    return out

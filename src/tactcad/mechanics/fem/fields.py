@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -120,8 +121,7 @@ def peak_notch_stress(field: DisplacementField, g: ElementGeometry) -> PeakStres
     return PeakStress(peak, peak / field.force_N, tuple(float(c) for c in p[:, k]))
 
 
-def write_vtu(path: str | Path, field: DisplacementField, *,
-              field_data: dict[str, float] | None = None) -> Path:
+def write_vtu(path: str | Path, field: DisplacementField) -> Path:
     """Write the field as a VTU file (meshio) for ParaView.
 
     Point data: ``displacement`` (mm, shape (n, 3)) and ``von_mises_MPa`` (n,),
@@ -132,7 +132,6 @@ def write_vtu(path: str | Path, field: DisplacementField, *,
     Args:
         path: output file (``.vtu``); parent directories are created.
         field: a solve's :class:`~tactcad.mechanics.fem.fem2d.DisplacementField`.
-        field_data: scalars stored as VTU field data (e.g. force, K).
 
     Returns:
         the path written.
@@ -161,8 +160,42 @@ def write_vtu(path: str | Path, field: DisplacementField, *,
         cells = np.vstack([cells, cells[:, [0, 2, 1, 3]] + nv])  # mirrored: keep orientation
     out = Path(path)
     out.parent.mkdir(parents=True, exist_ok=True)
-    fd = {k: np.array([float(v)]) for k, v in (field_data or {}).items()}
+    # (meshio 5.3's VTU writer drops field data, so the force and K are not stored)
     meshio.Mesh(pts, [("triangle" if dim == 2 else "tetra", cells)],
-                point_data={"displacement": disp, "von_mises_MPa": vm},
-                field_data=fd).write(out, file_format="vtu")
+                point_data={"displacement": disp, "von_mises_MPa": vm}).write(
+        out, file_format="vtu")
     return out
+
+
+class VtuOutput(NamedTuple):
+    """A written VTU file and the solve behind it (mm, N, N/mm)."""
+
+    path: Path
+    force_N: float
+    stiffness_N_per_mm: float
+
+
+def write_element_vtu(directory: str | Path, g: ElementGeometry, material, model: str, *,
+                      force_N: float = 1.0) -> VtuOutput:
+    """Solve the finest mesh of ``model`` ("fem2d" plane stress or "fem3d")
+    for one element and write its field to ``directory/<part>_<model>.vtu``.
+
+    The solve is the level's default finest mesh (the one whose K the
+    estimator reports) under a tip force ``force_N`` (N; fields are linear in
+    it).
+
+    Raises:
+        ValueError: unknown model.
+    """
+    from .fem2d import solve_fem2d
+
+    if model == "fem2d":
+        sol = solve_fem2d(g, material, force_N=force_N, keep_field=True)
+    elif model == "fem3d":
+        from .fem3d import solve_fem3d
+
+        sol = solve_fem3d(g, material, force_N=force_N, keep_field=True)
+    else:
+        raise ValueError(f"VTU output needs model fem2d or fem3d; got {model!r}")
+    path = write_vtu(Path(directory) / f"{g.part_name}_{model}.vtu", sol.field)
+    return VtuOutput(path, force_N, sol.stiffness_N_per_mm)

@@ -1,0 +1,94 @@
+"""FEM fields: nodal stress recovery, von Mises, VTU files read back with meshio."""
+
+from __future__ import annotations
+
+import json
+
+import meshio
+import numpy as np
+import pytest
+
+from tactcad.cli import main
+from tactcad.mechanics.fem.fields import von_mises, write_element_vtu
+
+
+def test_von_mises_of_simple_states():
+    s = np.zeros((3, 3, 3))
+    s[0, 0, 0] = 100.0                      # uniaxial
+    s[1, 0, 1] = s[1, 1, 0] = 50.0          # pure shear
+    s[2] = np.eye(3) * 70.0                 # hydrostatic
+    assert von_mises(s) == pytest.approx([100.0, 50.0 * np.sqrt(3), 0.0])
+
+
+def _check_vtu(path, n_points, plan_stress_per_N, tip_deflection_mm):
+    m = meshio.read(path)
+    assert m.points.shape == (n_points, 3)
+    assert set(m.point_data) == {"displacement", "von_mises_MPa"}
+    u, vm = m.point_data["displacement"], m.point_data["von_mises_MPa"]
+    assert u.shape == (n_points, 3) and vm.shape == (n_points,)
+    assert np.all(np.isfinite(u)) and np.all(vm >= 0)
+    # under 1 N the arm turns about the hinge: the far end of the tip (lever
+    # a + w/2) rises (a + w/2)/a times the load point's 1/K; the peak von
+    # Mises (the notch root) is the closed form's within 15 %
+    assert u[:, 1].max() == pytest.approx(tip_deflection_mm, rel=0.05)
+    assert vm.max() == pytest.approx(plan_stress_per_N, rel=0.15)
+    return m
+
+
+def test_fem2d_vtu_round_trip(plan, tmp_path):
+    from tactcad.mechanics.strength import peak_stress_per_newton
+
+    g = plan.element(4).geometry
+    out = write_element_vtu(tmp_path, g, plan.material, "fem2d")
+    assert out.path.name == "element_a8mm_fem2d.vtu" and out.force_N == 1.0
+    m = _check_vtu(out.path, meshio.read(out.path).points.shape[0],
+                   float(peak_stress_per_newton(0.25, 0.5, 8.0, 3.0)),
+                   (8.0 + 1.0) / 8.0 / out.stiffness_N_per_mm)
+    assert m.cells[0].type == "triangle"
+    assert np.allclose(m.points[:, 2], 0.0)
+
+
+def test_stiffness_vtk_needs_a_fem_model(tmp_path, capsys):
+    assert main(["stiffness", "--element", "1", "--vtk", str(tmp_path)]) == 2
+    assert "--vtk" in capsys.readouterr().err
+
+
+def test_stiffness_command_writes_vtu(tmp_path, capsys):
+    assert main(["stiffness", "--element", "1", "--model", "fem2d", "--json",
+                 "--vtk", str(tmp_path / "vtk")]) == 0
+    out = json.loads(capsys.readouterr().out)
+    m = meshio.read(out["vtu"])
+    assert m.point_data["von_mises_MPa"].shape == (m.points.shape[0],)
+
+
+@pytest.mark.slow
+def test_fem3d_vtu_is_the_whole_element(plan, tmp_path):
+    g = plan.element(1).geometry
+    out = write_element_vtu(tmp_path, g, plan.material, "fem3d")
+    m = meshio.read(out.path)
+    assert m.cells[0].type == "tetra"
+    z = m.points[:, 2]
+    assert z.min() == pytest.approx(0.0, abs=1e-9) and z.max() == pytest.approx(3.0, abs=1e-9)
+    # mirrored half: u_z is odd about the mid-plane, u_y even
+    n = m.points.shape[0] // 2
+    u = m.point_data["displacement"]
+    assert np.allclose(u[n:, 2], -u[:n, 2]) and np.allclose(u[n:, 1], u[:n, 1])
+    assert u[:, 1].max() == pytest.approx((4.0 + 1.0) / 4.0 / out.stiffness_N_per_mm, rel=0.05)
+
+
+def test_recovered_stress_at_the_gauge_is_uniaxial(plan):
+    """On the free flat top face over the web the plane-stress state is
+    uniaxial: sigma_xx = E eps_xx, sigma_yy ~ 0 (recovered stress against the
+    solver's own gauge strain), and its magnitude is below the notch-root peak."""
+    from tactcad.mechanics.fem.fem2d import solve_fem2d
+    from tactcad.mechanics.fem.fields import peak_notch_stress, vertex_stress
+
+    g = plan.element(2).geometry
+    sol = solve_fem2d(g, plan.material, web_divisions=12, keep_field=True, force_N=1.0)
+    mesh = sol.field.basis.mesh
+    gv = int(np.argmin(np.hypot(mesh.p[0] - g.hinge_x_mm, mesh.p[1] - g.base_height_mm)))
+    sig = vertex_stress(sol.field)[gv]
+    E = plan.material.youngs_modulus_MPa
+    assert sig[0, 0] == pytest.approx(E * sol.gauge_strain, rel=0.01)
+    assert abs(sig[1, 1]) < 0.02 * abs(sig[0, 0]) and sig[2, 2] == 0.0
+    assert abs(sig[0, 0]) < peak_notch_stress(sol.field, g).von_mises_MPa
