@@ -71,8 +71,10 @@ def run_grid_cmd(args: argparse.Namespace) -> int:
     with dask_client(args.scheduler, _workers(args)) as client:
         rows = design_grid(plan, args.webs, args.arms, args.model, args.radii,
                            mapper=dask_mapper(client))
-        if args.model != "closed-form":  # the chart's lines: closed form on the same grid
-            rows = design_grid(plan, args.webs, args.arms, "closed-form", args.radii) + rows
+        if args.model != "closed-form":  # the chart's lines: closed form, finer in arm
+            lo, hi = min(args.arms), max(args.arms)
+            fine = [lo + (hi - lo) * k / 16 for k in range(17)]
+            rows = design_grid(plan, args.webs, fine, "closed-form", args.radii) + rows
     out = Path(args.out)
     csv_path = write_grid_csv(out / "design_grid.csv", rows)
     png_path = plot_design_chart(out / "design_chart.png", rows, plan)
