@@ -14,6 +14,7 @@ Layers, top (imported by everything) to bottom:
     drawings    sheets and views
     export      the run, writers
     checks      verification
+    studies     sweeps, refits and Monte Carlo at scale (Dask); plans and mechanics only
     commands    the CLI
 """
 
@@ -28,9 +29,9 @@ import tactcad
 
 SRC = Path(tactcad.__file__).resolve().parent
 LAYERS = ["foundation", "design", "geometry", "mechanics", "catalogue", "parts", "assembly",
-          "drawings", "export", "checks", "commands"]
+          "drawings", "export", "checks", "studies", "commands"]
 FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store"}
-TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.sweeps": "commands"}
+TOP_LEVEL = {"tactcad.cli": "commands"}
 MECHANICS_MAY_USE = {"foundation", "design", "geometry", "mechanics"}
 
 

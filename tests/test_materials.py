@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from tactcad.design import plan_from_dict
+from tactcad.design.array import plan_from_dict
 from tactcad.errors import DesignError
 from tactcad.design.materials import (DEFAULT_GAUGE, DEFAULT_GRADE, material_grade, material_grades,
                                strain_gauge, strain_gauges)

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from tactcad.cli import main
-from tactcad.design import plan_from_dict
+from tactcad.design.array import plan_from_dict
 from tactcad.errors import DesignError
 from tactcad.mechanics.strength import (KT_FIT_TOLERANCE, PAPER_LOAD_N, full_scale_force,
                                         nominal_stress_per_newton, plan_strength,
@@ -89,7 +89,7 @@ def test_cli_json_and_text(capsys):
 
 
 def test_cli_bad_grade_is_an_error_not_a_traceback(tmp_path, capsys):
-    from tactcad.design import DEFAULT_DESIGN
+    from tactcad.design.array import DEFAULT_DESIGN
 
     text = DEFAULT_DESIGN.read_text().replace('grade = "6061-T6"', 'grade = "6062-T6"')
     f = tmp_path / "bad.toml"

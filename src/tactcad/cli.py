@@ -26,6 +26,9 @@ COMMAND_MODULES = (
     "tactcad.commands.table2",
     "tactcad.commands.calibrate",
     "tactcad.commands.strength",
+    "tactcad.commands.tolerance",
+    "tactcad.commands.sweep",
+    "tactcad.commands.design",
 )
 
 

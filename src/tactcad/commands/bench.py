@@ -6,6 +6,8 @@
   OpenCascade-only check for comparison.
 * ``bench stiffness``: the stiffness estimators, provided by
   ``tactcad.mechanics.bench.main(args)`` when that module is installed.
+* ``bench closed-form``, ``bench montecarlo``, ``bench sweep``: the design
+  tools at scale (:mod:`tactcad.studies.bench_scale`).
 """
 
 from __future__ import annotations
@@ -23,11 +25,13 @@ MESH_GOAL_S = 1.0
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("bench", help="speed benchmarks (export, stiffness)",
+    p = sub.add_parser("bench", help="speed benchmarks (export, stiffness, closed-form, montecarlo, sweep)",
                        description="Print timings. Goals on two cores: cold export <= 8 s, "
                                    "no-change re-export <= 1.5 s, one changed arm <= 4 s, each "
                                    "distinct part built once; interference of the largest scene "
-                                   "on meshes <= 1 s.")
+                                   "on meshes <= 1 s; closed form >= 1e7 evaluations/s, "
+                                   "10 000-sample Monte Carlo <= 1 s, fem3d sweep on two workers "
+                                   ">= 1.7x one worker.")
     bsub = p.add_subparsers(dest="bench", metavar="WHAT")
     e = bsub.add_parser("export", help="cold, warm and one-change export, and the interference "
                                        "check of the largest scene (manifold3d vs OpenCascade)")
@@ -43,6 +47,19 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--models", nargs="+", metavar="MODEL", default=None,
                    help="estimators to run (default: all)")
     s.set_defaults(func=run_stiffness)
+    c = bsub.add_parser("closed-form", help="corrected closed-form K evaluations/s (goal >= 1e7)")
+    add_design_arg(c)
+    c.set_defaults(func=run_closed_form)
+    m = bsub.add_parser("montecarlo", help="10 000-sample tolerance Monte Carlo (goal <= 1 s)")
+    add_design_arg(m)
+    m.add_argument("--samples", type=int, default=10_000)
+    m.set_defaults(func=run_montecarlo)
+    w = bsub.add_parser("sweep", help="fem3d sweep on two Dask workers vs one (goal >= 1.7x)")
+    add_design_arg(w)
+    w.add_argument("--webs", type=float, nargs="+", default=[0.25, 0.4], metavar="MM")
+    w.add_argument("--arms", type=float, nargs="+", default=[4.0, 8.0], metavar="MM")
+    w.add_argument("--model", default="fem3d", choices=("beam", "fem2d", "fem3d"))
+    w.set_defaults(func=run_sweep)
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
 
 
@@ -55,6 +72,43 @@ def run_stiffness(args: argparse.Namespace) -> int:
         print("tactcad bench stiffness: not available in this build (no tactcad.mechanics.bench)")
         return 0
     return int(module.main(args) or 0)
+
+
+def run_closed_form(args: argparse.Namespace) -> int:
+    from tactcad.studies.bench_scale import CLOSED_FORM_GOAL_PER_S, closed_form_rate, load_average
+    from tactcad.design.array import load_design
+
+    rate = closed_form_rate(load_design(args.design))
+    flag = "ok" if rate >= CLOSED_FORM_GOAL_PER_S else "under goal"
+    print(f"tactcad bench closed-form: {rate:,.0f} corrected K evaluations/s (vectorised, one "
+          f"core)   goal >= {CLOSED_FORM_GOAL_PER_S:.0e}: {flag}   load average {load_average()}")
+    return 0
+
+
+def run_montecarlo(args: argparse.Namespace) -> int:
+    from tactcad.studies.bench_scale import MONTE_CARLO_GOAL_S, load_average, monte_carlo_times
+    from tactcad.design.array import load_design
+
+    first, best = monte_carlo_times(load_design(args.design), args.samples)
+    flag = "ok" if best <= MONTE_CARLO_GOAL_S else "over goal"
+    print(f"tactcad bench montecarlo: {args.samples} samples at the closed form: first "
+          f"{first:.3f} s, best of 3 {best:.3f} s   goal <= {MONTE_CARLO_GOAL_S:g} s: {flag}   "
+          f"load average {load_average()}")
+    return 0
+
+
+def run_sweep(args: argparse.Namespace) -> int:
+    from tactcad.studies.bench_scale import SWEEP_SPEEDUP_GOAL, fem3d_sweep_timing, load_average
+    from tactcad.design.array import load_design
+
+    print(f"tactcad bench sweep: {args.model} on {len(args.webs) * len(args.arms)} designs, "
+          f"load average before {load_average()}", flush=True)
+    t = fem3d_sweep_timing(load_design(args.design), args.webs, args.arms, args.model)
+    flag = "ok" if t.speedup >= SWEEP_SPEEDUP_GOAL else "under goal"
+    print(f"  1 worker {t.one_worker_s:.1f} s, 2 workers {t.two_workers_s:.1f} s: speed-up "
+          f"{t.speedup:.2f}x   goal >= {SWEEP_SPEEDUP_GOAL:g}x: {flag}; same K both runs: "
+          f"{t.same_numbers}; load average after {load_average()}")
+    return 0
 
 
 def run_export(args: argparse.Namespace) -> int:

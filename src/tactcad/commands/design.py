@@ -1,0 +1,193 @@
+"""``tactcad design``: write a design file whose elements meet sensing targets."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+from pathlib import Path
+
+from tactcad.commands import add_design_arg
+
+VERIFY_MODELS = ("fem3d", "fem2d", "beam", "none")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "design", help="inverse design: K_r/K_m, K_obj range and full-scale force -> design file",
+        description="Chooses the arm lengths (and, where the design's web cannot meet the "
+                    "limits, the web) of reference and measuring elements for a stiffness "
+                    "ratio K_r/K_m, an object-stiffness range and a full-scale force, within "
+                    "yield / safety factor and the gauge's fatigue strain; verifies the two "
+                    "element geometries at fem3d; writes the design TOML. Units: N/mm, N, mm.")
+    p.add_argument("--kr-over-km", type=float, required=True, metavar="X",
+                   help="stiffness ratio K_r/K_m of a sensing unit (> 1; the paper suggests ~10)")
+    p.add_argument("--kobj-range", type=float, nargs=2, required=True, metavar=("LO", "HI"),
+                   help="object stiffnesses to read (N/mm)")
+    p.add_argument("--full-scale-force", type=float, required=True, metavar="F",
+                   help="force every element must carry (N)")
+    p.add_argument("--material", metavar="GRADE", default=None,
+                   help="material grade of the library (default: the base design's material)")
+    p.add_argument("--pitch", type=float, metavar="MM", default=None,
+                   help="array pitch (default: the base design's)")
+    p.add_argument("--out", metavar="NEW.toml", required=True,
+                   help="design file to write (.toml, inside the current folder)")
+    p.add_argument("--force", action="store_true", help="overwrite an existing file")
+    p.add_argument("--verify", choices=VERIFY_MODELS, default="fem3d",
+                   help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
+    add_design_arg(p)
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=run)
+
+
+def check_output_path(out: str, force: bool) -> Path:
+    """The resolved output path, refused when it is not a ``.toml`` inside the
+    current folder, would replace the default design or a file inside the
+    installed package, or exists without ``--force``.
+
+    Raises:
+        DesignError: naming ``--out``, the value and what is allowed.
+    """
+    from tactcad import __file__ as package_init
+    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.errors import DesignError
+
+    path = Path(out).expanduser().resolve()
+    here = Path.cwd().resolve()
+    if path.suffix != ".toml":
+        raise DesignError("--out", out, "a file name ending in .toml")
+    if not path.is_relative_to(here):
+        raise DesignError("--out", out, f"a path inside the current folder {here}")
+    if path == DEFAULT_DESIGN.resolve() or path.is_relative_to(Path(package_init).parent):
+        raise DesignError("--out", out, "a new file, not the default design or a package file")
+    if path.exists() and not force:
+        raise DesignError("--out", out, "a file that does not exist yet (or give --force)")
+    if path.exists() and not os.access(path, os.W_OK):
+        raise DesignError("--out", out, "a writable file")
+    return path
+
+
+def run(args: argparse.Namespace) -> int:
+    import tomli_w
+
+    from tactcad.design.array import load_design
+    from tactcad.atomic import write_bytes_atomic
+    from tactcad.mechanics.inverse import Targets, design_for_targets
+
+    targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
+    path = check_output_path(args.out, args.force)
+    base = load_design(args.design)
+    result = design_for_targets(base, targets, grade=args.material, pitch_mm=args.pitch,
+                                name=path.stem.replace("-", "_") or "inverse_design")
+    report = design_report(result, args.verify)
+    header = (f"# Written by `tactcad design --kr-over-km {targets.kr_over_km:g} --kobj-range "
+              f"{targets.k_obj_range_N_per_mm[0]:g} {targets.k_obj_range_N_per_mm[1]:g} "
+              f"--full-scale-force {targets.full_scale_force_N:g}`.\n"
+              f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
+    write_bytes_atomic(path, (header + tomli_w.dumps(result.data)).encode("utf-8"))
+    report["out"] = str(path)
+    if args.json:
+        print(json.dumps(report, indent=2, allow_nan=False))
+    else:
+        print_report(report)
+    return 0
+
+
+def design_report(result, verify: str) -> dict:
+    """Figures of an :class:`~tactcad.mechanics.inverse.InverseDesign`: K per
+    element (closed form and ``verify`` level), strength at full scale, and
+    R, dR/dK_obj and the K_obj resolution over the K_obj range."""
+    import math
+
+    from tactcad.mechanics.inverse import report_points, unit_resolution
+    from tactcad.mechanics.ladder import estimate
+    from tactcad.mechanics.strength import strength_summary
+
+    plan, t = result.plan, result.targets
+    strength = {r["element"]: r for r in strength_summary(plan)}
+    cache: dict[str, dict] = {}
+    elements = []
+    for slot in plan.slots:
+        g = slot.geometry
+        if g.part_name not in cache:
+            cf = estimate("closed-form", g, plan.material)
+            ver = None if verify == "none" else estimate(verify, g, plan.material)
+            cache[g.part_name] = {
+                "K_closed_form_N_per_mm": cf.stiffness_N_per_mm,
+                "K_verified_N_per_mm": None if ver is None else ver.stiffness_N_per_mm,
+                "verify_error_estimate_rel": None if ver is None else ver.error_estimate_rel,
+                "closed_form_vs_verified_rel": None if ver is None else
+                cf.stiffness_N_per_mm / ver.stiffness_N_per_mm - 1.0}
+        s = strength[slot.number]
+        role = "reference" if slot.number in result.references else "measuring"
+        elements.append({"element": slot.number, "role": role, "part": g.part_name,
+                         "arm_length_mm": g.arm_length_mm,
+                         "K_target_N_per_mm": t.k_r if role == "reference" else t.k_m,
+                         **cache[g.part_name], "verify_model": verify,
+                         "full_scale_force_N": s["full_scale_force_N"],
+                         "yield_safety_factor_at_target_force":
+                             s["yield_safety_factor_at_full_scale"] * s["full_scale_force_N"]
+                             / t.full_scale_force_N,
+                         "gauge_strain_at_target_force":
+                             s["gauge_strain_at_full_scale"] * t.full_scale_force_N
+                             / s["full_scale_force_N"],
+                         "gauge_fatigue_force_N": s["gauge_fatigue_force_N"]})
+    ref = next(e for e in elements if e["role"] == "reference")
+    meas = next(e for e in elements if e["role"] == "measuring")
+    units = []
+    for key in ("K_closed_form_N_per_mm", "K_verified_N_per_mm"):
+        if meas[key] is None:
+            continue
+        res = unit_resolution(meas[key], ref[key], report_points(t), t.full_scale_force_N)
+        for i in range(len(res["R"])):
+            units.append({"stiffness_from": "closed-form" if key.startswith("K_closed") else verify,
+                          **{k: float(v[i]) for k, v in res.items()}})
+    g = plan.element(1).geometry
+    lo, hi = t.k_obj_range_N_per_mm
+    return {"targets": {"kr_over_km": t.kr_over_km, "kobj_range_N_per_mm": [lo, hi],
+                        "full_scale_force_N": t.full_scale_force_N,
+                        "K_m_N_per_mm": t.k_m, "K_r_N_per_mm": t.k_r},
+            "material": plan.material.grade or plan.material.name,
+            "web_thickness_mm": g.web_thickness_mm, "web_changed": result.web_changed,
+            "notch_radius_mm": g.notch_radius_mm, "overall_length_mm": g.overall_length_mm,
+            "pitch_mm": plan.pitch_mm, "references": list(result.references),
+            "K_r_over_K_m": {"closed-form": ref["K_closed_form_N_per_mm"]
+                             / meas["K_closed_form_N_per_mm"],
+                             verify: None if ref["K_verified_N_per_mm"] is None else
+                             ref["K_verified_N_per_mm"] / meas["K_verified_N_per_mm"]},
+            "elements": elements, "units": units,
+            "force_resolution_N": 0.01,
+            "all_finite": all(math.isfinite(u["K_obj_resolution_N_per_mm"]) for u in units)}
+
+
+def print_report(r: dict) -> None:
+    t = r["targets"]
+    print(f"targets: K_r/K_m = {t['kr_over_km']:g}, K_obj {t['kobj_range_N_per_mm'][0]:g}-"
+          f"{t['kobj_range_N_per_mm'][1]:g} N/mm, full-scale force {t['full_scale_force_N']:g} N"
+          f" -> K_r {t['K_r_N_per_mm']:.4g}, K_m {t['K_m_N_per_mm']:.4g} N/mm")
+    print(f"material {r['material']}, web {r['web_thickness_mm']:g} mm"
+          f"{' (changed)' if r['web_changed'] else ' (kept)'}, notch radius "
+          f"{r['notch_radius_mm']:g} mm, overall length {r['overall_length_mm']:g} mm, pitch "
+          f"{r['pitch_mm']:g} mm; references: elements {', '.join(map(str, r['references']))}")
+    seen = set()
+    print(f"{'role':<10} {'elements':<16} {'arm mm':>7} {'target':>8} {'closed form':>12} "
+          f"{'verified':>10} {'diff':>7} {'F_fs N':>7} {'SF@F':>5} {'ustrain@F':>9}")
+    for e in r["elements"]:
+        if e["part"] in seen:
+            continue
+        seen.add(e["part"])
+        same = [x["element"] for x in r["elements"] if x["part"] == e["part"]]
+        ver = "n/a" if e["K_verified_N_per_mm"] is None else f"{e['K_verified_N_per_mm']:.4g}"
+        diff = "" if e["closed_form_vs_verified_rel"] is None else \
+            f"{100 * e['closed_form_vs_verified_rel']:+.1f}%"
+        print(f"{e['role']:<10} {','.join(map(str, same)):<16} {e['arm_length_mm']:>7g} "
+              f"{e['K_target_N_per_mm']:>8.4g} {e['K_closed_form_N_per_mm']:>12.4g} "
+              f"{ver + ' (' + e['verify_model'] + ')':>10} {diff:>7} "
+              f"{e['full_scale_force_N']:>7.3g} {e['yield_safety_factor_at_target_force']:>5.2f} "
+              f"{1e6 * e['gauge_strain_at_target_force']:>9.0f}")
+    print("K_obj N/mm      R   dR/dK_obj mm/N   dK_obj (0.01 N)   relative   [K from]")
+    for u in r["units"]:
+        print(f"{u['K_obj_N_per_mm']:>10.3g} {u['R']:>6.3f} {u['dR_dKobj_per_N_per_mm']:>16.4f} "
+              f"{u['K_obj_resolution_N_per_mm']:>17.3g} {100 * u['K_obj_resolution_rel']:>9.2f}%"
+              f"   {u['stiffness_from']}")
+    print(f"wrote {r['out']}")

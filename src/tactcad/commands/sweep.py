@@ -1,0 +1,151 @@
+"""``tactcad sweep``: design grids, the correction refit and Monte Carlo on Dask."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from tactcad.commands import add_design_arg
+from tactcad.commands.tolerance import add_cluster_args
+
+MODELS = ("closed-form", "beam", "fem2d", "fem3d")
+DEFAULT_WEBS_MM = (0.15, 0.2, 0.25, 0.3, 0.4)
+DEFAULT_ARMS_MM = (4.0, 5.0, 6.0, 7.0, 8.0)
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("sweep", help="design grids, correction refit and Monte Carlo on Dask",
+                       description="Sweeps on a Dask cluster: a new LocalCluster (2 worker "
+                                   "processes x 1 thread) by default, or an existing one with "
+                                   "--scheduler tcp://HOST:PORT. Same numbers either way.")
+    ssub = p.add_subparsers(dest="sweep", metavar="WHAT")
+    g = ssub.add_parser("grid", help="K over web x arm (x notch radius): CSV and design chart PNG")
+    add_design_arg(g)
+    g.add_argument("--model", choices=MODELS, default="closed-form")
+    g.add_argument("--webs", type=float, nargs="+", default=list(DEFAULT_WEBS_MM), metavar="MM")
+    g.add_argument("--arms", type=float, nargs="+", default=list(DEFAULT_ARMS_MM), metavar="MM")
+    g.add_argument("--radii", type=float, nargs="+", default=None, metavar="MM",
+                   help="notch radii (default: the design's, raised to the web where thinner)")
+    g.add_argument("--out", metavar="DIR", default="exports/sweeps",
+                   help="folder for design_grid.csv and design_chart.png")
+    g.add_argument("--json", action="store_true", help="print the rows as JSON")
+    add_cluster_args(g, local_default=True)
+    g.set_defaults(func=run_grid_cmd)
+
+    r = ssub.add_parser("refit", help="fem3d sweep of the closed-form correction and its fit "
+                                      "(about 20 s per design per worker)")
+    r.add_argument("--fit", type=int, default=64, help="Sobol designs in the fit set")
+    r.add_argument("--holdout", type=int, default=16, help="Sobol designs held out")
+    r.add_argument("--points", metavar="FILE", default=None,
+                   help="JSON lines of the fem3d points (resumable; default: the sweep's own)")
+    r.add_argument("--out", metavar="FILE", default="exports/sweeps/stiffness_correction.json",
+                   help="fitted correction (the stored one is not touched)")
+    add_cluster_args(r, local_default=True)
+    r.set_defaults(func=run_refit_cmd)
+
+    m = ssub.add_parser("montecarlo", help="tolerance Monte Carlo on Dask, CSV of the bands")
+    add_design_arg(m)
+    m.add_argument("--samples", type=int, default=100_000)
+    m.add_argument("--seed", type=int, default=0)
+    m.add_argument("--out", metavar="DIR", default="exports/sweeps",
+                   help="folder for tolerance_elements.csv and tolerance_units.csv")
+    add_cluster_args(m, local_default=True)
+    m.set_defaults(func=run_montecarlo_cmd)
+    p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
+
+
+def _workers(args) -> int:
+    from tactcad.studies.sweeps import LOCAL_WORKERS
+
+    return args.workers or LOCAL_WORKERS
+
+
+def run_grid_cmd(args: argparse.Namespace) -> int:
+    from tactcad.design.array import load_design
+    from tactcad.studies.sweeps import (dask_client, dask_mapper, design_grid, plot_design_chart,
+                          rows_as_json, write_grid_csv)
+
+    plan = load_design(args.design)
+    with dask_client(args.scheduler, _workers(args)) as client:
+        rows = design_grid(plan, args.webs, args.arms, args.model, args.radii,
+                           mapper=dask_mapper(client))
+        if args.model != "closed-form":  # the chart's lines: closed form, finer in arm
+            lo, hi = min(args.arms), max(args.arms)
+            fine = [lo + (hi - lo) * k / 16 for k in range(17)]
+            rows = design_grid(plan, args.webs, fine, "closed-form", args.radii) + rows
+    out = Path(args.out)
+    csv_path = write_grid_csv(out / "design_grid.csv", rows)
+    png_path = plot_design_chart(out / "design_chart.png", rows, plan)
+    if args.json:
+        print(json.dumps(rows_as_json(rows), indent=2, allow_nan=False))
+        return 0
+    print(f"{'model':<12} {'web mm':>7} {'arm mm':>7} {'R mm':>6} {'K N/mm':>10} "
+          f"{'ustrain/N':>10} {'est. err':>9} {'time s':>8}")
+    for row in rows:
+        print(f"{row.model:<12} {row.web_mm:>7g} {row.arm_mm:>7g} {row.notch_radius_mm:>6g} "
+              f"{row.K_N_per_mm:>10.4g} {1e6 * row.gauge_strain_per_N:>10.1f} "
+              f"{100 * row.error_estimate_rel:>8.2f}% {row.wall_time_s:>8.3g}")
+    print(f"wrote {csv_path} and {png_path}")
+    return 0
+
+
+def run_refit_cmd(args: argparse.Namespace) -> int:
+    from tactcad.atomic import write_bytes_atomic
+    from tactcad.studies.sweeps import correction_refit, dask_client, dask_mapper
+
+    with dask_client(args.scheduler, _workers(args)) as client:
+        res = correction_refit(dask_mapper(client), args.fit, args.holdout, args.points)
+    doc = res["document"]
+    write_bytes_atomic(args.out, (json.dumps(doc, indent=2, allow_nan=False) + "\n").encode())
+    hold = doc.get("holdout", {})
+    print(f"{res['new_points']} new fem3d points in {res['wall_time_s']:.1f} s; "
+          f"{len(doc['points'])} in the fit; residual max {100 * doc['residual_rel_max']:.2f} %"
+          + (f", hold-out max {100 * hold.get('max', float('nan')):.2f} %" if hold else "")
+          + f"; wrote {args.out}")
+    return 0
+
+
+def run_montecarlo_cmd(args: argparse.Namespace) -> int:
+    import csv
+    import time
+
+    from tactcad.design.array import load_design
+    from tactcad.atomic import write_atomic
+    from tactcad.mechanics.tolerance import run_tolerance
+    from tactcad.studies.sweeps import dask_client, dask_mapper
+
+    plan = load_design(args.design)
+    t0 = time.perf_counter()
+    with dask_client(args.scheduler, _workers(args)) as client:
+        report = run_tolerance(plan, args.samples, args.seed, mapper=dask_mapper(client))
+    wall = time.perf_counter() - t0
+    out = Path(args.out)
+
+    def table(path: Path, records: list[dict]) -> None:
+        flat = [_flatten(r) for r in records]
+
+        def w(tmp: Path) -> None:
+            with open(tmp, "w", newline="") as fh:
+                wr = csv.DictWriter(fh, fieldnames=list(flat[0]))
+                wr.writeheader()
+                wr.writerows(flat)
+
+        write_atomic(path, w)
+
+    table(out / "tolerance_elements.csv", report.elements)
+    table(out / "tolerance_units.csv", report.units)
+    print(f"{report.samples} samples in {wall:.2f} s (cluster start included); wrote "
+          f"{out / 'tolerance_elements.csv'} and {out / 'tolerance_units.csv'}")
+    return 0
+
+
+def _flatten(record: dict, prefix: str = "") -> dict:
+    out = {}
+    for k, v in record.items():
+        if isinstance(v, dict):
+            out.update(_flatten(v, f"{prefix}{k}_"))
+        else:
+            out[f"{prefix}{k}"] = v
+    return out

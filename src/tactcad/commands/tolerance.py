@@ -1,0 +1,114 @@
+"""``tactcad tolerance``: Monte Carlo of manufacturing tolerances (K, R, K_obj)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from tactcad.commands import add_design_arg
+
+
+def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) -> None:
+    """``--scheduler ADDR`` and ``--workers N``, shared by the commands that run on Dask."""
+    p.add_argument("--scheduler", metavar="ADDR", default=None,
+                   help="run on an existing Dask cluster, e.g. tcp://127.0.0.1:8786 (its workers "
+                        "must import tactcad)" + ("" if local_default else
+                                                  "; default: in this process"))
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="run on a new local Dask cluster of N single-threaded worker processes")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "tolerance", help="Monte Carlo of the tolerances: K per element, R per unit, K_obj band",
+        description="Draws web thickness, notch radius, arm length (per element) and Young's "
+                    "modulus (per array) from the design's tolerances, evaluates K with the "
+                    "corrected closed form, R per sensing unit (eq. 2) and the K_obj a unit "
+                    "reports with its nominal K_m, K_r (eq. 3): mean, standard deviation and "
+                    "95 %% interval. Also the web tolerance that keeps K within +/-5 %%, next to "
+                    "Table 1's spread of equal-arm elements. Units: mm, N/mm.")
+    add_design_arg(p)
+    p.add_argument("--samples", type=int, default=10_000, help="as-built arrays drawn (default "
+                                                                "10000)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the draw (default 0)")
+    p.add_argument("--kobj", type=float, nargs="+", metavar="N_PER_MM", default=None,
+                   help="true object stiffnesses to report (default: the paper's 2.34, 5.41, "
+                        "10.01 N/mm samples)")
+    p.add_argument("--reference", type=int, default=None, metavar="ELEMENT",
+                   help="one reference element for every unit (default: the nominally stiffest, "
+                        "nearest one)")
+    p.add_argument("--distribution", choices=("normal", "uniform"), default="normal",
+                   help="normal with tolerance = 3 sigma (default) or uniform over +/-tolerance")
+    p.add_argument("--notch-radius-tol", type=float, default=None, metavar="MM",
+                   help="+/- notch radius (default 0.01 mm)")
+    p.add_argument("--arm-tol", type=float, default=None, metavar="MM",
+                   help="+/- arm length (default 0.02 mm)")
+    p.add_argument("--modulus-tol", type=float, default=None, metavar="REL",
+                   help="+/- relative Young's modulus (default 0.02)")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    add_cluster_args(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    import time
+
+    from tactcad.design.array import load_design
+    from tactcad.mechanics.tolerance import DEFAULT_K_OBJ_N_PER_MM, Tolerances, run_tolerance
+
+    plan = load_design(args.design)
+    given = {"notch_radius_mm": args.notch_radius_tol, "arm_length_mm": args.arm_tol,
+             "modulus_rel": args.modulus_tol}
+    tol = Tolerances.of_plan(plan, distribution=args.distribution,
+                             **{k: v for k, v in given.items() if v is not None})
+    t0 = time.perf_counter()
+    kw = dict(samples=args.samples, seed=args.seed, tolerances=tol,
+              k_obj=args.kobj or DEFAULT_K_OBJ_N_PER_MM, reference=args.reference)
+    if args.scheduler or args.workers:
+        from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client, dask_mapper
+
+        with dask_client(args.scheduler, args.workers or LOCAL_WORKERS) as client:
+            report = run_tolerance(plan, mapper=dask_mapper(client, progress=not args.json), **kw)
+    else:
+        report = run_tolerance(plan, **kw)
+    wall = time.perf_counter() - t0
+    if args.json:
+        print(json.dumps(report.as_json(), indent=2, allow_nan=False))
+        return 0
+    print_report(report, plan.name, wall)
+    return 0
+
+
+def print_report(report, name: str, wall_s: float) -> None:
+    """Text form of a :class:`~tactcad.mechanics.tolerance.ToleranceReport`."""
+    print(f"tolerance Monte Carlo of {name}: {report.samples} samples, seed {report.seed}, "
+          f"{wall_s:.2f} s")
+    print(f"  {report.tolerances.describe()}")
+    print("K per element (N/mm): nominal, mean, std, 95 % interval")
+    for e in report.elements:
+        print(f"  {e['element']:>3} a={e['arm_length_mm']:<5g} {e['K_nominal_N_per_mm']:8.3f} "
+              f"{e['K_mean_N_per_mm']:8.3f} {e['K_std_N_per_mm']:7.3f} "
+              f"({100 * e['K_rel_std']:4.1f} %)  [{e['K_p2_5_N_per_mm']:.3f}, "
+              f"{e['K_p97_5_N_per_mm']:.3f}]")
+    print("units (measuring/reference): R and reported K_obj at each true K_obj "
+          "(eq. 3 with nominal K_m, K_r)")
+    print(f"  {'unit':>6} {'K_obj':>6} {'R nom':>7} {'R mean':>7} {'R std':>6}  "
+          f"{'K_obj mean':>10} {'std':>6} {'95 % interval':>17} {'out of eq.3':>11}")
+    for u in report.units:
+        r, k = u["R"], u["K_obj_reported_N_per_mm"]
+        interval = (f"[{k['p2_5']:.2f}, {k['p97_5']:.2f}]" if k["mean"] is not None
+                    else "n/a")
+        mean = f"{k['mean']:10.3f} {k['std']:6.3f}" if k["mean"] is not None else f"{'n/a':>17}"
+        print(f"  {u['measuring']:>3}/{u['reference']:<2} {u['K_obj_true_N_per_mm']:6.2f} "
+              f"{u['R_nominal']:7.4f} {r['mean']:7.4f} {r['std']:6.4f}  {mean} {interval:>17} "
+              f"{100 * u['fraction_outside_eq3_domain']:10.1f}%")
+    print("web tolerance that keeps K within +/-5 % (design tolerance in brackets):")
+    for w in report.web_tolerance:
+        print(f"  {w['part']:<16} web {w['web_mm']:g} mm: +/-{1000 * w['web_tolerance_for_5pct_K_mm']:.1f}"
+              f" um  (design +/-{1000 * w['design_web_tolerance_mm']:.0f} um)")
+    print("Table 1, elements with equal arms (measured K, N/mm):")
+    for s in report.table1_spread:
+        ks = ", ".join(f"{e}: {k:g}" for e, k in zip(s["elements"], s["measured_N_per_mm"]))
+        webs = ", ".join(f"{w:.3f}" for w in s["as_built_web_mm"])
+        print(f"  arm {s['arm_length_mm']:g} mm: {ks}  -> {s['ratio_max_over_min']:.2f}x "
+              f"(as-built webs {webs} mm)")

@@ -1,0 +1,343 @@
+"""Sweeps at scale: design grids, the correction refit and Monte Carlo on Dask.
+
+Every sweep is a list of independent points mapped by one function. The
+points run on a Dask cluster: by default a ``distributed.LocalCluster`` of
+two worker processes with one thread each (the machine's two cores; BLAS and
+OpenMP held to one thread per worker, so two workers do not fight over
+cores), or an existing cluster given by its scheduler address
+(``tcp://HOST:PORT``), whose workers must import the same tactcad. A point's
+result depends on the point only, and results are gathered in point order,
+so a sweep gives the same numbers on any cluster. A text progress bar
+(``distributed.progress``) goes to stderr.
+
+* :func:`design_grid`: K, gauge strain and error estimate at any ladder
+  level over web x arm (x notch radius), CSV and a design chart (K against
+  arm length for each web, Table 1's measured points on it).
+* :func:`correction_refit`: the FEM points of the closed-form correction
+  fit (:mod:`tactcad.mechanics.correction_fit`) and the fit.
+* Monte Carlo: :func:`tactcad.mechanics.tolerance.run_tolerance` with
+  :func:`dask_mapper` as its ``mapper``.
+
+Units: mm, N, MPa, N/mm, s.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import logging
+import math
+import re
+import sys
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any, Callable, Iterable, Iterator, Sequence
+
+from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.errors import DesignError, TactcadError
+
+#: Local cluster: two worker processes, one thread each.
+LOCAL_WORKERS = 2
+THREADS_PER_WORKER = 1
+#: Environment of every local worker process, set before it starts (BLAS and
+#: OpenMP read it once): one thread per worker.
+SINGLE_THREAD_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
+                     "MKL_NUM_THREADS": "1"}
+_ADDRESS = re.compile(r"^(tcp|tls|inproc|ucx)://[^\s/]+(:\d+)?$")
+
+
+class ClusterError(TactcadError):
+    """No Dask scheduler answers at the given address."""
+
+
+def check_scheduler_address(address: str) -> str:
+    """``tcp://HOST:PORT`` (or tls://, inproc://) checked for form.
+
+    Raises:
+        DesignError: naming ``--scheduler``, the value and the allowed form.
+    """
+    if not isinstance(address, str) or not _ADDRESS.match(address.strip()):
+        raise DesignError("--scheduler", address, "a scheduler address tcp://HOST:PORT")
+    return address.strip()
+
+
+@contextlib.contextmanager
+def dask_client(scheduler: str | None = None, workers: int = LOCAL_WORKERS,
+                threads_per_worker: int = THREADS_PER_WORKER) -> Iterator[Any]:
+    """A ``distributed.Client``: on a new LocalCluster, or on ``scheduler``.
+
+    Args:
+        scheduler: address of an existing scheduler (``tcp://HOST:PORT``);
+            ``None`` starts a LocalCluster of ``workers`` processes.
+        workers: worker processes of the LocalCluster (1 ... 64).
+        threads_per_worker: threads per local worker.
+
+    Raises:
+        DesignError: a malformed address or worker count.
+        ClusterError: nothing answers at ``scheduler`` within 10 s.
+    """
+    import dask
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        address = check_scheduler_address(scheduler)
+        try:
+            client = Client(address, timeout="10s")
+        except (OSError, TimeoutError) as exc:
+            raise ClusterError(f"--scheduler {address}: no Dask scheduler answers ({exc})") from None
+        try:
+            yield client
+        finally:
+            client.close()
+        return
+    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 64:
+        raise DesignError("--workers", workers, "an integer 1 ... 64")
+    env = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}), **SINGLE_THREAD_ENV)
+    with dask.config.set({"distributed.nanny.pre-spawn-environ": env}):
+        with LocalCluster(n_workers=workers, threads_per_worker=threads_per_worker,
+                          processes=True, dashboard_address=None,
+                          silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+            yield client
+
+
+def dask_mapper(client, progress: bool = True) -> Callable:
+    """A ``map(func, items)`` replacement that runs on ``client``: results
+    in item order, a text progress bar on stderr while it waits."""
+
+    def mapper(func: Callable, items: Iterable) -> list:
+        futures = client.map(func, list(items), pure=False)
+        if progress and futures:
+            from distributed import progress as progress_bar
+
+            with contextlib.redirect_stdout(sys.stderr):
+                progress_bar(futures)
+                print(file=sys.stderr)
+        return client.gather(futures)
+
+    return mapper
+
+
+def run_grid(func: Callable, points: Sequence, scheduler: str | None = None,
+             workers: int = LOCAL_WORKERS, progress: bool = True) -> list:
+    """``[func(p) for p in points]`` on a Dask cluster (see :func:`dask_client`).
+
+    ``func`` must be importable by the workers (a module-level function).
+    """
+    with dask_client(scheduler, workers) as client:
+        return dask_mapper(client, progress)(func, points)
+
+
+# ---------------------------------------------------------------------------
+# Design grid
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class GridPoint:
+    """One design of a grid: a model level on one element geometry."""
+
+    model: str
+    geometry: ElementGeometry
+    material: Material
+
+
+@dataclass(frozen=True)
+class GridRow:
+    """Result of one grid point (mm, N/mm, 1/N, s)."""
+
+    model: str
+    web_mm: float
+    arm_mm: float
+    notch_radius_mm: float
+    K_N_per_mm: float
+    gauge_strain_per_N: float
+    error_estimate_rel: float
+    wall_time_s: float
+
+
+def evaluate_point(p: GridPoint) -> GridRow:
+    """K of one grid point at its ladder level (runs on a worker)."""
+    import warnings
+
+    from tactcad.mechanics.correction import CorrectionRangeWarning
+    from tactcad.mechanics.ladder import estimate
+
+    g = p.geometry
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", CorrectionRangeWarning)  # the grid reports its own range
+        r = estimate(p.model, g, p.material)
+    return GridRow(p.model, g.web_thickness_mm, g.arm_length_mm, g.notch_radius_mm,
+                   r.stiffness_N_per_mm, r.gauge_strain_per_N, r.error_estimate_rel,
+                   r.wall_time_s)
+
+
+def grid_points(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
+                model: str = "closed-form",
+                notch_radii_mm: Sequence[float] | None = None) -> list[GridPoint]:
+    """Every web x arm (x notch radius) variant of the plan's element, each
+    validated as a whole design (:func:`tactcad.mechanics.inverse.design_variant`).
+
+    Notch radius default: the plan's, raised to the web where it is thinner
+    (t/R <= 1).
+
+    Raises:
+        DesignError: a grid point breaks the design rules (field named), or
+            an unknown model.
+    """
+    from tactcad.design.array import plan_from_dict
+    from tactcad.mechanics.inverse import design_variant
+    from tactcad.mechanics.ladder import MODELS
+
+    if model not in MODELS:
+        raise DesignError("--model", model, ", ".join(MODELS))
+    base = plan.element(1).geometry
+    radii = list(notch_radii_mm) if notch_radii_mm else [None]
+    out = []
+    for t in webs_mm:
+        for r in radii:
+            R = max(base.notch_radius_mm, t) if r is None else r
+            for a in arms_mm:
+                data = design_variant(plan.raw, web_mm=t, notch_radius_mm=R,
+                                      arms_mm=[a] * len(plan.slots))
+                g = plan_from_dict(data, source="<design grid>").element(1).geometry
+                out.append(GridPoint(model, g, plan.material))
+    return out
+
+
+def design_grid(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
+                model: str = "closed-form", notch_radii_mm: Sequence[float] | None = None,
+                mapper: Callable = map) -> list[GridRow]:
+    """Evaluate the design grid (see :func:`grid_points`), rows in grid order."""
+    return list(mapper(evaluate_point, grid_points(plan, webs_mm, arms_mm, model,
+                                                   notch_radii_mm)))
+
+
+def write_grid_csv(path: str | Path, rows: Sequence[GridRow]) -> Path:
+    """CSV of grid rows (header = :class:`GridRow` fields with units), atomically."""
+    from tactcad.atomic import write_atomic
+
+    names = list(GridRow.__dataclass_fields__)
+
+    def w(tmp: Path) -> None:
+        with open(tmp, "w", newline="") as fh:
+            wr = csv.writer(fh)
+            wr.writerow(names)
+            for row in rows:
+                wr.writerow([f"{v:.9g}" if isinstance(v, float) else v
+                             for v in asdict(row).values()])
+
+    return write_atomic(path, w)
+
+
+def plot_design_chart(path: str | Path, rows: Sequence[GridRow], plan: Plan,
+                      title: str = "") -> Path:
+    """Design chart: K (N/mm, log) against arm length (mm) for each web, with
+    the closed form as a line, other levels as markers and Table 1's measured
+    elements as black crosses. Written atomically as PNG."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from tactcad.atomic import write_atomic
+    from tactcad.mechanics.paper.data import table1
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.6), dpi=120)
+    webs = sorted({r.web_mm for r in rows})
+    colours = plt.cm.viridis(np.linspace(0.0, 0.9, max(len(webs), 1)))
+    for web, colour in zip(webs, colours):
+        for model in dict.fromkeys(r.model for r in rows):
+            pts = sorted((r.arm_mm, r.K_N_per_mm) for r in rows
+                         if r.web_mm == web and r.model == model)
+            if not pts:
+                continue
+            x, y = zip(*pts)
+            if model == "closed-form":
+                ax.plot(x, y, "-", color=colour, label=f"web {web:g} mm")
+            else:
+                ax.plot(x, y, "o", color=colour, mfc="none", label=f"web {web:g} mm, {model}")
+    meas = table1()
+    ax.plot([m.flexing_arm_length_mm for m in meas], [m.stiffness_N_per_mm for m in meas], "kx",
+            ms=7, label="Table 1 (measured)")
+    for m in meas:
+        ax.annotate(str(m.element), (m.flexing_arm_length_mm, m.stiffness_N_per_mm),
+                    textcoords="offset points", xytext=(4, 2), fontsize=7)
+    ax.set_yscale("log")
+    ax.set_xlabel("arm length a (mm)")
+    ax.set_ylabel("tip stiffness K (N/mm)")
+    g = plan.element(1).geometry
+    ax.set_title(title or f"{plan.material.name}, sheet {g.sheet_thickness_mm:g} mm, "
+                          f"notch radius max({g.notch_radius_mm:g} mm, web)", fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    write_atomic(path, lambda tmp: fig.savefig(tmp, format="png", metadata={"Software": None}))
+    plt.close(fig)
+    return Path(path)
+
+
+# ---------------------------------------------------------------------------
+# Correction refit
+# ---------------------------------------------------------------------------
+_DESIGN_KEYS = ("web_mm", "notch_radius_mm", "arm_mm", "sheet_mm", "poisson_ratio")
+
+
+def refit_point(job: tuple[Sequence[float], str]) -> dict:
+    """fem3d and the closed form's terms at one design (t, R, a, b, nu) with
+    its set label: :func:`tactcad.mechanics.correction_sweep.evaluate_point`
+    as a one-argument task."""
+    from tactcad.mechanics.correction_sweep import evaluate_point as correction_point
+
+    design, label = job
+    return correction_point(design, label)
+
+
+def correction_refit(mapper: Callable = map, n_fit: int = 64, n_holdout: int = 16,
+                     points_path: str | Path | None = None) -> dict:
+    """The fem3d sweep of the closed-form correction on a cluster, then the fit.
+
+    Designs are those of :func:`tactcad.mechanics.correction_sweep.plan_designs`;
+    designs already stored in ``points_path`` (JSON lines, default the
+    sweep's own file) are skipped, new points are appended in design order,
+    and :func:`tactcad.mechanics.correction.build_document` fits all of them.
+    The stored correction file is not touched.
+
+    Returns:
+        ``{"new_points": n, "wall_time_s": s, "document": {...}}``.
+
+    Raises:
+        ValueError: no fit points at all.
+    """
+    import json
+
+    from tactcad.mechanics import correction_sweep as cs
+    from tactcad.mechanics.correction import build_document
+
+    path = Path(cs.POINTS_FILE if points_path is None else points_path)
+
+    def key(values) -> tuple:
+        return tuple(round(float(v), 9) for v in values)
+
+    done = {key(r[k] for k in _DESIGN_KEYS) for r in cs.read_points(path)}
+    jobs = [(tuple(d), label) for d, label in cs.plan_designs(n_fit, n_holdout)
+            if key(d) not in done]
+    t0 = time.perf_counter()
+    rows = list(mapper(refit_point, jobs))
+    wall = time.perf_counter() - t0
+    if rows:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with open(path, "a", encoding="utf-8") as fh:
+            fh.writelines(json.dumps(r) + "\n" for r in rows)
+    return {"new_points": len(rows), "wall_time_s": wall,
+            "document": build_document(cs.read_points(path))}
+
+
+def finite_or_none(x: float) -> float | None:
+    """JSON-safe number: None for NaN or infinity."""
+    return float(x) if isinstance(x, (int, float)) and math.isfinite(x) else None
+
+
+def rows_as_json(rows: Sequence[GridRow]) -> list[dict]:
+    return [{k: finite_or_none(v) if isinstance(v, float) else v for k, v in asdict(r).items()}
+            for r in rows]
+

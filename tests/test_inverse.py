@@ -1,0 +1,143 @@
+"""Inverse design: targets met at the closed form, limits kept, impossible targets refused."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from tactcad.cli import main
+from tactcad.design.array import load_design
+from tactcad.errors import DesignError
+from tactcad.mechanics.inverse import (InverseDesignError, Targets, design_for_targets,
+                                       reference_elements, search_webs, unit_resolution)
+from tactcad.mechanics.ladder import estimate
+from tactcad.mechanics.paper.lumped import deflection_ratio
+from tactcad.mechanics.strength import strength_summary
+
+FEASIBLE = Targets(3.0, (5.0, 20.0), 0.3)
+
+
+def _k(plan, element):
+    return estimate("closed-form", plan.element(element).geometry, plan.material).stiffness_N_per_mm
+
+
+def test_targets_put_k_obj_range_at_the_geometric_mean_of_k_m_and_k_r():
+    t = Targets(4.0, (2.0, 18.0), 1.0)
+    assert math.sqrt(t.k_m * t.k_r) == pytest.approx(math.sqrt(2.0 * 18.0))
+    assert t.k_r / t.k_m == pytest.approx(4.0)
+
+
+def test_design_meets_targets_and_limits_at_the_closed_form(plan):
+    d = design_for_targets(plan, FEASIBLE)
+    assert d.references == (3, 8) == reference_elements(2, 5)
+    for n in range(1, 11):
+        target = FEASIBLE.k_r if n in d.references else FEASIBLE.k_m
+        assert _k(d.plan, n) == pytest.approx(target, rel=1e-3)
+    gauge = d.plan.strength.gauge
+    for rec in strength_summary(d.plan):
+        assert rec["full_scale_force_N"] >= FEASIBLE.full_scale_force_N
+        eps_at_f = rec["gauge_strain_at_full_scale"] * FEASIBLE.full_scale_force_N \
+            / rec["full_scale_force_N"]
+        assert eps_at_f <= gauge.fatigue_strain
+    search = search_webs(plan, FEASIBLE)
+    own = int(np.flatnonzero(np.isclose(search.webs_mm, 0.25))[0])
+    assert d.web_changed == (not search.feasible[own])
+
+
+def test_design_changes_the_web_when_the_design_web_breaks_a_limit(plan):
+    t = Targets(3.0, (5.0, 20.0), 0.6)  # 0.6 N: the 0.25 mm web's K_m arm overstrains the gauge
+    search = search_webs(plan, t)
+    own = int(np.flatnonzero(np.isclose(search.webs_mm, 0.25))[0])
+    assert not search.feasible[own]
+    d = design_for_targets(plan, t)
+    chosen = int(np.flatnonzero(np.isclose(search.webs_mm,
+                                           d.plan.element(1).geometry.web_thickness_mm))[0])
+    assert d.web_changed and search.feasible[chosen]
+    assert search.margin[chosen] == pytest.approx(search.margin[search.feasible].max())
+    assert "element.web_thickness_mm" in d.data["assumptions"]
+
+
+def test_design_keeps_the_web_when_arms_alone_meet_the_targets(plan):
+    from dataclasses import replace
+
+    g = plan.element(1).geometry
+    k_short = estimate("closed-form", replace(g, arm_length_mm=4.5), plan.material).stiffness_N_per_mm
+    k_long = estimate("closed-form", replace(g, arm_length_mm=7.0), plan.material).stiffness_N_per_mm
+    x = k_short / k_long
+    mid = math.sqrt(k_short * k_long)
+    d = design_for_targets(plan, Targets(x, (mid / 2, mid * 2), 0.1))
+    assert not d.web_changed
+    assert d.arm_r_mm == pytest.approx(4.5, abs=2e-3) and d.arm_m_mm == pytest.approx(7.0, abs=2e-3)
+
+
+def test_impossible_ratio_names_the_arm_range(plan):
+    with pytest.raises(InverseDesignError, match=r"arms\.lengths_mm"):
+        design_for_targets(plan, Targets(1000.0, (2.0, 10.0), 0.1))
+
+
+def test_impossible_force_names_the_yield_limit(plan):
+    with pytest.raises(InverseDesignError,
+                       match=r"yield strength .* at the full-scale force .* is met by no web"):
+        design_for_targets(plan, Targets(2.0, (10.0, 40.0), 500.0))
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    (dict(kr_over_km=1.0, k_obj_range_N_per_mm=(1, 2), full_scale_force_N=1), "--kr-over-km"),
+    (dict(kr_over_km=3, k_obj_range_N_per_mm=(5, 2), full_scale_force_N=1), "--kobj-range"),
+    (dict(kr_over_km=3, k_obj_range_N_per_mm=(1, 2), full_scale_force_N=float("nan")),
+     "--full-scale-force"),
+])
+def test_bad_targets_name_the_option(kwargs, field):
+    with pytest.raises(DesignError, match=field):
+        Targets(**kwargs)
+
+
+def test_unit_resolution_follows_eq2_and_scales_with_force():
+    k_obj = np.array([2.0, 5.0, 10.0])
+    r = unit_resolution(5.0, 20.0, k_obj, 1.0)
+    assert r["R"] == pytest.approx(deflection_ratio(np.full(3, 5.0), np.full(3, 20.0), k_obj).value)
+    h = 1e-6
+    numeric = (deflection_ratio(5.0, 20.0, 5.0 + h) - deflection_ratio(5.0, 20.0, 5.0 - h)) / (2 * h)
+    assert r["dR_dKobj_per_N_per_mm"][1] == pytest.approx(numeric, rel=1e-6)
+    half = unit_resolution(5.0, 20.0, k_obj, 2.0)
+    assert half["K_obj_resolution_N_per_mm"] == pytest.approx(r["K_obj_resolution_N_per_mm"] / 2)
+
+
+def test_cli_writes_a_loadable_design_and_json(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    argv = ["design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force", "0.3",
+            "--material", "7075-T6", "--verify", "none", "--out", "next.toml", "--json"]
+    assert main(argv) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert {"targets", "elements", "units", "web_thickness_mm", "references",
+            "K_r_over_K_m"} <= set(doc)
+    assert {"K_obj_N_per_mm", "R", "dR_dKobj_per_N_per_mm",
+            "K_obj_resolution_N_per_mm"} <= set(doc["units"][0])
+    plan = load_design(tmp_path / "next.toml")
+    assert plan.material.grade == "7075-T6"
+    arms = {e["element"]: e["arm_length_mm"] for e in doc["elements"]}
+    assert [s.geometry.arm_length_mm for s in plan.slots] == [arms[n] for n in range(1, 11)]
+    assert _k(plan, 8) / _k(plan, 1) == pytest.approx(3.0, rel=2e-3)
+    assert main(argv) == 2  # exists: refused without --force
+    assert "tactcad: error: --out" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("out", ["../outside.toml", "new.txt"])
+def test_cli_refuses_paths_outside_the_folder_or_not_toml(tmp_path, monkeypatch, capsys, out):
+    monkeypatch.chdir(tmp_path)
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                 "--full-scale-force", "0.3", "--verify", "none", "--out", out]) == 2
+    assert "tactcad: error: --out" in capsys.readouterr().err
+    assert not (tmp_path.parent / "outside.toml").exists()
+
+
+def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(["design", "--kr-over-km", "1000", "--kobj-range", "2", "10",
+                 "--full-scale-force", "0.1", "--verify", "none", "--out", "x.toml"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("tactcad: error: targets cannot be met") and "arms.lengths_mm" in err
+    assert not (tmp_path / "x.toml").exists()
