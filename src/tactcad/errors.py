@@ -32,5 +32,10 @@ class SceneError(TactcadError):
     assembled (a slide would leave its range)."""
 
 
+class ExportPathError(TactcadError):
+    """An export folder tactcad will not write: a system folder, a file, or a
+    folder of other files."""
+
+
 class CheckFailure(TactcadError):
     """A geometry, export or manufacturability check failed."""

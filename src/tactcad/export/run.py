@@ -7,19 +7,21 @@ run's one :class:`~tactcad.parts.cache.PartCache`, so each distinct part is
 built at most once per run, and only if some job needs it. The CAD kernel is
 imported only then: a run with nothing to rebuild never loads it.
 
-Every file is first written into a staging folder beside the target; only
-when all of them exist are they moved into place one by one with
-``os.replace``, the manifest last. A failed or interrupted run leaves the
-previous exports whole.
+Every file is first written into a staging folder beside the export folder;
+only when all of them and the manifest exist does that folder take the
+export folder's place, in one step (:func:`tactcad.atomic.publish_dir`). A
+failed or killed run leaves the previous export whole (its staging folder is
+removed by the next run); files an earlier export wrote and this one does not
+are gone with the old folder, files tactcad never wrote are kept.
 """
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import os
 import shutil
-import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -27,9 +29,11 @@ from typing import Callable, Sequence
 
 from tactcad import __version__
 from tactcad.assembly.inventory import assembly_review, instance_counts
-from tactcad.atomic import write_bytes_atomic
+from tactcad.atomic import (carry_over, leftover_staging, publish_dir, staging_dir,
+                            write_bytes_atomic)
 from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
+from tactcad.errors import ExportPathError
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
@@ -136,12 +140,62 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
     return [r for job in jobs for r in done[job.name]], len(todo)
 
 
+#: Folders an export never replaces, whatever ``--out`` says.
+SYSTEM_DIRS = ("/", "/bin", "/boot", "/dev", "/etc", "/home", "/lib", "/lib64", "/media",
+               "/mnt", "/opt", "/proc", "/root", "/run", "/sbin", "/srv", "/sys", "/tmp", "/usr",
+               "/var")
+
+
+def check_out_dir(out_dir: str | Path) -> Path:
+    """The export folder, resolved, once it is shown safe to replace.
+
+    Raises:
+        NotADirectoryError: a folder on the way is a file.
+        ExportPathError: a system folder, the home folder or the working folder
+            (or one above it), a file, or a non-empty folder that is not a
+            tactcad export (no ``manifest.json``): an export replaces its
+            folder as a whole, keeping only files it did not write.
+    """
+    out = Path(os.path.abspath(os.path.expanduser(str(out_dir))))
+    real = out.resolve()
+    above = next(p for p in (real, *real.parents) if p.exists())
+    if above != real and not above.is_dir():  # an OS condition, said as the OS says it
+        raise NotADirectoryError(errno.ENOTDIR, os.strerror(errno.ENOTDIR), str(above))
+    protected = {Path(d) for d in SYSTEM_DIRS} | {Path.home().resolve()}
+    if real in protected or real in Path.cwd().resolve().parents or real == Path.cwd().resolve():
+        raise ExportPathError(f"--out {out_dir}: refused, a system, home or working folder "
+                              "(an export replaces its folder as a whole); name a folder of its own, "
+                              "e.g. --out exports")
+    if real.exists() and not real.is_dir():
+        raise ExportPathError(f"--out {out_dir}: {real} is a file, not a folder")
+    if real.is_dir() and any(real.iterdir()) and not (real / MANIFEST).is_file():
+        raise ExportPathError(f"--out {out_dir}: {real} holds files but no {MANIFEST}, so it is no "
+                              "tactcad export folder; name an empty or new folder")
+    return real
+
+
+def _written_by_tactcad(out: Path) -> set[str]:
+    """Paths the export now in ``out`` wrote (its manifest's files and the manifest)."""
+    try:
+        man = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
+        return {f["path"] for f in man["files"]} | {MANIFEST}
+    except (OSError, ValueError, KeyError, TypeError):
+        return {MANIFEST}
+
+
 def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, log: Log,
                store: Store, with_manifest: bool, parts=None,
                dxf_version: str | None = None) -> ExportResult:
+    """Build the files of ``jobs_of`` in a staging folder beside ``out_dir``,
+    then put that folder in the place of ``out_dir`` in one step
+    (:func:`tactcad.atomic.publish_dir`). A full export keeps, of the old
+    folder, only the files no tactcad export wrote; a partial one
+    (``with_manifest`` False) keeps every old file it does not rewrite."""
     t0 = time.perf_counter()
-    out_dir.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=".staging-", dir=out_dir))
+    out = check_out_dir(out_dir)
+    for old in leftover_staging(out):  # a killed run's
+        shutil.rmtree(old, ignore_errors=True)
+    staging = staging_dir(out)
     try:
         run = Run(plan, staging, log, store, dxf_version)
         if parts is not None:
@@ -149,23 +203,21 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
         jobs = jobs_of(run)
         records, ran = run_jobs(run, jobs, store)
         files = [{**r, "bytes": (staging / r["path"]).stat().st_size} for r in records]
-        man_bytes = b""
         if with_manifest:
             man = manifest(plan, staging, records)
             man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
-            files = man["files"]
-        for r in records:
-            target = out_dir / r["path"]
-            target.parent.mkdir(parents=True, exist_ok=True)
-            os.replace(staging / r["path"], target)
-        if with_manifest:
-            write_bytes_atomic(out_dir / MANIFEST, man_bytes)
-            files = files + [{"path": MANIFEST, "bytes": len(man_bytes), "part": "-"}]
+            write_bytes_atomic(staging / MANIFEST, man_bytes)
+            files = man["files"] + [{"path": MANIFEST, "bytes": len(man_bytes), "part": "-"}]
+        if out.is_dir():
+            ours = _written_by_tactcad(out) if with_manifest else set()
+            carry_over(out, staging, lambda rel: rel not in ours)
+        os.chmod(staging, 0o755)  # mkdtemp makes it private; an export folder is for sharing
+        publish_dir(staging, out)
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded
-    return ExportResult(out_dir, files, time.perf_counter() - t0, ran, len(jobs) - ran, builds,
-                        len(run.inventory[0]))
+    return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
+                        builds, len(run.inventory[0]))
 
 
 def export_scenes(plan: Plan, out_dir: str | Path, names: Sequence[str], log: Log = print,
