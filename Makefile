@@ -7,7 +7,7 @@ STAMP  := $(VENV)/.installed-stamp
 DESIGN ?= hardware/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env system-deps export docs-images check test bench clean
+.PHONY: help env system-deps export docs-images check test test-fast bench clean
 
 help: ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
@@ -35,9 +35,12 @@ system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd
 test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included)
 	$(BIN)/python -m pytest -q
 
+test-fast: $(STAMP) ## the inner loop: every test not marked slow (no full export, no FreeCAD, no fem3d)
+	$(BIN)/python -m pytest -q -m "not slow"
+
 bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness ladder)
 	$(BIN)/tactcad bench export
 	$(BIN)/tactcad bench stiffness
 
 clean: ## remove generated files (exports/) and the environment
-	rm -rf $(OUT) $(VENV) .pytest_cache .hypothesis
+	rm -rf $(OUT) $(VENV) .pytest_cache .hypothesis .tactcad-cache

@@ -12,6 +12,18 @@ import pytest
 from tactcad.design.array import default_design_data, load_design
 
 
+#: Fixtures that cost a full export or a FreeCAD run: their tests are slow.
+SLOW_FIXTURES = {"exported", "freecad"}
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark every test that uses a costly fixture as slow, so that
+    ``make test-fast`` (``-m "not slow"``) fits the inner loop."""
+    for item in items:
+        if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
+            item.add_marker(pytest.mark.slow)
+
+
 @pytest.fixture(scope="session")
 def plan():
     return load_design()

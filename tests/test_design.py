@@ -137,6 +137,7 @@ def test_cli_refuses_bad_design_with_exit_2_and_writes_nothing(tmp_path, design_
     assert not out.exists()
 
 
+@pytest.mark.slow
 def test_cli_reports_unreadable_and_invalid_toml(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "tactcad.cli", "export", "--design",
                            str(tmp_path / "nope.toml"), "--out", str(tmp_path / "o")],

@@ -34,6 +34,7 @@ def test_one_file_per_distinct_profile_with_its_quantity(plan, shop):
     assert {p.relative_to(out).as_posix() for p in out.rglob("*.dxf")} == {r["path"] for r in records}
 
 
+@pytest.mark.slow
 def test_every_shop_check_passes_on_the_files(plan, shop):
     _, out, _ = shop
     results = check_shop_dxf_files(plan, out)
@@ -74,6 +75,7 @@ def test_same_plan_writes_identical_dxf_bytes(plan, shop, tmp_path):
         assert (tmp_path / r["path"]).read_bytes() == (out / r["path"]).read_bytes(), r["path"]
 
 
+@pytest.mark.slow
 def test_lead_in_on_the_web_fails(plan, tmp_path):
     write_shop_dxf_files(plan, tmp_path, lambda s: None, "R2010")
     path = tmp_path / "dxf/element_a4mm_qty2.dxf"
@@ -86,6 +88,7 @@ def test_lead_in_on_the_web_fails(plan, tmp_path):
     assert "dxf_lead_in" in bad
 
 
+@pytest.mark.slow
 def test_overlapping_sheet_and_wrong_extents_fail(plan, tmp_path):
     write_shop_dxf_files(plan, tmp_path, lambda s: None, "R2010")
     path = tmp_path / sheet_dxf_name("aluminium", 1.0)

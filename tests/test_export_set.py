@@ -145,3 +145,26 @@ def test_the_store_is_best_effort(tmp_path):
     assert store.memo("k" * 64, lambda: 42) == 42
     store.keep("k" * 64, tmp_path, [])
     assert store.fetch("k" * 64, tmp_path) is None
+
+
+def test_an_incremental_export_writes_the_bytes_of_a_cold_one(tmp_path, warm):
+    """One arm changed, exported over a store that holds the old design's jobs
+    (most files come from the store, a few are rebuilt), gives the very files
+    of the same design exported cold."""
+    text = DEFAULT_DESIGN.read_text(encoding="utf-8")
+    changed = tmp_path / "changed.toml"
+    changed.write_text(text.replace("lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0, 5.0, 7.0]",
+                                    "lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.5, 8.0, 5.0, 4.0, 5.0, 7.0]"),
+                       encoding="utf-8")
+    proc = run("export", "--design", str(changed), "--cache", str(warm), "--out",
+               str(tmp_path / "incremental"), "--json")
+    assert proc.returncode == 0, proc.stderr
+    summary = json.loads(proc.stdout)
+    assert 0 < summary["jobs_run"] < summary["jobs_reused"]
+    assert run("export", "--design", str(changed), "--no-cache", "--out",
+               str(tmp_path / "cold")).returncode == 0
+    inc, cold = tmp_path / "incremental", tmp_path / "cold"
+    files = sorted(p.relative_to(cold).as_posix() for p in cold.rglob("*") if p.is_file())
+    assert files == sorted(p.relative_to(inc).as_posix() for p in inc.rglob("*") if p.is_file())
+    for rel in files:
+        assert (inc / rel).read_bytes() == (cold / rel).read_bytes(), rel

@@ -180,6 +180,7 @@ def extremes():
     return out
 
 
+@pytest.mark.slow
 def test_extremes_are_finite_positive_and_converged(extremes):
     for key, res in extremes.items():
         assert math.isfinite(res.stiffness_N_per_mm) and res.stiffness_N_per_mm > 0, key

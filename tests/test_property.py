@@ -34,6 +34,7 @@ def in_domain(draw):
             "element.tip_width_mm": draw(st.floats(1.0, 3.0))}
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(overrides=in_domain())
 def test_in_domain_designs_build_valid_parts_and_dxf(overrides, tmp_path_factory):

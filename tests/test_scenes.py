@@ -107,6 +107,7 @@ def test_declared_contacts(built):
     assert frozenset({"array_bracket", "clamp_plate_front"}) in ev.contacts
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", SCENES)
 def test_scene_has_no_interference_and_is_sane(built, name):
     from tactcad.checks.mesh_interference import check_mesh_interference
@@ -154,6 +155,7 @@ def _bad_design_dir(tmp_path, edit):
     return tmp_path / "macro_array.toml"
 
 
+@pytest.mark.slow
 def test_collision_fails_check_with_names_and_volume(tmp_path, capsys):
     """A longer cart runs into the column: `tactcad check` names both parts
     and the overlap volume, the mesh fast path and OpenCascade agree."""
@@ -239,6 +241,7 @@ def test_glb_content(exported):
     assert doc["_bin_length"] == doc["buffers"][0]["byteLength"]
 
 
+@pytest.mark.slow
 def test_export_single_scene(tmp_path, plan):
     from tactcad.export.freecad_review import freecadcmd
     from tactcad.export.run import export_scenes

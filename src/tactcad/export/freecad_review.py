@@ -128,11 +128,15 @@ def freecad_identity() -> str | None:
 
 
 def _write_brep(shape, path: Path) -> None:
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
     from OCP.BRepTools import BRepTools
     from OCP.TopTools import TopTools_FormatVersion
 
+    # A fresh copy: the shape's flags (free, modified ...) change as other
+    # writers use it, and the file must not depend on what ran before.
+    fresh = BRepBuilderAPI_Copy(shape.wrapped, True, False).Shape()
     # Version 1 without triangulation: what FreeCAD's older OpenCascade reads.
-    if not BRepTools.Write_s(shape.wrapped, str(path), False, False,
+    if not BRepTools.Write_s(fresh, str(path), False, False,
                              TopTools_FormatVersion.TopTools_FormatVersion_VERSION_1):
         raise RuntimeError(f"OpenCascade could not write {path}")
 
@@ -151,29 +155,58 @@ def _job(a: ReviewAssembly, staging: Path, folder: Path) -> dict:
             "root_matrix": Z_UP_MATRIX, "parts": parts, "groups": groups}
 
 
-def run_freecad_script(script: Path, payload: Any, timeout_s: float = 900.0) -> dict:
-    """Run ``script`` under ``freecadcmd`` with ``payload`` (JSON) in
-    ``$TACTCAD_FC_IN``; returns the JSON the script wrote to ``$TACTCAD_FC_OUT``.
+class FreecadRun:
+    """``script`` running under ``freecadcmd`` with ``payload`` (JSON) in
+    ``$TACTCAD_FC_IN``; :meth:`result` waits for the JSON the script writes
+    to ``$TACTCAD_FC_OUT``. FreeCAD is its own process, so the caller can go
+    on with other work meanwhile.
 
     Raises:
-        RuntimeError: no ``freecadcmd``, or FreeCAD wrote no result (its output
-            is in the message).
+        RuntimeError: no ``freecadcmd``.
     """
-    exe = freecadcmd()
-    if exe is None:
-        raise RuntimeError("freecadcmd not found (Debian package freecad-python3)")
-    with tempfile.TemporaryDirectory(prefix="tactcad-fc-") as tmp:
-        out = Path(tmp) / "result.json"
-        env = dict(os.environ, TACTCAD_FC_IN=json.dumps(payload), TACTCAD_FC_OUT=str(out),
+
+    def __init__(self, script: Path, payload: Any, timeout_s: float = 900.0):
+        exe = freecadcmd()
+        if exe is None:
+            raise RuntimeError("freecadcmd not found (Debian package freecad-python3)")
+        self._tmp = tempfile.TemporaryDirectory(prefix="tactcad-fc-")
+        tmp = self._tmp.name
+        self._out = Path(tmp) / "result.json"
+        self._timeout = timeout_s
+        env = dict(os.environ, TACTCAD_FC_IN=json.dumps(payload), TACTCAD_FC_OUT=str(self._out),
                    HOME=tmp, QT_QPA_PLATFORM="offscreen")  # FreeCAD's user config goes to HOME
         env.pop("PYTHONPATH", None)
         env.pop("PYTHONHOME", None)
-        proc = subprocess.run([exe, str(script)], env=env, cwd=tmp, capture_output=True,
-                              text=True, timeout=timeout_s)
-        if not out.exists():
-            raise RuntimeError(f"freecadcmd exited {proc.returncode} without a result:\n"
-                               f"{proc.stdout[-2000:]}\n{proc.stderr[-2000:]}")
-        return json.loads(out.read_text())
+        self._proc = subprocess.Popen([exe, str(script)], env=env, cwd=tmp, text=True,
+                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+
+    def result(self) -> dict:
+        """The script's JSON result.
+
+        Raises:
+            RuntimeError: FreeCAD wrote no result (its output is in the message).
+            subprocess.TimeoutExpired: FreeCAD ran longer than the timeout.
+        """
+        try:
+            stdout, stderr = self._proc.communicate(timeout=self._timeout)
+            if not self._out.exists():
+                raise RuntimeError(f"freecadcmd exited {self._proc.returncode} without a result:\n"
+                                   f"{stdout[-2000:]}\n{stderr[-2000:]}")
+            return json.loads(self._out.read_text())
+        finally:
+            self.cancel()
+
+    def cancel(self) -> None:
+        """Stop FreeCAD if it still runs and remove its folder."""
+        if self._proc.poll() is None:
+            self._proc.kill()
+            self._proc.communicate()
+        self._tmp.cleanup()
+
+
+def run_freecad_script(script: Path, payload: Any, timeout_s: float = 900.0) -> dict:
+    """:class:`FreecadRun` and wait for its result (see there)."""
+    return FreecadRun(script, payload, timeout_s).result()
 
 
 _DATE_RE = re.compile(rb'(<Property name="(?:CreationDate|LastModifiedDate)" [^>]*>\s*<String value=")[^"]*(")')
@@ -250,6 +283,63 @@ def normalise_fcstd(path: Path, name: str) -> None:
     write_bytes_atomic(path, buf.getvalue())
 
 
+def start_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],
+                       log: Callable[[str], None]) -> "PendingReview":
+    """Start writing ``review/<name>.FCStd`` for each assembly into ``staging``
+    (one ``freecadcmd`` run for all); :meth:`PendingReview.result` waits for
+    it and returns the file records (see :func:`write_review_files`)."""
+    return PendingReview(staging, tuple(assemblies), log)
+
+
+class PendingReview:
+    """Review files being written by FreeCAD in its own process."""
+
+    def __init__(self, staging: Path, assemblies: tuple[ReviewAssembly, ...],
+                 log: Callable[[str], None]):
+        self.staging, self.assemblies, self.log = staging, assemblies, log
+        self._run = None
+        self._breps = None
+        if not assemblies:
+            return
+        if freecadcmd() is None:
+            log("  skipped review/*.FCStd: freecadcmd not found (install the Debian package "
+                "freecad-python3, e.g. scripts/install-system-deps.sh)")
+            return
+        (staging / "review").mkdir(parents=True, exist_ok=True)
+        self._breps = tempfile.TemporaryDirectory(prefix="tactcad-review-")
+        jobs = [_job(a, staging, Path(self._breps.name) / f"a{k}") for k, a in enumerate(assemblies)]
+        self._run = FreecadRun(SCRIPT, jobs)
+
+    def cancel(self) -> None:
+        if self._run is not None:
+            self._run.cancel()
+        if self._breps is not None:
+            self._breps.cleanup()
+
+    def result(self) -> list[dict]:
+        if self._run is None:
+            return []
+        try:
+            result = self._run.result()
+        finally:
+            self.cancel()
+        records = []
+        for a in self.assemblies:
+            found = result["files"].get(a.name, {"error": "not written"})
+            if "error" in found:
+                raise RuntimeError(f"FreeCAD could not write {review_fcstd_name(a.name)}:\n"
+                                   f"{found['error']}")
+            normalise_fcstd(self.staging / review_fcstd_name(a.name), a.name)
+            records.append({"path": review_fcstd_name(a.name), "part": a.name,
+                            "kind": "freecad-review", "step": a.step,
+                            "freecad_version": ".".join(result["freecad_version"]),
+                            "groups": a.groups(), "instances": len(a.instances),
+                            "colours": {p.name: list(p.color) for p in a.parts}})
+        self.log(f"  wrote {len(records)} FreeCAD review files in review/ "
+                 f"(FreeCAD {'.'.join(result['freecad_version'])}, colours: {result['gui']})")
+        return records
+
+
 def write_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],
                        log: Callable[[str], None]) -> list[dict]:
     """Write ``review/<name>.FCStd`` for each assembly into ``staging`` (one
@@ -264,26 +354,4 @@ def write_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],
     Raises:
         RuntimeError: FreeCAD is installed but failed (its output is in the message).
     """
-    if not assemblies:
-        return []
-    if freecadcmd() is None:
-        log("  skipped review/*.FCStd: freecadcmd not found (install the Debian package "
-            "freecad-python3, e.g. scripts/install-system-deps.sh)")
-        return []
-    (staging / "review").mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(prefix="tactcad-review-") as tmp:
-        jobs = [_job(a, staging, Path(tmp) / f"a{k}") for k, a in enumerate(assemblies)]
-        result = run_freecad_script(SCRIPT, jobs)
-    records = []
-    for a in assemblies:
-        found = result["files"].get(a.name, {"error": "not written"})
-        if "error" in found:
-            raise RuntimeError(f"FreeCAD could not write {review_fcstd_name(a.name)}:\n{found['error']}")
-        normalise_fcstd(staging / review_fcstd_name(a.name), a.name)
-        records.append({"path": review_fcstd_name(a.name), "part": a.name, "kind": "freecad-review",
-                        "step": a.step, "freecad_version": ".".join(result["freecad_version"]),
-                        "groups": a.groups(), "instances": len(a.instances),
-                        "colours": {p.name: list(p.color) for p in a.parts}})
-    log(f"  wrote {len(records)} FreeCAD review files in review/ "
-        f"(FreeCAD {'.'.join(result['freecad_version'])}, colours: {result['gui']})")
-    return records
+    return start_review_files(staging, assemblies, log).result()

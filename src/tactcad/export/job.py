@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Callable
+from typing import Any, Callable
 
 from tactcad.assembly.inventory import design_assemblies, scene_models
 from tactcad.assembly.rigs import RigModel
@@ -54,6 +54,10 @@ class Job:
 
     name: str
     key: str
-    make: Callable[[Run], list[dict]]
-    needs: tuple[PartSpec, ...] = ()  # solids the job reads (built once, before any worker starts)
+    make: Callable[[Run], list[dict]] | None
+    needs: tuple[PartSpec, ...] = ()  # solids the job reads, built before the jobs run
     after: tuple[str, ...] = ()  # jobs whose files this one reads
+    #: for work done by another program: ``start(run)`` launches it and returns
+    #: a handle with ``result() -> records`` and ``cancel()``; the run goes on
+    #: with the other jobs meanwhile (both cores busy) and collects it at the end
+    start: Callable[[Run], Any] | None = None

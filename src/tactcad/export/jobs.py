@@ -98,7 +98,8 @@ def scene_jobs(run: Run, names=None) -> list[Job]:
     # one FreeCAD process writes the review files of all these scenes
     jobs.append(Job("review:" + ",".join(names),
                     content_key("review-fcstd", [j.key for j in jobs], freecad_identity()),
-                    _review(names), tuple({s.name: s for j in jobs for s in j.needs}.values())))
+                    None, tuple({s.name: s for j in jobs for s in j.needs}.values()),
+                    start=_start_review(names)))
     return jobs
 
 
@@ -125,17 +126,18 @@ def _scene(name: str):
     return make
 
 
-def _review(names: list[str]):
-    def make(run: Run) -> list[dict]:
+def _start_review(names: list[str]):
+    """FreeCAD writes the review files in its own process while the run goes on."""
+    def start(run: Run):
         from tactcad.assembly.scenes import build_scene
-        from tactcad.export.freecad_review import scene_review_assembly, write_review_files
+        from tactcad.export.freecad_review import scene_review_assembly, start_review_files
 
         assemblies = []
         for name in names:
             scene, solids = build_scene(run.plan, name, run.parts)
             assemblies.append(scene_review_assembly(scene, solids, scene_step_name(name)))
-        return write_review_files(run.staging, assemblies, run.log)
-    return make
+        return start_review_files(run.staging, assemblies, run.log)
+    return start
 
 
 # --- drawings: one SVG per fabricated part, the PDF, the first element's page as PNG ----------

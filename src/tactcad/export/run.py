@@ -133,8 +133,16 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
     if todo:
         for spec in {s.name: s for job in todo for s in job.needs}.values():
             run.parts.solid(spec)
-        for job in todo:
-            done[job.name] = job.make(run)
+        started = {job.name: job.start(run) for job in todo if job.start is not None}
+        try:
+            for job in todo:
+                if job.start is None:
+                    done[job.name] = job.make(run)
+            for name, pending in started.items():
+                done[name] = pending.result()
+        finally:
+            for pending in started.values():
+                pending.cancel()
         for job in todo:
             store.keep(job.key, run.staging, done[job.name])
     return [r for job in jobs for r in done[job.name]], len(todo)
