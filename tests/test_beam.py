@@ -65,7 +65,7 @@ def test_beam_agrees_with_closed_form_for_default_design():
     arm whose bending is < 1 % of the tip compliance, and its discretisation
     error (< 1e-4). Anything above 0.1 % would be a bug, not physics."""
     for num, g in ((s.number, s.geometry) for s in PLAN.slots):
-        r = estimate_beam(g, MAT, num)
+        r = estimate_beam(g, MAT, element=num)
         parts = closed_form_compliance(
             g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,
             arm_height_mm=g.arm_height_mm, tip_width_mm=g.tip_width_mm,

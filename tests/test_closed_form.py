@@ -15,10 +15,13 @@ from hypothesis import strategies as st
 from tactcad.design import load_design
 from tactcad.errors import DesignError
 from tactcad.mechanics import closed_form as cf
+from tactcad.mechanics import correction as corr_mod
 from tactcad.mechanics.closed_form import (
-    ALPHA_SHEAR, IDENTITY, Correction, CorrectionRangeWarning, FitRange, apply_correction,
-    closed_form_compliance, closed_form_stiffness, estimate_closed_form, fit_correction,
-    gauge_strain_per_newton, load_correction, notch_integrals, web_for_stiffness)
+    ALPHA_SHEAR, closed_form_compliance, closed_form_stiffness, estimate_closed_form,
+    gauge_strain_per_newton, notch_integrals, web_for_stiffness)
+from tactcad.mechanics.correction import (
+    IDENTITY, Correction, CorrectionRangeWarning, FitData, FitRange, apply_correction,
+    fit_correction, load_correction)
 from tactcad.mechanics.result import StiffnessResult
 from tactcad.geometry.profile import web_thickness_at
 
@@ -166,10 +169,10 @@ def test_gauge_strain_is_euler_bernoulli_and_proportional_to_lever():
 
 
 def test_estimate_closed_form_result(monkeypatch, tmp_path):
-    monkeypatch.setattr(cf, "CORRECTION_FILE", tmp_path / "absent.json")
+    monkeypatch.setattr(corr_mod, "CORRECTION_FILE", tmp_path / "absent.json")
     for slot in PLAN.slots:
         g = slot.geometry
-        r = estimate_closed_form(g, MAT, slot.number)
+        r = estimate_closed_form(g, MAT, element=slot.number)
         assert isinstance(r, StiffnessResult) and r.model == "closed-form"
         assert r.element == slot.number
         k = closed_form_stiffness(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm, **KW)
@@ -194,8 +197,12 @@ def test_identity_correction():
     assert inside.all()
 
 
+#: 3D gain of the example correction at nu = 0.33, w = 0: nu^2 / (1 - nu^2) * c3.
+EXAMPLE_GAIN = 0.33**2 / (1 - 0.33**2) * 0.75
+
+
 def _example_correction() -> Correction:
-    return Correction(coefficients=(0.39, 0.05, 0.09),
+    return Correction(coefficients=(0.39, 0.05, 0.75),
                       fit_range=FitRange(t_over_R=(0.075, 1.0), web_mm=(0.15, 0.4),
                                          arm_mm=(4.0, 8.0)),
                       residual_rel=0.01, source="synthetic test data")
@@ -206,7 +213,7 @@ def test_correction_factor_and_range_flag():
     s = np.array([0.1, 0.5, 2.0])
     with pytest.warns(CorrectionRangeWarning, match="1 of 3"):
         k, inside = apply_correction(np.ones(3), s, c)
-    np.testing.assert_allclose(k, 1.09 / (1 + 0.39 * s + 0.05 * s * s), rtol=1e-15)
+    np.testing.assert_allclose(k, (1 + EXAMPLE_GAIN) / (1 + 0.39 * s + 0.05 * s * s), rtol=1e-15)
     np.testing.assert_array_equal(inside, [True, True, False])
     with pytest.warns(CorrectionRangeWarning):
         _, inside = apply_correction(np.ones(2), np.array([0.5, 0.5]), c, web_mm=0.25,
@@ -245,19 +252,33 @@ def test_correction_json_round_trip_and_loader(tmp_path):
         load_correction(path)
 
 
+def _synthetic_fit_data(coefficients, n=60, seed=1) -> FitData:
+    rng = np.random.default_rng(seed)
+    t = np.exp(rng.uniform(np.log(0.05), np.log(1.0), n))
+    R = t * np.exp(rng.uniform(0.0, np.log(40.0), n))
+    b = np.exp(rng.uniform(np.log(0.5), np.log(10.0), n))
+    nu = rng.uniform(0.27, 0.34, n)
+    q = rng.uniform(0.6, 1.0, n)
+    k_eb = rng.uniform(0.1, 100.0, n)
+    truth = Correction(coefficients=coefficients)
+    s, w = t / R, np.sqrt(t * R) / b
+    k_ref = k_eb * truth.factor(s, w, nu, q)
+    return FitData(t_over_R=s, width_ratio=w, poisson_ratio=nu, notch_share=q, K_eb=k_eb,
+                   K_ref=k_ref)
+
+
 def test_fit_correction_recovers_coefficients():
-    rng = np.random.default_rng(1)
-    t = rng.uniform(0.15, 0.4, 40)
-    R = rng.uniform(0.4, 2.0, 40)
-    R = np.maximum(R, t)
-    a = rng.uniform(4, 8, 40)
-    k_eb = closed_form_stiffness(t, R, a, **KW)
-    s = t / R
-    k_ref = k_eb * 1.08 / (1 + 0.4 * s - 0.03 * s * s)
-    c = fit_correction(s, k_eb, k_ref, web_mm=t, arm_mm=a, source="synthetic")
-    np.testing.assert_allclose(c.coefficients, (0.4, -0.03, 0.08, 0.0), atol=1e-10)
-    assert c.residual_rel < 1e-12
-    assert c.fit_range.web_mm == (t.min(), t.max())
+    true = (0.55, 0.02, 0.9, 1.5, 0.3)
+    data = _synthetic_fit_data(true)
+    c = fit_correction(data, fit_range=FitRange(web_mm=(0.05, 1.0)), source="synthetic")
+    np.testing.assert_allclose(c.coefficients, true, rtol=1e-6, atol=1e-8)
+    assert c.residual_rel < 1e-10
+    assert np.max(np.abs(data.residuals(c))) == pytest.approx(c.residual_rel, abs=1e-15)
+    # a subset of free coefficients leaves the others at zero
+    c3 = fit_correction(data, fit_range=FitRange(), source="synthetic", free=("c1", "c2", "c3"))
+    assert c3.coefficients[3:] == (0.0, 0.0) and c3.residual_rel > 1e-3
+    with pytest.raises(ValueError):
+        fit_correction(data, fit_range=FitRange(), source="x", free=("c9",))
 
 
 def test_estimate_closed_form_with_correction():
@@ -266,8 +287,12 @@ def test_estimate_closed_form_with_correction():
     r0 = estimate_closed_form(g, MAT, corrected=False)
     r1 = estimate_closed_form(g, MAT, correction=c)
     s = g.web_thickness_mm / g.notch_radius_mm
+    parts = closed_form_compliance(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm, **KW)
+    q = float(parts.notch_bending / parts.total)
+    assert 0.9 < q < 1.0
     assert r1.stiffness_N_per_mm == pytest.approx(
-        r0.stiffness_N_per_mm * 1.09 / (1 + 0.39 * s + 0.05 * s * s), rel=1e-14)
+        r0.stiffness_N_per_mm * (1 + EXAMPLE_GAIN) / (1 + q * (0.39 * s + 0.05 * s * s)),
+        rel=1e-14)
     assert r1.error_estimate_rel == 0.01
     assert r1.gauge_strain_per_N == r0.gauge_strain_per_N
 

@@ -17,11 +17,11 @@ import pytest
 import shapely.geometry as sg
 
 from tactcad.design import load_design
-from tactcad.mechanics.correction_fit import grid_geometry
-from tactcad.mechanics.fem.fem2d import (estimate_fem2d, fem2d_convergence, richardson,
-                                     solve_fem2d)
+from tactcad.mechanics.correction_sweep import grid_geometry
+from tactcad.mechanics.fem.fem2d import estimate_fem2d, fem2d_convergence, solve_fem2d
 from tactcad.mechanics.fem.mesh import (clip_chain, default_clamp_margin_mm, fem_region,
                                         mesh_region)
+from tactcad.mechanics.richardson import richardson
 from tactcad.geometry.profile import Arc, Line, contour_area, element_profile
 
 ORDER_BAND = (1.5, 4.5)
@@ -266,54 +266,26 @@ def test_estimate_carries_element_number_and_rejects_bad_input(plan):
 
 
 # ---------------------------------------------------------------------------
-# Correction fit (plane-stress part; the fem3d fit is too slow for a test)
+# The correction sweep's grid rule
 # ---------------------------------------------------------------------------
-def test_correction_fit_on_a_small_plane_stress_grid(tmp_path):
-    import json
-
-    from tactcad.mechanics.correction_fit import FitGrid, fit_correction
-
-    grid = FitGrid(web_mm=(0.25,), arm_mm=(4.0, 8.0), radius_steps=2)
-    out = tmp_path / "corr.json"
-    doc = fit_correction(grid, reference="fem2d-plane-stress", path=out)
-    assert json.loads(out.read_text()) == json.loads(json.dumps(doc))
-    assert doc["n_points"] == 4 and doc["reference"] == "fem2d-plane-stress"
-    c = doc["coefficients"]
-    assert c["c3"] == 0.0 and c["c1"] > 0
-    for row in doc["points"]:
-        # Euler-Bernoulli is too stiff against plane stress, more so at large t/R
-        assert row["K_EB"] > row["K_fem2d_plane_stress"]
-    assert doc["fit_range"]["t_over_R"] == pytest.approx([0.25 / 2.0, 1.0])
+def test_grid_rule_reproduces_the_default_element(plan):
+    """At the default's t, R, a, b, nu the grid rule gives the default element."""
+    g0 = plan.element(4).geometry  # 8 mm arm
+    g, mat = grid_geometry(g0.web_thickness_mm, g0.arm_length_mm, g0.notch_radius_mm)
+    for name in ("arm_height_mm", "tip_width_mm", "tip_height_mm", "base_height_mm",
+                 "overall_length_mm", "sheet_thickness_mm"):
+        assert getattr(g, name) == pytest.approx(getattr(g0, name)), name
+    assert mat.poisson_ratio == plan.material.poisson_ratio
 
 
-def test_committed_correction_file_is_consistent():
-    import json
+@pytest.mark.parametrize("t,a,R,b", [(0.05, 20.0, 0.05, 10.0), (1.0, 3.6, 2.0, 0.5),
+                                     (0.05, 2.0, 0.05, 0.5), (1.0, 20.0, 2.0, 10.0)])
+def test_grid_rule_corners_are_valid_designs(t, a, R, b):
+    from tactcad.mechanics.correction_sweep import arm_height_mm, arm_min_mm
 
-    from tactcad.mechanics.correction_fit import CORRECTION_PATH, MODEL
-
-    doc = json.loads(CORRECTION_PATH.read_text())
-    for key in ("model", "coefficients", "fit_range", "residual_rel_max", "residual_rel_rms",
-                "reference", "n_points"):
-        assert key in doc
-    assert doc["model"] == MODEL and doc["reference"] == "fem3d"
-    assert doc["n_points"] == len(doc["points"]) >= 27
-    from tactcad.mechanics.closed_form import Correction
-
-    corr = Correction.from_json(doc)  # the very path the closed form reads the file by
-    b = doc["fit_range"]["sheet_thickness_mm"]
-    res = []
-    for p in doc["points"]:
-        x = p["web_mm"] / p["notch_radius_mm"]
-        w = math.sqrt(p["web_mm"] * p["notch_radius_mm"]) / b
-        k = p["K_EB"] * float(corr.factor(x, w))
-        res.append(k / p["K_fem3d"] - 1)
-    assert max(abs(r) for r in res) <= 0.02  # the closed-form goal: within 2 % of fem3d
-    assert max(abs(r) for r in res) == pytest.approx(doc["residual_rel_max"], rel=1e-9)
-    assert math.sqrt(sum(r * r for r in res) / len(res)) == pytest.approx(
-        doc["residual_rel_rms"], rel=1e-9)
-    # the default design lies inside the fit range
-    plan = load_design()
-    g = plan.element(1).geometry
-    fr = doc["fit_range"]
-    assert fr["t_over_R"][0] <= g.web_thickness_mm / g.notch_radius_mm <= fr["t_over_R"][1]
-    assert fr["web_mm"][0] <= g.web_thickness_mm <= fr["web_mm"][1]
+    g, _ = grid_geometry(t, a, R, sheet_mm=b, poisson_ratio=0.27)
+    assert g.arm_height_mm == pytest.approx(arm_height_mm(t, R, a))
+    assert g.arm_height_mm > t + R and g.arm_height_mm <= 5.0
+    assert a >= arm_min_mm(R) - 1e-9
+    region = fem_region(g)  # the FEM region exists: clamp line in front of the bolts
+    assert region.x_clamp < g.hinge_x_mm - g.notch_radius_mm

@@ -11,11 +11,11 @@ import math
 
 import pytest
 
-from tactcad.mechanics.correction_fit import grid_geometry
-from tactcad.mechanics.fem.fem2d import (estimate_fem2d, lame, richardson, skfem_mesh,
-                                     solve_elasticity)
+from tactcad.mechanics.correction_sweep import grid_geometry
+from tactcad.mechanics.fem.fem2d import estimate_fem2d, lame, skfem_mesh, solve_elasticity
 from tactcad.mechanics.fem.fem3d import fem3d_convergence, solve_fem3d
 from tactcad.mechanics.fem.mesh import fem_region, graded_layers, mesh_region
+from tactcad.mechanics.richardson import richardson
 
 ORDER_BAND = (1.5, 4.5)
 ERROR_GOAL = 0.005  # 0.5 %

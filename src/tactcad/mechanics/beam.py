@@ -18,8 +18,9 @@ the clamp to the load point at the contact-face centre:
 
 Each segment is prismatic with its section height taken at the segment's
 mid-point in psi (mid-point rule in the smooth variable) and is integrated
-exactly as a Timoshenko beam (bending + shear, shear coefficient kappa = 5/6;
-Timoshenko & Gere, "Mechanics of Materials"). The cantilever is statically
+exactly as a Timoshenko beam (bending + shear, shear coefficient kappa =
+1 / ALPHA_SHEAR = 5/6 of :mod:`tactcad.mechanics.closed_form`; Timoshenko &
+Gere, "Mechanics of Materials"). The cantilever is statically
 determinate, so the section forces come from equilibrium and deflection and
 rotation are transferred segment by segment from the clamp to the load
 point (flexibility method); this is the solution an assembly of exact
@@ -28,9 +29,12 @@ stiffness matrix whose segments at the notch walls are orders of magnitude
 shorter and stiffer than at the neck.
 The stepped approximation of h converges as O(n^-2); three meshes (n/4,
 n/2, n) give the observed order and a Richardson estimate of the
-discretisation error. That estimate is the discretisation error only: the
-beam-theory model error (plane sections through a short, deep notch; plane
-stress vs 3D) is not included and is what the FEM levels measure.
+discretisation error (:mod:`tactcad.mechanics.richardson`). The error
+estimate that :func:`estimate_beam` reports adds to it the beam-theory model
+error (plane sections through a short, deep notch; plane stress against 3D),
+taken from the fem3d-fitted correction of :mod:`tactcad.mechanics.correction`:
+the beam is as stiff as the uncorrected closed form, so its model error is
+|K_EB / K_corrected - 1|.
 
 Gauge strain: the bending moment at the notch centre, M = F a (equilibrium),
 converted to the top-surface strain eps = M (t/2) / (E b t^3 / 12) (neutral
@@ -49,10 +53,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..design import ElementGeometry, Material
+from .closed_form import ALPHA_SHEAR, correction_factor
 from .result import StiffnessResult
+from .richardson import richardson
 
-KAPPA_SHEAR = 5.0 / 6.0
 DEFAULT_SEGMENTS = 256
+#: Formal order of the stepped (mid-point) approximation of h(x).
+FORMAL_ORDER = 2.0
 MODEL_NAME = "beam"
 
 
@@ -158,7 +165,7 @@ def _notch_angles(s: float, n: int) -> tuple[np.ndarray, np.ndarray]:
 
 def _section(h: np.ndarray, E: float, nu: float, b: float) -> tuple[np.ndarray, np.ndarray]:
     EI = E * b * h**3 / 12.0
-    kGA = KAPPA_SHEAR * E / (2.0 * (1.0 + nu)) * b * h
+    kGA = E / (2.0 * (1.0 + nu)) * b * h / ALPHA_SHEAR
     return EI, kGA
 
 
@@ -239,8 +246,9 @@ class BeamConvergence:
         stiffness_N_per_mm: K on each mesh.
         observed_order: log2((K1 - K2)/(K2 - K3)); NaN when the differences are
             at round-off.
-        extrapolated_N_per_mm: Richardson extrapolation (observed order if in
-            [1, 3], else the formal order 2).
+        extrapolated_N_per_mm: Richardson extrapolation
+            (:func:`tactcad.mechanics.richardson.richardson`: the observed order
+            if in [1, 3], else the formal order 2).
         error_estimate_rel: |K3 - K_extrapolated| / K_extrapolated, the
             discretisation error of the finest mesh.
         gauge_strain_per_N: top-surface strain over the web per newton (finest mesh).
@@ -268,22 +276,16 @@ def beam_convergence(g: ElementGeometry, material: Material, n_segments: int = D
     ns = (int(n_segments) // 4, int(n_segments) // 2, int(n_segments))
     sols = [solve_beam(beam_mesh(g, n, clamp_x_mm=clamp_x_mm, include_fillet=include_fillet),
                        E, nu, b, g.web_thickness_mm) for n in ns]
-    k1, k2, k3 = (s.stiffness_N_per_mm for s in sols)
-    d12, d23 = k1 - k2, k2 - k3
-    if abs(d23) <= 1e-13 * abs(k3) or d12 * d23 <= 0:
-        order = float("nan")
-    else:
-        order = math.log2(d12 / d23)
-    p = order if 1.0 <= order <= 3.0 else 2.0
-    k_ex = k3 + (k3 - k2) / (2.0**p - 1.0)
-    return BeamConvergence(n_segments=ns, stiffness_N_per_mm=(k1, k2, k3), observed_order=order,
-                           extrapolated_N_per_mm=k_ex,
-                           error_estimate_rel=abs(k3 - k_ex) / abs(k_ex),
+    ks = tuple(s.stiffness_N_per_mm for s in sols)
+    rk = richardson(ks, 2.0, formal_order=FORMAL_ORDER)
+    return BeamConvergence(n_segments=ns, stiffness_N_per_mm=ks, observed_order=rk.order,
+                           extrapolated_N_per_mm=rk.extrapolated,
+                           error_estimate_rel=rk.error_rel,
                            gauge_strain_per_N=sols[-1].gauge_strain_per_N)
 
 
-def estimate_beam(g: ElementGeometry, material: Material, element: int | None = None,
-                  n_segments: int = DEFAULT_SEGMENTS, *, clamp_x_mm: float | None = None,
+def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None = None,
+                  n_segments: int = DEFAULT_SEGMENTS, clamp_x_mm: float | None = None,
                   include_fillet: bool = True) -> StiffnessResult:
     """Timoshenko stepped-beam stiffness and gauge strain of one flexure element.
 
@@ -297,21 +299,17 @@ def estimate_beam(g: ElementGeometry, material: Material, element: int | None = 
         :class:`StiffnessResult` with model ``beam``: K of the finest mesh, the
         gauge strain per newton, and an error estimate that adds the Richardson
         discretisation error to the model error of beam theory at the notch:
-        |1/f - 1|, f the FEM-fitted K_3D / K_EB factor of
-        :mod:`tactcad.mechanics.closed_form` (beam theory is that stiff; the
-        two levels share their sections, so the factor applies here too).
+        |1/f - 1|, f = K_corrected / K_EB of the fem3d-fitted correction
+        (:func:`tactcad.mechanics.closed_form.correction_factor`; beam theory
+        is that stiff: the two levels share their sections).
 
     Raises:
         ValueError: invalid ``n_segments`` or geometry (see :func:`beam_mesh`).
     """
-    from .closed_form import load_correction
-
     start = time.perf_counter()
     conv = beam_convergence(g, material, n_segments, clamp_x_mm=clamp_x_mm,
                             include_fillet=include_fillet)
-    t, R, b = g.web_thickness_mm, g.notch_radius_mm, g.sheet_thickness_mm
-    f = float(load_correction().factor(t / R, math.sqrt(t * R) / b))
-    model_error = abs(1.0 / f - 1.0)
+    model_error = abs(1.0 / correction_factor(g, material) - 1.0)
     return StiffnessResult(element=element, model=MODEL_NAME,
                            stiffness_N_per_mm=conv.stiffness_N_per_mm[-1],
                            gauge_strain_per_N=conv.gauge_strain_per_N,

@@ -36,9 +36,12 @@ class UnknownModelError(TactcadError, ValueError):
         super().__init__(f"model = {model!r}: allowed {', '.join(MODELS)}")
 
 
-def estimate(model: str, g: ElementGeometry, material: Material, element: int | None = None,
+def estimate(model: str, g: ElementGeometry, material: Material, *, element: int | None = None,
              **options) -> StiffnessResult:
     """Tip stiffness of one element at the given ladder level.
+
+    ``element`` and the level's ``options`` are keyword-only (each level's
+    estimator takes them so).
 
     Raises:
         UnknownModelError: ``model`` is not one of :data:`MODELS`.

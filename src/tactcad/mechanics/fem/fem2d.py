@@ -61,6 +61,7 @@ from ...design import ElementGeometry, Material
 from .mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
                        mesh_region)
 from ..result import StiffnessResult
+from ..richardson import Richardson, richardson
 
 #: Refinement ratio between successive meshes of the Richardson sequence.
 REFINEMENT_RATIO = math.sqrt(2.0)
@@ -69,64 +70,6 @@ REFINEMENT_RATIO = math.sqrt(2.0)
 DEFAULT_FORCE_N = 2.0
 
 PLANES = ("stress", "strain")
-
-
-# ---------------------------------------------------------------------------
-# Richardson extrapolation (shared with fem3d)
-# ---------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Richardson:
-    """Richardson extrapolation of a quantity over a mesh sequence.
-
-    Attributes:
-        values: the quantity on each mesh, coarsest first.
-        ratio: element-size ratio between successive meshes (> 1).
-        order: observed order of convergence p (NaN if the last three values
-            do not converge monotonically).
-        extrapolated: K_ext, the extrapolated value (the finest value if the
-            order is undefined).
-        error_rel: |finest - K_ext| / K_ext; if the order is undefined, the
-            last difference |K3 - K2| / K3 (a conservative stand-in).
-    """
-
-    values: tuple[float, ...]
-    ratio: float
-    order: float
-    extrapolated: float
-    error_rel: float
-
-
-def richardson(values: Sequence[float], ratio: float, order: float | None = None) -> Richardson:
-    """Richardson extrapolation from the last three values of a mesh sequence.
-
-    Args:
-        values: quantity on meshes of element size h, h/r, h/r^2, ... (at
-            least 3; the last three are used).
-        ratio: r > 1.
-        order: assumed order; ``None`` uses the observed order
-            ``ln((f1 - f2)/(f2 - f3)) / ln r``.
-
-    Raises:
-        ValueError: fewer than three values or ratio <= 1.
-    """
-    if len(values) < 3:
-        raise ValueError("Richardson extrapolation needs at least three meshes")
-    if not ratio > 1:
-        raise ValueError(f"refinement ratio must be > 1, got {ratio!r}")
-    f1, f2, f3 = (float(v) for v in values[-3:])
-    d12, d23 = f1 - f2, f2 - f3
-    p = float("nan")
-    if order is not None:
-        p = float(order)
-    elif d23 != 0 and d12 / d23 > 1.0:
-        p = math.log(d12 / d23) / math.log(ratio)
-    if math.isfinite(p) and p > 0:
-        ext = f3 + (f3 - f2) / (ratio**p - 1.0)
-        err = abs(f3 - ext) / abs(ext)
-    else:
-        ext = f3
-        err = abs(f3 - f2) / abs(f3)
-    return Richardson(tuple(float(v) for v in values), float(ratio), p, ext, err)
 
 
 # ---------------------------------------------------------------------------
@@ -618,8 +561,8 @@ def fem2d_convergence(g: ElementGeometry, material: Material, *, plane: str = "s
     return Convergence(sols, rk, rg, time.perf_counter() - t0)
 
 
-def estimate_fem2d(g: ElementGeometry, material: Material, element: int | None = None,
-                   plane: str = "stress", *, web_divisions: float = WEB_DIVISIONS,
+def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | None = None,
+                   plane: str = "stress", web_divisions: float = WEB_DIVISIONS,
                    ratio: float = REFINEMENT_RATIO, curved: bool = True,
                    force_N: float = DEFAULT_FORCE_N,
                    margin_mm: float | None = None) -> StiffnessResult:

@@ -41,7 +41,7 @@ Sources: scikit-fem documentation (``MeshTet2``, ``ElementTetP2``,
 ``Basis``, ``FacetBasis``, ``condense``); gmsh reference manual
 (OpenCASCADE ``extrude`` with layers); Y. Saad, "Iterative Methods for
 Sparse Linear Systems", 2nd ed. (Chebyshev acceleration, preconditioned CG);
-Richardson extrapolation as in :mod:`tactcad.mechanics.fem.fem2d`.
+Richardson extrapolation by :mod:`tactcad.mechanics.richardson`.
 
 Units: mm, N, MPa, N/mm, s.
 """
@@ -55,10 +55,10 @@ from dataclasses import dataclass
 
 from ...design import ElementGeometry, Material
 from .fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Convergence, FemSolution, lame,
-                    richardson, single_threaded_blas, size_factors, skfem_mesh,
-                    solve_elasticity)
+                    single_threaded_blas, size_factors, skfem_mesh, solve_elasticity)
 from .mesh import FemRegion, fem_region, graded_layers, mesh_region
 from ..result import StiffnessResult
+from ..richardson import richardson
 
 #: Finest-mesh neck size = web thickness / WEB_DIVISIONS_3D.
 WEB_DIVISIONS_3D = 6.0
@@ -171,7 +171,7 @@ def fem3d_convergence(g: ElementGeometry, material: Material, *,
     return conv
 
 
-def estimate_fem3d(g: ElementGeometry, material: Material, element: int | None = None, *,
+def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | None = None,
                    web_divisions: float = WEB_DIVISIONS_3D, n_layers: int = N_LAYERS,
                    grading: float = Z_GRADING, ratio: float = REFINEMENT_RATIO,
                    curved: bool = True, force_N: float = DEFAULT_FORCE_N,

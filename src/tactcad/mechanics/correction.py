@@ -1,0 +1,513 @@
+"""The fem3d-fitted correction of the closed-form stiffness: model, range, JSON, fit.
+
+The closed form (:mod:`tactcad.mechanics.closed_form`) is Euler-Bernoulli
+(EB) with Timoshenko shear. Against fem3d it errs in two ways:
+
+* beam theory is too stiff at a short, deep notch (plane sections do not
+  stay plane; the notch's bending reaches into the arm and the base), by an
+  amount that grows with s = t/R (t web thickness, R notch radius);
+* a sheet much wider (b) than the hinge's bending length sqrt(t R) holds
+  the web near plane strain (the thick base and arm restrain its
+  anticlastic bending), stiffer than the beam's plane stress by up to
+  1 / (1 - nu^2); a sheet narrower than sqrt(t R) bends in plane stress.
+
+Model (E scales out of K; every input is dimensionless)::
+
+    K = K_EB * (1 + g) / (1 + q (c1 s + c2 s^2)),
+    g = nu^2 / (1 - nu^2) * c3 / (1 + c4 w + c5 w^2),
+    s = t / R,  w = sqrt(t R) / b,  q = C_notch_bending / C_EB,
+
+where q is the notch-bending share of the closed form's tip compliance
+(the notch error acts on that term only; arm bending and shear are already
+accurate), nu the Poisson ratio and K_EB = 1 / C_EB the uncorrected closed
+form. c3 = 1 would be the plane-strain limit at w -> 0.
+
+The coefficients are least-squares fits (scipy.optimize.least_squares, relative
+residuals) to fem3d over a grid of designs (:mod:`.correction_sweep`); the
+file ``src/tactcad/data/stiffness_correction.json`` stores them with the range
+of every fitted coordinate, the max / rms residual, the hold-out check and
+the points. Outside the range the closed form warns with an estimated error:
+the fit's largest residual plus the change of the correction factor between
+the point and its projection onto the fitted range.
+
+Units: mm, N, MPa, N/mm (K), mm/N (compliance C).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from ..errors import DesignError
+
+#: The file the closed form reads.
+CORRECTION_FILE = Path(__file__).resolve().parents[1] / "data" / "stiffness_correction.json"
+
+MODEL = ("K = K_EB * (1 + g) / (1 + q*(c1*s + c2*s^2)), g = nu^2/(1 - nu^2) * c3 / "
+         "(1 + c4*w + c5*w^2), s = t/R, w = sqrt(t*R)/b, q = C_notch_bending / C_EB")
+
+COEFFICIENT_NAMES = ("c1", "c2", "c3", "c4", "c5")
+
+#: Relative stiffness bias of the uncorrected closed form against fem3d per
+#: unit t/R (single-sided circular notch; the error estimate of the identity).
+UNCORRECTED_BIAS_PER_T_OVER_R = 0.39
+
+#: Coordinates whose fitted range is stored and checked (dimensionless
+#: ratios and the physical sizes they come from).
+RANGE_KEYS = ("t_over_R", "width_ratio", "poisson_ratio", "web_mm", "notch_radius_mm",
+              "arm_mm", "sheet_mm", "arm_over_arm_height")
+
+
+class CorrectionRangeWarning(UserWarning):
+    """A correction is applied outside the range it was fitted over."""
+
+
+_INF_RANGE = (0.0, math.inf)
+
+
+def _as_range(name: str, value: Any) -> tuple[float, float]:
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise DesignError(name, value, "a pair [low, high]") from None
+    if math.isnan(lo) or math.isnan(hi) or lo < 0 or hi < lo:
+        raise DesignError(name, value, "0 <= low <= high")
+    return (lo, hi)
+
+
+@dataclass(frozen=True)
+class FitRange:
+    """Closed intervals a correction was fitted over (unbounded by default).
+
+    Attributes:
+        t_over_R: web thickness over notch radius.
+        width_ratio: w = sqrt(t R) / b, hinge bending length over sheet thickness.
+        poisson_ratio: nu.
+        web_mm, notch_radius_mm, arm_mm, sheet_mm: t, R, lever a, sheet b (mm).
+        arm_over_arm_height: a / h_a.
+    """
+
+    t_over_R: tuple[float, float] = _INF_RANGE
+    width_ratio: tuple[float, float] = _INF_RANGE
+    poisson_ratio: tuple[float, float] = _INF_RANGE
+    web_mm: tuple[float, float] = _INF_RANGE
+    notch_radius_mm: tuple[float, float] = _INF_RANGE
+    arm_mm: tuple[float, float] = _INF_RANGE
+    sheet_mm: tuple[float, float] = _INF_RANGE
+    arm_over_arm_height: tuple[float, float] = _INF_RANGE
+
+    def __post_init__(self):
+        for name in RANGE_KEYS:
+            object.__setattr__(self, name, _as_range(f"fit_range.{name}", getattr(self, name)))
+
+    def outside(self, **coords) -> dict[str, np.ndarray]:
+        """{name: mask} of the given coordinates that leave their range.
+
+        A relative slack of 1e-9 absorbs rounding at the range ends; ``None``
+        values are not checked.
+        """
+        out = {}
+        for name, v in coords.items():
+            if v is None:
+                continue
+            lo, hi = getattr(self, name)
+            v = np.asarray(v, dtype=float)
+            tol = 1e-9 * max(abs(lo), abs(hi) if math.isfinite(hi) else abs(lo), 1e-300)
+            mask = (v < lo - tol) | (v > hi + tol)
+            if np.any(mask):
+                out[name] = mask
+        return out
+
+    def clip(self, name: str, value) -> np.ndarray:
+        """``value`` projected onto the range of ``name``."""
+        lo, hi = getattr(self, name)
+        return np.clip(np.asarray(value, dtype=float), lo, hi)
+
+    def as_json(self) -> dict:
+        return {k: list(getattr(self, k)) for k in RANGE_KEYS
+                if getattr(self, k) != _INF_RANGE}
+
+
+@dataclass(frozen=True)
+class Correction:
+    """fem3d-fitted correction of the closed-form stiffness (model in the module doc).
+
+    Attributes:
+        coefficients: (c1, c2, c3[, c4[, c5]]); missing trailing ones are 0.
+        fit_range: :class:`FitRange` of the fit.
+        residual_rel: largest relative residual |K_fit / K_fem3d - 1| of the
+            fit (``None`` for the identity).
+        source: what the reference was (model, meshes, grid).
+
+    Raises:
+        DesignError: non-finite coefficients, a negative residual, or a
+            denominator 1 + c1 s + c2 s^2 <= 0 over a finite t/R range.
+    """
+
+    coefficients: tuple[float, ...] = (0.0,) * 5
+    fit_range: FitRange = field(default_factory=FitRange)
+    residual_rel: float | None = None
+    source: str = "none: uncorrected Euler-Bernoulli"
+
+    def __post_init__(self):
+        try:
+            coeffs = tuple(float(c) for c in self.coefficients)
+        except (TypeError, ValueError):
+            raise DesignError("coefficients", self.coefficients, "numbers c1 ... c5") from None
+        if not 3 <= len(coeffs) <= 5 or not all(math.isfinite(c) for c in coeffs):
+            raise DesignError("coefficients", self.coefficients, "3 to 5 finite numbers c1 ... c5")
+        coeffs = coeffs + (0.0,) * (5 - len(coeffs))
+        object.__setattr__(self, "coefficients", coeffs)
+        if not isinstance(self.fit_range, FitRange):
+            raise DesignError("fit_range", self.fit_range, "a FitRange")
+        if self.residual_rel is not None:
+            r = float(self.residual_rel)
+            if not math.isfinite(r) or r < 0:
+                raise DesignError("residual_rel", self.residual_rel, "a finite number >= 0")
+            object.__setattr__(self, "residual_rel", r)
+        lo, hi = self.fit_range.t_over_R
+        if math.isfinite(hi) and np.any(self._notch_term(np.linspace(lo, hi, 65), 1.0) <= -1):
+            raise DesignError("coefficients", coeffs,
+                              "1 + c1 s + c2 s^2 > 0 over the t/R fit range")
+
+    @property
+    def is_identity(self) -> bool:
+        return not any(self.coefficients)
+
+    def _notch_term(self, s, q) -> np.ndarray:
+        c1, c2 = self.coefficients[:2]
+        s = np.asarray(s, dtype=float)
+        return np.asarray(q, dtype=float) * (c1 * s + c2 * s * s)
+
+    def gain_3d(self, width_ratio, poisson_ratio) -> np.ndarray:
+        """g: the 3D stiffening over the plane-stress beam (dimensionless)."""
+        c3, c4, c5 = self.coefficients[2:]
+        w = np.asarray(width_ratio, dtype=float)
+        nu = np.asarray(poisson_ratio, dtype=float)
+        return nu * nu / (1.0 - nu * nu) * c3 / (1.0 + c4 * w + c5 * w * w)
+
+    def factor(self, t_over_R, width_ratio=0.0, poisson_ratio=0.33,
+               notch_share=1.0) -> np.ndarray:
+        """K / K_EB at s = t/R, w = sqrt(t R)/b, nu and q (array-like, broadcast).
+
+        Raises:
+            ValueError: a denominator <= 0 (far outside the fitted range).
+        """
+        den = 1.0 + self._notch_term(t_over_R, notch_share)
+        gain = 1.0 + self.gain_3d(width_ratio, poisson_ratio)
+        if np.any(den <= 0) or np.any(gain <= 0):
+            raise ValueError("correction factor not positive at t/R = "
+                             f"{np.ravel(np.asarray(t_over_R, float))[:3].tolist()}, w = "
+                             f"{np.ravel(np.asarray(width_ratio, float))[:3].tolist()}")
+        return gain / den
+
+    def error_estimate_rel(self, t_over_R, width_ratio=0.0, poisson_ratio=0.33,
+                           notch_share=1.0) -> np.ndarray:
+        """Estimated relative error of the corrected closed form.
+
+        Identity: 0.39 t/R (the uncorrected bias). Fitted: the largest fit
+        residual, plus, outside the fitted t/R, w or nu range, the change of
+        the factor between the point and its projection onto the range.
+        """
+        s = np.asarray(t_over_R, dtype=float)
+        if self.is_identity or self.residual_rel is None:
+            return UNCORRECTED_BIAS_PER_T_OVER_R * s
+        fr = self.fit_range
+        f = self.factor(s, width_ratio, poisson_ratio, notch_share)
+        f_in = self.factor(fr.clip("t_over_R", s), fr.clip("width_ratio", width_ratio),
+                           fr.clip("poisson_ratio", poisson_ratio), notch_share)
+        return self.residual_rel + np.abs(f / f_in - 1.0)
+
+    def as_json(self) -> dict:
+        """The part of the JSON document :func:`load_correction` reads."""
+        return {"model": MODEL,
+                "coefficients": dict(zip(COEFFICIENT_NAMES, self.coefficients)),
+                "fit_range": self.fit_range.as_json(),
+                "residual_rel_max": self.residual_rel, "source": self.source}
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, Any]) -> "Correction":
+        """Inverse of :meth:`as_json` (extra keys are ignored).
+
+        Raises:
+            DesignError: missing keys or invalid values (field named).
+        """
+        if not isinstance(data, Mapping):
+            raise DesignError("stiffness_correction", type(data).__name__, "a JSON object")
+        try:
+            co = data["coefficients"]
+            coeffs = tuple(co.get(k, 0.0) for k in COEFFICIENT_NAMES)
+            fr = data["fit_range"]
+            unknown = set(fr) - set(RANGE_KEYS)
+            if unknown:
+                raise DesignError("stiffness_correction.fit_range", sorted(unknown),
+                                  "keys " + ", ".join(RANGE_KEYS))
+            rng = FitRange(**{k: fr[k] for k in RANGE_KEYS if k in fr})
+            residual = data["residual_rel_max"]
+            source = data["source"]
+        except (KeyError, TypeError, AttributeError) as exc:
+            raise DesignError(f"stiffness_correction.{exc.args[0] if exc.args else '?'}", None,
+                              "keys model, coefficients{c1..c5}, fit_range, residual_rel_max, "
+                              "source") from None
+        if data.get("model", MODEL) != MODEL:
+            raise DesignError("stiffness_correction.model", data.get("model"), MODEL)
+        if not isinstance(source, str) or not source.strip():
+            raise DesignError("stiffness_correction.source", source, "a non-empty string")
+        return cls(coefficients=coeffs, fit_range=rng, residual_rel=residual, source=source)
+
+
+#: The identity correction (uncorrected closed form).
+IDENTITY = Correction()
+
+
+def load_correction(path: str | Path | None = None) -> Correction:
+    """Read the fitted correction; the identity when the file does not exist.
+
+    File (JSON, default ``src/tactcad/data/stiffness_correction.json``): the
+    keys of :meth:`Correction.as_json` (``model`` must be :data:`MODEL`),
+    plus the fit's points and statistics, which are not read here.
+
+    Raises:
+        DesignError: unreadable JSON or invalid content (the field is named).
+    """
+    p = Path(path) if path is not None else CORRECTION_FILE
+    if not p.exists():
+        return IDENTITY
+    try:
+        data = json.loads(p.read_text(encoding="utf-8"))
+    except (OSError, json.JSONDecodeError) as exc:
+        raise DesignError("stiffness_correction", str(p), "a readable JSON file", str(exc)) from None
+    return Correction.from_json(data)
+
+
+def apply_correction(K_eb, t_over_R, correction: Correction = IDENTITY, *, width_ratio=0.0,
+                     poisson_ratio=0.33, notch_share=1.0, web_mm=None, notch_radius_mm=None,
+                     arm_mm=None, sheet_mm=None, arm_over_arm_height=None,
+                     warn: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Corrected stiffness and the mask of points inside the fitted range.
+
+    Args:
+        K_eb: uncorrected closed-form stiffness (N/mm), array-like.
+        t_over_R, width_ratio, poisson_ratio, notch_share: the model's
+            coordinates s, w, nu, q (module doc), broadcast with ``K_eb``.
+        correction: the correction (default: identity).
+        web_mm, notch_radius_mm, arm_mm, sheet_mm, arm_over_arm_height:
+            optional, also checked against the fitted range.
+        warn: emit :class:`CorrectionRangeWarning` (with the estimated
+            error) when any point lies outside.
+
+    Returns:
+        (K, inside): corrected K (N/mm) and a boolean mask, True where every
+        given coordinate lies in the fitted range.
+
+    Raises:
+        ValueError: the correction factor is not positive somewhere.
+    """
+    K = np.asarray(K_eb, dtype=float) * correction.factor(t_over_R, width_ratio, poisson_ratio,
+                                                           notch_share)
+    coords = dict(t_over_R=t_over_R, width_ratio=width_ratio, poisson_ratio=poisson_ratio,
+                  web_mm=web_mm, notch_radius_mm=notch_radius_mm, arm_mm=arm_mm,
+                  sheet_mm=sheet_mm, arm_over_arm_height=arm_over_arm_height)
+    out = correction.fit_range.outside(**coords)
+    outside = np.zeros(K.shape, dtype=bool)
+    for mask in out.values():
+        outside |= np.broadcast_to(mask, K.shape)
+    if warn and out:
+        err = correction.error_estimate_rel(t_over_R, width_ratio, poisson_ratio, notch_share)
+        warn_outside(correction, out, int(np.count_nonzero(outside)), int(K.size),
+                     float(np.max(np.broadcast_to(err, K.shape)[outside])))
+    return K, ~outside
+
+
+def warn_outside(correction: Correction, out: Mapping[str, np.ndarray], n_out: int, n: int,
+                 error_rel: float) -> None:
+    """Warn that ``n_out`` of ``n`` points leave the fitted range (names the
+    coordinates, their ranges and the estimated error)."""
+    fr = correction.fit_range
+    which = ", ".join(f"{k} {getattr(fr, k)[0]:.4g} ... {getattr(fr, k)[1]:.4g}" for k in out)
+    warnings.warn(
+        f"closed-form stiffness correction used outside its fitted range at {n_out} of {n} "
+        f"points ({which}); estimated error up to {100 * error_rel:.2g} % "
+        f"(source: {correction.source})", CorrectionRangeWarning, stacklevel=3)
+
+
+# ---------------------------------------------------------------------------
+# Fit
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class FitData:
+    """Per-point arrays of a fit (1-D, equal length).
+
+    Attributes:
+        t_over_R, width_ratio, poisson_ratio, notch_share: s, w, nu, q.
+        K_eb: uncorrected closed-form stiffness (N/mm).
+        K_ref: reference stiffness, fem3d (N/mm).
+    """
+
+    t_over_R: np.ndarray
+    width_ratio: np.ndarray
+    poisson_ratio: np.ndarray
+    notch_share: np.ndarray
+    K_eb: np.ndarray
+    K_ref: np.ndarray
+
+    @classmethod
+    def from_points(cls, points: Sequence[Mapping[str, Any]]) -> "FitData":
+        """From sweep points (keys of :func:`tactcad.mechanics.correction_sweep.evaluate_point`)."""
+        c = {k: np.array([float(p[k]) for p in points]) for k in
+             ("C_notch_bending", "C_notch_shear", "C_arm_bending", "C_arm_shear")}
+        total = sum(c.values())
+        t = np.array([float(p["web_mm"]) for p in points])
+        R = np.array([float(p["notch_radius_mm"]) for p in points])
+        b = np.array([float(p["sheet_mm"]) for p in points])
+        return cls(t_over_R=t / R, width_ratio=np.sqrt(t * R) / b,
+                   poisson_ratio=np.array([float(p["poisson_ratio"]) for p in points]),
+                   notch_share=c["C_notch_bending"] / total, K_eb=1.0 / total,
+                   K_ref=np.array([float(p["K_fem3d"]) for p in points]))
+
+    def residuals(self, correction: Correction) -> np.ndarray:
+        """K_model / K_ref - 1 per point."""
+        f = correction.factor(self.t_over_R, self.width_ratio, self.poisson_ratio,
+                              self.notch_share)
+        return self.K_eb * f / self.K_ref - 1.0
+
+
+def fit_correction(data: FitData, *, fit_range: FitRange, source: str,
+                   free: Sequence[str] = COEFFICIENT_NAMES) -> Correction:
+    """Least-squares fit (relative residuals) of the model to reference stiffnesses.
+
+    Args:
+        data: the points (:class:`FitData`, at least as many as free coefficients).
+        fit_range: the range to store with the correction.
+        source: description of the reference.
+        free: coefficients to fit; the others stay 0.
+
+    Returns:
+        :class:`Correction` with its largest residual.
+
+    Raises:
+        ValueError: too few points, non-positive or non-finite K, or an
+            unknown coefficient name.
+
+    Source: scipy.optimize.least_squares (trust-region reflective).
+    """
+    from scipy.optimize import least_squares
+
+    if any(name not in COEFFICIENT_NAMES for name in free):
+        raise ValueError(f"free coefficients must be among {COEFFICIENT_NAMES}, got {free!r}")
+    n = data.K_ref.size
+    if n < len(free):
+        raise ValueError(f"the fit needs at least {len(free)} points, got {n}")
+    if np.any(data.K_eb <= 0) or np.any(data.K_ref <= 0) or \
+            not np.all(np.isfinite(data.K_eb * data.K_ref)):
+        raise ValueError("stiffnesses must be finite and > 0")
+    idx = [COEFFICIENT_NAMES.index(k) for k in free]
+    start = np.array([0.5, 0.0, 1.0, 1.0, 0.0])
+
+    def coeffs(x):
+        c = np.zeros(5)
+        c[idx] = x
+        return c
+
+    def res(x):
+        c = coeffs(x)
+        gain = 1.0 + data.poisson_ratio**2 / (1 - data.poisson_ratio**2) * c[2] / (
+            1.0 + c[3] * data.width_ratio + c[4] * data.width_ratio**2)
+        den = 1.0 + data.notch_share * (c[0] * data.t_over_R + c[1] * data.t_over_R**2)
+        return data.K_eb * gain / den / data.K_ref - 1.0
+
+    sol = least_squares(res, start[idx], method="lm" if n > len(idx) else "trf")
+    c = coeffs(sol.x)
+    corr = Correction(coefficients=tuple(float(v) for v in c), fit_range=fit_range,
+                      residual_rel=0.0, source=source)
+    worst = float(np.max(np.abs(data.residuals(corr))))
+    return Correction(coefficients=corr.coefficients, fit_range=fit_range, residual_rel=worst,
+                      source=source)
+
+
+def range_of_points(points: Sequence[Mapping[str, Any]]) -> FitRange:
+    """The :class:`FitRange` spanned by sweep points."""
+    def span(vals):
+        return (float(min(vals)), float(max(vals)))
+
+    t = [float(p["web_mm"]) for p in points]
+    R = [float(p["notch_radius_mm"]) for p in points]
+    b = [float(p["sheet_mm"]) for p in points]
+    return FitRange(t_over_R=span([x / y for x, y in zip(t, R)]),
+                    width_ratio=span([math.sqrt(x * y) / z for x, y, z in zip(t, R, b)]),
+                    poisson_ratio=span([float(p["poisson_ratio"]) for p in points]),
+                    web_mm=span(t), notch_radius_mm=span(R),
+                    arm_mm=span([float(p["arm_mm"]) for p in points]), sheet_mm=span(b),
+                    arm_over_arm_height=span([float(p["arm_mm"]) / float(p["arm_height_mm"])
+                                              for p in points]))
+
+
+def _stats(r: np.ndarray) -> dict:
+    a = np.abs(r)
+    return {"n": int(r.size), "max": float(a.max()), "mean": float(a.mean()),
+            "rms": float(np.sqrt(np.mean(r * r)))}
+
+
+def build_document(points: Sequence[Mapping[str, Any]], *, source: str | None = None) -> dict:
+    """Fit the points of the set "fit" (and "fit-*"), check the "holdout"
+    points, and return the JSON document of ``stiffness_correction.json``.
+
+    Raises:
+        ValueError: no fit points.
+    """
+    fit_pts = [p for p in points if str(p["set"]).startswith("fit")]
+    hold_pts = [p for p in points if p["set"] == "holdout"]
+    if not fit_pts:
+        raise ValueError("no fit points")
+    src = source or (f"fem3d (P2 tetrahedra, half model, finest of three meshes), {len(fit_pts)} "
+                     "designs of tactcad.mechanics.correction_sweep")
+    corr = fit_correction(FitData.from_points(fit_pts), fit_range=range_of_points(fit_pts),
+                          source=src)
+    r_fit = FitData.from_points(fit_pts).residuals(corr)
+    doc = corr.as_json()
+    doc["residual_rel_rms"] = _stats(r_fit)["rms"]
+    doc["fit"] = _stats(r_fit)
+    rows = []
+    for p, r in zip(fit_pts, r_fit):
+        rows.append(dict(p, residual_rel=float(r)))
+    if hold_pts:
+        r_hold = FitData.from_points(hold_pts).residuals(corr)
+        doc["holdout"] = _stats(r_hold)
+        rows += [dict(p, residual_rel=float(r)) for p, r in zip(hold_pts, r_hold)]
+    doc["fem3d_error_rel_max"] = max(float(p["err_fem3d"]) for p in points)
+    doc["points"] = rows
+    return doc
+
+
+def refit(path: str | Path = CORRECTION_FILE) -> dict:
+    """Fit the model again to the points stored in ``path`` (no FEM run) and
+    rewrite the file; for a change of the model."""
+    doc = json.loads(Path(path).read_text(encoding="utf-8"))
+    new = build_document([{k: v for k, v in p.items() if k != "residual_rel"}
+                          for p in doc["points"]], source=doc.get("source"))
+    Path(path).write_text(json.dumps(new, indent=2) + "\n", encoding="utf-8")
+    return new
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m tactcad.mechanics.correction [--path F]``: refit the stored points."""
+    import argparse
+
+    ap = argparse.ArgumentParser(description="refit the closed-form correction to its stored "
+                                             "fem3d points")
+    ap.add_argument("--path", default=str(CORRECTION_FILE))
+    args = ap.parse_args(argv)
+    doc = refit(args.path)
+    print(json.dumps({k: doc[k] for k in ("model", "coefficients", "fit", "holdout")
+                      if k in doc}, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
