@@ -25,7 +25,9 @@ SETTINGS = settings(max_examples=12, deadline=None,
 def in_domain(draw):
     web = draw(st.floats(*WEB_RANGE_MM))
     notch = draw(st.floats(max(web, 0.15), 1.0))
-    arms = draw(st.lists(st.floats(*ARM_RANGE_MM), min_size=10, max_size=10))
+    # The default element's 22 mm length leaves room for the bolt pattern up to
+    # 8 mm arms (longer arms need a longer element); 4 mm clears the widest tip.
+    arms = draw(st.lists(st.floats(4.0, min(8.0, ARM_RANGE_MM[1])), min_size=10, max_size=10))
     return {"element.web_thickness_mm": web, "element.notch_radius_mm": notch,
             "arms.lengths_mm": arms,
             "element.arm_height_mm": draw(st.floats(web + notch + 0.3, 3.0)),

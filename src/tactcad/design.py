@@ -67,11 +67,12 @@ BOLTS: dict[str, BoltSpec] = {
                    (5, 6, 8, 10, 12, 16, 20, 25, 30, 35, 40)),
 }
 
-# Design domain: the paper's FEM design study (web 0.15-0.4 mm, arm 4-8 mm).
-# The estimators are verified over exactly this range, so the plan refuses
-# designs outside it rather than extrapolate silently.
-WEB_RANGE_MM = (0.15, 0.40)
-ARM_RANGE_MM = (4.0, 8.0)
+# Design domain: the range over which the closed-form stiffness correction is
+# fitted to fem3d (data/stiffness_correction.json; web 0.05-1 mm, arm 2-20 mm,
+# sheet 0.5-10 mm). The plan refuses designs outside it rather than
+# extrapolate silently.
+WEB_RANGE_MM = (0.05, 1.0)
+ARM_RANGE_MM = (2.0, 20.0)
 NOTCH_RADIUS_MAX_MM = 2.0
 MIN_LIGAMENT_MM = 1.0  # material left around a bolt hole
 
@@ -519,7 +520,7 @@ def plan_from_dict(data: Mapping[str, Any], source: str = "<dict>") -> Plan:
     )
 
     web = r.number("element", "web_thickness_mm", *WEB_RANGE_MM,
-                   why="the paper's design-study range, over which the estimators are verified")
+                   why="the range over which the closed-form correction is fitted to fem3d")
     radius_lo = max(web, edm.min_inside_radius_mm, edm.min_slot_width_mm / 2)
     notch_r = r.number("element", "notch_radius_mm", radius_lo, NOTCH_RADIUS_MAX_MM,
                        why="R >= web thickness (t/R <= 1) and >= wire radius + spark gap")
@@ -559,7 +560,7 @@ def plan_from_dict(data: Mapping[str, Any], source: str = "<dict>") -> Plan:
     for i, a in enumerate(arms, start=1):
         fname = f"arms.lengths_mm[{i}]"
         a = _check_number(fname, a, *ARM_RANGE_MM,
-                          why="the paper's design-study range, over which the estimators are verified")
+                          why="the range over which the closed-form correction is fitted to fem3d")
         if a <= tip_w:
             raise DesignError(fname, a, f"> element.tip_width_mm = {_fmt(tip_w)} mm",
                               "arm shorter than the tip")
