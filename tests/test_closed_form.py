@@ -14,7 +14,6 @@ from hypothesis import strategies as st
 
 from tactcad.design import load_design
 from tactcad.errors import DesignError
-from tactcad.mechanics import closed_form as cf
 from tactcad.mechanics import correction as corr_mod
 from tactcad.mechanics.closed_form import (
     ALPHA_SHEAR, closed_form_compliance, closed_form_stiffness, estimate_closed_form,

@@ -16,7 +16,6 @@ import numpy as np
 import pytest
 import shapely.geometry as sg
 
-from tactcad.design import load_design
 from tactcad.mechanics.correction_sweep import grid_geometry
 from tactcad.mechanics.fem.fem2d import estimate_fem2d, fem2d_convergence, solve_fem2d
 from tactcad.mechanics.fem.mesh import (clip_chain, default_clamp_margin_mm, fem_region,

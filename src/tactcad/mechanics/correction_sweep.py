@@ -49,7 +49,6 @@ import time
 from pathlib import Path
 from typing import Iterable, Sequence
 
-import numpy as np
 
 from ..design import (ElementGeometry, Material, default_design_data, plan_from_dict,
                       with_overrides)
