@@ -410,9 +410,9 @@ def test_closed_form_warns_outside_the_fitted_range_with_an_error_estimate():
 
 
 # ---------------------------------------------------------------------------
-# One Richardson helper for every level
+# One Richardson extrapolation for every level
 # ---------------------------------------------------------------------------
-def test_every_level_uses_the_one_richardson_helper():
+def test_every_level_uses_the_one_richardson_function():
     import ast
     import pathlib
 
@@ -431,7 +431,7 @@ def test_every_level_uses_the_one_richardson_helper():
         assert not defined & {"richardson", "Richardson"}, path
         src = path.read_text()
         assert "2.0**p - 1" not in src and "ratio**p - 1" not in src, path  # no private copy
-    # the beam's estimate is the helper's, with the formal order 2 as fallback
+    # the beam uses that function, with the formal order 2 as fallback
     from tactcad.mechanics.beam import beam_convergence
 
     conv = beam_convergence(G0, MAT, 64)
