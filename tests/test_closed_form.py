@@ -14,7 +14,6 @@ from hypothesis import strategies as st
 
 from tactcad.design.array import load_design
 from tactcad.errors import DesignError
-from tactcad.mechanics import closed_form as cf
 from tactcad.mechanics import correction as corr_mod
 from tactcad.mechanics.closed_form import (
     ALPHA_SHEAR, closed_form_compliance, closed_form_stiffness, estimate_closed_form,
@@ -259,16 +258,18 @@ def _synthetic_fit_data(coefficients, n=60, seed=1) -> FitData:
     b = np.exp(rng.uniform(np.log(0.5), np.log(10.0), n))
     nu = rng.uniform(0.27, 0.34, n)
     q = rng.uniform(0.6, 1.0, n)
+    p = rng.uniform(0.0, 0.05, n)
+    r = rng.uniform(0.0, 0.1, n)
     k_eb = rng.uniform(0.1, 100.0, n)
     truth = Correction(coefficients=coefficients)
-    s, w = t / R, np.sqrt(t * R) / b
-    k_ref = k_eb * truth.factor(s, w, nu, q)
-    return FitData(t_over_R=s, width_ratio=w, poisson_ratio=nu, notch_share=q, K_eb=k_eb,
-                   K_ref=k_ref)
+    s, w, v = t / R, np.sqrt(t * R) / b, t / b
+    k_ref = k_eb * truth.factor(s, w, nu, q, p, r, v)
+    return FitData(t_over_R=s, width_ratio=w, poisson_ratio=nu, notch_share=q, shear_share=p,
+                   arm_share=r, web_over_sheet=v, K_eb=k_eb, K_ref=k_ref)
 
 
 def test_fit_correction_recovers_coefficients():
-    true = (0.55, 0.02, 0.9, 1.5, 0.3)
+    true = (0.55, 0.02, 0.9, 1.5, 0.3, 2.5, -0.5, 1.0)
     data = _synthetic_fit_data(true)
     c = fit_correction(data, fit_range=FitRange(web_mm=(0.05, 1.0)), source="synthetic")
     np.testing.assert_allclose(c.coefficients, true, rtol=1e-6, atol=1e-8)
@@ -276,7 +277,7 @@ def test_fit_correction_recovers_coefficients():
     assert np.max(np.abs(data.residuals(c))) == pytest.approx(c.residual_rel, abs=1e-15)
     # a subset of free coefficients leaves the others at zero
     c3 = fit_correction(data, fit_range=FitRange(), source="synthetic", free=("c1", "c2", "c3"))
-    assert c3.coefficients[3:] == (0.0, 0.0) and c3.residual_rel > 1e-3
+    assert c3.coefficients[3:] == (0.0,) * 5 and c3.residual_rel > 1e-3
     with pytest.raises(ValueError):
         fit_correction(data, fit_range=FitRange(), source="x", free=("c9",))
 
@@ -335,3 +336,118 @@ def test_random_in_domain_positive(t, a, frac):
     parts = closed_form_compliance(t, R, a, **KW)
     assert all(float(p) > 0 for p in parts)
     assert float(parts.notch_bending) > 0.8 * float(parts.total)  # the hinge dominates
+
+
+# ---------------------------------------------------------------------------
+# The stored fem3d fit: hold-out designs, range warning
+# ---------------------------------------------------------------------------
+def _stored_points(kind: str) -> list[dict]:
+    doc = json.loads(corr_mod.CORRECTION_FILE.read_text())
+    return [p for p in doc["points"] if p["set"].startswith(kind)]
+
+
+def _closed_form_at(p: dict):
+    from tactcad.mechanics.correction_sweep import grid_geometry
+
+    g, mat = grid_geometry(p["web_mm"], p["arm_mm"], p["notch_radius_mm"], sheet_mm=p["sheet_mm"],
+                           poisson_ratio=p["poisson_ratio"],
+                           youngs_modulus_MPa=p["youngs_modulus_MPa"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", CorrectionRangeWarning)  # hold-out lies inside the range
+        return estimate_closed_form(g, mat)
+
+
+def test_closed_form_within_2_percent_of_fem3d_on_holdout_designs():
+    """Designs not used in the fit, across the whole domain (web 0.05-1 mm,
+    arm 2-20 mm, sheet 0.5-10 mm, nu 0.27-0.34): the estimator, run through
+    the plan, stays within 2 % of the stored fem3d stiffness, and its error
+    estimate (the fit's largest residual) covers the hold-out error."""
+    hold = _stored_points("holdout")
+    assert len(hold) >= 8
+    errs = []
+    for p in hold:
+        r = _closed_form_at(p)
+        errs.append(r.stiffness_N_per_mm / p["K_fem3d"] - 1)
+        assert r.stiffness_N_per_mm / p["K_fem3d"] - 1 == pytest.approx(p["residual_rel"],
+                                                                         abs=1e-9)
+    print(f"hold-out: max {100 * max(map(abs, errs)):.2f} %, "
+          f"mean {100 * np.mean(np.abs(errs)):.2f} %")
+    assert max(abs(e) for e in errs) <= 0.02
+    spans = {k: (min(p[k] for p in hold), max(p[k] for p in hold))
+             for k in ("web_mm", "arm_mm", "sheet_mm")}
+    assert spans["web_mm"][1] / spans["web_mm"][0] > 4  # the hold-out spans the domain
+    assert spans["arm_mm"][1] / spans["arm_mm"][0] > 3
+    assert spans["sheet_mm"][1] / spans["sheet_mm"][0] > 4
+
+
+def test_fit_residuals_and_statistics_match_the_model():
+    doc = json.loads(corr_mod.CORRECTION_FILE.read_text())
+    c = load_correction()
+    fit = _stored_points("fit")
+    r = FitData.from_points(fit).residuals(c)
+    assert np.max(np.abs(r)) == pytest.approx(doc["fit"]["max"], rel=1e-9)
+    assert np.max(np.abs(r)) == pytest.approx(c.residual_rel, rel=1e-9)
+    assert c.residual_rel <= 0.02
+    fr = doc["fit_range"]
+    assert fr["web_mm"] == pytest.approx([0.05, 1.0]) and fr["arm_mm"][1] == pytest.approx(20.0)
+    assert fr["sheet_mm"] == pytest.approx([0.5, 10.0])
+    assert fr["poisson_ratio"][0] <= 0.27 and fr["poisson_ratio"][1] >= 0.34
+
+
+def test_closed_form_warns_outside_the_fitted_range_with_an_error_estimate():
+    thick = dataclasses.replace(G0, sheet_thickness_mm=40.0)  # beyond the 10 mm sheet
+    with pytest.warns(CorrectionRangeWarning, match=r"sheet_mm .*estimated error up to [0-9.]+ %"):
+        estimate_closed_form(thick, MAT)
+    soft = dataclasses.replace(MAT, poisson_ratio=0.45)  # beyond the material library
+    with pytest.warns(CorrectionRangeWarning, match=r"poisson_ratio .*estimated error"):
+        r = estimate_closed_form(G0, soft)
+    # outside, the estimate adds how far the correction moves beyond the range
+    assert r.error_estimate_rel > load_correction().residual_rel + 0.01
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", CorrectionRangeWarning)
+        r0 = estimate_closed_form(G0, MAT)  # the default design lies inside
+    assert r0.error_estimate_rel == pytest.approx(load_correction().residual_rel)
+
+
+# ---------------------------------------------------------------------------
+# One Richardson extrapolation for every level
+# ---------------------------------------------------------------------------
+def test_every_level_uses_the_one_richardson_function():
+    import ast
+    import pathlib
+
+    from tactcad.mechanics import beam, richardson
+    from tactcad.mechanics.fem import fem2d, fem3d
+
+    for mod in (beam, fem2d, fem3d):
+        assert mod.richardson is richardson.richardson, mod.__name__
+    root = pathlib.Path(richardson.__file__).parent
+    for path in root.rglob("*.py"):
+        if path.name == "richardson.py":
+            continue
+        tree = ast.parse(path.read_text())
+        defined = {n.name for n in ast.walk(tree)
+                   if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+        assert not defined & {"richardson", "Richardson"}, path
+        src = path.read_text()
+        assert "2.0**p - 1" not in src and "ratio**p - 1" not in src, path  # no private copy
+    # the beam uses that function, with the formal order 2 as fallback
+    from tactcad.mechanics.beam import beam_convergence
+
+    conv = beam_convergence(G0, MAT, 64)
+    rk = richardson.richardson(conv.stiffness_N_per_mm, 2.0, formal_order=2.0)
+    assert conv.extrapolated_N_per_mm == rk.extrapolated
+    assert conv.error_estimate_rel == rk.error_rel
+
+
+def test_richardson_falls_back_to_the_formal_order():
+    from tactcad.mechanics.richardson import richardson
+
+    exact, c = 3.0, 0.5
+    vals = [exact + c * h**2 for h in (1.0, 0.5, 0.25)]
+    r = richardson(vals, 2.0, formal_order=2.0)
+    assert r.order == pytest.approx(2.0) and r.extrapolated == pytest.approx(exact)
+    flat = richardson([1.0, 1.0, 1.0], 2.0, formal_order=2.0)  # round-off: order undefined
+    assert math.isnan(flat.order) and flat.extrapolated == 1.0 and flat.error_rel == 0.0
+    odd = richardson([1.0, 1.1, 1.05], 2.0)  # oscillating: no order, last difference
+    assert math.isnan(odd.order) and odd.error_rel == pytest.approx(0.05 / 1.05)

@@ -46,8 +46,9 @@ at large t/R, and a wide sheet holds the web near plane strain. The
 estimator applies the fem3d-fitted correction of
 :mod:`tactcad.mechanics.correction`,
 
-    K = K_EB * (1 + g(w, nu)) / (1 + q (c1 s + c2 s^2)),
-    s = t / R,  w = sqrt(t R) / b,  q = notch-bending share of 1 / K_EB,
+    K = K_EB * (1 + g(w, t/b, nu)) / (1 + q (c1 s + c2 s^2) + p c6 + r c7),
+    s = t / R,  w = sqrt(t R) / b,
+    q, p, r = notch-bending, notch-shear and arm-bending shares of 1 / K_EB,
 
 read from ``src/tactcad/data/stiffness_correction.json`` (identity without
 the file), and warns with the estimated error outside the fitted range.
@@ -258,13 +259,26 @@ def _resolve(corrected: bool, correction: Correction | None) -> Correction:
     return correction if correction is not None else load_correction()
 
 
+def correction_coordinates(parts: ComplianceParts, web_mm, notch_radius_mm, sheet_mm,
+                           poisson_ratio) -> dict[str, np.ndarray]:
+    """The coordinates of :meth:`Correction.factor` for compliance ``parts``:
+    t/R, sqrt(t R)/b, nu, the notch-bending, notch-shear and arm-bending
+    shares of the compliance and t/b (arrays broadcast; mm)."""
+    t = np.asarray(web_mm, float)
+    R = np.asarray(notch_radius_mm, float)
+    b = np.asarray(sheet_mm, float)
+    return dict(t_over_R=t / R, width_ratio=np.sqrt(t * R) / b, poisson_ratio=poisson_ratio,
+                notch_share=parts.notch_bending / parts.total,
+                shear_share=parts.notch_shear / parts.total,
+                arm_share=parts.arm_bending / parts.total, web_over_sheet=t / b)
+
+
 def _corrected(parts: ComplianceParts, g: ElementGeometry, material: Material, web_mm: float,
                corr: Correction, warn: bool) -> tuple[float, float]:
     """Corrected K (N/mm) and its estimated relative error for compliance ``parts``."""
     t, R, b = web_mm, g.notch_radius_mm, g.sheet_thickness_mm
-    coords = dict(t_over_R=t / R, width_ratio=math.sqrt(t * R) / b,
-                  poisson_ratio=material.poisson_ratio,
-                  notch_share=float(parts.notch_bending / parts.total))
+    coords = {k: float(v) for k, v in correction_coordinates(
+        parts, t, R, b, material.poisson_ratio).items()}
     k, _ = apply_correction(1.0 / float(parts.total), correction=corr, web_mm=t,
                             notch_radius_mm=R, arm_mm=g.arm_length_mm, sheet_mm=b,
                             arm_over_arm_height=g.arm_length_mm / g.arm_height_mm, warn=warn,

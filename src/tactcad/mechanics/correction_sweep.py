@@ -49,7 +49,6 @@ import time
 from pathlib import Path
 from typing import Iterable, Sequence
 
-import numpy as np
 
 from tactcad.design.array import (ElementGeometry, Material, default_design_data, plan_from_dict,
                       with_overrides)
@@ -234,6 +233,18 @@ def _key(row: dict) -> tuple:
                  ("web_mm", "notch_radius_mm", "arm_mm", "sheet_mm", "poisson_ratio"))
 
 
+def earlier_points(path: str | Path = CORRECTION_FILE) -> list[dict]:
+    """Points of earlier grids stored in the correction file (sets other than
+    "fit" and "holdout", e.g. the 3 mm aluminium grid of the first fit), so a
+    new sweep keeps them."""
+    p = Path(path)
+    if not p.exists():
+        return []
+    doc = json.loads(p.read_text(encoding="utf-8"))
+    return [{k: v for k, v in q.items() if k != "residual_rel"} for q in doc.get("points", [])
+            if q.get("set") not in ("fit", "holdout")]
+
+
 def plan_designs(n_fit: int, n_holdout: int) -> list[tuple[tuple, str]]:
     """Corners and ``n_fit`` Sobol designs for the fit, ``n_holdout`` Sobol
     designs (another seed) for the hold-out, interleaved so that a run
@@ -268,7 +279,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = ap.parse_args(argv)
     if not args.no_run:
         run(plan_designs(args.fit, args.holdout), args.points)
-    doc = build_document(read_points(args.points))
+    doc = build_document(read_points(args.points) + earlier_points(args.out))
     Path(args.out).write_text(json.dumps(doc, indent=2) + "\n", encoding="utf-8")
     print(json.dumps({k: doc[k] for k in ("model", "coefficients", "fit_range", "residual_rel_max",
                                           "residual_rel_rms", "holdout")}, indent=2))

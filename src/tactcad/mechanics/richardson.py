@@ -1,4 +1,4 @@
-"""Richardson extrapolation over a mesh sequence: the one helper of every level.
+"""Richardson extrapolation over a mesh sequence, for every level of the ladder.
 
 The beam level (notch segments n/4, n/2, n), fem2d and fem3d (element sizes
 h r^2, h r, h) all estimate their discretisation error here. With values

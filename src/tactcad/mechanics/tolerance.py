@@ -54,7 +54,7 @@ from scipy.optimize import brentq
 
 from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
-from tactcad.mechanics.closed_form import closed_form_compliance
+from tactcad.mechanics.closed_form import closed_form_compliance, correction_coordinates
 from tactcad.mechanics.correction import Correction, load_correction
 from tactcad.mechanics.paper.lumped import deflection_ratio, object_stiffness
 
@@ -185,12 +185,9 @@ def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_M
                                    arm_height_mm=g.arm_height_mm, tip_width_mm=g.tip_width_mm,
                                    tip_height_mm=g.tip_height_mm, E=youngs_modulus_MPa,
                                    nu=poisson_ratio, b=b)
-    total = parts.total
-    t = np.asarray(web_mm, float)
-    R = np.asarray(notch_radius_mm, float)
-    factor = correction.factor(t / R, np.sqrt(t * R) / b, poisson_ratio,
-                               parts.notch_bending / total)
-    return factor / total
+    factor = correction.factor(**correction_coordinates(parts, web_mm, notch_radius_mm, b,
+                                                         poisson_ratio))
+    return factor / parts.total
 
 
 def stiffness_samples(plan: Plan, s: Samples, correction: Correction) -> np.ndarray:
