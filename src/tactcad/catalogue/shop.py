@@ -132,10 +132,11 @@ def coarse_pitch_mm(diameter_mm: float) -> float:
 
 
 def thread_text(diameter_mm: float, depth_mm: float | None = None) -> str:
-    """ISO 6410 call-out of a tapped hole: ``M3x0.5 ↧8`` (thread depth, mm)
+    """ISO 6410 call-out of a tapped hole: ``M3x0.5 depth 8`` (thread depth,
+    mm; the word instead of the depth symbol, which the drawing font lacks)
     or ``M3x0.5`` for a through thread."""
     text = f"M{_fmt(diameter_mm)}x{_fmt(coarse_pitch_mm(diameter_mm))}"
-    return text + (f" ↧{_fmt(depth_mm)}" if depth_mm else "")
+    return text + (f" depth {_fmt(depth_mm)}" if depth_mm else "")
 
 
 def tap_drill_mm(diameter_mm: float) -> float:

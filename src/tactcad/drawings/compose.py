@@ -98,6 +98,8 @@ def _holes(spec: PartSpec, solid, cameras: dict | None = None) -> list[Hole2D]:
         a = np.array(tuple(ax.direction)) if ax is not None else None
         if a is None or abs(abs(a @ dv) - 1.0) > 1e-6:
             continue
+        if not any(e.geom_type.name == "CIRCLE" and e.is_closed for e in f.edges()):
+            continue  # a fillet (quarter cylinder) of a pocket or window, not a hole
         c = f.center()
         n = np.array(tuple(f.normal_at(c)))
         pos = np.array(tuple(ax.position))
@@ -217,7 +219,7 @@ def choose_cameras(spec: PartSpec) -> dict:
 
 def hole_table_rows(d: Drawing, solid) -> int:
     """Rows of the hole table the generic set will draw (0: none)."""
-    if d.spec.builder in ("element", "indenter"):
+    if d.spec.builder in ("element", "indenter", "cart"):
         return 0
     holes = _holes(d.spec, solid, d.cameras)
     if not holes or len({(h.x, h.y) for h in holes}) == 1:
@@ -282,6 +284,8 @@ def draw_views(d: Drawing) -> None:
             sh.polyline(g, [v.paper(*p) for p in poly], "hidden", cls="hidden")
         for poly in v.visible:
             sh.polyline(g, [v.paper(*p) for p in poly], "visible", cls="visible")
+        for poly in v.hatch:
+            sh.polyline(g, [v.paper(*p) for p in poly], "thin", cls="hatch")
     dv = d.views.get("detail")
     if dv is not None:
         (cu, cv), r = dv.clip
@@ -568,16 +572,193 @@ def indenter_dims(d: Drawing, solid) -> None:
     _dim(d, f, (-w / 2, 0.0), (-w / 2, L), "v", "right", 0, fmt_mm(L), "tip_length")
     _dim(d, f, (-D / 2, L), (-D / 2, L + B), "v", "right", 0, fmt_mm(B), "body_length")
     _dim(d, f, (-w / 2, 0.0), (-D / 2, L + B), "v", "right", 1, fmt_mm(L + B), "overall_height")
-    cf = f"contact face {fmt_mm(w)} × {fmt_mm(dp)}"
+    from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
+    from tactcad.catalogue.shop import tap_drill_mm, thread_text
+
     fb = f.paper_box()
+    th = (f"{thread_text(INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm(g))} (tap drill "
+          f"Ø{fmt_mm(tap_drill_mm(INDENTER_THREAD_DIAMETER_MM))}), onto the gauge shaft")
+    d.sheet.leader([f.paper(-INDENTER_THREAD_DIAMETER_MM / 2, L + B - 0.5),
+                    (fb[2] + 4.0, fb[1] - FIRST_TIER - TIER - 6.0)], th, "mount_thread")
+    d.dimensions["mount_thread"] = th
+    cf = f"contact face {fmt_mm(w)} × {fmt_mm(dp)}"
     d.sheet.leader([f.paper(0.0, 0.0), (fb[2] + 4.0, fb[3] + 18.0)], cf, "contact_face")
     d.dimensions["contact_face"] = cf
 
 
+# ---------------------------------------------------------------------------
+# the cart: vacuum pocket, suction holes, channel and port, tapped holes, section A-A
+# ---------------------------------------------------------------------------
+SECTION_GAP = 30.0  # paper mm between the view from the left and a section view
+
+
+def cart_section(d: Drawing, solid) -> None:
+    """Section A-A of the cart in its mid plane y = 0 (through the channel,
+    the port and the suction holes), seen from -y; placed right of the view
+    from the left at twice the main scale when it fits."""
+    from tactcad.drawings.section import section_view
+
+    lb = d.views["left"].paper_box()
+    left = lb[2] + SECTION_GAP
+    g = d.spec.geometry
+    room = FRAME[2] - 8.0 - left
+    scale = next((s for s in ISO_5455_SCALES if s <= 4 * d.scale and g.length_mm * s <= room),
+                 d.scale)
+    sv = section_view(solid, (0.0, 0.0, 0.0), (0.0, -1.0, 0.0), (0.0, 0.0, 1.0), "A-A", scale)
+    sv.hidden = []  # ISO 128-40: no hidden edges in a section
+    sv.place(left, lb[1] + 12.0)
+    d.views["section"] = sv
+
+
+def _section_marks(d: Drawing, view_name: str, label: str) -> None:
+    """Cutting plane (ISO 128-40: long-dash-dot, thick at the ends) through the
+    front view's y = 0, arrows for the viewing direction (+y: up on paper),
+    the letters, and the section's own label with its scale."""
+    sh, f, sv = d.sheet, d.front, d.views[view_name]
+    x0, _, x1, _ = f.paper_box()
+    y = f.paper(0.0, 0.0)[1]
+    out = FIRST_TIER + TIER + 4.0  # beyond two tiers of dimensions
+    sh.line("section-plane", (x0 - out, y), (x1 + out, y), "centre")
+    for x in (x0 - out, x1 + out):
+        sh.line("section-plane", (x - 2.5 if x < x0 else x - 2.5, y), (x + 2.5, y), "visible")
+        sh.line("section-plane", (x, y), (x, y - 5.0), "thin")
+        sh.arrow("section-plane", (x, y - 7.5), (0.0, -1.0))
+        sh.text("section-plane", (x + (-3.0 if x < x0 else 3.0), y - 6.0), label[0], LABEL_TEXT_MM,
+                anchor="middle", id=f"section-letter-{'l' if x < x0 else 'r'}")
+    b = sv.paper_box()
+    sh.text("view-section", ((b[0] + b[2]) / 2, b[3] + FIRST_TIER + 2 * TIER + 5.0),
+            f"{label} ({scale_text(sv.scale)})", LABEL_TEXT_MM, anchor="middle",
+            id="section-label")
+
+
+def cart_dims(d: Drawing, solid) -> None:
+    """Cart (``spec.geometry``: :class:`tactcad.design.rigs.CartGeometry`;
+    part frame: x along the grooves, z up from the underside, centred):
+    outline and pocket in the front view (from +z), the wheel axles' tapped
+    holes in the view from above (from +y), the hose port in the view from the
+    left (from -x), channel, port, suction holes and pocket depth in section A-A."""
+    from tactcad.catalogue.shop import thread_text
+    from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM
+
+    g = d.spec.geometry
+    f, t, lv, sv = d.front, d.views["top"], d.views["left"], d.views["section"]
+    L, W, T = g.length_mm, g.width_mm, g.thickness_mm
+    pl, pw = g.pocket_length_mm, g.pocket_width_mm
+    # front view: outline, pocket, holder screws
+    _dim(d, f, (-pl / 2, pw / 2), (pl / 2, pw / 2), "h", "top", 0, fmt_mm(pl), "pocket_length")
+    _dim(d, f, (-L / 2, W / 2), (L / 2, W / 2), "h", "top", 1, fmt_mm(L), "overall_length")
+    _dim(d, f, (pl / 2, -pw / 2), (pl / 2, pw / 2), "v", "right", 0, fmt_mm(pw), "pocket_width")
+    _dim(d, f, (L / 2, -W / 2), (L / 2, W / 2), "v", "right", 1, fmt_mm(W), "overall_height")
+    ys = g.holder_screw_y_mm
+    _dim(d, f, (0.0, -ys), (0.0, ys), "v", "left", 0, fmt_mm(2 * ys), "holder_screw_spacing")
+    holes = [Hole2D(0.0, s * ys, g.holder_screw_diameter_mm) for s in (-1, 1)]
+    _hole_marks(d, f, holes)
+    d.sheet.line("centre-lines", f.paper(0.0, -W / 2 - 2.0), f.paper(0.0, W / 2 + 2.0), "centre")
+    fb = f.paper_box()
+    texts = {
+        "holder_thread": (f"2× {thread_text(g.holder_screw_diameter_mm, g.holder_tapped_depth_mm)}",
+                          f.paper(g.holder_screw_diameter_mm / 2 * 0.7, ys + 0.7),
+                          (fb[0] + 0.62 * (fb[2] - fb[0]), fb[1] + 7.0)),
+        "pocket": (f"pocket depth {fmt_mm(g.pocket_depth_mm)}, 4× R{fmt_mm(POCKET_CORNER_RADIUS_MM)}",
+                   f.paper(-pl / 2, -pw / 2 + POCKET_CORNER_RADIUS_MM * 2),
+                   (fb[0] + 6.0, fb[3] - 6.0)),
+    }
+    for name, (text, at, to) in texts.items():
+        d.sheet.leader([at, to], text, name)
+        d.dimensions[name] = text
+    # view from above (u = x, v = -z): axles
+    ax, ah = g.axle_x_mm, g.axle_height_mm
+    _dim(d, t, (-ax, -ah), (ax, -ah), "h", "below", 0, fmt_mm(2 * ax), "axle_spacing")
+    _dim(d, t, (-L / 2, 0.0), (-ax, -ah), "v", "left", 0, fmt_mm(ah), "axle_height")
+    _hole_marks(d, t, [Hole2D(s * ax, -ah, g.axle_bolt.nominal_diameter_mm) for s in (-1, 1)])
+    axle = (f"4× {thread_text(g.axle_bolt.nominal_diameter_mm, g.axle_hole_depth_mm)} "
+            f"(both sides)")
+    tb = t.paper_box()
+    d.sheet.leader([t.paper(ax + 1.0, -ah - 1.0), (tb[2] - 10.0, tb[3] + 12.0)], axle, "axle_thread")
+    d.dimensions["axle_thread"] = axle
+    _thickness_dim(d)
+    # view from the left (u = z, v = y): the hose port
+    port = thread_text(g.port_diameter_mm, g.port_depth_mm)
+    lb = lv.paper_box()
+    _hole_marks(d, lv, [Hole2D(T / 2, 0.0, g.port_diameter_mm)])
+    d.sheet.leader([lv.paper(T / 2 + g.port_diameter_mm / 2 * 0.7, g.port_diameter_mm / 2 * 0.7),
+                    (lb[2] + 6.0, lb[1] - 4.0)], f"hose port {port}", "port_thread")
+    d.dimensions["port_thread"] = f"hose port {port}"
+    # section A-A (u = x, v = z)
+    xs = g.suction_hole_xs_mm
+    _dim(d, sv, (-L / 2, T), (xs[0], T), "h", "top", 0, fmt_mm(xs[0] + L / 2), "suction_hole_first_x")
+    if len(xs) > 1:
+        _dim(d, sv, (xs[0], T), (xs[1], T), "h", "top", 1, fmt_mm(xs[1] - xs[0]), "suction_hole_pitch")
+    _dim(d, sv, (-L / 2, T / 2), (-L / 2 + g.port_depth_mm, T / 2), "h", "below", 0,
+         fmt_mm(g.port_depth_mm), "port_depth")
+    _dim(d, sv, (-L / 2, T / 2), (g.channel_end_x_mm, T / 2), "h", "below", 1,
+         fmt_mm(g.channel_end_x_mm + L / 2), "channel_length")
+    _dim(d, sv, (L / 2, 0.0), (g.channel_end_x_mm, T / 2), "v", "right", 0, fmt_mm(T / 2),
+         "channel_height")
+    _dim(d, sv, (L / 2, T), (pl / 2, T - g.pocket_depth_mm), "v", "right", 1,
+         fmt_mm(g.pocket_depth_mm), "pocket_depth")
+    sb = sv.paper_box()
+    ch = f"channel Ø{fmt_mm(g.channel_diameter_mm)}"
+    d.sheet.leader([sv.paper(g.channel_end_x_mm - 4.0, T / 2 - g.channel_diameter_mm / 2),
+                    (sv.paper(g.channel_end_x_mm, 0.0)[0] + 4.0, sb[3] + 5.0)], ch, "channel_diameter")
+    d.dimensions["channel_diameter"] = ch
+    sh_text = f"{len(xs)}× Ø{fmt_mm(g.suction_hole_diameter_mm)} to channel"
+    d.sheet.leader([sv.paper(xs[-1] + g.suction_hole_diameter_mm / 2, T - 1.5),
+                    (sb[0] + 0.72 * (sb[2] - sb[0]), sb[1] - 2 * TIER - FIRST_TIER)], sh_text,
+                   "suction_holes")
+    d.dimensions["suction_holes"] = sh_text
+    _section_marks(d, "section", "A-A")
+
+
+def base_plate_dims(d: Drawing, solid) -> None:
+    """Base plate (:class:`tactcad.design.rigs.BasePlateGeometry`; frame
+    centred, z up): the generic set, and the two full-length grooves in the
+    view from the left (u = z, v = y): width, depth and centre distance."""
+    g = d.spec.geometry
+    generic_dims(d, solid)
+    lv = d.views["left"]
+    T, yc, gw = g.thickness_mm, g.track_half_mm, g.groove_width_mm
+    _dim(d, lv, (T - g.groove_depth_mm, yc + gw / 2), (T, yc + gw / 2), "h", "top", 0,
+         fmt_mm(g.groove_depth_mm), "groove_depth")
+    _dim(d, lv, (T, yc - gw / 2), (T, yc + gw / 2), "v", "right", 0, fmt_mm(gw), "groove_width")
+    _dim(d, lv, (T - g.groove_depth_mm, -yc), (T - g.groove_depth_mm, yc), "v", "right", 1,
+         fmt_mm(2 * yc), "groove_spacing")
+    for s_ in (-1, 1):
+        d.sheet.line("centre-lines", lv.paper(T - g.groove_depth_mm - 1.0, s_ * yc),
+                     lv.paper(T + 1.0, s_ * yc), "centre")
+
+
+def sample_holder_dims(d: Drawing, solid) -> None:
+    """Sample holder (:class:`tactcad.design.rigs.SampleHolderGeometry`;
+    frame centred, z up): the generic set plus the window (length, width,
+    corner radius)."""
+    g = d.spec.geometry
+    f = d.front
+    wl, ww = g.window_length_mm, g.window_width_mm
+    _dim(d, f, (-wl / 2, ww / 2), (wl / 2, ww / 2), "h", "top", 0, fmt_mm(wl), "window_length")
+    _dim(d, f, (wl / 2, -ww / 2), (wl / 2, ww / 2), "v", "right", 0, fmt_mm(ww), "window_width")
+    generic_dims(d, solid, top_k=1, right_k=1)
+    r = g.corner_radius_mm
+    text = f"window through, 4× R{fmt_mm(r)}"
+    c = (wl / 2 - r + r * 0.7, -ww / 2 + r - r * 0.7)
+    fb = f.paper_box()
+    d.sheet.leader([f.paper(*c), (fb[2] - 6.0, fb[3] + FIRST_TIER + 2 * TIER + 4.0)], text,
+                   "window_corner")
+    d.dimensions["window_corner"] = text
+
+
 DIMENSION_SETS: dict[str, Callable[[Drawing, object], None]] = {
+    "base_plate": base_plate_dims,
+    "sample_holder": sample_holder_dims,
     "element": element_dims,
     "clamp_plate": clamp_dims,
     "indenter": indenter_dims,
+    "cart": cart_dims,
+}
+
+#: Section views by builder key, added after the main views are placed.
+SECTIONS: dict[str, Callable[[Drawing, object], None]] = {
+    "cart": cart_section,
 }
 
 # Parts drawn from fixed directions (builder key -> view set); others see
@@ -814,6 +995,8 @@ def compose(plan: Plan, spec: PartSpec, solid, quantity: int) -> Drawing:
     d.notes = notes_for(d)
     d.notes_top = notes_top(d)
     layout(d, solid)
+    if spec.builder in SECTIONS:
+        SECTIONS[spec.builder](d, solid)
     draw_frame(d)
     draw_views(d)
     DIMENSION_SETS.get(spec.builder, generic_dims)(d, solid)
