@@ -433,7 +433,13 @@ def test_indenter_has_its_mounting_thread(plan):
     d, _ = _compose(plan, "indenter")
     depth = indenter_thread_depth_mm(spec.geometry)
     assert 0 < depth < spec.geometry.body_length_mm
-    assert_dims(dims(d.sheet.svg()), {"mount_thread": (INDENTER_THREAD_DIAMETER_MM, 1.0, depth)})
+    svg = d.sheet.svg()
+    assert_dims(dims(svg), {"mount_thread": (INDENTER_THREAD_DIAMETER_MM, 1.0, depth),
+                            "thread_depth": depth})
+    # the blind tapped hole is shown in a hatched section through the axis
+    assert texts_by_id(svg)["section-label"].startswith("A-A (")
+    section = ET.fromstring(svg.encode("utf-8")).find(f".//{SVG}g[@id='view-section']")
+    assert any(p.get("class") == "hatch" for p in section.iter(f"{SVG}path"))
 
 
 @pytest.mark.slow

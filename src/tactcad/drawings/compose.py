@@ -36,7 +36,8 @@ from tactcad.drawings.views import (CAMERAS, ISO_5455_SCALES, View, cameras_for,
 GENERAL_TOLERANCE = "ISO 2768-f"
 FRAME = (20.0, 10.0, 410.0, 287.0)  # left, top, right, bottom (A3, ISO 5457)
 TITLE_W, TITLE_H = 180.0, 63.0        # seven rows of 9 mm
-NOTES_TOP = 226.0                    # views stay above this line (lower if the notes need it)
+NOTES_TOP = 208.0                    # views stay above this line (higher if the notes need it):
+                                     # clear of the title block and its surface symbol
 NOTE_LINE = 4.2                      # line pitch of the notes (paper mm)
 TIER = 7.0                           # spacing of stacked dimension lines (paper mm)
 FIRST_TIER = 9.0                     # first dimension line from the view outline
@@ -576,11 +577,19 @@ def indenter_dims(d: Drawing, solid) -> None:
     from tactcad.catalogue.shop import tap_drill_mm, thread_text
 
     fb = f.paper_box()
-    th = (f"{thread_text(INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm(g))} (tap drill "
+    depth = indenter_thread_depth_mm(g)
+    th = (f"{thread_text(INDENTER_THREAD_DIAMETER_MM, depth)} (tap drill "
           f"Ø{fmt_mm(tap_drill_mm(INDENTER_THREAD_DIAMETER_MM))}), onto the gauge shaft")
-    d.sheet.leader([f.paper(-INDENTER_THREAD_DIAMETER_MM / 2, L + B - 0.5),
-                    (fb[2] + 4.0, fb[1] - FIRST_TIER - TIER - 6.0)], th, "mount_thread")
+    sv = d.views.get("section", f)
+    sb = sv.paper_box()
+    rt = INDENTER_THREAD_DIAMETER_MM / 2
+    d.sheet.leader([sv.paper(rt, L + B - depth / 2), (sb[2] + FIRST_TIER + TIER, sb[1] - 8.0)],
+                   th, "mount_thread")
     d.dimensions["mount_thread"] = th
+    if sv is not f:
+        _dim(d, sv, (-rt, L + B), (-rt, L + B - depth), "v", "right", 0, fmt_mm(depth),
+             "thread_depth")
+        _section_marks(d, "top", "A-A")
     cf = f"contact face {fmt_mm(w)} × {fmt_mm(dp)}"
     d.sheet.leader([f.paper(0.0, 0.0), (fb[2] + 4.0, fb[3] + 18.0)], cf, "contact_face")
     d.dimensions["contact_face"] = cf
@@ -592,29 +601,47 @@ def indenter_dims(d: Drawing, solid) -> None:
 SECTION_GAP = 30.0  # paper mm between the view from the left and a section view
 
 
-def cart_section(d: Drawing, solid) -> None:
-    """Section A-A of the cart in its mid plane y = 0 (through the channel,
-    the port and the suction holes), seen from -y; placed right of the view
-    from the left at twice the main scale when it fits."""
+def add_section(d: Drawing, solid, normal: tuple, up: tuple, length_mm: float,
+                height_mm: float) -> None:
+    """Section A-A through the part frame's origin, plane normal ``normal``
+    pointing at the viewer, ``up`` upwards; placed right of the view from the
+    left at up to four times the main scale (the largest ISO 5455 scale at
+    which ``length_mm`` x ``height_mm`` fits the room left on the sheet)."""
     from tactcad.drawings.section import section_view
 
     lb = d.views["left"].paper_box()
     left = lb[2] + SECTION_GAP
-    g = d.spec.geometry
-    room = FRAME[2] - 8.0 - left
-    scale = next((s for s in ISO_5455_SCALES if s <= 4 * d.scale and g.length_mm * s <= room),
-                 d.scale)
-    sv = section_view(solid, (0.0, 0.0, 0.0), (0.0, -1.0, 0.0), (0.0, 0.0, 1.0), "A-A", scale)
+    room = FRAME[2] - 8.0 - left - FIRST_TIER - 2 * TIER
+    top = lb[1] + 12.0
+    room_h = d.notes_top - top - FIRST_TIER - 2 * TIER - 12.0
+    scale = next((s for s in ISO_5455_SCALES if s <= 4 * d.scale and length_mm * s <= room
+                  and height_mm * s <= room_h), d.scale)
+    sv = section_view(solid, (0.0, 0.0, 0.0), normal, up, "A-A", scale)
     sv.hidden = []  # ISO 128-40: no hidden edges in a section
     sv.place(left, lb[1] + 12.0)
     d.views["section"] = sv
 
 
-def _section_marks(d: Drawing, view_name: str, label: str) -> None:
-    """Cutting plane (ISO 128-40: long-dash-dot, thick at the ends) through the
-    front view's y = 0, arrows for the viewing direction (+y: up on paper),
+def cart_section(d: Drawing, solid) -> None:
+    """Cart: section in the mid plane y = 0 (through the channel, the port
+    and the suction holes), seen from -y."""
+    g = d.spec.geometry
+    add_section(d, solid, (0.0, -1.0, 0.0), (0.0, 0.0, 1.0), g.length_mm, g.thickness_mm)
+
+
+def indenter_section(d: Drawing, solid) -> None:
+    """Indenter: section through its axis (plane y = 0, seen from +y, as the
+    front view), showing the blind tapped hole."""
+    g = d.spec.geometry
+    add_section(d, solid, (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), g.body_diameter_mm,
+                g.tip_length_mm + g.body_length_mm)
+
+
+def _section_marks(d: Drawing, host: str, label: str) -> None:
+    """Cutting plane (ISO 128-40: long-dash-dot, thick at the ends) along the
+    line v = 0 of view ``host``, arrows for the viewing direction (paper up),
     the letters, and the section's own label with its scale."""
-    sh, f, sv = d.sheet, d.front, d.views[view_name]
+    sh, f, sv = d.sheet, d.views[host], d.views["section"]
     x0, _, x1, _ = f.paper_box()
     y = f.paper(0.0, 0.0)[1]
     out = FIRST_TIER + TIER + 4.0  # beyond two tiers of dimensions
@@ -656,12 +683,13 @@ def cart_dims(d: Drawing, solid) -> None:
     d.sheet.line("centre-lines", f.paper(0.0, -W / 2 - 2.0), f.paper(0.0, W / 2 + 2.0), "centre")
     fb = f.paper_box()
     texts = {
+        # both leaders end below the view, clear of its edges and of each other
         "holder_thread": (f"2× {thread_text(g.holder_screw_diameter_mm, g.holder_tapped_depth_mm)}",
-                          f.paper(g.holder_screw_diameter_mm / 2 * 0.7, ys + 0.7),
-                          (fb[0] + 0.62 * (fb[2] - fb[0]), fb[1] + 7.0)),
+                          f.paper(g.holder_screw_diameter_mm / 2 * 0.7, -ys - 0.7),
+                          (fb[0] + 0.62 * (fb[2] - fb[0]), fb[3] + 12.0)),
         "pocket": (f"pocket depth {fmt_mm(g.pocket_depth_mm)}, 4× R{fmt_mm(POCKET_CORNER_RADIUS_MM)}",
                    f.paper(-pl / 2, -pw / 2 + POCKET_CORNER_RADIUS_MM * 2),
-                   (fb[0] + 6.0, fb[3] - 6.0)),
+                   (fb[0] + 8.0, fb[3] + 6.0)),
     }
     for name, (text, at, to) in texts.items():
         d.sheet.leader([at, to], text, name)
@@ -707,7 +735,7 @@ def cart_dims(d: Drawing, solid) -> None:
                     (sb[0] + 0.72 * (sb[2] - sb[0]), sb[1] - 2 * TIER - FIRST_TIER)], sh_text,
                    "suction_holes")
     d.dimensions["suction_holes"] = sh_text
-    _section_marks(d, "section", "A-A")
+    _section_marks(d, "front", "A-A")
 
 
 def base_plate_dims(d: Drawing, solid) -> None:
@@ -759,6 +787,7 @@ DIMENSION_SETS: dict[str, Callable[[Drawing, object], None]] = {
 #: Section views by builder key, added after the main views are placed.
 SECTIONS: dict[str, Callable[[Drawing, object], None]] = {
     "cart": cart_section,
+    "indenter": indenter_section,
 }
 
 # Parts drawn from fixed directions (builder key -> view set); others see
