@@ -775,7 +775,39 @@ def sample_holder_dims(d: Drawing, solid) -> None:
     d.dimensions["window_corner"] = text
 
 
+def bracket_dims(d: Drawing, solid) -> None:
+    """Array bracket (:class:`tactcad.design.rigs.BracketGeometry`; views from
+    :func:`tactcad.drawings.views.orientation`: front from +y with u = z,
+    v = x; from above u = z, v = -y; from the left u = y, v = x): the generic
+    set (outline, foot hole), the L section's ear and foot thicknesses and
+    ear height in the view from above, the ear's two through holes in the
+    view from the left."""
+    g = d.spec.geometry
+    generic_dims(d, solid)
+    t, lv = d.views["top"], d.views["left"]
+    fb_, ft = g.foot_bottom_mm, g.foot_top_mm
+    _dim(d, t, (-g.ear_thickness_mm, -g.ear_top_mm), (0.0, -g.ear_top_mm), "h", "top", 0,
+         fmt_mm(g.ear_thickness_mm), "ear_thickness")
+    _dim(d, t, (-g.foot_length_mm, -ft), (-g.foot_length_mm, -fb_), "v", "left", 0,
+         fmt_mm(g.foot_thickness_mm), "foot_thickness")
+    xs = sorted(g.hole_xs_mm)
+    holes = [Hole2D(0.0, x, g.hole_diameter_mm) for x in xs]
+    _hole_marks(d, lv, holes)
+    _dim(d, lv, (fb_, xs[0]), (0.0, xs[0]), "h", "below", 0, fmt_mm(-fb_), "ear_hole_height")
+    _dim(d, lv, (0.0, -g.width_mm / 2), (0.0, xs[0]), "v", "right", 0,
+         fmt_mm(xs[0] + g.width_mm / 2), "ear_hole_1_x")
+    if len(xs) > 1:
+        _dim(d, lv, (0.0, xs[0]), (0.0, xs[1]), "v", "right", 1, fmt_mm(xs[1] - xs[0]),
+             "ear_hole_spacing")
+    lb = lv.paper_box()
+    text = f"{len(xs)}× Ø{fmt_mm(g.hole_diameter_mm)} through"
+    d.sheet.leader([lv.paper(g.hole_diameter_mm / 2 * 0.7, xs[-1] + g.hole_diameter_mm / 2 * 0.7),
+                    (lb[2] + 4.0, lb[1] - 6.0)], text, "ear_holes")
+    d.dimensions["ear_holes"] = text
+
+
 DIMENSION_SETS: dict[str, Callable[[Drawing, object], None]] = {
+    "array_bracket": bracket_dims,
     "base_plate": base_plate_dims,
     "sample_holder": sample_holder_dims,
     "element": element_dims,
