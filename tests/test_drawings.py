@@ -495,3 +495,22 @@ def test_assembly_sheet_content(drawing_files, plan):
     torque = tightening_torque_Nm(plan.bolt)
     assert 0.2 < torque < 0.6  # M2 8.8 tables give about 0.35 to 0.4 N·m
     assert f"{torque:.2f} N·m" in notes and "VDI 2230" in notes
+
+
+def test_holes_read_from_a_solid_know_through_from_blind(plan):
+    """A hole with a flat floor is blind (its depth printed), one open at
+    both ends is through; quarter-cylinder fillets are no holes."""
+    import build123d as bd
+
+    from tactcad.drawings.compose import _holes
+
+    spec = dataclasses.replace(array_parts(plan)["spacer"], profile=None)
+    block = bd.Solid.make_box(20, 10, 5)
+    blind = bd.Solid.make_cylinder(1.0, 3.0, bd.Plane(origin=(5, 5, 2), z_dir=(0, 0, 1)))
+    through = bd.Solid.make_cylinder(1.5, 5.0, bd.Plane(origin=(15, 5, 0), z_dir=(0, 0, 1)))
+    holes = {h.x: h for h in _holes(spec, block.cut(blind, through))}
+    assert holes[5.0].depth == pytest.approx(3.0) and holes[5.0].depth_text == "depth 3"
+    assert holes[15.0].depth is None and holes[15.0].depth_text == "through"
+    tool = bd.Solid.make_box(8, 6, 2, bd.Plane(origin=(6, 2, 3)))
+    pocket = tool.fillet(1.0, tool.edges().filter_by(bd.Axis.Z))  # concave corners in the part
+    assert _holes(spec, bd.Solid.make_box(20, 10, 5).cut(pocket)) == []

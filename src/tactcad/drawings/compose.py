@@ -48,11 +48,18 @@ TABLE1 = Path(__file__).resolve().parents[1] / "data" / "table1_calibration.csv"
 
 @dataclass
 class Hole2D:
-    """A round through hole seen in the front view (model mm)."""
+    """A round hole seen end-on in the front view (model mm); ``depth`` None
+    for a through hole."""
 
     x: float
     y: float
     d: float
+    depth: float | None = None
+
+    @property
+    def depth_text(self) -> str:
+        """``through`` or ``depth 8`` (mm)."""
+        return "through" if self.depth is None else f"depth {fmt_mm(self.depth)}"
 
 
 @dataclass
@@ -92,6 +99,12 @@ def _holes(spec: PartSpec, solid, cameras: dict | None = None) -> list[Hole2D]:
     uv = np.array(up, float)
     rv = np.cross(uv, dv)
     out: dict[tuple, Hole2D] = {}
+    # flat hole bottoms: plane faces bounded by one circle (a blind hole's floor)
+    floors = []
+    for f in solid.faces():
+        es = f.edges()
+        if f.geom_type.name == "PLANE" and len(es) == 1 and es[0].geom_type.name == "CIRCLE":
+            floors.append((np.array(tuple(es[0].arc_center)), es[0].radius))
     for f in solid.faces():
         if f.geom_type.name != "CYLINDER":
             continue
@@ -108,8 +121,12 @@ def _holes(spec: PartSpec, solid, cameras: dict | None = None) -> list[Hole2D]:
         to_axis -= (to_axis @ a) * a
         if n @ to_axis <= 0:  # normal away from the axis: a boss
             continue
+        along = [float(np.array(tuple(v)) @ dv) for v in f.vertices()]
+        blind = any(abs(r - f.radius) < 1e-6
+                    and np.linalg.norm(np.cross(c - pos, a)) < 1e-6 for c, r in floors)
+        span = max(along) - min(along) if along else 0.0
         h = Hole2D(round(float(pos @ rv), 6) + 0.0, round(float(pos @ uv), 6) + 0.0,
-                   round(2 * f.radius, 6))
+                   round(2 * f.radius, 6), round(span, 6) if blind and span > 0 else None)
         out[(h.x, h.y)] = h
     return sorted(out.values(), key=lambda h: (h.y, h.x))
 
@@ -230,7 +247,7 @@ def hole_table_rows(d: Drawing, solid) -> int:
     return len(holes)
 
 
-TABLE_COLS = (14.0, 22.0, 22.0, 18.0)
+TABLE_COLS = (14.0, 22.0, 22.0, 18.0, 22.0)
 TABLE_ROW = 6.0
 
 
@@ -323,18 +340,19 @@ def _hole_marks(d: Drawing, view: View, holes: list[Hole2D]) -> None:
 
 
 def _hole_callout(d: Drawing, view: View, holes: list[Hole2D], toward: tuple[float, float]) -> None:
-    """One leader per distinct hole size: ``2× Ø2.4`` at the first such hole."""
-    by_size: dict[str, list[Hole2D]] = {}
+    """One leader per distinct hole size and depth: ``2× Ø2.4 through`` at
+    the nearest such hole."""
+    by_size: dict[tuple[str, str], list[Hole2D]] = {}
     for h in holes:
-        by_size.setdefault(fmt_mm(h.d), []).append(h)
-    for k, (size, hs) in enumerate(by_size.items()):
+        by_size.setdefault((fmt_mm(h.d), h.depth_text), []).append(h)
+    for k, ((size, _), hs) in enumerate(by_size.items()):
         h = min(hs, key=lambda h: (h.x - toward[0]) ** 2 + (h.y - toward[1]) ** 2)
         ang = math.atan2(toward[1] - h.y, toward[0] - h.x)
         r = h.d / 2
         p0 = view.paper(h.x + r * math.cos(ang), h.y + r * math.sin(ang))
         p1 = view.paper(*toward)
         p1 = (p1[0], p1[1] + 6.0 * k)
-        text = (f"{len(hs)}× " if len(hs) > 1 else "") + f"Ø{size}"
+        text = (f"{len(hs)}× " if len(hs) > 1 else "") + f"Ø{size} {h.depth_text}"
         name = "hole_diameter" if len(by_size) == 1 else f"hole_diameter_{k + 1}"
         d.sheet.leader([p0, p1], text, name)
         d.dimensions[name] = text
@@ -374,7 +392,7 @@ def _hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float,
     row_h = TABLE_ROW
     y0 = FRAME[3] - 8 - row_h * (len(ordered) + 1)  # clear of the centring mark
     sh.rect("hole-table", x0, y0, sum(cols), row_h * (len(ordered) + 1), "table")
-    heads = ("Hole", "X", "Y", "Ø")
+    heads = ("Hole", "X", "Y", "Ø", "Depth")
     for r_i in range(len(ordered) + 2):
         y = y0 + r_i * row_h
         if 0 < r_i < len(ordered) + 1:
@@ -391,9 +409,9 @@ def _hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float,
     for c, hd in enumerate(heads):
         cell(c, 0, hd)
     for i, h in enumerate(ordered, start=1):
-        vals = (fmt_mm(h.x - datum[0]), fmt_mm(h.y - datum[1]), fmt_mm(h.d))
+        vals = (fmt_mm(h.x - datum[0]), fmt_mm(h.y - datum[1]), fmt_mm(h.d), h.depth_text)
         cell(0, i, f"H{i}")
-        for c, (suffix, v) in enumerate(zip(("x", "y", "d"), vals), start=1):
+        for c, (suffix, v) in enumerate(zip(("x", "y", "d", "depth"), vals), start=1):
             cell(c, i, v, f"dim-hole_{i}_{suffix}")
             d.dimensions[f"hole_{i}_{suffix}"] = v
     sh.text("hole-table", (x0, y0 - 2.0), "Hole positions from origin 0,0", DIM_TEXT_MM)
@@ -800,7 +818,7 @@ def bracket_dims(d: Drawing, solid) -> None:
         _dim(d, lv, (0.0, xs[0]), (0.0, xs[1]), "v", "right", 1, fmt_mm(xs[1] - xs[0]),
              "ear_hole_spacing")
     lb = lv.paper_box()
-    text = f"{len(xs)}× Ø{fmt_mm(g.hole_diameter_mm)} through"
+    text = f"{len(xs)}× Ø{fmt_mm(g.hole_diameter_mm)} {holes[0].depth_text}"
     d.sheet.leader([lv.paper(g.hole_diameter_mm / 2 * 0.7, xs[-1] + g.hole_diameter_mm / 2 * 0.7),
                     (lb[2] + 4.0, lb[1] - 6.0)], text, "ear_holes")
     d.dimensions["ear_holes"] = text
