@@ -19,7 +19,8 @@ from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_p
 from tactcad.catalogue.files import profile_dxf_name
 from tactcad.catalogue.shop import TORQUE_SOURCE, tightening_torque_Nm
 from tactcad.design.array import Plan
-from tactcad.drawings.compose import FRAME, GENERAL_TOLERANCE, _wrap, revision_and_date
+from tactcad.drawings.compose import (FRAME, GENERAL_TOLERANCE, _wrap, revision_and_date,
+                                      sheet_frame, title_cells)
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
 from tactcad.drawings.views import ISO_5455_SCALES, View, cameras_for, project, scale_text
 from tactcad.store import stable_repr
@@ -133,7 +134,7 @@ def compose_assembly(plan: Plan, solids: dict, items: dict[str, int]) -> Assembl
     f.scale = _fit_scale(f, fw, FRONT_TOP_LIMIT[1] - FRONT_TOP_LIMIT[0])
     f.place(fx + (fw - f.width) / 2, FRONT_TOP_LIMIT[0])
     a.scale = s.scale
-    _frame(sh)
+    sheet_frame(sh)
     for name, v in views.items():
         for poly in v.hidden:
             sh.polyline(f"view-{name}", [v.paper(*p) for p in poly], "hidden")
@@ -242,15 +243,6 @@ def _notes(a: AssemblySheet, plan: Plan) -> None:
         y += 0.8
 
 
-def _frame(sh: Sheet) -> None:
-    x0, y0, x1, y1 = FRAME
-    sh.rect("frame", x0, y0, x1 - x0, y1 - y0, "frame")
-    w, h = sh.width_mm, sh.height_mm
-    for p, q in (((w / 2, 0.0), (w / 2, y0 + 5)), ((w / 2, h), (w / 2, y1 - 5)),
-                 ((0.0, h / 2), (x0 + 5, h / 2)), ((w, h / 2), (x1 - 5, h / 2))):
-        sh.line("frame", p, q, "frame")
-
-
 def _title_block(a: AssemblySheet, plan: Plan, items: dict[str, int]) -> None:
     from tactcad import __version__
 
@@ -269,11 +261,4 @@ def _title_block(a: AssemblySheet, plan: Plan, items: dict[str, int]) -> None:
              (3, 120, 25, "Revision", rev, "tb-revision"),
              (3, 145, 35, "Date", date, "tb-date")]
     sh.rect("title-block", x0, y0, tw, 4 * rh, "frame")
-    for row, dx, w, label, value, id in cells:
-        x, y = x0 + dx, y0 + row * rh
-        sh.rect("title-block", x, y, w, rh, "table")
-        sh.text("title-block", (x + 1.2, y + 2.4), label, 1.6)
-        h = LABEL_TEXT_MM
-        while text_width(value, h) > 0.9 * (w - 3) and h > 1.8:
-            h -= 0.25
-        sh.text("title-block", (x + 1.5, y + rh - 1.6), value, h, id=id)
+    title_cells(sh, x0, y0, rh, [(*c, LABEL_TEXT_MM) for c in cells])

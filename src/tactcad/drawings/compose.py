@@ -949,7 +949,11 @@ def _wrap(text: str, width: float, h: float) -> list[str]:
 
 
 def draw_frame(d: Drawing) -> None:
-    sh = d.sheet
+    sheet_frame(d.sheet)
+
+
+def sheet_frame(sh: Sheet) -> None:
+    """ISO 5457 frame and centring marks of an A3 sheet."""
     x0, y0, x1, y1 = FRAME
     sh.rect("frame", x0, y0, x1 - x0, y1 - y0, "frame")
     # centring marks (ISO 5457)
@@ -990,14 +994,7 @@ def draw_title_block(d: Drawing) -> None:
         (6, 120, 25, "Revision", rev, "tb-revision", LABEL_TEXT_MM),
         (6, 145, 35, "Date", date, "tb-date", LABEL_TEXT_MM),
     ]
-    for row, dx, w, label, value, id, vh in cells:
-        x, y = x0 + dx, y0 + row * rh
-        sh.rect("title-block", x, y, w, rh, "table")
-        sh.text("title-block", (x + 1.2, y + 2.4), label, 1.6)
-        if value:
-            while text_width(value, vh) > 0.9 * (w - 3) and vh > 1.8:
-                vh -= 0.25
-            sh.text("title-block", (x + 1.5, y + rh - 1.6), value, vh, id=id)
+    title_cells(sh, x0, y0, rh, cells)
     # first-angle projection symbol (ISO 128-30), in the projection cell
     px, py = x0 + 120 + 30, y0 + 3 * rh + rh / 2 + 0.8
     sh.polyline("title-block", [(px - 12, py - 1.4), (px - 4, py - 3.0), (px - 4, py + 3.0),
@@ -1030,6 +1027,20 @@ def draw_finish_symbol(d: Drawing, at: tuple[float, float]) -> None:
         sh.text("surface-finish", (x + h * 1.15 + 16.0, y - 2 * h + 4.0),
                 "( " + ", ".join(f"Ra {ra:g} {face}" for face, ra in f.special) + " )",
                 DIM_TEXT_MM, id="finish-special")
+
+
+def title_cells(sh: Sheet, x0: float, y0: float, rh: float, cells: list[tuple]) -> None:
+    """Title-block cells (ISO 7200): each ``(row, x offset, width, label,
+    value, id, value height)`` in paper mm from the block's corner
+    ``(x0, y0)``, rows ``rh`` high; a value too wide for its cell is set smaller."""
+    for row, dx, w, label, value, id, vh in cells:
+        x, y = x0 + dx, y0 + row * rh
+        sh.rect("title-block", x, y, w, rh, "table")
+        sh.text("title-block", (x + 1.2, y + 2.4), label, 1.6)
+        if value:
+            while text_width(value, vh) > 0.9 * (w - 3) and vh > 1.8:
+                vh -= 0.25
+            sh.text("title-block", (x + 1.5, y + rh - 1.6), value, vh, id=id)
 
 
 def drawing_inputs(plan: Plan, spec: PartSpec) -> tuple:
