@@ -156,14 +156,27 @@ def _balloons(a: AssemblySheet, v: View, cam, specs, inst, items: dict[str, int]
     """One balloon per distinct part, in a row above the side view, each with
     a leader to one of its instances (ISO 6433)."""
     sh = a.sheet
-    anchors = {}
-    for i in inst:
-        if i.part in anchors or i.part not in items:
-            continue
+    def centre(i: Instance):
         x0, y0, z0, x1, y1, z1 = specs[i.part].expected_bbox_mm
-        c = i.placement.apply((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2)
-        anchors[i.part] = v.paper(*_to_view(cam, c))
+        return i.placement.apply((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2)
+
+    anchors: dict[str, tuple[float, float]] = {}
+    for part in dict.fromkeys(i.part for i in inst):
+        if part not in items:
+            continue
+        # the first instance whose point no other balloon uses; else lift it
+        cands = [v.paper(*_to_view(cam, centre(i))) for i in inst if i.part == part]
+        free = [p for p in cands if all(math.dist(p, q) > 1.0 for q in anchors.values())]
+        p = free[0] if free else cands[0]
+        while any(math.dist(p, q) <= 1.0 for q in anchors.values()):
+            p = (p[0], p[1] - 2.5)
+        anchors[part] = p
     b = v.paper_box()
+    ends = {n: v.paper(*_to_view(cam, centre(i)))[0] for i in inst for n in ("front", "back")
+            if i.name == f"clamp_plate_{n}"}
+    for n, x in ends.items():
+        sh.text("balloons", (x, b[3] + 5.0), n.upper(), DIM_TEXT_MM, anchor="middle",
+                id=f"stack-{n}")
     order = sorted(anchors, key=lambda p: anchors[p][0])
     n = len(order)
     pitch = max(2 * BALLOON_R + 3.0, (b[2] - b[0]) / max(n - 1, 1))
