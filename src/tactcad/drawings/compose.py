@@ -884,13 +884,25 @@ def notes_for(d: Drawing) -> list[str]:
     elif spec.builder == "spacer":
         n.append(f"{_sentence(spec.process)}, {spec.material}. Thickness "
                  f"{fmt_mm(plan.spacer.thickness_mm)} = pitch {fmt_mm(plan.pitch_mm)} - sheet "
-                 f"{fmt_mm(plan.sheet_thickness_mm)}: it sets the array pitch; keep both faces "
-                 f"flat and parallel.")
+                 f"{fmt_mm(plan.sheet_thickness_mm)}: it sets the array pitch; faces parallel "
+                 f"within 0.01 (ISO 1101).")
     elif spec.builder == "clamp_plate":
         n.append(f"{_sentence(spec.process)} from {fmt_mm(_thickness(spec))} mm {spec.material}"
                  f" plate. Window corners R = cutter radius. Holes Ø"
                  f"{fmt_mm(plan.bolt.clearance_hole_mm)}: ISO 273 medium clearance for "
                  f"{plan.bolt.size}.")
+    elif spec.builder == "cart":
+        g = spec.geometry
+        n.append(f"{_sentence(spec.process)}, {spec.material}.")
+        n.append(f"Vacuum: drill the channel Ø{fmt_mm(g.channel_diameter_mm)} from the port end "
+                 f"(section A-A), then the suction holes from the pocket floor into it; deburr "
+                 f"the channel and holes so no chip stays inside. Top face and pocket rim: "
+                 f"flatness 0.05 (ISO 1101), so the sample seals on the vacuum.")
+    elif spec.builder == "indenter":
+        n.append(f"{_sentence(spec.process)}, {spec.material}.")
+        n.append("The M6 thread screws the indenter onto the force gauge's measuring shaft; "
+                 "contact face perpendicular to the thread axis within 0.02 (ISO 1101), so the "
+                 "2 x 3 mm face lies flat on the element's tip.")
     else:
         n.append(f"{_sentence(spec.process)}, {spec.material}.")
     n.append(f"Untoleranced dimensions: {GENERAL_TOLERANCE}. Dimensions in mm (ISO 129-1), "
