@@ -19,7 +19,7 @@ from tactcad.design.array import Placement, default_design_data, plan_from_dict,
 
 
 def read_csv(path):
-    with open(path, newline="", encoding="utf-8") as fh:
+    with open(path, newline="", encoding="utf-8-sig") as fh:
         return list(csv.DictReader(fh))
 
 
@@ -171,3 +171,38 @@ def test_real_scenes_quantities(plan):
         assert r.quantity == max(counts) and r.quantity > 0
     q = {r.part: r.quantity for r in rows}
     assert q["spacer"] == 8 and q["clamp_plate"] == 2
+
+
+def test_bom_csv_opens_as_utf8_sig_with_alloy_temper_and_stock(tmp_path):
+    """bom.csv starts with the UTF-8 byte order mark, reads back through the
+    csv module with utf-8-sig (header intact, "Ø" intact), and names alloy,
+    temper and the raw blank of every fabricated part."""
+    from tactcad.export.bom import write_bom_files
+
+    plan = plan_from_dict(default_design_data())
+    specs = array_parts(plan)
+    write_bom_files(plan, tmp_path, lambda m: None, (specs, {"array": array_instances(plan)}))
+    raw = (tmp_path / "bom.csv").read_bytes()
+    assert raw.startswith(b"\xef\xbb\xbf")
+    rows = read_csv(tmp_path / "bom.csv")
+    assert list(rows[0]) == list(BOM_COLUMNS)
+    by_part = {r["part"]: r for r in rows}
+    for name, spec in specs.items():
+        r = by_part[name]
+        if spec.kind == "fabricated":
+            assert r["material"] == f"{plan.material.name} EN AW-{plan.material.grade}"
+            if "sheet" in spec.process:
+                assert r["stock"].startswith(f"sheet {spec.thickness_mm:g} mm, blank ")
+            else:  # milled: faced on both sides
+                assert r["stock"].startswith(f"plate {spec.thickness_mm + 2:g} x ")
+        else:
+            assert r["stock"] == ""
+    assert any("Ø" in r["key_dimensions_mm"] for r in rows)
+
+
+def test_bom_stock_follows_the_design_grade():
+    data = default_design_data()
+    data["material"]["grade"] = "7075-T6"
+    plan = plan_from_dict(data)
+    rows = {r.part: r for r in bom_rows(array_instances(plan), array_parts(plan), plan=plan)}
+    assert rows["spacer"].material.endswith("EN AW-7075-T6")

@@ -15,6 +15,7 @@ import pytest
 from tactcad import __version__
 from tactcad.assembly.inventory import design_assemblies, instance_counts
 from tactcad.catalogue.array import array_instances, array_parts
+from tactcad.catalogue.shop import stock_size, tightening_torque_Nm
 from tactcad.drawings.compose import part_hash
 from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
 
@@ -112,7 +113,8 @@ def test_pdf_has_one_page_per_drawing_and_no_blank_page(drawing_files):
     out, man, svgs = drawing_files
     pdf = out / "drawings/drawings.pdf"
     reader = PdfReader(pdf)
-    assert len(reader.pages) == len(svgs)
+    assert len(reader.pages) == len(svgs) + 1  # the parts, then the assembly sheet
+    assert "SLOT MAP" in reader.pages[len(svgs)].extract_text()
     w, h = (float(v) for v in reader.pages[0].mediabox.upper_right)
     assert abs(w - 420 / 25.4 * 72) < 1 and abs(h - 297 / 25.4 * 72) < 1  # A3 landscape
     assert "element_a4mm" in reader.pages[0].extract_text()
@@ -185,8 +187,7 @@ def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan):
         assert tb["tb-units"] == "mm"
         assert tb["tb-process"] == specs[part].process
         assert tb["tb-material"].startswith(specs[part].material)
-        if specs[part].profile is not None:
-            assert f"{specs[part].thickness_mm:g} mm" in tb["tb-material"]
+        assert tb["tb-material"].endswith(stock_size(specs[part]))
         assert re.fullmatch(r"\d+:\d+(, detail \d+:\d+)?", tb["tb-scale"])
     assert texts_by_id(svgs["element_a4mm"].read_text())["tb-scale"] == "5:1, detail 50:1"
 
@@ -318,3 +319,198 @@ def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan):
                                       "outer_diameter") if k in found]
         for text in printed:
             assert any(printed_equals(text, v) for v in sizes), (name, text, sizes)
+
+
+# --- shop-ready sheets: features, sections, title-block fields, no overlapping texts ----------
+def _compose(plan, name, raw=None):
+    from tactcad.drawings.compose import compose
+    from tactcad.parts.registry import build_part
+
+    specs, _ = design_assemblies(plan)
+    if raw is not None:
+        plan = dataclasses.replace(plan, raw=raw)
+    return compose(plan, specs[name], build_part(plan, specs[name]), 1), specs[name]
+
+
+def _svg_text_boxes(svg_text: str) -> list[tuple[str, tuple]]:
+    """Text boxes of an SVG as :func:`tactcad.drawings.sheet.text_box` computes them,
+    read back from the file's attributes."""
+    from tactcad.drawings.sheet import CAP_HEIGHT_EM, text_box
+
+    out = []
+    for el in ET.fromstring(svg_text.encode("utf-8")).iter(f"{SVG}text"):
+        at = (float(el.get("x")), float(el.get("y")))
+        rot = re.search(r"rotate\((-?[\d.]+)", el.get("transform") or "")
+        out.append((el.text or "", text_box(at, el.text or "", float(el.get("font-size")) * CAP_HEIGHT_EM,
+                                          el.get("text-anchor") or "start",
+                                          float(rot.group(1)) if rot else 0.0)))
+    return out
+
+
+def test_no_two_texts_of_a_sheet_overlap(drawing_files):
+    """Every exported sheet, the assembly sheet included: no two text boxes overlap."""
+    out, _, svgs = drawing_files
+    for path in [*svgs.values(), out / "drawings/assembly.svg"]:
+        boxes = _svg_text_boxes(path.read_text())
+        for i, (ta, a) in enumerate(boxes):
+            for tb, b in boxes[i + 1:]:
+                ox = min(a[2], b[2]) - max(a[0], b[0])
+                oy = min(a[3], b[3]) - max(a[1], b[1])
+                assert ox <= 0.05 or oy <= 0.05, f"{path.name}: {ta!r} overlaps {tb!r}"
+
+
+def test_overlap_finder_sees_overlapping_texts():
+    from tactcad.drawings.sheet import Sheet, overlapping_texts
+
+    sh = Sheet("A3")
+    sh.text("g", (10.0, 10.0), "H4")
+    sh.text("g", (12.0, 10.5), "H5")
+    sh.text("g", (50.0, 10.0), "far")
+    assert overlapping_texts(sh) == [("H4", "H5")]
+
+
+@pytest.mark.slow
+def test_cart_features_and_section(plan):
+    """The cart's pocket, holder and axle threads, hose port, channel and
+    suction holes carry the rigs file's values; section A-A is hatched and labelled."""
+    from tactcad.catalogue.shop import coarse_pitch_mm
+
+    d, spec = _compose(plan, "cart")
+    g = spec.geometry
+    svg = d.sheet.svg()
+    found = dims(svg)
+    assert_dims(found, {
+        "overall_length": g.length_mm, "overall_height": g.width_mm, "thickness": g.thickness_mm,
+        "pocket_length": g.pocket_length_mm, "pocket_width": g.pocket_width_mm,
+        "pocket_depth": g.pocket_depth_mm, "holder_screw_spacing": 2 * g.holder_screw_y_mm,
+        "axle_spacing": 2 * g.axle_x_mm, "axle_height": g.axle_height_mm,
+        "port_depth": g.port_depth_mm, "channel_length": g.channel_end_x_mm + g.length_mm / 2,
+        "channel_height": g.thickness_mm / 2, "channel_diameter": g.channel_diameter_mm,
+        "suction_hole_pitch": g.suction_hole_xs_mm[1] - g.suction_hole_xs_mm[0],
+        "suction_hole_first_x": g.suction_hole_xs_mm[0] + g.length_mm / 2,
+        "suction_holes": (len(g.suction_hole_xs_mm), g.suction_hole_diameter_mm),
+        "holder_thread": (2, g.holder_screw_diameter_mm,
+                          coarse_pitch_mm(g.holder_screw_diameter_mm), g.holder_tapped_depth_mm),
+        "axle_thread": (4, g.axle_bolt.nominal_diameter_mm, g.axle_bolt.thread_pitch_mm,
+                        g.axle_hole_depth_mm),
+        "port_thread": (g.port_diameter_mm, coarse_pitch_mm(g.port_diameter_mm), g.port_depth_mm)})
+    root = ET.fromstring(svg.encode("utf-8"))
+    section = root.find(f".//{SVG}g[@id='view-section']")
+    hatch = [p for p in section.iter(f"{SVG}path") if p.get("class") == "hatch"]
+    assert len(hatch) > 20
+    assert not [p for p in section.iter(f"{SVG}path") if p.get("class") == "hidden"]
+    tb = texts_by_id(svg)
+    assert tb["section-label"].startswith("A-A (")
+    assert tb["section-letter-l"] == tb["section-letter-r"] == "A"
+    assert "hole-label-1" not in tb  # no crowded hole table on the cart
+
+
+@pytest.mark.slow
+def test_base_plate_grooves_and_sample_holder_window(plan):
+    d, spec = _compose(plan, "base_plate")
+    g = spec.geometry
+    assert_dims(dims(d.sheet.svg()), {"groove_width": g.groove_width_mm,
+                                      "groove_depth": g.groove_depth_mm,
+                                      "groove_spacing": 2 * g.track_half_mm})
+    d, spec = _compose(plan, "sample_holder")
+    h = spec.geometry
+    found = dims(d.sheet.svg())
+    assert_dims(found, {"window_length": h.window_length_mm, "window_width": h.window_width_mm,
+                        "window_corner": (4, h.corner_radius_mm),
+                        "hole_1_d": h.screw.clearance_hole_mm, "hole_2_d": h.screw.clearance_hole_mm})
+    assert "hole_3_d" not in found  # window fillets are not holes
+
+
+@pytest.mark.slow
+def test_indenter_has_its_mounting_thread(plan):
+    from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
+    from tactcad.parts.registry import build_part
+
+    specs, _ = design_assemblies(plan)
+    spec = specs["indenter"]
+    solid = build_part(plan, spec)
+    assert abs(solid.volume - spec.expected_volume_mm3) < 1e-3 * spec.expected_volume_mm3
+    d, _ = _compose(plan, "indenter")
+    depth = indenter_thread_depth_mm(spec.geometry)
+    assert 0 < depth < spec.geometry.body_length_mm
+    svg = d.sheet.svg()
+    assert_dims(dims(svg), {"mount_thread": (INDENTER_THREAD_DIAMETER_MM, 1.0, depth),
+                            "thread_depth": depth})
+    # the blind tapped hole is shown in a hatched section through the axis
+    assert texts_by_id(svg)["section-label"].startswith("A-A (")
+    section = ET.fromstring(svg.encode("utf-8")).find(f".//{SVG}g[@id='view-section']")
+    assert any(p.get("class") == "hatch" for p in section.iter(f"{SVG}path"))
+
+
+@pytest.mark.slow
+def test_title_block_revision_date_material_and_finish(plan):
+    d, spec = _compose(plan, "element_a4mm")
+    tb = texts_by_id(d.sheet.svg())
+    assert tb["tb-revision"] == "A" and tb["tb-date"] == "—"
+    assert f"EN AW-{plan.material.grade}" in tb["tb-material"]
+    assert "Ra 1.6 general" in tb["tb-finish"] and "Ra 0.8: contact face" in tb["tb-finish"]
+    assert tb["finish-general"] == "Ra 1.6"
+    raw = {**plan.raw, "design": {**plan.raw["design"], "revision": "C", "date": "2026-01-15"}}
+    d2, _ = _compose(plan, "element_a4mm", raw=raw)
+    tb2 = texts_by_id(d2.sheet.svg())
+    assert tb2["tb-revision"] == "C" and tb2["tb-date"] == "2026-01-15"
+    assert tb2["tb-design"] != tb["tb-design"]  # the part hash covers revision and date
+    d3, _ = _compose(plan, "cart")
+    tb3 = texts_by_id(d3.sheet.svg())
+    assert "EN AW-6082-T651" in tb3["tb-material"] and "plate" in tb3["tb-material"]
+    assert "Ra 0.8" not in tb3["tb-finish"]
+
+
+def test_assembly_sheet_content(drawing_files, plan):
+    """Slot map: one row per element with its arm and DXF, row 2 turned; stack
+    order; balloons numbered as the BOM; bolts with their torque."""
+    from tactcad.catalogue.files import profile_dxf_name
+    from tactcad.drawings.assembly import slot_map, stack_order
+
+    out, man, _ = drawing_files
+    tb = texts_by_id((out / "drawings/assembly.svg").read_text())
+    rows = slot_map(plan)
+    assert len(rows) == len(plan.slots)
+    dxf = {f["path"].split("/")[-1] for f in man["files"]}
+    for s in plan.slots:
+        assert tb[f"slot-{s.number}-part"] == s.geometry.part_name
+        assert printed_equals(tb[f"slot-{s.number}-arm_mm"], s.geometry.arm_length_mm)
+        assert tb[f"slot-{s.number}-dxf"] in dxf
+        assert tb[f"slot-{s.number}-dxf"] == profile_dxf_name(
+            s.geometry.part_name, sum(t.geometry.part_name == s.geometry.part_name
+                                      for t in plan.slots)).split("/")[-1]
+        assert ("turned" in tb[f"slot-{s.number}-orientation"]) == (s.row == 1)
+    order = stack_order(plan)
+    for r, names in order.items():
+        assert names[0] == "clamp_plate_front" and names[-1] == "clamp_plate_back"
+        inner = names[1:-1]
+        assert [n.split("_")[0] for n in inner] == ["element", "spacer"] * (plan.columns - 1) + ["element"]
+        assert {int(n.split("_")[1]) for n in inner[::2]} == {s.number for s in plan.slots if s.row == r}
+    notes = " ".join(v for k, v in tb.items() if k.startswith("note"))
+    assert ", ".join(order[0][:3]) in notes
+    bom = {r["part"]: r["item"] for r in
+           __import__("csv").DictReader((out / "bom.csv").open(encoding="utf-8-sig"))}
+    for part in array_parts(plan):
+        assert tb[f"balloon-{part}"] == bom[part]
+    torque = tightening_torque_Nm(plan.bolt)
+    assert 0.2 < torque < 0.6  # M2 8.8 tables give about 0.35 to 0.4 N·m
+    assert f"{torque:.2f} N·m" in notes and "VDI 2230" in notes
+
+
+def test_holes_read_from_a_solid_know_through_from_blind(plan):
+    """A hole with a flat floor is blind (its depth printed), one open at
+    both ends is through; quarter-cylinder fillets are no holes."""
+    import build123d as bd
+
+    from tactcad.drawings.compose import _holes
+
+    spec = dataclasses.replace(array_parts(plan)["spacer"], profile=None)
+    block = bd.Solid.make_box(20, 10, 5)
+    blind = bd.Solid.make_cylinder(1.0, 3.0, bd.Plane(origin=(5, 5, 2), z_dir=(0, 0, 1)))
+    through = bd.Solid.make_cylinder(1.5, 5.0, bd.Plane(origin=(15, 5, 0), z_dir=(0, 0, 1)))
+    holes = {h.x: h for h in _holes(spec, block.cut(blind, through))}
+    assert holes[5.0].depth == pytest.approx(3.0) and holes[5.0].depth_text == "depth 3"
+    assert holes[15.0].depth is None and holes[15.0].depth_text == "through"
+    tool = bd.Solid.make_box(8, 6, 2, bd.Plane(origin=(6, 2, 3)))
+    pocket = tool.fillet(1.0, tool.edges().filter_by(bd.Axis.Z))  # concave corners in the part
+    assert _holes(spec, bd.Solid.make_box(20, 10, 5).cut(pocket)) == []

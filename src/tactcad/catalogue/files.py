@@ -6,6 +6,7 @@ from __future__ import annotations
 DRAWING_DIR = "drawings"
 PDF_NAME = f"{DRAWING_DIR}/drawings.pdf"
 ARRAY_PNG = "images/array.png"
+ASSEMBLY_DRAWING = "drawings/assembly.svg"  # the array's assembly sheet
 ARRAY_STEP = "step/array.step"
 MANIFEST = "manifest.json"
 

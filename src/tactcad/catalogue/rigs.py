@@ -19,6 +19,29 @@ from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, RigDesign
 from tactcad.design.scenes import LEVELS
 
 
+# Materials with alloy and temper (EN 573-3 / EN 515, EN 10088-3, EN 12164):
+# 6082-T651 plate is stretched (stress relieved), so milled pockets stay flat;
+# 1.4305 is the free-machining austenitic stainless steel (no rust on a damp
+# sample); CW614N is the free-machining brass for small turned parts.
+PLATE_ALUMINIUM = "aluminium EN AW-6082-T651"
+BAR_ALUMINIUM = "aluminium EN AW-6082-T6"
+INDENTER_STEEL = "stainless steel 1.4305 (X8CrNiS18-9)"
+TURNED_BRASS = "brass CW614N (CuZn39Pb3)"
+
+# The indenter screws onto the force gauge's measuring shaft (Sauter FH
+# attachments have an M6 female thread; rigs.toml force_gauge.shaft_diameter_mm
+# = 6): a tapped M6 hole in the body's top face. Depth: the body length less
+# 2 mm of floor above the tip, at most 1.5 d (full strength in steel by 1 d;
+# the load is at most the gauge's 5 N range).
+INDENTER_THREAD_DIAMETER_MM = 6.0
+INDENTER_THREAD_FLOOR_MM = 2.0
+
+
+def indenter_thread_depth_mm(g) -> float:
+    """Depth (mm) of the indenter's M6 mounting thread (see the note above)."""
+    return min(g.body_length_mm - INDENTER_THREAD_FLOOR_MM, 1.5 * INDENTER_THREAD_DIAMETER_MM)
+
+
 @dataclass(frozen=True)
 class RigPartSpec(PartSpec):
     """A rig part: a :class:`~tactcad.catalogue.array.PartSpec` plus what scenes need.
@@ -109,7 +132,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     def add(spec: RigPartSpec) -> None:
         parts[spec.name] = spec
 
-    al = "aluminium 6082"
+    al = PLATE_ALUMINIUM
     # --- base plate ---
     g = rigs.base
     L, W, T = g.length_mm, g.width_mm, g.thickness_mm
@@ -162,7 +185,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         expected_bbox_mm=_box_bbox(-L / 2, -W / 2, 0, L / 2, W / 2, T), geometry=k, frames=frames))
     ro, ri, t = k.spacer_outer_diameter_mm / 2, k.spacer_inner_diameter_mm / 2, k.spacer_thickness_mm
     add(RigPartSpec(
-        name="wheel_spacer", kind="fabricated", process="turning", material="brass",
+        name="wheel_spacer", kind="fabricated", process="turning", material=TURNED_BRASS,
         color=_COLORS["wheel_spacer"], builder="wheel_spacer",
         expected_volume_mm3=math.pi * (ro * ro - ri * ri) * t,
         expected_bbox_mm=_box_bbox(-ro, -ro, 0, ro, ro, t), geometry=k,
@@ -216,9 +239,10 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     add(RigPartSpec(
         name="indenter", kind="fabricated",
         process=f"turning and milling, {i.contact_width_mm:g} x {i.contact_depth_mm:g} mm contact face",
-        material="steel", color=_COLORS["indenter"], builder="indenter",
+        material=INDENTER_STEEL, color=_COLORS["indenter"], builder="indenter",
         expected_volume_mm3=i.contact_width_mm * i.contact_depth_mm * i.tip_length_mm
-        + math.pi * rr * rr * i.body_length_mm,
+        + math.pi * rr * rr * i.body_length_mm
+        - math.pi * (INDENTER_THREAD_DIAMETER_MM / 2) ** 2 * indenter_thread_depth_mm(i),
         expected_bbox_mm=_box_bbox(-rr, -rr, 0, rr, rr, top), geometry=i,
         frames={"mount": face((0, 0, top), (0, 0, 1), (1, 0, 0)),
                 "contact": face((0, 0, 0), (0, 0, -1), (1, 0, 0))}))
@@ -318,7 +342,8 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     hb = rigs.bar
     sh = hb.section_mm / 2
     add(RigPartSpec(
-        name="hanger_bar", kind="fabricated", process="sawing and facing bar stock", material=al,
+        name="hanger_bar", kind="fabricated", process="sawing and facing bar stock",
+        material=BAR_ALUMINIUM,
         color=_COLORS["hanger_bar"], builder="hanger_bar",
         expected_volume_mm3=hb.section_mm ** 2 * hb.length_mm,
         expected_bbox_mm=_box_bbox(-sh, -sh, -hb.length_mm, sh, sh, 0), geometry=hb,

@@ -26,6 +26,7 @@ from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import ElementGeometry, Plan
 from tactcad.store import stable_repr
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
+from tactcad.catalogue.shop import material_designation, stock_size, surface_finish
 from tactcad.geometry.profile import Arc
 from tactcad.mechanics.strength import strength_summary
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
@@ -34,8 +35,9 @@ from tactcad.drawings.views import (CAMERAS, ISO_5455_SCALES, View, cameras_for,
 
 GENERAL_TOLERANCE = "ISO 2768-f"
 FRAME = (20.0, 10.0, 410.0, 287.0)  # left, top, right, bottom (A3, ISO 5457)
-TITLE_W, TITLE_H = 180.0, 54.0
-NOTES_TOP = 226.0                    # views stay above this line (lower if the notes need it)
+TITLE_W, TITLE_H = 180.0, 63.0        # seven rows of 9 mm
+NOTES_TOP = 208.0                    # views stay above this line (higher if the notes need it):
+                                     # clear of the title block and its surface symbol
 NOTE_LINE = 4.2                      # line pitch of the notes (paper mm)
 TIER = 7.0                           # spacing of stacked dimension lines (paper mm)
 FIRST_TIER = 9.0                     # first dimension line from the view outline
@@ -46,11 +48,18 @@ TABLE1 = Path(__file__).resolve().parents[1] / "data" / "table1_calibration.csv"
 
 @dataclass
 class Hole2D:
-    """A round through hole seen in the front view (model mm)."""
+    """A round hole seen end-on in the front view (model mm); ``depth`` None
+    for a through hole."""
 
     x: float
     y: float
     d: float
+    depth: float | None = None
+
+    @property
+    def depth_text(self) -> str:
+        """``through`` or ``depth 8`` (mm)."""
+        return "through" if self.depth is None else f"depth {fmt_mm(self.depth)}"
 
 
 @dataclass
@@ -90,6 +99,12 @@ def _holes(spec: PartSpec, solid, cameras: dict | None = None) -> list[Hole2D]:
     uv = np.array(up, float)
     rv = np.cross(uv, dv)
     out: dict[tuple, Hole2D] = {}
+    # flat hole bottoms: plane faces bounded by one circle (a blind hole's floor)
+    floors = []
+    for f in solid.faces():
+        es = f.edges()
+        if f.geom_type.name == "PLANE" and len(es) == 1 and es[0].geom_type.name == "CIRCLE":
+            floors.append((np.array(tuple(es[0].arc_center)), es[0].radius))
     for f in solid.faces():
         if f.geom_type.name != "CYLINDER":
             continue
@@ -97,6 +112,8 @@ def _holes(spec: PartSpec, solid, cameras: dict | None = None) -> list[Hole2D]:
         a = np.array(tuple(ax.direction)) if ax is not None else None
         if a is None or abs(abs(a @ dv) - 1.0) > 1e-6:
             continue
+        if not any(e.geom_type.name == "CIRCLE" and e.is_closed for e in f.edges()):
+            continue  # a fillet (quarter cylinder) of a pocket or window, not a hole
         c = f.center()
         n = np.array(tuple(f.normal_at(c)))
         pos = np.array(tuple(ax.position))
@@ -104,8 +121,12 @@ def _holes(spec: PartSpec, solid, cameras: dict | None = None) -> list[Hole2D]:
         to_axis -= (to_axis @ a) * a
         if n @ to_axis <= 0:  # normal away from the axis: a boss
             continue
+        along = [float(np.array(tuple(v)) @ dv) for v in f.vertices()]
+        blind = any(abs(r - f.radius) < 1e-6
+                    and np.linalg.norm(np.cross(c - pos, a)) < 1e-6 for c, r in floors)
+        span = max(along) - min(along) if along else 0.0
         h = Hole2D(round(float(pos @ rv), 6) + 0.0, round(float(pos @ uv), 6) + 0.0,
-                   round(2 * f.radius, 6))
+                   round(2 * f.radius, 6), round(span, 6) if blind and span > 0 else None)
         out[(h.x, h.y)] = h
     return sorted(out.values(), key=lambda h: (h.y, h.x))
 
@@ -118,15 +139,34 @@ def _thickness(spec: PartSpec) -> float:
     return bb[5] - bb[2]
 
 
-def material_text(spec: PartSpec) -> str:
-    """Material and stock: ``aluminium, 3 mm sheet`` for a profiled part,
-    else the material and the part's envelope (bounding box, mm)."""
-    if spec.profile is not None:
-        stock = "sheet" if "sheet" in spec.process else "plate"
-        return f"{spec.material}, {fmt_mm(_thickness(spec))} mm {stock}"
-    x0, y0, z0, x1, y1, z1 = spec.expected_bbox_mm
-    env = " x ".join(fmt_mm(v, 2) for v in (x1 - x0, y1 - y0, z1 - z0))
-    return f"{spec.material}; envelope {env}"
+def material_text(spec: PartSpec, plan: Plan | None = None) -> str:
+    """Material with alloy and temper and the raw stock:
+    ``aluminium EN AW-6061-T6; sheet 3 mm, blank 32 x 20`` (see
+    :func:`tactcad.catalogue.shop.material_designation` and
+    :func:`tactcad.catalogue.shop.stock_size`)."""
+    return f"{material_designation(spec, plan)}; {stock_size(spec)}"
+
+
+def finish_text(spec: PartSpec) -> str:
+    """Surface finish as the title block prints it (ISO 1302 general
+    indication): ``Ra 1.6 general; Ra 0.8: contact face, web``."""
+    f = surface_finish(spec)
+    if not f.general_ra_um:
+        return f.reason
+    text = f"Ra {f.general_ra_um:g} general"
+    for face, ra in f.special:
+        text += f"; Ra {ra:g}: {face}"
+    return text
+
+
+def revision_and_date(plan: Plan) -> tuple[str, str]:
+    """(revision, date) of the drawing: the design file's ``[design]``
+    ``revision`` and ``date`` when given, else ``A`` and ``—``. Never today's
+    date: the same design writes the same bytes."""
+    table = plan.raw.get("design", {}) if isinstance(plan.raw, dict) else {}
+    rev = str(table.get("revision", "") or "A")
+    date = str(table.get("date", "") or "—")
+    return rev, date
 
 
 def _inside_radii(spec: PartSpec) -> list[Arc]:
@@ -197,7 +237,7 @@ def choose_cameras(spec: PartSpec) -> dict:
 
 def hole_table_rows(d: Drawing, solid) -> int:
     """Rows of the hole table the generic set will draw (0: none)."""
-    if d.spec.builder in ("element", "indenter"):
+    if d.spec.builder in ("element", "indenter", "cart"):
         return 0
     holes = _holes(d.spec, solid, d.cameras)
     if not holes or len({(h.x, h.y) for h in holes}) == 1:
@@ -207,7 +247,7 @@ def hole_table_rows(d: Drawing, solid) -> int:
     return len(holes)
 
 
-TABLE_COLS = (14.0, 22.0, 22.0, 18.0)
+TABLE_COLS = (14.0, 22.0, 22.0, 18.0, 22.0)
 TABLE_ROW = 6.0
 
 
@@ -262,6 +302,8 @@ def draw_views(d: Drawing) -> None:
             sh.polyline(g, [v.paper(*p) for p in poly], "hidden", cls="hidden")
         for poly in v.visible:
             sh.polyline(g, [v.paper(*p) for p in poly], "visible", cls="visible")
+        for poly in v.hatch:
+            sh.polyline(g, [v.paper(*p) for p in poly], "thin", cls="hatch")
     dv = d.views.get("detail")
     if dv is not None:
         (cu, cv), r = dv.clip
@@ -298,18 +340,19 @@ def _hole_marks(d: Drawing, view: View, holes: list[Hole2D]) -> None:
 
 
 def _hole_callout(d: Drawing, view: View, holes: list[Hole2D], toward: tuple[float, float]) -> None:
-    """One leader per distinct hole size: ``2× Ø2.4`` at the first such hole."""
-    by_size: dict[str, list[Hole2D]] = {}
+    """One leader per distinct hole size and depth: ``2× Ø2.4 through`` at
+    the nearest such hole."""
+    by_size: dict[tuple[str, str], list[Hole2D]] = {}
     for h in holes:
-        by_size.setdefault(fmt_mm(h.d), []).append(h)
-    for k, (size, hs) in enumerate(by_size.items()):
+        by_size.setdefault((fmt_mm(h.d), h.depth_text), []).append(h)
+    for k, ((size, _), hs) in enumerate(by_size.items()):
         h = min(hs, key=lambda h: (h.x - toward[0]) ** 2 + (h.y - toward[1]) ** 2)
         ang = math.atan2(toward[1] - h.y, toward[0] - h.x)
         r = h.d / 2
         p0 = view.paper(h.x + r * math.cos(ang), h.y + r * math.sin(ang))
         p1 = view.paper(*toward)
         p1 = (p1[0], p1[1] + 6.0 * k)
-        text = (f"{len(hs)}× " if len(hs) > 1 else "") + f"Ø{size}"
+        text = (f"{len(hs)}× " if len(hs) > 1 else "") + f"Ø{size} {h.depth_text}"
         name = "hole_diameter" if len(by_size) == 1 else f"hole_diameter_{k + 1}"
         d.sheet.leader([p0, p1], text, name)
         d.dimensions[name] = text
@@ -349,7 +392,7 @@ def _hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float,
     row_h = TABLE_ROW
     y0 = FRAME[3] - 8 - row_h * (len(ordered) + 1)  # clear of the centring mark
     sh.rect("hole-table", x0, y0, sum(cols), row_h * (len(ordered) + 1), "table")
-    heads = ("Hole", "X", "Y", "Ø")
+    heads = ("Hole", "X", "Y", "Ø", "Depth")
     for r_i in range(len(ordered) + 2):
         y = y0 + r_i * row_h
         if 0 < r_i < len(ordered) + 1:
@@ -366,9 +409,9 @@ def _hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float,
     for c, hd in enumerate(heads):
         cell(c, 0, hd)
     for i, h in enumerate(ordered, start=1):
-        vals = (fmt_mm(h.x - datum[0]), fmt_mm(h.y - datum[1]), fmt_mm(h.d))
+        vals = (fmt_mm(h.x - datum[0]), fmt_mm(h.y - datum[1]), fmt_mm(h.d), h.depth_text)
         cell(0, i, f"H{i}")
-        for c, (suffix, v) in enumerate(zip(("x", "y", "d"), vals), start=1):
+        for c, (suffix, v) in enumerate(zip(("x", "y", "d", "depth"), vals), start=1):
             cell(c, i, v, f"dim-hole_{i}_{suffix}")
             d.dimensions[f"hole_{i}_{suffix}"] = v
     sh.text("hole-table", (x0, y0 - 2.0), "Hole positions from origin 0,0", DIM_TEXT_MM)
@@ -548,16 +591,253 @@ def indenter_dims(d: Drawing, solid) -> None:
     _dim(d, f, (-w / 2, 0.0), (-w / 2, L), "v", "right", 0, fmt_mm(L), "tip_length")
     _dim(d, f, (-D / 2, L), (-D / 2, L + B), "v", "right", 0, fmt_mm(B), "body_length")
     _dim(d, f, (-w / 2, 0.0), (-D / 2, L + B), "v", "right", 1, fmt_mm(L + B), "overall_height")
-    cf = f"contact face {fmt_mm(w)} × {fmt_mm(dp)}"
+    from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
+    from tactcad.catalogue.shop import tap_drill_mm, thread_text
+
     fb = f.paper_box()
+    depth = indenter_thread_depth_mm(g)
+    th = (f"{thread_text(INDENTER_THREAD_DIAMETER_MM, depth)} (tap drill "
+          f"Ø{fmt_mm(tap_drill_mm(INDENTER_THREAD_DIAMETER_MM))}), onto the gauge shaft")
+    sv = d.views.get("section", f)
+    sb = sv.paper_box()
+    rt = INDENTER_THREAD_DIAMETER_MM / 2
+    d.sheet.leader([sv.paper(rt, L + B - depth / 2), (sb[2] + FIRST_TIER + TIER, sb[1] - 8.0)],
+                   th, "mount_thread")
+    d.dimensions["mount_thread"] = th
+    if sv is not f:
+        _dim(d, sv, (-rt, L + B), (-rt, L + B - depth), "v", "right", 0, fmt_mm(depth),
+             "thread_depth")
+        _section_marks(d, "top", "A-A")
+    cf = f"contact face {fmt_mm(w)} × {fmt_mm(dp)}"
     d.sheet.leader([f.paper(0.0, 0.0), (fb[2] + 4.0, fb[3] + 18.0)], cf, "contact_face")
     d.dimensions["contact_face"] = cf
 
 
+# ---------------------------------------------------------------------------
+# the cart: vacuum pocket, suction holes, channel and port, tapped holes, section A-A
+# ---------------------------------------------------------------------------
+SECTION_GAP = 30.0  # paper mm between the view from the left and a section view
+
+
+def add_section(d: Drawing, solid, normal: tuple, up: tuple, length_mm: float,
+                height_mm: float) -> None:
+    """Section A-A through the part frame's origin, plane normal ``normal``
+    pointing at the viewer, ``up`` upwards; placed right of the view from the
+    left at up to four times the main scale (the largest ISO 5455 scale at
+    which ``length_mm`` x ``height_mm`` fits the room left on the sheet)."""
+    from tactcad.drawings.section import section_view
+
+    lb = d.views["left"].paper_box()
+    left = lb[2] + SECTION_GAP
+    room = FRAME[2] - 8.0 - left - FIRST_TIER - 2 * TIER
+    top = lb[1] + 12.0
+    room_h = d.notes_top - top - FIRST_TIER - 2 * TIER - 12.0
+    scale = next((s for s in ISO_5455_SCALES if s <= 4 * d.scale and length_mm * s <= room
+                  and height_mm * s <= room_h), d.scale)
+    sv = section_view(solid, (0.0, 0.0, 0.0), normal, up, "A-A", scale)
+    sv.hidden = []  # ISO 128-40: no hidden edges in a section
+    sv.place(left, lb[1] + 12.0)
+    d.views["section"] = sv
+
+
+def cart_section(d: Drawing, solid) -> None:
+    """Cart: section in the mid plane y = 0 (through the channel, the port
+    and the suction holes), seen from -y."""
+    g = d.spec.geometry
+    add_section(d, solid, (0.0, -1.0, 0.0), (0.0, 0.0, 1.0), g.length_mm, g.thickness_mm)
+
+
+def indenter_section(d: Drawing, solid) -> None:
+    """Indenter: section through its axis (plane y = 0, seen from +y, as the
+    front view), showing the blind tapped hole."""
+    g = d.spec.geometry
+    add_section(d, solid, (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), g.body_diameter_mm,
+                g.tip_length_mm + g.body_length_mm)
+
+
+def _section_marks(d: Drawing, host: str, label: str) -> None:
+    """Cutting plane (ISO 128-40: long-dash-dot, thick at the ends) along the
+    line v = 0 of view ``host``, arrows for the viewing direction (paper up),
+    the letters, and the section's own label with its scale."""
+    sh, f, sv = d.sheet, d.views[host], d.views["section"]
+    x0, _, x1, _ = f.paper_box()
+    y = f.paper(0.0, 0.0)[1]
+    out = FIRST_TIER + TIER + 4.0  # beyond two tiers of dimensions
+    sh.line("section-plane", (x0 - out, y), (x1 + out, y), "centre")
+    for x in (x0 - out, x1 + out):
+        sh.line("section-plane", (x - 2.5 if x < x0 else x - 2.5, y), (x + 2.5, y), "visible")
+        sh.line("section-plane", (x, y), (x, y - 5.0), "thin")
+        sh.arrow("section-plane", (x, y - 7.5), (0.0, -1.0))
+        sh.text("section-plane", (x + (-3.0 if x < x0 else 3.0), y - 6.0), label[0], LABEL_TEXT_MM,
+                anchor="middle", id=f"section-letter-{'l' if x < x0 else 'r'}")
+    b = sv.paper_box()
+    sh.text("view-section", ((b[0] + b[2]) / 2, b[3] + FIRST_TIER + 2 * TIER + 5.0),
+            f"{label} ({scale_text(sv.scale)})", LABEL_TEXT_MM, anchor="middle",
+            id="section-label")
+
+
+def cart_dims(d: Drawing, solid) -> None:
+    """Cart (``spec.geometry``: :class:`tactcad.design.rigs.CartGeometry`;
+    part frame: x along the grooves, z up from the underside, centred):
+    outline and pocket in the front view (from +z), the wheel axles' tapped
+    holes in the view from above (from +y), the hose port in the view from the
+    left (from -x), channel, port, suction holes and pocket depth in section A-A."""
+    from tactcad.catalogue.shop import thread_text
+    from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM
+
+    g = d.spec.geometry
+    f, t, lv, sv = d.front, d.views["top"], d.views["left"], d.views["section"]
+    L, W, T = g.length_mm, g.width_mm, g.thickness_mm
+    pl, pw = g.pocket_length_mm, g.pocket_width_mm
+    # front view: outline, pocket, holder screws
+    _dim(d, f, (-pl / 2, pw / 2), (pl / 2, pw / 2), "h", "top", 0, fmt_mm(pl), "pocket_length")
+    _dim(d, f, (-L / 2, W / 2), (L / 2, W / 2), "h", "top", 1, fmt_mm(L), "overall_length")
+    _dim(d, f, (pl / 2, -pw / 2), (pl / 2, pw / 2), "v", "right", 0, fmt_mm(pw), "pocket_width")
+    _dim(d, f, (L / 2, -W / 2), (L / 2, W / 2), "v", "right", 1, fmt_mm(W), "overall_height")
+    ys = g.holder_screw_y_mm
+    _dim(d, f, (0.0, -ys), (0.0, ys), "v", "left", 0, fmt_mm(2 * ys), "holder_screw_spacing")
+    holes = [Hole2D(0.0, s * ys, g.holder_screw_diameter_mm) for s in (-1, 1)]
+    _hole_marks(d, f, holes)
+    d.sheet.line("centre-lines", f.paper(0.0, -W / 2 - 2.0), f.paper(0.0, W / 2 + 2.0), "centre")
+    fb = f.paper_box()
+    texts = {
+        # both leaders end below the view, clear of its edges and of each other
+        "holder_thread": (f"2× {thread_text(g.holder_screw_diameter_mm, g.holder_tapped_depth_mm)}",
+                          f.paper(g.holder_screw_diameter_mm / 2 * 0.7, -ys - 0.7),
+                          (fb[0] + 0.62 * (fb[2] - fb[0]), fb[3] + 12.0)),
+        "pocket": (f"pocket depth {fmt_mm(g.pocket_depth_mm)}, 4× R{fmt_mm(POCKET_CORNER_RADIUS_MM)}",
+                   f.paper(-pl / 2, -pw / 2 + POCKET_CORNER_RADIUS_MM * 2),
+                   (fb[0] + 8.0, fb[3] + 6.0)),
+    }
+    for name, (text, at, to) in texts.items():
+        d.sheet.leader([at, to], text, name)
+        d.dimensions[name] = text
+    # view from above (u = x, v = -z): axles
+    ax, ah = g.axle_x_mm, g.axle_height_mm
+    _dim(d, t, (-ax, -ah), (ax, -ah), "h", "below", 0, fmt_mm(2 * ax), "axle_spacing")
+    _dim(d, t, (-L / 2, 0.0), (-ax, -ah), "v", "left", 0, fmt_mm(ah), "axle_height")
+    _hole_marks(d, t, [Hole2D(s * ax, -ah, g.axle_bolt.nominal_diameter_mm) for s in (-1, 1)])
+    axle = (f"4× {thread_text(g.axle_bolt.nominal_diameter_mm, g.axle_hole_depth_mm)} "
+            f"(both sides)")
+    tb = t.paper_box()
+    d.sheet.leader([t.paper(ax + 1.0, -ah - 1.0), (tb[2] - 10.0, tb[3] + 12.0)], axle, "axle_thread")
+    d.dimensions["axle_thread"] = axle
+    _thickness_dim(d)
+    # view from the left (u = z, v = y): the hose port
+    port = thread_text(g.port_diameter_mm, g.port_depth_mm)
+    lb = lv.paper_box()
+    _hole_marks(d, lv, [Hole2D(T / 2, 0.0, g.port_diameter_mm)])
+    d.sheet.leader([lv.paper(T / 2 + g.port_diameter_mm / 2 * 0.7, g.port_diameter_mm / 2 * 0.7),
+                    (lb[2] + 6.0, lb[1] - 4.0)], f"hose port {port}", "port_thread")
+    d.dimensions["port_thread"] = f"hose port {port}"
+    # section A-A (u = x, v = z)
+    xs = g.suction_hole_xs_mm
+    _dim(d, sv, (-L / 2, T), (xs[0], T), "h", "top", 0, fmt_mm(xs[0] + L / 2), "suction_hole_first_x")
+    if len(xs) > 1:
+        _dim(d, sv, (xs[0], T), (xs[1], T), "h", "top", 1, fmt_mm(xs[1] - xs[0]), "suction_hole_pitch")
+    _dim(d, sv, (-L / 2, T / 2), (-L / 2 + g.port_depth_mm, T / 2), "h", "below", 0,
+         fmt_mm(g.port_depth_mm), "port_depth")
+    _dim(d, sv, (-L / 2, T / 2), (g.channel_end_x_mm, T / 2), "h", "below", 1,
+         fmt_mm(g.channel_end_x_mm + L / 2), "channel_length")
+    _dim(d, sv, (L / 2, 0.0), (g.channel_end_x_mm, T / 2), "v", "right", 0, fmt_mm(T / 2),
+         "channel_height")
+    _dim(d, sv, (L / 2, T), (pl / 2, T - g.pocket_depth_mm), "v", "right", 1,
+         fmt_mm(g.pocket_depth_mm), "pocket_depth")
+    sb = sv.paper_box()
+    ch = f"channel Ø{fmt_mm(g.channel_diameter_mm)}"
+    d.sheet.leader([sv.paper(g.channel_end_x_mm - 4.0, T / 2 - g.channel_diameter_mm / 2),
+                    (sv.paper(g.channel_end_x_mm, 0.0)[0] + 4.0, sb[3] + 5.0)], ch, "channel_diameter")
+    d.dimensions["channel_diameter"] = ch
+    sh_text = f"{len(xs)}× Ø{fmt_mm(g.suction_hole_diameter_mm)} to channel"
+    d.sheet.leader([sv.paper(xs[-1] + g.suction_hole_diameter_mm / 2, T - 1.5),
+                    (sb[0] + 0.72 * (sb[2] - sb[0]), sb[1] - 2 * TIER - FIRST_TIER)], sh_text,
+                   "suction_holes")
+    d.dimensions["suction_holes"] = sh_text
+    _section_marks(d, "front", "A-A")
+
+
+def base_plate_dims(d: Drawing, solid) -> None:
+    """Base plate (:class:`tactcad.design.rigs.BasePlateGeometry`; frame
+    centred, z up): the generic set, and the two full-length grooves in the
+    view from the left (u = z, v = y): width, depth and centre distance."""
+    g = d.spec.geometry
+    generic_dims(d, solid)
+    lv = d.views["left"]
+    T, yc, gw = g.thickness_mm, g.track_half_mm, g.groove_width_mm
+    _dim(d, lv, (T - g.groove_depth_mm, yc + gw / 2), (T, yc + gw / 2), "h", "top", 0,
+         fmt_mm(g.groove_depth_mm), "groove_depth")
+    _dim(d, lv, (T, yc - gw / 2), (T, yc + gw / 2), "v", "right", 0, fmt_mm(gw), "groove_width")
+    _dim(d, lv, (T - g.groove_depth_mm, -yc), (T - g.groove_depth_mm, yc), "v", "right", 1,
+         fmt_mm(2 * yc), "groove_spacing")
+    for s_ in (-1, 1):
+        d.sheet.line("centre-lines", lv.paper(T - g.groove_depth_mm - 1.0, s_ * yc),
+                     lv.paper(T + 1.0, s_ * yc), "centre")
+
+
+def sample_holder_dims(d: Drawing, solid) -> None:
+    """Sample holder (:class:`tactcad.design.rigs.SampleHolderGeometry`;
+    frame centred, z up): the generic set plus the window (length, width,
+    corner radius)."""
+    g = d.spec.geometry
+    f = d.front
+    wl, ww = g.window_length_mm, g.window_width_mm
+    _dim(d, f, (-wl / 2, ww / 2), (wl / 2, ww / 2), "h", "top", 0, fmt_mm(wl), "window_length")
+    _dim(d, f, (wl / 2, -ww / 2), (wl / 2, ww / 2), "v", "right", 0, fmt_mm(ww), "window_width")
+    generic_dims(d, solid, top_k=1, right_k=1)
+    r = g.corner_radius_mm
+    text = f"window through, 4× R{fmt_mm(r)}"
+    c = (wl / 2 - r + r * 0.7, -ww / 2 + r - r * 0.7)
+    fb = f.paper_box()
+    d.sheet.leader([f.paper(*c), (fb[2] - 6.0, fb[3] + FIRST_TIER + 2 * TIER + 4.0)], text,
+                   "window_corner")
+    d.dimensions["window_corner"] = text
+
+
+def bracket_dims(d: Drawing, solid) -> None:
+    """Array bracket (:class:`tactcad.design.rigs.BracketGeometry`; views from
+    :func:`tactcad.drawings.views.orientation`: front from +y with u = z,
+    v = x; from above u = z, v = -y; from the left u = y, v = x): the generic
+    set (outline, foot hole), the L section's ear and foot thicknesses and
+    ear height in the view from above, the ear's two through holes in the
+    view from the left."""
+    g = d.spec.geometry
+    generic_dims(d, solid)
+    t, lv = d.views["top"], d.views["left"]
+    fb_, ft = g.foot_bottom_mm, g.foot_top_mm
+    _dim(d, t, (-g.ear_thickness_mm, -g.ear_top_mm), (0.0, -g.ear_top_mm), "h", "top", 0,
+         fmt_mm(g.ear_thickness_mm), "ear_thickness")
+    _dim(d, t, (-g.foot_length_mm, -ft), (-g.foot_length_mm, -fb_), "v", "left", 0,
+         fmt_mm(g.foot_thickness_mm), "foot_thickness")
+    xs = sorted(g.hole_xs_mm)
+    holes = [Hole2D(0.0, x, g.hole_diameter_mm) for x in xs]
+    _hole_marks(d, lv, holes)
+    _dim(d, lv, (fb_, xs[0]), (0.0, xs[0]), "h", "below", 0, fmt_mm(-fb_), "ear_hole_height")
+    _dim(d, lv, (0.0, -g.width_mm / 2), (0.0, xs[0]), "v", "right", 0,
+         fmt_mm(xs[0] + g.width_mm / 2), "ear_hole_1_x")
+    if len(xs) > 1:
+        _dim(d, lv, (0.0, xs[0]), (0.0, xs[1]), "v", "right", 1, fmt_mm(xs[1] - xs[0]),
+             "ear_hole_spacing")
+    lb = lv.paper_box()
+    text = f"{len(xs)}× Ø{fmt_mm(g.hole_diameter_mm)} {holes[0].depth_text}"
+    d.sheet.leader([lv.paper(g.hole_diameter_mm / 2 * 0.7, xs[-1] + g.hole_diameter_mm / 2 * 0.7),
+                    (lb[2] + 4.0, lb[1] - 6.0)], text, "ear_holes")
+    d.dimensions["ear_holes"] = text
+
+
 DIMENSION_SETS: dict[str, Callable[[Drawing, object], None]] = {
+    "array_bracket": bracket_dims,
+    "base_plate": base_plate_dims,
+    "sample_holder": sample_holder_dims,
     "element": element_dims,
     "clamp_plate": clamp_dims,
     "indenter": indenter_dims,
+    "cart": cart_dims,
+}
+
+#: Section views by builder key, added after the main views are placed.
+SECTIONS: dict[str, Callable[[Drawing, object], None]] = {
+    "cart": cart_section,
+    "indenter": indenter_section,
 }
 
 # Parts drawn from fixed directions (builder key -> view set); others see
@@ -604,13 +884,25 @@ def notes_for(d: Drawing) -> list[str]:
     elif spec.builder == "spacer":
         n.append(f"{_sentence(spec.process)}, {spec.material}. Thickness "
                  f"{fmt_mm(plan.spacer.thickness_mm)} = pitch {fmt_mm(plan.pitch_mm)} - sheet "
-                 f"{fmt_mm(plan.sheet_thickness_mm)}: it sets the array pitch; keep both faces "
-                 f"flat and parallel.")
+                 f"{fmt_mm(plan.sheet_thickness_mm)}: it sets the array pitch; faces parallel "
+                 f"within 0.01 (ISO 1101).")
     elif spec.builder == "clamp_plate":
         n.append(f"{_sentence(spec.process)} from {fmt_mm(_thickness(spec))} mm {spec.material}"
                  f" plate. Window corners R = cutter radius. Holes Ø"
                  f"{fmt_mm(plan.bolt.clearance_hole_mm)}: ISO 273 medium clearance for "
                  f"{plan.bolt.size}.")
+    elif spec.builder == "cart":
+        g = spec.geometry
+        n.append(f"{_sentence(spec.process)}, {spec.material}.")
+        n.append(f"Vacuum: drill the channel Ø{fmt_mm(g.channel_diameter_mm)} from the port end "
+                 f"(section A-A), then the suction holes from the pocket floor into it; deburr "
+                 f"the channel and holes so no chip stays inside. Top face and pocket rim: "
+                 f"flatness 0.05 (ISO 1101), so the sample seals on the vacuum.")
+    elif spec.builder == "indenter":
+        n.append(f"{_sentence(spec.process)}, {spec.material}.")
+        n.append("The M6 thread screws the indenter onto the force gauge's measuring shaft; "
+                 "contact face perpendicular to the thread axis within 0.02 (ISO 1101), so the "
+                 "2 x 3 mm face lies flat on the element's tip.")
     else:
         n.append(f"{_sentence(spec.process)}, {spec.material}.")
     n.append(f"Untoleranced dimensions: {GENERAL_TOLERANCE}. Dimensions in mm (ISO 129-1), "
@@ -669,7 +961,11 @@ def _wrap(text: str, width: float, h: float) -> list[str]:
 
 
 def draw_frame(d: Drawing) -> None:
-    sh = d.sheet
+    sheet_frame(d.sheet)
+
+
+def sheet_frame(sh: Sheet) -> None:
+    """ISO 5457 frame and centring marks of an A3 sheet."""
     x0, y0, x1, y1 = FRAME
     sh.rect("frame", x0, y0, x1 - x0, y1 - y0, "frame")
     # centring marks (ISO 5457)
@@ -685,14 +981,15 @@ def draw_title_block(d: Drawing) -> None:
     sh = d.sheet
     plan, spec = d.plan, d.spec
     x0, y0 = FRAME[2] - TITLE_W, FRAME[3] - TITLE_H
-    rh = TITLE_H / 6
+    rh = TITLE_H / 7
+    rev, date = revision_and_date(plan)
     sh.rect("title-block", x0, y0, TITLE_W, TITLE_H, "frame")
     scale = scale_text(d.scale) + (f", detail {scale_text(d.detail_scale)}" if d.detail_scale else "")
     cells = [
         # row, x offset, width, label, value, id, value height
         (0, 0, 120, "Part", spec.name, "tb-part", 3.5),
         (0, 120, 60, "Quantity", str(d.quantity), "tb-quantity", LABEL_TEXT_MM),
-        (1, 0, 120, "Material", material_text(spec), "tb-material", LABEL_TEXT_MM),
+        (1, 0, 120, "Material", material_text(spec, plan), "tb-material", LABEL_TEXT_MM),
         (1, 120, 60, "Scale", scale, "tb-scale", LABEL_TEXT_MM),
         (2, 0, 120, "Process", spec.process, "tb-process", LABEL_TEXT_MM),
         (2, 120, 60, "Units", "mm", "tb-units", LABEL_TEXT_MM),
@@ -704,15 +1001,12 @@ def draw_title_block(d: Drawing) -> None:
         (4, 120, 60, "Sheet", "1 / 1", "tb-sheet", LABEL_TEXT_MM),
         (5, 0, 120, "Generated by", f"tactcad {__version__}", "tb-version", LABEL_TEXT_MM),
         (5, 120, 60, "Drawing no.", f"{plan.name}-{spec.name}", "tb-number", LABEL_TEXT_MM),
+        (6, 0, 120, "Surface finish (ISO 1302, Ra in µm)", finish_text(spec), "tb-finish",
+         LABEL_TEXT_MM),
+        (6, 120, 25, "Revision", rev, "tb-revision", LABEL_TEXT_MM),
+        (6, 145, 35, "Date", date, "tb-date", LABEL_TEXT_MM),
     ]
-    for row, dx, w, label, value, id, vh in cells:
-        x, y = x0 + dx, y0 + row * rh
-        sh.rect("title-block", x, y, w, rh, "table")
-        sh.text("title-block", (x + 1.2, y + 2.4), label, 1.6)
-        if value:
-            while text_width(value, vh) > 0.9 * (w - 3) and vh > 1.8:
-                vh -= 0.25
-            sh.text("title-block", (x + 1.5, y + rh - 1.6), value, vh, id=id)
+    title_cells(sh, x0, y0, rh, cells)
     # first-angle projection symbol (ISO 128-30), in the projection cell
     px, py = x0 + 120 + 30, y0 + 3 * rh + rh / 2 + 0.8
     sh.polyline("title-block", [(px - 12, py - 1.4), (px - 4, py - 3.0), (px - 4, py + 3.0),
@@ -722,12 +1016,49 @@ def draw_title_block(d: Drawing) -> None:
     sh.circle("title-block", (px + 6, py), 1.4)
     sh.line("title-block", (px + 2, py), (px + 10, py), "centre")
     sh.line("title-block", (px + 6, py - 4), (px + 6, py + 4), "centre")
+    draw_finish_symbol(d, (x0 + 8.0, y0 - 3.0))
+
+
+def draw_finish_symbol(d: Drawing, at: tuple[float, float]) -> None:
+    """ISO 1302 general surface texture indication above the title block:
+    the symbol "material removal required" with the general Ra, followed in
+    brackets by the basic symbol when some faces are finer (indicated by
+    note). ``at``: paper point of the symbol's root (mm)."""
+    f = surface_finish(d.spec)
+    if not f.general_ra_um:
+        return
+    sh = d.sheet
+    x, y = at
+    h = 5.0  # ISO 1302 H1 for 2.5 mm lettering: 3.5; H2 = 2 H1, here scaled to 5 / 10
+    sh.polyline("surface-finish", [(x - h * 0.58, y - h), (x, y), (x + h * 1.15, y - 2 * h),
+                                   (x + h * 1.15 + 14.0, y - 2 * h)], "thin")
+    sh.line("surface-finish", (x - h * 0.58, y - h), (x + h * 0.58, y - h), "thin")
+    sh.text("surface-finish", (x + h * 1.15 + 1.0, y - 2 * h - 1.0), f"Ra {f.general_ra_um:g}",
+            DIM_TEXT_MM, id="finish-general")
+    if f.special:
+        sh.text("surface-finish", (x + h * 1.15 + 16.0, y - 2 * h + 4.0),
+                "( " + ", ".join(f"Ra {ra:g} {face}" for face, ra in f.special) + " )",
+                DIM_TEXT_MM, id="finish-special")
+
+
+def title_cells(sh: Sheet, x0: float, y0: float, rh: float, cells: list[tuple]) -> None:
+    """Title-block cells (ISO 7200): each ``(row, x offset, width, label,
+    value, id, value height)`` in paper mm from the block's corner
+    ``(x0, y0)``, rows ``rh`` high; a value too wide for its cell is set smaller."""
+    for row, dx, w, label, value, id, vh in cells:
+        x, y = x0 + dx, y0 + row * rh
+        sh.rect("title-block", x, y, w, rh, "table")
+        sh.text("title-block", (x + 1.2, y + 2.4), label, 1.6)
+        if value:
+            while text_width(value, vh) > 0.9 * (w - 3) and vh > 1.8:
+                vh -= 0.25
+            sh.text("title-block", (x + 1.5, y + rh - 1.6), value, vh, id=id)
 
 
 def drawing_inputs(plan: Plan, spec: PartSpec) -> tuple:
     """Everything of the plan that shapes the part's drawing: the part itself
     and, by part family, the plan values its notes and dimensions print."""
-    inputs: tuple = (plan.name, spec)
+    inputs: tuple = (plan.name, spec, material_designation(spec, plan), revision_and_date(plan))
     if spec.builder == "element":
         used = tuple(s.number for s in plan.slots if s.geometry.part_name == spec.name)
         inputs += (plan.distinct_elements[spec.name], used, plan.edm, plan.material,
@@ -766,6 +1097,8 @@ def compose(plan: Plan, spec: PartSpec, solid, quantity: int) -> Drawing:
     d.notes = notes_for(d)
     d.notes_top = notes_top(d)
     layout(d, solid)
+    if spec.builder in SECTIONS:
+        SECTIONS[spec.builder](d, solid)
     draw_frame(d)
     draw_views(d)
     DIMENSION_SETS.get(spec.builder, generic_dims)(d, solid)

@@ -70,6 +70,34 @@ def text_width(text: str, height_mm: float) -> float:
     return stringWidth(text, FONT, height_mm / CAP_HEIGHT_EM)
 
 
+def text_box(at: Point, text: str, height_mm: float, anchor: str = "start",
+             rotate: float = 0.0) -> tuple[float, float, float, float]:
+    """Paper box (left, top, right, bottom; mm) a text covers: its advance
+    width, from the cap line to the descender (0.25 of the height below the
+    baseline); ``rotate`` 0 or +-90 degrees."""
+    w = text_width(text, height_mm)
+    start = {"start": 0.0, "middle": -w / 2, "end": -w}[anchor]
+    a0, a1 = start, start + w            # along the baseline
+    b0, b1 = -height_mm, 0.25 * height_mm  # across it (y down)
+    if abs(rotate) < 1e-9:
+        return (at[0] + a0, at[1] + b0, at[0] + a1, at[1] + b1)
+    if abs(rotate + 90) < 1e-9:          # reads upwards
+        return (at[0] + b0, at[1] - a1, at[0] + b1, at[1] - a0)
+    return (at[0] - b1, at[1] + a0, at[0] - b0, at[1] + a1)
+
+
+def overlapping_texts(sheet: "Sheet", tol: float = 0.05) -> list[tuple[str, str]]:
+    """Pairs of texts of ``sheet`` whose boxes (:func:`text_box`) overlap by
+    more than ``tol`` mm in both directions."""
+    out = []
+    boxes = sheet.text_boxes
+    for i, (ta, a) in enumerate(boxes):
+        for tb, b in boxes[i + 1:]:
+            if min(a[2], b[2]) - max(a[0], b[0]) > tol and min(a[3], b[3]) - max(a[1], b[1]) > tol:
+                out.append((ta, tb))
+    return out
+
+
 def _n(v: float) -> str:
     return fmt_mm(v, 3)
 
@@ -81,6 +109,7 @@ class Sheet:
     size: str = "A3"
     title: str = ""
     _groups: dict[str, list[str]] = field(default_factory=dict)
+    text_boxes: list[tuple[str, tuple[float, float, float, float]]] = field(default_factory=list)
 
     @property
     def width_mm(self) -> float:
@@ -159,6 +188,7 @@ class Sheet:
             attrs.append(f'transform="rotate({_n(rotate)} {_n(at[0])} {_n(at[1])})"')
         attrs.append('fill="#000000" stroke="none"')
         self._add(group, f"<text {' '.join(attrs)}>{escape(text)}</text>")
+        self.text_boxes.append((text, text_box(at, text, height_mm, anchor, rotate)))
 
     def arrow(self, group: str, tip: Point, direction: Point) -> None:
         """Closed filled arrowhead with its point at ``tip``, pointing along ``direction``."""

@@ -59,6 +59,7 @@ class View:
     scale: float = 1.0
     origin: Point = (0.0, 0.0)
     clip: tuple[Point, float] | None = field(default=None)
+    hatch: list[Polyline] = field(default_factory=list)  # section hatching (ISO 128-50)
 
     def paper(self, u: float, v: float) -> Point:
         """Paper point (mm, y down) of view point (u, v)."""

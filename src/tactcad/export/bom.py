@@ -9,8 +9,13 @@ shows the count per assembly.
 
 Files written by :func:`write_bom_files`:
 
-* ``bom.csv``: RFC 4180 CSV, UTF-8, ``\\n`` line ends, header row then one row
-  per item (fabricated parts first, then purchased, each in catalogue order);
+* ``bom.csv``: RFC 4180 CSV in UTF-8 with a byte order mark (``utf-8-sig``:
+  Excel and LibreOffice then read "Ø", "×" and "µ" right instead of guessing
+  a legacy code page), ``\\n`` line ends, header row then one row per item
+  (fabricated parts first, then purchased, each in catalogue order);
+  ``material`` gives alloy and temper, ``stock`` the raw blank of a
+  fabricated part (:func:`tactcad.catalogue.shop.stock_size`, with the
+  allowances' reason in :data:`tactcad.catalogue.shop.STOCK_REASON`);
 * ``bom.md``: the same table in Markdown, with a per-assembly breakdown.
 """
 
@@ -28,11 +33,14 @@ from tactcad.atomic import write_bytes_atomic
 from tactcad.catalogue.array import Instance, PartSpec
 from tactcad.design.array import Plan
 from tactcad.drawings.sheet import fmt_mm
+from tactcad.catalogue.shop import STOCK_REASON, material_designation, stock_size
 from tactcad.catalogue.files import drawing_name, part_step_name, scene_step_name, sheet_dxf_name
 from tactcad.export.dxf_sheet import shop_profiles
 
-BOM_COLUMNS = ("item", "part", "quantity", "type", "material", "process_or_reference",
+BOM_COLUMNS = ("item", "part", "quantity", "type", "material", "stock", "process_or_reference",
                "key_dimensions_mm", "files")
+#: Encoding of bom.csv: UTF-8 with a byte order mark, so spreadsheets detect UTF-8.
+CSV_ENCODING = "utf-8-sig"
 
 
 @dataclass(frozen=True)
@@ -48,10 +56,11 @@ class BomRow:
     process: str
     key_dimensions: str
     files: tuple[str, ...]
+    stock: str = ""
 
     def as_dict(self) -> dict[str, str]:
         return {"item": str(self.item), "part": self.part, "quantity": str(self.quantity),
-                "type": self.kind, "material": self.material,
+                "type": self.kind, "material": self.material, "stock": self.stock,
                 "process_or_reference": self.process, "key_dimensions_mm": self.key_dimensions,
                 "files": " ".join(self.files)}
 
@@ -72,7 +81,8 @@ def key_dimensions(spec: PartSpec) -> str:
 
 def bom_rows(instances: Sequence[Instance] | Mapping[str, Sequence[Instance]],
              specs: Mapping[str, PartSpec],
-             files: Callable[[PartSpec], Sequence[str]] = lambda spec: ()) -> list[BomRow]:
+             files: Callable[[PartSpec], Sequence[str]] = lambda spec: (),
+             plan: Plan | None = None) -> list[BomRow]:
     """BOM rows from placed instances.
 
     Args:
@@ -80,6 +90,8 @@ def bom_rows(instances: Sequence[Instance] | Mapping[str, Sequence[Instance]],
         specs: part specs by name (every instance's part must be there).
         files: the export files describing a part (drawing, DXF, STEP), paths
             relative to the export folder.
+        plan: the design, whose material grade names the alloy and temper of
+            the array's parts (:func:`tactcad.catalogue.shop.material_designation`).
 
     Returns:
         One row per distinct part used, fabricated first then purchased, in
@@ -104,8 +116,9 @@ def bom_rows(instances: Sequence[Instance] | Mapping[str, Sequence[Instance]],
         rows.append(BomRow(
             item=k, part=name, quantity=used[name],
             per_assembly=tuple((a, c.get(name, 0)) for a, c in per.items()),
-            kind=spec.kind, material=spec.material, process=spec.process,
-            key_dimensions=key_dimensions(spec), files=tuple(files(spec))))
+            kind=spec.kind, material=material_designation(spec, plan), process=spec.process,
+            key_dimensions=key_dimensions(spec), files=tuple(files(spec)),
+            stock=stock_size(spec) if spec.kind == "fabricated" else ""))
     return rows
 
 
@@ -127,14 +140,15 @@ def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
     """The BOM as a Markdown document: the item table, then instances per assembly."""
     lines = [f"# Bill of materials: {plan.name}", "",
              f"Design sha256 `{plan.design_hash[:12]}`, tactcad {__version__}. Units: mm. "
-             "Quantities are counted from the assemblies' placed instances.", "",
-             "| Item | Part | Qty | Type | Material | Process / reference | Key dimensions (mm) "
-             "| Files |",
-             "| ---: | --- | ---: | --- | --- | --- | --- | --- |"]
+             "Quantities are counted from the assemblies' placed instances. Stock: raw blank "
+             f"per part; {STOCK_REASON}.", "",
+             "| Item | Part | Qty | Type | Material | Stock | Process / reference "
+             "| Key dimensions (mm) | Files |",
+             "| ---: | --- | ---: | --- | --- | --- | --- | --- | --- |"]
     for r in rows:
         files = ", ".join(f"[{Path(f).name}]({f})" for f in r.files)
         lines.append(f"| {r.item} | {_md_cell(r.part)} | {r.quantity} | {r.kind} | "
-                     f"{_md_cell(r.material)} | {_md_cell(r.process)} | "
+                     f"{_md_cell(r.material)} | {_md_cell(r.stock)} | {_md_cell(r.process)} | "
                      f"{_md_cell(r.key_dimensions)} | {files} |")
     assemblies = [a for a, _ in rows[0].per_assembly] if rows else []
     if len(assemblies) > 1:
@@ -188,8 +202,8 @@ def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None],
         File records ``{"path", "part": "bom", "kind", "items"}``.
     """
     specs, assemblies = assembled or design_assemblies(plan)
-    rows = bom_rows(assemblies, specs, part_files(plan, staging, assemblies))
-    write_bytes_atomic(staging / "bom.csv", bom_csv(rows).encode("utf-8"))
+    rows = bom_rows(assemblies, specs, part_files(plan, staging, assemblies), plan)
+    write_bytes_atomic(staging / "bom.csv", bom_csv(rows).encode(CSV_ENCODING))
     write_bytes_atomic(staging / "bom.md", bom_markdown(plan, rows).encode("utf-8"))
     log(f"  wrote bom.csv and bom.md ({len(rows)} items)")
     return [{"path": "bom.csv", "part": "bom", "kind": "bom-csv", "items": len(rows)},

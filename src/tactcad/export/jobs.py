@@ -18,7 +18,7 @@ from tactcad.assembly.inventory import assembly_review, fabricated_parts
 from tactcad.assembly.rigs import shown_instances
 from tactcad.catalogue.array import array_instances, array_parts
 from tactcad.drawings.compose import drawing_inputs
-from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, PDF_NAME, drawing_name,
+from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, ASSEMBLY_DRAWING, PDF_NAME, drawing_name,
                                     drawing_png_name, part_step_name, scene_glb_name,
                                     scene_step_name)
 from tactcad.export.dxf_sheet import dxf_version_option, write_shop_dxf_files
@@ -150,6 +150,10 @@ def drawing_jobs(run: Run) -> list[Job]:
                         content_key("drawing-svg", drawing_inputs(plan, spec), qty[spec.name]),
                         _drawing(spec, qty[spec.name]), (spec,)))
     svgs = [drawing_name(s.name) for s in parts]
+    # --- the assembly sheet: last page of the PDF ---
+    jobs.append(assembly_sheet_job(run))
+    svgs.append(ASSEMBLY_DRAWING)
+    # --- end of the assembly sheet ---
     jobs.append(Job("drawings:pdf", content_key("drawing-pdf", plan.name, [j.key for j in jobs]),
                     _drawings_pdf(svgs), after=tuple(j.name for j in jobs)))
     elements = [k for k, s in enumerate(parts) if s.builder == "element"]
@@ -174,6 +178,34 @@ def _drawing(spec, quantity: int):
         return [{"path": rel, "part": spec.name, "kind": "drawing-svg", "quantity": quantity,
                  "scale": scale_text(d.scale)}]
     return make
+
+
+def assembly_sheet_job(run: Run) -> Job:
+    """The array's assembly sheet (:mod:`tactcad.drawings.assembly`): its key
+    holds the sheet's inputs, BOM item numbers included; it needs the array's
+    part solids."""
+    from tactcad.drawings.assembly import assembly_inputs
+    from tactcad.export.bom import bom_rows
+
+    plan = run.plan
+    specs, assemblies = run.inventory
+    items = {r.part: r.item for r in bom_rows(assemblies, specs)}
+    array_specs = array_parts(plan)
+
+    def make(run: Run) -> list[dict]:
+        from tactcad.atomic import write_bytes_atomic
+        from tactcad.drawings.assembly import compose_assembly
+        from tactcad.drawings.views import scale_text
+
+        solids = {n: run.parts.solid(s) for n, s in array_specs.items()}
+        a = compose_assembly(plan, solids, items)
+        write_bytes_atomic(run.staging / ASSEMBLY_DRAWING, a.sheet.svg().encode("utf-8"))
+        run.log(f"  wrote {ASSEMBLY_DRAWING}")
+        return [{"path": ASSEMBLY_DRAWING, "part": "array", "kind": "drawing-assembly",
+                 "scale": scale_text(a.scale), "slots": len(a.slot_rows),
+                 "torque_Nm": round(a.torque_Nm, 3)}]
+    return Job("drawing:assembly", content_key("drawing-assembly", assembly_inputs(plan, items)),
+               make, tuple(array_specs.values()))
 
 
 def _drawings_pdf(svgs: list[str]):

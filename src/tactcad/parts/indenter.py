@@ -12,12 +12,19 @@ from __future__ import annotations
 import build123d as bd
 
 from tactcad.design.rigs import IndenterGeometry
-from tactcad.parts.shapes import box, cylinder, fuse
+from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
+from tactcad.parts.shapes import box, cylinder, fuse, single
 
 
 def build_indenter(g: IndenterGeometry) -> bd.Solid:
-    """Tip (contact face at z = 0) fused with the body above it (mm)."""
+    """Tip (contact face at z = 0) fused with the body above it, and the
+    tapped M6 hole in the body's top face that screws it onto the gauge's
+    shaft, modelled at the thread's nominal diameter (mm; see
+    :func:`tactcad.catalogue.rigs.indenter_thread_depth_mm`)."""
     w, d, L = g.contact_width_mm, g.contact_depth_mm, g.tip_length_mm
     tip = box(-w / 2, -d / 2, 0, w / 2, d / 2, L)
     body = cylinder(g.body_diameter_mm / 2, (0, 0, L), (0, 0, 1), g.body_length_mm)
-    return fuse(tip, body)
+    depth = indenter_thread_depth_mm(g)
+    top = L + g.body_length_mm
+    thread = cylinder(INDENTER_THREAD_DIAMETER_MM / 2, (0, 0, top - depth), (0, 0, 1), depth)
+    return single(fuse(tip, body).cut(thread))

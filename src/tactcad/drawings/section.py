@@ -1,0 +1,112 @@
+"""Section views (ISO 128-40 / ISO 128-50): the solid cut by a plane, the
+part between the viewer and the plane taken away, the rest projected by
+hidden-line removal, the cut faces hatched with thin lines at 45 degrees.
+
+Model millimetres in, a :class:`tactcad.drawings.views.View` out; its
+``hatch`` polylines are view coordinates like the edges.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tactcad.drawings.views import View, cameras_for, project
+
+HATCH_SPACING_MM = 1.5  # paper mm between hatching lines (ISO 128-50: thin, 45 degrees)
+
+
+def _cut_away(solid, origin, normal):
+    """``solid`` without the half-space in front of the plane (the side the
+    viewer stands on, ``+normal``)."""
+    import build123d as bd
+
+    bb = solid.bounding_box()
+    big = 4.0 * (bb.diagonal + 1.0)
+    plane = bd.Plane(origin=origin, z_dir=normal)
+    corner = plane.origin - plane.x_dir * (big / 2) - plane.y_dir * (big / 2)
+    half = bd.Solid.make_box(big, big, big, bd.Plane(origin=corner, x_dir=plane.x_dir,
+                                                     z_dir=normal))
+    return solid.cut(half)
+
+
+def _face_loops(face, to_uv) -> list[list[tuple[float, float]]]:
+    """Boundary loops of a planar face as polygons in view coordinates."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+
+    loops = []
+    for wire in [face.outer_wire(), *face.inner_wires()]:
+        pts: list[tuple[float, float]] = []
+        for e in wire.order_edges():
+            curve = BRepAdaptor_Curve(e.wrapped)
+            u0, u1 = curve.FirstParameter(), curve.LastParameter()
+            n = 1 if e.geom_type.name == "LINE" else 48
+            seg = [curve.Value(u0 + (u1 - u0) * k / n) for k in range(n + 1)]
+            seg_uv = [to_uv(np.array((p.X(), p.Y(), p.Z()))) for p in seg]
+            if pts and math.dist(pts[-1], seg_uv[-1]) < math.dist(pts[-1], seg_uv[0]):
+                seg_uv.reverse()
+            pts += seg_uv
+        loops.append(pts)
+    return loops
+
+
+def hatch_lines(loops: list[list[tuple[float, float]]], spacing: float,
+                angle_deg: float = 45.0) -> list[list[tuple[float, float]]]:
+    """Hatching of the region bounded by ``loops`` (even-odd rule): parallel
+    lines ``spacing`` apart at ``angle_deg``, clipped to the region."""
+    a = math.radians(angle_deg)
+    d = np.array((math.cos(a), math.sin(a)))
+    n = np.array((-d[1], d[0]))
+    segs = [(np.array(p), np.array(q)) for loop in loops for p, q in zip(loop, loop[1:] + loop[:1])]
+    offs = [float(p @ n) for loop in loops for p in map(np.array, loop)]
+    out = []
+    k = math.floor(min(offs) / spacing) + 1
+    while k * spacing < max(offs):
+        c = k * spacing
+        ts = []
+        for p, q in segs:
+            sp, sq = p @ n - c, q @ n - c
+            if (sp < 0) != (sq < 0):
+                x = p + (q - p) * (sp / (sp - sq))
+                ts.append(float(x @ d))
+        ts.sort()
+        for t0, t1 in zip(ts[0::2], ts[1::2]):
+            p0, p1 = c * n + t0 * d, c * n + t1 * d
+            out.append([(float(p0[0]), float(p0[1])), (float(p1[0]), float(p1[1]))])
+        k += 1
+    return out
+
+
+def section_view(solid, origin, normal, up, name: str, scale: float) -> View:
+    """Section of ``solid`` by the plane through ``origin`` with unit
+    ``normal`` pointing at the viewer, ``up`` upwards in the view; the view
+    gets ``hatch`` (view coordinates) spaced :data:`HATCH_SPACING_MM` on paper.
+
+    Raises:
+        ValueError: the plane misses the solid (no cut face).
+    """
+    kept = _cut_away(solid, origin, normal)
+    cams = cameras_for(tuple(float(c) for c in normal), tuple(float(c) for c in up))
+    view = project(kept, "front", cameras=cams)
+    nv, uv = np.array(normal, float), np.array(up, float)
+    rv = np.cross(uv, nv)
+    o = np.array(origin, float)
+
+    def to_uv(p):
+        return (float(p @ rv), float(p @ uv))
+
+    loops = []
+    for f in kept.faces():
+        if f.geom_type.name != "PLANE":
+            continue
+        fn = np.array(tuple(f.normal_at(f.center())))
+        if abs(fn @ nv - 1.0) > 1e-6 or abs((np.array(tuple(f.center())) - o) @ nv) > 1e-6:
+            continue
+        loops.append(_face_loops(f, to_uv))
+    if not loops:
+        raise ValueError(f"section {name}: the plane misses the solid")
+    view.name = name
+    view.scale = scale
+    view.hatch = [h for lp in loops for h in hatch_lines(lp, HATCH_SPACING_MM / scale)]
+    return view
