@@ -168,3 +168,14 @@ def test_an_incremental_export_writes_the_bytes_of_a_cold_one(tmp_path, warm):
     assert files == sorted(p.relative_to(inc).as_posix() for p in inc.rglob("*") if p.is_file())
     for rel in files:
         assert (inc / rel).read_bytes() == (cold / rel).read_bytes(), rel
+
+
+def test_an_output_path_cannot_leave_the_export_folder(tmp_path):
+    from tactcad.errors import ExportPathError
+    from tactcad.export.run import _inside
+
+    (tmp_path / "out").mkdir()
+    assert _inside(tmp_path / "out", "scenes/a.step") == (tmp_path / "out/scenes/a.step").resolve()
+    for bad in ("../escaped.step", "scenes/../../x", "/etc/passwd"):
+        with pytest.raises(ExportPathError, match="would leave"):
+            _inside(tmp_path / "out", bad)

@@ -182,6 +182,19 @@ def check_out_dir(out_dir: str | Path) -> Path:
     return real
 
 
+def _inside(folder: Path, rel: str) -> Path:
+    """``folder / rel``, proven to stay inside ``folder`` (no absolute path,
+    no ``..`` out of it, no link leading out).
+
+    Raises:
+        ExportPathError: the path would leave the folder.
+    """
+    path = (folder / rel).resolve()
+    if Path(rel).is_absolute() or not path.is_relative_to(folder.resolve()):
+        raise ExportPathError(f"output path {rel!r} would leave the export folder {folder}")
+    return path
+
+
 def _written_by_tactcad(out: Path) -> set[str]:
     """Paths the export now in ``out`` wrote (its manifest's files and the manifest)."""
     try:
@@ -210,6 +223,8 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
             run.parts = parts  # share the caller's solids (e.g. with the checks)
         jobs = jobs_of(run)
         records, ran = run_jobs(run, jobs, store)
+        for r in records:
+            _inside(staging, r["path"])
         files = [{**r, "bytes": (staging / r["path"]).stat().st_size} for r in records]
         if with_manifest:
             man = manifest(plan, staging, records)
