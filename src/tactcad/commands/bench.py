@@ -16,7 +16,7 @@ import argparse
 import importlib
 import os
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 
 COLD_GOAL_S = 8.0  # on two cores
 WARM_GOAL_S = 1.5
@@ -36,8 +36,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     e = bsub.add_parser("export", help="cold, warm and one-change export, and the interference "
                                        "check of the largest scene (manifold3d vs OpenCascade)")
     add_design_arg(e)
-    e.add_argument("--json", action="store_true",
-                   help="print the figures as JSON: cold_s, warm_s, one_change_s, builds, "
+    add_output_args(e, "print the figures as JSON: cold_s, warm_s, one_change_s, builds, "
                         "distinct_parts (and the job counts)")
     e.set_defaults(func=run_export)
     s = bsub.add_parser("stiffness", help="stiffness estimator benchmarks (tactcad.mechanics.bench)")
@@ -76,9 +75,8 @@ def run_stiffness(args: argparse.Namespace) -> int:
 
 def run_closed_form(args: argparse.Namespace) -> int:
     from tactcad.studies.bench_scale import CLOSED_FORM_GOAL_PER_S, closed_form_rate, load_average
-    from tactcad.design.array import load_design
 
-    rate = closed_form_rate(load_design(args.design))
+    rate = closed_form_rate(plan_from_args(args))
     flag = "ok" if rate >= CLOSED_FORM_GOAL_PER_S else "under goal"
     print(f"tactcad bench closed-form: {rate:,.0f} corrected K evaluations/s (vectorised, one "
           f"core)   goal >= {CLOSED_FORM_GOAL_PER_S:.0e}: {flag}   load average {load_average()}")
@@ -87,9 +85,8 @@ def run_closed_form(args: argparse.Namespace) -> int:
 
 def run_montecarlo(args: argparse.Namespace) -> int:
     from tactcad.studies.bench_scale import MONTE_CARLO_GOAL_S, load_average, monte_carlo_times
-    from tactcad.design.array import load_design
 
-    first, best = monte_carlo_times(load_design(args.design), args.samples)
+    first, best = monte_carlo_times(plan_from_args(args), args.samples)
     flag = "ok" if best <= MONTE_CARLO_GOAL_S else "over goal"
     print(f"tactcad bench montecarlo: {args.samples} samples at the closed form: first "
           f"{first:.3f} s, best of 3 {best:.3f} s   goal <= {MONTE_CARLO_GOAL_S:g} s: {flag}   "
@@ -99,11 +96,10 @@ def run_montecarlo(args: argparse.Namespace) -> int:
 
 def run_sweep(args: argparse.Namespace) -> int:
     from tactcad.studies.bench_scale import SWEEP_SPEEDUP_GOAL, fem3d_sweep_timing, load_average
-    from tactcad.design.array import load_design
 
     print(f"tactcad bench sweep: {args.model} on {len(args.webs) * len(args.arms)} designs, "
           f"load average before {load_average()}", flush=True)
-    t = fem3d_sweep_timing(load_design(args.design), args.webs, args.arms, args.model)
+    t = fem3d_sweep_timing(plan_from_args(args), args.webs, args.arms, args.model)
     flag = "ok" if t.speedup >= SWEEP_SPEEDUP_GOAL else "under goal"
     print(f"  1 worker {t.one_worker_s:.1f} s, 2 workers {t.two_workers_s:.1f} s: speed-up "
           f"{t.speedup:.2f}x   goal >= {SWEEP_SPEEDUP_GOAL:g}x: {flag}; same K both runs: "
@@ -116,9 +112,8 @@ def run_export(args: argparse.Namespace) -> int:
     import os
     import tempfile
 
-    from tactcad.design.array import load_design
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     say = (lambda s: None) if args.json else print
     say(f"tactcad bench export: design {plan.name}, {os.cpu_count()} CPUs, "
         f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}")

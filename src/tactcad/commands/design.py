@@ -7,7 +7,7 @@ import json
 import os
 from pathlib import Path
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 
 VERIFY_MODELS = ("fem3d", "fem2d", "beam", "none")
 
@@ -36,7 +36,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--verify", choices=VERIFY_MODELS, default="fem3d",
                    help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
     add_design_arg(p)
-    p.add_argument("--json", action="store_true", help="print JSON")
+    add_output_args(p, "print JSON")
     p.set_defaults(func=run)
 
 
@@ -70,13 +70,12 @@ def check_output_path(out: str, force: bool) -> Path:
 def run(args: argparse.Namespace) -> int:
     import tomli_w
 
-    from tactcad.design.array import load_design
     from tactcad.atomic import write_bytes_atomic
     from tactcad.mechanics.inverse import Targets, design_for_targets
 
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
     path = check_output_path(args.out, args.force)
-    base = load_design(args.design)
+    base = plan_from_args(args)
     result = design_for_targets(base, targets, grade=args.material, pitch_mm=args.pitch,
                                 name=path.stem.replace("-", "_") or "inverse_design")
     report = design_report(result, args.verify)

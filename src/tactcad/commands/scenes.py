@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, plan_from_args
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -18,10 +18,9 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.design.array import load_design
     from tactcad.assembly.rigs import describe, get_scene_spec
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     lines = describe(plan)
     if args.name is not None:
         get_scene_spec(plan, args.name)  # SceneError (exit 2) lists the scenes

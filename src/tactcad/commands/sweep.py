@@ -7,7 +7,7 @@ import json
 import sys
 from pathlib import Path
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.tolerance import add_cluster_args
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
@@ -30,7 +30,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="notch radii (default: the design's, raised to the web where thinner)")
     g.add_argument("--out", metavar="DIR", default="exports/sweeps",
                    help="folder for design_grid.csv and design_chart.png")
-    g.add_argument("--json", action="store_true", help="print the rows as JSON")
+    add_output_args(g, "print the rows as JSON")
     add_cluster_args(g, local_default=True)
     g.set_defaults(func=run_grid_cmd)
 
@@ -63,11 +63,10 @@ def _workers(args) -> int:
 
 
 def run_grid_cmd(args: argparse.Namespace) -> int:
-    from tactcad.design.array import load_design
     from tactcad.studies.sweeps import (dask_client, dask_mapper, design_grid, plot_design_chart,
                           rows_as_json, write_grid_csv)
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     with dask_client(args.scheduler, _workers(args)) as client:
         rows = design_grid(plan, args.webs, args.arms, args.model, args.radii,
                            mapper=dask_mapper(client))
@@ -111,12 +110,11 @@ def run_montecarlo_cmd(args: argparse.Namespace) -> int:
     import csv
     import time
 
-    from tactcad.design.array import load_design
     from tactcad.atomic import write_atomic
     from tactcad.mechanics.tolerance import run_tolerance
     from tactcad.studies.sweeps import dask_client, dask_mapper
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     t0 = time.perf_counter()
     with dask_client(args.scheduler, _workers(args)) as client:
         report = run_tolerance(plan, args.samples, args.seed, mapper=dask_mapper(client))
