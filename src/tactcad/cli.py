@@ -12,6 +12,7 @@ import argparse
 import errno
 import importlib
 import json
+import os
 import sys
 
 from tactcad import __version__
@@ -81,6 +82,15 @@ def main(argv: list[str] | None = None) -> int:
     ``{"error": {"message", "field", "value", "allowed", "exit_code"}}``
     (see :func:`error_record`); without it as ``tactcad: error: ...`` on stderr.
     """
+    try:
+        return run_command(argv)
+    except BrokenPipeError:  # the reader stopped early (`tactcad scenes | head`): not an error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+
+
+def run_command(argv: list[str] | None) -> int:
+    """:func:`main` without its guard against a closed stdout."""
     argv = sys.argv[1:] if argv is None else list(argv)
     as_json = "--json" in argv
     parser = build_parser()

@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 from tactcad.errors import TactcadError
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
@@ -44,14 +43,14 @@ def run_stiffness(args: argparse.Namespace) -> int:
     if args.vtk is not None and args.model not in ("fem2d", "fem3d"):
         raise TactcadError(f"--vtk {args.vtk}: allowed with --model fem2d or fem3d only "
                            f"(got --model {args.model})")
-    r = estimate(args.model, slot.geometry, plan.material, element=args.element)
+    levels = {"progress": progress_from_args(args)} if args.model in ("fem2d", "fem3d") else {}
+    r = estimate(args.model, slot.geometry, plan.material, element=args.element, **levels)
     vtu = None
     if args.vtk is not None:
         from tactcad.mechanics.fem.fields import write_element_vtu
 
         vtu = write_element_vtu(args.vtk, slot.geometry, plan.material, args.model).path
-        if not args.json:
-            print(f"wrote {vtu} (displacement, von Mises stress under 1 N)", file=sys.stderr)
+        progress_from_args(args)(f"wrote {vtu} (displacement, von Mises stress under 1 N)")
     if args.json:
         out = r.as_json()
         if vtu is not None:
@@ -71,7 +70,8 @@ def run_table1(args: argparse.Namespace) -> int:
                                     table1_comparison, table2_predicted)
 
     plan = plan_from_args(args)
-    progress = (lambda s: print(f"  ... {s}", file=sys.stderr)) if not args.json else None
+    report = progress_from_args(args)
+    progress = (lambda s: report(f"  ... {s}"))
     if args.model == "all":
         return _table1_all_levels(plan, args.json, progress)
     rows = table1_comparison(plan, args.model, progress=progress)

@@ -11,9 +11,8 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 
@@ -43,7 +42,8 @@ def run(args: argparse.Namespace) -> int:
     plan = plan_from_args(args)
     if args.table1:
         return _run_table1(plan, args.model, args.json)
-    progress = None if args.json else (lambda s: print(f"  ... {s}", file=sys.stderr))
+    report = progress_from_args(args)
+    progress = (lambda s: report(f"  ... {s}"))
     records = plan_strength(plan, args.model, progress=progress)
     if args.json:
         print(json.dumps([r.as_json() for r in records], indent=2, allow_nan=False))

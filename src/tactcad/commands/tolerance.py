@@ -67,7 +67,8 @@ def run(args: argparse.Namespace) -> int:
         from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client, dask_mapper
 
         with dask_client(args.scheduler, args.workers or LOCAL_WORKERS) as client:
-            report = run_tolerance(plan, mapper=dask_mapper(client, progress=not args.json), **kw)
+            bar = not (args.json or args.quiet)
+            report = run_tolerance(plan, mapper=dask_mapper(client, progress=bar), **kw)
     else:
         report = run_tolerance(plan, **kw)
     wall = time.perf_counter() - t0

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry, Material, load_design
+from tactcad.design.array import ElementGeometry, Material, Plan, load_design
 from tactcad.mechanics.ladder import MODELS, estimate
 
 WEBS_MM = (0.15, 0.25, 0.40)
@@ -72,9 +72,11 @@ def closed_form_throughput(material: Material, base: ElementGeometry, n: int = 1
     return n / best
 
 
-def run(models=MODELS, design=None, out_dir="exports/reports", progress=print) -> list[Point]:
-    """Run the ladder over the grid, write CSV + PNG, return the points."""
-    plan = load_design(design)
+def run(models=MODELS, design=None, out_dir="exports/reports", progress=print,
+        plan: Plan | None = None) -> list[Point]:
+    """Run the ladder over the grid around ``plan`` (default: the design file
+    ``design``), write CSV + PNG, return the points."""
+    plan = load_design(design) if plan is None else plan
     base = plan.element(1).geometry
     grid = design_grid(base)
     points: list[Point] = []
@@ -152,16 +154,32 @@ def _plot(path: Path, points: list[Point]) -> None:
     plt.close(fig)
 
 
-def main(args) -> int:
-    """Entry point of ``tactcad bench stiffness``."""
+def main(args, plan: Plan | None = None) -> int:
+    """Entry point of ``tactcad bench stiffness`` (``plan``: the design with
+    the command line's overrides; default: ``args.design`` as it is)."""
     models = tuple(getattr(args, "models", None) or MODELS)
     out_dir = getattr(args, "out", None) or "exports/reports"
     design = getattr(args, "design", None)
-    print("tactcad bench stiffness: grid "
-          f"{len(WEBS_MM)} webs x {len(ARMS_MM)} arms x {len(NOTCH_RADII)} notch radii", flush=True)
-    plan = load_design(design)
+    quiet = getattr(args, "json", False) or getattr(args, "quiet", False)
+    progress = (lambda s: None) if quiet else (lambda s: print(s, file=sys.stderr, flush=True))
+    progress("tactcad bench stiffness: grid "
+             f"{len(WEBS_MM)} webs x {len(ARMS_MM)} arms x {len(NOTCH_RADII)} notch radii")
+    plan = load_design(design) if plan is None else plan
     thr = closed_form_throughput(plan.material, plan.element(1).geometry)
-    points = run(models, design, out_dir, progress=lambda s: print(s, file=sys.stderr, flush=True))
+    points = run(models, design, out_dir, progress=progress, plan=plan)
+    if getattr(args, "json", False):
+        import json
+        import math
+
+        def clean(v):
+            return None if isinstance(v, float) and not math.isfinite(v) else v
+
+        print(json.dumps({"closed_form_evaluations_per_s": thr,
+                          "levels": [{k: clean(v) for k, v in r.items()} for r in summary(points)],
+                          "files": [f"{out_dir}/stiffness_tradeoff.csv",
+                                    f"{out_dir}/stiffness_tradeoff.png"]},
+                         indent=2, allow_nan=False))
+        return 0
     print(f"\nclosed form, vectorised: {thr:,.0f} element evaluations/s (goal ≥ 1e6)")
     print(f"{'level':<12} {'time/eval s':>12} {'max time s':>11} {'err vs fem3d max':>17} "
           f"{'mean':>8} {'est. err max':>13}  goal")
