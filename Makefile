@@ -1,5 +1,6 @@
 # tactcad: `make export` and `make test` do all set-up on a fresh machine
-# (Python 3.11 + pip): they create .venv with the pinned CAD stack first.
+# (Python 3.11 to 3.13 + pip): they create .venv with the pinned CAD stack first.
+# `./tactcad ...` runs the command line from that .venv (and sets it up if needed).
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
