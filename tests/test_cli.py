@@ -252,7 +252,9 @@ def test_check_reuses_a_current_export_and_refuses_a_changed_one(tmp_path):
     assert proc.returncode == 0 and report["reused_export"] and report["failed"] == 0
     assert report["passed"] == len(report["checks"]) > 0
 
-    proc = run_cli("check", "--scene", "wirecut", "--out", str(out), "--cache", str(store),
+    other = tmp_path / "other"  # an export of another design
+    shutil.copytree(out, other)
+    proc = run_cli("check", "--scene", "wirecut", "--out", str(other), "--cache", str(store),
                    "--set", "element.web_thickness_mm=0.3", "--json")
     report = json.loads(proc.stdout)
     assert not report["reused_export"] and "another design" in report["export_refusal"]
