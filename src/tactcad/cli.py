@@ -113,9 +113,11 @@ def run_command(argv: list[str] | None) -> int:
         record["field"] = exc.filename
         return report_error(record, as_json)
     except KeyboardInterrupt as exc:
-        return report_error(error_record(
-            exc, EXIT_INTERRUPTED, "interrupted; the previous files are left as they were"),
-            as_json)
+        message = "interrupted; the previous files are left as they were"
+        if as_json:
+            return report_error(error_record(exc, EXIT_INTERRUPTED, message), as_json)
+        print(f"tactcad: {message}", file=sys.stderr)
+        return EXIT_INTERRUPTED
 
 
 def error_record(exc: BaseException, exit_code: int, message: str | None = None) -> dict:

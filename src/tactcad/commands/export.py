@@ -50,7 +50,6 @@ def run(args: argparse.Namespace) -> int:
     if args.scene and (only or parts):
         raise DesignError("--scene", args.scene, "alone, without --only or --part")
     report = progress_from_args(args)
-    report(f"tactcad export: design {plan.name} ({plan.source}), sha256 {plan.design_hash[:12]}")
     store = store_from_args(args)
     cache = ReportingParts(plan, report)
     if args.scene:
@@ -59,7 +58,9 @@ def run(args: argparse.Namespace) -> int:
     else:
         partial = {} if only or parts else None  # filled in once the jobs are known
 
-        def select(jobs):
+        def select(jobs):  # called once --out is found fit, before any job runs
+            report(f"tactcad export: design {plan.name} ({plan.source}), "
+                   f"sha256 {plan.design_hash[:12]}")
             chosen = select_jobs(jobs, only, parts) if partial is not None else list(jobs)
             if partial is not None:
                 partial.update(partial_record(only, parts, chosen))
