@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
