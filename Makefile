@@ -1,5 +1,6 @@
 # tactcad: `make export` and `make test` do all set-up on a fresh machine
-# (Python 3.11 + pip): they create .venv with the pinned CAD stack first.
+# (Python 3.11 to 3.13 + pip): they create .venv with the pinned CAD stack first.
+# `./tactcad ...` runs the command line from that .venv (and sets it up if needed).
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -26,8 +27,8 @@ export: $(STAMP) ## build the default design (DESIGN=...) into exports/ (OUT=...
 docs-images: export ## refresh README's pictures (docs/images) from exports/images
 	cp $(OUT)/images/array.png $(OUT)/images/element_a4mm_drawing.png docs/images/
 
-check: $(STAMP) ## run the geometry, DXF and STEP checks on the design
-	$(BIN)/tactcad check --design $(DESIGN)
+check: $(STAMP) ## run the checks on exports/ (reused as it is after `make export`)
+	$(BIN)/tactcad check --design $(DESIGN) --out $(OUT)
 
 system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd, via apt as root)
 	@sh scripts/install-system-deps.sh

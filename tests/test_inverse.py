@@ -122,7 +122,7 @@ def test_cli_writes_a_loadable_design_and_json(tmp_path, monkeypatch, capsys):
     assert [s.geometry.arm_length_mm for s in plan.slots] == [arms[n] for n in range(1, 11)]
     assert _k(plan, 8) / _k(plan, 1) == pytest.approx(3.0, rel=2e-3)
     assert main(argv) == 2  # exists: refused without --force
-    assert "tactcad: error: --out" in capsys.readouterr().err
+    assert json.loads(capsys.readouterr().out)["error"]["field"] == "--out"  # --json: JSON error
 
 
 @pytest.mark.parametrize("out", ["../outside.toml", "new.txt"])

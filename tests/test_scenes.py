@@ -304,7 +304,7 @@ def test_bench_stiffness_delegates_or_says_unavailable(monkeypatch, capsys):
 
     calls = []
     fake = types.ModuleType("tactcad.mechanics.bench")
-    fake.main = lambda args: calls.append(args) or 0
+    fake.main = lambda args, plan=None: calls.append(args) or 0
     monkeypatch.setitem(sys.modules, "tactcad.mechanics.bench", fake)
     assert cli.main(["bench", "stiffness", "--models", "beam"]) == 0
     assert calls and calls[0].models == ["beam"]

@@ -11,6 +11,8 @@ from __future__ import annotations
 import argparse
 import errno
 import importlib
+import json
+import os
 import sys
 
 from tactcad import __version__
@@ -39,8 +41,24 @@ COMMAND_MODULES = (
 )
 
 
+class UsageError(TactcadError):
+    """A command line argparse refuses (unknown option, bad choice, missing argument)."""
+
+    def __init__(self, parser: argparse.ArgumentParser, message: str):
+        self.parser = parser
+        super().__init__(message)
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser that raises :class:`UsageError` instead of exiting, so
+    ``main`` can report a bad command line as JSON when ``--json`` is given."""
+
+    def error(self, message: str):  # argparse's hook; it must not return
+        raise UsageError(self, message)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog="tactcad",
         description="Generate CAD, wire-EDM DXF and stiffness estimates for spring-based "
                     "tactile sensor arrays. Units: mm, N, MPa, N/mm, s.")
@@ -58,22 +76,67 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    if not getattr(args, "func", None):
-        parser.print_help()
-        return 2
+    """Run one command; the exit code (see the ``EXIT_*`` constants).
+
+    With ``--json`` an error is printed on stdout as one JSON object
+    ``{"error": {"message", "field", "value", "allowed", "exit_code"}}``
+    (see :func:`error_record`); without it as ``tactcad: error: ...`` on stderr.
+    """
     try:
+        return run_command(argv)
+    except BrokenPipeError:  # the reader stopped early (`tactcad scenes | head`): not an error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+
+
+def run_command(argv: list[str] | None) -> int:
+    """:func:`main` without its guard against a closed stdout."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    as_json = "--json" in argv
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+        if not getattr(args, "func", None):
+            parser.print_help()
+            return EXIT_INPUT
         return int(args.func(args) or 0)
-    except TactcadError as exc:
-        print(f"tactcad: error: {exc}", file=sys.stderr)
+    except UsageError as exc:
+        if as_json:
+            return report_error(error_record(exc, EXIT_INPUT), as_json)
+        exc.parser.print_usage(sys.stderr)  # argparse's own wording
+        print(f"{exc.parser.prog}: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
+    except TactcadError as exc:
+        return report_error(error_record(exc, EXIT_INPUT), as_json)
     except OSError as exc:
-        print(f"tactcad: error: {os_error_text(exc)}", file=sys.stderr)
-        return EXIT_OS
-    except KeyboardInterrupt:
-        print("tactcad: interrupted; the previous files are left as they were", file=sys.stderr)
+        record = error_record(exc, EXIT_OS, os_error_text(exc))
+        record["field"] = exc.filename
+        return report_error(record, as_json)
+    except KeyboardInterrupt as exc:
+        message = "interrupted; the previous files are left as they were"
+        if as_json:
+            return report_error(error_record(exc, EXIT_INTERRUPTED, message), as_json)
+        print(f"tactcad: {message}", file=sys.stderr)
         return EXIT_INTERRUPTED
+
+
+def error_record(exc: BaseException, exit_code: int, message: str | None = None) -> dict:
+    """The fields of an error: message, field, value and allowed range (None
+    where the error names none) and the exit code."""
+    return {"message": str(exc) if message is None else message,
+            "field": getattr(exc, "field", None), "value": getattr(exc, "value", None),
+            "allowed": getattr(exc, "allowed", None), "exit_code": exit_code}
+
+
+def report_error(record: dict, as_json: bool) -> int:
+    """Print an error record (JSON on stdout, or one line on stderr); its exit code."""
+    from tactcad.commands.finite_json import finite
+
+    if as_json:
+        print(json.dumps({"error": finite(record)}, indent=2, default=str, allow_nan=False))
+    else:
+        print(f"tactcad: error: {record['message']}", file=sys.stderr)
+    return record["exit_code"]
 
 
 def os_error_text(exc: OSError) -> str:

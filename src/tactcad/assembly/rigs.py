@@ -447,23 +447,36 @@ def shown_instances(model: RigModel, spec: SceneSpec) -> list[tuple[str, str, st
     return [i for i in model.instances() if i[2] in shown]
 
 
-def describe(plan: Plan) -> list[str]:
-    """Lines listing every scene, its groups and parts (name x quantity, level).
-    Needs no CAD kernel."""
-    lines = []
+def scene_summaries(plan: Plan) -> list[dict]:
+    """Every scene: name, rig, description, parts placed and, per group, each
+    part with its quantity and level of detail. Needs no CAD kernel."""
+    out = []
     rigs = None
     for spec in load_scenes(scenes_path_for(plan)).values():
         if spec.rig not in ("wirecut", "array") and rigs is None:
             rigs = load_rigs(rigs_path_for(plan), array_plan=plan)
         model = scene_model(plan, spec, rigs)
         groups = model.groups()
-        n = sum(len(groups[g]) for g in spec.groups)
-        lines.append(f"{spec.name}  [{spec.rig}]  {n} parts placed - {spec.description}")
+        listed = {}
         for g in spec.groups:
             counts: dict[str, int] = {}
             for _, part in groups[g]:
                 counts[part] = counts.get(part, 0) + 1
-            items = ", ".join(f"{p} x{c} ({spec.detail[model.specs[p].kind]})"
-                              for p, c in counts.items())
-            lines.append(f"    {g}: {items}")
+            listed[g] = [{"part": p, "quantity": c, "detail": spec.detail[model.specs[p].kind]}
+                         for p, c in counts.items()]
+        out.append({"name": spec.name, "rig": spec.rig, "description": spec.description,
+                    "parts_placed": sum(len(groups[g]) for g in spec.groups), "groups": listed})
+    return out
+
+
+def describe(plan: Plan) -> list[str]:
+    """Lines listing every scene, its groups and parts (name x quantity, level).
+    Needs no CAD kernel."""
+    lines = []
+    for scene in scene_summaries(plan):
+        lines.append(f"{scene['name']}  [{scene['rig']}]  {scene['parts_placed']} parts placed - "
+                     f"{scene['description']}")
+        for g, items in scene["groups"].items():
+            lines.append(f"    {g}: " + ", ".join(f"{i['part']} x{i['quantity']} ({i['detail']})"
+                                                 for i in items))
     return lines

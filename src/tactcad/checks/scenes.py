@@ -5,7 +5,7 @@ sanity, STEP re-import and GLB read-back against the review records."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any, Callable, Iterable, Mapping
 
 from tactcad.assembly.rigs import scene_names
 from tactcad.assembly.scenes import Scene, build_scene, review_record
@@ -28,15 +28,19 @@ def placed_shapes(scene: Scene, solids: Mapping[str, Any]) -> list[Placed]:
 
 
 def run_scene_checks(plan: Plan, out_dir: str | Path, names: Iterable[str] | None = None,
-                     cache: PartCache | None = None, confirm: bool = True) -> list[CheckResult]:
+                     cache: PartCache | None = None, confirm: bool = True,
+                     done: Callable[[str, list[CheckResult]], None] | None = None
+                     ) -> list[CheckResult]:
     """Every check of the scenes on the files in ``out_dir``: rig part solids,
     interference (manifold3d fast path, OpenCascade confirmation), geometry
-    sanity, STEP re-import and GLB read-back against the review records."""
+    sanity, STEP re-import and GLB read-back against the review records.
+    ``done(f"scene {name}", results)`` is called as each scene's checks finish."""
     out_dir = Path(out_dir)
     cache = cache or PartCache(plan)
-    results = []
+    results: list[CheckResult] = []
     checked_parts: set[str] = set()
     for name in (list(names) if names is not None else scene_names(plan)):
+        first = len(results)
         scene, solids = build_scene(plan, name, cache)
         for pname, spec in scene.parts().items():
             if isinstance(spec, RigPartSpec) and pname not in checked_parts:
@@ -65,4 +69,6 @@ def run_scene_checks(plan: Plan, out_dir: str | Path, names: Iterable[str] | Non
         except (OSError, ValueError, KeyError) as exc:
             ok, detail = False, f"{type(exc).__name__}: {exc}"
         results.append(CheckResult("glb_readback", scene_glb_name(name), ok, detail))
+        if done is not None:
+            done(f"scene {name}", results[first:])
     return results

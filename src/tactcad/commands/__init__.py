@@ -1,15 +1,97 @@
-"""Sub-commands of the ``tactcad`` CLI; see :mod:`tactcad.cli`."""
+"""Sub-commands of the ``tactcad`` CLI; see :mod:`tactcad.cli`.
+
+Every command that reads a design gets its plan from :func:`plan_from_args`,
+the one place where the design file is read, ``--set`` overrides applied and
+the result validated.
+"""
 
 from __future__ import annotations
 
 import argparse
+import sys
+import tomllib
 from pathlib import Path
+from typing import Any, Callable
+
+SET_EXAMPLE = "element.web_thickness_mm=0.3"
 
 
 def add_design_arg(p: argparse.ArgumentParser) -> None:
-    """The ``--design FILE`` option every command that reads a design shares."""
+    """The ``--design FILE`` and ``--set KEY=VALUE`` options every command that reads a design shares."""
     p.add_argument("--design", metavar="FILE", default=None,
                    help="design file (TOML); default: hardware/macro_array.toml")
+    p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
+                   help="override one value of the design file (repeatable): a dotted key and a "
+                        f"TOML value, e.g. --set {SET_EXAMPLE} or "
+                        "--set 'arms.lengths_mm=[4,5,6,7,8,4,5,6,7,8]'; checked like the file")
+
+
+def add_output_args(p: argparse.ArgumentParser, json_help: str = "print one JSON object") -> None:
+    """``--json`` (results and errors as JSON on stdout) and ``--quiet`` (no progress)."""
+    p.add_argument("--json", action="store_true",
+                   help=json_help + "; an error is printed as {\"error\": {...}} on stdout")
+    p.add_argument("--quiet", action="store_true", help="print no progress on stderr")
+
+
+def progress_from_args(args: argparse.Namespace) -> Callable[[str], None]:
+    """Where progress lines go: stderr, flushed at once; nowhere with ``--json`` or ``--quiet``."""
+    if getattr(args, "json", False) or getattr(args, "quiet", False):
+        return lambda line: None
+    return lambda line: print(line, file=sys.stderr, flush=True)
+
+
+def parse_override(text: str) -> tuple[str, Any]:
+    """``"section.key=VALUE"`` -> ``("section.key", value)``, VALUE read as a TOML value.
+
+    Raises:
+        DesignError: no ``=``, a key that is not ``section.key``, or a value
+            that is not a TOML value (a number, a quoted string, true/false, a list).
+    """
+    from tactcad.errors import DesignError
+
+    key, sep, raw = text.partition("=")
+    key = key.strip()
+    section, dot, name = key.partition(".")
+    if not sep or not dot or not section or not name:
+        raise DesignError("--set", text, f"KEY=VALUE with a dotted key of the design file, "
+                                         f"e.g. {SET_EXAMPLE}")
+    try:
+        value = tomllib.loads(f"value = {raw.strip()}")["value"]
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignError(key, raw.strip(), "a TOML value: a number, a quoted string, true or "
+                                            "false, or a list such as [4, 5, 6]",
+                          f"--set {text}: {exc}") from None
+    return key, value
+
+
+def parse_overrides(texts: list[str] | None) -> dict[str, Any]:
+    """Every ``--set`` in order (a later one for the same key wins)."""
+    return dict(parse_override(t) for t in texts or ())
+
+
+def design_data_from_args(args: argparse.Namespace) -> tuple[dict[str, Any], Path]:
+    """The design file's tables with the ``--set`` overrides applied, and the file's path."""
+    from tactcad.design.array import DEFAULT_DESIGN, read_toml, with_overrides
+
+    path = Path(args.design) if getattr(args, "design", None) else DEFAULT_DESIGN
+    data = read_toml(path, "design file")
+    return with_overrides(data, parse_overrides(getattr(args, "overrides", None))), path
+
+
+def plan_from_args(args: argparse.Namespace):
+    """The validated :class:`~tactcad.design.array.Plan` of ``--design`` with every ``--set``.
+
+    The overrides are checked by the design validator itself, so an unknown
+    key or a value out of range is refused with the field, the value and the
+    allowed keys or range, as in the file.
+
+    Raises:
+        DesignError: unreadable file, bad ``--set``, unknown key, value out of range.
+    """
+    from tactcad.design.array import plan_from_dict
+
+    data, path = design_data_from_args(args)
+    return plan_from_dict(data, source=str(path))
 
 
 def add_cache_args(p: argparse.ArgumentParser) -> None:

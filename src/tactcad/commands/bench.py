@@ -16,7 +16,8 @@ import argparse
 import importlib
 import os
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands.finite_json import dumps
 
 COLD_GOAL_S = 8.0  # on two cores
 WARM_GOAL_S = 1.5
@@ -36,8 +37,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     e = bsub.add_parser("export", help="cold, warm and one-change export, and the interference "
                                        "check of the largest scene (manifold3d vs OpenCascade)")
     add_design_arg(e)
-    e.add_argument("--json", action="store_true",
-                   help="print the figures as JSON: cold_s, warm_s, one_change_s, builds, "
+    add_output_args(e, "print the figures as JSON: cold_s, warm_s, one_change_s, builds, "
                         "distinct_parts (and the job counts)")
     e.set_defaults(func=run_export)
     s = bsub.add_parser("stiffness", help="stiffness estimator benchmarks (tactcad.mechanics.bench)")
@@ -46,19 +46,23 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="folder for the report files (default: the benchmark's own)")
     s.add_argument("--models", nargs="+", metavar="MODEL", default=None,
                    help="estimators to run (default: all)")
+    add_output_args(s, "print one JSON object: throughput and the summary per level")
     s.set_defaults(func=run_stiffness)
     c = bsub.add_parser("closed-form", help="corrected closed-form K evaluations/s (goal >= 1e7)")
     add_design_arg(c)
+    add_output_args(c, "print one JSON object: evaluations per second and the goal")
     c.set_defaults(func=run_closed_form)
     m = bsub.add_parser("montecarlo", help="10 000-sample tolerance Monte Carlo (goal <= 1 s)")
     add_design_arg(m)
     m.add_argument("--samples", type=int, default=10_000)
+    add_output_args(m, "print one JSON object: first and best-of-3 seconds and the goal")
     m.set_defaults(func=run_montecarlo)
     w = bsub.add_parser("sweep", help="fem3d sweep on two Dask workers vs one (goal >= 1.7x)")
     add_design_arg(w)
     w.add_argument("--webs", type=float, nargs="+", default=[0.25, 0.4], metavar="MM")
     w.add_argument("--arms", type=float, nargs="+", default=[4.0, 8.0], metavar="MM")
     w.add_argument("--model", default="fem3d", choices=("beam", "fem2d", "fem3d"))
+    add_output_args(w, "print one JSON object: one- and two-worker seconds, speed-up, goal")
     w.set_defaults(func=run_sweep)
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
 
@@ -71,15 +75,18 @@ def run_stiffness(args: argparse.Namespace) -> int:
             raise
         print("tactcad bench stiffness: not available in this build (no tactcad.mechanics.bench)")
         return 0
-    return int(module.main(args) or 0)
+    return int(module.main(args, plan=plan_from_args(args)) or 0)
 
 
 def run_closed_form(args: argparse.Namespace) -> int:
     from tactcad.studies.bench_scale import CLOSED_FORM_GOAL_PER_S, closed_form_rate, load_average
-    from tactcad.design.array import load_design
 
-    rate = closed_form_rate(load_design(args.design))
+    rate = closed_form_rate(plan_from_args(args))
     flag = "ok" if rate >= CLOSED_FORM_GOAL_PER_S else "under goal"
+    if args.json:
+        print(dumps({"evaluations_per_s": rate, "goal_per_s": CLOSED_FORM_GOAL_PER_S,
+                     "met": rate >= CLOSED_FORM_GOAL_PER_S, "load_average": load_average()}))
+        return 0
     print(f"tactcad bench closed-form: {rate:,.0f} corrected K evaluations/s (vectorised, one "
           f"core)   goal >= {CLOSED_FORM_GOAL_PER_S:.0e}: {flag}   load average {load_average()}")
     return 0
@@ -87,10 +94,14 @@ def run_closed_form(args: argparse.Namespace) -> int:
 
 def run_montecarlo(args: argparse.Namespace) -> int:
     from tactcad.studies.bench_scale import MONTE_CARLO_GOAL_S, load_average, monte_carlo_times
-    from tactcad.design.array import load_design
 
-    first, best = monte_carlo_times(load_design(args.design), args.samples)
+    first, best = monte_carlo_times(plan_from_args(args), args.samples)
     flag = "ok" if best <= MONTE_CARLO_GOAL_S else "over goal"
+    if args.json:
+        print(dumps({"samples": args.samples, "first_s": first, "best_of_3_s": best,
+                     "goal_s": MONTE_CARLO_GOAL_S, "met": best <= MONTE_CARLO_GOAL_S,
+                     "load_average": load_average()}))
+        return 0
     print(f"tactcad bench montecarlo: {args.samples} samples at the closed form: first "
           f"{first:.3f} s, best of 3 {best:.3f} s   goal <= {MONTE_CARLO_GOAL_S:g} s: {flag}   "
           f"load average {load_average()}")
@@ -99,12 +110,20 @@ def run_montecarlo(args: argparse.Namespace) -> int:
 
 def run_sweep(args: argparse.Namespace) -> int:
     from tactcad.studies.bench_scale import SWEEP_SPEEDUP_GOAL, fem3d_sweep_timing, load_average
-    from tactcad.design.array import load_design
 
-    print(f"tactcad bench sweep: {args.model} on {len(args.webs) * len(args.arms)} designs, "
-          f"load average before {load_average()}", flush=True)
-    t = fem3d_sweep_timing(load_design(args.design), args.webs, args.arms, args.model)
+    plan = plan_from_args(args)
+    progress_from_args(args)(f"tactcad bench sweep: {args.model} on "
+                             f"{len(args.webs) * len(args.arms)} designs, load average before "
+                             f"{load_average()}")
+    t = fem3d_sweep_timing(plan, args.webs, args.arms, args.model)
     flag = "ok" if t.speedup >= SWEEP_SPEEDUP_GOAL else "under goal"
+    if args.json:
+        print(dumps({"model": args.model, "designs": len(args.webs) * len(args.arms),
+                     "one_worker_s": t.one_worker_s, "two_workers_s": t.two_workers_s,
+                     "speedup": t.speedup, "goal": SWEEP_SPEEDUP_GOAL,
+                     "met": t.speedup >= SWEEP_SPEEDUP_GOAL, "same_numbers": t.same_numbers,
+                     "load_average_after": load_average()}))
+        return 0
     print(f"  1 worker {t.one_worker_s:.1f} s, 2 workers {t.two_workers_s:.1f} s: speed-up "
           f"{t.speedup:.2f}x   goal >= {SWEEP_SPEEDUP_GOAL:g}x: {flag}; same K both runs: "
           f"{t.same_numbers}; load average after {load_average()}")
@@ -113,17 +132,14 @@ def run_sweep(args: argparse.Namespace) -> int:
 
 def run_export(args: argparse.Namespace) -> int:
     import json
-    import os
     import tempfile
 
-    from tactcad.design.array import load_design
-
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     say = (lambda s: None) if args.json else print
     say(f"tactcad bench export: design {plan.name}, {os.cpu_count()} CPUs, "
         f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     with tempfile.TemporaryDirectory() as tmp:
-        figures = export_figures(plan, args.design, tmp)
+        figures = export_figures(plan, args, tmp)
     if args.json:
         print(json.dumps(figures, indent=1))
         return 0
@@ -140,37 +156,26 @@ def run_export(args: argparse.Namespace) -> int:
     return 0
 
 
-def export_figures(plan, design: str | None, tmp: str) -> dict:
+def export_figures(plan, args: argparse.Namespace, tmp: str) -> dict:
     """Wall times of ``tactcad export`` in new processes: cold (empty store),
-    warm (same design again) and after one arm length changed, with the cold
-    run's solid builds and the design's distinct parts."""
+    warm (same design again) and after one arm length changed (one more
+    ``--set``), with the cold run's solid builds and the design's distinct parts."""
     import json
-    import re
     import subprocess
     import sys
     import time
     from pathlib import Path
 
-    from tactcad.design.array import DEFAULT_DESIGN, default_design_data, design_hash, read_toml
-
     store, out = Path(tmp) / "store", Path(tmp) / "out"
-    src = Path(design) if design else None
-    data = read_toml(src, "design file") if src else default_design_data()
-    arms = list(data["arms"]["lengths_mm"])
+    arms = [s.geometry.arm_length_mm for s in plan.slots]
     arms[-1] = arms[-1] + 0.5 if arms[-1] + 0.5 <= 8.0 else arms[-1] - 0.5
-    changed = Path(tmp) / (src.name if src else "design.toml")
-    text = (src or DEFAULT_DESIGN).read_text(encoding="utf-8")
-    changed.write_text(re.sub(r"(?m)^(lengths_mm\s*=\s*)\[[^\]]*\]",
-                              lambda m: m.group(1) + "[" + ", ".join(f"{a!r}" for a in arms) + "]",
-                              text, count=1), encoding="utf-8")
-    for name in ("rigs.toml", "scenes.toml"):  # the changed design keeps its rigs and scenes
-        beside = (src.parent if src else changed.parents[0]) / name
-        if src and beside.is_file():
-            (Path(tmp) / name).write_text(beside.read_text(encoding="utf-8"), encoding="utf-8")
+    given = (["--design", args.design] if args.design else []) + [
+        a for text in args.overrides for a in ("--set", text)]
+    one_change = ["--set", "arms.lengths_mm=[" + ", ".join(f"{a!r}" for a in arms) + "]"]
 
-    def run(design_file) -> tuple[float, dict]:
+    def run(extra: list[str]) -> tuple[float, dict]:
         cmd = [sys.executable, "-m", "tactcad.cli", "export", "--json", "--cache", str(store),
-               "--out", str(out)] + (["--design", str(design_file)] if design_file else [])
+               "--out", str(out), *given, *extra]
         t0 = time.perf_counter()
         proc = subprocess.run(cmd, capture_output=True, text=True)
         wall = time.perf_counter() - t0
@@ -178,11 +183,9 @@ def export_figures(plan, design: str | None, tmp: str) -> dict:
             raise RuntimeError(f"tactcad export failed: {proc.stderr[-2000:]}")
         return wall, json.loads(proc.stdout)
 
-    if design_hash(data) == design_hash(read_toml(changed, "design file")):
-        raise RuntimeError("the one-change design did not change")
-    cold, first = run(src)
-    warm, _ = run(src)
-    one, last = run(changed)
+    cold, first = run([])
+    warm, _ = run([])
+    one, last = run(one_change)
     return {"cold_s": round(cold, 3), "warm_s": round(warm, 3), "one_change_s": round(one, 3),
             "builds": first["builds"], "distinct_parts": first["distinct_parts"],
             "jobs": first["jobs_run"] + first["jobs_reused"],

@@ -16,7 +16,7 @@ from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 
 def register(subparsers) -> None:
     """Add the ``calibrate`` sub-command."""
-    from tactcad.commands import add_design_arg
+    from tactcad.commands import add_design_arg, add_output_args
 
     p = subparsers.add_parser(
         "calibrate", help="fit K, K_v, V0 from calibration readings and audit them against the design",
@@ -46,7 +46,7 @@ def register(subparsers) -> None:
                    help="relative disagreement of signal and force data that is flagged (default 0.25)")
     p.add_argument("--plot", metavar="PNG", default=None,
                    help="with --data or --simulate: write force and signal against deflection (Fig. 4)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)
 
 
@@ -68,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad calibrate``; returns the exit code."""
     from pathlib import Path
 
-    from tactcad.design.array import load_design
+    from tactcad.commands import plan_from_args
     from tactcad.errors import TactcadError
     from tactcad.mechanics.paper import calibration as cal
     from tactcad.mechanics.paper import calibration_audit as ca
@@ -78,7 +78,7 @@ def run(args: argparse.Namespace) -> int:
         raise TactcadError("--write-csv = given without --simulate: allowed only with --simulate")
     if args.plot and not (args.simulate or args.data):
         raise TactcadError("--plot = given without --data or --simulate: allowed only with readings")
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     report: dict = {"design": plan.name, "model": args.model}
     if args.data or args.simulate:
         if args.simulate:

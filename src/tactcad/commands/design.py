@@ -7,7 +7,7 @@ import json
 import os
 from pathlib import Path
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 
 VERIFY_MODELS = ("fem3d", "fem2d", "beam", "none")
 
@@ -36,7 +36,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--verify", choices=VERIFY_MODELS, default="fem3d",
                    help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
     add_design_arg(p)
-    p.add_argument("--json", action="store_true", help="print JSON")
+    add_output_args(p, "print JSON")
     p.set_defaults(func=run)
 
 
@@ -70,16 +70,15 @@ def check_output_path(out: str, force: bool) -> Path:
 def run(args: argparse.Namespace) -> int:
     import tomli_w
 
-    from tactcad.design.array import load_design
     from tactcad.atomic import write_bytes_atomic
     from tactcad.mechanics.inverse import Targets, design_for_targets
 
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
     path = check_output_path(args.out, args.force)
-    base = load_design(args.design)
+    base = plan_from_args(args)
     result = design_for_targets(base, targets, grade=args.material, pitch_mm=args.pitch,
                                 name=path.stem.replace("-", "_") or "inverse_design")
-    report = design_report(result, args.verify)
+    report = design_report(result, args.verify, progress_from_args(args))
     header = (f"# Written by `tactcad design --kr-over-km {targets.kr_over_km:g} --kobj-range "
               f"{targets.k_obj_range_N_per_mm[0]:g} {targets.k_obj_range_N_per_mm[1]:g} "
               f"--full-scale-force {targets.full_scale_force_N:g}`.\n"
@@ -93,10 +92,11 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def design_report(result, verify: str) -> dict:
+def design_report(result, verify: str, progress=None) -> dict:
     """Figures of an :class:`~tactcad.mechanics.inverse.InverseDesign`: K per
     element (closed form and ``verify`` level), strength at full scale, and
-    R, dR/dK_obj and the K_obj resolution over the K_obj range."""
+    R, dR/dK_obj and the K_obj resolution over the K_obj range. ``progress``
+    gets a line per FEM mesh level of the verification."""
     import math
 
     from tactcad.mechanics.inverse import report_points, unit_resolution
@@ -111,7 +111,8 @@ def design_report(result, verify: str) -> dict:
         g = slot.geometry
         if g.part_name not in cache:
             cf = estimate("closed-form", g, plan.material)
-            ver = None if verify == "none" else estimate(verify, g, plan.material)
+            levels = {"progress": progress} if progress and verify in ("fem2d", "fem3d") else {}
+            ver = None if verify == "none" else estimate(verify, g, plan.material, **levels)
             cache[g.part_name] = {
                 "K_closed_form_N_per_mm": cf.stiffness_N_per_mm,
                 "K_verified_N_per_mm": None if ver is None else ver.stiffness_N_per_mm,

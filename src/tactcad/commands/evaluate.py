@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 
 from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 
@@ -43,7 +43,7 @@ def register(subparsers) -> None:
                    help="write a Fig. 7-like plot (R against K_m/K_obj per K_r/K_m) here")
     p.add_argument("--plot-fig6", metavar="PNG", default=None,
                    help="write a Fig. 6-like plot (R against grasping force, sample nearest 3.85 N/mm)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)
 
 
@@ -71,13 +71,12 @@ def parse_stiffness_list(field: str, text: str) -> list[float]:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad evaluate``; returns the exit code."""
-    from tactcad.design.array import load_design
     from tactcad.mechanics.paper import data as paper_data
     from tactcad.mechanics.paper import evaluation as ev
     from tactcad.mechanics.paper.table2_models import paper_stiffness_by_element
     from tactcad.commands.finite_json import dumps
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     samples = (parse_stiffness_list("samples", args.samples) if args.samples
                else list(paper_data.SAMPLE_STIFFNESSES_N_PER_MM))
     spec = ev.SampleSpec(args.coupling, args.poisson,

@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
-from tactcad.commands import add_cache_args, add_design_arg, store_from_args
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+                              progress_from_args, store_from_args)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -16,16 +17,22 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    ".glb (see `tactcad scenes`), review/<scene>.FCStd (when FreeCAD "
                                    "is installed), drawings/<part>.svg and "
                                    "drawings.pdf, bom.csv and bom.md, images/*.png and "
-                                   "manifest.json.")
+                                   "manifest.json. Progress (one line per job run) goes to stderr.")
     add_design_arg(p)
     p.add_argument("--out", metavar="DIR", default="exports", help="output folder (default: exports)")
     p.add_argument("--scene", metavar="NAME", action="append", default=None,
                    help="write only this scene: scenes/NAME.step, scenes/NAME.glb and "
                         "review/NAME.FCStd "
                         "(repeatable; the manifest is left as it is). `tactcad scenes` lists them")
+    p.add_argument("--only", metavar="KINDS", action="append", default=None,
+                   help="write only these kinds of file, comma-separated: step, dxf, scenes, "
+                        "review, drawings, images, bom; the manifest lists only what was written "
+                        "and says so under \"partial\"")
+    p.add_argument("--part", metavar="NAME", action="append", default=None,
+                   help="write only this part's own files, its STEP and its drawing "
+                        "(repeatable; combines with --only)")
     add_cache_args(p)
-    p.add_argument("--json", action="store_true",
-                   help="print a JSON summary (seconds, jobs run and reused, builds, files)")
+    add_output_args(p, "print a JSON summary (seconds, jobs run and reused, builds, files)")
     p.add_argument("--dxf-version", choices=("R2010", "R12"), default=None,
                    help="DXF version of the shop files: R2010 (default) or R12 for old CAM "
                         "(POLYLINE with bulges instead of LWPOLYLINE))")
@@ -33,17 +40,37 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.design.array import load_design
+    from tactcad.errors import DesignError
     from tactcad.export.run import export, export_scenes
+    from tactcad.export.selection import (ReportingParts, parse_only, partial_record,
+                                          select_jobs, with_progress)
 
-    plan = load_design(args.design)  # validation first: a bad design writes nothing
-    log = (lambda s: None) if args.json else print
-    log(f"tactcad export: design {plan.name} ({plan.source}), sha256 {plan.design_hash[:12]}")
+    plan = plan_from_args(args)  # validation first: a bad design writes nothing
+    only, parts = parse_only(args.only), list(args.part or ())
+    if args.scene and (only or parts):
+        raise DesignError("--scene", args.scene, "alone, without --only or --part")
+    report = progress_from_args(args)
     store = store_from_args(args)
+    cache = ReportingParts(plan, report)
     if args.scene:
-        result = export_scenes(plan, args.out, args.scene, log=log, store=store)
+        result = export_scenes(plan, args.out, args.scene, log=lambda s: None, store=store,
+                               parts=cache)
     else:
-        result = export(plan, args.out, log=log, store=store, dxf_version=args.dxf_version)
+        partial = {} if only or parts else None  # filled in once the jobs are known
+
+        def select(jobs):  # called once --out is found fit, before any job runs
+            report(f"tactcad export: design {plan.name} ({plan.source}), "
+                   f"sha256 {plan.design_hash[:12]}")
+            chosen = select_jobs(jobs, only, parts) if partial is not None else list(jobs)
+            if partial is not None:
+                partial.update(partial_record(only, parts, chosen))
+            report(f"{len(chosen)} jobs" + (f" of {len(jobs)}" if len(chosen) < len(jobs) else "")
+                   + "; those not in the store run now")
+            return with_progress(chosen, report)
+
+        result = export(plan, args.out, log=lambda s: None, store=store, parts=cache,
+                        dxf_version=args.dxf_version, select=select,
+                        partial=partial)
     if args.json:
         print(json.dumps(result.as_json(), indent=1))
         return 0

@@ -11,6 +11,8 @@ from __future__ import annotations
 import argparse
 import json
 
+from tactcad.commands import add_output_args
+
 
 def register(subparsers) -> None:
     """Add the ``lumped`` sub-command to an ``argparse`` sub-parser collection."""
@@ -33,7 +35,7 @@ def register(subparsers) -> None:
                        help="measured deflection ratio R (dimensionless): print K_obj")
     p.add_argument("--sigma-r", type=float, default=None, metavar="SIGMA",
                    help="standard uncertainty of R: print sigma of K_obj (first order)")
-    p.add_argument("--json", action="store_true", help="print one JSON object instead of text")
+    add_output_args(p, "print one JSON object instead of text")
     p.set_defaults(func=run)
 
 

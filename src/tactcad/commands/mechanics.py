@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 from tactcad.errors import TactcadError
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
@@ -19,7 +18,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--element", type=int, required=True, help="paper element number (1-10)")
     p.add_argument("--model", choices=MODELS, default="closed-form")
     add_design_arg(p)
-    p.add_argument("--json", action="store_true", help="print JSON")
+    add_output_args(p, "print JSON")
     p.add_argument("--vtk", metavar="DIR", default=None,
                    help="fem2d/fem3d: also write the finest mesh's displacement and von Mises "
                         "stress under 1 N as DIR/<part>_<model>.vtu (ParaView)")
@@ -32,27 +31,26 @@ def register(sub: argparse._SubParsersAction) -> None:
     t.add_argument("--model", choices=MODELS + ("all",), default="closed-form",
                    help="ladder level, or 'all' for every level side by side (fem3d takes ~30 s)")
     add_design_arg(t)
-    t.add_argument("--json", action="store_true", help="print JSON")
+    add_output_args(t, "print JSON")
     t.set_defaults(func=run_table1)
 
 
 def run_stiffness(args: argparse.Namespace) -> int:
-    from tactcad.design.array import load_design
     from tactcad.mechanics.ladder import estimate
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     slot = plan.element(args.element)
     if args.vtk is not None and args.model not in ("fem2d", "fem3d"):
         raise TactcadError(f"--vtk {args.vtk}: allowed with --model fem2d or fem3d only "
                            f"(got --model {args.model})")
-    r = estimate(args.model, slot.geometry, plan.material, element=args.element)
+    levels = {"progress": progress_from_args(args)} if args.model in ("fem2d", "fem3d") else {}
+    r = estimate(args.model, slot.geometry, plan.material, element=args.element, **levels)
     vtu = None
     if args.vtk is not None:
         from tactcad.mechanics.fem.fields import write_element_vtu
 
         vtu = write_element_vtu(args.vtk, slot.geometry, plan.material, args.model).path
-        if not args.json:
-            print(f"wrote {vtu} (displacement, von Mises stress under 1 N)", file=sys.stderr)
+        progress_from_args(args)(f"wrote {vtu} (displacement, von Mises stress under 1 N)")
     if args.json:
         out = r.as_json()
         if vtu is not None:
@@ -68,12 +66,12 @@ def run_stiffness(args: argparse.Namespace) -> int:
 
 
 def run_table1(args: argparse.Namespace) -> int:
-    from tactcad.design.array import load_design
     from tactcad.mechanics.ladder import (PAPER_STRAIN_RANGE, as_built_webs, gauge_strain_at_paper_load,
                                     table1_comparison, table2_predicted)
 
-    plan = load_design(args.design)
-    progress = (lambda s: print(f"  ... {s}", file=sys.stderr)) if not args.json else None
+    plan = plan_from_args(args)
+    report = progress_from_args(args)
+    progress = (lambda s: report(f"  ... {s}"))
     if args.model == "all":
         return _table1_all_levels(plan, args.json, progress)
     rows = table1_comparison(plan, args.model, progress=progress)

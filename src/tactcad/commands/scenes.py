@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands.finite_json import dumps
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -14,17 +15,22 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "detail. Builds no geometry.")
     add_design_arg(p)
     p.add_argument("name", nargs="?", default=None, help="show only this scene")
+    add_output_args(p, "print a JSON list of the scenes: name, rig, description, parts placed, "
+                       "groups with each part's quantity and level of detail")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.design.array import load_design
-    from tactcad.assembly.rigs import describe, get_scene_spec
+    from tactcad.assembly.rigs import describe, get_scene_spec, scene_summaries
 
-    plan = load_design(args.design)
-    lines = describe(plan)
+    plan = plan_from_args(args)
     if args.name is not None:
         get_scene_spec(plan, args.name)  # SceneError (exit 2) lists the scenes
+    if args.json:
+        print(dumps([s for s in scene_summaries(plan) if args.name in (None, s["name"])]))
+        return 0
+    lines = describe(plan)
+    if args.name is not None:
         keep, show = [], False
         for line in lines:
             if not line.startswith(" "):

@@ -11,9 +11,8 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 
@@ -30,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--model", choices=MODELS, default="closed-form",
                    help="ladder level (fem2d ~2 s, fem3d ~1 min per distinct element)")
     add_design_arg(p)
-    p.add_argument("--json", action="store_true", help="print a JSON list of records")
+    add_output_args(p, "print a JSON list of records")
     p.add_argument("--table1", action="store_true",
                    help="compare the full-scale force with Table 1's max support force per "
                         "element (design web and as-built web)")
@@ -38,13 +37,13 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.design.array import load_design
     from tactcad.mechanics.strength import plan_strength
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     if args.table1:
         return _run_table1(plan, args.model, args.json)
-    progress = None if args.json else (lambda s: print(f"  ... {s}", file=sys.stderr))
+    report = progress_from_args(args)
+    progress = (lambda s: report(f"  ... {s}"))
     records = plan_strength(plan, args.model, progress=progress)
     if args.json:
         print(json.dumps([r.as_json() for r in records], indent=2, allow_nan=False))

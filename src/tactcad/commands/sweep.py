@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands.finite_json import dumps
 from tactcad.commands.tolerance import add_cluster_args
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
@@ -30,7 +30,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="notch radii (default: the design's, raised to the web where thinner)")
     g.add_argument("--out", metavar="DIR", default="exports/sweeps",
                    help="folder for design_grid.csv and design_chart.png")
-    g.add_argument("--json", action="store_true", help="print the rows as JSON")
+    add_output_args(g, "print the rows as JSON")
     add_cluster_args(g, local_default=True)
     g.set_defaults(func=run_grid_cmd)
 
@@ -42,6 +42,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="JSON lines of the fem3d points (resumable; default: the sweep's own)")
     r.add_argument("--out", metavar="FILE", default="exports/sweeps/stiffness_correction.json",
                    help="fitted correction (the stored one is not touched)")
+    add_output_args(r, "print one JSON object: new points, seconds, residuals, the file written")
     add_cluster_args(r, local_default=True)
     r.set_defaults(func=run_refit_cmd)
 
@@ -51,9 +52,15 @@ def register(sub: argparse._SubParsersAction) -> None:
     m.add_argument("--seed", type=int, default=0)
     m.add_argument("--out", metavar="DIR", default="exports/sweeps",
                    help="folder for tolerance_elements.csv and tolerance_units.csv")
+    add_output_args(m, "print one JSON object: samples, seconds, the files written")
     add_cluster_args(m, local_default=True)
     m.set_defaults(func=run_montecarlo_cmd)
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
+
+
+def _bar(args) -> bool:
+    """Dask's progress bar on stderr, unless --json or --quiet."""
+    return not (args.json or args.quiet)
 
 
 def _workers(args) -> int:
@@ -63,14 +70,13 @@ def _workers(args) -> int:
 
 
 def run_grid_cmd(args: argparse.Namespace) -> int:
-    from tactcad.design.array import load_design
     from tactcad.studies.sweeps import (dask_client, dask_mapper, design_grid, plot_design_chart,
                           rows_as_json, write_grid_csv)
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     with dask_client(args.scheduler, _workers(args)) as client:
         rows = design_grid(plan, args.webs, args.arms, args.model, args.radii,
-                           mapper=dask_mapper(client))
+                           mapper=dask_mapper(client, progress=_bar(args)))
         if args.model != "closed-form":  # the chart's lines: closed form, finer in arm
             lo, hi = min(args.arms), max(args.arms)
             fine = [lo + (hi - lo) * k / 16 for k in range(17)]
@@ -96,10 +102,15 @@ def run_refit_cmd(args: argparse.Namespace) -> int:
     from tactcad.studies.sweeps import correction_refit, dask_client, dask_mapper
 
     with dask_client(args.scheduler, _workers(args)) as client:
-        res = correction_refit(dask_mapper(client), args.fit, args.holdout, args.points)
+        res = correction_refit(dask_mapper(client, progress=_bar(args)), args.fit, args.holdout, args.points)
     doc = res["document"]
     write_bytes_atomic(args.out, (json.dumps(doc, indent=2, allow_nan=False) + "\n").encode())
     hold = doc.get("holdout", {})
+    if args.json:
+        print(dumps({"new_points": res["new_points"], "wall_time_s": res["wall_time_s"],
+                     "points": len(doc["points"]), "residual_rel_max": doc["residual_rel_max"],
+                     "holdout_rel_max": hold.get("max"), "out": args.out}))
+        return 0
     print(f"{res['new_points']} new fem3d points in {res['wall_time_s']:.1f} s; "
           f"{len(doc['points'])} in the fit; residual max {100 * doc['residual_rel_max']:.2f} %"
           + (f", hold-out max {100 * hold.get('max', float('nan')):.2f} %" if hold else "")
@@ -111,15 +122,15 @@ def run_montecarlo_cmd(args: argparse.Namespace) -> int:
     import csv
     import time
 
-    from tactcad.design.array import load_design
     from tactcad.atomic import write_atomic
     from tactcad.mechanics.tolerance import run_tolerance
     from tactcad.studies.sweeps import dask_client, dask_mapper
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     t0 = time.perf_counter()
     with dask_client(args.scheduler, _workers(args)) as client:
-        report = run_tolerance(plan, args.samples, args.seed, mapper=dask_mapper(client))
+        report = run_tolerance(plan, args.samples, args.seed,
+                               mapper=dask_mapper(client, progress=_bar(args)))
     wall = time.perf_counter() - t0
     out = Path(args.out)
 
@@ -136,6 +147,11 @@ def run_montecarlo_cmd(args: argparse.Namespace) -> int:
 
     table(out / "tolerance_elements.csv", report.elements)
     table(out / "tolerance_units.csv", report.units)
+    if args.json:
+        print(dumps({"samples": report.samples, "wall_time_s": wall,
+                     "files": [str(out / "tolerance_elements.csv"),
+                               str(out / "tolerance_units.csv")]}))
+        return 0
     print(f"{report.samples} samples in {wall:.2f} s (cluster start included); wrote "
           f"{out / 'tolerance_elements.csv'} and {out / 'tolerance_units.csv'}")
     return 0

@@ -16,7 +16,7 @@ from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 
 def register(subparsers) -> None:
     """Add the ``table2`` sub-command."""
-    from tactcad.commands import add_design_arg
+    from tactcad.commands import add_design_arg, add_output_args
 
     p = subparsers.add_parser(
         "table2", help="each model's error against the paper's 48 measured R (Table 2)",
@@ -29,17 +29,17 @@ def register(subparsers) -> None:
                    help="ladder level for element 5 (no Table 1 entry) in the coupled models")
     p.add_argument("--plot", metavar="PNG", default=None,
                    help="write measured R with eq. 2 and the held-out fitted-K_r model here")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad table2``; returns the exit code."""
-    from tactcad.design.array import load_design
+    from tactcad.commands import plan_from_args
     from tactcad.mechanics.paper.table2_models import table2_report
     from tactcad.commands.finite_json import dumps
 
-    report = table2_report(load_design(args.design), args.model)
+    report = table2_report(plan_from_args(args), args.model)
     if args.plot:
         report["plot"] = str(write_plot(report, args.plot))
     if args.json:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from tactcad.commands import add_design_arg
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 
 
 def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) -> None:
@@ -45,7 +45,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="+/- arm length (default 0.02 mm)")
     p.add_argument("--modulus-tol", type=float, default=None, metavar="REL",
                    help="+/- relative Young's modulus (default 0.02)")
-    p.add_argument("--json", action="store_true", help="print JSON")
+    add_output_args(p, "print JSON")
     add_cluster_args(p)
     p.set_defaults(func=run)
 
@@ -53,10 +53,9 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     import time
 
-    from tactcad.design.array import load_design
     from tactcad.mechanics.tolerance import DEFAULT_K_OBJ_N_PER_MM, Tolerances, run_tolerance
 
-    plan = load_design(args.design)
+    plan = plan_from_args(args)
     given = {"notch_radius_mm": args.notch_radius_tol, "arm_length_mm": args.arm_tol,
              "modulus_rel": args.modulus_tol}
     tol = Tolerances.of_plan(plan, distribution=args.distribution,
@@ -68,7 +67,8 @@ def run(args: argparse.Namespace) -> int:
         from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client, dask_mapper
 
         with dask_client(args.scheduler, args.workers or LOCAL_WORKERS) as client:
-            report = run_tolerance(plan, mapper=dask_mapper(client, progress=not args.json), **kw)
+            bar = not (args.json or args.quiet)
+            report = run_tolerance(plan, mapper=dask_mapper(client, progress=bar), **kw)
     else:
         report = run_tolerance(plan, **kw)
     wall = time.perf_counter() - t0

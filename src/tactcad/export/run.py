@@ -206,7 +206,7 @@ def _written_by_tactcad(out: Path) -> set[str]:
 
 def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, log: Log,
                store: Store, with_manifest: bool, parts=None,
-               dxf_version: str | None = None) -> ExportResult:
+               dxf_version: str | None = None, partial: dict | None = None) -> ExportResult:
     """Build the files of ``jobs_of`` in a staging folder beside ``out_dir``,
     then put that folder in the place of ``out_dir`` in one step
     (:func:`tactcad.atomic.publish_dir`). A full export keeps, of the old
@@ -228,6 +228,8 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
         files = [{**r, "bytes": (staging / r["path"]).stat().st_size} for r in records]
         if with_manifest:
             man = manifest(plan, staging, records)
+            if partial is not None:  # a selection of the jobs (export --only/--part)
+                man["partial"] = partial
             man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
             write_bytes_atomic(staging / MANIFEST, man_bytes)
             files = man["files"] + [{"path": MANIFEST, "bytes": len(man_bytes), "part": "-"}]
@@ -258,7 +260,9 @@ def export_scenes(plan: Plan, out_dir: str | Path, names: Sequence[str], log: Lo
 
 
 def export(plan: Plan, out_dir: str | Path, log: Log = print,
-           store: Store | None = None, parts=None, dxf_version: str | None = None) -> ExportResult:
+           store: Store | None = None, parts=None, dxf_version: str | None = None,
+           select: Callable[[list[Job]], list[Job]] | None = None,
+           partial: dict | None = None) -> ExportResult:
     """Write all exports of ``plan`` into ``out_dir`` (see module doc).
 
     Args:
@@ -266,9 +270,14 @@ def export(plan: Plan, out_dir: str | Path, log: Log = print,
         parts: a :class:`~tactcad.parts.cache.PartCache` of ``plan`` to share
             (default: the run makes its own, only if a job needs a solid).
         dxf_version: ``R2010`` (default) or ``R12`` for the shop DXF files.
+        select: the jobs to run out of every job of the run (default: all),
+            e.g. :func:`tactcad.export.selection.select_jobs`.
+        partial: when ``select`` drops jobs, what was asked for; kept in the
+            manifest as ``"partial"``.
 
     Raises:
         OSError: the files cannot be written; ``out_dir`` is left as it was.
     """
-    return _write_set(Path(out_dir), all_jobs, plan, log, store or Store(None),
-                      with_manifest=True, parts=parts, dxf_version=dxf_version)
+    jobs_of = all_jobs if select is None else (lambda run: select(all_jobs(run)))
+    return _write_set(Path(out_dir), jobs_of, plan, log, store or Store(None),
+                      with_manifest=True, parts=parts, dxf_version=dxf_version, partial=partial)

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import sys
 import time
 import warnings
@@ -32,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry, Material, load_design
+from tactcad.design.array import ElementGeometry, Material, Plan, load_design
 from tactcad.mechanics.correction import CORRECTION_FILE, CorrectionRangeWarning
 from tactcad.mechanics.correction_sweep import grid_geometry
 from tactcad.mechanics.ladder import MODELS, estimate
@@ -70,9 +71,11 @@ class Point:
     error_vs_fem3d_rel: float = float("nan")
 
 
-def design_grid(design=None, correction_path: str | Path = CORRECTION_FILE) -> list[Design]:
-    """The design file's distinct elements, then the stored hold-out designs."""
-    plan = load_design(design)
+def design_grid(design=None, correction_path: str | Path = CORRECTION_FILE,
+                plan: Plan | None = None) -> list[Design]:
+    """The design's distinct elements (``plan``, default: the design file
+    ``design``), then the stored hold-out designs."""
+    plan = load_design(design) if plan is None else plan
     own = {s.geometry.part_name: s.geometry for s in plan.slots}
     arms = sorted(own.values(), key=lambda g: g.arm_length_mm)
     extremes = {arms[0].part_name, arms[-1].part_name}
@@ -107,9 +110,10 @@ def closed_form_throughput(n: int = 1_000_000) -> float:
     return n / best
 
 
-def run(models=MODELS, design=None, out_dir="exports/reports", progress=print) -> list[Point]:
+def run(models=MODELS, design=None, out_dir="exports/reports", progress=print,
+        plan: Plan | None = None) -> list[Point]:
     """Run the ladder over the grid, write CSV + PNG, return the points."""
-    grid = design_grid(design)
+    grid = design_grid(design, plan=plan)
     points: list[Point] = []
     for model in models:
         for i, d in enumerate(grid, start=1):
@@ -201,19 +205,33 @@ def _plot(path: Path, points: list[Point]) -> None:
     plt.close(fig)
 
 
-def main(args) -> int:
-    """Entry point of ``tactcad bench stiffness``."""
+def main(args, plan: Plan | None = None) -> int:
+    """Entry point of ``tactcad bench stiffness`` (``plan``: the design with
+    the command line's overrides; default: ``args.design`` as it is)."""
     models = tuple(getattr(args, "models", None) or MODELS)
     out_dir = getattr(args, "out", None) or "exports/reports"
     design = getattr(args, "design", None)
-    grid = design_grid(design)
+    as_json = getattr(args, "json", False)
+    quiet = as_json or getattr(args, "quiet", False)
+    progress = (lambda s: None) if quiet else (lambda s: print(s, file=sys.stderr, flush=True))
+    grid = design_grid(design, plan=plan)
     n_hold = sum(d.label.startswith("holdout_") for d in grid)
     live = ", ".join(d.label for d in grid if d.fem3d_live)
-    print(f"tactcad bench stiffness: {len(grid) - n_hold} design elements + {n_hold} hold-out "
-          f"designs of the correction (web 0.05-1 mm, arm 2-20 mm, sheet 0.5-10 mm); fem3d live "
-          f"on {live}, stored fem3d elsewhere", flush=True)
+    progress(f"tactcad bench stiffness: {len(grid) - n_hold} design elements + {n_hold} hold-out "
+             f"designs of the correction (web 0.05-1 mm, arm 2-20 mm, sheet 0.5-10 mm); fem3d "
+             f"live on {live}, stored fem3d elsewhere")
     thr = closed_form_throughput()
-    points = run(models, design, out_dir, progress=lambda s: print(s, file=sys.stderr, flush=True))
+    points = run(models, design, out_dir, progress=progress, plan=plan)
+    if as_json:
+        def clean(v):
+            return None if isinstance(v, float) and not math.isfinite(v) else v
+
+        print(json.dumps({"closed_form_evaluations_per_s": thr,
+                          "levels": [{k: clean(v) for k, v in r.items()} for r in summary(points)],
+                          "files": [f"{out_dir}/stiffness_tradeoff.csv",
+                                    f"{out_dir}/stiffness_tradeoff.png"]},
+                         indent=2, allow_nan=False))
+        return 0
     print(f"\nclosed form, vectorised: {thr:,.0f} element evaluations/s (goal ≥ 1e7)")
     print(f"{'level':<12} {'n':>3} {'time/eval s':>12} {'max time s':>11} {'err vs fem3d max':>17} "
           f"{'mean':>8} {'est. err max':>13}  goal")

@@ -54,7 +54,7 @@ import dataclasses
 import math
 import time
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -582,16 +582,24 @@ def size_factors(levels: int, ratio: float) -> list[float]:
 def fem2d_convergence(g: ElementGeometry, material: Material, *, plane: str = "stress",
                       web_divisions: float = WEB_DIVISIONS, ratio: float = REFINEMENT_RATIO,
                       levels: int = 3, curved: bool = True, force_N: float = DEFAULT_FORCE_N,
-                      region: FemRegion | None = None) -> Convergence:
+                      region: FemRegion | None = None,
+                      progress: Callable[[str], None] | None = None) -> Convergence:
     """Solve on ``levels`` meshes (sizes r^(levels-1) ... 1 times the default)
-    and Richardson-extrapolate K and the gauge strain."""
+    and Richardson-extrapolate K and the gauge strain; ``progress`` gets one
+    line per mesh level solved."""
     t0 = time.perf_counter()
     region = fem_region(g) if region is None else region
+    found = []
     with single_threaded_blas():
-        sols = tuple(solve_fem2d(g, material, plane=plane, size_factor=s,
-                                 web_divisions=web_divisions, curved=curved, force_N=force_N,
-                                 region=region)
-                     for s in size_factors(levels, ratio))
+        for s in size_factors(levels, ratio):
+            t_level = time.perf_counter()
+            found.append(solve_fem2d(g, material, plane=plane, size_factor=s,
+                                     web_divisions=web_divisions, curved=curved,
+                                     force_N=force_N, region=region))
+            if progress is not None:
+                progress(f"fem2d {g.part_name}: mesh {len(found)}/{levels} (h x {s:.3f}), "
+                         f"{time.perf_counter() - t_level:.1f} s")
+    sols = tuple(found)
     rk = richardson([s.stiffness_N_per_mm for s in sols], ratio)
     rg = richardson([s.gauge_strain for s in sols], ratio)
     return Convergence(sols, rk, rg, time.perf_counter() - t0)
@@ -601,7 +609,8 @@ def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | Non
                    plane: str = "stress", web_divisions: float = WEB_DIVISIONS,
                    ratio: float = REFINEMENT_RATIO, curved: bool = True,
                    force_N: float = DEFAULT_FORCE_N,
-                   margin_mm: float | None = None) -> StiffnessResult:
+                   margin_mm: float | None = None,
+                   progress: Callable[[str], None] | None = None) -> StiffnessResult:
     """Level-3 estimate: plane stress (or plane strain) P2 FEM, three meshes.
 
     Args:
@@ -615,6 +624,7 @@ def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | Non
         force_N: tip force (N) for the gauge strain (reported per N).
         margin_mm: clamp margin behind the notch (``None``: the default of
             :func:`~tactcad.mechanics.fem.mesh.fem_region`).
+        progress: gets one line per mesh level solved (level, seconds).
 
     Returns:
         :class:`StiffnessResult` with model "fem2d" (plane stress) or
@@ -627,7 +637,7 @@ def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | Non
     """
     region = fem_region(g, margin_mm)
     conv = fem2d_convergence(g, material, plane=plane, web_divisions=web_divisions, ratio=ratio,
-                             curved=curved, force_N=force_N, region=region)
+                             curved=curved, force_N=force_N, region=region, progress=progress)
     fin = conv.finest
     return StiffnessResult(
         element=element, model="fem2d" if plane == "stress" else "fem2d-plane-strain",

@@ -52,6 +52,7 @@ import math
 import resource
 import time
 from dataclasses import dataclass
+from typing import Callable
 
 from tactcad.design.array import ElementGeometry, Material
 from tactcad.mechanics.fem.fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Convergence, DisplacementField,
@@ -144,12 +145,13 @@ def fem3d_convergence(g: ElementGeometry, material: Material, *,
                       grading: float = Z_GRADING, ratio: float = REFINEMENT_RATIO,
                       levels: int = 3, curved: bool = True, force_N: float = DEFAULT_FORCE_N,
                       region: FemRegion | None = None, solver: str = "pcg",
-                      verbose: bool = False) -> Convergence3D:
+                      verbose: bool = False,
+                      progress: Callable[[str], None] | None = None) -> Convergence3D:
     """Solve on ``levels`` meshes (sizes r^(levels-1) ... 1 times the
     default) and Richardson-extrapolate K and the gauge strain.
 
     With ``verbose`` each solve prints its K, unknowns, wall time and the
-    process's peak RSS.
+    process's peak RSS; ``progress`` gets one line per mesh level solved.
     """
     t0 = time.perf_counter()
     region = fem_region(g) if region is None else region
@@ -160,6 +162,9 @@ def fem3d_convergence(g: ElementGeometry, material: Material, *,
                               n_layers=n_layers, grading=grading, curved=curved,
                               force_N=force_N, region=region, solver=solver)
             sols.append(sol)
+            if progress is not None:
+                progress(f"fem3d {g.part_name}: mesh {len(sols)}/{levels} (h x {s:.3f}), "
+                         f"{sol.n_dofs} unknowns, {sol.wall_time_s:.1f} s")
             if verbose:
                 print(f"fem3d {g.part_name}: h x {s:.3f}: K = {sol.stiffness_N_per_mm:.5f} "
                       f"N/mm, {sol.n_dofs} dofs, {sol.wall_time_s:.1f} s, peak RSS "
@@ -180,7 +185,8 @@ def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | Non
                    grading: float = Z_GRADING, ratio: float = REFINEMENT_RATIO,
                    curved: bool = True, force_N: float = DEFAULT_FORCE_N,
                    margin_mm: float | None = None, solver: str = "pcg",
-                   verbose: bool = False) -> StiffnessResult:
+                   verbose: bool = False,
+                   progress: Callable[[str], None] | None = None) -> StiffnessResult:
     """Level-4 (reference) estimate: 3D P2 FEM of the half element, three meshes.
 
     Args:
@@ -196,6 +202,7 @@ def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | Non
             :func:`~tactcad.mechanics.fem.mesh.fem_region`).
         solver: "pcg" or "direct".
         verbose: print K, time and peak RSS of every mesh.
+        progress: gets one line per mesh level solved (level, unknowns, seconds).
 
     Returns:
         :class:`StiffnessResult` with model "fem3d": K of the finest mesh
@@ -211,7 +218,7 @@ def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | Non
     region = fem_region(g, margin_mm)
     conv = fem3d_convergence(g, material, web_divisions=web_divisions, n_layers=n_layers,
                              grading=grading, ratio=ratio, curved=curved, force_N=force_N,
-                             region=region, solver=solver, verbose=verbose)
+                             region=region, solver=solver, verbose=verbose, progress=progress)
     fin = conv.finest
     return StiffnessResult(
         element=element, model="fem3d", stiffness_N_per_mm=fin.stiffness_N_per_mm,

@@ -1,0 +1,140 @@
+"""Part of an export (``tactcad export --only KINDS --part NAME``) and its progress.
+
+A job's kind is the word before the colon of its name (``step:element_a4mm``,
+``dxf:shop``, ``scene:array``, ``review:...``, ``drawing:cart``,
+``drawings:pdf``, ``image:array``, ``bom``); the STEP and drawing jobs belong
+to one part, named after the colon. Jobs that cover many parts in one file
+(the shop DXF, the scenes, the PDF, the BOM) have no part and are left out
+by ``--part``.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+from typing import Callable, Iterable, Sequence
+
+from tactcad.errors import DesignError
+from tactcad.export.job import Job, Run
+from tactcad.store import content_key
+
+#: ``--only`` kinds and the job-name prefixes each covers.
+KINDS: dict[str, tuple[str, ...]] = {
+    "step": ("step",), "dxf": ("dxf",), "scenes": ("scene",), "review": ("review",),
+    "drawings": ("drawing", "drawings"), "images": ("image",), "bom": ("bom",)}
+
+#: Jobs whose single part is named after the colon.
+PART_PREFIXES = ("step", "drawing")
+
+
+def job_kind(name: str) -> str:
+    """The ``--only`` kind of a job name (``"drawings:pdf"`` -> ``"drawings"``)."""
+    prefix = name.split(":", 1)[0]
+    return next((kind for kind, prefixes in KINDS.items() if prefix in prefixes), prefix)
+
+
+def job_part(name: str) -> str | None:
+    """The part a job writes alone (``"step:cart"`` -> ``"cart"``), None for a job of many."""
+    prefix, _, rest = name.partition(":")
+    return rest if prefix in PART_PREFIXES and rest else None
+
+
+def parse_only(values: Iterable[str] | None) -> list[str]:
+    """``--only`` values (each a comma-separated list) -> kinds in :data:`KINDS` order.
+
+    Raises:
+        DesignError: an unknown kind, naming the allowed ones.
+    """
+    asked = [v.strip() for text in values or () for v in text.split(",") if v.strip()]
+    for kind in asked:
+        if kind not in KINDS:
+            raise DesignError("--only", kind, "one or more of " + ", ".join(KINDS),
+                              "comma-separated")
+    return [kind for kind in KINDS if kind in asked]
+
+
+def select_jobs(jobs: Sequence[Job], only: Sequence[str] = (),
+                parts: Sequence[str] = ()) -> list[Job]:
+    """The jobs of the kinds ``only`` and the parts ``parts`` (empty: no filter).
+
+    A kept job that reads the files of jobs left out (the BOM lists the files
+    present) is given a key of its own, so the store never hands it the copy
+    a full export made.
+
+    Raises:
+        DesignError: a part no job writes alone (the message lists them), or
+            a selection that leaves no job.
+    """
+    known = sorted({p for p in map(job_part, (j.name for j in jobs)) if p})
+    for name in parts:
+        if name not in known:
+            raise DesignError("--part", name, "one of " + ", ".join(known))
+    keep = [j for j in jobs if (not only or job_kind(j.name) in only)
+            and (not parts or job_part(j.name) in parts)]
+    if not keep:
+        raise DesignError("--only/--part", {"only": list(only), "part": list(parts)},
+                          "a selection that writes at least one file",
+                          "--part keeps a part's own STEP and drawing only")
+    names = sorted(j.name for j in keep)
+    return [j if set(j.after) <= set(names)
+            else replace(j, key=content_key("partial-set", j.key, names)) for j in keep]
+
+
+def partial_record(only: Sequence[str], parts: Sequence[str], jobs: Sequence[Job]) -> dict:
+    """What the manifest says of a partial export: the selection and the jobs run."""
+    return {"only": list(only), "part": list(parts), "jobs": [j.name for j in jobs],
+            "note": "a partial export: only the files listed here were written"}
+
+
+def with_progress(jobs: Sequence[Job], report: Callable[[str], None]) -> list[Job]:
+    """The jobs, each reporting ``[k/n] name seconds`` when it has run (a job
+    taken from the store does not run and reports nothing)."""
+    n = len(jobs)
+
+    def timed(k: int, job: Job) -> Job:
+        def make(run: Run) -> list[dict]:
+            t0 = time.perf_counter()
+            records = job.make(run)
+            report(f"[{k}/{n}] {job.name} {time.perf_counter() - t0:.1f} s")
+            return records
+        return replace(job, make=make)
+
+    return [timed(k, job) for k, job in enumerate(jobs, start=1)]
+
+
+#: Solid builds shorter than this (s) are not reported: most take milliseconds.
+REPORT_BUILD_S = 1.0
+
+
+class ReportingParts:
+    """A run's part cache, made on first use (so a run with nothing to build
+    never loads the CAD kernel), that reports each solid whose build took
+    :data:`REPORT_BUILD_S` or more. Anything else is the cache's own."""
+
+    def __init__(self, plan, report: Callable[[str], None]):
+        self.plan = plan
+        self._report = report
+        self._cache = None
+
+    def _real(self):
+        if self._cache is None:
+            from tactcad.parts.cache import PartCache
+
+            self._cache = PartCache(self.plan)
+        return self._cache
+
+    @property
+    def builds(self) -> int:
+        return 0 if self._cache is None else self._cache.builds
+
+    def solid(self, spec):
+        cache = self._real()
+        before, t0 = cache.builds, time.perf_counter()
+        solid = cache.solid(spec)
+        seconds = time.perf_counter() - t0
+        if cache.builds > before and seconds >= REPORT_BUILD_S:
+            self._report(f"  built {spec.name} {seconds:.1f} s")
+        return solid
+
+    def __getattr__(self, name: str):
+        return getattr(self._real(), name)
