@@ -276,7 +276,7 @@ def test_changed_rig_dimensions_assemble_or_fail_clearly(plan):
         data["linear_axis"]["rail_mount_height_mm"] = rail
         data["weights"]["count"] = weights
         data["z_axis"]["position_mm"] = z_pos
-        data["calibration"]["element"] = element
+        data.setdefault("calibration", {})["element"] = element
         try:
             rigs = rigs_from_dict(data, plan)
         except DesignError as exc:

@@ -53,6 +53,12 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
+        if getattr(args, "design", False) is not False:
+            # every command that reads a design checks it with its rigs and
+            # scenes files first: all errors at once, before any geometry
+            from tactcad.design.project import load_project
+
+            load_project(args.design)
         return int(args.func(args) or 0)
     except TactcadError as exc:
         print(f"tactcad: error: {exc}", file=sys.stderr)

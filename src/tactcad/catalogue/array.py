@@ -113,11 +113,13 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
 
 
 def bolt_name(b: BoltSpec, length_mm: float) -> str:
-    return f"bolt_{b.size}x{length_mm:g}"
+    """Part name of a bolt, safe for file names and STEP labels: ``bolt_M2p5x30``."""
+    return f"bolt_{b.safe_name}x" + f"{length_mm:g}".replace(".", "p")
 
 
 def nut_name(b: BoltSpec) -> str:
-    return f"nut_{b.size}"
+    """Part name of a nut: ``nut_M2p5``."""
+    return f"nut_{b.safe_name}"
 
 
 def bolt_volume(b: BoltSpec, length_mm: float) -> float:

@@ -1,0 +1,93 @@
+"""The three design files validated together, before any geometry is built.
+
+A design file (``macro_array.toml``) comes with a rigs file and a scenes file:
+those beside it, else the defaults of ``hardware/``. :func:`load_project`
+reads all three, checks each with its schema and the files against each other
+(the rigs against the array's size, every scene's sample stiffness against the
+rigs' samples) and reports every refusal at once, each as
+``file: field = value: allowed ... (reason)``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Mapping
+
+from tactcad.design.array import DEFAULT_DESIGN, Plan, plan_from_model, validate_design
+from tactcad.design.rigs import RigDesign, rigs_path_for, validate_rigs
+from tactcad.design.schema import Problems, fmt, read_toml
+from tactcad.design.scenes import SceneSpec, scenes_path_for, validate_scenes
+from tactcad.errors import DesignError, DesignErrors
+
+
+def _read(path: Path, what: str, problems: Problems) -> Mapping[str, Any] | None:
+    try:
+        return read_toml(path, what)
+    except DesignError as exc:
+        exc.file = path.name
+        problems.extend([DesignError(exc.field, exc.value, exc.allowed, exc.why, path.name)])
+        return None
+
+
+def _check_sample_stiffness(scenes: Mapping[str, SceneSpec], rigs: RigDesign,
+                            problems: Problems) -> None:
+    known = rigs.sample_stiffness_N_per_mm
+    for s in scenes.values():
+        k = s.sample_stiffness_N_per_mm
+        if k is not None and k not in known:
+            problems.add(f"scene.{s.name}.sample_stiffness_N_per_mm", k,
+                         "one of " + ", ".join(fmt(v) for v in known),
+                         "the measured samples of the rigs file (sample.stiffness_N_per_mm)")
+
+
+def load_project(design: str | Path | None = None) -> tuple[Plan, RigDesign, dict[str, SceneSpec]]:
+    """Read and validate a design file with its rigs and scenes files.
+
+    Args:
+        design: TOML design file; ``None`` means ``hardware/macro_array.toml``.
+
+    Returns:
+        (plan, rigs, scenes): the array's plan, the rig plan derived against it,
+        the scenes by name.
+
+    Raises:
+        DesignErrors: every refusal of the three files (``.errors``), each naming
+            its file, field, value and allowed range; nothing is built.
+    """
+    path = Path(design) if design is not None else DEFAULT_DESIGN
+    problems = Problems(path.name)
+    data = _read(path, "design file", problems)
+    model, plan = None, None
+    if data is not None:
+        model, found = validate_design(data, path.name)
+        problems.extend(found.errors)
+        if not found:
+            plan = plan_from_model(model, data, str(path))
+    probe = plan if plan is not None else _Located(str(path))
+    rigs_file, scenes_file = rigs_path_for(probe), scenes_path_for(probe)
+    rigs = None
+    rigs_data = _read(rigs_file, "rigs file", problems)
+    if rigs_data is not None and plan is not None:
+        rigs, found = validate_rigs(rigs_data, plan, rigs_file.name)
+        problems.extend(found.errors)
+    scenes: dict[str, SceneSpec] = {}
+    scenes_data = _read(scenes_file, "scenes file", problems)
+    if scenes_data is not None:
+        scenes, found = validate_scenes(scenes_data, scenes_file.name)
+        problems.extend(found.errors)
+    if rigs is not None and scenes:
+        _check_sample_stiffness(scenes, rigs, problems)
+    if problems:
+        raise DesignErrors(problems.errors)
+    from dataclasses import replace
+
+    return plan, replace(rigs, source=str(rigs_file)), scenes
+
+
+class _Located:
+    """Stand-in for a plan that failed: only its source path, to find the files beside it."""
+
+    def __init__(self, source: str):
+        self.source = source
+
+
