@@ -10,6 +10,7 @@ rigs' samples) and reports every refusal at once, each as
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -17,7 +18,7 @@ from tactcad.design.array import DEFAULT_DESIGN, Plan, plan_from_model, validate
 from tactcad.design.rigs import RigDesign, rigs_path_for, validate_rigs
 from tactcad.design.schema import Problems, fmt, read_toml
 from tactcad.design.scenes import SceneSpec, scenes_path_for, validate_scenes
-from tactcad.errors import DesignError, DesignErrors
+from tactcad.errors import DesignError
 
 
 def _read(path: Path, what: str, problems: Problems) -> Mapping[str, Any] | None:
@@ -40,6 +41,35 @@ def _check_sample_stiffness(scenes: Mapping[str, SceneSpec], rigs: RigDesign,
                          "the measured samples of the rigs file (sample.stiffness_N_per_mm)")
 
 
+def project_from_data(design: Mapping[str, Any] | None, rigs: Mapping[str, Any] | None,
+                      scenes: Mapping[str, Any] | None, problems: Problems, *,
+                      source: str = "<dict>", rigs_file: str = "rigs.toml",
+                      scenes_file: str = "scenes.toml"):
+    """Validate the three files' raw tables together (a table that could not be
+    read is None; its error is already in ``problems``).
+
+    Returns:
+        (plan, rigs, scenes), any of them None when refused; every refusal is
+        added to ``problems``.
+    """
+    plan = rig_design = None
+    if design is not None:
+        model, found = validate_design(design, Path(source).name)
+        problems.extend(found.errors)
+        if not found:
+            plan = plan_from_model(model, design, source)
+    if rigs is not None and plan is not None:
+        rig_design, found = validate_rigs(rigs, plan, rigs_file)
+        problems.extend(found.errors)
+    specs: dict[str, SceneSpec] = {}
+    if scenes is not None:
+        specs, found = validate_scenes(scenes, scenes_file)
+        problems.extend(found.errors)
+    if rig_design is not None and specs:
+        _check_sample_stiffness(specs, rig_design, problems)
+    return plan, rig_design, specs
+
+
 def load_project(design: str | Path | None = None) -> tuple[Plan, RigDesign, dict[str, SceneSpec]]:
     """Read and validate a design file with its rigs and scenes files.
 
@@ -57,37 +87,17 @@ def load_project(design: str | Path | None = None) -> tuple[Plan, RigDesign, dic
     path = Path(design) if design is not None else DEFAULT_DESIGN
     problems = Problems(path.name)
     data = _read(path, "design file", problems)
-    model, plan = None, None
-    if data is not None:
-        model, found = validate_design(data, path.name)
-        problems.extend(found.errors)
-        if not found:
-            plan = plan_from_model(model, data, str(path))
-    probe = plan if plan is not None else _Located(str(path))
+    probe = _Located(str(path))
     rigs_file, scenes_file = rigs_path_for(probe), scenes_path_for(probe)
-    rigs = None
-    rigs_data = _read(rigs_file, "rigs file", problems)
-    if rigs_data is not None and plan is not None:
-        rigs, found = validate_rigs(rigs_data, plan, rigs_file.name)
-        problems.extend(found.errors)
-    scenes: dict[str, SceneSpec] = {}
-    scenes_data = _read(scenes_file, "scenes file", problems)
-    if scenes_data is not None:
-        scenes, found = validate_scenes(scenes_data, scenes_file.name)
-        problems.extend(found.errors)
-    if rigs is not None and scenes:
-        _check_sample_stiffness(scenes, rigs, problems)
-    if problems:
-        raise DesignErrors(problems.errors)
-    from dataclasses import replace
-
+    plan, rigs, scenes = project_from_data(
+        data, _read(rigs_file, "rigs file", problems), _read(scenes_file, "scenes file", problems),
+        problems, source=str(path), rigs_file=rigs_file.name, scenes_file=scenes_file.name)
+    problems.raise_if_any()
     return plan, replace(rigs, source=str(rigs_file)), scenes
 
 
 class _Located:
-    """Stand-in for a plan that failed: only its source path, to find the files beside it."""
+    """Stand-in for a plan: only its source path, to find the files beside it."""
 
     def __init__(self, source: str):
         self.source = source
-
-

@@ -745,8 +745,14 @@ def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
     nut_bottom = y_h - b.nut_width_across_flats_mm / 2  # nuts sit flats up, as in the array
     foot_top = min(0.0, head_bottom, nut_bottom) - br.foot_clearance_mm - y_h
     grip = br.ear_thickness_mm + 2 * c.thickness_mm + plan.stack_length_mm
-    bolt_len = _stock(b, grip + b.nut_height_mm + 2 * b.thread_pitch_mm, "bracket.ear_thickness_mm",
-                      br.ear_thickness_mm, p)
+    needed = grip + b.nut_height_mm + 2 * b.thread_pitch_mm
+    bolt_len = shortest_stock_length(b, needed)
+    if bolt_len is None:  # the array's stack leaves no stock bolt for the ear: name the design
+        bolt_len = max(b.catalogue_lengths_mm)
+        p.add("array.columns", plan.columns, f"fewer columns, thinner clamp plates or a larger bolt "
+              f"than {b.size}", f"the bracket bolt through ear {fmt(br.ear_thickness_mm)} mm, both "
+              f"clamp plates and the stack needs {fmt(needed)} mm, longest stock {b.size} is "
+              f"{fmt(bolt_len)} mm", file=Path(plan.source).name)
     derived.append(Derived("bracket_bolt_length", bolt_len, "mm",
                            f"shortest stock {b.size} through ear {fmt(br.ear_thickness_mm)}, both "
                            f"clamp plates and the stack (grip {fmt(grip)}) + nut + 2 thread pitches"))
