@@ -41,6 +41,11 @@ INDENTER_BODY_MM = 8.0
 INDENTER_TIP_MM = 3.0
 #: Bracket ear width when the rigs file gives none and the array leaves room, mm.
 BRACKET_WIDTH_MM = 20.0
+#: Sample size when the rigs file gives none (the paper's phantom block), mm;
+#: larger when the array's tips need it, with this margin around them.
+SAMPLE_LENGTH_MM = 30.0
+SAMPLE_WIDTH_MM = 20.0
+SAMPLE_MARGIN_MM = 2.0
 
 __all__ = ["BEARINGS", "RIG_BOLTS", "BearingSpec", "BoltSpec"]  # re-exported for older callers
 
@@ -313,8 +318,8 @@ class CartSection(Section):
 
 
 class SampleSection(Section):
-    length_mm: number(5.0, 200.0)
-    width_mm: number(5.0, 200.0)
+    length_mm: Optional[number(5.0, 200.0)] = None  # default: covers the tip field (30 mm at least)
+    width_mm: Optional[number(5.0, 200.0)] = None  # default: covers the tip field (20 mm at least)
     height_mm: number(1.0, 100.0)
     material: Text
     stiffness_N_per_mm: listing(number(0.01, 1e4, unit="N/mm"), 1, 64,
@@ -462,7 +467,7 @@ def _axle_bolt(bearing: BearingSpec) -> BoltSpec | None:
     return RIG_BOLTS.get(f"M{bearing.bore_mm:g}")
 
 
-def _cart(r: RigsFile, p: Problems, derived: list[Derived]) -> CartGeometry:
+def _cart(r: RigsFile, sample: SampleGeometry, p: Problems, derived: list[Derived]) -> CartGeometry:
     c = r.cart
     bearing = BEARINGS[c.bearing]
     axle_bolt = _axle_bolt(bearing)
@@ -520,33 +525,49 @@ def _cart(r: RigsFile, p: Problems, derived: list[Derived]) -> CartGeometry:
         channel_diameter_mm=c.channel_diameter_mm,
         channel_end_x_mm=hole_xs[-1] + c.suction_hole_diameter_mm / 2 + c.channel_diameter_mm / 2,
         port_diameter_mm=c.port_diameter_mm, port_depth_mm=c.port_depth_mm,
-        holder_screw_y_mm=holder_screw_y(r), holder_screw_diameter_mm=holder_screw.nominal_diameter_mm,
+        holder_screw_y_mm=holder_screw_y(r, sample), holder_screw_diameter_mm=holder_screw.nominal_diameter_mm,
         holder_tapped_depth_mm=r.sample_holder.tapped_depth_mm)
 
 
-def holder_screw_y(r: RigsFile) -> float:
+def holder_screw_y(r: RigsFile, sample: SampleGeometry) -> float:
     """|y| of the sample holder's two screws: mid-wall beside the window (mm)."""
     h = r.sample_holder
-    return (r.sample.width_mm + 2 * h.clearance_mm) / 2 + h.wall_mm / 2
+    return (sample.width_mm + 2 * h.clearance_mm) / 2 + h.wall_mm / 2
 
 
-def _sample(r: RigsFile, p: Problems) -> tuple[SampleGeometry, tuple[float, ...]]:
+def tip_field(plan: Plan) -> tuple[float, float]:
+    """(along the stack, across the rows) extent of the array's contact faces, mm."""
+    g = plan.slots[0].geometry
+    return plan.stack_length_mm, plan.pitch_mm + g.tip_width_mm
+
+
+def _sample(r: RigsFile, plan: Plan, p: Problems) -> tuple[SampleGeometry, tuple[float, ...]]:
+    """The sample carries every tip of the array with a margin; its size follows the
+    array unless the file sets it (30 x 20 mm at least, as the paper's)."""
     s, c = r.sample, r.cart
-    if s.length_mm < c.pocket_length_mm + 4.0 or s.width_mm < c.pocket_width_mm + 4.0:
-        short = s.length_mm < c.pocket_length_mm + 4.0
-        p.add("sample.length_mm" if short else "sample.width_mm",
-              s.length_mm if short else s.width_mm,
+    along, across = tip_field(plan)
+    need_l, need_w = along + 2 * SAMPLE_MARGIN_MM, across + 2 * SAMPLE_MARGIN_MM
+    why = (f"every tip of the array rests on the sample with {fmt(SAMPLE_MARGIN_MM)} mm to spare "
+           f"(tip field {fmt(along)} x {fmt(across)} mm)")
+    length = max(SAMPLE_LENGTH_MM, need_l) if s.length_mm is None else \
+        p.within("sample.length_mm", s.length_mm, need_l, why=why)
+    width = max(SAMPLE_WIDTH_MM, need_w) if s.width_mm is None else \
+        p.within("sample.width_mm", s.width_mm, need_w, why=why)
+    if length < c.pocket_length_mm + 4.0 or width < c.pocket_width_mm + 4.0:
+        short = length < c.pocket_length_mm + 4.0
+        p.add("sample.length_mm" if short else "sample.width_mm", length if short else width,
               f">= vacuum pocket + 4 mm ({fmt(c.pocket_length_mm + 4)} x "
               f"{fmt(c.pocket_width_mm + 4)} mm)", "the sample must seal the pocket with a 2 mm margin")
     stiffness = tuple(s.stiffness_N_per_mm)
     if len(set(stiffness)) != len(stiffness):
         p.add("sample.stiffness_N_per_mm", list(stiffness), "distinct values",
               "each stiffness names one sample part")
-    return SampleGeometry(s.length_mm, s.width_mm, s.height_mm, s.material), stiffness
+    return SampleGeometry(length, width, s.height_mm, s.material), stiffness
 
 
-def _holder(r: RigsFile, p: Problems, derived: list[Derived]) -> SampleHolderGeometry:
-    h, s, c = r.sample_holder, r.sample, r.cart
+def _holder(r: RigsFile, s: SampleGeometry, p: Problems,
+            derived: list[Derived]) -> SampleHolderGeometry:
+    h, c = r.sample_holder, r.cart
     p.within("sample_holder.thickness_mm", h.thickness_mm, hi=s.height_mm, hi_open=True,
              why="the sample must stand proud of its holder")
     p.within("sample_holder.corner_radius_mm", h.corner_radius_mm,
@@ -564,7 +585,7 @@ def _holder(r: RigsFile, p: Problems, derived: list[Derived]) -> SampleHolderGeo
               f">= {fmt(screw_len - h.thickness_mm + 0.5)} mm",
               f"the {h.screw_size} x {screw_len:g} holder screw needs the thread depth")
     win_l, win_w = s.length_mm + 2 * h.clearance_mm, s.width_mm + 2 * h.clearance_mm
-    screw_y = holder_screw_y(r)
+    screw_y = holder_screw_y(r, s)
     if win_l + 2 * h.wall_mm > c.length_mm or win_w + 2 * h.wall_mm > c.width_mm:
         p.add("sample_holder.wall_mm", h.wall_mm,
               f"<= {fmt(min((c.length_mm - win_l) / 2, (c.width_mm - win_w) / 2))} mm",
@@ -627,11 +648,13 @@ def _indenter(r: RigsFile, plan: Plan, p: Problems) -> IndenterGeometry:
     face_w, face_d = plan.slots[0].geometry.contact_face_mm
     tip_h = plan.slots[0].geometry.tip_height_mm
     w = face_w if i.contact_width_mm is None else p.within(
-        "indenter.contact_width_mm", i.contact_width_mm, face_w,
-        why="the indenter must cover the element's contact face (element.tip_width_mm)")
+        "indenter.contact_width_mm", i.contact_width_mm, face_w, face_w,
+        why="the indenter's face is the element's contact face (element.tip_width_mm); leave it "
+            "out to follow the design")
     d = face_d if i.contact_depth_mm is None else p.within(
-        "indenter.contact_depth_mm", i.contact_depth_mm, face_d,
-        why="the indenter must cover the element's contact face (sheet.thickness_mm)")
+        "indenter.contact_depth_mm", i.contact_depth_mm, face_d, face_d,
+        why="the indenter's face is the element's contact face (sheet.thickness_mm); leave it "
+            "out to follow the design")
     diagonal = math.hypot(w, d)
     body = max(INDENTER_BODY_MM, math.ceil(diagonal + 1.0)) if i.body_diameter_mm is None else \
         p.within("indenter.body_diameter_mm", i.body_diameter_mm, diagonal,
@@ -809,9 +832,9 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan, file: str = "") -> tuple[
     if r is None:
         return None, p
     derived: list[Derived] = []
-    cart = _cart(r, p, derived)
-    sample, stiffness = _sample(r, p)
-    holder = _holder(r, p, derived)
+    sample, stiffness = _sample(r, plan, p)
+    cart = _cart(r, sample, p, derived)
+    holder = _holder(r, sample, p, derived)
     base, column = _base_and_column(r, cart, p, derived)
     indenter = _indenter(r, plan, p)
     gauge, z_axis, xy = _gauge_and_stages(r, plan, base, indenter, p)
