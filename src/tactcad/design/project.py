@@ -31,14 +31,15 @@ def _read(path: Path, what: str, problems: Problems) -> Mapping[str, Any] | None
 
 
 def _check_sample_stiffness(scenes: Mapping[str, SceneSpec], rigs: RigDesign,
-                            problems: Problems) -> None:
+                            problems: Problems, scenes_file: str) -> None:
     known = rigs.sample_stiffness_N_per_mm
     for s in scenes.values():
         k = s.sample_stiffness_N_per_mm
         if k is not None and k not in known:
             problems.add(f"scene.{s.name}.sample_stiffness_N_per_mm", k,
                          "one of " + ", ".join(fmt(v) for v in known),
-                         "the measured samples of the rigs file (sample.stiffness_N_per_mm)")
+                         "the measured samples of the rigs file (sample.stiffness_N_per_mm)",
+                         file=scenes_file)
 
 
 def project_from_data(design: Mapping[str, Any] | None, rigs: Mapping[str, Any] | None,
@@ -66,7 +67,7 @@ def project_from_data(design: Mapping[str, Any] | None, rigs: Mapping[str, Any] 
         specs, found = validate_scenes(scenes, scenes_file)
         problems.extend(found.errors)
     if rig_design is not None and specs:
-        _check_sample_stiffness(specs, rig_design, problems)
+        _check_sample_stiffness(specs, rig_design, problems, scenes_file)
     return plan, rig_design, specs
 
 
