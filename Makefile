@@ -7,7 +7,7 @@ STAMP  := $(VENV)/.installed-stamp
 DESIGN ?= hardware/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env system-deps export docs-images check test bench clean
+.PHONY: help env system-deps export docs-images check test bench fuzz clean
 
 help: ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
@@ -34,6 +34,10 @@ system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd
 
 test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included)
 	$(BIN)/python -m pytest -q
+
+FUZZ_N ?= 1000
+fuzz: $(STAMP) ## random designs end to end (FUZZ_N=1000): validate, build, assemble, check; prints a summary
+	$(BIN)/python scripts/fuzz.py -n $(FUZZ_N) --quiet
 
 bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness ladder)
 	$(BIN)/tactcad bench export

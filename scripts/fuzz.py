@@ -103,7 +103,7 @@ def main(argv: list[str] | None = None) -> int:
             wild = draw_out_of_domain(rng.uniform, rng.choice)
             field, value = wild
             if field.startswith("arms.lengths_mm["):
-                data["arms"]["lengths_mm"][2] = value
+                data["arms"]["lengths_mm"][1] = value
             else:
                 section, key = field.split(".")
                 data[section][key] = value

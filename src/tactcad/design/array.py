@@ -22,8 +22,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
-from tactcad.design.schema import (Name, Problems, Section, Text, choice, content_hash, fmt, integer,
-                                   listing, number, read_assumptions, read_toml, validate)
+from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Name, Problems, Section, Text, choice,
+                                   content_hash, fmt, integer, listing, number, read_assumptions,
+                                   read_toml, validate)
 from tactcad.design.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 
@@ -48,7 +49,6 @@ MIN_BASE_BELOW_ARM_MM = 2.0
 MAX_COLUMNS = 12
 _DOMAIN = "the paper's design-study range, over which the estimators are verified"
 
-__all__ = ["BOLTS", "BoltSpec"]  # re-exported from tactcad.design.standards for older callers
 
 
 # ---------------------------------------------------------------------------
@@ -408,7 +408,7 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
         if a <= e.tip_width_mm:
             p.add(f"arms.lengths_mm[{i}]", a, f"> element.tip_width_mm = {fmt(e.tip_width_mm)} mm",
                   "arm shorter than the tip")
-        elif a < tip_root:
+        elif a < tip_root - LIMIT_TOLERANCE_MM:
             p.add(f"arms.lengths_mm[{i}]", a, f">= {fmt(tip_root)} mm",
                   "the tip root fillet must clear the notch by 0.5 mm")
 
@@ -451,7 +451,7 @@ def _check_bolt_pattern(d: DesignFile, p: Problems) -> None:
     widest = max(bolt.clearance_hole_mm + 2 * MIN_LIGAMENT_MM, bolt.nut_across_corners_mm,
                  bolt.head_diameter_mm)
     needed = d.clamp.bolt_spacing_mm + widest
-    if leg < needed:
+    if leg < needed - LIMIT_TOLERANCE_MM:
         worst = 1 + bases.index(min(bases))
         arm = d.arms.lengths_mm[worst - 1]
         p.add(f"arms.lengths_mm[{worst}]", arm,
@@ -502,8 +502,8 @@ def _check_mounting(d: DesignFile, p: Problems) -> None:
     x, inner_end = mounting_hole_x(d)
     widest = max(bolt.nut_across_corners_mm, bolt.head_diameter_mm)
     # the heads/nuts of the two mounting bolts face each other across x = 0
-    if inner_end - x - bolt.nominal_diameter_mm / 2 < d.clamp.arm_clearance_mm or \
-            2 * x < widest + MIN_FASTENER_GAP_MM:
+    if inner_end - x - bolt.nominal_diameter_mm / 2 < d.clamp.arm_clearance_mm - LIMIT_TOLERANCE_MM or \
+            2 * x < widest + MIN_FASTENER_GAP_MM - LIMIT_TOLERANCE_MM:
         p.add("clamp.bolt_size", bolt.size, "a smaller bolt",
               f"mounting bolts at x = +-{fmt(x)} mm need {fmt(d.clamp.arm_clearance_mm)} mm to the "
               f"element bases ending at x = {fmt(inner_end)} mm and their heads "

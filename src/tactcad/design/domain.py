@@ -19,7 +19,7 @@ from tactcad.design.array import (ARM_RANGE_MM, MAX_COLUMNS, MIN_BASE_BELOW_ARM_
                                   MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, MIN_SPACER_MM,
                                   MIN_TIP_GAP_MM, NOTCH_RADIUS_MAX_MM, WEB_RANGE_MM,
                                   default_design_data)
-from tactcad.design.rigs import default_rigs_data
+from tactcad.design.rigs import EAR_HEAD_CLEARANCE_MM, default_rigs_data
 from tactcad.design.standards import BOLTS
 
 Pick = Callable[[float, float], float]
@@ -81,8 +81,14 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
     spacing_lo = max(hole + MIN_LIGAMENT_MM, widest + MIN_FASTENER_GAP_MM)
     pattern = max(hole + 2 * MIN_LIGAMENT_MM, widest)
     reach = tip_w / 2 + max(arms) + notch + arm_clear + pattern  # overall - this = room for spacing
-    spacing = pick(spacing_lo, min(40.0, max(spacing_lo, 60.0 - reach)))
-    overall = pick(min(60.0, max(10.0, reach + spacing)), 60.0)
+    # the rigs' bracket ear sits between the clamp bolt heads nearest the middle and
+    # carries the two mounting holes: tip_centre_x >= spacing - ear_room
+    inner_end = pitch / 2 + min(arms) + notch
+    ear_room = (pitch + max(arms) + notch + arm_clear - 2 * bolt.head_diameter_mm
+                - 2 * EAR_HEAD_CLEARANCE_MM - inner_end - hole)
+    spacing_hi = min(40.0, 60.0 - reach, 60.0 - tip_w / 2 + ear_room)
+    spacing = pick(spacing_lo, max(spacing_lo, spacing_hi))
+    overall = pick(min(60.0, max(10.0, reach + spacing, spacing - ear_room + tip_w / 2)), 60.0)
 
     data["material"].update(youngs_modulus_MPa=pick(1e3, 1e6),
                             poisson_ratio=min(0.499, max(0.001, pick(0.0, 0.5))))
@@ -104,7 +110,7 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
 def draw_out_of_domain(pick: Pick, choose: Choose) -> tuple[str, Any]:
     """A field and a value its static range refuses (the field the refusal must name)."""
     field, lo, hi = choose((
-        ("element.web_thickness_mm", *WEB_RANGE_MM), ("arms.lengths_mm[3]", *ARM_RANGE_MM),
+        ("element.web_thickness_mm", *WEB_RANGE_MM), ("arms.lengths_mm[2]", *ARM_RANGE_MM),
         ("element.tip_height_mm", 0.3, 5.0), ("sheet.thickness_mm", 0.5, 10.0),
         ("element.overall_length_mm", 10.0, 60.0), ("clamp.plate_thickness_mm", 1.0, 10.0),
         ("clamp.arm_clearance_mm", 0.2, 3.0), ("edm.wire_diameter_mm", 0.02, 0.35),

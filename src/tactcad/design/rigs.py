@@ -22,8 +22,9 @@ from pathlib import Path
 from typing import Any, Mapping, Optional
 
 from tactcad.design.array import Derived, Plan
-from tactcad.design.schema import (Problems, Section, Text, choice, content_hash, fmt, integer,
-                                   listing, number, read_assumptions, read_toml, validate)
+from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Problems, Section, Text, choice,
+                                   content_hash, fmt, integer, listing, number, read_assumptions,
+                                   read_toml, validate)
 from tactcad.design.standards import (BEARINGS, RIG_BOLTS, BearingSpec, BoltSpec,
                                       shortest_stock_length)
 from tactcad.errors import DesignError
@@ -41,13 +42,15 @@ INDENTER_BODY_MM = 8.0
 INDENTER_TIP_MM = 3.0
 #: Bracket ear width when the rigs file gives none and the array leaves room, mm.
 BRACKET_WIDTH_MM = 20.0
+#: Ear height above the mounting holes when the rigs file gives none, mm
+#: (lower when the clamp plate ends sooner).
+EAR_TOP_MM = 4.0
 #: Sample size when the rigs file gives none (the paper's phantom block), mm;
 #: larger when the array's tips need it, with this margin around them.
 SAMPLE_LENGTH_MM = 30.0
 SAMPLE_WIDTH_MM = 20.0
 SAMPLE_MARGIN_MM = 2.0
 
-__all__ = ["BEARINGS", "RIG_BOLTS", "BearingSpec", "BoltSpec"]  # re-exported for older callers
 
 
 @dataclass(frozen=True)
@@ -404,7 +407,7 @@ class HangerBarSection(Section):
 class BracketSection(Section):
     width_mm: Optional[number(5.0, 200.0)] = None  # default: follows the array's bolt pattern
     ear_thickness_mm: number(0.5, 20.0)
-    ear_top_mm: number(1.0, 50.0)
+    ear_top_mm: Optional[number(1.0, 50.0)] = None  # default: 4 mm, lower on a short clamp plate
     foot_thickness_mm: number(1.0, 30.0)
     foot_length_mm: number(5.0, 200.0)
     foot_clearance_mm: number(0.3, 20.0)
@@ -755,7 +758,7 @@ def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
     lo, hi = bracket_width_range(plan)
     if br.width_mm is None:
         width = min(max(BRACKET_WIDTH_MM, lo), hi)
-        if lo > hi:  # the array leaves no room: name the design field behind it
+        if lo > hi + LIMIT_TOLERANCE_MM:  # the array leaves no room: name the design field
             p.add("clamp.bolt_spacing_mm", plan.raw["clamp"]["bolt_spacing_mm"],
                   "a pattern that leaves the bracket ear room between the clamp bolt heads",
                   f"the ear needs {fmt(lo)} mm between heads {fmt(hi)} mm apart",
@@ -779,7 +782,10 @@ def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
     derived.append(Derived("bracket_bolt_length", bolt_len, "mm",
                            f"shortest stock {b.size} through ear {fmt(br.ear_thickness_mm)}, both "
                            f"clamp plates and the stack (grip {fmt(grip)}) + nut + 2 thread pitches"))
-    p.within("bracket.ear_top_mm", br.ear_top_mm, mount[0].diameter_mm / 2 + 0.5, c.height_mm - y_h)
+    top_lo, top_hi = mount[0].diameter_mm / 2 + 0.5, c.height_mm - y_h  # around the hole, on the plate
+    ear_top = min(EAR_TOP_MM, top_hi) if br.ear_top_mm is None else \
+        p.within("bracket.ear_top_mm", br.ear_top_mm, top_lo, top_hi,
+                 why="the ear reaches around the mounting holes and stays on the clamp plate")
     p.within("bracket.foot_length_mm", br.foot_length_mm, br.ear_thickness_mm + bar.section_mm,
              lo_open=True)
     p.within("bracket.foot_hole_diameter_mm", br.foot_hole_diameter_mm, hi=width - 2.0)
@@ -788,7 +794,7 @@ def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
               f">= {fmt(2 * (br.ear_thickness_mm + 0.5) + br.foot_hole_diameter_mm)} mm",
               "the foot's centre hole must clear the ear")
     return BracketGeometry(
-        width_mm=width, ear_thickness_mm=br.ear_thickness_mm, ear_top_mm=br.ear_top_mm,
+        width_mm=width, ear_thickness_mm=br.ear_thickness_mm, ear_top_mm=ear_top,
         foot_thickness_mm=br.foot_thickness_mm, foot_length_mm=br.foot_length_mm,
         foot_top_mm=foot_top, foot_hole_diameter_mm=br.foot_hole_diameter_mm,
         hole_xs_mm=(mount[0].x_mm, mount[1].x_mm), hole_diameter_mm=mount[0].diameter_mm,

@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import math
 import re
 import tomllib
 import typing
@@ -38,6 +37,9 @@ MAX_NESTING = 16
 #: Safe names for designs and scenes: they end up in file names, DXF headers and SVG.
 NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$"
 NAME_ALLOWED = "1-64 characters A-Z a-z 0-9 _ . -, starting with a letter or digit"
+#: Closed limits that depend on other fields are met within this much (mm), so a
+#: value equal to its limit in decimals is not refused for binary rounding.
+LIMIT_TOLERANCE_MM = 1e-9
 #: Longest free text (descriptions, materials, models) in characters.
 MAX_TEXT = 500
 
@@ -98,7 +100,10 @@ def integer(lo: int, hi: int, why: str = "") -> Any:
     return Annotated[int, Field(ge=lo, le=hi), Limits(lo, hi, unit="", why=why, kind="integer")]
 
 
-Text = Annotated[str, Field(min_length=1, max_length=MAX_TEXT, pattern=r"\S"),
+#: One line of printable text with something in it: texts end up in DXF headers,
+#: SVG drawings and the BOM, where a newline or control character breaks the file.
+TEXT_PATTERN = r"^[^\x00-\x1f\x7f]*[^\x00-\x1f\x7f\s][^\x00-\x1f\x7f]*$"
+Text = Annotated[str, Field(min_length=1, max_length=MAX_TEXT, pattern=TEXT_PATTERN),
                  Limits(kind="text", unit="")]
 Name = Annotated[str, Field(pattern=NAME_PATTERN), Limits(kind="name", unit="")]
 
@@ -140,8 +145,9 @@ class Problems:
                why: str = "") -> float:
         """Record a refusal when ``value`` leaves the range; return ``value`` either way
         (so that later rules still see a number)."""
-        low = lo is not None and (value < lo or (lo_open and value == lo))
-        high = hi is not None and (value > hi or (hi_open and value == hi))
+        # closed limits computed from other fields allow for rounding (0.7 - 0.2 < 0.5)
+        low = lo is not None and (value <= lo if lo_open else value < lo - LIMIT_TOLERANCE_MM)
+        high = hi is not None and (value >= hi if hi_open else value > hi + LIMIT_TOLERANCE_MM)
         if low or high:
             self.add(field, value, range_text(lo, hi, lo_open, hi_open, unit), why)
         return value
@@ -231,8 +237,9 @@ def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> Design
         return DesignError(field, value, err["msg"].lower().replace("input should be ", ""), why,
                            file)
     if limits.kind == "text":
-        return DesignError(field, value, f"a non-empty string of at most {MAX_TEXT} characters",
-                           why, file)
+        return DesignError(field, value, f"one line of text, 1 ... {MAX_TEXT} characters, no control "
+                           "characters", why or "texts end up in DXF headers, drawings and the BOM",
+                           file)
     if limits.kind == "name":
         return DesignError(field, value, NAME_ALLOWED,
                            "names end up in file names, DXF headers and drawings", file)
@@ -354,18 +361,3 @@ def read_assumptions(data: Mapping[str, Any], model: type[BaseModel], problems: 
         else:
             out.append((key, reason.strip()))
     return tuple(out)
-
-
-AssumptionsTable = dict[str, Any]  # worded by read_assumptions, not by the model
-
-
-def dotted_get(model: BaseModel, dotted: str) -> Any:
-    """``model.section.key`` by its dotted name."""
-    out: Any = model
-    for part in dotted.split("."):
-        out = getattr(out, part)
-    return out
-
-
-def finite(x: float) -> bool:
-    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
