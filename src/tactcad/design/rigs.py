@@ -528,7 +528,8 @@ def _cart(r: RigsFile, sample: SampleGeometry, p: Problems, derived: list[Derive
         channel_diameter_mm=c.channel_diameter_mm,
         channel_end_x_mm=hole_xs[-1] + c.suction_hole_diameter_mm / 2 + c.channel_diameter_mm / 2,
         port_diameter_mm=c.port_diameter_mm, port_depth_mm=c.port_depth_mm,
-        holder_screw_y_mm=holder_screw_y(r, sample), holder_screw_diameter_mm=holder_screw.nominal_diameter_mm,
+        holder_screw_y_mm=holder_screw_y(r, sample),
+        holder_screw_diameter_mm=holder_screw.nominal_diameter_mm,
         holder_tapped_depth_mm=r.sample_holder.tapped_depth_mm)
 
 
@@ -830,7 +831,8 @@ def _calibration_element(r: RigsFile, plan: Plan, p: Problems) -> int:
     return n
 
 
-def validate_rigs(data: Mapping[str, Any], plan: Plan, file: str = "") -> tuple[RigDesign | None, Problems]:
+def validate_rigs(data: Mapping[str, Any], plan: Plan,
+                  file: str = "") -> tuple[RigDesign | None, Problems]:
     """The rig plan and every refusal of the rig file against the array ``plan``."""
     p = Problems(file)
     r = validate(RigsFile, data, p)
