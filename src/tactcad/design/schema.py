@@ -21,6 +21,7 @@ import hashlib
 import json
 import re
 import tomllib
+import types
 import typing
 from dataclasses import dataclass
 from pathlib import Path
@@ -158,11 +159,20 @@ class Problems:
 
 
 def _limits(info: Any) -> Limits | None:
-    """The :class:`Limits` of a field (FieldInfo) or of an ``Annotated`` type."""
-    meta = info.metadata if isinstance(info, FieldInfo) else typing.get_args(info)[1:]
-    for m in meta:
-        if isinstance(m, Limits):
-            return m
+    """The :class:`Limits` of a field (FieldInfo) or of a type, looking inside
+    ``Annotated`` and ``Optional``."""
+    if isinstance(info, FieldInfo):
+        found = [m for m in info.metadata if isinstance(m, Limits)]
+        return found[0] if found else _limits(info.annotation)
+    origin = typing.get_origin(info)
+    if origin is Annotated:
+        found = [m for m in typing.get_args(info)[1:] if isinstance(m, Limits)]
+        return found[0] if found else None
+    if origin in (typing.Union, types.UnionType):
+        for arg in typing.get_args(info):
+            found = _limits(arg)
+            if found is not None:
+                return found
     return None
 
 
@@ -174,8 +184,8 @@ def _field_at(model: type[BaseModel], loc: tuple) -> tuple[str, Limits | None, t
             name += f"[{part + 1}]"
             if ann is not None:
                 args = typing.get_args(ann)
-                item = args[0] if args else None
-                limits = _limits(item) if typing.get_origin(item) is Annotated else limits
+                item = _limits(args[0]) if args else None
+                limits = item or limits
             continue
         name = f"{name}.{part}" if name else str(part)
         fields = getattr(cls, "model_fields", {}) if cls is not None else {}
