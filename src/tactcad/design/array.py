@@ -44,6 +44,8 @@ MIN_SPACER_MM = 0.2
 MIN_TIP_GAP_MM = 0.2
 #: Smallest gap between neighbouring nuts or bolt heads of the bolt pattern, mm.
 MIN_FASTENER_GAP_MM = 0.2
+#: Straight tip side left above the tip-root fillet, mm (the contact face stays the top).
+MIN_TIP_WALL_MM = 0.1
 #: Shortest base below the arm underside, mm (room for the clamp bolts and a gauge pad).
 MIN_BASE_BELOW_ARM_MM = 2.0
 MAX_COLUMNS = 12
@@ -372,6 +374,9 @@ def _check_element(d: DesignFile, p: Problems) -> None:
              why=f"base must reach at least {fmt(MIN_BASE_BELOW_ARM_MM)} mm below the arm underside")
     p.within("element.inside_corner_radius_mm", e.inside_corner_radius_mm, r_min,
              why="inside corner radius >= wire radius + spark gap")
+    p.within("element.tip_height_mm", e.tip_height_mm, e.inside_corner_radius_mm + MIN_TIP_WALL_MM,
+             why=f"the tip-root fillet (element.inside_corner_radius_mm) must end on the tip's side, "
+                 f"{fmt(MIN_TIP_WALL_MM)} mm below the contact face")
 
 
 def _check_clamp(d: DesignFile, p: Problems) -> None:

@@ -17,7 +17,8 @@ from typing import Any, Callable, Sequence
 
 from tactcad.design.array import (ARM_RANGE_MM, MAX_COLUMNS, MIN_BASE_BELOW_ARM_MM,
                                   MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, MIN_SPACER_MM,
-                                  MIN_TIP_GAP_MM, NOTCH_RADIUS_MAX_MM, WEB_RANGE_MM,
+                                  MIN_TIP_GAP_MM, MIN_TIP_WALL_MM, NOTCH_RADIUS_MAX_MM,
+                                  WEB_RANGE_MM,
                                   default_design_data)
 from tactcad.design.rigs import EAR_HEAD_CLEARANCE_MM, default_rigs_data
 from tactcad.design.standards import BOLTS
@@ -95,7 +96,8 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
     data["sheet"]["thickness_mm"] = sheet
     data["array"].update(columns=columns, pitch_mm=pitch)
     data["element"].update(web_thickness_mm=web, notch_radius_mm=notch, tip_width_mm=tip_w,
-                           tip_height_mm=pick(0.3, 5.0), arm_height_mm=arm_h,
+                           tip_height_mm=pick(max(0.3, corner + MIN_TIP_WALL_MM), 5.0),
+                           arm_height_mm=arm_h,
                            base_height_mm=base_h, overall_length_mm=overall,
                            inside_corner_radius_mm=corner, web_tolerance_mm=pick(0.0, 0.1))
     data["arms"]["lengths_mm"] = arms
