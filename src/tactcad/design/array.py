@@ -453,9 +453,8 @@ def _check_bolt_pattern(d: DesignFile, p: Problems) -> None:
     bolt = BOLTS[d.clamp.bolt_size]
     bases = base_lengths(d)
     leg = clamp_leg(d).value
-    widest = max(bolt.clearance_hole_mm + 2 * MIN_LIGAMENT_MM, bolt.nut_across_corners_mm,
-                 bolt.head_diameter_mm)
-    needed = d.clamp.bolt_spacing_mm + widest
+    # the holes need a ligament to the leg's ends (nuts and heads may overhang them)
+    needed = d.clamp.bolt_spacing_mm + bolt.clearance_hole_mm + 2 * MIN_LIGAMENT_MM
     if leg < needed - LIMIT_TOLERANCE_MM:
         worst = 1 + bases.index(min(bases))
         arm = d.arms.lengths_mm[worst - 1]

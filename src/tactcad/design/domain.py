@@ -80,7 +80,7 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
                       arm_h + arm_clear + hole + 1.0), 30.0)
     bridge = pick(hole + 1.0, min(30.0, base_h - arm_h - arm_clear))
     spacing_lo = max(hole + MIN_LIGAMENT_MM, widest + MIN_FASTENER_GAP_MM)
-    pattern = max(hole + 2 * MIN_LIGAMENT_MM, widest)
+    pattern = hole + 2 * MIN_LIGAMENT_MM
     reach = tip_w / 2 + max(arms) + notch + arm_clear + pattern  # overall - this = room for spacing
     # the rigs' bracket ear sits between the clamp bolt heads nearest the middle and
     # carries the two mounting holes: tip_centre_x >= spacing - ear_room
