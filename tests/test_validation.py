@@ -165,13 +165,14 @@ def test_a_rig_that_cannot_fit_names_the_design_field(design_data):
 def test_limits_are_manufacturable(design_data):
     """Lower limits come from the shop: spacer >= 0.2 mm, arm over the notch by the
     wire's inside radius, bolt spacing from nut across-corners plus a gap, the
-    tip-root fillet below the contact face."""
+    tip-root fillet below the contact face, distinct arms 0.01 mm apart."""
     for overrides, field, text in (
             ({"array.pitch_mm": 3.1}, "array.pitch_mm", "3.2"),
             ({"element.arm_height_mm": 0.76}, "element.arm_height_mm", "0.9"),
             ({"clamp.bolt_spacing_mm": 3.4}, "clamp.bolt_spacing_mm", "4.81"),
             ({"element.inside_corner_radius_mm": 0.5, "element.tip_height_mm": 0.55},
-             "element.tip_height_mm", "0.6")):
+             "element.tip_height_mm", "0.6"),
+            ({"arms.lengths_mm": [4.0, 4.005] + [6.0] * 8}, "arms.lengths_mm[2]", "4.01")):
         with pytest.raises(DesignError) as info:
             plan_from_dict(with_overrides(design_data, overrides))
         assert info.value.field == field and text in info.value.allowed, str(info.value)

@@ -44,6 +44,9 @@ MIN_SPACER_MM = 0.2
 MIN_TIP_GAP_MM = 0.2
 #: Smallest gap between neighbouring nuts or bolt heads of the bolt pattern, mm.
 MIN_FASTENER_GAP_MM = 0.2
+#: Smallest difference between two distinct arm lengths, mm (below the wire-EDM
+#: tolerance of a contour position they would be one part).
+MIN_ARM_STEP_MM = 0.01
 #: Straight tip side left above the tip-root fillet, mm (the contact face stays the top).
 MIN_TIP_WALL_MM = 0.1
 #: Shortest base below the arm underside, mm (room for the clamp bolts and a gauge pad).
@@ -409,6 +412,14 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
         p.add("arms.lengths_mm", arms, f"a list of {n} lengths (rows x columns)")
         return
     tip_root = e.tip_width_mm / 2 + e.inside_corner_radius_mm + e.notch_radius_mm + 0.5
+    distinct = sorted(set(arms))
+    for shorter, longer in zip(distinct, distinct[1:]):
+        if longer - shorter < MIN_ARM_STEP_MM - LIMIT_TOLERANCE_MM:
+            i = arms.index(longer) + 1
+            p.add(f"arms.lengths_mm[{i}]", longer,
+                  f"{fmt(shorter)} mm (the same part) or at least {fmt(shorter + MIN_ARM_STEP_MM)} mm",
+                  f"arms closer than {fmt(MIN_ARM_STEP_MM)} mm cannot be told apart once cut; "
+                  f"each distinct arm is its own part")
     for i, a in enumerate(arms, start=1):
         if a <= e.tip_width_mm:
             p.add(f"arms.lengths_mm[{i}]", a, f"> element.tip_width_mm = {fmt(e.tip_width_mm)} mm",

@@ -15,11 +15,10 @@ from __future__ import annotations
 import math
 from typing import Any, Callable, Sequence
 
-from tactcad.design.array import (ARM_RANGE_MM, MAX_COLUMNS, MIN_BASE_BELOW_ARM_MM,
+from tactcad.design.array import (ARM_RANGE_MM, MAX_COLUMNS, MIN_ARM_STEP_MM, MIN_BASE_BELOW_ARM_MM,
                                   MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, MIN_SPACER_MM,
                                   MIN_TIP_GAP_MM, MIN_TIP_WALL_MM, NOTCH_RADIUS_MAX_MM,
-                                  WEB_RANGE_MM,
-                                  default_design_data)
+                                  WEB_RANGE_MM, default_design_data)
 from tactcad.design.rigs import EAR_HEAD_CLEARANCE_MM, default_rigs_data
 from tactcad.design.standards import BOLTS
 
@@ -74,7 +73,11 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
                              - pitch / 2 - notch))
     arm_clear = pick(0.2, min(3.0, max(0.2, (pitch / 2 + arm_lo + notch) / 2
                                        - bolt.nominal_diameter_mm / 2)))
-    arms = [pick(arm_lo, ARM_RANGE_MM[1]) for _ in range(2 * columns)]
+    # distinct arms differ by 0.01 mm at least: draw on that grid
+    step = MIN_ARM_STEP_MM
+    grid_lo, grid_hi = math.ceil(arm_lo / step - 1e-9), math.floor(ARM_RANGE_MM[1] / step + 1e-9)
+    arms = [min(grid_hi, max(grid_lo, round(pick(arm_lo, ARM_RANGE_MM[1]) / step))) * step
+            for _ in range(2 * columns)]
 
     base_h = pick(max(arm_h + MIN_BASE_BELOW_ARM_MM, arm_h + hole + 2 * MIN_LIGAMENT_MM,
                       arm_h + arm_clear + hole + 1.0), 30.0)
