@@ -190,16 +190,20 @@ def test_part_names_are_file_safe(design_data):
 
 
 @pytest.mark.slow
-def test_designs_at_their_lower_limits_export_and_check(design_data, tmp_path):
-    """pitch, arm height and bolt spacing at their lowest accepted values, M2.5
-    bolts: the array exports and passes its checks (STEP labels included)."""
+@pytest.mark.parametrize("overrides", [
+    {"array.pitch_mm": 3.2, "element.arm_height_mm": 0.9, "clamp.bolt_size": "M2.5",
+     "clamp.bolt_spacing_mm": 5.98, "element.tip_width_mm": 2.0},
+    {"array.columns": 1, "arms.lengths_mm": [4.0, 7.0]},
+])
+def test_designs_at_their_limits_export_and_check(design_data, tmp_path, overrides):
+    """pitch, arm height and bolt spacing at their lowest accepted values with M2.5
+    bolts, and a one-column array (no spacer part): the array exports and passes
+    its checks (STEP solids and labels included)."""
     from tactcad.checks.array import run_checks
     from tactcad.export.run import export
     from tactcad.parts.cache import PartCache
 
-    plan = plan_from_dict(with_overrides(design_data, {
-        "array.pitch_mm": 3.2, "element.arm_height_mm": 0.9, "clamp.bolt_size": "M2.5",
-        "clamp.bolt_spacing_mm": 5.98, "element.tip_width_mm": 2.0}))
+    plan = plan_from_dict(with_overrides(design_data, overrides))
     cache = PartCache(plan)
     export(plan, tmp_path, log=lambda s: None, parts=cache)
     bad = [r.line() for r in run_checks(plan, tmp_path, cache) if not r.passed]

@@ -178,9 +178,9 @@ def _wirecut_model(plan: Plan) -> RigModel:
                               Placement(s.row * (el_w + gap) - x0,
                                         (plan.columns - 1 - s.column) * (el_h + gap) - y0, 0.0),
                               "elements"))
-    sp = specs["spacer"].expected_bbox_mm
-    per_col = max(1, int((plan.columns * (el_h + gap)) // (sp[4] - sp[1] + gap)))
     for k in range(len(plan.spacer_placements)):
+        sp = specs["spacer"].expected_bbox_mm
+        per_col = max(1, int((plan.columns * (el_h + gap)) // (sp[4] - sp[1] + gap)))
         col, row = divmod(k, per_col)
         members.append(Member(f"spacer_{k + 1}", "spacer",
                               Placement(plan.rows * (el_w + gap) + col * (sp[3] - sp[0] + gap) - sp[0],

@@ -80,12 +80,14 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
             expected_bbox_mm=_prism_bbox(prof, g.sheet_thickness_mm),
             profile=prof, thickness_mm=g.sheet_thickness_mm)
     s = plan.spacer
-    sp = rectangle_profile(s.length_mm, s.height_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
-    parts["spacer"] = PartSpec(
-        name="spacer", kind="fabricated", process="wire EDM or laser cut from sheet",
-        material=mat, color=SPACER, builder="spacer",
-        expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
-        expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm)
+    if plan.spacer_placements:  # a one-column array has no spacer part
+        sp = rectangle_profile(s.length_mm, s.height_mm,
+                               [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
+        parts["spacer"] = PartSpec(
+            name="spacer", kind="fabricated", process="wire EDM or laser cut from sheet",
+            material=mat, color=SPACER, builder="spacer",
+            expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
+            expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm)
     c = plan.clamp
     cp = u_plate_profile(c.half_length_mm, c.window_half_width_mm, c.height_mm, c.bridge_height_mm,
                          c.window_corner_radius_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
