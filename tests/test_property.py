@@ -32,7 +32,9 @@ SETTINGS = settings(max_examples=12, deadline=None,
 def in_domain(draw):
     web = draw(st.floats(*WEB_RANGE_MM))
     notch = draw(st.floats(max(web, 0.15), 1.0))
-    arms = draw(st.lists(st.floats(*ARM_RANGE_MM), min_size=10, max_size=10))
+    # distinct arms differ by MIN_ARM_STEP_MM (0.01 mm) at least: draw on that grid
+    grid = st.integers(round(ARM_RANGE_MM[0] * 100), round(ARM_RANGE_MM[1] * 100)).map(lambda n: n / 100)
+    arms = draw(st.lists(grid, min_size=10, max_size=10))
     return {"element.web_thickness_mm": web, "element.notch_radius_mm": notch,
             "arms.lengths_mm": arms,
             "element.arm_height_mm": draw(st.floats(web + notch + 0.3, 3.0)),
