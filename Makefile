@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed-stamp
 DESIGN ?= hardware/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env system-deps export docs-images check test test-fast bench clean
+.PHONY: help env system-deps export docs-images check test test-fast bench fuzz clean
 
 help: ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
@@ -38,6 +38,10 @@ test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included)
 
 test-fast: $(STAMP) ## the inner loop: every test not marked slow (no full export, no FreeCAD, no fem3d)
 	$(BIN)/python -m pytest -q -m "not slow"
+
+FUZZ_N ?= 1000
+fuzz: $(STAMP) ## random designs end to end (FUZZ_N=1000): validate, build, assemble, check; prints a summary
+	$(BIN)/python scripts/fuzz.py -n $(FUZZ_N) --quiet
 
 bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness ladder)
 	$(BIN)/tactcad bench export

@@ -97,7 +97,7 @@ def test_out_of_range_set_is_refused_as_text_without_json(capsys):
     code = cli.main(["strength", "--set", "element.web_thickness_mm=3"])
     out = capsys.readouterr()
     assert code == 2 and out.out == ""
-    assert out.err.startswith("tactcad: error: element.web_thickness_mm = 3: allowed")
+    assert out.err.startswith("tactcad: error: macro_array.toml: element.web_thickness_mm = 3: allowed")
 
 
 def test_json_error_never_writes_nan(capsys):

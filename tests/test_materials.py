@@ -86,7 +86,7 @@ def test_design_without_grade_has_only_its_own_values(design_data):
     ("material", "grade", "unobtainium", ["material.grade", "6061-T6", "CuBe-C17200-TF00"]),
     ("material", "yield_strength_MPa", -5.0, ["material.yield_strength_MPa", "5000"]),
     ("material", "density_g_per_cm3", float("nan"), ["material.density_g_per_cm3"]),
-    ("strength", "safety_factor", 0.8, ["strength.safety_factor", "1 ... 10"]),
+    ("strength", "safety_factor", 0.8, ["strength.safety_factor", "1 <= value <= 10"]),
     ("strength", "gauge", "karma", ["strength.gauge", "constantan-foil"]),
     ("strength", "margin", 2.0, ["strength.margin", "safety_factor"]),
 ])

@@ -1,18 +1,25 @@
-"""Property-based designs: every in-domain draw builds valid parts and DXF;
-every out-of-domain draw is refused with the offending field named."""
+"""Property-based designs: every in-domain draw builds valid parts and DXF, and
+whole designs drawn over every field of the domain validate with their rigs
+and scenes, build every distinct part and assemble every scene; every
+out-of-domain draw is refused with the offending field named."""
 
 from __future__ import annotations
 
 import math
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
 from tactcad.catalogue.array import array_parts
 from tactcad.checks.dxf import check_profile_dxf
 from tactcad.checks.solids import check_solid
 from tactcad.design.array import ARM_RANGE_MM, WEB_RANGE_MM, default_design_data, plan_from_dict, with_overrides
+from tactcad.design.domain import draw_design, draw_out_of_domain
+from tactcad.design.project import project_from_data
+from tactcad.design.rigs import default_rigs_data
+from tactcad.design.scenes import DEFAULT_SCENES
+from tactcad.design.schema import Problems, read_toml
 from tactcad.errors import DesignError
 from tactcad.export.dxf_sheet import shop_profiles, write_shop_profile
 from tactcad.parts.element import build_element, profile_face
@@ -25,9 +32,9 @@ SETTINGS = settings(max_examples=12, deadline=None,
 def in_domain(draw):
     web = draw(st.floats(*WEB_RANGE_MM))
     notch = draw(st.floats(max(web, 0.15), 1.0))
-    # The default element's 22 mm length leaves room for the bolt pattern up to
-    # 8 mm arms (longer arms need a longer element); 4 mm clears the widest tip.
-    arms = draw(st.lists(st.floats(4.0, min(8.0, ARM_RANGE_MM[1])), min_size=10, max_size=10))
+    # distinct arms differ by MIN_ARM_STEP_MM (0.01 mm) at least: draw on that grid
+    grid = st.integers(round(ARM_RANGE_MM[0] * 100), round(ARM_RANGE_MM[1] * 100)).map(lambda n: n / 100)
+    arms = draw(st.lists(grid, min_size=10, max_size=10))
     return {"element.web_thickness_mm": web, "element.notch_radius_mm": notch,
             "arms.lengths_mm": arms,
             "element.arm_height_mm": draw(st.floats(web + notch + 0.3, 3.0)),
@@ -90,3 +97,70 @@ def test_out_of_domain_draws_are_refused(case):
         plan_from_dict(data)
     assert info.value.field == field
     assert "allowed" in str(info.value)
+
+
+# ---------------------------------------------------------------------------
+# Whole designs over every field of the domain (tactcad.design.domain)
+# ---------------------------------------------------------------------------
+#: Rig parts whose spec does not change with the design are built once for all
+#: examples (rig builders read only their spec).
+_RIG_SOLIDS: dict[str, object] = {}
+
+
+def _draw_whole_design(case):
+    def pick(lo, hi):
+        return case.draw(st.floats(min(lo, hi), max(lo, hi)))
+
+    def choose(options):
+        return case.draw(st.sampled_from(list(options)))
+
+    return draw_design(pick, choose), pick, choose
+
+
+def _project(data):
+    p = Problems("drawn.toml")
+    out = project_from_data(data, default_rigs_data(), read_toml(DEFAULT_SCENES, "scenes file"), p,
+                            source="drawn.toml")
+    return out, p.errors
+
+
+@pytest.mark.slow
+@settings(max_examples=100, deadline=None, suppress_health_check=list(HealthCheck),
+          phases=[Phase.explicit, Phase.reuse, Phase.generate])  # no slow shrinking of solids
+@given(case=st.data())
+def test_whole_designs_validate_build_and_assemble(case):
+    from tactcad.assembly.scenes import assemble
+    from tactcad.catalogue.rigs import RigPartSpec, rig_parts
+    from tactcad.parts.cache import PartCache
+    from tactcad.store import stable_repr
+
+    data, _, _ = _draw_whole_design(case)
+    (plan, rigs, scenes), errors = _project(data)
+    assert not errors, [e.line() for e in errors]
+    cache = PartCache(plan)
+    bad = []
+    for spec in {**array_parts(plan), **rig_parts(plan, rigs)}.values():
+        if isinstance(spec, RigPartSpec):
+            key = stable_repr(spec)
+            if key in _RIG_SOLIDS:
+                continue  # built and checked in an earlier example
+            _RIG_SOLIDS[key] = cache.solid(spec)
+        bad += [r.line() for r in check_solid(spec, cache.solid(spec)) if not r.passed]
+    assert not bad, bad
+    for name in scenes:
+        scene = assemble(plan, name, rigs)
+        assert scene.instances
+
+
+@settings(max_examples=100, deadline=None)
+@given(case=st.data())
+def test_out_of_domain_whole_designs_are_refused_naming_the_field(case):
+    data, pick, choose = _draw_whole_design(case)
+    field, value = draw_out_of_domain(pick, choose)
+    if field.startswith("arms.lengths_mm["):
+        data["arms"]["lengths_mm"][1] = value
+    else:
+        section, key = field.split(".")
+        data[section][key] = value
+    _, errors = _project(data)
+    assert field in [e.field for e in errors], [e.line() for e in errors]

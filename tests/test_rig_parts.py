@@ -31,7 +31,7 @@ def _with(data, dotted, value):
     if value is None:
         del out[section][key]
     else:
-        out[section][key] = value
+        out.setdefault(section, {})[key] = value
     return out
 
 

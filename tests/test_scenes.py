@@ -173,15 +173,21 @@ def test_collision_fails_check_with_names_and_volume(tmp_path, capsys):
 
 
 def test_slide_out_of_range_is_a_scene_error(tmp_path):
-    design = _bad_design_dir(tmp_path, lambda t: t.replace("[xy_stage]\nsize_mm = 60.0\n"
-                                                           "base_height_mm = 12.0\n"
-                                                           "table_height_mm = 8.0\ntravel_mm = 25.0",
-                                                           "[xy_stage]\nsize_mm = 60.0\n"
-                                                           "base_height_mm = 12.0\n"
-                                                           "table_height_mm = 8.0\ntravel_mm = 2.0"))
-    plan = load_design(design)
+    """Stages too short for the array: refused up front naming the rig field; a
+    rig plan built past the validator still fails at the slide, not silently."""
+    import dataclasses
+
+    from tactcad.design.project import load_project
+
+    design = _bad_design_dir(tmp_path, lambda t: t.replace("table_height_mm = 8.0\n",
+                                                           "table_height_mm = 8.0\ntravel_mm = 2.0\n"))
+    with pytest.raises(DesignError) as info:
+        load_project(design)
+    assert info.value.field == "xy_stage.travel_mm" and "every element" in str(info.value)
+    plan, rigs, _ = load_project()
+    short = dataclasses.replace(rigs, xy_stage=dataclasses.replace(rigs.xy_stage, travel_mm=2.0))
     with pytest.raises(SceneError, match=r"slide stage_\w+ .* range is -1 \.\.\. 1 mm"):
-        assemble(plan, "calibration-rig")
+        assemble(plan, "calibration-rig", short)
 
 
 def test_bad_scenes_file(tmp_path, plan):
@@ -281,7 +287,7 @@ def test_changed_rig_dimensions_assemble_or_fail_clearly(plan):
         data["linear_axis"]["rail_mount_height_mm"] = rail
         data["weights"]["count"] = weights
         data["z_axis"]["position_mm"] = z_pos
-        data["calibration"]["element"] = element
+        data.setdefault("calibration", {})["element"] = element
         try:
             rigs = rigs_from_dict(data, plan)
         except DesignError as exc:

@@ -2,6 +2,24 @@
 
 from __future__ import annotations
 
+from typing import Iterable
+
+#: Longest echo of a user's value in a message (a 100 000-entry list must not
+#: turn into a 500 kB error line).
+MAX_VALUE_CHARS = 80
+
+
+def short_repr(value: object, limit: int = MAX_VALUE_CHARS) -> str:
+    """``repr(value)`` cut to ``limit`` characters, with the size of what was cut."""
+    try:
+        text = repr(value)
+    except (ValueError, RecursionError):  # e.g. an int too long to print
+        return f"<{type(value).__name__}>"
+    if len(text) <= limit:
+        return text
+    size = f"{len(value)} items, " if isinstance(value, (list, tuple, dict)) else ""
+    return f"{text[:limit]}... ({size}{len(text)} characters)"
+
 
 class TactcadError(Exception):
     """Base of all errors tactcad reports to a user (CLI exit code 2)."""
@@ -14,17 +32,46 @@ class DesignError(TactcadError, ValueError):
         field: dotted key in the design file, e.g. ``element.web_thickness_mm``.
         value: the offending value (``None`` when the key is missing).
         allowed: human-readable allowed range or set, with units.
+        why: the physical reason for the range ("" when it goes without saying).
+        file: the file the field belongs to ("" when not known).
     """
 
-    def __init__(self, field: str, value: object, allowed: str, why: str = ""):
+    def __init__(self, field: str, value: object, allowed: str, why: str = "", file: str = ""):
         self.field = field
         self.value = value
         self.allowed = allowed
         self.why = why
-        text = f"{field} = {value!r}: allowed {allowed}"
-        if why:
-            text += f" ({why})"
-        super().__init__(text)
+        self.file = file
+        super().__init__(self.line())
+
+    def line(self) -> str:
+        """``file: field = value: allowed ... (why)``."""
+        text = f"{self.field} = {short_repr(self.value)}: allowed {self.allowed}"
+        if self.why:
+            text += f" ({self.why})"
+        return f"{self.file}: {text}" if self.file else text
+
+
+class DesignErrors(DesignError):
+    """Every error found in one validation pass of the design files.
+
+    ``field``, ``value``, ``allowed`` and ``why`` are the first error's; ``errors``
+    holds them all; the message lists one per line.
+    """
+
+    def __init__(self, errors: Iterable[DesignError]):
+        self.errors = tuple(errors)
+        if not self.errors:
+            raise ValueError("DesignErrors needs at least one error")
+        first = self.errors[0]
+        super().__init__(first.field, first.value, first.allowed, first.why, first.file)
+        lines = [e.line() for e in self.errors]
+        head = lines[0] if len(lines) == 1 else f"{len(lines)} errors in the design files:\n  " + \
+            "\n  ".join(lines)
+        self.args = (head,)
+
+    def __str__(self) -> str:
+        return self.args[0]
 
 
 class SceneError(TactcadError):

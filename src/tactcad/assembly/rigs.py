@@ -178,9 +178,9 @@ def _wirecut_model(plan: Plan) -> RigModel:
                               Placement(s.row * (el_w + gap) - x0,
                                         (plan.columns - 1 - s.column) * (el_h + gap) - y0, 0.0),
                               "elements"))
-    sp = specs["spacer"].expected_bbox_mm
-    per_col = max(1, int((plan.columns * (el_h + gap)) // (sp[4] - sp[1] + gap)))
     for k in range(len(plan.spacer_placements)):
+        sp = specs["spacer"].expected_bbox_mm
+        per_col = max(1, int((plan.columns * (el_h + gap)) // (sp[4] - sp[1] + gap)))
         col, row = divmod(k, per_col)
         members.append(Member(f"spacer_{k + 1}", "spacer",
                               Placement(plan.rows * (el_w + gap) + col * (sp[3] - sp[0] + gap) - sp[0],
@@ -188,7 +188,8 @@ def _wirecut_model(plan: Plan) -> RigModel:
     sheet = Node("sheet", "elements", {}, members=tuple(members))
     used = {m.part for m in members}
     return RigModel("wirecut", {"sheet": sheet}, {"sheet": WORLD_Y_UP}, [], [], set(),
-                    {n: s for n, s in specs.items() if n in used})
+                    {n: s for n, s in specs.items() if n in used},
+                    empty_groups=() if plan.spacer_placements else ("spacers",))
 
 
 def _array_model(plan: Plan) -> RigModel:
@@ -309,8 +310,8 @@ class _Builder:
 
 
 def _sample_k(rigs: RigDesign, scene: SceneSpec | None) -> float:
-    k = scene.sample_stiffness_N_per_mm if scene and scene.sample_stiffness_N_per_mm else \
-        rigs.sample_stiffness_N_per_mm[0]
+    given = scene.sample_stiffness_N_per_mm if scene is not None else None
+    k = rigs.sample_stiffness_N_per_mm[0] if given is None else given
     if k not in rigs.sample_stiffness_N_per_mm:
         raise DesignError(f"scene.{scene.name if scene else '?'}.sample_stiffness_N_per_mm", k,
                           "one of " + ", ".join(f"{v:g}" for v in rigs.sample_stiffness_N_per_mm),

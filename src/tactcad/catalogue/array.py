@@ -81,12 +81,14 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
             expected_bbox_mm=_prism_bbox(prof, g.sheet_thickness_mm),
             profile=prof, thickness_mm=g.sheet_thickness_mm)
     s = plan.spacer
-    sp = rectangle_profile(s.length_mm, s.height_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
-    parts["spacer"] = PartSpec(
-        name="spacer", kind="fabricated", process="wire EDM or laser cut from sheet",
-        material=mat, color=SPACER, builder="spacer",
-        expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
-        expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm)
+    if plan.spacer_placements:  # a one-column array has no spacer part
+        sp = rectangle_profile(s.length_mm, s.height_mm,
+                               [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
+        parts["spacer"] = PartSpec(
+            name="spacer", kind="fabricated", process="wire EDM or laser cut from sheet",
+            material=mat, color=SPACER, builder="spacer",
+            expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
+            expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm)
     c = plan.clamp
     cp = u_plate_profile(c.half_length_mm, c.window_half_width_mm, c.height_mm, c.bridge_height_mm,
                          c.window_corner_radius_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
@@ -114,11 +116,13 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
 
 
 def bolt_name(b: BoltSpec, length_mm: float) -> str:
-    return f"bolt_{b.size}x{length_mm:g}"
+    """Part name of a bolt, safe for file names and STEP labels: ``bolt_M2p5x30``."""
+    return f"bolt_{b.safe_name}x" + f"{length_mm:g}".replace(".", "p")
 
 
 def nut_name(b: BoltSpec) -> str:
-    return f"nut_{b.size}"
+    """Part name of a nut: ``nut_M2p5``."""
+    return f"nut_{b.safe_name}"
 
 
 def bolt_volume(b: BoltSpec, length_mm: float) -> float:

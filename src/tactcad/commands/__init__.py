@@ -83,15 +83,18 @@ def plan_from_args(args: argparse.Namespace):
 
     The overrides are checked by the design validator itself, so an unknown
     key or a value out of range is refused with the field, the value and the
-    allowed keys or range, as in the file.
+    allowed keys or range, as in the file. The rigs and scenes files beside
+    the design are validated with it, before any geometry is built, and every
+    refusal of the three files is reported at once.
 
     Raises:
-        DesignError: unreadable file, bad ``--set``, unknown key, value out of range.
+        DesignError: unreadable file, bad ``--set``, unknown key, value out of range
+            (:class:`~tactcad.errors.DesignErrors` lists every one).
     """
-    from tactcad.design.array import plan_from_dict
+    from tactcad.design.project import project_with_design_data
 
     data, path = design_data_from_args(args)
-    return plan_from_dict(data, source=str(path))
+    return project_with_design_data(data, path)[0]
 
 
 def add_cache_args(p: argparse.ArgumentParser) -> None:

@@ -9,7 +9,10 @@ Examples::
 from __future__ import annotations
 
 import argparse
-import json
+import math
+
+from tactcad.commands.finite_json import dumps
+from tactcad.errors import TactcadError
 
 from tactcad.commands import add_output_args
 
@@ -41,17 +44,44 @@ def register(subparsers) -> None:
 
 def evaluate(k_m: float, k_r: float, k_obj: float | None = None, r: float | None = None,
              sigma_r: float | None = None) -> dict:
-    """The numbers the command prints, as a dict (N/mm, dimensionless R).
+    """The numbers the command prints, as a dict (N/mm, dimensionless R); every
+    value finite.
 
     Exactly one of ``k_obj`` and ``r`` is given.
 
     Raises:
         tactcad.mechanics.paper.lumped.LumpedDomainError: an input out of the model's domain.
+        TactcadError: a K_obj whose R rounds onto the domain's edge, or a result that
+            is not finite; the message names the inputs the user gave.
     """
     from tactcad.mechanics.paper import lumped
 
     if (k_obj is None) == (r is None):
         raise ValueError("give exactly one of k_obj and r")
+    given = {"--km": k_m, "--kr": k_r, **({"--kobj": k_obj} if r is None else {"--r": r})}
+    if sigma_r is not None:
+        given["--sigma-r"] = sigma_r
+    try:
+        out = _results(lumped, k_m, k_r, k_obj, r, sigma_r)
+    except lumped.LumpedDomainError as exc:
+        if exc.quantity != "R" or k_obj is None:
+            raise
+        # R was computed from K_obj, not given: name what the user gave
+        raise TactcadError(f"{_inputs(given)}: allowed a K_obj whose R = (K_r + K_obj)/(K_m + K_obj) "
+                           f"lies strictly inside 1 ... K_r/K_m in double precision (R rounds to "
+                           f"{float(exc.value):.17g})") from None
+    bad = [k for k, v in out.items() if not math.isfinite(float(v))]
+    if bad:
+        raise TactcadError(f"{_inputs(given)}: allowed inputs whose results are finite "
+                           f"({bad[0]} = {out[bad[0]]} overflows double precision)")
+    return out
+
+
+def _inputs(given: dict) -> str:
+    return ", ".join(f"{k} = {v:.6g}" for k, v in given.items())
+
+
+def _results(lumped, k_m, k_r, k_obj, r, sigma_r) -> dict:
     if r is None:
         r = lumped.deflection_ratio(k_m, k_r, k_obj)
         r_minus_one = lumped.deflection_ratio_excess(k_m, k_r, k_obj)
@@ -77,7 +107,7 @@ def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad lumped``; returns the exit code (0)."""
     result = evaluate(args.km, args.kr, k_obj=args.kobj, r=args.r, sigma_r=args.sigma_r)
     if args.json:
-        print(json.dumps(result, indent=2))
+        print(dumps(result))
         return 0
     given_r = args.r is not None
     print(f"K_m = {result['k_m_N_per_mm']:.6g} N/mm, K_r = {result['k_r_N_per_mm']:.6g} N/mm "

@@ -1,9 +1,17 @@
 """Design files -> validated, immutable plans (no CAD kernel).
 
+* :mod:`tactcad.design.schema`: the one schema mechanism of the three files
+  (pydantic sections, every refusal at once as ``file: field = value: allowed ...``),
+  reading TOML, the content hash, the ``[assumptions]`` table;
+* :mod:`tactcad.design.standards`: ISO bolts and nuts, ISO 15 bearings, stock lengths;
 * :mod:`tactcad.design.array`: the array design file (``hardware/macro_array.toml``)
   and its plan: element profiles, bolt pattern, spacers, clamp plates;
-* :mod:`tactcad.design.rigs`: the test-rig file (``hardware/rigs.toml``);
-* :mod:`tactcad.design.scenes`: the scenes file (``hardware/scenes.toml``).
+* :mod:`tactcad.design.rigs`: the test-rig file (``hardware/rigs.toml``), derived
+  against the array's plan;
+* :mod:`tactcad.design.scenes`: the scenes file (``hardware/scenes.toml``);
+* :mod:`tactcad.design.project`: the three files validated together
+  (:func:`~tactcad.design.project.load_project`);
+* :mod:`tactcad.design.domain`: random designs over the accepted domain (fuzzing).
 
 Units: mm, N, MPa throughout.
 """

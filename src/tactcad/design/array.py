@@ -18,56 +18,21 @@ Units: mm, N, MPa throughout. Frames:
 from __future__ import annotations
 
 import copy
-import hashlib
-import json
-import math
-import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
+from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Name, Problems, Section, Text, choice,
+                                   content_hash, fmt, integer, listing, number, read_assumptions,
+                                   read_toml, validate)
+from tactcad.design.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
+                                      StrengthSettings, default_strength_settings,
+                                      material_fields, material_grade, strength_settings)
+from tactcad.design.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
-from tactcad.design.materials import (StrengthSettings, assumption_schema, default_strength_settings,
-                               split_design_tables)
 
 DEFAULT_DESIGN = Path(__file__).resolve().parents[3] / "hardware" / "macro_array.toml"
 
-
-# ---------------------------------------------------------------------------
-# Catalogue data (ISO 273 medium clearance, ISO 4762 socket head cap screw,
-# ISO 4032 hex nut). Values in mm.
-# ---------------------------------------------------------------------------
-@dataclass(frozen=True)
-class BoltSpec:
-    """ISO metric bolt + nut envelope data (mm)."""
-
-    size: str
-    nominal_diameter_mm: float
-    clearance_hole_mm: float  # ISO 273 medium series
-    thread_pitch_mm: float
-    head_diameter_mm: float  # ISO 4762 d_k
-    head_height_mm: float  # ISO 4762 k
-    nut_width_across_flats_mm: float  # ISO 4032 s
-    nut_height_mm: float  # ISO 4032 m
-    catalogue_lengths_mm: tuple[float, ...]  # ISO 4762 / DIN 912 stock lengths
-
-    @property
-    def socket_across_flats_mm(self) -> float:
-        """Hexagon socket size s of ISO 4762: about 0.75 d for the small sizes."""
-        return 0.75 * self.nominal_diameter_mm
-
-
-BOLTS: dict[str, BoltSpec] = {
-    "M1.6": BoltSpec("M1.6", 1.6, 1.8, 0.35, 3.0, 1.6, 3.2, 1.3,
-                     (3, 4, 5, 6, 8, 10, 12, 16, 20)),
-    "M2": BoltSpec("M2", 2.0, 2.4, 0.4, 3.8, 2.0, 4.0, 1.6,
-                   (4, 5, 6, 8, 10, 12, 16, 20, 25, 30)),
-    "M2.5": BoltSpec("M2.5", 2.5, 2.9, 0.45, 4.5, 2.5, 5.0, 2.0,
-                     (5, 6, 8, 10, 12, 16, 20, 25, 30)),
-    "M3": BoltSpec("M3", 3.0, 3.4, 0.5, 5.5, 3.0, 5.5, 2.4,
-                   (5, 6, 8, 10, 12, 16, 20, 25, 30, 35, 40)),
-}
 
 # Design domain: the range over which the closed-form stiffness correction is
 # fitted to fem3d (data/stiffness_correction.json; web 0.05-1 mm, arm 2-20 mm,
@@ -77,6 +42,22 @@ WEB_RANGE_MM = (0.05, 1.0)
 ARM_RANGE_MM = (2.0, 20.0)
 NOTCH_RADIUS_MAX_MM = 2.0
 MIN_LIGAMENT_MM = 1.0  # material left around a bolt hole
+#: Thinnest spacer plate (pitch - sheet) the shop cuts and handles flat, mm.
+MIN_SPACER_MM = 0.2
+#: Smallest gap between the tips of the two rows (pitch - tip width), mm.
+MIN_TIP_GAP_MM = 0.2
+#: Smallest gap between neighbouring nuts or bolt heads of the bolt pattern, mm.
+MIN_FASTENER_GAP_MM = 0.2
+#: Smallest difference between two distinct arm lengths, mm (below the wire-EDM
+#: tolerance of a contour position they would be one part).
+MIN_ARM_STEP_MM = 0.01
+#: Straight tip side left above the tip-root fillet, mm (the contact face stays the top).
+MIN_TIP_WALL_MM = 0.1
+#: Shortest base below the arm underside, mm (room for the clamp bolts and a gauge pad).
+MIN_BASE_BELOW_ARM_MM = 2.0
+MAX_COLUMNS = 12
+_DOMAIN = "the range over which the closed-form correction is fitted to fem3d"
+
 
 
 # ---------------------------------------------------------------------------
@@ -270,7 +251,7 @@ class Plan:
 
     name: str
     description: str
-    source: str = field(repr=False)  # where it was read from; shapes no output
+    source: str
     design_hash: str
     material: Material
     sheet_thickness_mm: float
@@ -289,8 +270,8 @@ class Plan:
     stack_length_mm: float
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
-    raw: Mapping[str, Any] = field(repr=False, compare=False, hash=False, default_factory=dict)
     strength: StrengthSettings = field(default_factory=default_strength_settings)
+    raw: Mapping[str, Any] = field(repr=False, compare=False, hash=False, default_factory=dict)
 
     def element(self, number: int) -> ElementSlot:
         """The slot of element ``number`` (1-based, paper numbering).
@@ -313,154 +294,438 @@ class Plan:
 
 
 # ---------------------------------------------------------------------------
-# Reading and validating
+# The design file's schema: types and static ranges (pydantic), one model per section
 # ---------------------------------------------------------------------------
-_SCHEMA: dict[str, tuple[str, ...]] = {
-    "design": ("name", "description"),
-    "material": ("name", "youngs_modulus_MPa", "poisson_ratio"),
-    "sheet": ("thickness_mm",),
-    "array": ("rows", "columns", "pitch_mm"),
-    "element": ("web_thickness_mm", "notch_radius_mm", "tip_width_mm", "tip_height_mm",
-                "arm_height_mm", "base_height_mm", "overall_length_mm",
-                "inside_corner_radius_mm", "web_tolerance_mm"),
-    "arms": ("lengths_mm",),
-    "clamp": ("bolt_size", "bolt_spacing_mm", "plate_thickness_mm", "bridge_height_mm",
-              "arm_clearance_mm"),
-    "edm": ("wire_diameter_mm", "spark_gap_mm", "start_hole_diameter_mm"),
-}
-_OPTIONAL_SECTIONS = ("assumptions",)
+class DesignSection(Section):
+    name: Name
+    description: Text
+    revision: Text = None  # printed in the drawings' title blocks (default "A")
+    date: Text = None  # the design's date as the drawings print it, never today's
 
 
-def _fmt(x: float) -> str:
-    return f"{x:.6g}"
+class MaterialSection(Section):
+    """Name, E and nu; optionally a library grade (yield, fatigue strength,
+    density; E and nu from the grade where the table omits them) and the
+    design's own strength values (:mod:`tactcad.design.materials`)."""
+
+    name: Text
+    youngs_modulus_MPa: number(1e3, 1e6, unit="MPa")
+    poisson_ratio: number(0.0, 0.5, lo_open=True, hi_open=True, unit="")
+    # optional: None when absent (a given value is checked against its range)
+    grade: Text = None
+    yield_strength_MPa: number(*STRENGTH_RANGE_MPA, unit="MPa") = None
+    fatigue_strength_MPa: number(*STRENGTH_RANGE_MPA, unit="MPa") = None
+    density_g_per_cm3: number(*DENSITY_RANGE, unit="g/cm^3") = None
 
 
-class _Reader:
-    """Typed, range-checked access to the raw TOML tables."""
+class StrengthSection(Section):
+    """Safety factor on yield at the full-scale force, and the strain gauge
+    (both optional: :mod:`tactcad.design.materials` gives the defaults)."""
 
-    def __init__(self, data: Mapping[str, Any]):
-        self.data = data
-
-    def raw(self, section: str, key: str) -> Any:
-        return self.data[section][key]
-
-    def text(self, section: str, key: str) -> str:
-        value = self.raw(section, key)
-        if not isinstance(value, str) or not value.strip():
-            raise DesignError(f"{section}.{key}", value, "a non-empty string")
-        return value
-
-    def number(self, section: str, key: str, lo: float | None = None, hi: float | None = None,
-               *, lo_open: bool = False, hi_open: bool = False, unit: str = "mm",
-               why: str = "") -> float:
-        name = f"{section}.{key}"
-        value = self.raw(section, key)
-        return _check_number(name, value, lo, hi, lo_open=lo_open, hi_open=hi_open, unit=unit,
-                             why=why)
-
-    def integer(self, section: str, key: str, lo: int, hi: int, why: str = "") -> int:
-        name = f"{section}.{key}"
-        value = self.raw(section, key)
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise DesignError(name, value, f"an integer {lo} ... {hi}", why)
-        if not lo <= value <= hi:
-            raise DesignError(name, value, f"{lo} ... {hi}", why)
-        return value
+    safety_factor: number(*SAFETY_FACTOR_RANGE, unit="") = None
+    gauge: Text = None
 
 
-def _range_text(lo, hi, lo_open, hi_open, unit) -> str:
-    u = f" {unit}" if unit else ""
-    if lo is not None and hi is not None:
-        return f"{_fmt(lo)} {'<' if lo_open else '<='} value {'<' if hi_open else '<='} {_fmt(hi)}{u}"
-    if lo is not None:
-        return f"value {'>' if lo_open else '>='} {_fmt(lo)}{u}"
-    if hi is not None:
-        return f"value {'<' if hi_open else '<='} {_fmt(hi)}{u}"
-    return "a finite number"
+class SheetSection(Section):
+    thickness_mm: number(0.5, 10.0)
 
 
-def _check_number(name: str, value: Any, lo: float | None, hi: float | None, *,
-                  lo_open: bool = False, hi_open: bool = False, unit: str = "mm",
-                  why: str = "") -> float:
-    allowed = _range_text(lo, hi, lo_open, hi_open, unit)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise DesignError(name, value, "a finite number, " + allowed, why)
-    v = float(value)
-    if lo is not None and (v < lo or (lo_open and v == lo)):
-        raise DesignError(name, value, allowed, why)
-    if hi is not None and (v > hi or (hi_open and v == hi)):
-        raise DesignError(name, value, allowed, why)
-    return v
+class ArraySection(Section):
+    rows: integer(2, 2, why="the model is two clamped rows facing each other")
+    columns: integer(1, MAX_COLUMNS)
+    pitch_mm: number(0.0, 20.0, lo_open=True)
 
 
-def check_keys(data: Mapping[str, Any], schema: Mapping[str, Any],
-               optional_sections: tuple[str, ...] = _OPTIONAL_SECTIONS, what: str = "<design>") -> None:
-    """Refuse unknown sections and keys and report missing ones.
-
-    Args:
-        data: the parsed TOML tables.
-        schema: section -> its keys (any iterable of key names).
-        optional_sections: sections that may be present but are not in ``schema``.
-        what: name of the whole file for the error when it is not a table.
-
-    Raises:
-        DesignError: naming the section or ``section.key``.
-    """
-    if not isinstance(data, Mapping):
-        raise DesignError(what, type(data).__name__, "a TOML table")
-    for section in data:
-        if section not in schema and section not in optional_sections:
-            raise DesignError(section, "<table>", "sections " + ", ".join(
-                [*schema, *optional_sections]), "unknown section")
-    for section, keys in schema.items():
-        table = data.get(section)
-        if not isinstance(table, Mapping):
-            raise DesignError(section, table, f"a [{section}] table with keys " + ", ".join(keys),
-                              "missing section" if table is None else "")
-        for key in table:
-            if key not in keys:
-                raise DesignError(f"{section}.{key}", table[key], "keys " + ", ".join(keys),
-                                  "unknown key")
-        for key in keys:
-            if key not in table:
-                raise DesignError(f"{section}.{key}", None, "a value (key is missing)",
-                                  "missing key")
+class ElementSection(Section):
+    web_thickness_mm: number(*WEB_RANGE_MM, why=_DOMAIN)
+    notch_radius_mm: number(0.0, NOTCH_RADIUS_MAX_MM, lo_open=True)
+    tip_width_mm: number(0.5, 20.0)
+    tip_height_mm: number(0.3, 5.0)
+    arm_height_mm: number(0.0, 5.0, lo_open=True)
+    base_height_mm: number(0.0, 30.0, lo_open=True)
+    overall_length_mm: number(10.0, 60.0)
+    inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
+    web_tolerance_mm: number(0.0, 0.1)
 
 
-_ASSUMPTION_KEY = re.compile(r"^([a-z_]+)\.([A-Za-z0-9_]+)(\[\d+\])?$")
+class ArmsSection(Section):
+    lengths_mm: listing(number(*ARM_RANGE_MM, why=_DOMAIN), 2, 2 * MAX_COLUMNS,
+                        "a list of rows x columns lengths (mm)")
 
 
-def read_assumptions(data: Mapping[str, Any], schema: Mapping[str, Any],
-                     example: str = "element.notch_radius_mm") -> tuple[tuple[str, str], ...]:
-    """The ``[assumptions]`` table: ``"section.key" = "one-line reason"`` pairs,
-    each key naming a field of ``schema``.
+class ClampSection(Section):
+    bolt_size: choice(BOLTS, "ISO 4762 socket head cap screws of the catalogue")
+    bolt_spacing_mm: number(0.0, 40.0, lo_open=True)
+    plate_thickness_mm: number(1.0, 10.0)
+    bridge_height_mm: number(1.0, 30.0)
+    arm_clearance_mm: number(0.2, 3.0)
 
-    Raises:
-        DesignError: a key naming no field, or an empty reason.
-    """
-    table = data.get("assumptions", {})
-    if not isinstance(table, Mapping):
-        raise DesignError("assumptions", table, "a table of 'section.key' = \"reason\"")
+
+class EdmSection(Section):
+    wire_diameter_mm: number(0.02, 0.35)
+    spark_gap_mm: number(0.0, 0.1)
+    start_hole_diameter_mm: number(0.3, 3.0)
+
+
+class DesignFile(Section):
+    """``macro_array.toml``: every section required, ``[assumptions]`` optional."""
+
+    design: DesignSection
+    material: MaterialSection
+    sheet: SheetSection
+    array: ArraySection
+    element: ElementSection
+    arms: ArmsSection
+    clamp: ClampSection
+    edm: EdmSection
+    strength: StrengthSection = None
+    assumptions: dict[str, Any] = {}
+
+
+# ---------------------------------------------------------------------------
+# Cross-field rules: ranges that depend on other fields (every one reported)
+# ---------------------------------------------------------------------------
+def edm_rules(d: DesignFile) -> EdmRules:
+    return EdmRules(d.edm.wire_diameter_mm, d.edm.spark_gap_mm, d.edm.start_hole_diameter_mm)
+
+
+def _check_array(d: DesignFile, p: Problems) -> None:
+    sheet = d.sheet.thickness_mm
+    p.within("array.pitch_mm", d.array.pitch_mm, sheet + MIN_SPACER_MM,
+             why=f"pitch must exceed sheet.thickness_mm = {fmt(sheet)} mm by a spacer of at least "
+                 f"{fmt(MIN_SPACER_MM)} mm")
+    p.within("element.tip_width_mm", d.element.tip_width_mm,
+             hi=d.array.pitch_mm - MIN_TIP_GAP_MM,
+             why=f"tips of the two rows need a {fmt(MIN_TIP_GAP_MM)} mm gap at pitch "
+                 f"{fmt(d.array.pitch_mm)} mm")
+
+
+def _check_element(d: DesignFile, p: Problems) -> None:
+    e, edm = d.element, edm_rules(d)
+    r_min = edm.min_inside_radius_mm
+    p.within("element.notch_radius_mm", e.notch_radius_mm,
+             max(e.web_thickness_mm, r_min, edm.min_slot_width_mm / 2), NOTCH_RADIUS_MAX_MM,
+             why="R >= web thickness (t/R <= 1) and >= wire radius + spark gap")
+    over = e.web_thickness_mm + e.notch_radius_mm
+    p.within("element.arm_height_mm", e.arm_height_mm, over + r_min,
+             why=f"the arm must reach below web + notch radius = {fmt(over)} mm by the wire's "
+                 f"inside radius {fmt(r_min)} mm so the notch opens below it with a cuttable corner")
+    p.within("element.base_height_mm", e.base_height_mm, e.arm_height_mm + MIN_BASE_BELOW_ARM_MM,
+             why=f"base must reach at least {fmt(MIN_BASE_BELOW_ARM_MM)} mm below the arm underside")
+    p.within("element.inside_corner_radius_mm", e.inside_corner_radius_mm, r_min,
+             why="inside corner radius >= wire radius + spark gap")
+    p.within("element.tip_height_mm", e.tip_height_mm, e.inside_corner_radius_mm + MIN_TIP_WALL_MM,
+             why=f"the tip-root fillet (element.inside_corner_radius_mm) must end on the tip's side, "
+                 f"{fmt(MIN_TIP_WALL_MM)} mm below the contact face")
+
+
+def _check_clamp(d: DesignFile, p: Problems) -> None:
+    e, c = d.element, d.clamp
+    bolt = BOLTS[c.bolt_size]
+    hole = bolt.clearance_hole_mm
+    widest = max(bolt.nut_across_corners_mm, bolt.head_diameter_mm)
+    p.within("clamp.bolt_spacing_mm", c.bolt_spacing_mm,
+             max(hole + MIN_LIGAMENT_MM, widest + MIN_FASTENER_GAP_MM),
+             why=f"neighbouring {bolt.size} nuts ({fmt(bolt.nut_across_corners_mm)} mm across "
+                 f"corners) and heads ({fmt(bolt.head_diameter_mm)} mm) need a "
+                 f"{fmt(MIN_FASTENER_GAP_MM)} mm gap, holes a {fmt(MIN_LIGAMENT_MM)} mm ligament")
+    p.within("element.base_height_mm", e.base_height_mm,
+             e.arm_height_mm + hole + 2 * MIN_LIGAMENT_MM,
+             why=f"{bolt.size} bolt holes below the arm need a {fmt(MIN_LIGAMENT_MM)} mm ligament")
+    p.within("clamp.bridge_height_mm", c.bridge_height_mm, hole + 1.0,
+             e.base_height_mm - e.arm_height_mm - c.arm_clearance_mm,
+             why="the bridge must carry the mounting holes with 0.5 mm around them and stay below "
+                 "the arm underside with the arm clearance")
+    if d.edm.start_hole_diameter_mm >= hole:
+        p.add("edm.start_hole_diameter_mm", d.edm.start_hole_diameter_mm, f"< {fmt(hole)} mm",
+              "the start hole must lie inside the bolt hole it starts")
+
+
+def _check_arms(d: DesignFile, p: Problems) -> None:
+    e = d.element
+    n = d.array.rows * d.array.columns
+    arms = d.arms.lengths_mm
+    if len(arms) != n:
+        p.add("arms.lengths_mm", arms, f"a list of {n} lengths (rows x columns)")
+        return
+    tip_root = e.tip_width_mm / 2 + e.inside_corner_radius_mm + e.notch_radius_mm + 0.5
+    distinct = sorted(set(arms))
+    for shorter, longer in zip(distinct, distinct[1:]):
+        if longer - shorter < MIN_ARM_STEP_MM - LIMIT_TOLERANCE_MM:
+            i = arms.index(longer) + 1
+            p.add(f"arms.lengths_mm[{i}]", longer,
+                  f"{fmt(shorter)} mm (the same part) or at least {fmt(shorter + MIN_ARM_STEP_MM)} mm",
+                  f"arms closer than {fmt(MIN_ARM_STEP_MM)} mm cannot be told apart once cut; "
+                  f"each distinct arm is its own part")
+    for i, a in enumerate(arms, start=1):
+        if a <= e.tip_width_mm:
+            p.add(f"arms.lengths_mm[{i}]", a, f"> element.tip_width_mm = {fmt(e.tip_width_mm)} mm",
+                  "arm shorter than the tip")
+        elif a < tip_root - LIMIT_TOLERANCE_MM:
+            p.add(f"arms.lengths_mm[{i}]", a, f">= {fmt(tip_root)} mm",
+                  "the tip root fillet must clear the notch by 0.5 mm")
+
+
+DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms)
+
+
+# ---------------------------------------------------------------------------
+# Derivations: small pure functions from the validated file to the plan
+# ---------------------------------------------------------------------------
+def tip_centre_x(d: DesignFile) -> float:
+    """x of the contact face centre in the element frame (mm)."""
+    return d.element.overall_length_mm - d.element.tip_width_mm / 2
+
+
+def base_lengths(d: DesignFile) -> list[float]:
+    """Clamped base length of each element (mm): tip centre - arm - notch radius."""
+    return [tip_centre_x(d) - a - d.element.notch_radius_mm for a in d.arms.lengths_mm]
+
+
+def clamp_leg(d: DesignFile) -> Derived:
+    leg = min(base_lengths(d)) - d.clamp.arm_clearance_mm
+    return Derived("clamp_leg_length", leg, "mm",
+                   "shortest clamped base (longest arm) less the arm clearance, so neither "
+                   "spacer nor clamp touches a flexing arm")
+
+
+def bolt_holes(d: DesignFile, leg: float) -> tuple[Hole, Hole]:
+    """The two clamp bolt holes of every element and spacer (element frame)."""
+    hole_d = BOLTS[d.clamp.bolt_size].clearance_hole_mm
+    y = (d.element.base_height_mm - d.element.arm_height_mm) / 2
+    s = d.clamp.bolt_spacing_mm
+    return Hole(leg / 2 - s / 2, y, hole_d), Hole(leg / 2 + s / 2, y, hole_d)
+
+
+def _check_bolt_pattern(d: DesignFile, p: Problems) -> None:
+    bolt = BOLTS[d.clamp.bolt_size]
+    bases = base_lengths(d)
+    leg = clamp_leg(d).value
+    # the holes need a ligament to the leg's ends (nuts and heads may overhang them)
+    needed = d.clamp.bolt_spacing_mm + bolt.clearance_hole_mm + 2 * MIN_LIGAMENT_MM
+    if leg < needed - LIMIT_TOLERANCE_MM:
+        worst = 1 + bases.index(min(bases))
+        arm = d.arms.lengths_mm[worst - 1]
+        p.add(f"arms.lengths_mm[{worst}]", arm,
+              f"<= {fmt(arm - (needed - leg))} mm, or raise element.overall_length_mm above "
+              f"{fmt(d.element.overall_length_mm + needed - leg)} mm",
+              f"the clamped base leaves {fmt(leg)} mm for a bolt pattern that needs {fmt(needed)} mm")
+
+
+def stack_length(d: DesignFile) -> float:
+    """Length of the element/spacer stack along z (mm)."""
+    return (d.array.columns - 1) * d.array.pitch_mm + d.sheet.thickness_mm
+
+
+def bolt_length(d: DesignFile) -> tuple[float | None, Derived]:
+    bolt = BOLTS[d.clamp.bolt_size]
+    grip = stack_length(d) + 2 * d.clamp.plate_thickness_mm
+    needed = grip + bolt.nut_height_mm + 2 * bolt.thread_pitch_mm
+    length = shortest_stock_length(bolt, needed)
+    return length, Derived("bolt_length", length or needed, "mm",
+                           f"shortest stock {bolt.size} length >= grip {fmt(grip)} + nut "
+                           f"{fmt(bolt.nut_height_mm)} + 2 thread pitches")
+
+
+def _check_bolt_length(d: DesignFile, p: Problems) -> None:
+    length, why = bolt_length(d)
+    bolt = BOLTS[d.clamp.bolt_size]
+    if length is None:
+        p.add("array.columns", d.array.columns, f"fewer columns or a larger bolt than {bolt.size}",
+              f"bolt needs {fmt(why.value)} mm, longest stock {bolt.size} is "
+              f"{fmt(max(bolt.catalogue_lengths_mm))} mm")
+
+
+def half_length(d: DesignFile) -> float:
+    """|x| of the clamp plate's outer edges = the elements' back faces (mm)."""
+    return d.array.pitch_mm / 2 + tip_centre_x(d)
+
+
+def mounting_hole_x(d: DesignFile) -> tuple[float, float]:
+    """(|x| of the two mounting bolts, |x| where the innermost element bases end), mm.
+    The mounting bolts run through the stack below the arms, centred between the
+    two rows' innermost base ends (shortest arm = longest base)."""
+    inner_end = half_length(d) - max(base_lengths(d))
+    return inner_end / 2, inner_end
+
+
+def _check_mounting(d: DesignFile, p: Problems) -> None:
+    bolt = BOLTS[d.clamp.bolt_size]
+    x, inner_end = mounting_hole_x(d)
+    widest = max(bolt.nut_across_corners_mm, bolt.head_diameter_mm)
+    # the heads/nuts of the two mounting bolts face each other across x = 0
+    if inner_end - x - bolt.nominal_diameter_mm / 2 < d.clamp.arm_clearance_mm - LIMIT_TOLERANCE_MM or \
+            2 * x < widest + MIN_FASTENER_GAP_MM - LIMIT_TOLERANCE_MM:
+        p.add("clamp.bolt_size", bolt.size, "a smaller bolt",
+              f"mounting bolts at x = +-{fmt(x)} mm need {fmt(d.clamp.arm_clearance_mm)} mm to the "
+              f"element bases ending at x = {fmt(inner_end)} mm and their heads "
+              f"{fmt(MIN_FASTENER_GAP_MM)} mm apart")
+
+
+DERIVED_RULES = (_check_bolt_pattern, _check_bolt_length, _check_mounting)
+
+
+def element_geometry(d: DesignFile, arm_mm: float, holes: tuple[Hole, ...]) -> ElementGeometry:
+    e = d.element
+    return ElementGeometry(
+        arm_length_mm=arm_mm, web_thickness_mm=e.web_thickness_mm,
+        notch_radius_mm=e.notch_radius_mm, tip_width_mm=e.tip_width_mm,
+        tip_height_mm=e.tip_height_mm, arm_height_mm=e.arm_height_mm,
+        base_height_mm=e.base_height_mm, overall_length_mm=e.overall_length_mm,
+        inside_corner_radius_mm=e.inside_corner_radius_mm, sheet_thickness_mm=d.sheet.thickness_mm,
+        web_tolerance_mm=e.web_tolerance_mm, bolt_holes=holes,
+        start_hole_diameter_mm=d.edm.start_hole_diameter_mm)
+
+
+def element_slots(d: DesignFile, holes: tuple[Hole, ...]) -> tuple[ElementSlot, ...]:
+    """Row 0 runs along +x towards the mid-plane, row 1 is turned 180 deg about y."""
+    pitch, sheet, cols = d.array.pitch_mm, d.sheet.thickness_mm, d.array.columns
+    cx = tip_centre_x(d)
+    slots = []
+    for idx, a in enumerate(d.arms.lengths_mm):
+        row, col = divmod(idx, cols)
+        if row == 0:
+            pl = Placement(-pitch / 2 - cx, 0.0, col * pitch)
+        else:
+            pl = Placement(pitch / 2 + cx, 0.0, col * pitch + sheet, turned=True)
+        slots.append(ElementSlot(idx + 1, row, col, element_geometry(d, a, holes), pl))
+    return tuple(slots)
+
+
+def spacer_placements(d: DesignFile) -> tuple[Placement, ...]:
+    pitch, sheet, cx = d.array.pitch_mm, d.sheet.thickness_mm, tip_centre_x(d)
     out = []
-    for key, reason in table.items():
-        m = _ASSUMPTION_KEY.match(key)
-        if not m or m.group(1) not in schema or m.group(2) not in schema[m.group(1)]:
-            raise DesignError(f"assumptions.{key}", reason,
-                              f"keys naming a field of this file, e.g. '{example}'")
-        if not isinstance(reason, str) or not reason.strip():
-            raise DesignError(f"assumptions.{key}", reason, "a one-line reason (non-empty string)")
-        out.append((key, reason.strip()))
+    for row in range(d.array.rows):
+        for col in range(d.array.columns - 1):
+            if row == 0:
+                out.append(Placement(-pitch / 2 - cx, 0.0, col * pitch + sheet))
+            else:
+                out.append(Placement(pitch / 2 + cx, 0.0, (col + 1) * pitch, turned=True))
     return tuple(out)
 
 
-def design_hash(data: Mapping[str, Any]) -> str:
-    """sha256 of the design's content (canonical JSON), independent of comments/layout."""
-    canonical = json.dumps(data, sort_keys=True, separators=(",", ":"), default=str)
-    return hashlib.sha256(canonical.encode()).hexdigest()
+def clamp_plate(d: DesignFile, leg: float, holes: tuple[Hole, Hole]) -> ClampPlateGeometry:
+    """U-shaped clamp plate: the element bolt holes of both rows and two mounting holes."""
+    half = half_length(d)
+    base_h, bridge_h = d.element.base_height_mm, d.clamp.bridge_height_mm
+    hole_d, y = holes[0].diameter_mm, holes[0].y_mm
+    plate_holes = [Hole(-half + h.x_mm, y, hole_d) for h in holes]
+    plate_holes += [Hole(half - h.x_mm, y, hole_d) for h in holes]
+    mount_x, _ = mounting_hole_x(d)
+    plate_holes += [Hole(sx * mount_x, bridge_h / 2, hole_d) for sx in (-1, 1)]
+    return ClampPlateGeometry(half_length_mm=half, window_half_width_mm=half - leg,
+                              height_mm=base_h, bridge_height_mm=bridge_h,
+                              thickness_mm=d.clamp.plate_thickness_mm,
+                              window_corner_radius_mm=min(1.0, bridge_h / 2, (base_h - bridge_h) / 2),
+                              holes=tuple(plate_holes))
+
+
+def derived_values(d: DesignFile, leg: Derived, holes: tuple[Hole, Hole],
+                   clamp: ClampPlateGeometry) -> tuple[Derived, ...]:
+    bolt = BOLTS[d.clamp.bolt_size]
+    return (
+        leg,
+        Derived("bolt_hole_y", holes[0].y_mm, "mm",
+                "bolt holes centred in the base height below the arm underside"),
+        Derived("bolt_hole_diameter", holes[0].diameter_mm, "mm",
+                f"ISO 273 medium clearance for {bolt.size}"),
+        Derived("spacer_thickness", d.array.pitch_mm - d.sheet.thickness_mm, "mm",
+                "pitch minus sheet thickness"),
+        bolt_length(d)[1],
+        Derived("tip_centre_offset", d.array.pitch_mm / 2, "mm",
+                "each row's tips sit half a pitch from the mid-plane"),
+        Derived("mounting_hole_x", mounting_hole_x(d)[0], "mm",
+                "mounting bolts centred between the two rows' innermost base ends, "
+                "clear of every element"),
+        Derived("clamp_window_half_width", clamp.window_half_width_mm, "mm",
+                "legs cover the clamped bases only; the window leaves the arms free"),
+    )
+
+
+# ---------------------------------------------------------------------------
+# Public API
+# ---------------------------------------------------------------------------
+def validate_design(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile | None, Problems]:
+    """The design file's model and every refusal (types and ranges, then the
+    cross-field rules, then the rules of the derived bolt pattern)."""
+    p = Problems(file)
+    data = with_grade_defaults(data)
+    model = validate(DesignFile, data, p)
+    read_assumptions(data, DesignFile, p, "element.notch_radius_mm")
+    if model is None:
+        return None, p
+    try:
+        material_fields(data["material"])
+        strength_settings(data.get("strength"))
+    except DesignError as exc:  # an unknown grade or gauge
+        p.extend([exc])
+    for rule in DESIGN_RULES:
+        rule(model, p)
+    if not p:
+        for rule in DERIVED_RULES:
+            rule(model, p)
+    return model, p
+
+
+def with_grade_defaults(data: Mapping[str, Any]) -> Mapping[str, Any]:
+    """``data`` with ``[material]``'s E and nu taken from its library grade
+    where the table omits them (an unknown grade is refused later)."""
+    mat = data.get("material") if isinstance(data, Mapping) else None
+    if not isinstance(mat, Mapping) or not isinstance(mat.get("grade"), str):
+        return data
+    try:
+        g = material_grade(mat["grade"])
+    except DesignError:
+        return data
+    filled = {k: getattr(g, k) for k in ("youngs_modulus_MPa", "poisson_ratio") if k not in mat}
+    return {**data, "material": {**mat, **filled}} if filled else data
+
+
+def plan_from_model(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
+    """The plan of a design that passed :func:`validate_design`."""
+    p = Problems()
+    data = with_grade_defaults(data)
+    leg = clamp_leg(d)
+    holes = bolt_holes(d, leg.value)
+    clamp = clamp_plate(d, leg.value, holes)
+    spacer = SpacerGeometry(length_mm=leg.value, height_mm=d.element.base_height_mm,
+                            thickness_mm=d.array.pitch_mm - d.sheet.thickness_mm, holes=holes)
+    stack = stack_length(d)
+    return Plan(
+        name=d.design.name, description=d.design.description, source=source,
+        design_hash=design_hash(data),
+        material=Material(d.material.name, d.material.youngs_modulus_MPa, d.material.poisson_ratio,
+                          **material_fields(data["material"])),
+        strength=strength_settings(data.get("strength")),
+        sheet_thickness_mm=d.sheet.thickness_mm, rows=d.array.rows, columns=d.array.columns,
+        pitch_mm=d.array.pitch_mm, slots=element_slots(d, holes), edm=edm_rules(d),
+        bolt=BOLTS[d.clamp.bolt_size], bolt_length_mm=bolt_length(d)[0],
+        bolt_positions_xy_mm=tuple((h.x_mm, h.y_mm) for h in clamp.holes[:4]), spacer=spacer,
+        spacer_placements=spacer_placements(d), clamp=clamp,
+        clamp_plate_z_mm=(-d.clamp.plate_thickness_mm, stack), stack_length_mm=stack,
+        derived=derived_values(d, leg, holes, clamp),
+        assumptions=read_assumptions(data, DesignFile, p, "element.notch_radius_mm"),
+        raw=copy.deepcopy(dict(data)),
+    )
+
+
+def plan_from_dict(data: Mapping[str, Any], source: str = "<dict>", file: str = "") -> Plan:
+    """Validate raw design tables and derive the plan. See :func:`load_design`.
+
+    Raises:
+        DesignErrors: every refusal at once (``.field`` etc. are the first one's).
+    """
+    model, problems = validate_design(data, file)
+    problems.raise_if_any()
+    return plan_from_model(model, data, source)
+
+
+design_hash = content_hash
 
 
 def load_design(path: str | Path | None = None) -> Plan:
-    """Read a design file and return its validated plan.
+    """Read a design file and return its validated plan (the array alone; see
+    :func:`tactcad.design.project.load_project` for the design with its rigs and scenes).
 
     Args:
         path: TOML design file; ``None`` means the paper's macro array
@@ -468,27 +733,11 @@ def load_design(path: str | Path | None = None) -> Plan:
 
     Raises:
         DesignError: unreadable file, missing/unknown key, or a value outside
-            its allowed range (the message names field, value and range).
+            its allowed range (the message names file, field, value and range;
+            :class:`~tactcad.errors.DesignErrors` lists every one found).
     """
     p = Path(path) if path is not None else DEFAULT_DESIGN
-    return plan_from_dict(read_toml(p, "design file"), source=str(p))
-
-
-def read_toml(path: Path, what: str) -> dict[str, Any]:
-    """Parse a TOML file.
-
-    Raises:
-        DesignError: naming ``what`` (e.g. "design file") and the path, when the
-            file cannot be read or is not valid TOML.
-    """
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise DesignError(what, str(path), "a readable TOML file", exc.strerror or "") from None
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError(what, str(path), "valid TOML", str(exc)) from None
+    return plan_from_dict(read_toml(p, "design file"), source=str(p), file=p.name)
 
 
 def with_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:
@@ -502,200 +751,4 @@ def with_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> dic
 
 def default_design_data() -> dict[str, Any]:
     """Raw TOML tables of the default design (a fresh copy)."""
-    return tomllib.loads(DEFAULT_DESIGN.read_text(encoding="utf-8"))
-
-
-def plan_from_dict(data: Mapping[str, Any], source: str = "<dict>") -> Plan:
-    """Validate raw design tables and derive the plan. See :func:`load_design`."""
-    # --- materials library (tactcad.design.materials) -----------------------------
-    # [material] may name a grade and give yield/fatigue strength and density;
-    # [strength] is optional. The core tables below see name, E and nu only.
-    core, material_extra, strength = split_design_tables(data)
-    check_keys(core, _SCHEMA)
-    r = _Reader(core)
-    assumptions = read_assumptions(core, assumption_schema(_SCHEMA))
-    material = Material(
-        name=r.text("material", "name"),
-        youngs_modulus_MPa=r.number("material", "youngs_modulus_MPa", 1e3, 1e6, unit="MPa"),
-        poisson_ratio=r.number("material", "poisson_ratio", 0.0, 0.5, lo_open=True, hi_open=True,
-                               unit=""),
-        **material_extra,
-    )
-    # --- end materials library ----------------------------------------------
-    derived: list[Derived] = []
-
-    name = r.text("design", "name")
-    description = r.text("design", "description")
-    sheet = r.number("sheet", "thickness_mm", 0.5, 10.0)
-
-    rows = r.integer("array", "rows", 2, 2, why="the model is two clamped rows facing each other")
-    columns = r.integer("array", "columns", 1, 12)
-    pitch = r.number("array", "pitch_mm", sheet, 20.0, lo_open=True,
-                     why=f"pitch must exceed sheet.thickness_mm = {_fmt(sheet)} mm so a spacer fits")
-    spacer_t = pitch - sheet
-
-    edm = EdmRules(
-        wire_diameter_mm=r.number("edm", "wire_diameter_mm", 0.02, 0.35),
-        spark_gap_mm=r.number("edm", "spark_gap_mm", 0.0, 0.1),
-        start_hole_diameter_mm=r.number("edm", "start_hole_diameter_mm", 0.3, 3.0),
-    )
-
-    web = r.number("element", "web_thickness_mm", *WEB_RANGE_MM,
-                   why="the range over which the closed-form correction is fitted to fem3d")
-    radius_lo = max(web, edm.min_inside_radius_mm, edm.min_slot_width_mm / 2)
-    notch_r = r.number("element", "notch_radius_mm", radius_lo, NOTCH_RADIUS_MAX_MM,
-                       why="R >= web thickness (t/R <= 1) and >= wire radius + spark gap")
-    tip_w = r.number("element", "tip_width_mm", 0.5, pitch, hi_open=True,
-                     why=f"tips of the two rows need a gap at pitch {_fmt(pitch)} mm")
-    tip_h = r.number("element", "tip_height_mm", 0.3, 5.0)
-    arm_h = r.number("element", "arm_height_mm", web + notch_r, 5.0, lo_open=True,
-                     why="the arm must be taller than web + notch radius so the notch opens below it")
-    base_h = r.number("element", "base_height_mm", arm_h + 2.0, 30.0,
-                      why="base must reach at least 2 mm below the arm underside")
-    overall = r.number("element", "overall_length_mm", 10.0, 60.0)
-    corner_r = r.number("element", "inside_corner_radius_mm", edm.min_inside_radius_mm, 1.0,
-                        why="inside corner radius >= wire radius + spark gap")
-    web_tol = r.number("element", "web_tolerance_mm", 0.0, 0.1)
-
-    bolt_size = r.raw("clamp", "bolt_size")
-    if bolt_size not in BOLTS:
-        raise DesignError("clamp.bolt_size", bolt_size, "one of " + ", ".join(BOLTS))
-    bolt = BOLTS[bolt_size]
-    bolt_spacing = r.number("clamp", "bolt_spacing_mm", bolt.clearance_hole_mm + MIN_LIGAMENT_MM,
-                            40.0, why="neighbouring bolt holes need a 1 mm ligament")
-    plate_t = r.number("clamp", "plate_thickness_mm", 1.0, 10.0)
-    arm_clear = r.number("clamp", "arm_clearance_mm", 0.2, 3.0)
-    bridge_h = r.number("clamp", "bridge_height_mm", 1.0, base_h - arm_h - arm_clear,
-                        why="the bridge must stay below the arm underside with the arm clearance")
-    if edm.start_hole_diameter_mm >= bolt.clearance_hole_mm:
-        raise DesignError("edm.start_hole_diameter_mm", edm.start_hole_diameter_mm,
-                          f"< {_fmt(bolt.clearance_hole_mm)} mm",
-                          "the start hole must lie inside the bolt hole it starts")
-
-    n_elements = rows * columns
-    arms = r.raw("arms", "lengths_mm")
-    if not isinstance(arms, list) or len(arms) != n_elements:
-        raise DesignError("arms.lengths_mm", arms, f"a list of {n_elements} lengths (rows x columns)")
-    arm_lengths = []
-    tip_root = tip_w / 2 + corner_r + notch_r + 0.5
-    for i, a in enumerate(arms, start=1):
-        fname = f"arms.lengths_mm[{i}]"
-        a = _check_number(fname, a, *ARM_RANGE_MM,
-                          why="the range over which the closed-form correction is fitted to fem3d")
-        if a <= tip_w:
-            raise DesignError(fname, a, f"> element.tip_width_mm = {_fmt(tip_w)} mm",
-                              "arm shorter than the tip")
-        if a < tip_root:
-            raise DesignError(fname, a, f">= {_fmt(tip_root)} mm",
-                              "the tip root fillet must clear the notch by 0.5 mm")
-        arm_lengths.append(a)
-
-    # --- derived: the clamped base, bolt pattern, spacer and clamp plates ---
-    tip_cx = overall - tip_w / 2
-    base_lengths = [tip_cx - a - notch_r for a in arm_lengths]
-    leg = min(base_lengths) - arm_clear
-    derived.append(Derived("clamp_leg_length", leg, "mm",
-                           "shortest clamped base (longest arm) less the arm clearance, so neither "
-                           "spacer nor clamp touches a flexing arm"))
-    hole_d = bolt.clearance_hole_mm
-    hole_xs = (leg / 2 - bolt_spacing / 2, leg / 2 + bolt_spacing / 2)
-    hole_y = (base_h - arm_h) / 2
-    needed = bolt_spacing + hole_d + 2 * MIN_LIGAMENT_MM
-    if leg < needed:
-        worst = 1 + base_lengths.index(min(base_lengths))
-        raise DesignError(f"arms.lengths_mm[{worst}]", arm_lengths[worst - 1],
-                          f"<= {_fmt(arm_lengths[worst - 1] - (needed - leg))} mm, or raise "
-                          f"element.overall_length_mm above {_fmt(overall + needed - leg)} mm",
-                          f"the clamped base leaves {_fmt(leg)} mm for a bolt pattern that needs "
-                          f"{_fmt(needed)} mm")
-    if hole_y - hole_d / 2 < MIN_LIGAMENT_MM:
-        raise DesignError("element.base_height_mm", base_h,
-                          f">= {_fmt(arm_h + hole_d + 2 * MIN_LIGAMENT_MM)} mm",
-                          "bolt holes below the arm need a 1 mm ligament")
-    holes = tuple(Hole(x, hole_y, hole_d) for x in hole_xs)
-    derived.append(Derived("bolt_hole_y", hole_y, "mm",
-                           "bolt holes centred in the base height below the arm underside"))
-    derived.append(Derived("bolt_hole_diameter", hole_d, "mm",
-                           f"ISO 273 medium clearance for {bolt.size}"))
-    derived.append(Derived("spacer_thickness", spacer_t, "mm", "pitch minus sheet thickness"))
-
-    stack = (columns - 1) * pitch + sheet
-    grip = stack + 2 * plate_t
-    needed_len = grip + bolt.nut_height_mm + 2 * bolt.thread_pitch_mm
-    lengths = [L for L in bolt.catalogue_lengths_mm if L >= needed_len]
-    if not lengths:
-        raise DesignError("array.columns", columns,
-                          f"fewer columns or a larger bolt than {bolt.size}",
-                          f"bolt needs {_fmt(needed_len)} mm, longest stock {bolt.size} is "
-                          f"{_fmt(max(bolt.catalogue_lengths_mm))} mm")
-    bolt_len = float(lengths[0])
-    derived.append(Derived("bolt_length", bolt_len, "mm",
-                           f"shortest stock {bolt.size} length >= grip {_fmt(grip)} + nut "
-                           f"{_fmt(bolt.nut_height_mm)} + 2 thread pitches"))
-
-    def element_geometry(a: float) -> ElementGeometry:
-        return ElementGeometry(
-            arm_length_mm=a, web_thickness_mm=web, notch_radius_mm=notch_r, tip_width_mm=tip_w,
-            tip_height_mm=tip_h, arm_height_mm=arm_h, base_height_mm=base_h,
-            overall_length_mm=overall, inside_corner_radius_mm=corner_r,
-            sheet_thickness_mm=sheet, web_tolerance_mm=web_tol, bolt_holes=holes,
-            start_hole_diameter_mm=edm.start_hole_diameter_mm)
-
-    # Row 0 runs along +x towards the mid-plane, row 1 is turned 180 deg about y.
-    slots = []
-    for idx, a in enumerate(arm_lengths):
-        row, col = divmod(idx, columns)
-        if row == 0:
-            pl = Placement(-pitch / 2 - tip_cx, 0.0, col * pitch)
-        else:
-            pl = Placement(pitch / 2 + tip_cx, 0.0, col * pitch + sheet, turned=True)
-        slots.append(ElementSlot(idx + 1, row, col, element_geometry(a), pl))
-    derived.append(Derived("tip_centre_offset", pitch / 2, "mm",
-                           "each row's tips sit half a pitch from the mid-plane"))
-
-    spacer = SpacerGeometry(length_mm=leg, height_mm=base_h, thickness_mm=spacer_t, holes=holes)
-    spacer_pl = []
-    for row in range(rows):
-        for col in range(columns - 1):
-            if row == 0:
-                spacer_pl.append(Placement(-pitch / 2 - tip_cx, 0.0, col * pitch + sheet))
-            else:
-                spacer_pl.append(Placement(pitch / 2 + tip_cx, 0.0, (col + 1) * pitch, turned=True))
-
-    half = pitch / 2 + tip_cx
-    window = half - leg
-    mount_d = hole_d
-    clamp_holes = [Hole(-half + x, hole_y, hole_d) for x in hole_xs]
-    clamp_holes += [Hole(half - x, hole_y, hole_d) for x in hole_xs]
-    # Mounting bolts run through the whole stack below the arms, between the
-    # two rows' innermost base ends (shortest arm = longest base).
-    inner_end = half - max(base_lengths)
-    mount_x = inner_end / 2
-    if inner_end - mount_x - bolt.nominal_diameter_mm / 2 < arm_clear:
-        raise DesignError("clamp.bolt_size", bolt.size, "a smaller bolt",
-                          f"a mounting bolt at x = {_fmt(mount_x)} mm would pass within "
-                          f"{_fmt(arm_clear)} mm of the element bases ending at x = {_fmt(inner_end)} mm")
-    clamp_holes += [Hole(sx * mount_x, bridge_h / 2, mount_d) for sx in (-1, 1)]
-    derived.append(Derived("mounting_hole_x", mount_x, "mm",
-                           "mounting bolts centred between the two rows' innermost base ends, "
-                           "clear of every element"))
-    if bridge_h / 2 - mount_d / 2 < 0.5:
-        raise DesignError("clamp.bridge_height_mm", bridge_h, f">= {_fmt(mount_d + 1.0)} mm",
-                          "mounting holes in the bridge need 0.5 mm of material around them")
-    clamp = ClampPlateGeometry(half_length_mm=half, window_half_width_mm=window, height_mm=base_h,
-                               bridge_height_mm=bridge_h, thickness_mm=plate_t,
-                               window_corner_radius_mm=min(1.0, bridge_h / 2, (base_h - bridge_h) / 2),
-                               holes=tuple(clamp_holes))
-    derived.append(Derived("clamp_window_half_width", window, "mm",
-                           "legs cover the clamped bases only; the window leaves the arms free"))
-    bolt_xy = tuple((h.x_mm, h.y_mm) for h in clamp_holes[:4])
-
-    return Plan(
-        name=name, description=description, source=source, design_hash=design_hash(data),
-        material=material, sheet_thickness_mm=sheet, rows=rows, columns=columns, pitch_mm=pitch,
-        slots=tuple(slots), edm=edm, bolt=bolt, bolt_length_mm=bolt_len,
-        bolt_positions_xy_mm=bolt_xy, spacer=spacer, spacer_placements=tuple(spacer_pl),
-        clamp=clamp, clamp_plate_z_mm=(-plate_t, stack), stack_length_mm=stack,
-        derived=tuple(derived), assumptions=assumptions, raw=copy.deepcopy(dict(data)),
-        strength=strength,
-    )
+    return read_toml(DEFAULT_DESIGN, "design file")

@@ -47,9 +47,9 @@ _GRADE_FIELDS = ("youngs_modulus_MPa", "poisson_ratio", "yield_strength_MPa",
 _GAUGE_FIELDS = ("resistance_ohm", "gauge_factor", "max_strain", "fatigue_strain")
 
 # Ranges a design file's own values must fall in (MPa, g/cm^3).
-_STRENGTH_RANGE_MPA = (1.0, 5000.0)
-_DENSITY_RANGE = (0.5, 25.0)
-_SAFETY_FACTOR_RANGE = (1.0, 10.0)
+STRENGTH_RANGE_MPA = (1.0, 5000.0)
+DENSITY_RANGE = (0.5, 25.0)
+SAFETY_FACTOR_RANGE = (1.0, 10.0)
 
 
 @dataclass(frozen=True)
@@ -219,9 +219,9 @@ def material_fields(table: Mapping[str, Any]) -> dict[str, Any]:
                    fatigue_strength_MPa=g.fatigue_strength_MPa, fatigue_cycles=g.fatigue_cycles,
                    fatigue_R_ratio=g.fatigue_R_ratio, density_g_per_cm3=g.density_g_per_cm3)
         sources.update(g.sources)
-    for key, (lo, hi), unit in (("yield_strength_MPa", _STRENGTH_RANGE_MPA, "MPa"),
-                                ("fatigue_strength_MPa", _STRENGTH_RANGE_MPA, "MPa"),
-                                ("density_g_per_cm3", _DENSITY_RANGE, "g/cm^3")):
+    for key, (lo, hi), unit in (("yield_strength_MPa", STRENGTH_RANGE_MPA, "MPa"),
+                                ("fatigue_strength_MPa", STRENGTH_RANGE_MPA, "MPa"),
+                                ("density_g_per_cm3", DENSITY_RANGE, "g/cm^3")):
         if key in table:
             out[key] = _number(f"material.{key}", table[key], lo, hi, unit)
             sources[key] = "design file"
@@ -251,7 +251,7 @@ def strength_settings(table: Any) -> StrengthSettings:
                               "unknown key")
     sf = DEFAULT_SAFETY_FACTOR
     if "safety_factor" in table:
-        sf = _number("strength.safety_factor", table["safety_factor"], *_SAFETY_FACTOR_RANGE, "")
+        sf = _number("strength.safety_factor", table["safety_factor"], *SAFETY_FACTOR_RANGE, "")
     return StrengthSettings(sf, strain_gauge(table.get("gauge", DEFAULT_GAUGE)))
 
 

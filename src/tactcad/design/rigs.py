@@ -4,56 +4,53 @@ The three test rigs of the paper (calibration under a force gauge on
 micro-stages, rubber-sample stiffness on a wheeled cart, array evaluation on
 a vertical linear axis with 100 g weights) need dimensions the paper does not
 give. They live in their own file, each with a one-line reason under
-``[assumptions]``, and are checked here the same way as the array design
-(:mod:`tactcad.design.array`): every bad value raises :class:`DesignError` naming
-the field, the value and the allowed range. No CAD kernel here.
+``[assumptions]``, and are read by the same schema mechanism as the array
+design (:mod:`tactcad.design.schema`): every bad value is reported, all at once,
+naming the field, the value and the allowed range. Values that follow from the
+array (the indenter's contact face, the calibration element, the bracket
+width, the stages' travel) may be left out: they are derived from the array's
+plan, and a value the user did not set never fails. No CAD kernel here.
 
 Units: mm, N, g.
 """
 
 from __future__ import annotations
 
-import hashlib
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Mapping, Optional
 
-from tactcad.design.array import (BOLTS, BoltSpec, Derived, _check_number, _fmt, _Reader, check_keys,
-                     read_assumptions, read_toml)
+from tactcad.design.array import Derived, Plan
+from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Problems, Section, Text, choice,
+                                   content_hash, fmt, integer, listing, number, read_assumptions,
+                                   read_toml, validate)
+from tactcad.design.standards import (BEARINGS, RIG_BOLTS, BearingSpec, BoltSpec,
+                                      shortest_stock_length)
 from tactcad.errors import DesignError
 
 DEFAULT_RIGS = Path(__file__).resolve().parents[3] / "hardware" / "rigs.toml"
 
 POCKET_CORNER_RADIUS_MM = 1.0  # end mill radius of the cart's vacuum pocket
+#: Travel of the crossed micro-stages when the rigs file gives none, mm (a
+#: usual 60 mm stage); more when the array's tips spread wider.
+STAGE_TRAVEL_MM = 25.0
+#: Clearance between the bracket's ear and the array's clamp bolt heads, mm.
+EAR_HEAD_CLEARANCE_MM = 0.3
+#: Smallest indenter body diameter and tip length when the rigs file gives none, mm.
+INDENTER_BODY_MM = 8.0
+INDENTER_TIP_MM = 3.0
+#: Bracket ear width when the rigs file gives none and the array leaves room, mm.
+BRACKET_WIDTH_MM = 20.0
+#: Ear height above the mounting holes when the rigs file gives none, mm
+#: (lower when the clamp plate ends sooner).
+EAR_TOP_MM = 4.0
+#: Sample size when the rigs file gives none (the paper's phantom block), mm;
+#: larger when the array's tips need it, with this margin around them.
+SAMPLE_LENGTH_MM = 30.0
+SAMPLE_WIDTH_MM = 20.0
+SAMPLE_MARGIN_MM = 2.0
 
-# ISO 4762 / ISO 4032 / ISO 273 data for M4 (the wheel axles), next to the
-# design's M1.6 ... M3. Values in mm.
-RIG_BOLTS: dict[str, BoltSpec] = {
-    **BOLTS,
-    "M4": BoltSpec("M4", 4.0, 4.5, 0.7, 7.0, 4.0, 7.0, 3.2,
-                   (6, 8, 10, 12, 16, 20, 25, 30, 35, 40)),
-}
-
-
-@dataclass(frozen=True)
-class BearingSpec:
-    """Deep groove ball bearing, ISO 15 boundary dimensions (mm)."""
-
-    designation: str
-    bore_mm: float  # d
-    outer_diameter_mm: float  # D
-    width_mm: float  # B
-
-
-# ISO 15, dimension series 02 (62xx) for the small sizes used as cart wheels.
-BEARINGS: dict[str, BearingSpec] = {
-    "623ZZ": BearingSpec("623ZZ", 3.0, 10.0, 4.0),
-    "624ZZ": BearingSpec("624ZZ", 4.0, 13.0, 5.0),
-    "625ZZ": BearingSpec("625ZZ", 5.0, 16.0, 5.0),
-    "626ZZ": BearingSpec("626ZZ", 6.0, 19.0, 6.0),
-}
 
 
 @dataclass(frozen=True)
@@ -278,85 +275,611 @@ class RigDesign:
 
 
 # ---------------------------------------------------------------------------
-# Schema: section -> key -> (lo, hi) for numbers, "text", "int" or "list".
+# The rig file's schema: types and static ranges, one model per section
 # ---------------------------------------------------------------------------
-_SCHEMA: dict[str, dict[str, Any]] = {
-    "rigs": {"name": "text", "description": "text"},
-    "base_plate": {"length_mm": (100.0, 1000.0), "width_mm": (40.0, 500.0),
-                   "thickness_mm": (4.0, 40.0), "groove_width_mm": (1.0, 30.0),
-                   "groove_depth_mm": (0.5, 10.0), "mount_hole_diameter_mm": (2.0, 20.0),
-                   "mount_hole_inset_mm": (3.0, 50.0), "column_inset_mm": (0.0, 200.0)},
-    "column": {"thickness_mm": (5.0, 60.0), "width_mm": (20.0, 300.0),
-               "height_mm": (50.0, 1000.0)},
-    "cart": {"length_mm": (30.0, 300.0), "width_mm": (30.0, 300.0), "thickness_mm": (5.0, 40.0),
-             "bearing": "text", "axle_height_mm": (1.0, 20.0), "axle_inset_mm": (3.0, 100.0),
-             "axle_hole_depth_mm": (3.0, 40.0), "spacer_outer_diameter_mm": (2.0, 30.0),
-             "spacer_thickness_mm": (0.2, 5.0), "pocket_length_mm": (2.0, 200.0),
-             "pocket_width_mm": (2.0, 200.0), "pocket_depth_mm": (0.1, 5.0),
-             "suction_hole_diameter_mm": (0.5, 5.0), "suction_hole_count": "int",
-             "suction_hole_pitch_mm": (0.5, 50.0), "channel_diameter_mm": (1.0, 10.0),
-             "port_diameter_mm": (2.0, 20.0), "port_depth_mm": (1.0, 30.0)},
-    "sample": {"length_mm": (5.0, 200.0), "width_mm": (5.0, 200.0), "height_mm": (1.0, 100.0),
-               "material": "text", "stiffness_N_per_mm": "list"},
-    "sample_holder": {"thickness_mm": (1.0, 50.0), "wall_mm": (2.0, 50.0),
-                      "clearance_mm": (0.05, 5.0), "corner_radius_mm": (0.1, 10.0),
-                      "screw_size": "text", "tapped_depth_mm": (2.0, 40.0)},
-    "indenter": {"contact_width_mm": (0.5, 20.0), "contact_depth_mm": (0.5, 20.0),
-                 "tip_length_mm": (0.5, 30.0), "body_diameter_mm": (1.0, 50.0),
-                 "body_length_mm": (1.0, 50.0)},
-    "force_gauge": {"model": "text", "range_N": (0.1, 1e5), "resolution_N": (1e-6, 10.0),
-                    "stiffness_N_per_mm": (0.1, 1e6), "length_mm": (20.0, 500.0),
-                    "width_mm": (10.0, 300.0), "depth_mm": (10.0, 300.0),
-                    "shaft_diameter_mm": (1.0, 30.0), "shaft_length_mm": (1.0, 100.0),
-                    "mount_height_mm": (0.0, 500.0)},
-    "z_axis": {"body_width_mm": (10.0, 300.0), "body_depth_mm": (5.0, 300.0),
-               "body_height_mm": (10.0, 500.0), "carriage_thickness_mm": (2.0, 100.0),
-               "carriage_height_mm": (5.0, 500.0), "travel_mm": (0.5, 200.0),
-               "position_mm": (0.0, 200.0), "micrometer_diameter_mm": (3.0, 60.0),
-               "micrometer_length_mm": (5.0, 200.0), "micrometer_resolution_mm": (1e-6, 0.1)},
-    "xy_stage": {"size_mm": (10.0, 300.0), "base_height_mm": (2.0, 100.0),
-                 "table_height_mm": (2.0, 100.0), "travel_mm": (1.0, 200.0)},
-    "linear_axis": {"rail": "text", "block": "text", "rail_width_mm": (3.0, 60.0),
-                    "rail_height_mm": (2.0, 60.0), "rail_length_mm": (20.0, 2000.0),
-                    "block_width_mm": (5.0, 200.0), "block_length_mm": (5.0, 300.0),
-                    "block_height_mm": (3.0, 100.0), "block_clearance_mm": (0.0, 20.0),
-                    "rail_mount_height_mm": (0.0, 1000.0)},
-    "carrier": {"width_mm": (5.0, 300.0), "height_mm": (10.0, 500.0),
-                "thickness_mm": (1.0, 50.0), "shelf_depth_mm": (5.0, 300.0)},
-    "hanger_bar": {"section_mm": (2.0, 100.0), "length_mm": (5.0, 1000.0)},
-    "bracket": {"width_mm": (5.0, 200.0), "ear_thickness_mm": (0.5, 20.0),
-                "ear_top_mm": (1.0, 50.0), "foot_thickness_mm": (1.0, 30.0),
-                "foot_length_mm": (5.0, 200.0), "foot_clearance_mm": (0.3, 20.0),
-                "foot_hole_diameter_mm": (1.0, 20.0)},
-    "weights": {"mass_g": (1.0, 10000.0), "density_g_per_cm3": (0.5, 25.0),
-                "diameter_mm": (5.0, 200.0), "count": "int"},
-    "calibration": {"element": "int"},
-}
-class _RigReader(_Reader):
-    """The design file's reader, with the ranges of this file's schema."""
-
-    def n(self, section: str, key: str, lo: float | None = None, hi: float | None = None,
-          why: str = "", **kw) -> float:
-        slo, shi = _SCHEMA[section][key]
-        return self.number(section, key, slo if lo is None else max(lo, slo),
-                           shi if hi is None else min(hi, shi), why=why, **kw)
+class RigsSection(Section):
+    name: Text
+    description: Text
 
 
+class BasePlateSection(Section):
+    length_mm: number(100.0, 1000.0)
+    width_mm: number(40.0, 500.0)
+    thickness_mm: number(4.0, 40.0)
+    groove_width_mm: number(1.0, 30.0)
+    groove_depth_mm: number(0.5, 10.0)
+    mount_hole_diameter_mm: number(2.0, 20.0)
+    mount_hole_inset_mm: number(3.0, 50.0)
+    column_inset_mm: number(0.0, 200.0)
+
+
+class ColumnSection(Section):
+    thickness_mm: number(5.0, 60.0)
+    width_mm: number(20.0, 300.0)
+    height_mm: number(50.0, 1000.0)
+
+
+class CartSection(Section):
+    length_mm: number(30.0, 300.0)
+    width_mm: number(30.0, 300.0)
+    thickness_mm: number(5.0, 40.0)
+    bearing: choice(BEARINGS, "ISO 15 deep groove ball bearings of the catalogue")
+    axle_height_mm: number(1.0, 20.0)
+    axle_inset_mm: number(3.0, 100.0)
+    axle_hole_depth_mm: number(3.0, 40.0)
+    spacer_outer_diameter_mm: number(2.0, 30.0)
+    spacer_thickness_mm: number(0.2, 5.0)
+    pocket_length_mm: number(2.0, 200.0)
+    pocket_width_mm: number(2.0, 200.0)
+    pocket_depth_mm: number(0.1, 5.0)
+    suction_hole_diameter_mm: number(0.5, 5.0)
+    suction_hole_count: integer(1, 20)
+    suction_hole_pitch_mm: number(0.5, 50.0)
+    channel_diameter_mm: number(1.0, 10.0)
+    port_diameter_mm: number(2.0, 20.0)
+    port_depth_mm: number(1.0, 30.0)
+
+
+class SampleSection(Section):
+    length_mm: Optional[number(5.0, 200.0)] = None  # default: covers the tip field (30 mm at least)
+    width_mm: Optional[number(5.0, 200.0)] = None  # default: covers the tip field (20 mm at least)
+    height_mm: number(1.0, 100.0)
+    material: Text
+    stiffness_N_per_mm: listing(number(0.01, 1e4, unit="N/mm"), 1, 64,
+                                "a non-empty list of at most 64 stiffnesses (N/mm)")
+
+
+class SampleHolderSection(Section):
+    thickness_mm: number(1.0, 50.0)
+    wall_mm: number(2.0, 50.0)
+    clearance_mm: number(0.05, 5.0)
+    corner_radius_mm: number(0.1, 10.0)
+    screw_size: choice(RIG_BOLTS, "ISO 4762 socket head cap screws of the catalogue")
+    tapped_depth_mm: number(2.0, 40.0)
+
+
+class IndenterSection(Section):
+    contact_width_mm: Optional[number(0.5, 20.0)] = None  # default: the element's contact face
+    contact_depth_mm: Optional[number(0.5, 20.0)] = None
+    tip_length_mm: Optional[number(0.5, 30.0)] = None  # default: clears the element tips
+    body_diameter_mm: Optional[number(1.0, 50.0)] = None  # default: carries the contact face
+    body_length_mm: number(1.0, 50.0)
+
+
+class ForceGaugeSection(Section):
+    model: Text
+    range_N: number(0.1, 1e5, unit="N")
+    resolution_N: number(1e-6, 10.0, unit="N")
+    stiffness_N_per_mm: number(0.1, 1e6, unit="N/mm")
+    length_mm: number(20.0, 500.0)
+    width_mm: number(10.0, 300.0)
+    depth_mm: number(10.0, 300.0)
+    shaft_diameter_mm: number(1.0, 30.0)
+    shaft_length_mm: number(1.0, 100.0)
+    mount_height_mm: number(0.0, 500.0)
+
+
+class ZAxisSection(Section):
+    body_width_mm: number(10.0, 300.0)
+    body_depth_mm: number(5.0, 300.0)
+    body_height_mm: number(10.0, 500.0)
+    carriage_thickness_mm: number(2.0, 100.0)
+    carriage_height_mm: number(5.0, 500.0)
+    travel_mm: number(0.5, 200.0)
+    position_mm: number(0.0, 200.0)
+    micrometer_diameter_mm: number(3.0, 60.0)
+    micrometer_length_mm: number(5.0, 200.0)
+    micrometer_resolution_mm: number(1e-6, 0.1)
+
+
+class XYStageSection(Section):
+    size_mm: number(10.0, 300.0)
+    base_height_mm: number(2.0, 100.0)
+    table_height_mm: number(2.0, 100.0)
+    travel_mm: Optional[number(1.0, 200.0)] = None  # default: enough to reach every tip
+
+
+class LinearAxisSection(Section):
+    rail: Text
+    block: Text
+    rail_width_mm: number(3.0, 60.0)
+    rail_height_mm: number(2.0, 60.0)
+    rail_length_mm: number(20.0, 2000.0)
+    block_width_mm: number(5.0, 200.0)
+    block_length_mm: number(5.0, 300.0)
+    block_height_mm: number(3.0, 100.0)
+    block_clearance_mm: number(0.0, 20.0)
+    rail_mount_height_mm: number(0.0, 1000.0)
+
+
+class CarrierSection(Section):
+    width_mm: number(5.0, 300.0)
+    height_mm: number(10.0, 500.0)
+    thickness_mm: number(1.0, 50.0)
+    shelf_depth_mm: number(5.0, 300.0)
+
+
+class HangerBarSection(Section):
+    section_mm: number(2.0, 100.0)
+    length_mm: number(5.0, 1000.0)
+
+
+class BracketSection(Section):
+    width_mm: Optional[number(5.0, 200.0)] = None  # default: follows the array's bolt pattern
+    ear_thickness_mm: number(0.5, 20.0)
+    ear_top_mm: Optional[number(1.0, 50.0)] = None  # default: 4 mm, lower on a short clamp plate
+    foot_thickness_mm: number(1.0, 30.0)
+    foot_length_mm: number(5.0, 200.0)
+    foot_clearance_mm: number(0.3, 20.0)
+    foot_hole_diameter_mm: number(1.0, 20.0)
+
+
+class WeightsSection(Section):
+    mass_g: number(1.0, 10000.0, unit="g")
+    density_g_per_cm3: number(0.5, 25.0, unit="g/cm3")
+    diameter_mm: number(5.0, 200.0)
+    count: integer(0, 20)
+
+
+class CalibrationSection(Section):
+    element: Optional[integer(1, 1000)] = None  # default: the stiffest element (shortest arm)
+
+
+class RigsFile(Section):
+    """``rigs.toml``: every section required but ``[calibration]`` and ``[assumptions]``."""
+
+    rigs: RigsSection
+    base_plate: BasePlateSection
+    column: ColumnSection
+    cart: CartSection
+    sample: SampleSection
+    sample_holder: SampleHolderSection
+    indenter: IndenterSection
+    force_gauge: ForceGaugeSection
+    z_axis: ZAxisSection
+    xy_stage: XYStageSection
+    linear_axis: LinearAxisSection
+    carrier: CarrierSection
+    hanger_bar: HangerBarSection
+    bracket: BracketSection
+    weights: WeightsSection
+    calibration: CalibrationSection = CalibrationSection()
+    assumptions: dict[str, Any] = {}
+
+
+# ---------------------------------------------------------------------------
+# Rules and derivations, one rig part at a time. Each takes the validated
+# file, adds every refusal to ``p`` and returns the part's geometry.
+# ---------------------------------------------------------------------------
 def rigs_hash(data: Mapping[str, Any]) -> str:
     """sha256 of the rig file's content (canonical JSON)."""
-    return hashlib.sha256(json.dumps(data, sort_keys=True, separators=(",", ":"),
-                                     default=str).encode()).hexdigest()
+    return content_hash(data)
 
 
-def _shortest_bolt(bolt: BoltSpec, needed: float, field: str, value: Any) -> float:
-    lengths = [L for L in bolt.catalogue_lengths_mm if L >= needed - 1e-9]
-    if not lengths:
-        raise DesignError(field, value, f"a smaller grip: {bolt.size} needs {_fmt(needed)} mm, "
-                          f"longest stock is {_fmt(max(bolt.catalogue_lengths_mm))} mm")
-    return float(lengths[0])
+def _stock(bolt: BoltSpec, needed: float, field: str, value: Any, p: Problems) -> float:
+    """Shortest stock length of ``bolt`` >= ``needed``; a refusal naming ``field`` if none."""
+    length = shortest_stock_length(bolt, needed)
+    if length is None:
+        p.add(field, value, f"a smaller grip: {bolt.size} needs {fmt(needed)} mm, "
+              f"longest stock is {fmt(max(bolt.catalogue_lengths_mm))} mm")
+        return max(bolt.catalogue_lengths_mm)
+    return length
 
 
-def load_rigs(path: str | Path | None = None, *, array_plan=None) -> RigDesign:
+def _axle_bolt(bearing: BearingSpec) -> BoltSpec | None:
+    return RIG_BOLTS.get(f"M{bearing.bore_mm:g}")
+
+
+def _cart(r: RigsFile, sample: SampleGeometry, p: Problems, derived: list[Derived]) -> CartGeometry:
+    c = r.cart
+    bearing = BEARINGS[c.bearing]
+    axle_bolt = _axle_bolt(bearing)
+    if axle_bolt is None:
+        p.add("cart.bearing", c.bearing, "a bearing whose bore takes one of " + ", ".join(RIG_BOLTS),
+              "the wheel rides on a socket head screw of the bore's size")
+        axle_bolt = RIG_BOLTS["M4"]
+    axle_d = axle_bolt.nominal_diameter_mm
+    p.within("cart.axle_height_mm", c.axle_height_mm, axle_d / 2 + 0.8,
+             bearing.outer_diameter_mm / 2, hi_open=True,
+             why="0.8 mm of material below the tapped axle hole, and the wheel must reach below "
+                 "the cart")
+    p.within("cart.axle_inset_mm", c.axle_inset_mm, bearing.outer_diameter_mm / 2 + 1.0,
+             c.length_mm / 2, hi_open=True, why="the wheels stay inside the cart's length")
+    p.within("cart.axle_hole_depth_mm", c.axle_hole_depth_mm, 1.5 * axle_d, c.width_mm / 2 - 2.0,
+             why="at least 1.5 d of thread, and the holes of both sides must not meet")
+    sp_id = axle_bolt.clearance_hole_mm
+    p.within("cart.spacer_outer_diameter_mm", c.spacer_outer_diameter_mm, sp_id + 0.5,
+             bearing.bore_mm + 0.4 * (bearing.outer_diameter_mm - bearing.bore_mm),
+             why="the spacer may bear on the inner ring only (about 40 % of the ring width)")
+    grip = bearing.width_mm + c.spacer_thickness_mm
+    axle_len = _stock(axle_bolt, grip + 1.5 * axle_d, "cart.bearing", c.bearing, p)
+    if axle_len - grip > c.axle_hole_depth_mm - 0.5:
+        p.add("cart.axle_hole_depth_mm", c.axle_hole_depth_mm, f">= {fmt(axle_len - grip + 0.5)} mm",
+              f"the {axle_bolt.size} x {axle_len:g} wheel screw needs the thread depth")
+    derived.append(Derived("wheel_screw_length", axle_len, "mm",
+                           f"shortest stock {axle_bolt.size} >= wheel {fmt(bearing.width_mm)} + "
+                           f"spacer {fmt(c.spacer_thickness_mm)} + 1.5 d of thread"))
+    p.within("cart.pocket_length_mm", c.pocket_length_mm, hi=c.length_mm - 10.0)
+    p.within("cart.pocket_width_mm", c.pocket_width_mm, hi=c.width_mm - 10.0)
+    p.within("cart.pocket_depth_mm", c.pocket_depth_mm, hi=c.thickness_mm / 4)
+    pitch = p.within("cart.suction_hole_pitch_mm", c.suction_hole_pitch_mm,
+                     c.suction_hole_diameter_mm + 0.5, why="0.5 mm between holes")
+    n = c.suction_hole_count
+    span = (n - 1) * pitch + c.suction_hole_diameter_mm
+    if span > c.pocket_length_mm - 1.0:
+        p.add("cart.suction_hole_count", n,
+              f"<= {int((c.pocket_length_mm - 1.0 - c.suction_hole_diameter_mm) // pitch) + 1}",
+              f"the holes span {fmt(span)} mm in a {fmt(c.pocket_length_mm)} mm pocket")
+    hole_xs = tuple((k - (n - 1) / 2) * pitch for k in range(n))
+    p.within("cart.channel_diameter_mm", c.channel_diameter_mm, c.suction_hole_diameter_mm,
+             c.thickness_mm / 3, why="wider than the suction holes, and a third of the plate at most")
+    p.within("cart.port_diameter_mm", c.port_diameter_mm, c.channel_diameter_mm,
+             c.thickness_mm - 4.0, lo_open=True)
+    p.within("cart.port_depth_mm", c.port_depth_mm, hi=c.length_mm / 2 - c.pocket_length_mm / 2)
+    holder_screw = RIG_BOLTS[r.sample_holder.screw_size]
+    return CartGeometry(
+        length_mm=c.length_mm, width_mm=c.width_mm, thickness_mm=c.thickness_mm, bearing=bearing,
+        axle_bolt=axle_bolt, axle_bolt_length_mm=axle_len, axle_height_mm=c.axle_height_mm,
+        axle_x_mm=c.length_mm / 2 - c.axle_inset_mm, axle_hole_depth_mm=c.axle_hole_depth_mm,
+        spacer_outer_diameter_mm=c.spacer_outer_diameter_mm, spacer_inner_diameter_mm=sp_id,
+        spacer_thickness_mm=c.spacer_thickness_mm, pocket_length_mm=c.pocket_length_mm,
+        pocket_width_mm=c.pocket_width_mm, pocket_depth_mm=c.pocket_depth_mm,
+        suction_hole_diameter_mm=c.suction_hole_diameter_mm, suction_hole_xs_mm=hole_xs,
+        channel_diameter_mm=c.channel_diameter_mm,
+        channel_end_x_mm=hole_xs[-1] + c.suction_hole_diameter_mm / 2 + c.channel_diameter_mm / 2,
+        port_diameter_mm=c.port_diameter_mm, port_depth_mm=c.port_depth_mm,
+        holder_screw_y_mm=holder_screw_y(r, sample),
+        holder_screw_diameter_mm=holder_screw.nominal_diameter_mm,
+        holder_tapped_depth_mm=r.sample_holder.tapped_depth_mm)
+
+
+def holder_screw_y(r: RigsFile, sample: SampleGeometry) -> float:
+    """|y| of the sample holder's two screws: mid-wall beside the window (mm)."""
+    h = r.sample_holder
+    return (sample.width_mm + 2 * h.clearance_mm) / 2 + h.wall_mm / 2
+
+
+def tip_field(plan: Plan) -> tuple[float, float]:
+    """(along the stack, across the rows) extent of the array's contact faces, mm."""
+    g = plan.slots[0].geometry
+    return plan.stack_length_mm, plan.pitch_mm + g.tip_width_mm
+
+
+def _sample(r: RigsFile, plan: Plan, p: Problems) -> tuple[SampleGeometry, tuple[float, ...]]:
+    """The sample carries every tip of the array with a margin; its size follows the
+    array unless the file sets it (30 x 20 mm at least, as the paper's)."""
+    s, c = r.sample, r.cart
+    along, across = tip_field(plan)
+    need_l, need_w = along + 2 * SAMPLE_MARGIN_MM, across + 2 * SAMPLE_MARGIN_MM
+    why = (f"every tip of the array rests on the sample with {fmt(SAMPLE_MARGIN_MM)} mm to spare "
+           f"(tip field {fmt(along)} x {fmt(across)} mm)")
+    length = max(SAMPLE_LENGTH_MM, need_l) if s.length_mm is None else \
+        p.within("sample.length_mm", s.length_mm, need_l, why=why)
+    width = max(SAMPLE_WIDTH_MM, need_w) if s.width_mm is None else \
+        p.within("sample.width_mm", s.width_mm, need_w, why=why)
+    if length < c.pocket_length_mm + 4.0 or width < c.pocket_width_mm + 4.0:
+        short = length < c.pocket_length_mm + 4.0
+        p.add("sample.length_mm" if short else "sample.width_mm", length if short else width,
+              f">= vacuum pocket + 4 mm ({fmt(c.pocket_length_mm + 4)} x "
+              f"{fmt(c.pocket_width_mm + 4)} mm)", "the sample must seal the pocket with a 2 mm margin")
+    stiffness = tuple(s.stiffness_N_per_mm)
+    if len(set(stiffness)) != len(stiffness):
+        p.add("sample.stiffness_N_per_mm", list(stiffness), "distinct values",
+              "each stiffness names one sample part")
+    return SampleGeometry(length, width, s.height_mm, s.material), stiffness
+
+
+def _holder(r: RigsFile, s: SampleGeometry, p: Problems,
+            derived: list[Derived]) -> SampleHolderGeometry:
+    h, c = r.sample_holder, r.cart
+    p.within("sample_holder.thickness_mm", h.thickness_mm, hi=s.height_mm, hi_open=True,
+             why="the sample must stand proud of its holder")
+    p.within("sample_holder.corner_radius_mm", h.corner_radius_mm,
+             hi=h.clearance_mm * (2 + math.sqrt(2)),
+             why="the window's corner arc must clear the sample's sharp corner")
+    screw = RIG_BOLTS[h.screw_size]
+    if h.wall_mm < screw.head_diameter_mm + 1.0:
+        p.add("sample_holder.wall_mm", h.wall_mm, f">= {fmt(screw.head_diameter_mm + 1.0)} mm",
+              f"the {h.screw_size} head must sit on the wall")
+    p.within("sample_holder.tapped_depth_mm", h.tapped_depth_mm, hi=c.thickness_mm - 1.0)
+    screw_len = _stock(screw, h.thickness_mm + 1.5 * screw.nominal_diameter_mm,
+                       "sample_holder.thickness_mm", h.thickness_mm, p)
+    if screw_len - h.thickness_mm > h.tapped_depth_mm - 0.5:
+        p.add("sample_holder.tapped_depth_mm", h.tapped_depth_mm,
+              f">= {fmt(screw_len - h.thickness_mm + 0.5)} mm",
+              f"the {h.screw_size} x {screw_len:g} holder screw needs the thread depth")
+    win_l, win_w = s.length_mm + 2 * h.clearance_mm, s.width_mm + 2 * h.clearance_mm
+    screw_y = holder_screw_y(r, s)
+    if win_l + 2 * h.wall_mm > c.length_mm or win_w + 2 * h.wall_mm > c.width_mm:
+        p.add("sample_holder.wall_mm", h.wall_mm,
+              f"<= {fmt(min((c.length_mm - win_l) / 2, (c.width_mm - win_w) / 2))} mm",
+              "the holder must fit on the cart")
+    d = screw.nominal_diameter_mm
+    if screw_y - d / 2 < c.channel_diameter_mm / 2 + 1.0 or screw_y + d / 2 > c.width_mm / 2 - 1.0:
+        p.add("sample_holder.wall_mm", h.wall_mm, "a value that keeps the holder screws "
+              "1 mm from the vacuum channel and the cart's sides")
+    if screw_y - d / 2 < c.pocket_width_mm / 2 + 1.0:
+        p.add("cart.pocket_width_mm", c.pocket_width_mm,
+              f"<= {fmt(2 * (screw_y - d / 2 - 1.0))} mm",
+              "the holder screws must stay 1 mm outside the vacuum pocket")
+    derived.append(Derived("sample_holder_screw_length", screw_len, "mm",
+                           f"shortest stock {h.screw_size} >= holder {fmt(h.thickness_mm)} + 1.5 d "
+                           "of thread"))
+    return SampleHolderGeometry(win_l, win_w, win_l + 2 * h.wall_mm, win_w + 2 * h.wall_mm,
+                                h.thickness_mm, h.corner_radius_mm, screw, screw_len, screw_y)
+
+
+def _base_and_column(r: RigsFile, cart: CartGeometry, p: Problems,
+                     derived: list[Derived]) -> tuple[BasePlateGeometry, ColumnGeometry]:
+    b, col = r.base_plate, r.column
+    bearing, axle_bolt = cart.bearing, cart.axle_bolt
+    p.within("base_plate.groove_width_mm", b.groove_width_mm, bearing.width_mm,
+             bearing.width_mm + 2.0, lo_open=True,
+             why=f"wider than the {bearing.designation} wheel (guided, not jammed)")
+    p.within("base_plate.groove_depth_mm", b.groove_depth_mm, hi=b.thickness_mm / 2)
+    if cart.wheel_clearance_mm - b.groove_depth_mm < 0.5:
+        p.add("base_plate.groove_depth_mm", b.groove_depth_mm,
+              f"<= {fmt(cart.wheel_clearance_mm - 0.5)} mm",
+              "the cart's underside must clear the base plate by 0.5 mm")
+    track = cart.width_mm / 2 + cart.spacer_thickness_mm + bearing.width_mm / 2
+    derived.append(Derived("groove_track_half", track, "mm",
+                           "cart half-width + spacer + half a wheel: the grooves lie under the wheels"))
+    if track + bearing.width_mm / 2 + axle_bolt.head_height_mm > b.width_mm / 2 - 2.0:
+        p.add("base_plate.width_mm", b.width_mm,
+              f">= {fmt(2 * (track + bearing.width_mm / 2 + axle_bolt.head_height_mm + 2))} mm",
+              "the wheels and their screw heads must stay on the plate")
+    if bearing.outer_diameter_mm / 2 - axle_bolt.head_diameter_mm / 2 < b.groove_depth_mm + 0.5 - 1e-9:
+        p.add("base_plate.groove_depth_mm", b.groove_depth_mm,
+              f"<= {fmt(bearing.outer_diameter_mm / 2 - axle_bolt.head_diameter_mm / 2 - 0.5)} mm",
+              "the wheel screw heads must clear the plate beside the groove")
+    hole_d = b.mount_hole_diameter_mm
+    p.within("base_plate.mount_hole_inset_mm", b.mount_hole_inset_mm, hole_d / 2 + 1.0,
+             b.width_mm / 2 - hole_d)
+    p.within("column.width_mm", col.width_mm, hi=b.width_mm - 2 * (b.mount_hole_inset_mm + hole_d / 2),
+             why="the column must stand between the corner holes")
+    p.within("base_plate.column_inset_mm", b.column_inset_mm, hi=b.length_mm / 3)
+    column_x = b.length_mm / 2 - b.column_inset_mm - col.thickness_mm / 2
+    base = BasePlateGeometry(b.length_mm, b.width_mm, b.thickness_mm, b.groove_width_mm,
+                             b.groove_depth_mm, track, hole_d, b.mount_hole_inset_mm, column_x)
+    return base, ColumnGeometry(col.thickness_mm, col.width_mm, col.height_mm)
+
+
+def _indenter(r: RigsFile, plan: Plan, p: Problems) -> IndenterGeometry:
+    """The indenter follows the element unless the file sets its sizes: contact
+    face = the element's contact face, body >= the face's diagonal + 1 mm (8 mm
+    at least), tip longer than the element tip's height (3 mm at least)."""
+    i = r.indenter
+    face_w, face_d = plan.slots[0].geometry.contact_face_mm
+    tip_h = plan.slots[0].geometry.tip_height_mm
+    w = face_w if i.contact_width_mm is None else p.within(
+        "indenter.contact_width_mm", i.contact_width_mm, face_w, face_w,
+        why="the indenter's face is the element's contact face (element.tip_width_mm); leave it "
+            "out to follow the design")
+    d = face_d if i.contact_depth_mm is None else p.within(
+        "indenter.contact_depth_mm", i.contact_depth_mm, face_d, face_d,
+        why="the indenter's face is the element's contact face (sheet.thickness_mm); leave it "
+            "out to follow the design")
+    diagonal = math.hypot(w, d)
+    body = max(INDENTER_BODY_MM, math.ceil(diagonal + 1.0)) if i.body_diameter_mm is None else \
+        p.within("indenter.body_diameter_mm", i.body_diameter_mm, diagonal,
+                 why="the tip must sit inside the body")
+    tip_len = max(INDENTER_TIP_MM, tip_h + 0.5) if i.tip_length_mm is None else \
+        p.within("indenter.tip_length_mm", i.tip_length_mm, tip_h,
+                 why="the body must clear the neighbouring element tips (element.tip_height_mm)")
+    return IndenterGeometry(w, d, tip_len, body, i.body_length_mm)
+
+
+def _gauge_and_stages(r: RigsFile, plan: Plan, base: BasePlateGeometry, indenter: IndenterGeometry,
+                      p: Problems) -> tuple[ForceGaugeSpec, ZAxisSpec, XYStageSpec]:
+    g, z, xy = r.force_gauge, r.z_axis, r.xy_stage
+    p.within("force_gauge.mount_height_mm", g.mount_height_mm, hi=g.length_mm)
+    gauge = ForceGaugeSpec(g.model, g.range_N, g.resolution_N, g.stiffness_N_per_mm, g.length_mm,
+                           g.width_mm, g.depth_mm, g.shaft_diameter_mm, g.shaft_length_mm,
+                           g.mount_height_mm)
+    if g.shaft_diameter_mm > indenter.body_diameter_mm:
+        p.add("force_gauge.shaft_diameter_mm", g.shaft_diameter_mm,
+              f"<= indenter.body_diameter_mm = {fmt(indenter.body_diameter_mm)} mm")
+    p.within("z_axis.carriage_height_mm", z.carriage_height_mm, hi=z.body_height_mm)
+    p.within("z_axis.travel_mm", z.travel_mm, hi=z.body_height_mm - z.carriage_height_mm,
+             why="the carriage travels along the body")
+    p.within("z_axis.position_mm", z.position_mm, 0.0, z.travel_mm)
+    if z.micrometer_diameter_mm > min(z.body_width_mm, z.body_depth_mm):
+        p.add("z_axis.micrometer_diameter_mm", z.micrometer_diameter_mm,
+              f"<= {fmt(min(z.body_width_mm, z.body_depth_mm))} mm",
+              "the micrometer stands on the body's top face")
+    if z.body_height_mm > r.column.height_mm:
+        p.add("z_axis.body_height_mm", z.body_height_mm,
+              f"<= column.height_mm = {fmt(r.column.height_mm)} mm")
+    z_axis = ZAxisSpec(z.body_width_mm, z.body_depth_mm, z.body_height_mm, z.carriage_thickness_mm,
+                       z.carriage_height_mm, z.travel_mm, z.position_mm, z.micrometer_diameter_mm,
+                       z.micrometer_length_mm, z.micrometer_resolution_mm)
+    if xy.size_mm / 2 > base.track_half_mm - base.groove_width_mm / 2:
+        p.add("xy_stage.size_mm", xy.size_mm,
+              f"<= {fmt(2 * (base.track_half_mm - base.groove_width_mm / 2))} mm",
+              "the stages stand on the base plate between the grooves")
+    reach = stage_reach(plan)
+    travel = xy.travel_mm if xy.travel_mm is not None else max(STAGE_TRAVEL_MM, math.ceil(2 * reach + 1))
+    if xy.travel_mm is not None:
+        p.within("xy_stage.travel_mm", travel, 2 * reach,
+                 why="the stages must bring every element's tip under the indenter")
+    return gauge, z_axis, XYStageSpec(xy.size_mm, xy.base_height_mm, xy.table_height_mm, travel)
+
+
+def stage_reach(plan: Plan) -> float:
+    """Largest offset (mm, along x or z) of a tip from the centroid of all tips:
+    the stages move the array by this much to put any element under the indenter."""
+    tips = [s.tip_centre_world_mm for s in plan.slots]
+    cx = sum(t[0] for t in tips) / len(tips)
+    cz = sum(t[2] for t in tips) / len(tips)
+    return max(max(abs(t[0] - cx), abs(t[2] - cz)) for t in tips)
+
+
+def _linear_axis(r: RigsFile, p: Problems) -> LinearAxisSpec:
+    a = r.linear_axis
+    p.within("linear_axis.block_height_mm", a.block_height_mm, a.rail_height_mm, lo_open=True)
+    p.within("linear_axis.block_clearance_mm", a.block_clearance_mm, hi=a.rail_height_mm,
+             hi_open=True)
+    p.within("linear_axis.block_length_mm", a.block_length_mm, hi=a.rail_length_mm)
+    p.within("linear_axis.block_width_mm", a.block_width_mm, a.rail_width_mm + 2.0)
+    p.within("linear_axis.rail_mount_height_mm", a.rail_mount_height_mm,
+             hi=r.column.height_mm - a.rail_length_mm)
+    return LinearAxisSpec(a.rail, a.block, a.rail_width_mm, a.rail_height_mm, a.rail_length_mm,
+                          a.block_width_mm, a.block_length_mm, a.block_height_mm,
+                          a.block_clearance_mm, a.rail_mount_height_mm)
+
+
+def _carrier_and_bar(r: RigsFile, p: Problems) -> tuple[CarrierGeometry, HangerBarGeometry]:
+    c, bar = r.carrier, r.hanger_bar
+    if c.shelf_depth_mm - c.thickness_mm < bar.section_mm + 2.0:
+        p.add("carrier.shelf_depth_mm", c.shelf_depth_mm,
+              f">= {fmt(c.thickness_mm + bar.section_mm + 2.0)} mm",
+              "the hanger bar hangs from the shelf clear of the carrier plate")
+    p.within("carrier.thickness_mm", c.thickness_mm, hi=c.height_mm / 2)
+    return (CarrierGeometry(c.width_mm, c.height_mm, c.thickness_mm, c.shelf_depth_mm),
+            HangerBarGeometry(bar.section_mm, bar.length_mm))
+
+
+def bracket_width_range(plan: Plan) -> tuple[float, float]:
+    """(narrowest, widest) bracket ear (mm): it carries both mounting holes and the
+    bolt heads, and must clear the heads of the array's clamp bolts."""
+    mount = plan.clamp.holes[-2:]
+    b = plan.bolt
+    lo = abs(mount[0].x_mm - mount[1].x_mm) + mount[0].diameter_mm + b.head_diameter_mm
+    clamp_heads = min(abs(h.x_mm) for h in plan.clamp.holes[:4]) - b.head_diameter_mm / 2
+    return lo, 2 * (clamp_heads - EAR_HEAD_CLEARANCE_MM)
+
+
+def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
+             derived: list[Derived]) -> BracketGeometry:
+    br = r.bracket
+    c = plan.clamp
+    mount = c.holes[-2:]
+    y_h = mount[0].y_mm
+    b = plan.bolt
+    lo, hi = bracket_width_range(plan)
+    if br.width_mm is None:
+        width = min(max(BRACKET_WIDTH_MM, lo), hi)
+        if lo > hi + LIMIT_TOLERANCE_MM:  # the array leaves no room: name the design field
+            p.add("clamp.bolt_spacing_mm", plan.raw["clamp"]["bolt_spacing_mm"],
+                  "a pattern that leaves the bracket ear room between the clamp bolt heads",
+                  f"the ear needs {fmt(lo)} mm between heads {fmt(hi)} mm apart",
+                  file=Path(plan.source).name)
+    else:
+        width = p.within("bracket.width_mm", br.width_mm, lo, hi,
+                         why="the ear must carry both mounting holes and the bolt heads, and clear "
+                             "the heads of the array's clamp bolts")
+    head_bottom = y_h - b.head_diameter_mm / 2  # array frame
+    nut_bottom = y_h - b.nut_width_across_flats_mm / 2  # nuts sit flats up, as in the array
+    foot_top = min(0.0, head_bottom, nut_bottom) - br.foot_clearance_mm - y_h
+    grip = br.ear_thickness_mm + 2 * c.thickness_mm + plan.stack_length_mm
+    needed = grip + b.nut_height_mm + 2 * b.thread_pitch_mm
+    bolt_len = shortest_stock_length(b, needed)
+    if bolt_len is None:  # the array's stack leaves no stock bolt for the ear: name the design
+        bolt_len = max(b.catalogue_lengths_mm)
+        p.add("array.columns", plan.columns, f"fewer columns, thinner clamp plates or a larger bolt "
+              f"than {b.size}", f"the bracket bolt through ear {fmt(br.ear_thickness_mm)} mm, both "
+              f"clamp plates and the stack needs {fmt(needed)} mm, longest stock {b.size} is "
+              f"{fmt(bolt_len)} mm", file=Path(plan.source).name)
+    derived.append(Derived("bracket_bolt_length", bolt_len, "mm",
+                           f"shortest stock {b.size} through ear {fmt(br.ear_thickness_mm)}, both "
+                           f"clamp plates and the stack (grip {fmt(grip)}) + nut + 2 thread pitches"))
+    top_lo, top_hi = mount[0].diameter_mm / 2 + 0.5, c.height_mm - y_h  # around the hole, on the plate
+    ear_top = min(EAR_TOP_MM, top_hi) if br.ear_top_mm is None else \
+        p.within("bracket.ear_top_mm", br.ear_top_mm, top_lo, top_hi,
+                 why="the ear reaches around the mounting holes and stays on the clamp plate")
+    p.within("bracket.foot_length_mm", br.foot_length_mm, br.ear_thickness_mm + bar.section_mm,
+             lo_open=True)
+    p.within("bracket.foot_hole_diameter_mm", br.foot_hole_diameter_mm, hi=width - 2.0)
+    if br.foot_length_mm / 2 - br.foot_hole_diameter_mm / 2 < br.ear_thickness_mm + 0.5:
+        p.add("bracket.foot_length_mm", br.foot_length_mm,
+              f">= {fmt(2 * (br.ear_thickness_mm + 0.5) + br.foot_hole_diameter_mm)} mm",
+              "the foot's centre hole must clear the ear")
+    return BracketGeometry(
+        width_mm=width, ear_thickness_mm=br.ear_thickness_mm, ear_top_mm=ear_top,
+        foot_thickness_mm=br.foot_thickness_mm, foot_length_mm=br.foot_length_mm,
+        foot_top_mm=foot_top, foot_hole_diameter_mm=br.foot_hole_diameter_mm,
+        hole_xs_mm=(mount[0].x_mm, mount[1].x_mm), hole_diameter_mm=mount[0].diameter_mm,
+        bolt=b, bolt_length_mm=bolt_len)
+
+
+def _weights(r: RigsFile, carrier: CarrierGeometry, p: Problems,
+             derived: list[Derived]) -> WeightSpec:
+    w = r.weights
+    p.within("weights.diameter_mm", w.diameter_mm,
+             hi=min(carrier.width_mm, 2 * (carrier.shelf_depth_mm - carrier.thickness_mm)),
+             why="the weights stand on the carrier's shelf")
+    height = w.mass_g / w.density_g_per_cm3 * 1000.0 / (math.pi * (w.diameter_mm / 2) ** 2)
+    derived.append(Derived("weight_height", height, "mm",
+                           f"{fmt(w.mass_g)} g of density {fmt(w.density_g_per_cm3)} g/cm3 as a "
+                           f"cylinder of diameter {fmt(w.diameter_mm)} mm"))
+    return WeightSpec(w.mass_g, w.density_g_per_cm3, w.diameter_mm, height, w.count)
+
+
+def stiffest_element(plan: Plan) -> int:
+    """The reference element: the stiffest, i.e. the shortest arm (K ~ 1/a^2); of
+    equal arms the highest number (the paper's reference element 8 of the two 4 mm arms)."""
+    return max(plan.slots, key=lambda s: (-s.geometry.arm_length_mm, s.number)).number
+
+
+def _calibration_element(r: RigsFile, plan: Plan, p: Problems) -> int:
+    n = r.calibration.element
+    if n is None:
+        return stiffest_element(plan)
+    if n > len(plan.slots):
+        p.add("calibration.element", n, f"1 ... {len(plan.slots)}",
+              "an element of the array (leave it out for the stiffest)")
+    return n
+
+
+def validate_rigs(data: Mapping[str, Any], plan: Plan,
+                  file: str = "") -> tuple[RigDesign | None, Problems]:
+    """The rig plan and every refusal of the rig file against the array ``plan``."""
+    p = Problems(file)
+    r = validate(RigsFile, data, p)
+    assumptions = read_assumptions(data, RigsFile, p, "cart.bearing")
+    if r is None:
+        return None, p
+    derived: list[Derived] = []
+    sample, stiffness = _sample(r, plan, p)
+    cart = _cart(r, sample, p, derived)
+    holder = _holder(r, sample, p, derived)
+    base, column = _base_and_column(r, cart, p, derived)
+    indenter = _indenter(r, plan, p)
+    gauge, z_axis, xy = _gauge_and_stages(r, plan, base, indenter, p)
+    lin = _linear_axis(r, p)
+    carrier, bar = _carrier_and_bar(r, p)
+    bracket = _bracket(r, plan, bar, p, derived)
+    weights = _weights(r, carrier, p, derived)
+    cal = _calibration_element(r, plan, p)
+    if p:
+        return None, p
+    return RigDesign(
+        name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
+        base=base, column=column, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
+        holder=holder, indenter=indenter, gauge=gauge, z_axis=z_axis, xy_stage=xy,
+        linear_axis=lin, carrier=carrier, bar=bar, bracket=bracket, weights=weights,
+        calibration_element=cal, derived=tuple(derived), assumptions=assumptions), p
+
+
+def rigs_from_dict(data: Mapping[str, Any], plan: Plan, source: str = "<dict>",
+                   file: str = "") -> RigDesign:
+    """Validate raw rig tables against the array ``plan``. See :func:`load_rigs`.
+
+    Raises:
+        DesignErrors: every refusal at once.
+    """
+    rigs, problems = validate_rigs(data, plan, file)
+    problems.raise_if_any()
+    return _with_source(rigs, source)
+
+
+def _with_source(rigs: RigDesign, source: str) -> RigDesign:
+    from dataclasses import replace
+
+    return replace(rigs, source=source)
+
+
+def load_rigs(path: str | Path | None = None, *, array_plan: Plan | None = None) -> RigDesign:
     """Read a rig file and return its validated rig plan.
 
     Args:
@@ -366,318 +889,13 @@ def load_rigs(path: str | Path | None = None, *, array_plan=None) -> RigDesign:
 
     Raises:
         DesignError: unreadable file, missing/unknown key, or a value outside
-            its allowed range (the message names field, value and range).
+            its allowed range (the message names file, field, value and range).
     """
     p = Path(path) if path is not None else DEFAULT_RIGS
-    data = read_toml(p, "rigs file")
     if array_plan is None:
         from tactcad.design.array import load_design
         array_plan = load_design()
-    return rigs_from_dict(data, array_plan, source=str(p))
-
-
-def rigs_from_dict(data: Mapping[str, Any], plan, source: str = "<dict>") -> RigDesign:
-    """Validate raw rig tables against the array ``plan``. See :func:`load_rigs`."""
-    check_keys(data, _SCHEMA, ("assumptions",), what="<rigs>")
-    r = _RigReader(data)
-    assumptions = read_assumptions(data, _SCHEMA, example="cart.bearing")
-    derived: list[Derived] = []
-
-    # --- cart wheels first: the base plate's grooves follow from them ---
-    bearing_name = r.raw("cart", "bearing")
-    if bearing_name not in BEARINGS:
-        raise DesignError("cart.bearing", bearing_name, "one of " + ", ".join(BEARINGS))
-    bearing = BEARINGS[bearing_name]
-    axle_size = f"M{bearing.bore_mm:g}"
-    if axle_size not in RIG_BOLTS:
-        raise DesignError("cart.bearing", bearing_name,
-                          "a bearing whose bore takes one of " + ", ".join(RIG_BOLTS),
-                          "the wheel rides on a socket head screw of the bore's size")
-    axle_bolt = RIG_BOLTS[axle_size]
-
-    cart_l = r.n("cart", "length_mm")
-    cart_w = r.n("cart", "width_mm")
-    cart_t = r.n("cart", "thickness_mm")
-    axle_hole_d = axle_bolt.nominal_diameter_mm
-    axle_h = r.n("cart", "axle_height_mm", axle_hole_d / 2 + 0.8, bearing.outer_diameter_mm / 2,
-                 why="0.8 mm of material below the tapped axle hole, and the wheel must reach "
-                     "below the cart", hi_open=True)
-    axle_inset = r.n("cart", "axle_inset_mm", bearing.outer_diameter_mm / 2 + 1.0, cart_l / 2,
-                     why="the wheels stay inside the cart's length", hi_open=True)
-    axle_depth = r.n("cart", "axle_hole_depth_mm", 1.5 * axle_hole_d, cart_w / 2 - 2.0,
-                     why="at least 1.5 d of thread, and the holes of both sides must not meet")
-    sp_t = r.n("cart", "spacer_thickness_mm")
-    sp_id = axle_bolt.clearance_hole_mm
-    sp_od = r.n("cart", "spacer_outer_diameter_mm", sp_id + 0.5,
-                bearing.bore_mm + 0.4 * (bearing.outer_diameter_mm - bearing.bore_mm),
-                why="the spacer may bear on the inner ring only (about 40 % of the ring width)")
-    grip = bearing.width_mm + sp_t
-    axle_len = _shortest_bolt(axle_bolt, grip + 1.5 * axle_hole_d, "cart.bearing", bearing_name)
-    if axle_len - grip > axle_depth - 0.5:
-        raise DesignError("cart.axle_hole_depth_mm", axle_depth,
-                          f">= {_fmt(axle_len - grip + 0.5)} mm",
-                          f"the {axle_size} x {axle_len:g} wheel screw needs the thread depth")
-    derived.append(Derived("wheel_screw_length", axle_len, "mm",
-                           f"shortest stock {axle_size} >= wheel {_fmt(bearing.width_mm)} + spacer "
-                           f"{_fmt(sp_t)} + 1.5 d of thread"))
-
-    pocket_l = r.n("cart", "pocket_length_mm", hi=cart_l - 10.0)
-    pocket_w = r.n("cart", "pocket_width_mm", hi=cart_w - 10.0)
-    pocket_d = r.n("cart", "pocket_depth_mm", hi=cart_t / 4)
-    suction_d = r.n("cart", "suction_hole_diameter_mm")
-    n_holes = r.integer("cart", "suction_hole_count", 1, 20)
-    pitch = r.n("cart", "suction_hole_pitch_mm", suction_d + 0.5, why="0.5 mm between holes")
-    span = (n_holes - 1) * pitch + suction_d
-    if span > pocket_l - 1.0:
-        raise DesignError("cart.suction_hole_count", n_holes,
-                          f"<= {int((pocket_l - 1.0 - suction_d) // pitch) + 1}",
-                          f"the holes span {_fmt(span)} mm in a {_fmt(pocket_l)} mm pocket")
-    hole_xs = tuple((k - (n_holes - 1) / 2) * pitch for k in range(n_holes))
-    channel_d = r.n("cart", "channel_diameter_mm", suction_d, cart_t / 3,
-                    why="wider than the suction holes, and a third of the plate at most")
-    port_d = r.n("cart", "port_diameter_mm", channel_d, cart_t - 4.0, lo_open=True)
-    port_depth = r.n("cart", "port_depth_mm", hi=cart_l / 2 - pocket_l / 2)
-    channel_end = hole_xs[-1] + suction_d / 2 + channel_d / 2
-
-    # --- sample and its holder ---
-    s_l = r.n("sample", "length_mm")
-    s_w = r.n("sample", "width_mm")
-    s_h = r.n("sample", "height_mm")
-    if s_l < pocket_l + 4.0 or s_w < pocket_w + 4.0:
-        raise DesignError("sample.length_mm" if s_l < pocket_l + 4.0 else "sample.width_mm",
-                          s_l if s_l < pocket_l + 4.0 else s_w,
-                          f">= vacuum pocket + 4 mm ({_fmt(pocket_l + 4)} x {_fmt(pocket_w + 4)} mm)",
-                          "the sample must seal the pocket with a 2 mm margin")
-    stiff = r.raw("sample", "stiffness_N_per_mm")
-    if not isinstance(stiff, list) or not stiff:
-        raise DesignError("sample.stiffness_N_per_mm", stiff, "a non-empty list of stiffnesses (N/mm)")
-    stiffness = tuple(_check_number(f"sample.stiffness_N_per_mm[{i}]", k, 0.01, 1e4, unit="N/mm")
-                      for i, k in enumerate(stiff, start=1))
-    if len(set(stiffness)) != len(stiffness):
-        raise DesignError("sample.stiffness_N_per_mm", stiff, "distinct values",
-                          "each stiffness names one sample part")
-    sample = SampleGeometry(s_l, s_w, s_h, r.text("sample", "material"))
-
-    clear = r.n("sample_holder", "clearance_mm")
-    wall = r.n("sample_holder", "wall_mm")
-    h_t = r.n("sample_holder", "thickness_mm", hi=s_h, hi_open=True,
-              why="the sample must stand proud of its holder")
-    corner = r.n("sample_holder", "corner_radius_mm", hi=clear * (2 + math.sqrt(2)),
-                 why="the window's corner arc must clear the sample's sharp corner")
-    screw_size = r.raw("sample_holder", "screw_size")
-    if screw_size not in RIG_BOLTS:
-        raise DesignError("sample_holder.screw_size", screw_size, "one of " + ", ".join(RIG_BOLTS))
-    screw = RIG_BOLTS[screw_size]
-    if wall < screw.head_diameter_mm + 1.0:
-        raise DesignError("sample_holder.wall_mm", wall, f">= {_fmt(screw.head_diameter_mm + 1.0)} mm",
-                          f"the {screw_size} head must sit on the wall")
-    tapped = r.n("sample_holder", "tapped_depth_mm", hi=cart_t - 1.0)
-    screw_len = _shortest_bolt(screw, h_t + 1.5 * screw.nominal_diameter_mm,
-                               "sample_holder.thickness_mm", h_t)
-    if screw_len - h_t > tapped - 0.5:
-        raise DesignError("sample_holder.tapped_depth_mm", tapped, f">= {_fmt(screw_len - h_t + 0.5)} mm",
-                          f"the {screw_size} x {screw_len:g} holder screw needs the thread depth")
-    win_l, win_w = s_l + 2 * clear, s_w + 2 * clear
-    screw_y = win_w / 2 + wall / 2
-    holder = SampleHolderGeometry(win_l, win_w, win_l + 2 * wall, win_w + 2 * wall, h_t, corner,
-                                  screw, screw_len, screw_y)
-    if win_l + 2 * wall > cart_l or win_w + 2 * wall > cart_w:
-        raise DesignError("sample_holder.wall_mm", wall,
-                          f"<= {_fmt(min((cart_l - win_l) / 2, (cart_w - win_w) / 2))} mm",
-                          "the holder must fit on the cart")
-    if screw_y - screw.nominal_diameter_mm / 2 < channel_d / 2 + 1.0 or \
-            screw_y + screw.nominal_diameter_mm / 2 > cart_w / 2 - 1.0:
-        raise DesignError("sample_holder.wall_mm", wall, "a value that keeps the holder screws "
-                          "1 mm from the vacuum channel and the cart's sides")
-    if screw_y - screw.nominal_diameter_mm / 2 < pocket_w / 2 + 1.0:
-        raise DesignError("cart.pocket_width_mm", pocket_w,
-                          f"<= {_fmt(2 * (screw_y - screw.nominal_diameter_mm / 2 - 1.0))} mm",
-                          "the holder screws must stay 1 mm outside the vacuum pocket")
-    derived.append(Derived("sample_holder_screw_length", screw_len, "mm",
-                           f"shortest stock {screw_size} >= holder {_fmt(h_t)} + 1.5 d of thread"))
-
-    cart = CartGeometry(
-        length_mm=cart_l, width_mm=cart_w, thickness_mm=cart_t, bearing=bearing,
-        axle_bolt=axle_bolt, axle_bolt_length_mm=axle_len, axle_height_mm=axle_h,
-        axle_x_mm=cart_l / 2 - axle_inset, axle_hole_depth_mm=axle_depth,
-        spacer_outer_diameter_mm=sp_od, spacer_inner_diameter_mm=sp_id, spacer_thickness_mm=sp_t,
-        pocket_length_mm=pocket_l, pocket_width_mm=pocket_w, pocket_depth_mm=pocket_d,
-        suction_hole_diameter_mm=suction_d, suction_hole_xs_mm=hole_xs,
-        channel_diameter_mm=channel_d, channel_end_x_mm=channel_end, port_diameter_mm=port_d,
-        port_depth_mm=port_depth, holder_screw_y_mm=screw_y,
-        holder_screw_diameter_mm=screw.nominal_diameter_mm, holder_tapped_depth_mm=tapped)
-
-    # --- base plate: grooves under the wheels ---
-    b_l = r.n("base_plate", "length_mm")
-    b_w = r.n("base_plate", "width_mm")
-    b_t = r.n("base_plate", "thickness_mm")
-    g_w = r.n("base_plate", "groove_width_mm", bearing.width_mm, bearing.width_mm + 2.0,
-              lo_open=True, why=f"wider than the {bearing.designation} wheel (guided, not jammed)")
-    g_d = r.n("base_plate", "groove_depth_mm", hi=b_t / 2)
-    if cart.wheel_clearance_mm - g_d < 0.5:
-        raise DesignError("base_plate.groove_depth_mm", g_d,
-                          f"<= {_fmt(cart.wheel_clearance_mm - 0.5)} mm",
-                          "the cart's underside must clear the base plate by 0.5 mm")
-    track = cart_w / 2 + sp_t + bearing.width_mm / 2
-    derived.append(Derived("groove_track_half", track, "mm",
-                           "cart half-width + spacer + half a wheel: the grooves lie under the wheels"))
-    head_r = axle_bolt.head_diameter_mm / 2
-    if track + bearing.width_mm / 2 + axle_bolt.head_height_mm > b_w / 2 - 2.0:
-        raise DesignError("base_plate.width_mm", b_w,
-                          f">= {_fmt(2 * (track + bearing.width_mm / 2 + axle_bolt.head_height_mm + 2))} mm",
-                          "the wheels and their screw heads must stay on the plate")
-    if bearing.outer_diameter_mm / 2 - head_r < g_d + 0.5 - 1e-9:
-        raise DesignError("base_plate.groove_depth_mm", g_d,
-                          f"<= {_fmt(bearing.outer_diameter_mm / 2 - head_r - 0.5)} mm",
-                          "the wheel screw heads must clear the plate beside the groove")
-    hole_d = r.n("base_plate", "mount_hole_diameter_mm")
-    inset = r.n("base_plate", "mount_hole_inset_mm", hole_d / 2 + 1.0, b_w / 2 - hole_d)
-    col_t = r.n("column", "thickness_mm")
-    col_w = r.n("column", "width_mm", hi=b_w - 2 * (inset + hole_d / 2),
-                why="the column must stand between the corner holes")
-    col_h = r.n("column", "height_mm")
-    col_inset = r.n("base_plate", "column_inset_mm", hi=b_l / 3)
-    column_x = b_l / 2 - col_inset - col_t / 2
-    base = BasePlateGeometry(b_l, b_w, b_t, g_w, g_d, track, hole_d, inset, column_x)
-    column = ColumnGeometry(col_t, col_w, col_h)
-
-    # --- indenter and bought parts ---
-    indenter = IndenterGeometry(
-        contact_width_mm=r.n("indenter", "contact_width_mm"),
-        contact_depth_mm=r.n("indenter", "contact_depth_mm"),
-        tip_length_mm=r.n("indenter", "tip_length_mm"),
-        body_diameter_mm=r.n("indenter", "body_diameter_mm"),
-        body_length_mm=r.n("indenter", "body_length_mm"))
-    if math.hypot(indenter.contact_width_mm, indenter.contact_depth_mm) > indenter.body_diameter_mm:
-        raise DesignError("indenter.body_diameter_mm", indenter.body_diameter_mm,
-                          f">= {_fmt(math.hypot(indenter.contact_width_mm, indenter.contact_depth_mm))} mm",
-                          "the tip must sit inside the body")
-    if indenter.tip_length_mm < plan.element(1).geometry.tip_height_mm:
-        raise DesignError("indenter.tip_length_mm", indenter.tip_length_mm,
-                          f">= {_fmt(plan.element(1).geometry.tip_height_mm)} mm",
-                          "the body must clear the neighbouring element tips")
-    g_len = r.n("force_gauge", "length_mm")
-    gauge = ForceGaugeSpec(
-        model=r.text("force_gauge", "model"), range_N=r.n("force_gauge", "range_N", unit="N"),
-        resolution_N=r.n("force_gauge", "resolution_N", unit="N"),
-        stiffness_N_per_mm=r.n("force_gauge", "stiffness_N_per_mm", unit="N/mm"),
-        length_mm=g_len, width_mm=r.n("force_gauge", "width_mm"),
-        depth_mm=r.n("force_gauge", "depth_mm"),
-        shaft_diameter_mm=r.n("force_gauge", "shaft_diameter_mm"),
-        shaft_length_mm=r.n("force_gauge", "shaft_length_mm"),
-        mount_height_mm=r.n("force_gauge", "mount_height_mm", hi=g_len))
-    if gauge.shaft_diameter_mm > indenter.body_diameter_mm:
-        raise DesignError("force_gauge.shaft_diameter_mm", gauge.shaft_diameter_mm,
-                          f"<= indenter.body_diameter_mm = {_fmt(indenter.body_diameter_mm)} mm")
-    zb_h = r.n("z_axis", "body_height_mm")
-    zc_h = r.n("z_axis", "carriage_height_mm", hi=zb_h)
-    travel = r.n("z_axis", "travel_mm", hi=zb_h - zc_h,
-                 why="the carriage travels along the body")
-    z_axis = ZAxisSpec(
-        body_width_mm=r.n("z_axis", "body_width_mm"), body_depth_mm=r.n("z_axis", "body_depth_mm"),
-        body_height_mm=zb_h, carriage_thickness_mm=r.n("z_axis", "carriage_thickness_mm"),
-        carriage_height_mm=zc_h, travel_mm=travel,
-        position_mm=r.n("z_axis", "position_mm", 0.0, travel),
-        micrometer_diameter_mm=r.n("z_axis", "micrometer_diameter_mm"),
-        micrometer_length_mm=r.n("z_axis", "micrometer_length_mm"),
-        micrometer_resolution_mm=r.n("z_axis", "micrometer_resolution_mm"))
-    if z_axis.micrometer_diameter_mm > min(z_axis.body_width_mm, z_axis.body_depth_mm):
-        raise DesignError("z_axis.micrometer_diameter_mm", z_axis.micrometer_diameter_mm,
-                          f"<= {_fmt(min(z_axis.body_width_mm, z_axis.body_depth_mm))} mm",
-                          "the micrometer stands on the body's top face")
-    if z_axis.body_height_mm > col_h:
-        raise DesignError("z_axis.body_height_mm", zb_h, f"<= column.height_mm = {_fmt(col_h)} mm")
-    xy = XYStageSpec(size_mm=r.n("xy_stage", "size_mm"),
-                     base_height_mm=r.n("xy_stage", "base_height_mm"),
-                     table_height_mm=r.n("xy_stage", "table_height_mm"),
-                     travel_mm=r.n("xy_stage", "travel_mm"))
-    if xy.size_mm / 2 > track - g_w / 2:
-        raise DesignError("xy_stage.size_mm", xy.size_mm, f"<= {_fmt(2 * (track - g_w / 2))} mm",
-                          "the stages stand on the base plate between the grooves")
-    rail_w = r.n("linear_axis", "rail_width_mm")
-    rail_h = r.n("linear_axis", "rail_height_mm")
-    blk_h = r.n("linear_axis", "block_height_mm", rail_h, lo_open=True)
-    blk_c = r.n("linear_axis", "block_clearance_mm", hi=rail_h, hi_open=True)
-    rail_len = r.n("linear_axis", "rail_length_mm")
-    blk_l = r.n("linear_axis", "block_length_mm", hi=rail_len)
-    lin = LinearAxisSpec(
-        rail=r.text("linear_axis", "rail"), block=r.text("linear_axis", "block"),
-        rail_width_mm=rail_w, rail_height_mm=rail_h, rail_length_mm=rail_len,
-        block_width_mm=r.n("linear_axis", "block_width_mm", rail_w + 2.0),
-        block_length_mm=blk_l, block_height_mm=blk_h, block_clearance_mm=blk_c,
-        rail_mount_height_mm=r.n("linear_axis", "rail_mount_height_mm", hi=col_h - rail_len))
-    carrier = CarrierGeometry(
-        width_mm=r.n("carrier", "width_mm"), height_mm=r.n("carrier", "height_mm"),
-        thickness_mm=r.n("carrier", "thickness_mm"),
-        shelf_depth_mm=r.n("carrier", "shelf_depth_mm"))
-    bar = HangerBarGeometry(section_mm=r.n("hanger_bar", "section_mm"),
-                            length_mm=r.n("hanger_bar", "length_mm"))
-    if carrier.shelf_depth_mm - carrier.thickness_mm < bar.section_mm + 2.0:
-        raise DesignError("carrier.shelf_depth_mm", carrier.shelf_depth_mm,
-                          f">= {_fmt(carrier.thickness_mm + bar.section_mm + 2.0)} mm",
-                          "the hanger bar hangs from the shelf clear of the carrier plate")
-    if carrier.thickness_mm > carrier.height_mm / 2:
-        raise DesignError("carrier.thickness_mm", carrier.thickness_mm,
-                          f"<= {_fmt(carrier.height_mm / 2)} mm")
-
-    # --- bracket: bolted through the clamp plates' two bridge holes ---
-    c = plan.clamp
-    mount = c.holes[-2:]
-    y_h = mount[0].y_mm
-    b = plan.bolt
-    br_w = r.n("bracket", "width_mm", abs(mount[0].x_mm - mount[1].x_mm) + mount[0].diameter_mm
-               + b.head_diameter_mm, why="the ear must carry both mounting holes and the bolt heads")
-    array_heads = [(h.x_mm, h.y_mm) for h in c.holes[:4]]
-    limit = min(abs(x) for x, _ in array_heads) - b.head_diameter_mm / 2
-    if br_w / 2 > limit - 0.3:
-        raise DesignError("bracket.width_mm", br_w, f"<= {_fmt(2 * (limit - 0.3))} mm",
-                          "the ear must clear the heads of the array's clamp bolts")
-    ear_t = r.n("bracket", "ear_thickness_mm")
-    foot_clear = r.n("bracket", "foot_clearance_mm")
-    head_bottom = y_h - b.head_diameter_mm / 2  # array frame
-    nut_bottom = y_h - b.nut_width_across_flats_mm / 2  # nuts sit flats up, as in the array
-    foot_top = min(0.0, head_bottom, nut_bottom) - foot_clear - y_h  # relative to the holes
-    grip = ear_t + 2 * c.thickness_mm + plan.stack_length_mm
-    br_bolt_len = _shortest_bolt(b, grip + b.nut_height_mm + 2 * b.thread_pitch_mm,
-                                 "bracket.ear_thickness_mm", ear_t)
-    derived.append(Derived("bracket_bolt_length", br_bolt_len, "mm",
-                           f"shortest stock {b.size} through ear {_fmt(ear_t)}, both clamp plates "
-                           f"and the stack (grip {_fmt(grip)}) + nut + 2 thread pitches"))
-    bracket = BracketGeometry(
-        width_mm=br_w, ear_thickness_mm=ear_t,
-        ear_top_mm=r.n("bracket", "ear_top_mm", mount[0].diameter_mm / 2 + 0.5,
-                       c.height_mm - y_h),
-        foot_thickness_mm=r.n("bracket", "foot_thickness_mm"),
-        foot_length_mm=r.n("bracket", "foot_length_mm", ear_t + bar.section_mm, lo_open=True),
-        foot_top_mm=foot_top,
-        foot_hole_diameter_mm=r.n("bracket", "foot_hole_diameter_mm", hi=br_w - 2.0),
-        hole_xs_mm=(mount[0].x_mm, mount[1].x_mm), hole_diameter_mm=mount[0].diameter_mm,
-        bolt=b, bolt_length_mm=br_bolt_len)
-    if bracket.foot_length_mm / 2 - bracket.foot_hole_diameter_mm / 2 < ear_t + 0.5:
-        raise DesignError("bracket.foot_length_mm", bracket.foot_length_mm,
-                          f">= {_fmt(2 * (ear_t + 0.5) + bracket.foot_hole_diameter_mm)} mm",
-                          "the foot's centre hole must clear the ear")
-
-    mass = r.n("weights", "mass_g", unit="g")
-    rho = r.n("weights", "density_g_per_cm3", unit="g/cm3")
-    w_d = r.n("weights", "diameter_mm", hi=min(carrier.width_mm,
-                                               2 * (carrier.shelf_depth_mm - carrier.thickness_mm)),
-              why="the weights stand on the carrier's shelf")
-    w_h = mass / rho * 1000.0 / (math.pi * (w_d / 2) ** 2)
-    derived.append(Derived("weight_height", w_h, "mm",
-                           f"{_fmt(mass)} g of density {_fmt(rho)} g/cm3 as a cylinder of "
-                           f"diameter {_fmt(w_d)} mm"))
-    weights = WeightSpec(mass, rho, w_d, w_h, r.integer("weights", "count", 0, 20))
-
-    n_el = len(plan.slots)
-    cal = r.integer("calibration", "element", 1, n_el)
-
-    return RigDesign(
-        name=r.text("rigs", "name"), description=r.text("rigs", "description"), source=source,
-        rigs_hash=rigs_hash(data), base=base, column=column, cart=cart, sample=sample,
-        sample_stiffness_N_per_mm=stiffness, holder=holder, indenter=indenter, gauge=gauge,
-        z_axis=z_axis, xy_stage=xy, linear_axis=lin, carrier=carrier, bar=bar, bracket=bracket,
-        weights=weights, calibration_element=cal, derived=tuple(derived), assumptions=assumptions)
+    return rigs_from_dict(read_toml(p, "rigs file"), array_plan, source=str(p), file=p.name)
 
 
 def default_rigs_data() -> dict[str, Any]:

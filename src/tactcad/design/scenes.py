@@ -1,23 +1,40 @@
 """Scenes file (``hardware/scenes.toml``) -> validated scene specs (no CAD kernel).
 
 A scene names its rig, the groups of parts it shows and their level of
-detail; :mod:`tactcad.assembly.scenes` assembles it.
+detail; :mod:`tactcad.assembly.scenes` assembles it. The file is read by the
+schema mechanism of :mod:`tactcad.design.schema`: every refusal at once.
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Mapping, Optional
 
-from tactcad.design.array import Plan, read_toml
-from tactcad.errors import DesignError
+from tactcad.design.array import Plan
+from tactcad.design.schema import (NAME_ALLOWED, NAME_PATTERN, Problems, Section, Text, choice,
+                                   listing, number, read_toml, validate)
 
 DEFAULT_SCENES = Path(__file__).resolve().parents[3] / "hardware" / "scenes.toml"
 #: Levels of detail: ``full`` (fabricated parts as made) and ``envelope``
 #: (bought parts as their catalogue envelope).
 LEVELS = ("envelope", "full")
-RIGS = ("wirecut", "array", "calibration", "sample-stiffness", "array-evaluation")
+MODELLED = {"fabricated": "full", "purchased": "envelope"}
+#: Every rig and the groups of parts it has (a design may leave a group empty,
+#: e.g. ``spacers`` of a one-column array).
+RIG_GROUPS: dict[str, tuple[str, ...]] = {
+    "wirecut": ("elements", "spacers"),
+    "array": ("array",),
+    "calibration": ("base_plate", "column", "z_axis", "force_gauge", "indenter", "xy_stage",
+                    "bracket", "array"),
+    "sample-stiffness": ("base_plate", "column", "z_axis", "force_gauge", "indenter", "cart",
+                         "sample_holder", "sample"),
+    "array-evaluation": ("base_plate", "column", "linear_axis", "carrier", "hanger_bar", "weights",
+                         "bracket", "array", "cart", "sample_holder", "sample"),
+}
+RIGS = tuple(RIG_GROUPS)
+MAX_SCENES = 64
 
 
 @dataclass(frozen=True)
@@ -32,6 +49,25 @@ class SceneSpec:
     sample_stiffness_N_per_mm: float | None = None
 
 
+class DetailTable(Section):
+    fabricated: Optional[choice(LEVELS)] = None
+    purchased: Optional[choice(LEVELS)] = None
+
+
+class SceneTable(Section):
+    rig: choice(RIGS)
+    description: Text
+    groups: listing(str, 1, 32, "a non-empty list of group names")
+    detail: DetailTable = DetailTable()
+    sample_stiffness_N_per_mm: Optional[number(0.0, 1e4, lo_open=True, unit="N/mm",
+                                               why="a stiffness of the sample list of rigs.toml")] = None
+
+
+class ScenesFile(Section):
+    detail: DetailTable = DetailTable()
+    scene: dict[str, SceneTable]
+
+
 def scenes_path_for(plan: Plan) -> Path:
     """``scenes.toml`` beside the design file, else the default one."""
     src = Path(getattr(plan, "source", "") or "")
@@ -39,67 +75,54 @@ def scenes_path_for(plan: Plan) -> Path:
     return candidate if src.name and candidate.is_file() else DEFAULT_SCENES
 
 
-def load_scenes(path: str | Path | None = None) -> dict[str, SceneSpec]:
-    """Read and validate a scenes file (group names are checked against the
-    rig when a scene is assembled).
-
-    Raises:
-        DesignError: unreadable file, unknown key, bad rig or level.
-    """
-    p = Path(path) if path is not None else DEFAULT_SCENES
-    data = read_toml(p, "scenes file")
-    for key in data:
-        if key not in ("detail", "scene"):
-            raise DesignError(key, "<table>", "sections detail, scene", "unknown section")
-    default = _detail("detail", data.get("detail", {}), {"fabricated": "full",
-                                                          "purchased": "envelope"})
-    scenes = data.get("scene", {})
-    if not isinstance(scenes, Mapping) or not scenes:
-        raise DesignError("scene", scenes, "one or more [scene.<name>] tables")
-    out = {}
-    allowed = {"rig", "description", "groups", "detail", "sample_stiffness_N_per_mm"}
-    for name, t in scenes.items():
-        f = f"scene.{name}"
-        if not isinstance(t, Mapping):
-            raise DesignError(f, t, "a table")
-        for key in t:
-            if key not in allowed:
-                raise DesignError(f"{f}.{key}", t[key], "keys " + ", ".join(sorted(allowed)),
-                                  "unknown key")
-        rig = t.get("rig")
-        if rig not in RIGS:
-            raise DesignError(f"{f}.rig", rig, "one of " + ", ".join(RIGS))
-        desc = t.get("description")
-        if not isinstance(desc, str) or not desc.strip():
-            raise DesignError(f"{f}.description", desc, "a non-empty string")
-        groups = t.get("groups")
-        if not isinstance(groups, list) or not groups or not all(isinstance(g, str) for g in groups):
-            raise DesignError(f"{f}.groups", groups, "a non-empty list of group names")
-        if len(set(groups)) != len(groups):
-            raise DesignError(f"{f}.groups", groups, "each group once")
-        k = t.get("sample_stiffness_N_per_mm")
-        if k is not None and (isinstance(k, bool) or not isinstance(k, (int, float))):
-            raise DesignError(f"{f}.sample_stiffness_N_per_mm", k, "a stiffness (N/mm) of rigs.toml")
-        out[name] = SceneSpec(name, rig, desc.strip(), tuple(groups),
-                              _detail(f"{f}.detail", t.get("detail", {}), default),
-                              None if k is None else float(k))
-    return out
-
-
-def _detail(field_name: str, table: Any, default: Mapping[str, str]) -> dict[str, str]:
-    if not isinstance(table, Mapping):
-        raise DesignError(field_name, table, "a table kind = level")
+def _detail(field: str, table: DetailTable, default: Mapping[str, str],
+            p: Problems) -> dict[str, str]:
     out = dict(default)
-    for kind, level in table.items():
-        if kind not in ("fabricated", "purchased"):
-            raise DesignError(f"{field_name}.{kind}", level, "keys fabricated, purchased")
-        modelled = "full" if kind == "fabricated" else "envelope"
-        if level not in LEVELS:
-            raise DesignError(f"{field_name}.{kind}", level, "one of " + ", ".join(LEVELS))
+    for kind, modelled in MODELLED.items():
+        level = getattr(table, kind)
+        if level is None:
+            continue
         if level != modelled:
-            raise DesignError(f"{field_name}.{kind}", level, f'"{modelled}"',
-                              f"{kind} parts are modelled at level {modelled} only")
+            p.add(f"{field}.{kind}", level, f'"{modelled}"',
+                  f"{kind} parts are modelled at level {modelled} only")
         out[kind] = level
     return out
 
 
+def _scene(name: str, t: SceneTable, default: Mapping[str, str], p: Problems) -> SceneSpec:
+    f = f"scene.{name}"
+    if not re.match(NAME_PATTERN, name):
+        p.add(f, name, "scene names of " + NAME_ALLOWED, "a scene's name is its file name")
+    if len(set(t.groups)) != len(t.groups):
+        p.add(f"{f}.groups", t.groups, "each group once")
+    unknown = [g for g in t.groups if g not in RIG_GROUPS[t.rig]]
+    if unknown:
+        p.add(f"{f}.groups", unknown, "groups of rig " + t.rig + ": " + ", ".join(RIG_GROUPS[t.rig]),
+              "unknown group")
+    return SceneSpec(name, t.rig, t.description.strip(), tuple(t.groups),
+                     _detail(f"{f}.detail", t.detail, default, p), t.sample_stiffness_N_per_mm)
+
+
+def validate_scenes(data: Mapping[str, Any], file: str = "") -> tuple[dict[str, SceneSpec], Problems]:
+    """The scenes and every refusal of a scenes file."""
+    p = Problems(file)
+    model = validate(ScenesFile, data, p)
+    if model is None:
+        return {}, p
+    if not model.scene or len(model.scene) > MAX_SCENES:
+        p.add("scene", f"{len(model.scene)} scenes", f"1 ... {MAX_SCENES} [scene.<name>] tables")
+    default = _detail("detail", model.detail, MODELLED, p)
+    return {name: _scene(name, t, default, p) for name, t in model.scene.items()}, p
+
+
+def load_scenes(path: str | Path | None = None) -> dict[str, SceneSpec]:
+    """Read and validate a scenes file.
+
+    Raises:
+        DesignError: unreadable file, unknown key, bad rig, group or level
+            (:class:`~tactcad.errors.DesignErrors` lists every one).
+    """
+    p = Path(path) if path is not None else DEFAULT_SCENES
+    scenes, problems = validate_scenes(read_toml(p, "scenes file"), p.name)
+    problems.raise_if_any()
+    return scenes

@@ -25,7 +25,8 @@ a = 8, b = 3):
 * tip height 1.5, base height 10, inside corner radius 0.2 (default);
 * overall length a + R + w / 2 + 12.5: the default's 12.5 mm clamped base
   for every arm (bolt pattern and clamp plate unchanged);
-* one column (two elements), pitch max(4, b + 1) so the spacer fits, wire
+* one column (two elements), pitch max(6, b + 1) so the spacer fits and the
+  mounting bolts clear the bases of 2 mm arms, wire
   0.02 mm with no spark gap so R = t stays cuttable.
 
 Designs are drawn by scrambled Sobol sampling (scipy.stats.qmc) in
@@ -121,7 +122,7 @@ def grid_geometry(web_mm: float, arm_mm: float, notch_radius_mm: float, *,
             "element.overall_length_mm": round(a + R + w / 2 + BASE_LENGTH_MM, 9),
             "element.inside_corner_radius_mm": CORNER_RADIUS_MM,
             "arms.lengths_mm": [a, a], "array.columns": 1, "sheet.thickness_mm": b,
-            "array.pitch_mm": max(4.0, b + 1.0), "edm.wire_diameter_mm": 0.02,
+            "array.pitch_mm": max(6.0, b + 1.0), "edm.wire_diameter_mm": 0.02,
             "edm.spark_gap_mm": 0.0, "material.poisson_ratio": float(poisson_ratio),
             "material.youngs_modulus_MPa": float(youngs_modulus_MPa)}
     plan = plan_from_dict(with_overrides(data, over), source="<correction grid>")

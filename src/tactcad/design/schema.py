@@ -1,0 +1,381 @@
+"""One schema mechanism for the three design files (design, rigs, scenes).
+
+Each file is a pydantic v2 model of sections (:class:`Section`: unknown keys
+refused, strict types: no bool for a number, no text for a number, finite
+numbers only). A field's static range and its physical reason are declared
+once, with :func:`number` / :func:`integer`, and the same declaration writes
+the message when a value falls outside it. Rules that tie fields together
+(a range that depends on another field) run after the types are known and
+add to the same list (:class:`Problems`), so one pass reports every error,
+each as ``file: field = value: allowed ... (reason)``.
+
+Also here, one copy each: reading a TOML file, the content hash, number
+formatting and the ``[assumptions]`` table.
+
+Units: mm, N, MPa, N/mm, g as each field's name says.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+import tomllib
+import types
+import typing
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Any, Mapping
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic.fields import FieldInfo
+
+from tactcad.errors import DesignError, DesignErrors
+
+#: Deepest nesting of arrays/tables a design file may have; deeper input is
+#: refused before it reaches a recursive reader.
+MAX_NESTING = 16
+#: Safe names for designs and scenes: they end up in file names, DXF headers and SVG.
+NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$"
+NAME_ALLOWED = "1-64 characters A-Z a-z 0-9 _ . -, starting with a letter or digit"
+#: Closed limits that depend on other fields are met within this much (mm), so a
+#: value equal to its limit in decimals is not refused for binary rounding.
+LIMIT_TOLERANCE_MM = 1e-9
+#: Longest free text (descriptions, materials, models) in characters.
+MAX_TEXT = 500
+
+
+def fmt(x: float) -> str:
+    """A number as the messages and reasons print it (6 significant digits)."""
+    return f"{x:.6g}"
+
+
+# ---------------------------------------------------------------------------
+# Field declarations
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Limits:
+    """A field's static range, its unit and the physical reason, kept as
+    pydantic metadata so that a refusal can be worded from it."""
+
+    lo: float | None = None
+    hi: float | None = None
+    lo_open: bool = False
+    hi_open: bool = False
+    unit: str = "mm"
+    why: str = ""
+    kind: str = "number"  # number, integer, text, name, choice, list
+
+    def text(self) -> str:
+        """The allowed range in words, e.g. ``0.15 <= value <= 0.4 mm``."""
+        return range_text(self.lo, self.hi, self.lo_open, self.hi_open, self.unit)
+
+
+def range_text(lo: float | None, hi: float | None, lo_open: bool = False, hi_open: bool = False,
+               unit: str = "mm") -> str:
+    """``lo <= value <= hi unit`` with ``<`` for open ends; one-sided when a bound is None."""
+    u = f" {unit}" if unit else ""
+    if lo is not None and hi is not None:
+        return f"{fmt(lo)} {'<' if lo_open else '<='} value {'<' if hi_open else '<='} {fmt(hi)}{u}"
+    if lo is not None:
+        return f"value {'>' if lo_open else '>='} {fmt(lo)}{u}"
+    if hi is not None:
+        return f"value {'<' if hi_open else '<='} {fmt(hi)}{u}"
+    return "a finite number"
+
+
+def number(lo: float | None = None, hi: float | None = None, *, lo_open: bool = False,
+           hi_open: bool = False, unit: str = "mm", why: str = "") -> Any:
+    """A finite float field in ``[lo, hi]`` (open ends as asked). Integers are
+    taken as numbers; booleans and text are not."""
+    bounds: dict[str, float] = {}
+    if lo is not None:
+        bounds["gt" if lo_open else "ge"] = lo
+    if hi is not None:
+        bounds["lt" if hi_open else "le"] = hi
+    return Annotated[float, Field(**bounds), Limits(lo, hi, lo_open, hi_open, unit, why)]
+
+
+def integer(lo: int, hi: int, why: str = "") -> Any:
+    """An integer field in ``lo ... hi`` (booleans refused)."""
+    return Annotated[int, Field(ge=lo, le=hi), Limits(lo, hi, unit="", why=why, kind="integer")]
+
+
+#: One line of printable text with something in it: texts end up in DXF headers,
+#: SVG drawings and the BOM, where a newline or control character breaks the file.
+TEXT_PATTERN = r"^[^\x00-\x1f\x7f]*[^\x00-\x1f\x7f\s][^\x00-\x1f\x7f]*$"
+Text = Annotated[str, Field(min_length=1, max_length=MAX_TEXT, pattern=TEXT_PATTERN),
+                 Limits(kind="text", unit="")]
+Name = Annotated[str, Field(pattern=NAME_PATTERN), Limits(kind="name", unit="")]
+
+
+class Section(BaseModel):
+    """One ``[section]`` of a design file: unknown keys refused, strict types,
+    finite numbers, immutable."""
+
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+
+
+# ---------------------------------------------------------------------------
+# Errors: pydantic's, worded the tactcad way, plus the cross-field rules'
+# ---------------------------------------------------------------------------
+class Problems:
+    """Collects every refusal of one validation pass.
+
+    Cross-field rules call :meth:`add` or :meth:`within`; :meth:`raise_if_any`
+    raises one :class:`DesignErrors` listing them all.
+    """
+
+    def __init__(self, file: str = ""):
+        self.file = file
+        self.errors: list[DesignError] = []
+
+    def __bool__(self) -> bool:
+        return bool(self.errors)
+
+    def add(self, field: str, value: Any, allowed: str, why: str = "", file: str | None = None) -> None:
+        """One refusal; ``file`` names another file than this pass's (a design
+        field that makes a rig impossible)."""
+        self.errors.append(DesignError(field, value, allowed, why, self.file if file is None else file))
+
+    def extend(self, errors: list[DesignError]) -> None:
+        self.errors.extend(errors)
+
+    def within(self, field: str, value: float, lo: float | None = None, hi: float | None = None,
+               *, lo_open: bool = False, hi_open: bool = False, unit: str = "mm",
+               why: str = "") -> float:
+        """Record a refusal when ``value`` leaves the range; return ``value`` either way
+        (so that later rules still see a number)."""
+        # closed limits computed from other fields allow for rounding (0.7 - 0.2 < 0.5)
+        low = lo is not None and (value <= lo if lo_open else value < lo - LIMIT_TOLERANCE_MM)
+        high = hi is not None and (value >= hi if hi_open else value > hi + LIMIT_TOLERANCE_MM)
+        if low or high:
+            self.add(field, value, range_text(lo, hi, lo_open, hi_open, unit), why)
+        return value
+
+    def raise_if_any(self) -> None:
+        if self.errors:
+            raise DesignErrors(self.errors)
+
+
+def _limits(info: Any) -> Limits | None:
+    """The :class:`Limits` of a field (FieldInfo) or of a type, looking inside
+    ``Annotated`` and ``Optional``."""
+    if isinstance(info, FieldInfo):
+        found = [m for m in info.metadata if isinstance(m, Limits)]
+        return found[0] if found else _limits(info.annotation)
+    origin = typing.get_origin(info)
+    if origin is Annotated:
+        found = [m for m in typing.get_args(info)[1:] if isinstance(m, Limits)]
+        return found[0] if found else None
+    if origin in (typing.Union, types.UnionType):
+        for arg in typing.get_args(info):
+            found = _limits(arg)
+            if found is not None:
+                return found
+    return None
+
+
+def _field_at(model: type[BaseModel], loc: tuple) -> tuple[str, Limits | None, type | None]:
+    """Dotted field name (list items as ``[n]``, 1-based) and the declaration at ``loc``."""
+    name, limits, cls, ann = "", None, model, None
+    for part in loc:
+        if isinstance(part, int):
+            name += f"[{part + 1}]"
+            if ann is not None:
+                args = typing.get_args(ann)
+                item = _limits(args[0]) if args else None
+                limits = item or limits
+            continue
+        name = f"{name}.{part}" if name else str(part)
+        fields = getattr(cls, "model_fields", {}) if cls is not None else {}
+        info = fields.get(part)
+        if info is None:
+            cls, ann, limits = None, None, None
+            continue
+        ann = info.annotation
+        limits = _limits(info)
+        origin = typing.get_origin(ann)
+        if isinstance(ann, type) and issubclass(ann, BaseModel):
+            cls = ann
+        elif origin in (dict, Mapping) and issubclass(typing.get_args(ann)[1], BaseModel):
+            cls = _KeyedModel(typing.get_args(ann)[1])
+        else:
+            cls = None
+    return name, limits, cls
+
+
+class _KeyedModel:
+    """Stand-in for ``dict[str, Model]``: any key leads to ``Model``'s fields."""
+
+    def __init__(self, model: type[BaseModel]):
+        self.model_fields = _AnyKey(model)
+
+
+class _AnyKey(dict):
+    def __init__(self, model: type[BaseModel]):
+        super().__init__()
+        self.model = model
+
+    def get(self, key, default=None):
+        return FieldInfo(annotation=self.model)
+
+
+def _keys_of(model: type[BaseModel] | None) -> str:
+    return ", ".join(model.model_fields) if model is not None and hasattr(model, "model_fields") \
+        and not isinstance(model.model_fields, _AnyKey) else ""
+
+
+def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> DesignError:
+    """One pydantic error as a :class:`DesignError` with field, value, allowed range, reason."""
+    loc = tuple(err["loc"])
+    field, limits, _ = _field_at(model, loc)
+    value = err.get("input")
+    kind = err["type"]
+    why = limits.why if limits else ""
+    if kind == "missing":
+        return DesignError(field, None, "a value (key is missing)", "missing key", file)
+    if kind == "extra_forbidden":
+        parent_name, _, parent = _field_at(model, loc[:-1]) if len(loc) > 1 else ("", None, model)
+        keys = _keys_of(parent)
+        if len(loc) == 1:
+            return DesignError(field, "<table>" if isinstance(value, Mapping) else value,
+                               "sections " + keys, "unknown section", file)
+        return DesignError(field, value, "keys " + keys if keys else "known keys", "unknown key",
+                           file)
+    if limits is None:
+        return DesignError(field, value, err["msg"].lower().replace("input should be ", ""), why,
+                           file)
+    if limits.kind == "text":
+        return DesignError(field, value, f"one line of text, 1 ... {MAX_TEXT} characters, no control "
+                           "characters", why or "texts end up in DXF headers, drawings and the BOM",
+                           file)
+    if limits.kind == "name":
+        return DesignError(field, value, NAME_ALLOWED,
+                           "names end up in file names, DXF headers and drawings", file)
+    if limits.kind == "choice":
+        return DesignError(field, value, limits.unit, why, file)
+    if limits.kind == "list":
+        return DesignError(field, value, limits.unit, why, file)
+    if limits.kind == "integer":
+        if kind in ("greater_than_equal", "less_than_equal"):
+            return DesignError(field, value, f"{limits.lo} ... {limits.hi}", why, file)
+        return DesignError(field, value, f"an integer {limits.lo} ... {limits.hi}", why, file)
+    allowed = limits.text()
+    if kind in ("float_type", "finite_number", "float_parsing", "int_type"):
+        allowed = "a finite number, " + allowed
+    return DesignError(field, value, allowed, why, file)
+
+
+def choice(options: Mapping[str, Any] | tuple[str, ...], why: str = "") -> Any:
+    """A text field naming one of ``options`` (e.g. a bolt size of a standard)."""
+    names = tuple(options)
+    return Annotated[typing.Literal[names], Limits(kind="choice", unit="one of " + ", ".join(names),
+                                                   why=why)]
+
+
+def listing(item: Any, lo: int, hi: int, allowed: str, why: str = "") -> Any:
+    """A list of ``lo ... hi`` items of type ``item``."""
+    return Annotated[list[item], Field(min_length=lo, max_length=hi),
+                     Limits(kind="list", unit=allowed, why=why)]
+
+
+def validate(model: type[BaseModel], data: Any, problems: Problems) -> BaseModel | None:
+    """``model`` from ``data``, or None with every refusal added to ``problems``."""
+    if not isinstance(data, Mapping):
+        problems.add("<file>", type(data).__name__, "a TOML table")
+        return None
+    depth = nesting(data)
+    if depth > MAX_NESTING:
+        problems.add("<file>", f"{depth} levels", f"arrays and tables nested at most {MAX_NESTING} deep")
+        return None
+    try:
+        return model.model_validate(data)
+    except ValidationError as exc:
+        problems.extend([wording(e, model, problems.file) for e in exc.errors()])
+        return None
+
+
+def nesting(value: Any, limit: int = MAX_NESTING + 1) -> int:
+    """Depth of nested lists/tables in ``value`` (stops counting past ``limit``)."""
+    depth, level = 0, [value]
+    while level and depth <= limit:
+        nxt = []
+        for v in level:
+            if isinstance(v, Mapping):
+                nxt.extend(v.values())
+            elif isinstance(v, list):
+                nxt.extend(v)
+        if not nxt:
+            break
+        depth += 1
+        level = nxt
+    return depth
+
+
+# ---------------------------------------------------------------------------
+# Files
+# ---------------------------------------------------------------------------
+def read_toml(path: Path, what: str) -> dict[str, Any]:
+    """Parse a TOML file (UTF-8).
+
+    Raises:
+        DesignError: naming ``what`` (e.g. "design file") and the path, when the
+            file cannot be read, is not UTF-8, is not valid TOML or nests too deep.
+    """
+    try:
+        raw = Path(path).read_bytes()
+    except OSError as exc:
+        raise DesignError(what, str(path), "a readable TOML file", exc.strerror or str(exc)) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise DesignError(what, str(path), "a UTF-8 text file",
+                          f"byte {exc.start} is not UTF-8") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignError(what, str(path), "valid TOML", str(exc)) from None
+    except RecursionError:
+        raise DesignError(what, str(path), f"arrays and tables nested at most {MAX_NESTING} deep",
+                          "nesting too deep to read") from None
+
+
+def content_hash(data: Mapping[str, Any]) -> str:
+    """sha256 of a file's content (canonical JSON), independent of comments and layout."""
+    canonical = json.dumps(data, sort_keys=True, separators=(",", ":"), default=str)
+    return hashlib.sha256(canonical.encode()).hexdigest()
+
+
+_ASSUMPTION_KEY = re.compile(r"^([a-z_]+)\.([A-Za-z0-9_]+)(\[\d+\])?$")
+
+
+def _section_model(annotation: Any) -> Any:
+    """The section model of a field, an optional section (``X | None``) included."""
+    for arg in typing.get_args(annotation) or (annotation,):
+        if isinstance(arg, type) and issubclass(arg, BaseModel):
+            return arg
+    return annotation
+
+
+def read_assumptions(data: Mapping[str, Any], model: type[BaseModel], problems: Problems,
+                     example: str) -> tuple[tuple[str, str], ...]:
+    """The ``[assumptions]`` table: ``"section.key" = "one-line reason"`` pairs,
+    each key naming a field of ``model``; refusals go to ``problems``."""
+    table = data.get("assumptions", {}) if isinstance(data, Mapping) else {}
+    if not isinstance(table, Mapping):
+        problems.add("assumptions", table, "a table of 'section.key' = \"reason\"")
+        return ()
+    out = []
+    for key, reason in table.items():
+        m = _ASSUMPTION_KEY.match(key)
+        section = model.model_fields.get(m.group(1)) if m else None
+        sub = _section_model(section.annotation) if section is not None else None
+        if not (isinstance(sub, type) and issubclass(sub, BaseModel) and m.group(2) in sub.model_fields):
+            problems.add(f"assumptions.{key}", reason,
+                         f"keys naming a field of this file, e.g. '{example}'")
+        elif not isinstance(reason, str) or not reason.strip():
+            problems.add(f"assumptions.{key}", reason, "a one-line reason (non-empty string)")
+        else:
+            out.append((key, reason.strip()))
+    return tuple(out)

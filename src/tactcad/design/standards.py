@@ -1,0 +1,93 @@
+"""Catalogue data of standard parts (mm): ISO metric bolts and nuts, ISO 15
+deep groove ball bearings, and the stock-length rule shared by every bolt.
+
+Sources: ISO 273 (clearance holes, medium series), ISO 4762 (socket head cap
+screws: head diameter d_k, head height k, stock lengths), ISO 4032 (hex nuts:
+width across flats s, height m), ISO 15 (bearing boundary dimensions, series 02).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+#: Stock lengths are compared with this tolerance (mm) so that a grip computed
+#: as 27.999999999 still takes the 28 mm bolt.
+LENGTH_TOLERANCE_MM = 1e-9
+
+
+@dataclass(frozen=True)
+class BoltSpec:
+    """ISO metric bolt + nut envelope data (mm)."""
+
+    size: str
+    nominal_diameter_mm: float
+    clearance_hole_mm: float  # ISO 273 medium series
+    thread_pitch_mm: float
+    head_diameter_mm: float  # ISO 4762 d_k
+    head_height_mm: float  # ISO 4762 k
+    nut_width_across_flats_mm: float  # ISO 4032 s
+    nut_height_mm: float  # ISO 4032 m
+    catalogue_lengths_mm: tuple[float, ...]  # ISO 4762 / DIN 912 stock lengths
+
+    @property
+    def socket_across_flats_mm(self) -> float:
+        """Hexagon socket size s of ISO 4762: about 0.75 d for the small sizes."""
+        return 0.75 * self.nominal_diameter_mm
+
+    @property
+    def nut_across_corners_mm(self) -> float:
+        """Width across the corners of the ISO 4032 nut: s * 2 / sqrt(3)."""
+        return self.nut_width_across_flats_mm * 2.0 / math.sqrt(3.0)
+
+    @property
+    def safe_name(self) -> str:
+        """Size for part and file names: ``M2.5`` -> ``M2p5`` (no dot, which STEP
+        readers and file names treat differently)."""
+        return self.size.replace(".", "p")
+
+
+#: The array's clamp bolts.
+BOLTS: dict[str, BoltSpec] = {
+    "M1.6": BoltSpec("M1.6", 1.6, 1.8, 0.35, 3.0, 1.6, 3.2, 1.3,
+                     (3, 4, 5, 6, 8, 10, 12, 16, 20)),
+    "M2": BoltSpec("M2", 2.0, 2.4, 0.4, 3.8, 2.0, 4.0, 1.6,
+                   (4, 5, 6, 8, 10, 12, 16, 20, 25, 30)),
+    "M2.5": BoltSpec("M2.5", 2.5, 2.9, 0.45, 4.5, 2.5, 5.0, 2.0,
+                     (5, 6, 8, 10, 12, 16, 20, 25, 30)),
+    "M3": BoltSpec("M3", 3.0, 3.4, 0.5, 5.5, 3.0, 5.5, 2.4,
+                   (5, 6, 8, 10, 12, 16, 20, 25, 30, 35, 40)),
+}
+
+#: The rigs' screws: the array's sizes and M4 for the wheel axles.
+RIG_BOLTS: dict[str, BoltSpec] = {
+    **BOLTS,
+    "M4": BoltSpec("M4", 4.0, 4.5, 0.7, 7.0, 4.0, 7.0, 3.2,
+                   (6, 8, 10, 12, 16, 20, 25, 30, 35, 40)),
+}
+
+
+@dataclass(frozen=True)
+class BearingSpec:
+    """Deep groove ball bearing, ISO 15 boundary dimensions (mm)."""
+
+    designation: str
+    bore_mm: float  # d
+    outer_diameter_mm: float  # D
+    width_mm: float  # B
+
+
+# ISO 15, dimension series 02 (62xx) for the small sizes used as cart wheels.
+BEARINGS: dict[str, BearingSpec] = {
+    "623ZZ": BearingSpec("623ZZ", 3.0, 10.0, 4.0),
+    "624ZZ": BearingSpec("624ZZ", 4.0, 13.0, 5.0),
+    "625ZZ": BearingSpec("625ZZ", 5.0, 16.0, 5.0),
+    "626ZZ": BearingSpec("626ZZ", 6.0, 19.0, 6.0),
+}
+
+
+def shortest_stock_length(bolt: BoltSpec, needed_mm: float) -> float | None:
+    """Shortest ISO 4762 stock length (mm) of ``bolt`` >= ``needed_mm``, or
+    ``None`` when even the longest stock bolt is too short."""
+    lengths = [L for L in bolt.catalogue_lengths_mm if L >= needed_mm - LENGTH_TOLERANCE_MM]
+    return float(lengths[0]) if lengths else None
