@@ -109,6 +109,8 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
             keep_out=element_keep_out(g), web_thickness_mm=g.web_thickness_mm,
             file_mark=f"{'/'.join(f'E{n}' for n in numbers)} {_arm_mark(g.arm_length_mm)} "
                       f"QTY {counts[name]}"))
+    if "spacer" not in specs:  # one column: no spacer
+        return out
     sp: PartSpec = specs["spacer"]
     out.append(ShopProfile(
         part="spacer", profile=_with_start_holes(sp.profile, plan.edm.start_hole_diameter_mm),
