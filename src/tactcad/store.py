@@ -175,6 +175,7 @@ class Store:
         entry = self._entry(key)
         if entry.is_dir():
             return
+        tmp = None
         try:
             entry.parent.mkdir(parents=True, exist_ok=True)
             tmp = Path(tempfile.mkdtemp(prefix=".tmp-", dir=entry.parent))
@@ -186,4 +187,5 @@ class Store:
                                               encoding="utf-8")
             os.rename(tmp, entry)
         except OSError:
-            shutil.rmtree(locals().get("tmp", entry.parent / ".none"), ignore_errors=True)
+            if tmp is not None:
+                shutil.rmtree(tmp, ignore_errors=True)

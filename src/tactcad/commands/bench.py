@@ -134,10 +134,12 @@ def run_export(args: argparse.Namespace) -> int:
     import json
     import tempfile
 
+    from tactcad.studies.bench_scale import load_average
+
     plan = plan_from_args(args)
     say = (lambda s: None) if args.json else print
     say(f"tactcad bench export: design {plan.name}, {os.cpu_count()} CPUs, "
-        f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+        f"load average {load_average()}")
     with tempfile.TemporaryDirectory() as tmp:
         figures = export_figures(plan, args, tmp)
     if args.json:

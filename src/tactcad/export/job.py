@@ -9,7 +9,7 @@ from typing import Any, Callable
 
 from tactcad.assembly.inventory import design_assemblies, scene_models
 from tactcad.assembly.rigs import RigModel
-from tactcad.catalogue.array import PartSpec
+from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
 from tactcad.design.scenes import SceneSpec
 from tactcad.store import Store
@@ -27,6 +27,12 @@ class Run:
     log: Log = print
     store: Store = field(default_factory=lambda: Store(None))  # also memoises costly steps
     dxf_version: str | None = None  # of the shop DXF files; None: R2010 (or $TACTCAD_DXF_VERSION)
+
+    @cached_property
+    def array(self) -> tuple[dict[str, PartSpec], list[Instance]]:
+        """(the array's distinct parts by name, its placed instances), made once
+        for every job that needs them."""
+        return array_parts(self.plan), array_instances(self.plan)
 
     @cached_property
     def scenes(self) -> dict[str, tuple[SceneSpec, RigModel]]:

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 from tactcad.assembly.inventory import assembly_review, fabricated_parts
 from tactcad.assembly.rigs import shown_instances
-from tactcad.catalogue.array import array_instances, array_parts
 from tactcad.drawings.compose import drawing_inputs
 from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, ASSEMBLY_DRAWING, PDF_NAME, drawing_name,
                                     drawing_png_name, part_step_name, scene_glb_name,
@@ -38,10 +37,9 @@ def all_jobs(run: Run) -> list[Job]:
 # --- the array: part STEP files, the assembly, the wire-EDM profiles --------------------------
 def array_jobs(run: Run) -> list[Job]:
     plan = run.plan
-    specs = array_parts(plan)
+    specs, inst = run.array
     jobs = [Job(f"step:{name}", content_key("step-part", spec), _part_step(spec), (spec,))
             for name, spec in specs.items()]
-    inst = array_instances(plan)
     jobs.append(Job("step:array", content_key("step-array", list(specs.values()), inst),
                     _array_step(specs, inst), tuple(specs.values())))
     version = run.dxf_version or dxf_version_option()
@@ -190,7 +188,7 @@ def assembly_sheet_job(run: Run) -> Job:
     plan = run.plan
     specs, assemblies = run.inventory
     items = {r.part: r.item for r in bom_rows(assemblies, specs)}
-    array_specs = array_parts(plan)
+    array_specs = run.array[0]
 
     def make(run: Run) -> list[dict]:
         from tactcad.atomic import write_bytes_atomic
@@ -238,8 +236,7 @@ def _drawing_png(part: str, page: int):
 # --- the array image and the bill of materials ----------------------------------------------
 def image_job(run: Run) -> Job:
     plan = run.plan
-    specs = array_parts(plan)
-    inst = array_instances(plan)
+    specs, inst = run.array
     title = (f"{plan.name}: {plan.rows} x {plan.columns} elements, pitch "
              f"{plan.pitch_mm:g} mm (design {plan.design_hash[:12]})")
 
