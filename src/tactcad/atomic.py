@@ -33,6 +33,13 @@ def atomic_path(target: str | Path) -> Iterator[Path]:
             tmp_path.unlink()
 
 
+def remove_partial_files(folder: Path) -> None:
+    """Remove the temporary files of :func:`atomic_path` under ``folder`` that a
+    killed writer left (none of them is a finished file)."""
+    for tmp in folder.rglob(".*.part"):
+        tmp.unlink(missing_ok=True)
+
+
 def write_atomic(target: str | Path, writer: Callable[[Path], object]) -> Path:
     """Call ``writer(tmp_path)`` and move the result onto ``target`` atomically."""
     with atomic_path(target) as tmp:

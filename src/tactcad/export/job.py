@@ -67,3 +67,6 @@ class Job:
     #: a handle with ``result() -> records`` and ``cancel()``; the run goes on
     #: with the other jobs meanwhile (both cores busy) and collects it at the end
     start: Callable[[Run], Any] | None = None
+    #: may run in the run's second process (:mod:`tactcad.export.worker`): it
+    #: reads only the plan, the solids in ``needs`` and the files of ``after``
+    worker: bool = False

@@ -146,20 +146,21 @@ def drawing_jobs(run: Run) -> list[Job]:
     for spec in parts:
         jobs.append(Job(f"drawing:{spec.name}",
                         content_key("drawing-svg", drawing_inputs(plan, spec), qty[spec.name]),
-                        _drawing(spec, qty[spec.name]), (spec,)))
+                        _drawing(spec, qty[spec.name]), (spec,), worker=True))
     svgs = [drawing_name(s.name) for s in parts]
     # --- the assembly sheet: last page of the PDF ---
     jobs.append(assembly_sheet_job(run))
     svgs.append(ASSEMBLY_DRAWING)
     # --- end of the assembly sheet ---
     jobs.append(Job("drawings:pdf", content_key("drawing-pdf", plan.name, [j.key for j in jobs]),
-                    _drawings_pdf(svgs), after=tuple(j.name for j in jobs)))
+                    _drawings_pdf(svgs), after=tuple(j.name for j in jobs), worker=True))
     elements = [k for k, s in enumerate(parts) if s.builder == "element"]
     if elements:
         # the PNG shows one page: it depends on that page's drawing only
         page = elements[0]
         jobs.append(Job("drawings:png", content_key("drawing-png", jobs[page].key, PNG_DPI),
-                        _drawing_png(parts[page].name, page), after=("drawings:pdf",)))
+                        _drawing_png(parts[page].name, page), after=("drawings:pdf",),
+                        worker=True))
     return jobs
 
 
@@ -203,7 +204,7 @@ def assembly_sheet_job(run: Run) -> Job:
                  "scale": scale_text(a.scale), "slots": len(a.slot_rows),
                  "torque_Nm": round(a.torque_Nm, 3)}]
     return Job("drawing:assembly", content_key("drawing-assembly", assembly_inputs(plan, items)),
-               make, tuple(array_specs.values()))
+               make, tuple(array_specs.values()), worker=True)
 
 
 def _drawings_pdf(svgs: list[str]):

@@ -22,6 +22,7 @@ from tactcad.assembly.placement import location, matrix
 from tactcad.parts.mesh import tessellate
 
 LIGHT = np.array([0.35, 0.8, 0.6])  # towards the light, assembly frame
+NO_TRIANGLE = np.iinfo(np.int64).max  # z-buffer's triangle index where none is drawn
 
 
 def pdf_page_png(pdf: str | Path, page: int, target: str | Path, dpi: int = 150) -> None:
@@ -120,7 +121,7 @@ def rasterise(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
     r1 = np.clip(np.floor(Y.max(axis=1) - 0.5), -1, h - 1).astype(np.int64)
     nrows = np.where(ok, np.maximum(r1 - r0 + 1, 0), 0)
     best_z = np.full(h * w, -np.inf)
-    best_t = np.full(h * w, -1, dtype=np.int64)
+    best_t = np.full(h * w, NO_TRIANGLE, dtype=np.int64)
     tri_ids = np.nonzero(nrows)[0]
     # per-triangle work is bounded by its rows x width; group triangles into chunks
     width_est = np.ceil(X.max(axis=1) - X.min(axis=1)) + 1
@@ -155,15 +156,15 @@ def rasterise(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
         fcol = np.repeat(c0, cnt) + (np.arange(len(ft)) - ffirst)
         fz = a[ft] * (fcol + 0.5) + b[ft] * (frow + 0.5) + c[ft]
         pix = frow * w + fcol
-        order = np.lexsort((ft, -fz, pix))
-        pix, fz, ft = pix[order], fz[order], ft[order]
-        head = np.ones(len(pix), dtype=bool)
-        head[1:] = pix[1:] != pix[:-1]
-        pix, fz, ft = pix[head], fz[head], ft[head]
-        better = (fz > best_z[pix]) | ((fz == best_z[pix]) & (ft < best_t[pix]))
-        best_z[pix[better]] = fz[better]
-        best_t[pix[better]] = ft[better]
-    return best_t.reshape(h, w)
+        # nearest depth per pixel; where this chunk brought a nearer one, the
+        # earlier winner is void; then the first triangle at that depth wins
+        before = best_z[pix]
+        np.maximum.at(best_z, pix, fz)
+        nearest = best_z[pix]
+        best_t[pix[nearest > before]] = NO_TRIANGLE
+        win = fz == nearest
+        np.minimum.at(best_t, pix[win], ft[win])
+    return np.where(best_t == NO_TRIANGLE, -1, best_t).reshape(h, w)
 
 
 def render_assembly_png(solids: Mapping[str, object], instances: Sequence,
@@ -194,8 +195,6 @@ def render_assembly_png(solids: Mapping[str, object], instances: Sequence,
     base = np.array([colors[n] for n in names])[owner_part]
     tri_rgb = np.clip(base * shade[:, None], 0.0, 1.0)
     fg = tri >= 0
-    img = np.ones((h, w, 3), dtype=np.float32)
-    img[fg] = tri_rgb[tri[fg]]
     # outlines: a neighbouring pixel on another instance, or across a crease
     inst_px = np.where(fg, inst_id[np.maximum(tri, 0)], -1)
     cos_crease = np.cos(np.radians(25.0))
@@ -210,9 +209,15 @@ def render_assembly_png(solids: Mapping[str, object], instances: Sequence,
         crease = (na * nb).sum(-1) < cos_crease
         e[ya[crease], xa[crease]] = True
         edge[: h - dy, : w - dx] |= e
-    img[edge] *= 0.25
-    q = np.round(img * 255).astype(np.int64)  # exact integer box filter from here on
-    q = q.reshape(size_px[1], supersample, size_px[0], supersample, 3).sum(axis=(1, 3))
+    # 8-bit colour of every triangle and of the background (last row), plain
+    # and darkened as an outline, looked up per pixel
+    rgb = np.vstack([tri_rgb, np.ones((1, 3))]).astype(np.float32)
+    table = np.stack([np.round(rgb * np.float32(255)),
+                      np.round(rgb * np.float32(0.25) * np.float32(255))], axis=1).astype(np.uint8)
+    px = table[np.where(fg, tri, len(tri_rgb)), edge.astype(np.intp)]
+    # exact integer box filter
+    q = px.reshape(size_px[1], supersample, size_px[0], supersample, 3).sum(axis=(1, 3),
+                                                                             dtype=np.uint32)
     n = supersample * supersample
     pil = Image.fromarray(((q + n // 2) // n).astype(np.uint8), "RGB")
     if title:

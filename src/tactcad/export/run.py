@@ -23,20 +23,22 @@ import json
 import os
 import shutil
 import time
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Sequence
 
 from tactcad import __version__
 from tactcad.assembly.inventory import assembly_review, instance_counts
-from tactcad.atomic import (carry_over, leftover_staging, publish_dir, staging_dir,
-                            write_bytes_atomic)
+from tactcad.atomic import (carry_over, leftover_staging, publish_dir, remove_partial_files,
+                            staging_dir, write_bytes_atomic)
 from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
 from tactcad.errors import ExportPathError
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
+from tactcad.export.worker import Worker, can_fork, worker_jobs
 from tactcad.catalogue.files import ARRAY_STEP, MANIFEST
 from tactcad.mechanics.strength import strength_summary
 from tactcad.store import Store, stack_versions
@@ -120,7 +122,8 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
     """Fetch every job from ``store`` or run it; (records in job order, jobs run).
 
     Jobs run in order, each after the jobs it reads (``after``); the solids
-    they need are built first, once each.
+    they need are built first, once each. Jobs marked ``worker`` go to the
+    run's second process when one can be forked (:mod:`tactcad.export.worker`).
     """
     done: dict[str, list[dict]] = {}
     todo = []
@@ -130,21 +133,55 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
             todo.append(job)
         else:
             done[job.name] = got
-    if todo:
+    if not todo:
+        return [r for job in jobs for r in done[job.name]], 0
+    handed = worker_jobs(todo, done) if can_fork() else []
+    worker = Worker(run, handed) if len(handed) > 1 else None
+    if worker is None:
+        handed = []
+    by_name = {job.name: job for job in todo}
+    futures = {}
+    started = {}
+
+    def collect(name: str) -> None:
+        """The records of a job handed to the worker, once the jobs it reads
+        are collected; run here if the worker died before finishing it."""
+        for before in by_name[name].after:
+            if before in futures and before not in done:
+                collect(before)
+        try:
+            done[name] = futures[name].result()
+        except BrokenProcessPool:
+            run.log(f"  the worker process ended early; {name} runs in this process")
+            remove_partial_files(run.staging)  # what the worker was writing when it died
+            done[name] = by_name[name].make(run)
+
+    try:
         for spec in {s.name: s for job in todo for s in job.needs}.values():
             run.parts.solid(spec)
+        for job in handed:
+            futures[job.name] = worker.submit(job, {s.name: run.parts.solid(s) for s in job.needs})
         started = {job.name: job.start(run) for job in todo if job.start is not None}
-        try:
-            for job in todo:
-                if job.start is None:
-                    done[job.name] = job.make(run)
-            for name, pending in started.items():
-                done[name] = pending.result()
-        finally:
-            for pending in started.values():
-                pending.cancel()
         for job in todo:
-            store.keep(job.key, run.staging, done[job.name])
+            if job.start is None and job.name not in futures:
+                for name in job.after:
+                    if name in futures and name not in done:
+                        collect(name)
+                done[job.name] = job.make(run)
+        for name in futures:
+            if name not in done:
+                collect(name)
+        for name, pending in started.items():
+            done[name] = pending.result()
+        if worker is not None:
+            worker.close()
+    finally:
+        if worker is not None and len(done) < len(jobs):  # an error or an interrupt
+            worker.kill()
+        for pending in started.values():
+            pending.cancel()
+    for job in todo:
+        store.keep(job.key, run.staging, done[job.name])
     return [r for job in jobs for r in done[job.name]], len(todo)
 
 

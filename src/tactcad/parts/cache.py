@@ -20,6 +20,12 @@ class PartCache:
         self._solids: dict[str, Any] = {}
         self._meshes: dict[str, Any] = {}
         self.builds = 0  # solids built by this cache
+
+    def adopt(self, spec: PartSpec, solid) -> None:
+        """Take ``solid`` as the part's, built elsewhere in the same run (the
+        run's other process); it does not count as a build here."""
+        self._solids.setdefault(spec.name, solid)
+
     def solid(self, spec: PartSpec):
         """The part's solid, built on first request."""
         if spec.name not in self._solids:

@@ -1,0 +1,118 @@
+"""A second process for an export run: the jobs marked ``worker`` (the
+drawings, their PDF and PNG) run there while this process writes the STEP
+files, scenes and images, so both cores work.
+
+The worker is forked (one process of a
+:class:`concurrent.futures.ProcessPoolExecutor`, fork context) as the run starts, and only while this
+process has not loaded the CAD kernel: OpenCascade's thread pool does not
+survive a fork, so a process that has built or meshed a solid never forks
+(:func:`can_fork`), and the run then goes on in one process with the same
+result. Forked first, both processes import the kernel at the same time.
+The worker inherits the run and its jobs; it builds no solid: this process
+builds each distinct part once and hands the worker the solids a job reads,
+pickled (OpenCascade's binary BREP). Jobs in the worker run one at a time,
+in the order they were handed over, so a job always finds the files of the
+jobs it reads (``after``) when those were handed over before it.
+
+``TACTCAD_WORKERS=0`` keeps every run in one process.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+from concurrent.futures import Future, ProcessPoolExecutor
+import os
+import signal
+import sys
+from typing import Any, Mapping, Sequence
+
+from tactcad.export.job import Job, Run
+
+#: The run and its jobs by name, set before the fork for the worker to inherit.
+_INHERITED: dict[str, Any] = {}
+
+#: Modules the worker imports while it waits for its first job (the kernel and the drawings).
+PRELOAD = ("tactcad.parts.registry", "tactcad.drawings.compose", "tactcad.drawings.pdf",
+           "tactcad.export.render")
+
+
+def can_fork() -> bool:
+    """True if this process may fork a worker: two or more CPUs, the fork
+    start method, ``TACTCAD_WORKERS`` not ``0``, and the CAD kernel not yet
+    loaded here (see the module doc)."""
+    return (os.environ.get("TACTCAD_WORKERS", "1") != "0"
+            and (os.cpu_count() or 1) >= 2
+            and "fork" in multiprocessing.get_all_start_methods()
+            and "OCP" not in sys.modules)
+
+
+def worker_jobs(todo: Sequence[Job], done: Mapping[str, Any]) -> list[Job]:
+    """The jobs of ``todo`` that go to the worker: marked ``worker`` and reading
+    only files of jobs already done or themselves going to the worker."""
+    chosen: list[Job] = []
+    names: set[str] = set()
+    for job in todo:
+        if job.worker and job.start is None and all(a in done or a in names for a in job.after):
+            chosen.append(job)
+            names.add(job.name)
+    return chosen
+
+
+class Worker:
+    """The run's second process (see the module doc); :meth:`submit` hands it
+    a job, :meth:`close` ends it once its jobs are done, :meth:`kill` at once
+    (on an error or an interrupt). A worker that dies fails its jobs with
+    :class:`concurrent.futures.process.BrokenProcessPool`; none is forked again."""
+
+    def __init__(self, run: Run, jobs: Sequence[Job]):
+        fork = multiprocessing.get_context("fork")
+        self._pid = fork.Value("i", 0, lock=False)  # the worker's, for kill()
+        _INHERITED.update(run=run, jobs={j.name: j for j in jobs})
+        try:
+            self._pool = ProcessPoolExecutor(1, mp_context=fork, initializer=_start,
+                                             initargs=(self._pid,))
+            self._pool.submit(int)  # forks now, before the kernel loads here
+        finally:
+            _INHERITED.clear()  # the worker has its copy; this process needs none
+
+    def submit(self, job: Job, solids: Mapping[str, Any]) -> Future:
+        """Hand ``job`` over with the solids it reads (by part name); the
+        future's ``result()`` gives the job's records or raises its error."""
+        return self._pool.submit(_run_job, job.name, dict(solids))
+
+    def close(self) -> None:
+        self._pool.shutdown(wait=True)
+
+    def kill(self) -> None:
+        if self._pid.value:
+            try:
+                os.kill(self._pid.value, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        self._pool.shutdown(wait=False, cancel_futures=True)
+
+
+def _start(pid) -> None:
+    """The worker's start: it tells its pid, dies with the run's process and
+    leaves Ctrl-C to it, then imports the kernel and the drawing modules."""
+    pid.value = os.getpid()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:  # Linux: SIGKILL when the parent dies, so a killed run leaves no worker behind
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+        if os.getppid() == 1:
+            os._exit(1)
+    except (OSError, AttributeError):
+        pass
+    import importlib
+
+    for module in PRELOAD:
+        importlib.import_module(module)
+
+
+def _run_job(name: str, solids: Mapping[str, Any]) -> list[dict]:
+    run: Run = _INHERITED["run"]
+    for spec in {s.name: s for s in _INHERITED["jobs"][name].needs}.values():
+        run.parts.adopt(spec, solids[spec.name])
+    return _INHERITED["jobs"][name].make(run)

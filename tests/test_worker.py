@@ -1,0 +1,92 @@
+"""The export run's second process: jobs marked ``worker`` run there in the
+order handed over, the records come back in job order, a worker that dies
+leaves its jobs to the main process, and a process that has loaded the CAD
+kernel never forks one."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+SCRIPT = textwrap.dedent('''
+    import json, os, sys
+    from pathlib import Path
+    from tactcad.design.array import load_design
+    from tactcad.export.job import Job, Run
+    from tactcad.export.run import run_jobs
+    from tactcad.store import Store
+
+    staging, die = Path(sys.argv[1]), sys.argv[2] == "die"
+    main_pid = os.getpid()
+
+    def writer(name, reads=()):
+        def make(run):
+            if die and name == "w1" and os.getpid() != main_pid:
+                os._exit(9)  # the worker dies in its first job
+            text = "".join((run.staging / r).read_text() for r in reads) + name
+            (run.staging / name).write_text(text)
+            return [{"path": name, "part": name, "kind": "test", "pid": os.getpid()}]
+        return make
+
+    jobs = [Job("a", "ka", writer("a")),
+            Job("w1", "k1", writer("w1"), worker=True),
+            Job("w2", "k2", writer("w2", ("w1",)), after=("w1",), worker=True),
+            Job("w3", "k3", writer("w3", ("a",)), after=("a",), worker=True),
+            Job("z", "kz", writer("z", ("w2", "w3")), after=("a", "w1", "w2", "w3"))]
+    records, ran = run_jobs(Run(load_design(), staging, print), jobs, Store(None))
+    print(json.dumps({"main": main_pid, "ran": ran, "kernel": "OCP" in sys.modules,
+                      "records": records,
+                      "files": {p.name: p.read_text() for p in staging.iterdir()}}))
+''')
+
+
+def run_script(tmp_path, mode: str) -> dict:
+    staging = tmp_path / "staging"
+    staging.mkdir()
+    proc = subprocess.run([sys.executable, "-c", SCRIPT, str(staging), mode],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+@pytest.mark.slow
+def test_worker_jobs_run_in_a_second_process_in_order(tmp_path):
+    out = run_script(tmp_path, "live")
+    pids = {r["path"]: r["pid"] for r in out["records"]}
+    assert [r["path"] for r in out["records"]] == ["a", "w1", "w2", "w3", "z"]
+    assert out["ran"] == 5
+    assert pids["a"] == pids["z"] == out["main"]
+    assert pids["w1"] == pids["w2"] != out["main"]
+    assert pids["w3"] == out["main"]  # it reads a job of this process: run here
+    assert out["files"] == {"a": "a", "w1": "w1", "w2": "w1w2", "w3": "aw3", "z": "w1w2aw3z"}
+    assert not out["kernel"]  # no job needed a solid: the kernel never loaded here
+
+
+@pytest.mark.slow
+def test_a_worker_that_dies_leaves_its_jobs_to_the_main_process(tmp_path):
+    out = run_script(tmp_path, "die")
+    pids = {r["path"]: r["pid"] for r in out["records"]}
+    assert set(pids.values()) == {out["main"]}
+    assert out["files"] == {"a": "a", "w1": "w1", "w2": "w1w2", "w3": "aw3", "z": "w1w2aw3z"}
+
+
+def test_no_fork_once_the_kernel_is_loaded(monkeypatch):
+    from tactcad.export.worker import can_fork
+
+    import OCP  # noqa: F401  (this test process has the kernel)
+
+    assert not can_fork()
+
+
+def test_worker_jobs_read_only_done_or_worker_jobs():
+    from tactcad.export.job import Job
+    from tactcad.export.worker import worker_jobs
+
+    jobs = [Job("a", "ka", None), Job("w1", "k1", None, after=("a",), worker=True),
+            Job("w2", "k2", None, after=("w1",), worker=True), Job("w3", "k3", None, worker=True)]
+    assert [j.name for j in worker_jobs(jobs, {})] == ["w3"]  # w1 reads a, run here
+    assert [j.name for j in worker_jobs(jobs, {"a": []})] == ["w1", "w2", "w3"]
