@@ -167,8 +167,7 @@ def _poly_hlr(solid, direction, up, step_mm: float) -> tuple[list[Polyline], lis
     from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
     from OCP.BRepMesh import BRepMesh_IncrementalMesh
     from OCP.HLRBRep import HLRBRep_PolyAlgo, HLRBRep_PolyHLRToShape
-    from OCP.TopAbs import TopAbs_EDGE
-    from OCP.TopExp import TopExp, TopExp_Explorer
+    from OCP.TopExp import TopExp
     from OCP.TopoDS import TopoDS
 
     shape = BRepBuilderAPI_Copy(solid.wrapped, True, False).Shape()
@@ -182,16 +181,11 @@ def _poly_hlr(solid, direction, up, step_mm: float) -> tuple[list[Polyline], lis
 
     def segments(*compounds) -> list[tuple[Point, Point]]:
         out = []
-        for comp in compounds:
-            if comp.IsNull():
-                continue
-            exp = TopExp_Explorer(comp, TopAbs_EDGE)
-            while exp.More():
-                edge = TopoDS.Edge_s(exp.Current())
-                p = BRep_Tool.Pnt_s(TopExp.FirstVertex_s(edge))
-                q = BRep_Tool.Pnt_s(TopExp.LastVertex_s(edge))
-                out.append(((p.X(), p.Y()), (q.X(), q.Y())))
-                exp.Next()
+        for shape in _edges_of(compounds):
+            edge = TopoDS.Edge_s(shape)
+            p = BRep_Tool.Pnt_s(TopExp.FirstVertex_s(edge))
+            q = BRep_Tool.Pnt_s(TopExp.LastVertex_s(edge))
+            out.append(((p.X(), p.Y()), (q.X(), q.Y())))
         return out
 
     return (chain_segments(segments(shapes.VCompound(), shapes.OutLineVCompound())),
@@ -250,8 +244,6 @@ def _hlr(solid, direction, up) -> tuple[list, list]:
     edges and iso-lines are left out, as ISO 128-30 views omit them."""
     import build123d as bd
     from OCP.HLRBRep import HLRBRep_Algo, HLRBRep_HLRToShape
-    from OCP.TopAbs import TopAbs_EDGE
-    from OCP.TopExp import TopExp_Explorer
 
     algo = HLRBRep_Algo()
     algo.Add(solid.wrapped)
@@ -259,20 +251,24 @@ def _hlr(solid, direction, up) -> tuple[list, list]:
     algo.Update()
     algo.Hide()
     shapes = HLRBRep_HLRToShape(algo)
+    return ([bd.Edge(e) for e in _edges_of((shapes.VCompound(), shapes.OutLineVCompound()))],
+            [bd.Edge(e) for e in _edges_of((shapes.HCompound(), shapes.OutLineHCompound()))])
 
-    def edges(*compounds) -> list:
-        out = []
-        for comp in compounds:
-            if comp.IsNull():
-                continue
-            exp = TopExp_Explorer(comp, TopAbs_EDGE)
-            while exp.More():
-                out.append(bd.Edge(exp.Current()))
-                exp.Next()
-        return out
 
-    return (edges(shapes.VCompound(), shapes.OutLineVCompound()),
-            edges(shapes.HCompound(), shapes.OutLineHCompound()))
+def _edges_of(compounds) -> list:
+    """The edges (OCP shapes) of the non-null ``compounds``, in explorer order."""
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+
+    out = []
+    for comp in compounds:
+        if comp.IsNull():
+            continue
+        exp = TopExp_Explorer(comp, TopAbs_EDGE)
+        while exp.More():
+            out.append(exp.Current())
+            exp.Next()
+    return out
 
 
 def cameras_for(normal: tuple[float, float, float],
