@@ -22,6 +22,13 @@ SCRIPT = textwrap.dedent('''
 
     staging, die = Path(sys.argv[1]), sys.argv[2] == "die"
     main_pid = os.getpid()
+    if sys.argv[2] == "nofork":  # the system has no process to give
+        import errno
+        import tactcad.export.worker as worker
+
+        def refuse(*args, **kwargs):
+            raise OSError(errno.EAGAIN, "Resource temporarily unavailable")
+        worker.ProcessPoolExecutor = refuse
 
     def writer(name, reads=()):
         def make(run):
@@ -90,3 +97,10 @@ def test_worker_jobs_read_only_done_or_worker_jobs():
             Job("w2", "k2", None, after=("w1",), worker=True), Job("w3", "k3", None, worker=True)]
     assert [j.name for j in worker_jobs(jobs, {})] == ["w3"]  # w1 reads a, run here
     assert [j.name for j in worker_jobs(jobs, {"a": []})] == ["w1", "w2", "w3"]
+
+
+@pytest.mark.slow
+def test_no_process_to_fork_runs_everything_here(tmp_path):
+    out = run_script(tmp_path, "nofork")
+    assert {r["pid"] for r in out["records"]} == {out["main"]}
+    assert out["files"] == {"a": "a", "w1": "w1", "w2": "w1w2", "w3": "aw3", "z": "w1w2aw3z"}

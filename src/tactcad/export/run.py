@@ -136,7 +136,12 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
     if not todo:
         return [r for job in jobs for r in done[job.name]], 0
     handed = worker_jobs(todo, done) if can_fork() else []
-    worker = Worker(run, handed) if len(handed) > 1 else None
+    worker = None
+    if len(handed) > 1:
+        try:
+            worker = Worker(run, handed)
+        except OSError:  # no process to be had (memory, process limit): all of it here
+            worker = None
     if worker is None:
         handed = []
     by_name = {job.name: job for job in todo}
