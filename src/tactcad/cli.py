@@ -156,7 +156,8 @@ def console(argv: list[str] | None = None) -> NoReturn:
     the interpreter's teardown, which costs 0.8 s once the CAD kernel is
     loaded (OpenCascade's objects and modules freed one by one) and frees
     nothing the OS would not. Output is flushed and the ``atexit`` handlers
-    (temporary folders, the worker process) run first."""
+    (temporary folders left to a finaliser) run first; an export has closed
+    its worker process before it returns."""
     code = main(argv)
     try:
         sys.stdout.flush()

@@ -181,8 +181,8 @@ def _poly_hlr(solid, direction, up, step_mm: float) -> tuple[list[Polyline], lis
 
     def segments(*compounds) -> list[tuple[Point, Point]]:
         out = []
-        for shape in _edges_of(compounds):
-            edge = TopoDS.Edge_s(shape)
+        for found in _edges_of(compounds):
+            edge = TopoDS.Edge_s(found)
             p = BRep_Tool.Pnt_s(TopExp.FirstVertex_s(edge))
             q = BRep_Tool.Pnt_s(TopExp.LastVertex_s(edge))
             out.append(((p.X(), p.Y()), (q.X(), q.Y())))

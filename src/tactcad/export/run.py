@@ -141,19 +141,23 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
         try:
             worker = Worker(run, handed)
         except OSError:  # no process to be had (memory, process limit): all of it here
-            worker = None
+            pass
     if worker is None:
         handed = []
     by_name = {job.name: job for job in todo}
     futures = {}
     started = {}
 
+    def collect_reads(job: Job) -> None:
+        """Collect the worker's jobs whose files ``job`` reads."""
+        for name in job.after:
+            if name in futures and name not in done:
+                collect(name)
+
     def collect(name: str) -> None:
         """The records of a job handed to the worker, once the jobs it reads
         are collected; run here if the worker died before finishing it."""
-        for before in by_name[name].after:
-            if before in futures and before not in done:
-                collect(before)
+        collect_reads(by_name[name])
         try:
             done[name] = futures[name].result()
         except BrokenProcessPool:
@@ -169,9 +173,7 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
         started = {job.name: job.start(run) for job in todo if job.start is not None}
         for job in todo:
             if job.start is None and job.name not in futures:
-                for name in job.after:
-                    if name in futures and name not in done:
-                        collect(name)
+                collect_reads(job)
                 done[job.name] = job.make(run)
         for name in futures:
             if name not in done:

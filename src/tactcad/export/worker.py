@@ -3,9 +3,9 @@ drawings, their PDF and PNG) run there while this process writes the STEP
 files, scenes and images, so both cores work.
 
 The worker is forked (one process of a
-:class:`concurrent.futures.ProcessPoolExecutor`, fork context) as the run starts, and only while this
-process has not loaded the CAD kernel: OpenCascade's thread pool does not
-survive a fork, so a process that has built or meshed a solid never forks
+:class:`concurrent.futures.ProcessPoolExecutor`, fork context) as the run
+starts, and only while this process has not loaded the CAD kernel:
+OpenCascade's thread pool does not survive a fork, so a process that has built or meshed a solid never forks
 (:func:`can_fork`), and the run then goes on in one process with the same
 result. Forked first, both processes import the kernel at the same time.
 The worker inherits the run and its jobs; it builds no solid: this process
@@ -20,10 +20,10 @@ jobs it reads (``after``) when those were handed over before it.
 from __future__ import annotations
 
 import multiprocessing
-from concurrent.futures import Future, ProcessPoolExecutor
 import os
 import signal
 import sys
+from concurrent.futures import Future, ProcessPoolExecutor
 from typing import Any, Mapping, Sequence
 
 from tactcad.export.job import Job, Run
