@@ -80,9 +80,9 @@ def drawing_files(exported):
     return out, man, svgs
 
 
-def test_one_drawing_per_fabricated_part_and_every_svg_parses(drawing_files, plan):
+def test_one_drawing_per_fabricated_part_and_every_svg_parses(drawing_files, plan, project):
     out, man, svgs = drawing_files
-    specs, assemblies = design_assemblies(plan)
+    specs, assemblies = design_assemblies(project)
     used = {i.part for inst in assemblies.values() for i in inst}
     fabricated = {n for n, s in specs.items() if s.kind == "fabricated" and n in used}
     assert set(svgs) == fabricated
@@ -166,9 +166,9 @@ def test_plate_dimensions_read_back_as_plan_values(drawing_files, plan):
     assert_dims(found, expected)
 
 
-def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan):
+def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan, project):
     _, _, svgs = drawing_files
-    specs, assemblies = design_assemblies(plan)
+    specs, assemblies = design_assemblies(project)
     largest: dict[str, int] = {}
     for inst in assemblies.values():
         for part, n in instance_counts(inst).items():
@@ -297,12 +297,12 @@ def test_pictures_exist_and_are_not_blank(exported, plan):
     assert blue > 0.02
 
 
-def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan):
+def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan, project):
     """Fabricated rig parts get drawings with their own dimension set
     (indenter) or the generic one (sizes from the solid)."""
     pytest.importorskip("tactcad.assembly.scenes")
     _, _, svgs = drawing_files
-    specs, _ = design_assemblies(plan)
+    specs, _ = design_assemblies(project)
     if "indenter" in svgs:
         g = specs["indenter"].geometry
         assert_dims(dims(svgs["indenter"].read_text()), {
@@ -323,10 +323,11 @@ def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan):
 
 # --- shop-ready sheets: features, sections, title-block fields, no overlapping texts ----------
 def _compose(plan, name, raw=None):
+    from tactcad.design.project import project_for_plan
     from tactcad.drawings.compose import compose
     from tactcad.parts.registry import build_part
 
-    specs, _ = design_assemblies(plan)
+    specs, _ = design_assemblies(project_for_plan(plan))
     if raw is not None:
         plan = dataclasses.replace(plan, raw=raw)
     return compose(plan, specs[name], build_part(plan, specs[name]), 1), specs[name]
@@ -422,11 +423,11 @@ def test_base_plate_grooves_and_sample_holder_window(plan):
 
 
 @pytest.mark.slow
-def test_indenter_has_its_mounting_thread(plan):
+def test_indenter_has_its_mounting_thread(plan, project):
     from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
     from tactcad.parts.registry import build_part
 
-    specs, _ = design_assemblies(plan)
+    specs, _ = design_assemblies(project)
     spec = specs["indenter"]
     solid = build_part(plan, spec)
     assert abs(solid.volume - spec.expected_volume_mm3) < 1e-3 * spec.expected_volume_mm3

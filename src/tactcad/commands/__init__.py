@@ -1,8 +1,11 @@
 """Sub-commands of the ``tactcad`` CLI; see :mod:`tactcad.cli`.
 
-Every command that reads a design gets its plan from :func:`plan_from_args`,
-the one place where the design file is read, ``--set`` overrides applied and
-the result validated.
+Every command that reads a design gets its validated project from
+:func:`project_from_args` (or only its plan, :func:`plan_from_args`), the one
+place where the design file and the rigs and scenes files beside it are read,
+``--set`` overrides applied and the result validated. Nothing below the
+commands opens those files again: the :class:`~tactcad.design.project.Project`
+is carried to the last writer.
 """
 
 from __future__ import annotations
@@ -78,8 +81,9 @@ def design_data_from_args(args: argparse.Namespace) -> tuple[dict[str, Any], Pat
     return with_overrides(data, parse_overrides(getattr(args, "overrides", None))), path
 
 
-def plan_from_args(args: argparse.Namespace):
-    """The validated :class:`~tactcad.design.array.Plan` of ``--design`` with every ``--set``.
+def project_from_args(args: argparse.Namespace):
+    """The validated :class:`~tactcad.design.project.Project` of ``--design``
+    with every ``--set``: plan, rigs, scenes and the three files' hashes.
 
     The overrides are checked by the design validator itself, so an unknown
     key or a value out of range is refused with the field, the value and the
@@ -94,7 +98,17 @@ def plan_from_args(args: argparse.Namespace):
     from tactcad.design.project import project_with_design_data
 
     data, path = design_data_from_args(args)
-    return project_with_design_data(data, path)[0]
+    return project_with_design_data(data, path)
+
+
+def plan_from_args(args: argparse.Namespace):
+    """The validated :class:`~tactcad.design.array.Plan` of :func:`project_from_args`
+    (the rigs and scenes files are validated with it all the same).
+
+    Raises:
+        DesignError: as :func:`project_from_args`.
+    """
+    return project_from_args(args).plan
 
 
 def add_cache_args(p: argparse.ArgumentParser) -> None:

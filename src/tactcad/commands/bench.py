@@ -16,7 +16,8 @@ import argparse
 import importlib
 import os
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
+                               project_from_args)
 from tactcad.commands.finite_json import dumps
 
 COLD_GOAL_S = 8.0  # on two cores
@@ -136,7 +137,8 @@ def run_export(args: argparse.Namespace) -> int:
 
     from tactcad.studies.bench_scale import load_average
 
-    plan = plan_from_args(args)
+    project = project_from_args(args)
+    plan = project.plan
     say = (lambda s: None) if args.json else print
     say(f"tactcad bench export: design {plan.name}, {os.cpu_count()} CPUs, "
         f"load average {load_average()}")
@@ -154,7 +156,7 @@ def run_export(args: argparse.Namespace) -> int:
     print(f"  solid builds in the cold run       {figures['builds']:6d}     distinct parts "
           f"{figures['distinct_parts']}: {ok}")
     print(f"  one change: {figures['one_change_jobs_run']} of {figures['jobs']} jobs rebuilt")
-    _bench_interference(plan)
+    _bench_interference(project)
     return 0
 
 
@@ -194,7 +196,7 @@ def export_figures(plan, args: argparse.Namespace, tmp: str) -> dict:
             "one_change_jobs_run": last["jobs_run"], "cpus": os.cpu_count()}
 
 
-def _bench_interference(plan) -> None:
+def _bench_interference(project) -> None:
     import time
 
     from tactcad.checks.interference import check_interference
@@ -204,10 +206,10 @@ def _bench_interference(plan) -> None:
     from tactcad.checks.scenes import placed_shapes
     from tactcad.parts.cache import PartCache
 
-    cache = PartCache(plan)
+    cache = PartCache(project.plan)
     largest = None
-    for name in scene_names(plan):
-        scene, solids = build_scene(plan, name, cache)
+    for name in scene_names(project):
+        scene, solids = build_scene(project, name, cache)
         if largest is None or len(scene.instances) > len(largest[0].instances):
             largest = (scene, solids)
     scene, solids = largest

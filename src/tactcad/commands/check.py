@@ -6,7 +6,7 @@ import argparse
 import tempfile
 import time
 
-from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, project_from_args,
                               progress_from_args, store_from_args)
 from tactcad.commands.finite_json import dumps
 
@@ -40,7 +40,8 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.export.reuse import reuse_refusal
     from tactcad.export.selection import ReportingParts
 
-    plan = plan_from_args(args)
+    project = project_from_args(args)
+    plan = project.plan
     report = progress_from_args(args)
     cache = ReportingParts(plan, report)
     results = []
@@ -63,12 +64,12 @@ def run(args: argparse.Namespace) -> int:
             report(f"checking the export in {out} (same design, every file as listed)")
         else:
             report(f"exporting to {out} first: {refusal}")
-            export_for_check(plan, out, args, cache, report)
+            export_for_check(project, out, args, cache, report)
         if args.scene:
-            run_scene_checks(plan, out, args.scene, cache=cache, done=done)
+            run_scene_checks(project, out, args.scene, cache=cache, done=done)
         else:
             run_checks(plan, out, cache, done=done)
-            run_scene_checks(plan, out, cache=cache, done=done)
+            run_scene_checks(project, out, cache=cache, done=done)
     bad = failures(results)
     if args.json:
         print(dumps({"out": args.out, "reused_export": refusal is None,
@@ -82,14 +83,14 @@ def run(args: argparse.Namespace) -> int:
     return 1 if bad else 0
 
 
-def export_for_check(plan, out: str, args: argparse.Namespace, cache, report) -> None:
-    """Export ``plan`` (or only ``--scene``) into ``out`` with the store, reporting each job."""
+def export_for_check(project, out: str, args: argparse.Namespace, cache, report) -> None:
+    """Export ``project`` (or only ``--scene``) into ``out`` with the store, reporting each job."""
     from tactcad.export.run import export, export_scenes
     from tactcad.export.selection import with_progress
 
     store = store_from_args(args)
     if args.scene:
-        export_scenes(plan, out, args.scene, log=lambda s: None, store=store, parts=cache)
+        export_scenes(project, out, args.scene, log=lambda s: None, store=store, parts=cache)
     else:
-        export(plan, out, log=lambda s: None, store=store, parts=cache,
+        export(project, out, log=lambda s: None, store=store, parts=cache,
                select=lambda jobs: with_progress(jobs, report))
