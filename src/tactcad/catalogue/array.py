@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import colorsys
 import math
-from dataclasses import dataclass
+import weakref
+from dataclasses import dataclass, field
+from typing import Any
 
 from tactcad.design.array import BoltSpec, Placement, Plan
 from tactcad.geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
@@ -40,6 +42,10 @@ class PartSpec:
         expected_bbox_mm: designed bounding box in the part's own frame.
         profile: planar profile (sketch plane z = 0) for extruded parts.
         thickness_mm: extrusion thickness for extruded parts.
+        geometry: the frozen dimensions the builder, drawing and DXF writers
+            read (an element's :class:`~tactcad.design.array.ElementGeometry`,
+            the spacer's, the clamp's, a rig part's), so no writer reaches back
+            into the plan.
     """
 
     name: str
@@ -52,6 +58,10 @@ class PartSpec:
     expected_bbox_mm: Bbox
     profile: Profile | None = None
     thickness_mm: float = 0.0
+    # Left out of an array part's stable text (store keys, the drawing's part
+    # hash): its profile and thickness already fix its solid, and the
+    # drawing's inputs name the geometry itself. A rig part keeps it in.
+    geometry: Any = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
@@ -68,8 +78,22 @@ def _prism_bbox(profile: Profile, thickness: float) -> Bbox:
     return (x0, y0, 0.0, x1, y1, thickness)
 
 
+#: id(plan) -> (weak reference to the plan, its array parts): each plan's parts are
+#: made once (every element profile is built), however many writers ask.
+_ARRAY_PARTS: dict[int, tuple[weakref.ref, dict[str, PartSpec]]] = {}
+
+
 def array_parts(plan: Plan) -> dict[str, PartSpec]:
-    """Every distinct part of the array assembly, keyed by part name."""
+    """Every distinct part of the array assembly, keyed by part name (a fresh
+    dict of the specs made once per plan)."""
+    hit = _ARRAY_PARTS.get(id(plan))
+    if hit is None or hit[0]() is not plan:
+        ref = weakref.ref(plan, lambda _, key=id(plan): _ARRAY_PARTS.pop(key, None))
+        hit = _ARRAY_PARTS[id(plan)] = (ref, _make_array_parts(plan))
+    return dict(hit[1])
+
+
+def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
     parts: dict[str, PartSpec] = {}
     mat = plan.material.name
     for name, g in plan.distinct_elements.items():
@@ -79,7 +103,7 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
             color=_element_shade(g.arm_length_mm), builder="element",
             expected_volume_mm3=prof.area_mm2 * g.sheet_thickness_mm,
             expected_bbox_mm=_prism_bbox(prof, g.sheet_thickness_mm),
-            profile=prof, thickness_mm=g.sheet_thickness_mm)
+            profile=prof, thickness_mm=g.sheet_thickness_mm, geometry=g)
     s = plan.spacer
     if plan.spacer_placements:  # a one-column array has no spacer part
         sp = rectangle_profile(s.length_mm, s.height_mm,
@@ -88,7 +112,8 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
             name="spacer", kind="fabricated", process="wire EDM or laser cut from sheet",
             material=mat, color=SPACER, builder="spacer",
             expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
-            expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm)
+            expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm,
+            geometry=s)
     c = plan.clamp
     cp = u_plate_profile(c.half_length_mm, c.window_half_width_mm, c.height_mm, c.bridge_height_mm,
                          c.window_corner_radius_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
@@ -96,7 +121,8 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
         name="clamp_plate", kind="fabricated", process="milling", material=mat,
         color=ANODISED_BLUE, builder="clamp_plate",
         expected_volume_mm3=cp.area_mm2 * c.thickness_mm,
-        expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm)
+        expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm,
+        geometry=c)
     b = plan.bolt
     L = plan.bolt_length_mm
     rh = b.head_diameter_mm / 2
@@ -104,14 +130,14 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
         name=bolt_name(b, L), kind="purchased",
         process=f"ISO 4762 {b.size}x{L:g} socket head cap screw", material="steel 8.8",
         color=BLACK_OXIDE, builder="bolt", expected_volume_mm3=bolt_volume(b, L),
-        expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, L))
+        expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, L), geometry=(b, L))
     s_af = b.nut_width_across_flats_mm
     nut_vol = (hexagon_area(s_af) - math.pi * (b.nominal_diameter_mm / 2) ** 2) * b.nut_height_mm
     rc = s_af / math.sqrt(3)
     parts[nut_name(b)] = PartSpec(
         name=nut_name(b), kind="purchased", process=f"ISO 4032 {b.size} hex nut", material="steel 8",
         color=ZINC, builder="nut", expected_volume_mm3=nut_vol,
-        expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm))
+        expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm), geometry=b)
     return parts
 
 

@@ -47,7 +47,8 @@ class RigPartSpec(PartSpec):
     """A rig part: a :class:`~tactcad.catalogue.array.PartSpec` plus what scenes need.
 
     Attributes:
-        geometry: the frozen rig dataclass the builder reads.
+        geometry: the frozen rig dataclass the builder reads (in the part's
+            stable text: nothing else of the spec fixes the solid).
         frames: joint frames in the part's frame (see :mod:`tactcad.geometry.frames`).
         attributes: data carried with the part into manifest and GLB (e.g.
             ``stiffness_N_per_mm`` of a rubber sample).

@@ -209,7 +209,7 @@ def _detail_params(spec: PartSpec, plan: Plan):
     """(centre, radius) of the web detail in model mm, or None."""
     if spec.builder != "element":
         return None
-    g = plan.distinct_elements[spec.name]
+    g = spec.geometry
     r = 1.6 * (g.notch_radius_mm + g.web_thickness_mm)
     return (g.hinge_x_mm, g.notch_centre_y_mm + 0.35 * g.notch_radius_mm + 0.5 * g.web_thickness_mm), r
 
@@ -447,7 +447,7 @@ def element_dims(d: Drawing, solid) -> None:
     """Flexure element: contact face, arm length, overall sizes, arm and tip
     heights, hole pattern, tip-root radius; the web (thickness with its
     tolerance, notch radius) in detail A."""
-    g = d.plan.distinct_elements[d.spec.name]
+    g = d.spec.geometry
     f = d.front
     L, H = g.overall_length_mm, g.base_height_mm
     top = g.tip_top_y_mm
@@ -854,7 +854,7 @@ def notes_for(d: Drawing) -> list[str]:
     plan, spec = d.plan, d.spec
     n: list[str] = []
     if spec.builder == "element":
-        g = plan.distinct_elements[spec.name]
+        g = spec.geometry
         used = [s.number for s in plan.slots if s.geometry.part_name == spec.name]
         a, k0, k1, ratio = table1_spread()
         up = ((g.web_thickness_mm + g.web_tolerance_mm) / g.web_thickness_mm) ** 2.5 - 1
@@ -1061,7 +1061,7 @@ def drawing_inputs(plan: Plan, spec: PartSpec) -> tuple:
     inputs: tuple = (plan.name, spec, material_designation(spec, plan), revision_and_date(plan))
     if spec.builder == "element":
         used = tuple(s.number for s in plan.slots if s.geometry.part_name == spec.name)
-        inputs += (plan.distinct_elements[spec.name], used, plan.edm, plan.material,
+        inputs += (spec.geometry, used, plan.edm, plan.material,
                    plan.strength)
     elif spec.builder == "spacer":
         inputs += (plan.spacer, plan.pitch_mm, plan.sheet_thickness_mm)
