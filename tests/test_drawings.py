@@ -255,7 +255,8 @@ def test_any_fabricated_part_gets_a_generic_drawing_from_its_solid(plan):
     """A part with no dimension set of its own and no plan profile (as a rig
     part may be) is dimensioned from its solid: sizes and holes."""
     from tactcad.parts.cache import PartCache
-    from tactcad.drawings.compose import DIMENSION_SETS, compose
+    from tactcad.drawings.compose import compose
+    from tactcad.drawings.part_sets import DIMENSION_SETS
 
     specs = array_parts(plan)
     solid = PartCache(plan).solid(specs["spacer"])
@@ -503,15 +504,15 @@ def test_holes_read_from_a_solid_know_through_from_blind(plan):
     both ends is through; quarter-cylinder fillets are no holes."""
     import build123d as bd
 
-    from tactcad.drawings.compose import _holes
+    from tactcad.drawings.drawing import holes_seen
 
     spec = dataclasses.replace(array_parts(plan)["spacer"], profile=None)
     block = bd.Solid.make_box(20, 10, 5)
     blind = bd.Solid.make_cylinder(1.0, 3.0, bd.Plane(origin=(5, 5, 2), z_dir=(0, 0, 1)))
     through = bd.Solid.make_cylinder(1.5, 5.0, bd.Plane(origin=(15, 5, 0), z_dir=(0, 0, 1)))
-    holes = {h.x: h for h in _holes(spec, block.cut(blind, through))}
+    holes = {h.x: h for h in holes_seen(spec, block.cut(blind, through))}
     assert holes[5.0].depth == pytest.approx(3.0) and holes[5.0].depth_text == "depth 3"
     assert holes[15.0].depth is None and holes[15.0].depth_text == "through"
     tool = bd.Solid.make_box(8, 6, 2, bd.Plane(origin=(6, 2, 3)))
     pocket = tool.fillet(1.0, tool.edges().filter_by(bd.Axis.Z))  # concave corners in the part
-    assert _holes(spec, bd.Solid.make_box(20, 10, 5).cut(pocket)) == []
+    assert holes_seen(spec, bd.Solid.make_box(20, 10, 5).cut(pocket)) == []
