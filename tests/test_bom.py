@@ -14,7 +14,7 @@ import pytest
 
 from tactcad.assembly.inventory import design_assemblies, part_quantities
 from tactcad.export.bom import BOM_COLUMNS, bom_csv, bom_rows
-from tactcad.catalogue.array import Instance, array_instances, array_parts
+from tactcad.catalogue.array import Instance, Method, Process, array_instances, array_parts
 from tactcad.design.array import Placement, default_design_data, plan_from_dict, with_overrides
 
 
@@ -144,7 +144,7 @@ def test_scene_assemblies_are_counted_and_drawn(plan, project):
     from tactcad.assembly.inventory import fabricated_parts
 
     base = array_parts(plan)["spacer"]
-    plate = dataclasses.replace(base, name="rig_base_plate", builder="spacer", process="milling")
+    plate = dataclasses.replace(base, name="rig_base_plate", builder="spacer", process=Process("milling", Method.PLATE))
     shown = [("base", "rig_base_plate", "base"), ("base2", "rig_base_plate", "base")]
     shown += [(f"n{k}", "nut_M2", "nuts") for k in range(7)] + [("hidden", "nut_M2", "hidden")]
     model = types.SimpleNamespace(

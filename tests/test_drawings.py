@@ -14,7 +14,7 @@ import pytest
 
 from tactcad import __version__
 from tactcad.assembly.inventory import design_assemblies, instance_counts
-from tactcad.catalogue.array import array_instances, array_parts
+from tactcad.catalogue.array import Method, Process, array_instances, array_parts
 from tactcad.catalogue.shop import stock_size, tightening_torque_Nm
 from tactcad.drawings.compose import part_hash
 from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
@@ -261,7 +261,7 @@ def test_any_fabricated_part_gets_a_generic_drawing_from_its_solid(plan):
     specs = array_parts(plan)
     solid = PartCache(plan).solid(specs["spacer"])
     spec = dataclasses.replace(specs["spacer"], name="rig_test_plate", builder="rig_test_plate",
-                               profile=None, thickness_mm=0.0, process="milling")
+                               profile=None, thickness_mm=0.0, process=Process("milling", Method.PLATE))
     assert spec.builder not in DIMENSION_SETS
     svg = compose(plan, spec, solid, 3).sheet.svg()
     s = plan.spacer

@@ -40,3 +40,29 @@ def test_no_writer_reaches_back_into_the_plan_for_an_element():
                  if p.parts[-2] in ("parts", "drawings", "export", "checks")
                  and re.search(r"distinct_elements\[", p.read_text(encoding="utf-8"))]
     assert not offenders, offenders
+
+
+def test_every_part_has_a_typed_process(project):
+    """The shop reads the process's method, never its words: a bought part
+    has no stock, every fabricated one a blank of its method."""
+    import pickle
+
+    import pytest
+
+    from tactcad.assembly.inventory import design_assemblies
+    from tactcad.catalogue.shop import stock_size
+
+    specs, _ = design_assemblies(project)
+    for spec in specs.values():
+        assert isinstance(spec.process, catalogue.Process), spec.name
+        assert (spec.process.method is catalogue.Method.BOUGHT) == (spec.kind == "purchased")
+        if spec.kind == "fabricated":
+            assert stock_size(spec)
+        else:
+            with pytest.raises(ValueError, match="no raw stock"):
+                stock_size(spec)
+    p = catalogue.Process("milling from plate", catalogue.Method.PLATE)
+    again = pickle.loads(pickle.dumps(p))
+    assert again == "milling from plate" and again.method is catalogue.Method.PLATE
+    with pytest.raises(TypeError, match="Method"):
+        catalogue.Process("turning", "bar")

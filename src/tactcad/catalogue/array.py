@@ -14,6 +14,8 @@ import weakref
 from dataclasses import dataclass, field
 from typing import Any
 
+from enum import Enum
+
 from tactcad.design.array import BoltSpec, Placement, Plan
 from tactcad.geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
 
@@ -27,6 +29,37 @@ BLACK_OXIDE: RGB = (0.12, 0.12, 0.13)
 ZINC: RGB = (0.45, 0.46, 0.48)
 
 
+class Method(Enum):
+    """How a part comes to be: the typed half of its :class:`Process`; the raw
+    stock, the blank allowances and the surface finish follow from it
+    (:mod:`tactcad.catalogue.shop`)."""
+
+    SHEET = "cut from sheet"          # wire EDM or laser: sheet blank
+    PLATE = "milled from plate"       # sawn plate blank, faced both sides
+    BAR = "cut from bar stock"        # sawn and faced rectangular bar
+    ROUND_BAR = "turned from round bar"
+    CAST = "cast"                     # moulded to size
+    BOUGHT = "bought"                 # a catalogue part: no stock
+
+
+class Process(str):
+    """A part's process as the BOM, title block and manifest print it (the
+    text), typed by its :class:`Method` (``.method``), which is what the shop
+    data reads: ``Process("milling from plate", Method.PLATE)``."""
+
+    method: Method
+
+    def __new__(cls, text: str, method: Method) -> "Process":
+        if not isinstance(method, Method):
+            raise TypeError(f"Process {text!r}: method must be a Method, not {method!r}")
+        obj = super().__new__(cls, text)
+        obj.method = method
+        return obj
+
+    def __getnewargs__(self) -> tuple[str, Method]:  # pickles with its method
+        return (str(self), self.method)
+
+
 @dataclass(frozen=True)
 class PartSpec:
     """A distinct part of a scene.
@@ -34,7 +67,8 @@ class PartSpec:
     Attributes:
         name: file and label name (``element_a4mm``, ``spacer``, ...).
         kind: ``fabricated`` or ``purchased``.
-        process: how it is made (wire EDM, milling) or its catalogue reference.
+        process: how it is made (wire EDM, milling) or its catalogue reference,
+            typed by its :class:`Method`.
         material: material name.
         color: RGB in 0 ... 1 for STEP/GLB.
         builder: key of the builder in :mod:`tactcad.parts.registry`.
@@ -50,7 +84,7 @@ class PartSpec:
 
     name: str
     kind: str
-    process: str
+    process: Process
     material: str
     color: RGB
     builder: str
@@ -99,7 +133,7 @@ def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
     for name, g in plan.distinct_elements.items():
         prof = element_profile(g)
         parts[name] = PartSpec(
-            name=name, kind="fabricated", process="wire EDM from sheet", material=mat,
+            name=name, kind="fabricated", process=Process("wire EDM from sheet", Method.SHEET), material=mat,
             color=_element_shade(g.arm_length_mm), builder="element",
             expected_volume_mm3=prof.area_mm2 * g.sheet_thickness_mm,
             expected_bbox_mm=_prism_bbox(prof, g.sheet_thickness_mm),
@@ -109,7 +143,7 @@ def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
         sp = rectangle_profile(s.length_mm, s.height_mm,
                                [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
         parts["spacer"] = PartSpec(
-            name="spacer", kind="fabricated", process="wire EDM or laser cut from sheet",
+            name="spacer", kind="fabricated", process=Process("wire EDM or laser cut from sheet", Method.SHEET),
             material=mat, color=SPACER, builder="spacer",
             expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
             expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm,
@@ -118,7 +152,7 @@ def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
     cp = u_plate_profile(c.half_length_mm, c.window_half_width_mm, c.height_mm, c.bridge_height_mm,
                          c.window_corner_radius_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
     parts["clamp_plate"] = PartSpec(
-        name="clamp_plate", kind="fabricated", process="milling", material=mat,
+        name="clamp_plate", kind="fabricated", process=Process("milling", Method.PLATE), material=mat,
         color=ANODISED_BLUE, builder="clamp_plate",
         expected_volume_mm3=cp.area_mm2 * c.thickness_mm,
         expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm,
@@ -128,14 +162,16 @@ def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
     rh = b.head_diameter_mm / 2
     parts[bolt_name(b, L)] = PartSpec(
         name=bolt_name(b, L), kind="purchased",
-        process=f"ISO 4762 {b.size}x{L:g} socket head cap screw", material="steel 8.8",
+        process=Process(f"ISO 4762 {b.size}x{L:g} socket head cap screw", Method.BOUGHT),
+        material="steel 8.8",
         color=BLACK_OXIDE, builder="bolt", expected_volume_mm3=bolt_volume(b, L),
         expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, L), geometry=(b, L))
     s_af = b.nut_width_across_flats_mm
     nut_vol = (hexagon_area(s_af) - math.pi * (b.nominal_diameter_mm / 2) ** 2) * b.nut_height_mm
     rc = s_af / math.sqrt(3)
     parts[nut_name(b)] = PartSpec(
-        name=nut_name(b), kind="purchased", process=f"ISO 4032 {b.size} hex nut", material="steel 8",
+        name=nut_name(b), kind="purchased", process=Process(f"ISO 4032 {b.size} hex nut", Method.BOUGHT),
+        material="steel 8",
         color=ZINC, builder="nut", expected_volume_mm3=nut_vol,
         expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm), geometry=b)
     return parts
