@@ -26,8 +26,7 @@ READERS_ALLOWED = ("design/", "commands/", "cli.py")
 #: Modules that read the shipped (paper's) design as fixed reference data, never as the
 #: user's design: the stiffness-correction grid is defined on it, and Table 1's
 #: equal-arm spread is the paper's, whatever design is being run.
-TEMPLATE_READERS = {"mechanics/correction_sweep.py": {"default_design_data"},
-                    "studies/correction_sweep.py": {"default_design_data"},
+TEMPLATE_READERS = {"studies/correction_sweep.py": {"default_design_data"},
                     "mechanics/tolerance.py": {"load_design"}}
 
 

@@ -22,7 +22,6 @@ from tactcad.geometry.profile import Profile, element_profile, rectangle_profile
 Bbox = tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax (mm)
 RGB = tuple[float, float, float]
 
-ALUMINIUM: RGB = (0.78, 0.80, 0.83)
 SPACER: RGB = (0.60, 0.64, 0.68)
 ANODISED_BLUE: RGB = (0.25, 0.40, 0.70)
 BLACK_OXIDE: RGB = (0.12, 0.12, 0.13)

@@ -5,7 +5,7 @@
   the largest scene: manifold3d fast path, OpenCascade confirmation, and an
   OpenCascade-only check for comparison.
 * ``bench stiffness``: the stiffness estimators, provided by
-  ``tactcad.mechanics.bench.main(args)`` when that module is installed.
+  ``tactcad.studies.stiffness_bench.main(args)`` when that module is installed.
 * ``bench closed-form``, ``bench montecarlo``, ``bench sweep``: the design
   tools at scale (:mod:`tactcad.studies.bench_scale`).
 """
@@ -41,7 +41,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_output_args(e, "print the figures as JSON: cold_s, warm_s, one_change_s, builds, "
                         "distinct_parts (and the job counts)")
     e.set_defaults(func=run_export)
-    s = bsub.add_parser("stiffness", help="stiffness estimator benchmarks (tactcad.mechanics.bench)")
+    s = bsub.add_parser("stiffness", help="stiffness estimator benchmarks (tactcad.studies.stiffness_bench)")
     add_design_arg(s)
     s.add_argument("--out", metavar="DIR", default=None,
                    help="folder for the report files (default: the benchmark's own)")
@@ -70,11 +70,12 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run_stiffness(args: argparse.Namespace) -> int:
     try:
-        module = importlib.import_module("tactcad.mechanics.bench")
+        module = importlib.import_module("tactcad.studies.stiffness_bench")
     except ModuleNotFoundError as exc:
-        if exc.name not in ("tactcad.mechanics.bench", "tactcad.mechanics"):
+        if exc.name not in ("tactcad.studies.stiffness_bench", "tactcad.studies"):
             raise
-        print("tactcad bench stiffness: not available in this build (no tactcad.mechanics.bench)")
+        print("tactcad bench stiffness: not available in this build "
+              "(no tactcad.studies.stiffness_bench)")
         return 0
     return int(module.main(args, plan=plan_from_args(args)) or 0)
 

@@ -5,7 +5,7 @@ fem3d stiffness in ``src/tactcad/data/stiffness_correction.json``; not used
 in the fit) and the design file's own elements. They span the design domain:
 web 0.05-1 mm, notch radius t-2 mm, arm 2-20 mm, sheet 0.5-10 mm, Poisson
 ratio 0.27-0.34 (other dimensions by the grid rule of
-:mod:`tactcad.mechanics.correction_sweep`).
+:mod:`tactcad.studies.correction_sweep`).
 
 closed-form, beam and fem2d run on every design and are compared with the
 stored fem3d stiffness. fem3d itself (the costly level, 10-120 s per design)
@@ -35,7 +35,7 @@ import numpy as np
 
 from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.mechanics.correction import CORRECTION_FILE, CorrectionRangeWarning
-from tactcad.mechanics.correction_sweep import grid_geometry
+from tactcad.studies.correction_sweep import grid_geometry
 from tactcad.mechanics.ladder import MODELS, estimate
 
 #: Hold-out designs on which fem3d is run live (the others use the stored value).
