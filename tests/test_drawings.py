@@ -256,13 +256,13 @@ def test_any_fabricated_part_gets_a_generic_drawing_from_its_solid(plan):
     part may be) is dimensioned from its solid: sizes and holes."""
     from tactcad.parts.cache import PartCache
     from tactcad.drawings.compose import compose
-    from tactcad.drawings.part_sets import DIMENSION_SETS
+    from tactcad.drawings.part_sets import GENERIC, drawing_of
 
     specs = array_parts(plan)
     solid = PartCache(plan).solid(specs["spacer"])
     spec = dataclasses.replace(specs["spacer"], name="rig_test_plate", builder="rig_test_plate",
                                profile=None, thickness_mm=0.0, process=Process("milling", Method.PLATE))
-    assert spec.builder not in DIMENSION_SETS
+    assert drawing_of(spec) is GENERIC
     svg = compose(plan, spec, solid, 3).sheet.svg()
     s = plan.spacer
     h1, h2 = sorted(s.holes, key=lambda h: h.x_mm)

@@ -25,8 +25,8 @@ from tactcad.drawings.drawing import Drawing, draw_views, finish_text, layout, m
 from tactcad.drawings.frame import (FRAME, GENERAL_TOLERANCE, TITLE_H, TITLE_W, projection_symbol,
                                     revision_and_date, sheet_frame, title_cells)
 from tactcad.drawings.notes import draw_notes, notes_for, notes_top
-from tactcad.drawings.part_sets import (DIMENSION_SETS, SECTIONS, choose_cameras, detail_circle,
-                                        generic_dims, hole_table_rows)
+from tactcad.drawings.part_sets import (choose_cameras, detail_circle, drawing_of,
+                                        hole_table_rows)
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM
 from tactcad.drawings.views import scale_text
 from tactcad.store import stable_repr
@@ -93,16 +93,8 @@ def draw_finish_symbol(d: Drawing, at: tuple[float, float]) -> None:
 def drawing_inputs(plan: Plan, spec: PartSpec) -> tuple:
     """Everything of the plan that shapes the part's drawing: the part itself
     and, by part family, the plan values its notes and dimensions print."""
-    inputs: tuple = (plan.name, spec, material_designation(spec, plan), revision_and_date(plan))
-    if spec.builder == "element":
-        used = tuple(s.number for s in plan.slots if s.geometry.part_name == spec.name)
-        inputs += (spec.geometry, used, plan.edm, plan.material,
-                   plan.strength)
-    elif spec.builder == "spacer":
-        inputs += (plan.spacer, plan.pitch_mm, plan.sheet_thickness_mm)
-    elif spec.builder == "clamp_plate":
-        inputs += (plan.clamp, plan.bolt)
-    return inputs
+    return ((plan.name, spec, material_designation(spec, plan), revision_and_date(plan))
+            + drawing_of(spec).plan_values(plan, spec))
 
 
 def part_hash(plan: Plan, spec: PartSpec) -> str:
@@ -131,12 +123,13 @@ def compose(plan: Plan, spec: PartSpec, solid, quantity: int) -> Drawing:
     d.table_rows = hole_table_rows(d, solid)
     d.notes = notes_for(d)
     d.notes_top = notes_top(d)
-    layout(d, solid, detail_circle(spec, plan))
-    if spec.builder in SECTIONS:
-        SECTIONS[spec.builder](d, solid)
+    layout(d, solid, detail_circle(spec))
+    family = drawing_of(spec)
+    if family.section is not None:
+        family.section(d, solid)
     sheet_frame(d.sheet)
     draw_views(d)
-    DIMENSION_SETS.get(spec.builder, generic_dims)(d, solid)
+    family.dimensions(d, solid)
     draw_notes(d)
     draw_title_block(d)
     return d

@@ -1,40 +1,48 @@
-"""What each part family's drawing shows beyond the common sheet: its
-dimension set, section view, fixed view directions, web detail and whether
-its holes go in a table. Chosen by the part's builder key
-(``PartSpec.builder``); any other fabricated part gets the generic set
-(overall sizes, thickness, inside radii, holes)."""
+"""What each part family's drawing shows beyond the common sheet, gathered
+under its builder key (``PartSpec.builder``) in one :class:`PartDrawing`:
+dimension set, notes (the web's stiffness sensitivity from
+:func:`tactcad.mechanics.closed_form.web_tolerance_stiffness_change`, the
+paper's Table 1 spread from :mod:`tactcad.mechanics.paper.data`), section
+view, fixed view directions, detail view, hole table or not, and the plan
+values it prints. Any other fabricated part gets :data:`GENERIC` (overall
+sizes, thickness, inside radii, holes; its process and material)."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
 from tactcad.catalogue.array import PartSpec
+from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
 from tactcad.design.array import Plan
 from tactcad.drawings.dimensioning import (add_section, dim, hole_callout, hole_dims_linear,
                                            hole_marks, hole_table, radius_callouts, section_marks,
                                            thickness_dim)
 from tactcad.drawings.drawing import (FIRST_TIER, TIER, Drawing, Hole2D, holes_seen, inside_radii,
-                                      web_text)
+                                      part_thickness, web_text)
 from tactcad.drawings.sheet import fmt_mm
 from tactcad.geometry.profile import Arc
 from tactcad.drawings.views import CAMERAS, cameras_for, orientation
+from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
+from tactcad.mechanics.paper.data import largest_equal_arm_spread
+from tactcad.mechanics.strength import strength_summary
 
-def detail_circle(spec: PartSpec, plan: Plan):
-    """(centre, radius) of the web detail in model mm, or None."""
-    if spec.builder != "element":
-        return None
-    g = spec.geometry
-    r = 1.6 * (g.notch_radius_mm + g.web_thickness_mm)
-    return (g.hinge_x_mm, g.notch_centre_y_mm + 0.35 * g.notch_radius_mm + 0.5 * g.web_thickness_mm), r
+
+def detail_circle(spec: PartSpec):
+    """(centre, radius) of the part's detail view in model mm, or None."""
+    detail = drawing_of(spec).detail
+    return detail(spec) if detail is not None else None
 
 
 def choose_cameras(spec: PartSpec) -> dict:
-    """View set of a part: fixed for builders in :data:`CAMERA_SETS`, the
-    sketch plane for a profiled part, else by its bounding box."""
-    if spec.builder in CAMERA_SETS:
-        return CAMERA_SETS[spec.builder]
+    """View set of a part: its family's fixed directions, the sketch plane
+    for a profiled part, else by its bounding box."""
+    fixed = drawing_of(spec).cameras
+    if fixed is not None:
+        return fixed
     if spec.profile is None:
         return orientation(spec.expected_bbox_mm)
     return dict(CAMERAS)
@@ -42,7 +50,7 @@ def choose_cameras(spec: PartSpec) -> dict:
 
 def hole_table_rows(d: Drawing, solid) -> int:
     """Rows of the hole table the generic set will draw (0: none)."""
-    if d.spec.builder in ("element", "indenter", "cart"):
+    if not drawing_of(d.spec).hole_table:
         return 0
     holes = holes_seen(d.spec, solid, d.cameras)
     if not holes or len({(h.x, h.y) for h in holes}) == 1:
@@ -385,26 +393,156 @@ def bracket_dims(d: Drawing, solid) -> None:
     d.dimensions["ear_holes"] = text
 
 
-DIMENSION_SETS: dict[str, Callable[[Drawing, object], None]] = {
-    "array_bracket": bracket_dims,
-    "base_plate": base_plate_dims,
-    "sample_holder": sample_holder_dims,
-    "element": element_dims,
-    "clamp_plate": clamp_dims,
-    "indenter": indenter_dims,
-    "cart": cart_dims,
+def element_notes(d: Drawing) -> list[str]:
+    """Flexure element: the web as the critical dimension, wire EDM, edges, use, strength limit."""
+    plan, spec = d.plan, d.spec
+    n: list[str] = []
+    g = spec.geometry
+    used = [s.number for s in plan.slots if s.geometry.part_name == spec.name]
+    a, k0, k1, ratio = largest_equal_arm_spread()
+    up, dn = web_tolerance_stiffness_change(g.web_thickness_mm, g.web_tolerance_mm)
+    n.append(f"Web thickness {web_text(g)} is the critical dimension: hinge stiffness "
+             f"scales with t^2.5, so the tolerance alone moves stiffness by "
+             f"+{up * 100:.0f} % / -{dn * 100:.0f} %. The paper's as-built elements "
+             f"(Table 1) of equal {fmt_mm(a)} mm arm measured {k0:.2f} and {k1:.2f} N/mm "
+             f"(x{ratio:.2f}). Measure the web of every part and record it.")
+    n.append(f"Wire EDM from {fmt_mm(g.sheet_thickness_mm)} mm {spec.material} sheet along "
+             f"the nominal contour of {Path(profile_dxf_name(spec.name, len(used))).name} "
+             f"(or the nested sheet {Path(sheet_dxf_name(spec.material, g.sheet_thickness_mm)).name})"
+             + f"; wire offset is the shop's CAM setting. Start holes "
+             f"Ø{fmt_mm(g.start_hole_diameter_mm)} at the bolt-hole centres.")
+    n.append(f"Inside corners not dimensioned: R >= {fmt_mm(plan.edm.min_inside_radius_mm)} "
+             f"(wire radius + spark gap). Do not break the edges of the web or of the "
+             f"contact face; deburr elsewhere.")
+    n.append(f"Used as array element{'s' if len(used) > 1 else ''} "
+             + ", ".join(str(k) for k in used)
+             + ". A strain gauge is bonded on the flat top face over the web.")
+    st = next(r for r in strength_summary(plan) if r["part_name"] == spec.name)
+    n.append(f"Full-scale tip force {st['full_scale_force_N']:.2f} N: yield safety factor "
+             f"{st['yield_safety_factor_at_full_scale']:g} on "
+             f"{fmt_mm(plan.material.yield_strength_MPa)} MPa ({plan.material.grade}), peak "
+             f"web stress {st['stress_MPa_per_N']:.0f} MPa/N ({st['model']}). Do not load "
+             f"the tip beyond it.")
+    return n
+
+
+def spacer_notes(d: Drawing) -> list[str]:
+    """Spacer: it sets the pitch."""
+    plan, spec = d.plan, d.spec
+    n: list[str] = []
+    n.append(f"{sentence(spec.process)}, {spec.material}. Thickness "
+             f"{fmt_mm(plan.spacer.thickness_mm)} = pitch {fmt_mm(plan.pitch_mm)} - sheet "
+             f"{fmt_mm(plan.sheet_thickness_mm)}: it sets the array pitch; faces parallel "
+             f"within 0.01 (ISO 1101).")
+    return n
+
+
+def clamp_notes(d: Drawing) -> list[str]:
+    """Clamp plate: stock, window corners, bolt clearance."""
+    plan, spec = d.plan, d.spec
+    n: list[str] = []
+    n.append(f"{sentence(spec.process)} from {fmt_mm(part_thickness(spec))} mm {spec.material}"
+             f" plate. Window corners R = cutter radius. Holes Ø"
+             f"{fmt_mm(plan.bolt.clearance_hole_mm)}: ISO 273 medium clearance for "
+             f"{plan.bolt.size}.")
+    return n
+
+
+def cart_notes(d: Drawing) -> list[str]:
+    """Cart: drilling the vacuum channel and holes, sealing faces."""
+    spec = d.spec
+    n: list[str] = []
+    g = spec.geometry
+    n.append(f"{sentence(spec.process)}, {spec.material}.")
+    n.append(f"Vacuum: drill the channel Ø{fmt_mm(g.channel_diameter_mm)} from the port end "
+             f"(section A-A), then the suction holes from the pocket floor into it; deburr "
+             f"the channel and holes so no chip stays inside. Top face and pocket rim: "
+             f"flatness 0.05 (ISO 1101), so the sample seals on the vacuum.")
+    return n
+
+
+def indenter_notes(d: Drawing) -> list[str]:
+    """Indenter: the mounting thread and the contact face."""
+    spec = d.spec
+    n: list[str] = []
+    n.append(f"{sentence(spec.process)}, {spec.material}.")
+    n.append("The M6 thread screws the indenter onto the force gauge's measuring shaft; "
+             "contact face perpendicular to the thread axis within 0.02 (ISO 1101), so the "
+             "2 x 3 mm face lies flat on the element's tip.")
+    return n
+
+
+def process_note(d: Drawing) -> list[str]:
+    """Any other part: its process and material."""
+    return [f"{sentence(d.spec.process)}, {d.spec.material}."]
+
+
+def sentence(text: str) -> str:
+    """``text`` with its first letter in capitals."""
+    return text[:1].upper() + text[1:]
+
+
+def _no_plan_values(plan: Plan, spec: PartSpec) -> tuple:
+    return ()
+
+
+def element_detail(spec: PartSpec):
+    """(centre, radius) of the web detail A in model mm."""
+    g = spec.geometry
+    r = 1.6 * (g.notch_radius_mm + g.web_thickness_mm)
+    return (g.hinge_x_mm, g.notch_centre_y_mm + 0.35 * g.notch_radius_mm + 0.5 * g.web_thickness_mm), r
+
+
+@dataclass(frozen=True)
+class PartDrawing:
+    """What one part family's drawing shows beyond the common sheet, under its builder key.
+
+    Attributes:
+        dimensions: the dimension set, ``(drawing, solid) -> None``.
+        notes: the family's notes, ``drawing -> [sentence]`` (the general
+            tolerance note follows them).
+        section: a section view added after the main views, or None.
+        cameras: fixed view directions, or None (sketch plane, else by bounding box).
+        detail: ``spec -> (centre, radius)`` of a detail view in model mm, or None.
+        hole_table: whether many holes go in a coordinate table.
+        plan_values: ``(plan, spec) -> tuple`` of the plan values the notes
+            and dimensions print (they are part of the drawing's hash).
+    """
+
+    dimensions: Callable[[Drawing, object], None] = generic_dims
+    notes: Callable[[Drawing], list[str]] = process_note
+    section: Callable[[Drawing, object], None] | None = None
+    cameras: dict | None = None
+    detail: Callable[[PartSpec], tuple | None] | None = None
+    hole_table: bool = True
+    plan_values: Callable[[Plan, PartSpec], tuple] = _no_plan_values
+
+
+def _element_values(plan: Plan, spec: PartSpec) -> tuple:
+    used = tuple(s.number for s in plan.slots if s.geometry.part_name == spec.name)
+    return (spec.geometry, used, plan.edm, plan.material, plan.strength)
+
+
+GENERIC = PartDrawing()
+
+#: The drawing of each part family by builder key; any other: :data:`GENERIC`.
+DRAWINGS: dict[str, PartDrawing] = {
+    "element": PartDrawing(element_dims, element_notes, detail=element_detail, hole_table=False,
+                           plan_values=_element_values),
+    "spacer": PartDrawing(notes=spacer_notes, plan_values=lambda plan, spec: (
+        plan.spacer, plan.pitch_mm, plan.sheet_thickness_mm)),
+    "clamp_plate": PartDrawing(clamp_dims, clamp_notes,
+                               plan_values=lambda plan, spec: (plan.clamp, plan.bolt)),
+    "cart": PartDrawing(cart_dims, cart_notes, section=cart_section, hole_table=False),
+    "indenter": PartDrawing(indenter_dims, indenter_notes, section=indenter_section,
+                            cameras=cameras_for((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
+                            hole_table=False),
+    "base_plate": PartDrawing(base_plate_dims),
+    "sample_holder": PartDrawing(sample_holder_dims),
+    "array_bracket": PartDrawing(bracket_dims),
 }
 
-#: Section views by builder key, added after the main views are placed.
-SECTIONS: dict[str, Callable[[Drawing, object], None]] = {
-    "cart": cart_section,
-    "indenter": indenter_section,
-}
 
-# Parts drawn from fixed directions (builder key -> view set); others see
-# :func:`layout`.
-CAMERA_SETS: dict[str, dict] = {
-    "indenter": cameras_for((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
-}
-
-
+def drawing_of(spec: PartSpec) -> PartDrawing:
+    """The :class:`PartDrawing` of a part's family (:data:`GENERIC` for any other)."""
+    return DRAWINGS.get(spec.builder, GENERIC)
