@@ -428,48 +428,36 @@ def element_notes(d: Drawing) -> list[str]:
 
 def spacer_notes(d: Drawing) -> list[str]:
     """Spacer: it sets the pitch."""
-    plan, spec = d.plan, d.spec
-    n: list[str] = []
-    n.append(f"{sentence(spec.process)}, {spec.material}. Thickness "
-             f"{fmt_mm(plan.spacer.thickness_mm)} = pitch {fmt_mm(plan.pitch_mm)} - sheet "
-             f"{fmt_mm(plan.sheet_thickness_mm)}: it sets the array pitch; faces parallel "
-             f"within 0.01 (ISO 1101).")
-    return n
+    plan = d.plan
+    return [f"{sentence(d.spec.process)}, {d.spec.material}. Thickness "
+            f"{fmt_mm(plan.spacer.thickness_mm)} = pitch {fmt_mm(plan.pitch_mm)} - sheet "
+            f"{fmt_mm(plan.sheet_thickness_mm)}: it sets the array pitch; faces parallel "
+            f"within 0.01 (ISO 1101)."]
 
 
 def clamp_notes(d: Drawing) -> list[str]:
     """Clamp plate: stock, window corners, bolt clearance."""
-    plan, spec = d.plan, d.spec
-    n: list[str] = []
-    n.append(f"{sentence(spec.process)} from {fmt_mm(part_thickness(spec))} mm {spec.material}"
-             f" plate. Window corners R = cutter radius. Holes Ø"
-             f"{fmt_mm(plan.bolt.clearance_hole_mm)}: ISO 273 medium clearance for "
-             f"{plan.bolt.size}.")
-    return n
+    bolt = d.plan.bolt
+    return [f"{sentence(d.spec.process)} from {fmt_mm(part_thickness(d.spec))} mm "
+            f"{d.spec.material} plate. Window corners R = cutter radius. Holes "
+            f"Ø{fmt_mm(bolt.clearance_hole_mm)}: ISO 273 medium clearance for {bolt.size}."]
 
 
 def cart_notes(d: Drawing) -> list[str]:
     """Cart: drilling the vacuum channel and holes, sealing faces."""
-    spec = d.spec
-    n: list[str] = []
-    g = spec.geometry
-    n.append(f"{sentence(spec.process)}, {spec.material}.")
-    n.append(f"Vacuum: drill the channel Ø{fmt_mm(g.channel_diameter_mm)} from the port end "
-             f"(section A-A), then the suction holes from the pocket floor into it; deburr "
-             f"the channel and holes so no chip stays inside. Top face and pocket rim: "
-             f"flatness 0.05 (ISO 1101), so the sample seals on the vacuum.")
-    return n
+    return process_note(d) + [
+        f"Vacuum: drill the channel Ø{fmt_mm(d.spec.geometry.channel_diameter_mm)} from the "
+        f"port end (section A-A), then the suction holes from the pocket floor into it; deburr "
+        f"the channel and holes so no chip stays inside. Top face and pocket rim: "
+        f"flatness 0.05 (ISO 1101), so the sample seals on the vacuum."]
 
 
 def indenter_notes(d: Drawing) -> list[str]:
     """Indenter: the mounting thread and the contact face."""
-    spec = d.spec
-    n: list[str] = []
-    n.append(f"{sentence(spec.process)}, {spec.material}.")
-    n.append("The M6 thread screws the indenter onto the force gauge's measuring shaft; "
-             "contact face perpendicular to the thread axis within 0.02 (ISO 1101), so the "
-             "2 x 3 mm face lies flat on the element's tip.")
-    return n
+    return process_note(d) + [
+        "The M6 thread screws the indenter onto the force gauge's measuring shaft; "
+        "contact face perpendicular to the thread axis within 0.02 (ISO 1101), so the "
+        "2 x 3 mm face lies flat on the element's tip."]
 
 
 def process_note(d: Drawing) -> list[str]:
