@@ -124,3 +124,25 @@ def test_design_files_are_exported_through_the_store_then_compared(tmp_path, cap
     assert all(e["changes"]["stiffness_N_per_mm"]["after"]
                > e["changes"]["stiffness_N_per_mm"]["before"] for e in report["elements"])
     assert report["parts"]["added"] == report["parts"]["removed"] == []
+
+
+@pytest.mark.parametrize("manifest", [
+    '{"files": [{"nopath": 1}]}', '{"files": [], "strength": [{"x": 1}]}',
+    '{"files": [], "strength": 5}', '{"files": [], "derived": [{"v": 1}]}',
+    '{"files": [], "parts": []}', '[1, 2]', '{"files": 3}', '{not json'])
+def test_a_manifest_tactcad_did_not_write_is_bad_input(tmp_path, capsys, manifest):
+    (tmp_path / "manifest.json").write_text(manifest)
+    code = cli.main(["diff", str(tmp_path), str(tmp_path), "--json"])
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and "manifest.json" in error["message"]
+
+
+def test_a_sheet_path_leading_out_of_the_export_is_refused(tmp_path, capsys):
+    for name in ("a", "b"):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "manifest.json").write_text(json.dumps({"files": [
+            {"path": "../../etc/hostname", "kind": "drawing-svg", "sha256": name}]}))
+    code = cli.main(["diff", str(tmp_path / "a"), str(tmp_path / "b"), "--out",
+                     str(tmp_path / "pictures"), "--json"])
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and "inside the export folder" in error["message"]

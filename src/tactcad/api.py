@@ -21,6 +21,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
+from os import PathLike
 from pathlib import Path
 from typing import Any, Callable, Iterator, Sequence
 
@@ -50,11 +51,15 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
     Raises:
         DesignErrors: every refusal of the three files at once (``.errors``),
             an unknown ``set`` key included; nothing is built.
-        DesignError: ``set`` holds a key that is not ``section.key``.
+        DesignError: an unreadable file, a ``path`` that is no path, or a
+            ``set`` key that is not ``section.key``.
     """
     from tactcad.design.array import DEFAULT_DESIGN, read_toml, with_overrides
     from tactcad.design.project import project_with_design_data
+    from tactcad.errors import DesignError
 
+    if path is not None and not isinstance(path, (str, PathLike)):
+        raise DesignError("path", path, "a design file's path (str or pathlib.Path) or None")
     design = Path(path) if path is not None else DEFAULT_DESIGN
     overrides = _checked_overrides(set)
     data = with_overrides(read_toml(design, "design file"), overrides)
@@ -415,10 +420,14 @@ class Element:
             strain, mm, and the limits exceeded in ``warnings``).
 
         Raises:
-            ValueError: unknown model.
+            UnknownModelError: ``model`` is not a ladder level.
             DesignError: the material has no yield strength.
         """
+        from tactcad.mechanics.ladder import MODELS, UnknownModelError
         from tactcad.mechanics.strength import element_stress, strength_record
+
+        if model not in MODELS:
+            raise UnknownModelError(model)
 
         plan = self.project.plan
         stress = element_stress(self.geometry, plan.material, model)

@@ -60,7 +60,35 @@ def read_manifest(folder: str | Path) -> dict:
     if not isinstance(man, dict) or not isinstance(man.get("files"), list):
         raise DesignError("export", str(folder), f"a tactcad export folder ({MANIFEST} with "
                                                  f"\"files\")")
+    _check_records(man, folder)
     return man
+
+
+#: Manifest lists compared by key: section -> (key field, its type).
+_KEYED = {"files": ("path", str), "strength": ("element", int), "derived": ("name", str)}
+
+
+_TYPE_WORDS = {str: "text", int: "an integer"}
+
+
+def _check_records(man: dict, folder: str | Path) -> None:
+    """Refuse a manifest whose compared sections are not as tactcad writes them.
+
+    Raises:
+        DesignError: naming the section, the record and what is allowed.
+    """
+    for section, (key, kind) in _KEYED.items():
+        records = man.get(section, [])
+        for k, r in enumerate(records if isinstance(records, list) else [records]):
+            if not isinstance(r, dict) or not isinstance(r.get(key), kind) \
+                    or isinstance(r.get(key), bool):
+                raise DesignError(f"{MANIFEST}: {section}[{k}]", r,
+                                  f"a record with \"{key}\" ({_TYPE_WORDS[kind]})",
+                                  f"in {folder}: not a manifest tactcad wrote")
+    parts = man.get("parts", {})
+    if not isinstance(parts, dict) or not all(isinstance(v, dict) for v in parts.values()):
+        raise DesignError(f"{MANIFEST}: parts", parts, "a table of part records by name",
+                          f"in {folder}: not a manifest tactcad wrote")
 
 
 def _same(a: Any, b: Any) -> bool:
@@ -258,8 +286,8 @@ def render_sheets(diff: Diff, old_dir: str | Path, new_dir: str | Path, out_dir:
     for s in diff.sheets:
         if not s.get("compared_with"):
             continue
-        before = sheet_pixels(Path(old_dir) / s["compared_with"], dpi)
-        after = sheet_pixels(Path(new_dir) / s["sheet"], dpi)
+        before = sheet_pixels(_inside(old_dir, s["compared_with"]), dpi)
+        after = sheet_pixels(_inside(new_dir, s["sheet"]), dpi)
         stem = Path(s["sheet"]).stem
         for key, image in (("overlay", overlay(before, after)),
                            ("side_by_side", side_by_side(before, after))):
@@ -268,6 +296,20 @@ def render_sheets(diff: Diff, old_dir: str | Path, new_dir: str | Path, out_dir:
             s[key] = str(target)
             written.append(target)
     return written
+
+
+def _inside(folder: str | Path, rel: str) -> Path:
+    """``folder / rel``, refused when a manifest's path would lead out of the export.
+
+    Raises:
+        DesignError: an absolute path or one leaving ``folder``.
+    """
+    base = Path(folder).resolve()
+    path = (base / rel).resolve()
+    if Path(rel).is_absolute() or not path.is_relative_to(base):
+        raise DesignError(f"{MANIFEST}: files", rel, "a path inside the export folder",
+                          f"in {folder}: not a manifest tactcad wrote")
+    return path
 
 
 def _save_png(image, path: Path) -> None:
