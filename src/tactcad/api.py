@@ -101,21 +101,26 @@ class Project:
         self._data = data
         self._report: Progress = _quiet  # where long part builds are reported
 
-    # --- the validated files: one place reads the validated data's fields ---
+    # --- the validated files ---
+    def _validated_field(self, name: str):
+        """One field of the validated data (today the (plan, rigs, scenes)
+        triple of :func:`~tactcad.design.project.load_project`)."""
+        return self.validated[("plan", "rigs", "scenes").index(name)]
+
     @property
     def plan(self):
         """The array's :class:`~tactcad.design.array.Plan` (mm, N, MPa)."""
-        return self.validated[0]
+        return self._validated_field("plan")
 
     @property
     def rigs(self):
         """The rig plan (:class:`~tactcad.design.rigs.RigDesign`) derived against the array."""
-        return self.validated[1]
+        return self._validated_field("rigs")
 
     @property
     def scenes(self) -> dict:
         """The scenes by name (:class:`~tactcad.design.scenes.SceneSpec`)."""
-        return dict(self.validated[2])
+        return dict(self._validated_field("scenes"))
 
     @property
     def name(self) -> str:

@@ -1,8 +1,10 @@
 """Sub-commands of the ``tactcad`` CLI; see :mod:`tactcad.cli`.
 
-Every command that reads a design gets its plan from :func:`plan_from_args`,
-the one place where the design file is read, ``--set`` overrides applied and
-the result validated.
+Every command that reads a design gets it from :func:`load_from_args` (the
+:class:`tactcad.api.Project`) or :func:`plan_from_args` (its plan): both go
+through :func:`tactcad.api.load`, the one place where the design file is
+read, ``--set`` overrides applied and the result validated, for the command
+line and the Python API alike.
 """
 
 from __future__ import annotations
@@ -82,10 +84,10 @@ def plan_from_args(args: argparse.Namespace):
         DesignError: unreadable file, bad ``--set``, unknown key, value out of range
             (:class:`~tactcad.errors.DesignErrors` lists every one).
     """
-    return project_from_args(args).plan
+    return load_from_args(args).plan
 
 
-def project_from_args(args: argparse.Namespace):
+def load_from_args(args: argparse.Namespace):
     """The :class:`tactcad.api.Project` of ``--design`` with every ``--set``
     (:func:`tactcad.api.load`, which the Python API's users call too).
 

@@ -7,7 +7,7 @@ import time
 
 from tactcad.checks.result import failures
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
-                              project_from_args)
+                              load_from_args)
 from tactcad.commands.finite_json import dumps
 
 
@@ -39,7 +39,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from tactcad.export.selection import ReportingParts
 
-    project = project_from_args(args)
+    project = load_from_args(args)
     if args.junit is not None:
         junit_target(args.junit)  # a bad path is refused before the checks run
     report = progress_from_args(args)

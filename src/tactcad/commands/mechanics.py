@@ -6,7 +6,7 @@ import argparse
 import json
 
 from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
-                              project_from_args)
+                              load_from_args)
 from tactcad.errors import TactcadError
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
@@ -37,7 +37,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run_stiffness(args: argparse.Namespace) -> int:
-    project = project_from_args(args)
+    project = load_from_args(args)
     plan, element = project.plan, project.element(args.element)
     slot = element.slot
     if args.vtk is not None and args.model not in ("fem2d", "fem3d"):
