@@ -23,8 +23,9 @@ README = SRC.parents[1] / "README.md"
 
 def layers_from_readme(text: str) -> list[str]:
     """The layers of README's Layout block, top to bottom: a folder ``name/``
-    is the layer ``name``; ``errors.py ...`` is the foundation, ``cli.py
-    commands/`` the commands."""
+    is the layer ``name``; a module file is in the layer :data:`FOUNDATION` or
+    :data:`TOP_LEVEL` gives it (``errors.py ...`` the foundation, ``cli.py
+    commands/`` and ``api.py`` the commands)."""
     block = text.split("## Layout", 1)[1].split("```", 2)[1]
     layers, inside = [], False
     for line in block.splitlines():
@@ -37,15 +38,19 @@ def layers_from_readme(text: str) -> list[str]:
         if not inside or not m:
             continue
         first = m.group(1)
-        layer = ("foundation" if first == "errors.py" else "commands" if first == "cli.py"
-                 else first.rstrip("/"))
-        layers.append(layer)
+        if first.endswith(".py"):
+            module = "tactcad." + first[:-3]
+            layer = "foundation" if module in FOUNDATION else TOP_LEVEL[module]
+        else:
+            layer = first.rstrip("/")
+        if layer not in layers:
+            layers.append(layer)
     return layers
 
 
-LAYERS = layers_from_readme(README.read_text(encoding="utf-8"))
 FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store"}
-TOP_LEVEL = {"tactcad.cli": "commands"}
+TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands"}
+LAYERS = layers_from_readme(README.read_text(encoding="utf-8"))
 MECHANICS_MAY_USE = {"foundation", "design", "geometry", "mechanics"}
 
 

@@ -21,8 +21,10 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "tactcad"
 FILE_READERS = {"read_toml", "load_design", "load_rigs", "load_scenes", "load_project",
                 "rigs_path_for", "scenes_path_for", "default_design_data", "default_rigs_data",
                 "project_for_plan", "project_with_design_data"}
-#: Where they may be called: the layer that validates the files, and the command line.
-READERS_ALLOWED = ("design/", "commands/", "cli.py")
+#: Where they may be called: the layer that validates the files, the command line and
+#: the Python API's entry points (tactcad.load; the build123d part classes, which are
+#: built from the design file they are given).
+READERS_ALLOWED = ("design/", "commands/", "cli.py", "api.py", "assembly/part_objects.py")
 #: Modules that read the shipped (paper's) design as fixed reference data, never as the
 #: user's design: the stiffness-correction grid is defined on it, and Table 1's
 #: equal-arm spread is the paper's, whatever design is being run.

@@ -1,11 +1,13 @@
 """Sub-commands of the ``tactcad`` CLI; see :mod:`tactcad.cli`.
 
-Every command that reads a design gets its validated project from
-:func:`project_from_args` (or only its plan, :func:`plan_from_args`), the one
-place where the design file and the rigs and scenes files beside it are read,
-``--set`` overrides applied and the result validated. Nothing below the
-commands opens those files again: the :class:`~tactcad.design.project.Project`
-is carried to the last writer.
+Every command that reads a design gets it from :func:`load_from_args` (the
+:class:`tactcad.api.Project`), :func:`project_from_args` (its validated
+:class:`tactcad.design.project.Project`) or :func:`plan_from_args` (its
+plan): all go through :func:`tactcad.api.load`, the one place where the
+design file and the rigs and scenes files beside it are read, ``--set``
+overrides applied and the result validated, for the command line and the
+Python API alike. Nothing below the commands opens those files again: the
+validated project is carried to the last writer.
 """
 
 from __future__ import annotations
@@ -72,18 +74,8 @@ def parse_overrides(texts: list[str] | None) -> dict[str, Any]:
     return dict(parse_override(t) for t in texts or ())
 
 
-def design_data_from_args(args: argparse.Namespace) -> tuple[dict[str, Any], Path]:
-    """The design file's tables with the ``--set`` overrides applied, and the file's path."""
-    from tactcad.design.array import DEFAULT_DESIGN, read_toml, with_overrides
-
-    path = Path(args.design) if getattr(args, "design", None) else DEFAULT_DESIGN
-    data = read_toml(path, "design file")
-    return with_overrides(data, parse_overrides(getattr(args, "overrides", None))), path
-
-
-def project_from_args(args: argparse.Namespace):
-    """The validated :class:`~tactcad.design.project.Project` of ``--design``
-    with every ``--set``: plan, rigs, scenes and the three files' hashes.
+def plan_from_args(args: argparse.Namespace):
+    """The validated :class:`~tactcad.design.array.Plan` of ``--design`` with every ``--set``.
 
     The overrides are checked by the design validator itself, so an unknown
     key or a value out of range is refused with the field, the value and the
@@ -95,20 +87,30 @@ def project_from_args(args: argparse.Namespace):
         DesignError: unreadable file, bad ``--set``, unknown key, value out of range
             (:class:`~tactcad.errors.DesignErrors` lists every one).
     """
-    from tactcad.design.project import project_with_design_data
-
-    data, path = design_data_from_args(args)
-    return project_with_design_data(data, path)
+    return load_from_args(args).plan
 
 
-def plan_from_args(args: argparse.Namespace):
-    """The validated :class:`~tactcad.design.array.Plan` of :func:`project_from_args`
-    (the rigs and scenes files are validated with it all the same).
+def project_from_args(args: argparse.Namespace):
+    """The validated :class:`~tactcad.design.project.Project` (plan, rigs,
+    scenes and the three files' hashes) of :func:`load_from_args`.
 
     Raises:
-        DesignError: as :func:`project_from_args`.
+        DesignError: as :func:`plan_from_args`.
     """
-    return project_from_args(args).plan
+    return load_from_args(args).validated
+
+
+def load_from_args(args: argparse.Namespace):
+    """The :class:`tactcad.api.Project` of ``--design`` with every ``--set``
+    (:func:`tactcad.api.load`, which the Python API's users call too).
+
+    Raises:
+        DesignError: as :func:`plan_from_args`.
+    """
+    from tactcad.api import load
+
+    return load(getattr(args, "design", None),
+                set=parse_overrides(getattr(args, "overrides", None)))
 
 
 def add_cache_args(p: argparse.ArgumentParser) -> None:
