@@ -32,7 +32,7 @@ from tactcad.design.domain import draw_design, draw_out_of_domain
 from tactcad.design.project import project_from_data, project_of
 from tactcad.design.rigs import default_rigs_data
 from tactcad.design.scenes import DEFAULT_SCENES
-from tactcad.design.schema import Problems, read_toml
+from tactcad.vocabulary.schema import Problems, read_toml
 from tactcad.errors import DesignError, TactcadError
 
 

@@ -4,7 +4,8 @@ in a circle.
 
 The layer order is written once, in README's "Layout" section (the lines
 under ``src/tactcad/``, top to bottom); this file reads it from there. The
-mechanics read plans only: foundation, design, geometry and mechanics.
+mechanics read plans only: foundation, vocabulary, design, geometry and
+mechanics.
 """
 
 from __future__ import annotations
@@ -51,7 +52,7 @@ def layers_from_readme(text: str) -> list[str]:
 FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store"}
 TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands"}
 LAYERS = layers_from_readme(README.read_text(encoding="utf-8"))
-MECHANICS_MAY_USE = {"foundation", "design", "geometry", "mechanics"}
+MECHANICS_MAY_USE = {"foundation", "vocabulary", "design", "geometry", "mechanics"}
 
 
 def module_name(path: Path) -> str:

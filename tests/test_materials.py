@@ -6,8 +6,8 @@ import pytest
 
 from tactcad.design.array import plan_from_dict
 from tactcad.errors import DesignError
-from tactcad.design.materials import (DEFAULT_GAUGE, DEFAULT_GRADE, material_grade, material_grades,
-                               strain_gauge, strain_gauges)
+from tactcad.vocabulary.materials import (DEFAULT_GAUGE, DEFAULT_GRADE, material_grade, material_grades,
+                                          strain_gauge, strain_gauges)
 
 REQUIRED_GRADES = ("6061-T6", "7075-T6", "17-4PH-H900", "Ti-6Al-4V-annealed", "CuBe-C17200-TF00")
 

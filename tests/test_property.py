@@ -19,7 +19,7 @@ from tactcad.design.domain import draw_design, draw_out_of_domain
 from tactcad.design.project import project_from_data
 from tactcad.design.rigs import default_rigs_data
 from tactcad.design.scenes import DEFAULT_SCENES
-from tactcad.design.schema import Problems, read_toml
+from tactcad.vocabulary.schema import Problems, read_toml
 from tactcad.errors import DesignError
 from tactcad.export.dxf_sheet import shop_profiles, write_shop_profile
 from tactcad.parts.element import build_element, profile_face

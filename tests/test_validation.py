@@ -16,7 +16,7 @@ from tactcad.design.array import DEFAULT_DESIGN, default_design_data, plan_from_
 from tactcad.design.project import load_project, project_for_plan, project_from_data
 from tactcad.design.rigs import DEFAULT_RIGS, default_rigs_data, stiffest_element
 from tactcad.design.scenes import DEFAULT_SCENES
-from tactcad.design.schema import Problems, read_toml
+from tactcad.vocabulary.schema import Problems, read_toml
 from tactcad.errors import DesignError, DesignErrors
 
 ARMS = "lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0, 5.0, 7.0]"

@@ -26,18 +26,20 @@ y up (the array frame's convention).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Mapping
 
 from tactcad.catalogue.array import (PartSpec, array_contacts, array_instances, array_parts,
                                      bolt_name, nut_name)
-from tactcad.catalogue.rigs import bolt_frames, nut_frames, rig_parts, sample_name, wheel_tag
+from tactcad.catalogue.rigs import (bolt_frames, nut_frames, rig_parts, sample_name, seat_frame,
+                                   wheel_tag)
 from tactcad.design.array import Placement, Plan
 from tactcad.design.project import Project
 from tactcad.design.rigs import RigDesign
 from tactcad.design.scenes import RIGS, SceneSpec
 from tactcad.errors import DesignError, SceneError
 from tactcad.geometry.frames import Frame
+from tactcad.partlib.registry import rig_parts_lib
 
 SOLVE_TOL_MM = 1e-9
 
@@ -304,8 +306,23 @@ class _Builder:
             self.touch(f"holder_bolt_{i}", "cart")
         self.mate("sample", "bottom", "cart", "top")
 
+    def library_parts(self) -> None:
+        """Each part module's part (:mod:`tactcad.partlib`) whose host is in this
+        rig: in the host's group, its seat mated on the host's seat, touching it."""
+        for key, part in rig_parts_lib().items():
+            host = self.nodes.get(part.host)
+            if host is None or host.part is None:
+                continue
+            data = self.rigs.library[key]
+            host_frame = f"{key}_seat"
+            self.nodes[part.host] = replace(
+                host, frames={**host.frames, host_frame: seat_frame(data.host_seat)})
+            self.leaf(key, data.name, host.group)
+            self.mate(key, "seat", part.host, host_frame)
+
     def model(self, rig: str, solve_order: list[str], checks: dict,
               empty_groups: tuple[str, ...] = ()) -> RigModel:
+        self.library_parts()
         return RigModel(rig, self.nodes, {"base_plate": WORLD_Y_UP}, self.steps, solve_order,
                         self.contacts, self.specs, checks, empty_groups)
 

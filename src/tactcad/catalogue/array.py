@@ -14,9 +14,8 @@ import weakref
 from dataclasses import dataclass, field
 from typing import Any
 
-from enum import Enum
-
 from tactcad.design.array import BoltSpec, Placement, Plan
+from tactcad.vocabulary.process import Method, Process
 from tactcad.geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
 
 Bbox = tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax (mm)
@@ -26,37 +25,6 @@ SPACER: RGB = (0.60, 0.64, 0.68)
 ANODISED_BLUE: RGB = (0.25, 0.40, 0.70)
 BLACK_OXIDE: RGB = (0.12, 0.12, 0.13)
 ZINC: RGB = (0.45, 0.46, 0.48)
-
-
-class Method(Enum):
-    """How a part comes to be: the typed half of its :class:`Process`; the raw
-    stock, the blank allowances and the surface finish follow from it
-    (:mod:`tactcad.catalogue.shop`)."""
-
-    SHEET = "cut from sheet"          # wire EDM or laser: sheet blank
-    PLATE = "milled from plate"       # sawn plate blank, faced both sides
-    BAR = "cut from bar stock"        # sawn and faced rectangular bar
-    ROUND_BAR = "turned from round bar"
-    CAST = "cast"                     # moulded to size
-    BOUGHT = "bought"                 # a catalogue part: no stock
-
-
-class Process(str):
-    """A part's process as the BOM, title block and manifest print it (the
-    text), typed by its :class:`Method` (``.method``), which is what the shop
-    data reads: ``Process("milling from plate", Method.PLATE)``."""
-
-    method: Method
-
-    def __new__(cls, text: str, method: Method) -> "Process":
-        if not isinstance(method, Method):
-            raise TypeError(f"Process {text!r}: method must be a Method, not {method!r}")
-        obj = super().__new__(cls, text)
-        obj.method = method
-        return obj
-
-    def __getnewargs__(self) -> tuple[str, Method]:  # pickles with its method
-        return (str(self), self.method)
 
 
 @dataclass(frozen=True)

@@ -17,6 +17,7 @@ from tactcad.design.array import BoltSpec, Plan
 from tactcad.geometry.frames import Frame, face
 from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, RigDesign
 from tactcad.design.scenes import LEVELS
+from tactcad.partlib.base import PartData, Seat
 
 
 # Materials with alloy and temper (EN 573-3 / EN 515, EN 10088-3, EN 12164):
@@ -386,7 +387,24 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         expected_bbox_mm=_box_bbox(-w / 2, br.foot_bottom_mm, -br.foot_length_mm, w / 2,
                                    br.ear_top_mm, 0),
         geometry=br, frames=frames))
+    for key, data in rigs.library.items():
+        add(library_spec(key, data))
     return parts
+
+
+def library_spec(key: str, data: PartData) -> RigPartSpec:
+    """The spec of a part written as one module (:mod:`tactcad.partlib`): its
+    data, built by its module (builder = its key), joint frame ``seat``."""
+    return RigPartSpec(
+        name=data.name, kind=data.kind, process=data.process, material=data.material,
+        color=data.color, builder=key, expected_volume_mm3=data.expected_volume_mm3,
+        expected_bbox_mm=data.expected_bbox_mm, geometry=data.geometry,
+        frames={"seat": seat_frame(data.seat)}, attributes=data.attributes)
+
+
+def seat_frame(seat: Seat) -> Frame:
+    """A part module's seat as a joint frame."""
+    return face(seat.origin, seat.normal, seat.x_dir)
 
 
 def _wheel(sx: int, sy: int) -> str:

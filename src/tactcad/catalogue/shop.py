@@ -54,7 +54,7 @@ def material_designation(spec: PartSpec, plan: Plan | None = None) -> str:
     """Material with alloy and temper, e.g. ``aluminium EN AW-6061-T6``.
 
     The array's parts are cut from the design's material: its library grade
-    (:mod:`tactcad.design.materials`, ``[material] grade``) gives alloy and
+    (:mod:`tactcad.vocabulary.materials`, ``[material] grade``) gives alloy and
     temper, written with the EN 573-1 prefix ``EN AW-`` for aluminium. Rig
     parts carry their designation in their catalogue entry already.
     """

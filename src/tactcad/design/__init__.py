@@ -1,9 +1,7 @@
 """Design files -> validated, immutable plans (no CAD kernel).
 
-* :mod:`tactcad.design.schema`: the one schema mechanism of the three files
-  (pydantic sections, every refusal at once as ``file: field = value: allowed ...``),
-  reading TOML, the content hash, the ``[assumptions]`` table;
-* :mod:`tactcad.design.standards`: ISO bolts and nuts, ISO 15 bearings, stock lengths;
+* the vocabulary they are written in (schema mechanism, ISO standards, materials):
+  :mod:`tactcad.vocabulary`; the optional rig parts written one module each: :mod:`tactcad.partlib`;
 * :mod:`tactcad.design.array`: the array design file (``hardware/macro_array.toml``)
   and its plan: element profiles, bolt pattern, spacers, clamp plates;
 * :mod:`tactcad.design.rigs`: the test-rig file (``hardware/rigs.toml``), derived

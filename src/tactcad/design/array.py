@@ -22,13 +22,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
-from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Name, Problems, Section, Text, choice,
-                                   content_hash, fmt, integer, listing, number, read_assumptions,
-                                   read_toml, validate)
-from tactcad.design.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
-                                      StrengthSettings, default_strength_settings,
-                                      material_fields, material_grade, strength_settings)
-from tactcad.design.standards import BOLTS, BoltSpec, shortest_stock_length
+from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Name, Problems, Section, Text, choice,
+                                       content_hash, fmt, integer, listing, number, read_assumptions,
+                                       read_toml, validate)
+from tactcad.vocabulary.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
+                                          StrengthSettings, default_strength_settings,
+                                          material_fields, material_grade, strength_settings)
+from tactcad.vocabulary.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 
 DEFAULT_DESIGN = Path(__file__).resolve().parents[3] / "hardware" / "macro_array.toml"
@@ -64,19 +64,9 @@ _DOMAIN = "the range over which the closed-form correction is fitted to fem3d"
 # Plan dataclasses
 # ---------------------------------------------------------------------------
 @dataclass(frozen=True)
-class Derived:
-    """A dimension the plan derives, with the reason it has that value."""
-
-    name: str
-    value: float
-    unit: str
-    reason: str
-
-
-@dataclass(frozen=True)
 class Material:
     """Sheet material (MPa, g/cm^3). The strength fields come from the
-    library grade (:mod:`tactcad.design.materials`) unless the design gives them;
+    library grade (:mod:`tactcad.vocabulary.materials`) unless the design gives them;
     None when neither does. ``fatigue_cycles`` and ``fatigue_R_ratio`` belong
     to a library fatigue strength; ``sources`` names each value's document."""
 
@@ -318,7 +308,7 @@ class DesignSection(Section):
 class MaterialSection(Section):
     """Name, E and nu; optionally a library grade (yield, fatigue strength,
     density; E and nu from the grade where the table omits them) and the
-    design's own strength values (:mod:`tactcad.design.materials`)."""
+    design's own strength values (:mod:`tactcad.vocabulary.materials`)."""
 
     name: Text
     youngs_modulus_MPa: number(1e3, 1e6, unit="MPa")
@@ -332,7 +322,7 @@ class MaterialSection(Section):
 
 class StrengthSection(Section):
     """Safety factor on yield at the full-scale force, and the strain gauge
-    (both optional: :mod:`tactcad.design.materials` gives the defaults)."""
+    (both optional: :mod:`tactcad.vocabulary.materials` gives the defaults)."""
 
     safety_factor: number(*SAFETY_FACTOR_RANGE, unit="") = None
     gauge: Text = None

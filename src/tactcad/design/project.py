@@ -21,7 +21,7 @@ from typing import Any, Iterator, Mapping
 
 from tactcad.design.array import DEFAULT_DESIGN, Plan, plan_from_model, validate_design
 from tactcad.design.rigs import DEFAULT_RIGS, RigDesign, rigs_path_for, validate_rigs
-from tactcad.design.schema import Problems, content_hash, fmt, read_toml
+from tactcad.vocabulary.schema import Problems, content_hash, fmt, read_toml
 from tactcad.design.scenes import DEFAULT_SCENES, SceneSpec, scenes_path_for, validate_scenes
 from tactcad.errors import DesignError
 

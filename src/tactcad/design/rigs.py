@@ -5,7 +5,7 @@ micro-stages, rubber-sample stiffness on a wheeled cart, array evaluation on
 a vertical linear axis with 100 g weights) need dimensions the paper does not
 give. They live in their own file, each with a one-line reason under
 ``[assumptions]``, and are read by the same schema mechanism as the array
-design (:mod:`tactcad.design.schema`): every bad value is reported, all at once,
+design (:mod:`tactcad.vocabulary.schema`): every bad value is reported, all at once,
 naming the field, the value and the allowed range. Values that follow from the
 array (the indenter's contact face, the calibration element, the bracket
 width, the stages' travel) may be left out: they are derived from the array's
@@ -17,16 +17,20 @@ Units: mm, N, g.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping, Optional
 
-from tactcad.design.array import Derived, Plan
-from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Problems, Section, Text, choice,
-                                   content_hash, fmt, integer, listing, number, read_assumptions,
-                                   read_toml, validate)
-from tactcad.design.standards import (BEARINGS, RIG_BOLTS, BearingSpec, BoltSpec,
-                                      shortest_stock_length)
+from pydantic import create_model
+
+from tactcad.design.array import Plan
+from tactcad.partlib.base import PartData
+from tactcad.partlib.registry import rig_parts_lib
+from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Problems, Section, Text, choice,
+                                       content_hash, fmt, integer, listing, number, read_assumptions,
+                                       read_toml, validate)
+from tactcad.vocabulary.standards import (BEARINGS, RIG_BOLTS, BearingSpec, BoltSpec,
+                                          shortest_stock_length)
 from tactcad.errors import DesignError
 
 DEFAULT_RIGS = Path(__file__).resolve().parents[3] / "hardware" / "rigs.toml"
@@ -272,6 +276,8 @@ class RigDesign:
     calibration_element: int
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
+    #: the parts written one module each (:mod:`tactcad.partlib`), by key
+    library: Mapping[str, PartData] = field(default_factory=dict)
 
 
 # ---------------------------------------------------------------------------
@@ -425,8 +431,9 @@ class CalibrationSection(Section):
     element: Optional[integer(1, 1000)] = None  # default: the stiffest element (shortest arm)
 
 
-class RigsFile(Section):
-    """``rigs.toml``: every section required but ``[calibration]`` and ``[assumptions]``."""
+class _RigsFileBase(Section):
+    """``rigs.toml``: every section required but ``[calibration]``, ``[assumptions]``
+    and the tables of the part modules (:mod:`tactcad.partlib`), which have defaults."""
 
     rigs: RigsSection
     base_plate: BasePlateSection
@@ -445,6 +452,27 @@ class RigsFile(Section):
     weights: WeightsSection
     calibration: CalibrationSection = CalibrationSection()
     assumptions: dict[str, Any] = {}
+
+
+#: The rigs file's schema: the sections above and one optional table per part module.
+RigsFile = create_model(
+    "RigsFile", __base__=_RigsFileBase, __doc__=_RigsFileBase.__doc__,
+    **{key: (part.section, part.section()) for key, part in rig_parts_lib().items()})
+
+
+@dataclass(frozen=True)
+class PartContext:
+    """What a part module's derivation reads: the array's plan and the rig parts
+    written in this module (:class:`RigDesign` without ``library``)."""
+
+    plan: Plan
+    rigs: RigDesign
+
+
+def _library(r: _RigsFileBase, plan: Plan, rigs: RigDesign, p: Problems) -> dict[str, PartData]:
+    """Each part module's data, derived against the array and the other rig parts."""
+    context = PartContext(plan, rigs)
+    return {key: part.derive(getattr(r, key), context, p) for key, part in rig_parts_lib().items()}
 
 
 # ---------------------------------------------------------------------------
@@ -853,12 +881,17 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     cal = _calibration_element(r, plan, p)
     if p:
         return None, p
-    return RigDesign(
+    rig_design = RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
         base=base, column=column, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
         holder=holder, indenter=indenter, gauge=gauge, z_axis=z_axis, xy_stage=xy,
         linear_axis=lin, carrier=carrier, bar=bar, bracket=bracket, weights=weights,
-        calibration_element=cal, derived=tuple(derived), assumptions=assumptions), p
+        calibration_element=cal, derived=tuple(derived), assumptions=assumptions)
+    library = _library(r, plan, rig_design, p)
+    if p:
+        return None, p
+    derived += [d for part in library.values() for d in part.derived]
+    return replace(rig_design, derived=tuple(derived), library=library), p
 
 
 def rigs_from_dict(data: Mapping[str, Any], plan: Plan, source: str = "<dict>",
@@ -874,8 +907,6 @@ def rigs_from_dict(data: Mapping[str, Any], plan: Plan, source: str = "<dict>",
 
 
 def _with_source(rigs: RigDesign, source: str) -> RigDesign:
-    from dataclasses import replace
-
     return replace(rigs, source=source)
 
 

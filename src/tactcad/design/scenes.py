@@ -2,7 +2,7 @@
 
 A scene names its rig, the groups of parts it shows and their level of
 detail; :mod:`tactcad.assembly.scenes` assembles it. The file is read by the
-schema mechanism of :mod:`tactcad.design.schema`: every refusal at once.
+schema mechanism of :mod:`tactcad.vocabulary.schema`: every refusal at once.
 """
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping, Optional
 
-from tactcad.design.schema import (NAME_ALLOWED, NAME_PATTERN, Problems, Section, Text, choice,
-                                   listing, number, read_toml, validate)
+from tactcad.vocabulary.schema import (NAME_ALLOWED, NAME_PATTERN, Problems, Section, Text, choice,
+                                       listing, number, read_toml, validate)
 
 DEFAULT_SCENES = Path(__file__).resolve().parents[3] / "hardware" / "scenes.toml"
 #: Levels of detail: ``full`` (fabricated parts as made) and ``envelope``

@@ -9,6 +9,7 @@ sizes, thickness, inside radii, holes; its process and material)."""
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
@@ -29,6 +30,8 @@ from tactcad.drawings.views import CAMERAS, cameras_for, orientation
 from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
 from tactcad.mechanics.paper.data import largest_equal_arm_spread
 from tactcad.mechanics.strength import strength_summary
+from tactcad.partlib.base import DrawingRecord
+from tactcad.partlib.registry import rig_parts_lib
 
 
 def detail_circle(spec: PartSpec):
@@ -532,5 +535,18 @@ DRAWINGS: dict[str, PartDrawing] = {
 
 
 def drawing_of(spec: PartSpec) -> PartDrawing:
-    """The :class:`PartDrawing` of a part's family (:data:`GENERIC` for any other)."""
-    return DRAWINGS.get(spec.builder, GENERIC)
+    """The :class:`PartDrawing` of a part's family: :data:`DRAWINGS`, a part
+    module's :class:`~tactcad.partlib.base.DrawingRecord`, else :data:`GENERIC`."""
+    if spec.builder in DRAWINGS:
+        return DRAWINGS[spec.builder]
+    part = rig_parts_lib().get(spec.builder)
+    if part is not None and part.drawing is not None:
+        return _from_record(part.drawing)
+    return GENERIC
+
+
+@functools.cache
+def _from_record(record: DrawingRecord) -> PartDrawing:
+    """The general dimension set with the record's notes before the process note."""
+    return PartDrawing(notes=lambda d: list(record.notes) + process_note(d),
+                       hole_table=record.hole_table)

@@ -430,7 +430,7 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     Args:
         base: the design whose other dimensions are kept.
         targets: the sensing targets.
-        grade: material grade of the library (:mod:`tactcad.design.materials`) to
+        grade: material grade of the library (:mod:`tactcad.vocabulary.materials`) to
             use instead of the base material.
         pitch_mm: array pitch (mm) instead of the base's.
         name: ``design.name`` of the new design.

@@ -56,7 +56,7 @@ import numpy as np
 
 from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
-from tactcad.design.materials import StrengthSettings
+from tactcad.vocabulary.materials import StrengthSettings
 from tactcad.mechanics.ladder import estimate
 
 #: Exponent of K_t = (1 + t/(2R))^p for the single-sided circular notch in
@@ -272,7 +272,7 @@ def require_yield(material: Material) -> float:
         DesignError: it has none (the message names the grades that give one).
     """
     if material.yield_strength_MPa is None:
-        from tactcad.design.materials import material_grades
+        from tactcad.vocabulary.materials import material_grades
 
         raise DesignError("material.yield_strength_MPa", None,
                           "a value in MPa, or a material.grade (one of "

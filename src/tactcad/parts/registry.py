@@ -11,6 +11,7 @@ import build123d as bd
 
 from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import Plan
+from tactcad.partlib.registry import rig_parts_lib
 from tactcad.parts import bracket, indenter, purchased, rig_base, rig_cart, sample
 from tactcad.parts.element import build_element
 from tactcad.parts.fasteners import build_bolt, build_nut
@@ -55,8 +56,13 @@ def build_part(plan: Plan, spec: PartSpec) -> bd.Solid:
     """Build one part's solid (part frame, mm) and count the build in :data:`BUILD_COUNTS`.
 
     Raises:
-        KeyError: the spec names no known builder (a catalogue error).
+        KeyError: the spec names no known builder (a catalogue error); the
+            builders are :data:`BUILDERS` and the part modules of :mod:`tactcad.partlib`.
     """
-    solid = BUILDERS[spec.builder](plan, spec)
+    library = rig_parts_lib()
+    if spec.builder in library:  # a part written as one module builds itself
+        solid = library[spec.builder].build(spec.geometry)
+    else:
+        solid = BUILDERS[spec.builder](plan, spec)
     BUILD_COUNTS[spec.name] += 1
     return solid

@@ -379,3 +379,13 @@ def read_assumptions(data: Mapping[str, Any], model: type[BaseModel], problems: 
         else:
             out.append((key, reason.strip()))
     return tuple(out)
+
+
+@dataclass(frozen=True)
+class Derived:
+    """A dimension the plan derives, with the reason it has that value."""
+
+    name: str
+    value: float
+    unit: str
+    reason: str

@@ -1,0 +1,104 @@
+"""The form of a part written as one module (:mod:`tactcad.partlib`).
+
+A part module holds everything about one rig part and exposes it as one
+:class:`RigPart` named ``PART``:
+
+* ``section``: its ``rigs.toml`` table (a :class:`~tactcad.vocabulary.schema.Section`
+  whose every field has a default, so a rigs file without the table stays valid);
+* ``derive``: the validated table and the rest of the rig -> :class:`PartData`
+  (the spec: name, kind, typed process, material, colour, expected volume and
+  box, the geometry its builder reads, derived dimensions with their reasons,
+  its seat and the seat on its host), refusals added to the file's problems;
+* ``build``: geometry -> solid in the part frame (build123d is imported inside
+  the function, so this layer stays kernel-free);
+* ``drawing``: a :class:`DrawingRecord` (pure data) for a made part, ``None``
+  for a bought one (no drawing);
+* ``host``: the rig node it is mounted on; it is shown with its host's group,
+  mated seat on seat and declared touching it.
+
+The layers above read the registry (:func:`tactcad.partlib.registry.rig_parts_lib`):
+``design.rigs`` adds the tables to the rigs file schema and derives each part,
+``catalogue.rigs`` turns :class:`PartData` into a spec, ``parts.registry``
+runs ``build``, ``assembly.rigs`` places it, ``drawings.part_sets`` draws it.
+Units: mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping
+
+from tactcad.vocabulary.process import Process
+from tactcad.vocabulary.schema import Derived, Problems, Section
+
+Vec3 = tuple[float, float, float]
+Bbox = tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax (mm)
+RGB = tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class Seat:
+    """A joint frame as plain numbers (mm): a face's point, its outward
+    normal and the in-face x direction. Two seats mate face on face."""
+
+    origin: Vec3
+    normal: Vec3
+    x_dir: Vec3
+
+
+@dataclass(frozen=True)
+class PartData:
+    """What a part module derives: the spec of the part and where it sits.
+
+    Attributes:
+        geometry: frozen dataclass the builder reads (fixes the solid).
+        seat: the part's own mating face, in its part frame.
+        host_seat: the face of the host it sits on, in the host's part frame.
+        derived: dimensions the part derives, each with its reason.
+        attributes: data carried into manifest and GLB.
+    """
+
+    name: str
+    kind: str  # "fabricated" or "purchased"
+    process: Process
+    material: str
+    color: RGB
+    expected_volume_mm3: float
+    expected_bbox_mm: Bbox
+    geometry: Any
+    seat: Seat
+    host_seat: Seat
+    derived: tuple[Derived, ...] = ()
+    attributes: Mapping[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class DrawingRecord:
+    """A made part's shop drawing beyond the common sheet (pure data): the
+    general dimension set (overall sizes, thickness, holes), these notes
+    before the process note, and whether many holes go in a coordinate table."""
+
+    notes: tuple[str, ...] = ()
+    hole_table: bool = True
+
+
+@dataclass(frozen=True)
+class RigPart:
+    """One rig part written as one module (see the module doc).
+
+    Attributes:
+        key: the ``rigs.toml`` table name and the registry (builder) key.
+        host: the rig node the part mounts on (``cart``, ``array_bracket`` ...);
+            the part is placed in every rig that has it.
+        derive: ``(section, context, problems) -> PartData``; ``context`` has
+            ``plan`` (the array's :class:`tactcad.design.array.Plan`) and
+            ``rigs`` (the rig parts of :mod:`tactcad.design.rigs`, without
+            the library's).
+    """
+
+    key: str
+    section: type[Section]
+    host: str
+    derive: Callable[[Section, Any, Problems], PartData]
+    build: Callable[[Any], Any]
+    drawing: DrawingRecord | None = None
