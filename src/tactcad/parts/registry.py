@@ -21,8 +21,9 @@ BUILD_COUNTS: Counter[str] = Counter()  # part name -> times built in this proce
 
 Builder = Callable[[Plan, PartSpec], bd.Solid]
 
-#: builder key -> builder(plan, spec). Every part carries its dimensions in
-#: ``spec.geometry``; none reads the plan.
+#: builder key -> builder(plan, spec), the part modules of :mod:`tactcad.partlib`
+#: under their keys. Every part carries its dimensions in ``spec.geometry``;
+#: none reads the plan.
 BUILDERS: dict[str, Builder] = {
     "element": lambda plan, spec: build_element(spec.geometry),
     "spacer": lambda plan, spec: build_spacer(spec.geometry),
@@ -49,6 +50,9 @@ BUILDERS: dict[str, Builder] = {
     "weight": lambda plan, spec: purchased.build_weight(spec.geometry),
     "bearing": lambda plan, spec: purchased.build_bearing(spec.geometry),
     "rig_bolt": lambda plan, spec: build_bolt(*spec.geometry),
+    # the parts written one module each build themselves (tactcad.partlib)
+    **{key: (lambda plan, spec, build=part.build: build(spec.geometry))
+       for key, part in rig_parts_lib().items()},
 }
 
 
@@ -56,13 +60,8 @@ def build_part(plan: Plan, spec: PartSpec) -> bd.Solid:
     """Build one part's solid (part frame, mm) and count the build in :data:`BUILD_COUNTS`.
 
     Raises:
-        KeyError: the spec names no known builder (a catalogue error); the
-            builders are :data:`BUILDERS` and the part modules of :mod:`tactcad.partlib`.
+        KeyError: the spec names no known builder (a catalogue error).
     """
-    library = rig_parts_lib()
-    if spec.builder in library:  # a part written as one module builds itself
-        solid = library[spec.builder].build(spec.geometry)
-    else:
-        solid = BUILDERS[spec.builder](plan, spec)
+    solid = BUILDERS[spec.builder](plan, spec)
     BUILD_COUNTS[spec.name] += 1
     return solid
