@@ -228,8 +228,8 @@ def test_scene_step_is_flat_labelled_instanced(exported):
     out, _ = exported
     text = (out / "scenes/sample-stiffness-rig.step").read_text()
     assert "SI_UNIT(.MILLI.,.METRE.)" in text and "AUTOMOTIVE_DESIGN" in text
-    assert text.count("NEXT_ASSEMBLY_USAGE_OCCURRENCE") == 23  # placed 23 times
-    assert text.count("MANIFOLD_SOLID_BREP") == 13  # 13 distinct parts stored once
+    assert text.count("NEXT_ASSEMBLY_USAGE_OCCURRENCE") == 24  # placed 24 times
+    assert text.count("MANIFOLD_SOLID_BREP") == 14  # 14 distinct parts stored once
     for label in ("'wheel_mp'", "'sample_holder'", "'sample_k10p01'", "'bearing_624ZZ'"):
         assert label in text
 
@@ -240,8 +240,9 @@ def test_glb_content(exported):
     out, _ = exported
     doc = read_glb(out / "scenes/sample-stiffness-rig.glb")
     root = doc["nodes"][0]
-    assert root["scale"] == [0.001] * 3 and len(root["children"]) == 23
+    assert root["scale"] == [0.001] * 3 and len(root["children"]) == 24
     nodes = {n["name"]: n for n in doc["nodes"][1:]}
+    assert nodes["push_in_fitting"]["extras"]["part"] == "push_in_fitting_M5"
     assert nodes["sample"]["extras"]["stiffness_N_per_mm"] == 10.01
     assert nodes["wheel_mm"]["extras"]["part"] == "bearing_624ZZ"
     assert {m["name"] for m in doc["meshes"]} >= {"cart", "bearing_624ZZ", "sample_k10p01"}
