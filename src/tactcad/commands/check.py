@@ -56,6 +56,9 @@ def run(args: argparse.Namespace) -> int:
                 if not (r.passed and args.failures_only):
                     print(r.line(), flush=True)
 
+    from tactcad.checks.requirements import requirement_checks
+
+    done("requirements", requirement_checks(plan))
     with tempfile.TemporaryDirectory() as tmp:
         out = args.out or tmp
         refusal = reuse_refusal(plan, out)
