@@ -468,6 +468,36 @@ class InverseDesign:
 MAX_FORCE_PROBE = 0.001
 
 
+#: Largest arm / arm height of the closed-form correction's fit (the sweep's
+#: rule keeps a/h <= 4), and the tallest arm the design file allows (mm).
+MAX_ARM_OVER_HEIGHT = 4.0
+MAX_ARM_HEIGHT_MM = 5.0
+#: Rounds of "choose arms, raise the arm height, choose again".
+ARM_HEIGHT_ROUNDS = 4
+
+
+def arm_height_for(longest_arm_mm: float, arm_height_mm: float) -> float | None:
+    """The arm height (mm, 0.1 mm steps, at most 5 mm) that keeps the longest
+    arm within a/h <= 4, or None when the present height already does (or
+    cannot be raised further)."""
+    need = math.ceil(longest_arm_mm / MAX_ARM_OVER_HEIGHT * 10 - 1e-9) / 10
+    need = min(need, MAX_ARM_HEIGHT_MM)
+    return need if need > arm_height_mm + 1e-9 else None
+
+
+def neutral_assumptions(data: Mapping[str, Any], base_name: str) -> dict[str, str]:
+    """The base design's ``[assumptions]`` for a new design that does not
+    cite the paper: a reason that mentions the paper or its tables is
+    replaced by a pointer to the base design."""
+    out = {}
+    for key, why in dict(data.get("assumptions", {})).items():
+        text = str(why)
+        if "paper" in text.lower() or "table 1" in text.lower() or "table 2" in text.lower():
+            text = f"Kept from the base design {base_name}, where it is an assumption."
+        out[key] = text
+    return out
+
+
 def with_grid(data: Mapping[str, Any], rows: int | None, columns: int | None) -> dict[str, Any]:
     """Raw tables with a new rows x columns grid; every arm the base's first
     (the inverse design rewrites them). Rows and columns are validated with
@@ -509,6 +539,8 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
             (field named).
     """
     data = copy.deepcopy(dict(base.raw))
+    data["assumptions"] = neutral_assumptions(data, base.name)
+    data.pop("requirements", None)  # the new design's are written below
     if grade is not None:
         data["material"] = {"name": grade, "grade": grade}
         data["assumptions"] = {k: v for k, v in data.get("assumptions", {}).items()
@@ -516,10 +548,21 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     if pitch_mm is not None:
         data = design_variant(data, pitch_mm=pitch_mm)
     data = with_grid(data, rows, columns)
-    plan = plan_from_dict(data, source="<inverse design>")
-    search = search_webs(plan, targets, correction)
+    base_web = float(data["element"]["web_thickness_mm"])
+    for _ in range(ARM_HEIGHT_ROUNDS):
+        plan = plan_from_dict(data, source="<inverse design>")
+        search = search_webs(plan, targets, correction)
+        i = choose_web(search, base_web)
+        longest = max(float(search.arm_r_mm[i]), float(search.arm_m_mm[i]))
+        raised = arm_height_for(longest, plan.element(1).geometry.arm_height_mm)
+        if raised is None:
+            break
+        data["element"]["arm_height_mm"] = raised
+        data.setdefault("assumptions", {})["element.arm_height_mm"] = (
+            f"tactcad design: raised to {raised:g} mm so the longest arm ({longest:.3g} mm) keeps "
+            f"arm / arm height <= {MAX_ARM_OVER_HEIGHT:g}, inside the range the closed form's "
+            "fem3d correction was fitted over.")
     f_max = max_full_scale_force_N(search, targets.full_scale_force_N)
-    i = choose_web(search, plan.element(1).geometry.web_thickness_mm)
     above = replace(targets, full_scale_force_N=f_max * (1 + MAX_FORCE_PROBE))
     bind = tuple(lim.name for lim in binding_limits(search_webs(plan, above, correction)))
     t, R = float(search.webs_mm[i]), float(search.radii_mm[i])
@@ -527,7 +570,7 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     a_m = round(float(search.arm_m_mm[i]), ARM_DECIMALS)
     refs = reference_elements(plan.rows, plan.columns)
     arms = [a_r if n in refs else a_m for n in range(1, len(plan.slots) + 1)]
-    web_changed = not math.isclose(t, plan.element(1).geometry.web_thickness_mm)
+    web_changed = not math.isclose(t, base_web)
     data = design_variant(data, web_mm=t, notch_radius_mm=R, arms_mm=arms)
     lo, hi = targets.k_obj_range_N_per_mm
     data["design"] = {"name": name, "description": (

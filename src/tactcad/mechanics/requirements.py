@@ -335,3 +335,18 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
 
 def matrix_passed(records: list[dict]) -> bool:
     return all(r["pass"] for r in records)
+
+
+def requirements_record(plan: Plan) -> dict:
+    """The manifest's record: the requirements with their reasons and the
+    closed-form verification of each, the full-scale force with every limit
+    and the one that binds."""
+    req = requirements_of(plan)
+    matrix = verification_matrix(plan, "closed-form", requirements=req)
+    force = matrix[0]
+    return {"values": req.as_json(), "closed_form_matrix": matrix,
+            "full_scale_force": {"required_N": req.full_scale_force_N,
+                                 "largest_N": force["predicted"],
+                                 "binding_limit": force["binding_words"],
+                                 "binding_element": force["binding_element"],
+                                 "met": force["pass"]}}
