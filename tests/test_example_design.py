@@ -18,7 +18,7 @@ from tactcad.mechanics.requirements import requirements_of, verification_matrix
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "hardware" / "examples" / "ti_array_2x3.toml"
 #: The paper's words; DXF's own block name ``*Paper_Space`` is a format keyword, not a citation.
-PAPER_TEXT = re.compile(r"paper(?!_space)|table\s*[12]\b", re.IGNORECASE)
+PAPER_TEXT = re.compile(r"paper(?!_space)|table [12]\b", re.IGNORECASE)
 
 
 def _stated():
@@ -80,8 +80,10 @@ def test_example_exports_hold_no_paper_text_and_give_its_full_scale_force(tmp_pa
     man = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
     force = man["requirements"]["full_scale_force"]
     assert force["required_N"] == _stated()["full_scale_force_N"] and force["binding_limit"]
-    notes = " ".join((out / "drawings").glob("*.svg").__next__().read_text().split())
-    assert f"Full-scale tip force {force['required_N']:.3g} N" in notes
+    for svg in (out / "drawings").glob("element_*.svg"):
+        notes = " ".join(re.sub(r"<[^>]+>", " ", svg.read_text(encoding="utf-8")).split())
+        assert f"Full-scale tip force {force['required_N']:.3g} N" in notes
+        assert force["binding_limit"] in notes or "bound by" in notes
     assert main(["check", "--design", str(EXAMPLE), "--out", str(out), "--quiet",
                  "--failures-only"]) == 0
 
@@ -98,3 +100,37 @@ def test_the_papers_design_keeps_its_citations(tmp_path):
     assert not PAPER_TEXT.search(numbering_note(ex))
     assert not PAPER_TEXT.search(web_tolerance_note(ex, g, "0.25", 0.2, 0.2,
                                                     (4.0, 40.12, 80.38, 2.0)))
+
+
+def test_evaluate_loads_to_the_full_scale_force_over_the_designs_range(capsys):
+    assert main(["evaluate", "--design", str(EXAMPLE), "--coupling", "none", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    lo, hi = _stated()["kobj_range_N_per_mm"]
+    ks = [s["K_obj_N_per_mm"] for s in out["samples"]]
+    assert min(ks) == lo and max(ks) == hi and 3.85 not in ks
+    force = _stated()["full_scale_force_N"]
+    assert out["full_scale_force_N"] == force
+    loads = out["fig6"]["loads_N"]
+    assert 3.235 not in loads
+    last = max(max(e["tip_force_N"][-1] for e in s["elements"]) for s in out["samples"])
+    assert last == pytest.approx(force, rel=1e-9)  # the most loaded element reaches full scale
+
+
+def test_calibrate_simulate_goes_to_the_full_scale_force(tmp_path, capsys):
+    from tactcad.mechanics.paper.calibration import read_calibration_csv
+
+    csv = tmp_path / "cal.csv"
+    assert main(["calibrate", "--simulate", "--design", str(EXAMPLE), "--noise-force", "0",
+                 "--write-csv", str(csv), "--quiet"]) == 0
+    data = read_calibration_csv(str(csv))
+    force = _stated()["full_scale_force_N"]
+    for d in data.values():
+        assert max(d.force_N) == pytest.approx(force, rel=1e-6)
+
+
+def test_tolerance_reports_the_designs_range_not_the_papers_samples(capsys):
+    assert main(["tolerance", "--design", str(EXAMPLE), "--samples", "500", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    ks = sorted({u["K_obj_true_N_per_mm"] for u in out["units"]})
+    assert ks[0] == 1.0 and ks[-1] == 5.0 and not {2.34, 5.41, 10.01} & set(ks)
+    assert not out["table1_equal_arm_spread"]
