@@ -55,6 +55,12 @@ def test_design_changes_the_web_when_the_design_web_breaks_a_limit(plan):
     own = int(np.flatnonzero(np.isclose(search.webs_mm, 0.25))[0])
     assert not search.feasible[own]
     d = design_for_targets(plan, t)
+    # the margins on the arm height the design settled on (raised for a/h <= 4)
+    from tactcad.design.array import plan_from_dict, with_overrides
+
+    h = d.plan.element(1).geometry.arm_height_mm
+    search = search_webs(plan_from_dict(with_overrides(plan.raw, {"element.arm_height_mm": h})),
+                         t)
     chosen = int(np.flatnonzero(np.isclose(search.webs_mm,
                                            d.plan.element(1).geometry.web_thickness_mm))[0])
     assert d.web_changed and search.feasible[chosen]
@@ -159,3 +165,36 @@ def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
     err = capsys.readouterr().err
     assert err.startswith("tactcad: error: targets cannot be met") and "arms.lengths_mm" in err
     assert not (tmp_path / "x.toml").exists()
+
+
+def test_five_percent_above_the_largest_force_is_refused_naming_every_binding_limit(
+        tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    argv = ["design", "--kr-over-km", "10", "--kobj-range", "1", "5", "--material",
+            "Ti-6Al-4V-annealed", "--columns", "3", "--verify", "none", "--json"]
+    assert main(argv + ["--full-scale-force", "0.1", "--out", "a.toml"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    f_max, binding = report["max_full_scale_force_N"], report["binding_limits"]
+    assert 0.1 < f_max < 1.0 and len(binding) >= 2  # a stiffness limit and a force limit
+    written = (tmp_path / "a.toml").read_text()
+    assert "[requirements]" in written and "full_scale_force_N = 0.1" in written
+    assert main(argv + ["--full-scale-force", f"{1.05 * f_max:.6g}", "--out", "b.toml"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]["message"]
+    for name in binding:
+        assert name in err
+    assert f"{f_max:.4g} N" in err
+    assert not (tmp_path / "b.toml").exists()
+    # at the reported maximum itself the targets are met
+    assert main(argv + ["--full-scale-force", f"{0.999 * f_max:.6g}", "--out", "c.toml"]) == 0
+
+
+def test_rows_and_columns_build_a_new_grid_and_arms_stay_in_the_corrections_range(plan):
+    d = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.1), grade="Ti-6Al-4V-annealed",
+                           columns=4)
+    assert (d.plan.rows, d.plan.columns, len(d.plan.slots)) == (2, 4, 8)
+    assert d.references == reference_elements(2, 4)
+    for g in d.plan.distinct_elements.values():
+        assert g.arm_length_mm / g.arm_height_mm <= 4.0 + 1e-9
+    with pytest.raises(DesignError) as exc:
+        design_for_targets(plan, FEASIBLE, rows=3)
+    assert "array.rows" in str(exc.value)

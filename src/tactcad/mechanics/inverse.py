@@ -414,6 +414,17 @@ def binding_limits(search: WebSearch) -> list[Limit]:
     return [lim for lim in search.limits if not lim.allowed[j]]
 
 
+def best_stiffness_web(search: WebSearch) -> int | None:
+    """Index of the web with the largest force margin among those meeting the
+    stiffness limits, or None when no web meets them."""
+    ok = np.ones(search.webs_mm.shape, bool)
+    for lim in search.limits[:STIFFNESS_LIMITS]:
+        ok &= lim.allowed
+    if not ok.any():
+        return None
+    return int(np.argmax(np.where(ok, search.margin, -np.inf)))
+
+
 def refusal_text(search: WebSearch) -> str:
     """Why no web is feasible: every binding limit with what it asks, and the
     largest full-scale force the stiffness targets allow."""
@@ -549,10 +560,16 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
         data = design_variant(data, pitch_mm=pitch_mm)
     data = with_grid(data, rows, columns)
     base_web = float(data["element"]["web_thickness_mm"])
+    refusal = None
     for _ in range(ARM_HEIGHT_ROUNDS):
         plan = plan_from_dict(data, source="<inverse design>")
         search = search_webs(plan, targets, correction)
-        i = choose_web(search, base_web)
+        try:
+            i, refusal = choose_web(search, base_web), None
+        except InverseDesignError as exc:  # judge the targets on the arm height they need
+            i, refusal = best_stiffness_web(search), exc
+            if i is None:
+                raise
         longest = max(float(search.arm_r_mm[i]), float(search.arm_m_mm[i]))
         raised = arm_height_for(longest, plan.element(1).geometry.arm_height_mm)
         if raised is None:
@@ -562,6 +579,8 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
             f"tactcad design: raised to {raised:g} mm so the longest arm ({longest:.3g} mm) keeps "
             f"arm / arm height <= {MAX_ARM_OVER_HEIGHT:g}, inside the range the closed form's "
             "fem3d correction was fitted over.")
+    if refusal is not None:
+        raise refusal
     f_max = max_full_scale_force_N(search, targets.full_scale_force_N)
     above = replace(targets, full_scale_force_N=f_max * (1 + MAX_FORCE_PROBE))
     bind = tuple(lim.name for lim in binding_limits(search_webs(plan, above, correction)))
