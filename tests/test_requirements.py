@@ -97,3 +97,16 @@ def test_verify_cli_table_and_json(capsys):
     out = json.loads(capsys.readouterr().out)
     ratio = next(r for r in out["matrix"] if r["requirement"] == "kr_over_km")
     assert ratio["target"] == 50 and not ratio["pass"]
+
+
+def test_plane_stress_levels_carry_the_plane_model_error_in_stress_and_strain_limits():
+    from tactcad.mechanics.fem.fem2d import plane_model_error
+    from tactcad.mechanics.limits import plan_limits
+
+    plan = _plan()
+    for lim in plan_limits(plan, "closed-form"):
+        g = plan.element(lim.element).geometry
+        if lim.limit != "travel":
+            assert lim.error_estimate_rel >= plane_model_error(g, plan.material)
+        else:
+            assert lim.error_estimate_rel < plane_model_error(g, plan.material)

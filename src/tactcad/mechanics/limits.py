@@ -14,7 +14,11 @@ and K at a ladder level, :func:`tactcad.mechanics.strength.element_stress`):
   rotation 2R / d, i.e. a tip travel a 2R / d (small rotations).
 
 Stress-based limits carry the stress's error estimate, strain- and
-travel-based ones K's. Units: mm, N, MPa, N/mm.
+travel-based ones K's; below fem3d the stress and the gauge strain are plane
+stress, so the stress- and strain-based limits also carry the plane model's
+error against 3D (:func:`tactcad.mechanics.fem.fem2d.plane_model_error`: a
+wide web is nearer plane strain, its surface stress and strain per newton
+lower by up to nu^2). Units: mm, N, MPa, N/mm.
 """
 
 from __future__ import annotations
@@ -63,24 +67,29 @@ def notch_closing_travel_mm(g: ElementGeometry) -> float:
     return g.arm_length_mm * 2 * g.notch_radius_mm / depth
 
 
-def element_limits(number: int, g: ElementGeometry, plan: Plan, es, k_error_rel: float
-                   ) -> list[ForceLimit]:
+def element_limits(number: int, g: ElementGeometry, plan: Plan, es, k_error_rel: float,
+                   plane_error_rel: float = 0.0) -> list[ForceLimit]:
     """Every :class:`ForceLimit` of one element from its per-newton response ``es``
-    (:class:`tactcad.mechanics.strength.ElementStress`) and K's error estimate."""
+    (:class:`tactcad.mechanics.strength.ElementStress`), K's error estimate and,
+    for the levels whose stress and gauge strain are plane stress (closed form,
+    beam, fem2d), the plane model's error against 3D, added to the stress- and
+    strain-based limits' errors."""
     mat, st = plan.material, plan.strength
     s, eps, k = es.stress_MPa_per_N, es.gauge_strain_per_N, es.stiffness_N_per_mm
+    stress_err = es.stress_error_rel + plane_error_rel
+    strain_err = k_error_rel + plane_error_rel
     out = [ForceLimit("yield", number, g.part_name, mat.yield_strength_MPa / (s * st.safety_factor),
-                      es.stress_error_rel,
+                      stress_err,
                       f"{mat.yield_strength_MPa:g} MPa / ({s:.4g} MPa/N x {st.safety_factor:g})")]
     if mat.fatigue_strength_MPa is not None:
         out.append(ForceLimit("fatigue", number, g.part_name, mat.fatigue_strength_MPa / s,
-                              es.stress_error_rel,
+                              stress_err,
                               f"{mat.fatigue_strength_MPa:g} MPa / {s:.4g} MPa/N"))
     gauge = st.gauge
     out.append(ForceLimit("gauge_fatigue", number, g.part_name, gauge.fatigue_strain / eps,
-                          k_error_rel, f"{1e6 * gauge.fatigue_strain:.0f} microstrain "
+                          strain_err, f"{1e6 * gauge.fatigue_strain:.0f} microstrain "
                           f"({gauge.name}) / {1e6 * eps:.4g} microstrain/N"))
-    out.append(ForceLimit("gauge_max", number, g.part_name, gauge.max_strain / eps, k_error_rel,
+    out.append(ForceLimit("gauge_max", number, g.part_name, gauge.max_strain / eps, strain_err,
                           f"{1e6 * gauge.max_strain:.0f} microstrain / {1e6 * eps:.4g} "
                           "microstrain/N"))
     travel = notch_closing_travel_mm(g)
@@ -104,8 +113,11 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
     from tactcad.mechanics.strength import _require_yield, element_stress
 
     _require_yield(plan.material)
+    from tactcad.mechanics.fem.fem2d import plane_model_error
+
     stresses = dict(stresses or {})
     k_errors = dict(k_errors or {})
+    plane: dict[str, float] = {}
     out = []
     for slot in plan.slots:
         g = slot.geometry
@@ -114,8 +126,12 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
         if g.part_name not in k_errors:
             k_errors[g.part_name] = estimate(model, g, plan.material).error_estimate_rel \
                 if model in ("closed-form", "beam") else stresses[g.part_name].stress_error_rel
+        if g.part_name not in plane:
+            plane[g.part_name] = 0.0 if model == "fem3d" else plane_model_error(g, plan.material)
+        # fem2d's K error already holds its plane model error: count it once
+        k_err = k_errors[g.part_name] - (plane[g.part_name] if model == "fem2d" else 0.0)
         out.extend(element_limits(slot.number, g, plan, stresses[g.part_name],
-                                  k_errors[g.part_name]))
+                                  max(k_err, 0.0), plane[g.part_name]))
     return out
 
 
