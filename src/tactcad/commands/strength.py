@@ -44,6 +44,11 @@ def run(args: argparse.Namespace) -> int:
 
     plan = plan_from_args(args)
     if args.table1:
+        if not cites_paper(plan.raw):
+            from tactcad.errors import DesignError
+
+            raise DesignError("--table1", True, "only for a design whose requirements.source "
+                              "cites the measurements (the paper's design)")
         return _run_table1(plan, args.model, args.json)
     report = progress_from_args(args)
     progress = (lambda s: report(f"  ... {s}"))
