@@ -21,7 +21,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "yield / safety factor and the gauge's fatigue strain; verifies the two "
                     "element geometries at fem3d; writes the design TOML. Units: N/mm, N, mm.")
     p.add_argument("--kr-over-km", type=float, required=True, metavar="X",
-                   help="stiffness ratio K_r/K_m of a sensing unit (> 1; the paper suggests ~10)")
+                   help="stiffness ratio K_r/K_m of a sensing unit (> 1; about 10 reads soft "
+                        "objects with high sensitivity)")
     p.add_argument("--kobj-range", type=float, nargs=2, required=True, metavar=("LO", "HI"),
                    help="object stiffnesses to read (N/mm)")
     p.add_argument("--full-scale-force", type=float, required=True, metavar="F",
