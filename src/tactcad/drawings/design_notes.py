@@ -16,7 +16,8 @@ from tactcad.design.requirements import cites_paper
 
 @lru_cache(maxsize=8)
 def _force_figures(plan: Plan) -> tuple[float, dict]:
-    """(required full-scale force N, {part name: (largest force N, limit words)}) at the closed form."""
+    """(required full-scale force N, {part name: (largest force N, limit words)}),
+    closed form. Cached per plan (its design hash covers the requirements)."""
     from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits
     from tactcad.mechanics.requirements import requirements_of
 
