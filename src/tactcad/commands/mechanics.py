@@ -16,7 +16,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("stiffness", help="tip stiffness K (N/mm) of one element at a ladder level",
                        description="Tip stiffness, gauge strain per newton, error estimate and wall "
                                    "time of one sensing element. Units: N/mm, 1/N, s.")
-    p.add_argument("--element", type=int, required=True, help="paper element number (1-10)")
+    p.add_argument("--element", type=int, required=True,
+                   help="element number of the design (1 ... rows x columns, numbered along "
+                        "row 1, then row 2)")
     p.add_argument("--model", choices=MODELS, default="closed-form")
     add_design_arg(p)
     add_output_args(p, "print JSON")
