@@ -21,10 +21,9 @@ BUILD_COUNTS: Counter[str] = Counter()  # part name -> times built in this proce
 
 Builder = Callable[[Plan, PartSpec], bd.Solid]
 
-#: builder key -> builder(plan, spec), the part modules of :mod:`tactcad.partlib`
-#: under their keys. Every part carries its dimensions in ``spec.geometry``;
-#: none reads the plan.
-BUILDERS: dict[str, Builder] = {
+#: builder key -> builder(plan, spec) of the part families of this package.
+#: Every part carries its dimensions in ``spec.geometry``; none reads the plan.
+FAMILY_BUILDERS: dict[str, Builder] = {
     "element": lambda plan, spec: build_element(spec.geometry),
     "spacer": lambda plan, spec: build_spacer(spec.geometry),
     "clamp_plate": lambda plan, spec: build_clamp_plate(spec.geometry),
@@ -50,10 +49,27 @@ BUILDERS: dict[str, Builder] = {
     "weight": lambda plan, spec: purchased.build_weight(spec.geometry),
     "bearing": lambda plan, spec: purchased.build_bearing(spec.geometry),
     "rig_bolt": lambda plan, spec: build_bolt(*spec.geometry),
-    # the parts written one module each build themselves (tactcad.partlib)
-    **{key: (lambda plan, spec, build=part.build: build(spec.geometry))
-       for key, part in rig_parts_lib().items()},
 }
+
+
+def _all_builders() -> dict[str, Builder]:
+    """:data:`FAMILY_BUILDERS` and the part modules of :mod:`tactcad.partlib`
+    (each builds itself) under their keys.
+
+    Raises:
+        ValueError: a part module's key is also a family's key.
+    """
+    library = rig_parts_lib()
+    clash = sorted(set(library) & set(FAMILY_BUILDERS))
+    if clash:
+        raise ValueError(f"part module key(s) {', '.join(clash)} already name a builder of "
+                         "tactcad.parts: choose another key")
+    return {**FAMILY_BUILDERS, **{key: (lambda plan, spec, build=part.build: build(spec.geometry))
+                                  for key, part in library.items()}}
+
+
+#: builder key -> builder(plan, spec), every part's.
+BUILDERS: dict[str, Builder] = _all_builders()
 
 
 def build_part(plan: Plan, spec: PartSpec) -> bd.Solid:
