@@ -70,6 +70,10 @@ def run(args: argparse.Namespace) -> int:
             run_checks(plan, out, cache, done=done)
             run_scene_checks(plan, out, cache=cache, done=done)
     bad = failures(results)
+    if args.out:  # the export's review page shows them (review/checks.js)
+        from tactcad.export.review_page import write_checks_script
+
+        write_checks_script(args.out, plan.design_hash, results)
     if args.json:
         print(dumps({"out": args.out, "reused_export": refusal is None,
                           "export_refusal": refusal, "passed": len(results) - len(bad),

@@ -18,7 +18,6 @@ are gone with the old folder, files tactcad never wrote are kept.
 from __future__ import annotations
 
 import errno
-import hashlib
 import json
 import os
 import shutil
@@ -28,20 +27,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Sequence
 
-from tactcad import __version__
-from tactcad.assembly.inventory import assembly_review, instance_counts
 from tactcad.atomic import (carry_over, leftover_staging, publish_dir, remove_partial_files,
                             staging_dir, write_bytes_atomic)
-from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
 from tactcad.errors import ExportPathError
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
+from tactcad.export.manifest import manifest
 from tactcad.export.worker import Worker, can_fork, worker_jobs
-from tactcad.catalogue.files import ARRAY_STEP, MANIFEST
-from tactcad.mechanics.strength import strength_summary
-from tactcad.store import Store, stack_versions
+from tactcad.catalogue.files import MANIFEST
+from tactcad.store import Store
 
 
 @dataclass
@@ -68,54 +64,6 @@ class ExportResult:
         lines.append(f"{len(self.files)} files, {total:,d} B in {self.out_dir} ({self.seconds:.1f} s; "
                      f"{self.jobs_run} jobs run, {self.jobs_reused} reused from the cache)")
         return lines
-
-
-def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as fh:
-        for chunk in iter(lambda: fh.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
-
-
-def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
-    """The manifest: every file with its sha256, its part, the design hash, the stack."""
-    specs = array_parts(plan)
-    inst = array_instances(plan)
-    counts = instance_counts(inst)
-    files = []
-    for r in records:
-        p = out_dir / r["path"]
-        files.append({**r, "sha256": _sha256(p), "bytes": p.stat().st_size})
-    parts = {n: _part_record(s, counts.get(n, 0)) for n, s in specs.items()}
-    return {
-        "design": {"name": plan.name, "source": plan.source, "sha256": plan.design_hash},
-        "tactcad_version": __version__,
-        "cad_stack": stack_versions(),
-        "units": "mm",
-        "files": files,
-        "parts": parts,
-        "assemblies": {"array": {"file": ARRAY_STEP, "instances": len(inst),
-                               **assembly_review(specs, inst)}},
-        "strength": [_strength_record(r) for r in strength_summary(plan)],
-        "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
-                    for d in plan.derived],
-        "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],
-    }
-
-
-def _strength_record(r: dict) -> dict:
-    """An element's full-scale force and safety factor for the manifest (closed form)."""
-    keys = ("element", "part_name", "model", "stress_MPa_per_N", "full_scale_force_N",
-            "yield_safety_factor_at_full_scale", "gauge_strain_at_full_scale",
-            "tip_deflection_mm_at_full_scale", "warnings")
-    return {k: r[k] for k in keys}
-
-
-def _part_record(spec: PartSpec, count: int) -> dict:
-    return {"kind": spec.kind, "process": spec.process, "material": spec.material,
-            "quantity": count, "volume_mm3": spec.expected_volume_mm3,
-            "bbox_mm": list(spec.expected_bbox_mm)}
 
 
 def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], int]:
