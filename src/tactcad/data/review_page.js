@@ -30,6 +30,9 @@ const controls = new OrbitControls(camera, renderer.domElement);
 controls.addEventListener('change', render);
 const clip = new THREE.Plane(new THREE.Vector3(1, 0, 0), 0);
 
+// the camera, for tests and the watch benchmark: [position, target], metres
+review.view = () => [camera.position.toArray(), controls.target.toArray()];
+
 function render() {
   renderer.render(world, camera);
   review.frames += 1;
