@@ -38,8 +38,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.commands import design_data_from_args
-    from tactcad.design.project import project_with_design_data
+    from tactcad.commands import load_from_args
     from tactcad.errors import DesignError
     from tactcad.export.live import LiveState, Loop, changes, make_server, watched_files
     from tactcad.export.run import check_out_dir
@@ -48,9 +47,8 @@ def run(args: argparse.Namespace) -> int:
         raise DesignError("--port", args.port, "1024 ... 65535, or 0 for any free port")
     check_out_dir(args.out)  # refused before anything starts
 
-    def load():
-        data, path = design_data_from_args(args)
-        return project_with_design_data(data, path)[0]
+    def load():  # the design, rigs and scenes files validated once per change
+        return load_from_args(args).plan
 
     def log(line: str) -> None:
         if args.json:
