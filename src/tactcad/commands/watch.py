@@ -60,9 +60,15 @@ def run(args: argparse.Namespace) -> int:
     if design is None:
         from tactcad.design.array import DEFAULT_DESIGN
         design = DEFAULT_DESIGN
+    if not design.is_file():  # a file that exists but is refused is watched until it is mended
+        raise DesignError("--design", str(design), "an existing design file (TOML)")
     state = LiveState()
     loop = Loop(load, Path(args.out), store_from_args(args), state, log)
-    server = make_server(state, args.port)
+    try:
+        server = make_server(state, args.port)
+    except OSError as exc:
+        raise DesignError("--port", args.port, f"a free port on 127.0.0.1, or 0 for any "
+                          f"({exc.strerror or exc})") from None
     threading.Thread(target=server.serve_forever, daemon=True).start()
     host, port = server.server_address[:2]
     try:
