@@ -106,7 +106,7 @@ def watch_figures(design: Path, rounds: int = 5, log=print) -> dict:
                     before = _state(port)
                     shown = page.evaluate("window.__review.shownSha256")
                     t_save = time.perf_counter()
-                    edit_first_arm(copy, 4.0 + 0.1 * ((k % 5) + 1))
+                    edit_first_arm(copy, 4.0 + 0.03 * (k + 1))  # a new length each round: no store hit
                     page.wait_for_function(f"window.__review.shownSha256 !== {json.dumps(shown)}",
                                            timeout=120000, polling=10)
                     t_first = time.perf_counter() - t_save
