@@ -28,9 +28,19 @@ def register(subparsers) -> None:
                     "gain, twins of equal geometry, series-spring error amplification.")
     add_design_arg(p)
     source = p.add_mutually_exclusive_group()
-    source.add_argument("--data", metavar="CSV", default=None, help="measured calibration readings")
+    source.add_argument("--data", metavar="FILE", default=None,
+                        help="measured calibration readings: CSV (comma, semicolon or tab; decimal "
+                             "point or comma; with or without a byte order mark), LabVIEW .lvm "
+                             "or .tdms")
     source.add_argument("--simulate", action="store_true",
                         help="simulate the rig for the design (K and gauge strain from the ladder)")
+    p.add_argument("--encoding", metavar="NAME", default=None,
+                   help="text encoding of a CSV or LVM --data file (default UTF-8, or what its "
+                        "byte order mark says), e.g. cp1252 or latin-1")
+    p.add_argument("--map", metavar="COLUMN=CHANNEL", action="append", default=[],
+                   help="read a column from a CSV header, LVM or TDMS channel of another name "
+                        "(repeatable, or comma-separated), e.g. "
+                        "--map force_N=Dev1/ai0,signal_V=Dev1/ai1; TDMS channels as group/channel")
     p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form",
                    help="ladder level for the as-built web and gauge strain (default closed-form)")
     p.add_argument("--gain", type=float, default=None, metavar="V_PER_STRAIN",
@@ -76,6 +86,8 @@ def run(args: argparse.Namespace) -> int:
 
     if args.write_csv and not args.simulate:
         raise TactcadError("--write-csv = given without --simulate: allowed only with --simulate")
+    if (args.encoding or args.map) and not args.data:
+        raise TactcadError("--encoding/--map = given without --data: allowed only with --data")
     if args.plot and not (args.simulate or args.data):
         raise TactcadError("--plot = given without --data or --simulate: allowed only with readings")
     plan = plan_from_args(args)
@@ -95,8 +107,11 @@ def run(args: argparse.Namespace) -> int:
                            f"{args.noise_signal:g} V, seed {args.seed}",)), encoding="utf-8")
                 report["written_csv"] = args.write_csv
         else:
-            data = cal.read_calibration_csv(args.data)
-            report["input"] = f"csv:{args.data}"
+            from tactcad.mechanics.paper.measured_io import parse_mapping, read_measured
+
+            data, info = read_measured(args.data, args.encoding, parse_mapping(args.map))
+            report["input"] = f"{info.format}:{args.data}"
+            report["data_file"] = {**info.as_dict(), "read_as": info.describe()}
         fits = ca.fit_all(data)
         report["fig4"] = [{"element": e, "z_um": d.z_travel_um.tolist(),
                            "deflection_um": (1e3 * fits[e].deflection_mm).tolist(),
@@ -135,6 +150,8 @@ def _fmt(x, spec: str) -> str:
 def _print_text(report: dict) -> None:
     audit = report["audit"]
     print(f"design {report['design']}, input {report['input']}, ladder {report['model']}")
+    if "data_file" in report:
+        print(f"read as {report['data_file']['read_as']}")
     if "fits" in report:
         print("fits (eq. 4-5, deflection = Z - F/K_s):")
         print("  elem     K N/mm   ±       K_v V/mm   V0 V     lin F %  lin V %  amplif.")
