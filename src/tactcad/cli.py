@@ -117,18 +117,29 @@ def run_command(argv: list[str] | None) -> int:
     return code
 
 
-def dispatch(argv: list[str], as_json: bool) -> int:
-    """Parse, check every option (:mod:`tactcad.commands.options`), run; every
-    error a user can act on becomes one line (or the JSON error) and its exit code."""
+def parse_checked(argv: list[str]) -> argparse.Namespace:
+    """The parsed command line with every option checked (:mod:`tactcad.commands.options`).
+
+    Raises:
+        UsageError: argparse refuses the line (unknown option, bad value for a typed option).
+        DesignError: a value the rules for every option refuse (non-finite, empty text).
+    """
     from tactcad.commands.options import validate_options
 
     parser = build_parser()
+    args = parser.parse_args(argv)
+    validate_options(parser, args)
+    return args
+
+
+def dispatch(argv: list[str], as_json: bool) -> int:
+    """Parse, check every option (:mod:`tactcad.commands.options`), run; every
+    error a user can act on becomes one line (or the JSON error) and its exit code."""
     try:
-        args = parser.parse_args(argv)
+        args = parse_checked(argv)
         if not getattr(args, "func", None):
-            parser.print_help()
+            build_parser().print_help()
             return EXIT_INPUT
-        validate_options(parser, args)
         return int(args.func(args) or 0)
     except UsageError as exc:  # argparse's wording, on one line
         if as_json:

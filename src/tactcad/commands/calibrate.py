@@ -17,6 +17,7 @@ from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 def register(subparsers) -> None:
     """Add the ``calibrate`` sub-command."""
     from tactcad.commands import add_design_arg, add_output_args
+    from tactcad.commands.options import count, number
 
     p = subparsers.add_parser(
         "calibrate", help="fit K, K_v, V0 from calibration readings and audit them against the design",
@@ -45,14 +46,14 @@ def register(subparsers) -> None:
                    help="ladder level for the as-built web and gauge strain (default closed-form)")
     p.add_argument("--gain", type=float, default=None, metavar="V_PER_STRAIN",
                    help="gauge gain of the simulated rig (V per unit strain), default -120")
-    p.add_argument("--noise-force", type=float, default=0.001, metavar="N",
+    p.add_argument("--noise-force", type=number(0, 100, "N"), default=0.001, metavar="N",
                    help="force noise of the simulated rig (N, one sigma)")
-    p.add_argument("--noise-signal", type=float, default=0.001, metavar="V",
+    p.add_argument("--noise-signal", type=number(0, 100, "V"), default=0.001, metavar="V",
                    help="signal noise of the simulated rig (V, one sigma)")
-    p.add_argument("--seed", type=int, default=0, help="random seed of the simulated rig")
+    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0, help="random seed of the simulated rig")
     p.add_argument("--write-csv", metavar="CSV", default=None,
                    help="with --simulate: also write the readings in the calibration CSV format")
-    p.add_argument("--gain-tolerance", type=float, default=0.25,
+    p.add_argument("--gain-tolerance", type=number(0, 10, lo_open=True), default=0.25,
                    help="relative disagreement of signal and force data that is flagged (default 0.25)")
     p.add_argument("--plot", metavar="PNG", default=None,
                    help="with --data or --simulate: write force and signal against deflection (Fig. 4)")

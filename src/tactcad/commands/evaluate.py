@@ -13,6 +13,7 @@ import argparse
 import math
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands.options import count, number
 
 from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 
@@ -31,14 +32,14 @@ def register(subparsers) -> None:
                    help="sample stiffnesses K_obj (N/mm); default the paper's eight")
     p.add_argument("--coupling", choices=("none", "halfspace", "layer"), default="halfspace",
                    help="sample model (default halfspace)")
-    p.add_argument("--poisson", type=float, default=0.5, help="sample Poisson ratio (0 ... 0.5)")
-    p.add_argument("--thickness", type=float, default=10.0, metavar="MM",
+    p.add_argument("--poisson", type=number(0, 0.5), default=0.5, help="sample Poisson ratio (0 ... 0.5)")
+    p.add_argument("--thickness", type=number(0, 1e4, "mm", lo_open=True), default=10.0, metavar="MM",
                    help="sample thickness on its rigid base for --coupling layer (mm), default 10")
     p.add_argument("--stiffness", choices=("ladder", "table1"), default="ladder",
                    help="element K: the ladder's prediction for the design, or the paper's "
                         "Table 1 (ladder for elements without a measurement)")
     p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form", help="ladder level")
-    p.add_argument("--steps", type=int, default=6, help="load steps (>= 1)")
+    p.add_argument("--steps", type=count(1, 1000, "load steps"), default=6, help="load steps (>= 1)")
     p.add_argument("--plot", metavar="PNG", default=None,
                    help="write a Fig. 7-like plot (R against K_m/K_obj per K_r/K_m) here")
     p.add_argument("--plot-fig6", metavar="PNG", default=None,
