@@ -17,7 +17,7 @@ from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 def register(subparsers) -> None:
     """Add the ``calibrate`` sub-command."""
     from tactcad.commands import add_design_arg, add_output_args
-    from tactcad.commands.options import count, number
+    from tactcad.commands.options import PLOT_SUFFIXES, count, number, output_file
 
     p = subparsers.add_parser(
         "calibrate", help="fit K, K_v, V0 from calibration readings and audit them against the design",
@@ -51,11 +51,11 @@ def register(subparsers) -> None:
     p.add_argument("--noise-signal", type=number(0, 100, "V"), default=0.001, metavar="V",
                    help="signal noise of the simulated rig (V, one sigma)")
     p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0, help="random seed of the simulated rig")
-    p.add_argument("--write-csv", metavar="CSV", default=None,
+    p.add_argument("--write-csv", metavar="CSV", type=output_file(".csv"), default=None,
                    help="with --simulate: also write the readings in the calibration CSV format")
     p.add_argument("--gain-tolerance", type=number(0, 10, lo_open=True), default=0.25,
                    help="relative disagreement of signal and force data that is flagged (default 0.25)")
-    p.add_argument("--plot", metavar="PNG", default=None,
+    p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="with --data or --simulate: write force and signal against deflection (Fig. 4)")
     add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)

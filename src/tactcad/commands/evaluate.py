@@ -13,7 +13,7 @@ import argparse
 import math
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
-from tactcad.commands.options import count, number
+from tactcad.commands.options import PLOT_SUFFIXES, count, number, output_file
 
 from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 
@@ -40,9 +40,9 @@ def register(subparsers) -> None:
                         "Table 1 (ladder for elements without a measurement)")
     p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form", help="ladder level")
     p.add_argument("--steps", type=count(1, 1000, "load steps"), default=6, help="load steps (>= 1)")
-    p.add_argument("--plot", metavar="PNG", default=None,
+    p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write a Fig. 7-like plot (R against K_m/K_obj per K_r/K_m) here")
-    p.add_argument("--plot-fig6", metavar="PNG", default=None,
+    p.add_argument("--plot-fig6", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write a Fig. 6-like plot (R against grasping force, sample nearest 3.85 N/mm)")
     add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)

@@ -24,6 +24,10 @@ from typing import Callable, Iterator, Sequence
 from tactcad.errors import DesignError
 
 
+#: File types a ``--plot`` option writes (matplotlib chooses the format by suffix).
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+
+
 def _fmt(x: float) -> str:
     return f"{x:g}"
 
@@ -73,6 +77,23 @@ def count(lo: int = 0, hi: int = 2**31 - 1, what: str = "") -> Callable[[str], i
         return n
 
     parse.__name__ = "integer"
+    return parse
+
+
+def output_file(*suffixes: str) -> Callable[[str], str]:
+    """An argparse type: a file to write, its name ending in one of ``suffixes``
+    (any case), not an existing folder."""
+    allowed = "a file name ending in " + " or ".join(suffixes)
+
+    def parse(text: str) -> str:
+        import os
+
+        if not text.strip() or not text.lower().endswith(tuple(s.lower() for s in suffixes)) \
+                or os.path.isdir(text):
+            raise argparse.ArgumentTypeError(f"{text[:80]!r}: allowed {allowed}")
+        return text
+
+    parse.__name__ = "file name"
     return parse
 
 

@@ -30,11 +30,12 @@ from typing import Callable, Sequence
 
 from tactcad import __version__
 from tactcad.assembly.inventory import assembly_review, instance_counts
-from tactcad.atomic import (carry_over, leftover_staging, publish_dir, remove_partial_files,
-                            staging_dir, write_bytes_atomic)
+from tactcad.atomic import (carry_over, disk_full_error, leftover_staging, publish_dir,
+                            remove_partial_files, remove_tree, staging_dir, warn_left_behind,
+                            write_bytes_atomic)
 from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
-from tactcad.errors import ExportPathError
+from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
@@ -248,6 +249,14 @@ def _written_by_tactcad(out: Path) -> set[str]:
         return {MANIFEST}
 
 
+def _in_export_folder(exc: OSError, staging: Path, out: Path) -> OSError:
+    """``exc`` with a path in the staging folder shown as the export folder's path."""
+    name = str(exc.filename or staging)  # an error of write() names no file: the folder
+    if exc.errno is None or not name.startswith(str(staging)):
+        return exc
+    return OSError(exc.errno, exc.strerror, str(out) + name[len(str(staging)):])
+
+
 def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, log: Log,
                store: Store, with_manifest: bool, parts=None,
                dxf_version: str | None = None, partial: dict | None = None) -> ExportResult:
@@ -258,8 +267,8 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
     (``with_manifest`` False) keeps every old file it does not rewrite."""
     t0 = time.perf_counter()
     out = check_out_dir(out_dir)
-    for old in leftover_staging(out):  # a killed run's
-        shutil.rmtree(old, ignore_errors=True)
+    stuck = [p for old in leftover_staging(out) for p in remove_tree(old)]  # a killed run's
+    warn_left_behind(stuck)
     staging = staging_dir(out)
     try:
         run = Run(plan, staging, log, store, dxf_version)
@@ -282,8 +291,17 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
             carry_over(out, staging, lambda rel: rel not in ours)
         os.chmod(staging, 0o755)  # mkdtemp makes it private; an export folder is for sharing
         publish_dir(staging, out)
+    except OSError as exc:  # name the file in the export folder, not in the staging one
+        raise _in_export_folder(exc, staging, out) from exc
+    except (TactcadError, KeyboardInterrupt):
+        raise
+    except Exception as exc:  # a writer failing without an OSError: a full disk is said as such
+        full = disk_full_error(staging)
+        if full is None:
+            raise
+        raise _in_export_folder(full, staging, out) from exc
     finally:
-        shutil.rmtree(staging, ignore_errors=True)
+        warn_left_behind(remove_tree(staging) if staging.exists() else [])
     builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded
     return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
                         builds, len(run.inventory[0]))
