@@ -141,6 +141,7 @@ def test_a_bad_map_is_refused(text):
         parse_mapping([text])
 
 
+@pytest.mark.filterwarnings("ignore::tactcad.mechanics.paper.measured_io.MeasuredDataWarning")
 def test_a_damaged_tdms_file_is_refused(tmp_path):
     raw = (HW / "calibration_example.tdms").read_bytes()
     for k, cut in enumerate((raw[:40], raw[:len(raw) // 2], b"TDSm" + bytes(range(200)))):
@@ -151,6 +152,7 @@ def test_a_damaged_tdms_file_is_refused(tmp_path):
         assert str(path) in str(err.value)
 
 
+@pytest.mark.filterwarnings("ignore::tactcad.mechanics.paper.measured_io.MeasuredDataWarning")
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.binary(max_size=400), st.sampled_from(["x.csv", "x.lvm", "x.tdms", "x.dat"]))
 def test_any_bytes_are_read_or_refused_by_name(tmp_path_factory, raw, name):
@@ -177,3 +179,13 @@ def test_calibrate_command_refuses_a_non_utf8_file_in_one_line(tmp_path, capsys)
     assert main(["calibrate", "--data", str(path)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "line 2, column 5: byte 0xFF" in err and "Traceback" not in err
+
+
+def test_a_tdms_file_cut_short_is_reported_in_tactcad_lines_only(tmp_path, capsys):
+    path = tmp_path / "cut.tdms"
+    path.write_bytes((HW / "calibration_example.tdms").read_bytes()[:-10])
+    assert main(["calibrate", "--data", str(path), "--map", "force_N=Dev1/ai0,signal_V=Dev1/ai1"]) == 2
+    lines = capsys.readouterr().err.splitlines()
+    assert all(ln.startswith(("tactcad: warning: ", "tactcad: error: ")) for ln in lines), lines
+    assert any("npTDMS: Last segment of file has less data" in ln for ln in lines)
+    assert lines[-1].startswith(f"tactcad: error: {path}: channel lengths")

@@ -13,71 +13,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from cli_strategies import COMMANDS, LONG, command_lines, option_actions
 from tactcad import cli
-from tactcad.commands.options import options_of
 from tactcad.errors import TactcadError
-
-PARSER = cli.build_parser()
-COMMANDS = dict(options_of(PARSER))
-#: Valid values for required options, so a draw reaches the command's own checks.
-VALID = {"--km": ["15.25"], "--kr": ["80.38"], "--kobj": ["3.85"], "--element": ["3"],
-         "--kr-over-km": ["10"], "--kobj-range": ["1", "10"], "--full-scale-force": ["2"],
-         "--out": ["new.toml"]}
-#: Commands whose handlers take minutes (CAD export, FEM, Dask clusters) or
-#: never end (a file watcher): the end-to-end test stops at their checks.
-LONG = {("export",), ("check",), ("design",), ("watch",), ("verify",)} | \
-    {c for c in COMMANDS if c[0] in ("bench", "sweep")}
-SPECIAL = ["", " ", "-0", "-0.0", "nan", "inf", "-inf", "1e308", "1e-320", "-1", "0",
-           "99999999999999999999", "x", "/", ".", "/nonexistent/file.toml", "exports",
-           "hardware/macro_array.toml", "hardware", "Ti", "ü€.toml", "a" * 300, "K=V", "a,b",
-           "--json"]
-
-
-def option_actions(parser: argparse.ArgumentParser) -> list[argparse.Action]:
-    return [a for a in parser._actions if a.option_strings
-            and not isinstance(a, (argparse._HelpAction, argparse._VersionAction))]
-
-
-def value_strategy(action: argparse.Action) -> st.SearchStrategy[str]:
-    text = st.text(st.characters(blacklist_categories=("Cs",), blacklist_characters="\0"),
-                   max_size=12)
-    base = st.sampled_from(SPECIAL) | text
-    if action.choices:
-        base = st.sampled_from([str(c) for c in action.choices]) | base
-    if action.type in (float,) or getattr(action.type, "__name__", "") == "number":
-        base = st.floats(allow_nan=True, allow_infinity=True).map(repr) | base
-    if action.type in (int,) or getattr(action.type, "__name__", "") == "integer":
-        base = st.integers(-2**70, 2**70).map(str) | base
-    return base
-
-
-@st.composite
-def command_lines(draw, commands=tuple(COMMANDS)):
-    """A command, some of its options with drawn values, the required ones valid."""
-    path = draw(st.sampled_from(sorted(commands)))
-    parser = COMMANDS[path]
-    actions = option_actions(parser)
-    chosen = draw(st.lists(st.sampled_from(actions), max_size=3, unique_by=id)) if actions else []
-    argv = list(path)
-    for action in chosen:
-        argv.append(max(action.option_strings, key=len))
-        n = action.nargs
-        if n == 0:
-            continue
-        count = n if isinstance(n, int) else draw(st.integers(1, 3)) if n in ("+", "*") else 1
-        argv += [draw(value_strategy(action)) for _ in range(count)]
-    for action in actions:
-        name = max(action.option_strings, key=len)
-        if action.required and action not in chosen:
-            argv += [name] + VALID.get(name, ["1"] * (action.nargs if isinstance(action.nargs, int)
-                                                      else 1))
-    for group in parser._mutually_exclusive_groups:
-        if group.required and not any(a in chosen for a in group._group_actions):
-            first = group._group_actions[0]
-            name = max(first.option_strings, key=len)
-            argv += [name] + ([] if first.nargs == 0 else VALID.get(name, ["1"]))
-    return argv
-
 
 def test_every_command_and_option_is_found_by_introspection():
     assert {("lumped",), ("calibrate",), ("bench", "export"), ("sweep", "grid")} <= set(COMMANDS)
@@ -212,3 +150,18 @@ def test_warnings_are_one_line_each_once_in_json_and_silenced_by_quiet(capsys):
     out = capsys.readouterr()
     doc = json.loads(out.out)
     assert out.err == "" and len(doc["warnings"]) == 1 and "poisson_ratio" in doc["warnings"][0]
+
+
+@pytest.mark.slow
+def test_the_input_fuzz_runs_and_counts_tracebacks():
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = Path(__file__).parents[1] / "scripts" / "fuzz_inputs.py"
+    proc = subprocess.run([sys.executable, str(script), "--data", "30", "--options", "8",
+                           "--quiet"], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    lines = proc.stdout.splitlines()
+    assert lines[0].startswith("fuzz data files: 30 tried") and "0 tracebacks" in lines[0]
+    assert lines[1].startswith("fuzz options: ") and "0 tracebacks" in lines[1]

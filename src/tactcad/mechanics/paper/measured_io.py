@@ -25,11 +25,14 @@ own name. Every refusal names the file, the line (or TDMS row) and the column.
 from __future__ import annotations
 
 import codecs
+import contextlib
 import csv
+import logging
 import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Iterable, Mapping
+from typing import Callable, Iterable, Iterator, Mapping
 
 import numpy as np
 
@@ -41,6 +44,11 @@ from tactcad.mechanics.paper.calibration import (K_SENSOR_N_PER_MM, CalibrationD
 #: that a wrong file (a video, a disk image) is refused at once.
 MAX_BYTES = 64 * 2**20
 FORMATS = ("csv", "lvm", "tdms")
+#: Largest magnitude of a reading per column, with its unit: far beyond any
+#: bench rig (1 m of travel, 100 kN, 10 kV), so a value past it is a damaged
+#: cell, and the fit's sums of squares stay finite.
+LIMITS = {"element": (1e9, ""), "run": (1e9, ""), "z_um": (1e6, "um"), "force_N": (1e5, "N"),
+          "signal_V": (1e4, "V")}
 _SEPARATORS = {",": "comma", ";": "semicolon", "\t": "tab"}
 _BOMS = ((codecs.BOM_UTF8, "utf-8-sig"), (codecs.BOM_UTF16_LE, "utf-16"),
          (codecs.BOM_UTF16_BE, "utf-16"))
@@ -233,6 +241,9 @@ class _Readings:
         for c in COLUMNS:
             if not np.isfinite(values[c]):
                 raise CalibrationError(f"{where(c)} = {values[c]!r}: allowed a finite number")
+            if abs(values[c]) > LIMITS[c][0]:
+                raise CalibrationError(f"{where(c)} = {values[c]!r}: allowed |value| <= "
+                                       f"{LIMITS[c][0]:g} {LIMITS[c][1]}")
         element = _integer(values["element"], where("element"))
         _integer(values["run"], where("run"))
         if values["z_um"] < 0:
@@ -474,15 +485,49 @@ def _lvm_cell(text: str, line: int, index: int, separator: str) -> str:
 # ---------------------------------------------------------------------------
 # TDMS (binary)
 # ---------------------------------------------------------------------------
+class MeasuredDataWarning(UserWarning):
+    """A data file read with a doubt the reader raised (e.g. a TDMS file cut short)."""
+
+
+@contextlib.contextmanager
+def _tdms_log_as_warnings(where: str) -> Iterator[None]:
+    """npTDMS logs what it repairs to stderr in its own format; within this,
+    each distinct message becomes one warning naming the file."""
+    from nptdms.log import log_manager
+
+    messages: list[str] = []
+
+    class Collect(logging.Handler):
+        def emit(self, record: logging.LogRecord) -> None:
+            messages.append(record.getMessage())
+
+    collect = Collect(logging.WARNING)
+    loggers = list(log_manager.loggers.values())
+    for log in loggers:
+        log.removeHandler(log_manager.console_handler)
+        log.addHandler(collect)
+    try:
+        yield
+    finally:
+        for log in loggers:
+            log.removeHandler(collect)
+            log.addHandler(log_manager.console_handler)
+        for text in dict.fromkeys(messages):
+            short = text if len(text) <= 160 else text[:160] + "..."
+            warnings.warn(f"{where}: npTDMS: {short}", MeasuredDataWarning, stacklevel=3)
+
+
 def _read_tdms(p: Path, mapping: Mapping[str, str]):
-    from nptdms import TdmsFile
+    import nptdms
 
     where = str(p)
     try:
-        tdms = TdmsFile.read(p)
-        channels = {f"{g.name}/{c.name}": c for g in tdms.groups() for c in g.channels()}
-        arrays = {path: np.asarray(c[:]) for path, c in channels.items()}
-        props = {**tdms.properties, **{k: v for g in tdms.groups() for k, v in g.properties.items()}}
+        with _tdms_log_as_warnings(where):
+            tdms = nptdms.TdmsFile.read(p)
+            channels = {f"{g.name}/{c.name}": c for g in tdms.groups() for c in g.channels()}
+            arrays = {path: np.asarray(c[:]) for path, c in channels.items()}
+            props = {**tdms.properties,
+                     **{k: v for g in tdms.groups() for k, v in g.properties.items()}}
     except CalibrationError:
         raise
     except Exception as exc:  # npTDMS raises ValueError, KeyError, struct.error... on a bad file
