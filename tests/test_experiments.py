@@ -355,8 +355,9 @@ def test_calibrate_table1_text(capsys):
 @pytest.mark.parametrize("argv,needle", [
     (["evaluate", "--samples", "3,-1"], "samples = -1.0"),
     (["evaluate", "--samples", "3,x"], "samples = 'x'"),
-    (["evaluate", "--poisson", "0.7", "--samples", "3"], "poisson_ratio = 0.7"),
-    (["evaluate", "--coupling", "layer", "--thickness", "-2", "--samples", "3"], "thickness_mm = -2.0"),
+    (["evaluate", "--poisson", "0.7", "--samples", "3"], "--poisson: '0.7': allowed a number 0 ... 0.5"),
+    (["evaluate", "--coupling", "layer", "--thickness", "-2", "--samples", "3"],
+     "--thickness: '-2': allowed a number >0 ... 10000 (mm)"),
     (["calibrate", "--data", "{empty}"], "no header"),
     (["calibrate", "--data", "{wrong}"], "missing ['force_N', 'signal_V']"),
     (["calibrate", "--data", "{missing_file}"], "cannot be read"),
@@ -378,8 +379,8 @@ def test_cli_errors_exit_2_with_field_and_value(argv, needle, tmp_path, capsys):
     argv = [a.format(**files) for a in argv]
     assert main(argv) == 2
     err = capsys.readouterr().err
-    assert err.startswith("tactcad: error:")
-    assert needle in err
+    assert err.startswith(("tactcad: error:", f"tactcad {argv[0]}: error:"))
+    assert needle in err and err.count("\n") == 1
     assert "Traceback" not in err
 
 
