@@ -68,8 +68,7 @@ def count(lo: int = 0, hi: int = 2**31 - 1, what: str = "") -> Callable[[str], i
 
     def parse(text: str) -> int:
         try:
-            n = int(text.strip().replace("_", "")) if text.strip().lstrip("+-").isdigit() \
-                else int(text)
+            n = int(text)
         except (TypeError, ValueError):
             raise argparse.ArgumentTypeError(f"{text!r}: allowed {allowed}") from None
         if not lo <= n <= hi:

@@ -76,7 +76,7 @@ class Worker:
         finally:
             _INHERITED.clear()  # the worker has its copy; this process needs none
 
-    def submit(self, job: Job, solids: Mapping[str, Any]) -> Future:
+    def submit(self, job: Job, solids: Mapping[str, Any]) -> "_JobFuture":
         """Hand ``job`` over with the solids it reads (by part name); the
         future's ``result()`` gives the job's records or raises its error, and
         warns here what the job warned there."""
