@@ -40,10 +40,11 @@ test-fast: $(STAMP) ## the inner loop: every test not marked slow (no full expor
 	$(BIN)/python -m pytest -q -m "not slow"
 
 FUZZ_N ?= 1000
+FUZZ_DATA ?= $(FUZZ_N)
 FUZZ_OPTIONS ?= 300
-fuzz: $(STAMP) ## random designs (FUZZ_N=1000), calibration data files (FUZZ_N) and command lines (FUZZ_OPTIONS=300); prints the counts
+fuzz: $(STAMP) ## random designs (FUZZ_N=1000), calibration data files (FUZZ_DATA=FUZZ_N) and command lines (FUZZ_OPTIONS=300); prints the counts
 	$(BIN)/python scripts/fuzz.py -n $(FUZZ_N) --quiet; \
-	  a=$$?; $(BIN)/python scripts/fuzz_inputs.py --data $(FUZZ_N) --options $(FUZZ_OPTIONS) --quiet; \
+	  a=$$?; $(BIN)/python scripts/fuzz_inputs.py --data $(FUZZ_DATA) --options $(FUZZ_OPTIONS) --quiet; \
 	  b=$$?; exit $$(( a || b ))
 
 bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness ladder)

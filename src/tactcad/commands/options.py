@@ -52,10 +52,10 @@ def number(lo: float | None = None, hi: float | None = None, unit: str = "", *,
         try:
             x = float(text)
         except (TypeError, ValueError):
-            raise argparse.ArgumentTypeError(f"{text!r}: allowed {allowed}") from None
+            raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}") from None
         if not math.isfinite(x) or (lo is not None and (x <= lo if lo_open else x < lo)) \
                 or (hi is not None and x > hi):
-            raise argparse.ArgumentTypeError(f"{text!r}: allowed {allowed}")
+            raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}")
         return x + 0.0  # -0.0 + 0.0 == +0.0
 
     parse.__name__ = "number"  # argparse names the type in its own messages
@@ -70,7 +70,7 @@ def count(lo: int = 0, hi: int = 2**31 - 1, what: str = "") -> Callable[[str], i
         try:
             n = int(text)
         except (TypeError, ValueError):
-            raise argparse.ArgumentTypeError(f"{text!r}: allowed {allowed}") from None
+            raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}") from None
         if not lo <= n <= hi:
             raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}")
         return n
