@@ -153,11 +153,20 @@ def dispatch(argv: list[str], as_json: bool) -> int:
         record["field"] = exc.filename
         return report_error(record, as_json)
     except KeyboardInterrupt as exc:
-        message = "interrupted; the previous files are left as they were"
-        if as_json:
-            return report_error(error_record(exc, EXIT_INTERRUPTED, message), as_json)
-        print(f"tactcad: {message}", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return report_interrupt(exc, as_json)
+    except ImportError as exc:  # Ctrl-C while a compiled module (the CAD kernel) initialises
+        if not isinstance(exc.__cause__ or exc.__context__, KeyboardInterrupt):
+            raise
+        return report_interrupt(exc, as_json)
+
+
+def report_interrupt(exc: BaseException, as_json: bool) -> int:
+    """Report Ctrl-C (one line, or the JSON error); exit code 130."""
+    message = "interrupted; the previous files are left as they were"
+    if as_json:
+        return report_error(error_record(exc, EXIT_INTERRUPTED, message), as_json)
+    print(f"tactcad: {message}", file=sys.stderr)
+    return EXIT_INTERRUPTED
 
 
 def error_record(exc: BaseException, exit_code: int, message: str | None = None) -> dict:
