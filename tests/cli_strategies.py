@@ -60,6 +60,13 @@ def command_lines(draw, commands=tuple(COMMANDS)):
             continue
         count = n if isinstance(n, int) else draw(st.integers(1, 3)) if n in ("+", "*") else 1
         argv += [draw(value_strategy(action)) for _ in range(count)]
+    for action in parser._actions:  # positionals (diff OLD NEW, scenes [NAME])
+        if action.option_strings or isinstance(action, argparse._SubParsersAction):
+            continue
+        if action.nargs == "?" and draw(st.booleans()):
+            continue
+        n = action.nargs if isinstance(action.nargs, int) else 1
+        argv += [draw(value_strategy(action)) for _ in range(n)]
     for action in actions:
         name = max(action.option_strings, key=len)
         if action.required and action not in chosen:

@@ -31,7 +31,7 @@ SRC = Path(tactcad.__file__).resolve().parent
 LAYERS = ["foundation", "design", "geometry", "mechanics", "catalogue", "parts", "assembly",
           "drawings", "export", "checks", "studies", "commands"]
 FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store"}
-TOP_LEVEL = {"tactcad.cli": "commands"}
+TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands"}
 MECHANICS_MAY_USE = {"foundation", "design", "geometry", "mechanics"}
 
 

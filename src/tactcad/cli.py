@@ -40,6 +40,7 @@ COMMAND_MODULES = (
     "tactcad.commands.tolerance",
     "tactcad.commands.sweep",
     "tactcad.commands.design",
+    "tactcad.commands.diff",
 )
 
 

@@ -106,8 +106,10 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
 
 
 def _strength_record(r: dict) -> dict:
-    """An element's full-scale force and safety factor for the manifest (closed form)."""
-    keys = ("element", "part_name", "model", "stress_MPa_per_N", "full_scale_force_N",
+    """An element's arm, stiffness K, full-scale force and safety factor for
+    the manifest (closed form)."""
+    keys = ("element", "part_name", "arm_length_mm", "model", "stiffness_N_per_mm",
+            "stress_MPa_per_N", "full_scale_force_N",
             "yield_safety_factor_at_full_scale", "gauge_strain_at_full_scale",
             "tip_deflection_mm_at_full_scale", "warnings")
     return {k: r[k] for k in keys}
