@@ -155,14 +155,16 @@ def dispatch(argv: list[str], as_json: bool) -> int:
         return report_error(record, as_json)
     except KeyboardInterrupt as exc:
         return report_interrupt(exc, as_json)
-    except ImportError as exc:  # Ctrl-C while a compiled module (the CAD kernel) initialises
-        if not isinstance(exc.__cause__ or exc.__context__, KeyboardInterrupt):
-            raise
-        return report_interrupt(exc, as_json)
+    except ImportError as exc:
+        # Ctrl-C while a compiled module (the CAD kernel) initialises surfaces
+        # as "ImportError: initialization failed" caused by the interrupt
+        if isinstance(exc.__cause__, KeyboardInterrupt):
+            return report_interrupt(exc.__cause__, as_json)
+        raise
 
 
-def report_interrupt(exc: BaseException, as_json: bool) -> int:
-    """Report Ctrl-C (one line, or the JSON error); exit code 130."""
+def report_interrupt(exc: KeyboardInterrupt, as_json: bool) -> int:
+    """One line (or one JSON error) for Ctrl-C; :data:`EXIT_INTERRUPTED`."""
     message = "interrupted; the previous files are left as they were"
     if as_json:
         return report_error(error_record(exc, EXIT_INTERRUPTED, message), as_json)
