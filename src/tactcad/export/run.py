@@ -21,7 +21,6 @@ import errno
 import hashlib
 import json
 import os
-import shutil
 import time
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
