@@ -81,8 +81,10 @@ def test_summary_records_are_finite_with_the_required_keys(plan):
 
 def test_cli_json_and_text(capsys):
     assert main(["strength", "--json"]) == 0
-    recs = json.loads(capsys.readouterr().out)
+    out = json.loads(capsys.readouterr().out)
+    recs = out["elements"]
     assert len(recs) == 10 and JSON_KEYS <= set(recs[0])
+    assert out["requirement"]["met"] and out["requirement"]["binding_limit"]
     assert main(["strength"]) == 0
     out = capsys.readouterr().out
     assert "F_fs N" in out and "above the yield strength" in out

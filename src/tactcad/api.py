@@ -275,8 +275,9 @@ class Project:
             cache: the store of finished jobs, as for :meth:`export`.
             progress: called with a line on the export (one per job run).
             on_group: called as ``on_group(group, results)`` when each group
-                of checks finishes (``parts``, ``dxf``, ``array interference``,
-                ``array STEP``, ``scene <name>``).
+                of checks finishes (``requirements``: the design's verification
+                matrix at the closed form, ``parts``, ``dxf``, ``array
+                interference``, ``array STEP``, ``scene <name>``).
 
         Returns:
             :class:`CheckReport`: every result with its group.
@@ -302,6 +303,9 @@ class Project:
                 on_group(group, list(found))
 
         self._report = report
+        from tactcad.checks.requirements import requirement_checks
+
+        done("requirements", requirement_checks(self.plan))  # the verification matrix
         try:
             with tempfile.TemporaryDirectory() as tmp:
                 folder = Path(out) if out is not None else Path(tmp)
@@ -428,6 +432,7 @@ class Element:
             DesignError: the material has no yield strength.
         """
         from tactcad.mechanics.ladder import MODELS, UnknownModelError
+        from tactcad.design.requirements import cites_paper
         from tactcad.mechanics.strength import strength_record
         from tactcad.studies.strength import element_stress
 
@@ -436,7 +441,8 @@ class Element:
 
         plan = self.project.plan
         stress = element_stress(self.geometry, plan.material, model)
-        return strength_record(self.number, self.geometry, plan.material, plan.strength, stress)
+        return strength_record(self.number, self.geometry, plan.material, plan.strength, stress,
+                               paper_load=cites_paper(plan.raw))
 
 
 @dataclass(frozen=True)

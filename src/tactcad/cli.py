@@ -29,6 +29,7 @@ EXIT_INTERRUPTED = 130
 COMMAND_MODULES = (
     "tactcad.commands.export",
     "tactcad.commands.check",
+    "tactcad.commands.verify",
     "tactcad.commands.scenes",
     "tactcad.commands.bench",
     "tactcad.commands.mechanics",

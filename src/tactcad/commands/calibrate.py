@@ -96,8 +96,16 @@ def run(args: argparse.Namespace) -> int:
     if args.data or args.simulate:
         if args.simulate:
             gain = ca.DEFAULT_GAUGE_GAIN_V_PER_STRAIN if args.gain is None else args.gain
+            from tactcad.design.requirements import cites_paper
+            from tactcad.mechanics.requirements import requirements_of
+
+            # the paper's Z steps for its design; any other is loaded to its full-scale force
+            force = None if cites_paper(plan.raw) else requirements_of(plan).full_scale_force_N
             data = ca.simulate_design_calibration(plan, args.model, gain, args.noise_force,
-                                                  args.noise_signal, args.seed)
+                                                  args.noise_signal, args.seed,
+                                                  full_scale_force_N=force)
+            if force is not None:
+                report["full_scale_force_N"] = force
             report["input"] = "simulated"
             report["simulated_gauge_gain_V_per_strain"] = gain
             if args.write_csv:

@@ -18,7 +18,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                        description="Tip stiffness, gauge strain per newton, error estimate and wall "
                                    "time of one sensing element. Units: N/mm, 1/N, s.")
     p.add_argument("--element", type=count(1, 10_000, "an element number"), required=True,
-                   help="paper element number (1-10)")
+                   help="element number of the design (1 ... rows x columns, numbered along "
+                        "row 1, then row 2)")
     p.add_argument("--model", choices=MODELS, default="closed-form")
     add_design_arg(p)
     add_output_args(p, "print JSON")

@@ -28,6 +28,7 @@ from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Name, Problems, Section, 
 from tactcad.design.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                       StrengthSettings, default_strength_settings,
                                       material_fields, material_grade, strength_settings)
+from tactcad.design.requirements import RequirementsSection, check_requirements
 from tactcad.design.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 
@@ -391,6 +392,7 @@ class DesignFile(Section):
     clamp: ClampSection
     edm: EdmSection
     strength: StrengthSection = None
+    requirements: RequirementsSection = None
     assumptions: dict[str, Any] = {}
 
 
@@ -478,7 +480,7 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
                   "the tip root fillet must clear the notch by 0.5 mm")
 
 
-DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms)
+DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements)
 
 
 # ---------------------------------------------------------------------------

@@ -19,6 +19,7 @@ from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_p
 from tactcad.catalogue.files import profile_dxf_name
 from tactcad.catalogue.shop import TORQUE_SOURCE, tightening_torque_Nm
 from tactcad.design.array import Plan
+from tactcad.drawings.design_notes import numbering_note
 from tactcad.drawings.frame import (FRAME, GENERAL_TOLERANCE, revision_and_date, sheet_frame,
                                     title_cells, wrap_text)
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
@@ -241,7 +242,7 @@ def _notes(a: AssemblySheet, plan: Plan) -> None:
                  f"({TORQUE_SOURCE}); check the tips of each row lie in one plane "
                  f"before the second pass.")
     lines.append("Balloon numbers are the items of bom.csv / bom.md. Element profiles: the DXF "
-                 "files of the slot map (dxf/); the element numbers follow the paper's Table 1.")
+                 "files of the slot map (dxf/); " + numbering_note(plan))
     lines.append(f"Untoleranced dimensions of the parts: {GENERAL_TOLERANCE}; see each part's drawing.")
     x0, y = FRAME[0] + 5.0, FRAME[3] - 63.0 - 4.0
     width = FRAME[2] - 180.0 - 10.0 - x0

@@ -28,7 +28,7 @@ from tactcad.geometry.profile import Arc
 from tactcad.drawings.views import CAMERAS, cameras_for, orientation
 from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
 from tactcad.mechanics.paper.data import largest_equal_arm_spread
-from tactcad.mechanics.strength import strength_summary
+from tactcad.drawings.design_notes import full_scale_note, web_tolerance_note
 
 
 def detail_circle(spec: PartSpec):
@@ -401,11 +401,7 @@ def element_notes(d: Drawing) -> list[str]:
     used = [s.number for s in plan.slots if s.geometry.part_name == spec.name]
     a, k0, k1, ratio = largest_equal_arm_spread()
     up, dn = web_tolerance_stiffness_change(g.web_thickness_mm, g.web_tolerance_mm)
-    n.append(f"Web thickness {web_text(g)} is the critical dimension: hinge stiffness "
-             f"scales with t^2.5, so the tolerance alone moves stiffness by "
-             f"+{up * 100:.0f} % / -{dn * 100:.0f} %. The paper's as-built elements "
-             f"(Table 1) of equal {fmt_mm(a)} mm arm measured {k0:.2f} and {k1:.2f} N/mm "
-             f"(x{ratio:.2f}). Measure the web of every part and record it.")
+    n.append(web_tolerance_note(plan, g, web_text(g), up, dn, (a, k0, k1, ratio)))
     n.append(f"Wire EDM from {fmt_mm(g.sheet_thickness_mm)} mm {spec.material} sheet along "
              f"the nominal contour of {Path(profile_dxf_name(spec.name, len(used))).name} "
              f"(or the nested sheet {Path(sheet_dxf_name(spec.material, g.sheet_thickness_mm)).name})"
@@ -417,12 +413,8 @@ def element_notes(d: Drawing) -> list[str]:
     n.append(f"Used as array element{'s' if len(used) > 1 else ''} "
              + ", ".join(str(k) for k in used)
              + ". A strain gauge is bonded on the flat top face over the web.")
-    st = next(r for r in strength_summary(plan) if r["part_name"] == spec.name)
-    n.append(f"Full-scale tip force {st['full_scale_force_N']:.2f} N: yield safety factor "
-             f"{st['yield_safety_factor_at_full_scale']:g} on "
-             f"{fmt_mm(plan.material.yield_strength_MPa)} MPa ({plan.material.grade}), peak "
-             f"web stress {st['stress_MPa_per_N']:.0f} MPa/N ({st['model']}). Do not load "
-             f"the tip beyond it.")
+    n.append(full_scale_note(plan, spec.name, plan.material.yield_strength_MPa,
+                             plan.material.grade or plan.material.name))
     return n
 
 

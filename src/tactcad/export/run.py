@@ -41,6 +41,7 @@ from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
 from tactcad.export.worker import Worker, can_fork, worker_jobs
 from tactcad.catalogue.files import ARRAY_STEP, MANIFEST
+from tactcad.mechanics.requirements import requirements_record
 from tactcad.mechanics.strength import strength_summary
 from tactcad.store import Store, stack_versions
 
@@ -99,6 +100,7 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
         "assemblies": {"array": {"file": ARRAY_STEP, "instances": len(inst),
                                **assembly_review(specs, inst)}},
         "strength": [_strength_record(r) for r in strength_summary(plan)],
+        "requirements": requirements_record(plan),
         "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
                     for d in plan.derived],
         "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],

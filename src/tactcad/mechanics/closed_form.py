@@ -304,6 +304,23 @@ def correction_factor(g: ElementGeometry, material: Material,
     return k * float(parts.total)
 
 
+def width_gain(g: ElementGeometry, material: Material,
+               correction: Correction | None = None) -> float:
+    """1 + g of the fem3d-fitted correction: how much stiffer the 3D element is
+    than its plane-stress section (a wide sheet holds the web towards plane
+    strain; g -> 0 for a thin sheet). Dimensionless, >= 1 for the fitted c3."""
+    from tactcad.mechanics.correction import _gain_and_denominator
+
+    corr = _resolve(True, correction)
+    parts = _parts(g, material, g.web_thickness_mm)
+    c = correction_coordinates(parts, g.web_thickness_mm, g.notch_radius_mm,
+                               g.sheet_thickness_mm, material.poisson_ratio)
+    gain, _ = _gain_and_denominator(np.asarray(corr.coefficients, float), c["t_over_R"],
+                                    c["width_ratio"], c["poisson_ratio"], c["notch_share"],
+                                    c["shear_share"], c["arm_share"], c["web_over_sheet"])
+    return float(gain)
+
+
 def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int | None = None,
                          corrected: bool = True,
                          correction: Correction | None = None) -> StiffnessResult:

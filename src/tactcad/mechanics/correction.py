@@ -496,19 +496,24 @@ def leave_one_out(points: Sequence[Mapping[str, Any]],
 def build_document(points: Sequence[Mapping[str, Any]], *, source: str | None = None,
                    free: Sequence[str] = COEFFICIENT_NAMES) -> dict:
     """Fit the points of the set "fit" (and "fit-*"), check the "holdout"
-    points, and return the JSON document of ``stiffness_correction.json``.
+    points and the "check-*" points (fem3d points that extend the range the
+    correction is stated for, e.g. to a library material's Poisson ratio),
+    and return the JSON document of ``stiffness_correction.json``.
 
     Raises:
         ValueError: no fit points.
     """
     fit_pts = [p for p in points if str(p["set"]).startswith("fit")]
     hold_pts = [p for p in points if p["set"] == "holdout"]
+    # fem3d points that extend the checked range beyond the fit's (e.g. a
+    # library material's nu): not fitted, their residuals stored
+    check_pts = [p for p in points if str(p["set"]).startswith("check")]
     if not fit_pts:
         raise ValueError("no fit points")
     src = source or (f"fem3d (P2 tetrahedra, half model, finest of three meshes), {len(fit_pts)} "
                      "designs of tactcad.studies.correction_sweep")
-    corr = fit_correction(FitData.from_points(fit_pts), fit_range=range_of_points(fit_pts),
-                          source=src, free=free)
+    corr = fit_correction(FitData.from_points(fit_pts),
+                          fit_range=range_of_points(fit_pts + check_pts), source=src, free=free)
     r_fit = FitData.from_points(fit_pts).residuals(corr)
     doc = corr.as_json()
     doc["residual_rel_rms"] = _stats(r_fit)["rms"]
@@ -521,6 +526,10 @@ def build_document(points: Sequence[Mapping[str, Any]], *, source: str | None = 
         r_hold = FitData.from_points(hold_pts).residuals(corr)
         doc["holdout"] = _stats(r_hold)
         rows += [dict(p, residual_rel=float(r)) for p, r in zip(hold_pts, r_hold)]
+    if check_pts:
+        r_check = FitData.from_points(check_pts).residuals(corr)
+        doc["range_checks"] = _stats(r_check)
+        rows += [dict(p, residual_rel=float(r)) for p, r in zip(check_pts, r_check)]
     doc["fem3d_error_rel_max"] = max(float(p["err_fem3d"]) for p in points)
     doc["points"] = rows
     return doc

@@ -57,6 +57,7 @@ import numpy as np
 from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
 from tactcad.design.materials import StrengthSettings
+from tactcad.design.requirements import cites_paper
 from tactcad.mechanics.ladder import estimate
 
 #: Exponent of K_t = (1 + t/(2R))^p for the single-sided circular notch in
@@ -282,7 +283,8 @@ def require_yield(material: Material) -> float:
 
 
 def strength_record(element: int, g: ElementGeometry, material: Material,
-                    settings: StrengthSettings, es: ElementStress) -> StrengthRecord:
+                    settings: StrengthSettings, es: ElementStress,
+                    paper_load: bool = True) -> StrengthRecord:
     """Full-scale figures of one element from its per-newton response.
 
     full_scale_force_N = yield / (stress_MPa_per_N x safety factor);
@@ -291,7 +293,8 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     tip_deflection_mm_at_full_scale = full-scale force / K;
     fatigue_force_N = fatigue strength / stress per N (None without one);
     gauge_fatigue_force_N = gauge fatigue strain / gauge strain per N;
-    stress and yield safety factor at the paper's 2 N load.
+    stress and yield safety factor at the paper's 2 N load (its warning
+    only when ``paper_load``: a design that cites the paper).
 
     Raises:
         DesignError: the material has no yield strength.
@@ -306,7 +309,7 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
                                               g.sheet_thickness_mm))
     fat = material.fatigue_strength_MPa
     warn = []
-    if s_paper > y:
+    if paper_load and s_paper > y:
         warn.append(f"at the paper's {PAPER_LOAD_N:g} N the web reaches {s_paper:.0f} MPa, above "
                     f"the yield strength {y:.0f} MPa of {material.grade or material.name}")
     if fat is not None and s_fs > fat:
@@ -370,7 +373,7 @@ def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
                 progress(f"{model}: {g.part_name}")
             cache[g.part_name] = stress(g, plan.material, model)
         out.append(strength_record(slot.number, g, plan.material, plan.strength,
-                                   cache[g.part_name]))
+                                   cache[g.part_name], paper_load=cites_paper(plan.raw)))
     return out
 
 
