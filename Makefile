@@ -54,8 +54,12 @@ test-fast: $(STAMP) $(WEB) ## the inner loop: every test not marked slow (no ful
 	$(BIN)/python -m pytest -q -m "not slow"
 
 FUZZ_N ?= 1000
-fuzz: $(STAMP) $(WEB) ## random designs end to end (FUZZ_N=1000): validate, build, assemble, check; prints a summary
-	$(BIN)/python scripts/fuzz.py -n $(FUZZ_N) --quiet
+FUZZ_DATA ?= $(FUZZ_N)
+FUZZ_OPTIONS ?= 300
+fuzz: $(STAMP) $(WEB) ## random designs (FUZZ_N=1000), calibration data files (FUZZ_DATA=FUZZ_N) and command lines (FUZZ_OPTIONS=300); prints the counts
+	$(BIN)/python scripts/fuzz.py -n $(FUZZ_N) --quiet; \
+	  a=$$?; $(BIN)/python scripts/fuzz_inputs.py --data $(FUZZ_DATA) --options $(FUZZ_OPTIONS) --quiet; \
+	  b=$$?; exit $$(( a || b ))
 
 bench: $(STAMP) $(WEB) ## print the speed/accuracy benchmarks (export speed, stiffness ladder)
 	$(BIN)/tactcad bench export

@@ -29,7 +29,7 @@ import time
 import traceback
 
 from tactcad.design.domain import draw_design, draw_out_of_domain
-from tactcad.design.project import project_from_data
+from tactcad.design.project import project_from_data, project_of
 from tactcad.design.rigs import default_rigs_data
 from tactcad.design.scenes import DEFAULT_SCENES
 from tactcad.design.schema import Problems, read_toml
@@ -47,13 +47,14 @@ def check_design(plan, rigs, scenes, *, full: bool = False) -> list[str]:
     from tactcad.checks.solids import check_solid
     from tactcad.parts.cache import PartCache
 
+    project = project_of(plan, rigs, scenes)
     cache = PartCache(plan)
     failed = []
     specs = {**array_parts(plan), **rig_parts(plan, rigs)}
     for spec in specs.values():
         failed += [r.line() for r in check_solid(spec, cache.solid(spec)) if not r.passed]
     for name in scenes:
-        scene, solids = build_scene(plan, name, cache, rigs)
+        scene, solids = build_scene(project, name, cache)
         placed = placed_shapes(scene, solids)
         rep = check_mesh_interference(
             placed, scene.contacts, {i.name: i.part for i in scene.instances}, solids,
@@ -68,8 +69,8 @@ def check_design(plan, rigs, scenes, *, full: bool = False) -> list[str]:
         from tactcad.export.run import export
 
         with tempfile.TemporaryDirectory() as tmp:
-            export(plan, tmp, log=lambda s: None, parts=cache)
-            results = run_checks(plan, tmp, cache) + run_scene_checks(plan, tmp, cache=cache)
+            export(project, tmp, log=lambda s: None, parts=cache)
+            results = run_checks(plan, tmp, cache) + run_scene_checks(project, tmp, cache=cache)
         failed += [r.line() for r in results if not r.passed]
     return failed
 
@@ -151,8 +152,10 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  ... {k + 1} tried, {time.perf_counter() - t0:.0f} s", flush=True)
     wild_n = tried - accepted - sum(v for c, v in classes.items() if c == "in-domain draw refused") \
         - sum(v for c, v in classes.items() if c.startswith("validation crash"))
-    print(f"fuzz: {tried} tried, {accepted} accepted, {passed} passed every check, "
-          f"{refused_right} of {wild_n} out-of-domain draws refused naming their field "
+    tracebacks = sum(v for c, v in classes.items() if c.startswith(("validation crash", "crash_")))
+    print(f"fuzz design files: {tried} tried, {accepted} accepted, {passed} passed every check, "
+          f"{refused_right} of {wild_n} out-of-domain draws refused naming their field, "
+          f"{tracebacks} tracebacks "
           f"({time.perf_counter() - t0:.0f} s, {'export + check' if args.full else 'parts + scenes'})")
     for c, v in classes.most_common():
         print(f"  failures {c}: {v}")

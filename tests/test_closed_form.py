@@ -347,7 +347,7 @@ def _stored_points(kind: str) -> list[dict]:
 
 
 def _closed_form_at(p: dict):
-    from tactcad.mechanics.correction_sweep import grid_geometry
+    from tactcad.studies.correction_sweep import grid_geometry
 
     g, mat = grid_geometry(p["web_mm"], p["arm_mm"], p["notch_radius_mm"], sheet_mm=p["sheet_mm"],
                            poisson_ratio=p["poisson_ratio"],
@@ -451,3 +451,21 @@ def test_richardson_falls_back_to_the_formal_order():
     assert math.isnan(flat.order) and flat.extrapolated == 1.0 and flat.error_rel == 0.0
     odd = richardson([1.0, 1.1, 1.05], 2.0)  # oscillating: no order, last difference
     assert math.isnan(odd.order) and odd.error_rel == pytest.approx(0.05 / 1.05)
+
+
+def test_the_corrections_range_covers_every_library_material_and_is_checked_at_fem3d():
+    import json
+
+    from tactcad.design.materials import material_grade, material_grades
+    from tactcad.mechanics.correction import CORRECTION_FILE, load_correction
+
+    lo, hi = load_correction().fit_range.poisson_ratio
+    for name in material_grades():
+        assert lo <= material_grade(name).poisson_ratio <= hi, name
+    doc = json.loads(CORRECTION_FILE.read_text(encoding="utf-8"))
+    fit_hi = max(p["poisson_ratio"] for p in doc["points"] if p["set"].startswith("fit"))
+    beyond = [p for p in doc["points"] if p["poisson_ratio"] > fit_hi]
+    # the range beyond the fitted points rests on fem3d checks at its end
+    assert beyond and all(p["set"].startswith("check") for p in beyond)
+    assert max(p["poisson_ratio"] for p in beyond) == hi
+    assert max(abs(p["residual_rel"]) for p in beyond) <= doc["holdout"]["max"]

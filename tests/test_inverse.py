@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -48,11 +50,17 @@ def test_design_meets_targets_and_limits_at_the_closed_form(plan):
 
 
 def test_design_changes_the_web_when_the_design_web_breaks_a_limit(plan):
-    t = Targets(3.0, (5.0, 20.0), 0.6)  # 0.6 N: the 0.25 mm web's K_m arm overstrains the gauge
+    t = Targets(3.0, (5.0, 20.0), 0.45)  # 0.45 N: the 0.25 mm web's K_m arm exceeds a limit
     search = search_webs(plan, t)
     own = int(np.flatnonzero(np.isclose(search.webs_mm, 0.25))[0])
     assert not search.feasible[own]
     d = design_for_targets(plan, t)
+    # the margins on the arm height the design settled on (raised for a/h <= 4)
+    from tactcad.design.array import plan_from_dict, with_overrides
+
+    h = d.plan.element(1).geometry.arm_height_mm
+    search = search_webs(plan_from_dict(with_overrides(plan.raw, {"element.arm_height_mm": h})),
+                         t)
     chosen = int(np.flatnonzero(np.isclose(search.webs_mm,
                                            d.plan.element(1).geometry.web_thickness_mm))[0])
     assert d.web_changed and search.feasible[chosen]
@@ -78,10 +86,15 @@ def test_impossible_ratio_names_the_arm_range(plan):
         design_for_targets(plan, Targets(1000.0, (2.0, 10.0), 0.1))
 
 
-def test_impossible_force_names_the_yield_limit(plan):
-    with pytest.raises(InverseDesignError,
-                       match=r"yield strength .* at the full-scale force .* is met by no web"):
+def test_impossible_force_names_every_force_limit_and_the_largest_force(plan):
+    with pytest.raises(InverseDesignError) as exc:
         design_for_targets(plan, Targets(2.0, (10.0, 40.0), 500.0))
+    text = str(exc.value)
+    for name in ("yield strength", "gauge fatigue strain", "gauge maximum strain",
+                 "material fatigue strength"):
+        assert re.search(name + r" .*met by no web", text), name
+    assert re.search(r"Largest feasible full-scale force for these stiffness targets: [0-9.]+ N",
+                     text)
 
 
 @pytest.mark.parametrize("kwargs, field", [
@@ -125,13 +138,24 @@ def test_cli_writes_a_loadable_design_and_json(tmp_path, monkeypatch, capsys):
     assert json.loads(capsys.readouterr().out)["error"]["field"] == "--out"  # --json: JSON error
 
 
-@pytest.mark.parametrize("out", ["../outside.toml", "new.txt"])
-def test_cli_refuses_paths_outside_the_folder_or_not_toml(tmp_path, monkeypatch, capsys, out):
+@pytest.mark.parametrize("out", ["/etc/tactcad-new.toml", "/usr/lib/new.toml", "new.txt",
+                                 "missing-folder/new.toml"])
+def test_cli_refuses_system_folders_and_not_toml(tmp_path, monkeypatch, capsys, out):
     monkeypatch.chdir(tmp_path)
     assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
                  "--full-scale-force", "0.3", "--verify", "none", "--out", out]) == 2
     assert "tactcad: error: --out" in capsys.readouterr().err
-    assert not (tmp_path.parent / "outside.toml").exists()
+    assert not Path(out).exists() and not (tmp_path / out).exists()
+
+
+def test_cli_writes_outside_the_working_folder(tmp_path, monkeypatch, capsys):
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                 "--full-scale-force", "0.3", "--verify", "none", "--out", "../outside.toml",
+                 "--quiet"]) == 0
+    assert (tmp_path / "outside.toml").is_file()
 
 
 def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
@@ -141,3 +165,36 @@ def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
     err = capsys.readouterr().err
     assert err.startswith("tactcad: error: targets cannot be met") and "arms.lengths_mm" in err
     assert not (tmp_path / "x.toml").exists()
+
+
+def test_five_percent_above_the_largest_force_is_refused_naming_every_binding_limit(
+        tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    argv = ["design", "--kr-over-km", "10", "--kobj-range", "1", "5", "--material",
+            "Ti-6Al-4V-annealed", "--columns", "3", "--verify", "none", "--json"]
+    assert main(argv + ["--full-scale-force", "0.1", "--out", "a.toml"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    f_max, binding = report["max_full_scale_force_N"], report["binding_limits"]
+    assert 0.1 < f_max < 1.0 and len(binding) >= 2  # a stiffness limit and a force limit
+    written = (tmp_path / "a.toml").read_text()
+    assert "[requirements]" in written and "full_scale_force_N = 0.1" in written
+    assert main(argv + ["--full-scale-force", f"{1.05 * f_max:.6g}", "--out", "b.toml"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]["message"]
+    for name in binding:
+        assert name in err
+    assert f"{f_max:.4g} N" in err
+    assert not (tmp_path / "b.toml").exists()
+    # at the reported maximum itself the targets are met
+    assert main(argv + ["--full-scale-force", f"{0.999 * f_max:.6g}", "--out", "c.toml"]) == 0
+
+
+def test_rows_and_columns_build_a_new_grid_and_arms_stay_in_the_corrections_range(plan):
+    d = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.1), grade="Ti-6Al-4V-annealed",
+                           columns=4)
+    assert (d.plan.rows, d.plan.columns, len(d.plan.slots)) == (2, 4, 8)
+    assert d.references == reference_elements(2, 4)
+    for g in d.plan.distinct_elements.values():
+        assert g.arm_length_mm / g.arm_height_mm <= 4.0 + 1e-9
+    with pytest.raises(DesignError) as exc:
+        design_for_targets(plan, FEASIBLE, rows=3)
+    assert "array.rows" in str(exc.value)

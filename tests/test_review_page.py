@@ -132,3 +132,17 @@ def test_check_results_join_the_page(exported, browser, plan):
             assert "1 failed" in text and "off by 3 %" in text
     finally:
         (out / "review/checks.js").unlink()
+
+
+def test_requirements_of_the_manifest_show_as_the_verification_matrix():
+    record = {"values": {"full_scale_force_N": 0.1},
+              "closed_form_matrix": [{"requirement": "full_scale_force_N", "target": 0.1,
+                                      "predicted": 0.12, "pass": True, "binding_words": "w",
+                                      "limits": [{"limit": "yield", "force_N": 0.3}]},
+                                     {"requirement": "kr_over_km", "target": 10,
+                                      "predicted": 9.9, "pass": False}]}
+    view = _data(requirements=record)["manifest"]["verification"]
+    rows, limits, values = view.values()
+    assert [r["requirement"] for r in rows] == ["full_scale_force_N", "kr_over_km"]
+    assert all("limits" not in r for r in rows) and rows[1]["pass"] is False
+    assert limits == [{"limit": "yield", "force_N": 0.3}] and values == {"full_scale_force_N": 0.1}

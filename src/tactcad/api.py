@@ -90,8 +90,8 @@ class Project:
     built on first use and kept (one build per distinct part).
 
     Attributes:
-        validated: the validated design files as :mod:`tactcad.design.project`
-            returns them.
+        validated: the validated design files, one immutable
+            :class:`tactcad.design.project.Project` (plan, rigs, scenes, hashes).
         source: the design file's path.
     """
 
@@ -103,9 +103,8 @@ class Project:
 
     # --- the validated files ---
     def _validated_field(self, name: str):
-        """One field of the validated data (today the (plan, rigs, scenes)
-        triple of :func:`~tactcad.design.project.load_project`)."""
-        return self.validated[("plan", "rigs", "scenes").index(name)]
+        """One field of the validated :class:`tactcad.design.project.Project`."""
+        return getattr(self.validated, name)
 
     @property
     def plan(self):
@@ -159,7 +158,7 @@ class Project:
     def _specs(self) -> dict:
         from tactcad.assembly.inventory import design_assemblies
 
-        return design_assemblies(self.plan)[0]
+        return design_assemblies(self.validated)[0]
 
     @property
     def parts(self) -> "Parts":
@@ -186,7 +185,7 @@ class Project:
 
         from tactcad.assembly.scenes import build_scene
 
-        solved, solids = build_scene(self.plan, scene, self._cache, self.rigs)
+        solved, solids = build_scene(self.validated, scene, self._cache)
         children = []
         for inst in solved.instances:
             child = solids[inst.part].moved(inst.location)
@@ -256,7 +255,7 @@ class Project:
 
         self._report = report
         try:
-            return export(self.plan, out, log=_quiet, store=_store(cache), parts=self._cache,
+            return export(self.validated, out, log=_quiet, store=_store(cache), parts=self._cache,
                           dxf_version=dxf_version, select=select, partial=partial)
         finally:
             self._report = _quiet
@@ -276,8 +275,9 @@ class Project:
             cache: the store of finished jobs, as for :meth:`export`.
             progress: called with a line on the export (one per job run).
             on_group: called as ``on_group(group, results)`` when each group
-                of checks finishes (``parts``, ``dxf``, ``array interference``,
-                ``array STEP``, ``scene <name>``).
+                of checks finishes (``requirements``: the design's verification
+                matrix at the closed form, ``parts``, ``dxf``, ``array
+                interference``, ``array STEP``, ``scene <name>``).
 
         Returns:
             :class:`CheckReport`: every result with its group.
@@ -303,6 +303,9 @@ class Project:
                 on_group(group, list(found))
 
         self._report = report
+        from tactcad.checks.requirements import requirement_checks
+
+        done("requirements", requirement_checks(self.plan))  # the verification matrix
         try:
             with tempfile.TemporaryDirectory() as tmp:
                 folder = Path(out) if out is not None else Path(tmp)
@@ -311,17 +314,17 @@ class Project:
                     report(f"checking the export in {folder} (same design, every file as listed)")
                 elif scenes:
                     report(f"exporting the scenes to {folder} first: {refusal}")
-                    export_scenes(self.plan, folder, scenes, log=_quiet, store=_store(cache),
+                    export_scenes(self.validated, folder, scenes, log=_quiet, store=_store(cache),
                                   parts=self._cache)
                 else:
                     report(f"exporting to {folder} first: {refusal}")
-                    export(self.plan, folder, log=_quiet, store=_store(cache), parts=self._cache,
+                    export(self.validated, folder, log=_quiet, store=_store(cache), parts=self._cache,
                            select=lambda jobs: with_progress(jobs, report))
                 if scenes:
-                    run_scene_checks(self.plan, folder, scenes, cache=self._cache, done=done)
+                    run_scene_checks(self.validated, folder, scenes, cache=self._cache, done=done)
                 else:
                     run_checks(self.plan, folder, self._cache, done=done)
-                    run_scene_checks(self.plan, folder, cache=self._cache, done=done)
+                    run_scene_checks(self.validated, folder, cache=self._cache, done=done)
         finally:
             self._report = _quiet
         return CheckReport(tuple((g, tuple(r)) for g, r in groups), refusal is None,
@@ -429,14 +432,17 @@ class Element:
             DesignError: the material has no yield strength.
         """
         from tactcad.mechanics.ladder import MODELS, UnknownModelError
-        from tactcad.mechanics.strength import element_stress, strength_record
+        from tactcad.design.requirements import cites_paper
+        from tactcad.mechanics.strength import strength_record
+        from tactcad.studies.strength import element_stress
 
         if model not in MODELS:
             raise UnknownModelError(model)
 
         plan = self.project.plan
         stress = element_stress(self.geometry, plan.material, model)
-        return strength_record(self.number, self.geometry, plan.material, plan.strength, stress)
+        return strength_record(self.number, self.geometry, plan.material, plan.strength, stress,
+                               paper_load=cites_paper(plan.raw))
 
 
 @dataclass(frozen=True)

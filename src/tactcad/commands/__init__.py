@@ -1,10 +1,13 @@
 """Sub-commands of the ``tactcad`` CLI; see :mod:`tactcad.cli`.
 
 Every command that reads a design gets it from :func:`load_from_args` (the
-:class:`tactcad.api.Project`) or :func:`plan_from_args` (its plan): both go
-through :func:`tactcad.api.load`, the one place where the design file is
-read, ``--set`` overrides applied and the result validated, for the command
-line and the Python API alike.
+:class:`tactcad.api.Project`), :func:`project_from_args` (its validated
+:class:`tactcad.design.project.Project`) or :func:`plan_from_args` (its
+plan): all go through :func:`tactcad.api.load`, the one place where the
+design file and the rigs and scenes files beside it are read, ``--set``
+overrides applied and the result validated, for the command line and the
+Python API alike. Nothing below the commands opens those files again: the
+validated project is carried to the last writer.
 """
 
 from __future__ import annotations
@@ -85,6 +88,16 @@ def plan_from_args(args: argparse.Namespace):
             (:class:`~tactcad.errors.DesignErrors` lists every one).
     """
     return load_from_args(args).plan
+
+
+def project_from_args(args: argparse.Namespace):
+    """The validated :class:`~tactcad.design.project.Project` (plan, rigs,
+    scenes and the three files' hashes) of :func:`load_from_args`.
+
+    Raises:
+        DesignError: as :func:`plan_from_args`.
+    """
+    return load_from_args(args).validated
 
 
 def load_from_args(args: argparse.Namespace):

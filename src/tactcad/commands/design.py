@@ -8,6 +8,7 @@ import os
 from pathlib import Path
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands.options import count, material_grade_name, number
 
 VERIFY_MODELS = ("fem3d", "fem2d", "beam", "none")
 
@@ -20,18 +21,25 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "ratio K_r/K_m, an object-stiffness range and a full-scale force, within "
                     "yield / safety factor and the gauge's fatigue strain; verifies the two "
                     "element geometries at fem3d; writes the design TOML. Units: N/mm, N, mm.")
-    p.add_argument("--kr-over-km", type=float, required=True, metavar="X",
-                   help="stiffness ratio K_r/K_m of a sensing unit (> 1; the paper suggests ~10)")
-    p.add_argument("--kobj-range", type=float, nargs=2, required=True, metavar=("LO", "HI"),
+    p.add_argument("--kr-over-km", type=number(1, 1e6, lo_open=True), required=True, metavar="X",
+                   help="stiffness ratio K_r/K_m of a sensing unit (> 1; about 10 reads soft "
+                        "objects with high sensitivity)")
+    p.add_argument("--kobj-range", type=number(0, 1e6, "N/mm", lo_open=True), nargs=2,
+                   required=True, metavar=("LO", "HI"),
                    help="object stiffnesses to read (N/mm)")
-    p.add_argument("--full-scale-force", type=float, required=True, metavar="F",
+    p.add_argument("--full-scale-force", type=number(0, 1e4, "N", lo_open=True), required=True, metavar="F",
                    help="force every element must carry (N)")
-    p.add_argument("--material", metavar="GRADE", default=None,
+    p.add_argument("--material", metavar="GRADE", type=material_grade_name, default=None,
                    help="material grade of the library (default: the base design's material)")
-    p.add_argument("--pitch", type=float, metavar="MM", default=None,
+    p.add_argument("--columns", type=count(1, 100, "columns"), metavar="N", default=None,
+                   help="columns of the new grid (2 rows x N; default: the base design's)")
+    p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
+                   help="rows of the new grid (the model holds two clamped rows facing each "
+                        "other: 2)")
+    p.add_argument("--pitch", type=number(0, 1000, "mm", lo_open=True), metavar="MM", default=None,
                    help="array pitch (default: the base design's)")
     p.add_argument("--out", metavar="NEW.toml", required=True,
-                   help="design file to write (.toml, inside the current folder)")
+                   help="design file to write (.toml, any writable folder but system folders)")
     p.add_argument("--force", action="store_true", help="overwrite an existing file")
     p.add_argument("--verify", choices=VERIFY_MODELS, default="fem3d",
                    help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
@@ -40,10 +48,17 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+#: Folders whose whole tree a design file is never written into (the
+#: export's system folders, less the ones that hold users' files).
+SYSTEM_TREES = ("/bin", "/boot", "/dev", "/etc", "/lib", "/lib64", "/proc", "/run", "/sbin",
+                "/sys", "/usr")
+
+
 def check_output_path(out: str, force: bool) -> Path:
-    """The resolved output path, refused when it is not a ``.toml`` inside the
-    current folder, would replace the default design or a file inside the
-    installed package, or exists without ``--force``.
+    """The resolved output path: any ``.toml`` file in a writable folder, refused
+    in a system folder (the export's list, :data:`tactcad.export.run.SYSTEM_DIRS`,
+    and the trees of :data:`SYSTEM_TREES`), as the default design or inside the
+    installed package, or when it exists without ``--force``.
 
     Raises:
         DesignError: naming ``--out``, the value and what is allowed.
@@ -51,19 +66,28 @@ def check_output_path(out: str, force: bool) -> Path:
     from tactcad import __file__ as package_init
     from tactcad.design.array import DEFAULT_DESIGN
     from tactcad.errors import DesignError
+    from tactcad.export.run import SYSTEM_DIRS
 
-    path = Path(out).expanduser().resolve()
-    here = Path.cwd().resolve()
+    path = Path(os.path.abspath(os.path.expanduser(out))).resolve()
+    folder = path.parent
     if path.suffix != ".toml":
         raise DesignError("--out", out, "a file name ending in .toml")
-    if not path.is_relative_to(here):
-        raise DesignError("--out", out, f"a path inside the current folder {here}")
+    if (str(folder) in SYSTEM_DIRS and str(folder) != "/tmp") \
+            or any(folder.is_relative_to(t) for t in SYSTEM_TREES):
+        raise DesignError("--out", out, "a file outside the system folders "
+                          f"({', '.join(d for d in SYSTEM_DIRS if d != '/tmp')} and below "
+                          f"{', '.join(SYSTEM_TREES)})")
     if path == DEFAULT_DESIGN.resolve() or path.is_relative_to(Path(package_init).parent):
         raise DesignError("--out", out, "a new file, not the default design or a package file")
+    if not folder.is_dir():
+        raise DesignError("--out", out, "a file in an existing folder",
+                          f"{folder} is not a folder")
     if path.exists() and not force:
         raise DesignError("--out", out, "a file that does not exist yet (or give --force)")
-    if path.exists() and not os.access(path, os.W_OK):
-        raise DesignError("--out", out, "a writable file")
+    if path.is_dir():
+        raise DesignError("--out", out, "a file name, not a folder")
+    if not os.access(path if path.exists() else folder, os.W_OK):
+        raise DesignError("--out", out, "a writable file in a writable folder")
     return path
 
 
@@ -77,6 +101,7 @@ def run(args: argparse.Namespace) -> int:
     path = check_output_path(args.out, args.force)
     base = plan_from_args(args)
     result = design_for_targets(base, targets, grade=args.material, pitch_mm=args.pitch,
+                                rows=args.rows, columns=args.columns,
                                 name=path.stem.replace("-", "_") or "inverse_design")
     report = design_report(result, args.verify, progress_from_args(args))
     header = (f"# Written by `tactcad design --kr-over-km {targets.kr_over_km:g} --kobj-range "
@@ -158,6 +183,8 @@ def design_report(result, verify: str, progress=None) -> dict:
                              ref["K_verified_N_per_mm"] / meas["K_verified_N_per_mm"]},
             "elements": elements, "units": units,
             "force_resolution_N": 0.01,
+            "max_full_scale_force_N": result.max_full_scale_force_N,
+            "binding_limits": list(result.binding_limits),
             "all_finite": all(math.isfinite(u["K_obj_resolution_N_per_mm"]) for u in units)}
 
 
@@ -191,4 +218,6 @@ def print_report(r: dict) -> None:
         print(f"{u['K_obj_N_per_mm']:>10.3g} {u['R']:>6.3f} {u['dR_dKobj_per_N_per_mm']:>16.4f} "
               f"{u['K_obj_resolution_N_per_mm']:>17.3g} {100 * u['K_obj_resolution_rel']:>9.2f}%"
               f"   {u['stiffness_from']}")
+    print(f"largest feasible full-scale force for these stiffness targets: "
+          f"{r['max_full_scale_force_N']:.4g} N, bound by " + "; ".join(r["binding_limits"]))
     print(f"wrote {r['out']}")

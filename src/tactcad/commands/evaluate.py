@@ -13,6 +13,7 @@ import argparse
 import math
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands.options import PLOT_SUFFIXES, count, number, output_file
 
 from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 
@@ -21,27 +22,31 @@ def register(subparsers) -> None:
     """Add the ``evaluate`` sub-command."""
     p = subparsers.add_parser(
         "evaluate", help="simulate the array evaluation rig: R per element, sample and load step",
-        description="The paper's evaluation rig, simulated: the array pressed into rubber samples "
-                    "by 3.235 N then 100 g steps; each element's deflection over the reference "
+        description="The array evaluation rig, simulated: the array pressed into rubber samples "
+                    "(the paper's design: by 3.235 N then 100 g steps, its eight samples; any "
+                    "other design: in equal steps until the most loaded element carries the "
+                    "design's full-scale force, samples over its K_obj range); each element's "
+                    "deflection over the reference "
                     "(stiffest) element's gives R. Sample: independent springs (eq. 1-2) or rigid "
                     "punches at the tips on an elastic half-space or layer (modulus from K_obj "
                     "through a 2 x 3 mm punch). Units: N/mm, N, mm, um.")
     add_design_arg(p)
     p.add_argument("--samples", default=None, metavar="K1,K2,...",
-                   help="sample stiffnesses K_obj (N/mm); default the paper's eight")
+                   help="sample stiffnesses K_obj (N/mm); default: five over the design's "
+                        "required K_obj range (the paper's design: its eight samples)")
     p.add_argument("--coupling", choices=("none", "halfspace", "layer"), default="halfspace",
                    help="sample model (default halfspace)")
-    p.add_argument("--poisson", type=float, default=0.5, help="sample Poisson ratio (0 ... 0.5)")
-    p.add_argument("--thickness", type=float, default=10.0, metavar="MM",
+    p.add_argument("--poisson", type=number(0, 0.5), default=0.5, help="sample Poisson ratio (0 ... 0.5)")
+    p.add_argument("--thickness", type=number(0, 1e4, "mm", lo_open=True), default=10.0, metavar="MM",
                    help="sample thickness on its rigid base for --coupling layer (mm), default 10")
     p.add_argument("--stiffness", choices=("ladder", "table1"), default="ladder",
-                   help="element K: the ladder's prediction for the design, or the paper's "
-                        "Table 1 (ladder for elements without a measurement)")
+                   help="element K: the ladder's prediction for the design, or the measured "
+                        "K of a design that cites them (ladder for elements without one)")
     p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form", help="ladder level")
-    p.add_argument("--steps", type=int, default=6, help="load steps (>= 1)")
-    p.add_argument("--plot", metavar="PNG", default=None,
+    p.add_argument("--steps", type=count(1, 1000, "load steps"), default=6, help="load steps (>= 1)")
+    p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write a Fig. 7-like plot (R against K_m/K_obj per K_r/K_m) here")
-    p.add_argument("--plot-fig6", metavar="PNG", default=None,
+    p.add_argument("--plot-fig6", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write a Fig. 6-like plot (R against grasping force, sample nearest 3.85 N/mm)")
     add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)
@@ -76,14 +81,35 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.paper.table2_models import paper_stiffness_by_element
     from tactcad.commands.finite_json import dumps
 
+    from tactcad.design.requirements import cites_paper
+    from tactcad.mechanics.design_loads import design_samples, loads_to_full_scale
+    from tactcad.mechanics.requirements import requirements_of
+
     plan = plan_from_args(args)
+    paper = cites_paper(plan.raw)
+    if args.stiffness == "table1" and not paper:
+        from tactcad.errors import DesignError
+
+        raise DesignError("--stiffness", "table1", "ladder (the measured stiffnesses belong to "
+                          "a design that cites them in requirements.source)")
     samples = (parse_stiffness_list("samples", args.samples) if args.samples
-               else list(paper_data.SAMPLE_STIFFNESSES_N_PER_MM))
+               else list(paper_data.SAMPLE_STIFFNESSES_N_PER_MM) if paper
+               else design_samples(plan))
     spec = ev.SampleSpec(args.coupling, args.poisson,
                          args.thickness if args.coupling == "layer" else None)
     stiffness = (paper_stiffness_by_element(plan, args.model) if args.stiffness == "table1"
                  else ev.ladder_stiffness_by_element(plan, args.model))
-    report = ev.evaluation_report(plan, stiffness, samples, spec, n_steps=args.steps)
+    if args.steps < 1:
+        raise ev.ContactError("--steps", args.steps, ">= 1")
+    loads = None
+    if not paper:  # the paper's rig loads only its design; others go up to their full scale
+        force = requirements_of(plan).full_scale_force_N
+        loads = loads_to_full_scale(plan, stiffness, samples, spec, args.steps, force)
+    middle = samples[len(samples) // 2]
+    report = ev.evaluation_report(plan, stiffness, samples, spec, n_steps=args.steps,
+                                  loads_N=loads, **({} if paper else {"fig6_sample": middle}))
+    if not paper:
+        report["full_scale_force_N"] = force
     if args.plot:
         from tactcad.mechanics.paper.figures import plot_ratio_map
 
@@ -109,7 +135,8 @@ def _print_text(report: dict) -> None:
     print(f"design {report['design']}: sample model {report['coupling']}, reference element "
           f"{report['reference_element']} (K_r = {report['K_r_N_per_mm']:.4g} N/mm)")
     numbers = [e["element"] for e in report["elements"]]
-    print("R at the first load step (3.235 N); rows: K_obj (N/mm), columns: element")
+    first = report["fig6"]["loads_N"][0]
+    print(f"R at the first load step ({first:.4g} N); rows: K_obj (N/mm), columns: element")
     print("  K_obj  " + "".join(f"{n:>8d}" for n in numbers) + "   E (MPa)")
     for s in report["samples"]:
         cells = "".join(f"{e['R'][0]:8.3f}" for e in s["elements"])

@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from tactcad.design.requirements import cites_paper
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
@@ -23,44 +24,60 @@ def register(sub: argparse._SubParsersAction) -> None:
                          "peak stress at the flexure hinge",
         description="Peak von Mises stress per newton at the flexure hinge of every element, "
                     "the full-scale force = yield / (stress per N x safety factor), and the "
-                    "gauge strain and tip deflection at full scale; warns where the paper's "
-                    "2 N load exceeds yield, or full scale exceeds the fatigue strength or the "
-                    "gauge's fatigue or maximum strain. Units: MPa, N, mm, microstrain.")
+                    "gauge strain and tip deflection at full scale; judges the design's "
+                    "required full-scale force ([requirements] full_scale_force_N, derived "
+                    "when absent) against every limit and exits 1 when it is not met; warns "
+                    "where full scale exceeds the fatigue strength or the gauge's fatigue or "
+                    "maximum strain. Units: MPa, N, mm, microstrain.")
     p.add_argument("--model", choices=MODELS, default="closed-form",
                    help="ladder level (fem2d ~2 s, fem3d ~1 min per distinct element)")
     add_design_arg(p)
     add_output_args(p, "print a JSON list of records")
     p.add_argument("--table1", action="store_true",
-                   help="compare the full-scale force with Table 1's max support force per "
-                        "element (design web and as-built web)")
+                   help="the paper's design: compare the full-scale force with its measured "
+                        "max support force per element (design web and as-built web)")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.mechanics.strength import plan_strength
+    from tactcad.studies.strength import plan_strength
 
     plan = plan_from_args(args)
     if args.table1:
+        if not cites_paper(plan.raw):
+            from tactcad.errors import DesignError
+
+            raise DesignError("--table1", True, "only for a design whose requirements.source "
+                              "cites the measurements (the paper's design)")
         return _run_table1(plan, args.model, args.json)
     report = progress_from_args(args)
     progress = (lambda s: report(f"  ... {s}"))
     records = plan_strength(plan, args.model, progress=progress)
+    judged = full_scale_judgement(plan, args.model, records)
+    code = 0 if judged["met"] else 1
     if args.json:
-        print(json.dumps([r.as_json() for r in records], indent=2, allow_nan=False))
-        return 0
+        print(json.dumps({"elements": [r.as_json() for r in records], "requirement": judged},
+                         indent=2, allow_nan=False))
+        return code
     m, s = plan.material, plan.strength
     print(f"Strength, model {args.model}: {m.grade or m.name}, yield {m.yield_strength_MPa:g} MPa, "
           f"fatigue {_fmt_opt(m.fatigue_strength_MPa)} MPa, safety factor {s.safety_factor:g}, "
           f"gauge {s.gauge.name} (max {s.gauge.max_strain * 1e6:.0f}, fatigue "
           f"{s.gauge.fatigue_strain * 1e6:.0f} microstrain)")
+    paper = cites_paper(plan.raw)  # the paper's 2 N study load: its design only
     print(f"{'el':>3} {'arm mm':>6} {'MPa/N':>7} {'K_t':>5} {'F_fs N':>7} {'SF':>4} "
-          f"{'ue at F_fs':>10} {'tip um':>7} {'MPa at 2 N':>10}")
+          f"{'ue at F_fs':>10} {'tip um':>7}" + (f" {'MPa at 2 N':>10}" if paper else ""))
     for r in records:
         print(f"{r.element:>3} {r.arm_length_mm:>6.1f} {r.stress_MPa_per_N:>7.1f} "
               f"{r.stress_concentration_factor:>5.3f} {r.full_scale_force_N:>7.3f} "
               f"{r.yield_safety_factor_at_full_scale:>4.2f} "
               f"{r.gauge_strain_at_full_scale * 1e6:>10.0f} "
-              f"{r.tip_deflection_mm_at_full_scale * 1e3:>7.1f} {r.stress_MPa_at_paper_load:>10.0f}")
+              f"{r.tip_deflection_mm_at_full_scale * 1e3:>7.1f}"
+              + (f" {r.stress_MPa_at_paper_load:>10.0f}" if paper else ""))
+    print(f"required full-scale force {judged['full_scale_force_N']:g} N "
+          f"({judged['reason']}): {'met' if judged['met'] else 'NOT met'}; the elements carry at "
+          f"most {judged['largest_force_N']:.3g} N, bound by {judged['binding_limit']} "
+          f"(element {judged['binding_element']})")
     seen = set()
     for r in records:
         for w in r.warnings:
@@ -68,11 +85,31 @@ def run(args: argparse.Namespace) -> int:
             if key not in seen:
                 seen.add(key)
                 print(f"warning: element {r.element} ({r.part_name}): {w}")
-    return 0
+    return code
+
+
+def full_scale_judgement(plan, model: str, records) -> dict:
+    """The design's required full-scale force against every element's limits at ``model``
+    (the stress figures of ``records`` reused)."""
+    from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
+    from tactcad.mechanics.requirements import requirements_of
+    from tactcad.mechanics.strength import ElementStress
+
+    req = requirements_of(plan)
+    stresses = {r.part_name: ElementStress(model, r.stress_MPa_per_N, r.stress_error_rel,
+                                           r.stiffness_N_per_mm,
+                                           r.gauge_strain_at_full_scale / r.full_scale_force_N)
+                for r in records}
+    errors = {r.part_name: r.stress_error_rel for r in records}
+    b = binding(plan_limits(plan, model, stresses, errors))
+    return {"full_scale_force_N": req.full_scale_force_N,
+            "reason": req.reasons["full_scale_force_N"], "largest_force_N": b.force_N,
+            "binding_limit": LIMIT_WORDS[b.limit], "binding_element": b.element,
+            "met": b.force_N >= req.full_scale_force_N, "model": model}
 
 
 def _run_table1(plan, model: str, as_json: bool) -> int:
-    from tactcad.mechanics.strength import table1_force_comparison
+    from tactcad.studies.strength import table1_force_comparison
 
     rows = table1_force_comparison(plan, model)
     if as_json:

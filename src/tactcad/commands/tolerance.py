@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands.options import count, number
 
 
 def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) -> None:
@@ -14,7 +16,7 @@ def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) ->
                    help="run on an existing Dask cluster, e.g. tcp://127.0.0.1:8786 (its workers "
                         "must import tactcad)" + ("" if local_default else
                                                   "; default: in this process"))
-    p.add_argument("--workers", type=int, default=None, metavar="N",
+    p.add_argument("--workers", type=count(1, 256, "worker processes"), default=None, metavar="N",
                    help="run on a new local Dask cluster of N single-threaded worker processes")
 
 
@@ -25,25 +27,29 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "modulus (per array) from the design's tolerances, evaluates K with the "
                     "corrected closed form, R per sensing unit (eq. 2) and the K_obj a unit "
                     "reports with its nominal K_m, K_r (eq. 3): mean, standard deviation and "
-                    "95 %% interval. Also the web tolerance that keeps K within +/-5 %%, next to "
-                    "Table 1's spread of equal-arm elements. Units: mm, N/mm.")
+                    "95 %% interval. Also the web tolerance that keeps K within +/-5 %% (for "
+                    "the paper's design next to its measured spread of equal-arm elements). "
+                    "Units: mm, N/mm.")
     add_design_arg(p)
-    p.add_argument("--samples", type=int, default=10_000, help="as-built arrays drawn (default "
+    p.add_argument("--samples", type=count(1, 10**7, "samples"), default=10_000, help="as-built arrays drawn (default "
                                                                 "10000)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the draw (default 0)")
-    p.add_argument("--kobj", type=float, nargs="+", metavar="N_PER_MM", default=None,
-                   help="true object stiffnesses to report (default: the paper's 2.34, 5.41, "
-                        "10.01 N/mm samples)")
-    p.add_argument("--reference", type=int, default=None, metavar="ELEMENT",
+    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0, help="seed of the draw (default 0)")
+    p.add_argument("--kobj", type=number(0, 1e6, "N/mm", lo_open=True), nargs="+",
+                   metavar="N_PER_MM", default=None,
+                   help="true object stiffnesses to report (default: the ends and middle of "
+                        "the design's required K_obj range; the paper's design: its 2.34, "
+                        "5.41, 10.01 N/mm samples)")
+    p.add_argument("--reference", type=count(1, 10_000, "an element number"),
+                   default=None, metavar="ELEMENT",
                    help="one reference element for every unit (default: the nominally stiffest, "
                         "nearest one)")
     p.add_argument("--distribution", choices=("normal", "uniform"), default="normal",
                    help="normal with tolerance = 3 sigma (default) or uniform over +/-tolerance")
-    p.add_argument("--notch-radius-tol", type=float, default=None, metavar="MM",
+    p.add_argument("--notch-radius-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
                    help="+/- notch radius (default 0.01 mm)")
-    p.add_argument("--arm-tol", type=float, default=None, metavar="MM",
+    p.add_argument("--arm-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
                    help="+/- arm length (default 0.02 mm)")
-    p.add_argument("--modulus-tol", type=float, default=None, metavar="REL",
+    p.add_argument("--modulus-tol", type=number(0, 0.5), default=None, metavar="REL",
                    help="+/- relative Young's modulus (default 0.02)")
     add_output_args(p, "print JSON")
     add_cluster_args(p)
@@ -61,8 +67,14 @@ def run(args: argparse.Namespace) -> int:
     tol = Tolerances.of_plan(plan, distribution=args.distribution,
                              **{k: v for k, v in given.items() if v is not None})
     t0 = time.perf_counter()
-    kw = dict(samples=args.samples, seed=args.seed, tolerances=tol,
-              k_obj=args.kobj or DEFAULT_K_OBJ_N_PER_MM, reference=args.reference)
+    from tactcad.design.requirements import cites_paper
+    from tactcad.mechanics.design_loads import design_samples
+
+    paper = cites_paper(plan.raw)
+    # the paper's samples for its design only; any other reports its own K_obj range
+    k_obj = args.kobj or (DEFAULT_K_OBJ_N_PER_MM if paper else design_samples(plan, 3))
+    kw = dict(samples=args.samples, seed=args.seed, tolerances=tol, k_obj=k_obj,
+              reference=args.reference)
     if args.scheduler or args.workers:
         from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client, dask_mapper
 
@@ -72,6 +84,8 @@ def run(args: argparse.Namespace) -> int:
     else:
         report = run_tolerance(plan, **kw)
     wall = time.perf_counter() - t0
+    if not paper:  # the paper's measured spread belongs to the paper's design
+        report = dataclasses.replace(report, table1_spread=[])
     if args.json:
         print(json.dumps(report.as_json(), indent=2, allow_nan=False))
         return 0
@@ -106,7 +120,8 @@ def print_report(report, name: str, wall_s: float) -> None:
     for w in report.web_tolerance:
         print(f"  {w['part']:<16} web {w['web_mm']:g} mm: +/-{1000 * w['web_tolerance_for_5pct_K_mm']:.1f}"
               f" um  (design +/-{1000 * w['design_web_tolerance_mm']:.0f} um)")
-    print("Table 1, elements with equal arms (measured K, N/mm):")
+    if report.table1_spread:
+        print("Table 1, elements with equal arms (measured K, N/mm):")
     for s in report.table1_spread:
         ks = ", ".join(f"{e}: {k:g}" for e, k in zip(s["elements"], s["measured_N_per_mm"]))
         webs = ", ".join(f"{w:.3f}" for w in s["as_built_web_mm"])

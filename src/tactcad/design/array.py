@@ -28,6 +28,7 @@ from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Name, Problems, Section, 
 from tactcad.design.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                       StrengthSettings, default_strength_settings,
                                       material_fields, material_grade, strength_settings)
+from tactcad.design.requirements import RequirementsSection, check_requirements
 from tactcad.design.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 
@@ -177,6 +178,18 @@ class ElementGeometry:
     @property
     def tip_top_y_mm(self) -> float:
         return self.base_height_mm + self.tip_height_mm
+
+    @property
+    def web_centre_mm(self) -> tuple[float, float]:
+        """(x, y) of the web's middle (mm): mid-thickness over the notch centre,
+        where the gauge's strain and the hinge's rotation are; the one place
+        the web's position is computed (DXF lead-in keep-out, drawing detail)."""
+        return (self.hinge_x_mm, self.base_height_mm - self.web_thickness_mm / 2)
+
+    @property
+    def contact_centre_mm(self) -> tuple[float, float]:
+        """(x, y) of the middle of the tip's contact face (mm), the tip frame's origin."""
+        return (self.tip_centre_x_mm, self.tip_top_y_mm)
 
     @property
     def contact_face_mm(self) -> tuple[float, float]:
@@ -379,6 +392,7 @@ class DesignFile(Section):
     clamp: ClampSection
     edm: EdmSection
     strength: StrengthSection = None
+    requirements: RequirementsSection = None
     assumptions: dict[str, Any] = {}
 
 
@@ -466,7 +480,7 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
                   "the tip root fillet must clear the notch by 0.5 mm")
 
 
-DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms)
+DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements)
 
 
 # ---------------------------------------------------------------------------
@@ -531,7 +545,8 @@ def _check_bolt_length(d: DesignFile, p: Problems) -> None:
     length, why = bolt_length(d)
     bolt = BOLTS[d.clamp.bolt_size]
     if length is None:
-        p.add("array.columns", d.array.columns, f"fewer columns or a larger bolt than {bolt.size}",
+        fewer = "fewer columns or " if d.array.columns > 1 else ""  # one column is the fewest
+        p.add("array.columns", d.array.columns, f"{fewer}a larger bolt than {bolt.size}",
               f"bolt needs {fmt(why.value)} mm, longest stock {bolt.size} is "
               f"{fmt(max(bolt.catalogue_lengths_mm))} mm")
 

@@ -19,8 +19,9 @@ from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_p
 from tactcad.catalogue.files import profile_dxf_name
 from tactcad.catalogue.shop import TORQUE_SOURCE, tightening_torque_Nm
 from tactcad.design.array import Plan
-from tactcad.drawings.compose import (FRAME, GENERAL_TOLERANCE, _wrap, revision_and_date,
-                                      sheet_frame, title_cells)
+from tactcad.drawings.design_notes import numbering_note
+from tactcad.drawings.frame import (FRAME, GENERAL_TOLERANCE, revision_and_date, sheet_frame,
+                                    title_cells, wrap_text)
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
 from tactcad.drawings.views import ISO_5455_SCALES, View, cameras_for, project, scale_text
 from tactcad.store import stable_repr
@@ -241,11 +242,11 @@ def _notes(a: AssemblySheet, plan: Plan) -> None:
                  f"({TORQUE_SOURCE}); check the tips of each row lie in one plane "
                  f"before the second pass.")
     lines.append("Balloon numbers are the items of bom.csv / bom.md. Element profiles: the DXF "
-                 "files of the slot map (dxf/); the element numbers follow the paper's Table 1.")
+                 "files of the slot map (dxf/); " + numbering_note(plan))
     lines.append(f"Untoleranced dimensions of the parts: {GENERAL_TOLERANCE}; see each part's drawing.")
     x0, y = FRAME[0] + 5.0, FRAME[3] - 63.0 - 4.0
     width = FRAME[2] - 180.0 - 10.0 - x0
-    wrapped = [_wrap(f"{k}. {t}", width * 0.95, DIM_TEXT_MM) for k, t in enumerate(lines, start=1)]
+    wrapped = [wrap_text(f"{k}. {t}", width * 0.95, DIM_TEXT_MM) for k, t in enumerate(lines, start=1)]
     y = FRAME[3] - 4.0 - sum(len(w) * 4.2 + 0.8 for w in wrapped)
     sh.text("notes", (x0, y - 5.0), "ASSEMBLY NOTES", LABEL_TEXT_MM, bold=True)
     for k, ws in enumerate(wrapped, start=1):

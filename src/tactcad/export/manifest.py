@@ -1,6 +1,6 @@
 """``manifest.json``: every file of an export with its sha256, the design's
-hash, the versions of tactcad and its CAD stack, the parts and the strength
-of every element."""
+hash, the versions of tactcad and its CAD stack, the parts, the strength
+of every element and the design's requirements."""
 
 from __future__ import annotations
 
@@ -12,6 +12,7 @@ from tactcad.assembly.inventory import assembly_review, instance_counts
 from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.catalogue.files import ARRAY_STEP
 from tactcad.design.array import Plan
+from tactcad.mechanics.requirements import requirements_record
 from tactcad.mechanics.strength import strength_summary
 from tactcad.store import stack_versions
 
@@ -44,6 +45,7 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
         "assemblies": {"array": {"file": ARRAY_STEP, "instances": len(inst),
                                **assembly_review(specs, inst)}},
         "strength": [_strength_record(r) for r in strength_summary(plan)],
+        "requirements": requirements_record(plan),
         "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
                     for d in plan.derived],
         "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],

@@ -63,8 +63,11 @@ def page_data(facts: dict, sheets: Sequence[tuple[str, str, str]], scenes: Seque
         scenes: the scene names, in the order of the page's scene list.
         elements: :func:`tactcad.mechanics.strength.strength_summary` records.
     """
+    manifest = {k: v for k, v in facts.items() if k != "files"}
+    if "verification" not in manifest and manifest.get("requirements"):
+        manifest["verification"] = verification_view(manifest["requirements"])
     return {
-        "manifest": {k: v for k, v in facts.items() if k != "files"},
+        "manifest": manifest,
         "revision": revision, "date": date, "three_version": three_version,
         "scenes": list(scenes),
         "sheets": [{"path": p, "title": t,
@@ -72,6 +75,18 @@ def page_data(facts: dict, sheets: Sequence[tuple[str, str, str]], scenes: Seque
                    for p, t, svg in sheets],
         "bom": bom_table(bom_csv), "elements": elements,
     }
+
+
+def verification_view(requirements: dict) -> dict:
+    """The manifest's requirements record as the page's verification section:
+    the closed-form matrix (one row per requirement), the limits behind the
+    full-scale force (the binding one marked) and the stated or derived values."""
+    matrix = requirements.get("closed_form_matrix") or []
+    rows = [{k: v for k, v in r.items() if k not in ("limits", "binding_words")} for r in matrix]
+    limits = next((r["limits"] for r in matrix if r.get("limits")), [])
+    return {"verification matrix (closed form; tactcad verify --model fem3d for the reference)": rows,
+            "limits behind the full-scale force": limits,
+            "requirements": requirements.get("values", {})}
 
 
 def page_html(data: dict, scene_glbs: dict[str, bytes], import_map: str) -> str:

@@ -20,17 +20,17 @@ from __future__ import annotations
 import errno
 import json
 import os
-import shutil
 import time
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Sequence
 
-from tactcad.atomic import (carry_over, leftover_staging, publish_dir, remove_partial_files,
-                            staging_dir, write_bytes_atomic)
-from tactcad.design.array import Plan
-from tactcad.errors import ExportPathError
+from tactcad.atomic import (carry_over, disk_full_error, leftover_staging, publish_dir,
+                            remove_partial_files, remove_tree, staging_dir, warn_left_behind,
+                            write_bytes_atomic)
+from tactcad.design.project import Project
+from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
@@ -196,7 +196,15 @@ def _written_by_tactcad(out: Path) -> set[str]:
         return {MANIFEST}
 
 
-def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, log: Log,
+def _in_export_folder(exc: OSError, staging: Path, out: Path) -> OSError:
+    """``exc`` with a path in the staging folder shown as the export folder's path."""
+    name = str(exc.filename or staging)  # an error of write() names no file: the folder
+    if exc.errno is None or not name.startswith(str(staging)):
+        return exc
+    return OSError(exc.errno, exc.strerror, str(out) + name[len(str(staging)):])
+
+
+def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Project, log: Log,
                store: Store, with_manifest: bool, parts=None,
                dxf_version: str | None = None, partial: dict | None = None) -> ExportResult:
     """Build the files of ``jobs_of`` in a staging folder beside ``out_dir``,
@@ -206,11 +214,11 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
     (``with_manifest`` False) keeps every old file it does not rewrite."""
     t0 = time.perf_counter()
     out = check_out_dir(out_dir)
-    for old in leftover_staging(out):  # a killed run's
-        shutil.rmtree(old, ignore_errors=True)
+    stuck = [p for old in leftover_staging(out) for p in remove_tree(old)]  # a killed run's
+    warn_left_behind(stuck)
     staging = staging_dir(out)
     try:
-        run = Run(plan, staging, log, store, dxf_version)
+        run = Run(project, staging, log, store, dxf_version)
         if parts is not None:
             run.parts = parts  # share the caller's solids (e.g. with the checks)
         jobs = jobs_of(run)
@@ -219,7 +227,7 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
             _inside(staging, r["path"])
         files = [{**r, "bytes": (staging / r["path"]).stat().st_size} for r in records]
         if with_manifest:
-            man = manifest(plan, staging, records)
+            man = manifest(project.plan, staging, records)
             if partial is not None:  # a selection of the jobs (export --only/--part)
                 man["partial"] = partial
             man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
@@ -230,14 +238,23 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
             carry_over(out, staging, lambda rel: rel not in ours)
         os.chmod(staging, 0o755)  # mkdtemp makes it private; an export folder is for sharing
         publish_dir(staging, out)
+    except OSError as exc:  # name the file in the export folder, not in the staging one
+        raise _in_export_folder(exc, staging, out) from exc
+    except (TactcadError, KeyboardInterrupt):
+        raise
+    except Exception as exc:  # a writer failing without an OSError: a full disk is said as such
+        full = disk_full_error(staging)
+        if full is None:
+            raise
+        raise _in_export_folder(full, staging, out) from exc
     finally:
-        shutil.rmtree(staging, ignore_errors=True)
+        warn_left_behind(remove_tree(staging) if staging.exists() else [])
     builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded
     return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
                         builds, len(run.inventory[0]))
 
 
-def export_scenes(plan: Plan, out_dir: str | Path, names: Sequence[str], log: Log = print,
+def export_scenes(project: Project, out_dir: str | Path, names: Sequence[str], log: Log = print,
                   store: Store | None = None, parts=None) -> ExportResult:
     """Write only the named scenes (``scenes/<name>.step`` and ``.glb``); the
     manifest is left as it is.
@@ -246,20 +263,22 @@ def export_scenes(plan: Plan, out_dir: str | Path, names: Sequence[str], log: Lo
         SceneError: an unknown scene name (nothing is written); the message lists the scenes.
     """
     for n in names:
-        get_scene_spec(plan, n)  # unknown names fail before anything is written
-    return _write_set(Path(out_dir), lambda run: scene_jobs(run, names), plan, log,
+        get_scene_spec(project, n)  # unknown names fail before anything is written
+    return _write_set(Path(out_dir), lambda run: scene_jobs(run, names), project, log,
                       store or Store(None), with_manifest=False, parts=parts)
 
 
-def export(plan: Plan, out_dir: str | Path, log: Log = print,
+def export(project: Project, out_dir: str | Path, log: Log = print,
            store: Store | None = None, parts=None, dxf_version: str | None = None,
            select: Callable[[list[Job]], list[Job]] | None = None,
            partial: dict | None = None) -> ExportResult:
-    """Write all exports of ``plan`` into ``out_dir`` (see module doc).
+    """Write all exports of ``project`` into ``out_dir`` (see module doc).
 
     Args:
+        project: the validated :class:`~tactcad.design.project.Project`; no
+            design, rigs or scenes file is read again.
         store: finished jobs to reuse (``Store(None)`` or ``None``: build everything).
-        parts: a :class:`~tactcad.parts.cache.PartCache` of ``plan`` to share
+        parts: a :class:`~tactcad.parts.cache.PartCache` of ``project.plan`` to share
             (default: the run makes its own, only if a job needs a solid).
         dxf_version: ``R2010`` (default) or ``R12`` for the shop DXF files.
         select: the jobs to run out of every job of the run (default: all),
@@ -271,5 +290,5 @@ def export(plan: Plan, out_dir: str | Path, log: Log = print,
         OSError: the files cannot be written; ``out_dir`` is left as it was.
     """
     jobs_of = all_jobs if select is None else (lambda run: select(all_jobs(run)))
-    return _write_set(Path(out_dir), jobs_of, plan, log, store or Store(None),
+    return _write_set(Path(out_dir), jobs_of, project, log, store or Store(None),
                       with_manifest=True, parts=parts, dxf_version=dxf_version, partial=partial)

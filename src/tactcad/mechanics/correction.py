@@ -204,11 +204,6 @@ class Correction:
     def _notch_term(self, s) -> np.ndarray:
         return _gain_and_denominator(self.coefficients, s, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0)[1] - 1.0
 
-    def gain_3d(self, width_ratio, poisson_ratio, web_over_sheet=0.0) -> np.ndarray:
-        """g: the 3D stiffening over the plane-stress beam (dimensionless)."""
-        return _gain_and_denominator(self.coefficients, 0.0, width_ratio, poisson_ratio, 1.0,
-                                     0.0, 0.0, web_over_sheet)[0] - 1.0
-
     def factor(self, t_over_R, width_ratio=0.0, poisson_ratio=0.33, notch_share=1.0,
                shear_share=0.0, arm_share=0.0, web_over_sheet=0.0) -> np.ndarray:
         """K / K_EB at s = t/R, w = sqrt(t R)/b, nu, q, p, r and v = t/b
@@ -388,7 +383,7 @@ class FitData:
 
     @classmethod
     def from_points(cls, points: Sequence[Mapping[str, Any]]) -> "FitData":
-        """From sweep points (keys of :func:`tactcad.mechanics.correction_sweep.evaluate_point`)."""
+        """From sweep points (keys of :func:`tactcad.studies.correction_sweep.evaluate_point`)."""
         c = {k: np.array([float(p[k]) for p in points]) for k in
              ("C_notch_bending", "C_notch_shear", "C_arm_bending", "C_arm_shear")}
         total = sum(c.values())
@@ -501,19 +496,24 @@ def leave_one_out(points: Sequence[Mapping[str, Any]],
 def build_document(points: Sequence[Mapping[str, Any]], *, source: str | None = None,
                    free: Sequence[str] = COEFFICIENT_NAMES) -> dict:
     """Fit the points of the set "fit" (and "fit-*"), check the "holdout"
-    points, and return the JSON document of ``stiffness_correction.json``.
+    points and the "check-*" points (fem3d points that extend the range the
+    correction is stated for, e.g. to a library material's Poisson ratio),
+    and return the JSON document of ``stiffness_correction.json``.
 
     Raises:
         ValueError: no fit points.
     """
     fit_pts = [p for p in points if str(p["set"]).startswith("fit")]
     hold_pts = [p for p in points if p["set"] == "holdout"]
+    # fem3d points that extend the checked range beyond the fit's (e.g. a
+    # library material's nu): not fitted, their residuals stored
+    check_pts = [p for p in points if str(p["set"]).startswith("check")]
     if not fit_pts:
         raise ValueError("no fit points")
     src = source or (f"fem3d (P2 tetrahedra, half model, finest of three meshes), {len(fit_pts)} "
-                     "designs of tactcad.mechanics.correction_sweep")
-    corr = fit_correction(FitData.from_points(fit_pts), fit_range=range_of_points(fit_pts),
-                          source=src, free=free)
+                     "designs of tactcad.studies.correction_sweep")
+    corr = fit_correction(FitData.from_points(fit_pts),
+                          fit_range=range_of_points(fit_pts + check_pts), source=src, free=free)
     r_fit = FitData.from_points(fit_pts).residuals(corr)
     doc = corr.as_json()
     doc["residual_rel_rms"] = _stats(r_fit)["rms"]
@@ -526,6 +526,10 @@ def build_document(points: Sequence[Mapping[str, Any]], *, source: str | None = 
         r_hold = FitData.from_points(hold_pts).residuals(corr)
         doc["holdout"] = _stats(r_hold)
         rows += [dict(p, residual_rel=float(r)) for p, r in zip(hold_pts, r_hold)]
+    if check_pts:
+        r_check = FitData.from_points(check_pts).residuals(corr)
+        doc["range_checks"] = _stats(r_check)
+        rows += [dict(p, residual_rel=float(r)) for p, r in zip(check_pts, r_check)]
     doc["fem3d_error_rel_max"] = max(float(p["err_fem3d"]) for p in points)
     doc["points"] = rows
     return doc

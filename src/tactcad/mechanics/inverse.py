@@ -59,13 +59,17 @@ from __future__ import annotations
 
 import copy
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
 
 from tactcad.design.array import ARM_RANGE_MM, BOLTS, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, plan_from_dict
 from tactcad.errors import DesignError, TactcadError
+from tactcad.mechanics.correction import load_correction
+from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
+from tactcad.mechanics.strength import force_limits
+from tactcad.mechanics.tolerance import corrected_stiffness
 
 #: Clearance (mm) between the notch bottom and the arm's underside when the
 #: arm height has to grow with the web and notch radius (as the correction fit).
@@ -144,9 +148,6 @@ def design_variant(data: Mapping[str, Any], *, web_mm: float | None = None,
 # ---------------------------------------------------------------------------
 # Targets and limits
 # ---------------------------------------------------------------------------
-#: Force resolution of the read-out (N): Table 1's calibration, "force
-#: resolution >= 0.01 N".
-FORCE_RESOLUTION_N = 0.01
 #: Step of the candidate webs (mm): finer than a wire-EDM web tolerance.
 WEB_STEP_MM = 0.005
 #: Arm lengths written to the design are rounded to 1 um.
@@ -156,7 +157,8 @@ REPORT_POINTS = 5
 
 
 class InverseDesignError(TactcadError):
-    """The targets cannot be met; the message names the limit that binds."""
+    """The targets cannot be met; the message names every limit that binds and
+    the largest full-scale force the other targets allow."""
 
 
 @dataclass(frozen=True)
@@ -241,22 +243,6 @@ def _web_span(webs: np.ndarray, mask: np.ndarray) -> str:
     return f"web {w.min():.3f} ... {w.max():.3f} mm" if w.size else "no web"
 
 
-def binding_limit(webs: np.ndarray, limits: Sequence[Limit]) -> str:
-    """Why no candidate web meets every limit: the first limit no web meets,
-    else the first pair of limits whose allowed webs do not overlap."""
-    for lim in limits:
-        if not lim.allowed.any():
-            return f"{lim.name} ({lim.field}) is met by no web in " \
-                   f"{webs.min():g} ... {webs.max():g} mm: {lim.detail}"
-    for i, a in enumerate(limits):
-        for b in limits[i + 1:]:
-            if not (a.allowed & b.allowed).any():
-                return (f"{a.name} ({a.field}) needs {_web_span(webs, a.allowed)} but "
-                        f"{b.name} ({b.field}) needs {_web_span(webs, b.allowed)}")
-    return "the limits " + ", ".join(f"{lim.name} ({lim.field})" for lim in limits) + \
-        " leave no common web"
-
-
 # ---------------------------------------------------------------------------
 # Geometry search
 # ---------------------------------------------------------------------------
@@ -270,7 +256,6 @@ def arm_for_stiffness(k_target: float, webs, radii, g, material, correction,
     """
     from scipy.optimize.elementwise import find_root
 
-    from tactcad.mechanics.tolerance import corrected_stiffness
 
     webs, radii, lo, hi = np.broadcast_arrays(*(np.asarray(v, float)
                                                 for v in (webs, radii, arm_lo, arm_hi)))
@@ -299,6 +284,7 @@ class WebSearch:
     arm_m_mm: np.ndarray
     margin: np.ndarray
     limits: tuple[Limit, ...]
+    force_N: float = 0.0
 
     @property
     def feasible(self) -> np.ndarray:
@@ -316,8 +302,6 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     Raises:
         DesignError: the plan's material has no yield strength.
     """
-    from tactcad.mechanics.correction import load_correction
-    from tactcad.mechanics.strength import force_limits
 
     corr = load_correction() if correction is None else correction
     g, mat = plan.element(1).geometry, plan.material
@@ -338,7 +322,6 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     a_r = arm_for_stiffness(targets.k_r, webs, radii, g, mat, corr, arm_lo, arm_hi)
     a_m = arm_for_stiffness(targets.k_m, webs, radii, g, mat, corr, arm_lo, arm_hi)
 
-    from tactcad.mechanics.tolerance import corrected_stiffness
 
     def k(a):
         return corrected_stiffness(webs, radii, a, mat.youngs_modulus_MPa, g, mat.poisson_ratio,
@@ -354,7 +337,11 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     limits_r, limits_m = (force_limits(webs, radii, a, b, mat, plan.strength) for a in arms)
     f_yield = np.minimum(limits_r["yield"], limits_m["yield"])
     f_gauge = np.minimum(limits_r["gauge_fatigue"], limits_m["gauge_fatigue"])
+    f_gauge_max = np.minimum(limits_r["gauge_max"], limits_m["gauge_max"])
+    f_fatigue = np.fmin(limits_r["fatigue"], limits_m["fatigue"])  # NaN: no fatigue strength
     y_margin, g_margin = f_yield / F, f_gauge / F
+    gm_margin = f_gauge_max / F
+    fat_margin = np.where(np.isnan(f_fatigue), np.inf, f_fatigue / F)
     i_thick, i_thin = int(np.argmax(webs)), int(np.argmin(webs))
     a_lo_txt = f"{arm_lo[i_thick]:.3g}"
     limits = (
@@ -382,8 +369,73 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
               g_margin >= 1.0,
               f"the stiffness targets' arms carry at most {np.max(f_gauge):.3g} N at any web "
               f"within {1e6 * gauge.fatigue_strain:.0f} microstrain, asked {F:g} N"),
+        Limit(f"gauge maximum strain ({gauge.name}) at the full-scale force", "strength.gauge",
+              gm_margin >= 1.0,
+              f"the stiffness targets' arms carry at most {np.max(f_gauge_max):.3g} N at any web "
+              f"within {1e6 * gauge.max_strain:.0f} microstrain, asked {F:g} N"),
     )
-    return WebSearch(webs, radii, a_r, a_m, np.minimum(y_margin, g_margin), limits)
+    if mat.fatigue_strength_MPa is not None:
+        limits += (Limit("material fatigue strength at the full-scale force",
+                         "material.fatigue_strength_MPa", fat_margin >= 1.0,
+                         f"the stiffness targets' arms carry at most {np.nanmax(f_fatigue):.3g} N "
+                         f"at any web within {mat.fatigue_strength_MPa:g} MPa, asked {F:g} N"),)
+    margin = np.minimum.reduce([y_margin, g_margin, gm_margin, fat_margin])
+    return WebSearch(webs, radii, a_r, a_m, margin, limits, F)
+
+
+#: Number of leading limits of :func:`search_webs` that concern stiffness (the
+#: rest are force limits, proportional to the full-scale force).
+STIFFNESS_LIMITS = 4
+
+
+def max_full_scale_force_N(search: WebSearch, force_N: float) -> float:
+    """The largest full-scale force (N) some web carries while meeting the
+    stiffness limits (0 when none does); ``force_N`` is the force the search was run for."""
+    ok = np.ones(search.webs_mm.shape, bool)
+    for lim in search.limits[:STIFFNESS_LIMITS]:
+        ok &= lim.allowed
+    return float(np.max(search.margin[ok]) * force_N) if ok.any() else 0.0
+
+
+def binding_limits(search: WebSearch) -> list[Limit]:
+    """Every limit that binds when no web is feasible: each limit without
+    which some web would be feasible; when no single one frees a web, every
+    limit the most nearly feasible web (fewest failures, then largest force
+    margin) misses."""
+    allowed = np.array([lim.allowed for lim in search.limits])
+    out = [lim for i, lim in enumerate(search.limits)
+           if np.all(np.delete(allowed, i, axis=0), axis=0).any()]
+    if out:
+        return out
+    misses = (~allowed).sum(axis=0)
+    best = np.flatnonzero(misses == misses.min())
+    j = int(best[np.argmax(search.margin[best])])
+    return [lim for lim in search.limits if not lim.allowed[j]]
+
+
+def best_stiffness_web(search: WebSearch) -> int | None:
+    """Index of the web with the largest force margin among those meeting the
+    stiffness limits, or None when no web meets them."""
+    ok = np.ones(search.webs_mm.shape, bool)
+    for lim in search.limits[:STIFFNESS_LIMITS]:
+        ok &= lim.allowed
+    if not ok.any():
+        return None
+    return int(np.argmax(np.where(ok, search.margin, -np.inf)))
+
+
+def refusal_text(search: WebSearch) -> str:
+    """Why no web is feasible: every binding limit with what it asks, and the
+    largest full-scale force the stiffness targets allow."""
+    lims = binding_limits(search)
+    text = "targets cannot be met; binding limits: " + "; ".join(
+        f"{lim.name} ({lim.field}): {lim.detail}, met by {_web_span(search.webs_mm, lim.allowed)}"
+        for lim in lims)
+    if search.force_N:
+        f_max = max_full_scale_force_N(search, search.force_N)
+        text += (f". Largest feasible full-scale force for these stiffness targets: {f_max:.4g} N"
+                 if f_max > 0 else ". No full-scale force is feasible for these stiffness targets")
+    return text
 
 
 def choose_web(search: WebSearch, design_web_mm: float) -> int:
@@ -395,8 +447,7 @@ def choose_web(search: WebSearch, design_web_mm: float) -> int:
     """
     ok = search.feasible
     if not ok.any():
-        raise InverseDesignError("targets cannot be met: "
-                                 + binding_limit(search.webs_mm, search.limits))
+        raise InverseDesignError(refusal_text(search))
     own = np.flatnonzero(np.isclose(search.webs_mm, design_web_mm) & ok)
     if own.size:
         return int(own[0])
@@ -419,10 +470,66 @@ class InverseDesign:
     arm_r_mm: float
     arm_m_mm: float
     notes: tuple[str, ...] = field(default=())
+    max_full_scale_force_N: float = 0.0
+    binding_limits: tuple[str, ...] = ()
+
+
+#: The binding limits are those of a force this much above the largest feasible one.
+MAX_FORCE_PROBE = 0.001
+
+
+#: Largest arm / arm height of the closed-form correction's fit (the sweep's
+#: rule keeps a/h <= 4), and the tallest arm the design file allows (mm).
+MAX_ARM_OVER_HEIGHT = 4.0
+MAX_ARM_HEIGHT_MM = 5.0
+#: Rounds of "choose arms, raise the arm height, choose again".
+ARM_HEIGHT_ROUNDS = 4
+
+
+def arm_height_for(longest_arm_mm: float, arm_height_mm: float) -> float | None:
+    """The arm height (mm, 0.1 mm steps, at most 5 mm) that keeps the longest
+    arm within a/h <= 4, or None when the present height already does (or
+    cannot be raised further)."""
+    need = math.ceil(longest_arm_mm / MAX_ARM_OVER_HEIGHT * 10 - 1e-9) / 10
+    need = min(need, MAX_ARM_HEIGHT_MM)
+    return need if need > arm_height_mm + 1e-9 else None
+
+
+def neutral_assumptions(data: Mapping[str, Any], base_name: str) -> dict[str, str]:
+    """The base design's ``[assumptions]`` for a new design that does not
+    cite the paper: a reason that mentions the paper or its tables is
+    replaced by a pointer to the base design."""
+    out = {}
+    for key, why in dict(data.get("assumptions", {})).items():
+        text = str(why)
+        if "paper" in text.lower() or "table 1" in text.lower() or "table 2" in text.lower():
+            text = f"Kept from the base design {base_name}, where it is an assumption."
+        out[key] = text
+    return out
+
+
+def with_grid(data: Mapping[str, Any], rows: int | None, columns: int | None) -> dict[str, Any]:
+    """Raw tables with a new rows x columns grid; every arm the base's first
+    (the inverse design rewrites them). Rows and columns are validated with
+    the design (``array.rows``, ``array.columns``)."""
+    out = copy.deepcopy(dict(data))
+    if rows is None and columns is None:
+        return out
+    arr = out["array"]
+    if rows is not None:
+        arr["rows"] = rows
+    if columns is not None:
+        arr["columns"] = columns
+    n = arr["rows"] * arr["columns"] if all(isinstance(arr.get(k), int) and not isinstance(
+        arr.get(k), bool) for k in ("rows", "columns")) else 0
+    if 0 < n <= 1000:
+        out["arms"]["lengths_mm"] = [out["arms"]["lengths_mm"][0]] * n
+    return out
 
 
 def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None,
-                       pitch_mm: float | None = None, name: str = "inverse_design",
+                       pitch_mm: float | None = None, rows: int | None = None,
+                       columns: int | None = None, name: str = "inverse_design",
                        correction=None) -> InverseDesign:
     """Reference and measuring elements meeting ``targets`` on ``base``'s
     design (see the module docstring for the method and layout).
@@ -442,21 +549,46 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
             (field named).
     """
     data = copy.deepcopy(dict(base.raw))
+    data["assumptions"] = neutral_assumptions(data, base.name)
+    data.pop("requirements", None)  # the new design's are written below
     if grade is not None:
         data["material"] = {"name": grade, "grade": grade}
         data["assumptions"] = {k: v for k, v in data.get("assumptions", {}).items()
                                if not k.startswith("material.")}
     if pitch_mm is not None:
         data = design_variant(data, pitch_mm=pitch_mm)
-    plan = plan_from_dict(data, source="<inverse design>")
-    search = search_webs(plan, targets, correction)
-    i = choose_web(search, plan.element(1).geometry.web_thickness_mm)
+    data = with_grid(data, rows, columns)
+    base_web = float(data["element"]["web_thickness_mm"])
+    refusal = None
+    for _ in range(ARM_HEIGHT_ROUNDS):
+        plan = plan_from_dict(data, source="<inverse design>")
+        search = search_webs(plan, targets, correction)
+        try:
+            i, refusal = choose_web(search, base_web), None
+        except InverseDesignError as exc:  # judge the targets on the arm height they need
+            i, refusal = best_stiffness_web(search), exc
+            if i is None:
+                raise
+        longest = max(float(search.arm_r_mm[i]), float(search.arm_m_mm[i]))
+        raised = arm_height_for(longest, plan.element(1).geometry.arm_height_mm)
+        if raised is None:
+            break
+        data["element"]["arm_height_mm"] = raised
+        data.setdefault("assumptions", {})["element.arm_height_mm"] = (
+            f"tactcad design: raised to {raised:g} mm so the longest arm ({longest:.3g} mm) keeps "
+            f"arm / arm height <= {MAX_ARM_OVER_HEIGHT:g}, inside the range the closed form's "
+            "fem3d correction was fitted over.")
+    if refusal is not None:
+        raise refusal
+    f_max = max_full_scale_force_N(search, targets.full_scale_force_N)
+    above = replace(targets, full_scale_force_N=f_max * (1 + MAX_FORCE_PROBE))
+    bind = tuple(lim.name for lim in binding_limits(search_webs(plan, above, correction)))
     t, R = float(search.webs_mm[i]), float(search.radii_mm[i])
     a_r = round(float(search.arm_r_mm[i]), ARM_DECIMALS)
     a_m = round(float(search.arm_m_mm[i]), ARM_DECIMALS)
     refs = reference_elements(plan.rows, plan.columns)
     arms = [a_r if n in refs else a_m for n in range(1, len(plan.slots) + 1)]
-    web_changed = not math.isclose(t, plan.element(1).geometry.web_thickness_mm)
+    web_changed = not math.isclose(t, base_web)
     data = design_variant(data, web_mm=t, notch_radius_mm=R, arms_mm=arms)
     lo, hi = targets.k_obj_range_N_per_mm
     data["design"] = {"name": name, "description": (
@@ -475,35 +607,27 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
             f"tactcad design: {t:g} mm, the feasible web with the largest margin on yield / "
             f"safety factor and gauge fatigue strain at {targets.full_scale_force_N:g} N (the "
             f"base design's web met not every limit).")
+    data["requirements"] = requirements_table(targets, data)
     new_plan = plan_from_dict(data, source="<inverse design>")
-    return InverseDesign(targets, data, new_plan, refs, web_changed, a_r, a_m)
+    return InverseDesign(targets, data, new_plan, refs, web_changed, a_r, a_m,
+                         max_full_scale_force_N=f_max, binding_limits=bind)
 
 
-def unit_resolution(k_m: float, k_r: float, k_obj, full_scale_force_N: float,
-                    force_resolution_N: float = FORCE_RESOLUTION_N) -> dict[str, np.ndarray]:
-    """R, dR/dK_obj and the K_obj resolution at each K_obj (arrays, N/mm).
+def requirements_table(targets: Targets, data: Mapping[str, Any]) -> dict[str, Any]:
+    """The ``[requirements]`` table an inverse design writes: the targets, the K
+    band the web tolerance allows (rounded up) and the K_obj resolution the
+    two elements reach over the range at the full-scale force (rounded up);
+    see :mod:`tactcad.mechanics.requirements`."""
+    from tactcad.mechanics.requirements import round_up, web_band_rel, worst_resolution
 
-    The unit is pressed until the reference carries ``full_scale_force_N``;
-    the measuring element then carries F R / X (eq. 1). Each force is read to
-    ``force_resolution_N``: dR/R = sqrt((dF/F_m)^2 + (dF/F_r)^2), and
-    dK_obj = |dK_obj/dR| dR (eq. 3 sensitivity).
-
-    Raises:
-        LumpedDomainError: a stiffness outside eq. 2's domain.
-    """
-    from tactcad.mechanics.paper.lumped import deflection_ratio, sensitivity
-
-    k_obj = np.atleast_1d(np.asarray(k_obj, float))
-    km, kr = np.full_like(k_obj, k_m), np.full_like(k_obj, k_r)
-    R = deflection_ratio(km, kr, k_obj).value
-    dk_dr = sensitivity(R, km, kr).value
-    F_r = np.full_like(k_obj, full_scale_force_N)
-    F_m = F_r * R * k_m / k_r
-    dR = R * np.hypot(force_resolution_N / F_m, force_resolution_N / F_r)
-    dk = np.abs(dk_dr) * dR
-    return {"K_obj_N_per_mm": k_obj, "R": R, "dR_dKobj_per_N_per_mm": 1.0 / dk_dr,
-            "force_measuring_N": F_m, "force_reference_N": F_r, "R_resolution": dR,
-            "K_obj_resolution_N_per_mm": dk, "K_obj_resolution_rel": dk / k_obj}
+    plan = plan_from_dict(data, source="<inverse design>")
+    lo, hi = targets.k_obj_range_N_per_mm
+    worst = worst_resolution(targets.k_r, [targets.k_m], (lo, hi), targets.full_scale_force_N)
+    return {"full_scale_force_N": float(targets.full_scale_force_N),
+            "kobj_range_N_per_mm": [float(lo), float(hi)],
+            "kr_over_km": float(targets.kr_over_km),
+            "k_tolerance_rel": round_up(max(web_band_rel(plan), 1e-3)),
+            "kobj_resolution_rel": round_up(worst)}
 
 
 def report_points(targets: Targets, n: int = REPORT_POINTS) -> np.ndarray:

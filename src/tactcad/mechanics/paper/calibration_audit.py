@@ -141,15 +141,23 @@ def _signal_web(g, material, signal_per_N: float, gain: float, model: str) -> fl
 # ---------------------------------------------------------------------------
 # Simulated calibration of a design
 # ---------------------------------------------------------------------------
+#: Z steps of a simulated calibration up to the full-scale force.
+FULL_SCALE_STEPS = 6
+
+
 def simulate_design_calibration(plan, model: str = "closed-form",
                                 gauge_gain_V_per_strain: float = DEFAULT_GAUGE_GAIN_V_PER_STRAIN,
                                 noise_force_N: float = 0.001,
                                 noise_signal_V: float = cal.DEFAULT_NOISE_SIGNAL_V,
-                                seed: int | None = 0) -> dict[int, cal.CalibrationData]:
+                                seed: int | None = 0,
+                                full_scale_force_N: float | None = None
+                                ) -> dict[int, cal.CalibrationData]:
     """The paper's calibration rig run on every element of a plan (Fig. 4 data).
 
     K and ε from the ladder at ``model``; K_v = G ε K; V0 = 0; 25 um steps to
-    150 um, three runs, Gaussian noise on force and signal.
+    150 um (with ``full_scale_force_N``: six equal steps up to the Z travel at
+    which the element carries that force), three runs, Gaussian noise on
+    force and signal.
 
     Returns:
         {element: :class:`.calibration.CalibrationData`}.
@@ -169,9 +177,14 @@ def simulate_design_calibration(plan, model: str = "closed-form",
             cache[key] = _at_web(model, slot.geometry, plan.material, slot.geometry.web_thickness_mm)
         r = cache[key]
         k_v = gauge_gain_V_per_strain * r.gauge_strain_per_N * r.stiffness_N_per_mm
+        steps = {}
+        if full_scale_force_N is not None:  # Z travel (um) at which the element carries F
+            z_max = full_scale_force_N / cal.apparent_stiffness(
+                r.stiffness_N_per_mm, cal.K_SENSOR_N_PER_MM) * 1e3
+            steps = {"steps_um": np.linspace(0.0, z_max, FULL_SCALE_STEPS + 1)}
         out[slot.number] = cal.synthetic_calibration(
             r.stiffness_N_per_mm, k_v, 0.0, noise_force_N=noise_force_N,
-            noise_signal_V=noise_signal_V, seed=int(rng.integers(2 ** 31)))
+            noise_signal_V=noise_signal_V, seed=int(rng.integers(2 ** 31)), **steps)
     return out
 
 

@@ -260,7 +260,8 @@ def _rig_record(res: RigResult, spec: SampleSpec) -> dict:
 
 
 def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec: SampleSpec,
-                      n_steps: int = DEFAULT_LOAD_STEPS, fig6_sample: float = 3.85) -> dict:
+                      n_steps: int = DEFAULT_LOAD_STEPS, fig6_sample: float = 3.85,
+                      loads_N=None) -> dict:
     """The simulated evaluation experiment for a plan: R per element, sample and load step.
 
     Args:
@@ -271,6 +272,7 @@ def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec:
         n_steps: load steps (3.235 N, then +100 g each).
         fig6_sample: the sample whose R against load is singled out as Fig. 6
             (the listed sample nearest to it; the paper shows 3.85 N/mm).
+        loads_N: grasping forces (N) instead of the paper's steps (``n_steps`` ignored).
 
     Returns:
         dict with the reference element, the elements' K and K_r/K_m, one
@@ -290,7 +292,7 @@ def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec:
     ref = reference_element(elements)
     k_ref = stiffness[ref]
     unit = None if spec.coupling == "none" else unit_punch_compliance(elements, spec)
-    loads = load_steps_N(n_steps)
+    loads = load_steps_N(n_steps) if loads_N is None else np.asarray(loads_N, float)
     results = [simulate_rig(elements, s, spec, loads, ref, unit) for s in samples]
     records = [_rig_record(r, spec) for r in results]
     fig6_index = int(np.argmin([abs(s - fig6_sample) for s in samples]))

@@ -8,7 +8,8 @@ fits its model to these points and writes
 
 Domain (mm): web t 0.05-1, notch radius R from t to 2 (t/R 0.025-1), arm
 a 2-20, sheet b 0.5-10, Poisson ratio 0.27-0.34 (the material library:
-17-4PH 0.27, CuBe 0.30, Al 6061-T6/7075-T6 0.33, Ti-6Al-4V 0.34). Young's
+17-4PH 0.27, CuBe 0.30, Al 6061-T6/7075-T6 0.33; Ti-6Al-4V's 0.342 is
+covered by fem3d checks at that ratio, set "check-nu"). Young's
 modulus scales out of K (linear elasticity, displacement-free loading), so
 one E serves every material.
 
@@ -265,7 +266,7 @@ def plan_designs(n_fit: int, n_holdout: int) -> list[tuple[tuple, str]]:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m tactcad.mechanics.correction_sweep [--fit N] [--holdout N] [--points F]``.
+    """``python -m tactcad.studies.correction_sweep [--fit N] [--holdout N] [--points F]``.
 
     Runs the sweep (resumable) and writes the fitted correction.
     """

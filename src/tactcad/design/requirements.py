@@ -1,0 +1,87 @@
+"""The ``[requirements]`` section of a design file: what the sensor must do.
+
+Every key is optional; a key the file leaves out is derived from the
+design's own geometry by :func:`tactcad.mechanics.requirements.requirements_of`,
+with the reason stated, never taken from the paper.
+
+Keys (units in the names):
+
+* ``full_scale_force_N``: the tip force every element must carry within its
+  limits (yield / safety factor, fatigue strength, the gauge's fatigue and
+  maximum strain, the notch's travel).
+* ``kobj_range_N_per_mm = [LO, HI]``: object stiffnesses the array must read.
+* ``kr_over_km``: stiffness ratio K_r / K_m of the sensing units (eq. 2).
+* ``k_tolerance_rel``: the band each element's K must hold over the web's
+  fabrication tolerance (relative, e.g. 0.1 for +/-10 %).
+* ``kobj_resolution_rel``: the relative K_obj resolution the array must reach
+  over the whole range at the full-scale force.
+* ``source``: where the values come from (a citation); only a design whose
+  source cites the paper gets the paper's loads, samples and text.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from tactcad.design.schema import Problems, Section, Text, fmt, listing, number
+
+#: Title of the paper the macro array comes from; a design whose
+#: ``requirements.source`` names it is the paper's design.
+PAPER_TITLE = "Spring-based tactile array for assistive robotic surgical applications"
+
+#: Keys of the section that are requirements (``source`` is their citation).
+REQUIREMENT_KEYS = ("full_scale_force_N", "kobj_range_N_per_mm", "kr_over_km",
+                    "k_tolerance_rel", "kobj_resolution_rel")
+
+
+class RequirementsSection(Section):
+    """``[requirements]``: every key optional (derived from the design when absent)."""
+
+    full_scale_force_N: number(0.0, 1000.0, lo_open=True, unit="N",
+                               why="tip force every element must carry") = None
+    kobj_range_N_per_mm: listing(number(0.0, 1e4, lo_open=True, unit="N/mm"), 2, 2,
+                                 "[LO, HI] with 0 < LO < HI <= 10000 N/mm",
+                                 "object stiffnesses the array must read") = None
+    kr_over_km: number(1.0, 1000.0, lo_open=True, unit="",
+                       why="eq. 2 needs a reference stiffer than the measuring element") = None
+    k_tolerance_rel: number(0.0, 1.0, lo_open=True, unit="",
+                            why="relative K band over the web tolerance") = None
+    kobj_resolution_rel: number(0.0, 10.0, lo_open=True, unit="",
+                                why="relative K_obj resolution over the range") = None
+    source: Text = None
+
+
+def check_requirements(d: Any, p: Problems) -> None:
+    """Cross-field rule: ``kobj_range_N_per_mm`` is [LO, HI] with LO < HI."""
+    req = getattr(d, "requirements", None)
+    rng = getattr(req, "kobj_range_N_per_mm", None)
+    if rng is not None and len(rng) == 2 and not rng[0] < rng[1]:
+        p.add("requirements.kobj_range_N_per_mm", list(rng),
+              f"[LO, HI] with LO < HI (got LO = {fmt(rng[0])}, HI = {fmt(rng[1])} N/mm)",
+              "a range of object stiffnesses")
+
+
+def stated_requirements(raw: Mapping[str, Any]) -> dict[str, Any]:
+    """The requirement values a design's raw tables state (``{}`` without the section);
+    ``kobj_range_N_per_mm`` as a tuple of floats."""
+    table = raw.get("requirements") if isinstance(raw, Mapping) else None
+    if not isinstance(table, Mapping):
+        return {}
+    out = {k: table[k] for k in REQUIREMENT_KEYS if k in table}
+    if "kobj_range_N_per_mm" in out:
+        out["kobj_range_N_per_mm"] = tuple(float(v) for v in out["kobj_range_N_per_mm"])
+    return out
+
+
+def requirements_source(raw: Mapping[str, Any]) -> str | None:
+    """The ``requirements.source`` citation of a design, or None."""
+    table = raw.get("requirements") if isinstance(raw, Mapping) else None
+    return table.get("source") if isinstance(table, Mapping) else None
+
+
+def cites_paper(raw: Mapping[str, Any]) -> bool:
+    """True when the design file's ``requirements.source`` cites the paper
+    (:data:`PAPER_TITLE`): only then do outputs carry the paper's loads,
+    samples and text."""
+    src = requirements_source(raw)
+    return isinstance(src, str) and PAPER_TITLE.lower() in src.lower()

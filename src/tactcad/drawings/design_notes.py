@@ -1,0 +1,60 @@
+"""Drawing notes that depend on the design's requirements and on whether the
+design cites the paper (``requirements.source``): the full-scale force with
+its binding limit, the web-tolerance note and the element numbering.
+
+A design that does not cite the paper gets no paper text, load or sample.
+Units: mm, N, N/mm.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+from tactcad.design.array import ElementGeometry, Plan
+from tactcad.design.requirements import cites_paper
+
+
+@lru_cache(maxsize=8)
+def _force_figures(plan: Plan) -> tuple[float, dict]:
+    """(required full-scale force N, {part name: (largest force N, limit words)}),
+    closed form. Cached per plan (its design hash covers the requirements)."""
+    from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits
+    from tactcad.mechanics.requirements import requirements_of
+
+    req = requirements_of(plan)
+    per_part: dict[str, tuple[float, str]] = {}
+    for lim in plan_limits(plan, "closed-form"):
+        if lim.part_name not in per_part or lim.force_N < per_part[lim.part_name][0]:
+            per_part[lim.part_name] = (lim.force_N, LIMIT_WORDS[lim.limit])
+    return req.full_scale_force_N, per_part
+
+
+def full_scale_note(plan: Plan, part_name: str, yield_MPa: float, grade: str) -> str:
+    """The element's full-scale force note: the design's required force, the
+    largest force this element carries and the limit that binds it."""
+    required, per_part = _force_figures(plan)
+    largest, words = per_part[part_name]
+    verdict = "met" if largest >= required else "NOT met"
+    return (f"Full-scale tip force {required:.3g} N (the design's requirement, {verdict}): this "
+            f"element carries at most {largest:.3g} N, bound by {words} (closed form; yield "
+            f"{yield_MPa:g} MPa, {grade}). Do not load the tip beyond {required:.3g} N.")
+
+
+def web_tolerance_note(plan: Plan, g: ElementGeometry, web: str, up: float, dn: float,
+                       spread: tuple[float, float, float, float] | None) -> str:
+    """The web-tolerance note; the paper's as-built spread (``spread``: arm,
+    K low, K high, ratio) only for a design that cites the paper."""
+    text = (f"Web thickness {web} is the critical dimension: hinge stiffness scales with t^2.5, "
+            f"so the tolerance alone moves stiffness by +{up * 100:.0f} % / -{dn * 100:.0f} %. ")
+    if spread is not None and cites_paper(plan.raw):
+        a, k0, k1, ratio = spread
+        text += (f"The paper's as-built elements (Table 1) of equal {a:g} mm arm measured "
+                 f"{k0:.2f} and {k1:.2f} N/mm (x{ratio:.2f}). ")
+    return text + "Measure the web of every part and record it."
+
+
+def numbering_note(plan: Plan) -> str:
+    """How the elements are numbered, for the assembly sheet."""
+    if cites_paper(plan.raw):
+        return "the element numbers follow the paper's Table 1."
+    return f"elements are numbered 1 ... {len(plan.slots)} along row 1, then along row 2."

@@ -1,0 +1,164 @@
+"""Every limit on an element's tip force, at one ladder level, with the one that binds.
+
+For one element geometry (its peak hinge stress per N, gauge strain per N
+and K at a ladder level, :class:`tactcad.mechanics.strength.ElementStress`):
+
+* ``yield``: yield strength / (peak stress per N x safety factor);
+* ``fatigue``: fatigue strength / peak stress per N (absent without one);
+* ``gauge_fatigue``: the gauge's fatigue strain / gauge strain per N;
+* ``gauge_max``: the gauge's maximum strain / gauge strain per N;
+* ``travel``: K x the tip travel that closes the notch. Pressed on its
+  contact face the arm turns about the web and its underside swings toward
+  the base's front face across the notch, a gap 2R wide, at a depth
+  d = arm height - t/2 below the web's mid-plane; the gap closes at a
+  rotation 2R / d, i.e. a tip travel a 2R / d (small rotations).
+
+Stress-based limits carry the stress's error estimate, strain- and
+travel-based ones K's; below fem3d the stress and the gauge strain are plane
+stress, so the stress- and strain-based limits also carry the plane model's
+bound against 3D: a wide web is near plane strain at mid-width, its surface
+strain per newton lower by 1 - nu^2 and its von Mises stress by about as
+much, so the plane-stress force limit is low by up to nu^2 of the 3D one
+(default design: fem3d's peak stress 9.8 % below the closed form's; the
+titanium example's gauge-limited force 11.6 % below fem3d's, nu^2 = 11.7 %).
+Units: mm, N, MPa, N/mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from tactcad.design.array import ElementGeometry, Plan
+
+#: Names of the limits, in the order they are listed.
+LIMIT_NAMES = ("yield", "fatigue", "gauge_fatigue", "gauge_max", "travel")
+LIMIT_WORDS = {"yield": "yield strength / safety factor",
+               "fatigue": "material fatigue strength",
+               "gauge_fatigue": "gauge fatigue strain",
+               "gauge_max": "gauge maximum strain",
+               "travel": "notch closing travel"}
+
+
+@dataclass(frozen=True)
+class ForceLimit:
+    """One limit of one element.
+
+    Attributes:
+        limit: one of :data:`LIMIT_NAMES`. element: element number.
+        part_name: distinct part. force_N: largest tip force it allows (N).
+        error_estimate_rel: relative error of ``force_N``.
+        detail: what it compares, in words with numbers.
+    """
+
+    limit: str
+    element: int
+    part_name: str
+    force_N: float
+    error_estimate_rel: float
+    detail: str
+
+    def as_json(self, binding: bool = False) -> dict:
+        return {"limit": self.limit, "words": LIMIT_WORDS[self.limit], "element": self.element,
+                "part": self.part_name, "force_N": self.force_N,
+                "error_estimate_rel": self.error_estimate_rel, "detail": self.detail,
+                "binding": binding}
+
+
+def notch_closing_travel_mm(g: ElementGeometry) -> float:
+    """Tip travel (mm) at which the notch gap (2R) closes: a 2R / (h - t/2)."""
+    depth = g.arm_height_mm - g.web_thickness_mm / 2
+    return g.arm_length_mm * 2 * g.notch_radius_mm / depth
+
+
+def element_limits(number: int, g: ElementGeometry, plan: Plan, es, k_error_rel: float,
+                   plane_error_rel: float = 0.0) -> list[ForceLimit]:
+    """Every :class:`ForceLimit` of one element from its per-newton response ``es``
+    (:class:`tactcad.mechanics.strength.ElementStress`), K's error estimate and,
+    for the levels whose stress and gauge strain are plane stress (closed form,
+    beam, fem2d), the plane model's bound against 3D (nu^2), added to the
+    stress- and strain-based limits' errors."""
+    mat, st = plan.material, plan.strength
+    s, eps, k = es.stress_MPa_per_N, es.gauge_strain_per_N, es.stiffness_N_per_mm
+    stress_err = es.stress_error_rel + plane_error_rel
+    strain_err = k_error_rel + plane_error_rel
+    out = [ForceLimit("yield", number, g.part_name, mat.yield_strength_MPa / (s * st.safety_factor),
+                      stress_err,
+                      f"{mat.yield_strength_MPa:g} MPa / ({s:.4g} MPa/N x {st.safety_factor:g})")]
+    if mat.fatigue_strength_MPa is not None:
+        out.append(ForceLimit("fatigue", number, g.part_name, mat.fatigue_strength_MPa / s,
+                              stress_err,
+                              f"{mat.fatigue_strength_MPa:g} MPa / {s:.4g} MPa/N"))
+    gauge = st.gauge
+    out.append(ForceLimit("gauge_fatigue", number, g.part_name, gauge.fatigue_strain / eps,
+                          strain_err, f"{1e6 * gauge.fatigue_strain:.0f} microstrain "
+                          f"({gauge.name}) / {1e6 * eps:.4g} microstrain/N"))
+    out.append(ForceLimit("gauge_max", number, g.part_name, gauge.max_strain / eps, strain_err,
+                          f"{1e6 * gauge.max_strain:.0f} microstrain / {1e6 * eps:.4g} "
+                          "microstrain/N"))
+    travel = notch_closing_travel_mm(g)
+    out.append(ForceLimit("travel", number, g.part_name, k * travel, k_error_rel,
+                          f"K {k:.4g} N/mm x {1e3 * travel:.0f} um notch closing travel"))
+    return out
+
+
+def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=None
+                ) -> list[ForceLimit]:
+    """Every limit of every element of ``plan`` at ``model`` (distinct geometries once).
+
+    Args:
+        stresses, k_errors: per part name, :class:`ElementStress` and K's
+            error estimate already computed (else computed here: closed form
+            and beam only; the FEM levels' stresses come from
+            :mod:`tactcad.studies.strength`).
+
+    Raises:
+        DesignError: the material has no yield strength.
+        ValueError: an FEM model without its ``stresses``.
+    """
+    from tactcad.mechanics.ladder import estimate
+    from tactcad.mechanics.strength import closed_form_stress, require_yield
+
+    element_stress = closed_form_stress
+    require_yield(plan.material)
+    from tactcad.mechanics.fem.fem2d import plane_model_error
+
+    stresses = dict(stresses or {})
+    k_errors = dict(k_errors or {})
+    out = []
+    for slot in plan.slots:
+        g = slot.geometry
+        if g.part_name not in stresses:
+            stresses[g.part_name] = element_stress(g, plan.material, model)
+        if g.part_name not in k_errors:
+            k_errors[g.part_name] = estimate(model, g, plan.material).error_estimate_rel \
+                if model in ("closed-form", "beam") else stresses[g.part_name].stress_error_rel
+        # the plane-strain bound of a plane-stress surface stress and strain
+        # (a wide web at mid-width): nu^2 below fem3d
+        bound = 0.0 if model == "fem3d" else plan.material.poisson_ratio ** 2
+        # fem2d's K error already holds its plane model error for K: not for the strain
+        k_err = k_errors[g.part_name] - (plane_model_error(g, plan.material)
+                                         if model == "fem2d" else 0.0)
+        out.extend(element_limits(slot.number, g, plan, stresses[g.part_name],
+                                  max(k_err, 0.0), bound))
+    return out
+
+
+def binding(limits: list[ForceLimit]) -> ForceLimit:
+    """The limit allowing the smallest force (ties: the first listed)."""
+    return min(limits, key=lambda lim: lim.force_N)
+
+
+def per_kind_binding(limits: list[ForceLimit]) -> dict[str, ForceLimit]:
+    """For each kind of limit, its binding element (the smallest force)."""
+    out: dict[str, ForceLimit] = {}
+    for lim in limits:
+        if lim.limit not in out or lim.force_N < out[lim.limit].force_N:
+            out[lim.limit] = lim
+    return out
+
+
+def full_scale_text(limits: list[ForceLimit]) -> str:
+    """One line for notes and manifests: the largest full-scale force and the limit that binds."""
+    b = binding(limits)
+    return (f"full-scale force at most {b.force_N:.3g} N per element, bound by "
+            f"{LIMIT_WORDS[b.limit]} (element {b.element})")

@@ -1,0 +1,379 @@
+"""A design's requirements (stated or derived) and its verification matrix.
+
+:func:`requirements_of` reads the ``[requirements]`` section
+(:mod:`tactcad.design.requirements`); every key the file leaves out is
+derived from the design's own nominal geometry at the corrected closed form,
+rounded to the safe side, with the reason stated:
+
+* full-scale force: the largest force every element carries within all its
+  limits (:mod:`tactcad.mechanics.limits`), rounded down;
+* K_r / K_m: the stiffest element over the softest, rounded down;
+* K_obj range: [K_min, K_max] of the elements (eq. 2 reads best where the
+  elements straddle the object);
+* K band: the largest relative K change over the web tolerance, rounded up;
+* K_obj resolution: the worst over the range at the full-scale force,
+  rounded up.
+
+Sensing units. The reference is the stiffest element; each softer element
+is a measuring element paired with it. Pressed until the reference carries
+the full-scale force F, each unit reads K_obj with the resolution of
+:func:`tactcad.mechanics.inverse.unit_resolution` (forces read to 0.01 N);
+the array's resolution at a K_obj is its best unit's.
+
+:func:`verification_matrix` evaluates every requirement at one ladder level:
+one record per requirement with ``requirement``, ``target``, ``predicted``,
+``error_estimate_rel``, ``margin_rel``, ``model``, ``pass``.
+
+Units: mm, N, MPa, N/mm.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping
+
+import numpy as np
+
+from tactcad.design.array import Plan
+from tactcad.design.requirements import (REQUIREMENT_KEYS, cites_paper, requirements_source,
+                                         stated_requirements)
+
+#: Points of the log grid over the K_obj range where the resolution is evaluated.
+KOBJ_POINTS = 41
+#: The predicted readable range is searched this factor beyond the required one.
+KOBJ_SEARCH_FACTOR = 100.0
+
+
+@dataclass(frozen=True)
+class Requirements:
+    """The requirement values of a design and where each comes from.
+
+    Attributes:
+        full_scale_force_N (N), kobj_range_N_per_mm ((LO, HI) N/mm),
+        kr_over_km, k_tolerance_rel, kobj_resolution_rel: the values.
+        reasons: per key, "stated in the design file" or the derivation.
+        stated: the keys the design file states.
+        source: the file's citation (``requirements.source``) or None.
+        cites_paper: True for the paper's design.
+    """
+
+    full_scale_force_N: float
+    kobj_range_N_per_mm: tuple[float, float]
+    kr_over_km: float
+    k_tolerance_rel: float
+    kobj_resolution_rel: float
+    reasons: Mapping[str, str] = field(default_factory=dict)
+    stated: frozenset = frozenset()
+    source: str | None = None
+    cites_paper: bool = False
+
+    def as_json(self) -> dict:
+        return {"full_scale_force_N": self.full_scale_force_N,
+                "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
+                "kr_over_km": self.kr_over_km, "k_tolerance_rel": self.k_tolerance_rel,
+                "kobj_resolution_rel": self.kobj_resolution_rel, "reasons": dict(self.reasons),
+                "stated": sorted(self.stated), "source": self.source}
+
+
+def round_down(x: float, digits: int = 2) -> float:
+    """``x`` rounded down to ``digits`` significant digits (x > 0)."""
+    if x <= 0:
+        return x
+    e = math.floor(math.log10(x)) - digits + 1
+    return _clean(math.floor(x / 10 ** e + 1e-9) * 10 ** e)
+
+
+def round_up(x: float, digits: int = 2) -> float:
+    """``x`` rounded up to ``digits`` significant digits (x > 0)."""
+    if x <= 0:
+        return x
+    e = math.floor(math.log10(x)) - digits + 1
+    return _clean(math.ceil(x / 10 ** e - 1e-9) * 10 ** e)
+
+
+def _clean(x: float) -> float:
+    return float(f"{x:.6g}")
+
+
+# ---------------------------------------------------------------------------
+# Per-element figures at one level
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Figures:
+    """K, its error and the stress response of each distinct element at one level."""
+
+    model: str
+    k: dict[str, float]
+    k_error: dict[str, float]
+    stresses: dict[str, Any]
+    by_element: dict[int, str]
+
+    def k_of(self, number: int) -> float:
+        return self.k[self.by_element[number]]
+
+
+def element_figures(plan: Plan, model: str = "closed-form",
+                    progress: Callable[[str], None] | None = None,
+                    stress: Callable | None = None) -> Figures:
+    """K (Richardson at FEM levels), its error estimate and the peak stress of
+    every distinct element of ``plan`` at ``model``.
+
+    Args:
+        stress: (geometry, material, model) -> ElementStress; default the
+            closed form's (closed form and beam). The FEM levels pass
+            :func:`tactcad.studies.strength.element_stress`.
+
+    Raises:
+        ValueError: an FEM model without ``stress``.
+    """
+    from tactcad.mechanics.ladder import estimate
+    from tactcad.mechanics.strength import CLOSED_FORM_MODELS, closed_form_stress
+
+    if stress is None:
+        if model not in CLOSED_FORM_MODELS:
+            raise ValueError(f"model {model} runs the FEM: pass its stress "
+                             "(tactcad.studies.strength.element_stress)")
+        stress = closed_form_stress
+    element_stress = stress
+
+    k, k_err, st = {}, {}, {}
+    for name, g in plan.distinct_elements.items():
+        if progress:
+            progress(f"{model}: {name}")
+        opts = {"progress": progress} if progress and model in ("fem2d", "fem3d") else {}
+        r = estimate(model, g, plan.material, **opts)
+        k[name], k_err[name] = r.stiffness_N_per_mm, r.error_estimate_rel
+        st[name] = element_stress(g, plan.material, model)
+    return Figures(model, k, k_err, st, {s.number: s.geometry.part_name for s in plan.slots})
+
+
+def web_band_rel(plan: Plan) -> float:
+    """Largest relative K change of any element over web +/- web tolerance
+    (corrected closed form; a derivative of K, so the level hardly matters)."""
+    from dataclasses import replace
+
+    from tactcad.mechanics.ladder import estimate
+
+    worst = 0.0
+    for g in plan.distinct_elements.values():
+        k0 = estimate("closed-form", g, plan.material).stiffness_N_per_mm
+        for sign in (-1, 1):
+            t = g.web_thickness_mm + sign * g.web_tolerance_mm
+            if t <= 0:
+                continue
+            k = estimate("closed-form", replace(g, web_thickness_mm=t),
+                         plan.material).stiffness_N_per_mm
+            worst = max(worst, abs(k / k0 - 1.0))
+    return worst
+
+
+def closed_form_k_error(plan: Plan) -> float:
+    """Largest error estimate of the corrected closed-form K over the design's elements."""
+    from tactcad.mechanics.ladder import estimate
+
+    return max(estimate("closed-form", g, plan.material).error_estimate_rel
+               for g in plan.distinct_elements.values())
+
+
+def units_of(fig: Figures, plan: Plan) -> tuple[float, list[float]]:
+    """(K_r, distinct K_m softer than K_r) of the array's sensing units (N/mm)."""
+    ks = [fig.k_of(s.number) for s in plan.slots]
+    kr = max(ks)
+    kms = sorted({k for k in ks if k < kr * (1 - 1e-9)})
+    return kr, kms
+
+
+def resolution_rel(kr: float, kms: list[float], k_obj: np.ndarray, force_N: float) -> np.ndarray:
+    """The array's relative K_obj resolution at each K_obj: its best unit's
+    (inf where no element is softer than the reference)."""
+    from tactcad.mechanics.resolution import unit_resolution
+
+    best = np.full(np.shape(k_obj), np.inf)
+    for km in kms:
+        best = np.minimum(best, unit_resolution(km, kr, k_obj, force_N)["K_obj_resolution_rel"])
+    return best
+
+
+def worst_resolution(kr, kms, rng, force_N) -> float:
+    return float(np.max(resolution_rel(kr, kms, np.geomspace(*rng, KOBJ_POINTS), force_N)))
+
+
+def readable_range(kr, kms, rng, force_N, target_rel) -> tuple[float, float] | None:
+    """The widest K_obj interval around the range's geometric mean where the
+    resolution is at most ``target_rel`` (N/mm), or None when the mean is not."""
+    lo, hi = rng
+    centre = math.sqrt(lo * hi)
+    grid = np.geomspace(lo / KOBJ_SEARCH_FACTOR, hi * KOBJ_SEARCH_FACTOR, 801)
+    grid = np.unique(np.append(grid, [lo, hi, centre]))
+    ok = resolution_rel(kr, kms, grid, force_N) <= target_rel
+    i = int(np.searchsorted(grid, centre))
+    if not ok[i]:
+        return None
+    a = i
+    while a > 0 and ok[a - 1]:
+        a -= 1
+    b = i
+    while b < len(grid) - 1 and ok[b + 1]:
+        b += 1
+    return float(grid[a]), float(grid[b])
+
+
+# ---------------------------------------------------------------------------
+# The requirements
+# ---------------------------------------------------------------------------
+def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
+    """The design's requirements: stated values from ``[requirements]``,
+    the rest derived from its nominal geometry (corrected closed form) with
+    the reason (see the module docstring).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
+
+    stated = stated_requirements(plan.raw)
+    fig = figures if figures is not None and figures.model == "closed-form" \
+        else element_figures(plan, "closed-form")
+    values: dict[str, Any] = dict(stated)
+    reasons = {k: "stated in the design file" for k in stated}
+    if "full_scale_force_N" not in values:
+        b = binding(plan_limits(plan, "closed-form", fig.stresses, fig.k_error))
+        values["full_scale_force_N"] = round_down(b.force_N)
+        reasons["full_scale_force_N"] = (
+            f"not stated: the largest force every element carries, {b.force_N:.4g} N, bound by "
+            f"{LIMIT_WORDS[b.limit]} (element {b.element}, closed form), rounded down")
+    kr, kms = units_of(fig, plan)
+    if "kr_over_km" not in values:
+        ratio = kr / kms[0] if kms else 1.0
+        values["kr_over_km"] = round_down(ratio) if ratio > 1 else 1.0
+        reasons["kr_over_km"] = (f"not stated: the stiffest element over the softest, "
+                                 f"{ratio:.4g} (closed form), rounded down")
+    if "kobj_range_N_per_mm" not in values:
+        k_min = kms[0] if kms else kr
+        values["kobj_range_N_per_mm"] = (_clean(k_min), _clean(kr))
+        reasons["kobj_range_N_per_mm"] = (
+            "not stated: the elements' own stiffness span (closed form); eq. 2 reads best "
+            "where the elements straddle the object")
+    if "k_tolerance_rel" not in values:
+        band = web_band_rel(plan)
+        values["k_tolerance_rel"] = round_up(band) if band > 0 else 0.01
+        reasons["k_tolerance_rel"] = (f"not stated: the largest K change over the web "
+                                      f"tolerance, {100 * band:.3g} %, rounded up")
+    if "kobj_resolution_rel" not in values:
+        worst = worst_resolution(kr, kms, values["kobj_range_N_per_mm"],
+                                 values["full_scale_force_N"]) if kms else math.inf
+        values["kobj_resolution_rel"] = round_up(worst) if math.isfinite(worst) else 10.0
+        reasons["kobj_resolution_rel"] = (
+            f"not stated: the worst K_obj resolution over the range at the full-scale force, "
+            f"{100 * worst:.3g} % (closed form, forces read to 0.01 N), rounded up"
+            if math.isfinite(worst) else
+            "not stated: no element is softer than the reference, so no K_obj can be read")
+    return Requirements(
+        full_scale_force_N=float(values["full_scale_force_N"]),
+        kobj_range_N_per_mm=tuple(float(v) for v in values["kobj_range_N_per_mm"]),
+        kr_over_km=float(values["kr_over_km"]), k_tolerance_rel=float(values["k_tolerance_rel"]),
+        kobj_resolution_rel=float(values["kobj_resolution_rel"]),
+        reasons={k: reasons[k] for k in REQUIREMENT_KEYS}, stated=frozenset(stated),
+        source=requirements_source(plan.raw), cites_paper=cites_paper(plan.raw))
+
+
+# ---------------------------------------------------------------------------
+# The verification matrix
+# ---------------------------------------------------------------------------
+def _finite_or_none(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+def _record(requirement: str, target, predicted, error: float, margin: float, model: str,
+            passed: bool, **extra) -> dict:
+    return {"requirement": requirement, "target": target, "predicted": predicted,
+            "error_estimate_rel": _finite_or_none(error), "margin_rel": _finite_or_none(margin),
+            "model": model, "pass": bool(passed), **extra}
+
+
+def verification_matrix(plan: Plan, model: str = "closed-form",
+                        progress: Callable[[str], None] | None = None,
+                        requirements: Requirements | None = None,
+                        stress: Callable | None = None) -> list[dict]:
+    """One record per requirement, evaluated at ``model``.
+
+    margin_rel: predicted / target - 1 for a lower bound (full-scale force,
+    K_r/K_m), target / predicted - 1 for an upper bound (K band, K_obj
+    resolution), the smaller end ratio - 1 for the readable K_obj range;
+    positive means met. K_r / K_m passes within the K band the requirements
+    allow (margin >= -k_tolerance_rel); the others pass with margin >= 0.
+    The full-scale-force record lists every limit (``limits``) and the one
+    that binds (``binding_limit``). ``stress``: as :func:`element_figures`
+    (an FEM level needs :func:`tactcad.studies.strength.element_stress`).
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+        DesignError: the material has no yield strength.
+    """
+    from tactcad.mechanics.limits import LIMIT_WORDS, binding, per_kind_binding, plan_limits
+
+    fig = element_figures(plan, model, progress, stress)
+    req = requirements or requirements_of(plan, fig)
+    out = []
+    lims = plan_limits(plan, model, fig.stresses, fig.k_error)
+    b = binding(lims)
+    kinds = per_kind_binding(lims)
+    F = req.full_scale_force_N
+    out.append(_record("full_scale_force_N", F, b.force_N, b.error_estimate_rel,
+                       b.force_N / F - 1.0, model, b.force_N >= F,
+                       binding_limit=b.limit, binding_words=LIMIT_WORDS[b.limit],
+                       binding_element=b.element,
+                       limits=[lim.as_json(lim is b) for lim in kinds.values()]))
+    kr, kms = units_of(fig, plan)
+    ref = max(plan.slots, key=lambda s: fig.k_of(s.number))
+    err_r = fig.k_error[ref.geometry.part_name]
+    soft = min(plan.slots, key=lambda s: fig.k_of(s.number))
+    err_m = fig.k_error[soft.geometry.part_name]
+    ratio = kr / kms[0] if kms else 1.0
+    m = ratio / req.kr_over_km - 1.0
+    out.append(_record("kr_over_km", req.kr_over_km, ratio, err_r + err_m, m, model,
+                       m >= -req.k_tolerance_rel, reference_element=ref.number,
+                       measuring_element=soft.number))
+    band = web_band_rel(plan)
+    out.append(_record("k_tolerance_rel", req.k_tolerance_rel, band, closed_form_k_error(plan),
+                       req.k_tolerance_rel / band - 1.0 if band > 0 else math.inf,
+                       "closed-form", band <= req.k_tolerance_rel))
+    rng = req.kobj_range_N_per_mm
+    if kms:
+        worst = worst_resolution(kr, kms, rng, F)
+        # the resolution's sensitivity to K errors, worst direction
+        moved = [worst_resolution(kr * (1 + sr * err_r), [k * (1 + sm * err_m) for k in kms],
+                                  rng, F) for sr in (-1, 1) for sm in (-1, 1)]
+        res_err = max(abs(w / worst - 1.0) for w in moved)
+        span = readable_range(kr, kms, rng, F, req.kobj_resolution_rel)
+    else:
+        worst, res_err, span = math.inf, 0.0, None
+    out.append(_record("kobj_resolution_rel", req.kobj_resolution_rel, _finite_or_none(worst),
+                       res_err, req.kobj_resolution_rel / worst - 1.0, model,
+                       worst <= req.kobj_resolution_rel))
+    m_rng = min(rng[0] / span[0], span[1] / rng[1]) - 1.0 if span else -1.0
+    out.append(_record("kobj_range_N_per_mm", list(rng), list(span) if span else None, res_err,
+                       m_rng, model, m_rng >= 0))
+    for r in out:
+        r["stated"] = r["requirement"] in req.stated
+    return out
+
+
+def matrix_passed(records: list[dict]) -> bool:
+    return all(r["pass"] for r in records)
+
+
+def requirements_record(plan: Plan) -> dict:
+    """The manifest's record: the requirements with their reasons and the
+    closed-form verification of each, the full-scale force with every limit
+    and the one that binds."""
+    req = requirements_of(plan)
+    matrix = verification_matrix(plan, "closed-form", requirements=req)
+    force = matrix[0]
+    return {"values": req.as_json(), "closed_form_matrix": matrix,
+            "full_scale_force": {"required_N": req.full_scale_force_N,
+                                 "largest_N": force["predicted"],
+                                 "binding_limit": force["binding_words"],
+                                 "binding_element": force["binding_element"],
+                                 "met": force["pass"]}}

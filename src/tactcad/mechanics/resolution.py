@@ -1,0 +1,41 @@
+"""K_obj resolution of one sensing unit (eq. 1-3) when its forces are read to a resolution.
+
+Units: N, N/mm.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: Force resolution of the read-out (N): "force resolution >= 0.01 N" of the
+#: calibration that the macro array's elements reached.
+FORCE_RESOLUTION_N = 0.01
+
+
+def unit_resolution(k_m: float, k_r: float, k_obj, full_scale_force_N: float,
+                    force_resolution_N: float = FORCE_RESOLUTION_N) -> dict[str, np.ndarray]:
+    """R, dR/dK_obj and the K_obj resolution at each K_obj (arrays, N/mm).
+
+    The unit is pressed until the reference carries ``full_scale_force_N``;
+    the measuring element then carries F R / X (eq. 1). Each force is read to
+    ``force_resolution_N``: dR/R = sqrt((dF/F_m)^2 + (dF/F_r)^2), and
+    dK_obj = |dK_obj/dR| dR (eq. 3 sensitivity).
+
+    Raises:
+        LumpedDomainError: a stiffness outside eq. 2's domain.
+    """
+    from tactcad.mechanics.paper.lumped import deflection_ratio, sensitivity
+
+    k_obj = np.atleast_1d(np.asarray(k_obj, float))
+    km, kr = np.full_like(k_obj, k_m), np.full_like(k_obj, k_r)
+    R = deflection_ratio(km, kr, k_obj).value
+    dk_dr = sensitivity(R, km, kr).value
+    F_r = np.full_like(k_obj, full_scale_force_N)
+    F_m = F_r * R * k_m / k_r
+    dR = R * np.hypot(force_resolution_N / F_m, force_resolution_N / F_r)
+    dk = np.abs(dk_dr) * dR
+    return {"K_obj_N_per_mm": k_obj, "R": R, "dR_dKobj_per_N_per_mm": 1.0 / dk_dr,
+            "force_measuring_N": F_m, "force_reference_N": F_r, "R_resolution": dR,
+            "K_obj_resolution_N_per_mm": dk, "K_obj_resolution_rel": dk / k_obj}
+
+

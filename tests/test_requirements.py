@@ -1,0 +1,111 @@
+"""[requirements] in the design file, derived requirements and the verification matrix."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from tactcad.cli import main
+from tactcad.design.array import default_design_data, plan_from_dict
+from tactcad.errors import DesignErrors
+from tactcad.mechanics.limits import LIMIT_NAMES
+from tactcad.mechanics.requirements import requirements_of, verification_matrix
+
+KEYS = {"requirement", "target", "predicted", "error_estimate_rel", "margin_rel", "model", "pass"}
+PAPER_SAMPLES = (2.34, 10.01)
+
+
+def _plan(requirements=None, drop=False):
+    data = default_design_data()
+    if drop:
+        data.pop("requirements", None)
+    if requirements is not None:
+        data["requirements"] = requirements
+    return plan_from_dict(data)
+
+
+@pytest.mark.parametrize("table, field, allowed", [
+    ({"full_scale_force_N": -1.0}, "requirements.full_scale_force_N", "0 < value <= 1000 N"),
+    ({"kr_over_km": True}, "requirements.kr_over_km", "1 < value <= 1000"),
+    ({"kobj_range_N_per_mm": [5.0, 2.0]}, "requirements.kobj_range_N_per_mm", "LO < HI"),
+    ({"kobj_range_N_per_mm": [1.0]}, "requirements.kobj_range_N_per_mm", "[LO, HI]"),
+    ({"k_tolerance_rel": 2.0}, "requirements.k_tolerance_rel", "0 < value <= 1"),
+    ({"kobj_resolution_rel": "ten"}, "requirements.kobj_resolution_rel", "a finite number"),
+    ({"full_scale": 1.0}, "requirements.full_scale", "keys full_scale_force_N"),
+])
+def test_bad_requirements_name_field_value_and_range(table, field, allowed):
+    with pytest.raises(DesignErrors) as exc:
+        _plan(table)
+    err = next(e for e in exc.value.errors if e.field == field)
+    assert allowed in err.allowed
+
+
+def test_a_design_without_the_section_gets_derived_requirements_not_the_papers():
+    plan = _plan(drop=True)
+    req = requirements_of(plan)
+    assert not req.stated and not req.cites_paper and req.source is None
+    assert all(why.startswith("not stated") for why in req.reasons.values())
+    assert req.kobj_range_N_per_mm != PAPER_SAMPLES
+    assert req.full_scale_force_N != 2.0
+    # the derived full-scale force is the binding limit rounded down: the matrix passes
+    assert all(r["pass"] for r in verification_matrix(plan))
+
+
+def test_the_papers_design_states_the_papers_samples_with_their_source():
+    req = requirements_of(_plan())
+    assert req.kobj_range_N_per_mm == PAPER_SAMPLES
+    assert req.stated == {"kobj_range_N_per_mm"} and req.cites_paper
+    assert req.reasons["kobj_range_N_per_mm"] == "stated in the design file"
+
+
+def test_matrix_has_one_record_per_requirement_with_every_limit_and_the_binding_one():
+    plan = _plan()
+    records = verification_matrix(plan)
+    assert [r["requirement"] for r in records] == [
+        "full_scale_force_N", "kr_over_km", "k_tolerance_rel", "kobj_resolution_rel",
+        "kobj_range_N_per_mm"]
+    for r in records:
+        assert KEYS <= set(r)
+    force = records[0]
+    assert {lim["limit"] for lim in force["limits"]} == set(LIMIT_NAMES)
+    bound = [lim for lim in force["limits"] if lim["binding"]]
+    assert len(bound) == 1 and bound[0]["limit"] == force["binding_limit"]
+    assert bound[0]["force_N"] == pytest.approx(force["predicted"])
+    assert force["predicted"] == min(lim["force_N"] for lim in force["limits"])
+
+
+def test_a_requirement_the_design_cannot_meet_fails_verify_and_check_records(capsys):
+    plan = _plan({"full_scale_force_N": 2.0})  # the 8 mm arm yields long before 2 N
+    records = verification_matrix(plan)
+    assert not records[0]["pass"] and records[0]["margin_rel"] < 0
+    from tactcad.checks.requirements import requirement_checks
+
+    failed = [c for c in requirement_checks(plan) if not c.passed]
+    assert [c.subject for c in failed] == ["full_scale_force_N"]
+    code = main(["verify", "--set", "requirements.full_scale_force_N=2", "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 1 and out["passed"] is False
+    assert out["matrix"][0]["binding_limit"] in LIMIT_NAMES
+
+
+def test_verify_cli_table_and_json(capsys):
+    assert main(["verify", "--quiet"]) == 0
+    text = capsys.readouterr().out
+    assert "| full_scale_force_N |" in text and "binds" in text
+    assert main(["verify", "--json", "--set", "requirements.kr_over_km=50"]) == 1
+    out = json.loads(capsys.readouterr().out)
+    ratio = next(r for r in out["matrix"] if r["requirement"] == "kr_over_km")
+    assert ratio["target"] == 50 and not ratio["pass"]
+
+
+def test_plane_stress_levels_carry_the_plane_strain_bound_in_stress_and_strain_limits():
+    from tactcad.mechanics.limits import plan_limits
+
+    plan = _plan()
+    nu2 = plan.material.poisson_ratio ** 2
+    for lim in plan_limits(plan, "closed-form"):
+        if lim.limit != "travel":
+            assert lim.error_estimate_rel >= nu2
+        else:
+            assert lim.error_estimate_rel < nu2
