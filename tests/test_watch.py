@@ -15,7 +15,8 @@ import urllib.request
 import pytest
 
 from tactcad.errors import DesignError
-from tactcad.export.live import LiveState, Loop, make_server, watched_files
+from tactcad.commands.watch import watched_files
+from tactcad.export.live import LiveState, Loop, make_server
 from tactcad.store import Store
 
 

@@ -131,7 +131,7 @@ def run_review(args: argparse.Namespace) -> int:
         if not (out / REVIEW_PAGE).is_file():
             from tactcad.export.run import export
 
-            export(plan_from_args(args), out, log=lambda s: None)
+            export(project_from_args(args), out, log=lambda s: None)
         m = measure_page(out / REVIEW_PAGE, Path(args.screenshot) if args.screenshot else None)
     mb = m.bytes / 1e6
     figures = {"bytes": m.bytes, "first_frame_s": round(m.first_frame_s, 3),

@@ -37,10 +37,19 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+def watched_files(design: Path) -> list[Path]:
+    """The design file and the rigs and scenes files it uses (those beside it,
+    else the defaults), as the loader picks them."""
+    from tactcad.design.rigs import rigs_path_for
+    from tactcad.design.scenes import scenes_path_for
+
+    return [design.resolve(), rigs_path_for(design).resolve(), scenes_path_for(design).resolve()]
+
+
 def run(args: argparse.Namespace) -> int:
     from tactcad.commands import load_from_args
     from tactcad.errors import DesignError
-    from tactcad.export.live import LiveState, Loop, changes, make_server, watched_files
+    from tactcad.export.live import LiveState, Loop, changes, make_server
     from tactcad.export.run import check_out_dir
 
     if not (args.port == 0 or 1024 <= args.port <= 65535):
@@ -48,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
     check_out_dir(args.out)  # refused before anything starts
 
     def load():  # the design, rigs and scenes files validated once per change
-        return load_from_args(args).plan
+        return load_from_args(args).validated
 
     def log(line: str) -> None:
         if args.json:

@@ -3,7 +3,7 @@ serves the review page with live reload (``tactcad watch``).
 
 Each change is handled in two steps so the 3D view comes first:
 
-1. the design's files are validated once into a plan; a refusal is shown
+1. the design's files are validated once into a project; a refusal is shown
    (terminal and page) and the last good export stays;
 2. the scenes' GLB files alone are made (every part the edit did not touch
    comes from this process's solids, every finished job from the store) and
@@ -25,11 +25,11 @@ import time
 from dataclasses import dataclass, field
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
-from types import SimpleNamespace
 from typing import Any, Callable, Iterable
 
 from tactcad.catalogue.files import scene_glb_name
 from tactcad.design.array import Plan
+from tactcad.design.project import Project
 from tactcad.errors import TactcadError
 from tactcad.export.job import Run
 from tactcad.export.review_page import REVIEW_PAGE
@@ -134,47 +134,48 @@ def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
 class Loop:
     """One design under watch: validate, preview the scenes, export in full."""
 
-    load: Callable[[], Plan]  # reads and validates the design files (raises DesignError)
+    load: Callable[[], Project]  # reads and validates the design files (raises DesignError)
     out: Path
     store: Store
     state: LiveState
     log: Log = print
     solids: dict = field(default_factory=dict)
     meshes: dict = field(default_factory=dict)
-    plan: Plan | None = None
+    project: Project | None = None  # the last good one
 
     def update(self) -> bool:
         """Handle one change; False when the edit was refused (the last export stays)."""
         t0 = time.perf_counter()
         try:
-            plan = self.load()
+            project = self.load()
         except TactcadError as exc:
             text = str(exc)
             self.log(f"refused (the last good export stays):\n{text}")
             self.state.refuse(text)
             return False
+        plan = project.plan
         parts = LiveParts(plan, self.solids, self.meshes)
         if (self.out / REVIEW_PAGE).is_file():
-            page = self.preview(plan, parts)
+            page = self.preview(project, parts)
             self.state.publish(page, plan.design_hash, "3D updated; drawings follow")
             self.log(f"3D view updated in {time.perf_counter() - t0:.2f} s")
         from tactcad.export.run import export
 
-        result = export(plan, self.out, log=lambda s: None, store=self.store, parts=parts)
-        self.plan = plan
+        result = export(project, self.out, log=lambda s: None, store=self.store, parts=parts)
+        self.project = project
         self.state.publish((self.out / REVIEW_PAGE).read_bytes(), plan.design_hash, "current")
         self.log(f"export current in {time.perf_counter() - t0:.2f} s ({result.jobs_run} jobs "
                  f"run, {result.jobs_reused} reused)")
         return True
 
-    def preview(self, plan: Plan, parts: LiveParts) -> bytes:
+    def preview(self, project: Project, parts: LiveParts) -> bytes:
         """The page with the new scenes and the last export's drawings and BOM."""
         from tactcad.export.jobs import review_page_job, review_sources, scene_jobs
         from tactcad.export.run import run_jobs
 
         with tempfile.TemporaryDirectory(prefix="tactcad-watch-") as tmp:
             staging = Path(tmp)
-            run = Run(plan, staging, lambda s: None, self.store)
+            run = Run(project, staging, lambda s: None, self.store)
             run.parts = parts
             jobs = [j for j in scene_jobs(run) if j.name.startswith("scene:")]
             run_jobs(run, jobs, self.store)
@@ -185,16 +186,6 @@ class Loop:
                     shutil.copyfile(self.out / rel, staging / rel)
             review_page_job(run, []).make(run)
             return (staging / REVIEW_PAGE).read_bytes()
-
-
-def watched_files(plan_source: Path) -> list[Path]:
-    """The design file and the rigs and scenes files it uses."""
-    from tactcad.design.rigs import rigs_path_for
-    from tactcad.design.scenes import scenes_path_for
-
-    probe = SimpleNamespace(source=str(plan_source))  # what the two look-ups read of a plan
-    return [plan_source.resolve(), rigs_path_for(probe).resolve(),
-            scenes_path_for(probe).resolve()]
 
 
 def changes(files: Iterable[Path], poll: bool, stop: threading.Event | None = None):
