@@ -103,7 +103,7 @@ def material_grade_name(text: str) -> str:
     Raises (when called by argparse):
         argparse.ArgumentTypeError: naming the value and listing the grades.
     """
-    from tactcad.design.materials import material_grades
+    from tactcad.vocabulary.materials import material_grades
 
     names = list(material_grades())
     if text in names:
