@@ -39,6 +39,8 @@ COMMAND_MODULES = (
     "tactcad.commands.calibrate",
     "tactcad.commands.strength",
     "tactcad.commands.tolerance",
+    "tactcad.commands.readout",
+    "tactcad.commands.materials",
     "tactcad.commands.sweep",
     "tactcad.commands.design",
 )

@@ -28,6 +28,7 @@ from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Name, Problems, Section, 
 from tactcad.design.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                       StrengthSettings, default_strength_settings,
                                       material_fields, material_grade, strength_settings)
+from tactcad.design.readout import ReadoutSection, check_readout
 from tactcad.design.requirements import RequirementsSection, check_requirements
 from tactcad.design.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
@@ -381,6 +382,7 @@ class DesignFile(Section):
     edm: EdmSection
     strength: StrengthSection = None
     requirements: RequirementsSection = None
+    readout: ReadoutSection = None
     assumptions: dict[str, Any] = {}
 
 
@@ -468,7 +470,8 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
                   "the tip root fillet must clear the notch by 0.5 mm")
 
 
-DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements)
+DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,
+                check_readout)
 
 
 # ---------------------------------------------------------------------------
