@@ -64,6 +64,8 @@ def material_designation(spec: PartSpec, plan: Plan | None = None) -> str:
     grade = mat.grade
     if "alumin" in mat.name.lower() and not grade.upper().startswith("EN"):
         grade = f"EN AW-{grade}"
+    if mat.name.casefold() in grade.casefold():  # name and grade alike: say it once
+        return grade
     return f"{mat.name} {grade}"
 
 

@@ -657,19 +657,37 @@ def validate_design(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile
     data = with_grade_defaults(data)
     model = validate(DesignFile, data, p)
     read_assumptions(data, DesignFile, p, "element.notch_radius_mm")
+    grade_error = _grade_error(data)
+    if grade_error is not None:  # the grade, not the E and nu it would have supplied
+        p.errors = [e for e in p.errors if e.field not in (
+            "material.youngs_modulus_MPa", "material.poisson_ratio") or e.value is not None]
+        p.add(grade_error.field, grade_error.value, grade_error.allowed, grade_error.why)
     if model is None:
         return None, p
     try:
         material_fields(data["material"])
         strength_settings(data.get("strength"))
     except DesignError as exc:  # an unknown grade or gauge
-        p.extend([exc])
+        if grade_error is None:
+            p.extend([exc])
     for rule in DESIGN_RULES:
         rule(model, p)
     if not p:
         for rule in DERIVED_RULES:
             rule(model, p)
     return model, p
+
+
+def _grade_error(data: Mapping[str, Any]) -> DesignError | None:
+    """The refusal of an unknown ``material.grade``, or None."""
+    mat = data.get("material") if isinstance(data, Mapping) else None
+    if not isinstance(mat, Mapping) or not isinstance(mat.get("grade"), str):
+        return None  # a grade that is no text is refused by the schema
+    try:
+        material_grade(mat["grade"])
+    except DesignError as exc:
+        return exc
+    return None
 
 
 def with_grade_defaults(data: Mapping[str, Any]) -> Mapping[str, Any]:

@@ -156,14 +156,50 @@ def strain_gauges() -> dict[str, StrainGauge]:
     return {n: _gauge_from_table(n, t) for n, t in _library()["gauges"].items()}
 
 
+def match_name(entries: Mapping[str, Any], text: Any) -> str | None:
+    """The entry ``text`` names: exact, else without regard to case, else the one
+    entry whose name starts with it or whose description contains it as a word
+    (``titanium`` -> ``Ti-6Al-4V-annealed``); None when none or several match."""
+    if not isinstance(text, str):
+        return None
+    if text in entries:
+        return text
+    folded = text.strip().casefold()
+    if not folded:
+        return None
+    for rule in (lambda n: n.casefold() == folded,
+                 lambda n: n.casefold().startswith(folded),
+                 lambda n: folded in _words(getattr(entries[n], "description", ""))):
+        found = [n for n in entries if rule(n)]
+        if found:
+            return found[0] if len(found) == 1 else None
+    return None
+
+
+def _words(text: str) -> set[str]:
+    return {w.strip(",.()'").casefold() for w in text.split()}
+
+
+def candidates(entries: Mapping[str, Any], text: str) -> list[str]:
+    """Every entry ``text`` could mean (case-insensitive name prefix or description word)."""
+    folded = text.strip().casefold()
+    return [n for n in entries if folded and (n.casefold().startswith(folded) or folded in
+                                              _words(getattr(entries[n], "description", "")))]
+
+
 def _lookup(entries: Mapping[str, Any], name: Any, field: str):
-    if not isinstance(name, str) or name not in entries:
-        raise DesignError(field, name, "one of " + ", ".join(entries))
-    return entries[name]
+    found = match_name(entries, name)
+    if found is None:
+        several = candidates(entries, name) if isinstance(name, str) else []
+        why = (f"ambiguous: {', '.join(several)} fit" if len(several) > 1 else
+               "names of the library (tactcad materials), matched without regard to case "
+               "where only one fits")
+        raise DesignError(field, name, "one of " + ", ".join(entries), why)
+    return entries[found]
 
 
 def material_grade(name: str, field: str = "material.grade") -> MaterialGrade:
-    """The library grade ``name``.
+    """The library grade ``name`` (matched as :func:`match_name` does).
 
     Raises:
         DesignError: unknown grade, naming ``field`` and the allowed grades.

@@ -553,6 +553,9 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     data["assumptions"] = neutral_assumptions(data, base.name)
     data.pop("requirements", None)  # the new design's are written below
     if grade is not None:
+        from tactcad.design.materials import material_grade
+
+        grade = material_grade(grade).name  # "titanium" -> the library's Ti-6Al-4V grade
         data["material"] = {"name": grade, "grade": grade}
         data["assumptions"] = {k: v for k, v in data.get("assumptions", {}).items()
                                if not k.startswith("material.")}
