@@ -30,6 +30,7 @@ from tactcad.design.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENG
                                       material_fields, material_grade, strength_settings)
 from tactcad.design.readout import ReadoutSection, check_readout
 from tactcad.design.requirements import RequirementsSection, check_requirements
+from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
 from tactcad.design.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 
@@ -347,7 +348,7 @@ class ElementSection(Section):
     base_height_mm: number(0.0, 30.0, lo_open=True)
     overall_length_mm: number(10.0, 60.0)
     inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
-    web_tolerance_mm: number(0.0, 0.1)
+    web_tolerance_mm: number(0.0, 0.1) = None  # or [tolerances] web_thickness_mm
 
 
 class ArmsSection(Section):
@@ -383,6 +384,7 @@ class DesignFile(Section):
     strength: StrengthSection = None
     requirements: RequirementsSection = None
     readout: ReadoutSection = None
+    tolerances: TolerancesSection = None
     assumptions: dict[str, Any] = {}
 
 
@@ -471,7 +473,7 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
 
 
 DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,
-                check_readout)
+                check_readout, check_tolerances)
 
 
 # ---------------------------------------------------------------------------
@@ -570,6 +572,12 @@ def _check_mounting(d: DesignFile, p: Problems) -> None:
 DERIVED_RULES = (_check_bolt_pattern, _check_bolt_length, _check_mounting)
 
 
+def web_tolerance(d: DesignFile) -> float:
+    """+/- web thickness (mm): ``[tolerances] web_thickness_mm``, else
+    ``element.web_tolerance_mm`` (:func:`tactcad.design.tolerances.tolerances_of`)."""
+    return tolerances_of(d.model_dump(exclude_none=True)).web_thickness_mm
+
+
 def element_geometry(d: DesignFile, arm_mm: float, holes: tuple[Hole, ...]) -> ElementGeometry:
     e = d.element
     return ElementGeometry(
@@ -578,7 +586,7 @@ def element_geometry(d: DesignFile, arm_mm: float, holes: tuple[Hole, ...]) -> E
         tip_height_mm=e.tip_height_mm, arm_height_mm=e.arm_height_mm,
         base_height_mm=e.base_height_mm, overall_length_mm=e.overall_length_mm,
         inside_corner_radius_mm=e.inside_corner_radius_mm, sheet_thickness_mm=d.sheet.thickness_mm,
-        web_tolerance_mm=e.web_tolerance_mm, bolt_holes=holes,
+        web_tolerance_mm=web_tolerance(d), bolt_holes=holes,
         start_hole_diameter_mm=d.edm.start_hole_diameter_mm)
 
 

@@ -28,12 +28,23 @@ from tactcad.store import stable_repr
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
 from tactcad.catalogue.shop import material_designation, stock_size, surface_finish
 from tactcad.geometry.profile import Arc
+from tactcad.design.tolerances import tolerances_of
 from tactcad.drawings.design_notes import full_scale_note, web_tolerance_note
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
 from tactcad.drawings.views import (CAMERAS, ISO_5455_SCALES, View, cameras_for, detail, orientation, project,
                     scale_text)
 
 GENERAL_TOLERANCE = "ISO 2768-f"
+
+
+def general_tolerance(plan: Plan) -> str:
+    """The design's general tolerance class (``[tolerances] general``), e.g. ``ISO 2768-f``."""
+    return tolerances_of(plan.raw).general_text
+
+
+def pm(value: float, tol: float) -> str:
+    """A dimension with its symmetric tolerance, ``19.8 ±0.02`` (no tolerance: the value)."""
+    return f"{fmt_mm(value)} ±{fmt_mm(tol)}" if tol > 0 else fmt_mm(value)
 FRAME = (20.0, 10.0, 410.0, 287.0)  # left, top, right, bottom (A3, ISO 5457)
 TITLE_W, TITLE_H = 180.0, 63.0        # seven rows of 9 mm
 NOTES_TOP = 208.0                    # views stay above this line (higher if the notes need it):
@@ -417,13 +428,13 @@ def _hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float,
     sh.text("hole-table", (x0, y0 - 2.0), "Hole positions from origin 0,0", DIM_TEXT_MM)
 
 
-def _thickness_dim(d: Drawing, name: str = "thickness") -> None:
+def _thickness_dim(d: Drawing, name: str = "thickness", tol: float = 0.0) -> None:
     t = d.views["top"]
     u1 = t.bbox[2]
     x = max((p[0] for poly in t.visible for p in poly if abs(p[1] - t.bbox[3]) < 1e-6),
             default=u1)
     _dim(d, t, (x, t.bbox[3]), (x, t.bbox[1]), "v", "right", 0,
-         fmt_mm(t.bbox[3] - t.bbox[1]), name)
+         pm(t.bbox[3] - t.bbox[1], tol), name)
 
 
 def _radius_callouts(d: Drawing, arcs: list[Arc], prefix: str = "inside_radius") -> None:
@@ -448,13 +459,15 @@ def element_dims(d: Drawing, solid) -> None:
     heights, hole pattern, tip-root radius; the web (thickness with its
     tolerance, notch radius) in detail A."""
     g = d.plan.distinct_elements[d.spec.name]
+    tol = tolerances_of(d.plan.raw)  # the table the tolerance study draws from
     f = d.front
     L, H = g.overall_length_mm, g.base_height_mm
     top = g.tip_top_y_mm
     xl = L - g.tip_width_mm
-    _dim(d, f, (xl, top), (L, top), "h", "top", 0, fmt_mm(g.tip_width_mm), "tip_width")
+    _dim(d, f, (xl, top), (L, top), "h", "top", 0, pm(g.tip_width_mm, tol.contact_face_mm),
+         "tip_width")
     _dim(d, f, (g.hinge_x_mm, H), (g.tip_centre_x_mm, top), "h", "top", 1,
-         fmt_mm(g.arm_length_mm), "arm_length")
+         pm(g.arm_length_mm, tol.arm_length_mm), "arm_length")
     _dim(d, f, (0.0, H), (L, top), "h", "top", 2, fmt_mm(L), "overall_length")
     d.sheet.line("centre-lines", f.paper(g.tip_centre_x_mm, top - g.tip_height_mm / 2),
                  f.paper(g.tip_centre_x_mm, top + 0.3), "centre")
@@ -488,18 +501,19 @@ def element_dims(d: Drawing, solid) -> None:
     d.sheet.linear_dimension(dv.paper(xh, yc + g.notch_radius_mm), dv.paper(xh, H), "v",
                              dv.paper(xh, 0)[0], wt, "web_thickness")
     d.dimensions["web_thickness"] = wt
-    rtext = f"R{fmt_mm(g.notch_radius_mm)}"
+    rtext = f"R{pm(g.notch_radius_mm, tol.notch_radius_mm)}"
     d.sheet.radius_dimension(dv.paper(xh, yc), g.notch_radius_mm * dv.scale, 60.0, rtext,
                              "notch_radius", dist=-10.0, shoulder_right=True)
     d.dimensions["notch_radius"] = rtext
     # contact face, in the view from above
     t = d.views["top"]
-    cf = f"contact face {fmt_mm(g.contact_face_mm[0])} × {fmt_mm(g.contact_face_mm[1])}"
+    cf = (f"contact face {pm(g.contact_face_mm[0], tol.contact_face_mm)} × "
+          f"{pm(g.contact_face_mm[1], tol.sheet_thickness_mm)}")
     p0 = t.paper(g.tip_centre_x_mm, -g.sheet_thickness_mm / 2)
     p1 = (t.paper_box()[2] + 6.0, t.paper_box()[3] + 8.0)
     d.sheet.leader([p0, p1], cf, "contact_face")
     d.dimensions["contact_face"] = cf
-    _thickness_dim(d)
+    _thickness_dim(d, tol=tol.sheet_thickness_mm)
 
 
 def clamp_dims(d: Drawing, solid) -> None:
@@ -873,6 +887,9 @@ def notes_for(d: Drawing) -> list[str]:
                  + ". A strain gauge is bonded on the flat top face over the web.")
         n.append(full_scale_note(plan, spec.name, plan.material.yield_strength_MPa,
                                  plan.material.grade or plan.material.name))
+        e_tol = tolerances_of(plan.raw).youngs_modulus_rel
+        n.append(f"Young's modulus {plan.material.youngs_modulus_MPa:g} MPa "
+                 f"±{100 * e_tol:g} %: check the sheet's mill certificate.")
     elif spec.builder == "spacer":
         n.append(f"{_sentence(spec.process)}, {spec.material}. Thickness "
                  f"{fmt_mm(plan.spacer.thickness_mm)} = pitch {fmt_mm(plan.pitch_mm)} - sheet "
@@ -897,7 +914,7 @@ def notes_for(d: Drawing) -> list[str]:
                  "2 x 3 mm face lies flat on the element's tip.")
     else:
         n.append(f"{_sentence(spec.process)}, {spec.material}.")
-    n.append(f"Untoleranced dimensions: {GENERAL_TOLERANCE}. Dimensions in mm (ISO 129-1), "
+    n.append(f"Untoleranced dimensions: {general_tolerance(plan)}. Dimensions in mm (ISO 129-1), "
              f"first-angle projection. Break sharp edges 0.1 max unless noted.")
     return n
 
@@ -985,7 +1002,7 @@ def draw_title_block(d: Drawing) -> None:
         (1, 120, 60, "Scale", scale, "tb-scale", LABEL_TEXT_MM),
         (2, 0, 120, "Process", spec.process, "tb-process", LABEL_TEXT_MM),
         (2, 120, 60, "Units", "mm", "tb-units", LABEL_TEXT_MM),
-        (3, 0, 60, "General tolerances", GENERAL_TOLERANCE, "tb-tolerance", LABEL_TEXT_MM),
+        (3, 0, 60, "General tolerances", general_tolerance(plan), "tb-tolerance", LABEL_TEXT_MM),
         (3, 60, 60, "Dimensioning", "ISO 129-1", "tb-standard", LABEL_TEXT_MM),
         (3, 120, 60, "Projection", "", "tb-projection", LABEL_TEXT_MM),
         (4, 0, 120, "Design", f"{plan.name}  part sha256 {part_hash(plan, spec)[:12]}",
@@ -1050,7 +1067,8 @@ def title_cells(sh: Sheet, x0: float, y0: float, rh: float, cells: list[tuple]) 
 def drawing_inputs(plan: Plan, spec: PartSpec) -> tuple:
     """Everything of the plan that shapes the part's drawing: the part itself
     and, by part family, the plan values its notes and dimensions print."""
-    inputs: tuple = (plan.name, spec, material_designation(spec, plan), revision_and_date(plan))
+    inputs: tuple = (plan.name, spec, material_designation(spec, plan), revision_and_date(plan),
+                     tolerances_of(plan.raw))
     if spec.builder == "element":
         used = tuple(s.number for s in plan.slots if s.geometry.part_name == spec.name)
         inputs += (plan.distinct_elements[spec.name], used, plan.edm, plan.material,

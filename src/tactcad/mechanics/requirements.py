@@ -336,6 +336,9 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     out.append(_record("kobj_range_N_per_mm", list(rng), list(span) if span else None, res_err,
                        m_rng, model, m_rng >= 0))
     out.append(readout_resolution_record(plan, fig, req, res_err))
+    from tactcad.mechanics.tolerance_budget import toleranced_band_record
+
+    out.append(toleranced_band_record(plan, req.k_tolerance_rel, closed_form_k_error(plan)))
     for r in out:
         r["stated"] = r["requirement"] in req.stated
     return out
