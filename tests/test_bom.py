@@ -205,4 +205,10 @@ def test_bom_stock_follows_the_design_grade():
     data["material"]["grade"] = "7075-T6"
     plan = plan_from_dict(data)
     rows = {r.part: r for r in bom_rows(array_instances(plan), array_parts(plan), plan=plan)}
+    assert rows["element_a4mm"].material.endswith("EN AW-7075-T6")
+    # spacers and clamp plates have their own grade (clamp.spacer_material, clamp.material)
+    assert rows["spacer"].material.endswith("EN AW-6061-T6")
+    data["clamp"]["spacer_material"] = "7075-T6"
+    plan = plan_from_dict(data)
+    rows = {r.part: r for r in bom_rows(array_instances(plan), array_parts(plan), plan=plan)}
     assert rows["spacer"].material.endswith("EN AW-7075-T6")

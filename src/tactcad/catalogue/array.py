@@ -72,6 +72,7 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
     """Every distinct part of the array assembly, keyed by part name."""
     parts: dict[str, PartSpec] = {}
     mat = plan.material.name
+    own = part_material_names(plan)  # clamp plates and spacers: their own grade
     for name, g in plan.distinct_elements.items():
         prof = element_profile(g)
         parts[name] = PartSpec(
@@ -86,14 +87,14 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
                                [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
         parts["spacer"] = PartSpec(
             name="spacer", kind="fabricated", process="wire EDM or laser cut from sheet",
-            material=mat, color=SPACER, builder="spacer",
+            material=own["spacer"], color=SPACER, builder="spacer",
             expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
             expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm)
     c = plan.clamp
     cp = u_plate_profile(c.half_length_mm, c.window_half_width_mm, c.height_mm, c.bridge_height_mm,
                          c.window_corner_radius_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
     parts["clamp_plate"] = PartSpec(
-        name="clamp_plate", kind="fabricated", process="milling", material=mat,
+        name="clamp_plate", kind="fabricated", process="milling", material=own["clamp_plate"],
         color=ANODISED_BLUE, builder="clamp_plate",
         expected_volume_mm3=cp.area_mm2 * c.thickness_mm,
         expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm)
@@ -113,6 +114,20 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
         color=ZINC, builder="nut", expected_volume_mm3=nut_vol,
         expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm))
     return parts
+
+
+def part_material_names(plan: Plan) -> dict[str, str]:
+    """Material name of the clamp plates and spacers (``clamp.material``,
+    ``clamp.spacer_material``; :func:`tactcad.design.bom.clamp_grades`): the grade's family,
+    or the element material's name when it is the elements' own grade."""
+    from tactcad.design.bom import clamp_grades
+    from tactcad.design.materials import material_grade
+
+    out = {}
+    for part, grade in clamp_grades(plan.raw).items():
+        g = material_grade(grade)
+        out[part] = plan.material.name if grade == plan.material.grade else (g.family or g.name)
+    return out
 
 
 def bolt_name(b: BoltSpec, length_mm: float) -> str:

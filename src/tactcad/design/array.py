@@ -28,6 +28,7 @@ from tactcad.design.schema import (LIMIT_TOLERANCE_MM, Name, Problems, Section, 
 from tactcad.design.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                       StrengthSettings, default_strength_settings,
                                       material_fields, material_grade, strength_settings)
+from tactcad.design.bom import BomSection, check_clamp_materials
 from tactcad.design.readout import ReadoutSection, check_readout
 from tactcad.design.requirements import RequirementsSection, check_requirements
 from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
@@ -362,6 +363,8 @@ class ClampSection(Section):
     plate_thickness_mm: number(1.0, 10.0)
     bridge_height_mm: number(1.0, 30.0)
     arm_clearance_mm: number(0.2, 3.0)
+    material: Text = None  # library grade of the clamp plates (tactcad.design.bom)
+    spacer_material: Text = None  # library grade of the spacers
 
 
 class EdmSection(Section):
@@ -385,6 +388,7 @@ class DesignFile(Section):
     requirements: RequirementsSection = None
     readout: ReadoutSection = None
     tolerances: TolerancesSection = None
+    bom: BomSection = None
     assumptions: dict[str, Any] = {}
 
 
@@ -473,7 +477,7 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
 
 
 DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,
-                check_readout, check_tolerances)
+                check_readout, check_tolerances, check_clamp_materials)
 
 
 # ---------------------------------------------------------------------------

@@ -65,6 +65,7 @@ class MaterialGrade:
             ``fatigue_cycles`` cycles and stress ratio ``fatigue_R_ratio`` (MPa).
         density_g_per_cm3: density (g/cm^3).
         sources: (field, document) pairs naming where each value comes from.
+        family: the metal in words (``aluminium``, ``titanium``), as drawings and BOM name it.
     """
 
     name: str
@@ -77,6 +78,7 @@ class MaterialGrade:
     fatigue_R_ratio: float
     density_g_per_cm3: float
     sources: tuple[tuple[str, str], ...]
+    family: str = ""
 
     def source(self, field: str) -> str:
         """Document a value comes from ('' if none is recorded)."""
@@ -130,7 +132,7 @@ def _library() -> dict[str, Any]:
 
 
 def _grade_from_table(name: str, t: Mapping[str, Any]) -> MaterialGrade:
-    return MaterialGrade(name=name, description=t["description"],
+    return MaterialGrade(name=name, description=t["description"], family=t.get("family", ""),
                          fatigue_cycles=float(t["fatigue_cycles"]),
                          fatigue_R_ratio=float(t["fatigue_R_ratio"]),
                          sources=tuple(sorted(t["sources"].items())),
