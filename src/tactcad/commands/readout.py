@@ -67,6 +67,12 @@ def render(report) -> str:
                      f"{r['gauge_strain_per_N']:.4g} | {r['grid_over_peak']:.3f} | "
                      f"{r['sensitivity_V_per_N']:.4g} | {r['k_v_V_per_mm']:.4g} | "
                      f"{r['force_resolution_N']:.2g} | {res} |")
+    for r in report.records:
+        if r["daq_range_used_rel"] > 1:
+            lines.append(f"  element {r['element']}: the full-scale signal "
+                         f"{r['full_scale_signal_V']:.3g} V exceeds the DAQ range "
+                         f"+/-{c.daq_range_V:g} V: lower readout.amplifier_gain or raise "
+                         f"readout.daq_range_V")
     arr = report.array_kobj_resolution_rel
     lines.append(f"array K_obj resolution (worst over the range, best unit): "
                  f"{'n/a' if arr is None else f'{100 * arr:.2f} %'}")
