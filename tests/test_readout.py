@@ -154,3 +154,15 @@ def test_verify_checks_kobj_resolution_through_the_read_out_chain():
     rec = next(r for r in verification_matrix(tight)
                if r["requirement"] == "kobj_resolution_rel_readout")
     assert not rec["pass"] and rec["margin_rel"] < 0
+
+
+def test_as_built_webs_explain_part_of_table1s_signal_spread(capsys):
+    """Each element's own web (from its measured K) narrows the spread of measured over
+    predicted signal per newton: the thicker web of element 8 gives less strain."""
+    assert main(["readout", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    t = out["table1"]
+    assert t["as_built_web_ratio_rel_std"] < t["sensitivity_ratio_rel_std"]
+    recs = {r["element"]: r for r in out["elements"]}
+    assert recs[8]["table1_as_built_web_mm"] > recs[1]["table1_as_built_web_mm"]
+    assert recs[8]["table1_sensitivity_ratio"] < recs[1]["table1_sensitivity_ratio"]

@@ -91,4 +91,7 @@ def render(report) -> str:
         lines.append(f"  fitted {_g(t['fitted_volts_per_strain'])} V per unit strain (assumed "
                      f"{t['assumed_volts_per_strain']:.4g}): gain "
                      f"{_g(t['fitted_gain_at_assumed_excitation'], '.0f')} at the assumed excitation")
+        lines.append(f"  ratio spread {100 * t['sensitivity_ratio_rel_std']:.0f} % (1 sigma); at each "
+                     f"element's as-built web {100 * t['as_built_web_ratio_rel_std']:.0f} %, mean "
+                     f"{t['as_built_web_ratio_mean']:.2f} (gain {t['gain_at_as_built_webs']:.0f})")
     return "\n".join(lines)

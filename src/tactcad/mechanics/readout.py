@@ -284,7 +284,7 @@ def readout_report(plan: Plan, requirements, model: str = "closed-form",
             kobj_res = _unit_kobj_resolution(d["K"], kr, d["dF"], dfr, rng, F)
             measuring.append((d["K"], d["dF"]))
         records.append(_element_record(slot, d, is_ref, ref, kobj_res, chain, F))
-    table1 = table1_comparison(records, chain) if cites_paper(plan.raw) else None
+    table1 = table1_comparison(records, chain, plan, model) if cites_paper(plan.raw) else None
     return ReadoutReport(plan.name, model, chain, noise, F, rng, records,
                          array_resolution_rel(kr, dfr, measuring, rng, F), table1)
 
@@ -310,13 +310,26 @@ def _element_record(slot, d: dict, is_ref: bool, ref: int, kobj_res: float | Non
             "reference_element": None if is_ref else ref}
 
 
-def table1_comparison(records: list[dict], chain: ReadoutChain) -> dict:
+def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
+                      model: str = "closed-form") -> dict:
     """Adds the measured K_v and K_v/K of each calibrated element to its record
     (``table1_k_v_V_per_mm``, ``table1_sensitivity_V_per_N``, measured / predicted
     ratios and the amplifier gain that would reconcile the sensitivity) and
     returns the summary: the gain fitted through all elements (least squares
-    through the origin) and the ratios' spread."""
+    through the origin) and the ratios' spread.
+
+    Also per element the sensitivity ratio at its as-built web (the web at which
+    the corrected closed form gives the measured K,
+    :func:`tactcad.mechanics.ladder.as_built_webs`): what is left of the spread
+    once each element's own web is known (gauge placement, bonding, gain).
+    """
+    from dataclasses import replace
+
+    from tactcad.mechanics.ladder import as_built_webs
     from tactcad.mechanics.paper.data import table1
+
+    webs = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
+    as_built = []
 
     by_element = {r.element: r for r in table1()}
     ratios = []
@@ -333,6 +346,12 @@ def table1_comparison(records: list[dict], chain: ReadoutChain) -> dict:
                    table1_sensitivity_ratio=s_ratio,
                    reconciling_gain=chain.amplifier_gain * s_ratio)
         ratios.append(s_ratio)
+        g = replace(plan.element(rec["element"]).geometry, web_thickness_mm=webs[rec["element"]])
+        s_built = chain.volts_per_strain * gauge_strain_per_N(
+            g, plan.material, chain.grid_length_mm, "closed-form")["grid"]
+        rec["table1_as_built_web_mm"] = webs[rec["element"]]
+        rec["table1_sensitivity_ratio_as_built_web"] = row.K_v_over_K_V_per_N / s_built
+        as_built.append(rec["table1_sensitivity_ratio_as_built_web"])
         e = rec["gauge_strain_per_N"]
         num += e * row.K_v_over_K_V_per_N
         den += e * e
@@ -340,6 +359,10 @@ def table1_comparison(records: list[dict], chain: ReadoutChain) -> dict:
     return {"elements": len(ratios),
             "sensitivity_ratio_min": min(ratios), "sensitivity_ratio_max": max(ratios),
             "sensitivity_ratio_mean": float(np.mean(ratios)),
+            "sensitivity_ratio_rel_std": float(np.std(ratios, ddof=1) / np.mean(ratios)),
+            "as_built_web_ratio_mean": float(np.mean(as_built)),
+            "as_built_web_ratio_rel_std": float(np.std(as_built, ddof=1) / np.mean(as_built)),
+            "gain_at_as_built_webs": chain.amplifier_gain * float(np.mean(as_built)),
             "fitted_volts_per_strain": fitted,
             "assumed_volts_per_strain": chain.volts_per_strain,
             "fitted_gain_at_assumed_excitation": (fitted / (chain.excitation_V * chain.gauge_factor
