@@ -130,3 +130,12 @@ def test_verify_includes_the_toleranced_band():
     rec = next(r for r in verification_matrix(plan)
                if r["requirement"] == "k_tolerance_rel_toleranced")
     assert not rec["pass"] and rec["tighten"]
+
+
+def test_a_what_if_tolerance_that_lets_the_notch_vanish_is_refused(capsys):
+    assert main(["tolerance", "--samples", "100", "--json", "--notch-radius-tol", "0.5"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert err["field"] == "tolerance.notch_radius_mm" and "0.25" in err["allowed"]
+    with pytest.raises(DesignError) as exc:
+        plan_from_dict(_data(notch_radius_mm=0.3))
+    assert "tolerances.notch_radius_mm" in str(exc.value)

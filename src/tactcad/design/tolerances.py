@@ -81,9 +81,9 @@ def check_tolerances(d: Any, p: Problems) -> None:
     for key, nominal, what in (("web_thickness_mm", e.web_thickness_mm, "web"),
                                ("notch_radius_mm", e.notch_radius_mm, "notch radius")):
         v = getattr(tol, key)
-        if v is not None and v >= nominal:
-            p.add(f"tolerances.{key}", v, f"< {fmt(nominal)} mm (the {what} itself)",
-                  "a tolerance as large as the feature allows it to vanish")
+        if v is not None and v > nominal / 2:
+            p.add(f"tolerances.{key}", v, f"<= {fmt(nominal / 2)} mm (half the {what})",
+                  "a larger tolerance lets the feature vanish in the tolerance study's draw")
 
 
 @dataclass(frozen=True)

@@ -123,6 +123,14 @@ class Tolerances:
             if f in fields:
                 sources[fields[f][0]] = "override (what-if)"
             values[f] = v
+        g = plan.element(1).geometry
+        for f, nominal, what in (("web_mm", g.web_thickness_mm, "web thickness"),
+                                 ("notch_radius_mm", g.notch_radius_mm, "notch radius")):
+            v = values[f]
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and v > nominal / 2:
+                raise DesignError(f"tolerance.{f}", v, f"0 <= value <= {nominal / 2:g} (half the "
+                                  f"{what} {nominal:g} mm)",
+                                  "a larger tolerance lets the feature vanish in the draw")
         return cls(**values, sources=tuple(sorted(sources.items())))
 
     def describe(self) -> str:
