@@ -19,7 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from tactcad.design.schema import Section, Text, integer, number
+from tactcad.design.schema import Section, Text, integer, number, section_with_defaults
 
 #: Grade of clamp plates and spacers when the design names none.
 DEFAULT_CLAMP_GRADE = "6061-T6"
@@ -58,12 +58,7 @@ class BomSettings:
 
 def bom_settings(raw: Mapping[str, Any]) -> BomSettings:
     """The resolved ``[bom]`` of a design's raw tables (validated before)."""
-    table = raw.get("bom") if isinstance(raw, Mapping) else None
-    table = dict(table) if isinstance(table, Mapping) else {}
-    values = {k: v for k, (v, _) in DEFAULTS.items()}
-    sources = {k: why for k, (_, why) in DEFAULTS.items()}
-    for key, value in table.items():
-        values[key], sources[key] = value, "design file"
+    values, sources = section_with_defaults(raw, "bom", DEFAULTS)
     return BomSettings(int(values["spares"]), float(values["lead_wire_m_per_element"]),
                        str(values["adhesive"]), tuple(sorted(sources.items())))
 

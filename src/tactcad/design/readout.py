@@ -30,7 +30,8 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from tactcad.design.schema import Problems, Section, Text, choice, fmt, integer, number
+from tactcad.design.schema import (Problems, Section, Text, choice, fmt, integer, number,
+                                   section_with_defaults)
 
 #: Input ranges (+/- V) of the NI USB-6258 and the random noise of one sample
 #: in each (uV rms). Source: NI 625x Specifications (371291H), AI absolute
@@ -171,20 +172,12 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
         gauge: the design's library :class:`~tactcad.design.materials.StrainGauge`
             (gauge factor and resistance unless the file gives them).
     """
-    table = raw.get("readout") if isinstance(raw, Mapping) else None
-    table = dict(table) if isinstance(table, Mapping) else {}
-    values: dict[str, Any] = {}
-    sources: dict[str, str] = {}
     gs = dict(gauge.sources)
-    for key, value, why in (("gauge_factor", gauge.gauge_factor, gs.get("gauge_factor", "")),
-                            ("gauge_resistance_ohm", gauge.resistance_ohm,
-                             gs.get("resistance_ohm", ""))):
-        values[key] = value
-        sources[key] = f"library gauge {gauge.name}: {why}".rstrip(": ")
-    for key, (value, why) in DEFAULTS.items():
-        values[key], sources[key] = value, why
-    for key, value in table.items():
-        values[key], sources[key] = value, "design file"
+    from_gauge = {"gauge_factor": (gauge.gauge_factor, gs.get("gauge_factor", "")),
+                  "gauge_resistance_ohm": (gauge.resistance_ohm, gs.get("resistance_ohm", ""))}
+    values, sources = section_with_defaults(raw, "readout", {
+        **{k: (v, f"library gauge {gauge.name}: {why}".rstrip(": "))
+           for k, (v, why) in from_gauge.items()}, **DEFAULTS})
     gain = float(values["amplifier_gain"])
     if values["bandwidth_Hz"] is None:
         bw = _nearest(AD621_BANDWIDTH_HZ, gain) if values["amplifier"] == "AD621" else None

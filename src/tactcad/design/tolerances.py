@@ -26,7 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from tactcad.design.schema import Problems, Section, choice, fmt, number
+from tactcad.design.schema import Problems, Section, choice, fmt, number, section_with_defaults
 
 #: ISO 2768-1 tolerance classes.
 GENERAL_CLASSES = {"f": "fine", "m": "medium", "c": "coarse", "v": "very coarse"}
@@ -118,16 +118,11 @@ class DesignTolerances:
 
 def tolerances_of(raw: Mapping[str, Any]) -> DesignTolerances:
     """The resolved tolerances of a design's raw tables (validated before)."""
-    table = raw.get("tolerances") if isinstance(raw, Mapping) else None
-    table = dict(table) if isinstance(table, Mapping) else {}
     element = raw.get("element", {}) if isinstance(raw, Mapping) else {}
-    values = {k: v for k, (v, _) in DEFAULTS.items()}
-    sources = {k: why for k, (_, why) in DEFAULTS.items()}
-    values["web_thickness_mm"] = float(element.get("web_tolerance_mm", WEB_DEFAULT_MM))
-    sources["web_thickness_mm"] = "design file (element.web_tolerance_mm)" \
-        if "web_tolerance_mm" in element else WEB_DEFAULT_REASON
-    for key, value in table.items():
-        values[key], sources[key] = value, "design file"
+    web = ((element["web_tolerance_mm"], "design file (element.web_tolerance_mm)")
+           if element.get("web_tolerance_mm") is not None else (WEB_DEFAULT_MM, WEB_DEFAULT_REASON))
+    values, sources = section_with_defaults(raw, "tolerances",
+                                            {"web_thickness_mm": web, **DEFAULTS})
     return DesignTolerances(sources=tuple(sorted(sources.items())),
                             **{k: (values[k] if k == "general" else float(values[k]))
                                for k in KEYS})
