@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed-stamp
 DESIGN ?= hardware/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env system-deps export docs-images check test test-fast bench fuzz clean
+.PHONY: help env system-deps export docs-images check ci-example test test-fast bench fuzz clean
 
 help: ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
@@ -30,6 +30,14 @@ docs-images: export ## refresh README's pictures (docs/images) from exports/imag
 check: $(STAMP) ## run the checks on exports/ (reused as it is after `make export`)
 	$(BIN)/tactcad check --design $(DESIGN) --out $(OUT)
 
+CI_OUT ?= ci-example
+ci-example: $(STAMP) ## the steps of docs/ci/github-actions.yml here: export, check --junit, diff against HEAD (into ci-example/)
+	rm -rf $(CI_OUT)/base $(CI_OUT)/diff && mkdir -p $(CI_OUT)/base
+	$(BIN)/tactcad export --design $(DESIGN) --out $(CI_OUT)/exports
+	$(BIN)/tactcad check --design $(DESIGN) --out $(CI_OUT)/exports --junit $(CI_OUT)/check-report.xml --failures-only
+	git archive HEAD $(dir $(DESIGN)) | tar -x -C $(CI_OUT)/base
+	$(BIN)/tactcad diff $(CI_OUT)/base/$(DESIGN) $(CI_OUT)/exports --out $(CI_OUT)/diff || [ $$? -eq 1 ]
+
 system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd, via apt as root)
 	@sh scripts/install-system-deps.sh
 
@@ -48,4 +56,4 @@ bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness 
 	$(BIN)/tactcad bench stiffness
 
 clean: ## remove generated files (exports/) and the environment
-	rm -rf $(OUT) $(VENV) .pytest_cache .hypothesis .tactcad-cache
+	rm -rf $(OUT) $(VENV) .pytest_cache .hypothesis .tactcad-cache $(CI_OUT)

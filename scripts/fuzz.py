@@ -29,7 +29,7 @@ import time
 import traceback
 
 from tactcad.design.domain import draw_design, draw_out_of_domain
-from tactcad.design.project import project_from_data
+from tactcad.design.project import project_from_data, project_of
 from tactcad.design.rigs import default_rigs_data
 from tactcad.design.scenes import DEFAULT_SCENES
 from tactcad.design.schema import Problems, read_toml
@@ -47,13 +47,14 @@ def check_design(plan, rigs, scenes, *, full: bool = False) -> list[str]:
     from tactcad.checks.solids import check_solid
     from tactcad.parts.cache import PartCache
 
+    project = project_of(plan, rigs, scenes)
     cache = PartCache(plan)
     failed = []
     specs = {**array_parts(plan), **rig_parts(plan, rigs)}
     for spec in specs.values():
         failed += [r.line() for r in check_solid(spec, cache.solid(spec)) if not r.passed]
     for name in scenes:
-        scene, solids = build_scene(plan, name, cache, rigs)
+        scene, solids = build_scene(project, name, cache)
         placed = placed_shapes(scene, solids)
         rep = check_mesh_interference(
             placed, scene.contacts, {i.name: i.part for i in scene.instances}, solids,
@@ -68,8 +69,8 @@ def check_design(plan, rigs, scenes, *, full: bool = False) -> list[str]:
         from tactcad.export.run import export
 
         with tempfile.TemporaryDirectory() as tmp:
-            export(plan, tmp, log=lambda s: None, parts=cache)
-            results = run_checks(plan, tmp, cache) + run_scene_checks(plan, tmp, cache=cache)
+            export(project, tmp, log=lambda s: None, parts=cache)
+            results = run_checks(plan, tmp, cache) + run_scene_checks(project, tmp, cache=cache)
         failed += [r.line() for r in results if not r.passed]
     return failed
 

@@ -25,8 +25,16 @@ def pytest_collection_modifyitems(config, items):
 
 
 @pytest.fixture(scope="session")
-def plan():
-    return load_design()
+def project():
+    """The default design validated with its rigs and scenes files."""
+    from tactcad.design.project import load_project
+
+    return load_project()
+
+
+@pytest.fixture(scope="session")
+def plan(project):
+    return project.plan
 
 
 @pytest.fixture
@@ -36,12 +44,12 @@ def design_data():
 
 
 @pytest.fixture(scope="session")
-def exported(plan, tmp_path_factory):
+def exported(project, tmp_path_factory):
     """The default design exported once: (out_dir, ExportResult)."""
     from tactcad.export.run import export
 
     out = tmp_path_factory.mktemp("exports")
-    return out, export(plan, out, log=lambda s: None)
+    return out, export(project, out, log=lambda s: None)
 
 
 INSTALLER = Path(__file__).resolve().parents[1] / "scripts" / "install-system-deps.sh"

@@ -14,7 +14,7 @@ import pytest
 
 from tactcad.assembly.inventory import design_assemblies, part_quantities
 from tactcad.export.bom import BOM_COLUMNS, bom_csv, bom_rows
-from tactcad.catalogue.array import Instance, array_instances, array_parts
+from tactcad.catalogue.array import Instance, Method, Process, array_instances, array_parts
 from tactcad.design.array import Placement, default_design_data, plan_from_dict, with_overrides
 
 
@@ -31,11 +31,11 @@ def _largest_counts(assemblies) -> dict[str, int]:
     return out
 
 
-def test_bom_quantities_are_the_assemblies_instance_counts(exported, plan):
+def test_bom_quantities_are_the_assemblies_instance_counts(exported, plan, project):
     out, _ = exported
     rows = read_csv(out / "bom.csv")
     q = {r["part"]: int(r["quantity"]) for r in rows}
-    _, assemblies = design_assemblies(plan)
+    _, assemblies = design_assemblies(project)
     assert q == _largest_counts(assemblies)
     # the array's own parts: exactly its instance counts, which follow the design
     array = Counter(i.part for i in array_instances(plan))
@@ -136,7 +136,7 @@ def test_bom_rows_count_instances_per_assembly():
     assert next(csv.DictReader(io.StringIO(text)))["part"] == "element_a4mm"
 
 
-def test_scene_assemblies_are_counted_and_drawn(plan):
+def test_scene_assemblies_are_counted_and_drawn(plan, project):
     """A scene's shown instances add their parts to the BOM and, for
     fabricated ones, to the drawings, with quantities from their instances."""
     import dataclasses
@@ -144,27 +144,27 @@ def test_scene_assemblies_are_counted_and_drawn(plan):
     from tactcad.assembly.inventory import fabricated_parts
 
     base = array_parts(plan)["spacer"]
-    plate = dataclasses.replace(base, name="rig_base_plate", builder="spacer", process="milling")
+    plate = dataclasses.replace(base, name="rig_base_plate", builder="spacer", process=Process("milling", Method.PLATE))
     shown = [("base", "rig_base_plate", "base"), ("base2", "rig_base_plate", "base")]
     shown += [(f"n{k}", "nut_M2", "nuts") for k in range(7)] + [("hidden", "nut_M2", "hidden")]
     model = types.SimpleNamespace(
         specs={"rig_base_plate": plate, "nut_M2": array_parts(plan)["nut_M2"]},
         instances=lambda: shown)
     spec = types.SimpleNamespace(groups=("base", "nuts"))
-    specs, assemblies = design_assemblies(plan, {"test-rig": (spec, model)})
+    specs, assemblies = design_assemblies(project, {"test-rig": (spec, model)})
     assert list(assemblies) == ["array", "test-rig"]
     rows = {r.part: r for r in bom_rows(assemblies, specs)}
     assert rows["rig_base_plate"].quantity == 2 and rows["rig_base_plate"].kind == "fabricated"
     assert rows["nut_M2"].quantity == 7  # the hidden group is not counted
-    parts, qty = fabricated_parts(plan, (specs, assemblies))
+    parts, qty = fabricated_parts(project, (specs, assemblies))
     assert "rig_base_plate" in [s.name for s in parts] and qty["rig_base_plate"] == 2
 
 
-def test_real_scenes_quantities(plan):
+def test_real_scenes_quantities(project):
     """With the project's scenes: every scene's count is at most the BOM's
     quantity, and equal to it in at least one scene."""
     pytest.importorskip("tactcad.assembly.scenes")
-    specs, assemblies = design_assemblies(plan)
+    specs, assemblies = design_assemblies(project)
     rows = bom_rows(assemblies, specs)
     for r in rows:
         counts = [n for _, n in r.per_assembly]

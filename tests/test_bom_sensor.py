@@ -19,14 +19,17 @@ EXAMPLE = ROOT / "hardware" / "examples" / "ti_array_2x3.toml"
 
 
 def _bom(plan, tmp_path) -> dict[str, dict]:
-    write_bom_files(plan, tmp_path, lambda line: None)
+    from tactcad.assembly.inventory import design_assemblies
+    from tactcad.design.project import project_for_plan
+
+    write_bom_files(plan, tmp_path, lambda line: None, design_assemblies(project_for_plan(plan)))
     text = (tmp_path / "bom.csv").read_bytes().decode(CSV_ENCODING)
     return {r["part"]: r for r in csv.DictReader(io.StringIO(text))}
 
 
 def test_example_bom_has_gauges_for_every_element_plus_spares_and_its_own_plate_material(
         tmp_path):
-    plan, _, _ = load_project(EXAMPLE)
+    plan = load_project(EXAMPLE).plan
     rows = _bom(plan, tmp_path)
     n = plan.rows * plan.columns
     gauge = rows["strain_gauge"]

@@ -339,3 +339,28 @@ def test_readme_command_lines_name_real_commands():
                   for line in block.splitlines()]
     assert not [line for line in code_lines if re.match(r"(\$ )?tactcad ", line)]
     assert not re.search(r"`tactcad [a-z]", text)  # every inline command line uses ./tactcad
+
+
+def test_ctrl_c_while_the_kernel_loads_is_one_line(monkeypatch, capsys):
+    """An interrupt during a compiled module's initialisation arrives as an
+    ImportError caused by KeyboardInterrupt: still exit 130 and one line."""
+    from tactcad import cli as cli_mod
+    from tactcad.commands import scenes as scenes_cmd
+
+    def interrupted_import(args):
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt as exc:
+            raise ImportError("initialization failed") from exc
+
+    monkeypatch.setattr(scenes_cmd, "run", interrupted_import)
+    assert cli_mod.main(["scenes"]) == cli_mod.EXIT_INTERRUPTED == 130
+    err = capsys.readouterr().err
+    assert err.strip() == "tactcad: interrupted; the previous files are left as they were"
+
+    def broken_import(args):
+        raise ImportError("no module named nothing")
+
+    monkeypatch.setattr(scenes_cmd, "run", broken_import)
+    with pytest.raises(ImportError, match="nothing"):
+        cli_mod.main(["scenes"])

@@ -347,7 +347,7 @@ def _stored_points(kind: str) -> list[dict]:
 
 
 def _closed_form_at(p: dict):
-    from tactcad.mechanics.correction_sweep import grid_geometry
+    from tactcad.studies.correction_sweep import grid_geometry
 
     g, mat = grid_geometry(p["web_mm"], p["arm_mm"], p["notch_radius_mm"], sheet_mm=p["sheet_mm"],
                            poisson_ratio=p["poisson_ratio"],

@@ -29,13 +29,13 @@ def _data(**tolerances):
 
 
 def test_each_tolerance_is_on_the_drawing_and_in_tolerance_json(tmp_path, capsys):
+    from tactcad.catalogue.array import array_parts
     from tactcad.drawings.compose import compose
-    from tactcad.assembly.inventory import design_assemblies
     from tactcad.parts.registry import build_part
 
     data = _data(**PERTURBED)
     plan = plan_from_dict(data)
-    specs, _ = design_assemblies(plan)
+    specs = array_parts(plan)
     name = plan.element(1).geometry.part_name
     d = compose(plan, specs[name], build_part(plan, specs[name]), 2)
     dims, svg = d.dimensions, d.sheet.svg()

@@ -14,7 +14,7 @@ import pytest
 
 from tactcad import __version__
 from tactcad.assembly.inventory import design_assemblies, instance_counts
-from tactcad.catalogue.array import array_instances, array_parts
+from tactcad.catalogue.array import Method, Process, array_instances, array_parts
 from tactcad.catalogue.shop import stock_size, tightening_torque_Nm
 from tactcad.drawings.compose import part_hash
 from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
@@ -85,9 +85,9 @@ def drawing_files(exported):
     return out, man, svgs
 
 
-def test_one_drawing_per_fabricated_part_and_every_svg_parses(drawing_files, plan):
+def test_one_drawing_per_fabricated_part_and_every_svg_parses(drawing_files, plan, project):
     out, man, svgs = drawing_files
-    specs, assemblies = design_assemblies(plan)
+    specs, assemblies = design_assemblies(project)
     used = {i.part for inst in assemblies.values() for i in inst}
     fabricated = {n for n, s in specs.items() if s.kind == "fabricated" and n in used}
     assert set(svgs) == fabricated
@@ -171,9 +171,9 @@ def test_plate_dimensions_read_back_as_plan_values(drawing_files, plan):
     assert_dims(found, expected)
 
 
-def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan):
+def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan, project):
     _, _, svgs = drawing_files
-    specs, assemblies = design_assemblies(plan)
+    specs, assemblies = design_assemblies(project)
     largest: dict[str, int] = {}
     for inst in assemblies.values():
         for part, n in instance_counts(inst).items():
@@ -260,13 +260,14 @@ def test_any_fabricated_part_gets_a_generic_drawing_from_its_solid(plan):
     """A part with no dimension set of its own and no plan profile (as a rig
     part may be) is dimensioned from its solid: sizes and holes."""
     from tactcad.parts.cache import PartCache
-    from tactcad.drawings.compose import DIMENSION_SETS, compose
+    from tactcad.drawings.compose import compose
+    from tactcad.drawings.part_sets import GENERIC, drawing_of
 
     specs = array_parts(plan)
     solid = PartCache(plan).solid(specs["spacer"])
     spec = dataclasses.replace(specs["spacer"], name="rig_test_plate", builder="rig_test_plate",
-                               profile=None, thickness_mm=0.0, process="milling")
-    assert spec.builder not in DIMENSION_SETS
+                               profile=None, thickness_mm=0.0, process=Process("milling", Method.PLATE))
+    assert drawing_of(spec) is GENERIC
     svg = compose(plan, spec, solid, 3).sheet.svg()
     s = plan.spacer
     h1, h2 = sorted(s.holes, key=lambda h: h.x_mm)
@@ -302,12 +303,12 @@ def test_pictures_exist_and_are_not_blank(exported, plan):
     assert blue > 0.02
 
 
-def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan):
+def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan, project):
     """Fabricated rig parts get drawings with their own dimension set
     (indenter) or the generic one (sizes from the solid)."""
     pytest.importorskip("tactcad.assembly.scenes")
     _, _, svgs = drawing_files
-    specs, _ = design_assemblies(plan)
+    specs, _ = design_assemblies(project)
     if "indenter" in svgs:
         g = specs["indenter"].geometry
         assert_dims(dims(svgs["indenter"].read_text()), {
@@ -328,10 +329,11 @@ def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan):
 
 # --- shop-ready sheets: features, sections, title-block fields, no overlapping texts ----------
 def _compose(plan, name, raw=None):
+    from tactcad.design.project import project_for_plan
     from tactcad.drawings.compose import compose
     from tactcad.parts.registry import build_part
 
-    specs, _ = design_assemblies(plan)
+    specs, _ = design_assemblies(project_for_plan(plan))
     if raw is not None:
         plan = dataclasses.replace(plan, raw=raw)
     return compose(plan, specs[name], build_part(plan, specs[name]), 1), specs[name]
@@ -427,11 +429,11 @@ def test_base_plate_grooves_and_sample_holder_window(plan):
 
 
 @pytest.mark.slow
-def test_indenter_has_its_mounting_thread(plan):
+def test_indenter_has_its_mounting_thread(plan, project):
     from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
     from tactcad.parts.registry import build_part
 
-    specs, _ = design_assemblies(plan)
+    specs, _ = design_assemblies(project)
     spec = specs["indenter"]
     solid = build_part(plan, spec)
     assert abs(solid.volume - spec.expected_volume_mm3) < 1e-3 * spec.expected_volume_mm3
@@ -507,15 +509,15 @@ def test_holes_read_from_a_solid_know_through_from_blind(plan):
     both ends is through; quarter-cylinder fillets are no holes."""
     import build123d as bd
 
-    from tactcad.drawings.compose import _holes
+    from tactcad.drawings.drawing import holes_seen
 
     spec = dataclasses.replace(array_parts(plan)["spacer"], profile=None)
     block = bd.Solid.make_box(20, 10, 5)
     blind = bd.Solid.make_cylinder(1.0, 3.0, bd.Plane(origin=(5, 5, 2), z_dir=(0, 0, 1)))
     through = bd.Solid.make_cylinder(1.5, 5.0, bd.Plane(origin=(15, 5, 0), z_dir=(0, 0, 1)))
-    holes = {h.x: h for h in _holes(spec, block.cut(blind, through))}
+    holes = {h.x: h for h in holes_seen(spec, block.cut(blind, through))}
     assert holes[5.0].depth == pytest.approx(3.0) and holes[5.0].depth_text == "depth 3"
     assert holes[15.0].depth is None and holes[15.0].depth_text == "through"
     tool = bd.Solid.make_box(8, 6, 2, bd.Plane(origin=(6, 2, 3)))
     pocket = tool.fillet(1.0, tool.edges().filter_by(bd.Axis.Z))  # concave corners in the part
-    assert _holes(spec, bd.Solid.make_box(20, 10, 5).cut(pocket)) == []
+    assert holes_seen(spec, bd.Solid.make_box(20, 10, 5).cut(pocket)) == []

@@ -29,7 +29,8 @@ def test_example_is_an_inverse_design_with_its_own_requirements():
     text = EXAMPLE.read_text(encoding="utf-8")
     assert text.startswith("# Written by `tactcad design --kr-over-km 10 --kobj-range 1 5")
     assert not PAPER_TEXT.search(text)
-    plan, rigs, scenes = load_project(EXAMPLE)
+    project = load_project(EXAMPLE)
+    plan, rigs = project.plan, project.rigs
     assert (plan.rows, plan.columns) == (2, 3) and plan.material.grade == "Ti-6Al-4V-annealed"
     req = requirements_of(plan)
     stated = _stated()
@@ -42,7 +43,7 @@ def test_example_is_an_inverse_design_with_its_own_requirements():
 
 
 def test_arm_over_arm_height_stays_inside_the_corrections_fit():
-    plan, _, _ = load_project(EXAMPLE)
+    plan = load_project(EXAMPLE).plan
     for g in plan.distinct_elements.values():
         assert g.arm_length_mm / g.arm_height_mm <= 4.0 + 1e-9
 
@@ -96,7 +97,7 @@ def test_the_papers_design_keeps_its_citations(tmp_path):
     g = plan.element(1).geometry
     assert "paper's Table 1" in numbering_note(plan)
     assert "Table 1" in web_tolerance_note(plan, g, "0.25", 0.2, 0.2, (4.0, 40.12, 80.38, 2.0))
-    ex, _, _ = load_project(EXAMPLE)
+    ex = load_project(EXAMPLE).plan
     assert not PAPER_TEXT.search(numbering_note(ex))
     assert not PAPER_TEXT.search(web_tolerance_note(ex, g, "0.25", 0.2, 0.2,
                                                     (4.0, 40.12, 80.38, 2.0)))
@@ -140,8 +141,10 @@ def test_tolerance_reports_the_designs_range_not_the_papers_samples(capsys):
 def test_example_meets_every_requirement_at_fem3d():
     """The inverse design's closed-form geometry holds at the reference level
     (about 4 minutes: K and peak stress of two elements at fem3d)."""
-    plan, _, _ = load_project(EXAMPLE)
-    records = verification_matrix(plan, "fem3d")
+    plan = load_project(EXAMPLE).plan
+    from tactcad.studies.strength import element_stress
+
+    records = verification_matrix(plan, "fem3d", stress=element_stress)
     assert all(r["pass"] for r in records), records
     force = records[0]
     assert force["model"] == "fem3d" and force["binding_limit"] == "gauge_fatigue"

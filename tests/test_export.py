@@ -11,7 +11,7 @@ import sys
 import pytest
 
 from tactcad.checks.result import failures
-from tactcad.design.array import load_design
+from tactcad.design.project import load_project, project_for_plan
 from tactcad.checks.array import run_checks
 from tactcad.export.run import export
 
@@ -68,9 +68,9 @@ def test_same_design_writes_identical_bytes_across_processes(exported, tmp_path)
     assert _hashes(again) == _hashes(out)
 
 
-def test_failed_export_leaves_previous_files_whole(exported, tmp_path, monkeypatch, plan):
+def test_failed_export_leaves_previous_files_whole(exported, tmp_path, monkeypatch, project):
     out = tmp_path / "ex"
-    export(plan, out, log=lambda s: None)
+    export(project, out, log=lambda s: None)
     before = _hashes(out)
     import tactcad.export.dxf_sheet as dxf_mod
 
@@ -84,7 +84,7 @@ def test_failed_export_leaves_previous_files_whole(exported, tmp_path, monkeypat
         return real(path, content, version)
 
     monkeypatch.setattr(dxf_mod, "write_dxf", flaky)
-    thicker = load_design()  # same plan; the failure, not the content, is under test
+    thicker = load_project()  # same project; the failure, not the content, is under test
     with pytest.raises(OSError, match="simulated"):
         export(thicker, out, log=lambda s: None)
     assert _hashes(out) == before
@@ -108,7 +108,7 @@ def test_changed_web_reaches_the_dxf(tmp_path, design_data):
     from tactcad.design.array import plan_from_dict, with_overrides
 
     plan = plan_from_dict(with_overrides(design_data, {"element.web_thickness_mm": 0.31}))
-    export(plan, tmp_path, log=lambda s: None)
+    export(project_for_plan(plan), tmp_path, log=lambda s: None)
     reading = read_dxf(tmp_path / "dxf/element_a4mm_qty2.dxf")
     outer = max(reading.contours, key=lambda c: len(c.segments))
     assert thinnest_ligament(outer.segments) == pytest.approx(0.31, abs=1e-9)

@@ -17,7 +17,7 @@ import pytest
 import shapely.geometry as sg
 
 from tactcad.design.array import load_design
-from tactcad.mechanics.correction_sweep import grid_geometry
+from tactcad.studies.correction_sweep import grid_geometry
 from tactcad.mechanics.fem.fem2d import (estimate_fem2d, fem2d_convergence, plane_model_error,
                                         solve_fem2d)
 from tactcad.mechanics.fem.mesh import (clip_chain, default_clamp_margin_mm, fem_region,
@@ -285,7 +285,7 @@ def test_grid_rule_reproduces_the_default_element(plan):
 @pytest.mark.parametrize("t,a,R,b", [(0.05, 20.0, 0.05, 10.0), (1.0, 3.6, 2.0, 0.5),
                                      (0.05, 2.0, 0.05, 0.5), (1.0, 20.0, 2.0, 10.0)])
 def test_grid_rule_corners_are_valid_designs(t, a, R, b):
-    from tactcad.mechanics.correction_sweep import arm_height_mm, arm_min_mm
+    from tactcad.studies.correction_sweep import arm_height_mm, arm_min_mm
 
     g, _ = grid_geometry(t, a, R, sheet_mm=b, poisson_ratio=0.27)
     assert g.arm_height_mm == pytest.approx(arm_height_mm(t, R, a))

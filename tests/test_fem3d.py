@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from tactcad.mechanics.correction_sweep import grid_geometry
+from tactcad.studies.correction_sweep import grid_geometry
 from tactcad.mechanics.fem.fem2d import estimate_fem2d, lame, skfem_mesh, solve_elasticity
 from tactcad.mechanics.fem.fem3d import fem3d_convergence, solve_fem3d
 from tactcad.mechanics.fem.mesh import fem_region, graded_layers, mesh_region

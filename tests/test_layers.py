@@ -2,25 +2,15 @@
 ones too) goes from a layer to one above it, and no modules import each other
 in a circle.
 
-Layers, top (imported by everything) to bottom:
-
-    foundation  tactcad, errors, atomic, store
-    design      design files -> plans
-    geometry    exact profiles, frames
-    mechanics   estimators; reads plans only: foundation, design, geometry
-    catalogue   what each part is
-    parts       solids, one registry, one cache
-    assembly    rig models, joints, scenes
-    drawings    sheets and views
-    export      the run, writers
-    checks      verification
-    studies     sweeps, refits and Monte Carlo at scale (Dask); plans and mechanics only
-    commands    the CLI
+The layer order is written once, in README's "Layout" section (the lines
+under ``src/tactcad/``, top to bottom); this file reads it from there. The
+mechanics read plans only: foundation, design, geometry and mechanics.
 """
 
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 import pytest
@@ -28,10 +18,39 @@ import pytest
 import tactcad
 
 SRC = Path(tactcad.__file__).resolve().parent
-LAYERS = ["foundation", "design", "geometry", "mechanics", "catalogue", "parts", "assembly",
-          "drawings", "export", "checks", "studies", "commands"]
+README = SRC.parents[1] / "README.md"
+
+
+def layers_from_readme(text: str) -> list[str]:
+    """The layers of README's Layout block, top to bottom: a folder ``name/``
+    is the layer ``name``; a module file is in the layer :data:`FOUNDATION` or
+    :data:`TOP_LEVEL` gives it (``errors.py ...`` the foundation, ``cli.py
+    commands/`` and ``api.py`` the commands)."""
+    block = text.split("## Layout", 1)[1].split("```", 2)[1]
+    layers, inside = [], False
+    for line in block.splitlines():
+        if line.startswith("src/tactcad/"):
+            inside = True
+            continue
+        if inside and not line.startswith("  "):
+            break
+        m = re.match(r"^  (\S+)", line)
+        if not inside or not m:
+            continue
+        first = m.group(1)
+        if first.endswith(".py"):
+            module = "tactcad." + first[:-3]
+            layer = "foundation" if module in FOUNDATION else TOP_LEVEL[module]
+        else:
+            layer = first.rstrip("/")
+        if layer not in layers:
+            layers.append(layer)
+    return layers
+
+
 FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store"}
-TOP_LEVEL = {"tactcad.cli": "commands"}
+TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands"}
+LAYERS = layers_from_readme(README.read_text(encoding="utf-8"))
 MECHANICS_MAY_USE = {"foundation", "design", "geometry", "mechanics"}
 
 
@@ -141,3 +160,10 @@ def test_the_checker_sees_function_local_and_relative_imports(tmp_path, monkeypa
                                           ("tactcad.mechanics.fem.fem3d", "mechanics")])
 def test_layer_names(module, layer):
     assert layer_of(module) == layer
+
+
+def test_the_one_layer_order_is_readmes_and_covers_every_package():
+    assert LAYERS[0] == "foundation" and LAYERS[-1] == "commands"
+    assert len(set(LAYERS)) == len(LAYERS)
+    packages = {p.name for p in SRC.iterdir() if (p / "__init__.py").is_file()}
+    assert packages <= set(LAYERS), packages - set(LAYERS)

@@ -66,7 +66,7 @@ def test_a_material_named_as_its_grade_is_said_once():
     data = default_design_data()
     data["material"] = {"name": "Ti-6Al-4V-annealed", "grade": "Ti-6Al-4V-annealed"}
     plan = plan_from_dict(data)
-    spec = array_parts(plan)["clamp_plate"]
+    spec = array_parts(plan)[plan.element(1).geometry.part_name]
     assert material_designation(spec, plan) == "Ti-6Al-4V-annealed"
     assert material_designation(array_parts(plan_from_dict(default_design_data()))["spacer"],
                                 plan_from_dict(default_design_data())) == "aluminium EN AW-6061-T6"

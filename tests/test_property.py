@@ -135,6 +135,7 @@ def _project(data):
 @given(case=st.data())
 def test_whole_designs_validate_build_and_assemble(case):
     from tactcad.assembly.scenes import assemble
+    from tactcad.design.project import project_of
     from tactcad.catalogue.rigs import RigPartSpec, rig_parts
     from tactcad.parts.cache import PartCache
     from tactcad.store import stable_repr
@@ -153,7 +154,7 @@ def test_whole_designs_validate_build_and_assemble(case):
         bad += [r.line() for r in check_solid(spec, cache.solid(spec)) if not r.passed]
     assert not bad, bad
     for name in scenes:
-        scene = assemble(plan, name, rigs)
+        scene = assemble(project_of(plan, rigs, scenes), name)
         assert scene.instances
 
 

@@ -3,6 +3,7 @@ interference (mesh fast path + exact confirmation), geometry sanity, exports."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import re
 import shutil
@@ -29,9 +30,9 @@ def cache(plan):
 
 
 @pytest.fixture(scope="module")
-def built(plan, cache):
+def built(project, cache):
     """Every scene built once: name -> (scene, solids)."""
-    return {n: build_scene(plan, n, cache) for n in SCENES}
+    return {n: build_scene(project, n, cache) for n in SCENES}
 
 
 def _counts_during(fn) -> Counter:
@@ -42,8 +43,8 @@ def _counts_during(fn) -> Counter:
     return Counter(BUILD_COUNTS) - before
 
 
-def test_scene_list(plan, capsys):
-    assert scene_names(plan) == SCENES
+def test_scene_list(project, capsys):
+    assert scene_names(project) == SCENES
     assert cli.main(["scenes"]) == 0
     out = capsys.readouterr().out
     for n in SCENES:
@@ -62,20 +63,20 @@ def test_unknown_scene_lists_the_scenes_and_exits_2(capsys):
     assert cli.main(["export", "--scene", "nope", "--out", "/nonexistent/x"]) == 2
 
 
-def test_a_scene_builds_only_its_parts(plan):
+def test_a_scene_builds_only_its_parts(plan, project):
     """A fresh cache: `wirecut` never builds the cart, `array` never a bearing."""
-    wirecut = _counts_during(lambda: build_scene(plan, "wirecut", PartCache(plan)))
+    wirecut = _counts_during(lambda: build_scene(project, "wirecut", PartCache(plan)))
     assert wirecut and set(wirecut) == {*plan.distinct_elements, "spacer"}
     assert "cart" not in wirecut and "clamp_plate" not in wirecut
-    array = _counts_during(lambda: build_scene(plan, "array", PartCache(plan)))
+    array = _counts_during(lambda: build_scene(project, "array", PartCache(plan)))
     assert "bearing_624ZZ" not in array and "cart" not in array and "clamp_plate" in array
     assert all(v == 1 for v in array.values())  # once each
-    rig = _counts_during(lambda: build_scene(plan, "sample-stiffness-rig", PartCache(plan)))
+    rig = _counts_during(lambda: build_scene(project, "sample-stiffness-rig", PartCache(plan)))
     assert rig["bearing_624ZZ"] == 1 and "element_a4mm" not in rig  # 4 wheels, one build
 
 
-def test_listing_and_placing_build_no_part(plan):
-    counts = _counts_during(lambda: (describe(plan), [assemble(plan, n) for n in SCENES]))
+def test_listing_and_placing_build_no_part(plan, project):
+    counts = _counts_during(lambda: (describe(project), [assemble(project, n) for n in SCENES]))
     assert not counts
 
 
@@ -175,7 +176,6 @@ def test_collision_fails_check_with_names_and_volume(tmp_path, capsys):
 def test_slide_out_of_range_is_a_scene_error(tmp_path):
     """Stages too short for the array: refused up front naming the rig field; a
     rig plan built past the validator still fails at the slide, not silently."""
-    import dataclasses
 
     from tactcad.design.project import load_project
 
@@ -184,13 +184,14 @@ def test_slide_out_of_range_is_a_scene_error(tmp_path):
     with pytest.raises(DesignError) as info:
         load_project(design)
     assert info.value.field == "xy_stage.travel_mm" and "every element" in str(info.value)
-    plan, rigs, _ = load_project()
+    project = load_project()
+    rigs = project.rigs
     short = dataclasses.replace(rigs, xy_stage=dataclasses.replace(rigs.xy_stage, travel_mm=2.0))
     with pytest.raises(SceneError, match=r"slide stage_\w+ .* range is -1 \.\.\. 1 mm"):
-        assemble(plan, "calibration-rig", short)
+        assemble(dataclasses.replace(project, rigs=short), "calibration-rig")
 
 
-def test_bad_scenes_file(tmp_path, plan):
+def test_bad_scenes_file(tmp_path, plan, project):
     text = (tmp_path / "s.toml")
     text.write_text('[scene.x]\nrig = "array"\ndescription = "d"\ngroups = ["array"]\n'
                     'detail = { purchased = "full" }\n')
@@ -204,7 +205,7 @@ def test_bad_scenes_file(tmp_path, plan):
     spec = SceneSpec("x", "sample-stiffness", "d", ("cart", "trolley"), {"fabricated": "full",
                                                                          "purchased": "envelope"})
     with pytest.raises(SceneError, match="unknown group.*trolley.*has groups.*base_plate"):
-        scene_model(plan, spec)
+        scene_model(plan, spec, project.rigs)
 
 
 def test_manifest_records_every_scene(exported):
@@ -248,21 +249,21 @@ def test_glb_content(exported):
 
 
 @pytest.mark.slow
-def test_export_single_scene(tmp_path, plan):
+def test_export_single_scene(tmp_path, project):
     from tactcad.export.freecad_review import freecadcmd
     from tactcad.export.run import export_scenes
 
-    res = export_scenes(plan, tmp_path, ["array"], log=lambda s: None)
+    res = export_scenes(project, tmp_path, ["array"], log=lambda s: None)
     review = ["review/array.FCStd"] if freecadcmd() else []  # written when FreeCAD is installed
     assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*") if p.is_file()) \
         == review + ["scenes/array.glb", "scenes/array.step"]
     assert res.files[0]["solids"] == 28
     with pytest.raises(SceneError):
-        export_scenes(plan, tmp_path / "other", ["array", "nope"])
+        export_scenes(project, tmp_path / "other", ["array", "nope"])
     assert not (tmp_path / "other").exists()  # an unknown name writes nothing
 
 
-def test_changed_rig_dimensions_assemble_or_fail_clearly(plan):
+def test_changed_rig_dimensions_assemble_or_fail_clearly(plan, project):
     """Any rig file either fails validation (DesignError naming the field) or
     assembles every rig with all loops closed (SceneError if a slide would
     leave its range); nothing else goes wrong."""
@@ -295,7 +296,7 @@ def test_changed_rig_dimensions_assemble_or_fail_clearly(plan):
             return
         for name in SCENES[2:]:
             try:
-                sc = assemble(plan, name, rigs)
+                sc = assemble(dataclasses.replace(project, rigs=rigs), name)
             except SceneError as exc:
                 assert "range is" in str(exc)
                 continue
@@ -309,11 +310,11 @@ def test_bench_stiffness_delegates_or_says_unavailable(monkeypatch, capsys):
     import types
 
     calls = []
-    fake = types.ModuleType("tactcad.mechanics.bench")
+    fake = types.ModuleType("tactcad.studies.stiffness_bench")
     fake.main = lambda args, plan=None: calls.append(args) or 0
-    monkeypatch.setitem(sys.modules, "tactcad.mechanics.bench", fake)
+    monkeypatch.setitem(sys.modules, "tactcad.studies.stiffness_bench", fake)
     assert cli.main(["bench", "stiffness", "--models", "beam"]) == 0
     assert calls and calls[0].models == ["beam"]
-    monkeypatch.setitem(sys.modules, "tactcad.mechanics.bench", None)
+    monkeypatch.setitem(sys.modules, "tactcad.studies.stiffness_bench", None)
     assert cli.main(["bench", "stiffness"]) == 0
     assert "not available" in capsys.readouterr().out

@@ -93,7 +93,7 @@ def test_correction_refit_plans_stores_and_fits_without_rerunning(tmp_path):
     softening, K = K_EB / (1 + 0.5 q t/R)): every planned design is evaluated
     once, stored, skipped on the next run, and the fit recovers c1 = 0.5."""
     from tactcad.mechanics.closed_form import closed_form_compliance
-    from tactcad.mechanics.correction_sweep import grid_geometry, plan_designs
+    from tactcad.studies.correction_sweep import grid_geometry, plan_designs
     from tactcad.studies.sweeps import correction_refit
 
     def known(job):

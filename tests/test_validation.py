@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from tactcad.design.array import DEFAULT_DESIGN, default_design_data, plan_from_dict, with_overrides
-from tactcad.design.project import load_project, project_from_data
+from tactcad.design.project import load_project, project_for_plan, project_from_data
 from tactcad.design.rigs import DEFAULT_RIGS, default_rigs_data, stiffest_element
 from tactcad.design.scenes import DEFAULT_SCENES
 from tactcad.design.schema import Problems, read_toml
@@ -205,7 +205,7 @@ def test_designs_at_their_limits_export_and_check(design_data, tmp_path, overrid
 
     plan = plan_from_dict(with_overrides(design_data, overrides))
     cache = PartCache(plan)
-    export(plan, tmp_path, log=lambda s: None, parts=cache)
+    export(project_for_plan(plan), tmp_path, log=lambda s: None, parts=cache)
     bad = [r.line() for r in run_checks(plan, tmp_path, cache) if not r.passed]
     assert not bad, "\n".join(bad)
 

@@ -15,7 +15,7 @@ import pytest
 SCRIPT = textwrap.dedent('''
     import json, os, sys
     from pathlib import Path
-    from tactcad.design.array import load_design
+    from tactcad.design.project import load_project
     from tactcad.export.job import Job, Run
     from tactcad.export.run import run_jobs
     from tactcad.store import Store
@@ -44,7 +44,7 @@ SCRIPT = textwrap.dedent('''
             Job("w2", "k2", writer("w2", ("w1",)), after=("w1",), worker=True),
             Job("w3", "k3", writer("w3", ("a",)), after=("a",), worker=True),
             Job("z", "kz", writer("z", ("w2", "w3")), after=("a", "w1", "w2", "w3"))]
-    records, ran = run_jobs(Run(load_design(), staging, print), jobs, Store(None))
+    records, ran = run_jobs(Run(load_project(), staging, print), jobs, Store(None))
     print(json.dumps({"main": main_pid, "ran": ran, "kernel": "OCP" in sys.modules,
                       "records": records,
                       "files": {p.name: p.read_text() for p in staging.iterdir()}}))

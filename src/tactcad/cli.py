@@ -43,6 +43,7 @@ COMMAND_MODULES = (
     "tactcad.commands.materials",
     "tactcad.commands.sweep",
     "tactcad.commands.design",
+    "tactcad.commands.diff",
 )
 
 
@@ -118,11 +119,22 @@ def run_command(argv: list[str] | None) -> int:
         record["field"] = exc.filename
         return report_error(record, as_json)
     except KeyboardInterrupt as exc:
-        message = "interrupted; the previous files are left as they were"
-        if as_json:
-            return report_error(error_record(exc, EXIT_INTERRUPTED, message), as_json)
-        print(f"tactcad: {message}", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return report_interrupt(exc, as_json)
+    except ImportError as exc:
+        # Ctrl-C while a compiled module (the CAD kernel) initialises surfaces
+        # as "ImportError: initialization failed" caused by the interrupt
+        if isinstance(exc.__cause__, KeyboardInterrupt):
+            return report_interrupt(exc.__cause__, as_json)
+        raise
+
+
+def report_interrupt(exc: KeyboardInterrupt, as_json: bool) -> int:
+    """One line (or one JSON error) for Ctrl-C; :data:`EXIT_INTERRUPTED`."""
+    message = "interrupted; the previous files are left as they were"
+    if as_json:
+        return report_error(error_record(exc, EXIT_INTERRUPTED, message), as_json)
+    print(f"tactcad: {message}", file=sys.stderr)
+    return EXIT_INTERRUPTED
 
 
 def error_record(exc: BaseException, exit_code: int, message: str | None = None) -> dict:

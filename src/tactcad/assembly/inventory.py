@@ -16,8 +16,8 @@ from tactcad.assembly.z_up import z_up_bbox
 from tactcad.assembly.rigs import RigModel, scene_model, shown_instances
 from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
-from tactcad.design.rigs import load_rigs, rigs_path_for
-from tactcad.design.scenes import SceneSpec, load_scenes, scenes_path_for
+from tactcad.design.project import Project
+from tactcad.design.scenes import SceneSpec
 
 
 @dataclass(frozen=True)
@@ -36,21 +36,19 @@ def instance_counts(instances: Sequence) -> dict[str, int]:
     return counts
 
 
-def scene_models(plan: Plan) -> dict[str, tuple[SceneSpec, RigModel]]:
-    """Every scene of the plan's scenes file with its rig model (rigs file read once).
+def scene_models(project: Project) -> dict[str, tuple[SceneSpec, RigModel]]:
+    """Every scene of the project with its rig model.
 
     Raises:
-        DesignError: a bad rigs or scenes file.
+        DesignError: a scene option outside the rigs' values.
         SceneError: a scene names a group its rig does not have.
     """
-    scenes = load_scenes(scenes_path_for(plan))
-    rigs = None
-    if any(s.rig not in ("wirecut", "array") for s in scenes.values()):
-        rigs = load_rigs(rigs_path_for(plan), array_plan=plan)
-    return {name: (spec, scene_model(plan, spec, rigs)) for name, spec in scenes.items()}
+    return {name: (spec, scene_model(project.plan, spec, project.rigs))
+            for name, spec in project.scenes.items()}
 
 
-def design_assemblies(plan: Plan, models: Mapping[str, tuple[SceneSpec, RigModel]] | None = None
+def design_assemblies(project: Project,
+                      models: Mapping[str, tuple[SceneSpec, RigModel]] | None = None
                       ) -> tuple[dict[str, PartSpec], dict[str, list]]:
     """Every distinct part of the design and every assembly's instances.
 
@@ -59,16 +57,17 @@ def design_assemblies(plan: Plan, models: Mapping[str, tuple[SceneSpec, RigModel
 
     Returns:
         (parts by name, {assembly name: instances}): the array of the
-        catalogue first, then each scene of the plan's scenes file (instances
+        catalogue first, then each scene of the project (instances
         have ``name`` and ``part``).
 
     Raises:
-        DesignError: a bad rigs or scenes file.
+        DesignError: a scene option outside the rigs' values.
         SceneError: a scene names a group its rig does not have.
     """
+    plan = project.plan
     specs = dict(array_parts(plan))
     assemblies: dict[str, list] = {"array": array_instances(plan)}
-    for name, (spec, model) in (models if models is not None else scene_models(plan)).items():
+    for name, (spec, model) in (models if models is not None else scene_models(project)).items():
         shown = shown_instances(model, spec)
         for _, part, _ in shown:
             specs.setdefault(part, model.specs[part])
@@ -85,14 +84,14 @@ def part_quantities(assemblies: Mapping[str, Sequence]) -> dict[str, int]:
     return total
 
 
-def fabricated_parts(plan: Plan, assembled=None) -> tuple[list[PartSpec], dict[str, int]]:
+def fabricated_parts(project: Project, assembled=None) -> tuple[list[PartSpec], dict[str, int]]:
     """(fabricated part specs in catalogue order, quantity of every part).
     Parts placed in no assembly are left out.
 
     Args:
         assembled: the result of :func:`design_assemblies`, if already at hand.
     """
-    specs, assemblies = assembled or design_assemblies(plan)
+    specs, assemblies = assembled or design_assemblies(project)
     qty = part_quantities(assemblies)
     return [s for s in specs.values() if s.kind == "fabricated" and qty.get(s.name, 0) > 0], qty
 

@@ -33,8 +33,9 @@ from tactcad.catalogue.array import (PartSpec, array_contacts, array_instances, 
                                      bolt_name, nut_name)
 from tactcad.catalogue.rigs import bolt_frames, nut_frames, rig_parts, sample_name, wheel_tag
 from tactcad.design.array import Placement, Plan
-from tactcad.design.rigs import RigDesign, load_rigs, rigs_path_for
-from tactcad.design.scenes import RIGS, SceneSpec, load_scenes, scenes_path_for
+from tactcad.design.project import Project
+from tactcad.design.rigs import RigDesign
+from tactcad.design.scenes import RIGS, SceneSpec
 from tactcad.errors import DesignError, SceneError
 from tactcad.geometry.frames import Frame
 
@@ -390,16 +391,20 @@ def rig_model(plan: Plan, rig: str, rigs: RigDesign | None = None,
               scene: SceneSpec | None = None) -> RigModel:
     """The kernel-free model (nodes, joints, contacts) of ``rig``.
 
+    Args:
+        rigs: the validated rigs (:attr:`Project.rigs <tactcad.design.project.Project>`);
+            needed by every rig but ``wirecut`` and ``array``.
+
     Raises:
-        SceneError: unknown rig.
+        SceneError: unknown rig, or a test rig asked without ``rigs``.
         DesignError: a scene option outside the rig file's values.
     """
     if rig == "wirecut":
         return _wirecut_model(plan)
     if rig == "array":
         return _array_model(plan)
-    if rigs is None:
-        rigs = load_rigs(rigs_path_for(plan), array_plan=plan)
+    if rigs is None and rig in RIGS:
+        raise SceneError(f"rig {rig} needs the validated rigs of the project (rigs.toml)")
     if rig == "calibration":
         return _calibration_model(plan, rigs)
     if rig == "sample-stiffness":
@@ -410,17 +415,18 @@ def rig_model(plan: Plan, rig: str, rigs: RigDesign | None = None,
 
 
 
-def scene_names(plan: Plan | None = None) -> list[str]:
-    return list(load_scenes(scenes_path_for(plan) if plan is not None else None))
+def scene_names(project: Project) -> list[str]:
+    """The project's scene names, in file order."""
+    return list(project.scenes)
 
 
-def get_scene_spec(plan: Plan, name: str) -> SceneSpec:
-    """The scene ``name`` of the plan's scenes file.
+def get_scene_spec(project: Project, name: str) -> SceneSpec:
+    """The scene ``name`` of the project's scenes.
 
     Raises:
         SceneError: unknown name; the message lists the scenes and their groups.
     """
-    scenes = load_scenes(scenes_path_for(plan))
+    scenes = project.scenes
     if name not in scenes:
         lines = [f"  {s.name:<22} ({s.rig}): {', '.join(s.groups)}" for s in scenes.values()]
         raise SceneError(f"unknown scene {name!r}; scenes:\n" + "\n".join(lines))
@@ -448,15 +454,12 @@ def shown_instances(model: RigModel, spec: SceneSpec) -> list[tuple[str, str, st
     return [i for i in model.instances() if i[2] in shown]
 
 
-def scene_summaries(plan: Plan) -> list[dict]:
+def scene_summaries(project: Project) -> list[dict]:
     """Every scene: name, rig, description, parts placed and, per group, each
     part with its quantity and level of detail. Needs no CAD kernel."""
     out = []
-    rigs = None
-    for spec in load_scenes(scenes_path_for(plan)).values():
-        if spec.rig not in ("wirecut", "array") and rigs is None:
-            rigs = load_rigs(rigs_path_for(plan), array_plan=plan)
-        model = scene_model(plan, spec, rigs)
+    for spec in project.scenes.values():
+        model = scene_model(project.plan, spec, project.rigs)
         groups = model.groups()
         listed = {}
         for g in spec.groups:
@@ -470,11 +473,11 @@ def scene_summaries(plan: Plan) -> list[dict]:
     return out
 
 
-def describe(plan: Plan) -> list[str]:
+def describe(project: Project) -> list[str]:
     """Lines listing every scene, its groups and parts (name x quantity, level).
     Needs no CAD kernel."""
     lines = []
-    for scene in scene_summaries(plan):
+    for scene in scene_summaries(project):
         lines.append(f"{scene['name']}  [{scene['rig']}]  {scene['parts_placed']} parts placed - "
                      f"{scene['description']}")
         for g, items in scene["groups"].items():

@@ -21,7 +21,7 @@ from tactcad.assembly.rigs import (SOLVE_TOL_MM, Mate, RigModel, Slide, get_scen
 from tactcad.catalogue.array import PartSpec
 from tactcad.catalogue.rigs import level_of
 from tactcad.design.array import Plan
-from tactcad.design.rigs import RigDesign
+from tactcad.design.project import Project
 from tactcad.design.scenes import SceneSpec
 from tactcad.errors import SceneError
 from tactcad.geometry.frames import Frame
@@ -174,16 +174,17 @@ class Scene:
         return (self.node_locations[node] * self.model.nodes[node].frames[frame].location()).position
 
 
-def assemble(plan: Plan, name: str, rigs: RigDesign | None = None) -> Scene:
-    """Solve scene ``name``: place every part by its joints and keep the shown
-    ones. Builds no part.
+def assemble(project: Project, name: str) -> Scene:
+    """Solve scene ``name`` of ``project``: place every part by its joints and
+    keep the shown ones. Builds no part.
 
     Raises:
         SceneError: unknown scene or group, or a slide out of its range.
-        DesignError: a bad scenes or rigs file.
+        DesignError: a scene option outside the rigs' values.
     """
-    spec = get_scene_spec(plan, name)
-    model = scene_model(plan, spec, rigs)
+    plan = project.plan
+    spec = get_scene_spec(project, name)
+    model = scene_model(plan, spec, project.rigs)
     node_locs, leaf_locs, positions = solve(model)
     inst = [PlacedPart(iname, part, group, spec.detail[model.specs[part].kind], leaf_locs[iname])
             for iname, part, group in shown_instances(model, spec)]
@@ -198,8 +199,8 @@ def assemble(plan: Plan, name: str, rigs: RigDesign | None = None) -> Scene:
     return Scene(spec, plan, model, inst, specs, contacts, node_locs, positions)
 
 
-def build_scene(plan: Plan, name: str, cache: PartCache | None = None,
-                rigs: RigDesign | None = None) -> tuple[Scene, dict[str, Any]]:
+def build_scene(project: Project, name: str,
+                cache: PartCache | None = None) -> tuple[Scene, dict[str, Any]]:
     """Assemble scene ``name`` and build its shown parts (only those), each
     once per ``cache``.
 
@@ -210,8 +211,8 @@ def build_scene(plan: Plan, name: str, cache: PartCache | None = None,
         SceneError: as :func:`assemble`, or a part asked at a level of detail
             it is not modelled at.
     """
-    scene = assemble(plan, name, rigs)
-    cache = cache or PartCache(plan)
+    scene = assemble(project, name)
+    cache = cache or PartCache(project.plan)
     solids = {}
     for i in scene.instances:
         spec = scene.specs[i.part]

@@ -10,7 +10,11 @@ from __future__ import annotations
 
 import colorsys
 import math
-from dataclasses import dataclass
+import weakref
+from dataclasses import dataclass, field
+from typing import Any
+
+from enum import Enum
 
 from tactcad.design.array import BoltSpec, Placement, Plan
 from tactcad.geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
@@ -18,11 +22,41 @@ from tactcad.geometry.profile import Profile, element_profile, rectangle_profile
 Bbox = tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax (mm)
 RGB = tuple[float, float, float]
 
-ALUMINIUM: RGB = (0.78, 0.80, 0.83)
 SPACER: RGB = (0.60, 0.64, 0.68)
 ANODISED_BLUE: RGB = (0.25, 0.40, 0.70)
 BLACK_OXIDE: RGB = (0.12, 0.12, 0.13)
 ZINC: RGB = (0.45, 0.46, 0.48)
+
+
+class Method(Enum):
+    """How a part comes to be: the typed half of its :class:`Process`; the raw
+    stock, the blank allowances and the surface finish follow from it
+    (:mod:`tactcad.catalogue.shop`)."""
+
+    SHEET = "cut from sheet"          # wire EDM or laser: sheet blank
+    PLATE = "milled from plate"       # sawn plate blank, faced both sides
+    BAR = "cut from bar stock"        # sawn and faced rectangular bar
+    ROUND_BAR = "turned from round bar"
+    CAST = "cast"                     # moulded to size
+    BOUGHT = "bought"                 # a catalogue part: no stock
+
+
+class Process(str):
+    """A part's process as the BOM, title block and manifest print it (the
+    text), typed by its :class:`Method` (``.method``), which is what the shop
+    data reads: ``Process("milling from plate", Method.PLATE)``."""
+
+    method: Method
+
+    def __new__(cls, text: str, method: Method) -> "Process":
+        if not isinstance(method, Method):
+            raise TypeError(f"Process {text!r}: method must be a Method, not {method!r}")
+        obj = super().__new__(cls, text)
+        obj.method = method
+        return obj
+
+    def __getnewargs__(self) -> tuple[str, Method]:  # pickles with its method
+        return (str(self), self.method)
 
 
 @dataclass(frozen=True)
@@ -32,7 +66,8 @@ class PartSpec:
     Attributes:
         name: file and label name (``element_a4mm``, ``spacer``, ...).
         kind: ``fabricated`` or ``purchased``.
-        process: how it is made (wire EDM, milling) or its catalogue reference.
+        process: how it is made (wire EDM, milling) or its catalogue reference,
+            typed by its :class:`Method`.
         material: material name.
         color: RGB in 0 ... 1 for STEP/GLB.
         builder: key of the builder in :mod:`tactcad.parts.registry`.
@@ -40,11 +75,15 @@ class PartSpec:
         expected_bbox_mm: designed bounding box in the part's own frame.
         profile: planar profile (sketch plane z = 0) for extruded parts.
         thickness_mm: extrusion thickness for extruded parts.
+        geometry: the frozen dimensions the builder, drawing and DXF writers
+            read (an element's :class:`~tactcad.design.array.ElementGeometry`,
+            the spacer's, the clamp's, a rig part's), so no writer reaches back
+            into the plan.
     """
 
     name: str
     kind: str
-    process: str
+    process: Process
     material: str
     color: RGB
     builder: str
@@ -52,6 +91,10 @@ class PartSpec:
     expected_bbox_mm: Bbox
     profile: Profile | None = None
     thickness_mm: float = 0.0
+    # Left out of an array part's stable text (store keys, the drawing's part
+    # hash): its profile and thickness already fix its solid, and the
+    # drawing's inputs name the geometry itself. A rig part keeps it in.
+    geometry: Any = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
@@ -68,51 +111,70 @@ def _prism_bbox(profile: Profile, thickness: float) -> Bbox:
     return (x0, y0, 0.0, x1, y1, thickness)
 
 
+#: id(plan) -> (weak reference to the plan, its array parts): each plan's parts are
+#: made once (every element profile is built), however many writers ask.
+_ARRAY_PARTS: dict[int, tuple[weakref.ref, dict[str, PartSpec]]] = {}
+
+
 def array_parts(plan: Plan) -> dict[str, PartSpec]:
-    """Every distinct part of the array assembly, keyed by part name."""
+    """Every distinct part of the array assembly, keyed by part name (a fresh
+    dict of the specs made once per plan)."""
+    hit = _ARRAY_PARTS.get(id(plan))
+    if hit is None or hit[0]() is not plan:
+        ref = weakref.ref(plan, lambda _, key=id(plan): _ARRAY_PARTS.pop(key, None))
+        hit = _ARRAY_PARTS[id(plan)] = (ref, _make_array_parts(plan))
+    return dict(hit[1])
+
+
+def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
     parts: dict[str, PartSpec] = {}
     mat = plan.material.name
     own = part_material_names(plan)  # clamp plates and spacers: their own grade
     for name, g in plan.distinct_elements.items():
         prof = element_profile(g)
         parts[name] = PartSpec(
-            name=name, kind="fabricated", process="wire EDM from sheet", material=mat,
+            name=name, kind="fabricated", process=Process("wire EDM from sheet", Method.SHEET), material=mat,
             color=_element_shade(g.arm_length_mm), builder="element",
             expected_volume_mm3=prof.area_mm2 * g.sheet_thickness_mm,
             expected_bbox_mm=_prism_bbox(prof, g.sheet_thickness_mm),
-            profile=prof, thickness_mm=g.sheet_thickness_mm)
+            profile=prof, thickness_mm=g.sheet_thickness_mm, geometry=g)
     s = plan.spacer
     if plan.spacer_placements:  # a one-column array has no spacer part
         sp = rectangle_profile(s.length_mm, s.height_mm,
                                [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
         parts["spacer"] = PartSpec(
-            name="spacer", kind="fabricated", process="wire EDM or laser cut from sheet",
+            name="spacer", kind="fabricated", process=Process("wire EDM or laser cut from sheet", Method.SHEET),
             material=own["spacer"], color=SPACER, builder="spacer",
             expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
-            expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm)
+            expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm,
+            geometry=s)
     c = plan.clamp
     cp = u_plate_profile(c.half_length_mm, c.window_half_width_mm, c.height_mm, c.bridge_height_mm,
                          c.window_corner_radius_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
     parts["clamp_plate"] = PartSpec(
-        name="clamp_plate", kind="fabricated", process="milling", material=own["clamp_plate"],
+        name="clamp_plate", kind="fabricated", process=Process("milling", Method.PLATE),
+        material=own["clamp_plate"],
         color=ANODISED_BLUE, builder="clamp_plate",
         expected_volume_mm3=cp.area_mm2 * c.thickness_mm,
-        expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm)
+        expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm,
+        geometry=c)
     b = plan.bolt
     L = plan.bolt_length_mm
     rh = b.head_diameter_mm / 2
     parts[bolt_name(b, L)] = PartSpec(
         name=bolt_name(b, L), kind="purchased",
-        process=f"ISO 4762 {b.size}x{L:g} socket head cap screw", material="steel 8.8",
+        process=Process(f"ISO 4762 {b.size}x{L:g} socket head cap screw", Method.BOUGHT),
+        material="steel 8.8",
         color=BLACK_OXIDE, builder="bolt", expected_volume_mm3=bolt_volume(b, L),
-        expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, L))
+        expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, L), geometry=(b, L))
     s_af = b.nut_width_across_flats_mm
     nut_vol = (hexagon_area(s_af) - math.pi * (b.nominal_diameter_mm / 2) ** 2) * b.nut_height_mm
     rc = s_af / math.sqrt(3)
     parts[nut_name(b)] = PartSpec(
-        name=nut_name(b), kind="purchased", process=f"ISO 4032 {b.size} hex nut", material="steel 8",
+        name=nut_name(b), kind="purchased", process=Process(f"ISO 4032 {b.size} hex nut", Method.BOUGHT),
+        material="steel 8",
         color=ZINC, builder="nut", expected_volume_mm3=nut_vol,
-        expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm))
+        expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm), geometry=b)
     return parts
 
 

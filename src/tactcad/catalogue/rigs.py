@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from tactcad.catalogue.array import RGB, Bbox, PartSpec, bolt_name, bolt_volume
+from tactcad.catalogue.array import RGB, Bbox, Method, PartSpec, Process, bolt_name, bolt_volume
 from tactcad.design.array import BoltSpec, Plan
 from tactcad.geometry.frames import Frame, face
 from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, RigDesign
@@ -47,7 +47,8 @@ class RigPartSpec(PartSpec):
     """A rig part: a :class:`~tactcad.catalogue.array.PartSpec` plus what scenes need.
 
     Attributes:
-        geometry: the frozen rig dataclass the builder reads.
+        geometry: the frozen rig dataclass the builder reads (in the part's
+            stable text: nothing else of the spec fixes the solid).
         frames: joint frames in the part's frame (see :mod:`tactcad.geometry.frames`).
         attributes: data carried with the part into manifest and GLB (e.g.
             ``stiffness_N_per_mm`` of a rubber sample).
@@ -101,7 +102,8 @@ def _bolt_spec(b: BoltSpec, length_mm: float, color: RGB) -> RigPartSpec:
     rh = b.head_diameter_mm / 2
     return RigPartSpec(
         name=bolt_name(b, length_mm), kind="purchased",
-        process=f"ISO 4762 {b.size}x{length_mm:g} socket head cap screw", material="steel 8.8",
+        process=Process(f"ISO 4762 {b.size}x{length_mm:g} socket head cap screw", Method.BOUGHT),
+        material="steel 8.8",
         color=color, builder="rig_bolt", expected_volume_mm3=bolt_volume(b, length_mm),
         expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, length_mm),
         geometry=(b, length_mm), frames=_bolt_frames())
@@ -143,7 +145,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         frames[f"groove_{'m' if s < 0 else 'p'}"] = face(
             (0, s * g.track_half_mm, T - g.groove_depth_mm), (0, 0, 1), (1, 0, 0))
     add(RigPartSpec(
-        name="base_plate", kind="fabricated", process="milling from plate", material=al,
+        name="base_plate", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
         color=_COLORS["base_plate"], builder="base_plate",
         expected_volume_mm3=L * W * T - 2 * L * g.groove_width_mm * g.groove_depth_mm
         - 4 * math.pi * r * r * T,
@@ -151,7 +153,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     # --- column ---
     c = rigs.column
     add(RigPartSpec(
-        name="column", kind="fabricated", process="milling from plate", material=al,
+        name="column", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
         color=_COLORS["column"], builder="column",
         expected_volume_mm3=c.thickness_mm * c.width_mm * c.height_mm,
         expected_bbox_mm=_box_bbox(-c.thickness_mm / 2, -c.width_mm / 2, 0, c.thickness_mm / 2,
@@ -179,13 +181,13 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
             frames[_wheel(sx, sy)] = face((sx * k.axle_x_mm, sy * W / 2, k.axle_height_mm),
                                           (0, sy, 0), (1, 0, 0))
     add(RigPartSpec(
-        name="cart", kind="fabricated", process="milling and drilling from plate", material=al,
+        name="cart", kind="fabricated", process=Process("milling and drilling from plate", Method.PLATE), material=al,
         color=_COLORS["cart"], builder="cart",
         expected_volume_mm3=L * W * T - pocket - port - channel - suction - tapped - axles,
         expected_bbox_mm=_box_bbox(-L / 2, -W / 2, 0, L / 2, W / 2, T), geometry=k, frames=frames))
     ro, ri, t = k.spacer_outer_diameter_mm / 2, k.spacer_inner_diameter_mm / 2, k.spacer_thickness_mm
     add(RigPartSpec(
-        name="wheel_spacer", kind="fabricated", process="turning", material=TURNED_BRASS,
+        name="wheel_spacer", kind="fabricated", process=Process("turning", Method.ROUND_BAR), material=TURNED_BRASS,
         color=_COLORS["wheel_spacer"], builder="wheel_spacer",
         expected_volume_mm3=math.pi * (ro * ro - ri * ri) * t,
         expected_bbox_mm=_box_bbox(-ro, -ro, 0, ro, ro, t), geometry=k,
@@ -195,8 +197,8 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     R, rb = b.outer_diameter_mm / 2, b.bore_mm / 2
     add(RigPartSpec(
         name=f"bearing_{b.designation}", kind="purchased",
-        process=f"deep groove ball bearing {b.designation}, ISO 15: d {b.bore_mm:g} x D "
-                f"{b.outer_diameter_mm:g} x B {b.width_mm:g} mm",
+        process=Process(f"deep groove ball bearing {b.designation}, ISO 15: d {b.bore_mm:g} x D "
+                        f"{b.outer_diameter_mm:g} x B {b.width_mm:g} mm", Method.BOUGHT),
         material="bearing steel", color=_COLORS["bearing"], builder="bearing",
         expected_volume_mm3=math.pi * (R * R - rb * rb) * b.width_mm,
         expected_bbox_mm=_box_bbox(-R, -R, 0, R, R, b.width_mm), geometry=b,
@@ -209,7 +211,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     for kk in rigs.sample_stiffness_N_per_mm:
         add(RigPartSpec(
             name=sample_name(kk), kind="fabricated",
-            process=f"cast {s.material} block, measured stiffness {kk:g} N/mm",
+            process=Process(f"cast {s.material} block, measured stiffness {kk:g} N/mm", Method.CAST),
             material=s.material, color=_sample_color(kk, rigs.sample_stiffness_N_per_mm),
             builder="sample", expected_volume_mm3=s.length_mm * s.width_mm * s.height_mm,
             expected_bbox_mm=_box_bbox(-s.length_mm / 2, -s.width_mm / 2, 0, s.length_mm / 2,
@@ -221,7 +223,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     window = h.window_length_mm * h.window_width_mm - (4 - math.pi) * h.corner_radius_mm ** 2
     holes = 2 * math.pi * (h.screw.clearance_hole_mm / 2) ** 2
     add(RigPartSpec(
-        name="sample_holder", kind="fabricated", process="milling from plate", material=al,
+        name="sample_holder", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
         color=_COLORS["sample_holder"], builder="sample_holder",
         expected_volume_mm3=(h.outer_length_mm * h.outer_width_mm - window - holes) * h.thickness_mm,
         expected_bbox_mm=_box_bbox(-h.outer_length_mm / 2, -h.outer_width_mm / 2, 0,
@@ -238,7 +240,8 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     rr = i.body_diameter_mm / 2
     add(RigPartSpec(
         name="indenter", kind="fabricated",
-        process=f"turning and milling, {i.contact_width_mm:g} x {i.contact_depth_mm:g} mm contact face",
+        process=Process(f"turning and milling, {i.contact_width_mm:g} x {i.contact_depth_mm:g} mm "
+                        f"contact face", Method.ROUND_BAR),
         material=INDENTER_STEEL, color=_COLORS["indenter"], builder="indenter",
         expected_volume_mm3=i.contact_width_mm * i.contact_depth_mm * i.tip_length_mm
         + math.pi * rr * rr * i.body_length_mm
@@ -250,8 +253,8 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     rs = gg.shaft_diameter_mm / 2
     add(RigPartSpec(
         name="force_gauge", kind="purchased",
-        process=f"{gg.model} digital force gauge, {gg.range_N:g} N range, {gg.resolution_N:g} N "
-                f"resolution (housing envelope)",
+        process=Process(f"{gg.model} digital force gauge, {gg.range_N:g} N range, "
+                        f"{gg.resolution_N:g} N resolution (housing envelope)", Method.BOUGHT),
         material="housing", color=_COLORS["force_gauge"], builder="force_gauge",
         expected_volume_mm3=gg.width_mm * gg.depth_mm * gg.length_mm
         + math.pi * rs * rs * gg.shaft_length_mm,
@@ -265,8 +268,9 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     rm = z.micrometer_diameter_mm / 2
     add(RigPartSpec(
         name="z_stage_body", kind="purchased",
-        process=f"manual vertical stage with micrometer head ({z.micrometer_resolution_mm * 1000:g} um), "
-                f"{z.travel_mm:g} mm travel: envelope of the fixed body",
+        process=Process(f"manual vertical stage with micrometer head "
+                        f"({z.micrometer_resolution_mm * 1000:g} um), {z.travel_mm:g} mm travel: "
+                        f"envelope of the fixed body", Method.BOUGHT),
         material="aluminium, steel", color=_COLORS["z_stage_body"], builder="z_stage_body",
         expected_volume_mm3=z.body_width_mm * z.body_depth_mm * z.body_height_mm
         + math.pi * rm * rm * z.micrometer_length_mm,
@@ -277,7 +281,8 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
                 "front": face((0, 0, 0), (0, 1, 0), (0, 0, 1))}))
     add(RigPartSpec(
         name="z_stage_carriage", kind="purchased",
-        process="manual vertical stage: envelope of the moving carriage", material="aluminium",
+        process=Process("manual vertical stage: envelope of the moving carriage", Method.BOUGHT),
+        material="aluminium",
         color=_COLORS["z_stage_carriage"], builder="z_stage_carriage",
         expected_volume_mm3=z.body_width_mm * z.carriage_thickness_mm * z.carriage_height_mm,
         expected_bbox_mm=_box_bbox(-z.body_width_mm / 2, 0, -z.carriage_height_mm / 2,
@@ -292,8 +297,8 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
                            ("xy_stage_table", xy.table_height_mm, "moving table")):
         add(RigPartSpec(
             name=nm, kind="purchased",
-            process=f"manual linear micro-stage {xy.size_mm:g} mm square, {xy.travel_mm:g} mm travel: "
-                    f"envelope of the {extra}",
+            process=Process(f"manual linear micro-stage {xy.size_mm:g} mm square, "
+                            f"{xy.travel_mm:g} mm travel: envelope of the {extra}", Method.BOUGHT),
             material="aluminium", color=_COLORS[nm], builder=nm,
             expected_volume_mm3=xy.size_mm ** 2 * hgt,
             expected_bbox_mm=_box_bbox(-a, -a, 0, a, a, hgt), geometry=xy,
@@ -304,7 +309,8 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     la = rigs.linear_axis
     add(RigPartSpec(
         name="rail_" + la.rail.split()[-1], kind="purchased",
-        process=f"{la.rail} miniature guide rail, {la.rail_length_mm:g} mm", material="steel",
+        process=Process(f"{la.rail} miniature guide rail, {la.rail_length_mm:g} mm", Method.BOUGHT),
+        material="steel",
         color=_COLORS["rail"], builder="rail",
         expected_volume_mm3=la.rail_length_mm * la.rail_width_mm * la.rail_height_mm,
         expected_bbox_mm=_box_bbox(0, -la.rail_width_mm / 2, 0, la.rail_length_mm,
@@ -314,7 +320,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
                 "top": face((0, 0, la.rail_height_mm), (0, 0, 1), (1, 0, 0))}))
     add(RigPartSpec(
         name="block_" + la.block.split()[-1], kind="purchased",
-        process=f"{la.block} carriage block (envelope)", material="steel",
+        process=Process(f"{la.block} carriage block (envelope)", Method.BOUGHT), material="steel",
         color=_COLORS["block"], builder="block",
         expected_volume_mm3=la.block_length_mm * (
             la.block_width_mm * (la.block_height_mm - la.block_clearance_mm)
@@ -328,7 +334,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     cg = rigs.carrier
     zc = cg.thickness_mm + (cg.shelf_depth_mm - cg.thickness_mm) / 2
     add(RigPartSpec(
-        name="axis_carrier", kind="fabricated", process="milling from plate", material=al,
+        name="axis_carrier", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
         color=_COLORS["axis_carrier"], builder="axis_carrier",
         expected_volume_mm3=cg.width_mm * (cg.height_mm * cg.thickness_mm
                                            + (cg.shelf_depth_mm - cg.thickness_mm) * cg.thickness_mm),
@@ -342,7 +348,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     hb = rigs.bar
     sh = hb.section_mm / 2
     add(RigPartSpec(
-        name="hanger_bar", kind="fabricated", process="sawing and facing bar stock",
+        name="hanger_bar", kind="fabricated", process=Process("sawing and facing bar stock", Method.BAR),
         material=BAR_ALUMINIUM,
         color=_COLORS["hanger_bar"], builder="hanger_bar",
         expected_volume_mm3=hb.section_mm ** 2 * hb.length_mm,
@@ -353,8 +359,8 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     rw = wt.diameter_mm / 2
     add(RigPartSpec(
         name=f"weight_{wt.mass_g:g}g", kind="purchased",
-        process=f"{wt.mass_g:g} g steel weight (cylinder of {wt.volume_mm3:.0f} mm3 at "
-                f"{wt.density_g_per_cm3:g} g/cm3)",
+        process=Process(f"{wt.mass_g:g} g steel weight (cylinder of {wt.volume_mm3:.0f} mm3 at "
+                        f"{wt.density_g_per_cm3:g} g/cm3)", Method.BOUGHT),
         material="steel", color=_COLORS["weight"], builder="weight",
         expected_volume_mm3=wt.volume_mm3,
         expected_bbox_mm=_box_bbox(-rw, -rw, 0, rw, rw, wt.height_mm), geometry=wt,
@@ -375,7 +381,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     if bolt_name(br.bolt, br.bolt_length_mm) != bolt_name(plan.bolt, plan.bolt_length_mm):
         add(_bolt_spec(br.bolt, br.bolt_length_mm, (0.11, 0.12, 0.16)))
     add(RigPartSpec(
-        name="array_bracket", kind="fabricated", process="milling from plate", material=al,
+        name="array_bracket", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
         color=_COLORS["array_bracket"], builder="array_bracket", expected_volume_mm3=vol,
         expected_bbox_mm=_box_bbox(-w / 2, br.foot_bottom_mm, -br.foot_length_mm, w / 2,
                                    br.ear_top_mm, 0),

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from tactcad.catalogue.array import PartSpec
+from tactcad.catalogue.array import Method, PartSpec
 from tactcad.design.array import BoltSpec, Plan
 
 #: ISO 261 / ISO 262 coarse pitch (mm) by nominal diameter (mm).
@@ -90,7 +90,7 @@ def surface_finish(spec: PartSpec) -> Finish:
     Ra 1.6 in general; on a flexure element Ra 0.8 on the contact face and the
     web (reason: :data:`FINISH_REASON`). A cast rubber sample gets the mould's
     finish."""
-    if "rubber" in spec.material or spec.process.startswith("cast"):
+    if spec.process.method is Method.CAST:
         return Finish(0.0, (), "as cast: the mould's surface")
     special: tuple[tuple[str, float], ...] = ()
     if spec.builder == "element":
@@ -100,28 +100,35 @@ def surface_finish(spec: PartSpec) -> Finish:
 
 def stock_size(spec: PartSpec) -> str:
     """Raw blank of a fabricated part (mm), from its designed bounding box
-    and the allowances of its process (:data:`STOCK_REASON`):
+    and the allowances of its process's :class:`~tactcad.catalogue.array.Method`
+    (:data:`STOCK_REASON`):
 
     * cut from sheet: ``sheet T, blank L x W``;
     * milled from plate: ``plate T x L x W`` (the next whole mm above);
     * turned: ``round bar ØD x L``;
+    * cut from bar: ``bar T x W, cut to L``;
     * cast: ``cast to size``.
+
+    Raises:
+        ValueError: a bought part (it has no stock).
     """
     x0, y0, z0, x1, y1, z1 = spec.expected_bbox_mm
     ext = sorted((x1 - x0, y1 - y0, z1 - z0))
     t, w, L = ext
-    p = spec.process
-    if p.startswith("cast"):
+    method = spec.process.method
+    if method is Method.BOUGHT:
+        raise ValueError(f"{spec.name} is bought ({spec.process}): no raw stock")
+    if method is Method.CAST:
         return "cast to size"
-    if "sheet" in p:
+    if method is Method.SHEET:
         thick = spec.thickness_mm or t
         return (f"sheet {_fmt(thick)} mm, blank {_fmt(math.ceil(L + 2 * SHEET_MARGIN_MM))} x "
                 f"{_fmt(math.ceil(w + 2 * SHEET_MARGIN_MM))}")
-    if "turning" in p:
+    if method is Method.ROUND_BAR:
         d = max(x1 - x0, y1 - y0)
         return (f"round bar Ø{_fmt(math.ceil(d + BAR_DIAMETER_MM))} x "
                 f"{_fmt(math.ceil((z1 - z0) + BAR_LENGTH_MM))}")
-    if "bar" in p:
+    if method is Method.BAR:
         return f"bar {_fmt(t)} x {_fmt(w)}, cut to {_fmt(math.ceil(L + BAR_LENGTH_MM))}"
     return (f"plate {_fmt(math.ceil(t + 2 * PLATE_FACE_MM))} x "
             f"{_fmt(math.ceil(L + 2 * PLATE_MARGIN_MM))} x {_fmt(math.ceil(w + 2 * PLATE_MARGIN_MM))}")

@@ -16,7 +16,7 @@ from tactcad.checks.result import CheckResult
 from tactcad.checks.scene_sanity import check_scene_sanity
 from tactcad.checks.solids import check_solid
 from tactcad.checks.step import check_step
-from tactcad.design.array import Plan
+from tactcad.design.project import Project
 from tactcad.export.glb import read_glb
 from tactcad.catalogue.files import scene_glb_name, scene_step_name
 from tactcad.parts.cache import PartCache
@@ -27,7 +27,7 @@ def placed_shapes(scene: Scene, solids: Mapping[str, Any]) -> list[Placed]:
     return [Placed(i.name, solids[i.part].moved(i.location)) for i in scene.instances]
 
 
-def run_scene_checks(plan: Plan, out_dir: str | Path, names: Iterable[str] | None = None,
+def run_scene_checks(project: Project, out_dir: str | Path, names: Iterable[str] | None = None,
                      cache: PartCache | None = None, confirm: bool = True,
                      done: Callable[[str, list[CheckResult]], None] | None = None
                      ) -> list[CheckResult]:
@@ -36,12 +36,12 @@ def run_scene_checks(plan: Plan, out_dir: str | Path, names: Iterable[str] | Non
     sanity, STEP re-import and GLB read-back against the review records.
     ``done(f"scene {name}", results)`` is called as each scene's checks finish."""
     out_dir = Path(out_dir)
-    cache = cache or PartCache(plan)
+    cache = cache or PartCache(project.plan)
     results: list[CheckResult] = []
     checked_parts: set[str] = set()
-    for name in (list(names) if names is not None else scene_names(plan)):
+    for name in (list(names) if names is not None else scene_names(project)):
         first = len(results)
-        scene, solids = build_scene(plan, name, cache)
+        scene, solids = build_scene(project, name, cache)
         for pname, spec in scene.parts().items():
             if isinstance(spec, RigPartSpec) and pname not in checked_parts:
                 checked_parts.add(pname)

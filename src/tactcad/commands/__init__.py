@@ -1,8 +1,13 @@
 """Sub-commands of the ``tactcad`` CLI; see :mod:`tactcad.cli`.
 
-Every command that reads a design gets its plan from :func:`plan_from_args`,
-the one place where the design file is read, ``--set`` overrides applied and
-the result validated.
+Every command that reads a design gets it from :func:`load_from_args` (the
+:class:`tactcad.api.Project`), :func:`project_from_args` (its validated
+:class:`tactcad.design.project.Project`) or :func:`plan_from_args` (its
+plan): all go through :func:`tactcad.api.load`, the one place where the
+design file and the rigs and scenes files beside it are read, ``--set``
+overrides applied and the result validated, for the command line and the
+Python API alike. Nothing below the commands opens those files again: the
+validated project is carried to the last writer.
 """
 
 from __future__ import annotations
@@ -69,15 +74,6 @@ def parse_overrides(texts: list[str] | None) -> dict[str, Any]:
     return dict(parse_override(t) for t in texts or ())
 
 
-def design_data_from_args(args: argparse.Namespace) -> tuple[dict[str, Any], Path]:
-    """The design file's tables with the ``--set`` overrides applied, and the file's path."""
-    from tactcad.design.array import DEFAULT_DESIGN, read_toml, with_overrides
-
-    path = Path(args.design) if getattr(args, "design", None) else DEFAULT_DESIGN
-    data = read_toml(path, "design file")
-    return with_overrides(data, parse_overrides(getattr(args, "overrides", None))), path
-
-
 def plan_from_args(args: argparse.Namespace):
     """The validated :class:`~tactcad.design.array.Plan` of ``--design`` with every ``--set``.
 
@@ -91,10 +87,30 @@ def plan_from_args(args: argparse.Namespace):
         DesignError: unreadable file, bad ``--set``, unknown key, value out of range
             (:class:`~tactcad.errors.DesignErrors` lists every one).
     """
-    from tactcad.design.project import project_with_design_data
+    return load_from_args(args).plan
 
-    data, path = design_data_from_args(args)
-    return project_with_design_data(data, path)[0]
+
+def project_from_args(args: argparse.Namespace):
+    """The validated :class:`~tactcad.design.project.Project` (plan, rigs,
+    scenes and the three files' hashes) of :func:`load_from_args`.
+
+    Raises:
+        DesignError: as :func:`plan_from_args`.
+    """
+    return load_from_args(args).validated
+
+
+def load_from_args(args: argparse.Namespace):
+    """The :class:`tactcad.api.Project` of ``--design`` with every ``--set``
+    (:func:`tactcad.api.load`, which the Python API's users call too).
+
+    Raises:
+        DesignError: as :func:`plan_from_args`.
+    """
+    from tactcad.api import load
+
+    return load(getattr(args, "design", None),
+                set=parse_overrides(getattr(args, "overrides", None)))
 
 
 def add_cache_args(p: argparse.ArgumentParser) -> None:

@@ -5,7 +5,7 @@
   the largest scene: manifold3d fast path, OpenCascade confirmation, and an
   OpenCascade-only check for comparison.
 * ``bench stiffness``: the stiffness estimators, provided by
-  ``tactcad.mechanics.bench.main(args)`` when that module is installed.
+  ``tactcad.studies.stiffness_bench.main(args)`` when that module is installed.
 * ``bench closed-form``, ``bench montecarlo``, ``bench sweep``: the design
   tools at scale (:mod:`tactcad.studies.bench_scale`).
 """
@@ -16,7 +16,8 @@ import argparse
 import importlib
 import os
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
+                               project_from_args)
 from tactcad.commands.finite_json import dumps
 
 COLD_GOAL_S = 8.0  # on two cores
@@ -40,7 +41,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_output_args(e, "print the figures as JSON: cold_s, warm_s, one_change_s, builds, "
                         "distinct_parts (and the job counts)")
     e.set_defaults(func=run_export)
-    s = bsub.add_parser("stiffness", help="stiffness estimator benchmarks (tactcad.mechanics.bench)")
+    s = bsub.add_parser("stiffness", help="stiffness estimator benchmarks (tactcad.studies.stiffness_bench)")
     add_design_arg(s)
     s.add_argument("--out", metavar="DIR", default=None,
                    help="folder for the report files (default: the benchmark's own)")
@@ -69,11 +70,12 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run_stiffness(args: argparse.Namespace) -> int:
     try:
-        module = importlib.import_module("tactcad.mechanics.bench")
+        module = importlib.import_module("tactcad.studies.stiffness_bench")
     except ModuleNotFoundError as exc:
-        if exc.name not in ("tactcad.mechanics.bench", "tactcad.mechanics"):
+        if exc.name not in ("tactcad.studies.stiffness_bench", "tactcad.studies"):
             raise
-        print("tactcad bench stiffness: not available in this build (no tactcad.mechanics.bench)")
+        print("tactcad bench stiffness: not available in this build "
+              "(no tactcad.studies.stiffness_bench)")
         return 0
     return int(module.main(args, plan=plan_from_args(args)) or 0)
 
@@ -136,7 +138,8 @@ def run_export(args: argparse.Namespace) -> int:
 
     from tactcad.studies.bench_scale import load_average
 
-    plan = plan_from_args(args)
+    project = project_from_args(args)
+    plan = project.plan
     say = (lambda s: None) if args.json else print
     say(f"tactcad bench export: design {plan.name}, {os.cpu_count()} CPUs, "
         f"load average {load_average()}")
@@ -154,7 +157,7 @@ def run_export(args: argparse.Namespace) -> int:
     print(f"  solid builds in the cold run       {figures['builds']:6d}     distinct parts "
           f"{figures['distinct_parts']}: {ok}")
     print(f"  one change: {figures['one_change_jobs_run']} of {figures['jobs']} jobs rebuilt")
-    _bench_interference(plan)
+    _bench_interference(project)
     return 0
 
 
@@ -194,7 +197,7 @@ def export_figures(plan, args: argparse.Namespace, tmp: str) -> dict:
             "one_change_jobs_run": last["jobs_run"], "cpus": os.cpu_count()}
 
 
-def _bench_interference(plan) -> None:
+def _bench_interference(project) -> None:
     import time
 
     from tactcad.checks.interference import check_interference
@@ -204,10 +207,10 @@ def _bench_interference(plan) -> None:
     from tactcad.checks.scenes import placed_shapes
     from tactcad.parts.cache import PartCache
 
-    cache = PartCache(plan)
+    cache = PartCache(project.plan)
     largest = None
-    for name in scene_names(plan):
-        scene, solids = build_scene(plan, name, cache)
+    for name in scene_names(project):
+        scene, solids = build_scene(project, name, cache)
         if largest is None or len(scene.instances) > len(largest[0].instances):
             largest = (scene, solids)
     scene, solids = largest

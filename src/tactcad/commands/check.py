@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import tempfile
 import time
 
-from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
-                              progress_from_args, store_from_args)
+from tactcad.checks.result import failures
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
+                              load_from_args)
 from tactcad.commands.finite_json import dumps
 
 
@@ -28,26 +28,24 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--scene", metavar="NAME", action="append", default=None,
                    help="check only this scene (repeatable): interference, geometry sanity, STEP "
                         "and GLB read-back; without it the array and every scene are checked")
+    p.add_argument("--junit", metavar="FILE", default=None,
+                   help="also write the results as JUnit XML (one test case per check, one test "
+                        "suite per part, sheet, the array and each scene) for CI")
     add_cache_args(p)
     add_output_args(p, "print one JSON object: the export checked, each check and the counts")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.checks.array import run_checks
-    from tactcad.checks.result import failures
-    from tactcad.checks.scenes import run_scene_checks
-    from tactcad.export.reuse import reuse_refusal
     from tactcad.export.selection import ReportingParts
 
-    plan = plan_from_args(args)
+    project = load_from_args(args)
+    if args.junit is not None:
+        junit_target(args.junit)  # a bad path is refused before the checks run
     report = progress_from_args(args)
-    cache = ReportingParts(plan, report)
-    results = []
     t0 = time.perf_counter()
 
     def done(group: str, found: list) -> None:
-        results.extend(found)
         bad = len(failures(found))
         report(f"{group}: {len(found) - bad} passed, {bad} failed "
                f"({time.perf_counter() - t0:.1f} s)")
@@ -56,43 +54,42 @@ def run(args: argparse.Namespace) -> int:
                 if not (r.passed and args.failures_only):
                     print(r.line(), flush=True)
 
-    from tactcad.checks.requirements import requirement_checks
+    result = project.check(args.out, args.scene, cache=store_choice(args), progress=report,
+                           on_group=done)
+    if args.junit is not None:
+        from tactcad.checks.junit import write_junit
 
-    done("requirements", requirement_checks(plan))
-    with tempfile.TemporaryDirectory() as tmp:
-        out = args.out or tmp
-        refusal = reuse_refusal(plan, out)
-        if refusal is None:
-            report(f"checking the export in {out} (same design, every file as listed)")
-        else:
-            report(f"exporting to {out} first: {refusal}")
-            export_for_check(plan, out, args, cache, report)
-        if args.scene:
-            run_scene_checks(plan, out, args.scene, cache=cache, done=done)
-        else:
-            run_checks(plan, out, cache, done=done)
-            run_scene_checks(plan, out, cache=cache, done=done)
-    bad = failures(results)
+        write_junit(args.junit, result.groups, project.parts)
+        report(f"wrote {args.junit} (JUnit XML, {len(result)} test cases)")
+    bad = result.failures
     if args.json:
-        print(dumps({"out": args.out, "reused_export": refusal is None,
-                          "export_refusal": refusal, "passed": len(results) - len(bad),
-                          "failed": len(bad),
-                          "checks": [{"check": r.check, "subject": r.subject, "passed": r.passed,
-                                      "detail": r.detail} for r in results
-                                     if not (r.passed and args.failures_only)]}, indent=1))
+        print(dumps({"out": args.out, "reused_export": result.reused_export,
+                     "export_refusal": result.export_refusal, "passed": len(result) - len(bad),
+                     "failed": len(bad), "junit": args.junit,
+                     "checks": [{"check": r.check, "subject": r.subject, "passed": r.passed,
+                                 "detail": r.detail} for r in result.results
+                                if not (r.passed and args.failures_only)]}, indent=1))
     else:
-        print(f"{len(results) - len(bad)} passed, {len(bad)} failed")
+        print(f"{len(result) - len(bad)} passed, {len(bad)} failed")
     return 1 if bad else 0
 
 
-def export_for_check(plan, out: str, args: argparse.Namespace, cache, report) -> None:
-    """Export ``plan`` (or only ``--scene``) into ``out`` with the store, reporting each job."""
-    from tactcad.export.run import export, export_scenes
-    from tactcad.export.selection import with_progress
+def junit_target(path: str) -> None:
+    """Refuse a ``--junit`` path whose folder is missing or which is a folder.
 
-    store = store_from_args(args)
-    if args.scene:
-        export_scenes(plan, out, args.scene, log=lambda s: None, store=store, parts=cache)
-    else:
-        export(plan, out, log=lambda s: None, store=store, parts=cache,
-               select=lambda jobs: with_progress(jobs, report))
+    Raises:
+        DesignError: naming the option, the path and what is allowed.
+    """
+    from pathlib import Path
+
+    from tactcad.errors import DesignError
+
+    target = Path(path)
+    if target.is_dir() or not target.parent.is_dir():
+        raise DesignError("--junit", path, "a file path in an existing folder, e.g. "
+                                           "check-report.xml")
+
+
+def store_choice(args: argparse.Namespace):
+    """``--cache``/``--no-cache`` as :meth:`tactcad.api.Project.check` takes it."""
+    return False if args.no_cache else (args.cache or True)

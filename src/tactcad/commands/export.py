@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, project_from_args,
                               progress_from_args, store_from_args)
 
 
@@ -45,7 +45,8 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.export.selection import (ReportingParts, parse_only, partial_record,
                                           select_jobs, with_progress)
 
-    plan = plan_from_args(args)  # validation first: a bad design writes nothing
+    project = project_from_args(args)  # validation first: a bad design writes nothing
+    plan = project.plan
     only, parts = parse_only(args.only), list(args.part or ())
     if args.scene and (only or parts):
         raise DesignError("--scene", args.scene, "alone, without --only or --part")
@@ -53,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     store = store_from_args(args)
     cache = ReportingParts(plan, report)
     if args.scene:
-        result = export_scenes(plan, args.out, args.scene, log=lambda s: None, store=store,
+        result = export_scenes(project, args.out, args.scene, log=lambda s: None, store=store,
                                parts=cache)
     else:
         partial = {} if only or parts else None  # filled in once the jobs are known
@@ -68,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
                    + "; those not in the store run now")
             return with_progress(chosen, report)
 
-        result = export(plan, args.out, log=lambda s: None, store=store, parts=cache,
+        result = export(project, args.out, log=lambda s: None, store=store, parts=cache,
                         dxf_version=args.dxf_version, select=select,
                         partial=partial)
     if args.json:

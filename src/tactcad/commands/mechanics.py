@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
+                              load_from_args)
 from tactcad.errors import TactcadError
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
@@ -38,15 +39,14 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run_stiffness(args: argparse.Namespace) -> int:
-    from tactcad.mechanics.ladder import estimate
-
-    plan = plan_from_args(args)
-    slot = plan.element(args.element)
+    project = load_from_args(args)
+    plan, element = project.plan, project.element(args.element)
+    slot = element.slot
     if args.vtk is not None and args.model not in ("fem2d", "fem3d"):
         raise TactcadError(f"--vtk {args.vtk}: allowed with --model fem2d or fem3d only "
                            f"(got --model {args.model})")
     levels = {"progress": progress_from_args(args)} if args.model in ("fem2d", "fem3d") else {}
-    r = estimate(args.model, slot.geometry, plan.material, element=args.element, **levels)
+    r = element.stiffness(args.model, **levels)
     vtu = None
     if args.vtk is not None:
         from tactcad.mechanics.fem.fields import write_element_vtu

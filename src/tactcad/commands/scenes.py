@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands import add_design_arg, add_output_args, project_from_args
 from tactcad.commands.finite_json import dumps
 
 
@@ -23,13 +23,13 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from tactcad.assembly.rigs import describe, get_scene_spec, scene_summaries
 
-    plan = plan_from_args(args)
+    project = project_from_args(args)
     if args.name is not None:
-        get_scene_spec(plan, args.name)  # SceneError (exit 2) lists the scenes
+        get_scene_spec(project, args.name)  # SceneError (exit 2) lists the scenes
     if args.json:
-        print(dumps([s for s in scene_summaries(plan) if args.name in (None, s["name"])]))
+        print(dumps([s for s in scene_summaries(project) if args.name in (None, s["name"])]))
         return 0
-    lines = describe(plan)
+    lines = describe(project)
     if args.name is not None:
         keep, show = [], False
         for line in lines:

@@ -40,7 +40,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.mechanics.strength import plan_strength
+    from tactcad.studies.strength import plan_strength
 
     plan = plan_from_args(args)
     if args.table1:
@@ -109,7 +109,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
 
 
 def _run_table1(plan, model: str, as_json: bool) -> int:
-    from tactcad.mechanics.strength import table1_force_comparison
+    from tactcad.studies.strength import table1_force_comparison
 
     rows = table1_force_comparison(plan, model)
     if as_json:

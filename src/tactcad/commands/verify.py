@@ -34,7 +34,9 @@ def run(args: argparse.Namespace) -> int:
     plan = plan_from_args(args)
     progress = progress_from_args(args)
     req = requirements_of(plan)
-    records = verification_matrix(plan, args.model, progress, req)
+    from tactcad.studies.strength import element_stress
+
+    records = verification_matrix(plan, args.model, progress, req, stress=element_stress)
     ok = matrix_passed(records)
     if args.json:
         print(dumps({"design": plan.name, "model": args.model, "requirements": req.as_json(),

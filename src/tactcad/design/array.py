@@ -183,6 +183,18 @@ class ElementGeometry:
         return self.base_height_mm + self.tip_height_mm
 
     @property
+    def web_centre_mm(self) -> tuple[float, float]:
+        """(x, y) of the web's middle (mm): mid-thickness over the notch centre,
+        where the gauge's strain and the hinge's rotation are; the one place
+        the web's position is computed (DXF lead-in keep-out, drawing detail)."""
+        return (self.hinge_x_mm, self.base_height_mm - self.web_thickness_mm / 2)
+
+    @property
+    def contact_centre_mm(self) -> tuple[float, float]:
+        """(x, y) of the middle of the tip's contact face (mm), the tip frame's origin."""
+        return (self.tip_centre_x_mm, self.tip_top_y_mm)
+
+    @property
     def contact_face_mm(self) -> tuple[float, float]:
         """(width along x, depth along z) of the tip contact face."""
         return (self.tip_width_mm, self.sheet_thickness_mm)

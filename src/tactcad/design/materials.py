@@ -9,7 +9,6 @@ A design's ``[material]`` table may name a ``grade``; modulus, Poisson
 ratio, yield and fatigue strength and density then come from the library
 unless the table gives its own value. An optional ``[strength]`` table sets
 the ``safety_factor`` on yield and the ``gauge`` (a name from the library).
-:func:`split_design_tables` does that resolution for the design reader.
 
 Units: MPa, g/cm^3, strain dimensionless, ohm.
 """
@@ -293,38 +292,3 @@ def strength_settings(table: Any) -> StrengthSettings:
     return StrengthSettings(sf, strain_gauge(table.get("gauge", DEFAULT_GAUGE)))
 
 
-def split_design_tables(data: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, Any],
-                                                         StrengthSettings]:
-    """Separate the materials-library parts of raw design tables.
-
-    Returns:
-        (core, material_fields, strength): ``core`` is a shallow copy of
-        ``data`` whose ``[material]`` table holds only name, E and nu (E and nu
-        filled from the grade when the table omits them) and without
-        ``[strength]``; ``material_fields`` is :func:`material_fields` of the
-        table; ``strength`` is :func:`strength_settings` of ``[strength]``.
-
-    Raises:
-        DesignError: see :func:`material_fields` and :func:`strength_settings`.
-    """
-    core = {k: v for k, v in data.items() if k != "strength"}
-    table = data.get("material")
-    if not isinstance(table, Mapping):
-        return core, material_fields({}), strength_settings(data.get("strength"))
-    fields = material_fields(table)
-    mat = {k: v for k, v in table.items() if k not in MATERIAL_OPTIONAL_KEYS}
-    if fields["grade"] is not None:
-        g = material_grade(fields["grade"])
-        for key in _CORE_MATERIAL_KEYS[1:]:
-            mat.setdefault(key, getattr(g, key))
-    core["material"] = mat
-    return core, fields, strength_settings(data.get("strength"))
-
-
-def assumption_schema(schema: Mapping[str, tuple[str, ...]]) -> dict[str, tuple[str, ...]]:
-    """``schema`` plus the optional material keys and the [strength] keys, so
-    that ``[assumptions]`` may give reasons for them."""
-    out = dict(schema)
-    out["material"] = tuple(schema.get("material", ())) + MATERIAL_OPTIONAL_KEYS
-    out["strength"] = STRENGTH_KEYS
-    return out

@@ -879,22 +879,20 @@ def _with_source(rigs: RigDesign, source: str) -> RigDesign:
     return replace(rigs, source=source)
 
 
-def load_rigs(path: str | Path | None = None, *, array_plan: Plan | None = None) -> RigDesign:
-    """Read a rig file and return its validated rig plan.
+def load_rigs(path: str | Path | None = None, *, array_plan: Plan) -> RigDesign:
+    """Read a rig file and return its validated rig plan (see
+    :func:`tactcad.design.project.load_project` for the three files together).
 
     Args:
         path: TOML rig file; ``None`` means ``hardware/rigs.toml``.
-        array_plan: the array's :class:`~tactcad.design.array.Plan`, needed for the
-            bracket (mounting holes, bolt grip); ``None`` loads the default design.
+        array_plan: the array's :class:`~tactcad.design.array.Plan` the rigs are
+            derived against (bracket mounting holes, bolt grip).
 
     Raises:
         DesignError: unreadable file, missing/unknown key, or a value outside
             its allowed range (the message names file, field, value and range).
     """
     p = Path(path) if path is not None else DEFAULT_RIGS
-    if array_plan is None:
-        from tactcad.design.array import load_design
-        array_plan = load_design()
     return rigs_from_dict(read_toml(p, "rigs file"), array_plan, source=str(p), file=p.name)
 
 
@@ -903,8 +901,7 @@ def default_rigs_data() -> dict[str, Any]:
     return read_toml(DEFAULT_RIGS, "rigs file")
 
 
-def rigs_path_for(plan) -> Path:
+def rigs_path_for(design_file: Path) -> Path:
     """``rigs.toml`` beside the design file, else the default one."""
-    src = Path(getattr(plan, "source", "") or "")
-    candidate = src.parent / "rigs.toml"
-    return candidate if src.name and candidate.is_file() else DEFAULT_RIGS
+    candidate = design_file.parent / "rigs.toml"
+    return candidate if design_file.name and candidate.is_file() else DEFAULT_RIGS

@@ -12,7 +12,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping, Optional
 
-from tactcad.design.array import Plan
 from tactcad.design.schema import (NAME_ALLOWED, NAME_PATTERN, Problems, Section, Text, choice,
                                    listing, number, read_toml, validate)
 
@@ -68,11 +67,10 @@ class ScenesFile(Section):
     scene: dict[str, SceneTable]
 
 
-def scenes_path_for(plan: Plan) -> Path:
+def scenes_path_for(design_file: Path) -> Path:
     """``scenes.toml`` beside the design file, else the default one."""
-    src = Path(getattr(plan, "source", "") or "")
-    candidate = src.parent / "scenes.toml"
-    return candidate if src.name and candidate.is_file() else DEFAULT_SCENES
+    candidate = design_file.parent / "scenes.toml"
+    return candidate if design_file.name and candidate.is_file() else DEFAULT_SCENES
 
 
 def _detail(field: str, table: DetailTable, default: Mapping[str, str],

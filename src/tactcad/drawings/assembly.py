@@ -20,8 +20,8 @@ from tactcad.catalogue.files import profile_dxf_name
 from tactcad.catalogue.shop import TORQUE_SOURCE, tightening_torque_Nm
 from tactcad.design.array import Plan
 from tactcad.drawings.design_notes import numbering_note
-from tactcad.drawings.compose import (FRAME, _wrap, general_tolerance, revision_and_date,
-                                      sheet_frame, title_cells)
+from tactcad.drawings.frame import (FRAME, general_tolerance, revision_and_date, sheet_frame,
+                                    title_cells, wrap_text)
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
 from tactcad.drawings.views import ISO_5455_SCALES, View, cameras_for, project, scale_text
 from tactcad.store import stable_repr
@@ -247,7 +247,7 @@ def _notes(a: AssemblySheet, plan: Plan) -> None:
                  f"drawing.")
     x0, y = FRAME[0] + 5.0, FRAME[3] - 63.0 - 4.0
     width = FRAME[2] - 180.0 - 10.0 - x0
-    wrapped = [_wrap(f"{k}. {t}", width * 0.95, DIM_TEXT_MM) for k, t in enumerate(lines, start=1)]
+    wrapped = [wrap_text(f"{k}. {t}", width * 0.95, DIM_TEXT_MM) for k, t in enumerate(lines, start=1)]
     y = FRAME[3] - 4.0 - sum(len(w) * 4.2 + 0.8 for w in wrapped)
     sh.text("notes", (x0, y - 5.0), "ASSEMBLY NOTES", LABEL_TEXT_MM, bold=True)
     for k, ws in enumerate(wrapped, start=1):

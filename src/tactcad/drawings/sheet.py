@@ -53,7 +53,6 @@ EXT_OVERSHOOT_MM = 2.0  # extension line past the dimension line
 TEXT_LIFT_MM = 1.0      # text baseline above the dimension line
 DIM_TEXT_MM = 2.5       # ISO 3098 nominal height of dimension values
 LABEL_TEXT_MM = 3.5     # view labels, title block values
-TITLE_TEXT_MM = 5.0     # title block: part name
 
 
 def fmt_mm(value: float, decimals: int = 3) -> str:

@@ -28,7 +28,7 @@ from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
 from tactcad import __version__
-from tactcad.assembly.inventory import design_assemblies, instance_counts, part_quantities
+from tactcad.assembly.inventory import instance_counts, part_quantities
 from tactcad.atomic import write_bytes_atomic
 from tactcad.catalogue.array import Instance, PartSpec
 from tactcad.design.array import Plan
@@ -215,19 +215,19 @@ def part_files(plan: Plan, staging: Path,
 
 
 def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None],
-                    assembled=None) -> list[dict]:
+                    assembled) -> list[dict]:
     """Write ``bom.csv`` and ``bom.md`` into ``staging`` (see module doc).
 
     Run after the writers of the files it names (drawings, DXF, STEP): only
     files present in ``staging`` are referenced.
 
     Args:
-        assembled: :func:`tactcad.assembly.inventory.design_assemblies` of the plan, if at hand.
+        assembled: :func:`tactcad.assembly.inventory.design_assemblies` of the run's project.
 
     Returns:
         File records ``{"path", "part": "bom", "kind", "items"}``.
     """
-    specs, assemblies = assembled or design_assemblies(plan)
+    specs, assemblies = assembled
     rows = bom_rows(assemblies, specs, part_files(plan, staging, assemblies), plan)
     rows += sensor_rows(plan, rows, specs)
     write_bytes_atomic(staging / "bom.csv", bom_csv(rows).encode(CSV_ENCODING))

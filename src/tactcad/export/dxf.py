@@ -184,12 +184,6 @@ def _quiet_units_warning() -> Iterator[None]:
         log.removeFilter(f)
 
 
-def profile_document(profile: Profile, title: str = "",
-                     version: str = DEFAULT_DXF_VERSION) -> ezdxf.document.Drawing:
-    """An in-memory DXF of one profile at its own origin, without lead-ins or marks."""
-    return dxf_document(DxfFile((PlacedProfile(profile),), title), version)
-
-
 @contextlib.contextmanager
 def _fixed_metadata() -> Iterator[None]:
     """ezdxf's switch for constant time stamps and GUIDs; it must be on from

@@ -77,9 +77,8 @@ class ShopProfile:
 
 
 def element_keep_out(g: ElementGeometry) -> tuple[Point, ...]:
-    """The web (mid-thickness over the notch centre) and the contact-face centre (mm)."""
-    return ((g.hinge_x_mm, g.base_height_mm - g.web_thickness_mm / 2),
-            (g.tip_centre_x_mm, g.tip_top_y_mm))
+    """The web's middle and the contact-face centre (mm): no lead-in may start there."""
+    return (g.web_centre_mm, g.contact_centre_mm)
 
 
 def _arm_mark(a_mm: float) -> str:
@@ -100,7 +99,8 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
     for inst in array_instances(plan):
         counts[inst.part] = counts.get(inst.part, 0) + 1
     out = []
-    for name, g in plan.distinct_elements.items():
+    for name in plan.distinct_elements:
+        g = specs[name].geometry
         numbers = [s.number for s in plan.slots if s.geometry.part_name == name]
         out.append(ShopProfile(
             part=name, profile=specs[name].profile, quantity=counts[name],

@@ -11,6 +11,7 @@ from tactcad.assembly.inventory import design_assemblies, scene_models
 from tactcad.assembly.rigs import RigModel
 from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
+from tactcad.design.project import Project
 from tactcad.design.scenes import SceneSpec
 from tactcad.store import Store
 
@@ -19,14 +20,20 @@ Log = Callable[[str], None]
 
 @dataclass
 class Run:
-    """What the jobs of one run share: the plan, the staging folder, the log,
-    the part inventory (kernel-free) and the part cache (kernel, made on first use)."""
+    """What the jobs of one run share: the validated project, the staging
+    folder, the log, the part inventory (kernel-free) and the part cache
+    (kernel, made on first use)."""
 
-    plan: Plan
+    project: Project
     staging: Path
     log: Log = print
     store: Store = field(default_factory=lambda: Store(None))  # also memoises costly steps
     dxf_version: str | None = None  # of the shop DXF files; None: R2010 (or $TACTCAD_DXF_VERSION)
+
+    @property
+    def plan(self) -> Plan:
+        """The array's plan (``project.plan``)."""
+        return self.project.plan
 
     @cached_property
     def array(self) -> tuple[dict[str, PartSpec], list[Instance]]:
@@ -37,13 +44,13 @@ class Run:
     @cached_property
     def scenes(self) -> dict[str, tuple[SceneSpec, RigModel]]:
         """Every scene with its rig model; see :func:`tactcad.assembly.inventory.scene_models`."""
-        return scene_models(self.plan)
+        return scene_models(self.project)
 
     @cached_property
     def inventory(self) -> tuple[dict[str, PartSpec], dict[str, list]]:
         """(every distinct part by name, {assembly: instances}); see
         :func:`tactcad.assembly.inventory.design_assemblies`."""
-        return design_assemblies(self.plan, self.scenes)
+        return design_assemblies(self.project, self.scenes)
 
     @cached_property
     def parts(self):

@@ -108,7 +108,7 @@ def _scene(name: str):
         from tactcad.export.glb import write_glb
         from tactcad.export.step import StepInstance, StepPart, write_step
 
-        scene, solids = build_scene(run.plan, name, run.parts)
+        scene, solids = build_scene(run.project, name, run.parts)
         parts = [StepPart(n, solids[n], spec.color) for n, spec in scene.parts().items()]
         z_up = z_up_location()  # STEP is Z up, the GLB keeps glTF's y up
         inst = [StepInstance(i.name, i.part, z_up * i.location) for i in scene.instances]
@@ -132,7 +132,7 @@ def _start_review(names: list[str]):
 
         assemblies = []
         for name in names:
-            scene, solids = build_scene(run.plan, name, run.parts)
+            scene, solids = build_scene(run.project, name, run.parts)
             assemblies.append(scene_review_assembly(scene, solids, scene_step_name(name)))
         return start_review_files(run.staging, assemblies, run.log)
     return start
@@ -141,7 +141,7 @@ def _start_review(names: list[str]):
 # --- drawings: one SVG per fabricated part, the PDF, the first element's page as PNG ----------
 def drawing_jobs(run: Run) -> list[Job]:
     plan = run.plan
-    parts, qty = fabricated_parts(plan, run.inventory)
+    parts, qty = fabricated_parts(run.project, run.inventory)
     jobs = []
     for spec in parts:
         jobs.append(Job(f"drawing:{spec.name}",

@@ -34,6 +34,7 @@ from tactcad.atomic import (carry_over, leftover_staging, publish_dir, remove_pa
                             staging_dir, write_bytes_atomic)
 from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.design.array import Plan
+from tactcad.design.project import Project
 from tactcad.errors import ExportPathError
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
@@ -107,8 +108,10 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
 
 
 def _strength_record(r: dict) -> dict:
-    """An element's full-scale force and safety factor for the manifest (closed form)."""
-    keys = ("element", "part_name", "model", "stress_MPa_per_N", "full_scale_force_N",
+    """An element's arm, stiffness K, full-scale force and safety factor for
+    the manifest (closed form)."""
+    keys = ("element", "part_name", "arm_length_mm", "model", "stiffness_N_per_mm",
+            "stress_MPa_per_N", "full_scale_force_N",
             "yield_safety_factor_at_full_scale", "gauge_strain_at_full_scale",
             "tip_deflection_mm_at_full_scale", "warnings")
     return {k: r[k] for k in keys}
@@ -250,7 +253,7 @@ def _written_by_tactcad(out: Path) -> set[str]:
         return {MANIFEST}
 
 
-def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, log: Log,
+def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Project, log: Log,
                store: Store, with_manifest: bool, parts=None,
                dxf_version: str | None = None, partial: dict | None = None) -> ExportResult:
     """Build the files of ``jobs_of`` in a staging folder beside ``out_dir``,
@@ -264,7 +267,7 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
         shutil.rmtree(old, ignore_errors=True)
     staging = staging_dir(out)
     try:
-        run = Run(plan, staging, log, store, dxf_version)
+        run = Run(project, staging, log, store, dxf_version)
         if parts is not None:
             run.parts = parts  # share the caller's solids (e.g. with the checks)
         jobs = jobs_of(run)
@@ -273,7 +276,7 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
             _inside(staging, r["path"])
         files = [{**r, "bytes": (staging / r["path"]).stat().st_size} for r in records]
         if with_manifest:
-            man = manifest(plan, staging, records)
+            man = manifest(project.plan, staging, records)
             if partial is not None:  # a selection of the jobs (export --only/--part)
                 man["partial"] = partial
             man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
@@ -291,7 +294,7 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], plan: Plan, l
                         builds, len(run.inventory[0]))
 
 
-def export_scenes(plan: Plan, out_dir: str | Path, names: Sequence[str], log: Log = print,
+def export_scenes(project: Project, out_dir: str | Path, names: Sequence[str], log: Log = print,
                   store: Store | None = None, parts=None) -> ExportResult:
     """Write only the named scenes (``scenes/<name>.step`` and ``.glb``); the
     manifest is left as it is.
@@ -300,20 +303,22 @@ def export_scenes(plan: Plan, out_dir: str | Path, names: Sequence[str], log: Lo
         SceneError: an unknown scene name (nothing is written); the message lists the scenes.
     """
     for n in names:
-        get_scene_spec(plan, n)  # unknown names fail before anything is written
-    return _write_set(Path(out_dir), lambda run: scene_jobs(run, names), plan, log,
+        get_scene_spec(project, n)  # unknown names fail before anything is written
+    return _write_set(Path(out_dir), lambda run: scene_jobs(run, names), project, log,
                       store or Store(None), with_manifest=False, parts=parts)
 
 
-def export(plan: Plan, out_dir: str | Path, log: Log = print,
+def export(project: Project, out_dir: str | Path, log: Log = print,
            store: Store | None = None, parts=None, dxf_version: str | None = None,
            select: Callable[[list[Job]], list[Job]] | None = None,
            partial: dict | None = None) -> ExportResult:
-    """Write all exports of ``plan`` into ``out_dir`` (see module doc).
+    """Write all exports of ``project`` into ``out_dir`` (see module doc).
 
     Args:
+        project: the validated :class:`~tactcad.design.project.Project`; no
+            design, rigs or scenes file is read again.
         store: finished jobs to reuse (``Store(None)`` or ``None``: build everything).
-        parts: a :class:`~tactcad.parts.cache.PartCache` of ``plan`` to share
+        parts: a :class:`~tactcad.parts.cache.PartCache` of ``project.plan`` to share
             (default: the run makes its own, only if a job needs a solid).
         dxf_version: ``R2010`` (default) or ``R12`` for the shop DXF files.
         select: the jobs to run out of every job of the run (default: all),
@@ -325,5 +330,5 @@ def export(plan: Plan, out_dir: str | Path, log: Log = print,
         OSError: the files cannot be written; ``out_dir`` is left as it was.
     """
     jobs_of = all_jobs if select is None else (lambda run: select(all_jobs(run)))
-    return _write_set(Path(out_dir), jobs_of, plan, log, store or Store(None),
+    return _write_set(Path(out_dir), jobs_of, project, log, store or Store(None),
                       with_manifest=True, parts=parts, dxf_version=dxf_version, partial=partial)

@@ -53,16 +53,6 @@ class Frame:
         z = self.z_dir
         return Frame(self.origin, self.x_dir, (-z[0], -z[1], -z[2]), self.owner)
 
-    def shifted(self, along: Vec3, distance: float) -> "Frame":
-        """The frame moved by ``distance`` along the direction ``along``."""
-        a = _unit(along)
-        o = self.origin
-        return Frame((o[0] + a[0] * distance, o[1] + a[1] * distance, o[2] + a[2] * distance),
-                     self.x_dir, self.z_dir, self.owner)
-
-    def owned_by(self, owner: str) -> "Frame":
-        return Frame(self.origin, self.x_dir, self.z_dir, owner)
-
     def location(self):
         """The frame as a build123d ``Location`` (imports the CAD kernel)."""
         import build123d as bd

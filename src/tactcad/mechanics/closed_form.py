@@ -389,3 +389,38 @@ def web_for_stiffness(k_target: float, g: ElementGeometry, material: Material, *
     t = float(brentq(lambda x: k_of(x) - k_target, lo, hi, xtol=xtol_mm, rtol=1e-14))
     _corrected(_parts(g, material, t), g, material, t, corr, warn=True)
     return t
+
+
+#: Exponent of the thin circular-notch hinge law K ~ t^(5/2) (t << R).
+THIN_HINGE_WEB_EXPONENT = 2.5
+
+
+def web_tolerance_stiffness_change(web_mm: float, tolerance_mm: float) -> tuple[float, float]:
+    """Relative stiffness change of a thin notch hinge at the web's tolerance limits.
+
+    A circular notch hinge with t << R has K proportional to t^(5/2), so a web
+    ``tolerance_mm`` thicker or thinner moves K by ``(1 + tol/t)^2.5 - 1`` up
+    and ``1 - (1 - tol/t)^2.5`` down (all of it, 1, when the tolerance
+    reaches the web: no web is left at its low limit).
+
+    Args:
+        web_mm: nominal web thickness t (mm), > 0.
+        tolerance_mm: symmetric web tolerance (mm), >= 0.
+
+    Returns:
+        (rise, fall): relative stiffness changes (dimensionless, >= 0; fall <= 1).
+
+    Raises:
+        ValueError: t <= 0 or a negative tolerance (or either not finite).
+
+    Source: Paros & Weisbord (1965), thin-hinge limit of the circular notch
+    compliance; Lobontiu (2002), ch. 2.
+    """
+    if not (math.isfinite(web_mm) and web_mm > 0 and math.isfinite(tolerance_mm)
+            and tolerance_mm >= 0):
+        raise ValueError(f"web_tolerance_stiffness_change: web_mm = {web_mm!r} must be > 0 and "
+                         f"tolerance_mm = {tolerance_mm!r} >= 0, both finite")
+    n = THIN_HINGE_WEB_EXPONENT
+    up = ((web_mm + tolerance_mm) / web_mm) ** n - 1
+    down = 1 - (max(web_mm - tolerance_mm, 0.0) / web_mm) ** n
+    return up, down

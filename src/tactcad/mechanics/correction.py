@@ -204,11 +204,6 @@ class Correction:
     def _notch_term(self, s) -> np.ndarray:
         return _gain_and_denominator(self.coefficients, s, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0)[1] - 1.0
 
-    def gain_3d(self, width_ratio, poisson_ratio, web_over_sheet=0.0) -> np.ndarray:
-        """g: the 3D stiffening over the plane-stress beam (dimensionless)."""
-        return _gain_and_denominator(self.coefficients, 0.0, width_ratio, poisson_ratio, 1.0,
-                                     0.0, 0.0, web_over_sheet)[0] - 1.0
-
     def factor(self, t_over_R, width_ratio=0.0, poisson_ratio=0.33, notch_share=1.0,
                shear_share=0.0, arm_share=0.0, web_over_sheet=0.0) -> np.ndarray:
         """K / K_EB at s = t/R, w = sqrt(t R)/b, nu, q, p, r and v = t/b
@@ -388,7 +383,7 @@ class FitData:
 
     @classmethod
     def from_points(cls, points: Sequence[Mapping[str, Any]]) -> "FitData":
-        """From sweep points (keys of :func:`tactcad.mechanics.correction_sweep.evaluate_point`)."""
+        """From sweep points (keys of :func:`tactcad.studies.correction_sweep.evaluate_point`)."""
         c = {k: np.array([float(p[k]) for p in points]) for k in
              ("C_notch_bending", "C_notch_shear", "C_arm_bending", "C_arm_shear")}
         total = sum(c.values())
@@ -516,7 +511,7 @@ def build_document(points: Sequence[Mapping[str, Any]], *, source: str | None = 
     if not fit_pts:
         raise ValueError("no fit points")
     src = source or (f"fem3d (P2 tetrahedra, half model, finest of three meshes), {len(fit_pts)} "
-                     "designs of tactcad.mechanics.correction_sweep")
+                     "designs of tactcad.studies.correction_sweep")
     corr = fit_correction(FitData.from_points(fit_pts),
                           fit_range=range_of_points(fit_pts + check_pts), source=src, free=free)
     r_fit = FitData.from_points(fit_pts).residuals(corr)

@@ -66,7 +66,10 @@ import numpy as np
 
 from tactcad.design.array import ARM_RANGE_MM, BOLTS, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, plan_from_dict
 from tactcad.errors import DesignError, TactcadError
+from tactcad.mechanics.correction import load_correction
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
+from tactcad.mechanics.strength import force_limits
+from tactcad.mechanics.tolerance import corrected_stiffness
 
 #: Clearance (mm) between the notch bottom and the arm's underside when the
 #: arm height has to grow with the web and notch radius (as the correction fit).
@@ -253,7 +256,6 @@ def arm_for_stiffness(k_target: float, webs, radii, g, material, correction,
     """
     from scipy.optimize.elementwise import find_root
 
-    from tactcad.mechanics.tolerance import corrected_stiffness
 
     webs, radii, lo, hi = np.broadcast_arrays(*(np.asarray(v, float)
                                                 for v in (webs, radii, arm_lo, arm_hi)))
@@ -300,8 +302,6 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     Raises:
         DesignError: the plan's material has no yield strength.
     """
-    from tactcad.mechanics.correction import load_correction
-    from tactcad.mechanics.strength import force_limits
 
     corr = load_correction() if correction is None else correction
     g, mat = plan.element(1).geometry, plan.material
@@ -322,7 +322,6 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     a_r = arm_for_stiffness(targets.k_r, webs, radii, g, mat, corr, arm_lo, arm_hi)
     a_m = arm_for_stiffness(targets.k_m, webs, radii, g, mat, corr, arm_lo, arm_hi)
 
-    from tactcad.mechanics.tolerance import corrected_stiffness
 
     def k(a):
         return corrected_stiffness(webs, radii, a, mat.youngs_modulus_MPa, g, mat.poisson_ratio,

@@ -1,7 +1,7 @@
 """Every limit on an element's tip force, at one ladder level, with the one that binds.
 
 For one element geometry (its peak hinge stress per N, gauge strain per N
-and K at a ladder level, :func:`tactcad.mechanics.strength.element_stress`):
+and K at a ladder level, :class:`tactcad.mechanics.strength.ElementStress`):
 
 * ``yield``: yield strength / (peak stress per N x safety factor);
 * ``fatigue``: fatigue strength / peak stress per N (absent without one);
@@ -107,15 +107,19 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
 
     Args:
         stresses, k_errors: per part name, :class:`ElementStress` and K's
-            error estimate already computed (else computed here).
+            error estimate already computed (else computed here: closed form
+            and beam only; the FEM levels' stresses come from
+            :mod:`tactcad.studies.strength`).
 
     Raises:
         DesignError: the material has no yield strength.
+        ValueError: an FEM model without its ``stresses``.
     """
     from tactcad.mechanics.ladder import estimate
-    from tactcad.mechanics.strength import _require_yield, element_stress
+    from tactcad.mechanics.strength import closed_form_stress, require_yield
 
-    _require_yield(plan.material)
+    element_stress = closed_form_stress
+    require_yield(plan.material)
     from tactcad.mechanics.fem.fem2d import plane_model_error
 
     stresses = dict(stresses or {})

@@ -113,11 +113,28 @@ class Figures:
 
 
 def element_figures(plan: Plan, model: str = "closed-form",
-                    progress: Callable[[str], None] | None = None) -> Figures:
+                    progress: Callable[[str], None] | None = None,
+                    stress: Callable | None = None) -> Figures:
     """K (Richardson at FEM levels), its error estimate and the peak stress of
-    every distinct element of ``plan`` at ``model``."""
+    every distinct element of ``plan`` at ``model``.
+
+    Args:
+        stress: (geometry, material, model) -> ElementStress; default the
+            closed form's (closed form and beam). The FEM levels pass
+            :func:`tactcad.studies.strength.element_stress`.
+
+    Raises:
+        ValueError: an FEM model without ``stress``.
+    """
     from tactcad.mechanics.ladder import estimate
-    from tactcad.mechanics.strength import element_stress
+    from tactcad.mechanics.strength import CLOSED_FORM_MODELS, closed_form_stress
+
+    if stress is None:
+        if model not in CLOSED_FORM_MODELS:
+            raise ValueError(f"model {model} runs the FEM: pass its stress "
+                             "(tactcad.studies.strength.element_stress)")
+        stress = closed_form_stress
+    element_stress = stress
 
     k, k_err, st = {}, {}, {}
     for name, g in plan.distinct_elements.items():
@@ -276,7 +293,8 @@ def _record(requirement: str, target, predicted, error: float, margin: float, mo
 
 def verification_matrix(plan: Plan, model: str = "closed-form",
                         progress: Callable[[str], None] | None = None,
-                        requirements: Requirements | None = None) -> list[dict]:
+                        requirements: Requirements | None = None,
+                        stress: Callable | None = None) -> list[dict]:
     """One record per requirement, evaluated at ``model``.
 
     margin_rel: predicted / target - 1 for a lower bound (full-scale force,
@@ -285,7 +303,8 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     positive means met. K_r / K_m passes within the K band the requirements
     allow (margin >= -k_tolerance_rel); the others pass with margin >= 0.
     The full-scale-force record lists every limit (``limits``) and the one
-    that binds (``binding_limit``).
+    that binds (``binding_limit``). ``stress``: as :func:`element_figures`
+    (an FEM level needs :func:`tactcad.studies.strength.element_stress`).
 
     Raises:
         UnknownModelError: ``model`` is not a ladder level.
@@ -293,7 +312,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     """
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, per_kind_binding, plan_limits
 
-    fig = element_figures(plan, model, progress)
+    fig = element_figures(plan, model, progress, stress)
     req = requirements or requirements_of(plan, fig)
     out = []
     lims = plan_limits(plan, model, fig.stresses, fig.k_error)

@@ -48,8 +48,9 @@ Units: mm, N, MPa, N/mm; strain dimensionless.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import asdict, dataclass, field
-from typing import NamedTuple
+from typing import Callable
 
 import numpy as np
 
@@ -57,6 +58,7 @@ from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
 from tactcad.design.materials import StrengthSettings
 from tactcad.design.requirements import cites_paper
+from tactcad.mechanics.ladder import estimate
 
 #: Exponent of K_t = (1 + t/(2R))^p for the single-sided circular notch in
 #: bending, fitted to converged plane-stress P2 FEM (see the module docstring).
@@ -164,7 +166,7 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
         DesignError: the material has no yield strength.
         ValueError: a non-finite or non-positive geometry value.
     """
-    y = _require_yield(material)
+    y = require_yield(material)
     s = peak_stress_per_newton(web_mm, notch_radius_mm, arm_length_mm, sheet_mm)
     eps = nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm) / material.youngs_modulus_MPa
     fat = material.fatigue_strength_MPa
@@ -214,10 +216,6 @@ def closed_form_stress(g: ElementGeometry, material: Material, model: str = "clo
                        ) -> ElementStress:
     """Closed-form peak stress with K and gauge strain of ``model``
     ("closed-form" or "beam", which share the stress formula)."""
-    from tactcad.mechanics.ladder import estimate
-
-    import warnings
-
     r = estimate(model, g, material)
     s = float(peak_stress_per_newton(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,
                                      g.sheet_thickness_mm))
@@ -229,109 +227,6 @@ def closed_form_stress(g: ElementGeometry, material: Material, model: str = "clo
                       f"{KT_FIT_RANGE[0]:g} ... {KT_FIT_RANGE[1]:g}; estimated error "
                       f"{100 * err:.0f} %", StrengthRangeWarning, stacklevel=2)
     return ElementStress(model, s, err, r.stiffness_N_per_mm, r.gauge_strain_per_N)
-
-
-def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d", *,
-                    web_divisions: float | None = None, levels: int = 3) -> ElementStress:
-    """Peak von Mises stress at the hinge from the FEM field, Richardson-
-    extrapolated over ``levels`` meshes (sizes sqrt(2)^k times the finest).
-
-    Args:
-        g, material: element and material.
-        model: "fem2d" (plane stress) or "fem3d".
-        web_divisions: finest neck size = web / web_divisions (default
-            :data:`STRESS_WEB_DIVISIONS_2D` / ``_3D``).
-        levels: number of meshes (>= 3).
-
-    Returns:
-        :class:`ElementStress`: the extrapolated peak per N (the finest mesh's
-        value when the sequence is not monotone), its Richardson error, K and
-        gauge strain of the finest mesh.
-
-    Raises:
-        ValueError: unknown model.
-    """
-    from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, richardson, single_threaded_blas, size_factors,
-                            solve_fem2d)
-    from tactcad.mechanics.fem.fields import peak_notch_stress
-    from tactcad.mechanics.fem.mesh import fem_region
-
-    if model not in ("fem2d", "fem3d"):
-        raise ValueError(f"model must be fem2d or fem3d, got {model!r}")
-    region = fem_region(g)
-    peaks, sols = [], []
-    with single_threaded_blas():
-        for s in size_factors(levels, REFINEMENT_RATIO):
-            if model == "fem2d":
-                sol = solve_fem2d(g, material, size_factor=s, region=region, keep_field=True,
-                                  web_divisions=web_divisions or STRESS_WEB_DIVISIONS_2D)
-            else:
-                from tactcad.mechanics.fem.fem3d import solve_fem3d
-
-                sol = solve_fem3d(g, material, size_factor=s, region=region, keep_field=True,
-                                  web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
-            peaks.append(peak_notch_stress(sol.field, g))
-            sols.append(_without_field(sol))
-    rich = richardson([p.per_newton_MPa_per_N for p in peaks], REFINEMENT_RATIO)
-    fin = sols[-1]
-    return ElementStress(model, rich.extrapolated, rich.error_rel, fin.stiffness_N_per_mm,
-                         abs(fin.gauge_strain) / fin.force_N, peaks[-1].location_mm)
-
-
-def _without_field(sol):
-    """The solve's scalars without its field (frees the mesh and basis)."""
-    from dataclasses import replace
-
-    return replace(sol, field=None)
-
-
-def element_stress(g: ElementGeometry, material: Material, model: str = "closed-form"
-                   ) -> ElementStress:
-    """Peak stress per N, K and gauge strain of one geometry at ``model``.
-
-    Raises:
-        ValueError: unknown model.
-    """
-    if model in ("closed-form", "beam"):
-        return closed_form_stress(g, material, model)
-    if model in ("fem2d", "fem3d"):
-        return fem_peak_stress(g, material, model)
-    raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
-
-
-class KtFit(NamedTuple):
-    """Least-squares fit of K_t = (1 + t/(2R))^p to FEM peaks.
-
-    Attributes:
-        exponent: p. t_over_R: shape (n,). kt_fem: FEM K_t (peak / nominal), shape (n,).
-        residual_rel: fitted / FEM - 1, shape (n,).
-    """
-
-    exponent: float
-    t_over_R: np.ndarray
-    kt_fem: np.ndarray
-    residual_rel: np.ndarray
-
-
-def fit_kt_exponent(g0: ElementGeometry, material: Material,
-                    geometries=KT_FIT_GEOMETRIES) -> KtFit:
-    """Refit :data:`KT_EXPONENT` from converged plane-stress FEM peaks
-    (:func:`fem_peak_stress`) at ``geometries`` ((t, R, a) in mm, the rest of
-    ``g0``): p minimises sum (ln K_t,FEM - p ln(1 + t/2R))^2, i.e.
-    p = sum(x y) / sum(x^2) with x = ln(1 + t/2R), y = ln K_t,FEM.
-    About 3 s per geometry on two cores."""
-    from dataclasses import replace
-
-    s, kt = [], []
-    for t, R, a in geometries:
-        g = replace(g0, web_thickness_mm=t, notch_radius_mm=R, arm_length_mm=a)
-        peak = fem_peak_stress(g, material, "fem2d").stress_MPa_per_N
-        s.append(t / R)
-        kt.append(peak / float(nominal_stress_per_newton(t, a, g.sheet_thickness_mm)))
-    s_arr, kt_arr = np.array(s), np.array(kt)
-    x, y = np.log1p(s_arr / 2.0), np.log(kt_arr)
-    p = float(x @ y / (x @ x))
-    return KtFit(p, s_arr, kt_arr, (1.0 + s_arr / 2.0) ** p / kt_arr - 1.0)
 
 
 # ---------------------------------------------------------------------------
@@ -371,7 +266,12 @@ class StrengthRecord:
         return d
 
 
-def _require_yield(material: Material) -> float:
+def require_yield(material: Material) -> float:
+    """The material's yield strength (MPa).
+
+    Raises:
+        DesignError: it has none (the message names the grades that give one).
+    """
     if material.yield_strength_MPa is None:
         from tactcad.design.materials import material_grades
 
@@ -399,7 +299,7 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     Raises:
         DesignError: the material has no yield strength.
     """
-    y = _require_yield(material)
+    y = require_yield(material)
     gauge = settings.gauge
     f_fs = float(full_scale_force(y, es.stress_MPa_per_N, settings.safety_factor))
     s_fs = es.stress_MPa_per_N * f_fs
@@ -438,17 +338,32 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
         warnings=tuple(warn))
 
 
-def plan_strength(plan: Plan, model: str = "closed-form", progress=None) -> list[StrengthRecord]:
+#: Evaluates one element's peak stress at a model: (geometry, material, model) -> ElementStress.
+StressModel = Callable[[ElementGeometry, Material, str], ElementStress]
+CLOSED_FORM_MODELS = ("closed-form", "beam")
+
+
+def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
+                  stress: StressModel | None = None) -> list[StrengthRecord]:
     """:class:`StrengthRecord` of every element of the plan at ``model``;
     distinct geometries are evaluated once.
 
+    Args:
+        stress: the peak-stress evaluation; default :func:`closed_form_stress`
+            (closed-form and beam). The FEM levels are run by
+            :func:`tactcad.studies.strength.plan_strength`, which passes its own.
+
     Raises:
-        ValueError: unknown model.
+        ValueError: unknown model, or an FEM model without its ``stress``.
         DesignError: the material has no yield strength.
     """
     if model not in MODELS:
         raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
-    _require_yield(plan.material)
+    if stress is None:
+        if model not in CLOSED_FORM_MODELS:
+            raise ValueError(f"model {model} runs the FEM: use tactcad.studies.strength.plan_strength")
+        stress = closed_form_stress
+    require_yield(plan.material)
     cache: dict[str, ElementStress] = {}
     out = []
     for slot in plan.slots:
@@ -456,7 +371,7 @@ def plan_strength(plan: Plan, model: str = "closed-form", progress=None) -> list
         if g.part_name not in cache:
             if progress:
                 progress(f"{model}: {g.part_name}")
-            cache[g.part_name] = element_stress(g, plan.material, model)
+            cache[g.part_name] = stress(g, plan.material, model)
         out.append(strength_record(slot.number, g, plan.material, plan.strength,
                                    cache[g.part_name], paper_load=cites_paper(plan.raw)))
     return out
@@ -479,46 +394,3 @@ def strength_summary(plan: Plan, model: str = "closed-form") -> list[dict]:
             if isinstance(v, float) and not math.isfinite(v):
                 raise RuntimeError(f"non-finite {k} for element {r['element']}")
     return recs
-
-
-def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict]:
-    """The model's full-scale force against Table 1's "max support force" (the
-    largest force of each element's calibration), per calibrated element.
-
-    For each element: the full-scale force at ``model`` with the design web;
-    the as-built web that reproduces the measured K (corrected closed form,
-    :func:`tactcad.mechanics.ladder.as_built_webs`) and the closed-form
-    full-scale force and peak stress at the measured maximum force with that
-    web; and the yield safety factor the calibration ran at.
-
-    Returns:
-        one dict per Table 1 element (element 5 has no calibration).
-
-    Raises:
-        DesignError: the material has no yield strength.
-    """
-    from dataclasses import replace
-
-    from tactcad.mechanics.ladder import as_built_webs
-    from tactcad.mechanics.paper.data import table1
-
-    y = _require_yield(plan.material)
-    sf = plan.strength.safety_factor
-    design = {r.element: r for r in plan_strength(plan, model)}
-    webs = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
-    out = []
-    for meas in table1():
-        g = plan.element(meas.element).geometry
-        t_built = webs[meas.element]
-        gb = replace(g, web_thickness_mm=t_built)
-        s_built = float(peak_stress_per_newton(t_built, gb.notch_radius_mm, gb.arm_length_mm,
-                                               gb.sheet_thickness_mm))
-        s_max = s_built * meas.max_support_force_N
-        out.append({"element": meas.element, "arm_length_mm": g.arm_length_mm,
-                    "max_support_force_N": meas.max_support_force_N,
-                    "full_scale_force_N": design[meas.element].full_scale_force_N,
-                    "web_as_built_mm": t_built,
-                    "full_scale_force_as_built_N": y / (s_built * sf),
-                    "stress_MPa_at_max_support_force_as_built": s_max,
-                    "yield_safety_factor_at_max_support_force_as_built": y / s_max})
-    return out

@@ -20,14 +20,14 @@ BUILD_COUNTS: Counter[str] = Counter()  # part name -> times built in this proce
 
 Builder = Callable[[Plan, PartSpec], bd.Solid]
 
-#: builder key -> builder(plan, spec). Array parts read the plan; rig parts
-#: carry their dimensions in ``spec.geometry``.
+#: builder key -> builder(plan, spec). Every part carries its dimensions in
+#: ``spec.geometry``; none reads the plan.
 BUILDERS: dict[str, Builder] = {
-    "element": lambda plan, spec: build_element(plan.distinct_elements[spec.name]),
-    "spacer": lambda plan, spec: build_spacer(plan.spacer),
-    "clamp_plate": lambda plan, spec: build_clamp_plate(plan.clamp),
-    "bolt": lambda plan, spec: build_bolt(plan.bolt, plan.bolt_length_mm),
-    "nut": lambda plan, spec: build_nut(plan.bolt),
+    "element": lambda plan, spec: build_element(spec.geometry),
+    "spacer": lambda plan, spec: build_spacer(spec.geometry),
+    "clamp_plate": lambda plan, spec: build_clamp_plate(spec.geometry),
+    "bolt": lambda plan, spec: build_bolt(*spec.geometry),
+    "nut": lambda plan, spec: build_nut(spec.geometry),
     "base_plate": lambda plan, spec: rig_base.build_base_plate(spec.geometry),
     "column": lambda plan, spec: rig_base.build_column(spec.geometry),
     "cart": lambda plan, spec: rig_cart.build_cart(spec.geometry),

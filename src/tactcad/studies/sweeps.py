@@ -284,9 +284,9 @@ _DESIGN_KEYS = ("web_mm", "notch_radius_mm", "arm_mm", "sheet_mm", "poisson_rati
 
 def refit_point(job: tuple[Sequence[float], str]) -> dict:
     """fem3d and the closed form's terms at one design (t, R, a, b, nu) with
-    its set label: :func:`tactcad.mechanics.correction_sweep.evaluate_point`
+    its set label: :func:`tactcad.studies.correction_sweep.evaluate_point`
     as a one-argument task."""
-    from tactcad.mechanics.correction_sweep import evaluate_point as correction_point
+    from tactcad.studies.correction_sweep import evaluate_point as correction_point
 
     design, label = job
     return correction_point(design, label)
@@ -296,7 +296,7 @@ def correction_refit(mapper: Callable = map, n_fit: int = 64, n_holdout: int = 1
                      points_path: str | Path | None = None) -> dict:
     """The fem3d sweep of the closed-form correction on a cluster, then the fit.
 
-    Designs are those of :func:`tactcad.mechanics.correction_sweep.plan_designs`;
+    Designs are those of :func:`tactcad.studies.correction_sweep.plan_designs`;
     designs already stored in ``points_path`` (JSON lines, default the
     sweep's own file) are skipped, new points are appended in design order,
     and :func:`tactcad.mechanics.correction.build_document` fits all of them.
@@ -310,7 +310,7 @@ def correction_refit(mapper: Callable = map, n_fit: int = 64, n_holdout: int = 1
     """
     import json
 
-    from tactcad.mechanics import correction_sweep as cs
+    from tactcad.studies import correction_sweep as cs
     from tactcad.mechanics.correction import build_document
 
     path = Path(cs.POINTS_FILE if points_path is None else points_path)

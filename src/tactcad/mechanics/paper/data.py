@@ -109,6 +109,19 @@ def table1() -> tuple[Table1Row, ...]:
     return tuple(rows)
 
 
+def largest_equal_arm_spread() -> tuple[float, float, float, float]:
+    """The largest stiffness spread among Table 1 elements of equal arm length.
+
+    Returns:
+        (arm length mm, lowest K, highest K in N/mm, highest / lowest).
+    """
+    groups: dict[float, list[float]] = {}
+    for row in table1():
+        groups.setdefault(row.flexing_arm_length_mm, []).append(row.stiffness_N_per_mm)
+    arm, ks = max((g for g in groups.items() if len(g[1]) > 1), key=lambda g: max(g[1]) / min(g[1]))
+    return arm, min(ks), max(ks), max(ks) / min(ks)
+
+
 def table1_by_element() -> dict[int, Table1Row]:
     """Paper Table 1 keyed by element number."""
     return {row.element: row for row in table1()}

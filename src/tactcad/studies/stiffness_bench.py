@@ -5,7 +5,7 @@ fem3d stiffness in ``src/tactcad/data/stiffness_correction.json``; not used
 in the fit) and the design file's own elements. They span the design domain:
 web 0.05-1 mm, notch radius t-2 mm, arm 2-20 mm, sheet 0.5-10 mm, Poisson
 ratio 0.27-0.34 (other dimensions by the grid rule of
-:mod:`tactcad.mechanics.correction_sweep`).
+:mod:`tactcad.studies.correction_sweep`).
 
 closed-form, beam and fem2d run on every design and are compared with the
 stored fem3d stiffness. fem3d itself (the costly level, 10-120 s per design)
@@ -33,9 +33,9 @@ from pathlib import Path
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry, Material, Plan, load_design
+from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.mechanics.correction import CORRECTION_FILE, CorrectionRangeWarning
-from tactcad.mechanics.correction_sweep import grid_geometry
+from tactcad.studies.correction_sweep import grid_geometry
 from tactcad.mechanics.ladder import MODELS, estimate
 
 #: Hold-out designs on which fem3d is run live (the others use the stored value).
@@ -71,11 +71,8 @@ class Point:
     error_vs_fem3d_rel: float = float("nan")
 
 
-def design_grid(design=None, correction_path: str | Path = CORRECTION_FILE,
-                plan: Plan | None = None) -> list[Design]:
-    """The design's distinct elements (``plan``, default: the design file
-    ``design``), then the stored hold-out designs."""
-    plan = load_design(design) if plan is None else plan
+def design_grid(plan: Plan, correction_path: str | Path = CORRECTION_FILE) -> list[Design]:
+    """The design's distinct elements (``plan``), then the stored hold-out designs."""
     own = {s.geometry.part_name: s.geometry for s in plan.slots}
     arms = sorted(own.values(), key=lambda g: g.arm_length_mm)
     extremes = {arms[0].part_name, arms[-1].part_name}
@@ -110,10 +107,9 @@ def closed_form_throughput(n: int = 1_000_000) -> float:
     return n / best
 
 
-def run(models=MODELS, design=None, out_dir="exports/reports", progress=print,
-        plan: Plan | None = None) -> list[Point]:
-    """Run the ladder over the grid, write CSV + PNG, return the points."""
-    grid = design_grid(design, plan=plan)
+def run(plan: Plan, models=MODELS, out_dir="exports/reports", progress=print) -> list[Point]:
+    """Run the ladder over the grid of ``plan``, write CSV + PNG, return the points."""
+    grid = design_grid(plan)
     points: list[Point] = []
     for model in models:
         for i, d in enumerate(grid, start=1):
@@ -205,23 +201,22 @@ def _plot(path: Path, points: list[Point]) -> None:
     plt.close(fig)
 
 
-def main(args, plan: Plan | None = None) -> int:
-    """Entry point of ``tactcad bench stiffness`` (``plan``: the design with
-    the command line's overrides; default: ``args.design`` as it is)."""
+def main(args, plan: Plan) -> int:
+    """Entry point of ``tactcad bench stiffness`` (``plan``: the validated
+    design with the command line's overrides)."""
     models = tuple(getattr(args, "models", None) or MODELS)
     out_dir = getattr(args, "out", None) or "exports/reports"
-    design = getattr(args, "design", None)
     as_json = getattr(args, "json", False)
     quiet = as_json or getattr(args, "quiet", False)
     progress = (lambda s: None) if quiet else (lambda s: print(s, file=sys.stderr, flush=True))
-    grid = design_grid(design, plan=plan)
+    grid = design_grid(plan)
     n_hold = sum(d.label.startswith("holdout_") for d in grid)
     live = ", ".join(d.label for d in grid if d.fem3d_live)
     progress(f"tactcad bench stiffness: {len(grid) - n_hold} design elements + {n_hold} hold-out "
              f"designs of the correction (web 0.05-1 mm, arm 2-20 mm, sheet 0.5-10 mm); fem3d "
              f"live on {live}, stored fem3d elsewhere")
     thr = closed_form_throughput()
-    points = run(models, design, out_dir, progress=progress, plan=plan)
+    points = run(plan, models, out_dir, progress=progress)
     if as_json:
         def clean(v):
             return None if isinstance(v, float) and not math.isfinite(v) else v

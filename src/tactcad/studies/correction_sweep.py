@@ -266,7 +266,7 @@ def plan_designs(n_fit: int, n_holdout: int) -> list[tuple[tuple, str]]:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m tactcad.mechanics.correction_sweep [--fit N] [--holdout N] [--points F]``.
+    """``python -m tactcad.studies.correction_sweep [--fit N] [--holdout N] [--points F]``.
 
     Runs the sweep (resumable) and writes the fitted correction.
     """

@@ -1,0 +1,481 @@
+"""tactcad's public Python API: a design file in, parts, assemblies,
+stiffness, strength, exports and checks out.
+
+    >>> import tactcad
+    >>> project = tactcad.load(set={"element.web_thickness_mm": 0.3})
+    >>> project.element(8).stiffness().stiffness_N_per_mm  # doctest: +SKIP
+    39.4...
+
+Everything here is validated exactly as the command line validates it (the
+CLI's commands call these functions), and refusals raise
+:class:`~tactcad.errors.DesignErrors` whose ``.errors`` lists every one, each
+naming file, field, value and allowed range. Importing this module loads
+neither the CAD kernel nor a FEM library: solids are built on first use
+(:attr:`Project.parts`), each distinct part once per :class:`Project`.
+
+Units: mm, N, MPa, N/mm, s.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from functools import cached_property
+from os import PathLike
+from pathlib import Path
+from typing import Any, Callable, Iterator, Sequence
+
+__all__ = ["load", "Project", "Element", "CheckReport"]
+
+Progress = Callable[[str], None]
+
+
+def _quiet(line: str) -> None:
+    """Progress sink that prints nothing."""
+
+
+def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -> "Project":
+    """Read and validate a design file with the rigs and scenes files beside it.
+
+    Args:
+        path: TOML design file; ``None`` means the default design
+            (``hardware/macro_array.toml``, the paper's macro array).
+        set: design values to override, by dotted key of the design file,
+            e.g. ``{"element.web_thickness_mm": 0.3}`` (mm) or
+            ``{"arms.lengths_mm": [4, 5, 6, 7, 8, 4, 5, 6, 7, 8]}``; checked
+            like the file (the CLI's ``--set``).
+
+    Returns:
+        The validated :class:`Project`; no geometry is built yet.
+
+    Raises:
+        DesignErrors: every refusal of the three files at once (``.errors``),
+            an unknown ``set`` key included; nothing is built.
+        DesignError: an unreadable file, a ``path`` that is no path, or a
+            ``set`` key that is not ``section.key``.
+    """
+    from tactcad.design.array import DEFAULT_DESIGN, read_toml, with_overrides
+    from tactcad.design.project import project_with_design_data
+    from tactcad.errors import DesignError
+
+    if path is not None and not isinstance(path, (str, PathLike)):
+        raise DesignError("path", path, "a design file's path (str or pathlib.Path) or None")
+    design = Path(path) if path is not None else DEFAULT_DESIGN
+    overrides = _checked_overrides(set)
+    data = with_overrides(read_toml(design, "design file"), overrides)
+    return Project(project_with_design_data(data, design), data, design)
+
+
+def _checked_overrides(values: Mapping[str, Any] | None) -> dict[str, Any]:
+    """``set`` as a dict, every key ``section.key`` (the design validator judges the rest)."""
+    from tactcad.errors import DesignError
+
+    if values is None:
+        return {}
+    if not isinstance(values, Mapping):
+        raise DesignError("set", values, "a mapping of dotted design keys to values, "
+                                         "e.g. {'element.web_thickness_mm': 0.3}")
+    for key in values:
+        section, dot, name = key.partition(".") if isinstance(key, str) else ("", "", "")
+        if not (section and dot and name):
+            raise DesignError("set", key, "a dotted key of the design file, "
+                                          "e.g. 'element.web_thickness_mm'")
+    return dict(values)
+
+
+class Project:
+    """A validated design with its rigs and scenes, and everything made from it.
+
+    Build with :func:`load`. The validated data are immutable; solids are
+    built on first use and kept (one build per distinct part).
+
+    Attributes:
+        validated: the validated design files, one immutable
+            :class:`tactcad.design.project.Project` (plan, rigs, scenes, hashes).
+        source: the design file's path.
+    """
+
+    def __init__(self, validated, data: Mapping[str, Any], source: Path):
+        self.validated = validated
+        self.source = Path(source)
+        self._data = data
+        self._report: Progress = _quiet  # where long part builds are reported
+
+    # --- the validated files ---
+    def _validated_field(self, name: str):
+        """One field of the validated :class:`tactcad.design.project.Project`."""
+        return getattr(self.validated, name)
+
+    @property
+    def plan(self):
+        """The array's :class:`~tactcad.design.array.Plan` (mm, N, MPa)."""
+        return self._validated_field("plan")
+
+    @property
+    def rigs(self):
+        """The rig plan (:class:`~tactcad.design.rigs.RigDesign`) derived against the array."""
+        return self._validated_field("rigs")
+
+    @property
+    def scenes(self) -> dict:
+        """The scenes by name (:class:`~tactcad.design.scenes.SceneSpec`)."""
+        return dict(self._validated_field("scenes"))
+
+    @property
+    def name(self) -> str:
+        """The design's name (``[design] name``)."""
+        return self.plan.name
+
+    @property
+    def design_hash(self) -> str:
+        """sha256 of the design's content, as in the export's manifest."""
+        return self.plan.design_hash
+
+    def with_values(self, set: Mapping[str, Any]) -> "Project":
+        """A new project: this design file with more values overridden.
+
+        Args:
+            set: as for :func:`load`; applied over this project's overrides.
+
+        Raises:
+            DesignErrors: as :func:`load`.
+        """
+        from tactcad.design.array import with_overrides
+        from tactcad.design.project import project_with_design_data
+
+        data = with_overrides(self._data, _checked_overrides(set))
+        return Project(project_with_design_data(data, self.source), data, self.source)
+
+    # --- solids ---
+    @cached_property
+    def _cache(self):
+        """The project's part cache: each solid built once, a long build reported."""
+        from tactcad.export.selection import ReportingParts
+
+        return ReportingParts(self.plan, lambda line: self._report(line))
+
+    @cached_property
+    def _specs(self) -> dict:
+        from tactcad.assembly.inventory import design_assemblies
+
+        return design_assemblies(self.validated)[0]
+
+    @property
+    def parts(self) -> "Parts":
+        """Every distinct part of the design (array and scenes) by name, as a
+        read-only mapping of name -> build123d ``Solid`` (part frame, mm),
+        each built on first access."""
+        return Parts(self)
+
+    def assembly(self, scene: str = "array"):
+        """A scene as one labelled build123d ``Compound`` (mm, the scene's frame).
+
+        Each child is a placed copy of its part's solid, labelled with the
+        instance name (``element_1``, ``spacer_1``, ``bolt_1`` ...) and
+        coloured as in the STEP export; the compound is labelled ``scene``.
+
+        Args:
+            scene: a scene of the scenes file (``array``, ``wirecut``,
+                ``calibration-rig`` ...; see :attr:`scenes`).
+
+        Raises:
+            SceneError: unknown scene (the message lists them).
+        """
+        import build123d as bd
+
+        from tactcad.assembly.scenes import build_scene
+
+        solved, solids = build_scene(self.validated, scene, self._cache)
+        children = []
+        for inst in solved.instances:
+            child = solids[inst.part].moved(inst.location)
+            child.label = inst.name
+            child.color = bd.Color(*solved.specs[inst.part].color)
+            children.append(child)
+        return bd.Compound(children=children, label=scene)
+
+    # --- elements ---
+    def element(self, number: int) -> "Element":
+        """Sensing element ``number`` (1-based, the design's numbering).
+
+        Raises:
+            DesignError: no such element (the message gives the range).
+        """
+        return Element(self, self.plan.element(number))
+
+    @property
+    def elements(self) -> list["Element"]:
+        """Every sensing element, in order of number."""
+        return [Element(self, slot) for slot in self.plan.slots]
+
+    # --- files ---
+    def export(self, out: str | Path = "exports", only: Sequence[str] | str | None = None,
+               part: Sequence[str] | str | None = None, cache: str | Path | None | bool = True,
+               dxf_version: str | None = None, progress: Progress | None = None):
+        """Write the design's files (STEP, DXF, scenes, drawings, BOM, manifest) into ``out``.
+
+        The files are written as one set (the folder is swapped in one
+        step) and are the bytes ``tactcad export`` writes.
+
+        Args:
+            out: the export folder; refused if it is a system, home or
+                working folder or holds files but no ``manifest.json``.
+            only: kinds of file to write (``step``, ``dxf``, ``scenes``,
+                ``review``, ``drawings``, ``images``, ``bom``); the manifest
+                then says ``"partial"``.
+            part: part names whose own files (STEP, drawing) to write.
+            cache: the store of finished jobs: ``True`` the default
+                ``.tactcad-cache`` of the working folder, a path, or
+                ``False``/``None`` to build everything.
+            dxf_version: ``"R2010"`` (default) or ``"R12"``.
+            progress: called with one line per job run.
+
+        Returns:
+            :class:`~tactcad.export.run.ExportResult` (files with sha256,
+            seconds, jobs run and reused, builds).
+
+        Raises:
+            DesignError: an unknown kind or part (the message lists the allowed ones).
+            ExportPathError: ``out`` refused (see above).
+            OSError: the files cannot be written; ``out`` is left as it was.
+        """
+        from tactcad.export.run import export
+        from tactcad.export.selection import parse_only, partial_record, select_jobs, with_progress
+
+        kinds = parse_only([only] if isinstance(only, str) else only)
+        names = [part] if isinstance(part, str) else list(part or ())
+        report = progress or _quiet
+        partial = {} if kinds or names else None
+
+        def select(jobs):
+            chosen = select_jobs(jobs, kinds, names) if partial is not None else list(jobs)
+            if partial is not None:
+                partial.update(partial_record(kinds, names, chosen))
+            return with_progress(chosen, report)
+
+        self._report = report
+        try:
+            return export(self.validated, out, log=_quiet, store=_store(cache), parts=self._cache,
+                          dxf_version=dxf_version, select=select, partial=partial)
+        finally:
+            self._report = _quiet
+
+    def check(self, out: str | Path | None = None, scenes: Sequence[str] | None = None,
+              cache: str | Path | None | bool = True, progress: Progress | None = None,
+              on_group: Callable[[str, list], None] | None = None) -> "CheckReport":
+        """Run every check of ``tactcad check`` on the design's export.
+
+        Args:
+            out: an export folder. It is checked as it is when its manifest
+                names this design and every file has its listed sha256;
+                otherwise the design is exported there first. ``None``: a
+                temporary folder, removed afterwards.
+            scenes: check only these scenes (interference, sanity, STEP and
+                GLB read-back); ``None`` checks the array and every scene.
+            cache: the store of finished jobs, as for :meth:`export`.
+            progress: called with a line on the export (one per job run).
+            on_group: called as ``on_group(group, results)`` when each group
+                of checks finishes (``requirements``: the design's verification
+                matrix at the closed form, ``parts``, ``dxf``, ``array
+                interference``, ``array STEP``, ``scene <name>``).
+
+        Returns:
+            :class:`CheckReport`: every result with its group.
+
+        Raises:
+            SceneError: an unknown scene.
+            ExportPathError, OSError: as :meth:`export`.
+        """
+        import tempfile
+
+        from tactcad.checks.array import run_checks
+        from tactcad.checks.scenes import run_scene_checks
+        from tactcad.export.reuse import reuse_refusal
+        from tactcad.export.run import export, export_scenes
+        from tactcad.export.selection import with_progress
+
+        report = progress or _quiet
+        groups: list[tuple[str, list]] = []
+
+        def done(group: str, found: list) -> None:
+            groups.append((group, list(found)))
+            if on_group is not None:
+                on_group(group, list(found))
+
+        self._report = report
+        from tactcad.checks.requirements import requirement_checks
+
+        done("requirements", requirement_checks(self.plan))  # the verification matrix
+        try:
+            with tempfile.TemporaryDirectory() as tmp:
+                folder = Path(out) if out is not None else Path(tmp)
+                refusal = reuse_refusal(self.plan, folder)
+                if refusal is None:
+                    report(f"checking the export in {folder} (same design, every file as listed)")
+                elif scenes:
+                    report(f"exporting the scenes to {folder} first: {refusal}")
+                    export_scenes(self.validated, folder, scenes, log=_quiet, store=_store(cache),
+                                  parts=self._cache)
+                else:
+                    report(f"exporting to {folder} first: {refusal}")
+                    export(self.validated, folder, log=_quiet, store=_store(cache), parts=self._cache,
+                           select=lambda jobs: with_progress(jobs, report))
+                if scenes:
+                    run_scene_checks(self.validated, folder, scenes, cache=self._cache, done=done)
+                else:
+                    run_checks(self.plan, folder, self._cache, done=done)
+                    run_scene_checks(self.validated, folder, cache=self._cache, done=done)
+        finally:
+            self._report = _quiet
+        return CheckReport(tuple((g, tuple(r)) for g, r in groups), refusal is None,
+                           refusal, None if out is None else str(out))
+
+
+def _store(cache: str | Path | None | bool):
+    """The :class:`~tactcad.store.Store` that ``cache`` names."""
+    from tactcad.store import DEFAULT_STORE, Store
+
+    if cache is True:
+        return Store(DEFAULT_STORE)
+    if cache is False or cache is None:
+        return Store(None)
+    return Store(Path(cache))
+
+
+class Parts(Mapping):
+    """Part name -> build123d ``Solid`` (part frame, mm), built on first access."""
+
+    def __init__(self, project: Project):
+        self._project = project
+
+    def __getitem__(self, name: str):
+        specs = self._project._specs
+        if name not in specs:
+            raise KeyError(f"{name!r}: not a part of design {self._project.name}; "
+                           f"parts: {', '.join(specs)}")
+        return self._project._cache.solid(specs[name])
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._project._specs)
+
+    def __len__(self) -> int:
+        return len(self._project._specs)
+
+    def __repr__(self) -> str:
+        return f"<parts of {self._project.name}: {', '.join(self)}>"
+
+
+@dataclass(frozen=True)
+class Element:
+    """One sensing element of a project: its geometry, solid, stiffness and strength.
+
+    Attributes:
+        number: the element's number (1-based).
+        slot: its :class:`~tactcad.design.array.ElementSlot` (geometry and placement).
+    """
+
+    project: Project
+    slot: Any
+
+    @property
+    def number(self) -> int:
+        return self.slot.number
+
+    @property
+    def geometry(self):
+        """The element's :class:`~tactcad.design.array.ElementGeometry` (mm)."""
+        return self.slot.geometry
+
+    @property
+    def part_name(self) -> str:
+        """Its part's name (``element_a4mm``: elements of equal geometry share it)."""
+        return self.slot.geometry.part_name
+
+    @property
+    def solid(self):
+        """The element's build123d ``Solid`` (element frame, mm): the wire-cut
+        profile extruded by the sheet thickness along +z."""
+        return self.project.parts[self.part_name]
+
+    def stiffness(self, model: str = "closed-form", **options):
+        """Tip stiffness K for a force normal to the contact face.
+
+        Args:
+            model: ladder level: ``closed-form`` (1 ms), ``beam``, ``fem2d``
+                (about 1 s), ``fem3d`` (about 30 s).
+            **options: the level's own options (e.g. ``progress`` for FEM).
+
+        Returns:
+            :class:`~tactcad.mechanics.result.StiffnessResult`: K (N/mm), gauge
+            strain per newton (1/N), relative error estimate, wall time (s).
+
+        Raises:
+            UnknownModelError: ``model`` is not a ladder level.
+        """
+        from tactcad.mechanics.ladder import estimate
+
+        return estimate(model, self.geometry, self.project.plan.material, element=self.number,
+                        **options)
+
+    def strength(self, model: str = "closed-form"):
+        """Peak stress per newton at the hinge and the full-scale force.
+
+        Args:
+            model: ladder level, as for :meth:`stiffness`.
+
+        Returns:
+            :class:`~tactcad.mechanics.strength.StrengthRecord` (MPa/N, N,
+            strain, mm, and the limits exceeded in ``warnings``).
+
+        Raises:
+            UnknownModelError: ``model`` is not a ladder level.
+            DesignError: the material has no yield strength.
+        """
+        from tactcad.mechanics.ladder import MODELS, UnknownModelError
+        from tactcad.design.requirements import cites_paper
+        from tactcad.mechanics.strength import strength_record
+        from tactcad.studies.strength import element_stress
+
+        if model not in MODELS:
+            raise UnknownModelError(model)
+
+        plan = self.project.plan
+        stress = element_stress(self.geometry, plan.material, model)
+        return strength_record(self.number, self.geometry, plan.material, plan.strength, stress,
+                               paper_load=cites_paper(plan.raw))
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    """Results of :meth:`Project.check`.
+
+    Attributes:
+        groups: (group name, its :class:`~tactcad.checks.result.CheckResult` s)
+            in the order they ran.
+        reused_export: the export folder was checked as it was.
+        export_refusal: why it was not (None when reused).
+        out: the folder checked (None: a temporary one).
+    """
+
+    groups: tuple[tuple[str, tuple], ...]
+    reused_export: bool
+    export_refusal: str | None
+    out: str | None
+
+    @property
+    def results(self) -> list:
+        """Every result in order."""
+        return [r for _, found in self.groups for r in found]
+
+    @property
+    def failures(self) -> list:
+        """The results that failed."""
+        return [r for r in self.results if not r.passed]
+
+    @property
+    def passed(self) -> bool:
+        """True when every check passed."""
+        return not self.failures
+
+    def __len__(self) -> int:
+        return len(self.results)

@@ -1,0 +1,84 @@
+"""Check results as a JUnit XML report, the format CI systems read.
+
+One ``<testcase>`` per check, named ``check: subject``; a failed check holds
+a ``<failure>`` whose message is the line ``tactcad check`` prints for it.
+Test cases are grouped into ``<testsuite>`` elements by what they check:
+
+* ``part:<name>``: a part's solid checks, its STEP file and its DXF;
+* ``sheet:<name>``: a nested DXF sheet;
+* ``array``: the array's interference and its STEP assembly;
+* ``scene:<name>``: a scene's interference, sanity, STEP and GLB checks.
+
+Written with junitparser (a maintained reader and writer of the format).
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Iterable, Sequence
+
+from tactcad.atomic import write_bytes_atomic
+from tactcad.checks.result import CheckResult
+
+Group = tuple[str, Sequence[CheckResult]]
+
+
+def suite_of(group: str, result: CheckResult, part_names: Iterable[str]) -> str:
+    """The test suite of one result of a check group (see the module doc)."""
+    names = set(part_names)
+    if result.subject in names:
+        return f"part:{result.subject}"
+    if group.startswith("scene "):
+        return "scene:" + group.removeprefix("scene ")
+    if group in ("parts", "dxf"):
+        stem = Path(result.subject.split(":", 1)[0]).stem  # "sheet.dxf: copy at (x, y)"
+        base = re.sub(r"_qty\d+$", "", stem)
+        if base in names:
+            return f"part:{base}"
+        return f"sheet:{stem}"
+    return "array" if group.startswith("array") else group
+
+
+def junit_report(groups: Sequence[Group], part_names: Iterable[str],
+                 name: str = "tactcad check") -> bytes:
+    """The JUnit XML document (UTF-8 bytes) of the check groups, in the order run.
+
+    Args:
+        groups: (group name, results) as :meth:`tactcad.api.Project.check` returns them.
+        part_names: the design's part names, to give each part its suite.
+        name: the report's name (the ``<testsuites>`` element's).
+    """
+    from junitparser import Failure, JUnitXml, TestCase, TestSuite
+
+    names = list(part_names)
+    suites: dict[str, TestSuite] = {}
+    for group, results in groups:
+        for r in results:
+            key = suite_of(group, r, names)
+            suite = suites.get(key)
+            if suite is None:
+                suite = suites[key] = TestSuite(key)
+            case = TestCase(f"{r.check}: {r.subject}", classname=key, time=0.0)
+            if not r.passed:
+                case.result = [Failure(r.line(), type_=r.check)]
+            if r.detail:
+                case.system_out = r.detail
+            suite.add_testcase(case)
+    xml = JUnitXml(name)
+    for suite in suites.values():
+        suite.update_statistics()
+        xml.add_testsuite(suite)
+    xml.update_statistics()
+    return xml.tostring()
+
+
+def write_junit(path: str | Path, groups: Sequence[Group], part_names: Iterable[str]) -> Path:
+    """Write :func:`junit_report` to ``path`` atomically (whole or not at all).
+
+    Raises:
+        OSError: the file cannot be written.
+    """
+    target = Path(path)
+    write_bytes_atomic(target, junit_report(groups, part_names))
+    return target

@@ -1,0 +1,83 @@
+"""``tactcad diff OLD NEW``: what changed between two exports or two design files."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from tactcad.commands import add_cache_args, add_output_args, progress_from_args
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "diff", help="what changed between two exports (or two design files)",
+        description="Compare two exports from their manifests: parts added, removed and "
+                    "changed, elements whose stiffness K or strength changed, derived dimensions, "
+                    "and drawing sheets; with --out, an overlay (old red, new blue) and a "
+                    "side-by-side PNG of every changed sheet (unchanged sheets are not rendered). "
+                    "A design file (.toml) is exported to a temporary folder first, through the "
+                    "store of finished jobs. Exit 0: nothing changed; 1: something changed; "
+                    "2: bad input.")
+    p.add_argument("old", metavar="OLD", help="export folder (with manifest.json) or design file")
+    p.add_argument("new", metavar="NEW", help="export folder (with manifest.json) or design file")
+    p.add_argument("--out", metavar="DIR", default=None,
+                   help="write the changed sheets' overlay and side-by-side PNG here")
+    add_cache_args(p)
+    add_output_args(p, "print one JSON object: parts, elements, derived, sheets, files")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    import tempfile
+
+    from tactcad.commands.check import store_choice
+    from tactcad.commands.finite_json import dumps
+    from tactcad.export.diff import compare, render_sheets
+
+    report = progress_from_args(args)
+    inputs = [_input(args.old, "OLD"), _input(args.new, "NEW")]
+    if args.out is not None and Path(args.out).exists() and not Path(args.out).is_dir():
+        from tactcad.errors import DesignError
+
+        raise DesignError("--out", args.out, "a folder (new or existing)")
+    with tempfile.TemporaryDirectory() as tmp:
+        folders = []
+        for (kind, path), label in zip(inputs, ("old", "new")):
+            if kind == "export":
+                folders.append(path)
+                continue
+            from tactcad.api import load
+
+            folder = Path(tmp) / label
+            report(f"exporting {path} to a temporary folder")
+            load(path).export(folder, cache=store_choice(args), progress=report)
+            folders.append(folder)
+        diff = compare(*folders)
+        diff.old, diff.new = args.old, args.new
+        if args.out is not None:
+            written = render_sheets(diff, folders[0], folders[1], args.out)
+            report(f"wrote {len(written)} pictures to {args.out}")
+    if args.json:
+        print(dumps(diff.as_json(), indent=1))
+    else:
+        for line in diff.lines():
+            print(line)
+    return 1 if diff.changed else 0
+
+
+def _input(text: str, name: str) -> tuple[str, Path]:
+    """("export", folder) or ("design", file) for an OLD or NEW argument.
+
+    Raises:
+        DesignError: neither an export folder nor a design file.
+    """
+    from tactcad.catalogue.files import MANIFEST
+    from tactcad.errors import DesignError
+
+    path = Path(text)
+    if path.is_dir() and (path / MANIFEST).is_file():
+        return "export", path
+    if path.is_file() and path.suffix == ".toml":
+        return "design", path
+    raise DesignError(name, text, f"an export folder (with {MANIFEST}) or a design file (.toml)",
+                      "not found" if not path.exists() else "neither")

@@ -1,0 +1,184 @@
+"""Dimensioning a view (ISO 129-1): model points to dimension lines in
+stacked tiers, hole marks, callouts, coordinates and tables, thickness and
+radius callouts, and section views with their cutting-plane marks
+(ISO 128-40). The per-part dimension sets are made of these."""
+
+from __future__ import annotations
+
+import math
+
+from tactcad.drawings.drawing import (FIRST_TIER, TABLE_COLS, TABLE_ROW, TIER, Drawing, Hole2D)
+from tactcad.drawings.frame import FRAME, TITLE_W
+from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, fmt_mm
+from tactcad.drawings.views import ISO_5455_SCALES, View, scale_text
+from tactcad.geometry.profile import Arc
+
+def tier(view: View, side: str, k: int) -> float:
+    """Paper coordinate of the k-th dimension line (k = 0, 1, ...) on a side."""
+    x0, y0, x1, y1 = view.paper_box()
+    off = FIRST_TIER + k * TIER
+    return {"top": y0 - off, "below": y1 + off, "left": x0 - off, "right": x1 + off}[side]
+
+
+def dim(d: Drawing, view: View, p, q, axis: str, side: str, k: int, value: str, name: str) -> None:
+    d.sheet.linear_dimension(view.paper(*p), view.paper(*q), axis, tier(view, side, k), value,
+                             name)
+    d.dimensions[name] = value
+
+
+def hole_marks(d: Drawing, view: View, holes: list[Hole2D]) -> None:
+    for h in holes:
+        d.sheet.centre_mark("centre-lines", view.paper(h.x, h.y), h.d / 2 * view.scale + 2.0)
+
+
+def hole_callout(d: Drawing, view: View, holes: list[Hole2D], toward: tuple[float, float]) -> None:
+    """One leader per distinct hole size and depth: ``2× Ø2.4 through`` at
+    the nearest such hole."""
+    by_size: dict[tuple[str, str], list[Hole2D]] = {}
+    for h in holes:
+        by_size.setdefault((fmt_mm(h.d), h.depth_text), []).append(h)
+    for k, ((size, _), hs) in enumerate(by_size.items()):
+        h = min(hs, key=lambda h: (h.x - toward[0]) ** 2 + (h.y - toward[1]) ** 2)
+        ang = math.atan2(toward[1] - h.y, toward[0] - h.x)
+        r = h.d / 2
+        p0 = view.paper(h.x + r * math.cos(ang), h.y + r * math.sin(ang))
+        p1 = view.paper(*toward)
+        p1 = (p1[0], p1[1] + 6.0 * k)
+        text = (f"{len(hs)}× " if len(hs) > 1 else "") + f"Ø{size} {h.depth_text}"
+        name = "hole_diameter" if len(by_size) == 1 else f"hole_diameter_{k + 1}"
+        d.sheet.leader([p0, p1], text, name)
+        d.dimensions[name] = text
+
+
+def hole_dims_linear(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, float],
+                      bottom_k: int = 0, left_k: int = 0) -> None:
+    """Hole centres from the datum edges: x below the view, y on its left."""
+    for i, h in enumerate(sorted(holes, key=lambda h: h.x), start=1):
+        dim(d, view, (datum[0], datum[1]), (h.x, h.y), "h", "below", bottom_k + i - 1,
+             fmt_mm(h.x - datum[0]), f"hole_{i}_x")
+    ys = sorted({round(h.y, 9) for h in holes})
+    for j, y in enumerate(ys):
+        h = next(h for h in holes if round(h.y, 9) == y)
+        name = "hole_y" if len(ys) == 1 else f"hole_y_{j + 1}"
+        dim(d, view, (datum[0], datum[1]), (h.x, h.y), "v", "left", left_k + j,
+             fmt_mm(h.y - datum[1]), name)
+
+
+def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, float]) -> None:
+    """Coordinate table of the holes (ISO 129-1 tabular dimensioning), each
+    hole labelled on the view, coordinates from the marked origin."""
+    sh = d.sheet
+    o = view.paper(*datum)
+    sh.line("dimensions", (o[0] - 3, o[1]), (o[0] + 3, o[1]))
+    sh.line("dimensions", (o[0], o[1] - 3), (o[0], o[1] + 3))
+    sh.circle("dimensions", o, 1.2)
+    sh.text("dimensions", (o[0] + 1.5, o[1] + 4.5), "0,0", DIM_TEXT_MM, id="hole-origin")
+    ordered = sorted(holes, key=lambda h: (h.y, h.x))
+    for i, h in enumerate(ordered, start=1):
+        c = view.paper(h.x, h.y)
+        r = h.d / 2 * view.scale
+        sh.text("dimensions", (c[0] + r * 0.7 + 0.8, c[1] - r * 0.7 - 0.8), f"H{i}", DIM_TEXT_MM,
+                id=f"hole-label-{i}")
+    cols = TABLE_COLS
+    x0 = FRAME[2] - TITLE_W - 4 - sum(cols)
+    row_h = TABLE_ROW
+    y0 = FRAME[3] - 8 - row_h * (len(ordered) + 1)  # clear of the centring mark
+    sh.rect("hole-table", x0, y0, sum(cols), row_h * (len(ordered) + 1), "table")
+    heads = ("Hole", "X", "Y", "Ø", "Depth")
+    for r_i in range(len(ordered) + 2):
+        y = y0 + r_i * row_h
+        if 0 < r_i < len(ordered) + 1:
+            sh.line("hole-table", (x0, y), (x0 + sum(cols), y), "thin")
+    x = x0
+    for w in cols[:-1]:
+        x += w
+        sh.line("hole-table", (x, y0), (x, y0 + row_h * (len(ordered) + 1)), "thin")
+    def cell(col: int, row: int, text: str, id: str = "") -> None:
+        cx = x0 + sum(cols[:col]) + cols[col] / 2
+        cy = y0 + row * row_h + row_h / 2 + DIM_TEXT_MM / 2
+        sh.text("hole-table", (cx, cy), text, DIM_TEXT_MM, anchor="middle", id=id,
+                cls="dim" if id else "")
+    for c, hd in enumerate(heads):
+        cell(c, 0, hd)
+    for i, h in enumerate(ordered, start=1):
+        vals = (fmt_mm(h.x - datum[0]), fmt_mm(h.y - datum[1]), fmt_mm(h.d), h.depth_text)
+        cell(0, i, f"H{i}")
+        for c, (suffix, v) in enumerate(zip(("x", "y", "d", "depth"), vals), start=1):
+            cell(c, i, v, f"dim-hole_{i}_{suffix}")
+            d.dimensions[f"hole_{i}_{suffix}"] = v
+    sh.text("hole-table", (x0, y0 - 2.0), "Hole positions from origin 0,0", DIM_TEXT_MM)
+
+
+def plus_minus(value: float, tol: float) -> str:
+    """A dimension with its symmetric tolerance, ``19.8 ±0.02`` (no tolerance: the value)."""
+    return f"{fmt_mm(value)} ±{fmt_mm(tol)}" if tol > 0 else fmt_mm(value)
+
+
+def thickness_dim(d: Drawing, name: str = "thickness", tol: float = 0.0) -> None:
+    t = d.views["top"]
+    u1 = t.bbox[2]
+    x = max((p[0] for poly in t.visible for p in poly if abs(p[1] - t.bbox[3]) < 1e-6),
+            default=u1)
+    dim(d, t, (x, t.bbox[3]), (x, t.bbox[1]), "v", "right", 0,
+         plus_minus(t.bbox[3] - t.bbox[1], tol), name)
+
+
+def radius_callouts(d: Drawing, arcs: list[Arc], prefix: str = "inside_radius") -> None:
+    f = d.front
+    for k, a in enumerate(arcs):
+        c = f.paper(*a.centre)
+        mid = a.midpoint
+        ang = math.degrees(math.atan2(mid[1] - a.centre[1], mid[0] - a.centre[0]))
+        r = a.radius * f.scale
+        text = f"R{fmt_mm(a.radius)}"
+        name = prefix if len(arcs) == 1 else f"{prefix}_{k + 1}"
+        left = math.cos(math.radians(ang)) > 0
+        d.sheet.radius_dimension(c, r, ang, text, name, dist=-max(8.0, 3 * r), shoulder_right=not left)
+        d.dimensions[name] = text
+
+
+SECTION_GAP = 30.0  # paper mm between the view from the left and a section view
+
+
+def add_section(d: Drawing, solid, normal: tuple, up: tuple, length_mm: float,
+                height_mm: float) -> None:
+    """Section A-A through the part frame's origin, plane normal ``normal``
+    pointing at the viewer, ``up`` upwards; placed right of the view from the
+    left at up to four times the main scale (the largest ISO 5455 scale at
+    which ``length_mm`` x ``height_mm`` fits the room left on the sheet)."""
+    from tactcad.drawings.section import section_view
+
+    lb = d.views["left"].paper_box()
+    left = lb[2] + SECTION_GAP
+    room = FRAME[2] - 8.0 - left - FIRST_TIER - 2 * TIER
+    top = lb[1] + 12.0
+    room_h = d.notes_top - top - FIRST_TIER - 2 * TIER - 12.0
+    scale = next((s for s in ISO_5455_SCALES if s <= 4 * d.scale and length_mm * s <= room
+                  and height_mm * s <= room_h), d.scale)
+    sv = section_view(solid, (0.0, 0.0, 0.0), normal, up, "A-A", scale)
+    sv.hidden = []  # ISO 128-40: no hidden edges in a section
+    sv.place(left, lb[1] + 12.0)
+    d.views["section"] = sv
+
+
+def section_marks(d: Drawing, host: str, label: str) -> None:
+    """Cutting plane (ISO 128-40: long-dash-dot, thick at the ends) along the
+    line v = 0 of view ``host``, arrows for the viewing direction (paper up),
+    the letters, and the section's own label with its scale."""
+    sh, f, sv = d.sheet, d.views[host], d.views["section"]
+    x0, _, x1, _ = f.paper_box()
+    y = f.paper(0.0, 0.0)[1]
+    out = FIRST_TIER + TIER + 4.0  # beyond two tiers of dimensions
+    sh.line("section-plane", (x0 - out, y), (x1 + out, y), "centre")
+    for x in (x0 - out, x1 + out):
+        sh.line("section-plane", (x - 2.5 if x < x0 else x - 2.5, y), (x + 2.5, y), "visible")
+        sh.line("section-plane", (x, y), (x, y - 5.0), "thin")
+        sh.arrow("section-plane", (x, y - 7.5), (0.0, -1.0))
+        sh.text("section-plane", (x + (-3.0 if x < x0 else 3.0), y - 6.0), label[0], LABEL_TEXT_MM,
+                anchor="middle", id=f"section-letter-{'l' if x < x0 else 'r'}")
+    b = sv.paper_box()
+    sh.text("view-section", ((b[0] + b[2]) / 2, b[3] + FIRST_TIER + 2 * TIER + 5.0),
+            f"{label} ({scale_text(sv.scale)})", LABEL_TEXT_MM, anchor="middle",
+            id="section-label")
+
+

@@ -1,0 +1,82 @@
+"""The sheet every drawing stands on: the A3 frame with its centring marks
+(ISO 5457), the title-block cells (ISO 7200), the first-angle projection
+symbol (ISO 128-30), the general tolerance and the revision of a design.
+Used by the part drawings and the assembly drawing alike."""
+
+from __future__ import annotations
+
+from tactcad.design.array import Plan
+from tactcad.drawings.sheet import Sheet, text_width
+
+GENERAL_TOLERANCE = "ISO 2768-f"
+
+
+def general_tolerance(plan) -> str:
+    """The design's general tolerance class (``[tolerances] general``), e.g. ``ISO 2768-f``."""
+    from tactcad.design.tolerances import tolerances_of
+
+    return tolerances_of(plan.raw).general_text
+FRAME = (20.0, 10.0, 410.0, 287.0)  # left, top, right, bottom (A3, ISO 5457)
+TITLE_W, TITLE_H = 180.0, 63.0        # seven rows of 9 mm
+
+
+def revision_and_date(plan: Plan) -> tuple[str, str]:
+    """(revision, date) of the drawing: the design file's ``[design]``
+    ``revision`` and ``date`` when given, else ``A`` and ``—``. Never today's
+    date: the same design writes the same bytes."""
+    table = plan.raw.get("design", {}) if isinstance(plan.raw, dict) else {}
+    rev = str(table.get("revision", "") or "A")
+    date = str(table.get("date", "") or "—")
+    return rev, date
+
+
+def wrap_text(text: str, width: float, h: float) -> list[str]:
+    """``text`` broken into lines no wider than ``width`` paper mm at text height ``h`` (mm)."""
+    words = text.split()
+    lines, cur = [], ""
+    for w in words:
+        trial = f"{cur} {w}".strip()
+        if text_width(trial, h) <= width or not cur:
+            cur = trial
+        else:
+            lines.append(cur)
+            cur = w
+    if cur:
+        lines.append(cur)
+    return lines
+
+
+def sheet_frame(sh: Sheet) -> None:
+    """ISO 5457 frame and centring marks of an A3 sheet."""
+    x0, y0, x1, y1 = FRAME
+    sh.rect("frame", x0, y0, x1 - x0, y1 - y0, "frame")
+    # centring marks (ISO 5457)
+    w, h = sh.width_mm, sh.height_mm
+    for p, q in (((w / 2, 0.0), (w / 2, y0 + 5)), ((w / 2, h), (w / 2, y1 - 5)),
+                 ((0.0, h / 2), (x0 + 5, h / 2)), ((w, h / 2), (x1 - 5, h / 2))):
+        sh.line("frame", p, q, "frame")
+
+
+def title_cells(sh: Sheet, x0: float, y0: float, rh: float, cells: list[tuple]) -> None:
+    """Title-block cells (ISO 7200): each ``(row, x offset, width, label,
+    value, id, value height)`` in paper mm from the block's corner
+    ``(x0, y0)``, rows ``rh`` high; a value too wide for its cell is set smaller."""
+    for row, dx, w, label, value, id, vh in cells:
+        x, y = x0 + dx, y0 + row * rh
+        sh.rect("title-block", x, y, w, rh, "table")
+        sh.text("title-block", (x + 1.2, y + 2.4), label, 1.6)
+        if value:
+            while text_width(value, vh) > 0.9 * (w - 3) and vh > 1.8:
+                vh -= 0.25
+            sh.text("title-block", (x + 1.5, y + rh - 1.6), value, vh, id=id)
+
+
+def projection_symbol(sh: Sheet, px: float, py: float) -> None:
+    """The first-angle projection symbol (ISO 128-30) centred at paper ``(px, py)`` (mm)."""
+    sh.polyline("title-block", [(px - 12, py - 1.4), (px - 4, py - 3.0), (px - 4, py + 3.0),
+                                (px - 12, py + 1.4)], "thin", closed=True)
+    sh.line("title-block", (px - 14, py), (px - 2, py), "centre")
+    sh.circle("title-block", (px + 6, py), 3.0)
+    sh.circle("title-block", (px + 6, py), 1.4)
+    sh.line("title-block", (px + 2, py), (px + 10, py), "centre")
+    sh.line("title-block", (px + 6, py - 4), (px + 6, py + 4), "centre")

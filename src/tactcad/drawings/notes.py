@@ -1,0 +1,49 @@
+"""The notes block of a part drawing: the part family's notes
+(:mod:`tactcad.drawings.part_sets`) and the general tolerance, wrapped to the
+room left of the title block."""
+
+from __future__ import annotations
+
+from tactcad.drawings.drawing import NOTE_LINE, NOTES_TOP, TABLE_COLS, TABLE_ROW, Drawing
+from tactcad.drawings.frame import FRAME, TITLE_W, general_tolerance, wrap_text
+from tactcad.drawings.part_sets import drawing_of
+from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM
+
+def notes_for(d: Drawing) -> list[str]:
+    """The part family's notes (:attr:`PartDrawing.notes`), then the general one."""
+    return drawing_of(d.spec).notes(d) + [
+        f"Untoleranced dimensions: {general_tolerance(d.plan)}. Dimensions in mm (ISO 129-1), "
+        f"first-angle projection. Break sharp edges 0.1 max unless noted."]
+
+
+def note_lines(d: Drawing) -> list[list[str]]:
+    x0 = FRAME[0] + 5.0
+    right = FRAME[2] - TITLE_W - 6.0 - (sum(TABLE_COLS) + 6.0 if d.table_rows else 0.0)
+    width = 0.8 * (right - x0)  # room for a wider fallback font
+    return [wrap_text(f"{k}. {note}", width, DIM_TEXT_MM) for k, note in enumerate(d.notes, start=1)]
+
+
+def notes_top(d: Drawing) -> float:
+    """Paper y where the views must end: above the notes block (which ends
+    3 mm above the frame) and above the hole table, if any."""
+    lines = note_lines(d)
+    height = 5.0 + sum(len(ls) * NOTE_LINE + 0.8 for ls in lines) + 3.0
+    table = (d.table_rows + 1) * TABLE_ROW + 8.0 + 8.0 if d.table_rows else 0.0
+    return min(NOTES_TOP, FRAME[3] - height, FRAME[3] - table)
+
+
+def draw_notes(d: Drawing) -> None:
+    sh = d.sheet
+    x0, y = FRAME[0] + 5.0, d.notes_top + 5.0
+    sh.text("notes", (x0, y), "NOTES", LABEL_TEXT_MM, bold=True)
+    y += 5.0
+    for k, lines in enumerate(note_lines(d), start=1):
+        for j, line in enumerate(lines):
+            sh.text("notes", (x0 + (4.0 if j else 0.0), y), line, DIM_TEXT_MM,
+                    id=f"note-{k}" if j == 0 else "")
+            y += NOTE_LINE
+        y += 0.8
+    if d.notes_top < FRAME[1] + 60.0:
+        raise ValueError(f"notes of {d.spec.name} leave no room for the views")
+
+

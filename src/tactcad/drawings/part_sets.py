@@ -1,0 +1,535 @@
+"""What each part family's drawing shows beyond the common sheet, gathered
+under its builder key (``PartSpec.builder``) in one :class:`PartDrawing`:
+dimension set, notes (the web's stiffness sensitivity from
+:func:`tactcad.mechanics.closed_form.web_tolerance_stiffness_change`, the
+paper's Table 1 spread from :mod:`tactcad.mechanics.paper.data`), section
+view, fixed view directions, detail view, hole table or not, and the plan
+values it prints. Any other fabricated part gets :data:`GENERIC` (overall
+sizes, thickness, inside radii, holes; its process and material)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from tactcad.catalogue.array import PartSpec
+from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
+from tactcad.design.array import Plan
+from tactcad.design.tolerances import tolerances_of
+from tactcad.drawings.dimensioning import (add_section, dim, hole_callout, hole_dims_linear,
+                                           hole_marks, hole_table, plus_minus, radius_callouts,
+                                           section_marks, thickness_dim)
+from tactcad.drawings.drawing import (FIRST_TIER, TIER, Drawing, Hole2D, holes_seen, inside_radii,
+                                      part_thickness, web_text)
+from tactcad.drawings.sheet import fmt_mm
+from tactcad.geometry.profile import Arc
+from tactcad.drawings.views import CAMERAS, cameras_for, orientation
+from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
+from tactcad.mechanics.paper.data import largest_equal_arm_spread
+from tactcad.drawings.design_notes import full_scale_note, web_tolerance_note
+
+
+def detail_circle(spec: PartSpec):
+    """(centre, radius) of the part's detail view in model mm, or None."""
+    detail = drawing_of(spec).detail
+    return detail(spec) if detail is not None else None
+
+
+def choose_cameras(spec: PartSpec) -> dict:
+    """View set of a part: its family's fixed directions, the sketch plane
+    for a profiled part, else by its bounding box."""
+    fixed = drawing_of(spec).cameras
+    if fixed is not None:
+        return fixed
+    if spec.profile is None:
+        return orientation(spec.expected_bbox_mm)
+    return dict(CAMERAS)
+
+
+def hole_table_rows(d: Drawing, solid) -> int:
+    """Rows of the hole table the generic set will draw (0: none)."""
+    if not drawing_of(d.spec).hole_table:
+        return 0
+    holes = holes_seen(d.spec, solid, d.cameras)
+    if not holes or len({(h.x, h.y) for h in holes}) == 1:
+        return 0
+    if len(holes) <= 2 and len({round(h.y, 9) for h in holes}) == 1:
+        return 0
+    return len(holes)
+
+
+def element_dims(d: Drawing, solid) -> None:
+    """Flexure element: contact face, arm length, overall sizes, arm and tip
+    heights, hole pattern, tip-root radius; the web (thickness with its
+    tolerance, notch radius) in detail A."""
+    g = d.spec.geometry
+    tol = tolerances_of(d.plan.raw)  # the table the tolerance study draws from
+    f = d.front
+    L, H = g.overall_length_mm, g.base_height_mm
+    top = g.tip_top_y_mm
+    xl = L - g.tip_width_mm
+    dim(d, f, (xl, top), (L, top), "h", "top", 0, plus_minus(g.tip_width_mm, tol.contact_face_mm),
+        "tip_width")
+    dim(d, f, (g.hinge_x_mm, H), (g.tip_centre_x_mm, top), "h", "top", 1,
+        plus_minus(g.arm_length_mm, tol.arm_length_mm), "arm_length")
+    dim(d, f, (0.0, H), (L, top), "h", "top", 2, fmt_mm(L), "overall_length")
+    d.sheet.line("centre-lines", f.paper(g.tip_centre_x_mm, top - g.tip_height_mm / 2),
+                 f.paper(g.tip_centre_x_mm, top + 0.3), "centre")
+    d.sheet.line("centre-lines", f.paper(g.hinge_x_mm, g.notch_centre_y_mm - 1.3 * g.notch_radius_mm),
+                 f.paper(g.hinge_x_mm, H + 0.3), "centre")
+    xr = xl - g.inside_corner_radius_mm
+    dim(d, f, (L, g.arm_underside_y_mm), (xr, H), "v", "right", 0, fmt_mm(g.arm_height_mm),
+         "arm_height")
+    dim(d, f, (xr, H), (L, top), "v", "right", 0, fmt_mm(g.tip_height_mm), "tip_height")
+    dim(d, f, (g.base_length_mm, 0.0), (L, top), "v", "right", 1, fmt_mm(top),
+         "overall_height")
+    holes = holes_seen(d.spec, solid, d.cameras)
+    hole_dims_linear(d, f, holes, (0.0, 0.0))
+    dim(d, f, (0.0, 0.0), (0.0, H), "v", "left", 1, fmt_mm(H), "base_height")
+    hole_marks(d, f, holes)
+    hole_callout(d, f, holes, (g.base_length_mm + g.notch_radius_mm * 2 + 0.8,
+                                g.arm_underside_y_mm * 0.35))
+    # tip-root radius, leader from the empty side
+    fil = next(s for s in d.spec.profile.outer if isinstance(s, Arc) and not s.ccw
+               and abs(s.radius - g.inside_corner_radius_mm) < 1e-9)
+    c = f.paper(*fil.centre)
+    d.sheet.radius_dimension(c, fil.radius * f.scale, -45.0, f"R{fmt_mm(fil.radius)}",
+                             "corner_radius", dist=-10.0, shoulder_right=False)
+    d.dimensions["corner_radius"] = f"R{fmt_mm(fil.radius)}"
+    # detail A: the web
+    dv = d.views["detail"]
+    xh = g.hinge_x_mm
+    yc = g.notch_centre_y_mm
+    d.sheet.centre_mark("centre-lines", dv.paper(xh, yc), 3.0)
+    wt = web_text(g)
+    d.sheet.linear_dimension(dv.paper(xh, yc + g.notch_radius_mm), dv.paper(xh, H), "v",
+                             dv.paper(xh, 0)[0], wt, "web_thickness")
+    d.dimensions["web_thickness"] = wt
+    rtext = f"R{plus_minus(g.notch_radius_mm, tol.notch_radius_mm)}"
+    d.sheet.radius_dimension(dv.paper(xh, yc), g.notch_radius_mm * dv.scale, 60.0, rtext,
+                             "notch_radius", dist=-10.0, shoulder_right=True)
+    d.dimensions["notch_radius"] = rtext
+    # contact face, in the view from above
+    t = d.views["top"]
+    cf = (f"contact face {plus_minus(g.contact_face_mm[0], tol.contact_face_mm)} × "
+          f"{plus_minus(g.contact_face_mm[1], tol.sheet_thickness_mm)}")
+    p0 = t.paper(g.tip_centre_x_mm, -g.sheet_thickness_mm / 2)
+    p1 = (t.paper_box()[2] + 6.0, t.paper_box()[3] + 8.0)
+    d.sheet.leader([p0, p1], cf, "contact_face")
+    d.dimensions["contact_face"] = cf
+    thickness_dim(d, tol=tol.sheet_thickness_mm)
+
+
+def clamp_dims(d: Drawing, solid) -> None:
+    """U clamp plate: the generic set plus window width and bridge height."""
+    c = d.plan.clamp
+    f = d.front
+    dim(d, f, (-c.window_half_width_mm, c.height_mm), (c.window_half_width_mm, c.height_mm),
+         "h", "top", 0, fmt_mm(2 * c.window_half_width_mm), "window_width")
+    dim(d, f, (c.half_length_mm, 0.0), (c.window_half_width_mm, c.bridge_height_mm), "v", "right",
+         0, fmt_mm(c.bridge_height_mm), "bridge_height")
+    generic_dims(d, solid, top_k=1, right_k=1)
+
+
+def round_outline(d: Drawing, solid) -> float | None:
+    """Diameter of the front view's outline if it is a circle (a turned part
+    seen along its axis): an outer cylinder coaxial with the view direction
+    whose diameter equals both sizes of the view."""
+    if d.spec.profile is not None:
+        return None
+    f = d.front
+    u0, v0, u1, v1 = f.bbox
+    if abs((u1 - u0) - (v1 - v0)) > 1e-6:
+        return None
+    direction, _ = d.cameras["front"]
+    dv = np.array(direction, float)
+    for face in solid.faces():
+        if face.geom_type.name != "CYLINDER":
+            continue
+        ax = face.axis_of_rotation
+        if ax is None or abs(abs(np.array(tuple(ax.direction)) @ dv) - 1.0) > 1e-6:
+            continue
+        if abs(2 * face.radius - (u1 - u0)) < 1e-6:
+            return 2 * face.radius
+    return None
+
+
+def generic_dims(d: Drawing, solid, top_k: int = 0, right_k: int = 0) -> None:
+    """Any fabricated part: overall length / height in the front view (a
+    diameter for a turned part seen along its axis), thickness in the view
+    from above, inside radii, and its holes (concentric holes of a round part
+    by diameter only; linear dimensions from the lower-left datum for up to
+    two holes on one line; else a hole table)."""
+    f = d.front
+    u0, v0, u1, v1 = f.bbox
+    outer = round_outline(d, solid)
+    if outer is not None:
+        dim(d, f, (u0, v1), (u1, v1), "h", "top", top_k, f"Ø{fmt_mm(outer)}", "outer_diameter")
+    else:
+        dim(d, f, (u0, v1), (u1, v1), "h", "top", top_k, fmt_mm(u1 - u0), "overall_length")
+        dim(d, f, (u1, v0), (u1, v1), "v", "right", right_k, fmt_mm(v1 - v0), "overall_height")
+    thickness_dim(d)
+    holes = holes_seen(d.spec, solid, d.cameras)
+    centre = ((u0 + u1) / 2, (v0 + v1) / 2)
+    if holes and outer is not None and all(abs(h.x - centre[0]) < 1e-6 and abs(h.y - centre[1]) < 1e-6
+                                           for h in holes):
+        hole_marks(d, f, holes)
+        hole_callout(d, f, holes, (centre[0] + (u1 - u0) * 0.3, v1 + (v1 - v0) * 0.05))
+    elif holes:
+        hole_marks(d, f, holes)
+        if len(holes) <= 2 and len({round(h.y, 9) for h in holes}) == 1:
+            hole_dims_linear(d, f, holes, (u0, v0))
+            hole_callout(d, f, holes, ((u0 + u1) / 2, v1 - (v1 - v0) * 0.15))
+        else:
+            datum = (0.0, 0.0) if (u0 - 1e-9 <= 0 <= u1 + 1e-9 and v0 - 1e-9 <= 0 <= v1 + 1e-9) \
+                else (u0, v0)
+            hole_table(d, f, holes, datum)
+    radius_callouts(d, inside_radii(d.spec))
+
+
+def indenter_dims(d: Drawing, solid) -> None:
+    """Indenter (``spec.geometry`` with contact_width_mm, contact_depth_mm,
+    tip_length_mm, body_diameter_mm, body_length_mm; part frame: contact face
+    at z = 0, width along x, depth along y): the contact face in the front
+    view (width) and the view from the left (depth), tip and body lengths,
+    body diameter. Falls back to the generic set for other geometry."""
+    g = d.spec.geometry
+    need = ("contact_width_mm", "contact_depth_mm", "tip_length_mm", "body_diameter_mm",
+            "body_length_mm")
+    if not all(hasattr(g, k) for k in need):
+        generic_dims(d, solid)
+        return
+    f, left = d.front, d.views["left"]
+    w, dp, L = g.contact_width_mm, g.contact_depth_mm, g.tip_length_mm
+    D, B = g.body_diameter_mm, g.body_length_mm
+    # front view: u = -x, v = z; view from the left: u = y, v = z
+    dim(d, f, (w / 2, 0.0), (-w / 2, 0.0), "h", "below", 0, fmt_mm(w), "contact_width")
+    dim(d, left, (-dp / 2, 0.0), (dp / 2, 0.0), "h", "below", 0, fmt_mm(dp), "contact_depth")
+    dim(d, f, (D / 2, L + B), (-D / 2, L + B), "h", "top", 0, f"Ø{fmt_mm(D)}", "body_diameter")
+    dim(d, f, (-w / 2, 0.0), (-w / 2, L), "v", "right", 0, fmt_mm(L), "tip_length")
+    dim(d, f, (-D / 2, L), (-D / 2, L + B), "v", "right", 0, fmt_mm(B), "body_length")
+    dim(d, f, (-w / 2, 0.0), (-D / 2, L + B), "v", "right", 1, fmt_mm(L + B), "overall_height")
+    from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
+    from tactcad.catalogue.shop import tap_drill_mm, thread_text
+
+    fb = f.paper_box()
+    depth = indenter_thread_depth_mm(g)
+    th = (f"{thread_text(INDENTER_THREAD_DIAMETER_MM, depth)} (tap drill "
+          f"Ø{fmt_mm(tap_drill_mm(INDENTER_THREAD_DIAMETER_MM))}), onto the gauge shaft")
+    sv = d.views.get("section", f)
+    sb = sv.paper_box()
+    rt = INDENTER_THREAD_DIAMETER_MM / 2
+    d.sheet.leader([sv.paper(rt, L + B - depth / 2), (sb[2] + FIRST_TIER + TIER, sb[1] - 8.0)],
+                   th, "mount_thread")
+    d.dimensions["mount_thread"] = th
+    if sv is not f:
+        dim(d, sv, (-rt, L + B), (-rt, L + B - depth), "v", "right", 0, fmt_mm(depth),
+             "thread_depth")
+        section_marks(d, "top", "A-A")
+    cf = f"contact face {fmt_mm(w)} × {fmt_mm(dp)}"
+    d.sheet.leader([f.paper(0.0, 0.0), (fb[2] + 4.0, fb[3] + 18.0)], cf, "contact_face")
+    d.dimensions["contact_face"] = cf
+
+
+def cart_section(d: Drawing, solid) -> None:
+    """Cart: section in the mid plane y = 0 (through the channel, the port
+    and the suction holes), seen from -y."""
+    g = d.spec.geometry
+    add_section(d, solid, (0.0, -1.0, 0.0), (0.0, 0.0, 1.0), g.length_mm, g.thickness_mm)
+
+
+def indenter_section(d: Drawing, solid) -> None:
+    """Indenter: section through its axis (plane y = 0, seen from +y, as the
+    front view), showing the blind tapped hole."""
+    g = d.spec.geometry
+    add_section(d, solid, (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), g.body_diameter_mm,
+                g.tip_length_mm + g.body_length_mm)
+
+
+def cart_dims(d: Drawing, solid) -> None:
+    """Cart (``spec.geometry``: :class:`tactcad.design.rigs.CartGeometry`;
+    part frame: x along the grooves, z up from the underside, centred):
+    outline and pocket in the front view (from +z), the wheel axles' tapped
+    holes in the view from above (from +y), the hose port in the view from the
+    left (from -x), channel, port, suction holes and pocket depth in section A-A."""
+    from tactcad.catalogue.shop import thread_text
+    from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM
+
+    g = d.spec.geometry
+    f, t, lv, sv = d.front, d.views["top"], d.views["left"], d.views["section"]
+    L, W, T = g.length_mm, g.width_mm, g.thickness_mm
+    pl, pw = g.pocket_length_mm, g.pocket_width_mm
+    # front view: outline, pocket, holder screws
+    dim(d, f, (-pl / 2, pw / 2), (pl / 2, pw / 2), "h", "top", 0, fmt_mm(pl), "pocket_length")
+    dim(d, f, (-L / 2, W / 2), (L / 2, W / 2), "h", "top", 1, fmt_mm(L), "overall_length")
+    dim(d, f, (pl / 2, -pw / 2), (pl / 2, pw / 2), "v", "right", 0, fmt_mm(pw), "pocket_width")
+    dim(d, f, (L / 2, -W / 2), (L / 2, W / 2), "v", "right", 1, fmt_mm(W), "overall_height")
+    ys = g.holder_screw_y_mm
+    dim(d, f, (0.0, -ys), (0.0, ys), "v", "left", 0, fmt_mm(2 * ys), "holder_screw_spacing")
+    holes = [Hole2D(0.0, s * ys, g.holder_screw_diameter_mm) for s in (-1, 1)]
+    hole_marks(d, f, holes)
+    d.sheet.line("centre-lines", f.paper(0.0, -W / 2 - 2.0), f.paper(0.0, W / 2 + 2.0), "centre")
+    fb = f.paper_box()
+    texts = {
+        # both leaders end below the view, clear of its edges and of each other
+        "holder_thread": (f"2× {thread_text(g.holder_screw_diameter_mm, g.holder_tapped_depth_mm)}",
+                          f.paper(g.holder_screw_diameter_mm / 2 * 0.7, -ys - 0.7),
+                          (fb[0] + 0.62 * (fb[2] - fb[0]), fb[3] + 12.0)),
+        "pocket": (f"pocket depth {fmt_mm(g.pocket_depth_mm)}, 4× R{fmt_mm(POCKET_CORNER_RADIUS_MM)}",
+                   f.paper(-pl / 2, -pw / 2 + POCKET_CORNER_RADIUS_MM * 2),
+                   (fb[0] + 8.0, fb[3] + 6.0)),
+    }
+    for name, (text, at, to) in texts.items():
+        d.sheet.leader([at, to], text, name)
+        d.dimensions[name] = text
+    # view from above (u = x, v = -z): axles
+    ax, ah = g.axle_x_mm, g.axle_height_mm
+    dim(d, t, (-ax, -ah), (ax, -ah), "h", "below", 0, fmt_mm(2 * ax), "axle_spacing")
+    dim(d, t, (-L / 2, 0.0), (-ax, -ah), "v", "left", 0, fmt_mm(ah), "axle_height")
+    hole_marks(d, t, [Hole2D(s * ax, -ah, g.axle_bolt.nominal_diameter_mm) for s in (-1, 1)])
+    axle = (f"4× {thread_text(g.axle_bolt.nominal_diameter_mm, g.axle_hole_depth_mm)} "
+            f"(both sides)")
+    tb = t.paper_box()
+    d.sheet.leader([t.paper(ax + 1.0, -ah - 1.0), (tb[2] - 10.0, tb[3] + 12.0)], axle, "axle_thread")
+    d.dimensions["axle_thread"] = axle
+    thickness_dim(d)
+    # view from the left (u = z, v = y): the hose port
+    port = thread_text(g.port_diameter_mm, g.port_depth_mm)
+    lb = lv.paper_box()
+    hole_marks(d, lv, [Hole2D(T / 2, 0.0, g.port_diameter_mm)])
+    d.sheet.leader([lv.paper(T / 2 + g.port_diameter_mm / 2 * 0.7, g.port_diameter_mm / 2 * 0.7),
+                    (lb[2] + 6.0, lb[1] - 4.0)], f"hose port {port}", "port_thread")
+    d.dimensions["port_thread"] = f"hose port {port}"
+    # section A-A (u = x, v = z)
+    xs = g.suction_hole_xs_mm
+    dim(d, sv, (-L / 2, T), (xs[0], T), "h", "top", 0, fmt_mm(xs[0] + L / 2), "suction_hole_first_x")
+    if len(xs) > 1:
+        dim(d, sv, (xs[0], T), (xs[1], T), "h", "top", 1, fmt_mm(xs[1] - xs[0]), "suction_hole_pitch")
+    dim(d, sv, (-L / 2, T / 2), (-L / 2 + g.port_depth_mm, T / 2), "h", "below", 0,
+         fmt_mm(g.port_depth_mm), "port_depth")
+    dim(d, sv, (-L / 2, T / 2), (g.channel_end_x_mm, T / 2), "h", "below", 1,
+         fmt_mm(g.channel_end_x_mm + L / 2), "channel_length")
+    dim(d, sv, (L / 2, 0.0), (g.channel_end_x_mm, T / 2), "v", "right", 0, fmt_mm(T / 2),
+         "channel_height")
+    dim(d, sv, (L / 2, T), (pl / 2, T - g.pocket_depth_mm), "v", "right", 1,
+         fmt_mm(g.pocket_depth_mm), "pocket_depth")
+    sb = sv.paper_box()
+    ch = f"channel Ø{fmt_mm(g.channel_diameter_mm)}"
+    d.sheet.leader([sv.paper(g.channel_end_x_mm - 4.0, T / 2 - g.channel_diameter_mm / 2),
+                    (sv.paper(g.channel_end_x_mm, 0.0)[0] + 4.0, sb[3] + 5.0)], ch, "channel_diameter")
+    d.dimensions["channel_diameter"] = ch
+    sh_text = f"{len(xs)}× Ø{fmt_mm(g.suction_hole_diameter_mm)} to channel"
+    d.sheet.leader([sv.paper(xs[-1] + g.suction_hole_diameter_mm / 2, T - 1.5),
+                    (sb[0] + 0.72 * (sb[2] - sb[0]), sb[1] - 2 * TIER - FIRST_TIER)], sh_text,
+                   "suction_holes")
+    d.dimensions["suction_holes"] = sh_text
+    section_marks(d, "front", "A-A")
+
+
+def base_plate_dims(d: Drawing, solid) -> None:
+    """Base plate (:class:`tactcad.design.rigs.BasePlateGeometry`; frame
+    centred, z up): the generic set, and the two full-length grooves in the
+    view from the left (u = z, v = y): width, depth and centre distance."""
+    g = d.spec.geometry
+    generic_dims(d, solid)
+    lv = d.views["left"]
+    T, yc, gw = g.thickness_mm, g.track_half_mm, g.groove_width_mm
+    dim(d, lv, (T - g.groove_depth_mm, yc + gw / 2), (T, yc + gw / 2), "h", "top", 0,
+         fmt_mm(g.groove_depth_mm), "groove_depth")
+    dim(d, lv, (T, yc - gw / 2), (T, yc + gw / 2), "v", "right", 0, fmt_mm(gw), "groove_width")
+    dim(d, lv, (T - g.groove_depth_mm, -yc), (T - g.groove_depth_mm, yc), "v", "right", 1,
+         fmt_mm(2 * yc), "groove_spacing")
+    for s_ in (-1, 1):
+        d.sheet.line("centre-lines", lv.paper(T - g.groove_depth_mm - 1.0, s_ * yc),
+                     lv.paper(T + 1.0, s_ * yc), "centre")
+
+
+def sample_holder_dims(d: Drawing, solid) -> None:
+    """Sample holder (:class:`tactcad.design.rigs.SampleHolderGeometry`;
+    frame centred, z up): the generic set plus the window (length, width,
+    corner radius)."""
+    g = d.spec.geometry
+    f = d.front
+    wl, ww = g.window_length_mm, g.window_width_mm
+    dim(d, f, (-wl / 2, ww / 2), (wl / 2, ww / 2), "h", "top", 0, fmt_mm(wl), "window_length")
+    dim(d, f, (wl / 2, -ww / 2), (wl / 2, ww / 2), "v", "right", 0, fmt_mm(ww), "window_width")
+    generic_dims(d, solid, top_k=1, right_k=1)
+    r = g.corner_radius_mm
+    text = f"window through, 4× R{fmt_mm(r)}"
+    c = (wl / 2 - r + r * 0.7, -ww / 2 + r - r * 0.7)
+    fb = f.paper_box()
+    d.sheet.leader([f.paper(*c), (fb[2] - 6.0, fb[3] + FIRST_TIER + 2 * TIER + 4.0)], text,
+                   "window_corner")
+    d.dimensions["window_corner"] = text
+
+
+def bracket_dims(d: Drawing, solid) -> None:
+    """Array bracket (:class:`tactcad.design.rigs.BracketGeometry`; views from
+    :func:`tactcad.drawings.views.orientation`: front from +y with u = z,
+    v = x; from above u = z, v = -y; from the left u = y, v = x): the generic
+    set (outline, foot hole), the L section's ear and foot thicknesses and
+    ear height in the view from above, the ear's two through holes in the
+    view from the left."""
+    g = d.spec.geometry
+    generic_dims(d, solid)
+    t, lv = d.views["top"], d.views["left"]
+    fb_, ft = g.foot_bottom_mm, g.foot_top_mm
+    dim(d, t, (-g.ear_thickness_mm, -g.ear_top_mm), (0.0, -g.ear_top_mm), "h", "top", 0,
+         fmt_mm(g.ear_thickness_mm), "ear_thickness")
+    dim(d, t, (-g.foot_length_mm, -ft), (-g.foot_length_mm, -fb_), "v", "left", 0,
+         fmt_mm(g.foot_thickness_mm), "foot_thickness")
+    xs = sorted(g.hole_xs_mm)
+    holes = [Hole2D(0.0, x, g.hole_diameter_mm) for x in xs]
+    hole_marks(d, lv, holes)
+    dim(d, lv, (fb_, xs[0]), (0.0, xs[0]), "h", "below", 0, fmt_mm(-fb_), "ear_hole_height")
+    dim(d, lv, (0.0, -g.width_mm / 2), (0.0, xs[0]), "v", "right", 0,
+         fmt_mm(xs[0] + g.width_mm / 2), "ear_hole_1_x")
+    if len(xs) > 1:
+        dim(d, lv, (0.0, xs[0]), (0.0, xs[1]), "v", "right", 1, fmt_mm(xs[1] - xs[0]),
+             "ear_hole_spacing")
+    lb = lv.paper_box()
+    text = f"{len(xs)}× Ø{fmt_mm(g.hole_diameter_mm)} {holes[0].depth_text}"
+    d.sheet.leader([lv.paper(g.hole_diameter_mm / 2 * 0.7, xs[-1] + g.hole_diameter_mm / 2 * 0.7),
+                    (lb[2] + 4.0, lb[1] - 6.0)], text, "ear_holes")
+    d.dimensions["ear_holes"] = text
+
+
+def element_notes(d: Drawing) -> list[str]:
+    """Flexure element: the web as the critical dimension, wire EDM, edges, use, strength limit."""
+    plan, spec = d.plan, d.spec
+    n: list[str] = []
+    g = spec.geometry
+    used = [s.number for s in plan.slots if s.geometry.part_name == spec.name]
+    a, k0, k1, ratio = largest_equal_arm_spread()
+    up, dn = web_tolerance_stiffness_change(g.web_thickness_mm, g.web_tolerance_mm)
+    n.append(web_tolerance_note(plan, g, web_text(g), up, dn, (a, k0, k1, ratio)))
+    n.append(f"Wire EDM from {fmt_mm(g.sheet_thickness_mm)} mm {spec.material} sheet along "
+             f"the nominal contour of {Path(profile_dxf_name(spec.name, len(used))).name} "
+             f"(or the nested sheet {Path(sheet_dxf_name(spec.material, g.sheet_thickness_mm)).name})"
+             + f"; wire offset is the shop's CAM setting. Start holes "
+             f"Ø{fmt_mm(g.start_hole_diameter_mm)} at the bolt-hole centres.")
+    n.append(f"Inside corners not dimensioned: R >= {fmt_mm(plan.edm.min_inside_radius_mm)} "
+             f"(wire radius + spark gap). Do not break the edges of the web or of the "
+             f"contact face; deburr elsewhere.")
+    n.append(f"Used as array element{'s' if len(used) > 1 else ''} "
+             + ", ".join(str(k) for k in used)
+             + ". A strain gauge is bonded on the flat top face over the web.")
+    n.append(full_scale_note(plan, spec.name, plan.material.yield_strength_MPa,
+                             plan.material.grade or plan.material.name))
+    e_tol = tolerances_of(plan.raw).youngs_modulus_rel
+    n.append(f"Young's modulus {plan.material.youngs_modulus_MPa:g} MPa "
+             f"±{100 * e_tol:g} %: check the sheet's mill certificate.")
+    return n
+
+
+def spacer_notes(d: Drawing) -> list[str]:
+    """Spacer: it sets the pitch."""
+    plan = d.plan
+    return [f"{sentence(d.spec.process)}, {d.spec.material}. Thickness "
+            f"{fmt_mm(plan.spacer.thickness_mm)} = pitch {fmt_mm(plan.pitch_mm)} - sheet "
+            f"{fmt_mm(plan.sheet_thickness_mm)}: it sets the array pitch; faces parallel "
+            f"within 0.01 (ISO 1101)."]
+
+
+def clamp_notes(d: Drawing) -> list[str]:
+    """Clamp plate: stock, window corners, bolt clearance."""
+    bolt = d.plan.bolt
+    return [f"{sentence(d.spec.process)} from {fmt_mm(part_thickness(d.spec))} mm "
+            f"{d.spec.material} plate. Window corners R = cutter radius. Holes "
+            f"Ø{fmt_mm(bolt.clearance_hole_mm)}: ISO 273 medium clearance for {bolt.size}."]
+
+
+def cart_notes(d: Drawing) -> list[str]:
+    """Cart: drilling the vacuum channel and holes, sealing faces."""
+    return process_note(d) + [
+        f"Vacuum: drill the channel Ø{fmt_mm(d.spec.geometry.channel_diameter_mm)} from the "
+        f"port end (section A-A), then the suction holes from the pocket floor into it; deburr "
+        f"the channel and holes so no chip stays inside. Top face and pocket rim: "
+        f"flatness 0.05 (ISO 1101), so the sample seals on the vacuum."]
+
+
+def indenter_notes(d: Drawing) -> list[str]:
+    """Indenter: the mounting thread and the contact face."""
+    return process_note(d) + [
+        "The M6 thread screws the indenter onto the force gauge's measuring shaft; "
+        "contact face perpendicular to the thread axis within 0.02 (ISO 1101), so the "
+        "2 x 3 mm face lies flat on the element's tip."]
+
+
+def process_note(d: Drawing) -> list[str]:
+    """Any other part: its process and material."""
+    return [f"{sentence(d.spec.process)}, {d.spec.material}."]
+
+
+def sentence(text: str) -> str:
+    """``text`` with its first letter in capitals."""
+    return text[:1].upper() + text[1:]
+
+
+def _no_plan_values(plan: Plan, spec: PartSpec) -> tuple:
+    return ()
+
+
+def element_detail(spec: PartSpec):
+    """(centre, radius) of the web detail A in model mm."""
+    g = spec.geometry
+    r = 1.6 * (g.notch_radius_mm + g.web_thickness_mm)
+    return (g.hinge_x_mm, g.notch_centre_y_mm + 0.35 * g.notch_radius_mm + 0.5 * g.web_thickness_mm), r
+
+
+@dataclass(frozen=True)
+class PartDrawing:
+    """What one part family's drawing shows beyond the common sheet, under its builder key.
+
+    Attributes:
+        dimensions: the dimension set, ``(drawing, solid) -> None``.
+        notes: the family's notes, ``drawing -> [sentence]`` (the general
+            tolerance note follows them).
+        section: a section view added after the main views, or None.
+        cameras: fixed view directions, or None (sketch plane, else by bounding box).
+        detail: ``spec -> (centre, radius)`` of a detail view in model mm, or None.
+        hole_table: whether many holes go in a coordinate table.
+        plan_values: ``(plan, spec) -> tuple`` of the plan values the notes
+            and dimensions print (they are part of the drawing's hash).
+    """
+
+    dimensions: Callable[[Drawing, object], None] = generic_dims
+    notes: Callable[[Drawing], list[str]] = process_note
+    section: Callable[[Drawing, object], None] | None = None
+    cameras: dict | None = None
+    detail: Callable[[PartSpec], tuple | None] | None = None
+    hole_table: bool = True
+    plan_values: Callable[[Plan, PartSpec], tuple] = _no_plan_values
+
+
+def _element_values(plan: Plan, spec: PartSpec) -> tuple:
+    used = tuple(s.number for s in plan.slots if s.geometry.part_name == spec.name)
+    return (spec.geometry, used, plan.edm, plan.material, plan.strength)
+
+
+GENERIC = PartDrawing()
+
+#: The drawing of each part family by builder key; any other: :data:`GENERIC`.
+DRAWINGS: dict[str, PartDrawing] = {
+    "element": PartDrawing(element_dims, element_notes, detail=element_detail, hole_table=False,
+                           plan_values=_element_values),
+    "spacer": PartDrawing(notes=spacer_notes, plan_values=lambda plan, spec: (
+        plan.spacer, plan.pitch_mm, plan.sheet_thickness_mm)),
+    "clamp_plate": PartDrawing(clamp_dims, clamp_notes,
+                               plan_values=lambda plan, spec: (plan.clamp, plan.bolt)),
+    "cart": PartDrawing(cart_dims, cart_notes, section=cart_section, hole_table=False),
+    "indenter": PartDrawing(indenter_dims, indenter_notes, section=indenter_section,
+                            cameras=cameras_for((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
+                            hole_table=False),
+    "base_plate": PartDrawing(base_plate_dims),
+    "sample_holder": PartDrawing(sample_holder_dims),
+    "array_bracket": PartDrawing(bracket_dims),
+}
+
+
+def drawing_of(spec: PartSpec) -> PartDrawing:
+    """The :class:`PartDrawing` of a part's family (:data:`GENERIC` for any other)."""
+    return DRAWINGS.get(spec.builder, GENERIC)

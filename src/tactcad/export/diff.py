@@ -1,0 +1,372 @@
+"""What changed between two exports, read from their manifests.
+
+:func:`compare` reads the two ``manifest.json`` files and reports
+
+* parts added, removed and changed (quantity, process, material, volume,
+  bounding box, or the bytes of the part's STEP file);
+* elements whose part, arm, stiffness K or strength changed, before and after;
+* derived dimensions whose value changed;
+* drawing sheets added, removed and changed; a new sheet that replaces the
+  old sheet of the same element (the element's part was renamed when its arm
+  changed) is compared with that sheet;
+* the count of every file that differs (the assemblies, scenes, DXF sheets,
+  BOM and PDF follow from the parts).
+
+:func:`render_sheets` draws, for each changed sheet only, an overlay (old in
+red, new in blue, unchanged lines black) and the two side by side as PNG.
+Sheets are rasterised through the drawings' own path: SVG to PDF (svglib,
+reportlab), PDF to pixels (PDFium).
+
+Numbers are compared to a relative tolerance of :data:`REL_TOL`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+from tactcad.catalogue.files import MANIFEST
+from tactcad.errors import DesignError
+
+REL_TOL = 1e-9
+#: Element fields compared (manifest "strength" records), with their units.
+ELEMENT_FIELDS = {
+    "part_name": "", "arm_length_mm": "mm", "stiffness_N_per_mm": "N/mm",
+    "stress_MPa_per_N": "MPa/N", "full_scale_force_N": "N",
+    "yield_safety_factor_at_full_scale": "", "gauge_strain_at_full_scale": "",
+    "tip_deflection_mm_at_full_scale": "mm",
+}
+PART_FIELDS = ("kind", "process", "material", "quantity", "volume_mm3", "bbox_mm")
+SHEET_KINDS = ("drawing-svg", "drawing-assembly")
+OLD_RGB, NEW_RGB = (220, 30, 30), (30, 80, 230)
+SHEET_DPI = 90
+
+
+def read_manifest(folder: str | Path) -> dict:
+    """The manifest of the export in ``folder``.
+
+    Raises:
+        DesignError: no readable ``manifest.json`` (naming the folder).
+    """
+    path = Path(folder) / MANIFEST
+    try:
+        man = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise DesignError("export", str(folder), f"a tactcad export folder with a readable "
+                                                 f"{MANIFEST}", f"{type(exc).__name__}: {exc}") from None
+    if not isinstance(man, dict) or not isinstance(man.get("files"), list):
+        raise DesignError("export", str(folder), f"a tactcad export folder ({MANIFEST} with "
+                                                 f"\"files\")")
+    _check_records(man, folder)
+    return man
+
+
+#: Manifest lists compared by key: section -> (key field, its type).
+_KEYED = {"files": ("path", str), "strength": ("element", int), "derived": ("name", str)}
+
+
+_TYPE_WORDS = {str: "text", int: "an integer"}
+
+
+def _check_records(man: dict, folder: str | Path) -> None:
+    """Refuse a manifest whose compared sections are not as tactcad writes them.
+
+    Raises:
+        DesignError: naming the section, the record and what is allowed.
+    """
+    for section, (key, kind) in _KEYED.items():
+        records = man.get(section, [])
+        for k, r in enumerate(records if isinstance(records, list) else [records]):
+            if not isinstance(r, dict) or not isinstance(r.get(key), kind) \
+                    or isinstance(r.get(key), bool):
+                raise DesignError(f"{MANIFEST}: {section}[{k}]", r,
+                                  f"a record with \"{key}\" ({_TYPE_WORDS[kind]})",
+                                  f"in {folder}: not a manifest tactcad wrote")
+    parts = man.get("parts", {})
+    if not isinstance(parts, dict) or not all(isinstance(v, dict) for v in parts.values()):
+        raise DesignError(f"{MANIFEST}: parts", parts, "a table of part records by name",
+                          f"in {folder}: not a manifest tactcad wrote")
+
+
+def _same(a: Any, b: Any) -> bool:
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)) \
+            and not isinstance(a, bool) and not isinstance(b, bool):
+        return math.isclose(a, b, rel_tol=REL_TOL, abs_tol=1e-12)
+    if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
+        return all(_same(x, y) for x, y in zip(a, b))
+    return a == b
+
+
+def _changes(old: Mapping, new: Mapping, fields) -> dict[str, dict]:
+    """{field: {"before", "after"}} of the fields whose values differ."""
+    return {f: {"before": old.get(f), "after": new.get(f)} for f in fields
+            if not _same(old.get(f), new.get(f))}
+
+
+@dataclass
+class Diff:
+    """The differences between two exports (see the module doc); JSON-ready."""
+
+    old: str
+    new: str
+    parts: dict = field(default_factory=dict)  # added, removed, changed
+    elements: list = field(default_factory=list)
+    derived: list = field(default_factory=list)
+    sheets: list = field(default_factory=list)
+    files: dict = field(default_factory=dict)  # changed, added, removed (paths)
+
+    @property
+    def changed(self) -> bool:
+        """True when anything differs, the bytes of any file included."""
+        return bool(any(self.parts.values()) or self.elements or self.derived or self.sheets
+                    or any(self.files.values()))
+
+    def as_json(self) -> dict:
+        return {"old": self.old, "new": self.new, "changed": self.changed, "parts": self.parts,
+                "elements": self.elements, "derived": self.derived, "sheets": self.sheets,
+                "files": self.files}
+
+    def lines(self) -> list[str]:
+        """The report as text, one finding a line."""
+        out = []
+        for name in self.parts.get("added", []):
+            out.append(f"part added    {name}")
+        for name in self.parts.get("removed", []):
+            out.append(f"part removed  {name}")
+        for name, ch in self.parts.get("changed", {}).items():
+            out.append(f"part changed  {name}: " + _fields_text(ch))
+        for e in self.elements:
+            out.append(f"element {e['element']:<4} " + _fields_text(e["changes"]))
+        for d in self.derived:
+            out.append(f"derived       {d['name']}: {_value(d['before'])} -> {_value(d['after'])}"
+                       f" {d.get('unit') or ''}".rstrip())
+        for s in self.sheets:
+            text = f"sheet {s['status']:<8}{s['sheet']}"
+            if s.get("compared_with") and s["compared_with"] != s["sheet"]:
+                text += f" (against {s['compared_with']})"
+            for key in ("overlay", "side_by_side"):
+                if s.get(key):
+                    text += f"  {key.replace('_', '-')}: {s[key]}"
+            out.append(text)
+        f = self.files
+        if any(f.values()):
+            out.append(f"files         {len(f['changed'])} changed, {len(f['added'])} added, "
+                       f"{len(f['removed'])} removed")
+        out.append("changed" if self.changed else "no change")
+        return out
+
+
+def _value(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    return "-" if v is None else str(v)
+
+
+def _fields_text(changes: Mapping[str, Mapping]) -> str:
+    parts = []
+    for k, ch in changes.items():
+        unit = ELEMENT_FIELDS.get(k, "")
+        parts.append(f"{k} {_value(ch['before'])} -> {_value(ch['after'])}"
+                     + (f" {unit}" if unit else ""))
+    return ", ".join(parts)
+
+
+def compare(old_dir: str | Path, new_dir: str | Path) -> Diff:
+    """Compare the exports in two folders from their manifests (no geometry is built).
+
+    Raises:
+        DesignError: a folder without a readable manifest.
+    """
+    old, new = read_manifest(old_dir), read_manifest(new_dir)
+    diff = Diff(str(old_dir), str(new_dir))
+    old_files = {f["path"]: f for f in old["files"]}
+    new_files = {f["path"]: f for f in new["files"]}
+    diff.files = {"changed": sorted(p for p in old_files.keys() & new_files.keys()
+                                    if old_files[p].get("sha256") != new_files[p].get("sha256")),
+                  "added": sorted(new_files.keys() - old_files.keys()),
+                  "removed": sorted(old_files.keys() - new_files.keys())}
+    diff.parts = _parts(old, new, old_files, new_files)
+    diff.elements = _elements(old, new)
+    diff.derived = _derived(old, new)
+    diff.sheets = _sheets(old, new, old_files, new_files)
+    return diff
+
+
+def _step_sha(files: Mapping[str, dict], part: str) -> str | None:
+    rec = files.get(f"step/{part}.step")
+    return rec.get("sha256") if rec else None
+
+
+def _parts(old: dict, new: dict, old_files, new_files) -> dict:
+    a, b = old.get("parts", {}), new.get("parts", {})
+    changed = {}
+    for name in [n for n in a if n in b]:
+        ch = _changes(a[name], b[name], PART_FIELDS)
+        if _step_sha(old_files, name) != _step_sha(new_files, name) and not ch:
+            ch["step"] = {"before": "STEP file", "after": "STEP file with other bytes"}
+        if ch:
+            changed[name] = ch
+    return {"added": [n for n in b if n not in a], "removed": [n for n in a if n not in b],
+            "changed": changed}
+
+
+def _by_element(man: dict) -> dict[int, dict]:
+    return {r["element"]: r for r in man.get("strength", []) if "element" in r}
+
+
+def _elements(old: dict, new: dict) -> list[dict]:
+    a, b = _by_element(old), _by_element(new)
+    out = []
+    for n in sorted(a.keys() | b.keys()):
+        if n not in a or n not in b:
+            out.append({"element": n, "changes": {"present": {"before": n in a, "after": n in b}}})
+            continue
+        ch = _changes(a[n], b[n], ELEMENT_FIELDS)
+        if ch:
+            out.append({"element": n, "changes": ch})
+    return out
+
+
+def _derived(old: dict, new: dict) -> list[dict]:
+    a = {d["name"]: d for d in old.get("derived", [])}
+    b = {d["name"]: d for d in new.get("derived", [])}
+    out = []
+    for name in list(a) + [n for n in b if n not in a]:
+        before, after = a.get(name, {}).get("value"), b.get(name, {}).get("value")
+        if not _same(before, after):
+            out.append({"name": name, "before": before, "after": after,
+                        "unit": (b.get(name) or a.get(name)).get("unit")})
+    return out
+
+
+def _sheets(old: dict, new: dict, old_files, new_files) -> list[dict]:
+    a = {p: f for p, f in old_files.items() if f.get("kind") in SHEET_KINDS}
+    b = {p: f for p, f in new_files.items() if f.get("kind") in SHEET_KINDS}
+    # a part renamed by its element's change: its new sheet replaces the old one
+    old_parts = {r["element"]: r.get("part_name") for r in old.get("strength", [])}
+    renamed = {}
+    for r in new.get("strength", []):
+        was = old_parts.get(r["element"])
+        if was and was != r.get("part_name"):
+            renamed.setdefault(f"drawings/{r['part_name']}.svg", f"drawings/{was}.svg")
+    out = []
+    for path in sorted(a.keys() | b.keys(), key=lambda p: (p == "drawings/assembly.svg", p)):
+        if path in a and path in b:
+            if a[path].get("sha256") != b[path].get("sha256"):
+                out.append({"sheet": path, "status": "changed", "compared_with": path})
+        elif path in b:
+            against = renamed.get(path)
+            out.append({"sheet": path, "status": "added",
+                        "compared_with": against if against in a else None})
+        else:
+            out.append({"sheet": path, "status": "removed", "compared_with": None})
+    return out
+
+
+# --- pictures of the changed sheets ----------------------------------------------------------
+def render_sheets(diff: Diff, old_dir: str | Path, new_dir: str | Path, out_dir: str | Path,
+                  dpi: int = SHEET_DPI) -> list[Path]:
+    """For each changed sheet (or new sheet with one to compare against):
+    ``<sheet>_overlay.png`` and ``<sheet>_side_by_side.png`` in ``out_dir``;
+    the paths are also set on the diff's sheet records. Unchanged sheets are
+    not rendered.
+
+    Raises:
+        OSError: a sheet cannot be read or a picture written.
+        ValueError: a sheet's SVG cannot be parsed.
+    """
+    from tactcad.atomic import write_atomic
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for s in diff.sheets:
+        if not s.get("compared_with"):
+            continue
+        before = sheet_pixels(_inside(old_dir, s["compared_with"]), dpi)
+        after = sheet_pixels(_inside(new_dir, s["sheet"]), dpi)
+        stem = Path(s["sheet"]).stem
+        for key, image in (("overlay", overlay(before, after)),
+                           ("side_by_side", side_by_side(before, after))):
+            target = out / f"{stem}_{key}.png"
+            write_atomic(target, lambda tmp, im=image: _save_png(im, tmp))
+            s[key] = str(target)
+            written.append(target)
+    return written
+
+
+def _inside(folder: str | Path, rel: str) -> Path:
+    """``folder / rel``, refused when a manifest's path would lead out of the export.
+
+    Raises:
+        DesignError: an absolute path or one leaving ``folder``.
+    """
+    base = Path(folder).resolve()
+    path = (base / rel).resolve()
+    if Path(rel).is_absolute() or not path.is_relative_to(base):
+        raise DesignError(f"{MANIFEST}: files", rel, "a path inside the export folder",
+                          f"in {folder}: not a manifest tactcad wrote")
+    return path
+
+
+def _save_png(image, path: Path) -> None:
+    from PIL import Image
+
+    Image.fromarray(image).save(path, format="PNG", optimize=False)
+
+
+def sheet_pixels(svg: Path, dpi: int = SHEET_DPI):
+    """A drawing sheet as grey levels, (rows, columns) uint8, 0 ink ... 255 paper."""
+    import tempfile
+
+    import numpy as np
+    import pypdfium2 as pdfium
+
+    from tactcad.drawings.pdf import svgs_to_pdf
+
+    text = svg.read_text(encoding="utf-8")
+    with tempfile.TemporaryDirectory() as tmp:
+        pdf = Path(tmp) / "sheet.pdf"
+        svgs_to_pdf([text], pdf)
+        doc = pdfium.PdfDocument(str(pdf))
+        try:
+            image = doc[0].render(scale=dpi / 72.0).to_pil().convert("L")
+            return np.asarray(image, dtype=np.uint8).copy()
+        finally:
+            doc.close()
+
+
+def _padded(a, shape):
+    import numpy as np
+
+    out = np.full(shape, 255, dtype=np.uint8)
+    out[: a.shape[0], : a.shape[1]] = a
+    return out
+
+
+def overlay(before, after, threshold: int = 160):
+    """RGB (rows, columns, 3) uint8: ink only in ``before`` red, only in
+    ``after`` blue, in both black, neither white."""
+    import numpy as np
+
+    shape = (max(before.shape[0], after.shape[0]), max(before.shape[1], after.shape[1]))
+    a, b = _padded(before, shape) < threshold, _padded(after, shape) < threshold
+    image = np.full(shape + (3,), 255, dtype=np.uint8)
+    image[a & ~b] = OLD_RGB
+    image[b & ~a] = NEW_RGB
+    image[a & b] = (0, 0, 0)
+    return image
+
+
+def side_by_side(before, after, gap_px: int = 12):
+    """RGB (rows, columns, 3) uint8: ``before`` on the left, ``after`` on the right."""
+    import numpy as np
+
+    rows = max(before.shape[0], after.shape[0])
+    left = _padded(before, (rows, before.shape[1]))
+    right = _padded(after, (rows, after.shape[1]))
+    grey = np.hstack([left, np.full((rows, gap_px), 128, dtype=np.uint8), right])
+    return np.repeat(grey[:, :, None], 3, axis=2)

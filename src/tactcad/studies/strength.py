@@ -1,0 +1,171 @@
+"""Strength studies: the FEM peak stress at the hinge (plane-stress fem2d or
+fem3d over three meshes, Richardson-extrapolated), the refit of the K_t
+exponent from it, the plan's strength at any ladder level and the comparison
+with the paper's Table 1 calibration forces. The models they run are in
+:mod:`tactcad.mechanics.strength` and :mod:`tactcad.mechanics.fem`.
+
+Units: mm, N, MPa.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import NamedTuple
+
+import numpy as np
+
+from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, richardson, single_threaded_blas,
+                                        size_factors, solve_fem2d)
+from tactcad.mechanics.fem.fem3d import solve_fem3d
+from tactcad.mechanics.fem.fields import peak_notch_stress
+from tactcad.mechanics.fem.mesh import fem_region
+from tactcad.mechanics.ladder import as_built_webs
+from tactcad.mechanics.paper.data import table1
+from tactcad.mechanics.strength import (CLOSED_FORM_MODELS, KT_FIT_GEOMETRIES, MODELS,
+                                        STRESS_WEB_DIVISIONS_2D, STRESS_WEB_DIVISIONS_3D,
+                                        ElementStress, StrengthRecord, require_yield,
+                                        closed_form_stress, nominal_stress_per_newton,
+                                        peak_stress_per_newton)
+from tactcad.mechanics.strength import plan_strength as _plan_strength
+
+
+def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d", *,
+                    web_divisions: float | None = None, levels: int = 3) -> ElementStress:
+    """Peak von Mises stress at the hinge from the FEM field, Richardson-
+    extrapolated over ``levels`` meshes (sizes sqrt(2)^k times the finest).
+
+    Args:
+        g, material: element and material.
+        model: "fem2d" (plane stress) or "fem3d".
+        web_divisions: finest neck size = web / web_divisions (default
+            :data:`STRESS_WEB_DIVISIONS_2D` / ``_3D``).
+        levels: number of meshes (>= 3).
+
+    Returns:
+        :class:`ElementStress`: the extrapolated peak per N (the finest mesh's
+        value when the sequence is not monotone), its Richardson error, K and
+        gauge strain of the finest mesh.
+
+    Raises:
+        ValueError: unknown model.
+    """
+    if model not in ("fem2d", "fem3d"):
+        raise ValueError(f"model must be fem2d or fem3d, got {model!r}")
+    region = fem_region(g)
+    peaks, sols = [], []
+    with single_threaded_blas():
+        for s in size_factors(levels, REFINEMENT_RATIO):
+            if model == "fem2d":
+                sol = solve_fem2d(g, material, size_factor=s, region=region, keep_field=True,
+                                  web_divisions=web_divisions or STRESS_WEB_DIVISIONS_2D)
+            else:
+                sol = solve_fem3d(g, material, size_factor=s, region=region, keep_field=True,
+                                  web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
+            peaks.append(peak_notch_stress(sol.field, g))
+            sols.append(_without_field(sol))
+    rich = richardson([p.per_newton_MPa_per_N for p in peaks], REFINEMENT_RATIO)
+    fin = sols[-1]
+    return ElementStress(model, rich.extrapolated, rich.error_rel, fin.stiffness_N_per_mm,
+                         abs(fin.gauge_strain) / fin.force_N, peaks[-1].location_mm)
+
+
+def _without_field(sol):
+    """The solve's scalars without its field (frees the mesh and basis)."""
+    return replace(sol, field=None)
+
+
+def element_stress(g: ElementGeometry, material: Material, model: str = "closed-form"
+                   ) -> ElementStress:
+    """Peak stress per N, K and gauge strain of one geometry at ``model``.
+
+    Raises:
+        ValueError: unknown model.
+    """
+    if model in CLOSED_FORM_MODELS:
+        return closed_form_stress(g, material, model)
+    if model in ("fem2d", "fem3d"):
+        return fem_peak_stress(g, material, model)
+    raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+
+
+def plan_strength(plan: Plan, model: str = "closed-form", progress=None) -> list[StrengthRecord]:
+    """:func:`tactcad.mechanics.strength.plan_strength` at any ladder level,
+    the FEM ones (:func:`fem_peak_stress`) included.
+
+    Raises:
+        ValueError: unknown model.
+        DesignError: the material has no yield strength.
+    """
+    return _plan_strength(plan, model, progress, stress=element_stress)
+
+
+class KtFit(NamedTuple):
+    """Least-squares fit of K_t = (1 + t/(2R))^p to FEM peaks.
+
+    Attributes:
+        exponent: p. t_over_R: shape (n,). kt_fem: FEM K_t (peak / nominal), shape (n,).
+        residual_rel: fitted / FEM - 1, shape (n,).
+    """
+
+    exponent: float
+    t_over_R: np.ndarray
+    kt_fem: np.ndarray
+    residual_rel: np.ndarray
+
+
+def fit_kt_exponent(g0: ElementGeometry, material: Material,
+                    geometries=KT_FIT_GEOMETRIES) -> KtFit:
+    """Refit :data:`KT_EXPONENT` from converged plane-stress FEM peaks
+    (:func:`fem_peak_stress`) at ``geometries`` ((t, R, a) in mm, the rest of
+    ``g0``): p minimises sum (ln K_t,FEM - p ln(1 + t/2R))^2, i.e.
+    p = sum(x y) / sum(x^2) with x = ln(1 + t/2R), y = ln K_t,FEM.
+    About 3 s per geometry on two cores."""
+    s, kt = [], []
+    for t, R, a in geometries:
+        g = replace(g0, web_thickness_mm=t, notch_radius_mm=R, arm_length_mm=a)
+        peak = fem_peak_stress(g, material, "fem2d").stress_MPa_per_N
+        s.append(t / R)
+        kt.append(peak / float(nominal_stress_per_newton(t, a, g.sheet_thickness_mm)))
+    s_arr, kt_arr = np.array(s), np.array(kt)
+    x, y = np.log1p(s_arr / 2.0), np.log(kt_arr)
+    p = float(x @ y / (x @ x))
+    return KtFit(p, s_arr, kt_arr, (1.0 + s_arr / 2.0) ** p / kt_arr - 1.0)
+
+
+def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict]:
+    """The model's full-scale force against Table 1's "max support force" (the
+    largest force of each element's calibration), per calibrated element.
+
+    For each element: the full-scale force at ``model`` with the design web;
+    the as-built web that reproduces the measured K (corrected closed form,
+    :func:`tactcad.mechanics.ladder.as_built_webs`) and the closed-form
+    full-scale force and peak stress at the measured maximum force with that
+    web; and the yield safety factor the calibration ran at.
+
+    Returns:
+        one dict per Table 1 element (element 5 has no calibration).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    y = require_yield(plan.material)
+    sf = plan.strength.safety_factor
+    design = {r.element: r for r in plan_strength(plan, model)}
+    webs = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
+    out = []
+    for meas in table1():
+        g = plan.element(meas.element).geometry
+        t_built = webs[meas.element]
+        gb = replace(g, web_thickness_mm=t_built)
+        s_built = float(peak_stress_per_newton(t_built, gb.notch_radius_mm, gb.arm_length_mm,
+                                               gb.sheet_thickness_mm))
+        s_max = s_built * meas.max_support_force_N
+        out.append({"element": meas.element, "arm_length_mm": g.arm_length_mm,
+                    "max_support_force_N": meas.max_support_force_N,
+                    "full_scale_force_N": design[meas.element].full_scale_force_N,
+                    "web_as_built_mm": t_built,
+                    "full_scale_force_as_built_N": y / (s_built * sf),
+                    "stress_MPa_at_max_support_force_as_built": s_max,
+                    "yield_safety_factor_at_max_support_force_as_built": y / s_max})
+    return out

@@ -1,0 +1,148 @@
+"""``tactcad diff OLD NEW``: what changed between two exports, from their manifests."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import tactcad
+from tactcad import cli
+from tactcad.errors import DesignError
+from tactcad.export.diff import NEW_RGB, OLD_RGB, compare, overlay, side_by_side
+
+DEFAULT = tactcad.load().source
+ARM_CHANGED = {"arms.lengths_mm": [4.0, 7.0, 6.0, 8.0, 6.5, 8.0, 5.0, 4.0, 5.0, 7.0]}
+
+
+def test_overlay_colours_old_new_and_common_ink():
+    old = np.full((4, 5), 255, np.uint8)
+    new = np.full((3, 6), 255, np.uint8)
+    old[0, 0] = new[0, 0] = 0  # both
+    old[1, 1] = 0  # old only
+    new[2, 5] = 0  # new only (beyond the old sheet's width)
+    image = overlay(old, new)
+    assert image.shape == (4, 6, 3)
+    assert tuple(image[0, 0]) == (0, 0, 0)
+    assert tuple(image[1, 1]) == OLD_RGB and tuple(image[2, 5]) == NEW_RGB
+    assert (image[3] == 255).all()
+    pair = side_by_side(old, new, gap_px=2)
+    assert pair.shape == (4, 5 + 2 + 6, 3)
+
+
+def test_refuses_what_is_neither_an_export_nor_a_design(tmp_path, capsys):
+    (tmp_path / "notes.txt").write_text("x")
+    for bad in (tmp_path / "missing", tmp_path, tmp_path / "notes.txt"):
+        code = cli.main(["diff", str(bad), str(bad), "--json"])
+        error = json.loads(capsys.readouterr().out)["error"]
+        assert code == 2 and error["field"] == "OLD", error
+    (tmp_path / "broken").mkdir()
+    (tmp_path / "broken" / "manifest.json").write_text("{not json")
+    with pytest.raises(DesignError, match="manifest.json"):
+        compare(tmp_path / "broken", tmp_path / "broken")
+
+
+@pytest.fixture(scope="module")
+def arm_changed_export(tmp_path_factory):
+    """The default design with element 5's arm 6 -> 6.5 mm, exported."""
+    out = tmp_path_factory.mktemp("arm5") / "exports"
+    tactcad.load(set=ARM_CHANGED).export(out, cache=False)
+    return out
+
+
+def test_one_arm_changed_names_that_element_its_k_its_sheets_and_the_assembly(
+        exported, arm_changed_export, tmp_path, capsys):
+    old, _ = exported
+    pictures = tmp_path / "pictures"
+    code = cli.main(["diff", str(old), str(arm_changed_export), "--out", str(pictures), "--json"])
+    report = json.loads(capsys.readouterr().out)
+    assert code == 1 and report["changed"]
+
+    # the element: its part, arm, K and strength, before and after
+    assert [e["element"] for e in report["elements"]] == [5]
+    ch = report["elements"][0]["changes"]
+    assert ch["part_name"] == {"before": "element_a6mm", "after": "element_a6p5mm"}
+    assert ch["arm_length_mm"] == {"before": 6.0, "after": 6.5}
+    before = tactcad.load().element(5).stiffness().stiffness_N_per_mm
+    after = tactcad.load(set=ARM_CHANGED).element(5).stiffness().stiffness_N_per_mm
+    assert ch["stiffness_N_per_mm"]["before"] == pytest.approx(before, rel=1e-12)
+    assert ch["stiffness_N_per_mm"]["after"] == pytest.approx(after, rel=1e-12)
+    assert after < before  # a longer arm is softer
+
+    # the parts: the new one, and the old one now made once (element 3 keeps it)
+    assert report["parts"]["added"] == ["element_a6p5mm"] and report["parts"]["removed"] == []
+    assert report["parts"]["changed"] == {"element_a6mm": {"quantity": {"before": 2, "after": 1}}}
+    assert report["derived"] == []  # the longest arm sets the clamp: unchanged
+
+    # the sheets: the element's (drawn against the sheet it replaces), the old part's
+    # quantity, the assembly sheet; nothing else, and only these rendered
+    sheets = {s["sheet"]: s for s in report["sheets"]}
+    assert set(sheets) == {"drawings/element_a6p5mm.svg", "drawings/element_a6mm.svg",
+                           "drawings/assembly.svg"}
+    assert sheets["drawings/element_a6p5mm.svg"]["status"] == "added"
+    assert sheets["drawings/element_a6p5mm.svg"]["compared_with"] == "drawings/element_a6mm.svg"
+    assert sheets["drawings/assembly.svg"]["status"] == "changed"
+    assert sorted(p.name for p in pictures.iterdir()) == sorted(
+        f"{stem}_{kind}.png" for stem in ("element_a6p5mm", "element_a6mm", "assembly")
+        for kind in ("overlay", "side_by_side"))
+    image = np.asarray(Image.open(pictures / "element_a6p5mm_overlay.png").convert("RGB"))
+    colours = {tuple(c) for c in image.reshape(-1, 3)}
+    assert OLD_RGB in colours and NEW_RGB in colours and (0, 0, 0) in colours
+    # the files that follow from the parts are counted, not listed as findings
+    assert "step/array.step" in report["files"]["changed"]
+
+    text = compare(old, arm_changed_export).lines()
+    assert any(line.startswith("element 5 ") and "stiffness_N_per_mm" in line for line in text)
+    assert text[-1] == "changed"
+
+
+def test_same_export_twice_is_no_change_and_renders_nothing(exported, tmp_path, capsys):
+    old, _ = exported
+    copy = tmp_path / "copy"
+    shutil.copytree(old, copy)
+    code = cli.main(["diff", str(old), str(copy), "--out", str(tmp_path / "pictures")])
+    out = capsys.readouterr().out
+    assert code == 0 and out.splitlines() == ["no change"]
+    assert not any((tmp_path / "pictures").iterdir())
+
+
+@pytest.mark.slow
+def test_design_files_are_exported_through_the_store_then_compared(tmp_path, capsys):
+    changed = tmp_path / "thick.toml"
+    text = DEFAULT.read_text(encoding="utf-8")
+    assert "web_thickness_mm = 0.25" in text
+    changed.write_text(text.replace("web_thickness_mm = 0.25", "web_thickness_mm = 0.3"),
+                       encoding="utf-8")
+    store = str(tmp_path / "store")
+    code = cli.main(["diff", str(DEFAULT), str(changed), "--cache", store, "--json", "--quiet"])
+    report = json.loads(capsys.readouterr().out)
+    assert code == 1
+    assert [e["element"] for e in report["elements"]] == list(range(1, 11))  # every element
+    assert all(e["changes"]["stiffness_N_per_mm"]["after"]
+               > e["changes"]["stiffness_N_per_mm"]["before"] for e in report["elements"])
+    assert report["parts"]["added"] == report["parts"]["removed"] == []
+
+
+@pytest.mark.parametrize("manifest", [
+    '{"files": [{"nopath": 1}]}', '{"files": [], "strength": [{"x": 1}]}',
+    '{"files": [], "strength": 5}', '{"files": [], "derived": [{"v": 1}]}',
+    '{"files": [], "parts": []}', '[1, 2]', '{"files": 3}', '{not json'])
+def test_a_manifest_tactcad_did_not_write_is_bad_input(tmp_path, capsys, manifest):
+    (tmp_path / "manifest.json").write_text(manifest)
+    code = cli.main(["diff", str(tmp_path), str(tmp_path), "--json"])
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and "manifest.json" in error["message"]
+
+
+def test_a_sheet_path_leading_out_of_the_export_is_refused(tmp_path, capsys):
+    for name in ("a", "b"):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "manifest.json").write_text(json.dumps({"files": [
+            {"path": "../../etc/hostname", "kind": "drawing-svg", "sha256": name}]}))
+    code = cli.main(["diff", str(tmp_path / "a"), str(tmp_path / "b"), "--out",
+                     str(tmp_path / "pictures"), "--json"])
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and "inside the export folder" in error["message"]
