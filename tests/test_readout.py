@@ -166,3 +166,12 @@ def test_as_built_webs_explain_part_of_table1s_signal_spread(capsys):
     recs = {r["element"]: r for r in out["elements"]}
     assert recs[8]["table1_as_built_web_mm"] > recs[1]["table1_as_built_web_mm"]
     assert recs[8]["table1_sensitivity_ratio"] < recs[1]["table1_sensitivity_ratio"]
+
+
+def test_readout_piped_into_a_reader_that_stops_early_is_no_error():
+    import subprocess
+    import sys
+
+    p = subprocess.run(f"{sys.executable} -m tactcad.cli readout --quiet | head -c 10",
+                       shell=True, capture_output=True, text=True, cwd=ROOT)
+    assert "error" not in p.stderr and len(p.stdout) == 10

@@ -114,6 +114,8 @@ def run_command(argv: list[str] | None) -> int:
         return EXIT_INPUT
     except TactcadError as exc:
         return report_error(error_record(exc, EXIT_INPUT), as_json)
+    except BrokenPipeError:  # not a file-system error: main's guard handles it
+        raise
     except OSError as exc:
         record = error_record(exc, EXIT_OS, os_error_text(exc))
         record["field"] = exc.filename
