@@ -139,3 +139,18 @@ def test_a_what_if_tolerance_that_lets_the_notch_vanish_is_refused(capsys):
     with pytest.raises(DesignError) as exc:
         plan_from_dict(_data(notch_radius_mm=0.3))
     assert "tolerances.notch_radius_mm" in str(exc.value)
+
+
+def test_the_element_drawing_says_where_the_gauge_goes():
+    from tactcad.catalogue.array import array_parts
+    from tactcad.drawings.compose import compose, part_hash
+    from tactcad.parts.registry import build_part
+
+    data = with_overrides(default_design_data(), {"readout.grid_length_mm": 1.2})
+    plan = plan_from_dict(data)
+    spec = array_parts(plan)["element_a4mm"]
+    d = compose(plan, spec, build_part(plan, spec), 2)
+    note = next(n for n in d.notes if "strain gauge" in n)
+    assert "grid 1.2 x 1" in note and "17 from the back face" in note
+    base = plan_from_dict(default_design_data())
+    assert part_hash(plan, spec) != part_hash(base, array_parts(base)["element_a4mm"])

@@ -397,6 +397,16 @@ def bracket_dims(d: Drawing, solid) -> None:
     d.dimensions["ear_holes"] = text
 
 
+def gauge_note(plan: Plan, g) -> str:
+    """Where the strain gauge goes: its grid (``[readout]``) centred over the web."""
+    from tactcad.design.readout import readout_of
+
+    ro = readout_of(plan.raw, plan.strength.gauge)
+    return (f"A strain gauge (grid {fmt_mm(ro.grid_length_mm)} x {fmt_mm(ro.grid_width_mm)}, "
+            f"{ro.gauge_resistance_ohm:g} ohm) is bonded on the flat top face, its grid centred "
+            f"over the web {fmt_mm(g.hinge_x_mm)} from the back face and across the sheet.")
+
+
 def element_notes(d: Drawing) -> list[str]:
     """Flexure element: the web as the critical dimension, wire EDM, edges, use, strength limit."""
     plan, spec = d.plan, d.spec
@@ -416,7 +426,7 @@ def element_notes(d: Drawing) -> list[str]:
              f"contact face; deburr elsewhere.")
     n.append(f"Used as array element{'s' if len(used) > 1 else ''} "
              + ", ".join(str(k) for k in used)
-             + ". A strain gauge is bonded on the flat top face over the web.")
+             + f". {gauge_note(plan, g)}")
     n.append(full_scale_note(plan, spec.name, plan.material.yield_strength_MPa,
                              plan.material.grade or plan.material.name))
     e_tol = tolerances_of(plan.raw).youngs_modulus_rel
@@ -506,8 +516,11 @@ class PartDrawing:
 
 
 def _element_values(plan: Plan, spec: PartSpec) -> tuple:
+    from tactcad.design.readout import readout_of
+
     used = tuple(s.number for s in plan.slots if s.geometry.part_name == spec.name)
-    return (spec.geometry, used, plan.edm, plan.material, plan.strength)
+    return (spec.geometry, used, plan.edm, plan.material, plan.strength,
+            readout_of(plan.raw, plan.strength.gauge))
 
 
 GENERIC = PartDrawing()
