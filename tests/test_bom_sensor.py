@@ -34,7 +34,8 @@ def test_example_bom_has_gauges_for_every_element_plus_spares_and_its_own_plate_
     n = plan.rows * plan.columns
     gauge = rows["strain_gauge"]
     assert int(gauge["quantity"]) == n + 2 and gauge["spares"] == "2"
-    assert "grid 0.6 x 1" in gauge["key_dimensions_mm"]
+    assert "grid 0.6 x 1 mm" in gauge["process_or_reference"]
+    assert gauge["key_dimensions_mm"] == "2.2 x 0.05 x 2"  # the modelled body: carrier
     assert int(rows["solder_terminal_pair"]["quantity"]) == n + 2
     assert int(rows["bridge_completion_resistor"]["quantity"]) == 3 * n
     assert rows["lead_wire"]["unit"] == "m" and float(rows["lead_wire"]["quantity"]) >= 1.5 * n

@@ -16,6 +16,7 @@ from typing import Any
 
 from enum import Enum
 
+from tactcad.catalogue.gauges import gauge_body, gauge_placements
 from tactcad.design.array import BoltSpec, Placement, Plan
 from tactcad.geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
 
@@ -24,6 +25,9 @@ RGB = tuple[float, float, float]
 
 SPACER: RGB = (0.60, 0.64, 0.68)
 ANODISED_BLUE: RGB = (0.25, 0.40, 0.70)
+GAUGE_AMBER: RGB = (0.85, 0.55, 0.15)  # polyimide carrier
+#: Part name of the strain gauge body (one per element).
+GAUGE_PART = "strain_gauge"
 BLACK_OXIDE: RGB = (0.12, 0.12, 0.13)
 ZINC: RGB = (0.45, 0.46, 0.48)
 
@@ -158,6 +162,15 @@ def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
         expected_volume_mm3=cp.area_mm2 * c.thickness_mm,
         expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm,
         geometry=c)
+    gb = gauge_body(plan)
+    gauge = plan.strength.gauge
+    parts[GAUGE_PART] = PartSpec(
+        name=GAUGE_PART, kind="purchased",
+        process=Process(f"{gauge.description}; grid {gb.grid_length_mm:g} x {gb.grid_width_mm:g} "
+                        f"mm, {gauge.resistance_ohm:g} ohm ({gauge.name}), bonded over the web",
+                        Method.BOUGHT),
+        material=f"{gauge.alloy} foil on polyimide", color=GAUGE_AMBER, builder="gauge",
+        expected_volume_mm3=gb.volume_mm3, expected_bbox_mm=gb.bbox_mm, geometry=gb)
     b = plan.bolt
     L = plan.bolt_length_mm
     rh = b.head_diameter_mm / 2
@@ -231,6 +244,7 @@ def array_instances(plan: Plan) -> list[Instance]:
     for i, pl in enumerate(plan.spacer_placements, start=1):
         out.append(Instance(f"spacer_{i}", "spacer", pl))
     z_front, z_back = plan.clamp_plate_z_mm
+    out += [Instance(f"gauge_{n}", GAUGE_PART, pl) for n, pl in gauge_placements(plan)]
     out.append(Instance("clamp_plate_front", "clamp_plate", Placement(0.0, 0.0, z_front)))
     out.append(Instance("clamp_plate_back", "clamp_plate", Placement(0.0, 0.0, z_back)))
     bolt = bolt_name(plan.bolt, plan.bolt_length_mm)
@@ -254,6 +268,7 @@ def array_contacts(plan: Plan) -> set[frozenset[str]]:
         for k in (col, col + 1):  # spacer before / after the element in its row
             if 1 <= k <= per_row - 1:
                 pairs.add(frozenset({f"element_{s.number}", f"spacer_{row_offset + k}"}))
+        pairs.add(frozenset({f"element_{s.number}", f"gauge_{s.number}"}))  # bonded
         if col == 0:
             pairs.add(frozenset({f"element_{s.number}", "clamp_plate_front"}))
         if col == per_row - 1:

@@ -72,3 +72,61 @@ def sensor_items(plan: Plan) -> list[SensorItem]:
                    "quarter bridge", ""),
         SensorItem("gauge_adhesive", 0, 1, 0, "kit", "cyanoacrylate", bom.adhesive, ""),
     ]
+
+
+# ---------------------------------------------------------------------------
+# The gauge as a part: a foil gauge body bonded over each element's web
+# ---------------------------------------------------------------------------
+#: Carrier beyond the grid at each end along the arm and at each side (mm), and the
+#: thickness of carrier, foil and adhesive together (mm): the usual build of an open
+#: foil gauge on a polyimide carrier (catalogue outlines of 0.6 mm grids are about
+#: 2.5 x 2 mm and 0.05 mm thick).
+CARRIER_END_MM = 0.8
+CARRIER_SIDE_MM = 0.5
+GAUGE_THICKNESS_MM = 0.05
+
+
+@dataclass(frozen=True)
+class GaugeBody:
+    """A foil gauge's body (mm): carrier ``length_mm`` along the arm, ``width_mm``
+    across the sheet, ``thickness_mm``; the active grid ``grid_length_mm`` x
+    ``grid_width_mm`` centred in it. Part frame: centred on x and z, y from 0 (the
+    bonded face) to the thickness."""
+
+    length_mm: float
+    width_mm: float
+    thickness_mm: float
+    grid_length_mm: float
+    grid_width_mm: float
+
+    @property
+    def volume_mm3(self) -> float:
+        return self.length_mm * self.width_mm * self.thickness_mm
+
+    @property
+    def bbox_mm(self) -> tuple[float, float, float, float, float, float]:
+        return (-self.length_mm / 2, 0.0, -self.width_mm / 2, self.length_mm / 2,
+                self.thickness_mm, self.width_mm / 2)
+
+
+def gauge_body(plan: Plan) -> GaugeBody:
+    """The gauge body of ``plan``: the ``[readout]`` grid with its carrier, no wider than
+    the sheet."""
+    ro = readout_of(plan.raw, plan.strength.gauge)
+    width = min(ro.grid_width_mm + 2 * CARRIER_SIDE_MM, plan.sheet_thickness_mm)
+    return GaugeBody(ro.grid_length_mm + 2 * CARRIER_END_MM, width, GAUGE_THICKNESS_MM,
+                     ro.grid_length_mm, ro.grid_width_mm)
+
+
+def gauge_placements(plan: Plan):
+    """(element number, placement) of each element's gauge: on the flat top face, centred
+    over the web (x = notch centre) and across the sheet, in the element's own placement."""
+    from tactcad.design.array import Placement
+
+    out = []
+    for s in plan.slots:
+        g, p = s.geometry, s.placement
+        sx = -1.0 if p.turned else 1.0
+        out.append((s.number, Placement(sx * g.hinge_x_mm + p.dx_mm, g.base_height_mm + p.dy_mm,
+                                        sx * g.sheet_thickness_mm / 2 + p.dz_mm, p.turned)))
+    return out

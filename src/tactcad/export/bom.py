@@ -138,13 +138,26 @@ def sensor_rows(plan: Plan, rows: Sequence[BomRow], specs: Mapping[str, PartSpec
                 elements[a] = elements.get(a, 0) + n
     n_max = max(elements.values(), default=0)
     out = []
-    for k, item in enumerate(sensor_items(plan), start=len(rows) + 1):
+    modelled = {r.part for r in rows}  # the gauge is a placed part: its row is counted
+    items = [i for i in sensor_items(plan) if i.part not in modelled]
+    for k, item in enumerate(items, start=len(rows) + 1):
         out.append(BomRow(
             item=k, part=item.part, quantity=item.quantity(n_max),
             per_assembly=tuple((a, item.need(n) if n else 0) for a, n in elements.items()),
             kind="purchased", material=item.material, process=item.reference,
             key_dimensions=item.key_dimensions, files=(), spares=item.spares, unit=item.unit))
     return out
+
+
+def with_spares(plan: Plan, rows: Sequence[BomRow]) -> list[BomRow]:
+    """Rows with the read-out's spares added to the placed parts that have them (the gauge)."""
+    from dataclasses import replace
+
+    from tactcad.catalogue.gauges import sensor_items
+
+    spares = {i.part: i.spares for i in sensor_items(plan) if i.spares}
+    return [replace(r, quantity=r.quantity + spares[r.part], spares=spares[r.part])
+            if r.part in spares else r for r in rows]
 
 
 def bom_csv(rows: Sequence[BomRow]) -> str:
@@ -229,7 +242,7 @@ def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None],
     """
     specs, assemblies = assembled
     rows = bom_rows(assemblies, specs, part_files(plan, staging, assemblies), plan)
-    rows += sensor_rows(plan, rows, specs)
+    rows = with_spares(plan, rows) + sensor_rows(plan, rows, specs)
     write_bytes_atomic(staging / "bom.csv", bom_csv(rows).encode(CSV_ENCODING))
     write_bytes_atomic(staging / "bom.md", bom_markdown(plan, rows).encode("utf-8"))
     log(f"  wrote bom.csv and bom.md ({len(rows)} items)")
