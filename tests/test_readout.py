@@ -175,3 +175,13 @@ def test_readout_piped_into_a_reader_that_stops_early_is_no_error():
     p = subprocess.run(f"{sys.executable} -m tactcad.cli readout --quiet | head -c 10",
                        shell=True, capture_output=True, text=True, cwd=ROOT)
     assert "error" not in p.stderr and len(p.stdout) == 10
+
+
+def test_a_smaller_variant_of_the_papers_design_compares_only_its_table1_elements(capsys):
+    argv = ["readout", "--json", "--set", "array.columns=1", "--set", "arms.lengths_mm=[4,5]"]
+    assert main(argv) == 0
+    out = json.loads(capsys.readouterr().out)
+    recs = {r["element"]: r for r in out["elements"]}
+    assert recs[1]["table1_k_v_V_per_mm"] == -7.3  # element 1: Table 1's arm, 4 mm
+    assert recs[2]["table1_k_v_V_per_mm"] is None  # element 2 has 5 mm, Table 1's has 7 mm
+    assert out["table1"]["elements"] == 1

@@ -69,8 +69,9 @@ def sensor_items(plan: Plan) -> list[SensorItem]:
                    "(three-wire quarter bridge)", "AWG 32-36"),
         SensorItem("bridge_completion_resistor", 3, 0, 0, "pcs", "metal foil",
                    f"precision resistor {ro.gauge_resistance_ohm:g} ohm 0.1 % 5 ppm/K, three per "
-                   "quarter bridge", ""),
-        SensorItem("gauge_adhesive", 0, 1, 0, "kit", "cyanoacrylate", bom.adhesive, ""),
+                   "quarter bridge", "0805 SMD or axial 0.6 W"),
+        SensorItem("gauge_adhesive", 0, 1, 0, "kit", "cyanoacrylate", bom.adhesive,
+                   "bottle with catalyst, about 20 g"),
     ]
 
 

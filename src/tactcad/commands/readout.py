@@ -76,7 +76,7 @@ def render(report) -> str:
     arr = report.array_kobj_resolution_rel
     lines.append(f"array K_obj resolution (worst over the range, best unit): "
                  f"{'n/a' if arr is None else f'{100 * arr:.2f} %'}")
-    if report.table1 is not None:
+    if report.table1 is not None and report.table1.get("elements"):
         t = report.table1
         lines += ["Table 1 (measured) against the prediction:",
                   "| element | K_v meas. | K_v pred. | ratio | K_v/K meas. | K_v/K pred. | ratio | "

@@ -310,6 +310,11 @@ def _element_record(slot, d: dict, is_ref: bool, ref: int, kobj_res: float | Non
             "reference_element": None if is_ref else ref}
 
 
+def _rel_std(x: list[float]) -> float:
+    """Sample standard deviation over the mean (0 for a single value)."""
+    return float(np.std(x, ddof=1) / abs(np.mean(x))) if len(x) > 1 else 0.0
+
+
 def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
                       model: str = "closed-form") -> dict:
     """Adds the measured K_v and K_v/K of each calibrated element to its record
@@ -325,10 +330,9 @@ def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
     """
     from dataclasses import replace
 
-    from tactcad.mechanics.ladder import as_built_webs
+    from tactcad.mechanics.closed_form import web_for_stiffness
     from tactcad.mechanics.paper.data import table1
 
-    webs = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
     as_built = []
 
     by_element = {r.element: r for r in table1()}
@@ -336,6 +340,8 @@ def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
     num = den = 0.0
     for rec in records:
         row = by_element.get(rec["element"])
+        if row is not None and abs(row.flexing_arm_length_mm - rec["arm_length_mm"]) > 1e-9:
+            row = None  # a variant of the design: this element is not Table 1's
         if row is None:
             rec["table1_k_v_V_per_mm"] = rec["table1_sensitivity_V_per_N"] = None
             continue
@@ -346,22 +352,26 @@ def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
                    table1_sensitivity_ratio=s_ratio,
                    reconciling_gain=chain.amplifier_gain * s_ratio)
         ratios.append(s_ratio)
-        g = replace(plan.element(rec["element"]).geometry, web_thickness_mm=webs[rec["element"]])
+        g0 = plan.element(rec["element"]).geometry
+        web = web_for_stiffness(row.stiffness_N_per_mm, g0, plan.material)
+        g = replace(g0, web_thickness_mm=web)
         s_built = chain.volts_per_strain * gauge_strain_per_N(
             g, plan.material, chain.grid_length_mm, "closed-form")["grid"]
-        rec["table1_as_built_web_mm"] = webs[rec["element"]]
+        rec["table1_as_built_web_mm"] = web
         rec["table1_sensitivity_ratio_as_built_web"] = row.K_v_over_K_V_per_N / s_built
         as_built.append(rec["table1_sensitivity_ratio_as_built_web"])
         e = rec["gauge_strain_per_N"]
         num += e * row.K_v_over_K_V_per_N
         den += e * e
     fitted = num / den if den else None
+    if not ratios:
+        return {"elements": 0}
     return {"elements": len(ratios),
             "sensitivity_ratio_min": min(ratios), "sensitivity_ratio_max": max(ratios),
             "sensitivity_ratio_mean": float(np.mean(ratios)),
-            "sensitivity_ratio_rel_std": float(np.std(ratios, ddof=1) / np.mean(ratios)),
+            "sensitivity_ratio_rel_std": _rel_std(ratios),
             "as_built_web_ratio_mean": float(np.mean(as_built)),
-            "as_built_web_ratio_rel_std": float(np.std(as_built, ddof=1) / np.mean(as_built)),
+            "as_built_web_ratio_rel_std": _rel_std(as_built),
             "gain_at_as_built_webs": chain.amplifier_gain * float(np.mean(as_built)),
             "fitted_volts_per_strain": fitted,
             "assumed_volts_per_strain": chain.volts_per_strain,
