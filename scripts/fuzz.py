@@ -152,8 +152,10 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  ... {k + 1} tried, {time.perf_counter() - t0:.0f} s", flush=True)
     wild_n = tried - accepted - sum(v for c, v in classes.items() if c == "in-domain draw refused") \
         - sum(v for c, v in classes.items() if c.startswith("validation crash"))
-    print(f"fuzz: {tried} tried, {accepted} accepted, {passed} passed every check, "
-          f"{refused_right} of {wild_n} out-of-domain draws refused naming their field "
+    tracebacks = sum(v for c, v in classes.items() if c.startswith(("validation crash", "crash_")))
+    print(f"fuzz design files: {tried} tried, {accepted} accepted, {passed} passed every check, "
+          f"{refused_right} of {wild_n} out-of-domain draws refused naming their field, "
+          f"{tracebacks} tracebacks "
           f"({time.perf_counter() - t0:.0f} s, {'export + check' if args.full else 'parts + scenes'})")
     for c, v in classes.most_common():
         print(f"  failures {c}: {v}")

@@ -118,12 +118,12 @@ def test_evaluate_loads_to_the_full_scale_force_over_the_designs_range(capsys):
 
 
 def test_calibrate_simulate_goes_to_the_full_scale_force(tmp_path, capsys):
-    from tactcad.mechanics.paper.calibration import read_calibration_csv
+    from tactcad.mechanics.paper.measured_io import read_measured
 
     csv = tmp_path / "cal.csv"
     assert main(["calibrate", "--simulate", "--design", str(EXAMPLE), "--noise-force", "0",
                  "--write-csv", str(csv), "--quiet"]) == 0
-    data = read_calibration_csv(str(csv))
+    data, _ = read_measured(csv)
     force = _stated()["full_scale_force_N"]
     for d in data.values():
         assert max(d.force_N) == pytest.approx(force, rel=1e-6)

@@ -14,6 +14,7 @@ from tactcad.mechanics import contact
 from tactcad.mechanics.paper import calibration as cal
 from tactcad.mechanics.paper import calibration_audit as ca
 from tactcad.mechanics.paper import data as paper_data
+from tactcad.mechanics.paper import measured_io
 from tactcad.mechanics.paper import evaluation as ev
 from tactcad.mechanics.paper import table2_models as t2
 
@@ -212,7 +213,7 @@ def test_table1_audit_flags_the_4mm_twins_with_their_ratio(plan):
 
 def test_calibration_csv_round_trip(plan):
     data = ca.simulate_design_calibration(plan, seed=5)
-    back = cal.parse_calibration_csv(cal.format_calibration_csv(data, ("a comment",)))
+    back, _ = measured_io.parse_csv_text(cal.format_calibration_csv(data, ("a comment",)))
     assert sorted(back) == sorted(data)
     for e in data:
         np.testing.assert_allclose(back[e].force_N, data[e].force_N, atol=5e-5)
@@ -227,18 +228,18 @@ def test_calibration_csv_round_trip(plan):
     ("element,run,z_um,force_N,signal_V\n", "readings = 0"),
     ("element,run,z_um,force_N,signal_V\n1,1,-25,0,0\n", "z_um = -25.0"),
     ("element,run,z_um,force_N,signal_V\n1,1,0,abc,0\n", "force_N = 'abc'"),
-    ("element,run,z_um,force_N,signal_V\n0,1,0,0,0\n", "element = '0'"),
+    ("element,run,z_um,force_N,signal_V\n0,1,0,0,0\n", "line 2, column element = 0.0"),
     ("element,run,z_um,force_N,signal_V\n1,1,0,0,0\n1,1,25,1,1\n", "readings = 2"),
-    ("# k_sensor_N_per_mm = -5\nelement,run,z_um,force_N,signal_V\n", "k_sensor_N_per_mm = -5.0"),
+    ("# k_sensor_N_per_mm = -5\nelement,run,z_um,force_N,signal_V\n", "column k_sensor_N_per_mm = '-5'"),
 ])
 def test_bad_calibration_csv_is_named(text, needle):
     with pytest.raises(cal.CalibrationError) as err:
-        cal.parse_calibration_csv(text)
+        measured_io.parse_csv_text(text)
     assert needle in str(err.value)
 
 
 def test_example_csv_reads_back_table1():
-    fits = ca.fit_all(cal.read_calibration_csv(REPO / "hardware" / "calibration_example.csv"))
+    fits = ca.fit_all(measured_io.read_measured(REPO / "hardware" / "calibration_example.csv")[0])
     for row in paper_data.table1():
         assert fits[row.element].K_N_per_mm == pytest.approx(row.stiffness_N_per_mm, rel=0.01)
 
@@ -354,8 +355,9 @@ def test_calibrate_table1_text(capsys):
 @pytest.mark.parametrize("argv,needle", [
     (["evaluate", "--samples", "3,-1"], "samples = -1.0"),
     (["evaluate", "--samples", "3,x"], "samples = 'x'"),
-    (["evaluate", "--poisson", "0.7", "--samples", "3"], "poisson_ratio = 0.7"),
-    (["evaluate", "--coupling", "layer", "--thickness", "-2", "--samples", "3"], "thickness_mm = -2.0"),
+    (["evaluate", "--poisson", "0.7", "--samples", "3"], "--poisson: '0.7': allowed a number 0 ... 0.5"),
+    (["evaluate", "--coupling", "layer", "--thickness", "-2", "--samples", "3"],
+     "--thickness: '-2': allowed a number >0 ... 10000 (mm)"),
     (["calibrate", "--data", "{empty}"], "no header"),
     (["calibrate", "--data", "{wrong}"], "missing ['force_N', 'signal_V']"),
     (["calibrate", "--data", "{missing_file}"], "cannot be read"),
@@ -377,8 +379,8 @@ def test_cli_errors_exit_2_with_field_and_value(argv, needle, tmp_path, capsys):
     argv = [a.format(**files) for a in argv]
     assert main(argv) == 2
     err = capsys.readouterr().err
-    assert err.startswith("tactcad: error:")
-    assert needle in err
+    assert err.startswith(("tactcad: error:", f"tactcad {argv[0]}: error:"))
+    assert needle in err and err.count("\n") == 1
     assert "Traceback" not in err
 
 

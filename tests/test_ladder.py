@@ -71,7 +71,8 @@ def test_stiffness_cli_json_keys():
                          check=True)
     data = json.loads(out.stdout)
     assert set(data) == {"element", "model", "stiffness_N_per_mm", "gauge_strain_per_N",
-                         "error_estimate_rel", "wall_time_s"}
+                         "error_estimate_rel", "wall_time_s", "warnings"}
+    assert data["warnings"] == []  # the default design lies inside the fitted range
     assert data["element"] == 3 and data["stiffness_N_per_mm"] > 0
 
 

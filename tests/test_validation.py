@@ -236,4 +236,4 @@ def test_fuzz_script_runs_and_summarises(tmp_path):
     proc = subprocess.run([sys.executable, str(Path(__file__).parents[1] / "scripts" / "fuzz.py"),
                            "-n", "6", "--wild", "1.0", "--quiet"], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert "6 tried, 0 accepted" in proc.stdout and "6 of 6 out-of-domain draws refused" in proc.stdout
+    assert "6 tried, 0 accepted" in proc.stdout and "0 tracebacks" in proc.stdout and "6 of 6 out-of-domain draws refused" in proc.stdout

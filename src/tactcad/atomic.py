@@ -28,9 +28,66 @@ def atomic_path(target: str | Path) -> Iterator[Path]:
         with open(tmp_path, "rb+") as fh:
             os.fsync(fh.fileno())
         os.replace(tmp_path, target)
+    except OSError as exc:  # name the file being written, not its temporary name
+        if exc.filename not in (None, str(tmp_path)) or exc.errno is None:
+            raise  # a write() error names no file: it is this one
+        raise OSError(exc.errno, exc.strerror, str(target)) from exc
     finally:
         if tmp_path.exists():
             tmp_path.unlink()
+
+
+#: Free space (bytes) below which a writer's failure is put down to a full disk.
+NEARLY_FULL_BYTES = 1 << 20
+
+
+def free_bytes(path: str | Path) -> int | None:
+    """Bytes free to this user on the file system holding ``path`` (or its
+    nearest existing parent); None when the system cannot tell."""
+    p = Path(path)
+    while not p.exists() and p != p.parent:
+        p = p.parent
+    try:
+        st = os.statvfs(p)
+    except (OSError, AttributeError):
+        return None
+    return st.f_bavail * st.f_frsize
+
+
+def disk_full_error(path: str | Path) -> OSError | None:
+    """``OSError(ENOSPC)`` naming ``path`` when its file system is (nearly)
+    full, else None: for writers that fail without saying why (OpenCascade's
+    STEP writer returns a status, a subprocess an exit code)."""
+    free = free_bytes(path)
+    if free is not None and free < NEARLY_FULL_BYTES:
+        return OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+    return None
+
+
+def write_failed(path: str | Path, what: str) -> OSError:
+    """The error for a writer that reported failure at ``path``: a full disk
+    when it is one (:func:`disk_full_error`), else an I/O error naming ``what``."""
+    return disk_full_error(path) or OSError(errno.EIO, f"{what} failed", str(path))
+
+
+def remove_tree(path: Path) -> list[str]:
+    """Remove the folder ``path``; the paths that could not be removed (a
+    read-only leftover, another user's files), which the caller reports."""
+    stuck: list[str] = []
+    shutil.rmtree(path, onerror=lambda fn, p, exc: stuck.append(p))
+    return stuck if path.exists() else []
+
+
+def warn_left_behind(paths: list[str]) -> None:
+    """One warning naming what could not be removed (nothing when all went)."""
+    if paths:
+        import warnings
+
+        from tactcad.errors import LeftoverWarning
+
+        shown = ", ".join(paths[:5]) + (f" and {len(paths) - 5} more" if len(paths) > 5 else "")
+        warnings.warn(f"could not remove {len(paths)} leftover path(s) of an earlier or failed "
+                      f"run: {shown}; remove them by hand", LeftoverWarning, stacklevel=2)
 
 
 def remove_partial_files(folder: Path) -> None:
@@ -121,9 +178,9 @@ def publish_dir(staging: Path, target: Path) -> None:
         os.rename(staging, target)
         return
     if _exchange(staging, target):
-        shutil.rmtree(staging, ignore_errors=True)
+        warn_left_behind(remove_tree(staging))
         return
     aside = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
     os.rename(target, aside / "old")
     os.rename(staging, target)
-    shutil.rmtree(aside, ignore_errors=True)
+    warn_left_behind(remove_tree(aside))

@@ -44,6 +44,7 @@ COMMAND_MODULES = (
     "tactcad.commands.sweep",
     "tactcad.commands.design",
     "tactcad.commands.diff",
+    "tactcad.commands.watch",
 )
 
 
@@ -96,21 +97,59 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def run_command(argv: list[str] | None) -> int:
-    """:func:`main` without its guard against a closed stdout."""
+    """:func:`main` without its guard against a closed stdout: the command
+    with its warnings as output (:mod:`tactcad.commands.notices`); with
+    ``--json`` the command's JSON object gets them as a ``warnings`` list."""
+    import contextlib
+    import io
+
+    from tactcad.commands.notices import WarningLines, json_with_warnings
+
     argv = sys.argv[1:] if argv is None else list(argv)
-    as_json = "--json" in argv
+    as_json, quiet = "--json" in argv, "--quiet" in argv
+    notes = WarningLines(echo=not (as_json or quiet))
+    captured = io.StringIO()
+    with notes.capture(), (contextlib.redirect_stdout(captured) if as_json
+                           else contextlib.nullcontext()):
+        code = dispatch(argv, as_json)
+    if as_json:
+        text = captured.getvalue()
+        merged = json_with_warnings(text, notes.lines)
+        sys.stdout.write(text if merged is None else merged + "\n")
+        if merged is None and not quiet:
+            for line in notes.lines:
+                print(f"tactcad: warning: {line}", file=sys.stderr)
+    return code
+
+
+def parse_checked(argv: list[str]) -> argparse.Namespace:
+    """The parsed command line with every option checked (:mod:`tactcad.commands.options`).
+
+    Raises:
+        UsageError: argparse refuses the line (unknown option, bad value for a typed option).
+        DesignError: a value the rules for every option refuse (non-finite, empty text).
+    """
+    from tactcad.commands.options import validate_options
+
     parser = build_parser()
+    args = parser.parse_args(argv)
+    validate_options(parser, args)
+    return args
+
+
+def dispatch(argv: list[str], as_json: bool) -> int:
+    """Parse, check every option (:mod:`tactcad.commands.options`), run; every
+    error a user can act on becomes one line (or the JSON error) and its exit code."""
     try:
-        args = parser.parse_args(argv)
+        args = parse_checked(argv)
         if not getattr(args, "func", None):
-            parser.print_help()
+            build_parser().print_help()
             return EXIT_INPUT
         return int(args.func(args) or 0)
-    except UsageError as exc:
+    except UsageError as exc:  # argparse's wording, on one line
         if as_json:
             return report_error(error_record(exc, EXIT_INPUT), as_json)
-        exc.parser.print_usage(sys.stderr)  # argparse's own wording
-        print(f"{exc.parser.prog}: error: {exc}", file=sys.stderr)
+        print(f"{exc.parser.prog}: error: {exc} (see {exc.parser.prog} --help)", file=sys.stderr)
         return EXIT_INPUT
     except TactcadError as exc:
         return report_error(error_record(exc, EXIT_INPUT), as_json)

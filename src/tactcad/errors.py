@@ -86,3 +86,7 @@ class ExportPathError(TactcadError):
 
 class CheckFailure(TactcadError):
     """A geometry, export or manufacturability check failed."""
+
+
+class LeftoverWarning(UserWarning):
+    """Files of an earlier or failed run that could not be removed (named in the message)."""

@@ -18,12 +18,15 @@ import os
 
 from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
                                project_from_args)
+from tactcad.commands.options import count, number
 from tactcad.commands.finite_json import dumps
 
 COLD_GOAL_S = 8.0  # on two cores
 WARM_GOAL_S = 1.5
 ONE_CHANGE_GOAL_S = 4.0
 MESH_GOAL_S = 1.0
+REVIEW_SIZE_GOAL_MB = 15.0  # the review page of the default design
+REVIEW_FIRST_FRAME_GOAL_S = 3.0
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -55,17 +58,95 @@ def register(sub: argparse._SubParsersAction) -> None:
     c.set_defaults(func=run_closed_form)
     m = bsub.add_parser("montecarlo", help="10 000-sample tolerance Monte Carlo (goal <= 1 s)")
     add_design_arg(m)
-    m.add_argument("--samples", type=int, default=10_000)
+    m.add_argument("--samples", type=count(1, 10**7, "samples"), default=10_000)
     add_output_args(m, "print one JSON object: first and best-of-3 seconds and the goal")
     m.set_defaults(func=run_montecarlo)
     w = bsub.add_parser("sweep", help="fem3d sweep on two Dask workers vs one (goal >= 1.7x)")
     add_design_arg(w)
-    w.add_argument("--webs", type=float, nargs="+", default=[0.25, 0.4], metavar="MM")
-    w.add_argument("--arms", type=float, nargs="+", default=[4.0, 8.0], metavar="MM")
+    w.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=[0.25, 0.4], metavar="MM")
+    w.add_argument("--arms", type=number(0, 1000, "mm", lo_open=True), nargs="+", default=[4.0, 8.0], metavar="MM")
     w.add_argument("--model", default="fem3d", choices=("beam", "fem2d", "fem3d"))
     add_output_args(w, "print one JSON object: one- and two-worker seconds, speed-up, goal")
     w.set_defaults(func=run_sweep)
+    r = bsub.add_parser("review", help="the review page: size and time to first frame in "
+                                       "headless Chromium (goals <= 15 MB, <= 3 s)")
+    add_design_arg(r)
+    r.add_argument("--out", metavar="DIR", default=None,
+                   help="an export holding review/index.html (default: export to a temporary "
+                        "folder first)")
+    r.add_argument("--screenshot", metavar="PNG", default=None,
+                   help="also save the page's first screen as this PNG")
+    add_output_args(r, "print one JSON object: bytes, first_frame_s, wall_s, goals")
+    r.set_defaults(func=run_review)
+    wa = bsub.add_parser("watch", help="tactcad watch: save -> 3D view shown, save -> every "
+                                      "file current (goals <= 2 s, <= 4 s)")
+    add_design_arg(wa)
+    wa.add_argument("--rounds", type=int, default=5, metavar="N",
+                    help="one-arm edits to time after a warm-up edit, 1 ... 50 (default: 5)")
+    add_output_args(wa, "print one JSON object: first_update_s, full_update_s (medians), the "
+                         "rounds, goals, load average")
+    wa.set_defaults(func=run_watch)
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
+
+
+def run_watch(args: argparse.Namespace) -> int:
+    """Time one-arm edits under ``tactcad watch`` (see :mod:`tactcad.studies.bench_watch`)."""
+    from pathlib import Path
+
+    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.errors import DesignError
+    from tactcad.studies.bench_scale import load_average
+    from tactcad.studies.bench_watch import watch_figures
+
+    if not 1 <= args.rounds <= 50:
+        raise DesignError("--rounds", args.rounds, "1 ... 50")
+    plan_from_args(args)  # a refused design stops here, not in the watch process
+    report = progress_from_args(args)
+    figures = watch_figures(Path(args.design) if args.design else DEFAULT_DESIGN, args.rounds,
+                            log=report)
+    figures["load_average"] = load_average()
+    if args.json:
+        print(dumps(figures))
+        return 0
+    print(f"tactcad bench watch ({args.rounds} one-arm edits, medians; {figures['cpus']} CPUs, "
+          f"load average {figures['load_average']}):")
+    print(f"  save -> 3D view shows the edit   {figures['first_update_s']:6.2f} s   goal <= "
+          f"{figures['first_goal_s']:g} s")
+    print(f"  save -> every file current       {figures['full_update_s']:6.2f} s   goal <= "
+          f"{figures['full_goal_s']:g} s")
+    return 0
+
+
+def run_review(args: argparse.Namespace) -> int:
+    """Open the review page from ``file://`` offline in Chromium; print its size and load time."""
+    import tempfile
+    from pathlib import Path
+
+    from tactcad.checks.review_browser import measure_page
+    from tactcad.export.review_page import REVIEW_PAGE
+    from tactcad.studies.bench_scale import load_average
+
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(args.out or tmp)
+        if not (out / REVIEW_PAGE).is_file():
+            from tactcad.export.run import export
+
+            export(project_from_args(args), out, log=lambda s: None)
+        m = measure_page(out / REVIEW_PAGE, Path(args.screenshot) if args.screenshot else None)
+    mb = m.bytes / 1e6
+    figures = {"bytes": m.bytes, "first_frame_s": round(m.first_frame_s, 3),
+               "wall_s": round(m.wall_s, 3), "instances": m.instances,
+               "size_goal_mb": REVIEW_SIZE_GOAL_MB, "first_frame_goal_s": REVIEW_FIRST_FRAME_GOAL_S,
+               "met": mb <= REVIEW_SIZE_GOAL_MB and m.first_frame_s <= REVIEW_FIRST_FRAME_GOAL_S,
+               "load_average": load_average()}
+    if args.json:
+        print(dumps(figures))
+        return 0
+    print(f"tactcad bench review: {REVIEW_PAGE} {mb:.1f} MB (goal <= {REVIEW_SIZE_GOAL_MB:g} MB), "
+          f"first frame {m.first_frame_s:.2f} s after navigation (goal <= "
+          f"{REVIEW_FIRST_FRAME_GOAL_S:g} s; {m.wall_s:.2f} s wall), {m.instances} parts in view; "
+          f"headless Chromium, software WebGL; load average {load_average()}")
+    return 0
 
 
 def run_stiffness(args: argparse.Namespace) -> int:

@@ -17,6 +17,7 @@ from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 def register(subparsers) -> None:
     """Add the ``calibrate`` sub-command."""
     from tactcad.commands import add_design_arg, add_output_args
+    from tactcad.commands.options import PLOT_SUFFIXES, count, number, output_file
 
     p = subparsers.add_parser(
         "calibrate", help="fit K, K_v, V0 from calibration readings and audit them against the design",
@@ -28,23 +29,33 @@ def register(subparsers) -> None:
                     "gain, twins of equal geometry, series-spring error amplification.")
     add_design_arg(p)
     source = p.add_mutually_exclusive_group()
-    source.add_argument("--data", metavar="CSV", default=None, help="measured calibration readings")
+    source.add_argument("--data", metavar="FILE", default=None,
+                        help="measured calibration readings: CSV (comma, semicolon or tab; decimal "
+                             "point or comma; with or without a byte order mark), LabVIEW .lvm "
+                             "or .tdms")
     source.add_argument("--simulate", action="store_true",
                         help="simulate the rig for the design (K and gauge strain from the ladder)")
+    p.add_argument("--encoding", metavar="NAME", default=None,
+                   help="text encoding of a CSV or LVM --data file (default UTF-8, or what its "
+                        "byte order mark says), e.g. cp1252 or latin-1")
+    p.add_argument("--map", metavar="COLUMN=CHANNEL", action="append", default=[],
+                   help="read a column from a CSV header, LVM or TDMS channel of another name "
+                        "(repeatable, or comma-separated), e.g. "
+                        "--map force_N=Dev1/ai0,signal_V=Dev1/ai1; TDMS channels as group/channel")
     p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form",
                    help="ladder level for the as-built web and gauge strain (default closed-form)")
     p.add_argument("--gain", type=float, default=None, metavar="V_PER_STRAIN",
                    help="gauge gain of the simulated rig (V per unit strain), default -120")
-    p.add_argument("--noise-force", type=float, default=0.001, metavar="N",
+    p.add_argument("--noise-force", type=number(0, 100, "N"), default=0.001, metavar="N",
                    help="force noise of the simulated rig (N, one sigma)")
-    p.add_argument("--noise-signal", type=float, default=0.001, metavar="V",
+    p.add_argument("--noise-signal", type=number(0, 100, "V"), default=0.001, metavar="V",
                    help="signal noise of the simulated rig (V, one sigma)")
-    p.add_argument("--seed", type=int, default=0, help="random seed of the simulated rig")
-    p.add_argument("--write-csv", metavar="CSV", default=None,
+    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0, help="random seed of the simulated rig")
+    p.add_argument("--write-csv", metavar="CSV", type=output_file(".csv"), default=None,
                    help="with --simulate: also write the readings in the calibration CSV format")
-    p.add_argument("--gain-tolerance", type=float, default=0.25,
+    p.add_argument("--gain-tolerance", type=number(0, 10, lo_open=True), default=0.25,
                    help="relative disagreement of signal and force data that is flagged (default 0.25)")
-    p.add_argument("--plot", metavar="PNG", default=None,
+    p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="with --data or --simulate: write force and signal against deflection (Fig. 4)")
     add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)
@@ -76,6 +87,8 @@ def run(args: argparse.Namespace) -> int:
 
     if args.write_csv and not args.simulate:
         raise TactcadError("--write-csv = given without --simulate: allowed only with --simulate")
+    if (args.encoding or args.map) and not args.data:
+        raise TactcadError("--encoding/--map = given without --data: allowed only with --data")
     if args.plot and not (args.simulate or args.data):
         raise TactcadError("--plot = given without --data or --simulate: allowed only with readings")
     plan = plan_from_args(args)
@@ -103,8 +116,11 @@ def run(args: argparse.Namespace) -> int:
                            f"{args.noise_signal:g} V, seed {args.seed}",)), encoding="utf-8")
                 report["written_csv"] = args.write_csv
         else:
-            data = cal.read_calibration_csv(args.data)
-            report["input"] = f"csv:{args.data}"
+            from tactcad.mechanics.paper.measured_io import parse_mapping, read_measured
+
+            data, info = read_measured(args.data, args.encoding, parse_mapping(args.map))
+            report["input"] = f"{info.format}:{args.data}"
+            report["data_file"] = {**info.as_dict(), "read_as": info.describe()}
         fits = ca.fit_all(data)
         report["fig4"] = [{"element": e, "z_um": d.z_travel_um.tolist(),
                            "deflection_um": (1e3 * fits[e].deflection_mm).tolist(),
@@ -143,6 +159,8 @@ def _fmt(x, spec: str) -> str:
 def _print_text(report: dict) -> None:
     audit = report["audit"]
     print(f"design {report['design']}, input {report['input']}, ladder {report['model']}")
+    if "data_file" in report:
+        print(f"read as {report['data_file']['read_as']}")
     if "fits" in report:
         print("fits (eq. 4-5, deflection = Z - F/K_s):")
         print("  elem     K N/mm   ±       K_v V/mm   V0 V     lin F %  lin V %  amplif.")

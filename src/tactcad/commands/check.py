@@ -62,6 +62,10 @@ def run(args: argparse.Namespace) -> int:
         write_junit(args.junit, result.groups, project.parts)
         report(f"wrote {args.junit} (JUnit XML, {len(result)} test cases)")
     bad = result.failures
+    if args.out:  # the export's review page shows them (review/checks.js)
+        from tactcad.export.review_page import write_checks_script
+
+        write_checks_script(args.out, project.plan.design_hash, result.results)
     if args.json:
         print(dumps({"out": args.out, "reused_export": result.reused_export,
                      "export_refusal": result.export_refusal, "passed": len(result) - len(bad),

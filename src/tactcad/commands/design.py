@@ -8,6 +8,7 @@ import os
 from pathlib import Path
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands.options import count, material_grade_name, number
 
 VERIFY_MODELS = ("fem3d", "fem2d", "beam", "none")
 
@@ -20,21 +21,22 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "ratio K_r/K_m, an object-stiffness range and a full-scale force, within "
                     "yield / safety factor and the gauge's fatigue strain; verifies the two "
                     "element geometries at fem3d; writes the design TOML. Units: N/mm, N, mm.")
-    p.add_argument("--kr-over-km", type=float, required=True, metavar="X",
+    p.add_argument("--kr-over-km", type=number(1, 1e6, lo_open=True), required=True, metavar="X",
                    help="stiffness ratio K_r/K_m of a sensing unit (> 1; about 10 reads soft "
                         "objects with high sensitivity)")
-    p.add_argument("--kobj-range", type=float, nargs=2, required=True, metavar=("LO", "HI"),
+    p.add_argument("--kobj-range", type=number(0, 1e6, "N/mm", lo_open=True), nargs=2,
+                   required=True, metavar=("LO", "HI"),
                    help="object stiffnesses to read (N/mm)")
-    p.add_argument("--full-scale-force", type=float, required=True, metavar="F",
+    p.add_argument("--full-scale-force", type=number(0, 1e4, "N", lo_open=True), required=True, metavar="F",
                    help="force every element must carry (N)")
-    p.add_argument("--material", metavar="GRADE", default=None,
+    p.add_argument("--material", metavar="GRADE", type=material_grade_name, default=None,
                    help="material grade of the library (default: the base design's material)")
-    p.add_argument("--columns", type=int, metavar="N", default=None,
+    p.add_argument("--columns", type=count(1, 100, "columns"), metavar="N", default=None,
                    help="columns of the new grid (2 rows x N; default: the base design's)")
-    p.add_argument("--rows", type=int, metavar="N", default=None,
+    p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
                    help="rows of the new grid (the model holds two clamped rows facing each "
                         "other: 2)")
-    p.add_argument("--pitch", type=float, metavar="MM", default=None,
+    p.add_argument("--pitch", type=number(0, 1000, "mm", lo_open=True), metavar="MM", default=None,
                    help="array pitch (default: the base design's)")
     p.add_argument("--out", metavar="NEW.toml", required=True,
                    help="design file to write (.toml, any writable folder but system folders)")

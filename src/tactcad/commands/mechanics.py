@@ -7,6 +7,7 @@ import json
 
 from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
                               load_from_args)
+from tactcad.commands.options import count, number
 from tactcad.errors import TactcadError
 
 MODELS = ("closed-form", "beam", "fem2d", "fem3d")
@@ -16,7 +17,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("stiffness", help="tip stiffness K (N/mm) of one element at a ladder level",
                        description="Tip stiffness, gauge strain per newton, error estimate and wall "
                                    "time of one sensing element. Units: N/mm, 1/N, s.")
-    p.add_argument("--element", type=int, required=True,
+    p.add_argument("--element", type=count(1, 10_000, "an element number"), required=True,
                    help="element number of the design (1 ... rows x columns, numbered along "
                         "row 1, then row 2)")
     p.add_argument("--model", choices=MODELS, default="closed-form")

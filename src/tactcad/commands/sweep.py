@@ -7,6 +7,7 @@ import json
 from pathlib import Path
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands.options import count, number
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.tolerance import add_cluster_args
 
@@ -24,9 +25,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     g = ssub.add_parser("grid", help="K over web x arm (x notch radius): CSV and design chart PNG")
     add_design_arg(g)
     g.add_argument("--model", choices=MODELS, default="closed-form")
-    g.add_argument("--webs", type=float, nargs="+", default=list(DEFAULT_WEBS_MM), metavar="MM")
-    g.add_argument("--arms", type=float, nargs="+", default=list(DEFAULT_ARMS_MM), metavar="MM")
-    g.add_argument("--radii", type=float, nargs="+", default=None, metavar="MM",
+    g.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=list(DEFAULT_WEBS_MM), metavar="MM")
+    g.add_argument("--arms", type=number(0, 1000, "mm", lo_open=True), nargs="+", default=list(DEFAULT_ARMS_MM), metavar="MM")
+    g.add_argument("--radii", type=number(0, 100, "mm", lo_open=True), nargs="+", default=None, metavar="MM",
                    help="notch radii (default: the design's, raised to the web where thinner)")
     g.add_argument("--out", metavar="DIR", default="exports/sweeps",
                    help="folder for design_grid.csv and design_chart.png")
@@ -36,8 +37,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     r = ssub.add_parser("refit", help="fem3d sweep of the closed-form correction and its fit "
                                       "(about 20 s per design per worker)")
-    r.add_argument("--fit", type=int, default=64, help="Sobol designs in the fit set")
-    r.add_argument("--holdout", type=int, default=16, help="Sobol designs held out")
+    r.add_argument("--fit", type=count(0, 100_000, "designs"), default=64, help="Sobol designs in the fit set")
+    r.add_argument("--holdout", type=count(0, 100_000, "designs"), default=16, help="Sobol designs held out")
     r.add_argument("--points", metavar="FILE", default=None,
                    help="JSON lines of the fem3d points (resumable; default: the sweep's own)")
     r.add_argument("--out", metavar="FILE", default="exports/sweeps/stiffness_correction.json",
@@ -48,8 +49,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     m = ssub.add_parser("montecarlo", help="tolerance Monte Carlo on Dask, CSV of the bands")
     add_design_arg(m)
-    m.add_argument("--samples", type=int, default=100_000)
-    m.add_argument("--seed", type=int, default=0)
+    m.add_argument("--samples", type=count(1, 10**8, "samples"), default=100_000)
+    m.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0)
     m.add_argument("--out", metavar="DIR", default="exports/sweeps",
                    help="folder for tolerance_elements.csv and tolerance_units.csv")
     add_output_args(m, "print one JSON object: samples, seconds, the files written")

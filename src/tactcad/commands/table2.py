@@ -17,6 +17,7 @@ from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
 def register(subparsers) -> None:
     """Add the ``table2`` sub-command."""
     from tactcad.commands import add_design_arg, add_output_args
+    from tactcad.commands.options import PLOT_SUFFIXES, output_file
 
     p = subparsers.add_parser(
         "table2", help="each model's error against the paper's 48 measured R (Table 2)",
@@ -27,7 +28,7 @@ def register(subparsers) -> None:
     add_design_arg(p)
     p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form",
                    help="ladder level for element 5 (no Table 1 entry) in the coupled models")
-    p.add_argument("--plot", metavar="PNG", default=None,
+    p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write measured R with eq. 2 and the held-out fitted-K_r model here")
     add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)

@@ -7,6 +7,7 @@ import dataclasses
 import json
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands.options import count, number
 
 
 def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) -> None:
@@ -15,7 +16,7 @@ def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) ->
                    help="run on an existing Dask cluster, e.g. tcp://127.0.0.1:8786 (its workers "
                         "must import tactcad)" + ("" if local_default else
                                                   "; default: in this process"))
-    p.add_argument("--workers", type=int, default=None, metavar="N",
+    p.add_argument("--workers", type=count(1, 256, "worker processes"), default=None, metavar="N",
                    help="run on a new local Dask cluster of N single-threaded worker processes")
 
 
@@ -32,24 +33,26 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "whether the K band holds [requirements] k_tolerance_rel and which "
                     "tolerance to tighten to what. Units: mm, N/mm.")
     add_design_arg(p)
-    p.add_argument("--samples", type=int, default=10_000, help="as-built arrays drawn (default "
+    p.add_argument("--samples", type=count(1, 10**7, "samples"), default=10_000, help="as-built arrays drawn (default "
                                                                 "10000)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the draw (default 0)")
-    p.add_argument("--kobj", type=float, nargs="+", metavar="N_PER_MM", default=None,
+    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0, help="seed of the draw (default 0)")
+    p.add_argument("--kobj", type=number(0, 1e6, "N/mm", lo_open=True), nargs="+",
+                   metavar="N_PER_MM", default=None,
                    help="true object stiffnesses to report (default: the ends and middle of "
                         "the design's required K_obj range; the paper's design: its 2.34, "
                         "5.41, 10.01 N/mm samples)")
-    p.add_argument("--reference", type=int, default=None, metavar="ELEMENT",
+    p.add_argument("--reference", type=count(1, 10_000, "an element number"),
+                   default=None, metavar="ELEMENT",
                    help="one reference element for every unit (default: the nominally stiffest, "
                         "nearest one)")
     p.add_argument("--distribution", choices=("normal", "uniform"), default="normal",
                    help="normal with tolerance = 3 sigma (default) or uniform over +/-tolerance")
-    p.add_argument("--notch-radius-tol", type=float, default=None, metavar="MM",
+    p.add_argument("--notch-radius-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
                    help="what-if: +/- notch radius instead of the design's "
                         "[tolerances] notch_radius_mm")
-    p.add_argument("--arm-tol", type=float, default=None, metavar="MM",
+    p.add_argument("--arm-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
                    help="what-if: +/- arm length instead of [tolerances] arm_length_mm")
-    p.add_argument("--modulus-tol", type=float, default=None, metavar="REL",
+    p.add_argument("--modulus-tol", type=number(0, 0.5), default=None, metavar="REL",
                    help="what-if: +/- relative Young's modulus instead of [tolerances] "
                         "youngs_modulus_rel")
     add_output_args(p, "print JSON")

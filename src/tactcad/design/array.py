@@ -554,7 +554,8 @@ def _check_bolt_length(d: DesignFile, p: Problems) -> None:
     length, why = bolt_length(d)
     bolt = BOLTS[d.clamp.bolt_size]
     if length is None:
-        p.add("array.columns", d.array.columns, f"fewer columns or a larger bolt than {bolt.size}",
+        fewer = "fewer columns or " if d.array.columns > 1 else ""  # one column is the fewest
+        p.add("array.columns", d.array.columns, f"{fewer}a larger bolt than {bolt.size}",
               f"bolt needs {fmt(why.value)} mm, longest stock {bolt.size} is "
               f"{fmt(max(bolt.catalogue_lengths_mm))} mm")
 

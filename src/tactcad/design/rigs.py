@@ -776,7 +776,8 @@ def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
     bolt_len = shortest_stock_length(b, needed)
     if bolt_len is None:  # the array's stack leaves no stock bolt for the ear: name the design
         bolt_len = max(b.catalogue_lengths_mm)
-        p.add("array.columns", plan.columns, f"fewer columns, thinner clamp plates or a larger bolt "
+        fewer = "fewer columns, " if plan.columns > 1 else ""  # one column is the fewest
+        p.add("array.columns", plan.columns, f"{fewer}thinner clamp plates or a larger bolt "
               f"than {b.size}", f"the bracket bolt through ear {fmt(br.ear_thickness_mm)} mm, both "
               f"clamp plates and the stack needs {fmt(needed)} mm, longest stock {b.size} is "
               f"{fmt(bolt_len)} mm", file=Path(plan.source).name)

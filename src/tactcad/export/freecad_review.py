@@ -30,8 +30,10 @@ OpenCascade) may write other bytes for the same model.
 
 from __future__ import annotations
 
+import html
 import io
 import json
+import math
 import os
 import re
 import shutil
@@ -249,10 +251,53 @@ def _sort_view_providers(xml: bytes) -> tuple[bytes, dict[str, str]]:
     return _FILE_RE.sub(rename, xml), renamed
 
 
-def normalise_fcstd(path: Path, name: str) -> None:
+#: FreeCAD's isometric view: the camera's axis along (1, -1, 1), Z up
+#: (rotation axis and angle in radians, as FreeCAD's View > Isometric sets it)
+ISOMETRIC_ORIENTATION = (0.742906, 0.307722, 0.594473, 1.217116)
+ISOMETRIC_DIRECTION = (0.57735027, -0.57735027, 0.57735027)
+_CAMERA_RE = re.compile(rb'<Camera settings="[^"]*"/>')
+
+
+def _mm(v: float) -> str:
+    """A length to 1 µm, without trailing zeros or a negative zero."""
+    text = f"{round(v, 3) + 0.0:.3f}".rstrip("0").rstrip(".")
+    return "0" if text == "-0" else text
+
+
+def isometric_camera(bbox_mm: Sequence[float]) -> str:
+    """An OpenInventor orthographic camera, isometric, fitting the box
+    ``(xmin, ymin, zmin, xmax, ymax, zmax)`` (mm) with a 10 % margin: the
+    ``settings`` of GuiDocument.xml's ``<Camera/>``, so the file opens with the
+    whole scene in view. Numbers to 1 µm, so the same box writes the same text.
+
+    Raises:
+        ValueError: a box with a non-finite or inverted extent.
+    """
+    lo, hi = [float(v) for v in bbox_mm[:3]], [float(v) for v in bbox_mm[3:6]]
+    if not all(map(math.isfinite, lo + hi)) or any(a > b for a, b in zip(lo, hi)):
+        raise ValueError(f"bounding box {list(bbox_mm)}: not a finite box")
+    centre = [(a + b) / 2 for a, b in zip(lo, hi)]
+    size = max(math.dist(lo, hi), 1.0)  # the diagonal: the box fits from any side
+    dist = 2 * size
+    pos = [c + d * dist for c, d in zip(centre, ISOMETRIC_DIRECTION)]
+    return ("#Inventor V2.1 ascii\n\n\nOrthographicCamera {\n  viewportMapping ADJUST_CAMERA\n"
+            f"  position {' '.join(_mm(v) for v in pos)}\n"
+            f"  orientation {' '.join(f'{v:g}' for v in ISOMETRIC_ORIENTATION)}\n"
+            f"  nearDistance {_mm(dist - size)}\n  farDistance {_mm(dist + size)}\n"
+            f"  aspectRatio 1\n  focalDistance {_mm(dist)}\n  height {_mm(size * 1.1)}\n\n}}\n")
+
+
+def _with_camera(gui_xml: bytes, camera: str) -> bytes:
+    """GuiDocument.xml with ``camera`` as its saved view (XML-escaped)."""
+    value = html.escape(camera, quote=True).replace("\n", "&#10;").encode()
+    return _CAMERA_RE.sub(lambda m: b'<Camera settings="' + value + b'"/>', gui_xml, count=1)
+
+
+def normalise_fcstd(path: Path, name: str, camera: str | None = None) -> None:
     """Make a FreeCAD file reproducible (see module doc): fixed dates and
     document UUID, object ids from 1, view providers in name order, zip
-    members with fixed times."""
+    members with fixed times; with ``camera`` (:func:`isometric_camera`) the
+    document opens with that view."""
     uid = str(uuid.uuid5(uuid.NAMESPACE_URL, f"tactcad/review/{name}")).encode()
     with zipfile.ZipFile(path) as zin:
         members = {info.filename: zin.read(info.filename) for info in zin.infolist()}
@@ -265,6 +310,8 @@ def normalise_fcstd(path: Path, name: str) -> None:
     renamed: dict[str, str] = {}
     if "GuiDocument.xml" in members:
         members["GuiDocument.xml"], renamed = _sort_view_providers(members["GuiDocument.xml"])
+        if camera is not None:
+            members["GuiDocument.xml"] = _with_camera(members["GuiDocument.xml"], camera)
     gui_files = [renamed_name for renamed_name in renamed.values()]  # in XML order
     new_data = {renamed.get(n, n): data for n, data in members.items()}
     order = [n for n in members if n not in renamed]
@@ -329,7 +376,9 @@ class PendingReview:
             if "error" in found:
                 raise RuntimeError(f"FreeCAD could not write {review_fcstd_name(a.name)}:\n"
                                    f"{found['error']}")
-            normalise_fcstd(self.staging / review_fcstd_name(a.name), a.name)
+            box = found.get("bbox_mm")
+            normalise_fcstd(self.staging / review_fcstd_name(a.name), a.name,
+                            isometric_camera(box) if box else None)
             records.append({"path": review_fcstd_name(a.name), "part": a.name,
                             "kind": "freecad-review", "step": a.step,
                             "freecad_version": ".".join(result["freecad_version"]),

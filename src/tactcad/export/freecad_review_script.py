@@ -4,7 +4,7 @@
 #                   brep, color}], groups: [{name, instances: [{name, part,
 #                   matrix}]}]}; matrices row-major 4 x 4, mm
 #   TACTCAD_FC_OUT  JSON file to write: {freecad_version, gui, files: {name:
-#                   {objects} or {error}}}
+#                   {objects, bbox_mm} or {error}}}
 # See tactcad/export/freecad_review.py for the document layout.
 import json
 import os
@@ -72,8 +72,9 @@ def build(job):
     doc.recompute()
     doc.saveAs(job["out"])
     n = len(doc.Objects)
+    box = Part.getShape(root).BoundBox  # placed, Z up: what the saved camera fits
     FreeCAD.closeDocument(doc.Name)
-    return {"objects": n}
+    return {"objects": n, "bbox_mm": [box.XMin, box.YMin, box.ZMin, box.XMax, box.YMax, box.ZMax]}
 
 
 def main():

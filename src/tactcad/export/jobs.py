@@ -8,8 +8,9 @@ the ``make`` functions import the writers (and with them the kernel) only
 when a job has to run.
 
 Order: part STEP files, the array STEP, the element DXFs, the scenes (STEP
-and GLB), the drawings (SVG, PDF, PNG), the array image, the BOM. The BOM
-comes last because it names the files the others wrote.
+and GLB), the drawings (SVG, PDF, PNG), the array image, the BOM, the review
+page. The BOM comes after the files it names; the review page last, as it
+shows the scenes, the sheets and the BOM.
 """
 
 from __future__ import annotations
@@ -31,7 +32,8 @@ PNG_DPI = 150
 def all_jobs(run: Run) -> list[Job]:
     """The jobs of a full export of ``run.plan``."""
     jobs = array_jobs(run) + scene_jobs(run) + drawing_jobs(run) + [image_job(run)]
-    return jobs + [bom_job(run, jobs)]
+    jobs.append(bom_job(run, jobs))
+    return jobs + [review_page_job(run, jobs)]
 
 
 # --- the array: part STEP files, the assembly, the wire-EDM profiles --------------------------
@@ -264,3 +266,43 @@ def bom_job(run: Run, before: list[Job]) -> Job:
         return write_bom_files(run.plan, run.staging, run.log, run.inventory)
     return Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]), make,
                after=tuple(j.name for j in before))
+
+
+# --- the review page: scenes, sheets, BOM and facts in one offline HTML file ------------------
+def review_sources(run: Run) -> tuple[list[str], list[tuple[str, str]]]:
+    """(scene names, array first; (sheet path, title) of every drawing, the assembly last)."""
+    names = sorted(run.scenes, key=lambda n: n != "array")
+    parts, _ = fabricated_parts(run.plan, run.inventory)
+    sheets = [(drawing_name(s.name), f"{s.name} (fabrication drawing)") for s in parts]
+    return names, sheets + [(ASSEMBLY_DRAWING, "array (assembly drawing)")]
+
+
+def review_page_job(run: Run, before: list[Job]) -> Job:
+    """``review/index.html`` from the files of the jobs before it (its key holds theirs)."""
+    from tactcad.export.review_assets import assets_identity
+
+    def make(run: Run) -> list[dict]:
+        from tactcad.drawings.compose import revision_and_date
+        from tactcad.export.review_assets import import_map, three_version
+        from tactcad.export.review_page import REVIEW_PAGE, page_data, write_review_page
+        from tactcad.export.manifest import manifest
+        from tactcad.mechanics.strength import strength_summary
+
+        names, sheet_list = review_sources(run)
+        glbs = {n: (run.staging / scene_glb_name(n)).read_bytes() for n in names
+                if (run.staging / scene_glb_name(n)).is_file()}
+        sheets = [(p, t, (run.staging / p).read_text(encoding="utf-8"))
+                  for p, t in sheet_list if (run.staging / p).is_file()]
+        bom = run.staging / "bom.csv"
+        rev, date = revision_and_date(run.plan)
+        data = page_data(manifest(run.plan, run.staging, []), sheets, list(glbs),
+                         bom.read_text(encoding="utf-8-sig") if bom.is_file() else "",
+                         strength_summary(run.plan), rev, date, three_version())
+        size = write_review_page(run.staging / REVIEW_PAGE, data, glbs, import_map())
+        run.log(f"  wrote {REVIEW_PAGE} ({size / 1e6:.1f} MB: {len(glbs)} scenes, "
+                f"{len(sheets)} sheets)")
+        return [{"path": REVIEW_PAGE, "part": "review", "kind": "review-page",
+                 "scenes": len(glbs), "sheets": len(sheets)}]
+    return Job("review:page", content_key("review-page", [j.key for j in before],
+                                          assets_identity()),
+               make, after=tuple(j.name for j in before))

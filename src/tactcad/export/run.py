@@ -18,32 +18,26 @@ are gone with the old folder, files tactcad never wrote are kept.
 from __future__ import annotations
 
 import errno
-import hashlib
 import json
 import os
-import shutil
 import time
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Sequence
 
-from tactcad import __version__
-from tactcad.assembly.inventory import assembly_review, instance_counts
-from tactcad.atomic import (carry_over, leftover_staging, publish_dir, remove_partial_files,
-                            staging_dir, write_bytes_atomic)
-from tactcad.catalogue.array import PartSpec, array_instances, array_parts
-from tactcad.design.array import Plan
+from tactcad.atomic import (carry_over, disk_full_error, leftover_staging, publish_dir,
+                            remove_partial_files, remove_tree, staging_dir, warn_left_behind,
+                            write_bytes_atomic)
 from tactcad.design.project import Project
-from tactcad.errors import ExportPathError
+from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
+from tactcad.export.manifest import manifest
 from tactcad.export.worker import Worker, can_fork, worker_jobs
-from tactcad.catalogue.files import ARRAY_STEP, MANIFEST
-from tactcad.mechanics.requirements import requirements_record
-from tactcad.mechanics.strength import strength_summary
-from tactcad.store import Store, stack_versions
+from tactcad.catalogue.files import MANIFEST
+from tactcad.store import Store
 
 
 @dataclass
@@ -70,57 +64,6 @@ class ExportResult:
         lines.append(f"{len(self.files)} files, {total:,d} B in {self.out_dir} ({self.seconds:.1f} s; "
                      f"{self.jobs_run} jobs run, {self.jobs_reused} reused from the cache)")
         return lines
-
-
-def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as fh:
-        for chunk in iter(lambda: fh.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
-
-
-def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
-    """The manifest: every file with its sha256, its part, the design hash, the stack."""
-    specs = array_parts(plan)
-    inst = array_instances(plan)
-    counts = instance_counts(inst)
-    files = []
-    for r in records:
-        p = out_dir / r["path"]
-        files.append({**r, "sha256": _sha256(p), "bytes": p.stat().st_size})
-    parts = {n: _part_record(s, counts.get(n, 0)) for n, s in specs.items()}
-    return {
-        "design": {"name": plan.name, "source": plan.source, "sha256": plan.design_hash},
-        "tactcad_version": __version__,
-        "cad_stack": stack_versions(),
-        "units": "mm",
-        "files": files,
-        "parts": parts,
-        "assemblies": {"array": {"file": ARRAY_STEP, "instances": len(inst),
-                               **assembly_review(specs, inst)}},
-        "strength": [_strength_record(r) for r in strength_summary(plan)],
-        "requirements": requirements_record(plan),
-        "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
-                    for d in plan.derived],
-        "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],
-    }
-
-
-def _strength_record(r: dict) -> dict:
-    """An element's arm, stiffness K, full-scale force and safety factor for
-    the manifest (closed form)."""
-    keys = ("element", "part_name", "arm_length_mm", "model", "stiffness_N_per_mm",
-            "stress_MPa_per_N", "full_scale_force_N",
-            "yield_safety_factor_at_full_scale", "gauge_strain_at_full_scale",
-            "tip_deflection_mm_at_full_scale", "warnings")
-    return {k: r[k] for k in keys}
-
-
-def _part_record(spec: PartSpec, count: int) -> dict:
-    return {"kind": spec.kind, "process": spec.process, "material": spec.material,
-            "quantity": count, "volume_mm3": spec.expected_volume_mm3,
-            "bbox_mm": list(spec.expected_bbox_mm)}
 
 
 def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], int]:
@@ -253,6 +196,14 @@ def _written_by_tactcad(out: Path) -> set[str]:
         return {MANIFEST}
 
 
+def _in_export_folder(exc: OSError, staging: Path, out: Path) -> OSError:
+    """``exc`` with a path in the staging folder shown as the export folder's path."""
+    name = str(exc.filename or staging)  # an error of write() names no file: the folder
+    if exc.errno is None or not name.startswith(str(staging)):
+        return exc
+    return OSError(exc.errno, exc.strerror, str(out) + name[len(str(staging)):])
+
+
 def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Project, log: Log,
                store: Store, with_manifest: bool, parts=None,
                dxf_version: str | None = None, partial: dict | None = None) -> ExportResult:
@@ -263,8 +214,8 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
     (``with_manifest`` False) keeps every old file it does not rewrite."""
     t0 = time.perf_counter()
     out = check_out_dir(out_dir)
-    for old in leftover_staging(out):  # a killed run's
-        shutil.rmtree(old, ignore_errors=True)
+    stuck = [p for old in leftover_staging(out) for p in remove_tree(old)]  # a killed run's
+    warn_left_behind(stuck)
     staging = staging_dir(out)
     try:
         run = Run(project, staging, log, store, dxf_version)
@@ -287,8 +238,17 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
             carry_over(out, staging, lambda rel: rel not in ours)
         os.chmod(staging, 0o755)  # mkdtemp makes it private; an export folder is for sharing
         publish_dir(staging, out)
+    except OSError as exc:  # name the file in the export folder, not in the staging one
+        raise _in_export_folder(exc, staging, out) from exc
+    except (TactcadError, KeyboardInterrupt):
+        raise
+    except Exception as exc:  # a writer failing without an OSError: a full disk is said as such
+        full = disk_full_error(staging)
+        if full is None:
+            raise
+        raise _in_export_folder(full, staging, out) from exc
     finally:
-        shutil.rmtree(staging, ignore_errors=True)
+        warn_left_behind(remove_tree(staging) if staging.exists() else [])
     builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded
     return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
                         builds, len(run.inventory[0]))

@@ -29,7 +29,7 @@ from OCP.XCAFApp import XCAFApp_Application
 from OCP.XCAFDoc import XCAFDoc_ColorType, XCAFDoc_DocumentTool
 from OCP.XSControl import XSControl_WorkSession
 
-from tactcad.atomic import write_atomic
+from tactcad.atomic import write_atomic, write_failed
 
 FIXED_TIMESTAMP = "2000-01-01T00:00:00"
 _TIMESTAMP_RE = re.compile(rb"FILE_NAME\('([^']*)','[^']*'")
@@ -85,7 +85,7 @@ def _write_doc(doc: TDocStd_Document, path: Path, product_name: str) -> None:
     if not writer.Transfer(doc, STEPControl_StepModelType.STEPControl_AsIs):
         raise RuntimeError(f"STEP transfer failed for {product_name}")
     if writer.Write(str(path)) != IFSelect_ReturnStatus.IFSelect_RetDone:
-        raise RuntimeError(f"STEP write failed: {path}")
+        raise write_failed(path, "STEP write")  # OpenCascade says no more than that
     _normalise(path)
 
 
@@ -164,7 +164,8 @@ def write_step(path: str | Path, parts: Sequence[StepPart],
     Raises:
         ValueError: an instance names an unknown part, or ``instances`` is None
             with more than one part.
-        RuntimeError: OpenCascade failed to transfer or write.
+        RuntimeError: OpenCascade failed to transfer the shapes.
+        OSError: the file could not be written (ENOSPC when its disk is full).
     """
     path = Path(path)
     name = assembly_name or path.stem

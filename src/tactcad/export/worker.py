@@ -23,6 +23,7 @@ import multiprocessing
 import os
 import signal
 import sys
+import warnings
 from concurrent.futures import Future, ProcessPoolExecutor
 from typing import Any, Mapping, Sequence
 
@@ -75,10 +76,11 @@ class Worker:
         finally:
             _INHERITED.clear()  # the worker has its copy; this process needs none
 
-    def submit(self, job: Job, solids: Mapping[str, Any]) -> Future:
+    def submit(self, job: Job, solids: Mapping[str, Any]) -> "_JobFuture":
         """Hand ``job`` over with the solids it reads (by part name); the
-        future's ``result()`` gives the job's records or raises its error."""
-        return self._pool.submit(_run_job, job.name, dict(solids))
+        future's ``result()`` gives the job's records or raises its error, and
+        warns here what the job warned there."""
+        return _JobFuture(self._pool.submit(_run_job, job.name, dict(solids)))
 
     def close(self) -> None:
         self._pool.shutdown(wait=True)
@@ -90,6 +92,24 @@ class Worker:
             except ProcessLookupError:
                 pass
         self._pool.shutdown(wait=False, cancel_futures=True)
+
+
+class _JobFuture:
+    """A worker job's future: ``result()`` re-issues in this process the
+    warnings the job issued in the worker (so the run reports each once),
+    then gives the records."""
+
+    def __init__(self, future: Future):
+        self._future = future
+
+    def result(self) -> list[dict]:
+        records, issued = self._future.result()
+        for message, category in issued:
+            warnings.warn(message, category, stacklevel=2)
+        return records
+
+    def cancel(self) -> bool:
+        return self._future.cancel()
 
 
 def _start(pid) -> None:
@@ -111,8 +131,13 @@ def _start(pid) -> None:
         importlib.import_module(module)
 
 
-def _run_job(name: str, solids: Mapping[str, Any]) -> list[dict]:
+def _run_job(name: str, solids: Mapping[str, Any]) -> tuple[list[dict], list[tuple[str, type]]]:
+    """The job's records and the warnings it issued (message, category), which
+    the run's process reports (:class:`_JobFuture`)."""
     run: Run = _INHERITED["run"]
     for spec in {s.name: s for s in _INHERITED["jobs"][name].needs}.values():
         run.parts.adopt(spec, solids[spec.name])
-    return _INHERITED["jobs"][name].make(run)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        records = _INHERITED["jobs"][name].make(run)
+    return records, [(str(w.message), w.category) for w in caught]

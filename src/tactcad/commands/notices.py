@@ -1,0 +1,74 @@
+"""Warnings as part of a command's output, never in Python's own format.
+
+Within :func:`WarningLines.capture` every warning a run issues (tactcad's,
+e.g. the closed form's ``CorrectionRangeWarning``, or a library's) becomes
+one line ``tactcad: warning: ...`` on stderr, once per distinct text per run,
+as it happens; ``--quiet`` silences the lines. With ``--json`` they go into
+the output object as a ``warnings`` list (:func:`json_with_warnings`) instead.
+Deprecation, import and resource warnings are for developers and dropped.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import sys
+import warnings
+from typing import Iterator
+
+_FOR_DEVELOPERS = (DeprecationWarning, PendingDeprecationWarning, ImportWarning, ResourceWarning)
+
+
+def one_line(message: object) -> str:
+    """The warning's text on one line (whitespace runs made one space)."""
+    return " ".join(str(message).split())
+
+
+class WarningLines:
+    """The distinct warnings of one run, in order; echoed to stderr when ``echo``."""
+
+    def __init__(self, echo: bool):
+        self.echo = echo
+        self.lines: list[str] = []
+
+    def show(self, message, category, filename, lineno, file=None, line=None) -> None:
+        """``warnings.showwarning`` while capturing: record, and echo once."""
+        text = one_line(message)
+        if text in self.lines:
+            return
+        self.lines.append(text)
+        if self.echo:
+            print(f"tactcad: warning: {text}", file=sys.stderr, flush=True)
+
+    @contextlib.contextmanager
+    def capture(self) -> Iterator["WarningLines"]:
+        with warnings.catch_warnings():
+            warnings.simplefilter("always")
+            for category in _FOR_DEVELOPERS:
+                warnings.simplefilter("ignore", category)
+            warnings.showwarning = self.show
+            yield self
+
+
+def json_with_warnings(text: str, lines: list[str]) -> str | None:
+    """The JSON object ``text`` with ``"warnings": lines`` added (joined to a
+    ``warnings`` list it has, NaN written as null); None when ``text`` is not one JSON object (a
+    list keeps its shape, and its warnings go to stderr)."""
+    from tactcad.commands.finite_json import finite
+
+    try:
+        obj = json.loads(text)
+    except ValueError:
+        return None
+    if not isinstance(obj, dict):
+        return None
+    own = obj.get("warnings")
+    if own is None:
+        obj["warnings"] = list(lines)
+    elif isinstance(own, list):
+        obj["warnings"] = own + [w for w in lines if w not in own]
+    else:
+        return None
+    second = text.lstrip().split("\n", 2)[1:2]
+    indent = len(second[0]) - len(second[0].lstrip(" ")) if second else 2
+    return json.dumps(finite(obj), indent=indent or None, allow_nan=False)

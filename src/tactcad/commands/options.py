@@ -1,0 +1,190 @@
+"""Every option of every command checked before a command runs, as the design file is.
+
+Two layers:
+
+* **per-option types** (``type=`` of ``add_argument``): :func:`number` (a
+  finite number in a range, with its unit), :func:`count` (an integer in a
+  range) and :func:`material_grade_name` (a grade of the library, matched
+  without regard to case where that is unambiguous). argparse calls them, so
+  a bad value is refused naming the option, the value and what is allowed.
+* **rules for every option** (:func:`validate_options`, run on the parsed
+  command line by introspecting the parser, so an option added later is
+  covered without being listed anywhere): numbers finite, ``-0`` read as 0,
+  text values (paths, names) not empty, without NUL or other control
+  characters.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import unicodedata
+from typing import Callable, Iterator, Sequence
+
+from tactcad.errors import DesignError
+
+
+#: File types a ``--plot`` option writes (matplotlib chooses the format by suffix).
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def _fmt(x: float) -> str:
+    return f"{x:g}"
+
+
+def number(lo: float | None = None, hi: float | None = None, unit: str = "", *,
+           lo_open: bool = False) -> Callable[[str], float]:
+    """An argparse type: a finite number ``lo <= x <= hi`` (``lo < x`` with
+    ``lo_open``), in ``unit``; ``-0`` is read as 0.
+
+    Raises (when called by argparse):
+        argparse.ArgumentTypeError: not a number, not finite, or out of range.
+    """
+    lo_text = "" if lo is None else f"{'>' if lo_open else '>='} {_fmt(lo)}"
+    hi_text = "" if hi is None else f"<= {_fmt(hi)}"
+    allowed = "a finite number" + "".join(f" {t}" for t in (lo_text, hi_text) if t) + \
+        (f" ({unit})" if unit else "")
+    if lo is not None and hi is not None:
+        allowed = f"a number {'>' if lo_open else ''}{_fmt(lo)} ... {_fmt(hi)}" + \
+            (f" ({unit})" if unit else "")
+
+    def parse(text: str) -> float:
+        try:
+            x = float(text)
+        except (TypeError, ValueError):
+            raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}") from None
+        if not math.isfinite(x) or (lo is not None and (x <= lo if lo_open else x < lo)) \
+                or (hi is not None and x > hi):
+            raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}")
+        return x + 0.0  # -0.0 + 0.0 == +0.0
+
+    parse.__name__ = "number"  # argparse names the type in its own messages
+    return parse
+
+
+def count(lo: int = 0, hi: int = 2**31 - 1, what: str = "") -> Callable[[str], int]:
+    """An argparse type: an integer ``lo <= n <= hi`` (``what`` says of what)."""
+    allowed = f"an integer {lo} ... {hi}" + (f" ({what})" if what else "")
+
+    def parse(text: str) -> int:
+        try:
+            n = int(text)
+        except (TypeError, ValueError):
+            raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}") from None
+        if not lo <= n <= hi:
+            raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}")
+        return n
+
+    parse.__name__ = "integer"
+    return parse
+
+
+def output_file(*suffixes: str) -> Callable[[str], str]:
+    """An argparse type: a file to write, its name ending in one of ``suffixes``
+    (any case), not an existing folder."""
+    allowed = "a file name ending in " + " or ".join(suffixes)
+
+    def parse(text: str) -> str:
+        import os
+
+        if not text.strip() or not text.lower().endswith(tuple(s.lower() for s in suffixes)) \
+                or os.path.isdir(text):
+            raise argparse.ArgumentTypeError(f"{text[:80]!r}: allowed {allowed}")
+        return text
+
+    parse.__name__ = "file name"
+    return parse
+
+
+def material_grade_name(text: str) -> str:
+    """An argparse type: a material grade of the library, exact or matched
+    without regard to case (or by a prefix or description word only one grade has;
+    :func:`tactcad.design.materials.match_name`, the matching a design file gets).
+
+    Raises (when called by argparse):
+        argparse.ArgumentTypeError: naming the value and listing the grades.
+    """
+    from tactcad.design.materials import candidates, match_name, material_grades
+
+    grades = material_grades()
+    found = match_name(grades, text)
+    if found is not None:
+        return found
+    several = candidates(grades, text)
+    raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed one of {', '.join(grades)}"
+                                     + (" (ambiguous)" if len(several) > 1 else ""))
+
+
+material_grade_name.__name__ = "grade"
+
+
+# ---------------------------------------------------------------------------
+# Rules for every option, by introspection of the parser
+# ---------------------------------------------------------------------------
+def chosen_parsers(parser: argparse.ArgumentParser,
+                   args: argparse.Namespace) -> Iterator[argparse.ArgumentParser]:
+    """The parser and each sub-command parser the command line chose (``bench export``: three)."""
+    yield parser
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            chosen = getattr(args, action.dest, None)
+            if chosen in action.choices:
+                yield from chosen_parsers(action.choices[chosen], args)
+
+
+def option_name(action: argparse.Action) -> str:
+    """``--sigma-r`` (the longest option string), or the positional's name."""
+    return max(action.option_strings, key=len) if action.option_strings else \
+        (action.metavar if isinstance(action.metavar, str) else action.dest)
+
+
+def _checked_value(name: str, value):
+    """``value`` with ``-0.0`` made 0.0; raises for a non-finite number or bad text."""
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise DesignError(name, value, "a finite number")
+        return value + 0.0
+    if isinstance(value, str):
+        if not value.strip():
+            raise DesignError(name, value, "a non-empty value")
+        bad = next((c for c in value if unicodedata.category(c) in ("Cc", "Cs")
+                    and c not in "\t"), None)
+        if bad is not None:
+            raise DesignError(name, value, f"text without control characters (found "
+                                           f"U+{ord(bad):04X})")
+    return value
+
+
+def validate_options(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """Apply the rules for every option (module doc) to a parsed command line,
+    in place (``-0`` becomes 0).
+
+    Raises:
+        DesignError: naming the option, the value and what is allowed.
+    """
+    for p in chosen_parsers(parser, args):
+        for action in p._actions:
+            if isinstance(action, (argparse._SubParsersAction, argparse._HelpAction,
+                                   argparse._VersionAction)) or not hasattr(args, action.dest):
+                continue
+            value = getattr(args, action.dest)
+            if value is None or value is action.default and action.option_strings:
+                continue
+            name = option_name(action)
+            if isinstance(value, list):
+                setattr(args, action.dest, [_checked_value(name, v) for v in value])
+            elif isinstance(value, tuple):
+                setattr(args, action.dest, tuple(_checked_value(name, v) for v in value))
+            else:
+                setattr(args, action.dest, _checked_value(name, value))
+
+
+def options_of(parser: argparse.ArgumentParser,
+               path: Sequence[str] = ()) -> Iterator[tuple[tuple[str, ...], argparse.ArgumentParser]]:
+    """Every command (``("bench", "export")``) and its parser, for tests and fuzzing."""
+    subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    if path and not subs:
+        yield tuple(path), parser
+    for action in subs:
+        for name, sub in action.choices.items():
+            yield from options_of(sub, (*path, name))

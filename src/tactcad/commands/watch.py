@@ -1,0 +1,96 @@
+"""``tactcad watch``: re-export on every save and serve the review page with live reload."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import threading
+from pathlib import Path
+
+from tactcad.commands import add_cache_args, add_design_arg, add_output_args, store_from_args
+
+DEFAULT_PORT = 8321
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("watch", help="re-export on save and serve the review page (live reload)",
+                       description="Export the design, then stay up: every save of the design, "
+                                   "rigs or scenes file re-exports what changed (the 3D view "
+                                   "first, then the drawings, the PDF and the rest) and the "
+                                   "review page at http://127.0.0.1:PORT/ reloads in place, "
+                                   "keeping its camera and hidden parts. A refused edit is "
+                                   "shown in the page and here; the last good export stays. "
+                                   "Ctrl-C stops.")
+    add_design_arg(p)
+    p.add_argument("--out", metavar="DIR", default="exports",
+                   help="the export folder kept current (default: exports)")
+    p.add_argument("--port", metavar="N", type=int, default=DEFAULT_PORT,
+                   help=f"port of the review page on 127.0.0.1, 1024 ... 65535 or 0 for any "
+                        f"free one (default: {DEFAULT_PORT})")
+    p.add_argument("--poll", action="store_true",
+                   help="poll the files instead of waiting for file-system events (network "
+                        "drives, some containers)")
+    add_cache_args(p)
+    add_output_args(p, "print one JSON object per event on stdout (update, refusal, stop) "
+                       "instead of progress lines")
+    p.set_defaults(func=run)
+
+
+def watched_files(design: Path) -> list[Path]:
+    """The design file and the rigs and scenes files it uses (those beside it,
+    else the defaults), as the loader picks them."""
+    from tactcad.design.rigs import rigs_path_for
+    from tactcad.design.scenes import scenes_path_for
+
+    return [design.resolve(), rigs_path_for(design).resolve(), scenes_path_for(design).resolve()]
+
+
+def run(args: argparse.Namespace) -> int:
+    from tactcad.commands import load_from_args
+    from tactcad.errors import DesignError
+    from tactcad.export.live import LiveState, Loop, changes, make_server
+    from tactcad.export.run import check_out_dir
+
+    if not (args.port == 0 or 1024 <= args.port <= 65535):
+        raise DesignError("--port", args.port, "1024 ... 65535, or 0 for any free port")
+    check_out_dir(args.out)  # refused before anything starts
+
+    def load():  # the design, rigs and scenes files validated once per change
+        return load_from_args(args).validated
+
+    def log(line: str) -> None:
+        if args.json:
+            print(json.dumps({"event": line.split(" ", 1)[0], "text": line}), flush=True)
+        elif not args.quiet or line.startswith("refused"):
+            print(f"watch: {line}", file=sys.stderr, flush=True)
+
+    design = Path(args.design) if args.design else None
+    if design is None:
+        from tactcad.design.array import DEFAULT_DESIGN
+        design = DEFAULT_DESIGN
+    if not design.is_file():  # a file that exists but is refused is watched until it is mended
+        raise DesignError("--design", str(design), "an existing design file (TOML)")
+    state = LiveState()
+    loop = Loop(load, Path(args.out), store_from_args(args), state, log)
+    try:
+        server = make_server(state, args.port)
+    except OSError as exc:
+        raise DesignError("--port", args.port, f"a free port on 127.0.0.1, or 0 for any "
+                          f"({exc.strerror or exc})") from None
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    host, port = server.server_address[:2]
+    try:
+        log(f"review page at http://{host}:{port}/ (Ctrl-C stops)")
+        files = watched_files(design)
+        log("watching " + ", ".join(str(f) for f in files))
+        loop.update()
+        for _ in changes(files, args.poll):
+            log("change seen")
+            loop.update()
+    except KeyboardInterrupt:
+        log("stopped")
+    finally:
+        server.shutdown()
+        server.server_close()
+    return 0

@@ -1,0 +1,374 @@
+// The review page: three.js shows the export's scenes (GLB), the rest is plain DOM.
+// Served by `tactcad watch`, it polls /state and re-reads the page on a change,
+// keeping the camera, the scene and the hidden parts.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+
+const $ = (id) => document.getElementById(id);
+const review = window.__review = { ready: false, frames: 0, firstFrameMs: null, scene: null,
+                                   instances: [], sha256: null, shownSha256: null, updates: 0, refusal: null };
+const hidden = new Set();          // instance names the reviewer hid (kept across updates)
+let highlighted = null;
+let DATA = null, SCENES = {};
+let model = null, box = new THREE.Box3();
+
+// --- the 3D view -------------------------------------------------------------------------
+const host = $('view');
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio || 1);
+renderer.localClippingEnabled = true;
+host.prepend(renderer.domElement);
+const world = new THREE.Scene();
+world.background = new THREE.Color(0xf4f5f7);
+world.add(new THREE.HemisphereLight(0xffffff, 0x8a8f99, 2.0));
+const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+sun.position.set(1, 2, 1.5);
+world.add(sun);
+const camera = new THREE.PerspectiveCamera(35, 1, 1e-4, 100);
+const controls = new OrbitControls(camera, renderer.domElement);
+controls.addEventListener('change', render);
+const clip = new THREE.Plane(new THREE.Vector3(1, 0, 0), 0);
+
+// the camera, for tests and the watch benchmark: [position, target], metres
+review.view = () => [camera.position.toArray(), controls.target.toArray()];
+
+function render() {
+  renderer.render(world, camera);
+  review.frames += 1;
+  if (review.firstFrameMs === null && model) review.firstFrameMs = performance.now();
+}
+
+function resize() {
+  const w = host.clientWidth, h = host.clientHeight;
+  renderer.setSize(w, h, false);
+  camera.aspect = w / Math.max(h, 1);
+  camera.updateProjectionMatrix();
+  render();
+}
+new ResizeObserver(resize).observe(host);
+
+function visibleBox() {
+  const b = new THREE.Box3();
+  if (model) model.traverse((o) => { if (o.isMesh && o.visible) b.expandByObject(o); });
+  return b.isEmpty() ? box.clone() : b;
+}
+
+function fit() {  // isometric, the visible parts fitted
+  const b = visibleBox();
+  if (b.isEmpty()) return;
+  const sphere = b.getBoundingSphere(new THREE.Sphere());
+  const dist = sphere.radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
+  const dir = new THREE.Vector3(1, 0.8, 1).normalize();
+  camera.position.copy(sphere.center).addScaledVector(dir, dist);
+  camera.near = dist / 100; camera.far = dist * 100;
+  camera.updateProjectionMatrix();
+  controls.target.copy(sphere.center);
+  controls.update();
+  render();
+}
+
+function applyClip() {
+  const axis = $('clip-axis').value;
+  $('clip-pos').disabled = $('clip-flip').disabled = !axis;
+  if (!axis) { renderer.clippingPlanes = []; render(); return; }
+  const i = 'xyz'.indexOf(axis);
+  const lo = box.min.getComponent(i), hi = box.max.getComponent(i);
+  const at = lo + (hi - lo) * $('clip-pos').value / 1000;
+  const n = new THREE.Vector3().setComponent(i, $('clip-flip').checked ? 1 : -1);
+  clip.normal.copy(n);
+  clip.constant = -n.getComponent(i) * at;
+  renderer.clippingPlanes = [clip];
+  render();
+}
+for (const id of ['clip-axis', 'clip-pos', 'clip-flip']) $(id).addEventListener('input', applyClip);
+$('fit').addEventListener('click', fit);
+
+function base64Bytes(text) {
+  const bin = atob(text);
+  const out = new Uint8Array(bin.length);
+  for (let i = 0; i < bin.length; i++) out[i] = bin.charCodeAt(i);
+  return out.buffer;
+}
+
+function instances(root) {
+  const out = [];
+  root.traverse((o) => { if (o.isMesh) out.push(o); });
+  return out;
+}
+
+function showScene(name, keepView) {
+  if (!SCENES[name]) return;
+  new GLTFLoader().parse(base64Bytes(SCENES[name]), '', (gltf) => {
+    if (model) world.remove(model);
+    model = gltf.scene;
+    for (const m of instances(model)) {
+      m.material = m.material.clone();  // own material: highlighting one instance only
+      m.material.side = THREE.DoubleSide;  // a section shows the inside faces
+      m.visible = !hidden.has(m.name);
+    }
+    world.add(model);
+    box = new THREE.Box3().setFromObject(model);
+    review.scene = name;
+    review.shownSha256 = DATA.manifest.design.sha256;  // the design the 3D view now shows
+    review.instances = instances(model).map((m) => m.name);
+    buildTree();
+    if (keepView) applyClip(); else { fit(); applyClip(); }
+    review.ready = true;
+  }, (err) => { $('status').textContent = `scene ${name}: ${err.message || err}`; });
+}
+
+// --- the part tree: sub-assembly -> instances ------------------------------------------------
+function buildTree() {
+  const tree = $('tree');
+  tree.replaceChildren();
+  const groups = new Map();
+  for (const m of instances(model)) {
+    const g = m.userData.group || 'parts';
+    if (!groups.has(g)) groups.set(g, []);
+    groups.get(g).push(m);
+  }
+  for (const [group, members] of groups) {
+    const det = document.createElement('details');
+    det.open = true;
+    const sum = document.createElement('summary');
+    const all = document.createElement('input');
+    all.type = 'checkbox';
+    all.checked = members.some((m) => m.visible);
+    all.addEventListener('click', (e) => e.stopPropagation());
+    all.addEventListener('change', () => {
+      for (const m of members) setVisible(m, all.checked);
+      buildTree();
+    });
+    sum.append(all, ` ${group} (${members.length})`);
+    det.append(sum);
+    for (const m of members) {
+      const row = document.createElement('label');
+      row.dataset.instance = m.name;
+      if (m.name === highlighted) row.classList.add('hl');
+      const box = document.createElement('input');
+      box.type = 'checkbox';
+      box.checked = m.visible;
+      box.addEventListener('change', () => setVisible(m, box.checked));
+      const name = document.createElement('span');
+      name.className = 'instance';
+      name.textContent = ` ${m.name} `;
+      const part = document.createElement('span');
+      part.className = 'part';
+      part.textContent = m.userData.part || '';
+      row.append(box, name, part);
+      name.addEventListener('click', (e) => { e.preventDefault(); highlight(m.name); });
+      det.append(row);
+    }
+    tree.append(det);
+  }
+}
+
+function setVisible(mesh, on) {
+  mesh.visible = on;
+  if (on) hidden.delete(mesh.name); else hidden.add(mesh.name);
+  render();
+}
+
+function highlight(name) {
+  highlighted = highlighted === name ? null : name;
+  for (const m of instances(model)) {
+    m.material.emissive.setHex(m.name === highlighted ? 0x806000 : 0x000000);
+  }
+  for (const row of $('tree').querySelectorAll('label')) {
+    row.classList.toggle('hl', row.dataset.instance === highlighted);
+  }
+  render();
+}
+
+// --- drawings, tables, provenance ------------------------------------------------------------
+function el(tag, text, cls) {
+  const e = document.createElement(tag);
+  if (text !== undefined && text !== null) e.textContent = text;
+  if (cls) e.className = cls;
+  return e;
+}
+
+function fmt(v) {
+  if (typeof v === 'number') return Number.isInteger(v) ? String(v) : v.toPrecision(4);
+  if (Array.isArray(v)) return v.map(fmt).join('; ');
+  if (v && typeof v === 'object') return JSON.stringify(v);
+  return v === null || v === undefined ? '' : String(v);
+}
+
+function table(columns, rows, labels) {
+  const t = el('table');
+  const head = el('tr');
+  for (const c of columns) head.append(el('th', (labels && labels[c]) || c));
+  t.append(head);
+  for (const r of rows) {
+    const tr = el('tr');
+    for (const c of columns) {
+      const v = r[c];
+      tr.append(el('td', fmt(v), typeof v === 'number' ? 'num' : ''));
+    }
+    t.append(tr);
+  }
+  return t;
+}
+
+function zoomable(pane, img) {
+  let s = 1, x = 0, y = 0, drag = null;
+  const apply = () => { img.style.transform = `translate(${x}px, ${y}px) scale(${s})`; };
+  pane.addEventListener('wheel', (e) => {
+    e.preventDefault();
+    const r = pane.getBoundingClientRect();
+    const px = e.clientX - r.left, py = e.clientY - r.top;
+    const k = Math.exp(-e.deltaY * 0.0015);
+    const ns = Math.min(40, Math.max(0.5, s * k));
+    x = px - (px - x) * ns / s; y = py - (py - y) * ns / s; s = ns;
+    apply();
+  }, { passive: false });
+  pane.addEventListener('pointerdown', (e) => { drag = [e.clientX - x, e.clientY - y]; pane.setPointerCapture(e.pointerId); });
+  pane.addEventListener('pointermove', (e) => { if (drag) { x = e.clientX - drag[0]; y = e.clientY - drag[1]; apply(); } });
+  pane.addEventListener('pointerup', () => { drag = null; });
+  pane.addEventListener('dblclick', () => { pane.parentElement.classList.toggle('big'); s = 1; x = y = 0; apply(); });
+}
+
+function showSheets() {
+  const host = $('sheets');
+  host.replaceChildren();
+  for (const sheet of DATA.sheets) {
+    const card = el('div', null, 'sheet');
+    card.dataset.sheet = sheet.path;
+    const h = el('h3');
+    h.append(el('span', sheet.title), el('span', sheet.path, 'part'));
+    const pane = el('div', null, 'pane');
+    const img = el('img');
+    img.alt = sheet.title;
+    img.src = 'data:image/svg+xml;base64,' + sheet.svg_base64;
+    pane.append(img);
+    zoomable(pane, img);
+    card.append(h, pane);
+    host.append(card);
+  }
+}
+
+function showTables() {
+  $('bom-table').replaceChildren(table(DATA.bom.columns, DATA.bom.rows));
+  const cols = ['element', 'part_name', 'arm_length_mm', 'stiffness_N_per_mm', 'full_scale_force_N',
+                'tip_deflection_mm_at_full_scale', 'stress_MPa_per_N', 'stress_MPa_at_full_scale',
+                'yield_safety_factor_at_full_scale', 'gauge_strain_at_full_scale', 'model'];
+  const labels = { element: 'element', part_name: 'part', arm_length_mm: 'arm length (mm)',
+                   stiffness_N_per_mm: 'K (N/mm)', full_scale_force_N: 'full scale (N)',
+                   tip_deflection_mm_at_full_scale: 'δ at full scale (mm)',
+                   stress_MPa_per_N: 'stress (MPa/N)', stress_MPa_at_full_scale: 'stress at full scale (MPa)',
+                   yield_safety_factor_at_full_scale: 'yield safety factor',
+                   gauge_strain_at_full_scale: 'gauge strain at full scale', model: 'model' };
+  const box = $('elements-table');
+  box.replaceChildren(table(cols, DATA.elements, labels));
+  const warned = DATA.elements.filter((r) => r.warnings && r.warnings.length);
+  for (const r of warned) box.append(el('p', `element ${r.element}: ${r.warnings.join('; ')}`, 'warn'));
+  showVerification();
+  showChecks();
+  showProvenance();
+}
+
+function showData(value) {  // any JSON: a list of records as a table, an object as a list
+  if (Array.isArray(value) && value.length && value.every((r) => r && typeof r === 'object' && !Array.isArray(r))) {
+    const cols = [...new Set(value.flatMap((r) => Object.keys(r)))];
+    return table(cols, value);
+  }
+  if (value && typeof value === 'object' && !Array.isArray(value)) {
+    const dl = el('div');
+    for (const [k, v] of Object.entries(value)) {
+      dl.append(el('h3', k));
+      dl.append(showData(v));
+    }
+    return dl;
+  }
+  return el('p', fmt(value));
+}
+
+function showVerification() {  // the manifest's verification matrix, when the export has one
+  const v = DATA.manifest.verification;
+  $('verification').hidden = $('nav-verification').hidden = v === undefined || v === null;
+  $('verification-body').replaceChildren(v ? showData(v) : el('p', ''));
+}
+
+function showChecks() {
+  const c = window.TACTCAD_CHECKS;
+  const body = $('checks-body');
+  if (!c || c.design_sha256 !== DATA.manifest.design.sha256) {
+    body.replaceChildren(el('p', 'Not run on this export yet: `tactcad check --out <this export>` adds its results here.'));
+    return;
+  }
+  const head = el('p');
+  head.append(el('span', `${c.passed} passed`, 'pass'), ', ',
+              el('span', `${c.failed} failed`, c.failed ? 'fail' : 'pass'));
+  const rows = [...c.checks].sort((a, b) => a.passed - b.passed)
+    .map((r) => ({ result: r.passed ? 'pass' : 'FAIL', check: r.check, subject: r.subject, detail: r.detail }));
+  body.replaceChildren(head, table(['result', 'check', 'subject', 'detail'], rows));
+}
+
+function showProvenance() {
+  const m = DATA.manifest;
+  const rows = [
+    { item: 'design', value: m.design.name },
+    { item: 'design file', value: m.design.source },
+    { item: 'design sha256', value: m.design.sha256 },
+    { item: 'revision', value: DATA.revision },
+    { item: 'date', value: DATA.date },
+    { item: 'tactcad', value: m.tactcad_version },
+    ...Object.entries(m.cad_stack).map(([k, v]) => ({ item: k, value: v })),
+    { item: 'three.js (this page)', value: DATA.three_version },
+    { item: 'units', value: m.units },
+  ];
+  $('provenance-body').replaceChildren(table(['item', 'value'], rows));
+}
+
+function showHeader() {
+  const m = DATA.manifest;
+  document.title = `${m.design.name}: review`;
+  $('title').textContent = `${m.design.name}: design review`;
+  $('subtitle').textContent = `revision ${DATA.revision}, ${DATA.date}, design sha256 ${m.design.sha256.slice(0, 12)}…`;
+  review.sha256 = m.design.sha256;
+  const sel = $('scene-select');
+  const current = sel.value;
+  sel.replaceChildren(...DATA.scenes.map((n) => { const o = el('option', n); o.value = n; return o; }));
+  if (DATA.scenes.includes(current)) sel.value = current;
+}
+$('scene-select').addEventListener('change', (e) => showScene(e.target.value, false));
+
+function load(doc, keepView) {
+  DATA = JSON.parse(doc.getElementById('review-data').textContent);
+  SCENES = JSON.parse(doc.getElementById('review-scenes').textContent);
+  showHeader();
+  showSheets();
+  showTables();
+  showScene($('scene-select').value || DATA.scenes[0], keepView);
+}
+
+// --- live reload under `tactcad watch` ---------------------------------------------------
+async function poll(seq) {
+  try {
+    const state = await (await fetch('/state', { cache: 'no-store' })).json();
+    const refusal = $('refusal');
+    review.refusal = state.refusal;
+    refusal.textContent = state.refusal ? `The last edit was refused; the page shows the last good export.\n${state.refusal}` : '';
+    refusal.classList.toggle('shown', !!state.refusal);
+    $('status').textContent = state.status || '';
+    if (state.seq !== seq && state.sha256) {
+      const text = await (await fetch('/', { cache: 'no-store' })).text();
+      const doc = new DOMParser().parseFromString(text, 'text/html');
+      const checks = doc.querySelector('script[data-checks]');
+      if (checks) window.TACTCAD_CHECKS = JSON.parse(checks.textContent);
+      load(doc, true);
+      review.updates += 1;
+      seq = state.seq;
+    }
+  } catch (e) {
+    $('status').textContent = 'watch: not reachable';
+  }
+  setTimeout(() => poll(seq), 200);
+}
+
+load(document, false);
+if (location.protocol.startsWith('http')) {
+  fetch('/state', { cache: 'no-store' }).then((r) => r.json()).then((s) => poll(s.seq)).catch(() => {});
+}

@@ -1,0 +1,138 @@
+"""``review/index.html``: one page to review an export offline.
+
+The page carries everything it shows, so it opens from ``file://`` with no
+network and can be sent on its own: every scene's GLB (base64), every drawing
+sheet (SVG), the BOM, each element's stiffness and strength, the manifest's
+facts (design sha256, versions; a verification matrix when the manifest has
+one) and three.js itself (:mod:`tactcad.export.review_assets`). The results
+of ``tactcad check`` join it later as ``review/checks.js`` beside it
+(:func:`write_checks_script`), shown only when they are for the same design.
+
+The page is written from the files the run wrote before it (nothing is built
+again), with fixed key order, so the same export writes the same bytes.
+"""
+
+from __future__ import annotations
+
+import base64
+import csv
+import html
+import io
+import json
+import re
+from functools import lru_cache
+from importlib import resources
+from pathlib import Path
+from typing import Iterable, Sequence
+
+from tactcad.atomic import write_bytes_atomic
+
+REVIEW_PAGE = "review/index.html"
+CHECKS_SCRIPT = "review/checks.js"
+
+
+@lru_cache(maxsize=1)
+def _template() -> tuple[str, str]:
+    data = resources.files("tactcad") / "data"
+    return ((data / "review_page.html").read_text(encoding="utf-8"),
+            (data / "review_page.js").read_text(encoding="utf-8"))
+
+
+def _json_in_html(value) -> str:
+    """JSON safe inside a ``<script>`` element (no ``</script>``, no ``<!--``)."""
+    text = json.dumps(value, sort_keys=True, ensure_ascii=False, allow_nan=False)
+    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+def bom_table(csv_text: str) -> dict:
+    """``bom.csv`` as ``{"columns": [...], "rows": [{column: text}]}``."""
+    rows = list(csv.DictReader(io.StringIO(csv_text.lstrip("\ufeff"))))
+    columns = list(rows[0]) if rows else []
+    return {"columns": columns, "rows": rows}
+
+
+def page_data(facts: dict, sheets: Sequence[tuple[str, str, str]], scenes: Sequence[str],
+              bom_csv: str, elements: list[dict], revision: str, date: str,
+              three_version: str) -> dict:
+    """What the page shows, JSON-ready.
+
+    Args:
+        facts: the manifest's facts (design, versions, parts, strength ...;
+            any ``verification`` key is shown as the verification matrix).
+        sheets: (export path, title, SVG text) of every drawing sheet, in order.
+        scenes: the scene names, in the order of the page's scene list.
+        elements: :func:`tactcad.mechanics.strength.strength_summary` records.
+    """
+    manifest = {k: v for k, v in facts.items() if k != "files"}
+    if "verification" not in manifest and manifest.get("requirements"):
+        manifest["verification"] = verification_view(manifest["requirements"])
+    return {
+        "manifest": manifest,
+        "revision": revision, "date": date, "three_version": three_version,
+        "scenes": list(scenes),
+        "sheets": [{"path": p, "title": t,
+                    "svg_base64": base64.b64encode(svg.encode("utf-8")).decode("ascii")}
+                   for p, t, svg in sheets],
+        "bom": bom_table(bom_csv), "elements": elements,
+    }
+
+
+def verification_view(requirements: dict) -> dict:
+    """The manifest's requirements record as the page's verification section:
+    the closed-form matrix (one row per requirement), the limits behind the
+    full-scale force (the binding one marked) and the stated or derived values."""
+    matrix = requirements.get("closed_form_matrix") or []
+    rows = [{k: v for k, v in r.items() if k not in ("limits", "binding_words")} for r in matrix]
+    limits = next((r["limits"] for r in matrix if r.get("limits")), [])
+    return {"verification matrix (closed form; tactcad verify --model fem3d for the reference)": rows,
+            "limits behind the full-scale force": limits,
+            "requirements": requirements.get("values", {})}
+
+
+def page_html(data: dict, scene_glbs: dict[str, bytes], import_map: str) -> str:
+    """The page's text: the template with the data, the scenes and the import map in it."""
+    page, script = _template()
+    sha = data["manifest"]["design"]["sha256"]
+    scenes = {n: base64.b64encode(b).decode("ascii") for n, b in scene_glbs.items()}
+    values = {"SHA256": html.escape(sha),
+              "TITLE": html.escape(f"{data['manifest']['design']['name']}: review"),
+              "IMPORTMAP": import_map.replace("</", "<\\/"),
+              "DATA": _json_in_html(data), "SCENES": _json_in_html(scenes), "SCRIPT": script}
+    # one pass: a value holding a token's text is never replaced again
+    return re.sub(r"@@([A-Z0-9]+)@@", lambda m: values[m.group(1)], page)
+
+
+def write_review_page(path: Path, data: dict, scene_glbs: dict[str, bytes], import_map: str) -> int:
+    """Write the page atomically; its size in bytes.
+
+    Raises:
+        OSError: the file cannot be written.
+    """
+    body = page_html(data, scene_glbs, import_map).encode("utf-8")
+    write_bytes_atomic(path, body)
+    return len(body)
+
+
+def checks_script(design_sha256: str, results: Iterable) -> str:
+    """``review/checks.js``: the check results for the page (``window.TACTCAD_CHECKS``)."""
+    checks = [{"check": r.check, "subject": r.subject, "passed": bool(r.passed),
+               "detail": r.detail} for r in results]
+    bad = sum(not c["passed"] for c in checks)
+    doc = {"design_sha256": design_sha256, "passed": len(checks) - bad, "failed": bad,
+           "checks": checks}
+    return "window.TACTCAD_CHECKS = " + _json_in_html(doc) + ";\n"
+
+
+def write_checks_script(out_dir: Path, design_sha256: str, results: Iterable) -> Path | None:
+    """Write ``review/checks.js`` into an export that has a review page; its path, or
+    None when there is no page to show it.
+
+    Raises:
+        OSError: the file cannot be written.
+    """
+    page = Path(out_dir) / REVIEW_PAGE
+    if not page.is_file():
+        return None
+    path = Path(out_dir) / CHECKS_SCRIPT
+    write_bytes_atomic(path, checks_script(design_sha256, results).encode("utf-8"))
+    return path

@@ -1,0 +1,567 @@
+"""Measured calibration readings from the files a lab has on disk.
+
+Formats (chosen by the file's suffix, else by its first bytes):
+
+* **CSV** as Excel, LabVIEW or a script saves it: with or without a UTF-8
+  byte order mark, comma-, semicolon- or tab-separated, decimal point or
+  decimal comma (both detected and reported in :class:`ReadInfo`), UTF-8 or
+  UTF-16 with a byte order mark, any other encoding by name (``encoding``);
+  a file that is not valid text in its encoding is refused with the line and
+  column of the first bad byte.
+* **LabVIEW LVM** (text, "LabVIEW Measurement" header; separator and decimal
+  separator from its header), read by the maintained ``lvm_read`` package;
+  every segment's rows are readings. Its X column is channel ``X_Value``.
+* **TDMS** (NI's binary format), read by ``npTDMS``; channels are named
+  ``group/channel``, a bare channel name where it is unique in the file.
+
+Each reading needs the five columns of :data:`COLUMNS` (element number, run
+number, Z travel in um, force in N, bridge signal in V). A CSV names them in
+its header; LVM and TDMS name channels, so a mapping ``column -> channel``
+(``--map signal_V=Dev1/ai1,force_N=Dev1/ai0``) says which channel is which
+column; a column not mapped is read from the channel (or CSV header) of its
+own name. Every refusal names the file, the line (or TDMS row) and the column.
+"""
+
+from __future__ import annotations
+
+import codecs
+import contextlib
+import csv
+import logging
+import re
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Iterable, Iterator, Mapping
+
+import numpy as np
+
+from tactcad.mechanics.paper.calibration import CSV_COLUMNS as COLUMNS
+from tactcad.mechanics.paper.calibration import CSV_SENSOR_KEY as SENSOR_KEY
+from tactcad.mechanics.paper.calibration import (K_SENSOR_N_PER_MM, CalibrationData,
+                                                 CalibrationError)
+#: Largest data file read (bytes): far above any calibration run, small enough
+#: that a wrong file (a video, a disk image) is refused at once.
+MAX_BYTES = 64 * 2**20
+FORMATS = ("csv", "lvm", "tdms")
+#: Largest magnitude of a reading per column, with its unit: far beyond any
+#: bench rig (1 m of travel, 100 kN, 10 kV), so a value past it is a damaged
+#: cell, and the fit's sums of squares stay finite.
+LIMITS = {"element": (1e9, ""), "run": (1e9, ""), "z_um": (1e6, "um"), "force_N": (1e5, "N"),
+          "signal_V": (1e4, "V")}
+_SEPARATORS = {",": "comma", ";": "semicolon", "\t": "tab"}
+_BOMS = ((codecs.BOM_UTF8, "utf-8-sig"), (codecs.BOM_UTF16_LE, "utf-16"),
+         (codecs.BOM_UTF16_BE, "utf-16"))
+_DECIMAL_COMMA = re.compile(r"^[+-]?\d*,\d+(?:[eE][+-]?\d+)?$")
+
+
+@dataclass(frozen=True)
+class ReadInfo:
+    """How a data file was read (stated in tactcad's output).
+
+    Attributes:
+        path: the file.
+        format: ``csv``, ``lvm`` or ``tdms``.
+        encoding: the text encoding (None for TDMS); ``utf-8-sig`` means
+            UTF-8 with a byte order mark.
+        separator: the column separator (None for TDMS).
+        decimal: ``.`` or ``,`` (None for TDMS).
+        mapping: column -> the CSV header, LVM or TDMS channel it was read from.
+        readings: number of readings.
+    """
+
+    path: str
+    format: str
+    encoding: str | None = None
+    separator: str | None = None
+    decimal: str | None = None
+    mapping: Mapping[str, str] = field(default_factory=dict)
+    readings: int = 0
+
+    def describe(self) -> str:
+        """One phrase, e.g. ``csv, utf-8 with byte order mark, semicolon-separated, decimal comma``."""
+        parts = [self.format]
+        if self.encoding:
+            parts.append("utf-8 with byte order mark" if self.encoding == "utf-8-sig"
+                         else self.encoding)
+        if self.separator:
+            parts.append(f"{_SEPARATORS.get(self.separator, repr(self.separator))}-separated")
+        if self.decimal:
+            parts.append("decimal comma" if self.decimal == "," else "decimal point")
+        renamed = [f"{c}={s}" for c, s in self.mapping.items() if c != s]
+        if renamed:
+            parts.append("columns " + ",".join(renamed))
+        return ", ".join(parts) + f", {self.readings} readings"
+
+    def as_dict(self) -> dict:
+        return {"path": self.path, "format": self.format, "encoding": self.encoding,
+                "separator": self.separator, "decimal": self.decimal,
+                "mapping": dict(self.mapping), "readings": self.readings}
+
+
+def parse_mapping(texts: Iterable[str] | None) -> dict[str, str]:
+    """``["signal_V=Dev1/ai1,force_N=Dev1/ai0"]`` -> ``{"signal_V": "Dev1/ai1", ...}``.
+
+    Raises:
+        CalibrationError: a pair without ``=``, an unknown column, a column
+            given twice or an empty channel name.
+    """
+    out: dict[str, str] = {}
+    for text in texts or ():
+        for pair in text.split(","):
+            column, sep, source = (s.strip() for s in pair.partition("="))
+            if not sep or column not in COLUMNS or not source:
+                raise CalibrationError(
+                    f"--map = {pair!r}: allowed COLUMN=CHANNEL pairs, comma-separated, with "
+                    f"COLUMN one of {', '.join(COLUMNS)}, e.g. signal_V=Dev1/ai1")
+            if column in out:
+                raise CalibrationError(f"--map = {text!r}: column {column} given twice")
+            out[column] = source
+    return out
+
+
+# ---------------------------------------------------------------------------
+# Entry point
+# ---------------------------------------------------------------------------
+def read_measured(path, encoding: str | None = None, mapping: Mapping[str, str] | None = None,
+                  fmt: str | None = None) -> tuple[dict[int, CalibrationData], ReadInfo]:
+    """Read calibration readings from a CSV, LVM or TDMS file.
+
+    Args:
+        path: the data file.
+        encoding: text encoding by name (Python's codec names: ``cp1252``,
+            ``latin-1``, ``utf-16`` ...); None reads UTF-8 (or what a byte
+            order mark says). Ignored for TDMS.
+        mapping: column -> channel (see the module doc); None maps each
+            column to the channel of its own name.
+        fmt: ``csv``, ``lvm`` or ``tdms``; None chooses by suffix, then content.
+
+    Returns:
+        ({element: :class:`CalibrationData`} in order of first appearance,
+        :class:`ReadInfo`).
+
+    Raises:
+        CalibrationError: the file cannot be read, is too large, is not text in
+            its encoding, or any column, value or count is out of range; the
+            message names the file, the line (TDMS: row) and the column.
+    """
+    p = Path(path)
+    where = str(p)
+    if encoding is not None:
+        _check_encoding(encoding)
+    try:
+        size = p.stat().st_size
+        if not p.is_file():
+            raise CalibrationError(f"{where}: not a file: allowed a CSV, LVM or TDMS file")
+        if size > MAX_BYTES:
+            raise CalibrationError(f"{where}: {size} bytes: allowed at most {MAX_BYTES} bytes "
+                                   "for a calibration data file")
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise CalibrationError(f"{where}: cannot be read ({exc.strerror or exc})") from None
+    fmt = fmt or _format_of(p, raw)
+    mapping = dict(mapping or {})
+    if fmt == "tdms":
+        return _read_tdms(p, mapping)
+    text, used = decode(raw, encoding, where)
+    if fmt == "lvm":
+        return _read_lvm(text, used, where, mapping)
+    return parse_csv_text(text, where, mapping, used)
+
+
+def _format_of(p: Path, raw: bytes) -> str:
+    suffix = p.suffix.lower()
+    if suffix in (".tdms", ".lvm"):
+        return suffix[1:]
+    if raw.startswith(b"TDSm"):
+        return "tdms"
+    head = raw[:64].lstrip(codecs.BOM_UTF8)
+    return "lvm" if head.startswith(b"LabVIEW Measurement") else "csv"
+
+
+def _check_encoding(name: str) -> None:
+    try:
+        info = codecs.lookup(name)
+    except (LookupError, ValueError, TypeError):
+        info = None
+    if info is None or not getattr(info, "_is_text_encoding", True):
+        raise CalibrationError(f"--encoding = {name!r}: allowed a text encoding name such as "
+                               "utf-8, utf-8-sig, cp1252, latin-1, utf-16")
+
+
+def decode(raw: bytes, encoding: str | None, where: str) -> tuple[str, str]:
+    """The text of ``raw`` and the encoding used: a byte order mark wins, then
+    ``encoding``, then UTF-8.
+
+    Raises:
+        CalibrationError: a byte that is not valid in the encoding (its line
+            and column named), or a NUL character (a binary file).
+    """
+    used = encoding or "utf-8"
+    for bom, name in _BOMS:
+        if raw.startswith(bom):
+            used = name
+            break
+    try:
+        text = raw.decode(used)
+    except UnicodeDecodeError as exc:
+        before = raw[:exc.start]
+        line = before.count(b"\n") + 1
+        column = exc.start - (before.rfind(b"\n") + 1) + 1
+        bad = raw[exc.start:exc.start + 1].hex().upper()
+        hint = "give the file's encoding with --encoding (e.g. cp1252 or latin-1 for Excel on " \
+               "Windows)" if encoding is None else "give the file's own encoding with --encoding"
+        raise CalibrationError(f"{where}: line {line}, column {column}: byte 0x{bad} is not "
+                               f"{used} text: allowed {used}; {hint}") from None
+    except UnicodeError as exc:  # e.g. utf-16 with an odd byte count
+        raise CalibrationError(f"{where}: line 1, column 1: not {used} text ({exc})") from None
+    nul = text.find("\0")
+    if nul >= 0:
+        line = text.count("\n", 0, nul) + 1
+        column = nul - (text.rfind("\n", 0, nul) + 1) + 1
+        raise CalibrationError(f"{where}: line {line}, column {column}: a NUL character: allowed "
+                               "text (CSV or LVM); is this a binary file?")
+    if used == "utf-8-sig":
+        return text, used
+    return text.lstrip("\ufeff"), used
+
+
+# ---------------------------------------------------------------------------
+# Readings -> CalibrationData (one set of rules for every format)
+# ---------------------------------------------------------------------------
+class _Readings:
+    """Readings collected row by row and checked as they come; ``where(col)``
+    names the file, line and column of a value."""
+
+    def __init__(self) -> None:
+        self.by_element: dict[int, list[tuple[float, float, float]]] = {}
+        self.count = 0
+
+    def add(self, values: Mapping[str, float], where: Callable[[str], str]) -> None:
+        for c in COLUMNS:
+            if not np.isfinite(values[c]):
+                raise CalibrationError(f"{where(c)} = {values[c]!r}: allowed a finite number")
+            if abs(values[c]) > LIMITS[c][0]:
+                raise CalibrationError(f"{where(c)} = {values[c]!r}: allowed |value| <= "
+                                       f"{LIMITS[c][0]:g} {LIMITS[c][1]}")
+        element = _integer(values["element"], where("element"))
+        _integer(values["run"], where("run"))
+        if values["z_um"] < 0:
+            raise CalibrationError(f"{where('z_um')} = {values['z_um']!r}: allowed >= 0 um")
+        self.by_element.setdefault(element, []).append(
+            (values["z_um"], values["force_N"], values["signal_V"]))
+        self.count += 1
+
+    def result(self, where: str, k_sensor: float) -> dict[int, CalibrationData]:
+        if not self.count:
+            raise CalibrationError(f"{where}: readings = 0: allowed >= 3 readings per element")
+        out = {}
+        for element, rows in self.by_element.items():
+            if len(rows) < 3:
+                raise CalibrationError(f"{where}: element {element}: readings = {len(rows)}: "
+                                       "allowed >= 3")
+            z, f, v = (np.array(c, dtype=float) for c in zip(*rows))
+            for a in (z, f, v):
+                a.flags.writeable = False
+            out[element] = CalibrationData(z, f, v, float(k_sensor))
+        return out
+
+
+def _integer(x: float, where: str) -> int:
+    if not (x == int(x) and 1 <= x <= 1e9):
+        raise CalibrationError(f"{where} = {x!r}: allowed an integer >= 1")
+    return int(x)
+
+
+def _sensor_stiffness(value: str, where: str, decimal: str = ".") -> float:
+    k = _number(value, where, decimal)
+    if not (np.isfinite(k) and k > 0):
+        raise CalibrationError(f"{where} = {value.strip()!r}: allowed a number > 0 (N/mm)")
+    return k
+
+
+def _number(text: str, where: str, decimal: str = ".") -> float:
+    cell = text.strip()
+    if decimal == ",":
+        if "." in cell:
+            raise CalibrationError(f"{where} = {cell!r}: allowed a number with a decimal comma "
+                                   "like the rest of the file")
+        cell = cell.replace(",", ".")
+    try:
+        x = float(cell)
+    except ValueError:
+        raise CalibrationError(f"{where} = {text.strip()[:40]!r}: allowed a number") from None
+    if not np.isfinite(x):
+        raise CalibrationError(f"{where} = {text.strip()!r}: allowed a finite number")
+    return x
+
+
+def _resolve(names: list[str], mapping: Mapping[str, str], where: str,
+             kind: str) -> dict[str, int]:
+    """Column -> index into ``names`` (a header or channel list), by ``mapping``."""
+    unknown = [c for c in mapping if c not in COLUMNS]
+    if unknown:
+        raise CalibrationError(f"--map: column {unknown[0]!r}: allowed {', '.join(COLUMNS)}")
+    out, missing = {}, []
+    for c in COLUMNS:
+        source = mapping.get(c, c)
+        hits = [i for i, n in enumerate(names) if n == source]
+        if len(hits) > 1:
+            raise CalibrationError(f"{where}: {kind} {source!r} appears {len(hits)} times: "
+                                   "allowed once")
+        if hits:
+            out[c] = hits[0]
+        else:
+            missing.append(c if source == c else f"{c} (mapped to {source!r})")
+    if missing:
+        shown = [n for n in names if n][:20]
+        raise CalibrationError(
+            f"{where}: {kind}s = {shown}: missing {', '.join(missing)}; allowed {kind}s named "
+            f"{', '.join(COLUMNS)}, or a --map COLUMN={kind.upper()} for each other name")
+    return out
+
+
+# ---------------------------------------------------------------------------
+# CSV
+# ---------------------------------------------------------------------------
+def parse_csv_text(text: str, source: str = "<csv>", mapping: Mapping[str, str] | None = None,
+                   encoding: str | None = None) -> tuple[dict[int, CalibrationData], ReadInfo]:
+    """Calibration readings of a CSV text (see the module doc).
+
+    A header line names the columns (in any order, extra columns ignored
+    only when ``mapping`` names the ones used); lines starting with ``#`` are
+    comments, ``# k_sensor_N_per_mm = 57.04`` sets the force sensor's stiffness
+    (N/mm; default the paper's 57.04). The separator is the one of ``,``,
+    ``;``, tab that splits the header into the columns; the decimal separator
+    is ``,`` when a value is written with a decimal comma (never with a comma
+    separator), else ``.``.
+
+    Raises:
+        CalibrationError: see :func:`read_measured`.
+    """
+    mapping = dict(mapping or {})
+    sensor_line, lines = None, []
+    for n, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if stripped.startswith("#"):
+            body = stripped.lstrip("#").strip()
+            if body.startswith(SENSOR_KEY) and "=" in body:
+                sensor_line = (n, body.split("=", 1)[1])
+        elif stripped.strip(",;\t"):
+            lines.append((n, line))
+    if not lines:
+        raise CalibrationError(f"{source}: line 1: no header and no readings; allowed a header "
+                               f"{','.join(COLUMNS)} and >= 3 readings per element")
+    header_n, header_line = lines[0]
+    separator, header = _split_header(header_line, mapping)
+    if len(set(header)) != len(header):
+        dup = next(h for h in header if header.count(h) > 1)
+        raise CalibrationError(f"{source}: line {header_n}, column {dup!r}: appears twice in the "
+                               "header: allowed once")
+    if not mapping:  # without a mapping the header is exactly the five columns
+        missing = [c for c in COLUMNS if c not in header]
+        unknown = [c for c in header if c not in COLUMNS]
+        if missing or unknown:
+            raise CalibrationError(
+                f"{source}: line {header_n}: columns = {header}: allowed exactly {list(COLUMNS)} "
+                f"(missing {missing}, unknown {unknown}), separated by comma, semicolon or tab, "
+                "or --map COLUMN=HEADER for other names")
+    index = _resolve(header, mapping, f"{source}: line {header_n}", "column")
+    decimal = _decimal_of(lines[1:], separator)
+    k_sensor = K_SENSOR_N_PER_MM if sensor_line is None else _sensor_stiffness(
+        sensor_line[1], f"{source}: line {sensor_line[0]}, column {SENSOR_KEY}", decimal)
+    readings = _Readings()
+    for n, line in lines[1:]:
+        cells = next(csv.reader([line], delimiter=separator))
+        if len(cells) != len(header):
+            raise CalibrationError(f"{source}: line {n}, column {min(len(cells), len(header)) + 1}:"
+                                   f" {len(cells)} values: allowed {len(header)} "
+                                   f"({separator.join(header)})")
+        values = {c: _number(cells[i], f"{source}: line {n}, column {c}", decimal)
+                  for c, i in index.items()}
+        readings.add(values, lambda c, n=n: f"{source}: line {n}, column {c}")
+    data = readings.result(source, k_sensor)
+    return data, ReadInfo(source, "csv", encoding, separator, decimal,
+                          {c: header[i] for c, i in index.items()}, readings.count)
+
+
+def _split_header(line: str, mapping: Mapping[str, str]) -> tuple[str, list[str]]:
+    """The separator that splits the header into the wanted columns, and the header's cells."""
+    wanted = {mapping.get(c, c) for c in COLUMNS}
+    best = None
+    for sep in _SEPARATORS:
+        cells = [h.strip() for h in next(csv.reader([line], delimiter=sep))]
+        score = (len(wanted & set(cells)), len(cells))
+        if best is None or score > best[0]:
+            best = (score, sep, cells)
+    return best[1], best[2]
+
+
+def _decimal_of(lines: list[tuple[int, str]], separator: str) -> str:
+    if separator == ",":
+        return "."
+    for _, line in lines[:50]:
+        if any(_DECIMAL_COMMA.match(c.strip()) for c in line.split(separator)):
+            return ","
+    return "."
+
+
+# ---------------------------------------------------------------------------
+# LabVIEW LVM (text)
+# ---------------------------------------------------------------------------
+def _read_lvm(text: str, encoding: str, where: str, mapping: Mapping[str, str]):
+    import lvm_read
+
+    try:
+        lvm = lvm_read.read_str(text)
+    except (ValueError, SyntaxError, KeyError, IndexError, TypeError) as exc:
+        raise CalibrationError(f"{where}: line 1, column 1: not a LabVIEW measurement file "
+                               f"lvm_read can read ({str(exc)[:120]})") from None
+    decimal = lvm.get("Decimal_Separator", ".") or "."
+    separator = _lvm_separator(text)
+    rows_at = _lvm_data_lines(text, separator)
+    readings = _Readings()
+    used: dict[str, str] = {}
+    k_sensor = K_SENSOR_N_PER_MM
+    if SENSOR_KEY in lvm:
+        k_sensor = _sensor_stiffness(str(lvm[SENSOR_KEY]), f"{where}: header {SENSOR_KEY}", decimal)
+    for s in range(int(lvm.get("Segments", 0))):
+        seg = lvm[s]
+        names = [n.strip() for n in seg.get("Channel names", [])]
+        if "data" not in seg or not names:
+            continue
+        line_of = rows_at[s] if s < len(rows_at) else None
+        head_line = (line_of[0] - 1) if line_of else 1
+        index = _resolve(names, mapping, f"{where}: line {head_line}", "channel")
+        used = {c: names[i] for c, i in index.items()}
+        data = np.asarray(seg["data"], dtype=float).reshape(len(seg["data"]), -1)
+        for r, row in enumerate(data):
+            n = line_of[r] if line_of and r < len(line_of) else head_line + 1 + r
+            values = {}
+            for c, i in index.items():
+                x = row[i] if i < row.size else np.nan
+                if not np.isfinite(x):
+                    raise CalibrationError(f"{where}: line {n}, column {c} (channel {names[i]!r}): "
+                                           f"{_lvm_cell(text, n, i, separator)!r}: allowed a "
+                                           f"finite number (decimal {decimal!r})")
+                values[c] = float(x)
+            readings.add(values, lambda c, n=n: f"{where}: line {n}, column {c}")
+    if not readings.count:
+        raise CalibrationError(f"{where}: line 1: no data segment with channel names: allowed a "
+                               "LabVIEW measurement file with an X_Value header line and readings")
+    return readings.result(where, k_sensor), ReadInfo(where, "lvm", encoding, separator, decimal,
+                                                      used, readings.count)
+
+
+def _lvm_separator(text: str) -> str:
+    for line in text.splitlines()[:25]:
+        if line.startswith("Separator") and len(line.rstrip("\r\n")) > 9:
+            return {"Tab": "\t", "Comma": ",", "Semicolon": ";"}.get(line[9:].strip(), line[9])
+    return "\t"
+
+
+def _lvm_data_lines(text: str, separator: str) -> list[list[int]]:
+    """Line numbers (1-based) of each segment's data rows, as lvm_read reads them."""
+    out: list[list[int]] = []
+    current: list[int] | None = None
+    for n, line in enumerate(text.splitlines(), start=1):
+        if line.split(separator)[0] == "X_Value":
+            current = []
+            out.append(current)
+        elif current is not None:
+            if line.strip(separator + " \r") == "":
+                current = None
+            else:
+                current.append(n)
+    return out
+
+
+def _lvm_cell(text: str, line: int, index: int, separator: str) -> str:
+    lines = text.splitlines()
+    cells = lines[line - 1].split(separator) if 0 < line <= len(lines) else []
+    return cells[index][:40] if index < len(cells) else ""
+
+
+# ---------------------------------------------------------------------------
+# TDMS (binary)
+# ---------------------------------------------------------------------------
+class MeasuredDataWarning(UserWarning):
+    """A data file read with a doubt the reader raised (e.g. a TDMS file cut short)."""
+
+
+@contextlib.contextmanager
+def _tdms_log_as_warnings(where: str) -> Iterator[None]:
+    """npTDMS logs what it repairs to stderr in its own format; within this,
+    each distinct message becomes one warning naming the file."""
+    from nptdms.log import log_manager
+
+    messages: list[str] = []
+
+    class Collect(logging.Handler):
+        def emit(self, record: logging.LogRecord) -> None:
+            messages.append(record.getMessage())
+
+    collect = Collect(logging.WARNING)
+    loggers = list(log_manager.loggers.values())
+    for log in loggers:
+        log.removeHandler(log_manager.console_handler)
+        log.addHandler(collect)
+    try:
+        yield
+    finally:
+        for log in loggers:
+            log.removeHandler(collect)
+            log.addHandler(log_manager.console_handler)
+        for text in dict.fromkeys(messages):
+            short = text if len(text) <= 160 else text[:160] + "..."
+            warnings.warn(f"{where}: npTDMS: {short}", MeasuredDataWarning, stacklevel=3)
+
+
+def _read_tdms(p: Path, mapping: Mapping[str, str]):
+    import nptdms
+
+    where = str(p)
+    try:
+        with _tdms_log_as_warnings(where):
+            tdms = nptdms.TdmsFile.read(p)
+            channels = {f"{g.name}/{c.name}": c for g in tdms.groups() for c in g.channels()}
+            arrays = {path: np.asarray(c[:]) for path, c in channels.items()}
+            props = {**tdms.properties,
+                     **{k: v for g in tdms.groups() for k, v in g.properties.items()}}
+    except CalibrationError:
+        raise
+    except Exception as exc:  # npTDMS raises ValueError, KeyError, struct.error... on a bad file
+        raise CalibrationError(f"{where}: row 0, column -: not a TDMS file npTDMS can read "
+                               f"({type(exc).__name__}: {str(exc)[:120]})") from None
+    short: dict[str, list[str]] = {}
+    for path in channels:
+        short.setdefault(path.split("/", 1)[1], []).append(path)
+    names = list(channels)
+    resolved = {}
+    for c in COLUMNS:
+        source = mapping.get(c, c)
+        if source not in channels and len(short.get(source, [])) == 1:
+            source = short[source][0]
+        resolved[c] = source
+    index = _resolve(names, resolved, where, "channel")
+    used = {c: names[i] for c, i in index.items()}
+    lengths = {c: arrays[used[c]].size for c in COLUMNS}
+    if len(set(lengths.values())) > 1:
+        raise CalibrationError(f"{where}: channel lengths {lengths}: allowed equal lengths "
+                               "(one value per reading in every channel)")
+    k_sensor = K_SENSOR_N_PER_MM
+    if SENSOR_KEY in props:
+        k_sensor = _sensor_stiffness(str(props[SENSOR_KEY]), f"{where}: property {SENSOR_KEY}")
+    readings = _Readings()
+    for r in range(lengths["element"]):
+        values = {}
+        for c in COLUMNS:
+            try:
+                values[c] = float(arrays[used[c]][r])
+            except (TypeError, ValueError):
+                raise CalibrationError(f"{where}: row {r + 1}, column {c} (channel {used[c]!r}) = "
+                                       f"{str(arrays[used[c]][r])[:40]!r}: allowed a number") from None
+        readings.add(values, lambda c, r=r: f"{where}: row {r + 1}, column {c} "
+                                            f"(channel {used[c]!r})")
+    return readings.result(where, k_sensor), ReadInfo(where, "tdms", mapping=used,
+                                                      readings=readings.count)

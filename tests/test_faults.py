@@ -1,0 +1,166 @@
+"""Faults of the disk: a failed write of any kind is exit 3 naming the file and
+"disk full", the previous set stays whole, leftovers that cannot be removed
+are named in one warning; a missing input file is bad input (exit 2)."""
+
+from __future__ import annotations
+
+import errno
+import hashlib
+import json
+import os
+import shutil
+import subprocess
+import uuid
+from pathlib import Path
+
+import pytest
+
+from tactcad import atomic, cli
+
+
+def set_digest(folder: Path) -> dict[str, str]:
+    return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def export(out: Path, *extra: str) -> int:
+    return cli.main(["export", "--no-cache", "--quiet", "--out", str(out), *extra])
+
+
+@pytest.fixture
+def tiny_disk():
+    """A 1 MiB tmpfs (root only; skipped elsewhere)."""
+    if os.geteuid() != 0 or not shutil.which("mount"):
+        pytest.skip("mounting a tmpfs needs root")
+    mnt = Path(f"/tmp/tactcad-tinydisk-{uuid.uuid4().hex[:8]}")
+    mnt.mkdir()
+    if subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(mnt)],
+                      capture_output=True).returncode:
+        mnt.rmdir()
+        pytest.skip("cannot mount a tmpfs here")
+    try:
+        yield mnt
+    finally:
+        subprocess.run(["umount", str(mnt)], check=False)
+        mnt.rmdir()
+
+
+def fill(disk: Path) -> None:
+    """Fill ``disk`` to the last byte."""
+    for k, size in enumerate((65536, 512, 1)):
+        try:
+            with open(disk / f"filler{k}", "wb") as fh:
+                while True:
+                    fh.write(b"\0" * size)
+                    fh.flush()
+        except OSError as exc:
+            assert exc.errno == errno.ENOSPC
+
+
+def test_a_full_disk_is_exit_3_naming_the_file_and_the_old_set_stays_whole(tiny_disk, capsys):
+    out = tiny_disk / "ex"
+    assert export(out, "--only", "bom") == 0
+    before = set_digest(out)
+    fill(tiny_disk)
+    capsys.readouterr()
+    assert export(out, "--only", "bom", "--set", "element.web_thickness_mm=0.3") == 3
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "disk full" in err and f"{out}/" in err
+    assert ".staging-" not in err
+    assert set_digest(out) == before
+    assert not list(tiny_disk.glob(".ex.staging-*"))
+
+
+def test_a_full_disk_is_json_with_exit_3(tiny_disk, capsys):
+    fill(tiny_disk)
+    assert cli.main(["export", "--no-cache", "--json", "--only", "bom",
+                     "--out", str(tiny_disk / "ex")]) == 3
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert err["exit_code"] == 3 and "disk full" in err["message"]
+
+
+class _Refused(RuntimeError):
+    pass
+
+
+def _fail_silently(*args, **kwargs):
+    raise _Refused("the writer failed")  # as OpenCascade or freecadcmd do: no cause given
+
+
+def _fail_enospc(path, *args, **kwargs):
+    raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind,module,name,extra", [
+    ("STEP", "tactcad.export.step", "_write_doc", ["--only", "step", "--part", "spacer"]),
+    ("GLB", "tactcad.export.glb", "write_glb", ["--scene", "wirecut"]),
+    ("PDF", "tactcad.drawings.pdf", "svgs_to_pdf", ["--only", "drawings"]),
+    ("FCStd", "tactcad.export.freecad_review", "start_review_files", ["--only", "review"]),
+])
+def test_every_writer_failing_on_a_full_disk_is_exit_3(kind, module, name, extra, tmp_path,
+                                                       monkeypatch, capsys):
+    import importlib
+
+    if kind == "FCStd" and not shutil.which("freecadcmd"):
+        pytest.skip("freecadcmd is not installed")
+    monkeypatch.setenv("TACTCAD_WORKERS", "0")  # the patched writer runs in this process
+    out = tmp_path / "ex"
+    assert export(out, "--only", "bom") == 0
+    before = set_digest(out)
+    mod = importlib.import_module(module)
+    real_free = atomic.free_bytes
+    monkeypatch.setattr(mod, name, _fail_silently)
+    monkeypatch.setattr(atomic, "free_bytes", lambda p: 0)  # the disk is full
+    capsys.readouterr()
+    assert export(out, *extra) == 3, kind
+    err = capsys.readouterr().err
+    assert "disk full" in err and str(out) in err and ".staging-" not in err, err
+    assert set_digest(out) == before
+    # with room on the disk the same failure is not put down to the disk
+    monkeypatch.setattr(atomic, "free_bytes", real_free)
+    with pytest.raises(_Refused):
+        export(out, *extra)
+    assert set_digest(out) == before
+
+
+@pytest.mark.slow
+def test_a_writer_raising_enospc_names_the_export_path_not_the_staging(tmp_path, monkeypatch,
+                                                                       capsys):
+    from tactcad.export import bom
+
+    monkeypatch.setattr(bom, "write_bom_files", lambda plan, staging, *a: _fail_enospc(
+        staging / "bom.csv"))
+    assert export(tmp_path / "ex", "--only", "bom") == 3
+    err = capsys.readouterr().err
+    assert f"{tmp_path / 'ex'}/bom.csv: disk full" in err
+
+
+def test_leftovers_that_cannot_be_removed_are_named_in_one_warning(tmp_path, monkeypatch,
+                                                                   capsys):
+    out = tmp_path / "ex"
+    stuck = tmp_path / ".ex.staging-killed"
+    (stuck / "sub").mkdir(parents=True)
+    (stuck / "sub" / "a.step").write_text("x")
+    real = shutil.rmtree
+
+    def rmtree(path, onerror=None, **kw):
+        if Path(path) == stuck:  # a read-only leftover (root could remove anything)
+            onerror(os.unlink, str(stuck / "sub" / "a.step"), None)
+            return None
+        return real(path, onerror=onerror, **kw) if onerror else real(path, **kw)
+
+    monkeypatch.setattr(atomic.shutil, "rmtree", rmtree)
+    assert cli.main(["export", "--no-cache", "--out", str(out), "--only", "bom"]) == 0
+    warnings = [ln for ln in capsys.readouterr().err.splitlines() if "warning" in ln]
+    assert len(warnings) == 1 and str(stuck / "sub" / "a.step") in warnings[0]
+    assert warnings[0].startswith("tactcad: warning: could not remove 1 leftover path")
+
+
+@pytest.mark.parametrize("argv", [["stiffness", "--element", "1", "--design", "/no/such.toml"],
+                                  ["calibrate", "--data", "/no/such.csv"],
+                                  ["stiffness", "--element", "1", "--design", "/"]])
+def test_a_missing_or_unreadable_input_file_is_bad_input(argv, capsys):
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and argv[-1] in err

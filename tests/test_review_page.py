@@ -1,0 +1,148 @@
+"""The offline review page: its text (fast) and the page in headless Chromium (slow)."""
+
+from __future__ import annotations
+
+import json
+import re
+from types import SimpleNamespace
+
+import pytest
+
+from tactcad.export.review_assets import MODULES, ReviewAssetsError, _rewrite, import_map
+from tactcad.export.review_page import (REVIEW_PAGE, bom_table, checks_script, page_data,
+                                        page_html, write_checks_script)
+
+
+def _data(name="demo", sha="ab" * 32, **extra):
+    facts = {"design": {"name": name, "source": "d.toml", "sha256": sha}, "tactcad_version": "0",
+             "cad_stack": {}, "units": "mm", "files": [{"path": "x"}], **extra}
+    return page_data(facts, [("drawings/a.svg", "a", "<svg/>")], ["s"],
+                     "\ufeffitem,part\n1,a\n", [], "A", "2026-01-01", "0.187.0")
+
+
+def test_page_text_carries_design_hash_and_no_network():
+    html = page_html(_data(), {"s": b"glb"}, '{"imports": {}}')
+    assert '<meta name="tactcad-design-sha256" content="' + "ab" * 32 + '">' in html
+    assert not re.search(r"""(src|href)\s*=\s*["']https?:""", html)
+
+
+def test_hostile_design_name_stays_data():
+    """A name holding markup or a template token neither breaks the page nor is replaced."""
+    name = "</script><script>alert(1)</script>@@SCENES@@"
+    html = page_html(_data(name=name), {"s": b"glb"}, '{"imports": {}}')
+    assert "<script>alert(1)" not in html
+    blob = re.search(r'id="review-data">(.*?)</script>', html, re.S).group(1)
+    assert json.loads(blob)["manifest"]["design"]["name"] == name
+    assert "files" not in json.loads(blob)["manifest"]
+
+
+def test_verification_is_passed_on_when_the_manifest_has_it():
+    assert "verification" not in _data()["manifest"]
+    assert _data(verification=[{"requirement": "K"}])["manifest"]["verification"]
+
+
+def test_bom_table_reads_the_csv_with_its_bom():
+    t = bom_table("\ufeffitem,part\n1,élément\n")
+    assert t == {"columns": ["item", "part"], "rows": [{"item": "1", "part": "élément"}]}
+    assert bom_table("") == {"columns": [], "rows": []}
+
+
+def test_checks_script_counts_and_is_written_only_beside_a_page(tmp_path):
+    r = [SimpleNamespace(check="c", subject="s", passed=True, detail=""),
+         SimpleNamespace(check="c", subject="</script>", passed=False, detail="bad")]
+    text = checks_script("ff", r)
+    doc = json.loads(text.removeprefix("window.TACTCAD_CHECKS = ").rstrip(";\n"))
+    assert (doc["passed"], doc["failed"], doc["design_sha256"]) == (1, 1, "ff")
+    assert "</script>" not in text
+    assert write_checks_script(tmp_path, "ff", r) is None
+    (tmp_path / "review").mkdir()
+    (tmp_path / REVIEW_PAGE).write_text("x")
+    assert write_checks_script(tmp_path, "ff", r).read_text() == text
+
+
+def test_import_map_inlines_every_module_without_relative_imports():
+    doc = json.loads(import_map())
+    assert set(doc["imports"]) == set(MODULES)
+    assert all(u.startswith("data:text/javascript;base64,") for u in doc["imports"].values())
+
+
+def test_an_import_outside_the_map_is_refused():
+    with pytest.raises(ReviewAssetsError, match="update MODULES"):
+        _rewrite("import { x } from './nowhere.js';", "build/three.module.js")
+    assert _rewrite("import { a } from './three.core.js';", "build/three.module.js") == \
+        "import { a } from 'three/core';"
+
+
+# --- in Chromium ---------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def browser():
+    from tactcad.checks.review_browser import BrowserMissing, browser_page, chromium_path
+
+    try:
+        chromium_path()
+        import playwright  # noqa: F401
+    except (BrowserMissing, ImportError) as exc:
+        pytest.skip(str(exc))
+    return browser_page
+
+
+@pytest.mark.slow
+def test_page_offline_in_chromium(exported, browser):
+    """From file:// with the network off: a drawn 3D view, the instance names in the
+    part tree, every drawing sheet, the BOM and the design's sha256."""
+    from tactcad.checks.review_browser import canvas_is_blank, wait_first_frame
+
+    out, result = exported
+    man = json.loads((out / "manifest.json").read_text())
+    sheets = [f["path"] for f in man["files"] if f["kind"] in ("drawing-svg", "drawing-assembly")]
+    with browser() as page:
+        page.goto((out / REVIEW_PAGE).resolve().as_uri())
+        wait_first_frame(page)
+        assert page.errors == []
+        assert not canvas_is_blank(page)
+        tree = page.locator("#tree .instance").all_inner_texts()
+        names = {t.strip() for t in tree}
+        assert {f"element_{k}" for k in range(1, 11)} | {"clamp_plate_front"} <= names
+        shown = page.eval_on_selector_all(".sheet", "cs => cs.map(c => c.dataset.sheet)")
+        assert shown == sheets
+        assert page.eval_on_selector_all(".sheet img", "is => is.every(i => i.naturalWidth > 0)")
+        assert page.locator("#bom-table tr").count() > 1
+        assert man["design"]["sha256"] in page.locator("#provenance-body").inner_text()
+        # hide one instance and highlight another: the tree and the view follow
+        page.locator('#tree label[data-instance="element_1"] input').uncheck()
+        assert page.evaluate("window.__review.instances.includes('element_1')")
+        page.locator("#clip-axis").select_option("x")
+        assert not canvas_is_blank(page)
+
+
+@pytest.mark.slow
+def test_check_results_join_the_page(exported, browser, plan):
+    from types import SimpleNamespace as R
+
+    from tactcad.checks.review_browser import wait_first_frame
+
+    out, _ = exported
+    write_checks_script(out, plan.design_hash, [R(check="volume", subject="spacer", passed=False,
+                                                    detail="off by 3 %")])
+    try:
+        with browser() as page:
+            page.goto((out / REVIEW_PAGE).resolve().as_uri())
+            wait_first_frame(page)
+            text = page.locator("#checks-body").inner_text()
+            assert "1 failed" in text and "off by 3 %" in text
+    finally:
+        (out / "review/checks.js").unlink()
+
+
+def test_requirements_of_the_manifest_show_as_the_verification_matrix():
+    record = {"values": {"full_scale_force_N": 0.1},
+              "closed_form_matrix": [{"requirement": "full_scale_force_N", "target": 0.1,
+                                      "predicted": 0.12, "pass": True, "binding_words": "w",
+                                      "limits": [{"limit": "yield", "force_N": 0.3}]},
+                                     {"requirement": "kr_over_km", "target": 10,
+                                      "predicted": 9.9, "pass": False}]}
+    view = _data(requirements=record)["manifest"]["verification"]
+    rows, limits, values = view.values()
+    assert [r["requirement"] for r in rows] == ["full_scale_force_N", "kr_over_km"]
+    assert all("limits" not in r for r in rows) and rows[1]["pass"] is False
+    assert limits == [{"limit": "yield", "force_N": 0.3}] and values == {"full_scale_force_N": 0.1}
