@@ -15,8 +15,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "Young's modulus (MPa), Poisson ratio, yield and fatigue strength (MPa, with "
                     "cycles and stress ratio), density (g/cm^3) and the document each value "
                     "comes from; each gauge's resistance, gauge factor and strain limits. A "
-                    "design names a grade exactly or by any spelling that fits only one "
-                    "(case, a name prefix, a word of its description).")
+                    "design names a grade exactly, without regard to case or by a prefix only "
+                    "one grade has.")
     add_output_args(p, "print one JSON object: grades and gauges")
     p.set_defaults(func=run)
 

@@ -159,8 +159,8 @@ def strain_gauges() -> dict[str, StrainGauge]:
 
 def match_name(entries: Mapping[str, Any], text: Any) -> str | None:
     """The entry ``text`` names: exact, else without regard to case, else the one
-    entry whose name starts with it or whose description contains it as a word
-    (``titanium`` -> ``Ti-6Al-4V-annealed``); None when none or several match."""
+    entry whose name starts with it (``ti-6al`` -> ``Ti-6Al-4V-annealed``); None when
+    none or several match."""
     if not isinstance(text, str):
         return None
     if text in entries:
@@ -169,23 +169,17 @@ def match_name(entries: Mapping[str, Any], text: Any) -> str | None:
     if not folded:
         return None
     for rule in (lambda n: n.casefold() == folded,
-                 lambda n: n.casefold().startswith(folded),
-                 lambda n: folded in _words(getattr(entries[n], "description", ""))):
+                 lambda n: n.casefold().startswith(folded)):
         found = [n for n in entries if rule(n)]
         if found:
             return found[0] if len(found) == 1 else None
     return None
 
 
-def _words(text: str) -> set[str]:
-    return {w.strip(",.()'").casefold() for w in text.split()}
-
-
 def candidates(entries: Mapping[str, Any], text: str) -> list[str]:
-    """Every entry ``text`` could mean (case-insensitive name prefix or description word)."""
+    """Every entry ``text`` could mean (case-insensitive name prefix)."""
     folded = text.strip().casefold()
-    return [n for n in entries if folded and (n.casefold().startswith(folded) or folded in
-                                              _words(getattr(entries[n], "description", "")))]
+    return [n for n in entries if folded and n.casefold().startswith(folded)]
 
 
 def _lookup(entries: Mapping[str, Any], name: Any, field: str):

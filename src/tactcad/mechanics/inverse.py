@@ -554,7 +554,7 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     if grade is not None:
         from tactcad.design.materials import material_grade
 
-        grade = material_grade(grade).name  # "titanium" -> the library's Ti-6Al-4V grade
+        grade = material_grade(grade).name  # "ti-6al-4v-annealed" -> the library's spelling
         data["material"] = {"name": grade, "grade": grade}
         data["assumptions"] = {k: v for k, v in data.get("assumptions", {}).items()
                                if not k.startswith("material.")}
