@@ -191,7 +191,7 @@ def test_flexure_array_is_the_designs_array():
 
     a = tactcad.FlexureArray(pitch_mm=4.5)
     assert a.plan.pitch_mm == 4.5
-    assert len(a.solids()) == len(array_instances(a.plan)) == 28
+    assert len(a.solids()) == len(array_instances(a.plan)) == 38  # 28 parts + 10 gauges
     with pytest.raises(DesignErrors, match="arms.lengths_mm"):
         tactcad.FlexureArray(arm_lengths_mm=[4, 5])
 
@@ -243,7 +243,7 @@ def test_readme_freecad_snippet_runs_in_freecadcmd(freecad, tmp_path):
     assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
     found = re.search(r"^(\d+) solids; parts: (.*)$", out.stdout, re.M)
     assert found, out.stdout[-2000:]
-    assert int(found.group(1)) == array["solids"] == 28
+    assert int(found.group(1)) == array["solids"] == 38  # with the 10 gauges
     from tactcad.catalogue.array import array_parts
 
     assert found.group(2).split(", ") == sorted(array_parts(project.plan))

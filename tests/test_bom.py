@@ -34,9 +34,12 @@ def _largest_counts(assemblies) -> dict[str, int]:
 def test_bom_quantities_are_the_assemblies_instance_counts(exported, plan, project):
     out, _ = exported
     rows = read_csv(out / "bom.csv")
-    q = {r["part"]: int(r["quantity"]) for r in rows}
+    # placed parts: their instance counts (spares on top); the read-out's other bought items
+    # (wire, resistors, adhesive) are not placed
+    q = {r["part"]: int(r["quantity"]) - int(r["spares"]) for r in rows}
     _, assemblies = design_assemblies(project)
-    assert q == _largest_counts(assemblies)
+    placed = _largest_counts(assemblies)
+    assert {k: v for k, v in q.items() if k in placed} == placed
     # the array's own parts: exactly its instance counts, which follow the design
     array = Counter(i.part for i in array_instances(plan))
     for part, n in array.items():
@@ -85,7 +88,8 @@ def test_markdown_table_matches_csv(exported):
     assert len(md_rows) == len(rows)
     for line, r in zip(md_rows, rows):
         cells = [c.strip() for c in line.strip("|").split(" | ")]
-        assert cells[1] == r["part"] and cells[2] == r["quantity"] and cells[3] == r["type"]
+        assert cells[1] == r["part"] and cells[2] == r["quantity"] and cells[3] == r["unit"]
+        assert cells[4] == r["spares"] and cells[5] == r["type"]
 
 
 def test_fabricated_rows_carry_process_and_purchased_a_catalogue_reference(exported):
@@ -203,6 +207,12 @@ def test_bom_csv_opens_as_utf8_sig_with_alloy_temper_and_stock(tmp_path):
 def test_bom_stock_follows_the_design_grade():
     data = default_design_data()
     data["material"]["grade"] = "7075-T6"
+    plan = plan_from_dict(data)
+    rows = {r.part: r for r in bom_rows(array_instances(plan), array_parts(plan), plan=plan)}
+    assert rows["element_a4mm"].material.endswith("EN AW-7075-T6")
+    # spacers and clamp plates have their own grade (clamp.spacer_material, clamp.material)
+    assert rows["spacer"].material.endswith("EN AW-6061-T6")
+    data["clamp"]["spacer_material"] = "7075-T6"
     plan = plan_from_dict(data)
     rows = {r.part: r for r in bom_rows(array_instances(plan), array_parts(plan), plan=plan)}
     assert rows["spacer"].material.endswith("EN AW-7075-T6")

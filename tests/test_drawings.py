@@ -23,6 +23,9 @@ SVG = "{http://www.w3.org/2000/svg}"
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?")
 
 
+from tactcad.design.tolerances import DEFAULTS as TOL_DEFAULTS  # noqa: E402
+
+
 def texts_by_id(svg_text: str) -> dict[str, str]:
     root = ET.fromstring(svg_text.encode("utf-8"))
     return {el.get("id"): (el.text or "") for el in root.iter(f"{SVG}text") if el.get("id")}
@@ -57,7 +60,9 @@ def element_expectations(g) -> dict:
         "notch_radius": g.notch_radius_mm,
         "arm_length": g.arm_length_mm,
         "tip_width": g.tip_width_mm,
-        "contact_face": g.contact_face_mm,
+        # width and depth, each with its [tolerances] value (the defaults here)
+        "contact_face": (g.contact_face_mm[0], TOL_DEFAULTS["contact_face_mm"][0],
+                         g.contact_face_mm[1], TOL_DEFAULTS["sheet_thickness_mm"][0]),
         "overall_length": g.overall_length_mm,
         "overall_height": g.tip_top_y_mm,
         "base_height": g.base_height_mm,

@@ -54,8 +54,8 @@ def test_step_header_in_mm_ap214_and_flat_instanced_assembly(exported):
     text = (out / "step/array.step").read_text()
     assert "AUTOMOTIVE_DESIGN" in text  # AP214
     assert "SI_UNIT(.MILLI.,.METRE.)" in text
-    assert text.count("MANIFOLD_SOLID_BREP") == 9  # each distinct part stored once
-    assert text.count("NEXT_ASSEMBLY_USAGE_OCCURRENCE") == 28  # placed 28 times
+    assert text.count("MANIFOLD_SOLID_BREP") == 10  # each distinct part stored once (gauge too)
+    assert text.count("NEXT_ASSEMBLY_USAGE_OCCURRENCE") == 38  # placed 38 times (10 gauges)
     assert "'element_8'" in text and "'clamp_plate_back'" in text
 
 

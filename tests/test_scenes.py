@@ -258,7 +258,7 @@ def test_export_single_scene(tmp_path, project):
     review = ["review/array.FCStd"] if freecadcmd() else []  # written when FreeCAD is installed
     assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*") if p.is_file()) \
         == review + ["scenes/array.glb", "scenes/array.step"]
-    assert res.files[0]["solids"] == 28
+    assert res.files[0]["solids"] == 38  # 28 parts and 10 gauges
     with pytest.raises(SceneError):
         export_scenes(project, tmp_path / "other", ["array", "nope"])
     assert not (tmp_path / "other").exists()  # an unknown name writes nothing

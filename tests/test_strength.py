@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -198,3 +199,12 @@ def test_kt_exponent_refits_from_fem(plan):
     assert fit.exponent == pytest.approx(KT_EXPONENT, abs=0.01)
     assert np.all(np.abs(fit.residual_rel) < KT_FIT_TOLERANCE)
     assert fit.exponent > 0.45 + 0.05  # clearly above Smith's 9/20 for the double-sided notch
+
+
+def test_a_design_that_does_not_cite_the_paper_has_no_figures_at_the_papers_load():
+    from tactcad.design.project import load_project
+
+    example = Path(__file__).resolve().parents[1] / "hardware" / "examples" / "ti_array_2x3.toml"
+    records = plan_strength(load_project(example).plan)
+    assert records and all(r.stress_MPa_at_paper_load is None for r in records)
+    assert all("paper" not in key for r in records for key in r.as_json())

@@ -39,6 +39,8 @@ COMMAND_MODULES = (
     "tactcad.commands.calibrate",
     "tactcad.commands.strength",
     "tactcad.commands.tolerance",
+    "tactcad.commands.readout",
+    "tactcad.commands.materials",
     "tactcad.commands.sweep",
     "tactcad.commands.design",
     "tactcad.commands.diff",
@@ -151,6 +153,8 @@ def dispatch(argv: list[str], as_json: bool) -> int:
         return EXIT_INPUT
     except TactcadError as exc:
         return report_error(error_record(exc, EXIT_INPUT), as_json)
+    except BrokenPipeError:  # not a file-system error: main's guard handles it
+        raise
     except OSError as exc:
         record = error_record(exc, EXIT_OS, os_error_text(exc))
         record["field"] = exc.filename

@@ -14,6 +14,7 @@ import weakref
 from dataclasses import dataclass, field
 from typing import Any
 
+from tactcad.catalogue.gauges import gauge_body, gauge_placements
 from tactcad.design.array import BoltSpec, Placement, Plan
 from tactcad.vocabulary.process import Method, Process
 from tactcad.geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
@@ -23,6 +24,9 @@ RGB = tuple[float, float, float]
 
 SPACER: RGB = (0.60, 0.64, 0.68)
 ANODISED_BLUE: RGB = (0.25, 0.40, 0.70)
+GAUGE_AMBER: RGB = (0.85, 0.55, 0.15)  # polyimide carrier
+#: Part name of the strain gauge body (one per element).
+GAUGE_PART = "strain_gauge"
 BLACK_OXIDE: RGB = (0.12, 0.12, 0.13)
 ZINC: RGB = (0.45, 0.46, 0.48)
 
@@ -97,6 +101,7 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
 def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
     parts: dict[str, PartSpec] = {}
     mat = plan.material.name
+    own = part_material_names(plan)  # clamp plates and spacers: their own grade
     for name, g in plan.distinct_elements.items():
         prof = element_profile(g)
         parts[name] = PartSpec(
@@ -111,7 +116,7 @@ def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
                                [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
         parts["spacer"] = PartSpec(
             name="spacer", kind="fabricated", process=Process("wire EDM or laser cut from sheet", Method.SHEET),
-            material=mat, color=SPACER, builder="spacer",
+            material=own["spacer"], color=SPACER, builder="spacer",
             expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
             expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm,
             geometry=s)
@@ -119,11 +124,21 @@ def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
     cp = u_plate_profile(c.half_length_mm, c.window_half_width_mm, c.height_mm, c.bridge_height_mm,
                          c.window_corner_radius_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
     parts["clamp_plate"] = PartSpec(
-        name="clamp_plate", kind="fabricated", process=Process("milling", Method.PLATE), material=mat,
+        name="clamp_plate", kind="fabricated", process=Process("milling", Method.PLATE),
+        material=own["clamp_plate"],
         color=ANODISED_BLUE, builder="clamp_plate",
         expected_volume_mm3=cp.area_mm2 * c.thickness_mm,
         expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm,
         geometry=c)
+    gb = gauge_body(plan)
+    gauge = plan.strength.gauge
+    parts[GAUGE_PART] = PartSpec(
+        name=GAUGE_PART, kind="purchased",
+        process=Process(f"{gauge.description}; grid {gb.grid_length_mm:g} x {gb.grid_width_mm:g} "
+                        f"mm, {gauge.resistance_ohm:g} ohm ({gauge.name}), bonded over the web",
+                        Method.BOUGHT),
+        material=f"{gauge.alloy} foil on polyimide", color=GAUGE_AMBER, builder="gauge",
+        expected_volume_mm3=gb.volume_mm3, expected_bbox_mm=gb.bbox_mm, geometry=gb)
     b = plan.bolt
     L = plan.bolt_length_mm
     rh = b.head_diameter_mm / 2
@@ -142,6 +157,20 @@ def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
         color=ZINC, builder="nut", expected_volume_mm3=nut_vol,
         expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm), geometry=b)
     return parts
+
+
+def part_material_names(plan: Plan) -> dict[str, str]:
+    """Material name of the clamp plates and spacers (``clamp.material``,
+    ``clamp.spacer_material``; :func:`tactcad.design.bom.clamp_grades`): the grade's family,
+    or the element material's name when it is the elements' own grade."""
+    from tactcad.design.bom import clamp_grades
+    from tactcad.vocabulary.materials import material_grade
+
+    out = {}
+    for part, grade in clamp_grades(plan.raw).items():
+        g = material_grade(grade)
+        out[part] = plan.material.name if grade == plan.material.grade else (g.family or g.name)
+    return out
 
 
 def bolt_name(b: BoltSpec, length_mm: float) -> str:
@@ -183,6 +212,7 @@ def array_instances(plan: Plan) -> list[Instance]:
     for i, pl in enumerate(plan.spacer_placements, start=1):
         out.append(Instance(f"spacer_{i}", "spacer", pl))
     z_front, z_back = plan.clamp_plate_z_mm
+    out += [Instance(f"gauge_{n}", GAUGE_PART, pl) for n, pl in gauge_placements(plan)]
     out.append(Instance("clamp_plate_front", "clamp_plate", Placement(0.0, 0.0, z_front)))
     out.append(Instance("clamp_plate_back", "clamp_plate", Placement(0.0, 0.0, z_back)))
     bolt = bolt_name(plan.bolt, plan.bolt_length_mm)
@@ -206,6 +236,7 @@ def array_contacts(plan: Plan) -> set[frozenset[str]]:
         for k in (col, col + 1):  # spacer before / after the element in its row
             if 1 <= k <= per_row - 1:
                 pairs.add(frozenset({f"element_{s.number}", f"spacer_{row_offset + k}"}))
+        pairs.add(frozenset({f"element_{s.number}", f"gauge_{s.number}"}))  # bonded
         if col == 0:
             pairs.add(frozenset({f"element_{s.number}", "clamp_plate_front"}))
         if col == per_row - 1:

@@ -59,12 +59,21 @@ def material_designation(spec: PartSpec, plan: Plan | None = None) -> str:
     parts carry their designation in their catalogue entry already.
     """
     mat = plan.material if plan is not None else None
-    if mat is None or spec.material != mat.name or not mat.grade:
+    if mat is None:
         return spec.material
-    grade = mat.grade
-    if "alumin" in mat.name.lower() and not grade.upper().startswith("EN"):
+    grade = mat.grade if spec.material == mat.name else None
+    if spec.builder in ("clamp_plate", "spacer"):  # their own grade (clamp.material)
+        from tactcad.design.bom import clamp_grades
+
+        grade = clamp_grades(plan.raw)[spec.builder]
+    if not grade:
+        return spec.material
+    name = spec.material
+    if "alumin" in name.lower() and not grade.upper().startswith("EN"):
         grade = f"EN AW-{grade}"
-    return f"{mat.name} {grade}"
+    if name.casefold() in grade.casefold():  # name and grade alike: say it once
+        return grade
+    return f"{name} {grade}"
 
 
 @dataclass(frozen=True)

@@ -98,24 +98,21 @@ def output_file(*suffixes: str) -> Callable[[str], str]:
 
 def material_grade_name(text: str) -> str:
     """An argparse type: a material grade of the library, exact or matched
-    without regard to case (or by a prefix only one grade has).
+    without regard to case (or by a prefix or description word only one grade has;
+    :func:`tactcad.vocabulary.materials.match_name`, the matching a design file gets).
 
     Raises (when called by argparse):
         argparse.ArgumentTypeError: naming the value and listing the grades.
     """
-    from tactcad.vocabulary.materials import material_grades
+    from tactcad.vocabulary.materials import candidates, match_name, material_grades
 
-    names = list(material_grades())
-    if text in names:
-        return text
-    folded = text.strip().casefold()
-    exact = [n for n in names if n.casefold() == folded]
-    prefix = [n for n in names if folded and n.casefold().startswith(folded)]
-    match = exact or prefix
-    if len(match) == 1:
-        return match[0]
-    raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed one of {', '.join(names)}"
-                                     + (" (ambiguous)" if len(match) > 1 else ""))
+    grades = material_grades()
+    found = match_name(grades, text)
+    if found is not None:
+        return found
+    several = candidates(grades, text)
+    raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed one of {', '.join(grades)}"
+                                     + (" (ambiguous)" if len(several) > 1 else ""))
 
 
 material_grade_name.__name__ = "grade"

@@ -23,13 +23,15 @@ def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) ->
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "tolerance", help="Monte Carlo of the tolerances: K per element, R per unit, K_obj band",
-        description="Draws web thickness, notch radius, arm length (per element) and Young's "
-                    "modulus (per array) from the design's tolerances, evaluates K with the "
+        description="Draws web thickness, notch radius, arm length (per element), sheet "
+                    "thickness and Young's modulus (per array) from the design's [tolerances] "
+                    "(the table the drawings print; options override it as what-if), evaluates K with the "
                     "corrected closed form, R per sensing unit (eq. 2) and the K_obj a unit "
                     "reports with its nominal K_m, K_r (eq. 3): mean, standard deviation and "
                     "95 %% interval. Also the web tolerance that keeps K within +/-5 %% (for "
-                    "the paper's design next to its measured spread of equal-arm elements). "
-                    "Units: mm, N/mm.")
+                    "the paper's design next to its measured spread of equal-arm elements), "
+                    "whether the K band holds [requirements] k_tolerance_rel and which "
+                    "tolerance to tighten to what. Units: mm, N/mm.")
     add_design_arg(p)
     p.add_argument("--samples", type=count(1, 10**7, "samples"), default=10_000, help="as-built arrays drawn (default "
                                                                 "10000)")
@@ -46,11 +48,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--distribution", choices=("normal", "uniform"), default="normal",
                    help="normal with tolerance = 3 sigma (default) or uniform over +/-tolerance")
     p.add_argument("--notch-radius-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
-                   help="+/- notch radius (default 0.01 mm)")
+                   help="what-if: +/- notch radius instead of the design's "
+                        "[tolerances] notch_radius_mm")
     p.add_argument("--arm-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
-                   help="+/- arm length (default 0.02 mm)")
+                   help="what-if: +/- arm length instead of [tolerances] arm_length_mm")
     p.add_argument("--modulus-tol", type=number(0, 0.5), default=None, metavar="REL",
-                   help="+/- relative Young's modulus (default 0.02)")
+                   help="what-if: +/- relative Young's modulus instead of [tolerances] "
+                        "youngs_modulus_rel")
     add_output_args(p, "print JSON")
     add_cluster_args(p)
     p.set_defaults(func=run)
@@ -86,11 +90,55 @@ def run(args: argparse.Namespace) -> int:
     wall = time.perf_counter() - t0
     if not paper:  # the paper's measured spread belongs to the paper's design
         report = dataclasses.replace(report, table1_spread=[])
+    from tactcad.mechanics.requirements import requirements_of
+    from tactcad.mechanics.tolerance_budget import band_check
+
+    check = band_check(plan, report, requirements_of(plan).k_tolerance_rel)
+    used = tolerances_used(plan, tol)
     if args.json:
-        print(json.dumps(report.as_json(), indent=2, allow_nan=False))
+        out = report.as_json()
+        out.update(source="design", tolerances_used=used, k_tolerance_check=check)
+        print(json.dumps(out, indent=2, allow_nan=False))
         return 0
     print_report(report, plan.name, wall)
+    print_check(used, check)
     return 0
+
+
+def tolerances_used(plan, tol) -> dict:
+    """Every [tolerances] value the study drew from, with where it comes from
+    ("design": the design file, "default": the table's default, which the drawings print too,
+    "override (what-if)": an option of this run)."""
+    from tactcad.design.tolerances import tolerances_of
+    from tactcad.mechanics.tolerance_budget import FIELDS
+
+    t = tolerances_of(plan.raw)
+    src = dict(tol.sources)
+    out = {key: {"value": getattr(tol, field), "source": src.get(key, "design")}
+           for key, field in FIELDS.items()}
+    out["contact_face_mm"] = {"value": t.contact_face_mm, "source": "design" if
+                              t.source("contact_face_mm") == "design file" else "default",
+                              "note": "does not enter K (the face's size moves no lever)"}
+    out["general"] = {"value": t.general_text, "source": "design" if
+                      t.source("general") == "design file" else "default"}
+    return out
+
+
+def print_check(used: dict, check: dict) -> None:
+    """The tolerances used and the K band check, as text."""
+    print("tolerances used (source: the design's [tolerances]; what-if overrides marked):")
+    for key, u in used.items():
+        print(f"  {key} = {u['value']}  ({u['source']})")
+    verdict = "holds" if check["pass"] else "does not hold"
+    print(f"K band: worst element {check['worst_element']}, 95 % interval "
+          f"+/-{100 * check['predicted_band_rel']:.2f} % against k_tolerance_rel "
+          f"{100 * check['target']:.3g} %: the toleranced design {verdict} it")
+    for t in check["tighten"]:
+        if t["to"] is None:
+            print(f"  {t['note']}")
+            continue
+        print(f"  tighten {t['tolerance']} from {t['from']:g} to {t['to']:g}"
+              + (f" ({t['note']})" if t.get("note") else ""))
 
 
 def print_report(report, name: str, wall_s: float) -> None:

@@ -28,7 +28,10 @@ from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Name, Proble
 from tactcad.vocabulary.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                           StrengthSettings, default_strength_settings,
                                           material_fields, material_grade, strength_settings)
+from tactcad.design.bom import BomSection, check_clamp_materials
+from tactcad.design.readout import ReadoutSection, check_readout
 from tactcad.design.requirements import RequirementsSection, check_requirements
+from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
 from tactcad.vocabulary.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 
@@ -348,7 +351,7 @@ class ElementSection(Section):
     base_height_mm: number(0.0, 30.0, lo_open=True)
     overall_length_mm: number(10.0, 60.0)
     inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
-    web_tolerance_mm: number(0.0, 0.1)
+    web_tolerance_mm: number(0.0, 0.1) = None  # or [tolerances] web_thickness_mm
 
 
 class ArmsSection(Section):
@@ -362,6 +365,8 @@ class ClampSection(Section):
     plate_thickness_mm: number(1.0, 10.0)
     bridge_height_mm: number(1.0, 30.0)
     arm_clearance_mm: number(0.2, 3.0)
+    material: Text = None  # library grade of the clamp plates (tactcad.design.bom)
+    spacer_material: Text = None  # library grade of the spacers
 
 
 class EdmSection(Section):
@@ -383,6 +388,9 @@ class DesignFile(Section):
     edm: EdmSection
     strength: StrengthSection = None
     requirements: RequirementsSection = None
+    readout: ReadoutSection = None
+    tolerances: TolerancesSection = None
+    bom: BomSection = None
     assumptions: dict[str, Any] = {}
 
 
@@ -470,7 +478,8 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
                   "the tip root fillet must clear the notch by 0.5 mm")
 
 
-DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements)
+DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,
+                check_readout, check_tolerances, check_clamp_materials)
 
 
 # ---------------------------------------------------------------------------
@@ -570,6 +579,12 @@ def _check_mounting(d: DesignFile, p: Problems) -> None:
 DERIVED_RULES = (_check_bolt_pattern, _check_bolt_length, _check_mounting)
 
 
+def web_tolerance(d: DesignFile) -> float:
+    """+/- web thickness (mm): ``[tolerances] web_thickness_mm``, else
+    ``element.web_tolerance_mm`` (:func:`tactcad.design.tolerances.tolerances_of`)."""
+    return tolerances_of(d.model_dump(exclude_none=True)).web_thickness_mm
+
+
 def element_geometry(d: DesignFile, arm_mm: float, holes: tuple[Hole, ...]) -> ElementGeometry:
     e = d.element
     return ElementGeometry(
@@ -578,7 +593,7 @@ def element_geometry(d: DesignFile, arm_mm: float, holes: tuple[Hole, ...]) -> E
         tip_height_mm=e.tip_height_mm, arm_height_mm=e.arm_height_mm,
         base_height_mm=e.base_height_mm, overall_length_mm=e.overall_length_mm,
         inside_corner_radius_mm=e.inside_corner_radius_mm, sheet_thickness_mm=d.sheet.thickness_mm,
-        web_tolerance_mm=e.web_tolerance_mm, bolt_holes=holes,
+        web_tolerance_mm=web_tolerance(d), bolt_holes=holes,
         start_hole_diameter_mm=d.edm.start_hole_diameter_mm)
 
 
@@ -657,19 +672,37 @@ def validate_design(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile
     data = with_grade_defaults(data)
     model = validate(DesignFile, data, p)
     read_assumptions(data, DesignFile, p, "element.notch_radius_mm")
+    grade_error = _grade_error(data)
+    if grade_error is not None:  # the grade, not the E and nu it would have supplied
+        p.errors = [e for e in p.errors if e.field not in (
+            "material.youngs_modulus_MPa", "material.poisson_ratio") or e.value is not None]
+        p.add(grade_error.field, grade_error.value, grade_error.allowed, grade_error.why)
     if model is None:
         return None, p
     try:
         material_fields(data["material"])
         strength_settings(data.get("strength"))
     except DesignError as exc:  # an unknown grade or gauge
-        p.extend([exc])
+        if grade_error is None:
+            p.extend([exc])
     for rule in DESIGN_RULES:
         rule(model, p)
     if not p:
         for rule in DERIVED_RULES:
             rule(model, p)
     return model, p
+
+
+def _grade_error(data: Mapping[str, Any]) -> DesignError | None:
+    """The refusal of an unknown ``material.grade``, or None."""
+    mat = data.get("material") if isinstance(data, Mapping) else None
+    if not isinstance(mat, Mapping) or not isinstance(mat.get("grade"), str):
+        return None  # a grade that is no text is refused by the schema
+    try:
+        material_grade(mat["grade"])
+    except DesignError as exc:
+        return exc
+    return None
 
 
 def with_grade_defaults(data: Mapping[str, Any]) -> Mapping[str, Any]:

@@ -20,7 +20,7 @@ from tactcad.catalogue.files import profile_dxf_name
 from tactcad.catalogue.shop import TORQUE_SOURCE, tightening_torque_Nm
 from tactcad.design.array import Plan
 from tactcad.drawings.design_notes import numbering_note
-from tactcad.drawings.frame import (FRAME, GENERAL_TOLERANCE, revision_and_date, sheet_frame,
+from tactcad.drawings.frame import (FRAME, general_tolerance, revision_and_date, sheet_frame,
                                     title_cells, wrap_text)
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
 from tactcad.drawings.views import ISO_5455_SCALES, View, cameras_for, project, scale_text
@@ -243,7 +243,8 @@ def _notes(a: AssemblySheet, plan: Plan) -> None:
                  f"before the second pass.")
     lines.append("Balloon numbers are the items of bom.csv / bom.md. Element profiles: the DXF "
                  "files of the slot map (dxf/); " + numbering_note(plan))
-    lines.append(f"Untoleranced dimensions of the parts: {GENERAL_TOLERANCE}; see each part's drawing.")
+    lines.append(f"Untoleranced dimensions of the parts: {general_tolerance(plan)}; see each part's "
+                 f"drawing.")
     x0, y = FRAME[0] + 5.0, FRAME[3] - 63.0 - 4.0
     width = FRAME[2] - 180.0 - 10.0 - x0
     wrapped = [wrap_text(f"{k}. {t}", width * 0.95, DIM_TEXT_MM) for k, t in enumerate(lines, start=1)]

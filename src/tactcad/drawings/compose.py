@@ -22,7 +22,7 @@ from tactcad.catalogue.array import PartSpec
 from tactcad.catalogue.shop import material_designation, surface_finish
 from tactcad.design.array import Plan
 from tactcad.drawings.drawing import Drawing, draw_views, finish_text, layout, material_text
-from tactcad.drawings.frame import (FRAME, GENERAL_TOLERANCE, TITLE_H, TITLE_W, projection_symbol,
+from tactcad.drawings.frame import (FRAME, TITLE_H, TITLE_W, general_tolerance, projection_symbol,
                                     revision_and_date, sheet_frame, title_cells)
 from tactcad.drawings.notes import draw_notes, notes_for, notes_top
 from tactcad.drawings.part_sets import (choose_cameras, detail_circle, drawing_of,
@@ -49,7 +49,7 @@ def draw_title_block(d: Drawing) -> None:
         (1, 120, 60, "Scale", scale, "tb-scale", LABEL_TEXT_MM),
         (2, 0, 120, "Process", spec.process, "tb-process", LABEL_TEXT_MM),
         (2, 120, 60, "Units", "mm", "tb-units", LABEL_TEXT_MM),
-        (3, 0, 60, "General tolerances", GENERAL_TOLERANCE, "tb-tolerance", LABEL_TEXT_MM),
+        (3, 0, 60, "General tolerances", general_tolerance(plan), "tb-tolerance", LABEL_TEXT_MM),
         (3, 60, 60, "Dimensioning", "ISO 129-1", "tb-standard", LABEL_TEXT_MM),
         (3, 120, 60, "Projection", "", "tb-projection", LABEL_TEXT_MM),
         (4, 0, 120, "Design", f"{plan.name}  part sha256 {part_hash(plan, spec)[:12]}",
@@ -93,8 +93,10 @@ def draw_finish_symbol(d: Drawing, at: tuple[float, float]) -> None:
 def drawing_inputs(plan: Plan, spec: PartSpec) -> tuple:
     """Everything of the plan that shapes the part's drawing: the part itself
     and, by part family, the plan values its notes and dimensions print."""
-    return ((plan.name, spec, material_designation(spec, plan), revision_and_date(plan))
-            + drawing_of(spec).plan_values(plan, spec))
+    from tactcad.design.tolerances import tolerances_of
+
+    return ((plan.name, spec, material_designation(spec, plan), revision_and_date(plan),
+             tolerances_of(plan.raw)) + drawing_of(spec).plan_values(plan, spec))
 
 
 def part_hash(plan: Plan, spec: PartSpec) -> str:

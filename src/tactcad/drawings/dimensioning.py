@@ -109,13 +109,18 @@ def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, 
     sh.text("hole-table", (x0, y0 - 2.0), "Hole positions from origin 0,0", DIM_TEXT_MM)
 
 
-def thickness_dim(d: Drawing, name: str = "thickness") -> None:
+def plus_minus(value: float, tol: float) -> str:
+    """A dimension with its symmetric tolerance, ``19.8 ±0.02`` (no tolerance: the value)."""
+    return f"{fmt_mm(value)} ±{fmt_mm(tol)}" if tol > 0 else fmt_mm(value)
+
+
+def thickness_dim(d: Drawing, name: str = "thickness", tol: float = 0.0) -> None:
     t = d.views["top"]
     u1 = t.bbox[2]
     x = max((p[0] for poly in t.visible for p in poly if abs(p[1] - t.bbox[3]) < 1e-6),
             default=u1)
     dim(d, t, (x, t.bbox[3]), (x, t.bbox[1]), "v", "right", 0,
-         fmt_mm(t.bbox[3] - t.bbox[1]), name)
+         plus_minus(t.bbox[3] - t.bbox[1], tol), name)
 
 
 def radius_callouts(d: Drawing, arcs: list[Arc], prefix: str = "inside_radius") -> None:

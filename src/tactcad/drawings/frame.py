@@ -9,6 +9,13 @@ from tactcad.design.array import Plan
 from tactcad.drawings.sheet import Sheet, text_width
 
 GENERAL_TOLERANCE = "ISO 2768-f"
+
+
+def general_tolerance(plan) -> str:
+    """The design's general tolerance class (``[tolerances] general``), e.g. ``ISO 2768-f``."""
+    from tactcad.design.tolerances import tolerances_of
+
+    return tolerances_of(plan.raw).general_text
 FRAME = (20.0, 10.0, 410.0, 287.0)  # left, top, right, bottom (A3, ISO 5457)
 TITLE_W, TITLE_H = 180.0, 63.0        # seven rows of 9 mm
 

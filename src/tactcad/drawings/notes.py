@@ -5,14 +5,14 @@ room left of the title block."""
 from __future__ import annotations
 
 from tactcad.drawings.drawing import NOTE_LINE, NOTES_TOP, TABLE_COLS, TABLE_ROW, Drawing
-from tactcad.drawings.frame import FRAME, GENERAL_TOLERANCE, TITLE_W, wrap_text
+from tactcad.drawings.frame import FRAME, TITLE_W, general_tolerance, wrap_text
 from tactcad.drawings.part_sets import drawing_of
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM
 
 def notes_for(d: Drawing) -> list[str]:
     """The part family's notes (:attr:`PartDrawing.notes`), then the general one."""
     return drawing_of(d.spec).notes(d) + [
-        f"Untoleranced dimensions: {GENERAL_TOLERANCE}. Dimensions in mm (ISO 129-1), "
+        f"Untoleranced dimensions: {general_tolerance(d.plan)}. Dimensions in mm (ISO 129-1), "
         f"first-angle projection. Break sharp edges 0.1 max unless noted."]
 
 

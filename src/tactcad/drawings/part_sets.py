@@ -19,9 +19,10 @@ import numpy as np
 from tactcad.catalogue.array import PartSpec
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
 from tactcad.design.array import Plan
+from tactcad.design.tolerances import tolerances_of
 from tactcad.drawings.dimensioning import (add_section, dim, hole_callout, hole_dims_linear,
-                                           hole_marks, hole_table, radius_callouts, section_marks,
-                                           thickness_dim)
+                                           hole_marks, hole_table, plus_minus, radius_callouts,
+                                           section_marks, thickness_dim)
 from tactcad.drawings.drawing import (FIRST_TIER, TIER, Drawing, Hole2D, holes_seen, inside_radii,
                                       part_thickness, web_text)
 from tactcad.drawings.sheet import fmt_mm
@@ -68,13 +69,15 @@ def element_dims(d: Drawing, solid) -> None:
     heights, hole pattern, tip-root radius; the web (thickness with its
     tolerance, notch radius) in detail A."""
     g = d.spec.geometry
+    tol = tolerances_of(d.plan.raw)  # the table the tolerance study draws from
     f = d.front
     L, H = g.overall_length_mm, g.base_height_mm
     top = g.tip_top_y_mm
     xl = L - g.tip_width_mm
-    dim(d, f, (xl, top), (L, top), "h", "top", 0, fmt_mm(g.tip_width_mm), "tip_width")
+    dim(d, f, (xl, top), (L, top), "h", "top", 0, plus_minus(g.tip_width_mm, tol.contact_face_mm),
+        "tip_width")
     dim(d, f, (g.hinge_x_mm, H), (g.tip_centre_x_mm, top), "h", "top", 1,
-         fmt_mm(g.arm_length_mm), "arm_length")
+        plus_minus(g.arm_length_mm, tol.arm_length_mm), "arm_length")
     dim(d, f, (0.0, H), (L, top), "h", "top", 2, fmt_mm(L), "overall_length")
     d.sheet.line("centre-lines", f.paper(g.tip_centre_x_mm, top - g.tip_height_mm / 2),
                  f.paper(g.tip_centre_x_mm, top + 0.3), "centre")
@@ -108,18 +111,19 @@ def element_dims(d: Drawing, solid) -> None:
     d.sheet.linear_dimension(dv.paper(xh, yc + g.notch_radius_mm), dv.paper(xh, H), "v",
                              dv.paper(xh, 0)[0], wt, "web_thickness")
     d.dimensions["web_thickness"] = wt
-    rtext = f"R{fmt_mm(g.notch_radius_mm)}"
+    rtext = f"R{plus_minus(g.notch_radius_mm, tol.notch_radius_mm)}"
     d.sheet.radius_dimension(dv.paper(xh, yc), g.notch_radius_mm * dv.scale, 60.0, rtext,
                              "notch_radius", dist=-10.0, shoulder_right=True)
     d.dimensions["notch_radius"] = rtext
     # contact face, in the view from above
     t = d.views["top"]
-    cf = f"contact face {fmt_mm(g.contact_face_mm[0])} × {fmt_mm(g.contact_face_mm[1])}"
+    cf = (f"contact face {plus_minus(g.contact_face_mm[0], tol.contact_face_mm)} × "
+          f"{plus_minus(g.contact_face_mm[1], tol.sheet_thickness_mm)}")
     p0 = t.paper(g.tip_centre_x_mm, -g.sheet_thickness_mm / 2)
     p1 = (t.paper_box()[2] + 6.0, t.paper_box()[3] + 8.0)
     d.sheet.leader([p0, p1], cf, "contact_face")
     d.dimensions["contact_face"] = cf
-    thickness_dim(d)
+    thickness_dim(d, tol=tol.sheet_thickness_mm)
 
 
 def clamp_dims(d: Drawing, solid) -> None:
@@ -396,6 +400,16 @@ def bracket_dims(d: Drawing, solid) -> None:
     d.dimensions["ear_holes"] = text
 
 
+def gauge_note(plan: Plan, g) -> str:
+    """Where the strain gauge goes: its grid (``[readout]``) centred over the web."""
+    from tactcad.design.readout import readout_of
+
+    ro = readout_of(plan.raw, plan.strength.gauge)
+    return (f"A strain gauge (grid {fmt_mm(ro.grid_length_mm)} x {fmt_mm(ro.grid_width_mm)}, "
+            f"{ro.gauge_resistance_ohm:g} ohm) is bonded on the flat top face, its grid centred "
+            f"over the web {fmt_mm(g.hinge_x_mm)} from the back face and across the sheet.")
+
+
 def element_notes(d: Drawing) -> list[str]:
     """Flexure element: the web as the critical dimension, wire EDM, edges, use, strength limit."""
     plan, spec = d.plan, d.spec
@@ -415,9 +429,12 @@ def element_notes(d: Drawing) -> list[str]:
              f"contact face; deburr elsewhere.")
     n.append(f"Used as array element{'s' if len(used) > 1 else ''} "
              + ", ".join(str(k) for k in used)
-             + ". A strain gauge is bonded on the flat top face over the web.")
+             + f". {gauge_note(plan, g)}")
     n.append(full_scale_note(plan, spec.name, plan.material.yield_strength_MPa,
                              plan.material.grade or plan.material.name))
+    e_tol = tolerances_of(plan.raw).youngs_modulus_rel
+    n.append(f"Young's modulus {plan.material.youngs_modulus_MPa:g} MPa "
+             f"±{100 * e_tol:g} %: check the sheet's mill certificate.")
     return n
 
 
@@ -502,8 +519,11 @@ class PartDrawing:
 
 
 def _element_values(plan: Plan, spec: PartSpec) -> tuple:
+    from tactcad.design.readout import readout_of
+
     used = tuple(s.number for s in plan.slots if s.geometry.part_name == spec.name)
-    return (spec.geometry, used, plan.edm, plan.material, plan.strength)
+    return (spec.geometry, used, plan.edm, plan.material, plan.strength,
+            readout_of(plan.raw, plan.strength.gauge))
 
 
 GENERIC = PartDrawing()

@@ -37,8 +37,8 @@ from tactcad.catalogue.shop import STOCK_REASON, material_designation, stock_siz
 from tactcad.catalogue.files import drawing_name, part_step_name, scene_step_name, sheet_dxf_name
 from tactcad.export.dxf_sheet import shop_profiles
 
-BOM_COLUMNS = ("item", "part", "quantity", "type", "material", "stock", "process_or_reference",
-               "key_dimensions_mm", "files")
+BOM_COLUMNS = ("item", "part", "quantity", "unit", "spares", "type", "material", "stock",
+               "process_or_reference", "key_dimensions_mm", "files")
 #: Encoding of bom.csv: UTF-8 with a byte order mark, so spreadsheets detect UTF-8.
 CSV_ENCODING = "utf-8-sig"
 
@@ -57,10 +57,12 @@ class BomRow:
     key_dimensions: str
     files: tuple[str, ...]
     stock: str = ""
+    spares: int = 0  # included in quantity
+    unit: str = "pcs"
 
     def as_dict(self) -> dict[str, str]:
         return {"item": str(self.item), "part": self.part, "quantity": str(self.quantity),
-                "type": self.kind, "material": self.material, "stock": self.stock,
+                "unit": self.unit, "spares": str(self.spares), "type": self.kind, "material": self.material, "stock": self.stock,
                 "process_or_reference": self.process, "key_dimensions_mm": self.key_dimensions,
                 "files": " ".join(self.files)}
 
@@ -122,6 +124,42 @@ def bom_rows(instances: Sequence[Instance] | Mapping[str, Sequence[Instance]],
     return rows
 
 
+def sensor_rows(plan: Plan, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]
+                ) -> list[BomRow]:
+    """Rows of the read-out's bought items (:func:`tactcad.catalogue.gauges.sensor_items`),
+    numbered after ``rows``: per assembly as many as it has elements, in total that plus the
+    spares."""
+    from tactcad.catalogue.gauges import sensor_items
+
+    elements = {a: 0 for a, _ in rows[0].per_assembly} if rows else {"array": 0}
+    for r in rows:
+        if specs.get(r.part) is not None and specs[r.part].builder == "element":
+            for a, n in r.per_assembly:
+                elements[a] = elements.get(a, 0) + n
+    n_max = max(elements.values(), default=0)
+    out = []
+    modelled = {r.part for r in rows}  # the gauge is a placed part: its row is counted
+    items = [i for i in sensor_items(plan) if i.part not in modelled]
+    for k, item in enumerate(items, start=len(rows) + 1):
+        out.append(BomRow(
+            item=k, part=item.part, quantity=item.quantity(n_max),
+            per_assembly=tuple((a, item.need(n) if n else 0) for a, n in elements.items()),
+            kind="purchased", material=item.material, process=item.reference,
+            key_dimensions=item.key_dimensions, files=(), spares=item.spares, unit=item.unit))
+    return out
+
+
+def with_spares(plan: Plan, rows: Sequence[BomRow]) -> list[BomRow]:
+    """Rows with the read-out's spares added to the placed parts that have them (the gauge)."""
+    from dataclasses import replace
+
+    from tactcad.catalogue.gauges import sensor_items
+
+    spares = {i.part: i.spares for i in sensor_items(plan) if i.spares}
+    return [replace(r, quantity=r.quantity + spares[r.part], spares=spares[r.part])
+            if r.part in spares else r for r in rows]
+
+
 def bom_csv(rows: Sequence[BomRow]) -> str:
     """RFC 4180 CSV text of the rows (header :data:`BOM_COLUMNS`)."""
     buf = io.StringIO()
@@ -142,18 +180,19 @@ def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
              f"Design sha256 `{plan.design_hash[:12]}`, tactcad {__version__}. Units: mm. "
              "Quantities are counted from the assemblies' placed instances. Stock: raw blank "
              f"per part; {STOCK_REASON}.", "",
-             "| Item | Part | Qty | Type | Material | Stock | Process / reference "
+             "| Item | Part | Qty | Unit | Spares | Type | Material | Stock | Process / reference "
              "| Key dimensions (mm) | Files |",
-             "| ---: | --- | ---: | --- | --- | --- | --- | --- | --- |"]
+             "| ---: | --- | ---: | --- | ---: | --- | --- | --- | --- | --- | --- |"]
     for r in rows:
         files = ", ".join(f"[{Path(f).name}]({f})" for f in r.files)
-        lines.append(f"| {r.item} | {_md_cell(r.part)} | {r.quantity} | {r.kind} | "
+        lines.append(f"| {r.item} | {_md_cell(r.part)} | {r.quantity} | {r.unit} | {r.spares} | "
+                     f"{r.kind} | "
                      f"{_md_cell(r.material)} | {_md_cell(r.stock)} | {_md_cell(r.process)} | "
                      f"{_md_cell(r.key_dimensions)} | {files} |")
     assemblies = [a for a, _ in rows[0].per_assembly] if rows else []
     if len(assemblies) > 1:
         lines += ["", "## Quantities per assembly", "",
-                  "| Part | " + " | ".join(assemblies) + " | Quantity (largest) |",
+                  "| Part | " + " | ".join(assemblies) + " | Quantity (largest, spares included) |",
                   "| --- | " + " | ".join("---:" for _ in assemblies) + " | ---: |"]
         for r in rows:
             lines.append(f"| {r.part} | " + " | ".join(str(n) for _, n in r.per_assembly)
@@ -203,6 +242,7 @@ def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None],
     """
     specs, assemblies = assembled
     rows = bom_rows(assemblies, specs, part_files(plan, staging, assemblies), plan)
+    rows = with_spares(plan, rows) + sensor_rows(plan, rows, specs)
     write_bytes_atomic(staging / "bom.csv", bom_csv(rows).encode(CSV_ENCODING))
     write_bytes_atomic(staging / "bom.md", bom_markdown(plan, rows).encode("utf-8"))
     log(f"  wrote bom.csv and bom.md ({len(rows)} items)")

@@ -552,6 +552,9 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     data["assumptions"] = neutral_assumptions(data, base.name)
     data.pop("requirements", None)  # the new design's are written below
     if grade is not None:
+        from tactcad.vocabulary.materials import material_grade
+
+        grade = material_grade(grade).name  # "ti-6al-4v-annealed" -> the library's spelling
         data["material"] = {"name": grade, "grade": grade}
         data["assumptions"] = {k: v for k, v in data.get("assumptions", {}).items()
                                if not k.startswith("material.")}

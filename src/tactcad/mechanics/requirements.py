@@ -38,9 +38,8 @@ import numpy as np
 from tactcad.design.array import Plan
 from tactcad.design.requirements import (REQUIREMENT_KEYS, cites_paper, requirements_source,
                                          stated_requirements)
+from tactcad.mechanics.resolution import KOBJ_POINTS
 
-#: Points of the log grid over the K_obj range where the resolution is evaluated.
-KOBJ_POINTS = 41
 #: The predicted readable range is searched this factor beyond the required one.
 KOBJ_SEARCH_FACTOR = 100.0
 
@@ -355,9 +354,30 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     m_rng = min(rng[0] / span[0], span[1] / rng[1]) - 1.0 if span else -1.0
     out.append(_record("kobj_range_N_per_mm", list(rng), list(span) if span else None, res_err,
                        m_rng, model, m_rng >= 0))
+    out.append(readout_resolution_record(plan, fig, req, res_err))
+    from tactcad.mechanics.tolerance_budget import toleranced_band_record
+
+    out.append(toleranced_band_record(plan, req.k_tolerance_rel, closed_form_k_error(plan)))
     for r in out:
         r["stated"] = r["requirement"] in req.stated
     return out
+
+
+def readout_resolution_record(plan: Plan, fig: Figures, req: Requirements, error: float) -> dict:
+    """``kobj_resolution_rel`` with each element read through the design's read-out chain
+    (:mod:`tactcad.mechanics.readout`: its noise-limited force resolution instead of a fixed
+    0.01 N); requirement ``kobj_resolution_rel_readout``."""
+    from tactcad.mechanics.readout import readout_report
+
+    rep = readout_report(plan, req, fig.model, stiffness=fig.k)
+    worst = rep.array_kobj_resolution_rel
+    worst = math.inf if worst is None else worst
+    return _record("kobj_resolution_rel_readout", req.kobj_resolution_rel, _finite_or_none(worst),
+                   error, req.kobj_resolution_rel / worst - 1.0, fig.model,
+                   worst <= req.kobj_resolution_rel,
+                   force_resolution_N={str(r["element"]): r["force_resolution_N"]
+                                       for r in rep.records},
+                   basis="read-out chain: noise of one averaged reading / sensitivity")
 
 
 def matrix_passed(records: list[dict]) -> bool:

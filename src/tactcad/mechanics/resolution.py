@@ -10,15 +10,20 @@ import numpy as np
 #: Force resolution of the read-out (N): "force resolution >= 0.01 N" of the
 #: calibration that the macro array's elements reached.
 FORCE_RESOLUTION_N = 0.01
+#: Points of the log grid over a K_obj range where the resolution is evaluated.
+KOBJ_POINTS = 41
 
 
 def unit_resolution(k_m: float, k_r: float, k_obj, full_scale_force_N: float,
-                    force_resolution_N: float = FORCE_RESOLUTION_N) -> dict[str, np.ndarray]:
+                    force_resolution_N: float = FORCE_RESOLUTION_N, *,
+                    force_resolution_reference_N: float | None = None) -> dict[str, np.ndarray]:
     """R, dR/dK_obj and the K_obj resolution at each K_obj (arrays, N/mm).
 
     The unit is pressed until the reference carries ``full_scale_force_N``;
     the measuring element then carries F R / X (eq. 1). Each force is read to
-    ``force_resolution_N``: dR/R = sqrt((dF/F_m)^2 + (dF/F_r)^2), and
+    ``force_resolution_N`` (the reference to ``force_resolution_reference_N``
+    when given, e.g. each element's own read-out noise):
+    dR/R = sqrt((dF_m/F_m)^2 + (dF_r/F_r)^2), and
     dK_obj = |dK_obj/dR| dR (eq. 3 sensitivity).
 
     Raises:
@@ -32,7 +37,9 @@ def unit_resolution(k_m: float, k_r: float, k_obj, full_scale_force_N: float,
     dk_dr = sensitivity(R, km, kr).value
     F_r = np.full_like(k_obj, full_scale_force_N)
     F_m = F_r * R * k_m / k_r
-    dR = R * np.hypot(force_resolution_N / F_m, force_resolution_N / F_r)
+    dF_r = force_resolution_N if force_resolution_reference_N is None \
+        else force_resolution_reference_N
+    dR = R * np.hypot(force_resolution_N / F_m, dF_r / F_r)
     dk = np.abs(dk_dr) * dR
     return {"K_obj_N_per_mm": k_obj, "R": R, "dR_dKobj_per_N_per_mm": 1.0 / dk_dr,
             "force_measuring_N": F_m, "force_reference_N": F_r, "R_resolution": dR,

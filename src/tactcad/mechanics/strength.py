@@ -255,14 +255,17 @@ class StrengthRecord:
     stiffness_N_per_mm: float
     fatigue_force_N: float | None
     gauge_fatigue_force_N: float
-    stress_MPa_at_paper_load: float
-    yield_safety_factor_at_paper_load: float
+    stress_MPa_at_paper_load: float | None  # None unless the design cites the paper
+    yield_safety_factor_at_paper_load: float | None
     warnings: tuple[str, ...] = field(default=())
 
     def as_json(self) -> dict:
-        """Plain dict for JSON (all numbers finite; ``warnings`` a list)."""
+        """Plain dict for JSON (all numbers finite; ``warnings`` a list); the
+        figures at the paper's load only for a design that cites the paper."""
         d = asdict(self)
         d["warnings"] = list(self.warnings)
+        if self.stress_MPa_at_paper_load is None:
+            del d["stress_MPa_at_paper_load"], d["yield_safety_factor_at_paper_load"]
         return d
 
 
@@ -293,8 +296,8 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     tip_deflection_mm_at_full_scale = full-scale force / K;
     fatigue_force_N = fatigue strength / stress per N (None without one);
     gauge_fatigue_force_N = gauge fatigue strain / gauge strain per N;
-    stress and yield safety factor at the paper's 2 N load (its warning
-    only when ``paper_load``: a design that cites the paper).
+    stress and yield safety factor at the paper's 2 N load, and its warning,
+    only when ``paper_load`` (a design that cites the paper; None otherwise).
 
     Raises:
         DesignError: the material has no yield strength.
@@ -334,7 +337,8 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
         stiffness_N_per_mm=es.stiffness_N_per_mm,
         fatigue_force_N=None if fat is None else fat / es.stress_MPa_per_N,
         gauge_fatigue_force_N=gauge.fatigue_strain / es.gauge_strain_per_N,
-        stress_MPa_at_paper_load=s_paper, yield_safety_factor_at_paper_load=y / s_paper,
+        stress_MPa_at_paper_load=s_paper if paper_load else None,
+        yield_safety_factor_at_paper_load=y / s_paper if paper_load else None,
         warnings=tuple(warn))
 
 

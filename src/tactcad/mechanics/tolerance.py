@@ -14,15 +14,12 @@ Distributions (:class:`Tolerances`): each toleranced quantity is drawn
 normal with the tolerance as 3 standard deviations (a process with Cp = 1:
 99.73 % of parts inside +/-tol), or, with ``distribution="uniform"``,
 uniform over +/-tol (the worst case a tolerance allows with no process
-knowledge). Defaults, where the design file gives none:
-
-* web thickness: ``element.web_tolerance_mm`` of the design file;
-* notch radius: +/-0.01 mm (finishing-pass contour accuracy of fine wire
-  EDM; the notch is cut in the same pass as the web's other flank);
-* arm length: +/-0.02 mm (the lever runs between two cut features, notch
-  centre and tip, each placed to the contour accuracy);
-* Young's modulus: +/-2 % (heat-to-heat scatter of wrought alloys; handbook
-  moduli are typical values, not minima).
+knowledge). The tolerances are the design's ``[tolerances]`` table
+(:mod:`tactcad.design.tolerances`, the one the drawings print; its defaults
+carry their reasons); options of ``tactcad tolerance`` replace them as
+what-if overrides. The sheet thickness is drawn once per array (one sheet)
+and scales K in proportion (the element width b enters K linearly; the
+correction's small width dependence is kept at the nominal b).
 
 Sensing units: the reference elements are the nominally stiffest ones (ties
 all count); every other element is paired with the nearest reference tip
@@ -93,9 +90,12 @@ class Tolerances:
     arm_length_mm: float = ARM_LENGTH_TOLERANCE_MM
     modulus_rel: float = MODULUS_TOLERANCE_REL
     distribution: str = "normal"
+    sheet_mm: float = 0.0
+    sources: tuple[tuple[str, str], ...] = ()
 
     def __post_init__(self):
-        limits = {"web_mm": 0.1, "notch_radius_mm": 0.1, "arm_length_mm": 0.5, "modulus_rel": 0.2}
+        limits = {"web_mm": 0.1, "notch_radius_mm": 0.5, "arm_length_mm": 0.5, "modulus_rel": 0.2,
+                  "sheet_mm": 0.5}
         for name, hi in limits.items():
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not 0 <= v <= hi:
@@ -106,15 +106,39 @@ class Tolerances:
 
     @classmethod
     def of_plan(cls, plan: Plan, **overrides) -> "Tolerances":
-        """The design's web tolerance plus the defaults; ``overrides`` replace fields."""
-        return cls(web_mm=plan.element(1).geometry.web_tolerance_mm, **overrides)
+        """The design's ``[tolerances]`` (defaults with reasons where the file gives none);
+        ``overrides`` replace fields (what-if) and are recorded as such in ``sources``."""
+        from tactcad.design.tolerances import tolerances_of
+
+        t = tolerances_of(plan.raw)
+        fields = {"web_mm": ("web_thickness_mm", plan.element(1).geometry.web_tolerance_mm),
+                  "notch_radius_mm": ("notch_radius_mm", t.notch_radius_mm),
+                  "arm_length_mm": ("arm_length_mm", t.arm_length_mm),
+                  "modulus_rel": ("youngs_modulus_rel", t.youngs_modulus_rel),
+                  "sheet_mm": ("sheet_thickness_mm", t.sheet_thickness_mm)}
+        values = {f: v for f, (_, v) in fields.items()}
+        sources = {key: ("design" if t.source(key).startswith("design file") else "default")
+                   for key, _ in fields.values()}
+        for f, v in overrides.items():
+            if f in fields:
+                sources[fields[f][0]] = "override (what-if)"
+            values[f] = v
+        g = plan.element(1).geometry
+        for f, nominal, what in (("web_mm", g.web_thickness_mm, "web thickness"),
+                                 ("notch_radius_mm", g.notch_radius_mm, "notch radius")):
+            v = values[f]
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and v > nominal / 2:
+                raise DesignError(f"tolerance.{f}", v, f"0 <= value <= {nominal / 2:g} (half the "
+                                  f"{what} {nominal:g} mm)",
+                                  "a larger tolerance lets the feature vanish in the draw")
+        return cls(**values, sources=tuple(sorted(sources.items())))
 
     def describe(self) -> str:
         how = "normal, tolerance = 3 sigma" if self.distribution == "normal" else \
             "uniform over +/- tolerance"
         return (f"web +/-{self.web_mm:g} mm, notch radius +/-{self.notch_radius_mm:g} mm, arm "
-                f"length +/-{self.arm_length_mm:g} mm, modulus +/-{100 * self.modulus_rel:g} % "
-                f"({how})")
+                f"length +/-{self.arm_length_mm:g} mm, sheet +/-{self.sheet_mm:g} mm, modulus "
+                f"+/-{100 * self.modulus_rel:g} % ({how})")
 
 
 @dataclass(frozen=True)
@@ -130,6 +154,7 @@ class Samples:
     notch_radius_mm: np.ndarray
     arm_length_mm: np.ndarray
     youngs_modulus_MPa: np.ndarray
+    sheet_scale: np.ndarray | float = 1.0
 
 
 def _deviation(rng: np.random.Generator, tol: float, shape: tuple[int, ...],
@@ -154,7 +179,10 @@ def draw_samples(plan: Plan, tol: Tolerances, n: int, rng: np.random.Generator) 
     radius = nominal["notch_radius_mm"] + _deviation(rng, tol.notch_radius_mm, (n, m), d)
     arm = nominal["arm_length_mm"] + _deviation(rng, tol.arm_length_mm, (n, m), d)
     modulus = plan.material.youngs_modulus_MPa * (1.0 + _deviation(rng, tol.modulus_rel, (n, 1), d))
-    return Samples(web, radius, arm, modulus)
+    if tol.sheet_mm <= 0:  # no draw: the stream of a run without a sheet tolerance is unchanged
+        return Samples(web, radius, arm, modulus)
+    sheet = 1.0 + _deviation(rng, tol.sheet_mm, (n, 1), d) / plan.sheet_thickness_mm
+    return Samples(web, radius, arm, modulus, sheet)
 
 
 def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_MPa,
@@ -197,8 +225,9 @@ def stiffness_samples(plan: Plan, s: Samples, correction: Correction) -> np.ndar
     broadcast call evaluates the whole draw.
     """
     g = plan.element(1).geometry
-    return corrected_stiffness(s.web_mm, s.notch_radius_mm, s.arm_length_mm,
-                               s.youngs_modulus_MPa, g, plan.material.poisson_ratio, correction)
+    return s.sheet_scale * corrected_stiffness(s.web_mm, s.notch_radius_mm, s.arm_length_mm,
+                                               s.youngs_modulus_MPa, g, plan.material.poisson_ratio,
+                                               correction)
 
 
 def nominal_stiffness(plan: Plan, correction: Correction) -> np.ndarray:
@@ -358,6 +387,7 @@ class ToleranceReport:
         return {"samples": self.samples, "seed": self.seed,
                 "tolerances": {"web_mm": t.web_mm, "notch_radius_mm": t.notch_radius_mm,
                                "arm_length_mm": t.arm_length_mm, "modulus_rel": t.modulus_rel,
+                               "sheet_mm": t.sheet_mm,
                                "distribution": t.distribution, "description": t.describe()},
                 "elements": self.elements, "units": self.units,
                 "web_tolerance_for_5pct_K": self.web_tolerance,

@@ -15,6 +15,7 @@ from tactcad.partlib.registry import rig_parts_lib
 from tactcad.parts import bracket, indenter, purchased, rig_base, rig_cart, sample
 from tactcad.parts.element import build_element
 from tactcad.parts.fasteners import build_bolt, build_nut
+from tactcad.parts.gauge import build_gauge
 from tactcad.parts.plates import build_clamp_plate, build_spacer
 
 BUILD_COUNTS: Counter[str] = Counter()  # part name -> times built in this process
@@ -29,6 +30,7 @@ FAMILY_BUILDERS: dict[str, Builder] = {
     "clamp_plate": lambda plan, spec: build_clamp_plate(spec.geometry),
     "bolt": lambda plan, spec: build_bolt(*spec.geometry),
     "nut": lambda plan, spec: build_nut(spec.geometry),
+    "gauge": lambda plan, spec: build_gauge(spec.geometry),
     "base_plate": lambda plan, spec: rig_base.build_base_plate(spec.geometry),
     "column": lambda plan, spec: rig_base.build_column(spec.geometry),
     "cart": lambda plan, spec: rig_cart.build_cart(spec.geometry),

@@ -64,6 +64,7 @@ class MaterialGrade:
             ``fatigue_cycles`` cycles and stress ratio ``fatigue_R_ratio`` (MPa).
         density_g_per_cm3: density (g/cm^3).
         sources: (field, document) pairs naming where each value comes from.
+        family: the metal in words (``aluminium``, ``titanium``), as drawings and BOM name it.
     """
 
     name: str
@@ -76,6 +77,7 @@ class MaterialGrade:
     fatigue_R_ratio: float
     density_g_per_cm3: float
     sources: tuple[tuple[str, str], ...]
+    family: str = ""
 
     def source(self, field: str) -> str:
         """Document a value comes from ('' if none is recorded)."""
@@ -129,7 +131,7 @@ def _library() -> dict[str, Any]:
 
 
 def _grade_from_table(name: str, t: Mapping[str, Any]) -> MaterialGrade:
-    return MaterialGrade(name=name, description=t["description"],
+    return MaterialGrade(name=name, description=t["description"], family=t.get("family", ""),
                          fatigue_cycles=float(t["fatigue_cycles"]),
                          fatigue_R_ratio=float(t["fatigue_R_ratio"]),
                          sources=tuple(sorted(t["sources"].items())),
@@ -155,14 +157,44 @@ def strain_gauges() -> dict[str, StrainGauge]:
     return {n: _gauge_from_table(n, t) for n, t in _library()["gauges"].items()}
 
 
+def match_name(entries: Mapping[str, Any], text: Any) -> str | None:
+    """The entry ``text`` names: exact, else without regard to case, else the one
+    entry whose name starts with it (``ti-6al`` -> ``Ti-6Al-4V-annealed``); None when
+    none or several match."""
+    if not isinstance(text, str):
+        return None
+    if text in entries:
+        return text
+    folded = text.strip().casefold()
+    if not folded:
+        return None
+    for rule in (lambda n: n.casefold() == folded,
+                 lambda n: n.casefold().startswith(folded)):
+        found = [n for n in entries if rule(n)]
+        if found:
+            return found[0] if len(found) == 1 else None
+    return None
+
+
+def candidates(entries: Mapping[str, Any], text: str) -> list[str]:
+    """Every entry ``text`` could mean (case-insensitive name prefix)."""
+    folded = text.strip().casefold()
+    return [n for n in entries if folded and n.casefold().startswith(folded)]
+
+
 def _lookup(entries: Mapping[str, Any], name: Any, field: str):
-    if not isinstance(name, str) or name not in entries:
-        raise DesignError(field, name, "one of " + ", ".join(entries))
-    return entries[name]
+    found = match_name(entries, name)
+    if found is None:
+        several = candidates(entries, name) if isinstance(name, str) else []
+        why = (f"ambiguous: {', '.join(several)} fit" if len(several) > 1 else
+               "names of the library (tactcad materials), matched without regard to case "
+               "where only one fits")
+        raise DesignError(field, name, "one of " + ", ".join(entries), why)
+    return entries[found]
 
 
 def material_grade(name: str, field: str = "material.grade") -> MaterialGrade:
-    """The library grade ``name``.
+    """The library grade ``name`` (matched as :func:`match_name` does).
 
     Raises:
         DesignError: unknown grade, naming ``field`` and the allowed grades.

@@ -341,6 +341,21 @@ def read_toml(path: Path, what: str) -> dict[str, Any]:
                           "nesting too deep to read") from None
 
 
+def section_with_defaults(raw: Mapping[str, Any], section: str,
+                          defaults: Mapping[str, tuple[Any, str]]
+                          ) -> tuple[dict[str, Any], dict[str, str]]:
+    """(values, sources) of an optional section whose keys all have defaults:
+    ``defaults`` maps a key to (value, reason); a key the file gives has the
+    source "design file". The file's tables are validated before."""
+    table = raw.get(section) if isinstance(raw, Mapping) else None
+    table = table if isinstance(table, Mapping) else {}
+    values = {k: v for k, (v, _) in defaults.items()}
+    sources = {k: why for k, (_, why) in defaults.items()}
+    for key, value in table.items():
+        values[key], sources[key] = value, "design file"
+    return values, sources
+
+
 def content_hash(data: Mapping[str, Any]) -> str:
     """sha256 of a file's content (canonical JSON), independent of comments and layout."""
     canonical = json.dumps(data, sort_keys=True, separators=(",", ":"), default=str)

@@ -1,0 +1,133 @@
+"""The read-out's bought items per element: strain gauge, terminals, lead wire,
+bridge completion, and the adhesive, with quantities per element and spares.
+
+Catalogue data: the design's library gauge (:mod:`tactcad.vocabulary.materials`)
+and its ``[readout]`` grid (:mod:`tactcad.design.readout`); the quantities
+follow ``[bom]`` (:mod:`tactcad.design.bom`). No kernel, no files.
+
+Units: mm, m, ohm.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from tactcad.design.array import Plan
+from tactcad.design.bom import bom_settings
+from tactcad.design.readout import readout_of
+
+
+@dataclass(frozen=True)
+class SensorItem:
+    """One bought item of the read-out.
+
+    Attributes:
+        part: BOM part name. per_element: quantity per sensing element (0: per array).
+        per_array: quantity for the array without spares when ``per_element`` is 0.
+        spares: bought beyond the array's need. unit: "pcs", "m" or "kit".
+        material, reference, key_dimensions: as the BOM prints them.
+    """
+
+    part: str
+    per_element: float
+    per_array: float
+    spares: int
+    unit: str
+    material: str
+    reference: str
+    key_dimensions: str
+
+    def quantity(self, elements: int) -> int:
+        """For ``elements`` sensing elements, spares included, whole units."""
+        need = self.per_element * elements if self.per_element else self.per_array
+        return int(math.ceil(need - 1e-9)) + self.spares
+
+    def need(self, elements: int) -> int:
+        """For ``elements`` sensing elements, without spares, whole units."""
+        return int(math.ceil((self.per_element * elements if self.per_element else
+                              self.per_array) - 1e-9))
+
+
+def sensor_items(plan: Plan) -> list[SensorItem]:
+    """The read-out's bought items of ``plan``: gauge (one per element + spares), a pair of
+    bondable solder terminals per gauge, lead wire, three bridge completion resistors per
+    element (quarter bridge) and one adhesive kit."""
+    gauge = plan.strength.gauge
+    ro = readout_of(plan.raw, gauge)
+    bom = bom_settings(plan.raw)
+    return [
+        SensorItem("strain_gauge", 1, 0, bom.spares, "pcs", f"{gauge.alloy} foil",
+                   f"{gauge.description}; {ro.gauge_resistance_ohm:g} ohm, gauge factor "
+                   f"{ro.gauge_factor:g}, bonded on the top face over the web ({gauge.name})",
+                   f"grid {ro.grid_length_mm:g} x {ro.grid_width_mm:g}"),
+        SensorItem("solder_terminal_pair", 1, 0, bom.spares, "pcs", "copper on polyimide",
+                   "bondable solder terminals beside each gauge (strain relief for the leads)",
+                   "pair"),
+        SensorItem("lead_wire", bom.lead_wire_m_per_element, 0, 0, "m", "PTFE-insulated copper",
+                   f"stranded lead wire, {bom.lead_wire_m_per_element:g} m per element "
+                   "(three-wire quarter bridge)", "AWG 32-36"),
+        SensorItem("bridge_completion_resistor", 3, 0, 0, "pcs", "metal foil",
+                   f"precision resistor {ro.gauge_resistance_ohm:g} ohm 0.1 % 5 ppm/K, three per "
+                   "quarter bridge", "0805 SMD or axial 0.6 W"),
+        SensorItem("gauge_adhesive", 0, 1, 0, "kit", "cyanoacrylate", bom.adhesive,
+                   "bottle with catalyst, about 20 g"),
+    ]
+
+
+# ---------------------------------------------------------------------------
+# The gauge as a part: a foil gauge body bonded over each element's web
+# ---------------------------------------------------------------------------
+#: Carrier beyond the grid at each end along the arm and at each side (mm), and the
+#: thickness of carrier, foil and adhesive together (mm): the usual build of an open
+#: foil gauge on a polyimide carrier (catalogue outlines of 0.6 mm grids are about
+#: 2.5 x 2 mm and 0.05 mm thick).
+CARRIER_END_MM = 0.8
+CARRIER_SIDE_MM = 0.5
+GAUGE_THICKNESS_MM = 0.05
+
+
+@dataclass(frozen=True)
+class GaugeBody:
+    """A foil gauge's body (mm): carrier ``length_mm`` along the arm, ``width_mm``
+    across the sheet, ``thickness_mm``; the active grid ``grid_length_mm`` x
+    ``grid_width_mm`` centred in it. Part frame: centred on x and z, y from 0 (the
+    bonded face) to the thickness."""
+
+    length_mm: float
+    width_mm: float
+    thickness_mm: float
+    grid_length_mm: float
+    grid_width_mm: float
+
+    @property
+    def volume_mm3(self) -> float:
+        return self.length_mm * self.width_mm * self.thickness_mm
+
+    @property
+    def bbox_mm(self) -> tuple[float, float, float, float, float, float]:
+        return (-self.length_mm / 2, 0.0, -self.width_mm / 2, self.length_mm / 2,
+                self.thickness_mm, self.width_mm / 2)
+
+
+def gauge_body(plan: Plan) -> GaugeBody:
+    """The gauge body of ``plan``: the ``[readout]`` grid with its carrier, no wider than
+    the sheet."""
+    ro = readout_of(plan.raw, plan.strength.gauge)
+    width = min(ro.grid_width_mm + 2 * CARRIER_SIDE_MM, plan.sheet_thickness_mm)
+    return GaugeBody(ro.grid_length_mm + 2 * CARRIER_END_MM, width, GAUGE_THICKNESS_MM,
+                     ro.grid_length_mm, ro.grid_width_mm)
+
+
+def gauge_placements(plan: Plan):
+    """(element number, placement) of each element's gauge: on the flat top face, centred
+    over the web (x = notch centre) and across the sheet, in the element's own placement."""
+    from tactcad.design.array import Placement
+
+    out = []
+    for s in plan.slots:
+        g, p = s.geometry, s.placement
+        sx = -1.0 if p.turned else 1.0
+        out.append((s.number, Placement(sx * g.hinge_x_mm + p.dx_mm, g.base_height_mm + p.dy_mm,
+                                        sx * g.sheet_thickness_mm / 2 + p.dz_mm, p.turned)))
+    return out

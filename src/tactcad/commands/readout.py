@@ -1,0 +1,97 @@
+"""``tactcad readout``: signal, sensitivity and resolution of each element's gauge read-out."""
+
+from __future__ import annotations
+
+import argparse
+
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands.finite_json import dumps
+
+MODELS = ("closed-form", "beam", "fem2d", "fem3d")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "readout", help="per element: gauge strain over the grid, K_v, K_v/K, force and K_obj "
+                        "resolution of the read-out chain",
+        description="Evaluates the design's [readout] chain (gauge, quarter bridge, amplifier, "
+                    "DAQ; defaults from the library gauge and the datasheets, each with its "
+                    "source) for every element: the strain averaged over the gauge grid at its "
+                    "bonded position over the web, the signal per newton K_v/K (V/N) and per "
+                    "millimetre K_v (V/mm), the noise-limited force resolution (1 sigma) and the "
+                    "K_obj resolution over the required K_obj range at the full-scale force. "
+                    "closed-form and beam take the strain from bending along the profile, fem2d "
+                    "and fem3d from the fem2d field. Units: V, N, mm.")
+    add_design_arg(p)
+    p.add_argument("--model", choices=MODELS, default="closed-form",
+                   help="ladder level for K and the strain field (default closed-form)")
+    add_output_args(p, "print one JSON object: the chain, its noise and one record per element")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from tactcad.mechanics.readout import readout_report
+    from tactcad.mechanics.requirements import requirements_of
+
+    plan = plan_from_args(args)
+    report = readout_report(plan, requirements_of(plan), args.model, progress_from_args(args))
+    if args.json:
+        print(dumps(report.as_json(), indent=1))
+        return 0
+    print(render(report))
+    return 0
+
+
+def _g(x, fmt: str = ".4g") -> str:
+    return "n/a" if x is None else format(x, fmt)
+
+
+def render(report) -> str:
+    """The report as text: the chain, the noise and one table row per element."""
+    c = report.chain
+    lines = [f"read-out of {report.design} ({report.model}): gauge {c.gauge_name}, GF "
+             f"{c.gauge_factor:g}, {c.gauge_resistance_ohm:g} ohm, grid {c.grid_length_mm:g} x "
+             f"{c.grid_width_mm:g} mm, {c.bridge} bridge at {c.excitation_V:g} V, {c.amplifier} "
+             f"gain {c.amplifier_gain:g}, {c.daq} +/-{c.daq_range_V:g} V {c.daq_bits} bit, "
+             f"{c.samples_averaged} samples averaged",
+             f"  {c.volts_per_strain:.4g} V per unit strain; noise of one reading "
+             f"{1e6 * report.noise_V['reading']:.1f} uV rms; full-scale force "
+             f"{report.full_scale_force_N:.4g} N; K_obj range {report.kobj_range_N_per_mm[0]:g}-"
+             f"{report.kobj_range_N_per_mm[1]:g} N/mm",
+             "| element | role | K N/mm | strain/N (grid) | grid/peak | K_v/K V/N | K_v V/mm | "
+             "force res. N | K_obj res. |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for r in report.records:
+        res = "n/a" if r["kobj_resolution_rel"] is None else f"{100 * r['kobj_resolution_rel']:.2f} %"
+        lines.append(f"| {r['element']} | {r['role']} | {r['stiffness_N_per_mm']:.4g} | "
+                     f"{r['gauge_strain_per_N']:.4g} | {r['grid_over_peak']:.3f} | "
+                     f"{r['sensitivity_V_per_N']:.4g} | {r['k_v_V_per_mm']:.4g} | "
+                     f"{r['force_resolution_N']:.2g} | {res} |")
+    for r in report.records:
+        if r["daq_range_used_rel"] > 1:
+            lines.append(f"  element {r['element']}: the full-scale signal "
+                         f"{r['full_scale_signal_V']:.3g} V exceeds the DAQ range "
+                         f"+/-{c.daq_range_V:g} V: lower readout.amplifier_gain or raise "
+                         f"readout.daq_range_V")
+    arr = report.array_kobj_resolution_rel
+    lines.append(f"array K_obj resolution (worst over the range, best unit): "
+                 f"{'n/a' if arr is None else f'{100 * arr:.2f} %'}")
+    if report.table1 is not None and report.table1.get("elements"):
+        t = report.table1
+        lines += ["Table 1 (measured) against the prediction:",
+                  "| element | K_v meas. | K_v pred. | ratio | K_v/K meas. | K_v/K pred. | ratio | "
+                  "gain that reconciles |", "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+        for r in report.records:
+            if r.get("table1_k_v_V_per_mm") is None:
+                continue
+            lines.append(f"| {r['element']} | {r['table1_k_v_V_per_mm']:g} | {r['k_v_V_per_mm']:.3g} "
+                         f"| {r['table1_k_v_ratio']:.2f} | {r['table1_sensitivity_V_per_N']:g} | "
+                         f"{r['sensitivity_V_per_N']:.3g} | {r['table1_sensitivity_ratio']:.2f} | "
+                         f"{r['reconciling_gain']:.0f} |")
+        lines.append(f"  fitted {_g(t['fitted_volts_per_strain'])} V per unit strain (assumed "
+                     f"{t['assumed_volts_per_strain']:.4g}): gain "
+                     f"{_g(t['fitted_gain_at_assumed_excitation'], '.0f')} at the assumed excitation")
+        lines.append(f"  ratio spread {100 * t['sensitivity_ratio_rel_std']:.0f} % (1 sigma); at each "
+                     f"element's as-built web {100 * t['as_built_web_ratio_rel_std']:.0f} %, mean "
+                     f"{t['as_built_web_ratio_mean']:.2f} (gain {t['gain_at_as_built_webs']:.0f})")
+    return "\n".join(lines)

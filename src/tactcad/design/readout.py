@@ -1,0 +1,197 @@
+"""The ``[readout]`` section of a design file: the chain from gauge to number.
+
+A foil strain gauge bonded on the flat top face over each element's web, in
+a quarter Wheatstone bridge, an instrumentation amplifier and a DAQ. Every
+key is optional; a key the file leaves out takes the default below, each
+with its source (a datasheet) or, where no document fixes it, the stated
+assumption. Gauge factor and resistance default to the design's library
+gauge (``[strength] gauge``), so the strength limits and the read-out use
+one gauge.
+
+Keys (units in the names):
+
+* ``gauge_factor`` (-), ``gauge_resistance_ohm``;
+* ``grid_length_mm`` (along the arm), ``grid_width_mm`` (across the sheet):
+  the active grid, over which the gauge averages the strain;
+* ``bridge``: ``"quarter"`` (one active gauge, three completion resistors);
+* ``excitation_V``: bridge supply;
+* ``amplifier``, ``amplifier_gain``, ``amplifier_noise_nV_per_rtHz``,
+  ``bandwidth_Hz``: the instrumentation amplifier and its noise;
+* ``daq``, ``daq_range_V`` (+/- input range), ``daq_bits``,
+  ``daq_noise_uV_rms`` (random noise of that range, one sample),
+  ``samples_averaged``.
+
+Units: V, ohm, mm, Hz.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from tactcad.vocabulary.schema import (Problems, Section, Text, choice, fmt, integer, number,
+                                   section_with_defaults)
+
+#: Input ranges (+/- V) of the NI USB-6258 and the random noise of one sample
+#: in each (uV rms). Source: NI 625x Specifications (371291H), AI absolute
+#: accuracy table, "Random noise, sigma".
+NI_6258_NOISE_UV_RMS = {0.1: 15.0, 0.2: 16.0, 0.5: 21.0, 1.0: 32.0, 2.0: 57.0, 5.0: 140.0,
+                        10.0: 280.0}
+#: AD621 pin-strapped gains and the amplifier's -3 dB bandwidth at each (Hz).
+#: Source: Analog Devices AD621 data sheet (gain 10: 800 kHz; gain 100: 200 kHz).
+AD621_BANDWIDTH_HZ = {10.0: 800e3, 100.0: 200e3}
+
+#: Random noise per volt of range (uV rms / V) where no table applies: the
+#: NI 625x figure at +/-5 and +/-10 V (28 ppm of the range).
+NOISE_UV_PER_V_RANGE = 28.0
+
+BRIDGES = ("quarter",)
+
+#: Defaults: value and source (datasheet) or stated assumption. Gauge factor
+#: and resistance come from the library gauge unless the file gives them.
+DEFAULTS: dict[str, tuple[Any, str]] = {
+    "grid_length_mm": (0.6, "assumption: the shortest common 120 ohm foil grid (0.6 mm); it "
+                            "spans the notch's thin part, and a longer grid reads less of the "
+                            "peak strain (readout gives the grid average)"),
+    "grid_width_mm": (1.0, "assumption: 1.0 mm grid width, the usual width of a 0.6 mm 120 ohm "
+                           "grid, narrower than the sheet"),
+    "bridge": ("quarter", "one active gauge per element in a quarter Wheatstone bridge with "
+                          "three completion resistors"),
+    "excitation_V": (2.5, "assumption: 2.5 V keeps a 120 ohm gauge at 13 mW, the usual limit "
+                          "for a small grid on a thin web (self-heating)"),
+    "amplifier": ("AD621", "Analog Devices AD621 instrumentation amplifier"),
+    "amplifier_gain": (100.0, "assumption: the AD621's pin-strapped gain 100 (data sheet: fixed "
+                              "gains 10 and 100)"),
+    "amplifier_noise_nV_per_rtHz": (9.0, "AD621 data sheet: input voltage noise 9 nV/sqrt(Hz) "
+                                         "at 1 kHz, gain 100"),
+    "bandwidth_Hz": (None, "AD621 data sheet: -3 dB bandwidth at the gain (200 kHz at 100, "
+                           "800 kHz at 10); no filter assumed"),
+    "daq": ("NI USB-6258", "NI USB-6258 M Series DAQ"),
+    "daq_range_V": (5.0, "assumption: +/-5 V, the NI USB-6258 range (+/-0.1 ... 10 V) that holds "
+                         "an amplified bridge offset of a few volts and the signal"),
+    "daq_bits": (16, "NI 625x specifications: 16-bit ADC"),
+    "daq_noise_uV_rms": (None, "NI 625x specifications: random noise sigma of the chosen range "
+                               "(+/-5 V: 140 uV rms)"),
+    "samples_averaged": (10, "assumption: 10 readings averaged per value"),
+}
+
+
+class ReadoutSection(Section):
+    """``[readout]``: every key optional (defaults in :data:`DEFAULTS`)."""
+
+    gauge_factor: number(0.5, 10.0, unit="", why="foil gauges 2 ... 2.2, semiconductor more") = None
+    gauge_resistance_ohm: number(10.0, 10000.0, unit="ohm") = None
+    grid_length_mm: number(0.1, 20.0, why="active grid length along the arm") = None
+    grid_width_mm: number(0.1, 20.0, why="active grid width across the sheet") = None
+    bridge: choice(BRIDGES, "one active gauge per element") = None
+    excitation_V: number(0.1, 15.0, unit="V", why="bridge supply") = None
+    amplifier: Text = None
+    amplifier_gain: number(1.0, 10000.0, unit="", why="instrumentation amplifier gain") = None
+    amplifier_noise_nV_per_rtHz: number(0.1, 1000.0, unit="nV/sqrt(Hz)") = None
+    bandwidth_Hz: number(0.1, 10e6, unit="Hz", why="noise bandwidth of the chain") = None
+    daq: Text = None
+    daq_range_V: number(0.01, 100.0, unit="V", why="+/- input range of the DAQ") = None
+    daq_bits: integer(8, 32, why="ADC resolution") = None
+    daq_noise_uV_rms: number(0.01, 10000.0, unit="uV rms",
+                             why="random noise of one DAQ sample in the chosen range") = None
+    samples_averaged: integer(1, 1_000_000, why="readings averaged per value") = None
+
+
+def check_readout(d: Any, p: Problems) -> None:
+    """Cross-field rule: the gauge grid fits on the element's top face over the web."""
+    ro = getattr(d, "readout", None)
+    if ro is None:
+        return
+    sheet = d.sheet.thickness_mm
+    if ro.grid_width_mm is not None and ro.grid_width_mm > sheet:
+        p.add("readout.grid_width_mm", ro.grid_width_mm, f"<= sheet.thickness_mm = {fmt(sheet)} mm",
+              "the grid lies on the element's top face, one sheet thick")
+    shortest = min(d.arms.lengths_mm)
+    if ro.grid_length_mm is not None and ro.grid_length_mm > shortest:
+        p.add("readout.grid_length_mm", ro.grid_length_mm, f"<= {fmt(shortest)} mm (shortest arm)",
+              "the grid is centred over the web and must stay on the arm's top face")
+
+
+@dataclass(frozen=True)
+class ReadoutChain:
+    """The resolved read-out chain of a design (units in the names).
+
+    ``sources`` gives, per key, "design file" or the default's source /
+    assumption; ``assumed`` lists the keys whose value is an assumption.
+    """
+
+    gauge_name: str
+    gauge_factor: float
+    gauge_resistance_ohm: float
+    grid_length_mm: float
+    grid_width_mm: float
+    bridge: str
+    excitation_V: float
+    amplifier: str
+    amplifier_gain: float
+    amplifier_noise_nV_per_rtHz: float
+    bandwidth_Hz: float
+    daq: str
+    daq_range_V: float
+    daq_bits: int
+    daq_noise_uV_rms: float
+    samples_averaged: int
+    sources: tuple[tuple[str, str], ...] = ()
+
+    @property
+    def volts_per_strain(self) -> float:
+        """Linearised quarter-bridge gain at the DAQ: G V_ex GF / 4 (V per unit strain)."""
+        return self.amplifier_gain * self.excitation_V * self.gauge_factor / 4.0
+
+    @property
+    def lsb_V(self) -> float:
+        """One ADC step over the +/- range (V)."""
+        return 2.0 * self.daq_range_V / 2 ** self.daq_bits
+
+    def as_json(self) -> dict:
+        out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "sources"}
+        out["volts_per_strain"] = self.volts_per_strain
+        out["sources"] = dict(self.sources)
+        return out
+
+
+def _nearest(table: Mapping[float, float], key: float) -> float | None:
+    """The table's value at ``key`` when it is one of the table's keys, else None."""
+    for k, v in table.items():
+        if math.isclose(k, key, rel_tol=1e-9):
+            return v
+    return None
+
+
+def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
+    """The read-out chain of a design's raw tables (validated before).
+
+    Args:
+        raw: the design's tables (``[readout]`` optional).
+        gauge: the design's library :class:`~tactcad.vocabulary.materials.StrainGauge`
+            (gauge factor and resistance unless the file gives them).
+    """
+    gs = dict(gauge.sources)
+    from_gauge = {"gauge_factor": (gauge.gauge_factor, gs.get("gauge_factor", "")),
+                  "gauge_resistance_ohm": (gauge.resistance_ohm, gs.get("resistance_ohm", ""))}
+    values, sources = section_with_defaults(raw, "readout", {
+        **{k: (v, f"library gauge {gauge.name}: {why}".rstrip(": "))
+           for k, (v, why) in from_gauge.items()}, **DEFAULTS})
+    gain = float(values["amplifier_gain"])
+    if values["bandwidth_Hz"] is None:
+        bw = _nearest(AD621_BANDWIDTH_HZ, gain) if values["amplifier"] == "AD621" else None
+        values["bandwidth_Hz"] = bw if bw is not None else 10e3
+        if bw is None:
+            sources["bandwidth_Hz"] = "assumption: 10 kHz noise bandwidth (no data for this gain)"
+    if values["daq_noise_uV_rms"] is None:
+        noise = _nearest(NI_6258_NOISE_UV_RMS, float(values["daq_range_V"])) \
+            if values["daq"] == "NI USB-6258" else None
+        if noise is None:  # between its ranges or another DAQ: scale with the range
+            noise = NOISE_UV_PER_V_RANGE * float(values["daq_range_V"])
+            sources["daq_noise_uV_rms"] = ("assumption: 28 ppm of the range, as the NI 625x "
+                                           "random noise at +/-5 and 10 V")
+        values["daq_noise_uV_rms"] = noise
+    return ReadoutChain(gauge_name=gauge.name, sources=tuple(sorted(sources.items())),
+                        **{k: values[k] for k in ReadoutChain.__dataclass_fields__
+                           if k not in ("gauge_name", "sources")})

@@ -1,0 +1,379 @@
+"""Read-out chain of a design: gauge strain, signal, noise and resolution per element.
+
+Gauge strain. The gauge sits on the flat top face centred over the notch
+centre x_h and reads the strain averaged over its grid length L_g:
+
+    eps_avg / F = (1 / L_g) * integral over [x_h - L_g/2, x_h + L_g/2] of eps(x) / F dx.
+
+``closed-form`` and ``beam`` take eps(x) from Euler-Bernoulli bending along
+the real profile, eps(x) / F = -6 (x_F - x) / (E b h(x)^2) with the section
+height h(x) of the notch (t + R - sqrt(R^2 - (x - x_h)^2)), the base block
+behind it and the arm in front (x_F: load point; negative: the top face is
+in compression under an upward tip force). ``fem2d`` and ``fem3d`` take it
+from the plane-stress P2 field of :mod:`tactcad.mechanics.fem.fem2d` on the
+top-surface vertices (sigma_xx / E on the free surface), so the notch's
+own strain concentration is in it.
+
+Signal. Quarter bridge, linearised: V_out = G V_ex GF eps / 4
+(Hoffmann, "An Introduction to Measurements using Strain Gages", HBM 1989,
+ch. 7); the exact output V_ex GF eps / (4 + 2 GF eps) is lower by the
+relative nonlinearity GF |eps| / 2 (reported at the full-scale force).
+Per element: sensitivity S = G V_ex GF eps_avg / (4 F) (V/N), K_v = S K
+(V/mm, eq. 4-6 of the paper's calibration).
+
+Noise (one reading, ``samples_averaged`` samples averaged, white noise):
+the amplifier's input noise density e_n over the noise bandwidth
+(pi/2 x the -3 dB bandwidth of a single pole), the bridge's Johnson noise
+(source resistance = gauge resistance for four equal arms), both times the
+gain, the DAQ's random noise and the quantisation step / sqrt(12), summed
+in quadrature and divided by sqrt(samples). Force resolution = that noise
+/ |S| (1 sigma).
+
+K_obj resolution: eq. 1-3 with each element's own force resolution
+(:func:`tactcad.mechanics.resolution.unit_resolution`); the reference is the
+stiffest element, every softer one measures (as ``verify``), pressed until
+the reference carries the full-scale force.
+
+Units: mm, N, MPa, V, N/mm, V/mm, V/N; strain dimensionless.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.design.readout import ReadoutChain, readout_of
+
+#: Boltzmann constant (J/K) and the bridge temperature assumed for its Johnson noise (K).
+BOLTZMANN_J_PER_K = 1.380649e-23
+BRIDGE_TEMPERATURE_K = 296.0
+#: Points per mm of grid for the beam-theory average (Gauss-Legendre per piece).
+GAUSS_POINTS = 64
+#: Levels whose gauge strain comes from the fem2d field.
+FIELD_MODELS = ("fem2d", "fem3d")
+
+
+def readout_chain(plan: Plan) -> ReadoutChain:
+    """The plan's resolved ``[readout]`` (defaults from the library gauge and datasheets)."""
+    return readout_of(plan.raw, plan.strength.gauge)
+
+
+# ---------------------------------------------------------------------------
+# Gauge strain
+# ---------------------------------------------------------------------------
+def top_face_height_mm(g: ElementGeometry, x_mm) -> np.ndarray:
+    """Section height under the flat top face at ``x_mm`` (element frame, mm; array-like):
+    the base block behind the notch, the circular notch, the arm in front."""
+    x = np.asarray(x_mm, float)
+    R, t, xh = g.notch_radius_mm, g.web_thickness_mm, g.hinge_x_mm
+    d = np.clip(x - xh, -R, R)
+    notch = t + R - np.sqrt(np.maximum(R * R - d * d, 0.0))
+    return np.where(x < xh - R, g.base_height_mm, np.where(x > xh + R, g.arm_height_mm, notch))
+
+
+def beam_surface_strain_per_N(g: ElementGeometry, material: Material, x_mm) -> np.ndarray:
+    """Top-face strain per newton of tip force, Euler-Bernoulli (1/N; negative: compression).
+
+    eps / F = -6 (x_F - x) / (E b h(x)^2), x_F the load point (contact-face centre).
+    """
+    x = np.asarray(x_mm, float)
+    h = top_face_height_mm(g, x)
+    b = g.sheet_thickness_mm
+    return -6.0 * (g.tip_centre_x_mm - x) / (material.youngs_modulus_MPa * b * h * h)
+
+
+def grid_span_mm(g: ElementGeometry, grid_length_mm: float) -> tuple[float, float]:
+    """x range the grid covers, centred over the notch centre (mm)."""
+    return g.hinge_x_mm - grid_length_mm / 2, g.hinge_x_mm + grid_length_mm / 2
+
+
+def beam_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: float) -> float:
+    """Grid-averaged top-face strain per newton, beam theory (Gauss-Legendre on each
+    smooth piece of h(x): the notch walls are break points)."""
+    a, b = grid_span_mm(g, grid_length_mm)
+    R, xh = g.notch_radius_mm, g.hinge_x_mm
+    cuts = sorted({a, b, *[c for c in (xh - R, xh + R) if a < c < b]})
+    nodes, weights = np.polynomial.legendre.leggauss(GAUSS_POINTS)
+    total = 0.0
+    for lo, hi in zip(cuts, cuts[1:]):
+        x = 0.5 * (hi - lo) * nodes + 0.5 * (hi + lo)
+        total += 0.5 * (hi - lo) * float(weights @ beam_surface_strain_per_N(g, material, x))
+    return total / (b - a)
+
+
+def fem2d_surface_strain_per_N(g: ElementGeometry, material: Material
+                               ) -> tuple[np.ndarray, np.ndarray]:
+    """(x, eps/F) on the top-face vertices of the default fem2d mesh (plane stress, unit force):
+    eps = sigma_xx / E on the free surface (sigma_yy = sigma_zz = 0). Sorted by x."""
+    from tactcad.mechanics.fem.fem2d import solve_fem2d
+    from tactcad.mechanics.fem.fields import vertex_stress
+
+    sol = solve_fem2d(g, material, plane="stress", force_N=1.0, keep_field=True)
+    mesh = sol.field.basis.mesh
+    p = mesh.p
+    corners = np.unique(mesh.t[:3])  # a quadratic mesh also lists its mid-side nodes in p
+    top = corners[np.abs(p[1, corners] - g.base_height_mm) < 1e-7]
+    sxx = vertex_stress(sol.field)[top, 0, 0]
+    order = np.argsort(p[0, top])
+    return p[0, top][order], sxx[order] / material.youngs_modulus_MPa
+
+
+def field_grid_strain_per_N(x: np.ndarray, eps: np.ndarray, span: tuple[float, float]) -> float:
+    """Average of a sampled strain profile over ``span`` (linear between samples)."""
+    a, b = span
+    inside = x[(x > a) & (x < b)]
+    xs = np.concatenate([[a], inside, [b]])
+    ys = np.interp(xs, x, eps)
+    return float(np.trapezoid(ys, xs) / (b - a)) if hasattr(np, "trapezoid") else \
+        float(np.trapz(ys, xs) / (b - a))
+
+
+def gauge_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: float,
+                       model: str) -> dict:
+    """Grid-averaged and peak top-face strain per newton of one element.
+
+    Returns:
+        ``{"grid": eps_avg/F, "peak": eps/F at the notch centre, "source": str}`` (1/N, signed).
+    """
+    if model in FIELD_MODELS:
+        x, eps = fem2d_surface_strain_per_N(g, material)
+        return {"grid": field_grid_strain_per_N(x, eps, grid_span_mm(g, grid_length_mm)),
+                "peak": float(np.interp(g.hinge_x_mm, x, eps)),
+                "source": "fem2d plane-stress field on the top face"}
+    return {"grid": beam_grid_strain_per_N(g, material, grid_length_mm),
+            "peak": float(beam_surface_strain_per_N(g, material, g.hinge_x_mm)),
+            "source": "Euler-Bernoulli bending along the profile"}
+
+
+# ---------------------------------------------------------------------------
+# Signal and noise
+# ---------------------------------------------------------------------------
+def noise_budget_V(chain: ReadoutChain) -> dict[str, float]:
+    """Noise of one reading at the DAQ (V rms), by source and in total.
+
+    Keys: ``amplifier``, ``bridge_johnson``, ``daq``, ``quantisation`` (one
+    sample each), ``per_sample`` (quadrature sum), ``reading`` (per_sample /
+    sqrt(samples_averaged)).
+    """
+    bw_noise = 0.5 * math.pi * chain.bandwidth_Hz  # single-pole noise bandwidth
+    amp = chain.amplifier_gain * chain.amplifier_noise_nV_per_rtHz * 1e-9 * math.sqrt(bw_noise)
+    johnson = chain.amplifier_gain * math.sqrt(4 * BOLTZMANN_J_PER_K * BRIDGE_TEMPERATURE_K
+                                               * chain.gauge_resistance_ohm * bw_noise)
+    daq = chain.daq_noise_uV_rms * 1e-6
+    quant = chain.lsb_V / math.sqrt(12.0)
+    per_sample = math.sqrt(amp ** 2 + johnson ** 2 + daq ** 2 + quant ** 2)
+    return {"amplifier": amp, "bridge_johnson": johnson, "daq": daq, "quantisation": quant,
+            "per_sample": per_sample,
+            "reading": per_sample / math.sqrt(chain.samples_averaged)}
+
+
+def bridge_nonlinearity_rel(gauge_factor: float, strain: float) -> float:
+    """Relative shortfall of the exact quarter-bridge output against the linear
+    V_ex GF eps / 4: 1 - 1 / (1 + GF eps / 2) (for compression the exact output is larger:
+    negative)."""
+    return 1.0 - 1.0 / (1.0 + gauge_factor * strain / 2.0)
+
+
+# ---------------------------------------------------------------------------
+# Per element
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ReadoutReport:
+    """What ``tactcad readout`` prints; :meth:`as_json` is its JSON."""
+
+    design: str
+    model: str
+    chain: ReadoutChain
+    noise_V: dict
+    full_scale_force_N: float
+    kobj_range_N_per_mm: tuple[float, float]
+    records: list[dict]
+    array_kobj_resolution_rel: float | None
+    table1: dict | None = None
+
+    def as_json(self) -> dict:
+        out = {"design": self.design, "model": self.model, "chain": self.chain.as_json(),
+               "noise_V_rms": self.noise_V, "full_scale_force_N": self.full_scale_force_N,
+               "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
+               "array_kobj_resolution_rel": self.array_kobj_resolution_rel,
+               "elements": self.records,
+               "notes": [
+                   "V_out = G V_ex GF eps / 4 (quarter bridge, linearised); the exact output "
+                   "differs by bridge_nonlinearity_rel at the full-scale force.",
+                   "force_resolution_N: noise of one averaged reading / |sensitivity| (1 sigma).",
+                   "kobj_resolution_rel: worst over the required K_obj range at the full-scale "
+                   "force, each element read to its own force resolution (eq. 1-3).",
+                   "full_scale_signal_V does not include the bridge's offset V0."]}
+        if self.table1 is not None:
+            out["table1"] = self.table1
+        return out
+
+
+def _unit_kobj_resolution(km: float, kr: float, dfm: float, dfr: float,
+                          rng: tuple[float, float], force_N: float) -> float:
+    from tactcad.mechanics.resolution import KOBJ_POINTS, unit_resolution
+
+    k_obj = np.geomspace(*rng, KOBJ_POINTS)
+    res = unit_resolution(km, kr, k_obj, force_N, dfm, force_resolution_reference_N=dfr)
+    return float(np.max(res["K_obj_resolution_rel"]))
+
+
+def array_resolution_rel(kr: float, dfr: float, measuring: list[tuple[float, float]],
+                         rng: tuple[float, float], force_N: float) -> float | None:
+    """Worst relative K_obj resolution over the range of the array's best unit at each K_obj;
+    ``measuring`` = [(K_m, force resolution of that element)] (N/mm, N)."""
+    from tactcad.mechanics.resolution import KOBJ_POINTS, unit_resolution
+
+    if not measuring:
+        return None
+    k_obj = np.geomspace(*rng, KOBJ_POINTS)
+    best = np.full(k_obj.shape, np.inf)
+    for km, dfm in measuring:
+        r = unit_resolution(km, kr, k_obj, force_N, dfm, force_resolution_reference_N=dfr)
+        best = np.minimum(best, r["K_obj_resolution_rel"])
+    return float(np.max(best))
+
+
+def readout_report(plan: Plan, requirements, model: str = "closed-form",
+                   progress: Callable[[str], None] | None = None,
+                   stiffness: dict[str, float] | None = None) -> ReadoutReport:
+    """Per element: gauge strain over the grid, K_v, sensitivity, force and K_obj resolution.
+
+    Args:
+        plan: the design.
+        model: ladder level for K and the strain field.
+        progress: gets one line per distinct element.
+        stiffness: K per distinct part (N/mm) already computed at ``model``
+            (``verify`` passes its own); ``None`` estimates them.
+        requirements: the design's :class:`~tactcad.mechanics.requirements.Requirements`
+            (full-scale force and K_obj range).
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+        DesignError: the material has no yield strength (the full-scale force needs it).
+    """
+    from tactcad.design.requirements import cites_paper
+    from tactcad.mechanics.ladder import estimate
+
+    chain = readout_chain(plan)
+    noise = noise_budget_V(chain)
+    F, rng = requirements.full_scale_force_N, requirements.kobj_range_N_per_mm
+    per_part: dict[str, dict] = {}
+    for name, g in plan.distinct_elements.items():
+        if progress:
+            progress(f"readout {model}: {name}")
+        k = stiffness[name] if stiffness is not None else \
+            estimate(model, g, plan.material).stiffness_N_per_mm
+        eps = gauge_strain_per_N(g, plan.material, chain.grid_length_mm, model)
+        s = chain.volts_per_strain * eps["grid"]
+        per_part[name] = {"K": k, "eps": eps, "S": s, "dF": noise["reading"] / abs(s)}
+    ks = {slot.number: per_part[slot.geometry.part_name]["K"] for slot in plan.slots}
+    kr = max(ks.values())
+    ref = min(n for n, k in ks.items() if k >= kr * (1 - 1e-9))
+    dfr = per_part[plan.element(ref).geometry.part_name]["dF"]
+    records, measuring = [], []
+    for slot in plan.slots:
+        d = per_part[slot.geometry.part_name]
+        is_ref = ks[slot.number] >= kr * (1 - 1e-9)
+        kobj_res = None
+        if not is_ref:
+            kobj_res = _unit_kobj_resolution(d["K"], kr, d["dF"], dfr, rng, F)
+            measuring.append((d["K"], d["dF"]))
+        records.append(_element_record(slot, d, is_ref, ref, kobj_res, chain, F))
+    table1 = table1_comparison(records, chain, plan, model) if cites_paper(plan.raw) else None
+    return ReadoutReport(plan.name, model, chain, noise, F, rng, records,
+                         array_resolution_rel(kr, dfr, measuring, rng, F), table1)
+
+
+def _element_record(slot, d: dict, is_ref: bool, ref: int, kobj_res: float | None,
+                    chain: ReadoutChain, F: float) -> dict:
+    eps_fs = d["eps"]["grid"] * F
+    return {"element": slot.number, "part": slot.geometry.part_name,
+            "arm_length_mm": slot.geometry.arm_length_mm,
+            "role": "reference" if is_ref else "measuring",
+            "stiffness_N_per_mm": d["K"],
+            "gauge_strain_per_N": d["eps"]["grid"],
+            "peak_strain_per_N": d["eps"]["peak"],
+            "grid_over_peak": d["eps"]["grid"] / d["eps"]["peak"],
+            "strain_source": d["eps"]["source"],
+            "sensitivity_V_per_N": d["S"],
+            "k_v_V_per_mm": d["S"] * d["K"],
+            "force_resolution_N": d["dF"],
+            "full_scale_signal_V": d["S"] * F,
+            "daq_range_used_rel": abs(d["S"] * F) / chain.daq_range_V,
+            "bridge_nonlinearity_rel": bridge_nonlinearity_rel(chain.gauge_factor, eps_fs),
+            "kobj_resolution_rel": kobj_res,
+            "reference_element": None if is_ref else ref}
+
+
+def _rel_std(x: list[float]) -> float:
+    """Sample standard deviation over the mean (0 for a single value)."""
+    return float(np.std(x, ddof=1) / abs(np.mean(x))) if len(x) > 1 else 0.0
+
+
+def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
+                      model: str = "closed-form") -> dict:
+    """Adds the measured K_v and K_v/K of each calibrated element to its record
+    (``table1_k_v_V_per_mm``, ``table1_sensitivity_V_per_N``, measured / predicted
+    ratios and the amplifier gain that would reconcile the sensitivity) and
+    returns the summary: the gain fitted through all elements (least squares
+    through the origin) and the ratios' spread.
+
+    Also per element the sensitivity ratio at its as-built web (the web at which
+    the corrected closed form gives the measured K,
+    :func:`tactcad.mechanics.ladder.as_built_webs`): what is left of the spread
+    once each element's own web is known (gauge placement, bonding, gain).
+    """
+    from dataclasses import replace
+
+    from tactcad.mechanics.closed_form import web_for_stiffness
+    from tactcad.mechanics.paper.data import table1
+
+    as_built = []
+
+    by_element = {r.element: r for r in table1()}
+    ratios = []
+    num = den = 0.0
+    for rec in records:
+        row = by_element.get(rec["element"])
+        if row is not None and abs(row.flexing_arm_length_mm - rec["arm_length_mm"]) > 1e-9:
+            row = None  # a variant of the design: this element is not Table 1's
+        if row is None:
+            rec["table1_k_v_V_per_mm"] = rec["table1_sensitivity_V_per_N"] = None
+            continue
+        s_ratio = row.K_v_over_K_V_per_N / rec["sensitivity_V_per_N"]
+        rec.update(table1_k_v_V_per_mm=row.K_v_V_per_mm,
+                   table1_sensitivity_V_per_N=row.K_v_over_K_V_per_N,
+                   table1_k_v_ratio=row.K_v_V_per_mm / rec["k_v_V_per_mm"],
+                   table1_sensitivity_ratio=s_ratio,
+                   reconciling_gain=chain.amplifier_gain * s_ratio)
+        ratios.append(s_ratio)
+        g0 = plan.element(rec["element"]).geometry
+        web = web_for_stiffness(row.stiffness_N_per_mm, g0, plan.material)
+        g = replace(g0, web_thickness_mm=web)
+        s_built = chain.volts_per_strain * gauge_strain_per_N(
+            g, plan.material, chain.grid_length_mm, "closed-form")["grid"]
+        rec["table1_as_built_web_mm"] = web
+        rec["table1_sensitivity_ratio_as_built_web"] = row.K_v_over_K_V_per_N / s_built
+        as_built.append(rec["table1_sensitivity_ratio_as_built_web"])
+        e = rec["gauge_strain_per_N"]
+        num += e * row.K_v_over_K_V_per_N
+        den += e * e
+    fitted = num / den if den else None
+    if not ratios:
+        return {"elements": 0}
+    return {"elements": len(ratios),
+            "sensitivity_ratio_min": min(ratios), "sensitivity_ratio_max": max(ratios),
+            "sensitivity_ratio_mean": float(np.mean(ratios)),
+            "sensitivity_ratio_rel_std": _rel_std(ratios),
+            "as_built_web_ratio_mean": float(np.mean(as_built)),
+            "as_built_web_ratio_rel_std": _rel_std(as_built),
+            "gain_at_as_built_webs": chain.amplifier_gain * float(np.mean(as_built)),
+            "fitted_volts_per_strain": fitted,
+            "assumed_volts_per_strain": chain.volts_per_strain,
+            "fitted_gain_at_assumed_excitation": (fitted / (chain.excitation_V * chain.gauge_factor
+                                                            / 4.0)) if fitted else None}
