@@ -19,7 +19,8 @@ from tactcad.errors import DesignError, DesignErrors
 ROOT = Path(__file__).resolve().parents[1]
 #: The design README's example loads (its one path, replaced by this absolute one).
 EXAMPLE_DESIGN = ROOT / "hardware" / "macro_array.toml"
-README_DESIGN_LINE = 'DESIGN = "hardware/macro_array.toml"'
+README_EXAMPLE_DESIGN = ROOT / "hardware" / "examples" / "ti_array_2x3.toml"
+README_DESIGN_LINE = 'DESIGN = "hardware/examples/ti_array_2x3.toml"'
 
 
 def readme_block(heading: str, index: int = 0) -> str:
@@ -209,7 +210,7 @@ def test_show_is_optional():
 def test_readme_python_example_runs(tmp_path):
     code = readme_block("## Use from Python")
     assert README_DESIGN_LINE in code  # the one path the example names
-    code = code.replace(README_DESIGN_LINE, f"DESIGN = {str(EXAMPLE_DESIGN)!r}")
+    code = code.replace(README_DESIGN_LINE, f"DESIGN = {str(README_EXAMPLE_DESIGN)!r}")
     script = tmp_path / "example.py"
     script.write_text(code, encoding="utf-8")
     out = subprocess.run([sys.executable, str(script)], cwd=tmp_path,
@@ -218,12 +219,16 @@ def test_readme_python_example_runs(tmp_path):
     assert out.returncode == 0, out.stderr
     assert out.stderr == ""  # no raw warning reaches the user
     lines = out.stdout.splitlines()
-    assert lines[0] == "element_a4mm web 0.3 mm"
-    assert re.fullmatch(r"jaw: 1 solid, 5305 mm\^3", lines[1])
-    k = tactcad.load(EXAMPLE_DESIGN, set={"element.web_thickness_mm": 0.3}).element(8).stiffness()
-    assert lines[2].startswith(f"K = {k.stiffness_N_per_mm:.2f} N/mm")
-    assert lines[-1] == "['step/element_a4mm.step', 'manifest.json']"
-    step = tmp_path / "exports-web0p3" / "step" / "element_a4mm.step"
+    project = tactcad.load(README_EXAMPLE_DESIGN, set={"element.web_thickness_mm": 0.2})
+    element = project.element(2)
+    name = element.part_name
+    assert lines[0] == f"{name} web 0.2 mm"
+    # the element stands on the 30 x 20 x 8 mm jaw: one solid of both volumes
+    jaw = re.fullmatch(r"jaw: 1 solid, (\d+) mm\^3", lines[1])
+    assert jaw and int(jaw[1]) == pytest.approx(30 * 20 * 8 + element.solid.volume, abs=1)
+    assert lines[2].startswith(f"K = {element.stiffness().stiffness_N_per_mm:.2f} N/mm")
+    assert lines[-1] == f"['step/{name}.step', 'manifest.json']"
+    step = tmp_path / "exports-web0p2" / "step" / f"{name}.step"
     assert step.read_bytes().startswith(b"ISO-10303-21;")
 
 
