@@ -104,3 +104,15 @@ def test_no_process_to_fork_runs_everything_here(tmp_path):
     out = run_script(tmp_path, "nofork")
     assert {r["pid"] for r in out["records"]} == {out["main"]}
     assert out["files"] == {"a": "a", "w1": "w1", "w2": "w1w2", "w3": "aw3", "z": "w1w2aw3z"}
+
+
+def test_a_hand_over_the_worker_cannot_read_is_a_broken_pool_the_run_answers():
+    """The solids are read inside the job: an unreadable hand-over fails that
+    job as a dead worker would (the run makes it itself), with no traceback
+    from the pool's own reader."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    from tactcad.export.worker import _run_job
+
+    with pytest.raises(BrokenProcessPool, match="element_a4mm"):
+        _run_job("element_a4mm", b"\x80\x04 not a pickle")

@@ -21,10 +21,12 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import pickle
 import signal
 import sys
 import warnings
 from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Mapping, Sequence
 
 from tactcad.export.job import Job, Run
@@ -80,7 +82,10 @@ class Worker:
         """Hand ``job`` over with the solids it reads (by part name); the
         future's ``result()`` gives the job's records or raises its error, and
         warns here what the job warned there."""
-        return _JobFuture(self._pool.submit(_run_job, job.name, dict(solids)))
+        # written here, read in the job: a hand-over the worker cannot read
+        # fails that job, never the pool's own reader (whose traceback would
+        # reach the terminal)
+        return _JobFuture(self._pool.submit(_run_job, job.name, _hand_over(solids)))
 
     def close(self) -> None:
         self._pool.shutdown(wait=True)
@@ -131,12 +136,40 @@ def _start(pid) -> None:
         importlib.import_module(module)
 
 
-def _run_job(name: str, solids: Mapping[str, Any]) -> tuple[list[dict], list[tuple[str, type]]]:
+def _hand_over(solids: Mapping[str, Any]) -> bytes:
+    """The solids, pickled for the worker as build123d pickles them
+    (OpenCascade's binary BinTools format), each one that reads back: the
+    binary reader fails on some solids (the terminal board's plated holes:
+    'UnExpected BRep_PointRepresentation'), and those the worker builds again
+    from their specs, the same solid by the same builder."""
+    out = {}
+    for name, solid in solids.items():
+        blob = pickle.dumps(solid)
+        try:
+            pickle.loads(blob)
+        except Exception:  # the kernel's reader raises its own failure types
+            continue
+        out[name] = blob
+    return pickle.dumps(out)
+
+
+def _run_job(name: str, handed: bytes) -> tuple[list[dict], list[tuple[str, type]]]:
     """The job's records and the warnings it issued (message, category), which
-    the run's process reports (:class:`_JobFuture`)."""
+    the run's process reports (:class:`_JobFuture`). ``handed``: the solids
+    the job reads, by part name (:func:`_hand_over`).
+
+    Raises:
+        BrokenProcessPool: the solids cannot be read; the run then makes the
+            job itself, as for a worker that died.
+    """
+    try:
+        solids = {part: pickle.loads(blob) for part, blob in pickle.loads(handed).items()}
+    except Exception as exc:  # the kernel's reader raises its own failure types
+        raise BrokenProcessPool(f"the solids handed to {name} cannot be read: {exc}") from None
     run: Run = _INHERITED["run"]
     for spec in {s.name: s for s in _INHERITED["jobs"][name].needs}.values():
-        run.parts.adopt(spec, solids[spec.name])
+        if spec.name in solids:  # else built here on first use (see _hand_over)
+            run.parts.adopt(spec, solids[spec.name])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         records = _INHERITED["jobs"][name].make(run)
