@@ -70,6 +70,7 @@ class Worker:
     def __init__(self, run: Run, jobs: Sequence[Job]):
         fork = multiprocessing.get_context("fork")
         self._pid = fork.Value("i", 0, lock=False)  # the worker's, for kill()
+        self._blobs: dict[str, bytes | None] = {}  # part name -> its hand-over (see _hand_over)
         _INHERITED.update(run=run, jobs={j.name: j for j in jobs})
         try:
             self._pool = ProcessPoolExecutor(1, mp_context=fork, initializer=_start,
@@ -85,7 +86,7 @@ class Worker:
         # written here, read in the job: a hand-over the worker cannot read
         # fails that job, never the pool's own reader (whose traceback would
         # reach the terminal)
-        return _JobFuture(self._pool.submit(_run_job, job.name, _hand_over(solids)))
+        return _JobFuture(self._pool.submit(_run_job, job.name, _hand_over(solids, self._blobs)))
 
     def close(self) -> None:
         self._pool.shutdown(wait=True)
@@ -136,21 +137,23 @@ def _start(pid) -> None:
         importlib.import_module(module)
 
 
-def _hand_over(solids: Mapping[str, Any]) -> bytes:
+def _hand_over(solids: Mapping[str, Any], blobs: dict[str, bytes | None]) -> bytes:
     """The solids, pickled for the worker as build123d pickles them
     (OpenCascade's binary BinTools format), each one that reads back: the
     binary reader fails on some solids (the terminal board's plated holes:
     'UnExpected BRep_PointRepresentation'), and those the worker builds again
-    from their specs, the same solid by the same builder."""
-    out = {}
+    from their specs, the same solid by the same builder. ``blobs`` keeps each
+    part's hand-over (None: not readable) for the run's later jobs, so a part
+    is written and tried once per run."""
     for name, solid in solids.items():
-        blob = pickle.dumps(solid)
-        try:
-            pickle.loads(blob)
-        except Exception:  # the kernel's reader raises its own failure types
-            continue
-        out[name] = blob
-    return pickle.dumps(out)
+        if name not in blobs:
+            blob = pickle.dumps(solid)
+            try:
+                pickle.loads(blob)
+            except Exception:  # the kernel's reader raises its own failure types
+                blob = None
+            blobs[name] = blob
+    return pickle.dumps({name: blobs[name] for name in solids if blobs[name] is not None})
 
 
 def _run_job(name: str, handed: bytes) -> tuple[list[dict], list[tuple[str, type]]]:
