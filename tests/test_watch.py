@@ -119,3 +119,137 @@ def test_watch_session_in_chromium(tmp_path):
         _, err = proc.communicate(timeout=60)
     assert proc.returncode == 0 and "Traceback" not in err and "stopped" in err
     assert "arms.lengths_mm[1] = -3" in err
+
+
+class _Session:
+    """A ``tactcad watch`` process on a copy of the default design, its
+    stderr read line by line."""
+
+    def __init__(self, tmp_path, store):
+        import queue
+        import threading
+
+        from tactcad.design.array import DEFAULT_DESIGN
+
+        folder = tmp_path / "design"
+        folder.mkdir(exist_ok=True)
+        for f in watched_files(DEFAULT_DESIGN):
+            shutil.copyfile(f, folder / f.name)
+        self.design, self.out = folder / DEFAULT_DESIGN.name, tmp_path / "out"
+        self.proc = subprocess.Popen([sys.executable, "-m", "tactcad.cli", "watch", "--design",
+                                      str(self.design), "--out", str(self.out), "--port", "0",
+                                      "--cache", str(store)], stderr=subprocess.PIPE, text=True)
+        self.lines: list[str] = []
+        self._queue: queue.Queue = queue.Queue()
+        self._reader = threading.Thread(
+            target=lambda: [self._queue.put(x) for x in self.proc.stderr], daemon=True)
+        self._reader.start()
+
+    def all_lines(self) -> str:
+        """Every line, once the process has ended."""
+        self._reader.join(timeout=30)
+        while not self._queue.empty():
+            self.lines.append(self._queue.get())
+        return "".join(self.lines)
+
+    def next_export(self, timeout_s: float = 600) -> str:
+        """The next 'export current' line."""
+        import queue
+
+        while True:
+            try:
+                line = self._queue.get(timeout=timeout_s)
+            except queue.Empty:
+                raise AssertionError("no export in time:\n" + "".join(self.lines)) from None
+            self.lines.append(line)
+            if "export current" in line:
+                return line
+
+    def edit(self, arm_mm: float) -> str:
+        from tactcad.studies.bench_watch import edit_first_arm
+
+        edit_first_arm(self.design, arm_mm)
+        return self.next_export()
+
+    def children(self) -> set[int]:
+        from pathlib import Path
+
+        return {int(p) for f in Path(f"/proc/{self.proc.pid}/task").glob("*/children")
+                for p in f.read_text().split()}
+
+
+def _worker(line: str) -> tuple[int, int]:
+    """(jobs made by the worker, its pid) from an 'export current' line."""
+    import re
+
+    found = re.search(r"(\d+) made by the worker process, pid (\d+)", line)
+    assert found, line
+    return int(found[1]), int(found[2])
+
+
+def _gone(pids, timeout_s: float = 15.0) -> bool:
+    import os
+    import time
+
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        alive = [p for p in pids if os.path.exists(f"/proc/{p}")
+                 and "(zombie)" not in open(f"/proc/{p}/status").read()]
+        if not alive:
+            return True
+        time.sleep(0.2)
+    return False
+
+
+@pytest.mark.slow
+def test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly(tmp_path, monkeypatch):
+    """The drawings of every run are made by one worker process kept for the
+    session (not the watch process); a killed worker leaves the run to make
+    them itself, the next run has a new one; the export is the plain export's,
+    byte for byte; Ctrl-C ends the watch and its children, kill -9 too."""
+    import os
+    from pathlib import Path
+
+    monkeypatch.delenv("TACTCAD_WORKERS", raising=False)
+    store = tmp_path / "store"
+    s = _Session(tmp_path, store)
+    try:
+        made, pid = _worker(s.next_export())
+        assert made > 0 and pid not in (0, s.proc.pid) and pid in s.children()
+        made, same = _worker(s.edit(4.3))  # a one-arm edit: its drawing, the sheet, the PDF
+        assert made >= 3 and same == pid
+        man = json.loads((s.out / "manifest.json").read_text())
+        assert "drawings/element_a4p3mm.svg" in {f["path"] for f in man["files"]}
+        os.kill(pid, signal.SIGKILL)
+        made, _ = _worker(s.edit(4.6))  # the run makes the drawings itself
+        assert made == 0
+        man = json.loads((s.out / "manifest.json").read_text())
+        assert "drawings/element_a4p6mm.svg" in {f["path"] for f in man["files"]}
+        made, again = _worker(s.edit(4.9))  # and the next run has a new worker
+        assert made >= 3 and again not in (pid, s.proc.pid)
+        children = s.children()
+    finally:
+        s.proc.send_signal(signal.SIGINT)
+        s.proc.wait(timeout=60)
+    err = s.all_lines()
+    assert s.proc.returncode == 0 and "stopped" in err and "Traceback" not in err
+    assert again in children and _gone(children)
+    plain = subprocess.run([sys.executable, "-m", "tactcad.cli", "export", "--design",
+                            str(s.design), "--out", str(tmp_path / "plain"), "--no-cache"],
+                           capture_output=True, text=True, timeout=900)
+    assert plain.returncode == 0, plain.stderr
+    script = Path(__file__).resolve().parents[1] / "scripts" / "compare_exports.py"
+    same = subprocess.run([sys.executable, str(script), str(s.out),
+                           str(tmp_path / "plain")], capture_output=True, text=True)
+    assert same.returncode == 0, same.stdout
+    # kill -9 of the watch: its worker dies with it
+    (tmp_path / "again").mkdir()
+    s2 = _Session(tmp_path / "again", store)
+    try:
+        _, pid = _worker(s2.next_export())
+        s2.proc.kill()
+        s2.proc.wait(timeout=60)
+        assert _gone([pid])
+    finally:
+        if s2.proc.poll() is None:
+            s2.proc.kill()

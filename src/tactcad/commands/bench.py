@@ -102,8 +102,10 @@ def run_watch(args: argparse.Namespace) -> int:
         raise DesignError("--rounds", args.rounds, "1 ... 50")
     plan_from_args(args)  # a refused design stops here, not in the watch process
     report = progress_from_args(args)
-    figures = watch_figures(Path(args.design) if args.design else DEFAULT_DESIGN, args.rounds,
-                            log=report)
+    from tactcad.commands.watch import watched_files
+
+    figures = watch_figures(watched_files(Path(args.design) if args.design else DEFAULT_DESIGN),
+                            args.rounds, log=report)
     figures["load_average"] = load_average()
     if args.json:
         print(dumps(figures))

@@ -51,6 +51,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.errors import DesignError
     from tactcad.export.live import LiveState, Loop, changes, make_server
     from tactcad.export.run import check_out_dir
+    from tactcad.export.worker import session_worker
 
     if not (args.port == 0 or 1024 <= args.port <= 65535):
         raise DesignError("--port", args.port, "1024 ... 65535, or 0 for any free port")
@@ -72,25 +73,27 @@ def run(args: argparse.Namespace) -> int:
     if not design.is_file():  # a file that exists but is refused is watched until it is mended
         raise DesignError("--design", str(design), "an existing design file (TOML)")
     state = LiveState()
-    loop = Loop(load, Path(args.out), store_from_args(args), state, log)
     try:
         server = make_server(state, args.port)
     except OSError as exc:
         raise DesignError("--port", args.port, f"a free port on 127.0.0.1, or 0 for any "
                           f"({exc.strerror or exc})") from None
+    # the drawings' process, kept for the session: it loads the kernel while the first run plans
+    loop = Loop(load, Path(args.out), store_from_args(args), state, log, worker=session_worker())
     threading.Thread(target=server.serve_forever, daemon=True).start()
     host, port = server.server_address[:2]
     try:
         log(f"review page at http://{host}:{port}/ (Ctrl-C stops)")
         files = watched_files(design)
         log("watching " + ", ".join(str(f) for f in files))
-        loop.update()
-        for _ in changes(files, args.poll):
-            log("change seen")
+        for k, _ in enumerate(changes(files, args.poll)):  # the first: the files are watched
+            if k:
+                log("change seen")
             loop.update()
     except KeyboardInterrupt:
         log("stopped")
     finally:
+        loop.close()
         server.shutdown()
         server.server_close()
     return 0

@@ -230,7 +230,12 @@ function zoomable(pane, img) {
   pane.addEventListener('dblclick', () => { pane.parentElement.classList.toggle('big'); s = 1; x = y = 0; apply(); });
 }
 
+let shownSheets = null;  // the sheets now on the page: an update that leaves them keeps them
+
 function showSheets() {
+  const same = DATA.sheets.map((sheet) => sheet.path + ' ' + sheet.svg_base64).join('\n');
+  if (same === shownSheets) return;
+  shownSheets = same;
   const host = $('sheets');
   host.replaceChildren();
   for (const sheet of DATA.sheets) {
@@ -339,9 +344,10 @@ function load(doc, keepView) {
   DATA = JSON.parse(doc.getElementById('review-data').textContent);
   SCENES = JSON.parse(doc.getElementById('review-scenes').textContent);
   showHeader();
-  showSheets();
-  showTables();
   showScene($('scene-select').value || DATA.scenes[0], keepView);
+  const rest = () => { showSheets(); showTables(); };
+  // an update shows the 3D view first, then (after a frame) the drawings and tables
+  if (keepView) requestAnimationFrame(() => setTimeout(rest, 0)); else rest();
 }
 
 // --- live reload under `tactcad watch` ---------------------------------------------------

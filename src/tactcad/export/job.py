@@ -13,7 +13,7 @@ from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_p
 from tactcad.design.array import Plan
 from tactcad.design.project import Project
 from tactcad.design.scenes import SceneSpec
-from tactcad.store import Store
+from tactcad.store import Store, content_key
 
 Log = Callable[[str], None]
 
@@ -29,6 +29,8 @@ class Run:
     log: Log = print
     store: Store = field(default_factory=lambda: Store(None))  # also memoises costly steps
     dxf_version: str | None = None  # of the shop DXF files; None: R2010 (or $TACTCAD_DXF_VERSION)
+    #: jobs the run's second process made (:mod:`tactcad.export.worker`), in the order collected
+    worker_made: list[str] = field(default_factory=list)
 
     @property
     def plan(self) -> Plan:
@@ -77,3 +79,9 @@ class Job:
     #: may run in the run's second process (:mod:`tactcad.export.worker`): it
     #: reads only the plan, the solids in ``needs`` and the files of ``after``
     worker: bool = False
+
+
+def solid_key(spec: PartSpec) -> str:
+    """A part's solid named by its content (the part spec), as the store names
+    a part's STEP file, so it is the same solid in every run that has the part."""
+    return content_key("solid", spec)

@@ -28,46 +28,15 @@ from pathlib import Path
 from typing import Any, Callable, Iterable
 
 from tactcad.catalogue.files import scene_glb_name
-from tactcad.design.array import Plan
 from tactcad.design.project import Project
 from tactcad.errors import TactcadError
 from tactcad.export.job import Run
 from tactcad.export.review_page import REVIEW_PAGE
-from tactcad.parts.cache import PartCache
-from tactcad.store import Store, content_key
+from tactcad.export.live_parts import LiveParts
+from tactcad.export.worker import SessionWorker
+from tactcad.store import Store
 
 Log = Callable[[str], None]
-
-
-class LiveParts(PartCache):
-    """A :class:`~tactcad.parts.cache.PartCache` whose solids and meshes outlive
-    one plan: keyed by the part spec's content (as the store keys a part's STEP
-    file), so an edit rebuilds only the parts it changed."""
-
-    def __init__(self, plan: Plan, solids: dict, meshes: dict):
-        super().__init__(plan)
-        self._solids_by_key, self._meshes_by_key = solids, meshes
-
-    @staticmethod
-    def _key(spec) -> str:
-        return content_key("solid", spec)
-
-    def adopt(self, spec, solid) -> None:
-        self._solids_by_key.setdefault(self._key(spec), solid)
-
-    def solid(self, spec):
-        key = self._key(spec)
-        if key not in self._solids_by_key:
-            self._solids_by_key[key] = super().solid(spec)
-        return self._solids_by_key[key]
-
-    def mesh(self, spec):
-        key = self._key(spec)
-        if key not in self._meshes_by_key:
-            from tactcad.parts.mesh import tessellate
-
-            self._meshes_by_key[key] = tessellate(self.solid(spec))
-        return self._meshes_by_key[key]
 
 
 @dataclass
@@ -142,6 +111,8 @@ class Loop:
     solids: dict = field(default_factory=dict)
     meshes: dict = field(default_factory=dict)
     project: Project | None = None  # the last good one
+    #: the drawing worker kept for the session (None: every run makes its drawings itself)
+    worker: SessionWorker | None = None
 
     def update(self) -> bool:
         """Handle one change; False when the edit was refused (the last export stays)."""
@@ -161,12 +132,23 @@ class Loop:
             self.log(f"3D view updated in {time.perf_counter() - t0:.2f} s")
         from tactcad.export.run import export
 
-        result = export(project, self.out, log=lambda s: None, store=self.store, parts=parts)
+        result = export(project, self.out, log=lambda s: None, store=self.store, parts=parts,
+                        session=self.worker)
         self.project = project
         self.state.publish((self.out / REVIEW_PAGE).read_bytes(), plan.design_hash, "current")
         self.log(f"export current in {time.perf_counter() - t0:.2f} s ({result.jobs_run} jobs "
-                 f"run, {result.jobs_reused} reused)")
+                 f"run, {result.jobs_reused} reused; {self._made_by(result.worker_jobs)})")
         return True
+
+    def _made_by(self, worker_jobs: int) -> str:
+        if self.worker is None:
+            return "drawings made here: no worker process"
+        return f"{worker_jobs} made by the worker process, pid {self.worker.pid}"
+
+    def close(self) -> None:
+        """End the session's worker process."""
+        if self.worker is not None:
+            self.worker.close()
 
     def preview(self, project: Project, parts: LiveParts) -> bytes:
         """The page with the new scenes and the last export's drawings and BOM."""
@@ -189,14 +171,20 @@ class Loop:
 
 
 def changes(files: Iterable[Path], poll: bool, stop: threading.Event | None = None):
-    """Yield once per burst of saves to ``files`` (watchfiles: native events,
-    or polling with ``poll``, for network drives; 150 ms debounce). Their
-    folders are watched, as editors save by writing a new file and renaming it."""
+    """Yield once as soon as ``files`` are watched, then once per burst of
+    saves to them (watchfiles: native events, or polling with ``poll``, for
+    network drives; 150 ms debounce), so a save made while the caller handles
+    the first yield (the first export) is seen too. Their folders are
+    watched, as editors save by writing a new file and renaming it."""
     import watchfiles
 
     targets = {str(f) for f in files}
     folders = sorted({str(Path(f).parent) for f in files})
-    for _ in watchfiles.watch(*folders, watch_filter=lambda _c, p: str(Path(p).resolve()) in targets,
-                              debounce=150, step=50, force_polling=poll, poll_delay_ms=200,
-                              stop_event=stop, rust_timeout=500):
-        yield
+    first = True
+    for found in watchfiles.watch(*folders,
+                                  watch_filter=lambda _c, p: str(Path(p).resolve()) in targets,
+                                  debounce=150, step=50, force_polling=poll, poll_delay_ms=200,
+                                  stop_event=stop, rust_timeout=100, yield_on_timeout=True):
+        if found or first:  # an empty set: nothing changed within rust_timeout
+            first = False
+            yield

@@ -35,7 +35,7 @@ from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rigs import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
 from tactcad.export.manifest import manifest
-from tactcad.export.worker import Worker, can_fork, worker_jobs
+from tactcad.export.worker import SessionWorker, Worker, can_fork, worker_jobs
 from tactcad.catalogue.files import MANIFEST
 from tactcad.store import Store
 
@@ -49,6 +49,7 @@ class ExportResult:
     jobs_reused: int = 0
     builds: int = 0  # solids built in this run
     distinct_parts: int = 0  # distinct parts of the design (array and scenes)
+    worker_jobs: int = 0  # jobs made by the run's second process
 
     def as_json(self) -> dict:
         """Summary for ``--json``: seconds, job and build counts, files (path, bytes, sha256)."""
@@ -66,12 +67,15 @@ class ExportResult:
         return lines
 
 
-def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], int]:
+def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker | None = None,
+             planner: Callable[[Run], Sequence[Job]] | None = None) -> tuple[list[dict], int]:
     """Fetch every job from ``store`` or run it; (records in job order, jobs run).
 
     Jobs run in order, each after the jobs it reads (``after``); the solids
     they need are built first, once each. Jobs marked ``worker`` go to the
-    run's second process when one can be forked (:mod:`tactcad.export.worker`).
+    run's second process (:mod:`tactcad.export.worker`): ``session``'s when
+    given with the ``planner`` that made ``jobs`` (``planner(run)``, sent to
+    it), else one forked for this run when one can be.
     """
     done: dict[str, list[dict]] = {}
     todo = []
@@ -83,13 +87,18 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
             done[job.name] = got
     if not todo:
         return [r for job in jobs for r in done[job.name]], 0
-    handed = worker_jobs(todo, done) if can_fork() else []
     worker = None
-    if len(handed) > 1:
-        try:
-            worker = Worker(run, handed)
-        except OSError:  # no process to be had (memory, process limit): all of it here
-            pass
+    if session is not None and planner is not None:
+        handed = worker_jobs(todo, done)
+        if handed:
+            worker = session.begin(run, planner)
+    else:
+        handed = worker_jobs(todo, done) if can_fork() else []
+        if len(handed) > 1:
+            try:
+                worker = Worker(run, handed)
+            except OSError:  # no process to be had (memory, process limit): all of it here
+                pass
     if worker is None:
         handed = []
     by_name = {job.name: job for job in todo}
@@ -108,6 +117,7 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store) -> tuple[list[dict], i
         collect_reads(by_name[name])
         try:
             done[name] = futures[name].result()
+            run.worker_made.append(name)
         except BrokenProcessPool:
             run.log(f"  the worker process ended early; {name} runs in this process")
             remove_partial_files(run.staging)  # what the worker was writing when it died
@@ -206,7 +216,8 @@ def _in_export_folder(exc: OSError, staging: Path, out: Path) -> OSError:
 
 def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Project, log: Log,
                store: Store, with_manifest: bool, parts=None,
-               dxf_version: str | None = None, partial: dict | None = None) -> ExportResult:
+               dxf_version: str | None = None, partial: dict | None = None,
+               session: SessionWorker | None = None) -> ExportResult:
     """Build the files of ``jobs_of`` in a staging folder beside ``out_dir``,
     then put that folder in the place of ``out_dir`` in one step
     (:func:`tactcad.atomic.publish_dir`). A full export keeps, of the old
@@ -222,7 +233,7 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
         if parts is not None:
             run.parts = parts  # share the caller's solids (e.g. with the checks)
         jobs = jobs_of(run)
-        records, ran = run_jobs(run, jobs, store)
+        records, ran = run_jobs(run, jobs, store, session, jobs_of)
         for r in records:
             _inside(staging, r["path"])
         files = [{**r, "bytes": (staging / r["path"]).stat().st_size} for r in records]
@@ -251,7 +262,7 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
         warn_left_behind(remove_tree(staging) if staging.exists() else [])
     builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded
     return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
-                        builds, len(run.inventory[0]))
+                        builds, len(run.inventory[0]), len(run.worker_made))
 
 
 def export_scenes(project: Project, out_dir: str | Path, names: Sequence[str], log: Log = print,
@@ -271,7 +282,7 @@ def export_scenes(project: Project, out_dir: str | Path, names: Sequence[str], l
 def export(project: Project, out_dir: str | Path, log: Log = print,
            store: Store | None = None, parts=None, dxf_version: str | None = None,
            select: Callable[[list[Job]], list[Job]] | None = None,
-           partial: dict | None = None) -> ExportResult:
+           partial: dict | None = None, session: SessionWorker | None = None) -> ExportResult:
     """Write all exports of ``project`` into ``out_dir`` (see module doc).
 
     Args:
@@ -285,10 +296,14 @@ def export(project: Project, out_dir: str | Path, log: Log = print,
             e.g. :func:`tactcad.export.selection.select_jobs`.
         partial: when ``select`` drops jobs, what was asked for; kept in the
             manifest as ``"partial"``.
+        session: a worker kept across runs (``tactcad watch``,
+            :class:`~tactcad.export.worker.SessionWorker`) for the drawings;
+            default: one forked for this run when it can be.
 
     Raises:
         OSError: the files cannot be written; ``out_dir`` is left as it was.
     """
     jobs_of = all_jobs if select is None else (lambda run: select(all_jobs(run)))
     return _write_set(Path(out_dir), jobs_of, project, log, store or Store(None),
-                      with_manifest=True, parts=parts, dxf_version=dxf_version, partial=partial)
+                      with_manifest=True, parts=parts, dxf_version=dxf_version, partial=partial,
+                      session=session)

@@ -14,6 +14,14 @@ pickled (OpenCascade's binary BREP). Jobs in the worker run one at a time,
 in the order they were handed over, so a job always finds the files of the
 jobs it reads (``after``) when those were handed over before it.
 
+``tactcad watch`` keeps one worker for its whole session
+(:class:`SessionWorker`): started by the ``spawn`` method, so it does not
+matter that the watching process has loaded the kernel, and told each run
+what it needs (the validated project, the staging folder, the store and the
+function that plans the run's jobs), from which it plans the same jobs
+again; it keeps the solids it was handed by their content, so a run hands
+over only the parts that changed.
+
 ``TACTCAD_WORKERS=0`` keeps every run in one process.
 """
 
@@ -24,15 +32,21 @@ import os
 import pickle
 import signal
 import sys
+import threading
 import warnings
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from typing import Any, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
-from tactcad.export.job import Job, Run
+from tactcad.export.job import Job, Run, solid_key
 
-#: The run and its jobs by name, set before the fork for the worker to inherit.
+#: The run and its jobs by name: set before the fork for a worker forked per
+#: run to inherit, or by each run's first message to a session worker.
 _INHERITED: dict[str, Any] = {}
+#: A session worker's solids and meshes by content key, kept across runs.
+_KEPT: dict[str, dict] = {"solids": {}, "meshes": {}}
+#: What a session worker's run logged since the last job (sent back with its records).
+_LOGGED: list[str] = []
 
 #: Modules the worker imports while it waits for its first job (the kernel and the drawings).
 PRELOAD = ("tactcad.parts.registry", "tactcad.drawings.compose", "tactcad.drawings.pdf",
@@ -47,6 +61,24 @@ def can_fork() -> bool:
             and (os.cpu_count() or 1) >= 2
             and "fork" in multiprocessing.get_all_start_methods()
             and "OCP" not in sys.modules)
+
+
+def can_spawn() -> bool:
+    """True if a session worker may be started: two or more CPUs and
+    ``TACTCAD_WORKERS`` not ``0`` (``spawn`` starts a new interpreter, so the
+    kernel loaded here does not matter)."""
+    return os.environ.get("TACTCAD_WORKERS", "1") != "0" and (os.cpu_count() or 1) >= 2
+
+
+def session_worker() -> "SessionWorker | None":
+    """A :class:`SessionWorker` when one may be started (:func:`can_spawn`) and
+    the system gives a process; else None (every run makes all its jobs)."""
+    if not can_spawn():
+        return None
+    try:
+        return SessionWorker()
+    except OSError:
+        return None
 
 
 def worker_jobs(todo: Sequence[Job], done: Mapping[str, Any]) -> list[Job]:
@@ -86,7 +118,8 @@ class Worker:
         # written here, read in the job: a hand-over the worker cannot read
         # fails that job, never the pool's own reader (whose traceback would
         # reach the terminal)
-        return _JobFuture(self._pool.submit(_run_job, job.name, _hand_over(solids, self._blobs)))
+        return _JobFuture(self._pool.submit(_run_job, job.name, _hand_over(solids, self._blobs)),
+                          lambda line: None)
 
     def close(self) -> None:
         self._pool.shutdown(wait=True)
@@ -100,16 +133,120 @@ class Worker:
         self._pool.shutdown(wait=False, cancel_futures=True)
 
 
+class NotMadeHere(BrokenProcessPool):
+    """A job the worker could not make although it runs (its solids did not
+    read back, or it plans the job otherwise): the run makes it itself."""
+
+
+class SessionWorker:
+    """The worker of a ``tactcad watch`` session (see the module doc), kept
+    from :meth:`__init__` to :meth:`close`. :meth:`begin` readies it for one
+    run and gives that run's hand-over (the interface of :class:`Worker`). A
+    worker that died, or was killed with an interrupted run, is started again
+    for the next run; its run's jobs are made by the run itself meanwhile."""
+
+    def __init__(self):
+        self._pool: ProcessPoolExecutor | None = None
+        self.broken = True
+        self._start()
+
+    def _start(self) -> None:
+        spawn = multiprocessing.get_context("spawn")
+        self._pid = spawn.Value("i", 0, lock=False)
+        self._blobs: dict[str, bytes | None] = {}  # content key -> hand-over the worker holds
+        ignore = threading.current_thread() is threading.main_thread()
+        before = signal.signal(signal.SIGINT, signal.SIG_IGN) if ignore else None
+        try:  # Ctrl-C is this process's: the new interpreter starts with SIGINT ignored
+            self._pool = ProcessPoolExecutor(1, mp_context=spawn, initializer=_start,
+                                             initargs=(self._pid,))
+            self._pool.submit(int)  # starts it now: it loads the kernel while the run plans
+        finally:
+            if ignore:
+                signal.signal(signal.SIGINT, before)
+        self.broken = False
+
+    @property
+    def pid(self) -> int:
+        """The worker's process id (0 until it has started)."""
+        return self._pid.value
+
+    def begin(self, run: Run, planner: Callable[[Run], Sequence[Job]]) -> "_SessionRun | None":
+        """Ready the worker for ``run``, whose jobs ``planner(run)`` plans (a
+        module-level function, so it can be sent); None when it cannot be
+        sent or no worker can be started (the run then makes every job)."""
+        try:
+            if self.broken:
+                self._pool.shutdown(wait=False, cancel_futures=True)
+                self._start()
+            context = pickle.dumps((run.project, run.staging, run.store, run.dxf_version, planner))
+            self._pool.submit(_begin_run, context)
+        except (pickle.PicklingError, TypeError, AttributeError):  # a planner made in place
+            return None
+        except (OSError, RuntimeError):  # no process to be had; or the pool is broken
+            self.broken = True
+            return None
+        return _SessionRun(self, run.log)
+
+    def kill(self) -> None:
+        """End the worker at once (its run was interrupted); the next run starts another."""
+        self.broken = True
+        if self.pid:
+            try:
+                os.kill(self.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        self._pool.shutdown(wait=False, cancel_futures=True)
+
+    def close(self) -> None:
+        """End the worker (the session ends)."""
+        self.kill()
+        self._pool.shutdown(wait=True)
+
+
+class _SessionRun:
+    """One run's hand-over to a :class:`SessionWorker`: solids by content
+    (:func:`solid_key`), each sent once per session."""
+
+    def __init__(self, session: SessionWorker, log: Callable[[str], None]):
+        self._session, self._log = session, log
+
+    def submit(self, job: Job, solids: Mapping[str, Any]) -> "_JobFuture":
+        session = self._session
+        keyed = {solid_key(s): solids[s.name] for s in job.needs}
+        new = {k: solid for k, solid in keyed.items() if k not in session._blobs}
+        try:
+            future = session._pool.submit(_run_job, job.name, _hand_over(new, session._blobs),
+                                          job.key)
+        except RuntimeError as exc:  # BrokenProcessPool (a RuntimeError) or shut down
+            future = Future()
+            future.set_exception(BrokenProcessPool(str(exc)))
+        return _JobFuture(future, self._log, session)
+
+    def close(self) -> None:  # the session keeps its worker
+        pass
+
+    def kill(self) -> None:
+        self._session.kill()
+
+
 class _JobFuture:
     """A worker job's future: ``result()`` re-issues in this process the
-    warnings the job issued in the worker (so the run reports each once),
-    then gives the records."""
+    warnings the job issued in the worker (so the run reports each once) and
+    logs what the job logged there, then gives the records."""
 
-    def __init__(self, future: Future):
-        self._future = future
+    def __init__(self, future: Future, log: Callable[[str], None],
+                 session: SessionWorker | None = None):
+        self._future, self._log, self._session = future, log, session
 
     def result(self) -> list[dict]:
-        records, issued = self._future.result()
+        try:
+            records, issued, logged = self._future.result()
+        except BrokenProcessPool as exc:
+            if self._session is not None and not isinstance(exc, NotMadeHere):
+                self._session.broken = True  # the process is gone: the next run starts one
+            raise
+        for line in logged:
+            self._log(line)
         for message, category in issued:
             warnings.warn(message, category, stacklevel=2)
         return records
@@ -156,24 +293,46 @@ def _hand_over(solids: Mapping[str, Any], blobs: dict[str, bytes | None]) -> byt
     return pickle.dumps({name: blobs[name] for name in solids if blobs[name] is not None})
 
 
-def _run_job(name: str, handed: bytes) -> tuple[list[dict], list[tuple[str, type]]]:
-    """The job's records and the warnings it issued (message, category), which
-    the run's process reports (:class:`_JobFuture`). ``handed``: the solids
-    the job reads, by part name (:func:`_hand_over`).
+def _begin_run(context: bytes) -> None:
+    """A session worker's start of a run: the run and its jobs, planned here
+    as the run's process planned them (see :class:`SessionWorker`)."""
+    from tactcad.export.live_parts import LiveParts
+
+    _INHERITED.clear()  # a run that cannot begin leaves no other run's jobs to find
+    project, staging, store, dxf_version, planner = pickle.loads(context)
+    run = Run(project, staging, _LOGGED.append, store, dxf_version)
+    run.parts = LiveParts(project.plan, _KEPT["solids"], _KEPT["meshes"])
+    _INHERITED.update(run=run, jobs={j.name: j for j in planner(run)}, by_content=True)
+
+
+def _run_job(name: str, handed: bytes, key: str | None = None
+             ) -> tuple[list[dict], list[tuple[str, type]], list[str]]:
+    """The job's records, the warnings it issued (message, category) and the
+    lines it logged, which the run's process reports (:class:`_JobFuture`).
+    ``handed``: the solids the job reads (:func:`_hand_over`), by part name,
+    or by content (:func:`solid_key`) in a session worker, which keeps them.
+    ``key``: the job's content key, checked against the job planned here.
 
     Raises:
-        BrokenProcessPool: the solids cannot be read; the run then makes the
-            job itself, as for a worker that died.
+        NotMadeHere: the solids cannot be read, or the job is not planned
+            here as in the run; the run then makes the job itself, as for a
+            worker that died (the worker itself is sound).
     """
     try:
         solids = {part: pickle.loads(blob) for part, blob in pickle.loads(handed).items()}
     except Exception as exc:  # the kernel's reader raises its own failure types
-        raise BrokenProcessPool(f"the solids handed to {name} cannot be read: {exc}") from None
+        raise NotMadeHere(f"the solids handed to {name} cannot be read: {exc}") from None
+    job = _INHERITED.get("jobs", {}).get(name)
+    if job is None or (key is not None and job.key != key):
+        raise NotMadeHere(f"{name} is not planned in the worker as in the run")
     run: Run = _INHERITED["run"]
-    for spec in {s.name: s for s in _INHERITED["jobs"][name].needs}.values():
-        if spec.name in solids:  # else built here on first use (see _hand_over)
-            run.parts.adopt(spec, solids[spec.name])
+    by_content = _INHERITED.get("by_content", False)
+    for spec in {s.name: s for s in job.needs}.values():
+        got = solids.get(solid_key(spec) if by_content else spec.name)
+        if got is not None:  # else built here on first use (see _hand_over), or kept
+            run.parts.adopt(spec, got)
+    _LOGGED.clear()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        records = _INHERITED["jobs"][name].make(run)
-    return records, [(str(w.message), w.category) for w in caught]
+        records = job.make(run)
+    return records, [(str(w.message), w.category) for w in caught], _LOGGED[:]

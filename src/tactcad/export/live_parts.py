@@ -1,0 +1,38 @@
+"""Solids and meshes that outlive one run, for the processes of ``tactcad watch``."""
+
+from __future__ import annotations
+
+from tactcad.design.array import Plan
+from tactcad.export.job import solid_key
+from tactcad.parts.cache import PartCache
+
+
+class LiveParts(PartCache):
+    """A :class:`~tactcad.parts.cache.PartCache` whose solids and meshes outlive
+    one plan: keyed by the part spec's content (as the store keys a part's STEP
+    file), so an edit rebuilds only the parts it changed."""
+
+    def __init__(self, plan: Plan, solids: dict, meshes: dict):
+        super().__init__(plan)
+        self._solids_by_key, self._meshes_by_key = solids, meshes
+
+    @staticmethod
+    def _key(spec) -> str:
+        return solid_key(spec)
+
+    def adopt(self, spec, solid) -> None:
+        self._solids_by_key.setdefault(self._key(spec), solid)
+
+    def solid(self, spec):
+        key = self._key(spec)
+        if key not in self._solids_by_key:
+            self._solids_by_key[key] = super().solid(spec)
+        return self._solids_by_key[key]
+
+    def mesh(self, spec):
+        key = self._key(spec)
+        if key not in self._meshes_by_key:
+            from tactcad.parts.mesh import tessellate
+
+            self._meshes_by_key[key] = tessellate(self.solid(spec))
+        return self._meshes_by_key[key]
