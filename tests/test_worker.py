@@ -116,3 +116,34 @@ def test_a_hand_over_the_worker_cannot_read_is_a_broken_pool_the_run_answers():
 
     with pytest.raises(BrokenProcessPool, match="element_a4mm"):
         _run_job("element_a4mm", b"\x80\x04 not a pickle")
+
+
+@pytest.mark.slow
+def test_a_planner_that_cannot_be_sent_leaves_the_run_to_itself(tmp_path):
+    """A session worker is told each run's planner by reference: a planner
+    made in place (a lambda) cannot be sent, so the run makes its own jobs;
+    closing the session ends the worker process."""
+    import os
+    import time
+
+    from tactcad.design.project import load_project
+    from tactcad.export.job import Run
+    from tactcad.export.jobs import all_jobs
+    from tactcad.export.worker import SessionWorker
+
+    session = SessionWorker()
+    try:
+        run = Run(load_project(), tmp_path)
+        assert session.begin(run, lambda r: all_jobs(r)) is None
+        assert session.begin(run, all_jobs) is not None
+        end = time.monotonic() + 120
+        while not session.pid and time.monotonic() < end:
+            time.sleep(0.1)
+        pid = session.pid
+        assert pid not in (0, os.getpid())
+    finally:
+        session.close()
+    end = time.monotonic() + 15
+    while os.path.exists(f"/proc/{pid}") and time.monotonic() < end:
+        time.sleep(0.1)
+    assert not os.path.exists(f"/proc/{pid}")
