@@ -311,7 +311,7 @@ class _Builder:
         rig: in the host's group, its seat mated on the host's seat, touching it."""
         for key, part in rig_parts_lib().items():
             host = self.nodes.get(part.host)
-            if host is None or host.part is None:
+            if host is None or host.part is None or self.rigs.library[key].host_seat is None:
                 continue
             data = self.rigs.library[key]
             host_frame = f"{key}_seat"
@@ -385,9 +385,9 @@ def _evaluation_model(plan: Plan, rigs: RigDesign, scene: SceneSpec | None) -> R
     b.mate("axis_carrier", "back", block, "top")
     b.leaf("hanger_bar", "hanger_bar", "hanger_bar")
     b.mate("hanger_bar", "top", "axis_carrier", "shelf_bottom")
-    w = f"weight_{rigs.weights.mass_g:g}g"
+    w = rigs.library["weights"].name
     below = ("axis_carrier", "shelf_top")
-    for i in range(1, rigs.weights.count + 1):
+    for i in range(1, rigs.part("weights").count + 1):
         b.leaf(f"weight_{i}", w, "weights")
         b.mate(f"weight_{i}", "bottom", *below)
         below = (f"weight_{i}", "top")
@@ -397,7 +397,7 @@ def _evaluation_model(plan: Plan, rigs: RigDesign, scene: SceneSpec | None) -> R
         b.touch(f"element_{s.number}", "sample")  # every tip rests on the sample
     return b.model("array-evaluation", ["cart_roll", "block_travel"],
                    {"tips": "array", "tips_on": "sample", "bearings": _wheels(), "base": "base_plate"},
-                   empty_groups=() if rigs.weights.count else ("weights",))
+                   empty_groups=() if rigs.part("weights").count else ("weights",))
 
 
 def _wheels() -> list[str]:

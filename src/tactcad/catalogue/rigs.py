@@ -17,7 +17,8 @@ from tactcad.design.array import BoltSpec, Plan
 from tactcad.geometry.frames import Frame, face
 from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, RigDesign
 from tactcad.design.scenes import LEVELS
-from tactcad.partlib.base import PartData, Seat
+from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.registry import rig_parts_lib
 
 
 # Materials with alloy and temper (EN 573-3 / EN 515, EN 10088-3, EN 12164):
@@ -77,7 +78,7 @@ _COLORS: dict[str, RGB] = {
     "z_stage_body": (0.16, 0.17, 0.20), "z_stage_carriage": (0.24, 0.25, 0.29),
     "xy_stage_base": (0.20, 0.22, 0.26), "xy_stage_table": (0.28, 0.30, 0.35),
     "rail": (0.52, 0.52, 0.55), "block": (0.40, 0.41, 0.44),
-    "weight": (0.36, 0.38, 0.40), "bearing": (0.72, 0.73, 0.74),
+    "bearing": (0.72, 0.73, 0.74),
     "wheel_bolt": (0.10, 0.10, 0.11), "holder_bolt": (0.14, 0.13, 0.12),
 }
 
@@ -356,18 +357,6 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         expected_bbox_mm=_box_bbox(-sh, -sh, -hb.length_mm, sh, sh, 0), geometry=hb,
         frames={"top": face((0, 0, 0), (0, 0, 1), (1, 0, 0)),
                 "bottom": face((0, 0, -hb.length_mm), (0, 0, -1), (1, 0, 0))}))
-    wt = rigs.weights
-    rw = wt.diameter_mm / 2
-    add(RigPartSpec(
-        name=f"weight_{wt.mass_g:g}g", kind="purchased",
-        process=Process(f"{wt.mass_g:g} g steel weight (cylinder of {wt.volume_mm3:.0f} mm3 at "
-                        f"{wt.density_g_per_cm3:g} g/cm3)", Method.BOUGHT),
-        material="steel", color=_COLORS["weight"], builder="weight",
-        expected_volume_mm3=wt.volume_mm3,
-        expected_bbox_mm=_box_bbox(-rw, -rw, 0, rw, rw, wt.height_mm), geometry=wt,
-        attributes={"mass_g": wt.mass_g},
-        frames={"bottom": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "top": face((0, 0, wt.height_mm), (0, 0, 1), (1, 0, 0))}))
     # --- bracket and its through bolts ---
     br = rigs.bracket
     w = br.width_mm
@@ -387,19 +376,22 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         expected_bbox_mm=_box_bbox(-w / 2, br.foot_bottom_mm, -br.foot_length_mm, w / 2,
                                    br.ear_top_mm, 0),
         geometry=br, frames=frames))
-    for key, data in rigs.library.items():
-        add(library_spec(key, data))
+    for key, part in rig_parts_lib().items():
+        add(library_spec(part, rigs.library[key]))
     return parts
 
 
-def library_spec(key: str, data: PartData) -> RigPartSpec:
+def library_spec(part: RigPart, data: PartData) -> RigPartSpec:
     """The spec of a part written as one module (:mod:`tactcad.partlib`): its
-    data, built by its module (builder = its key), joint frame ``seat``."""
+    data, built by its module (builder = :attr:`RigPart.builder_key`), joint
+    frames ``seat`` (when it has one) and its named frames."""
+    frames = {"seat": seat_frame(data.seat)} if data.seat is not None else {}
+    frames |= {name: seat_frame(seat) for name, seat in data.frames.items()}
     return RigPartSpec(
         name=data.name, kind=data.kind, process=data.process, material=data.material,
-        color=data.color, builder=key, expected_volume_mm3=data.expected_volume_mm3,
-        expected_bbox_mm=data.expected_bbox_mm, geometry=data.geometry,
-        frames={"seat": seat_frame(data.seat)}, attributes=data.attributes)
+        color=data.color, builder=part.builder_key, expected_volume_mm3=data.expected_volume_mm3,
+        expected_bbox_mm=data.expected_bbox_mm, geometry=data.geometry, frames=frames,
+        attributes=data.attributes)
 
 
 def seat_frame(seat: Seat) -> Frame:

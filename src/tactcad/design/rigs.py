@@ -25,7 +25,7 @@ from pydantic import create_model
 
 from tactcad.design.array import Plan
 from tactcad.partlib.base import PartData
-from tactcad.partlib.registry import rig_parts_lib
+from tactcad.partlib.registry import derivation_order, rig_parts_lib
 from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Problems, Section, Text, choice,
                                        content_hash, fmt, integer, listing, number, read_assumptions,
                                        read_toml, validate)
@@ -238,19 +238,6 @@ class BracketGeometry:
 
 
 @dataclass(frozen=True)
-class WeightSpec:
-    mass_g: float
-    density_g_per_cm3: float
-    diameter_mm: float
-    height_mm: float
-    count: int
-
-    @property
-    def volume_mm3(self) -> float:
-        return self.mass_g / self.density_g_per_cm3 * 1000.0
-
-
-@dataclass(frozen=True)
 class RigDesign:
     """Validated rig dimensions, immutable. Build with :func:`load_rigs`."""
 
@@ -272,12 +259,19 @@ class RigDesign:
     carrier: CarrierGeometry
     bar: HangerBarGeometry
     bracket: BracketGeometry
-    weights: WeightSpec
     calibration_element: int
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
     #: the parts written one module each (:mod:`tactcad.partlib`), by key
     library: Mapping[str, PartData] = field(default_factory=dict)
+
+    def part(self, key: str) -> Any:
+        """The geometry (the data its builder reads) of part module ``key``.
+
+        Raises:
+            KeyError: no part module ``key``.
+        """
+        return self.library[key].geometry
 
 
 # ---------------------------------------------------------------------------
@@ -420,20 +414,14 @@ class BracketSection(Section):
     foot_hole_diameter_mm: number(1.0, 20.0)
 
 
-class WeightsSection(Section):
-    mass_g: number(1.0, 10000.0, unit="g")
-    density_g_per_cm3: number(0.5, 25.0, unit="g/cm3")
-    diameter_mm: number(5.0, 200.0)
-    count: integer(0, 20)
-
-
 class CalibrationSection(Section):
     element: Optional[integer(1, 1000)] = None  # default: the stiffest element (shortest arm)
 
 
 class _RigsFileBase(Section):
     """``rigs.toml``: every section required but ``[calibration]``, ``[assumptions]``
-    and the tables of the part modules (:mod:`tactcad.partlib`), which have defaults."""
+    and the tables of the part modules (:mod:`tactcad.partlib`) whose every
+    field has a default."""
 
     rigs: RigsSection
     base_plate: BasePlateSection
@@ -449,30 +437,73 @@ class _RigsFileBase(Section):
     carrier: CarrierSection
     hanger_bar: HangerBarSection
     bracket: BracketSection
-    weights: WeightsSection
     calibration: CalibrationSection = CalibrationSection()
     assumptions: dict[str, Any] = {}
 
 
-#: The rigs file's schema: the sections above and one optional table per part module.
-RigsFile = create_model(
-    "RigsFile", __base__=_RigsFileBase, __doc__=_RigsFileBase.__doc__,
-    **{key: (part.section, part.section()) for key, part in rig_parts_lib().items()})
+#: Place of each required section above among the part modules' tables
+#: (:attr:`RigPart.order`): the order the rigs file's refusals are listed in.
+_PLACES = {"rigs": 0, "base_plate": 10, "column": 20, "cart": 30, "sample": 40, "sample_holder": 50,
+           "indenter": 60, "force_gauge": 70, "z_axis": 80, "xy_stage": 90, "linear_axis": 100,
+           "carrier": 110, "hanger_bar": 120, "bracket": 130}
+#: ``[calibration]`` and ``[assumptions]`` close the required tables.
+_CLOSING = ("calibration", "assumptions")
+
+
+def _tables() -> dict[str, tuple[Any, Any]]:
+    """Every table of the rigs file with its (type, default), in the order its
+    refusals are listed: the sections above at their :data:`_PLACES` and each
+    part module's required table at its :attr:`RigPart.order`, merged;
+    ``[calibration]`` and ``[assumptions]`` after them, then the part tables
+    that may be left out."""
+    fields = _RigsFileBase.model_fields
+    ranked = [(_PLACES[k], k, (fields[k].annotation, ...)) for k in fields if k not in _CLOSING]
+    optional = []
+    for key, part in rig_parts_lib().items():
+        if part.table_required:
+            ranked.append((part.order, key, (part.section, ...)))
+        else:
+            optional.append((key, (part.section, part.section())))
+    closing = [(k, (fields[k].annotation, fields[k].default)) for k in _CLOSING]
+    return {k: t for _, k, t in sorted(ranked, key=lambda r: r[0])} | dict(closing) | dict(optional)
+
+
+#: The rigs file's schema: the sections above and one table per part module.
+RigsFile = create_model("RigsFile", __base__=Section, __doc__=_RigsFileBase.__doc__, **_tables())
 
 
 @dataclass(frozen=True)
 class PartContext:
-    """What a part module's derivation reads: the array's plan and the rig parts
-    written in this module (:class:`RigDesign` without ``library``)."""
+    """What a part module's derivation reads: the array's plan, the rig parts
+    still derived in this module (:class:`RigDesign` without ``library``) and
+    the data of the part modules it ``needs``."""
 
     plan: Plan
     rigs: RigDesign
+    parts: Mapping[str, PartData]
+
+    def part(self, key: str) -> PartData:
+        """The derived data of part module ``key``.
+
+        Raises:
+            KeyError: ``key`` is not among the deriving part's ``needs``.
+        """
+        if key not in self.parts:
+            raise KeyError(f"part module {key!r} is read but not declared in needs "
+                           f"({', '.join(self.parts) or 'none declared'})")
+        return self.parts[key]
 
 
-def _library(r: _RigsFileBase, plan: Plan, rigs: RigDesign, p: Problems) -> dict[str, PartData]:
-    """Each part module's data, derived against the array and the other rig parts."""
-    context = PartContext(plan, rigs)
-    return {key: part.derive(getattr(r, key), context, p) for key, part in rig_parts_lib().items()}
+def _library(r: Section, plan: Plan, rigs: RigDesign, p: Problems) -> dict[str, PartData]:
+    """Each part module's data, derived against the array, the rig parts of this
+    module and the part modules it needs (in :func:`derivation_order`), keyed
+    in :func:`rig_parts_lib` order."""
+    lib, done = rig_parts_lib(), {}
+    for key in derivation_order():
+        part = lib[key]
+        context = PartContext(plan, rigs, {n: done[n] for n in part.needs})
+        done[key] = part.derive(getattr(r, key), context, p)
+    return {key: done[key] for key in lib}
 
 
 # ---------------------------------------------------------------------------
@@ -831,19 +862,6 @@ def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
         bolt=b, bolt_length_mm=bolt_len)
 
 
-def _weights(r: RigsFile, carrier: CarrierGeometry, p: Problems,
-             derived: list[Derived]) -> WeightSpec:
-    w = r.weights
-    p.within("weights.diameter_mm", w.diameter_mm,
-             hi=min(carrier.width_mm, 2 * (carrier.shelf_depth_mm - carrier.thickness_mm)),
-             why="the weights stand on the carrier's shelf")
-    height = w.mass_g / w.density_g_per_cm3 * 1000.0 / (math.pi * (w.diameter_mm / 2) ** 2)
-    derived.append(Derived("weight_height", height, "mm",
-                           f"{fmt(w.mass_g)} g of density {fmt(w.density_g_per_cm3)} g/cm3 as a "
-                           f"cylinder of diameter {fmt(w.diameter_mm)} mm"))
-    return WeightSpec(w.mass_g, w.density_g_per_cm3, w.diameter_mm, height, w.count)
-
-
 def stiffest_element(plan: Plan) -> int:
     """The reference element: the stiffest, i.e. the shortest arm (K ~ 1/a^2); of
     equal arms the highest number (the paper's reference element 8 of the two 4 mm arms)."""
@@ -878,21 +896,19 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     lin = _linear_axis(r, p)
     carrier, bar = _carrier_and_bar(r, p)
     bracket = _bracket(r, plan, bar, p, derived)
-    weights = _weights(r, carrier, p, derived)
-    cal = _calibration_element(r, plan, p)
-    if p:
-        return None, p
     rig_design = RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
         base=base, column=column, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
         holder=holder, indenter=indenter, gauge=gauge, z_axis=z_axis, xy_stage=xy,
-        linear_axis=lin, carrier=carrier, bar=bar, bracket=bracket, weights=weights,
-        calibration_element=cal, derived=tuple(derived), assumptions=assumptions)
+        linear_axis=lin, carrier=carrier, bar=bar, bracket=bracket,
+        calibration_element=0, derived=(), assumptions=assumptions)
+    # the part modules derive even after a refusal above: every refusal at once
     library = _library(r, plan, rig_design, p)
+    cal = _calibration_element(r, plan, p)
     if p:
         return None, p
-    derived += [d for part in library.values() for d in part.derived]
-    return replace(rig_design, derived=tuple(derived), library=library), p
+    derived += [d for key in derivation_order() for d in library[key].derived]
+    return replace(rig_design, derived=tuple(derived), library=library, calibration_element=cal), p
 
 
 def rigs_from_dict(data: Mapping[str, Any], plan: Plan, source: str = "<dict>",

@@ -551,7 +551,7 @@ def drawing_of(spec: PartSpec) -> PartDrawing:
     module's :class:`~tactcad.partlib.base.DrawingRecord`, else :data:`GENERIC`."""
     if spec.builder in DRAWINGS:
         return DRAWINGS[spec.builder]
-    part = rig_parts_lib().get(spec.builder)
+    part = next((p for p in rig_parts_lib().values() if p.builder_key == spec.builder), None)
     if part is not None and part.drawing is not None:
         return _from_record(part.drawing)
     return GENERIC

@@ -14,7 +14,13 @@ A part module holds everything about one rig part and exposes it as one
 * ``drawing``: a :class:`DrawingRecord` (pure data) for a made part, ``None``
   for a bought one (no drawing);
 * ``host``: the rig node it is mounted on; it is shown with its host's group,
-  mated seat on seat and declared touching it.
+  mated seat on seat and declared touching it (empty: the rig's own joints
+  in :mod:`tactcad.assembly.rigs` place it, e.g. on a slide);
+* ``needs``: the part modules whose derived data its derivation reads; the
+  parts are derived in that order (a circle is refused);
+* ``order``: its place in the rigs file's schema, in the derivation (among
+  parts free to go either way) and in a rig's placement, so that output
+  order is written down rather than taken from module names.
 
 The layers above read the registry (:func:`tactcad.partlib.registry.rig_parts_lib`):
 ``design.rigs`` adds the tables to the rigs file schema and derives each part,
@@ -52,10 +58,14 @@ class PartData:
 
     Attributes:
         geometry: frozen dataclass the builder reads (fixes the solid).
-        seat: the part's own mating face, in its part frame.
-        host_seat: the face of the host it sits on, in the host's part frame.
+        seat: the part's own mating face, in its part frame (joint frame
+            ``seat``); None for a part the rig's joints place.
+        host_seat: the face of the host it sits on, in the host's part frame;
+            None without a host.
         derived: dimensions the part derives, each with its reason.
         attributes: data carried into manifest and GLB.
+        frames: further named joint frames in the part frame (``top``,
+            ``bottom`` ...), for the rig's joints and for parts it hosts.
     """
 
     name: str
@@ -66,10 +76,11 @@ class PartData:
     expected_volume_mm3: float
     expected_bbox_mm: Bbox
     geometry: Any
-    seat: Seat
-    host_seat: Seat
+    seat: Seat | None = None
+    host_seat: Seat | None = None
     derived: tuple[Derived, ...] = ()
     attributes: Mapping[str, Any] = field(default_factory=dict)
+    frames: Mapping[str, Seat] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -87,13 +98,20 @@ class RigPart:
     """One rig part written as one module (see the module doc).
 
     Attributes:
-        key: the ``rigs.toml`` table name and the registry (builder) key.
+        key: the ``rigs.toml`` table name and the registry key.
         host: the rig node the part mounts on (``cart``, ``array_bracket`` ...);
-            the part is placed in every rig that has it.
+            the part is placed in every rig that has it. Empty: the rig's
+            joints place it.
         derive: ``(section, context, problems) -> PartData``; ``context`` has
-            ``plan`` (the array's :class:`tactcad.design.array.Plan`) and
-            ``rigs`` (the rig parts of :mod:`tactcad.design.rigs`, without
-            the library's).
+            ``plan`` (the array's :class:`tactcad.design.array.Plan`),
+            ``rigs`` (the rig parts still derived in :mod:`tactcad.design.rigs`)
+            and ``part(key)``, the data of a part module named in ``needs``.
+        needs: keys of the part modules ``derive`` reads (derived first).
+        order: place in the rigs file's schema, the derivation and the
+            placement (smaller first; ties by key).
+        builder: the spec's builder key when it is not ``key`` (a made part's
+            builder key is part of its drawing's hash, so a part moved into
+            this form keeps the key it had).
     """
 
     key: str
@@ -102,3 +120,16 @@ class RigPart:
     derive: Callable[[Section, Any, Problems], PartData]
     build: Callable[[Any], Any]
     drawing: DrawingRecord | None = None
+    needs: tuple[str, ...] = ()
+    order: int = 1000
+    builder: str = ""
+
+    @property
+    def builder_key(self) -> str:
+        """The key of :attr:`build` among the builders (``PartSpec.builder``)."""
+        return self.builder or self.key
+
+    @property
+    def table_required(self) -> bool:
+        """Whether ``rigs.toml`` must give the table (a field without default)."""
+        return any(f.is_required() for f in self.section.model_fields.values())

@@ -21,7 +21,7 @@ from __future__ import annotations
 import build123d as bd
 
 from tactcad.design.rigs import BracketGeometry, CarrierGeometry, HangerBarGeometry
-from tactcad.parts.shapes import box, cylinder, fuse, single
+from tactcad.partlib.shapes import box, cylinder, fuse, single
 
 
 def build_bracket(g: BracketGeometry) -> bd.Solid:

@@ -13,7 +13,7 @@ import build123d as bd
 
 from tactcad.design.rigs import IndenterGeometry
 from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
-from tactcad.parts.shapes import box, cylinder, fuse, single
+from tactcad.partlib.shapes import box, cylinder, fuse, single
 
 
 def build_indenter(g: IndenterGeometry) -> bd.Solid:

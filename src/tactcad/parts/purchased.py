@@ -12,7 +12,6 @@ sources are listed in ``hardware/purchased-parts.md``:
   moving table (documented envelope).
 * Vertical linear axis: HIWIN MGNR12R rail and MGN12H block (HIWIN catalogue
   dimensions W_R, H_R, W, L, H, H1).
-* 100 g weight: steel cylinder of volume 100 g / 7.85 g/cm^3.
 * Ball bearing: ISO 15 boundary dimensions d x D x B as an annulus.
 """
 
@@ -20,9 +19,9 @@ from __future__ import annotations
 
 import build123d as bd
 
-from tactcad.design.rigs import (BearingSpec, ForceGaugeSpec, LinearAxisSpec, WeightSpec, XYStageSpec,
-                    ZAxisSpec)
-from tactcad.parts.shapes import box, cylinder, fuse, ring, single
+from tactcad.design.rigs import (BearingSpec, ForceGaugeSpec, LinearAxisSpec, XYStageSpec,
+                                 ZAxisSpec)
+from tactcad.partlib.shapes import box, cylinder, fuse, ring, single
 
 
 def build_force_gauge(g: ForceGaugeSpec) -> bd.Solid:
@@ -75,11 +74,6 @@ def build_block(a: LinearAxisSpec) -> bd.Solid:
     channel = box(-L / 2, -a.rail_width_mm / 2, a.block_clearance_mm, L / 2, a.rail_width_mm / 2,
                   a.rail_height_mm)
     return single(block.cut(channel))
-
-
-def build_weight(w: WeightSpec) -> bd.Solid:
-    """Steel cylinder, axis z, z = 0 ... height."""
-    return cylinder(w.diameter_mm / 2, (0, 0, 0), (0, 0, 1), w.height_mm)
 
 
 def build_bearing(b: BearingSpec) -> bd.Solid:

@@ -48,7 +48,6 @@ FAMILY_BUILDERS: dict[str, Builder] = {
     "xy_stage_table": lambda plan, spec: purchased.build_stage_table(spec.geometry),
     "rail": lambda plan, spec: purchased.build_rail(spec.geometry),
     "block": lambda plan, spec: purchased.build_block(spec.geometry),
-    "weight": lambda plan, spec: purchased.build_weight(spec.geometry),
     "bearing": lambda plan, spec: purchased.build_bearing(spec.geometry),
     "rig_bolt": lambda plan, spec: build_bolt(*spec.geometry),
 }
@@ -61,11 +60,11 @@ def _all_builders() -> dict[str, Builder]:
     Raises:
         ValueError: a part module's key is also a family's key.
     """
-    library = rig_parts_lib()
+    library = {part.builder_key: part for part in rig_parts_lib().values()}
     clash = sorted(set(library) & set(FAMILY_BUILDERS))
     if clash:
-        raise ValueError(f"part module key(s) {', '.join(clash)} already name a builder of "
-                         "tactcad.parts: choose another key")
+        raise ValueError(f"part module builder key(s) {', '.join(clash)} already name a builder "
+                         "of tactcad.parts: choose another key")
     return {**FAMILY_BUILDERS, **{key: (lambda plan, spec, build=part.build: build(spec.geometry))
                                   for key, part in library.items()}}
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import build123d as bd
 
 from tactcad.design.rigs import BasePlateGeometry, ColumnGeometry
-from tactcad.parts.shapes import box, cylinder, single
+from tactcad.partlib.shapes import box, cylinder, single
 
 
 def build_base_plate(g: BasePlateGeometry) -> bd.Solid:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import build123d as bd
 
 from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, CartGeometry
-from tactcad.parts.shapes import box, cylinder, ring, rounded_rect_face, single
+from tactcad.partlib.shapes import box, cylinder, ring, rounded_rect_face, single
 
 
 def build_cart(g: CartGeometry) -> bd.Solid:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import build123d as bd
 
 from tactcad.design.rigs import SampleGeometry, SampleHolderGeometry
-from tactcad.parts.shapes import box, cylinder, rounded_rect_face, single
+from tactcad.partlib.shapes import box, cylinder, rounded_rect_face, single
 
 
 def build_sample(g: SampleGeometry) -> bd.Solid:
