@@ -95,7 +95,10 @@ def _stable(obj: Any, memo: dict[int, str]) -> str:
     if hasattr(t, "__dataclass_fields__"):
         names = _FIELDS.get(t)
         if names is None:
-            names = _FIELDS[t] = tuple(f.name for f in dataclasses.fields(t) if f.repr)
+            shown = [f for f in dataclasses.fields(t) if f.repr]
+            # in the constructor's order (keyword-only fields last), so moving a
+            # field into a keyword-only base class keeps the key
+            names = _FIELDS[t] = tuple(f.name for f in sorted(shown, key=lambda f: bool(f.kw_only)))
         text = t.__name__ + "(" + ", ".join(
             f"{n}={_stable(getattr(obj, n), memo)}" for n in names) + ")"
     elif isinstance(obj, Mapping):

@@ -225,17 +225,25 @@ class ElementSlot:
 
 
 @dataclass(frozen=True)
-class SpacerGeometry:
+class DrilledPlate:
+    """A flat plate drilled through (mm): its through holes, keyword-only so
+    each plate lists its own outline and thickness first (and keeps its
+    constructor's order)."""
+
+    holes: tuple[Hole, ...] = field(kw_only=True)
+
+
+@dataclass(frozen=True)
+class SpacerGeometry(DrilledPlate):
     """Spacer plate between neighbouring elements of a row (mm); sets the pitch."""
 
     length_mm: float
     height_mm: float
     thickness_mm: float
-    holes: tuple[Hole, ...]
 
 
 @dataclass(frozen=True)
-class ClampPlateGeometry:
+class ClampPlateGeometry(DrilledPlate):
     """U-shaped clamp plate (array frame x/y, thickness along z; mm).
 
     Two legs press the two rows' bases; the bridge below the arms ties the
@@ -248,7 +256,6 @@ class ClampPlateGeometry:
     bridge_height_mm: float
     thickness_mm: float
     window_corner_radius_mm: float
-    holes: tuple[Hole, ...]
 
 
 @dataclass(frozen=True)

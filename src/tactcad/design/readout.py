@@ -30,8 +30,8 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from tactcad.vocabulary.schema import (Problems, Section, Text, choice, fmt, integer, number,
-                                   section_with_defaults)
+from tactcad.vocabulary.schema import (Problems, ResolvedSection, Section, Text, choice, fmt,
+                                       integer, number, section_with_defaults)
 
 #: Input ranges (+/- V) of the NI USB-6258 and the random noise of one sample
 #: in each (uV rms). Source: NI 625x Specifications (371291H), AI absolute
@@ -114,7 +114,7 @@ def check_readout(d: Any, p: Problems) -> None:
 
 
 @dataclass(frozen=True)
-class ReadoutChain:
+class ReadoutChain(ResolvedSection):
     """The resolved read-out chain of a design (units in the names).
 
     ``sources`` gives, per key, "design file" or the default's source /
@@ -137,7 +137,6 @@ class ReadoutChain:
     daq_bits: int
     daq_noise_uV_rms: float
     samples_averaged: int
-    sources: tuple[tuple[str, str], ...] = ()
 
     @property
     def volts_per_strain(self) -> float:
@@ -149,11 +148,8 @@ class ReadoutChain:
         """One ADC step over the +/- range (V)."""
         return 2.0 * self.daq_range_V / 2 ** self.daq_bits
 
-    def as_json(self) -> dict:
-        out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "sources"}
-        out["volts_per_strain"] = self.volts_per_strain
-        out["sources"] = dict(self.sources)
-        return out
+    def derived_json(self) -> dict:
+        return {"volts_per_strain": self.volts_per_strain}
 
 
 def _nearest(table: Mapping[float, float], key: float) -> float | None:

@@ -26,7 +26,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from tactcad.vocabulary.schema import Problems, Section, choice, fmt, number, section_with_defaults
+from tactcad.vocabulary.schema import (Problems, ResolvedSection, Section, choice, fmt, number,
+                                       section_with_defaults)
 
 #: ISO 2768-1 tolerance classes.
 GENERAL_CLASSES = {"f": "fine", "m": "medium", "c": "coarse", "v": "very coarse"}
@@ -87,11 +88,9 @@ def check_tolerances(d: Any, p: Problems) -> None:
 
 
 @dataclass(frozen=True)
-class DesignTolerances:
-    """A design's resolved tolerances (mm; modulus relative) with each one's source.
-
-    ``sources`` maps each key to "design file" or the default's reason.
-    """
+class DesignTolerances(ResolvedSection):
+    """A design's resolved tolerances (mm; modulus relative) with each one's
+    source (``sources``: "design file" or the default's reason)."""
 
     web_thickness_mm: float
     notch_radius_mm: float
@@ -100,20 +99,11 @@ class DesignTolerances:
     contact_face_mm: float
     youngs_modulus_rel: float
     general: str
-    sources: tuple[tuple[str, str], ...] = ()
 
     @property
     def general_text(self) -> str:
         """``ISO 2768-f`` etc."""
         return f"ISO 2768-{self.general}"
-
-    def source(self, key: str) -> str:
-        return dict(self.sources).get(key, "")
-
-    def as_json(self) -> dict:
-        out = {k: getattr(self, k) for k in KEYS}
-        out["sources"] = dict(self.sources)
-        return out
 
 
 def tolerances_of(raw: Mapping[str, Any]) -> DesignTolerances:

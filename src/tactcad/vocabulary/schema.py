@@ -23,7 +23,7 @@ import re
 import tomllib
 import types
 import typing
-from dataclasses import dataclass
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Annotated, Any, Mapping
 
@@ -339,6 +339,29 @@ def read_toml(path: Path, what: str) -> dict[str, Any]:
     except RecursionError:
         raise DesignError(what, str(path), f"arrays and tables nested at most {MAX_NESTING} deep",
                           "nesting too deep to read") from None
+
+
+@dataclass(frozen=True)
+class ResolvedSection:
+    """An optional design table resolved to a value for every key, with each
+    value's source: "design file" or the default's reason
+    (:func:`section_with_defaults`). Subclasses list the values as fields;
+    ``sources`` is keyword-only so they may come first."""
+
+    sources: tuple[tuple[str, str], ...] = field(default=(), kw_only=True)
+
+    def source(self, key: str) -> str:
+        """Where ``key``'s value came from ("" for a key with no record)."""
+        return dict(self.sources).get(key, "")
+
+    def derived_json(self) -> dict[str, Any]:
+        """Figures computed from the values, reported after them in :meth:`as_json`."""
+        return {}
+
+    def as_json(self) -> dict[str, Any]:
+        """Every value by key, the derived figures, then ``sources`` by key."""
+        out = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "sources"}
+        return {**out, **self.derived_json(), "sources": dict(self.sources)}
 
 
 def section_with_defaults(raw: Mapping[str, Any], section: str,
