@@ -74,7 +74,7 @@ _COLORS: dict[str, RGB] = {
     "cart": (0.70, 0.72, 0.76), "wheel_spacer": (0.66, 0.62, 0.58),
     "sample_holder": (0.35, 0.55, 0.45), "indenter": (0.85, 0.65, 0.20),
     "array_bracket": (0.30, 0.35, 0.60), "axis_carrier": (0.62, 0.58, 0.70),
-    "hanger_bar": (0.58, 0.66, 0.62), "force_gauge": (0.90, 0.90, 0.88),
+    "hanger_bar": (0.58, 0.66, 0.62),
     "z_stage_body": (0.16, 0.17, 0.20), "z_stage_carriage": (0.24, 0.25, 0.29),
     "xy_stage_base": (0.20, 0.22, 0.26), "xy_stage_table": (0.28, 0.30, 0.35),
     "rail": (0.52, 0.52, 0.55), "block": (0.40, 0.41, 0.44),
@@ -251,21 +251,6 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         expected_bbox_mm=_box_bbox(-rr, -rr, 0, rr, rr, top), geometry=i,
         frames={"mount": face((0, 0, top), (0, 0, 1), (1, 0, 0)),
                 "contact": face((0, 0, 0), (0, 0, -1), (1, 0, 0))}))
-    gg = rigs.gauge
-    rs = gg.shaft_diameter_mm / 2
-    add(RigPartSpec(
-        name="force_gauge", kind="purchased",
-        process=Process(f"{gg.model} digital force gauge, {gg.range_N:g} N range, "
-                        f"{gg.resolution_N:g} N resolution (housing envelope)", Method.BOUGHT),
-        material="housing", color=_COLORS["force_gauge"], builder="force_gauge",
-        expected_volume_mm3=gg.width_mm * gg.depth_mm * gg.length_mm
-        + math.pi * rs * rs * gg.shaft_length_mm,
-        expected_bbox_mm=_box_bbox(-gg.width_mm / 2, 0, -gg.shaft_length_mm, gg.width_mm / 2,
-                                   gg.depth_mm, gg.length_mm),
-        geometry=gg, attributes={"stiffness_N_per_mm": gg.stiffness_N_per_mm,
-                                 "range_N": gg.range_N, "resolution_N": gg.resolution_N},
-        frames={"back": face((0, 0, gg.mount_height_mm), (0, -1, 0), (0, 0, 1)),
-                "shaft_end": face((0, gg.depth_mm / 2, -gg.shaft_length_mm), (0, 0, -1), (1, 0, 0))}))
     z = rigs.z_axis
     rm = z.micrometer_diameter_mm / 2
     add(RigPartSpec(

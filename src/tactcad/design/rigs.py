@@ -148,20 +148,6 @@ class IndenterGeometry:
 
 
 @dataclass(frozen=True)
-class ForceGaugeSpec:
-    model: str
-    range_N: float
-    resolution_N: float
-    stiffness_N_per_mm: float
-    length_mm: float
-    width_mm: float
-    depth_mm: float
-    shaft_diameter_mm: float
-    shaft_length_mm: float
-    mount_height_mm: float
-
-
-@dataclass(frozen=True)
 class ZAxisSpec:
     body_width_mm: float
     body_depth_mm: float
@@ -252,7 +238,6 @@ class RigDesign:
     sample_stiffness_N_per_mm: tuple[float, ...]
     holder: SampleHolderGeometry
     indenter: IndenterGeometry
-    gauge: ForceGaugeSpec
     z_axis: ZAxisSpec
     xy_stage: XYStageSpec
     linear_axis: LinearAxisSpec
@@ -346,19 +331,6 @@ class IndenterSection(Section):
     body_length_mm: number(1.0, 50.0)
 
 
-class ForceGaugeSection(Section):
-    model: Text
-    range_N: number(0.1, 1e5, unit="N")
-    resolution_N: number(1e-6, 10.0, unit="N")
-    stiffness_N_per_mm: number(0.1, 1e6, unit="N/mm")
-    length_mm: number(20.0, 500.0)
-    width_mm: number(10.0, 300.0)
-    depth_mm: number(10.0, 300.0)
-    shaft_diameter_mm: number(1.0, 30.0)
-    shaft_length_mm: number(1.0, 100.0)
-    mount_height_mm: number(0.0, 500.0)
-
-
 class ZAxisSection(Section):
     body_width_mm: number(10.0, 300.0)
     body_depth_mm: number(5.0, 300.0)
@@ -430,7 +402,6 @@ class _RigsFileBase(Section):
     sample: SampleSection
     sample_holder: SampleHolderSection
     indenter: IndenterSection
-    force_gauge: ForceGaugeSection
     z_axis: ZAxisSection
     xy_stage: XYStageSection
     linear_axis: LinearAxisSection
@@ -444,7 +415,7 @@ class _RigsFileBase(Section):
 #: Place of each required section above among the part modules' tables
 #: (:attr:`RigPart.order`): the order the rigs file's refusals are listed in.
 _PLACES = {"rigs": 0, "base_plate": 10, "column": 20, "cart": 30, "sample": 40, "sample_holder": 50,
-           "indenter": 60, "force_gauge": 70, "z_axis": 80, "xy_stage": 90, "linear_axis": 100,
+           "indenter": 60, "z_axis": 80, "xy_stage": 90, "linear_axis": 100,
            "carrier": 110, "hanger_bar": 120, "bracket": 130}
 #: ``[calibration]`` and ``[assumptions]`` close the required tables.
 _CLOSING = ("calibration", "assumptions")
@@ -728,16 +699,9 @@ def _indenter(r: RigsFile, plan: Plan, p: Problems) -> IndenterGeometry:
     return IndenterGeometry(w, d, tip_len, body, i.body_length_mm)
 
 
-def _gauge_and_stages(r: RigsFile, plan: Plan, base: BasePlateGeometry, indenter: IndenterGeometry,
-                      p: Problems) -> tuple[ForceGaugeSpec, ZAxisSpec, XYStageSpec]:
-    g, z, xy = r.force_gauge, r.z_axis, r.xy_stage
-    p.within("force_gauge.mount_height_mm", g.mount_height_mm, hi=g.length_mm)
-    gauge = ForceGaugeSpec(g.model, g.range_N, g.resolution_N, g.stiffness_N_per_mm, g.length_mm,
-                           g.width_mm, g.depth_mm, g.shaft_diameter_mm, g.shaft_length_mm,
-                           g.mount_height_mm)
-    if g.shaft_diameter_mm > indenter.body_diameter_mm:
-        p.add("force_gauge.shaft_diameter_mm", g.shaft_diameter_mm,
-              f"<= indenter.body_diameter_mm = {fmt(indenter.body_diameter_mm)} mm")
+def _stages(r: RigsFile, plan: Plan, base: BasePlateGeometry,
+            p: Problems) -> tuple[ZAxisSpec, XYStageSpec]:
+    z, xy = r.z_axis, r.xy_stage
     p.within("z_axis.carriage_height_mm", z.carriage_height_mm, hi=z.body_height_mm)
     p.within("z_axis.travel_mm", z.travel_mm, hi=z.body_height_mm - z.carriage_height_mm,
              why="the carriage travels along the body")
@@ -761,7 +725,7 @@ def _gauge_and_stages(r: RigsFile, plan: Plan, base: BasePlateGeometry, indenter
     if xy.travel_mm is not None:
         p.within("xy_stage.travel_mm", travel, 2 * reach,
                  why="the stages must bring every element's tip under the indenter")
-    return gauge, z_axis, XYStageSpec(xy.size_mm, xy.base_height_mm, xy.table_height_mm, travel)
+    return z_axis, XYStageSpec(xy.size_mm, xy.base_height_mm, xy.table_height_mm, travel)
 
 
 def stage_reach(plan: Plan) -> float:
@@ -892,14 +856,14 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     holder = _holder(r, sample, p, derived)
     base, column = _base_and_column(r, cart, p, derived)
     indenter = _indenter(r, plan, p)
-    gauge, z_axis, xy = _gauge_and_stages(r, plan, base, indenter, p)
+    z_axis, xy = _stages(r, plan, base, p)
     lin = _linear_axis(r, p)
     carrier, bar = _carrier_and_bar(r, p)
     bracket = _bracket(r, plan, bar, p, derived)
     rig_design = RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
         base=base, column=column, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
-        holder=holder, indenter=indenter, gauge=gauge, z_axis=z_axis, xy_stage=xy,
+        holder=holder, indenter=indenter, z_axis=z_axis, xy_stage=xy,
         linear_axis=lin, carrier=carrier, bar=bar, bracket=bracket,
         calibration_element=0, derived=(), assumptions=assumptions)
     # the part modules derive even after a refusal above: every refusal at once

@@ -4,8 +4,6 @@ Each builder returns one solid in the part's own frame; the catalogue
 reference is the part's ``process`` (:mod:`tactcad.catalogue.rigs`) and the
 sources are listed in ``hardware/purchased-parts.md``:
 
-* Sauter FH 5 force gauge: housing box with the measuring shaft (the paper's
-  gauge; housing envelope, see the note).
 * Z axis with micrometer head: fixed body with the micrometer on top, and
   the moving carriage (documented envelope; the paper gives no model).
 * XY micro-stages: two single-axis stages crossed, each a fixed base and a
@@ -19,19 +17,8 @@ from __future__ import annotations
 
 import build123d as bd
 
-from tactcad.design.rigs import (BearingSpec, ForceGaugeSpec, LinearAxisSpec, XYStageSpec,
-                                 ZAxisSpec)
+from tactcad.design.rigs import BearingSpec, LinearAxisSpec, XYStageSpec, ZAxisSpec
 from tactcad.partlib.shapes import box, cylinder, fuse, ring, single
-
-
-def build_force_gauge(g: ForceGaugeSpec) -> bd.Solid:
-    """Housing x = +-width/2 (across), y = 0 ... depth (y = 0: back face on the
-    Z carriage), z = 0 ... length (lower end at z = 0); shaft along -z from the
-    lower end's centre."""
-    housing = box(-g.width_mm / 2, 0, 0, g.width_mm / 2, g.depth_mm, g.length_mm)
-    shaft = cylinder(g.shaft_diameter_mm / 2, (0, g.depth_mm / 2, -g.shaft_length_mm), (0, 0, 1),
-                     g.shaft_length_mm)
-    return fuse(housing, shaft)
 
 
 def build_z_body(z: ZAxisSpec) -> bd.Solid:
