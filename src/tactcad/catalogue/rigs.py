@@ -19,16 +19,9 @@ from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, RigDesign
 from tactcad.design.scenes import LEVELS
 from tactcad.partlib.base import PartData, RigPart, Seat
 from tactcad.partlib.registry import rig_parts_lib
+from tactcad.partlib.stock import INDENTER_STEEL, PLATE_ALUMINIUM, TURNED_BRASS
 
 
-# Materials with alloy and temper (EN 573-3 / EN 515, EN 10088-3, EN 12164):
-# 6082-T651 plate is stretched (stress relieved), so milled pockets stay flat;
-# 1.4305 is the free-machining austenitic stainless steel (no rust on a damp
-# sample); CW614N is the free-machining brass for small turned parts.
-PLATE_ALUMINIUM = "aluminium EN AW-6082-T651"
-BAR_ALUMINIUM = "aluminium EN AW-6082-T6"
-INDENTER_STEEL = "stainless steel 1.4305 (X8CrNiS18-9)"
-TURNED_BRASS = "brass CW614N (CuZn39Pb3)"
 
 # The indenter screws onto the force gauge's measuring shaft (Sauter FH
 # attachments have an M6 female thread; rigs.toml force_gauge.shaft_diameter_mm
@@ -73,8 +66,7 @@ _COLORS: dict[str, RGB] = {
     "base_plate": (0.55, 0.57, 0.60), "column": (0.50, 0.53, 0.58),
     "cart": (0.70, 0.72, 0.76), "wheel_spacer": (0.66, 0.62, 0.58),
     "sample_holder": (0.35, 0.55, 0.45), "indenter": (0.85, 0.65, 0.20),
-    "array_bracket": (0.30, 0.35, 0.60), "axis_carrier": (0.62, 0.58, 0.70),
-    "hanger_bar": (0.58, 0.66, 0.62),
+    "array_bracket": (0.30, 0.35, 0.60),
     "z_stage_body": (0.16, 0.17, 0.20), "z_stage_carriage": (0.24, 0.25, 0.29),
     "xy_stage_base": (0.20, 0.22, 0.26), "xy_stage_table": (0.28, 0.30, 0.35),
     "rail": (0.52, 0.52, 0.55), "block": (0.40, 0.41, 0.44),
@@ -318,30 +310,6 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         geometry=la,
         frames={"rail_seat": face((0, 0, la.rail_height_mm), (0, 0, -1), (1, 0, 0)),
                 "top": face((0, 0, la.block_height_mm), (0, 0, 1), (1, 0, 0))}))
-    cg = rigs.carrier
-    zc = cg.thickness_mm + (cg.shelf_depth_mm - cg.thickness_mm) / 2
-    add(RigPartSpec(
-        name="axis_carrier", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
-        color=_COLORS["axis_carrier"], builder="axis_carrier",
-        expected_volume_mm3=cg.width_mm * (cg.height_mm * cg.thickness_mm
-                                           + (cg.shelf_depth_mm - cg.thickness_mm) * cg.thickness_mm),
-        expected_bbox_mm=_box_bbox(-cg.height_mm / 2, -cg.width_mm / 2, 0, cg.height_mm / 2,
-                                   cg.width_mm / 2, cg.shelf_depth_mm),
-        geometry=cg,
-        frames={"back": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "shelf_top": face((cg.height_mm / 2, 0, zc), (1, 0, 0), (0, 0, 1)),
-                "shelf_bottom": face((cg.height_mm / 2 - cg.thickness_mm, 0, zc), (-1, 0, 0),
-                                     (0, 0, 1))}))
-    hb = rigs.bar
-    sh = hb.section_mm / 2
-    add(RigPartSpec(
-        name="hanger_bar", kind="fabricated", process=Process("sawing and facing bar stock", Method.BAR),
-        material=BAR_ALUMINIUM,
-        color=_COLORS["hanger_bar"], builder="hanger_bar",
-        expected_volume_mm3=hb.section_mm ** 2 * hb.length_mm,
-        expected_bbox_mm=_box_bbox(-sh, -sh, -hb.length_mm, sh, sh, 0), geometry=hb,
-        frames={"top": face((0, 0, 0), (0, 0, 1), (1, 0, 0)),
-                "bottom": face((0, 0, -hb.length_mm), (0, 0, -1), (1, 0, 0))}))
     # --- bracket and its through bolts ---
     br = rigs.bracket
     w = br.width_mm

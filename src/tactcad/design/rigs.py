@@ -184,20 +184,6 @@ class LinearAxisSpec:
 
 
 @dataclass(frozen=True)
-class CarrierGeometry:
-    width_mm: float
-    height_mm: float
-    thickness_mm: float
-    shelf_depth_mm: float
-
-
-@dataclass(frozen=True)
-class HangerBarGeometry:
-    section_mm: float
-    length_mm: float
-
-
-@dataclass(frozen=True)
 class BracketGeometry:
     """L bracket holding the array by its front clamp plate (mm).
 
@@ -241,8 +227,6 @@ class RigDesign:
     z_axis: ZAxisSpec
     xy_stage: XYStageSpec
     linear_axis: LinearAxisSpec
-    carrier: CarrierGeometry
-    bar: HangerBarGeometry
     bracket: BracketGeometry
     calibration_element: int
     derived: tuple[Derived, ...]
@@ -364,18 +348,6 @@ class LinearAxisSection(Section):
     rail_mount_height_mm: number(0.0, 1000.0)
 
 
-class CarrierSection(Section):
-    width_mm: number(5.0, 300.0)
-    height_mm: number(10.0, 500.0)
-    thickness_mm: number(1.0, 50.0)
-    shelf_depth_mm: number(5.0, 300.0)
-
-
-class HangerBarSection(Section):
-    section_mm: number(2.0, 100.0)
-    length_mm: number(5.0, 1000.0)
-
-
 class BracketSection(Section):
     width_mm: Optional[number(5.0, 200.0)] = None  # default: follows the array's bolt pattern
     ear_thickness_mm: number(0.5, 20.0)
@@ -405,8 +377,6 @@ class _RigsFileBase(Section):
     z_axis: ZAxisSection
     xy_stage: XYStageSection
     linear_axis: LinearAxisSection
-    carrier: CarrierSection
-    hanger_bar: HangerBarSection
     bracket: BracketSection
     calibration: CalibrationSection = CalibrationSection()
     assumptions: dict[str, Any] = {}
@@ -416,7 +386,7 @@ class _RigsFileBase(Section):
 #: (:attr:`RigPart.order`): the order the rigs file's refusals are listed in.
 _PLACES = {"rigs": 0, "base_plate": 10, "column": 20, "cart": 30, "sample": 40, "sample_holder": 50,
            "indenter": 60, "z_axis": 80, "xy_stage": 90, "linear_axis": 100,
-           "carrier": 110, "hanger_bar": 120, "bracket": 130}
+           "bracket": 130}
 #: ``[calibration]`` and ``[assumptions]`` close the required tables.
 _CLOSING = ("calibration", "assumptions")
 
@@ -751,17 +721,6 @@ def _linear_axis(r: RigsFile, p: Problems) -> LinearAxisSpec:
                           a.block_clearance_mm, a.rail_mount_height_mm)
 
 
-def _carrier_and_bar(r: RigsFile, p: Problems) -> tuple[CarrierGeometry, HangerBarGeometry]:
-    c, bar = r.carrier, r.hanger_bar
-    if c.shelf_depth_mm - c.thickness_mm < bar.section_mm + 2.0:
-        p.add("carrier.shelf_depth_mm", c.shelf_depth_mm,
-              f">= {fmt(c.thickness_mm + bar.section_mm + 2.0)} mm",
-              "the hanger bar hangs from the shelf clear of the carrier plate")
-    p.within("carrier.thickness_mm", c.thickness_mm, hi=c.height_mm / 2)
-    return (CarrierGeometry(c.width_mm, c.height_mm, c.thickness_mm, c.shelf_depth_mm),
-            HangerBarGeometry(bar.section_mm, bar.length_mm))
-
-
 def bracket_width_range(plan: Plan) -> tuple[float, float]:
     """(narrowest, widest) bracket ear (mm): it carries both mounting holes and the
     bolt heads, and must clear the heads of the array's clamp bolts."""
@@ -772,7 +731,7 @@ def bracket_width_range(plan: Plan) -> tuple[float, float]:
     return lo, 2 * (clamp_heads - EAR_HEAD_CLEARANCE_MM)
 
 
-def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
+def _bracket(r: RigsFile, plan: Plan, p: Problems,
              derived: list[Derived]) -> BracketGeometry:
     br = r.bracket
     c = plan.clamp
@@ -811,8 +770,8 @@ def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
     ear_top = min(EAR_TOP_MM, top_hi) if br.ear_top_mm is None else \
         p.within("bracket.ear_top_mm", br.ear_top_mm, top_lo, top_hi,
                  why="the ear reaches around the mounting holes and stays on the clamp plate")
-    p.within("bracket.foot_length_mm", br.foot_length_mm, br.ear_thickness_mm + bar.section_mm,
-             lo_open=True)
+    p.within("bracket.foot_length_mm", br.foot_length_mm,
+             br.ear_thickness_mm + r.hanger_bar.section_mm, lo_open=True)
     p.within("bracket.foot_hole_diameter_mm", br.foot_hole_diameter_mm, hi=width - 2.0)
     if br.foot_length_mm / 2 - br.foot_hole_diameter_mm / 2 < br.ear_thickness_mm + 0.5:
         p.add("bracket.foot_length_mm", br.foot_length_mm,
@@ -858,13 +817,12 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     indenter = _indenter(r, plan, p)
     z_axis, xy = _stages(r, plan, base, p)
     lin = _linear_axis(r, p)
-    carrier, bar = _carrier_and_bar(r, p)
-    bracket = _bracket(r, plan, bar, p, derived)
+    bracket = _bracket(r, plan, p, derived)
     rig_design = RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
         base=base, column=column, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
         holder=holder, indenter=indenter, z_axis=z_axis, xy_stage=xy,
-        linear_axis=lin, carrier=carrier, bar=bar, bracket=bracket,
+        linear_axis=lin, bracket=bracket,
         calibration_element=0, derived=(), assumptions=assumptions)
     # the part modules derive even after a refusal above: every refusal at once
     library = _library(r, plan, rig_design, p)

@@ -45,8 +45,8 @@ class WeightSpec:
 
 
 def derive(w: WeightsSection, context, p: Problems) -> PartData:
-    """The weight on the carrier's shelf (``context.rigs.carrier``)."""
-    carrier = context.rigs.carrier
+    """The weight on the carrier's shelf (``carrier``)."""
+    carrier = context.part("carrier").geometry
     p.within("weights.diameter_mm", w.diameter_mm,
              hi=min(carrier.width_mm, 2 * (carrier.shelf_depth_mm - carrier.thickness_mm)),
              why="the weights stand on the carrier's shelf")
@@ -73,4 +73,4 @@ def build(w: WeightSpec):
 
 
 PART = RigPart(key="weights", section=WeightsSection, host="", derive=derive, build=build,
-               order=140, builder="weight")
+               needs=("carrier",), order=140, builder="weight")

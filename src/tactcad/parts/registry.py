@@ -39,8 +39,6 @@ FAMILY_BUILDERS: dict[str, Builder] = {
     "sample_holder": lambda plan, spec: sample.build_sample_holder(spec.geometry),
     "indenter": lambda plan, spec: indenter.build_indenter(spec.geometry),
     "array_bracket": lambda plan, spec: bracket.build_bracket(spec.geometry),
-    "axis_carrier": lambda plan, spec: bracket.build_carrier(spec.geometry),
-    "hanger_bar": lambda plan, spec: bracket.build_hanger_bar(spec.geometry),
     "z_stage_body": lambda plan, spec: purchased.build_z_body(spec.geometry),
     "z_stage_carriage": lambda plan, spec: purchased.build_z_carriage(spec.geometry),
     "xy_stage_base": lambda plan, spec: purchased.build_stage_base(spec.geometry),
