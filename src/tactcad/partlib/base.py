@@ -31,7 +31,7 @@ Units: mm.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, make_dataclass
 from typing import Any, Callable, Mapping
 
 from tactcad.vocabulary.process import Process
@@ -133,3 +133,20 @@ class RigPart:
     def table_required(self) -> bool:
         """Whether ``rigs.toml`` must give the table (a field without default)."""
         return any(f.is_required() for f in self.section.model_fields.values())
+
+
+def table_values(section: type[Section], **extra: Any) -> type:
+    """A frozen dataclass holding a table's values, field for field in the
+    table's order, then ``extra`` fields (name=type) a derivation adds; a part
+    whose builder reads its table as it is subclasses it for its geometry
+    (``class CarrierGeometry(table_values(CarrierSection))``) instead of
+    writing the fields again. Build one with :func:`values_from`."""
+    fields = [(name, info.annotation) for name, info in section.model_fields.items()]
+    return make_dataclass(f"{section.__name__}Values", fields + list(extra.items()), frozen=True)
+
+
+def values_from(cls: type, table: Section, **extra: Any) -> Any:
+    """An instance of ``cls`` (made by :func:`table_values`) from a validated
+    ``table`` and the ``extra`` values."""
+    return cls(**{name: getattr(table, name) for name in type(table).model_fields}, **extra)
+

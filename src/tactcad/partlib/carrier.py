@@ -9,9 +9,7 @@ Units: mm.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
 from tactcad.partlib.shapes import box, fuse
 from tactcad.partlib.stock import PLATE_ALUMINIUM
 from tactcad.vocabulary.process import Method, Process
@@ -29,12 +27,8 @@ class CarrierSection(Section):
     shelf_depth_mm: number(5.0, 300.0)
 
 
-@dataclass(frozen=True)
-class CarrierGeometry:
-    width_mm: float
-    height_mm: float
-    thickness_mm: float
-    shelf_depth_mm: float
+class CarrierGeometry(table_values(CarrierSection)):
+    """The carrier as its table gives it (mm)."""
 
 
 def derive(c: CarrierSection, context, p: Problems) -> PartData:
@@ -45,7 +39,7 @@ def derive(c: CarrierSection, context, p: Problems) -> PartData:
               f">= {fmt(c.thickness_mm + bar.section_mm + 2.0)} mm",
               "the hanger bar hangs from the shelf clear of the carrier plate")
     p.within("carrier.thickness_mm", c.thickness_mm, hi=c.height_mm / 2)
-    g = CarrierGeometry(c.width_mm, c.height_mm, c.thickness_mm, c.shelf_depth_mm)
+    g = values_from(CarrierGeometry, c)
     zc = g.thickness_mm + (g.shelf_depth_mm - g.thickness_mm) / 2
     return PartData(
         name="axis_carrier", kind="fabricated", process=Process("milling from plate", Method.PLATE),

@@ -11,9 +11,7 @@ on the Z carriage), z = 0 ... length (lower end at z = 0); the shaft along
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-
-from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
 from tactcad.partlib.shapes import box, cylinder, fuse
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, Text, fmt, number
@@ -36,20 +34,8 @@ class ForceGaugeSection(Section):
     mount_height_mm: number(0.0, 500.0)
 
 
-@dataclass(frozen=True)
-class ForceGaugeSpec:
-    """The gauge's data and envelope (N, N/mm, mm)."""
-
-    model: str
-    range_N: float
-    resolution_N: float
-    stiffness_N_per_mm: float
-    length_mm: float
-    width_mm: float
-    depth_mm: float
-    shaft_diameter_mm: float
-    shaft_length_mm: float
-    mount_height_mm: float
+class ForceGaugeSpec(table_values(ForceGaugeSection)):
+    """The gauge's data and envelope as its table gives them (N, N/mm, mm)."""
 
 
 def derive(g: ForceGaugeSection, context, p: Problems) -> PartData:
@@ -59,9 +45,7 @@ def derive(g: ForceGaugeSection, context, p: Problems) -> PartData:
     if g.shaft_diameter_mm > indenter.body_diameter_mm:
         p.add("force_gauge.shaft_diameter_mm", g.shaft_diameter_mm,
               f"<= indenter.body_diameter_mm = {fmt(indenter.body_diameter_mm)} mm")
-    s = ForceGaugeSpec(g.model, g.range_N, g.resolution_N, g.stiffness_N_per_mm, g.length_mm,
-                       g.width_mm, g.depth_mm, g.shaft_diameter_mm, g.shaft_length_mm,
-                       g.mount_height_mm)
+    s = values_from(ForceGaugeSpec, g)
     rs = s.shaft_diameter_mm / 2
     return PartData(
         name="force_gauge", kind="purchased",

@@ -7,9 +7,7 @@ underside), hanging to z = -length, centred in x and y. Units: mm.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
 from tactcad.partlib.shapes import box
 from tactcad.partlib.stock import BAR_ALUMINIUM
 from tactcad.vocabulary.process import Method, Process
@@ -25,16 +23,14 @@ class HangerBarSection(Section):
     length_mm: number(5.0, 1000.0)
 
 
-@dataclass(frozen=True)
-class HangerBarGeometry:
-    section_mm: float
-    length_mm: float
+class HangerBarGeometry(table_values(HangerBarSection)):
+    """The bar as its table gives it (mm)."""
 
 
 def derive(b: HangerBarSection, context, p: Problems) -> PartData:
     """The bar as the table gives it (the carrier and the bracket check their
     room for it)."""
-    g = HangerBarGeometry(b.section_mm, b.length_mm)
+    g = values_from(HangerBarGeometry, b)
     sh = g.section_mm / 2
     return PartData(
         name="hanger_bar", kind="fabricated",

@@ -10,9 +10,7 @@ the underside, centred in x and y. Units: mm, g, g/cm^3.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-
-from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
 from tactcad.partlib.shapes import cylinder
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Derived, Problems, Section, fmt, integer, number
@@ -29,15 +27,8 @@ class WeightsSection(Section):
     count: integer(0, 20)
 
 
-@dataclass(frozen=True)
-class WeightSpec:
-    """One weight (mm, g, g/cm^3) and how many the rig stacks."""
-
-    mass_g: float
-    density_g_per_cm3: float
-    diameter_mm: float
-    height_mm: float
-    count: int
+class WeightSpec(table_values(WeightsSection, height_mm=float)):
+    """One weight (mm, g, g/cm^3), how many the rig stacks and its height."""
 
     @property
     def volume_mm3(self) -> float:
@@ -51,7 +42,7 @@ def derive(w: WeightsSection, context, p: Problems) -> PartData:
              hi=min(carrier.width_mm, 2 * (carrier.shelf_depth_mm - carrier.thickness_mm)),
              why="the weights stand on the carrier's shelf")
     height = w.mass_g / w.density_g_per_cm3 * 1000.0 / (math.pi * (w.diameter_mm / 2) ** 2)
-    g = WeightSpec(w.mass_g, w.density_g_per_cm3, w.diameter_mm, height, w.count)
+    g = values_from(WeightSpec, w, height_mm=height)
     r = g.diameter_mm / 2
     return PartData(
         name=f"weight_{g.mass_g:g}g", kind="purchased",
