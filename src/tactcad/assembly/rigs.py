@@ -242,7 +242,7 @@ class _Builder:
         self.leaf("indenter", "indenter", "indenter")
         z = r.z_axis
         self.slide("z_mount", "z_stage_body", "back", "column", "front",
-                   (0.0, r.column.height_mm - z.body_height_mm),
+                   (0.0, r.part("column").height_mm - z.body_height_mm),
                    solve=(("indenter", "contact"), target))
         lo = z.carriage_height_mm / 2
         self.slide("z_travel", "z_stage_carriage", "back", "z_stage_body", "front",

@@ -63,7 +63,7 @@ def level_of(spec: PartSpec) -> str:
 # Distinct colours: the STEP writer keeps colour records in a fixed order only
 # when no two parts of a file share a colour.
 _COLORS: dict[str, RGB] = {
-    "base_plate": (0.55, 0.57, 0.60), "column": (0.50, 0.53, 0.58),
+    "base_plate": (0.55, 0.57, 0.60),
     "cart": (0.70, 0.72, 0.76), "wheel_spacer": (0.66, 0.62, 0.58),
     "sample_holder": (0.35, 0.55, 0.45), "indenter": (0.85, 0.65, 0.20),
     "array_bracket": (0.30, 0.35, 0.60),
@@ -144,19 +144,6 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         expected_volume_mm3=L * W * T - 2 * L * g.groove_width_mm * g.groove_depth_mm
         - 4 * math.pi * r * r * T,
         expected_bbox_mm=_box_bbox(-L / 2, -W / 2, 0, L / 2, W / 2, T), geometry=g, frames=frames))
-    # --- column ---
-    c = rigs.column
-    add(RigPartSpec(
-        name="column", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
-        color=_COLORS["column"], builder="column",
-        expected_volume_mm3=c.thickness_mm * c.width_mm * c.height_mm,
-        expected_bbox_mm=_box_bbox(-c.thickness_mm / 2, -c.width_mm / 2, 0, c.thickness_mm / 2,
-                                   c.width_mm / 2, c.height_mm),
-        geometry=c,
-        frames={"foot": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "front": face((-c.thickness_mm / 2, 0, 0), (-1, 0, 0), (0, 0, 1)),
-                "rail_seat": face((-c.thickness_mm / 2, 0, rigs.linear_axis.rail_mount_height_mm),
-                                  (-1, 0, 0), (0, 0, 1))}))
     # --- cart ---
     k = rigs.cart
     L, W, T = k.length_mm, k.width_mm, k.thickness_mm

@@ -74,13 +74,6 @@ class BasePlateGeometry:
 
 
 @dataclass(frozen=True)
-class ColumnGeometry:
-    thickness_mm: float
-    width_mm: float
-    height_mm: float
-
-
-@dataclass(frozen=True)
 class CartGeometry:
     """Wheeled cart top plate with a vacuum clamping area (mm)."""
 
@@ -218,7 +211,6 @@ class RigDesign:
     source: str
     rigs_hash: str
     base: BasePlateGeometry
-    column: ColumnGeometry
     cart: CartGeometry
     sample: SampleGeometry
     sample_stiffness_N_per_mm: tuple[float, ...]
@@ -260,12 +252,6 @@ class BasePlateSection(Section):
     mount_hole_diameter_mm: number(2.0, 20.0)
     mount_hole_inset_mm: number(3.0, 50.0)
     column_inset_mm: number(0.0, 200.0)
-
-
-class ColumnSection(Section):
-    thickness_mm: number(5.0, 60.0)
-    width_mm: number(20.0, 300.0)
-    height_mm: number(50.0, 1000.0)
 
 
 class CartSection(Section):
@@ -369,7 +355,6 @@ class _RigsFileBase(Section):
 
     rigs: RigsSection
     base_plate: BasePlateSection
-    column: ColumnSection
     cart: CartSection
     sample: SampleSection
     sample_holder: SampleHolderSection
@@ -384,7 +369,7 @@ class _RigsFileBase(Section):
 
 #: Place of each required section above among the part modules' tables
 #: (:attr:`RigPart.order`): the order the rigs file's refusals are listed in.
-_PLACES = {"rigs": 0, "base_plate": 10, "column": 20, "cart": 30, "sample": 40, "sample_holder": 50,
+_PLACES = {"rigs": 0, "base_plate": 10, "cart": 30, "sample": 40, "sample_holder": 50,
            "indenter": 60, "z_axis": 80, "xy_stage": 90, "linear_axis": 100,
            "bracket": 130}
 #: ``[calibration]`` and ``[assumptions]`` close the required tables.
@@ -609,8 +594,8 @@ def _holder(r: RigsFile, s: SampleGeometry, p: Problems,
                                 h.thickness_mm, h.corner_radius_mm, screw, screw_len, screw_y)
 
 
-def _base_and_column(r: RigsFile, cart: CartGeometry, p: Problems,
-                     derived: list[Derived]) -> tuple[BasePlateGeometry, ColumnGeometry]:
+def _base(r: RigsFile, cart: CartGeometry, p: Problems,
+          derived: list[Derived]) -> BasePlateGeometry:
     b, col = r.base_plate, r.column
     bearing, axle_bolt = cart.bearing, cart.axle_bolt
     p.within("base_plate.groove_width_mm", b.groove_width_mm, bearing.width_mm,
@@ -635,13 +620,10 @@ def _base_and_column(r: RigsFile, cart: CartGeometry, p: Problems,
     hole_d = b.mount_hole_diameter_mm
     p.within("base_plate.mount_hole_inset_mm", b.mount_hole_inset_mm, hole_d / 2 + 1.0,
              b.width_mm / 2 - hole_d)
-    p.within("column.width_mm", col.width_mm, hi=b.width_mm - 2 * (b.mount_hole_inset_mm + hole_d / 2),
-             why="the column must stand between the corner holes")
     p.within("base_plate.column_inset_mm", b.column_inset_mm, hi=b.length_mm / 3)
     column_x = b.length_mm / 2 - b.column_inset_mm - col.thickness_mm / 2
-    base = BasePlateGeometry(b.length_mm, b.width_mm, b.thickness_mm, b.groove_width_mm,
+    return BasePlateGeometry(b.length_mm, b.width_mm, b.thickness_mm, b.groove_width_mm,
                              b.groove_depth_mm, track, hole_d, b.mount_hole_inset_mm, column_x)
-    return base, ColumnGeometry(col.thickness_mm, col.width_mm, col.height_mm)
 
 
 def _indenter(r: RigsFile, plan: Plan, p: Problems) -> IndenterGeometry:
@@ -813,14 +795,14 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     sample, stiffness = _sample(r, plan, p)
     cart = _cart(r, sample, p, derived)
     holder = _holder(r, sample, p, derived)
-    base, column = _base_and_column(r, cart, p, derived)
+    base = _base(r, cart, p, derived)
     indenter = _indenter(r, plan, p)
     z_axis, xy = _stages(r, plan, base, p)
     lin = _linear_axis(r, p)
     bracket = _bracket(r, plan, p, derived)
     rig_design = RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
-        base=base, column=column, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
+        base=base, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
         holder=holder, indenter=indenter, z_axis=z_axis, xy_stage=xy,
         linear_axis=lin, bracket=bracket,
         calibration_element=0, derived=(), assumptions=assumptions)

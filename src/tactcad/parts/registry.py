@@ -32,7 +32,6 @@ FAMILY_BUILDERS: dict[str, Builder] = {
     "nut": lambda plan, spec: build_nut(spec.geometry),
     "gauge": lambda plan, spec: build_gauge(spec.geometry),
     "base_plate": lambda plan, spec: rig_base.build_base_plate(spec.geometry),
-    "column": lambda plan, spec: rig_base.build_column(spec.geometry),
     "cart": lambda plan, spec: rig_cart.build_cart(spec.geometry),
     "wheel_spacer": lambda plan, spec: rig_cart.build_wheel_spacer(spec.geometry),
     "sample": lambda plan, spec: sample.build_sample(spec.geometry),

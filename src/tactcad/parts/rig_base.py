@@ -1,16 +1,15 @@
-"""Base plate of the rigs (two wheel grooves, corner holes) and the upright column.
+"""Base plate of the rigs (two wheel grooves, corner holes).
 
-Part frames: base plate x along the grooves, y across, z up from the
-underside, centred in x and y; column x through its thickness, y across,
-z up from its foot. Dimensions: :class:`tactcad.design.rigs.BasePlateGeometry`,
-:class:`tactcad.design.rigs.ColumnGeometry` (``hardware/rigs.toml``).
+Part frame: x along the grooves, y across, z up from the underside, centred
+in x and y. Dimensions: :class:`tactcad.design.rigs.BasePlateGeometry`
+(``hardware/rigs.toml``).
 """
 
 from __future__ import annotations
 
 import build123d as bd
 
-from tactcad.design.rigs import BasePlateGeometry, ColumnGeometry
+from tactcad.design.rigs import BasePlateGeometry
 from tactcad.partlib.shapes import box, cylinder, single
 
 
@@ -30,9 +29,3 @@ def build_base_plate(g: BasePlateGeometry) -> bd.Solid:
             tools.append(cylinder(r, (sx * (L / 2 - g.mount_hole_inset_mm),
                                       sy * (W / 2 - g.mount_hole_inset_mm), 0), (0, 0, 1), T))
     return single(plate.cut(*tools))
-
-
-def build_column(g: ColumnGeometry) -> bd.Solid:
-    """Upright plate: x through the thickness (front face at -x), foot at z = 0."""
-    return box(-g.thickness_mm / 2, -g.width_mm / 2, 0, g.thickness_mm / 2, g.width_mm / 2,
-               g.height_mm)
