@@ -240,7 +240,7 @@ class _Builder:
         self.leaf("z_stage_carriage", "z_stage_carriage", "z_axis")
         self.leaf("force_gauge", "force_gauge", "force_gauge")
         self.leaf("indenter", "indenter", "indenter")
-        z = r.z_axis
+        z = r.part("z_axis")
         self.slide("z_mount", "z_stage_body", "back", "column", "front",
                    (0.0, r.part("column").height_mm - z.body_height_mm),
                    solve=(("indenter", "contact"), target))
@@ -341,7 +341,7 @@ def _calibration_model(plan: Plan, rigs: RigDesign) -> RigModel:
     b = _Builder(plan, rigs)
     n = rigs.calibration_element
     b.base_and_column()
-    xy = rigs.xy_stage
+    xy = rigs.part("xy_stage")
     L = rigs.base.length_mm
     half = xy.travel_mm / 2
     b.leaf("xy_lower_base", "xy_stage_base", "xy_stage")
@@ -374,9 +374,10 @@ def _sample_model(plan: Plan, rigs: RigDesign, scene: SceneSpec | None) -> RigMo
 def _evaluation_model(plan: Plan, rigs: RigDesign, scene: SceneSpec | None) -> RigModel:
     b = _Builder(plan, rigs)
     b.base_and_column()
-    la = rigs.linear_axis
-    rail = b.leaf("rail", "rail_" + la.rail.split()[-1], "linear_axis")
-    block = b.leaf("block", "block_" + la.block.split()[-1], "linear_axis")
+    axis = rigs.library["linear_axis"]
+    la = axis.geometry
+    rail = b.leaf("rail", axis.name, "linear_axis")
+    block = b.leaf("block", axis.companions[0].name, "linear_axis")
     b.mate(rail, "bottom", "column", "rail_seat")
     b.slide("block_travel", block, "rail_seat", rail, "top",
             (la.block_length_mm / 2, la.rail_length_mm - la.block_length_mm / 2),

@@ -63,15 +63,11 @@ def level_of(spec: PartSpec) -> str:
 # Distinct colours: the STEP writer keeps colour records in a fixed order only
 # when no two parts of a file share a colour.
 _COLORS: dict[str, RGB] = {
-    "base_plate": (0.55, 0.57, 0.60),
-    "cart": (0.70, 0.72, 0.76), "wheel_spacer": (0.66, 0.62, 0.58),
-    "sample_holder": (0.35, 0.55, 0.45), "indenter": (0.85, 0.65, 0.20),
-    "array_bracket": (0.30, 0.35, 0.60),
-    "z_stage_body": (0.16, 0.17, 0.20), "z_stage_carriage": (0.24, 0.25, 0.29),
-    "xy_stage_base": (0.20, 0.22, 0.26), "xy_stage_table": (0.28, 0.30, 0.35),
-    "rail": (0.52, 0.52, 0.55), "block": (0.40, 0.41, 0.44),
-    "bearing": (0.72, 0.73, 0.74),
-    "wheel_bolt": (0.10, 0.10, 0.11), "holder_bolt": (0.14, 0.13, 0.12),
+    "base_plate": (0.55, 0.57, 0.60), "cart": (0.70, 0.72, 0.76),
+    "wheel_spacer": (0.66, 0.62, 0.58), "sample_holder": (0.35, 0.55, 0.45),
+    "indenter": (0.85, 0.65, 0.20), "array_bracket": (0.30, 0.35, 0.60),
+    "bearing": (0.72, 0.73, 0.74), "wheel_bolt": (0.10, 0.10, 0.11),
+    "holder_bolt": (0.14, 0.13, 0.12),
 }
 
 
@@ -230,73 +226,6 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         expected_bbox_mm=_box_bbox(-rr, -rr, 0, rr, rr, top), geometry=i,
         frames={"mount": face((0, 0, top), (0, 0, 1), (1, 0, 0)),
                 "contact": face((0, 0, 0), (0, 0, -1), (1, 0, 0))}))
-    z = rigs.z_axis
-    rm = z.micrometer_diameter_mm / 2
-    add(RigPartSpec(
-        name="z_stage_body", kind="purchased",
-        process=Process(f"manual vertical stage with micrometer head "
-                        f"({z.micrometer_resolution_mm * 1000:g} um), {z.travel_mm:g} mm travel: "
-                        f"envelope of the fixed body", Method.BOUGHT),
-        material="aluminium, steel", color=_COLORS["z_stage_body"], builder="z_stage_body",
-        expected_volume_mm3=z.body_width_mm * z.body_depth_mm * z.body_height_mm
-        + math.pi * rm * rm * z.micrometer_length_mm,
-        expected_bbox_mm=_box_bbox(-z.body_width_mm / 2, -z.body_depth_mm, 0, z.body_width_mm / 2, 0,
-                                   z.body_height_mm + z.micrometer_length_mm),
-        geometry=z,
-        frames={"back": face((0, -z.body_depth_mm, 0), (0, -1, 0), (0, 0, 1)),
-                "front": face((0, 0, 0), (0, 1, 0), (0, 0, 1))}))
-    add(RigPartSpec(
-        name="z_stage_carriage", kind="purchased",
-        process=Process("manual vertical stage: envelope of the moving carriage", Method.BOUGHT),
-        material="aluminium",
-        color=_COLORS["z_stage_carriage"], builder="z_stage_carriage",
-        expected_volume_mm3=z.body_width_mm * z.carriage_thickness_mm * z.carriage_height_mm,
-        expected_bbox_mm=_box_bbox(-z.body_width_mm / 2, 0, -z.carriage_height_mm / 2,
-                                   z.body_width_mm / 2, z.carriage_thickness_mm,
-                                   z.carriage_height_mm / 2),
-        geometry=z,
-        frames={"back": face((0, 0, 0), (0, -1, 0), (0, 0, 1)),
-                "front": face((0, z.carriage_thickness_mm, 0), (0, 1, 0), (0, 0, 1))}))
-    xy = rigs.xy_stage
-    a = xy.size_mm / 2
-    for nm, hgt, extra in (("xy_stage_base", xy.base_height_mm, "fixed base"),
-                           ("xy_stage_table", xy.table_height_mm, "moving table")):
-        add(RigPartSpec(
-            name=nm, kind="purchased",
-            process=Process(f"manual linear micro-stage {xy.size_mm:g} mm square, "
-                            f"{xy.travel_mm:g} mm travel: envelope of the {extra}", Method.BOUGHT),
-            material="aluminium", color=_COLORS[nm], builder=nm,
-            expected_volume_mm3=xy.size_mm ** 2 * hgt,
-            expected_bbox_mm=_box_bbox(-a, -a, 0, a, a, hgt), geometry=xy,
-            frames={"bottom": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                    "top": face((0, 0, hgt), (0, 0, 1), (1, 0, 0)),
-                    "top_rot": face((0, 0, hgt), (0, 0, 1), (0, 1, 0)),
-                    "top_rot_neg": face((0, 0, hgt), (0, 0, 1), (0, -1, 0))}))
-    la = rigs.linear_axis
-    add(RigPartSpec(
-        name="rail_" + la.rail.split()[-1], kind="purchased",
-        process=Process(f"{la.rail} miniature guide rail, {la.rail_length_mm:g} mm", Method.BOUGHT),
-        material="steel",
-        color=_COLORS["rail"], builder="rail",
-        expected_volume_mm3=la.rail_length_mm * la.rail_width_mm * la.rail_height_mm,
-        expected_bbox_mm=_box_bbox(0, -la.rail_width_mm / 2, 0, la.rail_length_mm,
-                                   la.rail_width_mm / 2, la.rail_height_mm),
-        geometry=la,
-        frames={"bottom": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "top": face((0, 0, la.rail_height_mm), (0, 0, 1), (1, 0, 0))}))
-    add(RigPartSpec(
-        name="block_" + la.block.split()[-1], kind="purchased",
-        process=Process(f"{la.block} carriage block (envelope)", Method.BOUGHT), material="steel",
-        color=_COLORS["block"], builder="block",
-        expected_volume_mm3=la.block_length_mm * (
-            la.block_width_mm * (la.block_height_mm - la.block_clearance_mm)
-            - la.rail_width_mm * (la.rail_height_mm - la.block_clearance_mm)),
-        expected_bbox_mm=_box_bbox(-la.block_length_mm / 2, -la.block_width_mm / 2,
-                                   la.block_clearance_mm, la.block_length_mm / 2,
-                                   la.block_width_mm / 2, la.block_height_mm),
-        geometry=la,
-        frames={"rail_seat": face((0, 0, la.rail_height_mm), (0, 0, -1), (1, 0, 0)),
-                "top": face((0, 0, la.block_height_mm), (0, 0, 1), (1, 0, 0))}))
     # --- bracket and its through bolts ---
     br = rigs.bracket
     w = br.width_mm
@@ -317,19 +246,23 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
                                    br.ear_top_mm, 0),
         geometry=br, frames=frames))
     for key, part in rig_parts_lib().items():
-        add(library_spec(part, rigs.library[key]))
+        data = rigs.library[key]
+        for one in (data, *data.companions):
+            add(library_spec(part, one))
     return parts
 
 
 def library_spec(part: RigPart, data: PartData) -> RigPartSpec:
-    """The spec of a part written as one module (:mod:`tactcad.partlib`): its
-    data, built by its module (builder = :attr:`RigPart.builder_key`), joint
-    frames ``seat`` (when it has one) and its named frames."""
+    """The spec of a part written as one module (:mod:`tactcad.partlib`) or of
+    one of its companions: its data, built by its module (builder
+    :attr:`PartData.builder`, else :attr:`RigPart.builder_key`), joint frames
+    ``seat`` (when it has one) and its named frames."""
     frames = {"seat": seat_frame(data.seat)} if data.seat is not None else {}
     frames |= {name: seat_frame(seat) for name, seat in data.frames.items()}
     return RigPartSpec(
         name=data.name, kind=data.kind, process=data.process, material=data.material,
-        color=data.color, builder=part.builder_key, expected_volume_mm3=data.expected_volume_mm3,
+        color=data.color, builder=data.builder or part.builder_key,
+        expected_volume_mm3=data.expected_volume_mm3,
         expected_bbox_mm=data.expected_bbox_mm, geometry=data.geometry, frames=frames,
         attributes=data.attributes)
 

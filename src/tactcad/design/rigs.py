@@ -36,9 +36,6 @@ from tactcad.errors import DesignError
 DEFAULT_RIGS = Path(__file__).resolve().parents[3] / "hardware" / "rigs.toml"
 
 POCKET_CORNER_RADIUS_MM = 1.0  # end mill radius of the cart's vacuum pocket
-#: Travel of the crossed micro-stages when the rigs file gives none, mm (a
-#: usual 60 mm stage); more when the array's tips spread wider.
-STAGE_TRAVEL_MM = 25.0
 #: Clearance between the bracket's ear and the array's clamp bolt heads, mm.
 EAR_HEAD_CLEARANCE_MM = 0.3
 #: Smallest indenter body diameter and tip length when the rigs file gives none, mm.
@@ -141,42 +138,6 @@ class IndenterGeometry:
 
 
 @dataclass(frozen=True)
-class ZAxisSpec:
-    body_width_mm: float
-    body_depth_mm: float
-    body_height_mm: float
-    carriage_thickness_mm: float
-    carriage_height_mm: float
-    travel_mm: float
-    position_mm: float
-    micrometer_diameter_mm: float
-    micrometer_length_mm: float
-    micrometer_resolution_mm: float
-
-
-@dataclass(frozen=True)
-class XYStageSpec:
-    size_mm: float
-    base_height_mm: float
-    table_height_mm: float
-    travel_mm: float
-
-
-@dataclass(frozen=True)
-class LinearAxisSpec:
-    rail: str
-    block: str
-    rail_width_mm: float
-    rail_height_mm: float
-    rail_length_mm: float
-    block_width_mm: float
-    block_length_mm: float
-    block_height_mm: float
-    block_clearance_mm: float
-    rail_mount_height_mm: float
-
-
-@dataclass(frozen=True)
 class BracketGeometry:
     """L bracket holding the array by its front clamp plate (mm).
 
@@ -216,9 +177,6 @@ class RigDesign:
     sample_stiffness_N_per_mm: tuple[float, ...]
     holder: SampleHolderGeometry
     indenter: IndenterGeometry
-    z_axis: ZAxisSpec
-    xy_stage: XYStageSpec
-    linear_axis: LinearAxisSpec
     bracket: BracketGeometry
     calibration_element: int
     derived: tuple[Derived, ...]
@@ -301,39 +259,6 @@ class IndenterSection(Section):
     body_length_mm: number(1.0, 50.0)
 
 
-class ZAxisSection(Section):
-    body_width_mm: number(10.0, 300.0)
-    body_depth_mm: number(5.0, 300.0)
-    body_height_mm: number(10.0, 500.0)
-    carriage_thickness_mm: number(2.0, 100.0)
-    carriage_height_mm: number(5.0, 500.0)
-    travel_mm: number(0.5, 200.0)
-    position_mm: number(0.0, 200.0)
-    micrometer_diameter_mm: number(3.0, 60.0)
-    micrometer_length_mm: number(5.0, 200.0)
-    micrometer_resolution_mm: number(1e-6, 0.1)
-
-
-class XYStageSection(Section):
-    size_mm: number(10.0, 300.0)
-    base_height_mm: number(2.0, 100.0)
-    table_height_mm: number(2.0, 100.0)
-    travel_mm: Optional[number(1.0, 200.0)] = None  # default: enough to reach every tip
-
-
-class LinearAxisSection(Section):
-    rail: Text
-    block: Text
-    rail_width_mm: number(3.0, 60.0)
-    rail_height_mm: number(2.0, 60.0)
-    rail_length_mm: number(20.0, 2000.0)
-    block_width_mm: number(5.0, 200.0)
-    block_length_mm: number(5.0, 300.0)
-    block_height_mm: number(3.0, 100.0)
-    block_clearance_mm: number(0.0, 20.0)
-    rail_mount_height_mm: number(0.0, 1000.0)
-
-
 class BracketSection(Section):
     width_mm: Optional[number(5.0, 200.0)] = None  # default: follows the array's bolt pattern
     ear_thickness_mm: number(0.5, 20.0)
@@ -359,9 +284,6 @@ class _RigsFileBase(Section):
     sample: SampleSection
     sample_holder: SampleHolderSection
     indenter: IndenterSection
-    z_axis: ZAxisSection
-    xy_stage: XYStageSection
-    linear_axis: LinearAxisSection
     bracket: BracketSection
     calibration: CalibrationSection = CalibrationSection()
     assumptions: dict[str, Any] = {}
@@ -370,7 +292,7 @@ class _RigsFileBase(Section):
 #: Place of each required section above among the part modules' tables
 #: (:attr:`RigPart.order`): the order the rigs file's refusals are listed in.
 _PLACES = {"rigs": 0, "base_plate": 10, "cart": 30, "sample": 40, "sample_holder": 50,
-           "indenter": 60, "z_axis": 80, "xy_stage": 90, "linear_axis": 100,
+           "indenter": 60,
            "bracket": 130}
 #: ``[calibration]`` and ``[assumptions]`` close the required tables.
 _CLOSING = ("calibration", "assumptions")
@@ -651,58 +573,6 @@ def _indenter(r: RigsFile, plan: Plan, p: Problems) -> IndenterGeometry:
     return IndenterGeometry(w, d, tip_len, body, i.body_length_mm)
 
 
-def _stages(r: RigsFile, plan: Plan, base: BasePlateGeometry,
-            p: Problems) -> tuple[ZAxisSpec, XYStageSpec]:
-    z, xy = r.z_axis, r.xy_stage
-    p.within("z_axis.carriage_height_mm", z.carriage_height_mm, hi=z.body_height_mm)
-    p.within("z_axis.travel_mm", z.travel_mm, hi=z.body_height_mm - z.carriage_height_mm,
-             why="the carriage travels along the body")
-    p.within("z_axis.position_mm", z.position_mm, 0.0, z.travel_mm)
-    if z.micrometer_diameter_mm > min(z.body_width_mm, z.body_depth_mm):
-        p.add("z_axis.micrometer_diameter_mm", z.micrometer_diameter_mm,
-              f"<= {fmt(min(z.body_width_mm, z.body_depth_mm))} mm",
-              "the micrometer stands on the body's top face")
-    if z.body_height_mm > r.column.height_mm:
-        p.add("z_axis.body_height_mm", z.body_height_mm,
-              f"<= column.height_mm = {fmt(r.column.height_mm)} mm")
-    z_axis = ZAxisSpec(z.body_width_mm, z.body_depth_mm, z.body_height_mm, z.carriage_thickness_mm,
-                       z.carriage_height_mm, z.travel_mm, z.position_mm, z.micrometer_diameter_mm,
-                       z.micrometer_length_mm, z.micrometer_resolution_mm)
-    if xy.size_mm / 2 > base.track_half_mm - base.groove_width_mm / 2:
-        p.add("xy_stage.size_mm", xy.size_mm,
-              f"<= {fmt(2 * (base.track_half_mm - base.groove_width_mm / 2))} mm",
-              "the stages stand on the base plate between the grooves")
-    reach = stage_reach(plan)
-    travel = xy.travel_mm if xy.travel_mm is not None else max(STAGE_TRAVEL_MM, math.ceil(2 * reach + 1))
-    if xy.travel_mm is not None:
-        p.within("xy_stage.travel_mm", travel, 2 * reach,
-                 why="the stages must bring every element's tip under the indenter")
-    return z_axis, XYStageSpec(xy.size_mm, xy.base_height_mm, xy.table_height_mm, travel)
-
-
-def stage_reach(plan: Plan) -> float:
-    """Largest offset (mm, along x or z) of a tip from the centroid of all tips:
-    the stages move the array by this much to put any element under the indenter."""
-    tips = [s.tip_centre_world_mm for s in plan.slots]
-    cx = sum(t[0] for t in tips) / len(tips)
-    cz = sum(t[2] for t in tips) / len(tips)
-    return max(max(abs(t[0] - cx), abs(t[2] - cz)) for t in tips)
-
-
-def _linear_axis(r: RigsFile, p: Problems) -> LinearAxisSpec:
-    a = r.linear_axis
-    p.within("linear_axis.block_height_mm", a.block_height_mm, a.rail_height_mm, lo_open=True)
-    p.within("linear_axis.block_clearance_mm", a.block_clearance_mm, hi=a.rail_height_mm,
-             hi_open=True)
-    p.within("linear_axis.block_length_mm", a.block_length_mm, hi=a.rail_length_mm)
-    p.within("linear_axis.block_width_mm", a.block_width_mm, a.rail_width_mm + 2.0)
-    p.within("linear_axis.rail_mount_height_mm", a.rail_mount_height_mm,
-             hi=r.column.height_mm - a.rail_length_mm)
-    return LinearAxisSpec(a.rail, a.block, a.rail_width_mm, a.rail_height_mm, a.rail_length_mm,
-                          a.block_width_mm, a.block_length_mm, a.block_height_mm,
-                          a.block_clearance_mm, a.rail_mount_height_mm)
-
-
 def bracket_width_range(plan: Plan) -> tuple[float, float]:
     """(narrowest, widest) bracket ear (mm): it carries both mounting holes and the
     bolt heads, and must clear the heads of the array's clamp bolts."""
@@ -797,14 +667,11 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     holder = _holder(r, sample, p, derived)
     base = _base(r, cart, p, derived)
     indenter = _indenter(r, plan, p)
-    z_axis, xy = _stages(r, plan, base, p)
-    lin = _linear_axis(r, p)
     bracket = _bracket(r, plan, p, derived)
     rig_design = RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
         base=base, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
-        holder=holder, indenter=indenter, z_axis=z_axis, xy_stage=xy,
-        linear_axis=lin, bracket=bracket,
+        holder=holder, indenter=indenter, bracket=bracket,
         calibration_element=0, derived=(), assumptions=assumptions)
     # the part modules derive even after a refusal above: every refusal at once
     library = _library(r, plan, rig_design, p)

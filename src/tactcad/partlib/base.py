@@ -66,6 +66,11 @@ class PartData:
         attributes: data carried into manifest and GLB.
         frames: further named joint frames in the part frame (``top``,
             ``bottom`` ...), for the rig's joints and for parts it hosts.
+        builder: the builder key of this spec when it is one of the
+            module's :attr:`RigPart.companion_builders` (empty: the module's
+            own builder).
+        companions: further parts the module makes, each a spec of its own
+            (the Z stage's carriage beside its body, the rail's block ...).
     """
 
     name: str
@@ -81,6 +86,8 @@ class PartData:
     derived: tuple[Derived, ...] = ()
     attributes: Mapping[str, Any] = field(default_factory=dict)
     frames: Mapping[str, Seat] = field(default_factory=dict)
+    builder: str = ""
+    companions: tuple["PartData", ...] = ()
 
 
 @dataclass(frozen=True)
@@ -112,6 +119,8 @@ class RigPart:
         builder: the spec's builder key when it is not ``key`` (a made part's
             builder key is part of its drawing's hash, so a part moved into
             this form keeps the key it had).
+        companion_builders: builder key -> builder of the companions'
+            specs (:attr:`PartData.companions`), geometry -> solid.
     """
 
     key: str
@@ -123,11 +132,16 @@ class RigPart:
     needs: tuple[str, ...] = ()
     order: int = 1000
     builder: str = ""
+    companion_builders: Mapping[str, Callable[[Any], Any]] = field(default_factory=dict)
 
     @property
     def builder_key(self) -> str:
         """The key of :attr:`build` among the builders (``PartSpec.builder``)."""
         return self.builder or self.key
+
+    def builders(self) -> dict[str, Callable[[Any], Any]]:
+        """Every builder of the module by builder key: its own and its companions'."""
+        return {self.builder_key: self.build, **self.companion_builders}
 
     @property
     def table_required(self) -> bool:
@@ -147,6 +161,7 @@ def table_values(section: type[Section], **extra: Any) -> type:
 
 def values_from(cls: type, table: Section, **extra: Any) -> Any:
     """An instance of ``cls`` (made by :func:`table_values`) from a validated
-    ``table`` and the ``extra`` values."""
-    return cls(**{name: getattr(table, name) for name in type(table).model_fields}, **extra)
+    ``table`` and the ``extra`` values (which may replace a table value the
+    derivation filled in, e.g. a size left out of the file)."""
+    return cls(**{**{name: getattr(table, name) for name in type(table).model_fields}, **extra})
 

@@ -31,11 +31,13 @@ class ColumnGeometry(table_values(ColumnSection)):
 
 def derive(c: ColumnSection, context, p: Problems) -> PartData:
     """The column between the base plate's corner holes (``context.rigs.base``),
-    the linear axis's rail seat on its front (``context.rigs.linear_axis``)."""
-    base = context.rigs.base
+    carrying the linear axis's rail (``linear_axis``) on its front."""
+    base, rail = context.rigs.base, context.part("linear_axis").geometry
     p.within("column.width_mm", c.width_mm,
              hi=base.width_mm - 2 * (base.mount_hole_inset_mm + base.mount_hole_diameter_mm / 2),
              why="the column must stand between the corner holes")
+    p.within("linear_axis.rail_mount_height_mm", rail.rail_mount_height_mm,
+             hi=c.height_mm - rail.rail_length_mm)
     g = values_from(ColumnGeometry, c)
     t = g.thickness_mm
     return PartData(
@@ -46,7 +48,7 @@ def derive(c: ColumnSection, context, p: Problems) -> PartData:
         geometry=g,
         frames={"foot": Seat((0, 0, 0), (0, 0, -1), (1, 0, 0)),
                 "front": Seat((-t / 2, 0, 0), (-1, 0, 0), (0, 0, 1)),
-                "rail_seat": Seat((-t / 2, 0, context.rigs.linear_axis.rail_mount_height_mm),
+                "rail_seat": Seat((-t / 2, 0, rail.rail_mount_height_mm),
                                   (-1, 0, 0), (0, 0, 1))})
 
 
@@ -57,4 +59,5 @@ def build(g: ColumnGeometry):
                g.height_mm)
 
 
-PART = RigPart(key="column", section=ColumnSection, host="", derive=derive, build=build, order=20)
+PART = RigPart(key="column", section=ColumnSection, host="", derive=derive, build=build,
+               needs=("linear_axis",), order=20)

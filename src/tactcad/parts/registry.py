@@ -38,12 +38,6 @@ FAMILY_BUILDERS: dict[str, Builder] = {
     "sample_holder": lambda plan, spec: sample.build_sample_holder(spec.geometry),
     "indenter": lambda plan, spec: indenter.build_indenter(spec.geometry),
     "array_bracket": lambda plan, spec: bracket.build_bracket(spec.geometry),
-    "z_stage_body": lambda plan, spec: purchased.build_z_body(spec.geometry),
-    "z_stage_carriage": lambda plan, spec: purchased.build_z_carriage(spec.geometry),
-    "xy_stage_base": lambda plan, spec: purchased.build_stage_base(spec.geometry),
-    "xy_stage_table": lambda plan, spec: purchased.build_stage_table(spec.geometry),
-    "rail": lambda plan, spec: purchased.build_rail(spec.geometry),
-    "block": lambda plan, spec: purchased.build_block(spec.geometry),
     "bearing": lambda plan, spec: purchased.build_bearing(spec.geometry),
     "rig_bolt": lambda plan, spec: build_bolt(*spec.geometry),
 }
@@ -56,13 +50,14 @@ def _all_builders() -> dict[str, Builder]:
     Raises:
         ValueError: a part module's key is also a family's key.
     """
-    library = {part.builder_key: part for part in rig_parts_lib().values()}
+    library = {key: build for part in rig_parts_lib().values()
+               for key, build in part.builders().items()}
     clash = sorted(set(library) & set(FAMILY_BUILDERS))
     if clash:
         raise ValueError(f"part module builder key(s) {', '.join(clash)} already name a builder "
                          "of tactcad.parts: choose another key")
-    return {**FAMILY_BUILDERS, **{key: (lambda plan, spec, build=part.build: build(spec.geometry))
-                                  for key, part in library.items()}}
+    return {**FAMILY_BUILDERS, **{key: (lambda plan, spec, build=build: build(spec.geometry))
+                                  for key, build in library.items()}}
 
 
 #: builder key -> builder(plan, spec), every part's.
