@@ -19,22 +19,8 @@ from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, RigDesign
 from tactcad.design.scenes import LEVELS
 from tactcad.partlib.base import PartData, RigPart, Seat
 from tactcad.partlib.registry import rig_parts_lib
-from tactcad.partlib.stock import INDENTER_STEEL, PLATE_ALUMINIUM, TURNED_BRASS
+from tactcad.partlib.stock import PLATE_ALUMINIUM, TURNED_BRASS
 
-
-
-# The indenter screws onto the force gauge's measuring shaft (Sauter FH
-# attachments have an M6 female thread; rigs.toml force_gauge.shaft_diameter_mm
-# = 6): a tapped M6 hole in the body's top face. Depth: the body length less
-# 2 mm of floor above the tip, at most 1.5 d (full strength in steel by 1 d;
-# the load is at most the gauge's 5 N range).
-INDENTER_THREAD_DIAMETER_MM = 6.0
-INDENTER_THREAD_FLOOR_MM = 2.0
-
-
-def indenter_thread_depth_mm(g) -> float:
-    """Depth (mm) of the indenter's M6 mounting thread (see the note above)."""
-    return min(g.body_length_mm - INDENTER_THREAD_FLOOR_MM, 1.5 * INDENTER_THREAD_DIAMETER_MM)
 
 
 @dataclass(frozen=True)
@@ -65,7 +51,7 @@ def level_of(spec: PartSpec) -> str:
 _COLORS: dict[str, RGB] = {
     "base_plate": (0.55, 0.57, 0.60), "cart": (0.70, 0.72, 0.76),
     "wheel_spacer": (0.66, 0.62, 0.58), "sample_holder": (0.35, 0.55, 0.45),
-    "indenter": (0.85, 0.65, 0.20), "array_bracket": (0.30, 0.35, 0.60),
+    "array_bracket": (0.30, 0.35, 0.60),
     "bearing": (0.72, 0.73, 0.74), "wheel_bolt": (0.10, 0.10, 0.11),
     "holder_bolt": (0.14, 0.13, 0.12),
 }
@@ -211,21 +197,6 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
                    for i, sy in ((1, -1), (2, 1))}}))
     if bolt_name(h.screw, h.screw_length_mm) not in parts:
         add(_bolt_spec(h.screw, h.screw_length_mm, _COLORS["holder_bolt"]))
-    # --- indenter and force gauge ---
-    i = rigs.indenter
-    top = i.tip_length_mm + i.body_length_mm
-    rr = i.body_diameter_mm / 2
-    add(RigPartSpec(
-        name="indenter", kind="fabricated",
-        process=Process(f"turning and milling, {i.contact_width_mm:g} x {i.contact_depth_mm:g} mm "
-                        f"contact face", Method.ROUND_BAR),
-        material=INDENTER_STEEL, color=_COLORS["indenter"], builder="indenter",
-        expected_volume_mm3=i.contact_width_mm * i.contact_depth_mm * i.tip_length_mm
-        + math.pi * rr * rr * i.body_length_mm
-        - math.pi * (INDENTER_THREAD_DIAMETER_MM / 2) ** 2 * indenter_thread_depth_mm(i),
-        expected_bbox_mm=_box_bbox(-rr, -rr, 0, rr, rr, top), geometry=i,
-        frames={"mount": face((0, 0, top), (0, 0, 1), (1, 0, 0)),
-                "contact": face((0, 0, 0), (0, 0, -1), (1, 0, 0))}))
     # --- bracket and its through bolts ---
     br = rigs.bracket
     w = br.width_mm

@@ -38,9 +38,6 @@ DEFAULT_RIGS = Path(__file__).resolve().parents[3] / "hardware" / "rigs.toml"
 POCKET_CORNER_RADIUS_MM = 1.0  # end mill radius of the cart's vacuum pocket
 #: Clearance between the bracket's ear and the array's clamp bolt heads, mm.
 EAR_HEAD_CLEARANCE_MM = 0.3
-#: Smallest indenter body diameter and tip length when the rigs file gives none, mm.
-INDENTER_BODY_MM = 8.0
-INDENTER_TIP_MM = 3.0
 #: Bracket ear width when the rigs file gives none and the array leaves room, mm.
 BRACKET_WIDTH_MM = 20.0
 #: Ear height above the mounting holes when the rigs file gives none, mm
@@ -129,15 +126,6 @@ class SampleHolderGeometry:
 
 
 @dataclass(frozen=True)
-class IndenterGeometry:
-    contact_width_mm: float
-    contact_depth_mm: float
-    tip_length_mm: float
-    body_diameter_mm: float
-    body_length_mm: float
-
-
-@dataclass(frozen=True)
 class BracketGeometry:
     """L bracket holding the array by its front clamp plate (mm).
 
@@ -176,7 +164,6 @@ class RigDesign:
     sample: SampleGeometry
     sample_stiffness_N_per_mm: tuple[float, ...]
     holder: SampleHolderGeometry
-    indenter: IndenterGeometry
     bracket: BracketGeometry
     calibration_element: int
     derived: tuple[Derived, ...]
@@ -251,14 +238,6 @@ class SampleHolderSection(Section):
     tapped_depth_mm: number(2.0, 40.0)
 
 
-class IndenterSection(Section):
-    contact_width_mm: Optional[number(0.5, 20.0)] = None  # default: the element's contact face
-    contact_depth_mm: Optional[number(0.5, 20.0)] = None
-    tip_length_mm: Optional[number(0.5, 30.0)] = None  # default: clears the element tips
-    body_diameter_mm: Optional[number(1.0, 50.0)] = None  # default: carries the contact face
-    body_length_mm: number(1.0, 50.0)
-
-
 class BracketSection(Section):
     width_mm: Optional[number(5.0, 200.0)] = None  # default: follows the array's bolt pattern
     ear_thickness_mm: number(0.5, 20.0)
@@ -283,7 +262,6 @@ class _RigsFileBase(Section):
     cart: CartSection
     sample: SampleSection
     sample_holder: SampleHolderSection
-    indenter: IndenterSection
     bracket: BracketSection
     calibration: CalibrationSection = CalibrationSection()
     assumptions: dict[str, Any] = {}
@@ -292,7 +270,7 @@ class _RigsFileBase(Section):
 #: Place of each required section above among the part modules' tables
 #: (:attr:`RigPart.order`): the order the rigs file's refusals are listed in.
 _PLACES = {"rigs": 0, "base_plate": 10, "cart": 30, "sample": 40, "sample_holder": 50,
-           "indenter": 60,
+          
            "bracket": 130}
 #: ``[calibration]`` and ``[assumptions]`` close the required tables.
 _CLOSING = ("calibration", "assumptions")
@@ -548,31 +526,6 @@ def _base(r: RigsFile, cart: CartGeometry, p: Problems,
                              b.groove_depth_mm, track, hole_d, b.mount_hole_inset_mm, column_x)
 
 
-def _indenter(r: RigsFile, plan: Plan, p: Problems) -> IndenterGeometry:
-    """The indenter follows the element unless the file sets its sizes: contact
-    face = the element's contact face, body >= the face's diagonal + 1 mm (8 mm
-    at least), tip longer than the element tip's height (3 mm at least)."""
-    i = r.indenter
-    face_w, face_d = plan.slots[0].geometry.contact_face_mm
-    tip_h = plan.slots[0].geometry.tip_height_mm
-    w = face_w if i.contact_width_mm is None else p.within(
-        "indenter.contact_width_mm", i.contact_width_mm, face_w, face_w,
-        why="the indenter's face is the element's contact face (element.tip_width_mm); leave it "
-            "out to follow the design")
-    d = face_d if i.contact_depth_mm is None else p.within(
-        "indenter.contact_depth_mm", i.contact_depth_mm, face_d, face_d,
-        why="the indenter's face is the element's contact face (sheet.thickness_mm); leave it "
-            "out to follow the design")
-    diagonal = math.hypot(w, d)
-    body = max(INDENTER_BODY_MM, math.ceil(diagonal + 1.0)) if i.body_diameter_mm is None else \
-        p.within("indenter.body_diameter_mm", i.body_diameter_mm, diagonal,
-                 why="the tip must sit inside the body")
-    tip_len = max(INDENTER_TIP_MM, tip_h + 0.5) if i.tip_length_mm is None else \
-        p.within("indenter.tip_length_mm", i.tip_length_mm, tip_h,
-                 why="the body must clear the neighbouring element tips (element.tip_height_mm)")
-    return IndenterGeometry(w, d, tip_len, body, i.body_length_mm)
-
-
 def bracket_width_range(plan: Plan) -> tuple[float, float]:
     """(narrowest, widest) bracket ear (mm): it carries both mounting holes and the
     bolt heads, and must clear the heads of the array's clamp bolts."""
@@ -666,12 +619,11 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     cart = _cart(r, sample, p, derived)
     holder = _holder(r, sample, p, derived)
     base = _base(r, cart, p, derived)
-    indenter = _indenter(r, plan, p)
     bracket = _bracket(r, plan, p, derived)
     rig_design = RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
         base=base, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
-        holder=holder, indenter=indenter, bracket=bracket,
+        holder=holder, bracket=bracket,
         calibration_element=0, derived=(), assumptions=assumptions)
     # the part modules derive even after a refusal above: every refusal at once
     library = _library(r, plan, rig_design, p)

@@ -215,7 +215,7 @@ def indenter_dims(d: Drawing, solid) -> None:
     dim(d, f, (-w / 2, 0.0), (-w / 2, L), "v", "right", 0, fmt_mm(L), "tip_length")
     dim(d, f, (-D / 2, L), (-D / 2, L + B), "v", "right", 0, fmt_mm(B), "body_length")
     dim(d, f, (-w / 2, 0.0), (-D / 2, L + B), "v", "right", 1, fmt_mm(L + B), "overall_height")
-    from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
+    from tactcad.partlib.indenter import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
     from tactcad.catalogue.shop import tap_drill_mm, thread_text
 
     fb = f.paper_box()

@@ -39,8 +39,8 @@ class ForceGaugeSpec(table_values(ForceGaugeSection)):
 
 
 def derive(g: ForceGaugeSection, context, p: Problems) -> PartData:
-    """The gauge, its shaft carrying the indenter (``context.rigs.indenter``)."""
-    indenter = context.rigs.indenter
+    """The gauge, its shaft carrying the indenter (``indenter``)."""
+    indenter = context.part("indenter").geometry
     p.within("force_gauge.mount_height_mm", g.mount_height_mm, hi=g.length_mm)
     if g.shaft_diameter_mm > indenter.body_diameter_mm:
         p.add("force_gauge.shaft_diameter_mm", g.shaft_diameter_mm,
@@ -71,4 +71,4 @@ def build(g: ForceGaugeSpec):
 
 
 PART = RigPart(key="force_gauge", section=ForceGaugeSection, host="", derive=derive, build=build,
-               order=70)
+               needs=("indenter",), order=70)

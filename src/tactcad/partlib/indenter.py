@@ -1,0 +1,108 @@
+"""Indenter of the force gauge (a made part): a cylindrical body screwed onto
+the gauge's shaft end and a rectangular tip whose end face is the contact
+area (paper: the same contact area as a sensing element, 2 mm x 3 mm).
+
+The indenter follows the array's element unless the ``[indenter]`` table sets
+its sizes: contact face = the element's contact face, body >= the face's
+diagonal + 1 mm (8 mm at least), tip longer than the element tip's height
+(3 mm at least). It screws onto the gauge's measuring shaft (Sauter FH
+attachments have an M6 female thread; ``force_gauge.shaft_diameter_mm`` = 6):
+a tapped M6 hole in the body's top face, as deep as the body less 2 mm of
+floor above the tip, at most 1.5 d (full strength in steel by 1 d; the load
+is at most the gauge's 5 N range).
+
+Part frame: contact face at z = 0 (centred), tip along +z, then the body;
+the contact width along x, the depth along y. Its shop drawing's dimension
+set, section and notes are in :mod:`tactcad.drawings.part_sets` (``indenter``).
+Units: mm.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
+from tactcad.partlib.shapes import box, cylinder, fuse, single
+from tactcad.partlib.stock import INDENTER_STEEL
+from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.schema import Problems, Section, number
+
+COLOR = (0.85, 0.65, 0.20)
+#: Smallest body diameter and tip length when the rigs file gives none, mm.
+INDENTER_BODY_MM = 8.0
+INDENTER_TIP_MM = 3.0
+INDENTER_THREAD_DIAMETER_MM = 6.0
+INDENTER_THREAD_FLOOR_MM = 2.0
+
+
+class IndenterSection(Section):
+    """``[indenter]`` of ``rigs.toml``: sizes left out follow the array."""
+
+    contact_width_mm: Optional[number(0.5, 20.0)] = None  # default: the element's contact face
+    contact_depth_mm: Optional[number(0.5, 20.0)] = None
+    tip_length_mm: Optional[number(0.5, 30.0)] = None  # default: clears the element tips
+    body_diameter_mm: Optional[number(1.0, 50.0)] = None  # default: carries the contact face
+    body_length_mm: number(1.0, 50.0)
+
+
+class IndenterGeometry(table_values(IndenterSection)):
+    """The indenter, every size filled in (mm)."""
+
+
+def indenter_thread_depth_mm(g) -> float:
+    """Depth (mm) of the indenter's M6 mounting thread (see the module doc)."""
+    return min(g.body_length_mm - INDENTER_THREAD_FLOOR_MM, 1.5 * INDENTER_THREAD_DIAMETER_MM)
+
+
+def derive(i: IndenterSection, context, p: Problems) -> PartData:
+    """The indenter for the array's element (``context.plan``)."""
+    plan = context.plan
+    face_w, face_d = plan.slots[0].geometry.contact_face_mm
+    tip_h = plan.slots[0].geometry.tip_height_mm
+    w = face_w if i.contact_width_mm is None else p.within(
+        "indenter.contact_width_mm", i.contact_width_mm, face_w, face_w,
+        why="the indenter's face is the element's contact face (element.tip_width_mm); leave it "
+            "out to follow the design")
+    d = face_d if i.contact_depth_mm is None else p.within(
+        "indenter.contact_depth_mm", i.contact_depth_mm, face_d, face_d,
+        why="the indenter's face is the element's contact face (sheet.thickness_mm); leave it "
+            "out to follow the design")
+    diagonal = math.hypot(w, d)
+    body = max(INDENTER_BODY_MM, math.ceil(diagonal + 1.0)) if i.body_diameter_mm is None else \
+        p.within("indenter.body_diameter_mm", i.body_diameter_mm, diagonal,
+                 why="the tip must sit inside the body")
+    tip_len = max(INDENTER_TIP_MM, tip_h + 0.5) if i.tip_length_mm is None else \
+        p.within("indenter.tip_length_mm", i.tip_length_mm, tip_h,
+                 why="the body must clear the neighbouring element tips (element.tip_height_mm)")
+    g = values_from(IndenterGeometry, i, contact_width_mm=w, contact_depth_mm=d,
+                    tip_length_mm=tip_len, body_diameter_mm=body)
+    top = g.tip_length_mm + g.body_length_mm
+    rr = g.body_diameter_mm / 2
+    return PartData(
+        name="indenter", kind="fabricated",
+        process=Process(f"turning and milling, {w:g} x {d:g} mm contact face", Method.ROUND_BAR),
+        material=INDENTER_STEEL, color=COLOR,
+        expected_volume_mm3=w * d * g.tip_length_mm + math.pi * rr * rr * g.body_length_mm
+        - math.pi * (INDENTER_THREAD_DIAMETER_MM / 2) ** 2 * indenter_thread_depth_mm(g),
+        expected_bbox_mm=(-float(rr), -float(rr), 0.0, float(rr), float(rr), float(top)),
+        geometry=g,
+        frames={"mount": Seat((0, 0, top), (0, 0, 1), (1, 0, 0)),
+                "contact": Seat((0, 0, 0), (0, 0, -1), (1, 0, 0))})
+
+
+def build(g: IndenterGeometry):
+    """Tip (contact face at z = 0) fused with the body above it, and the
+    tapped M6 hole in the body's top face, modelled at the thread's nominal
+    diameter (build123d ``Solid``; see :func:`indenter_thread_depth_mm`)."""
+    w, d, L = g.contact_width_mm, g.contact_depth_mm, g.tip_length_mm
+    tip = box(-w / 2, -d / 2, 0, w / 2, d / 2, L)
+    body = cylinder(g.body_diameter_mm / 2, (0, 0, L), (0, 0, 1), g.body_length_mm)
+    depth = indenter_thread_depth_mm(g)
+    top = L + g.body_length_mm
+    thread = cylinder(INDENTER_THREAD_DIAMETER_MM / 2, (0, 0, top - depth), (0, 0, 1), depth)
+    return single(fuse(tip, body).cut(thread))
+
+
+PART = RigPart(key="indenter", section=IndenterSection, host="", derive=derive, build=build,
+               order=60)
