@@ -268,10 +268,9 @@ class _RigsFileBase(Section):
 
 
 #: Place of each required section above among the part modules' tables
-#: (:attr:`RigPart.order`): the order the rigs file's refusals are listed in.
-_PLACES = {"rigs": 0, "base_plate": 10, "cart": 30, "sample": 40, "sample_holder": 50,
-          
-           "bracket": 130}
+#: (:attr:`RigPart.order`, the order the rig parts are derived in).
+_PLACES = {"rigs": 0, "sample": 10, "cart": 20, "sample_holder": 30, "base_plate": 40,
+           "bracket": 120}
 #: ``[calibration]`` and ``[assumptions]`` close the required tables.
 _CLOSING = ("calibration", "assumptions")
 
@@ -630,7 +629,7 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     cal = _calibration_element(r, plan, p)
     if p:
         return None, p
-    derived += [d for key in derivation_order() for d in library[key].derived]
+    derived += [d for part in library.values() for d in part.derived]
     return replace(rig_design, derived=tuple(derived), library=library, calibration_element=cal), p
 
 

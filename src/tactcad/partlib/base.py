@@ -18,7 +18,8 @@ A part module holds everything about one rig part and exposes it as one
   in :mod:`tactcad.assembly.rigs` place it, e.g. on a slide);
 * ``needs``: the part modules whose derived data its derivation reads; the
   parts are derived in that order (a circle is refused);
-* ``order``: its place in the rigs file's schema, in the derivation (among
+* ``order``: its place among the rig parts: in the list of derived
+  dimensions (manifest), in the rigs file's schema, in the derivation (among
   parts free to go either way) and in a rig's placement, so that output
   order is written down rather than taken from module names.
 
@@ -114,8 +115,8 @@ class RigPart:
             ``rigs`` (the rig parts still derived in :mod:`tactcad.design.rigs`)
             and ``part(key)``, the data of a part module named in ``needs``.
         needs: keys of the part modules ``derive`` reads (derived first).
-        order: place in the rigs file's schema, the derivation and the
-            placement (smaller first; ties by key).
+        order: place in the derived dimensions, the rigs file's schema, the
+            derivation and the placement (smaller first; ties by key).
         builder: the spec's builder key when it is not ``key`` (a made part's
             builder key is part of its drawing's hash, so a part moved into
             this form keeps the key it had).

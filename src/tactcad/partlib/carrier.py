@@ -65,4 +65,4 @@ def build(g: CarrierGeometry):
 
 
 PART = RigPart(key="carrier", section=CarrierSection, host="", derive=derive, build=build,
-               needs=("hanger_bar",), order=110, builder="axis_carrier")
+               needs=("hanger_bar",), order=100, builder="axis_carrier")

@@ -60,4 +60,4 @@ def build(g: ColumnGeometry):
 
 
 PART = RigPart(key="column", section=ColumnSection, host="", derive=derive, build=build,
-               needs=("linear_axis",), order=20)
+               needs=("linear_axis",), order=45)

@@ -71,4 +71,4 @@ def build(g: ForceGaugeSpec):
 
 
 PART = RigPart(key="force_gauge", section=ForceGaugeSection, host="", derive=derive, build=build,
-               needs=("indenter",), order=70)
+               needs=("indenter",), order=60)

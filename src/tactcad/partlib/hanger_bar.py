@@ -48,4 +48,4 @@ def build(g: HangerBarGeometry):
 
 
 PART = RigPart(key="hanger_bar", section=HangerBarSection, host="", derive=derive, build=build,
-               order=120)
+               order=110)

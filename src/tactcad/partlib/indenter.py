@@ -105,4 +105,4 @@ def build(g: IndenterGeometry):
 
 
 PART = RigPart(key="indenter", section=IndenterSection, host="", derive=derive, build=build,
-               order=60)
+               order=50)

@@ -97,5 +97,5 @@ def build_block(a: LinearAxisSpec):
 
 
 PART = RigPart(key="linear_axis", section=LinearAxisSection, host="", derive=derive,
-               build=build_rail, order=100, builder="rail",
+               build=build_rail, order=90, builder="rail",
                companion_builders={"block": build_block})

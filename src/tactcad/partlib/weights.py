@@ -64,4 +64,4 @@ def build(w: WeightSpec):
 
 
 PART = RigPart(key="weights", section=WeightsSection, host="", derive=derive, build=build,
-               needs=("carrier",), order=140, builder="weight")
+               needs=("carrier",), order=130, builder="weight")

@@ -94,5 +94,5 @@ def build_table(s: XYStageSpec):
 
 
 PART = RigPart(key="xy_stage", section=XYStageSection, host="", derive=derive, build=build_base,
-               order=90, builder="xy_stage_base",
+               order=80, builder="xy_stage_base",
                companion_builders={"xy_stage_table": build_table})

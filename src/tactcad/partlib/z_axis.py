@@ -97,5 +97,5 @@ def build_carriage(z: ZAxisSpec):
 
 
 PART = RigPart(key="z_axis", section=ZAxisSection, host="", derive=derive, build=build_body,
-               needs=("column",), order=80, builder="z_stage_body",
+               needs=("column",), order=70, builder="z_stage_body",
                companion_builders={"z_stage_carriage": build_carriage})
