@@ -77,9 +77,9 @@ def test_derived_rig_values(rigs, plan):
     assert rigs.base.track_half_mm == pytest.approx(60 / 2 + 1.0 + 5 / 2)
     assert rigs.part("weights").height_mm * math.pi * 12.5 ** 2 == pytest.approx(100 / 7.85 * 1000)
     # the bracket bolts pass the clamp plate's two bridge holes
-    assert rigs.bracket.hole_xs_mm == tuple(h.x_mm for h in plan.clamp.holes[-2:])
-    grip = rigs.bracket.ear_thickness_mm + 2 * plan.clamp.thickness_mm + plan.stack_length_mm
-    assert rigs.bracket.bolt_length_mm >= grip + plan.bolt.nut_height_mm
+    assert rigs.part("bracket").hole_xs_mm == tuple(h.x_mm for h in plan.clamp.holes[-2:])
+    grip = rigs.part("bracket").ear_thickness_mm + 2 * plan.clamp.thickness_mm + plan.stack_length_mm
+    assert rigs.part("bracket").bolt_length_mm >= grip + plan.bolt.nut_height_mm
 
 
 def test_bought_parts_carry_catalogue_data(specs):

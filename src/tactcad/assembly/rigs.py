@@ -253,7 +253,7 @@ class _Builder:
                    self.nodes["array"].frames[target[1]].owner)
 
     def bracket(self, parent: str, parent_frame: str) -> None:
-        br = self.rigs.bracket
+        br = self.rigs.part("bracket")
         self.leaf("array_bracket", "array_bracket", "bracket")
         self.mate("array_bracket", "foot", parent, parent_frame)
         self.nodes["array"] = _array_node(self.plan)

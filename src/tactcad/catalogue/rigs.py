@@ -51,7 +51,7 @@ def level_of(spec: PartSpec) -> str:
 _COLORS: dict[str, RGB] = {
     "base_plate": (0.55, 0.57, 0.60), "cart": (0.70, 0.72, 0.76),
     "wheel_spacer": (0.66, 0.62, 0.58), "sample_holder": (0.35, 0.55, 0.45),
-    "array_bracket": (0.30, 0.35, 0.60),
+   
     "bearing": (0.72, 0.73, 0.74), "wheel_bolt": (0.10, 0.10, 0.11),
     "holder_bolt": (0.14, 0.13, 0.12),
 }
@@ -197,29 +197,15 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
                    for i, sy in ((1, -1), (2, 1))}}))
     if bolt_name(h.screw, h.screw_length_mm) not in parts:
         add(_bolt_spec(h.screw, h.screw_length_mm, _COLORS["holder_bolt"]))
-    # --- bracket and its through bolts ---
-    br = rigs.bracket
-    w = br.width_mm
-    vol = w * (br.ear_thickness_mm * (br.ear_top_mm - br.foot_bottom_mm)
-               + (br.foot_length_mm - br.ear_thickness_mm) * br.foot_thickness_mm)
-    vol -= 2 * math.pi * (br.hole_diameter_mm / 2) ** 2 * br.ear_thickness_mm
-    vol -= math.pi * (br.foot_hole_diameter_mm / 2) ** 2 * br.foot_thickness_mm
-    frames = {"array_mount": face((0, 0, 0), (0, 0, 1), (1, 0, 0)),
-              "foot": face((0, br.foot_bottom_mm, -br.foot_length_mm / 2), (0, -1, 0), (0, 0, 1))}
-    for n, x in enumerate(br.hole_xs_mm, start=1):
-        frames[f"bolt_{n}"] = face((x, 0, -br.ear_thickness_mm), (0, 0, -1), (1, 0, 0))
-    if bolt_name(br.bolt, br.bolt_length_mm) != bolt_name(plan.bolt, plan.bolt_length_mm):
-        add(_bolt_spec(br.bolt, br.bolt_length_mm, (0.11, 0.12, 0.16)))
-    add(RigPartSpec(
-        name="array_bracket", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
-        color=_COLORS["array_bracket"], builder="array_bracket", expected_volume_mm3=vol,
-        expected_bbox_mm=_box_bbox(-w / 2, br.foot_bottom_mm, -br.foot_length_mm, w / 2,
-                                   br.ear_top_mm, 0),
-        geometry=br, frames=frames))
+    listed = {bolt_name(plan.bolt, plan.bolt_length_mm)}  # the array's own bolt
     for key, part in rig_parts_lib().items():
         data = rigs.library[key]
         for one in (data, *data.companions):
             add(library_spec(part, one))
+        for f in data.fasteners:
+            name = bolt_name(f.bolt, f.length_mm)
+            if name not in parts and name not in listed:
+                add(_bolt_spec(f.bolt, f.length_mm, f.color))
     return parts
 
 

@@ -26,7 +26,7 @@ from pydantic import create_model
 from tactcad.design.array import Plan
 from tactcad.partlib.base import PartData
 from tactcad.partlib.registry import derivation_order, rig_parts_lib
-from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Problems, Section, Text, choice,
+from tactcad.vocabulary.schema import (Derived, Problems, Section, Text, choice,
                                        content_hash, fmt, integer, listing, number, read_assumptions,
                                        read_toml, validate)
 from tactcad.vocabulary.standards import (BEARINGS, RIG_BOLTS, BearingSpec, BoltSpec,
@@ -36,13 +36,6 @@ from tactcad.errors import DesignError
 DEFAULT_RIGS = Path(__file__).resolve().parents[3] / "hardware" / "rigs.toml"
 
 POCKET_CORNER_RADIUS_MM = 1.0  # end mill radius of the cart's vacuum pocket
-#: Clearance between the bracket's ear and the array's clamp bolt heads, mm.
-EAR_HEAD_CLEARANCE_MM = 0.3
-#: Bracket ear width when the rigs file gives none and the array leaves room, mm.
-BRACKET_WIDTH_MM = 20.0
-#: Ear height above the mounting holes when the rigs file gives none, mm
-#: (lower when the clamp plate ends sooner).
-EAR_TOP_MM = 4.0
 #: Sample size when the rigs file gives none (the paper's phantom block), mm;
 #: larger when the array's tips need it, with this margin around them.
 SAMPLE_LENGTH_MM = 30.0
@@ -126,32 +119,6 @@ class SampleHolderGeometry:
 
 
 @dataclass(frozen=True)
-class BracketGeometry:
-    """L bracket holding the array by its front clamp plate (mm).
-
-    Part frame = array frame shifted so that the origin lies on the ear's
-    inner face at the height of the clamp plate's two mounting holes: ear in
-    ``-ear_thickness <= z <= 0``, foot below the array in ``-foot_length <= z <= 0``.
-    """
-
-    width_mm: float
-    ear_thickness_mm: float
-    ear_top_mm: float  # ear top above the mounting holes
-    foot_thickness_mm: float
-    foot_length_mm: float
-    foot_top_mm: float  # foot's top face relative to the mounting holes (negative)
-    foot_hole_diameter_mm: float
-    hole_xs_mm: tuple[float, float]  # mounting holes (x), from the clamp plate
-    hole_diameter_mm: float
-    bolt: BoltSpec
-    bolt_length_mm: float
-
-    @property
-    def foot_bottom_mm(self) -> float:
-        return self.foot_top_mm - self.foot_thickness_mm
-
-
-@dataclass(frozen=True)
 class RigDesign:
     """Validated rig dimensions, immutable. Build with :func:`load_rigs`."""
 
@@ -164,7 +131,6 @@ class RigDesign:
     sample: SampleGeometry
     sample_stiffness_N_per_mm: tuple[float, ...]
     holder: SampleHolderGeometry
-    bracket: BracketGeometry
     calibration_element: int
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
@@ -238,16 +204,6 @@ class SampleHolderSection(Section):
     tapped_depth_mm: number(2.0, 40.0)
 
 
-class BracketSection(Section):
-    width_mm: Optional[number(5.0, 200.0)] = None  # default: follows the array's bolt pattern
-    ear_thickness_mm: number(0.5, 20.0)
-    ear_top_mm: Optional[number(1.0, 50.0)] = None  # default: 4 mm, lower on a short clamp plate
-    foot_thickness_mm: number(1.0, 30.0)
-    foot_length_mm: number(5.0, 200.0)
-    foot_clearance_mm: number(0.3, 20.0)
-    foot_hole_diameter_mm: number(1.0, 20.0)
-
-
 class CalibrationSection(Section):
     element: Optional[integer(1, 1000)] = None  # default: the stiffest element (shortest arm)
 
@@ -262,15 +218,13 @@ class _RigsFileBase(Section):
     cart: CartSection
     sample: SampleSection
     sample_holder: SampleHolderSection
-    bracket: BracketSection
     calibration: CalibrationSection = CalibrationSection()
     assumptions: dict[str, Any] = {}
 
 
 #: Place of each required section above among the part modules' tables
 #: (:attr:`RigPart.order`, the order the rig parts are derived in).
-_PLACES = {"rigs": 0, "sample": 10, "cart": 20, "sample_holder": 30, "base_plate": 40,
-           "bracket": 120}
+_PLACES = {"rigs": 0, "sample": 10, "cart": 20, "sample_holder": 30, "base_plate": 40}
 #: ``[calibration]`` and ``[assumptions]`` close the required tables.
 _CLOSING = ("calibration", "assumptions")
 
@@ -525,70 +479,6 @@ def _base(r: RigsFile, cart: CartGeometry, p: Problems,
                              b.groove_depth_mm, track, hole_d, b.mount_hole_inset_mm, column_x)
 
 
-def bracket_width_range(plan: Plan) -> tuple[float, float]:
-    """(narrowest, widest) bracket ear (mm): it carries both mounting holes and the
-    bolt heads, and must clear the heads of the array's clamp bolts."""
-    mount = plan.clamp.holes[-2:]
-    b = plan.bolt
-    lo = abs(mount[0].x_mm - mount[1].x_mm) + mount[0].diameter_mm + b.head_diameter_mm
-    clamp_heads = min(abs(h.x_mm) for h in plan.clamp.holes[:4]) - b.head_diameter_mm / 2
-    return lo, 2 * (clamp_heads - EAR_HEAD_CLEARANCE_MM)
-
-
-def _bracket(r: RigsFile, plan: Plan, p: Problems,
-             derived: list[Derived]) -> BracketGeometry:
-    br = r.bracket
-    c = plan.clamp
-    mount = c.holes[-2:]
-    y_h = mount[0].y_mm
-    b = plan.bolt
-    lo, hi = bracket_width_range(plan)
-    if br.width_mm is None:
-        width = min(max(BRACKET_WIDTH_MM, lo), hi)
-        if lo > hi + LIMIT_TOLERANCE_MM:  # the array leaves no room: name the design field
-            p.add("clamp.bolt_spacing_mm", plan.raw["clamp"]["bolt_spacing_mm"],
-                  "a pattern that leaves the bracket ear room between the clamp bolt heads",
-                  f"the ear needs {fmt(lo)} mm between heads {fmt(hi)} mm apart",
-                  file=Path(plan.source).name)
-    else:
-        width = p.within("bracket.width_mm", br.width_mm, lo, hi,
-                         why="the ear must carry both mounting holes and the bolt heads, and clear "
-                             "the heads of the array's clamp bolts")
-    head_bottom = y_h - b.head_diameter_mm / 2  # array frame
-    nut_bottom = y_h - b.nut_width_across_flats_mm / 2  # nuts sit flats up, as in the array
-    foot_top = min(0.0, head_bottom, nut_bottom) - br.foot_clearance_mm - y_h
-    grip = br.ear_thickness_mm + 2 * c.thickness_mm + plan.stack_length_mm
-    needed = grip + b.nut_height_mm + 2 * b.thread_pitch_mm
-    bolt_len = shortest_stock_length(b, needed)
-    if bolt_len is None:  # the array's stack leaves no stock bolt for the ear: name the design
-        bolt_len = max(b.catalogue_lengths_mm)
-        fewer = "fewer columns, " if plan.columns > 1 else ""  # one column is the fewest
-        p.add("array.columns", plan.columns, f"{fewer}thinner clamp plates or a larger bolt "
-              f"than {b.size}", f"the bracket bolt through ear {fmt(br.ear_thickness_mm)} mm, both "
-              f"clamp plates and the stack needs {fmt(needed)} mm, longest stock {b.size} is "
-              f"{fmt(bolt_len)} mm", file=Path(plan.source).name)
-    derived.append(Derived("bracket_bolt_length", bolt_len, "mm",
-                           f"shortest stock {b.size} through ear {fmt(br.ear_thickness_mm)}, both "
-                           f"clamp plates and the stack (grip {fmt(grip)}) + nut + 2 thread pitches"))
-    top_lo, top_hi = mount[0].diameter_mm / 2 + 0.5, c.height_mm - y_h  # around the hole, on the plate
-    ear_top = min(EAR_TOP_MM, top_hi) if br.ear_top_mm is None else \
-        p.within("bracket.ear_top_mm", br.ear_top_mm, top_lo, top_hi,
-                 why="the ear reaches around the mounting holes and stays on the clamp plate")
-    p.within("bracket.foot_length_mm", br.foot_length_mm,
-             br.ear_thickness_mm + r.hanger_bar.section_mm, lo_open=True)
-    p.within("bracket.foot_hole_diameter_mm", br.foot_hole_diameter_mm, hi=width - 2.0)
-    if br.foot_length_mm / 2 - br.foot_hole_diameter_mm / 2 < br.ear_thickness_mm + 0.5:
-        p.add("bracket.foot_length_mm", br.foot_length_mm,
-              f">= {fmt(2 * (br.ear_thickness_mm + 0.5) + br.foot_hole_diameter_mm)} mm",
-              "the foot's centre hole must clear the ear")
-    return BracketGeometry(
-        width_mm=width, ear_thickness_mm=br.ear_thickness_mm, ear_top_mm=ear_top,
-        foot_thickness_mm=br.foot_thickness_mm, foot_length_mm=br.foot_length_mm,
-        foot_top_mm=foot_top, foot_hole_diameter_mm=br.foot_hole_diameter_mm,
-        hole_xs_mm=(mount[0].x_mm, mount[1].x_mm), hole_diameter_mm=mount[0].diameter_mm,
-        bolt=b, bolt_length_mm=bolt_len)
-
-
 def stiffest_element(plan: Plan) -> int:
     """The reference element: the stiffest, i.e. the shortest arm (K ~ 1/a^2); of
     equal arms the highest number (the paper's reference element 8 of the two 4 mm arms)."""
@@ -618,11 +508,10 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     cart = _cart(r, sample, p, derived)
     holder = _holder(r, sample, p, derived)
     base = _base(r, cart, p, derived)
-    bracket = _bracket(r, plan, p, derived)
     rig_design = RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
         base=base, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
-        holder=holder, bracket=bracket,
+        holder=holder,
         calibration_element=0, derived=(), assumptions=assumptions)
     # the part modules derive even after a refusal above: every refusal at once
     library = _library(r, plan, rig_design, p)

@@ -54,6 +54,17 @@ class Seat:
 
 
 @dataclass(frozen=True)
+class Fastener:
+    """A bought socket head cap screw (ISO 4762) a part is fixed with: listed
+    as a part of its own (``bolt_M3x10``) unless the array or a rig part
+    listed before already has it, which then keeps its colour."""
+
+    bolt: Any  # tactcad.vocabulary.standards.BoltSpec
+    length_mm: float
+    color: RGB
+
+
+@dataclass(frozen=True)
 class PartData:
     """What a part module derives: the spec of the part and where it sits.
 
@@ -72,6 +83,7 @@ class PartData:
             own builder).
         companions: further parts the module makes, each a spec of its own
             (the Z stage's carriage beside its body, the rail's block ...).
+        fasteners: the screws the part is fixed with (:class:`Fastener`).
     """
 
     name: str
@@ -89,6 +101,7 @@ class PartData:
     frames: Mapping[str, Seat] = field(default_factory=dict)
     builder: str = ""
     companions: tuple["PartData", ...] = ()
+    fasteners: tuple[Fastener, ...] = ()
 
 
 @dataclass(frozen=True)

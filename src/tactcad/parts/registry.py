@@ -12,7 +12,7 @@ import build123d as bd
 from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import Plan
 from tactcad.partlib.registry import rig_parts_lib
-from tactcad.parts import bracket, purchased, rig_base, rig_cart, sample
+from tactcad.parts import purchased, rig_base, rig_cart, sample
 from tactcad.parts.element import build_element
 from tactcad.parts.fasteners import build_bolt, build_nut
 from tactcad.parts.gauge import build_gauge
@@ -36,7 +36,6 @@ FAMILY_BUILDERS: dict[str, Builder] = {
     "wheel_spacer": lambda plan, spec: rig_cart.build_wheel_spacer(spec.geometry),
     "sample": lambda plan, spec: sample.build_sample(spec.geometry),
     "sample_holder": lambda plan, spec: sample.build_sample_holder(spec.geometry),
-    "array_bracket": lambda plan, spec: bracket.build_bracket(spec.geometry),
     "bearing": lambda plan, spec: purchased.build_bearing(spec.geometry),
     "rig_bolt": lambda plan, spec: build_bolt(*spec.geometry),
 }
