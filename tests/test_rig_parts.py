@@ -74,7 +74,7 @@ def test_every_unstated_value_has_a_reason(rigs):
 
 def test_derived_rig_values(rigs, plan):
     assert rigs.cart.axle_bolt.size == "M4" and rigs.cart.axle_bolt_length_mm == 12
-    assert rigs.base.track_half_mm == pytest.approx(60 / 2 + 1.0 + 5 / 2)
+    assert rigs.part("base_plate").track_half_mm == pytest.approx(60 / 2 + 1.0 + 5 / 2)
     assert rigs.part("weights").height_mm * math.pi * 12.5 ** 2 == pytest.approx(100 / 7.85 * 1000)
     # the bracket bolts pass the clamp plate's two bridge holes
     assert rigs.part("bracket").hole_xs_mm == tuple(h.x_mm for h in plan.clamp.holes[-2:])

@@ -280,7 +280,7 @@ class _Builder:
                 self.leaf(f"wheel_spacer_{t}", "wheel_spacer", "cart")
                 self.leaf(f"wheel_bolt_{t}", bolt_name(k.axle_bolt, k.axle_bolt_length_mm), "cart")
         self.leaf("cart", "cart", "cart")
-        L = r.base.length_mm
+        L = r.part("base_plate").length_mm
         # the first wheel (-x, -y) rolls in the -y groove; the cart hangs on it
         lo = -L / 2 + k.length_mm / 2 - k.axle_x_mm
         hi = L / 2 - k.length_mm / 2 - k.axle_x_mm
@@ -342,7 +342,7 @@ def _calibration_model(plan: Plan, rigs: RigDesign) -> RigModel:
     n = rigs.calibration_element
     b.base_and_column()
     xy = rigs.part("xy_stage")
-    L = rigs.base.length_mm
+    L = rigs.part("base_plate").length_mm
     half = xy.travel_mm / 2
     b.leaf("xy_lower_base", "xy_stage_base", "xy_stage")
     b.leaf("xy_lower_table", "xy_stage_table", "xy_stage")

@@ -49,7 +49,7 @@ def level_of(spec: PartSpec) -> str:
 # Distinct colours: the STEP writer keeps colour records in a fixed order only
 # when no two parts of a file share a colour.
 _COLORS: dict[str, RGB] = {
-    "base_plate": (0.55, 0.57, 0.60), "cart": (0.70, 0.72, 0.76),
+    "cart": (0.70, 0.72, 0.76),
     "wheel_spacer": (0.66, 0.62, 0.58), "sample_holder": (0.35, 0.55, 0.45),
    
     "bearing": (0.72, 0.73, 0.74), "wheel_bolt": (0.10, 0.10, 0.11),
@@ -111,21 +111,6 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
         parts[spec.name] = spec
 
     al = PLATE_ALUMINIUM
-    # --- base plate ---
-    g = rigs.base
-    L, W, T = g.length_mm, g.width_mm, g.thickness_mm
-    r = g.mount_hole_diameter_mm / 2
-    frames = {"column_seat": face((g.column_x_mm, 0, T), (0, 0, 1), (1, 0, 0)),
-              "top": face((0, 0, T), (0, 0, 1), (1, 0, 0))}
-    for s in (-1, 1):
-        frames[f"groove_{'m' if s < 0 else 'p'}"] = face(
-            (0, s * g.track_half_mm, T - g.groove_depth_mm), (0, 0, 1), (1, 0, 0))
-    add(RigPartSpec(
-        name="base_plate", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
-        color=_COLORS["base_plate"], builder="base_plate",
-        expected_volume_mm3=L * W * T - 2 * L * g.groove_width_mm * g.groove_depth_mm
-        - 4 * math.pi * r * r * T,
-        expected_bbox_mm=_box_bbox(-L / 2, -W / 2, 0, L / 2, W / 2, T), geometry=g, frames=frames))
     # --- cart ---
     k = rigs.cart
     L, W, T = k.length_mm, k.width_mm, k.thickness_mm

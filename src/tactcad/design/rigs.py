@@ -45,22 +45,6 @@ SAMPLE_MARGIN_MM = 2.0
 
 
 @dataclass(frozen=True)
-class BasePlateGeometry:
-    """Base plate with two wheel grooves along x (part frame: x along the
-    grooves, y across, z up from the underside; centred in x and y)."""
-
-    length_mm: float
-    width_mm: float
-    thickness_mm: float
-    groove_width_mm: float
-    groove_depth_mm: float
-    track_half_mm: float  # |y| of the groove centre lines
-    mount_hole_diameter_mm: float
-    mount_hole_inset_mm: float
-    column_x_mm: float  # x of the column's centre on the plate
-
-
-@dataclass(frozen=True)
 class CartGeometry:
     """Wheeled cart top plate with a vacuum clamping area (mm)."""
 
@@ -126,7 +110,6 @@ class RigDesign:
     description: str
     source: str
     rigs_hash: str
-    base: BasePlateGeometry
     cart: CartGeometry
     sample: SampleGeometry
     sample_stiffness_N_per_mm: tuple[float, ...]
@@ -152,17 +135,6 @@ class RigDesign:
 class RigsSection(Section):
     name: Text
     description: Text
-
-
-class BasePlateSection(Section):
-    length_mm: number(100.0, 1000.0)
-    width_mm: number(40.0, 500.0)
-    thickness_mm: number(4.0, 40.0)
-    groove_width_mm: number(1.0, 30.0)
-    groove_depth_mm: number(0.5, 10.0)
-    mount_hole_diameter_mm: number(2.0, 20.0)
-    mount_hole_inset_mm: number(3.0, 50.0)
-    column_inset_mm: number(0.0, 200.0)
 
 
 class CartSection(Section):
@@ -214,7 +186,6 @@ class _RigsFileBase(Section):
     field has a default."""
 
     rigs: RigsSection
-    base_plate: BasePlateSection
     cart: CartSection
     sample: SampleSection
     sample_holder: SampleHolderSection
@@ -224,7 +195,7 @@ class _RigsFileBase(Section):
 
 #: Place of each required section above among the part modules' tables
 #: (:attr:`RigPart.order`, the order the rig parts are derived in).
-_PLACES = {"rigs": 0, "sample": 10, "cart": 20, "sample_holder": 30, "base_plate": 40}
+_PLACES = {"rigs": 0, "sample": 10, "cart": 20, "sample_holder": 30}
 #: ``[calibration]`` and ``[assumptions]`` close the required tables.
 _CLOSING = ("calibration", "assumptions")
 
@@ -447,38 +418,6 @@ def _holder(r: RigsFile, s: SampleGeometry, p: Problems,
                                 h.thickness_mm, h.corner_radius_mm, screw, screw_len, screw_y)
 
 
-def _base(r: RigsFile, cart: CartGeometry, p: Problems,
-          derived: list[Derived]) -> BasePlateGeometry:
-    b, col = r.base_plate, r.column
-    bearing, axle_bolt = cart.bearing, cart.axle_bolt
-    p.within("base_plate.groove_width_mm", b.groove_width_mm, bearing.width_mm,
-             bearing.width_mm + 2.0, lo_open=True,
-             why=f"wider than the {bearing.designation} wheel (guided, not jammed)")
-    p.within("base_plate.groove_depth_mm", b.groove_depth_mm, hi=b.thickness_mm / 2)
-    if cart.wheel_clearance_mm - b.groove_depth_mm < 0.5:
-        p.add("base_plate.groove_depth_mm", b.groove_depth_mm,
-              f"<= {fmt(cart.wheel_clearance_mm - 0.5)} mm",
-              "the cart's underside must clear the base plate by 0.5 mm")
-    track = cart.width_mm / 2 + cart.spacer_thickness_mm + bearing.width_mm / 2
-    derived.append(Derived("groove_track_half", track, "mm",
-                           "cart half-width + spacer + half a wheel: the grooves lie under the wheels"))
-    if track + bearing.width_mm / 2 + axle_bolt.head_height_mm > b.width_mm / 2 - 2.0:
-        p.add("base_plate.width_mm", b.width_mm,
-              f">= {fmt(2 * (track + bearing.width_mm / 2 + axle_bolt.head_height_mm + 2))} mm",
-              "the wheels and their screw heads must stay on the plate")
-    if bearing.outer_diameter_mm / 2 - axle_bolt.head_diameter_mm / 2 < b.groove_depth_mm + 0.5 - 1e-9:
-        p.add("base_plate.groove_depth_mm", b.groove_depth_mm,
-              f"<= {fmt(bearing.outer_diameter_mm / 2 - axle_bolt.head_diameter_mm / 2 - 0.5)} mm",
-              "the wheel screw heads must clear the plate beside the groove")
-    hole_d = b.mount_hole_diameter_mm
-    p.within("base_plate.mount_hole_inset_mm", b.mount_hole_inset_mm, hole_d / 2 + 1.0,
-             b.width_mm / 2 - hole_d)
-    p.within("base_plate.column_inset_mm", b.column_inset_mm, hi=b.length_mm / 3)
-    column_x = b.length_mm / 2 - b.column_inset_mm - col.thickness_mm / 2
-    return BasePlateGeometry(b.length_mm, b.width_mm, b.thickness_mm, b.groove_width_mm,
-                             b.groove_depth_mm, track, hole_d, b.mount_hole_inset_mm, column_x)
-
-
 def stiffest_element(plan: Plan) -> int:
     """The reference element: the stiffest, i.e. the shortest arm (K ~ 1/a^2); of
     equal arms the highest number (the paper's reference element 8 of the two 4 mm arms)."""
@@ -507,10 +446,9 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     sample, stiffness = _sample(r, plan, p)
     cart = _cart(r, sample, p, derived)
     holder = _holder(r, sample, p, derived)
-    base = _base(r, cart, p, derived)
     rig_design = RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
-        base=base, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
+        cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
         holder=holder,
         calibration_element=0, derived=(), assumptions=assumptions)
     # the part modules derive even after a refusal above: every refusal at once

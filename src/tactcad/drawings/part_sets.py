@@ -333,7 +333,7 @@ def cart_dims(d: Drawing, solid) -> None:
 
 
 def base_plate_dims(d: Drawing, solid) -> None:
-    """Base plate (:class:`tactcad.design.rigs.BasePlateGeometry`; frame
+    """Base plate (:class:`tactcad.partlib.base_plate.BasePlateGeometry`; frame
     centred, z up): the generic set, and the two full-length grooves in the
     view from the left (u = z, v = y): width, depth and centre distance."""
     g = d.spec.geometry
@@ -370,7 +370,7 @@ def sample_holder_dims(d: Drawing, solid) -> None:
 
 
 def bracket_dims(d: Drawing, solid) -> None:
-    """Array bracket (:class:`tactcad.design.rigs.BracketGeometry`; views from
+    """Array bracket (:class:`tactcad.partlib.bracket.BracketGeometry`; views from
     :func:`tactcad.drawings.views.orientation`: front from +y with u = z,
     v = x; from above u = z, v = -y; from the left u = y, v = x): the generic
     set (outline, foot hole), the L section's ear and foot thicknesses and

@@ -47,9 +47,9 @@ def stage_reach(plan) -> float:
 
 
 def derive(xy: XYStageSection, context, p: Problems) -> PartData:
-    """The stages between the base plate's grooves (``context.rigs.base``), with
-    the travel to reach every tip of the array (``context.plan``)."""
-    base = context.rigs.base
+    """The stages between the base plate's grooves (``base_plate``), with the
+    travel to reach every tip of the array (``context.plan``)."""
+    base = context.part("base_plate").geometry
     if xy.size_mm / 2 > base.track_half_mm - base.groove_width_mm / 2:
         p.add("xy_stage.size_mm", xy.size_mm,
               f"<= {fmt(2 * (base.track_half_mm - base.groove_width_mm / 2))} mm",
@@ -94,5 +94,5 @@ def build_table(s: XYStageSpec):
 
 
 PART = RigPart(key="xy_stage", section=XYStageSection, host="", derive=derive, build=build_base,
-               order=80, builder="xy_stage_base",
+               needs=("base_plate",), order=80, builder="xy_stage_base",
                companion_builders={"xy_stage_table": build_table})
