@@ -31,15 +31,16 @@ from typing import Any, Mapping
 
 from tactcad.catalogue.array import (PartSpec, array_contacts, array_instances, array_parts,
                                      bolt_name, nut_name)
-from tactcad.catalogue.rigs import (bolt_frames, nut_frames, rig_parts, sample_name, seat_frame,
-                                   wheel_tag)
+from tactcad.catalogue.rigs import bolt_frames, nut_frames, rig_parts, seat_frame
 from tactcad.design.array import Placement, Plan
 from tactcad.design.project import Project
 from tactcad.design.rigs import RigDesign
 from tactcad.design.scenes import RIGS, SceneSpec
 from tactcad.errors import DesignError, SceneError
 from tactcad.geometry.frames import Frame
+from tactcad.partlib.cart import wheel_tag
 from tactcad.partlib.registry import rig_parts_lib
+from tactcad.partlib.sample import sample_name
 
 SOLVE_TOL_MM = 1e-9
 
@@ -272,7 +273,7 @@ class _Builder:
 
     def cart(self, target: tuple[str, str], sample_k: float) -> None:
         r = self.rigs
-        k = r.cart
+        k = r.part("cart")
         for sx in (-1, 1):
             for sy in (-1, 1):
                 t = wheel_tag(sx, sy)
@@ -297,7 +298,7 @@ class _Builder:
         for t in ("mm", "mp", "pm", "pp"):
             self.mate(f"wheel_bolt_{t}", "seat", f"wheel_{t}", "outer")
             self.touch(f"wheel_bolt_{t}", "cart")  # thread in the tapped hole
-        h = r.holder
+        h = r.part("sample_holder")
         self.leaf("sample_holder", "sample_holder", "sample_holder")
         self.mate("sample_holder", "bottom", "cart", "top")
         for i in (1, 2):

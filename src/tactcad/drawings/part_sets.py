@@ -253,13 +253,13 @@ def indenter_section(d: Drawing, solid) -> None:
 
 
 def cart_dims(d: Drawing, solid) -> None:
-    """Cart (``spec.geometry``: :class:`tactcad.design.rigs.CartGeometry`;
+    """Cart (``spec.geometry``: :class:`tactcad.partlib.cart.CartGeometry`;
     part frame: x along the grooves, z up from the underside, centred):
     outline and pocket in the front view (from +z), the wheel axles' tapped
     holes in the view from above (from +y), the hose port in the view from the
     left (from -x), channel, port, suction holes and pocket depth in section A-A."""
     from tactcad.catalogue.shop import thread_text
-    from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM
+    from tactcad.partlib.cart import POCKET_CORNER_RADIUS_MM
 
     g = d.spec.geometry
     f, t, lv, sv = d.front, d.views["top"], d.views["left"], d.views["section"]
@@ -351,7 +351,7 @@ def base_plate_dims(d: Drawing, solid) -> None:
 
 
 def sample_holder_dims(d: Drawing, solid) -> None:
-    """Sample holder (:class:`tactcad.design.rigs.SampleHolderGeometry`;
+    """Sample holder (:class:`tactcad.partlib.sample_holder.SampleHolderGeometry`;
     frame centred, z up): the generic set plus the window (length, width,
     corner radius)."""
     g = d.spec.geometry

@@ -125,8 +125,8 @@ class RigPart:
             joints place it.
         derive: ``(section, context, problems) -> PartData``; ``context`` has
             ``plan`` (the array's :class:`tactcad.design.array.Plan`),
-            ``rigs`` (the rig parts still derived in :mod:`tactcad.design.rigs`)
-            and ``part(key)``, the data of a part module named in ``needs``.
+            ``part(key)`` and ``table(key)``, the derived data and the
+            validated table of a part module named in ``needs``.
         needs: keys of the part modules ``derive`` reads (derived first).
         order: place in the derived dimensions, the rigs file's schema, the
             derivation and the placement (smaller first; ties by key).

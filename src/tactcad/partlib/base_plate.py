@@ -50,9 +50,9 @@ class BasePlateGeometry:
 
 
 def derive(b: BasePlateSection, context, p: Problems) -> PartData:
-    """The plate under the cart's wheels (``context.rigs.cart``), the column
-    (``column``) standing between its corner holes."""
-    cart, col = context.rigs.cart, context.part("column").geometry
+    """The plate under the cart's wheels (``cart``), the column (``column``)
+    standing between its corner holes."""
+    cart, col = context.part("cart").geometry, context.part("column").geometry
     bearing, axle_bolt = cart.bearing, cart.axle_bolt
     p.within("base_plate.groove_width_mm", b.groove_width_mm, bearing.width_mm,
              bearing.width_mm + 2.0, lo_open=True,
@@ -118,4 +118,4 @@ def build(g: BasePlateGeometry):
 
 
 PART = RigPart(key="base_plate", section=BasePlateSection, host="", derive=derive, build=build,
-               needs=("column",), order=40)
+               needs=("cart", "column"), order=40)

@@ -14,7 +14,7 @@ from typing import Iterable, Mapping
 from tactcad.partlib.base import RigPart
 
 #: Modules of the package that are the form itself, not parts.
-_FORM = {"base", "registry", "shapes", "stock"}
+_FORM = {"base", "registry", "screws", "shapes", "stock"}
 
 
 @functools.cache

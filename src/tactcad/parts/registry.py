@@ -12,7 +12,6 @@ import build123d as bd
 from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import Plan
 from tactcad.partlib.registry import rig_parts_lib
-from tactcad.parts import purchased, rig_cart, sample
 from tactcad.parts.element import build_element
 from tactcad.parts.fasteners import build_bolt, build_nut
 from tactcad.parts.gauge import build_gauge
@@ -31,11 +30,6 @@ FAMILY_BUILDERS: dict[str, Builder] = {
     "bolt": lambda plan, spec: build_bolt(*spec.geometry),
     "nut": lambda plan, spec: build_nut(spec.geometry),
     "gauge": lambda plan, spec: build_gauge(spec.geometry),
-    "cart": lambda plan, spec: rig_cart.build_cart(spec.geometry),
-    "wheel_spacer": lambda plan, spec: rig_cart.build_wheel_spacer(spec.geometry),
-    "sample": lambda plan, spec: sample.build_sample(spec.geometry),
-    "sample_holder": lambda plan, spec: sample.build_sample_holder(spec.geometry),
-    "bearing": lambda plan, spec: purchased.build_bearing(spec.geometry),
     "rig_bolt": lambda plan, spec: build_bolt(*spec.geometry),
 }
 
