@@ -1,16 +1,20 @@
 """The form of a part written as one module: a part module's table is
 optional when every field has a default, its key clashes with no rig section
 or other builder, the parts are derived after the parts they need (a circle
-refused), and the layers above find it through the registry alone."""
+or an unknown need refused) and read only those, companions and screws
+become specs of their own, and the layers above find it through the
+registry alone."""
 
 from __future__ import annotations
 
-from tactcad.design.rigs import OWN_TABLES, RigsFile
-from tactcad.parts import registry as builders
-from tactcad.partlib.base import RigPart
+import dataclasses
+
 import pytest
 
+from tactcad.design.rigs import OWN_TABLES, RigsFile
+from tactcad.partlib.base import RigPart
 from tactcad.partlib.registry import derivation_order, rig_parts_lib, topological
+from tactcad.parts import registry as builders
 
 
 def test_the_registry_finds_the_part_modules():
@@ -45,3 +49,64 @@ def test_needs_in_a_circle_are_refused_naming_the_circle():
     assert topological(["a", "b", "c"], {"a": ["c"], "b": [], "c": ["b"]}) == ["b", "c", "a"]
     with pytest.raises(ValueError, match="circle: a -> c -> a"):
         topological(["a", "b", "c"], {"a": ["c"], "b": [], "c": ["a"]})
+
+
+def test_a_part_reads_only_the_parts_it_needs():
+    from tactcad.design.rigs import PartContext
+
+    context = PartContext(plan=None, parts={"cart": "cart data"}, tables={"cart": "cart table"})
+    assert context.part("cart") == "cart data" and context.table("cart") == "cart table"
+    with pytest.raises(KeyError, match="'sample' is read but not declared in needs"):
+        context.part("sample")
+
+
+def test_unknown_needs_are_refused(monkeypatch):
+    import tactcad.partlib.registry as registry
+
+    lib = dict(rig_parts_lib())
+    lib["weights"] = dataclasses.replace(lib["weights"], needs=("trolley",))
+    monkeypatch.setattr(registry, "rig_parts_lib", lambda: lib)
+    registry.derivation_order.cache_clear()
+    try:
+        with pytest.raises(ValueError, match="'weights' needs 'trolley', which no part module"):
+            registry.derivation_order()
+    finally:
+        registry.derivation_order.cache_clear()
+
+
+def test_table_values_copy_the_table_field_for_field():
+    from tactcad.partlib.base import table_values, values_from
+    from tactcad.partlib.carrier import CarrierGeometry, CarrierSection
+    from tactcad.vocabulary.schema import Section, number
+
+    table = CarrierSection(width_mm=20, height_mm=60, thickness_mm=5, shelf_depth_mm=30)
+    g = values_from(CarrierGeometry, table)
+    assert [f.name for f in dataclasses.fields(g)] == list(CarrierSection.model_fields)
+    assert (g.width_mm, g.shelf_depth_mm) == (20, 30)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        g.width_mm = 1.0
+
+    class T(Section):
+        size_mm: number(1.0, 9.0)
+
+    extended = table_values(T, height_mm=float)
+    assert values_from(extended, T(size_mm=2), height_mm=3.0).height_mm == 3.0
+    assert values_from(extended, T(size_mm=2), size_mm=4.0, height_mm=3.0).size_mm == 4.0
+
+
+def test_companions_and_fasteners_become_specs_with_their_builders(project):
+    from tactcad.catalogue.rigs import rig_parts
+
+    specs = rig_parts(project.plan, project.rigs)
+    for key, part in rig_parts_lib().items():
+        data = project.rigs.library[key]
+        for one in (data, *data.companions):
+            builder = specs[one.name].builder
+            assert builder == (one.builder or part.builder_key) and builder in builders.BUILDERS
+    assert {"z_stage_body", "z_stage_carriage", "rail_MGNR12R", "block_MGN12H", "wheel_spacer",
+            "bearing_624ZZ"} <= set(specs)
+    screws = [n for n in specs if n.startswith("bolt_")]
+    fastened = {f"bolt_{f.bolt.safe_name}x{f.length_mm:g}" for d in project.rigs.library.values()
+                for f in d.fasteners}
+    array_bolt = f"bolt_{project.plan.bolt.safe_name}x{project.plan.bolt_length_mm:g}"
+    assert set(screws) == fastened - {array_bolt}  # each screw once, the array's bolt not again
