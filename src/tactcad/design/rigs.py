@@ -11,6 +11,11 @@ array (the indenter's contact face, the calibration element, the bracket
 width, the stages' travel) may be left out: they are derived from the array's
 plan, and a value the user did not set never fails. No CAD kernel here.
 
+Each rig part is one module of :mod:`tactcad.partlib` (its table, its
+derivation, its spec); this module builds the file's schema from the
+modules' tables, derives the parts in the order their needs give and keeps
+the file's own tables (``[rigs]``, ``[calibration]``, ``[assumptions]``).
+
 Units: mm, N, g.
 """
 
