@@ -3,14 +3,17 @@
 A part module holds everything about one rig part and exposes it as one
 :class:`RigPart` named ``PART``:
 
-* ``section``: its ``rigs.toml`` table (a :class:`~tactcad.vocabulary.schema.Section`
-  whose every field has a default, so a rigs file without the table stays valid);
-* ``derive``: the validated table and the rest of the rig -> :class:`PartData`
-  (the spec: name, kind, typed process, material, colour, expected volume and
-  box, the geometry its builder reads, derived dimensions with their reasons,
-  its seat and the seat on its host), refusals added to the file's problems;
+* ``section``: its ``rigs.toml`` table (a :class:`~tactcad.vocabulary.schema.Section`;
+  when every field has a default a rigs file without the table stays valid);
+* ``derive``: the validated table, the array's plan and the parts it needs
+  -> :class:`PartData` (the spec: name, kind, typed process, material,
+  colour, expected volume and box, the geometry its builder reads, derived
+  dimensions with their reasons, its joint frames, its seat and the seat on
+  its host, the screws it is fixed with, its companion parts), refusals added
+  to the file's problems;
 * ``build``: geometry -> solid in the part frame (build123d is imported inside
-  the function, so this layer stays kernel-free);
+  the function, so this layer stays kernel-free), and ``companion_builders``
+  for its companions;
 * ``drawing``: a :class:`DrawingRecord` (pure data) for a made part, ``None``
   for a bought one (no drawing);
 * ``host``: the rig node it is mounted on; it is shown with its host's group,

@@ -60,10 +60,10 @@ def derive(xy: XYStageSection, context, p: Problems) -> PartData:
         p.within("xy_stage.travel_mm", travel, 2 * reach,
                  why="the stages must bring every element's tip under the indenter")
     g = values_from(XYStageSpec, xy, travel_mm=travel)
-    base_part, table = (_stage(g, name, height, extra) for name, height, extra in (
-        ("xy_stage_base", g.base_height_mm, "fixed base"),
-        ("xy_stage_table", g.table_height_mm, "moving table")))
-    return PartData(**{**base_part, "companions": (PartData(**table, builder="xy_stage_table"),)})
+    table = PartData(**_stage(g, "xy_stage_table", g.table_height_mm, "moving table"),
+                     builder="xy_stage_table")
+    return PartData(**_stage(g, "xy_stage_base", g.base_height_mm, "fixed base"),
+                    companions=(table,))
 
 
 def _stage(g: XYStageSpec, name: str, height: float, extra: str) -> dict:
