@@ -332,24 +332,6 @@ def cart_dims(d: Drawing, solid) -> None:
     section_marks(d, "front", "A-A")
 
 
-def base_plate_dims(d: Drawing, solid) -> None:
-    """Base plate (:class:`tactcad.partlib.base_plate.BasePlateGeometry`; frame
-    centred, z up): the generic set, and the two full-length grooves in the
-    view from the left (u = z, v = y): width, depth and centre distance."""
-    g = d.spec.geometry
-    generic_dims(d, solid)
-    lv = d.views["left"]
-    T, yc, gw = g.thickness_mm, g.track_half_mm, g.groove_width_mm
-    dim(d, lv, (T - g.groove_depth_mm, yc + gw / 2), (T, yc + gw / 2), "h", "top", 0,
-         fmt_mm(g.groove_depth_mm), "groove_depth")
-    dim(d, lv, (T, yc - gw / 2), (T, yc + gw / 2), "v", "right", 0, fmt_mm(gw), "groove_width")
-    dim(d, lv, (T - g.groove_depth_mm, -yc), (T - g.groove_depth_mm, yc), "v", "right", 1,
-         fmt_mm(2 * yc), "groove_spacing")
-    for s_ in (-1, 1):
-        d.sheet.line("centre-lines", lv.paper(T - g.groove_depth_mm - 1.0, s_ * yc),
-                     lv.paper(T + 1.0, s_ * yc), "centre")
-
-
 def sample_holder_dims(d: Drawing, solid) -> None:
     """Sample holder (:class:`tactcad.partlib.sample_holder.SampleHolderGeometry`;
     frame centred, z up): the generic set plus the window (length, width,
@@ -540,7 +522,6 @@ DRAWINGS: dict[str, PartDrawing] = {
     "indenter": PartDrawing(indenter_dims, indenter_notes, section=indenter_section,
                             cameras=cameras_for((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
                             hole_table=False),
-    "base_plate": PartDrawing(base_plate_dims),
     "sample_holder": PartDrawing(sample_holder_dims),
     "array_bracket": PartDrawing(bracket_dims),
 }
@@ -557,8 +538,43 @@ def drawing_of(spec: PartSpec) -> PartDrawing:
     return GENERIC
 
 
+@dataclass(frozen=True)
+class Pen:
+    """What a part module's drawing (:class:`~tactcad.partlib.base.DrawingRecord`)
+    draws with: the dimensioning helpers of this layer, handed over so that
+    the part modules, which sit above it, import none of it."""
+
+    dim: Callable = dim
+    hole_marks: Callable = hole_marks
+    Hole2D: type = Hole2D
+    thickness_dim: Callable = thickness_dim
+    generic_dims: Callable = generic_dims
+    section_marks: Callable = section_marks
+    add_section: Callable = add_section
+    fmt_mm: Callable = fmt_mm
+    FIRST_TIER: float = FIRST_TIER
+    TIER: float = TIER
+
+
+PEN = Pen()
+
+
 @functools.cache
 def _from_record(record: DrawingRecord) -> PartDrawing:
-    """The general dimension set with the record's notes before the process note."""
-    return PartDrawing(notes=lambda d: list(record.notes) + process_note(d),
+    """The part module's drawing: its dimension set (else the general one) and
+    section drawn with :data:`PEN`, its notes around the process note, its
+    fixed view directions."""
+    def dimensions(d: Drawing, solid) -> None:
+        record.dimensions(d, solid, PEN)
+
+    def section(d: Drawing, solid) -> None:
+        record.section(d, solid, PEN)
+
+    def notes(d: Drawing) -> list[str]:
+        after = record.notes_after(d.spec.geometry, PEN) if record.notes_after else []
+        return list(record.notes) + process_note(d) + after
+
+    return PartDrawing(dimensions if record.dimensions else generic_dims, notes,
+                       section=section if record.section else None,
+                       cameras=cameras_for(*record.view_from) if record.view_from else None,
                        hole_table=record.hole_table)

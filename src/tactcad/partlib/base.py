@@ -109,12 +109,32 @@ class PartData:
 
 @dataclass(frozen=True)
 class DrawingRecord:
-    """A made part's shop drawing beyond the common sheet (pure data): the
-    general dimension set (overall sizes, thickness, holes), these notes
-    before the process note, and whether many holes go in a coordinate table."""
+    """A made part's shop drawing beyond the common sheet.
+
+    The part module draws with the pen the drawings layer hands it
+    (:data:`tactcad.drawings.part_sets.PEN`: ``dim``, ``hole_marks``,
+    ``generic_dims``, ``fmt_mm`` ...), so it imports nothing of that layer;
+    ``drawing`` is the :class:`tactcad.drawings.drawing.Drawing` being made
+    (its views, sheet, spec), ``solid`` the part's solid.
+
+    Attributes:
+        notes: notes before the process note.
+        hole_table: whether many holes go in a coordinate table.
+        dimensions: ``(drawing, solid, pen) -> None``, the dimension set;
+            None: the general set (overall sizes, thickness, holes).
+        section: ``(drawing, solid, pen) -> None`` adding a section view, or None.
+        notes_after: ``(geometry, pen) -> [sentence]``, notes after the
+            process note, or None.
+        view_from: fixed view directions (the front view's direction, its
+            up), or None (by the bounding box).
+    """
 
     notes: tuple[str, ...] = ()
     hole_table: bool = True
+    dimensions: Callable[[Any, Any, Any], None] | None = None
+    section: Callable[[Any, Any, Any], None] | None = None
+    notes_after: Callable[[Any, Any], list[str]] | None = None
+    view_from: tuple[Vec3, Vec3] | None = None
 
 
 @dataclass(frozen=True)

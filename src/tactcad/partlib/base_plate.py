@@ -3,8 +3,7 @@ the cart, four corner holes, and the column standing near one end; the XY
 stages stand on it between the grooves.
 
 Part frame: x along the grooves, y across, z up from the underside, centred
-in x and y. Its shop drawing's dimension set is in
-:mod:`tactcad.drawings.part_sets` (``base_plate``). Units: mm.
+in x and y. Units: mm.
 """
 
 from __future__ import annotations
@@ -12,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.base import DrawingRecord, PartData, RigPart, Seat
 from tactcad.partlib.shapes import box, cylinder, single
 from tactcad.partlib.stock import PLATE_ALUMINIUM
 from tactcad.vocabulary.process import Method, Process
@@ -117,5 +116,24 @@ def build(g: BasePlateGeometry):
     return single(plate.cut(*tools))
 
 
+def dimensions(d, solid, pen) -> None:
+    """The shop drawing's dimension set (drawn with the drawings layer's
+    ``pen``): the general set, and the two full-length grooves in the view
+    from the left (u = z, v = y): width, depth and centre distance."""
+    g = d.spec.geometry
+    pen.generic_dims(d, solid)
+    lv = d.views["left"]
+    T, yc, gw = g.thickness_mm, g.track_half_mm, g.groove_width_mm
+    pen.dim(d, lv, (T - g.groove_depth_mm, yc + gw / 2), (T, yc + gw / 2), "h", "top", 0,
+            pen.fmt_mm(g.groove_depth_mm), "groove_depth")
+    pen.dim(d, lv, (T, yc - gw / 2), (T, yc + gw / 2), "v", "right", 0, pen.fmt_mm(gw),
+            "groove_width")
+    pen.dim(d, lv, (T - g.groove_depth_mm, -yc), (T - g.groove_depth_mm, yc), "v", "right", 1,
+            pen.fmt_mm(2 * yc), "groove_spacing")
+    for s_ in (-1, 1):
+        d.sheet.line("centre-lines", lv.paper(T - g.groove_depth_mm - 1.0, s_ * yc),
+                     lv.paper(T + 1.0, s_ * yc), "centre")
+
+
 PART = RigPart(key="base_plate", section=BasePlateSection, host="", derive=derive, build=build,
-               needs=("cart", "column"), order=40)
+               needs=("cart", "column"), order=40, drawing=DrawingRecord(dimensions=dimensions))
