@@ -332,56 +332,6 @@ def cart_dims(d: Drawing, solid) -> None:
     section_marks(d, "front", "A-A")
 
 
-def sample_holder_dims(d: Drawing, solid) -> None:
-    """Sample holder (:class:`tactcad.partlib.sample_holder.SampleHolderGeometry`;
-    frame centred, z up): the generic set plus the window (length, width,
-    corner radius)."""
-    g = d.spec.geometry
-    f = d.front
-    wl, ww = g.window_length_mm, g.window_width_mm
-    dim(d, f, (-wl / 2, ww / 2), (wl / 2, ww / 2), "h", "top", 0, fmt_mm(wl), "window_length")
-    dim(d, f, (wl / 2, -ww / 2), (wl / 2, ww / 2), "v", "right", 0, fmt_mm(ww), "window_width")
-    generic_dims(d, solid, top_k=1, right_k=1)
-    r = g.corner_radius_mm
-    text = f"window through, 4× R{fmt_mm(r)}"
-    c = (wl / 2 - r + r * 0.7, -ww / 2 + r - r * 0.7)
-    fb = f.paper_box()
-    d.sheet.leader([f.paper(*c), (fb[2] - 6.0, fb[3] + FIRST_TIER + 2 * TIER + 4.0)], text,
-                   "window_corner")
-    d.dimensions["window_corner"] = text
-
-
-def bracket_dims(d: Drawing, solid) -> None:
-    """Array bracket (:class:`tactcad.partlib.bracket.BracketGeometry`; views from
-    :func:`tactcad.drawings.views.orientation`: front from +y with u = z,
-    v = x; from above u = z, v = -y; from the left u = y, v = x): the generic
-    set (outline, foot hole), the L section's ear and foot thicknesses and
-    ear height in the view from above, the ear's two through holes in the
-    view from the left."""
-    g = d.spec.geometry
-    generic_dims(d, solid)
-    t, lv = d.views["top"], d.views["left"]
-    fb_, ft = g.foot_bottom_mm, g.foot_top_mm
-    dim(d, t, (-g.ear_thickness_mm, -g.ear_top_mm), (0.0, -g.ear_top_mm), "h", "top", 0,
-         fmt_mm(g.ear_thickness_mm), "ear_thickness")
-    dim(d, t, (-g.foot_length_mm, -ft), (-g.foot_length_mm, -fb_), "v", "left", 0,
-         fmt_mm(g.foot_thickness_mm), "foot_thickness")
-    xs = sorted(g.hole_xs_mm)
-    holes = [Hole2D(0.0, x, g.hole_diameter_mm) for x in xs]
-    hole_marks(d, lv, holes)
-    dim(d, lv, (fb_, xs[0]), (0.0, xs[0]), "h", "below", 0, fmt_mm(-fb_), "ear_hole_height")
-    dim(d, lv, (0.0, -g.width_mm / 2), (0.0, xs[0]), "v", "right", 0,
-         fmt_mm(xs[0] + g.width_mm / 2), "ear_hole_1_x")
-    if len(xs) > 1:
-        dim(d, lv, (0.0, xs[0]), (0.0, xs[1]), "v", "right", 1, fmt_mm(xs[1] - xs[0]),
-             "ear_hole_spacing")
-    lb = lv.paper_box()
-    text = f"{len(xs)}× Ø{fmt_mm(g.hole_diameter_mm)} {holes[0].depth_text}"
-    d.sheet.leader([lv.paper(g.hole_diameter_mm / 2 * 0.7, xs[-1] + g.hole_diameter_mm / 2 * 0.7),
-                    (lb[2] + 4.0, lb[1] - 6.0)], text, "ear_holes")
-    d.dimensions["ear_holes"] = text
-
-
 def gauge_note(plan: Plan, g) -> str:
     """Where the strain gauge goes: its grid (``[readout]``) centred over the web."""
     from tactcad.design.readout import readout_of
@@ -522,8 +472,6 @@ DRAWINGS: dict[str, PartDrawing] = {
     "indenter": PartDrawing(indenter_dims, indenter_notes, section=indenter_section,
                             cameras=cameras_for((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
                             hole_table=False),
-    "sample_holder": PartDrawing(sample_holder_dims),
-    "array_bracket": PartDrawing(bracket_dims),
 }
 
 

@@ -10,8 +10,7 @@ The solder-terminal board sits on its foot (:mod:`tactcad.partlib.terminal_board
 Part frame: the array frame shifted so that the origin lies on the ear's
 inner face at the height of the clamp plate's two mounting holes: ear in
 ``-ear_thickness <= z <= 0``, foot below the array in ``-foot_length <= z <= 0``.
-Its shop drawing's dimension set is in :mod:`tactcad.drawings.part_sets`
-(``array_bracket``). Units: mm.
+Units: mm.
 """
 
 from __future__ import annotations
@@ -21,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Optional
 
-from tactcad.partlib.base import Fastener, PartData, RigPart, Seat
+from tactcad.partlib.base import DrawingRecord, Fastener, PartData, RigPart, Seat
 from tactcad.partlib.shapes import box, cylinder, fuse, single
 from tactcad.partlib.stock import PLATE_ALUMINIUM
 from tactcad.vocabulary.process import Method, Process
@@ -172,5 +171,37 @@ def build(g: BracketGeometry):
     return single(body.cut(*holes))
 
 
+def dimensions(d, solid, pen) -> None:
+    """The shop drawing's dimension set (drawn with the drawings layer's
+    ``pen``; views from :func:`tactcad.drawings.views.orientation`: front from
+    +y with u = z, v = x; from above u = z, v = -y; from the left u = y,
+    v = x): the general set (outline, foot hole), the L section's ear and foot
+    thicknesses and ear height in the view from above, the ear's two through
+    holes in the view from the left."""
+    g, fmt_mm = d.spec.geometry, pen.fmt_mm
+    pen.generic_dims(d, solid)
+    t, lv = d.views["top"], d.views["left"]
+    fb_, ft = g.foot_bottom_mm, g.foot_top_mm
+    pen.dim(d, t, (-g.ear_thickness_mm, -g.ear_top_mm), (0.0, -g.ear_top_mm), "h", "top", 0,
+            fmt_mm(g.ear_thickness_mm), "ear_thickness")
+    pen.dim(d, t, (-g.foot_length_mm, -ft), (-g.foot_length_mm, -fb_), "v", "left", 0,
+            fmt_mm(g.foot_thickness_mm), "foot_thickness")
+    xs = sorted(g.hole_xs_mm)
+    holes = [pen.Hole2D(0.0, x, g.hole_diameter_mm) for x in xs]
+    pen.hole_marks(d, lv, holes)
+    pen.dim(d, lv, (fb_, xs[0]), (0.0, xs[0]), "h", "below", 0, fmt_mm(-fb_), "ear_hole_height")
+    pen.dim(d, lv, (0.0, -g.width_mm / 2), (0.0, xs[0]), "v", "right", 0,
+            fmt_mm(xs[0] + g.width_mm / 2), "ear_hole_1_x")
+    if len(xs) > 1:
+        pen.dim(d, lv, (0.0, xs[0]), (0.0, xs[1]), "v", "right", 1, fmt_mm(xs[1] - xs[0]),
+                "ear_hole_spacing")
+    lb = lv.paper_box()
+    text = f"{len(xs)}× Ø{fmt_mm(g.hole_diameter_mm)} {holes[0].depth_text}"
+    d.sheet.leader([lv.paper(g.hole_diameter_mm / 2 * 0.7, xs[-1] + g.hole_diameter_mm / 2 * 0.7),
+                    (lb[2] + 4.0, lb[1] - 6.0)], text, "ear_holes")
+    d.dimensions["ear_holes"] = text
+
+
 PART = RigPart(key="bracket", section=BracketSection, host="", derive=derive, build=build,
-               needs=("hanger_bar",), order=120, builder="array_bracket")
+               needs=("hanger_bar",), order=120, builder="array_bracket",
+               drawing=DrawingRecord(dimensions=dimensions))

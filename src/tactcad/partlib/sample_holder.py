@@ -5,8 +5,7 @@ mid-wall beside the window fix it (the cart checks the screws and the frame
 against its own features).
 
 Part frame: centred in x and y, z = 0 on its underside; the two screw
-clearance holes on the y axis. Its shop drawing's dimension set is in
-:mod:`tactcad.drawings.part_sets` (``sample_holder``). Units: mm.
+clearance holes on the y axis. Units: mm.
 """
 
 from __future__ import annotations
@@ -14,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from tactcad.partlib.base import Fastener, PartData, RigPart, Seat
+from tactcad.partlib.base import DrawingRecord, Fastener, PartData, RigPart, Seat
 from tactcad.partlib.screws import stock_length
 from tactcad.partlib.shapes import box, cylinder, rounded_rect_face, single
 from tactcad.partlib.stock import PLATE_ALUMINIUM
@@ -106,5 +105,26 @@ def build(g: SampleHolderGeometry):
     return single(plate.cut(window, *holes))
 
 
+def dimensions(d, solid, pen) -> None:
+    """The shop drawing's dimension set (drawn with the drawings layer's
+    ``pen``): the general set plus the window (length, width, corner radius)."""
+    g = d.spec.geometry
+    f = d.front
+    wl, ww = g.window_length_mm, g.window_width_mm
+    pen.dim(d, f, (-wl / 2, ww / 2), (wl / 2, ww / 2), "h", "top", 0, pen.fmt_mm(wl),
+            "window_length")
+    pen.dim(d, f, (wl / 2, -ww / 2), (wl / 2, ww / 2), "v", "right", 0, pen.fmt_mm(ww),
+            "window_width")
+    pen.generic_dims(d, solid, top_k=1, right_k=1)
+    r = g.corner_radius_mm
+    text = f"window through, 4× R{pen.fmt_mm(r)}"
+    c = (wl / 2 - r + r * 0.7, -ww / 2 + r - r * 0.7)
+    fb = f.paper_box()
+    d.sheet.leader([f.paper(*c), (fb[2] - 6.0, fb[3] + pen.FIRST_TIER + 2 * pen.TIER + 4.0)], text,
+                   "window_corner")
+    d.dimensions["window_corner"] = text
+
+
 PART = RigPart(key="sample_holder", section=SampleHolderSection, host="", derive=derive,
-               build=build, needs=("sample",), order=30)
+               build=build, needs=("sample",), order=30,
+               drawing=DrawingRecord(dimensions=dimensions))
