@@ -13,8 +13,7 @@ nominal diameter. Companions: the wheel spacer (made, turned) and the
 bearing (bought, ISO 15 boundary dimensions d x D x B as an annulus).
 
 Part frame: x along the base plate's grooves, y across, z up from the
-underside, centred in x and y. Its shop drawing's dimension set, section and
-notes are in :mod:`tactcad.drawings.part_sets` (``cart``). Units: mm.
+underside, centred in x and y. Units: mm.
 """
 
 from __future__ import annotations
@@ -22,7 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from tactcad.partlib.base import Fastener, PartData, RigPart, Seat
+from tactcad.partlib.base import DrawingRecord, Fastener, PartData, RigPart, Seat
 from tactcad.partlib.screws import stock_length
 from tactcad.partlib.shapes import box, cylinder, ring, rounded_rect_face, single
 from tactcad.partlib.stock import PLATE_ALUMINIUM, TURNED_BRASS
@@ -307,6 +306,101 @@ def build_bearing(b: BearingSpec):
     return ring(b.bore_mm / 2, b.outer_diameter_mm / 2, b.width_mm)
 
 
+def section(d, solid, pen) -> None:
+    """Section A-A of the shop drawing: the mid plane y = 0 (through the
+    channel, the port and the suction holes), seen from -y."""
+    g = d.spec.geometry
+    pen.add_section(d, solid, (0.0, -1.0, 0.0), (0.0, 0.0, 1.0), g.length_mm, g.thickness_mm)
+
+
+def dimensions(d, solid, pen) -> None:
+    """The shop drawing's dimension set (drawn with the drawings layer's
+    ``pen``): outline and pocket in the front view (from +z), the wheel
+    axles' tapped holes in the view from above (from +y), the hose port in
+    the view from the left (from -x), channel, port, suction holes and pocket
+    depth in section A-A."""
+    g, fmt_mm, dim, thread_text = d.spec.geometry, pen.fmt_mm, pen.dim, pen.thread_text
+    f, t, lv, sv = d.front, d.views["top"], d.views["left"], d.views["section"]
+    L, W, T = g.length_mm, g.width_mm, g.thickness_mm
+    pl, pw = g.pocket_length_mm, g.pocket_width_mm
+    # front view: outline, pocket, holder screws
+    dim(d, f, (-pl / 2, pw / 2), (pl / 2, pw / 2), "h", "top", 0, fmt_mm(pl), "pocket_length")
+    dim(d, f, (-L / 2, W / 2), (L / 2, W / 2), "h", "top", 1, fmt_mm(L), "overall_length")
+    dim(d, f, (pl / 2, -pw / 2), (pl / 2, pw / 2), "v", "right", 0, fmt_mm(pw), "pocket_width")
+    dim(d, f, (L / 2, -W / 2), (L / 2, W / 2), "v", "right", 1, fmt_mm(W), "overall_height")
+    ys = g.holder_screw_y_mm
+    dim(d, f, (0.0, -ys), (0.0, ys), "v", "left", 0, fmt_mm(2 * ys), "holder_screw_spacing")
+    holes = [pen.Hole2D(0.0, s * ys, g.holder_screw_diameter_mm) for s in (-1, 1)]
+    pen.hole_marks(d, f, holes)
+    d.sheet.line("centre-lines", f.paper(0.0, -W / 2 - 2.0), f.paper(0.0, W / 2 + 2.0), "centre")
+    fb = f.paper_box()
+    texts = {
+        # both leaders end below the view, clear of its edges and of each other
+        "holder_thread": (f"2× {thread_text(g.holder_screw_diameter_mm, g.holder_tapped_depth_mm)}",
+                          f.paper(g.holder_screw_diameter_mm / 2 * 0.7, -ys - 0.7),
+                          (fb[0] + 0.62 * (fb[2] - fb[0]), fb[3] + 12.0)),
+        "pocket": (f"pocket depth {fmt_mm(g.pocket_depth_mm)}, 4× R{fmt_mm(POCKET_CORNER_RADIUS_MM)}",
+                   f.paper(-pl / 2, -pw / 2 + POCKET_CORNER_RADIUS_MM * 2),
+                   (fb[0] + 8.0, fb[3] + 6.0)),
+    }
+    for name, (text, at, to) in texts.items():
+        d.sheet.leader([at, to], text, name)
+        d.dimensions[name] = text
+    # view from above (u = x, v = -z): axles
+    ax, ah = g.axle_x_mm, g.axle_height_mm
+    dim(d, t, (-ax, -ah), (ax, -ah), "h", "below", 0, fmt_mm(2 * ax), "axle_spacing")
+    dim(d, t, (-L / 2, 0.0), (-ax, -ah), "v", "left", 0, fmt_mm(ah), "axle_height")
+    pen.hole_marks(d, t, [pen.Hole2D(s * ax, -ah, g.axle_bolt.nominal_diameter_mm) for s in (-1, 1)])
+    axle = (f"4× {thread_text(g.axle_bolt.nominal_diameter_mm, g.axle_hole_depth_mm)} "
+            f"(both sides)")
+    tb = t.paper_box()
+    d.sheet.leader([t.paper(ax + 1.0, -ah - 1.0), (tb[2] - 10.0, tb[3] + 12.0)], axle, "axle_thread")
+    d.dimensions["axle_thread"] = axle
+    pen.thickness_dim(d)
+    # view from the left (u = z, v = y): the hose port
+    port = thread_text(g.port_diameter_mm, g.port_depth_mm)
+    lb = lv.paper_box()
+    pen.hole_marks(d, lv, [pen.Hole2D(T / 2, 0.0, g.port_diameter_mm)])
+    d.sheet.leader([lv.paper(T / 2 + g.port_diameter_mm / 2 * 0.7, g.port_diameter_mm / 2 * 0.7),
+                    (lb[2] + 6.0, lb[1] - 4.0)], f"hose port {port}", "port_thread")
+    d.dimensions["port_thread"] = f"hose port {port}"
+    # section A-A (u = x, v = z)
+    xs = g.suction_hole_xs_mm
+    dim(d, sv, (-L / 2, T), (xs[0], T), "h", "top", 0, fmt_mm(xs[0] + L / 2), "suction_hole_first_x")
+    if len(xs) > 1:
+        dim(d, sv, (xs[0], T), (xs[1], T), "h", "top", 1, fmt_mm(xs[1] - xs[0]), "suction_hole_pitch")
+    dim(d, sv, (-L / 2, T / 2), (-L / 2 + g.port_depth_mm, T / 2), "h", "below", 0,
+        fmt_mm(g.port_depth_mm), "port_depth")
+    dim(d, sv, (-L / 2, T / 2), (g.channel_end_x_mm, T / 2), "h", "below", 1,
+        fmt_mm(g.channel_end_x_mm + L / 2), "channel_length")
+    dim(d, sv, (L / 2, 0.0), (g.channel_end_x_mm, T / 2), "v", "right", 0, fmt_mm(T / 2),
+        "channel_height")
+    dim(d, sv, (L / 2, T), (pl / 2, T - g.pocket_depth_mm), "v", "right", 1,
+        fmt_mm(g.pocket_depth_mm), "pocket_depth")
+    sb = sv.paper_box()
+    ch = f"channel Ø{fmt_mm(g.channel_diameter_mm)}"
+    d.sheet.leader([sv.paper(g.channel_end_x_mm - 4.0, T / 2 - g.channel_diameter_mm / 2),
+                    (sv.paper(g.channel_end_x_mm, 0.0)[0] + 4.0, sb[3] + 5.0)], ch, "channel_diameter")
+    d.dimensions["channel_diameter"] = ch
+    sh_text = f"{len(xs)}× Ø{fmt_mm(g.suction_hole_diameter_mm)} to channel"
+    d.sheet.leader([sv.paper(xs[-1] + g.suction_hole_diameter_mm / 2, T - 1.5),
+                    (sb[0] + 0.72 * (sb[2] - sb[0]), sb[1] - 2 * pen.TIER - pen.FIRST_TIER)], sh_text,
+                   "suction_holes")
+    d.dimensions["suction_holes"] = sh_text
+    pen.section_marks(d, "front", "A-A")
+
+
+def notes_after(g: CartGeometry, pen) -> list[str]:
+    """The shop drawing's note after the process note: drilling the vacuum
+    channel and holes, sealing faces."""
+    return [f"Vacuum: drill the channel Ø{pen.fmt_mm(g.channel_diameter_mm)} from the "
+            f"port end (section A-A), then the suction holes from the pocket floor into it; deburr "
+            f"the channel and holes so no chip stays inside. Top face and pocket rim: "
+            f"flatness 0.05 (ISO 1101), so the sample seals on the vacuum."]
+
+
 PART = RigPart(key="cart", section=CartSection, host="", derive=derive, build=build,
                needs=("sample", "sample_holder"), order=20,
-               companion_builders={"wheel_spacer": build_wheel_spacer, "bearing": build_bearing})
+               companion_builders={"wheel_spacer": build_wheel_spacer, "bearing": build_bearing},
+               drawing=DrawingRecord(hole_table=False, dimensions=dimensions, section=section,
+                                     notes_after=notes_after))

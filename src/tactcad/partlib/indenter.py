@@ -12,9 +12,7 @@ floor above the tip, at most 1.5 d (full strength in steel by 1 d; the load
 is at most the gauge's 5 N range).
 
 Part frame: contact face at z = 0 (centred), tip along +z, then the body;
-the contact width along x, the depth along y. Its shop drawing's dimension
-set, section and notes are in :mod:`tactcad.drawings.part_sets` (``indenter``).
-Units: mm.
+the contact width along x, the depth along y. Units: mm.
 """
 
 from __future__ import annotations
@@ -22,7 +20,7 @@ from __future__ import annotations
 import math
 from typing import Optional
 
-from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
+from tactcad.partlib.base import DrawingRecord, PartData, RigPart, Seat, table_values, values_from
 from tactcad.partlib.shapes import box, cylinder, fuse, single
 from tactcad.partlib.stock import INDENTER_STEEL
 from tactcad.vocabulary.process import Method, Process
@@ -104,5 +102,59 @@ def build(g: IndenterGeometry):
     return single(fuse(tip, body).cut(thread))
 
 
+def section(d, solid, pen) -> None:
+    """Section A-A of the shop drawing: through the axis (plane y = 0, seen
+    from +y, as the front view), showing the blind tapped hole."""
+    g = d.spec.geometry
+    pen.add_section(d, solid, (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), g.body_diameter_mm,
+                    g.tip_length_mm + g.body_length_mm)
+
+
+def dimensions(d, solid, pen) -> None:
+    """The shop drawing's dimension set (drawn with the drawings layer's
+    ``pen``): the contact face in the front view (width) and the view from
+    the left (depth), tip and body lengths, body diameter, the mounting
+    thread in section A-A."""
+    g, fmt_mm, dim = d.spec.geometry, pen.fmt_mm, pen.dim
+    f, left = d.front, d.views["left"]
+    w, dp, L = g.contact_width_mm, g.contact_depth_mm, g.tip_length_mm
+    D, B = g.body_diameter_mm, g.body_length_mm
+    # front view: u = -x, v = z; view from the left: u = y, v = z
+    dim(d, f, (w / 2, 0.0), (-w / 2, 0.0), "h", "below", 0, fmt_mm(w), "contact_width")
+    dim(d, left, (-dp / 2, 0.0), (dp / 2, 0.0), "h", "below", 0, fmt_mm(dp), "contact_depth")
+    dim(d, f, (D / 2, L + B), (-D / 2, L + B), "h", "top", 0, f"Ø{fmt_mm(D)}", "body_diameter")
+    dim(d, f, (-w / 2, 0.0), (-w / 2, L), "v", "right", 0, fmt_mm(L), "tip_length")
+    dim(d, f, (-D / 2, L), (-D / 2, L + B), "v", "right", 0, fmt_mm(B), "body_length")
+    dim(d, f, (-w / 2, 0.0), (-D / 2, L + B), "v", "right", 1, fmt_mm(L + B), "overall_height")
+    fb = f.paper_box()
+    depth = indenter_thread_depth_mm(g)
+    th = (f"{pen.thread_text(INDENTER_THREAD_DIAMETER_MM, depth)} (tap drill "
+          f"Ø{fmt_mm(pen.tap_drill_mm(INDENTER_THREAD_DIAMETER_MM))}), onto the gauge shaft")
+    sv = d.views.get("section", f)
+    sb = sv.paper_box()
+    rt = INDENTER_THREAD_DIAMETER_MM / 2
+    d.sheet.leader([sv.paper(rt, L + B - depth / 2), (sb[2] + pen.FIRST_TIER + pen.TIER, sb[1] - 8.0)],
+                   th, "mount_thread")
+    d.dimensions["mount_thread"] = th
+    if sv is not f:
+        dim(d, sv, (-rt, L + B), (-rt, L + B - depth), "v", "right", 0, fmt_mm(depth),
+            "thread_depth")
+        pen.section_marks(d, "top", "A-A")
+    cf = f"contact face {fmt_mm(w)} × {fmt_mm(dp)}"
+    d.sheet.leader([f.paper(0.0, 0.0), (fb[2] + 4.0, fb[3] + 18.0)], cf, "contact_face")
+    d.dimensions["contact_face"] = cf
+
+
+def notes_after(g: IndenterGeometry, pen) -> list[str]:
+    """The shop drawing's note after the process note: the mounting thread
+    and the contact face."""
+    return ["The M6 thread screws the indenter onto the force gauge's measuring shaft; "
+            "contact face perpendicular to the thread axis within 0.02 (ISO 1101), so the "
+            "2 x 3 mm face lies flat on the element's tip."]
+
+
 PART = RigPart(key="indenter", section=IndenterSection, host="", derive=derive, build=build,
-               order=50)
+               order=50,
+               drawing=DrawingRecord(hole_table=False, dimensions=dimensions, section=section,
+                                     notes_after=notes_after,
+                                     view_from=((0.0, 1.0, 0.0), (0.0, 0.0, 1.0))))
