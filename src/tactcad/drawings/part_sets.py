@@ -15,6 +15,7 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Callable
 
 import numpy as np
@@ -330,27 +331,13 @@ def drawing_of(spec: PartSpec) -> PartDrawing:
     return GENERIC
 
 
-@dataclass(frozen=True)
-class Pen:
-    """What a part module's drawing (:class:`~tactcad.partlib.base.DrawingRecord`)
-    draws with: the dimensioning helpers of this layer, handed over so that
-    the part modules, which sit above it, import none of it."""
-
-    dim: Callable = dim
-    hole_marks: Callable = hole_marks
-    Hole2D: type = Hole2D
-    thickness_dim: Callable = thickness_dim
-    generic_dims: Callable = generic_dims
-    section_marks: Callable = section_marks
-    add_section: Callable = add_section
-    fmt_mm: Callable = fmt_mm
-    thread_text: Callable = thread_text
-    tap_drill_mm: Callable = tap_drill_mm
-    FIRST_TIER: float = FIRST_TIER
-    TIER: float = TIER
-
-
-PEN = Pen()
+#: What a part module's drawing (:class:`~tactcad.partlib.base.DrawingRecord`)
+#: draws with: the dimensioning helpers of this layer, handed over so that the
+#: part modules, which sit above it, import none of it.
+PEN = SimpleNamespace(
+    dim=dim, hole_marks=hole_marks, Hole2D=Hole2D, thickness_dim=thickness_dim,
+    generic_dims=generic_dims, section_marks=section_marks, add_section=add_section, fmt_mm=fmt_mm,
+    thread_text=thread_text, tap_drill_mm=tap_drill_mm, FIRST_TIER=FIRST_TIER, TIER=TIER)
 
 
 @functools.cache
