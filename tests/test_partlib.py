@@ -108,5 +108,24 @@ def test_companions_and_fasteners_become_specs_with_their_builders(project):
     screws = [n for n in specs if n.startswith("bolt_")]
     fastened = {f"bolt_{f.bolt.safe_name}x{f.length_mm:g}" for d in project.rigs.library.values()
                 for f in d.fasteners}
-    array_bolt = f"bolt_{project.plan.bolt.safe_name}x{project.plan.bolt_length_mm:g}"
-    assert set(screws) == fastened - {array_bolt}  # each screw once, the array's bolt not again
+    assert set(screws) == fastened  # each screw once
+
+
+def test_a_screw_of_the_arrays_size_and_length_is_still_a_rig_part(project):
+    """A wheel or holder screw that happens to be the array's bolt keeps its
+    own spec with its joint frame (the rig mates it by that frame); only the
+    bracket's through bolts, when they are the array's own bolt, are not
+    listed again."""
+    import dataclasses as dc
+
+    from tactcad.catalogue.array import bolt_name
+    from tactcad.catalogue.rigs import rig_parts
+    from tactcad.partlib.base import Fastener
+
+    plan, rigs = project.plan, project.rigs
+    holder = rigs.library["sample_holder"]
+    same = dc.replace(holder, fasteners=(Fastener(plan.bolt, plan.bolt_length_mm, (0.1, 0.1, 0.1)),))
+    specs = rig_parts(plan, dc.replace(rigs, library={**rigs.library, "sample_holder": same}))
+    assert "seat" in specs[bolt_name(plan.bolt, plan.bolt_length_mm)].frames
+    bracket = rigs.library["bracket"]
+    assert not bracket.fasteners or bracket.fasteners[0].length_mm != plan.bolt_length_mm

@@ -59,18 +59,16 @@ def _bolt_spec(b: BoltSpec, length_mm: float, color: RGB) -> RigPartSpec:
 def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     """Every distinct rig part, keyed by part name: each part module's part and
     companions (all the rubber samples ...), then the screws it is fixed with
-    unless the array or a part before has the same screw (which keeps its
-    colour; distinct colours keep the STEP writer's colour records in a fixed
-    order)."""
+    unless a part before has the same screw (which keeps its colour; distinct
+    colours keep the STEP writer's colour records in a fixed order)."""
     parts: dict[str, RigPartSpec] = {}
-    array_bolt = bolt_name(plan.bolt, plan.bolt_length_mm)
     for key, part in rig_parts_lib().items():
         data = rigs.library[key]
         for one in (data, *data.companions):
             parts[one.name] = library_spec(part, one)
         for f in data.fasteners:
             name = bolt_name(f.bolt, f.length_mm)
-            if name not in parts and name != array_bolt:
+            if name not in parts:
                 parts[name] = _bolt_spec(f.bolt, f.length_mm, f.color)
     return parts
 

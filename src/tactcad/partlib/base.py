@@ -59,8 +59,8 @@ class Seat:
 @dataclass(frozen=True)
 class Fastener:
     """A bought socket head cap screw (ISO 4762) a part is fixed with: listed
-    as a part of its own (``bolt_M3x10``) unless the array or a rig part
-    listed before already has it, which then keeps its colour."""
+    as a part of its own (``bolt_M3x10``) unless a rig part listed before
+    already has it, which then keeps its colour."""
 
     bolt: Any  # tactcad.vocabulary.standards.BoltSpec
     length_mm: float

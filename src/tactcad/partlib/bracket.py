@@ -135,10 +135,12 @@ def derive(br: BracketSection, context, p: Problems) -> PartData:
         foot_top_mm=foot_top, foot_hole_diameter_mm=br.foot_hole_diameter_mm,
         hole_xs_mm=(mount[0].x_mm, mount[1].x_mm), hole_diameter_mm=mount[0].diameter_mm,
         bolt=b, bolt_length_mm=bolt_len)
-    return _data(g, bolt_derived)
+    # a bolt as long as the array's own is the array's part (bolt_M2x30 ...), not listed again
+    own = f"{bolt_len:g}" == f"{plan.bolt_length_mm:g}"
+    return _data(g, bolt_derived, () if own else (Fastener(b, bolt_len, BOLT_COLOR),))
 
 
-def _data(g: BracketGeometry, bolt_derived: Derived) -> PartData:
+def _data(g: BracketGeometry, bolt_derived: Derived, fasteners: tuple[Fastener, ...]) -> PartData:
     w = g.width_mm
     vol = w * (g.ear_thickness_mm * (g.ear_top_mm - g.foot_bottom_mm)
                + (g.foot_length_mm - g.ear_thickness_mm) * g.foot_thickness_mm)
@@ -153,8 +155,7 @@ def _data(g: BracketGeometry, bolt_derived: Derived) -> PartData:
         material=PLATE_ALUMINIUM, color=COLOR, expected_volume_mm3=vol,
         expected_bbox_mm=(-w / 2, float(g.foot_bottom_mm), -float(g.foot_length_mm), w / 2,
                           float(g.ear_top_mm), 0.0),
-        geometry=g, frames=frames, derived=(bolt_derived,),
-        fasteners=(Fastener(g.bolt, g.bolt_length_mm, BOLT_COLOR),))
+        geometry=g, frames=frames, derived=(bolt_derived,), fasteners=fasteners)
 
 
 def build(g: BracketGeometry):
