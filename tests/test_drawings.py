@@ -430,7 +430,7 @@ def test_base_plate_grooves_and_sample_holder_window(plan):
 
 @pytest.mark.slow
 def test_indenter_has_its_mounting_thread(plan, project):
-    from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
+    from tactcad.partlib.indenter import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
     from tactcad.parts.registry import build_part
 
     specs, _ = design_assemblies(project)

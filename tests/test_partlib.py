@@ -1,13 +1,20 @@
-"""The form of a part written as one module: every part module's table is
-optional, its key clashes with no rig section or other builder, and the
-layers above find it through the registry alone."""
+"""The form of a part written as one module: a part module's table is
+optional when every field has a default, its key clashes with no rig section
+or other builder, the parts are derived after the parts they need (a circle
+or an unknown need refused) and read only those, companions and screws
+become specs of their own, and the layers above find it through the
+registry alone."""
 
 from __future__ import annotations
 
-from tactcad.design.rigs import _RigsFileBase, RigsFile
-from tactcad.parts import registry as builders
+import dataclasses
+
+import pytest
+
+from tactcad.design.rigs import OWN_TABLES, RigsFile
 from tactcad.partlib.base import RigPart
-from tactcad.partlib.registry import rig_parts_lib
+from tactcad.partlib.registry import derivation_order, rig_parts_lib, topological
+from tactcad.parts import registry as builders
 
 
 def test_the_registry_finds_the_part_modules():
@@ -16,15 +23,109 @@ def test_the_registry_finds_the_part_modules():
     assert all(isinstance(p, RigPart) and p.key == k for k, p in lib.items())
 
 
-def test_every_part_table_is_optional_and_clashes_with_nothing():
-    legacy_sections = set(_RigsFileBase.model_fields)
+def test_a_part_table_is_optional_exactly_when_every_field_has_a_default():
     for key, part in rig_parts_lib().items():
-        assert key not in legacy_sections
-        assert not RigsFile.model_fields[key].is_required()
-        assert all(not f.is_required() for f in part.section.model_fields.values()), key
-        part.section()  # the defaults make a valid table
+        assert key not in OWN_TABLES
+        required = any(f.is_required() for f in part.section.model_fields.values())
+        assert RigsFile.model_fields[key].is_required() == required == part.table_required, key
+        if not required:
+            part.section()  # the defaults make a valid table
 
 
 def test_part_keys_do_not_shadow_other_builders():
-    for key in rig_parts_lib():
-        assert key not in builders.FAMILY_BUILDERS and key in builders.BUILDERS
+    for part in rig_parts_lib().values():
+        assert part.builder_key not in builders.FAMILY_BUILDERS
+        assert part.builder_key in builders.BUILDERS
+
+
+def test_parts_derive_after_the_parts_they_need():
+    order = derivation_order()
+    assert sorted(order) == sorted(rig_parts_lib())
+    for key, part in rig_parts_lib().items():
+        assert all(order.index(n) < order.index(key) for n in part.needs), key
+
+
+def test_needs_in_a_circle_are_refused_naming_the_circle():
+    assert topological(["a", "b", "c"], {"a": ["c"], "b": [], "c": ["b"]}) == ["b", "c", "a"]
+    with pytest.raises(ValueError, match="circle: a -> c -> a"):
+        topological(["a", "b", "c"], {"a": ["c"], "b": [], "c": ["a"]})
+
+
+def test_a_part_reads_only_the_parts_it_needs():
+    from tactcad.design.rigs import PartContext
+
+    context = PartContext(plan=None, parts={"cart": "cart data"}, tables={"cart": "cart table"})
+    assert context.part("cart") == "cart data" and context.table("cart") == "cart table"
+    with pytest.raises(KeyError, match="'sample' is read but not declared in needs"):
+        context.part("sample")
+
+
+def test_unknown_needs_are_refused(monkeypatch):
+    import tactcad.partlib.registry as registry
+
+    lib = dict(rig_parts_lib())
+    lib["weights"] = dataclasses.replace(lib["weights"], needs=("trolley",))
+    monkeypatch.setattr(registry, "rig_parts_lib", lambda: lib)
+    registry.derivation_order.cache_clear()
+    try:
+        with pytest.raises(ValueError, match="'weights' needs 'trolley', which no part module"):
+            registry.derivation_order()
+    finally:
+        registry.derivation_order.cache_clear()
+
+
+def test_table_values_copy_the_table_field_for_field():
+    from tactcad.partlib.base import table_values, values_from
+    from tactcad.partlib.carrier import CarrierGeometry, CarrierSection
+    from tactcad.vocabulary.schema import Section, number
+
+    table = CarrierSection(width_mm=20, height_mm=60, thickness_mm=5, shelf_depth_mm=30)
+    g = values_from(CarrierGeometry, table)
+    assert [f.name for f in dataclasses.fields(g)] == list(CarrierSection.model_fields)
+    assert (g.width_mm, g.shelf_depth_mm) == (20, 30)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        g.width_mm = 1.0
+
+    class T(Section):
+        size_mm: number(1.0, 9.0)
+
+    extended = table_values(T, height_mm=float)
+    assert values_from(extended, T(size_mm=2), height_mm=3.0).height_mm == 3.0
+    assert values_from(extended, T(size_mm=2), size_mm=4.0, height_mm=3.0).size_mm == 4.0
+
+
+def test_companions_and_fasteners_become_specs_with_their_builders(project):
+    from tactcad.catalogue.rigs import rig_parts
+
+    specs = rig_parts(project.plan, project.rigs)
+    for key, part in rig_parts_lib().items():
+        data = project.rigs.library[key]
+        for one in (data, *data.companions):
+            builder = specs[one.name].builder
+            assert builder == (one.builder or part.builder_key) and builder in builders.BUILDERS
+    assert {"z_stage_body", "z_stage_carriage", "rail_MGNR12R", "block_MGN12H", "wheel_spacer",
+            "bearing_624ZZ"} <= set(specs)
+    screws = [n for n in specs if n.startswith("bolt_")]
+    fastened = {f"bolt_{f.bolt.safe_name}x{f.length_mm:g}" for d in project.rigs.library.values()
+                for f in d.fasteners}
+    assert set(screws) == fastened  # each screw once
+
+
+def test_a_screw_of_the_arrays_size_and_length_is_still_a_rig_part(project):
+    """A wheel or holder screw that happens to be the array's bolt keeps its
+    own spec with its joint frame (the rig mates it by that frame); only the
+    bracket's through bolts, when they are the array's own bolt, are not
+    listed again."""
+    import dataclasses as dc
+
+    from tactcad.catalogue.array import bolt_name
+    from tactcad.catalogue.rigs import rig_parts
+    from tactcad.partlib.base import Fastener
+
+    plan, rigs = project.plan, project.rigs
+    holder = rigs.library["sample_holder"]
+    same = dc.replace(holder, fasteners=(Fastener(plan.bolt, plan.bolt_length_mm, (0.1, 0.1, 0.1)),))
+    specs = rig_parts(plan, dc.replace(rigs, library={**rigs.library, "sample_holder": same}))
+    assert "seat" in specs[bolt_name(plan.bolt, plan.bolt_length_mm)].frames
+    bracket = rigs.library["bracket"]
+    assert not bracket.fasteners or bracket.fasteners[0].length_mm != plan.bolt_length_mm

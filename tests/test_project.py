@@ -63,7 +63,7 @@ def test_hashes_follow_the_validated_data_not_the_layout(tmp_path, project):
     assert same.hashes == project.hashes
     rigs.write_text(rigs.read_text().replace("length_mm = 80.0", "length_mm = 91.0", 1))
     changed = load_project(design)
-    assert changed.rigs.cart.length_mm == 91.0
+    assert changed.rigs.part("cart").length_mm == 91.0
     assert changed.rigs_sha256 != project.rigs_sha256
     assert changed.design_sha256 == project.design_sha256
     assert changed.scenes_sha256 == project.scenes_sha256
@@ -87,7 +87,7 @@ def test_rigs_file_changed_after_validation_leaves_the_export_unchanged(tmp_path
     # and the edit would have mattered had the files been read again
     scenes.write_text(DEFAULT_SCENES.read_text())
     edited = load_project(design)
-    assert edited.rigs.cart != project.rigs.cart
+    assert edited.rigs.part("cart") != project.rigs.part("cart")
     export(edited, tmp_path / "c", log=lambda s: None, select=only_scene, partial={})
     assert _hashes(tmp_path / "c") != _hashes(tmp_path / "a")
 

@@ -9,8 +9,10 @@ import math
 import pytest
 
 from tactcad.errors import DesignError
-from tactcad.catalogue.rigs import RigPartSpec, rig_parts, sample_name
-from tactcad.design.rigs import BEARINGS, default_rigs_data, load_rigs, rigs_from_dict
+from tactcad.catalogue.rigs import RigPartSpec, rig_parts
+from tactcad.design.rigs import default_rigs_data, load_rigs, rigs_from_dict
+from tactcad.partlib.sample import sample_name
+from tactcad.vocabulary.standards import BEARINGS
 
 PAPER_STIFFNESS = (10.01, 7.26, 6.28, 5.41, 4.51, 3.85, 3.57, 2.34)
 
@@ -73,13 +75,14 @@ def test_every_unstated_value_has_a_reason(rigs):
 
 
 def test_derived_rig_values(rigs, plan):
-    assert rigs.cart.axle_bolt.size == "M4" and rigs.cart.axle_bolt_length_mm == 12
-    assert rigs.base.track_half_mm == pytest.approx(60 / 2 + 1.0 + 5 / 2)
-    assert rigs.weights.height_mm * math.pi * 12.5 ** 2 == pytest.approx(100 / 7.85 * 1000)
+    cart = rigs.part("cart")
+    assert cart.axle_bolt.size == "M4" and cart.axle_bolt_length_mm == 12
+    assert rigs.part("base_plate").track_half_mm == pytest.approx(60 / 2 + 1.0 + 5 / 2)
+    assert rigs.part("weights").height_mm * math.pi * 12.5 ** 2 == pytest.approx(100 / 7.85 * 1000)
     # the bracket bolts pass the clamp plate's two bridge holes
-    assert rigs.bracket.hole_xs_mm == tuple(h.x_mm for h in plan.clamp.holes[-2:])
-    grip = rigs.bracket.ear_thickness_mm + 2 * plan.clamp.thickness_mm + plan.stack_length_mm
-    assert rigs.bracket.bolt_length_mm >= grip + plan.bolt.nut_height_mm
+    assert rigs.part("bracket").hole_xs_mm == tuple(h.x_mm for h in plan.clamp.holes[-2:])
+    grip = rigs.part("bracket").ear_thickness_mm + 2 * plan.clamp.thickness_mm + plan.stack_length_mm
+    assert rigs.part("bracket").bolt_length_mm >= grip + plan.bolt.nut_height_mm
 
 
 def test_bought_parts_carry_catalogue_data(specs):

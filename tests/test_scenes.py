@@ -186,7 +186,9 @@ def test_slide_out_of_range_is_a_scene_error(tmp_path):
     assert info.value.field == "xy_stage.travel_mm" and "every element" in str(info.value)
     project = load_project()
     rigs = project.rigs
-    short = dataclasses.replace(rigs, xy_stage=dataclasses.replace(rigs.xy_stage, travel_mm=2.0))
+    stage = rigs.library["xy_stage"]
+    stage = dataclasses.replace(stage, geometry=dataclasses.replace(stage.geometry, travel_mm=2.0))
+    short = dataclasses.replace(rigs, library={**rigs.library, "xy_stage": stage})
     with pytest.raises(SceneError, match=r"slide stage_\w+ .* range is -1 \.\.\. 1 mm"):
         assemble(dataclasses.replace(project, rigs=short), "calibration-rig")
 

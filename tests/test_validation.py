@@ -130,10 +130,11 @@ def test_rigs_follow_the_array_so_untouched_rig_values_never_fail(design_data, o
     (plan, rigs, scenes), errors = _project(with_overrides(design_data, overrides))
     assert not errors, [e.line() for e in errors]
     assert rigs.calibration_element == stiffest_element(plan)
-    assert rigs.indenter.contact_width_mm == plan.slots[0].geometry.tip_width_mm
-    assert rigs.indenter.contact_depth_mm == plan.sheet_thickness_mm
+    assert rigs.part("indenter").contact_width_mm == plan.slots[0].geometry.tip_width_mm
+    assert rigs.part("indenter").contact_depth_mm == plan.sheet_thickness_mm
     stack, across = plan.stack_length_mm, plan.pitch_mm + plan.slots[0].geometry.tip_width_mm
-    assert rigs.sample.length_mm >= stack + 4 and rigs.sample.width_mm >= across + 4
+    sample = rigs.part("sample")
+    assert sample.length_mm >= stack + 4 and sample.width_mm >= across + 4
     assert set(scenes) == {"wirecut", "array", "calibration-rig", "sample-stiffness-rig",
                            "array-evaluation-rig"}
 

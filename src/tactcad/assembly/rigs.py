@@ -31,15 +31,16 @@ from typing import Any, Mapping
 
 from tactcad.catalogue.array import (PartSpec, array_contacts, array_instances, array_parts,
                                      bolt_name, nut_name)
-from tactcad.catalogue.rigs import (bolt_frames, nut_frames, rig_parts, sample_name, seat_frame,
-                                   wheel_tag)
+from tactcad.catalogue.rigs import bolt_frames, nut_frames, rig_parts, seat_frame
 from tactcad.design.array import Placement, Plan
 from tactcad.design.project import Project
 from tactcad.design.rigs import RigDesign
 from tactcad.design.scenes import RIGS, SceneSpec
 from tactcad.errors import DesignError, SceneError
 from tactcad.geometry.frames import Frame
+from tactcad.partlib.cart import wheel_tag
 from tactcad.partlib.registry import rig_parts_lib
+from tactcad.partlib.sample import sample_name
 
 SOLVE_TOL_MM = 1e-9
 
@@ -240,9 +241,9 @@ class _Builder:
         self.leaf("z_stage_carriage", "z_stage_carriage", "z_axis")
         self.leaf("force_gauge", "force_gauge", "force_gauge")
         self.leaf("indenter", "indenter", "indenter")
-        z = r.z_axis
+        z = r.part("z_axis")
         self.slide("z_mount", "z_stage_body", "back", "column", "front",
-                   (0.0, r.column.height_mm - z.body_height_mm),
+                   (0.0, r.part("column").height_mm - z.body_height_mm),
                    solve=(("indenter", "contact"), target))
         lo = z.carriage_height_mm / 2
         self.slide("z_travel", "z_stage_carriage", "back", "z_stage_body", "front",
@@ -253,7 +254,7 @@ class _Builder:
                    self.nodes["array"].frames[target[1]].owner)
 
     def bracket(self, parent: str, parent_frame: str) -> None:
-        br = self.rigs.bracket
+        br = self.rigs.part("bracket")
         self.leaf("array_bracket", "array_bracket", "bracket")
         self.mate("array_bracket", "foot", parent, parent_frame)
         self.nodes["array"] = _array_node(self.plan)
@@ -272,7 +273,7 @@ class _Builder:
 
     def cart(self, target: tuple[str, str], sample_k: float) -> None:
         r = self.rigs
-        k = r.cart
+        k = r.part("cart")
         for sx in (-1, 1):
             for sy in (-1, 1):
                 t = wheel_tag(sx, sy)
@@ -280,7 +281,7 @@ class _Builder:
                 self.leaf(f"wheel_spacer_{t}", "wheel_spacer", "cart")
                 self.leaf(f"wheel_bolt_{t}", bolt_name(k.axle_bolt, k.axle_bolt_length_mm), "cart")
         self.leaf("cart", "cart", "cart")
-        L = r.base.length_mm
+        L = r.part("base_plate").length_mm
         # the first wheel (-x, -y) rolls in the -y groove; the cart hangs on it
         lo = -L / 2 + k.length_mm / 2 - k.axle_x_mm
         hi = L / 2 - k.length_mm / 2 - k.axle_x_mm
@@ -297,7 +298,7 @@ class _Builder:
         for t in ("mm", "mp", "pm", "pp"):
             self.mate(f"wheel_bolt_{t}", "seat", f"wheel_{t}", "outer")
             self.touch(f"wheel_bolt_{t}", "cart")  # thread in the tapped hole
-        h = r.holder
+        h = r.part("sample_holder")
         self.leaf("sample_holder", "sample_holder", "sample_holder")
         self.mate("sample_holder", "bottom", "cart", "top")
         for i in (1, 2):
@@ -311,7 +312,7 @@ class _Builder:
         rig: in the host's group, its seat mated on the host's seat, touching it."""
         for key, part in rig_parts_lib().items():
             host = self.nodes.get(part.host)
-            if host is None or host.part is None:
+            if host is None or host.part is None or self.rigs.library[key].host_seat is None:
                 continue
             data = self.rigs.library[key]
             host_frame = f"{key}_seat"
@@ -341,8 +342,8 @@ def _calibration_model(plan: Plan, rigs: RigDesign) -> RigModel:
     b = _Builder(plan, rigs)
     n = rigs.calibration_element
     b.base_and_column()
-    xy = rigs.xy_stage
-    L = rigs.base.length_mm
+    xy = rigs.part("xy_stage")
+    L = rigs.part("base_plate").length_mm
     half = xy.travel_mm / 2
     b.leaf("xy_lower_base", "xy_stage_base", "xy_stage")
     b.leaf("xy_lower_table", "xy_stage_table", "xy_stage")
@@ -374,9 +375,10 @@ def _sample_model(plan: Plan, rigs: RigDesign, scene: SceneSpec | None) -> RigMo
 def _evaluation_model(plan: Plan, rigs: RigDesign, scene: SceneSpec | None) -> RigModel:
     b = _Builder(plan, rigs)
     b.base_and_column()
-    la = rigs.linear_axis
-    rail = b.leaf("rail", "rail_" + la.rail.split()[-1], "linear_axis")
-    block = b.leaf("block", "block_" + la.block.split()[-1], "linear_axis")
+    axis = rigs.library["linear_axis"]
+    la = axis.geometry
+    rail = b.leaf("rail", axis.name, "linear_axis")
+    block = b.leaf("block", axis.companions[0].name, "linear_axis")
     b.mate(rail, "bottom", "column", "rail_seat")
     b.slide("block_travel", block, "rail_seat", rail, "top",
             (la.block_length_mm / 2, la.rail_length_mm - la.block_length_mm / 2),
@@ -385,9 +387,9 @@ def _evaluation_model(plan: Plan, rigs: RigDesign, scene: SceneSpec | None) -> R
     b.mate("axis_carrier", "back", block, "top")
     b.leaf("hanger_bar", "hanger_bar", "hanger_bar")
     b.mate("hanger_bar", "top", "axis_carrier", "shelf_bottom")
-    w = f"weight_{rigs.weights.mass_g:g}g"
+    w = rigs.library["weights"].name
     below = ("axis_carrier", "shelf_top")
-    for i in range(1, rigs.weights.count + 1):
+    for i in range(1, rigs.part("weights").count + 1):
         b.leaf(f"weight_{i}", w, "weights")
         b.mate(f"weight_{i}", "bottom", *below)
         below = (f"weight_{i}", "top")
@@ -397,7 +399,7 @@ def _evaluation_model(plan: Plan, rigs: RigDesign, scene: SceneSpec | None) -> R
         b.touch(f"element_{s.number}", "sample")  # every tip rests on the sample
     return b.model("array-evaluation", ["cart_roll", "block_travel"],
                    {"tips": "array", "tips_on": "sample", "bearings": _wheels(), "base": "base_plate"},
-                   empty_groups=() if rigs.weights.count else ("weights",))
+                   empty_groups=() if rigs.part("weights").count else ("weights",))
 
 
 def _wheels() -> list[str]:

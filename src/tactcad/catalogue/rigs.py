@@ -3,44 +3,23 @@ bought part its catalogue reference), colour, expected volume and bounding
 box (independent estimates from elementary formulas), its joint frames, and
 attributes such as a rubber sample's measured stiffness. No CAD kernel here.
 
-Part frames are described in each part's module under :mod:`tactcad.parts`.
+Every rig part is written as one module of :mod:`tactcad.partlib`, which
+derives these data (:class:`~tactcad.partlib.base.PartData`, part frames in
+each module's doc); this module turns them into specs, with the socket head
+cap screws the parts are fixed with.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from tactcad.catalogue.array import RGB, Bbox, Method, PartSpec, Process, bolt_name, bolt_volume
+from tactcad.catalogue.array import RGB, Method, PartSpec, Process, bolt_name, bolt_volume
 from tactcad.design.array import BoltSpec, Plan
+from tactcad.design.rigs import RigDesign
 from tactcad.geometry.frames import Frame, face
-from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM, RigDesign
-from tactcad.design.scenes import LEVELS
-from tactcad.partlib.base import PartData, Seat
-
-
-# Materials with alloy and temper (EN 573-3 / EN 515, EN 10088-3, EN 12164):
-# 6082-T651 plate is stretched (stress relieved), so milled pockets stay flat;
-# 1.4305 is the free-machining austenitic stainless steel (no rust on a damp
-# sample); CW614N is the free-machining brass for small turned parts.
-PLATE_ALUMINIUM = "aluminium EN AW-6082-T651"
-BAR_ALUMINIUM = "aluminium EN AW-6082-T6"
-INDENTER_STEEL = "stainless steel 1.4305 (X8CrNiS18-9)"
-TURNED_BRASS = "brass CW614N (CuZn39Pb3)"
-
-# The indenter screws onto the force gauge's measuring shaft (Sauter FH
-# attachments have an M6 female thread; rigs.toml force_gauge.shaft_diameter_mm
-# = 6): a tapped M6 hole in the body's top face. Depth: the body length less
-# 2 mm of floor above the tip, at most 1.5 d (full strength in steel by 1 d;
-# the load is at most the gauge's 5 N range).
-INDENTER_THREAD_DIAMETER_MM = 6.0
-INDENTER_THREAD_FLOOR_MM = 2.0
-
-
-def indenter_thread_depth_mm(g) -> float:
-    """Depth (mm) of the indenter's M6 mounting thread (see the note above)."""
-    return min(g.body_length_mm - INDENTER_THREAD_FLOOR_MM, 1.5 * INDENTER_THREAD_DIAMETER_MM)
+from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.registry import rig_parts_lib
 
 
 @dataclass(frozen=True)
@@ -66,39 +45,6 @@ def level_of(spec: PartSpec) -> str:
     return "envelope" if spec.kind == "purchased" else "full"
 
 
-# Distinct colours: the STEP writer keeps colour records in a fixed order only
-# when no two parts of a file share a colour.
-_COLORS: dict[str, RGB] = {
-    "base_plate": (0.55, 0.57, 0.60), "column": (0.50, 0.53, 0.58),
-    "cart": (0.70, 0.72, 0.76), "wheel_spacer": (0.66, 0.62, 0.58),
-    "sample_holder": (0.35, 0.55, 0.45), "indenter": (0.85, 0.65, 0.20),
-    "array_bracket": (0.30, 0.35, 0.60), "axis_carrier": (0.62, 0.58, 0.70),
-    "hanger_bar": (0.58, 0.66, 0.62), "force_gauge": (0.90, 0.90, 0.88),
-    "z_stage_body": (0.16, 0.17, 0.20), "z_stage_carriage": (0.24, 0.25, 0.29),
-    "xy_stage_base": (0.20, 0.22, 0.26), "xy_stage_table": (0.28, 0.30, 0.35),
-    "rail": (0.52, 0.52, 0.55), "block": (0.40, 0.41, 0.44),
-    "weight": (0.36, 0.38, 0.40), "bearing": (0.72, 0.73, 0.74),
-    "wheel_bolt": (0.10, 0.10, 0.11), "holder_bolt": (0.14, 0.13, 0.12),
-}
-
-
-def sample_name(stiffness_N_per_mm: float) -> str:
-    """Part name of the rubber sample of the given stiffness, e.g. ``sample_k3p85``."""
-    return "sample_k" + f"{stiffness_N_per_mm:g}".replace(".", "p")
-
-
-def _sample_color(k: float, ks: tuple[float, ...]) -> RGB:
-    """Pink rubber, darker for a stiffer sample."""
-    lo, hi = min(ks), max(ks)
-    t = 0.0 if hi == lo else (k - lo) / (hi - lo)
-    return (round(0.95 - 0.35 * t, 4), round(0.60 - 0.30 * t, 4), round(0.65 - 0.30 * t, 4))
-
-
-def _bolt_frames() -> dict[str, Frame]:
-    # head underside at z = 0, shank along +z: the face's outward normal is +z
-    return {"seat": face((0, 0, 0), (0, 0, 1), (1, 0, 0))}
-
-
 def _bolt_spec(b: BoltSpec, length_mm: float, color: RGB) -> RigPartSpec:
     rh = b.head_diameter_mm / 2
     return RigPartSpec(
@@ -107,313 +53,44 @@ def _bolt_spec(b: BoltSpec, length_mm: float, color: RGB) -> RigPartSpec:
         material="steel 8.8",
         color=color, builder="rig_bolt", expected_volume_mm3=bolt_volume(b, length_mm),
         expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, length_mm),
-        geometry=(b, length_mm), frames=_bolt_frames())
-
-
-def _box_bbox(x0, y0, z0, x1, y1, z1) -> Bbox:
-    return (float(x0), float(y0), float(z0), float(x1), float(y1), float(z1))
-
-
-def _suction_overlap(hole_r: float, channel_r: float, n: int = 64) -> float:
-    """Volume (mm^3) a vertical hole of radius ``hole_r`` ending on the axis of
-    a horizontal channel of radius ``channel_r`` shares with the channel:
-    int_{-a}^{a} 2 sqrt(a^2 - v^2) sqrt(R^2 - v^2) dv, by Gauss-Legendre
-    quadrature in v = a sin(theta) (smooth integrand)."""
-    import numpy as np
-
-    x, w = np.polynomial.legendre.leggauss(n)
-    th = x * math.pi / 2
-    a, R = hole_r, channel_r
-    f = 2 * a * a * np.cos(th) ** 2 * np.sqrt(R * R - (a * np.sin(th)) ** 2)
-    return float(np.sum(w * f) * math.pi / 2)
+        geometry=(b, length_mm), frames=bolt_frames())
 
 
 def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
-    """Every distinct rig part, keyed by part name (all 8 rubber samples)."""
+    """Every distinct rig part, keyed by part name: each part module's part and
+    companions (all the rubber samples ...), then the screws it is fixed with
+    unless a part before has the same screw (which keeps its colour; distinct
+    colours keep the STEP writer's colour records in a fixed order)."""
     parts: dict[str, RigPartSpec] = {}
-
-    def add(spec: RigPartSpec) -> None:
-        parts[spec.name] = spec
-
-    al = PLATE_ALUMINIUM
-    # --- base plate ---
-    g = rigs.base
-    L, W, T = g.length_mm, g.width_mm, g.thickness_mm
-    r = g.mount_hole_diameter_mm / 2
-    frames = {"column_seat": face((g.column_x_mm, 0, T), (0, 0, 1), (1, 0, 0)),
-              "top": face((0, 0, T), (0, 0, 1), (1, 0, 0))}
-    for s in (-1, 1):
-        frames[f"groove_{'m' if s < 0 else 'p'}"] = face(
-            (0, s * g.track_half_mm, T - g.groove_depth_mm), (0, 0, 1), (1, 0, 0))
-    add(RigPartSpec(
-        name="base_plate", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
-        color=_COLORS["base_plate"], builder="base_plate",
-        expected_volume_mm3=L * W * T - 2 * L * g.groove_width_mm * g.groove_depth_mm
-        - 4 * math.pi * r * r * T,
-        expected_bbox_mm=_box_bbox(-L / 2, -W / 2, 0, L / 2, W / 2, T), geometry=g, frames=frames))
-    # --- column ---
-    c = rigs.column
-    add(RigPartSpec(
-        name="column", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
-        color=_COLORS["column"], builder="column",
-        expected_volume_mm3=c.thickness_mm * c.width_mm * c.height_mm,
-        expected_bbox_mm=_box_bbox(-c.thickness_mm / 2, -c.width_mm / 2, 0, c.thickness_mm / 2,
-                                   c.width_mm / 2, c.height_mm),
-        geometry=c,
-        frames={"foot": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "front": face((-c.thickness_mm / 2, 0, 0), (-1, 0, 0), (0, 0, 1)),
-                "rail_seat": face((-c.thickness_mm / 2, 0, rigs.linear_axis.rail_mount_height_mm),
-                                  (-1, 0, 0), (0, 0, 1))}))
-    # --- cart ---
-    k = rigs.cart
-    L, W, T = k.length_mm, k.width_mm, k.thickness_mm
-    rp = POCKET_CORNER_RADIUS_MM
-    pocket = (k.pocket_length_mm * k.pocket_width_mm - (4 - math.pi) * rp * rp) * k.pocket_depth_mm
-    port = math.pi * (k.port_diameter_mm / 2) ** 2 * k.port_depth_mm
-    channel = math.pi * (k.channel_diameter_mm / 2) ** 2 * (k.channel_end_x_mm + L / 2 - k.port_depth_mm)
-    hr, cr = k.suction_hole_diameter_mm / 2, k.channel_diameter_mm / 2
-    suction = len(k.suction_hole_xs_mm) * (math.pi * hr * hr * (T / 2 - k.pocket_depth_mm)
-                                           - _suction_overlap(hr, cr))
-    tapped = 2 * math.pi * (k.holder_screw_diameter_mm / 2) ** 2 * k.holder_tapped_depth_mm
-    axles = 4 * math.pi * (k.axle_bolt.nominal_diameter_mm / 2) ** 2 * k.axle_hole_depth_mm
-    frames = {"top": face((0, 0, T), (0, 0, 1), (1, 0, 0))}
-    for sx in (-1, 1):
-        for sy in (-1, 1):
-            frames[_wheel(sx, sy)] = face((sx * k.axle_x_mm, sy * W / 2, k.axle_height_mm),
-                                          (0, sy, 0), (1, 0, 0))
-    add(RigPartSpec(
-        name="cart", kind="fabricated", process=Process("milling and drilling from plate", Method.PLATE), material=al,
-        color=_COLORS["cart"], builder="cart",
-        expected_volume_mm3=L * W * T - pocket - port - channel - suction - tapped - axles,
-        expected_bbox_mm=_box_bbox(-L / 2, -W / 2, 0, L / 2, W / 2, T), geometry=k, frames=frames))
-    ro, ri, t = k.spacer_outer_diameter_mm / 2, k.spacer_inner_diameter_mm / 2, k.spacer_thickness_mm
-    add(RigPartSpec(
-        name="wheel_spacer", kind="fabricated", process=Process("turning", Method.ROUND_BAR), material=TURNED_BRASS,
-        color=_COLORS["wheel_spacer"], builder="wheel_spacer",
-        expected_volume_mm3=math.pi * (ro * ro - ri * ri) * t,
-        expected_bbox_mm=_box_bbox(-ro, -ro, 0, ro, ro, t), geometry=k,
-        frames={"cart_side": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "wheel_side": face((0, 0, t), (0, 0, 1), (1, 0, 0))}))
-    b = k.bearing
-    R, rb = b.outer_diameter_mm / 2, b.bore_mm / 2
-    add(RigPartSpec(
-        name=f"bearing_{b.designation}", kind="purchased",
-        process=Process(f"deep groove ball bearing {b.designation}, ISO 15: d {b.bore_mm:g} x D "
-                        f"{b.outer_diameter_mm:g} x B {b.width_mm:g} mm", Method.BOUGHT),
-        material="bearing steel", color=_COLORS["bearing"], builder="bearing",
-        expected_volume_mm3=math.pi * (R * R - rb * rb) * b.width_mm,
-        expected_bbox_mm=_box_bbox(-R, -R, 0, R, R, b.width_mm), geometry=b,
-        frames={"inner": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "outer": face((0, 0, b.width_mm), (0, 0, 1), (1, 0, 0)),
-                "tread": face((0, -R, b.width_mm / 2), (0, -1, 0), (1, 0, 0))}))
-    add(_bolt_spec(k.axle_bolt, k.axle_bolt_length_mm, _COLORS["wheel_bolt"]))
-    # --- samples and holder ---
-    s = rigs.sample
-    for kk in rigs.sample_stiffness_N_per_mm:
-        add(RigPartSpec(
-            name=sample_name(kk), kind="fabricated",
-            process=Process(f"cast {s.material} block, measured stiffness {kk:g} N/mm", Method.CAST),
-            material=s.material, color=_sample_color(kk, rigs.sample_stiffness_N_per_mm),
-            builder="sample", expected_volume_mm3=s.length_mm * s.width_mm * s.height_mm,
-            expected_bbox_mm=_box_bbox(-s.length_mm / 2, -s.width_mm / 2, 0, s.length_mm / 2,
-                                       s.width_mm / 2, s.height_mm),
-            geometry=s, attributes={"stiffness_N_per_mm": kk},
-            frames={"bottom": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                    "top": face((0, 0, s.height_mm), (0, 0, 1), (1, 0, 0))}))
-    h = rigs.holder
-    window = h.window_length_mm * h.window_width_mm - (4 - math.pi) * h.corner_radius_mm ** 2
-    holes = 2 * math.pi * (h.screw.clearance_hole_mm / 2) ** 2
-    add(RigPartSpec(
-        name="sample_holder", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
-        color=_COLORS["sample_holder"], builder="sample_holder",
-        expected_volume_mm3=(h.outer_length_mm * h.outer_width_mm - window - holes) * h.thickness_mm,
-        expected_bbox_mm=_box_bbox(-h.outer_length_mm / 2, -h.outer_width_mm / 2, 0,
-                                   h.outer_length_mm / 2, h.outer_width_mm / 2, h.thickness_mm),
-        geometry=h,
-        frames={"bottom": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                **{f"screw_{i}": face((0, sy * h.screw_y_mm, h.thickness_mm), (0, 0, 1), (1, 0, 0))
-                   for i, sy in ((1, -1), (2, 1))}}))
-    if bolt_name(h.screw, h.screw_length_mm) not in parts:
-        add(_bolt_spec(h.screw, h.screw_length_mm, _COLORS["holder_bolt"]))
-    # --- indenter and force gauge ---
-    i = rigs.indenter
-    top = i.tip_length_mm + i.body_length_mm
-    rr = i.body_diameter_mm / 2
-    add(RigPartSpec(
-        name="indenter", kind="fabricated",
-        process=Process(f"turning and milling, {i.contact_width_mm:g} x {i.contact_depth_mm:g} mm "
-                        f"contact face", Method.ROUND_BAR),
-        material=INDENTER_STEEL, color=_COLORS["indenter"], builder="indenter",
-        expected_volume_mm3=i.contact_width_mm * i.contact_depth_mm * i.tip_length_mm
-        + math.pi * rr * rr * i.body_length_mm
-        - math.pi * (INDENTER_THREAD_DIAMETER_MM / 2) ** 2 * indenter_thread_depth_mm(i),
-        expected_bbox_mm=_box_bbox(-rr, -rr, 0, rr, rr, top), geometry=i,
-        frames={"mount": face((0, 0, top), (0, 0, 1), (1, 0, 0)),
-                "contact": face((0, 0, 0), (0, 0, -1), (1, 0, 0))}))
-    gg = rigs.gauge
-    rs = gg.shaft_diameter_mm / 2
-    add(RigPartSpec(
-        name="force_gauge", kind="purchased",
-        process=Process(f"{gg.model} digital force gauge, {gg.range_N:g} N range, "
-                        f"{gg.resolution_N:g} N resolution (housing envelope)", Method.BOUGHT),
-        material="housing", color=_COLORS["force_gauge"], builder="force_gauge",
-        expected_volume_mm3=gg.width_mm * gg.depth_mm * gg.length_mm
-        + math.pi * rs * rs * gg.shaft_length_mm,
-        expected_bbox_mm=_box_bbox(-gg.width_mm / 2, 0, -gg.shaft_length_mm, gg.width_mm / 2,
-                                   gg.depth_mm, gg.length_mm),
-        geometry=gg, attributes={"stiffness_N_per_mm": gg.stiffness_N_per_mm,
-                                 "range_N": gg.range_N, "resolution_N": gg.resolution_N},
-        frames={"back": face((0, 0, gg.mount_height_mm), (0, -1, 0), (0, 0, 1)),
-                "shaft_end": face((0, gg.depth_mm / 2, -gg.shaft_length_mm), (0, 0, -1), (1, 0, 0))}))
-    z = rigs.z_axis
-    rm = z.micrometer_diameter_mm / 2
-    add(RigPartSpec(
-        name="z_stage_body", kind="purchased",
-        process=Process(f"manual vertical stage with micrometer head "
-                        f"({z.micrometer_resolution_mm * 1000:g} um), {z.travel_mm:g} mm travel: "
-                        f"envelope of the fixed body", Method.BOUGHT),
-        material="aluminium, steel", color=_COLORS["z_stage_body"], builder="z_stage_body",
-        expected_volume_mm3=z.body_width_mm * z.body_depth_mm * z.body_height_mm
-        + math.pi * rm * rm * z.micrometer_length_mm,
-        expected_bbox_mm=_box_bbox(-z.body_width_mm / 2, -z.body_depth_mm, 0, z.body_width_mm / 2, 0,
-                                   z.body_height_mm + z.micrometer_length_mm),
-        geometry=z,
-        frames={"back": face((0, -z.body_depth_mm, 0), (0, -1, 0), (0, 0, 1)),
-                "front": face((0, 0, 0), (0, 1, 0), (0, 0, 1))}))
-    add(RigPartSpec(
-        name="z_stage_carriage", kind="purchased",
-        process=Process("manual vertical stage: envelope of the moving carriage", Method.BOUGHT),
-        material="aluminium",
-        color=_COLORS["z_stage_carriage"], builder="z_stage_carriage",
-        expected_volume_mm3=z.body_width_mm * z.carriage_thickness_mm * z.carriage_height_mm,
-        expected_bbox_mm=_box_bbox(-z.body_width_mm / 2, 0, -z.carriage_height_mm / 2,
-                                   z.body_width_mm / 2, z.carriage_thickness_mm,
-                                   z.carriage_height_mm / 2),
-        geometry=z,
-        frames={"back": face((0, 0, 0), (0, -1, 0), (0, 0, 1)),
-                "front": face((0, z.carriage_thickness_mm, 0), (0, 1, 0), (0, 0, 1))}))
-    xy = rigs.xy_stage
-    a = xy.size_mm / 2
-    for nm, hgt, extra in (("xy_stage_base", xy.base_height_mm, "fixed base"),
-                           ("xy_stage_table", xy.table_height_mm, "moving table")):
-        add(RigPartSpec(
-            name=nm, kind="purchased",
-            process=Process(f"manual linear micro-stage {xy.size_mm:g} mm square, "
-                            f"{xy.travel_mm:g} mm travel: envelope of the {extra}", Method.BOUGHT),
-            material="aluminium", color=_COLORS[nm], builder=nm,
-            expected_volume_mm3=xy.size_mm ** 2 * hgt,
-            expected_bbox_mm=_box_bbox(-a, -a, 0, a, a, hgt), geometry=xy,
-            frames={"bottom": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                    "top": face((0, 0, hgt), (0, 0, 1), (1, 0, 0)),
-                    "top_rot": face((0, 0, hgt), (0, 0, 1), (0, 1, 0)),
-                    "top_rot_neg": face((0, 0, hgt), (0, 0, 1), (0, -1, 0))}))
-    la = rigs.linear_axis
-    add(RigPartSpec(
-        name="rail_" + la.rail.split()[-1], kind="purchased",
-        process=Process(f"{la.rail} miniature guide rail, {la.rail_length_mm:g} mm", Method.BOUGHT),
-        material="steel",
-        color=_COLORS["rail"], builder="rail",
-        expected_volume_mm3=la.rail_length_mm * la.rail_width_mm * la.rail_height_mm,
-        expected_bbox_mm=_box_bbox(0, -la.rail_width_mm / 2, 0, la.rail_length_mm,
-                                   la.rail_width_mm / 2, la.rail_height_mm),
-        geometry=la,
-        frames={"bottom": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "top": face((0, 0, la.rail_height_mm), (0, 0, 1), (1, 0, 0))}))
-    add(RigPartSpec(
-        name="block_" + la.block.split()[-1], kind="purchased",
-        process=Process(f"{la.block} carriage block (envelope)", Method.BOUGHT), material="steel",
-        color=_COLORS["block"], builder="block",
-        expected_volume_mm3=la.block_length_mm * (
-            la.block_width_mm * (la.block_height_mm - la.block_clearance_mm)
-            - la.rail_width_mm * (la.rail_height_mm - la.block_clearance_mm)),
-        expected_bbox_mm=_box_bbox(-la.block_length_mm / 2, -la.block_width_mm / 2,
-                                   la.block_clearance_mm, la.block_length_mm / 2,
-                                   la.block_width_mm / 2, la.block_height_mm),
-        geometry=la,
-        frames={"rail_seat": face((0, 0, la.rail_height_mm), (0, 0, -1), (1, 0, 0)),
-                "top": face((0, 0, la.block_height_mm), (0, 0, 1), (1, 0, 0))}))
-    cg = rigs.carrier
-    zc = cg.thickness_mm + (cg.shelf_depth_mm - cg.thickness_mm) / 2
-    add(RigPartSpec(
-        name="axis_carrier", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
-        color=_COLORS["axis_carrier"], builder="axis_carrier",
-        expected_volume_mm3=cg.width_mm * (cg.height_mm * cg.thickness_mm
-                                           + (cg.shelf_depth_mm - cg.thickness_mm) * cg.thickness_mm),
-        expected_bbox_mm=_box_bbox(-cg.height_mm / 2, -cg.width_mm / 2, 0, cg.height_mm / 2,
-                                   cg.width_mm / 2, cg.shelf_depth_mm),
-        geometry=cg,
-        frames={"back": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "shelf_top": face((cg.height_mm / 2, 0, zc), (1, 0, 0), (0, 0, 1)),
-                "shelf_bottom": face((cg.height_mm / 2 - cg.thickness_mm, 0, zc), (-1, 0, 0),
-                                     (0, 0, 1))}))
-    hb = rigs.bar
-    sh = hb.section_mm / 2
-    add(RigPartSpec(
-        name="hanger_bar", kind="fabricated", process=Process("sawing and facing bar stock", Method.BAR),
-        material=BAR_ALUMINIUM,
-        color=_COLORS["hanger_bar"], builder="hanger_bar",
-        expected_volume_mm3=hb.section_mm ** 2 * hb.length_mm,
-        expected_bbox_mm=_box_bbox(-sh, -sh, -hb.length_mm, sh, sh, 0), geometry=hb,
-        frames={"top": face((0, 0, 0), (0, 0, 1), (1, 0, 0)),
-                "bottom": face((0, 0, -hb.length_mm), (0, 0, -1), (1, 0, 0))}))
-    wt = rigs.weights
-    rw = wt.diameter_mm / 2
-    add(RigPartSpec(
-        name=f"weight_{wt.mass_g:g}g", kind="purchased",
-        process=Process(f"{wt.mass_g:g} g steel weight (cylinder of {wt.volume_mm3:.0f} mm3 at "
-                        f"{wt.density_g_per_cm3:g} g/cm3)", Method.BOUGHT),
-        material="steel", color=_COLORS["weight"], builder="weight",
-        expected_volume_mm3=wt.volume_mm3,
-        expected_bbox_mm=_box_bbox(-rw, -rw, 0, rw, rw, wt.height_mm), geometry=wt,
-        attributes={"mass_g": wt.mass_g},
-        frames={"bottom": face((0, 0, 0), (0, 0, -1), (1, 0, 0)),
-                "top": face((0, 0, wt.height_mm), (0, 0, 1), (1, 0, 0))}))
-    # --- bracket and its through bolts ---
-    br = rigs.bracket
-    w = br.width_mm
-    vol = w * (br.ear_thickness_mm * (br.ear_top_mm - br.foot_bottom_mm)
-               + (br.foot_length_mm - br.ear_thickness_mm) * br.foot_thickness_mm)
-    vol -= 2 * math.pi * (br.hole_diameter_mm / 2) ** 2 * br.ear_thickness_mm
-    vol -= math.pi * (br.foot_hole_diameter_mm / 2) ** 2 * br.foot_thickness_mm
-    frames = {"array_mount": face((0, 0, 0), (0, 0, 1), (1, 0, 0)),
-              "foot": face((0, br.foot_bottom_mm, -br.foot_length_mm / 2), (0, -1, 0), (0, 0, 1))}
-    for n, x in enumerate(br.hole_xs_mm, start=1):
-        frames[f"bolt_{n}"] = face((x, 0, -br.ear_thickness_mm), (0, 0, -1), (1, 0, 0))
-    if bolt_name(br.bolt, br.bolt_length_mm) != bolt_name(plan.bolt, plan.bolt_length_mm):
-        add(_bolt_spec(br.bolt, br.bolt_length_mm, (0.11, 0.12, 0.16)))
-    add(RigPartSpec(
-        name="array_bracket", kind="fabricated", process=Process("milling from plate", Method.PLATE), material=al,
-        color=_COLORS["array_bracket"], builder="array_bracket", expected_volume_mm3=vol,
-        expected_bbox_mm=_box_bbox(-w / 2, br.foot_bottom_mm, -br.foot_length_mm, w / 2,
-                                   br.ear_top_mm, 0),
-        geometry=br, frames=frames))
-    for key, data in rigs.library.items():
-        add(library_spec(key, data))
+    for key, part in rig_parts_lib().items():
+        data = rigs.library[key]
+        for one in (data, *data.companions):
+            parts[one.name] = library_spec(part, one)
+        for f in data.fasteners:
+            name = bolt_name(f.bolt, f.length_mm)
+            if name not in parts:
+                parts[name] = _bolt_spec(f.bolt, f.length_mm, f.color)
     return parts
 
 
-def library_spec(key: str, data: PartData) -> RigPartSpec:
-    """The spec of a part written as one module (:mod:`tactcad.partlib`): its
-    data, built by its module (builder = its key), joint frame ``seat``."""
+def library_spec(part: RigPart, data: PartData) -> RigPartSpec:
+    """The spec of a part written as one module (:mod:`tactcad.partlib`) or of
+    one of its companions: its data, built by its module (builder
+    :attr:`PartData.builder`, else :attr:`RigPart.builder_key`), joint frames
+    ``seat`` (when it has one) and its named frames."""
+    frames = {"seat": seat_frame(data.seat)} if data.seat is not None else {}
+    frames |= {name: seat_frame(seat) for name, seat in data.frames.items()}
     return RigPartSpec(
         name=data.name, kind=data.kind, process=data.process, material=data.material,
-        color=data.color, builder=key, expected_volume_mm3=data.expected_volume_mm3,
-        expected_bbox_mm=data.expected_bbox_mm, geometry=data.geometry,
-        frames={"seat": seat_frame(data.seat)}, attributes=data.attributes)
+        color=data.color, builder=data.builder or part.builder_key,
+        expected_volume_mm3=data.expected_volume_mm3,
+        expected_bbox_mm=data.expected_bbox_mm, geometry=data.geometry, frames=frames,
+        attributes=data.attributes)
 
 
 def seat_frame(seat: Seat) -> Frame:
     """A part module's seat as a joint frame."""
     return face(seat.origin, seat.normal, seat.x_dir)
-
-
-def _wheel(sx: int, sy: int) -> str:
-    return "axle_" + wheel_tag(sx, sy)
-
-
-def wheel_tag(sx: int, sy: int) -> str:
-    """Tag of the wheel at the cart's (sign x, sign y) corner: ``mm``, ``mp``, ``pm``, ``pp``."""
-    return f"{'m' if sx < 0 else 'p'}{'m' if sy < 0 else 'p'}"
 
 
 def nut_frames() -> dict[str, Frame]:
@@ -422,5 +99,6 @@ def nut_frames() -> dict[str, Frame]:
 
 
 def bolt_frames() -> dict[str, Frame]:
-    """Joint frames of a socket head cap screw (head underside at z = 0)."""
-    return _bolt_frames()
+    """Joint frames of a socket head cap screw (head underside at z = 0, shank
+    along +z: the face's outward normal is +z)."""
+    return {"seat": face((0, 0, 0), (0, 0, 1), (1, 0, 0))}

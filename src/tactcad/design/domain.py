@@ -19,7 +19,8 @@ from tactcad.design.array import (ARM_RANGE_MM, MAX_COLUMNS, MIN_ARM_STEP_MM, MI
                                   MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, MIN_SPACER_MM,
                                   MIN_TIP_GAP_MM, MIN_TIP_WALL_MM, NOTCH_RADIUS_MAX_MM,
                                   WEB_RANGE_MM, default_design_data)
-from tactcad.design.rigs import EAR_HEAD_CLEARANCE_MM, default_rigs_data
+from tactcad.design.rigs import default_rigs_data
+from tactcad.partlib.bracket import EAR_HEAD_CLEARANCE_MM
 from tactcad.vocabulary.standards import BOLTS
 
 Pick = Callable[[float, float], float]

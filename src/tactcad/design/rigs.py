@@ -11,12 +11,16 @@ array (the indenter's contact face, the calibration element, the bracket
 width, the stages' travel) may be left out: they are derived from the array's
 plan, and a value the user did not set never fails. No CAD kernel here.
 
+Each rig part is one module of :mod:`tactcad.partlib` (its table, its
+derivation, its spec); this module builds the file's schema from the
+modules' tables, derives the parts in the order their needs give and keeps
+the file's own tables (``[rigs]``, ``[calibration]``, ``[assumptions]``).
+
 Units: mm, N, g.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping, Optional
@@ -25,823 +29,129 @@ from pydantic import create_model
 
 from tactcad.design.array import Plan
 from tactcad.partlib.base import PartData
-from tactcad.partlib.registry import rig_parts_lib
-from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Problems, Section, Text, choice,
-                                       content_hash, fmt, integer, listing, number, read_assumptions,
-                                       read_toml, validate)
-from tactcad.vocabulary.standards import (BEARINGS, RIG_BOLTS, BearingSpec, BoltSpec,
-                                          shortest_stock_length)
-from tactcad.errors import DesignError
+from tactcad.partlib.registry import derivation_order, rig_parts_lib
+from tactcad.partlib.sample import stiffnesses
+from tactcad.vocabulary.schema import (Derived, Problems, Section, Text, content_hash, integer,
+                                       read_assumptions, read_toml, validate)
 
 DEFAULT_RIGS = Path(__file__).resolve().parents[3] / "hardware" / "rigs.toml"
-
-POCKET_CORNER_RADIUS_MM = 1.0  # end mill radius of the cart's vacuum pocket
-#: Travel of the crossed micro-stages when the rigs file gives none, mm (a
-#: usual 60 mm stage); more when the array's tips spread wider.
-STAGE_TRAVEL_MM = 25.0
-#: Clearance between the bracket's ear and the array's clamp bolt heads, mm.
-EAR_HEAD_CLEARANCE_MM = 0.3
-#: Smallest indenter body diameter and tip length when the rigs file gives none, mm.
-INDENTER_BODY_MM = 8.0
-INDENTER_TIP_MM = 3.0
-#: Bracket ear width when the rigs file gives none and the array leaves room, mm.
-BRACKET_WIDTH_MM = 20.0
-#: Ear height above the mounting holes when the rigs file gives none, mm
-#: (lower when the clamp plate ends sooner).
-EAR_TOP_MM = 4.0
-#: Sample size when the rigs file gives none (the paper's phantom block), mm;
-#: larger when the array's tips need it, with this margin around them.
-SAMPLE_LENGTH_MM = 30.0
-SAMPLE_WIDTH_MM = 20.0
-SAMPLE_MARGIN_MM = 2.0
-
-
-
-@dataclass(frozen=True)
-class BasePlateGeometry:
-    """Base plate with two wheel grooves along x (part frame: x along the
-    grooves, y across, z up from the underside; centred in x and y)."""
-
-    length_mm: float
-    width_mm: float
-    thickness_mm: float
-    groove_width_mm: float
-    groove_depth_mm: float
-    track_half_mm: float  # |y| of the groove centre lines
-    mount_hole_diameter_mm: float
-    mount_hole_inset_mm: float
-    column_x_mm: float  # x of the column's centre on the plate
-
-
-@dataclass(frozen=True)
-class ColumnGeometry:
-    thickness_mm: float
-    width_mm: float
-    height_mm: float
-
-
-@dataclass(frozen=True)
-class CartGeometry:
-    """Wheeled cart top plate with a vacuum clamping area (mm)."""
-
-    length_mm: float
-    width_mm: float
-    thickness_mm: float
-    bearing: BearingSpec
-    axle_bolt: BoltSpec
-    axle_bolt_length_mm: float
-    axle_height_mm: float
-    axle_x_mm: float  # |x| of the axles
-    axle_hole_depth_mm: float
-    spacer_outer_diameter_mm: float
-    spacer_inner_diameter_mm: float
-    spacer_thickness_mm: float
-    pocket_length_mm: float
-    pocket_width_mm: float
-    pocket_depth_mm: float
-    suction_hole_diameter_mm: float
-    suction_hole_xs_mm: tuple[float, ...]
-    channel_diameter_mm: float
-    channel_end_x_mm: float
-    port_diameter_mm: float
-    port_depth_mm: float
-    holder_screw_y_mm: float  # |y| of the sample holder's two tapped holes (x = 0)
-    holder_screw_diameter_mm: float
-    holder_tapped_depth_mm: float
-
-    @property
-    def wheel_clearance_mm(self) -> float:
-        """Underside of the cart above the wheels' contact line."""
-        return self.bearing.outer_diameter_mm / 2 - self.axle_height_mm
-
-
-@dataclass(frozen=True)
-class SampleGeometry:
-    length_mm: float
-    width_mm: float
-    height_mm: float
-    material: str
-
-
-@dataclass(frozen=True)
-class SampleHolderGeometry:
-    """Frame around the sample: window = sample + clearance, two screw holes."""
-
-    window_length_mm: float
-    window_width_mm: float
-    outer_length_mm: float
-    outer_width_mm: float
-    thickness_mm: float
-    corner_radius_mm: float
-    screw: BoltSpec
-    screw_length_mm: float
-    screw_y_mm: float
-
-
-@dataclass(frozen=True)
-class IndenterGeometry:
-    contact_width_mm: float
-    contact_depth_mm: float
-    tip_length_mm: float
-    body_diameter_mm: float
-    body_length_mm: float
-
-
-@dataclass(frozen=True)
-class ForceGaugeSpec:
-    model: str
-    range_N: float
-    resolution_N: float
-    stiffness_N_per_mm: float
-    length_mm: float
-    width_mm: float
-    depth_mm: float
-    shaft_diameter_mm: float
-    shaft_length_mm: float
-    mount_height_mm: float
-
-
-@dataclass(frozen=True)
-class ZAxisSpec:
-    body_width_mm: float
-    body_depth_mm: float
-    body_height_mm: float
-    carriage_thickness_mm: float
-    carriage_height_mm: float
-    travel_mm: float
-    position_mm: float
-    micrometer_diameter_mm: float
-    micrometer_length_mm: float
-    micrometer_resolution_mm: float
-
-
-@dataclass(frozen=True)
-class XYStageSpec:
-    size_mm: float
-    base_height_mm: float
-    table_height_mm: float
-    travel_mm: float
-
-
-@dataclass(frozen=True)
-class LinearAxisSpec:
-    rail: str
-    block: str
-    rail_width_mm: float
-    rail_height_mm: float
-    rail_length_mm: float
-    block_width_mm: float
-    block_length_mm: float
-    block_height_mm: float
-    block_clearance_mm: float
-    rail_mount_height_mm: float
-
-
-@dataclass(frozen=True)
-class CarrierGeometry:
-    width_mm: float
-    height_mm: float
-    thickness_mm: float
-    shelf_depth_mm: float
-
-
-@dataclass(frozen=True)
-class HangerBarGeometry:
-    section_mm: float
-    length_mm: float
-
-
-@dataclass(frozen=True)
-class BracketGeometry:
-    """L bracket holding the array by its front clamp plate (mm).
-
-    Part frame = array frame shifted so that the origin lies on the ear's
-    inner face at the height of the clamp plate's two mounting holes: ear in
-    ``-ear_thickness <= z <= 0``, foot below the array in ``-foot_length <= z <= 0``.
-    """
-
-    width_mm: float
-    ear_thickness_mm: float
-    ear_top_mm: float  # ear top above the mounting holes
-    foot_thickness_mm: float
-    foot_length_mm: float
-    foot_top_mm: float  # foot's top face relative to the mounting holes (negative)
-    foot_hole_diameter_mm: float
-    hole_xs_mm: tuple[float, float]  # mounting holes (x), from the clamp plate
-    hole_diameter_mm: float
-    bolt: BoltSpec
-    bolt_length_mm: float
-
-    @property
-    def foot_bottom_mm(self) -> float:
-        return self.foot_top_mm - self.foot_thickness_mm
-
-
-@dataclass(frozen=True)
-class WeightSpec:
-    mass_g: float
-    density_g_per_cm3: float
-    diameter_mm: float
-    height_mm: float
-    count: int
-
-    @property
-    def volume_mm3(self) -> float:
-        return self.mass_g / self.density_g_per_cm3 * 1000.0
 
 
 @dataclass(frozen=True)
 class RigDesign:
-    """Validated rig dimensions, immutable. Build with :func:`load_rigs`."""
+    """Validated rig dimensions, immutable. Build with :func:`load_rigs`.
+
+    Attributes:
+        library: every rig part's derived data (:mod:`tactcad.partlib`), by
+            its key, in :attr:`RigPart.order <tactcad.partlib.base.RigPart>`.
+        derived: the parts' derived dimensions with their reasons, in that order.
+    """
 
     name: str
     description: str
     source: str
     rigs_hash: str
-    base: BasePlateGeometry
-    column: ColumnGeometry
-    cart: CartGeometry
-    sample: SampleGeometry
-    sample_stiffness_N_per_mm: tuple[float, ...]
-    holder: SampleHolderGeometry
-    indenter: IndenterGeometry
-    gauge: ForceGaugeSpec
-    z_axis: ZAxisSpec
-    xy_stage: XYStageSpec
-    linear_axis: LinearAxisSpec
-    carrier: CarrierGeometry
-    bar: HangerBarGeometry
-    bracket: BracketGeometry
-    weights: WeightSpec
     calibration_element: int
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
-    #: the parts written one module each (:mod:`tactcad.partlib`), by key
     library: Mapping[str, PartData] = field(default_factory=dict)
+
+    def part(self, key: str) -> Any:
+        """The geometry (the data its builder reads) of part module ``key``.
+
+        Raises:
+            KeyError: no part module ``key``.
+        """
+        return self.library[key].geometry
+
+    @property
+    def sample_stiffness_N_per_mm(self) -> tuple[float, ...]:
+        """The measured stiffness of every rubber sample (N/mm), in the file's order."""
+        return stiffnesses(self.library["sample"])
 
 
 # ---------------------------------------------------------------------------
-# The rig file's schema: types and static ranges, one model per section
+# The rig file's schema: its own tables and one table per part module
 # ---------------------------------------------------------------------------
 class RigsSection(Section):
     name: Text
     description: Text
 
 
-class BasePlateSection(Section):
-    length_mm: number(100.0, 1000.0)
-    width_mm: number(40.0, 500.0)
-    thickness_mm: number(4.0, 40.0)
-    groove_width_mm: number(1.0, 30.0)
-    groove_depth_mm: number(0.5, 10.0)
-    mount_hole_diameter_mm: number(2.0, 20.0)
-    mount_hole_inset_mm: number(3.0, 50.0)
-    column_inset_mm: number(0.0, 200.0)
-
-
-class ColumnSection(Section):
-    thickness_mm: number(5.0, 60.0)
-    width_mm: number(20.0, 300.0)
-    height_mm: number(50.0, 1000.0)
-
-
-class CartSection(Section):
-    length_mm: number(30.0, 300.0)
-    width_mm: number(30.0, 300.0)
-    thickness_mm: number(5.0, 40.0)
-    bearing: choice(BEARINGS, "ISO 15 deep groove ball bearings of the catalogue")
-    axle_height_mm: number(1.0, 20.0)
-    axle_inset_mm: number(3.0, 100.0)
-    axle_hole_depth_mm: number(3.0, 40.0)
-    spacer_outer_diameter_mm: number(2.0, 30.0)
-    spacer_thickness_mm: number(0.2, 5.0)
-    pocket_length_mm: number(2.0, 200.0)
-    pocket_width_mm: number(2.0, 200.0)
-    pocket_depth_mm: number(0.1, 5.0)
-    suction_hole_diameter_mm: number(0.5, 5.0)
-    suction_hole_count: integer(1, 20)
-    suction_hole_pitch_mm: number(0.5, 50.0)
-    channel_diameter_mm: number(1.0, 10.0)
-    port_diameter_mm: number(2.0, 20.0)
-    port_depth_mm: number(1.0, 30.0)
-
-
-class SampleSection(Section):
-    length_mm: Optional[number(5.0, 200.0)] = None  # default: covers the tip field (30 mm at least)
-    width_mm: Optional[number(5.0, 200.0)] = None  # default: covers the tip field (20 mm at least)
-    height_mm: number(1.0, 100.0)
-    material: Text
-    stiffness_N_per_mm: listing(number(0.01, 1e4, unit="N/mm"), 1, 64,
-                                "a non-empty list of at most 64 stiffnesses (N/mm)")
-
-
-class SampleHolderSection(Section):
-    thickness_mm: number(1.0, 50.0)
-    wall_mm: number(2.0, 50.0)
-    clearance_mm: number(0.05, 5.0)
-    corner_radius_mm: number(0.1, 10.0)
-    screw_size: choice(RIG_BOLTS, "ISO 4762 socket head cap screws of the catalogue")
-    tapped_depth_mm: number(2.0, 40.0)
-
-
-class IndenterSection(Section):
-    contact_width_mm: Optional[number(0.5, 20.0)] = None  # default: the element's contact face
-    contact_depth_mm: Optional[number(0.5, 20.0)] = None
-    tip_length_mm: Optional[number(0.5, 30.0)] = None  # default: clears the element tips
-    body_diameter_mm: Optional[number(1.0, 50.0)] = None  # default: carries the contact face
-    body_length_mm: number(1.0, 50.0)
-
-
-class ForceGaugeSection(Section):
-    model: Text
-    range_N: number(0.1, 1e5, unit="N")
-    resolution_N: number(1e-6, 10.0, unit="N")
-    stiffness_N_per_mm: number(0.1, 1e6, unit="N/mm")
-    length_mm: number(20.0, 500.0)
-    width_mm: number(10.0, 300.0)
-    depth_mm: number(10.0, 300.0)
-    shaft_diameter_mm: number(1.0, 30.0)
-    shaft_length_mm: number(1.0, 100.0)
-    mount_height_mm: number(0.0, 500.0)
-
-
-class ZAxisSection(Section):
-    body_width_mm: number(10.0, 300.0)
-    body_depth_mm: number(5.0, 300.0)
-    body_height_mm: number(10.0, 500.0)
-    carriage_thickness_mm: number(2.0, 100.0)
-    carriage_height_mm: number(5.0, 500.0)
-    travel_mm: number(0.5, 200.0)
-    position_mm: number(0.0, 200.0)
-    micrometer_diameter_mm: number(3.0, 60.0)
-    micrometer_length_mm: number(5.0, 200.0)
-    micrometer_resolution_mm: number(1e-6, 0.1)
-
-
-class XYStageSection(Section):
-    size_mm: number(10.0, 300.0)
-    base_height_mm: number(2.0, 100.0)
-    table_height_mm: number(2.0, 100.0)
-    travel_mm: Optional[number(1.0, 200.0)] = None  # default: enough to reach every tip
-
-
-class LinearAxisSection(Section):
-    rail: Text
-    block: Text
-    rail_width_mm: number(3.0, 60.0)
-    rail_height_mm: number(2.0, 60.0)
-    rail_length_mm: number(20.0, 2000.0)
-    block_width_mm: number(5.0, 200.0)
-    block_length_mm: number(5.0, 300.0)
-    block_height_mm: number(3.0, 100.0)
-    block_clearance_mm: number(0.0, 20.0)
-    rail_mount_height_mm: number(0.0, 1000.0)
-
-
-class CarrierSection(Section):
-    width_mm: number(5.0, 300.0)
-    height_mm: number(10.0, 500.0)
-    thickness_mm: number(1.0, 50.0)
-    shelf_depth_mm: number(5.0, 300.0)
-
-
-class HangerBarSection(Section):
-    section_mm: number(2.0, 100.0)
-    length_mm: number(5.0, 1000.0)
-
-
-class BracketSection(Section):
-    width_mm: Optional[number(5.0, 200.0)] = None  # default: follows the array's bolt pattern
-    ear_thickness_mm: number(0.5, 20.0)
-    ear_top_mm: Optional[number(1.0, 50.0)] = None  # default: 4 mm, lower on a short clamp plate
-    foot_thickness_mm: number(1.0, 30.0)
-    foot_length_mm: number(5.0, 200.0)
-    foot_clearance_mm: number(0.3, 20.0)
-    foot_hole_diameter_mm: number(1.0, 20.0)
-
-
-class WeightsSection(Section):
-    mass_g: number(1.0, 10000.0, unit="g")
-    density_g_per_cm3: number(0.5, 25.0, unit="g/cm3")
-    diameter_mm: number(5.0, 200.0)
-    count: integer(0, 20)
-
-
 class CalibrationSection(Section):
     element: Optional[integer(1, 1000)] = None  # default: the stiffest element (shortest arm)
 
 
-class _RigsFileBase(Section):
-    """``rigs.toml``: every section required but ``[calibration]``, ``[assumptions]``
-    and the tables of the part modules (:mod:`tactcad.partlib`), which have defaults."""
-
-    rigs: RigsSection
-    base_plate: BasePlateSection
-    column: ColumnSection
-    cart: CartSection
-    sample: SampleSection
-    sample_holder: SampleHolderSection
-    indenter: IndenterSection
-    force_gauge: ForceGaugeSection
-    z_axis: ZAxisSection
-    xy_stage: XYStageSection
-    linear_axis: LinearAxisSection
-    carrier: CarrierSection
-    hanger_bar: HangerBarSection
-    bracket: BracketSection
-    weights: WeightsSection
-    calibration: CalibrationSection = CalibrationSection()
-    assumptions: dict[str, Any] = {}
+#: The tables of the rigs file that are not a part's.
+OWN_TABLES = ("rigs", "calibration", "assumptions")
 
 
-#: The rigs file's schema: the sections above and one optional table per part module.
-RigsFile = create_model(
-    "RigsFile", __base__=_RigsFileBase, __doc__=_RigsFileBase.__doc__,
-    **{key: (part.section, part.section()) for key, part in rig_parts_lib().items()})
+def _tables() -> dict[str, tuple[Any, Any]]:
+    """Every table of the rigs file with its (type, default), in the order its
+    refusals are listed: ``[rigs]``, the part modules' required tables (by
+    :attr:`RigPart.order`), ``[calibration]`` and ``[assumptions]``, then the
+    part tables that may be left out (every field has a default)."""
+    parts = rig_parts_lib().items()
+    return ({"rigs": (RigsSection, ...)}
+            | {key: (part.section, ...) for key, part in parts if part.table_required}
+            | {"calibration": (CalibrationSection, CalibrationSection()),
+               "assumptions": (dict[str, Any], {})}
+            | {key: (part.section, part.section()) for key, part in parts if not part.table_required})
+
+
+#: The rigs file's schema: ``[rigs]``, ``[calibration]``, ``[assumptions]``
+#: and one table per part module (:mod:`tactcad.partlib`).
+RigsFile = create_model("RigsFile", __base__=Section, __doc__=_tables.__doc__, **_tables())
 
 
 @dataclass(frozen=True)
 class PartContext:
-    """What a part module's derivation reads: the array's plan and the rig parts
-    written in this module (:class:`RigDesign` without ``library``)."""
+    """What a part module's derivation reads: the array's plan, and the data
+    and validated tables of the part modules it ``needs``."""
 
     plan: Plan
-    rigs: RigDesign
+    parts: Mapping[str, PartData]
+    tables: Mapping[str, Section]
+
+    def part(self, key: str) -> PartData:
+        """The derived data of part module ``key``.
+
+        Raises:
+            KeyError: ``key`` is not among the deriving part's ``needs``.
+        """
+        return self.parts[self._needed(key)]
+
+    def table(self, key: str) -> Section:
+        """The validated ``rigs.toml`` table of part module ``key``.
+
+        Raises:
+            KeyError: ``key`` is not among the deriving part's ``needs``.
+        """
+        return self.tables[self._needed(key)]
+
+    def _needed(self, key: str) -> str:
+        if key not in self.parts:
+            raise KeyError(f"part module {key!r} is read but not declared in needs "
+                           f"({', '.join(self.parts) or 'none declared'})")
+        return key
 
 
-def _library(r: _RigsFileBase, plan: Plan, rigs: RigDesign, p: Problems) -> dict[str, PartData]:
-    """Each part module's data, derived against the array and the other rig parts."""
-    context = PartContext(plan, rigs)
-    return {key: part.derive(getattr(r, key), context, p) for key, part in rig_parts_lib().items()}
+def _library(r: Section, plan: Plan, p: Problems) -> dict[str, PartData]:
+    """Each part module's data, derived against the array and the part modules
+    it needs (in :func:`derivation_order`), keyed in :func:`rig_parts_lib`
+    order. Every part derives even after a refusal: every refusal at once."""
+    lib, done = rig_parts_lib(), {}
+    for key in derivation_order():
+        part = lib[key]
+        context = PartContext(plan, {n: done[n] for n in part.needs},
+                              {n: getattr(r, n) for n in part.needs})
+        done[key] = part.derive(getattr(r, key), context, p)
+    return {key: done[key] for key in lib}
 
 
-# ---------------------------------------------------------------------------
-# Rules and derivations, one rig part at a time. Each takes the validated
-# file, adds every refusal to ``p`` and returns the part's geometry.
-# ---------------------------------------------------------------------------
 def rigs_hash(data: Mapping[str, Any]) -> str:
     """sha256 of the rig file's content (canonical JSON)."""
     return content_hash(data)
-
-
-def _stock(bolt: BoltSpec, needed: float, field: str, value: Any, p: Problems) -> float:
-    """Shortest stock length of ``bolt`` >= ``needed``; a refusal naming ``field`` if none."""
-    length = shortest_stock_length(bolt, needed)
-    if length is None:
-        p.add(field, value, f"a smaller grip: {bolt.size} needs {fmt(needed)} mm, "
-              f"longest stock is {fmt(max(bolt.catalogue_lengths_mm))} mm")
-        return max(bolt.catalogue_lengths_mm)
-    return length
-
-
-def _axle_bolt(bearing: BearingSpec) -> BoltSpec | None:
-    return RIG_BOLTS.get(f"M{bearing.bore_mm:g}")
-
-
-def _cart(r: RigsFile, sample: SampleGeometry, p: Problems, derived: list[Derived]) -> CartGeometry:
-    c = r.cart
-    bearing = BEARINGS[c.bearing]
-    axle_bolt = _axle_bolt(bearing)
-    if axle_bolt is None:
-        p.add("cart.bearing", c.bearing, "a bearing whose bore takes one of " + ", ".join(RIG_BOLTS),
-              "the wheel rides on a socket head screw of the bore's size")
-        axle_bolt = RIG_BOLTS["M4"]
-    axle_d = axle_bolt.nominal_diameter_mm
-    p.within("cart.axle_height_mm", c.axle_height_mm, axle_d / 2 + 0.8,
-             bearing.outer_diameter_mm / 2, hi_open=True,
-             why="0.8 mm of material below the tapped axle hole, and the wheel must reach below "
-                 "the cart")
-    p.within("cart.axle_inset_mm", c.axle_inset_mm, bearing.outer_diameter_mm / 2 + 1.0,
-             c.length_mm / 2, hi_open=True, why="the wheels stay inside the cart's length")
-    p.within("cart.axle_hole_depth_mm", c.axle_hole_depth_mm, 1.5 * axle_d, c.width_mm / 2 - 2.0,
-             why="at least 1.5 d of thread, and the holes of both sides must not meet")
-    sp_id = axle_bolt.clearance_hole_mm
-    p.within("cart.spacer_outer_diameter_mm", c.spacer_outer_diameter_mm, sp_id + 0.5,
-             bearing.bore_mm + 0.4 * (bearing.outer_diameter_mm - bearing.bore_mm),
-             why="the spacer may bear on the inner ring only (about 40 % of the ring width)")
-    grip = bearing.width_mm + c.spacer_thickness_mm
-    axle_len = _stock(axle_bolt, grip + 1.5 * axle_d, "cart.bearing", c.bearing, p)
-    if axle_len - grip > c.axle_hole_depth_mm - 0.5:
-        p.add("cart.axle_hole_depth_mm", c.axle_hole_depth_mm, f">= {fmt(axle_len - grip + 0.5)} mm",
-              f"the {axle_bolt.size} x {axle_len:g} wheel screw needs the thread depth")
-    derived.append(Derived("wheel_screw_length", axle_len, "mm",
-                           f"shortest stock {axle_bolt.size} >= wheel {fmt(bearing.width_mm)} + "
-                           f"spacer {fmt(c.spacer_thickness_mm)} + 1.5 d of thread"))
-    p.within("cart.pocket_length_mm", c.pocket_length_mm, hi=c.length_mm - 10.0)
-    p.within("cart.pocket_width_mm", c.pocket_width_mm, hi=c.width_mm - 10.0)
-    p.within("cart.pocket_depth_mm", c.pocket_depth_mm, hi=c.thickness_mm / 4)
-    pitch = p.within("cart.suction_hole_pitch_mm", c.suction_hole_pitch_mm,
-                     c.suction_hole_diameter_mm + 0.5, why="0.5 mm between holes")
-    n = c.suction_hole_count
-    span = (n - 1) * pitch + c.suction_hole_diameter_mm
-    if span > c.pocket_length_mm - 1.0:
-        p.add("cart.suction_hole_count", n,
-              f"<= {int((c.pocket_length_mm - 1.0 - c.suction_hole_diameter_mm) // pitch) + 1}",
-              f"the holes span {fmt(span)} mm in a {fmt(c.pocket_length_mm)} mm pocket")
-    hole_xs = tuple((k - (n - 1) / 2) * pitch for k in range(n))
-    p.within("cart.channel_diameter_mm", c.channel_diameter_mm, c.suction_hole_diameter_mm,
-             c.thickness_mm / 3, why="wider than the suction holes, and a third of the plate at most")
-    p.within("cart.port_diameter_mm", c.port_diameter_mm, c.channel_diameter_mm,
-             c.thickness_mm - 4.0, lo_open=True)
-    p.within("cart.port_depth_mm", c.port_depth_mm, hi=c.length_mm / 2 - c.pocket_length_mm / 2)
-    holder_screw = RIG_BOLTS[r.sample_holder.screw_size]
-    return CartGeometry(
-        length_mm=c.length_mm, width_mm=c.width_mm, thickness_mm=c.thickness_mm, bearing=bearing,
-        axle_bolt=axle_bolt, axle_bolt_length_mm=axle_len, axle_height_mm=c.axle_height_mm,
-        axle_x_mm=c.length_mm / 2 - c.axle_inset_mm, axle_hole_depth_mm=c.axle_hole_depth_mm,
-        spacer_outer_diameter_mm=c.spacer_outer_diameter_mm, spacer_inner_diameter_mm=sp_id,
-        spacer_thickness_mm=c.spacer_thickness_mm, pocket_length_mm=c.pocket_length_mm,
-        pocket_width_mm=c.pocket_width_mm, pocket_depth_mm=c.pocket_depth_mm,
-        suction_hole_diameter_mm=c.suction_hole_diameter_mm, suction_hole_xs_mm=hole_xs,
-        channel_diameter_mm=c.channel_diameter_mm,
-        channel_end_x_mm=hole_xs[-1] + c.suction_hole_diameter_mm / 2 + c.channel_diameter_mm / 2,
-        port_diameter_mm=c.port_diameter_mm, port_depth_mm=c.port_depth_mm,
-        holder_screw_y_mm=holder_screw_y(r, sample),
-        holder_screw_diameter_mm=holder_screw.nominal_diameter_mm,
-        holder_tapped_depth_mm=r.sample_holder.tapped_depth_mm)
-
-
-def holder_screw_y(r: RigsFile, sample: SampleGeometry) -> float:
-    """|y| of the sample holder's two screws: mid-wall beside the window (mm)."""
-    h = r.sample_holder
-    return (sample.width_mm + 2 * h.clearance_mm) / 2 + h.wall_mm / 2
-
-
-def tip_field(plan: Plan) -> tuple[float, float]:
-    """(along the stack, across the rows) extent of the array's contact faces, mm."""
-    g = plan.slots[0].geometry
-    return plan.stack_length_mm, plan.pitch_mm + g.tip_width_mm
-
-
-def _sample(r: RigsFile, plan: Plan, p: Problems) -> tuple[SampleGeometry, tuple[float, ...]]:
-    """The sample carries every tip of the array with a margin; its size follows the
-    array unless the file sets it (30 x 20 mm at least, as the paper's)."""
-    s, c = r.sample, r.cart
-    along, across = tip_field(plan)
-    need_l, need_w = along + 2 * SAMPLE_MARGIN_MM, across + 2 * SAMPLE_MARGIN_MM
-    why = (f"every tip of the array rests on the sample with {fmt(SAMPLE_MARGIN_MM)} mm to spare "
-           f"(tip field {fmt(along)} x {fmt(across)} mm)")
-    length = max(SAMPLE_LENGTH_MM, need_l) if s.length_mm is None else \
-        p.within("sample.length_mm", s.length_mm, need_l, why=why)
-    width = max(SAMPLE_WIDTH_MM, need_w) if s.width_mm is None else \
-        p.within("sample.width_mm", s.width_mm, need_w, why=why)
-    if length < c.pocket_length_mm + 4.0 or width < c.pocket_width_mm + 4.0:
-        short = length < c.pocket_length_mm + 4.0
-        p.add("sample.length_mm" if short else "sample.width_mm", length if short else width,
-              f">= vacuum pocket + 4 mm ({fmt(c.pocket_length_mm + 4)} x "
-              f"{fmt(c.pocket_width_mm + 4)} mm)", "the sample must seal the pocket with a 2 mm margin")
-    stiffness = tuple(s.stiffness_N_per_mm)
-    if len(set(stiffness)) != len(stiffness):
-        p.add("sample.stiffness_N_per_mm", list(stiffness), "distinct values",
-              "each stiffness names one sample part")
-    return SampleGeometry(length, width, s.height_mm, s.material), stiffness
-
-
-def _holder(r: RigsFile, s: SampleGeometry, p: Problems,
-            derived: list[Derived]) -> SampleHolderGeometry:
-    h, c = r.sample_holder, r.cart
-    p.within("sample_holder.thickness_mm", h.thickness_mm, hi=s.height_mm, hi_open=True,
-             why="the sample must stand proud of its holder")
-    p.within("sample_holder.corner_radius_mm", h.corner_radius_mm,
-             hi=h.clearance_mm * (2 + math.sqrt(2)),
-             why="the window's corner arc must clear the sample's sharp corner")
-    screw = RIG_BOLTS[h.screw_size]
-    if h.wall_mm < screw.head_diameter_mm + 1.0:
-        p.add("sample_holder.wall_mm", h.wall_mm, f">= {fmt(screw.head_diameter_mm + 1.0)} mm",
-              f"the {h.screw_size} head must sit on the wall")
-    p.within("sample_holder.tapped_depth_mm", h.tapped_depth_mm, hi=c.thickness_mm - 1.0)
-    screw_len = _stock(screw, h.thickness_mm + 1.5 * screw.nominal_diameter_mm,
-                       "sample_holder.thickness_mm", h.thickness_mm, p)
-    if screw_len - h.thickness_mm > h.tapped_depth_mm - 0.5:
-        p.add("sample_holder.tapped_depth_mm", h.tapped_depth_mm,
-              f">= {fmt(screw_len - h.thickness_mm + 0.5)} mm",
-              f"the {h.screw_size} x {screw_len:g} holder screw needs the thread depth")
-    win_l, win_w = s.length_mm + 2 * h.clearance_mm, s.width_mm + 2 * h.clearance_mm
-    screw_y = holder_screw_y(r, s)
-    if win_l + 2 * h.wall_mm > c.length_mm or win_w + 2 * h.wall_mm > c.width_mm:
-        p.add("sample_holder.wall_mm", h.wall_mm,
-              f"<= {fmt(min((c.length_mm - win_l) / 2, (c.width_mm - win_w) / 2))} mm",
-              "the holder must fit on the cart")
-    d = screw.nominal_diameter_mm
-    if screw_y - d / 2 < c.channel_diameter_mm / 2 + 1.0 or screw_y + d / 2 > c.width_mm / 2 - 1.0:
-        p.add("sample_holder.wall_mm", h.wall_mm, "a value that keeps the holder screws "
-              "1 mm from the vacuum channel and the cart's sides")
-    if screw_y - d / 2 < c.pocket_width_mm / 2 + 1.0:
-        p.add("cart.pocket_width_mm", c.pocket_width_mm,
-              f"<= {fmt(2 * (screw_y - d / 2 - 1.0))} mm",
-              "the holder screws must stay 1 mm outside the vacuum pocket")
-    derived.append(Derived("sample_holder_screw_length", screw_len, "mm",
-                           f"shortest stock {h.screw_size} >= holder {fmt(h.thickness_mm)} + 1.5 d "
-                           "of thread"))
-    return SampleHolderGeometry(win_l, win_w, win_l + 2 * h.wall_mm, win_w + 2 * h.wall_mm,
-                                h.thickness_mm, h.corner_radius_mm, screw, screw_len, screw_y)
-
-
-def _base_and_column(r: RigsFile, cart: CartGeometry, p: Problems,
-                     derived: list[Derived]) -> tuple[BasePlateGeometry, ColumnGeometry]:
-    b, col = r.base_plate, r.column
-    bearing, axle_bolt = cart.bearing, cart.axle_bolt
-    p.within("base_plate.groove_width_mm", b.groove_width_mm, bearing.width_mm,
-             bearing.width_mm + 2.0, lo_open=True,
-             why=f"wider than the {bearing.designation} wheel (guided, not jammed)")
-    p.within("base_plate.groove_depth_mm", b.groove_depth_mm, hi=b.thickness_mm / 2)
-    if cart.wheel_clearance_mm - b.groove_depth_mm < 0.5:
-        p.add("base_plate.groove_depth_mm", b.groove_depth_mm,
-              f"<= {fmt(cart.wheel_clearance_mm - 0.5)} mm",
-              "the cart's underside must clear the base plate by 0.5 mm")
-    track = cart.width_mm / 2 + cart.spacer_thickness_mm + bearing.width_mm / 2
-    derived.append(Derived("groove_track_half", track, "mm",
-                           "cart half-width + spacer + half a wheel: the grooves lie under the wheels"))
-    if track + bearing.width_mm / 2 + axle_bolt.head_height_mm > b.width_mm / 2 - 2.0:
-        p.add("base_plate.width_mm", b.width_mm,
-              f">= {fmt(2 * (track + bearing.width_mm / 2 + axle_bolt.head_height_mm + 2))} mm",
-              "the wheels and their screw heads must stay on the plate")
-    if bearing.outer_diameter_mm / 2 - axle_bolt.head_diameter_mm / 2 < b.groove_depth_mm + 0.5 - 1e-9:
-        p.add("base_plate.groove_depth_mm", b.groove_depth_mm,
-              f"<= {fmt(bearing.outer_diameter_mm / 2 - axle_bolt.head_diameter_mm / 2 - 0.5)} mm",
-              "the wheel screw heads must clear the plate beside the groove")
-    hole_d = b.mount_hole_diameter_mm
-    p.within("base_plate.mount_hole_inset_mm", b.mount_hole_inset_mm, hole_d / 2 + 1.0,
-             b.width_mm / 2 - hole_d)
-    p.within("column.width_mm", col.width_mm, hi=b.width_mm - 2 * (b.mount_hole_inset_mm + hole_d / 2),
-             why="the column must stand between the corner holes")
-    p.within("base_plate.column_inset_mm", b.column_inset_mm, hi=b.length_mm / 3)
-    column_x = b.length_mm / 2 - b.column_inset_mm - col.thickness_mm / 2
-    base = BasePlateGeometry(b.length_mm, b.width_mm, b.thickness_mm, b.groove_width_mm,
-                             b.groove_depth_mm, track, hole_d, b.mount_hole_inset_mm, column_x)
-    return base, ColumnGeometry(col.thickness_mm, col.width_mm, col.height_mm)
-
-
-def _indenter(r: RigsFile, plan: Plan, p: Problems) -> IndenterGeometry:
-    """The indenter follows the element unless the file sets its sizes: contact
-    face = the element's contact face, body >= the face's diagonal + 1 mm (8 mm
-    at least), tip longer than the element tip's height (3 mm at least)."""
-    i = r.indenter
-    face_w, face_d = plan.slots[0].geometry.contact_face_mm
-    tip_h = plan.slots[0].geometry.tip_height_mm
-    w = face_w if i.contact_width_mm is None else p.within(
-        "indenter.contact_width_mm", i.contact_width_mm, face_w, face_w,
-        why="the indenter's face is the element's contact face (element.tip_width_mm); leave it "
-            "out to follow the design")
-    d = face_d if i.contact_depth_mm is None else p.within(
-        "indenter.contact_depth_mm", i.contact_depth_mm, face_d, face_d,
-        why="the indenter's face is the element's contact face (sheet.thickness_mm); leave it "
-            "out to follow the design")
-    diagonal = math.hypot(w, d)
-    body = max(INDENTER_BODY_MM, math.ceil(diagonal + 1.0)) if i.body_diameter_mm is None else \
-        p.within("indenter.body_diameter_mm", i.body_diameter_mm, diagonal,
-                 why="the tip must sit inside the body")
-    tip_len = max(INDENTER_TIP_MM, tip_h + 0.5) if i.tip_length_mm is None else \
-        p.within("indenter.tip_length_mm", i.tip_length_mm, tip_h,
-                 why="the body must clear the neighbouring element tips (element.tip_height_mm)")
-    return IndenterGeometry(w, d, tip_len, body, i.body_length_mm)
-
-
-def _gauge_and_stages(r: RigsFile, plan: Plan, base: BasePlateGeometry, indenter: IndenterGeometry,
-                      p: Problems) -> tuple[ForceGaugeSpec, ZAxisSpec, XYStageSpec]:
-    g, z, xy = r.force_gauge, r.z_axis, r.xy_stage
-    p.within("force_gauge.mount_height_mm", g.mount_height_mm, hi=g.length_mm)
-    gauge = ForceGaugeSpec(g.model, g.range_N, g.resolution_N, g.stiffness_N_per_mm, g.length_mm,
-                           g.width_mm, g.depth_mm, g.shaft_diameter_mm, g.shaft_length_mm,
-                           g.mount_height_mm)
-    if g.shaft_diameter_mm > indenter.body_diameter_mm:
-        p.add("force_gauge.shaft_diameter_mm", g.shaft_diameter_mm,
-              f"<= indenter.body_diameter_mm = {fmt(indenter.body_diameter_mm)} mm")
-    p.within("z_axis.carriage_height_mm", z.carriage_height_mm, hi=z.body_height_mm)
-    p.within("z_axis.travel_mm", z.travel_mm, hi=z.body_height_mm - z.carriage_height_mm,
-             why="the carriage travels along the body")
-    p.within("z_axis.position_mm", z.position_mm, 0.0, z.travel_mm)
-    if z.micrometer_diameter_mm > min(z.body_width_mm, z.body_depth_mm):
-        p.add("z_axis.micrometer_diameter_mm", z.micrometer_diameter_mm,
-              f"<= {fmt(min(z.body_width_mm, z.body_depth_mm))} mm",
-              "the micrometer stands on the body's top face")
-    if z.body_height_mm > r.column.height_mm:
-        p.add("z_axis.body_height_mm", z.body_height_mm,
-              f"<= column.height_mm = {fmt(r.column.height_mm)} mm")
-    z_axis = ZAxisSpec(z.body_width_mm, z.body_depth_mm, z.body_height_mm, z.carriage_thickness_mm,
-                       z.carriage_height_mm, z.travel_mm, z.position_mm, z.micrometer_diameter_mm,
-                       z.micrometer_length_mm, z.micrometer_resolution_mm)
-    if xy.size_mm / 2 > base.track_half_mm - base.groove_width_mm / 2:
-        p.add("xy_stage.size_mm", xy.size_mm,
-              f"<= {fmt(2 * (base.track_half_mm - base.groove_width_mm / 2))} mm",
-              "the stages stand on the base plate between the grooves")
-    reach = stage_reach(plan)
-    travel = xy.travel_mm if xy.travel_mm is not None else max(STAGE_TRAVEL_MM, math.ceil(2 * reach + 1))
-    if xy.travel_mm is not None:
-        p.within("xy_stage.travel_mm", travel, 2 * reach,
-                 why="the stages must bring every element's tip under the indenter")
-    return gauge, z_axis, XYStageSpec(xy.size_mm, xy.base_height_mm, xy.table_height_mm, travel)
-
-
-def stage_reach(plan: Plan) -> float:
-    """Largest offset (mm, along x or z) of a tip from the centroid of all tips:
-    the stages move the array by this much to put any element under the indenter."""
-    tips = [s.tip_centre_world_mm for s in plan.slots]
-    cx = sum(t[0] for t in tips) / len(tips)
-    cz = sum(t[2] for t in tips) / len(tips)
-    return max(max(abs(t[0] - cx), abs(t[2] - cz)) for t in tips)
-
-
-def _linear_axis(r: RigsFile, p: Problems) -> LinearAxisSpec:
-    a = r.linear_axis
-    p.within("linear_axis.block_height_mm", a.block_height_mm, a.rail_height_mm, lo_open=True)
-    p.within("linear_axis.block_clearance_mm", a.block_clearance_mm, hi=a.rail_height_mm,
-             hi_open=True)
-    p.within("linear_axis.block_length_mm", a.block_length_mm, hi=a.rail_length_mm)
-    p.within("linear_axis.block_width_mm", a.block_width_mm, a.rail_width_mm + 2.0)
-    p.within("linear_axis.rail_mount_height_mm", a.rail_mount_height_mm,
-             hi=r.column.height_mm - a.rail_length_mm)
-    return LinearAxisSpec(a.rail, a.block, a.rail_width_mm, a.rail_height_mm, a.rail_length_mm,
-                          a.block_width_mm, a.block_length_mm, a.block_height_mm,
-                          a.block_clearance_mm, a.rail_mount_height_mm)
-
-
-def _carrier_and_bar(r: RigsFile, p: Problems) -> tuple[CarrierGeometry, HangerBarGeometry]:
-    c, bar = r.carrier, r.hanger_bar
-    if c.shelf_depth_mm - c.thickness_mm < bar.section_mm + 2.0:
-        p.add("carrier.shelf_depth_mm", c.shelf_depth_mm,
-              f">= {fmt(c.thickness_mm + bar.section_mm + 2.0)} mm",
-              "the hanger bar hangs from the shelf clear of the carrier plate")
-    p.within("carrier.thickness_mm", c.thickness_mm, hi=c.height_mm / 2)
-    return (CarrierGeometry(c.width_mm, c.height_mm, c.thickness_mm, c.shelf_depth_mm),
-            HangerBarGeometry(bar.section_mm, bar.length_mm))
-
-
-def bracket_width_range(plan: Plan) -> tuple[float, float]:
-    """(narrowest, widest) bracket ear (mm): it carries both mounting holes and the
-    bolt heads, and must clear the heads of the array's clamp bolts."""
-    mount = plan.clamp.holes[-2:]
-    b = plan.bolt
-    lo = abs(mount[0].x_mm - mount[1].x_mm) + mount[0].diameter_mm + b.head_diameter_mm
-    clamp_heads = min(abs(h.x_mm) for h in plan.clamp.holes[:4]) - b.head_diameter_mm / 2
-    return lo, 2 * (clamp_heads - EAR_HEAD_CLEARANCE_MM)
-
-
-def _bracket(r: RigsFile, plan: Plan, bar: HangerBarGeometry, p: Problems,
-             derived: list[Derived]) -> BracketGeometry:
-    br = r.bracket
-    c = plan.clamp
-    mount = c.holes[-2:]
-    y_h = mount[0].y_mm
-    b = plan.bolt
-    lo, hi = bracket_width_range(plan)
-    if br.width_mm is None:
-        width = min(max(BRACKET_WIDTH_MM, lo), hi)
-        if lo > hi + LIMIT_TOLERANCE_MM:  # the array leaves no room: name the design field
-            p.add("clamp.bolt_spacing_mm", plan.raw["clamp"]["bolt_spacing_mm"],
-                  "a pattern that leaves the bracket ear room between the clamp bolt heads",
-                  f"the ear needs {fmt(lo)} mm between heads {fmt(hi)} mm apart",
-                  file=Path(plan.source).name)
-    else:
-        width = p.within("bracket.width_mm", br.width_mm, lo, hi,
-                         why="the ear must carry both mounting holes and the bolt heads, and clear "
-                             "the heads of the array's clamp bolts")
-    head_bottom = y_h - b.head_diameter_mm / 2  # array frame
-    nut_bottom = y_h - b.nut_width_across_flats_mm / 2  # nuts sit flats up, as in the array
-    foot_top = min(0.0, head_bottom, nut_bottom) - br.foot_clearance_mm - y_h
-    grip = br.ear_thickness_mm + 2 * c.thickness_mm + plan.stack_length_mm
-    needed = grip + b.nut_height_mm + 2 * b.thread_pitch_mm
-    bolt_len = shortest_stock_length(b, needed)
-    if bolt_len is None:  # the array's stack leaves no stock bolt for the ear: name the design
-        bolt_len = max(b.catalogue_lengths_mm)
-        fewer = "fewer columns, " if plan.columns > 1 else ""  # one column is the fewest
-        p.add("array.columns", plan.columns, f"{fewer}thinner clamp plates or a larger bolt "
-              f"than {b.size}", f"the bracket bolt through ear {fmt(br.ear_thickness_mm)} mm, both "
-              f"clamp plates and the stack needs {fmt(needed)} mm, longest stock {b.size} is "
-              f"{fmt(bolt_len)} mm", file=Path(plan.source).name)
-    derived.append(Derived("bracket_bolt_length", bolt_len, "mm",
-                           f"shortest stock {b.size} through ear {fmt(br.ear_thickness_mm)}, both "
-                           f"clamp plates and the stack (grip {fmt(grip)}) + nut + 2 thread pitches"))
-    top_lo, top_hi = mount[0].diameter_mm / 2 + 0.5, c.height_mm - y_h  # around the hole, on the plate
-    ear_top = min(EAR_TOP_MM, top_hi) if br.ear_top_mm is None else \
-        p.within("bracket.ear_top_mm", br.ear_top_mm, top_lo, top_hi,
-                 why="the ear reaches around the mounting holes and stays on the clamp plate")
-    p.within("bracket.foot_length_mm", br.foot_length_mm, br.ear_thickness_mm + bar.section_mm,
-             lo_open=True)
-    p.within("bracket.foot_hole_diameter_mm", br.foot_hole_diameter_mm, hi=width - 2.0)
-    if br.foot_length_mm / 2 - br.foot_hole_diameter_mm / 2 < br.ear_thickness_mm + 0.5:
-        p.add("bracket.foot_length_mm", br.foot_length_mm,
-              f">= {fmt(2 * (br.ear_thickness_mm + 0.5) + br.foot_hole_diameter_mm)} mm",
-              "the foot's centre hole must clear the ear")
-    return BracketGeometry(
-        width_mm=width, ear_thickness_mm=br.ear_thickness_mm, ear_top_mm=ear_top,
-        foot_thickness_mm=br.foot_thickness_mm, foot_length_mm=br.foot_length_mm,
-        foot_top_mm=foot_top, foot_hole_diameter_mm=br.foot_hole_diameter_mm,
-        hole_xs_mm=(mount[0].x_mm, mount[1].x_mm), hole_diameter_mm=mount[0].diameter_mm,
-        bolt=b, bolt_length_mm=bolt_len)
-
-
-def _weights(r: RigsFile, carrier: CarrierGeometry, p: Problems,
-             derived: list[Derived]) -> WeightSpec:
-    w = r.weights
-    p.within("weights.diameter_mm", w.diameter_mm,
-             hi=min(carrier.width_mm, 2 * (carrier.shelf_depth_mm - carrier.thickness_mm)),
-             why="the weights stand on the carrier's shelf")
-    height = w.mass_g / w.density_g_per_cm3 * 1000.0 / (math.pi * (w.diameter_mm / 2) ** 2)
-    derived.append(Derived("weight_height", height, "mm",
-                           f"{fmt(w.mass_g)} g of density {fmt(w.density_g_per_cm3)} g/cm3 as a "
-                           f"cylinder of diameter {fmt(w.diameter_mm)} mm"))
-    return WeightSpec(w.mass_g, w.density_g_per_cm3, w.diameter_mm, height, w.count)
 
 
 def stiffest_element(plan: Plan) -> int:
@@ -850,7 +160,7 @@ def stiffest_element(plan: Plan) -> int:
     return max(plan.slots, key=lambda s: (-s.geometry.arm_length_mm, s.number)).number
 
 
-def _calibration_element(r: RigsFile, plan: Plan, p: Problems) -> int:
+def _calibration_element(r: Section, plan: Plan, p: Problems) -> int:
     n = r.calibration.element
     if n is None:
         return stiffest_element(plan)
@@ -868,31 +178,14 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     assumptions = read_assumptions(data, RigsFile, p, "cart.bearing")
     if r is None:
         return None, p
-    derived: list[Derived] = []
-    sample, stiffness = _sample(r, plan, p)
-    cart = _cart(r, sample, p, derived)
-    holder = _holder(r, sample, p, derived)
-    base, column = _base_and_column(r, cart, p, derived)
-    indenter = _indenter(r, plan, p)
-    gauge, z_axis, xy = _gauge_and_stages(r, plan, base, indenter, p)
-    lin = _linear_axis(r, p)
-    carrier, bar = _carrier_and_bar(r, p)
-    bracket = _bracket(r, plan, bar, p, derived)
-    weights = _weights(r, carrier, p, derived)
+    library = _library(r, plan, p)
     cal = _calibration_element(r, plan, p)
     if p:
         return None, p
-    rig_design = RigDesign(
+    return RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
-        base=base, column=column, cart=cart, sample=sample, sample_stiffness_N_per_mm=stiffness,
-        holder=holder, indenter=indenter, gauge=gauge, z_axis=z_axis, xy_stage=xy,
-        linear_axis=lin, carrier=carrier, bar=bar, bracket=bracket, weights=weights,
-        calibration_element=cal, derived=tuple(derived), assumptions=assumptions)
-    library = _library(r, plan, rig_design, p)
-    if p:
-        return None, p
-    derived += [d for part in library.values() for d in part.derived]
-    return replace(rig_design, derived=tuple(derived), library=library), p
+        calibration_element=cal, derived=tuple(d for part in library.values() for d in part.derived),
+        assumptions=assumptions, library=library), p
 
 
 def rigs_from_dict(data: Mapping[str, Any], plan: Plan, source: str = "<dict>",

@@ -4,20 +4,25 @@ dimension set, notes (the web's stiffness sensitivity from
 :func:`tactcad.mechanics.closed_form.web_tolerance_stiffness_change`, the
 paper's Table 1 spread from :mod:`tactcad.mechanics.paper.data`), section
 view, fixed view directions, detail view, hole table or not, and the plan
-values it prints. Any other fabricated part gets :data:`GENERIC` (overall
-sizes, thickness, inside radii, holes; its process and material)."""
+values it prints. A rig part's drawing is its module's
+:class:`~tactcad.partlib.base.DrawingRecord` (dimension set, section, notes,
+view directions), drawn with :data:`PEN`. Any other fabricated part gets
+:data:`GENERIC` (overall sizes, thickness, inside radii, holes; its process
+and material)."""
 
 from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Callable
 
 import numpy as np
 
 from tactcad.catalogue.array import PartSpec
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
+from tactcad.catalogue.shop import tap_drill_mm, thread_text
 from tactcad.design.array import Plan
 from tactcad.design.tolerances import tolerances_of
 from tactcad.drawings.dimensioning import (add_section, dim, hole_callout, hole_dims_linear,
@@ -193,213 +198,6 @@ def generic_dims(d: Drawing, solid, top_k: int = 0, right_k: int = 0) -> None:
     radius_callouts(d, inside_radii(d.spec))
 
 
-def indenter_dims(d: Drawing, solid) -> None:
-    """Indenter (``spec.geometry`` with contact_width_mm, contact_depth_mm,
-    tip_length_mm, body_diameter_mm, body_length_mm; part frame: contact face
-    at z = 0, width along x, depth along y): the contact face in the front
-    view (width) and the view from the left (depth), tip and body lengths,
-    body diameter. Falls back to the generic set for other geometry."""
-    g = d.spec.geometry
-    need = ("contact_width_mm", "contact_depth_mm", "tip_length_mm", "body_diameter_mm",
-            "body_length_mm")
-    if not all(hasattr(g, k) for k in need):
-        generic_dims(d, solid)
-        return
-    f, left = d.front, d.views["left"]
-    w, dp, L = g.contact_width_mm, g.contact_depth_mm, g.tip_length_mm
-    D, B = g.body_diameter_mm, g.body_length_mm
-    # front view: u = -x, v = z; view from the left: u = y, v = z
-    dim(d, f, (w / 2, 0.0), (-w / 2, 0.0), "h", "below", 0, fmt_mm(w), "contact_width")
-    dim(d, left, (-dp / 2, 0.0), (dp / 2, 0.0), "h", "below", 0, fmt_mm(dp), "contact_depth")
-    dim(d, f, (D / 2, L + B), (-D / 2, L + B), "h", "top", 0, f"Ø{fmt_mm(D)}", "body_diameter")
-    dim(d, f, (-w / 2, 0.0), (-w / 2, L), "v", "right", 0, fmt_mm(L), "tip_length")
-    dim(d, f, (-D / 2, L), (-D / 2, L + B), "v", "right", 0, fmt_mm(B), "body_length")
-    dim(d, f, (-w / 2, 0.0), (-D / 2, L + B), "v", "right", 1, fmt_mm(L + B), "overall_height")
-    from tactcad.catalogue.rigs import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
-    from tactcad.catalogue.shop import tap_drill_mm, thread_text
-
-    fb = f.paper_box()
-    depth = indenter_thread_depth_mm(g)
-    th = (f"{thread_text(INDENTER_THREAD_DIAMETER_MM, depth)} (tap drill "
-          f"Ø{fmt_mm(tap_drill_mm(INDENTER_THREAD_DIAMETER_MM))}), onto the gauge shaft")
-    sv = d.views.get("section", f)
-    sb = sv.paper_box()
-    rt = INDENTER_THREAD_DIAMETER_MM / 2
-    d.sheet.leader([sv.paper(rt, L + B - depth / 2), (sb[2] + FIRST_TIER + TIER, sb[1] - 8.0)],
-                   th, "mount_thread")
-    d.dimensions["mount_thread"] = th
-    if sv is not f:
-        dim(d, sv, (-rt, L + B), (-rt, L + B - depth), "v", "right", 0, fmt_mm(depth),
-             "thread_depth")
-        section_marks(d, "top", "A-A")
-    cf = f"contact face {fmt_mm(w)} × {fmt_mm(dp)}"
-    d.sheet.leader([f.paper(0.0, 0.0), (fb[2] + 4.0, fb[3] + 18.0)], cf, "contact_face")
-    d.dimensions["contact_face"] = cf
-
-
-def cart_section(d: Drawing, solid) -> None:
-    """Cart: section in the mid plane y = 0 (through the channel, the port
-    and the suction holes), seen from -y."""
-    g = d.spec.geometry
-    add_section(d, solid, (0.0, -1.0, 0.0), (0.0, 0.0, 1.0), g.length_mm, g.thickness_mm)
-
-
-def indenter_section(d: Drawing, solid) -> None:
-    """Indenter: section through its axis (plane y = 0, seen from +y, as the
-    front view), showing the blind tapped hole."""
-    g = d.spec.geometry
-    add_section(d, solid, (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), g.body_diameter_mm,
-                g.tip_length_mm + g.body_length_mm)
-
-
-def cart_dims(d: Drawing, solid) -> None:
-    """Cart (``spec.geometry``: :class:`tactcad.design.rigs.CartGeometry`;
-    part frame: x along the grooves, z up from the underside, centred):
-    outline and pocket in the front view (from +z), the wheel axles' tapped
-    holes in the view from above (from +y), the hose port in the view from the
-    left (from -x), channel, port, suction holes and pocket depth in section A-A."""
-    from tactcad.catalogue.shop import thread_text
-    from tactcad.design.rigs import POCKET_CORNER_RADIUS_MM
-
-    g = d.spec.geometry
-    f, t, lv, sv = d.front, d.views["top"], d.views["left"], d.views["section"]
-    L, W, T = g.length_mm, g.width_mm, g.thickness_mm
-    pl, pw = g.pocket_length_mm, g.pocket_width_mm
-    # front view: outline, pocket, holder screws
-    dim(d, f, (-pl / 2, pw / 2), (pl / 2, pw / 2), "h", "top", 0, fmt_mm(pl), "pocket_length")
-    dim(d, f, (-L / 2, W / 2), (L / 2, W / 2), "h", "top", 1, fmt_mm(L), "overall_length")
-    dim(d, f, (pl / 2, -pw / 2), (pl / 2, pw / 2), "v", "right", 0, fmt_mm(pw), "pocket_width")
-    dim(d, f, (L / 2, -W / 2), (L / 2, W / 2), "v", "right", 1, fmt_mm(W), "overall_height")
-    ys = g.holder_screw_y_mm
-    dim(d, f, (0.0, -ys), (0.0, ys), "v", "left", 0, fmt_mm(2 * ys), "holder_screw_spacing")
-    holes = [Hole2D(0.0, s * ys, g.holder_screw_diameter_mm) for s in (-1, 1)]
-    hole_marks(d, f, holes)
-    d.sheet.line("centre-lines", f.paper(0.0, -W / 2 - 2.0), f.paper(0.0, W / 2 + 2.0), "centre")
-    fb = f.paper_box()
-    texts = {
-        # both leaders end below the view, clear of its edges and of each other
-        "holder_thread": (f"2× {thread_text(g.holder_screw_diameter_mm, g.holder_tapped_depth_mm)}",
-                          f.paper(g.holder_screw_diameter_mm / 2 * 0.7, -ys - 0.7),
-                          (fb[0] + 0.62 * (fb[2] - fb[0]), fb[3] + 12.0)),
-        "pocket": (f"pocket depth {fmt_mm(g.pocket_depth_mm)}, 4× R{fmt_mm(POCKET_CORNER_RADIUS_MM)}",
-                   f.paper(-pl / 2, -pw / 2 + POCKET_CORNER_RADIUS_MM * 2),
-                   (fb[0] + 8.0, fb[3] + 6.0)),
-    }
-    for name, (text, at, to) in texts.items():
-        d.sheet.leader([at, to], text, name)
-        d.dimensions[name] = text
-    # view from above (u = x, v = -z): axles
-    ax, ah = g.axle_x_mm, g.axle_height_mm
-    dim(d, t, (-ax, -ah), (ax, -ah), "h", "below", 0, fmt_mm(2 * ax), "axle_spacing")
-    dim(d, t, (-L / 2, 0.0), (-ax, -ah), "v", "left", 0, fmt_mm(ah), "axle_height")
-    hole_marks(d, t, [Hole2D(s * ax, -ah, g.axle_bolt.nominal_diameter_mm) for s in (-1, 1)])
-    axle = (f"4× {thread_text(g.axle_bolt.nominal_diameter_mm, g.axle_hole_depth_mm)} "
-            f"(both sides)")
-    tb = t.paper_box()
-    d.sheet.leader([t.paper(ax + 1.0, -ah - 1.0), (tb[2] - 10.0, tb[3] + 12.0)], axle, "axle_thread")
-    d.dimensions["axle_thread"] = axle
-    thickness_dim(d)
-    # view from the left (u = z, v = y): the hose port
-    port = thread_text(g.port_diameter_mm, g.port_depth_mm)
-    lb = lv.paper_box()
-    hole_marks(d, lv, [Hole2D(T / 2, 0.0, g.port_diameter_mm)])
-    d.sheet.leader([lv.paper(T / 2 + g.port_diameter_mm / 2 * 0.7, g.port_diameter_mm / 2 * 0.7),
-                    (lb[2] + 6.0, lb[1] - 4.0)], f"hose port {port}", "port_thread")
-    d.dimensions["port_thread"] = f"hose port {port}"
-    # section A-A (u = x, v = z)
-    xs = g.suction_hole_xs_mm
-    dim(d, sv, (-L / 2, T), (xs[0], T), "h", "top", 0, fmt_mm(xs[0] + L / 2), "suction_hole_first_x")
-    if len(xs) > 1:
-        dim(d, sv, (xs[0], T), (xs[1], T), "h", "top", 1, fmt_mm(xs[1] - xs[0]), "suction_hole_pitch")
-    dim(d, sv, (-L / 2, T / 2), (-L / 2 + g.port_depth_mm, T / 2), "h", "below", 0,
-         fmt_mm(g.port_depth_mm), "port_depth")
-    dim(d, sv, (-L / 2, T / 2), (g.channel_end_x_mm, T / 2), "h", "below", 1,
-         fmt_mm(g.channel_end_x_mm + L / 2), "channel_length")
-    dim(d, sv, (L / 2, 0.0), (g.channel_end_x_mm, T / 2), "v", "right", 0, fmt_mm(T / 2),
-         "channel_height")
-    dim(d, sv, (L / 2, T), (pl / 2, T - g.pocket_depth_mm), "v", "right", 1,
-         fmt_mm(g.pocket_depth_mm), "pocket_depth")
-    sb = sv.paper_box()
-    ch = f"channel Ø{fmt_mm(g.channel_diameter_mm)}"
-    d.sheet.leader([sv.paper(g.channel_end_x_mm - 4.0, T / 2 - g.channel_diameter_mm / 2),
-                    (sv.paper(g.channel_end_x_mm, 0.0)[0] + 4.0, sb[3] + 5.0)], ch, "channel_diameter")
-    d.dimensions["channel_diameter"] = ch
-    sh_text = f"{len(xs)}× Ø{fmt_mm(g.suction_hole_diameter_mm)} to channel"
-    d.sheet.leader([sv.paper(xs[-1] + g.suction_hole_diameter_mm / 2, T - 1.5),
-                    (sb[0] + 0.72 * (sb[2] - sb[0]), sb[1] - 2 * TIER - FIRST_TIER)], sh_text,
-                   "suction_holes")
-    d.dimensions["suction_holes"] = sh_text
-    section_marks(d, "front", "A-A")
-
-
-def base_plate_dims(d: Drawing, solid) -> None:
-    """Base plate (:class:`tactcad.design.rigs.BasePlateGeometry`; frame
-    centred, z up): the generic set, and the two full-length grooves in the
-    view from the left (u = z, v = y): width, depth and centre distance."""
-    g = d.spec.geometry
-    generic_dims(d, solid)
-    lv = d.views["left"]
-    T, yc, gw = g.thickness_mm, g.track_half_mm, g.groove_width_mm
-    dim(d, lv, (T - g.groove_depth_mm, yc + gw / 2), (T, yc + gw / 2), "h", "top", 0,
-         fmt_mm(g.groove_depth_mm), "groove_depth")
-    dim(d, lv, (T, yc - gw / 2), (T, yc + gw / 2), "v", "right", 0, fmt_mm(gw), "groove_width")
-    dim(d, lv, (T - g.groove_depth_mm, -yc), (T - g.groove_depth_mm, yc), "v", "right", 1,
-         fmt_mm(2 * yc), "groove_spacing")
-    for s_ in (-1, 1):
-        d.sheet.line("centre-lines", lv.paper(T - g.groove_depth_mm - 1.0, s_ * yc),
-                     lv.paper(T + 1.0, s_ * yc), "centre")
-
-
-def sample_holder_dims(d: Drawing, solid) -> None:
-    """Sample holder (:class:`tactcad.design.rigs.SampleHolderGeometry`;
-    frame centred, z up): the generic set plus the window (length, width,
-    corner radius)."""
-    g = d.spec.geometry
-    f = d.front
-    wl, ww = g.window_length_mm, g.window_width_mm
-    dim(d, f, (-wl / 2, ww / 2), (wl / 2, ww / 2), "h", "top", 0, fmt_mm(wl), "window_length")
-    dim(d, f, (wl / 2, -ww / 2), (wl / 2, ww / 2), "v", "right", 0, fmt_mm(ww), "window_width")
-    generic_dims(d, solid, top_k=1, right_k=1)
-    r = g.corner_radius_mm
-    text = f"window through, 4× R{fmt_mm(r)}"
-    c = (wl / 2 - r + r * 0.7, -ww / 2 + r - r * 0.7)
-    fb = f.paper_box()
-    d.sheet.leader([f.paper(*c), (fb[2] - 6.0, fb[3] + FIRST_TIER + 2 * TIER + 4.0)], text,
-                   "window_corner")
-    d.dimensions["window_corner"] = text
-
-
-def bracket_dims(d: Drawing, solid) -> None:
-    """Array bracket (:class:`tactcad.design.rigs.BracketGeometry`; views from
-    :func:`tactcad.drawings.views.orientation`: front from +y with u = z,
-    v = x; from above u = z, v = -y; from the left u = y, v = x): the generic
-    set (outline, foot hole), the L section's ear and foot thicknesses and
-    ear height in the view from above, the ear's two through holes in the
-    view from the left."""
-    g = d.spec.geometry
-    generic_dims(d, solid)
-    t, lv = d.views["top"], d.views["left"]
-    fb_, ft = g.foot_bottom_mm, g.foot_top_mm
-    dim(d, t, (-g.ear_thickness_mm, -g.ear_top_mm), (0.0, -g.ear_top_mm), "h", "top", 0,
-         fmt_mm(g.ear_thickness_mm), "ear_thickness")
-    dim(d, t, (-g.foot_length_mm, -ft), (-g.foot_length_mm, -fb_), "v", "left", 0,
-         fmt_mm(g.foot_thickness_mm), "foot_thickness")
-    xs = sorted(g.hole_xs_mm)
-    holes = [Hole2D(0.0, x, g.hole_diameter_mm) for x in xs]
-    hole_marks(d, lv, holes)
-    dim(d, lv, (fb_, xs[0]), (0.0, xs[0]), "h", "below", 0, fmt_mm(-fb_), "ear_hole_height")
-    dim(d, lv, (0.0, -g.width_mm / 2), (0.0, xs[0]), "v", "right", 0,
-         fmt_mm(xs[0] + g.width_mm / 2), "ear_hole_1_x")
-    if len(xs) > 1:
-        dim(d, lv, (0.0, xs[0]), (0.0, xs[1]), "v", "right", 1, fmt_mm(xs[1] - xs[0]),
-             "ear_hole_spacing")
-    lb = lv.paper_box()
-    text = f"{len(xs)}× Ø{fmt_mm(g.hole_diameter_mm)} {holes[0].depth_text}"
-    d.sheet.leader([lv.paper(g.hole_diameter_mm / 2 * 0.7, xs[-1] + g.hole_diameter_mm / 2 * 0.7),
-                    (lb[2] + 4.0, lb[1] - 6.0)], text, "ear_holes")
-    d.dimensions["ear_holes"] = text
-
-
 def gauge_note(plan: Plan, g) -> str:
     """Where the strain gauge goes: its grid (``[readout]``) centred over the web."""
     from tactcad.design.readout import readout_of
@@ -453,23 +251,6 @@ def clamp_notes(d: Drawing) -> list[str]:
     return [f"{sentence(d.spec.process)} from {fmt_mm(part_thickness(d.spec))} mm "
             f"{d.spec.material} plate. Window corners R = cutter radius. Holes "
             f"Ø{fmt_mm(bolt.clearance_hole_mm)}: ISO 273 medium clearance for {bolt.size}."]
-
-
-def cart_notes(d: Drawing) -> list[str]:
-    """Cart: drilling the vacuum channel and holes, sealing faces."""
-    return process_note(d) + [
-        f"Vacuum: drill the channel Ø{fmt_mm(d.spec.geometry.channel_diameter_mm)} from the "
-        f"port end (section A-A), then the suction holes from the pocket floor into it; deburr "
-        f"the channel and holes so no chip stays inside. Top face and pocket rim: "
-        f"flatness 0.05 (ISO 1101), so the sample seals on the vacuum."]
-
-
-def indenter_notes(d: Drawing) -> list[str]:
-    """Indenter: the mounting thread and the contact face."""
-    return process_note(d) + [
-        "The M6 thread screws the indenter onto the force gauge's measuring shaft; "
-        "contact face perpendicular to the thread axis within 0.02 (ISO 1101), so the "
-        "2 x 3 mm face lies flat on the element's tip."]
 
 
 def process_note(d: Drawing) -> list[str]:
@@ -536,13 +317,6 @@ DRAWINGS: dict[str, PartDrawing] = {
         plan.spacer, plan.pitch_mm, plan.sheet_thickness_mm)),
     "clamp_plate": PartDrawing(clamp_dims, clamp_notes,
                                plan_values=lambda plan, spec: (plan.clamp, plan.bolt)),
-    "cart": PartDrawing(cart_dims, cart_notes, section=cart_section, hole_table=False),
-    "indenter": PartDrawing(indenter_dims, indenter_notes, section=indenter_section,
-                            cameras=cameras_for((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
-                            hole_table=False),
-    "base_plate": PartDrawing(base_plate_dims),
-    "sample_holder": PartDrawing(sample_holder_dims),
-    "array_bracket": PartDrawing(bracket_dims),
 }
 
 
@@ -551,14 +325,37 @@ def drawing_of(spec: PartSpec) -> PartDrawing:
     module's :class:`~tactcad.partlib.base.DrawingRecord`, else :data:`GENERIC`."""
     if spec.builder in DRAWINGS:
         return DRAWINGS[spec.builder]
-    part = rig_parts_lib().get(spec.builder)
+    part = next((p for p in rig_parts_lib().values() if p.builder_key == spec.builder), None)
     if part is not None and part.drawing is not None:
         return _from_record(part.drawing)
     return GENERIC
 
 
+#: What a part module's drawing (:class:`~tactcad.partlib.base.DrawingRecord`)
+#: draws with: the dimensioning helpers of this layer, handed over so that the
+#: part modules, which sit above it, import none of it.
+PEN = SimpleNamespace(
+    dim=dim, hole_marks=hole_marks, Hole2D=Hole2D, thickness_dim=thickness_dim,
+    generic_dims=generic_dims, section_marks=section_marks, add_section=add_section, fmt_mm=fmt_mm,
+    thread_text=thread_text, tap_drill_mm=tap_drill_mm, FIRST_TIER=FIRST_TIER, TIER=TIER)
+
+
 @functools.cache
 def _from_record(record: DrawingRecord) -> PartDrawing:
-    """The general dimension set with the record's notes before the process note."""
-    return PartDrawing(notes=lambda d: list(record.notes) + process_note(d),
+    """The part module's drawing: its dimension set (else the general one) and
+    section drawn with :data:`PEN`, its notes around the process note, its
+    fixed view directions."""
+    def dimensions(d: Drawing, solid) -> None:
+        record.dimensions(d, solid, PEN)
+
+    def section(d: Drawing, solid) -> None:
+        record.section(d, solid, PEN)
+
+    def notes(d: Drawing) -> list[str]:
+        after = record.notes_after(d.spec.geometry, PEN) if record.notes_after else []
+        return list(record.notes) + process_note(d) + after
+
+    return PartDrawing(dimensions if record.dimensions else generic_dims, notes,
+                       section=section if record.section else None,
+                       cameras=cameras_for(*record.view_from) if record.view_from else None,
                        hole_table=record.hole_table)

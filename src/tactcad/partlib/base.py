@@ -3,18 +3,28 @@
 A part module holds everything about one rig part and exposes it as one
 :class:`RigPart` named ``PART``:
 
-* ``section``: its ``rigs.toml`` table (a :class:`~tactcad.vocabulary.schema.Section`
-  whose every field has a default, so a rigs file without the table stays valid);
-* ``derive``: the validated table and the rest of the rig -> :class:`PartData`
-  (the spec: name, kind, typed process, material, colour, expected volume and
-  box, the geometry its builder reads, derived dimensions with their reasons,
-  its seat and the seat on its host), refusals added to the file's problems;
+* ``section``: its ``rigs.toml`` table (a :class:`~tactcad.vocabulary.schema.Section`;
+  when every field has a default a rigs file without the table stays valid);
+* ``derive``: the validated table, the array's plan and the parts it needs
+  -> :class:`PartData` (the spec: name, kind, typed process, material,
+  colour, expected volume and box, the geometry its builder reads, derived
+  dimensions with their reasons, its joint frames, its seat and the seat on
+  its host, the screws it is fixed with, its companion parts), refusals added
+  to the file's problems;
 * ``build``: geometry -> solid in the part frame (build123d is imported inside
-  the function, so this layer stays kernel-free);
+  the function, so this layer stays kernel-free), and ``companion_builders``
+  for its companions;
 * ``drawing``: a :class:`DrawingRecord` (pure data) for a made part, ``None``
   for a bought one (no drawing);
 * ``host``: the rig node it is mounted on; it is shown with its host's group,
-  mated seat on seat and declared touching it.
+  mated seat on seat and declared touching it (empty: the rig's own joints
+  in :mod:`tactcad.assembly.rigs` place it, e.g. on a slide);
+* ``needs``: the part modules whose derived data its derivation reads; the
+  parts are derived in that order (a circle is refused);
+* ``order``: its place among the rig parts: in the list of derived
+  dimensions (manifest), in the rigs file's schema, in the derivation (among
+  parts free to go either way) and in a rig's placement, so that output
+  order is written down rather than taken from module names.
 
 The layers above read the registry (:func:`tactcad.partlib.registry.rig_parts_lib`):
 ``design.rigs`` adds the tables to the rigs file schema and derives each part,
@@ -25,7 +35,7 @@ Units: mm.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, make_dataclass
 from typing import Any, Callable, Mapping
 
 from tactcad.vocabulary.process import Process
@@ -47,15 +57,36 @@ class Seat:
 
 
 @dataclass(frozen=True)
+class Fastener:
+    """A bought socket head cap screw (ISO 4762) a part is fixed with: listed
+    as a part of its own (``bolt_M3x10``) unless a rig part listed before
+    already has it, which then keeps its colour."""
+
+    bolt: Any  # tactcad.vocabulary.standards.BoltSpec
+    length_mm: float
+    color: RGB
+
+
+@dataclass(frozen=True)
 class PartData:
     """What a part module derives: the spec of the part and where it sits.
 
     Attributes:
         geometry: frozen dataclass the builder reads (fixes the solid).
-        seat: the part's own mating face, in its part frame.
-        host_seat: the face of the host it sits on, in the host's part frame.
+        seat: the part's own mating face, in its part frame (joint frame
+            ``seat``); None for a part the rig's joints place.
+        host_seat: the face of the host it sits on, in the host's part frame;
+            None without a host.
         derived: dimensions the part derives, each with its reason.
         attributes: data carried into manifest and GLB.
+        frames: further named joint frames in the part frame (``top``,
+            ``bottom`` ...), for the rig's joints and for parts it hosts.
+        builder: the builder key of this spec when it is one of the
+            module's :attr:`RigPart.companion_builders` (empty: the module's
+            own builder).
+        companions: further parts the module makes, each a spec of its own
+            (the Z stage's carriage beside its body, the rail's block ...).
+        fasteners: the screws the part is fixed with (:class:`Fastener`).
     """
 
     name: str
@@ -66,20 +97,44 @@ class PartData:
     expected_volume_mm3: float
     expected_bbox_mm: Bbox
     geometry: Any
-    seat: Seat
-    host_seat: Seat
+    seat: Seat | None = None
+    host_seat: Seat | None = None
     derived: tuple[Derived, ...] = ()
     attributes: Mapping[str, Any] = field(default_factory=dict)
+    frames: Mapping[str, Seat] = field(default_factory=dict)
+    builder: str = ""
+    companions: tuple["PartData", ...] = ()
+    fasteners: tuple[Fastener, ...] = ()
 
 
 @dataclass(frozen=True)
 class DrawingRecord:
-    """A made part's shop drawing beyond the common sheet (pure data): the
-    general dimension set (overall sizes, thickness, holes), these notes
-    before the process note, and whether many holes go in a coordinate table."""
+    """A made part's shop drawing beyond the common sheet.
+
+    The part module draws with the pen the drawings layer hands it
+    (:data:`tactcad.drawings.part_sets.PEN`: ``dim``, ``hole_marks``,
+    ``generic_dims``, ``fmt_mm`` ...), so it imports nothing of that layer;
+    ``drawing`` is the :class:`tactcad.drawings.drawing.Drawing` being made
+    (its views, sheet, spec), ``solid`` the part's solid.
+
+    Attributes:
+        notes: notes before the process note.
+        hole_table: whether many holes go in a coordinate table.
+        dimensions: ``(drawing, solid, pen) -> None``, the dimension set;
+            None: the general set (overall sizes, thickness, holes).
+        section: ``(drawing, solid, pen) -> None`` adding a section view, or None.
+        notes_after: ``(geometry, pen) -> [sentence]``, notes after the
+            process note, or None.
+        view_from: fixed view directions (the front view's direction, its
+            up), or None (by the bounding box).
+    """
 
     notes: tuple[str, ...] = ()
     hole_table: bool = True
+    dimensions: Callable[[Any, Any, Any], None] | None = None
+    section: Callable[[Any, Any, Any], None] | None = None
+    notes_after: Callable[[Any, Any], list[str]] | None = None
+    view_from: tuple[Vec3, Vec3] | None = None
 
 
 @dataclass(frozen=True)
@@ -87,13 +142,22 @@ class RigPart:
     """One rig part written as one module (see the module doc).
 
     Attributes:
-        key: the ``rigs.toml`` table name and the registry (builder) key.
+        key: the ``rigs.toml`` table name and the registry key.
         host: the rig node the part mounts on (``cart``, ``array_bracket`` ...);
-            the part is placed in every rig that has it.
+            the part is placed in every rig that has it. Empty: the rig's
+            joints place it.
         derive: ``(section, context, problems) -> PartData``; ``context`` has
-            ``plan`` (the array's :class:`tactcad.design.array.Plan`) and
-            ``rigs`` (the rig parts of :mod:`tactcad.design.rigs`, without
-            the library's).
+            ``plan`` (the array's :class:`tactcad.design.array.Plan`),
+            ``part(key)`` and ``table(key)``, the derived data and the
+            validated table of a part module named in ``needs``.
+        needs: keys of the part modules ``derive`` reads (derived first).
+        order: place in the derived dimensions, the rigs file's schema, the
+            derivation and the placement (smaller first; ties by key).
+        builder: the spec's builder key when it is not ``key`` (a made part's
+            builder key is part of its drawing's hash, so a part moved into
+            this form keeps the key it had).
+        companion_builders: builder key -> builder of the companions'
+            specs (:attr:`PartData.companions`), geometry -> solid.
     """
 
     key: str
@@ -102,3 +166,39 @@ class RigPart:
     derive: Callable[[Section, Any, Problems], PartData]
     build: Callable[[Any], Any]
     drawing: DrawingRecord | None = None
+    needs: tuple[str, ...] = ()
+    order: int = 1000
+    builder: str = ""
+    companion_builders: Mapping[str, Callable[[Any], Any]] = field(default_factory=dict)
+
+    @property
+    def builder_key(self) -> str:
+        """The key of :attr:`build` among the builders (``PartSpec.builder``)."""
+        return self.builder or self.key
+
+    def builders(self) -> dict[str, Callable[[Any], Any]]:
+        """Every builder of the module by builder key: its own and its companions'."""
+        return {self.builder_key: self.build, **self.companion_builders}
+
+    @property
+    def table_required(self) -> bool:
+        """Whether ``rigs.toml`` must give the table (a field without default)."""
+        return any(f.is_required() for f in self.section.model_fields.values())
+
+
+def table_values(section: type[Section], **extra: Any) -> type:
+    """A frozen dataclass holding a table's values, field for field in the
+    table's order, then ``extra`` fields (name=type) a derivation adds; a part
+    whose builder reads its table as it is subclasses it for its geometry
+    (``class CarrierGeometry(table_values(CarrierSection))``) instead of
+    writing the fields again. Build one with :func:`values_from`."""
+    fields = [(name, info.annotation) for name, info in section.model_fields.items()]
+    return make_dataclass(f"{section.__name__}Values", fields + list(extra.items()), frozen=True)
+
+
+def values_from(cls: type, table: Section, **extra: Any) -> Any:
+    """An instance of ``cls`` (made by :func:`table_values`) from a validated
+    ``table`` and the ``extra`` values (which may replace a table value the
+    derivation filled in, e.g. a size left out of the file)."""
+    return cls(**{**{name: getattr(table, name) for name in type(table).model_fields}, **extra})
+

@@ -2,7 +2,7 @@
 its catalogue envelope).
 
 The cart's vacuum channel ends in a tapped M5 hose port on the cart's -x end
-face (:mod:`tactcad.parts.rig_cart`); a straight push-in male connector
+face (:mod:`tactcad.partlib.cart`); a straight push-in male connector
 screws into it and takes the vacuum hose. Default: SMC KQ2H04-M5A (M5x0.8
 male thread, Ø4 mm tube); its envelope sizes are rounded from the maker's
 catalogue drawing of the KQ2 series and are the ``[push_in_fitting]`` table's
@@ -61,8 +61,8 @@ class FittingGeometry:
 
 
 def derive(s: PushInFittingSection, context, p: Problems) -> PartData:
-    """The fitting against the cart's hose port (``context.rigs.cart``)."""
-    cart = context.rigs.cart
+    """The fitting against the cart's hose port (``cart``)."""
+    cart = context.part("cart").geometry
     if abs(s.thread_diameter_mm - cart.port_diameter_mm) > 1e-9:
         p.add("push_in_fitting.thread_diameter_mm", s.thread_diameter_mm,
               f"= cart.port_diameter_mm = {fmt(cart.port_diameter_mm)} mm",
@@ -116,4 +116,4 @@ def build(g: FittingGeometry):
 
 
 PART = RigPart(key="push_in_fitting", section=PushInFittingSection, host="cart", derive=derive,
-               build=build, drawing=None)
+               build=build, drawing=None, needs=("cart",))

@@ -49,8 +49,8 @@ class BoardGeometry:
 
 def derive(s: TerminalBoardSection, context, p: Problems) -> PartData:
     """The board for the array's elements (``context.plan.slots``) on the
-    bracket's foot (``context.rigs.bracket``)."""
-    br = context.rigs.bracket
+    bracket's foot (``bracket``)."""
+    br = context.part("bracket").geometry
     pairs = len(context.plan.slots)
     p.within("terminal_board.pitch_mm", s.pitch_mm, s.hole_diameter_mm + 2 * ANNULAR_RING_MM + 0.2,
              why=f"a {fmt(ANNULAR_RING_MM)} mm copper ring around each hole and 0.2 mm between pads")
@@ -102,7 +102,7 @@ def build(g: BoardGeometry):
 
 PART = RigPart(
     key="terminal_board", section=TerminalBoardSection, host="array_bracket", derive=derive,
-    build=build,
+    build=build, needs=("bracket",),
     drawing=DrawingRecord(notes=(
         "Terminal holes plated through, each with a round pad 0.5 mm larger than the hole on both "
         "sides; HASL finish.",

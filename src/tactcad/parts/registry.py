@@ -12,7 +12,6 @@ import build123d as bd
 from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import Plan
 from tactcad.partlib.registry import rig_parts_lib
-from tactcad.parts import bracket, indenter, purchased, rig_base, rig_cart, sample
 from tactcad.parts.element import build_element
 from tactcad.parts.fasteners import build_bolt, build_nut
 from tactcad.parts.gauge import build_gauge
@@ -31,25 +30,6 @@ FAMILY_BUILDERS: dict[str, Builder] = {
     "bolt": lambda plan, spec: build_bolt(*spec.geometry),
     "nut": lambda plan, spec: build_nut(spec.geometry),
     "gauge": lambda plan, spec: build_gauge(spec.geometry),
-    "base_plate": lambda plan, spec: rig_base.build_base_plate(spec.geometry),
-    "column": lambda plan, spec: rig_base.build_column(spec.geometry),
-    "cart": lambda plan, spec: rig_cart.build_cart(spec.geometry),
-    "wheel_spacer": lambda plan, spec: rig_cart.build_wheel_spacer(spec.geometry),
-    "sample": lambda plan, spec: sample.build_sample(spec.geometry),
-    "sample_holder": lambda plan, spec: sample.build_sample_holder(spec.geometry),
-    "indenter": lambda plan, spec: indenter.build_indenter(spec.geometry),
-    "array_bracket": lambda plan, spec: bracket.build_bracket(spec.geometry),
-    "axis_carrier": lambda plan, spec: bracket.build_carrier(spec.geometry),
-    "hanger_bar": lambda plan, spec: bracket.build_hanger_bar(spec.geometry),
-    "force_gauge": lambda plan, spec: purchased.build_force_gauge(spec.geometry),
-    "z_stage_body": lambda plan, spec: purchased.build_z_body(spec.geometry),
-    "z_stage_carriage": lambda plan, spec: purchased.build_z_carriage(spec.geometry),
-    "xy_stage_base": lambda plan, spec: purchased.build_stage_base(spec.geometry),
-    "xy_stage_table": lambda plan, spec: purchased.build_stage_table(spec.geometry),
-    "rail": lambda plan, spec: purchased.build_rail(spec.geometry),
-    "block": lambda plan, spec: purchased.build_block(spec.geometry),
-    "weight": lambda plan, spec: purchased.build_weight(spec.geometry),
-    "bearing": lambda plan, spec: purchased.build_bearing(spec.geometry),
     "rig_bolt": lambda plan, spec: build_bolt(*spec.geometry),
 }
 
@@ -61,13 +41,14 @@ def _all_builders() -> dict[str, Builder]:
     Raises:
         ValueError: a part module's key is also a family's key.
     """
-    library = rig_parts_lib()
+    library = {key: build for part in rig_parts_lib().values()
+               for key, build in part.builders().items()}
     clash = sorted(set(library) & set(FAMILY_BUILDERS))
     if clash:
-        raise ValueError(f"part module key(s) {', '.join(clash)} already name a builder of "
-                         "tactcad.parts: choose another key")
-    return {**FAMILY_BUILDERS, **{key: (lambda plan, spec, build=part.build: build(spec.geometry))
-                                  for key, part in library.items()}}
+        raise ValueError(f"part module builder key(s) {', '.join(clash)} already name a builder "
+                         "of tactcad.parts: choose another key")
+    return {**FAMILY_BUILDERS, **{key: (lambda plan, spec, build=build: build(spec.geometry))
+                                  for key, build in library.items()}}
 
 
 #: builder key -> builder(plan, spec), every part's.
