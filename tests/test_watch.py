@@ -100,12 +100,21 @@ def test_watch_session_in_chromium(tmp_path):
             page.mouse.up()
             page.locator('#tree label[data-instance="element_3"] input').uncheck()
             view = page.evaluate("window.__review.view()")
+            asked = []  # what the page downloads from here on
+            page.on("request", lambda r: asked.append(r.url.split("?")[0]))
             edit_first_arm(design, 4.6)
             page.wait_for_function(f"window.__review.shownSha256 !== {json.dumps(first)}",
                                    timeout=120000)
             assert page.evaluate("window.__review.view()") == view
             assert not page.locator('#tree label[data-instance="element_3"] input').is_checked()
             assert page.locator('#tree label[data-instance="element_4"] input').is_checked()
+            # the update read the page's data and the changed scene, not the page again
+            page.wait_for_function("window.__review.updates >= 2", timeout=120000)
+            base = f"http://127.0.0.1:{port}"
+            assert base + "/data" in asked
+            # the 3D-first update fetched the shown scene; the full one had the same bytes
+            assert sum(u.startswith(base + "/scene/") for u in asked) == 1
+            assert base + "/" not in asked and base + "/index.html" not in asked
             assert page.errors == []
             # a bad edit: the refusal in the page, the model stays
             text = design.read_text().replace("lengths_mm = [4.6,", "lengths_mm = [-3,", 1)

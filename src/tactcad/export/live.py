@@ -11,8 +11,11 @@ Each change is handled in two steps so the 3D view comes first:
 3. the full export follows (drawings, PDF, BOM, FreeCAD files, the page),
    published atomically as ``tactcad export`` does.
 
-The page polls ``/state`` and re-reads ``/`` when its sequence number moves,
-keeping the camera, the scene and the hidden parts (``review_page.js``).
+The page polls ``/state`` and, when its sequence number moves, reads the
+page's data (``/data``) and the scenes whose bytes changed (``/scene/<sha256>``),
+not the page, keeping the camera, the scene and the hidden parts
+(``review_live.js``, served in place of the export's own live reload: see
+:mod:`tactcad.export.live_page`).
 """
 
 from __future__ import annotations
@@ -31,7 +34,8 @@ from tactcad.catalogue.files import scene_glb_name
 from tactcad.design.project import Project
 from tactcad.errors import TactcadError
 from tactcad.export.job import Run
-from tactcad.export.review_page import REVIEW_PAGE
+from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE
+from tactcad.export.live_page import LiveView, checks_json, data_body, live_view
 from tactcad.export.live_parts import LiveParts
 from tactcad.export.worker import SessionWorker
 from tactcad.store import Store
@@ -41,20 +45,32 @@ Log = Callable[[str], None]
 
 @dataclass
 class LiveState:
-    """What the server shows: the page, its sequence number, the last refusal."""
+    """What the server shows: the page, its sequence number, the last refusal;
+    beside the page, its data and scenes on their own (:mod:`live_page`)."""
 
     page: bytes = b""
     seq: int = 0
     sha256: str = ""
     refusal: str | None = None
     status: str = "starting"
+    view: LiveView = field(default_factory=lambda: LiveView(page=b"", data=None))
+    data: bytes = b"null"
+    #: the GLBs of this page and the one before (a page may ask for those it was just told of)
+    glbs: dict[str, bytes] = field(default_factory=dict)
+    checks_js: bytes | None = None
     lock: threading.Lock = field(default_factory=threading.Lock)
 
-    def publish(self, page: bytes, sha256: str, status: str) -> None:
+    def publish(self, page: bytes, sha256: str, status: str, checks_js: str | None = None) -> None:
+        """Show ``page`` (and ``review/checks.js``'s text, when the export has one)."""
         with self.lock:
-            self.page, self.sha256, self.status = page, sha256, status
-            self.refusal = None
-            self.seq += 1
+            seq = self.seq + 1
+        view = live_view(page, seq)  # outside the lock: the server keeps serving the last one
+        data = data_body(view, seq, sha256, checks_json(checks_js))
+        with self.lock:
+            self.glbs = {**self.view.glbs, **view.glbs}
+            self.page, self.view, self.data, self.sha256 = page, view, data, sha256
+            self.checks_js = checks_js.encode("utf-8") if checks_js else None
+            self.status, self.refusal, self.seq = status, None, seq
 
     def refuse(self, text: str) -> None:
         with self.lock:
@@ -62,28 +78,45 @@ class LiveState:
 
     def as_json(self) -> bytes:
         with self.lock:
-            return json.dumps({"seq": self.seq, "sha256": self.sha256, "refusal": self.refusal,
-                               "status": self.status}).encode()
+            return self._state_json()
+
+    def _state_json(self) -> bytes:
+        return json.dumps({"seq": self.seq, "sha256": self.sha256, "refusal": self.refusal,
+                           "status": self.status}).encode()
+
+    def response(self, path: str) -> tuple[bytes, str] | None:
+        """The body and content type of ``GET path``; None: not found."""
+        scene = path.removeprefix("/scene/")
+        with self.lock:
+            if path in ("/", "/index.html"):
+                return self.view.page, "text/html; charset=utf-8"
+            if path == "/state":
+                return self._state_json(), "application/json"
+            if path == "/data":
+                return self.data, "application/json"
+            if path == "/checks.js" and self.checks_js is not None:
+                return self.checks_js, "text/javascript; charset=utf-8"
+            if scene != path and scene in self.glbs:
+                return self.glbs[scene], "model/gltf-binary"
+        return None
 
 
 def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
     """An HTTP server on 127.0.0.1:``port`` (0: any free port): ``GET /`` the
-    page, ``GET /state`` its JSON state.
+    page, ``GET /state`` its JSON state, ``GET /data`` the page's data and
+    scene digests, ``GET /scene/<sha256>`` a scene's GLB, ``GET /checks.js``
+    the check results (:meth:`LiveState.response`).
 
     Raises:
         OSError: the port is taken or not allowed.
     """
     class Handler(BaseHTTPRequestHandler):
         def do_GET(self):  # noqa: N802 (http.server's name)
-            path = self.path.split("?")[0]
-            if path in ("/", "/index.html"):
-                with state.lock:
-                    body, kind = state.page, "text/html; charset=utf-8"
-            elif path == "/state":
-                body, kind = state.as_json(), "application/json"
-            else:
+            found = state.response(self.path.split("?")[0])
+            if found is None:
                 self.send_error(404)
                 return
+            body, kind = found
             self.send_response(200)
             self.send_header("Content-Type", kind)
             self.send_header("Content-Length", str(len(body)))
@@ -128,17 +161,26 @@ class Loop:
         parts = LiveParts(plan, self.solids, self.meshes)
         if (self.out / REVIEW_PAGE).is_file():
             page = self.preview(project, parts)
-            self.state.publish(page, plan.design_hash, "3D updated; drawings follow")
+            self.state.publish(page, plan.design_hash, "3D updated; drawings follow",
+                               self._checks_js())
             self.log(f"3D view updated in {time.perf_counter() - t0:.2f} s")
         from tactcad.export.run import export
 
         result = export(project, self.out, log=lambda s: None, store=self.store, parts=parts,
                         session=self.worker)
         self.project = project
-        self.state.publish((self.out / REVIEW_PAGE).read_bytes(), plan.design_hash, "current")
+        self.state.publish((self.out / REVIEW_PAGE).read_bytes(), plan.design_hash, "current",
+                           self._checks_js())
         self.log(f"export current in {time.perf_counter() - t0:.2f} s ({result.jobs_run} jobs "
                  f"run, {result.jobs_reused} reused; {self._made_by(result.worker_jobs)})")
         return True
+
+    def _checks_js(self) -> str | None:
+        """``review/checks.js`` of the export, when ``tactcad check`` wrote one."""
+        try:
+            return (self.out / CHECKS_SCRIPT).read_text(encoding="utf-8")
+        except (OSError, UnicodeError):
+            return None
 
     def _made_by(self, worker_jobs: int) -> str:
         if self.worker is None:
