@@ -214,8 +214,9 @@ def _gone(pids, timeout_s: float = 15.0) -> bool:
 def test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly(tmp_path, monkeypatch):
     """The drawings of every run are made by one worker process kept for the
     session (not the watch process); a killed worker leaves the run to make
-    them itself, the next run has a new one; the export is the plain export's,
-    byte for byte; Ctrl-C ends the watch and its children, kill -9 too."""
+    them itself, the next run has a new one; the export (its FreeCAD files
+    written by the one FreeCAD process kept for the session) is the plain
+    export's, byte for byte; Ctrl-C ends the watch and its children, kill -9 too."""
     import os
     from pathlib import Path
 
@@ -236,7 +237,8 @@ def test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly(tmp_path,
         assert "drawings/element_a4p6mm.svg" in {f["path"] for f in man["files"]}
         made, again = _worker(s.edit(4.9))  # and the next run has a new worker
         assert made >= 3 and again not in (pid, s.proc.pid)
-        children = s.children()
+        children = s.children()  # the worker and the FreeCAD process kept for the review files
+        assert any(b"freecad" in open(f"/proc/{k}/cmdline", "rb").read().lower() for k in children)
     finally:
         s.proc.send_signal(signal.SIGINT)
         s.proc.wait(timeout=60)

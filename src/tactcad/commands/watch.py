@@ -49,6 +49,7 @@ def watched_files(design: Path) -> list[Path]:
 def run(args: argparse.Namespace) -> int:
     from tactcad.commands import load_from_args
     from tactcad.errors import DesignError
+    from tactcad.export.freecad_review import keep_freecad
     from tactcad.export.live import LiveState, Loop, changes, make_server
     from tactcad.export.run import check_out_dir
     from tactcad.export.worker import session_worker
@@ -80,6 +81,7 @@ def run(args: argparse.Namespace) -> int:
                           f"({exc.strerror or exc})") from None
     # the drawings' process, kept for the session: it loads the kernel while the first run plans
     loop = Loop(load, Path(args.out), store_from_args(args), state, log, worker=session_worker())
+    keep_freecad(True)  # one FreeCAD process for the review files of every run
     threading.Thread(target=server.serve_forever, daemon=True).start()
     host, port = server.server_address[:2]
     try:
@@ -94,6 +96,7 @@ def run(args: argparse.Namespace) -> int:
         log("stopped")
     finally:
         loop.close()
+        keep_freecad(False)
         server.shutdown()
         server.server_close()
     return 0

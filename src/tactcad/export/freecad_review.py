@@ -38,7 +38,10 @@ import os
 import re
 import shutil
 import subprocess
+import queue
 import tempfile
+import threading
+import time
 import uuid
 import zipfile
 from dataclasses import dataclass
@@ -206,6 +209,151 @@ class FreecadRun:
         self._tmp.cleanup()
 
 
+class FreecadServer:
+    """One ``freecadcmd`` kept running for many review runs (``tactcad
+    watch``): :data:`SCRIPT` in its serving mode, one request a line on its
+    stdin. Saves FreeCAD's start-up (about 0.8 s) on every run after the
+    first; the files are the same bytes as a fresh process writes (object ids
+    are numbered again by :func:`normalise_fcstd` either way).
+
+    Raises:
+        RuntimeError: no ``freecadcmd``.
+    """
+
+    def __init__(self):
+        exe = freecadcmd()
+        if exe is None:
+            raise RuntimeError("freecadcmd not found (Debian package freecad-python3)")
+        self._tmp = tempfile.TemporaryDirectory(prefix="tactcad-fc-kept-")
+        tmp = self._tmp.name
+        self._log = open(Path(tmp) / "stderr.txt", "w+")
+        env = dict(os.environ, TACTCAD_FC_SERVE="1", HOME=tmp, QT_QPA_PLATFORM="offscreen")
+        env.pop("PYTHONPATH", None)
+        env.pop("PYTHONHOME", None)
+        self._proc = subprocess.Popen([exe, str(SCRIPT)], env=env, cwd=tmp, text=True,
+                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                      stderr=self._log)
+        self._count = 0
+        self._lines: queue.Queue = queue.Queue()  # its stdout, read as it comes (never blocks it)
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self) -> None:
+        for line in self._proc.stdout:
+            self._lines.put(line)
+        self._lines.put(None)  # FreeCAD has ended
+
+    @property
+    def alive(self) -> bool:
+        return self._proc.poll() is None
+
+    def submit(self, payload: Any, out: Path) -> int:
+        """Send one request (the script writes its result to ``out``); its number.
+
+        Raises:
+            OSError: FreeCAD has ended (a broken pipe).
+        """
+        self._count += 1
+        self._proc.stdin.write(json.dumps({"in": payload, "out": str(out), "id": self._count})
+                               + "\n")
+        self._proc.stdin.flush()
+        return self._count
+
+    def wait(self, number: int, timeout_s: float) -> None:
+        """Wait for request ``number`` to be done.
+
+        Raises:
+            RuntimeError: FreeCAD ended first (its output is in the message).
+            subprocess.TimeoutExpired: not done within ``timeout_s``.
+        """
+        end = time.monotonic() + timeout_s
+        done, seen = f"tactcad-fc-done {number}", []
+        while True:
+            try:
+                line = self._lines.get(timeout=max(end - time.monotonic(), 0.0))
+            except queue.Empty:
+                raise subprocess.TimeoutExpired("freecadcmd", timeout_s) from None
+            if line is None:
+                self._proc.wait()
+                self._log.seek(0)
+                raise RuntimeError(f"freecadcmd exited {self._proc.returncode} without a result:\n"
+                                   f"{''.join(seen)[-2000:]}\n{self._log.read()[-2000:]}")
+            if line.strip() == done:
+                return
+            seen.append(line)
+
+    def close(self) -> None:
+        """End FreeCAD (its stdin closed, then killed if it lingers) and remove its folder."""
+        if self.alive:
+            try:
+                self._proc.stdin.close()
+                self._proc.wait(timeout=5)
+            except (OSError, subprocess.TimeoutExpired):
+                self._proc.kill()
+                self._proc.wait()
+        self._log.close()
+        self._tmp.cleanup()
+
+
+class ServedRun:
+    """A :class:`FreecadRun`'s counterpart on a :class:`FreecadServer`; when
+    that FreeCAD ends before answering, the run is made again by a new one."""
+
+    def __init__(self, server: FreecadServer, payload: Any, timeout_s: float = 900.0):
+        self._server, self._payload, self._timeout = server, payload, timeout_s
+        self._tmp = tempfile.TemporaryDirectory(prefix="tactcad-fc-")
+        self._out = Path(self._tmp.name) / "result.json"
+        self._number = server.submit(payload, self._out)
+
+    def result(self) -> dict:
+        try:
+            self._server.wait(self._number, self._timeout)
+            return json.loads(self._out.read_text())
+        except RuntimeError:  # the kept FreeCAD died: this run in a process of its own
+            self._server.close()
+            return FreecadRun(SCRIPT, self._payload, self._timeout).result()
+        except BaseException:
+            self._server.close()  # busy or broken: the next run starts another
+            raise
+        finally:
+            self._tmp.cleanup()
+
+    def cancel(self) -> None:
+        if self._out.parent.exists():  # not waited for: FreeCAD may be writing still
+            self._server.close()
+            self._tmp.cleanup()
+
+
+class _Kept:
+    """The FreeCAD process kept by :func:`keep_freecad`."""
+
+    wanted = False
+    server: FreecadServer | None = None
+
+
+def keep_freecad(on: bool) -> None:
+    """Keep one FreeCAD process for the review runs from now on (``on``), or
+    end the kept one and go back to one process per run."""
+    if _Kept.server is not None and not on:
+        _Kept.server.close()
+        _Kept.server = None
+    _Kept.wanted = on
+
+
+def _start_freecad(payload: Any):
+    """The review script on the kept FreeCAD process when there is one
+    (started again when it has ended), else in a new one."""
+    if _Kept.wanted and freecadcmd() is not None:
+        try:
+            if _Kept.server is None or not _Kept.server.alive:
+                if _Kept.server is not None:
+                    _Kept.server.close()
+                _Kept.server = FreecadServer()
+            return ServedRun(_Kept.server, payload)
+        except OSError:  # it ended between the check and the request: a process for this run
+            _Kept.server = None
+    return FreecadRun(SCRIPT, payload)
+
+
 def run_freecad_script(script: Path, payload: Any, timeout_s: float = 900.0) -> dict:
     """:class:`FreecadRun` and wait for its result (see there)."""
     return FreecadRun(script, payload, timeout_s).result()
@@ -355,7 +503,7 @@ class PendingReview:
         (staging / "review").mkdir(parents=True, exist_ok=True)
         self._breps = tempfile.TemporaryDirectory(prefix="tactcad-review-")
         jobs = [_job(a, staging, Path(self._breps.name) / f"a{k}") for k, a in enumerate(assemblies)]
-        self._run = FreecadRun(SCRIPT, jobs)
+        self._run = _start_freecad(jobs)
 
     def cancel(self) -> None:
         if self._run is not None:

@@ -5,10 +5,14 @@
 #                   matrix}]}]}; matrices row-major 4 x 4, mm
 #   TACTCAD_FC_OUT  JSON file to write: {freecad_version, gui, files: {name:
 #                   {objects, bbox_mm} or {error}}}
+# or, with TACTCAD_FC_SERVE set, one request a line on stdin, {"in": jobs,
+# "out": file, "id": n}, each answered by the line "tactcad-fc-done <n>" on
+# stdout once its file is written (one FreeCAD process for many runs).
 # See tactcad/export/freecad_review.py for the document layout.
 import json
 import os
 import re
+import sys
 import traceback
 
 import FreeCAD
@@ -77,16 +81,26 @@ def build(job):
     return {"objects": n, "bbox_mm": [box.XMin, box.YMin, box.ZMin, box.XMax, box.YMax, box.ZMax]}
 
 
-def main():
-    jobs = json.loads(os.environ["TACTCAD_FC_IN"])
+def write_results(jobs, out):
     results = {"freecad_version": FreeCAD.Version()[:3], "gui": GUI, "files": {}}
     for job in jobs:
         try:
             results["files"][job["name"]] = build(job)
         except Exception:
             results["files"][job["name"]] = {"error": traceback.format_exc()}
-    with open(os.environ["TACTCAD_FC_OUT"], "w") as fh:
+    with open(out, "w") as fh:
         json.dump(results, fh, indent=1, sort_keys=True)
 
 
-main()
+def serve():
+    for line in sys.stdin:
+        request = json.loads(line)
+        write_results(request["in"], request["out"])
+        sys.stdout.write("tactcad-fc-done %d\n" % request["id"])
+        sys.stdout.flush()
+
+
+if os.environ.get("TACTCAD_FC_SERVE"):
+    serve()
+else:
+    write_results(json.loads(os.environ["TACTCAD_FC_IN"]), os.environ["TACTCAD_FC_OUT"])

@@ -1,0 +1,71 @@
+"""One FreeCAD process kept for many review runs (``tactcad watch``): the
+same file bytes as a new process per run, and a run made again by a new
+process when the kept one dies."""
+
+from __future__ import annotations
+
+import os
+import signal
+
+import pytest
+
+from tactcad.export import freecad_review as fr
+
+pytestmark = pytest.mark.slow
+
+
+def _assemblies(width_mm: float):
+    import build123d as bd
+
+    box, pin = bd.Box(width_mm, 4, 2), bd.Cylinder(1, 6)
+    eye = ((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+    moved = ((1.0, 0.0, 0.0, 12.0),) + eye[1:]
+    parts = (fr.ReviewPart("plate", box, (0.6, 0.6, 0.7)), fr.ReviewPart("pin", pin, (0.9, 0.2, 0.1)))
+    inst = (fr.ReviewInstance("plate", "plate", "base", eye),
+            fr.ReviewInstance("pin_1", "pin", "pins", eye),
+            fr.ReviewInstance("pin_2", "pin", "pins", moved))
+    return [fr.ReviewAssembly("one", "one.step", parts, inst),
+            fr.ReviewAssembly("two", "two.step", parts[:1], inst[:1])]
+
+
+def _files(folder, width_mm):
+    fr.write_review_files(folder, _assemblies(width_mm), lambda s: None)
+    return {p.name: p.read_bytes() for p in sorted((folder / "review").glob("*.FCStd"))}
+
+
+def test_a_kept_freecad_writes_the_bytes_of_a_new_one(freecad, tmp_path):
+    fresh = [_files(tmp_path / f"fresh{k}", w) for k, w in enumerate((10.0, 11.0))]
+    fr.keep_freecad(True)
+    try:
+        kept = [_files(tmp_path / f"kept{k}", w) for k, w in enumerate((10.0, 11.0, 10.0))]
+        server = fr._Kept.server
+        assert server is not None and server.alive  # one process answered all three runs
+        assert kept == fresh + fresh[:1] and len(kept[0]) == 2
+        # the kept process dies: the run is made by a new process, the same bytes
+        os.kill(server._proc.pid, signal.SIGKILL)
+        server._proc.wait()
+        assert _files(tmp_path / "after-kill", 11.0) == fresh[1]
+        assert fr._Kept.server is not server and fr._Kept.server.alive
+    finally:
+        fr.keep_freecad(False)
+    assert fr._Kept.server is None and not server.alive
+
+
+def test_a_run_whose_kept_freecad_dies_is_made_by_a_new_process(freecad, tmp_path, monkeypatch):
+    fresh = _files(tmp_path / "fresh", 10.0)
+    submit = fr.FreecadServer.submit
+
+    def submit_and_die(self, payload, out):
+        number = submit(self, payload, out)
+        os.kill(self._proc.pid, signal.SIGKILL)
+        return number
+
+    fr.keep_freecad(True)
+    try:
+        monkeypatch.setattr(fr.FreecadServer, "submit", submit_and_die)
+        assert _files(tmp_path / "died", 10.0) == fresh
+        monkeypatch.setattr(fr.FreecadServer, "submit", submit)
+        dead = fr._Kept.server
+        assert _files(tmp_path / "next", 10.0) == fresh and fr._Kept.server is not dead
+    finally:
+        fr.keep_freecad(False)
