@@ -13,6 +13,7 @@ import pytest
 from tactcad.cli import main
 from tactcad.design.array import load_design
 from tactcad.errors import DesignError
+from tactcad.mechanics.correction import CorrectionRangeWarning
 from tactcad.mechanics.inverse import (InverseDesignError, Targets, design_for_targets,
                                        reference_elements, search_webs, unit_resolution)
 from tactcad.mechanics.ladder import estimate
@@ -54,7 +55,8 @@ def test_design_changes_the_web_when_the_design_web_breaks_a_limit(plan):
     search = search_webs(plan, t)
     own = int(np.flatnonzero(np.isclose(search.webs_mm, 0.25))[0])
     assert not search.feasible[own]
-    d = design_for_targets(plan, t)
+    with pytest.warns(CorrectionRangeWarning):  # some designs it weighs lie beyond the correction's fit
+        d = design_for_targets(plan, t)
     # the margins on the arm height the design settled on (raised for a/h <= 4)
     from tactcad.design.array import plan_from_dict, with_overrides
 

@@ -191,22 +191,32 @@ def test_part_names_are_file_safe(design_data):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("overrides", [
-    {"array.pitch_mm": 3.2, "element.arm_height_mm": 0.9, "clamp.bolt_size": "M2.5",
-     "clamp.bolt_spacing_mm": 5.98, "element.tip_width_mm": 2.0},
-    {"array.columns": 1, "arms.lengths_mm": [4.0, 7.0]},
+@pytest.mark.parametrize("overrides, outside_fit", [
+    # a 4 mm arm over a 0.9 mm arm height: a/h = 4.4, beyond the correction's fit (<= 4)
+    ({"array.pitch_mm": 3.2, "element.arm_height_mm": 0.9, "clamp.bolt_size": "M2.5",
+      "clamp.bolt_spacing_mm": 5.98, "element.tip_width_mm": 2.0}, True),
+    ({"array.columns": 1, "arms.lengths_mm": [4.0, 7.0]}, False),
 ])
-def test_designs_at_their_limits_export_and_check(design_data, tmp_path, overrides):
+def test_designs_at_their_limits_export_and_check(design_data, tmp_path, overrides, outside_fit):
     """pitch, arm height and bolt spacing at their lowest accepted values with M2.5
     bolts, and a one-column array (no spacer part): the array exports and passes
-    its checks (STEP solids and labels included)."""
+    its checks (STEP solids and labels included); a design beyond the stiffness
+    correction's fitted range is exported with that said."""
+    import warnings
+
+    from tactcad.mechanics.correction import CorrectionRangeWarning
+
     from tactcad.checks.array import run_checks
     from tactcad.export.run import export
     from tactcad.parts.cache import PartCache
 
     plan = plan_from_dict(with_overrides(design_data, overrides))
     cache = PartCache(plan)
-    export(project_for_plan(plan), tmp_path, log=lambda s: None, parts=cache)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        export(project_for_plan(plan), tmp_path, log=lambda s: None, parts=cache)
+    said = [w for w in caught if issubclass(w.category, CorrectionRangeWarning)]
+    assert bool(said) == outside_fit, [str(w.message) for w in said[:1]]
     bad = [r.line() for r in run_checks(plan, tmp_path, cache) if not r.passed]
     assert not bad, "\n".join(bad)
 
