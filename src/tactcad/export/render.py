@@ -167,6 +167,17 @@ def rasterise(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
     return np.where(best_t == NO_TRIANGLE, -1, best_t).reshape(h, w)
 
 
+def box_filter(px: np.ndarray, k: int) -> np.ndarray:
+    """Exact integer k x k box filter (mean rounded half up) of an (h k, w k, 3)
+    uint8 image -> (h, w, 3) uint8: one strided slice per sub-pixel offset,
+    several times faster than a reduction over a 5-D view; 16 bits hold
+    255 k^2 up to k = 16."""
+    n = k * k
+    wide = np.uint16 if n <= 256 else np.uint32
+    q = sum(px[i::k, j::k].astype(wide) for i in range(k) for j in range(k))
+    return ((q + n // 2) // n).astype(np.uint8)
+
+
 def render_assembly_png(solids: Mapping[str, object], instances: Sequence,
                         colors: Mapping[str, tuple[float, float, float]], target: str | Path,
                         title: str = "", size_px: tuple[int, int] = (1600, 1000),
@@ -215,11 +226,7 @@ def render_assembly_png(solids: Mapping[str, object], instances: Sequence,
     table = np.stack([np.round(rgb * np.float32(255)),
                       np.round(rgb * np.float32(0.25) * np.float32(255))], axis=1).astype(np.uint8)
     px = table[np.where(fg, tri, len(tri_rgb)), edge.astype(np.intp)]
-    # exact integer box filter
-    q = px.reshape(size_px[1], supersample, size_px[0], supersample, 3).sum(axis=(1, 3),
-                                                                             dtype=np.uint32)
-    n = supersample * supersample
-    pil = Image.fromarray(((q + n // 2) // n).astype(np.uint8), "RGB")
+    pil = Image.fromarray(box_filter(px, supersample), "RGB")
     if title:
         import matplotlib
 
