@@ -27,6 +27,8 @@ from tactcad.export.job import Job, Run
 from tactcad.store import content_key
 
 PNG_DPI = 150
+#: the array picture's renderer: part meshes at the run's mesh tolerance, windowed z-buffer
+RENDER_VERSION = 2
 
 
 def all_jobs(run: Run) -> list[Job]:
@@ -247,14 +249,15 @@ def image_job(run: Run) -> Job:
         from tactcad.atomic import write_atomic
         from tactcad.export.render import render_assembly_png
 
-        solids = {i.part: run.parts.solid(specs[i.part]) for i in inst}
-        colors = {n: specs[n].color for n in solids}
+        # the run's part meshes (kept across edits under watch), as the scenes use them
+        meshes = {i.part: run.parts.mesh(specs[i.part]) for i in inst}
+        colors = {n: specs[n].color for n in meshes}
         box = {}
         write_atomic(run.staging / ARRAY_PNG, lambda tmp: box.setdefault(
-            "n", render_assembly_png(solids, inst, colors, tmp, title)))
+            "n", render_assembly_png(meshes, inst, colors, tmp, title)))
         run.log(f"  wrote {ARRAY_PNG} ({box['n']} triangles)")
         return [{"path": ARRAY_PNG, "part": "array", "kind": "image-png", "triangles": box["n"]}]
-    return Job("image:array", content_key("array-png", list(specs.values()), inst, title), make,
+    return Job("image:array", content_key("array-png", RENDER_VERSION, list(specs.values()), inst, title), make,
                tuple(specs.values()))
 
 

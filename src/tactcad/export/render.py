@@ -14,15 +14,14 @@ the same bytes with the same library versions.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Mapping, Sequence
+from typing import Mapping, NamedTuple, Sequence
 
 import numpy as np
 
 from tactcad.assembly.placement import location, matrix
-from tactcad.parts.mesh import tessellate
 
 LIGHT = np.array([0.35, 0.8, 0.6])  # towards the light, assembly frame
-NO_TRIANGLE = np.iinfo(np.int64).max  # z-buffer's triangle index where none is drawn
+NO_TRIANGLE = np.iinfo(np.int32).max  # z-buffer's triangle index where none is drawn
 
 
 def pdf_page_png(pdf: str | Path, page: int, target: str | Path, dpi: int = 150) -> None:
@@ -44,12 +43,12 @@ def pdf_page_png(pdf: str | Path, page: int, target: str | Path, dpi: int = 150)
         doc.close()
 
 
-def mesh_instances(solids: Mapping[str, object], instances: Sequence, tolerance: float = 0.02,
-                   angular_tolerance: float = 0.2):
+def mesh_instances(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], instances: Sequence):
     """Triangles of every instance in the assembly frame.
 
     Args:
-        solids: build123d solids by part name (part frame, mm).
+        part_meshes: part name -> (vertices (n, 3) mm, triangles (m, 3) int),
+            part frame, as :meth:`tactcad.parts.cache.PartCache.mesh` gives them.
         instances: :class:`tactcad.catalogue.array.Instance` objects.
 
     Returns:
@@ -57,10 +56,7 @@ def mesh_instances(solids: Mapping[str, object], instances: Sequence, tolerance:
         per triangle, part names).
     """
     names = sorted({i.part for i in instances})
-    local = {}
-    for name in names:
-        v, t = tessellate(solids[name], tolerance, angular_tolerance)
-        local[name] = v[t]
+    local = {name: part_meshes[name][0][part_meshes[name][1]] for name in names}
     all_tris, owner, inst_ids = [], [], []
     for k, inst in enumerate(instances):
         m = matrix(location(inst.placement))
@@ -82,23 +78,21 @@ def _camera(elev_deg: float, azim_deg: float) -> np.ndarray:
     return np.array([right, up, towards])
 
 
-def rasterise(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
-              margin: float = 0.06, chunk: int = 4_000_000) -> np.ndarray:
-    """Orthographic z-buffer of triangles, vectorised by scan-line spans.
+class Raster(NamedTuple):
+    """The nearest triangle per pixel inside a window of the full raster: the
+    box of every covered pixel with one pixel of background around it (the
+    outlines of the pixels next to it) and its sides on multiples of
+    ``align`` (whole anti-aliasing blocks). Pixels outside are background."""
 
-    Each triangle covers the pixels whose centres lie inside it (top-left
-    half-open rule along rows); the nearest fragment wins, ties going to the
-    earlier triangle, so the result does not depend on anything but the input.
+    tri: np.ndarray  # (H, W) int32 triangle index, -1 for background
+    top: int  # first row of the window in the full raster
+    left: int  # first column
 
-    Args:
-        tris: (n, 3, 3) vertices (mm, assembly frame).
-        size_px: (width, height) of the raster.
-        cam: camera rows from :func:`_camera`.
-        chunk: fragments processed at once (bounds memory).
 
-    Returns:
-        (h, w) index of the nearest triangle per pixel, -1 for background.
-    """
+def _screen(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray, margin: float):
+    """Pixel x, y (rows grow downwards) and depth (mm, larger = nearer) of
+    every vertex, (n, 3) each: the projected extent fits the raster less
+    ``margin`` (fraction of a side) all round, centred."""
     w, h = size_px
     p = tris @ cam.T  # screen x, y, depth (larger = nearer)
     lo = p[:, :, :2].reshape(-1, 2).min(axis=0)
@@ -106,10 +100,12 @@ def rasterise(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
     span = hi - lo
     k = min(w * (1 - 2 * margin) / span[0], h * (1 - 2 * margin) / span[1])
     off = np.array([w, h]) / 2 - k * (lo + hi) / 2
-    X = p[:, :, 0] * k + off[0]
-    Y = h - (p[:, :, 1] * k + off[1])
-    Z = p[:, :, 2]
-    # depth plane z = a x + b y + c per triangle
+    return p[:, :, 0] * k + off[0], h - (p[:, :, 1] * k + off[1]), p[:, :, 2]
+
+
+def _depth_planes(X: np.ndarray, Y: np.ndarray, Z: np.ndarray):
+    """Per triangle: whether it has area on screen, and its depth plane
+    z = a x + b y + c in pixel coordinates."""
     e1 = np.stack([X[:, 1] - X[:, 0], Y[:, 1] - Y[:, 0], Z[:, 1] - Z[:, 0]], axis=1)
     e2 = np.stack([X[:, 2] - X[:, 0], Y[:, 2] - Y[:, 0], Z[:, 2] - Z[:, 0]], axis=1)
     n = np.cross(e1, e2)
@@ -117,45 +113,98 @@ def rasterise(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
     a = np.where(ok, -n[:, 0] / np.where(ok, n[:, 2], 1), 0.0)
     b = np.where(ok, -n[:, 1] / np.where(ok, n[:, 2], 1), 0.0)
     c = Z[:, 0] - a * X[:, 0] - b * Y[:, 0]
+    return ok, a, b, c
+
+
+def _spans(X: np.ndarray, Y: np.ndarray, ok: np.ndarray, size_px: tuple[int, int]):
+    """The non-empty scan-line spans of the triangles: triangle, row, first
+    column and pixel count, each (s,). A row's pixel centre y + 0.5 crosses a
+    triangle's long edge (lowest to highest vertex) and one of the two short
+    ones (the upper above the middle vertex); each edge's x is computed from
+    its first vertex in the triangle's own order, so it does not depend on
+    which triangle is which."""
+    w, h = size_px
     r0 = np.clip(np.ceil(Y.min(axis=1) - 0.5), 0, h).astype(np.int64)
     r1 = np.clip(np.floor(Y.max(axis=1) - 0.5), -1, h - 1).astype(np.int64)
     nrows = np.where(ok, np.maximum(r1 - r0 + 1, 0), 0)
-    best_z = np.full(h * w, -np.inf)
-    best_t = np.full(h * w, NO_TRIANGLE, dtype=np.int64)
-    tri_ids = np.nonzero(nrows)[0]
-    # per-triangle work is bounded by its rows x width; group triangles into chunks
-    width_est = np.ceil(X.max(axis=1) - X.min(axis=1)) + 1
-    cost = nrows * width_est
-    bounds = np.searchsorted(np.cumsum(cost[tri_ids]), np.arange(chunk, cost.sum() + chunk, chunk))
-    start = 0
-    for stop in list(bounds) + [len(tri_ids)]:
-        ids = tri_ids[start:stop]
-        start = stop
-        if len(ids) == 0:
+    # edge e runs from vertex e to vertex (e + 1) % 3: x = xa + (y - ya) * dx / dy
+    xa, ya = X.ravel(), Y.ravel()
+    dx = (np.roll(X, -1, axis=1) - X).ravel()
+    dy = (np.roll(Y, -1, axis=1) - Y).ravel()
+    dy = np.where(dy != 0, dy, 1.0)
+    order = np.argsort(Y, axis=1, kind="stable")  # lowest, middle, highest vertex
+    v_lo, v_mid, v_hi = order[:, 0], order[:, 1], order[:, 2]
+    edge_long, edge_up, edge_down = (4 - v_lo - v_hi) % 3, (4 - v_lo - v_mid) % 3, (4 - v_mid - v_hi) % 3
+    y_mid = Y[np.arange(len(Y)), v_mid]
+    t = np.repeat(np.arange(len(X), dtype=np.int32), nrows)
+    first = np.repeat(np.cumsum(nrows) - nrows, nrows)
+    row = r0[t] + (np.arange(len(t)) - first)
+    yc = row + 0.5
+
+    def x_on(edge):
+        i = t * 3 + edge
+        return xa[i] + (yc - ya[i]) * dx[i] / dy[i]
+
+    x1 = x_on(edge_long[t])
+    x2 = x_on(np.where(yc < y_mid[t], edge_up[t], edge_down[t]))
+    c0 = np.clip(np.ceil(np.minimum(x1, x2) - 0.5), 0, w).astype(np.int64)
+    c1 = np.clip(np.ceil(np.maximum(x1, x2) - 0.5), 0, w).astype(np.int64)
+    # the long edge is half-open too: a row through the highest vertex crosses nothing
+    cnt = np.where(yc < Y.max(axis=1)[t], np.maximum(c1 - c0, 0), 0)
+    keep = cnt > 0
+    return t[keep], row[keep], c0[keep], cnt[keep]
+
+
+def raster_window(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
+                  margin: float = 0.06, align: int = 1, chunk: int = 1_000_000) -> Raster:
+    """Orthographic z-buffer of triangles, vectorised by scan-line spans, over
+    the window of the raster they cover (see :class:`Raster`).
+
+    Each triangle covers the pixels whose centres lie inside it (top-left
+    half-open rule along rows); the nearest fragment wins, ties going to the
+    earlier triangle, so the result does not depend on anything but the input.
+
+    Args:
+        tris: (n, 3, 3) vertices (mm, assembly frame).
+        size_px: (width, height) of the full raster; ``align`` divides both.
+        cam: camera rows from :func:`_camera`.
+        margin: free border of the full raster, fraction of each side.
+        align: the window's sides fall on multiples of this (pixels).
+        chunk: fragments processed at once (bounds memory).
+    """
+    w, h = size_px
+    if len(tris) == 0:
+        return Raster(np.full((0, 0), -1, dtype=np.int32), 0, 0)
+    X, Y, Z = _screen(tris, size_px, cam, margin)
+    ok, a, b, c = _depth_planes(X, Y, Z)
+    t, row, c0, cnt = _spans(X, Y, ok, size_px)
+    if len(t) == 0:
+        return Raster(np.full((0, 0), -1, dtype=np.int32), 0, 0)
+    top = max(int(row.min()) - 1, 0) // align * align
+    bottom = min(-(-(int(row.max()) + 2) // align) * align, h)
+    left = max(int(c0.min()) - 1, 0) // align * align
+    right = min(-(-(int((c0 + cnt).max()) + 1) // align) * align, w)
+    width = right - left
+    best_z = np.full((bottom - top) * width, -np.inf)
+    best_t = np.full((bottom - top) * width, NO_TRIANGLE, dtype=np.int32)
+    # depth a x + b y + c at the pixel centre, summed in that order
+    span_a, span_by, span_c = a[t], b[t] * (row + 0.5), c[t]
+    span_pix = (row - top) * width + (c0 - left)
+    ends = np.cumsum(cnt)
+    stops = list(np.searchsorted(ends, np.arange(chunk, ends[-1], chunk), side="right")) + [len(t)]
+    begin = 0
+    for stop in stops:
+        if stop <= begin:
             continue
-        t = np.repeat(ids, nrows[ids])
-        first = np.repeat(np.cumsum(nrows[ids]) - nrows[ids], nrows[ids])
-        row = r0[t] + (np.arange(len(t)) - first)
-        yc = row + 0.5
-        xs = []
-        for i, j in ((0, 1), (1, 2), (2, 0)):
-            ya, yb, xa, xb = Y[t, i], Y[t, j], X[t, i], X[t, j]
-            cross = ((ya <= yc) & (yc < yb)) | ((yb <= yc) & (yc < ya))
-            dy = np.where(yb != ya, yb - ya, 1.0)
-            xs.append(np.where(cross, xa + (yc - ya) * (xb - xa) / dy, np.nan))
-        xs = np.stack(xs, axis=1)
-        valid = np.isfinite(xs).sum(axis=1) >= 2
-        xl = np.where(valid, np.nanmin(np.where(valid[:, None], xs, 0), axis=1), 0)
-        xr = np.where(valid, np.nanmax(np.where(valid[:, None], xs, 0), axis=1), 0)
-        c0 = np.clip(np.ceil(xl - 0.5), 0, w).astype(np.int64)
-        c1 = np.clip(np.ceil(xr - 0.5), 0, w).astype(np.int64)
-        cnt = np.where(valid, np.maximum(c1 - c0, 0), 0)
-        ft = np.repeat(t, cnt)
-        frow = np.repeat(row, cnt)
-        ffirst = np.repeat(np.cumsum(cnt) - cnt, cnt)
-        fcol = np.repeat(c0, cnt) + (np.arange(len(ft)) - ffirst)
-        fz = a[ft] * (fcol + 0.5) + b[ft] * (frow + 0.5) + c[ft]
-        pix = frow * w + fcol
+        n = cnt[begin:stop]
+        first = np.cumsum(n) - n
+        k = np.arange(int(first[-1] + n[-1]))
+        pix = np.repeat(span_pix[begin:stop] - first, n) + k
+        xc = np.repeat(c0[begin:stop] + 0.5 - first, n) + k
+        fz = (np.repeat(span_a[begin:stop], n) * xc + np.repeat(span_by[begin:stop], n)
+              + np.repeat(span_c[begin:stop], n))
+        ft = np.repeat(t[begin:stop], n)
+        begin = stop
         # nearest depth per pixel; where this chunk brought a nearer one, the
         # earlier winner is void; then the first triangle at that depth wins
         before = best_z[pix]
@@ -164,34 +213,75 @@ def rasterise(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
         best_t[pix[nearest > before]] = NO_TRIANGLE
         win = fz == nearest
         np.minimum.at(best_t, pix[win], ft[win])
-    return np.where(best_t == NO_TRIANGLE, -1, best_t).reshape(h, w)
+    best_t[best_t == NO_TRIANGLE] = -1
+    return Raster(best_t.reshape(bottom - top, width), top, left)
 
 
-def box_filter(px: np.ndarray, k: int) -> np.ndarray:
-    """Exact integer k x k box filter (mean rounded half up) of an (h k, w k, 3)
-    uint8 image -> (h, w, 3) uint8: one strided slice per sub-pixel offset,
-    several times faster than a reduction over a 5-D view; 16 bits hold
-    255 k^2 up to k = 16."""
+def rasterise(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
+              margin: float = 0.06) -> np.ndarray:
+    """The full raster of :func:`raster_window`: (h, w) index of the nearest
+    triangle per pixel, -1 for background."""
+    w, h = size_px
+    win = raster_window(tris, size_px, cam, margin)
+    full = np.full((h, w), -1, dtype=np.int32)
+    full[win.top: win.top + win.tri.shape[0], win.left: win.left + win.tri.shape[1]] = win.tri
+    return full
+
+
+def outline_mask(tri: np.ndarray, inst_id: np.ndarray, normals: np.ndarray,
+                 crease_deg: float = 25.0) -> np.ndarray:
+    """(H, W) bool: pixels whose right, lower or lower-right neighbour shows
+    another instance (or background), or a triangle of the same instance
+    whose unit normal turns by more than ``crease_deg`` (degrees).
+
+    Args:
+        tri: (H, W) triangle index per pixel, -1 for background.
+        inst_id: (n,) instance of each triangle.
+        normals: (n, 3) unit normals.
+    """
+    inst = np.append(inst_id, -1)  # index -1: the background's own instance
+    cos_crease = np.cos(np.radians(crease_deg))
+    h, w = tri.shape
+    edge = np.zeros((h, w), dtype=bool)
+    for dy, dx in ((0, 1), (1, 0), (1, 1)):
+        ta, tb = tri[: h - dy, : w - dx], tri[dy:, dx:]
+        # another instance always means another triangle: look only where the triangle changes
+        ya, xa = np.nonzero(ta != tb)
+        a, b = ta[ya, xa], tb[ya, xa]
+        mark = inst[a] != inst[b]
+        same = np.nonzero(~mark)[0]  # one instance, so neither is background
+        na, nb = normals[a[same]], normals[b[same]]
+        mark[same[(na * nb).sum(-1) < cos_crease]] = True
+        edge[ya[mark], xa[mark]] = True
+    return edge
+
+
+def filtered_lookup(table: np.ndarray, index: np.ndarray, k: int) -> np.ndarray:
+    """Exact integer k x k box filter (mean rounded half up) of the image
+    ``table[index]``, without making it: (h k, w k) indices into a (m, 3)
+    uint8 colour table -> (h, w, 3) uint8. One look-up per sub-pixel offset,
+    summed in 16 bits (255 k^2 fits up to k = 16)."""
     n = k * k
-    wide = np.uint16 if n <= 256 else np.uint32
-    q = sum(px[i::k, j::k].astype(wide) for i in range(k) for j in range(k))
+    wide = table.astype(np.uint16 if n <= 256 else np.uint32)
+    q = sum(np.take(wide, index[i::k, j::k], axis=0) for i in range(k) for j in range(k))
     return ((q + n // 2) // n).astype(np.uint8)
 
 
-def render_assembly_png(solids: Mapping[str, object], instances: Sequence,
+def render_assembly_png(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], instances: Sequence,
                         colors: Mapping[str, tuple[float, float, float]], target: str | Path,
                         title: str = "", size_px: tuple[int, int] = (1600, 1000),
                         elev: float = 28.0, azim: float = -58.0, supersample: int = 2) -> int:
-    """Render placed solids to a PNG; returns the number of triangles drawn.
+    """Render placed part meshes to a PNG; returns the number of triangles drawn.
 
-    Orthographic z-buffer render (see :func:`rasterise`) from elevation
+    Orthographic z-buffer render (see :func:`raster_window`) from elevation
     ``elev`` and azimuth ``azim`` (degrees, y up), Lambert shading with a fixed
     light, dark outlines where the visible surface changes part or turns by
-    more than 25 degrees, ``supersample`` x ``supersample`` anti-aliasing.
+    more than 25 degrees (:func:`outline_mask`), ``supersample`` x
+    ``supersample`` anti-aliasing. ``part_meshes`` as for :func:`mesh_instances`.
     """
     from PIL import Image, ImageDraw, ImageFont
 
-    tris, owner_part, inst_id, names = mesh_instances(solids, instances)
+    tris, owner_part, inst_id, names = mesh_instances(part_meshes, instances)
     normals = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
     nl = np.linalg.norm(normals, axis=1)
     cam = _camera(elev, azim)
@@ -199,34 +289,23 @@ def render_assembly_png(solids: Mapping[str, object], instances: Sequence,
     keep = (nl > 1e-12) & ((normals @ cam[2]) > 0)
     tris, owner_part, inst_id, normals = tris[keep], owner_part[keep], inst_id[keep], normals[keep]
     normals = normals / nl[keep][:, None]
-    w, h = size_px[0] * supersample, size_px[1] * supersample
-    tri = rasterise(tris, (w, h), cam)
+    k = supersample
+    win = raster_window(tris, (size_px[0] * k, size_px[1] * k), cam, align=k)
+    edge = outline_mask(win.tri, inst_id.astype(np.int32), normals)
     light = LIGHT / np.linalg.norm(LIGHT)
     shade = 0.38 + 0.62 * np.clip(normals @ light, 0.0, 1.0)
     base = np.array([colors[n] for n in names])[owner_part]
     tri_rgb = np.clip(base * shade[:, None], 0.0, 1.0)
-    fg = tri >= 0
-    # outlines: a neighbouring pixel on another instance, or across a crease
-    inst_px = np.where(fg, inst_id[np.maximum(tri, 0)], -1)
-    cos_crease = np.cos(np.radians(25.0))
-    edge = np.zeros((h, w), dtype=bool)
-    for dy, dx in ((0, 1), (1, 0), (1, 1)):
-        ta, tb = tri[: h - dy, : w - dx], tri[dy:, dx:]
-        ia, ib = inst_px[: h - dy, : w - dx], inst_px[dy:, dx:]
-        e = ia != ib
-        cand = (~e) & (ta != tb) & (ta >= 0)
-        ya, xa = np.nonzero(cand)
-        na, nb = normals[ta[ya, xa]], normals[tb[ya, xa]]
-        crease = (na * nb).sum(-1) < cos_crease
-        e[ya[crease], xa[crease]] = True
-        edge[: h - dy, : w - dx] |= e
-    # 8-bit colour of every triangle and of the background (last row), plain
+    # 8-bit colour of the background (first row) and of every triangle, plain
     # and darkened as an outline, looked up per pixel
-    rgb = np.vstack([tri_rgb, np.ones((1, 3))]).astype(np.float32)
+    rgb = np.vstack([np.ones((1, 3)), tri_rgb]).astype(np.float32)
     table = np.stack([np.round(rgb * np.float32(255)),
                       np.round(rgb * np.float32(0.25) * np.float32(255))], axis=1).astype(np.uint8)
-    px = table[np.where(fg, tri, len(tri_rgb)), edge.astype(np.intp)]
-    pil = Image.fromarray(box_filter(px, supersample), "RGB")
+    image = np.full((size_px[1], size_px[0], 3), 255, dtype=np.uint8)
+    image[win.top // k: win.top // k + win.tri.shape[0] // k,
+          win.left // k: win.left // k + win.tri.shape[1] // k] = filtered_lookup(
+        table.reshape(-1, 3), (win.tri + 1) * 2 + edge, k)
+    pil = Image.fromarray(image, "RGB")
     if title:
         import matplotlib
 
