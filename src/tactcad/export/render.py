@@ -267,6 +267,15 @@ def filtered_lookup(table: np.ndarray, index: np.ndarray, k: int) -> np.ndarray:
     return ((q + n // 2) // n).astype(np.uint8)
 
 
+def _title_font() -> Path:
+    """DejaVu Sans as matplotlib ships it, found without importing matplotlib
+    (about 0.15 s on a run that draws nothing else with it)."""
+    from importlib.util import find_spec
+
+    package = Path(find_spec("matplotlib").origin).parent
+    return package / "mpl-data" / "fonts" / "ttf" / "DejaVuSans.ttf"
+
+
 def render_assembly_png(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], instances: Sequence,
                         colors: Mapping[str, tuple[float, float, float]], target: str | Path,
                         title: str = "", size_px: tuple[int, int] = (1600, 1000),
@@ -307,10 +316,7 @@ def render_assembly_png(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]]
         table.reshape(-1, 3), (win.tri + 1) * 2 + edge, k)
     pil = Image.fromarray(image, "RGB")
     if title:
-        import matplotlib
-
-        font_path = Path(matplotlib.get_data_path()) / "fonts" / "ttf" / "DejaVuSans.ttf"
-        font = ImageFont.truetype(str(font_path), 22)
+        font = ImageFont.truetype(str(_title_font()), 22)
         ImageDraw.Draw(pil).text((24, 18), title, fill=(0, 0, 0), font=font)
     pil.save(target, format="PNG", optimize=False)
     return int(keep.sum())
