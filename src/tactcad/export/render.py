@@ -1,10 +1,13 @@
 """Pictures for people: a shaded render of the array and PNG pages of the drawings.
 
-* :func:`render_assembly_png`: every placed solid tessellated (OpenCascade
-  mesher through build123d), transformed to the assembly frame and drawn by
-  an orthographic z-buffer (numpy), flat shaded with a fixed directional
-  light (Lambert term + ambient) in the catalogue's part colours, with dark
-  outlines at part boundaries and creases; PNG written by Pillow.
+* :func:`render_assembly_png`: every part's triangle mesh (the run's, made
+  once per part and kept across edits under ``tactcad watch``) placed in the
+  assembly frame and drawn by an orthographic z-buffer (numpy) over the
+  window of the picture the array covers, flat shaded with a fixed
+  directional light (Lambert term + ambient) in the catalogue's part colours,
+  with dark outlines at part boundaries and creases; PNG written by Pillow.
+  No maintained rasteriser fits: VTK (installed with the kernel) needs an X
+  server or a system GL, and a GL driver's pixels differ between machines.
 * :func:`pdf_page_png`: one PDF page rasterised by PDFium (pypdfium2).
 
 Both write PNG without time stamps or tool versions, so the same input gives
