@@ -32,7 +32,7 @@ def test_server_serves_the_page_and_its_state():
     import threading
 
     state = LiveState()
-    state.publish(b"<html>page</html>", "ab" * 32, "current")
+    state.publish("ab" * 32, "current", None, b"<html>page</html>")
     server = make_server(state, 0)
     threading.Thread(target=server.serve_forever, daemon=True).start()
     try:
@@ -48,7 +48,7 @@ def test_server_serves_the_page_and_its_state():
 
 def test_a_refused_edit_keeps_the_last_page(tmp_path):
     state = LiveState()
-    state.publish(b"good", "cd" * 32, "current")
+    state.publish("cd" * 32, "current", None, b"good")
 
     def load():
         raise DesignError("arms.lengths_mm[1]", -3.0, "2 <= value <= 20 mm")
