@@ -141,6 +141,39 @@ def test_page_offline_in_chromium(exported, browser):
 
 
 @pytest.mark.slow
+def test_page_served_by_any_web_server_shows_what_it_carries(exported, browser):
+    """Served over http by a plain file server (no ``tactcad watch`` behind it): the
+    page shows its own scene and sheets, asks for ``/state`` once and, finding no
+    watch, never polls or reads ``/data``."""
+    import functools
+    import http.server
+    import threading
+
+    from tactcad.checks.review_browser import canvas_is_blank, wait_first_frame
+
+    out, _ = exported
+    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(out))
+    handler.log_message = lambda *a: None
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        with browser(offline=False) as page:
+            asked = []
+            page.on("request", lambda r: asked.append(r.url))
+            page.goto(f"http://127.0.0.1:{server.server_address[1]}/{REVIEW_PAGE}")
+            wait_first_frame(page)
+            page.wait_for_timeout(1000)  # five polling periods
+            assert page.errors == [] and not canvas_is_blank(page)
+            assert page.eval_on_selector_all(".sheet img", "is => is.every(i => i.naturalWidth > 0)")
+            assert sum(u.endswith("/state") for u in asked) == 1
+            assert not any(u.endswith("/data") or "/scene/" in u or "/sheet/" in u for u in asked)
+            assert page.locator("#status").inner_text() == ""
+    finally:
+        server.shutdown()
+        server.server_close()
+
+
+@pytest.mark.slow
 def test_check_results_join_the_page(exported, browser, plan):
     from types import SimpleNamespace as R
 

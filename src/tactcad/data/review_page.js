@@ -264,33 +264,44 @@ function zoomable(pane, img) {
 const sheetSource = (sheet) => (sheet.svg_base64 ? 'data:image/svg+xml;base64,' + sheet.svg_base64
                                                   : `/sheet/${sheet.sha256}`);
 
-function sheetCard(sheet) {
+function sheetCard() {
   const card = el('div', null, 'sheet');
-  card.dataset.sheet = sheet.path;
-  card.dataset.sha256 = sheet.sha256;
   const h = el('h3');
-  h.append(el('span', sheet.title), el('span', sheet.path, 'part'));
+  h.append(el('span'), el('span', null, 'part'));
   const pane = el('div', null, 'pane');
   const img = el('img');
-  img.alt = sheet.title;
-  img.src = sheetSource(sheet);
   pane.append(img);
   zoomable(pane, img);
   card.append(h, pane);
   return card;
 }
 
-function showSheets() {  // the same sheets in the same order: only the changed images are replaced
+function fillCard(card, sheet) {  // the image is set again only when its bytes changed
+  const [title, path] = card.querySelectorAll('h3 span');
+  setText(title, sheet.title);
+  setText(path, sheet.path);
+  card.dataset.sheet = sheet.path;
+  const img = card.querySelector('img');
+  img.alt = sheet.title;
+  if (card.dataset.sha256 !== sheet.sha256) {
+    card.dataset.sha256 = sheet.sha256;
+    img.src = sheetSource(sheet);
+  }
+  return card;
+}
+
+// a card is kept, with its zoom, for a sheet of the same bytes (else of the same path), so an
+// update fetches only the sheets that changed
+function showSheets() {
   const host = $('sheets');
-  const cards = [...host.children];
-  const same = cards.length === DATA.sheets.length
-    && DATA.sheets.every((sheet, i) => cards[i].dataset.sheet === sheet.path);
-  if (!same) { host.replaceChildren(...DATA.sheets.map(sheetCard)); return; }
-  DATA.sheets.forEach((sheet, i) => {
-    if (cards[i].dataset.sha256 === sheet.sha256) return;
-    cards[i].dataset.sha256 = sheet.sha256;
-    cards[i].querySelector('img').src = sheetSource(sheet);
-  });
+  const spare = [...host.children];
+  const take = (keep) => { const i = spare.findIndex(keep); return i < 0 ? null : spare.splice(i, 1)[0]; };
+  const cards = DATA.sheets.map((sheet) => fillCard(
+    take((c) => c.dataset.sha256 === sheet.sha256) || take((c) => c.dataset.sheet === sheet.path)
+    || sheetCard(), sheet));
+  if (cards.length !== host.children.length || cards.some((c, i) => host.children[i] !== c)) {
+    host.replaceChildren(...cards);
+  }
 }
 
 function showTables() {
@@ -425,4 +436,8 @@ async function poll(seq) {
 }
 
 load();
-if (LIVE) poll(null);
+// served by `tactcad watch` (its /state answers), not by any web server: follow its updates
+if (LIVE) {
+  fetch('/state', { cache: 'no-store' }).then((r) => (r.ok ? r.json() : null))
+    .then((state) => { if (state && 'seq' in state) poll(null); }).catch(() => {});
+}
