@@ -1,61 +1,76 @@
-"""The review page as ``tactcad watch`` serves it: the page's data and scenes
-on their own, the export's page itself unchanged (fast; the page under watch
-in Chromium is tests/test_watch.py)."""
+"""The review page as ``tactcad watch`` serves it: the exported page as it is,
+its data, scenes and sheets on their own (fast; the page under watch in
+Chromium is tests/test_watch.py)."""
 
 from __future__ import annotations
 
 import hashlib
 import json
-import re
 
 from tactcad.export.live import LiveState
-from tactcad.export.live_page import checks_json, live_view
-from tactcad.export.review_page import checks_script, page_data, page_html
+from tactcad.export.live_page import checks_json
+from tactcad.export.review_page import checks_script, page_html, review_contents
+
+IMPORTS = '{"imports": {}}'
 
 
-def _page(name="demo", scenes=None) -> bytes:
+def _contents(name="demo", scenes=None, sheet="<svg/>"):
     facts = {"design": {"name": name, "source": "d.toml", "sha256": "ab" * 32},
              "tactcad_version": "0", "cad_stack": {}, "units": "mm", "files": []}
-    data = page_data(facts, [("drawings/a.svg", "a", "<svg/>")], ["s", "t"],
-                     "item,part\n1,a\n", [], "A", "2026-01-01", "0.187.0")
-    return page_html(data, scenes or {"s": b"glb-s", "t": b"glb-t"}, '{"imports": {}}').encode()
+    return review_contents(facts, [("drawings/a.svg", "a", sheet)],
+                           scenes or {"s": b"glb-s", "t": b"glb-t"}, "item,part\n1,a\n", [], "A",
+                           "2026-01-01", "0.187.0")
 
 
-def test_the_served_page_swaps_only_the_live_reload_and_knows_its_scenes():
-    page = _page()
-    view = live_view(page, 7)
-    digests = {"s": hashlib.sha256(b"glb-s").hexdigest(), "t": hashlib.sha256(b"glb-t").hexdigest()}
-    assert view.scenes == digests and view.glbs == {digests["s"]: b"glb-s", digests["t"]: b"glb-t"}
-    assert b"fetch('/', " in page and b"fetch('/', " not in view.page  # the whole page: not again
-    assert b"fetch('/data'" in view.page and b"@@LIVE@@" not in view.page
-    live = re.search(rb"const LIVE = (\{.*?\});", view.page).group(1)
-    assert json.loads(live) == {"seq": 7, "scenes": digests}
-    head = page[:page.index(b"// --- live reload")]
-    assert view.page.startswith(head) and view.page.endswith(b"</script>\n</body>\n</html>\n")
+def _sha(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
 
 
-def test_data_carries_the_page_data_scene_digests_and_checks():
-    page = _page(name="</script>@@LIVE@@")
+def test_the_exported_page_is_served_as_it_is_and_reads_its_data_when_served():
+    contents = _contents()
+    page = page_html(contents, IMPORTS).encode()
     state = LiveState()
-    state.publish(page, "ab" * 32, "current", checks_script("ab" * 32, []))
+    state.publish("ab" * 32, "current", contents, page)
+    assert state.response("/")[0] == page and state.response("/index.html")[0] == page
+    assert b"fetch('/data'" in page and b"fetch('/', " not in page  # never the whole page again
+
+
+def test_data_names_scenes_and_sheets_by_sha256_and_carries_the_checks():
+    state = LiveState()
+    state.publish("ab" * 32, "current", _contents(name="</script>@@DATA@@"),
+                  checks_js=checks_script("ab" * 32, []))
     body, kind = state.response("/data")
     doc = json.loads(body)
     assert kind == "application/json" and doc["seq"] == 1 and doc["sha256"] == "ab" * 32
-    assert doc["data"]["manifest"]["design"]["name"] == "</script>@@LIVE@@"
+    data = doc["data"]
+    assert data["manifest"]["design"]["name"] == "</script>@@DATA@@"
     assert doc["checks"] == {"design_sha256": "ab" * 32, "passed": 0, "failed": 0, "checks": []}
-    glb = state.response("/scene/" + doc["scenes"]["t"])
-    assert glb == (b"glb-t", "model/gltf-binary")
-    assert state.response("/scene/") is None and state.response("/scene/../s") is None
-    assert state.response("/index.html")[0] == live_view(page, 1).page
+    assert data["scene_sha256"] == {"s": _sha(b"glb-s"), "t": _sha(b"glb-t")}
+    assert "svg_base64" not in json.dumps(data)  # the sheets' bytes are fetched by sha256
+    assert state.response("/scene/" + _sha(b"glb-t")) == (b"glb-t", "model/gltf-binary")
+    assert state.response("/sheet/" + data["sheets"][0]["sha256"]) == (b"<svg/>", "image/svg+xml")
+    for path in ("/scene/", "/scene/../s", "/sheet/" + _sha(b"glb-t"), "/scene/" + _sha(b"<svg/>"),
+                 "/x/scene/" + _sha(b"glb-t")):
+        assert state.response(path) is None, path
 
 
-def test_a_page_may_ask_for_the_scenes_of_the_page_before():
+def test_a_page_may_ask_for_the_scenes_and_sheets_of_the_state_before():
     state = LiveState()
-    state.publish(_page(scenes={"s": b"old"}), "ab" * 32, "current")
-    state.publish(_page(scenes={"s": b"new"}), "ab" * 32, "current")
-    assert state.response("/scene/" + hashlib.sha256(b"old").hexdigest())[0] == b"old"
-    state.publish(_page(scenes={"s": b"newer"}), "ab" * 32, "current")
-    assert state.response("/scene/" + hashlib.sha256(b"old").hexdigest()) is None
+    state.publish("ab" * 32, "current", _contents(scenes={"s": b"old"}, sheet="<svg>1</svg>"))
+    state.publish("ab" * 32, "current", _contents(scenes={"s": b"new"}, sheet="<svg>2</svg>"))
+    assert state.response("/scene/" + _sha(b"old"))[0] == b"old"
+    assert state.response("/sheet/" + _sha(b"<svg>1</svg>"))[0] == b"<svg>1</svg>"
+    state.publish("ab" * 32, "current", _contents(scenes={"s": b"newer"}, sheet="<svg>3</svg>"))
+    assert state.response("/scene/" + _sha(b"old")) is None
+    assert state.response("/sheet/" + _sha(b"<svg>1</svg>")) is None
+
+
+def test_a_preview_keeps_the_last_exported_page():
+    state = LiveState()
+    state.publish("ab" * 32, "current", _contents(), b"<html>exported</html>")
+    state.publish("cd" * 32, "3D updated; drawings follow", _contents(scenes={"s": b"next"}))
+    assert state.response("/")[0] == b"<html>exported</html>"
+    assert json.loads(state.response("/data")[0])["sha256"] == "cd" * 32
 
 
 def test_checks_not_written_by_tactcad_are_not_passed_on():
@@ -64,8 +79,8 @@ def test_checks_not_written_by_tactcad_are_not_passed_on():
     assert json.loads(checks_json(checks_script("cd" * 32, [])))["failed"] == 0
 
 
-def test_a_page_that_is_not_a_review_page_is_served_as_it_is():
+def test_without_a_review_page_the_data_is_null():
     state = LiveState()
-    state.publish(b"<html>page</html>", "ab" * 32, "current")
+    state.publish("ab" * 32, "current", None, b"<html>page</html>")
     assert state.response("/")[0] == b"<html>page</html>"
     assert json.loads(state.response("/data")[0])["data"] is None

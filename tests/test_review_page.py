@@ -9,19 +9,23 @@ from types import SimpleNamespace
 import pytest
 
 from tactcad.export.review_assets import MODULES, ReviewAssetsError, _rewrite, import_map
-from tactcad.export.review_page import (REVIEW_PAGE, bom_table, checks_script, page_data,
-                                        page_html, write_checks_script)
+from tactcad.export.review_page import (REVIEW_PAGE, bom_table, checks_script, page_html,
+                                        review_contents, write_checks_script)
 
 
-def _data(name="demo", sha="ab" * 32, **extra):
+def _contents(name="demo", sha="ab" * 32, **extra):
     facts = {"design": {"name": name, "source": "d.toml", "sha256": sha}, "tactcad_version": "0",
              "cad_stack": {}, "units": "mm", "files": [{"path": "x"}], **extra}
-    return page_data(facts, [("drawings/a.svg", "a", "<svg/>")], ["s"],
-                     "\ufeffitem,part\n1,a\n", [], "A", "2026-01-01", "0.187.0")
+    return review_contents(facts, [("drawings/a.svg", "a", "<svg/>")], {"s": b"glb"},
+                           "\ufeffitem,part\n1,a\n", [], "A", "2026-01-01", "0.187.0")
+
+
+def _data(**kw):
+    return _contents(**kw).data
 
 
 def test_page_text_carries_design_hash_and_no_network():
-    html = page_html(_data(), {"s": b"glb"}, '{"imports": {}}')
+    html = page_html(_contents(), '{"imports": {}}')
     assert '<meta name="tactcad-design-sha256" content="' + "ab" * 32 + '">' in html
     assert not re.search(r"""(src|href)\s*=\s*["']https?:""", html)
 
@@ -29,11 +33,32 @@ def test_page_text_carries_design_hash_and_no_network():
 def test_hostile_design_name_stays_data():
     """A name holding markup or a template token neither breaks the page nor is replaced."""
     name = "</script><script>alert(1)</script>@@SCENES@@"
-    html = page_html(_data(name=name), {"s": b"glb"}, '{"imports": {}}')
+    html = page_html(_contents(name=name), '{"imports": {}}')
     assert "<script>alert(1)" not in html
     blob = re.search(r'id="review-data">(.*?)</script>', html, re.S).group(1)
     assert json.loads(blob)["manifest"]["design"]["name"] == name
     assert "files" not in json.loads(blob)["manifest"]
+
+
+def test_the_page_carries_every_sheet_and_scene_with_its_sha256():
+    import base64
+    import hashlib
+
+    sheets = [("drawings/a.svg", "a", "<svg>é</svg>"), ("drawings/b.svg", "b", "<svg>é</svg>"),
+              ("drawings/c.svg", "c", "<svg/>")]
+    contents = review_contents({"design": {"name": "d", "sha256": "ab" * 32}}, sheets,
+                               {"t": b"glb-t", "s": b"glb-s"}, "", [], "A", "d", "0")
+    digest = {p: hashlib.sha256(svg.encode()).hexdigest() for p, _, svg in sheets}
+    assert [s["sha256"] for s in contents.data["sheets"]] == list(digest.values())
+    assert len(contents.sheets) == 2  # two sheets of the same bytes: one copy
+    assert contents.data["scenes"] == ["t", "s"]
+    assert contents.data["scene_sha256"]["s"] == hashlib.sha256(b"glb-s").hexdigest()
+    html = page_html(contents, '{"imports": {}}')
+    blob = json.loads(re.search(r'id="review-data">(.*?)</script>', html, re.S).group(1))
+    assert [base64.b64decode(s["svg_base64"]).decode() for s in blob["sheets"]] == \
+        [svg for _, _, svg in sheets]
+    scenes = json.loads(re.search(r'id="review-scenes">(.*?)</script>', html, re.S).group(1))
+    assert base64.b64decode(scenes["s"]) == b"glb-s"
 
 
 def test_verification_is_passed_on_when_the_manifest_has_it():
@@ -113,6 +138,39 @@ def test_page_offline_in_chromium(exported, browser):
         assert page.evaluate("window.__review.instances.includes('element_1')")
         page.locator("#clip-axis").select_option("x")
         assert not canvas_is_blank(page)
+
+
+@pytest.mark.slow
+def test_page_served_by_any_web_server_shows_what_it_carries(exported, browser):
+    """Served over http by a plain file server (no ``tactcad watch`` behind it): the
+    page shows its own scene and sheets, asks for ``/state`` once and, finding no
+    watch, never polls or reads ``/data``."""
+    import functools
+    import http.server
+    import threading
+
+    from tactcad.checks.review_browser import canvas_is_blank, wait_first_frame
+
+    out, _ = exported
+    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(out))
+    handler.log_message = lambda *a: None
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        with browser(offline=False) as page:
+            asked = []
+            page.on("request", lambda r: asked.append(r.url))
+            page.goto(f"http://127.0.0.1:{server.server_address[1]}/{REVIEW_PAGE}")
+            wait_first_frame(page)
+            page.wait_for_timeout(1000)  # five polling periods
+            assert page.errors == [] and not canvas_is_blank(page)
+            assert page.eval_on_selector_all(".sheet img", "is => is.every(i => i.naturalWidth > 0)")
+            assert sum(u.endswith("/state") for u in asked) == 1
+            assert not any(u.endswith("/data") or "/scene/" in u or "/sheet/" in u for u in asked)
+            assert page.locator("#status").inner_text() == ""
+    finally:
+        server.shutdown()
+        server.server_close()
 
 
 @pytest.mark.slow

@@ -32,7 +32,7 @@ def test_server_serves_the_page_and_its_state():
     import threading
 
     state = LiveState()
-    state.publish(b"<html>page</html>", "ab" * 32, "current")
+    state.publish("ab" * 32, "current", None, b"<html>page</html>")
     server = make_server(state, 0)
     threading.Thread(target=server.serve_forever, daemon=True).start()
     try:
@@ -48,7 +48,7 @@ def test_server_serves_the_page_and_its_state():
 
 def test_a_refused_edit_keeps_the_last_page(tmp_path):
     state = LiveState()
-    state.publish(b"good", "cd" * 32, "current")
+    state.publish("cd" * 32, "current", None, b"good")
 
     def load():
         raise DesignError("arms.lengths_mm[1]", -3.0, "2 <= value <= 20 mm")
@@ -102,6 +102,8 @@ def test_watch_session_in_chromium(tmp_path):
             view = page.evaluate("window.__review.view()")
             asked = []  # what the page downloads from here on
             page.on("request", lambda r: asked.append(r.url.split("?")[0]))
+            base = f"http://127.0.0.1:{port}"
+            sheets_before = _sheet_digests(base)
             edit_first_arm(design, 4.6)
             page.wait_for_function(f"window.__review.shownSha256 !== {json.dumps(first)}",
                                    timeout=120000)
@@ -110,8 +112,13 @@ def test_watch_session_in_chromium(tmp_path):
             assert page.locator('#tree label[data-instance="element_4"] input').is_checked()
             # the update read the page's data and the changed scene, not the page again
             page.wait_for_function("window.__review.updates >= 2", timeout=120000)
-            base = f"http://127.0.0.1:{port}"
             assert base + "/data" in asked
+            # only the sheets whose bytes changed were fetched, each once
+            changed = {d for p, d in _sheet_digests(base).items() if sheets_before.get(p) != d}
+            page.wait_for_function("[...document.querySelectorAll('.sheet img')]"
+                                   ".every(i => i.complete && i.naturalWidth > 0)")
+            assert changed and sorted(u for u in asked if "/sheet/" in u) == \
+                sorted(f"{base}/sheet/{d}" for d in changed)
             # the 3D-first update fetched the shown scene; the full one had the same bytes
             assert sum(u.startswith(base + "/scene/") for u in asked) == 1
             assert base + "/" not in asked and base + "/index.html" not in asked
@@ -128,6 +135,11 @@ def test_watch_session_in_chromium(tmp_path):
         _, err = proc.communicate(timeout=60)
     assert proc.returncode == 0 and "Traceback" not in err and "stopped" in err
     assert "arms.lengths_mm[1] = -3" in err
+
+
+def _sheet_digests(base: str) -> dict[str, str]:
+    """{sheet path: sha256} of the page's data as the watch serves it now."""
+    return {s["path"]: s["sha256"] for s in json.loads(_get(base + "/data")[1])["data"]["sheets"]}
 
 
 class _Session:

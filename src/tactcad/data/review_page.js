@@ -1,6 +1,7 @@
 // The review page: three.js shows the export's scenes (GLB), the rest is plain DOM.
-// Served by `tactcad watch`, it polls /state and re-reads the page on a change,
-// keeping the camera, the scene and the hidden parts.
+// Served by `tactcad watch`, it polls /state and on a change reads its data (/data) and only
+// the scenes (/scene/<sha256>) and sheets (/sheet/<sha256>) whose bytes changed, keeping the
+// camera, the scene, the hidden parts and the sheets' zoom.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -10,7 +11,11 @@ const review = window.__review = { ready: false, frames: 0, firstFrameMs: null, 
                                    instances: [], sha256: null, shownSha256: null, updates: 0, refusal: null };
 const hidden = new Set();          // instance names the reviewer hid (kept across updates)
 let highlighted = null;
-let DATA = null, SCENES = {};
+let DATA = null;
+let SCENES = {};  // scene name -> its GLB: base64 text in this file, bytes once fetched under watch
+const LIVE = location.protocol.startsWith('http');  // served by `tactcad watch`
+const fetched = new Map();  // sha256 -> GLB bytes fetched under watch
+let shown = { name: null, digest: null };  // the scene in the 3D view and its GLB's sha256
 let model = null, box = new THREE.Box3();
 
 // --- the 3D view -------------------------------------------------------------------------
@@ -97,9 +102,31 @@ function instances(root) {
   return out;
 }
 
-function showScene(name, keepView) {
-  if (!SCENES[name]) return;
-  new GLTFLoader().parse(base64Bytes(SCENES[name]), '', (gltf) => {
+// a text written only when it changes: each write repaints the page, and with software
+// WebGL every repaint composites the 3D canvas again
+function setText(node, text) { if (node.textContent !== text) node.textContent = text; }
+
+async function sceneBytes(name, digest) {
+  if (SCENES[name]) return typeof SCENES[name] === 'string' ? base64Bytes(SCENES[name]) : SCENES[name];
+  if (!LIVE || !digest) return null;
+  if (!fetched.has(digest)) {
+    const r = await fetch(`/scene/${digest}`, { cache: 'no-store' });
+    if (!r.ok) { setText($('status'), `scene ${name}: ${r.status}`); return null; }
+    fetched.set(digest, await r.arrayBuffer());
+  }
+  return fetched.get(digest);
+}
+
+async function showScene(name, keepView) {
+  const digest = (DATA.scene_sha256 || {})[name] || null;
+  if (digest && name === shown.name && digest === shown.digest) {
+    review.shownSha256 = DATA.manifest.design.sha256;  // the same bytes: the view stays as it is
+    return;
+  }
+  shown = { name, digest };  // shown or on its way: a second call for the same bytes ends above
+  const bytes = await sceneBytes(name, digest);
+  if (!bytes) { shown = { name: null, digest: null }; return; }
+  new GLTFLoader().parse(bytes, '', (gltf) => {
     if (model) world.remove(model);
     model = gltf.scene;
     for (const m of instances(model)) {
@@ -115,7 +142,10 @@ function showScene(name, keepView) {
     buildTree();
     if (keepView) applyClip(); else { fit(); applyClip(); }
     review.ready = true;
-  }, (err) => { $('status').textContent = `scene ${name}: ${err.message || err}`; });
+  }, (err) => {
+    shown = { name: null, digest: null };
+    setText($('status'), `scene ${name}: ${err.message || err}`);
+  });
 }
 
 // --- the part tree: sub-assembly -> instances ------------------------------------------------
@@ -230,27 +260,47 @@ function zoomable(pane, img) {
   pane.addEventListener('dblclick', () => { pane.parentElement.classList.toggle('big'); s = 1; x = y = 0; apply(); });
 }
 
-let shownSheets = null;  // the sheets now on the page: an update that leaves them keeps them
+// a sheet's image: inline in this file, fetched by its sha256 under watch
+const sheetSource = (sheet) => (sheet.svg_base64 ? 'data:image/svg+xml;base64,' + sheet.svg_base64
+                                                  : `/sheet/${sheet.sha256}`);
 
+function sheetCard() {
+  const card = el('div', null, 'sheet');
+  const h = el('h3');
+  h.append(el('span'), el('span', null, 'part'));
+  const pane = el('div', null, 'pane');
+  const img = el('img');
+  pane.append(img);
+  zoomable(pane, img);
+  card.append(h, pane);
+  return card;
+}
+
+function fillCard(card, sheet) {  // the image is set again only when its bytes changed
+  const [title, path] = card.querySelectorAll('h3 span');
+  setText(title, sheet.title);
+  setText(path, sheet.path);
+  card.dataset.sheet = sheet.path;
+  const img = card.querySelector('img');
+  img.alt = sheet.title;
+  if (card.dataset.sha256 !== sheet.sha256) {
+    card.dataset.sha256 = sheet.sha256;
+    img.src = sheetSource(sheet);
+  }
+  return card;
+}
+
+// a card is kept, with its zoom, for a sheet of the same bytes (else of the same path), so an
+// update fetches only the sheets that changed
 function showSheets() {
-  const same = DATA.sheets.map((sheet) => sheet.path + ' ' + sheet.svg_base64).join('\n');
-  if (same === shownSheets) return;
-  shownSheets = same;
   const host = $('sheets');
-  host.replaceChildren();
-  for (const sheet of DATA.sheets) {
-    const card = el('div', null, 'sheet');
-    card.dataset.sheet = sheet.path;
-    const h = el('h3');
-    h.append(el('span', sheet.title), el('span', sheet.path, 'part'));
-    const pane = el('div', null, 'pane');
-    const img = el('img');
-    img.alt = sheet.title;
-    img.src = 'data:image/svg+xml;base64,' + sheet.svg_base64;
-    pane.append(img);
-    zoomable(pane, img);
-    card.append(h, pane);
-    host.append(card);
+  const spare = [...host.children];
+  const take = (keep) => { const i = spare.findIndex(keep); return i < 0 ? null : spare.splice(i, 1)[0]; };
+  const cards = DATA.sheets.map((sheet) => fillCard(
+    take((c) => c.dataset.sha256 === sheet.sha256) || take((c) => c.dataset.sheet === sheet.path)
+    || sheetCard(), sheet));
+  if (cards.length !== host.children.length || cards.some((c, i) => host.children[i] !== c)) {
+    host.replaceChildren(...cards);
   }
 }
 
@@ -340,41 +390,54 @@ function showHeader() {
 }
 $('scene-select').addEventListener('change', (e) => showScene(e.target.value, false));
 
-function load(doc, keepView) {
-  DATA = JSON.parse(doc.getElementById('review-data').textContent);
-  SCENES = JSON.parse(doc.getElementById('review-scenes').textContent);
+function load() {  // what this file carries
+  DATA = JSON.parse($('review-data').textContent);
+  SCENES = JSON.parse($('review-scenes').textContent);
   showHeader();
-  showScene($('scene-select').value || DATA.scenes[0], keepView);
-  const rest = () => { showSheets(); showTables(); };
-  // an update shows the 3D view first, then (after a frame) the drawings and tables
-  if (keepView) requestAnimationFrame(() => setTimeout(rest, 0)); else rest();
+  showScene(DATA.scenes[0], false);
+  showSheets();
+  showTables();
 }
 
 // --- live reload under `tactcad watch` ---------------------------------------------------
+function loadLive(live) {
+  DATA = live.data;
+  if (live.checks) window.TACTCAD_CHECKS = live.checks;
+  SCENES = {};  // fetched by sha256 when shown
+  const current = new Set(Object.values(DATA.scene_sha256));
+  for (const digest of fetched.keys()) if (!current.has(digest)) fetched.delete(digest);
+  showHeader();
+  showScene($('scene-select').value || DATA.scenes[0], true);
+  // the 3D view first, then (after a frame) the drawings and tables
+  requestAnimationFrame(() => setTimeout(() => { showSheets(); showTables(); }, 0));
+}
+
+// seq: the state this page shows; null for the page as served, which may be older than the
+// watch's state (the 3D view of an export still running), so it reads /data once at once
 async function poll(seq) {
   try {
     const state = await (await fetch('/state', { cache: 'no-store' })).json();
-    const refusal = $('refusal');
     review.refusal = state.refusal;
-    refusal.textContent = state.refusal ? `The last edit was refused; the page shows the last good export.\n${state.refusal}` : '';
-    refusal.classList.toggle('shown', !!state.refusal);
-    $('status').textContent = state.status || '';
+    setText($('refusal'), state.refusal ? `The last edit was refused; the page shows the last good export.\n${state.refusal}` : '');
+    $('refusal').classList.toggle('shown', !!state.refusal);
+    setText($('status'), state.status || '');
     if (state.seq !== seq && state.sha256) {
-      const text = await (await fetch('/', { cache: 'no-store' })).text();
-      const doc = new DOMParser().parseFromString(text, 'text/html');
-      const checks = doc.querySelector('script[data-checks]');
-      if (checks) window.TACTCAD_CHECKS = JSON.parse(checks.textContent);
-      load(doc, true);
-      review.updates += 1;
-      seq = state.seq;
+      const live = await (await fetch('/data', { cache: 'no-store' })).json();
+      if (live.data) {
+        loadLive(live);
+        if (seq !== null) review.updates += 1;
+      }
+      seq = live.seq;
     }
   } catch (e) {
-    $('status').textContent = 'watch: not reachable';
+    setText($('status'), 'watch: not reachable');
   }
   setTimeout(() => poll(seq), 200);
 }
 
-load(document, false);
-if (location.protocol.startsWith('http')) {
-  fetch('/state', { cache: 'no-store' }).then((r) => r.json()).then((s) => poll(s.seq)).catch(() => {});
+load();
+// served by `tactcad watch` (its /state answers), not by any web server: follow its updates
+if (LIVE) {
+  fetch('/state', { cache: 'no-store' }).then((r) => (r.ok ? r.json() : null))
+    .then((state) => { if (state && 'seq' in state) poll(null); }).catch(() => {});
 }

@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Sequence
 
@@ -172,23 +173,36 @@ def _cut_area(profile: Profile):
     return poly
 
 
+@lru_cache(maxsize=64)
+def _mark_area(profile: Profile):
+    """Where a mark may go: the part's cut area shrunk by :data:`MARK_CLEARANCE_MM`,
+    prepared for many containment tests (made once per profile and process)."""
+    import shapely
+
+    area = _cut_area(profile).buffer(-MARK_CLEARANCE_MM)
+    shapely.prepare(area)
+    return area
+
+
 def place_mark(profile: Profile, text: str, step_mm: float = 0.25) -> Mark:
     """A mark inside the part, clear of every cut edge by :data:`MARK_CLEARANCE_MM`:
     the largest height of :data:`MARK_HEIGHTS_MM` that fits, lowest then
-    leftmost position on a grid. When nothing fits, the mark goes just below
-    the part at the smallest height."""
-    import shapely.geometry as sg
+    leftmost position on a grid (one row of the grid tested at once). When
+    nothing fits, the mark goes just below the part at the smallest height."""
+    import numpy as np
+    import shapely
 
-    area = _cut_area(profile).buffer(-MARK_CLEARANCE_MM)
+    area = _mark_area(profile)
     x0, y0, x1, y1 = profile.bbox_mm
     nx, ny = int((x1 - x0) / step_mm), int((y1 - y0) / step_mm)
+    xs = x0 + np.arange(nx + 1) * step_mm
     for h in MARK_HEIGHTS_MM:
         w = MARK_CHAR_WIDTH * h * len(text)
         for j in range(ny + 1):
-            for i in range(nx + 1):
-                x, y = x0 + i * step_mm, y0 + j * step_mm
-                if area.contains(sg.box(x, y, x + w, y + h)):
-                    return Mark(text, (round(x, 6), round(y, 6)), h)
+            y = y0 + j * step_mm
+            fits = shapely.contains(area, shapely.box(xs, y, xs + w, y + h))
+            if fits.any():
+                return Mark(text, (round(float(xs[fits.argmax()]), 6), round(y, 6)), h)
     h = MARK_HEIGHTS_MM[-1]
     return Mark(text, (x0, y0 - MARK_CLEARANCE_MM - h), h)
 

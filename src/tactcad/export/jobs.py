@@ -15,6 +15,8 @@ shows the scenes, the sheets and the BOM.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from tactcad.assembly.inventory import assembly_review, fabricated_parts
 from tactcad.assembly.rigs import shown_instances
 from tactcad.drawings.compose import drawing_inputs
@@ -280,32 +282,43 @@ def review_sources(run: Run) -> tuple[list[str], list[tuple[str, str]]]:
     return names, sheets + [(ASSEMBLY_DRAWING, "array (assembly drawing)")]
 
 
+def review_contents_of(run: Run, *folders: Path):
+    """The review page's contents (:class:`~tactcad.export.review_page.ReviewContents`)
+    from the scenes, sheets and BOM in ``folders`` (each file from the first
+    folder that has it: a run's staging folder, an export)."""
+    from tactcad.drawings.compose import revision_and_date
+    from tactcad.export.manifest import design_facts
+    from tactcad.export.review_assets import three_version
+    from tactcad.export.review_page import review_contents
+    from tactcad.mechanics.strength import strength_summary
+
+    def found(rel: str) -> Path | None:
+        return next((f / rel for f in folders if (f / rel).is_file()), None)
+
+    names, sheet_list = review_sources(run)
+    glbs = {n: found(scene_glb_name(n)).read_bytes() for n in names if found(scene_glb_name(n))}
+    sheets = [(p, t, found(p).read_text(encoding="utf-8")) for p, t in sheet_list if found(p)]
+    bom = found("bom.csv")
+    rev, date = revision_and_date(run.plan)
+    return review_contents(design_facts(run.plan), sheets, glbs,
+                           bom.read_text(encoding="utf-8-sig") if bom else "",
+                           strength_summary(run.plan), rev, date, three_version())
+
+
 def review_page_job(run: Run, before: list[Job]) -> Job:
     """``review/index.html`` from the files of the jobs before it (its key holds theirs)."""
     from tactcad.export.review_assets import assets_identity
 
     def make(run: Run) -> list[dict]:
-        from tactcad.drawings.compose import revision_and_date
-        from tactcad.export.review_assets import import_map, three_version
-        from tactcad.export.review_page import REVIEW_PAGE, page_data, write_review_page
-        from tactcad.export.manifest import manifest
-        from tactcad.mechanics.strength import strength_summary
+        from tactcad.export.review_assets import import_map
+        from tactcad.export.review_page import REVIEW_PAGE, write_review_page
 
-        names, sheet_list = review_sources(run)
-        glbs = {n: (run.staging / scene_glb_name(n)).read_bytes() for n in names
-                if (run.staging / scene_glb_name(n)).is_file()}
-        sheets = [(p, t, (run.staging / p).read_text(encoding="utf-8"))
-                  for p, t in sheet_list if (run.staging / p).is_file()]
-        bom = run.staging / "bom.csv"
-        rev, date = revision_and_date(run.plan)
-        data = page_data(manifest(run.plan, run.staging, []), sheets, list(glbs),
-                         bom.read_text(encoding="utf-8-sig") if bom.is_file() else "",
-                         strength_summary(run.plan), rev, date, three_version())
-        size = write_review_page(run.staging / REVIEW_PAGE, data, glbs, import_map())
-        run.log(f"  wrote {REVIEW_PAGE} ({size / 1e6:.1f} MB: {len(glbs)} scenes, "
-                f"{len(sheets)} sheets)")
+        contents = review_contents_of(run, run.staging)
+        size = write_review_page(run.staging / REVIEW_PAGE, contents, import_map())
+        run.log(f"  wrote {REVIEW_PAGE} ({size / 1e6:.1f} MB: {len(contents.scenes)} scenes, "
+                f"{len(contents.data['sheets'])} sheets)")
         return [{"path": REVIEW_PAGE, "part": "review", "kind": "review-page",
-                 "scenes": len(glbs), "sheets": len(sheets)}]
+                 "scenes": len(contents.scenes), "sheets": len(contents.data["sheets"])}]
     return Job("review:page", content_key("review-page", [j.key for j in before],
                                           assets_identity()),
                make, after=tuple(j.name for j in before))

@@ -7,21 +7,20 @@ Each change is handled in two steps so the 3D view comes first:
    (terminal and page) and the last good export stays;
 2. the scenes' GLB files alone are made (every part the edit did not touch
    comes from this process's solids, every finished job from the store) and
-   the page is served with them, next to the last export's drawings;
+   served with the last export's drawings and the new design's facts;
 3. the full export follows (drawings, PDF, BOM, FreeCAD files, the page),
    published atomically as ``tactcad export`` does.
 
-The page polls ``/state`` and, when its sequence number moves, reads the
-page's data (``/data``) and the scenes whose bytes changed (``/scene/<sha256>``),
-not the page, keeping the camera, the scene and the hidden parts
-(``review_live.js``, served in place of the export's own live reload: see
-:mod:`tactcad.export.live_page`).
+``GET /`` is the exported page as it is. Served, the page polls ``/state``
+and, when its sequence number moves, reads its data (``/data``), the scenes
+(``/scene/<sha256>``) and sheets (``/sheet/<sha256>``) whose bytes changed,
+not the page, keeping the camera, the scene, the hidden parts and the
+sheets' zoom (``review_page.js``; :mod:`tactcad.export.live_page`).
 """
 
 from __future__ import annotations
 
 import json
-import shutil
 import tempfile
 import threading
 import time
@@ -30,12 +29,11 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 from typing import Any, Callable, Iterable
 
-from tactcad.catalogue.files import scene_glb_name
 from tactcad.design.project import Project
 from tactcad.errors import TactcadError
 from tactcad.export.job import Run
-from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE
-from tactcad.export.live_page import LiveView, checks_json, data_body, live_view
+from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE, ReviewContents
+from tactcad.export.live_page import LiveView, checks_json, live_view
 from tactcad.export.live_parts import LiveParts
 from tactcad.export.worker import SessionWorker
 from tactcad.store import Store
@@ -45,30 +43,36 @@ Log = Callable[[str], None]
 
 @dataclass
 class LiveState:
-    """What the server shows: the page, its sequence number, the last refusal;
-    beside the page, its data and scenes on their own (:mod:`live_page`)."""
+    """What the server shows: the exported page, the sequence number, the last
+    refusal; beside the page, its data, scenes and sheets on their own
+    (:mod:`live_page`)."""
 
-    page: bytes = b""
+    page: bytes = b""  # GET /: the last exported review page, as it is
     seq: int = 0
     sha256: str = ""
     refusal: str | None = None
     status: str = "starting"
-    view: LiveView = field(default_factory=lambda: LiveView(page=b"", data=None))
-    data: bytes = b"null"
-    #: the GLBs of this page and the one before (a page may ask for those it was just told of)
-    glbs: dict[str, bytes] = field(default_factory=dict)
+    #: this state's data, and the scenes and sheets of this state and the one
+    #: before (a page may ask for those it was just told of)
+    view: LiveView = field(default_factory=LiveView)
+    kept: LiveView = field(default_factory=LiveView)
     checks_js: bytes | None = None
     lock: threading.Lock = field(default_factory=threading.Lock)
 
-    def publish(self, page: bytes, sha256: str, status: str, checks_js: str | None = None) -> None:
-        """Show ``page`` (and ``review/checks.js``'s text, when the export has one)."""
+    def publish(self, sha256: str, status: str, contents: ReviewContents | None = None,
+                page: bytes | None = None, checks_js: str | None = None) -> None:
+        """Show ``contents`` of design ``sha256`` (and ``review/checks.js``'s text,
+        when the export has one); ``page``: a new exported page for ``GET /``
+        (None: the last one stays)."""
         with self.lock:
             seq = self.seq + 1
-        view = live_view(page, seq)  # outside the lock: the server keeps serving the last one
-        data = data_body(view, seq, sha256, checks_json(checks_js))
+        view = live_view(contents, seq, sha256, checks_json(checks_js))  # outside the lock
         with self.lock:
-            self.glbs = {**self.view.glbs, **view.glbs}
-            self.page, self.view, self.data, self.sha256 = page, view, data, sha256
+            self.kept = LiveView(view.data, {**self.view.glbs, **view.glbs},
+                                 {**self.view.sheets, **view.sheets})
+            self.view, self.sha256 = view, sha256
+            if page is not None:
+                self.page = page
             self.checks_js = checks_js.encode("utf-8") if checks_js else None
             self.status, self.refusal, self.seq = status, None, seq
 
@@ -86,26 +90,28 @@ class LiveState:
 
     def response(self, path: str) -> tuple[bytes, str] | None:
         """The body and content type of ``GET path``; None: not found."""
-        scene = path.removeprefix("/scene/")
+        folder, _, digest = path.rpartition("/")
         with self.lock:
             if path in ("/", "/index.html"):
-                return self.view.page, "text/html; charset=utf-8"
+                return self.page, "text/html; charset=utf-8"
             if path == "/state":
                 return self._state_json(), "application/json"
             if path == "/data":
-                return self.data, "application/json"
+                return self.view.data, "application/json"
             if path == "/checks.js" and self.checks_js is not None:
                 return self.checks_js, "text/javascript; charset=utf-8"
-            if scene != path and scene in self.glbs:
-                return self.glbs[scene], "model/gltf-binary"
+            if folder == "/scene" and digest in self.kept.glbs:
+                return self.kept.glbs[digest], "model/gltf-binary"
+            if folder == "/sheet" and digest in self.kept.sheets:
+                return self.kept.sheets[digest], "image/svg+xml"
         return None
 
 
 def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
     """An HTTP server on 127.0.0.1:``port`` (0: any free port): ``GET /`` the
-    page, ``GET /state`` its JSON state, ``GET /data`` the page's data and
-    scene digests, ``GET /scene/<sha256>`` a scene's GLB, ``GET /checks.js``
-    the check results (:meth:`LiveState.response`).
+    page, ``GET /state`` its JSON state, ``GET /data`` the page's data,
+    ``GET /scene/<sha256>`` a scene's GLB, ``GET /sheet/<sha256>`` a drawing
+    sheet's SVG, ``GET /checks.js`` the check results (:meth:`LiveState.response`).
 
     Raises:
         OSError: the port is taken or not allowed.
@@ -160,17 +166,18 @@ class Loop:
         plan = project.plan
         parts = LiveParts(plan, self.solids, self.meshes)
         if (self.out / REVIEW_PAGE).is_file():
-            page = self.preview(project, parts)
-            self.state.publish(page, plan.design_hash, "3D updated; drawings follow",
-                               self._checks_js())
+            self.state.publish(plan.design_hash, "3D updated; drawings follow",
+                               self.preview(project, parts), checks_js=self._checks_js())
             self.log(f"3D view updated in {time.perf_counter() - t0:.2f} s")
+        from tactcad.export.jobs import review_contents_of
         from tactcad.export.run import export
 
         result = export(project, self.out, log=lambda s: None, store=self.store, parts=parts,
                         session=self.worker)
         self.project = project
-        self.state.publish((self.out / REVIEW_PAGE).read_bytes(), plan.design_hash, "current",
-                           self._checks_js())
+        self.state.publish(plan.design_hash, "current",
+                           review_contents_of(Run(project, self.out), self.out),
+                           (self.out / REVIEW_PAGE).read_bytes(), self._checks_js())
         self.log(f"export current in {time.perf_counter() - t0:.2f} s ({result.jobs_run} jobs "
                  f"run, {result.jobs_reused} reused; {self._made_by(result.worker_jobs)})")
         return True
@@ -192,9 +199,9 @@ class Loop:
         if self.worker is not None:
             self.worker.close()
 
-    def preview(self, project: Project, parts: LiveParts) -> bytes:
-        """The page with the new scenes and the last export's drawings and BOM."""
-        from tactcad.export.jobs import review_page_job, review_sources, scene_jobs
+    def preview(self, project: Project, parts: LiveParts) -> ReviewContents:
+        """What the page shows with the new scenes and the last export's drawings and BOM."""
+        from tactcad.export.jobs import review_contents_of, scene_jobs
         from tactcad.export.run import run_jobs
 
         with tempfile.TemporaryDirectory(prefix="tactcad-watch-") as tmp:
@@ -203,13 +210,7 @@ class Loop:
             run.parts = parts
             jobs = [j for j in scene_jobs(run) if j.name.startswith("scene:")]
             run_jobs(run, jobs, self.store)
-            _, sheets = review_sources(run)
-            for rel in [p for p, _ in sheets] + ["bom.csv"]:
-                if (self.out / rel).is_file():
-                    (staging / rel).parent.mkdir(parents=True, exist_ok=True)
-                    shutil.copyfile(self.out / rel, staging / rel)
-            review_page_job(run, []).make(run)
-            return (staging / REVIEW_PAGE).read_bytes()
+            return review_contents_of(run, staging, self.out)
 
 
 def changes(files: Iterable[Path], poll: bool, stop: threading.Event | None = None):

@@ -16,14 +16,16 @@ from __future__ import annotations
 
 import base64
 import csv
+import hashlib
 import html
 import io
 import json
 import re
+from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Iterable, Mapping, Sequence
 
 from tactcad.atomic import write_bytes_atomic
 
@@ -51,30 +53,53 @@ def bom_table(csv_text: str) -> dict:
     return {"columns": columns, "rows": rows}
 
 
-def page_data(facts: dict, sheets: Sequence[tuple[str, str, str]], scenes: Sequence[str],
-              bom_csv: str, elements: list[dict], revision: str, date: str,
-              three_version: str) -> dict:
-    """What the page shows, JSON-ready.
+@dataclass(frozen=True)
+class ReviewContents:
+    """What the review page shows, before it becomes one file.
+
+    ``data`` is JSON-ready: the manifest's facts, revision, date, scene names,
+    BOM, elements; each sheet as ``{"path", "title", "sha256"}`` and each
+    scene's GLB named by its sha256 in ``scene_sha256``. The bytes are beside
+    it: ``scenes`` (name -> GLB) and ``sheets`` (sha256 -> SVG, UTF-8).
+    :func:`page_html` puts them all into the page; ``tactcad watch`` serves
+    them on their own, so a browser fetches only what changed.
+    """
+
+    data: dict
+    scenes: dict[str, bytes]
+    sheets: dict[str, bytes]
+
+
+def _sha256(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
+                    scenes: Mapping[str, bytes], bom_csv: str, elements: list[dict],
+                    revision: str, date: str, three_version: str) -> ReviewContents:
+    """What the page shows (see :class:`ReviewContents`).
 
     Args:
         facts: the manifest's facts (design, versions, parts, strength ...;
-            any ``verification`` key is shown as the verification matrix).
+            any ``files`` key is left out; a ``verification`` key is shown as
+            the verification matrix, else one is made from ``requirements``).
         sheets: (export path, title, SVG text) of every drawing sheet, in order.
-        scenes: the scene names, in the order of the page's scene list.
+        scenes: GLB bytes by scene name, in the order of the page's scene list.
         elements: :func:`tactcad.mechanics.strength.strength_summary` records.
     """
     manifest = {k: v for k, v in facts.items() if k != "files"}
     if "verification" not in manifest and manifest.get("requirements"):
         manifest["verification"] = verification_view(manifest["requirements"])
-    return {
+    svgs = {p: svg.encode("utf-8") for p, _, svg in sheets}
+    data = {
         "manifest": manifest,
         "revision": revision, "date": date, "three_version": three_version,
         "scenes": list(scenes),
-        "sheets": [{"path": p, "title": t,
-                    "svg_base64": base64.b64encode(svg.encode("utf-8")).decode("ascii")}
-                   for p, t, svg in sheets],
+        "scene_sha256": {n: _sha256(glb) for n, glb in scenes.items()},
+        "sheets": [{"path": p, "title": t, "sha256": _sha256(svgs[p])} for p, t, _ in sheets],
         "bom": bom_table(bom_csv), "elements": elements,
     }
+    return ReviewContents(data, dict(scenes), {_sha256(b): b for b in svgs.values()})
 
 
 def verification_view(requirements: dict) -> dict:
@@ -89,11 +114,15 @@ def verification_view(requirements: dict) -> dict:
             "requirements": requirements.get("values", {})}
 
 
-def page_html(data: dict, scene_glbs: dict[str, bytes], import_map: str) -> str:
-    """The page's text: the template with the data, the scenes and the import map in it."""
+def page_html(contents: ReviewContents, import_map: str) -> str:
+    """The page's text: the template with the data (each sheet's SVG inline,
+    base64), the scenes (base64) and the import map in it."""
     page, script = _template()
+    data = {**contents.data, "sheets": [
+        {**sheet, "svg_base64": base64.b64encode(contents.sheets[sheet["sha256"]]).decode("ascii")}
+        for sheet in contents.data["sheets"]]}
     sha = data["manifest"]["design"]["sha256"]
-    scenes = {n: base64.b64encode(b).decode("ascii") for n, b in scene_glbs.items()}
+    scenes = {n: base64.b64encode(b).decode("ascii") for n, b in contents.scenes.items()}
     values = {"SHA256": html.escape(sha),
               "TITLE": html.escape(f"{data['manifest']['design']['name']}: review"),
               "IMPORTMAP": import_map.replace("</", "<\\/"),
@@ -102,13 +131,13 @@ def page_html(data: dict, scene_glbs: dict[str, bytes], import_map: str) -> str:
     return re.sub(r"@@([A-Z0-9]+)@@", lambda m: values[m.group(1)], page)
 
 
-def write_review_page(path: Path, data: dict, scene_glbs: dict[str, bytes], import_map: str) -> int:
+def write_review_page(path: Path, contents: ReviewContents, import_map: str) -> int:
     """Write the page atomically; its size in bytes.
 
     Raises:
         OSError: the file cannot be written.
     """
-    body = page_html(data, scene_glbs, import_map).encode("utf-8")
+    body = page_html(contents, import_map).encode("utf-8")
     write_bytes_atomic(path, body)
     return len(body)
 
