@@ -259,8 +259,8 @@ def image_job(run: Run) -> Job:
             "n", render_assembly_png(meshes, inst, colors, tmp, title)))
         run.log(f"  wrote {ARRAY_PNG} ({box['n']} triangles)")
         return [{"path": ARRAY_PNG, "part": "array", "kind": "image-png", "triangles": box["n"]}]
-    return Job("image:array", content_key("array-png", RENDER_VERSION, list(specs.values()), inst, title), make,
-               tuple(specs.values()))
+    return Job("image:array", content_key("array-png", RENDER_VERSION, list(specs.values()), inst,
+                                          title), make, tuple(specs.values()))
 
 
 def bom_job(run: Run, before: list[Job]) -> Job:
