@@ -7,6 +7,8 @@ from __future__ import annotations
 import random
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from tactcad.drawings.views import (CAMERAS, _edge_points, _hlr, _poly_hlr, chain_segments,
                                     has_freeform_edges, project)
@@ -87,3 +89,26 @@ def test_free_form_solid_view_is_the_same_every_time():
     again = project(solid, "left")
     assert (first.visible, first.hidden, first.bbox) == (again.visible, again.hidden, again.bbox)
     assert first.visible and first.hidden
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.tuples(st.floats(-100, 100), st.floats(-100, 100)), min_size=1, max_size=8),
+       st.floats(0.05, 50))
+def test_resampled_array_is_the_resampled_polyline_to_the_last_bit(poly, step):
+    """The hidden-line filter's array resampling gives every point exactly as
+    the polyline resampling does, so a view keeps its bytes."""
+    from tactcad.drawings.views import _resample, _resampled
+
+    got = _resampled(poly, step)
+    assert got.shape == (len(_resample(poly, step)), 2)
+    assert got.tolist() == [list(p) for p in _resample(poly, step)]
+
+
+def test_hidden_polylines_under_visible_ones_are_dropped_and_the_others_kept():
+    from tactcad.drawings.views import _uncovered
+
+    visible = [[(0.0, 0.0), (10.0, 0.0)]]
+    under = [(1.0, 0.0), (9.0, 0.0)]
+    beside = [(1.0, 0.0), (9.0, 0.5)]  # leaves the visible line by more than the spacing
+    assert _uncovered([under, beside, [(2.0, 0.05)]], visible, 0.1) == [beside]
+    assert _uncovered([under], [], 0.1) == [under] and _uncovered([], visible, 0.1) == []

@@ -114,13 +114,20 @@ def _edge_points(edge, step_mm: float) -> Polyline:
     return pts
 
 
-def _covered(hidden: Polyline, tree, spacing: float) -> bool:
-    """True if every point of ``hidden`` lies within ``spacing`` of the
-    visible points in ``tree`` (sampled ``spacing`` apart): a hidden edge drawn
-    under a visible one."""
-    pts = np.array(_resample(hidden, spacing))
-    dist, _ = tree.query(pts, k=1)
-    return bool(dist.max() <= spacing)
+def _uncovered(hidden: list[Polyline], visible: list[Polyline], spacing: float) -> list[Polyline]:
+    """The polylines of ``hidden`` not drawn under visible ones: those with some
+    point (resampled ``spacing`` apart) farther than ``spacing`` from every
+    point of ``visible`` (resampled alike). One nearest-point query for all."""
+    from scipy.spatial import cKDTree
+
+    if not hidden or not visible:
+        return hidden
+    tree = cKDTree(np.concatenate([_resampled(p, spacing) for p in visible]))
+    pts = [_resampled(h, spacing) for h in hidden]
+    dist, _ = tree.query(np.concatenate(pts), k=1)
+    starts = np.cumsum([0] + [len(q) for q in pts[:-1]])
+    far = np.maximum.reduceat(dist, starts) > spacing
+    return [h for h, keep in zip(hidden, far) if keep]
 
 
 def _canonical(poly: Polyline) -> tuple:
@@ -314,16 +321,12 @@ def project(solid, view: str, step_mm: float | None = None,
     Raises:
         KeyError: unknown view name.
     """
-    from scipy.spatial import cKDTree
-
     direction, up = (cameras or CAMERAS)[view]
     if step_mm is None:
         bb = solid.bounding_box()
         step_mm = max(bb.diagonal / 2000.0, 1e-4)
     visible, hidden = _projected(solid, direction, up, step_mm)
-    if visible and hidden:
-        tree = cKDTree(np.array([q for p in visible for q in _resample(p, step_mm)]))
-        hidden = [h for h in hidden if not _covered(h, tree, step_mm)]
+    hidden = _uncovered(hidden, visible, step_mm)
     visible = sorted({_canonical(p): p for p in visible}.values(), key=_canonical)
     hidden = sorted({_canonical(p): p for p in hidden}.values(), key=_canonical)
     allp = [q for p in visible + hidden for q in p]
@@ -331,6 +334,19 @@ def project(solid, view: str, step_mm: float | None = None,
     ys = [q[1] for q in allp]
     bbox = (min(xs), min(ys), max(xs), max(ys))
     return View(view, [list(p) for p in visible], [list(p) for p in hidden], bbox)
+
+
+def _resampled(poly: Polyline, step: float) -> np.ndarray:
+    """``poly``'s points with each segment cut into equal pieces at most
+    ``step`` long, as an (n, 2) array; every point as :func:`_resample` computes
+    it, to the last bit (the same operations in the same order)."""
+    p = np.asarray(poly, dtype=float)
+    d = p[1:] - p[:-1]
+    n = np.array([max(1, int(math.ceil(math.hypot(dx, dy) / step))) for dx, dy in d.tolist()],
+                 dtype=np.int64)
+    seg = np.repeat(np.arange(len(n)), n)
+    k = np.arange(1, len(seg) + 1) - np.repeat(np.cumsum(n) - n, n)
+    return np.concatenate([p[:1], p[seg] + d[seg] * k[:, None] / n[seg][:, None]])
 
 
 def _resample(poly: Polyline, step: float) -> Polyline:
