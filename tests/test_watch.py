@@ -46,6 +46,33 @@ def test_server_serves_the_page_and_its_state():
         server.server_close()
 
 
+def test_a_client_leaving_mid_download_prints_no_traceback(capfd):
+    """A reload while the 6 MB page downloads resets the connection: no traceback
+    in the terminal; the server goes on answering."""
+    import socket
+    import struct
+    import threading
+
+    state = LiveState()
+    state.publish("ab" * 32, "current", None, b"x" * 8_000_000)
+    server = make_server(state, 0)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        port = server.server_address[1]
+        for _ in range(3):
+            s = socket.create_connection(("127.0.0.1", port))
+            s.sendall(b"GET / HTTP/1.1\r\nHost: x\r\n\r\n")
+            s.recv(100)
+            s.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))
+            s.close()  # a reset, the page half read
+        assert _get(f"http://127.0.0.1:{port}/state")[0] == 200
+    finally:
+        server.shutdown()
+        server.server_close()
+    err = capfd.readouterr().err
+    assert "Traceback" not in err and "ConnectionResetError" not in err
+
+
 def test_a_refused_edit_keeps_the_last_page(tmp_path):
     state = LiveState()
     state.publish("cd" * 32, "current", None, b"good")

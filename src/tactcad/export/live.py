@@ -21,6 +21,7 @@ sheets' zoom (``review_page.js``; :mod:`tactcad.export.live_page`).
 from __future__ import annotations
 
 import json
+import sys
 import tempfile
 import threading
 import time
@@ -133,9 +134,18 @@ def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
         def log_message(self, *args: Any) -> None:  # quiet: the terminal shows the exports
             pass
 
-    server = ThreadingHTTPServer(("127.0.0.1", port), Handler)
+    server = _QuietServer(("127.0.0.1", port), Handler)
     server.daemon_threads = True
     return server
+
+
+class _QuietServer(ThreadingHTTPServer):
+    """A browser that reloads or closes the page while it downloads (6 MB) resets the
+    connection: that is no error for the terminal; any other is printed as before."""
+
+    def handle_error(self, request, client_address) -> None:
+        if not isinstance(sys.exc_info()[1], ConnectionError):
+            super().handle_error(request, client_address)
 
 
 @dataclass
