@@ -303,3 +303,78 @@ def test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly(tmp_path,
     finally:
         if s2.proc.poll() is None:
             s2.proc.kill()
+
+
+@pytest.mark.slow
+def test_served_scenes_follow_the_last_choice_and_free_the_ones_left(exported, project):
+    """Served by the watch's server: a big scene chosen and at once a small one (the big
+    one's bytes arriving last) shows the small one; scenes shown in turn do not pile up
+    on the GPU; a highlighted part stays highlighted in a scene parsed again."""
+    import threading
+    import time
+
+    from tactcad.checks.review_browser import BrowserMissing, browser_page, chromium_path
+    from tactcad.export.job import Run
+    from tactcad.export.jobs import review_contents_of
+    from tactcad.export.review_page import REVIEW_PAGE, ReviewContents
+
+    try:
+        chromium_path()
+    except BrowserMissing as exc:
+        pytest.skip(str(exc))
+    out, _ = exported
+    contents = review_contents_of(Run(project, out), out)
+    state = LiveState()
+    state.publish(project.plan.design_hash, "current", contents, (out / REVIEW_PAGE).read_bytes())
+    names = contents.data["scenes"]
+    big = max(names, key=lambda n: len(contents.scenes[n]))
+    small = min(names, key=lambda n: len(contents.scenes[n]))
+    slow, answer = contents.data["scene_sha256"][big], state.response
+
+    def late(path):  # the big scene's bytes come a second late
+        if path.endswith(slow):
+            time.sleep(1.0)
+        return answer(path)
+
+    state.response = late
+    server = make_server(state, 0)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+
+    def choose(*scenes):
+        page.evaluate("""(names) => { const s = document.querySelector('#scene-select');
+            for (const n of names) { s.value = n; s.dispatchEvent(new Event('change')); } }""",
+                      list(scenes))
+        page.wait_for_timeout(2500)
+
+    try:
+        with browser_page(offline=False) as page:
+            page.goto(f"http://127.0.0.1:{server.server_address[1]}/")
+            page.wait_for_function("window.__review && window.__review.ready")
+            page.wait_for_timeout(500)
+            page.locator("#tree .instance").first.click()  # highlight one instance
+            lit = page.evaluate("window.__review.lit()")
+            first = names[0]
+            choose(big, small)
+            assert page.evaluate("[window.__review.scene, document.querySelector('#scene-select').value]") \
+                == [small, small]
+            choose(first)
+            held = page.evaluate("window.__review.gpu().geometries")
+            for _ in range(2):
+                choose(small)
+                choose(first)
+            assert page.evaluate("window.__review.gpu().geometries") == held
+            assert len(lit) == 1 and page.evaluate("window.__review.lit()") == lit
+            # an update without the scene shown: the first one, fitted as when chosen
+            fitted = page.evaluate("window.__review.view()")
+            choose(big)
+            kept = {n: b for n, b in contents.scenes.items() if n != big}
+            state.publish(project.plan.design_hash, "current", ReviewContents(
+                {**contents.data, "scenes": list(kept)}, kept, contents.sheets))
+            page.wait_for_function("window.__review.scene !== %s" % json.dumps(big))
+            page.wait_for_timeout(500)
+            assert page.evaluate("window.__review.scene") == first
+            assert sum(page.evaluate("window.__review.view()"), []) == pytest.approx(sum(fitted, []))
+            assert page.errors == []
+    finally:
+        server.shutdown()
+        server.server_close()

@@ -10,12 +10,14 @@ const $ = (id) => document.getElementById(id);
 const review = window.__review = { ready: false, frames: 0, firstFrameMs: null, scene: null,
                                    instances: [], sha256: null, shownSha256: null, updates: 0, refusal: null };
 const hidden = new Set();          // instance names the reviewer hid (kept across updates)
-let highlighted = null;
+let highlighted = null;  // the instance name highlighted (kept across updates)
+const HIGHLIGHT = 0x806000;  // its emissive colour
 let DATA = null;
 let SCENES = {};  // scene name -> its GLB: base64 text in this file, bytes once fetched under watch
 const LIVE = location.protocol.startsWith('http');  // served by `tactcad watch`
 const fetched = new Map();  // sha256 -> GLB bytes fetched under watch
 let shown = { name: null, digest: null };  // the scene in the 3D view and its GLB's sha256
+let sceneCalls = 0;  // showScene's calls: only the last one may put its scene in the view
 let model = null, box = new THREE.Box3();
 
 // --- the 3D view -------------------------------------------------------------------------
@@ -37,6 +39,10 @@ const clip = new THREE.Plane(new THREE.Vector3(1, 0, 0), 0);
 
 // the camera, for tests and the watch benchmark: [position, target], metres
 review.view = () => [camera.position.toArray(), controls.target.toArray()];
+// the geometries and textures held on the GPU, for tests: they must not grow with updates
+review.gpu = () => ({ ...renderer.info.memory });
+// the instances drawn highlighted, for tests
+review.lit = () => (model ? instances(model).filter((m) => m.material.emissive.getHex()).map((m) => m.name) : []);
 
 function render() {
   renderer.render(world, camera);
@@ -124,14 +130,20 @@ async function showScene(name, keepView) {
     return;
   }
   shown = { name, digest };  // shown or on its way: a second call for the same bytes ends above
+  // a fetch or parse finishing after a later call's (a bigger scene, two updates in quick
+  // succession) must not replace that call's scene
+  const call = ++sceneCalls;
   const bytes = await sceneBytes(name, digest);
+  if (call !== sceneCalls) return;
   if (!bytes) { shown = { name: null, digest: null }; return; }
   new GLTFLoader().parse(bytes, '', (gltf) => {
-    if (model) world.remove(model);
+    if (call !== sceneCalls) { dispose(gltf.scene); return; }
+    if (model) { world.remove(model); dispose(model); }
     model = gltf.scene;
     for (const m of instances(model)) {
       m.material = m.material.clone();  // own material: highlighting one instance only
       m.material.side = THREE.DoubleSide;  // a section shows the inside faces
+      m.material.emissive.setHex(m.name === highlighted ? HIGHLIGHT : 0x000000);
       m.visible = !hidden.has(m.name);
     }
     world.add(model);
@@ -143,8 +155,21 @@ async function showScene(name, keepView) {
     if (keepView) applyClip(); else { fit(); applyClip(); }
     review.ready = true;
   }, (err) => {
+    if (call !== sceneCalls) return;
     shown = { name: null, digest: null };
     setText($('status'), `scene ${name}: ${err.message || err}`);
+  });
+}
+
+// the GPU buffers of a scene no longer shown (removing it from the world keeps them)
+function dispose(root) {
+  root.traverse((o) => {
+    if (o.geometry) o.geometry.dispose();
+    for (const m of [o.material].flat()) {
+      if (!m) continue;
+      for (const v of Object.values(m)) if (v && v.isTexture) v.dispose();
+      m.dispose();
+    }
   });
 }
 
@@ -203,7 +228,7 @@ function setVisible(mesh, on) {
 function highlight(name) {
   highlighted = highlighted === name ? null : name;
   for (const m of instances(model)) {
-    m.material.emissive.setHex(m.name === highlighted ? 0x806000 : 0x000000);
+    m.material.emissive.setHex(m.name === highlighted ? HIGHLIGHT : 0x000000);
   }
   for (const row of $('tree').querySelectorAll('label')) {
     row.classList.toggle('hl', row.dataset.instance === highlighted);
@@ -406,8 +431,10 @@ function loadLive(live) {
   SCENES = {};  // fetched by sha256 when shown
   const current = new Set(Object.values(DATA.scene_sha256));
   for (const digest of fetched.keys()) if (!current.has(digest)) fetched.delete(digest);
+  const before = $('scene-select').value;
   showHeader();
-  showScene($('scene-select').value || DATA.scenes[0], true);
+  const name = $('scene-select').value || DATA.scenes[0];
+  showScene(name, name === before);  // a scene the update removed: the one shown instead is fitted
   // the 3D view first, then (after a frame) the drawings and tables
   requestAnimationFrame(() => setTimeout(() => { showSheets(); showTables(); }, 0));
 }
