@@ -88,6 +88,21 @@ def test_a_refused_edit_keeps_the_last_page(tmp_path):
     assert "arms.lengths_mm[1]" in lines[0]
 
 
+def test_a_failed_export_is_shown_as_a_refusal_and_the_session_stays(tmp_path, project):
+    """An export that fails (here its folder stopped being an export folder; a full
+    disk alike) is shown like a refused edit, not the end of the session."""
+    state = LiveState()
+    state.publish("cd" * 32, "current", None, b"good")
+    (tmp_path / "notes.txt").write_text("not an export")
+    lines = []
+    loop = Loop(lambda: project, tmp_path, Store(None), state, lines.append)
+    assert loop.update() is False
+    doc = json.loads(state.as_json())
+    assert doc["seq"] == 1 and state.page == b"good"
+    assert doc["refusal"].startswith("the export failed: --out") and "manifest.json" in doc["refusal"]
+    assert lines[-1].startswith("refused (the last good export stays):")
+
+
 def test_bad_port_is_refused_naming_the_option(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "tactcad.cli", "watch", "--port", "80", "--out",
                            str(tmp_path / "o")], capture_output=True, text=True, timeout=60)

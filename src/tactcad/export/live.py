@@ -173,24 +173,41 @@ class Loop:
             self.log(f"refused (the last good export stays):\n{text}")
             self.state.refuse(text)
             return False
+        try:
+            result = self._export(project, t0)
+        except (TactcadError, OSError) as exc:  # the folder, the disk, a part: the session stays
+            text = f"the export failed: {exc}"
+            self.log(f"refused (the last good export stays):\n{text}")
+            self.state.refuse(text)
+            return False
+        self.log(f"export current in {time.perf_counter() - t0:.2f} s ({result.jobs_run} jobs "
+                 f"run, {result.jobs_reused} reused; {self._made_by(result.worker_jobs)})")
+        return True
+
+    def _export(self, project: Project, t0: float):
+        """The 3D preview (when there is a page to show it in), then the full export,
+        each published; the export's result.
+
+        Raises:
+            TactcadError: the export was refused (its folder, a part).
+            OSError: a file could not be written or read.
+        """
+        from tactcad.export.jobs import review_contents_of
+        from tactcad.export.run import export
+
         plan = project.plan
         parts = LiveParts(plan, self.solids, self.meshes)
         if (self.out / REVIEW_PAGE).is_file():
             self.state.publish(plan.design_hash, "3D updated; drawings follow",
                                self.preview(project, parts), checks_js=self._checks_js())
             self.log(f"3D view updated in {time.perf_counter() - t0:.2f} s")
-        from tactcad.export.jobs import review_contents_of
-        from tactcad.export.run import export
-
         result = export(project, self.out, log=lambda s: None, store=self.store, parts=parts,
                         session=self.worker)
         self.project = project
         self.state.publish(plan.design_hash, "current",
                            review_contents_of(Run(project, self.out), self.out),
                            (self.out / REVIEW_PAGE).read_bytes(), self._checks_js())
-        self.log(f"export current in {time.perf_counter() - t0:.2f} s ({result.jobs_run} jobs "
-                 f"run, {result.jobs_reused} reused; {self._made_by(result.worker_jobs)})")
-        return True
+        return result
 
     def _checks_js(self) -> str | None:
         """``review/checks.js`` of the export, when ``tactcad check`` wrote one."""
