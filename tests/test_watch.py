@@ -101,6 +101,13 @@ def test_a_failed_export_is_shown_as_a_refusal_and_the_session_stays(tmp_path, p
     assert doc["seq"] == 1 and state.page == b"good"
     assert doc["refusal"].startswith("the export failed: --out") and "manifest.json" in doc["refusal"]
     assert lines[-1].startswith("refused (the last good export stays):")
+    # the export failing after the 3D preview of the edit: the page goes back to the last good
+    state.publish("ef" * 32, "3D updated; drawings follow", None)
+    assert loop.update() is False
+    doc = json.loads(state.as_json())
+    assert doc["sha256"] == "cd" * 32 and doc["seq"] == 3 and doc["refusal"]
+    assert json.loads(state.response("/data")[0]) == {"seq": 3, "sha256": "cd" * 32,
+                                                      "checks": None, "data": None}
 
 
 def test_bad_port_is_refused_naming_the_option(tmp_path):

@@ -58,6 +58,10 @@ class LiveState:
     view: LiveView = field(default_factory=LiveView)
     kept: LiveView = field(default_factory=LiveView)
     checks_js: bytes | None = None
+    #: what the last state published as "current" showed (contents, design sha256, the
+    #: checks' JSON), shown again when the export after a preview fails
+    current: tuple[ReviewContents | None, str, str | None] | None = None
+    previewed: bool = False  # the state shown is a preview, not a "current" one
     lock: threading.Lock = field(default_factory=threading.Lock)
 
     def publish(self, sha256: str, status: str, contents: ReviewContents | None = None,
@@ -65,9 +69,10 @@ class LiveState:
         """Show ``contents`` of design ``sha256`` (and ``review/checks.js``'s text,
         when the export has one); ``page``: a new exported page for ``GET /``
         (None: the last one stays)."""
+        checks = checks_json(checks_js)
         with self.lock:
             seq = self.seq + 1
-        view = live_view(contents, seq, sha256, checks_json(checks_js))  # outside the lock
+        view = live_view(contents, seq, sha256, checks)  # outside the lock
         with self.lock:
             self.kept = LiveView(view.data, {**self.view.glbs, **view.glbs},
                                  {**self.view.sheets, **view.sheets})
@@ -76,10 +81,22 @@ class LiveState:
                 self.page = page
             self.checks_js = checks_js.encode("utf-8") if checks_js else None
             self.status, self.refusal, self.seq = status, None, seq
+            self.previewed = status != "current"
+            if not self.previewed:
+                self.current = (contents, sha256, checks)
 
-    def refuse(self, text: str) -> None:
+    def refuse(self, text: str, back_to_current: bool = False) -> None:
+        """Show ``text`` as the refusal of the last edit; with ``back_to_current``, the
+        last current state again (a preview of the refused edit may have been shown)."""
         with self.lock:
             self.refusal, self.status = text, "last edit refused"
+            if back_to_current and self.previewed and self.current is not None:
+                contents, sha256, checks = self.current
+                view = live_view(contents, self.seq + 1, sha256, checks)
+                self.kept = LiveView(view.data, {**self.view.glbs, **view.glbs},
+                                     {**self.view.sheets, **view.sheets})
+                self.view, self.sha256, self.seq = view, sha256, self.seq + 1
+                self.previewed = False
 
     def as_json(self) -> bytes:
         with self.lock:
@@ -178,7 +195,7 @@ class Loop:
         except (TactcadError, OSError) as exc:  # the folder, the disk, a part: the session stays
             text = f"the export failed: {exc}"
             self.log(f"refused (the last good export stays):\n{text}")
-            self.state.refuse(text)
+            self.state.refuse(text, back_to_current=True)
             return False
         self.log(f"export current in {time.perf_counter() - t0:.2f} s ({result.jobs_run} jobs "
                  f"run, {result.jobs_reused} reused; {self._made_by(result.worker_jobs)})")
