@@ -377,8 +377,8 @@ def test_served_scenes_follow_the_last_choice_and_free_the_ones_left(exported, p
             lit = page.evaluate("window.__review.lit()")
             first = names[0]
             choose(big, small)
-            assert page.evaluate("[window.__review.scene, document.querySelector('#scene-select').value]") \
-                == [small, small]
+            shown = "[window.__review.scene, document.querySelector('#scene-select').value]"
+            assert page.evaluate(shown) == [small, small]
             choose(first)
             held = page.evaluate("window.__review.gpu().geometries")
             for _ in range(2):
@@ -395,7 +395,8 @@ def test_served_scenes_follow_the_last_choice_and_free_the_ones_left(exported, p
             page.wait_for_function("window.__review.scene !== %s" % json.dumps(big))
             page.wait_for_timeout(500)
             assert page.evaluate("window.__review.scene") == first
-            assert sum(page.evaluate("window.__review.view()"), []) == pytest.approx(sum(fitted, []))
+            view = page.evaluate("window.__review.view()")
+            assert sum(view, []) == pytest.approx(sum(fitted, []))
             assert page.errors == []
     finally:
         server.shutdown()

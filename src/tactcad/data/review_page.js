@@ -42,7 +42,8 @@ review.view = () => [camera.position.toArray(), controls.target.toArray()];
 // the geometries and textures held on the GPU, for tests: they must not grow with updates
 review.gpu = () => ({ ...renderer.info.memory });
 // the instances drawn highlighted, for tests
-review.lit = () => (model ? instances(model).filter((m) => m.material.emissive.getHex()).map((m) => m.name) : []);
+review.lit = () => (model ? instances(model).filter((m) => m.material.emissive.getHex())
+                                             .map((m) => m.name) : []);
 
 function render() {
   renderer.render(world, camera);
