@@ -45,3 +45,24 @@ def test_plates_key_in_constructor_order():
                                           "thickness_mm=2.0, holes=")
     clamp = ClampPlateGeometry(10.0, 6.0, 8.0, 3.0, 2.0, 1.0, holes=())
     assert stable_repr(clamp).endswith("window_corner_radius_mm=1.0, holes=[])")
+
+
+def test_code_digest_follows_every_source_and_data_file_but_bytecode(tmp_path):
+    """The review page's script is a data file: a change of it must change every key
+    (else a store hands back the page with the old script)."""
+    from tactcad.store import code_digest as cached
+
+    code_digest = cached.__wrapped__  # once per process in tactcad; here after every change
+    (tmp_path / "data").mkdir()
+    (tmp_path / "mod.py").write_text("x = 1\n")
+    (tmp_path / "data" / "review_page.js").write_text("let a = 1;\n")
+    (tmp_path / "data" / "review_page.html").write_text("<html></html>\n")
+    (tmp_path / "__pycache__").mkdir()
+    (tmp_path / "__pycache__" / "mod.cpython-311.pyc").write_bytes(b"1")
+    before = code_digest(tmp_path)
+    (tmp_path / "__pycache__" / "mod.cpython-311.pyc").write_bytes(b"2")
+    assert code_digest(tmp_path) == before
+    for name in ("data/review_page.js", "data/review_page.html", "mod.py"):
+        (tmp_path / name).write_text((tmp_path / name).read_text() + " ")
+        assert code_digest(tmp_path) != before
+        before = code_digest(tmp_path)

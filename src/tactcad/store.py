@@ -50,13 +50,15 @@ def stack_versions() -> dict[str, str]:
 
 
 @functools.lru_cache(maxsize=1)
-def code_digest() -> str:
-    """sha256 over tactcad's own source and data files (path and bytes), so
-    that any change of a builder or writer changes every key."""
-    root = Path(__file__).resolve().parent
+def code_digest(root: Path | None = None) -> str:
+    """sha256 over tactcad's own source and data files (path and bytes; every file
+    but Python's bytecode, so the review page's script and template count too), so
+    that any change of a builder or writer changes every key. ``root``: the
+    package folder (None: this tactcad's)."""
+    root = Path(__file__).resolve().parent if root is None else root
     h = hashlib.sha256()
     for p in sorted(root.rglob("*")):
-        if p.is_file() and p.suffix in (".py", ".json", ".csv", ".toml"):
+        if p.is_file() and p.suffix != ".pyc" and "__pycache__" not in p.relative_to(root).parts:
             h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes() + b"\0")
     return h.hexdigest()
 
