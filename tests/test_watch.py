@@ -401,3 +401,49 @@ def test_served_scenes_follow_the_last_choice_and_free_the_ones_left(exported, p
     finally:
         server.shutdown()
         server.server_close()
+
+
+def test_keep_only_drops_what_the_design_no_longer_has():
+    from tactcad.export.live_parts import keep_only
+
+    solids, meshes = {"a": 1, "b": 2, "c": 3}, {"a": 4, "d": 5}
+    assert keep_only({"a", "c"}, solids, meshes) == 2
+    assert solids == {"a": 1, "c": 3} and meshes == {"a": 4}
+
+
+@pytest.mark.slow
+def test_a_long_session_keeps_the_parts_of_the_current_design_only(tmp_path, monkeypatch):
+    """Edit after edit, the watch process holds the solids and meshes of the design
+    it shows (every part of the array and its scenes), not of every earlier edit;
+    the drawing worker drops its own as a run begins."""
+    import pickle
+
+    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.design.project import load_project
+    from tactcad.export.job import Run, solid_key
+    from tactcad.export.jobs import all_jobs
+    from tactcad.export import worker as w
+    from tactcad.studies.bench_watch import edit_first_arm
+
+    monkeypatch.setenv("TACTCAD_WORKERS", "0")  # this process makes everything
+    for f in watched_files(DEFAULT_DESIGN):
+        shutil.copyfile(f, tmp_path / f.name)
+    design = tmp_path / DEFAULT_DESIGN.name
+    loop = Loop(lambda: load_project(design), tmp_path / "out", Store(tmp_path / "store"),
+                LiveState(), lambda s: None)
+    assert loop.update()
+    edit_first_arm(design, 4.3)
+    assert loop.update()
+    before = set(loop.solids)
+    edit_first_arm(design, 4.6)
+    assert loop.update()
+    project = load_project(design)
+    now = {solid_key(s) for s in Run(project, tmp_path).inventory[0].values()}
+    assert set(loop.solids) == now and set(loop.meshes) <= now
+    assert len(before - now) == 1  # the 4.3 mm arm's element is gone
+    # the worker: a run begins with only its own jobs' parts kept
+    w._KEPT["solids"].update({"gone": object(), next(iter(now)): "kept"})
+    w._begin_run(pickle.dumps((project, tmp_path, Store(None), None, all_jobs)))
+    assert "gone" not in w._KEPT["solids"] and next(iter(now)) in w._KEPT["solids"]
+    w._KEPT["solids"].clear()
+    w._INHERITED.clear()

@@ -32,10 +32,10 @@ from typing import Any, Callable, Iterable
 
 from tactcad.design.project import Project
 from tactcad.errors import TactcadError
-from tactcad.export.job import Run
+from tactcad.export.job import Run, solid_key
 from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE, ReviewContents
 from tactcad.export.live_page import LiveView, checks_json, live_view
-from tactcad.export.live_parts import LiveParts
+from tactcad.export.live_parts import LiveParts, keep_only
 from tactcad.export.worker import SessionWorker
 from tactcad.store import Store
 
@@ -221,10 +221,20 @@ class Loop:
         result = export(project, self.out, log=lambda s: None, store=self.store, parts=parts,
                         session=self.worker)
         self.project = project
-        self.state.publish(plan.design_hash, "current",
-                           review_contents_of(Run(project, self.out), self.out),
+        run = Run(project, self.out)
+        self.state.publish(plan.design_hash, "current", review_contents_of(run, self.out),
                            (self.out / REVIEW_PAGE).read_bytes(), self._checks_js())
+        self._keep_parts_of(run)
         return result
+
+    def _keep_parts_of(self, run: Run) -> None:
+        """Keep the solids and meshes of ``run``'s parts only (every part of the
+        design and its scenes), here and in the worker, so memory does not grow
+        with each edit of a long session."""
+        keys = {solid_key(s) for s in run.inventory[0].values()}
+        keep_only(keys, self.solids, self.meshes)
+        if self.worker is not None:
+            self.worker.keep_only(keys)
 
     def _checks_js(self) -> str | None:
         """``review/checks.js`` of the export, when ``tactcad check`` wrote one."""

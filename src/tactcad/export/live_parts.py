@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Collection, MutableMapping
+
 from tactcad.design.array import Plan
 from tactcad.export.job import solid_key
 from tactcad.parts.cache import PartCache
@@ -36,3 +38,16 @@ class LiveParts(PartCache):
 
             self._meshes_by_key[key] = tessellate(self.solid(spec))
         return self._meshes_by_key[key]
+
+
+def keep_only(keys: Collection[str], *kept: MutableMapping[str, object]) -> int:
+    """Drop from each of ``kept`` (solids, meshes, hand-overs by content key,
+    :func:`~tactcad.export.job.solid_key`) the entries whose key is not in
+    ``keys``, so a long watch session holds the parts of the design it shows,
+    not of every edit before; the number of entries dropped."""
+    dropped = 0
+    for store in kept:
+        for key in [k for k in store if k not in keys]:
+            del store[key]
+            dropped += 1
+    return dropped

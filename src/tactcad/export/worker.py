@@ -36,7 +36,7 @@ import threading
 import warnings
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Collection, Mapping, Sequence
 
 from tactcad.export.job import Job, Run, solid_key
 
@@ -187,6 +187,13 @@ class SessionWorker:
             return None
         return _SessionRun(self, run.log)
 
+    def keep_only(self, keys: Collection[str]) -> None:
+        """Forget the hand-overs of parts whose content key is not in ``keys``
+        (the worker drops those solids itself as its next run begins)."""
+        from tactcad.export.live_parts import keep_only
+
+        keep_only(keys, self._blobs)
+
     def kill(self) -> None:
         """End the worker at once (its run was interrupted); the next run starts another."""
         self.broken = True
@@ -296,13 +303,16 @@ def _hand_over(solids: Mapping[str, Any], blobs: dict[str, bytes | None]) -> byt
 def _begin_run(context: bytes) -> None:
     """A session worker's start of a run: the run and its jobs, planned here
     as the run's process planned them (see :class:`SessionWorker`)."""
-    from tactcad.export.live_parts import LiveParts
+    from tactcad.export.live_parts import LiveParts, keep_only
 
     _INHERITED.clear()  # a run that cannot begin leaves no other run's jobs to find
     project, staging, store, dxf_version, planner = pickle.loads(context)
     run = Run(project, staging, _LOGGED.append, store, dxf_version)
     run.parts = LiveParts(project.plan, _KEPT["solids"], _KEPT["meshes"])
-    _INHERITED.update(run=run, jobs={j.name: j for j in planner(run)}, by_content=True)
+    jobs = planner(run)
+    # the parts of earlier designs are not needed again: memory stays that of one design
+    keep_only({solid_key(s) for j in jobs for s in j.needs}, _KEPT["solids"], _KEPT["meshes"])
+    _INHERITED.update(run=run, jobs={j.name: j for j in jobs}, by_content=True)
 
 
 def _run_job(name: str, handed: bytes, key: str | None = None
