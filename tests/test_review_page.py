@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import re
+import time
 from types import SimpleNamespace
 
 import pytest
@@ -168,6 +169,62 @@ def test_page_served_by_any_web_server_shows_what_it_carries(exported, browser):
             assert sum(u.endswith("/state") for u in asked) == 1
             assert not any(u.endswith("/data") or "/scene/" in u or "/sheet/" in u for u in asked)
             assert page.locator("#status").inner_text() == ""
+    finally:
+        server.shutdown()
+        server.server_close()
+
+
+@pytest.mark.slow
+def test_a_page_whose_watch_stopped_asks_less_and_less_often(exported, browser):
+    """Served by a watch that then stops answering: the page says so and asks
+    /state less and less often (200 ms doubling up to 5 s), not five times a second."""
+    import http.server
+    import threading
+
+    from tactcad.checks.review_browser import wait_first_frame
+
+    out, _ = exported
+    page_bytes = (out / REVIEW_PAGE).read_bytes()
+    asked = []
+
+    class Gone(http.server.BaseHTTPRequestHandler):
+        def do_GET(self):  # noqa: N802
+            path = self.path.split("?")[0]
+            if path == "/state":
+                asked.append(time.monotonic())
+                if len(asked) > 2:  # the watch stopped after two answers
+                    self.send_error(503)
+                    return
+                body, kind = b'{"seq": 1, "sha256": "", "refusal": null, "status": "current"}', \
+                    "application/json"
+            elif path == "/":
+                body, kind = page_bytes, "text/html; charset=utf-8"
+            else:
+                self.send_error(404)
+                return
+            self.send_response(200)
+            self.send_header("Content-Type", kind)
+            self.send_header("Content-Length", str(len(body)))
+            self.end_headers()
+            self.wfile.write(body)
+
+        def log_message(self, *a):
+            pass
+
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Gone)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        with browser(offline=False) as page:
+            page.goto(f"http://127.0.0.1:{server.server_address[1]}/")
+            wait_first_frame(page)
+            page.wait_for_function("document.getElementById('status').textContent"
+                                   " === 'watch: not reachable'", timeout=10000)
+            start = len(asked)
+            page.wait_for_timeout(3000)
+            assert len(asked) - start <= 5, len(asked) - start  # 200 ms apart would be 15
+            gaps = [b - a for a, b in zip(asked[2:], asked[3:])]
+            assert gaps == sorted(gaps) and gaps[-1] > 0.7
+            assert page.errors == []
     finally:
         server.shutdown()
         server.server_close()

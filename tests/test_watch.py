@@ -41,6 +41,9 @@ def test_server_serves_the_page_and_its_state():
         code, body = _get(base + "/state")
         assert code == 200 and json.loads(body)["seq"] == 1
         assert _get(base + "/../etc/passwd")[0] == 404
+        head = urllib.request.Request(base + "/", method="HEAD")
+        with urllib.request.urlopen(head, timeout=5) as r:  # GET's headers, no body
+            assert r.status == 200 and r.headers["Content-Length"] == "17" and r.read() == b""
     finally:
         server.shutdown()
         server.server_close()

@@ -442,7 +442,9 @@ function loadLive(live) {
 
 // seq: the state this page shows; null for the page as served, which may be older than the
 // watch's state (the 3D view of an export still running), so it reads /data once at once
-async function poll(seq) {
+// every 200 ms while the watch answers; when it does not (stopped), less and less often,
+// up to every 5 s, until it answers again
+async function poll(seq, wait = 200) {
   try {
     const state = await (await fetch('/state', { cache: 'no-store' })).json();
     review.refusal = state.refusal;
@@ -457,10 +459,12 @@ async function poll(seq) {
       }
       seq = live.seq;
     }
+    wait = 200;
   } catch (e) {
     setText($('status'), 'watch: not reachable');
+    wait = Math.min(2 * wait, 5000);
   }
-  setTimeout(() => poll(seq), 200);
+  setTimeout(() => poll(seq, wait), wait);
 }
 
 load();

@@ -126,7 +126,8 @@ class LiveState:
 
 
 def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
-    """An HTTP server on 127.0.0.1:``port`` (0: any free port): ``GET /`` the
+    """An HTTP server on 127.0.0.1:``port`` (0: any free port; ``HEAD`` as ``GET``
+    without the body): ``GET /`` the
     page, ``GET /state`` its JSON state, ``GET /data`` the page's data,
     ``GET /scene/<sha256>`` a scene's GLB, ``GET /sheet/<sha256>`` a drawing
     sheet's SVG, ``GET /checks.js`` the check results (:meth:`LiveState.response`).
@@ -135,7 +136,7 @@ def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
         OSError: the port is taken or not allowed.
     """
     class Handler(BaseHTTPRequestHandler):
-        def do_GET(self):  # noqa: N802 (http.server's name)
+        def do_GET(self, with_body: bool = True):  # noqa: N802 (http.server's name)
             found = state.response(self.path.split("?")[0])
             if found is None:
                 self.send_error(404)
@@ -146,7 +147,11 @@ def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
             self.send_header("Content-Length", str(len(body)))
             self.send_header("Cache-Control", "no-store")
             self.end_headers()
-            self.wfile.write(body)
+            if with_body:
+                self.wfile.write(body)
+
+        def do_HEAD(self):  # noqa: N802: GET's answer without its body (link checkers, curl -I)
+            self.do_GET(with_body=False)
 
         def log_message(self, *args: Any) -> None:  # quiet: the terminal shows the exports
             pass
