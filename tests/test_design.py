@@ -98,6 +98,11 @@ def test_missing_and_unknown_keys(design_data):
     with pytest.raises(DesignError, match="missing") as info:
         plan_from_dict(design_data)
     assert info.value.field == "element.notch_radius_mm"
+    assert str(info.value).endswith("element.notch_radius_mm = None: allowed a value (missing)")
+    del design_data["element"]
+    with pytest.raises(DesignError) as info:
+        plan_from_dict(design_data)
+    assert info.value.field == "element" and info.value.allowed == "a [element] table"
     data = with_overrides(load_design().raw, {"element.web_thickness": 0.25})
     with pytest.raises(DesignError, match="unknown key"):
         plan_from_dict(data)

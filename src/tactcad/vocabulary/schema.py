@@ -229,12 +229,13 @@ def _keys_of(model: type[BaseModel] | None) -> str:
 def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> DesignError:
     """One pydantic error as a :class:`DesignError` with field, value, allowed range, reason."""
     loc = tuple(err["loc"])
-    field, limits, _ = _field_at(model, loc)
+    field, limits, section = _field_at(model, loc)
     value = err.get("input")
     kind = err["type"]
     why = limits.why if limits else ""
-    if kind == "missing":
-        return DesignError(field, None, "a value (key is missing)", "missing key", file)
+    if kind == "missing":  # a whole table, or one key of a table
+        wanted = f"a [{field}] table" if section is not None else "a value"
+        return DesignError(field, None, wanted, "missing", file)
     if kind == "extra_forbidden":
         parent_name, _, parent = _field_at(model, loc[:-1]) if len(loc) > 1 else ("", None, model)
         keys = _keys_of(parent)
