@@ -74,13 +74,11 @@ class LiveState:
             seq = self.seq + 1
         view = live_view(contents, seq, sha256, checks)  # outside the lock
         with self.lock:
-            self.kept = LiveView(view.data, {**self.view.glbs, **view.glbs},
-                                 {**self.view.sheets, **view.sheets})
-            self.view, self.sha256 = view, sha256
+            self._show(view, sha256, seq)
             if page is not None:
                 self.page = page
             self.checks_js = checks_js.encode("utf-8") if checks_js else None
-            self.status, self.refusal, self.seq = status, None, seq
+            self.status, self.refusal = status, None
             self.previewed = status != "current"
             if not self.previewed:
                 self.current = (contents, sha256, checks)
@@ -92,11 +90,15 @@ class LiveState:
             self.refusal, self.status = text, "last edit refused"
             if back_to_current and self.previewed and self.current is not None:
                 contents, sha256, checks = self.current
-                view = live_view(contents, self.seq + 1, sha256, checks)
-                self.kept = LiveView(view.data, {**self.view.glbs, **view.glbs},
-                                     {**self.view.sheets, **view.sheets})
-                self.view, self.sha256, self.seq = view, sha256, self.seq + 1
+                self._show(live_view(contents, self.seq + 1, sha256, checks), sha256, self.seq + 1)
                 self.previewed = False
+
+    def _show(self, view: LiveView, sha256: str, seq: int) -> None:
+        """Serve ``view`` as state ``seq`` of design ``sha256`` (the lock held); the
+        scenes and sheets of the state before stay fetchable for one more state."""
+        self.kept = LiveView(view.data, {**self.view.glbs, **view.glbs},
+                             {**self.view.sheets, **view.sheets})
+        self.view, self.sha256, self.seq = view, sha256, seq
 
     def as_json(self) -> bytes:
         with self.lock:
