@@ -296,8 +296,8 @@ def review_contents_of(run: Run, *folders: Path):
         return next((f / rel for f in folders if (f / rel).is_file()), None)
 
     names, sheet_list = review_sources(run)
-    glbs = {n: found(scene_glb_name(n)).read_bytes() for n in names if found(scene_glb_name(n))}
-    sheets = [(p, t, found(p).read_text(encoding="utf-8")) for p, t in sheet_list if found(p)]
+    glbs = {n: glb.read_bytes() for n in names if (glb := found(scene_glb_name(n)))}
+    sheets = [(p, t, svg.read_text(encoding="utf-8")) for p, t in sheet_list if (svg := found(p))]
     bom = found("bom.csv")
     rev, date = revision_and_date(run.plan)
     return review_contents(design_facts(run.plan), sheets, glbs,
