@@ -5,11 +5,10 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
-WEB    := web/node_modules/three/package.json
-DESIGN ?= hardware/macro_array.toml
+DESIGN ?= hardware/macro_array/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env system-deps export docs-images check ci-example test test-fast bench fuzz clean
+.PHONY: help env vendor-three system-deps export docs-images check ci-example test test-fast bench fuzz clean
 
 help: ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
@@ -20,24 +19,22 @@ $(STAMP): pyproject.toml
 	$(BIN)/pip install --quiet -e ".[test]"
 	touch $(STAMP)
 
-# the review page's three.js, pinned by web/package-lock.json
-$(WEB): web/package.json web/package-lock.json | $(STAMP)
-	sh scripts/install-web-deps.sh $(BIN)
-	touch $(WEB)
+env: $(STAMP) ## create .venv with the pinned CAD stack (build123d + cadquery on one OCP)
 
-env: $(STAMP) $(WEB) ## create .venv with the pinned CAD stack (build123d + cadquery on one OCP) and the review page's three.js
+vendor-three: $(STAMP) ## refresh src/tactcad/data/three from the npm release web/package-lock.json pins (needs npm)
+	$(BIN)/python scripts/vendor_three.py
 
-export: $(STAMP) $(WEB) ## build the default design (DESIGN=...) into exports/ (OUT=...)
+export: $(STAMP) ## build the default design (DESIGN=...) into exports/ (OUT=...)
 	$(BIN)/tactcad export --design $(DESIGN) --out $(OUT)
 
 docs-images: export ## refresh README's pictures (docs/images) from exports/images
 	cp $(OUT)/images/array.png $(OUT)/images/element_a4mm_drawing.png docs/images/
 
-check: $(STAMP) $(WEB) ## run the checks on exports/ (reused as it is after `make export`)
+check: $(STAMP) ## run the checks on exports/ (reused as it is after `make export`)
 	$(BIN)/tactcad check --design $(DESIGN) --out $(OUT)
 
 CI_OUT ?= ci-example
-ci-example: $(STAMP) ## the steps of docs/ci/github-actions.yml here: export, check --junit, diff against HEAD (into ci-example/)
+ci-example: $(STAMP) ## the steps of the CI workflow `tactcad new` writes, here: export, check --junit, diff against HEAD (into ci-example/)
 	rm -rf $(CI_OUT)/base $(CI_OUT)/diff && mkdir -p $(CI_OUT)/base
 	$(BIN)/tactcad export --design $(DESIGN) --out $(CI_OUT)/exports
 	$(BIN)/tactcad check --design $(DESIGN) --out $(CI_OUT)/exports --junit $(CI_OUT)/check-report.xml --failures-only
@@ -47,23 +44,23 @@ ci-example: $(STAMP) ## the steps of docs/ci/github-actions.yml here: export, ch
 system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd, via apt as root)
 	@sh scripts/install-system-deps.sh
 
-test: $(STAMP) $(WEB) system-deps ## run the whole test suite (FreeCAD review included)
+test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included)
 	$(BIN)/python -m pytest -q
 
-test-fast: $(STAMP) $(WEB) ## the inner loop: every test not marked slow (no full export, no FreeCAD, no fem3d)
+test-fast: $(STAMP) ## the inner loop: every test not marked slow (no full export, no FreeCAD, no fem3d)
 	$(BIN)/python -m pytest -q -m "not slow"
 
 FUZZ_N ?= 1000
 FUZZ_DATA ?= $(FUZZ_N)
 FUZZ_OPTIONS ?= 300
-fuzz: $(STAMP) $(WEB) ## random designs (FUZZ_N=1000), calibration data files (FUZZ_DATA=FUZZ_N) and command lines (FUZZ_OPTIONS=300); prints the counts
+fuzz: $(STAMP) ## random designs (FUZZ_N=1000), calibration data files (FUZZ_DATA=FUZZ_N) and command lines (FUZZ_OPTIONS=300); prints the counts
 	$(BIN)/python scripts/fuzz.py -n $(FUZZ_N) --quiet; \
 	  a=$$?; $(BIN)/python scripts/fuzz_inputs.py --data $(FUZZ_DATA) --options $(FUZZ_OPTIONS) --quiet; \
 	  b=$$?; exit $$(( a || b ))
 
-bench: $(STAMP) $(WEB) ## print the speed/accuracy benchmarks (export speed, stiffness ladder)
+bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness ladder)
 	$(BIN)/tactcad bench export
 	$(BIN)/tactcad bench stiffness
 
 clean: ## remove generated files (exports/) and the environment
-	rm -rf $(OUT) $(VENV) web/node_modules .pytest_cache .hypothesis .tactcad-cache $(CI_OUT)
+	rm -rf $(OUT) $(VENV) .pytest_cache .hypothesis .tactcad-cache $(CI_OUT)

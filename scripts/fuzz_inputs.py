@@ -38,7 +38,7 @@ import warnings
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
-HW = REPO / "hardware"
+HW = REPO / "hardware" / "macro_array"
 sys.path.insert(0, str(REPO / "tests"))  # the command-line strategies the tests use
 
 from tactcad.mechanics.paper import calibration_audit as ca  # noqa: E402

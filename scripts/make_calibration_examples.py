@@ -1,4 +1,4 @@
-"""Write the readings of hardware/calibration_example.csv in the other formats
+"""Write the readings of hardware/macro_array/calibration_example.csv in the other formats
 tactcad reads, so every example holds the same numbers:
 
 * ``calibration_example_excel.csv``: Excel's "CSV UTF-8" (byte order mark, CRLF);
@@ -12,7 +12,7 @@ tactcad reads, so every example holds the same numbers:
 
 The LVM and TDMS examples need ``--map force_N=Dev1/ai0,signal_V=Dev1/ai1``.
 
-Usage: ``python scripts/make_calibration_examples.py [hardware]``
+Usage: ``python scripts/make_calibration_examples.py [hardware/macro_array]``
 """
 
 from __future__ import annotations
@@ -94,8 +94,8 @@ def write_tdms(out: Path, comments, k_sensor, rows) -> None:
 
 
 def main(argv: list[str]) -> int:
-    folder = Path(argv[0]) if argv else REPO / "hardware"
-    source = read_example(REPO / "hardware" / "calibration_example.csv")
+    folder = Path(argv[0]) if argv else REPO / "hardware" / "macro_array"
+    source = read_example(REPO / "hardware" / "macro_array" / "calibration_example.csv")
     write_excel(folder / "calibration_example_excel.csv", *source)
     write_semicolon(folder / "calibration_example_semicolon.csv", *source)
     write_lvm(folder / "calibration_example.lvm", *source)

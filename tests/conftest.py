@@ -75,3 +75,14 @@ def freecad():
         exe = freecadcmd()
         assert exe is not None, "scripts/install-system-deps.sh did not install freecadcmd"
     return exe
+
+
+def with_default_companions(design: Path) -> Path:
+    """``design`` (a file written in a test) with the default design's rigs
+    and scenes files copied beside it, as its ``[files]`` table names them."""
+    from tactcad.design.rigs import DEFAULT_RIGS
+    from tactcad.design.scenes import DEFAULT_SCENES
+
+    for f in (DEFAULT_RIGS, DEFAULT_SCENES):
+        shutil.copy(f, design.parent / f.name)
+    return design

@@ -15,7 +15,7 @@ from tactcad.errors import DesignError
 from tactcad.export.bom import CSV_ENCODING, write_bom_files
 
 ROOT = Path(__file__).resolve().parents[1]
-EXAMPLE = ROOT / "hardware" / "examples" / "ti_array_2x3.toml"
+EXAMPLE = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
 
 
 def _bom(plan, tmp_path) -> dict[str, dict]:

@@ -1,5 +1,6 @@
-"""The CI workflow offered to hardware repositories and ``make ci-example`` run
-the same tactcad steps, and the workflow names a real option of each."""
+"""The CI workflow a new sensor project gets (``tactcad new``) and ``make
+ci-example`` run the same tactcad steps, and the workflow names a real option
+of each."""
 
 from __future__ import annotations
 
@@ -14,6 +15,12 @@ from tactcad import cli
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def project_workflow(tmp_path: Path) -> str:
+    """The workflow file of a project made by ``tactcad new``."""
+    assert cli.main(["new", str(tmp_path / "p"), "--quiet"]) == 0
+    return (tmp_path / "p" / ".github" / "workflows" / "hardware.yml").read_text(encoding="utf-8")
+
+
 def tactcad_steps(text: str) -> list[tuple[str, list[str]]]:
     """(command, its options) of every ``tactcad`` line, in order."""
     steps = []
@@ -25,8 +32,8 @@ def tactcad_steps(text: str) -> list[tuple[str, list[str]]]:
     return steps
 
 
-def test_workflow_and_make_ci_example_run_the_same_steps():
-    workflow = (ROOT / "docs" / "ci" / "github-actions.yml").read_text(encoding="utf-8")
+def test_workflow_and_make_ci_example_run_the_same_steps(tmp_path):
+    workflow = project_workflow(tmp_path)
     doc = yaml.safe_load(workflow)
     runs = "\n".join(s.get("run", "") for s in doc["jobs"]["export-check-diff"]["steps"])
     make = (ROOT / "Makefile").read_text(encoding="utf-8")
@@ -36,10 +43,10 @@ def test_workflow_and_make_ci_example_run_the_same_steps():
     assert "check-report.xml" in str(doc["jobs"]["export-check-diff"]["steps"][-1])
 
 
-def test_every_option_the_workflow_uses_exists():
+def test_every_option_the_workflow_uses_exists(tmp_path):
     parser = cli.build_parser()
     sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
-    workflow = (ROOT / "docs" / "ci" / "github-actions.yml").read_text(encoding="utf-8")
+    workflow = project_workflow(tmp_path)
     for command, opts in tactcad_steps(workflow):
         known = {s for a in sub.choices[command]._actions for s in a.option_strings}
         assert set(opts) <= known, (command, set(opts) - known)

@@ -8,6 +8,7 @@ import json
 
 import pytest
 
+from conftest import with_default_companions
 from tactcad.cli import main
 from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
 from tactcad.design.tolerances import tolerances_of
@@ -53,6 +54,7 @@ def test_each_tolerance_is_on_the_drawing_and_in_tolerance_json(tmp_path, capsys
     import tomli_w
 
     path.write_bytes(tomli_w.dumps(data).encode())
+    with_default_companions(path)
     assert main(["tolerance", "--design", str(path), "--samples", "200", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["source"] == "design"

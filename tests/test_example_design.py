@@ -1,4 +1,4 @@
-"""The second design, hardware/examples/ti_array_2x3.toml (made by `tactcad design`):
+"""The second design, hardware/ti_array_2x3/ti_array_2x3.toml (made by `tactcad design`):
 its requirements drive every answer, and nothing it writes mentions the paper."""
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from tactcad.design.project import load_project
 from tactcad.mechanics.requirements import requirements_of, verification_matrix
 
 ROOT = Path(__file__).resolve().parents[1]
-EXAMPLE = ROOT / "hardware" / "examples" / "ti_array_2x3.toml"
+EXAMPLE = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
 #: The paper's words; DXF's own block name ``*Paper_Space`` is a format keyword, not a citation.
 PAPER_TEXT = re.compile(r"paper(?!_space)|table [12]\b", re.IGNORECASE)
 

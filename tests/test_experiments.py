@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import with_default_companions
 from tactcad.cli import main
 from tactcad.mechanics import contact
 from tactcad.mechanics.paper import calibration as cal
@@ -19,7 +20,7 @@ from tactcad.mechanics.paper import evaluation as ev
 from tactcad.mechanics.paper import table2_models as t2
 
 REPO = Path(__file__).resolve().parents[1]
-DEFAULT_TOML = REPO / "hardware" / "macro_array.toml"
+DEFAULT_TOML = REPO / "hardware" / "macro_array" / "macro_array.toml"
 
 
 def strict_json(text: str):
@@ -239,7 +240,7 @@ def test_bad_calibration_csv_is_named(text, needle):
 
 
 def test_example_csv_reads_back_table1():
-    fits = ca.fit_all(measured_io.read_measured(REPO / "hardware" / "calibration_example.csv")[0])
+    fits = ca.fit_all(measured_io.read_measured(REPO / "hardware" / "macro_array" / "calibration_example.csv")[0])
     for row in paper_data.table1():
         assert fits[row.element].K_N_per_mm == pytest.approx(row.stiffness_N_per_mm, rel=0.01)
 
@@ -304,7 +305,7 @@ def other_design(tmp_path) -> Path:
     assert "4.5, 8.0" in text
     path = tmp_path / "other.toml"
     path.write_text(text, encoding="utf-8")
-    return path
+    return with_default_companions(path)
 
 
 def test_evaluate_and_calibrate_run_on_another_design(tmp_path, capsys):
@@ -327,7 +328,7 @@ def six_element_design(tmp_path) -> Path:
                         "lengths_mm = [4.0, 7.0, 6.0, 8.0, 5.0, 4.5]")
     path = tmp_path / "six.toml"
     path.write_text(text, encoding="utf-8")
-    return path
+    return with_default_companions(path)
 
 
 def test_table1_audit_on_a_smaller_array_skips_missing_elements(tmp_path, capsys):

@@ -50,7 +50,8 @@ def layers_from_readme(text: str) -> list[str]:
 
 
 FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store"}
-TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands"}
+TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands",
+             "tactcad.project_folder": "commands"}
 LAYERS = layers_from_readme(README.read_text(encoding="utf-8"))
 MECHANICS_MAY_USE = {"foundation", "vocabulary", "design", "geometry", "mechanics"}
 

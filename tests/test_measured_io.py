@@ -18,7 +18,7 @@ from tactcad.mechanics.paper.calibration import CalibrationError
 from tactcad.mechanics.paper.measured_io import parse_csv_text, parse_mapping, read_measured
 
 REPO = Path(__file__).resolve().parents[1]
-HW = REPO / "hardware"
+HW = REPO / "hardware" / "macro_array"
 DAQ_MAP = parse_mapping(["force_N=Dev1/ai0,signal_V=Dev1/ai1"])
 EXAMPLES = {  # file -> (options, what the reader must report)
     "calibration_example_excel.csv": ({}, "utf-8 with byte order mark, comma-separated, decimal point"),

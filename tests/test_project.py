@@ -19,12 +19,13 @@ from tactcad.design.scenes import DEFAULT_SCENES
 SRC = Path(__file__).resolve().parents[1] / "src" / "tactcad"
 #: Functions that open a design, rigs or scenes file.
 FILE_READERS = {"read_toml", "load_design", "load_rigs", "load_scenes", "load_project",
-                "rigs_path_for", "scenes_path_for", "default_design_data", "default_rigs_data",
+                "companion_files", "default_design_data", "default_rigs_data",
                 "project_for_plan", "project_with_design_data"}
 #: Where they may be called: the layer that validates the files, the command line and
 #: the Python API's entry points (tactcad.load; the build123d part classes, which are
 #: built from the design file they are given).
-READERS_ALLOWED = ("design/", "commands/", "cli.py", "api.py", "assembly/part_objects.py")
+READERS_ALLOWED = ("design/", "commands/", "cli.py", "api.py", "project_folder.py",
+                   "assembly/part_objects.py")
 #: Modules that read the shipped (paper's) design as fixed reference data, never as the
 #: user's design: the stiffness-correction grid is defined on it, and Table 1's
 #: equal-arm spread is the paper's, whatever design is being run.
@@ -94,7 +95,7 @@ def test_rigs_file_changed_after_validation_leaves_the_export_unchanged(tmp_path
 
 def test_a_plan_made_in_code_gets_its_rigs_and_scenes_named(plan):
     project = project_for_plan(plan)
-    assert project.rigs_file == str(DEFAULT_RIGS) and project.scenes_file == str(DEFAULT_SCENES)
+    assert project.rigs_file == DEFAULT_RIGS.name and project.scenes_file == DEFAULT_SCENES.name
     assert project.plan is plan
 
 

@@ -35,11 +35,14 @@ def _quiet(line: str) -> None:
 
 
 def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -> "Project":
-    """Read and validate a design file with the rigs and scenes files beside it.
+    """Read and validate a design file with its rigs and scenes files (those its
+    ``[files]`` table names, else ``rigs.toml`` and ``scenes.toml`` beside it;
+    where it has none, ones made for it: samples over its own K_obj range).
 
     Args:
-        path: TOML design file; ``None`` means the default design
-            (``hardware/macro_array.toml``, the paper's macro array).
+        path: TOML design file; ``None`` means the one design file of the
+            working folder (a project folder), else the shipped example
+            ``macro_array`` (the paper's 2 x 5 array).
         set: design values to override, by dotted key of the design file,
             e.g. ``{"element.web_thickness_mm": 0.3}`` (mm) or
             ``{"arms.lengths_mm": [4, 5, 6, 7, 8, 4, 5, 6, 7, 8]}``; checked
@@ -54,16 +57,25 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
         DesignError: an unreadable file, a ``path`` that is no path, or a
             ``set`` key that is not ``section.key``.
     """
-    from tactcad.design.array import DEFAULT_DESIGN, read_toml, with_overrides
-    from tactcad.design.project import project_with_design_data
+    from tactcad.design.array import read_toml, with_overrides
     from tactcad.errors import DesignError
+    from tactcad.project_folder import default_design
 
     if path is not None and not isinstance(path, (str, PathLike)):
         raise DesignError("path", path, "a design file's path (str or pathlib.Path) or None")
-    design = Path(path) if path is not None else DEFAULT_DESIGN
+    design = Path(path) if path is not None else default_design()
     overrides = _checked_overrides(set)
     data = with_overrides(read_toml(design, "design file"), overrides)
-    return Project(project_with_design_data(data, design), data, design)
+    return Project(_validated(data, design), data, design)
+
+
+def _validated(data: Mapping[str, Any], design: Path):
+    """The design tables with their rigs and scenes validated together; a
+    design with no rigs or scenes file gets ones made for it."""
+    from tactcad.design.project import project_with_design_data
+    from tactcad.project_folder import companion_tables
+
+    return project_with_design_data(data, design, companions=companion_tables)
 
 
 def _checked_overrides(values: Mapping[str, Any] | None) -> dict[str, Any]:
@@ -141,10 +153,9 @@ class Project:
             DesignErrors: as :func:`load`.
         """
         from tactcad.design.array import with_overrides
-        from tactcad.design.project import project_with_design_data
 
         data = with_overrides(self._data, _checked_overrides(set))
-        return Project(project_with_design_data(data, self.source), data, self.source)
+        return Project(_validated(data, self.source), data, self.source)
 
     # --- solids ---
     @cached_property

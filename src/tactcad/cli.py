@@ -27,6 +27,7 @@ EXIT_OS = 3
 EXIT_INTERRUPTED = 130
 
 COMMAND_MODULES = (
+    "tactcad.commands.new",
     "tactcad.commands.export",
     "tactcad.commands.check",
     "tactcad.commands.verify",

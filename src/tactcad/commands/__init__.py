@@ -24,7 +24,9 @@ SET_EXAMPLE = "element.web_thickness_mm=0.3"
 def add_design_arg(p: argparse.ArgumentParser) -> None:
     """The ``--design FILE`` and ``--set KEY=VALUE`` options every command that reads a design shares."""
     p.add_argument("--design", metavar="FILE", default=None,
-                   help="design file (TOML); default: hardware/macro_array.toml")
+                   help="design file (TOML); default: the one design file of the working "
+                        "folder (a project made by tactcad new), else the shipped example "
+                        "macro_array (the paper's 2 x 5 array)")
     p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                    help="override one value of the design file (repeatable): a dotted key and a "
                         f"TOML value, e.g. --set {SET_EXAMPLE} or "

@@ -38,9 +38,13 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "other: 2)")
     p.add_argument("--pitch", type=number(0, 1000, "mm", lo_open=True), metavar="MM", default=None,
                    help="array pitch (default: the base design's)")
-    p.add_argument("--out", metavar="NEW.toml", required=True,
-                   help="design file to write (.toml, any writable folder but system folders)")
-    p.add_argument("--force", action="store_true", help="overwrite an existing file")
+    p.add_argument("--out", metavar="NEW.toml|DIR", required=True,
+                   help="design file to write (.toml), or a sensor project folder DIR to make "
+                        "as `tactcad new` does (the design DIR/<DIR>.toml with its rigs, "
+                        "scenes, README, .gitignore and CI workflow); any writable folder but "
+                        "system folders")
+    p.add_argument("--force", action="store_true",
+                   help="overwrite an existing file (default: refuse)")
     p.add_argument("--verify", choices=VERIFY_MODELS, default="fem3d",
                    help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
     add_design_arg(p)
@@ -52,6 +56,43 @@ def register(sub: argparse._SubParsersAction) -> None:
 #: export's system folders, less the ones that hold users' files).
 SYSTEM_TREES = ("/bin", "/boot", "/dev", "/etc", "/lib", "/lib64", "/proc", "/run", "/sbin",
                 "/sys", "/usr")
+
+
+def _check_not_system(out: str, folder: Path) -> None:
+    from tactcad.errors import DesignError
+    from tactcad.export.run import SYSTEM_DIRS
+
+    if (str(folder) in SYSTEM_DIRS and str(folder) != "/tmp") \
+            or any(folder.is_relative_to(t) for t in SYSTEM_TREES):
+        raise DesignError("--out", out, "a file outside the system folders "
+                          f"({', '.join(d for d in SYSTEM_DIRS if d != '/tmp')} and below "
+                          f"{', '.join(SYSTEM_TREES)})")
+
+
+def check_project_folder(out: str) -> Path:
+    """The resolved project folder ``--out DIR``: new, or an existing folder
+    (its files are checked when the project is written), outside the system
+    folders and the installed package.
+
+    Raises:
+        DesignError: naming ``--out``, the value and what is allowed.
+    """
+    from tactcad import __file__ as package_init
+    from tactcad.errors import DesignError
+
+    folder = Path(os.path.abspath(os.path.expanduser(out))).resolve()
+    _check_not_system(out, folder)
+    if folder.is_relative_to(Path(package_init).resolve().parent):
+        raise DesignError("--out", out, "a folder outside the installed package")
+    if folder.exists() and not folder.is_dir():
+        raise DesignError("--out", out, "a file name ending in .toml, or a project folder",
+                          "it is a file without .toml")
+    if not folder.parent.is_dir():
+        raise DesignError("--out", out, "a folder in an existing folder",
+                          f"{folder.parent} is not a folder")
+    if not os.access(folder if folder.exists() else folder.parent, os.W_OK):
+        raise DesignError("--out", out, "a writable folder")
+    return folder
 
 
 def check_output_path(out: str, force: bool) -> Path:
@@ -66,17 +107,12 @@ def check_output_path(out: str, force: bool) -> Path:
     from tactcad import __file__ as package_init
     from tactcad.design.array import DEFAULT_DESIGN
     from tactcad.errors import DesignError
-    from tactcad.export.run import SYSTEM_DIRS
 
     path = Path(os.path.abspath(os.path.expanduser(out))).resolve()
     folder = path.parent
     if path.suffix != ".toml":
-        raise DesignError("--out", out, "a file name ending in .toml")
-    if (str(folder) in SYSTEM_DIRS and str(folder) != "/tmp") \
-            or any(folder.is_relative_to(t) for t in SYSTEM_TREES):
-        raise DesignError("--out", out, "a file outside the system folders "
-                          f"({', '.join(d for d in SYSTEM_DIRS if d != '/tmp')} and below "
-                          f"{', '.join(SYSTEM_TREES)})")
+        raise DesignError("--out", out, "a file name ending in .toml, or a project folder")
+    _check_not_system(out, folder)
     if path == DEFAULT_DESIGN.resolve() or path.is_relative_to(Path(package_init).parent):
         raise DesignError("--out", out, "a new file, not the default design or a package file")
     if not folder.is_dir():
@@ -98,23 +134,41 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.inverse import Targets, design_for_targets
 
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
-    path = check_output_path(args.out, args.force)
+    folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
+    path = check_output_path(args.out, args.force) if folder is None else \
+        folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
     base = plan_from_args(args)
     result = design_for_targets(base, targets, grade=args.material, pitch_mm=args.pitch,
                                 rows=args.rows, columns=args.columns,
                                 name=path.stem.replace("-", "_") or "inverse_design")
     report = design_report(result, args.verify, progress_from_args(args))
-    header = (f"# Written by `tactcad design --kr-over-km {targets.kr_over_km:g} --kobj-range "
-              f"{targets.k_obj_range_N_per_mm[0]:g} {targets.k_obj_range_N_per_mm[1]:g} "
-              f"--full-scale-force {targets.full_scale_force_N:g}`.\n"
+    header = (f"# Written by `tactcad design {' '.join(design_options(args))}`.\n"
               f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
-    write_bytes_atomic(path, (header + tomli_w.dumps(result.data)).encode("utf-8"))
+    text = header + tomli_w.dumps(result.data)
+    if folder is None:
+        write_bytes_atomic(path, text.encode("utf-8"))
+    else:
+        from tactcad.project_folder import write_project
+        write_project(folder, text, path.name, result.plan, force=args.force)
     report["out"] = str(path)
     if args.json:
         print(json.dumps(report, indent=2, allow_nan=False))
     else:
         print_report(report)
     return 0
+
+
+def design_options(args: argparse.Namespace) -> list[str]:
+    """The options that shaped the design, as typed (for its header): the
+    targets, and the grid, grade and pitch where given."""
+    words = [f"--kr-over-km {args.kr_over_km:g}",
+             f"--kobj-range {args.kobj_range[0]:g} {args.kobj_range[1]:g}",
+             f"--full-scale-force {args.full_scale_force:g}"]
+    for flag, value in (("--material", args.material), ("--rows", args.rows),
+                        ("--columns", args.columns), ("--pitch", args.pitch)):
+        if value is not None:
+            words.append(f"{flag} {value:g}" if isinstance(value, float) else f"{flag} {value}")
+    return words
 
 
 def design_report(result, verify: str, progress=None) -> dict:

@@ -38,12 +38,18 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def watched_files(design: Path) -> list[Path]:
-    """The design file and the rigs and scenes files it uses (those beside it,
-    else the defaults), as the loader picks them."""
-    from tactcad.design.rigs import rigs_path_for
-    from tactcad.design.scenes import scenes_path_for
+    """The design file and the rigs and scenes files it names (else
+    ``rigs.toml`` and ``scenes.toml`` beside it), as the loader picks them;
+    a file that does not exist yet is watched for."""
+    import tomllib
 
-    return [design.resolve(), rigs_path_for(design).resolve(), scenes_path_for(design).resolve()]
+    from tactcad.design.project import companion_paths
+
+    try:
+        tables = tomllib.loads(design.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        tables = {}
+    return [design.resolve(), *(p.resolve() for p in companion_paths(design, tables).values())]
 
 
 def run(args: argparse.Namespace) -> int:
@@ -67,10 +73,11 @@ def run(args: argparse.Namespace) -> int:
         elif not args.quiet or line.startswith("refused"):
             print(f"watch: {line}", file=sys.stderr, flush=True)
 
-    design = Path(args.design) if args.design else None
-    if design is None:
-        from tactcad.design.array import DEFAULT_DESIGN
-        design = DEFAULT_DESIGN
+    if args.design:
+        design = Path(args.design)
+    else:
+        from tactcad.project_folder import default_design
+        design = default_design()
     if not design.is_file():  # a file that exists but is refused is watched until it is mended
         raise DesignError("--design", str(design), "an existing design file (TOML)")
     state = LiveState()

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import copy
 from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -35,7 +36,11 @@ from tactcad.design.tolerances import TolerancesSection, check_tolerances, toler
 from tactcad.vocabulary.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 
-DEFAULT_DESIGN = Path(__file__).resolve().parents[3] / "hardware" / "macro_array.toml"
+#: The example sensor projects shipped with tactcad, one folder each (the
+#: source tree's ``hardware/``, installed as package data ``tactcad/examples``).
+EXAMPLES = Path(str(resources.files("tactcad"))) / "examples"
+#: The design used when none is named: the paper's 2 x 5 macro array example.
+DEFAULT_DESIGN = EXAMPLES / "macro_array" / "macro_array.toml"
 
 
 # Design domain: the range over which the closed-form stiffness correction is
@@ -382,6 +387,14 @@ class EdmSection(Section):
     start_hole_diameter_mm: number(0.3, 3.0)
 
 
+class FilesSection(Section):
+    """The project's other files, relative to the design file's folder (the
+    rigs and scenes files; ``rigs.toml`` and ``scenes.toml`` when left out)."""
+
+    rigs: Text = None
+    scenes: Text = None
+
+
 class DesignFile(Section):
     """``macro_array.toml``: every section required, ``[assumptions]`` optional."""
 
@@ -398,6 +411,7 @@ class DesignFile(Section):
     readout: ReadoutSection = None
     tolerances: TolerancesSection = None
     bom: BomSection = None
+    files: FilesSection = None
     assumptions: dict[str, Any] = {}
 
 
@@ -726,6 +740,12 @@ def with_grade_defaults(data: Mapping[str, Any]) -> Mapping[str, Any]:
     return {**data, "material": {**mat, **filled}} if filled else data
 
 
+def shaping_tables(data: Mapping[str, Any]) -> dict[str, Any]:
+    """The design's tables less ``[files]``: where the rigs and scenes files
+    lie shapes no part (their contents are hashed on their own)."""
+    return {k: v for k, v in data.items() if k != "files"}
+
+
 def plan_from_model(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
     """The plan of a design that passed :func:`validate_design`."""
     p = Problems()
@@ -738,7 +758,7 @@ def plan_from_model(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan
     stack = stack_length(d)
     return Plan(
         name=d.design.name, description=d.design.description, source=source,
-        design_hash=design_hash(data),
+        design_hash=design_hash(shaping_tables(data)),
         material=Material(d.material.name, d.material.youngs_modulus_MPa, d.material.poisson_ratio,
                           **material_fields(data["material"])),
         strength=strength_settings(data.get("strength")),

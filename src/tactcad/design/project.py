@@ -1,7 +1,11 @@
 """The three design files validated together, before any geometry is built.
 
-A design file (``macro_array.toml``) comes with a rigs file and a scenes file:
-those beside it, else the defaults of ``hardware/``. :func:`load_project`
+A design file (``macro_array.toml``) comes with a rigs file and a scenes file,
+its companions: those its ``[files]`` table names, relative to its folder,
+else ``rigs.toml`` and ``scenes.toml`` beside it (:func:`companion_files`).
+Nothing outside the design's folder is read. A design with neither is
+refused, unless the caller hands a ``companions`` maker that writes them for
+the plan (the command line and :func:`tactcad.load` do). :func:`load_project`
 reads all three, checks each with its schema and the files against each other
 (the rigs against the array's size, every scene's sample stiffness against the
 rigs' samples) and reports every refusal at once, each as
@@ -17,13 +21,18 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any, Iterator, Mapping
+from typing import Any, Callable, Iterator, Mapping
 
 from tactcad.design.array import DEFAULT_DESIGN, Plan, plan_from_model, validate_design
-from tactcad.design.rigs import DEFAULT_RIGS, RigDesign, rigs_path_for, validate_rigs
+from tactcad.design.rigs import DEFAULT_RIGS, RigDesign, validate_rigs
 from tactcad.vocabulary.schema import Problems, content_hash, fmt, read_toml
-from tactcad.design.scenes import DEFAULT_SCENES, SceneSpec, scenes_path_for, validate_scenes
+from tactcad.design.scenes import DEFAULT_SCENES, SceneSpec, validate_scenes
 from tactcad.errors import DesignError
+
+#: The companion files of a design, with the name each has when ``[files]`` leaves it out.
+COMPANIONS = {"rigs": "rigs.toml", "scenes": "scenes.toml"}
+#: Makes the companions' raw tables for a plan that has none: kind -> tables.
+CompanionMaker = Callable[[Plan], Mapping[str, Mapping[str, Any]]]
 
 
 class FrozenScenes(Mapping[str, SceneSpec]):
@@ -117,6 +126,30 @@ def _check_sample_stiffness(scenes: Mapping[str, SceneSpec], rigs: RigDesign,
                          file=scenes_file)
 
 
+def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems) -> Plan | None:
+    if design is None:
+        return None
+    model, found = validate_design(design, Path(source).name)
+    problems.extend(found.errors)
+    return None if found else plan_from_model(model, design, source)
+
+
+def _companions_of(plan: Plan | None, rigs: Mapping[str, Any] | None,
+                   scenes: Mapping[str, Any] | None, problems: Problems, rigs_file: str,
+                   scenes_file: str) -> tuple[RigDesign | None, dict[str, SceneSpec]]:
+    rig_design = None
+    if rigs is not None and plan is not None:
+        rig_design, found = validate_rigs(rigs, plan, rigs_file)
+        problems.extend(found.errors)
+    specs: dict[str, SceneSpec] = {}
+    if scenes is not None:
+        specs, found = validate_scenes(scenes, scenes_file)
+        problems.extend(found.errors)
+    if rig_design is not None and specs:
+        _check_sample_stiffness(specs, rig_design, problems, scenes_file)
+    return rig_design, specs
+
+
 def project_from_data(design: Mapping[str, Any] | None, rigs: Mapping[str, Any] | None,
                       scenes: Mapping[str, Any] | None, problems: Problems, *,
                       source: str = "<dict>", rigs_file: str = "rigs.toml",
@@ -128,22 +161,62 @@ def project_from_data(design: Mapping[str, Any] | None, rigs: Mapping[str, Any] 
         (plan, rigs, scenes), any of them None when refused; every refusal is
         added to ``problems``.
     """
-    plan = rig_design = None
-    if design is not None:
-        model, found = validate_design(design, Path(source).name)
-        problems.extend(found.errors)
-        if not found:
-            plan = plan_from_model(model, design, source)
-    if rigs is not None and plan is not None:
-        rig_design, found = validate_rigs(rigs, plan, rigs_file)
-        problems.extend(found.errors)
-    specs: dict[str, SceneSpec] = {}
-    if scenes is not None:
-        specs, found = validate_scenes(scenes, scenes_file)
-        problems.extend(found.errors)
-    if rig_design is not None and specs:
-        _check_sample_stiffness(specs, rig_design, problems, scenes_file)
-    return plan, rig_design, specs
+    plan = _plan_of(design, source, problems)
+    return (plan, *_companions_of(plan, rigs, scenes, problems, rigs_file, scenes_file))
+
+
+def _inside(folder: Path, name: str) -> bool:
+    """True when ``name`` is a relative path that stays inside ``folder``."""
+    rel = Path(name)
+    if rel.is_absolute() or ".." in rel.parts or not rel.parts:
+        return False
+    return (folder / rel).resolve().is_relative_to(folder.resolve())
+
+
+def _named(design: Mapping[str, Any] | None) -> dict[str, Any]:
+    """kind -> what the design's ``[files]`` table gives for it (None when nothing)."""
+    table = design.get("files") if isinstance(design, Mapping) else None
+    return {kind: table.get(kind) if isinstance(table, Mapping) else None for kind in COMPANIONS}
+
+
+def companion_paths(design_file: Path, design: Mapping[str, Any] | None) -> dict[str, Path]:
+    """kind -> where the design's rigs and scenes files are to be: the path its
+    ``[files]`` table names (relative to its folder), else the default name
+    beside it; neither checked nor read (see :func:`companion_files`)."""
+    return {kind: design_file.parent / (name if isinstance(name, str) and name
+                                         else COMPANIONS[kind])
+            for kind, name in _named(design).items()}
+
+
+def companion_files(design_file: Path, design: Mapping[str, Any] | None,
+                    problems: Problems) -> dict[str, Path | None]:
+    """The rigs and scenes files of the design file at ``design_file``: the
+    ones its ``[files]`` table names (relative to its folder), else
+    ``rigs.toml`` and ``scenes.toml`` beside it.
+
+    Returns:
+        kind ("rigs", "scenes") -> the file, or None where the design names
+        none and none lies beside it (or the name it gives was refused).
+        A named file that is absolute, leaves the design's folder or does not
+        exist is refused into ``problems`` (``files.rigs = ...: allowed ...``).
+    """
+    folder = design_file.parent
+    out: dict[str, Path | None] = {}
+    for kind, name in _named(design).items():
+        if not isinstance(name, str) or not name:  # absent (a wrong type: the schema says so)
+            beside = folder / COMPANIONS[kind]
+            out[kind] = beside if name is None and design_file.name and beside.is_file() else None
+            continue
+        out[kind] = None
+        if not _inside(folder, name):
+            problems.add(f"files.{kind}", name, "a relative path inside the design file's folder",
+                         "a sensor project reads no file outside its folder")
+        elif not (folder / name).is_file():
+            problems.add(f"files.{kind}", name, f"an existing {kind} file in the design file's folder",
+                         f"no file {name} beside {design_file.name}")
+        else:
+            out[kind] = folder / name
+    return out
 
 
 def load_project(design: str | Path | None = None) -> Project:
@@ -166,32 +239,51 @@ def load_project(design: str | Path | None = None) -> Project:
 
 
 def project_with_design_data(data: Mapping[str, Any] | None, path: Path,
-                             problems: Problems | None = None) -> Project:
+                             problems: Problems | None = None,
+                             companions: CompanionMaker | None = None) -> Project:
     """:func:`load_project` for design tables already read (and perhaps
-    changed, e.g. by ``--set``) from the design file at ``path``: the rigs
-    and scenes files beside ``path`` (else the defaults) are read and every
-    file is validated together.
+    changed, e.g. by ``--set``) from the design file at ``path``: its rigs and
+    scenes files (:func:`companion_files`) are read and every file is
+    validated together.
+
+    Args:
+        companions: makes the raw tables of a companion the design has no file
+            for, from its plan (e.g. :func:`tactcad.project_folder.companion_tables`);
+            None refuses such a design, naming the file it lacks.
 
     Raises:
         DesignErrors: as :func:`load_project`.
     """
     problems = problems if problems is not None else Problems(path.name)
-    rigs_file, scenes_file = rigs_path_for(path), scenes_path_for(path)
-    scenes_data = _read(scenes_file, "scenes file", problems)
-    plan, rigs, scenes = project_from_data(
-        data, _read(rigs_file, "rigs file", problems), scenes_data,
-        problems, source=str(path), rigs_file=rigs_file.name, scenes_file=scenes_file.name)
+    files = companion_files(path, data, problems)
+    tables = {kind: _read(f, f"{kind} file", problems) if f is not None else None
+              for kind, f in files.items()}
+    plan = _plan_of(data, str(path), problems)
+    labels = {kind: f.name if f is not None else f"{COMPANIONS[kind]} (made for {path.name})"
+              for kind, f in files.items()}
+    named = _named(data)
+    absent = [k for k, f in files.items() if f is None and named[k] is None]
+    if absent and plan is not None:
+        if companions is None:
+            for kind in absent:
+                problems.add(f"files.{kind}", None, f"a {kind} file: {COMPANIONS[kind]} beside "
+                             f"{path.name}, or one named in its [files] table",
+                             "`tactcad new DIR --from-design` writes them")
+        else:
+            made = companions(plan)
+            tables.update({kind: made[kind] for kind in absent})
+    rigs, scenes = _companions_of(plan, tables["rigs"], tables["scenes"], problems,
+                                  labels["rigs"], labels["scenes"])
     problems.raise_if_any()
-    return project_of(plan, replace(rigs, source=str(rigs_file)), scenes, scenes_data,
-                      str(scenes_file))
-
+    return project_of(plan, replace(rigs, source=labels["rigs"]), scenes, tables["scenes"],
+                      labels["scenes"])
 
 
 def project_for_plan(plan: Plan, rigs_file: str | Path | None = None,
                      scenes_file: str | Path | None = None) -> Project:
     """A :class:`Project` of a plan made in code (e.g. ``plan_from_dict``):
-    the rigs and scenes files named (``None``: those of ``hardware/``) are read
-    and validated against ``plan``.
+    the rigs and scenes files named (``None``: those of the default design,
+    the shipped paper example) are read and validated against ``plan``.
 
     Raises:
         DesignErrors: every refusal of the rigs and scenes files.
@@ -201,15 +293,8 @@ def project_for_plan(plan: Plan, rigs_file: str | Path | None = None,
     problems = Problems(rigs_path.name)
     rigs_data = _read(rigs_path, "rigs file", problems)
     scenes_data = _read(scenes_path, "scenes file", problems)
-    rigs = scenes = None
-    if rigs_data is not None:
-        rigs, found = validate_rigs(rigs_data, plan, rigs_path.name)
-        problems.extend(found.errors)
-    if scenes_data is not None:
-        scenes, found = validate_scenes(scenes_data, scenes_path.name)
-        problems.extend(found.errors)
-    if rigs is not None and scenes:
-        _check_sample_stiffness(scenes, rigs, problems, scenes_path.name)
+    rigs, scenes = _companions_of(plan, rigs_data, scenes_data, problems, rigs_path.name,
+                                  scenes_path.name)
     problems.raise_if_any()
-    return project_of(plan, replace(rigs, source=str(rigs_path)), scenes, scenes_data,
-                      str(scenes_path))
+    return project_of(plan, replace(rigs, source=rigs_path.name), scenes, scenes_data,
+                      scenes_path.name)

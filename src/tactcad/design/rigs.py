@@ -27,14 +27,14 @@ from typing import Any, Mapping, Optional
 
 from pydantic import create_model
 
-from tactcad.design.array import Plan
+from tactcad.design.array import DEFAULT_DESIGN, Plan
 from tactcad.partlib.base import PartData
 from tactcad.partlib.registry import derivation_order, rig_parts_lib
 from tactcad.partlib.sample import stiffnesses
 from tactcad.vocabulary.schema import (Derived, Problems, Section, Text, content_hash, integer,
                                        read_assumptions, read_toml, validate)
 
-DEFAULT_RIGS = Path(__file__).resolve().parents[3] / "hardware" / "rigs.toml"
+DEFAULT_RIGS = DEFAULT_DESIGN.parent / "rigs.toml"  # the default design's
 
 
 @dataclass(frozen=True)
@@ -224,9 +224,3 @@ def load_rigs(path: str | Path | None = None, *, array_plan: Plan) -> RigDesign:
 def default_rigs_data() -> dict[str, Any]:
     """Raw TOML tables of the default rig file (a fresh copy)."""
     return read_toml(DEFAULT_RIGS, "rigs file")
-
-
-def rigs_path_for(design_file: Path) -> Path:
-    """``rigs.toml`` beside the design file, else the default one."""
-    candidate = design_file.parent / "rigs.toml"
-    return candidate if design_file.name and candidate.is_file() else DEFAULT_RIGS

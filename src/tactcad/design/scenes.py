@@ -12,10 +12,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping, Optional
 
+from tactcad.design.array import DEFAULT_DESIGN
 from tactcad.vocabulary.schema import (NAME_ALLOWED, NAME_PATTERN, Problems, Section, Text, choice,
                                        listing, number, read_toml, validate)
 
-DEFAULT_SCENES = Path(__file__).resolve().parents[3] / "hardware" / "scenes.toml"
+DEFAULT_SCENES = DEFAULT_DESIGN.parent / "scenes.toml"  # the default design's
 #: Levels of detail: ``full`` (fabricated parts as made) and ``envelope``
 #: (bought parts as their catalogue envelope).
 LEVELS = ("envelope", "full")
@@ -65,12 +66,6 @@ class SceneTable(Section):
 class ScenesFile(Section):
     detail: DetailTable = DetailTable()
     scene: dict[str, SceneTable]
-
-
-def scenes_path_for(design_file: Path) -> Path:
-    """``scenes.toml`` beside the design file, else the default one."""
-    candidate = design_file.parent / "scenes.toml"
-    return candidate if design_file.name and candidate.is_file() else DEFAULT_SCENES
 
 
 def _detail(field: str, table: DetailTable, default: Mapping[str, str],

@@ -551,6 +551,7 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     data = copy.deepcopy(dict(base.raw))
     data["assumptions"] = neutral_assumptions(data, base.name)
     data.pop("requirements", None)  # the new design's are written below
+    data.pop("files", None)  # where the base design's rigs and scenes lie: not the new design's
     if grade is not None:
         from tactcad.vocabulary.materials import material_grade
 

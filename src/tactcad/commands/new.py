@@ -1,0 +1,50 @@
+"""``tactcad new DIR``: make a sensor project folder (design, rigs, scenes,
+README, .gitignore, CI workflow) from a shipped example or a design file."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from tactcad.commands import add_output_args
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "new", help="make a sensor project folder: design, rigs, scenes, README, CI workflow",
+        description="Makes the folder DIR of a sensor project: the design file (naming its "
+                    "rigs and scenes files in its [files] table), rigs.toml with samples over "
+                    "the design's own K_obj range (N/mm), scenes.toml, purchased-parts.md, a "
+                    "README, a .gitignore (exports, cache) and .github/workflows/hardware.yml "
+                    "(export, check --junit, diff). DIR may exist if it holds none of these "
+                    "files (a new git repository, say). Builds no geometry.")
+    p.add_argument("dir", metavar="DIR", help="the project folder to make")
+    start = p.add_mutually_exclusive_group()
+    start.add_argument("--example", metavar="NAME", default=None,
+                       help="start from this shipped example, its own rigs and scenes "
+                            "included (default: ti_array_2x3; macro_array is the paper's "
+                            "2 x 5 array)")
+    start.add_argument("--from-design", metavar="FILE", default=None,
+                       help="start from this design file; its rigs and scenes files are "
+                            "copied where it has them, else made for it")
+    p.add_argument("--force", action="store_true",
+                   help="overwrite the project's files where DIR has them (default: refuse)")
+    add_output_args(p, "print JSON: the folder, the design file and every file written")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from tactcad.project_folder import new_project
+
+    made = new_project(args.dir, example=args.example, from_design=args.from_design,
+                       force=args.force)
+    if args.json:
+        print(json.dumps({"folder": str(made.folder), "design": str(made.design),
+                          "files": list(made.files)}))
+        return 0
+    print(f"made {made.folder}/ with {len(made.files)} files:")
+    for rel in made.files:
+        print(f"  {rel}")
+    design = made.design.name
+    print(f"next: cd {made.folder} && tactcad export --design {design} --out exports")
+    return 0

@@ -1,0 +1,292 @@
+"""A sensor project is a folder: the design file, its rigs and scenes files
+(named in the design's ``[files]`` table), a README, a ``.gitignore`` and a
+CI workflow. :func:`new_project` makes one (``tactcad new``, ``tactcad design
+--out DIR``); :func:`companion_tables` gives a design with no rigs or scenes
+file of its own ones made for it, so no design ever borrows another's.
+
+The rigs and scenes are written from the templates in ``tactcad/data/project``:
+the rig hardware is a generic starting point, the samples span the design's
+own K_obj range (stated in ``[requirements]``, else derived from its elements),
+and every text names the design's own grid. Nothing here reads a file outside
+the project folder and the installed package.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import tomllib
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from string import Template
+from typing import Any, Mapping
+
+from tactcad import __version__
+from tactcad.atomic import remove_tree, staging_dir, warn_left_behind
+from tactcad.design.array import EXAMPLES, Plan
+from tactcad.errors import DesignError
+
+#: Template file -> the file it becomes in a project folder (the design's
+#: rigs and scenes come from :func:`companion_texts`).
+EXTRA_FILES = {"README.md": "README.md", "gitignore": ".gitignore",
+               "hardware.yml": ".github/workflows/hardware.yml"}
+#: Shipped with the examples and copied into every project: the bought rig parts' sources.
+PURCHASED_PARTS = "purchased-parts.md"
+#: The example a new project starts from when none is named (not the paper's array).
+DEFAULT_EXAMPLE = "ti_array_2x3"
+#: Sample stiffnesses are written to this many significant digits (N/mm).
+SAMPLE_DIGITS = 3
+#: The samples' stiffness range of the rigs schema (N/mm).
+SAMPLE_RANGE = (0.01, 1e4)
+
+
+def _template(name: str) -> Template:
+    return Template((resources.files("tactcad") / "data" / "project" / name)
+                    .read_text(encoding="utf-8"))
+
+
+def examples() -> dict[str, Path]:
+    """The shipped example projects: name -> its design file (one folder each)."""
+    out = {}
+    for folder in sorted(p for p in EXAMPLES.iterdir() if p.is_dir()):
+        design = folder / f"{folder.name}.toml"
+        if design.is_file():
+            out[folder.name] = design
+    return out
+
+
+def _significant(value: float, digits: int = SAMPLE_DIGITS) -> float:
+    return float(f"{value:.{digits}g}")
+
+
+def sample_stiffnesses(plan: Plan) -> tuple[list[float], str]:
+    """The samples a design's rigs carry: the ends and the geometric mean of
+    its K_obj range, stiffest first (N/mm, 3 significant digits), with the reason.
+
+    The range is ``requirements.kobj_range_N_per_mm`` where the design states
+    it, else the one :func:`tactcad.mechanics.requirements.requirements_of`
+    derives from the elements (closed form).
+    """
+    from tactcad.mechanics.requirements import requirements_of
+
+    req = requirements_of(plan)
+    lo, hi = req.kobj_range_N_per_mm
+    values = [hi, math.sqrt(lo * hi), lo]
+    clipped = [min(max(_significant(v), SAMPLE_RANGE[0]), SAMPLE_RANGE[1]) for v in values]
+    samples = list(dict.fromkeys(clipped))  # distinct, in order
+    how = ("stated in the design file" if "kobj_range_N_per_mm" in req.stated
+           else "derived from the elements' stiffness span, closed form")
+    reason = (f"The ends and the geometric mean of the design's K_obj range, "
+              f"{_significant(lo)} ... {_significant(hi)} N/mm ({how}).")
+    return samples, reason
+
+
+def _toml_list(values: list[float]) -> str:
+    return "[" + ", ".join(repr(v) for v in values) + "]"
+
+
+def _rigs_name(plan: Plan) -> str:
+    return plan.name[:64 - len("_rigs")]
+
+
+def companion_texts(plan: Plan) -> dict[str, str]:
+    """The rigs and scenes files made for ``plan`` (TOML text): kind -> text."""
+    samples, reason = sample_stiffnesses(plan)
+    count = len(plan.slots)
+    tip = plan.distinct_elements[plan.slots[0].geometry.part_name]
+    words = {
+        "name": _rigs_name(plan), "grid": f"{plan.rows} x {plan.columns}",
+        "samples": _toml_list(samples), "samples_reason": reason.replace('"', "'"),
+        "n_elements": f"{count}", "n_spacers": f"{len(plan.spacer_placements)}",
+        "indenter": f"{tip.tip_width_mm:g} x {plan.sheet_thickness_mm:g}",
+        "sample_stiff": repr(samples[0]), "sample_mid": repr(samples[len(samples) // 2]),
+    }
+    return {"rigs": _template("rigs.toml").substitute(words),
+            "scenes": _template("scenes.toml").substitute(words)}
+
+
+def companion_tables(plan: Plan) -> dict[str, Mapping[str, Any]]:
+    """The raw tables of :func:`companion_texts` (the ``companions`` maker of
+    :func:`tactcad.design.project.project_with_design_data`)."""
+    return {kind: tomllib.loads(text) for kind, text in companion_texts(plan).items()}
+
+
+# --- a new project folder -----------------------------------------------------------------
+@dataclass(frozen=True)
+class NewProject:
+    """What :func:`new_project` wrote: the folder, its design file and every file (relative)."""
+
+    folder: Path
+    design: Path
+    files: tuple[str, ...]
+
+
+_FILES_TABLE = re.compile(r"^\s*\[files\]\s*(#.*)?$", re.MULTILINE)
+
+
+def _with_files_table(text: str, rigs: str, scenes: str) -> str:
+    """The design text with a ``[files]`` table naming its rigs and scenes (kept when it has one)."""
+    if _FILES_TABLE.search(text):
+        return text
+    return (text.rstrip("\n") + "\n\n# The project's other files, relative to this one.\n"
+            f'[files]\nrigs = "{rigs}"\nscenes = "{scenes}"\n')
+
+
+def _check_target(folder: Path, names: list[str], force: bool) -> None:
+    if folder.exists() and not folder.is_dir():
+        raise DesignError("DIR", str(folder), "a new or existing folder", "it is a file")
+    clashes = [n for n in names if (folder / n).exists()]
+    if clashes and not force:
+        raise DesignError("DIR", str(folder), "a folder without the project's files, or --force",
+                          f"it has {', '.join(sorted(clashes))} already")
+
+
+def _named_files(plan: Plan) -> dict[str, str]:
+    """kind -> the relative path the design's ``[files]`` table gives (else the default name)."""
+    from tactcad.design.project import COMPANIONS
+
+    table = plan.raw.get("files") or {}
+    return {kind: table.get(kind) or default for kind, default in COMPANIONS.items()}
+
+
+def _project_files(design_text: str, design_name: str, plan: Plan,
+                   companions: Mapping[str, str | None] | None) -> dict[str, str]:
+    """Relative path -> text of every file of the project (the design's last)."""
+    made = companion_texts(plan)
+    texts = {k: (companions or {}).get(k) or made[k] for k in made}
+    names = _named_files(plan)
+    files = {names["rigs"]: texts["rigs"], names["scenes"]: texts["scenes"]}
+    words = {"name": plan.name, "description": plan.description, "design": design_name,
+             "rigs": names["rigs"], "scenes": names["scenes"], "version": __version__}
+    for template, target in EXTRA_FILES.items():
+        files[target] = _template(template).substitute(words)
+    files[PURCHASED_PARTS] = (EXAMPLES / DEFAULT_EXAMPLE / PURCHASED_PARTS).read_text(encoding="utf-8")
+    files[design_name] = _with_files_table(design_text, names["rigs"], names["scenes"])
+    return files
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def write_project(folder: str | Path, design_text: str, design_name: str, plan: Plan, *,
+                  companions: Mapping[str, str | None] | None = None, force: bool = False) -> NewProject:
+    """Write a project folder around a validated design.
+
+    Args:
+        folder: the project folder; created when missing. An existing one
+            must hold none of the files written (else ``force``).
+        design_text: the design file's TOML text (a ``[files]`` table is
+            added when it has none).
+        design_name: the design file's name in the folder (``NAME.toml``).
+        plan: the design's validated plan (for the rigs' samples and texts).
+        companions: the rigs and scenes texts (kind -> text, or None) to
+            write instead of those made for ``plan`` (the design's own files).
+
+    Returns:
+        :class:`NewProject`.
+
+    Raises:
+        DesignError: ``DIR`` is a file, or holds one of the files (without ``force``).
+        OSError: the folder cannot be written (nothing is left half-written:
+            the files are made in a staging folder beside it first).
+    """
+    folder = Path(folder)
+    files = _project_files(design_text, design_name, plan, companions)
+    _check_target(folder, list(files), force)
+    staging = staging_dir(folder)
+    os.chmod(staging, 0o777 & ~_umask())  # a project folder, not a private temporary one
+    try:
+        for rel, text in files.items():
+            (staging / rel).parent.mkdir(parents=True, exist_ok=True)
+            (staging / rel).write_text(text, encoding="utf-8")
+        if not folder.exists():
+            os.rename(staging, folder)
+        else:  # the design file last: a set cut short is no project
+            for rel in files:
+                (folder / rel).parent.mkdir(parents=True, exist_ok=True)
+                os.replace(staging / rel, folder / rel)
+    finally:
+        if staging.exists():
+            warn_left_behind(remove_tree(staging))
+    return NewProject(folder, folder / design_name, tuple(files))
+
+
+def new_project(folder: str | Path, *, example: str | None = None,
+                from_design: str | Path | None = None, force: bool = False) -> NewProject:
+    """Make a sensor project folder (``tactcad new``).
+
+    Args:
+        folder: the folder to make (or an existing one without the project's files).
+        example: a shipped example to start from (:func:`examples`; default
+            ``ti_array_2x3``); its own rigs and scenes are copied.
+        from_design: a design file to start from instead; its rigs and scenes
+            are made for it (samples over its K_obj range).
+        force: overwrite the project's files in an existing folder.
+
+    Returns:
+        :class:`NewProject`.
+
+    Raises:
+        DesignError: both or an unknown ``example``; a design that does not
+            validate (every refusal); ``folder`` unusable.
+        OSError: the folder cannot be written.
+    """
+    from tactcad.design.array import read_toml
+    from tactcad.design.project import companion_files, project_with_design_data
+    from tactcad.vocabulary.schema import Problems
+
+    if example is not None and from_design is not None:
+        raise DesignError("--example", example, "either --example or --from-design, not both")
+    if from_design is None:
+        name = example or DEFAULT_EXAMPLE
+        known = examples()
+        if name not in known:
+            raise DesignError("--example", name, "one of " + ", ".join(known))
+        source = known[name]
+    else:
+        source = Path(from_design)
+    data = read_toml(source, "design file")
+    validated = project_with_design_data(data, source, companions=companion_tables)
+    # the design's own rigs and scenes where it has them (validated above)
+    own = companion_files(source, data, Problems(source.name))
+    companions = {kind: f.read_text(encoding="utf-8") if f is not None else None
+                  for kind, f in own.items()}
+    return write_project(folder, source.read_text(encoding="utf-8"), source.name, validated.plan,
+                         companions=companions, force=force)
+
+
+# --- which design a command works on ---------------------------------------------------------
+def designs_in(folder: str | Path) -> list[Path]:
+    """The design files of a project folder: its ``*.toml`` files with a
+    ``[design]`` and an ``[arms]`` table (unreadable files are passed over)."""
+    found = []
+    for path in sorted(Path(folder).glob("*.toml")):
+        try:
+            tables = tomllib.loads(path.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+            continue
+        if isinstance(tables.get("design"), dict) and isinstance(tables.get("arms"), dict):
+            found.append(path)
+    return found
+
+
+def default_design(folder: str | Path = ".") -> Path:
+    """The design a command works on when none is named: the one design file
+    of the project folder ``folder`` (the working folder), else the shipped
+    example ``macro_array`` (the paper's 2 x 5 array).
+
+    Raises:
+        DesignError: the folder holds several design files (``--design`` must choose).
+    """
+    from tactcad.design.array import DEFAULT_DESIGN
+
+    found = designs_in(folder)
+    if len(found) > 1:
+        raise DesignError("--design", None, "one of " + ", ".join(p.name for p in found),
+                          f"{len(found)} design files in {Path(folder).resolve().name or '/'}")
+    return found[0] if found else DEFAULT_DESIGN
