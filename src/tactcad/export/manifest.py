@@ -49,7 +49,10 @@ def design_facts(plan: Plan) -> dict:
     counts = instance_counts(inst)
     parts = {n: _part_record(s, counts.get(n, 0)) for n, s in specs.items()}
     return {
-        "design": {"name": plan.name, "source": plan.source, "sha256": plan.design_hash},
+        # the file's name only: an export names files relative to the project
+        # folder, never by a path of the machine it was made on
+        "design": {"name": plan.name, "source": Path(plan.source).name,
+                   "sha256": plan.design_hash},
         "tactcad_version": __version__,
         "cad_stack": stack_versions(),
         "units": "mm",

@@ -495,15 +495,27 @@ def arm_height_for(longest_arm_mm: float, arm_height_mm: float) -> float | None:
     return need if need > arm_height_mm + 1e-9 else None
 
 
+def _mentions_paper(text: str) -> bool:
+    low = text.lower()
+    return "paper" in low or "table 1" in low or "table 2" in low
+
+
 def neutral_assumptions(data: Mapping[str, Any], base_name: str) -> dict[str, str]:
     """The base design's ``[assumptions]`` for a new design that does not
-    cite the paper: a reason that mentions the paper or its tables is
-    replaced by a pointer to the base design."""
+    cite the paper: a reason that says the value is not in the paper keeps
+    its own argument; one that still mentions the paper or its tables is
+    replaced by a neutral pointer (the base, when it is the paper's design, is
+    not named)."""
+    from tactcad.design.requirements import cites_paper
+
+    named = "" if cites_paper(data) else f" {base_name}"
     out = {}
     for key, why in dict(data.get("assumptions", {})).items():
         text = str(why)
-        if "paper" in text.lower() or "table 1" in text.lower() or "table 2" in text.lower():
-            text = f"Kept from the base design {base_name}, where it is an assumption."
+        if text.startswith("Not in the paper."):
+            text = text[len("Not in the paper."):].strip() or text
+        if _mentions_paper(text):
+            text = f"Kept from the base design{named}, where it is an assumption."
         out[key] = text
     return out
 
