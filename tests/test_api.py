@@ -20,7 +20,7 @@ ROOT = Path(__file__).resolve().parents[1]
 #: The design README's example loads (its one path, replaced by this absolute one).
 EXAMPLE_DESIGN = ROOT / "hardware" / "macro_array" / "macro_array.toml"
 README_EXAMPLE_DESIGN = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
-README_DESIGN_LINE = 'DESIGN = "hardware/ti_array_2x3/ti_array_2x3.toml"'
+README_DESIGN_LINE = 'DESIGN = "fingertip/ti_array_2x3.toml"'
 
 
 def readme_block(heading: str, index: int = 0) -> str:
