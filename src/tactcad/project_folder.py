@@ -137,6 +137,11 @@ def _with_files_table(text: str, rigs: str, scenes: str) -> str:
 def _check_target(folder: Path, names: list[str], force: bool) -> None:
     if folder.exists() and not folder.is_dir():
         raise DesignError("DIR", str(folder), "a new or existing folder", "it is a file")
+    parent = folder.resolve().parent
+    if not parent.is_dir() or not os.access(parent, os.W_OK | os.X_OK) \
+            or (folder.exists() and not os.access(folder, os.W_OK | os.X_OK)):
+        raise DesignError("DIR", str(folder), "a folder this user can write, in an existing folder",
+                          f"{parent} is not one")
     clashes = [n for n in names if (folder / n).exists()]
     if clashes and not force:
         raise DesignError("DIR", str(folder), "a folder without the project's files, or --force",
@@ -198,7 +203,10 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
     folder = Path(folder)
     files = _project_files(design_text, design_name, plan, companions)
     _check_target(folder, list(files), force)
-    staging = staging_dir(folder)
+    try:
+        staging = staging_dir(folder)
+    except OSError as exc:  # name the folder asked for, not the staging one
+        raise OSError(exc.errno, exc.strerror, str(folder)) from None
     os.chmod(staging, 0o777 & ~_umask())  # a project folder, not a private temporary one
     try:
         for rel, text in files.items():

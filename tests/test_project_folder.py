@@ -1,0 +1,155 @@
+"""A sensor project is a folder: ``tactcad new``, the ``[files]`` table, the
+rigs and scenes made for a design that has none, the design a command picks
+without ``--design``, and the three.js the package ships."""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import tomllib
+from pathlib import Path
+
+import pytest
+
+import tactcad
+from tactcad.cli import main
+from tactcad.design.array import DEFAULT_DESIGN, EXAMPLES
+from tactcad.errors import DesignError, DesignErrors
+from tactcad.project_folder import (companion_texts, default_design, examples, new_project,
+                                    sample_stiffnesses)
+
+#: The paper's samples (N/mm) and texts: never in what a non-paper design is given.
+PAPER_SAMPLES = ("10.01", "7.26", "6.28", "5.41", "4.51", "3.85", "3.57", "2.34")
+
+
+def _bare_design(folder: Path, text_edit=lambda t: t) -> Path:
+    """The Ti example's design file alone in ``folder``, its [files] table removed."""
+    text = (EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml").read_text(encoding="utf-8")
+    text = re.sub(r"\[files\]\nrigs = .*\nscenes = .*\n", "", text)
+    path = folder / "bare.toml"
+    path.write_text(text_edit(text), encoding="utf-8")
+    return path
+
+
+def test_the_examples_are_project_folders_shipped_in_the_package():
+    found = examples()
+    assert set(found) >= {"macro_array", "ti_array_2x3"}
+    assert found["macro_array"] == DEFAULT_DESIGN
+    for design in found.values():
+        files = tomllib.loads(design.read_text(encoding="utf-8"))["files"]
+        assert (design.parent / files["rigs"]).is_file()
+        assert (design.parent / files["scenes"]).is_file()
+
+
+def test_new_from_an_example_copies_its_own_rigs_and_makes_the_rest(tmp_path):
+    made = new_project(tmp_path / "p", example="ti_array_2x3")
+    assert set(made.files) == {"ti_array_2x3.toml", "rigs.toml", "scenes.toml", "README.md",
+                               ".gitignore", ".github/workflows/hardware.yml",
+                               "purchased-parts.md"}
+    example = EXAMPLES / "ti_array_2x3"
+    assert (made.folder / "rigs.toml").read_bytes() == (example / "rigs.toml").read_bytes()
+    project = tactcad.load(made.design)
+    assert project.validated.rigs_file == "rigs.toml"
+    readme = (made.folder / "README.md").read_text(encoding="utf-8")
+    assert "tactcad export --design ti_array_2x3.toml" in readme and "$" not in readme
+    assert "exports/" in (made.folder / ".gitignore").read_text(encoding="utf-8")
+    assert (made.folder.stat().st_mode & 0o777) != 0o700  # a shared folder, not a temp one
+
+
+def test_new_around_a_design_makes_rigs_over_its_own_kobj_range(tmp_path):
+    design = _bare_design(tmp_path)
+    made = new_project(tmp_path / "p", from_design=design)
+    rigs = tomllib.loads((made.folder / "rigs.toml").read_text(encoding="utf-8"))
+    samples = rigs["sample"]["stiffness_N_per_mm"]
+    assert samples == [5.0, 2.24, 1.0]  # the design states K_obj 1 ... 5 N/mm
+    scenes = (made.folder / "scenes.toml").read_text(encoding="utf-8")
+    assert "The 2 x 3 array" in scenes and "the 6 elements and 4 spacers" in scenes
+    text = (made.folder / "rigs.toml").read_text(encoding="utf-8") + scenes
+    assert not [k for k in PAPER_SAMPLES if k in text] and "paper" not in text.lower()
+    tables = tomllib.loads(made.design.read_text(encoding="utf-8"))
+    assert tables["files"] == {"rigs": "rigs.toml", "scenes": "scenes.toml"}
+    assert tactcad.load(made.design).validated.rigs.sample_stiffness_N_per_mm == (5.0, 2.24, 1.0)
+
+
+def test_a_design_without_a_stated_range_gets_samples_over_its_elements_span(tmp_path):
+    design = _bare_design(tmp_path, lambda t: re.sub(
+        r"kobj_range_N_per_mm = \[\n.*\n.*\n\]\n", "", t))
+    plan = tactcad.load(design).plan
+    samples, reason = sample_stiffnesses(plan)
+    assert "derived from the elements" in reason
+    ks = sorted(e.stiffness().stiffness_N_per_mm for e in tactcad.load(design).elements)
+    assert samples[0] == pytest.approx(ks[-1], rel=0.01) and samples[-1] == pytest.approx(ks[0], rel=0.01)
+
+
+def test_a_bare_design_gets_rigs_made_for_it_never_the_papers(tmp_path):
+    project = tactcad.load(_bare_design(tmp_path))
+    assert project.validated.rigs_file == "rigs.toml (made for bare.toml)"
+    assert project.validated.rigs.sample_stiffness_N_per_mm == (5.0, 2.24, 1.0)
+    assert companion_texts(project.plan)["rigs"].count("57.04") >= 1  # the gauge, to be measured
+
+
+@pytest.mark.parametrize("name, why", [
+    ("missing.toml", "no file missing.toml beside"),
+    ("../rigs.toml", "a relative path inside the design file's folder"),
+    ("/etc/passwd", "a relative path inside the design file's folder"),
+])
+def test_a_named_companion_that_is_missing_or_outside_is_refused(tmp_path, name, why):
+    design = _bare_design(tmp_path, lambda t: t + f'\n[files]\nrigs = "{name}"\n')
+    with pytest.raises(DesignErrors) as err:
+        tactcad.load(design)
+    assert err.value.errors[0].field == "files.rigs" and why in str(err.value)
+
+
+def test_a_folder_with_the_projects_files_is_refused_and_a_git_repository_is_not(tmp_path):
+    (tmp_path / "repo" / ".git").mkdir(parents=True)
+    new_project(tmp_path / "repo")
+    with pytest.raises(DesignError, match="DIR.*allowed a folder without the project's files"):
+        new_project(tmp_path / "repo")
+    new_project(tmp_path / "repo", force=True)
+    assert not list(tmp_path.glob(".repo.staging-*"))
+
+
+def test_without_design_a_command_takes_the_project_folders_one_design(tmp_path, monkeypatch):
+    assert default_design(tmp_path) == DEFAULT_DESIGN
+    made = new_project(tmp_path / "p")
+    monkeypatch.chdir(made.folder)
+    assert default_design().resolve() == made.design.resolve()
+    assert tactcad.load().name == "ti_array_2x3"
+    shutil.copy(made.design, made.folder / "second.toml")
+    with pytest.raises(DesignError, match="--design.*one of second.toml, ti_array_2x3.toml"):
+        default_design()
+
+
+def test_new_on_the_command_line_says_what_it_wrote(tmp_path, capsys):
+    assert main(["new", str(tmp_path / "p"), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert Path(out["design"]).name == "ti_array_2x3.toml" and "rigs.toml" in out["files"]
+    assert main(["new", str(tmp_path / "q"), "--example", "nope"]) == 2
+    assert "--example = 'nope': allowed one of macro_array, ti_array_2x3" in capsys.readouterr().err
+    assert not (tmp_path / "q").exists()
+
+
+def test_the_manifest_names_the_design_file_not_a_path():
+    from tactcad.export.manifest import design_facts
+
+    facts = design_facts(tactcad.load(DEFAULT_DESIGN.resolve()).plan)
+    assert facts["design"]["source"] == "macro_array.toml"
+
+
+def test_shipped_threejs_is_checked_before_a_page_carries_it(tmp_path, monkeypatch):
+    from tactcad.export import review_assets as ra
+
+    shipped = ra.three_dir()
+    assert ra.three_version() == json.loads((shipped / "package.json").read_text())["version"]
+    assert (shipped / "LICENSE").read_text().startswith("The MIT License")
+    copy = tmp_path / "three"
+    shutil.copytree(Path(str(shipped)), copy)
+    (copy / "build" / "three.core.js").write_text("// changed", encoding="utf-8")
+    monkeypatch.setattr(ra, "three_dir", lambda: copy)
+    ra._import_map.cache_clear()
+    try:
+        with pytest.raises(ra.ReviewAssetsError, match="build/three.core.js .* not the file"):
+            ra.import_map()
+    finally:
+        ra._import_map.cache_clear()
