@@ -10,6 +10,7 @@ import pytest
 from PIL import Image
 
 import tactcad
+from conftest import with_default_companions
 from tactcad import cli
 from tactcad.errors import DesignError
 from tactcad.export.diff import NEW_RGB, OLD_RGB, compare, overlay, side_by_side
@@ -116,6 +117,7 @@ def test_design_files_are_exported_through_the_store_then_compared(tmp_path, cap
     assert "web_thickness_mm = 0.25" in text
     changed.write_text(text.replace("web_thickness_mm = 0.25", "web_thickness_mm = 0.3"),
                        encoding="utf-8")
+    with_default_companions(changed)
     store = str(tmp_path / "store")
     code = cli.main(["diff", str(DEFAULT), str(changed), "--cache", store, "--json", "--quiet"])
     report = json.loads(capsys.readouterr().out)

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import with_default_companions
 from tactcad.design.array import DEFAULT_DESIGN
 from tactcad.store import Store
 
@@ -40,7 +41,7 @@ def small_design(tmp: Path) -> Path:
                         "lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0]")
     path = tmp / "small.toml"
     path.write_text(text, encoding="utf-8")
-    return path
+    return with_default_companions(path)
 
 
 def whole_set(out: Path) -> tuple[str, set[str]]:

@@ -140,14 +140,40 @@ def test_cli_writes_a_loadable_design_and_json(tmp_path, monkeypatch, capsys):
     assert json.loads(capsys.readouterr().out)["error"]["field"] == "--out"  # --json: JSON error
 
 
-@pytest.mark.parametrize("out", ["/etc/tactcad-new.toml", "/usr/lib/new.toml", "new.txt",
-                                 "missing-folder/new.toml"])
+@pytest.mark.parametrize("out", ["/etc/tactcad-new.toml", "/usr/lib/new.toml", "/usr/lib/newdir",
+                                 "missing-folder/new.toml", "missing-folder/newdir"])
 def test_cli_refuses_system_folders_and_not_toml(tmp_path, monkeypatch, capsys, out):
     monkeypatch.chdir(tmp_path)
     assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
                  "--full-scale-force", "0.3", "--verify", "none", "--out", out]) == 2
     assert "tactcad: error: --out" in capsys.readouterr().err
     assert not Path(out).exists() and not (tmp_path / out).exists()
+
+
+def test_cli_refuses_a_file_that_is_no_design_or_folder(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    Path("notes.txt").write_text("mine")
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                 "--full-scale-force", "0.3", "--verify", "none", "--out", "notes.txt"]) == 2
+    assert "--out = 'notes.txt': allowed a file name ending in .toml, or a project folder" in \
+        capsys.readouterr().err
+    assert Path("notes.txt").read_text() == "mine"
+
+
+def test_cli_writes_a_project_folder(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                 "--full-scale-force", "0.3", "--verify", "none", "--out", "finger-tip",
+                 "--columns", "4", "--quiet"]) == 0
+    design = tmp_path / "finger-tip" / "finger_tip.toml"
+    assert design.read_text().startswith(
+        "# Written by `tactcad design --kr-over-km 3 --kobj-range 5 20 --full-scale-force 0.3 "
+        "--columns 4`.")
+    rigs = (tmp_path / "finger-tip" / "rigs.toml").read_text()
+    assert "stiffness_N_per_mm = [20.0, 10.0, 5.0]" in rigs
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                 "--full-scale-force", "0.3", "--verify", "none", "--out", "finger-tip"]) == 2
+    assert "allowed a folder without the project's files, or --force" in capsys.readouterr().err
 
 
 def test_cli_writes_outside_the_working_folder(tmp_path, monkeypatch, capsys):
