@@ -157,6 +157,7 @@ def test_an_incremental_export_writes_the_bytes_of_a_cold_one(tmp_path, warm):
     changed.write_text(text.replace("lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0, 5.0, 7.0]",
                                     "lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.5, 8.0, 5.0, 4.0, 5.0, 7.0]"),
                        encoding="utf-8")
+    with_default_companions(changed)
     proc = run("export", "--design", str(changed), "--cache", str(warm), "--out",
                str(tmp_path / "incremental"), "--json")
     assert proc.returncode == 0, proc.stderr
