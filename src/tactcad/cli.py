@@ -171,12 +171,43 @@ def dispatch(argv: list[str], as_json: bool) -> int:
 
 
 def report_interrupt(exc: KeyboardInterrupt, as_json: bool) -> int:
-    """One line (or one JSON error) for Ctrl-C; :data:`EXIT_INTERRUPTED`."""
-    message = "interrupted; the previous files are left as they were"
+    """One line (or one JSON error) for Ctrl-C (:data:`EXIT_INTERRUPTED`) or
+    a terminating signal (128 + its number: 143 for SIGTERM, 129 for SIGHUP)."""
+    import signal
+
+    from tactcad.errors import Terminated
+
+    if isinstance(exc, Terminated):
+        code = 128 + exc.signum
+        message = (f"terminated by {signal.Signals(exc.signum).name}; the previous files are "
+                   "left as they were")
+    else:
+        code, message = EXIT_INTERRUPTED, "interrupted; the previous files are left as they were"
     if as_json:
-        return report_error(error_record(exc, EXIT_INTERRUPTED, message), as_json)
+        return report_error(error_record(exc, code, message), as_json)
     print(f"tactcad: {message}", file=sys.stderr)
-    return EXIT_INTERRUPTED
+    return code
+
+
+#: Signals that end a run like Ctrl-C does (cleaned up, then 128 + the number).
+ENDING_SIGNALS = ("SIGTERM", "SIGHUP")
+
+
+def end_like_ctrl_c() -> None:
+    """Make SIGTERM and SIGHUP raise :class:`tactcad.errors.Terminated` in the
+    main thread, so every run's Ctrl-C path (children stopped, staging removed,
+    one line) serves them too; by default they end the process at once."""
+    import signal
+
+    from tactcad.errors import Terminated
+
+    def ending(signum: int, frame) -> None:
+        for name in ENDING_SIGNALS:  # a second signal while cleaning up is not a new error
+            signal.signal(getattr(signal, name), signal.SIG_IGN)
+        raise Terminated(signum)
+
+    for name in ENDING_SIGNALS:
+        signal.signal(getattr(signal, name), ending)
 
 
 def error_record(exc: BaseException, exit_code: int, message: str | None = None) -> dict:
@@ -215,6 +246,7 @@ def console(argv: list[str] | None = None) -> NoReturn:
     nothing the OS would not. Output is flushed and the ``atexit`` handlers
     (temporary folders left to a finaliser) run first; an export has closed
     its worker process before it returns."""
+    end_like_ctrl_c()
     code = main(argv)
     try:
         sys.stdout.flush()

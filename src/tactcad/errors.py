@@ -90,3 +90,18 @@ class CheckFailure(TactcadError):
 
 class LeftoverWarning(UserWarning):
     """Files of an earlier or failed run that could not be removed (named in the message)."""
+
+
+class Terminated(KeyboardInterrupt):
+    """The process was asked to end by a signal (SIGTERM from a CI runner or
+    ``kill``, SIGHUP from a closed terminal): handled like Ctrl-C, so the run
+    cleans up (children stopped, staging folders removed) before it exits with
+    128 + the signal's number.
+
+    Attributes:
+        signum: the signal's number (15 SIGTERM, 1 SIGHUP).
+    """
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum

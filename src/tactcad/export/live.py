@@ -113,7 +113,8 @@ class LiveState:
         folder, _, digest = path.rpartition("/")
         with self.lock:
             if path in ("/", "/index.html"):
-                return self.page, "text/html; charset=utf-8"
+                return self.page or waiting_page(self.status, self.refusal), \
+                    "text/html; charset=utf-8"
             if path == "/state":
                 return self._state_json(), "application/json"
             if path == "/data":
@@ -127,6 +128,34 @@ class LiveState:
         return None
 
 
+def waiting_page(status: str, refusal: str | None) -> bytes:
+    """``GET /`` before the first good export: what the watch is doing, and why
+    there is nothing to show when the design or its export was refused; the
+    page reloads itself every 2 s until the review page is there."""
+    import html
+
+    why = f"<pre>{html.escape(refusal)}</pre>" if refusal else ""
+    return (f'<!doctype html><html><head><meta charset="utf-8">'
+            f'<meta http-equiv="refresh" content="2"><title>tactcad watch: {html.escape(status)}'
+            f'</title></head><body><h1>tactcad watch: {html.escape(status)}</h1>'
+            f"<p>No export to show yet.</p>{why}</body></html>").encode("utf-8")
+
+
+#: Seconds a connection may stay silent before its thread is given back.
+CLIENT_TIMEOUT_S = 15.0
+#: Connections the kernel queues while every thread is busy (socketserver's default is 5).
+LISTEN_BACKLOG = 128
+#: The host names a page on this machine may use for the watch (DNS rebinding guard).
+LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "[::1]")
+
+
+def host_allowed(host: str | None, port: int) -> bool:
+    """True when a request's ``Host`` header names this machine's loopback at
+    ``port`` (``127.0.0.1:PORT``, ``localhost:PORT``, ``[::1]:PORT``): a web page
+    whose name was rebound to 127.0.0.1 sends its own name and is refused."""
+    return host is not None and host.strip().lower() in {f"{h}:{port}" for h in LOOPBACK_HOSTS}
+
+
 def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
     """An HTTP server on 127.0.0.1:``port`` (0: any free port; ``HEAD`` as ``GET``
     without the body): ``GET /`` the
@@ -138,7 +167,14 @@ def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
         OSError: the port is taken or not allowed.
     """
     class Handler(BaseHTTPRequestHandler):
+        timeout = CLIENT_TIMEOUT_S  # an idle or slow client gives its thread back
+
         def do_GET(self, with_body: bool = True):  # noqa: N802 (http.server's name)
+            if not host_allowed(self.headers.get("Host"), self.server.server_address[1]):
+                self.send_error(421, "Misdirected Request",
+                                "tactcad watch answers requests for 127.0.0.1, localhost or "
+                                "[::1] at its own port only")
+                return
             found = state.response(self.path.split("?")[0])
             if found is None:
                 self.send_error(404)
@@ -165,10 +201,13 @@ def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
 
 class _QuietServer(ThreadingHTTPServer):
     """A browser that reloads or closes the page while it downloads (6 MB) resets the
-    connection: that is no error for the terminal; any other is printed as before."""
+    connection: that is no error for the terminal; any other is printed as before.
+    A client that stays silent past :data:`CLIENT_TIMEOUT_S` is dropped the same way."""
+
+    request_queue_size = LISTEN_BACKLOG
 
     def handle_error(self, request, client_address) -> None:
-        if not isinstance(sys.exc_info()[1], ConnectionError):
+        if not isinstance(sys.exc_info()[1], (ConnectionError, TimeoutError)):
             super().handle_error(request, client_address)
 
 

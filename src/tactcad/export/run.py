@@ -162,7 +162,7 @@ def check_out_dir(out_dir: str | Path) -> Path:
     Raises:
         NotADirectoryError: a folder on the way is a file.
         ExportPathError: a system folder, the home folder or the working folder
-            (or one above it), a file, or a non-empty folder that is not a
+            (or one above it), a file, a mount point, or a non-empty folder that is not a
             tactcad export (no ``manifest.json``): an export replaces its
             folder as a whole, keeping only files it did not write.
     """
@@ -178,6 +178,10 @@ def check_out_dir(out_dir: str | Path) -> Path:
                               "e.g. --out exports")
     if real.exists() and not real.is_dir():
         raise ExportPathError(f"--out {out_dir}: {real} is a file, not a folder")
+    if real.is_dir() and os.path.ismount(real):
+        raise ExportPathError(f"--out {out_dir}: {real} is a mount point, which an export cannot "
+                              "replace as a whole (it swaps its folder in one rename); name a "
+                              f"folder inside it, e.g. --out {Path(str(out_dir)) / 'exports'}")
     if real.is_dir() and any(real.iterdir()) and not (real / MANIFEST).is_file():
         raise ExportPathError(f"--out {out_dir}: {real} holds files but no {MANIFEST}, so it is no "
                               "tactcad export folder; name an empty or new folder")
