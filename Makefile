@@ -8,18 +8,25 @@ STAMP  := $(VENV)/.installed-stamp
 DESIGN ?= hardware/macro_array/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env vendor-three system-deps export docs-images check ci-example test test-fast bench fuzz clean
+.PHONY: help env lower-bounds typecheck vendor-three system-deps export docs-images check ci-example test test-fast bench fuzz clean
 
 help: ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
 
-$(STAMP): pyproject.toml
+# the ranges of pyproject.toml, at the exact versions of constraints.txt
+$(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
-	$(BIN)/pip install --quiet -e ".[test]"
+	$(BIN)/pip install --quiet -c constraints.txt -e ".[test]"
 	touch $(STAMP)
 
 env: $(STAMP) ## create .venv with the pinned CAD stack (build123d + cadquery on one OCP)
+
+lower-bounds: ## install the lowest versions pyproject.toml allows into a throwaway venv and run the fast mechanics tests there
+	sh scripts/check_lower_bounds.sh $(PYTHON)
+
+typecheck: $(STAMP) ## mypy over the public API (tactcad, tactcad.api, tactcad.errors)
+	$(BIN)/python -m mypy
 
 vendor-three: $(STAMP) ## refresh src/tactcad/data/three from the npm release web/package-lock.json pins (needs npm)
 	$(BIN)/python scripts/vendor_three.py

@@ -294,9 +294,9 @@ def test_reuse_refusal_reasons(tmp_path):
 
 # --- ./tactcad and README ----------------------------------------------------------------------
 def launcher_checkout(tmp_path: Path) -> Path:
-    """A copy of the launcher, Makefile and pyproject.toml with a set-up .venv
+    """A copy of the launcher, Makefile, pyproject.toml and constraints.txt with a set-up .venv
     whose tactcad runs this source tree."""
-    for name in ("tactcad", "Makefile", "pyproject.toml"):
+    for name in ("tactcad", "Makefile", "pyproject.toml", "constraints.txt"):
         shutil.copy2(ROOT / name, tmp_path / name)
     bin_dir = tmp_path / ".venv" / "bin"
     bin_dir.mkdir(parents=True)
@@ -366,3 +366,21 @@ def test_ctrl_c_while_the_kernel_loads_is_one_line(monkeypatch, capsys):
     monkeypatch.setattr(scenes_cmd, "run", broken_import)
     with pytest.raises(ImportError, match="nothing"):
         cli_mod.main(["scenes"])
+
+
+def test_every_options_help_gives_its_default_and_no_literal_percent():
+    """An option with a default says it (``%(default)s`` or in words); help and
+    descriptions never print argparse's escape ``%%``."""
+    silent = (argparse._HelpAction, argparse._StoreTrueAction, argparse._VersionAction)
+    missing = []
+    for path, parser in leaf_parsers(cli.build_parser()):
+        assert "%%" not in parser.format_help(), path
+        for action in parser._actions:
+            if not action.option_strings or isinstance(action, silent):
+                continue
+            if action.default is None or action.default is False or action.default == [] \
+                    or action.help == argparse.SUPPRESS:
+                continue
+            if "%(default)" not in (action.help or "") and "default" not in (action.help or ""):
+                missing.append((" ".join(path), action.option_strings[0], action.default))
+    assert missing == []

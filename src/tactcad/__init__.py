@@ -8,12 +8,22 @@ The public Python API (:mod:`tactcad.api`) is reachable from here:
 ``tactcad.load``, ``tactcad.Project``, and the build123d part classes
 ``tactcad.FlexureElement`` and ``tactcad.FlexureArray``
 (:mod:`tactcad.assembly.part_objects`). They are imported on first use, so
-``import tactcad`` stays cheap and loads no CAD kernel.
+``import tactcad`` stays cheap and loads no CAD kernel. The errors a user
+can catch (``tactcad.DesignErrors``, ``tactcad.DesignError``,
+``tactcad.TactcadError``, ...) are here too.
 """
 
 import importlib
+from typing import TYPE_CHECKING
+
+from tactcad.errors import (CheckFailure, DesignError, DesignErrors, ExportPathError, SceneError,
+                            TactcadError, Terminated)
 
 __version__ = "0.1.0"
+
+if TYPE_CHECKING:  # what type checkers see of the names imported on first use
+    from tactcad.api import CheckReport, Element, Project, load
+    from tactcad.assembly.part_objects import FlexureArray, FlexureElement, show
 
 #: Public name -> the module that defines it (imported on first access).
 _PUBLIC = {
@@ -26,7 +36,11 @@ _PUBLIC = {
     "show": "tactcad.assembly.part_objects",
 }
 
-__all__ = ["__version__", *_PUBLIC]
+#: Every error a user can catch, each naming the field, value and allowed range.
+ERRORS = ["TactcadError", "DesignError", "DesignErrors", "SceneError", "ExportPathError",
+          "CheckFailure", "Terminated"]
+
+__all__ = ["__version__", *_PUBLIC, *ERRORS]
 
 
 def __getattr__(name: str):

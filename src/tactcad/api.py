@@ -23,7 +23,19 @@ from dataclasses import dataclass
 from functools import cached_property
 from os import PathLike
 from pathlib import Path
-from typing import Any, Callable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
+
+if TYPE_CHECKING:  # types only: importing them at run time would load the kernel
+    from build123d import Compound, Solid
+
+    from tactcad.checks.result import CheckResult
+    from tactcad.design.array import ElementGeometry, ElementSlot, Plan
+    from tactcad.design.project import Project as ValidatedProject
+    from tactcad.design.rigs import RigDesign
+    from tactcad.design.scenes import SceneSpec
+    from tactcad.export.run import ExportResult
+    from tactcad.mechanics.result import StiffnessResult
+    from tactcad.mechanics.strength import StrengthRecord
 
 __all__ = ["load", "Project", "Element", "CheckReport"]
 
@@ -69,7 +81,7 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
     return Project(_validated(data, design), data, design)
 
 
-def _validated(data: Mapping[str, Any], design: Path):
+def _validated(data: Mapping[str, Any], design: Path) -> "ValidatedProject":
     """The design tables with their rigs and scenes validated together; a
     design with no rigs or scenes file gets ones made for it."""
     from tactcad.design.project import project_with_design_data
@@ -107,29 +119,29 @@ class Project:
         source: the design file's path.
     """
 
-    def __init__(self, validated, data: Mapping[str, Any], source: Path):
+    def __init__(self, validated: "ValidatedProject", data: Mapping[str, Any], source: Path):
         self.validated = validated
         self.source = Path(source)
         self._data = data
         self._report: Progress = _quiet  # where long part builds are reported
 
     # --- the validated files ---
-    def _validated_field(self, name: str):
+    def _validated_field(self, name: str) -> Any:
         """One field of the validated :class:`tactcad.design.project.Project`."""
         return getattr(self.validated, name)
 
     @property
-    def plan(self):
+    def plan(self) -> "Plan":
         """The array's :class:`~tactcad.design.array.Plan` (mm, N, MPa)."""
         return self._validated_field("plan")
 
     @property
-    def rigs(self):
+    def rigs(self) -> "RigDesign":
         """The rig plan (:class:`~tactcad.design.rigs.RigDesign`) derived against the array."""
         return self._validated_field("rigs")
 
     @property
-    def scenes(self) -> dict:
+    def scenes(self) -> dict[str, "SceneSpec"]:
         """The scenes by name (:class:`~tactcad.design.scenes.SceneSpec`)."""
         return dict(self._validated_field("scenes"))
 
@@ -178,7 +190,7 @@ class Project:
         each built on first access."""
         return Parts(self)
 
-    def assembly(self, scene: str = "array"):
+    def assembly(self, scene: str = "array") -> "Compound":
         """A scene as one labelled build123d ``Compound`` (mm, the scene's frame).
 
         Each child is a placed copy of its part's solid, labelled with the
@@ -222,7 +234,8 @@ class Project:
     # --- files ---
     def export(self, out: str | Path = "exports", only: Sequence[str] | str | None = None,
                part: Sequence[str] | str | None = None, cache: str | Path | None | bool = True,
-               dxf_version: str | None = None, progress: Progress | None = None):
+               dxf_version: str | None = None,
+               progress: Progress | None = None) -> "ExportResult":
         """Write the design's files (STEP, DXF, scenes, drawings, BOM, manifest) into ``out``.
 
         The files are written as one set (the folder is swapped in one
@@ -256,7 +269,7 @@ class Project:
         kinds = parse_only([only] if isinstance(only, str) else only)
         names = [part] if isinstance(part, str) else list(part or ())
         report = progress or _quiet
-        partial = {} if kinds or names else None
+        partial: dict[str, Any] | None = {} if kinds or names else None
 
         def select(jobs):
             chosen = select_jobs(jobs, kinds, names) if partial is not None else list(jobs)
@@ -386,14 +399,14 @@ class Element:
     """
 
     project: Project
-    slot: Any
+    slot: "ElementSlot"
 
     @property
     def number(self) -> int:
         return self.slot.number
 
     @property
-    def geometry(self):
+    def geometry(self) -> "ElementGeometry":
         """The element's :class:`~tactcad.design.array.ElementGeometry` (mm)."""
         return self.slot.geometry
 
@@ -403,12 +416,12 @@ class Element:
         return self.slot.geometry.part_name
 
     @property
-    def solid(self):
+    def solid(self) -> "Solid":
         """The element's build123d ``Solid`` (element frame, mm): the wire-cut
         profile extruded by the sheet thickness along +z."""
         return self.project.parts[self.part_name]
 
-    def stiffness(self, model: str = "closed-form", **options):
+    def stiffness(self, model: str = "closed-form", **options: Any) -> "StiffnessResult":
         """Tip stiffness K for a force normal to the contact face.
 
         Args:
@@ -428,7 +441,7 @@ class Element:
         return estimate(model, self.geometry, self.project.plan.material, element=self.number,
                         **options)
 
-    def strength(self, model: str = "closed-form"):
+    def strength(self, model: str = "closed-form") -> "StrengthRecord":
         """Peak stress per newton at the hinge and the full-scale force.
 
         Args:
@@ -468,18 +481,18 @@ class CheckReport:
         out: the folder checked (None: a temporary one).
     """
 
-    groups: tuple[tuple[str, tuple], ...]
+    groups: tuple[tuple[str, tuple["CheckResult", ...]], ...]
     reused_export: bool
     export_refusal: str | None
     out: str | None
 
     @property
-    def results(self) -> list:
+    def results(self) -> list["CheckResult"]:
         """Every result in order."""
         return [r for _, found in self.groups for r in found]
 
     @property
-    def failures(self) -> list:
+    def failures(self) -> list["CheckResult"]:
         """The results that failed."""
         return [r for r in self.results if not r.passed]
 

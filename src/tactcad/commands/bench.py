@@ -58,14 +58,18 @@ def register(sub: argparse._SubParsersAction) -> None:
     c.set_defaults(func=run_closed_form)
     m = bsub.add_parser("montecarlo", help="10 000-sample tolerance Monte Carlo (goal <= 1 s)")
     add_design_arg(m)
-    m.add_argument("--samples", type=count(1, 10**7, "samples"), default=10_000)
+    m.add_argument("--samples", type=count(1, 10**7, "samples"), default=10_000,
+                   help="Monte Carlo samples (default %(default)s)")
     add_output_args(m, "print one JSON object: first and best-of-3 seconds and the goal")
     m.set_defaults(func=run_montecarlo)
     w = bsub.add_parser("sweep", help="fem3d sweep on two Dask workers vs one (goal >= 1.7x)")
     add_design_arg(w)
-    w.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=[0.25, 0.4], metavar="MM")
-    w.add_argument("--arms", type=number(0, 1000, "mm", lo_open=True), nargs="+", default=[4.0, 8.0], metavar="MM")
-    w.add_argument("--model", default="fem3d", choices=("beam", "fem2d", "fem3d"))
+    w.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=[0.25, 0.4], metavar="MM",
+                   help="web thicknesses of the sweep (mm; default %(default)s)")
+    w.add_argument("--arms", type=number(0, 1000, "mm", lo_open=True), nargs="+", default=[4.0, 8.0], metavar="MM",
+                   help="arm lengths of the sweep (mm; default %(default)s)")
+    w.add_argument("--model", default="fem3d", choices=("beam", "fem2d", "fem3d"),
+                   help="ladder level of every point (default %(default)s)")
     add_output_args(w, "print one JSON object: one- and two-worker seconds, speed-up, goal")
     w.set_defaults(func=run_sweep)
     r = bsub.add_parser("review", help="the review page: size and time to first frame in "

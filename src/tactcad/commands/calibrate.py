@@ -47,10 +47,11 @@ def register(subparsers) -> None:
     p.add_argument("--gain", type=float, default=None, metavar="V_PER_STRAIN",
                    help="gauge gain of the simulated rig (V per unit strain), default -120")
     p.add_argument("--noise-force", type=number(0, 100, "N"), default=0.001, metavar="N",
-                   help="force noise of the simulated rig (N, one sigma)")
+                   help="force noise of the simulated rig (N, one sigma; default %(default)s N)")
     p.add_argument("--noise-signal", type=number(0, 100, "V"), default=0.001, metavar="V",
-                   help="signal noise of the simulated rig (V, one sigma)")
-    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0, help="random seed of the simulated rig")
+                   help="signal noise of the simulated rig (V, one sigma; default %(default)s V)")
+    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0,
+                   help="random seed of the simulated rig (default %(default)s)")
     p.add_argument("--write-csv", metavar="CSV", type=output_file(".csv"), default=None,
                    help="with --simulate: also write the readings in the calibration CSV format")
     p.add_argument("--gain-tolerance", type=number(0, 10, lo_open=True), default=0.25,

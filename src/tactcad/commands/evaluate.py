@@ -36,14 +36,17 @@ def register(subparsers) -> None:
                         "required K_obj range (the paper's design: its eight samples)")
     p.add_argument("--coupling", choices=("none", "halfspace", "layer"), default="halfspace",
                    help="sample model (default halfspace)")
-    p.add_argument("--poisson", type=number(0, 0.5), default=0.5, help="sample Poisson ratio (0 ... 0.5)")
+    p.add_argument("--poisson", type=number(0, 0.5), default=0.5, help="sample Poisson ratio (0 ... 0.5; default %(default)s, incompressible rubber)")
     p.add_argument("--thickness", type=number(0, 1e4, "mm", lo_open=True), default=10.0, metavar="MM",
                    help="sample thickness on its rigid base for --coupling layer (mm), default 10")
     p.add_argument("--stiffness", choices=("ladder", "table1"), default="ladder",
                    help="element K: the ladder's prediction for the design, or the measured "
-                        "K of a design that cites them (ladder for elements without one)")
-    p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form", help="ladder level")
-    p.add_argument("--steps", type=count(1, 1000, "load steps"), default=6, help="load steps (>= 1)")
+                        "K of a design that cites them (ladder for elements without one); "
+                        "default %(default)s")
+    p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form",
+                   help="ladder level of the element stiffness (default %(default)s)")
+    p.add_argument("--steps", type=count(1, 1000, "load steps"), default=6,
+                   help="load steps up to the full-scale force (>= 1; default %(default)s)")
     p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write a Fig. 7-like plot (R against K_m/K_obj per K_r/K_m) here")
     p.add_argument("--plot-fig6", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,

@@ -30,7 +30,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "where full scale exceeds the fatigue strength or the gauge's fatigue or "
                     "maximum strain. Units: MPa, N, mm, microstrain.")
     p.add_argument("--model", choices=MODELS, default="closed-form",
-                   help="ladder level (fem2d ~2 s, fem3d ~1 min per distinct element)")
+                   help="ladder level (fem2d ~2 s, fem3d ~1 min per distinct element; default "
+                        "%(default)s)")
     add_design_arg(p)
     add_output_args(p, "print a JSON list of records")
     p.add_argument("--table1", action="store_true",

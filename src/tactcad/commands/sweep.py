@@ -24,35 +24,40 @@ def register(sub: argparse._SubParsersAction) -> None:
     ssub = p.add_subparsers(dest="sweep", metavar="WHAT")
     g = ssub.add_parser("grid", help="K over web x arm (x notch radius): CSV and design chart PNG")
     add_design_arg(g)
-    g.add_argument("--model", choices=MODELS, default="closed-form")
-    g.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=list(DEFAULT_WEBS_MM), metavar="MM")
-    g.add_argument("--arms", type=number(0, 1000, "mm", lo_open=True), nargs="+", default=list(DEFAULT_ARMS_MM), metavar="MM")
+    g.add_argument("--model", choices=MODELS, default="closed-form",
+                   help="ladder level of every point (default %(default)s)")
+    g.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=list(DEFAULT_WEBS_MM), metavar="MM",
+                   help="web thicknesses (mm; default %(default)s)")
+    g.add_argument("--arms", type=number(0, 1000, "mm", lo_open=True), nargs="+", default=list(DEFAULT_ARMS_MM), metavar="MM",
+                   help="arm lengths (mm; default %(default)s)")
     g.add_argument("--radii", type=number(0, 100, "mm", lo_open=True), nargs="+", default=None, metavar="MM",
                    help="notch radii (default: the design's, raised to the web where thinner)")
     g.add_argument("--out", metavar="DIR", default="exports/sweeps",
-                   help="folder for design_grid.csv and design_chart.png")
+                   help="folder for design_grid.csv and design_chart.png (default %(default)s)")
     add_output_args(g, "print the rows as JSON")
     add_cluster_args(g, local_default=True)
     g.set_defaults(func=run_grid_cmd)
 
     r = ssub.add_parser("refit", help="fem3d sweep of the closed-form correction and its fit "
                                       "(about 20 s per design per worker)")
-    r.add_argument("--fit", type=count(0, 100_000, "designs"), default=64, help="Sobol designs in the fit set")
-    r.add_argument("--holdout", type=count(0, 100_000, "designs"), default=16, help="Sobol designs held out")
+    r.add_argument("--fit", type=count(0, 100_000, "designs"), default=64, help="Sobol designs in the fit set (default %(default)s)")
+    r.add_argument("--holdout", type=count(0, 100_000, "designs"), default=16, help="Sobol designs held out (default %(default)s)")
     r.add_argument("--points", metavar="FILE", default=None,
                    help="JSON lines of the fem3d points (resumable; default: the sweep's own)")
     r.add_argument("--out", metavar="FILE", default="exports/sweeps/stiffness_correction.json",
-                   help="fitted correction (the stored one is not touched)")
+                   help="fitted correction (the stored one is not touched; default %(default)s)")
     add_output_args(r, "print one JSON object: new points, seconds, residuals, the file written")
     add_cluster_args(r, local_default=True)
     r.set_defaults(func=run_refit_cmd)
 
     m = ssub.add_parser("montecarlo", help="tolerance Monte Carlo on Dask, CSV of the bands")
     add_design_arg(m)
-    m.add_argument("--samples", type=count(1, 10**8, "samples"), default=100_000)
-    m.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0)
+    m.add_argument("--samples", type=count(1, 10**8, "samples"), default=100_000,
+                   help="Monte Carlo samples (default %(default)s)")
+    m.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0,
+                   help="random seed of the draws (default %(default)s)")
     m.add_argument("--out", metavar="DIR", default="exports/sweeps",
-                   help="folder for tolerance_elements.csv and tolerance_units.csv")
+                   help="folder for tolerance_elements.csv and tolerance_units.csv (default %(default)s)")
     add_output_args(m, "print one JSON object: samples, seconds, the files written")
     add_cluster_args(m, local_default=True)
     m.set_defaults(func=run_montecarlo_cmd)

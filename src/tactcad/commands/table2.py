@@ -27,7 +27,8 @@ def register(subparsers) -> None:
                     "leave-one-element-out. Relative error |R_pred - R_meas|/R_meas.")
     add_design_arg(p)
     p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form",
-                   help="ladder level for element 5 (no Table 1 entry) in the coupled models")
+                   help="ladder level for element 5 (no Table 1 entry) in the coupled models "
+                        "(default %(default)s)")
     p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write measured R with eq. 2 and the held-out fitted-K_r model here")
     add_output_args(p, "print one JSON object")

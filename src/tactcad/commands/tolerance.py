@@ -28,7 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "(the table the drawings print; options override it as what-if), evaluates K with the "
                     "corrected closed form, R per sensing unit (eq. 2) and the K_obj a unit "
                     "reports with its nominal K_m, K_r (eq. 3): mean, standard deviation and "
-                    "95 %% interval. Also the web tolerance that keeps K within +/-5 %% (for "
+                    "95 % interval. Also the web tolerance that keeps K within +/-5 % (for "
                     "the paper's design next to its measured spread of equal-arm elements), "
                     "whether the K band holds [requirements] k_tolerance_rel and which "
                     "tolerance to tighten to what. Units: mm, N/mm.")
