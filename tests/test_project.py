@@ -27,10 +27,10 @@ FILE_READERS = {"read_toml", "load_design", "load_rigs", "load_scenes", "load_pr
 READERS_ALLOWED = ("design/", "commands/", "cli.py", "api.py", "project_folder.py",
                    "assembly/part_objects.py")
 #: Modules that read the shipped (paper's) design as fixed reference data, never as the
-#: user's design: the stiffness-correction grid is defined on it, and Table 1's
-#: equal-arm spread is the paper's, whatever design is being run.
-TEMPLATE_READERS = {"studies/correction_sweep.py": {"default_design_data"},
-                    "mechanics/tolerance.py": {"load_design"}}
+#: user's design: the stiffness-correction grid is defined on it (a study run on
+#: purpose, `tactcad sweep refit`). mechanics/ reads no design file at all: the
+#: paper's comparisons work on the plan they are handed, where it applies.
+TEMPLATE_READERS = {"studies/correction_sweep.py": {"default_design_data"}}
 
 
 def _design_copy(tmp_path: Path) -> Path:

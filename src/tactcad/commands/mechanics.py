@@ -73,9 +73,10 @@ def run_stiffness(args: argparse.Namespace) -> int:
 
 def run_table1(args: argparse.Namespace) -> int:
     from tactcad.mechanics.ladder import (PAPER_STRAIN_RANGE, as_built_webs, gauge_strain_at_paper_load,
-                                    table1_comparison, table2_predicted)
+                                    require_table1, table1_comparison, table2_predicted)
 
     plan = plan_from_args(args)
+    require_table1(plan)
     report = progress_from_args(args)
     progress = (lambda s: report(f"  ... {s}"))
     if args.model == "all":

@@ -94,4 +94,6 @@ def render(report) -> str:
         lines.append(f"  ratio spread {100 * t['sensitivity_ratio_rel_std']:.0f} % (1 sigma); at each "
                      f"element's as-built web {100 * t['as_built_web_ratio_rel_std']:.0f} %, mean "
                      f"{t['as_built_web_ratio_mean']:.2f} (gain {t['gain_at_as_built_webs']:.0f})")
+    elif report.table1 is not None and report.table1.get("not_applicable"):
+        lines.append(f"Table 1 comparison: not applicable ({report.table1['not_applicable']})")
     return "\n".join(lines)

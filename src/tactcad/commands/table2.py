@@ -41,7 +41,11 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.paper.table2_models import table2_report
     from tactcad.commands.finite_json import dumps
 
-    report = table2_report(plan_from_args(args), args.model)
+    from tactcad.mechanics.ladder import require_table1
+
+    plan = plan_from_args(args)
+    require_table1(plan)  # the paper's measurements: the paper's design, or a refusal saying why
+    report = table2_report(plan, args.model)
     if args.plot:
         report["plot"] = str(write_plot(report, args.plot))
     if args.json:

@@ -101,6 +101,49 @@ def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> 
     return rows
 
 
+def table1_not_applicable(plan: Plan) -> str | None:
+    """Why the paper's Table 1 cannot be compared with ``plan`` (one line), or
+    None when it can: the design cites the paper (``requirements.source``),
+    has every element Table 1 numbers, and each element's geometry reaches
+    its measured K within the closed form's web range (0.05 ... 1 mm)."""
+    from tactcad.design.requirements import cites_paper
+    from tactcad.mechanics.closed_form import web_for_stiffness
+    from tactcad.mechanics.paper.data import table1
+
+    if not cites_paper(plan.raw):
+        return "the design does not cite the paper (requirements.source), so Table 1 is not its"
+    rows = table1()
+    numbers = {slot.number for slot in plan.slots}
+    missing = sorted(r.element for r in rows if r.element not in numbers)
+    if missing:
+        return (f"Table 1 numbers elements up to {max(r.element for r in rows)}; the design has "
+                f"{len(numbers)}")
+    for meas in rows:
+        try:
+            web_for_stiffness(meas.stiffness_N_per_mm, plan.element(meas.element).geometry,
+                              plan.material)
+        except ValueError as exc:
+            return (f"element {meas.element}'s geometry cannot reach Table 1's "
+                    f"{meas.stiffness_N_per_mm:g} N/mm at any web ({exc})")
+    return None
+
+
+def require_table1(plan: Plan, option: str = "--design") -> None:
+    """Refuse a design Table 1 cannot be compared with (:func:`table1_not_applicable`).
+
+    Raises:
+        DesignError: naming ``option``, the design and why.
+    """
+    from pathlib import Path
+
+    from tactcad.errors import DesignError
+
+    why = table1_not_applicable(plan)
+    if why is not None:
+        raise DesignError(option, Path(plan.source).name,
+                          "a design that cites the paper and can reproduce its Table 1", why)
+
+
 def as_built_webs(plan: Plan) -> list[dict]:
     """For each calibrated element, the web thickness (mm) that makes the
     corrected closed form reproduce its measured K, and the deviation from the

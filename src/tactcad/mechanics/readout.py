@@ -333,7 +333,8 @@ def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
     from tactcad.mechanics.closed_form import web_for_stiffness
     from tactcad.mechanics.paper.data import table1
 
-    as_built = []
+    as_built: list[float] = []
+    unreachable: list[str] = []  # elements of Table 1's arm whose geometry cannot be it
 
     by_element = {r.element: r for r in table1()}
     ratios = []
@@ -342,7 +343,15 @@ def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
         row = by_element.get(rec["element"])
         if row is not None and abs(row.flexing_arm_length_mm - rec["arm_length_mm"]) > 1e-9:
             row = None  # a variant of the design: this element is not Table 1's
-        if row is None:
+        g0 = plan.element(rec["element"]).geometry
+        try:  # the web at which this geometry has the measured K, if any web has
+            web = None if row is None else web_for_stiffness(row.stiffness_N_per_mm, g0,
+                                                             plan.material)
+        except ValueError as exc:
+            web = None
+            unreachable.append(f"element {rec['element']} cannot reach Table 1's "
+                               f"{row.stiffness_N_per_mm:g} N/mm at any web ({exc})")
+        if web is None:
             rec["table1_k_v_V_per_mm"] = rec["table1_sensitivity_V_per_N"] = None
             continue
         s_ratio = row.K_v_over_K_V_per_N / rec["sensitivity_V_per_N"]
@@ -352,8 +361,6 @@ def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
                    table1_sensitivity_ratio=s_ratio,
                    reconciling_gain=chain.amplifier_gain * s_ratio)
         ratios.append(s_ratio)
-        g0 = plan.element(rec["element"]).geometry
-        web = web_for_stiffness(row.stiffness_N_per_mm, g0, plan.material)
         g = replace(g0, web_thickness_mm=web)
         s_built = chain.volts_per_strain * gauge_strain_per_N(
             g, plan.material, chain.grid_length_mm, "closed-form")["grid"]
@@ -364,9 +371,10 @@ def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
         num += e * row.K_v_over_K_V_per_N
         den += e * e
     fitted = num / den if den else None
-    if not ratios:
-        return {"elements": 0}
-    return {"elements": len(ratios),
+    if not ratios:  # the comparison does not apply: said in one line, the sensor's answers stand
+        return {"elements": 0, "not_applicable": "; ".join(unreachable) or
+                "no element of the design has a Table 1 element's arm"}
+    return {"elements": len(ratios), "elements_not_comparable": unreachable,
             "sensitivity_ratio_min": min(ratios), "sensitivity_ratio_max": max(ratios),
             "sensitivity_ratio_mean": float(np.mean(ratios)),
             "sensitivity_ratio_rel_std": _rel_std(ratios),

@@ -345,15 +345,18 @@ def web_tolerance_for_band(g: ElementGeometry, material: Material, correction: C
     return float(min(up - t0, t0 - down))
 
 
-def table1_equal_arm_spread() -> list[dict]:
+def table1_equal_arm_spread(plan: Plan) -> list[dict]:
     """Groups of Table 1 elements with equal arms: measured K, max/min ratio
-    and the as-built webs (mm) that reproduce them on the paper's design at
-    the corrected closed form (:func:`tactcad.mechanics.ladder.as_built_webs`)."""
-    from tactcad.design.array import load_design
-    from tactcad.mechanics.ladder import as_built_webs
+    and the as-built webs (mm) that reproduce them on ``plan`` at the
+    corrected closed form (:func:`tactcad.mechanics.ladder.as_built_webs`);
+    empty where Table 1 does not apply to ``plan``
+    (:func:`tactcad.mechanics.ladder.table1_not_applicable`)."""
+    from tactcad.mechanics.ladder import as_built_webs, table1_not_applicable
     from tactcad.mechanics.paper.data import table1
 
-    web_of = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(load_design())}
+    if table1_not_applicable(plan) is not None:
+        return []
+    web_of = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
     groups: dict[float, list] = {}
     for row in table1():
         groups.setdefault(row.flexing_arm_length_mm, []).append(row)
@@ -443,7 +446,7 @@ def summarise(plan: Plan, chunks: Sequence[dict[str, np.ndarray]], tol: Toleranc
              "R from eq. 2 with the drawn K_m, K_r.",
              "E is drawn once per array (one sheet); web, notch radius and arm per element."]
     return ToleranceReport(samples=int(k.shape[0]), seed=seed, tolerances=tol, elements=elements,
-                           units=units, web_tolerance=webs, table1_spread=table1_equal_arm_spread(),
+                           units=units, web_tolerance=webs, table1_spread=table1_equal_arm_spread(plan),
                            correction_source=correction.source, notes=notes)
 
 
