@@ -21,12 +21,16 @@ def register(subparsers) -> None:
 
     p = subparsers.add_parser(
         "calibrate", help="fit K, K_v, V0 from calibration readings and audit them against the design",
-        description="Calibration rig of the paper (25 um steps to 150 um, force sensor of 57.04 N/mm "
-                    "in series, eq. 4-6). Fits K, K_v, V0 and linearity per element from a CSV "
-                    "(columns element,run,z_um,force_N,signal_V), or simulates the rig for the "
-                    "design, or takes the paper's Table 1; then audits each element: as-built web, "
-                    "signal per newton against the predicted gauge strain with one common gauge "
-                    "gain, twins of equal geometry, series-spring error amplification.")
+        description="The paper's calibration procedure (Z steps against a force gauge in series, "
+                    "eq. 4-6). Fits K, K_v, V0 and linearity per element from a CSV, LVM or TDMS "
+                    "file (columns element,run,z_um,force_N,signal_V), or simulates the rig for "
+                    "the design, or takes the paper's Table 1 (a design that cites the paper "
+                    "only); then audits each element: as-built web, signal per newton against the "
+                    "predicted gauge strain with one common gauge gain, twins of equal geometry, "
+                    "series-spring error amplification. The force gauge's stiffness (N/mm) is the "
+                    "data file's k_sensor_N_per_mm, else the design's rigs "
+                    "(force_gauge.stiffness_N_per_mm); the paper's linearity limit applies only "
+                    "to a design that cites the paper.")
     add_design_arg(p)
     source = p.add_mutually_exclusive_group()
     source.add_argument("--data", metavar="FILE", default=None,
@@ -80,7 +84,6 @@ def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad calibrate``; returns the exit code."""
     from pathlib import Path
 
-    from tactcad.commands import plan_from_args
     from tactcad.errors import TactcadError
     from tactcad.mechanics.paper import calibration as cal
     from tactcad.mechanics.paper import calibration_audit as ca
@@ -92,19 +95,25 @@ def run(args: argparse.Namespace) -> int:
         raise TactcadError("--encoding/--map = given without --data: allowed only with --data")
     if args.plot and not (args.simulate or args.data):
         raise TactcadError("--plot = given without --data or --simulate: allowed only with readings")
-    plan = plan_from_args(args)
+    from tactcad.commands import project_from_args
+    from tactcad.design.requirements import cites_paper
+
+    project = project_from_args(args)
+    plan = project.plan
+    # the force gauge in series: the data file's (its k_sensor comment), else the rigs'
+    k_sensor = project.rigs.part("force_gauge").stiffness_N_per_mm
     report: dict = {"design": plan.name, "model": args.model}
     if args.data or args.simulate:
         if args.simulate:
             gain = ca.DEFAULT_GAUGE_GAIN_V_PER_STRAIN if args.gain is None else args.gain
-            from tactcad.design.requirements import cites_paper
             from tactcad.mechanics.requirements import requirements_of
 
             # the paper's Z steps for its design; any other is loaded to its full-scale force
             force = None if cites_paper(plan.raw) else requirements_of(plan).full_scale_force_N
             data = ca.simulate_design_calibration(plan, args.model, gain, args.noise_force,
                                                   args.noise_signal, args.seed,
-                                                  full_scale_force_N=force)
+                                                  full_scale_force_N=force,
+                                                  k_sensor_N_per_mm=k_sensor)
             if force is not None:
                 report["full_scale_force_N"] = force
             report["input"] = "simulated"
@@ -119,7 +128,9 @@ def run(args: argparse.Namespace) -> int:
         else:
             from tactcad.mechanics.paper.measured_io import parse_mapping, read_measured
 
-            data, info = read_measured(args.data, args.encoding, parse_mapping(args.map))
+            data, info = read_measured(args.data, args.encoding, parse_mapping(args.map),
+                                       default_k_sensor=k_sensor)
+            k_sensor = next(iter(data.values())).k_sensor_N_per_mm
             report["input"] = f"{info.format}:{args.data}"
             report["data_file"] = {**info.as_dict(), "read_as": info.describe()}
         fits = ca.fit_all(data)
@@ -135,12 +146,17 @@ def run(args: argparse.Namespace) -> int:
                 "allowed > 0 (force must rise with Z travel)")
         calibrations = ca.from_fits(fits, "simulated" if args.simulate else "csv")
     else:
+        if not cites_paper(plan.raw):  # Table 1's measurements belong to the paper's design
+            raise TactcadError("--data = None: allowed a data file (--data FILE) or --simulate "
+                               f"for {plan.name}, which does not cite the paper (only the "
+                               "paper's design is audited against its Table 1)")
         report["input"] = "table1"
-        report["table1_consistency"] = ca.table1_consistency()
+        report["table1_consistency"] = ca.table1_consistency(k_sensor)
         present = {slot.number for slot in plan.slots}
         calibrations = [c for c in ca.from_table1() if c.element in present]
         report["skipped_elements"] = sorted({c.element for c in ca.from_table1()} - present)
-    report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance)
+    report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance, k_sensor,
+                               paper_criteria=cites_paper(plan.raw))
     if args.plot:
         from tactcad.mechanics.paper.figures import plot_calibration
 

@@ -124,7 +124,8 @@ def parse_mapping(texts: Iterable[str] | None) -> dict[str, str]:
 # Entry point
 # ---------------------------------------------------------------------------
 def read_measured(path, encoding: str | None = None, mapping: Mapping[str, str] | None = None,
-                  fmt: str | None = None) -> tuple[dict[int, CalibrationData], ReadInfo]:
+                  fmt: str | None = None, default_k_sensor: float = K_SENSOR_N_PER_MM
+                  ) -> tuple[dict[int, CalibrationData], ReadInfo]:
     """Read calibration readings from a CSV, LVM or TDMS file.
 
     Args:
@@ -135,6 +136,8 @@ def read_measured(path, encoding: str | None = None, mapping: Mapping[str, str] 
         mapping: column -> channel (see the module doc); None maps each
             column to the channel of its own name.
         fmt: ``csv``, ``lvm`` or ``tdms``; None chooses by suffix, then content.
+        default_k_sensor: the force gauge's stiffness (N/mm) where the file
+            states none (``k_sensor_N_per_mm``): the design's rigs give it.
 
     Returns:
         ({element: :class:`CalibrationData`} in order of first appearance,
@@ -162,11 +165,11 @@ def read_measured(path, encoding: str | None = None, mapping: Mapping[str, str] 
     fmt = fmt or _format_of(p, raw)
     mapping = dict(mapping or {})
     if fmt == "tdms":
-        return _read_tdms(p, mapping)
+        return _read_tdms(p, mapping, default_k_sensor)
     text, used = decode(raw, encoding, where)
     if fmt == "lvm":
-        return _read_lvm(text, used, where, mapping)
-    return parse_csv_text(text, where, mapping, used)
+        return _read_lvm(text, used, where, mapping, default_k_sensor)
+    return parse_csv_text(text, where, mapping, used, default_k_sensor)
 
 
 def _format_of(p: Path, raw: bytes) -> str:
@@ -325,7 +328,8 @@ def _resolve(names: list[str], mapping: Mapping[str, str], where: str,
 # CSV
 # ---------------------------------------------------------------------------
 def parse_csv_text(text: str, source: str = "<csv>", mapping: Mapping[str, str] | None = None,
-                   encoding: str | None = None) -> tuple[dict[int, CalibrationData], ReadInfo]:
+                   encoding: str | None = None, default_k_sensor: float = K_SENSOR_N_PER_MM
+                   ) -> tuple[dict[int, CalibrationData], ReadInfo]:
     """Calibration readings of a CSV text (see the module doc).
 
     A header line names the columns (in any order, extra columns ignored
@@ -368,7 +372,7 @@ def parse_csv_text(text: str, source: str = "<csv>", mapping: Mapping[str, str] 
                 "or --map COLUMN=HEADER for other names")
     index = _resolve(header, mapping, f"{source}: line {header_n}", "column")
     decimal = _decimal_of(lines[1:], separator)
-    k_sensor = K_SENSOR_N_PER_MM if sensor_line is None else _sensor_stiffness(
+    k_sensor = default_k_sensor if sensor_line is None else _sensor_stiffness(
         sensor_line[1], f"{source}: line {sensor_line[0]}, column {SENSOR_KEY}", decimal)
     readings = _Readings()
     for n, line in lines[1:]:
@@ -409,7 +413,8 @@ def _decimal_of(lines: list[tuple[int, str]], separator: str) -> str:
 # ---------------------------------------------------------------------------
 # LabVIEW LVM (text)
 # ---------------------------------------------------------------------------
-def _read_lvm(text: str, encoding: str, where: str, mapping: Mapping[str, str]):
+def _read_lvm(text: str, encoding: str, where: str, mapping: Mapping[str, str],
+              default_k_sensor: float = K_SENSOR_N_PER_MM):
     import lvm_read
 
     try:
@@ -422,7 +427,7 @@ def _read_lvm(text: str, encoding: str, where: str, mapping: Mapping[str, str]):
     rows_at = _lvm_data_lines(text, separator)
     readings = _Readings()
     used: dict[str, str] = {}
-    k_sensor = K_SENSOR_N_PER_MM
+    k_sensor = default_k_sensor
     if SENSOR_KEY in lvm:
         k_sensor = _sensor_stiffness(str(lvm[SENSOR_KEY]), f"{where}: header {SENSOR_KEY}", decimal)
     for s in range(int(lvm.get("Segments", 0))):
@@ -517,7 +522,7 @@ def _tdms_log_as_warnings(where: str) -> Iterator[None]:
             warnings.warn(f"{where}: npTDMS: {short}", MeasuredDataWarning, stacklevel=3)
 
 
-def _read_tdms(p: Path, mapping: Mapping[str, str]):
+def _read_tdms(p: Path, mapping: Mapping[str, str], default_k_sensor: float = K_SENSOR_N_PER_MM):
     import nptdms
 
     where = str(p)
@@ -549,7 +554,7 @@ def _read_tdms(p: Path, mapping: Mapping[str, str]):
     if len(set(lengths.values())) > 1:
         raise CalibrationError(f"{where}: channel lengths {lengths}: allowed equal lengths "
                                "(one value per reading in every channel)")
-    k_sensor = K_SENSOR_N_PER_MM
+    k_sensor = default_k_sensor
     if SENSOR_KEY in props:
         k_sensor = _sensor_stiffness(str(props[SENSOR_KEY]), f"{where}: property {SENSOR_KEY}")
     readings = _Readings()
