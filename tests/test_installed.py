@@ -21,6 +21,8 @@ from pathlib import Path
 
 import pytest
 
+import tactcad
+
 pytestmark = pytest.mark.slow
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -69,13 +71,18 @@ def test_the_sdist_and_wheel_carry_the_package_data(installed):
     with tarfile.open(sdist) as tar:
         names = [n.split("/", 1)[1] for n in tar.getnames() if "/" in n]
     for needed in ("hardware/macro_array/macro_array.toml", "hardware/ti_array_2x3/rigs.toml",
-                   "src/tactcad/data/three/build/three.module.js", "tests/conftest.py"):
+                   "src/tactcad/data/three/build/three.module.js", "tests/conftest.py",
+                   "LICENSE", "CHANGELOG.md", "constraints.txt", "src/tactcad/py.typed"):
         assert needed in names, needed
     wheel = zipfile.ZipFile(next(dist.glob("tactcad-*.whl")))
     names = set(wheel.namelist())
     for needed in ("tactcad/examples/macro_array/rigs.toml", "tactcad/data/three/LICENSE",
-                   "tactcad/data/three/SHA256SUMS", "tactcad/data/project/hardware.yml"):
+                   "tactcad/data/three/SHA256SUMS", "tactcad/data/project/hardware.yml",
+                   "tactcad/py.typed", f"tactcad-{tactcad.__version__}.dist-info/licenses/LICENSE"):
         assert needed in names, needed
+    metadata = wheel.read(f"tactcad-{tactcad.__version__}.dist-info/METADATA").decode()
+    assert "License-Expression: Apache-2.0" in metadata
+    assert "Requires-Dist: numpy<3,>=2.2" in metadata  # a range, not a pin
 
 
 def test_a_labs_first_hour_from_the_wheel(installed, tmp_path):
