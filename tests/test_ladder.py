@@ -91,8 +91,10 @@ def test_closed_form_commands_do_not_import_the_cad_kernel():
 
 def test_table1_all_levels_side_by_side(plan, monkeypatch, capsys):
     import tactcad.commands.mechanics as cmd
+    from tactcad.mechanics import ladder
 
-    monkeypatch.setattr(cmd, "MODELS", ("closed-form", "beam"))  # the fast levels only
+    fast = {n: ladder.LEVELS[n] for n in ("closed-form", "beam")}  # the fast levels only
+    monkeypatch.setattr(ladder, "LEVELS", fast)
     assert cmd._table1_all_levels(plan, True, None) == 0
     data = json.loads(capsys.readouterr().out)
     assert set(data) == {"closed-form", "beam"}

@@ -455,12 +455,12 @@ class Element:
             UnknownModelError: ``model`` is not a ladder level.
             DesignError: the material has no yield strength.
         """
-        from tactcad.mechanics.ladder import MODELS, UnknownModelError
+        from tactcad.mechanics.ladder import UnknownModelError, models
         from tactcad.design.requirements import cites_paper
         from tactcad.mechanics.strength import strength_record
         from tactcad.studies.strength import element_stress
 
-        if model not in MODELS:
+        if model not in models():
             raise UnknownModelError(model)
 
         plan = self.project.plan

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
+from tactcad.mechanics.ladder import models
 
 
 def register(subparsers) -> None:
@@ -46,7 +46,7 @@ def register(subparsers) -> None:
                    help="read a column from a CSV header, LVM or TDMS channel of another name "
                         "(repeatable, or comma-separated), e.g. "
                         "--map force_N=Dev1/ai0,signal_V=Dev1/ai1; TDMS channels as group/channel")
-    p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form",
+    p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for the as-built web and gauge strain (default closed-form)")
     p.add_argument("--gain", type=float, default=None, metavar="V_PER_STRAIN",
                    help="gauge gain of the simulated rig (V per unit strain), default -120")

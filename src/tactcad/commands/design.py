@@ -7,10 +7,15 @@ import json
 import os
 from pathlib import Path
 
+from tactcad.mechanics.ladder import is_meshed, models
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 from tactcad.commands.options import count, material_grade_name, number
 
-VERIFY_MODELS = ("fem3d", "fem2d", "beam", "none")
+
+
+def verify_levels() -> tuple[str, ...]:
+    """``--verify`` choices: the ladder's levels above the closed form, dearest first, or none."""
+    return (*reversed(models()[1:]), "none")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -45,7 +50,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "system folders")
     p.add_argument("--force", action="store_true",
                    help="overwrite an existing file (default: refuse)")
-    p.add_argument("--verify", choices=VERIFY_MODELS, default="fem3d",
+    p.add_argument("--verify", choices=verify_levels(), default="fem3d",
                    help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
     add_design_arg(p)
     add_output_args(p, "print JSON")
@@ -190,7 +195,7 @@ def design_report(result, verify: str, progress=None) -> dict:
         g = slot.geometry
         if g.part_name not in cache:
             cf = estimate("closed-form", g, plan.material)
-            levels = {"progress": progress} if progress and verify in ("fem2d", "fem3d") else {}
+            levels = {"progress": progress} if progress and is_meshed(verify) else {}
             ver = None if verify == "none" else estimate(verify, g, plan.material, **levels)
             cache[g.part_name] = {
                 "K_closed_form_N_per_mm": cf.stiffness_N_per_mm,

@@ -15,7 +15,7 @@ import math
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.options import PLOT_SUFFIXES, count, number, output_file
 
-from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
+from tactcad.mechanics.ladder import models
 
 
 def register(subparsers) -> None:
@@ -43,7 +43,7 @@ def register(subparsers) -> None:
                    help="element K: the ladder's prediction for the design, or the measured "
                         "K of a design that cites them (ladder for elements without one); "
                         "default %(default)s")
-    p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form",
+    p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level of the element stiffness (default %(default)s)")
     p.add_argument("--steps", type=count(1, 1000, "load steps"), default=6,
                    help="load steps up to the full-scale force (>= 1; default %(default)s)")

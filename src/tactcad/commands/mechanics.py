@@ -5,12 +5,12 @@ from __future__ import annotations
 import argparse
 import json
 
+from tactcad.mechanics.ladder import is_meshed, levels_help, models
 from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
                               load_from_args)
 from tactcad.commands.options import count, number
 from tactcad.errors import TactcadError
 
-MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -20,9 +20,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--element", type=count(1, 10_000, "an element number"), required=True,
                    help="element number of the design (1 ... rows x columns, numbered along "
                         "row 1, then row 2)")
-    p.add_argument("--model", choices=MODELS, default="closed-form",
-                   help="ladder level: closed-form ~1 ms, beam, fem2d ~1 s, fem3d ~30 s "
-                        "(default %(default)s)")
+    p.add_argument("--model", choices=models(), default="closed-form",
+                   help=f"ladder level: {levels_help()} (default %(default)s)")
     add_design_arg(p)
     add_output_args(p, "print JSON")
     p.add_argument("--vtk", metavar="DIR", default=None,
@@ -34,7 +33,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                        description="Every calibrated element of the paper's Table 1 at a ladder "
                                    "level, with % error, plus the as-built web thickness and the "
                                    "gauge strain at 2 N.")
-    t.add_argument("--model", choices=MODELS + ("all",), default="closed-form",
+    t.add_argument("--model", choices=models() + ("all",), default="closed-form",
                    help="ladder level, or 'all' for every level side by side (fem3d takes ~30 s; "
                         "default %(default)s)")
     add_design_arg(t)
@@ -46,10 +45,10 @@ def run_stiffness(args: argparse.Namespace) -> int:
     project = load_from_args(args)
     plan, element = project.plan, project.element(args.element)
     slot = element.slot
-    if args.vtk is not None and args.model not in ("fem2d", "fem3d"):
+    if args.vtk is not None and not is_meshed(args.model):
         raise TactcadError(f"--vtk {args.vtk}: allowed with --model fem2d or fem3d only "
                            f"(got --model {args.model})")
-    levels = {"progress": progress_from_args(args)} if args.model in ("fem2d", "fem3d") else {}
+    levels = {"progress": progress_from_args(args)} if is_meshed(args.model) else {}
     r = element.stiffness(args.model, **levels)
     vtu = None
     if args.vtk is not None:
@@ -110,14 +109,14 @@ def _table1_all_levels(plan, as_json: bool, progress) -> int:
     """Table 1 with every ladder level side by side: K (N/mm) and % error."""
     from tactcad.mechanics.ladder import table1_comparison
 
-    levels = {m: table1_comparison(plan, m, progress=progress) for m in MODELS}
+    levels = {m: table1_comparison(plan, m, progress=progress) for m in models()}
     if as_json:
         print(json.dumps({m: [r.as_json() for r in rows] for m, rows in levels.items()}, indent=2))
         return 0
     print("Table 1: measured K vs every level, K in N/mm (error %)")
-    print(f"{'el':>3} {'arm mm':>7} {'measured':>9} " + " ".join(f"{m:>17}" for m in MODELS))
-    for i, r in enumerate(levels[MODELS[0]]):
+    print(f"{'el':>3} {'arm mm':>7} {'measured':>9} " + " ".join(f"{m:>17}" for m in models()))
+    for i, r in enumerate(levels[models()[0]]):
         cells = " ".join(f"{levels[m][i].predicted.stiffness_N_per_mm:>9.2f} ({levels[m][i].error_percent:+6.1f})"
-                         for m in MODELS)
+                         for m in models())
         print(f"{r.element:>3} {r.arm_length_mm:>7.1f} {r.measured_N_per_mm:>9.2f} {cells}")
     return 0

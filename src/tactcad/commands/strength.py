@@ -13,9 +13,9 @@ import argparse
 import json
 
 from tactcad.design.requirements import cites_paper
+from tactcad.mechanics.ladder import levels_help, models
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 
-MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -29,9 +29,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "when absent) against every limit and exits 1 when it is not met; warns "
                     "where full scale exceeds the fatigue strength or the gauge's fatigue or "
                     "maximum strain. Units: MPa, N, mm, microstrain.")
-    p.add_argument("--model", choices=MODELS, default="closed-form",
-                   help="ladder level (fem2d ~2 s, fem3d ~1 min per distinct element; default "
-                        "%(default)s)")
+    p.add_argument("--model", choices=models(), default="closed-form",
+                   help=f"ladder level ({levels_help()} per distinct element; FEM stress "
+                        "meshes are finer than the stiffness ones; default %(default)s)")
     add_design_arg(p)
     add_output_args(p, "print a JSON list of records")
     p.add_argument("--table1", action="store_true",

@@ -6,12 +6,12 @@ import argparse
 import json
 from pathlib import Path
 
+from tactcad.mechanics.ladder import models
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.options import count, number
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.tolerance import add_cluster_args
 
-MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 DEFAULT_WEBS_MM = (0.15, 0.2, 0.25, 0.3, 0.4)
 DEFAULT_ARMS_MM = (4.0, 5.0, 6.0, 7.0, 8.0)
 
@@ -24,7 +24,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     ssub = p.add_subparsers(dest="sweep", metavar="WHAT")
     g = ssub.add_parser("grid", help="K over web x arm (x notch radius): CSV and design chart PNG")
     add_design_arg(g)
-    g.add_argument("--model", choices=MODELS, default="closed-form",
+    g.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level of every point (default %(default)s)")
     g.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=list(DEFAULT_WEBS_MM), metavar="MM",
                    help="web thicknesses (mm; default %(default)s)")

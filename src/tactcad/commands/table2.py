@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.mechanics.ladder import MODELS as LADDER_LEVELS
+from tactcad.mechanics.ladder import models
 
 
 def register(subparsers) -> None:
@@ -26,7 +26,7 @@ def register(subparsers) -> None:
                     "thickness) scored on held-out rows only: leave-one-sample-out and "
                     "leave-one-element-out. Relative error |R_pred - R_meas|/R_meas.")
     add_design_arg(p)
-    p.add_argument("--model", choices=LADDER_LEVELS, default="closed-form",
+    p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for element 5 (no Table 1 entry) in the coupled models "
                         "(default %(default)s)")
     p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import argparse
 
+from tactcad.mechanics.ladder import levels_help, models
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 from tactcad.commands.finite_json import dumps
 
-MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -21,9 +21,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "K_obj resolution and the readable K_obj range. Exit 1 when a requirement "
                     "fails. Units: N, N/mm.")
     add_design_arg(p)
-    p.add_argument("--model", choices=MODELS, default="closed-form",
-                   help="ladder level (default closed-form; fem3d about a minute per distinct "
-                        "element)")
+    p.add_argument("--model", choices=models(), default="closed-form",
+                   help=f"ladder level ({levels_help()} per distinct element; default "
+                        "%(default)s)")
     add_output_args(p, "print one JSON object: requirements and the matrix")
     p.set_defaults(func=run)
 

@@ -8,6 +8,11 @@ level returns a :class:`~tactcad.mechanics.result.StiffnessResult` with its
 cost (wall time) and error estimate. Heavy modules are imported only when
 their level is asked for.
 
+The levels are declared once, in :data:`LEVELS` (:class:`Level`: name,
+estimator, whether it meshes, typical cost); every command's ``--model``
+choices and help, the strength study, the read-out and the Python API read
+it. A new level is one estimator function plus one :func:`register_level`.
+
 Units: mm, N, MPa, N/mm, s.
 """
 
@@ -20,20 +25,85 @@ from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.errors import TactcadError
 from tactcad.mechanics.result import StiffnessResult
 
-MODELS = ("closed-form", "beam", "fem2d", "fem3d")
-_ENTRY = {
-    "closed-form": ("tactcad.mechanics.closed_form", "estimate_closed_form"),
-    "beam": ("tactcad.mechanics.beam", "estimate_beam"),
-    "fem2d": ("tactcad.mechanics.fem.fem2d", "estimate_fem2d"),
-    "fem3d": ("tactcad.mechanics.fem.fem3d", "estimate_fem3d"),
-}
+@dataclass(frozen=True)
+class Level:
+    """One rung of the stiffness ladder, declared once: every command's
+    ``--model`` choices and help, the strength study and the read-out read it.
+
+    Attributes:
+        name: the level's name (``--model NAME``).
+        module, function: its estimator, imported when the level is asked
+            for: ``function(g, material, *, element=None, **options)`` ->
+            :class:`~tactcad.mechanics.result.StiffnessResult`.
+        meshed: a FEM level: it reports its mesh levels through a
+            ``progress`` option, writes fields and gives the peak stress
+            from its own mesh; otherwise the closed-form stress formula serves.
+        cost: its typical wall time per distinct element, for help texts.
+    """
+
+    name: str
+    module: str
+    function: str
+    meshed: bool
+    cost: str
+
+
+#: The ladder, cheapest first (:func:`register_level` adds to it).
+LEVELS: dict[str, Level] = {}
+
+
+def register_level(level: Level) -> None:
+    """Add a level to the ladder (after the others).
+
+    Raises:
+        ValueError: a level of that name is there already.
+    """
+    if level.name in LEVELS:
+        raise ValueError(f"a ladder level {level.name!r} is registered already")
+    LEVELS[level.name] = level
+
+
+for _level in (Level("closed-form", "tactcad.mechanics.closed_form", "estimate_closed_form",
+                     meshed=False, cost="~1 ms"),
+               Level("beam", "tactcad.mechanics.beam", "estimate_beam", meshed=False,
+                     cost="~10 ms"),
+               Level("fem2d", "tactcad.mechanics.fem.fem2d", "estimate_fem2d", meshed=True,
+                     cost="~1 s"),
+               Level("fem3d", "tactcad.mechanics.fem.fem3d", "estimate_fem3d", meshed=True,
+                     cost="~30 s")):
+    register_level(_level)
+
+
+def models() -> tuple[str, ...]:
+    """Every ladder level's name, cheapest first."""
+    return tuple(LEVELS)
+
+
+def meshed_models() -> tuple[str, ...]:
+    """The FEM levels (:attr:`Level.meshed`)."""
+    return tuple(n for n, level in LEVELS.items() if level.meshed)
+
+
+def is_meshed(model: str) -> bool:
+    """True for a FEM level (False for an unknown name)."""
+    level = LEVELS.get(model)
+    return level is not None and level.meshed
+
+
+def levels_help() -> str:
+    """``closed-form ~1 ms, beam ~10 ms, ...``: the levels with their cost, for help texts."""
+    return ", ".join(f"{n} {level.cost}" for n, level in LEVELS.items())
+
+
+#: The built-in levels' names (what :func:`models` gives before any registration).
+MODELS = models()
 PAPER_LOAD_N = 2.0  # the paper's FEM design study load on the tip
 PAPER_STRAIN_RANGE = (0.2711e-2, 0.6316e-2)  # surface strain at 2 N, arms 4-8 mm
 
 
 class UnknownModelError(TactcadError, ValueError):
     def __init__(self, model: str):
-        super().__init__(f"model = {model!r}: allowed {', '.join(MODELS)}")
+        super().__init__(f"model = {model!r}: allowed {', '.join(models())}")
 
 
 def estimate(model: str, g: ElementGeometry, material: Material, *, element: int | None = None,
@@ -44,12 +114,13 @@ def estimate(model: str, g: ElementGeometry, material: Material, *, element: int
     estimator takes them so).
 
     Raises:
-        UnknownModelError: ``model`` is not one of :data:`MODELS`.
+        UnknownModelError: ``model`` is not a level of :data:`LEVELS`.
     """
-    if model not in _ENTRY:
+    level = LEVELS.get(model)
+    if level is None:
         raise UnknownModelError(model)
-    module, func = _ENTRY[model]
-    return getattr(importlib.import_module(module), func)(g, material, element=element, **options)
+    return getattr(importlib.import_module(level.module), level.function)(
+        g, material, element=element, **options)
 
 
 @dataclass(frozen=True)

@@ -29,6 +29,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from tactcad.design.array import ElementGeometry, Plan
+from tactcad.mechanics.ladder import is_meshed
 
 #: Names of the limits, in the order they are listed.
 LIMIT_NAMES = ("yield", "fatigue", "gauge_fatigue", "gauge_max", "travel")
@@ -131,7 +132,7 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
             stresses[g.part_name] = element_stress(g, plan.material, model)
         if g.part_name not in k_errors:
             k_errors[g.part_name] = estimate(model, g, plan.material).error_estimate_rel \
-                if model in ("closed-form", "beam") else stresses[g.part_name].stress_error_rel
+                if not is_meshed(model) else stresses[g.part_name].stress_error_rel
         # the plane-strain bound of a plane-stress surface stress and strain
         # (a wide web at mid-width): nu^2 below fem3d
         bound = 0.0 if model == "fem3d" else plan.material.poisson_ratio ** 2

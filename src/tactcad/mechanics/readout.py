@@ -47,6 +47,7 @@ import numpy as np
 
 from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.design.readout import ReadoutChain, readout_of
+from tactcad.mechanics.ladder import is_meshed
 
 #: Boltzmann constant (J/K) and the bridge temperature assumed for its Johnson noise (K).
 BOLTZMANN_J_PER_K = 1.380649e-23
@@ -54,7 +55,6 @@ BRIDGE_TEMPERATURE_K = 296.0
 #: Points per mm of grid for the beam-theory average (Gauss-Legendre per piece).
 GAUSS_POINTS = 64
 #: Levels whose gauge strain comes from the fem2d field.
-FIELD_MODELS = ("fem2d", "fem3d")
 
 
 def readout_chain(plan: Plan) -> ReadoutChain:
@@ -139,7 +139,7 @@ def gauge_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: f
     Returns:
         ``{"grid": eps_avg/F, "peak": eps/F at the notch centre, "source": str}`` (1/N, signed).
     """
-    if model in FIELD_MODELS:
+    if is_meshed(model):
         x, eps = fem2d_surface_strain_per_N(g, material)
         return {"grid": field_grid_strain_per_N(x, eps, grid_span_mm(g, grid_length_mm)),
                 "peak": float(np.interp(g.hinge_x_mm, x, eps)),

@@ -127,10 +127,11 @@ def element_figures(plan: Plan, model: str = "closed-form",
         ValueError: an FEM model without ``stress``.
     """
     from tactcad.mechanics.ladder import estimate
-    from tactcad.mechanics.strength import CLOSED_FORM_MODELS, closed_form_stress
+    from tactcad.mechanics.ladder import is_meshed
+    from tactcad.mechanics.strength import closed_form_stress
 
     if stress is None:
-        if model not in CLOSED_FORM_MODELS:
+        if is_meshed(model):
             raise ValueError(f"model {model} runs the FEM: pass its stress "
                              "(tactcad.studies.strength.element_stress)")
         stress = closed_form_stress
@@ -140,7 +141,7 @@ def element_figures(plan: Plan, model: str = "closed-form",
     for name, g in plan.distinct_elements.items():
         if progress:
             progress(f"{model}: {name}")
-        opts = {"progress": progress} if progress and model in ("fem2d", "fem3d") else {}
+        opts = {"progress": progress} if progress and is_meshed(model) else {}
         r = estimate(model, g, plan.material, **opts)
         k[name], k_err[name] = r.stiffness_N_per_mm, r.error_estimate_rel
         st[name] = element_stress(g, plan.material, model)

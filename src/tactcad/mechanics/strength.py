@@ -58,7 +58,7 @@ from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
 from tactcad.vocabulary.materials import StrengthSettings
 from tactcad.design.requirements import cites_paper
-from tactcad.mechanics.ladder import estimate
+from tactcad.mechanics.ladder import estimate, is_meshed, models
 
 #: Exponent of K_t = (1 + t/(2R))^p for the single-sided circular notch in
 #: bending, fitted to converged plane-stress P2 FEM (see the module docstring).
@@ -84,7 +84,6 @@ PAPER_LOAD_N = 2.0
 STRESS_WEB_DIVISIONS_2D = 24.0
 STRESS_WEB_DIVISIONS_3D = 6.0
 
-MODELS = ("closed-form", "beam", "fem2d", "fem3d")
 
 
 class StrengthRangeWarning(UserWarning):
@@ -344,7 +343,6 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
 
 #: Evaluates one element's peak stress at a model: (geometry, material, model) -> ElementStress.
 StressModel = Callable[[ElementGeometry, Material, str], ElementStress]
-CLOSED_FORM_MODELS = ("closed-form", "beam")
 
 
 def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
@@ -361,10 +359,10 @@ def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
         ValueError: unknown model, or an FEM model without its ``stress``.
         DesignError: the material has no yield strength.
     """
-    if model not in MODELS:
-        raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    if model not in models():
+        raise ValueError(f"model must be one of {', '.join(models())}; got {model!r}")
     if stress is None:
-        if model not in CLOSED_FORM_MODELS:
+        if is_meshed(model):
             raise ValueError(f"model {model} runs the FEM: use tactcad.studies.strength.plan_strength")
         stress = closed_form_stress
     require_yield(plan.material)

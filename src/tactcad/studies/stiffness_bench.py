@@ -36,7 +36,7 @@ import numpy as np
 from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.mechanics.correction import CORRECTION_FILE, CorrectionRangeWarning
 from tactcad.studies.correction_sweep import grid_geometry
-from tactcad.mechanics.ladder import MODELS, estimate
+from tactcad.mechanics.ladder import estimate, models
 
 #: Hold-out designs on which fem3d is run live (the others use the stored value).
 FEM3D_HOLDOUT_SUBSET = 2
@@ -107,11 +107,12 @@ def closed_form_throughput(n: int = 1_000_000) -> float:
     return n / best
 
 
-def run(plan: Plan, models=MODELS, out_dir="exports/reports", progress=print) -> list[Point]:
-    """Run the ladder over the grid of ``plan``, write CSV + PNG, return the points."""
+def run(plan: Plan, levels=None, out_dir="exports/reports", progress=print) -> list[Point]:
+    """Run the ladder's ``levels`` (None: every level) over the grid of
+    ``plan``, write CSV + PNG, return the points."""
     grid = design_grid(plan)
     points: list[Point] = []
-    for model in models:
+    for model in levels or models():
         for i, d in enumerate(grid, start=1):
             if model == "fem3d" and not d.fem3d_live:
                 continue
@@ -204,7 +205,7 @@ def _plot(path: Path, points: list[Point]) -> None:
 def main(args, plan: Plan) -> int:
     """Entry point of ``tactcad bench stiffness`` (``plan``: the validated
     design with the command line's overrides)."""
-    models = tuple(getattr(args, "models", None) or MODELS)
+    models_run = tuple(getattr(args, "models", None) or models())
     out_dir = getattr(args, "out", None) or "exports/reports"
     as_json = getattr(args, "json", False)
     quiet = as_json or getattr(args, "quiet", False)
@@ -216,7 +217,7 @@ def main(args, plan: Plan) -> int:
              f"designs of the correction (web 0.05-1 mm, arm 2-20 mm, sheet 0.5-10 mm); fem3d "
              f"live on {live}, stored fem3d elsewhere")
     thr = closed_form_throughput()
-    points = run(plan, models, out_dir, progress=progress)
+    points = run(plan, models_run, out_dir, progress=progress)
     if as_json:
         def clean(v):
             return None if isinstance(v, float) and not math.isfinite(v) else v

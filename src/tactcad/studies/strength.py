@@ -20,9 +20,9 @@ from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, richardson, single_th
 from tactcad.mechanics.fem.fem3d import solve_fem3d
 from tactcad.mechanics.fem.fields import peak_notch_stress
 from tactcad.mechanics.fem.mesh import fem_region
-from tactcad.mechanics.ladder import as_built_webs
+from tactcad.mechanics.ladder import as_built_webs, is_meshed, meshed_models, models
 from tactcad.mechanics.paper.data import table1
-from tactcad.mechanics.strength import (CLOSED_FORM_MODELS, KT_FIT_GEOMETRIES, MODELS,
+from tactcad.mechanics.strength import (KT_FIT_GEOMETRIES,
                                         STRESS_WEB_DIVISIONS_2D, STRESS_WEB_DIVISIONS_3D,
                                         ElementStress, StrengthRecord, require_yield,
                                         closed_form_stress, nominal_stress_per_newton,
@@ -50,8 +50,8 @@ def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d"
     Raises:
         ValueError: unknown model.
     """
-    if model not in ("fem2d", "fem3d"):
-        raise ValueError(f"model must be fem2d or fem3d, got {model!r}")
+    if not is_meshed(model):
+        raise ValueError(f"model must be a FEM level ({', '.join(meshed_models())}), got {model!r}")
     region = fem_region(g)
     peaks, sols = [], []
     with single_threaded_blas():
@@ -82,11 +82,11 @@ def element_stress(g: ElementGeometry, material: Material, model: str = "closed-
     Raises:
         ValueError: unknown model.
     """
-    if model in CLOSED_FORM_MODELS:
-        return closed_form_stress(g, material, model)
-    if model in ("fem2d", "fem3d"):
+    if model not in models():
+        raise ValueError(f"model must be one of {', '.join(models())}; got {model!r}")
+    if is_meshed(model):
         return fem_peak_stress(g, material, model)
-    raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    return closed_form_stress(g, material, model)
 
 
 def plan_strength(plan: Plan, model: str = "closed-form", progress=None) -> list[StrengthRecord]:

@@ -185,10 +185,10 @@ def grid_points(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
     """
     from tactcad.design.array import plan_from_dict
     from tactcad.mechanics.inverse import design_variant
-    from tactcad.mechanics.ladder import MODELS
+    from tactcad.mechanics.ladder import models
 
-    if model not in MODELS:
-        raise DesignError("--model", model, ", ".join(MODELS))
+    if model not in models():
+        raise DesignError("--model", model, ", ".join(models()))
     base = plan.element(1).geometry
     radii = list(notch_radii_mm) if notch_radii_mm else [None]
     out = []
