@@ -153,3 +153,11 @@ def test_shipped_threejs_is_checked_before_a_page_carries_it(tmp_path, monkeypat
             ra.import_map()
     finally:
         ra._import_map.cache_clear()
+
+
+@pytest.mark.parametrize("name", ["rigs.toml\x00", "a" * 300 + ".toml", 5, ""])
+def test_hostile_companion_names_are_refused_naming_the_field(tmp_path, name):
+    design = _bare_design(tmp_path)
+    with pytest.raises(DesignErrors) as err:
+        tactcad.load(design, set={"files.rigs": name})
+    assert [e.field for e in err.value.errors] == ["files.rigs"]

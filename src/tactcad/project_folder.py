@@ -149,11 +149,12 @@ def _check_target(folder: Path, names: list[str], force: bool) -> None:
 
 
 def _named_files(plan: Plan) -> dict[str, str]:
-    """kind -> the relative path the design's ``[files]`` table gives (else the default name)."""
-    from tactcad.design.project import COMPANIONS
+    """kind -> the path relative to the project folder that the design's
+    ``[files]`` table gives (else the default name)."""
+    from tactcad.design.project import companion_paths
 
-    table = plan.raw.get("files") or {}
-    return {kind: table.get(kind) or default for kind, default in COMPANIONS.items()}
+    return {kind: path.as_posix()
+            for kind, path in companion_paths(Path("design.toml"), plan.raw).items()}
 
 
 def _project_files(design_text: str, design_name: str, plan: Plan,

@@ -165,12 +165,22 @@ def project_from_data(design: Mapping[str, Any] | None, rigs: Mapping[str, Any] 
     return (plan, *_companions_of(plan, rigs, scenes, problems, rigs_file, scenes_file))
 
 
+def _is_file(path: Path) -> bool:
+    try:
+        return path.is_file()
+    except OSError:  # a name too long for the file system, say
+        return False
+
+
 def _inside(folder: Path, name: str) -> bool:
     """True when ``name`` is a relative path that stays inside ``folder``."""
     rel = Path(name)
     if rel.is_absolute() or ".." in rel.parts or not rel.parts:
         return False
-    return (folder / rel).resolve().is_relative_to(folder.resolve())
+    try:
+        return (folder / rel).resolve().is_relative_to(folder.resolve())
+    except (OSError, ValueError):  # a name the file system cannot hold
+        return False
 
 
 def _named(design: Mapping[str, Any] | None) -> dict[str, Any]:
@@ -203,7 +213,8 @@ def companion_files(design_file: Path, design: Mapping[str, Any] | None,
     folder = design_file.parent
     out: dict[str, Path | None] = {}
     for kind, name in _named(design).items():
-        if not isinstance(name, str) or not name:  # absent (a wrong type: the schema says so)
+        if not isinstance(name, str) or not name or not name.isprintable():
+            # absent, or a wrong type or control characters: the schema says so
             beside = folder / COMPANIONS[kind]
             out[kind] = beside if name is None and design_file.name and beside.is_file() else None
             continue
@@ -211,7 +222,7 @@ def companion_files(design_file: Path, design: Mapping[str, Any] | None,
         if not _inside(folder, name):
             problems.add(f"files.{kind}", name, "a relative path inside the design file's folder",
                          "a sensor project reads no file outside its folder")
-        elif not (folder / name).is_file():
+        elif not _is_file(folder / name):
             problems.add(f"files.{kind}", name, f"an existing {kind} file in the design file's folder",
                          f"no file {name} beside {design_file.name}")
         else:
