@@ -12,7 +12,8 @@ from tactcad.checks.interference import Placed, check_interference
 from tactcad.checks.solids import check_solid
 from tactcad.checks.step import check_step
 from tactcad.export.dxf import write_profile_dxf
-from tactcad.parts.element import build_element, profile_face
+from tactcad.kernel.shapes import profile_face
+from tactcad.parts.element import build_element
 from tactcad.geometry.profile import element_profile
 
 
@@ -102,7 +103,7 @@ def test_declared_contact_must_touch(plan, element):
 
 
 def test_step_reimport_detects_a_wrong_file(tmp_path, plan, element):
-    from tactcad.export.step import StepPart, write_step
+    from tactcad.kernel.step import StepPart, write_step
 
     solid = build_element(element[0])
     path = tmp_path / "x.step"

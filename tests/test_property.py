@@ -22,7 +22,8 @@ from tactcad.design.scenes import DEFAULT_SCENES
 from tactcad.vocabulary.schema import Problems, read_toml
 from tactcad.errors import DesignError
 from tactcad.export.dxf_sheet import shop_profiles, write_shop_profile
-from tactcad.parts.element import build_element, profile_face
+from tactcad.kernel.shapes import profile_face
+from tactcad.parts.element import build_element
 
 SETTINGS = settings(max_examples=12, deadline=None,
                     suppress_health_check=[HealthCheck.function_scoped_fixture])

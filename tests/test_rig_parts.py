@@ -121,7 +121,7 @@ def test_cart_has_its_vacuum_clamping_features(plan, specs):
     """Removing the pocket, port, channel or suction holes changes the volume
     the formula expects: each feature is really cut."""
     from tactcad.parts.registry import BUILDERS
-    from tactcad.checks.interference import common_volume
+    from tactcad.kernel.inspect import common_volume
 
     spec = specs["cart"]
     g = spec.geometry

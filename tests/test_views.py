@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tactcad.drawings.views import (CAMERAS, _edge_points, _hlr, _poly_hlr, chain_segments,
-                                    has_freeform_edges, project)
+from tactcad.drawings.views import CAMERAS, project
+from tactcad.kernel.hlr import _edge_points, _hlr, _poly_hlr, chain_segments, has_freeform_edges
 
 
 def _cross_drilled_block():

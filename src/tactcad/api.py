@@ -26,13 +26,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
 
 if TYPE_CHECKING:  # types only: importing them at run time would load the kernel
-    from build123d import Compound, Solid
-
     from tactcad.checks.result import CheckResult
     from tactcad.design.array import ElementGeometry, ElementSlot, Plan
     from tactcad.design.project import Project as ValidatedProject
     from tactcad.design.rigs import RigDesign
     from tactcad.design.scenes import SceneSpec
+    from tactcad.kernel.shapes import Compound, Solid
     from tactcad.export.run import ExportResult
     from tactcad.mechanics.result import StiffnessResult
     from tactcad.mechanics.strength import StrengthRecord
@@ -204,18 +203,17 @@ class Project:
         Raises:
             SceneError: unknown scene (the message lists them).
         """
-        import build123d as bd
-
         from tactcad.assembly.scenes import build_scene
+        from tactcad.kernel.objects import labelled_compound, rgb_colour
 
         solved, solids = build_scene(self.validated, scene, self._cache)
         children = []
         for inst in solved.instances:
             child = solids[inst.part].moved(inst.location)
             child.label = inst.name
-            child.color = bd.Color(*solved.specs[inst.part].color)
+            child.color = rgb_colour(solved.specs[inst.part].color)
             children.append(child)
-        return bd.Compound(children=children, label=scene)
+        return labelled_compound(children, scene)
 
     # --- elements ---
     def element(self, number: int) -> "Element":

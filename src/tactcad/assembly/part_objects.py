@@ -22,12 +22,11 @@ import re
 from pathlib import Path
 from typing import Any, Mapping
 
-import build123d as bd
-
 from tactcad.assembly.placement import location
 from tactcad.catalogue.array import array_instances, array_parts
 from tactcad.design.array import DEFAULT_DESIGN, Plan, plan_from_dict, read_toml, with_overrides
 from tactcad.errors import DesignErrors
+from tactcad.kernel.objects import BUILD_PART, Align, Mode, PartObject, RotationLike, labelled_part
 from tactcad.parts.cache import PartCache
 
 #: Element parameters -> their key in the design file.
@@ -84,7 +83,7 @@ def _given(values: Mapping[str, Any]) -> dict[str, Any]:
     return {ELEMENT_KEYS[k]: v for k, v in values.items() if k in ELEMENT_KEYS and v is not None}
 
 
-class FlexureElement(bd.BasePartObject):
+class FlexureElement(PartObject):
     """A wire-cut flexure sensing element: clamped base, single-sided
     circular notch hinge, measuring arm and tip (element frame, mm: the
     profile in x-y, extruded along +z by the sheet thickness; x along the
@@ -110,7 +109,7 @@ class FlexureElement(bd.BasePartObject):
             design rules refuse (the design file's messages, naming the key).
     """
 
-    _applies_to = [bd.BuildPart._tag]
+    _applies_to = [BUILD_PART]
 
     def __init__(self, arm_length_mm: float | None = None, web_thickness_mm: float | None = None,
                  notch_radius_mm: float | None = None, tip_width_mm: float | None = None,
@@ -118,9 +117,9 @@ class FlexureElement(bd.BasePartObject):
                  base_height_mm: float | None = None, overall_length_mm: float | None = None,
                  inside_corner_radius_mm: float | None = None,
                  sheet_thickness_mm: float | None = None, design: str | Path | None = None,
-                 rotation: bd.RotationLike = (0, 0, 0),
-                 align: bd.Align | tuple[bd.Align, bd.Align, bd.Align] | None = None,
-                 mode: bd.Mode = bd.Mode.ADD):
+                 rotation: RotationLike = (0, 0, 0),
+                 align: Align | tuple[Align, Align, Align] | None = None,
+                 mode: Mode = Mode.ADD):
         plan = validated_plan(design, _given(locals()), arm_length_mm)
         self.geometry = plan.slots[0].geometry
         solid = PartCache(plan).solid(array_parts(plan)[self.geometry.part_name])
@@ -128,7 +127,7 @@ class FlexureElement(bd.BasePartObject):
         super().__init__(part=solid, rotation=rotation, align=align, mode=mode)
 
 
-class FlexureArray(bd.BasePartObject):
+class FlexureArray(PartObject):
     """The clamped array: every element, spacer, clamp plate, bolt and nut
     placed in the array frame (mm), one solid each, as one part.
 
@@ -148,7 +147,7 @@ class FlexureArray(bd.BasePartObject):
         DesignErrors: as :class:`FlexureElement`.
     """
 
-    _applies_to = [bd.BuildPart._tag]
+    _applies_to = [BUILD_PART]
 
     def __init__(self, arm_lengths_mm: list[float] | None = None, pitch_mm: float | None = None,
                  columns: int | None = None, web_thickness_mm: float | None = None,
@@ -157,9 +156,9 @@ class FlexureArray(bd.BasePartObject):
                  base_height_mm: float | None = None, overall_length_mm: float | None = None,
                  inside_corner_radius_mm: float | None = None,
                  sheet_thickness_mm: float | None = None, design: str | Path | None = None,
-                 rotation: bd.RotationLike = (0, 0, 0),
-                 align: bd.Align | tuple[bd.Align, bd.Align, bd.Align] | None = None,
-                 mode: bd.Mode = bd.Mode.ADD):
+                 rotation: RotationLike = (0, 0, 0),
+                 align: Align | tuple[Align, Align, Align] | None = None,
+                 mode: Mode = Mode.ADD):
         overrides = _given(locals())
         for key, value in (("arms.lengths_mm", arm_lengths_mm), ("array.pitch_mm", pitch_mm),
                            ("array.columns", columns)):
@@ -172,7 +171,7 @@ class FlexureArray(bd.BasePartObject):
             child = cache.solid(specs[inst.part]).moved(location(inst.placement))
             child.label = inst.name
             children.append(child)
-        part = bd.Part(children=children, label=self.plan.name)
+        part = labelled_part(children, self.plan.name)
         super().__init__(part=part, rotation=rotation, align=align, mode=mode)
 
 

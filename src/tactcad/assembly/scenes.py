@@ -1,5 +1,5 @@
-"""Scenes solved: every node of a rig placed by its joints (build123d
-``RigidJoint`` and ``LinearJoint``), slides solved so that the rig's loops
+"""Scenes solved: every node of a rig placed by its joints (rigid and
+linear, :mod:`tactcad.kernel.joints`), slides solved so that the rig's loops
 close, and the shown parts built once each.
 
 The rig models (nodes, joints, contacts) come from :mod:`tactcad.assembly.rigs`
@@ -10,9 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Mapping
-
-import build123d as bd
+from typing import Any
 
 from tactcad.assembly.placement import location
 from tactcad.assembly.z_up import z_up_bbox
@@ -25,27 +23,29 @@ from tactcad.design.project import Project
 from tactcad.design.scenes import SceneSpec
 from tactcad.errors import SceneError
 from tactcad.geometry.frames import Frame
+from tactcad.kernel.joints import carrier, rigid_joint, slide_joint
+from tactcad.kernel.placement import point as located_point
 from tactcad.parts.cache import PartCache
 
 
 # ---------------------------------------------------------------------------
-# Solving the joints (build123d)
+# Solving the joints
 # ---------------------------------------------------------------------------
 def solve(model: RigModel) -> tuple[dict[str, Any], dict[str, Any], dict[str, float]]:
-    """Place every node with build123d joints and solve the slides.
+    """Place every node with the kernel's joints and solve the slides.
 
     Returns:
         (node locations, leaf instance locations, slide positions in mm), the
-        locations as ``build123d.Location`` in the scene frame.
+        locations as CAD locations in the scene frame.
 
     Raises:
         SceneError: a solved slide position lies outside the slide's range.
         RuntimeError: a joint names a node placed later (a rig model error).
     """
 
-    carriers = {name: bd.Compound([], label=name) for name in model.nodes}
+    carriers = {name: carrier(name) for name in model.nodes}
     slides = {s.name: s for s in model.steps if isinstance(s, Slide)}
-    slide_carriers = {name: bd.Compound([], label=f"slide:{name}") for name in slides}
+    slide_carriers = {name: carrier(f"slide:{name}") for name in slides}
     positions = {name: (s.position if s.position is not None else sum(s.range) / 2)
                  for name, s in slides.items()}
     placed = set(model.roots)
@@ -67,17 +67,17 @@ def solve(model: RigModel) -> tuple[dict[str, Any], dict[str, Any], dict[str, fl
             carriers[name].locate(f.location())
         for s in model.steps:
             parent, child = carriers[s.parent], carriers[s.child]
-            child_joint = bd.RigidJoint(f"to:{s.parent}", child,
-                                        child.location * frame(s.child, s.child_frame).flipped().location())
-            parent_joint = bd.RigidJoint(f"{s.parent_frame}:{s.child}", parent,
-                                         parent.location * frame(s.parent, s.parent_frame).location())
+            child_joint = rigid_joint(f"to:{s.parent}", child,
+                                      child.location * frame(s.child, s.child_frame).flipped().location())
+            parent_joint = rigid_joint(f"{s.parent_frame}:{s.child}", parent,
+                                       parent.location * frame(s.parent, s.parent_frame).location())
             if isinstance(s, Mate):
                 parent_joint.connect_to(child_joint)
                 continue
             sc = slide_carriers[s.name]
-            base = bd.RigidJoint("base", sc, sc.location)
+            base = rigid_joint("base", sc, sc.location)
             parent_joint.connect_to(base)  # the slide's frame sits on the parent's frame
-            axis = bd.LinearJoint("axis", sc, bd.Axis.X.located(sc.location), s.range)
+            axis = slide_joint("axis", sc, sc.location, s.range)
             try:
                 axis.connect_to(child_joint, position=positions[s.name])
             except ValueError:
@@ -126,9 +126,7 @@ def solve(model: RigModel) -> tuple[dict[str, Any], dict[str, Any], dict[str, fl
 
 
 def _x_axis(loc):
-    o = (loc * bd.Location((0, 0, 0))).position
-    e = (loc * bd.Location((1, 0, 0))).position
-    return e - o
+    return located_point(loc, (1, 0, 0)) - located_point(loc, (0, 0, 0))
 
 
 # ---------------------------------------------------------------------------
@@ -142,7 +140,7 @@ class PlacedPart:
     part: str
     group: str
     level: str
-    location: Any  # build123d Location, scene frame
+    location: Any  # CAD location (tactcad.kernel.placement), scene frame
 
 
 @dataclass
@@ -233,7 +231,7 @@ def review_record(scene: Scene) -> dict:
     for i in scene.instances:
         x0, y0, z0, x1, y1, z1 = scene.specs[i.part].expected_bbox_mm
         for c in ((x, y, z) for x in (x0, x1) for y in (y0, y1) for z in (z0, z1)):
-            p = (i.location * bd.Location(c)).position
+            p = located_point(i.location, c)
             for k, v in enumerate((p.X, p.Y, p.Z)):
                 lo[k], hi[k] = min(lo[k], v), max(hi[k], v)
     counts: dict[str, int] = {}

@@ -4,7 +4,7 @@ Scenes and the array are modelled y up (the array frame: y up, z through the
 stack), which is also glTF's convention, so the GLB files keep it. STEP and
 FreeCAD files are Z up, as CAD programs show them: the scene root is turned
 +90 degrees about x, (x, y, z) -> (x, -z, y), so scene y becomes Z. No CAD
-kernel here except in :func:`z_up_location`.
+kernel here except in :func:`z_up_location`, which asks it for the turn.
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ def z_up_bbox(bbox: Sequence[float]) -> list[float]:
 
 
 def z_up_location():
-    """The root turn as a build123d ``Location`` (put it left of a scene-frame location)."""
-    import build123d as bd
+    """The root turn as a CAD location (put it left of a scene-frame location)."""
+    from tactcad.kernel.placement import turned_about_x
 
-    return bd.Location((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), 90.0)
+    return turned_about_x(90.0)

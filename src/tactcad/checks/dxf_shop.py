@@ -13,7 +13,7 @@ from tactcad.checks.result import CheckResult
 
 
 def _face(sp: ShopProfile) -> tuple[float, tuple[float, float, float, float]]:
-    from tactcad.parts.element import profile_face
+    from tactcad.kernel.shapes import profile_face
 
     f = profile_face(sp.profile)
     bb = f.bounding_box(optimal=True)

@@ -10,13 +10,9 @@ from __future__ import annotations
 import itertools
 from dataclasses import dataclass
 
-import build123d as bd
-from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
-from OCP.BRepExtrema import BRepExtrema_DistShapeShape
-from OCP.BRepGProp import BRepGProp
-from OCP.GProp import GProp_GProps
-
 from tactcad.checks.result import CheckResult
+from tactcad.kernel.inspect import common_volume, distance
+from tactcad.kernel.shapes import Shape
 
 OVERLAP_TOL_MM3 = 1e-6
 CONTACT_TOL_MM = 1e-6
@@ -25,34 +21,13 @@ CONTACT_TOL_MM = 1e-6
 @dataclass(frozen=True)
 class Placed:
     name: str
-    shape: bd.Shape
+    shape: Shape
 
 
-def _boxes_overlap(a: bd.BoundBox, b: bd.BoundBox, tol: float) -> bool:
+def _boxes_overlap(a, b, tol: float) -> bool:
     return (a.min.X <= b.max.X + tol and b.min.X <= a.max.X + tol and
             a.min.Y <= b.max.Y + tol and b.min.Y <= a.max.Y + tol and
             a.min.Z <= b.max.Z + tol and b.min.Z <= a.max.Z + tol)
-
-
-def common_volume(a: bd.Shape, b: bd.Shape) -> float:
-    """Volume (mm^3) of the boolean common of two solids.
-
-    Raises:
-        RuntimeError: the boolean did not complete.
-    """
-    op = BRepAlgoAPI_Common(a.wrapped, b.wrapped)
-    if not op.IsDone():
-        raise RuntimeError("boolean common failed")
-    props = GProp_GProps()
-    BRepGProp.VolumeProperties_s(op.Shape(), props)
-    return abs(props.Mass())
-
-
-def distance(a: bd.Shape, b: bd.Shape) -> float:
-    d = BRepExtrema_DistShapeShape(a.wrapped, b.wrapped)
-    if not d.IsDone():
-        raise RuntimeError("distance computation failed")
-    return d.Value()
 
 
 def check_interference(placed: list[Placed], contacts: set[frozenset[str]]) -> list[CheckResult]:

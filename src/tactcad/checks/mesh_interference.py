@@ -29,8 +29,9 @@ import numpy as np
 
 from tactcad.parts.mesh import MESH_TOLERANCE_MM, tessellate
 
-from tactcad.checks.interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed, common_volume
+from tactcad.checks.interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed
 from tactcad.checks.result import CheckResult
+from tactcad.kernel.inspect import common_volume, faces_distance
 
 NEAR_MM = 4 * MESH_TOLERANCE_MM  # closer meshes than this go to the exact check
 
@@ -83,9 +84,6 @@ def touching_gap(a, b, tol: float = CONTACT_TOL_MM) -> float:
     the faces of each that come within ``tol`` of the other's bounding box:
     a gap <= ``tol`` can only lie between such faces, so the answer to
     "touching within ``tol``" is exact; ``inf`` when no face comes near."""
-    import build123d as bd
-    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
-
     def near(shape, box):
         out = []
         for f in shape.faces():
@@ -99,10 +97,7 @@ def touching_gap(a, b, tol: float = CONTACT_TOL_MM) -> float:
     fa, fb = near(a, b.bounding_box()), near(b, a.bounding_box())
     if not fa or not fb:
         return float("inf")
-    d = BRepExtrema_DistShapeShape(bd.Compound(fa).wrapped, bd.Compound(fb).wrapped)
-    if not d.IsDone():
-        raise RuntimeError("distance computation failed")
-    return d.Value()
+    return faces_distance(fa, fb)
 
 
 def _boxes_overlap(a, b, tol: float) -> bool:

@@ -20,49 +20,27 @@ from __future__ import annotations
 
 import math
 
-from tactcad.checks.interference import CONTACT_TOL_MM, common_volume, distance
+from tactcad.checks.interference import CONTACT_TOL_MM
 from tactcad.checks.result import CheckResult
+from tactcad.kernel.inspect import common_volume, distance, extreme_planar_face
+from tactcad.kernel.placement import point
 
 PLANE_TOL_MM = 0.01
 PITCH_TOL_MM = 0.01
 CENTRE_TOL_MM = 0.01
 
 
-def _extreme_face(shape, direction):
-    """The planar face of ``shape`` with outward normal along ``direction``
-    lying farthest along it: (centre, (min, max) corners of its box, area)."""
-    import build123d as bd
-
-    d = bd.Vector(*direction)
-    best = None
-    for f in shape.faces():
-        if f.geom_type != bd.GeomType.PLANE:
-            continue
-        if f.normal_at(f.center()).dot(d) < 1 - 1e-9:
-            continue
-        h = f.center().dot(d)
-        if best is None or h > best[0] + 1e-9:
-            best = (h, f)
-    if best is None:
-        raise ValueError("no planar face along the direction")
-    f = best[1]
-    bb = f.bounding_box()
-    return f.center(), (bb.min, bb.max), f.area
-
-
 def _tip_faces(scene, shapes, up):
     out = {}
     for i in scene.instances:
         if i.name.startswith("element_"):
-            out[i.name] = _extreme_face(shapes[i.name], up)
+            out[i.name] = extreme_planar_face(shapes[i.name], up)
     return out
 
 
 def check_scene_sanity(scene, shapes: dict) -> list[CheckResult]:
     """Sanity rows for ``scene`` (see module doc); ``shapes``: instance name ->
     placed solid."""
-    import build123d as bd
-
     out: list[CheckResult] = []
     name = scene.name
     checks = scene.model.checks
@@ -70,10 +48,10 @@ def check_scene_sanity(scene, shapes: dict) -> list[CheckResult]:
     if "tips" in checks and checks["tips"] in scene.node_locations and \
             any(n.startswith("element_") for n in shown):
         loc = scene.node_locations[checks["tips"]]
-        o = (loc * bd.Location((0, 0, 0))).position
-        up = (loc * bd.Location((0, 1, 0))).position - o
-        ax_x = (loc * bd.Location((1, 0, 0))).position - o
-        ax_z = (loc * bd.Location((0, 0, 1))).position - o
+        o = point(loc, (0, 0, 0))
+        up = point(loc, (0, 1, 0)) - o
+        ax_x = point(loc, (1, 0, 0)) - o
+        ax_z = point(loc, (0, 0, 1)) - o
         faces = _tip_faces(scene, shapes, (up.X, up.Y, up.Z))
         heights = [c.dot(up) for c, _, _ in faces.values()]
         spread = max(heights) - min(heights)
@@ -95,7 +73,7 @@ def check_scene_sanity(scene, shapes: dict) -> list[CheckResult]:
                                f"{dev:.2e} mm"))
         target = checks.get("tips_on")
         if target in shown:
-            top_c, (tmin, tmax), _ = _extreme_face(shapes[target], (-up.X, -up.Y, -up.Z))
+            top_c, (tmin, tmax), _ = extreme_planar_face(shapes[target], (-up.X, -up.Y, -up.Z))
             worst_gap, outside = 0.0, 0
             for c, (fmin, fmax), _ in faces.values():
                 worst_gap = max(worst_gap, abs((c - top_c).dot(up)))
@@ -117,8 +95,8 @@ def check_scene_sanity(scene, shapes: dict) -> list[CheckResult]:
         ind, target = checks["indenter"]
         if ind in shown and target in shown:
             down = (0.0, -1.0, 0.0)
-            c, (imin, imax), area = _extreme_face(shapes[ind], down)
-            t, (tmin, tmax), _ = _extreme_face(shapes[target], (0.0, 1.0, 0.0))
+            c, (imin, imax), area = extreme_planar_face(shapes[ind], down)
+            t, (tmin, tmax), _ = extreme_planar_face(shapes[target], (0.0, 1.0, 0.0))
             off = math.hypot(c.X - t.X, c.Z - t.Z)
             gap = abs(c.Y - t.Y)
             out.append(CheckResult("indenter_centred", f"{ind} / {target}",

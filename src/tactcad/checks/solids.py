@@ -7,13 +7,11 @@ watertight, consistently wound triangle mesh.
 
 from __future__ import annotations
 
-import build123d as bd
 import trimesh
-from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
-from OCP.TopAbs import TopAbs_EDGE
-from OCP.TopExp import TopExp_Explorer
 
 from tactcad.catalogue.array import PartSpec
+from tactcad.kernel.inspect import bbox_tuple, free_edge_count
+from tactcad.kernel.shapes import Shape
 from tactcad.parts.mesh import tessellate
 from tactcad.checks.result import CheckResult
 
@@ -23,19 +21,7 @@ MESH_TOLERANCE_MM = 0.005
 MESH_VOLUME_RTOL = 5e-3  # chordal error of the tessellation on the arcs
 
 
-def free_edge_count(shape: bd.Shape) -> int:
-    """Edges on free boundaries (belonging to one face only); 0 for a closed solid."""
-    bounds = ShapeAnalysis_FreeBounds(shape.wrapped, 1e-7, False, False)
-    n = 0
-    for compound in (bounds.GetClosedWires(), bounds.GetOpenWires()):
-        ex = TopExp_Explorer(compound, TopAbs_EDGE)
-        while ex.More():
-            n += 1
-            ex.Next()
-    return n
-
-
-def to_trimesh(shape: bd.Shape, tolerance_mm: float = MESH_TOLERANCE_MM) -> trimesh.Trimesh:
+def to_trimesh(shape: Shape, tolerance_mm: float = MESH_TOLERANCE_MM) -> trimesh.Trimesh:
     """Triangle mesh of a shape (mm), vertices merged so edges can be paired."""
     verts, tris = tessellate(shape, tolerance_mm)
     mesh = trimesh.Trimesh(verts, tris, process=True)
@@ -43,12 +29,7 @@ def to_trimesh(shape: bd.Shape, tolerance_mm: float = MESH_TOLERANCE_MM) -> trim
     return mesh
 
 
-def bbox_tuple(shape: bd.Shape) -> tuple[float, ...]:
-    bb = shape.bounding_box(optimal=True)
-    return (bb.min.X, bb.min.Y, bb.min.Z, bb.max.X, bb.max.Y, bb.max.Z)
-
-
-def check_solid(spec: PartSpec, solid: bd.Shape, expected_solids: int = 1) -> list[CheckResult]:
+def check_solid(spec: PartSpec, solid: Shape, expected_solids: int = 1) -> list[CheckResult]:
     """All solid checks of one part against its catalogue entry."""
     name = spec.name
     out = [CheckResult("is_valid", name, bool(solid.is_valid))]

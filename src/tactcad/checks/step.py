@@ -4,29 +4,18 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import build123d as bd
-
 from tactcad.checks.result import CheckResult
-from tactcad.checks.solids import bbox_tuple
+from tactcad.kernel.step import read_step_summary
 
 VOLUME_RTOL = 1e-6
 BBOX_TOL_MM = 1e-5
-
-
-def step_summary(path: str | Path) -> dict:
-    """Solid count, total volume (mm^3), bbox and part labels of a STEP file."""
-    shape = bd.import_step(str(path))
-    solids = shape.solids()
-    labels = sorted({ch.label for ch in shape.children} if shape.children else {shape.label})
-    return {"solids": len(solids), "volume_mm3": sum(s.volume for s in solids),
-            "bbox_mm": list(bbox_tuple(shape)), "labels": labels}
 
 
 def check_step(path: str | Path, name: str, solids: int, volume_mm3: float,
                bbox_mm: tuple[float, ...], labels: set[str]) -> list[CheckResult]:
     """Re-import ``path`` and compare solid count, volume, bbox and part labels."""
     try:
-        s = step_summary(path)
+        s = read_step_summary(path)
     except Exception as exc:  # an unreadable file is a failed check, not a crash
         return [CheckResult("step_reimport", name, False, f"{type(exc).__name__}: {exc}")]
     if s["solids"] == 0:  # import_step reads an unparsable file as an empty shape

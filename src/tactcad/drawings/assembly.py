@@ -96,11 +96,10 @@ def _fit_scale(v: View, width: float, height: float) -> float:
 
 
 def _compound(specs: dict[str, PartSpec], inst: list[Instance], solids: dict):
-    import build123d as bd
-
     from tactcad.assembly.placement import location
+    from tactcad.kernel.objects import labelled_compound
 
-    return bd.Compound(children=[solids[i.part].moved(location(i.placement)) for i in inst])
+    return labelled_compound([solids[i.part].moved(location(i.placement)) for i in inst])
 
 
 def _to_view(cam, p) -> tuple[float, float]:

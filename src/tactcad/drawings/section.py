@@ -17,40 +17,6 @@ from tactcad.drawings.views import View, cameras_for, project
 HATCH_SPACING_MM = 1.5  # paper mm between hatching lines (ISO 128-50: thin, 45 degrees)
 
 
-def _cut_away(solid, origin, normal):
-    """``solid`` without the half-space in front of the plane (the side the
-    viewer stands on, ``+normal``)."""
-    import build123d as bd
-
-    bb = solid.bounding_box()
-    big = 4.0 * (bb.diagonal + 1.0)
-    plane = bd.Plane(origin=origin, z_dir=normal)
-    corner = plane.origin - plane.x_dir * (big / 2) - plane.y_dir * (big / 2)
-    half = bd.Solid.make_box(big, big, big, bd.Plane(origin=corner, x_dir=plane.x_dir,
-                                                     z_dir=normal))
-    return solid.cut(half)
-
-
-def _face_loops(face, to_uv) -> list[list[tuple[float, float]]]:
-    """Boundary loops of a planar face as polygons in view coordinates."""
-    from OCP.BRepAdaptor import BRepAdaptor_Curve
-
-    loops = []
-    for wire in [face.outer_wire(), *face.inner_wires()]:
-        pts: list[tuple[float, float]] = []
-        for e in wire.order_edges():
-            curve = BRepAdaptor_Curve(e.wrapped)
-            u0, u1 = curve.FirstParameter(), curve.LastParameter()
-            n = 1 if e.geom_type.name == "LINE" else 48
-            seg = [curve.Value(u0 + (u1 - u0) * k / n) for k in range(n + 1)]
-            seg_uv = [to_uv(np.array((p.X(), p.Y(), p.Z()))) for p in seg]
-            if pts and math.dist(pts[-1], seg_uv[-1]) < math.dist(pts[-1], seg_uv[0]):
-                seg_uv.reverse()
-            pts += seg_uv
-        loops.append(pts)
-    return loops
-
-
 def hatch_lines(loops: list[list[tuple[float, float]]], spacing: float,
                 angle_deg: float = 45.0) -> list[list[tuple[float, float]]]:
     """Hatching of the region bounded by ``loops`` (even-odd rule): parallel
@@ -86,24 +52,18 @@ def section_view(solid, origin, normal, up, name: str, scale: float) -> View:
     Raises:
         ValueError: the plane misses the solid (no cut face).
     """
-    kept = _cut_away(solid, origin, normal)
+    from tactcad.kernel.hlr import cut_away, cut_face_loops  # the kernel, only when drawn
+
+    kept = cut_away(solid, origin, normal)
     cams = cameras_for(tuple(float(c) for c in normal), tuple(float(c) for c in up))
     view = project(kept, "front", cameras=cams)
     nv, uv = np.array(normal, float), np.array(up, float)
     rv = np.cross(uv, nv)
-    o = np.array(origin, float)
 
     def to_uv(p):
         return (float(p @ rv), float(p @ uv))
 
-    loops = []
-    for f in kept.faces():
-        if f.geom_type.name != "PLANE":
-            continue
-        fn = np.array(tuple(f.normal_at(f.center())))
-        if abs(fn @ nv - 1.0) > 1e-6 or abs((np.array(tuple(f.center())) - o) @ nv) > 1e-6:
-            continue
-        loops.append(_face_loops(f, to_uv))
+    loops = cut_face_loops(kept, origin, normal, to_uv)
     if not loops:
         raise ValueError(f"section {name}: the plane misses the solid")
     view.name = name

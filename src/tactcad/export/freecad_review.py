@@ -99,7 +99,7 @@ def review_fcstd_name(name: str) -> str:
 
 def location_matrix(location) -> Matrix:
     """Row-major 4 x 4 matrix of a build123d ``Location`` (mm), rounded to 1e-12 mm."""
-    from tactcad.assembly.placement import matrix  # the kernel, only when a file is written
+    from tactcad.kernel.placement import matrix  # the kernel, only when a file is written
 
     m = matrix(location)
     rows = [tuple(round(float(m[i][j]), 12) + 0.0 for j in range(4)) for i in range(3)]
@@ -132,26 +132,14 @@ def freecad_identity() -> str | None:
     return f"{real}:{st.st_size}:{int(st.st_mtime)}"
 
 
-def _write_brep(shape, path: Path) -> None:
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
-    from OCP.BRepTools import BRepTools
-    from OCP.TopTools import TopTools_FormatVersion
-
-    # A fresh copy: the shape's flags (free, modified ...) change as other
-    # writers use it, and the file must not depend on what ran before.
-    fresh = BRepBuilderAPI_Copy(shape.wrapped, True, False).Shape()
-    # Version 1 without triangulation: what FreeCAD's older OpenCascade reads.
-    if not BRepTools.Write_s(fresh, str(path), False, False,
-                             TopTools_FormatVersion.TopTools_FormatVersion_VERSION_1):
-        raise RuntimeError(f"OpenCascade could not write {path}")
-
-
 def _job(a: ReviewAssembly, staging: Path, folder: Path) -> dict:
+    from tactcad.kernel.brep import write_brep  # the kernel, only when a file is written
+
     folder.mkdir()
     parts = []
     for k, p in enumerate(a.parts):
         brep = folder / f"p{k}.brep"
-        _write_brep(p.shape, brep)
+        write_brep(p.shape, brep)
         parts.append({"name": p.name, "brep": str(brep), "color": list(p.color)})
     groups = [{"name": g, "instances": [{"name": i.name, "part": i.part, "matrix": i.matrix}
                                         for i in a.instances if i.group == g]}

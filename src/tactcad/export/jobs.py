@@ -56,7 +56,7 @@ def array_jobs(run: Run) -> list[Job]:
 
 def _part_step(spec):
     def make(run: Run) -> list[dict]:
-        from tactcad.export.step import StepPart, write_step
+        from tactcad.kernel.step import StepPart, write_step
 
         rel = part_step_name(spec.name)
         write_step(run.staging / rel, [StepPart(spec.name, run.parts.solid(spec), spec.color)])
@@ -71,7 +71,7 @@ def _array_step(specs, inst):
     def make(run: Run) -> list[dict]:
         from tactcad.assembly.placement import location
         from tactcad.assembly.z_up import z_up_location
-        from tactcad.export.step import StepInstance, StepPart, write_step
+        from tactcad.kernel.step import StepInstance, StepPart, write_step
 
         parts = [StepPart(n, run.parts.solid(s), s.color) for n, s in specs.items()]
         z_up = z_up_location()  # STEP is Z up
@@ -112,7 +112,7 @@ def _scene(name: str):
         from tactcad.assembly.scenes import build_scene, review_record
         from tactcad.assembly.z_up import z_up_location
         from tactcad.export.glb import write_glb
-        from tactcad.export.step import StepInstance, StepPart, write_step
+        from tactcad.kernel.step import StepInstance, StepPart, write_step
 
         scene, solids = build_scene(run.project, name, run.parts)
         parts = [StepPart(n, solids[n], spec.color) for n, spec in scene.parts().items()]

@@ -54,10 +54,10 @@ class Frame:
         return Frame(self.origin, self.x_dir, (-z[0], -z[1], -z[2]), self.owner)
 
     def location(self):
-        """The frame as a build123d ``Location`` (imports the CAD kernel)."""
-        import build123d as bd
+        """The frame as a CAD location (imports the CAD kernel)."""
+        from tactcad.kernel.placement import frame
 
-        return bd.Location(bd.Plane(origin=self.origin, x_dir=self.x_dir, z_dir=self.z_dir))
+        return frame(self.origin, self.x_dir, self.z_dir)
 
 
 def face(origin: Vec3, normal: Vec3, x_dir: Vec3) -> Frame:

@@ -11,9 +11,10 @@ A part module holds everything about one rig part and exposes it as one
   dimensions with their reasons, its joint frames, its seat and the seat on
   its host, the screws it is fixed with, its companion parts), refusals added
   to the file's problems;
-* ``build``: geometry -> solid in the part frame (build123d is imported inside
-  the function, so this layer stays kernel-free), and ``companion_builders``
-  for its companions;
+* ``build``: geometry -> solid in the part frame, written in the modelling
+  verbs of :mod:`tactcad.kernel.shapes` (which load the kernel only when
+  called, so this layer stays kernel-free), and ``companion_builders`` for
+  its companions;
 * ``drawing``: a :class:`DrawingRecord` (pure data) for a made part, ``None``
   for a bought one (no drawing);
 * ``host``: the rig node it is mounted on; it is shown with its host's group,

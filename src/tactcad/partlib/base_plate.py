@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 
 from tactcad.partlib.base import DrawingRecord, PartData, RigPart, Seat
-from tactcad.partlib.shapes import box, cylinder, single
+from tactcad.kernel.shapes import box, cylinder, single
 from tactcad.partlib.stock import PLATE_ALUMINIUM
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Derived, Problems, Section, fmt, number

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Optional
 
 from tactcad.partlib.base import DrawingRecord, Fastener, PartData, RigPart, Seat
-from tactcad.partlib.shapes import box, cylinder, fuse, single
+from tactcad.kernel.shapes import box, cylinder, fuse, single
 from tactcad.partlib.stock import PLATE_ALUMINIUM
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import LIMIT_TOLERANCE_MM, Derived, Problems, Section, fmt, number

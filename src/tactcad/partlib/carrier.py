@@ -10,7 +10,7 @@ Units: mm.
 from __future__ import annotations
 
 from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
-from tactcad.partlib.shapes import box, fuse
+from tactcad.kernel.shapes import box, fuse
 from tactcad.partlib.stock import PLATE_ALUMINIUM
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, fmt, number

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 from tactcad.partlib.base import DrawingRecord, Fastener, PartData, RigPart, Seat
 from tactcad.partlib.screws import stock_length
-from tactcad.partlib.shapes import box, cylinder, ring, rounded_rect_face, single
+from tactcad.kernel.shapes import box, cylinder, extrude, ring, rounded_rect_face, single
 from tactcad.partlib.stock import PLATE_ALUMINIUM, TURNED_BRASS
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Derived, Problems, Section, choice, fmt, integer, number
@@ -265,15 +265,12 @@ def _bearing(b: BearingSpec) -> PartData:
 
 
 def build(g: CartGeometry):
-    """The cart's top plate (build123d ``Solid``; see the module doc)."""
-    import build123d as bd
-
+    """The cart's top plate (a kernel ``Solid``; see the module doc)."""
     L, W, T = g.length_mm, g.width_mm, g.thickness_mm
     plate = box(-L / 2, -W / 2, 0, L / 2, W / 2, T)
-    pocket = bd.Solid.extrude(
-        rounded_rect_face(g.pocket_length_mm, g.pocket_width_mm, POCKET_CORNER_RADIUS_MM,
-                          z=T - g.pocket_depth_mm),
-        bd.Vector(0, 0, g.pocket_depth_mm))
+    pocket = extrude(rounded_rect_face(g.pocket_length_mm, g.pocket_width_mm,
+                                       POCKET_CORNER_RADIUS_MM, z=T - g.pocket_depth_mm),
+                     g.pocket_depth_mm)
     zc = T / 2
     x_port = -L / 2
     tools = [pocket,

@@ -9,7 +9,7 @@ its foot (z = 0), centred in x and y. Units: mm.
 from __future__ import annotations
 
 from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
-from tactcad.partlib.shapes import box
+from tactcad.kernel.shapes import box
 from tactcad.partlib.stock import PLATE_ALUMINIUM
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, number

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
-from tactcad.partlib.shapes import box, cylinder, fuse
+from tactcad.kernel.shapes import box, cylinder, fuse
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, Text, fmt, number
 

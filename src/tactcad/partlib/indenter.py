@@ -21,7 +21,7 @@ import math
 from typing import Optional
 
 from tactcad.partlib.base import DrawingRecord, PartData, RigPart, Seat, table_values, values_from
-from tactcad.partlib.shapes import box, cylinder, fuse, single
+from tactcad.kernel.shapes import box, cylinder, fuse, single
 from tactcad.partlib.stock import INDENTER_STEEL
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, number

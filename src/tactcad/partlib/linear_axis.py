@@ -12,7 +12,7 @@ mounting face, with the channel the rail runs in. Units: mm.
 from __future__ import annotations
 
 from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
-from tactcad.partlib.shapes import box, single
+from tactcad.kernel.shapes import box, single
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, Text, number
 

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from tactcad.kernel.shapes import disc_prism, polygon_prism, single, union
 from tactcad.partlib.base import PartData, RigPart, Seat
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Derived, Problems, Section, Text, fmt, number
@@ -101,18 +102,11 @@ def derive(s: PushInFittingSection, context, p: Problems) -> PartData:
 
 
 def build(g: FittingGeometry):
-    """The envelope solid (build123d ``Solid``) in the part frame."""
-    import build123d as bd
-
-    hexagon = bd.extrude(bd.RegularPolygon(g.hex_across_corners_mm / 2, 6), g.hex_height_mm)
-    body = bd.Pos(0, 0, g.hex_height_mm) * bd.extrude(bd.Circle(g.body_diameter_mm / 2),
-                                                       g.body_length_mm)
-    thread = bd.Pos(0, 0, -g.thread_length_mm) * bd.extrude(bd.Circle(g.thread_diameter_mm / 2),
-                                                            g.thread_length_mm)
-    solids = (hexagon + body + thread).solids()
-    if len(solids) != 1:
-        raise ValueError(f"push-in fitting envelope: {len(solids)} solids, expected one")
-    return solids[0]
+    """The envelope solid (a kernel ``Solid``) in the part frame."""
+    hexagon = polygon_prism(g.hex_across_corners_mm / 2, 6, g.hex_height_mm)
+    body = disc_prism(g.body_diameter_mm / 2, g.body_length_mm, z0=g.hex_height_mm)
+    thread = disc_prism(g.thread_diameter_mm / 2, g.thread_length_mm, z0=-g.thread_length_mm)
+    return single(union(hexagon, body, thread))
 
 
 PART = RigPart(key="push_in_fitting", section=PushInFittingSection, host="cart", derive=derive,

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 from tactcad.partlib.base import PartData, RigPart, Seat
-from tactcad.partlib.shapes import box
+from tactcad.kernel.shapes import box
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, Text, fmt, listing, number
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from tactcad.partlib.base import DrawingRecord, Fastener, PartData, RigPart, Seat
 from tactcad.partlib.screws import stock_length
-from tactcad.partlib.shapes import box, cylinder, rounded_rect_face, single
+from tactcad.kernel.shapes import box, cylinder, extrude, rounded_rect_face, single
 from tactcad.partlib.stock import PLATE_ALUMINIUM
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Derived, Problems, Section, choice, fmt, number
@@ -92,14 +92,12 @@ def derive(h: SampleHolderSection, context, p: Problems) -> PartData:
 
 def build(g: SampleHolderGeometry):
     """Frame plate with a rounded-corner window and two screw clearance holes
-    (build123d ``Solid``)."""
-    import build123d as bd
-
+    (a kernel ``Solid``)."""
     t = g.thickness_mm
     plate = box(-g.outer_length_mm / 2, -g.outer_width_mm / 2, 0, g.outer_length_mm / 2,
                 g.outer_width_mm / 2, t)
-    window = bd.Solid.extrude(rounded_rect_face(g.window_length_mm, g.window_width_mm,
-                                                g.corner_radius_mm), bd.Vector(0, 0, t))
+    window = extrude(rounded_rect_face(g.window_length_mm, g.window_width_mm, g.corner_radius_mm),
+                     t)
     holes = [cylinder(g.screw.clearance_hole_mm / 2, (0, s * g.screw_y_mm, 0), (0, 0, 1), t)
              for s in (-1, 1)]
     return single(plate.cut(window, *holes))

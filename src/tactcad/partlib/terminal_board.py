@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from tactcad.kernel.shapes import centred_box, centred_cylinder, difference
 from tactcad.partlib.base import DrawingRecord, PartData, RigPart, Seat
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Derived, Problems, Section, Text, fmt, number
@@ -86,18 +87,11 @@ def derive(s: TerminalBoardSection, context, p: Problems) -> PartData:
 
 
 def build(g: BoardGeometry):
-    """The board (build123d ``Solid``) in the part frame."""
-    import build123d as bd
-
-    board = bd.Box(g.length_mm, g.width_mm, g.thickness_mm,
-                   align=(bd.Align.CENTER, bd.Align.CENTER, bd.Align.MIN))
-    holes = [bd.Pos(x, y, 0) * bd.Cylinder(g.hole_diameter_mm / 2, g.thickness_mm,
-                                          align=(bd.Align.CENTER, bd.Align.CENTER, bd.Align.MIN))
+    """The board (a kernel ``Solid``) in the part frame."""
+    board = centred_box(g.length_mm, g.width_mm, g.thickness_mm)
+    holes = [centred_cylinder(g.hole_diameter_mm / 2, g.thickness_mm, at=(x, y))
              for x in g.hole_xs_mm for y in g.hole_ys_mm]
-    solids = (board - holes).solids()
-    if len(solids) != 1:
-        raise ValueError(f"terminal board: {len(solids)} solids, expected one")
-    return solids[0]
+    return difference(board, holes)
 
 
 PART = RigPart(

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
-from tactcad.partlib.shapes import cylinder
+from tactcad.kernel.shapes import cylinder
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Derived, Problems, Section, fmt, integer, number
 

@@ -13,7 +13,7 @@ import math
 from typing import Optional
 
 from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
-from tactcad.partlib.shapes import box
+from tactcad.kernel.shapes import box
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, fmt, number
 

@@ -4,33 +4,30 @@ and ISO 4032 hex nut. Dimensions from :data:`tactcad.design.array.BOLTS`."""
 from __future__ import annotations
 
 import math
-
-import build123d as bd
+from typing import TYPE_CHECKING
 
 from tactcad.design.array import BoltSpec
+from tactcad.kernel.shapes import cylinder_z, difference, extrude, moved, polygon_face, union
+
+if TYPE_CHECKING:
+    from tactcad.kernel.shapes import Solid
 
 
-def build_bolt(spec: BoltSpec, length_mm: float) -> bd.Solid:
+def build_bolt(spec: BoltSpec, length_mm: float) -> Solid:
     """Socket head cap screw, axis +z; underside of the head at z = 0, the head
     in z < 0 with a hexagon socket, the plain shank (nominal diameter) to z = length."""
-    head = bd.Solid.make_cylinder(spec.head_diameter_mm / 2, spec.head_height_mm,
-                                  bd.Plane.XY.offset(-spec.head_height_mm))
-    shank = bd.Solid.make_cylinder(spec.nominal_diameter_mm / 2, length_mm)
-    socket_af = spec.socket_across_flats_mm
-    socket = bd.Solid.extrude(
-        bd.Face(bd.Wire.make_polygon(_hexagon(socket_af), close=True)).moved(
-            bd.Location((0, 0, -spec.head_height_mm))),
-        bd.Vector(0, 0, spec.head_height_mm / 2))
-    return bd.Solid((head + shank - socket).solids()[0].wrapped)
+    head = cylinder_z(spec.head_diameter_mm / 2, spec.head_height_mm, z0=-spec.head_height_mm)
+    shank = cylinder_z(spec.nominal_diameter_mm / 2, length_mm)
+    socket = extrude(moved(polygon_face(_hexagon(spec.socket_across_flats_mm)),
+                           (0, 0, -spec.head_height_mm)), spec.head_height_mm / 2)
+    return difference(union(head, shank), socket)
 
 
-def build_nut(spec: BoltSpec) -> bd.Solid:
+def build_nut(spec: BoltSpec) -> Solid:
     """Hex nut, axis +z, from z = 0 to the nut height, bore = nominal diameter."""
-    prism = bd.Solid.extrude(bd.Face(bd.Wire.make_polygon(_hexagon(spec.nut_width_across_flats_mm),
-                                                          close=True)),
-                             bd.Vector(0, 0, spec.nut_height_mm))
-    bore = bd.Solid.make_cylinder(spec.nominal_diameter_mm / 2, spec.nut_height_mm)
-    return bd.Solid((prism - bore).solids()[0].wrapped)
+    prism = extrude(polygon_face(_hexagon(spec.nut_width_across_flats_mm)), spec.nut_height_mm)
+    bore = cylinder_z(spec.nominal_diameter_mm / 2, spec.nut_height_mm)
+    return difference(prism, bore)
 
 
 def _hexagon(across_flats: float) -> list[tuple[float, float, float]]:

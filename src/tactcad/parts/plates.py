@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
-import build123d as bd
+from typing import TYPE_CHECKING
 
 from tactcad.design.array import ClampPlateGeometry, SpacerGeometry
 from tactcad.geometry.profile import Profile, rectangle_profile, u_plate_profile
-from tactcad.parts.element import extrude_profile
+from tactcad.kernel.shapes import extrude_profile
+
+if TYPE_CHECKING:
+    from tactcad.kernel.shapes import Solid
 
 
 def spacer_profile(s: SpacerGeometry) -> Profile:
@@ -14,7 +17,7 @@ def spacer_profile(s: SpacerGeometry) -> Profile:
                              [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
 
 
-def build_spacer(s: SpacerGeometry) -> bd.Solid:
+def build_spacer(s: SpacerGeometry) -> Solid:
     """Spacer in the element frame (same bolt holes as the element base), mm."""
     return extrude_profile(spacer_profile(s), s.thickness_mm)
 
@@ -25,6 +28,6 @@ def clamp_profile(c: ClampPlateGeometry) -> Profile:
                            [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
 
 
-def build_clamp_plate(c: ClampPlateGeometry) -> bd.Solid:
+def build_clamp_plate(c: ClampPlateGeometry) -> Solid:
     """U-shaped clamp plate in the array frame (x, y), thickness along +z, mm."""
     return extrude_profile(clamp_profile(c), c.thickness_mm)

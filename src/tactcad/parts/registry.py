@@ -5,9 +5,7 @@ builds only its own parts and a run builds each part once)."""
 from __future__ import annotations
 
 from collections import Counter
-from typing import Callable
-
-import build123d as bd
+from typing import TYPE_CHECKING, Callable
 
 from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import Plan
@@ -17,9 +15,12 @@ from tactcad.parts.fasteners import build_bolt, build_nut
 from tactcad.parts.gauge import build_gauge
 from tactcad.parts.plates import build_clamp_plate, build_spacer
 
+if TYPE_CHECKING:
+    from tactcad.kernel.shapes import Solid
+
 BUILD_COUNTS: Counter[str] = Counter()  # part name -> times built in this process
 
-Builder = Callable[[Plan, PartSpec], bd.Solid]
+Builder = Callable[[Plan, PartSpec], "Solid"]
 
 #: builder key -> builder(plan, spec) of the part families of this package.
 #: Every part carries its dimensions in ``spec.geometry``; none reads the plan.
@@ -55,7 +56,7 @@ def _all_builders() -> dict[str, Builder]:
 BUILDERS: dict[str, Builder] = _all_builders()
 
 
-def build_part(plan: Plan, spec: PartSpec) -> bd.Solid:
+def build_part(plan: Plan, spec: PartSpec) -> Solid:
     """Build one part's solid (part frame, mm) and count the build in :data:`BUILD_COUNTS`.
 
     Raises:
