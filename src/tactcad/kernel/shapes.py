@@ -15,15 +15,25 @@ from __future__ import annotations
 
 from functools import reduce
 from types import ModuleType
-from typing import TYPE_CHECKING, Any, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Iterable, Protocol, Sequence
 
 if TYPE_CHECKING:
     import build123d as bd
     from build123d import Compound as Compound, Face as Face, Shape as Shape, Solid as Solid
 
-    from tactcad.geometry.profile import Profile
-
 Point3 = tuple[float, float, float]
+
+
+class ProfileLike(Protocol):
+    """A closed 2D profile as :mod:`tactcad.geometry.profile` writes it (mm):
+    ``outer``, segments with ``start`` and ``end`` (an arc also has
+    ``midpoint``), and ``holes``, circles with ``centre`` and ``radius``."""
+
+    @property
+    def outer(self) -> Sequence[Any]: ...
+
+    @property
+    def holes(self) -> Sequence[Any]: ...
 
 #: The kernel's types, for annotations above the wall (loaded on first use).
 KERNEL_TYPES = ("Solid", "Shape", "Face", "Compound")
@@ -120,7 +130,7 @@ def rounded_rect_face(length: float, width: float, radius: float, z: float = 0.0
     return rect.fillet_2d(radius, rect.vertices())
 
 
-def profile_face(profile: "Profile") -> bd.Face:
+def profile_face(profile: ProfileLike) -> bd.Face:
     """The planar face (z = 0) bounded by a 2D profile's outer contour (lines
     and three-point arcs, :mod:`tactcad.geometry.profile`) minus its round holes."""
     bd = _bd()
@@ -145,7 +155,7 @@ def extrude(face: bd.Face, height: float) -> bd.Solid:
     return bd.Solid.extrude(face, bd.Vector(0, 0, height))
 
 
-def extrude_profile(profile: "Profile", thickness_mm: float) -> bd.Solid:
+def extrude_profile(profile: ProfileLike, thickness_mm: float) -> bd.Solid:
     """Prism of a 2D profile: its face at z = 0 extruded along +z (mm)."""
     return extrude(profile_face(profile), thickness_mm)
 
