@@ -7,17 +7,15 @@ import json
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, project_from_args,
                               progress_from_args, store_from_args)
+from tactcad.export.kinds import EXPORT_KINDS, kinds_help
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("export", help="write STEP, wire-EDM DXF, scenes, drawings, BOM and manifest",
-                       description="Build the design's parts and write exports/: step/<part>.step, "
-                                   "step/array.step, dxf/<part>_qty<n>.dxf and "
-                                   "dxf/sheet_<material>_<t>mm.dxf, scenes/<scene>.step (Z up) and "
-                                   ".glb (see `tactcad scenes`), review/<scene>.FCStd (when FreeCAD "
-                                   "is installed), drawings/<part>.svg and "
-                                   "drawings.pdf, bom.csv and bom.md, images/*.png and "
-                                   "manifest.json. Progress (one line per job run) goes to stderr.")
+                       description="Build the design's parts and write exports/: "
+                                   + ", ".join(k.writes for k in EXPORT_KINDS.values())
+                                   + " and manifest.json (`tactcad scenes` lists the scenes). "
+                                   "Progress (one line per job run) goes to stderr.")
     add_design_arg(p)
     p.add_argument("--out", metavar="DIR", default="exports", help="output folder (default: exports)")
     p.add_argument("--scene", metavar="NAME", action="append", default=None,
@@ -25,9 +23,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "review/NAME.FCStd "
                         "(repeatable; the manifest is left as it is). `tactcad scenes` lists them")
     p.add_argument("--only", metavar="KINDS", action="append", default=None,
-                   help="write only these kinds of file, comma-separated: step, dxf, scenes, "
-                        "review, drawings, images, bom; the manifest lists only what was written "
-                        "and says so under \"partial\"")
+                   help="write only these kinds of file, comma-separated: " + kinds_help()
+                        + "; the manifest lists only what was written and says so under "
+                          "\"partial\" (default: every kind)")
     p.add_argument("--part", metavar="NAME", action="append", default=None,
                    help="write only this part's own files, its STEP and its drawing "
                         "(repeatable; combines with --only)")

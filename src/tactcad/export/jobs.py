@@ -26,6 +26,7 @@ from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, ASSEMBLY_DRAWING, PD
 from tactcad.export.dxf_sheet import dxf_version_option, write_shop_dxf_files
 from tactcad.export.freecad_review import freecad_identity
 from tactcad.export.job import Job, Run
+from tactcad.export.kinds import EXPORT_KINDS
 from tactcad.store import content_key
 
 PNG_DPI = 150
@@ -34,24 +35,31 @@ RENDER_VERSION = 2
 
 
 def all_jobs(run: Run) -> list[Job]:
-    """The jobs of a full export of ``run.plan``."""
-    jobs = array_jobs(run) + scene_jobs(run) + drawing_jobs(run) + [image_job(run)]
-    jobs.append(bom_job(run, jobs))
-    return jobs + [review_page_job(run, jobs)]
+    """The jobs of a full export of ``run.plan``: every registered kind's
+    (:data:`~tactcad.export.kinds.EXPORT_KINDS`), in its order."""
+    jobs: list[Job] = []
+    for kind in EXPORT_KINDS.values():
+        jobs += kind.jobs(run, list(jobs))
+    return jobs
 
 
 # --- the array: part STEP files, the assembly, the wire-EDM profiles --------------------------
-def array_jobs(run: Run) -> list[Job]:
-    plan = run.plan
+def step_jobs(run: Run, before: list[Job]) -> list[Job]:
+    """Each array part's STEP file, then the array's assembly."""
     specs, inst = run.array
     jobs = [Job(f"step:{name}", content_key("step-part", spec), _part_step(spec), (spec,))
             for name, spec in specs.items()]
     jobs.append(Job("step:array", content_key("step-array", list(specs.values()), inst),
                     _array_step(specs, inst), tuple(specs.values())))
-    version = run.dxf_version or dxf_version_option()
-    jobs.append(Job("dxf:shop", content_key("dxf-shop", plan, list(specs.values()), version),
-                    _shop_dxf(version)))
     return jobs
+
+
+def dxf_jobs(run: Run, before: list[Job]) -> list[Job]:
+    """The wire-EDM shop files: one DXF per profile and one per nested sheet."""
+    specs, _ = run.array
+    version = run.dxf_version or dxf_version_option()
+    return [Job("dxf:shop", content_key("dxf-shop", run.plan, list(specs.values()), version),
+                _shop_dxf(version))]
 
 
 def _part_step(spec):
@@ -90,6 +98,11 @@ def _shop_dxf(version: str):
 
 
 # --- scenes: STEP and GLB per scene ---------------------------------------------------------
+def scene_and_review_jobs(run: Run, before: list[Job]) -> list[Job]:
+    """Every scene's STEP and GLB, and the FreeCAD review files of them all."""
+    return scene_jobs(run)
+
+
 def scene_jobs(run: Run, names=None) -> list[Job]:
     """One job per scene (all, or ``names`` in that order)."""
     names = list(run.scenes) if names is None else list(names)
@@ -145,7 +158,7 @@ def _start_review(names: list[str]):
 
 
 # --- drawings: one SVG per fabricated part, the PDF, the first element's page as PNG ----------
-def drawing_jobs(run: Run) -> list[Job]:
+def drawing_jobs(run: Run, before: list[Job]) -> list[Job]:
     plan = run.plan
     parts, qty = fabricated_parts(run.project, run.inventory)
     jobs = []
@@ -241,6 +254,10 @@ def _drawing_png(part: str, page: int):
 
 
 # --- the array image and the bill of materials ----------------------------------------------
+def image_jobs(run: Run, before: list[Job]) -> list[Job]:
+    return [image_job(run)]
+
+
 def image_job(run: Run) -> Job:
     plan = run.plan
     specs, inst = run.array
@@ -261,6 +278,10 @@ def image_job(run: Run) -> Job:
         return [{"path": ARRAY_PNG, "part": "array", "kind": "image-png", "triangles": box["n"]}]
     return Job("image:array", content_key("array-png", RENDER_VERSION, list(specs.values()), inst,
                                           title), make, tuple(specs.values()))
+
+
+def bom_jobs(run: Run, before: list[Job]) -> list[Job]:
+    return [bom_job(run, before)]
 
 
 def bom_job(run: Run, before: list[Job]) -> Job:
@@ -303,6 +324,10 @@ def review_contents_of(run: Run, *folders: Path):
     return review_contents(design_facts(run.plan), sheets, glbs,
                            bom.read_text(encoding="utf-8-sig") if bom else "",
                            strength_summary(run.plan), rev, date, three_version())
+
+
+def review_page_jobs(run: Run, before: list[Job]) -> list[Job]:
+    return [review_page_job(run, before)]
 
 
 def review_page_job(run: Run, before: list[Job]) -> Job:

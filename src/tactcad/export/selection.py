@@ -16,41 +16,36 @@ from typing import Callable, Iterable, Sequence
 
 from tactcad.errors import DesignError
 from tactcad.export.job import Job, Run
+from tactcad.export.kinds import EXPORT_KINDS
 from tactcad.store import content_key
-
-#: ``--only`` kinds and the job-name prefixes each covers.
-KINDS: dict[str, tuple[str, ...]] = {
-    "step": ("step",), "dxf": ("dxf",), "scenes": ("scene",), "review": ("review",),
-    "drawings": ("drawing", "drawings"), "images": ("image",), "bom": ("bom",)}
-
-#: Jobs whose single part is named after the colon.
-PART_PREFIXES = ("step", "drawing")
 
 
 def job_kind(name: str) -> str:
     """The ``--only`` kind of a job name (``"drawings:pdf"`` -> ``"drawings"``)."""
     prefix = name.split(":", 1)[0]
-    return next((kind for kind, prefixes in KINDS.items() if prefix in prefixes), prefix)
+    return next((k.name for k in EXPORT_KINDS.values() if prefix in k.prefixes), prefix)
 
 
 def job_part(name: str) -> str | None:
     """The part a job writes alone (``"step:cart"`` -> ``"cart"``), None for a job of many."""
     prefix, _, rest = name.partition(":")
-    return rest if prefix in PART_PREFIXES and rest else None
+    part_prefixes = {k.part_prefix for k in EXPORT_KINDS.values() if k.part_prefix}
+    return rest if prefix in part_prefixes and rest else None
 
 
 def parse_only(values: Iterable[str] | None) -> list[str]:
-    """``--only`` values (each a comma-separated list) -> kinds in :data:`KINDS` order.
+    """``--only`` values (each a comma-separated list) -> kinds in
+    :data:`~tactcad.export.kinds.EXPORT_KINDS` order.
 
     Raises:
         DesignError: an unknown kind, naming the allowed ones.
     """
     asked = [v.strip() for text in values or () for v in text.split(",") if v.strip()]
     for kind in asked:
-        if kind not in KINDS:
-            raise DesignError("--only", kind, "one or more of " + ", ".join(KINDS),
+        if kind not in EXPORT_KINDS:
+            raise DesignError("--only", kind, "one or more of " + ", ".join(EXPORT_KINDS),
                               "comma-separated")
-    return [kind for kind in KINDS if kind in asked]
+    return [kind for kind in EXPORT_KINDS if kind in asked]
 
 
 def select_jobs(jobs: Sequence[Job], only: Sequence[str] = (),

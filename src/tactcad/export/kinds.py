@@ -1,0 +1,95 @@
+"""The kinds of file an export writes, declared once.
+
+Each :class:`ExportKind` names the ``--only`` word, the job-name prefixes it
+selects, what it writes (for ``--help``) and the function that plans its
+jobs. The run's job list (:func:`tactcad.export.jobs.all_jobs`), ``--only``'s
+choices and help and the job selection (:mod:`tactcad.export.selection`) read
+:data:`EXPORT_KINDS`; a new format is one module with its job function plus
+one :func:`register_kind`.
+
+Planning needs no CAD kernel: the job function is imported by name when a
+run plans its jobs, and its jobs import their writers when they run.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from tactcad.export.job import Job, Run
+
+
+@dataclass(frozen=True)
+class ExportKind:
+    """One kind of export file.
+
+    Attributes:
+        name: the ``--only`` word (``step``, ``dxf`` ...).
+        prefixes: job-name prefixes (the word before the colon) it selects.
+        writes: what it writes, for ``--help`` (paths relative to the export folder).
+        module, function: ``function(run, before) -> list[Job]`` plans the
+            kind's jobs, ``before`` the jobs of the kinds registered before it
+            (a job that reads their files holds their keys).
+        part_prefix: the prefix of its jobs that write one part alone, named
+            after the colon (``step:cart``), or None.
+    """
+
+    name: str
+    prefixes: tuple[str, ...]
+    writes: str
+    module: str
+    function: str
+    part_prefix: str | None = None
+
+    def jobs(self, run: "Run", before: list["Job"]) -> list["Job"]:
+        """The kind's jobs for ``run``, after the jobs ``before``."""
+        return getattr(importlib.import_module(self.module), self.function)(run, before)
+
+
+#: The kinds in run order (the manifest's order of files).
+EXPORT_KINDS: dict[str, ExportKind] = {}
+
+
+def register_kind(kind: ExportKind) -> None:
+    """Add a kind of file to every export (its jobs after the others').
+
+    Raises:
+        ValueError: the name or a prefix is taken.
+    """
+    if kind.name in EXPORT_KINDS:
+        raise ValueError(f"an export kind {kind.name!r} is registered already")
+    taken = {p for k in EXPORT_KINDS.values() for p in k.prefixes} & set(kind.prefixes)
+    if taken:
+        raise ValueError(f"export kind {kind.name!r}: job prefix(es) {', '.join(sorted(taken))} "
+                         "belong to another kind")
+    EXPORT_KINDS[kind.name] = kind
+
+
+_JOBS = "tactcad.export.jobs"
+for _kind in (
+        ExportKind("step", ("step",), "step/<part>.step, step/array.step", _JOBS, "step_jobs",
+                   part_prefix="step"),
+        ExportKind("dxf", ("dxf",), "dxf/<part>_qty<n>.dxf, dxf/sheet_<material>_<t>mm.dxf",
+                   _JOBS, "dxf_jobs"),
+        ExportKind("scenes", ("scene",), "scenes/<scene>.step (Z up) and .glb", _JOBS,
+                   "scene_and_review_jobs"),
+        ExportKind("drawings", ("drawing", "drawings"), "drawings/<part>.svg, drawings.pdf",
+                   _JOBS, "drawing_jobs", part_prefix="drawing"),
+        ExportKind("images", ("image",), "images/*.png", _JOBS, "image_jobs"),
+        ExportKind("bom", ("bom",), "bom.csv, bom.md", _JOBS, "bom_jobs"),
+        # the FreeCAD review files are planned with the scenes they show
+        ExportKind("review", ("review",), "review/index.html, review/<scene>.FCStd (with FreeCAD installed)", _JOBS,
+                   "review_page_jobs")):
+    register_kind(_kind)
+
+
+def kind_names() -> tuple[str, ...]:
+    """The ``--only`` words, in run order."""
+    return tuple(EXPORT_KINDS)
+
+
+def kinds_help() -> str:
+    """``step (step/<part>.step, ...), dxf (...), ...`` for ``--help``."""
+    return "; ".join(f"{k.name} ({k.writes})" for k in EXPORT_KINDS.values())
