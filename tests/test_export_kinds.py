@@ -82,3 +82,16 @@ def test_an_unknown_kind_is_refused_naming_the_registered_ones(points_kind, caps
     error = json.loads(capsys.readouterr().out)["error"]
     assert error["field"] == "--only" and error["value"] == "pointz"
     assert "points" in error["allowed"] and "step" in error["allowed"]
+
+
+def test_a_kind_outside_the_full_export_is_planned_only_when_asked(project, tmp_path):
+    kinds.register_kind(kinds.ExportKind("points", ("points",), ARMS_CSV, __name__,
+                                         "arm_table_jobs", in_full_export=False))
+    try:
+        run = Run(project, tmp_path / "staging")
+        assert "points" not in kinds.full_export_kinds()
+        assert "points:arms" not in [j.name for j in all_jobs(run)]
+        assert [j.name for j in all_jobs(run, ["points"])] == ["points:arms"]
+        assert "points (points/arms.csv, only when asked)" in _only_help()
+    finally:
+        del kinds.EXPORT_KINDS["points"]

@@ -16,6 +16,7 @@ shows the scenes, the sheets and the BOM.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Sequence
 
 from tactcad.assembly.inventory import assembly_review, fabricated_parts
 from tactcad.assembly.rigs import shown_instances
@@ -26,7 +27,7 @@ from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, ASSEMBLY_DRAWING, PD
 from tactcad.export.dxf_sheet import dxf_version_option, write_shop_dxf_files
 from tactcad.export.freecad_review import freecad_identity
 from tactcad.export.job import Job, Run
-from tactcad.export.kinds import EXPORT_KINDS
+from tactcad.export.kinds import EXPORT_KINDS, full_export_kinds
 from tactcad.store import content_key
 
 PNG_DPI = 150
@@ -34,12 +35,15 @@ PNG_DPI = 150
 RENDER_VERSION = 2
 
 
-def all_jobs(run: Run) -> list[Job]:
-    """The jobs of a full export of ``run.plan``: every registered kind's
-    (:data:`~tactcad.export.kinds.EXPORT_KINDS`), in its order."""
+def all_jobs(run: Run, kinds: Sequence[str] | None = None) -> list[Job]:
+    """The jobs of the export ``kinds`` of ``run.plan`` (default: a full
+    export's, :func:`~tactcad.export.kinds.full_export_kinds`), in the order
+    of :data:`~tactcad.export.kinds.EXPORT_KINDS`."""
+    wanted = set(full_export_kinds() if kinds is None else kinds)
     jobs: list[Job] = []
     for kind in EXPORT_KINDS.values():
-        jobs += kind.jobs(run, list(jobs))
+        if kind.name in wanted:
+            jobs += kind.jobs(run, list(jobs))
     return jobs
 
 

@@ -34,6 +34,7 @@ class ExportKind:
             (a job that reads their files holds their keys).
         part_prefix: the prefix of its jobs that write one part alone, named
             after the colon (``step:cart``), or None.
+        in_full_export: False for a kind written only when ``--only`` names it.
     """
 
     name: str
@@ -42,6 +43,7 @@ class ExportKind:
     module: str
     function: str
     part_prefix: str | None = None
+    in_full_export: bool = True
 
     def jobs(self, run: "Run", before: list["Job"]) -> list["Job"]:
         """The kind's jobs for ``run``, after the jobs ``before``."""
@@ -85,11 +87,12 @@ for _kind in (
     register_kind(_kind)
 
 
-def kind_names() -> tuple[str, ...]:
-    """The ``--only`` words, in run order."""
-    return tuple(EXPORT_KINDS)
+def full_export_kinds() -> tuple[str, ...]:
+    """The kinds a full export writes, in run order."""
+    return tuple(name for name, kind in EXPORT_KINDS.items() if kind.in_full_export)
 
 
 def kinds_help() -> str:
     """``step (step/<part>.step, ...), dxf (...), ...`` for ``--help``."""
-    return "; ".join(f"{k.name} ({k.writes})" for k in EXPORT_KINDS.values())
+    return "; ".join(f"{k.name} ({k.writes}{'' if k.in_full_export else ', only when asked'})"
+                     for k in EXPORT_KINDS.values())
