@@ -82,7 +82,8 @@ for _kind in (
         ExportKind("images", ("image",), "images/*.png", _JOBS, "image_jobs"),
         ExportKind("bom", ("bom",), "bom.csv, bom.md", _JOBS, "bom_jobs"),
         # the FreeCAD review files are planned with the scenes they show
-        ExportKind("review", ("review",), "review/index.html, review/<scene>.FCStd (with FreeCAD installed)", _JOBS,
+        ExportKind("review", ("review",),
+                   "review/index.html, review/<scene>.FCStd (with FreeCAD installed)", _JOBS,
                    "review_page_jobs")):
     register_kind(_kind)
 
