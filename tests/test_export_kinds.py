@@ -48,7 +48,7 @@ def _only_help() -> str:
 def test_every_built_in_kind_is_in_the_help_and_the_choices():
     text = _only_help()
     for name, kind in kinds.EXPORT_KINDS.items():
-        assert f"{name} ({kind.writes})" in text
+        assert f"{name} ({kind.writes}" in text
     assert parse_only([",".join(kinds.EXPORT_KINDS)]) == list(kinds.EXPORT_KINDS)
 
 
