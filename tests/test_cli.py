@@ -18,7 +18,7 @@ from tactcad import cli
 from tactcad.commands import parse_override, plan_from_args, progress_from_args
 from tactcad.errors import DesignError
 from tactcad.export.job import Job
-from tactcad.export.kinds import EXPORT_KINDS
+from tactcad.export.kinds import full_export_kinds
 from tactcad.export.selection import (job_kind, job_part, parse_only, select_jobs,
                                       with_progress)
 
@@ -187,7 +187,7 @@ def test_with_progress_counts_and_times_each_job_run():
 
 # --- export --only / --part --------------------------------------------------------------------
 def test_job_kinds_and_parts():
-    assert {job_kind(j.name) for j in JOBS} == set(EXPORT_KINDS)
+    assert {job_kind(j.name) for j in JOBS} == set(full_export_kinds())
     assert job_kind("drawings:pdf") == job_kind("drawing:cart") == "drawings"
     assert job_part("drawing:cart") == job_part("step:cart") == "cart"
     assert job_part("dxf:shop") is None and job_part("bom") is None
