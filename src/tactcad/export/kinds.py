@@ -84,7 +84,9 @@ for _kind in (
         # the FreeCAD review files are planned with the scenes they show
         ExportKind("review", ("review",),
                    "review/index.html, review/<scene>.FCStd (with FreeCAD installed)", _JOBS,
-                   "review_page_jobs")):
+                   "review_page_jobs"),
+        ExportKind("stl", ("stl",), "stl/<part>.stl", "tactcad.export.stl", "stl_jobs",
+                   part_prefix="stl", in_full_export=False)):
     register_kind(_kind)
 
 
