@@ -41,9 +41,9 @@ REPO = Path(__file__).resolve().parents[1]
 HW = REPO / "hardware" / "macro_array"
 sys.path.insert(0, str(REPO / "tests"))  # the command-line strategies the tests use
 
-from tactcad.mechanics.paper import calibration_audit as ca  # noqa: E402
-from tactcad.mechanics.paper.calibration import CalibrationError  # noqa: E402
-from tactcad.mechanics.paper.measured_io import MAX_BYTES, parse_mapping, read_measured  # noqa: E402
+from tactcad.paper import calibration_audit as ca  # noqa: E402
+from tactcad.mechanics.calibration import CalibrationError  # noqa: E402
+from tactcad.mechanics.measured_io import MAX_BYTES, parse_mapping, read_measured  # noqa: E402
 
 DAQ_MAP = parse_mapping(["force_N=Dev1/ai0,signal_V=Dev1/ai1"])
 ENCODINGS = ("utf-8", "utf-8-sig", "utf-16", "cp1252", "latin-1")

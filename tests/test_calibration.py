@@ -8,9 +8,10 @@ import numpy as np
 import pytest
 
 from tactcad.errors import TactcadError
-from tactcad.mechanics.paper import calibration as cal
-from tactcad.mechanics.paper import data as paper_data
-from tactcad.mechanics.paper.calibration import CalibrationError
+from tactcad.mechanics import calibration as cal
+from tactcad.paper import calibration_table1 as cal1
+from tactcad.paper import data as paper_data
+from tactcad.mechanics.calibration import CalibrationError
 
 K_S = paper_data.K_SENSOR_N_PER_MM
 TABLE1 = paper_data.table1()
@@ -140,13 +141,13 @@ def test_signal_conversions_invert_the_calibration():
 
 
 def test_paper_signal_model_uses_table1_constants():
-    m = cal.paper_signal_model(8)
+    m = cal1.paper_signal_model(8)
     assert (m.K_N_per_mm, m.K_v_V_per_mm, m.V0_V) == (80.38, -9.0, 0.20)
     # the printed max signal change of element 8 (0.47 V) corresponds to its max deflection
     deflection = abs(cal.deflection_from_signal(m.V0_V - 0.47, m)) * 1e3
     assert deflection == pytest.approx(paper_data.table1_by_element()[8].max_deflection_um, rel=0.1)
     with pytest.raises(CalibrationError, match="element = 5"):
-        cal.paper_signal_model(5)
+        cal1.paper_signal_model(5)
 
 
 # ---------------------------------------------------------------------------
@@ -170,7 +171,7 @@ def test_series_amplification_matches_finite_differences(row):
 
 
 def test_series_amplification_grows_with_element_stiffness():
-    table = cal.series_amplification_table1()
+    table = cal1.series_amplification_table1()
     assert sorted(table) == [row.element for row in sorted(TABLE1, key=lambda r: r.element)]
     by_k = sorted(table.values(), key=lambda a: a.k_element)
     factors = [a.from_k_apparent for a in by_k]
@@ -197,7 +198,7 @@ def test_table1_loader():
 
 
 def test_table1_kv_over_k_column_follows_from_eq6_within_rounding():
-    checks = cal.table1_kv_over_k_check()
+    checks = cal1.table1_kv_over_k_check()
     assert [c.element for c in checks] == [row.element for row in TABLE1]
     for c, row in zip(checks, TABLE1):
         assert c.computed_V_per_N == row.K_v_V_per_mm / row.stiffness_N_per_mm

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
-from tactcad.mechanics.paper.data import largest_equal_arm_spread, table1
+from tactcad.paper.data import largest_equal_arm_spread, table1
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "tactcad"
 

@@ -118,7 +118,7 @@ def test_evaluate_loads_to_the_full_scale_force_over_the_designs_range(capsys):
 
 
 def test_calibrate_simulate_goes_to_the_full_scale_force(tmp_path, capsys):
-    from tactcad.mechanics.paper.measured_io import read_measured
+    from tactcad.mechanics.measured_io import read_measured
 
     csv = tmp_path / "cal.csv"
     assert main(["calibrate", "--simulate", "--design", str(EXAMPLE), "--noise-force", "0",

@@ -12,12 +12,12 @@ import pytest
 from conftest import with_default_companions
 from tactcad.cli import main
 from tactcad.mechanics import contact
-from tactcad.mechanics.paper import calibration as cal
-from tactcad.mechanics.paper import calibration_audit as ca
-from tactcad.mechanics.paper import data as paper_data
-from tactcad.mechanics.paper import measured_io
-from tactcad.mechanics.paper import evaluation as ev
-from tactcad.mechanics.paper import table2_models as t2
+from tactcad.mechanics import calibration as cal
+from tactcad.paper import calibration_audit as ca
+from tactcad.paper import data as paper_data
+from tactcad.mechanics import measured_io
+from tactcad.mechanics import evaluation as ev
+from tactcad.paper import table2_models as t2
 
 REPO = Path(__file__).resolve().parents[1]
 DEFAULT_TOML = REPO / "hardware" / "macro_array" / "macro_array.toml"

@@ -17,7 +17,7 @@ from tactcad.mechanics.correction import CorrectionRangeWarning
 from tactcad.mechanics.inverse import (InverseDesignError, Targets, design_for_targets,
                                        reference_elements, search_webs, unit_resolution)
 from tactcad.mechanics.ladder import estimate
-from tactcad.mechanics.paper.lumped import deflection_ratio
+from tactcad.mechanics.lumped import deflection_ratio
 from tactcad.mechanics.strength import strength_summary
 
 FEASIBLE = Targets(3.0, (5.0, 20.0), 0.3)

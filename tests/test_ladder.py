@@ -10,9 +10,9 @@ import sys
 import pytest
 
 from tactcad.errors import TactcadError
-from tactcad.mechanics.ladder import (MODELS, as_built_webs, estimate, gauge_strain_at_paper_load,
-                                      table1_comparison, table2_predicted)
-from tactcad.mechanics.paper.data import table1
+from tactcad.mechanics.ladder import MODELS, estimate
+from tactcad.paper.table1 import as_built_webs, gauge_strain_at_paper_load, table1_comparison, table2_predicted
+from tactcad.paper.data import table1
 
 
 def test_table1_rows_cover_every_calibrated_element(plan):

@@ -16,9 +16,10 @@ from hypothesis import strategies as st
 
 from tactcad.commands import lumped as lumped_cmd
 from tactcad.errors import TactcadError
-from tactcad.mechanics.paper import lumped
-from tactcad.mechanics.paper import data as paper_data
-from tactcad.mechanics.paper.lumped import LumpedDomainError
+from tactcad.mechanics import lumped
+from tactcad.paper import data as paper_data
+from tactcad.paper import table2_eq2
+from tactcad.mechanics.lumped import LumpedDomainError
 
 U = 2.0 ** -53  # unit round-off of float64
 # Second-order rounding terms (O(u^2)) are covered by this relative slack.
@@ -333,7 +334,7 @@ def test_table2_printed_columns_are_consistent_with_kr_and_one_stiffness_per_sam
 
 
 def test_table2_comparison_evaluates_eq2_on_every_row_without_tuning():
-    cmp = lumped.table2_comparison()
+    cmp = table2_eq2.table2_comparison()
     raw = raw_table2()
     assert len(cmp.r_measured) == 48
     for i, ref in enumerate(raw):
@@ -354,16 +355,16 @@ def test_table2_comparison_evaluates_eq2_on_every_row_without_tuning():
 
 def test_table2_comparison_accepts_predicted_element_stiffnesses():
     measured = sorted({row.K_m_N_per_mm for row in paper_data.table2()})
-    same = lumped.table2_comparison(k_m_predicted={k: k for k in measured})
-    base = lumped.table2_comparison()
+    same = table2_eq2.table2_comparison(k_m_predicted={k: k for k in measured})
+    base = table2_eq2.table2_comparison()
     assert np.array_equal(same.r_predicted, base.r_predicted)
-    softer = lumped.table2_comparison(k_m_predicted={k: 0.9 * k for k in measured})
+    softer = table2_eq2.table2_comparison(k_m_predicted={k: 0.9 * k for k in measured})
     assert np.array_equal(softer.k_m_measured, base.k_m_measured)
     assert (softer.r_predicted > base.r_predicted).all()  # smaller K_m -> larger R
     with pytest.raises(LumpedDomainError, match="missing 5.78"):
-        lumped.table2_comparison(k_m_predicted={k: k for k in measured if k != 5.78})
+        table2_eq2.table2_comparison(k_m_predicted={k: k for k in measured if k != 5.78})
     with pytest.raises(LumpedDomainError, match="K_r > K_m"):
-        lumped.table2_comparison(k_r=10.0)
+        table2_eq2.table2_comparison(k_r=10.0)
 
 
 # ---------------------------------------------------------------------------

@@ -13,9 +13,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from tactcad.cli import main
-from tactcad.mechanics.paper import calibration_audit as ca
-from tactcad.mechanics.paper.calibration import CalibrationError
-from tactcad.mechanics.paper.measured_io import parse_csv_text, parse_mapping, read_measured
+from tactcad.paper import calibration_audit as ca
+from tactcad.mechanics.calibration import CalibrationError
+from tactcad.mechanics.measured_io import parse_csv_text, parse_mapping, read_measured
 
 REPO = Path(__file__).resolve().parents[1]
 HW = REPO / "hardware" / "macro_array"
@@ -141,7 +141,7 @@ def test_a_bad_map_is_refused(text):
         parse_mapping([text])
 
 
-@pytest.mark.filterwarnings("ignore::tactcad.mechanics.paper.measured_io.MeasuredDataWarning")
+@pytest.mark.filterwarnings("ignore::tactcad.mechanics.measured_io.MeasuredDataWarning")
 def test_a_damaged_tdms_file_is_refused(tmp_path):
     raw = (HW / "calibration_example.tdms").read_bytes()
     for k, cut in enumerate((raw[:40], raw[:len(raw) // 2], b"TDSm" + bytes(range(200)))):
@@ -152,7 +152,7 @@ def test_a_damaged_tdms_file_is_refused(tmp_path):
         assert str(path) in str(err.value)
 
 
-@pytest.mark.filterwarnings("ignore::tactcad.mechanics.paper.measured_io.MeasuredDataWarning")
+@pytest.mark.filterwarnings("ignore::tactcad.mechanics.measured_io.MeasuredDataWarning")
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.binary(max_size=400), st.sampled_from(["x.csv", "x.lvm", "x.tdms", "x.dat"]))
 def test_any_bytes_are_read_or_refused_by_name(tmp_path_factory, raw, name):

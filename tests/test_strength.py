@@ -125,7 +125,7 @@ def test_closed_form_stress_matches_the_fem2d_field(plan, web, radius, arm):
 
 
 def test_table1_comparison_uses_the_as_built_web(plan, capsys):
-    from tactcad.mechanics.paper.data import table1
+    from tactcad.paper.data import table1
     from tactcad.mechanics.strength import peak_stress_per_newton
     from tactcad.studies.strength import table1_force_comparison
 

@@ -67,7 +67,7 @@ def register(subparsers) -> None:
 
 
 def _fit_record(element: int, c) -> dict:
-    from tactcad.mechanics.paper import calibration as cal
+    from tactcad.mechanics import calibration as cal
 
     amp = cal.series_error_amplification(c.K_N_per_mm, c.k_sensor_N_per_mm) if c.K_N_per_mm > 0 else None
     return {"element": element, "K_N_per_mm": c.K_N_per_mm, "stderr_K_N_per_mm": c.stderr_K_N_per_mm,
@@ -85,8 +85,8 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from tactcad.errors import TactcadError
-    from tactcad.mechanics.paper import calibration as cal
-    from tactcad.mechanics.paper import calibration_audit as ca
+    from tactcad.mechanics import calibration as cal
+    from tactcad.paper import calibration_audit as ca
     from tactcad.commands.finite_json import dumps
 
     if args.write_csv and not args.simulate:
@@ -126,7 +126,7 @@ def run(args: argparse.Namespace) -> int:
                            f"{args.noise_signal:g} V, seed {args.seed}",)), encoding="utf-8")
                 report["written_csv"] = args.write_csv
         else:
-            from tactcad.mechanics.paper.measured_io import parse_mapping, read_measured
+            from tactcad.mechanics.measured_io import parse_mapping, read_measured
 
             data, info = read_measured(args.data, args.encoding, parse_mapping(args.map),
                                        default_k_sensor=k_sensor)
@@ -158,7 +158,7 @@ def run(args: argparse.Namespace) -> int:
     report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance, k_sensor,
                                paper_criteria=cites_paper(plan.raw))
     if args.plot:
-        from tactcad.mechanics.paper.figures import plot_calibration
+        from tactcad.paper.figures import plot_calibration
 
         report["plot"] = str(plot_calibration(report["fig4"], args.plot,
                                               f"{plan.name}: calibration readings"))

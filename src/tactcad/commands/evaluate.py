@@ -79,9 +79,9 @@ def parse_stiffness_list(field: str, text: str) -> list[float]:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad evaluate``; returns the exit code."""
-    from tactcad.mechanics.paper import data as paper_data
-    from tactcad.mechanics.paper import evaluation as ev
-    from tactcad.mechanics.paper.table2_models import paper_stiffness_by_element
+    from tactcad.paper import data as paper_data
+    from tactcad.mechanics import evaluation as ev
+    from tactcad.paper.table2_models import paper_stiffness_by_element
     from tactcad.commands.finite_json import dumps
 
     from tactcad.design.requirements import cites_paper
@@ -114,13 +114,13 @@ def run(args: argparse.Namespace) -> int:
     if not paper:
         report["full_scale_force_N"] = force
     if args.plot:
-        from tactcad.mechanics.paper.figures import plot_ratio_map
+        from tactcad.paper.figures import plot_ratio_map
 
         title = (f"{plan.name}: R against K_m/K_obj ({args.coupling} sample, K from "
                  f"{args.stiffness}, reference element {report['reference_element']})")
         report["plot"] = str(plot_ratio_map(report["fig7"], args.plot, title))
     if args.plot_fig6:
-        from tactcad.mechanics.paper.figures import plot_ratio_vs_load
+        from tactcad.paper.figures import plot_ratio_vs_load
 
         fig6 = report["fig6"]
         report["plot_fig6"] = str(plot_ratio_vs_load(

@@ -71,8 +71,7 @@ def run_stiffness(args: argparse.Namespace) -> int:
 
 
 def run_table1(args: argparse.Namespace) -> int:
-    from tactcad.mechanics.ladder import (PAPER_STRAIN_RANGE, as_built_webs, gauge_strain_at_paper_load,
-                                    require_table1, table1_comparison, table2_predicted)
+    from tactcad.paper.table1 import PAPER_STRAIN_RANGE, as_built_webs, gauge_strain_at_paper_load, require_table1, table1_comparison, table2_predicted
 
     plan = plan_from_args(args)
     require_table1(plan)
@@ -107,7 +106,7 @@ def run_table1(args: argparse.Namespace) -> int:
 
 def _table1_all_levels(plan, as_json: bool, progress) -> int:
     """Table 1 with every ladder level side by side: K (N/mm) and % error."""
-    from tactcad.mechanics.ladder import table1_comparison
+    from tactcad.paper.table1 import table1_comparison
 
     levels = {m: table1_comparison(plan, m, progress=progress) for m in models()}
     if as_json:

@@ -30,11 +30,19 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from dataclasses import replace
+
+    from tactcad.design.requirements import cites_paper
     from tactcad.mechanics.readout import readout_report
     from tactcad.mechanics.requirements import requirements_of
 
     plan = plan_from_args(args)
     report = readout_report(plan, requirements_of(plan), args.model, progress_from_args(args))
+    if cites_paper(plan.raw):  # the paper's measured sensitivities, for its design only
+        from tactcad.paper.table1 import readout_table1
+
+        report = replace(report, table1=readout_table1(report.records, report.chain, plan,
+                                                       args.model))
     if args.json:
         print(dumps(report.as_json(), indent=1))
         return 0

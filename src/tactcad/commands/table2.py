@@ -38,10 +38,10 @@ def register(subparsers) -> None:
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad table2``; returns the exit code."""
     from tactcad.commands import plan_from_args
-    from tactcad.mechanics.paper.table2_models import table2_report
+    from tactcad.paper.table2_models import table2_report
     from tactcad.commands.finite_json import dumps
 
-    from tactcad.mechanics.ladder import require_table1
+    from tactcad.paper.table1 import require_table1
 
     plan = plan_from_args(args)
     require_table1(plan)  # the paper's measurements: the paper's design, or a refusal saying why
@@ -67,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
 
 def write_plot(report: dict, path: str):
     """Measured R (markers), eq. 2 (solid) and eq. 2 with K_r fitted on the other samples (dashed)."""
-    from tactcad.mechanics.paper.figures import plot_ratio_map
+    from tactcad.paper.figures import plot_ratio_map
 
     rows = report["table2"]
     by_name = {(m["name"], m["scheme"]): m for m in report["models"]}

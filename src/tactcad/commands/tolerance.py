@@ -88,8 +88,10 @@ def run(args: argparse.Namespace) -> int:
     else:
         report = run_tolerance(plan, **kw)
     wall = time.perf_counter() - t0
-    if not paper:  # the paper's measured spread belongs to the paper's design
-        report = dataclasses.replace(report, table1_spread=[])
+    if paper:  # the paper's measured spread belongs to the paper's design
+        from tactcad.paper.table1 import equal_arm_spread
+
+        report = dataclasses.replace(report, table1_spread=equal_arm_spread(plan))
     from tactcad.mechanics.requirements import requirements_of
     from tactcad.mechanics.tolerance_budget import band_check
 

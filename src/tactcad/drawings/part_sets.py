@@ -2,7 +2,7 @@
 under its builder key (``PartSpec.builder``) in one :class:`PartDrawing`:
 dimension set, notes (the web's stiffness sensitivity from
 :func:`tactcad.mechanics.closed_form.web_tolerance_stiffness_change`, the
-paper's Table 1 spread from :mod:`tactcad.mechanics.paper.data`), section
+paper's Table 1 spread from :mod:`tactcad.paper.data`), section
 view, fixed view directions, detail view, hole table or not, and the plan
 values it prints. A rig part's drawing is its module's
 :class:`~tactcad.partlib.base.DrawingRecord` (dimension set, section, notes,
@@ -34,7 +34,7 @@ from tactcad.drawings.sheet import fmt_mm
 from tactcad.geometry.profile import Arc
 from tactcad.drawings.views import CAMERAS, cameras_for, orientation
 from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
-from tactcad.mechanics.paper.data import largest_equal_arm_spread
+from tactcad.paper.data import largest_equal_arm_spread
 from tactcad.drawings.design_notes import full_scale_note, web_tolerance_note
 from tactcad.partlib.base import DrawingRecord
 from tactcad.partlib.registry import rig_parts_lib

@@ -30,7 +30,7 @@ def design_samples(plan: Plan, n: int = DESIGN_SAMPLES) -> list[float]:
 
 def tip_force_per_newton(plan: Plan, stiffness: dict[int, float], samples, spec) -> float:
     """Largest element tip force (N) per newton of grasping force over ``samples``."""
-    from tactcad.mechanics.paper import evaluation as ev
+    from tactcad.mechanics import evaluation as ev
 
     elements = ev.elements_from_plan(plan, stiffness)
     ref = ev.reference_element(elements)

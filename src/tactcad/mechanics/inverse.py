@@ -50,7 +50,7 @@ carries F R / X (eq. 1: F_m / F_r = K_m (K_r + K_obj) / (K_r (K_m + K_obj))).
 Each force is read to Table 1's resolution dF = 0.01 N, so
 dR / R = sqrt((dF / F_m)^2 + (dF / F_r)^2) (independent readings, root sum
 of squares), and the K_obj resolution is |dK_obj/dR| dR (eq. 3,
-:func:`tactcad.mechanics.paper.lumped.sensitivity`).
+:func:`tactcad.mechanics.lumped.sensitivity`).
 
 Units: mm, N, MPa, N/mm.
 """

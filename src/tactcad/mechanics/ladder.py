@@ -21,7 +21,7 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass
 
-from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.design.array import ElementGeometry, Material
 from tactcad.errors import TactcadError
 from tactcad.mechanics.result import StiffnessResult
 
@@ -97,8 +97,6 @@ def levels_help() -> str:
 
 #: The built-in levels' names (what :func:`models` gives before any registration).
 MODELS = models()
-PAPER_LOAD_N = 2.0  # the paper's FEM design study load on the tip
-PAPER_STRAIN_RANGE = (0.2711e-2, 0.6316e-2)  # surface strain at 2 N, arms 4-8 mm
 
 
 class UnknownModelError(TactcadError, ValueError):
@@ -121,164 +119,3 @@ def estimate(model: str, g: ElementGeometry, material: Material, *, element: int
         raise UnknownModelError(model)
     return getattr(importlib.import_module(level.module), level.function)(
         g, material, element=element, **options)
-
-
-@dataclass(frozen=True)
-class Table1Row:
-    """Predicted against measured stiffness of one element (paper Table 1)."""
-
-    element: int
-    arm_length_mm: float
-    measured_N_per_mm: float
-    predicted: StiffnessResult
-
-    @property
-    def error_percent(self) -> float:
-        """(predicted - measured) / measured x 100."""
-        return 100.0 * (self.predicted.stiffness_N_per_mm - self.measured_N_per_mm) / self.measured_N_per_mm
-
-    def as_json(self) -> dict:
-        return {"element": self.element, "arm_length_mm": self.arm_length_mm,
-                "measured_N_per_mm": self.measured_N_per_mm,
-                "predicted_N_per_mm": self.predicted.stiffness_N_per_mm,
-                "error_percent": self.error_percent,
-                "error_estimate_rel": self.predicted.error_estimate_rel,
-                "gauge_strain_per_N": self.predicted.gauge_strain_per_N,
-                "wall_time_s": self.predicted.wall_time_s}
-
-
-def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> list[Table1Row]:
-    """Every calibrated element of Table 1 (element 5 has no measurement):
-    the plan's geometry at ``model`` level against the measured K.
-
-    Distinct geometries are evaluated once (elements with equal arms share them).
-    """
-    from tactcad.mechanics.paper.data import table1
-
-    cache: dict[str, StiffnessResult] = {}
-    rows = []
-    for meas in table1():
-        slot = plan.element(meas.element)
-        key = slot.geometry.part_name
-        if key not in cache:
-            if progress:
-                progress(f"{model}: {key}")
-            cache[key] = estimate(model, slot.geometry, plan.material)
-        res = cache[key]
-        rows.append(Table1Row(meas.element, slot.geometry.arm_length_mm, meas.stiffness_N_per_mm,
-                              StiffnessResult(meas.element, res.model, res.stiffness_N_per_mm,
-                                              res.gauge_strain_per_N, res.error_estimate_rel,
-                                              res.wall_time_s)))
-    return rows
-
-
-def table1_not_applicable(plan: Plan) -> str | None:
-    """Why the paper's Table 1 cannot be compared with ``plan`` (one line), or
-    None when it can: the design cites the paper (``requirements.source``),
-    has every element Table 1 numbers, and each element's geometry reaches
-    its measured K within the closed form's web range (0.05 ... 1 mm)."""
-    import warnings
-
-    from tactcad.design.requirements import cites_paper
-    from tactcad.mechanics.closed_form import web_for_stiffness
-    from tactcad.mechanics.correction import CorrectionRangeWarning
-    from tactcad.mechanics.paper.data import table1
-
-    if not cites_paper(plan.raw):
-        return "the design does not cite the paper (requirements.source), so Table 1 is not its"
-    rows = table1()
-    numbers = {slot.number for slot in plan.slots}
-    missing = sorted(r.element for r in rows if r.element not in numbers)
-    if missing:
-        return (f"Table 1 numbers elements up to {max(r.element for r in rows)}; the design has "
-                f"{len(numbers)}")
-    for meas in rows:
-        try:
-            with warnings.catch_warnings():  # a probe of reach, not an estimate to warn about
-                warnings.simplefilter("ignore", CorrectionRangeWarning)
-                web_for_stiffness(meas.stiffness_N_per_mm, plan.element(meas.element).geometry,
-                                  plan.material)
-        except ValueError as exc:
-            return (f"element {meas.element}'s geometry cannot reach Table 1's "
-                    f"{meas.stiffness_N_per_mm:g} N/mm at any web ({exc})")
-    return None
-
-
-def require_table1(plan: Plan, option: str = "--design") -> None:
-    """Refuse a design Table 1 cannot be compared with (:func:`table1_not_applicable`).
-
-    Raises:
-        DesignError: naming ``option``, the design and why.
-    """
-    from pathlib import Path
-
-    from tactcad.errors import DesignError
-
-    why = table1_not_applicable(plan)
-    if why is not None:
-        raise DesignError(option, Path(plan.source).name,
-                          "a design that cites the paper and can reproduce its Table 1", why)
-
-
-def as_built_webs(plan: Plan) -> list[dict]:
-    """For each calibrated element, the web thickness (mm) that makes the
-    corrected closed form reproduce its measured K, and the deviation from the
-    design web against the design tolerance (the fabrication spread it implies)."""
-    from tactcad.mechanics.closed_form import web_for_stiffness
-    from tactcad.mechanics.paper.data import table1
-
-    out = []
-    for meas in table1():
-        g = plan.element(meas.element).geometry
-        t = web_for_stiffness(meas.stiffness_N_per_mm, g, plan.material)
-        out.append({"element": meas.element, "measured_N_per_mm": meas.stiffness_N_per_mm,
-                    "web_as_built_mm": t, "web_design_mm": g.web_thickness_mm,
-                    "deviation_mm": t - g.web_thickness_mm,
-                    "within_tolerance": abs(t - g.web_thickness_mm) <= g.web_tolerance_mm})
-    return out
-
-
-def gauge_strain_at_paper_load(plan: Plan, model: str = "closed-form",
-                               arms_mm: tuple[float, ...] = (4.0, 5.0, 6.0, 7.0, 8.0)) -> list[dict]:
-    """Surface strain at the gauge under the paper's 2 N tip load for each arm
-    length, next to the paper's reported 0.2711-0.6316 % range."""
-    from dataclasses import replace
-
-    g0 = plan.element(1).geometry
-    out = []
-    for a in arms_mm:
-        r = estimate(model, replace(g0, arm_length_mm=a), plan.material)
-        out.append({"arm_length_mm": a, "strain_percent": 100 * PAPER_LOAD_N * r.gauge_strain_per_N})
-    return out
-
-
-def table2_predicted(plan: Plan, model: str = "closed-form") -> dict:
-    """Eq. 2 with the ladder's predicted K_m and K_r (element 8) against Table 2's
-    48 measured R, reported as it is (nothing tuned to Table 2).
-
-    Rows whose predicted pair leaves eq. 2's domain (K_r <= K_m: element 1 and
-    the reference element 8 have the same 4 mm arm, so nominal geometry makes
-    them equal) are returned as NaN with ``in_domain`` False.
-    """
-    import numpy as np
-
-    from tactcad.mechanics.paper.lumped import deflection_ratio
-    from tactcad.mechanics.paper.data import table2
-
-    rows = table2()
-    k_pred = {r.element: r.predicted.stiffness_N_per_mm for r in table1_comparison(plan, model)}
-    k_r = k_pred[8]
-    k_m = np.array([k_pred[r.element] for r in rows])
-    k_obj = np.array([r.K_obj_N_per_mm for r in rows])
-    r_meas = np.array([r.R for r in rows])
-    pred = deflection_ratio(k_m, np.full_like(k_m, k_r), k_obj)
-    r_pred = np.asarray(pred.value if hasattr(pred, "value") else pred, dtype=float)
-    ok = np.isfinite(r_pred)
-    err = r_meas - r_pred
-    return {"model": model, "k_r_predicted_N_per_mm": k_r,
-            "rows": [{"element": r.element, "K_obj_N_per_mm": r.K_obj_N_per_mm,
-                      "R_measured": r.R, "R_predicted": float(p), "in_domain": bool(o)}
-                     for r, p, o in zip(rows, r_pred, ok)],
-            "n_in_domain": int(ok.sum()),
-            "mean_abs_error": float(np.mean(np.abs(err[ok]))) if ok.any() else float("nan"),
-            "max_abs_error": float(np.max(np.abs(err[ok]))) if ok.any() else float("nan")}

@@ -256,7 +256,6 @@ def readout_report(plan: Plan, requirements, model: str = "closed-form",
         UnknownModelError: ``model`` is not a ladder level.
         DesignError: the material has no yield strength (the full-scale force needs it).
     """
-    from tactcad.design.requirements import cites_paper
     from tactcad.mechanics.ladder import estimate
 
     chain = readout_chain(plan)
@@ -284,9 +283,8 @@ def readout_report(plan: Plan, requirements, model: str = "closed-form",
             kobj_res = _unit_kobj_resolution(d["K"], kr, d["dF"], dfr, rng, F)
             measuring.append((d["K"], d["dF"]))
         records.append(_element_record(slot, d, is_ref, ref, kobj_res, chain, F))
-    table1 = table1_comparison(records, chain, plan, model) if cites_paper(plan.raw) else None
     return ReadoutReport(plan.name, model, chain, noise, F, rng, records,
-                         array_resolution_rel(kr, dfr, measuring, rng, F), table1)
+                         array_resolution_rel(kr, dfr, measuring, rng, F))
 
 
 def _element_record(slot, d: dict, is_ref: bool, ref: int, kobj_res: float | None,
@@ -310,78 +308,6 @@ def _element_record(slot, d: dict, is_ref: bool, ref: int, kobj_res: float | Non
             "reference_element": None if is_ref else ref}
 
 
-def _rel_std(x: list[float]) -> float:
+def rel_std(x: list[float]) -> float:
     """Sample standard deviation over the mean (0 for a single value)."""
     return float(np.std(x, ddof=1) / abs(np.mean(x))) if len(x) > 1 else 0.0
-
-
-def table1_comparison(records: list[dict], chain: ReadoutChain, plan: Plan,
-                      model: str = "closed-form") -> dict:
-    """Adds the measured K_v and K_v/K of each calibrated element to its record
-    (``table1_k_v_V_per_mm``, ``table1_sensitivity_V_per_N``, measured / predicted
-    ratios and the amplifier gain that would reconcile the sensitivity) and
-    returns the summary: the gain fitted through all elements (least squares
-    through the origin) and the ratios' spread.
-
-    Also per element the sensitivity ratio at its as-built web (the web at which
-    the corrected closed form gives the measured K,
-    :func:`tactcad.mechanics.ladder.as_built_webs`): what is left of the spread
-    once each element's own web is known (gauge placement, bonding, gain).
-    """
-    from dataclasses import replace
-
-    from tactcad.mechanics.closed_form import web_for_stiffness
-    from tactcad.mechanics.paper.data import table1
-
-    as_built: list[float] = []
-    unreachable: list[str] = []  # elements of Table 1's arm whose geometry cannot be it
-
-    by_element = {r.element: r for r in table1()}
-    ratios = []
-    num = den = 0.0
-    for rec in records:
-        row = by_element.get(rec["element"])
-        if row is not None and abs(row.flexing_arm_length_mm - rec["arm_length_mm"]) > 1e-9:
-            row = None  # a variant of the design: this element is not Table 1's
-        g0 = plan.element(rec["element"]).geometry
-        try:  # the web at which this geometry has the measured K, if any web has
-            web = None if row is None else web_for_stiffness(row.stiffness_N_per_mm, g0,
-                                                             plan.material)
-        except ValueError as exc:
-            web = None
-            unreachable.append(f"element {rec['element']} cannot reach Table 1's "
-                               f"{row.stiffness_N_per_mm:g} N/mm at any web ({exc})")
-        if web is None:
-            rec["table1_k_v_V_per_mm"] = rec["table1_sensitivity_V_per_N"] = None
-            continue
-        s_ratio = row.K_v_over_K_V_per_N / rec["sensitivity_V_per_N"]
-        rec.update(table1_k_v_V_per_mm=row.K_v_V_per_mm,
-                   table1_sensitivity_V_per_N=row.K_v_over_K_V_per_N,
-                   table1_k_v_ratio=row.K_v_V_per_mm / rec["k_v_V_per_mm"],
-                   table1_sensitivity_ratio=s_ratio,
-                   reconciling_gain=chain.amplifier_gain * s_ratio)
-        ratios.append(s_ratio)
-        g = replace(g0, web_thickness_mm=web)
-        s_built = chain.volts_per_strain * gauge_strain_per_N(
-            g, plan.material, chain.grid_length_mm, "closed-form")["grid"]
-        rec["table1_as_built_web_mm"] = web
-        rec["table1_sensitivity_ratio_as_built_web"] = row.K_v_over_K_V_per_N / s_built
-        as_built.append(rec["table1_sensitivity_ratio_as_built_web"])
-        e = rec["gauge_strain_per_N"]
-        num += e * row.K_v_over_K_V_per_N
-        den += e * e
-    fitted = num / den if den else None
-    if not ratios:  # the comparison does not apply: said in one line, the sensor's answers stand
-        return {"elements": 0, "not_applicable": "; ".join(unreachable) or
-                "no element of the design has a Table 1 element's arm"}
-    return {"elements": len(ratios), "elements_not_comparable": unreachable,
-            "sensitivity_ratio_min": min(ratios), "sensitivity_ratio_max": max(ratios),
-            "sensitivity_ratio_mean": float(np.mean(ratios)),
-            "sensitivity_ratio_rel_std": _rel_std(ratios),
-            "as_built_web_ratio_mean": float(np.mean(as_built)),
-            "as_built_web_ratio_rel_std": _rel_std(as_built),
-            "gain_at_as_built_webs": chain.amplifier_gain * float(np.mean(as_built)),
-            "fitted_volts_per_strain": fitted,
-            "assumed_volts_per_strain": chain.volts_per_strain,
-            "fitted_gain_at_assumed_excitation": (fitted / (chain.excitation_V * chain.gauge_factor
-                                                            / 4.0)) if fitted else None}

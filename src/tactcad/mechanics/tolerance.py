@@ -32,7 +32,7 @@ Sampling is reproducible: the draw is split into chunks of
 its chunks are evaluated in this process or on a Dask cluster
 (:mod:`tactcad.studies.sweeps`).
 
-Sources: eq. 1-3 of the paper (:mod:`tactcad.mechanics.paper.lumped`);
+Sources: eq. 1-3 of the paper (:mod:`tactcad.mechanics.lumped`);
 JCGM 101:2008 (GUM Supplement 1, propagation of distributions by Monte
 Carlo; probabilistically symmetric 95 % coverage interval from the 2.5 and
 97.5 percentiles).
@@ -53,7 +53,7 @@ from tactcad.design.array import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
 from tactcad.mechanics.closed_form import closed_form_compliance, correction_coordinates
 from tactcad.mechanics.correction import Correction, load_correction
-from tactcad.mechanics.paper.lumped import deflection_ratio, object_stiffness
+from tactcad.mechanics.lumped import deflection_ratio, object_stiffness
 
 #: Samples per independently seeded chunk (the unit of work of a Dask run).
 CHUNK_SAMPLES = 2500
@@ -345,32 +345,6 @@ def web_tolerance_for_band(g: ElementGeometry, material: Material, correction: C
     return float(min(up - t0, t0 - down))
 
 
-def table1_equal_arm_spread(plan: Plan) -> list[dict]:
-    """Groups of Table 1 elements with equal arms: measured K, max/min ratio
-    and the as-built webs (mm) that reproduce them on ``plan`` at the
-    corrected closed form (:func:`tactcad.mechanics.ladder.as_built_webs`);
-    empty where Table 1 does not apply to ``plan``
-    (:func:`tactcad.mechanics.ladder.table1_not_applicable`)."""
-    from tactcad.mechanics.ladder import as_built_webs, table1_not_applicable
-    from tactcad.mechanics.paper.data import table1
-
-    if table1_not_applicable(plan) is not None:
-        return []
-    web_of = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
-    groups: dict[float, list] = {}
-    for row in table1():
-        groups.setdefault(row.flexing_arm_length_mm, []).append(row)
-    out = []
-    for arm, rows in sorted(groups.items()):
-        if len(rows) < 2:
-            continue
-        ks = [r.stiffness_N_per_mm for r in rows]
-        out.append({"arm_length_mm": arm, "elements": [r.element for r in rows],
-                    "measured_N_per_mm": ks, "ratio_max_over_min": max(ks) / min(ks),
-                    "as_built_web_mm": [web_of[r.element] for r in rows]})
-    return out
-
-
 @dataclass(frozen=True)
 class ToleranceReport:
     """Everything ``tactcad tolerance`` prints; :meth:`as_json` is its JSON."""
@@ -381,9 +355,11 @@ class ToleranceReport:
     elements: list[dict]
     units: list[dict]
     web_tolerance: list[dict]
-    table1_spread: list[dict]
     correction_source: str = ""
     notes: list[str] = field(default_factory=list)
+    #: Table 1's equal-arm spread, added by a caller that compares with the
+    #: paper (:func:`tactcad.paper.table1.equal_arm_spread`); empty otherwise.
+    table1_spread: list[dict] = field(default_factory=list)
 
     def as_json(self) -> dict:
         t = self.tolerances
@@ -402,8 +378,8 @@ def summarise(plan: Plan, chunks: Sequence[dict[str, np.ndarray]], tol: Toleranc
               correction: Correction, k_obj: Iterable[float] = DEFAULT_K_OBJ_N_PER_MM,
               reference: int | None = None) -> ToleranceReport:
     """Statistics of evaluated chunks (in chunk order): K per element, R and
-    the reported K_obj per unit at each true K_obj, the web tolerance for a
-    +/-5 % K band and Table 1's spread.
+    the reported K_obj per unit at each true K_obj and the web tolerance for a
+    +/-5 % K band.
 
     Raises:
         DesignError: a K_obj that is not finite and > 0; a bad ``reference``.
@@ -446,7 +422,7 @@ def summarise(plan: Plan, chunks: Sequence[dict[str, np.ndarray]], tol: Toleranc
              "R from eq. 2 with the drawn K_m, K_r.",
              "E is drawn once per array (one sheet); web, notch radius and arm per element."]
     return ToleranceReport(samples=int(k.shape[0]), seed=seed, tolerances=tol, elements=elements,
-                           units=units, web_tolerance=webs, table1_spread=table1_equal_arm_spread(plan),
+                           units=units, web_tolerance=webs,
                            correction_source=correction.source, notes=notes)
 
 

@@ -20,8 +20,9 @@ from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, richardson, single_th
 from tactcad.mechanics.fem.fem3d import solve_fem3d
 from tactcad.mechanics.fem.fields import peak_notch_stress
 from tactcad.mechanics.fem.mesh import fem_region
-from tactcad.mechanics.ladder import as_built_webs, is_meshed, meshed_models, models
-from tactcad.mechanics.paper.data import table1
+from tactcad.mechanics.ladder import is_meshed, meshed_models, models
+from tactcad.paper.table1 import as_built_webs
+from tactcad.paper.data import table1
 from tactcad.mechanics.strength import (KT_FIT_GEOMETRIES,
                                         STRESS_WEB_DIVISIONS_2D, STRESS_WEB_DIVISIONS_3D,
                                         ElementStress, StrengthRecord, require_yield,
@@ -139,7 +140,7 @@ def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict
 
     For each element: the full-scale force at ``model`` with the design web;
     the as-built web that reproduces the measured K (corrected closed form,
-    :func:`tactcad.mechanics.ladder.as_built_webs`) and the closed-form
+    :func:`tactcad.paper.table1.as_built_webs`) and the closed-form
     full-scale force and peak stress at the measured maximum force with that
     web; and the yield safety factor the calibration ran at.
 

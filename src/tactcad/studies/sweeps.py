@@ -240,7 +240,7 @@ def plot_design_chart(path: str | Path, rows: Sequence[GridRow], plan: Plan,
     import numpy as np
 
     from tactcad.atomic import write_atomic
-    from tactcad.mechanics.paper.data import table1
+    from tactcad.paper.data import table1
 
     fig, ax = plt.subplots(figsize=(6.4, 4.6), dpi=120)
     webs = sorted({r.web_mm for r in rows})

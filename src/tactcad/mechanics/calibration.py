@@ -25,9 +25,11 @@ import numpy as np
 
 from tactcad.errors import TactcadError
 
-from tactcad.mechanics.paper import data as paper_data
-
-K_SENSOR_N_PER_MM = paper_data.K_SENSOR_N_PER_MM
+#: Stiffness of the force sensor's load cell in series with the element, N/mm:
+#: the Sauter FH5 as the paper measured it; pass your own gauge's.
+K_SENSOR_N_PER_MM = 57.04
+#: Calibration Z travel: 25 um steps from 0 to 150 um (the paper's "Calibration").
+CALIBRATION_STEPS_UM = (0.0, 25.0, 50.0, 75.0, 100.0, 125.0, 150.0)
 #: Default noise of the synthetic bridge signal (V): about three LSB of a
 #: 16-bit DAQ on its +-10 V range (assumption; the paper gives no figure).
 DEFAULT_NOISE_SIGNAL_V = 0.001
@@ -255,19 +257,6 @@ def force_from_signal(v, cal: SignalModel):
     return float(out) if out.ndim == 0 else out
 
 
-def paper_signal_model(element: int) -> PaperSignalModel:
-    """Eq. 4-6 constants of one element as printed in Table 1.
-
-    Raises:
-        CalibrationError: the element is not in Table 1 (5 did not work).
-    """
-    rows = paper_data.table1_by_element()
-    if element not in rows:
-        raise CalibrationError(f"element = {element!r}: must be one of {sorted(rows)} (Table 1)")
-    row = rows[element]
-    return PaperSignalModel(element, row.stiffness_N_per_mm, row.K_v_V_per_mm, row.V0_V)
-
-
 # ---------------------------------------------------------------------------
 # Two springs in series
 # ---------------------------------------------------------------------------
@@ -360,67 +349,13 @@ def series_error_amplification(k_element: float,
         element_share_of_travel=k_sensor / (k_element + k_sensor))
 
 
-def series_amplification_table1(k_sensor: float = K_SENSOR_N_PER_MM) -> dict[int, SeriesAmplification]:
-    """:func:`series_error_amplification` for every element of paper Table 1, keyed by element."""
-    return {row.element: series_error_amplification(row.stiffness_N_per_mm, k_sensor)
-            for row in paper_data.table1()}
-
-
-# ---------------------------------------------------------------------------
-# Table 1 self-consistency (eq. 6)
-# ---------------------------------------------------------------------------
-class KvOverKCheck(NamedTuple):
-    """Table 1's K_v/K column against K_v and K of the same row.
-
-    Attributes:
-        element: element number.
-        computed_V_per_N: K_v/K from the printed K_v and K.
-        printed_V_per_N: the printed K_v/K.
-        low_V_per_N, high_V_per_N: range of K_v/K over all K_v, K that round
-            to the printed values, widened by half a unit of the printed K_v/K.
-        consistent: low <= printed <= high.
-    """
-
-    element: int
-    computed_V_per_N: float
-    printed_V_per_N: float
-    low_V_per_N: float
-    high_V_per_N: float
-    consistent: bool
-
-
-#: Half a unit in the last printed digit of Table 1's K (N/mm), K_v (V/mm), K_v/K (V/N).
-TABLE1_HALF_UNIT = {"K": 0.005, "K_v": 0.05, "K_v_over_K": 0.0005}
-
-
-def table1_kv_over_k_check() -> tuple[KvOverKCheck, ...]:
-    """Check eq. 6's K_v/K column of Table 1 against its K and K_v, within the printed rounding.
-
-    The true K and K_v lie within half a unit of their printed values
-    (:data:`TABLE1_HALF_UNIT`); K_v/K over that box is bracketed by its corner
-    values (the quotient is monotonic in each argument for K > 0). A row is
-    consistent when the printed K_v/K, +- half its own unit, meets the bracket.
-    """
-    h = TABLE1_HALF_UNIT
-    out = []
-    for row in paper_data.table1():
-        corners = [(row.K_v_V_per_mm + a) / (row.stiffness_N_per_mm + b)
-                   for a in (-h["K_v"], h["K_v"]) for b in (-h["K"], h["K"])]
-        low = min(corners) - h["K_v_over_K"]
-        high = max(corners) + h["K_v_over_K"]
-        printed = row.K_v_over_K_V_per_N
-        out.append(KvOverKCheck(row.element, row.K_v_V_per_mm / row.stiffness_N_per_mm,
-                                printed, low, high, bool(low <= printed <= high)))
-    return tuple(out)
-
-
 # ---------------------------------------------------------------------------
 # Synthetic calibration runs
 # ---------------------------------------------------------------------------
 def synthetic_calibration(k_element: float, k_v: float, v0: float, *,
                           noise_force_N: float = 0.001,
                           noise_signal_V: float = DEFAULT_NOISE_SIGNAL_V,
-                          steps_um=paper_data.CALIBRATION_STEPS_UM,
+                          steps_um=CALIBRATION_STEPS_UM,
                           repeats: int = 3,
                           seed: int | None = 0,
                           k_sensor_N_per_mm: float = K_SENSOR_N_PER_MM) -> CalibrationData:
@@ -475,7 +410,7 @@ CSV_SENSOR_KEY = "k_sensor_N_per_mm"
 
 
 def format_calibration_csv(data: dict[int, CalibrationData], comments: tuple[str, ...] = ()) -> str:
-    """The CSV text (read by :func:`tactcad.mechanics.paper.measured_io.read_measured`) of
+    """The CSV text (read by :func:`tactcad.mechanics.measured_io.read_measured`) of
     readings keyed by element.
 
     Readings of one element are numbered into runs by the repeats of its Z

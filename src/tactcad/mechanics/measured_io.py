@@ -36,9 +36,9 @@ from typing import Callable, Iterable, Iterator, Mapping
 
 import numpy as np
 
-from tactcad.mechanics.paper.calibration import CSV_COLUMNS as COLUMNS
-from tactcad.mechanics.paper.calibration import CSV_SENSOR_KEY as SENSOR_KEY
-from tactcad.mechanics.paper.calibration import (K_SENSOR_N_PER_MM, CalibrationData,
+from tactcad.mechanics.calibration import CSV_COLUMNS as COLUMNS
+from tactcad.mechanics.calibration import CSV_SENSOR_KEY as SENSOR_KEY
+from tactcad.mechanics.calibration import (K_SENSOR_N_PER_MM, CalibrationData,
                                                  CalibrationError)
 #: Largest data file read (bytes): far above any calibration run, small enough
 #: that a wrong file (a video, a disk image) is refused at once.

@@ -30,7 +30,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tactcad.mechanics.contact import ContactError, Punch, Sample, modulus_from_punch_stiffness, solve_punches
-from tactcad.mechanics.paper import data as paper_data
 
 #: Weight of the moving axis with the array (N), the first grasping force.
 DEAD_WEIGHT_N = 3.235
@@ -45,6 +44,9 @@ INDENTER_FACE_MM = (2.0, 3.0)
 DEFAULT_POISSON_RATIO = 0.5
 COUPLINGS = ("none", "halfspace", "layer")
 
+
+#: The element a tie for the stiffest goes to: the paper's reference element 8 (Table 2).
+PREFERRED_REFERENCE = 8
 
 @dataclass(frozen=True)
 class ArrayElement:
@@ -103,7 +105,7 @@ def elements_from_plan(plan, stiffness_N_per_mm: dict[int, float]) -> tuple[Arra
     return tuple(out)
 
 
-def reference_element(elements, preferred: int = paper_data.REFERENCE_ELEMENT) -> int:
+def reference_element(elements, preferred: int = PREFERRED_REFERENCE) -> int:
     """The stiffest element, as in the paper; ties (within 1e-9) go to ``preferred``, else the lowest number."""
     k = np.array([e.stiffness_N_per_mm for e in elements])
     stiffest = [e.number for e in elements if e.stiffness_N_per_mm >= k.max() * (1 - 1e-9)]

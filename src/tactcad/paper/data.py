@@ -17,13 +17,16 @@ import io
 from dataclasses import dataclass
 from importlib import resources
 
-#: Stiffness of the commercial force sensor's load cell (Sauter FH5), N/mm.
-K_SENSOR_N_PER_MM = 57.04
-#: The reference element of Table 2 (the stiffest element) and its stiffness, N/mm.
-REFERENCE_ELEMENT = 8
+# The calibration rig's defaults and the evaluation rig's preferred reference
+# are the paper's (the general models keep them as their defaults): the Sauter
+# FH5's load cell, K_SENSOR_N_PER_MM N/mm; the Z travel, CALIBRATION_STEPS_UM;
+# Table 2's reference element, REFERENCE_ELEMENT.
+from tactcad.mechanics.calibration import CALIBRATION_STEPS_UM as CALIBRATION_STEPS_UM
+from tactcad.mechanics.calibration import K_SENSOR_N_PER_MM as K_SENSOR_N_PER_MM
+from tactcad.mechanics.evaluation import PREFERRED_REFERENCE as REFERENCE_ELEMENT
+
+#: The stiffness of Table 2's reference element, N/mm.
 K_R_N_PER_MM = 80.38
-#: Calibration Z travel: 25 um steps from 0 to 150 um (paper, "Calibration").
-CALIBRATION_STEPS_UM = (0.0, 25.0, 50.0, 75.0, 100.0, 125.0, 150.0)
 #: Distinct rubber sample stiffnesses, N/mm (paper; Table 2 column headers).
 SAMPLE_STIFFNESSES_N_PER_MM = (10.01, 7.26, 6.28, 5.41, 4.51, 3.85, 3.57, 2.34)
 

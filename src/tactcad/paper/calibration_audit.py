@@ -34,8 +34,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq
 
-from tactcad.mechanics.paper import calibration as cal
-from tactcad.mechanics.paper import data as paper_data
+from tactcad.mechanics import calibration as cal
+from tactcad.paper import data as paper_data
+from tactcad.paper.calibration_table1 import table1_kv_over_k_check
 
 #: Gauge gain of the simulated rig (V per unit strain): quarter bridge at 2.5 V
 #: excitation, gauge factor 2.0 and an amplifier gain of 96 give 120 V per unit
@@ -363,9 +364,9 @@ def table1_consistency(k_sensor: float = paper_data.K_SENSOR_N_PER_MM,
     * Z travel implied by the largest step, δ_max + F_max/K_s (um), against
       the stated 150 um (two springs in series);
     * the printed K_v/K against K_v and K within rounding
-      (:func:`.calibration.table1_kv_over_k_check`).
+      (:func:`.calibration_table1.table1_kv_over_k_check`).
     """
-    kv_check = {c.element: c for c in cal.table1_kv_over_k_check()}
+    kv_check = {c.element: c for c in table1_kv_over_k_check()}
     out = []
     for r in paper_data.table1():
         secant = r.max_support_force_N / (r.max_deflection_um * 1e-3)

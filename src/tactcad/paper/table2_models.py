@@ -34,8 +34,8 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from tactcad.errors import DesignError
-from tactcad.mechanics.paper import data as paper_data
-from tactcad.mechanics.paper import evaluation as ev
+from tactcad.paper import data as paper_data
+from tactcad.mechanics import evaluation as ev
 
 LAYER_THICKNESS_GRID_MM = (1.0, 1.5, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0)
 

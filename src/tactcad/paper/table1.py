@@ -1,0 +1,274 @@
+"""Paper Table 1 against the design: each calibrated element's measured K
+next to the stiffness ladder's prediction, whether the comparison applies to a
+design (it cites the paper and its geometry can reach the measured K), the
+as-built webs that reproduce the measured K, the gauge strain at the paper's
+2 N design load, Table 2's R from the predicted K, the read-out chain's
+sensitivity against the measured K_v/K, and the spread of equal-arm elements.
+
+Everything here compares with the paper; the general estimators
+(:mod:`tactcad.mechanics`) never import it. Units: mm, N, N/mm, V.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from tactcad.design.array import Plan
+from tactcad.mechanics.closed_form import web_for_stiffness
+from tactcad.mechanics.ladder import estimate
+from tactcad.mechanics.lumped import deflection_ratio
+from tactcad.mechanics.readout import ReadoutChain, gauge_strain_per_N, rel_std
+from tactcad.mechanics.result import StiffnessResult
+from tactcad.mechanics.strength import PAPER_LOAD_N
+from tactcad.paper.data import table1, table2
+
+#: The surface strain the paper reports at 2 N for arms of 4-8 mm.
+PAPER_STRAIN_RANGE = (0.2711e-2, 0.6316e-2)
+
+
+@dataclass(frozen=True)
+class Table1Prediction:
+    """Predicted against measured stiffness of one element (paper Table 1)."""
+
+    element: int
+    arm_length_mm: float
+    measured_N_per_mm: float
+    predicted: StiffnessResult
+
+    @property
+    def error_percent(self) -> float:
+        """(predicted - measured) / measured x 100."""
+        return 100.0 * (self.predicted.stiffness_N_per_mm - self.measured_N_per_mm) / self.measured_N_per_mm
+
+    def as_json(self) -> dict:
+        return {"element": self.element, "arm_length_mm": self.arm_length_mm,
+                "measured_N_per_mm": self.measured_N_per_mm,
+                "predicted_N_per_mm": self.predicted.stiffness_N_per_mm,
+                "error_percent": self.error_percent,
+                "error_estimate_rel": self.predicted.error_estimate_rel,
+                "gauge_strain_per_N": self.predicted.gauge_strain_per_N,
+                "wall_time_s": self.predicted.wall_time_s}
+
+
+def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> list[Table1Prediction]:
+    """Every calibrated element of Table 1 (element 5 has no measurement):
+    the plan's geometry at ``model`` level against the measured K.
+
+    Distinct geometries are evaluated once (elements with equal arms share them).
+    """
+    cache: dict[str, StiffnessResult] = {}
+    rows = []
+    for meas in table1():
+        slot = plan.element(meas.element)
+        key = slot.geometry.part_name
+        if key not in cache:
+            if progress:
+                progress(f"{model}: {key}")
+            cache[key] = estimate(model, slot.geometry, plan.material)
+        res = cache[key]
+        rows.append(Table1Prediction(meas.element, slot.geometry.arm_length_mm, meas.stiffness_N_per_mm,
+                              StiffnessResult(meas.element, res.model, res.stiffness_N_per_mm,
+                                              res.gauge_strain_per_N, res.error_estimate_rel,
+                                              res.wall_time_s)))
+    return rows
+
+
+def table1_not_applicable(plan: Plan) -> str | None:
+    """Why the paper's Table 1 cannot be compared with ``plan`` (one line), or
+    None when it can: the design cites the paper (``requirements.source``),
+    has every element Table 1 numbers, and each element's geometry reaches
+    its measured K within the closed form's web range (0.05 ... 1 mm)."""
+    import warnings
+
+    from tactcad.design.requirements import cites_paper
+    from tactcad.mechanics.closed_form import web_for_stiffness
+    from tactcad.mechanics.correction import CorrectionRangeWarning
+    if not cites_paper(plan.raw):
+        return "the design does not cite the paper (requirements.source), so Table 1 is not its"
+    rows = table1()
+    numbers = {slot.number for slot in plan.slots}
+    missing = sorted(r.element for r in rows if r.element not in numbers)
+    if missing:
+        return (f"Table 1 numbers elements up to {max(r.element for r in rows)}; the design has "
+                f"{len(numbers)}")
+    for meas in rows:
+        try:
+            with warnings.catch_warnings():  # a probe of reach, not an estimate to warn about
+                warnings.simplefilter("ignore", CorrectionRangeWarning)
+                web_for_stiffness(meas.stiffness_N_per_mm, plan.element(meas.element).geometry,
+                                  plan.material)
+        except ValueError as exc:
+            return (f"element {meas.element}'s geometry cannot reach Table 1's "
+                    f"{meas.stiffness_N_per_mm:g} N/mm at any web ({exc})")
+    return None
+
+
+def require_table1(plan: Plan, option: str = "--design") -> None:
+    """Refuse a design Table 1 cannot be compared with (:func:`table1_not_applicable`).
+
+    Raises:
+        DesignError: naming ``option``, the design and why.
+    """
+    from pathlib import Path
+
+    from tactcad.errors import DesignError
+
+    why = table1_not_applicable(plan)
+    if why is not None:
+        raise DesignError(option, Path(plan.source).name,
+                          "a design that cites the paper and can reproduce its Table 1", why)
+
+
+def as_built_webs(plan: Plan) -> list[dict]:
+    """For each calibrated element, the web thickness (mm) that makes the
+    corrected closed form reproduce its measured K, and the deviation from the
+    design web against the design tolerance (the fabrication spread it implies)."""
+    from tactcad.mechanics.closed_form import web_for_stiffness
+    out = []
+    for meas in table1():
+        g = plan.element(meas.element).geometry
+        t = web_for_stiffness(meas.stiffness_N_per_mm, g, plan.material)
+        out.append({"element": meas.element, "measured_N_per_mm": meas.stiffness_N_per_mm,
+                    "web_as_built_mm": t, "web_design_mm": g.web_thickness_mm,
+                    "deviation_mm": t - g.web_thickness_mm,
+                    "within_tolerance": abs(t - g.web_thickness_mm) <= g.web_tolerance_mm})
+    return out
+
+
+def gauge_strain_at_paper_load(plan: Plan, model: str = "closed-form",
+                               arms_mm: tuple[float, ...] = (4.0, 5.0, 6.0, 7.0, 8.0)) -> list[dict]:
+    """Surface strain at the gauge under the paper's 2 N tip load for each arm
+    length, next to the paper's reported 0.2711-0.6316 % range."""
+    from dataclasses import replace
+
+    g0 = plan.element(1).geometry
+    out = []
+    for a in arms_mm:
+        r = estimate(model, replace(g0, arm_length_mm=a), plan.material)
+        out.append({"arm_length_mm": a, "strain_percent": 100 * PAPER_LOAD_N * r.gauge_strain_per_N})
+    return out
+
+
+def table2_predicted(plan: Plan, model: str = "closed-form") -> dict:
+    """Eq. 2 with the ladder's predicted K_m and K_r (element 8) against Table 2's
+    48 measured R, reported as it is (nothing tuned to Table 2).
+
+    Rows whose predicted pair leaves eq. 2's domain (K_r <= K_m: element 1 and
+    the reference element 8 have the same 4 mm arm, so nominal geometry makes
+    them equal) are returned as NaN with ``in_domain`` False.
+    """
+    import numpy as np
+
+
+    rows = table2()
+    k_pred = {r.element: r.predicted.stiffness_N_per_mm for r in table1_comparison(plan, model)}
+    k_r = k_pred[8]
+    k_m = np.array([k_pred[r.element] for r in rows])
+    k_obj = np.array([r.K_obj_N_per_mm for r in rows])
+    r_meas = np.array([r.R for r in rows])
+    pred = deflection_ratio(k_m, np.full_like(k_m, k_r), k_obj)
+    r_pred = np.asarray(pred.value if hasattr(pred, "value") else pred, dtype=float)
+    ok = np.isfinite(r_pred)
+    err = r_meas - r_pred
+    return {"model": model, "k_r_predicted_N_per_mm": k_r,
+            "rows": [{"element": r.element, "K_obj_N_per_mm": r.K_obj_N_per_mm,
+                      "R_measured": r.R, "R_predicted": float(p), "in_domain": bool(o)}
+                     for r, p, o in zip(rows, r_pred, ok)],
+            "n_in_domain": int(ok.sum()),
+            "mean_abs_error": float(np.mean(np.abs(err[ok]))) if ok.any() else float("nan"),
+            "max_abs_error": float(np.max(np.abs(err[ok]))) if ok.any() else float("nan")}
+
+
+def readout_table1(records: list[dict], chain: ReadoutChain, plan: Plan,
+                      model: str = "closed-form") -> dict:
+    """Adds the measured K_v and K_v/K of each calibrated element to its record
+    (``table1_k_v_V_per_mm``, ``table1_sensitivity_V_per_N``, measured / predicted
+    ratios and the amplifier gain that would reconcile the sensitivity) and
+    returns the summary: the gain fitted through all elements (least squares
+    through the origin) and the ratios' spread.
+
+    Also per element the sensitivity ratio at its as-built web (the web at which
+    the corrected closed form gives the measured K,
+    :func:`as_built_webs`): what is left of the spread
+    once each element's own web is known (gauge placement, bonding, gain).
+    """
+    from dataclasses import replace
+
+
+    as_built: list[float] = []
+    unreachable: list[str] = []  # elements of Table 1's arm whose geometry cannot be it
+
+    by_element = {r.element: r for r in table1()}
+    ratios = []
+    num = den = 0.0
+    for rec in records:
+        row = by_element.get(rec["element"])
+        if row is not None and abs(row.flexing_arm_length_mm - rec["arm_length_mm"]) > 1e-9:
+            row = None  # a variant of the design: this element is not Table 1's
+        g0 = plan.element(rec["element"]).geometry
+        try:  # the web at which this geometry has the measured K, if any web has
+            web = None if row is None else web_for_stiffness(row.stiffness_N_per_mm, g0,
+                                                             plan.material)
+        except ValueError as exc:
+            web = None
+            unreachable.append(f"element {rec['element']} cannot reach Table 1's "
+                               f"{row.stiffness_N_per_mm:g} N/mm at any web ({exc})")
+        if web is None:
+            rec["table1_k_v_V_per_mm"] = rec["table1_sensitivity_V_per_N"] = None
+            continue
+        s_ratio = row.K_v_over_K_V_per_N / rec["sensitivity_V_per_N"]
+        rec.update(table1_k_v_V_per_mm=row.K_v_V_per_mm,
+                   table1_sensitivity_V_per_N=row.K_v_over_K_V_per_N,
+                   table1_k_v_ratio=row.K_v_V_per_mm / rec["k_v_V_per_mm"],
+                   table1_sensitivity_ratio=s_ratio,
+                   reconciling_gain=chain.amplifier_gain * s_ratio)
+        ratios.append(s_ratio)
+        g = replace(g0, web_thickness_mm=web)
+        s_built = chain.volts_per_strain * gauge_strain_per_N(
+            g, plan.material, chain.grid_length_mm, "closed-form")["grid"]
+        rec["table1_as_built_web_mm"] = web
+        rec["table1_sensitivity_ratio_as_built_web"] = row.K_v_over_K_V_per_N / s_built
+        as_built.append(rec["table1_sensitivity_ratio_as_built_web"])
+        e = rec["gauge_strain_per_N"]
+        num += e * row.K_v_over_K_V_per_N
+        den += e * e
+    fitted = num / den if den else None
+    if not ratios:  # the comparison does not apply: said in one line, the sensor's answers stand
+        return {"elements": 0, "not_applicable": "; ".join(unreachable) or
+                "no element of the design has a Table 1 element's arm"}
+    return {"elements": len(ratios), "elements_not_comparable": unreachable,
+            "sensitivity_ratio_min": min(ratios), "sensitivity_ratio_max": max(ratios),
+            "sensitivity_ratio_mean": float(np.mean(ratios)),
+            "sensitivity_ratio_rel_std": rel_std(ratios),
+            "as_built_web_ratio_mean": float(np.mean(as_built)),
+            "as_built_web_ratio_rel_std": rel_std(as_built),
+            "gain_at_as_built_webs": chain.amplifier_gain * float(np.mean(as_built)),
+            "fitted_volts_per_strain": fitted,
+            "assumed_volts_per_strain": chain.volts_per_strain,
+            "fitted_gain_at_assumed_excitation": (fitted / (chain.excitation_V * chain.gauge_factor
+                                                            / 4.0)) if fitted else None}
+
+
+def equal_arm_spread(plan: Plan) -> list[dict]:
+    """Groups of Table 1 elements with equal arms: measured K, max/min ratio
+    and the as-built webs (mm) that reproduce them on ``plan`` at the
+    corrected closed form (:func:`as_built_webs`);
+    empty where Table 1 does not apply to ``plan``
+    (:func:`table1_not_applicable`)."""
+    if table1_not_applicable(plan) is not None:
+        return []
+    web_of = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
+    groups: dict[float, list] = {}
+    for row in table1():
+        groups.setdefault(row.flexing_arm_length_mm, []).append(row)
+    out = []
+    for arm, rows in sorted(groups.items()):
+        if len(rows) < 2:
+            continue
+        ks = [r.stiffness_N_per_mm for r in rows]
+        out.append({"arm_length_mm": arm, "elements": [r.element for r in rows],
+                    "measured_N_per_mm": ks, "ratio_max_over_min": max(ks) / min(ks),
+                    "as_built_web_mm": [web_of[r.element] for r in rows]})
+    return out
