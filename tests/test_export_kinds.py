@@ -91,7 +91,17 @@ def test_a_kind_outside_the_full_export_is_planned_only_when_asked(project, tmp_
         run = Run(project, tmp_path / "staging")
         assert "points" not in kinds.full_export_kinds()
         assert "points:arms" not in [j.name for j in all_jobs(run)]
-        assert [j.name for j in all_jobs(run, ["points"])] == ["points:arms"]
+        assert [j.name for j in all_jobs(run, ["points"])][-1] == "points:arms"
         assert "points (points/arms.csv, only when asked)" in _only_help()
     finally:
         del kinds.EXPORT_KINDS["points"]
+
+
+def test_a_selection_keeps_jobs_another_kind_plans(project, tmp_path):
+    """``--only review`` writes the FreeCAD review files, which the scenes plan."""
+    from tactcad.export.selection import select_jobs
+
+    run = Run(project, tmp_path / "staging")
+    names = [j.name for j in select_jobs(all_jobs(run, ["review"]), ["review"])]
+    assert "review:page" in names and any(n.startswith("review:") and n != "review:page"
+                                          for n in names)

@@ -69,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
 
         result = export(project, args.out, log=lambda s: None, store=store, parts=cache,
                         dxf_version=args.dxf_version, select=select,
-                        partial=partial, kinds=only or None)
+                        partial=partial, kinds=only)
     if args.json:
         print(json.dumps(result.as_json(), indent=1))
         return 0

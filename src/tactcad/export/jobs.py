@@ -35,11 +35,14 @@ PNG_DPI = 150
 RENDER_VERSION = 2
 
 
-def all_jobs(run: Run, kinds: Sequence[str] | None = None) -> list[Job]:
-    """The jobs of the export ``kinds`` of ``run.plan`` (default: a full
-    export's, :func:`~tactcad.export.kinds.full_export_kinds`), in the order
-    of :data:`~tactcad.export.kinds.EXPORT_KINDS`."""
-    wanted = set(full_export_kinds() if kinds is None else kinds)
+def all_jobs(run: Run, kinds: Sequence[str] = ()) -> list[Job]:
+    """The jobs of a full export of ``run.plan``
+    (:func:`~tactcad.export.kinds.full_export_kinds`) and of the ``kinds``
+    outside it that are asked for, in the order of
+    :data:`~tactcad.export.kinds.EXPORT_KINDS`. A selection picks from these
+    by job prefix: a kind's jobs may be planned by another's (the FreeCAD
+    review files, ``review:...``, with the scenes they show)."""
+    wanted = set(full_export_kinds()) | set(kinds)
     jobs: list[Job] = []
     for kind in EXPORT_KINDS.values():
         if kind.name in wanted:

@@ -287,7 +287,7 @@ def export(project: Project, out_dir: str | Path, log: Log = print,
            store: Store | None = None, parts=None, dxf_version: str | None = None,
            select: Callable[[list[Job]], list[Job]] | None = None,
            partial: dict | None = None, session: SessionWorker | None = None,
-           kinds: Sequence[str] | None = None) -> ExportResult:
+           kinds: Sequence[str] = ()) -> ExportResult:
     """Write all exports of ``project`` into ``out_dir`` (see module doc).
 
     Args:
@@ -304,14 +304,14 @@ def export(project: Project, out_dir: str | Path, log: Log = print,
         session: a worker kept across runs (``tactcad watch``,
             :class:`~tactcad.export.worker.SessionWorker`) for the drawings;
             default: one forked for this run when it can be.
-        kinds: the kinds of file whose jobs are planned (default: a full
-            export's; ``--only`` may name a kind outside it).
+        kinds: kinds outside a full export whose jobs are planned too
+            (``--only`` may name one; ``select`` then picks the jobs).
 
     Raises:
         OSError: the files cannot be written; ``out_dir`` is left as it was.
     """
     # a full export plans with the module function itself, which a kept worker can be sent
-    jobs_of = all_jobs if select is None and kinds is None else (
+    jobs_of = all_jobs if select is None and not kinds else (
         lambda run: (select or list)(all_jobs(run, kinds)))
     return _write_set(Path(out_dir), jobs_of, project, log, store or Store(None),
                       with_manifest=True, parts=parts, dxf_version=dxf_version, partial=partial,
