@@ -5,6 +5,7 @@ signals that end any run like Ctrl-C."""
 from __future__ import annotations
 
 import http.client
+import json
 import os
 import signal
 import socket
@@ -18,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from tactcad.export.live import (CLIENT_TIMEOUT_S, LISTEN_BACKLOG, LiveState, host_allowed,
-                                 make_server)
+                                 make_server, serve)
 
 
 @contextmanager
@@ -32,8 +33,8 @@ def serving(state: LiveState):
         server.server_close()
 
 
-def _get(port: int, path: str, host: str | None) -> tuple[int, bytes]:
-    conn = http.client.HTTPConnection("127.0.0.1", port, timeout=5)
+def _get(port: int, path: str, host: str | None, address: str = "127.0.0.1") -> tuple[int, bytes]:
+    conn = http.client.HTTPConnection(address, port, timeout=5)
     conn.putrequest("GET", path, skip_host=True)
     if host is not None:
         conn.putheader("Host", host)
@@ -53,6 +54,66 @@ def test_only_the_loopback_names_at_its_own_port_are_answered(path):
                      None, ""):
             code, body = _get(port, path, host)
             assert code == 421 and b"design" not in body
+
+
+def _has_ipv6_loopback() -> bool:
+    try:
+        with socket.socket(socket.AF_INET6) as s:
+            s.bind(("::1", 0))
+        return True
+    except OSError:
+        return False
+
+
+@pytest.mark.skipif(not _has_ipv6_loopback(), reason="this machine has no IPv6 loopback")
+def test_the_ipv6_loopback_is_served_at_the_same_port_with_the_same_rule():
+    state = LiveState()
+    state.publish("ab" * 32, "current", None, b"<html>design</html>")
+    servers = serve(state, 0)
+    servers.start()
+    try:
+        port = servers.port
+        assert [s.server_address[1] for s in servers.servers] == [port, port]
+        assert servers.urls() == [f"http://127.0.0.1:{port}/", f"http://[::1]:{port}/"]
+        code, body = _get(port, "/state", f"[::1]:{port}", "::1")
+        assert code == 200 and json.loads(body)["seq"] == 1
+        assert _get(port, "/", f"localhost:{port}", "::1") == (200, b"<html>design</html>")
+        for host in ("evil.example", f"[::1]:{port + 1}", "[::1]"):
+            code, body = _get(port, "/", host, "::1")
+            assert code == 421 and b"design" not in body
+        assert _get(port, "/state", f"127.0.0.1:{port}")[0] == 200  # IPv4 as before
+    finally:
+        servers.stop()
+    for address in ("127.0.0.1", "::1"):  # both closed
+        with pytest.raises(OSError):
+            socket.create_connection((address, port), timeout=2).close()
+
+
+def test_without_ipv6_the_watch_serves_ipv4_alone(monkeypatch):
+    """No IPv6 (or its port taken): [::1] is left out, 127.0.0.1 answers as before."""
+    import errno
+
+    import tactcad.export.live as live
+
+    made = live.make_server
+
+    def no_ipv6(state, port, host=live.IPV4_LOOPBACK):
+        if ":" in host:
+            raise OSError(errno.EAFNOSUPPORT, "Address family not supported by protocol")
+        return made(state, port, host)
+
+    monkeypatch.setattr(live, "make_server", no_ipv6)
+    servers = serve(LiveState(), 0)
+    servers.start()
+    try:
+        assert len(servers.servers) == 1 and servers.urls() == [f"http://127.0.0.1:{servers.port}/"]
+        assert _get(servers.port, "/state", f"127.0.0.1:{servers.port}")[0] == 200
+    finally:
+        servers.stop()
+
+
+def test_servers_never_started_stop_at_once():
+    serve(LiveState(), 0).stop()  # shutdown() would wait for a serve_forever that never ran
 
 
 def test_host_rule_names_exactly_the_loopback_and_port():

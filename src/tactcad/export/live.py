@@ -11,16 +11,19 @@ Each change is handled in two steps so the 3D view comes first:
 3. the full export follows (drawings, PDF, BOM, FreeCAD files, the page),
    published atomically as ``tactcad export`` does.
 
-``GET /`` is the exported page as it is. Served, the page polls ``/state``
-and, when its sequence number moves, reads its data (``/data``), the scenes
-(``/scene/<sha256>``) and sheets (``/sheet/<sha256>``) whose bytes changed,
-not the page, keeping the camera, the scene, the hidden parts and the
-sheets' zoom (``review_page.js``; :mod:`tactcad.export.live_page`).
+The page is served on 127.0.0.1 and, where the machine has IPv6, on [::1]
+at the same port (:func:`serve`). ``GET /`` is the exported page as it is.
+Served, the page polls ``/state`` and, when its sequence number moves, reads
+its data (``/data``), the scenes (``/scene/<sha256>``) and sheets
+(``/sheet/<sha256>``) whose bytes changed, not the page, keeping the camera,
+the scene, the hidden parts and the sheets' zoom (``review_page.js``;
+:mod:`tactcad.export.live_page`).
 """
 
 from __future__ import annotations
 
 import json
+import socket
 import sys
 import tempfile
 import threading
@@ -156,15 +159,21 @@ def host_allowed(host: str | None, port: int) -> bool:
     return host is not None and host.strip().lower() in {f"{h}:{port}" for h in LOOPBACK_HOSTS}
 
 
-def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
-    """An HTTP server on 127.0.0.1:``port`` (0: any free port; ``HEAD`` as ``GET``
-    without the body): ``GET /`` the
+#: The loopback addresses the watch listens on: IPv4 always, IPv6 when the machine has it.
+IPV4_LOOPBACK = "127.0.0.1"
+IPV6_LOOPBACK = "::1"
+
+
+def make_server(state: LiveState, port: int, host: str = IPV4_LOOPBACK) -> ThreadingHTTPServer:
+    """An HTTP server on ``host`` (127.0.0.1, or ::1 for IPv6) at ``port`` (0: any free
+    port; ``HEAD`` as ``GET`` without the body): ``GET /`` the
     page, ``GET /state`` its JSON state, ``GET /data`` the page's data,
     ``GET /scene/<sha256>`` a scene's GLB, ``GET /sheet/<sha256>`` a drawing
     sheet's SVG, ``GET /checks.js`` the check results (:meth:`LiveState.response`).
 
     Raises:
-        OSError: the port is taken or not allowed.
+        OSError: the port is taken or not allowed, or the machine has no such address
+            (no IPv6).
     """
     class Handler(BaseHTTPRequestHandler):
         timeout = CLIENT_TIMEOUT_S  # an idle or slow client gives its thread back
@@ -194,7 +203,8 @@ def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
         def log_message(self, *args: Any) -> None:  # quiet: the terminal shows the exports
             pass
 
-    server = _QuietServer(("127.0.0.1", port), Handler)
+    kind = _QuietServer6 if ":" in host else _QuietServer
+    server = kind((host, port), Handler)
     server.daemon_threads = True
     return server
 
@@ -209,6 +219,82 @@ class _QuietServer(ThreadingHTTPServer):
     def handle_error(self, request, client_address) -> None:
         if not isinstance(sys.exc_info()[1], (ConnectionError, TimeoutError)):
             super().handle_error(request, client_address)
+
+
+class _QuietServer6(_QuietServer):
+    """:class:`_QuietServer` on IPv6 (``[::1]``)."""
+
+    address_family = socket.AF_INET6
+
+    def server_bind(self) -> None:
+        """Bind to the IPv6 address only (never the IPv4 one as well, whatever
+        the system's default)."""
+        self.socket.setsockopt(socket.IPPROTO_IPV6, socket.IPV6_V6ONLY, 1)
+        super().server_bind()
+
+
+@dataclass
+class Servers:
+    """The watch's servers: one on 127.0.0.1 and, when the machine has an IPv6
+    loopback, one on [::1] at the same port, sharing one :class:`LiveState`
+    (:func:`serve`)."""
+
+    servers: list[ThreadingHTTPServer]
+    threads: list[threading.Thread] = field(default_factory=list)
+
+    @property
+    def port(self) -> int:
+        """The port both listen on."""
+        return self.servers[0].server_address[1]
+
+    def urls(self) -> list[str]:
+        """The review page's address on each loopback served (``http://127.0.0.1:PORT/``,
+        ``http://[::1]:PORT/``)."""
+        return [f"http://{loopback_url_host(s.server_address[0])}:{self.port}/"
+                for s in self.servers]
+
+    def start(self) -> None:
+        """Serve each in a daemon thread of its own."""
+        for server in self.servers:
+            thread = threading.Thread(target=server.serve_forever, daemon=True,
+                                      name=f"watch server {server.server_address[0]}")
+            thread.start()
+            self.threads.append(thread)
+
+    def stop(self) -> None:
+        """Stop every server (those started wait for their loop to end) and close
+        its socket; connections being answered end with their daemon threads."""
+        # shutdown() waits for serve_forever to see it (up to 0.5 s): all at once
+        stoppers = [threading.Thread(target=s.shutdown) for s in self.servers[:len(self.threads)]]
+        for stopper in stoppers:
+            stopper.start()
+        for stopper in stoppers:
+            stopper.join()
+        for server in self.servers:
+            server.server_close()
+        self.threads.clear()
+
+
+def loopback_url_host(address: str) -> str:
+    """``address`` as a URL's host: ``127.0.0.1``, ``[::1]``."""
+    return f"[{address}]" if ":" in address else address
+
+
+def serve(state: LiveState, port: int) -> Servers:
+    """:func:`make_server` on 127.0.0.1 at ``port`` (0: any free one) and on [::1] at
+    the port it got, so ``localhost`` reaches the watch whichever address a browser
+    tries first; a machine without IPv6 (or whose [::1] port is taken) is served on
+    127.0.0.1 alone. Not started (:meth:`Servers.start`).
+
+    Raises:
+        OSError: the port is taken or not allowed on 127.0.0.1.
+    """
+    first = make_server(state, port)
+    try:
+        second = make_server(state, first.server_address[1], IPV6_LOOPBACK)
+    except OSError:  # no IPv6 (EAFNOSUPPORT, EADDRNOTAVAIL) or the port taken on [::1]
+        return Servers([first])
+    return Servers([first, second])
 
 
 @dataclass
