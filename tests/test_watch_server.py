@@ -188,3 +188,131 @@ def test_a_terminating_signal_ends_an_export_like_ctrl_c(tmp_path, signum, code)
     assert f"terminated by {signal.Signals(signum).name}" in err and "Traceback" not in err
     assert "leaked" not in err
     assert not out.exists() and not list(tmp_path.glob(".out.staging-*"))
+
+
+def _contents(scene: bytes, sheet: bytes):
+    """A review's contents of one scene and one sheet, each named by its sha256."""
+    import hashlib
+
+    from tactcad.export.review_page import ReviewContents
+
+    glb, svg = hashlib.sha256(scene).hexdigest(), hashlib.sha256(sheet).hexdigest()
+    return ReviewContents({"scenes": ["array"], "scene_sha256": {"array": glb},
+                           "sheets": [{"path": "drawings/a.svg", "title": "a", "sha256": svg}]},
+                          {"array": scene}, {svg: sheet}), glb, svg
+
+
+# --- the loopback load test (tactcad bench watch --clients) -------------------------------
+
+def test_percentiles_are_values_that_occurred_by_rank():
+    from tactcad.studies.watch_load import latency_figures, percentile
+
+    values = sorted(0.001 * k for k in range(1, 201))
+    assert percentile(values, 50) == values[99] and percentile(values, 99) == values[197]
+    assert percentile(values, 100) == values[-1] and percentile(values[:1], 1) == values[0]
+    with pytest.raises(ValueError, match="percentile 0"):
+        percentile(values, 0)
+    figures = latency_figures(list(reversed(values)))
+    assert figures["p50_ms"] <= figures["p95_ms"] <= figures["p99_ms"] <= figures["max_ms"]
+    assert figures["max_ms"] == pytest.approx(1000 * values[-1])
+
+
+def test_a_load_counts_every_error_by_kind_and_each_route():
+    from tactcad.studies.watch_load import Request, load_summary, route_of
+
+    assert [route_of(p) for p in ("/", "/state", "/scene/" + "ab" * 32, "/sheet/x?y")] == \
+        ["/", "/state", "/scene", "/sheet"]
+    requests = [Request("/state", 0.0, 0.002), Request("/state", 0.1, 0.010, "HTTP 421"),
+                Request("/scene", 0.2, 0.5, "timeout"), Request("/", 0.0, 0.03)]
+    figures = load_summary(requests, clients=2, seconds=1.0, edits=1)
+    assert figures["requests"] == 4 and figures["errors"] == 2
+    assert figures["error_kinds"] == {"HTTP 421": 1, "timeout": 1} and not figures["met"]
+    assert {r: f["requests"] for r, f in figures["routes"].items()} == {"/": 1, "/scene": 1,
+                                                                        "/state": 2}
+    assert figures["max_ms"] == pytest.approx(500.0)
+
+
+def test_simulated_reviewers_read_what_a_new_state_changed():
+    """Reviewers open the page, poll /state and, on a new state, read /data, the
+    shown scene and the new sheets, as the page does; they stop by themselves."""
+    from collections import Counter
+
+    from tactcad.studies.watch_load import route_of, run_load
+
+    state, asked = LiveState(), Counter()
+    first, _, _ = _contents(b"glb 1", b"<svg>1</svg>")
+    state.publish("ab" * 32, "current", first, b"<html>page</html>")
+    answer = state.response
+
+    def counted(path):
+        asked[route_of(path)] += 1
+        return answer(path)
+
+    state.response = counted
+
+    def until(deadline: float, done) -> None:
+        while not done() and time.perf_counter() < deadline:
+            time.sleep(0.01)
+
+    def edit(deadline: float) -> int:  # once each page has read its data, a new state
+        until(deadline, lambda: asked["/data"] >= 4)
+        state.publish("cd" * 32, "current", _contents(b"glb 2", b"<svg>2</svg>")[0])
+        until(deadline, lambda: asked["/sheet"] >= 4)
+        return 1
+
+    with serving(state) as (_, port):
+        figures = run_load(port, clients=4, seconds=2, during=edit)
+    assert figures["errors"] == 0 and figures["edits"] == 1 and figures["clients"] == 4
+    assert {r: f["requests"] for r, f in figures["routes"].items() if r != "/state"} == \
+        {"/": 4, "/data": 8, "/scene": 4, "/sheet": 4}  # /data: as opened and after the edit
+    assert figures["requests"] == sum(f["requests"] for f in figures["routes"].values())
+
+
+@pytest.mark.parametrize("option, value", [("--clients", "-1"), ("--clients", "201"),
+                                           ("--clients", "many"), ("--load-seconds", "0"),
+                                           ("--load-seconds", "nan"), ("--load-seconds", "601"),
+                                           ("--rounds", "51")])
+def test_bench_watch_refuses_bad_load_options_naming_them(option, value):
+    proc = subprocess.run([sys.executable, "-m", "tactcad.cli", "bench", "watch", option, value],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert option in proc.stderr and repr(value) in proc.stderr and "allowed" in proc.stderr
+
+
+def test_bench_watch_without_rounds_or_clients_is_refused(capsys):
+    from tactcad.cli import main
+
+    assert main(["bench", "watch", "--rounds", "0", "--clients", "0"]) == 2
+    assert "--rounds = 0" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_a_short_load_during_edits_has_no_error_and_prints_its_latencies(tmp_path):
+    """tactcad bench watch --clients: simulated reviewers on a real watch of a copy
+    of the example while one-arm edits are saved; every request answered, the
+    figures printed (their speed is the benchmark's to report, not this test's)."""
+    import re
+    import shutil
+
+    from tactcad.commands.watch import watched_files
+    from tactcad.design.array import DEFAULT_DESIGN
+
+    for f in watched_files(DEFAULT_DESIGN):
+        shutil.copyfile(f, tmp_path / f.name)
+    proc = subprocess.run([sys.executable, "-m", "tactcad.cli", "bench", "watch", "--design",
+                           str(tmp_path / DEFAULT_DESIGN.name), "--rounds", "0", "--clients", "24",
+                           "--load-seconds", "8"], capture_output=True, text=True, timeout=900)
+    assert proc.returncode == 0, proc.stderr
+    assert "Traceback" not in proc.stderr
+    found = re.search(r"(\d+) one-arm edits saved meanwhile: (\d+) requests, (\d+) errors",
+                      proc.stdout)
+    assert found, proc.stdout
+    edits, requests, errors = map(int, found.groups())
+    assert edits >= 1 and requests > 24 and errors == 0
+    found = re.search(r"latency p50 ([\d.]+) ms, p95 ([\d.]+) ms, p99 ([\d.]+) ms, max ([\d.]+) ms",
+                      proc.stdout)
+    assert found, proc.stdout
+    p50, p95, p99, top = map(float, found.groups())
+    assert 0 < p50 <= p95 <= p99 <= top
+    for route in ("/state", "/data", "/scene", "/sheet"):
+        assert re.search(rf"^\s+{route}\s+\d+ requests", proc.stdout, re.M), route
