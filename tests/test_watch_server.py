@@ -93,7 +93,7 @@ def test_without_ipv6_the_watch_serves_ipv4_alone(monkeypatch):
     """No IPv6 (or its port taken): [::1] is left out, 127.0.0.1 answers as before."""
     import errno
 
-    import tactcad.export.live as live
+    import tactcad.export.live_server as live
 
     made = live.make_server
 
@@ -131,7 +131,7 @@ def test_backlog_and_client_timeout_are_set():
 def test_idle_clients_do_not_stop_others(monkeypatch):
     """Connections that send nothing hold a thread each, yet a real request is
     answered at once and the silent ones are dropped after the timeout."""
-    import tactcad.export.live as live
+    import tactcad.export.live_server as live
 
     monkeypatch.setattr(live, "CLIENT_TIMEOUT_S", 0.5)
     state = LiveState()
@@ -200,6 +200,96 @@ def _contents(scene: bytes, sheet: bytes):
     return ReviewContents({"scenes": ["array"], "scene_sha256": {"array": glb},
                            "sheets": [{"path": "drawings/a.svg", "title": "a", "sha256": svg}]},
                           {"array": scene}, {svg: sheet}), glb, svg
+
+
+def _routes(state: LiveState, *digests: str) -> dict:
+    paths = ["/", "/state", "/data", "/checks.js"] + [f"/scene/{d}" for d in digests] + \
+        [f"/sheet/{d}" for d in digests]
+    return {p: state.response(p) for p in paths}
+
+
+def test_a_state_sent_on_answers_as_the_one_it_comes_from():
+    """The server process's state, brought up to date by messages, answers every
+    route as the watching process's state; the bytes it holds are not sent again."""
+    from tactcad.export.live_server import Held, state_update
+
+    here, there, held = LiveState(), LiveState(), Held()
+    seen: list[str] = []
+    for k, (status, page) in enumerate([("3D updated; drawings follow", None),
+                                        ("current", b"<html>page 1</html>"),
+                                        ("3D updated; drawings follow", None),
+                                        ("current", b"<html>page 2</html>")]):
+        contents, glb, svg = _contents(b"glb %d" % (k // 2), b"<svg>%d</svg>" % k)
+        here.publish(f"{k:02d}" * 32, status, contents, page, "window.TACTCAD_CHECKS = {};")
+        update, held = state_update(here, held)
+        assert all(update["glbs"][d] is None for d in update["glbs"] if d in seen)
+        assert update["page"] == page
+        there.apply(update)
+        seen += [glb, svg]
+        assert _routes(there, *seen) == _routes(here, *seen)
+    here.refuse("d.toml: arms.lengths_mm[1] = -3: allowed 2 ... 20", back_to_current=True)
+    update, held = state_update(here, held)
+    there.apply(update)
+    assert _routes(there, *seen) == _routes(here, *seen)
+    assert json.loads(there.as_json())["refusal"].startswith("d.toml")
+
+
+def test_the_watch_serves_from_a_process_of_its_own_kept_up_and_ended():
+    """The server process answers on the sockets bound here with each state as
+    published; killed, it is started again with the state as it is; closed, it
+    ends and the port is free."""
+    from tactcad.export.live_server import ServerProcess
+
+    state, lines = LiveState(), []
+    servers = serve(state, 0)
+    port = servers.port
+    server = ServerProcess(servers, state, lines.append)
+    try:
+        first = server.pid
+        assert first not in (0, os.getpid())
+        contents, glb, _ = _contents(b"glb", b"<svg/>")
+        state.publish("ab" * 32, "current", contents, b"<html>design</html>")
+        deadline = time.monotonic() + 30
+        while _get(port, "/", f"127.0.0.1:{port}") != (200, b"<html>design</html>"):
+            assert time.monotonic() < deadline, "the server process did not answer"
+            time.sleep(0.05)
+        assert _get(port, f"/scene/{glb}", f"localhost:{port}") == (200, b"glb")
+        assert _get(port, "/state", "evil.example")[0] == 421
+        os.kill(first, signal.SIGKILL)
+        while server.pid in (first, 0) or not lines:
+            assert time.monotonic() < deadline, "no new server process"
+            time.sleep(0.05)
+        assert "started again" in lines[-1] and server.pid != first
+        assert _get(port, f"/scene/{glb}", f"127.0.0.1:{port}") == (200, b"glb")
+        assert json.loads(_get(port, "/state", f"127.0.0.1:{port}")[1])["seq"] == 1
+    finally:
+        second = server.pid
+        server.close()
+        servers.stop()
+    assert not os.path.exists(f"/proc/{second}")  # ended and reaped
+    with pytest.raises(OSError):
+        socket.create_connection(("127.0.0.1", port), timeout=2).close()
+
+
+def test_a_server_process_ending_past_the_restarts_leaves_the_page_to_the_watch(monkeypatch):
+    import tactcad.export.live_server as live
+
+    monkeypatch.setattr(live, "SERVER_RESTARTS", 0)
+    state, lines = LiveState(), []
+    state.publish("ab" * 32, "current", None, b"<html>design</html>")
+    servers = serve(state, 0)
+    server = live.ServerProcess(servers, state, lines.append)
+    try:
+        os.kill(server.pid, signal.SIGKILL)
+        deadline = time.monotonic() + 30
+        while not lines:
+            assert time.monotonic() < deadline, "the end of the server process went unseen"
+            time.sleep(0.05)
+        assert "served by the watching process" in lines[-1] and server.pid == 0
+        assert _get(servers.port, "/", f"127.0.0.1:{servers.port}") == (200, b"<html>design</html>")
+    finally:
+        server.close()
+        servers.stop()
 
 
 # --- the loopback load test (tactcad bench watch --clients) -------------------------------

@@ -56,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.commands import load_from_args
     from tactcad.errors import DesignError
     from tactcad.export.freecad_review import keep_freecad
-    from tactcad.export.live import LiveState, Loop, changes, serve
+    from tactcad.export.live import LiveState, Loop, changes, serve, serve_apart
     from tactcad.export.run import check_out_dir
     from tactcad.export.worker import session_worker
 
@@ -89,7 +89,8 @@ def run(args: argparse.Namespace) -> int:
     # the drawings' process, kept for the session: it loads the kernel while the first run plans
     loop = Loop(load, Path(args.out), store_from_args(args), state, log, worker=session_worker())
     keep_freecad(True)  # one FreeCAD process for the review files of every run
-    servers.start()
+    # the page is served by a process of its own, so the exports do not slow its answers
+    server = serve_apart(servers, state, log)
     try:
         log(f"review page at {' and '.join(servers.urls())} (Ctrl-C stops)")
         files = watched_files(design)
@@ -103,5 +104,7 @@ def run(args: argparse.Namespace) -> int:
     finally:
         loop.close()
         keep_freecad(False)
+        if server is not None:
+            server.close()
         servers.stop()
     return 0

@@ -177,7 +177,7 @@ def browser_rounds(session: WatchSession, rounds: int, log=print) -> dict:
             page.wait_for_function(f"window.__review.shownSha256 !== {json.dumps(shown)}",
                                    timeout=120000, polling=10)
             t_first = time.perf_counter() - t_save
-            _wait(lambda: _current_after(port, before["seq"]), 120, "the full update")
+            _wait(lambda seq=before["seq"]: _current_after(port, seq), 120, "the full update")
             t_full = time.perf_counter() - t_save
             log(f"round {k}: first update {t_first:.2f} s, full update {t_full:.2f} s"
                 + (" (warm-up, not counted)" if k == 0 else ""))
@@ -200,7 +200,7 @@ def edits_until(session: WatchSession, deadline: float, log=print) -> int:
         session.edit()
         saved += 1
         try:
-            _wait(lambda: _current_after(session.port, before["seq"]),
+            _wait(lambda seq=before["seq"]: _current_after(session.port, seq),
                   deadline - time.perf_counter(), "the edit", 0.1)
         except TimeoutError:  # the load ends while the watch exports: no new edit
             log(f"edit {saved}: still exporting at the end of the load")
