@@ -450,3 +450,57 @@ def test_a_long_session_keeps_the_parts_of_the_current_design_only(tmp_path, mon
     assert "gone" not in w._KEPT["solids"] and next(iter(now)) in w._KEPT["solids"]
     w._KEPT["solids"].clear()
     w._INHERITED.clear()
+
+
+def _descendants(pid: int) -> set[int]:
+    """Every process below ``pid`` (children, theirs...)."""
+    from pathlib import Path
+
+    found: set[int] = set()
+    todo = [pid]
+    while todo:
+        for f in Path(f"/proc/{todo.pop()}/task").glob("*/children"):
+            try:
+                kids = {int(p) for p in f.read_text().split()}
+            except OSError:  # ended meanwhile
+                continue
+            todo += sorted(kids - found)
+            found |= kids
+    return found
+
+
+@pytest.mark.slow
+def test_sigterm_mid_update_ends_the_watch_cleanly(tmp_path):
+    """SIGTERM while an edit is being exported: the watch says "stopped" and exits
+    with 0 (README: stopping is a watch's normal end), leaving no staging folder
+    in or beside --out, and none of its processes (drawing worker, freecadcmd,
+    server process) behind; the last good export stays whole."""
+    import time
+
+    from tactcad.studies.bench_watch import edit_first_arm
+
+    s = _Session(tmp_path, tmp_path / "store")
+    try:
+        s.next_export()
+        before = json.loads((s.out / "manifest.json").read_text())
+        children = _descendants(s.proc.pid)
+        assert len(children) >= 3  # the worker, freecadcmd, the server process (and more)
+        edit_first_arm(s.design, 4.4)
+        deadline = time.monotonic() + 300
+        while not list(tmp_path.glob(".out.staging-*")):  # the edit's export is under way
+            assert time.monotonic() < deadline and s.proc.poll() is None, \
+                "no export of the edit began"
+            time.sleep(0.01)
+        children |= _descendants(s.proc.pid)
+        s.proc.send_signal(signal.SIGTERM)
+        code = s.proc.wait(timeout=120)
+    finally:
+        if s.proc.poll() is None:
+            s.proc.kill()
+    err = s.all_lines()
+    assert code == 0 and "watch: stopped" in err and "Traceback" not in err, err
+    assert err.count("export current") == 1  # the edit's export was cut short
+    assert "leaked" not in err and "left behind" not in err
+    assert not list(tmp_path.glob(".out.*")) and not list(s.out.glob(".*staging*"))
+    assert json.loads((s.out / "manifest.json").read_text()) == before
+    assert _gone(children)

@@ -27,6 +27,8 @@ ONE_CHANGE_GOAL_S = 4.0
 MESH_GOAL_S = 1.0
 REVIEW_SIZE_GOAL_MB = 15.0  # the review page of the default design
 REVIEW_FIRST_FRAME_GOAL_S = 3.0
+MAX_LOAD_CLIENTS = 200  # simulated reviewers of bench watch's load test, at most
+MAX_LOAD_SECONDS = 600.0  # its duration at most (s)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -83,18 +85,39 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_output_args(r, "print one JSON object: bytes, first_frame_s, wall_s, goals")
     r.set_defaults(func=run_review)
     wa = bsub.add_parser("watch", help="tactcad watch: save -> 3D view shown, save -> every "
-                                      "file current (goals <= 2 s, <= 4 s)")
+                                      "file current (goals <= 2 s, <= 4 s), then a loopback "
+                                      "load of simulated reviewers during edits (goal: 0 "
+                                      "errors, p99 <= 250 ms)")
     add_design_arg(wa)
-    wa.add_argument("--rounds", type=int, default=5, metavar="N",
-                    help="one-arm edits to time after a warm-up edit, 1 ... 50 (default: 5)")
+    wa.add_argument("--rounds", type=count(0, 50, "one-arm edits in Chromium"), default=5,
+                    metavar="N",
+                    help="one-arm edits timed in headless Chromium after a warm-up edit, "
+                         "0 ... 50; 0: none, no browser needed (default: 5)")
+    wa.add_argument("--clients", type=count(0, MAX_LOAD_CLIENTS, "simulated reviewers"),
+                    default=40, metavar="N",
+                    help=f"simulated reviewers' browsers asking the watch on 127.0.0.1 at "
+                         f"once during the load test, 0 ... {MAX_LOAD_CLIENTS}; 0: no load "
+                         f"test (default: 40)")
+    wa.add_argument("--load-seconds", type=number(0, MAX_LOAD_SECONDS, "s", lo_open=True),
+                    default=30.0, metavar="S",
+                    help=f"duration of the load test in seconds, > 0 ... {MAX_LOAD_SECONDS:g}, "
+                         f"one-arm edits saved one after the other meanwhile (default: 30 s)")
     add_output_args(wa, "print one JSON object: first_update_s, full_update_s (medians), the "
-                         "rounds, goals, load average")
+                         "rounds, goals, load average, and under load: clients, seconds, "
+                         "edits, requests, errors, p50_ms, p95_ms, p99_ms, max_ms, per route")
     wa.set_defaults(func=run_watch)
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
 
 
 def run_watch(args: argparse.Namespace) -> int:
-    """Time one-arm edits under ``tactcad watch`` (see :mod:`tactcad.studies.bench_watch`)."""
+    """Time one-arm edits under ``tactcad watch`` and load its server (see
+    :mod:`tactcad.studies.bench_watch`).
+
+    Raises:
+        DesignError: ``--rounds 0`` with ``--clients 0`` (nothing to measure); a refused design.
+        BrowserMissing: ``--rounds`` > 0 without Chromium or Playwright.
+        TimeoutError: the watch did not answer in time.
+    """
     from pathlib import Path
 
     from tactcad.design.array import DEFAULT_DESIGN
@@ -102,25 +125,52 @@ def run_watch(args: argparse.Namespace) -> int:
     from tactcad.studies.bench_scale import load_average
     from tactcad.studies.bench_watch import watch_figures
 
-    if not 1 <= args.rounds <= 50:
-        raise DesignError("--rounds", args.rounds, "1 ... 50")
+    if args.rounds == 0 and args.clients == 0:
+        raise DesignError("--rounds", 0, "1 ... 50 when --clients is 0 (nothing to measure)")
     plan_from_args(args)  # a refused design stops here, not in the watch process
     report = progress_from_args(args)
     from tactcad.commands.watch import watched_files
 
     figures = watch_figures(watched_files(Path(args.design) if args.design else DEFAULT_DESIGN),
-                            args.rounds, log=report)
+                            args.rounds, log=report, clients=args.clients,
+                            load_seconds=args.load_seconds)
     figures["load_average"] = load_average()
     if args.json:
         print(dumps(figures))
         return 0
-    print(f"tactcad bench watch ({args.rounds} one-arm edits, medians; {figures['cpus']} CPUs, "
-          f"load average {figures['load_average']}):")
-    print(f"  save -> 3D view shows the edit   {figures['first_update_s']:6.2f} s   goal <= "
-          f"{figures['first_goal_s']:g} s")
-    print(f"  save -> every file current       {figures['full_update_s']:6.2f} s   goal <= "
-          f"{figures['full_goal_s']:g} s")
+    print(f"tactcad bench watch ({figures['cpus']} CPUs, load average {figures['load_average']}):")
+    if args.rounds:
+        print(f"  {args.rounds} one-arm edits, medians:")
+        print(f"  save -> 3D view shows the edit   {figures['first_update_s']:6.2f} s   goal <= "
+              f"{figures['first_goal_s']:g} s")
+        print(f"  save -> every file current       {figures['full_update_s']:6.2f} s   goal <= "
+              f"{figures['full_goal_s']:g} s")
+    if args.clients:
+        for line in load_lines(figures["load"]):
+            print(line)
     return 0
+
+
+def load_lines(load: dict) -> list[str]:
+    """The load test's figures (:func:`tactcad.studies.watch_load.load_summary`) as lines."""
+    flag = "ok" if load["met"] else "not met"
+    kinds = ", ".join(f"{k} {n}" for k, n in sorted(load["error_kinds"].items()))
+    lines = [f"  load: {load['clients']} clients for {load['seconds']:g} s, {load['edits']} "
+             f"one-arm edits saved meanwhile: {load['requests']} requests, {load['errors']} "
+             f"errors" + (f" ({kinds})" if kinds else ""),
+             f"  latency p50 {load['p50_ms']:.1f} ms, p95 {load['p95_ms']:.1f} ms, p99 "
+             f"{load['p99_ms']:.1f} ms, max {load['max_ms']:.1f} ms   goal: 0 errors, p99 <= "
+             f"{load['p99_goal_ms']:g} ms: {flag}"]
+    if load.get("watch_export_s"):
+        import statistics
+
+        own = load["watch_export_s"]
+        lines.append(f"  the watch's own updates meanwhile: median {statistics.median(own):.2f} s, "
+                     f"longest {max(own):.2f} s ({len(own)} finished)")
+    for route, r in load["routes"].items():
+        lines.append(f"    {route:<7} {r['requests']:6d} requests   p50 {r['p50_ms']:7.1f} ms   "
+                     f"p99 {r['p99_ms']:7.1f} ms   max {r['max_ms']:7.1f} ms")
+    return lines
 
 
 def run_review(args: argparse.Namespace) -> int:

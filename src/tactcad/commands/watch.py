@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-import threading
 from pathlib import Path
 
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, store_from_args
@@ -18,16 +17,17 @@ def register(sub: argparse._SubParsersAction) -> None:
                        description="Export the design, then stay up: every save of the design, "
                                    "rigs or scenes file re-exports what changed (the 3D view "
                                    "first, then the drawings, the PDF and the rest) and the "
-                                   "review page at http://127.0.0.1:PORT/ reloads in place, "
-                                   "keeping its camera and hidden parts. A refused edit is "
-                                   "shown in the page and here; the last good export stays. "
-                                   "Ctrl-C stops.")
+                                   "review page at http://127.0.0.1:PORT/ (and "
+                                   "http://[::1]:PORT/ where the machine has IPv6) reloads "
+                                   "in place, keeping its camera and hidden parts. A refused "
+                                   "edit is shown in the page and here; the last good export "
+                                   "stays. Ctrl-C, SIGTERM or SIGHUP stops it (exit 0).")
     add_design_arg(p)
     p.add_argument("--out", metavar="DIR", default="exports",
                    help="the export folder kept current (default: exports)")
     p.add_argument("--port", metavar="N", type=int, default=DEFAULT_PORT,
-                   help=f"port of the review page on 127.0.0.1, 1024 ... 65535 or 0 for any "
-                        f"free one (default: {DEFAULT_PORT})")
+                   help=f"port of the review page on 127.0.0.1 and [::1], 1024 ... 65535 or 0 "
+                        f"for any free one (default: {DEFAULT_PORT})")
     p.add_argument("--poll", action="store_true",
                    help="poll the files instead of waiting for file-system events (network "
                         "drives, some containers)")
@@ -56,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.commands import load_from_args
     from tactcad.errors import DesignError
     from tactcad.export.freecad_review import keep_freecad
-    from tactcad.export.live import LiveState, Loop, changes, make_server
+    from tactcad.export.live import LiveState, Loop, changes, serve, serve_apart
     from tactcad.export.run import check_out_dir
     from tactcad.export.worker import session_worker
 
@@ -82,17 +82,17 @@ def run(args: argparse.Namespace) -> int:
         raise DesignError("--design", str(design), "an existing design file (TOML)")
     state = LiveState()
     try:
-        server = make_server(state, args.port)
+        servers = serve(state, args.port)
     except OSError as exc:
         raise DesignError("--port", args.port, f"a free port on 127.0.0.1, or 0 for any "
                           f"({exc.strerror or exc})") from None
     # the drawings' process, kept for the session: it loads the kernel while the first run plans
     loop = Loop(load, Path(args.out), store_from_args(args), state, log, worker=session_worker())
     keep_freecad(True)  # one FreeCAD process for the review files of every run
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    host, port = server.server_address[:2]
+    # the page is served by a process of its own, so the exports do not slow its answers
+    server = serve_apart(servers, state, log)
     try:
-        log(f"review page at http://{host}:{port}/ (Ctrl-C stops)")
+        log(f"review page at {' and '.join(servers.urls())} (Ctrl-C stops)")
         files = watched_files(design)
         log("watching " + ", ".join(str(f) for f in files))
         for k, _ in enumerate(changes(files, args.poll)):  # the first: the files are watched
@@ -104,6 +104,7 @@ def run(args: argparse.Namespace) -> int:
     finally:
         loop.close()
         keep_freecad(False)
-        server.shutdown()
-        server.server_close()
+        if server is not None:
+            server.close()
+        servers.stop()
     return 0

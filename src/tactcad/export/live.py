@@ -11,204 +11,38 @@ Each change is handled in two steps so the 3D view comes first:
 3. the full export follows (drawings, PDF, BOM, FreeCAD files, the page),
    published atomically as ``tactcad export`` does.
 
-``GET /`` is the exported page as it is. Served, the page polls ``/state``
-and, when its sequence number moves, reads its data (``/data``), the scenes
-(``/scene/<sha256>``) and sheets (``/sheet/<sha256>``) whose bytes changed,
-not the page, keeping the camera, the scene, the hidden parts and the
-sheets' zoom (``review_page.js``; :mod:`tactcad.export.live_page`).
+The page is served on 127.0.0.1 and, where the machine has IPv6, on [::1]
+at the same port, by a process of its own (:mod:`tactcad.export.live_server`).
+``GET /`` is the exported page as it is.
+Served, the page polls ``/state`` and, when its sequence number moves, reads
+its data (``/data``), the scenes (``/scene/<sha256>``) and sheets
+(``/sheet/<sha256>``) whose bytes changed, not the page, keeping the camera,
+the scene, the hidden parts and the sheets' zoom (``review_page.js``;
+:mod:`tactcad.export.live_page`).
 """
 
 from __future__ import annotations
 
-import json
-import sys
 import tempfile
 import threading
 import time
 from dataclasses import dataclass, field
-from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
-from typing import Any, Callable, Iterable
+from typing import Callable, Iterable
 
 from tactcad.design.project import Project
 from tactcad.errors import TactcadError
 from tactcad.export.job import Run, solid_key
 from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE, ReviewContents
-from tactcad.export.live_page import LiveView, checks_json, live_view
 from tactcad.export.live_parts import LiveParts, keep_only
+# the server's names, for the callers that know them from here
+from tactcad.export.live_server import (CLIENT_TIMEOUT_S, LISTEN_BACKLOG, LiveState,  # noqa: F401
+                                        ServerProcess, Servers, host_allowed, make_server, serve,
+                                        serve_apart, waiting_page)
 from tactcad.export.worker import SessionWorker
 from tactcad.store import Store
 
 Log = Callable[[str], None]
-
-
-@dataclass
-class LiveState:
-    """What the server shows: the exported page, the sequence number, the last
-    refusal; beside the page, its data, scenes and sheets on their own
-    (:mod:`live_page`)."""
-
-    page: bytes = b""  # GET /: the last exported review page, as it is
-    seq: int = 0
-    sha256: str = ""
-    refusal: str | None = None
-    status: str = "starting"
-    #: this state's data, and the scenes and sheets of this state and the one
-    #: before (a page may ask for those it was just told of)
-    view: LiveView = field(default_factory=LiveView)
-    kept: LiveView = field(default_factory=LiveView)
-    checks_js: bytes | None = None
-    #: what the last state published as "current" showed (contents, design sha256, the
-    #: checks' JSON), shown again when the export after a preview fails
-    current: tuple[ReviewContents | None, str, str | None] | None = None
-    previewed: bool = False  # the state shown is a preview, not a "current" one
-    lock: threading.Lock = field(default_factory=threading.Lock)
-
-    def publish(self, sha256: str, status: str, contents: ReviewContents | None = None,
-                page: bytes | None = None, checks_js: str | None = None) -> None:
-        """Show ``contents`` of design ``sha256`` (and ``review/checks.js``'s text,
-        when the export has one); ``page``: a new exported page for ``GET /``
-        (None: the last one stays)."""
-        checks = checks_json(checks_js)
-        with self.lock:
-            seq = self.seq + 1
-        view = live_view(contents, seq, sha256, checks)  # outside the lock
-        with self.lock:
-            self._show(view, sha256, seq)
-            if page is not None:
-                self.page = page
-            self.checks_js = checks_js.encode("utf-8") if checks_js else None
-            self.status, self.refusal = status, None
-            self.previewed = status != "current"
-            if not self.previewed:
-                self.current = (contents, sha256, checks)
-
-    def refuse(self, text: str, back_to_current: bool = False) -> None:
-        """Show ``text`` as the refusal of the last edit; with ``back_to_current``, the
-        last current state again (a preview of the refused edit may have been shown)."""
-        with self.lock:
-            self.refusal, self.status = text, "last edit refused"
-            if back_to_current and self.previewed and self.current is not None:
-                contents, sha256, checks = self.current
-                self._show(live_view(contents, self.seq + 1, sha256, checks), sha256, self.seq + 1)
-                self.previewed = False
-
-    def _show(self, view: LiveView, sha256: str, seq: int) -> None:
-        """Serve ``view`` as state ``seq`` of design ``sha256`` (the lock held); the
-        scenes and sheets of the state before stay fetchable for one more state."""
-        self.kept = LiveView(view.data, {**self.view.glbs, **view.glbs},
-                             {**self.view.sheets, **view.sheets})
-        self.view, self.sha256, self.seq = view, sha256, seq
-
-    def as_json(self) -> bytes:
-        with self.lock:
-            return self._state_json()
-
-    def _state_json(self) -> bytes:
-        return json.dumps({"seq": self.seq, "sha256": self.sha256, "refusal": self.refusal,
-                           "status": self.status}).encode()
-
-    def response(self, path: str) -> tuple[bytes, str] | None:
-        """The body and content type of ``GET path``; None: not found."""
-        folder, _, digest = path.rpartition("/")
-        with self.lock:
-            if path in ("/", "/index.html"):
-                return self.page or waiting_page(self.status, self.refusal), \
-                    "text/html; charset=utf-8"
-            if path == "/state":
-                return self._state_json(), "application/json"
-            if path == "/data":
-                return self.view.data, "application/json"
-            if path == "/checks.js" and self.checks_js is not None:
-                return self.checks_js, "text/javascript; charset=utf-8"
-            if folder == "/scene" and digest in self.kept.glbs:
-                return self.kept.glbs[digest], "model/gltf-binary"
-            if folder == "/sheet" and digest in self.kept.sheets:
-                return self.kept.sheets[digest], "image/svg+xml"
-        return None
-
-
-def waiting_page(status: str, refusal: str | None) -> bytes:
-    """``GET /`` before the first good export: what the watch is doing, and why
-    there is nothing to show when the design or its export was refused; the
-    page reloads itself every 2 s until the review page is there."""
-    import html
-
-    why = f"<pre>{html.escape(refusal)}</pre>" if refusal else ""
-    return (f'<!doctype html><html><head><meta charset="utf-8">'
-            f'<meta http-equiv="refresh" content="2"><title>tactcad watch: {html.escape(status)}'
-            f'</title></head><body><h1>tactcad watch: {html.escape(status)}</h1>'
-            f"<p>No export to show yet.</p>{why}</body></html>").encode("utf-8")
-
-
-#: Seconds a connection may stay silent before its thread is given back.
-CLIENT_TIMEOUT_S = 15.0
-#: Connections the kernel queues while every thread is busy (socketserver's default is 5).
-LISTEN_BACKLOG = 128
-#: The host names a page on this machine may use for the watch (DNS rebinding guard).
-LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "[::1]")
-
-
-def host_allowed(host: str | None, port: int) -> bool:
-    """True when a request's ``Host`` header names this machine's loopback at
-    ``port`` (``127.0.0.1:PORT``, ``localhost:PORT``, ``[::1]:PORT``): a web page
-    whose name was rebound to 127.0.0.1 sends its own name and is refused."""
-    return host is not None and host.strip().lower() in {f"{h}:{port}" for h in LOOPBACK_HOSTS}
-
-
-def make_server(state: LiveState, port: int) -> ThreadingHTTPServer:
-    """An HTTP server on 127.0.0.1:``port`` (0: any free port; ``HEAD`` as ``GET``
-    without the body): ``GET /`` the
-    page, ``GET /state`` its JSON state, ``GET /data`` the page's data,
-    ``GET /scene/<sha256>`` a scene's GLB, ``GET /sheet/<sha256>`` a drawing
-    sheet's SVG, ``GET /checks.js`` the check results (:meth:`LiveState.response`).
-
-    Raises:
-        OSError: the port is taken or not allowed.
-    """
-    class Handler(BaseHTTPRequestHandler):
-        timeout = CLIENT_TIMEOUT_S  # an idle or slow client gives its thread back
-
-        def do_GET(self, with_body: bool = True):  # noqa: N802 (http.server's name)
-            if not host_allowed(self.headers.get("Host"), self.server.server_address[1]):
-                self.send_error(421, "Misdirected Request",
-                                "tactcad watch answers requests for 127.0.0.1, localhost or "
-                                "[::1] at its own port only")
-                return
-            found = state.response(self.path.split("?")[0])
-            if found is None:
-                self.send_error(404)
-                return
-            body, kind = found
-            self.send_response(200)
-            self.send_header("Content-Type", kind)
-            self.send_header("Content-Length", str(len(body)))
-            self.send_header("Cache-Control", "no-store")
-            self.end_headers()
-            if with_body:
-                self.wfile.write(body)
-
-        def do_HEAD(self):  # noqa: N802: GET's answer without its body (link checkers, curl -I)
-            self.do_GET(with_body=False)
-
-        def log_message(self, *args: Any) -> None:  # quiet: the terminal shows the exports
-            pass
-
-    server = _QuietServer(("127.0.0.1", port), Handler)
-    server.daemon_threads = True
-    return server
-
-
-class _QuietServer(ThreadingHTTPServer):
-    """A browser that reloads or closes the page while it downloads (6 MB) resets the
-    connection: that is no error for the terminal; any other is printed as before.
-    A client that stays silent past :data:`CLIENT_TIMEOUT_S` is dropped the same way."""
-
-    request_queue_size = LISTEN_BACKLOG
-
-    def handle_error(self, request, client_address) -> None:
-        if not isinstance(sys.exc_info()[1], (ConnectionError, TimeoutError)):
-            super().handle_error(request, client_address)
 
 
 @dataclass
