@@ -20,9 +20,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterable, Sequence
+from typing import TYPE_CHECKING, Iterable, Sequence
 
-from tactcad.design.array import ElementGeometry
+if TYPE_CHECKING:
+    from tactcad.design.array import ElementGeometry
 
 Point = tuple[float, float]
 
