@@ -1,6 +1,6 @@
 """The form of a part written as one module: a part module's table is
 optional when every field has a default, its key clashes with no rig section
-or other builder, the parts are derived after the parts they need (a circle
+or other builder (one registry answers for every builder), the parts are derived after the parts they need (a circle
 or an unknown need refused) and read only those, companions and screws
 become specs of their own, and the layers above find it through the
 registry alone."""
@@ -13,8 +13,7 @@ import pytest
 
 from tactcad.design.rigs import OWN_TABLES, RigsFile
 from tactcad.partlib.base import RigPart
-from tactcad.partlib.registry import derivation_order, rig_parts_lib, topological
-from tactcad.parts import registry as builders
+from tactcad.partlib.registry import builders, derivation_order, rig_parts_lib, topological
 
 
 def test_the_registry_finds_the_part_modules():
@@ -32,10 +31,25 @@ def test_a_part_table_is_optional_exactly_when_every_field_has_a_default():
             part.section()  # the defaults make a valid table
 
 
-def test_part_keys_do_not_shadow_other_builders():
-    for part in rig_parts_lib().values():
-        assert part.builder_key not in builders.FAMILY_BUILDERS
-        assert part.builder_key in builders.BUILDERS
+def test_every_part_module_answers_in_the_one_registry_of_builders():
+    from tactcad.partlib.registry import part_modules
+
+    keys = [key for part in part_modules() for key in part.builders()]
+    assert len(keys) == len(set(keys)) and set(keys) == set(builders())
+    assert {"element", "spacer", "clamp_plate", "gauge", "bolt", "nut"} <= set(keys)
+
+
+def test_a_builder_key_declared_twice_is_refused(monkeypatch):
+    import tactcad.partlib.registry as registry
+
+    twice = registry.part_modules() + (rig_parts_lib()["weights"],)
+    monkeypatch.setattr(registry, "part_modules", lambda: twice)
+    registry.builders.cache_clear()
+    try:
+        with pytest.raises(ValueError, match="builder key 'weight' is declared twice"):
+            registry.builders()
+    finally:
+        registry.builders.cache_clear()
 
 
 def test_parts_derive_after_the_parts_they_need():
@@ -102,7 +116,7 @@ def test_companions_and_fasteners_become_specs_with_their_builders(project):
         data = project.rigs.library[key]
         for one in (data, *data.companions):
             builder = specs[one.name].builder
-            assert builder == (one.builder or part.builder_key) and builder in builders.BUILDERS
+            assert builder == (one.builder or part.builder_key) and builder in builders()
     assert {"z_stage_body", "z_stage_carriage", "rail_MGNR12R", "block_MGN12H", "wheel_spacer",
             "bearing_624ZZ"} <= set(specs)
     screws = [n for n in specs if n.startswith("bolt_")]
