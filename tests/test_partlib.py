@@ -143,3 +143,20 @@ def test_a_screw_of_the_arrays_size_and_length_is_still_a_rig_part(project):
     assert "seat" in specs[bolt_name(plan.bolt, plan.bolt_length_mm)].frames
     bracket = rigs.library["bracket"]
     assert not bracket.fasteners or bracket.fasteners[0].length_mm != plan.bolt_length_mm
+
+
+def test_a_variant_stands_in_for_its_family_only_when_its_table_is_given(monkeypatch):
+    import tactcad.partlib.registry as registry
+
+    lib = dict(registry.array_parts_lib())
+    lib["spacer_x"] = dataclasses.replace(lib["spacer"], key="spacer_x", replaces="spacer")
+    monkeypatch.setattr(registry, "array_parts_lib", lambda: lib)
+    assert "spacer_x" not in [p.key for p in registry.array_parts_for(["design"])]
+    chosen = [p.key for p in registry.array_parts_for(["design", "spacer_x"])]
+    assert "spacer_x" in chosen and "spacer" not in chosen
+    lib["spacer_y"] = dataclasses.replace(lib["spacer_x"], key="spacer_y")
+    with pytest.raises(ValueError, match="two variants of one family"):
+        registry.array_parts_for(["spacer_x", "spacer_y"])
+    lib["spacer_y"] = dataclasses.replace(lib["spacer_x"], key="spacer_y", replaces="washer")
+    with pytest.raises(ValueError, match="replaces 'washer', which no array part module"):
+        registry.array_parts_for([])

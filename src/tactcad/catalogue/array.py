@@ -20,7 +20,7 @@ from tactcad.design.array import Placement, Plan
 from tactcad.partlib.array.fasteners import bolt_name, bolt_volume, nut_name
 from tactcad.partlib.array.strain_gauge import GAUGE_PART
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, Bbox, PartData
-from tactcad.partlib.registry import array_parts_lib
+from tactcad.partlib.registry import array_parts_for, array_parts_lib
 from tactcad.vocabulary.process import Method, Process
 from tactcad.geometry.profile import Profile
 
@@ -93,10 +93,13 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
 
 
 def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
-    """Each array part module's parts (:func:`tactcad.partlib.registry.array_parts_lib`,
-    in its order), as specs."""
-    context = ArrayContext(plan, part_material_names(plan), gauge_body(plan))
-    return {data.name: array_spec(part, data) for part in array_parts_lib().values()
+    """The parts of the array part modules the design uses
+    (:func:`tactcad.partlib.registry.array_parts_for` its tables, in order), as specs."""
+    lib = array_parts_lib()
+    tables = {key: part.section.model_validate(plan.raw[key]) for key, part in lib.items()
+              if part.section is not None and key in plan.raw}
+    context = ArrayContext(plan, part_material_names(plan), gauge_body(plan), tables)
+    return {data.name: array_spec(part, data) for part in array_parts_for(plan.raw)
             for data in part.specs(context)}
 
 

@@ -29,6 +29,8 @@ from importlib import resources
 from pathlib import Path
 from typing import Any, Mapping
 
+from pydantic import create_model
+
 from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Name, Problems, Section, Text,
                                        content_hash, fmt, integer, listing, number, read_assumptions,
                                        read_toml, validate)
@@ -49,6 +51,7 @@ from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN,  # noqa:
                                            ElementSection)
 from tactcad.partlib.array.prism import Hole
 from tactcad.partlib.array.spacer import SpacerGeometry
+from tactcad.partlib.registry import array_parts_lib
 
 #: The example sensor projects shipped with tactcad, one folder each (the
 #: source tree's ``hardware/``, installed as package data ``tactcad/examples``).
@@ -260,7 +263,7 @@ class FilesSection(Section):
     scenes: Text = None
 
 
-class DesignFile(Section):
+class DesignTables(Section):
     """``macro_array.toml``: every section required, ``[assumptions]`` optional."""
 
     design: DesignSection
@@ -278,6 +281,18 @@ class DesignFile(Section):
     bom: BomSection = None
     files: FilesSection = None
     assumptions: dict[str, Any] = {}
+
+
+def _part_tables() -> dict[str, tuple[Any, Any]]:
+    """The tables array part modules read (:attr:`ArrayPart.section`), each optional."""
+    return {key: (part.section, None) for key, part in array_parts_lib().items()
+            if part.section is not None}
+
+
+#: The design file's schema: :class:`DesignTables` and the optional table of
+#: each array part module that reads one (:mod:`tactcad.partlib.array`).
+DesignFile = create_model("DesignFile", __base__=DesignTables, __doc__=DesignTables.__doc__,
+                          **_part_tables())
 
 
 # ---------------------------------------------------------------------------

@@ -224,11 +224,14 @@ class ArrayContext:
         materials: material name of the clamp plates and spacers by part key
             (``clamp_plate``, ``spacer``; :func:`tactcad.catalogue.array.part_material_names`).
         gauge: the strain gauge's body (:class:`tactcad.partlib.array.strain_gauge.GaugeBody`).
+        tables: the validated design-file table of each module that has one
+            (:attr:`ArrayPart.section`), by key, for the tables the design gives.
     """
 
     plan: Any
     materials: Mapping[str, str]
     gauge: Any
+    tables: Mapping[str, Any] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -252,6 +255,12 @@ class ArrayPart(Builds):
         order: its place in the array's part list (smaller first; ties by key).
         companion_builders: builder key -> builder of the specs the module
             makes under another key (:attr:`PartData.builder`).
+        section: the design file's table ``[key]`` the module reads (every
+            field with its range; the table may be left out), or None.
+        replaces: a variant's family: the key of the module it stands in for
+            when the design gives the variant's table (its parts keep the
+            family's part names, so the array places them alike); a variant
+            whose table is left out makes no part. Empty: no variant.
     """
 
     key: str
@@ -260,6 +269,8 @@ class ArrayPart(Builds):
     drawing: DrawingRecord | None = None
     order: int = 1000
     companion_builders: Mapping[str, Callable[[Any], Any]] = field(default_factory=dict)
+    section: type[Section] | None = None
+    replaces: str = ""
 
     @property
     def builder_key(self) -> str:

@@ -95,6 +95,29 @@ def builders() -> dict[str, Callable[[Any], Any]]:
     return out
 
 
+def array_parts_for(tables: Iterable[str]) -> list[ArrayPart]:
+    """The array part modules a design with the tables ``tables`` uses, in
+    their order: every family but one whose variant's table is given, and
+    that variant (:attr:`ArrayPart.replaces`).
+
+    Raises:
+        ValueError: a variant replaces a key no module declares, or two given
+            variants replace the same family.
+    """
+    lib, given = array_parts_lib(), set(tables)
+    variants = [p for p in lib.values() if p.replaces and p.key in given]
+    replaced = [p.replaces for p in variants]
+    unknown = sorted({p.replaces for p in lib.values() if p.replaces} - set(lib))
+    if unknown:
+        raise ValueError(f"partlib: a variant replaces {', '.join(map(repr, unknown))}, "
+                         "which no array part module declares")
+    if len(set(replaced)) < len(replaced):
+        raise ValueError("partlib: two variants of one family are given: "
+                         + ", ".join(p.key for p in variants))
+    return [p for p in lib.values()
+            if p.key not in replaced and (not p.replaces or p.key in given)]
+
+
 def drawing_record(builder_key: str) -> DrawingRecord | None:
     """The drawing of the part module whose own builder is ``builder_key``;
     None for a bought part, a companion or an unknown key."""
