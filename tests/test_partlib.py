@@ -39,17 +39,27 @@ def test_every_part_module_answers_in_the_one_registry_of_builders():
     assert {"element", "spacer", "clamp_plate", "gauge", "bolt", "nut"} <= set(keys)
 
 
+def _refused_while_patched(monkeypatch, name: str, value, cached, match: str) -> None:
+    """The registry's cached function ``cached`` refuses (ValueError matching
+    ``match``) while the registry's ``name`` returns ``value``; its cache is
+    cleared before and after."""
+    import tactcad.partlib.registry as registry
+
+    monkeypatch.setattr(registry, name, lambda: value)
+    cached.cache_clear()
+    try:
+        with pytest.raises(ValueError, match=match):
+            cached()
+    finally:
+        cached.cache_clear()
+
+
 def test_a_builder_key_declared_twice_is_refused(monkeypatch):
     import tactcad.partlib.registry as registry
 
     twice = registry.part_modules() + (rig_parts_lib()["weights"],)
-    monkeypatch.setattr(registry, "part_modules", lambda: twice)
-    registry.builders.cache_clear()
-    try:
-        with pytest.raises(ValueError, match="builder key 'weight' is declared twice"):
-            registry.builders()
-    finally:
-        registry.builders.cache_clear()
+    _refused_while_patched(monkeypatch, "part_modules", twice, registry.builders,
+                           "builder key 'weight' is declared twice")
 
 
 def test_parts_derive_after_the_parts_they_need():
@@ -79,13 +89,8 @@ def test_unknown_needs_are_refused(monkeypatch):
 
     lib = dict(rig_parts_lib())
     lib["weights"] = dataclasses.replace(lib["weights"], needs=("trolley",))
-    monkeypatch.setattr(registry, "rig_parts_lib", lambda: lib)
-    registry.derivation_order.cache_clear()
-    try:
-        with pytest.raises(ValueError, match="'weights' needs 'trolley', which no part module"):
-            registry.derivation_order()
-    finally:
-        registry.derivation_order.cache_clear()
+    _refused_while_patched(monkeypatch, "rig_parts_lib", lib, registry.derivation_order,
+                           "'weights' needs 'trolley', which no part module")
 
 
 def test_table_values_copy_the_table_field_for_field():
