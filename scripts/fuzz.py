@@ -45,7 +45,7 @@ def check_design(plan, rigs, scenes, *, full: bool = False) -> list[str]:
     from tactcad.checks.scene_sanity import check_scene_sanity
     from tactcad.checks.scenes import placed_shapes
     from tactcad.checks.solids import check_solid
-    from tactcad.parts.cache import PartCache
+    from tactcad.solids.cache import PartCache
 
     project = project_of(plan, rigs, scenes)
     cache = PartCache(plan)

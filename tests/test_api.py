@@ -86,7 +86,7 @@ def test_set_and_with_values_change_the_plan():
 
 # --- parts, assembly, element -----------------------------------------------------------------
 def test_parts_are_built_on_first_access_and_once():
-    from tactcad.parts.registry import BUILD_COUNTS
+    from tactcad.solids.build import BUILD_COUNTS
 
     project = tactcad.load()
     assert "element_a4mm" in project.parts and "cart" in project.parts

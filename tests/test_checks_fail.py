@@ -13,7 +13,7 @@ from tactcad.checks.solids import check_solid
 from tactcad.checks.step import check_step
 from tactcad.export.dxf import write_profile_dxf
 from tactcad.kernel.shapes import profile_face
-from tactcad.parts.element import build_element
+from tactcad.partlib.array.element import build as build_element
 from tactcad.geometry.profile import element_profile
 
 

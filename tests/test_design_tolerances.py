@@ -32,13 +32,13 @@ def _data(**tolerances):
 def test_each_tolerance_is_on_the_drawing_and_in_tolerance_json(tmp_path, capsys):
     from tactcad.catalogue.array import array_parts
     from tactcad.drawings.compose import compose
-    from tactcad.parts.registry import build_part
+    from tactcad.solids.build import build_part
 
     data = _data(**PERTURBED)
     plan = plan_from_dict(data)
     specs = array_parts(plan)
     name = plan.element(1).geometry.part_name
-    d = compose(plan, specs[name], build_part(plan, specs[name]), 2)
+    d = compose(plan, specs[name], build_part(specs[name]), 2)
     dims, svg = d.dimensions, d.sheet.svg()
     assert dims["web_thickness"] == "0.25 ±0.013"
     assert dims["notch_radius"] == "R0.5 ±0.017"
@@ -146,12 +146,12 @@ def test_a_what_if_tolerance_that_lets_the_notch_vanish_is_refused(capsys):
 def test_the_element_drawing_says_where_the_gauge_goes():
     from tactcad.catalogue.array import array_parts
     from tactcad.drawings.compose import compose, part_hash
-    from tactcad.parts.registry import build_part
+    from tactcad.solids.build import build_part
 
     data = with_overrides(default_design_data(), {"readout.grid_length_mm": 1.2})
     plan = plan_from_dict(data)
     spec = array_parts(plan)["element_a4mm"]
-    d = compose(plan, spec, build_part(plan, spec), 2)
+    d = compose(plan, spec, build_part(spec), 2)
     note = next(n for n in d.notes if "strain gauge" in n)
     assert "grid 1.2 x 1" in note and "17 from the back face" in note
     base = plan_from_dict(default_design_data())

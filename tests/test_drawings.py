@@ -198,7 +198,7 @@ def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan, 
 
 
 def _compose_first_element(plan):
-    from tactcad.parts.cache import PartCache
+    from tactcad.solids.cache import PartCache
     from tactcad.drawings.compose import compose
 
     specs = array_parts(plan)
@@ -259,7 +259,7 @@ def test_reader_rejects_a_wrong_value():
 def test_any_fabricated_part_gets_a_generic_drawing_from_its_solid(plan):
     """A part with no dimension set of its own and no plan profile (as a rig
     part may be) is dimensioned from its solid: sizes and holes."""
-    from tactcad.parts.cache import PartCache
+    from tactcad.solids.cache import PartCache
     from tactcad.drawings.compose import compose
     from tactcad.drawings.part_sets import GENERIC, drawing_of
 
@@ -331,12 +331,12 @@ def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan, proj
 def _compose(plan, name, raw=None):
     from tactcad.design.project import project_for_plan
     from tactcad.drawings.compose import compose
-    from tactcad.parts.registry import build_part
+    from tactcad.solids.build import build_part
 
     specs, _ = design_assemblies(project_for_plan(plan))
     if raw is not None:
         plan = dataclasses.replace(plan, raw=raw)
-    return compose(plan, specs[name], build_part(plan, specs[name]), 1), specs[name]
+    return compose(plan, specs[name], build_part(specs[name]), 1), specs[name]
 
 
 def _svg_text_boxes(svg_text: str) -> list[tuple[str, tuple]]:
@@ -431,11 +431,11 @@ def test_base_plate_grooves_and_sample_holder_window(plan):
 @pytest.mark.slow
 def test_indenter_has_its_mounting_thread(plan, project):
     from tactcad.partlib.indenter import INDENTER_THREAD_DIAMETER_MM, indenter_thread_depth_mm
-    from tactcad.parts.registry import build_part
+    from tactcad.solids.build import build_part
 
     specs, _ = design_assemblies(project)
     spec = specs["indenter"]
-    solid = build_part(plan, spec)
+    solid = build_part(spec)
     assert abs(solid.volume - spec.expected_volume_mm3) < 1e-3 * spec.expected_volume_mm3
     d, _ = _compose(plan, "indenter")
     depth = indenter_thread_depth_mm(spec.geometry)

@@ -37,11 +37,11 @@ def test_gauge_body_follows_the_readout_grid_and_stays_on_the_sheet():
 
 
 def test_gauge_solid_matches_its_spec():
-    from tactcad.parts.registry import build_part
+    from tactcad.solids.build import build_part
 
     plan = _plan()
     spec = array_parts(plan)[GAUGE_PART]
-    solid = build_part(plan, spec)
+    solid = build_part(spec)
     bb = solid.bounding_box()
     assert solid.volume == pytest.approx(spec.expected_volume_mm3)
     assert (bb.min.X, bb.min.Y, bb.min.Z, bb.max.X, bb.max.Y, bb.max.Z) == pytest.approx(

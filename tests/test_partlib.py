@@ -1,6 +1,6 @@
 """The form of a part written as one module: a part module's table is
 optional when every field has a default, its key clashes with no rig section
-or other builder, the parts are derived after the parts they need (a circle
+or other builder (one registry answers for every builder), the parts are derived after the parts they need (a circle
 or an unknown need refused) and read only those, companions and screws
 become specs of their own, and the layers above find it through the
 registry alone."""
@@ -13,8 +13,7 @@ import pytest
 
 from tactcad.design.rigs import OWN_TABLES, RigsFile
 from tactcad.partlib.base import RigPart
-from tactcad.partlib.registry import derivation_order, rig_parts_lib, topological
-from tactcad.parts import registry as builders
+from tactcad.partlib.registry import builders, derivation_order, rig_parts_lib, topological
 
 
 def test_the_registry_finds_the_part_modules():
@@ -32,10 +31,35 @@ def test_a_part_table_is_optional_exactly_when_every_field_has_a_default():
             part.section()  # the defaults make a valid table
 
 
-def test_part_keys_do_not_shadow_other_builders():
-    for part in rig_parts_lib().values():
-        assert part.builder_key not in builders.FAMILY_BUILDERS
-        assert part.builder_key in builders.BUILDERS
+def test_every_part_module_answers_in_the_one_registry_of_builders():
+    from tactcad.partlib.registry import part_modules
+
+    keys = [key for part in part_modules() for key in part.builders()]
+    assert len(keys) == len(set(keys)) and set(keys) == set(builders())
+    assert {"element", "spacer", "clamp_plate", "gauge", "bolt", "nut"} <= set(keys)
+
+
+def _refused_while_patched(monkeypatch, name: str, value, cached, match: str) -> None:
+    """The registry's cached function ``cached`` refuses (ValueError matching
+    ``match``) while the registry's ``name`` returns ``value``; its cache is
+    cleared before and after."""
+    import tactcad.partlib.registry as registry
+
+    monkeypatch.setattr(registry, name, lambda: value)
+    cached.cache_clear()
+    try:
+        with pytest.raises(ValueError, match=match):
+            cached()
+    finally:
+        cached.cache_clear()
+
+
+def test_a_builder_key_declared_twice_is_refused(monkeypatch):
+    import tactcad.partlib.registry as registry
+
+    twice = registry.part_modules() + (rig_parts_lib()["weights"],)
+    _refused_while_patched(monkeypatch, "part_modules", twice, registry.builders,
+                           "builder key 'weight' is declared twice")
 
 
 def test_parts_derive_after_the_parts_they_need():
@@ -65,13 +89,8 @@ def test_unknown_needs_are_refused(monkeypatch):
 
     lib = dict(rig_parts_lib())
     lib["weights"] = dataclasses.replace(lib["weights"], needs=("trolley",))
-    monkeypatch.setattr(registry, "rig_parts_lib", lambda: lib)
-    registry.derivation_order.cache_clear()
-    try:
-        with pytest.raises(ValueError, match="'weights' needs 'trolley', which no part module"):
-            registry.derivation_order()
-    finally:
-        registry.derivation_order.cache_clear()
+    _refused_while_patched(monkeypatch, "rig_parts_lib", lib, registry.derivation_order,
+                           "'weights' needs 'trolley', which no part module")
 
 
 def test_table_values_copy_the_table_field_for_field():
@@ -102,7 +121,7 @@ def test_companions_and_fasteners_become_specs_with_their_builders(project):
         data = project.rigs.library[key]
         for one in (data, *data.companions):
             builder = specs[one.name].builder
-            assert builder == (one.builder or part.builder_key) and builder in builders.BUILDERS
+            assert builder == (one.builder or part.builder_key) and builder in builders()
     assert {"z_stage_body", "z_stage_carriage", "rail_MGNR12R", "block_MGN12H", "wheel_spacer",
             "bearing_624ZZ"} <= set(specs)
     screws = [n for n in specs if n.startswith("bolt_")]
@@ -129,3 +148,20 @@ def test_a_screw_of_the_arrays_size_and_length_is_still_a_rig_part(project):
     assert "seat" in specs[bolt_name(plan.bolt, plan.bolt_length_mm)].frames
     bracket = rigs.library["bracket"]
     assert not bracket.fasteners or bracket.fasteners[0].length_mm != plan.bolt_length_mm
+
+
+def test_a_variant_stands_in_for_its_family_only_when_its_table_is_given(monkeypatch):
+    import tactcad.partlib.registry as registry
+
+    lib = dict(registry.array_parts_lib())
+    lib["spacer_x"] = dataclasses.replace(lib["spacer"], key="spacer_x", replaces="spacer")
+    monkeypatch.setattr(registry, "array_parts_lib", lambda: lib)
+    assert "spacer_x" not in [p.key for p in registry.array_parts_for(["design"])]
+    chosen = [p.key for p in registry.array_parts_for(["design", "spacer_x"])]
+    assert "spacer_x" in chosen and "spacer" not in chosen
+    lib["spacer_y"] = dataclasses.replace(lib["spacer_x"], key="spacer_y")
+    with pytest.raises(ValueError, match="two variants of one family"):
+        registry.array_parts_for(["spacer_x", "spacer_y"])
+    lib["spacer_y"] = dataclasses.replace(lib["spacer_x"], key="spacer_y", replaces="washer")
+    with pytest.raises(ValueError, match="replaces 'washer', which no array part module"):
+        registry.array_parts_for([])

@@ -59,10 +59,10 @@ def test_fitting_is_a_bought_envelope_with_its_catalogue_reference(plan, rigs):
 
 
 def test_fitting_envelope_matches_its_estimate(plan, rigs):
-    from tactcad.parts.registry import build_part
+    from tactcad.solids.build import build_part
 
     spec = rig_parts(plan, rigs)["push_in_fitting_M5"]
-    solid = build_part(plan, spec)
+    solid = build_part(spec)
     assert solid.volume == pytest.approx(spec.expected_volume_mm3, rel=1e-6)
     bb = solid.bounding_box()
     assert tuple(bb.min) + tuple(bb.max) == pytest.approx(spec.expected_bbox_mm, abs=1e-6)

@@ -68,9 +68,9 @@ def test_board_is_made_from_sheet_with_its_own_drawing(spec):
 
 
 def test_board_solid_matches_its_estimate(plan, spec):
-    from tactcad.parts.registry import build_part
+    from tactcad.solids.build import build_part
 
-    solid = build_part(plan, spec)
+    solid = build_part(spec)
     assert solid.volume == pytest.approx(spec.expected_volume_mm3, rel=1e-6)
     bb = solid.bounding_box()
     assert tuple(bb.min) + tuple(bb.max) == pytest.approx(spec.expected_bbox_mm, abs=1e-6)

@@ -23,7 +23,7 @@ from tactcad.vocabulary.schema import Problems, read_toml
 from tactcad.errors import DesignError
 from tactcad.export.dxf_sheet import shop_profiles, write_shop_profile
 from tactcad.kernel.shapes import profile_face
-from tactcad.parts.element import build_element
+from tactcad.partlib.array.element import build as build_element
 
 SETTINGS = settings(max_examples=12, deadline=None,
                     suppress_health_check=[HealthCheck.function_scoped_fixture])
@@ -138,7 +138,7 @@ def test_whole_designs_validate_build_and_assemble(case):
     from tactcad.assembly.scenes import assemble
     from tactcad.design.project import project_of
     from tactcad.catalogue.rigs import RigPartSpec, rig_parts
-    from tactcad.parts.cache import PartCache
+    from tactcad.solids.cache import PartCache
     from tactcad.store import stable_repr
 
     data, _, _ = _draw_whole_design(case)

@@ -106,13 +106,13 @@ def test_samples_carry_the_papers_stiffnesses(specs):
 
 
 def test_every_rig_part_is_a_valid_solid_of_the_expected_size(plan, specs):
-    from tactcad.parts.registry import BUILDERS
     from tactcad.checks.solids import check_solid
+    from tactcad.solids.build import build_part
 
     failed = []
     for name, spec in specs.items():
         assert isinstance(spec, RigPartSpec)
-        solid = BUILDERS[spec.builder](plan, spec)
+        solid = build_part(spec)
         failed += [r.line() for r in check_solid(spec, solid) if not r.passed]
     assert not failed, "\n".join(failed)
 
@@ -120,12 +120,12 @@ def test_every_rig_part_is_a_valid_solid_of_the_expected_size(plan, specs):
 def test_cart_has_its_vacuum_clamping_features(plan, specs):
     """Removing the pocket, port, channel or suction holes changes the volume
     the formula expects: each feature is really cut."""
-    from tactcad.parts.registry import BUILDERS
     from tactcad.kernel.inspect import common_volume
+    from tactcad.solids.build import build_part
 
     spec = specs["cart"]
     g = spec.geometry
-    solid = BUILDERS["cart"](plan, spec)
+    solid = build_part(spec)
     block = g.length_mm * g.width_mm * g.thickness_mm
     assert block - solid.volume > 0.9 * (g.pocket_length_mm * g.pocket_width_mm * g.pocket_depth_mm)
     # a ray along the channel axis from the port face meets no material up to the channel end

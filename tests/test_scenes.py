@@ -19,7 +19,7 @@ from tactcad.assembly.scenes import assemble, build_scene
 from tactcad.checks.scenes import placed_shapes
 from tactcad.design.scenes import load_scenes
 from tactcad.errors import SceneError
-from tactcad.parts.cache import PartCache
+from tactcad.solids.cache import PartCache
 
 SCENES = ["wirecut", "array", "calibration-rig", "sample-stiffness-rig", "array-evaluation-rig"]
 
@@ -36,7 +36,7 @@ def built(project, cache):
 
 
 def _counts_during(fn) -> Counter:
-    from tactcad.parts.registry import BUILD_COUNTS
+    from tactcad.solids.build import BUILD_COUNTS
 
     before = Counter(BUILD_COUNTS)
     fn()

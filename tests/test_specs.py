@@ -24,9 +24,11 @@ def test_array_specs_carry_their_geometry(plan):
 
 
 def test_array_parts_are_made_once_per_plan(design_data, monkeypatch):
+    from tactcad.partlib.array import element
+
     calls = []
-    real = catalogue.element_profile
-    monkeypatch.setattr(catalogue, "element_profile", lambda g: calls.append(g) or real(g))
+    real = element.element_profile
+    monkeypatch.setattr(element, "element_profile", lambda g: calls.append(g) or real(g))
     plan = plan_from_dict(design_data)
     first = catalogue.array_parts(plan)
     made = len(calls)
@@ -37,7 +39,7 @@ def test_array_parts_are_made_once_per_plan(design_data, monkeypatch):
 
 def test_no_writer_reaches_back_into_the_plan_for_an_element():
     offenders = [p.relative_to(SRC).as_posix() for p in SRC.rglob("*.py")
-                 if p.parts[-2] in ("parts", "drawings", "export", "checks")
+                 if p.parts[-2] in ("solids", "array", "drawings", "export", "checks")
                  and re.search(r"distinct_elements\[", p.read_text(encoding="utf-8"))]
     assert not offenders, offenders
 

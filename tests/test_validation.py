@@ -208,7 +208,7 @@ def test_designs_at_their_limits_export_and_check(design_data, tmp_path, overrid
 
     from tactcad.checks.array import run_checks
     from tactcad.export.run import export
-    from tactcad.parts.cache import PartCache
+    from tactcad.solids.cache import PartCache
 
     plan = plan_from_dict(with_overrides(design_data, overrides))
     cache = PartCache(plan)

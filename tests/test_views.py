@@ -50,7 +50,7 @@ def test_chain_stops_at_junctions():
 
 def test_analytic_parts_keep_the_exact_path(plan):
     from tactcad.catalogue.array import array_parts
-    from tactcad.parts.cache import PartCache
+    from tactcad.solids.cache import PartCache
 
     cache = PartCache(plan)
     for spec in array_parts(plan).values():

@@ -1,7 +1,7 @@
 """tactcad: CAD-driven generator for spring-based tactile sensor arrays.
 
 Data flows one way: design file (TOML) -> validated plan (:mod:`tactcad.design.array`)
--> geometry (:mod:`tactcad.parts`) -> exports and checks. Units are mm, N, MPa,
+-> part modules (:mod:`tactcad.partlib`) -> solids (:mod:`tactcad.solids`) -> exports and checks. Units are mm, N, MPa,
 N/mm and s throughout.
 
 The public Python API (:mod:`tactcad.api`) is reachable from here:

@@ -27,7 +27,7 @@ from tactcad.catalogue.array import array_instances, array_parts
 from tactcad.design.array import DEFAULT_DESIGN, Plan, plan_from_dict, read_toml, with_overrides
 from tactcad.errors import DesignErrors
 from tactcad.kernel.objects import BUILD_PART, Align, Mode, PartObject, RotationLike, labelled_part
-from tactcad.parts.cache import PartCache
+from tactcad.solids.cache import PartCache
 
 #: Element parameters -> their key in the design file.
 ELEMENT_KEYS = {

@@ -20,7 +20,7 @@ or sub-assemblies such as the array) joined by
 Joint frames are data of the parts (:mod:`tactcad.catalogue.rigs`, from the
 plan for the array), so placing a scene never builds a part; building a
 scene builds only the parts of its shown groups, once each per level of
-detail (counted in :data:`tactcad.parts.registry.BUILD_COUNTS`). Scene frame: mm,
+detail (counted in :data:`tactcad.solids.build.BUILD_COUNTS`). Scene frame: mm,
 y up (the array frame's convention).
 """
 

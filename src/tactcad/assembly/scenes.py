@@ -25,7 +25,7 @@ from tactcad.errors import SceneError
 from tactcad.geometry.frames import Frame
 from tactcad.kernel.joints import carrier, rigid_joint, slide_joint
 from tactcad.kernel.placement import point as located_point
-from tactcad.parts.cache import PartCache
+from tactcad.solids.cache import PartCache
 
 
 # ---------------------------------------------------------------------------

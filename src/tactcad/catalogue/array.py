@@ -2,33 +2,32 @@
 volume and bounding box (independent estimates the checks compare against),
 and the assembly's instances. No CAD kernel here.
 
-Expected volumes are computed from the plan by elementary formulas (profile
-area x thickness, cylinder and hexagon volumes), never from the solid itself.
+Each part's data is its part module's (:mod:`tactcad.partlib.array`, found
+by the one registry); this module turns them into specs and places the
+parts. Expected volumes are computed from the plan by elementary formulas
+(profile area x thickness, cylinder and hexagon volumes), never from the
+solid itself.
 """
 
 from __future__ import annotations
 
-import colorsys
-import math
 import weakref
 from dataclasses import dataclass, field
 from typing import Any
 
 from tactcad.catalogue.gauges import gauge_body, gauge_placements
-from tactcad.design.array import BoltSpec, Placement, Plan
+from tactcad.design.array import Placement, Plan
+from tactcad.partlib.array.fasteners import bolt_name, bolt_volume, nut_name
+from tactcad.partlib.array.strain_gauge import GAUGE_PART
+from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, Bbox, PartData
+from tactcad.partlib.registry import array_parts_for, array_parts_lib
 from tactcad.vocabulary.process import Method, Process
-from tactcad.geometry.profile import Profile, element_profile, rectangle_profile, u_plate_profile
+from tactcad.geometry.profile import Profile
 
-Bbox = tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax (mm)
-RGB = tuple[float, float, float]
-
-SPACER: RGB = (0.60, 0.64, 0.68)
-ANODISED_BLUE: RGB = (0.25, 0.40, 0.70)
-GAUGE_AMBER: RGB = (0.85, 0.55, 0.15)  # polyimide carrier
-#: Part name of the strain gauge body (one per element).
-GAUGE_PART = "strain_gauge"
-BLACK_OXIDE: RGB = (0.12, 0.12, 0.13)
-ZINC: RGB = (0.45, 0.46, 0.48)
+#: Names the layers above read from here (the part modules hold them).
+__all__ = ["GAUGE_PART", "RGB", "Bbox", "Instance", "Method", "PartSpec", "Process",
+           "array_contacts", "array_instances", "array_parts", "array_spec", "bolt_name",
+           "bolt_volume", "nut_name", "part_material_names"]
 
 
 @dataclass(frozen=True)
@@ -42,7 +41,7 @@ class PartSpec:
             typed by its :class:`Method`.
         material: material name.
         color: RGB in 0 ... 1 for STEP/GLB.
-        builder: key of the builder in :mod:`tactcad.parts.registry`.
+        builder: key of the builder in :func:`tactcad.partlib.registry.builders`.
         expected_volume_mm3: independent volume estimate.
         expected_bbox_mm: designed bounding box in the part's own frame.
         profile: planar profile (sketch plane z = 0) for extruded parts.
@@ -78,11 +77,6 @@ class Instance:
     placement: Placement
 
 
-def _prism_bbox(profile: Profile, thickness: float) -> Bbox:
-    x0, y0, x1, y1 = profile.bbox_mm
-    return (x0, y0, 0.0, x1, y1, thickness)
-
-
 #: id(plan) -> (weak reference to the plan, its array parts): each plan's parts are
 #: made once (every element profile is built), however many writers ask.
 _ARRAY_PARTS: dict[int, tuple[weakref.ref, dict[str, PartSpec]]] = {}
@@ -99,64 +93,24 @@ def array_parts(plan: Plan) -> dict[str, PartSpec]:
 
 
 def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
-    parts: dict[str, PartSpec] = {}
-    mat = plan.material.name
-    own = part_material_names(plan)  # clamp plates and spacers: their own grade
-    for name, g in plan.distinct_elements.items():
-        prof = element_profile(g)
-        parts[name] = PartSpec(
-            name=name, kind="fabricated", process=Process("wire EDM from sheet", Method.SHEET), material=mat,
-            color=_element_shade(g.arm_length_mm), builder="element",
-            expected_volume_mm3=prof.area_mm2 * g.sheet_thickness_mm,
-            expected_bbox_mm=_prism_bbox(prof, g.sheet_thickness_mm),
-            profile=prof, thickness_mm=g.sheet_thickness_mm, geometry=g)
-    s = plan.spacer
-    if plan.spacer_placements:  # a one-column array has no spacer part
-        sp = rectangle_profile(s.length_mm, s.height_mm,
-                               [(h.x_mm, h.y_mm, h.diameter_mm) for h in s.holes])
-        parts["spacer"] = PartSpec(
-            name="spacer", kind="fabricated", process=Process("wire EDM or laser cut from sheet", Method.SHEET),
-            material=own["spacer"], color=SPACER, builder="spacer",
-            expected_volume_mm3=sp.area_mm2 * s.thickness_mm,
-            expected_bbox_mm=_prism_bbox(sp, s.thickness_mm), profile=sp, thickness_mm=s.thickness_mm,
-            geometry=s)
-    c = plan.clamp
-    cp = u_plate_profile(c.half_length_mm, c.window_half_width_mm, c.height_mm, c.bridge_height_mm,
-                         c.window_corner_radius_mm, [(h.x_mm, h.y_mm, h.diameter_mm) for h in c.holes])
-    parts["clamp_plate"] = PartSpec(
-        name="clamp_plate", kind="fabricated", process=Process("milling", Method.PLATE),
-        material=own["clamp_plate"],
-        color=ANODISED_BLUE, builder="clamp_plate",
-        expected_volume_mm3=cp.area_mm2 * c.thickness_mm,
-        expected_bbox_mm=_prism_bbox(cp, c.thickness_mm), profile=cp, thickness_mm=c.thickness_mm,
-        geometry=c)
-    gb = gauge_body(plan)
-    gauge = plan.strength.gauge
-    parts[GAUGE_PART] = PartSpec(
-        name=GAUGE_PART, kind="purchased",
-        process=Process(f"{gauge.description}; grid {gb.grid_length_mm:g} x {gb.grid_width_mm:g} "
-                        f"mm, {gauge.resistance_ohm:g} ohm ({gauge.name}), bonded over the web",
-                        Method.BOUGHT),
-        material=f"{gauge.alloy} foil on polyimide", color=GAUGE_AMBER, builder="gauge",
-        expected_volume_mm3=gb.volume_mm3, expected_bbox_mm=gb.bbox_mm, geometry=gb)
-    b = plan.bolt
-    L = plan.bolt_length_mm
-    rh = b.head_diameter_mm / 2
-    parts[bolt_name(b, L)] = PartSpec(
-        name=bolt_name(b, L), kind="purchased",
-        process=Process(f"ISO 4762 {b.size}x{L:g} socket head cap screw", Method.BOUGHT),
-        material="steel 8.8",
-        color=BLACK_OXIDE, builder="bolt", expected_volume_mm3=bolt_volume(b, L),
-        expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, L), geometry=(b, L))
-    s_af = b.nut_width_across_flats_mm
-    nut_vol = (hexagon_area(s_af) - math.pi * (b.nominal_diameter_mm / 2) ** 2) * b.nut_height_mm
-    rc = s_af / math.sqrt(3)
-    parts[nut_name(b)] = PartSpec(
-        name=nut_name(b), kind="purchased", process=Process(f"ISO 4032 {b.size} hex nut", Method.BOUGHT),
-        material="steel 8",
-        color=ZINC, builder="nut", expected_volume_mm3=nut_vol,
-        expected_bbox_mm=(-rc, -s_af / 2, 0.0, rc, s_af / 2, b.nut_height_mm), geometry=b)
-    return parts
+    """The parts of the array part modules the design uses
+    (:func:`tactcad.partlib.registry.array_parts_for` its tables, in order), as specs."""
+    lib = array_parts_lib()
+    tables = {key: part.section.model_validate(plan.raw[key]) for key, part in lib.items()
+              if part.section is not None and key in plan.raw}
+    context = ArrayContext(plan, part_material_names(plan), gauge_body(plan), tables)
+    return {data.name: array_spec(part, data) for part in array_parts_for(plan.raw)
+            for data in part.specs(context)}
+
+
+def array_spec(part: ArrayPart, data: PartData) -> PartSpec:
+    """The spec of a part an array part module derived (builder
+    :attr:`PartData.builder`, else the module's key)."""
+    return PartSpec(
+        name=data.name, kind=data.kind, process=data.process, material=data.material,
+        color=data.color, builder=data.builder or part.key,
+        expected_volume_mm3=data.expected_volume_mm3, expected_bbox_mm=data.expected_bbox_mm,
+        profile=data.profile, thickness_mm=data.thickness_mm, geometry=data.geometry)
 
 
 def part_material_names(plan: Plan) -> dict[str, str]:
@@ -171,39 +125,6 @@ def part_material_names(plan: Plan) -> dict[str, str]:
         g = material_grade(grade)
         out[part] = plan.material.name if grade == plan.material.grade else (g.family or g.name)
     return out
-
-
-def bolt_name(b: BoltSpec, length_mm: float) -> str:
-    """Part name of a bolt, safe for file names and STEP labels: ``bolt_M2p5x30``."""
-    return f"bolt_{b.safe_name}x" + f"{length_mm:g}".replace(".", "p")
-
-
-def nut_name(b: BoltSpec) -> str:
-    """Part name of a nut: ``nut_M2p5``."""
-    return f"nut_{b.safe_name}"
-
-
-def bolt_volume(b: BoltSpec, length_mm: float) -> float:
-    """Volume (mm^3) of the socket head cap screw envelope of
-    :func:`tactcad.parts.fasteners.build_bolt`: head + shank - half-depth socket."""
-    return (math.pi * (b.head_diameter_mm / 2) ** 2 * b.head_height_mm
-            + math.pi * (b.nominal_diameter_mm / 2) ** 2 * length_mm
-            - hexagon_area(b.socket_across_flats_mm) * b.head_height_mm / 2)
-
-
-def _element_shade(arm_length_mm: float) -> RGB:
-    """A clearly distinct anodising colour per arm length (stiffness class),
-    the same in STEP, GLB and FreeCAD: the hue walks 0.19 of the colour wheel
-    per mm of arm, from violet (4 mm) through pink, orange and green to
-    turquoise (8 mm), away from the clamp plates' blue; deterministic, so a
-    design always shows the same colours."""
-    hue = (0.72 + (arm_length_mm - 4.0) * 0.19) % 1.0
-    return tuple(round(c, 4) for c in colorsys.hsv_to_rgb(hue, 0.65, 0.85))  # type: ignore[return-value]
-
-
-def hexagon_area(across_flats: float) -> float:
-    """Area (mm^2) of a regular hexagon of the given width across flats."""
-    return math.sqrt(3) / 2 * across_flats**2
 
 
 def array_instances(plan: Plan) -> list[Instance]:

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from tactcad.design.array import Plan
 from tactcad.design.bom import bom_settings
 from tactcad.design.readout import readout_of
+from tactcad.partlib.array.strain_gauge import GaugeBody
 
 
 @dataclass(frozen=True)
@@ -85,29 +86,6 @@ def sensor_items(plan: Plan) -> list[SensorItem]:
 CARRIER_END_MM = 0.8
 CARRIER_SIDE_MM = 0.5
 GAUGE_THICKNESS_MM = 0.05
-
-
-@dataclass(frozen=True)
-class GaugeBody:
-    """A foil gauge's body (mm): carrier ``length_mm`` along the arm, ``width_mm``
-    across the sheet, ``thickness_mm``; the active grid ``grid_length_mm`` x
-    ``grid_width_mm`` centred in it. Part frame: centred on x and z, y from 0 (the
-    bonded face) to the thickness."""
-
-    length_mm: float
-    width_mm: float
-    thickness_mm: float
-    grid_length_mm: float
-    grid_width_mm: float
-
-    @property
-    def volume_mm3(self) -> float:
-        return self.length_mm * self.width_mm * self.thickness_mm
-
-    @property
-    def bbox_mm(self) -> tuple[float, float, float, float, float, float]:
-        return (-self.length_mm / 2, 0.0, -self.width_mm / 2, self.length_mm / 2,
-                self.thickness_mm, self.width_mm / 2)
 
 
 def gauge_body(plan: Plan) -> GaugeBody:

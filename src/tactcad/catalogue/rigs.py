@@ -11,14 +11,15 @@ cap screws the parts are fixed with.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Mapping
 
-from tactcad.catalogue.array import RGB, Method, PartSpec, Process, bolt_name, bolt_volume
+from tactcad.catalogue.array import RGB, PartSpec, bolt_name
 from tactcad.design.array import BoltSpec, Plan
 from tactcad.design.rigs import RigDesign
 from tactcad.geometry.frames import Frame, face
-from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.array.fasteners import screw_data
+from tactcad.partlib.base import PartData, Seat
 from tactcad.partlib.registry import rig_parts_lib
 
 
@@ -46,14 +47,11 @@ def level_of(spec: PartSpec) -> str:
 
 
 def _bolt_spec(b: BoltSpec, length_mm: float, color: RGB) -> RigPartSpec:
-    rh = b.head_diameter_mm / 2
-    return RigPartSpec(
-        name=bolt_name(b, length_mm), kind="purchased",
-        process=Process(f"ISO 4762 {b.size}x{length_mm:g} socket head cap screw", Method.BOUGHT),
-        material="steel 8.8",
-        color=color, builder="rig_bolt", expected_volume_mm3=bolt_volume(b, length_mm),
-        expected_bbox_mm=(-rh, -rh, -b.head_height_mm, rh, rh, length_mm),
-        geometry=(b, length_mm), frames=bolt_frames())
+    """A rig part's screw: the array's socket head cap screw
+    (:func:`tactcad.partlib.array.fasteners.screw_data`) under the builder
+    ``rig_bolt``, with its seat frame."""
+    return replace(library_spec(screw_data(b, length_mm, color, "rig_bolt"), ""),
+                   frames=bolt_frames())
 
 
 def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
@@ -65,7 +63,7 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     for key, part in rig_parts_lib().items():
         data = rigs.library[key]
         for one in (data, *data.companions):
-            parts[one.name] = library_spec(part, one)
+            parts[one.name] = library_spec(one, part.builder_key)
         for f in data.fasteners:
             name = bolt_name(f.bolt, f.length_mm)
             if name not in parts:
@@ -73,16 +71,17 @@ def rig_parts(plan: Plan, rigs: RigDesign) -> dict[str, RigPartSpec]:
     return parts
 
 
-def library_spec(part: RigPart, data: PartData) -> RigPartSpec:
+def library_spec(data: PartData, builder: str) -> RigPartSpec:
     """The spec of a part written as one module (:mod:`tactcad.partlib`) or of
     one of its companions: its data, built by its module (builder
-    :attr:`PartData.builder`, else :attr:`RigPart.builder_key`), joint frames
-    ``seat`` (when it has one) and its named frames."""
+    :attr:`PartData.builder`, else ``builder``, the module's
+    :attr:`RigPart.builder_key`), joint frames ``seat`` (when it has one) and
+    its named frames."""
     frames = {"seat": seat_frame(data.seat)} if data.seat is not None else {}
     frames |= {name: seat_frame(seat) for name, seat in data.frames.items()}
     return RigPartSpec(
         name=data.name, kind=data.kind, process=data.process, material=data.material,
-        color=data.color, builder=data.builder or part.builder_key,
+        color=data.color, builder=data.builder or builder,
         expected_volume_mm3=data.expected_volume_mm3,
         expected_bbox_mm=data.expected_bbox_mm, geometry=data.geometry, frames=frames,
         attributes=data.attributes)
@@ -94,7 +93,7 @@ def seat_frame(seat: Seat) -> Frame:
 
 
 def nut_frames() -> dict[str, Frame]:
-    """Joint frames of the ISO 4032 nut of :func:`tactcad.parts.fasteners.build_nut`."""
+    """Joint frames of the ISO 4032 nut of :func:`tactcad.partlib.array.fasteners.build_nut`."""
     return {"seat": face((0, 0, 0), (0, 0, -1), (1, 0, 0))}
 
 

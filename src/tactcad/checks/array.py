@@ -18,7 +18,7 @@ from tactcad.checks.solids import check_solid
 from tactcad.checks.step import check_step
 from tactcad.design.array import Plan
 from tactcad.catalogue.files import ARRAY_STEP, part_step_name
-from tactcad.parts.cache import PartCache
+from tactcad.solids.cache import PartCache
 
 
 def run_checks(plan: Plan, out_dir: str | Path, cache: PartCache | None = None,

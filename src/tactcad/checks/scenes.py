@@ -19,7 +19,7 @@ from tactcad.checks.step import check_step
 from tactcad.design.project import Project
 from tactcad.export.glb import read_glb
 from tactcad.catalogue.files import scene_glb_name, scene_step_name
-from tactcad.parts.cache import PartCache
+from tactcad.solids.cache import PartCache
 
 
 def placed_shapes(scene: Scene, solids: Mapping[str, Any]) -> list[Placed]:

@@ -12,7 +12,7 @@ import trimesh
 from tactcad.catalogue.array import PartSpec
 from tactcad.kernel.inspect import bbox_tuple, free_edge_count
 from tactcad.kernel.shapes import Shape
-from tactcad.parts.mesh import tessellate
+from tactcad.solids.mesh import tessellate
 from tactcad.checks.result import CheckResult
 
 VOLUME_RTOL = 1e-6

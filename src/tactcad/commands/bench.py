@@ -342,7 +342,7 @@ def _bench_interference(project) -> None:
     from tactcad.assembly.rigs import scene_names
     from tactcad.assembly.scenes import build_scene
     from tactcad.checks.scenes import placed_shapes
-    from tactcad.parts.cache import PartCache
+    from tactcad.solids.cache import PartCache
 
     cache = PartCache(project.plan)
     largest = None

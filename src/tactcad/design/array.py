@@ -5,6 +5,12 @@ checks and the stiffness estimators. It holds the design values, the derived
 dimensions (each with the reason it has that value) and the assumptions the
 design file declares. Nothing here imports the CAD kernel.
 
+The array's parts are modules of :mod:`tactcad.partlib.array` (the element's
+and the clamp's tables, each part's dimensions, spec, builder and drawing);
+their derivation stays here, one coupled derivation of the elements, the
+spacer, the clamp plates and the bolt pattern, because the part modules sit
+below this layer (README, "Layout") and read the plan it makes.
+
 Units: mm, N, MPa throughout. Frames:
 
 * element frame: x along the arm (0 = back face of the clamped base, tip at
@@ -23,7 +29,9 @@ from importlib import resources
 from pathlib import Path
 from typing import Any, Mapping
 
-from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Name, Problems, Section, Text, choice,
+from pydantic import create_model
+
+from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Name, Problems, Section, Text,
                                        content_hash, fmt, integer, listing, number, read_assumptions,
                                        read_toml, validate)
 from tactcad.vocabulary.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
@@ -35,6 +43,15 @@ from tactcad.design.requirements import RequirementsSection, check_requirements
 from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
 from tactcad.vocabulary.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
+# the array's parts: their tables and dimensions (the derivation below couples them);
+# the design domain's ranges are read from here too
+from tactcad.partlib.array.clamp_plate import ClampPlateGeometry, ClampSection
+from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN,  # noqa: F401
+                                           NOTCH_RADIUS_MAX_MM, WEB_RANGE_MM, ElementGeometry,
+                                           ElementSection)
+from tactcad.partlib.array.prism import Hole
+from tactcad.partlib.array.spacer import SpacerGeometry
+from tactcad.partlib.registry import array_parts_lib
 
 #: The example sensor projects shipped with tactcad, one folder each (the
 #: source tree's ``hardware/``, installed as package data ``tactcad/examples``).
@@ -43,13 +60,6 @@ EXAMPLES = Path(str(resources.files("tactcad"))) / "examples"
 DEFAULT_DESIGN = EXAMPLES / "macro_array" / "macro_array.toml"
 
 
-# Design domain: the range over which the closed-form stiffness correction is
-# fitted to fem3d (data/stiffness_correction.json; web 0.05-1 mm, arm 2-20 mm,
-# sheet 0.5-10 mm). The plan refuses designs outside it rather than
-# extrapolate silently.
-WEB_RANGE_MM = (0.05, 1.0)
-ARM_RANGE_MM = (2.0, 20.0)
-NOTCH_RADIUS_MAX_MM = 2.0
 MIN_LIGAMENT_MM = 1.0  # material left around a bolt hole
 #: Thinnest spacer plate (pitch - sheet) the shop cuts and handles flat, mm.
 MIN_SPACER_MM = 0.2
@@ -65,8 +75,6 @@ MIN_TIP_WALL_MM = 0.1
 #: Shortest base below the arm underside, mm (room for the clamp bolts and a gauge pad).
 MIN_BASE_BELOW_ARM_MM = 2.0
 MAX_COLUMNS = 12
-_DOMAIN = "the range over which the closed-form correction is fitted to fem3d"
-
 
 
 # ---------------------------------------------------------------------------
@@ -112,90 +120,6 @@ class EdmRules:
 
 
 @dataclass(frozen=True)
-class Hole:
-    """A round through hole in a part's sketch plane (mm)."""
-
-    x_mm: float
-    y_mm: float
-    diameter_mm: float
-
-
-@dataclass(frozen=True)
-class ElementGeometry:
-    """One distinct wire-cut flexure profile (element frame, mm).
-
-    Profile: a clamped base block, a single-sided circular notch hinge at the
-    base's upper front corner (flat top face over the web carries the strain
-    gauge), a measuring arm of height ``arm_height_mm`` and a tip whose top
-    face is the 2 x 3 mm contact face. ``arm_length_mm`` (paper: flexing arm
-    length) is the lever from the notch centre to the centre of the contact
-    face.
-    """
-
-    arm_length_mm: float
-    web_thickness_mm: float
-    notch_radius_mm: float
-    tip_width_mm: float
-    tip_height_mm: float
-    arm_height_mm: float
-    base_height_mm: float
-    overall_length_mm: float
-    inside_corner_radius_mm: float
-    sheet_thickness_mm: float
-    web_tolerance_mm: float
-    bolt_holes: tuple[Hole, ...]
-    start_hole_diameter_mm: float
-
-    @property
-    def part_name(self) -> str:
-        """Distinct part name, e.g. ``element_a4mm`` or ``element_a4p5mm``."""
-        return "element_a" + f"{self.arm_length_mm:g}".replace(".", "p") + "mm"
-
-    @property
-    def tip_centre_x_mm(self) -> float:
-        return self.overall_length_mm - self.tip_width_mm / 2
-
-    @property
-    def hinge_x_mm(self) -> float:
-        """x of the notch centre, i.e. the thinnest section of the web."""
-        return self.tip_centre_x_mm - self.arm_length_mm
-
-    @property
-    def notch_centre_y_mm(self) -> float:
-        return self.base_height_mm - self.web_thickness_mm - self.notch_radius_mm
-
-    @property
-    def base_length_mm(self) -> float:
-        """Length of the clamped base block (x from 0 to the notch's back wall)."""
-        return self.hinge_x_mm - self.notch_radius_mm
-
-    @property
-    def arm_underside_y_mm(self) -> float:
-        return self.base_height_mm - self.arm_height_mm
-
-    @property
-    def tip_top_y_mm(self) -> float:
-        return self.base_height_mm + self.tip_height_mm
-
-    @property
-    def web_centre_mm(self) -> tuple[float, float]:
-        """(x, y) of the web's middle (mm): mid-thickness over the notch centre,
-        where the gauge's strain and the hinge's rotation are; the one place
-        the web's position is computed (DXF lead-in keep-out, drawing detail)."""
-        return (self.hinge_x_mm, self.base_height_mm - self.web_thickness_mm / 2)
-
-    @property
-    def contact_centre_mm(self) -> tuple[float, float]:
-        """(x, y) of the middle of the tip's contact face (mm), the tip frame's origin."""
-        return (self.tip_centre_x_mm, self.tip_top_y_mm)
-
-    @property
-    def contact_face_mm(self) -> tuple[float, float]:
-        """(width along x, depth along z) of the tip contact face."""
-        return (self.tip_width_mm, self.sheet_thickness_mm)
-
-
-@dataclass(frozen=True)
 class Placement:
     """Rigid placement of a part into the array frame, without the CAD kernel.
 
@@ -227,40 +151,6 @@ class ElementSlot:
     def tip_centre_world_mm(self) -> tuple[float, float, float]:
         g = self.geometry
         return self.placement.apply(g.tip_centre_x_mm, g.tip_top_y_mm, g.sheet_thickness_mm / 2)
-
-
-@dataclass(frozen=True)
-class DrilledPlate:
-    """A flat plate drilled through (mm): its through holes, keyword-only so
-    each plate lists its own outline and thickness first (and keeps its
-    constructor's order)."""
-
-    holes: tuple[Hole, ...] = field(kw_only=True)
-
-
-@dataclass(frozen=True)
-class SpacerGeometry(DrilledPlate):
-    """Spacer plate between neighbouring elements of a row (mm); sets the pitch."""
-
-    length_mm: float
-    height_mm: float
-    thickness_mm: float
-
-
-@dataclass(frozen=True)
-class ClampPlateGeometry(DrilledPlate):
-    """U-shaped clamp plate (array frame x/y, thickness along z; mm).
-
-    Two legs press the two rows' bases; the bridge below the arms ties the
-    rows together and carries the mounting holes.
-    """
-
-    half_length_mm: float  # |x| of the outer edges
-    window_half_width_mm: float  # |x| of the legs' inner edges
-    height_mm: float
-    bridge_height_mm: float
-    thickness_mm: float
-    window_corner_radius_mm: float
 
 
 @dataclass(frozen=True)
@@ -354,31 +244,9 @@ class ArraySection(Section):
     pitch_mm: number(0.0, 20.0, lo_open=True)
 
 
-class ElementSection(Section):
-    web_thickness_mm: number(*WEB_RANGE_MM, why=_DOMAIN)
-    notch_radius_mm: number(0.0, NOTCH_RADIUS_MAX_MM, lo_open=True)
-    tip_width_mm: number(0.5, 20.0)
-    tip_height_mm: number(0.3, 5.0)
-    arm_height_mm: number(0.0, 5.0, lo_open=True)
-    base_height_mm: number(0.0, 30.0, lo_open=True)
-    overall_length_mm: number(10.0, 60.0)
-    inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
-    web_tolerance_mm: number(0.0, 0.1) = None  # or [tolerances] web_thickness_mm
-
-
 class ArmsSection(Section):
-    lengths_mm: listing(number(*ARM_RANGE_MM, why=_DOMAIN), 2, 2 * MAX_COLUMNS,
+    lengths_mm: listing(number(*ARM_RANGE_MM, why=FITTED_DOMAIN), 2, 2 * MAX_COLUMNS,
                         "a list of rows x columns lengths (mm)")
-
-
-class ClampSection(Section):
-    bolt_size: choice(BOLTS, "ISO 4762 socket head cap screws of the catalogue")
-    bolt_spacing_mm: number(0.0, 40.0, lo_open=True)
-    plate_thickness_mm: number(1.0, 10.0)
-    bridge_height_mm: number(1.0, 30.0)
-    arm_clearance_mm: number(0.2, 3.0)
-    material: Text = None  # library grade of the clamp plates (tactcad.design.bom)
-    spacer_material: Text = None  # library grade of the spacers
 
 
 class EdmSection(Section):
@@ -395,7 +263,7 @@ class FilesSection(Section):
     scenes: Text = None
 
 
-class DesignFile(Section):
+class DesignTables(Section):
     """``macro_array.toml``: every section required, ``[assumptions]`` optional."""
 
     design: DesignSection
@@ -413,6 +281,18 @@ class DesignFile(Section):
     bom: BomSection = None
     files: FilesSection = None
     assumptions: dict[str, Any] = {}
+
+
+def _part_tables() -> dict[str, tuple[Any, Any]]:
+    """The tables array part modules read (:attr:`ArrayPart.section`), each optional."""
+    return {key: (part.section, None) for key, part in array_parts_lib().items()
+            if part.section is not None}
+
+
+#: The design file's schema: :class:`DesignTables` and the optional table of
+#: each array part module that reads one (:mod:`tactcad.partlib.array`).
+DesignFile = create_model("DesignFile", __base__=DesignTables, __doc__=DesignTables.__doc__,
+                          **_part_tables())
 
 
 # ---------------------------------------------------------------------------

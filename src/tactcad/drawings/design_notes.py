@@ -1,6 +1,7 @@
 """Drawing notes that depend on the design's requirements and on whether the
 design cites the paper (``requirements.source``): the full-scale force with
-its binding limit, the web-tolerance note and the element numbering.
+its binding limit, the web-tolerance note, where the strain gauge goes and
+the element numbering.
 
 A design that does not cite the paper gets no paper text, load or sample.
 Units: mm, N, N/mm.
@@ -11,7 +12,10 @@ from __future__ import annotations
 from functools import lru_cache
 
 from tactcad.design.array import ElementGeometry, Plan
+from tactcad.design.readout import readout_of
 from tactcad.design.requirements import cites_paper
+from tactcad.drawings.drawing import web_text
+from tactcad.drawings.sheet import fmt_mm
 
 
 @lru_cache(maxsize=8)
@@ -51,6 +55,25 @@ def web_tolerance_note(plan: Plan, g: ElementGeometry, web: str, up: float, dn: 
         text += (f"The paper's as-built elements (Table 1) of equal {a:g} mm arm measured "
                  f"{k0:.2f} and {k1:.2f} N/mm (x{ratio:.2f}). ")
     return text + "Measure the web of every part and record it."
+
+
+def element_web_note(plan: Plan, g: ElementGeometry) -> str:
+    """The web-tolerance note of element ``g``: its web's stiffness change by
+    the thin-hinge law (:func:`tactcad.mechanics.closed_form.web_tolerance_stiffness_change`)
+    and the paper's Table 1 spread (:mod:`tactcad.paper.data`)."""
+    from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
+    from tactcad.paper.data import largest_equal_arm_spread
+
+    up, dn = web_tolerance_stiffness_change(g.web_thickness_mm, g.web_tolerance_mm)
+    return web_tolerance_note(plan, g, web_text(g), up, dn, largest_equal_arm_spread())
+
+
+def gauge_note(plan: Plan, g: ElementGeometry) -> str:
+    """Where the strain gauge goes: its grid (``[readout]``) centred over the web."""
+    ro = readout_of(plan.raw, plan.strength.gauge)
+    return (f"A strain gauge (grid {fmt_mm(ro.grid_length_mm)} x {fmt_mm(ro.grid_width_mm)}, "
+            f"{ro.gauge_resistance_ohm:g} ohm) is bonded on the flat top face, its grid centred "
+            f"over the web {fmt_mm(g.hinge_x_mm)} from the back face and across the sheet.")
 
 
 def numbering_note(plan: Plan) -> str:

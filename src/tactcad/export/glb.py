@@ -2,7 +2,7 @@
 
 Written byte by byte (no time stamps, fixed key order, fixed float
 formatting), so the same scene writes the same bytes. Meshes are in mm (the
-run's part meshes, :meth:`tactcad.parts.cache.PartCache.mesh`) under a root
+run's part meshes, :meth:`tactcad.solids.cache.PartCache.mesh`) under a root
 node that scales to metres (glTF's unit) and keeps the scene's y axis up
 (glTF's up axis); every instance is a node named after it, carrying its part
 name, group and attributes (such as a sample's stiffness) in ``extras``.

@@ -56,8 +56,8 @@ class Run:
 
     @cached_property
     def parts(self):
-        """The run's :class:`~tactcad.parts.cache.PartCache` (imports the CAD kernel)."""
-        from tactcad.parts.cache import PartCache
+        """The run's :class:`~tactcad.solids.cache.PartCache` (imports the CAD kernel)."""
+        from tactcad.solids.cache import PartCache
 
         return PartCache(self.plan)
 

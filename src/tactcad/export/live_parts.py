@@ -6,11 +6,11 @@ from typing import Collection, MutableMapping
 
 from tactcad.design.array import Plan
 from tactcad.export.job import solid_key
-from tactcad.parts.cache import PartCache
+from tactcad.solids.cache import PartCache
 
 
 class LiveParts(PartCache):
-    """A :class:`~tactcad.parts.cache.PartCache` whose solids and meshes outlive
+    """A :class:`~tactcad.solids.cache.PartCache` whose solids and meshes outlive
     one plan: keyed by the part spec's content (as the store keys a part's STEP
     file), so an edit rebuilds only the parts it changed."""
 
@@ -34,7 +34,7 @@ class LiveParts(PartCache):
     def mesh(self, spec):
         key = self._key(spec)
         if key not in self._meshes_by_key:
-            from tactcad.parts.mesh import tessellate
+            from tactcad.solids.mesh import tessellate
 
             self._meshes_by_key[key] = tessellate(self.solid(spec))
         return self._meshes_by_key[key]

@@ -52,7 +52,7 @@ def mesh_instances(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], ins
 
     Args:
         part_meshes: part name -> (vertices (n, 3) mm, triangles (m, 3) int),
-            part frame, as :meth:`tactcad.parts.cache.PartCache.mesh` gives them.
+            part frame, as :meth:`tactcad.solids.cache.PartCache.mesh` gives them.
         instances: :class:`tactcad.catalogue.array.Instance` objects.
 
     Returns:

@@ -3,7 +3,7 @@
 A run is a list of jobs (:mod:`tactcad.export.jobs`): one STEP file, one DXF,
 one scene, one drawing ... each with a content key. A job found in the store
 (:mod:`tactcad.store`) is copied from it; any other job runs, sharing the
-run's one :class:`~tactcad.parts.cache.PartCache`, so each distinct part is
+run's one :class:`~tactcad.solids.cache.PartCache`, so each distinct part is
 built at most once per run, and only if some job needs it. The CAD kernel is
 imported only then: a run with nothing to rebuild never loads it.
 
@@ -294,7 +294,7 @@ def export(project: Project, out_dir: str | Path, log: Log = print,
         project: the validated :class:`~tactcad.design.project.Project`; no
             design, rigs or scenes file is read again.
         store: finished jobs to reuse (``Store(None)`` or ``None``: build everything).
-        parts: a :class:`~tactcad.parts.cache.PartCache` of ``project.plan`` to share
+        parts: a :class:`~tactcad.solids.cache.PartCache` of ``project.plan`` to share
             (default: the run makes its own, only if a job needs a solid).
         dxf_version: ``R2010`` (default) or ``R12`` for the shop DXF files.
         select: the jobs to run out of every job of the run (default: all),

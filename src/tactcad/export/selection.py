@@ -113,7 +113,7 @@ class ReportingParts:
 
     def _real(self):
         if self._cache is None:
-            from tactcad.parts.cache import PartCache
+            from tactcad.solids.cache import PartCache
 
             self._cache = PartCache(self.plan)
         return self._cache

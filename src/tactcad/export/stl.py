@@ -4,14 +4,14 @@ sample mould or a stand-in part, or for a viewer that reads no STEP.
 
 Each file is the run's triangle mesh of the part in its own frame (the mesh
 the scenes and pictures use: chordal tolerance
-:data:`tactcad.parts.mesh.MESH_TOLERANCE_MM`), outward winding, as trimesh
+:data:`tactcad.solids.mesh.MESH_TOLERANCE_MM`), outward winding, as trimesh
 writes binary STL: the same part writes the same bytes.
 """
 
 from __future__ import annotations
 
 from tactcad.export.job import Job, Run
-from tactcad.parts.mesh import MESH_TOLERANCE_MM
+from tactcad.solids.mesh import MESH_TOLERANCE_MM
 from tactcad.store import content_key
 
 STL_FOLDER = "stl"

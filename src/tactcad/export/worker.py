@@ -49,7 +49,7 @@ _KEPT: dict[str, dict] = {"solids": {}, "meshes": {}}
 _LOGGED: list[str] = []
 
 #: Modules the worker imports while it waits for its first job (the kernel and the drawings).
-PRELOAD = ("tactcad.parts.registry", "tactcad.drawings.compose", "tactcad.drawings.pdf",
+PRELOAD = ("tactcad.solids.build", "tactcad.drawings.compose", "tactcad.drawings.pdf",
            "tactcad.export.render")
 
 

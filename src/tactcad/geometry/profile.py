@@ -1,6 +1,6 @@
 r"""The wire-cut flexure profile as exact lines and arcs (no CAD kernel).
 
-This one description feeds the solid (:mod:`tactcad.parts.element`), the
+This one description feeds the solid (:mod:`tactcad.partlib.array.element`), the
 wire-EDM DXF (:mod:`tactcad.export.dxf`), the FEM meshes and the closed-form
 web function, so all of them see the same contour. Element frame, mm (see
 :mod:`tactcad.design.array`).
@@ -20,9 +20,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterable, Sequence
+from typing import TYPE_CHECKING, Iterable, Sequence
 
-from tactcad.design.array import ElementGeometry
+if TYPE_CHECKING:
+    from tactcad.partlib.array.element import ElementGeometry
 
 Point = tuple[float, float]
 

@@ -1,7 +1,7 @@
 """Modelling verbs: primitive solids by their extents (mm), prisms of planar
 profiles and faces, and booleans that must leave one solid.
 
-The part builders (:mod:`tactcad.partlib`, :mod:`tactcad.parts`) are written
+The part builders (:mod:`tactcad.partlib`, :mod:`tactcad.partlib.array`) are written
 in these words only. A solid carries its placement in its geometry, never as
 a top-level location: a located shape is written to STEP as an extra,
 unnamed product.

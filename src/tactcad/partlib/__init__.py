@@ -1,6 +1,7 @@
-"""Rig parts written one module each (schema table, derivation with reasons,
-spec with its process, seat, drawing record, builder): the form is
-:mod:`tactcad.partlib.base`, the registry :mod:`tactcad.partlib.registry`.
-The rig parts written before this form stay in ``design/rigs.py``,
-``catalogue/rigs.py``, ``parts/``, ``assembly/rigs.py`` and
-``drawings/part_sets.py``; both forms are read side by side."""
+"""Every part written one module each: the rig parts here (schema table,
+derivation with reasons, spec with its process, seat, drawing record,
+builder) and the clamped array's parts in :mod:`tactcad.partlib.array`
+(tables, dimensions, spec, drawing record, builder; their coupled derivation
+is :mod:`tactcad.design.array`'s). The forms are :mod:`tactcad.partlib.base`
+(:class:`~tactcad.partlib.base.RigPart`, :class:`~tactcad.partlib.base.ArrayPart`),
+the one registry of parts, builders and drawings :mod:`tactcad.partlib.registry`."""

@@ -1,6 +1,6 @@
-"""The form of a part written as one module (:mod:`tactcad.partlib`).
+"""The forms of a part written as one module (:mod:`tactcad.partlib`).
 
-A part module holds everything about one rig part and exposes it as one
+A rig part module holds everything about one rig part and exposes it as one
 :class:`RigPart` named ``PART``:
 
 * ``section``: its ``rigs.toml`` table (a :class:`~tactcad.vocabulary.schema.Section`;
@@ -29,9 +29,14 @@ A part module holds everything about one rig part and exposes it as one
 
 The layers above read the registry (:func:`tactcad.partlib.registry.rig_parts_lib`):
 ``design.rigs`` adds the tables to the rigs file schema and derives each part,
-``catalogue.rigs`` turns :class:`PartData` into a spec, ``parts.registry``
+``catalogue.rigs`` turns :class:`PartData` into a spec, ``solids.build``
 runs ``build``, ``assembly.rigs`` places it, ``drawings.part_sets`` draws it.
-Units: mm.
+
+The array's parts (:mod:`tactcad.partlib.array`) are written in the same
+manner as :class:`ArrayPart`: builder, drawing and spec data under one key,
+their dimensions read from the plan of the array's one coupled derivation
+(:mod:`tactcad.design.array`), which ``specs`` turns into :class:`PartData`
+(``catalogue.array`` makes the specs). Units: mm.
 """
 
 from __future__ import annotations
@@ -88,6 +93,9 @@ class PartData:
         companions: further parts the module makes, each a spec of its own
             (the Z stage's carriage beside its body, the rail's block ...).
         fasteners: the screws the part is fixed with (:class:`Fastener`).
+        profile: the planar profile of an extruded part (its DXF and drawing
+            read it), None for any other.
+        thickness_mm: the extruded part's thickness (mm), 0 for any other.
     """
 
     name: str
@@ -106,6 +114,8 @@ class PartData:
     builder: str = ""
     companions: tuple["PartData", ...] = ()
     fasteners: tuple[Fastener, ...] = ()
+    profile: Any = None  # tactcad.geometry.profile.Profile of a prism (sketch plane z = 0)
+    thickness_mm: float = 0.0  # the prism's extrusion along +z
 
 
 @dataclass(frozen=True)
@@ -128,6 +138,14 @@ class DrawingRecord:
             process note, or None.
         view_from: fixed view directions (the front view's direction, its
             up), or None (by the bounding box).
+        notes_of: ``(drawing, pen) -> [sentence]``, every note before the
+            general tolerance note, in place of ``notes``, the process note
+            and ``notes_after`` (a note that reads the plan: ``drawing.plan``),
+            or None.
+        detail: ``geometry -> ((x, y), radius)`` of a detail view in model mm, or None.
+        plan_values: ``(plan, spec, pen) -> tuple`` of the plan values the
+            notes and dimensions print beyond the spec (part of the drawing's
+            hash), or None (none).
     """
 
     notes: tuple[str, ...] = ()
@@ -136,10 +154,22 @@ class DrawingRecord:
     section: Callable[[Any, Any, Any], None] | None = None
     notes_after: Callable[[Any, Any], list[str]] | None = None
     view_from: tuple[Vec3, Vec3] | None = None
+    notes_of: Callable[[Any, Any], list[str]] | None = None
+    detail: Callable[[Any], tuple] | None = None
+    plan_values: Callable[[Any, Any, Any], tuple] | None = None
+
+
+class Builds:
+    """What every part module's part has: its own builder under
+    :attr:`builder_key` and its companions' builders."""
+
+    def builders(self) -> dict[str, Callable[[Any], Any]]:
+        """Every builder of the module by builder key: its own and its companions'."""
+        return {self.builder_key: self.build, **self.companion_builders}
 
 
 @dataclass(frozen=True)
-class RigPart:
+class RigPart(Builds):
     """One rig part written as one module (see the module doc).
 
     Attributes:
@@ -177,14 +207,75 @@ class RigPart:
         """The key of :attr:`build` among the builders (``PartSpec.builder``)."""
         return self.builder or self.key
 
-    def builders(self) -> dict[str, Callable[[Any], Any]]:
-        """Every builder of the module by builder key: its own and its companions'."""
-        return {self.builder_key: self.build, **self.companion_builders}
-
     @property
     def table_required(self) -> bool:
         """Whether ``rigs.toml`` must give the table (a field without default)."""
         return any(f.is_required() for f in self.section.model_fields.values())
+
+
+@dataclass(frozen=True)
+class ArrayContext:
+    """What an array part module's ``specs`` reads: the plan the array's one
+    coupled derivation made (:func:`tactcad.design.array.plan_from_model`)
+    and the values derived above this layer.
+
+    Attributes:
+        plan: the array's :class:`tactcad.design.array.Plan`.
+        materials: material name of the clamp plates and spacers by part key
+            (``clamp_plate``, ``spacer``; :func:`tactcad.catalogue.array.part_material_names`).
+        gauge: the strain gauge's body (:class:`tactcad.partlib.array.strain_gauge.GaugeBody`).
+        tables: the validated design-file table of each module that has one
+            (:attr:`ArrayPart.section`), by key, for the tables the design gives.
+    """
+
+    plan: Any
+    materials: Mapping[str, str]
+    gauge: Any
+    tables: Mapping[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class ArrayPart(Builds):
+    """One part family of the clamped array written as one module
+    (:mod:`tactcad.partlib.array`): the element, the spacer, the clamp plate,
+    the strain gauge's body, the bolts and nuts.
+
+    The array's dimensions are one coupled derivation (element, clamp and bolt
+    pattern) in :mod:`tactcad.design.array`, which sits above this layer; a
+    module reads its part's dimensions from the plan through ``specs``.
+
+    Attributes:
+        key: the builder key of :attr:`build` (``PartSpec.builder``) and the
+            registry key.
+        build: geometry -> solid in the part frame (kernel modelling verbs).
+        specs: ``ArrayContext -> (PartData, ...)``, the family's distinct
+            parts (one per arm length for the element, none for a spacer of a
+            one-column array).
+        drawing: a made part's :class:`DrawingRecord`, None for a bought one.
+        order: its place in the array's part list (smaller first; ties by key).
+        companion_builders: builder key -> builder of the specs the module
+            makes under another key (:attr:`PartData.builder`).
+        section: the design file's table ``[key]`` the module reads (every
+            field with its range; the table may be left out), or None.
+        replaces: a variant's family: the key of the module it stands in for
+            when the design gives the variant's table (its parts keep the
+            family's part names, so the array places them alike); a variant
+            whose table is left out makes no part. Empty: no variant.
+    """
+
+    key: str
+    build: Callable[[Any], Any]
+    specs: Callable[[ArrayContext], tuple[PartData, ...]]
+    drawing: DrawingRecord | None = None
+    order: int = 1000
+    companion_builders: Mapping[str, Callable[[Any], Any]] = field(default_factory=dict)
+    section: type[Section] | None = None
+    replaces: str = ""
+
+    @property
+    def builder_key(self) -> str:
+        """The key of :attr:`build` among the builders: :attr:`key`."""
+        return self.key
 
 
 def table_values(section: type[Section], **extra: Any) -> type:

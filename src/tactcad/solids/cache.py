@@ -8,8 +8,8 @@ from typing import Any
 
 from tactcad.catalogue.array import PartSpec
 from tactcad.design.array import Plan
-from tactcad.parts.mesh import tessellate
-from tactcad.parts.registry import build_part
+from tactcad.solids.mesh import tessellate
+from tactcad.solids.build import build_part
 
 
 class PartCache:
@@ -29,13 +29,13 @@ class PartCache:
     def solid(self, spec: PartSpec):
         """The part's solid, built on first request."""
         if spec.name not in self._solids:
-            self._solids[spec.name] = build_part(self.plan, spec)
+            self._solids[spec.name] = build_part(spec)
             self.builds += 1
         return self._solids[spec.name]
 
     def mesh(self, spec: PartSpec):
         """The part's triangle mesh (vertices (n, 3) float64 mm, triangles (m, 3)
-        int64) at :data:`tactcad.parts.mesh.MESH_TOLERANCE_MM`, made once."""
+        int64) at :data:`tactcad.solids.mesh.MESH_TOLERANCE_MM`, made once."""
         if spec.name not in self._meshes:
             self._meshes[spec.name] = tessellate(self.solid(spec))
         return self._meshes[spec.name]
