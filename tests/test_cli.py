@@ -19,7 +19,8 @@ from tactcad.commands import parse_override, plan_from_args, progress_from_args
 from tactcad.errors import DesignError
 from tactcad.export.job import Job
 from tactcad.export.kinds import full_export_kinds
-from tactcad.export.selection import (job_kind, job_part, parse_only, select_jobs,
+from tactcad.export.kinds import parse_only
+from tactcad.export.selection import (job_kind, job_part, select_jobs,
                                       with_progress)
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -13,7 +13,8 @@ from tactcad.design.array import DEFAULT_DESIGN
 from tactcad.export import kinds
 from tactcad.export.job import Job, Run
 from tactcad.export.jobs import all_jobs
-from tactcad.export.selection import job_kind, parse_only
+from tactcad.export.kinds import parse_only
+from tactcad.export.selection import job_kind
 from tactcad.store import content_key
 
 ARMS_CSV = "points/arms.csv"

@@ -262,7 +262,8 @@ class Project:
             OSError: the files cannot be written; ``out`` is left as it was.
         """
         from tactcad.export.run import export
-        from tactcad.export.selection import parse_only, partial_record, select_jobs, with_progress
+        from tactcad.export.kinds import parse_only
+        from tactcad.export.selection import partial_record, select_jobs, with_progress
 
         kinds = parse_only([only] if isinstance(only, str) else only)
         names = [part] if isinstance(part, str) else list(part or ())

@@ -7,7 +7,7 @@ import json
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, project_from_args,
                               progress_from_args, store_from_args)
-from tactcad.export.kinds import EXPORT_KINDS, kinds_help
+from tactcad.export.kinds import EXPORT_KINDS, kinds_help, parse_only
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -39,15 +39,18 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from tactcad.errors import DesignError
-    from tactcad.export.run import export, export_scenes
-    from tactcad.export.selection import (ReportingParts, parse_only, partial_record,
-                                          select_jobs, with_progress)
 
-    project = project_from_args(args)  # validation first: a bad design writes nothing
-    plan = project.plan
+    # the options first, before the design and the writers are loaded: a refusal is quick
     only, parts = parse_only(args.only), list(args.part or ())
     if args.scene and (only or parts):
         raise DesignError("--scene", args.scene, "alone, without --only or --part")
+
+    from tactcad.export.run import export, export_scenes
+    from tactcad.export.selection import (ReportingParts, partial_record, select_jobs,
+                                          with_progress)
+
+    project = project_from_args(args)  # validation next: a bad design writes nothing
+    plan = project.plan
     report = progress_from_args(args)
     store = store_from_args(args)
     cache = ReportingParts(plan, report)

@@ -53,15 +53,18 @@ def watched_files(design: Path) -> list[Path]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.commands import load_from_args
     from tactcad.errors import DesignError
+
+    # the option first, before the exporter is loaded: a refusal is quick
+    if not (args.port == 0 or 1024 <= args.port <= 65535):
+        raise DesignError("--port", args.port, "1024 ... 65535, or 0 for any free port")
+
+    from tactcad.commands import load_from_args
     from tactcad.export.freecad_review import keep_freecad
     from tactcad.export.live import LiveState, Loop, changes, serve, serve_apart
     from tactcad.export.run import check_out_dir
     from tactcad.export.worker import session_worker
 
-    if not (args.port == 0 or 1024 <= args.port <= 65535):
-        raise DesignError("--port", args.port, "1024 ... 65535, or 0 for any free port")
     check_out_dir(args.out)  # refused before anything starts
 
     def load():  # the design, rigs and scenes files validated once per change

@@ -15,7 +15,9 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Iterable
+
+from tactcad.errors import DesignError
 
 if TYPE_CHECKING:
     from tactcad.export.job import Job, Run
@@ -99,3 +101,18 @@ def kinds_help() -> str:
     """``step (step/<part>.step, ...), dxf (...), ...`` for ``--help``."""
     return "; ".join(f"{k.name} ({k.writes}{'' if k.in_full_export else ', only when asked'})"
                      for k in EXPORT_KINDS.values())
+
+
+def parse_only(values: Iterable[str] | None) -> list[str]:
+    """``--only`` values (each a comma-separated list) -> kinds in
+    :data:`~tactcad.export.kinds.EXPORT_KINDS` order.
+
+    Raises:
+        DesignError: an unknown kind, naming the allowed ones.
+    """
+    asked = [v.strip() for text in values or () for v in text.split(",") if v.strip()]
+    for kind in asked:
+        if kind not in EXPORT_KINDS:
+            raise DesignError("--only", kind, "one or more of " + ", ".join(EXPORT_KINDS),
+                              "comma-separated")
+    return [kind for kind in EXPORT_KINDS if kind in asked]

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
-from typing import Callable, Iterable, Sequence
+from typing import Callable, Sequence
 
 from tactcad.errors import DesignError
 from tactcad.export.job import Job, Run
@@ -31,21 +31,6 @@ def job_part(name: str) -> str | None:
     prefix, _, rest = name.partition(":")
     part_prefixes = {k.part_prefix for k in EXPORT_KINDS.values() if k.part_prefix}
     return rest if prefix in part_prefixes and rest else None
-
-
-def parse_only(values: Iterable[str] | None) -> list[str]:
-    """``--only`` values (each a comma-separated list) -> kinds in
-    :data:`~tactcad.export.kinds.EXPORT_KINDS` order.
-
-    Raises:
-        DesignError: an unknown kind, naming the allowed ones.
-    """
-    asked = [v.strip() for text in values or () for v in text.split(",") if v.strip()]
-    for kind in asked:
-        if kind not in EXPORT_KINDS:
-            raise DesignError("--only", kind, "one or more of " + ", ".join(EXPORT_KINDS),
-                              "comma-separated")
-    return [kind for kind in EXPORT_KINDS if kind in asked]
 
 
 def select_jobs(jobs: Sequence[Job], only: Sequence[str] = (),
