@@ -248,3 +248,13 @@ def test_fuzz_script_runs_and_summarises(tmp_path):
                            "-n", "6", "--wild", "1.0", "--quiet"], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "6 tried, 0 accepted" in proc.stdout and "0 tracebacks" in proc.stdout and "6 of 6 out-of-domain draws refused" in proc.stdout
+
+
+def test_a_long_path_in_a_refusal_keeps_its_file_name(tmp_path):
+    from tactcad.errors import MAX_VALUE_CHARS, short_repr
+
+    deep = tmp_path / ("d" * 3 * MAX_VALUE_CHARS) / "nothere.toml"
+    text = short_repr(str(deep))
+    assert text.startswith(repr(str(deep))[:10]) and "nothere.toml'" in text
+    assert f"({len(repr(str(deep)))} characters)" in text
+    assert len(text) < MAX_VALUE_CHARS + 40

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import PurePath
 from typing import Iterable
 
 #: Longest echo of a user's value in a message (a 100 000-entry list must not
@@ -10,13 +11,17 @@ MAX_VALUE_CHARS = 80
 
 
 def short_repr(value: object, limit: int = MAX_VALUE_CHARS) -> str:
-    """``repr(value)`` cut to ``limit`` characters, with the size of what was cut."""
+    """``repr(value)`` cut to ``limit`` characters, with the size of what was
+    cut. A string keeps its end too: a long path still names its file."""
     try:
         text = repr(value)
     except (ValueError, RecursionError):  # e.g. an int too long to print
         return f"<{type(value).__name__}>"
     if len(text) <= limit:
         return text
+    if isinstance(value, (str, PurePath)):
+        head = limit // 2
+        return f"{text[:head]}...{text[head - limit:]} ({len(text)} characters)"
     size = f"{len(value)} items, " if isinstance(value, (list, tuple, dict)) else ""
     return f"{text[:limit]}... ({size}{len(text)} characters)"
 
