@@ -19,10 +19,10 @@ from tactcad.mechanics.closed_form import (
     ALPHA_SHEAR, closed_form_compliance, closed_form_stiffness, estimate_closed_form,
     gauge_strain_per_newton, notch_integrals, web_for_stiffness)
 from tactcad.mechanics.correction import (
-    IDENTITY, Correction, CorrectionRangeWarning, FitData, FitRange, apply_correction,
-    fit_correction, load_correction)
+    IDENTITY, Correction, CorrectionRangeWarning, FitRange, apply_correction, load_correction)
 from tactcad.mechanics.result import StiffnessResult
 from tactcad.geometry.profile import web_thickness_at
+from tactcad.studies.correction_fit import FitData, fit_correction
 
 PLAN = load_design()
 MAT = PLAN.material

@@ -13,8 +13,8 @@ from tactcad.cli import main
 from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
 from tactcad.design.tolerances import tolerances_of
 from tactcad.errors import DesignError
-from tactcad.mechanics.tolerance import Tolerances
-from tactcad.mechanics.tolerance_budget import FIELDS, contributions, tighten
+from tactcad.studies.tolerance_montecarlo import Tolerances
+from tactcad.studies.tolerance_budget import FIELDS, contributions, tighten
 
 #: Every [tolerances] key moved off its default to a value found nowhere else.
 PERTURBED = {"web_thickness_mm": 0.013, "notch_radius_mm": 0.017, "arm_length_mm": 0.031,
@@ -125,7 +125,7 @@ def test_the_proposed_tolerance_meets_the_band_in_the_budget():
 
 
 def test_verify_includes_the_toleranced_band():
-    from tactcad.mechanics.requirements import verification_matrix
+    from tactcad.studies.verification import verification_matrix
 
     plan = plan_from_dict(with_overrides(default_design_data(),
                                          {"requirements.k_tolerance_rel": 0.05}))

@@ -13,7 +13,7 @@ import pytest
 from tactcad.cli import main
 from tactcad.design.array import read_toml
 from tactcad.design.project import load_project
-from tactcad.mechanics.requirements import requirements_of, verification_matrix
+from tactcad.studies.verification import requirements_of, verification_matrix
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
@@ -142,7 +142,7 @@ def test_example_meets_every_requirement_at_fem3d():
     """The inverse design's closed-form geometry holds at the reference level
     (about 4 minutes: K and peak stress of two elements at fem3d)."""
     plan = load_project(EXAMPLE).plan
-    from tactcad.studies.strength import element_stress
+    from tactcad.studies.strength_studies import element_stress
 
     records = verification_matrix(plan, "fem3d", stress=element_stress)
     assert all(r["pass"] for r in records), records

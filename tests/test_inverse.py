@@ -14,7 +14,7 @@ from tactcad.cli import main
 from tactcad.design.array import load_design
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import CorrectionRangeWarning
-from tactcad.mechanics.inverse import (InverseDesignError, Targets, design_for_targets,
+from tactcad.studies.inverse_design import (InverseDesignError, Targets, design_for_targets,
                                        reference_elements, search_webs, unit_resolution)
 from tactcad.mechanics.ladder import estimate
 from tactcad.mechanics.lumped import deflection_ratio

@@ -5,7 +5,8 @@ in a circle.
 The layer order is written once, in README's "Layout" section (the lines
 under ``src/tactcad/``, top to bottom); this file reads it from there. The
 mechanics read plans only: foundation, vocabulary, design, geometry and
-mechanics.
+mechanics; the studies those and the mechanics; the paper those and the
+studies.
 """
 
 from __future__ import annotations
@@ -54,8 +55,12 @@ TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands",
              "tactcad.project_folder": "commands"}
 LAYERS = layers_from_readme(README.read_text(encoding="utf-8"))
 MECHANICS_MAY_USE = {"foundation", "vocabulary", "design", "geometry", "mechanics"}
-#: The paper's reproduction reads the general models, never the reverse.
-PAPER_MAY_USE = MECHANICS_MAY_USE | {"paper"}
+#: The design studies run the general models over many plans, never the reverse.
+STUDIES_MAY_USE = MECHANICS_MAY_USE | {"studies"}
+#: The paper's reproduction reads the general models and the studies, never the reverse.
+PAPER_MAY_USE = STUDIES_MAY_USE | {"paper"}
+#: The layers whose imports are a set, not "everything above in the order".
+MAY_USE = {"mechanics": MECHANICS_MAY_USE, "studies": STUDIES_MAY_USE, "paper": PAPER_MAY_USE}
 
 
 def module_name(path: Path) -> str:
@@ -127,10 +132,8 @@ def test_every_import_goes_up_the_layers():
         mine = layer_of(mod)
         for dep in sorted(deps):
             theirs = layer_of(dep)
-            if mine == "mechanics":
-                ok = theirs in MECHANICS_MAY_USE
-            elif mine == "paper":
-                ok = theirs in PAPER_MAY_USE
+            if mine in MAY_USE:
+                ok = theirs in MAY_USE[mine]
             else:
                 ok = LAYERS.index(theirs) <= LAYERS.index(mine)
             if not ok:

@@ -18,7 +18,7 @@ from tactcad.paper.data import table1
 from tactcad.mechanics.readout import (beam_grid_strain_per_N, beam_surface_strain_per_N,
                                        bridge_nonlinearity_rel, gauge_strain_per_N,
                                        noise_budget_V, readout_chain, readout_report)
-from tactcad.mechanics.requirements import requirements_of, verification_matrix
+from tactcad.studies.verification import requirements_of, verification_matrix
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"

@@ -10,7 +10,7 @@ from tactcad.cli import main
 from tactcad.design.array import default_design_data, plan_from_dict
 from tactcad.errors import DesignErrors
 from tactcad.mechanics.limits import LIMIT_NAMES
-from tactcad.mechanics.requirements import requirements_of, verification_matrix
+from tactcad.studies.verification import requirements_of, verification_matrix
 
 KEYS = {"requirement", "target", "predicted", "error_estimate_rel", "margin_rel", "model", "pass"}
 PAPER_SAMPLES = (2.34, 10.01)

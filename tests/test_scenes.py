@@ -313,11 +313,11 @@ def test_bench_stiffness_delegates_or_says_unavailable(monkeypatch, capsys):
     import types
 
     calls = []
-    fake = types.ModuleType("tactcad.studies.stiffness_bench")
+    fake = types.ModuleType("tactcad.benchmarks.stiffness_bench")
     fake.main = lambda args, plan=None: calls.append(args) or 0
-    monkeypatch.setitem(sys.modules, "tactcad.studies.stiffness_bench", fake)
+    monkeypatch.setitem(sys.modules, "tactcad.benchmarks.stiffness_bench", fake)
     assert cli.main(["bench", "stiffness", "--models", "beam"]) == 0
     assert calls and calls[0].models == ["beam"]
-    monkeypatch.setitem(sys.modules, "tactcad.studies.stiffness_bench", None)
+    monkeypatch.setitem(sys.modules, "tactcad.benchmarks.stiffness_bench", None)
     assert cli.main(["bench", "stiffness"]) == 0
     assert "not available" in capsys.readouterr().out

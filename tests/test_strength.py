@@ -110,7 +110,7 @@ def test_closed_form_stress_matches_the_fem2d_field(plan, web, radius, arm):
     """K_t fitted form against converged plane-stress P2 FEM (Richardson):
     within KT_FIT_TOLERANCE (2 %) over t/R = 0.1 ... 1 and arms 4 ... 8 mm."""
     from tactcad.mechanics.strength import peak_stress_per_newton
-    from tactcad.studies.strength import fem_peak_stress
+    from tactcad.studies.strength_studies import fem_peak_stress
 
     g = dataclasses.replace(plan.element(1).geometry, web_thickness_mm=web,
                             notch_radius_mm=radius, arm_length_mm=arm)
@@ -127,7 +127,7 @@ def test_closed_form_stress_matches_the_fem2d_field(plan, web, radius, arm):
 def test_table1_comparison_uses_the_as_built_web(plan, capsys):
     from tactcad.paper.data import table1
     from tactcad.mechanics.strength import peak_stress_per_newton
-    from tactcad.studies.strength import table1_force_comparison
+    from tactcad.paper.table1 import table1_force_comparison
 
     rows = table1_force_comparison(plan)
     assert [r["element"] for r in rows] == [m.element for m in table1()]
@@ -152,7 +152,7 @@ def test_fem3d_peak_is_the_plane_strain_share_of_the_closed_form(plan):
     against the plane-stress closed form; the 3D field must show that share
     (measured 0.902) and peak at the notch root."""
     from tactcad.mechanics.strength import peak_stress_per_newton
-    from tactcad.studies.strength import fem_peak_stress
+    from tactcad.studies.strength_studies import fem_peak_stress
 
     g = plan.element(1).geometry
     fem = fem_peak_stress(g, plan.material, "fem3d")
@@ -195,7 +195,7 @@ def test_kt_exponent_refits_from_fem(plan):
     """A refit on three of the fit geometries (t/R = 0.1, 0.5, 1) lands on
     the stored exponent, with residuals inside the stated tolerance."""
     from tactcad.mechanics.strength import KT_EXPONENT, KT_FIT_GEOMETRIES
-    from tactcad.studies.strength import fit_kt_exponent
+    from tactcad.studies.strength_studies import fit_kt_exponent
 
     fit = fit_kt_exponent(plan.element(1).geometry, plan.material,
                           [KT_FIT_GEOMETRIES[i] for i in (1, 4, 7)])

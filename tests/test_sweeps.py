@@ -10,7 +10,7 @@ import pytest
 from tactcad.cli import main
 from tactcad.design.array import plan_from_dict
 from tactcad.errors import DesignError
-from tactcad.mechanics.inverse import design_variant
+from tactcad.studies.inverse_design import design_variant
 from tactcad.studies.sweeps import check_scheduler_address, design_grid, grid_points
 
 

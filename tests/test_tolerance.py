@@ -10,7 +10,7 @@ import pytest
 from tactcad.cli import main
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import load_correction
-from tactcad.mechanics.tolerance import (Tolerances, corrected_stiffness, nominal_stiffness,
+from tactcad.studies.tolerance_montecarlo import (Tolerances, corrected_stiffness, nominal_stiffness,
                                          run_tolerance, sensing_units, web_tolerance_for_band)
 
 ZERO = dict(web_mm=0.0, notch_radius_mm=0.0, arm_length_mm=0.0, modulus_rel=0.0)
@@ -122,7 +122,7 @@ def test_cli_refuses_bad_input(capsys):
 
 def test_runs_on_a_design_other_than_the_paper(design_data):
     from tactcad.design.array import plan_from_dict
-    from tactcad.mechanics.inverse import design_variant
+    from tactcad.studies.inverse_design import design_variant
 
     plan = plan_from_dict(design_variant(design_data, arms_mm=[4.0] + [12.0] * 9))
     from tactcad.paper.table1 import equal_arm_spread

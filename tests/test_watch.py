@@ -123,7 +123,7 @@ def test_bad_port_is_refused_naming_the_option(tmp_path):
 def test_watch_session_in_chromium(tmp_path):
     from tactcad.checks.review_browser import BrowserMissing, browser_page, chromium_path
     from tactcad.design.array import DEFAULT_DESIGN
-    from tactcad.studies.bench_watch import _free_port, _state, _wait, edit_first_arm
+    from tactcad.benchmarks.bench_watch import _free_port, _state, _wait, edit_first_arm
 
     try:
         chromium_path()
@@ -239,7 +239,7 @@ class _Session:
                 return line
 
     def edit(self, arm_mm: float) -> str:
-        from tactcad.studies.bench_watch import edit_first_arm
+        from tactcad.benchmarks.bench_watch import edit_first_arm
 
         edit_first_arm(self.design, arm_mm)
         return self.next_export()
@@ -426,7 +426,7 @@ def test_a_long_session_keeps_the_parts_of_the_current_design_only(tmp_path, mon
     from tactcad.export.job import Run, solid_key
     from tactcad.export.jobs import all_jobs
     from tactcad.export import worker as w
-    from tactcad.studies.bench_watch import edit_first_arm
+    from tactcad.benchmarks.bench_watch import edit_first_arm
 
     monkeypatch.setenv("TACTCAD_WORKERS", "0")  # this process makes everything
     for f in watched_files(DEFAULT_DESIGN):
@@ -477,7 +477,7 @@ def test_sigterm_mid_update_ends_the_watch_cleanly(tmp_path):
     server process) behind; the last good export stays whole."""
     import time
 
-    from tactcad.studies.bench_watch import edit_first_arm
+    from tactcad.benchmarks.bench_watch import edit_first_arm
 
     s = _Session(tmp_path, tmp_path / "store")
     try:

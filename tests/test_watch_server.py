@@ -295,7 +295,7 @@ def test_a_server_process_ending_past_the_restarts_leaves_the_page_to_the_watch(
 # --- the loopback load test (tactcad bench watch --clients) -------------------------------
 
 def test_percentiles_are_values_that_occurred_by_rank():
-    from tactcad.studies.watch_load import latency_figures, percentile
+    from tactcad.benchmarks.watch_load import latency_figures, percentile
 
     values = sorted(0.001 * k for k in range(1, 201))
     assert percentile(values, 50) == values[99] and percentile(values, 99) == values[197]
@@ -308,7 +308,7 @@ def test_percentiles_are_values_that_occurred_by_rank():
 
 
 def test_a_load_counts_every_error_by_kind_and_each_route():
-    from tactcad.studies.watch_load import Request, load_summary, route_of
+    from tactcad.benchmarks.watch_load import Request, load_summary, route_of
 
     assert [route_of(p) for p in ("/", "/state", "/scene/" + "ab" * 32, "/sheet/x?y")] == \
         ["/", "/state", "/scene", "/sheet"]
@@ -327,7 +327,7 @@ def test_simulated_reviewers_read_what_a_new_state_changed():
     shown scene and the new sheets, as the page does; they stop by themselves."""
     from collections import Counter
 
-    from tactcad.studies.watch_load import route_of, run_load
+    from tactcad.benchmarks.watch_load import route_of, run_load
 
     state, asked = LiveState(), Counter()
     first, _, _ = _contents(b"glb 1", b"<svg>1</svg>")

@@ -457,7 +457,7 @@ class Element:
         from tactcad.mechanics.ladder import UnknownModelError, models
         from tactcad.design.requirements import cites_paper
         from tactcad.mechanics.strength import strength_record
-        from tactcad.studies.strength import element_stress
+        from tactcad.studies.strength_studies import element_stress
 
         if model not in models():
             raise UnknownModelError(model)

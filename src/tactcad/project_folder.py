@@ -66,10 +66,10 @@ def sample_stiffnesses(plan: Plan) -> tuple[list[float], str]:
     its K_obj range, stiffest first (N/mm, 3 significant digits), with the reason.
 
     The range is ``requirements.kobj_range_N_per_mm`` where the design states
-    it, else the one :func:`tactcad.mechanics.requirements.requirements_of`
+    it, else the one :func:`tactcad.studies.verification.requirements_of`
     derives from the elements (closed form).
     """
-    from tactcad.mechanics.requirements import requirements_of
+    from tactcad.studies.verification import requirements_of
 
     req = requirements_of(plan)
     lo, hi = req.kobj_range_N_per_mm

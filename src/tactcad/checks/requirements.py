@@ -8,7 +8,7 @@ from tactcad.checks.result import CheckResult
 def requirement_checks(plan, model: str = "closed-form") -> list[CheckResult]:
     """One :class:`CheckResult` per requirement of ``plan`` (see
     :func:`tactcad.mechanics.requirements.verification_matrix`)."""
-    from tactcad.mechanics.requirements import verification_matrix
+    from tactcad.studies.verification import verification_matrix
 
     out = []
     for r in verification_matrix(plan, model):

@@ -5,9 +5,9 @@
   the largest scene: manifold3d fast path, OpenCascade confirmation, and an
   OpenCascade-only check for comparison.
 * ``bench stiffness``: the stiffness estimators, provided by
-  ``tactcad.studies.stiffness_bench.main(args)`` when that module is installed.
+  ``tactcad.benchmarks.stiffness_bench.main(args)`` when that module is installed.
 * ``bench closed-form``, ``bench montecarlo``, ``bench sweep``: the design
-  tools at scale (:mod:`tactcad.studies.bench_scale`).
+  tools at scale (:mod:`tactcad.benchmarks.bench_scale`).
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_output_args(e, "print the figures as JSON: cold_s, warm_s, one_change_s, builds, "
                         "distinct_parts (and the job counts)")
     e.set_defaults(func=run_export)
-    s = bsub.add_parser("stiffness", help="stiffness estimator benchmarks (tactcad.studies.stiffness_bench)")
+    s = bsub.add_parser("stiffness", help="stiffness estimator benchmarks (tactcad.benchmarks.stiffness_bench)")
     add_design_arg(s)
     s.add_argument("--out", metavar="DIR", default=None,
                    help="folder for the report files (default: the benchmark's own)")
@@ -111,7 +111,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run_watch(args: argparse.Namespace) -> int:
     """Time one-arm edits under ``tactcad watch`` and load its server (see
-    :mod:`tactcad.studies.bench_watch`).
+    :mod:`tactcad.benchmarks.bench_watch`).
 
     Raises:
         DesignError: ``--rounds 0`` with ``--clients 0`` (nothing to measure); a refused design.
@@ -122,8 +122,8 @@ def run_watch(args: argparse.Namespace) -> int:
 
     from tactcad.design.array import DEFAULT_DESIGN
     from tactcad.errors import DesignError
-    from tactcad.studies.bench_scale import load_average
-    from tactcad.studies.bench_watch import watch_figures
+    from tactcad.benchmarks.bench_scale import load_average
+    from tactcad.benchmarks.bench_watch import watch_figures
 
     if args.rounds == 0 and args.clients == 0:
         raise DesignError("--rounds", 0, "1 ... 50 when --clients is 0 (nothing to measure)")
@@ -152,7 +152,7 @@ def run_watch(args: argparse.Namespace) -> int:
 
 
 def load_lines(load: dict) -> list[str]:
-    """The load test's figures (:func:`tactcad.studies.watch_load.load_summary`) as lines."""
+    """The load test's figures (:func:`tactcad.benchmarks.watch_load.load_summary`) as lines."""
     flag = "ok" if load["met"] else "not met"
     kinds = ", ".join(f"{k} {n}" for k, n in sorted(load["error_kinds"].items()))
     lines = [f"  load: {load['clients']} clients for {load['seconds']:g} s, {load['edits']} "
@@ -180,7 +180,7 @@ def run_review(args: argparse.Namespace) -> int:
 
     from tactcad.checks.review_browser import measure_page
     from tactcad.export.review_page import REVIEW_PAGE
-    from tactcad.studies.bench_scale import load_average
+    from tactcad.benchmarks.bench_scale import load_average
 
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(args.out or tmp)
@@ -207,18 +207,18 @@ def run_review(args: argparse.Namespace) -> int:
 
 def run_stiffness(args: argparse.Namespace) -> int:
     try:
-        module = importlib.import_module("tactcad.studies.stiffness_bench")
+        module = importlib.import_module("tactcad.benchmarks.stiffness_bench")
     except ModuleNotFoundError as exc:
-        if exc.name not in ("tactcad.studies.stiffness_bench", "tactcad.studies"):
+        if exc.name not in ("tactcad.benchmarks.stiffness_bench", "tactcad.studies"):
             raise
         print("tactcad bench stiffness: not available in this build "
-              "(no tactcad.studies.stiffness_bench)")
+              "(no tactcad.benchmarks.stiffness_bench)")
         return 0
     return int(module.main(args, plan=plan_from_args(args)) or 0)
 
 
 def run_closed_form(args: argparse.Namespace) -> int:
-    from tactcad.studies.bench_scale import CLOSED_FORM_GOAL_PER_S, closed_form_rate, load_average
+    from tactcad.benchmarks.bench_scale import CLOSED_FORM_GOAL_PER_S, closed_form_rate, load_average
 
     rate = closed_form_rate(plan_from_args(args))
     flag = "ok" if rate >= CLOSED_FORM_GOAL_PER_S else "under goal"
@@ -232,7 +232,7 @@ def run_closed_form(args: argparse.Namespace) -> int:
 
 
 def run_montecarlo(args: argparse.Namespace) -> int:
-    from tactcad.studies.bench_scale import MONTE_CARLO_GOAL_S, load_average, monte_carlo_times
+    from tactcad.benchmarks.bench_scale import MONTE_CARLO_GOAL_S, load_average, monte_carlo_times
 
     first, best = monte_carlo_times(plan_from_args(args), args.samples)
     flag = "ok" if best <= MONTE_CARLO_GOAL_S else "over goal"
@@ -248,7 +248,7 @@ def run_montecarlo(args: argparse.Namespace) -> int:
 
 
 def run_sweep(args: argparse.Namespace) -> int:
-    from tactcad.studies.bench_scale import SWEEP_SPEEDUP_GOAL, fem3d_sweep_timing, load_average
+    from tactcad.benchmarks.bench_scale import SWEEP_SPEEDUP_GOAL, fem3d_sweep_timing, load_average
 
     plan = plan_from_args(args)
     progress_from_args(args)(f"tactcad bench sweep: {args.model} on "
@@ -273,7 +273,7 @@ def run_export(args: argparse.Namespace) -> int:
     import json
     import tempfile
 
-    from tactcad.studies.bench_scale import load_average
+    from tactcad.benchmarks.bench_scale import load_average
 
     project = project_from_args(args)
     plan = project.plan

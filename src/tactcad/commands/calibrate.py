@@ -106,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
     if args.data or args.simulate:
         if args.simulate:
             gain = ca.DEFAULT_GAUGE_GAIN_V_PER_STRAIN if args.gain is None else args.gain
-            from tactcad.mechanics.requirements import requirements_of
+            from tactcad.studies.verification import requirements_of
 
             # the paper's Z steps for its design; any other is loaded to its full-scale force
             force = None if cites_paper(plan.raw) else requirements_of(plan).full_scale_force_N

@@ -136,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
     import tomli_w
 
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.mechanics.inverse import Targets, design_for_targets
+    from tactcad.studies.inverse_design import Targets, design_for_targets
 
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
@@ -177,13 +177,13 @@ def design_options(args: argparse.Namespace) -> list[str]:
 
 
 def design_report(result, verify: str, progress=None) -> dict:
-    """Figures of an :class:`~tactcad.mechanics.inverse.InverseDesign`: K per
+    """Figures of an :class:`~tactcad.studies.inverse_design.InverseDesign`: K per
     element (closed form and ``verify`` level), strength at full scale, and
     R, dR/dK_obj and the K_obj resolution over the K_obj range. ``progress``
     gets a line per FEM mesh level of the verification."""
     import math
 
-    from tactcad.mechanics.inverse import report_points, unit_resolution
+    from tactcad.studies.inverse_design import report_points, unit_resolution
     from tactcad.mechanics.ladder import estimate
     from tactcad.mechanics.strength import strength_summary
 

@@ -85,8 +85,8 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.commands.finite_json import dumps
 
     from tactcad.design.requirements import cites_paper
-    from tactcad.mechanics.design_loads import design_samples, loads_to_full_scale
-    from tactcad.mechanics.requirements import requirements_of
+    from tactcad.studies.design_loads import design_samples, loads_to_full_scale
+    from tactcad.studies.verification import requirements_of
 
     plan = plan_from_args(args)
     paper = cites_paper(plan.raw)

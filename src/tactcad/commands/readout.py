@@ -34,7 +34,7 @@ def run(args: argparse.Namespace) -> int:
 
     from tactcad.design.requirements import cites_paper
     from tactcad.mechanics.readout import readout_report
-    from tactcad.mechanics.requirements import requirements_of
+    from tactcad.studies.verification import requirements_of
 
     plan = plan_from_args(args)
     report = readout_report(plan, requirements_of(plan), args.model, progress_from_args(args))

@@ -41,7 +41,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.studies.strength import plan_strength
+    from tactcad.studies.strength_studies import plan_strength
 
     plan = plan_from_args(args)
     if args.table1:
@@ -93,7 +93,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
     """The design's required full-scale force against every element's limits at ``model``
     (the stress figures of ``records`` reused)."""
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
-    from tactcad.mechanics.requirements import requirements_of
+    from tactcad.studies.verification import requirements_of
     from tactcad.mechanics.strength import ElementStress
 
     req = requirements_of(plan)
@@ -110,7 +110,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
 
 
 def _run_table1(plan, model: str, as_json: bool) -> int:
-    from tactcad.studies.strength import table1_force_comparison
+    from tactcad.paper.table1 import table1_force_comparison
 
     rows = table1_force_comparison(plan, model)
     if as_json:

@@ -89,7 +89,11 @@ def run_grid_cmd(args: argparse.Namespace) -> int:
             rows = design_grid(plan, args.webs, fine, "closed-form", args.radii) + rows
     out = Path(args.out)
     csv_path = write_grid_csv(out / "design_grid.csv", rows)
-    png_path = plot_design_chart(out / "design_chart.png", rows, plan)
+    from tactcad.paper.data import table1
+
+    measured = [(m.element, m.flexing_arm_length_mm, m.stiffness_N_per_mm) for m in table1()]
+    png_path = plot_design_chart(out / "design_chart.png", rows, plan, measured=measured,
+                                 measured_label="Table 1 (measured)")
     if args.json:
         print(json.dumps(rows_as_json(rows), indent=2, allow_nan=False))
         return 0
@@ -129,7 +133,7 @@ def run_montecarlo_cmd(args: argparse.Namespace) -> int:
     import time
 
     from tactcad.atomic import write_atomic
-    from tactcad.mechanics.tolerance import run_tolerance
+    from tactcad.studies.tolerance_montecarlo import run_tolerance
     from tactcad.studies.sweeps import dask_client, dask_mapper
 
     plan = plan_from_args(args)

@@ -63,7 +63,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     import time
 
-    from tactcad.mechanics.tolerance import DEFAULT_K_OBJ_N_PER_MM, Tolerances, run_tolerance
+    from tactcad.studies.tolerance_montecarlo import DEFAULT_K_OBJ_N_PER_MM, Tolerances, run_tolerance
 
     plan = plan_from_args(args)
     given = {"notch_radius_mm": args.notch_radius_tol, "arm_length_mm": args.arm_tol,
@@ -72,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
                              **{k: v for k, v in given.items() if v is not None})
     t0 = time.perf_counter()
     from tactcad.design.requirements import cites_paper
-    from tactcad.mechanics.design_loads import design_samples
+    from tactcad.studies.design_loads import design_samples
 
     paper = cites_paper(plan.raw)
     # the paper's samples for its design only; any other reports its own K_obj range
@@ -92,8 +92,8 @@ def run(args: argparse.Namespace) -> int:
         from tactcad.paper.table1 import equal_arm_spread
 
         report = dataclasses.replace(report, table1_spread=equal_arm_spread(plan))
-    from tactcad.mechanics.requirements import requirements_of
-    from tactcad.mechanics.tolerance_budget import band_check
+    from tactcad.studies.verification import requirements_of
+    from tactcad.studies.tolerance_budget import band_check
 
     check = band_check(plan, report, requirements_of(plan).k_tolerance_rel)
     used = tolerances_used(plan, tol)
@@ -112,7 +112,7 @@ def tolerances_used(plan, tol) -> dict:
     ("design": the design file, "default": the table's default, which the drawings print too,
     "override (what-if)": an option of this run)."""
     from tactcad.design.tolerances import tolerances_of
-    from tactcad.mechanics.tolerance_budget import FIELDS
+    from tactcad.studies.tolerance_budget import FIELDS
 
     t = tolerances_of(plan.raw)
     src = dict(tol.sources)
@@ -144,7 +144,7 @@ def print_check(used: dict, check: dict) -> None:
 
 
 def print_report(report, name: str, wall_s: float) -> None:
-    """Text form of a :class:`~tactcad.mechanics.tolerance.ToleranceReport`."""
+    """Text form of a :class:`~tactcad.studies.tolerance_montecarlo.ToleranceReport`."""
     print(f"tolerance Monte Carlo of {name}: {report.samples} samples, seed {report.seed}, "
           f"{wall_s:.2f} s")
     print(f"  {report.tolerances.describe()}")

@@ -29,12 +29,12 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.mechanics.requirements import matrix_passed, requirements_of, verification_matrix
+    from tactcad.studies.verification import matrix_passed, requirements_of, verification_matrix
 
     plan = plan_from_args(args)
     progress = progress_from_args(args)
     req = requirements_of(plan)
-    from tactcad.studies.strength import element_stress
+    from tactcad.studies.strength_studies import element_stress
 
     records = verification_matrix(plan, args.model, progress, req, stress=element_stress)
     ok = matrix_passed(records)

@@ -1,7 +1,7 @@
 """The ``[requirements]`` section of a design file: what the sensor must do.
 
 Every key is optional; a key the file leaves out is derived from the
-design's own geometry by :func:`tactcad.mechanics.requirements.requirements_of`,
+design's own geometry by :func:`tactcad.studies.verification.requirements_of`,
 with the reason stated, never taken from the paper.
 
 Keys (units in the names):

@@ -23,7 +23,7 @@ def _force_figures(plan: Plan) -> tuple[float, dict]:
     """(required full-scale force N, {part name: (largest force N, limit words)}),
     closed form. Cached per plan (its design hash covers the requirements)."""
     from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits
-    from tactcad.mechanics.requirements import requirements_of
+    from tactcad.studies.verification import requirements_of
 
     req = requirements_of(plan)
     per_part: dict[str, tuple[float, str]] = {}

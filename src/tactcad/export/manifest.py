@@ -13,7 +13,7 @@ from tactcad.assembly.inventory import assembly_review, instance_counts
 from tactcad.catalogue.array import PartSpec, array_instances, array_parts
 from tactcad.catalogue.files import ARRAY_STEP
 from tactcad.design.array import Plan
-from tactcad.mechanics.requirements import requirements_record
+from tactcad.studies.verification import requirements_record
 from tactcad.mechanics.strength import strength_summary
 from tactcad.store import stack_versions
 

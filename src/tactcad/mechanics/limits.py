@@ -110,7 +110,7 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
         stresses, k_errors: per part name, :class:`ElementStress` and K's
             error estimate already computed (else computed here: closed form
             and beam only; the FEM levels' stresses come from
-            :mod:`tactcad.studies.strength`).
+            :mod:`tactcad.studies.strength_studies`).
 
     Raises:
         DesignError: the material has no yield strength.

@@ -249,7 +249,7 @@ def readout_report(plan: Plan, requirements, model: str = "closed-form",
         progress: gets one line per distinct element.
         stiffness: K per distinct part (N/mm) already computed at ``model``
             (``verify`` passes its own); ``None`` estimates them.
-        requirements: the design's :class:`~tactcad.mechanics.requirements.Requirements`
+        requirements: the design's :class:`~tactcad.studies.verification.Requirements`
             (full-scale force and K_obj range).
 
     Raises:

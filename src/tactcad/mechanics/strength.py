@@ -353,7 +353,7 @@ def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
     Args:
         stress: the peak-stress evaluation; default :func:`closed_form_stress`
             (closed-form and beam). The FEM levels are run by
-            :func:`tactcad.studies.strength.plan_strength`, which passes its own.
+            :func:`tactcad.studies.strength_studies.plan_strength`, which passes its own.
 
     Raises:
         ValueError: unknown model, or an FEM model without its ``stress``.
@@ -363,7 +363,7 @@ def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
         raise ValueError(f"model must be one of {', '.join(models())}; got {model!r}")
     if stress is None:
         if is_meshed(model):
-            raise ValueError(f"model {model} runs the FEM: use tactcad.studies.strength.plan_strength")
+            raise ValueError(f"model {model} runs the FEM: use tactcad.studies.strength_studies.plan_strength")
         stress = closed_form_stress
     require_yield(plan.material)
     cache: dict[str, ElementStress] = {}

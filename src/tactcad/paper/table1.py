@@ -3,7 +3,8 @@ next to the stiffness ladder's prediction, whether the comparison applies to a
 design (it cites the paper and its geometry can reach the measured K), the
 as-built webs that reproduce the measured K, the gauge strain at the paper's
 2 N design load, Table 2's R from the predicted K, the read-out chain's
-sensitivity against the measured K_v/K, and the spread of equal-arm elements.
+sensitivity against the measured K_v/K, the spread of equal-arm elements, and
+the full-scale force against the calibration's largest force.
 
 Everything here compares with the paper; the general estimators
 (:mod:`tactcad.mechanics`) never import it. Units: mm, N, N/mm, V.
@@ -11,7 +12,7 @@ Everything here compares with the paper; the general estimators
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -21,8 +22,9 @@ from tactcad.mechanics.ladder import estimate
 from tactcad.mechanics.lumped import deflection_ratio
 from tactcad.mechanics.readout import ReadoutChain, gauge_strain_per_N, rel_std
 from tactcad.mechanics.result import StiffnessResult
-from tactcad.mechanics.strength import PAPER_LOAD_N
+from tactcad.mechanics.strength import PAPER_LOAD_N, peak_stress_per_newton, require_yield
 from tactcad.paper.data import table1, table2
+from tactcad.studies.strength_studies import plan_strength
 
 #: The surface strain the paper reports at 2 N for arms of 4-8 mm.
 PAPER_STRAIN_RANGE = (0.2711e-2, 0.6316e-2)
@@ -271,4 +273,42 @@ def equal_arm_spread(plan: Plan) -> list[dict]:
         out.append({"arm_length_mm": arm, "elements": [r.element for r in rows],
                     "measured_N_per_mm": ks, "ratio_max_over_min": max(ks) / min(ks),
                     "as_built_web_mm": [web_of[r.element] for r in rows]})
+    return out
+
+
+def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict]:
+    """The model's full-scale force against Table 1's "max support force" (the
+    largest force of each element's calibration), per calibrated element.
+
+    For each element: the full-scale force at ``model`` with the design web;
+    the as-built web that reproduces the measured K (corrected closed form,
+    :func:`as_built_webs`) and the closed-form
+    full-scale force and peak stress at the measured maximum force with that
+    web; and the yield safety factor the calibration ran at.
+
+    Returns:
+        one dict per Table 1 element (element 5 has no calibration).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    y = require_yield(plan.material)
+    sf = plan.strength.safety_factor
+    design = {r.element: r for r in plan_strength(plan, model)}
+    webs = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
+    out = []
+    for meas in table1():
+        g = plan.element(meas.element).geometry
+        t_built = webs[meas.element]
+        gb = replace(g, web_thickness_mm=t_built)
+        s_built = float(peak_stress_per_newton(t_built, gb.notch_radius_mm, gb.arm_length_mm,
+                                               gb.sheet_thickness_mm))
+        s_max = s_built * meas.max_support_force_N
+        out.append({"element": meas.element, "arm_length_mm": g.arm_length_mm,
+                    "max_support_force_N": meas.max_support_force_N,
+                    "full_scale_force_N": design[meas.element].full_scale_force_N,
+                    "web_as_built_mm": t_built,
+                    "full_scale_force_as_built_N": y / (s_built * sf),
+                    "stress_MPa_at_max_support_force_as_built": s_max,
+                    "yield_safety_factor_at_max_support_force_as_built": y / s_max})
     return out

@@ -55,7 +55,8 @@ from typing import Iterable, Sequence
 from tactcad.design.array import (ElementGeometry, Material, default_design_data, plan_from_dict,
                       with_overrides)
 from tactcad.mechanics.closed_form import closed_form_compliance
-from tactcad.mechanics.correction import CORRECTION_FILE, build_document
+from tactcad.mechanics.correction import CORRECTION_FILE
+from tactcad.studies.correction_fit import build_document
 from tactcad.mechanics.fem.fem3d import fem3d_convergence
 
 #: Domain of the sweep (mm; Poisson ratio dimensionless).

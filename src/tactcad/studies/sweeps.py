@@ -14,8 +14,8 @@ so a sweep gives the same numbers on any cluster. A text progress bar
   level over web x arm (x notch radius), CSV and a design chart (K against
   arm length for each web, Table 1's measured points on it).
 * :func:`correction_refit`: the FEM points of the closed-form correction
-  fit (:mod:`tactcad.mechanics.correction_fit`) and the fit.
-* Monte Carlo: :func:`tactcad.mechanics.tolerance.run_tolerance` with
+  fit (:mod:`tactcad.studies.correction_fit`) and the fit.
+* Monte Carlo: :func:`tactcad.studies.tolerance_montecarlo.run_tolerance` with
   :func:`dask_mapper` as its ``mapper``.
 
 Units: mm, N, MPa, N/mm, s.
@@ -174,7 +174,7 @@ def grid_points(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
                 model: str = "closed-form",
                 notch_radii_mm: Sequence[float] | None = None) -> list[GridPoint]:
     """Every web x arm (x notch radius) variant of the plan's element, each
-    validated as a whole design (:func:`tactcad.mechanics.inverse.design_variant`).
+    validated as a whole design (:func:`tactcad.studies.inverse_design.design_variant`).
 
     Notch radius default: the plan's, raised to the web where it is thinner
     (t/R <= 1).
@@ -184,7 +184,7 @@ def grid_points(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
             an unknown model.
     """
     from tactcad.design.array import plan_from_dict
-    from tactcad.mechanics.inverse import design_variant
+    from tactcad.studies.inverse_design import design_variant
     from tactcad.mechanics.ladder import models
 
     if model not in models():
@@ -229,10 +229,13 @@ def write_grid_csv(path: str | Path, rows: Sequence[GridRow]) -> Path:
 
 
 def plot_design_chart(path: str | Path, rows: Sequence[GridRow], plan: Plan,
-                      title: str = "") -> Path:
+                      title: str = "", measured: Sequence[tuple[int, float, float]] = (),
+                      measured_label: str = "measured") -> Path:
     """Design chart: K (N/mm, log) against arm length (mm) for each web, with
-    the closed form as a line, other levels as markers and Table 1's measured
-    elements as black crosses. Written atomically as PNG."""
+    the closed form as a line, other levels as markers and the ``measured``
+    elements (element number, arm length mm, K N/mm; the caller's, e.g. the
+    paper's Table 1) as black crosses labelled ``measured_label``. Written
+    atomically as PNG."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -240,7 +243,6 @@ def plot_design_chart(path: str | Path, rows: Sequence[GridRow], plan: Plan,
     import numpy as np
 
     from tactcad.atomic import write_atomic
-    from tactcad.paper.data import table1
 
     fig, ax = plt.subplots(figsize=(6.4, 4.6), dpi=120)
     webs = sorted({r.web_mm for r in rows})
@@ -256,12 +258,11 @@ def plot_design_chart(path: str | Path, rows: Sequence[GridRow], plan: Plan,
                 ax.plot(x, y, "-", color=colour, label=f"web {web:g} mm")
             else:
                 ax.plot(x, y, "o", color=colour, mfc="none", label=f"web {web:g} mm, {model}")
-    meas = table1()
-    ax.plot([m.flexing_arm_length_mm for m in meas], [m.stiffness_N_per_mm for m in meas], "kx",
-            ms=7, label="Table 1 (measured)")
-    for m in meas:
-        ax.annotate(str(m.element), (m.flexing_arm_length_mm, m.stiffness_N_per_mm),
-                    textcoords="offset points", xytext=(4, 2), fontsize=7)
+    if measured:
+        ax.plot([arm for _, arm, _ in measured], [k for _, _, k in measured], "kx",
+                ms=7, label=measured_label)
+    for element, arm, k in measured:
+        ax.annotate(str(element), (arm, k), textcoords="offset points", xytext=(4, 2), fontsize=7)
     ax.set_yscale("log")
     ax.set_xlabel("arm length a (mm)")
     ax.set_ylabel("tip stiffness K (N/mm)")
@@ -299,7 +300,7 @@ def correction_refit(mapper: Callable = map, n_fit: int = 64, n_holdout: int = 1
     Designs are those of :func:`tactcad.studies.correction_sweep.plan_designs`;
     designs already stored in ``points_path`` (JSON lines, default the
     sweep's own file) are skipped, new points are appended in design order,
-    and :func:`tactcad.mechanics.correction.build_document` fits all of them.
+    and :func:`tactcad.studies.correction_fit.build_document` fits all of them.
     The stored correction file is not touched.
 
     Returns:
@@ -311,7 +312,7 @@ def correction_refit(mapper: Callable = map, n_fit: int = 64, n_holdout: int = 1
     import json
 
     from tactcad.studies import correction_sweep as cs
-    from tactcad.mechanics.correction import build_document
+    from tactcad.studies.correction_fit import build_document
 
     path = Path(cs.POINTS_FILE if points_path is None else points_path)
 

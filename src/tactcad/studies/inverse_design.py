@@ -39,7 +39,7 @@ in row 2). The reference element of each row sits in its middle column
 (elements 3 and 8 of the 2 x 5 array; element 8 was also the paper's
 reference), every other slot is a measuring element. Each measuring element
 forms a unit with the nearer reference (see
-:func:`tactcad.mechanics.tolerance.sensing_units`), at most two pitches
+:func:`tactcad.studies.tolerance_montecarlo.sensing_units`), at most two pitches
 away along the row or one pitch across the rows, so both press nearly the
 same object, as the lumped model assumes. One reference per row keeps eight
 of ten slots measuring, and a middle column keeps the longest lever
@@ -69,7 +69,7 @@ from tactcad.errors import DesignError, TactcadError
 from tactcad.mechanics.correction import load_correction
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
 from tactcad.mechanics.strength import force_limits
-from tactcad.mechanics.tolerance import corrected_stiffness
+from tactcad.studies.tolerance_montecarlo import corrected_stiffness
 
 #: Clearance (mm) between the notch bottom and the arm's underside when the
 #: arm height has to grow with the web and notch radius (as the correction fit).
@@ -633,8 +633,8 @@ def requirements_table(targets: Targets, data: Mapping[str, Any]) -> dict[str, A
     """The ``[requirements]`` table an inverse design writes: the targets, the K
     band the web tolerance allows (rounded up) and the K_obj resolution the
     two elements reach over the range at the full-scale force (rounded up);
-    see :mod:`tactcad.mechanics.requirements`."""
-    from tactcad.mechanics.requirements import round_up, web_band_rel, worst_resolution
+    see :mod:`tactcad.studies.verification`."""
+    from tactcad.studies.verification import round_up, web_band_rel, worst_resolution
 
     plan = plan_from_dict(data, source="<inverse design>")
     lo, hi = targets.k_obj_range_N_per_mm

@@ -1,7 +1,8 @@
 """Strength studies: the FEM peak stress at the hinge (plane-stress fem2d or
 fem3d over three meshes, Richardson-extrapolated), the refit of the K_t
-exponent from it, the plan's strength at any ladder level and the comparison
-with the paper's Table 1 calibration forces. The models they run are in
+exponent from it and the plan's strength at any ladder level (the comparison
+with the paper's Table 1 calibration forces runs it:
+:func:`tactcad.paper.table1.table1_force_comparison`). The models they run are in
 :mod:`tactcad.mechanics.strength` and :mod:`tactcad.mechanics.fem`.
 
 Units: mm, N, MPa.
@@ -21,13 +22,10 @@ from tactcad.mechanics.fem.fem3d import solve_fem3d
 from tactcad.mechanics.fem.fields import peak_notch_stress
 from tactcad.mechanics.fem.mesh import fem_region
 from tactcad.mechanics.ladder import is_meshed, meshed_models, models
-from tactcad.paper.table1 import as_built_webs
-from tactcad.paper.data import table1
 from tactcad.mechanics.strength import (KT_FIT_GEOMETRIES,
                                         STRESS_WEB_DIVISIONS_2D, STRESS_WEB_DIVISIONS_3D,
-                                        ElementStress, StrengthRecord, require_yield,
-                                        closed_form_stress, nominal_stress_per_newton,
-                                        peak_stress_per_newton)
+                                        ElementStress, StrengthRecord,
+                                        closed_form_stress, nominal_stress_per_newton)
 from tactcad.mechanics.strength import plan_strength as _plan_strength
 
 
@@ -132,41 +130,3 @@ def fit_kt_exponent(g0: ElementGeometry, material: Material,
     x, y = np.log1p(s_arr / 2.0), np.log(kt_arr)
     p = float(x @ y / (x @ x))
     return KtFit(p, s_arr, kt_arr, (1.0 + s_arr / 2.0) ** p / kt_arr - 1.0)
-
-
-def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict]:
-    """The model's full-scale force against Table 1's "max support force" (the
-    largest force of each element's calibration), per calibrated element.
-
-    For each element: the full-scale force at ``model`` with the design web;
-    the as-built web that reproduces the measured K (corrected closed form,
-    :func:`tactcad.paper.table1.as_built_webs`) and the closed-form
-    full-scale force and peak stress at the measured maximum force with that
-    web; and the yield safety factor the calibration ran at.
-
-    Returns:
-        one dict per Table 1 element (element 5 has no calibration).
-
-    Raises:
-        DesignError: the material has no yield strength.
-    """
-    y = require_yield(plan.material)
-    sf = plan.strength.safety_factor
-    design = {r.element: r for r in plan_strength(plan, model)}
-    webs = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
-    out = []
-    for meas in table1():
-        g = plan.element(meas.element).geometry
-        t_built = webs[meas.element]
-        gb = replace(g, web_thickness_mm=t_built)
-        s_built = float(peak_stress_per_newton(t_built, gb.notch_radius_mm, gb.arm_length_mm,
-                                               gb.sheet_thickness_mm))
-        s_max = s_built * meas.max_support_force_N
-        out.append({"element": meas.element, "arm_length_mm": g.arm_length_mm,
-                    "max_support_force_N": meas.max_support_force_N,
-                    "full_scale_force_N": design[meas.element].full_scale_force_N,
-                    "web_as_built_mm": t_built,
-                    "full_scale_force_as_built_N": y / (s_built * sf),
-                    "stress_MPa_at_max_support_force_as_built": s_max,
-                    "yield_safety_factor_at_max_support_force_as_built": y / s_max})
-    return out

@@ -37,7 +37,7 @@ def closed_form_rate(plan, n: int = 2_000_000, repeat: int = 5, chunk: int = CHU
     """Corrected closed-form K evaluations per second over ``n`` random designs
     (web 0.15-0.4 mm, arm 4-8 mm, notch radius web-2 mm), best of ``repeat``."""
     from tactcad.mechanics.correction import load_correction
-    from tactcad.mechanics.tolerance import corrected_stiffness
+    from tactcad.studies.tolerance_montecarlo import corrected_stiffness
 
     g, mat, corr = plan.element(1).geometry, plan.material, load_correction()
     rng = np.random.default_rng(0)
@@ -60,7 +60,7 @@ def closed_form_rate(plan, n: int = 2_000_000, repeat: int = 5, chunk: int = CHU
 
 def monte_carlo_times(plan, samples: int = 10_000, repeat: int = 3) -> tuple[float, float]:
     """(first, best of ``repeat``) wall time (s) of a tolerance Monte Carlo."""
-    from tactcad.mechanics.tolerance import run_tolerance
+    from tactcad.studies.tolerance_montecarlo import run_tolerance
 
     times = []
     for k in range(repeat):

@@ -17,7 +17,7 @@ Medians over the rounds; goals on two cores: first <= 2 s, full <= 4 s.
 Then the load test: simulated reviewers' browsers (threads, 127.0.0.1 only)
 ask the page's routes for a bounded time while one-arm edits are saved one
 after the other; every request's latency and error is recorded
-(:mod:`tactcad.studies.watch_load`). Goal on two cores: 40 clients for 30 s,
+(:mod:`tactcad.benchmarks.watch_load`). Goal on two cores: 40 clients for 30 s,
 no error, p99 <= 250 ms.
 """
 
@@ -211,8 +211,8 @@ def edits_until(session: WatchSession, deadline: float, log=print) -> int:
 
 def load_test(session: WatchSession, clients: int, seconds: float, log=print) -> dict:
     """``clients`` simulated reviewers for ``seconds`` while one-arm edits are saved
-    one after the other (:mod:`tactcad.studies.watch_load`): the figures."""
-    from tactcad.studies.watch_load import run_load
+    one after the other (:mod:`tactcad.benchmarks.watch_load`): the figures."""
+    from tactcad.benchmarks.watch_load import run_load
 
     log(f"load: {clients} clients for {seconds:g} s, one-arm edits saved meanwhile")
     return run_load(session.port, clients, seconds, lambda deadline: edits_until(session,

@@ -21,8 +21,8 @@ DESIGN_SAMPLES = 5
 
 def design_samples(plan: Plan, n: int = DESIGN_SAMPLES) -> list[float]:
     """Object stiffnesses (N/mm, 3 significant digits) log-spaced over the
-    design's required K_obj range (:func:`tactcad.mechanics.requirements.requirements_of`)."""
-    from tactcad.mechanics.requirements import requirements_of
+    design's required K_obj range (:func:`tactcad.studies.verification.requirements_of`)."""
+    from tactcad.studies.verification import requirements_of
 
     lo, hi = requirements_of(plan).kobj_range_N_per_mm
     return [float(f"{k:.3g}") for k in np.geomspace(lo, hi, n)]

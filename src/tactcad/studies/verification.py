@@ -17,7 +17,7 @@ rounded to the safe side, with the reason stated:
 Sensing units. The reference is the stiffest element; each softer element
 is a measuring element paired with it. Pressed until the reference carries
 the full-scale force F, each unit reads K_obj with the resolution of
-:func:`tactcad.mechanics.inverse.unit_resolution` (forces read to 0.01 N);
+:func:`tactcad.studies.inverse_design.unit_resolution` (forces read to 0.01 N);
 the array's resolution at a K_obj is its best unit's.
 
 :func:`verification_matrix` evaluates every requirement at one ladder level:
@@ -121,7 +121,7 @@ def element_figures(plan: Plan, model: str = "closed-form",
     Args:
         stress: (geometry, material, model) -> ElementStress; default the
             closed form's (closed form and beam). The FEM levels pass
-            :func:`tactcad.studies.strength.element_stress`.
+            :func:`tactcad.studies.strength_studies.element_stress`.
 
     Raises:
         ValueError: an FEM model without ``stress``.
@@ -133,7 +133,7 @@ def element_figures(plan: Plan, model: str = "closed-form",
     if stress is None:
         if is_meshed(model):
             raise ValueError(f"model {model} runs the FEM: pass its stress "
-                             "(tactcad.studies.strength.element_stress)")
+                             "(tactcad.studies.strength_studies.element_stress)")
         stress = closed_form_stress
     element_stress = stress
 
@@ -305,7 +305,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     allow (margin >= -k_tolerance_rel); the others pass with margin >= 0.
     The full-scale-force record lists every limit (``limits``) and the one
     that binds (``binding_limit``). ``stress``: as :func:`element_figures`
-    (an FEM level needs :func:`tactcad.studies.strength.element_stress`).
+    (an FEM level needs :func:`tactcad.studies.strength_studies.element_stress`).
 
     Raises:
         UnknownModelError: ``model`` is not a ladder level.
@@ -356,7 +356,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     out.append(_record("kobj_range_N_per_mm", list(rng), list(span) if span else None, res_err,
                        m_rng, model, m_rng >= 0))
     out.append(readout_resolution_record(plan, fig, req, res_err))
-    from tactcad.mechanics.tolerance_budget import toleranced_band_record
+    from tactcad.studies.tolerance_budget import toleranced_band_record
 
     out.append(toleranced_band_record(plan, req.k_tolerance_rel, closed_form_k_error(plan)))
     for r in out:

@@ -1,6 +1,6 @@
 """Does the toleranced design hold its K band, and which tolerance to tighten to what.
 
-The Monte Carlo of :mod:`tactcad.mechanics.tolerance` gives each element's
+The Monte Carlo of :mod:`tactcad.studies.tolerance_montecarlo` gives each element's
 K distribution under the design's ``[tolerances]``; the predicted band is
 the worst element's larger end of its 95 % interval relative to nominal
 (JCGM 101 coverage interval), checked against ``[requirements]
@@ -25,10 +25,10 @@ from dataclasses import replace
 
 from tactcad.design.array import Plan
 from tactcad.mechanics.correction import Correction, load_correction
-from tactcad.mechanics.tolerance import (ToleranceReport, Tolerances, corrected_stiffness,
+from tactcad.studies.tolerance_montecarlo import (ToleranceReport, Tolerances, corrected_stiffness,
                                          run_tolerance)
 
-#: [tolerances] key -> field of :class:`~tactcad.mechanics.tolerance.Tolerances`.
+#: [tolerances] key -> field of :class:`~tactcad.studies.tolerance_montecarlo.Tolerances`.
 FIELDS = {"web_thickness_mm": "web_mm", "notch_radius_mm": "notch_radius_mm",
           "arm_length_mm": "arm_length_mm", "sheet_thickness_mm": "sheet_mm",
           "youngs_modulus_rel": "modulus_rel"}
