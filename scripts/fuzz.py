@@ -30,17 +30,17 @@ import traceback
 
 from tactcad.design.domain import draw_design, draw_out_of_domain
 from tactcad.design.project import project_from_data, project_of
-from tactcad.design.rigs import default_rigs_data
-from tactcad.design.scenes import DEFAULT_SCENES
+from tactcad.design.rig_plan import default_rigs_data
+from tactcad.design.scene_specs import DEFAULT_SCENES
 from tactcad.vocabulary.schema import Problems, read_toml
 from tactcad.errors import DesignError, TactcadError
 
 
 def check_design(plan, rigs, scenes, *, full: bool = False) -> list[str]:
     """Build, assemble and check one accepted design; the failing checks' lines."""
-    from tactcad.assembly.scenes import build_scene
-    from tactcad.catalogue.array import array_parts
-    from tactcad.catalogue.rigs import rig_parts
+    from tactcad.assembly.scene_solver import build_scene
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.catalogue.rig_catalogue import rig_parts
     from tactcad.checks.mesh_interference import check_mesh_interference
     from tactcad.checks.scene_sanity import check_scene_sanity
     from tactcad.checks.scenes import placed_shapes

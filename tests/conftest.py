@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from tactcad.design.array import default_design_data, load_design
+from tactcad.design.array_plan import default_design_data, load_design
 
 
 #: Fixtures that cost a full export or a FreeCAD run: their tests are slow.
@@ -80,8 +80,8 @@ def freecad():
 def with_default_companions(design: Path) -> Path:
     """``design`` (a file written in a test) with the default design's rigs
     and scenes files copied beside it, as its ``[files]`` table names them."""
-    from tactcad.design.rigs import DEFAULT_RIGS
-    from tactcad.design.scenes import DEFAULT_SCENES
+    from tactcad.design.rig_plan import DEFAULT_RIGS
+    from tactcad.design.scene_specs import DEFAULT_SCENES
 
     for f in (DEFAULT_RIGS, DEFAULT_SCENES):
         shutil.copy(f, design.parent / f.name)

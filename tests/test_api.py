@@ -100,7 +100,7 @@ def test_parts_are_built_on_first_access_and_once():
 
 
 def test_assembly_is_a_labelled_compound_of_the_scene():
-    from tactcad.catalogue.array import array_instances
+    from tactcad.catalogue.array_catalogue import array_instances
 
     project = tactcad.load()
     asm = project.assembly("array")
@@ -121,7 +121,7 @@ def test_assembly_refuses_an_unknown_scene():
 
 def test_element_stiffness_and_strength_are_the_ladders():
     from tactcad.mechanics.ladder import estimate
-    from tactcad.mechanics.strength import plan_strength
+    from tactcad.mechanics.element_strength import plan_strength
 
     project = tactcad.load()
     e = project.element(8)
@@ -188,7 +188,7 @@ def test_flexure_element_refuses_with_the_design_files_message():
 
 
 def test_flexure_array_is_the_designs_array():
-    from tactcad.catalogue.array import array_instances
+    from tactcad.catalogue.array_catalogue import array_instances
 
     a = tactcad.FlexureArray(pitch_mm=4.5)
     assert a.plan.pitch_mm == 4.5
@@ -249,7 +249,7 @@ def test_readme_freecad_snippet_runs_in_freecadcmd(freecad, tmp_path):
     found = re.search(r"^(\d+) solids; parts: (.*)$", out.stdout, re.M)
     assert found, out.stdout[-2000:]
     assert int(found.group(1)) == array["solids"] == 38  # with the 10 gauges
-    from tactcad.catalogue.array import array_parts
+    from tactcad.catalogue.array_catalogue import array_parts
 
     assert found.group(2).split(", ") == sorted(array_parts(project.plan))
     assert (tmp_path / "array-review.FCStd").stat().st_size > 1000

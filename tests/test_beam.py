@@ -10,11 +10,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tactcad.design.array import load_design
+from tactcad.design.array_plan import load_design
 from tactcad.mechanics.beam import (
     beam_convergence, beam_mesh, estimate_beam, solve_beam, unit_load_compliance)
 from tactcad.mechanics.closed_form import closed_form_compliance, estimate_closed_form
-from tactcad.mechanics.result import StiffnessResult
+from tactcad.mechanics.stiffness_result import StiffnessResult
 
 PLAN = load_design()
 MAT = PLAN.material

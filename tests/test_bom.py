@@ -14,8 +14,8 @@ import pytest
 
 from tactcad.assembly.inventory import design_assemblies, part_quantities
 from tactcad.export.bom import BOM_COLUMNS, bom_csv, bom_rows
-from tactcad.catalogue.array import Instance, Method, Process, array_instances, array_parts
-from tactcad.design.array import Placement, default_design_data, plan_from_dict, with_overrides
+from tactcad.catalogue.array_catalogue import Instance, Method, Process, array_instances, array_parts
+from tactcad.design.array_plan import Placement, default_design_data, plan_from_dict, with_overrides
 
 
 def read_csv(path):
@@ -167,7 +167,7 @@ def test_scene_assemblies_are_counted_and_drawn(plan, project):
 def test_real_scenes_quantities(project):
     """With the project's scenes: every scene's count is at most the BOM's
     quantity, and equal to it in at least one scene."""
-    pytest.importorskip("tactcad.assembly.scenes")
+    pytest.importorskip("tactcad.assembly.scene_solver")
     specs, assemblies = design_assemblies(project)
     rows = bom_rows(assemblies, specs)
     for r in rows:

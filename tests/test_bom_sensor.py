@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
+from tactcad.design.array_plan import default_design_data, plan_from_dict, with_overrides
 from tactcad.design.project import load_project
 from tactcad.errors import DesignError
 from tactcad.export.bom import CSV_ENCODING, write_bom_files

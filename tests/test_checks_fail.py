@@ -6,7 +6,7 @@ import build123d as bd
 import ezdxf
 import pytest
 
-from tactcad.catalogue.array import array_parts
+from tactcad.catalogue.array_catalogue import array_parts
 from tactcad.checks.dxf import check_profile_dxf
 from tactcad.checks.interference import Placed, check_interference
 from tactcad.checks.solids import check_solid
@@ -103,7 +103,7 @@ def test_declared_contact_must_touch(plan, element):
 
 
 def test_step_reimport_detects_a_wrong_file(tmp_path, plan, element):
-    from tactcad.kernel.step import StepPart, write_step
+    from tactcad.kernel.step_writer import StepPart, write_step
 
     solid = build_element(element[0])
     path = tmp_path / "x.step"

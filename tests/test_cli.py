@@ -272,7 +272,7 @@ def test_check_reuses_a_current_export_and_refuses_a_changed_one(tmp_path):
 
 def test_reuse_refusal_reasons(tmp_path):
     from tactcad import __version__
-    from tactcad.design.array import load_design
+    from tactcad.design.array_plan import load_design
     from tactcad.export.reuse import file_sha256, reuse_refusal
     from tactcad.store import stack_versions
 

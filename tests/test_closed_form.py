@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tactcad.design.array import load_design
+from tactcad.design.array_plan import load_design
 from tactcad.errors import DesignError
 from tactcad.mechanics import correction as corr_mod
 from tactcad.mechanics.closed_form import (
@@ -20,7 +20,7 @@ from tactcad.mechanics.closed_form import (
     gauge_strain_per_newton, notch_integrals, web_for_stiffness)
 from tactcad.mechanics.correction import (
     IDENTITY, Correction, CorrectionRangeWarning, FitRange, apply_correction, load_correction)
-from tactcad.mechanics.result import StiffnessResult
+from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.geometry.profile import web_thickness_at
 from tactcad.studies.correction_fit import FitData, fit_correction
 
@@ -456,7 +456,7 @@ def test_richardson_falls_back_to_the_formal_order():
 def test_the_corrections_range_covers_every_library_material_and_is_checked_at_fem3d():
     import json
 
-    from tactcad.vocabulary.materials import material_grade, material_grades
+    from tactcad.vocabulary.material_library import material_grade, material_grades
     from tactcad.mechanics.correction import CORRECTION_FILE, load_correction
 
     lo, hi = load_correction().fit_range.poisson_ratio

@@ -12,7 +12,7 @@ import pytest
 
 import tactcad
 
-from tactcad.design.array import load_design, plan_from_dict, with_overrides
+from tactcad.design.array_plan import load_design, plan_from_dict, with_overrides
 from tactcad.errors import DesignError
 
 

@@ -10,7 +10,7 @@ import pytest
 
 from conftest import with_default_companions
 from tactcad.cli import main
-from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
+from tactcad.design.array_plan import default_design_data, plan_from_dict, with_overrides
 from tactcad.design.tolerances import tolerances_of
 from tactcad.errors import DesignError
 from tactcad.studies.tolerance_montecarlo import Tolerances
@@ -30,7 +30,7 @@ def _data(**tolerances):
 
 
 def test_each_tolerance_is_on_the_drawing_and_in_tolerance_json(tmp_path, capsys):
-    from tactcad.catalogue.array import array_parts
+    from tactcad.catalogue.array_catalogue import array_parts
     from tactcad.drawings.compose import compose
     from tactcad.solids.build import build_part
 
@@ -144,7 +144,7 @@ def test_a_what_if_tolerance_that_lets_the_notch_vanish_is_refused(capsys):
 
 
 def test_the_element_drawing_says_where_the_gauge_goes():
-    from tactcad.catalogue.array import array_parts
+    from tactcad.catalogue.array_catalogue import array_parts
     from tactcad.drawings.compose import compose, part_hash
     from tactcad.solids.build import build_part
 

@@ -14,10 +14,10 @@ import pytest
 
 from tactcad import __version__
 from tactcad.assembly.inventory import design_assemblies, instance_counts
-from tactcad.catalogue.array import Method, Process, array_instances, array_parts
+from tactcad.catalogue.array_catalogue import Method, Process, array_instances, array_parts
 from tactcad.catalogue.shop import stock_size, tightening_torque_Nm
 from tactcad.drawings.compose import part_hash
-from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
+from tactcad.design.array_plan import default_design_data, plan_from_dict, with_overrides
 
 SVG = "{http://www.w3.org/2000/svg}"
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?")
@@ -306,7 +306,7 @@ def test_pictures_exist_and_are_not_blank(exported, plan):
 def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan, project):
     """Fabricated rig parts get drawings with their own dimension set
     (indenter) or the generic one (sizes from the solid)."""
-    pytest.importorskip("tactcad.assembly.scenes")
+    pytest.importorskip("tactcad.assembly.scene_solver")
     _, _, svgs = drawing_files
     specs, _ = design_assemblies(project)
     if "indenter" in svgs:

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from tactcad.cli import main
-from tactcad.design.array import read_toml
+from tactcad.design.array_plan import read_toml
 from tactcad.design.project import load_project
 from tactcad.studies.verification import requirements_of, verification_matrix
 
@@ -90,7 +90,7 @@ def test_example_exports_hold_no_paper_text_and_give_its_full_scale_force(tmp_pa
 
 
 def test_the_papers_design_keeps_its_citations(tmp_path):
-    from tactcad.design.array import load_design
+    from tactcad.design.array_plan import load_design
     from tactcad.drawings.design_notes import numbering_note, web_tolerance_note
 
     plan = load_design()

@@ -105,7 +105,7 @@ def test_all_checks_pass_on_the_default_design(exported, plan):
 @pytest.mark.slow
 def test_changed_web_reaches_the_dxf(tmp_path, design_data):
     from tactcad.checks.dxf import read_dxf, thinnest_ligament
-    from tactcad.design.array import plan_from_dict, with_overrides
+    from tactcad.design.array_plan import plan_from_dict, with_overrides
 
     plan = plan_from_dict(with_overrides(design_data, {"element.web_thickness_mm": 0.31}))
     export(project_for_plan(plan), tmp_path, log=lambda s: None)

@@ -9,7 +9,7 @@ import json
 import pytest
 
 from tactcad.cli import build_parser, main
-from tactcad.design.array import DEFAULT_DESIGN
+from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.export import kinds
 from tactcad.export.job import Job, Run
 from tactcad.export.jobs import all_jobs

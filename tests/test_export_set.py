@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from conftest import with_default_companions
-from tactcad.design.array import DEFAULT_DESIGN
+from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.store import Store
 
 pytestmark = pytest.mark.slow

@@ -10,7 +10,7 @@ import pytest
 import trimesh
 
 from tactcad.cli import main
-from tactcad.design.array import DEFAULT_DESIGN
+from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.export.job import Run
 from tactcad.export.kinds import full_export_kinds
 from tactcad.export.stl import stl_name

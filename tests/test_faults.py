@@ -93,7 +93,7 @@ def _fail_enospc(path, *args, **kwargs):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("kind,module,name,extra", [
-    ("STEP", "tactcad.kernel.step", "_write_doc", ["--only", "step", "--part", "spacer"]),
+    ("STEP", "tactcad.kernel.step_writer", "_write_doc", ["--only", "step", "--part", "spacer"]),
     ("GLB", "tactcad.export.glb", "write_glb", ["--scene", "wirecut"]),
     ("PDF", "tactcad.drawings.pdf", "svgs_to_pdf", ["--only", "drawings"]),
     ("FCStd", "tactcad.export.freecad_review", "start_review_files", ["--only", "review"]),

@@ -16,11 +16,11 @@ import numpy as np
 import pytest
 import shapely.geometry as sg
 
-from tactcad.design.array import load_design
+from tactcad.design.array_plan import load_design
 from tactcad.studies.correction_sweep import grid_geometry
 from tactcad.mechanics.fem.fem2d import (estimate_fem2d, fem2d_convergence, plane_model_error,
                                         solve_fem2d)
-from tactcad.mechanics.fem.mesh import (clip_chain, default_clamp_margin_mm, fem_region,
+from tactcad.mechanics.fem.fem_mesh import (clip_chain, default_clamp_margin_mm, fem_region,
                                         mesh_region)
 from tactcad.mechanics.richardson import richardson
 from tactcad.geometry.profile import Arc, Line, contour_area, element_profile

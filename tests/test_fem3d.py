@@ -14,7 +14,7 @@ import pytest
 from tactcad.studies.correction_sweep import grid_geometry
 from tactcad.mechanics.fem.fem2d import estimate_fem2d, lame, skfem_mesh, solve_elasticity
 from tactcad.mechanics.fem.fem3d import fem3d_convergence, solve_fem3d
-from tactcad.mechanics.fem.mesh import fem_region, graded_layers, mesh_region
+from tactcad.mechanics.fem.fem_mesh import fem_region, graded_layers, mesh_region
 from tactcad.mechanics.richardson import richardson
 
 ORDER_BAND = (1.5, 4.5)

@@ -36,7 +36,7 @@ def _check_vtu(path, n_points, plan_stress_per_N, tip_deflection_mm):
 
 
 def test_fem2d_vtu_round_trip(plan, tmp_path):
-    from tactcad.mechanics.strength import peak_stress_per_newton
+    from tactcad.mechanics.element_strength import peak_stress_per_newton
 
     g = plan.element(4).geometry
     out = write_element_vtu(tmp_path, g, plan.material, "fem2d")

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from tactcad.catalogue.array import GAUGE_PART, array_contacts, array_instances, array_parts
-from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
+from tactcad.catalogue.array_catalogue import GAUGE_PART, array_contacts, array_instances, array_parts
+from tactcad.design.array_plan import default_design_data, plan_from_dict, with_overrides
 
 
 def _plan(**overrides):

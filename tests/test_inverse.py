@@ -11,14 +11,14 @@ import numpy as np
 import pytest
 
 from tactcad.cli import main
-from tactcad.design.array import load_design
+from tactcad.design.array_plan import load_design
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import CorrectionRangeWarning
 from tactcad.studies.inverse_design import (InverseDesignError, Targets, design_for_targets,
                                        reference_elements, search_webs, unit_resolution)
 from tactcad.mechanics.ladder import estimate
-from tactcad.mechanics.lumped import deflection_ratio
-from tactcad.mechanics.strength import strength_summary
+from tactcad.mechanics.lumped_model import deflection_ratio
+from tactcad.mechanics.element_strength import strength_summary
 
 FEASIBLE = Targets(3.0, (5.0, 20.0), 0.3)
 
@@ -58,7 +58,7 @@ def test_design_changes_the_web_when_the_design_web_breaks_a_limit(plan):
     with pytest.warns(CorrectionRangeWarning):  # some designs it weighs lie beyond the correction's fit
         d = design_for_targets(plan, t)
     # the margins on the arm height the design settled on (raised for a/h <= 4)
-    from tactcad.design.array import plan_from_dict, with_overrides
+    from tactcad.design.array_plan import plan_from_dict, with_overrides
 
     h = d.plan.element(1).geometry.arm_height_mm
     search = search_webs(plan_from_dict(with_overrides(plan.raw, {"element.arm_height_mm": h})),

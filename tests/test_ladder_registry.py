@@ -12,7 +12,7 @@ import pytest
 import tactcad
 from tactcad.cli import build_parser, main
 from tactcad.mechanics import ladder
-from tactcad.mechanics.result import StiffnessResult
+from tactcad.mechanics.stiffness_result import StiffnessResult
 
 
 def estimate_double(g, material, *, element=None, **options) -> StiffnessResult:

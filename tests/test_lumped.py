@@ -16,10 +16,10 @@ from hypothesis import strategies as st
 
 from tactcad.commands import lumped as lumped_cmd
 from tactcad.errors import TactcadError
-from tactcad.mechanics import lumped
+from tactcad.mechanics import lumped_model as lumped
 from tactcad.paper import data as paper_data
 from tactcad.paper import table2_eq2
-from tactcad.mechanics.lumped import LumpedDomainError
+from tactcad.mechanics.lumped_model import LumpedDomainError
 
 U = 2.0 ** -53  # unit round-off of float64
 # Second-order rounding terms (O(u^2)) are covered by this relative slack.

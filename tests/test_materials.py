@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from tactcad.design.array import plan_from_dict
+from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError
-from tactcad.vocabulary.materials import (DEFAULT_GAUGE, DEFAULT_GRADE, material_grade, material_grades,
+from tactcad.vocabulary.material_library import (DEFAULT_GAUGE, DEFAULT_GRADE, material_grade, material_grades,
                                           strain_gauge, strain_gauges)
 
 REQUIRED_GRADES = ("6061-T6", "7075-T6", "17-4PH-H900", "Ti-6Al-4V-annealed", "CuBe-C17200-TF00")

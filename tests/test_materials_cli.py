@@ -7,11 +7,11 @@ import json
 
 import pytest
 
-from tactcad.catalogue.array import array_parts
+from tactcad.catalogue.array_catalogue import array_parts
 from tactcad.catalogue.shop import material_designation
 from tactcad.cli import main
-from tactcad.design.array import default_design_data, plan_from_dict, with_overrides
-from tactcad.vocabulary.materials import material_grade, material_grades
+from tactcad.design.array_plan import default_design_data, plan_from_dict, with_overrides
+from tactcad.vocabulary.material_library import material_grade, material_grades
 from tactcad.errors import DesignError
 
 

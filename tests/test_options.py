@@ -107,7 +107,7 @@ def test_bad_option_values_are_refused_naming_the_option(argv, needle, capsys, t
 
 def test_material_grade_matches_without_case_where_unambiguous(monkeypatch):
     from tactcad.commands.options import material_grade_name
-    from tactcad.vocabulary import materials
+    from tactcad.vocabulary import material_library as materials
 
     assert material_grade_name("ti-6al-4v-annealed") == "Ti-6Al-4V-annealed"
     assert material_grade_name("17-4ph") == "17-4PH-H900"

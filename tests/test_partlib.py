@@ -11,7 +11,7 @@ import dataclasses
 
 import pytest
 
-from tactcad.design.rigs import OWN_TABLES, RigsFile
+from tactcad.design.rig_plan import OWN_TABLES, RigsFile
 from tactcad.partlib.base import RigPart
 from tactcad.partlib.registry import builders, derivation_order, rig_parts_lib, topological
 
@@ -76,7 +76,7 @@ def test_needs_in_a_circle_are_refused_naming_the_circle():
 
 
 def test_a_part_reads_only_the_parts_it_needs():
-    from tactcad.design.rigs import PartContext
+    from tactcad.design.rig_plan import PartContext
 
     context = PartContext(plan=None, parts={"cart": "cart data"}, tables={"cart": "cart table"})
     assert context.part("cart") == "cart data" and context.table("cart") == "cart table"
@@ -114,7 +114,7 @@ def test_table_values_copy_the_table_field_for_field():
 
 
 def test_companions_and_fasteners_become_specs_with_their_builders(project):
-    from tactcad.catalogue.rigs import rig_parts
+    from tactcad.catalogue.rig_catalogue import rig_parts
 
     specs = rig_parts(project.plan, project.rigs)
     for key, part in rig_parts_lib().items():
@@ -137,8 +137,8 @@ def test_a_screw_of_the_arrays_size_and_length_is_still_a_rig_part(project):
     listed again."""
     import dataclasses as dc
 
-    from tactcad.catalogue.array import bolt_name
-    from tactcad.catalogue.rigs import rig_parts
+    from tactcad.catalogue.array_catalogue import bolt_name
+    from tactcad.catalogue.rig_catalogue import rig_parts
     from tactcad.partlib.base import Fastener
 
     plan, rigs = project.plan, project.rigs

@@ -9,9 +9,9 @@ import math
 
 import pytest
 
-from tactcad.assembly.rigs import scene_model, shown_instances
-from tactcad.catalogue.rigs import rig_parts
-from tactcad.design.rigs import default_rigs_data, rigs_from_dict
+from tactcad.assembly.rig_models import scene_model, shown_instances
+from tactcad.catalogue.rig_catalogue import rig_parts
+from tactcad.design.rig_plan import default_rigs_data, rigs_from_dict
 from tactcad.errors import DesignError
 from tactcad.vocabulary.process import Method
 

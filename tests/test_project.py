@@ -11,10 +11,10 @@ from pathlib import Path
 
 import pytest
 
-from tactcad.design.array import DEFAULT_DESIGN
+from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.design.project import Project, load_project, project_for_plan
-from tactcad.design.rigs import DEFAULT_RIGS
-from tactcad.design.scenes import DEFAULT_SCENES
+from tactcad.design.rig_plan import DEFAULT_RIGS
+from tactcad.design.scene_specs import DEFAULT_SCENES
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "tactcad"
 #: Functions that open a design, rigs or scenes file.
@@ -100,7 +100,7 @@ def test_a_plan_made_in_code_gets_its_rigs_and_scenes_named(plan):
 
 
 def test_test_rigs_need_the_validated_rigs(plan):
-    from tactcad.assembly.rigs import rig_model
+    from tactcad.assembly.rig_models import rig_model
     from tactcad.errors import SceneError
 
     assert rig_model(plan, "array").nodes  # the array needs no rigs

@@ -14,7 +14,7 @@ import pytest
 
 import tactcad
 from tactcad.cli import main
-from tactcad.design.array import DEFAULT_DESIGN, EXAMPLES
+from tactcad.design.array_plan import DEFAULT_DESIGN, EXAMPLES
 from tactcad.errors import DesignError, DesignErrors
 from tactcad.project_folder import (companion_texts, default_design, examples, new_project,
                                     sample_stiffnesses)

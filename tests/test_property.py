@@ -11,14 +11,14 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-from tactcad.catalogue.array import array_parts
+from tactcad.catalogue.array_catalogue import array_parts
 from tactcad.checks.dxf import check_profile_dxf
 from tactcad.checks.solids import check_solid
-from tactcad.design.array import ARM_RANGE_MM, WEB_RANGE_MM, default_design_data, plan_from_dict, with_overrides
+from tactcad.design.array_plan import ARM_RANGE_MM, WEB_RANGE_MM, default_design_data, plan_from_dict, with_overrides
 from tactcad.design.domain import draw_design, draw_out_of_domain
 from tactcad.design.project import project_from_data
-from tactcad.design.rigs import default_rigs_data
-from tactcad.design.scenes import DEFAULT_SCENES
+from tactcad.design.rig_plan import default_rigs_data
+from tactcad.design.scene_specs import DEFAULT_SCENES
 from tactcad.vocabulary.schema import Problems, read_toml
 from tactcad.errors import DesignError
 from tactcad.export.dxf_sheet import shop_profiles, write_shop_profile
@@ -135,9 +135,9 @@ def _project(data):
           phases=[Phase.explicit, Phase.reuse, Phase.generate])  # no slow shrinking of solids
 @given(case=st.data())
 def test_whole_designs_validate_build_and_assemble(case):
-    from tactcad.assembly.scenes import assemble
+    from tactcad.assembly.scene_solver import assemble
     from tactcad.design.project import project_of
-    from tactcad.catalogue.rigs import RigPartSpec, rig_parts
+    from tactcad.catalogue.rig_catalogue import RigPartSpec, rig_parts
     from tactcad.solids.cache import PartCache
     from tactcad.store import stable_repr
 

@@ -11,11 +11,11 @@ from pathlib import Path
 import pytest
 
 from tactcad.cli import main
-from tactcad.design.array import default_design_data, load_design, plan_from_dict, with_overrides
-from tactcad.design.readout import readout_of
+from tactcad.design.array_plan import default_design_data, load_design, plan_from_dict, with_overrides
+from tactcad.design.readout_section import readout_of
 from tactcad.errors import DesignError
 from tactcad.paper.data import table1
-from tactcad.mechanics.readout import (beam_grid_strain_per_N, beam_surface_strain_per_N,
+from tactcad.mechanics.readout_chain import (beam_grid_strain_per_N, beam_surface_strain_per_N,
                                        bridge_nonlinearity_rel, gauge_strain_per_N,
                                        noise_budget_V, readout_chain, readout_report)
 from tactcad.studies.verification import requirements_of, verification_matrix

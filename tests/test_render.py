@@ -149,7 +149,7 @@ def test_picture_is_the_same_from_kept_meshes_as_from_a_fresh_run(tmp_path):
     from tactcad.export.jobs import image_job
     from tactcad.export.job import Run
     from tactcad.export.live_parts import LiveParts
-    from tactcad.solids.mesh import tessellate
+    from tactcad.solids.tessellation import tessellate
     from tactcad.store import Store
 
     project = load_project(Path(__file__).resolve().parents[1] / "hardware/ti_array_2x3/ti_array_2x3.toml")

@@ -7,7 +7,7 @@ import json
 import pytest
 
 from tactcad.cli import main
-from tactcad.design.array import default_design_data, plan_from_dict
+from tactcad.design.array_plan import default_design_data, plan_from_dict
 from tactcad.errors import DesignErrors
 from tactcad.mechanics.limits import LIMIT_NAMES
 from tactcad.studies.verification import requirements_of, verification_matrix

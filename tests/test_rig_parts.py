@@ -9,8 +9,8 @@ import math
 import pytest
 
 from tactcad.errors import DesignError
-from tactcad.catalogue.rigs import RigPartSpec, rig_parts
-from tactcad.design.rigs import default_rigs_data, load_rigs, rigs_from_dict
+from tactcad.catalogue.rig_catalogue import RigPartSpec, rig_parts
+from tactcad.design.rig_plan import default_rigs_data, load_rigs, rigs_from_dict
 from tactcad.partlib.sample import sample_name
 from tactcad.vocabulary.standards import BEARINGS
 

@@ -12,12 +12,12 @@ from collections import Counter
 import pytest
 
 from tactcad import cli
-from tactcad.design.array import load_design
+from tactcad.design.array_plan import load_design
 from tactcad.errors import DesignError, TactcadError
-from tactcad.assembly.rigs import describe, scene_names
-from tactcad.assembly.scenes import assemble, build_scene
+from tactcad.assembly.rig_models import describe, scene_names
+from tactcad.assembly.scene_solver import assemble, build_scene
 from tactcad.checks.scenes import placed_shapes
-from tactcad.design.scenes import load_scenes
+from tactcad.design.scene_specs import load_scenes
 from tactcad.errors import SceneError
 from tactcad.solids.cache import PartCache
 
@@ -147,7 +147,7 @@ def test_sanity_catches_a_tip_out_of_plane(built):
 
 def _bad_design_dir(tmp_path, edit):
     """Copy of the hardware folder with rigs.toml edited by ``edit(text)``."""
-    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.design.array_plan import DEFAULT_DESIGN
 
     hw = DEFAULT_DESIGN.parent
     for f in ("macro_array.toml", "scenes.toml"):
@@ -202,7 +202,7 @@ def test_bad_scenes_file(tmp_path, plan, project):
     text.write_text('[scene.x]\nrig = "trolley"\ndescription = "d"\ngroups = ["array"]\n')
     with pytest.raises(DesignError, match="scene.x.rig"):
         load_scenes(text)
-    from tactcad.assembly.scenes import SceneSpec, scene_model
+    from tactcad.assembly.scene_solver import SceneSpec, scene_model
 
     spec = SceneSpec("x", "sample-stiffness", "d", ("cart", "trolley"), {"fabricated": "full",
                                                                          "purchased": "envelope"})
@@ -273,7 +273,7 @@ def test_changed_rig_dimensions_assemble_or_fail_clearly(plan, project):
     from hypothesis import HealthCheck, Phase, given, settings
     from hypothesis import strategies as st
 
-    from tactcad.design.rigs import default_rigs_data, rigs_from_dict
+    from tactcad.design.rig_plan import default_rigs_data, rigs_from_dict
 
     base = default_rigs_data()
 

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from tactcad.catalogue.array import array_parts
-from tactcad.design.array import load_design, plan_from_dict
+from tactcad.catalogue.array_catalogue import array_parts
+from tactcad.design.array_plan import load_design, plan_from_dict
 from tactcad.errors import DesignError
 
 TABLE = Path(__file__).parent / "data" / "spacer_wire_channel.toml"

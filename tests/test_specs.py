@@ -7,8 +7,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from tactcad.catalogue import array as catalogue
-from tactcad.design.array import plan_from_dict
+from tactcad.catalogue import array_catalogue as catalogue
+from tactcad.design.array_plan import plan_from_dict
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "tactcad"
 

@@ -5,7 +5,7 @@ hashes printed on drawings."""
 
 from dataclasses import dataclass, field
 
-from tactcad.design.array import ClampPlateGeometry, Hole, SpacerGeometry
+from tactcad.design.array_plan import ClampPlateGeometry, Hole, SpacerGeometry
 from tactcad.store import stable_repr
 
 

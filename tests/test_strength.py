@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from tactcad.cli import main
-from tactcad.design.array import plan_from_dict
+from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import CorrectionRangeWarning
-from tactcad.mechanics.strength import (KT_FIT_TOLERANCE, PAPER_LOAD_N, full_scale_force,
+from tactcad.mechanics.element_strength import (KT_FIT_TOLERANCE, PAPER_LOAD_N, full_scale_force,
                                         nominal_stress_per_newton, plan_strength,
                                         stress_concentration_factor, strength_summary)
 
@@ -93,7 +93,7 @@ def test_cli_json_and_text(capsys):
 
 
 def test_cli_bad_grade_is_an_error_not_a_traceback(tmp_path, capsys):
-    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.design.array_plan import DEFAULT_DESIGN
 
     text = DEFAULT_DESIGN.read_text().replace('grade = "6061-T6"', 'grade = "6062-T6"')
     f = tmp_path / "bad.toml"
@@ -109,7 +109,7 @@ def test_cli_bad_grade_is_an_error_not_a_traceback(tmp_path, capsys):
 def test_closed_form_stress_matches_the_fem2d_field(plan, web, radius, arm):
     """K_t fitted form against converged plane-stress P2 FEM (Richardson):
     within KT_FIT_TOLERANCE (2 %) over t/R = 0.1 ... 1 and arms 4 ... 8 mm."""
-    from tactcad.mechanics.strength import peak_stress_per_newton
+    from tactcad.mechanics.element_strength import peak_stress_per_newton
     from tactcad.studies.strength_studies import fem_peak_stress
 
     g = dataclasses.replace(plan.element(1).geometry, web_thickness_mm=web,
@@ -126,7 +126,7 @@ def test_closed_form_stress_matches_the_fem2d_field(plan, web, radius, arm):
 
 def test_table1_comparison_uses_the_as_built_web(plan, capsys):
     from tactcad.paper.data import table1
-    from tactcad.mechanics.strength import peak_stress_per_newton
+    from tactcad.mechanics.element_strength import peak_stress_per_newton
     from tactcad.paper.table1 import table1_force_comparison
 
     rows = table1_force_comparison(plan)
@@ -151,7 +151,7 @@ def test_fem3d_peak_is_the_plane_strain_share_of_the_closed_form(plan):
     sigma_z ~ nu sigma_x, which lowers von Mises by sqrt(1 - nu + nu^2) = 0.884
     against the plane-stress closed form; the 3D field must show that share
     (measured 0.902) and peak at the notch root."""
-    from tactcad.mechanics.strength import peak_stress_per_newton
+    from tactcad.mechanics.element_strength import peak_stress_per_newton
     from tactcad.studies.strength_studies import fem_peak_stress
 
     g = plan.element(1).geometry
@@ -165,7 +165,7 @@ def test_fem3d_peak_is_the_plane_strain_share_of_the_closed_form(plan):
 
 
 def test_force_limits_broadcast_and_match_the_records(plan):
-    from tactcad.mechanics.strength import force_limits
+    from tactcad.mechanics.element_strength import force_limits
 
     arms = np.array([4.0, 5.0, 6.0, 7.0, 8.0])
     lim = force_limits(0.25, 0.5, arms, 3.0, plan.material, plan.strength)
@@ -180,7 +180,7 @@ def test_force_limits_broadcast_and_match_the_records(plan):
 
 
 def test_closed_form_outside_the_kt_fit_range_warns(plan):
-    from tactcad.mechanics.strength import StrengthRangeWarning, closed_form_stress
+    from tactcad.mechanics.element_strength import StrengthRangeWarning, closed_form_stress
 
     g = dataclasses.replace(plan.element(1).geometry, web_thickness_mm=0.6, notch_radius_mm=0.5)
     # t/R = 1.2 is outside the stiffness correction's fit too, which says so as well
@@ -194,7 +194,7 @@ def test_closed_form_outside_the_kt_fit_range_warns(plan):
 def test_kt_exponent_refits_from_fem(plan):
     """A refit on three of the fit geometries (t/R = 0.1, 0.5, 1) lands on
     the stored exponent, with residuals inside the stated tolerance."""
-    from tactcad.mechanics.strength import KT_EXPONENT, KT_FIT_GEOMETRIES
+    from tactcad.mechanics.element_strength import KT_EXPONENT, KT_FIT_GEOMETRIES
     from tactcad.studies.strength_studies import fit_kt_exponent
 
     fit = fit_kt_exponent(plan.element(1).geometry, plan.material,

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from tactcad.cli import main
-from tactcad.design.array import plan_from_dict
+from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError
 from tactcad.studies.inverse_design import design_variant
 from tactcad.studies.sweeps import check_scheduler_address, design_grid, grid_points

@@ -121,7 +121,7 @@ def test_cli_refuses_bad_input(capsys):
 
 
 def test_runs_on_a_design_other_than_the_paper(design_data):
-    from tactcad.design.array import plan_from_dict
+    from tactcad.design.array_plan import plan_from_dict
     from tactcad.studies.inverse_design import design_variant
 
     plan = plan_from_dict(design_variant(design_data, arms_mm=[4.0] + [12.0] * 9))

@@ -12,10 +12,10 @@ from pathlib import Path
 
 import pytest
 
-from tactcad.design.array import DEFAULT_DESIGN, default_design_data, plan_from_dict, with_overrides
+from tactcad.design.array_plan import DEFAULT_DESIGN, default_design_data, plan_from_dict, with_overrides
 from tactcad.design.project import load_project, project_for_plan, project_from_data
-from tactcad.design.rigs import DEFAULT_RIGS, default_rigs_data, stiffest_element
-from tactcad.design.scenes import DEFAULT_SCENES
+from tactcad.design.rig_plan import DEFAULT_RIGS, default_rigs_data, stiffest_element
+from tactcad.design.scene_specs import DEFAULT_SCENES
 from tactcad.vocabulary.schema import Problems, read_toml
 from tactcad.errors import DesignError, DesignErrors
 
@@ -182,7 +182,7 @@ def test_limits_are_manufacturable(design_data):
 
 
 def test_part_names_are_file_safe(design_data):
-    from tactcad.catalogue.array import array_parts
+    from tactcad.catalogue.array_catalogue import array_parts
 
     plan = plan_from_dict(with_overrides(design_data, {"clamp.bolt_size": "M2.5"}))
     names = set(array_parts(plan))

@@ -49,7 +49,7 @@ def test_chain_stops_at_junctions():
 
 
 def test_analytic_parts_keep_the_exact_path(plan):
-    from tactcad.catalogue.array import array_parts
+    from tactcad.catalogue.array_catalogue import array_parts
     from tactcad.solids.cache import PartCache
 
     cache = PartCache(plan)

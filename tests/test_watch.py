@@ -122,7 +122,7 @@ def test_bad_port_is_refused_naming_the_option(tmp_path):
 @pytest.mark.slow
 def test_watch_session_in_chromium(tmp_path):
     from tactcad.checks.review_browser import BrowserMissing, browser_page, chromium_path
-    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.benchmarks.bench_watch import _free_port, _state, _wait, edit_first_arm
 
     try:
@@ -202,7 +202,7 @@ class _Session:
         import queue
         import threading
 
-        from tactcad.design.array import DEFAULT_DESIGN
+        from tactcad.design.array_plan import DEFAULT_DESIGN
 
         folder = tmp_path / "design"
         folder.mkdir(exist_ok=True)
@@ -421,7 +421,7 @@ def test_a_long_session_keeps_the_parts_of_the_current_design_only(tmp_path, mon
     the drawing worker drops its own as a run begins."""
     import pickle
 
-    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.design.project import load_project
     from tactcad.export.job import Run, solid_key
     from tactcad.export.jobs import all_jobs

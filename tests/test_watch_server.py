@@ -385,7 +385,7 @@ def test_a_short_load_during_edits_has_no_error_and_prints_its_latencies(tmp_pat
     import shutil
 
     from tactcad.commands.watch import watched_files
-    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.design.array_plan import DEFAULT_DESIGN
 
     for f in watched_files(DEFAULT_DESIGN):
         shutil.copyfile(f, tmp_path / f.name)

@@ -1,6 +1,6 @@
 """tactcad: CAD-driven generator for spring-based tactile sensor arrays.
 
-Data flows one way: design file (TOML) -> validated plan (:mod:`tactcad.design.array`)
+Data flows one way: design file (TOML) -> validated plan (:mod:`tactcad.design.array_plan`)
 -> part modules (:mod:`tactcad.partlib`) -> solids (:mod:`tactcad.solids`) -> exports and checks. Units are mm, N, MPa,
 N/mm and s throughout.
 

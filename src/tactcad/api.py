@@ -27,14 +27,14 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
 
 if TYPE_CHECKING:  # types only: importing them at run time would load the kernel
     from tactcad.checks.result import CheckResult
-    from tactcad.design.array import ElementGeometry, ElementSlot, Plan
+    from tactcad.design.array_plan import ElementGeometry, ElementSlot, Plan
     from tactcad.design.project import Project as ValidatedProject
-    from tactcad.design.rigs import RigDesign
-    from tactcad.design.scenes import SceneSpec
+    from tactcad.design.rig_plan import RigDesign
+    from tactcad.design.scene_specs import SceneSpec
     from tactcad.kernel.shapes import Compound, Solid
     from tactcad.export.run import ExportResult
-    from tactcad.mechanics.result import StiffnessResult
-    from tactcad.mechanics.strength import StrengthRecord
+    from tactcad.mechanics.stiffness_result import StiffnessResult
+    from tactcad.mechanics.element_strength import StrengthRecord
 
 __all__ = ["load", "Project", "Element", "CheckReport"]
 
@@ -68,7 +68,7 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
         DesignError: an unreadable file, a ``path`` that is no path, or a
             ``set`` key that is not ``section.key``.
     """
-    from tactcad.design.array import read_toml, with_overrides
+    from tactcad.design.array_plan import read_toml, with_overrides
     from tactcad.errors import DesignError
     from tactcad.project_folder import default_design
 
@@ -131,17 +131,17 @@ class Project:
 
     @property
     def plan(self) -> "Plan":
-        """The array's :class:`~tactcad.design.array.Plan` (mm, N, MPa)."""
+        """The array's :class:`~tactcad.design.array_plan.Plan` (mm, N, MPa)."""
         return self._validated_field("plan")
 
     @property
     def rigs(self) -> "RigDesign":
-        """The rig plan (:class:`~tactcad.design.rigs.RigDesign`) derived against the array."""
+        """The rig plan (:class:`~tactcad.design.rig_plan.RigDesign`) derived against the array."""
         return self._validated_field("rigs")
 
     @property
     def scenes(self) -> dict[str, "SceneSpec"]:
-        """The scenes by name (:class:`~tactcad.design.scenes.SceneSpec`)."""
+        """The scenes by name (:class:`~tactcad.design.scene_specs.SceneSpec`)."""
         return dict(self._validated_field("scenes"))
 
     @property
@@ -163,7 +163,7 @@ class Project:
         Raises:
             DesignErrors: as :func:`load`.
         """
-        from tactcad.design.array import with_overrides
+        from tactcad.design.array_plan import with_overrides
 
         data = with_overrides(self._data, _checked_overrides(set))
         return Project(_validated(data, self.source), data, self.source)
@@ -203,7 +203,7 @@ class Project:
         Raises:
             SceneError: unknown scene (the message lists them).
         """
-        from tactcad.assembly.scenes import build_scene
+        from tactcad.assembly.scene_solver import build_scene
         from tactcad.kernel.objects import labelled_compound, rgb_colour
 
         solved, solids = build_scene(self.validated, scene, self._cache)
@@ -394,7 +394,7 @@ class Element:
 
     Attributes:
         number: the element's number (1-based).
-        slot: its :class:`~tactcad.design.array.ElementSlot` (geometry and placement).
+        slot: its :class:`~tactcad.design.array_plan.ElementSlot` (geometry and placement).
     """
 
     project: Project
@@ -406,7 +406,7 @@ class Element:
 
     @property
     def geometry(self) -> "ElementGeometry":
-        """The element's :class:`~tactcad.design.array.ElementGeometry` (mm)."""
+        """The element's :class:`~tactcad.design.array_plan.ElementGeometry` (mm)."""
         return self.slot.geometry
 
     @property
@@ -429,7 +429,7 @@ class Element:
             **options: the level's own options (e.g. ``progress`` for FEM).
 
         Returns:
-            :class:`~tactcad.mechanics.result.StiffnessResult`: K (N/mm), gauge
+            :class:`~tactcad.mechanics.stiffness_result.StiffnessResult`: K (N/mm), gauge
             strain per newton (1/N), relative error estimate, wall time (s).
 
         Raises:
@@ -447,7 +447,7 @@ class Element:
             model: ladder level, as for :meth:`stiffness`.
 
         Returns:
-            :class:`~tactcad.mechanics.strength.StrengthRecord` (MPa/N, N,
+            :class:`~tactcad.mechanics.element_strength.StrengthRecord` (MPa/N, N,
             strain, mm, and the limits exceeded in ``warnings``).
 
         Raises:
@@ -455,8 +455,8 @@ class Element:
             DesignError: the material has no yield strength.
         """
         from tactcad.mechanics.ladder import UnknownModelError, models
-        from tactcad.design.requirements import cites_paper
-        from tactcad.mechanics.strength import strength_record
+        from tactcad.design.requirements_section import cites_paper
+        from tactcad.mechanics.element_strength import strength_record
         from tactcad.studies.strength_studies import element_stress
 
         if model not in models():

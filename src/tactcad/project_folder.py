@@ -25,7 +25,7 @@ from typing import Any, Mapping
 
 from tactcad import __version__
 from tactcad.atomic import remove_tree, staging_dir, warn_left_behind
-from tactcad.design.array import EXAMPLES, Plan
+from tactcad.design.array_plan import EXAMPLES, Plan
 from tactcad.errors import DesignError
 
 #: Template file -> the file it becomes in a project folder (the design's
@@ -245,7 +245,7 @@ def new_project(folder: str | Path, *, example: str | None = None,
             validate (every refusal); ``folder`` unusable.
         OSError: the folder cannot be written.
     """
-    from tactcad.design.array import read_toml
+    from tactcad.design.array_plan import read_toml
     from tactcad.design.project import companion_files, project_with_design_data
     from tactcad.vocabulary.schema import Problems
 
@@ -292,7 +292,7 @@ def default_design(folder: str | Path = ".") -> Path:
     Raises:
         DesignError: the folder holds several design files (``--design`` must choose).
     """
-    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.design.array_plan import DEFAULT_DESIGN
 
     found = designs_in(folder)
     if len(found) > 1:

@@ -13,11 +13,11 @@ from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 from tactcad.assembly.z_up import z_up_bbox
-from tactcad.assembly.rigs import RigModel, scene_model, shown_instances
-from tactcad.catalogue.array import PartSpec, array_instances, array_parts
-from tactcad.design.array import Plan
+from tactcad.assembly.rig_models import RigModel, scene_model, shown_instances
+from tactcad.catalogue.array_catalogue import PartSpec, array_instances, array_parts
+from tactcad.design.array_plan import Plan
 from tactcad.design.project import Project
-from tactcad.design.scenes import SceneSpec
+from tactcad.design.scene_specs import SceneSpec
 
 
 @dataclass(frozen=True)

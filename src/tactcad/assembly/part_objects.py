@@ -22,9 +22,9 @@ import re
 from pathlib import Path
 from typing import Any, Mapping
 
-from tactcad.assembly.placement import location
-from tactcad.catalogue.array import array_instances, array_parts
-from tactcad.design.array import DEFAULT_DESIGN, Plan, plan_from_dict, read_toml, with_overrides
+from tactcad.assembly.plan_locations import location
+from tactcad.catalogue.array_catalogue import array_instances, array_parts
+from tactcad.design.array_plan import DEFAULT_DESIGN, Plan, plan_from_dict, read_toml, with_overrides
 from tactcad.errors import DesignErrors
 from tactcad.kernel.objects import BUILD_PART, Align, Mode, PartObject, RotationLike, labelled_part
 from tactcad.solids.cache import PartCache
@@ -102,7 +102,7 @@ class FlexureElement(PartObject):
         rotation, align, mode: as for every ``BasePartObject``.
 
     Attributes:
-        geometry: the validated :class:`~tactcad.design.array.ElementGeometry`.
+        geometry: the validated :class:`~tactcad.design.array_plan.ElementGeometry`.
 
     Raises:
         DesignErrors: a parameter out of its range, or a combination the
@@ -141,7 +141,7 @@ class FlexureArray(PartObject):
         rotation, align, mode: as for every ``BasePartObject``.
 
     Attributes:
-        plan: the validated :class:`~tactcad.design.array.Plan`.
+        plan: the validated :class:`~tactcad.design.array_plan.Plan`.
 
     Raises:
         DesignErrors: as :class:`FlexureElement`.

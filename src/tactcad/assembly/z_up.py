@@ -32,6 +32,6 @@ def z_up_bbox(bbox: Sequence[float]) -> list[float]:
 
 def z_up_location():
     """The root turn as a CAD location (put it left of a scene-frame location)."""
-    from tactcad.kernel.placement import turned_about_x
+    from tactcad.kernel.locations import turned_about_x
 
     return turned_about_x(90.0)

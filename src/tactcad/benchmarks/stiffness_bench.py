@@ -33,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.mechanics.correction import CORRECTION_FILE, CorrectionRangeWarning
 from tactcad.studies.correction_sweep import grid_geometry
 from tactcad.mechanics.ladder import estimate, models

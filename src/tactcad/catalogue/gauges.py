@@ -1,9 +1,9 @@
 """The read-out's bought items per element: strain gauge, terminals, lead wire,
 bridge completion, and the adhesive, with quantities per element and spares.
 
-Catalogue data: the design's library gauge (:mod:`tactcad.vocabulary.materials`)
-and its ``[readout]`` grid (:mod:`tactcad.design.readout`); the quantities
-follow ``[bom]`` (:mod:`tactcad.design.bom`). No kernel, no files.
+Catalogue data: the design's library gauge (:mod:`tactcad.vocabulary.material_library`)
+and its ``[readout]`` grid (:mod:`tactcad.design.readout_section`); the quantities
+follow ``[bom]`` (:mod:`tactcad.design.bom_section`). No kernel, no files.
 
 Units: mm, m, ohm.
 """
@@ -13,9 +13,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from tactcad.design.array import Plan
-from tactcad.design.bom import bom_settings
-from tactcad.design.readout import readout_of
+from tactcad.design.array_plan import Plan
+from tactcad.design.bom_section import bom_settings
+from tactcad.design.readout_section import readout_of
 from tactcad.partlib.array.strain_gauge import GaugeBody
 
 
@@ -100,7 +100,7 @@ def gauge_body(plan: Plan) -> GaugeBody:
 def gauge_placements(plan: Plan):
     """(element number, placement) of each element's gauge: on the flat top face, centred
     over the web (x = notch centre) and across the sheet, in the element's own placement."""
-    from tactcad.design.array import Placement
+    from tactcad.design.array_plan import Placement
 
     out = []
     for s in plan.slots:

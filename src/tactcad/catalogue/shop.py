@@ -13,8 +13,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from tactcad.catalogue.array import Method, PartSpec
-from tactcad.design.array import BoltSpec, Plan
+from tactcad.catalogue.array_catalogue import Method, PartSpec
+from tactcad.design.array_plan import BoltSpec, Plan
 
 #: ISO 261 / ISO 262 coarse pitch (mm) by nominal diameter (mm).
 COARSE_PITCH_MM: dict[float, float] = {1.6: 0.35, 2.0: 0.4, 2.5: 0.45, 3.0: 0.5, 4.0: 0.7,
@@ -54,7 +54,7 @@ def material_designation(spec: PartSpec, plan: Plan | None = None) -> str:
     """Material with alloy and temper, e.g. ``aluminium EN AW-6061-T6``.
 
     The array's parts are cut from the design's material: its library grade
-    (:mod:`tactcad.vocabulary.materials`, ``[material] grade``) gives alloy and
+    (:mod:`tactcad.vocabulary.material_library`, ``[material] grade``) gives alloy and
     temper, written with the EN 573-1 prefix ``EN AW-`` for aluminium. Rig
     parts carry their designation in their catalogue entry already.
     """
@@ -63,7 +63,7 @@ def material_designation(spec: PartSpec, plan: Plan | None = None) -> str:
         return spec.material
     grade = mat.grade if spec.material == mat.name else None
     if spec.builder in ("clamp_plate", "spacer"):  # their own grade (clamp.material)
-        from tactcad.design.bom import clamp_grades
+        from tactcad.design.bom_section import clamp_grades
 
         grade = clamp_grades(plan.raw)[spec.builder]
     if not grade:
@@ -100,7 +100,7 @@ def surface_finish(spec: PartSpec) -> Finish:
 
 def stock_size(spec: PartSpec) -> str:
     """Raw blank of a fabricated part (mm), from its designed bounding box
-    and the allowances of its process's :class:`~tactcad.catalogue.array.Method`
+    and the allowances of its process's :class:`~tactcad.catalogue.array_catalogue.Method`
     (:data:`STOCK_REASON`):
 
     * cut from sheet: ``sheet T, blank L x W``;

@@ -9,14 +9,14 @@ from pathlib import Path
 from typing import Callable
 
 from tactcad.assembly.inventory import assembly_review
-from tactcad.assembly.placement import location
-from tactcad.catalogue.array import array_contacts, array_instances, array_parts
+from tactcad.assembly.plan_locations import location
+from tactcad.catalogue.array_catalogue import array_contacts, array_instances, array_parts
 from tactcad.checks.dxf_shop import check_shop_dxf_files
 from tactcad.checks.interference import Placed, check_interference
 from tactcad.checks.result import CheckResult
 from tactcad.checks.solids import check_solid
 from tactcad.checks.step import check_step
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.catalogue.files import ARRAY_STEP, part_step_name
 from tactcad.solids.cache import PartCache
 

@@ -15,7 +15,7 @@ import ezdxf
 import shapely.geometry as sg
 
 from tactcad.checks.result import CheckResult
-from tactcad.design.array import EdmRules
+from tactcad.design.array_plan import EdmRules
 from tactcad.export.dxf import CUT_LAYER, LEAD_LAYER, MARK_LAYER, START_LAYER
 from tactcad.geometry.profile import (Arc, Line, Point, Segment, contour_area, contour_bbox,
                                       contour_points, inside_corners)

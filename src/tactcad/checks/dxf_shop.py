@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.export.dxf_sheet import ShopProfile, sheet_dxf_name, sheet_gap_mm, sheets
 from tactcad.checks.dxf import SheetPart, check_profile_dxf, check_sheet_dxf
 from tactcad.checks.result import CheckResult

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from tactcad.solids.mesh import MESH_TOLERANCE_MM, tessellate
+from tactcad.solids.tessellation import MESH_TOLERANCE_MM, tessellate
 
 from tactcad.checks.interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed
 from tactcad.checks.result import CheckResult

@@ -23,7 +23,7 @@ import math
 from tactcad.checks.interference import CONTACT_TOL_MM
 from tactcad.checks.result import CheckResult
 from tactcad.kernel.inspect import common_volume, distance, extreme_planar_face
-from tactcad.kernel.placement import point
+from tactcad.kernel.locations import point
 
 PLANE_TOL_MM = 0.01
 PITCH_TOL_MM = 0.01

@@ -7,9 +7,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping
 
-from tactcad.assembly.rigs import scene_names
-from tactcad.assembly.scenes import Scene, build_scene, review_record
-from tactcad.catalogue.rigs import RigPartSpec
+from tactcad.assembly.rig_models import scene_names
+from tactcad.assembly.scene_solver import Scene, build_scene, review_record
+from tactcad.catalogue.rig_catalogue import RigPartSpec
 from tactcad.checks.interference import Placed
 from tactcad.checks.mesh_interference import check_mesh_interference
 from tactcad.checks.result import CheckResult

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import trimesh
 
-from tactcad.catalogue.array import PartSpec
+from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.kernel.inspect import bbox_tuple, free_edge_count
 from tactcad.kernel.shapes import Shape
-from tactcad.solids.mesh import tessellate
+from tactcad.solids.tessellation import tessellate
 from tactcad.checks.result import CheckResult
 
 VOLUME_RTOL = 1e-6

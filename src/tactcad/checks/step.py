@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from tactcad.checks.result import CheckResult
-from tactcad.kernel.step import read_step_summary
+from tactcad.kernel.step_writer import read_step_summary
 
 VOLUME_RTOL = 1e-6
 BBOX_TOL_MM = 1e-5

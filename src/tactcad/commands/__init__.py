@@ -77,7 +77,7 @@ def parse_overrides(texts: list[str] | None) -> dict[str, Any]:
 
 
 def plan_from_args(args: argparse.Namespace):
-    """The validated :class:`~tactcad.design.array.Plan` of ``--design`` with every ``--set``.
+    """The validated :class:`~tactcad.design.array_plan.Plan` of ``--design`` with every ``--set``.
 
     The overrides are checked by the design validator itself, so an unknown
     key or a value out of range is refused with the field, the value and the

@@ -120,7 +120,7 @@ def run_watch(args: argparse.Namespace) -> int:
     """
     from pathlib import Path
 
-    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.errors import DesignError
     from tactcad.benchmarks.bench_scale import load_average
     from tactcad.benchmarks.bench_watch import watch_figures
@@ -339,8 +339,8 @@ def _bench_interference(project) -> None:
 
     from tactcad.checks.interference import check_interference
     from tactcad.checks.mesh_interference import check_mesh_interference
-    from tactcad.assembly.rigs import scene_names
-    from tactcad.assembly.scenes import build_scene
+    from tactcad.assembly.rig_models import scene_names
+    from tactcad.assembly.scene_solver import build_scene
     from tactcad.checks.scenes import placed_shapes
     from tactcad.solids.cache import PartCache
 

@@ -96,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot and not (args.simulate or args.data):
         raise TactcadError("--plot = given without --data or --simulate: allowed only with readings")
     from tactcad.commands import project_from_args
-    from tactcad.design.requirements import cites_paper
+    from tactcad.design.requirements_section import cites_paper
 
     project = project_from_args(args)
     plan = project.plan

@@ -110,7 +110,7 @@ def check_output_path(out: str, force: bool) -> Path:
         DesignError: naming ``--out``, the value and what is allowed.
     """
     from tactcad import __file__ as package_init
-    from tactcad.design.array import DEFAULT_DESIGN
+    from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.errors import DesignError
 
     path = Path(os.path.abspath(os.path.expanduser(out))).resolve()
@@ -185,7 +185,7 @@ def design_report(result, verify: str, progress=None) -> dict:
 
     from tactcad.studies.inverse_design import report_points, unit_resolution
     from tactcad.mechanics.ladder import estimate
-    from tactcad.mechanics.strength import strength_summary
+    from tactcad.mechanics.element_strength import strength_summary
 
     plan, t = result.plan, result.targets
     strength = {r["element"]: r for r in strength_summary(plan)}

@@ -84,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.paper.table2_models import paper_stiffness_by_element
     from tactcad.commands.finite_json import dumps
 
-    from tactcad.design.requirements import cites_paper
+    from tactcad.design.requirements_section import cites_paper
     from tactcad.studies.design_loads import design_samples, loads_to_full_scale
     from tactcad.studies.verification import requirements_of
 

@@ -50,11 +50,11 @@ def evaluate(k_m: float, k_r: float, k_obj: float | None = None, r: float | None
     Exactly one of ``k_obj`` and ``r`` is given.
 
     Raises:
-        tactcad.mechanics.lumped.LumpedDomainError: an input out of the model's domain.
+        tactcad.mechanics.lumped_model.LumpedDomainError: an input out of the model's domain.
         TactcadError: a K_obj whose R rounds onto the domain's edge, or a result that
             is not finite; the message names the inputs the user gave.
     """
-    from tactcad.mechanics import lumped
+    from tactcad.mechanics import lumped_model as lumped
 
     if (k_obj is None) == (r is None):
         raise ValueError("give exactly one of k_obj and r")

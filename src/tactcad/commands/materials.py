@@ -23,7 +23,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def library() -> dict:
     """The library as JSON-ready records."""
-    from tactcad.vocabulary.materials import material_grades, strain_gauges
+    from tactcad.vocabulary.material_library import material_grades, strain_gauges
 
     grades = [{"grade": g.name, "description": g.description,
                "youngs_modulus_MPa": g.youngs_modulus_MPa, "poisson_ratio": g.poisson_ratio,

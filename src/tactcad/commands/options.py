@@ -99,12 +99,12 @@ def output_file(*suffixes: str) -> Callable[[str], str]:
 def material_grade_name(text: str) -> str:
     """An argparse type: a material grade of the library, exact or matched
     without regard to case (or by a prefix or description word only one grade has;
-    :func:`tactcad.vocabulary.materials.match_name`, the matching a design file gets).
+    :func:`tactcad.vocabulary.material_library.match_name`, the matching a design file gets).
 
     Raises (when called by argparse):
         argparse.ArgumentTypeError: naming the value and listing the grades.
     """
-    from tactcad.vocabulary.materials import candidates, match_name, material_grades
+    from tactcad.vocabulary.material_library import candidates, match_name, material_grades
 
     grades = material_grades()
     found = match_name(grades, text)

@@ -32,8 +32,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from dataclasses import replace
 
-    from tactcad.design.requirements import cites_paper
-    from tactcad.mechanics.readout import readout_report
+    from tactcad.design.requirements_section import cites_paper
+    from tactcad.mechanics.readout_chain import readout_report
     from tactcad.studies.verification import requirements_of
 
     plan = plan_from_args(args)

@@ -21,7 +21,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.assembly.rigs import describe, get_scene_spec, scene_summaries
+    from tactcad.assembly.rig_models import describe, get_scene_spec, scene_summaries
 
     project = project_from_args(args)
     if args.name is not None:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from tactcad.design.requirements import cites_paper
+from tactcad.design.requirements_section import cites_paper
 from tactcad.mechanics.ladder import levels_help, models
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
 
@@ -94,7 +94,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
     (the stress figures of ``records`` reused)."""
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
     from tactcad.studies.verification import requirements_of
-    from tactcad.mechanics.strength import ElementStress
+    from tactcad.mechanics.element_strength import ElementStress
 
     req = requirements_of(plan)
     stresses = {r.part_name: ElementStress(model, r.stress_MPa_per_N, r.stress_error_rel,

@@ -71,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
     tol = Tolerances.of_plan(plan, distribution=args.distribution,
                              **{k: v for k, v in given.items() if v is not None})
     t0 = time.perf_counter()
-    from tactcad.design.requirements import cites_paper
+    from tactcad.design.requirements_section import cites_paper
     from tactcad.studies.design_loads import design_samples
 
     paper = cites_paper(plan.raw)

@@ -1,6 +1,6 @@
 """The accepted design domain, drawn at random: every field of the design file
 over its whole range, each drawn inside the limits the earlier draws leave
-(the same rules :mod:`tactcad.design.array` applies), so that a draw is a
+(the same rules :mod:`tactcad.design.array_plan` applies), so that a draw is a
 design the validator should accept. The property test and ``make fuzz`` use it.
 
 A draw is driven by two callables, so the same description serves hypothesis
@@ -15,11 +15,11 @@ from __future__ import annotations
 import math
 from typing import Any, Callable, Sequence
 
-from tactcad.design.array import (ARM_RANGE_MM, MAX_COLUMNS, MIN_ARM_STEP_MM, MIN_BASE_BELOW_ARM_MM,
+from tactcad.design.array_plan import (ARM_RANGE_MM, MAX_COLUMNS, MIN_ARM_STEP_MM, MIN_BASE_BELOW_ARM_MM,
                                   MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, MIN_SPACER_MM,
                                   MIN_TIP_GAP_MM, MIN_TIP_WALL_MM, NOTCH_RADIUS_MAX_MM,
                                   WEB_RANGE_MM, default_design_data)
-from tactcad.design.rigs import default_rigs_data
+from tactcad.design.rig_plan import default_rigs_data
 from tactcad.partlib.bracket import EAR_HEAD_CLEARANCE_MM
 from tactcad.vocabulary.standards import BOLTS
 

@@ -23,10 +23,10 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Callable, Iterator, Mapping
 
-from tactcad.design.array import DEFAULT_DESIGN, Plan, plan_from_model, validate_design
-from tactcad.design.rigs import DEFAULT_RIGS, RigDesign, validate_rigs
+from tactcad.design.array_plan import DEFAULT_DESIGN, Plan, plan_from_model, validate_design
+from tactcad.design.rig_plan import DEFAULT_RIGS, RigDesign, validate_rigs
 from tactcad.vocabulary.schema import Problems, content_hash, fmt, read_toml
-from tactcad.design.scenes import DEFAULT_SCENES, SceneSpec, validate_scenes
+from tactcad.design.scene_specs import DEFAULT_SCENES, SceneSpec, validate_scenes
 from tactcad.errors import DesignError
 
 #: The companion files of a design, with the name each has when ``[files]`` leaves it out.
@@ -65,9 +65,9 @@ class Project:
     """The three design files validated together, immutable: what a run works from.
 
     Attributes:
-        plan: the array's :class:`~tactcad.design.array.Plan`.
-        rigs: the rigs' :class:`~tactcad.design.rigs.RigDesign`, derived against ``plan``.
-        scenes: the scenes by name (:class:`~tactcad.design.scenes.SceneSpec`), in file order.
+        plan: the array's :class:`~tactcad.design.array_plan.Plan`.
+        rigs: the rigs' :class:`~tactcad.design.rig_plan.RigDesign`, derived against ``plan``.
+        scenes: the scenes by name (:class:`~tactcad.design.scene_specs.SceneSpec`), in file order.
         design_sha256, rigs_sha256, scenes_sha256: sha256 of each file's
             validated tables (canonical JSON; the design's after ``--set``), so
             a run can name exactly what it was made from.

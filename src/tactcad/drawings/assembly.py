@@ -15,10 +15,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_parts, bolt_name, nut_name
+from tactcad.catalogue.array_catalogue import Instance, PartSpec, array_instances, array_parts, bolt_name, nut_name
 from tactcad.catalogue.files import profile_dxf_name
 from tactcad.catalogue.shop import TORQUE_SOURCE, tightening_torque_Nm
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.drawings.design_notes import numbering_note
 from tactcad.drawings.frame import (FRAME, general_tolerance, revision_and_date, sheet_frame,
                                     title_cells, wrap_text)
@@ -51,7 +51,7 @@ class AssemblySheet:
 
 def stack_order(plan: Plan) -> dict[int, list[str]]:
     """Instance names of each row from the front clamp plate to the back one
-    (row index 0, 1 -> names), as :func:`tactcad.catalogue.array.array_instances`
+    (row index 0, 1 -> names), as :func:`tactcad.catalogue.array_catalogue.array_instances`
     places them: element of column 0, spacer, element of column 1, ..."""
     out: dict[int, list[str]] = {}
     per_row = plan.columns
@@ -96,7 +96,7 @@ def _fit_scale(v: View, width: float, height: float) -> float:
 
 
 def _compound(specs: dict[str, PartSpec], inst: list[Instance], solids: dict):
-    from tactcad.assembly.placement import location
+    from tactcad.assembly.plan_locations import location
     from tactcad.kernel.objects import labelled_compound
 
     return labelled_compound([solids[i.part].moved(location(i.placement)) for i in inst])

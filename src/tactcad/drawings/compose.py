@@ -18,9 +18,9 @@ from __future__ import annotations
 
 import hashlib
 
-from tactcad.catalogue.array import PartSpec
+from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.catalogue.shop import material_designation, surface_finish
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.drawings.drawing import Drawing, draw_views, finish_text, layout, material_text
 from tactcad.drawings.frame import (FRAME, TITLE_H, TITLE_W, general_tolerance, projection_symbol,
                                     revision_and_date, sheet_frame, title_cells)

@@ -11,9 +11,9 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from tactcad.design.array import ElementGeometry, Plan
-from tactcad.design.readout import readout_of
-from tactcad.design.requirements import cites_paper
+from tactcad.design.array_plan import ElementGeometry, Plan
+from tactcad.design.readout_section import readout_of
+from tactcad.design.requirements_section import cites_paper
 from tactcad.drawings.drawing import web_text
 from tactcad.drawings.sheet import fmt_mm
 

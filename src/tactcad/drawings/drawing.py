@@ -10,9 +10,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from tactcad.catalogue.array import PartSpec
+from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.catalogue.shop import material_designation, stock_size, surface_finish
-from tactcad.design.array import ElementGeometry, Plan
+from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.drawings.frame import FRAME
 from tactcad.drawings.sheet import LABEL_TEXT_MM, Sheet, fmt_mm
 from tactcad.drawings.views import (CAMERAS, ISO_5455_SCALES, View, detail, project, scale_text)

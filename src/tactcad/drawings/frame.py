@@ -5,7 +5,7 @@ Used by the part drawings and the assembly drawing alike."""
 
 from __future__ import annotations
 
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.drawings.sheet import Sheet, text_width
 
 GENERAL_TOLERANCE = "ISO 2768-f"

@@ -16,11 +16,11 @@ from typing import Callable
 
 import numpy as np
 
-from tactcad.catalogue.array import PartSpec
+from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
 from tactcad.catalogue.shop import tap_drill_mm, thread_text
-from tactcad.design.array import Plan
-from tactcad.design.readout import readout_of
+from tactcad.design.array_plan import Plan
+from tactcad.design.readout_section import readout_of
 from tactcad.design.tolerances import tolerances_of
 from tactcad.drawings.dimensioning import (add_section, dim, hole_callout, hole_dims_linear,
                                            hole_marks, hole_table, plus_minus, radius_callouts,

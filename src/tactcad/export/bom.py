@@ -30,8 +30,8 @@ from typing import Callable, Mapping, Sequence
 from tactcad import __version__
 from tactcad.assembly.inventory import instance_counts, part_quantities
 from tactcad.atomic import write_bytes_atomic
-from tactcad.catalogue.array import Instance, PartSpec
-from tactcad.design.array import Plan
+from tactcad.catalogue.array_catalogue import Instance, PartSpec
+from tactcad.design.array_plan import Plan
 from tactcad.drawings.sheet import fmt_mm
 from tactcad.catalogue.shop import STOCK_REASON, material_designation, stock_size
 from tactcad.catalogue.files import drawing_name, part_step_name, scene_step_name, sheet_dxf_name

@@ -30,8 +30,8 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Sequence
 
-from tactcad.catalogue.array import PartSpec, array_instances, array_parts
-from tactcad.design.array import ElementGeometry, Plan
+from tactcad.catalogue.array_catalogue import PartSpec, array_instances, array_parts
+from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_points
 from tactcad.errors import DesignError
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name

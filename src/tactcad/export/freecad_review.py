@@ -99,7 +99,7 @@ def review_fcstd_name(name: str) -> str:
 
 def location_matrix(location) -> Matrix:
     """Row-major 4 x 4 matrix of a build123d ``Location`` (mm), rounded to 1e-12 mm."""
-    from tactcad.kernel.placement import matrix  # the kernel, only when a file is written
+    from tactcad.kernel.locations import matrix  # the kernel, only when a file is written
 
     m = matrix(location)
     rows = [tuple(round(float(m[i][j]), 12) + 0.0 for j in range(4)) for i in range(3)]

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tactcad.kernel.placement import matrix
+from tactcad.kernel.locations import matrix
 from tactcad.atomic import write_bytes_atomic
 
 

@@ -8,11 +8,11 @@ from pathlib import Path
 from typing import Any, Callable
 
 from tactcad.assembly.inventory import design_assemblies, scene_models
-from tactcad.assembly.rigs import RigModel
-from tactcad.catalogue.array import Instance, PartSpec, array_instances, array_parts
-from tactcad.design.array import Plan
+from tactcad.assembly.rig_models import RigModel
+from tactcad.catalogue.array_catalogue import Instance, PartSpec, array_instances, array_parts
+from tactcad.design.array_plan import Plan
 from tactcad.design.project import Project
-from tactcad.design.scenes import SceneSpec
+from tactcad.design.scene_specs import SceneSpec
 from tactcad.store import Store, content_key
 
 Log = Callable[[str], None]

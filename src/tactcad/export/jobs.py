@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Sequence
 
 from tactcad.assembly.inventory import assembly_review, fabricated_parts
-from tactcad.assembly.rigs import shown_instances
+from tactcad.assembly.rig_models import shown_instances
 from tactcad.drawings.compose import drawing_inputs
 from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, ASSEMBLY_DRAWING, PDF_NAME, drawing_name,
                                     drawing_png_name, part_step_name, scene_glb_name,
@@ -71,7 +71,7 @@ def dxf_jobs(run: Run, before: list[Job]) -> list[Job]:
 
 def _part_step(spec):
     def make(run: Run) -> list[dict]:
-        from tactcad.kernel.step import StepPart, write_step
+        from tactcad.kernel.step_writer import StepPart, write_step
 
         rel = part_step_name(spec.name)
         write_step(run.staging / rel, [StepPart(spec.name, run.parts.solid(spec), spec.color)])
@@ -84,9 +84,9 @@ def _part_step(spec):
 
 def _array_step(specs, inst):
     def make(run: Run) -> list[dict]:
-        from tactcad.assembly.placement import location
+        from tactcad.assembly.plan_locations import location
         from tactcad.assembly.z_up import z_up_location
-        from tactcad.kernel.step import StepInstance, StepPart, write_step
+        from tactcad.kernel.step_writer import StepInstance, StepPart, write_step
 
         parts = [StepPart(n, run.parts.solid(s), s.color) for n, s in specs.items()]
         z_up = z_up_location()  # STEP is Z up
@@ -129,10 +129,10 @@ def scene_jobs(run: Run, names=None) -> list[Job]:
 
 def _scene(name: str):
     def make(run: Run) -> list[dict]:
-        from tactcad.assembly.scenes import build_scene, review_record
+        from tactcad.assembly.scene_solver import build_scene, review_record
         from tactcad.assembly.z_up import z_up_location
         from tactcad.export.glb import write_glb
-        from tactcad.kernel.step import StepInstance, StepPart, write_step
+        from tactcad.kernel.step_writer import StepInstance, StepPart, write_step
 
         scene, solids = build_scene(run.project, name, run.parts)
         parts = [StepPart(n, solids[n], spec.color) for n, spec in scene.parts().items()]
@@ -153,7 +153,7 @@ def _scene(name: str):
 def _start_review(names: list[str]):
     """FreeCAD writes the review files in its own process while the run goes on."""
     def start(run: Run):
-        from tactcad.assembly.scenes import build_scene
+        from tactcad.assembly.scene_solver import build_scene
         from tactcad.export.freecad_review import scene_review_assembly, start_review_files
 
         assemblies = []
@@ -318,7 +318,7 @@ def review_contents_of(run: Run, *folders: Path):
     from tactcad.export.manifest import design_facts
     from tactcad.export.review_assets import three_version
     from tactcad.export.review_page import review_contents
-    from tactcad.mechanics.strength import strength_summary
+    from tactcad.mechanics.element_strength import strength_summary
 
     def found(rel: str) -> Path | None:
         return next((f / rel for f in folders if (f / rel).is_file()), None)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Collection, MutableMapping
 
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.export.job import solid_key
 from tactcad.solids.cache import PartCache
 
@@ -34,7 +34,7 @@ class LiveParts(PartCache):
     def mesh(self, spec):
         key = self._key(spec)
         if key not in self._meshes_by_key:
-            from tactcad.solids.mesh import tessellate
+            from tactcad.solids.tessellation import tessellate
 
             self._meshes_by_key[key] = tessellate(self.solid(spec))
         return self._meshes_by_key[key]

@@ -10,11 +10,11 @@ from pathlib import Path
 
 from tactcad import __version__
 from tactcad.assembly.inventory import assembly_review, instance_counts
-from tactcad.catalogue.array import PartSpec, array_instances, array_parts
+from tactcad.catalogue.array_catalogue import PartSpec, array_instances, array_parts
 from tactcad.catalogue.files import ARRAY_STEP
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.studies.verification import requirements_record
-from tactcad.mechanics.strength import strength_summary
+from tactcad.mechanics.element_strength import strength_summary
 from tactcad.store import stack_versions
 
 

@@ -21,8 +21,8 @@ from typing import Mapping, NamedTuple, Sequence
 
 import numpy as np
 
-from tactcad.assembly.placement import location
-from tactcad.kernel.placement import matrix
+from tactcad.assembly.plan_locations import location
+from tactcad.kernel.locations import matrix
 
 LIGHT = np.array([0.35, 0.8, 0.6])  # towards the light, assembly frame
 NO_TRIANGLE = np.iinfo(np.int32).max  # z-buffer's triangle index where none is drawn

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from tactcad import __version__
 from tactcad.catalogue.files import MANIFEST
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.store import stack_versions
 
 

@@ -32,7 +32,7 @@ from tactcad.atomic import (carry_over, disk_full_error, leftover_staging, publi
 from tactcad.design.project import Project
 from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.job import Job, Log, Run
-from tactcad.assembly.rigs import get_scene_spec
+from tactcad.assembly.rig_models import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
 from tactcad.export.manifest import manifest
 from tactcad.export.worker import SessionWorker, Worker, can_fork, worker_jobs

@@ -11,7 +11,7 @@ writes binary STL: the same part writes the same bytes.
 from __future__ import annotations
 
 from tactcad.export.job import Job, Run
-from tactcad.solids.mesh import MESH_TOLERANCE_MM
+from tactcad.solids.tessellation import MESH_TOLERANCE_MM
 from tactcad.store import content_key
 
 STL_FOLDER = "stl"

@@ -6,7 +6,7 @@ reference direction in the face that fixes the rotation about the normal.
 Two parts mate face to face when the child's frame, flipped (turned 180
 degrees about its x axis), coincides with the parent's frame: the normals
 oppose and the reference directions agree. The assembly solver
-(:mod:`tactcad.assembly.scenes`) hands these frames to build123d joints.
+(:mod:`tactcad.assembly.scene_solver`) hands these frames to build123d joints.
 """
 
 from __future__ import annotations
@@ -55,7 +55,7 @@ class Frame:
 
     def location(self):
         """The frame as a CAD location (imports the CAD kernel)."""
-        from tactcad.kernel.placement import frame
+        from tactcad.kernel.locations import frame
 
         return frame(self.origin, self.x_dir, self.z_dir)
 

@@ -3,7 +3,7 @@ r"""The wire-cut flexure profile as exact lines and arcs (no CAD kernel).
 This one description feeds the solid (:mod:`tactcad.partlib.array.element`), the
 wire-EDM DXF (:mod:`tactcad.export.dxf`), the FEM meshes and the closed-form
 web function, so all of them see the same contour. Element frame, mm (see
-:mod:`tactcad.design.array`).
+:mod:`tactcad.design.array_plan`).
 
 Outer contour, counter-clockwise from the base's lower back corner::
 

@@ -1,6 +1,6 @@
 """Joints: empty carriers (compounds with a label) that rigid and linear
 joints (build123d's ``RigidJoint`` and ``LinearJoint``) place on each other.
-The rigs' solver (:mod:`tactcad.assembly.scenes`) is written in these words."""
+The rigs' solver (:mod:`tactcad.assembly.scene_solver`) is written in these words."""
 
 from __future__ import annotations
 

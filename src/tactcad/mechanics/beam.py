@@ -52,9 +52,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry, Material
+from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.mechanics.closed_form import ALPHA_SHEAR, correction_factor
-from tactcad.mechanics.result import StiffnessResult
+from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.richardson import richardson
 
 DEFAULT_SEGMENTS = 256

@@ -65,10 +65,10 @@ from typing import Any, NamedTuple
 import numpy as np
 from scipy.optimize import brentq
 
-from tactcad.design.array import ElementGeometry, Material
+from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.mechanics.correction import (IDENTITY, Correction, CorrectionRangeWarning, apply_correction,
                          load_correction)
-from tactcad.mechanics.result import StiffnessResult
+from tactcad.mechanics.stiffness_result import StiffnessResult
 
 #: Shear coefficient of a rectangular section in the compliance integral,
 #: alpha = 1 / kappa with kappa = 5/6 (Timoshenko & Gere, "Mechanics of

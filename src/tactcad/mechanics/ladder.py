@@ -4,7 +4,7 @@ Four levels, cheapest first: ``closed-form`` (exact Euler-Bernoulli notch
 integrals + arm bending + shear, FEM-fitted correction), ``beam`` (1D
 Timoshenko along the real profile), ``fem2d`` (P2 triangles, plane stress or
 strain, Richardson error), ``fem3d`` (P2 tetrahedra, the reference). Every
-level returns a :class:`~tactcad.mechanics.result.StiffnessResult` with its
+level returns a :class:`~tactcad.mechanics.stiffness_result.StiffnessResult` with its
 cost (wall time) and error estimate. Heavy modules are imported only when
 their level is asked for.
 
@@ -21,9 +21,9 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass
 
-from tactcad.design.array import ElementGeometry, Material
+from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.errors import TactcadError
-from tactcad.mechanics.result import StiffnessResult
+from tactcad.mechanics.stiffness_result import StiffnessResult
 
 @dataclass(frozen=True)
 class Level:
@@ -34,7 +34,7 @@ class Level:
         name: the level's name (``--model NAME``).
         module, function: its estimator, imported when the level is asked
             for: ``function(g, material, *, element=None, **options)`` ->
-            :class:`~tactcad.mechanics.result.StiffnessResult`.
+            :class:`~tactcad.mechanics.stiffness_result.StiffnessResult`.
         meshed: a FEM level: it reports its mesh levels through a
             ``progress`` option, writes fields and gives the peak stress
             from its own mesh; otherwise the closed-form stress formula serves.

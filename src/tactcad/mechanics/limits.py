@@ -1,7 +1,7 @@
 """Every limit on an element's tip force, at one ladder level, with the one that binds.
 
 For one element geometry (its peak hinge stress per N, gauge strain per N
-and K at a ladder level, :class:`tactcad.mechanics.strength.ElementStress`):
+and K at a ladder level, :class:`tactcad.mechanics.element_strength.ElementStress`):
 
 * ``yield``: yield strength / (peak stress per N x safety factor);
 * ``fatigue``: fatigue strength / peak stress per N (absent without one);
@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from tactcad.design.array import ElementGeometry, Plan
+from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.mechanics.ladder import is_meshed
 
 #: Names of the limits, in the order they are listed.
@@ -74,7 +74,7 @@ def notch_closing_travel_mm(g: ElementGeometry) -> float:
 def element_limits(number: int, g: ElementGeometry, plan: Plan, es, k_error_rel: float,
                    plane_error_rel: float = 0.0) -> list[ForceLimit]:
     """Every :class:`ForceLimit` of one element from its per-newton response ``es``
-    (:class:`tactcad.mechanics.strength.ElementStress`), K's error estimate and,
+    (:class:`tactcad.mechanics.element_strength.ElementStress`), K's error estimate and,
     for the levels whose stress and gauge strain are plane stress (closed form,
     beam, fem2d), the plane model's bound against 3D (nu^2), added to the
     stress- and strain-based limits' errors."""
@@ -117,7 +117,7 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
         ValueError: an FEM model without its ``stresses``.
     """
     from tactcad.mechanics.ladder import estimate
-    from tactcad.mechanics.strength import closed_form_stress, require_yield
+    from tactcad.mechanics.element_strength import closed_form_stress, require_yield
 
     element_stress = closed_form_stress
     require_yield(plan.material)

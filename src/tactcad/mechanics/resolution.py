@@ -29,7 +29,7 @@ def unit_resolution(k_m: float, k_r: float, k_obj, full_scale_force_N: float,
     Raises:
         LumpedDomainError: a stiffness outside eq. 2's domain.
     """
-    from tactcad.mechanics.lumped import deflection_ratio, sensitivity
+    from tactcad.mechanics.lumped_model import deflection_ratio, sensitivity
 
     k_obj = np.atleast_1d(np.asarray(k_obj, float))
     km, kr = np.full_like(k_obj, k_m), np.full_like(k_obj, k_r)

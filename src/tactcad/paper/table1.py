@@ -16,13 +16,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.mechanics.closed_form import web_for_stiffness
 from tactcad.mechanics.ladder import estimate
-from tactcad.mechanics.lumped import deflection_ratio
-from tactcad.mechanics.readout import ReadoutChain, gauge_strain_per_N, rel_std
-from tactcad.mechanics.result import StiffnessResult
-from tactcad.mechanics.strength import PAPER_LOAD_N, peak_stress_per_newton, require_yield
+from tactcad.mechanics.lumped_model import deflection_ratio
+from tactcad.mechanics.readout_chain import ReadoutChain, gauge_strain_per_N, rel_std
+from tactcad.mechanics.stiffness_result import StiffnessResult
+from tactcad.mechanics.element_strength import PAPER_LOAD_N, peak_stress_per_newton, require_yield
 from tactcad.paper.data import table1, table2
 from tactcad.studies.strength_studies import plan_strength
 
@@ -84,7 +84,7 @@ def table1_not_applicable(plan: Plan) -> str | None:
     its measured K within the closed form's web range (0.05 ... 1 mm)."""
     import warnings
 
-    from tactcad.design.requirements import cites_paper
+    from tactcad.design.requirements_section import cites_paper
     from tactcad.mechanics.closed_form import web_for_stiffness
     from tactcad.mechanics.correction import CorrectionRangeWarning
     if not cites_paper(plan.raw):

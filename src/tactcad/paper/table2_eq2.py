@@ -1,5 +1,5 @@
 """Paper Table 2 against eq. 2: the lumped model of a stiffness sensing unit
-(:mod:`tactcad.mechanics.lumped`) evaluated on each of the table's 48 measured
+(:mod:`tactcad.mechanics.lumped_model`) evaluated on each of the table's 48 measured
 rows, nothing fitted. Units: N/mm."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tactcad.mechanics.lumped import LumpedDomainError, deflection_ratio, object_stiffness
+from tactcad.mechanics.lumped_model import LumpedDomainError, deflection_ratio, object_stiffness
 from tactcad.paper import data as paper_data
 
 

@@ -19,7 +19,7 @@ A rig part module holds everything about one rig part and exposes it as one
   for a bought one (no drawing);
 * ``host``: the rig node it is mounted on; it is shown with its host's group,
   mated seat on seat and declared touching it (empty: the rig's own joints
-  in :mod:`tactcad.assembly.rigs` place it, e.g. on a slide);
+  in :mod:`tactcad.assembly.rig_models` place it, e.g. on a slide);
 * ``needs``: the part modules whose derived data its derivation reads; the
   parts are derived in that order (a circle is refused);
 * ``order``: its place among the rig parts: in the list of derived
@@ -35,7 +35,7 @@ runs ``build``, ``assembly.rigs`` places it, ``drawings.part_sets`` draws it.
 The array's parts (:mod:`tactcad.partlib.array`) are written in the same
 manner as :class:`ArrayPart`: builder, drawing and spec data under one key,
 their dimensions read from the plan of the array's one coupled derivation
-(:mod:`tactcad.design.array`), which ``specs`` turns into :class:`PartData`
+(:mod:`tactcad.design.array_plan`), which ``specs`` turns into :class:`PartData`
 (``catalogue.array`` makes the specs). Units: mm.
 """
 
@@ -178,7 +178,7 @@ class RigPart(Builds):
             the part is placed in every rig that has it. Empty: the rig's
             joints place it.
         derive: ``(section, context, problems) -> PartData``; ``context`` has
-            ``plan`` (the array's :class:`tactcad.design.array.Plan`),
+            ``plan`` (the array's :class:`tactcad.design.array_plan.Plan`),
             ``part(key)`` and ``table(key)``, the derived data and the
             validated table of a part module named in ``needs``.
         needs: keys of the part modules ``derive`` reads (derived first).
@@ -216,13 +216,13 @@ class RigPart(Builds):
 @dataclass(frozen=True)
 class ArrayContext:
     """What an array part module's ``specs`` reads: the plan the array's one
-    coupled derivation made (:func:`tactcad.design.array.plan_from_model`)
+    coupled derivation made (:func:`tactcad.design.array_plan.plan_from_model`)
     and the values derived above this layer.
 
     Attributes:
-        plan: the array's :class:`tactcad.design.array.Plan`.
+        plan: the array's :class:`tactcad.design.array_plan.Plan`.
         materials: material name of the clamp plates and spacers by part key
-            (``clamp_plate``, ``spacer``; :func:`tactcad.catalogue.array.part_material_names`).
+            (``clamp_plate``, ``spacer``; :func:`tactcad.catalogue.array_catalogue.part_material_names`).
         gauge: the strain gauge's body (:class:`tactcad.partlib.array.strain_gauge.GaugeBody`).
         tables: the validated design-file table of each module that has one
             (:attr:`ArrayPart.section`), by key, for the tables the design gives.
@@ -241,7 +241,7 @@ class ArrayPart(Builds):
     the strain gauge's body, the bolts and nuts.
 
     The array's dimensions are one coupled derivation (element, clamp and bolt
-    pattern) in :mod:`tactcad.design.array`, which sits above this layer; a
+    pattern) in :mod:`tactcad.design.array_plan`, which sits above this layer; a
     module reads its part's dimensions from the plan through ``specs``.
 
     Attributes:

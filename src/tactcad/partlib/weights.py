@@ -3,7 +3,7 @@ array in the array-evaluation rig (the paper's 100 g steel weights).
 
 Each weight is modelled as a steel cylinder of the given mass and density
 and diameter; its height follows. The rig stacks ``count`` of them on the
-carrier's shelf (:mod:`tactcad.assembly.rigs`). Part frame: axis z, z = 0 on
+carrier's shelf (:mod:`tactcad.assembly.rig_models`). Part frame: axis z, z = 0 on
 the underside, centred in x and y. Units: mm, g, g/cm^3.
 """
 

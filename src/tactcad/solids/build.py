@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections import Counter
 from typing import TYPE_CHECKING
 
-from tactcad.catalogue.array import PartSpec
+from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.partlib.registry import builders
 
 if TYPE_CHECKING:

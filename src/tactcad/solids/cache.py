@@ -6,9 +6,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from tactcad.catalogue.array import PartSpec
-from tactcad.design.array import Plan
-from tactcad.solids.mesh import tessellate
+from tactcad.catalogue.array_catalogue import PartSpec
+from tactcad.design.array_plan import Plan
+from tactcad.solids.tessellation import tessellate
 from tactcad.solids.build import build_part
 
 
@@ -35,7 +35,7 @@ class PartCache:
 
     def mesh(self, spec: PartSpec):
         """The part's triangle mesh (vertices (n, 3) float64 mm, triangles (m, 3)
-        int64) at :data:`tactcad.solids.mesh.MESH_TOLERANCE_MM`, made once."""
+        int64) at :data:`tactcad.solids.tessellation.MESH_TOLERANCE_MM`, made once."""
         if spec.name not in self._meshes:
             self._meshes[spec.name] = tessellate(self.solid(spec))
         return self._meshes[spec.name]

@@ -52,7 +52,7 @@ from pathlib import Path
 from typing import Iterable, Sequence
 
 
-from tactcad.design.array import (ElementGeometry, Material, default_design_data, plan_from_dict,
+from tactcad.design.array_plan import (ElementGeometry, Material, default_design_data, plan_from_dict,
                       with_overrides)
 from tactcad.mechanics.closed_form import closed_form_compliance
 from tactcad.mechanics.correction import CORRECTION_FILE

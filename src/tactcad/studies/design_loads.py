@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 
 #: Samples spread over the requirement's K_obj range (log-spaced, ends included).
 DESIGN_SAMPLES = 5

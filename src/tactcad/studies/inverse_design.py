@@ -26,7 +26,7 @@ meeting K_r and K_m are found on the corrected closed form (vectorised
 bracketing root search, scipy ``find_root``). A web is feasible when both
 arms lie in the design's arm range (and clear the tip-root rule), and both
 elements carry F: peak notch stress x F x safety factor <= yield
-(:mod:`tactcad.mechanics.strength`), gauge strain x F <= the gauge's fatigue
+(:mod:`tactcad.mechanics.element_strength`), gauge strain x F <= the gauge's fatigue
 strain. The design's own web is kept when it is feasible ("arms only");
 otherwise the feasible web (0.005 mm steps over the web range) with the
 largest worst-case margin on those limits is taken. The notch radius stays
@@ -50,7 +50,7 @@ carries F R / X (eq. 1: F_m / F_r = K_m (K_r + K_obj) / (K_r (K_m + K_obj))).
 Each force is read to Table 1's resolution dF = 0.01 N, so
 dR / R = sqrt((dF / F_m)^2 + (dF / F_r)^2) (independent readings, root sum
 of squares), and the K_obj resolution is |dK_obj/dR| dR (eq. 3,
-:func:`tactcad.mechanics.lumped.sensitivity`).
+:func:`tactcad.mechanics.lumped_model.sensitivity`).
 
 Units: mm, N, MPa, N/mm.
 """
@@ -64,11 +64,11 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from tactcad.design.array import ARM_RANGE_MM, BOLTS, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, plan_from_dict
+from tactcad.design.array_plan import ARM_RANGE_MM, BOLTS, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, plan_from_dict
 from tactcad.errors import DesignError, TactcadError
 from tactcad.mechanics.correction import load_correction
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
-from tactcad.mechanics.strength import force_limits
+from tactcad.mechanics.element_strength import force_limits
 from tactcad.studies.tolerance_montecarlo import corrected_stiffness
 
 #: Clearance (mm) between the notch bottom and the arm's underside when the
@@ -506,7 +506,7 @@ def neutral_assumptions(data: Mapping[str, Any], base_name: str) -> dict[str, st
     its own argument; one that still mentions the paper or its tables is
     replaced by a neutral pointer (the base, when it is the paper's design, is
     not named)."""
-    from tactcad.design.requirements import cites_paper
+    from tactcad.design.requirements_section import cites_paper
 
     named = "" if cites_paper(data) else f" {base_name}"
     out = {}
@@ -549,7 +549,7 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     Args:
         base: the design whose other dimensions are kept.
         targets: the sensing targets.
-        grade: material grade of the library (:mod:`tactcad.vocabulary.materials`) to
+        grade: material grade of the library (:mod:`tactcad.vocabulary.material_library`) to
             use instead of the base material.
         pitch_mm: array pitch (mm) instead of the base's.
         name: ``design.name`` of the new design.
@@ -565,7 +565,7 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     data.pop("requirements", None)  # the new design's are written below
     data.pop("files", None)  # where the base design's rigs and scenes lie: not the new design's
     if grade is not None:
-        from tactcad.vocabulary.materials import material_grade
+        from tactcad.vocabulary.material_library import material_grade
 
         grade = material_grade(grade).name  # "ti-6al-4v-annealed" -> the library's spelling
         data["material"] = {"name": grade, "grade": grade}

@@ -3,7 +3,7 @@ fem3d over three meshes, Richardson-extrapolated), the refit of the K_t
 exponent from it and the plan's strength at any ladder level (the comparison
 with the paper's Table 1 calibration forces runs it:
 :func:`tactcad.paper.table1.table1_force_comparison`). The models they run are in
-:mod:`tactcad.mechanics.strength` and :mod:`tactcad.mechanics.fem`.
+:mod:`tactcad.mechanics.element_strength` and :mod:`tactcad.mechanics.fem`.
 
 Units: mm, N, MPa.
 """
@@ -15,18 +15,18 @@ from typing import NamedTuple
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, richardson, single_threaded_blas,
                                         size_factors, solve_fem2d)
 from tactcad.mechanics.fem.fem3d import solve_fem3d
 from tactcad.mechanics.fem.fields import peak_notch_stress
-from tactcad.mechanics.fem.mesh import fem_region
+from tactcad.mechanics.fem.fem_mesh import fem_region
 from tactcad.mechanics.ladder import is_meshed, meshed_models, models
-from tactcad.mechanics.strength import (KT_FIT_GEOMETRIES,
+from tactcad.mechanics.element_strength import (KT_FIT_GEOMETRIES,
                                         STRESS_WEB_DIVISIONS_2D, STRESS_WEB_DIVISIONS_3D,
                                         ElementStress, StrengthRecord,
                                         closed_form_stress, nominal_stress_per_newton)
-from tactcad.mechanics.strength import plan_strength as _plan_strength
+from tactcad.mechanics.element_strength import plan_strength as _plan_strength
 
 
 def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d", *,
@@ -89,7 +89,7 @@ def element_stress(g: ElementGeometry, material: Material, model: str = "closed-
 
 
 def plan_strength(plan: Plan, model: str = "closed-form", progress=None) -> list[StrengthRecord]:
-    """:func:`tactcad.mechanics.strength.plan_strength` at any ladder level,
+    """:func:`tactcad.mechanics.element_strength.plan_strength` at any ladder level,
     the FEM ones (:func:`fem_peak_stress`) included.
 
     Raises:

@@ -34,7 +34,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any, Callable, Iterable, Iterator, Sequence
 
-from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError, TactcadError
 
 #: Local cluster: two worker processes, one thread each.
@@ -183,7 +183,7 @@ def grid_points(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
         DesignError: a grid point breaks the design rules (field named), or
             an unknown model.
     """
-    from tactcad.design.array import plan_from_dict
+    from tactcad.design.array_plan import plan_from_dict
     from tactcad.studies.inverse_design import design_variant
     from tactcad.mechanics.ladder import models
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from tactcad.design.array import Plan
+from tactcad.design.array_plan import Plan
 from tactcad.mechanics.correction import Correction, load_correction
 from tactcad.studies.tolerance_montecarlo import (ToleranceReport, Tolerances, corrected_stiffness,
                                          run_tolerance)

@@ -32,7 +32,7 @@ Sampling is reproducible: the draw is split into chunks of
 its chunks are evaluated in this process or on a Dask cluster
 (:mod:`tactcad.studies.sweeps`).
 
-Sources: eq. 1-3 of the paper (:mod:`tactcad.mechanics.lumped`);
+Sources: eq. 1-3 of the paper (:mod:`tactcad.mechanics.lumped_model`);
 JCGM 101:2008 (GUM Supplement 1, propagation of distributions by Monte
 Carlo; probabilistically symmetric 95 % coverage interval from the 2.5 and
 97.5 percentiles).
@@ -49,11 +49,11 @@ from typing import Callable, Iterable, Sequence
 import numpy as np
 from scipy.optimize import brentq
 
-from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
 from tactcad.mechanics.closed_form import closed_form_compliance, correction_coordinates
 from tactcad.mechanics.correction import Correction, load_correction
-from tactcad.mechanics.lumped import deflection_ratio, object_stiffness
+from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
 
 #: Samples per independently seeded chunk (the unit of work of a Dask run).
 CHUNK_SAMPLES = 2500

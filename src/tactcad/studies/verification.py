@@ -1,7 +1,7 @@
 """A design's requirements (stated or derived) and its verification matrix.
 
 :func:`requirements_of` reads the ``[requirements]`` section
-(:mod:`tactcad.design.requirements`); every key the file leaves out is
+(:mod:`tactcad.design.requirements_section`); every key the file leaves out is
 derived from the design's own nominal geometry at the corrected closed form,
 rounded to the safe side, with the reason stated:
 
@@ -35,8 +35,8 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
-from tactcad.design.array import Plan
-from tactcad.design.requirements import (REQUIREMENT_KEYS, cites_paper, requirements_source,
+from tactcad.design.array_plan import Plan
+from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, requirements_source,
                                          stated_requirements)
 from tactcad.mechanics.resolution import KOBJ_POINTS
 
@@ -128,7 +128,7 @@ def element_figures(plan: Plan, model: str = "closed-form",
     """
     from tactcad.mechanics.ladder import estimate
     from tactcad.mechanics.ladder import is_meshed
-    from tactcad.mechanics.strength import closed_form_stress
+    from tactcad.mechanics.element_strength import closed_form_stress
 
     if stress is None:
         if is_meshed(model):
@@ -366,9 +366,9 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
 
 def readout_resolution_record(plan: Plan, fig: Figures, req: Requirements, error: float) -> dict:
     """``kobj_resolution_rel`` with each element read through the design's read-out chain
-    (:mod:`tactcad.mechanics.readout`: its noise-limited force resolution instead of a fixed
+    (:mod:`tactcad.mechanics.readout_chain`: its noise-limited force resolution instead of a fixed
     0.01 N); requirement ``kobj_resolution_rel_readout``."""
-    from tactcad.mechanics.readout import readout_report
+    from tactcad.mechanics.readout_chain import readout_report
 
     rep = readout_report(plan, req, fig.model, stiffness=fig.k)
     worst = rep.array_kobj_resolution_rel

@@ -5,6 +5,6 @@
   reading TOML, the content hash, the ``[assumptions]`` table, derived values with
   their reasons;
 * :mod:`tactcad.vocabulary.standards`: ISO bolts and nuts, ISO 15 bearings, stock lengths;
-* :mod:`tactcad.vocabulary.materials`: the materials library;
+* :mod:`tactcad.vocabulary.material_library`: the materials library;
 * :mod:`tactcad.vocabulary.process`: the typed process of a part (:class:`Method`).
 """

@@ -2,7 +2,7 @@
 
 Quadratic triangles (P2 displacement field: scikit-fem ``ElementTriP2`` basis
 in the dof numbering of ``ElementVector``) on a gmsh mesh of the cropped exact profile
-(:func:`tactcad.mechanics.fem.mesh.fem_region`), refined at the web of the
+(:func:`tactcad.mechanics.fem.fem_mesh.fem_region`), refined at the web of the
 flexure hinge. Geometry is isoparametric (``MeshTri2``: the midside node of
 every edge on the notch or fillet arc sits on the exact circle) unless
 ``curved=False``. Straight-sided cells cut the notch's chords and leave a
@@ -60,10 +60,10 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry, Material
-from tactcad.mechanics.fem.mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
+from tactcad.design.array_plan import ElementGeometry, Material
+from tactcad.mechanics.fem.fem_mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
                        mesh_region)
-from tactcad.mechanics.result import StiffnessResult
+from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.richardson import Richardson, richardson
 
 #: Refinement ratio between successive meshes of the Richardson sequence.
@@ -625,7 +625,7 @@ def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | Non
         curved: isoparametric arcs.
         force_N: tip force (N) for the gauge strain (reported per N).
         margin_mm: clamp margin behind the notch (``None``: the default of
-            :func:`~tactcad.mechanics.fem.mesh.fem_region`).
+            :func:`~tactcad.mechanics.fem.fem_mesh.fem_region`).
         progress: gets one line per mesh level solved (level, seconds).
 
     Returns:

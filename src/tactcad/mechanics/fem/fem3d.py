@@ -2,7 +2,7 @@
 
 Quadratic tetrahedra (scikit-fem ``ElementTetP2``, isoparametric
 ``MeshTet2`` with the notch and fillet edges on the exact circles) on the
-cropped exact profile (:func:`tactcad.mechanics.fem.mesh.fem_region`)
+cropped exact profile (:func:`tactcad.mechanics.fem.fem_mesh.fem_region`)
 extruded through the sheet.
 
 Half model: geometry, clamp and load are symmetric about the mid-plane
@@ -10,7 +10,7 @@ z = b/2 of the sheet, so only 0 <= z <= b/2 is meshed with ``u_z = 0`` on the
 mid-plane; the full element's stiffness is ``K = 2 F_h^2 / (f_h^T u_h)``
 (twice the force at the same deflection). This halves the unknowns.
 
-Mesh: the 2D mesh of :func:`~tactcad.mechanics.fem.mesh.mesh_region` (size
+Mesh: the 2D mesh of :func:`~tactcad.mechanics.fem.fem_mesh.mesh_region` (size
 ``t / web_divisions`` at the neck) extruded in ``n_layers`` layers that grow
 geometrically from the free face z = 0 (where the through-thickness
 variation of the stress is largest: plane-stress-like at the free face,
@@ -54,12 +54,12 @@ import time
 from dataclasses import dataclass
 from typing import Callable
 
-from tactcad.design.array import ElementGeometry, Material
+from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.mechanics.fem.fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Convergence, DisplacementField,
                     FemSolution, lame, single_threaded_blas, size_factors, skfem_mesh,
                     solve_elasticity_field)
-from tactcad.mechanics.fem.mesh import FemRegion, fem_region, graded_layers, mesh_region
-from tactcad.mechanics.result import StiffnessResult
+from tactcad.mechanics.fem.fem_mesh import FemRegion, fem_region, graded_layers, mesh_region
+from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.richardson import richardson
 
 #: Finest-mesh neck size = web thickness / WEB_DIVISIONS_3D.
@@ -199,7 +199,7 @@ def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | Non
         curved: isoparametric arcs.
         force_N: tip force (N) for the gauge strain (reported per N).
         margin_mm: clamp margin behind the notch (``None``: default of
-            :func:`~tactcad.mechanics.fem.mesh.fem_region`).
+            :func:`~tactcad.mechanics.fem.fem_mesh.fem_region`).
         solver: "pcg" or "direct".
         verbose: print K, time and peak RSS of every mesh.
         progress: gets one line per mesh level solved (level, unknowns, seconds).

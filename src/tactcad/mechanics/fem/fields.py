@@ -33,7 +33,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry
+from tactcad.design.array_plan import ElementGeometry
 from tactcad.mechanics.fem.fem2d import DisplacementField
 
 

@@ -6,7 +6,7 @@ beside the rig parts: ``element``, ``spacer``, ``clamp_plate``,
 extruded ones share (through holes, the drilled plate, a prism's box).
 
 The array's dimensions stay one coupled derivation (element, clamp plates and
-bolt pattern from one design file) in :mod:`tactcad.design.array`, which sits
+bolt pattern from one design file) in :mod:`tactcad.design.array_plan`, which sits
 above this layer and reads the dimension classes from here; each module reads
 its part's dimensions back from the plan. Units: mm.
 """

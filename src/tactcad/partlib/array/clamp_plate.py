@@ -6,7 +6,7 @@ Here under the key ``clamp_plate``: the design file's ``[clamp]`` table (the
 plates, the bolts that clamp the stack and the spacers' grade), the plate's
 dimensions (:class:`ClampPlateGeometry`), spec, builder and shop drawing.
 The plate, the bolt pattern and the elements' bases are one coupled
-derivation in :mod:`tactcad.design.array` (above this layer), which this
+derivation in :mod:`tactcad.design.array_plan` (above this layer), which this
 module reads from the plan. Part frame: the array frame's x and y, thickness
 along +z. Units: mm.
 """
@@ -32,14 +32,14 @@ COLOR: RGB = (0.25, 0.40, 0.70)  # anodised blue
 
 class ClampSection(Section):
     """``[clamp]`` of the design file: the clamp plates, their bolts (mm) and
-    the library grades of plates and spacers (:mod:`tactcad.design.bom`)."""
+    the library grades of plates and spacers (:mod:`tactcad.design.bom_section`)."""
 
     bolt_size: choice(BOLTS, "ISO 4762 socket head cap screws of the catalogue")
     bolt_spacing_mm: number(0.0, 40.0, lo_open=True)
     plate_thickness_mm: number(1.0, 10.0)
     bridge_height_mm: number(1.0, 30.0)
     arm_clearance_mm: number(0.2, 3.0)
-    material: Text = None  # library grade of the clamp plates (tactcad.design.bom)
+    material: Text = None  # library grade of the clamp plates (tactcad.design.bom_section)
     spacer_material: Text = None  # library grade of the spacers
 
 

@@ -6,7 +6,7 @@ Here under the key ``element``: the design file's ``[element]`` table, the
 element's dimensions (:class:`ElementGeometry`), its spec, builder and shop
 drawing (dimension set, notes, the web in detail A, drawn with the drawings
 layer's pen). Which arm each slot has and where the clamp's bolt holes go is
-the array's one coupled derivation, :mod:`tactcad.design.array` (above this
+the array's one coupled derivation, :mod:`tactcad.design.array_plan` (above this
 layer); this module reads the result from the plan.
 
 Element frame: x along the arm (0 = back face of the clamped base, tip at

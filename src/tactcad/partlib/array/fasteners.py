@@ -5,7 +5,7 @@ built by the same screw under the key ``rig_bolt``.
 
 Here under the key ``bolt``: their spec (bolt and nut), names, volumes and
 builders. The bolt's size and length come from the array's derivation
-(``[clamp] bolt_size``, the stack's grip; :mod:`tactcad.design.array`).
+(``[clamp] bolt_size``, the stack's grip; :mod:`tactcad.design.array_plan`).
 Dimensions: :data:`tactcad.vocabulary.standards.BOLTS`. Part frames: axis +z.
 Units: mm.
 """

@@ -4,7 +4,7 @@ sets the array's pitch.
 
 Here under the key ``spacer``: its dimensions (:class:`SpacerGeometry`), spec,
 builder and shop drawing's notes. Its size is derived with the clamp's bolt
-pattern in :mod:`tactcad.design.array` (above this layer), which this module
+pattern in :mod:`tactcad.design.array_plan` (above this layer), which this module
 reads from the plan. Part frame: the element frame (x along the base, y up,
 thickness along +z). Units: mm.
 """

@@ -34,12 +34,12 @@ from pydantic import create_model
 from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Name, Problems, Section, Text,
                                        content_hash, fmt, integer, listing, number, read_assumptions,
                                        read_toml, validate)
-from tactcad.vocabulary.materials import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
+from tactcad.vocabulary.material_library import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                           StrengthSettings, default_strength_settings,
                                           material_fields, material_grade, strength_settings)
-from tactcad.design.bom import BomSection, check_clamp_materials
-from tactcad.design.readout import ReadoutSection, check_readout
-from tactcad.design.requirements import RequirementsSection, check_requirements
+from tactcad.design.bom_section import BomSection, check_clamp_materials
+from tactcad.design.readout_section import ReadoutSection, check_readout
+from tactcad.design.requirements_section import RequirementsSection, check_requirements
 from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
 from tactcad.vocabulary.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
@@ -83,7 +83,7 @@ MAX_COLUMNS = 12
 @dataclass(frozen=True)
 class Material:
     """Sheet material (MPa, g/cm^3). The strength fields come from the
-    library grade (:mod:`tactcad.vocabulary.materials`) unless the design gives them;
+    library grade (:mod:`tactcad.vocabulary.material_library`) unless the design gives them;
     None when neither does. ``fatigue_cycles`` and ``fatigue_R_ratio`` belong
     to a library fatigue strength; ``sources`` names each value's document."""
 
@@ -214,7 +214,7 @@ class DesignSection(Section):
 class MaterialSection(Section):
     """Name, E and nu; optionally a library grade (yield, fatigue strength,
     density; E and nu from the grade where the table omits them) and the
-    design's own strength values (:mod:`tactcad.vocabulary.materials`)."""
+    design's own strength values (:mod:`tactcad.vocabulary.material_library`)."""
 
     name: Text
     youngs_modulus_MPa: number(1e3, 1e6, unit="MPa")
@@ -228,7 +228,7 @@ class MaterialSection(Section):
 
 class StrengthSection(Section):
     """Safety factor on yield at the full-scale force, and the strain gauge
-    (both optional: :mod:`tactcad.vocabulary.materials` gives the defaults)."""
+    (both optional: :mod:`tactcad.vocabulary.material_library` gives the defaults)."""
 
     safety_factor: number(*SAFETY_FACTOR_RANGE, unit="") = None
     gauge: Text = None

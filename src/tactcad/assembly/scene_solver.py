@@ -2,7 +2,7 @@
 linear, :mod:`tactcad.kernel.joints`), slides solved so that the rig's loops
 close, and the shown parts built once each.
 
-The rig models (nodes, joints, contacts) come from :mod:`tactcad.assembly.rigs`
+The rig models (nodes, joints, contacts) come from :mod:`tactcad.assembly.rig_models`
 and never need the kernel; this module does. Scene frame: mm, y up.
 """
 
@@ -12,19 +12,19 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from tactcad.assembly.placement import location
+from tactcad.assembly.plan_locations import location
 from tactcad.assembly.z_up import z_up_bbox
-from tactcad.assembly.rigs import (SOLVE_TOL_MM, Mate, RigModel, Slide, get_scene_spec,
+from tactcad.assembly.rig_models import (SOLVE_TOL_MM, Mate, RigModel, Slide, get_scene_spec,
                                    scene_model, shown_instances)
-from tactcad.catalogue.array import PartSpec
-from tactcad.catalogue.rigs import level_of
-from tactcad.design.array import Plan
+from tactcad.catalogue.array_catalogue import PartSpec
+from tactcad.catalogue.rig_catalogue import level_of
+from tactcad.design.array_plan import Plan
 from tactcad.design.project import Project
-from tactcad.design.scenes import SceneSpec
+from tactcad.design.scene_specs import SceneSpec
 from tactcad.errors import SceneError
 from tactcad.geometry.frames import Frame
 from tactcad.kernel.joints import carrier, rigid_joint, slide_joint
-from tactcad.kernel.placement import point as located_point
+from tactcad.kernel.locations import point as located_point
 from tactcad.solids.cache import PartCache
 
 
@@ -140,7 +140,7 @@ class PlacedPart:
     part: str
     group: str
     level: str
-    location: Any  # CAD location (tactcad.kernel.placement), scene frame
+    location: Any  # CAD location (tactcad.kernel.locations), scene frame
 
 
 @dataclass

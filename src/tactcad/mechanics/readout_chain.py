@@ -45,8 +45,8 @@ from typing import Callable
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry, Material, Plan
-from tactcad.design.readout import ReadoutChain, readout_of
+from tactcad.design.array_plan import ElementGeometry, Material, Plan
+from tactcad.design.readout_section import ReadoutChain, readout_of
 from tactcad.mechanics.ladder import is_meshed
 
 #: Boltzmann constant (J/K) and the bridge temperature assumed for its Johnson noise (K).

@@ -14,9 +14,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 from typing import Any, Mapping
 
-from tactcad.catalogue.array import RGB, PartSpec, bolt_name
-from tactcad.design.array import BoltSpec, Plan
-from tactcad.design.rigs import RigDesign
+from tactcad.catalogue.array_catalogue import RGB, PartSpec, bolt_name
+from tactcad.design.array_plan import BoltSpec, Plan
+from tactcad.design.rig_plan import RigDesign
 from tactcad.geometry.frames import Frame, face
 from tactcad.partlib.array.fasteners import screw_data
 from tactcad.partlib.base import PartData, Seat
@@ -25,7 +25,7 @@ from tactcad.partlib.registry import rig_parts_lib
 
 @dataclass(frozen=True)
 class RigPartSpec(PartSpec):
-    """A rig part: a :class:`~tactcad.catalogue.array.PartSpec` plus what scenes need.
+    """A rig part: a :class:`~tactcad.catalogue.array_catalogue.PartSpec` plus what scenes need.
 
     Attributes:
         geometry: the frozen rig dataclass the builder reads (in the part's

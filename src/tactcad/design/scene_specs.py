@@ -1,7 +1,7 @@
 """Scenes file (``hardware/scenes.toml``) -> validated scene specs (no CAD kernel).
 
 A scene names its rig, the groups of parts it shows and their level of
-detail; :mod:`tactcad.assembly.scenes` assembles it. The file is read by the
+detail; :mod:`tactcad.assembly.scene_solver` assembles it. The file is read by the
 schema mechanism of :mod:`tactcad.vocabulary.schema`: every refusal at once.
 """
 
@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping, Optional
 
-from tactcad.design.array import DEFAULT_DESIGN
+from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.vocabulary.schema import (NAME_ALLOWED, NAME_PATTERN, Problems, Section, Text, choice,
                                        listing, number, read_toml, validate)
 

@@ -27,7 +27,7 @@ from typing import Any, Mapping, Optional
 
 from pydantic import create_model
 
-from tactcad.design.array import DEFAULT_DESIGN, Plan
+from tactcad.design.array_plan import DEFAULT_DESIGN, Plan
 from tactcad.partlib.base import PartData
 from tactcad.partlib.registry import derivation_order, rig_parts_lib
 from tactcad.partlib.sample import stiffnesses
@@ -210,7 +210,7 @@ def load_rigs(path: str | Path | None = None, *, array_plan: Plan) -> RigDesign:
 
     Args:
         path: TOML rig file; ``None`` means ``hardware/rigs.toml``.
-        array_plan: the array's :class:`~tactcad.design.array.Plan` the rigs are
+        array_plan: the array's :class:`~tactcad.design.array_plan.Plan` the rigs are
             derived against (bracket mounting holes, bolt grip).
 
     Raises:

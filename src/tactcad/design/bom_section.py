@@ -7,7 +7,7 @@
 * ``adhesive``: the gauge adhesive (one kit per array).
 
 ``[clamp] material`` and ``[clamp] spacer_material`` name the library grade
-(:mod:`tactcad.vocabulary.materials`) of the clamp plates and the spacers; they
+(:mod:`tactcad.vocabulary.material_library`) of the clamp plates and the spacers; they
 default to :data:`DEFAULT_CLAMP_GRADE`, not to the elements' material: these
 parts carry no spring load.
 
@@ -66,7 +66,7 @@ def bom_settings(raw: Mapping[str, Any]) -> BomSettings:
 def clamp_grades(raw: Mapping[str, Any]) -> dict[str, str]:
     """Library grade of the clamp plates and the spacers: ``{"clamp_plate": ..., "spacer": ...}``
     (matched names; an unknown one is refused when the design is validated)."""
-    from tactcad.vocabulary.materials import material_grade
+    from tactcad.vocabulary.material_library import material_grade
 
     clamp = raw.get("clamp", {}) if isinstance(raw, Mapping) else {}
     return {"clamp_plate": material_grade(clamp.get("material", DEFAULT_CLAMP_GRADE),
@@ -77,7 +77,7 @@ def clamp_grades(raw: Mapping[str, Any]) -> dict[str, str]:
 
 def check_clamp_materials(d: Any, p) -> None:
     """Cross-field rule: clamp and spacer grades are library grades."""
-    from tactcad.vocabulary.materials import material_grade
+    from tactcad.vocabulary.material_library import material_grade
     from tactcad.errors import DesignError
 
     for key in ("material", "spacer_material"):

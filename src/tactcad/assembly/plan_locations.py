@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from tactcad.design.array import Placement
-from tactcad.kernel.placement import Location, offset
+from tactcad.design.array_plan import Placement
+from tactcad.kernel.locations import Location, offset
 
 
 def location(p: Placement) -> Location:

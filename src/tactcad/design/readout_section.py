@@ -165,7 +165,7 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
 
     Args:
         raw: the design's tables (``[readout]`` optional).
-        gauge: the design's library :class:`~tactcad.vocabulary.materials.StrainGauge`
+        gauge: the design's library :class:`~tactcad.vocabulary.material_library.StrainGauge`
             (gauge factor and resistance unless the file gives them).
     """
     gs = dict(gauge.sources)

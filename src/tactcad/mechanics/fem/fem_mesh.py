@@ -62,7 +62,7 @@ from typing import Iterator, NamedTuple, Sequence
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry
+from tactcad.design.array_plan import ElementGeometry
 from tactcad.geometry.profile import Arc, Line, Segment, contour_area, element_profile
 
 #: Default clamp margin, as a multiple of the larger of the notch radius and

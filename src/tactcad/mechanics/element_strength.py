@@ -54,10 +54,10 @@ from typing import Callable
 
 import numpy as np
 
-from tactcad.design.array import ElementGeometry, Material, Plan
+from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
-from tactcad.vocabulary.materials import StrengthSettings
-from tactcad.design.requirements import cites_paper
+from tactcad.vocabulary.material_library import StrengthSettings
+from tactcad.design.requirements_section import cites_paper
 from tactcad.mechanics.ladder import estimate, is_meshed, models
 
 #: Exponent of K_t = (1 + t/(2R))^p for the single-sided circular notch in
@@ -275,7 +275,7 @@ def require_yield(material: Material) -> float:
         DesignError: it has none (the message names the grades that give one).
     """
     if material.yield_strength_MPa is None:
-        from tactcad.vocabulary.materials import material_grades
+        from tactcad.vocabulary.material_library import material_grades
 
         raise DesignError("material.yield_strength_MPa", None,
                           "a value in MPa, or a material.grade (one of "

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from tactcad.catalogue.gauges import gauge_body, gauge_placements
-from tactcad.design.array import Placement, Plan
+from tactcad.design.array_plan import Placement, Plan
 from tactcad.partlib.array.fasteners import bolt_name, bolt_volume, nut_name
 from tactcad.partlib.array.strain_gauge import GAUGE_PART
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, Bbox, PartData
@@ -47,7 +47,7 @@ class PartSpec:
         profile: planar profile (sketch plane z = 0) for extruded parts.
         thickness_mm: extrusion thickness for extruded parts.
         geometry: the frozen dimensions the builder, drawing and DXF writers
-            read (an element's :class:`~tactcad.design.array.ElementGeometry`,
+            read (an element's :class:`~tactcad.design.array_plan.ElementGeometry`,
             the spacer's, the clamp's, a rig part's), so no writer reaches back
             into the plan.
     """
@@ -115,10 +115,10 @@ def array_spec(part: ArrayPart, data: PartData) -> PartSpec:
 
 def part_material_names(plan: Plan) -> dict[str, str]:
     """Material name of the clamp plates and spacers (``clamp.material``,
-    ``clamp.spacer_material``; :func:`tactcad.design.bom.clamp_grades`): the grade's family,
+    ``clamp.spacer_material``; :func:`tactcad.design.bom_section.clamp_grades`): the grade's family,
     or the element material's name when it is the elements' own grade."""
-    from tactcad.design.bom import clamp_grades
-    from tactcad.vocabulary.materials import material_grade
+    from tactcad.design.bom_section import clamp_grades
+    from tactcad.vocabulary.material_library import material_grade
 
     out = {}
     for part, grade in clamp_grades(plan.raw).items():

@@ -1,6 +1,6 @@
 """Rig models, kernel-free: the array, its wire-cut profiles and the paper's
 three test rigs as kinematic trees of nodes and joints, and the scenes that
-show groups of them (solved by :mod:`tactcad.assembly.scenes`).
+show groups of them (solved by :mod:`tactcad.assembly.scene_solver`).
 
 A scene (``hardware/scenes.toml``) names its rig, the groups of parts it
 shows and their level of detail. A rig is a kinematic tree of nodes (parts
@@ -17,7 +17,7 @@ or sub-assemblies such as the array) joined by
   rig: indenter on the element tip, tips on the sample ...). A position
   outside the slide's range raises :class:`SceneError`.
 
-Joint frames are data of the parts (:mod:`tactcad.catalogue.rigs`, from the
+Joint frames are data of the parts (:mod:`tactcad.catalogue.rig_catalogue`, from the
 plan for the array), so placing a scene never builds a part; building a
 scene builds only the parts of its shown groups, once each per level of
 detail (counted in :data:`tactcad.solids.build.BUILD_COUNTS`). Scene frame: mm,
@@ -29,13 +29,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 from typing import Any, Mapping
 
-from tactcad.catalogue.array import (PartSpec, array_contacts, array_instances, array_parts,
+from tactcad.catalogue.array_catalogue import (PartSpec, array_contacts, array_instances, array_parts,
                                      bolt_name, nut_name)
-from tactcad.catalogue.rigs import bolt_frames, nut_frames, rig_parts, seat_frame
-from tactcad.design.array import Placement, Plan
+from tactcad.catalogue.rig_catalogue import bolt_frames, nut_frames, rig_parts, seat_frame
+from tactcad.design.array_plan import Placement, Plan
 from tactcad.design.project import Project
-from tactcad.design.rigs import RigDesign
-from tactcad.design.scenes import RIGS, SceneSpec
+from tactcad.design.rig_plan import RigDesign
+from tactcad.design.scene_specs import RIGS, SceneSpec
 from tactcad.errors import DesignError, SceneError
 from tactcad.geometry.frames import Frame
 from tactcad.partlib.cart import wheel_tag
