@@ -20,12 +20,57 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Iterable, Sequence
-
-if TYPE_CHECKING:
-    from tactcad.partlib.array.element import ElementGeometry
+from typing import Iterable, Protocol, Sequence
 
 Point = tuple[float, float]
+
+
+class NotchShape(Protocol):
+    """What the notch's web function reads of an element (mm, element frame):
+    the notch centre's x, its radius and the web over it."""
+
+    @property
+    def hinge_x_mm(self) -> float: ...
+    @property
+    def notch_radius_mm(self) -> float: ...
+    @property
+    def web_thickness_mm(self) -> float: ...
+
+
+class RoundHole(Protocol):
+    """A round through hole of the profile (mm, element frame)."""
+
+    @property
+    def x_mm(self) -> float: ...
+    @property
+    def y_mm(self) -> float: ...
+    @property
+    def diameter_mm(self) -> float: ...
+
+
+class ElementOutline(NotchShape, Protocol):
+    """What the wire-cut profile reads of an element (mm, element frame): the
+    plan's element geometry (:class:`tactcad.partlib.array.element.ElementGeometry`)
+    is one; geometry names no part module."""
+
+    @property
+    def overall_length_mm(self) -> float: ...
+    @property
+    def base_height_mm(self) -> float: ...
+    @property
+    def notch_centre_y_mm(self) -> float: ...
+    @property
+    def tip_width_mm(self) -> float: ...
+    @property
+    def inside_corner_radius_mm(self) -> float: ...
+    @property
+    def arm_underside_y_mm(self) -> float: ...
+    @property
+    def tip_top_y_mm(self) -> float: ...
+    @property
+    def bolt_holes(self) -> Sequence[RoundHole]: ...
+    @property
+    def start_hole_diameter_mm(self) -> float: ...
 
 
 @dataclass(frozen=True)
@@ -179,11 +224,11 @@ def _chain(points_and_arcs: list) -> tuple[Segment, ...]:
     return tuple(segs)
 
 
-def element_profile(g: ElementGeometry) -> Profile:
+def element_profile(g: ElementOutline) -> Profile:
     """Exact wire-cut profile of a flexure sensing element.
 
     Args:
-        g: element geometry from the plan (mm).
+        g: element geometry from the plan (mm), any :class:`ElementOutline`.
 
     Returns:
         :class:`Profile` with the CCW outer contour (lines and arcs only), the
@@ -214,7 +259,7 @@ def element_profile(g: ElementGeometry) -> Profile:
     return Profile(outer=outer, holes=holes, start_holes=starts)
 
 
-def web_thickness_at(g: ElementGeometry, x: float) -> float:
+def web_thickness_at(g: NotchShape, x: float) -> float:
     """Material height (mm) over the notch at ``x`` (element frame):
     h(x) = t + R - sqrt(R^2 - (x - x_h)^2) for |x - x_h| <= R."""
     d = x - g.hinge_x_mm
