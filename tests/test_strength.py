@@ -14,9 +14,10 @@ from tactcad.cli import main
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import CorrectionRangeWarning
-from tactcad.mechanics.element_strength import (KT_FIT_TOLERANCE, PAPER_LOAD_N, full_scale_force,
+from tactcad.mechanics.element_strength import (KT_FIT_TOLERANCE, ReferenceLoad, full_scale_force,
                                         nominal_stress_per_newton, plan_strength,
                                         stress_concentration_factor, strength_summary)
+from tactcad.paper.paper_load import PAPER_LOAD, PAPER_LOAD_N, paper_load_of
 
 JSON_KEYS = {"element", "stress_MPa_per_N", "full_scale_force_N",
              "yield_safety_factor_at_full_scale", "gauge_strain_at_full_scale",
@@ -47,12 +48,26 @@ def test_full_scale_force_formula(plan):
 
 
 def test_papers_8mm_arm_at_2N_is_above_6061_yield(plan):
-    rec = next(r for r in plan_strength(plan) if r.arm_length_mm == 8.0)
+    assert paper_load_of(plan) == PAPER_LOAD == (2.0, "the paper's")
+    rec = next(r for r in plan_strength(plan, reference_load=PAPER_LOAD) if r.arm_length_mm == 8.0)
     nominal = float(nominal_stress_per_newton(0.25, 8.0, 3.0)) * PAPER_LOAD_N
     assert nominal == pytest.approx(512.0)  # ~500 MPa in the web
     assert rec.stress_MPa_at_paper_load > plan.material.yield_strength_MPa
-    assert any("above the yield strength" in w for w in rec.warnings)
+    assert any(w.startswith("at the paper's 2 N the web reaches") and "above the yield strength" in w
+               for w in rec.warnings)
     assert any("fatigue strain" in w for w in rec.warnings)
+
+
+def test_the_general_code_gives_no_load_of_its_own(plan):
+    """A stress at a reference load only when the caller gives one: the
+    paper's load is no default, not even for the paper's design."""
+    for rec in plan_strength(plan):
+        assert rec.stress_MPa_at_paper_load is None and not any("paper" in w for w in rec.warnings)
+    assert all("stress_MPa_at_paper_load" not in r for r in strength_summary(plan))
+    rec = plan_strength(plan, reference_load=ReferenceLoad(1.0, "a 1 N test"))[3]
+    assert rec.stress_MPa_at_paper_load == pytest.approx(rec.stress_MPa_per_N)
+    assert rec.yield_safety_factor_at_paper_load == pytest.approx(
+        plan.material.yield_strength_MPa / rec.stress_MPa_per_N)
 
 
 def test_stronger_grade_raises_full_scale_and_clears_the_yield_warning(design_data):
@@ -208,6 +223,8 @@ def test_a_design_that_does_not_cite_the_paper_has_no_figures_at_the_papers_load
     from tactcad.design.project import load_project
 
     example = Path(__file__).resolve().parents[1] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
-    records = plan_strength(load_project(example).plan)
+    plan = load_project(example).plan
+    assert paper_load_of(plan) is None
+    records = plan_strength(plan, reference_load=paper_load_of(plan))
     assert records and all(r.stress_MPa_at_paper_load is None for r in records)
     assert all("paper" not in key for r in records for key in r.as_json())

@@ -456,7 +456,7 @@ class Element:
         """
         from tactcad.mechanics.ladder import UnknownModelError, models
         from tactcad.design.requirements_section import cites_paper
-        from tactcad.mechanics.element_strength import strength_record
+        from tactcad.paper.paper_load import strength_record
         from tactcad.studies.strength_studies import element_stress
 
         if model not in models():

@@ -41,6 +41,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from tactcad.paper.paper_load import paper_load_of
     from tactcad.studies.strength_studies import plan_strength
 
     plan = plan_from_args(args)
@@ -53,7 +54,8 @@ def run(args: argparse.Namespace) -> int:
         return _run_table1(plan, args.model, args.json)
     report = progress_from_args(args)
     progress = (lambda s: report(f"  ... {s}"))
-    records = plan_strength(plan, args.model, progress=progress)
+    records = plan_strength(plan, args.model, progress=progress,
+                            reference_load=paper_load_of(plan))
     judged = full_scale_judgement(plan, args.model, records)
     code = 0 if judged["met"] else 1
     if args.json:
@@ -65,16 +67,17 @@ def run(args: argparse.Namespace) -> int:
           f"fatigue {_fmt_opt(m.fatigue_strength_MPa)} MPa, safety factor {s.safety_factor:g}, "
           f"gauge {s.gauge.name} (max {s.gauge.max_strain * 1e6:.0f}, fatigue "
           f"{s.gauge.fatigue_strain * 1e6:.0f} microstrain)")
-    paper = cites_paper(plan.raw)  # the paper's 2 N study load: its design only
+    load = paper_load_of(plan)  # the paper's study load: its design only
     print(f"{'el':>3} {'arm mm':>6} {'MPa/N':>7} {'K_t':>5} {'F_fs N':>7} {'SF':>4} "
-          f"{'ue at F_fs':>10} {'tip um':>7}" + (f" {'MPa at 2 N':>10}" if paper else ""))
+          f"{'ue at F_fs':>10} {'tip um':>7}"
+          + (f" {f'MPa at {load.force_N:g} N':>10}" if load else ""))
     for r in records:
         print(f"{r.element:>3} {r.arm_length_mm:>6.1f} {r.stress_MPa_per_N:>7.1f} "
               f"{r.stress_concentration_factor:>5.3f} {r.full_scale_force_N:>7.3f} "
               f"{r.yield_safety_factor_at_full_scale:>4.2f} "
               f"{r.gauge_strain_at_full_scale * 1e6:>10.0f} "
               f"{r.tip_deflection_mm_at_full_scale * 1e3:>7.1f}"
-              + (f" {r.stress_MPa_at_paper_load:>10.0f}" if paper else ""))
+              + (f" {r.stress_MPa_at_paper_load:>10.0f}" if load else ""))
     print(f"required full-scale force {judged['full_scale_force_N']:g} N "
           f"({judged['reason']}): {'met' if judged['met'] else 'NOT met'}; the elements carry at "
           f"most {judged['largest_force_N']:.3g} N, bound by {judged['binding_limit']} "

@@ -14,7 +14,7 @@ from tactcad.catalogue.array_catalogue import PartSpec, array_instances, array_p
 from tactcad.catalogue.files import ARRAY_STEP
 from tactcad.design.array_plan import Plan
 from tactcad.studies.verification import requirements_record
-from tactcad.mechanics.element_strength import strength_summary
+from tactcad.paper.paper_load import strength_summary
 from tactcad.store import stack_versions
 
 

@@ -50,14 +50,13 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import asdict, dataclass, field
-from typing import Callable
+from typing import Callable, NamedTuple
 
 import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
 from tactcad.vocabulary.material_library import StrengthSettings
-from tactcad.design.requirements_section import cites_paper
 from tactcad.mechanics.ladder import estimate, is_meshed, models
 
 #: Exponent of K_t = (1 + t/(2R))^p for the single-sided circular notch in
@@ -74,8 +73,6 @@ KT_FIT_GEOMETRIES = ((0.075, 1.5, 8.0), (0.1, 1.0, 8.0), (0.2, 1.0, 8.0), (0.25,
 #: t/R range of the K_t fit (outside it the error estimate doubles and a
 #: StrengthRangeWarning is issued).
 KT_FIT_RANGE = (0.05, 1.0)
-#: The paper's FEM design-study tip load (N).
-PAPER_LOAD_N = 2.0
 #: Mesh refinement of the stress solves: finest neck size = web / divisions.
 #: Plane: the notch-root stress needs a finer mesh than K (at t/6 the peak
 #: is 1-3 % low; t/24 is within 0.1 % of t/48). 3D: the stiffness meshes'
@@ -231,6 +228,21 @@ def closed_form_stress(g: ElementGeometry, material: Material, model: str = "clo
 # ---------------------------------------------------------------------------
 # Full scale
 # ---------------------------------------------------------------------------
+class ReferenceLoad(NamedTuple):
+    """A tip load to state each element's stress at, beside its full scale,
+    and whose it is: the caller's (e.g. the paper's design-study load for
+    the paper's design, :data:`tactcad.paper.paper_load.PAPER_LOAD`); never
+    a default of the general code.
+
+    Attributes:
+        force_N: the tip load (N).
+        whose: the load's owner as a warning names it ("the paper's").
+    """
+
+    force_N: float
+    whose: str
+
+
 @dataclass(frozen=True)
 class StrengthRecord:
     """Strength of one element of a plan at one ladder level.
@@ -254,13 +266,15 @@ class StrengthRecord:
     stiffness_N_per_mm: float
     fatigue_force_N: float | None
     gauge_fatigue_force_N: float
-    stress_MPa_at_paper_load: float | None  # None unless the design cites the paper
+    # at the caller's reference load (the paper's design load for the paper's
+    # design: tactcad.paper.paper_load); None without one
+    stress_MPa_at_paper_load: float | None
     yield_safety_factor_at_paper_load: float | None
     warnings: tuple[str, ...] = field(default=())
 
     def as_json(self) -> dict:
         """Plain dict for JSON (all numbers finite; ``warnings`` a list); the
-        figures at the paper's load only for a design that cites the paper."""
+        figures at the reference load only when there is one."""
         d = asdict(self)
         d["warnings"] = list(self.warnings)
         if self.stress_MPa_at_paper_load is None:
@@ -286,7 +300,7 @@ def require_yield(material: Material) -> float:
 
 def strength_record(element: int, g: ElementGeometry, material: Material,
                     settings: StrengthSettings, es: ElementStress,
-                    paper_load: bool = True) -> StrengthRecord:
+                    reference_load: ReferenceLoad | None = None) -> StrengthRecord:
     """Full-scale figures of one element from its per-newton response.
 
     full_scale_force_N = yield / (stress_MPa_per_N x safety factor);
@@ -295,8 +309,9 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     tip_deflection_mm_at_full_scale = full-scale force / K;
     fatigue_force_N = fatigue strength / stress per N (None without one);
     gauge_fatigue_force_N = gauge fatigue strain / gauge strain per N;
-    stress and yield safety factor at the paper's 2 N load, and its warning,
-    only when ``paper_load`` (a design that cites the paper; None otherwise).
+    stress and yield safety factor at ``reference_load``, and a warning when
+    it yields the web, only when one is given (None otherwise; the paper's
+    design load for the paper's design is :mod:`tactcad.paper.paper_load`'s).
 
     Raises:
         DesignError: the material has no yield strength.
@@ -306,13 +321,14 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     f_fs = float(full_scale_force(y, es.stress_MPa_per_N, settings.safety_factor))
     s_fs = es.stress_MPa_per_N * f_fs
     eps_fs = es.gauge_strain_per_N * f_fs
-    s_paper = es.stress_MPa_per_N * PAPER_LOAD_N
+    s_ref = es.stress_MPa_per_N * reference_load.force_N if reference_load else None
     nominal = float(nominal_stress_per_newton(g.web_thickness_mm, g.arm_length_mm,
                                               g.sheet_thickness_mm))
     fat = material.fatigue_strength_MPa
     warn = []
-    if paper_load and s_paper > y:
-        warn.append(f"at the paper's {PAPER_LOAD_N:g} N the web reaches {s_paper:.0f} MPa, above "
+    if reference_load and s_ref > y:
+        warn.append(f"at {reference_load.whose} {reference_load.force_N:g} N the web reaches "
+                    f"{s_ref:.0f} MPa, above "
                     f"the yield strength {y:.0f} MPa of {material.grade or material.name}")
     if fat is not None and s_fs > fat:
         cyc = f" ({material.fatigue_cycles:.0e} cycles)" if material.fatigue_cycles else ""
@@ -336,8 +352,8 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
         stiffness_N_per_mm=es.stiffness_N_per_mm,
         fatigue_force_N=None if fat is None else fat / es.stress_MPa_per_N,
         gauge_fatigue_force_N=gauge.fatigue_strain / es.gauge_strain_per_N,
-        stress_MPa_at_paper_load=s_paper if paper_load else None,
-        yield_safety_factor_at_paper_load=y / s_paper if paper_load else None,
+        stress_MPa_at_paper_load=s_ref,
+        yield_safety_factor_at_paper_load=None if s_ref is None else y / s_ref,
         warnings=tuple(warn))
 
 
@@ -346,7 +362,8 @@ StressModel = Callable[[ElementGeometry, Material, str], ElementStress]
 
 
 def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
-                  stress: StressModel | None = None) -> list[StrengthRecord]:
+                  stress: StressModel | None = None,
+                  reference_load: ReferenceLoad | None = None) -> list[StrengthRecord]:
     """:class:`StrengthRecord` of every element of the plan at ``model``;
     distinct geometries are evaluated once.
 
@@ -354,6 +371,8 @@ def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
         stress: the peak-stress evaluation; default :func:`closed_form_stress`
             (closed-form and beam). The FEM levels are run by
             :func:`tactcad.studies.strength_studies.plan_strength`, which passes its own.
+        reference_load: a load to give each element's stress at
+            (:func:`strength_record`); none by default.
 
     Raises:
         ValueError: unknown model, or an FEM model without its ``stress``.
@@ -375,22 +394,24 @@ def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
                 progress(f"{model}: {g.part_name}")
             cache[g.part_name] = stress(g, plan.material, model)
         out.append(strength_record(slot.number, g, plan.material, plan.strength,
-                                   cache[g.part_name], paper_load=cites_paper(plan.raw)))
+                                   cache[g.part_name], reference_load))
     return out
 
 
-def strength_summary(plan: Plan, model: str = "closed-form") -> list[dict]:
+def strength_summary(plan: Plan, model: str = "closed-form",
+                     reference_load: ReferenceLoad | None = None) -> list[dict]:
     """JSON-ready strength records of every element (for the CLI, the drawings
     and the manifest): keys ``element``, ``stress_MPa_per_N``,
     ``full_scale_force_N``, ``yield_safety_factor_at_full_scale``,
     ``gauge_strain_at_full_scale``, ``tip_deflection_mm_at_full_scale`` and
-    the other fields of :class:`StrengthRecord`. All numbers are finite.
+    the other fields of :class:`StrengthRecord` (those at ``reference_load``
+    only with one). All numbers are finite.
 
     Raises:
         ValueError: unknown model.
         DesignError: the material has no yield strength.
     """
-    recs = [r.as_json() for r in plan_strength(plan, model)]
+    recs = [r.as_json() for r in plan_strength(plan, model, reference_load=reference_load)]
     for r in recs:
         for k, v in r.items():
             if isinstance(v, float) and not math.isfinite(v):

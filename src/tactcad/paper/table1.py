@@ -22,8 +22,9 @@ from tactcad.mechanics.ladder import estimate
 from tactcad.mechanics.lumped_model import deflection_ratio
 from tactcad.mechanics.readout_chain import ReadoutChain, gauge_strain_per_N, rel_std
 from tactcad.mechanics.stiffness_result import StiffnessResult
-from tactcad.mechanics.element_strength import PAPER_LOAD_N, peak_stress_per_newton, require_yield
+from tactcad.mechanics.element_strength import peak_stress_per_newton, require_yield
 from tactcad.paper.data import table1, table2
+from tactcad.paper.paper_load import PAPER_LOAD_N
 from tactcad.studies.strength_studies import plan_strength
 
 #: The surface strain the paper reports at 2 N for arms of 4-8 mm.

@@ -24,7 +24,7 @@ from tactcad.mechanics.fem.fem_mesh import fem_region
 from tactcad.mechanics.ladder import is_meshed, meshed_models, models
 from tactcad.mechanics.element_strength import (KT_FIT_GEOMETRIES,
                                         STRESS_WEB_DIVISIONS_2D, STRESS_WEB_DIVISIONS_3D,
-                                        ElementStress, StrengthRecord,
+                                        ElementStress, ReferenceLoad, StrengthRecord,
                                         closed_form_stress, nominal_stress_per_newton)
 from tactcad.mechanics.element_strength import plan_strength as _plan_strength
 
@@ -88,15 +88,18 @@ def element_stress(g: ElementGeometry, material: Material, model: str = "closed-
     return closed_form_stress(g, material, model)
 
 
-def plan_strength(plan: Plan, model: str = "closed-form", progress=None) -> list[StrengthRecord]:
+def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
+                  reference_load: ReferenceLoad | None = None) -> list[StrengthRecord]:
     """:func:`tactcad.mechanics.element_strength.plan_strength` at any ladder level,
-    the FEM ones (:func:`fem_peak_stress`) included.
+    the FEM ones (:func:`fem_peak_stress`) included, with the caller's
+    ``reference_load`` (none by default).
 
     Raises:
         ValueError: unknown model.
         DesignError: the material has no yield strength.
     """
-    return _plan_strength(plan, model, progress, stress=element_stress)
+    return _plan_strength(plan, model, progress, stress=element_stress,
+                          reference_load=reference_load)
 
 
 class KtFit(NamedTuple):
