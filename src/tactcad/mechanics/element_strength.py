@@ -321,12 +321,12 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     f_fs = float(full_scale_force(y, es.stress_MPa_per_N, settings.safety_factor))
     s_fs = es.stress_MPa_per_N * f_fs
     eps_fs = es.gauge_strain_per_N * f_fs
-    s_ref = es.stress_MPa_per_N * reference_load.force_N if reference_load else None
+    s_ref = None if reference_load is None else es.stress_MPa_per_N * reference_load.force_N
     nominal = float(nominal_stress_per_newton(g.web_thickness_mm, g.arm_length_mm,
                                               g.sheet_thickness_mm))
     fat = material.fatigue_strength_MPa
     warn = []
-    if reference_load and s_ref > y:
+    if reference_load is not None and s_ref is not None and s_ref > y:
         warn.append(f"at {reference_load.whose} {reference_load.force_N:g} N the web reaches "
                     f"{s_ref:.0f} MPa, above "
                     f"the yield strength {y:.0f} MPa of {material.grade or material.name}")
