@@ -76,14 +76,14 @@ def test_bom_table_reads_the_csv_with_its_bom():
 def test_checks_script_counts_and_is_written_only_beside_a_page(tmp_path):
     r = [SimpleNamespace(check="c", subject="s", passed=True, detail=""),
          SimpleNamespace(check="c", subject="</script>", passed=False, detail="bad")]
-    text = checks_script("ff", r)
+    text = checks_script("ff", [("parts", r)])
     doc = json.loads(text.removeprefix("window.TACTCAD_CHECKS = ").rstrip(";\n"))
     assert (doc["passed"], doc["failed"], doc["design_sha256"]) == (1, 1, "ff")
     assert "</script>" not in text
-    assert write_checks_script(tmp_path, "ff", r) is None
+    assert write_checks_script(tmp_path, "ff", [("parts", r)]) is None
     (tmp_path / "review").mkdir()
     (tmp_path / REVIEW_PAGE).write_text("x")
-    assert write_checks_script(tmp_path, "ff", r).read_text() == text
+    assert write_checks_script(tmp_path, "ff", [("parts", r)]).read_text() == text
 
 
 def test_import_map_inlines_every_module_without_relative_imports():
@@ -237,8 +237,8 @@ def test_check_results_join_the_page(exported, browser, plan):
     from tactcad.checks.review_browser import wait_first_frame
 
     out, _ = exported
-    write_checks_script(out, plan.design_hash, [R(check="volume", subject="spacer", passed=False,
-                                                    detail="off by 3 %")])
+    write_checks_script(out, plan.design_hash, [("parts", [R(
+        check="volume", subject="spacer", passed=False, detail="off by 3 %")])])
     try:
         with browser() as page:
             page.goto((out / REVIEW_PAGE).resolve().as_uri())

@@ -19,7 +19,7 @@ Units: mm, N, MPa, N/mm, s.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from os import PathLike
 from pathlib import Path
@@ -297,10 +297,12 @@ class Project:
                 GLB read-back); ``None`` checks the array and every scene.
             cache: the store of finished jobs, as for :meth:`export`.
             progress: called with a line on the export (one per job run).
-            on_group: called as ``on_group(group, results)`` when each group
-                of checks finishes (``requirements``: the design's verification
-                matrix at the closed form, ``parts``, ``dxf``, ``array
-                interference``, ``array STEP``, ``scene <name>``).
+            on_group: called as ``on_group(label, results)`` when each group
+                of checks finishes: the groups of
+                :data:`tactcad.checks.groups.CHECK_GROUPS` in order
+                (``requirements``: the design's verification matrix at the
+                closed form, ``parts``, ``dxf``, ``array interference``,
+                ``array STEP``, then ``scene <name>`` per scene).
 
         Returns:
             :class:`CheckReport`: every result with its group.
@@ -311,8 +313,7 @@ class Project:
         """
         import tempfile
 
-        from tactcad.checks.array import run_checks
-        from tactcad.checks.scenes import run_scene_checks
+        from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
         from tactcad.export.reuse import reuse_refusal
         from tactcad.export.run import export, export_scenes
         from tactcad.export.selection import with_progress
@@ -326,9 +327,10 @@ class Project:
                 on_group(group, list(found))
 
         self._report = report
-        from tactcad.checks.requirements import requirement_checks
-
-        done("requirements", requirement_checks(self.plan))  # the verification matrix
+        to_run = groups_to_run(scenes)
+        context = CheckContext(self.plan, Path("."), self._cache, self.validated, scenes)
+        # what reads the design alone (the verification matrix) runs before any export
+        run_groups([g for g in to_run if not g.on_export], context, done)
         try:
             with tempfile.TemporaryDirectory() as tmp:
                 folder = Path(out) if out is not None else Path(tmp)
@@ -343,11 +345,8 @@ class Project:
                     report(f"exporting to {folder} first: {refusal}")
                     export(self.validated, folder, log=_quiet, store=_store(cache), parts=self._cache,
                            select=lambda jobs: with_progress(jobs, report))
-                if scenes:
-                    run_scene_checks(self.validated, folder, scenes, cache=self._cache, done=done)
-                else:
-                    run_checks(self.plan, folder, self._cache, done=done)
-                    run_scene_checks(self.validated, folder, cache=self._cache, done=done)
+                run_groups([g for g in to_run if g.on_export], replace(context, folder=folder),
+                           done)
         finally:
             self._report = _quiet
         return CheckReport(tuple((g, tuple(r)) for g, r in groups), refusal is None,

@@ -2,7 +2,15 @@
 
 from __future__ import annotations
 
+from typing import Iterator
+
+from tactcad.checks.groups import CheckContext, Found
 from tactcad.checks.result import CheckResult
+
+
+def requirement_group(context: CheckContext) -> Iterator[Found]:
+    """``requirements``: the verification matrix of the design at the closed form."""
+    yield "requirements", requirement_checks(context.plan)
 
 
 def requirement_checks(plan, model: str = "closed-form") -> list[CheckResult]:

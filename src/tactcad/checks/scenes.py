@@ -5,11 +5,12 @@ sanity, STEP re-import and GLB read-back against the review records."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Callable, Iterable, Mapping
+from typing import Any, Callable, Iterable, Iterator, Mapping
 
 from tactcad.assembly.rigs import scene_names
 from tactcad.assembly.scenes import Scene, build_scene, review_record
 from tactcad.catalogue.rigs import RigPartSpec
+from tactcad.checks.groups import CheckContext, Found
 from tactcad.checks.interference import Placed
 from tactcad.checks.mesh_interference import check_mesh_interference
 from tactcad.checks.result import CheckResult
@@ -27,14 +28,34 @@ def placed_shapes(scene: Scene, solids: Mapping[str, Any]) -> list[Placed]:
     return [Placed(i.name, solids[i.part].moved(i.location)) for i in scene.instances]
 
 
+def scene_group(context: CheckContext) -> Iterator[Found]:
+    """``scene <name>`` for each scene asked for (all without ``--scene``), as each finishes."""
+    if context.project is not None:
+        yield from scene_checks(context.project, context.folder, context.scenes or None,
+                                context.cache)
+
+
 def run_scene_checks(project: Project, out_dir: str | Path, names: Iterable[str] | None = None,
                      cache: PartCache | None = None, confirm: bool = True,
                      done: Callable[[str, list[CheckResult]], None] | None = None
                      ) -> list[CheckResult]:
-    """Every check of the scenes on the files in ``out_dir``: rig part solids,
-    interference (manifold3d fast path, OpenCascade confirmation), geometry
-    sanity, STEP re-import and GLB read-back against the review records.
+    """Every check of the scenes on the files in ``out_dir`` (:func:`scene_checks`);
     ``done(f"scene {name}", results)`` is called as each scene's checks finish."""
+    results: list[CheckResult] = []
+    for label, found in scene_checks(project, out_dir, names, cache, confirm):
+        results += found
+        if done is not None:
+            done(label, found)
+    return results
+
+
+def scene_checks(project: Project, out_dir: str | Path, names: Iterable[str] | None = None,
+                 cache: PartCache | None = None, confirm: bool = True) -> Iterator[Found]:
+    """Every check of the scenes on the files in ``out_dir``: rig part solids
+    (each once, in the first scene that shows it), interference (manifold3d
+    fast path, OpenCascade confirmation), geometry sanity, STEP re-import and
+    GLB read-back against the review records; ``(f"scene {name}", results)``
+    as each scene's checks finish."""
     out_dir = Path(out_dir)
     cache = cache or PartCache(project.plan)
     results: list[CheckResult] = []
@@ -69,6 +90,4 @@ def run_scene_checks(project: Project, out_dir: str | Path, names: Iterable[str]
         except (OSError, ValueError, KeyError) as exc:
             ok, detail = False, f"{type(exc).__name__}: {exc}"
         results.append(CheckResult("glb_readback", scene_glb_name(name), ok, detail))
-        if done is not None:
-            done(f"scene {name}", results[first:])
-    return results
+        yield f"scene {name}", results[first:]

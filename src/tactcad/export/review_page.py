@@ -142,17 +142,36 @@ def write_review_page(path: Path, contents: ReviewContents, import_map: str) -> 
     return len(body)
 
 
-def checks_script(design_sha256: str, results: Iterable) -> str:
-    """``review/checks.js``: the check results for the page (``window.TACTCAD_CHECKS``)."""
-    checks = [{"check": r.check, "subject": r.subject, "passed": bool(r.passed),
-               "detail": r.detail} for r in results]
+def checks_script(design_sha256: str, groups: Iterable[tuple[str, Iterable]]) -> str:
+    """``review/checks.js``: the check results for the page (``window.TACTCAD_CHECKS``),
+    each with its group's label; ``groups`` lists every registered check group
+    (:data:`tactcad.checks.groups.CHECK_GROUPS`) with what it checks, in run order.
+
+    Args:
+        design_sha256: the design the results are for (the page shows them only
+            when its manifest names the same design).
+        groups: (label, results) in the order run, as
+            :attr:`tactcad.api.CheckReport.groups`.
+    """
+    from tactcad.checks.groups import CHECK_GROUPS, group_of
+
+    checks = []
+    for label, results in groups:
+        try:
+            name = group_of(label).name
+        except KeyError:
+            name = label
+        checks += [{"group": name, "label": label, "check": r.check, "subject": r.subject,
+                    "passed": bool(r.passed), "detail": r.detail} for r in results]
     bad = sum(not c["passed"] for c in checks)
     doc = {"design_sha256": design_sha256, "passed": len(checks) - bad, "failed": bad,
+           "groups": [{"name": g.name, "checks": g.checks} for g in CHECK_GROUPS.values()],
            "checks": checks}
     return "window.TACTCAD_CHECKS = " + _json_in_html(doc) + ";\n"
 
 
-def write_checks_script(out_dir: Path, design_sha256: str, results: Iterable) -> Path | None:
+def write_checks_script(out_dir: Path, design_sha256: str,
+                        groups: Iterable[tuple[str, Iterable]]) -> Path | None:
     """Write ``review/checks.js`` into an export that has a review page; its path, or
     None when there is no page to show it.
 
@@ -163,5 +182,5 @@ def write_checks_script(out_dir: Path, design_sha256: str, results: Iterable) ->
     if not page.is_file():
         return None
     path = Path(out_dir) / CHECKS_SCRIPT
-    write_bytes_atomic(path, checks_script(design_sha256, results).encode("utf-8"))
+    write_bytes_atomic(path, checks_script(design_sha256, groups).encode("utf-8"))
     return path
