@@ -18,13 +18,13 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Sequence
 
-from tactcad.assembly.inventory import assembly_review, fabricated_parts
+from tactcad.assembly.inventory import assembly_review, fabricated_parts, instance_counts
 from tactcad.assembly.rigs import shown_instances
 from tactcad.drawings.compose import drawing_inputs
 from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, ASSEMBLY_DRAWING, PDF_NAME, drawing_name,
                                     drawing_png_name, part_step_name, scene_glb_name,
-                                    scene_step_name)
-from tactcad.export.dxf_sheet import dxf_version_option, write_shop_dxf_files
+                                    scene_step_name, sheet_dxf_name)
+from tactcad.export.dxf_sheet import dxf_version_option, shop_profiles, write_shop_dxf_files
 from tactcad.export.freecad_review import freecad_identity
 from tactcad.export.job import Job, Run
 from tactcad.export.kinds import EXPORT_KINDS, full_export_kinds
@@ -299,6 +299,34 @@ def bom_job(run: Run, before: list[Job]) -> Job:
         return write_bom_files(run.plan, run.staging, run.log, run.inventory)
     return Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]), make,
                after=tuple(j.name for j in before))
+
+
+# --- the files of each kind that describe a part, for the BOM's files column ------------------
+def drawing_part_files(plan, assemblies):
+    """``drawings/<part>.svg``."""
+    return lambda part, found: [drawing_name(part)]
+
+
+def dxf_part_files(plan, assemblies):
+    """A cut part's profile DXF (with its quantity) and the nested sheet it is cut from."""
+    dxf_of = {sp.part: [sp.file_name, sheet_dxf_name(sp.material, sp.thickness_mm)]
+              for sp in shop_profiles(plan)}
+    return lambda part, found: dxf_of.get(part, [])
+
+
+def step_part_files(plan, assemblies):
+    """``step/<part>.step``."""
+    return lambda part, found: [part_step_name(part)]
+
+
+def scene_part_files(plan, assemblies):
+    """The scene STEP files that show a part, for a part without a STEP file of its own."""
+    shown_in: dict[str, list[str]] = {}
+    for name, inst in assemblies.items():
+        for part in instance_counts(inst):
+            shown_in.setdefault(part, []).append(scene_step_name(name))
+    return lambda part, found: ([] if part_step_name(part) in found
+                                else shown_in.get(part, []))
 
 
 # --- the review page: scenes, sheets, BOM and facts in one offline HTML file ------------------

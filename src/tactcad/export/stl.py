@@ -30,6 +30,11 @@ def stl_jobs(run: Run, before: list[Job]) -> list[Job]:
                 (spec,)) for name, spec in specs.items()]
 
 
+def stl_part_files(plan, assemblies):
+    """``stl/<part>.stl``, for the BOM's files column when the STL files are written."""
+    return lambda part, found: [stl_name(part)]
+
+
 def _part_stl(spec):
     def make(run: Run) -> list[dict]:
         import trimesh
