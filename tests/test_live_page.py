@@ -9,7 +9,8 @@ import json
 
 from tactcad.export.live import LiveState
 from tactcad.export.live_page import checks_json
-from tactcad.export.review_page import checks_script, page_html, review_contents
+from tactcad.checks.review_results import checks_script
+from tactcad.export.review_page import page_html, review_contents
 
 IMPORTS = '{"imports": {}}'
 

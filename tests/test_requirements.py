@@ -79,7 +79,7 @@ def test_a_requirement_the_design_cannot_meet_fails_verify_and_check_records(cap
     plan = _plan({"full_scale_force_N": 2.0})  # the 8 mm arm yields long before 2 N
     records = verification_matrix(plan)
     assert not records[0]["pass"] and records[0]["margin_rel"] < 0
-    from tactcad.checks.requirements import requirement_checks
+    from tactcad.checks.requirement_checks import requirement_checks
 
     failed = [c for c in requirement_checks(plan) if not c.passed]
     assert [c.subject for c in failed] == ["full_scale_force_N"]

@@ -10,8 +10,8 @@ from types import SimpleNamespace
 import pytest
 
 from tactcad.export.review_assets import MODULES, ReviewAssetsError, _rewrite, import_map
-from tactcad.export.review_page import (REVIEW_PAGE, bom_table, checks_script, page_html,
-                                        review_contents, write_checks_script)
+from tactcad.checks.review_results import checks_script, write_checks_script
+from tactcad.export.review_page import REVIEW_PAGE, bom_table, page_html, review_contents
 
 
 def _contents(name="demo", sha="ab" * 32, **extra):

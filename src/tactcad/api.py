@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
 
 if TYPE_CHECKING:  # types only: importing them at run time would load the kernel
-    from tactcad.checks.result import CheckResult
+    from tactcad.checks.check_result import CheckResult
     from tactcad.design.array import ElementGeometry, ElementSlot, Plan
     from tactcad.design.project import Project as ValidatedProject
     from tactcad.design.rigs import RigDesign
@@ -472,7 +472,7 @@ class CheckReport:
     """Results of :meth:`Project.check`.
 
     Attributes:
-        groups: (group name, its :class:`~tactcad.checks.result.CheckResult` s)
+        groups: (group name, its :class:`~tactcad.checks.check_result.CheckResult` s)
             in the order they ran.
         reused_export: the export folder was checked as it was.
         export_refusal: why it was not (None when reused).

@@ -12,8 +12,8 @@ from tactcad import cli
 from tactcad.checks import groups as registry
 from tactcad.checks.groups import CheckGroup, groups_to_run, register_check_group
 from tactcad.checks.junit import junit_report
-from tactcad.checks.result import CheckResult
-from tactcad.export.review_page import checks_script
+from tactcad.checks.check_result import CheckResult
+from tactcad.checks.review_results import checks_script
 
 DUMMY = CheckGroup("tip marks", "every element's tip mark is legible", __name__, "tip_marks")
 

@@ -8,8 +8,8 @@ from pathlib import Path
 
 from tactcad.design.array import Plan
 from tactcad.export.dxf_sheet import ShopProfile, sheet_dxf_name, sheet_gap_mm, sheets
-from tactcad.checks.dxf import SheetPart, check_profile_dxf, check_sheet_dxf
-from tactcad.checks.result import CheckResult
+from tactcad.checks.dxf_readback import SheetPart, check_profile_dxf, check_sheet_dxf
+from tactcad.checks.check_result import CheckResult
 
 
 def _face(sp: ShopProfile) -> tuple[float, tuple[float, float, float, float]]:

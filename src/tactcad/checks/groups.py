@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Sequence
 
 if TYPE_CHECKING:
-    from tactcad.checks.result import CheckResult
+    from tactcad.checks.check_result import CheckResult
 
 #: What a group's function yields: a label (the group's name, or
 #: ``scene <name>`` for one scene of a per-scene group) and its results.
@@ -147,10 +147,10 @@ def run_groups(groups: Iterable[CheckGroup], context: CheckContext,
             done(label, list(found))
 
 
-_CHECKS = "tactcad.checks.array"
+_CHECKS = "tactcad.checks.array_checks"
 for _group in (
         CheckGroup("requirements", "the design's verification matrix at the closed form, "
-                   "before any export", "tactcad.checks.requirements", "requirement_group",
+                   "before any export", "tactcad.checks.requirement_checks", "requirement_group",
                    on_export=False),
         CheckGroup("parts", "each part's solid: valid, volume, bounding box; its STEP "
                    "file read back", _CHECKS, "part_group", suite="part"),
@@ -161,6 +161,6 @@ for _group in (
         CheckGroup("array STEP", "the array's STEP assembly read back against the manifest",
                    _CHECKS, "array_step_group", suite="array"),
         CheckGroup("scenes", "per scene: rig part solids, interference, geometry sanity, STEP "
-                   "and GLB read back", "tactcad.checks.scenes", "scene_group", suite="scene",
+                   "and GLB read back", "tactcad.checks.scene_checks", "scene_group", suite="scene",
                    per_scene=True)):
     register_check_group(_group)

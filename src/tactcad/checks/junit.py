@@ -21,7 +21,7 @@ from typing import Iterable, Sequence
 
 from tactcad.atomic import write_bytes_atomic
 from tactcad.checks.groups import group_of
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 
 Group = tuple[str, Sequence[CheckResult]]
 

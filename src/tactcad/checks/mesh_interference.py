@@ -30,7 +30,7 @@ import numpy as np
 from tactcad.solids.mesh import MESH_TOLERANCE_MM, tessellate
 
 from tactcad.checks.interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 from tactcad.kernel.inspect import common_volume, faces_distance
 
 NEAR_MM = 4 * MESH_TOLERANCE_MM  # closer meshes than this go to the exact check

@@ -13,7 +13,7 @@ from tactcad.catalogue.array import PartSpec
 from tactcad.kernel.inspect import bbox_tuple, free_edge_count
 from tactcad.kernel.shapes import Shape
 from tactcad.solids.mesh import tessellate
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 
 VOLUME_RTOL = 1e-6
 BBOX_TOL_MM = 1e-6

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from tactcad.checks.result import failures
+from tactcad.checks.check_result import failures
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
                               load_from_args)
 from tactcad.commands.finite_json import dumps
@@ -65,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
         report(f"wrote {args.junit} (JUnit XML, {len(result)} test cases)")
     bad = result.failures
     if args.out:  # the export's review page shows them (review/checks.js)
-        from tactcad.export.review_page import write_checks_script
+        from tactcad.checks.review_results import write_checks_script
 
         write_checks_script(args.out, project.plan.design_hash, result.groups)
     if args.json:

@@ -6,7 +6,8 @@ sheet (SVG), the BOM, each element's stiffness and strength, the manifest's
 facts (design sha256, versions; a verification matrix when the manifest has
 one) and three.js itself (:mod:`tactcad.export.review_assets`). The results
 of ``tactcad check`` join it later as ``review/checks.js`` beside it
-(:func:`write_checks_script`), shown only when they are for the same design.
+(:mod:`tactcad.checks.review_results`), shown only when they are for the same
+design.
 
 The page is written from the files the run wrote before it (nothing is built
 again), with fixed key order, so the same export writes the same bytes.
@@ -25,7 +26,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
-from typing import Iterable, Mapping, Sequence
+from typing import Mapping, Sequence
 
 from tactcad.atomic import write_bytes_atomic
 
@@ -40,7 +41,7 @@ def _template() -> tuple[str, str]:
             (data / "review_page.js").read_text(encoding="utf-8"))
 
 
-def _json_in_html(value) -> str:
+def json_in_html(value) -> str:
     """JSON safe inside a ``<script>`` element (no ``</script>``, no ``<!--``)."""
     text = json.dumps(value, sort_keys=True, ensure_ascii=False, allow_nan=False)
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
@@ -126,7 +127,7 @@ def page_html(contents: ReviewContents, import_map: str) -> str:
     values = {"SHA256": html.escape(sha),
               "TITLE": html.escape(f"{data['manifest']['design']['name']}: review"),
               "IMPORTMAP": import_map.replace("</", "<\\/"),
-              "DATA": _json_in_html(data), "SCENES": _json_in_html(scenes), "SCRIPT": script}
+              "DATA": json_in_html(data), "SCENES": json_in_html(scenes), "SCRIPT": script}
     # one pass: a value holding a token's text is never replaced again
     return re.sub(r"@@([A-Z0-9]+)@@", lambda m: values[m.group(1)], page)
 
@@ -140,47 +141,3 @@ def write_review_page(path: Path, contents: ReviewContents, import_map: str) -> 
     body = page_html(contents, import_map).encode("utf-8")
     write_bytes_atomic(path, body)
     return len(body)
-
-
-def checks_script(design_sha256: str, groups: Iterable[tuple[str, Iterable]]) -> str:
-    """``review/checks.js``: the check results for the page (``window.TACTCAD_CHECKS``),
-    each with its group's label; ``groups`` lists every registered check group
-    (:data:`tactcad.checks.groups.CHECK_GROUPS`) with what it checks, in run order.
-
-    Args:
-        design_sha256: the design the results are for (the page shows them only
-            when its manifest names the same design).
-        groups: (label, results) in the order run, as
-            :attr:`tactcad.api.CheckReport.groups`.
-    """
-    from tactcad.checks.groups import CHECK_GROUPS, group_of
-
-    checks = []
-    for label, results in groups:
-        try:
-            name = group_of(label).name
-        except KeyError:
-            name = label
-        checks += [{"group": name, "label": label, "check": r.check, "subject": r.subject,
-                    "passed": bool(r.passed), "detail": r.detail} for r in results]
-    bad = sum(not c["passed"] for c in checks)
-    doc = {"design_sha256": design_sha256, "passed": len(checks) - bad, "failed": bad,
-           "groups": [{"name": g.name, "checks": g.checks} for g in CHECK_GROUPS.values()],
-           "checks": checks}
-    return "window.TACTCAD_CHECKS = " + _json_in_html(doc) + ";\n"
-
-
-def write_checks_script(out_dir: Path, design_sha256: str,
-                        groups: Iterable[tuple[str, Iterable]]) -> Path | None:
-    """Write ``review/checks.js`` into an export that has a review page; its path, or
-    None when there is no page to show it.
-
-    Raises:
-        OSError: the file cannot be written.
-    """
-    page = Path(out_dir) / REVIEW_PAGE
-    if not page.is_file():
-        return None
-    path = Path(out_dir) / CHECKS_SCRIPT
-    write_bytes_atomic(path, checks_script(design_sha256, groups).encode("utf-8"))
-    return path

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Iterator
 
 from tactcad.checks.groups import CheckContext, Found
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 
 
 def requirement_group(context: CheckContext) -> Iterator[Found]:

@@ -13,10 +13,10 @@ from tactcad.catalogue.rigs import RigPartSpec
 from tactcad.checks.groups import CheckContext, Found
 from tactcad.checks.interference import Placed
 from tactcad.checks.mesh_interference import check_mesh_interference
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 from tactcad.checks.scene_sanity import check_scene_sanity
 from tactcad.checks.solids import check_solid
-from tactcad.checks.step import check_step
+from tactcad.checks.step_readback import check_step
 from tactcad.design.project import Project
 from tactcad.export.glb import read_glb
 from tactcad.catalogue.files import scene_glb_name, scene_step_name

@@ -12,11 +12,11 @@ from tactcad.assembly.inventory import assembly_review
 from tactcad.assembly.placement import location
 from tactcad.catalogue.array import array_contacts, array_instances, array_parts
 from tactcad.checks.groups import CheckContext, Found, groups_to_run, run_groups
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 from tactcad.checks.dxf_shop import check_shop_dxf_files
 from tactcad.checks.interference import Placed, check_interference
 from tactcad.checks.solids import check_solid
-from tactcad.checks.step import check_step
+from tactcad.checks.step_readback import check_step
 from tactcad.catalogue.files import ARRAY_STEP, part_step_name
 from tactcad.solids.cache import PartCache
 
