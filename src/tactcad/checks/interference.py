@@ -24,7 +24,9 @@ class Placed:
     shape: Shape
 
 
-def _boxes_overlap(a, b, tol: float) -> bool:
+def boxes_overlap(a, b, tol: float) -> bool:
+    """True when two bounding boxes (``min``/``max`` with ``X``, ``Y``, ``Z``, mm)
+    overlap or come within ``tol`` (mm) of each other."""
     return (a.min.X <= b.max.X + tol and b.min.X <= a.max.X + tol and
             a.min.Y <= b.max.Y + tol and b.min.Y <= a.max.Y + tol and
             a.min.Z <= b.max.Z + tol and b.min.Z <= a.max.Z + tol)
@@ -38,7 +40,7 @@ def check_interference(placed: list[Placed], contacts: set[frozenset[str]]) -> l
     for a, b in itertools.combinations(placed, 2):
         pair = frozenset({a.name, b.name})
         subject = f"{a.name} / {b.name}"
-        if not _boxes_overlap(boxes[a.name], boxes[b.name], CONTACT_TOL_MM):
+        if not boxes_overlap(boxes[a.name], boxes[b.name], CONTACT_TOL_MM):
             if pair in contacts:
                 out.append(CheckResult("contact_touching", subject, False, "boxes apart"))
             continue

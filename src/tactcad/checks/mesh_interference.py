@@ -29,7 +29,7 @@ import numpy as np
 
 from tactcad.solids.mesh import MESH_TOLERANCE_MM, tessellate
 
-from tactcad.checks.interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed
+from tactcad.checks.interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed, boxes_overlap
 from tactcad.checks.check_result import CheckResult
 from tactcad.kernel.inspect import common_volume, faces_distance
 
@@ -88,9 +88,7 @@ def touching_gap(a, b, tol: float = CONTACT_TOL_MM) -> float:
         out = []
         for f in shape.faces():
             fb = f.bounding_box()
-            if _boxes_overlap((fb.min.X, fb.min.Y, fb.min.Z, fb.max.X, fb.max.Y, fb.max.Z),
-                              (box.min.X, box.min.Y, box.min.Z, box.max.X, box.max.Y, box.max.Z),
-                              tol):
+            if boxes_overlap(fb, box, tol):
                 out.append(f)
         return out
 
@@ -98,10 +96,6 @@ def touching_gap(a, b, tol: float = CONTACT_TOL_MM) -> float:
     if not fa or not fb:
         return float("inf")
     return faces_distance(fa, fb)
-
-
-def _boxes_overlap(a, b, tol: float) -> bool:
-    return all(a[k] <= b[k + 3] + tol and b[k] <= a[k + 3] + tol for k in range(3))
 
 
 def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
@@ -129,14 +123,13 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
     for p in placed:
         base = meshes[part_of[p.name]]
         m = None if base is None else base.transform(_affine(locations[p.name]))
-        bb = p.shape.bounding_box()
-        items.append((p, m, (bb.min.X, bb.min.Y, bb.min.Z, bb.max.X, bb.max.Y, bb.max.Z)))
+        items.append((p, m, p.shape.bounding_box()))
     out: list[CheckResult] = []
     to_confirm: list[tuple[Placed, Placed, float | None]] = []
     tested = 0
     for (a, ma, ba), (b, mb, bb) in itertools.combinations(items, 2):
         pair = frozenset({a.name, b.name})
-        if not _boxes_overlap(ba, bb, max(NEAR_MM, CONTACT_TOL_MM)):
+        if not boxes_overlap(ba, bb, max(NEAR_MM, CONTACT_TOL_MM)):
             if pair in contacts:
                 out.append(CheckResult("contact_touching", f"{a.name} / {b.name}", False,
                                        "boxes apart"))
