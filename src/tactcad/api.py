@@ -205,11 +205,12 @@ class Project:
         """
         from tactcad.assembly.scenes import build_scene
         from tactcad.kernel.objects import labelled_compound, rgb_colour
+        from tactcad.kernel.placement import placed
 
         solved, solids = build_scene(self.validated, scene, self._cache)
         children = []
         for inst in solved.instances:
-            child = solids[inst.part].moved(inst.location)
+            child = placed(solids[inst.part], inst.location)
             child.label = inst.name
             child.color = rgb_colour(solved.specs[inst.part].color)
             children.append(child)

@@ -10,6 +10,7 @@ from typing import Callable, Iterator
 
 from tactcad.assembly.inventory import assembly_review
 from tactcad.assembly.placement import location
+from tactcad.kernel.placement import placed
 from tactcad.catalogue.array import array_contacts, array_instances, array_parts
 from tactcad.checks.groups import CheckContext, Found, groups_to_run, run_groups
 from tactcad.checks.check_result import CheckResult
@@ -58,9 +59,9 @@ def interference_group(context: CheckContext) -> Iterator[Found]:
     """``array interference``: the placed array parts, pairwise."""
     plan, cache = context.plan, context.cache
     specs = array_parts(plan)
-    placed = [Placed(i.name, cache.solid(specs[i.part]).moved(location(i.placement)))
+    shapes = [Placed(i.name, placed(cache.solid(specs[i.part]), location(i.placement)))
               for i in array_instances(plan)]
-    yield "array interference", check_interference(placed, array_contacts(plan))
+    yield "array interference", check_interference(shapes, array_contacts(plan))
 
 
 def array_step_group(context: CheckContext) -> Iterator[Found]:

@@ -12,6 +12,7 @@ from tactcad.assembly.scenes import Scene, build_scene, review_record
 from tactcad.catalogue.rigs import RigPartSpec
 from tactcad.checks.groups import CheckContext, Found
 from tactcad.checks.interference import Placed
+from tactcad.kernel.placement import placed
 from tactcad.checks.mesh_interference import check_mesh_interference
 from tactcad.checks.check_result import CheckResult
 from tactcad.checks.scene_sanity import check_scene_sanity
@@ -25,7 +26,7 @@ from tactcad.solids.cache import PartCache
 
 def placed_shapes(scene: Scene, solids: Mapping[str, Any]) -> list[Placed]:
     """Each shown instance's solid moved into the scene frame."""
-    return [Placed(i.name, solids[i.part].moved(i.location)) for i in scene.instances]
+    return [Placed(i.name, placed(solids[i.part], i.location)) for i in scene.instances]
 
 
 def scene_group(context: CheckContext) -> Iterator[Found]:
@@ -67,14 +68,14 @@ def scene_checks(project: Project, out_dir: str | Path, names: Iterable[str] | N
             if isinstance(spec, RigPartSpec) and pname not in checked_parts:
                 checked_parts.add(pname)
                 results += check_solid(spec, solids[pname])
-        placed = placed_shapes(scene, solids)
+        shown = placed_shapes(scene, solids)
         rep = check_mesh_interference(
-            placed, scene.contacts, {i.name: i.part for i in scene.instances}, solids,
+            shown, scene.contacts, {i.name: i.part for i in scene.instances}, solids,
             {i.name: i.location for i in scene.instances}, confirm=confirm,
             part_meshes={i.part: cache.mesh(scene.specs[i.part]) for i in scene.instances})
         results += [CheckResult(r.check, f"{name}: {r.subject}", r.passed, r.detail)
                     for r in rep.results]
-        results += check_scene_sanity(scene, {p.name: p.shape for p in placed})
+        results += check_scene_sanity(scene, {p.name: p.shape for p in shown})
         rec = review_record(scene)
         step = out_dir / scene_step_name(name)
         results += check_step(step, scene_step_name(name), rec["solids"], rec["volume_mm3"],
