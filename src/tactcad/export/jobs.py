@@ -262,10 +262,7 @@ def _drawing_png(part: str, page: int):
 
 # --- the array image and the bill of materials ----------------------------------------------
 def image_jobs(run: Run, before: list[Job]) -> list[Job]:
-    return [image_job(run)]
-
-
-def image_job(run: Run) -> Job:
+    """``images/array.png``: the array rendered from the run's part meshes."""
     plan = run.plan
     specs, inst = run.array
     title = (f"{plan.name}: {plan.rows} x {plan.columns} elements, pitch "
@@ -283,22 +280,18 @@ def image_job(run: Run) -> Job:
             "n", render_assembly_png(meshes, inst, colors, tmp, title)))
         run.log(f"  wrote {ARRAY_PNG} ({box['n']} triangles)")
         return [{"path": ARRAY_PNG, "part": "array", "kind": "image-png", "triangles": box["n"]}]
-    return Job("image:array", content_key("array-png", RENDER_VERSION, list(specs.values()), inst,
-                                          title), make, tuple(specs.values()))
+    return [Job("image:array", content_key("array-png", RENDER_VERSION, list(specs.values()),
+                                           inst, title), make, tuple(specs.values()))]
 
 
 def bom_jobs(run: Run, before: list[Job]) -> list[Job]:
-    return [bom_job(run, before)]
-
-
-def bom_job(run: Run, before: list[Job]) -> Job:
-    """The BOM names the files of the jobs before it, so its key holds theirs."""
+    """``bom.csv`` and ``bom.md``. The BOM names the files of the jobs before it, so its key holds theirs."""
     def make(run: Run) -> list[dict]:
         from tactcad.export.bom import write_bom_files
 
         return write_bom_files(run.plan, run.staging, run.log, run.inventory)
-    return Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]), make,
-               after=tuple(j.name for j in before))
+    return [Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]),
+                make, after=tuple(j.name for j in before))]
 
 
 # --- the files of each kind that describe a part, for the BOM's files column ------------------
@@ -362,10 +355,6 @@ def review_contents_of(run: Run, *folders: Path):
 
 
 def review_page_jobs(run: Run, before: list[Job]) -> list[Job]:
-    return [review_page_job(run, before)]
-
-
-def review_page_job(run: Run, before: list[Job]) -> Job:
     """``review/index.html`` from the files of the jobs before it (its key holds theirs)."""
     from tactcad.export.review_assets import assets_identity
 
@@ -379,6 +368,6 @@ def review_page_job(run: Run, before: list[Job]) -> Job:
                 f"{len(contents.data['sheets'])} sheets)")
         return [{"path": REVIEW_PAGE, "part": "review", "kind": "review-page",
                  "scenes": len(contents.scenes), "sheets": len(contents.data["sheets"])}]
-    return Job("review:page", content_key("review-page", [j.key for j in before],
-                                          assets_identity()),
-               make, after=tuple(j.name for j in before))
+    return [Job("review:page", content_key("review-page", [j.key for j in before],
+                                           assets_identity()),
+                make, after=tuple(j.name for j in before))]
