@@ -284,6 +284,41 @@ class Project:
         finally:
             self._report = _quiet
 
+    def verify(self, model: str = "auto", progress: Progress | None = None) -> "Verification":
+        """The verification matrix of the design's requirements.
+
+        Args:
+            model: a ladder level, or ``auto``: the cheapest level that decides
+                each requirement (the closed form first, higher levels only
+                while one is undecided).
+            progress: called with a line per element a level evaluates.
+
+        Returns:
+            :class:`Verification`: the records (``requirement``, ``target``,
+            ``predicted``, ``error_estimate_rel``, ``margin_rel``, ``model``,
+            ``verdict``: pass, fail or undecided, ...), the seconds per level,
+            and ``passed`` (no requirement fails).
+
+        Raises:
+            UnknownModelError: ``model`` is neither ``auto`` nor a ladder level.
+            DesignError: the material has no yield strength.
+        """
+        from tactcad.mechanics.ladder import UnknownModelError, models
+        from tactcad.mechanics.requirements import (requirements_of, verification_auto,
+                                                    verification_matrix)
+        from tactcad.studies.strength import element_stress
+
+        if model != "auto" and model not in models():
+            raise UnknownModelError(model)
+        plan = self.plan
+        req = requirements_of(plan)
+        if model == "auto":
+            records, levels = verification_auto(plan, progress, req, stress=element_stress)
+        else:
+            records = verification_matrix(plan, model, progress, req, stress=element_stress)
+            levels = []
+        return Verification(model, tuple(records), tuple(levels), req.as_json())
+
     def check(self, out: str | Path | None = None, scenes: Sequence[str] | None = None,
               cache: str | Path | None | bool = True, progress: Progress | None = None,
               on_group: Callable[[str, list], None] | None = None) -> "CheckReport":
@@ -466,6 +501,43 @@ class Element:
         stress = element_stress(self.geometry, plan.material, model)
         return strength_record(self.number, self.geometry, plan.material, plan.strength, stress,
                                paper_load=cites_paper(plan.raw))
+
+
+@dataclass(frozen=True)
+class Verification:
+    """Results of :meth:`Project.verify`.
+
+    Attributes:
+        model: the level asked for (``auto`` or a ladder level).
+        records: one dict per requirement, in the matrix's order.
+        levels: ``{"model", "seconds", "undecided_before"}`` per level run (``auto``).
+        requirements: the requirement values with their reasons.
+    """
+
+    model: str
+    records: tuple[dict, ...]
+    levels: tuple[dict, ...]
+    requirements: dict
+
+    @property
+    def passed(self) -> bool:
+        """True when no requirement's verdict is ``fail``."""
+        return not self.failed
+
+    @property
+    def failed(self) -> list[str]:
+        """The requirements whose verdict is ``fail``."""
+        return [r["requirement"] for r in self.records if r["verdict"] == "fail"]
+
+    @property
+    def undecided(self) -> list[str]:
+        """The requirements no level decided (margin inside the error estimate)."""
+        return [r["requirement"] for r in self.records if r["verdict"] == "undecided"]
+
+    @property
+    def seconds(self) -> float:
+        """Wall time of the levels run (s)."""
+        return sum(level["seconds"] for level in self.levels)
 
 
 @dataclass(frozen=True)

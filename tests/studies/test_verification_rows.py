@@ -105,3 +105,18 @@ def test_auto_climbs_for_an_undecided_requirement_and_names_the_level():
     assert force["decided_by"] in ("beam", None) and force["model"] == "beam"
     kept = next(r for r in records if r["requirement"] == "kr_over_km")
     assert kept["decided_by"] == "closed-form" and kept["model"] == "closed-form"
+
+
+def test_the_python_api_verifies_with_the_same_records_as_the_command(capsys):
+    import tactcad
+
+    project = tactcad.load(EXAMPLE)
+    result = project.verify("closed-form")
+    assert isinstance(result, tactcad.Verification) and result.passed
+    assert cli.main(["verify", "--design", str(EXAMPLE), "--model", "closed-form", "--json",
+                     "--quiet"]) == 0
+    matrix = json.loads(capsys.readouterr().out)["matrix"]
+    assert [r["verdict"] for r in matrix] == [r["verdict"] for r in result.records]
+    assert [r["predicted"] for r in matrix] == [r["predicted"] for r in result.records]
+    with pytest.raises(tactcad.TactcadError, match="no-such-level"):
+        project.verify("no-such-level")
