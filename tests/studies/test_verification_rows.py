@@ -120,3 +120,20 @@ def test_the_python_api_verifies_with_the_same_records_as_the_command(capsys):
     assert [r["predicted"] for r in matrix] == [r["predicted"] for r in result.records]
     with pytest.raises(tactcad.TactcadError, match="no-such-level"):
         project.verify("no-such-level")
+
+
+@pytest.mark.parametrize("design", [None, EXAMPLE])
+def test_readout_and_the_simulated_calibration_give_the_same_volts_per_newton(design):
+    from tactcad.design.array import load_design
+    from tactcad.mechanics.readout import readout_report
+    from tactcad.mechanics.requirements import requirements_of
+    from tactcad.paper import calibration_audit as ca
+
+    plan = load_design(design)
+    report = readout_report(plan, requirements_of(plan))
+    data = ca.simulate_design_calibration(plan, noise_force_N=0.0, noise_signal_V=0.0)
+    fits = ca.fit_all(data)
+    for r in report.records:
+        fit = fits[r["element"]]
+        assert fit.K_v_V_per_mm / fit.K_N_per_mm == pytest.approx(r["sensitivity_V_per_N"],
+                                                                  rel=1e-9)
