@@ -137,3 +137,15 @@ def test_readout_and_the_simulated_calibration_give_the_same_volts_per_newton(de
         fit = fits[r["element"]]
         assert fit.K_v_V_per_mm / fit.K_N_per_mm == pytest.approx(r["sensitivity_V_per_N"],
                                                                   rel=1e-9)
+
+
+def test_readout_pairs_each_measuring_element_with_its_rows_reference():
+    from tactcad.mechanics.readout import readout_report
+    from tactcad.mechanics.requirements import requirements_of
+
+    plan = example()
+    report = readout_report(plan, requirements_of(plan))
+    refs = {r["element"]: r["reference_element"] for r in report.records
+            if r["role"] == "measuring"}
+    assert refs == {1: 2, 3: 2, 4: 5, 6: 5}
+    assert [r["element"] for r in report.records if r["role"] == "reference"] == [2, 5]
