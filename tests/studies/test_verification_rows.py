@@ -149,3 +149,11 @@ def test_readout_pairs_each_measuring_element_with_its_rows_reference():
             if r["role"] == "measuring"}
     assert refs == {1: 2, 3: 2, 4: 5, 6: 5}
     assert [r["element"] for r in report.records if r["role"] == "reference"] == [2, 5]
+
+
+def test_tolerance_and_verify_print_the_same_toleranced_band(capsys):
+    assert cli.main(["tolerance", "--design", str(EXAMPLE), "--json", "--quiet"]) == 0
+    band = json.loads(capsys.readouterr().out)["k_tolerance_check"]["predicted_band_rel"]
+    record = next(r for r in verification_matrix(example())
+                  if r["requirement"] == "k_tolerance_rel_toleranced")
+    assert record["predicted"] == band and (record["samples"], record["seed"]) == (10_000, 0)
