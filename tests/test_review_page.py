@@ -257,7 +257,11 @@ def test_requirements_of_the_manifest_show_as_the_verification_matrix():
                                      {"requirement": "kr_over_km", "target": 10,
                                       "predicted": 9.9, "pass": False}]}
     view = _data(requirements=record)["manifest"]["verification"]
-    rows, limits, values = view.values()
-    assert [r["requirement"] for r in rows] == ["full_scale_force_N", "kr_over_km"]
-    assert all("limits" not in r for r in rows) and rows[1]["pass"] is False
+    rows, limits, values, unmet = view.values()
+    # read as the CLI prints it, failures first
+    assert [r["requirement"] for r in rows] == ["kr_over_km", "full_scale_force_N"]
+    assert list(rows[0]) == ["requirement", "verdict", "target", "predicted", "margin", "binds",
+                             "model"]
+    assert rows[0]["verdict"] == "FAIL" and rows[1]["binds"] == "w"
     assert limits == [{"limit": "yield", "force_N": 0.3}] and values == {"full_scale_force_N": 0.1}
+    assert unmet == ["kr_over_km"]  # the page's red banner

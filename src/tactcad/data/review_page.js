@@ -370,6 +370,9 @@ function showVerification() {  // the manifest's verification matrix, when the e
   const v = DATA.manifest.verification;
   $('verification').hidden = $('nav-verification').hidden = v === undefined || v === null;
   $('verification-body').replaceChildren(v ? showData(v) : el('p', ''));
+  const unmet = (v && v['requirements not met']) || [];
+  setText($('unmet'), unmet.length ? `Requirements not met: ${unmet.join(', ')} (see Verification)` : '');
+  $('unmet').classList.toggle('shown', unmet.length > 0);
 }
 
 function showChecks() {

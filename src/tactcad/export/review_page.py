@@ -104,15 +104,56 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
 
 
 def verification_view(requirements: dict) -> dict:
-    """The manifest's requirements record as the page's verification section:
-    the closed-form matrix (one row per requirement), the limits behind the
-    full-scale force (the binding one marked) and the stated or derived values."""
+    """The manifest's requirements record as the page's verification section,
+    read as ``tactcad verify`` prints it: one row per requirement (verdict,
+    target, predicted with its error, margin, what binds, level), failures
+    first, then undecided; the limits behind the full-scale force (the binding
+    one marked); the stated or derived values; and the requirements not met
+    (the page's red banner)."""
     matrix = requirements.get("closed_form_matrix") or []
-    rows = [{k: v for k, v in r.items() if k not in ("limits", "binding_words")} for r in matrix]
+    order = {"fail": 0, "undecided": 1}
+    rows = [verification_row(r) for r in sorted(
+        matrix, key=lambda r: order.get(_verdict(r), 2))]
     limits = next((r["limits"] for r in matrix if r.get("limits")), [])
-    return {"verification matrix (closed form; tactcad verify --model fem3d for the reference)": rows,
+    view = {"verification matrix (closed form; tactcad verify --model auto decides the "
+            "undecided)": rows,
             "limits behind the full-scale force": limits,
             "requirements": requirements.get("values", {})}
+    unmet = [r["requirement"] for r in matrix if _verdict(r) == "fail"]
+    if unmet:
+        view["requirements not met"] = unmet
+    return view
+
+
+def _verdict(record: dict) -> str:
+    return record.get("verdict", "pass" if record.get("pass") else "fail")
+
+
+def verification_row(r: dict) -> dict:
+    """One requirement as the page's table shows it (texts, in the CLI's columns)."""
+    err = r.get("error_estimate_rel")
+    margin = r.get("margin_rel")
+    if "measuring_element" in r:
+        binds = f"row {r['row']}: element {r['reference_element']} / {r['measuring_element']}"
+    elif "binding_words" in r:
+        element = r.get("binding_element")
+        binds = r["binding_words"] + ("" if element is None else f" (element {element})")
+    else:
+        binds = ""
+    return {"requirement": r["requirement"], "verdict": _verdict(r).upper(),
+            "target": _text(r.get("target")),
+            "predicted": _text(r.get("predicted"))
+            + ("" if err is None else f" \u00b1 {100 * err:.2g} %"),
+            "margin": "n/a" if margin is None else f"{100 * margin:+.1f} %",
+            "binds": binds, "model": r.get("model", "")}
+
+
+def _text(v) -> str:
+    if v is None:
+        return "none"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_text(x) for x in v) + "]"
+    return f"{v:.4g}" if isinstance(v, float) else str(v)
 
 
 def page_html(contents: ReviewContents, import_map: str) -> str:
