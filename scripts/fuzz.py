@@ -43,7 +43,7 @@ def check_design(plan, rigs, scenes, *, full: bool = False) -> list[str]:
     from tactcad.catalogue.rig_catalogue import rig_parts
     from tactcad.checks.mesh_interference import check_mesh_interference
     from tactcad.checks.scene_sanity import check_scene_sanity
-    from tactcad.checks.scenes import placed_shapes
+    from tactcad.checks.scene_checks import placed_shapes
     from tactcad.checks.solids import check_solid
     from tactcad.solids.cache import PartCache
 
@@ -64,8 +64,8 @@ def check_design(plan, rigs, scenes, *, full: bool = False) -> list[str]:
         failed += [f"{name}: {r.line()}" for r in
                    check_scene_sanity(scene, {p.name: p.shape for p in placed}) if not r.passed]
     if full:
-        from tactcad.checks.array import run_checks
-        from tactcad.checks.scenes import run_scene_checks
+        from tactcad.checks.array_checks import run_checks
+        from tactcad.checks.scene_checks import run_scene_checks
         from tactcad.export.run import export
 
         with tempfile.TemporaryDirectory() as tmp:

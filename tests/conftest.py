@@ -59,7 +59,7 @@ INSTALLER = Path(__file__).resolve().parents[1] / "scripts" / "install-system-de
 def freecad():
     """``freecadcmd``: ``make test`` installs it first (scripts/install-system-deps.sh);
     when it is missing, installed here if the user is root, else the test is skipped."""
-    from tactcad.checks.freecad_review import freecadcmd
+    from tactcad.checks.freecad_step import freecadcmd
 
     exe = freecadcmd()
     if exe is None:

@@ -7,10 +7,10 @@ import ezdxf
 import pytest
 
 from tactcad.catalogue.array_catalogue import array_parts
-from tactcad.checks.dxf import check_profile_dxf
+from tactcad.checks.dxf_readback import check_profile_dxf
 from tactcad.checks.interference import Placed, check_interference
 from tactcad.checks.solids import check_solid
-from tactcad.checks.step import check_step
+from tactcad.checks.step_readback import check_step
 from tactcad.export.dxf import write_profile_dxf
 from tactcad.kernel.shapes import profile_face
 from tactcad.partlib.array.element import build as build_element

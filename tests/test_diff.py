@@ -13,7 +13,7 @@ import tactcad
 from conftest import with_default_companions
 from tactcad import cli
 from tactcad.errors import DesignError
-from tactcad.export.diff import NEW_RGB, OLD_RGB, compare, overlay, side_by_side
+from tactcad.export.manifest_diff import NEW_RGB, OLD_RGB, compare, overlay, side_by_side
 
 DEFAULT = tactcad.load().source
 ARM_CHANGED = {"arms.lengths_mm": [4.0, 7.0, 6.0, 8.0, 6.5, 8.0, 5.0, 4.0, 5.0, 7.0]}

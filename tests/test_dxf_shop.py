@@ -6,9 +6,9 @@ from __future__ import annotations
 import ezdxf
 import pytest
 
-from tactcad.checks.dxf import read_dxf
+from tactcad.checks.dxf_readback import read_dxf
 from tactcad.checks.dxf_shop import check_shop_dxf_files
-from tactcad.checks.result import failures
+from tactcad.checks.check_result import failures
 from tactcad.errors import DesignError
 from tactcad.export.dxf_sheet import (DXF_VERSION_ENV, profile_dxf_name, sheet_dxf_name, shelf_layout,
                                       shop_profiles, write_shop_dxf_files)

@@ -169,7 +169,8 @@ def test_rig_rejects_bad_inputs(plan):
 # Calibration: simulated rig, CSV, audit
 # ---------------------------------------------------------------------------
 def test_simulated_design_calibration_is_recovered_within_noise(plan):
-    data = ca.simulate_design_calibration(plan, noise_force_N=0.002, noise_signal_V=0.002, seed=3)
+    data = ca.simulate_design_calibration(plan, gauge_gain_V_per_strain=ca.DEFAULT_GAUGE_GAIN_V_PER_STRAIN,
+                                          noise_force_N=0.002, noise_signal_V=0.002, seed=3)
     truth = ev.ladder_stiffness_by_element(plan)
     fits = ca.fit_all(data)
     k_eps = _ladder_k_eps(plan)

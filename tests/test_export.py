@@ -10,9 +10,9 @@ import sys
 
 import pytest
 
-from tactcad.checks.result import failures
+from tactcad.checks.check_result import failures
 from tactcad.design.project import load_project, project_for_plan
-from tactcad.checks.array import run_checks
+from tactcad.checks.array_checks import run_checks
 from tactcad.export.run import export
 
 
@@ -104,7 +104,7 @@ def test_all_checks_pass_on_the_default_design(exported, plan):
 
 @pytest.mark.slow
 def test_changed_web_reaches_the_dxf(tmp_path, design_data):
-    from tactcad.checks.dxf import read_dxf, thinnest_ligament
+    from tactcad.checks.dxf_readback import read_dxf, thinnest_ligament
     from tactcad.design.array_plan import plan_from_dict, with_overrides
 
     plan = plan_from_dict(with_overrides(design_data, {"element.web_thickness_mm": 0.31}))

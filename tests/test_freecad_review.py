@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import shutil
 
-from tactcad.checks.freecad_review import review_exports
+from tactcad.checks.freecad_step import review_exports
 
 
 def test_freecad_opens_every_step_as_the_manifest_says(freecad, exported):

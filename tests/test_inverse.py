@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from tactcad.cli import main
-from tactcad.design.array_plan import load_design
+from tactcad.design.array_plan import load_design, read_toml
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import CorrectionRangeWarning
 from tactcad.studies.inverse_design import (InverseDesignError, Targets, design_for_targets,
@@ -166,9 +166,17 @@ def test_cli_writes_a_project_folder(tmp_path, monkeypatch, capsys):
                  "--full-scale-force", "0.3", "--verify", "none", "--out", "finger-tip",
                  "--columns", "4", "--quiet"]) == 0
     design = tmp_path / "finger-tip" / "finger_tip.toml"
-    assert design.read_text().startswith(
-        "# Written by `tactcad design --kr-over-km 3 --kobj-range 5 20 --full-scale-force 0.3 "
-        "--columns 4`.")
+    from tactcad import __version__
+
+    text = design.read_text()
+    assert text.startswith(
+        f"# Written by tactcad {__version__}: `tactcad design --kr-over-km 3 --kobj-range 5 20 "
+        "--full-scale-force 0.3 --columns 4`.")
+    # each row declares its reference, and the reasons name the design's own grid
+    written = read_toml(design, "design file")
+    assert written["arms"]["reference_elements"] == [2, 6]
+    assert "column 2 of 4" in written["assumptions"]["arms.lengths_mm"]
+    assert "middle column of each row" not in text
     rigs = (tmp_path / "finger-tip" / "rigs.toml").read_text()
     assert "stiffness_N_per_mm = [20.0, 10.0, 5.0]" in rigs
     assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",

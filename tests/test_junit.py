@@ -13,7 +13,7 @@ import xmlschema
 
 from tactcad import cli
 from tactcad.checks.junit import junit_report, suite_of
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 
 SCHEMA = xmlschema.XMLSchema(Path(__file__).parent / "data" / "junit_essentials.xsd")
 PARTS = ["element_a4mm", "spacer", "cart"]
@@ -72,7 +72,7 @@ def test_check_junit_refuses_a_path_in_no_folder(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_check_junit_matches_the_checks_run_and_a_failure_fails(tmp_path, capsys, monkeypatch):
-    from tactcad.checks import scenes
+    from tactcad.checks import scene_checks as scenes
 
     out, report = tmp_path / "out", tmp_path / "report.xml"
     args = ["check", "--scene", "wirecut", "--out", str(out), "--cache", str(tmp_path / "store"),

@@ -52,6 +52,47 @@ def test_the_wall_check_finds_an_import_outside_it(tmp_path):
     assert kernel_imports_outside_the_wall(tmp_path) == ["parts.py:2 OCP.gp"]
 
 
+#: Methods and attributes of the kernel's own objects (build123d shapes and
+#: OCP handles) that code above the wall must reach through tactcad.kernel.
+KERNEL_METHODS = ("wrapped", "faces", "edges", "vertices", "solids", "bounding_box",
+                  "tessellate", "moved", "is_valid", "axis_of_rotation", "geom_type")
+
+
+#: Other libraries' objects that share a name with a kernel method, per file.
+OTHER_LIBRARIES = {"checks/dxf_readback.py": {"vertices"},  # ezdxf POLYLINE entities
+                   "mechanics/fem/fem2d.py": {"edges"}}  # scikit-fem meshes
+
+
+def kernel_method_calls_outside_the_wall(src: Path) -> list[str]:
+    """``file:line .name`` for every use of a :data:`KERNEL_METHODS` name as an
+    attribute (``solid.faces()``, ``loc.wrapped``) outside ``src/kernel``."""
+    wall = src / "kernel"
+    return [f"{rel}:{node.lineno} .{node.attr}"
+            for p in sorted(src.rglob("*.py")) if wall not in p.parents
+            for rel in [p.relative_to(src).as_posix()]
+            for node in ast.walk(ast.parse(p.read_text(encoding="utf-8")))
+            if isinstance(node, ast.Attribute) and node.attr in KERNEL_METHODS
+            and not _own_attribute(node) and node.attr not in OTHER_LIBRARIES.get(rel, ())]
+
+
+def _own_attribute(node: ast.Attribute) -> bool:
+    """``run.solids``, ``self.solids`` ...: tactcad's own objects named like a kernel method."""
+    return node.attr == "solids" and isinstance(node.value, ast.Name) and node.value.id in (
+        "run", "self", "cache", "parts", "result", "res")
+
+
+def test_code_above_the_wall_reads_solids_through_the_kernel():
+    found = kernel_method_calls_outside_the_wall(SRC)
+    assert found == [], "kernel objects used directly above the wall:\n" + "\n".join(found)
+
+
+def test_the_method_check_finds_a_call_outside_the_wall(tmp_path):
+    (tmp_path / "kernel").mkdir()
+    (tmp_path / "kernel" / "inspect.py").write_text("def f(s):\n    return s.faces()\n")
+    (tmp_path / "checks.py").write_text("def g(s):\n    return len(s.faces())\n")
+    assert kernel_method_calls_outside_the_wall(tmp_path) == ["checks.py:2 .faces"]
+
+
 def test_the_kernel_imports_only_itself_and_the_foundation():
     above = [f"{p.name}:{line} {name}" for p in sorted((SRC / "kernel").glob("*.py"))
              for line, name in _imports(p)

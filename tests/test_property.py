@@ -12,7 +12,7 @@ from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
 from tactcad.catalogue.array_catalogue import array_parts
-from tactcad.checks.dxf import check_profile_dxf
+from tactcad.checks.dxf_readback import check_profile_dxf
 from tactcad.checks.solids import check_solid
 from tactcad.design.array_plan import ARM_RANGE_MM, WEB_RANGE_MM, default_design_data, plan_from_dict, with_overrides
 from tactcad.design.domain import draw_design, draw_out_of_domain

@@ -146,7 +146,7 @@ def test_picture_is_the_same_from_kept_meshes_as_from_a_fresh_run(tmp_path):
     itself. Same input, same bytes."""
     from tactcad.catalogue.files import ARRAY_PNG
     from tactcad.design.project import load_project
-    from tactcad.export.jobs import image_job
+    from tactcad.export.jobs import image_jobs
     from tactcad.export.job import Run
     from tactcad.export.live_parts import LiveParts
     from tactcad.solids.tessellation import tessellate
@@ -163,6 +163,6 @@ def test_picture_is_the_same_from_kept_meshes_as_from_a_fresh_run(tmp_path):
             for spec in specs.values():
                 tessellate(run.parts.solid(spec), 0.2)  # a coarser mesh made first, elsewhere
                 run.parts.mesh(spec)
-        image_job(run).make(run)
+        image_jobs(run, [])[0].make(run)
         pictures.append((run.staging / ARRAY_PNG).read_bytes())
     assert pictures[0] == pictures[1]

@@ -79,21 +79,23 @@ def test_a_requirement_the_design_cannot_meet_fails_verify_and_check_records(cap
     plan = _plan({"full_scale_force_N": 2.0})  # the 8 mm arm yields long before 2 N
     records = verification_matrix(plan)
     assert not records[0]["pass"] and records[0]["margin_rel"] < 0
-    from tactcad.checks.requirements import requirement_checks
+    from tactcad.checks.requirement_checks import requirement_checks
 
     failed = [c for c in requirement_checks(plan) if not c.passed]
     assert [c.subject for c in failed] == ["full_scale_force_N"]
-    code = main(["verify", "--set", "requirements.full_scale_force_N=2", "--json"])
+    code = main(["verify", "--model", "closed-form", "--set", "requirements.full_scale_force_N=2",
+                 "--json"])
     out = json.loads(capsys.readouterr().out)
     assert code == 1 and out["passed"] is False
     assert out["matrix"][0]["binding_limit"] in LIMIT_NAMES
 
 
 def test_verify_cli_table_and_json(capsys):
-    assert main(["verify", "--quiet"]) == 0
+    assert main(["verify", "--model", "closed-form", "--quiet"]) == 0
     text = capsys.readouterr().out
     assert "| full_scale_force_N |" in text and "binds" in text
-    assert main(["verify", "--json", "--set", "requirements.kr_over_km=50"]) == 1
+    assert main(["verify", "--model", "closed-form", "--json", "--set",
+                 "requirements.kr_over_km=50"]) == 1
     out = json.loads(capsys.readouterr().out)
     ratio = next(r for r in out["matrix"] if r["requirement"] == "kr_over_km")
     assert ratio["target"] == 50 and not ratio["pass"]

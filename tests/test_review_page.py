@@ -10,8 +10,8 @@ from types import SimpleNamespace
 import pytest
 
 from tactcad.export.review_assets import MODULES, ReviewAssetsError, _rewrite, import_map
-from tactcad.export.review_page import (REVIEW_PAGE, bom_table, checks_script, page_html,
-                                        review_contents, write_checks_script)
+from tactcad.checks.review_results import checks_script, write_checks_script
+from tactcad.export.review_page import REVIEW_PAGE, bom_table, page_html, review_contents
 
 
 def _contents(name="demo", sha="ab" * 32, **extra):
@@ -76,14 +76,14 @@ def test_bom_table_reads_the_csv_with_its_bom():
 def test_checks_script_counts_and_is_written_only_beside_a_page(tmp_path):
     r = [SimpleNamespace(check="c", subject="s", passed=True, detail=""),
          SimpleNamespace(check="c", subject="</script>", passed=False, detail="bad")]
-    text = checks_script("ff", r)
+    text = checks_script("ff", [("parts", r)])
     doc = json.loads(text.removeprefix("window.TACTCAD_CHECKS = ").rstrip(";\n"))
     assert (doc["passed"], doc["failed"], doc["design_sha256"]) == (1, 1, "ff")
     assert "</script>" not in text
-    assert write_checks_script(tmp_path, "ff", r) is None
+    assert write_checks_script(tmp_path, "ff", [("parts", r)]) is None
     (tmp_path / "review").mkdir()
     (tmp_path / REVIEW_PAGE).write_text("x")
-    assert write_checks_script(tmp_path, "ff", r).read_text() == text
+    assert write_checks_script(tmp_path, "ff", [("parts", r)]).read_text() == text
 
 
 def test_import_map_inlines_every_module_without_relative_imports():
@@ -237,8 +237,8 @@ def test_check_results_join_the_page(exported, browser, plan):
     from tactcad.checks.review_browser import wait_first_frame
 
     out, _ = exported
-    write_checks_script(out, plan.design_hash, [R(check="volume", subject="spacer", passed=False,
-                                                    detail="off by 3 %")])
+    write_checks_script(out, plan.design_hash, [("parts", [R(
+        check="volume", subject="spacer", passed=False, detail="off by 3 %")])])
     try:
         with browser() as page:
             page.goto((out / REVIEW_PAGE).resolve().as_uri())
@@ -257,7 +257,11 @@ def test_requirements_of_the_manifest_show_as_the_verification_matrix():
                                      {"requirement": "kr_over_km", "target": 10,
                                       "predicted": 9.9, "pass": False}]}
     view = _data(requirements=record)["manifest"]["verification"]
-    rows, limits, values = view.values()
-    assert [r["requirement"] for r in rows] == ["full_scale_force_N", "kr_over_km"]
-    assert all("limits" not in r for r in rows) and rows[1]["pass"] is False
+    rows, limits, values, unmet = view.values()
+    # read as the CLI prints it, failures first
+    assert [r["requirement"] for r in rows] == ["kr_over_km", "full_scale_force_N"]
+    assert list(rows[0]) == ["requirement", "verdict", "target", "predicted", "margin", "binds",
+                             "model"]
+    assert rows[0]["verdict"] == "FAIL" and rows[1]["binds"] == "w"
     assert limits == [{"limit": "yield", "force_N": 0.3}] and values == {"full_scale_force_N": 0.1}
+    assert unmet == ["kr_over_km"]  # the page's red banner

@@ -16,7 +16,7 @@ from tactcad.design.array_plan import load_design
 from tactcad.errors import DesignError, TactcadError
 from tactcad.assembly.rig_models import describe, scene_names
 from tactcad.assembly.scene_solver import assemble, build_scene
-from tactcad.checks.scenes import placed_shapes
+from tactcad.checks.scene_checks import placed_shapes
 from tactcad.design.scene_specs import load_scenes
 from tactcad.errors import SceneError
 from tactcad.solids.cache import PartCache

@@ -206,7 +206,7 @@ def test_designs_at_their_limits_export_and_check(design_data, tmp_path, overrid
 
     from tactcad.mechanics.correction import CorrectionRangeWarning
 
-    from tactcad.checks.array import run_checks
+    from tactcad.checks.array_checks import run_checks
     from tactcad.export.run import export
     from tactcad.solids.cache import PartCache
 

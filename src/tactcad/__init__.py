@@ -22,7 +22,7 @@ from tactcad.errors import (CheckFailure, DesignError, DesignErrors, ExportPathE
 __version__ = "0.1.0"
 
 if TYPE_CHECKING:  # what type checkers see of the names imported on first use
-    from tactcad.api import CheckReport, Element, Project, load
+    from tactcad.api import CheckReport, Element, Project, Verification, load
     from tactcad.assembly.part_objects import FlexureArray, FlexureElement, show
 
 #: Public name -> the module that defines it (imported on first access).
@@ -31,6 +31,7 @@ _PUBLIC = {
     "Project": "tactcad.api",
     "Element": "tactcad.api",
     "CheckReport": "tactcad.api",
+    "Verification": "tactcad.api",
     "FlexureElement": "tactcad.assembly.part_objects",
     "FlexureArray": "tactcad.assembly.part_objects",
     "show": "tactcad.assembly.part_objects",

@@ -19,14 +19,14 @@ Units: mm, N, MPa, N/mm, s.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from os import PathLike
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
 
 if TYPE_CHECKING:  # types only: importing them at run time would load the kernel
-    from tactcad.checks.result import CheckResult
+    from tactcad.checks.check_result import CheckResult
     from tactcad.design.array_plan import ElementGeometry, ElementSlot, Plan
     from tactcad.design.project import Project as ValidatedProject
     from tactcad.design.rig_plan import RigDesign
@@ -205,11 +205,12 @@ class Project:
         """
         from tactcad.assembly.scene_solver import build_scene
         from tactcad.kernel.objects import labelled_compound, rgb_colour
+        from tactcad.kernel.locations import placed
 
         solved, solids = build_scene(self.validated, scene, self._cache)
         children = []
         for inst in solved.instances:
-            child = solids[inst.part].moved(inst.location)
+            child = placed(solids[inst.part], inst.location)
             child.label = inst.name
             child.color = rgb_colour(solved.specs[inst.part].color)
             children.append(child)
@@ -283,6 +284,41 @@ class Project:
         finally:
             self._report = _quiet
 
+    def verify(self, model: str = "auto", progress: Progress | None = None) -> "Verification":
+        """The verification matrix of the design's requirements.
+
+        Args:
+            model: a ladder level, or ``auto``: the cheapest level that decides
+                each requirement (the closed form first, higher levels only
+                while one is undecided).
+            progress: called with a line per element a level evaluates.
+
+        Returns:
+            :class:`Verification`: the records (``requirement``, ``target``,
+            ``predicted``, ``error_estimate_rel``, ``margin_rel``, ``model``,
+            ``verdict``: pass, fail or undecided, ...), the seconds per level,
+            and ``passed`` (no requirement fails).
+
+        Raises:
+            UnknownModelError: ``model`` is neither ``auto`` nor a ladder level.
+            DesignError: the material has no yield strength.
+        """
+        from tactcad.mechanics.ladder import UnknownModelError, models
+        from tactcad.studies.verification import (requirements_of, verification_auto,
+                                                    verification_matrix)
+        from tactcad.studies.strength_studies import element_stress
+
+        if model != "auto" and model not in models():
+            raise UnknownModelError(model)
+        plan = self.plan
+        req = requirements_of(plan)
+        if model == "auto":
+            records, levels = verification_auto(plan, progress, req, stress=element_stress)
+        else:
+            records = verification_matrix(plan, model, progress, req, stress=element_stress)
+            levels = []
+        return Verification(model, tuple(records), tuple(levels), req.as_json())
+
     def check(self, out: str | Path | None = None, scenes: Sequence[str] | None = None,
               cache: str | Path | None | bool = True, progress: Progress | None = None,
               on_group: Callable[[str, list], None] | None = None) -> "CheckReport":
@@ -297,10 +333,12 @@ class Project:
                 GLB read-back); ``None`` checks the array and every scene.
             cache: the store of finished jobs, as for :meth:`export`.
             progress: called with a line on the export (one per job run).
-            on_group: called as ``on_group(group, results)`` when each group
-                of checks finishes (``requirements``: the design's verification
-                matrix at the closed form, ``parts``, ``dxf``, ``array
-                interference``, ``array STEP``, ``scene <name>``).
+            on_group: called as ``on_group(label, results)`` when each group
+                of checks finishes: the groups of
+                :data:`tactcad.checks.groups.CHECK_GROUPS` in order
+                (``requirements``: the design's verification matrix at the
+                closed form, ``parts``, ``dxf``, ``array interference``,
+                ``array STEP``, then ``scene <name>`` per scene).
 
         Returns:
             :class:`CheckReport`: every result with its group.
@@ -311,8 +349,7 @@ class Project:
         """
         import tempfile
 
-        from tactcad.checks.array import run_checks
-        from tactcad.checks.scenes import run_scene_checks
+        from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
         from tactcad.export.reuse import reuse_refusal
         from tactcad.export.run import export, export_scenes
         from tactcad.export.selection import with_progress
@@ -326,9 +363,10 @@ class Project:
                 on_group(group, list(found))
 
         self._report = report
-        from tactcad.checks.requirements import requirement_checks
-
-        done("requirements", requirement_checks(self.plan))  # the verification matrix
+        to_run = groups_to_run(scenes)
+        context = CheckContext(self.plan, Path("."), self._cache, self.validated, scenes)
+        # what reads the design alone (the verification matrix) runs before any export
+        run_groups([g for g in to_run if not g.on_export], context, done)
         try:
             with tempfile.TemporaryDirectory() as tmp:
                 folder = Path(out) if out is not None else Path(tmp)
@@ -343,11 +381,8 @@ class Project:
                     report(f"exporting to {folder} first: {refusal}")
                     export(self.validated, folder, log=_quiet, store=_store(cache), parts=self._cache,
                            select=lambda jobs: with_progress(jobs, report))
-                if scenes:
-                    run_scene_checks(self.validated, folder, scenes, cache=self._cache, done=done)
-                else:
-                    run_checks(self.plan, folder, self._cache, done=done)
-                    run_scene_checks(self.validated, folder, cache=self._cache, done=done)
+                run_groups([g for g in to_run if g.on_export], replace(context, folder=folder),
+                           done)
         finally:
             self._report = _quiet
         return CheckReport(tuple((g, tuple(r)) for g, r in groups), refusal is None,
@@ -469,11 +504,48 @@ class Element:
 
 
 @dataclass(frozen=True)
+class Verification:
+    """Results of :meth:`Project.verify`.
+
+    Attributes:
+        model: the level asked for (``auto`` or a ladder level).
+        records: one dict per requirement, in the matrix's order.
+        levels: ``{"model", "seconds", "undecided_before"}`` per level run (``auto``).
+        requirements: the requirement values with their reasons.
+    """
+
+    model: str
+    records: tuple[dict, ...]
+    levels: tuple[dict, ...]
+    requirements: dict
+
+    @property
+    def passed(self) -> bool:
+        """True when no requirement's verdict is ``fail``."""
+        return not self.failed
+
+    @property
+    def failed(self) -> list[str]:
+        """The requirements whose verdict is ``fail``."""
+        return [r["requirement"] for r in self.records if r["verdict"] == "fail"]
+
+    @property
+    def undecided(self) -> list[str]:
+        """The requirements no level decided (margin inside the error estimate)."""
+        return [r["requirement"] for r in self.records if r["verdict"] == "undecided"]
+
+    @property
+    def seconds(self) -> float:
+        """Wall time of the levels run (s)."""
+        return sum(level["seconds"] for level in self.levels)
+
+
+@dataclass(frozen=True)
 class CheckReport:
     """Results of :meth:`Project.check`.
 
     Attributes:
-        groups: (group name, its :class:`~tactcad.checks.result.CheckResult` s)
+        groups: (group name, its :class:`~tactcad.checks.check_result.CheckResult` s)
             in the order they ran.
         reused_export: the export folder was checked as it was.
         export_refusal: why it was not (None when reused).

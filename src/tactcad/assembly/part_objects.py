@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from tactcad.assembly.plan_locations import location
+from tactcad.kernel.locations import placed
 from tactcad.catalogue.array_catalogue import array_instances, array_parts
 from tactcad.design.array_plan import DEFAULT_DESIGN, Plan, plan_from_dict, read_toml, with_overrides
 from tactcad.errors import DesignErrors
@@ -168,7 +169,7 @@ class FlexureArray(PartObject):
         cache, specs = PartCache(self.plan), array_parts(self.plan)
         children = []
         for inst in array_instances(self.plan):
-            child = cache.solid(specs[inst.part]).moved(location(inst.placement))
+            child = placed(cache.solid(specs[inst.part]), location(inst.placement))
             child.label = inst.name
             children.append(child)
         part = labelled_part(children, self.plan.name)

@@ -13,12 +13,13 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Collection
 
 from tactcad.catalogue.gauges import gauge_body, gauge_placements
 from tactcad.design.array_plan import Placement, Plan
 from tactcad.partlib.array.fasteners import bolt_name, bolt_volume, nut_name
 from tactcad.partlib.array.strain_gauge import GAUGE_PART
+from tactcad.partlib.array import strain_gauge
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, Bbox, PartData
 from tactcad.partlib.registry import array_parts_for, array_parts_lib
 from tactcad.vocabulary.process import Method, Process
@@ -77,30 +78,37 @@ class Instance:
     placement: Placement
 
 
-#: id(plan) -> (weak reference to the plan, its array parts): each plan's parts are
-#: made once (every element profile is built), however many writers ask.
-_ARRAY_PARTS: dict[int, tuple[weakref.ref, dict[str, PartSpec]]] = {}
+#: (id(plan), families) -> (weak reference to the plan, its array parts): each
+#: plan's parts are made once (every element profile is built), however many
+#: writers ask.
+_ARRAY_PARTS: dict[tuple, tuple[weakref.ref, dict[str, PartSpec]]] = {}
 
 
-def array_parts(plan: Plan) -> dict[str, PartSpec]:
+def array_parts(plan: Plan, families: Collection[str] | None = None) -> dict[str, PartSpec]:
     """Every distinct part of the array assembly, keyed by part name (a fresh
-    dict of the specs made once per plan)."""
-    hit = _ARRAY_PARTS.get(id(plan))
+    dict of the specs made once per plan); ``families``: only the parts of
+    these part modules (by key; a variant counts as the family it replaces),
+    for a writer that needs no more (the shop DXF: elements and spacers)."""
+    key = (id(plan), None if families is None else tuple(sorted(families)))
+    hit = _ARRAY_PARTS.get(key)
     if hit is None or hit[0]() is not plan:
-        ref = weakref.ref(plan, lambda _, key=id(plan): _ARRAY_PARTS.pop(key, None))
-        hit = _ARRAY_PARTS[id(plan)] = (ref, _make_array_parts(plan))
+        ref = weakref.ref(plan, lambda _, k=key: _ARRAY_PARTS.pop(k, None))
+        hit = _ARRAY_PARTS[key] = (ref, _make_array_parts(plan, families))
     return dict(hit[1])
 
 
-def _make_array_parts(plan: Plan) -> dict[str, PartSpec]:
+def _make_array_parts(plan: Plan, families: Collection[str] | None) -> dict[str, PartSpec]:
     """The parts of the array part modules the design uses
     (:func:`tactcad.partlib.registry.array_parts_for` its tables, in order), as specs."""
     lib = array_parts_lib()
+    modules = [part for part in array_parts_for(plan.raw)
+               if families is None or (part.replaces or part.key) in families]
     tables = {key: part.section.model_validate(plan.raw[key]) for key, part in lib.items()
               if part.section is not None and key in plan.raw}
-    context = ArrayContext(plan, part_material_names(plan), gauge_body(plan), tables)
-    return {data.name: array_spec(part, data) for part in array_parts_for(plan.raw)
-            for data in part.specs(context)}
+    # the gauge's body reads the read-out chain: made only when the gauge is asked for
+    gauge = gauge_body(plan) if any(part is strain_gauge.PART for part in modules) else None
+    context = ArrayContext(plan, part_material_names(plan), gauge, tables)
+    return {data.name: array_spec(part, data) for part in modules for data in part.specs(context)}
 
 
 def array_spec(part: ArrayPart, data: PartData) -> PartSpec:

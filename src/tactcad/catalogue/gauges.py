@@ -53,7 +53,8 @@ class SensorItem:
 def sensor_items(plan: Plan) -> list[SensorItem]:
     """The read-out's bought items of ``plan``: gauge (one per element + spares), a pair of
     bondable solder terminals per gauge, lead wire, three bridge completion resistors per
-    element (quarter bridge) and one adhesive kit."""
+    element (quarter bridge), one adhesive kit, and the ``[readout]`` chain: an
+    instrumentation amplifier and a signal cable per element and the DAQ."""
     gauge = plan.strength.gauge
     ro = readout_of(plan.raw, gauge)
     bom = bom_settings(plan.raw)
@@ -73,6 +74,15 @@ def sensor_items(plan: Plan) -> list[SensorItem]:
                    "quarter bridge", "0805 SMD or axial 0.6 W"),
         SensorItem("gauge_adhesive", 0, 1, 0, "kit", "cyanoacrylate", bom.adhesive,
                    "bottle with catalyst, about 20 g"),
+        # the rest of the [readout] chain: one amplifier per quarter bridge, one DAQ
+        SensorItem("instrumentation_amplifier", 1, 0, 0, "pcs", "electronic assembly",
+                   f"{ro.amplifier}, gain {ro.amplifier_gain:g}, one per quarter bridge "
+                   f"(excitation {ro.excitation_V:g} V)", f"bandwidth {ro.bandwidth_Hz:g} Hz"),
+        SensorItem("daq", 0, 1, 0, "pcs", "electronic instrument",
+                   f"{ro.daq}, +/-{ro.daq_range_V:g} V range, {ro.daq_bits}-bit; one "
+                   "differential input per element", "one channel per element"),
+        SensorItem("signal_cable", 1, 0, 0, "pcs", "shielded twisted pair",
+                   "amplifier output to the DAQ input, one per element", "about 1 m"),
     ]
 
 

@@ -8,16 +8,17 @@ from pathlib import Path
 
 from tactcad.design.array_plan import Plan
 from tactcad.export.dxf_sheet import ShopProfile, sheet_dxf_name, sheet_gap_mm, sheets
-from tactcad.checks.dxf import SheetPart, check_profile_dxf, check_sheet_dxf
-from tactcad.checks.result import CheckResult
+from tactcad.checks.dxf_readback import SheetPart, check_profile_dxf, check_sheet_dxf
+from tactcad.checks.check_result import CheckResult
 
 
 def _face(sp: ShopProfile) -> tuple[float, tuple[float, float, float, float]]:
+    from tactcad.kernel.inspect import area, bounding_box
     from tactcad.kernel.shapes import profile_face
 
     f = profile_face(sp.profile)
-    bb = f.bounding_box(optimal=True)
-    return f.area, (bb.min.X, bb.min.Y, bb.max.X, bb.max.Y)
+    box = bounding_box(f, optimal=True)
+    return area(f), (box.min[0], box.min[1], box.max[0], box.max[1])
 
 
 def check_shop_dxf_files(plan: Plan, out_dir: str | Path) -> list[CheckResult]:

@@ -15,7 +15,7 @@ import zipfile
 from pathlib import Path
 
 from tactcad.export.freecad_review import run_freecad_script
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 
 SCRIPT = Path(__file__).with_name("freecad_fcstd_script.py")
 BBOX_TOL_MM = 1e-4

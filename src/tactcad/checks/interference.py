@@ -10,8 +10,8 @@ from __future__ import annotations
 import itertools
 from dataclasses import dataclass
 
-from tactcad.checks.result import CheckResult
-from tactcad.kernel.inspect import common_volume, distance
+from tactcad.checks.check_result import CheckResult
+from tactcad.kernel.inspect import bounding_box, common_volume, distance
 from tactcad.kernel.shapes import Shape
 
 OVERLAP_TOL_MM3 = 1e-6
@@ -24,21 +24,15 @@ class Placed:
     shape: Shape
 
 
-def _boxes_overlap(a, b, tol: float) -> bool:
-    return (a.min.X <= b.max.X + tol and b.min.X <= a.max.X + tol and
-            a.min.Y <= b.max.Y + tol and b.min.Y <= a.max.Y + tol and
-            a.min.Z <= b.max.Z + tol and b.min.Z <= a.max.Z + tol)
-
-
 def check_interference(placed: list[Placed], contacts: set[frozenset[str]]) -> list[CheckResult]:
     """Overlap volume of every pair with overlapping boxes, and touching of declared contacts."""
     out: list[CheckResult] = []
-    boxes = {p.name: p.shape.bounding_box() for p in placed}
+    boxes = {p.name: bounding_box(p.shape) for p in placed}
     tested = 0
     for a, b in itertools.combinations(placed, 2):
         pair = frozenset({a.name, b.name})
         subject = f"{a.name} / {b.name}"
-        if not _boxes_overlap(boxes[a.name], boxes[b.name], CONTACT_TOL_MM):
+        if not boxes[a.name].overlaps(boxes[b.name], CONTACT_TOL_MM):
             if pair in contacts:
                 out.append(CheckResult("contact_touching", subject, False, "boxes apart"))
             continue

@@ -2,42 +2,39 @@
 
 One ``<testcase>`` per check, named ``check: subject``; a failed check holds
 a ``<failure>`` whose message is the line ``tactcad check`` prints for it.
-Test cases are grouped into ``<testsuite>`` elements by what they check:
+Test cases are grouped into ``<testsuite>`` elements by what they check,
+as each check group declares (:mod:`tactcad.checks.groups`):
 
 * ``part:<name>``: a part's solid checks, its STEP file and its DXF;
 * ``sheet:<name>``: a nested DXF sheet;
 * ``array``: the array's interference and its STEP assembly;
-* ``scene:<name>``: a scene's interference, sanity, STEP and GLB checks.
+* ``scene:<name>``: a scene's interference, sanity, STEP and GLB checks;
+* the group's name for any other group (``requirements``).
 
 Written with junitparser (a maintained reader and writer of the format).
 """
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 from typing import Iterable, Sequence
 
 from tactcad.atomic import write_bytes_atomic
-from tactcad.checks.result import CheckResult
+from tactcad.checks.groups import group_of
+from tactcad.checks.check_result import CheckResult
 
 Group = tuple[str, Sequence[CheckResult]]
 
 
-def suite_of(group: str, result: CheckResult, part_names: Iterable[str]) -> str:
-    """The test suite of one result of a check group (see the module doc)."""
-    names = set(part_names)
-    if result.subject in names:
-        return f"part:{result.subject}"
-    if group.startswith("scene "):
-        return "scene:" + group.removeprefix("scene ")
-    if group in ("parts", "dxf"):
-        stem = Path(result.subject.split(":", 1)[0]).stem  # "sheet.dxf: copy at (x, y)"
-        base = re.sub(r"_qty\d+$", "", stem)
-        if base in names:
-            return f"part:{base}"
-        return f"sheet:{stem}"
-    return "array" if group.startswith("array") else group
+def suite_of(label: str, result: CheckResult, part_names: Iterable[str]) -> str:
+    """The test suite of one result of a check group: the registered group's
+    rule (:meth:`tactcad.checks.groups.CheckGroup.suite_of`); a label no group
+    has is its own suite."""
+    try:
+        group = group_of(label)
+    except KeyError:
+        return label
+    return group.suite_of(label, result, set(part_names))
 
 
 def junit_report(groups: Sequence[Group], part_names: Iterable[str],

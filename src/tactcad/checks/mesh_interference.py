@@ -30,8 +30,9 @@ import numpy as np
 from tactcad.solids.tessellation import MESH_TOLERANCE_MM, tessellate
 
 from tactcad.checks.interference import CONTACT_TOL_MM, OVERLAP_TOL_MM3, Placed
-from tactcad.checks.result import CheckResult
-from tactcad.kernel.inspect import common_volume, faces_distance
+from tactcad.checks.check_result import CheckResult
+from tactcad.kernel.inspect import bounding_box, common_volume, touching_gap
+from tactcad.kernel.locations import matrix, relative
 
 NEAR_MM = 4 * MESH_TOLERANCE_MM  # closer meshes than this go to the exact check
 
@@ -67,41 +68,15 @@ def part_manifold(solid, tolerance_mm: float = MESH_TOLERANCE_MM, mesh=None):
 
 
 def _affine(location) -> np.ndarray:
-    """3 x 4 affine matrix of a build123d ``Location``."""
-    trsf = location.wrapped.Transformation()
-    return np.array([[trsf.Value(i, j) for j in range(1, 5)] for i in range(1, 4)], dtype=np.float64)
+    """3 x 4 affine matrix (mm) of a kernel location."""
+    return matrix(location)[:3]
 
 
 def _pose_key(a: str, b: str, part_of: dict, locations: dict) -> tuple:
     """(part, part, relative pose rounded to 1e-9 mm) of an instance pair."""
     a, b = sorted((a, b), key=lambda n: (part_of[n], n))
-    rel = _affine(locations[a].inverse() * locations[b])
+    rel = _affine(relative(locations[a], locations[b]))
     return (part_of[a], part_of[b], tuple(np.round(rel, 9).ravel()))
-
-
-def touching_gap(a, b, tol: float = CONTACT_TOL_MM) -> float:
-    """Exact distance (mm) between two solids that do not overlap, computed on
-    the faces of each that come within ``tol`` of the other's bounding box:
-    a gap <= ``tol`` can only lie between such faces, so the answer to
-    "touching within ``tol``" is exact; ``inf`` when no face comes near."""
-    def near(shape, box):
-        out = []
-        for f in shape.faces():
-            fb = f.bounding_box()
-            if _boxes_overlap((fb.min.X, fb.min.Y, fb.min.Z, fb.max.X, fb.max.Y, fb.max.Z),
-                              (box.min.X, box.min.Y, box.min.Z, box.max.X, box.max.Y, box.max.Z),
-                              tol):
-                out.append(f)
-        return out
-
-    fa, fb = near(a, b.bounding_box()), near(b, a.bounding_box())
-    if not fa or not fb:
-        return float("inf")
-    return faces_distance(fa, fb)
-
-
-def _boxes_overlap(a, b, tol: float) -> bool:
-    return all(a[k] <= b[k + 3] + tol and b[k] <= a[k + 3] + tol for k in range(3))
 
 
 def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
@@ -117,7 +92,7 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
         part_of: instance name -> part name (meshes are made once per part).
         part_solids: part name -> solid in the part's frame.
         locations: instance name -> build123d ``Location`` that placed it
-            (``placed`` holds ``part_solids[part].moved(location)``).
+            (``placed`` holds ``placed(part_solids[part], location)``).
         confirm: run the OpenCascade confirmation (off: mesh verdicts only,
             for timing the fast path).
         part_meshes: part name -> :func:`tessellate` result, if already made.
@@ -129,14 +104,13 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
     for p in placed:
         base = meshes[part_of[p.name]]
         m = None if base is None else base.transform(_affine(locations[p.name]))
-        bb = p.shape.bounding_box()
-        items.append((p, m, (bb.min.X, bb.min.Y, bb.min.Z, bb.max.X, bb.max.Y, bb.max.Z)))
+        items.append((p, m, bounding_box(p.shape)))
     out: list[CheckResult] = []
     to_confirm: list[tuple[Placed, Placed, float | None]] = []
     tested = 0
     for (a, ma, ba), (b, mb, bb) in itertools.combinations(items, 2):
         pair = frozenset({a.name, b.name})
-        if not _boxes_overlap(ba, bb, max(NEAR_MM, CONTACT_TOL_MM)):
+        if not ba.overlaps(bb, max(NEAR_MM, CONTACT_TOL_MM)):
             if pair in contacts:
                 out.append(CheckResult("contact_touching", f"{a.name} / {b.name}", False,
                                        "boxes apart"))
@@ -163,7 +137,7 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
                 except Exception as exc:
                     memo[key] = (exc, None)
                 else:
-                    gap = touching_gap(a.shape, b.shape) if pair in contacts else None
+                    gap = touching_gap(a.shape, b.shape, CONTACT_TOL_MM) if pair in contacts else None
                     memo[key] = (vol, gap)
             vol, gap = memo[key]
             if isinstance(vol, Exception):

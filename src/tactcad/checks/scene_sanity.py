@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 
 from tactcad.checks.interference import CONTACT_TOL_MM
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 from tactcad.kernel.inspect import common_volume, distance, extreme_planar_face
 from tactcad.kernel.locations import point
 

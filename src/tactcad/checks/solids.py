@@ -10,10 +10,10 @@ from __future__ import annotations
 import trimesh
 
 from tactcad.catalogue.array_catalogue import PartSpec
-from tactcad.kernel.inspect import bbox_tuple, free_edge_count
+from tactcad.kernel.inspect import bbox_tuple, free_edge_count, is_valid, solid_count, volume
 from tactcad.kernel.shapes import Shape
 from tactcad.solids.tessellation import tessellate
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 
 VOLUME_RTOL = 1e-6
 BBOX_TOL_MM = 1e-6
@@ -32,12 +32,12 @@ def to_trimesh(shape: Shape, tolerance_mm: float = MESH_TOLERANCE_MM) -> trimesh
 def check_solid(spec: PartSpec, solid: Shape, expected_solids: int = 1) -> list[CheckResult]:
     """All solid checks of one part against its catalogue entry."""
     name = spec.name
-    out = [CheckResult("is_valid", name, bool(solid.is_valid))]
-    n = len(solid.solids())
+    out = [CheckResult("is_valid", name, is_valid(solid))]
+    n = solid_count(solid)
     out.append(CheckResult("solid_count", name, n == expected_solids, f"{n} (expected {expected_solids})"))
     free = free_edge_count(solid)
     out.append(CheckResult("no_free_boundaries", name, free == 0, f"{free} free edges"))
-    vol = solid.volume
+    vol = volume(solid)
     rel = abs(vol - spec.expected_volume_mm3) / spec.expected_volume_mm3
     out.append(CheckResult("volume", name, vol > 0 and rel <= VOLUME_RTOL,
                            f"{vol:.6f} mm3 vs {spec.expected_volume_mm3:.6f} (rel {rel:.1e})"))

@@ -341,7 +341,7 @@ def _bench_interference(project) -> None:
     from tactcad.checks.mesh_interference import check_mesh_interference
     from tactcad.assembly.rig_models import scene_names
     from tactcad.assembly.scene_solver import build_scene
-    from tactcad.checks.scenes import placed_shapes
+    from tactcad.checks.scene_checks import placed_shapes
     from tactcad.solids.cache import PartCache
 
     cache = PartCache(project.plan)

@@ -49,7 +49,9 @@ def register(subparsers) -> None:
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for the as-built web and gauge strain (default closed-form)")
     p.add_argument("--gain", type=float, default=None, metavar="V_PER_STRAIN",
-                   help="gauge gain of the simulated rig (V per unit strain), default -120")
+                   help="gauge gain of the simulated rig (V per unit strain of the peak strain); "
+                        "default: the design's [readout] chain on the grid-averaged strain, "
+                        "as tactcad readout")
     p.add_argument("--noise-force", type=number(0, 100, "N"), default=0.001, metavar="N",
                    help="force noise of the simulated rig (N, one sigma; default %(default)s N)")
     p.add_argument("--noise-signal", type=number(0, 100, "V"), default=0.001, metavar="V",
@@ -105,7 +107,7 @@ def run(args: argparse.Namespace) -> int:
     report: dict = {"design": plan.name, "model": args.model}
     if args.data or args.simulate:
         if args.simulate:
-            gain = ca.DEFAULT_GAUGE_GAIN_V_PER_STRAIN if args.gain is None else args.gain
+            gain = args.gain
             from tactcad.studies.verification import requirements_of
 
             # the paper's Z steps for its design; any other is loaded to its full-scale force
@@ -117,12 +119,20 @@ def run(args: argparse.Namespace) -> int:
             if force is not None:
                 report["full_scale_force_N"] = force
             report["input"] = "simulated"
-            report["simulated_gauge_gain_V_per_strain"] = gain
+            if gain is None:
+                from tactcad.mechanics.readout_chain import readout_chain
+
+                report["simulated_readout"] = "the design's [readout] chain, grid-averaged strain"
+                report["simulated_gauge_gain_V_per_strain"] = readout_chain(plan).volts_per_strain
+            else:
+                report["simulated_gauge_gain_V_per_strain"] = gain
             if args.write_csv:
                 Path(args.write_csv).parent.mkdir(parents=True, exist_ok=True)
                 Path(args.write_csv).write_text(cal.format_calibration_csv(
                     data, (f"simulated calibration of design {plan.name}, ladder {args.model}, "
-                           f"gauge gain {gain:g} V/strain, noise {args.noise_force:g} N, "
+                           f"gauge gain {report['simulated_gauge_gain_V_per_strain']:g} V/strain"
+                           f"{'' if gain is not None else ' (read-out chain, grid strain)'}, "
+                           f"noise {args.noise_force:g} N, "
                            f"{args.noise_signal:g} V, seed {args.seed}",)), encoding="utf-8")
                 report["written_csv"] = args.write_csv
         else:

@@ -5,13 +5,15 @@ from __future__ import annotations
 import argparse
 import time
 
-from tactcad.checks.result import failures
+from tactcad.checks.check_result import failures
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
                               load_from_args)
 from tactcad.commands.finite_json import dumps
 
 
 def register(sub: argparse._SubParsersAction) -> None:
+    from tactcad.checks.groups import groups_help
+
     p = sub.add_parser("check", help="run part, DXF, STEP and interference checks",
                        description="Check the export of the design and exit 1 if any check "
                                    "fails. With --out DIR holding an export of the same design "
@@ -19,7 +21,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "those files are checked as they are; otherwise the design "
                                    "is exported there (or to a temporary folder) first, reusing "
                                    "the store of finished jobs. Each group's results are printed "
-                                   "as it finishes.")
+                                   "as it finishes. The groups, in order: " + groups_help() + ".")
     add_design_arg(p)
     p.add_argument("--out", metavar="DIR", default=None,
                    help="the export to check (exported here first unless it is the design's "
@@ -63,9 +65,9 @@ def run(args: argparse.Namespace) -> int:
         report(f"wrote {args.junit} (JUnit XML, {len(result)} test cases)")
     bad = result.failures
     if args.out:  # the export's review page shows them (review/checks.js)
-        from tactcad.export.review_page import write_checks_script
+        from tactcad.checks.review_results import write_checks_script
 
-        write_checks_script(args.out, project.plan.design_hash, result.results)
+        write_checks_script(args.out, project.plan.design_hash, result.groups)
     if args.json:
         print(dumps({"out": args.out, "reused_export": result.reused_export,
                      "export_refusal": result.export_refusal, "passed": len(result) - len(bad),

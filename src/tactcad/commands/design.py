@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shlex
 from pathlib import Path
 
 from tactcad.mechanics.ladder import is_meshed, models
@@ -147,7 +148,10 @@ def run(args: argparse.Namespace) -> int:
                                 rows=args.rows, columns=args.columns,
                                 name=path.stem.replace("-", "_") or "inverse_design")
     report = design_report(result, args.verify, progress_from_args(args))
-    header = (f"# Written by `tactcad design {' '.join(design_options(args))}`.\n"
+    from tactcad import __version__
+
+    header = (f"# Written by tactcad {__version__}: "
+              f"`tactcad design {' '.join(design_options(args))}`.\n"
               f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
     text = header + tomli_w.dumps(result.data)
     if folder is None:
@@ -165,7 +169,8 @@ def run(args: argparse.Namespace) -> int:
 
 def design_options(args: argparse.Namespace) -> list[str]:
     """The options that shaped the design, as typed (for its header): the
-    targets, and the grid, grade and pitch where given."""
+    targets, the grid, grade and pitch where given, the base design's file
+    name and every ``--set``."""
     words = [f"--kr-over-km {args.kr_over_km:g}",
              f"--kobj-range {args.kobj_range[0]:g} {args.kobj_range[1]:g}",
              f"--full-scale-force {args.full_scale_force:g}"]
@@ -173,6 +178,10 @@ def design_options(args: argparse.Namespace) -> list[str]:
                         ("--columns", args.columns), ("--pitch", args.pitch)):
         if value is not None:
             words.append(f"{flag} {value:g}" if isinstance(value, float) else f"{flag} {value}")
+    # the base design and its overrides shape the result too
+    if getattr(args, "design", None):
+        words.append(f"--design {shlex.quote(Path(args.design).name)}")
+    words += [f"--set {shlex.quote(item)}" for item in getattr(args, "set", None) or ()]
     return words
 
 

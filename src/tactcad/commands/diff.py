@@ -32,7 +32,7 @@ def run(args: argparse.Namespace) -> int:
 
     from tactcad.commands.check import store_choice
     from tactcad.commands.finite_json import dumps
-    from tactcad.export.diff import compare, render_sheets
+    from tactcad.export.manifest_diff import compare, render_sheets
 
     report = progress_from_args(args)
     inputs = [_input(args.old, "OLD"), _input(args.new, "NEW")]

@@ -8,6 +8,7 @@ import json
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.options import count, number
+from tactcad.studies.tolerance_montecarlo import MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED
 
 
 def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) -> None:
@@ -33,9 +34,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "whether the K band holds [requirements] k_tolerance_rel and which "
                     "tolerance to tighten to what. Units: mm, N/mm.")
     add_design_arg(p)
-    p.add_argument("--samples", type=count(1, 10**7, "samples"), default=10_000, help="as-built arrays drawn (default "
-                                                                "10000)")
-    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0, help="seed of the draw (default 0)")
+    p.add_argument("--samples", type=count(1, 10**7, "samples"), default=MONTE_CARLO_SAMPLES,
+                   help="as-built arrays drawn (default %(default)s, as verify draws)")
+    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=MONTE_CARLO_SEED,
+                   help="seed of the draw (default %(default)s, as verify)")
     p.add_argument("--kobj", type=number(0, 1e6, "N/mm", lo_open=True), nargs="+",
                    metavar="N_PER_MM", default=None,
                    help="true object stiffnesses to report (default: the ends and middle of "

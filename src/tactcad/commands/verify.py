@@ -18,35 +18,51 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "ladder level: full-scale force against every limit (yield / safety "
                     "factor, fatigue strength, gauge fatigue and maximum strain, notch travel) "
                     "with the one that binds, K_r/K_m, the K band over the web tolerance, the "
-                    "K_obj resolution and the readable K_obj range. Exit 1 when a requirement "
-                    "fails. Units: N, N/mm.")
+                    "K_obj resolution and the readable K_obj range. Each verdict is pass, "
+                    "fail or undecided (the margin lies inside the level's error estimate); "
+                    "--model auto (the default) starts at the closed form and climbs the "
+                    "ladder only while a requirement is undecided, naming the level that "
+                    "decided each and the seconds spent. Exit 1 when a requirement fails. "
+                    "Units: N, N/mm, s.")
     add_design_arg(p)
-    p.add_argument("--model", choices=models(), default="closed-form",
-                   help=f"ladder level ({levels_help()} per distinct element; default "
-                        "%(default)s)")
+    p.add_argument("--model", choices=("auto", *models()), default="auto",
+                   help=f"ladder level ({levels_help()} per distinct element), or auto: the "
+                        "cheapest level that decides each requirement (default %(default)s)")
     add_output_args(p, "print one JSON object: requirements and the matrix")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.studies.verification import matrix_passed, requirements_of, verification_matrix
+    from tactcad.studies.verification import (matrix_passed, requirements_of, undecided,
+                                                verification_auto, verification_matrix)
+    from tactcad.studies.strength_studies import element_stress
 
     plan = plan_from_args(args)
     progress = progress_from_args(args)
     req = requirements_of(plan)
-    from tactcad.studies.strength_studies import element_stress
-
-    records = verification_matrix(plan, args.model, progress, req, stress=element_stress)
+    if args.model == "auto":
+        records, levels = verification_auto(plan, progress, req, stress=element_stress)
+    else:
+        records, levels = verification_matrix(plan, args.model, progress, req,
+                                              stress=element_stress), []
     ok = matrix_passed(records)
+    open_ = undecided(records)
     if args.json:
         print(dumps({"design": plan.name, "model": args.model, "requirements": req.as_json(),
-                     "matrix": records, "passed": ok}, indent=1))
+                     "matrix": records, "levels": levels, "undecided": open_, "passed": ok},
+                    indent=1))
     else:
         print(f"design {plan.name}, model {args.model}")
         print(matrix_table(records))
         for key, why in req.reasons.items():
             print(f"  {key}: {why}")
-        print("all requirements met" if ok else "a requirement is not met")
+        for level in levels:
+            print(f"  {level['model']}: {level['seconds']:.2f} s")
+        if open_:
+            top = records[0].get("levels_tried", [args.model])[-1]
+            print(f"undecided at {top} (margin inside its error estimate): {', '.join(open_)}"
+                  + ("" if args.model == "auto" else "; --model auto climbs the ladder"))
+        print("no requirement fails" if ok else "a requirement is not met")
     return 0 if ok else 1
 
 
@@ -63,18 +79,31 @@ def _pct(v) -> str:
 
 
 def matrix_table(records: list[dict]) -> str:
-    """The matrix as a Markdown table (one row per requirement; the limits
-    of the full-scale force below it)."""
-    rows = ["| requirement | target | predicted | error est. | margin | model | pass |",
-            "| --- | --- | --- | --- | --- | --- | --- |"]
+    """The matrix as a Markdown table (one row per requirement, the level
+    that decided it and the pair or element that binds; the limits of the
+    full-scale force below it)."""
+    rows = ["| requirement | target | predicted | error est. | margin | model | verdict | "
+            "worst |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in records:
         err = "n/a" if r["error_estimate_rel"] is None else f"{100 * r['error_estimate_rel']:.2f} %"
+        verdict = r.get("verdict", "pass" if r["pass"] else "fail")
         rows.append(f"| {r['requirement']} | {_value(r['target'])} | {_value(r['predicted'])} | "
-                    f"{err} | {_pct(r['margin_rel'])} | {r['model']} | "
-                    f"{'PASS' if r['pass'] else 'FAIL'} |")
+                    f"{err} | {_pct(r['margin_rel'])} | {r['model']} | {verdict.upper()} | "
+                    f"{_worst(r)} |")
     for r in records:
         for lim in r.get("limits", ()):
             rows.append(f"|   limit: {lim['words']} (element {lim['element']}) | | "
                         f"{lim['force_N']:.4g} N | {100 * lim['error_estimate_rel']:.2f} % | | | "
-                        f"{'binds' if lim['binding'] else ''} |")
+                        f"{'binds' if lim['binding'] else ''} | |")
     return "\n".join(rows)
+
+
+def _worst(r: dict) -> str:
+    """The element or pair a record's figure comes from."""
+    if "measuring_element" in r:
+        return (f"row {r['row']}: element {r['reference_element']} / "
+                f"{r['measuring_element']}")
+    if "binding_element" in r:
+        return f"element {r['binding_element']}"
+    return ""

@@ -370,6 +370,9 @@ function showVerification() {  // the manifest's verification matrix, when the e
   const v = DATA.manifest.verification;
   $('verification').hidden = $('nav-verification').hidden = v === undefined || v === null;
   $('verification-body').replaceChildren(v ? showData(v) : el('p', ''));
+  const unmet = (v && v['requirements not met']) || [];
+  setText($('unmet'), unmet.length ? `Requirements not met: ${unmet.join(', ')} (see Verification)` : '');
+  $('unmet').classList.toggle('shown', unmet.length > 0);
 }
 
 function showChecks() {
@@ -382,9 +385,23 @@ function showChecks() {
   const head = el('p');
   head.append(el('span', `${c.passed} passed`, 'pass'), ', ',
               el('span', `${c.failed} failed`, c.failed ? 'fail' : 'pass'));
-  const rows = [...c.checks].sort((a, b) => a.passed - b.passed)
-    .map((r) => ({ result: r.passed ? 'pass' : 'FAIL', check: r.check, subject: r.subject, detail: r.detail }));
-  body.replaceChildren(head, table(['result', 'check', 'subject', 'detail'], rows));
+  // one table per check group, in the order the groups run; failures first within each
+  const groups = (c.groups || []).map((g) => g.name);
+  for (const r of c.checks) if (!groups.includes(r.group)) groups.push(r.group);
+  const described = Object.fromEntries((c.groups || []).map((g) => [g.name, g.checks]));
+  const parts = [head];
+  for (const name of groups) {
+    const found = c.checks.filter((r) => r.group === name);
+    if (!found.length) continue;
+    const bad = found.filter((r) => !r.passed).length;
+    const title = el('h3', `${name}: ${found.length - bad} passed, ${bad} failed`, bad ? 'fail' : 'pass');
+    const rows = [...found].sort((a, b) => a.passed - b.passed)
+      .map((r) => ({ result: r.passed ? 'pass' : 'FAIL', check: r.check, subject: r.subject, detail: r.detail }));
+    parts.push(title);
+    if (described[name]) parts.push(el('p', described[name]));
+    parts.push(table(['result', 'check', 'subject', 'detail'], rows));
+  }
+  body.replaceChildren(...parts);
 }
 
 function showProvenance() {

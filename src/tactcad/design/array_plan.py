@@ -178,6 +178,9 @@ class Plan:
     stack_length_mm: float
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
+    #: Each row's reference element and why (:func:`row_references`).
+    references: tuple[int, ...] = ()
+    references_reason: str = ""
     strength: StrengthSettings = field(default_factory=default_strength_settings)
     raw: Mapping[str, Any] = field(repr=False, compare=False, hash=False, default_factory=dict)
 
@@ -191,6 +194,14 @@ class Plan:
             if slot.number == number:
                 return slot
         raise DesignError("element", number, f"1 ... {len(self.slots)}")
+
+    def row_slots(self, row: int) -> tuple[ElementSlot, ...]:
+        """The slots of one row (0-based), in column order."""
+        return tuple(s for s in self.slots if s.row == row)
+
+    def reference_of(self, row: int) -> ElementSlot:
+        """The reference element's slot of one row (0-based)."""
+        return self.slots[self.references[row] - 1]
 
     @property
     def distinct_elements(self) -> dict[str, ElementGeometry]:
@@ -247,6 +258,10 @@ class ArraySection(Section):
 class ArmsSection(Section):
     lengths_mm: listing(number(*ARM_RANGE_MM, why=FITTED_DOMAIN), 2, 2 * MAX_COLUMNS,
                         "a list of rows x columns lengths (mm)")
+    #: Each row's reference element (element numbers, one per row, in row
+    #: order); left out: each row's shortest arm (its stiffest element).
+    reference_elements: listing(integer(1, 2 * MAX_COLUMNS), 1, 2,
+                                "one element number per row, each in its row") = None
 
 
 class EdmSection(Section):
@@ -361,6 +376,9 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
     if len(arms) != n:
         p.add("arms.lengths_mm", arms, f"a list of {n} lengths (rows x columns)")
         return
+    refs = d.arms.reference_elements
+    if refs is not None:
+        _check_references(refs, d.array.rows, d.array.columns, p)
     tip_root = e.tip_width_mm / 2 + e.inside_corner_radius_mm + e.notch_radius_mm + 0.5
     distinct = sorted(set(arms))
     for shorter, longer in zip(distinct, distinct[1:]):
@@ -409,6 +427,32 @@ def bolt_holes(d: DesignFile, leg: float) -> tuple[Hole, Hole]:
     y = (d.element.base_height_mm - d.element.arm_height_mm) / 2
     s = d.clamp.bolt_spacing_mm
     return Hole(leg / 2 - s / 2, y, hole_d), Hole(leg / 2 + s / 2, y, hole_d)
+
+
+def _check_references(refs: list[int], rows: int, columns: int, p: Problems) -> None:
+    """Each row names one reference element, and it lies in that row."""
+    if len(refs) != rows:
+        p.add("arms.reference_elements", refs, f"a list of {rows} element numbers, one per row")
+        return
+    for row, number in enumerate(refs):
+        first = row * columns + 1
+        if not first <= number < first + columns:
+            p.add(f"arms.reference_elements[{row + 1}]", number,
+                  f"an element of row {row + 1}: {first} ... {first + columns - 1}",
+                  "each row's reference is pressed beside that row's measuring elements")
+
+
+def row_references(d: DesignFile) -> tuple[tuple[int, ...], str]:
+    """Each row's reference element (numbers, in row order) and the reason:
+    as the design file names them, else the row's shortest arm (its stiffest
+    element, as every element shares the web and notch; the lower number on a tie)."""
+    refs = d.arms.reference_elements
+    if refs is not None:
+        return tuple(refs), "named by arms.reference_elements"
+    c, arms = d.array.columns, d.arms.lengths_mm
+    chosen = tuple(min(range(r * c + 1, r * c + c + 1), key=lambda n: (arms[n - 1], n))
+                   for r in range(d.array.rows))
+    return chosen, "not named: each row's shortest arm, its stiffest element"
 
 
 def _check_bolt_pattern(d: DesignFile, p: Problems) -> None:
@@ -649,6 +693,7 @@ def plan_from_model(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan
         spacer_placements=spacer_placements(d), clamp=clamp,
         clamp_plate_z_mm=(-d.clamp.plate_thickness_mm, stack), stack_length_mm=stack,
         derived=derived_values(d, leg, holes, clamp),
+        references=row_references(d)[0], references_reason=row_references(d)[1],
         assumptions=read_assumptions(data, DesignFile, p, "element.notch_radius_mm"),
         raw=copy.deepcopy(dict(data)),
     )

@@ -98,8 +98,9 @@ def _fit_scale(v: View, width: float, height: float) -> float:
 def _compound(specs: dict[str, PartSpec], inst: list[Instance], solids: dict):
     from tactcad.assembly.plan_locations import location
     from tactcad.kernel.objects import labelled_compound
+    from tactcad.kernel.locations import placed
 
-    return labelled_compound([solids[i.part].moved(location(i.placement)) for i in inst])
+    return labelled_compound([placed(solids[i.part], location(i.placement)) for i in inst])
 
 
 def _to_view(cam, p) -> tuple[float, float]:

@@ -73,39 +73,17 @@ def holes_seen(spec: PartSpec, solid, cameras: dict | None = None) -> list[Hole2
     (a bore, not a boss)."""
     if spec.profile is not None:
         return [Hole2D(c.centre[0], c.centre[1], 2 * c.radius) for c in spec.profile.holes]
+    from tactcad.kernel.inspect import bores_along
+
     direction, up = (cameras or CAMERAS)["front"]
-    dv = np.array(direction, float)
     uv = np.array(up, float)
-    rv = np.cross(uv, dv)
+    rv = np.cross(uv, np.array(direction, float))
     out: dict[tuple, Hole2D] = {}
-    # flat hole bottoms: plane faces bounded by one circle (a blind hole's floor)
-    floors = []
-    for f in solid.faces():
-        es = f.edges()
-        if f.geom_type.name == "PLANE" and len(es) == 1 and es[0].geom_type.name == "CIRCLE":
-            floors.append((np.array(tuple(es[0].arc_center)), es[0].radius))
-    for f in solid.faces():
-        if f.geom_type.name != "CYLINDER":
-            continue
-        ax = f.axis_of_rotation
-        a = np.array(tuple(ax.direction)) if ax is not None else None
-        if a is None or abs(abs(a @ dv) - 1.0) > 1e-6:
-            continue
-        if not any(e.geom_type.name == "CIRCLE" and e.is_closed for e in f.edges()):
-            continue  # a fillet (quarter cylinder) of a pocket or window, not a hole
-        c = f.center()
-        n = np.array(tuple(f.normal_at(c)))
-        pos = np.array(tuple(ax.position))
-        to_axis = pos - np.array(tuple(c))
-        to_axis -= (to_axis @ a) * a
-        if n @ to_axis <= 0:  # normal away from the axis: a boss
-            continue
-        along = [float(np.array(tuple(v)) @ dv) for v in f.vertices()]
-        blind = any(abs(r - f.radius) < 1e-6
-                    and np.linalg.norm(np.cross(c - pos, a)) < 1e-6 for c, r in floors)
-        span = max(along) - min(along) if along else 0.0
+    for bore in bores_along(solid, direction):
+        pos = np.array(bore.axis_point)
+        depth = bore.blind_depth_mm
         h = Hole2D(round(float(pos @ rv), 6) + 0.0, round(float(pos @ uv), 6) + 0.0,
-                   round(2 * f.radius, 6), round(span, 6) if blind and span > 0 else None)
+                   round(bore.diameter_mm, 6), None if depth is None else round(depth, 6))
         out[(h.x, h.y)] = h
     return sorted(out.values(), key=lambda h: (h.y, h.x))
 

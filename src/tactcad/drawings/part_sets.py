@@ -14,7 +14,6 @@ from dataclasses import dataclass
 from types import SimpleNamespace
 from typing import Callable
 
-import numpy as np
 
 from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
@@ -73,16 +72,12 @@ def round_outline(d: Drawing, solid) -> float | None:
     u0, v0, u1, v1 = f.bbox
     if abs((u1 - u0) - (v1 - v0)) > 1e-6:
         return None
+    from tactcad.kernel.inspect import cylinder_diameters_along
+
     direction, _ = d.cameras["front"]
-    dv = np.array(direction, float)
-    for face in solid.faces():
-        if face.geom_type.name != "CYLINDER":
-            continue
-        ax = face.axis_of_rotation
-        if ax is None or abs(abs(np.array(tuple(ax.direction)) @ dv) - 1.0) > 1e-6:
-            continue
-        if abs(2 * face.radius - (u1 - u0)) < 1e-6:
-            return 2 * face.radius
+    for diameter in cylinder_diameters_along(solid, direction):
+        if abs(diameter - (u1 - u0)) < 1e-6:
+            return diameter
     return None
 
 

@@ -149,11 +149,11 @@ def project(solid, view: str, step_mm: float | None = None,
         KeyError: unknown view name.
     """
     from tactcad.kernel.hlr import projected  # the kernel, only when a view is drawn
+    from tactcad.kernel.inspect import bounding_box
 
     direction, up = (cameras or CAMERAS)[view]
     if step_mm is None:
-        bb = solid.bounding_box()
-        step_mm = max(bb.diagonal / 2000.0, 1e-4)
+        step_mm = max(bounding_box(solid).diagonal / 2000.0, 1e-4)
     visible, hidden = projected(solid, direction, up, step_mm)
     hidden = _uncovered(hidden, visible, step_mm)
     visible = sorted({_canonical(p): p for p in visible}.values(), key=_canonical)

@@ -34,8 +34,7 @@ from tactcad.catalogue.array_catalogue import Instance, PartSpec
 from tactcad.design.array_plan import Plan
 from tactcad.drawings.sheet import fmt_mm
 from tactcad.catalogue.shop import STOCK_REASON, material_designation, stock_size
-from tactcad.catalogue.files import drawing_name, part_step_name, scene_step_name, sheet_dxf_name
-from tactcad.export.dxf_sheet import shop_profiles
+from tactcad.export.kinds import bom_file_kinds
 
 BOM_COLUMNS = ("item", "part", "quantity", "unit", "spares", "type", "material", "stock",
                "process_or_reference", "key_dimensions_mm", "files")
@@ -202,26 +201,17 @@ def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
 
 def part_files(plan: Plan, staging: Path,
                assemblies: Mapping[str, Sequence] | None = None) -> Callable[[PartSpec], list[str]]:
-    """The export files that describe a part, as found in ``staging``: its
-    drawing (SVG), its shop DXF files (the profile with its quantity and the
-    nested sheet it is cut from) and its STEP model, or, for a part without a STEP file of its own, the
-    scene STEP files (``scenes/<scene>.step``) that show it. Only files that
-    exist are named."""
-    dxf_of = {sp.part: [sp.file_name, sheet_dxf_name(sp.material, sp.thickness_mm)]
-              for sp in shop_profiles(plan)}
-
-    shown_in: dict[str, list[str]] = {}
-    for name, inst in (assemblies or {}).items():
-        for part in instance_counts(inst):
-            shown_in.setdefault(part, []).append(scene_step_name(name))
+    """The export files that describe a part, as found in ``staging``: what each
+    export kind names for it (:func:`tactcad.export.kinds.bom_file_kinds`, in
+    their order: its drawing (SVG), its shop DXF files, its STEP model or, for a
+    part without a STEP file of its own, the scene STEP files that show it).
+    Only files that exist are named."""
+    listers = [kind.files_of_parts(plan, assemblies or {}) for kind in bom_file_kinds()]
 
     def files(spec: PartSpec) -> list[str]:
-        cand = [drawing_name(spec.name)]
-        cand += dxf_of.get(spec.name, [])
-        cand += [part_step_name(spec.name)]
-        found = [c for c in cand if (staging / c).is_file()]
-        if part_step_name(spec.name) not in found:
-            found += [c for c in shown_in.get(spec.name, []) if (staging / c).is_file()]
+        found: list[str] = []
+        for lister in listers:
+            found += [f for f in lister(spec.name, tuple(found)) if (staging / f).is_file()]
         return found
 
     return files

@@ -30,7 +30,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Sequence
 
-from tactcad.catalogue.array_catalogue import PartSpec, array_instances, array_parts
+from tactcad.catalogue.array_catalogue import PartSpec, array_parts
 from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_points
 from tactcad.errors import DesignError
@@ -92,13 +92,17 @@ def _with_start_holes(profile: Profile, start_diameter_mm: float) -> Profile:
     return replace(profile, start_holes=starts)
 
 
+#: The part modules whose parts are cut from a profile (the clamp plate is milled).
+CUT_FAMILIES = ("element", "spacer")
+
+
 def shop_profiles(plan: Plan) -> list[ShopProfile]:
     """The cut profiles of ``plan``: the distinct elements in order of first use,
-    then the spacer. Quantities count the array's instances."""
-    specs = array_parts(plan)
-    counts: dict[str, int] = {}
-    for inst in array_instances(plan):
-        counts[inst.part] = counts.get(inst.part, 0) + 1
+    then the spacer. Quantities count the plan's element slots and spacers."""
+    specs = array_parts(plan, CUT_FAMILIES)
+    counts: dict[str, int] = {"spacer": len(plan.spacer_placements)}
+    for slot in plan.slots:
+        counts[slot.geometry.part_name] = counts.get(slot.geometry.part_name, 0) + 1
     out = []
     for name in plan.distinct_elements:
         g = specs[name].geometry

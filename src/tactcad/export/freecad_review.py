@@ -107,7 +107,7 @@ def location_matrix(location) -> Matrix:
 
 
 def scene_review_assembly(scene, solids: dict, step: str) -> ReviewAssembly:
-    """The review assembly of a built scene (:mod:`tactcad.assembly.scenes`): its
+    """The review assembly of a built scene (:mod:`tactcad.assembly.scene_solver`): its
     shown parts with their solids and colours, its instances by group."""
     parts = tuple(ReviewPart(n, solids[n], tuple(spec.color)) for n, spec in scene.parts().items())
     inst = tuple(ReviewInstance(i.name, i.part, i.group, location_matrix(i.location))

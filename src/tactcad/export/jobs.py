@@ -18,13 +18,13 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Sequence
 
-from tactcad.assembly.inventory import assembly_review, fabricated_parts
+from tactcad.assembly.inventory import assembly_review, fabricated_parts, instance_counts
 from tactcad.assembly.rig_models import shown_instances
 from tactcad.drawings.compose import drawing_inputs
 from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, ASSEMBLY_DRAWING, PDF_NAME, drawing_name,
                                     drawing_png_name, part_step_name, scene_glb_name,
-                                    scene_step_name)
-from tactcad.export.dxf_sheet import dxf_version_option, write_shop_dxf_files
+                                    scene_step_name, sheet_dxf_name)
+from tactcad.export.dxf_sheet import dxf_version_option, shop_profiles, write_shop_dxf_files
 from tactcad.export.freecad_review import freecad_identity
 from tactcad.export.job import Job, Run
 from tactcad.export.kinds import EXPORT_KINDS, full_export_kinds
@@ -262,10 +262,7 @@ def _drawing_png(part: str, page: int):
 
 # --- the array image and the bill of materials ----------------------------------------------
 def image_jobs(run: Run, before: list[Job]) -> list[Job]:
-    return [image_job(run)]
-
-
-def image_job(run: Run) -> Job:
+    """``images/array.png``: the array rendered from the run's part meshes."""
     plan = run.plan
     specs, inst = run.array
     title = (f"{plan.name}: {plan.rows} x {plan.columns} elements, pitch "
@@ -283,22 +280,46 @@ def image_job(run: Run) -> Job:
             "n", render_assembly_png(meshes, inst, colors, tmp, title)))
         run.log(f"  wrote {ARRAY_PNG} ({box['n']} triangles)")
         return [{"path": ARRAY_PNG, "part": "array", "kind": "image-png", "triangles": box["n"]}]
-    return Job("image:array", content_key("array-png", RENDER_VERSION, list(specs.values()), inst,
-                                          title), make, tuple(specs.values()))
+    return [Job("image:array", content_key("array-png", RENDER_VERSION, list(specs.values()),
+                                           inst, title), make, tuple(specs.values()))]
 
 
 def bom_jobs(run: Run, before: list[Job]) -> list[Job]:
-    return [bom_job(run, before)]
-
-
-def bom_job(run: Run, before: list[Job]) -> Job:
-    """The BOM names the files of the jobs before it, so its key holds theirs."""
+    """``bom.csv`` and ``bom.md``. The BOM names the files of the jobs before it, so its key holds theirs."""
     def make(run: Run) -> list[dict]:
         from tactcad.export.bom import write_bom_files
 
         return write_bom_files(run.plan, run.staging, run.log, run.inventory)
-    return Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]), make,
-               after=tuple(j.name for j in before))
+    return [Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]),
+                make, after=tuple(j.name for j in before))]
+
+
+# --- the files of each kind that describe a part, for the BOM's files column ------------------
+def drawing_part_files(plan, assemblies):
+    """``drawings/<part>.svg``."""
+    return lambda part, found: [drawing_name(part)]
+
+
+def dxf_part_files(plan, assemblies):
+    """A cut part's profile DXF (with its quantity) and the nested sheet it is cut from."""
+    dxf_of = {sp.part: [sp.file_name, sheet_dxf_name(sp.material, sp.thickness_mm)]
+              for sp in shop_profiles(plan)}
+    return lambda part, found: dxf_of.get(part, [])
+
+
+def step_part_files(plan, assemblies):
+    """``step/<part>.step``."""
+    return lambda part, found: [part_step_name(part)]
+
+
+def scene_part_files(plan, assemblies):
+    """The scene STEP files that show a part, for a part without a STEP file of its own."""
+    shown_in: dict[str, list[str]] = {}
+    for name, inst in assemblies.items():
+        for part in instance_counts(inst):
+            shown_in.setdefault(part, []).append(scene_step_name(name))
+    return lambda part, found: ([] if part_step_name(part) in found
+                                else shown_in.get(part, []))
 
 
 # --- the review page: scenes, sheets, BOM and facts in one offline HTML file ------------------
@@ -334,10 +355,6 @@ def review_contents_of(run: Run, *folders: Path):
 
 
 def review_page_jobs(run: Run, before: list[Job]) -> list[Job]:
-    return [review_page_job(run, before)]
-
-
-def review_page_job(run: Run, before: list[Job]) -> Job:
     """``review/index.html`` from the files of the jobs before it (its key holds theirs)."""
     from tactcad.export.review_assets import assets_identity
 
@@ -351,6 +368,6 @@ def review_page_job(run: Run, before: list[Job]) -> Job:
                 f"{len(contents.data['sheets'])} sheets)")
         return [{"path": REVIEW_PAGE, "part": "review", "kind": "review-page",
                  "scenes": len(contents.scenes), "sheets": len(contents.data["sheets"])}]
-    return Job("review:page", content_key("review-page", [j.key for j in before],
-                                          assets_identity()),
-               make, after=tuple(j.name for j in before))
+    return [Job("review:page", content_key("review-page", [j.key for j in before],
+                                           assets_identity()),
+                make, after=tuple(j.name for j in before))]

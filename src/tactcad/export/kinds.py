@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Iterable
+from typing import TYPE_CHECKING, Callable, Iterable, Sequence
 
 from tactcad.errors import DesignError
 
@@ -37,6 +37,13 @@ class ExportKind:
         part_prefix: the prefix of its jobs that write one part alone, named
             after the colon (``step:cart``), or None.
         in_full_export: False for a kind written only when ``--only`` names it.
+        part_files: the name of a function in ``module``,
+            ``function(plan, assemblies) -> files(part, found) -> [path, ...]``,
+            giving the files of the kind that describe a part (``found``: the
+            files of the kinds before it in the BOM), for the BOM's files
+            column; None when its files describe no single part.
+        bom_rank: the place of its files in that column (smaller first: a
+            shop reads the drawing, then the DXF, then the models).
     """
 
     name: str
@@ -46,10 +53,19 @@ class ExportKind:
     function: str
     part_prefix: str | None = None
     in_full_export: bool = True
+    part_files: str | None = None
+    bom_rank: int = 0
 
     def jobs(self, run: "Run", before: list["Job"]) -> list["Job"]:
         """The kind's jobs for ``run``, after the jobs ``before``."""
         return getattr(importlib.import_module(self.module), self.function)(run, before)
+
+    def files_of_parts(self, plan, assemblies) -> Callable[[str, Sequence[str]], list[str]]:
+        """``files(part, found)``: the kind's files describing ``part`` (see
+        :attr:`part_files`); no files when the kind names none."""
+        if self.part_files is None:
+            return lambda part, found: []
+        return getattr(importlib.import_module(self.module), self.part_files)(plan, assemblies)
 
 
 #: The kinds in run order (the manifest's order of files).
@@ -74,13 +90,14 @@ def register_kind(kind: ExportKind) -> None:
 _JOBS = "tactcad.export.jobs"
 for _kind in (
         ExportKind("step", ("step",), "step/<part>.step, step/array.step", _JOBS, "step_jobs",
-                   part_prefix="step"),
+                   part_prefix="step", part_files="step_part_files", bom_rank=3),
         ExportKind("dxf", ("dxf",), "dxf/<part>_qty<n>.dxf, dxf/sheet_<material>_<t>mm.dxf",
-                   _JOBS, "dxf_jobs"),
+                   _JOBS, "dxf_jobs", part_files="dxf_part_files", bom_rank=2),
         ExportKind("scenes", ("scene",), "scenes/<scene>.step (Z up) and .glb", _JOBS,
-                   "scene_and_review_jobs"),
+                   "scene_and_review_jobs", part_files="scene_part_files", bom_rank=4),
         ExportKind("drawings", ("drawing", "drawings"), "drawings/<part>.svg, drawings.pdf",
-                   _JOBS, "drawing_jobs", part_prefix="drawing"),
+                   _JOBS, "drawing_jobs", part_prefix="drawing", part_files="drawing_part_files",
+                   bom_rank=1),
         ExportKind("images", ("image",), "images/*.png", _JOBS, "image_jobs"),
         ExportKind("bom", ("bom",), "bom.csv, bom.md", _JOBS, "bom_jobs"),
         # the FreeCAD review files are planned with the scenes they show
@@ -88,8 +105,15 @@ for _kind in (
                    "review/index.html, review/<scene>.FCStd (with FreeCAD installed)", _JOBS,
                    "review_page_jobs"),
         ExportKind("stl", ("stl",), "stl/<part>.stl", "tactcad.export.stl", "stl_jobs",
-                   part_prefix="stl", in_full_export=False)):
+                   part_prefix="stl", in_full_export=False, part_files="stl_part_files",
+                   bom_rank=5)):
     register_kind(_kind)
+
+
+def bom_file_kinds() -> list[ExportKind]:
+    """The kinds whose files the BOM names per part, in the column's order."""
+    return sorted((k for k in EXPORT_KINDS.values() if k.part_files is not None),
+                  key=lambda k: k.bom_rank)
 
 
 def full_export_kinds() -> tuple[str, ...]:

@@ -77,8 +77,10 @@ class Loop:
             self.log(f"refused (the last good export stays):\n{text}")
             self.state.refuse(text, back_to_current=True)
             return False
+        unmet = unmet_requirements(self.out)
         self.log(f"export current in {time.perf_counter() - t0:.2f} s ({result.jobs_run} jobs "
-                 f"run, {result.jobs_reused} reused; {self._made_by(result.worker_jobs)})")
+                 f"run, {result.jobs_reused} reused; {self._made_by(result.worker_jobs)})"
+                 + (f"; {unmet_words(unmet, self.out)}" if unmet else ""))
         return True
 
     def _export(self, project: Project, t0: float):
@@ -103,7 +105,8 @@ class Loop:
         self.project = project
         run = Run(project, self.out)
         self.state.publish(plan.design_hash, "current", review_contents_of(run, self.out),
-                           (self.out / REVIEW_PAGE).read_bytes(), self._checks_js())
+                           (self.out / REVIEW_PAGE).read_bytes(), self._checks_js(),
+                           unmet=tuple(unmet_requirements(self.out)))
         self._keep_parts_of(run)
         return result
 
@@ -165,3 +168,25 @@ def changes(files: Iterable[Path], poll: bool, stop: threading.Event | None = No
         if found or first:  # an empty set: nothing changed within rust_timeout
             first = False
             yield
+
+
+def _matrix(out: Path) -> list[dict]:
+    """The closed-form verification matrix the export's manifest holds ([] when none)."""
+    import json
+
+    try:
+        doc = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+    return list((doc.get("requirements") or {}).get("closed_form_matrix") or [])
+
+
+def unmet_requirements(out: Path) -> list[str]:
+    """The requirements the export's design fails (verdict ``fail`` at the closed form)."""
+    return [r["requirement"] for r in _matrix(out)
+            if r.get("verdict", "pass" if r.get("pass") else "fail") == "fail"]
+
+
+def unmet_words(unmet: list[str], out: Path) -> str:
+    """``3 of 7 requirements not met: a, b, c``."""
+    return f"{len(unmet)} of {len(_matrix(out))} requirements not met: {', '.join(unmet)}"

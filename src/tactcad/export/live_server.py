@@ -53,6 +53,8 @@ class LiveState:
     view: LiveView = field(default_factory=LiveView)
     kept: LiveView = field(default_factory=LiveView)
     checks_js: bytes | None = None
+    #: the requirements the shown design does not meet (their verdict is ``fail``)
+    unmet: tuple[str, ...] = ()
     #: what the last state published as "current" showed (contents, design sha256, the
     #: checks' JSON), shown again when the export after a preview fails
     current: tuple[ReviewContents | None, str, str | None] | None = None
@@ -63,10 +65,11 @@ class LiveState:
     on_change: Callable[[], None] | None = field(default=None, repr=False, compare=False)
 
     def publish(self, sha256: str, status: str, contents: ReviewContents | None = None,
-                page: bytes | None = None, checks_js: str | None = None) -> None:
+                page: bytes | None = None, checks_js: str | None = None,
+                unmet: tuple[str, ...] = ()) -> None:
         """Show ``contents`` of design ``sha256`` (and ``review/checks.js``'s text,
         when the export has one); ``page``: a new exported page for ``GET /``
-        (None: the last one stays)."""
+        (None: the last one stays); ``unmet``: the requirements it fails."""
         checks = checks_json(checks_js)
         with self.lock:
             seq = self.seq + 1
@@ -76,7 +79,7 @@ class LiveState:
             if page is not None:
                 self.page = page
             self.checks_js = checks_js.encode("utf-8") if checks_js else None
-            self.status, self.refusal = status, None
+            self.status, self.refusal, self.unmet = status, None, tuple(unmet)
             self.previewed = status != "current"
             if not self.previewed:
                 self.current = (contents, sha256, checks)
@@ -111,6 +114,7 @@ class LiveState:
                                  {d: b for d, b in sheets.items() if b is not None})
             self.seq, self.sha256 = update["seq"], update["sha256"]
             self.status, self.refusal = update["status"], update["refusal"]
+            self.unmet = tuple(update["unmet"])
             self.checks_js = update["checks_js"]
             if update["page"] is not None:
                 self.page = update["page"]
@@ -128,7 +132,7 @@ class LiveState:
 
     def _state_json(self) -> bytes:
         return json.dumps({"seq": self.seq, "sha256": self.sha256, "refusal": self.refusal,
-                           "status": self.status}).encode()
+                           "status": self.status, "unmet": list(self.unmet)}).encode()
 
     def response(self, path: str) -> tuple[bytes, str] | None:
         """The body and content type of ``GET path``; None: not found."""
@@ -168,7 +172,7 @@ def state_update(state: LiveState, held: Held) -> tuple[dict, Held]:
     with state.lock:
         page = state.page if state.page is not held.page and state.page else None
         update = {"seq": state.seq, "sha256": state.sha256, "status": state.status,
-                  "refusal": state.refusal, "data": state.view.data,
+                  "refusal": state.refusal, "unmet": state.unmet, "data": state.view.data,
                   "checks_js": state.checks_js, "page": page,
                   "glbs": {d: None if d in held.glbs else b for d, b in state.kept.glbs.items()},
                   "sheets": {d: None if d in held.sheets else b

@@ -53,7 +53,7 @@ def mesh_instances(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], ins
     Args:
         part_meshes: part name -> (vertices (n, 3) mm, triangles (m, 3) int),
             part frame, as :meth:`tactcad.solids.cache.PartCache.mesh` gives them.
-        instances: :class:`tactcad.catalogue.array.Instance` objects.
+        instances: :class:`tactcad.catalogue.array_catalogue.Instance` objects.
 
     Returns:
         (triangles (n, 3, 3) in mm, part index per triangle, instance index

@@ -6,7 +6,8 @@ sheet (SVG), the BOM, each element's stiffness and strength, the manifest's
 facts (design sha256, versions; a verification matrix when the manifest has
 one) and three.js itself (:mod:`tactcad.export.review_assets`). The results
 of ``tactcad check`` join it later as ``review/checks.js`` beside it
-(:func:`write_checks_script`), shown only when they are for the same design.
+(:mod:`tactcad.checks.review_results`), shown only when they are for the same
+design.
 
 The page is written from the files the run wrote before it (nothing is built
 again), with fixed key order, so the same export writes the same bytes.
@@ -25,7 +26,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
-from typing import Iterable, Mapping, Sequence
+from typing import Mapping, Sequence
 
 from tactcad.atomic import write_bytes_atomic
 
@@ -40,7 +41,7 @@ def _template() -> tuple[str, str]:
             (data / "review_page.js").read_text(encoding="utf-8"))
 
 
-def _json_in_html(value) -> str:
+def json_in_html(value) -> str:
     """JSON safe inside a ``<script>`` element (no ``</script>``, no ``<!--``)."""
     text = json.dumps(value, sort_keys=True, ensure_ascii=False, allow_nan=False)
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
@@ -85,7 +86,7 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
             the verification matrix, else one is made from ``requirements``).
         sheets: (export path, title, SVG text) of every drawing sheet, in order.
         scenes: GLB bytes by scene name, in the order of the page's scene list.
-        elements: :func:`tactcad.mechanics.strength.strength_summary` records.
+        elements: :func:`tactcad.mechanics.element_strength.strength_summary` records.
     """
     manifest = {k: v for k, v in facts.items() if k != "files"}
     if "verification" not in manifest and manifest.get("requirements"):
@@ -103,15 +104,56 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
 
 
 def verification_view(requirements: dict) -> dict:
-    """The manifest's requirements record as the page's verification section:
-    the closed-form matrix (one row per requirement), the limits behind the
-    full-scale force (the binding one marked) and the stated or derived values."""
+    """The manifest's requirements record as the page's verification section,
+    read as ``tactcad verify`` prints it: one row per requirement (verdict,
+    target, predicted with its error, margin, what binds, level), failures
+    first, then undecided; the limits behind the full-scale force (the binding
+    one marked); the stated or derived values; and the requirements not met
+    (the page's red banner)."""
     matrix = requirements.get("closed_form_matrix") or []
-    rows = [{k: v for k, v in r.items() if k not in ("limits", "binding_words")} for r in matrix]
+    order = {"fail": 0, "undecided": 1}
+    rows = [verification_row(r) for r in sorted(
+        matrix, key=lambda r: order.get(_verdict(r), 2))]
     limits = next((r["limits"] for r in matrix if r.get("limits")), [])
-    return {"verification matrix (closed form; tactcad verify --model fem3d for the reference)": rows,
+    view = {"verification matrix (closed form; tactcad verify --model auto decides the "
+            "undecided)": rows,
             "limits behind the full-scale force": limits,
             "requirements": requirements.get("values", {})}
+    unmet = [r["requirement"] for r in matrix if _verdict(r) == "fail"]
+    if unmet:
+        view["requirements not met"] = unmet
+    return view
+
+
+def _verdict(record: dict) -> str:
+    return record.get("verdict", "pass" if record.get("pass") else "fail")
+
+
+def verification_row(r: dict) -> dict:
+    """One requirement as the page's table shows it (texts, in the CLI's columns)."""
+    err = r.get("error_estimate_rel")
+    margin = r.get("margin_rel")
+    if "measuring_element" in r:
+        binds = f"row {r['row']}: element {r['reference_element']} / {r['measuring_element']}"
+    elif "binding_words" in r:
+        element = r.get("binding_element")
+        binds = r["binding_words"] + ("" if element is None else f" (element {element})")
+    else:
+        binds = ""
+    return {"requirement": r["requirement"], "verdict": _verdict(r).upper(),
+            "target": _text(r.get("target")),
+            "predicted": _text(r.get("predicted"))
+            + ("" if err is None else f" \u00b1 {100 * err:.2g} %"),
+            "margin": "n/a" if margin is None else f"{100 * margin:+.1f} %",
+            "binds": binds, "model": r.get("model", "")}
+
+
+def _text(v) -> str:
+    if v is None:
+        return "none"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_text(x) for x in v) + "]"
+    return f"{v:.4g}" if isinstance(v, float) else str(v)
 
 
 def page_html(contents: ReviewContents, import_map: str) -> str:
@@ -126,7 +168,7 @@ def page_html(contents: ReviewContents, import_map: str) -> str:
     values = {"SHA256": html.escape(sha),
               "TITLE": html.escape(f"{data['manifest']['design']['name']}: review"),
               "IMPORTMAP": import_map.replace("</", "<\\/"),
-              "DATA": _json_in_html(data), "SCENES": _json_in_html(scenes), "SCRIPT": script}
+              "DATA": json_in_html(data), "SCENES": json_in_html(scenes), "SCRIPT": script}
     # one pass: a value holding a token's text is never replaced again
     return re.sub(r"@@([A-Z0-9]+)@@", lambda m: values[m.group(1)], page)
 
@@ -140,28 +182,3 @@ def write_review_page(path: Path, contents: ReviewContents, import_map: str) -> 
     body = page_html(contents, import_map).encode("utf-8")
     write_bytes_atomic(path, body)
     return len(body)
-
-
-def checks_script(design_sha256: str, results: Iterable) -> str:
-    """``review/checks.js``: the check results for the page (``window.TACTCAD_CHECKS``)."""
-    checks = [{"check": r.check, "subject": r.subject, "passed": bool(r.passed),
-               "detail": r.detail} for r in results]
-    bad = sum(not c["passed"] for c in checks)
-    doc = {"design_sha256": design_sha256, "passed": len(checks) - bad, "failed": bad,
-           "checks": checks}
-    return "window.TACTCAD_CHECKS = " + _json_in_html(doc) + ";\n"
-
-
-def write_checks_script(out_dir: Path, design_sha256: str, results: Iterable) -> Path | None:
-    """Write ``review/checks.js`` into an export that has a review page; its path, or
-    None when there is no page to show it.
-
-    Raises:
-        OSError: the file cannot be written.
-    """
-    page = Path(out_dir) / REVIEW_PAGE
-    if not page.is_file():
-        return None
-    path = Path(out_dir) / CHECKS_SCRIPT
-    write_bytes_atomic(path, checks_script(design_sha256, results).encode("utf-8"))
-    return path

@@ -4,7 +4,7 @@ sample mould or a stand-in part, or for a viewer that reads no STEP.
 
 Each file is the run's triangle mesh of the part in its own frame (the mesh
 the scenes and pictures use: chordal tolerance
-:data:`tactcad.solids.mesh.MESH_TOLERANCE_MM`), outward winding, as trimesh
+:data:`tactcad.solids.tessellation.MESH_TOLERANCE_MM`), outward winding, as trimesh
 writes binary STL: the same part writes the same bytes.
 """
 
@@ -28,6 +28,11 @@ def stl_jobs(run: Run, before: list[Job]) -> list[Job]:
     specs, _ = run.inventory
     return [Job(f"stl:{name}", content_key("stl-part", spec, MESH_TOLERANCE_MM), _part_stl(spec),
                 (spec,)) for name, spec in specs.items()]
+
+
+def stl_part_files(plan, assemblies):
+    """``stl/<part>.stl``, for the BOM's files column when the STL files are written."""
+    return lambda part, found: [stl_name(part)]
 
 
 def _part_stl(spec):

@@ -46,3 +46,13 @@ def matrix(loc: bd.Location) -> np.ndarray:
     t = loc.wrapped.Transformation()
     return np.array([[t.Value(r, c) for c in range(1, 5)] for r in range(1, 4)] + [[0, 0, 0, 1]],
                     dtype=float)
+
+
+def placed(shape: bd.Shape, loc: bd.Location) -> bd.Shape:
+    """A copy of ``shape`` moved by ``loc`` (its label and colour kept)."""
+    return shape.moved(loc)
+
+
+def relative(a: bd.Location, b: bd.Location) -> bd.Location:
+    """The location of ``b`` seen from ``a`` (``a`` inverted, then ``b``)."""
+    return a.inverse() * b

@@ -222,17 +222,18 @@ def _unit_kobj_resolution(km: float, kr: float, dfm: float, dfr: float,
     return float(np.max(res["K_obj_resolution_rel"]))
 
 
-def array_resolution_rel(kr: float, dfr: float, measuring: list[tuple[float, float]],
+def array_resolution_rel(units: list[tuple[float, float, float, float]],
                          rng: tuple[float, float], force_N: float) -> float | None:
     """Worst relative K_obj resolution over the range of the array's best unit at each K_obj;
-    ``measuring`` = [(K_m, force resolution of that element)] (N/mm, N)."""
+    ``units`` = [(K_r, force resolution of the row's reference, K_m, force resolution of the
+    measuring element)] (N/mm, N, N/mm, N), one per measuring element."""
     from tactcad.mechanics.resolution import KOBJ_POINTS, unit_resolution
 
-    if not measuring:
+    if not units:
         return None
     k_obj = np.geomspace(*rng, KOBJ_POINTS)
     best = np.full(k_obj.shape, np.inf)
-    for km, dfm in measuring:
+    for kr, dfr, km, dfm in units:
         r = unit_resolution(km, kr, k_obj, force_N, dfm, force_resolution_reference_N=dfr)
         best = np.minimum(best, r["K_obj_resolution_rel"])
     return float(np.max(best))
@@ -270,21 +271,19 @@ def readout_report(plan: Plan, requirements, model: str = "closed-form",
         eps = gauge_strain_per_N(g, plan.material, chain.grid_length_mm, model)
         s = chain.volts_per_strain * eps["grid"]
         per_part[name] = {"K": k, "eps": eps, "S": s, "dF": noise["reading"] / abs(s)}
-    ks = {slot.number: per_part[slot.geometry.part_name]["K"] for slot in plan.slots}
-    kr = max(ks.values())
-    ref = min(n for n, k in ks.items() if k >= kr * (1 - 1e-9))
-    dfr = per_part[plan.element(ref).geometry.part_name]["dF"]
-    records, measuring = [], []
+    records, units = [], []
     for slot in plan.slots:
         d = per_part[slot.geometry.part_name]
-        is_ref = ks[slot.number] >= kr * (1 - 1e-9)
+        ref = plan.reference_of(slot.row)  # each row reads against its own reference
+        r = per_part[ref.geometry.part_name]
+        is_ref = slot.number == ref.number
         kobj_res = None
-        if not is_ref:
-            kobj_res = _unit_kobj_resolution(d["K"], kr, d["dF"], dfr, rng, F)
-            measuring.append((d["K"], d["dF"]))
-        records.append(_element_record(slot, d, is_ref, ref, kobj_res, chain, F))
+        if d["K"] < r["K"] * (1 - 1e-9):  # a unit: softer than its row's reference
+            kobj_res = _unit_kobj_resolution(d["K"], r["K"], d["dF"], r["dF"], rng, F)
+            units.append((r["K"], r["dF"], d["K"], d["dF"]))
+        records.append(_element_record(slot, d, is_ref, ref.number, kobj_res, chain, F))
     return ReadoutReport(plan.name, model, chain, noise, F, rng, records,
-                         array_resolution_rel(kr, dfr, measuring, rng, F))
+                         array_resolution_rel(units, rng, F))
 
 
 def _element_record(slot, d: dict, is_ref: bool, ref: int, kobj_res: float | None,

@@ -147,7 +147,7 @@ FULL_SCALE_STEPS = 6
 
 
 def simulate_design_calibration(plan, model: str = "closed-form",
-                                gauge_gain_V_per_strain: float = DEFAULT_GAUGE_GAIN_V_PER_STRAIN,
+                                gauge_gain_V_per_strain: float | None = None,
                                 noise_force_N: float = 0.001,
                                 noise_signal_V: float = cal.DEFAULT_NOISE_SIGNAL_V,
                                 seed: int | None = 0,
@@ -156,7 +156,11 @@ def simulate_design_calibration(plan, model: str = "closed-form",
                                 ) -> dict[int, cal.CalibrationData]:
     """The paper's calibration rig run on every element of a plan (Fig. 4 data).
 
-    K and ε from the ladder at ``model``; K_v = G ε K; V0 = 0; 25 um steps to
+    K and ε from the ladder at ``model``; K_v = G ε K; V0 = 0. Without a
+    ``gauge_gain_V_per_strain``, G and ε are the design's read-out chain's
+    (:func:`tactcad.mechanics.readout_chain.readout_chain`: G V_ex GF / 4 on the
+    grid-averaged strain), so each element's V/N is ``tactcad readout``'s;
+    with one, ε is the peak strain at the hinge. 25 um steps to
     150 um (with ``full_scale_force_N``: six equal steps up to the Z travel at
     which the element carries that force), three runs, Gaussian noise on
     force and signal; the force gauge in series has stiffness
@@ -168,9 +172,13 @@ def simulate_design_calibration(plan, model: str = "closed-form",
     Raises:
         CalibrationError: a gain of 0 or non-finite, or negative noise.
     """
-    if not (np.isfinite(gauge_gain_V_per_strain) and gauge_gain_V_per_strain != 0):
+    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+
+    if gauge_gain_V_per_strain is not None and not (
+            np.isfinite(gauge_gain_V_per_strain) and gauge_gain_V_per_strain != 0):
         raise cal.CalibrationError(
             f"gauge_gain_V_per_strain = {gauge_gain_V_per_strain!r}: allowed a finite value != 0")
+    chain = readout_chain(plan) if gauge_gain_V_per_strain is None else None
     rng = np.random.default_rng(seed)
     out = {}
     cache = {}
@@ -179,7 +187,11 @@ def simulate_design_calibration(plan, model: str = "closed-form",
         if key not in cache:
             cache[key] = _at_web(model, slot.geometry, plan.material, slot.geometry.web_thickness_mm)
         r = cache[key]
-        k_v = gauge_gain_V_per_strain * r.gauge_strain_per_N * r.stiffness_N_per_mm
+        if chain is None:
+            k_v = gauge_gain_V_per_strain * r.gauge_strain_per_N * r.stiffness_N_per_mm
+        else:  # the design's read-out: the volts per newton tactcad readout reports
+            eps = gauge_strain_per_N(slot.geometry, plan.material, chain.grid_length_mm, model)
+            k_v = chain.volts_per_strain * eps["grid"] * r.stiffness_N_per_mm
         steps = {}
         if full_scale_force_N is not None:  # Z travel (um) at which the element carries F
             z_max = full_scale_force_N / cal.apparent_stiffness(

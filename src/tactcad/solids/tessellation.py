@@ -13,6 +13,8 @@ def tessellate(solid, tolerance_mm: float = MESH_TOLERANCE_MM,
                angular_tolerance: float = MESH_ANGULAR_TOLERANCE) -> tuple[np.ndarray, np.ndarray]:
     """Triangle mesh of a solid: vertices (n, 3) float64 in mm, triangles
     (m, 3) int64, outward winding; chordal tolerance in mm, angular in rad."""
-    verts, tris = solid.tessellate(tolerance_mm, angular_tolerance)
+    from tactcad.kernel.inspect import triangulate
+
+    verts, tris = triangulate(solid, tolerance_mm, angular_tolerance)
     return (np.array([tuple(p) for p in verts], dtype=np.float64).reshape(-1, 3),
             np.array(tris, dtype=np.int64).reshape(-1, 3))

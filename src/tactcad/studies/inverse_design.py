@@ -215,6 +215,14 @@ def reference_elements(rows: int, columns: int) -> tuple[int, ...]:
     return tuple(r * columns + col + 1 for r in range(rows))
 
 
+def reference_column_words(columns: int) -> str:
+    """Which column :func:`reference_elements` takes, in words for the design's reasons."""
+    col = (columns - 1) // 2 + 1
+    if columns % 2:
+        return f"column {col} of {columns}, the middle one"
+    return f"column {col} of {columns}, the lower of the two middle ones"
+
+
 def tip_root_min_arm_mm(tip_width_mm: float, corner_radius_mm: float, notch_radius_mm):
     """Shortest arm whose tip-root fillet clears the notch by 0.5 mm (the rule
     of :func:`tactcad.design.plan_from_dict`), mm; broadcasts over R."""
@@ -612,8 +620,10 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
         f"full-scale force {targets.full_scale_force_N:g} N (K_r {targets.k_r:.4g}, K_m "
         f"{targets.k_m:.4g} N/mm)")}
     why = data.setdefault("assumptions", {})
+    data["arms"]["reference_elements"] = list(refs)  # each row declares its reference
     why["arms.lengths_mm"] = (
-        f"tactcad design: elements {' and '.join(map(str, refs))} (middle column of each row) are "
+        f"tactcad design: elements {' and '.join(map(str, refs))} ({reference_column_words(plan.columns)}"
+        f" of each row) are "
         f"the references, arm {a_r:g} mm for K_r = {targets.k_r:.4g} N/mm; the others measure, "
         f"arm {a_m:g} mm for K_m = {targets.k_m:.4g} N/mm = sqrt(K_lo K_hi / X) (corrected "
         f"closed form).")

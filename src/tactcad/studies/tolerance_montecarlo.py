@@ -55,6 +55,11 @@ from tactcad.mechanics.closed_form import closed_form_compliance, correction_coo
 from tactcad.mechanics.correction import Correction, load_correction
 from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
 
+#: The Monte Carlo draw every command shares (``tolerance``'s defaults and
+#: ``verify``'s toleranced band), so both print the same band.
+MONTE_CARLO_SAMPLES = 10_000
+MONTE_CARLO_SEED = 0
+
 #: Samples per independently seeded chunk (the unit of work of a Dask run).
 CHUNK_SAMPLES = 2500
 #: Default tolerances the design file does not carry (see module docstring).

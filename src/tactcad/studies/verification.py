@@ -184,6 +184,43 @@ def units_of(fig: Figures, plan: Plan) -> tuple[float, list[float]]:
     return kr, kms
 
 
+@dataclass(frozen=True)
+class RowPair:
+    """A row's reference and the softest measuring element of that row at one level.
+
+    Attributes:
+        row: 0-based row; reference, measuring: element numbers.
+        ratio: K_r / K_m of the pair; *_error_rel: the level's K error estimates.
+    """
+
+    row: int
+    reference: int
+    measuring: int
+    ratio: float
+    reference_error_rel: float
+    measuring_error_rel: float
+
+    def as_json(self, target: float) -> dict:
+        return {"row": self.row + 1, "reference_element": self.reference,
+                "measuring_element": self.measuring, "kr_over_km": self.ratio,
+                "margin_rel": self.ratio / target - 1.0}
+
+
+def row_pairs(plan: Plan, fig: Figures) -> list[RowPair]:
+    """Per row, its reference (:attr:`~tactcad.design.array_plan.Plan.references`)
+    over the softest other element of the row (the row's smallest K_r / K_m);
+    a row of one element pairs the reference with itself (ratio 1)."""
+    out = []
+    for row in range(plan.rows):
+        ref = plan.reference_of(row)
+        others = [s for s in plan.row_slots(row) if s.number != ref.number] or [ref]
+        soft = min(others, key=lambda s: (fig.k_of(s.number), s.number))
+        out.append(RowPair(row, ref.number, soft.number, fig.k_of(ref.number) / fig.k_of(soft.number),
+                           fig.k_error[ref.geometry.part_name],
+                           fig.k_error[soft.geometry.part_name]))
+    return out
+
+
 def resolution_rel(kr: float, kms: list[float], k_obj: np.ndarray, force_N: float) -> np.ndarray:
     """The array's relative K_obj resolution at each K_obj: its best unit's
     (inf where no element is softer than the reference)."""
@@ -326,15 +363,14 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
                        binding_element=b.element,
                        limits=[lim.as_json(lim is b) for lim in kinds.values()]))
     kr, kms = units_of(fig, plan)
-    ref = max(plan.slots, key=lambda s: fig.k_of(s.number))
-    err_r = fig.k_error[ref.geometry.part_name]
-    soft = min(plan.slots, key=lambda s: fig.k_of(s.number))
-    err_m = fig.k_error[soft.geometry.part_name]
-    ratio = kr / kms[0] if kms else 1.0
-    m = ratio / req.kr_over_km - 1.0
-    out.append(_record("kr_over_km", req.kr_over_km, ratio, err_r + err_m, m, model,
-                       m >= -req.k_tolerance_rel, reference_element=ref.number,
-                       measuring_element=soft.number))
+    pairs = row_pairs(plan, fig)
+    worst = min(pairs, key=lambda q: (q.ratio, q.row))
+    err_r, err_m = worst.reference_error_rel, worst.measuring_error_rel
+    m = worst.ratio / req.kr_over_km - 1.0
+    out.append(_record("kr_over_km", req.kr_over_km, worst.ratio, err_r + err_m, m, model,
+                       m >= -req.k_tolerance_rel, reference_element=worst.reference,
+                       measuring_element=worst.measuring, row=worst.row + 1,
+                       pairs=[q.as_json(req.kr_over_km) for q in pairs]))
     band = web_band_rel(plan)
     out.append(_record("k_tolerance_rel", req.k_tolerance_rel, band, closed_form_k_error(plan),
                        req.k_tolerance_rel / band - 1.0 if band > 0 else math.inf,
@@ -361,7 +397,95 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     out.append(toleranced_band_record(plan, req.k_tolerance_rel, closed_form_k_error(plan)))
     for r in out:
         r["stated"] = r["requirement"] in req.stated
+        # the K band is the closed form's derivative at every level: no level decides it anew
+        r["level_fixed"] = r["model"] != model or r["requirement"] in LEVEL_FIXED
+        threshold = -req.k_tolerance_rel if r["requirement"] == "kr_over_km" else 0.0
+        r["verdict"] = verdict(r["margin_rel"], r["error_estimate_rel"], threshold, r["pass"])
     return out
+
+
+#: Requirements computed the same way at every level (the K band over the web tolerance).
+LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced")
+
+#: A requirement's verdict at one level (:func:`verdict`).
+VERDICTS = ("pass", "fail", "undecided")
+
+
+def verdict(margin_rel: float | None, error_rel: float | None, threshold_rel: float,
+            nominal_pass: bool) -> str:
+    """``pass`` when the margin clears its threshold by more than the level's
+    error estimate, ``fail`` when it misses it by more, else ``undecided``
+    (the level cannot tell). Without a finite margin or error: the nominal
+    verdict.
+
+    Args:
+        margin_rel: the record's margin (positive: met), or None (infinite).
+        error_rel: the prediction's relative error estimate, or None.
+        threshold_rel: the margin the requirement needs (0; -K band for K_r/K_m).
+        nominal_pass: the verdict on the nominal prediction.
+    """
+    if margin_rel is None or error_rel is None or not math.isfinite(error_rel):
+        return "pass" if nominal_pass else "fail"
+    clearance = margin_rel - threshold_rel
+    if clearance >= error_rel:
+        return "pass"
+    if clearance < -error_rel:
+        return "fail"
+    return "undecided"
+
+
+def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
+                      requirements: Requirements | None = None,
+                      stress: Callable | None = None,
+                      levels: tuple[str, ...] | None = None) -> tuple[list[dict], list[dict]]:
+    """The verification matrix at the cheapest level that decides each
+    requirement: the closed form first, then each level up the ladder
+    (:func:`tactcad.mechanics.ladder.models`) only while a requirement is
+    ``undecided`` and a higher level computes it anew (the K band over the
+    web tolerance is the closed form's at every level, so it does not climb).
+    Each record holds the figures of the level that decided it, ``decided_by``
+    (that level, or None when still undecided) and ``levels_tried``.
+
+    Args:
+        stress: as :func:`verification_matrix` (needed once a FEM level runs).
+        levels: the ladder to climb; default every level, cheapest first.
+
+    Returns:
+        (records in the matrix's order, [{"model", "seconds", "undecided_before"}]
+        per level run).
+    """
+    import time
+
+    from tactcad.mechanics.ladder import models
+
+    ladder = tuple(levels or models())
+    req = requirements or requirements_of(plan)
+    chosen: dict[str, dict] = {}
+    order: list[str] = []
+    spent: list[dict] = []
+    for i, level in enumerate(ladder):
+        open_before = [k for k in order if k not in chosen] if order else None
+        t0 = time.perf_counter()
+        records = verification_matrix(plan, level, progress, req, stress)
+        spent.append({"model": level, "seconds": time.perf_counter() - t0,
+                      "undecided_before": open_before})
+        order = order or [r["requirement"] for r in records]
+        top = i == len(ladder) - 1
+        # a record another level computes the same way (the K band is always the
+        # closed form's) cannot be decided by climbing: it stays undecided
+        climbable = [r for r in records if r["requirement"] not in chosen
+                     and r["verdict"] == "undecided" and not r["level_fixed"]]
+        for r in records:
+            key = r["requirement"]
+            if key in chosen:
+                continue
+            if r["verdict"] != "undecided" or top or not climbable:
+                r["decided_by"] = None if r["verdict"] == "undecided" else level
+                r["levels_tried"] = list(ladder[:i + 1])
+                chosen[key] = r
+        if len(chosen) == len(order):
+            break
+    return [chosen[k] for k in order], spent
 
 
 def readout_resolution_record(plan: Plan, fig: Figures, req: Requirements, error: float) -> dict:
@@ -382,7 +506,13 @@ def readout_resolution_record(plan: Plan, fig: Figures, req: Requirements, error
 
 
 def matrix_passed(records: list[dict]) -> bool:
-    return all(r["pass"] for r in records)
+    """True when no requirement is ``fail`` (an ``undecided`` one does not fail the matrix)."""
+    return not any(r.get("verdict", "pass" if r["pass"] else "fail") == "fail" for r in records)
+
+
+def undecided(records: list[dict]) -> list[str]:
+    """The requirements no level decided (margin inside the error estimate)."""
+    return [r["requirement"] for r in records if r.get("verdict") == "undecided"]
 
 
 def requirements_record(plan: Plan) -> dict:

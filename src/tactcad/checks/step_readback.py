@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 from tactcad.kernel.step_writer import read_step_summary
 
 VOLUME_RTOL = 1e-6

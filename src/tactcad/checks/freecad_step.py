@@ -4,7 +4,7 @@ compare what a reviewer sees (solid count, part labels, volume, bounding
 box) with the manifest's records.
 
 FreeCAD runs its own Python (the system ``python3``), so the review script
-(:mod:`tactcad.checks.freecad_script`, which imports nothing from tactcad)
+(:mod:`tactcad.checks.freecad_step_script`, which imports nothing from tactcad)
 runs in a subprocess (:func:`tactcad.export.freecad_review.run_freecad_script`)
 and writes its findings to a JSON file.
 """
@@ -15,10 +15,10 @@ import json
 import time
 from pathlib import Path
 
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 from tactcad.export.freecad_review import freecadcmd, run_freecad_script
 
-SCRIPT = Path(__file__).with_name("freecad_script.py")
+SCRIPT = Path(__file__).with_name("freecad_step_script.py")
 VOLUME_RTOL = 1e-6
 BBOX_TOL_MM = 1e-4
 

@@ -14,7 +14,7 @@ from typing import Sequence
 import ezdxf
 import shapely.geometry as sg
 
-from tactcad.checks.result import CheckResult
+from tactcad.checks.check_result import CheckResult
 from tactcad.design.array_plan import EdmRules
 from tactcad.export.dxf import CUT_LAYER, LEAD_LAYER, MARK_LAYER, START_LAYER
 from tactcad.geometry.profile import (Arc, Line, Point, Segment, contour_area, contour_bbox,

@@ -1,0 +1,159 @@
+"""Verification over every row and decided verdicts: each row's reference is
+paired with its own measuring elements; a verdict is pass, fail or undecided
+(margin inside the level's error); ``auto`` climbs the ladder only while a
+requirement it can decide is undecided."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from tactcad import cli
+from tactcad.design.array_plan import default_design_data, plan_from_dict, read_toml, with_overrides
+from tactcad.errors import DesignErrors
+from tactcad.studies.verification import (row_pairs, element_figures, verdict,
+                                            verification_auto, verification_matrix)
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+#: The example's arms with row 1's reference (element 2) lengthened 6.196 -> 8.5 mm.
+LONGER_ROW_1_REFERENCE = [19.605, 8.5, 19.605, 19.605, 6.196, 19.605]
+
+
+def example(**overrides):
+    return plan_from_dict(with_overrides(read_toml(EXAMPLE, "design"), overrides), str(EXAMPLE))
+
+
+def test_each_row_references_its_shortest_arm_unless_the_file_names_one():
+    plan = example()
+    assert plan.references == (2, 5) and "shortest arm" in plan.references_reason
+    named = example(**{"arms.reference_elements": [1, 6]})
+    assert named.references == (1, 6) and "named" in named.references_reason
+    paper = plan_from_dict(default_design_data())
+    assert paper.references == (1, 8)  # the 4 mm arms of each row
+
+
+@pytest.mark.parametrize("refs, field", [([2], "arms.reference_elements"),
+                                         ([4, 5], "arms.reference_elements[1]"),
+                                         ([2, 3], "arms.reference_elements[2]")])
+def test_a_reference_outside_its_row_is_refused_naming_the_field(refs, field):
+    with pytest.raises(DesignErrors) as err:
+        example(**{"arms.reference_elements": refs})
+    assert err.value.field == field
+
+
+def test_a_longer_reference_arm_in_one_row_fails_naming_that_rows_pair():
+    plan = example(**{"arms.lengths_mm": LONGER_ROW_1_REFERENCE})
+    pairs = row_pairs(plan, element_figures(plan))
+    assert [(q.row, q.reference, q.measuring) for q in pairs] == [(0, 2, 1), (1, 5, 4)]
+    assert pairs[0].ratio < pairs[1].ratio
+    record = next(r for r in verification_matrix(plan) if r["requirement"] == "kr_over_km")
+    assert (record["verdict"], record["row"], record["reference_element"],
+            record["measuring_element"]) == ("fail", 1, 2, 1)
+    assert record["predicted"] == pytest.approx(pairs[0].ratio)
+    # the untouched example passes the same requirement in both rows
+    ok = next(r for r in verification_matrix(example()) if r["requirement"] == "kr_over_km")
+    assert ok["verdict"] == "pass" and len(ok["pairs"]) == 2
+
+
+def test_check_fails_with_that_pair_and_verify_exits_1(capsys):
+    from tactcad.checks.requirement_checks import requirement_checks
+
+    plan = example(**{"arms.lengths_mm": LONGER_ROW_1_REFERENCE})
+    bad = [r for r in requirement_checks(plan) if not r.passed]
+    assert [r.subject for r in bad] == ["kr_over_km"]
+    assert "worst pair row 1: element 2 / 1" in bad[0].detail
+    lengths = ",".join(str(a) for a in LONGER_ROW_1_REFERENCE)
+    code = cli.main(["verify", "--design", str(EXAMPLE), "--model", "closed-form", "--json",
+                     "--quiet", "--set", f"arms.lengths_mm=[{lengths}]"])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 1 and out["passed"] is False
+
+
+@pytest.mark.parametrize("margin, error, threshold, nominal, expected", [
+    (0.05, 0.01, 0.0, True, "pass"),
+    (0.005, 0.01, 0.0, True, "undecided"),
+    (-0.005, 0.01, 0.0, False, "undecided"),
+    (-0.05, 0.01, 0.0, False, "fail"),
+    (-0.2, 0.01, -0.32, True, "pass"),  # K_r/K_m within the K band
+    (0.0, 0.0, 0.0, True, "pass"),
+    (None, 0.01, 0.0, True, "pass"),
+    (0.001, None, 0.0, False, "fail"),
+])
+def test_a_verdict_is_decided_only_outside_the_error(margin, error, threshold, nominal, expected):
+    assert verdict(margin, error, threshold, nominal) == expected
+
+
+def test_auto_stops_at_the_closed_form_when_it_decides_everything_it_can():
+    plan = example()
+    records, levels = verification_auto(plan, levels=("closed-form", "beam"))
+    assert [lv["model"] for lv in levels] == ["closed-form"]
+    assert all(r["decided_by"] == "closed-form" or r["level_fixed"] for r in records)
+
+
+def test_auto_climbs_for_an_undecided_requirement_and_names_the_level():
+    data = with_overrides(read_toml(EXAMPLE, "design"),
+                          {"requirements.full_scale_force_N": 0.113})  # inside 12.6 % at the closed form
+    plan = plan_from_dict(data, str(EXAMPLE))
+    first = verification_matrix(plan)[0]
+    assert first["requirement"] == "full_scale_force_N" and first["verdict"] == "undecided"
+    records, levels = verification_auto(plan, levels=("closed-form", "beam"))
+    assert [lv["model"] for lv in levels] == ["closed-form", "beam"]
+    force = records[0]
+    assert force["levels_tried"] == ["closed-form", "beam"]
+    assert force["decided_by"] in ("beam", None) and force["model"] == "beam"
+    kept = next(r for r in records if r["requirement"] == "kr_over_km")
+    assert kept["decided_by"] == "closed-form" and kept["model"] == "closed-form"
+
+
+def test_the_python_api_verifies_with_the_same_records_as_the_command(capsys):
+    import tactcad
+
+    project = tactcad.load(EXAMPLE)
+    result = project.verify("closed-form")
+    assert isinstance(result, tactcad.Verification) and result.passed
+    assert cli.main(["verify", "--design", str(EXAMPLE), "--model", "closed-form", "--json",
+                     "--quiet"]) == 0
+    matrix = json.loads(capsys.readouterr().out)["matrix"]
+    assert [r["verdict"] for r in matrix] == [r["verdict"] for r in result.records]
+    assert [r["predicted"] for r in matrix] == [r["predicted"] for r in result.records]
+    with pytest.raises(tactcad.TactcadError, match="no-such-level"):
+        project.verify("no-such-level")
+
+
+@pytest.mark.parametrize("design", [None, EXAMPLE])
+def test_readout_and_the_simulated_calibration_give_the_same_volts_per_newton(design):
+    from tactcad.design.array_plan import load_design
+    from tactcad.mechanics.readout_chain import readout_report
+    from tactcad.studies.verification import requirements_of
+    from tactcad.paper import calibration_audit as ca
+
+    plan = load_design(design)
+    report = readout_report(plan, requirements_of(plan))
+    data = ca.simulate_design_calibration(plan, noise_force_N=0.0, noise_signal_V=0.0)
+    fits = ca.fit_all(data)
+    for r in report.records:
+        fit = fits[r["element"]]
+        assert fit.K_v_V_per_mm / fit.K_N_per_mm == pytest.approx(r["sensitivity_V_per_N"],
+                                                                  rel=1e-9)
+
+
+def test_readout_pairs_each_measuring_element_with_its_rows_reference():
+    from tactcad.mechanics.readout_chain import readout_report
+    from tactcad.studies.verification import requirements_of
+
+    plan = example()
+    report = readout_report(plan, requirements_of(plan))
+    refs = {r["element"]: r["reference_element"] for r in report.records
+            if r["role"] == "measuring"}
+    assert refs == {1: 2, 3: 2, 4: 5, 6: 5}
+    assert [r["element"] for r in report.records if r["role"] == "reference"] == [2, 5]
+
+
+def test_tolerance_and_verify_print_the_same_toleranced_band(capsys):
+    assert cli.main(["tolerance", "--design", str(EXAMPLE), "--json", "--quiet"]) == 0
+    band = json.loads(capsys.readouterr().out)["k_tolerance_check"]["predicted_band_rel"]
+    record = next(r for r in verification_matrix(example())
+                  if r["requirement"] == "k_tolerance_rel_toleranced")
+    assert record["predicted"] == band and (record["samples"], record["seed"]) == (10_000, 0)
