@@ -489,9 +489,9 @@ class Element:
             UnknownModelError: ``model`` is not a ladder level.
             DesignError: the material has no yield strength.
         """
+        from tactcad.mechanics.element_strength import strength_record
         from tactcad.mechanics.ladder import UnknownModelError, models
-        from tactcad.design.requirements_section import cites_paper
-        from tactcad.paper.paper_load import strength_record
+        from tactcad.paper.paper_load import paper_load_of
         from tactcad.studies.strength_studies import element_stress
 
         if model not in models():
@@ -500,7 +500,7 @@ class Element:
         plan = self.project.plan
         stress = element_stress(self.geometry, plan.material, model)
         return strength_record(self.number, self.geometry, plan.material, plan.strength, stress,
-                               paper_load=cites_paper(plan.raw))
+                               paper_load_of(plan))
 
 
 @dataclass(frozen=True)

@@ -33,13 +33,3 @@ def strength_summary(plan: Plan, model: str = "closed-form") -> list[dict]:
     """:func:`tactcad.mechanics.element_strength.strength_summary` with the
     paper's load for a design that cites the paper."""
     return strength.strength_summary(plan, model, paper_load_of(plan))
-
-
-def strength_record(element: int, g: ElementGeometry, material: Material,
-                    settings: StrengthSettings, es: ElementStress,
-                    paper_load: bool = True) -> StrengthRecord:
-    """:func:`tactcad.mechanics.element_strength.strength_record` with the
-    paper's load when ``paper_load`` (a design that cites the paper: the
-    API's ``Element.strength`` passes ``cites_paper(plan.raw)``)."""
-    return strength.strength_record(element, g, material, settings, es,
-                                    PAPER_LOAD if paper_load else None)
