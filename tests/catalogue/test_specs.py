@@ -10,7 +10,7 @@ from pathlib import Path
 from tactcad.catalogue import array as catalogue
 from tactcad.design.array import plan_from_dict
 
-SRC = Path(__file__).resolve().parents[1] / "src" / "tactcad"
+SRC = Path(__file__).resolve().parents[2] / "src" / "tactcad"
 
 
 def test_array_specs_carry_their_geometry(plan):

@@ -152,7 +152,7 @@ def test_picture_is_the_same_from_kept_meshes_as_from_a_fresh_run(tmp_path):
     from tactcad.solids.mesh import tessellate
     from tactcad.store import Store
 
-    project = load_project(Path(__file__).resolve().parents[1] / "hardware/ti_array_2x3/ti_array_2x3.toml")
+    project = load_project(Path(__file__).resolve().parents[2] / "hardware/ti_array_2x3/ti_array_2x3.toml")
     pictures = []
     for warm in (False, True):
         run = Run(project, tmp_path / str(warm), lambda s: None, Store(None))

@@ -12,7 +12,7 @@ import yaml
 
 from tactcad import cli
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def project_workflow(tmp_path: Path) -> str:

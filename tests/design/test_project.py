@@ -16,7 +16,7 @@ from tactcad.design.project import Project, load_project, project_for_plan
 from tactcad.design.rigs import DEFAULT_RIGS
 from tactcad.design.scenes import DEFAULT_SCENES
 
-SRC = Path(__file__).resolve().parents[1] / "src" / "tactcad"
+SRC = Path(__file__).resolve().parents[2] / "src" / "tactcad"
 #: Functions that open a design, rigs or scenes file.
 FILE_READERS = {"read_toml", "load_design", "load_rigs", "load_scenes", "load_project",
                 "companion_files", "default_design_data", "default_rigs_data",

@@ -24,7 +24,7 @@ from tactcad.mechanics.lumped import LumpedDomainError
 U = 2.0 ** -53  # unit round-off of float64
 # Second-order rounding terms (O(u^2)) are covered by this relative slack.
 SLACK = 1.0 + 1e-9
-TABLE2_CSV = Path(__file__).resolve().parents[1] / "src" / "tactcad" / "data" / "table2_deflection_ratio.csv"
+TABLE2_CSV = Path(__file__).resolve().parents[2] / "src" / "tactcad" / "data" / "table2_deflection_ratio.csv"
 
 
 def exact_k_obj(r: float, k_m: float, k_r: float) -> Fraction:

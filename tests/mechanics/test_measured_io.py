@@ -17,7 +17,7 @@ from tactcad.paper import calibration_audit as ca
 from tactcad.mechanics.calibration import CalibrationError
 from tactcad.mechanics.measured_io import parse_csv_text, parse_mapping, read_measured
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 HW = REPO / "hardware" / "macro_array"
 DAQ_MAP = parse_mapping(["force_N=Dev1/ai0,signal_V=Dev1/ai1"])
 EXAMPLES = {  # file -> (options, what the reader must report)

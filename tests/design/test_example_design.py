@@ -15,7 +15,7 @@ from tactcad.design.array import read_toml
 from tactcad.design.project import load_project
 from tactcad.mechanics.requirements import requirements_of, verification_matrix
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
 #: The paper's words; DXF's own block name ``*Paper_Space`` is a format keyword, not a citation.
 PAPER_TEXT = re.compile(r"paper(?!_space)|table [12]\b", re.IGNORECASE)

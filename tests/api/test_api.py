@@ -16,7 +16,7 @@ import tactcad
 from tactcad import cli
 from tactcad.errors import DesignError, DesignErrors
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 #: The design README's example loads (its one path, replaced by this absolute one).
 EXAMPLE_DESIGN = ROOT / "hardware" / "macro_array" / "macro_array.toml"
 README_EXAMPLE_DESIGN = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"

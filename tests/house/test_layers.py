@@ -173,7 +173,7 @@ def test_the_checker_sees_function_local_and_relative_imports(tmp_path, monkeypa
     (pkg / "export" / "names.py").write_text("")
     f = pkg / "export" / "x.py"
     f.write_text("def f():\n    from tactcad.errors import A\n    from .names import b\n")
-    monkeypatch.setattr(__import__(__name__), "SRC", pkg)
+    monkeypatch.setitem(globals(), "SRC", pkg)
     assert imports_of(f) == {"tactcad.errors", "tactcad.export.names"}
 
 

@@ -16,7 +16,7 @@ from tactcad.catalogue.array import array_parts
 from tactcad.design.array import load_design, plan_from_dict
 from tactcad.errors import DesignError
 
-TABLE = Path(__file__).parent / "data" / "spacer_wire_channel.toml"
+TABLE = Path(__file__).parents[1] / "data" / "spacer_wire_channel.toml"
 
 
 def with_channel(design_data: dict, **values) -> dict:

@@ -7,7 +7,7 @@ import importlib.util
 import json
 from pathlib import Path
 
-SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "compare_exports.py"
+SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "compare_exports.py"
 spec = importlib.util.spec_from_file_location("compare_exports", SCRIPT)
 compare_exports = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(compare_exports)

@@ -19,7 +19,7 @@ from tactcad.mechanics import measured_io
 from tactcad.mechanics import evaluation as ev
 from tactcad.paper import table2_models as t2
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 DEFAULT_TOML = REPO / "hardware" / "macro_array" / "macro_array.toml"
 
 

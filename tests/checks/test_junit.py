@@ -15,7 +15,7 @@ from tactcad import cli
 from tactcad.checks.junit import junit_report, suite_of
 from tactcad.checks.result import CheckResult
 
-SCHEMA = xmlschema.XMLSchema(Path(__file__).parent / "data" / "junit_essentials.xsd")
+SCHEMA = xmlschema.XMLSchema(Path(__file__).parents[1] / "data" / "junit_essentials.xsd")
 PARTS = ["element_a4mm", "spacer", "cart"]
 
 

@@ -20,7 +20,7 @@ from tactcad.mechanics.readout import (beam_grid_strain_per_N, beam_surface_stra
                                        noise_budget_V, readout_chain, readout_report)
 from tactcad.mechanics.requirements import requirements_of, verification_matrix
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
 PAPER_TEXT = re.compile(r"paper|table ?[12]\b", re.IGNORECASE)
 

@@ -244,7 +244,7 @@ def test_lumped_names_what_the_user_gave_and_never_prints_infinity():
 def test_fuzz_script_runs_and_summarises(tmp_path):
     """Validation only (-n draws with no part built is covered by the property
     test; here the script's out-of-domain path and summary)."""
-    proc = subprocess.run([sys.executable, str(Path(__file__).parents[1] / "scripts" / "fuzz.py"),
+    proc = subprocess.run([sys.executable, str(Path(__file__).parents[2] / "scripts" / "fuzz.py"),
                            "-n", "6", "--wild", "1.0", "--quiet"], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "6 tried, 0 accepted" in proc.stdout and "0 tracebacks" in proc.stdout and "6 of 6 out-of-domain draws refused" in proc.stdout

@@ -207,7 +207,7 @@ def test_kt_exponent_refits_from_fem(plan):
 def test_a_design_that_does_not_cite_the_paper_has_no_figures_at_the_papers_load():
     from tactcad.design.project import load_project
 
-    example = Path(__file__).resolve().parents[1] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+    example = Path(__file__).resolve().parents[2] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
     records = plan_strength(load_project(example).plan)
     assert records and all(r.stress_MPa_at_paper_load is None for r in records)
     assert all("paper" not in key for r in records for key in r.as_json())

@@ -14,7 +14,7 @@ from tactcad.design.project import load_project
 from tactcad.errors import DesignError
 from tactcad.export.bom import CSV_ENCODING, write_bom_files
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
 
 

@@ -12,7 +12,7 @@ import pytest
 from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
 from tactcad.paper.data import largest_equal_arm_spread, table1
 
-SRC = Path(__file__).resolve().parents[1] / "src" / "tactcad"
+SRC = Path(__file__).resolve().parents[2] / "src" / "tactcad"
 
 
 def test_web_tolerance_moves_stiffness_by_the_thin_hinge_law():

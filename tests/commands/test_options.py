@@ -158,7 +158,7 @@ def test_the_input_fuzz_runs_and_counts_tracebacks():
     import sys
     from pathlib import Path
 
-    script = Path(__file__).parents[1] / "scripts" / "fuzz_inputs.py"
+    script = Path(__file__).parents[2] / "scripts" / "fuzz_inputs.py"
     proc = subprocess.run([sys.executable, str(script), "--data", "30", "--options", "8",
                            "--quiet"], capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr

@@ -25,7 +25,7 @@ import tactcad
 
 pytestmark = pytest.mark.slow
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 #: What only the paper's design may carry: its samples (N/mm), the evaluation
 #: rig's load (N), the force gauge's 57.04 N/mm is a rig value a project may keep.
 PAPER_MARKS = ("10.01", "7.26", "6.28", "5.41", "4.51", "3.57", "2.34", "3.235",

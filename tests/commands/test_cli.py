@@ -23,7 +23,7 @@ from tactcad.export.kinds import parse_only
 from tactcad.export.selection import (job_kind, job_part, select_jobs,
                                       with_progress)
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SRC = ROOT / "src"
 
 

@@ -313,7 +313,7 @@ def test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly(tmp_path,
                             str(s.design), "--out", str(tmp_path / "plain"), "--no-cache"],
                            capture_output=True, text=True, timeout=900)
     assert plain.returncode == 0, plain.stderr
-    script = Path(__file__).resolve().parents[1] / "scripts" / "compare_exports.py"
+    script = Path(__file__).resolve().parents[2] / "scripts" / "compare_exports.py"
     same = subprocess.run([sys.executable, str(script), str(s.out),
                            str(tmp_path / "plain")], capture_output=True, text=True)
     assert same.returncode == 0, same.stdout
