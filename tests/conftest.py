@@ -86,3 +86,26 @@ def with_default_companions(design: Path) -> Path:
     for f in (DEFAULT_RIGS, DEFAULT_SCENES):
         shutil.copy(f, design.parent / f.name)
     return design
+
+
+def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    """``tactcad ARGV`` run in this process (:func:`tactcad.cli.main`): its exit
+    code, stdout and stderr as :func:`subprocess.run` gives them, without a new
+    interpreter importing the CAD kernel again. For what a process boundary
+    changes nothing of: refusals, exit codes, output; tests of signals, pipes,
+    a fresh interpreter's imports or the installed program start a process."""
+    import contextlib
+    import io
+
+    from tactcad.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    here = Path.cwd()
+    try:
+        if cwd is not None:
+            os.chdir(cwd)
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main([str(a) for a in argv])
+    finally:
+        os.chdir(here)
+    return subprocess.CompletedProcess(["tactcad", *argv], code, out.getvalue(), err.getvalue())

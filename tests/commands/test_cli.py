@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import re
 import shutil
 import subprocess
@@ -14,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import run_cli
 from tactcad import cli
 from tactcad.commands import parse_override, plan_from_args, progress_from_args
 from tactcad.errors import DesignError
@@ -25,12 +25,6 @@ from tactcad.export.selection import (job_kind, job_part, select_jobs,
 
 ROOT = Path(__file__).resolve().parents[2]
 SRC = ROOT / "src"
-
-
-def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
-    env = {**os.environ, "PYTHONPATH": str(SRC)}
-    return subprocess.run([sys.executable, "-m", "tactcad.cli", *argv], capture_output=True,
-                          text=True, env=env, cwd=cwd)
 
 
 def leaf_parsers(parser: argparse.ArgumentParser, path=()):

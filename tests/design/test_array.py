@@ -12,6 +12,7 @@ import pytest
 
 import tactcad
 
+from conftest import run_cli
 from tactcad.design.array import load_design, plan_from_dict, with_overrides
 from tactcad.errors import DesignError
 
@@ -133,8 +134,7 @@ def test_cli_refuses_bad_design_with_exit_2_and_writes_nothing(tmp_path, design_
     text = (load_design().source and open(load_design().source).read())
     bad.write_text(text.replace("web_thickness_mm = 0.25", "web_thickness_mm = 1.55"))
     out = tmp_path / "out"
-    proc = subprocess.run([sys.executable, "-m", "tactcad.cli", "export", "--design", str(bad),
-                           "--out", str(out)], capture_output=True, text=True)
+    proc = run_cli("export", "--design", str(bad), "--out", str(out))
     assert proc.returncode == 2
     assert "element.web_thickness_mm = 1.55" in proc.stderr
     assert "0.05 <= value <= 1 mm" in proc.stderr
@@ -142,16 +142,12 @@ def test_cli_refuses_bad_design_with_exit_2_and_writes_nothing(tmp_path, design_
     assert not out.exists()
 
 
-@pytest.mark.slow
 def test_cli_reports_unreadable_and_invalid_toml(tmp_path):
-    proc = subprocess.run([sys.executable, "-m", "tactcad.cli", "export", "--design",
-                           str(tmp_path / "nope.toml"), "--out", str(tmp_path / "o")],
-                          capture_output=True, text=True)
+    proc = run_cli("export", "--design", str(tmp_path / "nope.toml"), "--out", str(tmp_path / "o"))
     assert proc.returncode == 2 and "design file" in proc.stderr
     broken = tmp_path / "broken.toml"
     broken.write_text("[element\nweb = ")
-    proc = subprocess.run([sys.executable, "-m", "tactcad.cli", "check", "--design", str(broken)],
-                          capture_output=True, text=True)
+    proc = run_cli("check", "--design", str(broken))
     assert proc.returncode == 2 and "valid TOML" in proc.stderr
 
 

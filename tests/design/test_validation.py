@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import run_cli
 from tactcad.design.array import DEFAULT_DESIGN, default_design_data, plan_from_dict, with_overrides
 from tactcad.design.project import load_project, project_for_plan, project_from_data
 from tactcad.design.rigs import DEFAULT_RIGS, default_rigs_data, stiffest_element
@@ -31,8 +32,7 @@ def _project_dir(tmp_path: Path, design=lambda t: t, rigs=lambda t: t, scenes=la
 
 
 def _cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "tactcad.cli", *args], capture_output=True,
-                          text=True)
+    return run_cli(*args)
 
 
 def _project(design: dict) -> tuple:

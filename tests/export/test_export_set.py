@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import with_default_companions
+from conftest import run_cli, with_default_companions
 from tactcad.design.array import DEFAULT_DESIGN
 from tactcad.store import Store
 
@@ -29,8 +29,7 @@ def tactcad(*args: str, cwd: Path | None = None) -> subprocess.Popen:
 
 
 def run(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "tactcad.cli", *args], capture_output=True,
-                          text=True)
+    return run_cli(*args)
 
 
 def small_design(tmp: Path) -> Path:
@@ -124,8 +123,7 @@ def test_refused_out_folders_write_nothing(tmp_path, target):
     (tmp_path / "FOREIGN" / "thesis.tex").write_text("x")
     before = sorted(p.name for p in tmp_path.rglob("*"))
     out = target if target.startswith("/") else str(tmp_path / target) if target != "." else "."
-    proc = subprocess.run([sys.executable, "-m", "tactcad.cli", "export", "--out", out],
-                          capture_output=True, text=True, cwd=tmp_path)
+    proc = run_cli("export", "--out", out, cwd=tmp_path)
     assert proc.returncode == 2, proc.stderr
     assert proc.stderr.startswith("tactcad: error: --out") and "Traceback" not in proc.stderr
     assert sorted(p.name for p in tmp_path.rglob("*")) == before

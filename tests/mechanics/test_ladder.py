@@ -9,6 +9,7 @@ import sys
 
 import pytest
 
+from conftest import run_cli
 from tactcad.errors import TactcadError
 from tactcad.mechanics.ladder import MODELS, estimate
 from tactcad.paper.table1 import as_built_webs, gauge_strain_at_paper_load, table1_comparison, table2_predicted
@@ -66,9 +67,8 @@ def test_unknown_model_is_refused(plan):
 
 
 def test_stiffness_cli_json_keys():
-    out = subprocess.run([sys.executable, "-m", "tactcad.cli", "stiffness", "--element", "3",
-                          "--model", "closed-form", "--json"], capture_output=True, text=True,
-                         check=True)
+    out = run_cli("stiffness", "--element", "3", "--model", "closed-form", "--json")
+    assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     assert set(data) == {"element", "model", "stiffness_N_per_mm", "gauge_strain_per_N",
                          "error_estimate_rel", "wall_time_s", "warnings"}
@@ -77,8 +77,7 @@ def test_stiffness_cli_json_keys():
 
 
 def test_stiffness_cli_unknown_element_exits_2():
-    out = subprocess.run([sys.executable, "-m", "tactcad.cli", "stiffness", "--element", "11"],
-                         capture_output=True, text=True)
+    out = run_cli("stiffness", "--element", "11")
     assert out.returncode == 2 and "element" in out.stderr and "Traceback" not in out.stderr
 
 
