@@ -18,10 +18,14 @@ SLOW_FIXTURES = {"exported", "freecad"}
 
 def pytest_collection_modifyitems(config, items):
     """Mark every test that uses a costly fixture as slow, so that
-    ``make test-fast`` (``-m "not slow"``) fits the inner loop."""
+    ``make test-fast`` (``-m "not slow"``) fits the inner loop; put the
+    browser tests in one pytest-xdist group (:data:`BROWSER_FILES`)."""
+    tests = Path(__file__).resolve().parent
     for item in items:
         if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
+        if item.path.relative_to(tests).as_posix() in BROWSER_FILES:
+            item.add_marker(pytest.mark.xdist_group("browser"))
 
 
 @pytest.fixture(scope="session")
@@ -109,3 +113,9 @@ def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
     finally:
         os.chdir(here)
     return subprocess.CompletedProcess(["tactcad", *argv], code, out.getvalue(), err.getvalue())
+
+
+#: Test files that drive a browser (Chromium, headless) or the FreeCAD GUI: under
+#: pytest-xdist they share one process (``--dist loadgroup``), so two never run at once.
+BROWSER_FILES = {"commands/test_watch.py", "export/test_review_page.py",
+                 "end_to_end/test_freecad_gui.py"}
