@@ -1,6 +1,6 @@
 """The review page as ``tactcad watch`` serves it: the exported page as it is,
 its data, scenes and sheets on their own (fast; the page under watch in
-Chromium is tests/test_watch.py)."""
+Chromium is tests/commands/test_watch.py)."""
 
 from __future__ import annotations
 

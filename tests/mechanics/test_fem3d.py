@@ -1,7 +1,7 @@
 """3D FEM (fem3d, the reference): half model, solver, P2 convergence,
 ordering against plane stress / plane strain, extremes.
 
-Expected convergence as for fem2d (see tests/test_fem2d.py): observed order
+Expected convergence as for fem2d (see tests/mechanics/test_fem2d.py): observed order
 of K in [1.5, 4.5] for P2 tetrahedra, Richardson error below 0.5 %.
 """
 
