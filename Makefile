@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed-stamp
 DESIGN ?= hardware/macro_array/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env lower-bounds typecheck vendor-three system-deps export docs-images check ci-example test test-fast bench fuzz clean
+.PHONY: help env lower-bounds typecheck vendor-three system-deps export docs-images check ci-example test test-fast bench-tests bench fuzz clean
 
 help: ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
@@ -48,19 +48,24 @@ ci-example: $(STAMP) ## the steps of the CI workflow `tactcad new` writes, here:
 	git archive HEAD $(dir $(DESIGN)) | tar -x -C $(CI_OUT)/base
 	$(BIN)/tactcad diff $(CI_OUT)/base/$(DESIGN) $(CI_OUT)/exports --out $(CI_OUT)/diff || [ $$? -eq 1 ]
 
-# pytest-xdist processes: the fast set one per core; the whole suite in this
-# process (0) until a parallel run of the Chromium watch tests is shown stable
+# pytest-xdist processes, one per core (0: all in this process); the tests that
+# drive Chromium or the FreeCAD GUI share one process (xdist_group "browser",
+# tests/conftest.py), so two browsers never run at once
 FAST_JOBS ?= auto
-TEST_JOBS ?= 0
+TEST_JOBS ?= auto
+XDIST = --dist loadgroup
 
 system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd, via apt as root)
 	@sh scripts/install-system-deps.sh
 
-test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included; TEST_JOBS=auto: one process per core)
-	$(BIN)/python -m pytest -q -n $(TEST_JOBS)
+test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included; one process per core, TEST_JOBS=0 for one)
+	$(BIN)/python -m pytest -q -n $(TEST_JOBS) $(XDIST)
 
 test-fast: $(STAMP) ## the inner loop: every test not marked slow (no full export, no FreeCAD, no fem3d)
-	$(BIN)/python -m pytest -q -n $(FAST_JOBS) -m "not slow"
+	$(BIN)/python -m pytest -q -n $(FAST_JOBS) $(XDIST) -m "not slow"
+
+bench-tests: $(STAMP) system-deps ## time make test-fast and make test (wall seconds, test counts, cores, load)
+	$(BIN)/python scripts/bench_tests.py --fast-jobs $(FAST_JOBS) --test-jobs $(TEST_JOBS)
 
 FUZZ_N ?= 1000
 FUZZ_DATA ?= $(FUZZ_N)

@@ -23,7 +23,7 @@ echo "lowest versions: $(echo $lows)"
 "$venv/bin/pip" install --quiet --no-deps -e "$here"
 "$venv/bin/pip" install --quiet pytest hypothesis
 cd "$here"
-"$venv/bin/python" -m pytest -q -p no:cacheprovider tests/test_closed_form.py tests/test_design.py \
-    tests/test_validation.py tests/test_project_folder.py
+"$venv/bin/python" -m pytest -q -p no:cacheprovider tests/mechanics/test_closed_form.py tests/design/test_array.py \
+    tests/design/test_validation.py tests/design/test_project_folder.py
 "$venv/bin/python" -m tactcad.cli export --only step --no-cache --quiet --out "$(dirname "$venv")/exports"
 echo "lower bounds: passed"

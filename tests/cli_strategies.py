@@ -1,6 +1,6 @@
 """Hypothesis strategies for command lines, drawn by introspecting tactcad's
 argument parser (so a new command or option is drawn without a line here);
-used by tests/test_options.py and scripts/fuzz_inputs.py."""
+used by tests/commands/test_options.py and scripts/fuzz_inputs.py."""
 
 from __future__ import annotations
 

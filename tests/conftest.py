@@ -18,10 +18,14 @@ SLOW_FIXTURES = {"exported", "freecad"}
 
 def pytest_collection_modifyitems(config, items):
     """Mark every test that uses a costly fixture as slow, so that
-    ``make test-fast`` (``-m "not slow"``) fits the inner loop."""
+    ``make test-fast`` (``-m "not slow"``) fits the inner loop; put the
+    browser tests in one pytest-xdist group (:data:`BROWSER_FILES`)."""
+    tests = Path(__file__).resolve().parent
     for item in items:
         if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
+        if item.path.relative_to(tests).as_posix() in BROWSER_FILES:
+            item.add_marker(pytest.mark.xdist_group("browser"))
 
 
 @pytest.fixture(scope="session")
@@ -86,3 +90,32 @@ def with_default_companions(design: Path) -> Path:
     for f in (DEFAULT_RIGS, DEFAULT_SCENES):
         shutil.copy(f, design.parent / f.name)
     return design
+
+
+def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    """``tactcad ARGV`` run in this process (:func:`tactcad.cli.main`): its exit
+    code, stdout and stderr as :func:`subprocess.run` gives them, without a new
+    interpreter importing the CAD kernel again. For what a process boundary
+    changes nothing of: refusals, exit codes, output; tests of signals, pipes,
+    a fresh interpreter's imports or the installed program start a process."""
+    import contextlib
+    import io
+
+    from tactcad.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    here = Path.cwd()
+    try:
+        if cwd is not None:
+            os.chdir(cwd)
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main([str(a) for a in argv])
+    finally:
+        os.chdir(here)
+    return subprocess.CompletedProcess(["tactcad", *argv], code, out.getvalue(), err.getvalue())
+
+
+#: Test files that drive a browser (Chromium, headless) or the FreeCAD GUI: under
+#: pytest-xdist they share one process (``--dist loadgroup``), so two never run at once.
+BROWSER_FILES = {"commands/test_watch.py", "export/test_review_page.py",
+                 "end_to_end/test_freecad_gui.py"}

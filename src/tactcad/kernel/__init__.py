@@ -9,7 +9,7 @@ projection (:mod:`~tactcad.kernel.hlr`), STEP and BREP files
 solids (:mod:`~tactcad.kernel.inspect`) and the build123d part objects of the
 Python API (:mod:`~tactcad.kernel.objects`). Solids, locations and compounds
 pass through the layers above as values they hand back here; no module
-outside this package imports the kernel (``tests/test_kernel_wall.py``).
+outside this package imports the kernel (``tests/kernel/test_kernel_wall.py``).
 
 Importing this package is free; each module loads the kernel (2-4 s) when it
 is imported, so a command that needs no geometry never imports one.

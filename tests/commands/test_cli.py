@@ -1,0 +1,382 @@
+"""The command line as a user meets it: ./tactcad, --set, --json (errors
+included), progress on stderr, export --only/--part, check reusing an export."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import run_cli
+from tactcad import cli
+from tactcad.commands import parse_override, plan_from_args, progress_from_args
+from tactcad.errors import DesignError
+from tactcad.export.job import Job
+from tactcad.export.kinds import full_export_kinds
+from tactcad.export.kinds import parse_only
+from tactcad.export.selection import (job_kind, job_part, select_jobs,
+                                      with_progress)
+
+ROOT = Path(__file__).resolve().parents[2]
+SRC = ROOT / "src"
+
+
+def leaf_parsers(parser: argparse.ArgumentParser, path=()):
+    """(command words, parser) of every command that runs something."""
+    subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    if not subs:
+        yield path, parser
+        return
+    for name, sub in subs[0].choices.items():
+        yield from leaf_parsers(sub, path + (name,))
+
+
+def options(parser: argparse.ArgumentParser) -> set[str]:
+    return {s for a in parser._actions for s in a.option_strings}
+
+
+# --- every command: --json, --quiet, and --set wherever --design is -----------------------------
+def test_every_command_has_json_and_quiet_and_set_with_design():
+    leaves = list(leaf_parsers(cli.build_parser()))
+    assert len(leaves) >= 20  # export ... sweep refit: the whole tree was walked
+    for path, p in leaves:
+        opts = options(p)
+        assert {"--json", "--quiet"} <= opts, path
+        if "--design" in opts:
+            assert "--set" in opts, path
+
+
+def test_set_values_are_toml_values():
+    assert parse_override("element.web_thickness_mm=0.3") == ("element.web_thickness_mm", 0.3)
+    assert parse_override("arms.lengths_mm=[4,5,6]") == ("arms.lengths_mm", [4, 5, 6])
+    assert parse_override('design.name = "x"') == ("design.name", "x")
+    assert parse_override("array.columns=5") == ("array.columns", 5)
+
+
+@pytest.mark.parametrize("text, field", [("web=0.3", "--set"), ("element.web_thickness_mm", "--set"),
+                                         (".x=1", "--set"),
+                                         ("element.web_thickness_mm=abc", "element.web_thickness_mm")])
+def test_set_refuses_bad_syntax_naming_the_field(text, field):
+    with pytest.raises(DesignError) as err:
+        parse_override(text)
+    assert err.value.field == field and err.value.allowed
+
+
+def test_plan_from_args_applies_every_set_in_order():
+    args = argparse.Namespace(design=None, overrides=[
+        "element.web_thickness_mm=0.2", "element.web_thickness_mm=0.3",
+        "arms.lengths_mm=[4,5,6,7,8,4,5,6,7,7.5]"])
+    plan = plan_from_args(args)
+    base = plan_from_args(argparse.Namespace(design=None, overrides=[]))
+    assert plan.element(1).geometry.web_thickness_mm == 0.3
+    assert plan.element(10).geometry.arm_length_mm == 7.5
+    assert plan.design_hash != base.design_hash
+    assert plan.source == base.source  # rigs and scenes are still found beside the file
+
+
+def test_unknown_set_key_is_a_json_error_with_field_value_allowed(capsys):
+    code = cli.main(["stiffness", "--element", "1", "--set", "element.web_thicknes_mm=0.3",
+                     "--json"])
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and err["exit_code"] == 2
+    assert err["field"] == "element.web_thicknes_mm" and err["value"] == 0.3
+    assert "web_thickness_mm" in err["allowed"]
+
+
+def test_out_of_range_set_is_refused_as_text_without_json(capsys):
+    code = cli.main(["strength", "--set", "element.web_thickness_mm=3"])
+    out = capsys.readouterr()
+    assert code == 2 and out.out == ""
+    assert out.err.startswith("tactcad: error: macro_array.toml: element.web_thickness_mm = 3: allowed")
+
+
+def test_json_error_never_writes_nan(capsys):
+    code = cli.main(["strength", "--json", "--set", "element.web_thickness_mm=nan"])
+    text = capsys.readouterr().out
+    assert code == 2 and "NaN" not in text
+    err = json.loads(text)["error"]
+    assert err["field"] == "element.web_thickness_mm" and err["value"] is None
+
+
+def test_usage_errors_are_json_too(capsys):
+    assert cli.main(["stiffness", "--json"]) == 2  # --element missing
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert "--element" in err["message"] and err["exit_code"] == 2
+    assert cli.main(["stiffness"]) == 2
+    assert "the following arguments are required: --element" in capsys.readouterr().err
+
+
+def test_os_error_is_json_with_exit_3(capsys, tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    code = cli.main(["export", "--json", "--only", "bom", "--no-cache",
+                     "--out", str(blocker / "sub")])
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert code == 3 and err["exit_code"] == 3 and str(blocker) in err["message"]
+
+
+@pytest.mark.parametrize("argv", [["scenes"], ["scenes", "array"], ["strength"],
+                                  ["stiffness", "--element", "3"], ["table1"],
+                                  ["tolerance", "--samples", "200"],
+                                  ["lumped", "--km", "15.25", "--kr", "80.38", "--kobj", "3.85"]])
+def test_json_output_parses_and_nothing_goes_to_stderr(argv, capsys):
+    assert cli.main([*argv, "--json"]) == 0
+    out = capsys.readouterr()
+    assert json.loads(out.out) and out.err == ""
+
+
+def test_scenes_json_holds_what_the_text_lists(capsys):
+    assert cli.main(["scenes", "--json"]) == 0
+    scenes = json.loads(capsys.readouterr().out)
+    assert cli.main(["scenes"]) == 0
+    text = capsys.readouterr().out
+    for s in scenes:
+        assert f"{s['name']}  [{s['rig']}]  {s['parts_placed']} parts placed" in text
+        assert sum(i["quantity"] for items in s["groups"].values() for i in items) == \
+            s["parts_placed"]
+
+
+# --- progress --------------------------------------------------------------------------------
+def test_progress_goes_to_stderr_unless_json_or_quiet(capsys):
+    progress_from_args(argparse.Namespace(json=False, quiet=False))("step 1")
+    progress_from_args(argparse.Namespace(json=True, quiet=False))("step 2")
+    progress_from_args(argparse.Namespace(json=False, quiet=True))("step 3")
+    out = capsys.readouterr()
+    assert out.err == "step 1\n" and out.out == ""
+
+
+def test_fem2d_reports_each_mesh_level(capsys):
+    assert cli.main(["stiffness", "--element", "1", "--model", "fem2d"]) == 0
+    err = capsys.readouterr().err
+    assert [int(m) for m in re.findall(r"fem2d element_a4mm: mesh (\d)/3", err)] == [1, 2, 3]
+    assert cli.main(["stiffness", "--element", "1", "--model", "fem2d", "--quiet"]) == 0
+    assert "mesh" not in capsys.readouterr().err
+
+
+def _job(name: str, after=()) -> Job:
+    return Job(name, "key-" + name, lambda run: [{"path": name, "part": "-", "kind": "x"}],
+               after=tuple(after))
+
+
+JOBS = [_job("step:element_a4mm"), _job("step:cart"), _job("step:array"), _job("dxf:shop"),
+        _job("scene:array"), _job("review:array"), _job("drawing:element_a4mm"),
+        _job("drawing:cart"), _job("drawings:pdf", ["drawing:element_a4mm", "drawing:cart"]),
+        _job("drawings:png", ["drawings:pdf"]), _job("image:array")]
+JOBS.append(_job("bom", [j.name for j in JOBS]))
+
+
+def test_with_progress_counts_and_times_each_job_run():
+    lines: list[str] = []
+    jobs = with_progress(JOBS[:3], lines.append)
+    records = [j.make(None) for j in jobs]
+    assert [r[0]["path"] for r in records] == [j.name for j in JOBS[:3]]
+    assert [re.sub(r"\d+\.\d s$", "T", line) for line in lines] == [
+        "[1/3] step:element_a4mm T", "[2/3] step:cart T", "[3/3] step:array T"]
+
+
+# --- export --only / --part --------------------------------------------------------------------
+def test_job_kinds_and_parts():
+    assert {job_kind(j.name) for j in JOBS} == set(full_export_kinds())
+    assert job_kind("drawings:pdf") == job_kind("drawing:cart") == "drawings"
+    assert job_part("drawing:cart") == job_part("step:cart") == "cart"
+    assert job_part("dxf:shop") is None and job_part("bom") is None
+
+
+def test_only_and_part_filter_the_jobs():
+    names = [j.name for j in select_jobs(JOBS, ["step", "drawings"], ["cart"])]
+    assert names == ["step:cart", "drawing:cart"]
+    names = [j.name for j in select_jobs(JOBS, parse_only(["dxf,bom"]))]
+    assert names == ["dxf:shop", "bom"]
+
+
+def test_a_job_reading_left_out_files_gets_its_own_key():
+    by_name = {j.name: j for j in select_jobs(JOBS, ["dxf", "bom"])}
+    assert by_name["bom"].key != "key-bom"  # the BOM of a full export lists other files
+    assert by_name["dxf:shop"].key == "key-dxf:shop"
+    full = {j.name: j for j in select_jobs(JOBS, ["drawings"])}
+    assert full["drawings:pdf"].key == "key-drawings:pdf"  # every page it reads is there
+
+
+def test_bad_selections_name_the_allowed_values():
+    with pytest.raises(DesignError) as err:
+        parse_only(["step,stp"])
+    assert err.value.value == "stp" and "drawings" in err.value.allowed
+    with pytest.raises(DesignError) as err:
+        select_jobs(JOBS, [], ["carts"])
+    assert err.value.field == "--part" and "cart" in err.value.allowed
+    with pytest.raises(DesignError):
+        select_jobs(JOBS, ["bom"], ["cart"])  # nothing left
+
+
+@pytest.mark.slow
+def test_partial_export_manifest_lists_only_what_was_written(tmp_path):
+    out, store = tmp_path / "out", tmp_path / "store"
+    proc = run_cli("export", "--only", "dxf,bom", "--out", str(out), "--cache", str(store))
+    assert proc.returncode == 0, proc.stderr
+    assert re.search(r"^\[1/2\] dxf:shop \d+\.\d s$", proc.stderr, re.M)
+    man = json.loads((out / "manifest.json").read_text())
+    paths = [f["path"] for f in man["files"]]
+    assert paths and all(p.startswith("dxf/") or p.startswith("bom.") for p in paths)
+    assert sorted(p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file()) == \
+        sorted(paths + ["manifest.json"])
+    assert man["partial"]["only"] == ["dxf", "bom"] and man["partial"]["jobs"] == ["dxf:shop", "bom"]
+    bom = (out / "bom.csv").read_text(encoding="utf-8-sig")
+    assert "dxf/" in bom and ".step" not in bom  # names only the files written
+
+    proc = run_cli("export", "--part", "element_a4mm", "--only", "step", "--out", str(out),
+                   "--cache", str(store), "--json")
+    assert proc.returncode == 0 and proc.stderr == ""
+    files = [f["path"] for f in json.loads(proc.stdout)["files"]]
+    assert files == ["step/element_a4mm.step", "manifest.json"]
+    assert not (out / "bom.csv").exists()  # the earlier partial set is replaced as a whole
+
+
+# --- check reuses the export it checks ---------------------------------------------------------
+@pytest.mark.slow
+def test_check_reuses_a_current_export_and_refuses_a_changed_one(tmp_path):
+    out, store = tmp_path / "out", tmp_path / "store"
+    assert run_cli("export", "--out", str(out), "--cache", str(store), "--quiet").returncode == 0
+    proc = run_cli("check", "--scene", "wirecut", "--out", str(out), "--cache", str(store),
+                   "--json")
+    report = json.loads(proc.stdout)
+    assert proc.returncode == 0 and report["reused_export"] and report["failed"] == 0
+    assert report["passed"] == len(report["checks"]) > 0
+
+    other = tmp_path / "other"  # an export of another design
+    shutil.copytree(out, other)
+    proc = run_cli("check", "--scene", "wirecut", "--out", str(other), "--cache", str(store),
+                   "--set", "element.web_thickness_mm=0.3", "--json")
+    report = json.loads(proc.stdout)
+    assert not report["reused_export"] and "another design" in report["export_refusal"]
+
+    with open(out / "scenes" / "wirecut.glb", "ab") as fh:
+        fh.write(b"\0")
+    proc = run_cli("check", "--scene", "wirecut", "--out", str(out), "--cache", str(store))
+    assert proc.returncode == 0
+    assert "scenes/wirecut.glb changed since the export" in proc.stderr
+    assert re.search(r"^scene wirecut: \d+ passed, 0 failed", proc.stderr, re.M)
+    assert re.search(r"^PASS  glb_readback\s+scenes/wirecut.glb", proc.stdout, re.M)
+
+
+def test_reuse_refusal_reasons(tmp_path):
+    from tactcad import __version__
+    from tactcad.design.array_plan import load_design
+    from tactcad.export.reuse import file_sha256, reuse_refusal
+    from tactcad.store import stack_versions
+
+    plan = load_design()
+    assert "no manifest.json" in reuse_refusal(plan, tmp_path)
+    (tmp_path / "a.txt").write_text("a")
+    man = {"design": {"sha256": plan.design_hash}, "tactcad_version": __version__,
+           "cad_stack": stack_versions(),
+           "files": [{"path": "a.txt", "sha256": file_sha256(tmp_path / "a.txt")}]}
+    (tmp_path / "manifest.json").write_text(json.dumps(man))
+    assert reuse_refusal(plan, tmp_path) is None
+    (tmp_path / "a.txt").write_text("b")
+    assert reuse_refusal(plan, tmp_path) == "a.txt changed since the export"
+    (tmp_path / "a.txt").unlink()
+    assert reuse_refusal(plan, tmp_path) == "a.txt missing"
+    (tmp_path / "manifest.json").write_text(json.dumps({**man, "partial": {}}))
+    assert "partial" in reuse_refusal(plan, tmp_path)
+    (tmp_path / "manifest.json").write_text(json.dumps({**man, "cad_stack": {}}))
+    assert "CAD stack" in reuse_refusal(plan, tmp_path)
+
+
+# --- ./tactcad and README ----------------------------------------------------------------------
+def launcher_checkout(tmp_path: Path) -> Path:
+    """A copy of the launcher, Makefile, pyproject.toml and constraints.txt with a set-up .venv
+    whose tactcad runs this source tree."""
+    for name in ("tactcad", "Makefile", "pyproject.toml", "constraints.txt"):
+        shutil.copy2(ROOT / name, tmp_path / name)
+    bin_dir = tmp_path / ".venv" / "bin"
+    bin_dir.mkdir(parents=True)
+    exe = bin_dir / "tactcad"
+    exe.write_text(f"#!/bin/sh\nPYTHONPATH={SRC} exec {sys.executable} -m tactcad.cli \"$@\"\n")
+    exe.chmod(0o755)
+    (tmp_path / ".venv" / ".installed-stamp").touch()
+    return tmp_path
+
+
+def test_launcher_runs_the_checkouts_venv(tmp_path):
+    root = launcher_checkout(tmp_path)
+    proc = subprocess.run([str(root / "tactcad"), "lumped", "--km", "15.25", "--kr", "80.38",
+                           "--kobj", "3.85", "--json"], capture_output=True, text=True,
+                          cwd="/")
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["r"] > 1 and proc.stderr == ""
+    proc = subprocess.run([str(root / "tactcad"), "stiffness", "--json"], capture_output=True,
+                          text=True)
+    assert proc.returncode == 2 and json.loads(proc.stdout)["error"]["exit_code"] == 2
+
+
+def test_launcher_without_venv_says_how_to_set_up(tmp_path):
+    root = launcher_checkout(tmp_path)
+    shutil.rmtree(root / ".venv")
+    tools = tmp_path / "bin"  # a PATH without make: nothing can set .venv up
+    tools.mkdir()
+    (tools / "dirname").symlink_to(shutil.which("dirname"))
+    proc = subprocess.run(["/bin/sh", str(root / "tactcad"), "--version"], capture_output=True,
+                          text=True, env={"PATH": str(tools)})
+    assert proc.returncode == 3 and "run 'make env'" in proc.stderr
+
+
+def test_readme_command_lines_name_real_commands():
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    commands = {path[0] for path, _ in leaf_parsers(cli.build_parser())}
+    used = re.findall(r"\./tactcad ([a-z][a-z0-9-]*)", text)
+    assert len(used) > 20 and set(used) <= commands
+    # a pip user's own sections type `tactcad`; from the checkout on it is ./tactcad
+    checkout = text[text.index("## Work in this checkout"):]
+    code_lines = [line for block in re.findall(r"```(?:sh)?\n(.*?)```", checkout, re.S)
+                  for line in block.splitlines()]
+    assert not [line for line in code_lines if re.match(r"(\$ )?tactcad ", line)]
+    assert not re.search(r"`tactcad [a-z]", checkout)  # every inline command line uses ./tactcad
+
+
+def test_ctrl_c_while_the_kernel_loads_is_one_line(monkeypatch, capsys):
+    """An interrupt during a compiled module's initialisation arrives as an
+    ImportError caused by KeyboardInterrupt: still exit 130 and one line."""
+    from tactcad import cli as cli_mod
+    from tactcad.commands import scenes as scenes_cmd
+
+    def interrupted_import(args):
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt as exc:
+            raise ImportError("initialization failed") from exc
+
+    monkeypatch.setattr(scenes_cmd, "run", interrupted_import)
+    assert cli_mod.main(["scenes"]) == cli_mod.EXIT_INTERRUPTED == 130
+    err = capsys.readouterr().err
+    assert err.strip() == "tactcad: interrupted; the previous files are left as they were"
+
+    def broken_import(args):
+        raise ImportError("no module named nothing")
+
+    monkeypatch.setattr(scenes_cmd, "run", broken_import)
+    with pytest.raises(ImportError, match="nothing"):
+        cli_mod.main(["scenes"])
+
+
+def test_every_options_help_gives_its_default_and_no_literal_percent():
+    """An option with a default says it (``%(default)s`` or in words); help and
+    descriptions never print argparse's escape ``%%``."""
+    silent = (argparse._HelpAction, argparse._StoreTrueAction, argparse._VersionAction)
+    missing = []
+    for path, parser in leaf_parsers(cli.build_parser()):
+        assert "%%" not in parser.format_help(), path
+        for action in parser._actions:
+            if not action.option_strings or isinstance(action, silent):
+                continue
+            if action.default is None or action.default is False or action.default == [] \
+                    or action.help == argparse.SUPPRESS:
+                continue
+            if "%(default)" not in (action.help or "") and "default" not in (action.help or ""):
+                missing.append((" ".join(path), action.option_strings[0], action.default))
+    assert missing == []

@@ -1,0 +1,167 @@
+"""Every option of every command is checked up front: drawn values (by
+introspecting the parser, so a new option is covered without a line here)
+are accepted or refused in one line naming the option; never a traceback."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import signal
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from cli_strategies import COMMANDS, LONG, command_lines, option_actions
+from tactcad import cli
+from tactcad.errors import TactcadError
+
+def test_every_command_and_option_is_found_by_introspection():
+    assert {("lumped",), ("calibrate",), ("bench", "export"), ("sweep", "grid")} <= set(COMMANDS)
+    names = {max(a.option_strings, key=len) for p in COMMANDS.values() for a in option_actions(p)}
+    assert {"--sigma-r", "--design", "--material", "--encoding", "--map", "--seed"} <= names
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(command_lines())
+def test_drawn_options_are_checked_or_refused_in_one_line(argv):
+    try:
+        args = cli.parse_checked(argv)
+    except TactcadError as exc:
+        assert "\n" not in str(exc).strip(), argv
+        return
+    for value in vars(args).values():  # what passes the checks is finite, non-empty, never -0
+        for v in value if isinstance(value, (list, tuple)) else [value]:
+            if isinstance(v, float):
+                assert v == v and abs(v) != float("inf") and str(v) != "-0.0", argv
+            if isinstance(v, str):
+                assert v.strip(), argv
+
+
+class _TimeUp(BaseException):
+    pass
+
+
+@pytest.mark.slow
+@settings(max_examples=int(os.environ.get("TACTCAD_OPTION_EXAMPLES", 40)), deadline=None,
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+@given(argv=command_lines(tuple(c for c in COMMANDS if c not in LONG)), as_json=st.booleans())
+def test_drawn_command_lines_end_in_a_known_exit_code_without_traceback(
+        argv, as_json, tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("TACTCAD_WORKERS", "0")
+    argv = argv + (["--json"] if as_json and "--json" not in argv else [])
+    as_json = "--json" in argv  # also when drawn as a value
+
+    def time_up(*_):
+        raise _TimeUp
+
+    old = signal.signal(signal.SIGALRM, time_up)
+    signal.alarm(60)
+    try:
+        code = cli.main(argv)
+    except _TimeUp:  # a valid line that simply takes long: no verdict
+        return
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+    out = capsys.readouterr()
+    assert code in (0, 1, 2, 3), (argv, code, out.err[-500:])
+    assert "Traceback" not in out.err and "Traceback" not in out.out, argv
+    errors = [ln for ln in out.err.splitlines() if ": error: " in ln]
+    assert len(errors) <= 1, (argv, out.err)
+    assert not [ln for ln in out.err.splitlines() if "Warning:" in ln or "warnings.warn" in ln], \
+        (argv, out.err)  # no warning in Python's format
+    if as_json:
+        doc = json.loads(out.out)
+        assert code == 0 or doc["error"]["exit_code"] == code
+    elif code:
+        assert len(errors) == 1 or code == 1, (argv, out.err)
+
+
+# ---------------------------------------------------------------------------
+# The cases the checks were written for
+# ---------------------------------------------------------------------------
+@pytest.mark.parametrize("argv,needle", [
+    (["design", "--kr-over-km", "10", "--kobj-range", "1", "10", "--full-scale-force", "2",
+      "--material", "Titanium", "--out", "x.toml"],
+     "argument --material: 'Titanium': allowed one of 6061-T6, 7075-T6, 17-4PH-H900"),
+    (["stiffness", "--element", "1", "--design", ""], "--design = '': allowed a non-empty value"),
+    (["lumped", "--km", "1", "--kr", "2", "--kobj", "nan"], "--kobj = nan: allowed a finite number"),
+    (["evaluate", "--poisson", "0.7"], "argument --poisson: '0.7': allowed a number 0 ... 0.5"),
+    (["tolerance", "--samples", "1e9"], "argument --samples: '1e9': allowed an integer"),
+    (["calibrate", "--data", "x.csv", "--encoding", "klingon"], "--encoding = 'klingon'"),
+])
+def test_bad_option_values_are_refused_naming_the_option(argv, needle, capsys, tmp_path):
+    (tmp_path / "x.csv").write_text("element,run,z_um,force_N,signal_V\n")
+    old = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        assert cli.main(argv) == 2
+    finally:
+        os.chdir(old)
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1, err
+
+
+def test_material_grade_matches_without_case_where_unambiguous(monkeypatch):
+    from tactcad.commands.options import material_grade_name
+    from tactcad.vocabulary import material_library as materials
+
+    assert material_grade_name("ti-6al-4v-annealed") == "Ti-6Al-4V-annealed"
+    assert material_grade_name("17-4ph") == "17-4PH-H900"
+    assert material_grade_name("7075-t6") == "7075-T6"
+    with pytest.raises(argparse.ArgumentTypeError, match="allowed one of"):
+        material_grade_name("Titanium")
+    monkeypatch.setattr(materials, "material_grades", lambda: {"Al-1": 1, "AL-2": 2})
+    with pytest.raises(argparse.ArgumentTypeError, match="ambiguous"):
+        material_grade_name("al")
+
+
+def test_minus_zero_is_never_printed(capsys):
+    assert cli.main(["lumped", "--km", "15.25", "--kr", "80.38", "--kobj", "3.85",
+                     "--sigma-r", "-0.0"]) == 0
+    text = capsys.readouterr().out
+    assert "-0 " not in text and "-0.0" not in text and "sigma_R = 0" in text
+    assert cli.main(["lumped", "--km", "15.25", "--kr", "80.38", "--kobj", "3.85",
+                     "--sigma-r", "-0.0", "--json"]) == 0
+    assert "-0.0" not in capsys.readouterr().out
+
+
+def test_a_one_column_design_is_not_told_to_use_fewer_columns(capsys):
+    code = cli.main(["scenes", "--set", "array.columns=1", "--set", "arms.lengths_mm=[4,5]",
+                     "--set", "clamp.plate_thickness_mm=10", "--set", "sheet.thickness_mm=10",
+                     "--set", "array.pitch_mm=12"])
+    err = capsys.readouterr().err
+    assert code == 2 and "array.columns = 1: allowed a larger bolt than M2" in err
+    assert "fewer columns" not in err
+
+
+def test_warnings_are_one_line_each_once_in_json_and_silenced_by_quiet(capsys):
+    argv = ["stiffness", "--element", "1", "--set", "material.poisson_ratio=0.45"]
+    assert cli.main(argv) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and err[0].startswith("tactcad: warning: closed-form stiffness "
+                                               "correction used outside its fitted range")
+    assert cli.main(argv + ["--quiet"]) == 0
+    assert capsys.readouterr().err == ""
+    assert cli.main(argv + ["--json"]) == 0
+    out = capsys.readouterr()
+    doc = json.loads(out.out)
+    assert out.err == "" and len(doc["warnings"]) == 1 and "poisson_ratio" in doc["warnings"][0]
+
+
+@pytest.mark.slow
+def test_the_input_fuzz_runs_and_counts_tracebacks():
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = Path(__file__).parents[2] / "scripts" / "fuzz_inputs.py"
+    proc = subprocess.run([sys.executable, str(script), "--data", "30", "--options", "8",
+                           "--quiet"], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    lines = proc.stdout.splitlines()
+    assert lines[0].startswith("fuzz data files: 30 tried") and "0 tracebacks" in lines[0]
+    assert lines[1].startswith("fuzz options: ") and "0 tracebacks" in lines[1]

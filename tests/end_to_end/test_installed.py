@@ -1,0 +1,174 @@
+"""tactcad as a lab installs it: the wheel (built from the sdist) in a clean
+venv, run from a new git repository outside the checkout, with no checkout on
+``sys.path``. The steps are a user's first hour: ``tactcad new``, export,
+``check --junit``, ``diff`` against the previous commit (the CI template's
+own steps), the README's Python example, ``export --only step`` and the
+review page offline in Chromium; then a project made for a non-paper design
+is searched for the paper's samples, loads and text."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tarfile
+import time
+import zipfile
+from pathlib import Path
+
+import pytest
+
+import tactcad
+
+pytestmark = pytest.mark.slow
+
+ROOT = Path(__file__).resolve().parents[2]
+#: What only the paper's design may carry: its samples (N/mm), the evaluation
+#: rig's load (N), the force gauge's 57.04 N/mm is a rig value a project may keep.
+PAPER_MARKS = ("10.01", "7.26", "6.28", "5.41", "4.51", "3.57", "2.34", "3.235",
+               "Spring-based tactile", "paper", "macro_array", "Table 1", "Table 2")
+#: Files whose numbers are geometry (coordinates can match a sample by chance).
+GEOMETRY_SUFFIXES = (".step", ".glb", ".dxf", ".png", ".pdf", ".svg", ".FCStd")
+
+
+def _run(args: list[str], cwd: Path, env: dict, ok=(0,), timings=None) -> subprocess.CompletedProcess:
+    start = time.perf_counter()
+    out = subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True, timeout=1800)
+    if timings is not None:
+        timings.append((" ".join(Path(a).name if i == 0 else a for i, a in enumerate(args)),
+                        time.perf_counter() - start))
+    assert out.returncode in ok, f"{args}: exit {out.returncode}\n{out.stdout}\n{out.stderr}"
+    return out
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory):
+    """(venv bin folder, clean environment, timings, dist folder): the wheel built
+    from the sdist, installed into a new venv (the lock file's pins as constraints)."""
+    root = tmp_path_factory.mktemp("installed")
+    dist, timings = root / "dist", []
+    env = {"PATH": os.environ["PATH"], "HOME": os.environ.get("HOME", str(root)),
+           "LANG": "C.UTF-8", "PIP_DISABLE_PIP_VERSION_CHECK": "1"}
+    _run([sys.executable, "-m", "build", "--outdir", str(dist), str(ROOT)], root, env,
+         timings=timings)
+    venv = root / "venv"
+    _run([sys.executable, "-m", "venv", str(venv)], root, env, timings=timings)
+    wheel = next(dist.glob("tactcad-*.whl"))
+    constraints = ROOT / "constraints.txt"
+    pins = ["-c", str(constraints)] if constraints.is_file() else []
+    _run([str(venv / "bin" / "pip"), "install", "--quiet", str(wheel), *pins], root, env,
+         timings=timings)
+    user_env = {**env, "PATH": f"{venv / 'bin'}:{env['PATH']}"}
+    return venv / "bin", user_env, timings, dist
+
+
+def test_the_sdist_and_wheel_carry_the_package_data(installed):
+    _, _, _, dist = installed
+    sdist = next(dist.glob("tactcad-*.tar.gz"))
+    with tarfile.open(sdist) as tar:
+        names = [n.split("/", 1)[1] for n in tar.getnames() if "/" in n]
+    for needed in ("hardware/macro_array/macro_array.toml", "hardware/ti_array_2x3/rigs.toml",
+                   "src/tactcad/data/three/build/three.module.js", "tests/conftest.py",
+                   "LICENSE", "CHANGELOG.md", "constraints.txt", "src/tactcad/py.typed"):
+        assert needed in names, needed
+    wheel = zipfile.ZipFile(next(dist.glob("tactcad-*.whl")))
+    names = set(wheel.namelist())
+    for needed in ("tactcad/examples/macro_array/rigs.toml", "tactcad/data/three/LICENSE",
+                   "tactcad/data/three/SHA256SUMS", "tactcad/data/project/hardware.yml",
+                   "tactcad/py.typed", f"tactcad-{tactcad.__version__}.dist-info/licenses/LICENSE"):
+        assert needed in names, needed
+    metadata = wheel.read(f"tactcad-{tactcad.__version__}.dist-info/METADATA").decode()
+    assert "License-Expression: Apache-2.0" in metadata
+    assert "Requires-Dist: numpy<3,>=2.2" in metadata  # a range, not a pin
+
+
+def test_a_labs_first_hour_from_the_wheel(installed, tmp_path):
+    bin_, env, timings, _ = installed
+    tactcad, python = str(bin_ / "tactcad"), str(bin_ / "python")
+    where = _run([python, "-c", "import tactcad; print(tactcad.__file__)"], tmp_path, env)
+    assert str(bin_.parent) in where.stdout and str(ROOT) not in where.stdout
+
+    repo = tmp_path / "lab-hardware"
+    repo.mkdir()
+    git = ["git", "-c", "user.name=lab", "-c", "user.email=lab@example.org"]
+    _run(["git", "init", "-q"], repo, env)
+    _run([tactcad, "new", ".", "--example", "ti_array_2x3"], repo, env, timings=timings)
+    design = "ti_array_2x3.toml"
+    _run([*git, "add", "-A"], repo, env)
+    _run([*git, "commit", "-qm", "sensor project"], repo, env)
+
+    # the CI template's own steps, as it writes them
+    workflow = (repo / ".github" / "workflows" / "hardware.yml").read_text(encoding="utf-8")
+    assert f"DESIGN: {design}" in workflow
+    _run([tactcad, "export", "--design", design, "--out", "exports"], repo, env, timings=timings)
+    _run([tactcad, "check", "--design", design, "--out", "exports", "--junit",
+          "check-report.xml", "--failures-only"], repo, env, timings=timings)
+    report = (repo / "check-report.xml").read_text(encoding="utf-8")
+    assert "<testsuites" in report and 'failures="0"' in report
+
+    text = (repo / design).read_text(encoding="utf-8")
+    (repo / design).write_text(text.replace("6.196", "6.5", 1), encoding="utf-8")
+    _run([*git, "commit", "-qam", "longer reference arms"], repo, env)
+    _run(["git", "worktree", "add", "-q", "base", "HEAD~1"], repo, env)
+    _run([tactcad, "export", "--design", design, "--out", "exports"], repo, env, timings=timings)
+    diff = _run([tactcad, "diff", f"base/{design}", "exports", "--out", "diff", "--json"],
+                repo, env, ok=(0, 1), timings=timings)
+    assert diff.returncode == 1 and "6.5" in diff.stdout
+
+    # the README's Python example, in a folder of its own
+    block = (ROOT / "README.md").read_text(encoding="utf-8").split("## Use from Python", 1)[1]
+    code = re.findall(r"```python\n(.*?)```", block, re.S)[0]
+    work = tmp_path / "py"
+    work.mkdir()
+    _run([tactcad, "new", "fingertip"], work, env)
+    (work / "example.py").write_text(code, encoding="utf-8")
+    out = _run([python, "example.py"], work, env, timings=timings)
+    assert out.stderr == "" and out.stdout.splitlines()[-1].endswith("'manifest.json']")
+
+    # --only step asks for no JavaScript; the page renders offline
+    _run([tactcad, "export", "--design", design, "--only", "step", "--out", "steps"], repo, env,
+         timings=timings)
+    assert (repo / "steps" / "step" / "array.step").is_file()
+    _review_renders(repo / "exports" / "review" / "index.html")
+
+    figures = {cmd: round(s, 1) for cmd, s in timings}
+    print("\nfirst hour from the wheel (s):", json.dumps(figures, indent=1))
+
+
+def _review_renders(page: Path) -> None:
+    from tactcad.checks.review_browser import (BrowserMissing, browser_page, canvas_is_blank,
+                                               chromium_path, wait_first_frame)
+
+    try:
+        chromium_path()
+        import playwright  # noqa: F401
+    except (BrowserMissing, ImportError):
+        return  # the review page's own tests say so
+    with browser_page() as tab:
+        tab.goto(page.resolve().as_uri())
+        wait_first_frame(tab)
+        assert tab.errors == [] and not canvas_is_blank(tab)
+
+
+def test_a_non_paper_project_carries_nothing_of_the_paper(installed, tmp_path):
+    bin_, env, _, _ = installed
+    tactcad = str(bin_ / "tactcad")
+    _run([tactcad, "design", "--kr-over-km", "6", "--kobj-range", "5", "50",
+          "--full-scale-force", "0.5", "--material", "17-4PH", "--columns", "4",
+          "--verify", "none", "--out", "fingertip", "--quiet"], tmp_path, env)
+    project = tmp_path / "fingertip"
+    rigs = (project / "rigs.toml").read_text(encoding="utf-8")
+    samples = json.loads(re.search(r"^stiffness_N_per_mm = (\[.*\])$", rigs, re.M)[1])
+    assert samples and all(5.0 <= k <= 50.0 for k in samples)
+    _run([tactcad, "export", "--out", "exports", "--quiet"], project, env)
+    hits = []
+    for path in sorted(project.rglob("*")):
+        if not path.is_file() or path.suffix in GEOMETRY_SUFFIXES or ".tactcad-cache" in path.parts:
+            continue
+        text = path.read_text(encoding="utf-8", errors="replace")
+        hits += [f"{path.relative_to(project)}: {mark}" for mark in PAPER_MARKS
+                 if re.search(rf"(?<![\w.]){re.escape(mark)}(?![\w])", text)]
+    assert hits == []

@@ -1,0 +1,181 @@
+"""An export folder holds one whole set of files: the old one or the new one,
+whatever happens (a kill at any moment, Ctrl-C, a refused folder, an OS
+error); files an earlier design wrote and this one does not are removed,
+files tactcad never wrote are kept."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from conftest import run_cli, with_default_companions
+from tactcad.design.array_plan import DEFAULT_DESIGN
+from tactcad.store import Store
+
+pytestmark = pytest.mark.slow
+
+
+def tactcad(*args: str, cwd: Path | None = None) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "tactcad.cli", *args], cwd=cwd,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def run(*args: str) -> subprocess.CompletedProcess:
+    return run_cli(*args)
+
+
+def small_design(tmp: Path) -> Path:
+    """The default design with 4 columns: fewer elements, spacers, other files."""
+    text = DEFAULT_DESIGN.read_text(encoding="utf-8")
+    text = text.replace("columns = 5", "columns = 4")
+    text = text.replace("lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0, 5.0, 7.0]",
+                        "lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0]")
+    path = tmp / "small.toml"
+    path.write_text(text, encoding="utf-8")
+    return with_default_companions(path)
+
+
+def whole_set(out: Path) -> tuple[str, set[str]]:
+    """(design sha256, paths) of the set in ``out``, after proving that every
+    file its manifest lists is there with its sha256 and no other file of a
+    tactcad set is."""
+    man = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
+    listed = {f["path"]: f["sha256"] for f in man["files"]}
+    for rel, sha in listed.items():
+        assert hashlib.sha256((out / rel).read_bytes()).hexdigest() == sha, rel
+    present = {p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file()}
+    assert present - set(listed) <= {"manifest.json", "my_notes.txt"}, present - set(listed)
+    return man["design"]["sha256"], set(listed)
+
+
+@pytest.fixture(scope="module")
+def warm(tmp_path_factory) -> Path:
+    """A store with both designs' jobs in it, so exports in the tests take seconds."""
+    tmp = tmp_path_factory.mktemp("warm")
+    store = tmp / "store"
+    for design in (None, small_design(tmp)):
+        args = ["export", "--cache", str(store), "--out", str(tmp / "first")]
+        assert run(*args, *(["--design", str(design)] if design else [])).returncode == 0
+    return store
+
+
+def test_a_smaller_design_removes_the_old_files_and_keeps_foreign_ones(tmp_path, warm):
+    out = tmp_path / "out"
+    assert run("export", "--cache", str(warm), "--out", str(out)).returncode == 0
+    (out / "my_notes.txt").write_text("keep me")
+    big_hash, big = whole_set(out)
+    small = small_design(tmp_path)
+    assert run("export", "--design", str(small), "--cache", str(warm), "--out",
+               str(out)).returncode == 0
+    small_hash, files = whole_set(out)
+    assert small_hash != big_hash
+    gone = big - files
+    assert "dxf/spacer_qty8.dxf" in gone and not (out / "dxf/spacer_qty8.dxf").exists()
+    assert (out / "my_notes.txt").read_text() == "keep me"
+    assert not list(tmp_path.glob(".out.staging-*"))
+
+
+def test_a_kill_at_any_moment_leaves_one_whole_set(tmp_path, warm):
+    out = tmp_path / "out"
+    small = small_design(tmp_path)
+    assert run("export", "--cache", str(warm), "--out", str(out)).returncode == 0
+    hashes = set()
+    designs = [str(small), str(DEFAULT_DESIGN)]
+    for k, delay in enumerate((0.3, 0.8, 1.2, 1.6, 2.0, 2.5, 3.0, 4.0)):
+        proc = tactcad("export", "--design", designs[k % 2], "--cache", str(warm), "--out",
+                       str(out))
+        time.sleep(delay)
+        proc.send_signal(signal.SIGKILL)
+        proc.wait()
+        hashes.add(whole_set(out)[0])  # the old set or the new one, whole
+    assert run("export", "--cache", str(warm), "--out", str(out)).returncode == 0
+    whole_set(out)
+    assert not list(tmp_path.glob(".out.staging-*"))  # the next run cleared the leftovers
+
+
+def test_ctrl_c_is_one_line_and_keeps_the_old_set(tmp_path, warm):
+    out = tmp_path / "out"
+    assert run("export", "--cache", str(warm), "--out", str(out)).returncode == 0
+    before = whole_set(out)
+    proc = tactcad("export", "--no-cache", "--out", str(out))
+    time.sleep(4.0)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    if proc.returncode == 0:
+        pytest.skip("the export finished before the interrupt")
+    assert proc.returncode == 130 and "Traceback" not in err
+    assert err.strip().splitlines()[-1].startswith("tactcad: interrupted")  # after the progress
+    assert whole_set(out) == before
+
+
+@pytest.mark.parametrize("target", ["/", "/usr", "FILE", "FOREIGN", "."])
+def test_refused_out_folders_write_nothing(tmp_path, target):
+    (tmp_path / "FILE").write_text("x")
+    (tmp_path / "FOREIGN").mkdir()
+    (tmp_path / "FOREIGN" / "thesis.tex").write_text("x")
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    out = target if target.startswith("/") else str(tmp_path / target) if target != "." else "."
+    proc = run_cli("export", "--out", out, cwd=tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.startswith("tactcad: error: --out") and "Traceback" not in proc.stderr
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before
+
+
+def test_an_os_error_is_one_line_naming_the_path(tmp_path):
+    (tmp_path / "plain_file").write_text("x")
+    proc = run("export", "--no-cache", "--out", str(tmp_path / "plain_file" / "out"))
+    assert proc.returncode == 3, proc.stderr
+    assert proc.stderr.count("\n") == 1 and "Traceback" not in proc.stderr
+    assert "plain_file" in proc.stderr and "Not a directory" in proc.stderr
+
+
+def test_the_store_is_best_effort(tmp_path):
+    """A store that cannot be written costs time, never the export."""
+    (tmp_path / "not_a_dir").write_text("x")
+    store = Store(tmp_path / "not_a_dir" / "store")
+    assert store.memo("k" * 64, lambda: 42) == 42
+    store.keep("k" * 64, tmp_path, [])
+    assert store.fetch("k" * 64, tmp_path) is None
+
+
+def test_an_incremental_export_writes_the_bytes_of_a_cold_one(tmp_path, warm):
+    """One arm changed, exported over a store that holds the old design's jobs
+    (most files come from the store, a few are rebuilt), gives the very files
+    of the same design exported cold."""
+    text = DEFAULT_DESIGN.read_text(encoding="utf-8")
+    changed = tmp_path / "changed.toml"
+    changed.write_text(text.replace("lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0, 5.0, 7.0]",
+                                    "lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.5, 8.0, 5.0, 4.0, 5.0, 7.0]"),
+                       encoding="utf-8")
+    with_default_companions(changed)
+    proc = run("export", "--design", str(changed), "--cache", str(warm), "--out",
+               str(tmp_path / "incremental"), "--json")
+    assert proc.returncode == 0, proc.stderr
+    summary = json.loads(proc.stdout)
+    assert 0 < summary["jobs_run"] < summary["jobs_reused"]
+    assert run("export", "--design", str(changed), "--no-cache", "--out",
+               str(tmp_path / "cold")).returncode == 0
+    inc, cold = tmp_path / "incremental", tmp_path / "cold"
+    files = sorted(p.relative_to(cold).as_posix() for p in cold.rglob("*") if p.is_file())
+    assert files == sorted(p.relative_to(inc).as_posix() for p in inc.rglob("*") if p.is_file())
+    for rel in files:
+        assert (inc / rel).read_bytes() == (cold / rel).read_bytes(), rel
+
+
+def test_an_output_path_cannot_leave_the_export_folder(tmp_path):
+    from tactcad.errors import ExportPathError
+    from tactcad.export.run import _inside
+
+    (tmp_path / "out").mkdir()
+    assert _inside(tmp_path / "out", "scenes/a.step") == (tmp_path / "out/scenes/a.step").resolve()
+    for bad in ("../escaped.step", "scenes/../../x", "/etc/passwd"):
+        with pytest.raises(ExportPathError, match="would leave"):
+            _inside(tmp_path / "out", bad)

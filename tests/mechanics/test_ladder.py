@@ -1,0 +1,104 @@
+"""The stiffness ladder against the paper: Table 1, gauge strain, as-built web, Table 2."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import pytest
+
+from conftest import run_cli
+from tactcad.errors import TactcadError
+from tactcad.mechanics.ladder import MODELS, estimate
+from tactcad.paper.table1 import as_built_webs, gauge_strain_at_paper_load, table1_comparison, table2_predicted
+from tactcad.paper.data import table1
+
+
+def test_table1_rows_cover_every_calibrated_element(plan):
+    rows = table1_comparison(plan, "closed-form")
+    assert [r.element for r in rows] == [m.element for m in table1()]
+    for r in rows:
+        expected = 100 * (r.predicted.stiffness_N_per_mm - r.measured_N_per_mm) / r.measured_N_per_mm
+        assert r.error_percent == pytest.approx(expected)
+        assert r.predicted.stiffness_N_per_mm > 0
+
+
+def test_longer_arm_is_softer_across_the_table(plan):
+    rows = {r.arm_length_mm: r.predicted.stiffness_N_per_mm for r in table1_comparison(plan, "beam")}
+    ks = [rows[a] for a in sorted(rows)]
+    assert all(k1 > k2 for k1, k2 in zip(ks, ks[1:]))
+
+
+def test_as_built_web_reproduces_measured_stiffness(plan):
+    from dataclasses import replace
+
+    for w in as_built_webs(plan):
+        g = replace(plan.element(w["element"]).geometry, web_thickness_mm=w["web_as_built_mm"])
+        k = estimate("closed-form", g, plan.material).stiffness_N_per_mm
+        assert k == pytest.approx(w["measured_N_per_mm"], rel=1e-6)
+    webs = {w["element"]: w["web_as_built_mm"] for w in as_built_webs(plan)}
+    assert webs[8] > webs[1]  # same 4 mm arm, twice the measured K: a thicker web
+
+
+def test_gauge_strain_grows_with_the_lever(plan):
+    s = gauge_strain_at_paper_load(plan)
+    ratio = s[-1]["strain_percent"] / s[0]["strain_percent"]
+    assert ratio == pytest.approx(8.0 / 4.0, rel=0.05)  # bending moment at the web ~ F a
+    assert all(0.1 < x["strain_percent"] < 2.0 for x in s)
+
+
+def test_table2_with_predicted_stiffness_reports_out_of_domain_rows(plan):
+    t2 = table2_predicted(plan, "closed-form")
+    assert len(t2["rows"]) == 48
+    # Element 1 and element 8 share the 4 mm arm: equal predicted K, outside eq. 2's domain.
+    e1 = [r for r in t2["rows"] if r["element"] == 1]
+    assert e1 and not any(r["in_domain"] for r in e1)
+    assert all(math.isnan(r["R_predicted"]) for r in e1)
+    assert t2["n_in_domain"] == 40
+    assert all(r["R_predicted"] > 1 for r in t2["rows"] if r["in_domain"])
+
+
+def test_unknown_model_is_refused(plan):
+    with pytest.raises(TactcadError, match="closed-form"):
+        estimate("magic", plan.element(1).geometry, plan.material)
+    assert MODELS[0] == "closed-form" and MODELS[-1] == "fem3d"
+
+
+def test_stiffness_cli_json_keys():
+    out = run_cli("stiffness", "--element", "3", "--model", "closed-form", "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    assert set(data) == {"element", "model", "stiffness_N_per_mm", "gauge_strain_per_N",
+                         "error_estimate_rel", "wall_time_s", "warnings"}
+    assert data["warnings"] == []  # the default design lies inside the fitted range
+    assert data["element"] == 3 and data["stiffness_N_per_mm"] > 0
+
+
+def test_stiffness_cli_unknown_element_exits_2():
+    out = run_cli("stiffness", "--element", "11")
+    assert out.returncode == 2 and "element" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_closed_form_commands_do_not_import_the_cad_kernel():
+    code = ("import sys; from tactcad.cli import main; main(['stiffness', '--element', '1', '--json']);"
+            "print('CAD', any(m.split('.')[0] in ('build123d', 'cadquery', 'OCP') for m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip().endswith("CAD False")
+
+
+def test_table1_all_levels_side_by_side(plan, monkeypatch, capsys):
+    import tactcad.commands.mechanics as cmd
+    from tactcad.mechanics import ladder
+
+    fast = {n: ladder.LEVELS[n] for n in ("closed-form", "beam")}  # the fast levels only
+    monkeypatch.setattr(ladder, "LEVELS", fast)
+    assert cmd._table1_all_levels(plan, True, None) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert set(data) == {"closed-form", "beam"}
+    for level in data.values():
+        assert [r["element"] for r in level] == [m.element for m in table1()]
+    # Beam theory (uncorrected) is stiffer than the 3D-corrected closed form everywhere.
+    assert all(b["predicted_N_per_mm"] > c["predicted_N_per_mm"]
+               for b, c in zip(data["beam"], data["closed-form"]))

@@ -1,0 +1,187 @@
+"""The read-out chain: grid-averaged gauge strain, quarter-bridge signal, noise, resolution,
+and the paper's Table 1 beside the prediction."""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from tactcad.cli import main
+from tactcad.design.array_plan import default_design_data, load_design, plan_from_dict, with_overrides
+from tactcad.design.readout_section import readout_of
+from tactcad.errors import DesignError
+from tactcad.paper.data import table1
+from tactcad.mechanics.readout_chain import (beam_grid_strain_per_N, beam_surface_strain_per_N,
+                                       bridge_nonlinearity_rel, gauge_strain_per_N,
+                                       noise_budget_V, readout_chain, readout_report)
+from tactcad.studies.verification import requirements_of, verification_matrix
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLE = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+PAPER_TEXT = re.compile(r"paper|table ?[12]\b", re.IGNORECASE)
+
+
+def _report(plan):
+    return readout_report(plan, requirements_of(plan))
+
+
+def _plan(**overrides):
+    return plan_from_dict(with_overrides(default_design_data(), overrides))
+
+
+def test_grid_average_is_below_the_peak_and_tends_to_it_for_a_short_grid():
+    plan = load_design()
+    g, m = plan.element(4).geometry, plan.material
+    peak = float(beam_surface_strain_per_N(g, m, g.hinge_x_mm))
+    # peak: eps/F = 6 a / (E b t^2), compressive on the top face
+    assert peak == pytest.approx(-6 * g.arm_length_mm / (m.youngs_modulus_MPa * 3.0 * 0.25 ** 2))
+    short, default, long_ = (beam_grid_strain_per_N(g, m, L) for L in (0.02, 0.6, 2.0))
+    assert short == pytest.approx(peak, rel=1e-3)
+    assert abs(long_) < abs(default) < abs(peak)
+
+
+def test_fem2d_field_average_agrees_with_beam_theory_over_the_grid():
+    plan = load_design()
+    g, m = plan.element(1).geometry, plan.material
+    fem = gauge_strain_per_N(g, m, 0.6, "fem2d")
+    beam = gauge_strain_per_N(g, m, 0.6, "closed-form")
+    assert fem["grid"] < 0 and beam["grid"] < 0
+    assert fem["grid"] == pytest.approx(beam["grid"], rel=0.05)
+    assert fem["source"] != beam["source"]
+
+
+def test_quarter_bridge_signal_scales_with_excitation_gain_and_gauge_factor():
+    base = _report(load_design())
+    changed = _report(_plan(**{"readout.excitation_V": 5.0, "readout.amplifier_gain": 10.0,
+                                      "readout.gauge_factor": 4.0}))
+    for a, b in zip(base.records, changed.records):
+        # V = G V_ex GF eps / 4: 2 x 0.1 x 2 = 0.4
+        assert b["sensitivity_V_per_N"] == pytest.approx(0.4 * a["sensitivity_V_per_N"])
+        assert a["k_v_V_per_mm"] == pytest.approx(a["sensitivity_V_per_N"]
+                                                  * a["stiffness_N_per_mm"])
+    assert base.chain.volts_per_strain == pytest.approx(100 * 2.5 * 2.0 / 4)
+
+
+def test_averaging_more_samples_improves_force_resolution_by_its_square_root():
+    a = _report(load_design())
+    b = _report(_plan(**{"readout.samples_averaged": 40}))
+    for x, y in zip(a.records, b.records):
+        assert y["force_resolution_N"] == pytest.approx(x["force_resolution_N"] / 2)
+    assert b.array_kobj_resolution_rel < a.array_kobj_resolution_rel
+
+
+def test_noise_budget_uses_the_daq_range_noise_of_the_spec_sheet():
+    chain = readout_chain(_plan(**{"readout.daq_range_V": 10.0}))
+    assert chain.daq_noise_uV_rms == 280.0
+    n = noise_budget_V(chain)
+    assert n["per_sample"] ** 2 == pytest.approx(sum(n[k] ** 2 for k in (
+        "amplifier", "bridge_johnson", "daq", "quantisation")))
+    assert chain.lsb_V == pytest.approx(20.0 / 2 ** 16)
+
+
+def test_bridge_nonlinearity_is_gf_eps_over_two_for_small_strain():
+    assert bridge_nonlinearity_rel(2.0, 1e-3) == pytest.approx(1e-3, rel=2e-3)
+    assert bridge_nonlinearity_rel(2.0, -1e-3) < 0
+
+
+def test_gauge_factor_and_resistance_follow_the_library_gauge():
+    plan = _plan(**{"strength.gauge": "constantan-foil-hbm-y"})
+    chain = readout_chain(plan)
+    assert chain.gauge_name == "constantan-foil-hbm-y"
+    assert dict(chain.sources)["gauge_factor"].startswith("library gauge")
+
+
+@pytest.mark.parametrize("key, value, field", [
+    ("readout.grid_width_mm", 3.5, "readout.grid_width_mm"),
+    ("readout.grid_length_mm", 0.0, "readout.grid_length_mm"),
+    ("readout.bridge", "full", "readout.bridge"),
+    ("readout.daq_bits", 12.5, "readout.daq_bits"),
+    ("readout.excitation_V", "2.5", "readout.excitation_V"),
+    ("readout.gain", 100, "readout.gain"),
+])
+def test_bad_readout_values_are_refused_naming_the_field(key, value, field):
+    with pytest.raises(DesignError) as exc:
+        _plan(**{key: value})
+    assert exc.value.field == field
+
+
+def test_readout_json_on_the_papers_design_sets_table1_beside_each_element(capsys):
+    assert main(["readout", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    measured = {r.element: r for r in table1()}
+    recs = {r["element"]: r for r in out["elements"]}
+    for number, row in measured.items():
+        r = recs[number]
+        for key in ("gauge_strain_per_N", "k_v_V_per_mm", "sensitivity_V_per_N",
+                    "force_resolution_N", "kobj_resolution_rel"):
+            assert key in r
+        assert r["table1_k_v_V_per_mm"] == row.K_v_V_per_mm
+        assert r["table1_sensitivity_V_per_N"] == row.K_v_over_K_V_per_N
+        assert r["table1_sensitivity_ratio"] == pytest.approx(
+            row.K_v_over_K_V_per_N / r["sensitivity_V_per_N"])
+        # the gain that would reconcile: assumed gain x ratio
+        assert r["reconciling_gain"] == pytest.approx(100 * r["table1_sensitivity_ratio"])
+    assert recs[5]["table1_k_v_V_per_mm"] is None  # element 5 was not calibrated
+    t = out["table1"]
+    assert t["elements"] == 9 and t["sensitivity_ratio_min"] < 1 < t["sensitivity_ratio_max"]
+    # the measured signals and the prediction agree in sign (compressed top face)
+    assert all(r["sensitivity_V_per_N"] < 0 for r in out["elements"])
+
+
+def test_readout_of_the_example_design_is_paper_neutral(capsys):
+    assert main(["readout", "--design", str(EXAMPLE), "--json"]) == 0
+    text = capsys.readouterr().out
+    out = json.loads(text)
+    assert "table1" not in out and not PAPER_TEXT.search(text)
+    assert all("table1_k_v_V_per_mm" not in r for r in out["elements"])
+    assert out["full_scale_force_N"] == 0.1
+    assert main(["readout", "--design", str(EXAMPLE)]) == 0
+    assert not PAPER_TEXT.search(capsys.readouterr().out)
+
+
+def test_verify_checks_kobj_resolution_through_the_read_out_chain():
+    records = verification_matrix(load_design())
+    rec = next(r for r in records if r["requirement"] == "kobj_resolution_rel_readout")
+    assert rec["pass"] and rec["predicted"] == pytest.approx(
+        _report(load_design()).array_kobj_resolution_rel)
+    # a noisier chain (one sample, +/-10 V range, gain 10) against a tight requirement fails
+    tight = _plan(**{"requirements.kobj_resolution_rel": 0.05, "readout.samples_averaged": 1,
+                     "readout.amplifier_gain": 10.0, "readout.daq_range_V": 10.0})
+    rec = next(r for r in verification_matrix(tight)
+               if r["requirement"] == "kobj_resolution_rel_readout")
+    assert not rec["pass"] and rec["margin_rel"] < 0
+
+
+def test_as_built_webs_explain_part_of_table1s_signal_spread(capsys):
+    """Each element's own web (from its measured K) narrows the spread of measured over
+    predicted signal per newton: the thicker web of element 8 gives less strain."""
+    assert main(["readout", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    t = out["table1"]
+    assert t["as_built_web_ratio_rel_std"] < t["sensitivity_ratio_rel_std"]
+    recs = {r["element"]: r for r in out["elements"]}
+    assert recs[8]["table1_as_built_web_mm"] > recs[1]["table1_as_built_web_mm"]
+    assert recs[8]["table1_sensitivity_ratio"] < recs[1]["table1_sensitivity_ratio"]
+
+
+def test_readout_piped_into_a_reader_that_stops_early_is_no_error():
+    import subprocess
+    import sys
+
+    p = subprocess.run(f"{sys.executable} -m tactcad.cli readout --quiet | head -c 10",
+                       shell=True, capture_output=True, text=True, cwd=ROOT)
+    assert "error" not in p.stderr and len(p.stdout) == 10
+
+
+def test_a_smaller_variant_of_the_papers_design_compares_only_its_table1_elements(capsys):
+    argv = ["readout", "--json", "--set", "array.columns=1", "--set", "arms.lengths_mm=[4,5]"]
+    assert main(argv) == 0
+    out = json.loads(capsys.readouterr().out)
+    recs = {r["element"]: r for r in out["elements"]}
+    assert recs[1]["table1_k_v_V_per_mm"] == -7.3  # element 1: Table 1's arm, 4 mm
+    assert recs[2]["table1_k_v_V_per_mm"] is None  # element 2 has 5 mm, Table 1's has 7 mm
+    assert out["table1"]["elements"] == 1
