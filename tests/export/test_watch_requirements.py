@@ -35,3 +35,13 @@ def test_the_served_state_carries_them_to_the_server_process():
     assert json.loads(served.as_json())["unmet"] == ["kr_over_km"]
     state.publish("ab" * 32, "current")
     assert json.loads(state.as_json())["unmet"] == []
+
+
+def test_the_page_never_asks_watch_for_a_file_it_lacks():
+    from tactcad.export.live_server import NO_CHECKS_JS
+
+    state = LiveState()
+    body, kind = state.response("/checks.js")  # before tactcad check has run
+    assert body == NO_CHECKS_JS and kind.startswith("text/javascript")
+    state.publish("ab" * 32, "current", checks_js="window.TACTCAD_CHECKS = {};\n")
+    assert state.response("/checks.js")[0] == b"window.TACTCAD_CHECKS = {};\n"

@@ -37,6 +37,11 @@ from tactcad.export.review_page import ReviewContents
 Log = Callable[[str], None]
 
 
+#: ``/checks.js`` before ``tactcad check`` has run on the export: the page asks
+#: for it on every load, so it is always there (the page reads null as "not run").
+NO_CHECKS_JS = b"window.TACTCAD_CHECKS = null;\n"
+
+
 @dataclass
 class LiveState:
     """What the server shows: the exported page, the sequence number, the last
@@ -145,8 +150,8 @@ class LiveState:
                 return self._state_json(), "application/json"
             if path == "/data":
                 return self.view.data, "application/json"
-            if path == "/checks.js" and self.checks_js is not None:
-                return self.checks_js, "text/javascript; charset=utf-8"
+            if path == "/checks.js":  # before any check has run: a script that says so
+                return self.checks_js or NO_CHECKS_JS, "text/javascript; charset=utf-8"
             if folder == "/scene" and digest in self.kept.glbs:
                 return self.kept.glbs[digest], "model/gltf-binary"
             if folder == "/sheet" and digest in self.kept.sheets:
