@@ -303,6 +303,7 @@ class Project:
             UnknownModelError: ``model`` is neither ``auto`` nor a ladder level.
             DesignError: the material has no yield strength.
         """
+        from tactcad.assembly.inventory import array_envelope_mm
         from tactcad.mechanics.ladder import UnknownModelError, models
         from tactcad.studies.verification import (requirements_of, verification_auto,
                                                     verification_matrix)
@@ -312,10 +313,13 @@ class Project:
             raise UnknownModelError(model)
         plan = self.plan
         req = requirements_of(plan)
+        envelope = array_envelope_mm(plan)
         if model == "auto":
-            records, levels = verification_auto(plan, progress, req, stress=element_stress)
+            records, levels = verification_auto(plan, progress, req, stress=element_stress,
+                                                envelope_mm=envelope)
         else:
-            records = verification_matrix(plan, model, progress, req, stress=element_stress)
+            records = verification_matrix(plan, model, progress, req, stress=element_stress,
+                                          envelope_mm=envelope)
             levels = []
         return Verification(model, tuple(records), tuple(levels), req.as_json())
 

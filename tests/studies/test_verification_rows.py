@@ -157,3 +157,33 @@ def test_tolerance_and_verify_print_the_same_toleranced_band(capsys):
     record = next(r for r in verification_matrix(example())
                   if r["requirement"] == "k_tolerance_rel_toleranced")
     assert record["predicted"] == band and (record["samples"], record["seed"]) == (10_000, 0)
+
+
+def test_a_stated_footprint_is_checked_against_the_arrays_envelope(capsys):
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.checks.requirement_checks import requirement_checks
+    from tactcad.studies.verification import footprint_record
+
+    plan = example()
+    x, y, z = array_envelope_mm(plan)
+    assert x > y > 0 and z > 0
+    roomy = example(**{"requirements.footprint_mm": [x + 1, y + 1]})
+    record = next(r for r in verification_matrix(roomy, envelope_mm=(x, y, z))
+                  if r["requirement"] == "footprint_mm")
+    assert record["verdict"] == "pass" and record["predicted"] == [x, y]
+    tight = example(**{"requirements.footprint_mm": [40, 20]})
+    bad = [r for r in requirement_checks(tight) if not r.passed]
+    assert [r.subject for r in bad] == ["footprint_mm"] and "tightest along X" in bad[0].detail
+    assert footprint_record([40, 30, 5], (67.0, 22.0, 6.0))["binding_axis"] == "X"
+    assert footprint_record([70, 20, 10], (67.0, 22.0, 6.0))["binding_axis"] == "Y"
+    assert cli.main(["verify", "--design", str(EXAMPLE), "--model", "closed-form", "--quiet",
+                     "--set", "requirements.footprint_mm=[40,20]"]) == 1
+    assert "| footprint_mm | [40, 20] |" in capsys.readouterr().out
+    with pytest.raises(DesignErrors) as err:
+        example(**{"requirements.footprint_mm": [40]})
+    assert err.value.field == "requirements.footprint_mm"
+
+
+def test_without_a_footprint_nothing_about_it_is_written():
+    plan = example()
+    assert all(r["requirement"] != "footprint_mm" for r in verification_matrix(plan))

@@ -96,6 +96,13 @@ def fabricated_parts(project: Project, assembled=None) -> tuple[list[PartSpec], 
     return [s for s in specs.values() if s.kind == "fabricated" and qty.get(s.name, 0) > 0], qty
 
 
+def array_envelope_mm(plan: Plan) -> tuple[float, float, float]:
+    """The clamped array's envelope (mm): X, Y and Z of its assembly STEP's box
+    (Z up: X by Y in plan view, Z the height), from the expected part boxes."""
+    box = assembly_review(array_parts(plan), array_instances(plan))["bbox_mm"]
+    return tuple(float(box[k + 3] - box[k]) for k in range(3))
+
+
 def assembly_review(specs: dict[str, PartSpec], instances) -> dict:
     """What a reviewer should find on re-import of an assembly STEP: solid
     count, total volume (mm^3), bounding box (mm, the STEP's Z-up frame) and part labels. The box is

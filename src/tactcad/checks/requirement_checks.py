@@ -18,10 +18,11 @@ def requirement_checks(plan, model: str = "closed-form") -> list[CheckResult]:
     :func:`tactcad.studies.verification.verification_matrix`): failed when
     its verdict is ``fail``; an ``undecided`` one (margin inside the level's
     error estimate) passes with a note that ``tactcad verify`` decides it."""
+    from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.studies.verification import verification_matrix
 
     out = []
-    for r in verification_matrix(plan, model):
+    for r in verification_matrix(plan, model, envelope_mm=array_envelope_mm(plan)):
         detail = (f"{r['verdict']}: target {_short(r['target'])}, predicted "
                   f"{_short(r['predicted'])}, margin {_pct(r['margin_rel'])} "
                   f"(error {_pct(r['error_estimate_rel'], sign=False)}, {r['model']})")
@@ -30,6 +31,8 @@ def requirement_checks(plan, model: str = "closed-form") -> list[CheckResult]:
         if "measuring_element" in r:
             detail += (f", worst pair row {r['row']}: element {r['reference_element']} / "
                        f"{r['measuring_element']}")
+        if "binding_axis" in r:
+            detail += f", tightest along {r['binding_axis']}"
         if r["verdict"] == "undecided":
             detail += ("; no level computes it closer" if r["level_fixed"] else
                        "; tactcad verify --model auto decides it up the ladder")

@@ -35,16 +35,19 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from tactcad.studies.verification import (matrix_passed, requirements_of, undecided,
                                                 verification_auto, verification_matrix)
+    from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.studies.strength_studies import element_stress
 
     plan = plan_from_args(args)
     progress = progress_from_args(args)
     req = requirements_of(plan)
+    envelope = array_envelope_mm(plan)
     if args.model == "auto":
-        records, levels = verification_auto(plan, progress, req, stress=element_stress)
+        records, levels = verification_auto(plan, progress, req, stress=element_stress,
+                                            envelope_mm=envelope)
     else:
         records, levels = verification_matrix(plan, args.model, progress, req,
-                                              stress=element_stress), []
+                                              stress=element_stress, envelope_mm=envelope), []
     ok = matrix_passed(records)
     open_ = undecided(records)
     if args.json:
@@ -106,4 +109,6 @@ def _worst(r: dict) -> str:
                 f"{r['measuring_element']}")
     if "binding_element" in r:
         return f"element {r['binding_element']}"
+    if "binding_axis" in r:
+        return f"axis {r['binding_axis']}"
     return ""

@@ -15,6 +15,9 @@ Keys (units in the names):
   fabrication tolerance (relative, e.g. 0.1 for +/-10 %).
 * ``kobj_resolution_rel``: the relative K_obj resolution the array must reach
   over the whole range at the full-scale force.
+* ``footprint_mm = [X, Y]`` or ``[X, Y, Z]``: the envelope the clamped array
+  must fit (plan view X by Y, height Z), as its assembly STEP's box; never
+  derived (without it nothing is checked).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -48,7 +51,17 @@ class RequirementsSection(Section):
                             why="relative K band over the web tolerance") = None
     kobj_resolution_rel: number(0.0, 10.0, lo_open=True, unit="",
                                 why="relative K_obj resolution over the range") = None
+    footprint_mm: listing(number(0.0, 1e4, lo_open=True, unit="mm"), 2, 3,
+                          "[X, Y] or [X, Y, Z] (mm)",
+                          "the envelope the clamped array must fit") = None
     source: Text = None
+
+
+def stated_footprint(raw: Mapping[str, Any]) -> tuple[float, ...] | None:
+    """``requirements.footprint_mm`` as floats (mm), or None when not stated."""
+    table = raw.get("requirements") if isinstance(raw, Mapping) else None
+    value = table.get("footprint_mm") if isinstance(table, Mapping) else None
+    return None if value is None else tuple(float(v) for v in value)
 
 
 def check_requirements(d: Any, p: Problems) -> None:

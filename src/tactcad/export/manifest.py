@@ -13,6 +13,7 @@ from tactcad.assembly.inventory import assembly_review, instance_counts
 from tactcad.catalogue.array_catalogue import PartSpec, array_instances, array_parts
 from tactcad.catalogue.files import ARRAY_STEP
 from tactcad.design.array_plan import Plan
+from tactcad.assembly.inventory import array_envelope_mm
 from tactcad.studies.verification import requirements_record
 from tactcad.paper.paper_load import strength_summary
 from tactcad.store import stack_versions
@@ -60,7 +61,7 @@ def design_facts(plan: Plan) -> dict:
         "assemblies": {"array": {"file": ARRAY_STEP, "instances": len(inst),
                                **assembly_review(specs, inst)}},
         "strength": [_strength_record(r) for r in strength_summary(plan)],
-        "requirements": requirements_record(plan),
+        "requirements": requirements_record(plan, array_envelope_mm(plan)),
         "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
                     for d in plan.derived],
         "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],

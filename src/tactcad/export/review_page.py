@@ -138,6 +138,8 @@ def verification_row(r: dict) -> dict:
     elif "binding_words" in r:
         element = r.get("binding_element")
         binds = r["binding_words"] + ("" if element is None else f" (element {element})")
+    elif "binding_axis" in r:
+        binds = f"axis {r['binding_axis']}"
     else:
         binds = ""
     return {"requirement": r["requirement"], "verdict": _verdict(r).upper(),

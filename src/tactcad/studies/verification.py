@@ -31,13 +31,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
 from tactcad.design.array_plan import Plan
 from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, requirements_source,
-                                         stated_requirements)
+                                         stated_footprint, stated_requirements)
 from tactcad.mechanics.resolution import KOBJ_POINTS
 
 #: The predicted readable range is searched this factor beyond the required one.
@@ -66,13 +66,16 @@ class Requirements:
     stated: frozenset = frozenset()
     source: str | None = None
     cites_paper: bool = False
+    footprint_mm: tuple[float, ...] | None = None
 
     def as_json(self) -> dict:
         return {"full_scale_force_N": self.full_scale_force_N,
                 "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
                 "kr_over_km": self.kr_over_km, "k_tolerance_rel": self.k_tolerance_rel,
                 "kobj_resolution_rel": self.kobj_resolution_rel, "reasons": dict(self.reasons),
-                "stated": sorted(self.stated), "source": self.source}
+                "stated": sorted(self.stated), "source": self.source,
+                **({} if self.footprint_mm is None else
+                   {"footprint_mm": list(self.footprint_mm)})}
 
 
 def round_down(x: float, digits: int = 2) -> float:
@@ -312,7 +315,8 @@ def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
         kr_over_km=float(values["kr_over_km"]), k_tolerance_rel=float(values["k_tolerance_rel"]),
         kobj_resolution_rel=float(values["kobj_resolution_rel"]),
         reasons={k: reasons[k] for k in REQUIREMENT_KEYS}, stated=frozenset(stated),
-        source=requirements_source(plan.raw), cites_paper=cites_paper(plan.raw))
+        source=requirements_source(plan.raw), cites_paper=cites_paper(plan.raw),
+        footprint_mm=stated_footprint(plan.raw))
 
 
 # ---------------------------------------------------------------------------
@@ -332,7 +336,8 @@ def _record(requirement: str, target, predicted, error: float, margin: float, mo
 def verification_matrix(plan: Plan, model: str = "closed-form",
                         progress: Callable[[str], None] | None = None,
                         requirements: Requirements | None = None,
-                        stress: Callable | None = None) -> list[dict]:
+                        stress: Callable | None = None,
+                        envelope_mm: Sequence[float] | None = None) -> list[dict]:
     """One record per requirement, evaluated at ``model``.
 
     margin_rel: predicted / target - 1 for a lower bound (full-scale force,
@@ -395,6 +400,11 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     from tactcad.studies.tolerance_budget import toleranced_band_record
 
     out.append(toleranced_band_record(plan, req.k_tolerance_rel, closed_form_k_error(plan)))
+    if req.footprint_mm is not None:
+        if envelope_mm is None:
+            raise ValueError("the design states requirements.footprint_mm: pass the array's "
+                             "envelope (tactcad.assembly.inventory.array_envelope_mm)")
+        out.append(footprint_record(req.footprint_mm, envelope_mm))
     for r in out:
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew
@@ -404,8 +414,22 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     return out
 
 
+def footprint_record(footprint_mm: Sequence[float], envelope_mm: Sequence[float]) -> dict:
+    """``footprint_mm``: the array's envelope (X, Y and, when the footprint
+    states it, Z; mm) against the footprint; the margin is the tightest axis's
+    room (footprint / envelope - 1). Geometry, not a model: no error estimate."""
+    axes = "XYZ"[:len(footprint_mm)]
+    env = [float(e) for e in envelope_mm[:len(footprint_mm)]]
+    margins = [f / e - 1.0 for f, e in zip(footprint_mm, env)]
+    worst = min(range(len(margins)), key=lambda k: margins[k])
+    return {"requirement": "footprint_mm", "target": list(footprint_mm), "predicted": env,
+            "error_estimate_rel": 0.0, "margin_rel": margins[worst], "model": "geometry",
+            "pass": margins[worst] >= 0, "binding_axis": axes[worst],
+            "basis": "the assembly STEP's box from the parts' expected boxes"}
+
+
 #: Requirements computed the same way at every level (the K band over the web tolerance).
-LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced")
+LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm")
 
 #: A requirement's verdict at one level (:func:`verdict`).
 VERDICTS = ("pass", "fail", "undecided")
@@ -437,7 +461,8 @@ def verdict(margin_rel: float | None, error_rel: float | None, threshold_rel: fl
 def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
                       requirements: Requirements | None = None,
                       stress: Callable | None = None,
-                      levels: tuple[str, ...] | None = None) -> tuple[list[dict], list[dict]]:
+                      levels: tuple[str, ...] | None = None,
+                      envelope_mm: Sequence[float] | None = None) -> tuple[list[dict], list[dict]]:
     """The verification matrix at the cheapest level that decides each
     requirement: the closed form first, then each level up the ladder
     (:func:`tactcad.mechanics.ladder.models`) only while a requirement is
@@ -466,7 +491,7 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     for i, level in enumerate(ladder):
         open_before = [k for k in order if k not in chosen] if order else None
         t0 = time.perf_counter()
-        records = verification_matrix(plan, level, progress, req, stress)
+        records = verification_matrix(plan, level, progress, req, stress, envelope_mm)
         spent.append({"model": level, "seconds": time.perf_counter() - t0,
                       "undecided_before": open_before})
         order = order or [r["requirement"] for r in records]
@@ -515,12 +540,12 @@ def undecided(records: list[dict]) -> list[str]:
     return [r["requirement"] for r in records if r.get("verdict") == "undecided"]
 
 
-def requirements_record(plan: Plan) -> dict:
+def requirements_record(plan: Plan, envelope_mm: Sequence[float] | None = None) -> dict:
     """The manifest's record: the requirements with their reasons and the
     closed-form verification of each, the full-scale force with every limit
-    and the one that binds."""
+    and the one that binds; ``envelope_mm``: the array's, for a stated footprint."""
     req = requirements_of(plan)
-    matrix = verification_matrix(plan, "closed-form", requirements=req)
+    matrix = verification_matrix(plan, "closed-form", requirements=req, envelope_mm=envelope_mm)
     force = matrix[0]
     return {"values": req.as_json(), "closed_form_matrix": matrix,
             "full_scale_force": {"required_N": req.full_scale_force_N,
