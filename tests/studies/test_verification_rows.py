@@ -187,3 +187,17 @@ def test_a_stated_footprint_is_checked_against_the_arrays_envelope(capsys):
 def test_without_a_footprint_nothing_about_it_is_written():
     plan = example()
     assert all(r["requirement"] != "footprint_mm" for r in verification_matrix(plan))
+
+
+def test_design_within_a_footprint_states_it_or_refuses_naming_the_envelope(tmp_path, capsys):
+    args = ["design", "--kr-over-km", "6", "--kobj-range", "5", "50", "--full-scale-force",
+            "0.3", "--columns", "4", "--verify", "none", "--quiet"]
+    out = tmp_path / "tip.toml"
+    assert cli.main(args + ["--footprint", "40", "20", "--out", str(out), "--json"]) == 2
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert error["field"] == "--footprint" and "at least" in error["allowed"]
+    assert not out.exists()  # nothing half-written
+    assert cli.main(args + ["--footprint", "90", "40", "--out", str(out)]) == 0
+    written = read_toml(out, "design")
+    assert written["requirements"]["footprint_mm"] == [90.0, 40.0]
+    assert "--footprint 90 40" in out.read_text().splitlines()[0]

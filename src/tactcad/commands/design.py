@@ -44,6 +44,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "other: 2)")
     p.add_argument("--pitch", type=number(0, 1000, "mm", lo_open=True), metavar="MM", default=None,
                    help="array pitch (default: the base design's)")
+    p.add_argument("--footprint", type=number(0, 1e4, "mm", lo_open=True), nargs=2,
+                   metavar=("X", "Y"), default=None,
+                   help="plan-view envelope (mm) the clamped array must fit: the design is "
+                        "refused, naming the envelope it needs, when it does not; the file "
+                        "states it as requirements.footprint_mm so verify and check keep it")
     p.add_argument("--out", metavar="NEW.toml|DIR", required=True,
                    help="design file to write (.toml), or a sensor project folder DIR to make "
                         "as `tactcad new` does (the design DIR/<DIR>.toml with its rigs, "
@@ -147,6 +152,8 @@ def run(args: argparse.Namespace) -> int:
     result = design_for_targets(base, targets, grade=args.material, pitch_mm=args.pitch,
                                 rows=args.rows, columns=args.columns,
                                 name=path.stem.replace("-", "_") or "inverse_design")
+    if args.footprint is not None:
+        result = within_footprint(result, tuple(args.footprint))
     report = design_report(result, args.verify, progress_from_args(args))
     from tactcad import __version__
 
@@ -167,6 +174,33 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def within_footprint(result, footprint_mm: tuple[float, float]):
+    """``result`` with ``requirements.footprint_mm`` stated, when its array's
+    envelope fits ``footprint_mm`` (X, Y in plan view, mm).
+
+    Raises:
+        DesignError: ``--footprint`` naming the envelope the design needs.
+    """
+    from dataclasses import replace
+
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.errors import DesignError
+
+    x, y, _ = array_envelope_mm(result.plan)
+    if x > footprint_mm[0] or y > footprint_mm[1]:
+        raise DesignError("--footprint", list(footprint_mm),
+                          f"at least {x:.1f} x {y:.1f} mm for this design (its clamped "
+                          f"array's envelope)",
+                          "the measuring arms the targets need (a softer K_m is a longer "
+                          "arm), the clamp and the columns set the envelope; fewer columns, "
+                          "a smaller pitch or a stiffer K_m (a smaller K_r/K_m or a higher "
+                          "K_obj range) makes it smaller")
+    data = dict(result.data)
+    data["requirements"] = {**data.get("requirements", {}), "footprint_mm": list(footprint_mm)}
+    return replace(result, data=data, plan=plan_from_dict(data, result.plan.source))
+
+
 def design_options(args: argparse.Namespace) -> list[str]:
     """The options that shaped the design, as typed (for its header): the
     targets, the grid, grade and pitch where given, the base design's file
@@ -174,6 +208,8 @@ def design_options(args: argparse.Namespace) -> list[str]:
     words = [f"--kr-over-km {args.kr_over_km:g}",
              f"--kobj-range {args.kobj_range[0]:g} {args.kobj_range[1]:g}",
              f"--full-scale-force {args.full_scale_force:g}"]
+    if getattr(args, "footprint", None) is not None:
+        words.append(f"--footprint {args.footprint[0]:g} {args.footprint[1]:g}")
     for flag, value in (("--material", args.material), ("--rows", args.rows),
                         ("--columns", args.columns), ("--pitch", args.pitch)):
         if value is not None:
