@@ -20,6 +20,7 @@ from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, p
                                project_from_args)
 from tactcad.commands.options import count, number
 from tactcad.commands.finite_json import dumps
+from tactcad.mechanics.ladder import models
 
 COLD_GOAL_S = 8.0  # on two cores
 WARM_GOAL_S = 1.5
@@ -106,7 +107,27 @@ def register(sub: argparse._SubParsersAction) -> None:
                          "rounds, goals, load average, and under load: clients, seconds, "
                          "edits, requests, errors, p50_ms, p95_ms, p99_ms, max_ms, per route")
     wa.set_defaults(func=run_watch)
+    v = bsub.add_parser("verify", help="verify: each ladder level's matrix timed, then "
+                                       "--model auto; its seconds and verdicts against the "
+                                       "top level's")
+    add_design_arg(v)
+    v.add_argument("--models", nargs="+", choices=models(), default=None, metavar="MODEL",
+                   help="the ladder to time and climb, cheapest first (default: every level)")
+    add_output_args(v, "print one JSON object: seconds and verdicts per level and of auto")
+    v.set_defaults(func=run_verify)
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
+
+
+def run_verify(args: argparse.Namespace) -> int:
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.benchmarks.verify_bench import trade_table, verify_trade
+    from tactcad.studies.strength_studies import element_stress
+
+    plan = plan_from_args(args)
+    report = verify_trade(plan, array_envelope_mm(plan), element_stress,
+                          tuple(args.models or models()))
+    print(dumps(report, indent=1) if args.json else trade_table(report))
+    return 0
 
 
 def run_watch(args: argparse.Namespace) -> int:
