@@ -201,3 +201,14 @@ def test_design_within_a_footprint_states_it_or_refuses_naming_the_envelope(tmp_
     written = read_toml(out, "design")
     assert written["requirements"]["footprint_mm"] == [90.0, 40.0]
     assert "--footprint 90 40" in out.read_text().splitlines()[0]
+
+
+def test_evaluate_reads_each_row_against_its_own_reference(capsys):
+    assert cli.main(["evaluate", "--design", str(EXAMPLE), "--json", "--quiet"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["row_references"] == [2, 5]
+    assert {e["element"]: e["reference_element"] for e in report["elements"]} == {
+        1: 2, 2: 2, 3: 2, 4: 5, 5: 5, 6: 5}
+    first = report["samples"][0]["elements"]
+    assert all(r == pytest.approx(1.0) for e in first if e["element"] in (2, 5) for r in e["R"])
+    assert set(report["fig6"]["R"]) == {"1", "3", "4", "6"}

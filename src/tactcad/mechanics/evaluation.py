@@ -26,6 +26,7 @@ Units: mm, N, N/mm; deflections reported in um.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Mapping
 
 import numpy as np
 
@@ -187,7 +188,8 @@ class RigResult:
 
 
 def simulate_rig(elements, k_obj: float, spec: SampleSpec, loads_N=None, reference: int | None = None,
-                 unit_compliance: np.ndarray | None = None) -> RigResult:
+                 unit_compliance: np.ndarray | None = None,
+                 references: Mapping[int, int] | None = None) -> RigResult:
     """Simulate the evaluation rig for one sample.
 
     Args:
@@ -197,6 +199,8 @@ def simulate_rig(elements, k_obj: float, spec: SampleSpec, loads_N=None, referen
         loads_N: grasping forces (N), default :func:`load_steps_N`.
         reference: element number of the reference; default :func:`reference_element`.
         unit_compliance: optional E = 1 punch compliance matrix (reuse across samples).
+        references: element number -> the reference its R is read against (each
+            row's own); None: every R against ``reference``.
 
     Returns:
         :class:`RigResult`.
@@ -219,8 +223,11 @@ def simulate_rig(elements, k_obj: float, spec: SampleSpec, loads_N=None, referen
     travel = loads / per_travel.sum()
     forces = np.outer(travel, per_travel)
     deflection = forces / k
-    iref = int(np.flatnonzero(numbers == ref)[0])
-    ratio = deflection / deflection[:, [iref]]
+    own = references or {}
+    for r in set(own.values()) - set(numbers.tolist()):
+        raise ContactError("references", r, f"one of {numbers.tolist()}")
+    iref = [int(np.flatnonzero(numbers == own.get(int(n), ref))[0]) for n in numbers]
+    ratio = deflection / deflection[:, iref]
     return RigResult(numbers, k, int(ref), float(k_obj), loads, travel, deflection, forces, ratio,
                      per_travel < 0)
 
@@ -263,7 +270,7 @@ def _rig_record(res: RigResult, spec: SampleSpec) -> dict:
 
 def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec: SampleSpec,
                       n_steps: int = DEFAULT_LOAD_STEPS, fig6_sample: float = 3.85,
-                      loads_N=None) -> dict:
+                      loads_N=None, references: Mapping[int, int] | None = None) -> dict:
     """The simulated evaluation experiment for a plan: R per element, sample and load step.
 
     Args:
@@ -275,6 +282,9 @@ def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec:
         fig6_sample: the sample whose R against load is singled out as Fig. 6
             (the listed sample nearest to it; the paper shows 3.85 N/mm).
         loads_N: grasping forces (N) instead of the paper's steps (``n_steps`` ignored).
+        references: element number -> its row's reference (each element's R and
+            K_r/K_m against it); None: one reference for all
+            (:func:`reference_element`), as the paper's rig.
 
     Returns:
         dict with the reference element, the elements' K and K_r/K_m, one
@@ -291,16 +301,20 @@ def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec:
         _check_k_obj(s)
     elements = elements_from_plan(plan, stiffness)
     _check_elements(elements)
-    ref = reference_element(elements)
+    ref = reference_element(elements) if references is None else min(set(references.values()))
+    own = dict(references or {e.number: ref for e in elements})
     k_ref = stiffness[ref]
     unit = None if spec.coupling == "none" else unit_punch_compliance(elements, spec)
     loads = load_steps_N(n_steps) if loads_N is None else np.asarray(loads_N, float)
-    results = [simulate_rig(elements, s, spec, loads, ref, unit) for s in samples]
+    results = [simulate_rig(elements, s, spec, loads, ref, unit, references) for s in samples]
     records = [_rig_record(r, spec) for r in results]
     fig6_index = int(np.argmin([abs(s - fig6_sample) for s in samples]))
-    measuring = [e for e in elements if e.number != ref]
-    fig7 = [{"element": e.number, "label": f"element {e.number}, K_r/K_m = {k_ref / e.stiffness_N_per_mm:.3g}",
-             "K_r_over_K_m": k_ref / e.stiffness_N_per_mm,
+    refs = set(own.values())
+    measuring = [e for e in elements if e.number not in refs]
+    k_own = {e.number: stiffness[own[e.number]] for e in elements}
+    fig7 = [{"element": e.number, "label": f"element {e.number}, K_r/K_m = "
+                                           f"{k_own[e.number] / e.stiffness_N_per_mm:.3g}",
+             "K_r_over_K_m": k_own[e.number] / e.stiffness_N_per_mm,
              "K_m_over_K_obj": [e.stiffness_N_per_mm / s for s in samples],
              "R": [float(r.ratio[0, list(r.elements).index(e.number)]) for r in results]}
             for e in measuring]
@@ -310,13 +324,15 @@ def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec:
         "poisson_ratio": spec.poisson_ratio if spec.coupling != "none" else None,
         "thickness_mm": spec.layer_thickness_mm,
         "reference_element": ref,
+        **({} if references is None else {"row_references": sorted(refs)}),
         "K_r_N_per_mm": k_ref,
         "elements": [{"element": e.number, "K_N_per_mm": e.stiffness_N_per_mm,
-                      "K_r_over_K_m": k_ref / e.stiffness_N_per_mm,
+                      "K_r_over_K_m": k_own[e.number] / e.stiffness_N_per_mm,
+                      **({} if references is None else {"reference_element": own[e.number]}),
                       "tip_x_mm": e.punch.x_mm, "tip_z_mm": e.punch.z_mm} for e in elements],
         "samples": records,
         "fig6": {"K_obj_N_per_mm": samples[fig6_index], "loads_N": loads.tolist(),
                  "R": {str(e["element"]): e["R"] for e in records[fig6_index]["elements"]
-                       if e["element"] != ref}},
+                       if e["element"] not in refs}},
         "fig7": fig7,
     }
