@@ -123,3 +123,20 @@ def test_spacer_gets_start_holes_and_no_web(plan):
     spacer = next(sp for sp in shop_profiles(plan) if sp.part == "spacer")
     assert len(spacer.profile.start_holes) == len(spacer.profile.holes) > 0
     assert spacer.web_thickness_mm is None
+
+
+def test_the_shop_files_name_the_material_as_the_bom_does(plan, tmp_path):
+    """Every DXF header's MATERIAL is the BOM's material with alloy and temper."""
+    import ezdxf
+
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.catalogue.shop import material_designation
+    from tactcad.export.dxf_sheet import shop_profiles, write_shop_dxf_files
+
+    (tmp_path / "dxf").mkdir()
+    write_shop_dxf_files(plan, tmp_path, lambda line: None)
+    specs = array_parts(plan)
+    for sp in shop_profiles(plan):
+        doc = ezdxf.readfile(tmp_path / sp.file_name)
+        assert doc.header.custom_vars.get("MATERIAL") == material_designation(specs[sp.part], plan)
+        assert "EN AW-" in doc.header.custom_vars.get("MATERIAL")

@@ -35,6 +35,7 @@ from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_points
 from tactcad.errors import DesignError
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
+from tactcad.catalogue.shop import material_designation
 from tactcad.export.dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, circle_entry,
                   placed_extents, write_dxf)
 
@@ -60,6 +61,8 @@ class ShopProfile:
         keep_out: points (mm, profile frame) the lead-ins stay away from: the
             web (thinnest section over the notch) and the contact-face centre.
         web_thickness_mm: the design web for elements, None otherwise.
+        designation: the material with alloy and temper, as the BOM and the
+            drawings write it (:func:`tactcad.catalogue.shop.material_designation`).
     """
 
     part: str
@@ -71,6 +74,7 @@ class ShopProfile:
     keep_out: tuple[Point, ...]
     file_mark: str
     web_thickness_mm: float | None = None
+    designation: str = ""
 
     @property
     def file_name(self) -> str:
@@ -112,6 +116,7 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
             material=specs[name].material, thickness_mm=specs[name].thickness_mm,
             copy_marks=tuple(f"E{n} {_arm_mark(g.arm_length_mm)}" for n in numbers),
             keep_out=element_keep_out(g), web_thickness_mm=g.web_thickness_mm,
+            designation=material_designation(specs[name], plan),
             file_mark=f"{'/'.join(f'E{n}' for n in numbers)} {_arm_mark(g.arm_length_mm)} "
                       f"QTY {counts[name]}"))
     if "spacer" not in specs:  # one column: no spacer
@@ -121,6 +126,7 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
         part="spacer", profile=_with_start_holes(sp.profile, plan.edm.start_hole_diameter_mm),
         quantity=counts["spacer"], material=sp.material, thickness_mm=sp.thickness_mm,
         copy_marks=("SPACER",) * counts["spacer"], keep_out=(),
+        designation=material_designation(sp, plan),
         file_mark=f"SPACER QTY {counts['spacer']}"))
     return out
 
@@ -282,7 +288,7 @@ def dxf_version_option() -> str:
 
 def _properties(plan: Plan, sp: ShopProfile) -> dict[str, str]:
     return {"DESIGN": plan.name, "PART": sp.part, "QUANTITY": str(sp.quantity),
-            "MATERIAL": sp.material, "THICKNESS_MM": f"{sp.thickness_mm:g}",
+            "MATERIAL": sp.designation or sp.material, "THICKNESS_MM": f"{sp.thickness_mm:g}",
             "MARKS": ", ".join(sp.copy_marks), "UNITS": "mm"}
 
 
@@ -329,11 +335,13 @@ def write_shop_dxf_files(plan: Plan, staging: Path, log: Callable[[str], None],
                             "material": material, "thickness_mm": t, "dxf_version": version})
         rel = sheet_dxf_name(material, t)
         gap = sheet_gap_mm(plan)
-        props = {"DESIGN": plan.name, "MATERIAL": material, "THICKNESS_MM": f"{t:g}",
+        grades = ", ".join(dict.fromkeys(sp.designation or sp.material for sp in group))
+        props = {"DESIGN": plan.name, "MATERIAL": grades, "THICKNESS_MM": f"{t:g}",
                  "PARTS": ", ".join(f"{sp.part} x{sp.quantity}" for sp in group),
                  "GAP_MM": f"{gap:g}", "UNITS": "mm"}
         placed = tuple(nested_sheet(group, gap))
-        write_dxf(staging / rel, DxfFile(placed, f"{plan.name} sheet {material} {t:g} mm", props), version)
+        write_dxf(staging / rel, DxfFile(placed, f"{plan.name} sheet {grades} {t:g} mm", props),
+                  version)
         x0, y0, x1, y1 = placed_extents(placed)
         records.append({"path": rel, "part": "sheet", "kind": "dxf-sheet", "material": material,
                         "thickness_mm": t, "parts": {sp.part: sp.quantity for sp in group},

@@ -64,7 +64,7 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
         process=Process(f"{gauge.description}; grid {gb.grid_length_mm:g} x {gb.grid_width_mm:g} "
                         f"mm, {gauge.resistance_ohm:g} ohm ({gauge.name}), bonded over the web",
                         Method.BOUGHT),
-        material=f"{gauge.alloy} foil on polyimide", color=COLOR,
+        material=f"{gauge.alloy} foil", color=COLOR,  # the carrier is the description's
         expected_volume_mm3=gb.volume_mm3, expected_bbox_mm=gb.bbox_mm, geometry=gb),)
 
 
