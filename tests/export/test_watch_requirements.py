@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import json
 
-from tactcad.export.live import unmet_requirements, unmet_words
+from tactcad.export.live import requirements_not_met, unmet_words
 from tactcad.export.live_server import LiveState, state_update, Held
 
 
@@ -18,10 +18,10 @@ def _manifest(tmp_path, verdicts):
 
 
 def test_the_failed_requirements_are_counted_from_the_exports_manifest(tmp_path):
-    assert unmet_requirements(tmp_path) == []  # no manifest: nothing to say
+    assert requirements_not_met(tmp_path) == ([], 0)  # no manifest: nothing to say
     _manifest(tmp_path, ["pass", "fail", "undecided", "fail"])
-    assert unmet_requirements(tmp_path) == ["r1", "r3"]
-    assert unmet_words(["r1", "r3"], tmp_path) == "2 of 4 requirements not met: r1, r3"
+    assert requirements_not_met(tmp_path) == (["r1", "r3"], 4)
+    assert unmet_words(["r1", "r3"], 4) == "2 of 4 requirements not met: r1, r3"
 
 
 def test_the_served_state_carries_them_to_the_server_process():

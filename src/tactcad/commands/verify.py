@@ -90,9 +90,8 @@ def matrix_table(records: list[dict]) -> str:
             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in records:
         err = "n/a" if r["error_estimate_rel"] is None else f"{100 * r['error_estimate_rel']:.2f} %"
-        verdict = r.get("verdict", "pass" if r["pass"] else "fail")
         rows.append(f"| {r['requirement']} | {_value(r['target'])} | {_value(r['predicted'])} | "
-                    f"{err} | {_pct(r['margin_rel'])} | {r['model']} | {verdict.upper()} | "
+                    f"{err} | {_pct(r['margin_rel'])} | {r['model']} | {r['verdict'].upper()} | "
                     f"{_worst(r)} |")
     for r in records:
         for lim in r.get("limits", ()):

@@ -33,7 +33,8 @@ from typing import Callable, Iterable
 from tactcad.design.project import Project
 from tactcad.errors import TactcadError
 from tactcad.export.job import Run, solid_key
-from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE, ReviewContents
+from tactcad.export.review_page import (CHECKS_SCRIPT, REVIEW_PAGE, ReviewContents,
+                                        unmet_requirements)
 from tactcad.export.live_parts import LiveParts, keep_only
 # the server's names, for the callers that know them from here
 from tactcad.export.live_server import (CLIENT_TIMEOUT_S, LISTEN_BACKLOG, LiveState,  # noqa: F401
@@ -71,21 +72,21 @@ class Loop:
             self.state.refuse(text)
             return False
         try:
-            result = self._export(project, t0)
+            result, (unmet, total) = self._export(project, t0)
         except (TactcadError, OSError) as exc:  # the folder, the disk, a part: the session stays
             text = f"the export failed: {exc}"
             self.log(f"refused (the last good export stays):\n{text}")
             self.state.refuse(text, back_to_current=True)
             return False
-        unmet = unmet_requirements(self.out)
         self.log(f"export current in {time.perf_counter() - t0:.2f} s ({result.jobs_run} jobs "
                  f"run, {result.jobs_reused} reused; {self._made_by(result.worker_jobs)})"
-                 + (f"; {unmet_words(unmet, self.out)}" if unmet else ""))
+                 + (f"; {unmet_words(unmet, total)}" if unmet else ""))
         return True
 
     def _export(self, project: Project, t0: float):
         """The 3D preview (when there is a page to show it in), then the full export,
-        each published; the export's result.
+        each published; the export's result and its requirements not met
+        (:func:`requirements_not_met`).
 
         Raises:
             TactcadError: the export was refused (its folder, a part).
@@ -104,11 +105,12 @@ class Loop:
                         session=self.worker)
         self.project = project
         run = Run(project, self.out)
+        not_met = requirements_not_met(self.out)
         self.state.publish(plan.design_hash, "current", review_contents_of(run, self.out),
                            (self.out / REVIEW_PAGE).read_bytes(), self._checks_js(),
-                           unmet=tuple(unmet_requirements(self.out)))
+                           unmet=tuple(not_met[0]))
         self._keep_parts_of(run)
-        return result
+        return result, not_met
 
     def _keep_parts_of(self, run: Run) -> None:
         """Keep the solids and meshes of ``run``'s parts only (every part of the
@@ -170,23 +172,20 @@ def changes(files: Iterable[Path], poll: bool, stop: threading.Event | None = No
             yield
 
 
-def _matrix(out: Path) -> list[dict]:
-    """The closed-form verification matrix the export's manifest holds ([] when none)."""
+def requirements_not_met(out: Path) -> tuple[list[str], int]:
+    """The requirements the export's design fails (verdict ``fail`` at the closed
+    form, :func:`tactcad.export.review_page.unmet_requirements`) and how many its
+    manifest verifies; ``([], 0)`` without a readable manifest."""
     import json
 
     try:
         doc = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
     except (OSError, ValueError):
-        return []
-    return list((doc.get("requirements") or {}).get("closed_form_matrix") or [])
+        return [], 0
+    record = doc.get("requirements") or {}
+    return unmet_requirements(record), len(record.get("closed_form_matrix") or [])
 
 
-def unmet_requirements(out: Path) -> list[str]:
-    """The requirements the export's design fails (verdict ``fail`` at the closed form)."""
-    return [r["requirement"] for r in _matrix(out)
-            if r.get("verdict", "pass" if r.get("pass") else "fail") == "fail"]
-
-
-def unmet_words(unmet: list[str], out: Path) -> str:
+def unmet_words(unmet: list[str], total: int) -> str:
     """``3 of 7 requirements not met: a, b, c``."""
-    return f"{len(unmet)} of {len(_matrix(out))} requirements not met: {', '.join(unmet)}"
+    return f"{len(unmet)} of {total} requirements not met: {', '.join(unmet)}"

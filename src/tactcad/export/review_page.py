@@ -119,10 +119,17 @@ def verification_view(requirements: dict) -> dict:
             "undecided)": rows,
             "limits behind the full-scale force": limits,
             "requirements": requirements.get("values", {})}
-    unmet = [r["requirement"] for r in matrix if _verdict(r) == "fail"]
+    unmet = unmet_requirements(requirements)
     if unmet:
         view["requirements not met"] = unmet
     return view
+
+
+def unmet_requirements(requirements: dict) -> list[str]:
+    """The requirements a manifest's requirements record fails (verdict ``fail``
+    at the closed form), in the matrix's order."""
+    return [r["requirement"] for r in requirements.get("closed_form_matrix") or []
+            if _verdict(r) == "fail"]
 
 
 def _verdict(record: dict) -> str:

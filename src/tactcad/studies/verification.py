@@ -532,12 +532,12 @@ def readout_resolution_record(plan: Plan, fig: Figures, req: Requirements, error
 
 def matrix_passed(records: list[dict]) -> bool:
     """True when no requirement is ``fail`` (an ``undecided`` one does not fail the matrix)."""
-    return not any(r.get("verdict", "pass" if r["pass"] else "fail") == "fail" for r in records)
+    return not any(r["verdict"] == "fail" for r in records)
 
 
 def undecided(records: list[dict]) -> list[str]:
     """The requirements no level decided (margin inside the error estimate)."""
-    return [r["requirement"] for r in records if r.get("verdict") == "undecided"]
+    return [r["requirement"] for r in records if r["verdict"] == "undecided"]
 
 
 def requirements_record(plan: Plan, envelope_mm: Sequence[float] | None = None) -> dict:
