@@ -366,10 +366,20 @@ function showData(value) {  // any JSON: a list of records as a table, an object
   return el('p', fmt(value));
 }
 
+// the matrix's columns as tactcad verify prints them (the page's data comes with sorted keys)
+const VERIFY_COLUMNS = ['requirement', 'verdict', 'target', 'predicted', 'margin', 'binds', 'model'];
+
 function showVerification() {  // the manifest's verification matrix, when the export has one
   const v = DATA.manifest.verification;
   $('verification').hidden = $('nav-verification').hidden = v === undefined || v === null;
-  $('verification-body').replaceChildren(v ? showData(v) : el('p', ''));
+  const key = v ? Object.keys(v).find((k) => k.startsWith('verification matrix')) : undefined;
+  const rows = key ? v[key] : [];
+  if (key && rows.length && rows.every((r) => 'verdict' in r)) {  // the matrix first, in order
+    const rest = Object.fromEntries(Object.entries(v).filter(([k]) => k !== key));
+    $('verification-body').replaceChildren(el('h3', key), table(VERIFY_COLUMNS, rows), showData(rest));
+  } else {
+    $('verification-body').replaceChildren(v ? showData(v) : el('p', ''));
+  }
   const unmet = (v && v['requirements not met']) || [];
   setText($('unmet'), unmet.length ? `Requirements not met: ${unmet.join(', ')} (see Verification)` : '');
   $('unmet').classList.toggle('shown', unmet.length > 0);

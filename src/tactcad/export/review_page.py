@@ -137,7 +137,8 @@ def _verdict(record: dict) -> str:
 
 
 def verification_row(r: dict) -> dict:
-    """One requirement as the page's table shows it (texts, in the CLI's columns)."""
+    """One requirement as the page's table shows it (texts, in the CLI's columns;
+    the page's script lists them in this order, ``VERIFY_COLUMNS``)."""
     err = r.get("error_estimate_rel")
     margin = r.get("margin_rel")
     if "measuring_element" in r:
