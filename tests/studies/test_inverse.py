@@ -14,7 +14,7 @@ from tactcad.cli import main
 from tactcad.design.array_plan import load_design, read_toml
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import CorrectionRangeWarning
-from tactcad.studies.inverse_design import (InverseDesignError, Targets, design_for_targets,
+from tactcad.studies.inverse_design import (KEEP_WEB_ROOM, InverseDesignError, Targets, design_for_targets,
                                        reference_elements, search_webs, unit_resolution)
 from tactcad.mechanics.ladder import estimate
 from tactcad.mechanics.lumped_model import deflection_ratio
@@ -47,7 +47,8 @@ def test_design_meets_targets_and_limits_at_the_closed_form(plan):
         assert eps_at_f <= gauge.fatigue_strain
     search = search_webs(plan, FEASIBLE)
     own = int(np.flatnonzero(np.isclose(search.webs_mm, 0.25))[0])
-    assert d.web_changed == (not search.feasible[own])
+    kept = search.feasible[own] and search.room[own] >= KEEP_WEB_ROOM
+    assert d.web_changed == (not kept)
 
 
 def test_design_changes_the_web_when_the_design_web_breaks_a_limit(plan):
@@ -66,7 +67,7 @@ def test_design_changes_the_web_when_the_design_web_breaks_a_limit(plan):
     chosen = int(np.flatnonzero(np.isclose(search.webs_mm,
                                            d.plan.element(1).geometry.web_thickness_mm))[0])
     assert d.web_changed and search.feasible[chosen]
-    assert search.margin[chosen] == pytest.approx(search.margin[search.feasible].max())
+    assert search.room[chosen] == pytest.approx(search.room[search.feasible].max())
     assert "element.web_thickness_mm" in d.data["assumptions"]
 
 
@@ -234,3 +235,36 @@ def test_rows_and_columns_build_a_new_grid_and_arms_stay_in_the_corrections_rang
     with pytest.raises(DesignError) as exc:
         design_for_targets(plan, FEASIBLE, rows=3)
     assert "array.rows" in str(exc.value)
+
+
+@pytest.mark.filterwarnings("ignore::tactcad.mechanics.correction.CorrectionRangeWarning")
+def test_a_changed_web_keeps_room_to_every_limit_instead_of_the_largest_force_margin(plan):
+    """2 x 4 17-4PH at 0.7 N: the base web fails, the largest force margin lies at
+    the thickest feasible web whose soft arm is pressed to the arm range's end;
+    the web rule takes a web with room on every side and says so."""
+    t = Targets(6.0, (5.0, 50.0), 0.7)
+    d = design_for_targets(plan, t, grade="17-4PH-H900", columns=4)
+    search = search_webs(d.plan, t)
+    most_force = int(np.argmax(np.where(search.feasible, search.margin, -np.inf)))
+    chosen = int(np.flatnonzero(np.isclose(search.webs_mm,
+                                           d.plan.element(1).geometry.web_thickness_mm))[0])
+    assert d.web_changed and search.feasible[chosen] and chosen != most_force
+    assert search.room[chosen] == pytest.approx(search.room[search.feasible].max())
+    assert search.room[chosen] > search.room[most_force]
+    assert d.arm_m_mm < search.arm_m_mm[most_force]  # further from the 20 mm end
+    assert "largest" in d.data["assumptions"]["element.web_thickness_mm"]
+
+
+def test_a_designs_margins_clear_the_closed_forms_error(plan):
+    """The requirements a design writes leave each margin beyond the closed
+    form's error, so auto verification decides them at the cheapest level."""
+    from tactcad.studies.verification import verification_matrix
+
+    for t, kw in ((Targets(6.0, (5.0, 50.0), 0.5), dict(grade="17-4PH-H900", columns=4)),
+                  (FEASIBLE, {})):
+        d = design_for_targets(plan, t, **kw)
+        records = verification_matrix(d.plan, "closed-form")
+        assert {r["requirement"]: r["verdict"] for r in records} == \
+            {r["requirement"]: "pass" for r in records}
+        band = next(r for r in records if r["requirement"] == "k_tolerance_rel")
+        assert band["margin_rel"] >= band["error_estimate_rel"] > 0

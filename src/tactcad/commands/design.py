@@ -228,7 +228,7 @@ def design_report(result, verify: str, progress=None) -> dict:
     gets a line per FEM mesh level of the verification."""
     import math
 
-    from tactcad.studies.inverse_design import report_points, unit_resolution
+    from tactcad.studies.inverse_design import WEB_RULE, report_points, unit_resolution
     from tactcad.mechanics.ladder import estimate
     from tactcad.paper.paper_load import strength_summary
 
@@ -289,7 +289,42 @@ def design_report(result, verify: str, progress=None) -> dict:
             "force_resolution_N": 0.01,
             "max_full_scale_force_N": result.max_full_scale_force_N,
             "binding_limits": list(result.binding_limits),
+            "web_rule": WEB_RULE,
+            "margins": design_margins(plan),
             "all_finite": all(math.isfinite(u["K_obj_resolution_N_per_mm"]) for u in units)}
+
+
+def design_margins(plan) -> list[dict]:
+    """Each requirement's margin against the closed form's error on the written
+    design (the level ``verify --model auto`` starts at): requirement, margin_rel,
+    error_estimate_rel, verdict and, where undecided, whether climbing the ladder
+    can decide it (``level_fixed``: the same at every level, so it cannot)."""
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.studies.verification import verification_matrix
+
+    return [{k: r[k] for k in ("requirement", "margin_rel", "error_estimate_rel", "verdict",
+                               "level_fixed")}
+            for r in verification_matrix(plan, "closed-form",
+                                         envelope_mm=array_envelope_mm(plan))]
+
+
+def margin_lines(margins: list[dict]) -> list[str]:
+    """The report's words on :func:`design_margins`: one line when every margin
+    clears its error, else a line per requirement that does not, saying what decides it."""
+    open_ = [m for m in margins if m["verdict"] != "pass"]
+    if not open_:
+        return ["margins: every requirement passes at the closed form by more than its error "
+                "estimate, so `verify --model auto` decides it there"]
+    out = []
+    for m in open_:
+        margin = "n/a" if m["margin_rel"] is None else f"{100 * m['margin_rel']:+.1f} %"
+        err = "n/a" if m["error_estimate_rel"] is None else f"{100 * m['error_estimate_rel']:.2f} %"
+        then = ("no level decides it anew (the same at every level): the design cannot leave "
+                "it more margin" if m["level_fixed"] else
+                "`verify --model auto` climbs the ladder to decide it")
+        out.append(f"margin: {m['requirement']} {m['verdict']} at the closed form (margin "
+                   f"{margin}, error {err}); {then}")
+    return out
 
 
 def print_report(r: dict) -> None:
@@ -322,6 +357,9 @@ def print_report(r: dict) -> None:
         print(f"{u['K_obj_N_per_mm']:>10.3g} {u['R']:>6.3f} {u['dR_dKobj_per_N_per_mm']:>16.4f} "
               f"{u['K_obj_resolution_N_per_mm']:>17.3g} {100 * u['K_obj_resolution_rel']:>9.2f}%"
               f"   {u['stiffness_from']}")
+    print(f"web rule: {r['web_rule']}")
+    for line in margin_lines(r["margins"]):
+        print(line)
     print(f"largest feasible full-scale force for these stiffness targets: "
           f"{r['max_full_scale_force_N']:.4g} N, bound by " + "; ".join(r["binding_limits"]))
     print(f"wrote {r['out']}")

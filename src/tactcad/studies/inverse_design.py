@@ -27,9 +27,11 @@ bracketing root search, scipy ``find_root``). A web is feasible when both
 arms lie in the design's arm range (and clear the tip-root rule), and both
 elements carry F: peak notch stress x F x safety factor <= yield
 (:mod:`tactcad.mechanics.element_strength`), gauge strain x F <= the gauge's fatigue
-strain. The design's own web is kept when it is feasible ("arms only");
-otherwise the feasible web (0.005 mm steps over the web range) with the
-largest worst-case margin on those limits is taken. The notch radius stays
+strain. The design's own web is kept while it is feasible with room to
+spare ("arms only"); otherwise the feasible web (0.005 mm steps over the web
+range) that leaves the most room to every limit is taken (:data:`WEB_RULE`,
+:func:`limit_room`): not the one with the largest force margin, which
+pressed the arms to the end of their range. The notch radius stays
 the design's, raised to the web where the web is thicker (t/R <= 1). When no
 web is feasible, :class:`InverseDesignError` names the limit that binds: one
 that no web meets, or else two limits whose allowed webs do not overlap.
@@ -293,6 +295,9 @@ class WebSearch:
     margin: np.ndarray
     limits: tuple[Limit, ...]
     force_N: float = 0.0
+    arm_lo_mm: np.ndarray | None = None
+    arm_hi_mm: np.ndarray | None = None
+    force_error_rel: float = 0.0
 
     @property
     def feasible(self) -> np.ndarray:
@@ -300,6 +305,41 @@ class WebSearch:
         for lim in self.limits:
             ok &= lim.allowed
         return ok
+
+    @property
+    def room(self) -> np.ndarray:
+        """Per web, its smallest room to any limit (relative; see :func:`limit_room`)."""
+        return limit_room(self)
+
+
+#: The design's own web is kept while every limit leaves it at least this room.
+KEEP_WEB_ROOM = 0.05
+
+
+def limit_room(search: WebSearch) -> np.ndarray:
+    """Per candidate web, the smallest room it leaves to any limit, relative:
+
+    * a force limit: the margin beyond the closed form's error on it,
+      ``F_limit / (F (1 + e)) - 1`` (``e``: :attr:`WebSearch.force_error_rel`),
+      so a margin the verification cannot resolve is no room;
+    * a dimension's domain (each arm in its arm range, the web in the web
+      range): its distance to the nearer end over the range's span.
+
+    The web the design chooses maximises it (:func:`choose_web`): the next edit
+    (a longer arm, a thinner web, a larger force) finds room either way
+    instead of a design pressed to a domain end. NaN arms (a target outside
+    the arm range) have no room (-inf).
+    """
+    force_room = search.margin / (1.0 + search.force_error_rel) - 1.0
+    rooms = [force_room]
+    if search.arm_lo_mm is not None and search.arm_hi_mm is not None:
+        span = np.maximum(search.arm_hi_mm - search.arm_lo_mm, 1e-12)
+        for arm in (search.arm_r_mm, search.arm_m_mm):
+            room = np.minimum(arm - search.arm_lo_mm, search.arm_hi_mm - arm) / span
+            rooms.append(np.where(np.isnan(arm), -np.inf, room))
+    lo, hi = WEB_RANGE_MM
+    rooms.append(np.minimum(search.webs_mm - lo, hi - search.webs_mm) / (hi - lo))
+    return np.minimum.reduce(rooms)
 
 
 def search_webs(plan: Plan, targets: Targets, correction=None,
@@ -388,7 +428,17 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
                          f"the stiffness targets' arms carry at most {np.nanmax(f_fatigue):.3g} N "
                          f"at any web within {mat.fatigue_strength_MPa:g} MPa, asked {F:g} N"),)
     margin = np.minimum.reduce([y_margin, g_margin, gm_margin, fat_margin])
-    return WebSearch(webs, radii, a_r, a_m, margin, limits, F)
+    return WebSearch(webs, radii, a_r, a_m, margin, limits, F, arm_lo, arm_hi,
+                     closed_form_force_error(plan))
+
+
+def closed_form_force_error(plan: Plan) -> float:
+    """The largest error estimate of the closed form's tip-force limits on ``plan``'s
+    elements (:func:`tactcad.mechanics.limits.plan_limits`: the K_t fit or K error
+    plus the plane-stress bound nu^2), relative."""
+    from tactcad.mechanics.limits import plan_limits
+
+    return max(lim.error_estimate_rel for lim in plan_limits(plan, "closed-form"))
 
 
 #: Number of leading limits of :func:`search_webs` that concern stiffness (the
@@ -446,9 +496,17 @@ def refusal_text(search: WebSearch) -> str:
     return text
 
 
+#: The web rule in words, for the design's reasons and its report.
+WEB_RULE = (f"the design's own web while it meets every limit with at least {100 * KEEP_WEB_ROOM:g} % "
+            "room, else the feasible web whose smallest room to any limit is largest (room: a "
+            "force limit's margin beyond the closed form's error on it; an arm's or the web's "
+            "distance to the nearer end of its range over the range's span)")
+
+
 def choose_web(search: WebSearch, design_web_mm: float) -> int:
-    """Index of the chosen web: the design's own when feasible, else the
-    feasible web with the largest worst-case margin.
+    """Index of the chosen web (:data:`WEB_RULE`): the design's own while it is
+    feasible with at least :data:`KEEP_WEB_ROOM` room, else the feasible web
+    with the largest room (:func:`limit_room`; ties: the thinner web).
 
     Raises:
         InverseDesignError: no web is feasible (the binding limit named).
@@ -456,11 +514,12 @@ def choose_web(search: WebSearch, design_web_mm: float) -> int:
     ok = search.feasible
     if not ok.any():
         raise InverseDesignError(refusal_text(search))
-    own = np.flatnonzero(np.isclose(search.webs_mm, design_web_mm) & ok)
+    room = search.room
+    own = np.flatnonzero(np.isclose(search.webs_mm, design_web_mm) & ok
+                         & (room >= KEEP_WEB_ROOM))
     if own.size:
         return int(own[0])
-    margins = np.where(ok, search.margin, -np.inf)
-    return int(np.argmax(margins))
+    return int(np.argmax(np.where(ok, room, -np.inf)))
 
 
 # ---------------------------------------------------------------------------
@@ -630,30 +689,52 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     why.pop("arms.lengths_mm[5]", None)  # the paper's missing element 5 is not this design's
     if web_changed:
         why["element.web_thickness_mm"] = (
-            f"tactcad design: {t:g} mm, the feasible web with the largest margin on yield / "
-            f"safety factor and gauge fatigue strain at {targets.full_scale_force_N:g} N (the "
-            f"base design's web met not every limit).")
+            f"tactcad design: {t:g} mm by the web rule at {targets.full_scale_force_N:g} N: "
+            f"{WEB_RULE}.")
     data["requirements"] = requirements_table(targets, data)
     new_plan = plan_from_dict(data, source="<inverse design>")
     return InverseDesign(targets, data, new_plan, refs, web_changed, a_r, a_m,
                          max_full_scale_force_N=f_max, binding_limits=bind)
 
 
+#: Derived requirement values are written this much beyond margin + error, so
+#: that rounding cannot leave a margin a hair inside the error.
+ROOM_BEYOND_ERROR = 1e-6
+
+
 def requirements_table(targets: Targets, data: Mapping[str, Any]) -> dict[str, Any]:
     """The ``[requirements]`` table an inverse design writes: the targets, the K
-    band the web tolerance allows (rounded up) and the K_obj resolution the
-    two elements reach over the range at the full-scale force (rounded up);
-    see :mod:`tactcad.studies.verification`."""
-    from tactcad.studies.verification import round_up, web_band_rel, worst_resolution
+    band over the web tolerance and the K_obj resolution the elements reach
+    over the range at the full-scale force, each padded by the closed form's
+    error on it and rounded up, so that its margin is at least that error and
+    ``verify --model auto`` decides it at the closed form
+    (:mod:`tactcad.studies.verification`).
+
+    Returns:
+        The table; keys of :data:`tactcad.design.requirements_section.REQUIREMENT_KEYS`.
+    """
+    from tactcad.studies.verification import (closed_form_k_error, element_figures,
+                                              resolution_error_rel, round_up, units_of,
+                                              web_band_rel, worst_resolution)
 
     plan = plan_from_dict(data, source="<inverse design>")
     lo, hi = targets.k_obj_range_N_per_mm
-    worst = worst_resolution(targets.k_r, [targets.k_m], (lo, hi), targets.full_scale_force_N)
-    return {"full_scale_force_N": float(targets.full_scale_force_N),
+    F = targets.full_scale_force_N
+    pad = 1.0 + ROOM_BEYOND_ERROR
+    fig = element_figures(plan, "closed-form")
+    kr, kms = units_of(fig, plan)
+    k_err = max(fig.k_error.values())
+    if kms:
+        worst = worst_resolution(kr, kms, (lo, hi), F)
+        worst *= 1.0 + resolution_error_rel(kr, kms, (lo, hi), F, k_err, k_err)
+    else:
+        worst = worst_resolution(targets.k_r, [targets.k_m], (lo, hi), F)
+    band = max(web_band_rel(plan), 1e-3) * (1.0 + closed_form_k_error(plan))
+    return {"full_scale_force_N": float(F),
             "kobj_range_N_per_mm": [float(lo), float(hi)],
             "kr_over_km": float(targets.kr_over_km),
-            "k_tolerance_rel": round_up(max(web_band_rel(plan), 1e-3)),
-            "kobj_resolution_rel": round_up(worst)}
+            "k_tolerance_rel": round_up(band * pad),
+            "kobj_resolution_rel": round_up(worst * pad)}
 
 
 def report_points(targets: Targets, n: int = REPORT_POINTS) -> np.ndarray:

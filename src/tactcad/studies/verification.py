@@ -239,6 +239,17 @@ def worst_resolution(kr, kms, rng, force_N) -> float:
     return float(np.max(resolution_rel(kr, kms, np.geomspace(*rng, KOBJ_POINTS), force_N)))
 
 
+def resolution_error_rel(kr: float, kms: list[float], rng, force_N: float, err_r: float,
+                         err_m: float) -> float:
+    """The worst K_obj resolution's relative error from the K errors of the
+    reference (``err_r``) and the measuring elements (``err_m``): its largest
+    change with each K moved by its error, every sign combination."""
+    worst = worst_resolution(kr, kms, rng, force_N)
+    moved = [worst_resolution(kr * (1 + sr * err_r), [k * (1 + sm * err_m) for k in kms],
+                              rng, force_N) for sr in (-1, 1) for sm in (-1, 1)]
+    return max(abs(w / worst - 1.0) for w in moved)
+
+
 def readable_range(kr, kms, rng, force_N, target_rel) -> tuple[float, float] | None:
     """The widest K_obj interval around the range's geometric mean where the
     resolution is at most ``target_rel`` (N/mm), or None when the mean is not."""
@@ -383,10 +394,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     rng = req.kobj_range_N_per_mm
     if kms:
         worst = worst_resolution(kr, kms, rng, F)
-        # the resolution's sensitivity to K errors, worst direction
-        moved = [worst_resolution(kr * (1 + sr * err_r), [k * (1 + sm * err_m) for k in kms],
-                                  rng, F) for sr in (-1, 1) for sm in (-1, 1)]
-        res_err = max(abs(w / worst - 1.0) for w in moved)
+        res_err = resolution_error_rel(kr, kms, rng, F, err_r, err_m)
         span = readable_range(kr, kms, rng, F, req.kobj_resolution_rel)
     else:
         worst, res_err, span = math.inf, 0.0, None
