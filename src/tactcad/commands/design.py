@@ -142,14 +142,15 @@ def run(args: argparse.Namespace) -> int:
     import tomli_w
 
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.studies.inverse_design import Targets, design_for_targets
+    from tactcad.studies.design_alternatives import design_or_alternatives
+    from tactcad.studies.inverse_design import Targets
 
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
     base = plan_from_args(args)
-    result = design_for_targets(base, targets, grade=args.material, pitch_mm=args.pitch,
+    result = design_or_alternatives(base, targets, grade=args.material, pitch_mm=args.pitch,
                                 rows=args.rows, columns=args.columns,
                                 name=path.stem.replace("-", "_") or "inverse_design")
     if args.footprint is not None:

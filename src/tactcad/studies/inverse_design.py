@@ -316,30 +316,35 @@ class WebSearch:
 KEEP_WEB_ROOM = 0.05
 
 
-def limit_room(search: WebSearch) -> np.ndarray:
-    """Per candidate web, the smallest room it leaves to any limit, relative:
+def force_room(search: WebSearch) -> np.ndarray:
+    """Per candidate web, the force limits' room: the margin beyond the closed
+    form's error on them, ``F_limit / (F (1 + e)) - 1``
+    (``e``: :attr:`WebSearch.force_error_rel`); below 0 the verification's
+    closed form cannot tell the margin from its error."""
+    return search.margin / (1.0 + search.force_error_rel) - 1.0
 
-    * a force limit: the margin beyond the closed form's error on it,
-      ``F_limit / (F (1 + e)) - 1`` (``e``: :attr:`WebSearch.force_error_rel`),
-      so a margin the verification cannot resolve is no room;
-    * a dimension's domain (each arm in its arm range, the web in the web
-      range): its distance to the nearer end over the range's span.
 
-    The web the design chooses maximises it (:func:`choose_web`): the next edit
-    (a longer arm, a thinner web, a larger force) finds room either way
-    instead of a design pressed to a domain end. NaN arms (a target outside
-    the arm range) have no room (-inf).
-    """
-    force_room = search.margin / (1.0 + search.force_error_rel) - 1.0
-    rooms = [force_room]
+def dimension_room(search: WebSearch) -> np.ndarray:
+    """Per candidate web, the smallest room of each arm in the arm range and
+    of the web in the web range: the distance to the nearer end over the
+    range's span (an arm whose target lies outside the range: -inf)."""
+    lo, hi = WEB_RANGE_MM
+    rooms = [np.minimum(search.webs_mm - lo, hi - search.webs_mm) / (hi - lo)]
     if search.arm_lo_mm is not None and search.arm_hi_mm is not None:
         span = np.maximum(search.arm_hi_mm - search.arm_lo_mm, 1e-12)
         for arm in (search.arm_r_mm, search.arm_m_mm):
             room = np.minimum(arm - search.arm_lo_mm, search.arm_hi_mm - arm) / span
             rooms.append(np.where(np.isnan(arm), -np.inf, room))
-    lo, hi = WEB_RANGE_MM
-    rooms.append(np.minimum(search.webs_mm - lo, hi - search.webs_mm) / (hi - lo))
     return np.minimum.reduce(rooms)
+
+
+def limit_room(search: WebSearch) -> np.ndarray:
+    """Per candidate web, the smallest room it leaves to any limit, relative:
+    :func:`force_room` and :func:`dimension_room`, whichever is smaller. The
+    web the design chooses maximises it (:func:`choose_web`), so the next edit
+    (a longer arm, a thinner web, a larger force) finds room either way
+    instead of a design pressed to a domain end."""
+    return np.minimum(force_room(search), dimension_room(search))
 
 
 def search_webs(plan: Plan, targets: Targets, correction=None,
@@ -456,19 +461,19 @@ def max_full_scale_force_N(search: WebSearch, force_N: float) -> float:
 
 
 def binding_limits(search: WebSearch) -> list[Limit]:
-    """Every limit that binds when no web is feasible: each limit without
-    which some web would be feasible; when no single one frees a web, every
-    limit the most nearly feasible web (fewest failures, then largest force
-    margin) misses."""
+    """Every limit that binds when no web is feasible, in the order listed:
+    each limit without which some web would be feasible, and every limit the
+    most nearly feasible web (fewest failures, then largest force margin)
+    misses; so two limits whose allowed webs do not overlap (the soft arm's
+    range on the thick webs, the gauge's strain on the thin ones) are both named."""
     allowed = np.array([lim.allowed for lim in search.limits])
-    out = [lim for i, lim in enumerate(search.limits)
-           if np.all(np.delete(allowed, i, axis=0), axis=0).any()]
-    if out:
-        return out
+    freeing = {i for i in range(len(search.limits))
+               if np.all(np.delete(allowed, i, axis=0), axis=0).any()}
     misses = (~allowed).sum(axis=0)
     best = np.flatnonzero(misses == misses.min())
     j = int(best[np.argmax(search.margin[best])])
-    return [lim for lim in search.limits if not lim.allowed[j]]
+    nearest = {i for i, lim in enumerate(search.limits) if not lim.allowed[j]}
+    return [search.limits[i] for i in sorted(freeing | nearest)]
 
 
 def best_stiffness_web(search: WebSearch) -> int | None:
@@ -493,33 +498,54 @@ def refusal_text(search: WebSearch) -> str:
         f_max = max_full_scale_force_N(search, search.force_N)
         text += (f". Largest feasible full-scale force for these stiffness targets: {f_max:.4g} N"
                  if f_max > 0 else ". No full-scale force is feasible for these stiffness targets")
+        j = best_stiffness_web(search)
+        if j is not None:
+            missed = [lim.name for lim in search.limits[STIFFNESS_LIMITS:] if not lim.allowed[j]]
+            if missed:
+                text += (f", at web {search.webs_mm[j]:.3f} mm, where the asked force misses "
+                         + "; ".join(missed))
     return text
 
 
 #: The web rule in words, for the design's reasons and its report.
-WEB_RULE = (f"the design's own web while it meets every limit with at least {100 * KEEP_WEB_ROOM:g} % "
-            "room, else the feasible web whose smallest room to any limit is largest (room: a "
-            "force limit's margin beyond the closed form's error on it; an arm's or the web's "
-            "distance to the nearer end of its range over the range's span)")
+WEB_RULE = ("among the feasible webs whose force margin clears the closed form's error (every "
+            "feasible web when none does), the design's own web while it leaves "
+            f"{100 * KEEP_WEB_ROOM:g} % room, else the one whose smallest room is largest (room: an "
+            "arm's or the web's distance to the nearer end of its range over the range's span, "
+            "and, where some web clears the error, a force limit's margin beyond it)")
+
+
+def web_pool(search: WebSearch) -> tuple[np.ndarray, np.ndarray]:
+    """(pool, room) of :func:`choose_web`: the feasible webs whose force margin
+    clears the closed form's error with :func:`limit_room`, or, when none
+    does, every feasible web with :func:`dimension_room`."""
+    ok = search.feasible
+    clears = ok & (force_room(search) >= 0.0)
+    return (clears, limit_room(search)) if clears.any() else (ok, dimension_room(search))
 
 
 def choose_web(search: WebSearch, design_web_mm: float) -> int:
-    """Index of the chosen web (:data:`WEB_RULE`): the design's own while it is
-    feasible with at least :data:`KEEP_WEB_ROOM` room, else the feasible web
-    with the largest room (:func:`limit_room`; ties: the thinner web).
+    """Index of the chosen web (:data:`WEB_RULE`).
+
+    Where some feasible web's force margin clears the closed form's error
+    (:func:`force_room` >= 0), those webs are the pool and room is
+    :func:`limit_room`; where none does, no web lets the closed form decide the
+    force, so every feasible web is the pool and room is the dimensions'
+    alone (:func:`dimension_room`). The design's own web is kept while it is in
+    the pool with at least :data:`KEEP_WEB_ROOM` room; else the pool's web with
+    the largest room (ties: the thinner web).
 
     Raises:
         InverseDesignError: no web is feasible (the binding limit named).
     """
-    ok = search.feasible
-    if not ok.any():
+    if not search.feasible.any():
         raise InverseDesignError(refusal_text(search))
-    room = search.room
-    own = np.flatnonzero(np.isclose(search.webs_mm, design_web_mm) & ok
+    pool, room = web_pool(search)
+    own = np.flatnonzero(np.isclose(search.webs_mm, design_web_mm) & pool
                          & (room >= KEEP_WEB_ROOM))
     if own.size:
         return int(own[0])
-    return int(np.argmax(np.where(ok, room, -np.inf)))
+    return int(np.argmax(np.where(pool, room, -np.inf)))
 
 
 # ---------------------------------------------------------------------------
@@ -627,6 +653,19 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
         DesignError: a bad grade or pitch, or the result breaks a design rule
             (field named).
     """
+    data = design_tables(base, grade=grade, pitch_mm=pitch_mm, rows=rows, columns=columns)
+    return design_from_tables(data, targets, name=name, correction=correction)
+
+
+def design_tables(base: Plan, *, grade: str | None = None, pitch_mm: float | None = None,
+                  rows: int | None = None, columns: int | None = None) -> dict[str, Any]:
+    """The raw tables an inverse design starts from: ``base``'s, with its
+    requirements, files and paper-bound reasons left out, and the grade, pitch
+    and grid asked for (arguments as :func:`design_for_targets`).
+
+    Raises:
+        DesignError: a bad grade.
+    """
     data = copy.deepcopy(dict(base.raw))
     data["assumptions"] = neutral_assumptions(data, base.name)
     data.pop("requirements", None)  # the new design's are written below
@@ -640,7 +679,19 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
                                if not k.startswith("material.")}
     if pitch_mm is not None:
         data = design_variant(data, pitch_mm=pitch_mm)
-    data = with_grid(data, rows, columns)
+    return with_grid(data, rows, columns)
+
+
+def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "inverse_design",
+                       correction=None) -> InverseDesign:
+    """:func:`design_for_targets` on raw design tables already holding the
+    material, grid and pitch (``data`` is changed: pass a copy); a refusal
+    names the binding limits only (no alternatives searched).
+
+    Raises:
+        InverseDesignError: the targets cannot be met.
+        DesignError: the tables break a design rule (field named).
+    """
     base_web = float(data["element"]["web_thickness_mm"])
     refusal = None
     for _ in range(ARM_HEIGHT_ROUNDS):

@@ -1,0 +1,274 @@
+"""What to ask instead when the inverse design refuses its targets.
+
+A refusal of :func:`tactcad.studies.inverse_design.design_for_targets` names
+the limits that bind. This module adds what a designer needs next:
+
+* the nearest feasible targets, one target moved at a time with the others
+  kept: the largest full-scale force at the asked ratio and range, the
+  K_r / K_m nearest the asked one (log scale) at the asked force and range,
+  and the K_obj range moved (its width kept) nearest the asked one;
+* the changes that relax the limits, each tried with all targets as asked:
+  every other material grade of the library, the common sheet thicknesses
+  (:data:`SHEET_THICKNESSES_MM`) and every other strain gauge of the library,
+  with the largest full-scale force each allows at the asked ratio and range
+  and whether it meets every target.
+
+Each candidate is a whole inverse design on the changed tables (0.1 s each on
+the closed form), so what it reports is what ``tactcad design`` with that
+change would do. Units: mm, N, N/mm.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import warnings
+from dataclasses import dataclass, replace
+from typing import Any, Callable, Mapping
+
+import numpy as np
+
+from tactcad.errors import DesignError
+from tactcad.studies.inverse_design import (InverseDesign, InverseDesignError, Targets,
+                                            design_from_tables, design_tables,
+                                            max_full_scale_force_N, search_webs)
+
+#: Sheet thicknesses tried as an alternative (mm): plate and sheet gauges
+#: commonly stocked for wire EDM of flexures (0.5 mm steps to 3 mm, then 1 mm).
+SHEET_THICKNESSES_MM = (1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0)
+#: Points of the scans over K_r / K_m and over the K_obj range's position.
+SCAN_POINTS = 41
+#: Bisection steps refining a scan's nearest feasible point, and the largest force.
+REFINE_STEPS = 12
+FORCE_STEPS = 10
+
+
+@dataclass(frozen=True)
+class Alternative:
+    """One way out of a refusal.
+
+    Attributes:
+        kind: ``"target"`` (one target moved) or ``"change"`` (a design value changed).
+        field: the option or design field it moves (``--full-scale-force``,
+            ``material.grade``, ``sheet.thickness_mm``, ``strength.gauge``, ...).
+        value: its value (N, a ratio, [LO, HI] N/mm, a grade or gauge name, mm).
+        meets_targets: the inverse design succeeds with it.
+        largest_force_N: the largest full-scale force at the asked ratio and
+            range with the change (0: the stiffness targets cannot be met).
+    """
+
+    kind: str
+    field: str
+    value: Any
+    meets_targets: bool
+    largest_force_N: float
+
+    def words(self) -> str:
+        value = (f"{self.value[0]:.3g}-{self.value[1]:.3g} N/mm" if isinstance(self.value, tuple)
+                 else f"{self.value:.4g}" if isinstance(self.value, float) else str(self.value))
+        if self.kind == "target":
+            return f"{self.field} {value}"
+        force = (f"largest full-scale force {self.largest_force_N:.3g} N"
+                 if self.largest_force_N > 0 else "the stiffness targets still out of reach")
+        return f"{self.field} = {value}: {force}" + (", meets every target"
+                                                    if self.meets_targets else "")
+
+    def as_json(self) -> dict:
+        return {"kind": self.kind, "field": self.field,
+                "value": list(self.value) if isinstance(self.value, tuple) else self.value,
+                "meets_targets": self.meets_targets, "largest_force_N": self.largest_force_N}
+
+
+def design_or_alternatives(base, targets: Targets, *, correction=None, name: str = "inverse_design",
+                           **layout) -> InverseDesign:
+    """:func:`tactcad.studies.inverse_design.design_for_targets`, whose refusal
+    also lists the nearest feasible targets and the relaxing changes
+    (:func:`refusal_with_alternatives`).
+
+    Args:
+        layout: ``grade``, ``pitch_mm``, ``rows``, ``columns`` as there.
+
+    Raises:
+        InverseDesignError: the targets cannot be met, with ``.alternatives``.
+        DesignError: a bad grade, pitch or grid, naming the field.
+    """
+    data = design_tables(base, **layout)
+    try:
+        return design_from_tables(copy.deepcopy(data), targets, name=name, correction=correction)
+    except InverseDesignError as exc:
+        raise refusal_with_alternatives(exc, data, targets, correction) from None
+
+
+def refusal_with_alternatives(exc: InverseDesignError, data: Mapping[str, Any],
+                              targets: Targets, correction=None) -> InverseDesignError:
+    """``exc`` (the binding limits) with the nearest feasible targets and the
+    relaxing changes appended to its text and kept in ``.alternatives``."""
+    with warnings.catch_warnings():  # the candidates are explored, not the user's design:
+        warnings.simplefilter("ignore")  # their range warnings would only mislead
+        nearest = nearest_targets(data, targets, correction)
+        now = max((a.largest_force_N for a in nearest if a.field == "--full-scale-force"),
+                  default=0.0)
+        changes = relaxing_changes(data, targets, correction, better_than_N=now)
+    text = str(exc)
+    if nearest:
+        text += ". Nearest feasible targets, one at a time: " + "; ".join(
+            a.words() for a in nearest)
+    else:
+        text += ". No single target moved alone makes the design feasible"
+    if changes:
+        text += (". Changes that relax the limits (at the asked K_r/K_m and K_obj range): "
+                 + "; ".join(a.words() for a in changes))
+    else:
+        text += ". No other grade, sheet or gauge of the library relaxes them"
+    out = InverseDesignError(text)
+    out.alternatives = [a.as_json() for a in (*nearest, *changes)]
+    return out
+
+
+def _feasible(data: Mapping[str, Any], targets: Targets, correction) -> bool:
+    try:
+        design_from_tables(copy.deepcopy(dict(data)), targets, correction=correction)
+    except (InverseDesignError, DesignError):
+        return False
+    return True
+
+
+def _largest_force(data: Mapping[str, Any], targets: Targets, correction) -> float:
+    """The largest full-scale force some web carries at the targets' ratio and
+    range on ``data`` (0 when the stiffness targets are out of reach or the
+    tables break a rule)."""
+    from tactcad.design.array_plan import plan_from_dict
+
+    try:
+        plan = plan_from_dict(copy.deepcopy(dict(data)), source="<alternative>")
+        search = search_webs(plan, targets, correction)
+    except DesignError:
+        return 0.0
+    return max_full_scale_force_N(search, targets.full_scale_force_N)
+
+
+def largest_feasible_force(data: Mapping[str, Any], targets: Targets, correction=None) -> float:
+    """The largest full-scale force (N, 3 significant digits, rounded down) the
+    inverse design meets at the targets' ratio and range on ``data``; 0 when
+    none. The web search's estimate (:func:`_largest_force`) is refined by
+    whole designs, which also raise the arm height with the arms: bisection
+    below the asked force, which is refused."""
+    est = _largest_force(data, targets, correction)
+    if est <= 0:
+        return 0.0
+
+    def ok(force: float) -> bool:
+        return _feasible(data, replace(targets, full_scale_force_N=force), correction)
+
+    lo = min(est, targets.full_scale_force_N)
+    while not ok(lo):
+        lo *= 0.8
+        if lo < est * 1e-3:
+            return 0.0
+    hi = targets.full_scale_force_N
+    if lo >= hi:
+        return _round_down(lo)
+    for _ in range(FORCE_STEPS):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if ok(mid) else (lo, mid)
+    return _round_down(lo)
+
+
+def _round_down(x: float) -> float:
+    e = math.floor(math.log10(x)) - 2
+    return math.floor(x / 10 ** e) * 10 ** e if x > 0 else 0.0
+
+
+def _nearest_on_scan(values: np.ndarray, asked: float, ok: Callable[[float], bool]
+                     ) -> float | None:
+    """The value nearest ``asked`` (log distance) where ``ok`` holds: a scan over
+    ``values``, then bisection between the nearest feasible point and its
+    infeasible neighbour towards ``asked``."""
+    flags = [ok(float(v)) for v in values]
+    good = [i for i, f in enumerate(flags) if f]
+    if not good:
+        return None
+    i = min(good, key=lambda k: abs(math.log(values[k] / asked)))
+    j = i + (1 if values[i] < asked else -1)
+    if not 0 <= j < len(values) or flags[j]:
+        return float(values[i])
+    lo, hi = float(values[i]), float(values[j])  # lo feasible, hi not
+    for _ in range(REFINE_STEPS):
+        mid = math.sqrt(lo * hi)
+        lo, hi = (mid, hi) if ok(mid) else (lo, mid)
+    return lo
+
+
+def nearest_targets(data: Mapping[str, Any], targets: Targets, correction=None
+                    ) -> list[Alternative]:
+    """Each target moved alone to the nearest value the design meets, the
+    others as asked (see the module docstring); those with no feasible value
+    are left out."""
+    out = []
+    force = largest_feasible_force(data, targets, correction)
+    if force > 0:
+        out.append(Alternative("target", "--full-scale-force", float(f"{force:.3g}"), True,
+                               force))
+    ratios = np.geomspace(1.05, 1000.0, SCAN_POINTS)
+    ratio = _nearest_on_scan(ratios, targets.kr_over_km, lambda x: _feasible(
+        data, replace(targets, kr_over_km=x), correction))
+    if ratio is not None:
+        ratio = float(f"{ratio:.3g}")
+        if _feasible(data, replace(targets, kr_over_km=ratio), correction):
+            out.append(Alternative("target", "--kr-over-km", ratio, True, 0.0))
+    lo, hi = targets.k_obj_range_N_per_mm
+    shifts = np.geomspace(1e-2, 1e2, SCAN_POINTS)
+    shift = _nearest_on_scan(shifts, 1.0, lambda c: _feasible(
+        data, replace(targets, k_obj_range_N_per_mm=(lo * c, hi * c)), correction))
+    if shift is not None:
+        rng = (float(f"{lo * shift:.3g}"), float(f"{hi * shift:.3g}"))
+        if _feasible(data, replace(targets, k_obj_range_N_per_mm=rng), correction):
+            out.append(Alternative("target", "--kobj-range", rng, True, 0.0))
+    return out
+
+
+def _with(data: Mapping[str, Any], section: str, values: Mapping[str, Any]) -> dict[str, Any]:
+    out = copy.deepcopy(dict(data))
+    out[section] = {**out.get(section, {}), **values}
+    return out
+
+
+def relaxing_changes(data: Mapping[str, Any], targets: Targets, correction=None,
+                     better_than_N: float = 0.0) -> list[Alternative]:
+    """Every other library grade, common sheet thickness and library gauge,
+    tried with all targets as asked; the one that relaxes most of each kind
+    (grade, sheet, gauge): those meeting every target first, then by the
+    largest full-scale force they allow; a change that allows no more than
+    ``better_than_N`` (the design as it is) and meets no target is left out."""
+    from tactcad.vocabulary.material_library import material_grades, strain_gauges
+
+    grade = dict(data.get("material", {})).get("grade")
+    sheet = float(data.get("sheet", {}).get("thickness_mm", math.nan))
+    gauge = data.get("strength", {}).get("gauge")
+    # a grade brings its own values: the base material's table is replaced, not merged
+    candidates = [("material.grade", g, {**copy.deepcopy(dict(data)),
+                                         "material": {"name": g, "grade": g}})
+                  for g in material_grades() if g != grade]
+    candidates += [("sheet.thickness_mm", t, _with(data, "sheet", {"thickness_mm": t}))
+                   for t in SHEET_THICKNESSES_MM if not math.isclose(t, sheet)]
+    candidates += [("strength.gauge", g, _with(data, "strength", {"gauge": g}))
+                   for g in strain_gauges() if g != gauge]
+    best: dict[str, tuple[Alternative, dict]] = {}
+    for field, value, tables in candidates:
+        force = _largest_force(tables, targets, correction)  # the web search's estimate
+        if force <= 0:
+            continue
+        alt = Alternative("change", field, value, _feasible(tables, targets, correction), force)
+        if field not in best or _rank(alt) < _rank(best[field][0]):
+            best[field] = (alt, tables)
+    out = []
+    for alt, tables in best.values():  # the force each best change allows, by whole designs
+        if not alt.meets_targets:
+            alt = replace(alt, largest_force_N=largest_feasible_force(tables, targets, correction))
+        if alt.meets_targets or alt.largest_force_N > better_than_N:
+            out.append(alt)
+    return sorted(out, key=_rank)
+
+
+def _rank(a: Alternative) -> tuple[bool, float]:
+    return (not a.meets_targets, -a.largest_force_N)

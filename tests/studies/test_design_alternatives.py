@@ -1,0 +1,85 @@
+"""A refused inverse design says what to ask instead: every binding limit, the
+nearest feasible targets and the change of grade, sheet or gauge that relaxes
+the limits most, each checked by designing with it."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+
+from tactcad.cli import main
+from tactcad.studies.design_alternatives import (design_or_alternatives, nearest_targets,
+                                                 relaxing_changes)
+from tactcad.studies.inverse_design import (InverseDesignError, Targets, design_for_targets,
+                                            design_from_tables, with_grid)
+
+pytestmark = pytest.mark.filterwarnings(
+    "ignore::tactcad.mechanics.correction.CorrectionRangeWarning")
+
+#: The fingertip case: 2 x 4, 17-4PH, K_r/K_m 6 over 5-50 N/mm, asked 1.5 N (too much).
+TOO_MUCH = Targets(6.0, (5.0, 50.0), 1.5)
+
+
+def _fingertip_tables(plan, grade="17-4PH-H900"):
+    data = with_grid(plan.raw, None, 4)
+    data["material"] = {"name": grade, "grade": grade}
+    return data
+
+
+def test_a_refusal_names_the_force_limit_behind_the_largest_force_and_the_ways_out(plan):
+    with pytest.raises(InverseDesignError) as exc:
+        design_or_alternatives(plan, TOO_MUCH, grade="17-4PH-H900", columns=4)
+    text = str(exc.value)
+    assert "K_m within the arm range" in text  # the thick webs' soft arms exceed 20 mm
+    assert re.search(r"at web 0\.\d+ mm, where the asked force misses gauge fatigue strain", text)
+    force = re.search(r"--full-scale-force ([0-9.]+)", text)
+    assert force and float(force[1]) < TOO_MUCH.full_scale_force_N
+    assert "--kr-over-km" in text and "--kobj-range" in text
+    fields = [a["field"] for a in exc.value.alternatives if a["kind"] == "change"]
+    assert len(fields) == len(set(fields)) and set(fields) <= {
+        "material.grade", "sheet.thickness_mm", "strength.gauge"}
+
+
+def test_each_nearest_target_is_met_and_lies_at_the_edge_of_the_feasible(plan):
+    data = _fingertip_tables(plan)
+    near = {a.field: a for a in nearest_targets(data, TOO_MUCH)}
+    assert set(near) == {"--full-scale-force", "--kr-over-km", "--kobj-range"}
+    force = near["--full-scale-force"].value
+    design_from_tables(dict(data), Targets(6.0, (5.0, 50.0), force))  # met
+    with pytest.raises(InverseDesignError):  # 5 % more is not
+        design_from_tables(dict(data), Targets(6.0, (5.0, 50.0), force * 1.05))
+    ratio = near["--kr-over-km"].value
+    assert 1.0 < ratio < TOO_MUCH.kr_over_km
+    design_from_tables(dict(data), Targets(ratio, (5.0, 50.0), 1.5))
+    lo, hi = near["--kobj-range"].value
+    assert hi / lo == pytest.approx(10.0, rel=1e-2) and lo > 5.0  # the same width, moved up
+    design_from_tables(dict(data), Targets(6.0, (lo, hi), 1.5))
+
+
+def test_a_grade_that_meets_the_targets_is_offered_first_and_does(plan):
+    """6061 cannot carry 0.7 N at these stiffnesses; 17-4PH can, and is said to."""
+    data = _fingertip_tables(plan, "6061-T6")
+    asked = Targets(6.0, (5.0, 50.0), 0.7)
+    with pytest.raises(InverseDesignError):
+        design_from_tables(dict(data), asked)
+    changes = relaxing_changes(data, asked)
+    first = changes[0]
+    assert first.field == "material.grade" and first.meets_targets
+    assert first.largest_force_N >= asked.full_scale_force_N
+    d = design_for_targets(plan, asked, grade=first.value, columns=4)
+    assert d.plan.material.grade == first.value
+
+
+def test_the_refusal_reaches_the_command_line_as_one_line_and_json(tmp_path, capsys):
+    argv = ["design", "--kr-over-km", "6", "--kobj-range", "5", "50", "--full-scale-force", "1.5",
+            "--material", "17-4PH", "--columns", "4", "--out", str(tmp_path / "x.toml"),
+            "--verify", "none", "--quiet"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "Nearest feasible targets" in err
+    assert main([*argv, "--json"]) == 2
+    doc = json.loads(capsys.readouterr().out)
+    assert re.search("Changes that relax the limits|No other grade", doc["error"]["message"])
+    assert not (tmp_path / "x.toml").exists()
