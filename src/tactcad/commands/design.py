@@ -150,11 +150,16 @@ def run(args: argparse.Namespace) -> int:
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
     base = plan_from_args(args)
-    result = design_or_alternatives(base, targets, grade=args.material, pitch_mm=args.pitch,
-                                rows=args.rows, columns=args.columns,
-                                name=path.stem.replace("-", "_") or "inverse_design")
-    if args.footprint is not None:
-        result = within_footprint(result, tuple(args.footprint))
+    layout = dict(grade=args.material, pitch_mm=args.pitch, rows=args.rows, columns=args.columns,
+                  name=path.stem.replace("-", "_") or "inverse_design")
+    if args.footprint is None:
+        result = design_or_alternatives(base, targets, **layout)
+    else:
+        from tactcad.assembly.inventory import array_envelope_mm
+        from tactcad.studies.footprint_fit import design_within_footprint
+
+        result = design_within_footprint(base, targets, tuple(args.footprint), array_envelope_mm,
+                                         **layout)
     report = design_report(result, args.verify, progress_from_args(args))
     from tactcad import __version__
 
@@ -173,33 +178,6 @@ def run(args: argparse.Namespace) -> int:
     else:
         print_report(report)
     return 0
-
-
-def within_footprint(result, footprint_mm: tuple[float, float]):
-    """``result`` with ``requirements.footprint_mm`` stated, when its array's
-    envelope fits ``footprint_mm`` (X, Y in plan view, mm).
-
-    Raises:
-        DesignError: ``--footprint`` naming the envelope the design needs.
-    """
-    from dataclasses import replace
-
-    from tactcad.assembly.inventory import array_envelope_mm
-    from tactcad.design.array_plan import plan_from_dict
-    from tactcad.errors import DesignError
-
-    x, y, _ = array_envelope_mm(result.plan)
-    if x > footprint_mm[0] or y > footprint_mm[1]:
-        raise DesignError("--footprint", list(footprint_mm),
-                          f"at least {x:.1f} x {y:.1f} mm for this design (its clamped "
-                          f"array's envelope)",
-                          "the measuring arms the targets need (a softer K_m is a longer "
-                          "arm), the clamp and the columns set the envelope; fewer columns, "
-                          "a smaller pitch or a stiffer K_m (a smaller K_r/K_m or a higher "
-                          "K_obj range) makes it smaller")
-    data = dict(result.data)
-    data["requirements"] = {**data.get("requirements", {}), "footprint_mm": list(footprint_mm)}
-    return replace(result, data=data, plan=plan_from_dict(data, result.plan.source))
 
 
 def design_options(args: argparse.Namespace) -> list[str]:

@@ -348,9 +348,12 @@ def limit_room(search: WebSearch) -> np.ndarray:
 
 
 def search_webs(plan: Plan, targets: Targets, correction=None,
-                webs_mm: Sequence[float] | None = None) -> WebSearch:
+                webs_mm: Sequence[float] | None = None,
+                arm_max_mm: float | None = None) -> WebSearch:
     """Evaluate every candidate web (default: the web range in 0.005 mm
-    steps plus the design's own web) against the targets' limits.
+    steps plus the design's own web) against the targets' limits; the arms
+    are searched up to ``arm_max_mm`` (default the arm range's end; a
+    footprint's shorter elements ask less).
 
     Raises:
         DesignError: the plan's material has no yield strength.
@@ -371,7 +374,8 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     radii = np.maximum(g.notch_radius_mm, webs)
     arm_lo = np.maximum(ARM_RANGE_MM[0], tip_root_min_arm_mm(g.tip_width_mm,
                                                              g.inside_corner_radius_mm, radii))
-    arm_hi = np.full_like(webs, ARM_RANGE_MM[1])
+    arm_hi = np.full_like(webs, ARM_RANGE_MM[1] if arm_max_mm is None
+                          else min(ARM_RANGE_MM[1], arm_max_mm))
     a_r = arm_for_stiffness(targets.k_r, webs, radii, g, mat, corr, arm_lo, arm_hi)
     a_m = arm_for_stiffness(targets.k_m, webs, radii, g, mat, corr, arm_lo, arm_hi)
 
@@ -683,10 +687,14 @@ def design_tables(base: Plan, *, grade: str | None = None, pitch_mm: float | Non
 
 
 def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "inverse_design",
-                       correction=None) -> InverseDesign:
+                       correction=None, arm_max_mm: float | None = None,
+                       shortest_element: bool = False) -> InverseDesign:
     """:func:`design_for_targets` on raw design tables already holding the
     material, grid and pitch (``data`` is changed: pass a copy); a refusal
-    names the binding limits only (no alternatives searched).
+    names the binding limits only (no alternatives searched). ``arm_max_mm``:
+    the longest arm allowed (as :func:`search_webs`); ``shortest_element``:
+    the overall length becomes the shortest that holds the longest arm's bolt
+    pattern (0.5 mm steps) instead of only growing when it must.
 
     Raises:
         InverseDesignError: the targets cannot be met.
@@ -696,7 +704,7 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
     refusal = None
     for _ in range(ARM_HEIGHT_ROUNDS):
         plan = plan_from_dict(data, source="<inverse design>")
-        search = search_webs(plan, targets, correction)
+        search = search_webs(plan, targets, correction, arm_max_mm=arm_max_mm)
         try:
             i, refusal = choose_web(search, base_web), None
         except InverseDesignError as exc:  # judge the targets on the arm height they need
@@ -716,13 +724,18 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
         raise refusal
     f_max = max_full_scale_force_N(search, targets.full_scale_force_N)
     above = replace(targets, full_scale_force_N=f_max * (1 + MAX_FORCE_PROBE))
-    bind = tuple(lim.name for lim in binding_limits(search_webs(plan, above, correction)))
+    bind = tuple(lim.name for lim in binding_limits(search_webs(plan, above, correction,
+                                                                arm_max_mm=arm_max_mm)))
     t, R = float(search.webs_mm[i]), float(search.radii_mm[i])
     a_r = round(float(search.arm_r_mm[i]), ARM_DECIMALS)
     a_m = round(float(search.arm_m_mm[i]), ARM_DECIMALS)
     refs = reference_elements(plan.rows, plan.columns)
     arms = [a_r if n in refs else a_m for n in range(1, len(plan.slots) + 1)]
     web_changed = not math.isclose(t, base_web)
+    if shortest_element:
+        need = required_overall_length_mm(data, max(arms), R)
+        data["element"]["overall_length_mm"] = math.ceil(need / LENGTH_STEP_MM - 1e-9) \
+            * LENGTH_STEP_MM
     data = design_variant(data, web_mm=t, notch_radius_mm=R, arms_mm=arms)
     lo, hi = targets.k_obj_range_N_per_mm
     data["design"] = {"name": name, "description": (
