@@ -81,8 +81,8 @@ def _pose_key(a: str, b: str, part_of: dict, locations: dict) -> tuple:
 
 def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
                             part_of: dict[str, str], part_solids: dict, locations: dict,
-                            confirm: bool = True, part_meshes: dict | None = None
-                            ) -> InterferenceReport:
+                            confirm: bool = True, part_meshes: dict | None = None,
+                            memo: dict | None = None) -> InterferenceReport:
     """Overlap of every pair (fast path on meshes, exact confirmation), and
     touching of the declared contacts.
 
@@ -96,6 +96,9 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
         confirm: run the OpenCascade confirmation (off: mesh verdicts only,
             for timing the fast path).
         part_meshes: part name -> :func:`tessellate` result, if already made.
+        memo: the exact answers of earlier calls, by the two parts, their
+            relative pose and whether they are a contact (the same part names
+            must mean the same solids: one export's scenes share it).
     """
     t0 = time.perf_counter()
     part_meshes = part_meshes or {}
@@ -124,7 +127,8 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
             to_confirm.append((a, b, vol))
     t1 = time.perf_counter()
     overlaps: dict[frozenset[str], float] = {}
-    memo: dict[tuple, tuple] = {}  # same two parts in the same relative pose: same answer
+    # same two parts in the same relative pose: same answer (across scenes too)
+    memo = {} if memo is None else memo
     if confirm:
         for a, b, mvol in to_confirm:
             subject = f"{a.name} / {b.name}"

@@ -61,6 +61,7 @@ def scene_checks(project: Project, out_dir: str | Path, names: Iterable[str] | N
     cache = cache or PartCache(project.plan)
     results: list[CheckResult] = []
     checked_parts: set[str] = set()
+    exact: dict = {}  # the array's stack recurs in every rig scene: confirmed once
     for name in (list(names) if names is not None else scene_names(project)):
         first = len(results)
         scene, solids = build_scene(project, name, cache)
@@ -72,7 +73,8 @@ def scene_checks(project: Project, out_dir: str | Path, names: Iterable[str] | N
         rep = check_mesh_interference(
             shown, scene.contacts, {i.name: i.part for i in scene.instances}, solids,
             {i.name: i.location for i in scene.instances}, confirm=confirm,
-            part_meshes={i.part: cache.mesh(scene.specs[i.part]) for i in scene.instances})
+            part_meshes={i.part: cache.mesh(scene.specs[i.part]) for i in scene.instances},
+            memo=exact)
         results += [CheckResult(r.check, f"{name}: {r.subject}", r.passed, r.detail)
                     for r in rep.results]
         results += check_scene_sanity(scene, {p.name: p.shape for p in shown})

@@ -47,7 +47,6 @@ from dataclasses import dataclass, field
 from typing import Callable, Iterable, Sequence
 
 import numpy as np
-from scipy.optimize import brentq
 
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
@@ -345,6 +344,8 @@ def web_tolerance_for_band(g: ElementGeometry, material: Material, correction: C
                                          correction))
 
     k0 = k_of(t0)
+    from scipy.optimize import brentq  # here: `tactcad --help` need not load scipy.optimize
+
     up = brentq(lambda t: k_of(t) - (1 + band_rel) * k0, t0, 2 * t0, xtol=1e-12)
     down = brentq(lambda t: k_of(t) - (1 - band_rel) * k0, 0.5 * t0, t0, xtol=1e-12)
     return float(min(up - t0, t0 - down))
