@@ -19,32 +19,18 @@ def requirement_checks(plan, model: str = "closed-form") -> list[CheckResult]:
     its verdict is ``fail``; an ``undecided`` one (margin inside the level's
     error estimate) passes with a note that ``tactcad verify`` decides it."""
     from tactcad.assembly.inventory import array_envelope_mm
-    from tactcad.studies.verification import verification_matrix
+    from tactcad.studies.verification import (binding_text, percent_text, value_text,
+                                              verification_matrix)
 
     out = []
     for r in verification_matrix(plan, model, envelope_mm=array_envelope_mm(plan)):
-        detail = (f"{r['verdict']}: target {_short(r['target'])}, predicted "
-                  f"{_short(r['predicted'])}, margin {_pct(r['margin_rel'])} "
-                  f"(error {_pct(r['error_estimate_rel'], sign=False)}, {r['model']})")
-        if "binding_limit" in r:
-            detail += f", bound by {r['binding_words']} (element {r['binding_element']})"
-        if "measuring_element" in r:
-            detail += (f", worst pair row {r['row']}: element {r['reference_element']} / "
-                       f"{r['measuring_element']}")
-        if "binding_axis" in r:
-            detail += f", tightest along {r['binding_axis']}"
+        detail = (f"{r['verdict']}: target {value_text(r['target'])}, predicted "
+                  f"{value_text(r['predicted'])}, margin {percent_text(r['margin_rel'])} "
+                  f"(error {percent_text(r['error_estimate_rel'], sign=False)}, {r['model']})")
+        if binding_text(r):
+            detail += f", binds: {binding_text(r)}"
         if r["verdict"] == "undecided":
             detail += ("; no level computes it closer" if r["level_fixed"] else
                        "; tactcad verify --model auto decides it up the ladder")
         out.append(CheckResult("requirement", r["requirement"], r["verdict"] != "fail", detail))
     return out
-
-
-def _pct(v, sign: bool = True) -> str:
-    return "n/a" if v is None else (f"{100 * v:+.1f} %" if sign else f"{100 * v:.2f} %")
-
-
-def _short(v):
-    if isinstance(v, list):
-        return "[" + ", ".join(f"{x:.4g}" for x in v) + "]"
-    return "none" if v is None else f"{v:.4g}"

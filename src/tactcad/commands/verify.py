@@ -69,45 +69,24 @@ def run(args: argparse.Namespace) -> int:
     return 0 if ok else 1
 
 
-def _value(v) -> str:
-    if v is None:
-        return "none"
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(f"{x:.4g}" for x in v) + "]"
-    return f"{v:.4g}"
-
-
-def _pct(v) -> str:
-    return "n/a" if v is None else f"{100 * v:+.1f} %"
-
-
 def matrix_table(records: list[dict]) -> str:
     """The matrix as a Markdown table (one row per requirement, the level
     that decided it and the pair or element that binds; the limits of the
     full-scale force below it)."""
+    from tactcad.studies.verification import binding_text, percent_text, value_text
+
     rows = ["| requirement | target | predicted | error est. | margin | model | verdict | "
-            "worst |",
+            "binds |",
             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in records:
-        err = "n/a" if r["error_estimate_rel"] is None else f"{100 * r['error_estimate_rel']:.2f} %"
-        rows.append(f"| {r['requirement']} | {_value(r['target'])} | {_value(r['predicted'])} | "
-                    f"{err} | {_pct(r['margin_rel'])} | {r['model']} | {r['verdict'].upper()} | "
-                    f"{_worst(r)} |")
+        rows.append(f"| {r['requirement']} | {value_text(r['target'])} | "
+                    f"{value_text(r['predicted'])} | "
+                    f"{percent_text(r['error_estimate_rel'], sign=False)} | "
+                    f"{percent_text(r['margin_rel'])} | {r['model']} | {r['verdict'].upper()} | "
+                    f"{binding_text(r)} |")
     for r in records:
         for lim in r.get("limits", ()):
             rows.append(f"|   limit: {lim['words']} (element {lim['element']}) | | "
                         f"{lim['force_N']:.4g} N | {100 * lim['error_estimate_rel']:.2f} % | | | "
                         f"{'binds' if lim['binding'] else ''} | |")
     return "\n".join(rows)
-
-
-def _worst(r: dict) -> str:
-    """The element or pair a record's figure comes from."""
-    if "measuring_element" in r:
-        return (f"row {r['row']}: element {r['reference_element']} / "
-                f"{r['measuring_element']}")
-    if "binding_element" in r:
-        return f"element {r['binding_element']}"
-    if "binding_axis" in r:
-        return f"axis {r['binding_axis']}"
-    return ""

@@ -139,31 +139,15 @@ def _verdict(record: dict) -> str:
 def verification_row(r: dict) -> dict:
     """One requirement as the page's table shows it (texts, in the CLI's columns;
     the page's script lists them in this order, ``VERIFY_COLUMNS``)."""
+    from tactcad.studies.verification import binding_text, percent_text, value_text
+
     err = r.get("error_estimate_rel")
-    margin = r.get("margin_rel")
-    if "measuring_element" in r:
-        binds = f"row {r['row']}: element {r['reference_element']} / {r['measuring_element']}"
-    elif "binding_words" in r:
-        element = r.get("binding_element")
-        binds = r["binding_words"] + ("" if element is None else f" (element {element})")
-    elif "binding_axis" in r:
-        binds = f"axis {r['binding_axis']}"
-    else:
-        binds = ""
     return {"requirement": r["requirement"], "verdict": _verdict(r).upper(),
-            "target": _text(r.get("target")),
-            "predicted": _text(r.get("predicted"))
+            "target": value_text(r.get("target")),
+            "predicted": value_text(r.get("predicted"))
             + ("" if err is None else f" \u00b1 {100 * err:.2g} %"),
-            "margin": "n/a" if margin is None else f"{100 * margin:+.1f} %",
-            "binds": binds, "model": r.get("model", "")}
-
-
-def _text(v) -> str:
-    if v is None:
-        return "none"
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_text(x) for x in v) + "]"
-    return f"{v:.4g}" if isinstance(v, float) else str(v)
+            "margin": percent_text(r.get("margin_rel")),
+            "binds": binding_text(r), "model": r.get("model", "")}
 
 
 def page_html(contents: ReviewContents, import_map: str) -> str:

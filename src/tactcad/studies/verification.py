@@ -538,6 +538,42 @@ def readout_resolution_record(plan: Plan, fig: Figures, req: Requirements, error
                    basis="read-out chain: noise of one averaged reading / sensitivity")
 
 
+# ---------------------------------------------------------------------------
+# A record in words: one wording for verify, check and the review page
+# ---------------------------------------------------------------------------
+def value_text(v) -> str:
+    """A record's target or prediction: 4 significant digits, a list in
+    brackets, ``none`` for a missing value."""
+    if v is None:
+        return "none"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(value_text(x) for x in v) + "]"
+    return f"{v:.4g}" if isinstance(v, (int, float)) and not isinstance(v, bool) else str(v)
+
+
+def percent_text(v: float | None, sign: bool = True) -> str:
+    """A relative figure in percent: signed with one decimal (a margin), or
+    unsigned with two (an error estimate); ``n/a`` without one."""
+    if v is None:
+        return "n/a"
+    return f"{100 * v:+.1f} %" if sign else f"{100 * v:.2f} %"
+
+
+def binding_text(record: dict) -> str:
+    """What a record's figure comes from: the row's pair for K_r/K_m
+    (``row 1: element 2 / 1``), the binding limit and its element for the
+    full-scale force, the tightest axis for the footprint; empty otherwise."""
+    if "measuring_element" in record:
+        return (f"row {record['row']}: element {record['reference_element']} / "
+                f"{record['measuring_element']}")
+    if "binding_words" in record:
+        element = record.get("binding_element")
+        return record["binding_words"] + ("" if element is None else f" (element {element})")
+    if "binding_axis" in record:
+        return f"axis {record['binding_axis']}"
+    return ""
+
+
 def matrix_passed(records: list[dict]) -> bool:
     """True when no requirement is ``fail`` (an ``undecided`` one does not fail the matrix)."""
     return not any(r["verdict"] == "fail" for r in records)
