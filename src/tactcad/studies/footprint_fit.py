@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import copy
 import math
+import warnings
 from dataclasses import dataclass, replace
 from typing import Any, Callable, Mapping, Sequence
 
@@ -123,8 +124,8 @@ def _arm_cap(data: Mapping[str, Any], length_mm: float) -> float:
 
 
 def _fitting_design(data, footprint_mm, envelope_of, targets, correction, name, grid
-                    ) -> InverseDesign | None:
-    """The design with the longest element of ``grid`` whose envelope fits, or
+                    ) -> float | None:
+    """The longest element length of ``grid`` whose design's envelope fits, or
     None. An element's envelope with its arm at the longest the length holds
     (cheap, no design) is within :data:`ENVELOPE_SLACK_MM` of a design's, whose
     arms may be shorter: the lengths that come that close are tried, longest first."""
@@ -135,7 +136,7 @@ def _fitting_design(data, footprint_mm, envelope_of, targets, correction, name, 
     for L in lengths[:FIT_TRIES]:
         d = _design_at(data, L, targets, correction, name)
         if d is not None and fits(envelope_of(d.plan), footprint_mm):
-            return d
+            return L
     return None
 
 
@@ -194,12 +195,17 @@ def design_within_footprint(base: Plan, targets: Targets, footprint_mm: Sequence
     for sheet in sheets:
         tables = data if sheet == sheet0 else _sheet_tables(data, sheet)
         grid = _length_grid(tables)
-        d = _fitting_design(tables, footprint_mm, envelope_of, targets, correction, name, grid)
-        if d is not None:
+        with warnings.catch_warnings():  # candidates explored, not the design written
+            warnings.simplefilter("ignore")
+            length = _fitting_design(tables, footprint_mm, envelope_of, targets, correction,
+                                     name, grid)
+            smallest = None if length is not None else \
+                _shortest_design(tables, targets, correction, name, grid)
+        if length is not None:  # designed again, its own warnings shown
+            d = _design_at(tables, length, targets, correction, name)
             return _stated(d, footprint_mm, sheet0, Layout(
                 sheet, float(tables["array"]["pitch_mm"]),
                 float(d.plan.element(1).geometry.overall_length_mm)))
-        smallest = _shortest_design(tables, targets, correction, name, grid)
         if smallest is not None:
             env = tuple(float(e) for e in envelope_of(smallest.plan))
             need = max(e / f for e, f in zip(env, footprint_mm))
