@@ -63,7 +63,6 @@ import time
 from typing import Any, NamedTuple
 
 import numpy as np
-from scipy.optimize import brentq
 
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.mechanics.correction import (IDENTITY, Correction, CorrectionRangeWarning, apply_correction,
@@ -386,6 +385,8 @@ def web_for_stiffness(k_target: float, g: ElementGeometry, material: Material, *
     if not k_lo <= k_target <= k_hi:
         raise ValueError(f"k_target = {k_target:g} N/mm: allowed {k_lo:.4g} ... {k_hi:.4g} N/mm "
                          f"(web {lo:g} ... {hi:g} mm at arm {a:g} mm, R {R:g} mm)")
+    from scipy.optimize import brentq  # here: the closed form itself needs no scipy.optimize
+
     t = float(brentq(lambda x: k_of(x) - k_target, lo, hi, xtol=xtol_mm, rtol=1e-14))
     _corrected(_parts(g, material, t), g, material, t, corr, warn=True)
     return t
