@@ -49,7 +49,7 @@ def _run(args: list[str], cwd: Path, env: dict, ok=(0,), timings=None) -> subpro
     return out
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")  # module scope was set up again when xdist interleaved
 def installed(tmp_path_factory):
     """(venv bin folder, clean environment, timings, dist folder): the wheel built
     from the sdist, installed into a new venv whose dependencies are this

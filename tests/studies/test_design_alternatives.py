@@ -72,14 +72,13 @@ def test_a_grade_that_meets_the_targets_is_offered_first_and_does(plan):
     assert d.plan.material.grade == first.value
 
 
-def test_the_refusal_reaches_the_command_line_as_one_line_and_json(tmp_path, capsys):
+def test_the_refusal_reaches_the_command_line_as_its_json_error(tmp_path, capsys):
     argv = ["design", "--kr-over-km", "6", "--kobj-range", "5", "50", "--full-scale-force", "1.5",
             "--material", "17-4PH", "--columns", "4", "--out", str(tmp_path / "x.toml"),
-            "--verify", "none", "--quiet"]
+            "--verify", "none", "--json"]
     assert main(argv) == 2
-    err = capsys.readouterr().err
-    assert len(err.strip().splitlines()) == 1 and "Nearest feasible targets" in err
-    assert main([*argv, "--json"]) == 2
-    doc = json.loads(capsys.readouterr().out)
+    out = capsys.readouterr()
+    doc = json.loads(out.out)
+    assert "Nearest feasible targets" in doc["error"]["message"] and doc["error"]["exit_code"] == 2
     assert re.search("Changes that relax the limits|No other grade", doc["error"]["message"])
     assert not (tmp_path / "x.toml").exists()

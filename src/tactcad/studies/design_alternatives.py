@@ -39,8 +39,8 @@ SHEET_THICKNESSES_MM = (1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0)
 #: Points of the scans over K_r / K_m and over the K_obj range's position.
 SCAN_POINTS = 41
 #: Bisection steps refining a scan's nearest feasible point, and the largest force.
-REFINE_STEPS = 12
-FORCE_STEPS = 10
+REFINE_STEPS = 7
+FORCE_STEPS = 7
 
 
 @dataclass(frozen=True)
@@ -161,11 +161,13 @@ def largest_feasible_force(data: Mapping[str, Any], targets: Targets, correction
         return _feasible(data, replace(targets, full_scale_force_N=force), correction)
 
     lo = min(est, targets.full_scale_force_N)
-    while not ok(lo):
-        lo *= 0.8
+    while not ok(lo):  # the estimate is near: step down from it
+        lo *= 0.95
         if lo < est * 1e-3:
             return 0.0
-    hi = targets.full_scale_force_N
+    hi = min(targets.full_scale_force_N, est * 1.05)  # a bracket as tight as the estimate
+    if hi > lo and ok(hi):
+        lo, hi = hi, targets.full_scale_force_N
     if lo >= hi:
         return _round_down(lo)
     for _ in range(FORCE_STEPS):
@@ -181,18 +183,18 @@ def _round_down(x: float) -> float:
 
 def _nearest_on_scan(values: np.ndarray, asked: float, ok: Callable[[float], bool]
                      ) -> float | None:
-    """The value nearest ``asked`` (log distance) where ``ok`` holds: a scan over
-    ``values``, then bisection between the nearest feasible point and its
-    infeasible neighbour towards ``asked``."""
-    flags = [ok(float(v)) for v in values]
-    good = [i for i, f in enumerate(flags) if f]
-    if not good:
+    """The value nearest ``asked`` (log distance) where ``ok`` holds: the scan's
+    points tried nearest first until one holds, then bisection between it and
+    its neighbour towards ``asked`` (which does not hold)."""
+    order = sorted(range(len(values)), key=lambda k: abs(math.log(values[k] / asked)))
+    i = next((k for k in order if ok(float(values[k]))), None)
+    if i is None:
         return None
-    i = min(good, key=lambda k: abs(math.log(values[k] / asked)))
     j = i + (1 if values[i] < asked else -1)
-    if not 0 <= j < len(values) or flags[j]:
+    if not 0 <= j < len(values) or abs(math.log(values[j] / asked)) > abs(
+            math.log(values[i] / asked)) or ok(float(values[j])):
         return float(values[i])
-    lo, hi = float(values[i]), float(values[j])  # lo feasible, hi not
+    lo, hi = float(values[i]), float(values[j])  # lo holds, hi not
     for _ in range(REFINE_STEPS):
         mid = math.sqrt(lo * hi)
         lo, hi = (mid, hi) if ok(mid) else (lo, mid)
