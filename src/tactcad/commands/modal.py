@@ -63,11 +63,15 @@ def run_modal(args: argparse.Namespace) -> int:
         records.append(rec)
     lowest = min(records, key=lambda rec: rec["first_Hz"])
     if args.json:
-        print(json.dumps({"model": args.model, "elements": records,
+        print(json.dumps({"model": args.model, "families": list(MODAL_LEVELS[args.model].families),
+                          "elements": records,
                           "lowest_first_Hz": lowest["first_Hz"],
                           "lowest_part": lowest["part"]}, indent=2))
         return 0
-    print(f"natural frequencies, model {args.model} (clamped as in the stiffness model)")
+    families = MODAL_LEVELS[args.model].families
+    print(f"natural frequencies, model {args.model} (clamped as in the stiffness model; "
+          f"{' and '.join(families)} modes"
+          + ("" if "out-of-plane" in families else ", fem3d adds the out-of-plane ones") + ")")
     for rec in records:
         els = ", ".join(str(n) for n in rec["elements"])
         freqs = ", ".join(f"{m['frequency_Hz']:.1f} ({m['family']})" for m in rec["modes"])

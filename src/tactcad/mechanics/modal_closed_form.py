@@ -28,9 +28,15 @@ clipped at x = x_h, by vertical chords (exact in y, midpoint rule in x).
 The material behind the hinge (notch walls, base) is taken as still.
 
 Error estimate: half the closed form's K error (f ~ sqrt K) plus
-:data:`SHAPE_ERROR_REL`, the largest distance of this quotient to fem3d's
-first in-plane frequency measured over the design domain's corners (tests/
-mechanics/test_modal.py), rounded up.
+:data:`SHAPE_ERROR_REL`, which bounds the distance of this quotient to
+fem3d's first in-plane frequency measured over the design domain's corners
+(at most 1.5 %, thick web in a thin sheet; tests/mechanics/test_modal.py).
+
+In-plane only: out-of-plane bending and twisting of the web are not
+estimated here (beam-theory quotients for them missed fem3d by 20-170 %
+at the corners: a short wide web does not twist as a Saint-Venant strip).
+In a thin sheet (b below about the web's height: 0.5 mm sheet, 1 mm web)
+the first mode is out of the plane; only fem3d finds it.
 
 Units: mm, N, MPa, t/mm^3, Hz, s.
 """
@@ -129,7 +135,7 @@ def estimate_modal_closed_form(g: ElementGeometry, material: Material, *,
     Args:
         g: element geometry (mm). material: E (MPa), nu, density (g/cm^3).
         element: paper element number, carried into the result.
-        modes: modes asked for (the closed form gives the first only).
+        modes: modes asked for (the closed form gives the first in-plane one only).
 
     Returns:
         :class:`~tactcad.mechanics.modal_result.ModalResult` with one mode

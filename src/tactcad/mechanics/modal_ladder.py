@@ -35,6 +35,9 @@ class ModalLevel:
             keep_shapes=False)`` -> :class:`ModalResult`.
         meshed: a FEM level (mode shapes, progress lines).
         cost: typical wall time per distinct element, for help texts.
+        families: the mode families it finds ("in-plane": bending in the
+            sheet's plane, the sensing direction; "out-of-plane": bending out
+            of it and twisting).
     """
 
     name: str
@@ -42,6 +45,7 @@ class ModalLevel:
     function: str
     meshed: bool
     cost: str
+    families: tuple[str, ...] = ("in-plane",)
 
 
 #: The modal ladder, cheapest first (:func:`register_modal_level` adds to it).
@@ -64,7 +68,8 @@ for _level in (ModalLevel("closed-form", "tactcad.mechanics.modal_closed_form",
                ModalLevel("fem2d", "tactcad.mechanics.fem.fem_modal", "estimate_modal_fem2d",
                           meshed=True, cost="~2 s"),
                ModalLevel("fem3d", "tactcad.mechanics.fem.fem_modal", "estimate_modal_fem3d",
-                          meshed=True, cost="~20 s")):
+                          meshed=True, cost="~20 s",
+                          families=("in-plane", "out-of-plane"))):
     register_modal_level(_level)
 
 

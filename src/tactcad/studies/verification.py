@@ -39,6 +39,7 @@ from tactcad.design.array_plan import Plan
 from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, requirements_source,
                                          stated_footprint, stated_requirements)
 from tactcad.mechanics.resolution import KOBJ_POINTS
+from tactcad.studies.resonance import resonance_records, resonance_summary
 
 #: The predicted readable range is searched this factor beyond the required one.
 KOBJ_SEARCH_FACTOR = 100.0
@@ -413,6 +414,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
             raise ValueError("the design states requirements.footprint_mm: pass the array's "
                              "envelope (tactcad.assembly.inventory.array_envelope_mm)")
         out.append(footprint_record(req.footprint_mm, envelope_mm))
+    out.extend(resonance_records(plan, model, progress))
     for r in out:
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew
@@ -592,6 +594,7 @@ def requirements_record(plan: Plan, envelope_mm: Sequence[float] | None = None) 
     matrix = verification_matrix(plan, "closed-form", requirements=req, envelope_mm=envelope_mm)
     force = matrix[0]
     return {"values": req.as_json(), "closed_form_matrix": matrix,
+            "first_resonance": resonance_summary(plan),
             "full_scale_force": {"required_N": req.full_scale_force_N,
                                  "largest_N": force["predicted"],
                                  "binding_limit": force["binding_words"],
