@@ -564,7 +564,8 @@ def percent_text(v: float | None, sign: bool = True) -> str:
 def binding_text(record: dict) -> str:
     """What a record's figure comes from: the row's pair for K_r/K_m
     (``row 1: element 2 / 1``), the binding limit and its element for the
-    full-scale force, the tightest axis for the footprint; empty otherwise."""
+    full-scale force, the tightest axis for the footprint, the element with
+    the lowest first resonance; empty otherwise."""
     if "measuring_element" in record:
         return (f"row {record['row']}: element {record['reference_element']} / "
                 f"{record['measuring_element']}")
@@ -573,6 +574,10 @@ def binding_text(record: dict) -> str:
         return record["binding_words"] + ("" if element is None else f" (element {element})")
     if "binding_axis" in record:
         return f"axis {record['binding_axis']}"
+    if "binding_part" in record:  # the lowest first resonance and the level that found it
+        level = record.get("binding_model", record.get("modal_model"))
+        return (f"element {record['binding_element']} ({record['binding_part']}, {level}, "
+                f"{' and '.join(record['families'])} modes)")
     return ""
 
 
