@@ -77,3 +77,24 @@ def test_a_bad_minimum_is_refused_naming_the_field(value):
     with pytest.raises(DesignErrors) as err:
         example(**{"requirements.min_first_resonance_Hz": value})
     assert err.value.field == "requirements.min_first_resonance_Hz"
+
+
+@pytest.mark.slow
+def test_a_thin_sheet_is_verified_at_fem3d_whatever_the_level():
+    """A 0.6 mm sheet over a 0.25 mm web (under three webs): the closed form
+    cannot see the out-of-plane modes, so the element is taken at fem3d; the
+    manifest's summary keeps the closed form and flags it instead."""
+    from tactcad.design.array_plan import default_design_data
+    from tactcad.studies.resonance import out_of_plane_may_lead, resonance_summary
+
+    plan = plan_from_dict(with_overrides(default_design_data(), {
+        "sheet.thickness_mm": 0.6, "arms.lengths_mm": [4.0] * 10,
+        "requirements.min_first_resonance_Hz": 100.0}))
+    (g,) = plan.distinct_elements.values()
+    assert out_of_plane_may_lead(g)
+    (rec,) = resonance_records(plan, "closed-form")
+    assert rec["modal_model"] == "closed-form" and rec["binding_model"] == "fem3d"
+    assert rec["families"] == ["in-plane", "out-of-plane"]
+    (row,) = resonance_summary(plan)["elements"]
+    assert row["model"] == "closed-form" and row["out_of_plane_unchecked"]
+    assert not out_of_plane_may_lead(example().element(1).geometry)

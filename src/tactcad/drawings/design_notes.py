@@ -50,7 +50,8 @@ def _first_frequencies(plan: Plan) -> dict[str, float]:
     """{part name: first in-plane natural frequency (Hz)}, closed form, cached per plan."""
     from tactcad.studies.resonance import first_frequencies
 
-    return {row["part"]: row["first_Hz"] for row in first_frequencies(plan, "closed-form")}
+    return {row["part"]: row["first_Hz"]
+            for row in first_frequencies(plan, "closed-form", escalate=False)}
 
 
 def resonance_note(plan: Plan, part_name: str) -> str | None:
@@ -63,9 +64,9 @@ def resonance_note(plan: Plan, part_name: str) -> str | None:
         return None
     f = _first_frequencies(plan)[part_name]
     verdict = "met" if f >= float(target) else "NOT met"
-    return (f"First natural frequency {f:.4g} Hz as clamped (closed form, in the sheet's plane; "
-            f"the design requires at least {float(target):g} Hz, {verdict}): scan and sample "
-            f"well below it.")
+    return (f"First natural frequency in the sheet's plane {f:.4g} Hz as clamped (closed "
+            f"form; the design requires at least {float(target):g} Hz, {verdict}; tactcad "
+            f"modal --model fem3d adds the out-of-plane modes): scan and sample well below it.")
 
 
 def web_tolerance_note(plan: Plan, g: ElementGeometry, web: str, up: float, dn: float,
