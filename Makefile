@@ -75,9 +75,10 @@ fuzz: $(STAMP) ## random designs (FUZZ_N=1000), calibration data files (FUZZ_DAT
 	  a=$$?; $(BIN)/python scripts/fuzz_inputs.py --data $(FUZZ_DATA) --options $(FUZZ_OPTIONS) --quiet; \
 	  b=$$?; exit $$(( a || b ))
 
-bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness ladder)
+bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness and modal ladders)
 	$(BIN)/tactcad bench export
 	$(BIN)/tactcad bench stiffness
+	$(BIN)/tactcad bench modal
 
 clean: ## remove generated files (exports/) and the environment
 	rm -rf $(OUT) $(VENV) .pytest_cache .hypothesis .tactcad-cache $(CI_OUT)

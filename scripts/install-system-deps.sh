@@ -6,6 +6,8 @@
 #                    file as a reviewer would (its saved camera).
 #   chromium         the browser the review page's tests drive headless
 #                    (Playwright, pointed at this system Chromium).
+#   calculix-ccx     CalculiX's solver `ccx`, the independent *FREQUENCY model
+#                    that checks fem3d's natural frequencies.
 # Installs only what is missing, and only when it can: as root with apt-get
 # (CI). Otherwise it says what to install and exits 0, so that `make test`
 # still runs; the FreeCAD test then skips with that reason.
@@ -16,6 +18,7 @@ command -v freecadcmd >/dev/null 2>&1 || missing="$missing freecad-python3"
 command -v chromium >/dev/null 2>&1 || missing="$missing chromium"
 command -v freecad >/dev/null 2>&1 || missing="$missing freecad"
 command -v xvfb-run >/dev/null 2>&1 || missing="$missing xvfb"
+command -v ccx >/dev/null 2>&1 || missing="$missing calculix-ccx"
 
 if [ -z "$missing" ]; then
     exit 0
@@ -34,3 +37,4 @@ command -v freecadcmd >/dev/null 2>&1
 command -v chromium >/dev/null 2>&1
 command -v freecad >/dev/null 2>&1
 command -v xvfb-run >/dev/null 2>&1
+command -v ccx >/dev/null 2>&1

@@ -34,6 +34,7 @@ if TYPE_CHECKING:  # types only: importing them at run time would load the kerne
     from tactcad.kernel.shapes import Compound, Solid
     from tactcad.export.run import ExportResult
     from tactcad.mechanics.stiffness_result import StiffnessResult
+    from tactcad.mechanics.modal_result import ModalResult
     from tactcad.mechanics.element_strength import StrengthRecord
 
 __all__ = ["load", "Project", "Element", "CheckReport"]
@@ -429,7 +430,8 @@ class Parts(Mapping):
 
 @dataclass(frozen=True)
 class Element:
-    """One sensing element of a project: its geometry, solid, stiffness and strength.
+    """One sensing element of a project: its geometry, solid, stiffness, natural
+    frequencies and strength.
 
     Attributes:
         number: the element's number (1-based).
@@ -478,6 +480,30 @@ class Element:
 
         return estimate(model, self.geometry, self.project.plan.material, element=self.number,
                         **options)
+
+    def modes(self, model: str = "closed-form", modes: int = 3,
+              **options: Any) -> "ModalResult":
+        """The lowest natural frequencies of the element as clamped in the stiffness model.
+
+        Args:
+            model: modal level: ``closed-form`` (a few ms, the first in-plane
+                mode), ``fem2d`` (about 1 s, in-plane modes), ``fem3d``
+                (10-60 s, in-plane and out-of-plane modes).
+            modes: how many (the closed form gives one).
+            **options: the level's own (``progress``, ``keep_shapes`` for FEM).
+
+        Returns:
+            :class:`~tactcad.mechanics.modal_result.ModalResult`: frequencies
+            (Hz) with their families, error estimate of the first, wall time (s).
+
+        Raises:
+            UnknownModalModelError: ``model`` is not a modal level.
+            DesignError: the material has no density.
+        """
+        from tactcad.mechanics.modal_ladder import estimate_modes
+
+        return estimate_modes(model, self.geometry, self.project.plan.material,
+                              element=self.number, modes=modes, **options)
 
     def strength(self, model: str = "closed-form") -> "StrengthRecord":
         """Peak stress per newton at the hinge and the full-scale force.

@@ -34,6 +34,7 @@ COMMAND_MODULES = (
     "tactcad.commands.scenes",
     "tactcad.commands.bench",
     "tactcad.commands.mechanics",
+    "tactcad.commands.modal",
     "tactcad.commands.lumped",
     "tactcad.commands.evaluate",
     "tactcad.commands.table2",

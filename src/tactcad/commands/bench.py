@@ -21,6 +21,7 @@ from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, p
 from tactcad.commands.options import count, number
 from tactcad.commands.finite_json import dumps
 from tactcad.mechanics.ladder import models
+from tactcad.mechanics.modal_ladder import modal_models
 
 COLD_GOAL_S = 8.0  # on two cores
 WARM_GOAL_S = 1.5
@@ -33,7 +34,7 @@ MAX_LOAD_SECONDS = 600.0  # its duration at most (s)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("bench", help="speed benchmarks (export, stiffness, closed-form, montecarlo, sweep)",
+    p = sub.add_parser("bench", help="speed benchmarks (export, stiffness, modal, closed-form, montecarlo, sweep)",
                        description="Print timings. Goals on two cores: cold export <= 8 s, "
                                    "no-change re-export <= 1.5 s, one changed arm <= 4 s, each "
                                    "distinct part built once; interference of the largest scene "
@@ -55,6 +56,16 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="estimators to run (default: all)")
     add_output_args(s, "print one JSON object: throughput and the summary per level")
     s.set_defaults(func=run_stiffness)
+    md = bsub.add_parser("modal", help="modal levels' cost and first-frequency error against "
+                                       "fem3d (tactcad.benchmarks.modal_bench)")
+    add_design_arg(md)
+    md.add_argument("--designs", choices=("own", "corners", "all"), default="all",
+                    help="the design's shortest and longest arm, the design domain's four "
+                         "corners, or both (default %(default)s; fem3d takes 10-60 s each)")
+    md.add_argument("--models", nargs="+", metavar="MODEL", choices=modal_models(), default=None,
+                    help="modal levels to run (default: all; fem3d always, as the reference)")
+    add_output_args(md, "print one JSON object: every design's figures and the summary per level")
+    md.set_defaults(func=run_modal_bench)
     c = bsub.add_parser("closed-form", help="corrected closed-form K evaluations/s (goal >= 1e7)")
     add_design_arg(c)
     add_output_args(c, "print one JSON object: evaluations per second and the goal")
@@ -236,6 +247,12 @@ def run_stiffness(args: argparse.Namespace) -> int:
               "(no tactcad.benchmarks.stiffness_bench)")
         return 0
     return int(module.main(args, plan=plan_from_args(args)) or 0)
+
+
+def run_modal_bench(args: argparse.Namespace) -> int:
+    from tactcad.benchmarks.modal_bench import main
+
+    return int(main(args, plan=plan_from_args(args)) or 0)
 
 
 def run_closed_form(args: argparse.Namespace) -> int:

@@ -18,6 +18,10 @@ Keys (units in the names):
 * ``footprint_mm = [X, Y]`` or ``[X, Y, Z]``: the envelope the clamped array
   must fit (plan view X by Y, height Z), as its assembly STEP's box; never
   derived (without it nothing is checked).
+* ``min_first_resonance_Hz``: the lowest first natural frequency any
+  element may have as clamped (``tactcad modal``): a flexure ringing near
+  the scan or sampling rate aliases; never derived (without it the first
+  frequencies are reported, not checked).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -35,6 +39,9 @@ PAPER_TITLE = "Spring-based tactile array for assistive robotic surgical applica
 #: Keys of the section that are requirements (``source`` is their citation).
 REQUIREMENT_KEYS = ("full_scale_force_N", "kobj_range_N_per_mm", "kr_over_km",
                     "k_tolerance_rel", "kobj_resolution_rel")
+
+#: Requirements checked only when the file states them (never derived).
+STATED_ONLY_KEYS = ("min_first_resonance_Hz",)
 
 
 class RequirementsSection(Section):
@@ -54,6 +61,8 @@ class RequirementsSection(Section):
     footprint_mm: listing(number(0.0, 1e4, lo_open=True, unit="mm"), 2, 3,
                           "[X, Y] or [X, Y, Z] (mm)",
                           "the envelope the clamped array must fit") = None
+    min_first_resonance_Hz: number(0.0, 1e7, lo_open=True, unit="Hz",
+                                   why="lowest first natural frequency of any element") = None
     source: Text = None
 
 
@@ -80,7 +89,7 @@ def stated_requirements(raw: Mapping[str, Any]) -> dict[str, Any]:
     table = raw.get("requirements") if isinstance(raw, Mapping) else None
     if not isinstance(table, Mapping):
         return {}
-    out = {k: table[k] for k in REQUIREMENT_KEYS if k in table}
+    out = {k: table[k] for k in REQUIREMENT_KEYS + STATED_ONLY_KEYS if k in table}
     if "kobj_range_N_per_mm" in out:
         out["kobj_range_N_per_mm"] = tuple(float(v) for v in out["kobj_range_N_per_mm"])
     return out

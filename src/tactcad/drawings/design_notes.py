@@ -1,7 +1,8 @@
 """Drawing notes that depend on the design's requirements and on whether the
 design cites the paper (``requirements.source``): the full-scale force with
-its binding limit, the web-tolerance note, where the strain gauge goes and
-the element numbering.
+its binding limit, the first natural frequency where the design states a
+minimum, the web-tolerance note, where the strain gauge goes and the element
+numbering.
 
 A design that does not cite the paper gets no paper text, load or sample.
 Units: mm, N, N/mm.
@@ -42,6 +43,30 @@ def full_scale_note(plan: Plan, part_name: str, yield_MPa: float, grade: str) ->
     return (f"Full-scale tip force {required:.3g} N (the design's requirement, {verdict}): this "
             f"element carries at most {largest:.3g} N, bound by {words} (closed form; yield "
             f"{yield_MPa:g} MPa, {grade}). Do not load the tip beyond {required:.3g} N.")
+
+
+@lru_cache(maxsize=8)
+def _first_frequencies(plan: Plan) -> dict[str, float]:
+    """{part name: first in-plane natural frequency (Hz)}, closed form, cached per plan."""
+    from tactcad.studies.resonance import first_frequencies
+
+    return {row["part"]: row["first_Hz"]
+            for row in first_frequencies(plan, "closed-form", escalate=False)}
+
+
+def resonance_note(plan: Plan, part_name: str) -> str | None:
+    """The element's first natural frequency against ``requirements.min_first_resonance_Hz``
+    (None when the design states no minimum: the note binds only then)."""
+    from tactcad.design.requirements_section import stated_requirements
+
+    target = stated_requirements(plan.raw).get("min_first_resonance_Hz")
+    if target is None:
+        return None
+    f = _first_frequencies(plan)[part_name]
+    verdict = "met" if f >= float(target) else "NOT met"
+    return (f"First natural frequency in the sheet's plane {f:.4g} Hz as clamped (closed "
+            f"form; the design requires at least {float(target):g} Hz, {verdict}; tactcad "
+            f"modal --model fem3d adds the out-of-plane modes): scan and sample well below it.")
 
 
 def web_tolerance_note(plan: Plan, g: ElementGeometry, web: str, up: float, dn: float,

@@ -108,8 +108,8 @@ def verification_view(requirements: dict) -> dict:
     read as ``tactcad verify`` prints it: one row per requirement (verdict,
     target, predicted with its error, margin, what binds, level), failures
     first, then undecided; the limits behind the full-scale force (the binding
-    one marked); the stated or derived values; and the requirements not met
-    (the page's red banner)."""
+    one marked); the stated or derived values; each element's first natural
+    frequency; and the requirements not met (the page's red banner)."""
     matrix = requirements.get("closed_form_matrix") or []
     order = {"fail": 0, "undecided": 1}
     rows = [verification_row(r) for r in sorted(
@@ -119,6 +119,9 @@ def verification_view(requirements: dict) -> dict:
             "undecided)": rows,
             "limits behind the full-scale force": limits,
             "requirements": requirements.get("values", {})}
+    if (requirements.get("first_resonance") or {}).get("elements"):
+        view["first natural frequencies (closed form, in the sheet's plane)"] = \
+            requirements["first_resonance"]["elements"]
     unmet = unmet_requirements(requirements)
     if unmet:
         view["requirements not met"] = unmet

@@ -39,6 +39,7 @@ from tactcad.design.array_plan import Plan
 from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, requirements_source,
                                          stated_footprint, stated_requirements)
 from tactcad.mechanics.resolution import KOBJ_POINTS
+from tactcad.studies.resonance import resonance_records, resonance_summary
 
 #: The predicted readable range is searched this factor beyond the required one.
 KOBJ_SEARCH_FACTOR = 100.0
@@ -413,6 +414,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
             raise ValueError("the design states requirements.footprint_mm: pass the array's "
                              "envelope (tactcad.assembly.inventory.array_envelope_mm)")
         out.append(footprint_record(req.footprint_mm, envelope_mm))
+    out.extend(resonance_records(plan, model, progress))
     for r in out:
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew
@@ -562,7 +564,8 @@ def percent_text(v: float | None, sign: bool = True) -> str:
 def binding_text(record: dict) -> str:
     """What a record's figure comes from: the row's pair for K_r/K_m
     (``row 1: element 2 / 1``), the binding limit and its element for the
-    full-scale force, the tightest axis for the footprint; empty otherwise."""
+    full-scale force, the tightest axis for the footprint, the element with
+    the lowest first resonance; empty otherwise."""
     if "measuring_element" in record:
         return (f"row {record['row']}: element {record['reference_element']} / "
                 f"{record['measuring_element']}")
@@ -571,6 +574,10 @@ def binding_text(record: dict) -> str:
         return record["binding_words"] + ("" if element is None else f" (element {element})")
     if "binding_axis" in record:
         return f"axis {record['binding_axis']}"
+    if "binding_part" in record:  # the lowest first resonance and the level that found it
+        level = record.get("binding_model", record.get("modal_model"))
+        return (f"element {record['binding_element']} ({record['binding_part']}, {level}, "
+                f"{' and '.join(record['families'])} modes)")
     return ""
 
 
@@ -592,6 +599,7 @@ def requirements_record(plan: Plan, envelope_mm: Sequence[float] | None = None) 
     matrix = verification_matrix(plan, "closed-form", requirements=req, envelope_mm=envelope_mm)
     force = matrix[0]
     return {"values": req.as_json(), "closed_form_matrix": matrix,
+            "first_resonance": resonance_summary(plan),
             "full_scale_force": {"required_N": req.full_scale_force_N,
                                  "largest_N": force["predicted"],
                                  "binding_limit": force["binding_words"],

@@ -251,11 +251,13 @@ def _contact_face(d, pen, tol) -> None:
 
 def notes(d, pen) -> list[str]:
     """The element's notes: the web as the critical dimension, wire EDM,
-    edges, use (and where its gauge goes), strength limit, Young's modulus."""
+    edges, use (and where its gauge goes), strength limit, the first natural
+    frequency where the design states a minimum, Young's modulus."""
     plan, spec = d.plan, d.spec
     g = spec.geometry
     used = slots_using(plan, spec.name)
     fmt_mm = pen.fmt_mm
+    resonance = pen.resonance_note(plan, spec.name)
     return [
         pen.web_note(plan, g),
         f"Wire EDM from {fmt_mm(g.sheet_thickness_mm)} mm {spec.material} sheet along "
@@ -270,6 +272,7 @@ def notes(d, pen) -> list[str]:
         + ", ".join(str(k) for k in used) + f". {pen.gauge_note(plan, g)}",
         pen.full_scale_note(plan, spec.name, plan.material.yield_strength_MPa,
                             plan.material.grade or plan.material.name),
+        *([resonance] if resonance else []),
         f"Young's modulus {plan.material.youngs_modulus_MPa:g} MPa "
         f"±{100 * pen.tolerances(plan).youngs_modulus_rel:g} %: check the sheet's mill certificate.",
     ]

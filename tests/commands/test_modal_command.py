@@ -1,0 +1,62 @@
+"""``tactcad modal``: every distinct element by default, one with --element,
+JSON, mode shapes to VTU, bad options refused in one line."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from conftest import run_cli
+
+TI = Path(__file__).resolve().parents[2] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+
+
+def test_every_distinct_element_and_the_lowest_first_frequency():
+    done = run_cli("modal", "--design", TI, "--json")
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout)
+    parts = [r["part"] for r in out["elements"]]
+    assert len(parts) == len(set(parts)) == 2  # the Ti example has two arm lengths
+    assert sorted(n for r in out["elements"] for n in r["elements"]) == [1, 2, 3, 4, 5, 6]
+    assert out["lowest_first_Hz"] == min(r["first_Hz"] for r in out["elements"])
+    assert out["families"] == ["in-plane"]
+
+
+def test_one_element_with_its_mode_shapes(tmp_path):
+    done = run_cli("modal", "--element", "4", "--model", "fem2d", "--modes", "2",
+                   "--vtu", tmp_path, "--json", "--quiet")
+    assert done.returncode == 0, done.stderr
+    (rec,) = json.loads(done.stdout)["elements"]
+    assert rec["elements"] == [4] and len(rec["modes"]) == 2
+    assert Path(rec["vtu"]).is_file() and Path(rec["vtu"]).parent == tmp_path
+    text = run_cli("modal", "--element", "4").stdout
+    assert "element_a8mm (element 4)" in text and "fem3d adds the out-of-plane ones" in text
+
+
+def test_bad_options_are_refused_in_one_line(tmp_path):
+    for argv, words in ((["--modes", "0"], "--modes"), (["--model", "beam"], "--model"),
+                        (["--element", "99"], "element"),
+                        (["--vtu", str(tmp_path)], "--model fem2d or fem3d")):
+        done = run_cli("modal", *argv)
+        assert done.returncode == 2, argv
+        assert words in done.stderr and "Traceback" not in done.stderr
+        assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+def test_a_material_without_density_is_refused_naming_the_field(tmp_path):
+    import shutil
+
+    folder = tmp_path / "ti"
+    shutil.copytree(TI.parent, folder)
+    design = folder / TI.name
+    text = design.read_text().replace('grade = "Ti-6Al-4V-annealed"',
+                                      "youngs_modulus_MPa = 113800.0\npoisson_ratio = 0.342")
+    design.write_text(text)
+    done = run_cli("modal", "--design", design, "--json")
+    assert done.returncode == 2
+    assert json.loads(done.stdout)["error"]["field"] == "material.density_g_per_cm3"
+    # the manifest's report says why it has no frequencies instead of failing the export
+    from tactcad.design.array_plan import load_design
+    from tactcad.studies.resonance import resonance_summary
+
+    assert "density" in resonance_summary(load_design(design))["unavailable"]
