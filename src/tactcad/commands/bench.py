@@ -126,7 +126,28 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="the ladder to time and climb, cheapest first (default: every level)")
     add_output_args(v, "print one JSON object: seconds and verdicts per level and of auto")
     v.set_defaults(func=run_verify)
+    c = bsub.add_parser("check", help="check on a current export: whole-process seconds "
+                                      "(median of --runs) and each group's (goal <= 5 s)")
+    add_design_arg(c)
+    c.add_argument("--runs", type=count(1, 20, "whole-process runs"), default=3, metavar="N",
+                   help="whole-process runs of tactcad check, 1 ... 20 (default: 3)")
+    c.add_argument("--out", metavar="DIR", default=None,
+                   help="export folder to make current and check (default: a temporary one)")
+    add_output_args(c, "print one JSON object: export_s, runs_s, median_s, groups, goal_s")
+    c.set_defaults(func=run_check)
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
+
+
+def run_check(args: argparse.Namespace) -> int:
+    """Time ``tactcad check`` on a current export (:mod:`tactcad.benchmarks.check_bench`)."""
+    from tactcad.benchmarks.check_bench import check_figures, check_table
+    from tactcad.commands import load_from_args
+
+    argv = ([] if args.design is None else ["--design", args.design]) + [
+        a for item in (getattr(args, "overrides", None) or ()) for a in ("--set", item)]
+    report = check_figures(argv, load_from_args(args), args.out, args.runs)
+    print(dumps(report, indent=1) if args.json else check_table(report))
+    return 0
 
 
 def run_verify(args: argparse.Namespace) -> int:
