@@ -404,5 +404,8 @@ def test_a_short_load_during_edits_has_no_error_and_prints_its_latencies(tmp_pat
     assert found, proc.stdout
     p50, p95, p99, top = map(float, found.groups())
     assert 0 < p50 <= p95 <= p99 <= top
-    for route in ("/state", "/data", "/scene", "/sheet"):
+    # the new sheets are asked for once an edit's export finished; on a loaded machine
+    # the only edit may still be exporting when the load ends (the bench says so)
+    finished = "still exporting at the end of the load" not in proc.stderr
+    for route in ("/state", "/data", "/scene") + (("/sheet",) if finished else ()):
         assert re.search(rf"^\s+{route}\s+\d+ requests", proc.stdout, re.M), route
