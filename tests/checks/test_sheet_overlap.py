@@ -33,7 +33,8 @@ def test_a_text_on_a_line_fails_naming_both_and_the_overlap():
     assert len(found) == 1
     o = found[0]
     assert o.sheet == "made.svg" and "'H4'" in o.first and "view-front" in o.second
-    assert o.overlap_mm == pytest.approx(text_width("H4", 2.5), abs=0.01)   # the whole width
+    # the whole width, plus the 0.5 mm line's ink on both sides
+    assert o.overlap_mm == pytest.approx(text_width("H4", 2.5) + 0.5, abs=0.01)
 
 
 def test_two_texts_on_each_other_fail_and_apart_they_pass():
@@ -57,7 +58,7 @@ def test_rotated_text_is_measured_along_its_reading_direction():
     sh.text("dimensions", (100.0, 100.0), "12.5", 2.5, anchor="middle", rotate=-90)
     sh.line("dimensions", (95.0, 100.0), (105.0, 100.0))   # across the text's middle
     (o,) = sheet_overlaps(layout_of_svg(sh.svg(), "r.svg"))
-    assert o.overlap_mm == pytest.approx(2.5 * 1.25, abs=0.01)   # cap line to descender
+    assert o.overlap_mm == pytest.approx(2.5 * 1.25 + 0.18, abs=0.01)   # cap line to descender, ink
 
 
 def test_the_check_fails_on_a_made_sheet_in_an_export_folder(tmp_path):

@@ -6,9 +6,9 @@ texts in sheet millimetres), never on a rendered picture.
 A text covers the box of :func:`tactcad.drawings.sheet.text_box` (its advance
 width in Helvetica's metrics, from the cap line to the descender). A stroke
 crosses a text when more than :data:`TOLERANCE_MM` of its length lies inside
-that box; two texts overlap when their boxes share more than
-:data:`TOLERANCE_MM` in both directions. Stroke widths are not counted: a
-stroke is its centre line.
+that box grown by half the stroke's width (the ink of the line); two texts
+overlap when their boxes share more than :data:`TOLERANCE_MM` in both
+directions.
 """
 
 from __future__ import annotations
@@ -39,12 +39,13 @@ class SheetLayout:
     Attributes:
         name: the sheet, as a check names it (``drawings/clamp_plate.svg``).
         texts: ``(label, box)`` per text; the label is the text in quotes and its id.
-        strokes: ``(label, points)`` per line, outline, rectangle, circle or arrowhead.
+        strokes: ``(label, points, half width mm)`` per line, outline,
+            rectangle, circle or arrowhead (a filled arrowhead: 0).
     """
 
     name: str
     texts: list[tuple[str, Box]] = field(default_factory=list)
-    strokes: list[tuple[str, list[Point]]] = field(default_factory=list)
+    strokes: list[tuple[str, list[Point], float]] = field(default_factory=list)
 
 
 @dataclass(frozen=True)
@@ -94,8 +95,9 @@ def sheet_overlaps(layout: SheetLayout, tol: float = TOLERANCE_MM) -> list[Overl
         for other, obox in layout.texts[i + 1:]:
             if (o := box_overlap(box, obox)) > tol:
                 found.append(Overlap(layout.name, label, other, o))
-        for stroke, pts in layout.strokes:
-            inside = sum(length_in_box(p, q, box) for p, q in zip(pts, pts[1:]))
+        for stroke, pts, half in layout.strokes:
+            ink = (box[0] - half, box[1] - half, box[2] + half, box[3] + half)
+            inside = sum(length_in_box(p, q, ink) for p, q in zip(pts, pts[1:]))
             if inside > tol:
                 found.append(Overlap(layout.name, label, stroke, inside))
     return found
@@ -140,6 +142,7 @@ def layout_of_svg(svg: str, name: str) -> SheetLayout:
         for el in group:
             tag = el.tag.removeprefix(_SVG)
             what = f"{tag} of {gid}" + (f" ({el.get('class')})" if el.get("class") else "")
+            half = _f(el, "stroke-width") / 2 if el.get("stroke", "none") != "none" else 0.0
             if tag == "text":
                 height = _f(el, "font-size") * CAP_HEIGHT_EM
                 box = text_box((_f(el, "x"), _f(el, "y")), el.text or "", height,
@@ -148,19 +151,19 @@ def layout_of_svg(svg: str, name: str) -> SheetLayout:
                 layout.texts.append((label, box))
             elif tag == "line":
                 layout.strokes.append((what, [(_f(el, "x1"), _f(el, "y1")),
-                                              (_f(el, "x2"), _f(el, "y2"))]))
+                                              (_f(el, "x2"), _f(el, "y2"))], half))
             elif tag == "path":
-                layout.strokes += [(what, pts) for pts in _path_points(el.get("d", ""))]
+                layout.strokes += [(what, pts, half) for pts in _path_points(el.get("d", ""))]
             elif tag == "rect":
                 x, y, w, h = _f(el, "x"), _f(el, "y"), _f(el, "width"), _f(el, "height")
                 layout.strokes.append((what, [(x, y), (x + w, y), (x + w, y + h), (x, y + h),
-                                              (x, y)]))
+                                              (x, y)], half))
             elif tag == "circle":
                 cx, cy, r = _f(el, "cx"), _f(el, "cy"), _f(el, "r")
                 layout.strokes.append((what, [
                     (cx + r * math.cos(2 * math.pi * k / CIRCLE_SEGMENTS),
                      cy + r * math.sin(2 * math.pi * k / CIRCLE_SEGMENTS))
-                    for k in range(CIRCLE_SEGMENTS + 1)]))
+                    for k in range(CIRCLE_SEGMENTS + 1)], half))
     return layout
 
 
