@@ -40,3 +40,14 @@ def test_a_bad_epoch_is_one_clear_error(design_data, bad):
 def test_the_schema_refuses_a_date_not_iso(design_data, bad):
     with pytest.raises(DesignError, match=r"design\.date = .*YYYY-MM-DD"):
         _plan(design_data, date=bad)
+
+
+def test_the_cli_refuses_a_bad_epoch_in_one_line(monkeypatch):
+    from tests.conftest import run_cli
+
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "next week")
+    done = run_cli("verify", "--model", "closed_form")
+    assert done.returncode == 2
+    assert done.stderr.strip().splitlines() == [
+        "tactcad: error: SOURCE_DATE_EPOCH = 'next week': allowed a whole number of seconds "
+        "since 1970-01-01 UTC, 0 .. 253402300799"]

@@ -25,6 +25,21 @@ FRAME = (20.0, 10.0, 410.0, 287.0)  # left, top, right, bottom (A3, ISO 5457)
 TITLE_W, TITLE_H = 180.0, 63.0        # seven rows of 9 mm
 
 
+def epoch_date(environ: Mapping[str, str]) -> str | None:
+    """``SOURCE_DATE_EPOCH`` of ``environ`` as an ISO 8601 UTC date, or None when unset or empty.
+
+    Raises:
+        DesignError: it is not a whole number of seconds in 0 .. 253402300799.
+    """
+    epoch = environ.get("SOURCE_DATE_EPOCH", "").strip()
+    if not epoch:
+        return None
+    if not epoch.isdigit() or int(epoch) > 253402300799:
+        raise DesignError("SOURCE_DATE_EPOCH", epoch, "a whole number of seconds since "
+                          "1970-01-01 UTC, 0 .. 253402300799")
+    return datetime.datetime.fromtimestamp(int(epoch), datetime.timezone.utc).date().isoformat()
+
+
 def sheet_date(plan: Plan, environ: Mapping[str, str] | None = None) -> str:
     """The date every sheet prints (ISO 8601, ``YYYY-MM-DD``, UTC): from
     ``SOURCE_DATE_EPOCH`` (seconds since 1970, the reproducible-builds
@@ -37,13 +52,9 @@ def sheet_date(plan: Plan, environ: Mapping[str, str] | None = None) -> str:
             0 .. 253402300799 (year 9999), or ``[design] date`` is not a date
             ``YYYY-MM-DD``.
     """
-    env = os.environ if environ is None else environ
-    epoch = env.get("SOURCE_DATE_EPOCH", "").strip()
-    if epoch:
-        if not epoch.isdigit() or int(epoch) > 253402300799:
-            raise DesignError("SOURCE_DATE_EPOCH", epoch, "a whole number of seconds since "
-                              "1970-01-01 UTC, 0 .. 253402300799")
-        return datetime.datetime.fromtimestamp(int(epoch), datetime.timezone.utc).date().isoformat()
+    epoch = epoch_date(os.environ if environ is None else environ)
+    if epoch is not None:
+        return epoch
     table = plan.raw.get("design", {}) if isinstance(plan.raw, dict) else {}
     stated = str(table.get("date", "") or "")
     if not stated:
