@@ -33,6 +33,14 @@ def test_two_grades_of_one_family_at_one_thickness_get_two_sheets(design_data, t
     sheet_files = sorted(r["path"] for r in records if r["kind"] == "dxf-sheet")
     assert sheet_files == sorted(sheet_dxf_name(m, t) for m, t in groups)
     assert all((tmp_path / f).is_file() for f in sheet_files)
+    # the element drawing's note names the element's own sheet
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.drawings.part_sets import sheet_dxf_of
+
+    specs = array_parts(plan)
+    assert sheet_dxf_of(plan, specs["spacer"]) == sheet_dxf_name("aluminium EN AW-7075-T6", 3.0)
+    element = next(s for n, s in specs.items() if n.startswith("element_"))
+    assert sheet_dxf_of(plan, element) == sheet_dxf_name("aluminium EN AW-6061-T6", 3.0)
 
 
 def test_the_shipped_example_keeps_its_family_named_sheets(plan):
