@@ -143,6 +143,10 @@ def dispatch(argv: list[str], as_json: bool) -> int:
     """Parse, check every option (:mod:`tactcad.commands.options`), run; every
     error a user can act on becomes one line (or the JSON error) and its exit code."""
     try:
+        from tactcad.drawings.frame import epoch_date
+
+        # before any import reads it (numpy's f2py turns a bad value into a traceback)
+        epoch_date(os.environ)
         args = parse_checked(argv)
         if not getattr(args, "func", None):
             build_parser().print_help()

@@ -521,3 +521,28 @@ def test_holes_read_from_a_solid_know_through_from_blind(plan):
     tool = bd.Solid.make_box(8, 6, 2, bd.Plane(origin=(6, 2, 3)))
     pocket = tool.fillet(1.0, tool.edges().filter_by(bd.Axis.Z))  # concave corners in the part
     assert holes_seen(spec, bd.Solid.make_box(20, 10, 5).cut(pocket)) == []
+
+
+def test_assembly_sheet_dimensions_the_envelope(drawing_files, plan):
+    """X, Y and Z of the clamped array, as the inventory computes them."""
+    from tactcad.assembly.inventory import array_envelope_mm
+
+    out, _, _ = drawing_files
+    d = dims((out / "drawings/assembly.svg").read_text())
+    env = array_envelope_mm(plan)
+    for axis, value in zip("xyz", env):
+        assert printed_equals(d[f"envelope_{axis}"], value)
+
+
+def test_envelope_note_gives_the_footprint_margin(plan):
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.drawings.assembly import envelope_note
+    from tactcad.drawings.sheet import fmt_mm
+
+    env = array_envelope_mm(plan)
+    assert "footprint" not in envelope_note(plan) and fmt_mm(env[2], 2) in envelope_note(plan)
+    raw = {**plan.raw, "requirements": {**plan.raw.get("requirements", {}),
+                                        "footprint_mm": [env[0] + 2.0, env[1] + 0.5]}}
+    note = envelope_note(plan_from_dict(raw))
+    assert "required footprint" in note and "margin X 2, Y 0.5 mm" in note

@@ -3,6 +3,8 @@ the BOM, the manifest and the checks agree)."""
 
 from __future__ import annotations
 
+from typing import Sequence
+
 DRAWING_DIR = "drawings"
 PDF_NAME = f"{DRAWING_DIR}/drawings.pdf"
 ARRAY_PNG = "images/array.png"
@@ -25,6 +27,19 @@ def sheet_dxf_name(material: str, thickness_mm: float) -> str:
     """``dxf/sheet_<material>_<t>mm.dxf`` (decimal point written ``p``)."""
     t = f"{thickness_mm:g}".replace(".", "p")
     return f"dxf/sheet_{material.replace(' ', '_')}_{t}mm.dxf"
+
+
+def sheet_material_names(cuts: Sequence[tuple[str, str, float]]) -> list[str]:
+    """The material each cut's nested sheet is named by, from ``(material
+    family, grade designation, thickness mm)`` per cut: the family
+    (``aluminium``) while one grade of it is cut at that thickness, else the
+    designation (``aluminium EN AW-6061-T6``), so that two grades of one family
+    never share a sheet nor a file name."""
+    grades: dict[tuple[str, float], set[str]] = {}
+    for family, grade, t in cuts:
+        grades.setdefault((family, t), set()).add(grade or family)
+    return [family if len(grades[(family, t)]) == 1 else (grade or family)
+            for family, grade, t in cuts]
 
 
 def scene_step_name(name: str) -> str:

@@ -160,6 +160,8 @@ for _group in (
                    "declared contacts", _CHECKS, "interference_group", suite="array"),
         CheckGroup("array STEP", "the array's STEP assembly read back against the manifest",
                    _CHECKS, "array_step_group", suite="array"),
+        CheckGroup("drawings", "every drawing sheet: no text over a line or another text, "
+                   "measured in paper mm", "tactcad.checks.sheet_overlap", "sheet_group"),
         CheckGroup("scenes", "per scene: rig part solids, interference, geometry sanity, STEP "
                    "and GLB read back", "tactcad.checks.scene_checks", "scene_group", suite="scene",
                    per_scene=True)):

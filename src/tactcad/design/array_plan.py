@@ -31,7 +31,7 @@ from typing import Any, Mapping
 
 from pydantic import create_model
 
-from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, Derived, Name, Problems, Section, Text,
+from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, DateText, Derived, Name, Problems, Section, Text,
                                        content_hash, fmt, integer, listing, number, read_assumptions,
                                        read_toml, validate)
 from tactcad.vocabulary.material_library import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
@@ -219,7 +219,8 @@ class DesignSection(Section):
     name: Name
     description: Text
     revision: Text = None  # printed in the drawings' title blocks (default "A")
-    date: Text = None  # the design's date as the drawings print it, never today's
+    # the revision's date, ISO 8601; the sheets print it unless SOURCE_DATE_EPOCH is set
+    date: DateText = None
 
 
 class MaterialSection(Section):

@@ -19,7 +19,9 @@ from tactcad.catalogue.array_catalogue import Instance, PartSpec, array_instance
 from tactcad.catalogue.files import profile_dxf_name
 from tactcad.catalogue.shop import TORQUE_SOURCE, tightening_torque_Nm
 from tactcad.design.array_plan import Plan
+from tactcad.assembly.inventory import array_envelope_mm
 from tactcad.drawings.design_notes import numbering_note
+from tactcad.drawings.drawing import FIRST_TIER
 from tactcad.drawings.frame import (FRAME, general_tolerance, revision_and_date, sheet_frame,
                                     title_cells, wrap_text)
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
@@ -47,6 +49,7 @@ class AssemblySheet:
     stack_order: dict[int, list[str]] = field(default_factory=dict)
     balloons: dict[str, int] = field(default_factory=dict)  # part -> BOM item
     torque_Nm: float = 0.0
+    envelope: dict[str, float] = field(default_factory=dict)  # envelope_x/_y/_z (mm)
 
 
 def stack_order(plan: Plan) -> dict[int, list[str]]:
@@ -83,9 +86,10 @@ def slot_map(plan: Plan) -> list[dict]:
 
 
 def assembly_inputs(plan: Plan, items: dict[str, int]) -> tuple:
-    """Everything that shapes the sheet: parts, instances, slots, items."""
+    """Everything that shapes the sheet: parts, instances, slots, items, the footprint note."""
     return (plan.name, list(array_parts(plan).values()), array_instances(plan), plan.slots,
-            plan.bolt, plan.bolt_length_mm, sorted(items.items()), revision_and_date(plan))
+            plan.bolt, plan.bolt_length_mm, sorted(items.items()), revision_and_date(plan),
+            envelope_note(plan))
 
 
 def _fit_scale(v: View, width: float, height: float) -> float:
@@ -144,13 +148,65 @@ def compose_assembly(plan: Plan, solids: dict, items: dict[str, int]) -> Assembl
         b = v.paper_box()
         label = (f"view along the bolts, from +z ({scale_text(v.scale)})" if name == "front"
                  else f"stack, view from +x ({scale_text(v.scale)})")
-        sh.text(f"view-{name}", ((b[0] + b[2]) / 2, b[3] + 10.0), label, DIM_TEXT_MM,
+        below = 10.0 if name == "front" else FIRST_TIER + 4.0 + 9.0  # under the stack's Z dimension
+        sh.text(f"view-{name}", ((b[0] + b[2]) / 2, b[3] + below), label, DIM_TEXT_MM,
                 anchor="middle", id=f"label-{name}")
+    _envelope(a, plan, views)
     _balloons(a, s, ASSEMBLY_CAMERAS["side"], specs, inst, items)
     _slot_table(a, plan)
     _notes(a, plan)
     _title_block(a, plan, items)
     return a
+
+
+def _axis_of(direction) -> int:
+    """0, 1 or 2: the model axis (x, y, z) a view direction runs along."""
+    return int(np.argmax(np.abs(np.array(direction, float))))
+
+
+def envelope_note(plan: Plan) -> str:
+    """The envelope in words, with the margins to ``[requirements] footprint_mm`` when stated."""
+    from tactcad.design.requirements_section import stated_footprint
+
+    env = array_envelope_mm(plan)
+    text = "Envelope of the clamped array " + " x ".join(fmt_mm(v, 2) for v in env) + " mm (X x Y x Z)"
+    stated = stated_footprint(plan.raw)
+    if stated is None:
+        return text + "."
+    margins = ", ".join(f"{'XYZ'[k]} {fmt_mm(lim - env[k], 2)}" for k, lim in enumerate(stated))
+    return (text + "; required footprint " + " x ".join(fmt_mm(v, 2) for v in stated)
+            + f" mm, margin {margins} mm.")
+
+
+def _envelope(a: AssemblySheet, plan: Plan, views: dict[str, View]) -> None:
+    """The clamped array's overall envelope (X, Y: on the view along the bolts;
+    Z: on the stack), from :func:`~tactcad.assembly.inventory.array_envelope_mm`,
+    its dimension lines at the views' outlines; the footprint note under them."""
+    env = array_envelope_mm(plan)
+    f, s = views["front"], views["side"]
+    fb, sb = f.paper_box(), s.paper_box()
+    # the paper's right is up x n of the camera, its up the camera's up
+    f_right = _axis_of(np.cross(ASSEMBLY_CAMERAS["front"][1], ASSEMBLY_CAMERAS["front"][0]))
+    f_up = _axis_of(ASSEMBLY_CAMERAS["front"][1])
+    a.envelope = {}
+    for axis, k, p, q, at in (("h", f_right, (fb[0], fb[1]), (fb[2], fb[1]), fb[1] - FIRST_TIER),
+                              ("v", f_up, (fb[2], fb[1]), (fb[2], fb[3]), fb[2] + FIRST_TIER)):
+        name = f"envelope_{'xyz'[k]}"
+        a.sheet.linear_dimension(p, q, axis, at, fmt_mm(env[k], 2), name)
+        a.envelope[name] = env[k]
+    s_up = _axis_of(ASSEMBLY_CAMERAS["side"][1])
+    s_right = _axis_of(np.cross(ASSEMBLY_CAMERAS["side"][1], ASSEMBLY_CAMERAS["side"][0]))
+    if 2 == s_up:
+        a.sheet.linear_dimension((sb[0], sb[1]), (sb[0], sb[3]), "v", sb[0] - FIRST_TIER,
+                                 fmt_mm(env[2], 2), "envelope_z")
+    elif 2 == s_right:
+        a.sheet.linear_dimension((sb[0], sb[3]), (sb[2], sb[3]), "h", sb[3] + FIRST_TIER + 4.0,
+                                 fmt_mm(env[2], 2), "envelope_z")
+    a.envelope["envelope_z"] = env[2]
+    lines = wrap_text(envelope_note(plan), fb[2] - fb[0] + 40.0, DIM_TEXT_MM)
+    for j, line in enumerate(lines):
+        a.sheet.text("envelope", ((fb[0] + fb[2]) / 2, fb[3] + 16.0 + 4.2 * j), line, DIM_TEXT_MM,
+                     anchor="middle", id="envelope-note" if j == 0 else "")
 
 
 def _balloons(a: AssemblySheet, v: View, cam, specs, inst, items: dict[str, int]) -> None:

@@ -9,7 +9,8 @@ import math
 
 from tactcad.drawings.drawing import (FIRST_TIER, TABLE_COLS, TABLE_ROW, TIER, Drawing, Hole2D)
 from tactcad.drawings.frame import FRAME, TITLE_W
-from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, fmt_mm
+from tactcad.drawings.sheet import (DIM_TEXT_MM, LABEL_TEXT_MM, Point, Sheet, fmt_mm, text_box,
+                                    text_width)
 from tactcad.drawings.views import ISO_5455_SCALES, View, scale_text
 from tactcad.geometry.profile import Arc
 
@@ -45,9 +46,30 @@ def hole_callout(d: Drawing, view: View, holes: list[Hole2D], toward: tuple[floa
         p1 = view.paper(*toward)
         p1 = (p1[0], p1[1] + 6.0 * k)
         text = (f"{len(hs)}× " if len(hs) > 1 else "") + f"Ø{size} {h.depth_text}"
+        p1 = clear_leader_end(d.sheet, p0, p1, text)
         name = "hole_diameter" if len(by_size) == 1 else f"hole_diameter_{k + 1}"
         d.sheet.leader([p0, p1], text, name)
         d.dimensions[name] = text
+
+
+#: Moves (paper mm) tried for a leader's end until its value crosses nothing.
+LEADER_MOVES = ((0.0, 0.0), (0.0, -6.0), (0.0, 6.0), (12.0, -6.0), (-12.0, -6.0), (0.0, -12.0),
+                (0.0, 12.0), (20.0, 0.0), (-20.0, 0.0))
+
+
+def clear_leader_end(sh: Sheet, p0: Point, p1: Point, text: str) -> Point:
+    """The end of a leader from ``p0`` near ``p1`` whose value (set as
+    :meth:`~tactcad.drawings.sheet.Sheet.leader` sets it) and shoulder cross
+    no line and no text drawn so far: ``p1`` moved by the first of
+    :data:`LEADER_MOVES` that is clear, else ``p1``."""
+    tw = text_width(text, DIM_TEXT_MM)
+    for dx, dy in LEADER_MOVES:
+        end = (p1[0] + dx, p1[1] + dy)
+        right = end[0] >= p0[0]
+        x = end[0] + 1.0 if right else end[0] - tw - 1.0
+        if sh.is_clear(text_box((x, end[1] - 1.0), text, DIM_TEXT_MM)):
+            return end
+    return p1
 
 
 def hole_dims_linear(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, float],
@@ -64,6 +86,35 @@ def hole_dims_linear(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[f
              fmt_mm(h.y - datum[1]), name)
 
 
+#: Where a label may stand around its feature, tried in this order: up-right
+#: first (the habit of a hand drawing), then the other diagonals and sides.
+LABEL_DIRECTIONS_DEG = (45, 135, -45, -135, 0, 180, 90, -90)
+
+
+def clear_label(sh: Sheet, centre: Point, radius: float, text: str, id: str) -> None:
+    """Set ``text`` (``DIM_TEXT_MM`` high) beside the round feature of paper
+    ``centre`` and ``radius`` (mm), at the first place in
+    :data:`LABEL_DIRECTIONS_DEG`, 0.8 ... 8 mm out from the feature, where it
+    crosses no line and no text drawn so far; else at the first place tried."""
+    w, h = text_width(text, DIM_TEXT_MM), DIM_TEXT_MM
+    first = None
+    for gap in (0.8, 2.0, 3.5, 5.0, 8.0):
+        for deg in LABEL_DIRECTIONS_DEG:
+            ux, uy = math.cos(math.radians(deg)), -math.sin(math.radians(deg))
+            # the box's corner (or side middle) nearest the feature sits at the gap
+            ex, ey = centre[0] + ux * (radius + gap), centre[1] + uy * (radius + gap)
+            left = ex if ux > 0.3 else ex - w if ux < -0.3 else ex - w / 2
+            # baseline: box bottom (0.25 h below it) at ey above the feature,
+            # box top (h above it) at ey below it, box middle at ey beside it
+            base = ey - 0.25 * h if uy < -0.3 else ey + h if uy > 0.3 else ey + 0.375 * h
+            at = (left, base)
+            first = first or at
+            if sh.is_clear(text_box(at, text, h)):
+                sh.text("dimensions", at, text, DIM_TEXT_MM, id=id)
+                return
+    sh.text("dimensions", first, text, DIM_TEXT_MM, id=id)
+
+
 def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, float]) -> None:
     """Coordinate table of the holes (ISO 129-1 tabular dimensioning), each
     hole labelled on the view, coordinates from the marked origin."""
@@ -72,13 +123,10 @@ def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, 
     sh.line("dimensions", (o[0] - 3, o[1]), (o[0] + 3, o[1]))
     sh.line("dimensions", (o[0], o[1] - 3), (o[0], o[1] + 3))
     sh.circle("dimensions", o, 1.2)
-    sh.text("dimensions", (o[0] + 1.5, o[1] + 4.5), "0,0", DIM_TEXT_MM, id="hole-origin")
+    clear_label(sh, o, 1.2, "0,0", "hole-origin")
     ordered = sorted(holes, key=lambda h: (h.y, h.x))
     for i, h in enumerate(ordered, start=1):
-        c = view.paper(h.x, h.y)
-        r = h.d / 2 * view.scale
-        sh.text("dimensions", (c[0] + r * 0.7 + 0.8, c[1] - r * 0.7 - 0.8), f"H{i}", DIM_TEXT_MM,
-                id=f"hole-label-{i}")
+        clear_label(sh, view.paper(h.x, h.y), h.d / 2 * view.scale, f"H{i}", f"hole-label-{i}")
     cols = TABLE_COLS
     x0 = FRAME[2] - TITLE_W - 4 - sum(cols)
     row_h = TABLE_ROW
@@ -169,9 +217,11 @@ def section_marks(d: Drawing, host: str, label: str) -> None:
     x0, _, x1, _ = f.paper_box()
     y = f.paper(0.0, 0.0)[1]
     out = FIRST_TIER + TIER + 4.0  # beyond two tiers of dimensions
-    sh.line("section-plane", (x0 - out, y), (x1 + out, y), "centre")
+    # the chain line spans the view; the thick ends stand outside the dimension
+    # tiers, pointing away from the view, so no dimension value sits on the plane
+    sh.line("section-plane", (x0 - 3.0, y), (x1 + 3.0, y), "centre")
     for x in (x0 - out, x1 + out):
-        sh.line("section-plane", (x - 2.5 if x < x0 else x - 2.5, y), (x + 2.5, y), "visible")
+        sh.line("section-plane", (x, y), (x - 5.0 if x < x0 else x + 5.0, y), "visible")
         sh.line("section-plane", (x, y), (x, y - 5.0), "thin")
         sh.arrow("section-plane", (x, y - 7.5), (0.0, -1.0))
         sh.text("section-plane", (x + (-3.0 if x < x0 else 3.0), y - 6.0), label[0], LABEL_TEXT_MM,

@@ -5,7 +5,12 @@ Used by the part drawings and the assembly drawing alike."""
 
 from __future__ import annotations
 
+import datetime
+import os
+from typing import Mapping
+
 from tactcad.design.array_plan import Plan
+from tactcad.errors import DesignError
 from tactcad.drawings.sheet import Sheet, text_width
 
 GENERAL_TOLERANCE = "ISO 2768-f"
@@ -20,14 +25,52 @@ FRAME = (20.0, 10.0, 410.0, 287.0)  # left, top, right, bottom (A3, ISO 5457)
 TITLE_W, TITLE_H = 180.0, 63.0        # seven rows of 9 mm
 
 
+def epoch_date(environ: Mapping[str, str]) -> str | None:
+    """``SOURCE_DATE_EPOCH`` of ``environ`` as an ISO 8601 UTC date, or None when unset or empty.
+
+    Raises:
+        DesignError: it is not a whole number of seconds in 0 .. 253402300799.
+    """
+    epoch = environ.get("SOURCE_DATE_EPOCH", "").strip()
+    if not epoch:
+        return None
+    if not epoch.isdigit() or int(epoch) > 253402300799:
+        raise DesignError("SOURCE_DATE_EPOCH", epoch, "a whole number of seconds since "
+                          "1970-01-01 UTC, 0 .. 253402300799")
+    return datetime.datetime.fromtimestamp(int(epoch), datetime.timezone.utc).date().isoformat()
+
+
+def sheet_date(plan: Plan, environ: Mapping[str, str] | None = None) -> str:
+    """The date every sheet prints (ISO 8601, ``YYYY-MM-DD``, UTC): from
+    ``SOURCE_DATE_EPOCH`` (seconds since 1970, the reproducible-builds
+    convention) when set, else the design file's ``[design] date``, else
+    ``—`` (undated: the signer writes it). Never the clock: the same input
+    writes the same bytes.
+
+    Raises:
+        DesignError: ``SOURCE_DATE_EPOCH`` is not a whole number of seconds in
+            0 .. 253402300799 (year 9999), or ``[design] date`` is not a date
+            ``YYYY-MM-DD``.
+    """
+    epoch = epoch_date(os.environ if environ is None else environ)
+    if epoch is not None:
+        return epoch
+    table = plan.raw.get("design", {}) if isinstance(plan.raw, dict) else {}
+    stated = str(table.get("date", "") or "")
+    if not stated:
+        return "—"
+    try:
+        return datetime.date.fromisoformat(stated).isoformat()
+    except ValueError:
+        raise DesignError("design.date", stated, "a date YYYY-MM-DD (ISO 8601)") from None
+
+
 def revision_and_date(plan: Plan) -> tuple[str, str]:
     """(revision, date) of the drawing: the design file's ``[design]``
-    ``revision`` and ``date`` when given, else ``A`` and ``—``. Never today's
-    date: the same design writes the same bytes."""
+    ``revision`` (else ``A``) and :func:`sheet_date`."""
     table = plan.raw.get("design", {}) if isinstance(plan.raw, dict) else {}
     rev = str(table.get("revision", "") or "A")
-    date = str(table.get("date", "") or "—")
-    return rev, date
+    return rev, sheet_date(plan)
 
 
 def wrap_text(text: str, width: float, h: float) -> list[str]:

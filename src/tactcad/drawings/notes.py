@@ -7,7 +7,7 @@ from __future__ import annotations
 from tactcad.drawings.drawing import NOTE_LINE, NOTES_TOP, TABLE_COLS, TABLE_ROW, Drawing
 from tactcad.drawings.frame import FRAME, TITLE_W, general_tolerance, wrap_text
 from tactcad.drawings.part_sets import drawing_of
-from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM
+from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, text_box
 
 def notes_for(d: Drawing) -> list[str]:
     """The part family's notes (:attr:`PartDrawing.notes`), then the general one."""
@@ -35,6 +35,10 @@ def notes_top(d: Drawing) -> float:
 def draw_notes(d: Drawing) -> None:
     sh = d.sheet
     x0, y = FRAME[0] + 5.0, d.notes_top + 5.0
+    # the left centring mark ends at x0: a block that meets it starts 1.5 mm further in
+    if not all(sh.is_clear(text_box((x0, y + k * NOTE_LINE), "NOTES", LABEL_TEXT_MM), 0.4)
+               for k in range(sum(len(ls) for ls in note_lines(d)) + 3)):
+        x0 += 1.5
     sh.text("notes", (x0, y), "NOTES", LABEL_TEXT_MM, bold=True)
     y += 5.0
     for k, lines in enumerate(note_lines(d), start=1):

@@ -16,7 +16,7 @@ from typing import Callable
 
 
 from tactcad.catalogue.array_catalogue import PartSpec
-from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
+from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_material_names
 from tactcad.catalogue.shop import tap_drill_mm, thread_text
 from tactcad.design.array_plan import Plan
 from tactcad.design.readout_section import readout_of
@@ -179,7 +179,21 @@ PEN = SimpleNamespace(
     readout=lambda plan: readout_of(plan.raw, plan.strength.gauge),
     web_note=element_web_note, gauge_note=gauge_note, full_scale_note=full_scale_note,
     resonance_note=resonance_note,
-    profile_dxf_name=profile_dxf_name, sheet_dxf_name=sheet_dxf_name)
+    profile_dxf_name=profile_dxf_name, sheet_dxf_name=sheet_dxf_name,
+    sheet_dxf_of=lambda plan, spec: sheet_dxf_of(plan, spec))
+
+
+def sheet_dxf_of(plan: Plan, spec: PartSpec) -> str:
+    """The nested sheet DXF a cut part is on: its family's name, or its grade's
+    when another grade of the family is cut at that thickness
+    (:func:`~tactcad.catalogue.files.sheet_material_names`)."""
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.catalogue.shop import material_designation
+
+    cut = array_parts(plan, ("element", "spacer"))
+    names = sheet_material_names([(s.material, material_designation(s, plan), s.thickness_mm)
+                                  for s in cut.values()])
+    return sheet_dxf_name(dict(zip(cut, names)).get(spec.name, spec.material), spec.thickness_mm)
 
 
 @functools.cache

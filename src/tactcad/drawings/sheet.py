@@ -97,6 +97,23 @@ def overlapping_texts(sheet: "Sheet", tol: float = 0.05) -> list[tuple[str, str]
     return out
 
 
+def _segment_meets_box(p: Point, q: Point, box: tuple[float, float, float, float]) -> bool:
+    """Whether the segment ``p``-``q`` has a point inside ``box`` (Liang-Barsky clipping)."""
+    dx, dy = q[0] - p[0], q[1] - p[1]
+    t0, t1 = 0.0, 1.0
+    for ep, eq in ((-dx, p[0] - box[0]), (dx, box[2] - p[0]), (-dy, p[1] - box[1]),
+                   (dy, box[3] - p[1])):
+        if abs(ep) < 1e-15:
+            if eq < 0:
+                return False
+            continue
+        t = eq / ep
+        t0, t1 = (max(t0, t), t1) if ep < 0 else (t0, min(t1, t))
+        if t0 >= t1:
+            return False
+    return True
+
+
 def _n(v: float) -> str:
     return fmt_mm(v, 3)
 
@@ -109,6 +126,8 @@ class Sheet:
     title: str = ""
     _groups: dict[str, list[str]] = field(default_factory=dict)
     text_boxes: list[tuple[str, tuple[float, float, float, float]]] = field(default_factory=list)
+    #: every stroke drawn so far as paper points (circles as 72-gons), for placing labels clear
+    strokes: list[list[Point]] = field(default_factory=list)
 
     @property
     def width_mm(self) -> float:
@@ -148,7 +167,18 @@ class Sheet:
             s += f' stroke-dasharray="{dash}"'
         return s
 
+    def is_clear(self, box: tuple[float, float, float, float], margin: float = 0.3) -> bool:
+        """Whether paper ``box`` (left, top, right, bottom; mm), grown by
+        ``margin`` mm, meets no stroke and no text drawn so far."""
+        x0, y0, x1, y1 = box[0] - margin, box[1] - margin, box[2] + margin, box[3] + margin
+        if any(min(x1, b[2]) > max(x0, b[0]) and min(y1, b[3]) > max(y0, b[1])
+               for _, b in self.text_boxes):
+            return False
+        return not any(_segment_meets_box(p, q, (x0, y0, x1, y1))
+                       for pts in self.strokes for p, q in zip(pts, pts[1:]))
+
     def line(self, group: str, p: Point, q: Point, style: str = "thin") -> None:
+        self.strokes.append([p, q])
         self._add(group, f'<line x1="{_n(p[0])}" y1="{_n(p[1])}" x2="{_n(q[0])}" '
                          f'y2="{_n(q[1])}" {self._stroke(style)}/>')
 
@@ -156,15 +186,19 @@ class Sheet:
                  cls: str = "") -> None:
         if len(points) < 2:
             return
+        self.strokes.append(list(points) + ([points[0]] if closed else []))
         d = "M" + " L".join(f"{_n(x)} {_n(y)}" for x, y in points) + (" Z" if closed else "")
         c = f' class="{cls}"' if cls else ""
         self._add(group, f'<path{c} d="{d}" {self._stroke(style)}/>')
 
     def rect(self, group: str, x: float, y: float, w: float, h: float, style: str = "thin") -> None:
+        self.strokes.append([(x, y), (x + w, y), (x + w, y + h), (x, y + h), (x, y)])
         self._add(group, f'<rect x="{_n(x)}" y="{_n(y)}" width="{_n(w)}" height="{_n(h)}" '
                          f'{self._stroke(style)}/>')
 
     def circle(self, group: str, c: Point, r: float, style: str = "thin") -> None:
+        self.strokes.append([(c[0] + r * math.cos(k * math.pi / 36), c[1] + r * math.sin(k * math.pi / 36))
+                             for k in range(73)])
         self._add(group, f'<circle cx="{_n(c[0])}" cy="{_n(c[1])}" r="{_n(r)}" '
                          f'{self._stroke(style)}/>')
 
@@ -197,6 +231,7 @@ class Sheet:
         L, hw = ARROW_LENGTH_MM, ARROW_LENGTH_MM * math.tan(ARROW_HALF_ANGLE_RAD)
         bx, by = tip[0] - dx * L, tip[1] - dy * L
         pts = [tip, (bx - dy * hw, by + dx * hw), (bx + dy * hw, by - dx * hw)]
+        self.strokes.append(pts + [tip])
         d = "M" + " L".join(f"{_n(x)} {_n(y)}" for x, y in pts) + " Z"
         self._add(group, f'<path d="{d}" fill="#000000" stroke="none"/>')
 
@@ -250,7 +285,7 @@ class Sheet:
             self.line(g, (e0[0] - ux * ext, e0[1] - uy * ext), (e1[0] + ux * ext, e1[1] + uy * ext))
             self.arrow(g, e0, (ux, uy))
             self.arrow(g, e1, (-ux, -uy))
-        fits = inside and length >= tw + 2.0
+        fits = inside and length >= tw + 2 * ARROW_LENGTH_MM + 1.0  # clear of both arrowheads
         if axis == "h":
             y = e0[1] - TEXT_LIFT_MM
             if fits:
@@ -286,24 +321,42 @@ class Sheet:
         self.text(g, (x, tail[1] - TEXT_LIFT_MM), text, id=f"dim-{name}", cls="dim")
 
     def radius_dimension(self, centre: Point, radius: float, angle_deg: float, text: str,
-                         name: str, dist: float, shoulder_right: bool = True,
+                         name: str, dist: float | tuple[float, ...], shoulder_right: bool = True,
                          group: str = "dimensions") -> None:
         """ISO 129-1 radius dimension (paper mm): the arrowhead touches the arc
         at ``angle_deg`` (counter-clockwise as seen, 0 = +x); the dimension line
         runs radially from there to the point at signed distance ``dist`` from
         the centre (negative: through and past the centre; greater than the
-        radius: outside the arc), then a horizontal shoulder carries the value
-        (``id="dim-<name>"``)."""
+        radius: outside the arc; a sequence: the first whose value crosses no
+        line or text drawn so far), then a horizontal shoulder, on the side the
+        line runs to, carries the value (``id="dim-<name>"``)."""
         a = math.radians(angle_deg)
         ux, uy = math.cos(a), -math.sin(a)
         on_arc = (centre[0] + ux * radius, centre[1] + uy * radius)
+        if isinstance(dist, (tuple, list)):  # the first length whose value stands clear
+            dist = next((t for t in dist if self._radius_value_clear(centre, radius, angle_deg,
+                                                                      text, t, shoulder_right)),
+                        dist[0])
         end = (centre[0] + ux * dist, centre[1] + uy * dist)
+        if abs(end[0] - on_arc[0]) > 1e-6:  # the shoulder carries on the way the line runs,
+            shoulder_right = end[0] > on_arc[0]  # so the line does not cross the value
         self.arrow(group, on_arc, (on_arc[0] - end[0], on_arc[1] - end[1]))
         tw = text_width(text, DIM_TEXT_MM)
         shoulder = (end[0] + (tw + 2.0 if shoulder_right else -(tw + 2.0)), end[1])
         self.polyline(group, [on_arc, end, shoulder], "thin")
         x = end[0] + 1.0 if shoulder_right else shoulder[0] + 1.0
         self.text(group, (x, end[1] - TEXT_LIFT_MM), text, id=f"dim-{name}", cls="dim")
+
+    def _radius_value_clear(self, centre: Point, radius: float, angle_deg: float, text: str,
+                            dist: float, shoulder_right: bool) -> bool:
+        a = math.radians(angle_deg)
+        ux, uy = math.cos(a), -math.sin(a)
+        on_x = centre[0] + ux * radius
+        end = (centre[0] + ux * dist, centre[1] + uy * dist)
+        right = end[0] > on_x if abs(end[0] - on_x) > 1e-6 else shoulder_right
+        tw = text_width(text, DIM_TEXT_MM)
+        x = end[0] + 1.0 if right else end[0] - tw - 1.0
+        return self.is_clear(text_box((x, end[1] - TEXT_LIFT_MM), text, DIM_TEXT_MM))
 
     def centre_mark(self, group: str, c: Point, half: float) -> None:
         """Centre lines of a circle: a cross of two long-dash-dot lines."""

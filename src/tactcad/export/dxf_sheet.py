@@ -34,7 +34,7 @@ from tactcad.catalogue.array_catalogue import PartSpec, array_parts
 from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_points
 from tactcad.errors import DesignError
-from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name
+from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_material_names
 from tactcad.catalogue.shop import material_designation
 from tactcad.export.dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, circle_entry,
                   placed_extents, write_dxf)
@@ -63,6 +63,8 @@ class ShopProfile:
         web_thickness_mm: the design web for elements, None otherwise.
         designation: the material with alloy and temper, as the BOM and the
             drawings write it (:func:`tactcad.catalogue.shop.material_designation`).
+        sheet_material: the material its nested sheet is named by
+            (:func:`~tactcad.catalogue.files.sheet_material_names`).
     """
 
     part: str
@@ -75,6 +77,7 @@ class ShopProfile:
     file_mark: str
     web_thickness_mm: float | None = None
     designation: str = ""
+    sheet_material: str = ""
 
     @property
     def file_name(self) -> str:
@@ -128,7 +131,10 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
         copy_marks=("SPACER",) * counts["spacer"], keep_out=(),
         designation=material_designation(sp, plan),
         file_mark=f"SPACER QTY {counts['spacer']}"))
-    return out
+    names = sheet_material_names([(sp.material, sp.designation, sp.thickness_mm) for sp in out])
+    return [replace(sp, sheet_material=n) for sp, n in zip(out, names)]
+
+
 
 
 # --- lead-ins -------------------------------------------------------------------
@@ -293,10 +299,17 @@ def _properties(plan: Plan, sp: ShopProfile) -> dict[str, str]:
 
 
 def sheets(plan: Plan) -> dict[tuple[str, float], list[ShopProfile]]:
-    """Cut profiles grouped by (material, thickness mm), in order of first use."""
+    """Cut profiles grouped by sheet: (sheet material, thickness mm), one
+    grade and one thickness per sheet (:func:`~tactcad.catalogue.files.sheet_material_names`), in order
+    of first use."""
+    return group_by_sheet(shop_profiles(plan))
+
+
+def group_by_sheet(profiles: Sequence[ShopProfile]) -> dict[tuple[str, float], list[ShopProfile]]:
+    """``profiles`` grouped by (sheet material, thickness mm): one key per grade and thickness."""
     out: dict[tuple[str, float], list[ShopProfile]] = {}
-    for sp in shop_profiles(plan):
-        out.setdefault((sp.material, sp.thickness_mm), []).append(sp)
+    for sp in profiles:
+        out.setdefault((sp.sheet_material or sp.material, sp.thickness_mm), []).append(sp)
     return out
 
 

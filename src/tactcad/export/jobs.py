@@ -302,7 +302,7 @@ def drawing_part_files(plan, assemblies):
 
 def dxf_part_files(plan, assemblies):
     """A cut part's profile DXF (with its quantity) and the nested sheet it is cut from."""
-    dxf_of = {sp.part: [sp.file_name, sheet_dxf_name(sp.material, sp.thickness_mm)]
+    dxf_of = {sp.part: [sp.file_name, sheet_dxf_name(sp.sheet_material, sp.thickness_mm)]
               for sp in shop_profiles(plan)}
     return lambda part, found: dxf_of.get(part, [])
 

@@ -107,6 +107,9 @@ TEXT_PATTERN = r"^[^\x00-\x1f\x7f]*[^\x00-\x1f\x7f\s][^\x00-\x1f\x7f]*$"
 Text = Annotated[str, Field(min_length=1, max_length=MAX_TEXT, pattern=TEXT_PATTERN),
                  Limits(kind="text", unit="")]
 Name = Annotated[str, Field(pattern=NAME_PATTERN), Limits(kind="name", unit="")]
+#: A calendar date, ISO 8601 ``YYYY-MM-DD`` (a design revision's date).
+DateText = Annotated[str, Field(pattern=r"^[0-9]{4}-(0[1-9]|1[0-2])-(0[1-9]|[12][0-9]|3[01])$"),
+                     Limits(kind="choice", unit="a date YYYY-MM-DD (ISO 8601)")]
 
 
 class Section(BaseModel):

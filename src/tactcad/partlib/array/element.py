@@ -217,7 +217,7 @@ def _tip_root_radius(d, pen) -> None:
     c = d.front.paper(*fil.centre)
     text = f"R{pen.fmt_mm(fil.radius)}"
     d.sheet.radius_dimension(c, fil.radius * d.front.scale, -45.0, text, "corner_radius",
-                             dist=-10.0, shoulder_right=False)
+                             dist=(-10.0, -14.0, -18.0, -22.0), shoulder_right=False)
     d.dimensions["corner_radius"] = text
 
 
@@ -262,7 +262,7 @@ def notes(d, pen) -> list[str]:
         pen.web_note(plan, g),
         f"Wire EDM from {fmt_mm(g.sheet_thickness_mm)} mm {spec.material} sheet along "
         f"the nominal contour of {Path(pen.profile_dxf_name(spec.name, len(used))).name} "
-        f"(or the nested sheet {Path(pen.sheet_dxf_name(spec.material, g.sheet_thickness_mm)).name})"
+        f"(or the nested sheet {Path(pen.sheet_dxf_of(plan, spec)).name})"
         f"; wire offset is the shop's CAM setting. Start holes "
         f"Ø{fmt_mm(g.start_hole_diameter_mm)} at the bolt-hole centres.",
         f"Inside corners not dimensioned: R >= {fmt_mm(plan.edm.min_inside_radius_mm)} "
