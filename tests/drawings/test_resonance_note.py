@@ -20,8 +20,9 @@ def example(**overrides):
 
 
 def _notes(plan, part):
-    g = plan.distinct_elements[part]
-    spec = SimpleNamespace(name=part, geometry=g, material=plan.material.name)
+    from tactcad.catalogue.array_catalogue import array_parts
+
+    spec = array_parts(plan, ("element",))[part]
     return element.notes(SimpleNamespace(plan=plan, spec=spec), PEN)
 
 
