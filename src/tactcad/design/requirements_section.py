@@ -18,6 +18,9 @@ Keys (units in the names):
 * ``footprint_mm = [X, Y]`` or ``[X, Y, Z]``: the envelope the clamped array
   must fit (plan view X by Y, height Z), as its assembly STEP's box; never
   derived (without it nothing is checked).
+* ``max_thermal_drift_N_per_K``: the largest equivalent tip force per kelvin
+  any element's read-out may drift (:mod:`tactcad.mechanics.thermal_drift`);
+  never derived (without it nothing is checked).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -54,7 +57,16 @@ class RequirementsSection(Section):
     footprint_mm: listing(number(0.0, 1e4, lo_open=True, unit="mm"), 2, 3,
                           "[X, Y] or [X, Y, Z] (mm)",
                           "the envelope the clamped array must fit") = None
+    max_thermal_drift_N_per_K: number(0.0, 100.0, lo_open=True, unit="N/K",
+                                      why="equivalent tip force per kelvin of any element") = None
     source: Text = None
+
+
+def stated_thermal_drift(raw: Mapping[str, Any]) -> float | None:
+    """``requirements.max_thermal_drift_N_per_K`` (N/K), or None when not stated."""
+    table = raw.get("requirements") if isinstance(raw, Mapping) else None
+    value = table.get("max_thermal_drift_N_per_K") if isinstance(table, Mapping) else None
+    return None if value is None else float(value)
 
 
 def stated_footprint(raw: Mapping[str, Any]) -> tuple[float, ...] | None:
