@@ -42,6 +42,7 @@ COMMAND_MODULES = (
     "tactcad.commands.strength",
     "tactcad.commands.tolerance",
     "tactcad.commands.readout",
+    "tactcad.commands.thermal",
     "tactcad.commands.materials",
     "tactcad.commands.sweep",
     "tactcad.commands.design",

@@ -57,3 +57,18 @@ def test_drawings_borrow_no_private_names_and_parse_no_data():
 
 def test_compose_is_only_the_assembly_of_a_sheet():
     assert len((SRC / "drawings" / "compose.py").read_text().splitlines()) < 400
+
+
+def test_gauge_note_names_the_stc_and_the_thermal_drift_when_required():
+    from tactcad.design.array_plan import default_design_data, plan_from_dict, with_overrides
+    from tactcad.drawings.design_notes import gauge_note
+
+    def note(**o):
+        plan = plan_from_dict(with_overrides(default_design_data(), o))
+        return gauge_note(plan, plan.element(1).geometry)
+
+    plain = note()
+    assert "Gauge STC 23.4 ppm/K" in plain and "Thermal drift" not in plain
+    stated = note(**{"requirements.max_thermal_drift_N_per_K": 0.5,
+                     "readout.gauge_stc_ppm_per_K": 10.8})
+    assert "Gauge STC 10.8 ppm/K" in stated and "required <= 0.5 N/K" in stated

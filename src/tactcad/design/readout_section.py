@@ -19,9 +19,18 @@ Keys (units in the names):
   ``bandwidth_Hz``: the instrumentation amplifier and its noise;
 * ``daq``, ``daq_range_V`` (+/- input range), ``daq_bits``,
   ``daq_noise_uV_rms`` (random noise of that range, one sample),
-  ``samples_averaged``.
+  ``samples_averaged``;
+* thermal (:mod:`tactcad.mechanics.thermal_drift`): ``gauge_stc_ppm_per_K``
+  (the gauge's self-temperature-compensation number: 06 steel-matched =
+  10.8, 13 aluminium-matched = 23.4; not stated: matched to the element's
+  material), ``gauge_factor_tc_pct_per_100K`` (gauge factor temperature
+  coefficient), ``gauge_transverse_sensitivity`` (K_t),
+  ``substrate_cte_ppm_per_K`` (not stated: the material grade's),
+  ``gauge_heat_transfer_W_per_mm2_K`` (grid to substrate, self-heating),
+  ``dummy_gauge``: ``"none"`` or ``"half-bridge"`` (an unstrained gauge of the
+  same lot on the same material in the adjacent arm).
 
-Units: V, ohm, mm, Hz.
+Units: V, ohm, mm, Hz, K, ppm/K (1e-6 /K), W.
 """
 
 from __future__ import annotations
@@ -47,6 +56,8 @@ AD621_BANDWIDTH_HZ = {10.0: 800e3, 100.0: 200e3}
 NOISE_UV_PER_V_RANGE = 28.0
 
 BRIDGES = ("quarter",)
+#: Temperature compensation by a dummy gauge (``dummy_gauge``).
+DUMMY_GAUGES = ("none", "half-bridge")
 
 #: Defaults: value and source (datasheet) or stated assumption. Gauge factor
 #: and resistance come from the library gauge unless the file gives them.
@@ -74,6 +85,18 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
     "daq_noise_uV_rms": (None, "NI 625x specifications: random noise sigma of the chosen range "
                                "(+/-5 V: 140 uV rms)"),
     "samples_averaged": (10, "assumption: 10 readings averaged per value"),
+    "gauge_stc_ppm_per_K": (None, "not stated: the gauge's STC number matched to the element "
+                                  "material's CTE (the gauge one orders for that material)"),
+    "gauge_factor_tc_pct_per_100K": (1.15, "HBM Y series (constantan) data sheet: temperature "
+                                           "coefficient of the gauge factor about "
+                                           "115 x 1e-6 /K"),
+    "gauge_transverse_sensitivity": (0.0, "assumption: K_t = 0 (the lot's package states it; "
+                                          "foil gauges under 1 %)"),
+    "substrate_cte_ppm_per_K": (None, "the material grade's CTE (materials library)"),
+    "gauge_heat_transfer_W_per_mm2_K": (
+        0.0067, "assumption: conduction from grid to element through about 30 um of cured "
+                "epoxy and carrier at about 0.2 W/(m K) (0.2 / 30e-6 W/(m^2 K))"),
+    "dummy_gauge": ("none", "one active gauge; no dummy gauge compensates temperature"),
 }
 
 
@@ -96,6 +119,20 @@ class ReadoutSection(Section):
     daq_noise_uV_rms: number(0.01, 10000.0, unit="uV rms",
                              why="random noise of one DAQ sample in the chosen range") = None
     samples_averaged: integer(1, 1_000_000, why="readings averaged per value") = None
+    gauge_stc_ppm_per_K: number(0.0, 50.0, unit="ppm/K",
+                                why="the gauge's self-temperature-compensation number") = None
+    gauge_factor_tc_pct_per_100K: number(-10.0, 10.0, unit="%/100 K",
+                                         why="gauge factor temperature coefficient") = None
+    gauge_transverse_sensitivity: number(-0.1, 0.1, unit="",
+                                         why="K_t of the gauge lot, foil gauges within +/-10 %"
+                                         ) = None
+    substrate_cte_ppm_per_K: number(0.0, 200.0, unit="ppm/K",
+                                    why="CTE of the element under the gauge") = None
+    gauge_heat_transfer_W_per_mm2_K: number(1e-5, 1.0, unit="W/(mm^2 K)",
+                                            why="grid-to-element heat transfer per grid area"
+                                            ) = None
+    dummy_gauge: choice(DUMMY_GAUGES, "an unstrained dummy gauge in the adjacent bridge arm"
+                        ) = None
 
 
 def check_readout(d: Any, p: Problems) -> None:
@@ -137,6 +174,12 @@ class ReadoutChain(ResolvedSection):
     daq_bits: int
     daq_noise_uV_rms: float
     samples_averaged: int
+    gauge_stc_ppm_per_K: float | None = None
+    gauge_factor_tc_pct_per_100K: float = 0.0
+    gauge_transverse_sensitivity: float = 0.0
+    substrate_cte_ppm_per_K: float | None = None
+    gauge_heat_transfer_W_per_mm2_K: float = 0.0067
+    dummy_gauge: str = "none"
 
     @property
     def volts_per_strain(self) -> float:

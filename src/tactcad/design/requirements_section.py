@@ -22,6 +22,9 @@ Keys (units in the names):
   element may have as clamped (``tactcad modal``): a flexure ringing near
   the scan or sampling rate aliases; never derived (without it the first
   frequencies are reported, not checked).
+* ``max_thermal_drift_N_per_K``: the largest equivalent tip force per kelvin
+  any element's read-out may drift (:mod:`tactcad.mechanics.thermal_drift`);
+  never derived (without it nothing is checked).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -63,7 +66,16 @@ class RequirementsSection(Section):
                           "the envelope the clamped array must fit") = None
     min_first_resonance_Hz: number(0.0, 1e7, lo_open=True, unit="Hz",
                                    why="lowest first natural frequency of any element") = None
+    max_thermal_drift_N_per_K: number(0.0, 100.0, lo_open=True, unit="N/K",
+                                      why="equivalent tip force per kelvin of any element") = None
     source: Text = None
+
+
+def stated_thermal_drift(raw: Mapping[str, Any]) -> float | None:
+    """``requirements.max_thermal_drift_N_per_K`` (N/K), or None when not stated."""
+    table = raw.get("requirements") if isinstance(raw, Mapping) else None
+    value = table.get("max_thermal_drift_N_per_K") if isinstance(table, Mapping) else None
+    return None if value is None else float(value)
 
 
 def stated_footprint(raw: Mapping[str, Any]) -> tuple[float, ...] | None:

@@ -14,6 +14,7 @@ from functools import lru_cache
 
 from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.design.readout_section import readout_of
+from tactcad.errors import DesignError
 from tactcad.design.requirements_section import cites_paper
 from tactcad.drawings.drawing import web_text
 from tactcad.drawings.sheet import fmt_mm
@@ -98,7 +99,29 @@ def gauge_note(plan: Plan, g: ElementGeometry) -> str:
     ro = readout_of(plan.raw, plan.strength.gauge)
     return (f"A strain gauge (grid {fmt_mm(ro.grid_length_mm)} x {fmt_mm(ro.grid_width_mm)}, "
             f"{ro.gauge_resistance_ohm:g} ohm) is bonded on the flat top face, its grid centred "
-            f"over the web {fmt_mm(g.hinge_x_mm)} from the back face and across the sheet.")
+            f"over the web {fmt_mm(g.hinge_x_mm)} from the back face and across the sheet."
+            + thermal_note(plan))
+
+
+def thermal_note(plan: Plan) -> str:
+    """The gauge's STC the thermal drift assumes (it binds the gauge one orders) and, when
+    ``requirements.max_thermal_drift_N_per_K`` is stated, the worst drift against it."""
+    from tactcad.design.requirements_section import stated_thermal_drift
+    from tactcad.mechanics.thermal_drift import thermal_report, thermal_setting
+    from tactcad.studies.verification import requirements_of
+
+    try:
+        s = thermal_setting(plan)
+    except DesignError:  # no CTE known: no thermal figure to state
+        return ""
+    text = (f" Gauge STC {s.stc_ppm_per_K:.3g} ppm/K on an element of "
+            f"{s.substrate_cte_ppm_per_K:g} ppm/K"
+            + (", half bridge with a dummy gauge." if s.dummy else "."))
+    target = stated_thermal_drift(plan.raw)
+    if target is not None:
+        worst = thermal_report(plan, requirements_of(plan)).worst["drift_N_per_K"]
+        text += f" Thermal drift {worst:.2g} N/K (required <= {target:g} N/K)."
+    return text
 
 
 def numbering_note(plan: Plan) -> str:

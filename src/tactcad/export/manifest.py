@@ -62,10 +62,27 @@ def design_facts(plan: Plan) -> dict:
                                **assembly_review(specs, inst)}},
         "strength": [_strength_record(r) for r in strength_summary(plan)],
         "requirements": requirements_record(plan, array_envelope_mm(plan)),
+        "thermal": _thermal_record(plan),
         "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
                     for d in plan.derived],
         "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],
     }
+
+
+def _thermal_record(plan: Plan) -> dict | None:
+    """The closed-form thermal drift of every element (:mod:`tactcad.mechanics.thermal_drift`);
+    None when the material's CTE is unknown. The run time is left out (the manifest is
+    compared across runs)."""
+    from tactcad.errors import DesignError
+    from tactcad.mechanics.thermal_drift import thermal_report
+    from tactcad.studies.verification import requirements_of
+
+    try:
+        out = thermal_report(plan, requirements_of(plan)).as_json()
+    except DesignError:
+        return None
+    out.pop("seconds")
+    return out
 
 
 def _strength_record(r: dict) -> dict:

@@ -40,6 +40,7 @@ from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, 
                                          stated_footprint, stated_requirements)
 from tactcad.mechanics.resolution import KOBJ_POINTS
 from tactcad.studies.resonance import resonance_records, resonance_summary
+from tactcad.mechanics.thermal_drift import thermal_record
 
 #: The predicted readable range is searched this factor beyond the required one.
 KOBJ_SEARCH_FACTOR = 100.0
@@ -415,6 +416,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
                              "envelope (tactcad.assembly.inventory.array_envelope_mm)")
         out.append(footprint_record(req.footprint_mm, envelope_mm))
     out.extend(resonance_records(plan, model, progress))
+    out.extend(r for r in [thermal_record(plan, fig, req)] if r is not None)
     for r in out:
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew

@@ -65,6 +65,8 @@ class MaterialGrade:
         density_g_per_cm3: density (g/cm^3).
         sources: (field, document) pairs naming where each value comes from.
         family: the metal in words (``aluminium``, ``titanium``), as drawings and BOM name it.
+        cte_ppm_per_K: mean linear coefficient of thermal expansion near room
+            temperature (ppm/K = 1e-6 /K); the thermal drift of a gauge bonded on it.
     """
 
     name: str
@@ -78,6 +80,7 @@ class MaterialGrade:
     density_g_per_cm3: float
     sources: tuple[tuple[str, str], ...]
     family: str = ""
+    cte_ppm_per_K: float = math.nan
 
     def source(self, field: str) -> str:
         """Document a value comes from ('' if none is recorded)."""
@@ -130,8 +133,19 @@ def _library() -> dict[str, Any]:
     return tomllib.loads(text)
 
 
+#: Accepted CTE of a library grade (ppm/K): from invar (~1) to polymers (~200).
+CTE_RANGE_PPM_PER_K = (0.0, 200.0)
+
+
 def _grade_from_table(name: str, t: Mapping[str, Any]) -> MaterialGrade:
+    # every grade carries its CTE and the document it comes from (the thermal drift needs it)
+    cte = _number(f"grades.{name}.cte_ppm_per_K", t.get("cte_ppm_per_K"), *CTE_RANGE_PPM_PER_K,
+                  "ppm/K")
+    if not t.get("sources", {}).get("cte_ppm_per_K"):
+        raise DesignError(f"grades.{name}.sources.cte_ppm_per_K", None, "the document the CTE "
+                          "comes from")
     return MaterialGrade(name=name, description=t["description"], family=t.get("family", ""),
+                         cte_ppm_per_K=cte,
                          fatigue_cycles=float(t["fatigue_cycles"]),
                          fatigue_R_ratio=float(t["fatigue_R_ratio"]),
                          sources=tuple(sorted(t["sources"].items())),
