@@ -580,6 +580,8 @@ def binding_text(record: dict) -> str:
         level = record.get("binding_model", record.get("modal_model"))
         return (f"element {record['binding_element']} ({record['binding_part']}, {level}, "
                 f"{' and '.join(record['families'])} modes)")
+    if "binding_element" in record:
+        return f"element {record['binding_element']}"
     return ""
 
 
