@@ -1,0 +1,76 @@
+"""Crosstalk of the clamped stack: reciprocity, plate thickness, decoupling, refusals."""
+
+import numpy as np
+import pytest
+
+import tactcad
+from tactcad.mechanics.crosstalk import (CrosstalkInputError, UnknownCrosstalkModelError,
+                                         crosstalk_models, estimate_crosstalk, plan_crosstalk,
+                                         stack_inputs, with_changes)
+
+TI = "src/tactcad/examples/ti_array_2x3/ti_array_2x3.toml"
+
+
+@pytest.fixture(scope="module")
+def small():
+    """A 2 x 3 array of the paper's design (three elements per row)."""
+    return tactcad.load(None, {"array.columns": 3, "arms.lengths_mm": [4, 6, 8, 5, 7, 4]}).plan
+
+
+@pytest.fixture(scope="module")
+def small_inputs(small):
+    return stack_inputs(small)
+
+
+@pytest.mark.parametrize("model", crosstalk_models())
+def test_tip_displacement_matrix_is_reciprocal(small_inputs, model):
+    r = estimate_crosstalk(small_inputs, model)
+    C = r.compliance
+    off = C - np.diag(np.diag(C))
+    assert np.max(np.abs(off)) > 0  # neighbours do move
+    assert np.allclose(C, C.T, rtol=0, atol=1e-12 * np.max(np.abs(C)))
+    assert r.asymmetry_rel < 1e-12
+
+
+@pytest.mark.parametrize("model", crosstalk_models())
+def test_crosstalk_falls_as_the_clamp_plates_thicken(small_inputs, model):
+    rels = [estimate_crosstalk(with_changes(small_inputs, plate_thickness_mm=t), model)
+            .crosstalk_rel for t in (2.0, 4.0, 8.0)]
+    assert rels[0] > rels[1] > rels[2] > 0
+
+
+def test_neighbours_couple_within_a_row_only(small_inputs):
+    r = estimate_crosstalk(small_inputs)
+    rows = np.array(small_inputs.rows)
+    across = rows[:, None] != rows[None, :]
+    assert np.all(r.sensitivity[across] == 0)
+    assert np.all(r.sensitivity[~across] != 0)
+
+
+def test_decoupling_matrix_inverts_the_normalised_sensitivity(small_inputs):
+    r = estimate_crosstalk(small_inputs)
+    normalised = r.sensitivity / np.diag(r.sensitivity)[:, None]
+    assert np.allclose(r.decoupling @ normalised, np.eye(len(r.elements)), atol=1e-12)
+
+
+def test_softer_spacers_let_the_neighbours_move_more(small_inputs):
+    stiff = estimate_crosstalk(small_inputs)
+    soft = estimate_crosstalk(with_changes(small_inputs, spacer_E_MPa=2e3))
+    off = ~np.eye(len(stiff.elements), dtype=bool)
+    # the soft layers next to the loaded base take the bending: the nearest neighbour moves more
+    assert np.max(soft.compliance[off]) > np.max(stiff.compliance[off])
+    assert soft.crosstalk_rel != pytest.approx(stiff.crosstalk_rel, rel=1e-3)
+
+
+def test_ti_example_gets_a_number():
+    r = plan_crosstalk(tactcad.load(TI).plan)
+    assert 0 < r.crosstalk_rel < 1 and len(r.elements) == 6
+
+
+def test_bad_input_is_refused(small, small_inputs):
+    with pytest.raises(UnknownCrosstalkModelError, match="stack-beam"):
+        plan_crosstalk(small, "fem9d")
+    with pytest.raises(CrosstalkInputError, match=r"plate_thickness_mm = -1.*\[0.5, 20\]"):
+        with_changes(small_inputs, plate_thickness_mm=-1)
+    with pytest.raises(CrosstalkInputError, match="bolt_length_mm"):
+        with_changes(small_inputs, bolt_length_mm=3.0)
