@@ -41,6 +41,7 @@ COMMAND_MODULES = (
     "tactcad.commands.strength",
     "tactcad.commands.tolerance",
     "tactcad.commands.readout",
+    "tactcad.commands.crosstalk",
     "tactcad.commands.materials",
     "tactcad.commands.sweep",
     "tactcad.commands.design",
