@@ -7,7 +7,7 @@ import argparse
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.tolerance import add_cluster_args
-from tactcad.mechanics.crosstalk import CROSSTALK_LEVELS, crosstalk_models
+from tactcad.mechanics.stack_crosstalk import CROSSTALK_LEVELS, crosstalk_models
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -33,7 +33,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.mechanics.crosstalk import plan_crosstalk
+    from tactcad.mechanics.stack_crosstalk import plan_crosstalk
 
     plan = plan_from_args(args)
     result = plan_crosstalk(plan, args.model)

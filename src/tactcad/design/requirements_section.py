@@ -18,6 +18,9 @@ Keys (units in the names):
 * ``footprint_mm = [X, Y]`` or ``[X, Y, Z]``: the envelope the clamped array
   must fit (plan view X by Y, height Z), as its assembly STEP's box; never
   derived (without it nothing is checked).
+* ``max_crosstalk_rel``: the largest gauge crosstalk allowed (a neighbour's
+  strain over the loaded gauge's own, :mod:`tactcad.mechanics.stack_crosstalk`);
+  never derived (without it nothing is checked).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -54,6 +57,8 @@ class RequirementsSection(Section):
     footprint_mm: listing(number(0.0, 1e4, lo_open=True, unit="mm"), 2, 3,
                           "[X, Y] or [X, Y, Z] (mm)",
                           "the envelope the clamped array must fit") = None
+    max_crosstalk_rel: number(0.0, 1.0, lo_open=True, unit="",
+                              why="largest off-diagonal gauge strain over its diagonal") = None
     source: Text = None
 
 

@@ -3,7 +3,7 @@ the array's crosstalk: one crosstalk estimate per point, run on Dask (a
 LocalCluster, or an existing scheduler by address, as the other sweeps).
 
 Each point changes one input of the plan's stack
-(:func:`tactcad.mechanics.crosstalk.with_changes`) from the design's value;
+(:func:`tactcad.mechanics.stack_crosstalk.with_changes`) from the design's value;
 the others stay at the design's. Units: mm, MPa, s.
 """
 
@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from typing import Callable, Sequence
 
 from tactcad.design.array_plan import Plan
-from tactcad.mechanics.crosstalk import StackInputs, estimate_crosstalk, stack_inputs, with_changes
+from tactcad.mechanics.stack_crosstalk import StackInputs, estimate_crosstalk, stack_inputs, with_changes
 
 #: Default sweep values: plate thickness (mm), bolt spacing (mm), spacer grades of the library.
 PLATE_THICKNESSES_MM = (2.0, 3.0, 4.0, 6.0, 8.0)

@@ -62,6 +62,7 @@ import importlib
 import math
 import time
 from dataclasses import dataclass, replace
+from typing import Mapping
 
 import numpy as np
 import scipy.sparse as sp
@@ -495,7 +496,25 @@ def plan_crosstalk(plan: Plan, model: str = "stack-beam", **changes) -> Crosstal
     return estimate_crosstalk(stack_inputs(plan, **changes), model)
 
 
-def crosstalk_record(plan: Plan, target_rel: float, model: str = "stack-beam") -> dict:
+#: The level the verification matrix and the export use (both levels cost well under a second).
+VERIFY_MODEL = "stack-timoshenko"
+
+
+def stated_max_crosstalk(plan: Plan) -> float | None:
+    """``requirements.max_crosstalk_rel`` of the design, or None when not stated."""
+    table = plan.raw.get("requirements") if isinstance(plan.raw, Mapping) else None
+    value = table.get("max_crosstalk_rel") if isinstance(table, Mapping) else None
+    return None if value is None else float(value)
+
+
+def crosstalk_records(plan: Plan) -> list[dict]:
+    """The verification matrix's ``max_crosstalk_rel`` record when the design
+    states it (at :data:`VERIFY_MODEL`), else none."""
+    target = stated_max_crosstalk(plan)
+    return [] if target is None else [crosstalk_record(plan, target, VERIFY_MODEL)]
+
+
+def crosstalk_record(plan: Plan, target_rel: float, model: str = VERIFY_MODEL) -> dict:
     """``max_crosstalk_rel`` for the verification matrix: predicted crosstalk_rel
     against the target (margin target / predicted - 1; an upper bound)."""
     r = plan_crosstalk(plan, model)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import tactcad
-from tactcad.mechanics.crosstalk import (CrosstalkInputError, UnknownCrosstalkModelError,
+from tactcad.mechanics.stack_crosstalk import (CrosstalkInputError, UnknownCrosstalkModelError,
                                          crosstalk_models, estimate_crosstalk, plan_crosstalk,
                                          stack_inputs, with_changes)
 
@@ -74,3 +74,15 @@ def test_bad_input_is_refused(small, small_inputs):
         with_changes(small_inputs, plate_thickness_mm=-1)
     with pytest.raises(CrosstalkInputError, match="bolt_length_mm"):
         with_changes(small_inputs, bolt_length_mm=3.0)
+
+
+def test_stated_requirement_gets_a_record(small):
+    from dataclasses import replace
+
+    from tactcad.mechanics.stack_crosstalk import crosstalk_records
+
+    assert crosstalk_records(small) == []
+    raw = {**small.raw, "requirements": {"max_crosstalk_rel": 1e-9}}
+    (rec,) = crosstalk_records(replace(small, raw=raw))
+    assert rec["requirement"] == "max_crosstalk_rel" and not rec["pass"]
+    assert rec["predicted"] > 1e-9 and rec["margin_rel"] < 0
