@@ -55,6 +55,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="estimators to run (default: all)")
     add_output_args(s, "print one JSON object: throughput and the summary per level")
     s.set_defaults(func=run_stiffness)
+    x = bsub.add_parser("crosstalk", help="cost and error of each crosstalk level "
+                                          "(tactcad.benchmarks.crosstalk_bench)")
+    add_design_arg(x)
+    add_output_args(x, "print one JSON object: inputs_s and per level solve_s, crosstalk_rel, "
+                       "error_estimate_rel, vs_last_level_rel, asymmetry_rel")
+    x.set_defaults(func=run_crosstalk)
     c = bsub.add_parser("closed-form", help="corrected closed-form K evaluations/s (goal >= 1e7)")
     add_design_arg(c)
     add_output_args(c, "print one JSON object: evaluations per second and the goal")
@@ -236,6 +242,12 @@ def run_stiffness(args: argparse.Namespace) -> int:
               "(no tactcad.benchmarks.stiffness_bench)")
         return 0
     return int(module.main(args, plan=plan_from_args(args)) or 0)
+
+
+def run_crosstalk(args: argparse.Namespace) -> int:
+    from tactcad.benchmarks.crosstalk_bench import main
+
+    return int(main(args, plan_from_args(args)) or 0)
 
 
 def run_closed_form(args: argparse.Namespace) -> int:
