@@ -2,11 +2,13 @@
 
 import json
 
+import pytest
 from conftest import run_cli
 
 from tactcad.mechanics.stack_crosstalk import crosstalk_models
 
 
+@pytest.mark.slow  # runs the 3D level on a 2 x 2 array
 def test_every_level_has_cost_and_error():
     r = run_cli("bench", "crosstalk", "--set", "array.columns=2",
                 "--set", "arms.lengths_mm=[4,6,5,7]", "--json")

@@ -9,6 +9,9 @@ from tactcad.mechanics.stack_crosstalk import (CrosstalkInputError, UnknownCross
                                          stack_inputs, with_changes)
 
 TI = "src/tactcad/examples/ti_array_2x3/ti_array_2x3.toml"
+BEAM_LEVELS = [m for m in crosstalk_models() if m != "stack-fem3d"]
+#: the 3D level's coarsest mesh: 2 x 2 hexahedra across, one per layer (h/2 on the fine level)
+FEM_COARSEST = (2, 2, 1)
 
 
 @pytest.fixture(scope="module")
@@ -22,7 +25,7 @@ def small_inputs(small):
     return stack_inputs(small)
 
 
-@pytest.mark.parametrize("model", crosstalk_models())
+@pytest.mark.parametrize("model", BEAM_LEVELS)
 def test_tip_displacement_matrix_is_reciprocal(small_inputs, model):
     r = estimate_crosstalk(small_inputs, model)
     C = r.compliance
@@ -32,9 +35,30 @@ def test_tip_displacement_matrix_is_reciprocal(small_inputs, model):
     assert r.asymmetry_rel < 1e-12
 
 
-@pytest.mark.parametrize("model", crosstalk_models())
+@pytest.mark.parametrize("model", BEAM_LEVELS)
 def test_crosstalk_falls_as_the_clamp_plates_thicken(small_inputs, model):
     rels = [estimate_crosstalk(with_changes(small_inputs, plate_thickness_mm=t), model)
+            .crosstalk_rel for t in (2.0, 4.0, 8.0)]
+    assert rels[0] > rels[1] > rels[2] > 0
+
+
+def test_fem3d_tip_matrix_is_reciprocal_and_near_the_beam(small_inputs):
+    from tactcad.mechanics.stack_fem3d import estimate_stack_fem3d
+
+    r = estimate_stack_fem3d(small_inputs, FEM_COARSEST)
+    C = r.compliance
+    assert np.max(np.abs(C - np.diag(np.diag(C)))) > 0
+    assert np.allclose(C, C.T, rtol=0, atol=1e-12 * np.max(np.abs(C)))
+    beam = estimate_crosstalk(small_inputs, "stack-timoshenko").crosstalk_rel
+    # the same stack in 3D: within the same order of magnitude as the beam
+    assert 0.1 * beam < r.crosstalk_rel < 10 * beam and r.error_estimate_rel > 0
+
+
+@pytest.mark.slow
+def test_fem3d_crosstalk_falls_as_the_clamp_plates_thicken(small_inputs):
+    from tactcad.mechanics.stack_fem3d import estimate_stack_fem3d
+
+    rels = [estimate_stack_fem3d(with_changes(small_inputs, plate_thickness_mm=t), FEM_COARSEST)
             .crosstalk_rel for t in (2.0, 4.0, 8.0)]
     assert rels[0] > rels[1] > rels[2] > 0
 

@@ -51,7 +51,9 @@ Levels, declared once in :data:`CROSSTALK_LEVELS` (cheapest first):
   full spacer contact length) and between the two decay lengths (section height,
   sheet thickness), the model's least known inputs.
 
-A 3D finite-element level of the clamped stack is not part of this module.
+* ``stack-fem3d`` (:mod:`tactcad.mechanics.stack_fem3d`): the same bonded
+  stack as a 3D solid (triquadratic hexahedra, two mesh levels). Error
+  estimate: Richardson over the two meshes.
 
 Units: mm, N, MPa, N/mm, s; strain dimensionless.
 """
@@ -107,7 +109,9 @@ def register_crosstalk_level(level: CrosstalkLevel) -> None:
 
 for _level in (CrosstalkLevel("stack-beam", __name__, "estimate_stack_beam", "~5 ms"),
                CrosstalkLevel("stack-timoshenko", __name__, "estimate_stack_timoshenko",
-                              "~15 ms")):
+                              "~15 ms"),
+               CrosstalkLevel("stack-fem3d", "tactcad.mechanics.stack_fem3d",
+                              "estimate_stack_fem3d", "~30 s")):
     register_crosstalk_level(_level)
 
 
