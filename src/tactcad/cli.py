@@ -43,6 +43,7 @@ COMMAND_MODULES = (
     "tactcad.commands.tolerance",
     "tactcad.commands.readout",
     "tactcad.commands.thermal",
+    "tactcad.commands.crosstalk",
     "tactcad.commands.materials",
     "tactcad.commands.sweep",
     "tactcad.commands.design",

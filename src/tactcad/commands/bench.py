@@ -66,6 +66,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                     help="modal levels to run (default: all; fem3d always, as the reference)")
     add_output_args(md, "print one JSON object: every design's figures and the summary per level")
     md.set_defaults(func=run_modal_bench)
+    x = bsub.add_parser("crosstalk", help="cost and error of each crosstalk level "
+                                          "(tactcad.benchmarks.crosstalk_bench)")
+    add_design_arg(x)
+    add_output_args(x, "print one JSON object: inputs_s and per level solve_s, crosstalk_rel, "
+                       "error_estimate_rel, vs_last_level_rel, asymmetry_rel")
+    x.set_defaults(func=run_crosstalk)
     c = bsub.add_parser("closed-form", help="corrected closed-form K evaluations/s (goal >= 1e7)")
     add_design_arg(c)
     add_output_args(c, "print one JSON object: evaluations per second and the goal")
@@ -274,6 +280,12 @@ def run_modal_bench(args: argparse.Namespace) -> int:
     from tactcad.benchmarks.modal_bench import main
 
     return int(main(args, plan=plan_from_args(args)) or 0)
+
+
+def run_crosstalk(args: argparse.Namespace) -> int:
+    from tactcad.benchmarks.crosstalk_bench import main
+
+    return int(main(args, plan_from_args(args)) or 0)
 
 
 def run_closed_form(args: argparse.Namespace) -> int:

@@ -25,6 +25,9 @@ Keys (units in the names):
 * ``max_thermal_drift_N_per_K``: the largest equivalent tip force per kelvin
   any element's read-out may drift (:mod:`tactcad.mechanics.thermal_drift`);
   never derived (without it nothing is checked).
+* ``max_crosstalk_rel``: the largest gauge crosstalk allowed (a neighbour's
+  strain over the loaded gauge's own, :mod:`tactcad.mechanics.stack_crosstalk`);
+  never derived (without it nothing is checked).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -44,7 +47,7 @@ REQUIREMENT_KEYS = ("full_scale_force_N", "kobj_range_N_per_mm", "kr_over_km",
                     "k_tolerance_rel", "kobj_resolution_rel")
 
 #: Requirements checked only when the file states them (never derived).
-STATED_ONLY_KEYS = ("min_first_resonance_Hz", "max_thermal_drift_N_per_K")
+STATED_ONLY_KEYS = ("min_first_resonance_Hz", "max_thermal_drift_N_per_K", "max_crosstalk_rel")
 
 
 class RequirementsSection(Section):
@@ -68,6 +71,8 @@ class RequirementsSection(Section):
                                    why="lowest first natural frequency of any element") = None
     max_thermal_drift_N_per_K: number(0.0, 100.0, lo_open=True, unit="N/K",
                                       why="equivalent tip force per kelvin of any element") = None
+    max_crosstalk_rel: number(0.0, 1.0, lo_open=True, unit="",
+                              why="largest off-diagonal gauge strain over its diagonal") = None
     source: Text = None
 
 

@@ -106,7 +106,10 @@ for _kind in (
                    "review_page_jobs"),
         ExportKind("stl", ("stl",), "stl/<part>.stl", "tactcad.export.stl", "stl_jobs",
                    part_prefix="stl", in_full_export=False, part_files="stl_part_files",
-                   bom_rank=5)):
+                   bom_rank=5),
+        ExportKind("crosstalk", ("crosstalk",),
+                   "crosstalk/decoupling.csv and .json (the Timoshenko stack level)",
+                   "tactcad.export.crosstalk_files", "crosstalk_jobs")):
     register_kind(_kind)
 
 

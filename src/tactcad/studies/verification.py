@@ -38,6 +38,7 @@ import numpy as np
 from tactcad.design.array_plan import Plan
 from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, requirements_source,
                                          stated_footprint, stated_requirements)
+from tactcad.mechanics.stack_crosstalk import crosstalk_records
 from tactcad.mechanics.resolution import KOBJ_POINTS
 from tactcad.studies.resonance import resonance_records, resonance_summary
 from tactcad.mechanics.thermal_drift import thermal_record
@@ -417,6 +418,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
         out.append(footprint_record(req.footprint_mm, envelope_mm))
     out.extend(resonance_records(plan, model, progress))
     out.extend(r for r in [thermal_record(plan, fig, req)] if r is not None)
+    out += crosstalk_records(plan)
     for r in out:
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew
@@ -441,7 +443,8 @@ def footprint_record(footprint_mm: Sequence[float], envelope_mm: Sequence[float]
 
 
 #: Requirements computed the same way at every level (the K band over the web tolerance).
-LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm")
+LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm",
+               "max_crosstalk_rel")
 
 #: A requirement's verdict at one level (:func:`verdict`).
 VERDICTS = ("pass", "fail", "undecided")

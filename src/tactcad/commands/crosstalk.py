@@ -1,0 +1,78 @@
+"""``tactcad crosstalk``: the clamped array's sensitivity matrix, crosstalk and decoupling matrix."""
+
+from __future__ import annotations
+
+import argparse
+
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands.finite_json import dumps
+from tactcad.commands.tolerance import add_cluster_args
+from tactcad.mechanics.stack_crosstalk import CROSSTALK_LEVELS, crosstalk_models
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "crosstalk", help="crosstalk of the clamped array: n x n gauge sensitivity, tip "
+                          "displacements, crosstalk_rel, decoupling matrix",
+        description="A unit force on each tip, the stack of element bases and spacers (bonded "
+                    "by the bolt preload) bending between the clamp plates: each gauge's "
+                    "grid-averaged strain (1/N), each tip's displacement (mm/N; Maxwell-Betti "
+                    "symmetric), crosstalk_rel (largest off-diagonal over its diagonal) and the "
+                    "decoupling matrix. Levels: " + ", ".join(
+                        f"{n} {lv.cost}" for n, lv in CROSSTALK_LEVELS.items())
+                    + ". --sweep adds how plate thickness, bolt spacing and spacer grade change "
+                    "crosstalk_rel (on Dask).")
+    add_design_arg(p)
+    p.add_argument("--model", choices=crosstalk_models(), default="stack-beam",
+                   help="crosstalk level (default %(default)s)")
+    p.add_argument("--sweep", action="store_true",
+                   help="also sweep plate thickness, bolt spacing and spacer grade")
+    add_cluster_args(p, local_default=False)
+    add_output_args(p, "print one JSON object: the matrices, crosstalk_rel, cost and the sweep")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from tactcad.mechanics.stack_crosstalk import plan_crosstalk
+
+    plan = plan_from_args(args)
+    result = plan_crosstalk(plan, args.model)
+    rows = _sweep(plan, args) if args.sweep else None
+    if args.json:
+        print(dumps({"design": plan.name, **result.as_json(),
+                     **({} if rows is None else {"sweep": rows})}, indent=1))
+        return 0
+    print(render(plan.name, result, rows))
+    return 0
+
+
+def _sweep(plan, args) -> list[dict]:
+    from tactcad.studies.crosstalk_sweep import crosstalk_sweep, sweep_points
+
+    points = sweep_points(plan, args.model)
+    if args.scheduler is None and args.workers is None:
+        return crosstalk_sweep(points)
+    from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client, dask_mapper
+
+    with dask_client(args.scheduler, args.workers or LOCAL_WORKERS) as client:
+        return crosstalk_sweep(points, dask_mapper(client, progress=False))
+
+
+def render(design: str, r, rows) -> str:
+    """The result as text: the figures, the sensitivity matrix in microstrain per newton, the sweep."""
+    lines = [f"crosstalk of {design} ({r.model}, {r.seconds:.3g} s): crosstalk_rel "
+             f"{r.crosstalk_rel:.3g} (gauge {r.worst[0]} under a force on element {r.worst[1]}), "
+             f"error estimate {100 * r.error_estimate_rel:.2g} %",
+             f"  tip-displacement matrix asymmetry {r.asymmetry_rel:.2g} (Maxwell-Betti)",
+             f"  model: {r.basis}",
+             "gauge strain per newton on each tip (microstrain/N):",
+             "| gauge | " + " | ".join(str(e) for e in r.elements) + " |",
+             "| --- |" + " --- |" * len(r.elements)]
+    for e, row in zip(r.elements, r.sensitivity):
+        lines.append(f"| {e} | " + " | ".join(f"{1e6 * v:.4g}" for v in row) + " |")
+    if rows:
+        lines += ["sweep (one input changed from the design's):",
+                  "| parameter | value | crosstalk_rel | error |", "| --- | --- | --- | --- |"]
+        lines += [f"| {q['parameter']} | {q['value']} | {q['crosstalk_rel']:.4g} | "
+                  f"{100 * q['error_estimate_rel']:.2g} % |" for q in rows]
+    return "\n".join(lines)

@@ -1,0 +1,71 @@
+"""``crosstalk/decoupling.csv`` and ``crosstalk/decoupling.json``: the array's
+decoupling matrix for the lab's read-out software.
+
+Written from :data:`tactcad.mechanics.stack_crosstalk.VERIFY_MODEL` (the
+Timoshenko stack, well under a second for the paper's array), the level the
+verification matrix uses, so ``make export`` does not slow down. A reading
+vector r (volts or strain of each gauge, element order of the header)
+divided by each gauge's own sensitivity (the matrix's diagonal, also written)
+gives n = r / s; the forces on the tips are D @ n (N).
+"""
+
+from __future__ import annotations
+
+import io
+import json
+from pathlib import Path
+from typing import Callable
+
+from tactcad.atomic import write_bytes_atomic
+from tactcad.design.array_plan import Plan
+from tactcad.store import content_key
+
+CSV_NAME = "crosstalk/decoupling.csv"
+JSON_NAME = "crosstalk/decoupling.json"
+
+
+def decoupling_csv(result) -> str:
+    """The decoupling matrix as CSV: a header of element numbers, one row per element."""
+    out = io.StringIO()
+    out.write("element," + ",".join(f"element_{e}" for e in result.elements) + "\n")
+    for e, row in zip(result.elements, result.decoupling):
+        out.write(f"element_{e}," + ",".join(repr(float(v)) for v in row) + "\n")
+    return out.getvalue()
+
+
+def decoupling_json(plan: Plan, result) -> dict:
+    """The decoupling matrix with what it came from: level, crosstalk_rel, the
+    sensitivity matrix (1/N), its diagonal, the tip compliance (mm/N)."""
+    import numpy as np
+
+    return {"design": plan.name, "units": {"sensitivity": "strain per N",
+                                           "compliance": "mm per N", "decoupling": "1"},
+            "usage": "forces_N = decoupling @ (readings / own_sensitivity)",
+            "own_sensitivity_strain_per_N": np.diag(result.sensitivity).tolist(),
+            **result.as_json()}
+
+
+def write_crosstalk_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> list[dict]:
+    """Write both files into ``staging``; their file records (``path``, ``part``, ``kind``)."""
+    from tactcad.mechanics.stack_crosstalk import VERIFY_MODEL, plan_crosstalk
+
+    result = plan_crosstalk(plan, VERIFY_MODEL)
+    write_bytes_atomic(staging / CSV_NAME, decoupling_csv(result).encode("utf-8"))
+    write_bytes_atomic(staging / JSON_NAME, (json.dumps(decoupling_json(plan, result), indent=1,
+                                                        allow_nan=False) + "\n").encode("utf-8"))
+    log(f"  wrote {CSV_NAME} and {JSON_NAME} ({result.model}: crosstalk_rel "
+        f"{result.crosstalk_rel:.3g}, {result.seconds:.2g} s)")
+    n = len(result.elements)
+    return [{"path": CSV_NAME, "part": "crosstalk", "kind": "decoupling-csv", "items": n,
+             "crosstalk_rel": result.crosstalk_rel, "model": result.model},
+            {"path": JSON_NAME, "part": "crosstalk", "kind": "decoupling-json", "items": n,
+             "crosstalk_rel": result.crosstalk_rel, "model": result.model}]
+
+
+def crosstalk_jobs(run, before) -> list:
+    """One job writing both files; it reads only the plan."""
+    from tactcad.export.job import Job
+
+    def make(run) -> list[dict]:
+        return write_crosstalk_files(run.plan, run.staging, run.log)
+    return [Job("crosstalk", content_key("crosstalk", run.plan), make)]

@@ -1,0 +1,23 @@
+"""``tactcad crosstalk``: JSON, the sweep, bad options refused."""
+
+import json
+
+from conftest import run_cli
+
+
+def test_json_has_the_matrices_and_the_sweep():
+    r = run_cli("crosstalk", "--set", "array.columns=2", "--set", "arms.lengths_mm=[4,6,5,7]",
+                "--sweep", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert len(d["sensitivity_strain_per_N"]) == 4 and d["crosstalk_rel"] > 0
+    plates = [q["crosstalk_rel"] for q in d["sweep"] if q["parameter"] == "plate_thickness_mm"]
+    assert plates == sorted(plates, reverse=True) and plates[0] > plates[-1]
+    assert {q["parameter"] for q in d["sweep"]} == {"plate_thickness_mm", "bolt_spacing_mm",
+                                                    "spacer_grade"}
+
+
+def test_unknown_model_is_refused_in_one_line():
+    r = run_cli("crosstalk", "--model", "fem9d", "--json")
+    assert r.returncode == 2
+    assert "stack-beam" in json.loads(r.stdout)["error"]["message"]
