@@ -1,0 +1,94 @@
+"""The build book: ``instructions/index.html`` and ``instructions/steps.json``.
+
+The steps come from the complete kit (:func:`tactcad.export.bom.complete_kit`
+and :func:`tactcad.export.bom.kit_steps`): each step lists the BOM items it
+consumes with their quantities and BOM item numbers, its tools, consumables
+and notes. The page is one self-contained HTML file (no script, no external
+reference), so it opens from ``file://`` offline and prints as it shows.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+from pathlib import Path
+from typing import Callable
+
+from tactcad.atomic import write_bytes_atomic
+
+BOOK_DIR = "instructions"
+BOOK_PAGE = f"{BOOK_DIR}/index.html"
+BOOK_DATA = f"{BOOK_DIR}/steps.json"
+
+_STYLE = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.4}"
+          "table{border-collapse:collapse}td,th{border:1px solid #999;padding:2px 6px}"
+          "section{page-break-inside:avoid;margin-bottom:2em}")
+
+
+def book_html(name: str, steps, rows) -> str:
+    """The book's HTML text: a contents list, then one section per step.
+
+    Args:
+        name: the design's name.
+        steps: :class:`tactcad.assembly.build_steps.Step` in build order.
+        rows: the BOM rows (:class:`tactcad.export.bom.BomRow`), for item numbers and units.
+    """
+    e = html.escape
+    by_part = {r.part: r for r in rows}
+    out = ["<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
+           f"<title>Build book: {e(name)}</title><style>{_STYLE}</style></head><body>",
+           f"<h1>Build book: {e(name)}</h1>",
+           "<p>Steps in build order; every item of bom.csv is consumed by one step "
+           "(its <code>step</code> column).</p><ol>"]
+    out += [f"<li><a href=\"#{e(s.key)}\">{e(s.title)}</a> ({e(s.sub_assembly)})</li>"
+            for s in steps]
+    out.append("</ol>")
+    for n, s in enumerate(steps, start=1):
+        out += [f"<section id=\"{e(s.key)}\" data-step=\"{e(s.key)}\">",
+                f"<h2>Step {n}: {e(s.title)}</h2>",
+                f"<p>Sub-assembly: {e(s.sub_assembly)}; model: {e(s.scene)}</p>",
+                "<table><tr><th>BOM item</th><th>Part</th><th>Quantity</th><th>Unit</th></tr>"]
+        for part, qty in s.parts:
+            r = by_part.get(part)
+            out.append(f"<tr><td>{r.item if r else ''}</td><td>{e(part)}</td><td>{qty:g}</td>"
+                       f"<td>{e(r.unit if r else '')}</td></tr>")
+        out.append("</table>")
+        out.append("<p>Tools: " + e(", ".join(s.tools) or "none") + "</p>")
+        if s.consumables:
+            out.append("<p>Consumables: " + e(", ".join(s.consumables)) + "</p>")
+        out.append("<ul>" + "".join(f"<li>{e(t)}</li>" for t in s.notes) + "</ul></section>")
+    out.append("</body></html>")
+    return "\n".join(out) + "\n"
+
+
+def write_book(project, staging: Path, log: Callable[[str], None], assembled) -> list[dict]:
+    """Write the book (see module doc) into ``staging``.
+
+    Returns:
+        File records ``{"path", "part": "instructions", "kind", "steps"}``.
+    """
+    from tactcad.export.bom import complete_kit, kit_steps
+
+    rows = complete_kit(project, assembled)
+    steps = kit_steps(project, rows, assembled[0])
+    (staging / BOOK_DIR).mkdir(parents=True, exist_ok=True)
+    write_bytes_atomic(staging / BOOK_PAGE,
+                       book_html(project.plan.name, steps, rows).encode("utf-8"))
+    write_bytes_atomic(staging / BOOK_DATA, json.dumps(
+        [s.as_dict() for s in steps], indent=1).encode("utf-8"))
+    log(f"  wrote {BOOK_PAGE} ({len(steps)} steps)")
+    return [{"path": BOOK_PAGE, "part": "instructions", "kind": "instructions-html",
+             "steps": len(steps)},
+            {"path": BOOK_DATA, "part": "instructions", "kind": "instructions-json",
+             "steps": len(steps)}]
+
+
+def instructions_jobs(run, before):
+    """``instructions/index.html`` and ``steps.json`` (kernel-free)."""
+    from tactcad.export.job import Job
+    from tactcad.store import content_key
+
+    def make(run) -> list[dict]:
+        return write_book(run.project, run.staging, run.log, run.inventory)
+    return [Job("instructions", content_key("instructions", run.plan, run.inventory,
+                                                run.project.rigs_sha256), make)]
