@@ -50,3 +50,29 @@ def test_torque_grows_with_size():
     # M3 class 8.8 with K = 0.2: about 1.3 N m (common tables 1.2-1.3 N m)
     assert 1.1 < tightening_torque_Nm(3, 0.5) < 1.4
     assert tightening_torque_Nm(2, 0.4) < tightening_torque_Nm(3, 0.5) < tightening_torque_Nm(4, 0.7)
+
+
+@pytest.mark.parametrize("name", ["macro_array", "ti_array_2x3"])
+def test_step_pictures_show_their_highlighted_parts(name, tmp_path):
+    """Each array step picture is non-blank and carries the highlight colour;
+    the page embeds it (so it opens offline)."""
+    import numpy as np
+    from PIL import Image
+
+    from conftest import run_cli
+
+    result = run_cli("export", "--only", "instructions", "--no-cache", "--design",
+                     str(HARDWARE / name / f"{name}.toml"), "--out", str(tmp_path / "ex"))
+    assert result.returncode == 0, result.stderr
+    book = tmp_path / "ex" / "instructions"
+    pictures = sorted(book.glob("step_*.png"))
+    keys = {p.stem.split("_", 2)[2] for p in pictures}
+    assert {"array-gauges", "array-stack", "array-bolts"} <= keys
+    page = (book / "index.html").read_text()
+    assert page.count("data:image/png;base64,") == len(pictures)
+    for p in pictures:
+        rgb = np.asarray(Image.open(p).convert("RGB")).astype(int)
+        assert (rgb < 250).any(axis=2).mean() > 0.05, p  # a model drawn, not a blank frame
+        r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+        magenta = (g < 10) & (r > 60) & (abs(r - b) < 8)
+        assert magenta.sum() > 50, p  # the step's new parts, in the highlight colour
