@@ -11,7 +11,7 @@ from tactcad.assembly.build_steps import tightening_torque_Nm
 from tactcad.assembly.inventory import design_assemblies
 from tactcad.design.project import load_project
 from tactcad.export.bom import complete_kit
-from tactcad.export.instructions import BOOK_DATA, BOOK_PAGE, write_book
+from tactcad.export.instructions import BOOK_DATA, BOOK_PAGE, BOOK_PDF, write_book
 
 HARDWARE = Path(__file__).resolve().parents[2] / "hardware"
 
@@ -76,3 +76,13 @@ def test_step_pictures_show_their_highlighted_parts(name, tmp_path):
         r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
         magenta = (g < 10) & (r > 60) & (abs(r - b) < 8)
         assert magenta.sum() > 50, p  # the step's new parts, in the highlight colour
+
+
+def test_pdf_has_a_page_and_every_step_title(book):
+    from pypdf import PdfReader
+
+    _, _, out, _ = book
+    steps = json.loads((out / BOOK_DATA).read_text())
+    text = " ".join(page.extract_text() for page in PdfReader(out / BOOK_PDF).pages)
+    for s in steps:
+        assert s["title"] in text

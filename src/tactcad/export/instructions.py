@@ -4,7 +4,8 @@ The steps come from the complete kit (:func:`tactcad.export.bom.complete_kit`
 and :func:`tactcad.export.bom.kit_steps`): each step lists the BOM items it
 consumes with their quantities and BOM item numbers, its tools, consumables
 and notes. The page is one self-contained HTML file (no script, no external
-reference), so it opens from ``file://`` offline and prints as it shows.
+reference), so it opens from ``file://`` offline and prints as it shows;
+``build_book.pdf`` carries the same steps and pictures.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from tactcad.atomic import write_bytes_atomic
 BOOK_DIR = "instructions"
 BOOK_PAGE = f"{BOOK_DIR}/index.html"
 BOOK_DATA = f"{BOOK_DIR}/steps.json"
+BOOK_PDF = f"{BOOK_DIR}/build_book.pdf"
 #: Colour of a step's new parts in its picture (RGB 0-1); nothing else of the model is magenta.
 HIGHLIGHT_RGB = (1.0, 0.0, 1.0)
 #: Grey of the parts placed before (RGB 0-1).
@@ -110,6 +112,35 @@ def book_html(name: str, steps, rows, pictures: dict[str, bytes] | None = None) 
     return "\n".join(out) + "\n"
 
 
+def book_pdf(name: str, steps, rows, pictures: dict[str, Path], target: Path) -> None:
+    """The book as an A4 PDF (reportlab platypus, invariant mode: the same
+    steps give the same bytes): per step its title, parts table, tools,
+    notes and picture (``pictures``: step key -> PNG path)."""
+    from xml.sax.saxutils import escape
+
+    from reportlab.lib.pagesizes import A4
+    from reportlab.lib.styles import getSampleStyleSheet
+    from reportlab.lib.units import mm
+    from reportlab.platypus import Image, Paragraph, SimpleDocTemplate, Spacer, Table
+
+    styles = getSampleStyleSheet()
+    by_part = {r.part: r for r in rows}
+    flow = [Paragraph(escape(f"Build book: {name}"), styles["Title"])]
+    for n, s in enumerate(steps, start=1):
+        flow.append(Paragraph(escape(f"Step {n}: {s.title}"), styles["Heading2"]))
+        table = [["BOM item", "Part", "Quantity", "Unit"]] + [
+            [str(by_part[p].item) if p in by_part else "", p, f"{q:g}",
+             by_part[p].unit if p in by_part else ""] for p, q in s.parts]
+        flow.append(Table(table, hAlign="LEFT"))
+        flow.append(Paragraph(escape("Tools: " + (", ".join(s.tools) or "none")), styles["Normal"]))
+        flow += [Paragraph(escape("- " + t), styles["Normal"]) for t in s.notes]
+        if s.key in pictures:
+            flow.append(Image(str(pictures[s.key]), width=160 * mm, height=100 * mm))
+        flow.append(Spacer(1, 6 * mm))
+    SimpleDocTemplate(str(target), pagesize=A4, title=f"Build book: {name}",
+                      invariant=1).build(flow)
+
+
 def write_book(project, staging: Path, log: Callable[[str], None], assembled,
                array=None, mesh=None) -> list[dict]:
     """Write the book (see module doc) into ``staging``.
@@ -128,6 +159,7 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
     steps = kit_steps(project, rows, assembled[0])
     (staging / BOOK_DIR).mkdir(parents=True, exist_ok=True)
     pictures: dict[str, bytes] = {}
+    picture_paths: dict[str, Path] = {}
     records = []
     if array is not None and mesh is not None:
         specs, inst = array
@@ -139,13 +171,17 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
             path = picture_name(n, s.key)
             step_picture(meshes, inst, new, staging / path, f"Step {n}: {s.title}")
             pictures[s.key] = (staging / path).read_bytes()
+            picture_paths[s.key] = staging / path
             records.append({"path": path, "part": "instructions", "kind": "instructions-png",
                             "step": s.key})
     write_bytes_atomic(staging / BOOK_PAGE,
                        book_html(project.plan.name, steps, rows, pictures).encode("utf-8"))
     write_bytes_atomic(staging / BOOK_DATA, json.dumps(
         [s.as_dict() for s in steps], indent=1).encode("utf-8"))
-    log(f"  wrote {BOOK_PAGE} ({len(steps)} steps, {len(pictures)} pictures)")
+    book_pdf(project.plan.name, steps, rows, picture_paths, staging / BOOK_PDF)
+    records.append({"path": BOOK_PDF, "part": "instructions", "kind": "instructions-pdf",
+                    "steps": len(steps)})
+    log(f"  wrote {BOOK_PAGE} and {BOOK_PDF} ({len(steps)} steps, {len(pictures)} pictures)")
     return [{"path": BOOK_PAGE, "part": "instructions", "kind": "instructions-html",
              "steps": len(steps)},
             {"path": BOOK_DATA, "part": "instructions", "kind": "instructions-json",

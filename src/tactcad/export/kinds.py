@@ -101,7 +101,7 @@ for _kind in (
         ExportKind("images", ("image",), "images/*.png", _JOBS, "image_jobs"),
         ExportKind("bom", ("bom",), "bom.csv, bom.md", _JOBS, "bom_jobs"),
         ExportKind("instructions", ("instructions",),
-                   "instructions/index.html, instructions/steps.json (the build book)",
+                   "instructions/index.html, build_book.pdf, steps.json, step_*.png (the build book)",
                    "tactcad.export.instructions", "instructions_jobs"),
         # the FreeCAD review files are planned with the scenes they show
         ExportKind("review", ("review",),
