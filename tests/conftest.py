@@ -118,4 +118,4 @@ def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
 #: Test files that drive a browser (Chromium, headless) or the FreeCAD GUI: under
 #: pytest-xdist they share one process (``--dist loadgroup``), so two never run at once.
 BROWSER_FILES = {"commands/test_watch.py", "export/test_review_page.py",
-                 "end_to_end/test_freecad_gui.py"}
+                 "end_to_end/test_freecad_gui.py", "export/test_instructions_browser.py"}

@@ -37,7 +37,7 @@ from tactcad.catalogue.shop import STOCK_REASON, material_designation, stock_siz
 from tactcad.export.kinds import bom_file_kinds
 
 BOM_COLUMNS = ("item", "part", "quantity", "unit", "spares", "type", "material", "stock",
-               "process_or_reference", "key_dimensions_mm", "files")
+               "process_or_reference", "key_dimensions_mm", "files", "step")
 #: Encoding of bom.csv: UTF-8 with a byte order mark, so spreadsheets detect UTF-8.
 CSV_ENCODING = "utf-8-sig"
 
@@ -58,12 +58,13 @@ class BomRow:
     stock: str = ""
     spares: int = 0  # included in quantity
     unit: str = "pcs"
+    step: str = ""  # key of the build-book step that consumes it
 
     def as_dict(self) -> dict[str, str]:
         return {"item": str(self.item), "part": self.part, "quantity": str(self.quantity),
                 "unit": self.unit, "spares": str(self.spares), "type": self.kind, "material": self.material, "stock": self.stock,
                 "process_or_reference": self.process, "key_dimensions_mm": self.key_dimensions,
-                "files": " ".join(self.files)}
+                "files": " ".join(self.files), "step": self.step}
 
 
 def key_dimensions(spec: PartSpec) -> str:
@@ -180,14 +181,14 @@ def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
              "Quantities are counted from the assemblies' placed instances. Stock: raw blank "
              f"per part; {STOCK_REASON}.", "",
              "| Item | Part | Qty | Unit | Spares | Type | Material | Stock | Process / reference "
-             "| Key dimensions (mm) | Files |",
-             "| ---: | --- | ---: | --- | ---: | --- | --- | --- | --- | --- | --- |"]
+             "| Key dimensions (mm) | Files | Step |",
+             "| ---: | --- | ---: | --- | ---: | --- | --- | --- | --- | --- | --- | --- |"]
     for r in rows:
         files = ", ".join(f"[{Path(f).name}]({f})" for f in r.files)
         lines.append(f"| {r.item} | {_md_cell(r.part)} | {r.quantity} | {r.unit} | {r.spares} | "
                      f"{r.kind} | "
                      f"{_md_cell(r.material)} | {_md_cell(r.stock)} | {_md_cell(r.process)} | "
-                     f"{_md_cell(r.key_dimensions)} | {files} |")
+                     f"{_md_cell(r.key_dimensions)} | {files} | {r.step} |")
     assemblies = [a for a, _ in rows[0].per_assembly] if rows else []
     if len(assemblies) > 1:
         lines += ["", "## Quantities per assembly", "",
@@ -217,8 +218,91 @@ def part_files(plan: Plan, staging: Path,
     return files
 
 
+def _placed_and_sensor_rows(plan: Plan, assembled, files=lambda spec: ()) -> list[BomRow]:
+    specs, assemblies = assembled
+    rows = bom_rows(assemblies, specs, files, plan)
+    return with_spares(plan, rows) + sensor_rows(plan, rows, specs)
+
+
+def _element_count(rows: Sequence[BomRow], specs: Mapping[str, PartSpec]) -> int:
+    """Elements of the array (placed element parts in the ``array`` assembly)."""
+    return sum(dict(r.per_assembly).get("array", 0) for r in rows
+               if specs.get(r.part) is not None and specs[r.part].builder == "element")
+
+
+def sample_kit(project) -> dict[str, tuple[float, object]]:
+    """Every sample the rigs file names: ``{part: (stiffness N/mm, PartData)}``."""
+    from tactcad.partlib.sample import stiffnesses
+
+    data = project.rigs.library.get("sample")
+    if data is None:
+        return {}
+    return {d.name: (k, d) for d, k in zip((data, *data.companions), stiffnesses(data))}
+
+
+def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
+    """The build book's steps (:func:`tactcad.assembly.build_steps.build_steps`) for BOM ``rows``."""
+    from tactcad.assembly.build_steps import build_steps
+
+    assemblies = [a for a, _ in rows[0].per_assembly] if rows else ["array"]
+    scenes = [a for a in assemblies if a not in ("array", "wirecut")]
+
+    def first(r: BomRow) -> str:
+        shown = [a for a, n in r.per_assembly if n and a != "wirecut"]
+        return shown[0] if shown else "array"
+
+    items = [(r.part, r.quantity, getattr(specs.get(r.part), "builder", None), first(r))
+             for r in rows]
+    samples = {p: k for p, (k, _) in sample_kit(project).items()}
+    for r in rows:  # sample rows of the kit carry no spec
+        if r.part in samples:
+            items = [(p, q, "sample" if p == r.part else b, f) for p, q, b, f in items]
+    board = project.rigs.library.get("terminal_board")
+    pairs = int(board.attributes.get("terminal_pairs", 0)) if board is not None else 0
+    gauge = next((r for r in rows if r.part == "strain_gauge"), None)
+    adhesive = next((r for r in rows if r.part == "gauge_adhesive"), None)
+    return build_steps(items, _element_count(rows, specs), gauge.process if gauge else "",
+                       adhesive.process if adhesive else "the gauge adhesive",
+                       project.plan.bolt, pairs, scenes, samples)
+
+
+def complete_kit(project, assembled, files=lambda spec: ()) -> list[BomRow]:
+    """The whole kit: placed parts, the sample kit (every sample the rigs file
+    names, one per stiffness, placed or not), the read-out chain, consumables
+    (:data:`tactcad.assembly.build_steps.CONSUMABLES`) and spares, each row
+    naming the build-book step that consumes it."""
+    from dataclasses import replace
+
+    from tactcad.assembly.build_steps import CONSUMABLES
+    from tactcad.catalogue.rig_catalogue import library_spec
+
+    plan = project.plan
+    specs, _ = assembled
+    rows = _placed_and_sensor_rows(plan, assembled, files)
+    names = {r.part for r in rows}
+    per = [a for a, _ in rows[0].per_assembly] if rows else ["array"]
+    elements = _element_count(rows, specs)
+    kit = sample_kit(project)
+    # every sample is the same block in another compound: the placed ones' drawing serves all
+    shown = next((r for r in rows if r.part in kit), None)
+    samples = [BomRow(item=0, part=part, quantity=1, per_assembly=tuple((a, 0) for a in per),
+                      kind="fabricated", material=data.material, process=str(data.process),
+                      key_dimensions=key_dimensions(library_spec(data, "sample")),
+                      files=shown.files if shown else ())
+               for part, (k, data) in kit.items() if part not in names]
+    consumables = [BomRow(item=0, part=c.part, quantity=c.quantity(elements),
+                          per_assembly=tuple((a, 0) for a in per), kind="consumable",
+                          material=c.material, process=c.reference, key_dimensions=c.size,
+                          files=(), unit=c.unit) for c in CONSUMABLES]
+    fabricated = [r for r in rows if r.kind == "fabricated"]
+    rows = fabricated + samples + [r for r in rows if r.kind != "fabricated"] + consumables
+    rows = [replace(r, item=i) for i, r in enumerate(rows, start=1)]
+    step_of = {p: s.key for s in kit_steps(project, rows, specs) for p, _ in s.parts}
+    return [replace(r, step=step_of.get(r.part, "")) for r in rows]
+
+
 def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None],
-                    assembled) -> list[dict]:
+                    assembled, project=None) -> list[dict]:
     """Write ``bom.csv`` and ``bom.md`` into ``staging`` (see module doc).
 
     Run after the writers of the files it names (drawings, DXF, STEP): only
@@ -226,13 +310,15 @@ def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None],
 
     Args:
         assembled: :func:`tactcad.assembly.inventory.design_assemblies` of the run's project.
+        project: the run's project; given, the BOM is the complete kit (:func:`complete_kit`).
 
     Returns:
         File records ``{"path", "part": "bom", "kind", "items"}``.
     """
     specs, assemblies = assembled
-    rows = bom_rows(assemblies, specs, part_files(plan, staging, assemblies), plan)
-    rows = with_spares(plan, rows) + sensor_rows(plan, rows, specs)
+    rows = complete_kit(project, assembled, part_files(plan, staging, assemblies)) \
+        if project is not None else _placed_and_sensor_rows(plan, assembled,
+                                                            part_files(plan, staging, assemblies))
     write_bytes_atomic(staging / "bom.csv", bom_csv(rows).encode(CSV_ENCODING))
     write_bytes_atomic(staging / "bom.md", bom_markdown(plan, rows).encode("utf-8"))
     log(f"  wrote bom.csv and bom.md ({len(rows)} items)")

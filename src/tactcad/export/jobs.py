@@ -289,8 +289,9 @@ def bom_jobs(run: Run, before: list[Job]) -> list[Job]:
     def make(run: Run) -> list[dict]:
         from tactcad.export.bom import write_bom_files
 
-        return write_bom_files(run.plan, run.staging, run.log, run.inventory)
-    return [Job("bom", content_key("bom", run.plan, run.inventory, [j.key for j in before]),
+        return write_bom_files(run.plan, run.staging, run.log, run.inventory, run.project)
+    return [Job("bom", content_key("bom", run.plan, run.inventory, run.project.rigs_sha256,
+                            [j.key for j in before]),
                 make, after=tuple(j.name for j in before))]
 
 

@@ -100,6 +100,9 @@ for _kind in (
                    bom_rank=1),
         ExportKind("images", ("image",), "images/*.png", _JOBS, "image_jobs"),
         ExportKind("bom", ("bom",), "bom.csv, bom.md", _JOBS, "bom_jobs"),
+        ExportKind("instructions", ("instructions",),
+                   "instructions/index.html, build_book.pdf, steps.json, step_*.png (the build book)",
+                   "tactcad.export.instructions", "instructions_jobs"),
         # the FreeCAD review files are planned with the scenes they show
         ExportKind("review", ("review",),
                    "review/index.html, review/<scene>.FCStd (with FreeCAD installed)", _JOBS,
