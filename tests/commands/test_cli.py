@@ -170,6 +170,7 @@ JOBS = [_job("step:element_a4mm"), _job("step:cart"), _job("step:array"), _job("
         _job("drawings:png", ["drawings:pdf"]), _job("image:array")]
 JOBS.append(_job("bom", [j.name for j in JOBS]))
 JOBS.append(_job("crosstalk"))
+JOBS.append(_job("instructions"))
 
 
 def test_with_progress_counts_and_times_each_job_run():
