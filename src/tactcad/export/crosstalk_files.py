@@ -29,7 +29,7 @@ def decoupling_csv(result) -> str:
     out = io.StringIO()
     out.write("element," + ",".join(f"element_{e}" for e in result.elements) + "\n")
     for e, row in zip(result.elements, result.decoupling):
-        out.write(f"element_{e}," + ",".join(repr(float(v)) for v in row) + "\n")
+        out.write(f"element_{e}," + ",".join(repr(_stable(v)) for v in row) + "\n")
     return out.getvalue()
 
 
@@ -41,8 +41,30 @@ def decoupling_json(plan: Plan, result) -> dict:
     return {"design": plan.name, "units": {"sensitivity": "strain per N",
                                            "compliance": "mm per N", "decoupling": "1"},
             "usage": "forces_N = decoupling @ (readings / own_sensitivity)",
-            "own_sensitivity_strain_per_N": np.diag(result.sensitivity).tolist(),
-            **result.as_json()}
+            "own_sensitivity_strain_per_N": _stable(np.diag(result.sensitivity).tolist()),
+            **{k: _stable(v) for k, v in result.as_json().items()
+               if k not in VARYING_KEYS}}
+
+
+#: What a run's figures hold that another run of the same design may not: its
+#: wall time, and the asymmetry at solver precision (a diagnostic, in the manifest's
+#: verification, not in the file the read-out software reads).
+VARYING_KEYS = ("seconds", "asymmetry_rel")
+#: Significant digits written: far above the model's accuracy, below the last
+#: bits a different BLAS or summation order may change.
+DIGITS = 12
+
+
+def _stable(v):
+    """``v`` with every float rounded to :data:`DIGITS` significant digits, so the
+    same design writes the same bytes in every process."""
+    if isinstance(v, float):  # numpy float64 is one too
+        return float(f"{float(v):.{DIGITS}g}")
+    if isinstance(v, (list, tuple)):
+        return [_stable(x) for x in v]
+    if isinstance(v, dict):
+        return {k: _stable(x) for k, x in v.items()}
+    return v
 
 
 def write_crosstalk_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> list[dict]:
