@@ -82,7 +82,7 @@ class Consumable:
 
 #: Consumables of the array's steps (not placed in any model, so listed here).
 CONSUMABLES = (
-    Consumable("gauge_surface_prep_kit", 0, 1, "kit", "abrasive paper 320/400, conditioner, "
+    Consumable("gauge_surface_prep_kit", 0, 1, "kit", "silicon-carbide abrasive 320/400, conditioner, "
                "neutralizer, cotton swabs", "degrease, abrade, condition and neutralize the "
                "bonding area (instruction bulletin B-127 order)", "array-gauges",
                "one kit per array"),
