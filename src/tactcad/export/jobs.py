@@ -210,11 +210,14 @@ def assembly_sheet_job(run: Run) -> Job:
     holds the sheet's inputs, BOM item numbers included; it needs the array's
     part solids."""
     from tactcad.drawings.assembly import assembly_inputs
-    from tactcad.export.bom import bom_rows
+    from tactcad.export.bom import bom_rows, complete_kit
 
     plan = run.plan
     specs, assemblies = run.inventory
-    items = {r.part: r.item for r in bom_rows(assemblies, specs)}
+    # numbered as bom.csv numbers them: the complete kit (samples and consumables included)
+    rows = complete_kit(run.project, run.inventory) if run.project is not None \
+        else bom_rows(assemblies, specs)
+    items = {r.part: r.item for r in rows}
     array_specs = run.array[0]
 
     def make(run: Run) -> list[dict]:
