@@ -93,6 +93,7 @@ def test_table1_all_levels_side_by_side(plan, monkeypatch, capsys):
     from tactcad.mechanics import ladder
 
     fast = {n: ladder.LEVELS[n] for n in ("closed-form", "beam")}  # the fast levels only
+    monkeypatch.setattr(ladder.LADDER, "levels", fast)  # what models() lists
     monkeypatch.setattr(ladder, "LEVELS", fast)
     assert cmd._table1_all_levels(plan, True, None) == 0
     data = json.loads(capsys.readouterr().out)

@@ -18,11 +18,11 @@ Units: mm, N, MPa, N/mm, s.
 
 from __future__ import annotations
 
-import importlib
 from dataclasses import dataclass
 
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.errors import TactcadError
+from tactcad.mechanics.level_registry import LevelRegistry
 from tactcad.mechanics.stiffness_result import StiffnessResult
 
 @dataclass(frozen=True)
@@ -48,20 +48,21 @@ class Level:
     cost: str
 
 
-#: The ladder, cheapest first (:func:`register_level` adds to it).
-LEVELS: dict[str, Level] = {}
+class UnknownModelError(TactcadError, ValueError):
+    def __init__(self, model: str):
+        super().__init__(f"model = {model!r}: allowed {', '.join(models())}")
 
 
-def register_level(level: Level) -> None:
-    """Add a level to the ladder (after the others).
-
-    Raises:
-        ValueError: a level of that name is there already.
-    """
-    if level.name in LEVELS:
-        raise ValueError(f"a ladder level {level.name!r} is registered already")
-    LEVELS[level.name] = level
-
+#: The stiffness ladder (:mod:`tactcad.mechanics.level_registry`).
+LADDER: LevelRegistry[Level] = LevelRegistry("ladder", UnknownModelError)
+#: The ladder's levels by name, cheapest first (:func:`register_level` adds to it).
+LEVELS: dict[str, Level] = LADDER.levels
+#: Add a level to the ladder (after the others); ValueError for a name taken.
+register_level = LADDER.register
+#: Every ladder level's name, cheapest first.
+models = LADDER.names
+#: ``closed-form ~1 ms, beam ~10 ms, ...``: the levels with their cost, for help texts.
+levels_help = LADDER.help
 
 for _level in (Level("closed-form", "tactcad.mechanics.closed_form", "estimate_closed_form",
                      meshed=False, cost="~1 ms"),
@@ -72,11 +73,6 @@ for _level in (Level("closed-form", "tactcad.mechanics.closed_form", "estimate_c
                Level("fem3d", "tactcad.mechanics.fem.fem3d", "estimate_fem3d", meshed=True,
                      cost="~30 s")):
     register_level(_level)
-
-
-def models() -> tuple[str, ...]:
-    """Every ladder level's name, cheapest first."""
-    return tuple(LEVELS)
 
 
 def meshed_models() -> tuple[str, ...]:
@@ -90,18 +86,8 @@ def is_meshed(model: str) -> bool:
     return level is not None and level.meshed
 
 
-def levels_help() -> str:
-    """``closed-form ~1 ms, beam ~10 ms, ...``: the levels with their cost, for help texts."""
-    return ", ".join(f"{n} {level.cost}" for n, level in LEVELS.items())
-
-
 #: The built-in levels' names (what :func:`models` gives before any registration).
 MODELS = models()
-
-
-class UnknownModelError(TactcadError, ValueError):
-    def __init__(self, model: str):
-        super().__init__(f"model = {model!r}: allowed {', '.join(models())}")
 
 
 def estimate(model: str, g: ElementGeometry, material: Material, *, element: int | None = None,
@@ -114,8 +100,4 @@ def estimate(model: str, g: ElementGeometry, material: Material, *, element: int
     Raises:
         UnknownModelError: ``model`` is not a level of :data:`LEVELS`.
     """
-    level = LEVELS.get(model)
-    if level is None:
-        raise UnknownModelError(model)
-    return getattr(importlib.import_module(level.module), level.function)(
-        g, material, element=element, **options)
+    return LADDER.estimator(model)(g, material, element=element, **options)

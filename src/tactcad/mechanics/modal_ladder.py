@@ -16,11 +16,11 @@ Units: mm, N, Hz, s.
 
 from __future__ import annotations
 
-import importlib
 from dataclasses import dataclass
 
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.errors import TactcadError
+from tactcad.mechanics.level_registry import LevelRegistry
 from tactcad.mechanics.modal_result import ModalResult
 
 
@@ -48,19 +48,21 @@ class ModalLevel:
     families: tuple[str, ...] = ("in-plane",)
 
 
-#: The modal ladder, cheapest first (:func:`register_modal_level` adds to it).
-MODAL_LEVELS: dict[str, ModalLevel] = {}
+class UnknownModalModelError(TactcadError, ValueError):
+    def __init__(self, model: str):
+        super().__init__(f"model = {model!r}: allowed {', '.join(modal_models())}")
 
 
-def register_modal_level(level: ModalLevel) -> None:
-    """Add a level to the modal ladder (after the others).
-
-    Raises:
-        ValueError: a level of that name is there already.
-    """
-    if level.name in MODAL_LEVELS:
-        raise ValueError(f"a modal level {level.name!r} is registered already")
-    MODAL_LEVELS[level.name] = level
+#: The modal ladder (:mod:`tactcad.mechanics.level_registry`).
+MODAL_LADDER: LevelRegistry[ModalLevel] = LevelRegistry("modal", UnknownModalModelError)
+#: The modal levels by name, cheapest first (:func:`register_modal_level` adds to it).
+MODAL_LEVELS: dict[str, ModalLevel] = MODAL_LADDER.levels
+#: Add a level to the modal ladder (after the others); ValueError for a name taken.
+register_modal_level = MODAL_LADDER.register
+#: Every modal level's name, cheapest first.
+modal_models = MODAL_LADDER.names
+#: ``closed-form ~5 ms, fem2d ~2 s, ...``: the levels with their cost.
+modal_levels_help = MODAL_LADDER.help
 
 
 for _level in (ModalLevel("closed-form", "tactcad.mechanics.modal_closed_form",
@@ -71,21 +73,6 @@ for _level in (ModalLevel("closed-form", "tactcad.mechanics.modal_closed_form",
                           meshed=True, cost="~20 s",
                           families=("in-plane", "out-of-plane"))):
     register_modal_level(_level)
-
-
-def modal_models() -> tuple[str, ...]:
-    """Every modal level's name, cheapest first."""
-    return tuple(MODAL_LEVELS)
-
-
-def modal_levels_help() -> str:
-    """``closed-form ~5 ms, fem2d ~2 s, ...``: the levels with their cost."""
-    return ", ".join(f"{n} {lv.cost}" for n, lv in MODAL_LEVELS.items())
-
-
-class UnknownModalModelError(TactcadError, ValueError):
-    def __init__(self, model: str):
-        super().__init__(f"model = {model!r}: allowed {', '.join(modal_models())}")
 
 
 def modal_level_for(stiffness_model: str) -> str:
@@ -112,8 +99,4 @@ def estimate_modes(model: str, g: ElementGeometry, material: Material, *,
         DesignError: the material has no density.
         ValueError: modes < 1.
     """
-    level = MODAL_LEVELS.get(model)
-    if level is None:
-        raise UnknownModalModelError(model)
-    return getattr(importlib.import_module(level.module), level.function)(
-        g, material, element=element, modes=modes, **options)
+    return MODAL_LADDER.estimator(model)(g, material, element=element, modes=modes, **options)

@@ -60,7 +60,6 @@ Units: mm, N, MPa, N/mm, s; strain dimensionless.
 
 from __future__ import annotations
 
-import importlib
 import math
 import time
 from dataclasses import dataclass, replace
@@ -72,6 +71,7 @@ from scipy.sparse.linalg import splu
 
 from tactcad.design.array_plan import Plan
 from tactcad.errors import TactcadError
+from tactcad.mechanics.level_registry import LevelRegistry
 
 #: Shear correction factor of a rectangle (Timoshenko and Gere).
 SHEAR_FACTOR = 5.0 / 6.0
@@ -92,19 +92,20 @@ class CrosstalkLevel:
     cost: str
 
 
-#: The crosstalk levels, cheapest first (:func:`register_crosstalk_level` adds to it).
-CROSSTALK_LEVELS: dict[str, CrosstalkLevel] = {}
+class UnknownCrosstalkModelError(TactcadError, ValueError):
+    def __init__(self, model: str):
+        super().__init__(f"crosstalk model = {model!r}: allowed {', '.join(crosstalk_models())}")
 
 
-def register_crosstalk_level(level: CrosstalkLevel) -> None:
-    """Add a crosstalk level (after the others).
-
-    Raises:
-        ValueError: a level of that name is there already.
-    """
-    if level.name in CROSSTALK_LEVELS:
-        raise ValueError(f"a crosstalk level {level.name!r} is registered already")
-    CROSSTALK_LEVELS[level.name] = level
+#: The crosstalk ladder (:mod:`tactcad.mechanics.level_registry`).
+CROSSTALK_LADDER: LevelRegistry[CrosstalkLevel] = LevelRegistry("crosstalk",
+                                                               UnknownCrosstalkModelError)
+#: The crosstalk levels by name, cheapest first (:func:`register_crosstalk_level` adds to it).
+CROSSTALK_LEVELS: dict[str, CrosstalkLevel] = CROSSTALK_LADDER.levels
+#: Add a crosstalk level (after the others); ValueError for a name taken.
+register_crosstalk_level = CROSSTALK_LADDER.register
+#: The crosstalk levels' names, cheapest first.
+crosstalk_models = CROSSTALK_LADDER.names
 
 
 for _level in (CrosstalkLevel("stack-beam", __name__, "estimate_stack_beam", "~5 ms"),
@@ -115,14 +116,6 @@ for _level in (CrosstalkLevel("stack-beam", __name__, "estimate_stack_beam", "~5
     register_crosstalk_level(_level)
 
 
-def crosstalk_models() -> tuple[str, ...]:
-    """The crosstalk levels' names, cheapest first."""
-    return tuple(CROSSTALK_LEVELS)
-
-
-class UnknownCrosstalkModelError(TactcadError, ValueError):
-    def __init__(self, model: str):
-        super().__init__(f"crosstalk model = {model!r}: allowed {', '.join(crosstalk_models())}")
 
 
 class CrosstalkInputError(TactcadError, ValueError):
@@ -487,10 +480,7 @@ def estimate_crosstalk(inputs: StackInputs, model: str = "stack-beam") -> Crosst
     Raises:
         UnknownCrosstalkModelError: ``model`` is not a level of :data:`CROSSTALK_LEVELS`.
     """
-    level = CROSSTALK_LEVELS.get(model)
-    if level is None:
-        raise UnknownCrosstalkModelError(model)
-    return getattr(importlib.import_module(level.module), level.function)(inputs)
+    return CROSSTALK_LADDER.estimator(model)(inputs)
 
 
 def plan_crosstalk(plan: Plan, model: str = "stack-beam", **changes) -> CrosstalkResult:
