@@ -119,3 +119,17 @@ def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
 #: pytest-xdist they share one process (``--dist loadgroup``), so two never run at once.
 BROWSER_FILES = {"commands/test_watch.py", "export/test_review_page.py",
                  "end_to_end/test_freecad_gui.py", "export/test_instructions_browser.py"}
+
+
+@pytest.fixture(scope="module")
+def browser():
+    """:func:`tactcad.checks.review_browser.browser_page` (headless Chromium through
+    Playwright), or the test skipped saying what is missing."""
+    from tactcad.checks.review_browser import BrowserMissing, browser_page, chromium_path
+
+    try:
+        chromium_path()
+        import playwright  # noqa: F401
+    except (BrowserMissing, ImportError) as exc:
+        pytest.skip(str(exc))
+    return browser_page

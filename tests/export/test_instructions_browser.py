@@ -14,18 +14,6 @@ from tactcad.export.instructions import BOOK_DATA, BOOK_PAGE, write_book
 HARDWARE = Path(__file__).resolve().parents[2] / "hardware"
 
 
-@pytest.fixture(scope="module")
-def browser():
-    from tactcad.checks.review_browser import BrowserMissing, browser_page, chromium_path
-
-    try:
-        chromium_path()
-        import playwright  # noqa: F401
-    except (BrowserMissing, ImportError) as exc:
-        pytest.skip(str(exc))
-    return browser_page
-
-
 def test_book_opens_offline_in_chromium(tmp_path, browser):
     project = load_project(HARDWARE / "ti_array_2x3" / "ti_array_2x3.toml")
     write_book(project, tmp_path, lambda line: None, design_assemblies(project))

@@ -100,18 +100,6 @@ def test_an_import_outside_the_map_is_refused():
 
 
 # --- in Chromium ---------------------------------------------------------------------------
-@pytest.fixture(scope="module")
-def browser():
-    from tactcad.checks.review_browser import BrowserMissing, browser_page, chromium_path
-
-    try:
-        chromium_path()
-        import playwright  # noqa: F401
-    except (BrowserMissing, ImportError) as exc:
-        pytest.skip(str(exc))
-    return browser_page
-
-
 @pytest.mark.slow
 def test_page_offline_in_chromium(exported, browser):
     """From file:// with the network off: a drawn 3D view, the instance names in the
