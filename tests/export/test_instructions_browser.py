@@ -5,8 +5,6 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import pytest
-
 from tactcad.assembly.inventory import design_assemblies
 from tactcad.design.project import load_project
 from tactcad.export.instructions import BOOK_DATA, BOOK_PAGE, write_book
