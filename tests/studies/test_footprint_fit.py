@@ -66,3 +66,16 @@ def test_the_exported_step_of_a_footprint_design_lies_inside_it(tmp_path, capsys
     size = [box[k + 3] - box[k] for k in range(3)]
     assert size[0] <= 50.0 + 1e-6 and size[1] <= 23.0 + 1e-6, size
     assert size == pytest.approx(list(array_envelope_mm(load_project(design).plan)), abs=1e-3)
+
+
+def test_a_design_that_fits_as_asked_is_kept_and_its_own_errors_are_its_own(plan):
+    """A footprint the plain design fits changes nothing but stating it; a bad
+    design name is refused naming it, not taken for a footprint that no design fits."""
+    plain = design_for_targets(plan, FINGERTIP, **LAYOUT)
+    d = design_within_footprint(plan, FINGERTIP, (1e4, 1e4), array_envelope_mm, **LAYOUT)
+    assert d.data["arms"] == plain.data["arms"] and d.data["element"] == plain.data["element"]
+    assert d.data["assumptions"] == plain.data["assumptions"]  # no reason of a change
+    assert d.data["requirements"]["footprint_mm"] == [1e4, 1e4]
+    with pytest.raises(DesignError, match="design.name"):
+        design_within_footprint(plan, FINGERTIP, (1.0, 1.0), array_envelope_mm, name="x é",
+                                **LAYOUT)

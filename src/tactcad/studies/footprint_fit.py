@@ -15,7 +15,9 @@ things the inverse design can change:
   base design's spacer gives a smaller pitch;
 * Z, the element's height, kept.
 
-The search takes the base sheet first, then each thinner one; for each, the
+The design as asked is tried first (and kept when it fits; its own refusals
+are reported as without a footprint). The search then takes the base sheet,
+then each thinner one; for each, the
 longest element whose envelope fits (0.5 mm steps), then the inverse design
 with the arms capped to it. The first design that meets the targets and fits
 is taken (the thickest sheet and longest element that fit: the most room for
@@ -40,7 +42,7 @@ from typing import Any, Callable, Mapping, Sequence
 from tactcad.design.array_plan import (ARM_RANGE_MM, MIN_SPACER_MM, MIN_TIP_GAP_MM, Plan,
                                        plan_from_dict)
 from tactcad.errors import DesignError
-from tactcad.studies.design_alternatives import SHEET_THICKNESSES_MM
+from tactcad.studies.design_alternatives import SHEET_THICKNESSES_MM, refusal_with_alternatives
 from tactcad.studies.inverse_design import (LENGTH_STEP_MM, InverseDesign, InverseDesignError,
                                             Targets, design_from_tables, design_tables,
                                             required_overall_length_mm, tip_root_min_arm_mm)
@@ -185,11 +187,21 @@ def design_within_footprint(base: Plan, targets: Targets, footprint_mm: Sequence
 
     Raises:
         DesignError: ``--footprint`` naming the footprint and the nearest one a
-            design meeting the targets fits.
-        InverseDesignError: the targets cannot be met at any size.
+            design meeting the targets fits; a bad value of the design itself
+            (its name), naming the field.
+        InverseDesignError: the targets cannot be met at any size (with the
+            alternatives of :func:`tactcad.studies.design_alternatives.refusal_with_alternatives`).
     """
     data = design_tables(base, **layout)
     sheet0 = float(data["sheet"]["thickness_mm"])
+    # the design as asked first: its own refusals (the targets, a bad name) are the
+    # user's to read, not a candidate's to skip; when it fits, it is the answer
+    try:
+        plain = design_from_tables(copy.deepcopy(data), targets, name=name, correction=correction)
+    except InverseDesignError as exc:
+        raise refusal_with_alternatives(exc, data, targets, correction) from None
+    if fits(envelope_of(plain.plan), footprint_mm):
+        return _stated(plain, footprint_mm, sheet0, None)
     sheets = [sheet0] + [t for t in sorted(SHEET_THICKNESSES_MM, reverse=True) if t < sheet0]
     nearest: list[tuple[float, tuple[float, ...], Layout]] = []
     for sheet in sheets:
@@ -228,9 +240,13 @@ def design_within_footprint(base: Plan, targets: Targets, footprint_mm: Sequence
 
 
 def _stated(d: InverseDesign, footprint_mm: Sequence[float], sheet0: float,
-            where: Layout) -> InverseDesign:
-    """``d`` with the footprint stated and the reasons of what it changed."""
+            where: Layout | None) -> InverseDesign:
+    """``d`` with the footprint stated and the reasons of what it changed
+    (``where`` None: the design as asked fits, nothing changed)."""
     data = copy.deepcopy(d.data)
+    data["requirements"] = {**data.get("requirements", {}), "footprint_mm": list(footprint_mm)}
+    if where is None:
+        return replace(d, data=data, plan=plan_from_dict(data, source="<inverse design>"))
     fp = " x ".join(f"{f:g}" for f in footprint_mm)
     why = data.setdefault("assumptions", {})
     why["element.overall_length_mm"] = (
@@ -241,5 +257,4 @@ def _stated(d: InverseDesign, footprint_mm: Sequence[float], sheet0: float,
             f"tactcad design --footprint {fp}: {where.sheet_mm:g} mm, the thickest common sheet "
             f"below {sheet0:g} mm whose stack (pitch {where.pitch_mm:g} mm, the spacer kept) fits "
             "the footprint.")
-    data["requirements"] = {**data.get("requirements", {}), "footprint_mm": list(footprint_mm)}
     return replace(d, data=data, plan=plan_from_dict(data, source="<inverse design>"))
