@@ -9,11 +9,11 @@ from pathlib import Path
 
 import pytest
 
-from tactcad.design.array_plan import default_design_data, load_design
+from tactcad.design.array_plan import DEFAULT_DESIGN, default_design_data
 
 
 #: Fixtures that cost a full export or a FreeCAD run: their tests are slow.
-SLOW_FIXTURES = {"exported", "freecad"}
+SLOW_FIXTURES = {"exported", "freecad", "default_store", "example_exported", "arm_changed_cold"}
 
 
 def pytest_collection_modifyitems(config, items):
@@ -47,13 +47,113 @@ def design_data():
     return default_design_data()
 
 
+def _run_folder(tmp_path_factory) -> Path:
+    """The folder every pytest-xdist worker of this run shares (the run's own
+    base folder without xdist)."""
+    base = tmp_path_factory.getbasetemp()
+    return base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
+
+
+#: The shipped example that is not the paper's design (tests of a new design's files).
+EXAMPLE_DESIGN = Path(__file__).resolve().parents[1] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+
+
+def _once_per_run(tmp_path_factory, name: str, make) -> Path:
+    """``shared/<name>``, made by ``make(path)`` once per test run: the first
+    worker to ask makes it under a lock, the others wait and find it made.
+    What it holds is read, never changed, by the tests."""
+    import fcntl
+
+    shared = _run_folder(tmp_path_factory)
+    target, made = shared / name, shared / f"{name}.made"
+    with open(shared / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not made.exists():
+            make(target)
+            made.write_text("")
+    return target
+
+
+def _filled_store(tmp_path_factory, name: str, design: Path | None) -> Path:
+    """A store holding every job of ``design``'s export (``None``: the default
+    design), filled by one cold export per test run (:func:`_once_per_run`)."""
+    from tactcad.design.project import load_project
+    from tactcad.export.run import export
+    from tactcad.store import Store
+
+    def fill(store: Path) -> None:
+        export(load_project(design), store.with_name(f"{name}-export"), log=lambda s: None,
+               store=Store(store))
+    return _once_per_run(tmp_path_factory, f"{name}-store", fill)
+
+
+#: The default design's arm lengths with element 5's arm 6 -> 6.5 mm.
+ARM_CHANGED_LENGTHS = [4.0, 7.0, 6.0, 8.0, 6.5, 8.0, 5.0, 4.0, 5.0, 7.0]
+
+
 @pytest.fixture(scope="session")
-def exported(project, tmp_path_factory):
-    """The default design exported once: (out_dir, ExportResult)."""
+def arm_changed_cold(tmp_path_factory) -> tuple[Path, Path]:
+    """(design file, export folder): the default design with element 5's arm
+    6 -> 6.5 mm (:data:`ARM_CHANGED_LENGTHS`), exported cold, with no store,
+    once per test run; read only."""
+    from tactcad.design.project import load_project
     from tactcad.export.run import export
 
+    def make(folder: Path) -> None:
+        folder.mkdir()
+        text = DEFAULT_DESIGN.read_text(encoding="utf-8")
+        old = "lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0, 5.0, 7.0]"
+        assert old in text
+        design = folder / "changed.toml"
+        design.write_text(text.replace(old, f"lengths_mm = {ARM_CHANGED_LENGTHS}"),
+                          encoding="utf-8")
+        export(load_project(with_default_companions(design)), folder / "cold",
+               log=lambda s: None)
+    folder = _once_per_run(tmp_path_factory, "arm-changed", make)
+    return folder / "changed.toml", folder / "cold"
+
+
+@pytest.fixture(scope="session")
+def default_store(tmp_path_factory) -> Path:
+    """The default design's export jobs (:func:`_filled_store`). Tests whose
+    subject is not a cold export (watch sessions, served pages, the session
+    export below) start from it, or from a copy (:func:`warm_store_copy`) when
+    they add jobs of their own."""
+    return _filled_store(tmp_path_factory, "default-design", None)
+
+
+@pytest.fixture(scope="session")
+def example_exported(tmp_path_factory) -> Path:
+    """The non-paper example (:data:`EXAMPLE_DESIGN`) exported once per worker,
+    its jobs from a store filled once per run; tests that add files (``check``)
+    work on a copy."""
+    from tactcad.design.project import load_project
+    from tactcad.export.run import export
+    from tactcad.store import Store
+
+    store = _filled_store(tmp_path_factory, "example-design", EXAMPLE_DESIGN)
+    out = tmp_path_factory.mktemp("example-exports")
+    export(load_project(EXAMPLE_DESIGN), out, log=lambda s: None, store=Store(store))
+    return out
+
+
+def warm_store_copy(default_store: Path, target: Path) -> Path:
+    """A private copy of :func:`default_store` at ``target`` (a session that adds
+    jobs, e.g. edits, writes into its own copy only)."""
+    shutil.copytree(default_store, target)
+    return target
+
+
+@pytest.fixture(scope="session")
+def exported(project, tmp_path_factory, default_store):
+    """The default design exported once per worker: (out_dir, ExportResult), its
+    jobs fetched from :func:`default_store` (the same bytes as a cold export:
+    tests/export/test_export_set.py)."""
+    from tactcad.export.run import export
+    from tactcad.store import Store
+
     out = tmp_path_factory.mktemp("exports")
-    return out, export(project, out, log=lambda s: None)
+    return out, export(project, out, log=lambda s: None, store=Store(default_store))
 
 
 INSTALLER = Path(__file__).resolve().parents[1] / "scripts" / "install-system-deps.sh"

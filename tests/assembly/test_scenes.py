@@ -12,7 +12,6 @@ from collections import Counter
 import pytest
 
 from tactcad import cli
-from tactcad.design.array_plan import load_design
 from tactcad.errors import DesignError, TactcadError
 from tactcad.assembly.rig_models import describe, scene_names
 from tactcad.assembly.scene_solver import assemble, build_scene

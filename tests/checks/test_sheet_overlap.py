@@ -4,17 +4,12 @@ sheet of both shipped examples."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 
 from tactcad.checks.groups import CHECK_GROUPS
 from tactcad.checks.sheet_overlap import (box_overlap, check_sheet_files, layout_of_svg,
                                           length_in_box, sheet_overlaps)
 from tactcad.drawings.sheet import Sheet, text_box, text_width
-from tests.conftest import run_cli
-
-EXAMPLES = Path(__file__).resolve().parents[2] / "hardware"
 
 
 def test_length_in_box_clips_a_segment():
@@ -74,12 +69,10 @@ def test_the_check_fails_on_a_made_sheet_in_an_export_folder(tmp_path):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("example", ["macro_array", "ti_array_2x3"])
-def test_every_sheet_of_both_examples_passes(example, tmp_path):
-    out = tmp_path / "out"
-    done = run_cli("export", "--design", EXAMPLES / example / f"{example}.toml", "--out", out,
-                   "--only", "drawings", "--no-cache", "--quiet")
-    assert done.returncode == 0, done.stderr
+@pytest.mark.parametrize("example", ["exported", "example_exported"])
+def test_every_sheet_of_both_examples_passes(example, request):
+    out = request.getfixturevalue(example)
+    out = out[0] if isinstance(out, tuple) else out  # the default design's gives (out, result)
     results = check_sheet_files(out)
     assert len(results) >= 15                     # every part's sheet and the assembly's
     assert [r.detail for r in results if not r.passed] == []

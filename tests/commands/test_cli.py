@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import run_cli
+from conftest import run_cli, warm_store_copy
 from tactcad import cli
 from tactcad.commands import parse_override, plan_from_args, progress_from_args
 from tactcad.errors import DesignError
@@ -241,8 +241,8 @@ def test_partial_export_manifest_lists_only_what_was_written(tmp_path):
 
 # --- check reuses the export it checks ---------------------------------------------------------
 @pytest.mark.slow
-def test_check_reuses_a_current_export_and_refuses_a_changed_one(tmp_path):
-    out, store = tmp_path / "out", tmp_path / "store"
+def test_check_reuses_a_current_export_and_refuses_a_changed_one(tmp_path, default_store):
+    out, store = tmp_path / "out", warm_store_copy(default_store, tmp_path / "store")
     assert run_cli("export", "--out", str(out), "--cache", str(store), "--quiet").returncode == 0
     proc = run_cli("check", "--scene", "wirecut", "--out", str(out), "--cache", str(store),
                    "--json")

@@ -11,9 +11,11 @@ import subprocess
 import sys
 import urllib.error
 import urllib.request
+from pathlib import Path
 
 import pytest
 
+from conftest import warm_store_copy
 from tactcad.errors import DesignError
 from tactcad.commands.watch import watched_files
 from tactcad.export.live import LiveState, Loop, make_server
@@ -120,7 +122,7 @@ def test_bad_port_is_refused_naming_the_option(tmp_path):
 
 
 @pytest.mark.slow
-def test_watch_session_in_chromium(tmp_path):
+def test_watch_session_in_chromium(tmp_path, default_store):
     from tactcad.checks.review_browser import BrowserMissing, browser_page, chromium_path
     from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.benchmarks.bench_watch import _free_port, _state, _wait, edit_first_arm
@@ -136,7 +138,8 @@ def test_watch_session_in_chromium(tmp_path):
     port = _free_port()
     proc = subprocess.Popen([sys.executable, "-m", "tactcad.cli", "watch", "--design", str(design),
                              "--out", str(tmp_path / "out"), "--port", str(port), "--cache",
-                             str(tmp_path / "store")], stderr=subprocess.PIPE, text=True)
+                             str(warm_store_copy(default_store, tmp_path / "store"))],
+                            stderr=subprocess.PIPE, text=True)
     try:
         _wait(lambda: _state(port)["status"] == "current", 600, "the first export", 0.2)
         with browser_page(offline=False) as page:
@@ -260,6 +263,15 @@ def _worker(line: str) -> tuple[int, int]:
     return int(found[1]), int(found[2])
 
 
+def _read(path: str) -> bytes:
+    """The bytes of a /proc file (b"" once the process has gone)."""
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError:
+        return b""
+
+
 def _gone(pids, timeout_s: float = 15.0) -> bool:
     import os
     import time
@@ -267,7 +279,7 @@ def _gone(pids, timeout_s: float = 15.0) -> bool:
     end = time.monotonic() + timeout_s
     while time.monotonic() < end:
         alive = [p for p in pids if os.path.exists(f"/proc/{p}")
-                 and "(zombie)" not in open(f"/proc/{p}/status").read()]
+                 and b"(zombie)" not in _read(f"/proc/{p}/status")]
         if not alive:
             return True
         time.sleep(0.2)
@@ -275,21 +287,26 @@ def _gone(pids, timeout_s: float = 15.0) -> bool:
 
 
 @pytest.mark.slow
-def test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly(tmp_path, monkeypatch):
+def test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly(tmp_path, monkeypatch,
+                                                                       default_store):
     """The drawings of every run are made by one worker process kept for the
     session (not the watch process); a killed worker leaves the run to make
-    them itself, the next run has a new one; the export (its FreeCAD files
-    written by the one FreeCAD process kept for the session) is the plain
-    export's, byte for byte; Ctrl-C ends the watch and its children, kill -9 too."""
+    them itself, the next run has a new one; the files the worker and the
+    FreeCAD process kept for the session made are a plain export's, byte for
+    byte; Ctrl-C ends the watch and its children, kill -9 too. The session
+    starts from the default design's store, so the jobs the edits change are
+    the ones made in the session, and the plain export makes them afresh."""
     import os
-    from pathlib import Path
+
+    from tactcad.design.project import load_project
+    from tactcad.export.run import export
 
     monkeypatch.delenv("TACTCAD_WORKERS", raising=False)
-    store = tmp_path / "store"
+    store = warm_store_copy(default_store, tmp_path / "store")
     s = _Session(tmp_path, store)
     try:
-        made, pid = _worker(s.next_export())
-        assert made > 0 and pid not in (0, s.proc.pid) and pid in s.children()
+        _, pid = _worker(s.next_export())
+        assert pid not in (0, s.proc.pid) and pid in s.children()
         made, same = _worker(s.edit(4.3))  # a one-arm edit: its drawing, the sheet, the PDF
         assert made >= 3 and same == pid
         man = json.loads((s.out / "manifest.json").read_text())
@@ -302,20 +319,19 @@ def test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly(tmp_path,
         made, again = _worker(s.edit(4.9))  # and the next run has a new worker
         assert made >= 3 and again not in (pid, s.proc.pid)
         children = s.children()  # the worker and the FreeCAD process kept for the review files
-        assert any(b"freecad" in open(f"/proc/{k}/cmdline", "rb").read().lower() for k in children)
+        assert any(b"freecad" in _read(f"/proc/{k}/cmdline").lower() for k in children)
     finally:
         s.proc.send_signal(signal.SIGINT)
         s.proc.wait(timeout=60)
     err = s.all_lines()
     assert s.proc.returncode == 0 and "stopped" in err and "Traceback" not in err
     assert again in children and _gone(children)
-    plain = subprocess.run([sys.executable, "-m", "tactcad.cli", "export", "--design",
-                            str(s.design), "--out", str(tmp_path / "plain"), "--no-cache"],
-                           capture_output=True, text=True, timeout=900)
-    assert plain.returncode == 0, plain.stderr
+    plain = tmp_path / "plain"
+    export(load_project(s.design), plain, log=lambda line: None,
+           store=Store(warm_store_copy(default_store, tmp_path / "plain-store")))
     script = Path(__file__).resolve().parents[2] / "scripts" / "compare_exports.py"
-    same = subprocess.run([sys.executable, str(script), str(s.out),
-                           str(tmp_path / "plain")], capture_output=True, text=True)
+    same = subprocess.run([sys.executable, str(script), str(s.out), str(plain)],
+                          capture_output=True, text=True)
     assert same.returncode == 0, same.stdout
     # kill -9 of the watch: its worker dies with it
     (tmp_path / "again").mkdir()
@@ -365,11 +381,15 @@ def test_served_scenes_follow_the_last_choice_and_free_the_ones_left(exported, p
     server = make_server(state, 0)
     threading.Thread(target=server.serve_forever, daemon=True).start()
 
-    def choose(*scenes):
+    def choose(*scenes, late_ms=0):
+        """Choose the scenes in turn at once; return when the last is shown (and
+        ``late_ms`` more, for a late answer to an earlier choice to arrive)."""
         page.evaluate("""(names) => { const s = document.querySelector('#scene-select');
             for (const n of names) { s.value = n; s.dispatchEvent(new Event('change')); } }""",
                       list(scenes))
-        page.wait_for_timeout(2500)
+        page.wait_for_function(f"window.__review.scene === {json.dumps(scenes[-1])}",
+                               timeout=60000)
+        page.wait_for_timeout(late_ms)
 
     try:
         with browser_page(offline=False) as page:
@@ -379,7 +399,7 @@ def test_served_scenes_follow_the_last_choice_and_free_the_ones_left(exported, p
             page.locator("#tree .instance").first.click()  # highlight one instance
             lit = page.evaluate("window.__review.lit()")
             first = names[0]
-            choose(big, small)
+            choose(big, small, late_ms=1500)  # the big scene's bytes arrive meanwhile
             shown = "[window.__review.scene, document.querySelector('#scene-select').value]"
             assert page.evaluate(shown) == [small, small]
             choose(first)
@@ -415,7 +435,8 @@ def test_keep_only_drops_what_the_design_no_longer_has():
 
 
 @pytest.mark.slow
-def test_a_long_session_keeps_the_parts_of_the_current_design_only(tmp_path, monkeypatch):
+def test_a_long_session_keeps_the_parts_of_the_current_design_only(tmp_path, monkeypatch,
+                                                                  default_store):
     """Edit after edit, the watch process holds the solids and meshes of the design
     it shows (every part of the array and its scenes), not of every earlier edit;
     the drawing worker drops its own as a run begins."""
@@ -432,7 +453,8 @@ def test_a_long_session_keeps_the_parts_of_the_current_design_only(tmp_path, mon
     for f in watched_files(DEFAULT_DESIGN):
         shutil.copyfile(f, tmp_path / f.name)
     design = tmp_path / DEFAULT_DESIGN.name
-    loop = Loop(lambda: load_project(design), tmp_path / "out", Store(tmp_path / "store"),
+    loop = Loop(lambda: load_project(design), tmp_path / "out",
+                Store(warm_store_copy(default_store, tmp_path / "store")),
                 LiveState(), lambda s: None)
     assert loop.update()
     edit_first_arm(design, 4.3)
@@ -470,7 +492,7 @@ def _descendants(pid: int) -> set[int]:
 
 
 @pytest.mark.slow
-def test_sigterm_mid_update_ends_the_watch_cleanly(tmp_path):
+def test_sigterm_mid_update_ends_the_watch_cleanly(tmp_path, default_store):
     """SIGTERM while an edit is being exported: the watch says "stopped" and exits
     with 0 (README: stopping is a watch's normal end), leaving no staging folder
     in or beside --out, and none of its processes (drawing worker, freecadcmd,
@@ -479,7 +501,7 @@ def test_sigterm_mid_update_ends_the_watch_cleanly(tmp_path):
 
     from tactcad.benchmarks.bench_watch import edit_first_arm
 
-    s = _Session(tmp_path, tmp_path / "store")
+    s = _Session(tmp_path, warm_store_copy(default_store, tmp_path / "store"))
     try:
         s.next_export()
         before = json.loads((s.out / "manifest.json").read_text())

@@ -130,8 +130,14 @@ def _project(data):
     return out, p.errors
 
 
+#: Whole designs built per run of the suite: the suite's share of the domain's
+#: draws; ``make fuzz`` (scripts/fuzz.py) builds 1000 with the same draw and also
+#: checks each scene's interference.
+WHOLE_DESIGNS = 30
+
+
 @pytest.mark.slow
-@settings(max_examples=100, deadline=None, suppress_health_check=list(HealthCheck),
+@settings(max_examples=WHOLE_DESIGNS, deadline=None, suppress_health_check=list(HealthCheck),
           phases=[Phase.explicit, Phase.reuse, Phase.generate])  # no slow shrinking of solids
 @given(case=st.data())
 def test_whole_designs_validate_build_and_assemble(case):

@@ -5,7 +5,6 @@ domains whose every point builds."""
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 import sys
 from pathlib import Path

@@ -10,7 +10,7 @@ import pytest
 from PIL import Image
 
 import tactcad
-from conftest import with_default_companions
+from conftest import warm_store_copy, with_default_companions
 from tactcad import cli
 from tactcad.errors import DesignError
 from tactcad.export.manifest_diff import NEW_RGB, OLD_RGB, compare, overlay, side_by_side
@@ -47,11 +47,9 @@ def test_refuses_what_is_neither_an_export_nor_a_design(tmp_path, capsys):
 
 
 @pytest.fixture(scope="module")
-def arm_changed_export(tmp_path_factory):
+def arm_changed_export(arm_changed_cold):
     """The default design with element 5's arm 6 -> 6.5 mm, exported."""
-    out = tmp_path_factory.mktemp("arm5") / "exports"
-    tactcad.load(set=ARM_CHANGED).export(out, cache=False)
-    return out
+    return arm_changed_cold[1]
 
 
 def test_one_arm_changed_names_that_element_its_k_its_sheets_and_the_assembly(
@@ -111,14 +109,15 @@ def test_same_export_twice_is_no_change_and_renders_nothing(exported, tmp_path, 
 
 
 @pytest.mark.slow
-def test_design_files_are_exported_through_the_store_then_compared(tmp_path, capsys):
+def test_design_files_are_exported_through_the_store_then_compared(tmp_path, capsys,
+                                                                 default_store):
     changed = tmp_path / "thick.toml"
     text = DEFAULT.read_text(encoding="utf-8")
     assert "web_thickness_mm = 0.25" in text
     changed.write_text(text.replace("web_thickness_mm = 0.25", "web_thickness_mm = 0.3"),
                        encoding="utf-8")
     with_default_companions(changed)
-    store = str(tmp_path / "store")
+    store = str(warm_store_copy(default_store, tmp_path / "store"))  # the default's jobs in it
     code = cli.main(["diff", str(DEFAULT), str(changed), "--cache", store, "--json", "--quiet"])
     report = json.loads(capsys.readouterr().out)
     assert code == 1

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import signal
 import subprocess
 import sys
@@ -16,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import run_cli, with_default_companions
+from conftest import run_cli, warm_store_copy, with_default_companions
 from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.store import Store
 
@@ -57,13 +56,12 @@ def whole_set(out: Path) -> tuple[str, set[str]]:
 
 
 @pytest.fixture(scope="module")
-def warm(tmp_path_factory) -> Path:
+def warm(tmp_path_factory, default_store) -> Path:
     """A store with both designs' jobs in it, so exports in the tests take seconds."""
     tmp = tmp_path_factory.mktemp("warm")
-    store = tmp / "store"
-    for design in (None, small_design(tmp)):
-        args = ["export", "--cache", str(store), "--out", str(tmp / "first")]
-        assert run(*args, *(["--design", str(design)] if design else [])).returncode == 0
+    store = warm_store_copy(default_store, tmp / "store")
+    assert run("export", "--cache", str(store), "--out", str(tmp / "first"),
+               "--design", str(small_design(tmp))).returncode == 0
     return store
 
 
@@ -146,24 +144,17 @@ def test_the_store_is_best_effort(tmp_path):
     assert store.fetch("k" * 64, tmp_path) is None
 
 
-def test_an_incremental_export_writes_the_bytes_of_a_cold_one(tmp_path, warm):
+def test_an_incremental_export_writes_the_bytes_of_a_cold_one(tmp_path, warm, arm_changed_cold):
     """One arm changed, exported over a store that holds the old design's jobs
     (most files come from the store, a few are rebuilt), gives the very files
     of the same design exported cold."""
-    text = DEFAULT_DESIGN.read_text(encoding="utf-8")
-    changed = tmp_path / "changed.toml"
-    changed.write_text(text.replace("lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.0, 8.0, 5.0, 4.0, 5.0, 7.0]",
-                                    "lengths_mm = [4.0, 7.0, 6.0, 8.0, 6.5, 8.0, 5.0, 4.0, 5.0, 7.0]"),
-                       encoding="utf-8")
-    with_default_companions(changed)
+    changed, cold = arm_changed_cold
     proc = run("export", "--design", str(changed), "--cache", str(warm), "--out",
                str(tmp_path / "incremental"), "--json")
     assert proc.returncode == 0, proc.stderr
     summary = json.loads(proc.stdout)
     assert 0 < summary["jobs_run"] < summary["jobs_reused"]
-    assert run("export", "--design", str(changed), "--no-cache", "--out",
-               str(tmp_path / "cold")).returncode == 0
-    inc, cold = tmp_path / "incremental", tmp_path / "cold"
+    inc = tmp_path / "incremental"
     files = sorted(p.relative_to(cold).as_posix() for p in cold.rglob("*") if p.is_file())
     assert files == sorted(p.relative_to(inc).as_posix() for p in inc.rglob("*") if p.is_file())
     for rel in files:

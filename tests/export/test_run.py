@@ -14,6 +14,7 @@ from tactcad.checks.check_result import failures
 from tactcad.design.project import load_project, project_for_plan
 from tactcad.checks.array_checks import run_checks
 from tactcad.export.run import export
+from tactcad.store import Store
 
 
 def _hashes(folder):
@@ -68,9 +69,9 @@ def test_same_design_writes_identical_bytes_across_processes(exported, tmp_path)
     assert _hashes(again) == _hashes(out)
 
 
-def test_failed_export_leaves_previous_files_whole(exported, tmp_path, monkeypatch, project):
+def test_failed_export_leaves_previous_files_whole(default_store, tmp_path, monkeypatch, project):
     out = tmp_path / "ex"
-    export(project, out, log=lambda s: None)
+    export(project, out, log=lambda s: None, store=Store(default_store))  # the set in place
     before = _hashes(out)
     import tactcad.export.dxf_sheet as dxf_mod
 

@@ -16,7 +16,6 @@ import numpy as np
 import pytest
 import shapely.geometry as sg
 
-from tactcad.design.array_plan import load_design
 from tactcad.studies.correction_sweep import grid_geometry
 from tactcad.mechanics.fem.fem2d import (estimate_fem2d, fem2d_convergence, plane_model_error,
                                         solve_fem2d)

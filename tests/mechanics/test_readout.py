@@ -5,14 +5,12 @@ from __future__ import annotations
 
 import json
 import re
-from dataclasses import replace
 from pathlib import Path
 
 import pytest
 
 from tactcad.cli import main
 from tactcad.design.array_plan import default_design_data, load_design, plan_from_dict, with_overrides
-from tactcad.design.readout_section import readout_of
 from tactcad.errors import DesignError
 from tactcad.paper.data import table1
 from tactcad.mechanics.readout_chain import (beam_grid_strain_per_N, beam_surface_strain_per_N,
