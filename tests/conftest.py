@@ -16,6 +16,7 @@ from tactcad.design.array_plan import DEFAULT_DESIGN, default_design_data
 SLOW_FIXTURES = {"exported", "freecad", "default_store", "example_exported", "arm_changed_cold"}
 
 
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist's own hook reads the group marks
 def pytest_collection_modifyitems(config, items):
     """Mark every test that uses a costly fixture as slow, so that
     ``make test-fast`` (``-m "not slow"``) fits the inner loop; put the
@@ -26,6 +27,19 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.slow)
         if item.path.relative_to(tests).as_posix() in BROWSER_FILES:
             item.add_marker(pytest.mark.xdist_group("browser"))
+
+
+def pytest_xdist_node_collection_finished(node, ids):
+    """Under ``--dist loadgroup`` the browser tests must carry their group in
+    their ids (pytest-xdist schedules by it); a pytest that drops it would
+    silently run them on any worker, two browsers at once."""
+    if node.config.getoption("dist", None) != "loadgroup":
+        return
+    lost = [i for i in ids if i.split("::")[0].removeprefix("tests/") in BROWSER_FILES
+            and "@browser" not in i]
+    if lost:
+        pytest.exit(f"--dist loadgroup: {len(lost)} browser tests lost their xdist group "
+                    f"(first: {lost[0]}); install the pytest of constraints.txt", returncode=4)
 
 
 @pytest.fixture(scope="session")

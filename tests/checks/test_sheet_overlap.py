@@ -76,3 +76,37 @@ def test_every_sheet_of_both_examples_passes(example, request):
     results = check_sheet_files(out)
     assert len(results) >= 15                     # every part's sheet and the assembly's
     assert [r.detail for r in results if not r.passed] == []
+
+
+def test_clipping_many_segments_at_once_gives_each_ones_length():
+    """The sheet check clips all of a sheet's segments at once; each length is
+    the one segment's (axis-parallel, degenerate and outside segments included)."""
+    import numpy as np
+
+    from tactcad.checks.sheet_overlap import length_in_box, lengths_in_boxes
+
+    rng = np.random.default_rng(7)
+    p = rng.uniform(0, 10, (400, 2))
+    q = p + rng.uniform(-8, 8, (400, 2)) * rng.integers(0, 2, (400, 2))  # some axis-parallel
+    q[:10] = p[:10]                                                     # some points
+    boxes = np.sort(rng.uniform(0, 10, (400, 2, 2)), axis=1).reshape(400, 4)  # x0 y0 x1 y1
+    got = lengths_in_boxes(p, q, boxes)
+    want = [length_in_box(tuple(a), tuple(b), tuple(box)) for a, b, box in zip(p, q, boxes)]
+    assert got == pytest.approx(want, abs=1e-12)
+    assert (got > 0).sum() > 50 and (got == 0).sum() > 50  # both cases drawn
+
+
+def test_a_chain_of_short_dimensions_puts_each_value_away_from_its_neighbour():
+    """Two vertical dimensions in a chain (a 2 mm span below a 3 mm one, as an
+    element's arm and tip heights): a value too long for its space goes above
+    by default and then crosses its neighbour; told to go below, it is clear."""
+    def chain(outside):
+        sh = Sheet()
+        sh.linear_dimension((50.0, 100.0), (50.0, 102.0), "v", 60.0, "0.9", "low", outside=outside)
+        sh.linear_dimension((50.0, 97.0), (50.0, 100.0), "v", 60.0, "1.5", "high")
+        return sheet_overlaps(layout_of_svg(sh.svg(), "chain.svg"))
+
+    assert any("'0.9'" in o.first for o in chain(None))
+    assert chain("below") == []
+    with pytest.raises(ValueError, match="outside must be one of"):
+        Sheet().linear_dimension((0.0, 0.0), (0.0, 5.0), "v", 10.0, "5", "x", outside="left")

@@ -217,13 +217,8 @@ def test_designs_at_their_limits_export_and_check(design_data, tmp_path, overrid
     said = [w for w in caught if issubclass(w.category, CorrectionRangeWarning)]
     assert bool(said) == outside_fit, [str(w.message) for w in said[:1]]
     results = run_checks(plan, tmp_path, cache)
-    # Known, open: at the 0.9 mm arm height the element sheet's arm-height value
-    # has no clear spot among the tip's dimensions drawn after it (the drawings'
-    # overlap check says so); every other check must pass
-    bad = [r.line() for r in results if not r.passed and r.check != "text overlap"]
+    bad = [r.line() for r in results if not r.passed]  # the drawings' overlap check included
     assert not bad, "\n".join(bad)
-    overlaps = [r.subject for r in results if not r.passed and r.check == "text overlap"]
-    assert all(s.startswith("drawings/element_") for s in overlaps), overlaps
 
 
 @pytest.mark.slow

@@ -20,6 +20,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterator
 
+import numpy as np
+
 from tactcad.checks.check_result import CheckResult
 from tactcad.checks.groups import CheckContext, Found
 from tactcad.drawings.sheet import CAP_HEIGHT_EM, text_box
@@ -86,20 +88,46 @@ def box_overlap(a: Box, b: Box) -> float:
     return min(min(a[2], b[2]) - max(a[0], b[0]), min(a[3], b[3]) - max(a[1], b[1]))
 
 
+def lengths_in_boxes(p: np.ndarray, q: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    """:func:`length_in_box` of many segments at once: ``p``, ``q`` (n, 2) their
+    ends, ``boxes`` (n, 4) the box each is clipped to; returns (n,) mm."""
+    d = q - p
+    t0, t1 = np.zeros(len(p)), np.ones(len(p))
+    outside = np.zeros(len(p), dtype=bool)
+    edges = ((-d[:, 0], p[:, 0] - boxes[:, 0]), (d[:, 0], boxes[:, 2] - p[:, 0]),
+             (-d[:, 1], p[:, 1] - boxes[:, 1]), (d[:, 1], boxes[:, 3] - p[:, 1]))
+    for edge_p, edge_q in edges:
+        parallel = np.abs(edge_p) < 1e-15
+        outside |= parallel & (edge_q < 0)
+        t = edge_q / np.where(parallel, 1.0, edge_p)
+        t0 = np.where(~parallel & (edge_p < 0), np.maximum(t0, t), t0)
+        t1 = np.where(~parallel & (edge_p > 0), np.minimum(t1, t), t1)
+    return np.where(outside | (t0 >= t1), 0.0, (t1 - t0) * np.hypot(d[:, 0], d[:, 1]))
+
+
 def sheet_overlaps(layout: SheetLayout, tol: float = TOLERANCE_MM) -> list[Overlap]:
     """Every text over a stroke (the stroke's length inside the text's box)
     and every pair of overlapping texts (:func:`box_overlap`) of one sheet,
     larger than ``tol`` mm."""
+    # every stroke's segments as arrays: one text's box is clipped against all at once
+    segments = [(k, a, b, half) for k, (_, pts, half) in enumerate(layout.strokes)
+                for a, b in zip(pts, pts[1:])]
+    owner = np.array([s[0] for s in segments], dtype=int)
+    p = np.array([s[1] for s in segments], dtype=float).reshape(-1, 2)
+    q = np.array([s[2] for s in segments], dtype=float).reshape(-1, 2)
+    half = np.array([s[3] for s in segments], dtype=float)
+    grow = np.stack([-half, -half, half, half], axis=1)
     found = []
     for i, (label, box) in enumerate(layout.texts):
         for other, obox in layout.texts[i + 1:]:
             if (o := box_overlap(box, obox)) > tol:
                 found.append(Overlap(layout.name, label, other, o))
-        for stroke, pts, half in layout.strokes:
-            ink = (box[0] - half, box[1] - half, box[2] + half, box[3] + half)
-            inside = sum(length_in_box(p, q, ink) for p, q in zip(pts, pts[1:]))
-            if inside > tol:
-                found.append(Overlap(layout.name, label, stroke, inside))
+        if not segments:
+            continue
+        inside = np.bincount(owner, weights=lengths_in_boxes(p, q, np.asarray(box) + grow),
+                             minlength=len(layout.strokes))
+        found += [Overlap(layout.name, label, layout.strokes[k][0], float(inside[k]))
+                  for k in np.flatnonzero(inside > tol)]
     return found
 
 

@@ -21,9 +21,13 @@ def tier(view: View, side: str, k: int) -> float:
     return {"top": y0 - off, "below": y1 + off, "left": x0 - off, "right": x1 + off}[side]
 
 
-def dim(d: Drawing, view: View, p, q, axis: str, side: str, k: int, value: str, name: str) -> None:
+def dim(d: Drawing, view: View, p, q, axis: str, side: str, k: int, value: str, name: str,
+        outside: str | None = None) -> None:
+    """A linear dimension of part points ``p``-``q`` on tier ``k`` of ``side``
+    (:meth:`~tactcad.drawings.sheet.Sheet.linear_dimension`; ``outside``: where a
+    value too long for its space goes)."""
     d.sheet.linear_dimension(view.paper(*p), view.paper(*q), axis, tier(view, side, k), value,
-                             name)
+                             name, outside=outside)
     d.dimensions[name] = value
 
 

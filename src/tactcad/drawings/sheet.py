@@ -237,11 +237,22 @@ class Sheet:
 
     # -- ISO 129-1 dimensions -------------------------------------------------
     def linear_dimension(self, p: Point, q: Point, axis: str, at: float, text: str, name: str,
-                         group: str = "dimensions") -> None:
+                         group: str = "dimensions", outside: str | None = None) -> None:
         """Dimension the distance between paper points ``p`` and ``q`` along
         ``axis`` ("h": x distance, "v": y distance), with the dimension line at
         paper ``y = at`` (h) or ``x = at`` (v). The value text gets
-        ``id="dim-<name>"``."""
+        ``id="dim-<name>"``. A value too long for the space between the
+        extension lines goes beyond one of them: ``outside`` "above" (the
+        default of "v") or "below", "right" (the default of "h") or "left";
+        in a chain of dimensions, the side away from the neighbour.
+
+        Raises:
+            ValueError: ``axis`` or ``outside`` not one of those.
+        """
+        allowed = {"h": (None, "right", "left"), "v": (None, "above", "below")}
+        if axis in allowed and outside not in allowed[axis]:
+            raise ValueError(f"outside must be one of {allowed[axis][1:]} for axis {axis!r}, "
+                             f"not {outside!r}")
         g = f"{group}"
         if axis == "h":
             a, b = sorted((p, q), key=lambda t: t[0])
@@ -257,7 +268,7 @@ class Sheet:
             length = ends[1][1] - ends[0][1]
         else:
             raise ValueError(f"axis must be 'h' or 'v', not {axis!r}")
-        self._dimension_line(g, ends[0], ends[1], length, axis, text, name)
+        self._dimension_line(g, ends[0], ends[1], length, axis, text, name, outside)
 
     def _extension(self, g: str, feature: Point, end: Point, vertical: bool) -> None:
         k = 1 if vertical else 0
@@ -272,7 +283,7 @@ class Sheet:
         self.line(g, (start[0], start[1]), (stop[0], stop[1]), "thin")
 
     def _dimension_line(self, g: str, e0: Point, e1: Point, length: float, axis: str, text: str,
-                        name: str) -> None:
+                        name: str, outside: str | None = None) -> None:
         tw = text_width(text, DIM_TEXT_MM)
         ux, uy = (1.0, 0.0) if axis == "h" else (0.0, 1.0)
         inside = length >= 2 * ARROW_LENGTH_MM + 1.0
@@ -292,16 +303,25 @@ class Sheet:
                 self.text(g, ((e0[0] + e1[0]) / 2, y), text, anchor="middle", id=f"dim-{name}",
                           cls="dim")
             else:
-                x = e1[0] + (ARROW_LENGTH_MM + 2.5 if not inside else 1.5)
-                self.text(g, (x, y), text, id=f"dim-{name}", cls="dim")
+                gap = ARROW_LENGTH_MM + 2.5 if not inside else 1.5
+                if outside == "left":
+                    self.text(g, (e0[0] - gap, y), text, anchor="end", id=f"dim-{name}",
+                              cls="dim")
+                else:
+                    self.text(g, (e1[0] + gap, y), text, id=f"dim-{name}", cls="dim")
         else:
             x = e0[0] - TEXT_LIFT_MM
             if fits:
                 self.text(g, (x, (e0[1] + e1[1]) / 2), text, anchor="middle", rotate=-90,
                           id=f"dim-{name}", cls="dim")
             else:
-                y = e0[1] - (ARROW_LENGTH_MM + 2.5 if not inside else 1.5)
-                self.text(g, (x, y), text, anchor="start", rotate=-90, id=f"dim-{name}", cls="dim")
+                gap = ARROW_LENGTH_MM + 2.5 if not inside else 1.5
+                if outside == "below":  # reads upwards, ending below the lower end
+                    self.text(g, (x, e1[1] + gap), text, anchor="end", rotate=-90,
+                              id=f"dim-{name}", cls="dim")
+                else:
+                    self.text(g, (x, e0[1] - gap), text, anchor="start", rotate=-90,
+                              id=f"dim-{name}", cls="dim")
 
     def leader(self, points: list[Point], text: str, name: str, group: str = "dimensions",
                arrow: bool = True) -> None:

@@ -192,8 +192,9 @@ def dimensions(d, solid, pen) -> None:
     d.sheet.line("centre-lines", f.paper(g.hinge_x_mm, g.notch_centre_y_mm - 1.3 * g.notch_radius_mm),
                  f.paper(g.hinge_x_mm, H + 0.3), "centre")
     xr = xl - g.inside_corner_radius_mm
+    # the arm and tip heights are one chain: a low arm's value goes below it, clear of the tip's
     pen.dim(d, f, (L, g.arm_underside_y_mm), (xr, H), "v", "right", 0, pen.fmt_mm(g.arm_height_mm),
-            "arm_height")
+            "arm_height", outside="below")
     pen.dim(d, f, (xr, H), (L, top), "v", "right", 0, pen.fmt_mm(g.tip_height_mm), "tip_height")
     pen.dim(d, f, (g.base_length_mm, 0.0), (L, top), "v", "right", 1, pen.fmt_mm(top),
             "overall_height")
