@@ -25,6 +25,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 #: seconds: the goals the figures are read against
 GOALS = {"test": 300.0, "test-fast": 60.0}
+#: the Makefile's ONE_THREAD: one single-threaded process per core
+ONE_THREAD = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 COUNTS = re.compile(r"(\d+) (passed|failed|skipped|xfailed|xpassed|errors?|deselected)")
 
 
@@ -54,7 +56,8 @@ def run(target: str, jobs: str) -> tuple[float, dict[str, int], int]:
     cmd = pytest_command(target, jobs)
     print(f"make {target}: {' '.join(cmd[1:])}   (load before {load()})", flush=True)
     t0 = time.perf_counter()
-    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True,
+                          env={**os.environ, **ONE_THREAD})
     wall = time.perf_counter() - t0
     lines = [ln for ln in proc.stdout.splitlines() if ln.strip()]
     last = lines[-1] if lines else ""

@@ -127,6 +127,20 @@ def arm_changed_cold(tmp_path_factory) -> tuple[Path, Path]:
     return folder / "changed.toml", folder / "cold"
 
 
+@pytest.fixture(scope="session", autouse=True)
+def run_default_store(tmp_path_factory):
+    """An export without ``--cache`` stores its jobs in ``./.tactcad-cache``; in the
+    tests that is a folder of this test run, shared by its workers, never the
+    checkout's (a run starts as cold as on a fresh clone, and writes nothing into
+    the source tree). Processes a test starts choose their store themselves."""
+    import tactcad.store
+
+    kept = tactcad.store.DEFAULT_STORE
+    tactcad.store.DEFAULT_STORE = _run_folder(tmp_path_factory) / "cwd-default-store"
+    yield
+    tactcad.store.DEFAULT_STORE = kept
+
+
 @pytest.fixture(scope="session")
 def default_store(tmp_path_factory) -> Path:
     """The default design's export jobs (:func:`_filled_store`). Tests whose

@@ -145,7 +145,10 @@ def test_a_labs_first_hour_from_the_wheel(installed, tmp_path):
     assert (repo / "steps" / "step" / "array.step").is_file()
     _review_renders(repo / "exports" / "review" / "index.html")
 
-    figures = {cmd: round(s, 1) for cmd, s in timings}
+    figures: dict[str, float] = {}
+    for cmd, seconds in timings:  # a command run twice (the export after the edit) keeps both
+        key = cmd if cmd not in figures else f"{cmd} (again)"
+        figures[key] = round(seconds, 1)
     print("\nfirst hour from the wheel (s):", json.dumps(figures, indent=1))
 
 
