@@ -261,3 +261,15 @@ def browser():
     except (BrowserMissing, ImportError) as exc:
         pytest.skip(str(exc))
     return browser_page
+
+
+
+def ctrl_c_at_its_default() -> None:
+    """``preexec_fn`` of a process whose Ctrl-C a test sends: SIGINT and SIGQUIT
+    at their defaults in the child, whatever this process ignores at that
+    moment (a C ``system()`` in another thread ignores both process-wide while
+    it runs, and a child would inherit that: a watch started then ignores Ctrl-C)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGQUIT, signal.SIG_DFL)

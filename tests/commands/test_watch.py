@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import warm_store_copy
+from conftest import ctrl_c_at_its_default, warm_store_copy
 from tactcad.errors import DesignError
 from tactcad.commands.watch import watched_files
 from tactcad.export.live import LiveState, Loop, make_server
@@ -139,7 +139,7 @@ def test_watch_session_in_chromium(tmp_path, default_store):
     proc = subprocess.Popen([sys.executable, "-m", "tactcad.cli", "watch", "--design", str(design),
                              "--out", str(tmp_path / "out"), "--port", str(port), "--cache",
                              str(warm_store_copy(default_store, tmp_path / "store"))],
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=ctrl_c_at_its_default)
     try:
         _wait(lambda: _state(port)["status"] == "current", 600, "the first export", 0.2)
         with browser_page(offline=False) as page:
@@ -214,7 +214,8 @@ class _Session:
         self.design, self.out = folder / DEFAULT_DESIGN.name, tmp_path / "out"
         self.proc = subprocess.Popen([sys.executable, "-m", "tactcad.cli", "watch", "--design",
                                       str(self.design), "--out", str(self.out), "--port", "0",
-                                      "--cache", str(store)], stderr=subprocess.PIPE, text=True)
+                                      "--cache", str(store)], stderr=subprocess.PIPE, text=True,
+                                     preexec_fn=ctrl_c_at_its_default)
         self.lines: list[str] = []
         self._queue: queue.Queue = queue.Queue()
         self._reader = threading.Thread(

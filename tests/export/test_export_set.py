@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import run_cli, warm_store_copy, with_default_companions
+from conftest import ctrl_c_at_its_default, run_cli, warm_store_copy, with_default_companions
 from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.store import Store
 
@@ -24,7 +24,8 @@ pytestmark = pytest.mark.slow
 
 def tactcad(*args: str, cwd: Path | None = None) -> subprocess.Popen:
     return subprocess.Popen([sys.executable, "-m", "tactcad.cli", *args], cwd=cwd,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=ctrl_c_at_its_default)
 
 
 def run(*args: str) -> subprocess.CompletedProcess:

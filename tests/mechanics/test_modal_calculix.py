@@ -47,7 +47,7 @@ def write_ccx_input(step: Path, inp: Path, *, x_clamp: float, neck_box, neck_siz
     CalculiX frequency job; returns the node count."""
     import gmsh
 
-    gmsh.initialize()
+    gmsh.initialize(readConfigFiles=False, interruptible=False)  # Ctrl-C stays this process's
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         occ = gmsh.model.occ

@@ -42,6 +42,7 @@ def test_crosstalk_falls_as_the_clamp_plates_thicken(small_inputs, model):
     assert rels[0] > rels[1] > rels[2] > 0
 
 
+@pytest.mark.slow  # fem3d
 def test_fem3d_tip_matrix_is_reciprocal_and_near_the_beam(small_inputs):
     from tactcad.mechanics.stack_fem3d import estimate_stack_fem3d
 
