@@ -46,6 +46,54 @@ def test_wiring_names_terminals_and_bolts_a_torque(book):
     assert torque in steps["array-bolts"]["notes"][0]
 
 
+def test_each_rig_step_torques_the_screws_it_uses(book):
+    """A rig step names each of its screw parts with its size, quantity and the
+    torque of that size (ISO 4762 hex key); a step without screws names none."""
+    from tactcad.assembly.build_steps import screw_notes
+    from tactcad.vocabulary.standards import RIG_BOLTS
+
+    _, _, out, _ = book
+    steps = json.loads((out / BOOK_DATA).read_text())
+    screws = {p["part"]: p["quantity"] for s in steps if s["key"].startswith("rig-")
+              for p in s["parts"] if p["part"].startswith("bolt_")}
+    assert screws  # both examples' rigs carry screws
+    for s in (s for s in steps if s["key"].startswith("rig-")):
+        text = " ".join(s["notes"])
+        for p in (p["part"] for p in s["parts"] if p["part"] in screws):
+            size = p.split("_")[1].split("x")[0].replace("p", ".")
+            bolt = RIG_BOLTS[size]
+            torque = tightening_torque_Nm(bolt.nominal_diameter_mm, bolt.thread_pitch_mm)
+            assert f"{screws[p]:g} {size} screws ({p}) to {torque:.2f} N m" in text
+        assert text.count("N m") == sum(p["part"] in screws for p in s["parts"])
+    assert screw_notes([("column", 1)], {}) == ()
+    assert "2.5 mm hex key" in screw_notes([("bolt_M3x10", 2)], {"bolt_M3x10": RIG_BOLTS["M3"]})[0]
+
+
+def test_an_exploded_part_carries_what_an_earlier_step_put_on_it():
+    """A gauge (bonded in an earlier step) sitting on an element lifted in the
+    stack step moves with it; a part of a later step stays; the lift is the
+    element's own z times EXPLODE_FACTOR its height."""
+    import numpy as np
+
+    from tactcad.catalogue.array_catalogue import Instance
+    from tactcad.design.array_plan import Placement
+    from tactcad.export.instructions import EXPLODE_FACTOR, explode_offsets
+
+    def box(x, y, z):
+        v = np.array([[i * x, j * y, k * z] for i in (0, 1) for j in (0, 1) for k in (0, 1)],
+                     dtype=float)
+        return v, np.array([[0, 1, 2]])
+
+    meshes = {"element": box(30, 10, 3), "gauge": box(5, 3, 0.1), "bolt": box(2, 2, 20)}
+    inst = [Instance("element_1", "element", Placement(0, 0, 0)),
+            Instance("gauge_1", "gauge", Placement(10, 2, 3)),        # on the element's top
+            Instance("gauge_2", "gauge", Placement(10, 2, 40)),       # on nothing
+            Instance("bolt_1", "bolt", Placement(-2, 0, 0))]          # a later step, touching
+    off = explode_offsets(meshes, inst, {"element"}, earlier={"gauge"})
+    assert np.allclose(off[0], [0, 0, EXPLODE_FACTOR * 3.0])
+    assert np.allclose(off[1], off[0]) and 2 not in off and 3 not in off
+
+
 def test_torque_grows_with_size():
     # M3 class 8.8 with K = 0.2: about 1.3 N m (common tables 1.2-1.3 N m)
     assert 1.1 < tightening_torque_Nm(3, 0.5) < 1.4
@@ -67,7 +115,9 @@ def test_step_pictures_show_their_highlighted_parts(name, tmp_path):
     book = tmp_path / "ex" / "instructions"
     pictures = sorted(book.glob("step_*.png"))
     keys = {p.stem.split("_", 2)[2] for p in pictures}
-    assert {"array-gauges", "array-stack", "array-bolts"} <= keys
+    steps = [st["key"] for st in json.loads((book / "steps.json").read_text())]
+    rigs = {k for k in steps if k.startswith("rig-")}
+    assert {"array-gauges", "array-stack", "array-bolts", "samples-cast"} | rigs <= keys
     page = (book / "index.html").read_text()
     assert page.count("data:image/png;base64,") == len(pictures)
     for p in pictures:

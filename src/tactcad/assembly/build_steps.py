@@ -130,9 +130,32 @@ def step_of_item(part: str, builder: str | None, first_assembly: str) -> str:
     return f"rig-{first_assembly}"
 
 
+def screw_notes(parts: Sequence[tuple[str, int]], screws: Mapping) -> tuple[str, ...]:
+    """One note per screw part of a step: its size and tightening torque
+    (:func:`tightening_torque_Nm`, class 8.8 into steel; a tapped light-alloy
+    or plastic part takes less, as its thread allows).
+
+    Args:
+        parts: (BOM part, quantity) of the step.
+        screws: part name -> its :class:`~tactcad.vocabulary.standards.BoltSpec`.
+    """
+    notes = []
+    for part, qty in parts:
+        bolt = screws.get(part)
+        if bolt is None:
+            continue
+        torque = tightening_torque_Nm(bolt.nominal_diameter_mm, bolt.thread_pitch_mm)
+        notes.append(f"Tighten the {qty:g} {bolt.size} screws ({part}) to {torque:.2f} N m with a "
+                     f"{bolt.socket_across_flats_mm:g} mm hex key (class 8.8 into a steel nut or "
+                     "thread, K = 0.2, preload 75 % of proof load); into a tapped aluminium or "
+                     "plastic part, less, as its thread allows.")
+    return tuple(notes)
+
+
 def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int,
                 gauge_text: str, adhesive_text: str, bolt, terminal_pairs: int,
-                scenes: Sequence[str], sample_stiffness: Mapping[str, float]) -> list[Step]:
+                scenes: Sequence[str], sample_stiffness: Mapping[str, float],
+                screws: Mapping | None = None) -> list[Step]:
     """The ordered steps consuming ``items``.
 
     Args:
@@ -143,6 +166,8 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
         terminal_pairs: terminal hole pairs of the terminal board.
         scenes: the rig scenes in file order (their steps follow the array's).
         sample_stiffness: measured stiffness (N/mm) of every sample part.
+        screws: the rigs' screw parts -> their BoltSpec (each rig step gives
+            their torques, :func:`screw_notes`).
 
     Returns:
         Steps in build order, each with the items it consumes; steps that
@@ -200,7 +225,7 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
             scene = key[4:]
             title, notes = f"Assemble the {scene}", (
                 "Fit the parts on their joints as the scene model shows; screws finger-tight "
-                "first, then tighten.",)
+                "first, then tighten.",) + screw_notes(parts, screws or {})
             sub, tool = scene, ("hex keys",)
         else:
             title, notes = text[key]

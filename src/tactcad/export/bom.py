@@ -261,9 +261,11 @@ def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
     pairs = int(board.attributes.get("terminal_pairs", 0)) if board is not None else 0
     gauge = next((r for r in rows if r.part == "strain_gauge"), None)
     adhesive = next((r for r in rows if r.part == "gauge_adhesive"), None)
+    screws = {name: spec.geometry[0] for name, spec in specs.items()
+              if getattr(spec, "builder", None) == "rig_bolt"}  # geometry: (BoltSpec, length)
     return build_steps(items, _element_count(rows, specs), gauge.process if gauge else "",
                        adhesive.process if adhesive else "the gauge adhesive",
-                       project.plan.bolt, pairs, scenes, samples)
+                       project.plan.bolt, pairs, scenes, samples, screws)
 
 
 def complete_kit(project, assembled, files=lambda spec: ()) -> list[BomRow]:

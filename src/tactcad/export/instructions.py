@@ -14,7 +14,9 @@ import base64
 import html
 import json
 from pathlib import Path
-from typing import Callable
+from typing import Callable, Collection, Sequence
+
+import numpy as np
 
 from tactcad.atomic import write_bytes_atomic
 
@@ -28,6 +30,8 @@ HIGHLIGHT_RGB = (1.0, 0.0, 1.0)
 CONTEXT_RGB = (0.72, 0.72, 0.72)
 #: How far a step's new parts are drawn lifted along their part frame's z (mm, per part height).
 EXPLODE_FACTOR = 1.5
+#: Gap (mm) within which a part counts as sitting on another (bonded, fastened: they touch).
+TOUCH_MM = 0.05
 
 _STYLE = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.4}"
           "table{border-collapse:collapse}td,th{border:1px solid #999;padding:2px 6px}"
@@ -39,37 +43,74 @@ def picture_name(n: int, key: str) -> str:
     return f"{BOOK_DIR}/step_{n:02d}_{key}.png"
 
 
-def step_picture(meshes, instances, highlight, target: Path, title: str) -> int:
-    """Render the array with ``highlight`` parts in :data:`HIGHLIGHT_RGB`,
-    lifted along their own z by :data:`EXPLODE_FACTOR` x their height, the
-    rest grey (:func:`tactcad.export.render.render_assembly_png`).
+def placed_boxes(meshes, instances, matrices) -> np.ndarray:
+    """World bounding box of each instance: (n, 2, 3) mm, min and max corner."""
+    out = []
+    for inst, m in zip(instances, matrices):
+        v = meshes[inst.part][0] @ m[:3, :3].T + m[:3, 3]
+        out.append((v.min(axis=0), v.max(axis=0)))
+    return np.array(out, dtype=float).reshape(-1, 2, 3)
+
+
+def carriers(boxes: np.ndarray, moving: Sequence[int], resting: Sequence[int],
+             touch_mm: float = TOUCH_MM) -> dict[int, int]:
+    """Which moving instance each resting one sits on: the one whose box, grown
+    by ``touch_mm``, meets its box the most (bonded or fastened parts touch);
+    resting instances touching none are left out."""
+    out = {}
+    for r in resting:
+        lo = np.maximum(boxes[r, 0], boxes[list(moving), 0] - touch_mm)
+        hi = np.minimum(boxes[r, 1], boxes[list(moving), 1] + touch_mm)
+        common = np.prod(np.clip(hi - lo, 0.0, None) + 1e-9 * (hi >= lo), axis=1)
+        if len(moving) and common.max() > 0:
+            out[r] = moving[int(np.argmax(common))]
+    return out
+
+
+def explode_offsets(meshes, instances, new: Collection[str],
+                    earlier: Collection[str] = ()) -> dict[int, np.ndarray]:
+    """World offsets (mm) of a step's exploded view: each instance of a ``new``
+    part lifts along its own z axis by :data:`EXPLODE_FACTOR` x its height
+    along it (at least 2 mm); a part of an ``earlier`` step that sits on a new
+    one (a gauge bonded on an element) moves with it; the parts of later steps
+    stay where the model has them."""
+    from tactcad.export.render import instance_matrix
+
+    matrices = [instance_matrix(i) for i in instances]
+    moving = [k for k, i in enumerate(instances) if i.part in new]
+    offsets = {}
+    for k in moving:
+        v = meshes[instances[k].part][0]
+        height = float(v[:, 2].max() - v[:, 2].min())
+        offsets[k] = matrices[k][:3, 2] * EXPLODE_FACTOR * max(height, 2.0)
+    if moving:
+        boxes = placed_boxes(meshes, instances, matrices)
+        resting = [k for k, i in enumerate(instances) if k not in offsets and i.part in earlier]
+        for r, c in carriers(boxes, moving, resting).items():
+            offsets[r] = offsets[c]
+    return offsets
+
+
+def step_picture(meshes, instances, highlight, target: Path, title: str,
+                 earlier: Collection[str] = ()) -> int:
+    """Render a step's model: the ``highlight`` parts in :data:`HIGHLIGHT_RGB`
+    exploded with the ``earlier`` steps' parts they carry (:func:`explode_offsets`),
+    every other part grey where the model has it
+    (:func:`tactcad.export.render.render_assembly_png`).
 
     Args:
         meshes: part name -> (vertices (n, 3) mm, triangles (m, 3)).
-        instances: the array's placed instances.
+        instances: the scene's placed instances (array instances or scene parts).
         highlight: part names of the step.
 
     Returns:
         Triangles drawn.
     """
-    from dataclasses import replace
-
     from tactcad.export.render import render_assembly_png
 
-    shown, parts, colors = [], dict(meshes), {}
-    for inst in instances:
-        if inst.part in highlight:
-            lifted = inst.part + "@step"
-            if lifted not in parts:
-                v, t = meshes[inst.part]
-                height = float(v[:, 2].max() - v[:, 2].min()) or 1.0
-                parts[lifted] = (v + [0.0, 0.0, EXPLODE_FACTOR * max(height, 2.0)], t)
-                colors[lifted] = HIGHLIGHT_RGB
-            shown.append(replace(inst, part=lifted))
-        else:
-            colors[inst.part] = CONTEXT_RGB
-            shown.append(inst)
-    return render_assembly_png(parts, shown, colors, target, title, size_px=(800, 500))
+    colors = {i.part: HIGHLIGHT_RGB if i.part in highlight else CONTEXT_RGB for i in instances}
+    return render_assembly_png(meshes, instances, colors, target, title, size_px=(800, 500),
+                               offsets=explode_offsets(meshes, instances, highlight, earlier))
 
 
 def book_html(name: str, steps, rows, pictures: dict[str, bytes] | None = None) -> str:
@@ -142,13 +183,15 @@ def book_pdf(name: str, steps, rows, pictures: dict[str, Path], target: Path) ->
 
 
 def write_book(project, staging: Path, log: Callable[[str], None], assembled,
-               array=None, mesh=None) -> list[dict]:
+               array=None, mesh=None, scene_of=None) -> list[dict]:
     """Write the book (see module doc) into ``staging``.
 
     Args:
         array: (specs, instances) of the array; with ``mesh`` (spec -> (vertices,
-            triangles)), each array step gets a picture ``step_<n>_<key>.png``,
-            also embedded in the page.
+            triangles)), each step that places a part of the array gets a
+            picture ``step_<n>_<key>.png``, also embedded in the page.
+        scene_of: scene name -> (its placed parts, its part specs by name); with
+            ``mesh``, the steps of the rigs and the samples get pictures of their scenes.
 
     Returns:
         File records ``{"path", "part": "instructions", "kind", "steps"}``.
@@ -161,15 +204,21 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
     pictures: dict[str, bytes] = {}
     picture_paths: dict[str, Path] = {}
     records = []
-    if array is not None and mesh is not None:
-        specs, inst = array
-        meshes = {i.part: mesh(specs[i.part]) for i in inst}
-        for n, s in enumerate(steps, start=1):
-            new = set(s.highlight) & set(meshes)
+    if mesh is not None:
+        order = {part: n for n, s in enumerate(steps) for part, _ in s.parts}
+        models = {}
+        for n, s in enumerate(steps):
+            model = _step_model(s.scene, array, scene_of, mesh, models)
+            if model is None:
+                continue
+            instances, meshes = model
+            new = set(s.highlight) & {i.part for i in instances}
             if not new:
                 continue
-            path = picture_name(n, s.key)
-            step_picture(meshes, inst, new, staging / path, f"Step {n}: {s.title}")
+            earlier = {i.part for i in instances if order.get(i.part, -1) < n}
+            path = picture_name(n + 1, s.key)
+            step_picture(meshes, instances, new, staging / path, f"Step {n + 1}: {s.title}",
+                         earlier=earlier)
             pictures[s.key] = (staging / path).read_bytes()
             picture_paths[s.key] = staging / path
             records.append({"path": path, "part": "instructions", "kind": "instructions-png",
@@ -188,6 +237,21 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
              "steps": len(steps)}] + records
 
 
+def _step_model(scene: str, array, scene_of, mesh, models: dict):
+    """(instances, part meshes) of the model a step's picture shows, made once
+    per scene; None when it cannot be drawn here."""
+    if scene not in models:
+        if scene == "array" and array is not None:
+            specs, instances = array
+        elif scene != "array" and scene_of is not None:
+            instances, specs = scene_of(scene)
+        else:
+            models[scene] = None
+            return None
+        models[scene] = (list(instances), {i.part: mesh(specs[i.part]) for i in instances})
+    return models[scene]
+
+
 def instructions_jobs(run, before):
     """``instructions/index.html`` and ``steps.json`` (kernel-free)."""
     from tactcad.export.job import Job
@@ -198,8 +262,14 @@ def instructions_jobs(run, before):
     specs, inst = run.array
 
     def make(run) -> list[dict]:
+        from tactcad.assembly.scene_solver import build_scene
+
+        def scene_of(name: str):
+            scene, _ = build_scene(run.project, name, run.parts)
+            return scene.instances, scene.parts()
         return write_book(run.project, run.staging, run.log, run.inventory, run.array,
-                          run.parts.mesh)
+                          run.parts.mesh, scene_of)
+    every_part = {**specs, **run.inventory[0]}  # the array's and every scene's parts
     return [Job("instructions", content_key("instructions", RENDER_VERSION, run.plan, run.inventory,
                                             run.project.rigs_sha256, list(specs.values()), inst),
-                make, tuple(specs.values()))]
+                make, tuple(every_part.values()))]

@@ -47,13 +47,23 @@ def pdf_page_png(pdf: str | Path, page: int, target: str | Path, dpi: int = 150)
         doc.close()
 
 
-def mesh_instances(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], instances: Sequence):
+def instance_matrix(inst) -> np.ndarray:
+    """4 x 4 placement of an array :class:`~tactcad.catalogue.array_catalogue.Instance`
+    (its plan placement) or a scene's :class:`~tactcad.assembly.scene_solver.PlacedPart`
+    (its location), assembly frame, mm."""
+    placement = getattr(inst, "placement", None)
+    return matrix(location(placement) if placement is not None else inst.location)
+
+
+def mesh_instances(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], instances: Sequence,
+                   offsets: Mapping[int, np.ndarray] | None = None):
     """Triangles of every instance in the assembly frame.
 
     Args:
         part_meshes: part name -> (vertices (n, 3) mm, triangles (m, 3) int),
             part frame, as :meth:`tactcad.solids.cache.PartCache.mesh` gives them.
-        instances: :class:`tactcad.catalogue.array_catalogue.Instance` objects.
+        instances: array instances or scene parts (:func:`instance_matrix`).
+        offsets: instance index -> (3,) mm added after placing (an exploded view).
 
     Returns:
         (triangles (n, 3, 3) in mm, part index per triangle, instance index
@@ -63,9 +73,11 @@ def mesh_instances(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], ins
     local = {name: part_meshes[name][0][part_meshes[name][1]] for name in names}
     all_tris, owner, inst_ids = [], [], []
     for k, inst in enumerate(instances):
-        m = matrix(location(inst.placement))
+        m = instance_matrix(inst)
         t = local[inst.part]
         moved = t @ m[:3, :3].T + m[:3, 3]
+        if offsets and k in offsets:
+            moved = moved + offsets[k]
         all_tris.append(moved)
         owner.append(np.full(len(t), names.index(inst.part)))
         inst_ids.append(np.full(len(t), k))
@@ -289,18 +301,20 @@ def _title_font() -> Path:
 def render_assembly_png(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], instances: Sequence,
                         colors: Mapping[str, tuple[float, float, float]], target: str | Path,
                         title: str = "", size_px: tuple[int, int] = (1600, 1000),
-                        elev: float = 28.0, azim: float = -58.0, supersample: int = 2) -> int:
+                        elev: float = 28.0, azim: float = -58.0, supersample: int = 2,
+                        offsets: Mapping[int, np.ndarray] | None = None) -> int:
     """Render placed part meshes to a PNG; returns the number of triangles drawn.
 
     Orthographic z-buffer render (see :func:`raster_window`) from elevation
     ``elev`` and azimuth ``azim`` (degrees, y up), Lambert shading with a fixed
     light, dark outlines where the visible surface changes part or turns by
     more than 25 degrees (:func:`outline_mask`), ``supersample`` x
-    ``supersample`` anti-aliasing. ``part_meshes`` as for :func:`mesh_instances`.
+    ``supersample`` anti-aliasing. ``part_meshes``, ``instances`` and ``offsets``
+    as for :func:`mesh_instances`.
     """
     from PIL import Image, ImageDraw, ImageFont
 
-    tris, owner_part, inst_id, names = mesh_instances(part_meshes, instances)
+    tris, owner_part, inst_id, names = mesh_instances(part_meshes, instances, offsets)
     normals = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
     nl = np.linalg.norm(normals, axis=1)
     cam = _camera(elev, azim)

@@ -16,6 +16,10 @@ from dataclasses import dataclass
 LENGTH_TOLERANCE_MM = 1e-9
 
 
+#: Hexagon socket size s (mm) of ISO 4762 socket head cap screws, by thread size.
+ISO_4762_SOCKET_MM = {"M1.6": 1.5, "M2": 1.5, "M2.5": 2.0, "M3": 2.5, "M4": 3.0, "M5": 4.0}
+
+
 @dataclass(frozen=True)
 class BoltSpec:
     """ISO metric bolt + nut envelope data (mm)."""
@@ -32,8 +36,9 @@ class BoltSpec:
 
     @property
     def socket_across_flats_mm(self) -> float:
-        """Hexagon socket size s of ISO 4762: about 0.75 d for the small sizes."""
-        return 0.75 * self.nominal_diameter_mm
+        """Hexagon socket size s of ISO 4762 (the hex key that drives it); a
+        size outside that table: 0.75 d, the ratio of the small sizes."""
+        return ISO_4762_SOCKET_MM.get(self.size, 0.75 * self.nominal_diameter_mm)
 
     @property
     def nut_across_corners_mm(self) -> float:
