@@ -99,7 +99,57 @@ def test_an_import_outside_the_map_is_refused():
         "import { a } from 'three/core';"
 
 
+def test_the_page_carries_the_build_steps_of_its_scenes():
+    """The book's steps ride in the page's data for the scenes it carries (a
+    step drawn in a scene the page lacks is left out)."""
+    book = [{"key": "a", "scene": "array", "explode": {"e1": [0, 0, 1]}},
+            {"key": "b", "scene": "not-exported"}]
+    contents = review_contents({"design": {"name": "x", "sha256": "0" * 64}}, [],
+                               {"array": b"glb"}, "", [], "A", "-", "r0", book)
+    assert [s["key"] for s in contents.data["book"]] == ["a"]
+    assert review_contents({}, [], {}, "", [], "A", "-", "r0").data["book"] == []
+
+
 # --- in Chromium ---------------------------------------------------------------------------
+@pytest.mark.slow
+def test_a_build_step_lights_its_parts_and_the_slider_explodes_them(exported, browser):
+    """From file://: the Build step list holds every step of steps.json; choosing
+    the stack step lights its parts in the array, and the slider at its end
+    moves each of them by its explosion vector (the gauges bonded before with
+    them); a rig's step switches the 3D view to its scene."""
+    from tactcad.checks.review_browser import wait_first_frame
+    from tactcad.export.instructions import BOOK_DATA
+
+    out, _ = exported
+    steps = json.loads((out / BOOK_DATA).read_text())
+    stack = next(s for s in steps if s["key"] == "array-stack")
+    rig = next(s for s in steps if s["key"].startswith("rig-") and s["explode"])
+    moved = sorted(stack["explode"])
+    assert any(n.startswith("gauge_") for n in moved)  # carried by their elements
+    with browser() as page:
+        page.goto((out / REVIEW_PAGE).resolve().as_uri())
+        wait_first_frame(page)
+        options = page.eval_on_selector_all("#step-select option", "os => os.map(o => o.value)")
+        assert options == [""] + [s["key"] for s in steps]
+        page.select_option("#step-select", "array-stack")
+        page.wait_for_function("window.__review.step() === 'array-stack'")
+        lit = set(page.evaluate("window.__review.lit()"))
+        assert {n for n in moved if not n.startswith("gauge_")} <= lit
+        before = page.evaluate(f"window.__review.positions({json.dumps(moved)})")
+        pixels = page.locator("#view canvas").screenshot()
+        page.locator("#explode").fill("100")
+        page.wait_for_function(f"window.__review.positions(['{moved[0]}'])['{moved[0]}'][2]"
+                               f" !== {before[moved[0]][2]}")
+        after = page.evaluate(f"window.__review.positions({json.dumps(moved)})")
+        for name in moved:
+            assert after[name] == pytest.approx(
+                [b + d for b, d in zip(before[name], stack["explode"][name])], abs=1e-6)
+        assert page.locator("#view canvas").screenshot() != pixels
+        page.select_option("#step-select", rig["key"])
+        page.wait_for_function(f"window.__review.scene === {json.dumps(rig['scene'])}")
+        assert page.errors == []
+
+
 @pytest.mark.slow
 def test_page_offline_in_chromium(exported, browser):
     """From file:// with the network off: a drawn 3D view, the instance names in the

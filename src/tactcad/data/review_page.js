@@ -144,8 +144,9 @@ async function showScene(name, keepView) {
     for (const m of instances(model)) {
       m.material = m.material.clone();  // own material: highlighting one instance only
       m.material.side = THREE.DoubleSide;  // a section shows the inside faces
-      m.material.emissive.setHex(m.name === highlighted ? HIGHLIGHT : 0x000000);
+      m.material.emissive.setHex(emissiveOf(m));
       m.visible = !hidden.has(m.name);
+      m.userData.rest = m.position.clone();  // as placed: the explosion adds to it
     }
     world.add(model);
     box = new THREE.Box3().setFromObject(model);
@@ -153,6 +154,7 @@ async function showScene(name, keepView) {
     review.shownSha256 = DATA.manifest.design.sha256;  // the design the 3D view now shows
     review.instances = instances(model).map((m) => m.name);
     buildTree();
+    applyStep();
     if (keepView) applyClip(); else { fit(); applyClip(); }
     review.ready = true;
   }, (err) => {
@@ -229,12 +231,82 @@ function setVisible(mesh, on) {
 function highlight(name) {
   highlighted = highlighted === name ? null : name;
   for (const m of instances(model)) {
-    m.material.emissive.setHex(m.name === highlighted ? HIGHLIGHT : 0x000000);
+    m.material.emissive.setHex(emissiveOf(m));
   }
   for (const row of $('tree').querySelectorAll('label')) {
     row.classList.toggle('hl', row.dataset.instance === highlighted);
   }
   render();
+}
+
+// --- the build book: a step's new parts lit in its scene, moved apart by the slider ----------
+const STEP_LIT = 0x800080;  // emissive of a step's new parts (the book's pictures: magenta)
+let step = null;            // the build-book step shown in the 3D view, or null
+// the step shown and the positions of named instances (mm, their parent's frame), for tests
+review.step = () => (step ? step.key : null);
+review.positions = (names) => Object.fromEntries((model ? instances(model) : [])
+  .filter((m) => names.includes(m.name)).map((m) => [m.name, m.position.toArray()]));
+
+function emissiveOf(m) {
+  if (m.name === highlighted) return HIGHLIGHT;
+  return step && step.scene === review.scene && step.highlight.includes(m.userData.part) ? STEP_LIT : 0;
+}
+
+function applyStep() {  // the shown step's colours and explosion on the model in the view
+  if (!model) return;
+  const t = step && step.scene === shown.name ? Number($('explode').value) / 100 : 0;
+  const moves = (step && step.explode) || {};
+  for (const m of instances(model)) {
+    m.material.emissive.setHex(emissiveOf(m));
+    const d = moves[m.name];
+    if (m.userData.rest) m.position.copy(m.userData.rest);
+    if (d && t) m.position.add(new THREE.Vector3(d[0], d[1], d[2]).multiplyScalar(t));
+  }
+  render();
+}
+
+function chooseStep(key) {
+  step = (DATA.book || []).find((s) => s.key === key) || null;
+  const slider = $('explode');
+  slider.disabled = !step || !Object.keys(step.explode || {}).length;
+  if (!step) slider.value = 0;
+  if (step && step.scene !== $('scene-select').value) {
+    $('scene-select').value = step.scene;
+    showScene(step.scene, false);  // its parse applies the step
+  } else applyStep();
+}
+$('step-select').addEventListener('change', (e) => chooseStep(e.target.value));
+$('explode').addEventListener('input', applyStep);
+
+function showBook() {
+  const book = DATA.book || [];
+  $('step-tools').hidden = $('nav-build').hidden = $('build').hidden = !book.length;
+  const sel = $('step-select');
+  const keep = sel.value;
+  const none = el('option', '(none)');
+  none.value = '';
+  sel.replaceChildren(none, ...book.map((s, k) => {
+    const o = el('option', `${k + 1}. ${s.title}`);
+    o.value = s.key;
+    return o;
+  }));
+  sel.value = book.some((s) => s.key === keep) ? keep : '';
+  step = book.find((s) => s.key === sel.value) || null;
+  const list = el('ol');
+  for (const s of book) {
+    const item = el('li');
+    item.dataset.step = s.key;
+    const show = el('button', 'show in 3D');
+    show.addEventListener('click', () => { sel.value = s.key; chooseStep(s.key); $('viewer').scrollIntoView(); });
+    item.append(el('strong', s.title), ' ', show,
+      el('div', s.parts.map((p) => `${p.part} × ${p.quantity}`).join(', '), 'meta'),
+      el('div', `Tools: ${s.tools.join(', ') || 'none'}`, 'meta'));
+    const notes = el('ul');
+    for (const n of s.notes) notes.append(el('li', n));
+    item.append(notes);
+    list.append(item);
+  }
+  $('build-body').replaceChildren(list);
 }
 
 // --- drawings, tables, provenance ------------------------------------------------------------
@@ -447,6 +519,7 @@ function load() {  // what this file carries
   DATA = JSON.parse($('review-data').textContent);
   SCENES = JSON.parse($('review-scenes').textContent);
   showHeader();
+  showBook();
   showScene(DATA.scenes[0], false);
   showSheets();
   showTables();
@@ -461,6 +534,7 @@ function loadLive(live) {
   for (const digest of fetched.keys()) if (!current.has(digest)) fetched.delete(digest);
   const before = $('scene-select').value;
   showHeader();
+  showBook();
   const name = $('scene-select').value || DATA.scenes[0];
   showScene(name, name === before);  // a scene the update removed: the one shown instead is fitted
   // the 3D view first, then (after a frame) the drawings and tables

@@ -19,11 +19,8 @@ from typing import Callable, Collection, Sequence
 import numpy as np
 
 from tactcad.atomic import write_bytes_atomic
+from tactcad.export.book_paths import BOOK_DATA, BOOK_DIR, BOOK_PAGE, BOOK_PDF
 
-BOOK_DIR = "instructions"
-BOOK_PAGE = f"{BOOK_DIR}/index.html"
-BOOK_DATA = f"{BOOK_DIR}/steps.json"
-BOOK_PDF = f"{BOOK_DIR}/build_book.pdf"
 #: Colour of a step's new parts in its picture (RGB 0-1); nothing else of the model is magenta.
 HIGHLIGHT_RGB = (1.0, 0.0, 1.0)
 #: Grey of the parts placed before (RGB 0-1).
@@ -111,6 +108,14 @@ def step_picture(meshes, instances, highlight, target: Path, title: str,
     colors = {i.part: HIGHLIGHT_RGB if i.part in highlight else CONTEXT_RGB for i in instances}
     return render_assembly_png(meshes, instances, colors, target, title, size_px=(800, 500),
                                offsets=explode_offsets(meshes, instances, highlight, earlier))
+
+
+def explode_record(instances, offsets: dict[int, np.ndarray]) -> dict[str, list[float]]:
+    """``{instance name: [dx, dy, dz]}`` (mm, the scene's frame, full explosion) of
+    the instances that move: the book's ``steps.json`` carries it for the review
+    page, whose 3D view plays the explosion with a slider."""
+    return {instances[k].name: [round(float(x), 4) + 0.0 for x in v]
+            for k, v in sorted(offsets.items())}
 
 
 def book_html(name: str, steps, rows, pictures: dict[str, bytes] | None = None) -> str:
@@ -203,6 +208,7 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
     (staging / BOOK_DIR).mkdir(parents=True, exist_ok=True)
     pictures: dict[str, bytes] = {}
     picture_paths: dict[str, Path] = {}
+    explode: dict[str, dict[str, list[float]]] = {}
     records = []
     if mesh is not None:
         order = {part: n for n, s in enumerate(steps) for part, _ in s.parts}
@@ -219,6 +225,8 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
             path = picture_name(n + 1, s.key)
             step_picture(meshes, instances, new, staging / path, f"Step {n + 1}: {s.title}",
                          earlier=earlier)
+            explode[s.key] = explode_record(instances,
+                                            explode_offsets(meshes, instances, new, earlier))
             pictures[s.key] = (staging / path).read_bytes()
             picture_paths[s.key] = staging / path
             records.append({"path": path, "part": "instructions", "kind": "instructions-png",
@@ -226,7 +234,8 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
     write_bytes_atomic(staging / BOOK_PAGE,
                        book_html(project.plan.name, steps, rows, pictures).encode("utf-8"))
     write_bytes_atomic(staging / BOOK_DATA, json.dumps(
-        [s.as_dict() for s in steps], indent=1).encode("utf-8"))
+        [{**s.as_dict(), "explode": explode.get(s.key, {})} for s in steps],
+        indent=1).encode("utf-8"))
     book_pdf(project.plan.name, steps, rows, picture_paths, staging / BOOK_PDF)
     records.append({"path": BOOK_PDF, "part": "instructions", "kind": "instructions-pdf",
                     "steps": len(steps)})

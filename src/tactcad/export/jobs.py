@@ -339,7 +339,10 @@ def review_contents_of(run: Run, *folders: Path):
     """The review page's contents (:class:`~tactcad.export.review_page.ReviewContents`)
     from the scenes, sheets and BOM in ``folders`` (each file from the first
     folder that has it: a run's staging folder, an export)."""
+    import json
+
     from tactcad.drawings.compose import revision_and_date
+    from tactcad.export.book_paths import BOOK_DATA
     from tactcad.export.manifest import design_facts
     from tactcad.export.review_assets import three_version
     from tactcad.export.review_page import review_contents
@@ -352,10 +355,12 @@ def review_contents_of(run: Run, *folders: Path):
     glbs = {n: glb.read_bytes() for n in names if (glb := found(scene_glb_name(n)))}
     sheets = [(p, t, svg.read_text(encoding="utf-8")) for p, t in sheet_list if (svg := found(p))]
     bom = found("bom.csv")
+    book = found(BOOK_DATA)
     rev, date = revision_and_date(run.plan)
     return review_contents(design_facts(run.plan), sheets, glbs,
                            bom.read_text(encoding="utf-8-sig") if bom else "",
-                           strength_summary(run.plan), rev, date, three_version())
+                           strength_summary(run.plan), rev, date, three_version(),
+                           json.loads(book.read_text(encoding="utf-8")) if book else ())
 
 
 def review_page_jobs(run: Run, before: list[Job]) -> list[Job]:

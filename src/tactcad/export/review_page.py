@@ -77,7 +77,8 @@ def _sha256(data: bytes) -> str:
 
 def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
                     scenes: Mapping[str, bytes], bom_csv: str, elements: list[dict],
-                    revision: str, date: str, three_version: str) -> ReviewContents:
+                    revision: str, date: str, three_version: str,
+                    book: Sequence[dict] = ()) -> ReviewContents:
     """What the page shows (see :class:`ReviewContents`).
 
     Args:
@@ -87,6 +88,9 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
         sheets: (export path, title, SVG text) of every drawing sheet, in order.
         scenes: GLB bytes by scene name, in the order of the page's scene list.
         elements: :func:`tactcad.mechanics.element_strength.strength_summary` records.
+        book: the build book's steps (``instructions/steps.json``: title, parts,
+            notes, the scene, its new parts and each moving instance's explosion,
+            mm); the page lists them and plays a step's explosion in its 3D view.
     """
     manifest = {k: v for k, v in facts.items() if k != "files"}
     if "verification" not in manifest and manifest.get("requirements"):
@@ -99,6 +103,7 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
         "scene_sha256": {n: _sha256(glb) for n, glb in scenes.items()},
         "sheets": [{"path": p, "title": t, "sha256": _sha256(svgs[p])} for p, t, _ in sheets],
         "bom": bom_table(bom_csv), "elements": elements,
+        "book": [step for step in book if step.get("scene") in scenes],
     }
     return ReviewContents(data, dict(scenes), {_sha256(b): b for b in svgs.values()})
 
