@@ -136,3 +136,25 @@ def test_pdf_has_a_page_and_every_step_title(book):
     text = " ".join(page.extract_text() for page in PdfReader(out / BOOK_PDF).pages)
     for s in steps:
         assert s["title"] in text
+
+
+def test_every_array_part_module_names_the_step_that_consumes_its_parts(book):
+    """The array's part modules (and the terminal board's and the sample's)
+    declare their build step; the book's titles, tools and notes are theirs."""
+    from tactcad.assembly.build_steps import module_steps
+    from tactcad.partlib.array import element, fasteners, strain_gauge
+    from tactcad.partlib.registry import array_parts_lib
+
+    assert all(part.assembly is not None for part in array_parts_lib().values())
+    modules = module_steps()
+    assert {b: modules[b].key for b in ("gauge", "element", "spacer", "clamp_plate", "bolt",
+                                        "nut", "terminal_board", "sample")} == {
+        "gauge": "array-gauges", "element": "array-stack", "spacer": "array-stack",
+        "clamp_plate": "array-stack", "bolt": "array-bolts", "nut": "array-bolts",
+        "terminal_board": "array-wiring", "sample": "samples-cast"}
+    assert "rig_bolt" not in modules  # a rig's screws are its own step's
+    _, _, out, _ = book
+    steps = {s["key"]: s for s in json.loads((out / BOOK_DATA).read_text())}
+    for module in (element, fasteners, strain_gauge):
+        declared = module.PART.assembly
+        assert steps[declared.key]["title"] == declared.title

@@ -1,32 +1,51 @@
 """The build book's steps, derived from the design's parts (no CAD kernel).
 
-Every BOM item is consumed by exactly one step, found from what the item is
-(its part builder, or a read-out/consumable item's name) and, for the rig
-parts, the first scene whose rig shows it; so a design with other parts,
-rigs or samples gets its own steps and no step names a part the design lacks.
+Every BOM item is consumed by exactly one step: a part module's parts by the
+step its module declares (:class:`tactcad.partlib.base.BuildStep`: the gauge's
+bonding, the terminal board's wiring, the element's stack, the clamp bolt's
+torque, the sample kit's casting, each with its module's title, tools and
+notes), a bought or consumable item by the step named here, and any other
+rig part by the step of the first scene whose rig shows it; so a design with
+other parts, rigs or samples gets its own steps and no step names a part the
+design lacks.
 
 Step order: the array (gauges bonded and cured; leads wired to the terminal
 board; elements, spacers and clamp plates stacked; bolts torqued; read-out
 connected), then each rig in scene order, then the sample kit cast.
 
-Sources of the notes: gauge installation after Micro-Measurements
-instruction bulletin B-127 (surface preparation) and B-129 (soldering);
-tightening torque T = K F d with nut factor K = 0.2 and preload
-F = 0.75 x proof stress x stress area (Shigley, Mechanical Engineering Design,
-ch. 8; proof stress 580 MPa of property class 8.8 and stress area
-A_s = pi/4 (d - 0.9382 P)^2 from ISO 898-1).
+Sources: tightening torque T = K F d
+(:func:`tactcad.vocabulary.standards.tightening_torque_Nm`: Shigley ch. 8, ISO
+898-1); gauge installation after Micro-Measurements instruction bulletins
+B-127 and B-129 (in :mod:`tactcad.partlib.array.strain_gauge` and
+:mod:`tactcad.partlib.terminal_board`).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
-#: Nut factor K of a dry steel thread (Shigley, ch. 8).
-NUT_FACTOR = 0.2
-#: Proof stress of property class 8.8 below M16 (MPa, ISO 898-1).
-PROOF_STRESS_MPA = 580.0
+from tactcad.partlib.base import BuildStep
+from tactcad.vocabulary.standards import NUT_FACTOR, PROOF_STRESS_MPA, tightening_torque_Nm  # noqa: F401
+
+#: The array's steps in build order.
+ARRAY_STEP_ORDER = ("array-gauges", "array-wiring", "array-stack", "array-bolts", "array-readout")
+
+
+@dataclass(frozen=True)
+class BookContext:
+    """What the steps' notes read: the array's element count, the gauge's and
+    the adhesive's catalogue texts, the clamp bolt (a
+    :class:`~tactcad.vocabulary.standards.BoltSpec`), the terminal board's
+    hole pairs and each sample's stiffness (N/mm)."""
+
+    elements: int
+    gauge_text: str
+    adhesive_text: str
+    bolt: Any
+    terminal_pairs: int
+    sample_stiffness: Mapping[str, float]
 
 
 @dataclass(frozen=True)
@@ -96,35 +115,44 @@ CONSUMABLES = (
                "about 90 g"),
 )
 
-# BOM items by what they are: builder of a placed part, or name of a bought item.
-_ARRAY_STEPS = {
-    "array-gauges": ("gauge", "strain_gauge", "solder_terminal_pair", "gauge_adhesive",
-                     "gauge_surface_prep_kit", "gauge_protective_coating"),
-    "array-wiring": ("terminal_board", "lead_wire", "bridge_completion_resistor",
-                     "solder_wire", "heat_shrink_sleeve"),
-    "array-stack": ("element", "spacer", "clamp_plate"),
-    "array-bolts": ("bolt", "nut"),
-    "array-readout": ("instrumentation_amplifier", "daq", "signal_cable"),
-}
+#: Bought items of the sensor (not part modules) by the step that consumes them.
+BOUGHT_ITEM_STEPS = {
+    "solder_terminal_pair": "array-gauges", "gauge_adhesive": "array-gauges",
+    "lead_wire": "array-wiring", "bridge_completion_resistor": "array-wiring",
+    "instrumentation_amplifier": "array-readout", "daq": "array-readout",
+    "signal_cable": "array-readout",
+} | {c.part: c.step for c in CONSUMABLES}
+#: The read-out chain's step: bought items only, so declared here.
+READOUT_STEP = BuildStep(
+    "array-readout", "Connect the read-out chain", tools=lambda book: ("multimeter",),
+    notes=lambda book: ("One signal cable and one amplifier channel per element, then the DAQ; "
+                        "zero each channel unloaded.",))
 _SAMPLES = "samples-cast"
 _ARRAY_SCENE = "array"
 
 
-def tightening_torque_Nm(d_mm: float, pitch_mm: float) -> float:
-    """Tightening torque (N m) of a class 8.8 metric screw of nominal
-    diameter ``d_mm`` and pitch ``pitch_mm``: T = K F d (see module doc)."""
-    stress_area = math.pi / 4 * (d_mm - 0.9382 * pitch_mm) ** 2
-    preload_N = 0.75 * PROOF_STRESS_MPA * stress_area
-    return NUT_FACTOR * preload_N * d_mm / 1000.0
+def module_steps() -> dict[str, BuildStep]:
+    """Builder key -> the build step of every part module that declares one
+    (its own builder and the companions it names)."""
+    from tactcad.partlib.registry import array_parts_lib, rig_parts_lib
+
+    out: dict[str, BuildStep] = {}
+    for part in [*array_parts_lib().values(), *rig_parts_lib().values()]:
+        if part.assembly is not None:
+            for builder in (part.builder_key, *part.assembly.companions):
+                out[builder] = part.assembly
+    return out
 
 
-def step_of_item(part: str, builder: str | None, first_assembly: str) -> str:
-    """The key of the step consuming a BOM item (see module doc)."""
-    for key, what in _ARRAY_STEPS.items():
-        if part in what or builder in what:
-            return key
-    if builder == "sample":
-        return _SAMPLES
+def step_of_item(part: str, builder: str | None, first_assembly: str,
+                 modules: Mapping[str, BuildStep] | None = None) -> str:
+    """The key of the step consuming a BOM item (see module doc); ``modules``:
+    :func:`module_steps`, if already at hand."""
+    modules = module_steps() if modules is None else modules
+    if builder in modules:
+        return modules[builder].key
+    if part in BOUGHT_ITEM_STEPS:
+        return BOUGHT_ITEM_STEPS[part]
     if first_assembly == _ARRAY_SCENE:
         return "array-stack"
     return f"rig-{first_assembly}"
@@ -173,48 +201,16 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
         Steps in build order, each with the items it consumes; steps that
         would consume nothing are left out.
     """
+    modules = module_steps()
     by_step: dict[str, list[tuple[str, int]]] = {}
     for part, qty, builder, first in items:
-        by_step.setdefault(step_of_item(part, builder, first), []).append((part, qty))
-    torque = tightening_torque_Nm(bolt.nominal_diameter_mm, bolt.thread_pitch_mm)
-    wiring = [f"Element {k}: gauge leads to terminals {2 * k - 1} and {2 * k}; a third lead from "
-              f"terminal {2 * k} carries the sense line (three-wire quarter bridge), the three "
-              "completion resistors sit at the amplifier end." for k in range(1, min(
-                  elements, terminal_pairs) + 1)]
-    text = {
-        "array-gauges": ("Bond and cure the strain gauges", (
-            f"One gauge per element on the top face over the web ({gauge_text}).",
-            "Prepare each bonding area: degrease, abrade with 320 then 400 grit, condition, "
-            "neutralize; handle no more after that.",
-            f"Bond with {adhesive_text}; press with thumb pressure through PTFE film for 1 min, "
-            "let it cure 24 h at room temperature before wiring.",
-            "Bond a solder terminal pair beside each gauge as strain relief; coat gauge and "
-            "terminals after wiring.")),
-        "array-wiring": ("Wire the quarter bridges through the terminal board", tuple(wiring) + (
-            "Solder at the lowest iron temperature that wets (about 300 degC); check each "
-            "bridge arm reads the gauge's resistance before closing the clamp.",)),
-        "array-stack": ("Stack elements and spacers between the clamp plates", (
-            "Stack in the order the assembly model shows: clamp plate, element, spacer, "
-            "element ... clamp plate; align on the bolt holes before tightening.",
-            "Keep the gauges' leads free of the clamp faces.")),
-        "array-bolts": ("Torque the clamp bolts", (
-            f"Tighten the {bolt.size} clamp bolts crosswise in three passes to "
-            f"{torque:.2f} N m (class 8.8, K = {NUT_FACTOR:g}, preload 75 % of proof load).",)),
-        "array-readout": ("Connect the read-out chain", (
-            "One signal cable and one amplifier channel per element, then the DAQ; "
-            "zero each channel unloaded.",)),
-        _SAMPLES: ("Cast the sample kit", (
-            "Cast one block per stiffness of the rigs file; measure each block's stiffness on the "
-            "sample-stiffness rig and label it with the value.",) + tuple(
-                f"{part}: {k:g} N/mm" for part, k in sample_stiffness.items())),
-    }
-    tools = {"array-gauges": ("tweezers", "PTFE film", "magnifier"),
-             "array-wiring": ("temperature-controlled soldering iron", "multimeter"),
-             "array-stack": ("flat granite or glass plate",),
-             "array-bolts": (f"torque screwdriver with {bolt.socket_across_flats_mm:g} mm hex bit",),
-             "array-readout": ("multimeter",), _SAMPLES: ("mould", "scale")}
+        by_step.setdefault(step_of_item(part, builder, first, modules), []).append((part, qty))
+    book = BookContext(elements, gauge_text, adhesive_text, bolt, terminal_pairs,
+                       dict(sample_stiffness))
+    declared = {m.key: m for m in modules.values() if m.title}
+    declared[READOUT_STEP.key] = READOUT_STEP
     consumable = {c.part for c in CONSUMABLES} | {"gauge_adhesive", "solder_wire", "lead_wire"}
-    order = list(_ARRAY_STEPS) + [f"rig-{s}" for s in scenes] + [_SAMPLES]
+    order = list(ARRAY_STEP_ORDER) + [f"rig-{s}" for s in scenes] + [_SAMPLES]
     order += [k for k in by_step if k not in order]
     steps = []
     for key in order:
@@ -228,9 +224,10 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
                 "first, then tighten.",) + screw_notes(parts, screws or {})
             sub, tool = scene, ("hex keys",)
         else:
-            title, notes = text[key]
+            lead = declared.get(key, BuildStep(key, key))
+            title, notes, tool = lead.title, lead.notes(book), lead.tools(book)
             sub = "samples" if key == _SAMPLES else _ARRAY_SCENE
-            scene, tool = (_ARRAY_SCENE, tools[key])
+            scene = _ARRAY_SCENE
             if key == _SAMPLES:
                 scene = next((s for s in scenes if "sample" in s), _ARRAY_SCENE)
         steps.append(Step(key, title, sub, tuple(parts), tool,

@@ -159,6 +159,34 @@ class DrawingRecord:
     plan_values: Callable[[Any, Any, Any], tuple] | None = None
 
 
+def _no_text(book: Any) -> tuple[str, ...]:
+    return ()
+
+
+@dataclass(frozen=True)
+class BuildStep:
+    """The build-book step that consumes a part module's parts, and what the
+    module says of assembling them (:mod:`tactcad.assembly.build_steps`
+    gathers the steps from the modules).
+
+    Attributes:
+        key: the step (``array-gauges``, ``array-stack`` ...).
+        title: the step's title, from the module that leads it ("" otherwise).
+        tools: ``book -> tools`` the step needs for these parts.
+        notes: ``book -> instructions`` (one sentence each, units in the text).
+            ``book`` is the build book's context
+            (:class:`tactcad.assembly.build_steps.BookContext`).
+        companions: builder keys of the module's companion parts the step
+            consumes too (the clamp bolt's nut).
+    """
+
+    key: str
+    title: str = ""
+    tools: Callable[[Any], tuple[str, ...]] = _no_text
+    notes: Callable[[Any], tuple[str, ...]] = _no_text
+    companions: tuple[str, ...] = ()  # companion builders consumed in the same step
+
+
 class Builds:
     """What every part module's part has: its own builder under
     :attr:`builder_key` and its companions' builders."""
@@ -189,6 +217,8 @@ class RigPart(Builds):
             this form keeps the key it had).
         companion_builders: builder key -> builder of the companions'
             specs (:attr:`PartData.companions`), geometry -> solid.
+        assembly: the build-book step that consumes the part (:class:`BuildStep`);
+            None: the step of the rig that first shows it.
     """
 
     key: str
@@ -201,6 +231,7 @@ class RigPart(Builds):
     order: int = 1000
     builder: str = ""
     companion_builders: Mapping[str, Callable[[Any], Any]] = field(default_factory=dict)
+    assembly: BuildStep | None = None
 
     @property
     def builder_key(self) -> str:
@@ -261,6 +292,8 @@ class ArrayPart(Builds):
             when the design gives the variant's table (its parts keep the
             family's part names, so the array places them alike); a variant
             whose table is left out makes no part. Empty: no variant.
+        assembly: the build-book step that consumes the module's parts
+            (:class:`BuildStep`).
     """
 
     key: str
@@ -271,6 +304,7 @@ class ArrayPart(Builds):
     companion_builders: Mapping[str, Callable[[Any], Any]] = field(default_factory=dict)
     section: type[Section] | None = None
     replaces: str = ""
+    assembly: BuildStep | None = None
 
     @property
     def builder_key(self) -> str:

@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.base import BuildStep, PartData, RigPart, Seat
 from tactcad.kernel.shapes import box
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, Text, fmt, listing, number
@@ -110,4 +110,12 @@ def build(g: SampleGeometry):
     return box(-g.length_mm / 2, -g.width_mm / 2, 0, g.length_mm / 2, g.width_mm / 2, g.height_mm)
 
 
-PART = RigPart(key="sample", section=SampleSection, host="", derive=derive, build=build, order=10)
+def casting_notes(book) -> tuple[str, ...]:
+    return ("Cast one block per stiffness of the rigs file; measure each block's stiffness on the "
+            "sample-stiffness rig and label it with the value.",) + tuple(
+        f"{part}: {k:g} N/mm" for part, k in book.sample_stiffness.items())
+
+
+PART = RigPart(key="sample", section=SampleSection, host="", derive=derive, build=build, order=10,
+               assembly=BuildStep("samples-cast", "Cast the sample kit",
+                                  tools=lambda book: ("mould", "scale"), notes=casting_notes))

@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass
 
 from tactcad.kernel.shapes import centred_box, centred_cylinder, difference
-from tactcad.partlib.base import DrawingRecord, PartData, RigPart, Seat
+from tactcad.partlib.base import BuildStep, DrawingRecord, PartData, RigPart, Seat
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Derived, Problems, Section, Text, fmt, number
 
@@ -94,6 +94,17 @@ def build(g: BoardGeometry):
     return difference(board, holes)
 
 
+def wiring_notes(book) -> tuple[str, ...]:
+    """Element k's quarter bridge on terminal pair k (three-wire connection,
+    Micro-Measurements instruction bulletin B-129 for the soldering)."""
+    return tuple(f"Element {k}: gauge leads to terminals {2 * k - 1} and {2 * k}; a third lead "
+                 f"from terminal {2 * k} carries the sense line (three-wire quarter bridge), the "
+                 "three completion resistors sit at the amplifier end."
+                 for k in range(1, min(book.elements, book.terminal_pairs) + 1)) + (
+        "Solder at the lowest iron temperature that wets (about 300 degC); check each bridge "
+        "arm reads the gauge's resistance before closing the clamp.",)
+
+
 PART = RigPart(
     key="terminal_board", section=TerminalBoardSection, host="array_bracket", derive=derive,
     build=build, needs=("bracket",),
@@ -102,4 +113,7 @@ PART = RigPart(
         "sides; HASL finish.",
         "One pair of holes per element, element 1 at the left: the strain gauge's two leads are "
         "soldered into its pair.",
-        "Bonded to the bracket's foot with double-sided adhesive tape.")))
+        "Bonded to the bracket's foot with double-sided adhesive tape.")),
+    assembly=BuildStep("array-wiring", "Wire the quarter bridges through the terminal board",
+                       tools=lambda book: ("temperature-controlled soldering iron", "multimeter"),
+                       notes=wiring_notes))

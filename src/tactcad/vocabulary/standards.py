@@ -96,3 +96,19 @@ def shortest_stock_length(bolt: BoltSpec, needed_mm: float) -> float | None:
     ``None`` when even the longest stock bolt is too short."""
     lengths = [L for L in bolt.catalogue_lengths_mm if L >= needed_mm - LENGTH_TOLERANCE_MM]
     return float(lengths[0]) if lengths else None
+
+
+#: Nut factor K of a dry steel thread (Shigley, Mechanical Engineering Design, ch. 8).
+NUT_FACTOR = 0.2
+#: Proof stress of property class 8.8 below M16 (MPa, ISO 898-1).
+PROOF_STRESS_MPA = 580.0
+
+
+def tightening_torque_Nm(d_mm: float, pitch_mm: float) -> float:
+    """Tightening torque (N m) of a class 8.8 metric screw of nominal diameter
+    ``d_mm`` and pitch ``pitch_mm``: T = K F d with the nut factor K = 0.2 and
+    the preload F = 0.75 x proof stress x stress area A_s = pi/4 (d - 0.9382 P)^2
+    (Shigley ch. 8; ISO 898-1)."""
+    stress_area = math.pi / 4 * (d_mm - 0.9382 * pitch_mm) ** 2
+    preload_N = 0.75 * PROOF_STRESS_MPA * stress_area
+    return NUT_FACTOR * preload_N * d_mm / 1000.0

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 from tactcad.geometry.profile import Profile, u_plate_profile
 from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.prism import DrilledPlate, hole_circles, prism_bbox
-from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, DrawingRecord, PartData
+from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Section, Text, choice, number
 from tactcad.vocabulary.standards import BOLTS
@@ -108,4 +108,5 @@ def plan_values(plan, spec, pen) -> tuple:
 
 PART = ArrayPart(key="clamp_plate", build=build, specs=specs, order=30,
                  drawing=DrawingRecord(dimensions=dimensions, notes_of=notes,
-                                       plan_values=plan_values))
+                                       plan_values=plan_values),
+                 assembly=BuildStep("array-stack"))

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 from tactcad.geometry.profile import Arc, element_profile
 from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.prism import Hole, prism_bbox
-from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, DrawingRecord, PartData
+from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Section, number
 
@@ -292,6 +292,16 @@ def plan_values(plan, spec, pen) -> tuple:
             pen.readout(plan))
 
 
+def stacking_notes(book) -> tuple[str, ...]:
+    return ("Stack in the order the assembly model shows: clamp plate, element, spacer, "
+            "element ... clamp plate; align on the bolt holes before tightening.",
+            "Keep the gauges' leads free of the clamp faces.")
+
+
 PART = ArrayPart(key="element", build=build, specs=specs, order=10,
                  drawing=DrawingRecord(dimensions=dimensions, notes_of=notes, detail=detail,
-                                       hole_table=False, plan_values=plan_values))
+                                       hole_table=False, plan_values=plan_values),
+                 assembly=BuildStep("array-stack",
+                                    "Stack elements and spacers between the clamp plates",
+                                    tools=lambda book: ("flat granite or glass plate",),
+                                    notes=stacking_notes))

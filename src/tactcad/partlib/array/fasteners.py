@@ -16,9 +16,9 @@ import math
 from typing import TYPE_CHECKING
 
 from tactcad.kernel.shapes import cylinder_z, difference, extrude, moved, polygon_face, union
-from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, PartData
+from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, PartData
 from tactcad.vocabulary.process import Method, Process
-from tactcad.vocabulary.standards import BoltSpec
+from tactcad.vocabulary.standards import NUT_FACTOR, BoltSpec, tightening_torque_Nm
 
 if TYPE_CHECKING:
     from tactcad.kernel.shapes import Solid
@@ -108,5 +108,16 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
     return (screw_data(plan.bolt, plan.bolt_length_mm, BLACK_OXIDE), nut_data(plan.bolt))
 
 
+def torque_notes(book) -> tuple[str, ...]:
+    """The clamp bolts' torque: :func:`tactcad.vocabulary.standards.tightening_torque_Nm`."""
+    bolt = book.bolt
+    torque = tightening_torque_Nm(bolt.nominal_diameter_mm, bolt.thread_pitch_mm)
+    return (f"Tighten the {bolt.size} clamp bolts crosswise in three passes to {torque:.2f} N m "
+            f"(class 8.8, K = {NUT_FACTOR:g}, preload 75 % of proof load).",)
+
+
 PART = ArrayPart(key="bolt", build=build_screw, specs=specs, order=50,
-                 companion_builders={"nut": build_nut, "rig_bolt": build_screw})
+                 companion_builders={"nut": build_nut, "rig_bolt": build_screw},
+                 assembly=BuildStep("array-bolts", "Torque the clamp bolts", tools=lambda book: (
+                     f"torque screwdriver with {book.bolt.socket_across_flats_mm:g} mm hex bit",),
+                     notes=torque_notes, companions=("nut",)))

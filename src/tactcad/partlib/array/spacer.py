@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 from tactcad.geometry.profile import Profile, rectangle_profile
 from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.prism import DrilledPlate, hole_circles, prism_bbox
-from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, DrawingRecord, PartData
+from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
 from tactcad.vocabulary.process import Method, Process
 
 if TYPE_CHECKING:
@@ -76,4 +76,5 @@ def plan_values(plan, spec, pen) -> tuple:
 
 
 PART = ArrayPart(key="spacer", build=build, specs=specs, order=20,
-                 drawing=DrawingRecord(notes_of=notes, plan_values=plan_values))
+                 drawing=DrawingRecord(notes_of=notes, plan_values=plan_values),
+                 assembly=BuildStep("array-stack"))

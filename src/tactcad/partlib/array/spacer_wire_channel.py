@@ -20,7 +20,7 @@ from tactcad.geometry.profile import Arc, Line, Profile, rectangle_profile
 from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array import spacer
 from tactcad.partlib.array.prism import hole_circles, prism_bbox
-from tactcad.partlib.base import ArrayContext, ArrayPart, DrawingRecord, PartData
+from tactcad.partlib.base import ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, number
 
@@ -127,4 +127,5 @@ def notes(d, pen) -> list[str]:
 
 PART = ArrayPart(key="spacer_wire_channel", build=build, specs=specs, order=21,
                  section=SpacerWireChannelSection, replaces="spacer",
-                 drawing=DrawingRecord(notes_of=notes, plan_values=spacer.plan_values))
+                 drawing=DrawingRecord(notes_of=notes, plan_values=spacer.plan_values),
+                 assembly=BuildStep("array-stack"))

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from tactcad.kernel.shapes import box_at_origin, translated
-from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, PartData
+from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, PartData
 from tactcad.vocabulary.process import Method, Process
 
 if TYPE_CHECKING:
@@ -68,4 +68,19 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
         expected_volume_mm3=gb.volume_mm3, expected_bbox_mm=gb.bbox_mm, geometry=gb),)
 
 
-PART = ArrayPart(key="gauge", build=build, specs=specs, order=40)
+def bonding_notes(book) -> tuple[str, ...]:
+    """Gauge installation after Micro-Measurements instruction bulletins B-127
+    (surface preparation) and B-129 (soldering)."""
+    return (f"One gauge per element on the top face over the web ({book.gauge_text}).",
+            "Prepare each bonding area: degrease, abrade with 320 then 400 grit, condition, "
+            "neutralize; handle no more after that.",
+            f"Bond with {book.adhesive_text}; press with thumb pressure through PTFE film for 1 min, "
+            "let it cure 24 h at room temperature before wiring.",
+            "Bond a solder terminal pair beside each gauge as strain relief; coat gauge and "
+            "terminals after wiring.")
+
+
+PART = ArrayPart(key="gauge", build=build, specs=specs, order=40,
+                 assembly=BuildStep("array-gauges", "Bond and cure the strain gauges",
+                                    tools=lambda book: ("tweezers", "PTFE film", "magnifier"),
+                                    notes=bonding_notes))
