@@ -97,6 +97,24 @@ def test_joints_place_the_parts(built):
     assert (cal.world_point("indenter", "contact") - cal.world_point("array", "tip_8")).length < 1e-9
 
 
+def test_each_joined_instance_has_its_joint_axis(built):
+    """Joint axes (the build book's explosion): a unit vector for every
+    instance placed by a joint, none for the rig's root; the weights stacked on
+    the carrier of the evaluation rig explode upwards, the way they are stacked."""
+    import math
+
+    for name, (sc, _) in built.items():
+        axes = sc.joint_axes()
+        in_roots = {m.name for r in sc.model.roots for m in sc.model.nodes[r].members} | set(
+            sc.model.roots)
+        assert set(axes) == {i.name for i in sc.instances} - in_roots, name
+        assert all(math.isclose(math.hypot(*a), 1.0) for a in axes.values())
+    ev, _ = built["array-evaluation-rig"]
+    w1, w3 = ev.world_point("weight_1", "bottom"), ev.world_point("weight_3", "top")
+    up = (w3 - w1).normalized()
+    assert ev.joint_axes()["weight_3"] == pytest.approx((up.X, up.Y, up.Z), abs=1e-9)
+
+
 def test_declared_contacts(built):
     sc, _ = built["sample-stiffness-rig"]
     for pair in [("indenter", "sample"), ("wheel_mm", "base_plate"), ("wheel_pp", "base_plate"),

@@ -171,6 +171,27 @@ class Scene:
         """Scene-frame position of a node's joint frame origin (mm)."""
         return (self.node_locations[node] * self.model.nodes[node].frames[frame].location()).position
 
+    def joint_axes(self) -> dict[str, tuple[float, float, float]]:
+        """Each shown instance's joint axis (unit vector, scene frame): the z axis
+        of the parent's joint frame that its node, or the sub-assembly it is a
+        member of, is mated or slid onto; it points out of the parent, towards
+        the child. Instances of a root node have none."""
+        from tactcad.kernel.locations import matrix
+
+        step_of = {s.child: s for s in self.model.steps}
+        member_of = {m.name: n.name for n in self.model.nodes.values() for m in n.members}
+        out = {}
+        for inst in self.instances:
+            step = step_of.get(inst.name if inst.name in self.model.nodes else
+                               member_of.get(inst.name, ""))
+            if step is None:
+                continue
+            z = matrix(self.node_locations[step.parent]
+                       * self.model.nodes[step.parent].frames[step.parent_frame].location())[:3, 2]
+            norm = math.sqrt(sum(float(c) ** 2 for c in z))
+            out[inst.name] = tuple(float(c) / norm for c in z)
+        return out
+
 
 def assemble(project: Project, name: str) -> Scene:
     """Solve scene ``name`` of ``project``: place every part by its joints and

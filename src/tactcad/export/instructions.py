@@ -14,7 +14,7 @@ import base64
 import html
 import json
 from pathlib import Path
-from typing import Callable, Collection, Sequence
+from typing import Callable, Collection, Mapping, Sequence
 
 import numpy as np
 
@@ -64,10 +64,12 @@ def carriers(boxes: np.ndarray, moving: Sequence[int], resting: Sequence[int],
     return out
 
 
-def explode_offsets(meshes, instances, new: Collection[str],
-                    earlier: Collection[str] = ()) -> dict[int, np.ndarray]:
+def explode_offsets(meshes, instances, new: Collection[str], earlier: Collection[str] = (),
+                    axes: Mapping[str, Sequence[float]] | None = None) -> dict[int, np.ndarray]:
     """World offsets (mm) of a step's exploded view: each instance of a ``new``
-    part lifts along its own z axis by :data:`EXPLODE_FACTOR` x its height
+    part moves along its joint axis (``axes``: instance name -> unit vector,
+    :meth:`tactcad.assembly.scene_solver.Scene.joint_axes`; else its own z
+    axis, the array's stacking axis) by :data:`EXPLODE_FACTOR` x its extent
     along it (at least 2 mm); a part of an ``earlier`` step that sits on a new
     one (a gauge bonded on an element) moves with it; the parts of later steps
     stay where the model has them."""
@@ -77,9 +79,12 @@ def explode_offsets(meshes, instances, new: Collection[str],
     moving = [k for k, i in enumerate(instances) if i.part in new]
     offsets = {}
     for k in moving:
-        v = meshes[instances[k].part][0]
-        height = float(v[:, 2].max() - v[:, 2].min())
-        offsets[k] = matrices[k][:3, 2] * EXPLODE_FACTOR * max(height, 2.0)
+        m = matrices[k]
+        given = (axes or {}).get(instances[k].name)
+        axis = np.asarray(given, dtype=float) if given is not None else m[:3, 2]
+        v = meshes[instances[k].part][0] @ m[:3, :3].T  # the part turned into the scene
+        along = v @ axis
+        offsets[k] = axis * EXPLODE_FACTOR * max(float(along.max() - along.min()), 2.0)
     if moving:
         boxes = placed_boxes(meshes, instances, matrices)
         resting = [k for k, i in enumerate(instances) if k not in offsets and i.part in earlier]
@@ -89,7 +94,7 @@ def explode_offsets(meshes, instances, new: Collection[str],
 
 
 def step_picture(meshes, instances, highlight, target: Path, title: str,
-                 earlier: Collection[str] = ()) -> int:
+                 earlier: Collection[str] = (), axes=None) -> int:
     """Render a step's model: the ``highlight`` parts in :data:`HIGHLIGHT_RGB`
     exploded with the ``earlier`` steps' parts they carry (:func:`explode_offsets`),
     every other part grey where the model has it
@@ -107,7 +112,8 @@ def step_picture(meshes, instances, highlight, target: Path, title: str,
 
     colors = {i.part: HIGHLIGHT_RGB if i.part in highlight else CONTEXT_RGB for i in instances}
     return render_assembly_png(meshes, instances, colors, target, title, size_px=(800, 500),
-                               offsets=explode_offsets(meshes, instances, highlight, earlier))
+                               offsets=explode_offsets(meshes, instances, highlight, earlier,
+                                                       axes))
 
 
 def explode_record(instances, offsets: dict[int, np.ndarray]) -> dict[str, list[float]]:
@@ -195,8 +201,9 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
         array: (specs, instances) of the array; with ``mesh`` (spec -> (vertices,
             triangles)), each step that places a part of the array gets a
             picture ``step_<n>_<key>.png``, also embedded in the page.
-        scene_of: scene name -> (its placed parts, its part specs by name); with
-            ``mesh``, the steps of the rigs and the samples get pictures of their scenes.
+        scene_of: scene name -> (its placed parts, its part specs by name, its
+            joint axes by instance); with ``mesh``, the steps of the rigs and the
+            samples get pictures of their scenes, exploded along those axes.
 
     Returns:
         File records ``{"path", "part": "instructions", "kind", "steps"}``.
@@ -217,16 +224,16 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
             model = _step_model(s.scene, array, scene_of, mesh, models)
             if model is None:
                 continue
-            instances, meshes = model
+            instances, meshes, axes = model
             new = set(s.highlight) & {i.part for i in instances}
             if not new:
                 continue
             earlier = {i.part for i in instances if order.get(i.part, -1) < n}
             path = picture_name(n + 1, s.key)
             step_picture(meshes, instances, new, staging / path, f"Step {n + 1}: {s.title}",
-                         earlier=earlier)
+                         earlier=earlier, axes=axes)
             explode[s.key] = explode_record(instances,
-                                            explode_offsets(meshes, instances, new, earlier))
+                                            explode_offsets(meshes, instances, new, earlier, axes))
             pictures[s.key] = (staging / path).read_bytes()
             picture_paths[s.key] = staging / path
             records.append({"path": path, "part": "instructions", "kind": "instructions-png",
@@ -247,17 +254,18 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
 
 
 def _step_model(scene: str, array, scene_of, mesh, models: dict):
-    """(instances, part meshes) of the model a step's picture shows, made once
-    per scene; None when it cannot be drawn here."""
+    """(instances, part meshes, joint axes) of the model a step's picture shows,
+    made once per scene; None when it cannot be drawn here."""
     if scene not in models:
+        axes: dict = {}
         if scene == "array" and array is not None:
             specs, instances = array
         elif scene != "array" and scene_of is not None:
-            instances, specs = scene_of(scene)
+            instances, specs, axes = scene_of(scene)
         else:
             models[scene] = None
             return None
-        models[scene] = (list(instances), {i.part: mesh(specs[i.part]) for i in instances})
+        models[scene] = (list(instances), {i.part: mesh(specs[i.part]) for i in instances}, axes)
     return models[scene]
 
 
@@ -275,7 +283,7 @@ def instructions_jobs(run, before):
 
         def scene_of(name: str):
             scene, _ = build_scene(run.project, name, run.parts)
-            return scene.instances, scene.parts()
+            return scene.instances, scene.parts(), scene.joint_axes()
         return write_book(run.project, run.staging, run.log, run.inventory, run.array,
                           run.parts.mesh, scene_of)
     every_part = {**specs, **run.inventory[0]}  # the array's and every scene's parts
