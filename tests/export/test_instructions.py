@@ -94,6 +94,19 @@ def test_an_exploded_part_carries_what_an_earlier_step_put_on_it():
     assert np.allclose(off[1], off[0]) and 2 not in off and 3 not in off
 
 
+def test_a_step_whose_parts_its_scene_lacks_is_drawn_where_they_are():
+    from types import SimpleNamespace as NS
+
+    from tactcad.export.instructions import drawn_scene
+
+    step = NS(scene="array", highlight=("terminal_board",))
+    assemblies = {"array": [NS(part="element_a4mm")], "wirecut": [NS(part="element_a4mm")],
+                  "calibration-rig": [NS(part="base_plate"), NS(part="terminal_board")]}
+    assert drawn_scene(step, assemblies) == "calibration-rig"
+    assert drawn_scene(NS(scene="array", highlight=("element_a4mm",)), assemblies) == "array"
+    assert drawn_scene(NS(scene="array", highlight=("daq",)), assemblies) == "array"
+
+
 def test_torque_grows_with_size():
     # M3 class 8.8 with K = 0.2: about 1.3 N m (common tables 1.2-1.3 N m)
     assert 1.1 < tightening_torque_Nm(3, 0.5) < 1.4
@@ -117,7 +130,8 @@ def test_step_pictures_show_their_highlighted_parts(name, tmp_path):
     keys = {p.stem.split("_", 2)[2] for p in pictures}
     steps = [st["key"] for st in json.loads((book / "steps.json").read_text())]
     rigs = {k for k in steps if k.startswith("rig-")}
-    assert {"array-gauges", "array-stack", "array-bolts", "samples-cast"} | rigs <= keys
+    assert {"array-gauges", "array-wiring", "array-stack", "array-bolts",
+            "samples-cast"} | rigs <= keys  # every step that places a part
     page = (book / "index.html").read_text()
     assert page.count("data:image/png;base64,") == len(pictures)
     for p in pictures:

@@ -210,8 +210,11 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
     """
     from tactcad.export.bom import complete_kit, kit_steps
 
+    from dataclasses import replace
+
     rows = complete_kit(project, assembled)
-    steps = kit_steps(project, rows, assembled[0])
+    steps = [replace(s, scene=drawn_scene(s, assembled[1]))
+             for s in kit_steps(project, rows, assembled[0])]
     (staging / BOOK_DIR).mkdir(parents=True, exist_ok=True)
     pictures: dict[str, bytes] = {}
     picture_paths: dict[str, Path] = {}
@@ -251,6 +254,15 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
              "steps": len(steps)},
             {"path": BOOK_DATA, "part": "instructions", "kind": "instructions-json",
              "steps": len(steps)}] + records
+
+
+def drawn_scene(step, assemblies) -> str:
+    """The model a step shows: its own scene, or, when that holds none of the
+    step's parts (the terminal board is wired before it is mounted on a rig),
+    the first assembly that does (``assemblies``: name -> instances with ``part``)."""
+    want = set(step.highlight)
+    names = [step.scene] + [a for a in assemblies if a != step.scene]
+    return next((a for a in names if want & {i.part for i in assemblies.get(a, ())}), step.scene)
 
 
 def _step_model(scene: str, array, scene_of, mesh, models: dict):
