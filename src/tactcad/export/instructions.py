@@ -94,9 +94,9 @@ def explode_offsets(meshes, instances, new: Collection[str], earlier: Collection
 
 
 def step_picture(meshes, instances, highlight, target: Path, title: str,
-                 earlier: Collection[str] = (), axes=None) -> int:
+                 offsets: Mapping[int, np.ndarray]) -> int:
     """Render a step's model: the ``highlight`` parts in :data:`HIGHLIGHT_RGB`
-    exploded with the ``earlier`` steps' parts they carry (:func:`explode_offsets`),
+    moved by ``offsets`` (:func:`explode_offsets`, with the parts they carry),
     every other part grey where the model has it
     (:func:`tactcad.export.render.render_assembly_png`).
 
@@ -112,8 +112,7 @@ def step_picture(meshes, instances, highlight, target: Path, title: str,
 
     colors = {i.part: HIGHLIGHT_RGB if i.part in highlight else CONTEXT_RGB for i in instances}
     return render_assembly_png(meshes, instances, colors, target, title, size_px=(800, 500),
-                               offsets=explode_offsets(meshes, instances, highlight, earlier,
-                                                       axes))
+                               offsets=offsets)
 
 
 def explode_record(instances, offsets: dict[int, np.ndarray]) -> dict[str, list[float]]:
@@ -233,10 +232,10 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
                 continue
             earlier = {i.part for i in instances if order.get(i.part, -1) < n}
             path = picture_name(n + 1, s.key)
+            offsets = explode_offsets(meshes, instances, new, earlier, axes)
             step_picture(meshes, instances, new, staging / path, f"Step {n + 1}: {s.title}",
-                         earlier=earlier, axes=axes)
-            explode[s.key] = explode_record(instances,
-                                            explode_offsets(meshes, instances, new, earlier, axes))
+                         offsets)
+            explode[s.key] = explode_record(instances, offsets)
             pictures[s.key] = (staging / path).read_bytes()
             picture_paths[s.key] = staging / path
             records.append({"path": path, "part": "instructions", "kind": "instructions-png",
