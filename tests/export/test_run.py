@@ -113,3 +113,33 @@ def test_changed_web_reaches_the_dxf(tmp_path, design_data):
     reading = read_dxf(tmp_path / "dxf/element_a4mm_qty2.dxf")
     outer = max(reading.contours, key=lambda c: len(c.segments))
     assert thinnest_ligament(outer.segments) == pytest.approx(0.31, abs=1e-9)
+
+
+def test_a_moved_copy_of_the_design_has_the_same_job_keys(tmp_path):
+    """The store reuses an export's jobs for the same design in another folder
+    (a git worktree of the previous commit, a CI checkout): no job's key holds
+    the design file's path, every key still follows the files' contents."""
+    import shutil
+
+    from tactcad.commands.watch import watched_files
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+    from tactcad.export.job import Run
+    from tactcad.export.jobs import all_jobs
+
+    def copy(folder):
+        folder.mkdir(parents=True)
+        for f in watched_files(DEFAULT_DESIGN):
+            shutil.copyfile(f, folder / f.name)
+        return folder
+
+    def keys(folder):
+        run = Run(load_project(folder / DEFAULT_DESIGN.name), tmp_path / "staging")
+        return {j.name: j.key for j in all_jobs(run)}
+
+    here, moved = copy(tmp_path / "here"), copy(tmp_path / "elsewhere" / "renamed")
+    assert keys(here) == keys(moved)
+    rigs = moved / "rigs.toml"
+    text = rigs.read_text(encoding="utf-8")
+    rigs.write_text(text.replace("length_mm = 260.0", "length_mm = 270.0", 1), encoding="utf-8")
+    before, edited = keys(here), keys(moved)  # the base plate 10 mm longer
+    assert {n for n in before if edited[n] != before[n]} >= {"bom", "drawing:base_plate"}

@@ -159,7 +159,9 @@ class Plan:
 
     name: str
     description: str
-    source: str
+    #: the design file as given; out of the plan's repr and so of every job's
+    #: key (no output depends on the folder: a moved or checked-out copy reuses the store)
+    source: str = field(repr=False)
     design_hash: str
     material: Material
     sheet_thickness_mm: float
