@@ -16,16 +16,27 @@ from tactcad.design.array_plan import DEFAULT_DESIGN, default_design_data
 SLOW_FIXTURES = {"exported", "freecad", "default_store", "example_exported", "arm_changed_cold"}
 
 
+def _test_key(nodeid: str) -> str:
+    """``dir/test_file.py::test_name`` of a node id (no ``tests/``, parameters or xdist group)."""
+    path, _, name = nodeid.partition("::")
+    return path.removeprefix("tests/") + "::" + name.split("[")[0].split("@")[0]
+
+
 @pytest.hookimpl(tryfirst=True)  # before pytest-xdist's own hook reads the group marks
 def pytest_collection_modifyitems(config, items):
     """Mark every test that uses a costly fixture as slow, so that
-    ``make test-fast`` (``-m "not slow"``) fits the inner loop; put the
-    browser tests in one pytest-xdist group (:data:`BROWSER_FILES`)."""
-    tests = Path(__file__).resolve().parent
+    ``make test-fast`` (``-m "not slow"``) fits the inner loop; put the tests
+    of :data:`BROWSER_TESTS` in one pytest-xdist group, and only those (the
+    rest of their files is scheduled like any test). A test that uses the
+    :func:`browser` fixture and is not listed there stops the run."""
     for item in items:
         if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
-        if item.path.relative_to(tests).as_posix() in BROWSER_FILES:
+        listed = _test_key(item.nodeid) in BROWSER_TESTS
+        if "browser" in getattr(item, "fixturenames", ()) and not listed:
+            raise pytest.UsageError(f"{item.nodeid} drives a browser: list it in "
+                                    "tests/conftest.py BROWSER_TESTS")
+        if listed:
             item.add_marker(pytest.mark.xdist_group("browser"))
 
 
@@ -35,8 +46,7 @@ def pytest_xdist_node_collection_finished(node, ids):
     silently run them on any worker, two browsers at once."""
     if node.config.getoption("dist", None) != "loadgroup":
         return
-    lost = [i for i in ids if i.split("::")[0].removeprefix("tests/") in BROWSER_FILES
-            and "@browser" not in i]
+    lost = [i for i in ids if _test_key(i) in BROWSER_TESTS and "@browser" not in i]
     if lost:
         pytest.exit(f"--dist loadgroup: {len(lost)} browser tests lost their xdist group "
                     f"(first: {lost[0]}); install the pytest of constraints.txt", returncode=4)
@@ -243,10 +253,20 @@ def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
     return subprocess.CompletedProcess(["tactcad", *argv], code, out.getvalue(), err.getvalue())
 
 
-#: Test files that drive a browser (Chromium, headless) or the FreeCAD GUI: under
-#: pytest-xdist they share one process (``--dist loadgroup``), so two never run at once.
-BROWSER_FILES = {"commands/test_watch.py", "export/test_review_page.py",
-                 "end_to_end/test_freecad_gui.py", "export/test_instructions_browser.py"}
+#: The tests that drive a browser (Chromium, headless) or the FreeCAD GUI: under
+#: pytest-xdist they share one process (``--dist loadgroup``), so two never run at
+#: once; the other tests of their files go to any worker.
+BROWSER_TESTS = {
+    "commands/test_watch.py::test_watch_session_in_chromium",
+    "commands/test_watch.py::test_served_scenes_follow_the_last_choice_and_free_the_ones_left",
+    "end_to_end/test_freecad_gui.py::test_review_file_opens_with_the_scene_in_view",
+    "export/test_instructions_browser.py::test_book_opens_offline_in_chromium",
+    "export/test_review_page.py::test_a_build_step_lights_its_parts_and_the_slider_explodes_them",
+    "export/test_review_page.py::test_page_offline_in_chromium",
+    "export/test_review_page.py::test_page_served_by_any_web_server_shows_what_it_carries",
+    "export/test_review_page.py::test_a_page_whose_watch_stopped_asks_less_and_less_often",
+    "export/test_review_page.py::test_check_results_join_the_page",
+}
 
 
 @pytest.fixture(scope="module")

@@ -11,6 +11,7 @@ is searched for the paper's samples, loads and text."""
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import re
@@ -96,7 +97,12 @@ def test_the_sdist_and_wheel_carry_the_package_data(installed):
     assert "Requires-Dist: numpy<3,>=2.2" in metadata  # a range, not a pin
 
 
-def test_a_labs_first_hour_from_the_wheel(installed, tmp_path):
+def _hashes(folder: Path) -> dict[str, str]:
+    return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_a_labs_first_hour_from_the_wheel(installed, tmp_path, example_exported):
     bin_, env, timings, _ = installed
     tactcad, python = str(bin_ / "tactcad"), str(bin_ / "python")
     where = _run([python, "-c", "import tactcad; print(tactcad.__file__)"], tmp_path, env)
@@ -115,6 +121,10 @@ def test_a_labs_first_hour_from_the_wheel(installed, tmp_path):
     workflow = (repo / ".github" / "workflows" / "hardware.yml").read_text(encoding="utf-8")
     assert f"DESIGN: {design}" in workflow
     _run([tactcad, "export", "--design", design, "--out", "exports"], repo, env, timings=timings)
+    # a cold export in a new process, from the installed package data, writes the bytes
+    # the test process's own export of the checkout's example wrote (another hash seed,
+    # another folder, another copy of the package)
+    assert _hashes(repo / "exports") == _hashes(example_exported)
     _run([tactcad, "check", "--design", design, "--out", "exports", "--junit",
           "check-report.xml", "--failures-only"], repo, env, timings=timings)
     report = (repo / "check-report.xml").read_text(encoding="utf-8")

@@ -112,10 +112,13 @@ class WatchSession:
 
 
 @contextmanager
-def watch_session(files: list[Path], log=print) -> Iterator[WatchSession]:
+def watch_session(files: list[Path], log=print, store_from: Path | None = None
+                  ) -> Iterator[WatchSession]:
     """A watch (:class:`WatchSession`) on a copy of ``files`` (the design file
     first, then the rigs and scenes files it uses) in a temporary folder, once
     its first export is current; stopped with SIGINT (killed after 30 s) on leaving.
+    Its store of finished jobs starts empty (a cold first export), or as a
+    copy of the store folder ``store_from``.
 
     Raises:
         TimeoutError: the first export was not current within 600 s.
@@ -125,6 +128,8 @@ def watch_session(files: list[Path], log=print) -> Iterator[WatchSession]:
         copy = folder / files[0].name
         for f in files:
             shutil.copyfile(f, folder / (files[0].name if f == files[0] else f.name))
+        if store_from is not None:
+            shutil.copytree(store_from, folder / "store")
         port = _free_port()
         proc = subprocess.Popen([sys.executable, "-m", "tactcad.cli", "watch", "--design", str(copy),
                                  "--out", str(folder / "out"), "--port", str(port),
@@ -220,18 +225,20 @@ def load_test(session: WatchSession, clients: int, seconds: float, log=print) ->
 
 
 def watch_figures(files: list[Path], rounds: int = 5, log=print, clients: int = 0,
-                  load_seconds: float = 30.0) -> dict:
+                  load_seconds: float = 30.0, store_from: Path | None = None) -> dict:
     """Run the benchmark (see module doc) on a copy of ``files``: the design
     file first, then the rigs and scenes files it uses; ``rounds`` browser
     rounds (0: none), then, with ``clients`` > 0, the load test
     (:func:`load_test`) for ``load_seconds``, its figures under ``load``.
+    The watch's store starts empty, or as a copy of ``store_from``
+    (:func:`watch_session`); the figures are of the edits after the first export.
 
     Raises:
         BrowserMissing: no Chromium or Playwright (with ``rounds`` > 0).
         TimeoutError: the watch process did not answer in time.
     """
     figures: dict = {}
-    with watch_session(files, log) as session:
+    with watch_session(files, log, store_from) as session:
         if rounds:
             figures.update(browser_rounds(session, rounds, log))
             _wait(lambda: len(watch_log_seconds(session.stderr())["export"]) >= rounds + 2, 10,
