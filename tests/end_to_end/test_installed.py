@@ -61,18 +61,19 @@ def installed(tmp_path_factory):
     _run([sys.executable, "-m", "build", "--outdir", str(dist), str(ROOT)], root, env,
          timings=timings)
     venv = root / "venv"
-    _run([sys.executable, "-m", "venv", str(venv)], root, env, timings=timings)
+    # no pip of its own (seeding one takes seconds): this pip installs into it (--python)
+    _run([sys.executable, "-m", "venv", "--without-pip", str(venv)], root, env, timings=timings)
     wheel = next(dist.glob("tactcad-*.whl"))
     python = str(venv / "bin" / "python")
+    pip = [sys.executable, "-m", "pip", "--python", python]
     site = _run([python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
                 root, env).stdout.strip()
     # the dependencies already installed here (a path line: the editable tactcad's own
     # .pth files there are not read, so only the wheel's tactcad can be imported)
     Path(site, "test-dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n",
                                                     encoding="utf-8")
-    _run([str(venv / "bin" / "pip"), "install", "--quiet", "--no-deps", str(wheel)], root, env,
-         timings=timings)
-    _run([str(venv / "bin" / "pip"), "check"], root, env, timings=timings)
+    _run([*pip, "install", "--quiet", "--no-deps", str(wheel)], root, env, timings=timings)
+    _run([*pip, "check"], root, env, timings=timings)
     user_env = {**env, "PATH": f"{venv / 'bin'}:{env['PATH']}"}
     return venv / "bin", user_env, timings, dist
 

@@ -8,7 +8,7 @@ import json
 import pytest
 
 from tactcad.checks.check_result import failures
-from tactcad.design.project import load_project, project_for_plan
+from tactcad.design.project import load_project
 from tactcad.checks.array_checks import run_checks
 from tactcad.export.run import export
 from tactcad.store import Store
@@ -92,12 +92,14 @@ def test_all_checks_pass_on_the_default_design(exported, plan):
 
 
 @pytest.mark.slow
-def test_changed_web_reaches_the_dxf(tmp_path, design_data):
+def test_changed_web_reaches_the_dxf(tmp_path):
+    """A value given as a user gives it (``set=``, as ``--set``) reaches the wire-EDM
+    file that ``export --only dxf`` writes, built afresh (no store)."""
+    import tactcad
     from tactcad.checks.dxf_readback import read_dxf, thinnest_ligament
-    from tactcad.design.array_plan import plan_from_dict, with_overrides
 
-    plan = plan_from_dict(with_overrides(design_data, {"element.web_thickness_mm": 0.31}))
-    export(project_for_plan(plan), tmp_path, log=lambda s: None)
+    project = tactcad.load(set={"element.web_thickness_mm": 0.31})
+    project.export(tmp_path, only="dxf", cache=False)
     reading = read_dxf(tmp_path / "dxf/element_a4mm_qty2.dxf")
     outer = max(reading.contours, key=lambda c: len(c.segments))
     assert thinnest_ligament(outer.segments) == pytest.approx(0.31, abs=1e-9)
