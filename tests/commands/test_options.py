@@ -58,8 +58,9 @@ def test_drawn_command_lines_end_in_a_known_exit_code_without_traceback(
         raise _TimeUp
 
     old = signal.signal(signal.SIGALRM, time_up)
-    # refusals answer at once; a valid line that runs a long study proves nothing more
-    signal.alarm(20)
+    # refusals answer at once; a valid line that runs a long study (an export, a
+    # check) proves nothing more past a few seconds here: make fuzz gives each line a minute
+    signal.alarm(6)
     try:
         code = cli.main(argv)
     except _TimeUp:  # a valid line that simply takes long: no verdict

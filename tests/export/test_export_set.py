@@ -19,7 +19,8 @@ from conftest import ctrl_c_at_its_default, run_cli, warm_store_copy, with_defau
 from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.store import Store
 
-pytestmark = pytest.mark.slow
+# one worker for the module: its ``warm`` store is filled once, not once per worker
+pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("export-set")]
 
 
 def tactcad(*args: str, cwd: Path | None = None) -> subprocess.Popen:

@@ -17,6 +17,9 @@ from tactcad.mechanics.fem.fem3d import fem3d_convergence, solve_fem3d
 from tactcad.mechanics.fem.fem_mesh import fem_region, graded_layers, mesh_region
 from tactcad.mechanics.richardson import richardson
 
+# one worker for the module: the convergence fixture (three fem3d meshes) is solved once
+pytestmark = pytest.mark.xdist_group("fem3d-convergence")
+
 ORDER_BAND = (1.5, 4.5)
 ERROR_GOAL = 0.005  # 0.5 %
 
@@ -75,6 +78,8 @@ def test_pcg_matches_direct_solver(plan):
 
 @pytest.fixture(scope="module")
 def conv_4mm(plan):
+    """fem3d's three meshes of the 4 mm arm, solved once for the module's tests
+    (which share a worker: ``pytestmark``)."""
     return fem3d_convergence(_elem(plan, 4.0), plan.material, verbose=True)
 
 
