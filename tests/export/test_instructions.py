@@ -172,3 +172,33 @@ def test_every_array_part_module_names_the_step_that_consumes_its_parts(book):
     for module in (element, fasteners, strain_gauge):
         declared = module.PART.assembly
         assert steps[declared.key]["title"] == declared.title
+
+
+def test_a_stack_is_spread_apart_in_its_order():
+    """Layers that touch along their common axis (clamp plate, element, spacer,
+    element, clamp plate) move apart in their order, a gap between every two;
+    a part of the same step away from the stack is lifted on its own."""
+    import numpy as np
+
+    from tactcad.catalogue.array_catalogue import Instance
+    from tactcad.design.array_plan import Placement
+    from tactcad.export.instructions import EXPLODE_FACTOR, explode_offsets
+
+    def box(x, y, z):
+        v = np.array([[i * x, j * y, k * z] for i in (0, 1) for j in (0, 1) for k in (0, 1)],
+                     dtype=float)
+        return v, np.array([[0, 1, 2]])
+
+    meshes = {"plate": box(30, 10, 2), "element": box(30, 10, 3), "spacer": box(30, 10, 1),
+              "lone": box(5, 5, 4)}
+    layers = [("plate", 0), ("element", 2), ("spacer", 5), ("element", 6), ("plate", 9)]
+    inst = [Instance(f"{p}_{n}", p, Placement(0, 0, z)) for n, (p, z) in enumerate(layers)]
+    inst.append(Instance("lone_1", "lone", Placement(100, 0, 0)))
+    off = explode_offsets(meshes, inst, {"plate", "element", "spacer", "lone"})
+    assert np.allclose(off[0], [0, 0, EXPLODE_FACTOR * 2.0])  # the first layer, as alone
+    bottoms = [z + off[n][2] for n, (_, z) in enumerate(layers)]
+    tops = [b + meshes[p][0][:, 2].max() for b, (p, _) in zip(bottoms, layers)]
+    gaps = [lo - hi for hi, lo in zip(tops, bottoms[1:])]
+    assert min(gaps) > 0.5, gaps  # in order, none touching
+    assert all(np.allclose(off[n][:2], 0) for n in range(len(layers)))
+    assert np.allclose(off[5], [0, 0, EXPLODE_FACTOR * 4.0])

@@ -25,10 +25,13 @@ from tactcad.export.book_paths import BOOK_DATA, BOOK_DIR, BOOK_PAGE, BOOK_PDF
 HIGHLIGHT_RGB = (1.0, 0.0, 1.0)
 #: Grey of the parts placed before (RGB 0-1).
 CONTEXT_RGB = (0.72, 0.72, 0.72)
-#: How far a step's new parts are drawn lifted along their part frame's z (mm, per part height).
+#: How far a step's new parts are drawn lifted along their axis (mm, per part extent along it).
 EXPLODE_FACTOR = 1.5
 #: Gap (mm) within which a part counts as sitting on another (bonded, fastened: they touch).
 TOUCH_MM = 0.05
+#: How far a stack's layers are spread apart: each moves this many times its distance
+#: (mm, along the axis, centre to centre) from the stack's first layer, on top of the lift.
+STACK_SPREAD = 1.0
 
 _STYLE = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.4}"
           "table{border-collapse:collapse}td,th{border:1px solid #999;padding:2px 6px}"
@@ -64,32 +67,73 @@ def carriers(boxes: np.ndarray, moving: Sequence[int], resting: Sequence[int],
     return out
 
 
+def stacks(boxes: np.ndarray, axes: np.ndarray, moving: Sequence[int],
+           touch_mm: float = TOUCH_MM) -> list[list[int]]:
+    """The moving instances grouped into stacks: instances that move along the
+    same axis and whose boxes, grown by ``touch_mm``, meet (layers clamped
+    together, a screw through a spacer), joined transitively; an instance
+    alone is a stack of one. ``axes``: unit axis per instance (n, 3)."""
+    parent = {k: k for k in moving}
+
+    def root(k: int) -> int:
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    for i, a in enumerate(moving):
+        for b in moving[i + 1:]:
+            same_axis = float(axes[a] @ axes[b]) > 1.0 - 1e-6
+            meet = np.all(np.minimum(boxes[a, 1], boxes[b, 1]) + touch_mm
+                          >= np.maximum(boxes[a, 0], boxes[b, 0]))
+            if same_axis and meet:
+                parent[root(a)] = root(b)
+    groups: dict[int, list[int]] = {}
+    for k in moving:
+        groups.setdefault(root(k), []).append(k)
+    return list(groups.values())
+
+
 def explode_offsets(meshes, instances, new: Collection[str], earlier: Collection[str] = (),
                     axes: Mapping[str, Sequence[float]] | None = None) -> dict[int, np.ndarray]:
-    """World offsets (mm) of a step's exploded view: each instance of a ``new``
+    """World offsets (mm) of a step's exploded view. Each instance of a ``new``
     part moves along its joint axis (``axes``: instance name -> unit vector,
     :meth:`tactcad.assembly.scene_solver.Scene.joint_axes`; else its own z
     axis, the array's stacking axis) by :data:`EXPLODE_FACTOR` x its extent
-    along it (at least 2 mm); a part of an ``earlier`` step that sits on a new
-    one (a gauge bonded on an element) moves with it; the parts of later steps
+    along it (at least 2 mm). A stack of them (:func:`stacks`: the array's
+    elements, spacers and clamp plates; a column on its base plate) is spread
+    apart in its order instead: its first layer along the axis moves as a
+    part alone, each other layer :data:`STACK_SPREAD` x its distance from the
+    first further, so a gap opens between every two. A part of an ``earlier`` step that sits on a new one
+    (a gauge bonded on an element) moves with it; the parts of later steps
     stay where the model has them."""
     from tactcad.export.render import instance_matrix
 
     matrices = [instance_matrix(i) for i in instances]
     moving = [k for k, i in enumerate(instances) if i.part in new]
-    offsets = {}
+    if not moving:
+        return {}
+    unit = np.zeros((len(instances), 3))
+    lift = np.zeros(len(instances))
     for k in moving:
         m = matrices[k]
         given = (axes or {}).get(instances[k].name)
-        axis = np.asarray(given, dtype=float) if given is not None else m[:3, 2]
+        unit[k] = np.asarray(given, dtype=float) if given is not None else m[:3, 2]
         v = meshes[instances[k].part][0] @ m[:3, :3].T  # the part turned into the scene
-        along = v @ axis
-        offsets[k] = axis * EXPLODE_FACTOR * max(float(along.max() - along.min()), 2.0)
-    if moving:
-        boxes = placed_boxes(meshes, instances, matrices)
-        resting = [k for k, i in enumerate(instances) if k not in offsets and i.part in earlier]
-        for r, c in carriers(boxes, moving, resting).items():
-            offsets[r] = offsets[c]
+        along = v @ unit[k]
+        lift[k] = EXPLODE_FACTOR * max(float(along.max() - along.min()), 2.0)
+    boxes = placed_boxes(meshes, instances, matrices)
+    centres = boxes.mean(axis=1)
+    offsets = {}
+    for stack in stacks(boxes, unit, moving):
+        axis = unit[stack[0]]
+        along = {k: float(centres[k] @ axis) for k in stack}
+        first = min(stack, key=along.__getitem__)
+        for k in stack:
+            offsets[k] = axis * (lift[first] + STACK_SPREAD * (along[k] - along[first]))
+    resting = [k for k, i in enumerate(instances) if k not in offsets and i.part in earlier]
+    for r, c in carriers(boxes, moving, resting).items():
+        offsets[r] = offsets[c]
     return offsets
 
 
