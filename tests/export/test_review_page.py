@@ -135,6 +135,13 @@ def test_a_build_step_lights_its_parts_and_the_slider_explodes_them(exported, br
         page.wait_for_function("window.__review.step() === 'array-stack'")
         lit = set(page.evaluate("window.__review.lit()"))
         assert {n for n in moved if not n.startswith("gauge_")} <= lit
+        # the gauges (bonded in step 1) grey, the bolts (torqued in the next step) not shown yet
+        roles = page.evaluate("window.__review.stepRoles()")
+        shown = set(page.evaluate("window.__review.visible()"))
+        bolts = [n for n in roles if n.startswith("bolt_")]
+        assert bolts and all(roles[n] == "later" and n not in shown for n in bolts)
+        assert all(roles[n] == "earlier" and n in shown for n in roles if n.startswith("gauge_"))
+        assert {n for n, r in roles.items() if r == "new"} == lit
         before = page.evaluate(f"window.__review.positions({json.dumps(moved)})")
         pixels = page.locator("#view canvas").screenshot()
         page.locator("#explode").fill("100")
@@ -147,6 +154,9 @@ def test_a_build_step_lights_its_parts_and_the_slider_explodes_them(exported, br
         assert page.locator("#view canvas").screenshot() != pixels
         page.select_option("#step-select", rig["key"])
         page.wait_for_function(f"window.__review.scene === {json.dumps(rig['scene'])}")
+        page.select_option("#step-select", "")  # no step: every part as the model has it
+        assert set(page.evaluate("window.__review.visible()")) == \
+            set(page.evaluate("window.__review.instances"))
         assert page.errors == []
 
 

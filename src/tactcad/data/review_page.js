@@ -147,6 +147,7 @@ async function showScene(name, keepView) {
       m.material.emissive.setHex(emissiveOf(m));
       m.visible = !hidden.has(m.name);
       m.userData.rest = m.position.clone();  // as placed: the explosion adds to it
+      m.userData.color = m.material.color.clone();  // as the STEP colours it: a step greys it
     }
     world.add(model);
     box = new THREE.Box3().setFromObject(model);
@@ -247,17 +248,38 @@ review.step = () => (step ? step.key : null);
 review.positions = (names) => Object.fromEntries((model ? instances(model) : [])
   .filter((m) => names.includes(m.name)).map((m) => [m.name, m.position.toArray()]));
 
-function emissiveOf(m) {
-  if (m.name === highlighted) return HIGHLIGHT;
-  return step && step.scene === review.scene && step.highlight.includes(m.userData.part) ? STEP_LIT : 0;
+const STEP_EARLIER = 0xb8b8b8;  // colour of the parts placed before the shown step (the book's grey)
+// where each instance stands in the shown step: 'new' (its parts lit), 'later' (placed by a
+// later step: not shown yet), 'earlier' (placed before, or by no step: grey), or '' (no step)
+review.stepRoles = () => Object.fromEntries((model ? instances(model) : [])
+  .map((m) => [m.name, stepRole(m)]));
+review.visible = () => (model ? instances(model).filter((m) => m.visible).map((m) => m.name) : []);
+
+function stepRole(m) {
+  if (!step || step.scene !== review.scene) return '';
+  const book = DATA.book || [];
+  const first = book.findIndex((s) => (s.highlight || []).includes(m.userData.part));
+  const now = book.findIndex((s) => s.key === step.key);
+  return first === now ? 'new' : first > now ? 'later' : 'earlier';
 }
 
-function applyStep() {  // the shown step's colours and explosion on the model in the view
+function emissiveOf(m) {
+  if (m.name === highlighted) return HIGHLIGHT;
+  return stepRole(m) === 'new' ? STEP_LIT : 0;
+}
+
+function applyStep() {  // the shown step on the model in the view: colours, visibility, explosion
   if (!model) return;
   const t = step && step.scene === shown.name ? Number($('explode').value) / 100 : 0;
   const moves = (step && step.explode) || {};
   for (const m of instances(model)) {
+    const role = stepRole(m);
     m.material.emissive.setHex(emissiveOf(m));
+    if (m.userData.color) {
+      if (role === 'earlier') m.material.color.setHex(STEP_EARLIER);
+      else m.material.color.copy(m.userData.color);
+    }
+    m.visible = !hidden.has(m.name) && role !== 'later';
     const d = moves[m.name];
     if (m.userData.rest) m.position.copy(m.userData.rest);
     if (d && t) m.position.add(new THREE.Vector3(d[0], d[1], d[2]).multiplyScalar(t));
