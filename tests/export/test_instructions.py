@@ -134,6 +134,12 @@ def test_step_pictures_show_their_highlighted_parts(name, tmp_path):
             "samples-cast"} | rigs <= keys  # every step that places a part
     page = (book / "index.html").read_text()
     assert page.count("data:image/png;base64,") == len(pictures)
+    # every explosion vector names an instance of the scene its step is drawn in
+    _, assemblies = design_assemblies(load_project(HARDWARE / name / f"{name}.toml"))
+    for st in json.loads((book / "steps.json").read_text()):
+        names = {i.name for i in assemblies[st["scene"]]}
+        assert set(st["explode"]) <= names, (st["key"], set(st["explode"]) - names)
+        assert all(len(v) == 3 and any(v) for v in st["explode"].values()), st["key"]
     for p in pictures:
         rgb = np.asarray(Image.open(p).convert("RGB")).astype(int)
         assert (rgb < 250).any(axis=2).mean() > 0.05, p  # a model drawn, not a blank frame
