@@ -392,7 +392,6 @@ def test_a_short_load_during_edits_has_no_error_and_prints_its_latencies(default
     said: list[str] = []
     figures = watch_figures(watched_files(DEFAULT_DESIGN), rounds=0, log=said.append,
                             clients=24, load_seconds=8, store_from=default_store)
-    assert figures["watch_exit_code"] == 0
     load = figures["load"]
     assert load["edits"] >= 1 and load["requests"] > 24 and load["errors"] == 0
     assert 0 < load["p50_ms"] <= load["p95_ms"] <= load["p99_ms"] <= load["max_ms"]
