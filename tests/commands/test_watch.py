@@ -36,7 +36,7 @@ def test_server_serves_the_page_and_its_state():
     state = LiveState()
     state.publish("ab" * 32, "current", None, b"<html>page</html>")
     server = make_server(state, 0)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
+    threading.Thread(target=server.serve_forever, args=(0.05,), daemon=True).start()
     try:
         base = f"http://127.0.0.1:{server.server_address[1]}"
         assert _get(base + "/") == (200, b"<html>page</html>")
@@ -61,7 +61,7 @@ def test_a_client_leaving_mid_download_prints_no_traceback(capfd):
     state = LiveState()
     state.publish("ab" * 32, "current", None, b"x" * 8_000_000)
     server = make_server(state, 0)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
+    threading.Thread(target=server.serve_forever, args=(0.05,), daemon=True).start()
     try:
         port = server.server_address[1]
         for _ in range(3):
@@ -380,7 +380,7 @@ def test_served_scenes_follow_the_last_choice_and_free_the_ones_left(exported, p
 
     state.response = late
     server = make_server(state, 0)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
+    threading.Thread(target=server.serve_forever, args=(0.05,), daemon=True).start()
 
     def choose(*scenes, late_ms=0):
         """Choose the scenes in turn at once; return when the last is shown (and

@@ -26,7 +26,7 @@ from tactcad.export.live import (CLIENT_TIMEOUT_S, LISTEN_BACKLOG, LiveState, ho
 @contextmanager
 def serving(state: LiveState):
     server = make_server(state, 0)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
+    threading.Thread(target=server.serve_forever, args=(0.05,), daemon=True).start()
     try:
         yield server, server.server_address[1]
     finally:

@@ -204,7 +204,7 @@ def test_page_served_by_any_web_server_shows_what_it_carries(exported, browser):
     handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(out))
     handler.log_message = lambda *a: None
     server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
+    threading.Thread(target=server.serve_forever, args=(0.05,), daemon=True).start()
     try:
         with browser(offline=False) as page:
             asked = []
@@ -260,7 +260,7 @@ def test_a_page_whose_watch_stopped_asks_less_and_less_often(exported, browser):
             pass
 
     server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Gone)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
+    threading.Thread(target=server.serve_forever, args=(0.05,), daemon=True).start()
     try:
         with browser(offline=False) as page:
             page.goto(f"http://127.0.0.1:{server.server_address[1]}/")

@@ -201,6 +201,9 @@ def waiting_page(status: str, refusal: str | None) -> bytes:
 
 #: Seconds a connection may stay silent before its thread is given back.
 CLIENT_TIMEOUT_S = 15.0
+#: How often a serving loop looks whether it is asked to stop (s): the
+#: socketserver default of 0.5 s made every stop of the watch wait that long.
+STOP_POLL_S = 0.05
 #: Connections the kernel queues while every thread is busy (socketserver's default is 5).
 LISTEN_BACKLOG = 128
 #: The host names a page on this machine may use for the watch (DNS rebinding guard).
@@ -327,15 +330,15 @@ class Servers:
     def start(self) -> None:
         """Serve each in a daemon thread of its own."""
         for server in self.servers:
-            thread = threading.Thread(target=server.serve_forever, daemon=True,
-                                      name=f"watch server {server.server_address[0]}")
+            thread = threading.Thread(target=server.serve_forever, args=(STOP_POLL_S,),
+                                      daemon=True, name=f"watch server {server.server_address[0]}")
             thread.start()
             self.threads.append(thread)
 
     def stop(self) -> None:
         """Stop every server (those started wait for their loop to end) and close
         its socket; connections being answered end with their daemon threads."""
-        # shutdown() waits for serve_forever to see it (up to 0.5 s): all at once
+        # shutdown() waits for serve_forever to see it (up to STOP_POLL_S): all at once
         stoppers = [threading.Thread(target=s.shutdown) for s in self.servers[:len(self.threads)]]
         for stopper in stoppers:
             stopper.start()
