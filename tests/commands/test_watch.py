@@ -527,3 +527,28 @@ def test_sigterm_mid_update_ends_the_watch_cleanly(tmp_path, default_store):
     assert not list(tmp_path.glob(".out.*")) and not list(s.out.glob(".*staging*"))
     assert json.loads((s.out / "manifest.json").read_text()) == before
     assert _gone(children)
+
+
+def test_a_ctrl_c_lost_on_its_way_still_stops_the_watch():
+    """A Ctrl-C whose KeyboardInterrupt something swallows (here: a bare
+    except, as in a library call) is still noted in the watch's stop event,
+    which ends the session after the update; the handlers are put back."""
+    import os
+    import threading
+
+    from tactcad.commands.watch import note_stop_signals
+
+    before = signal.getsignal(signal.SIGINT)
+    stop = threading.Event()
+    restore = note_stop_signals(stop)
+    try:
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            for _ in range(1000):  # the handler runs between bytecodes
+                pass
+        except KeyboardInterrupt:  # lost on its way: nobody re-raises it
+            pass
+        assert stop.is_set()
+    finally:
+        restore()
+    assert signal.getsignal(signal.SIGINT) is before

@@ -5,7 +5,9 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import threading
 from pathlib import Path
+from typing import Callable
 
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, store_from_args
 
@@ -35,6 +37,39 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_output_args(p, "print one JSON object per event on stdout (update, refusal, stop) "
                        "instead of progress lines")
     p.set_defaults(func=run)
+
+
+def note_stop_signals(stop: threading.Event) -> Callable[[], None]:
+    """Set ``stop`` on Ctrl-C and on each signal that ends a run like it
+    (:data:`tactcad.cli.ENDING_SIGNALS`), then let the signal's own handler
+    raise as before; returns what puts the handlers back. In a suite run a
+    Ctrl-C that arrived while an edit was exported never surfaced: the
+    watch went on watching until it was killed (its KeyboardInterrupt lost
+    inside a library call, not found). The event is seen after the update
+    whatever became of the exception. Outside the main thread nothing is
+    installed (signals are the main thread's)."""
+    import signal
+
+    from tactcad.cli import ENDING_SIGNALS
+
+    if threading.current_thread() is not threading.main_thread():
+        return lambda: None
+    previous = {}
+    for name in ("SIGINT", *ENDING_SIGNALS):
+        signum = getattr(signal, name)
+        handler = signal.getsignal(signum)
+        if not callable(handler):  # ignored or the default: left as it is
+            continue
+
+        def noted(number, frame, handler=handler):
+            stop.set()
+            handler(number, frame)
+        previous[signum] = signal.signal(signum, noted)
+
+    def restore() -> None:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+    return restore
 
 
 def watched_files(design: Path) -> list[Path]:
@@ -94,17 +129,24 @@ def run(args: argparse.Namespace) -> int:
     keep_freecad(True)  # one FreeCAD process for the review files of every run
     # the page is served by a process of its own, so the exports do not slow its answers
     server = serve_apart(servers, state, log)
+    stop = threading.Event()
+    restore = note_stop_signals(stop)
     try:
         log(f"review page at {' and '.join(servers.urls())} (Ctrl-C stops)")
         files = watched_files(design)
         log("watching " + ", ".join(str(f) for f in files))
-        for k, _ in enumerate(changes(files, args.poll)):  # the first: the files are watched
+        # the first: the files are watched; the watcher also ends once ``stop`` is set
+        for k, _ in enumerate(changes(files, args.poll, stop)):
             if k:
                 log("change seen")
             loop.update()
+            if stop.is_set():  # a Ctrl-C whose KeyboardInterrupt the update lost
+                raise KeyboardInterrupt
+        raise KeyboardInterrupt  # the watcher ended: only ``stop`` ends it
     except KeyboardInterrupt:
         log("stopped")
     finally:
+        restore()
         loop.close()
         keep_freecad(False)
         if server is not None:
