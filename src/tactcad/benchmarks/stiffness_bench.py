@@ -27,14 +27,13 @@ import json
 import math
 import sys
 import time
-import warnings
 from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
-from tactcad.mechanics.correction import CORRECTION_FILE, CorrectionRangeWarning
+from tactcad.mechanics.correction import CORRECTION_FILE, range_warnings_unsaid
 from tactcad.studies.correction_sweep import grid_geometry
 from tactcad.mechanics.ladder import estimate, models
 
@@ -120,8 +119,7 @@ def run(plan: Plan, levels=None, out_dir="exports/reports", progress=print) -> l
             progress(f"  {model:<12} design {i}/{len(grid)} {d.label}: t={g.web_thickness_mm:.4g} "
                      f"a={g.arm_length_mm:.4g} R={g.notch_radius_mm:.4g} "
                      f"b={g.sheet_thickness_mm:.4g} nu={d.material.poisson_ratio:.3g}")
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", CorrectionRangeWarning)
+            with range_warnings_unsaid():
                 r = estimate(model, g, d.material)
             points.append(Point(model, d.label, g.web_thickness_mm, g.arm_length_mm,
                                 g.notch_radius_mm, g.sheet_thickness_mm,

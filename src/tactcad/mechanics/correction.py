@@ -47,9 +47,10 @@ from __future__ import annotations
 import json
 import math
 import warnings
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Iterator, Mapping
 
 import numpy as np
 
@@ -77,6 +78,16 @@ RANGE_KEYS = ("t_over_R", "width_ratio", "web_over_sheet", "poisson_ratio", "web
 
 class CorrectionRangeWarning(UserWarning):
     """A correction is applied outside the range it was fitted over."""
+
+
+@contextmanager
+def range_warnings_unsaid() -> Iterator[None]:
+    """Estimates made inside issue no :class:`CorrectionRangeWarning`: for the
+    candidates a search weighs or a grid's points, which are not the design
+    the user asked about (or report their range themselves)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", CorrectionRangeWarning)
+        yield
 
 
 _INF_RANGE = (0.0, math.inf)

@@ -83,11 +83,9 @@ def table1_not_applicable(plan: Plan) -> str | None:
     None when it can: the design cites the paper (``requirements.source``),
     has every element Table 1 numbers, and each element's geometry reaches
     its measured K within the closed form's web range (0.05 ... 1 mm)."""
-    import warnings
-
     from tactcad.design.requirements_section import cites_paper
     from tactcad.mechanics.closed_form import web_for_stiffness
-    from tactcad.mechanics.correction import CorrectionRangeWarning
+    from tactcad.mechanics.correction import range_warnings_unsaid
     if not cites_paper(plan.raw):
         return "the design does not cite the paper (requirements.source), so Table 1 is not its"
     rows = table1()
@@ -98,8 +96,7 @@ def table1_not_applicable(plan: Plan) -> str | None:
                 f"{len(numbers)}")
     for meas in rows:
         try:
-            with warnings.catch_warnings():  # a probe of reach, not an estimate to warn about
-                warnings.simplefilter("ignore", CorrectionRangeWarning)
+            with range_warnings_unsaid():  # a probe of reach, not an estimate to warn about
                 web_for_stiffness(meas.stiffness_N_per_mm, plan.element(meas.element).geometry,
                                   plan.material)
         except ValueError as exc:

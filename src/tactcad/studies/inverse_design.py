@@ -68,7 +68,7 @@ import numpy as np
 
 from tactcad.design.array_plan import ARM_RANGE_MM, BOLTS, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, plan_from_dict
 from tactcad.errors import DesignError, TactcadError
-from tactcad.mechanics.correction import load_correction
+from tactcad.mechanics.correction import load_correction, range_warnings_unsaid
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
 from tactcad.mechanics.element_strength import force_limits
 from tactcad.studies.tolerance_montecarlo import corrected_stiffness
@@ -686,20 +686,6 @@ def design_tables(base: Plan, *, grade: str | None = None, pitch_mm: float | Non
     return with_grid(data, rows, columns)
 
 
-def _explored(search, *args, **kwargs):
-    """``search(*args, **kwargs)`` with the closed form's range warnings left
-    unsaid: the candidates are explored, not the design written, whose arm
-    height is raised into the correction's fitted range (its own estimates
-    still warn)."""
-    import warnings
-
-    from tactcad.mechanics.correction import CorrectionRangeWarning
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", CorrectionRangeWarning)
-        return search(*args, **kwargs)
-
-
 def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "inverse_design",
                        correction=None, arm_max_mm: float | None = None,
                        shortest_element: bool = False) -> InverseDesign:
@@ -718,7 +704,8 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
     refusal = None
     for _ in range(ARM_HEIGHT_ROUNDS):
         plan = plan_from_dict(data, source="<inverse design>")
-        search = _explored(search_webs, plan, targets, correction, arm_max_mm=arm_max_mm)
+        with range_warnings_unsaid():  # the candidates, not the design written (its own warn)
+            search = search_webs(plan, targets, correction, arm_max_mm=arm_max_mm)
         try:
             i, refusal = choose_web(search, base_web), None
         except InverseDesignError as exc:  # judge the targets on the arm height they need
@@ -738,8 +725,9 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
         raise refusal
     f_max = max_full_scale_force_N(search, targets.full_scale_force_N)
     above = replace(targets, full_scale_force_N=f_max * (1 + MAX_FORCE_PROBE))
-    bind = tuple(lim.name for lim in binding_limits(_explored(search_webs, plan, above, correction,
-                                                              arm_max_mm=arm_max_mm)))
+    with range_warnings_unsaid():
+        probe = search_webs(plan, above, correction, arm_max_mm=arm_max_mm)
+    bind = tuple(lim.name for lim in binding_limits(probe))
     t, R = float(search.webs_mm[i]), float(search.radii_mm[i])
     a_r = round(float(search.arm_r_mm[i]), ARM_DECIMALS)
     a_m = round(float(search.arm_m_mm[i]), ARM_DECIMALS)

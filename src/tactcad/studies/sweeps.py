@@ -156,14 +156,11 @@ class GridRow:
 
 def evaluate_point(p: GridPoint) -> GridRow:
     """K of one grid point at its ladder level (runs on a worker)."""
-    import warnings
-
-    from tactcad.mechanics.correction import CorrectionRangeWarning
+    from tactcad.mechanics.correction import range_warnings_unsaid
     from tactcad.mechanics.ladder import estimate
 
     g = p.geometry
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", CorrectionRangeWarning)  # the grid reports its own range
+    with range_warnings_unsaid():  # the grid reports its own range
         r = estimate(p.model, g, p.material)
     return GridRow(p.model, g.web_thickness_mm, g.arm_length_mm, g.notch_radius_mm,
                    r.stiffness_N_per_mm, r.gauge_strain_per_N, r.error_estimate_rel,
