@@ -255,17 +255,20 @@ review.stepRoles = () => Object.fromEntries((model ? instances(model) : [])
   .map((m) => [m.name, stepRole(m)]));
 review.visible = () => (model ? instances(model).filter((m) => m.visible).map((m) => m.name) : []);
 
+// made once per book (showBook): part -> index of the first step that places it; step key -> index
+let firstStep = new Map();
+let stepIndex = new Map();
+
 function stepRole(m) {
   if (!step || step.scene !== review.scene) return '';
-  const book = DATA.book || [];
-  const first = book.findIndex((s) => (s.highlight || []).includes(m.userData.part));
-  const now = book.findIndex((s) => s.key === step.key);
+  const first = firstStep.has(m.userData.part) ? firstStep.get(m.userData.part) : -1;
+  const now = stepIndex.get(step.key);
   return first === now ? 'new' : first > now ? 'later' : 'earlier';
 }
 
-function emissiveOf(m) {
+function emissiveOf(m, role = stepRole(m)) {
   if (m.name === highlighted) return HIGHLIGHT;
-  return stepRole(m) === 'new' ? STEP_LIT : 0;
+  return role === 'new' ? STEP_LIT : 0;
 }
 
 function applyStep() {  // the shown step on the model in the view: colours, visibility, explosion
@@ -274,7 +277,7 @@ function applyStep() {  // the shown step on the model in the view: colours, vis
   const moves = (step && step.explode) || {};
   for (const m of instances(model)) {
     const role = stepRole(m);
-    m.material.emissive.setHex(emissiveOf(m));
+    m.material.emissive.setHex(emissiveOf(m, role));
     if (m.userData.color) {
       if (role === 'earlier') m.material.color.setHex(STEP_EARLIER);
       else m.material.color.copy(m.userData.color);
@@ -302,6 +305,11 @@ $('explode').addEventListener('input', applyStep);
 
 function showBook() {
   const book = DATA.book || [];
+  firstStep = new Map();
+  stepIndex = new Map(book.map((s, k) => [s.key, k]));
+  book.forEach((s, k) => {
+    for (const part of s.highlight || []) if (!firstStep.has(part)) firstStep.set(part, k);
+  });
   $('step-tools').hidden = $('nav-build').hidden = $('build').hidden = !book.length;
   const sel = $('step-select');
   const keep = sel.value;

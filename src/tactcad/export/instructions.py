@@ -104,9 +104,9 @@ def explode_offsets(meshes, instances, new: Collection[str], earlier: Collection
     elements, spacers and clamp plates; a column on its base plate) is spread
     apart in its order instead: its first layer along the axis moves as a
     part alone, each other layer :data:`STACK_SPREAD` x its distance from the
-    first further, so a gap opens between every two. A part of an ``earlier`` step that sits on a new one
-    (a gauge bonded on an element) moves with it; the parts of later steps
-    stay where the model has them."""
+    first further, so a gap opens between every two. A part of an
+    ``earlier`` step that sits on a new one (a gauge bonded on an element)
+    moves with it; the parts of later steps stay where the model has them."""
     from tactcad.export.render import instance_matrix
 
     matrices = [instance_matrix(i) for i in instances]
