@@ -283,7 +283,6 @@ def browser():
     return browser_page
 
 
-
 def ctrl_c_at_its_default() -> None:
     """``preexec_fn`` of a process whose Ctrl-C a test sends: SIGINT and SIGQUIT
     at their defaults in the child, whatever this process ignores at that
