@@ -235,6 +235,22 @@ def test_correction_validation():
         Correction(coefficients=(-2.0, 0.0, 0.0)).factor(1.0)
 
 
+def test_the_correction_file_is_parsed_once_and_again_when_it_changes(tmp_path, monkeypatch):
+    c = _example_correction()
+    path = tmp_path / "stiffness_correction.json"
+    path.write_text(json.dumps(c.as_json()))
+    parsed = []
+    real_loads = json.loads
+    monkeypatch.setattr(json, "loads", lambda text: parsed.append(1) or real_loads(text))
+    assert all(load_correction(path) == c for _ in range(50))
+    assert len(parsed) == 1
+    other = dict(c.as_json(), residual_rel_max=0.25)
+    tmp = tmp_path / "new.json"
+    tmp.write_text(json.dumps(other))
+    tmp.replace(path)  # as a refit writes it: a new file in its place
+    assert load_correction(path).residual_rel == 0.25 and len(parsed) == 2
+
+
 def test_correction_json_round_trip_and_loader(tmp_path):
     c = _example_correction()
     path = tmp_path / "stiffness_correction.json"

@@ -91,8 +91,11 @@ MODEL_NAME = "closed-form"
 # ---------------------------------------------------------------------------
 def _check_positive(name: str, value: Any) -> np.ndarray:
     arr = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(arr)) or np.any(arr <= 0):
-        bad = arr[~(np.isfinite(arr) & (arr > 0))] if arr.ndim else arr
+    # one comparison pair, not isfinite + any + all: this runs for every
+    # argument of every estimate (an inverse design makes many thousand)
+    ok = (arr > 0) & (arr < math.inf)  # NaN fails both
+    if not ok.all():
+        bad = arr[~ok] if arr.ndim else arr
         raise ValueError(f"{name} must be finite and > 0; got {np.ravel(bad)[:3].tolist()}")
     return arr
 

@@ -49,6 +49,7 @@ import math
 import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import Any, Iterator, Mapping
 
@@ -304,12 +305,23 @@ def load_correction(path: str | Path | None = None) -> Correction:
         DesignError: unreadable JSON or invalid content (the field is named).
     """
     p = Path(path) if path is not None else CORRECTION_FILE
-    if not p.exists():
-        return IDENTITY
     try:
-        data = json.loads(p.read_text(encoding="utf-8"))
-    except (OSError, json.JSONDecodeError) as exc:
+        st = p.stat()
+    except FileNotFoundError:
+        return IDENTITY
+    except OSError as exc:
         raise DesignError("stiffness_correction", str(p), "a readable JSON file", str(exc)) from None
+    # every closed-form estimate asks for the file (an inverse design or a sweep
+    # many thousand times); it is read again only when it changed
+    return _read_correction(str(p.resolve()), st.st_ino, st.st_mtime_ns, st.st_size)
+
+
+@lru_cache(maxsize=8)
+def _read_correction(path: str, inode: int, mtime_ns: int, size: int) -> Correction:
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, json.JSONDecodeError) as exc:
+        raise DesignError("stiffness_correction", path, "a readable JSON file", str(exc)) from None
     return Correction.from_json(data)
 
 
