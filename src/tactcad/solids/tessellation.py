@@ -15,6 +15,4 @@ def tessellate(solid, tolerance_mm: float = MESH_TOLERANCE_MM,
     (m, 3) int64, outward winding; chordal tolerance in mm, angular in rad."""
     from tactcad.kernel.inspect import triangulate
 
-    verts, tris = triangulate(solid, tolerance_mm, angular_tolerance)
-    return (np.array([tuple(p) for p in verts], dtype=np.float64).reshape(-1, 3),
-            np.array(tris, dtype=np.int64).reshape(-1, 3))
+    return triangulate(solid, tolerance_mm, angular_tolerance)
