@@ -306,3 +306,81 @@ def test_error_estimate_covers_the_plane_stress_model_error_against_3d(plan, arm
     assert res.stiffness_N_per_mm < k3d  # plane stress is softer than the wide 3D element
     assert res.error_estimate_rel >= abs(res.stiffness_N_per_mm / k3d - 1.0) - 0.016
     assert 0.01 < plane_model_error(g, plan.material) < 0.12
+
+
+def _layered_moduli(z):
+    """Two materials in layers along z: (lam, mu) in MPa."""
+    E = np.where(z < 0.5, 200e3, 70e3)
+    nu = np.where(z < 0.5, 0.30, 0.33)
+    return E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+
+
+@pytest.mark.parametrize("element", ["tet-p2", "hex2-layered"])
+def test_assembly_is_the_elasticity_form_of_scikit_fem(element):
+    """The contraction assembly equals scikit-fem's ``asm`` of
+    2 mu eps(u):eps(v) + lam div u div v on the vector element, dof for dof
+    (the interleaved numbering), for one material and for layers of two."""
+    from skfem import (Basis, BilinearForm, ElementHex2, ElementTetP2, ElementVector, MeshHex,
+                       MeshTet, asm)
+    from skfem.helpers import ddot, sym_grad, trace
+
+    from tactcad.mechanics.fem.fem2d import assemble_elasticity
+
+    axis = np.array([0.0, 0.3, 0.5, 1.2])
+    if element == "tet-p2":
+        scalar_element, mesh, order = ElementTetP2(), MeshTet.init_tensor(axis, axis, axis), 2
+        moduli = lambda z: (np.full_like(z, 1.3e5), np.full_like(z, 0.8e5))  # noqa: E731
+    else:
+        scalar_element, mesh, order = ElementHex2(), MeshHex.init_tensor(axis, axis, axis), 4
+        moduli = _layered_moduli
+
+    @BilinearForm
+    def elasticity(u, v, p):
+        lam, mu = moduli(p.x[2])
+        eu, ev = sym_grad(u), sym_grad(v)
+        return 2 * mu * ddot(eu, ev) + lam * trace(eu) * trace(ev)
+
+    expected = asm(elasticity, Basis(mesh, ElementVector(scalar_element), intorder=order))
+    scalar = Basis(mesh, scalar_element, intorder=order)
+    lam, mu = moduli(np.asarray(scalar.global_coordinates())[2])
+    got = assemble_elasticity(scalar, lam, mu, chunk=7)  # several chunks
+    scale = abs(expected).max()
+    assert abs(got - expected).max() < 1e-12 * scale
+    if element == "tet-p2":  # numbers, not fields: the same matrix
+        assert abs(assemble_elasticity(scalar, 1.3e5, 0.8e5) - expected).max() < 1e-12 * scale
+
+
+def test_the_two_level_cycle_is_one_symmetric_operator():
+    """The p-multigrid cycle that carries its residuals is the textbook cycle
+    (smooth, correct on P1, smooth again, each residual formed anew), and
+    symmetric and positive, as conjugate gradients needs."""
+    import scipy.sparse as sp
+    from scipy.sparse.linalg import spsolve
+    from skfem import Basis, ElementTetP2, MeshTet
+
+    from tactcad.mechanics.fem.fem2d import (_two_level_preconditioner, assemble_elasticity,
+                                            chebyshev_smoother, p1_embedding)
+
+    axis = np.linspace(0.0, 1.0, 4)
+    mesh = MeshTet.init_tensor(axis, axis, axis)
+    sb = Basis(mesh, ElementTetP2(), intorder=2)
+    A = assemble_elasticity(sb, 1.3e5, 0.8e5)
+    clamped = np.flatnonzero(sb.doflocs[0] < 1e-9)
+    free = np.setdiff1d(np.arange(A.shape[0]), (3 * clamped[:, None] + np.arange(3)).ravel())
+    A = A[free][:, free].tocsr()
+    P = sp.kron(p1_embedding(mesh, sb.N), sp.eye(3), format="csr")[free]
+    P = P[:, np.flatnonzero(P.getnnz(axis=0))].tocsr()
+    cycle = _two_level_preconditioner(A, P)
+    smooth, Ac = chebyshev_smoother(A), (P.T @ A @ P).tocsc()
+
+    def textbook(r):
+        x = smooth(r, True)[0]
+        x += P @ spsolve(Ac, P.T @ (r - A @ x))
+        return x + smooth(r - A @ x, True)[0]
+
+    rng = np.random.default_rng(1)
+    v, w = rng.standard_normal(A.shape[0]), rng.standard_normal(A.shape[0])
+    Mv, Mw = cycle(v), cycle(w)
+    assert np.abs(Mv - textbook(v)).max() < 1e-9 * np.abs(Mv).max()
+    assert abs(w @ Mv - v @ Mw) < 1e-9 * abs(w @ Mv)
+    assert v @ Mv > 0 and w @ Mw > 0

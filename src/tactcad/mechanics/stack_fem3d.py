@@ -31,6 +31,7 @@ import time
 import numpy as np
 from scipy.sparse.linalg import splu
 
+from tactcad.mechanics.fem.fem2d import assemble_elasticity
 from tactcad.mechanics.stack_crosstalk import (BASIS, CrosstalkResult, StackInputs,
                                                bridge_torsion_stiffness_Nmm, crosstalk_of,
                                                decoupling_matrix, grid_transfer, _layers)
@@ -52,7 +53,6 @@ def solve_row_3d(inputs: StackInputs, row: int, refine: int,
     elements at mesh level ``refine`` (1 coarse, 2 fine)."""
     from skfem import (Basis, BilinearForm, ElementHex2, ElementVector, FacetBasis, LinearForm,
                        MeshHex, asm, condense)
-    from skfem.helpers import ddot, sym_grad, trace
 
     idx = [k for k, r in enumerate(inputs.rows) if r == row]
     w, h = inputs.bonded_width_mm, inputs.height_mm
@@ -71,14 +71,10 @@ def solve_row_3d(inputs: StackInputs, row: int, refine: int,
         nu = np.where(in_el, nu_e, nu_s)
         return E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
 
-    @BilinearForm
-    def stiffness(u, v, p):
-        lam, mu = moduli(p.x[2])
-        eu, ev = sym_grad(u), sym_grad(v)
-        return 2 * mu * ddot(eu, ev) + lam * trace(eu) * trace(ev)
-
+    # the vector basis numbers its dofs as assemble_elasticity does (3 s + c)
     basis = Basis(mesh, ElementVector(ElementHex2()), intorder=4)
-    K = asm(stiffness, basis)
+    scalar = Basis(mesh, ElementHex2(), intorder=4)
+    K = assemble_elasticity(scalar, *moduli(np.asarray(scalar.global_coordinates())[2]))
     z0, z1 = inputs.span_mm
     ends = mesh.facets_satisfying(lambda x: np.isclose(x[2], z0) | np.isclose(x[2], z1))
     k_bed = bridge_torsion_stiffness_Nmm(inputs) / (w * h ** 3 / 12)

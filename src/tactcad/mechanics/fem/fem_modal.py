@@ -45,7 +45,7 @@ from typing import Callable
 import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry, Material
-from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, assemble_p2_elasticity, lame,
+from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, assemble_elasticity, lame,
                                          plane_model_error, single_threaded_blas, size_factors,
                                          skfem_mesh)
 from tactcad.mechanics.fem.fem_mesh import WEB_DIVISIONS, FemRegion, fem_region, graded_layers, mesh_region
@@ -87,7 +87,7 @@ def _mass_scalar(sb):
 def _vector_mass(sb, rho: float, dim: int):
     import scipy.sparse as sp
 
-    # interleaved numbering dim * s + c, as assemble_p2_elasticity
+    # interleaved numbering dim * s + c, as assemble_elasticity
     return sp.kron(_mass_scalar(sb), sp.eye(dim), format="csr") * rho
 
 
@@ -146,7 +146,7 @@ def solve_modes(mesh, material: Material, *, thickness: float, x_clamp: float, m
         intorder = 4
     sb = Basis(mesh, p2, intorder=intorder)
     lam_, mu = lame(material, plane)
-    A = assemble_p2_elasticity(sb, lam_, mu) * thickness
+    A = assemble_elasticity(sb, lam_, mu) * thickness
     M = _vector_mass(sb, rho, dim) * thickness
     tol = 1e-7
     cd = _facet_dofs(mesh, sb, lambda x: np.abs(x[0] - x_clamp) < tol)
