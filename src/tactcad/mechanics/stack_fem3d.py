@@ -37,8 +37,8 @@ from tactcad.mechanics.stack_crosstalk import (BASIS, CrosstalkResult, StackInpu
                                                decoupling_matrix, grid_transfer, _layers)
 
 #: Hexahedra across x and y and per layer along z on the coarse level (the fine halves h).
-#: The paper's array: (3, 3, 2) gives crosstalk_rel 1.50e-5 +/- 27 % in 26 s on two
-#: shared cores; (2, 2, 1) gives 1.71e-5 +/- 70 % in 6 s.
+#: The paper's array: (3, 3, 2) gives crosstalk_rel 1.50e-5 +/- 27 % in 9.2 s on two
+#: shared cores; (2, 2, 1) gives 1.71e-5 +/- 70 % in 2 s.
 COARSE_DIVISIONS = (3, 3, 2)
 
 
