@@ -128,6 +128,8 @@ class Sheet:
     text_boxes: list[tuple[str, tuple[float, float, float, float]]] = field(default_factory=list)
     #: every stroke drawn so far as paper points (circles as 72-gons), for placing labels clear
     strokes: list[list[Point]] = field(default_factory=list)
+    _extents: list[tuple[float, float, float, float]] = field(default_factory=list, init=False,
+                                                             repr=False, compare=False)
 
     @property
     def width_mm(self) -> float:
@@ -174,8 +176,21 @@ class Sheet:
         if any(min(x1, b[2]) > max(x0, b[0]) and min(y1, b[3]) > max(y0, b[1])
                for _, b in self.text_boxes):
             return False
-        return not any(_segment_meets_box(p, q, (x0, y0, x1, y1))
-                       for pts in self.strokes for p, q in zip(pts, pts[1:]))
+        grown = (x0, y0, x1, y1)
+        # only strokes whose extent reaches the box (edges included) can meet it:
+        # a label is tried against every segment of the sheet otherwise
+        return not any(_segment_meets_box(p, q, grown)
+                       for pts, (sx0, sy0, sx1, sy1) in zip(self.strokes, self._stroke_extents())
+                       if sx0 <= x1 and sx1 >= x0 and sy0 <= y1 and sy1 >= y0
+                       for p, q in zip(pts, pts[1:]))
+
+    def _stroke_extents(self) -> list[tuple[float, float, float, float]]:
+        """(left, top, right, bottom) of each stroke, made for the strokes added
+        since the last call (strokes are only ever appended)."""
+        for pts in self.strokes[len(self._extents):]:
+            xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+            self._extents.append((min(xs), min(ys), max(xs), max(ys)))
+        return self._extents
 
     def line(self, group: str, p: Point, q: Point, style: str = "thin") -> None:
         self.strokes.append([p, q])
