@@ -310,14 +310,18 @@ def load_correction(path: str | Path | None = None) -> Correction:
     except FileNotFoundError:
         return IDENTITY
     except OSError as exc:
-        raise DesignError("stiffness_correction", str(p), "a readable JSON file", str(exc)) from None
+        raise DesignError("stiffness_correction", str(p), "a readable JSON file",
+                          str(exc)) from None
     # every closed-form estimate asks for the file (an inverse design or a sweep
     # many thousand times); it is read again only when it changed
-    return _read_correction(str(p.resolve()), st.st_ino, st.st_mtime_ns, st.st_size)
+    return _read_correction(str(p), (st.st_dev, st.st_ino), st.st_mtime_ns, st.st_size)
 
 
 @lru_cache(maxsize=8)
-def _read_correction(path: str, inode: int, mtime_ns: int, size: int) -> Correction:
+def _read_correction(path: str, file_id: tuple[int, int], mtime_ns: int, size: int) -> Correction:
+    # the path as given (named in errors) with the file's identity (device,
+    # inode): a refit that writes the file anew changes the inode, one in place
+    # its time or size
     try:
         data = json.loads(Path(path).read_text(encoding="utf-8"))
     except (OSError, json.JSONDecodeError) as exc:
