@@ -92,7 +92,8 @@ def triangulate(shape: bd.Shape, tolerance_mm: float, angular_tolerance: float
     The mesh of build123d's ``Shape.tessellate`` (``BRepMesh``, faces in the
     same order, nodes moved by the face's location, reversed faces' triangles
     turned), to the bit, read into arrays without a ``Vector`` per node: that
-    conversion was two thirds of the time of a part's mesh.
+    conversion took about two fifths of a part's mesh time (the default
+    design's parts: 0.31 s against 0.45 s of meshing; now 0.16 s).
     """
     shape.mesh(tolerance_mm, angular_tolerance)
     nodes: list[np.ndarray] = []
