@@ -114,7 +114,9 @@ def test_ctrl_c_is_one_line_and_keeps_the_old_set(tmp_path, warm):
     assert run("export", "--cache", str(warm), "--out", str(out)).returncode == 0
     before = whole_set(out)
     proc = tactcad("export", "--no-cache", "--out", str(out))
-    time.sleep(4.0)
+    for line in proc.stderr:  # the run is under way: jobs are being made
+        if line.startswith("["):
+            break
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=120)
     if proc.returncode == 0:
