@@ -230,6 +230,14 @@ def with_default_companions(design: Path) -> Path:
     return design
 
 
+def file_digests(folder: Path) -> dict[str, str]:
+    """sha256 of every file under ``folder``, by its path relative to it (``/``)."""
+    import hashlib
+
+    return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
 def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
     """``tactcad ARGV`` run in this process (:func:`tactcad.cli.main`): its exit
     code, stdout and stderr as :func:`subprocess.run` gives them, without a new

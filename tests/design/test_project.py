@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import ast
 import dataclasses
-import hashlib
 import shutil
 from pathlib import Path
 
 import pytest
 
+from conftest import file_digests
 from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.design.project import Project, load_project, project_for_plan
 from tactcad.design.rig_plan import DEFAULT_RIGS
@@ -40,8 +40,8 @@ def _design_copy(tmp_path: Path) -> Path:
 
 
 def _hashes(folder: Path) -> dict[str, str]:
-    return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file() and p.name != "manifest.json"}
+    return {rel: sha for rel, sha in file_digests(folder).items()
+            if Path(rel).name != "manifest.json"}
 
 
 def test_project_is_immutable(project):

@@ -11,7 +11,6 @@ is searched for the paper's samples, loads and text."""
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import re
@@ -26,6 +25,7 @@ from pathlib import Path
 import pytest
 
 import tactcad
+from conftest import file_digests
 
 # one worker builds the wheel once for every test of this module
 pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("installed_wheel")]
@@ -98,11 +98,6 @@ def test_the_sdist_and_wheel_carry_the_package_data(installed):
     assert "Requires-Dist: numpy<3,>=2.2" in metadata  # a range, not a pin
 
 
-def _hashes(folder: Path) -> dict[str, str]:
-    return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file()}
-
-
 def test_a_labs_first_hour_from_the_wheel(installed, tmp_path, example_exported):
     bin_, env, timings, _ = installed
     tactcad, python = str(bin_ / "tactcad"), str(bin_ / "python")
@@ -125,7 +120,7 @@ def test_a_labs_first_hour_from_the_wheel(installed, tmp_path, example_exported)
     # a cold export in a new process, from the installed package data, writes the bytes
     # the test process's own export of the checkout's example wrote (another hash seed,
     # another folder, another copy of the package)
-    assert _hashes(repo / "exports") == _hashes(example_exported)
+    assert file_digests(repo / "exports") == file_digests(example_exported)
     _run([tactcad, "check", "--design", design, "--out", "exports", "--junit",
           "check-report.xml", "--failures-only"], repo, env, timings=timings)
     report = (repo / "check-report.xml").read_text(encoding="utf-8")

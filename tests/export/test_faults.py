@@ -5,7 +5,6 @@ are named in one warning; a missing input file is bad input (exit 2)."""
 from __future__ import annotations
 
 import errno
-import hashlib
 import json
 import os
 import shutil
@@ -15,12 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import file_digests
 from tactcad import atomic, cli
-
-
-def set_digest(folder: Path) -> dict[str, str]:
-    return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 def export(out: Path, *extra: str) -> int:
@@ -60,14 +55,14 @@ def fill(disk: Path) -> None:
 def test_a_full_disk_is_exit_3_naming_the_file_and_the_old_set_stays_whole(tiny_disk, capsys):
     out = tiny_disk / "ex"
     assert export(out, "--only", "bom") == 0
-    before = set_digest(out)
+    before = file_digests(out)
     fill(tiny_disk)
     capsys.readouterr()
     assert export(out, "--only", "bom", "--set", "element.web_thickness_mm=0.3") == 3
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "disk full" in err and f"{out}/" in err
     assert ".staging-" not in err
-    assert set_digest(out) == before
+    assert file_digests(out) == before
     assert not list(tiny_disk.glob(".ex.staging-*"))
 
 
@@ -107,7 +102,7 @@ def test_every_writer_failing_on_a_full_disk_is_exit_3(kind, module, name, extra
     monkeypatch.setenv("TACTCAD_WORKERS", "0")  # the patched writer runs in this process
     out = tmp_path / "ex"
     assert export(out, "--only", "bom") == 0
-    before = set_digest(out)
+    before = file_digests(out)
     mod = importlib.import_module(module)
     real_free = atomic.free_bytes
     monkeypatch.setattr(mod, name, _fail_silently)
@@ -116,12 +111,12 @@ def test_every_writer_failing_on_a_full_disk_is_exit_3(kind, module, name, extra
     assert export(out, *extra) == 3, kind
     err = capsys.readouterr().err
     assert "disk full" in err and str(out) in err and ".staging-" not in err, err
-    assert set_digest(out) == before
+    assert file_digests(out) == before
     # with room on the disk the same failure is not put down to the disk
     monkeypatch.setattr(atomic, "free_bytes", real_free)
     with pytest.raises(_Refused):
         export(out, *extra)
-    assert set_digest(out) == before
+    assert file_digests(out) == before
 
 
 @pytest.mark.slow

@@ -7,16 +7,12 @@ import json
 
 import pytest
 
+from conftest import file_digests
 from tactcad.checks.check_result import failures
 from tactcad.design.project import load_project
 from tactcad.checks.array_checks import run_checks
 from tactcad.export.run import export
 from tactcad.store import Store
-
-
-def _hashes(folder):
-    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 def test_expected_files(exported, plan):
@@ -60,7 +56,7 @@ def test_step_header_in_mm_ap214_and_flat_instanced_assembly(exported):
 def test_failed_export_leaves_previous_files_whole(default_store, tmp_path, monkeypatch, project):
     out = tmp_path / "ex"
     export(project, out, log=lambda s: None, store=Store(default_store))  # the set in place
-    before = _hashes(out)
+    before = file_digests(out)
     import tactcad.export.dxf_sheet as dxf_mod
 
     calls = {"n": 0}
@@ -76,7 +72,7 @@ def test_failed_export_leaves_previous_files_whole(default_store, tmp_path, monk
     thicker = load_project()  # same project; the failure, not the content, is under test
     with pytest.raises(OSError, match="simulated"):
         export(thicker, out, log=lambda s: None)
-    assert _hashes(out) == before
+    assert file_digests(out) == before
     assert not list(out.parent.glob(f".{out.name}.staging-*"))
 
 
