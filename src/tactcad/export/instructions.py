@@ -72,26 +72,18 @@ def stacks(boxes: np.ndarray, axes: np.ndarray, moving: Sequence[int],
     """The moving instances grouped into stacks: instances that move along the
     same axis and whose boxes, grown by ``touch_mm``, meet (layers clamped
     together, a screw through a spacer), joined transitively; an instance
-    alone is a stack of one. ``axes``: unit axis per instance (n, 3)."""
-    parent = {k: k for k in moving}
+    alone is a stack of one. ``axes``: unit axis per instance (n, 3). Stacks
+    in the order of their first instance in ``moving``, each in that order."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import connected_components
 
-    def root(k: int) -> int:
-        while parent[k] != k:
-            parent[k] = parent[parent[k]]
-            k = parent[k]
-        return k
-
-    for i, a in enumerate(moving):
-        for b in moving[i + 1:]:
-            same_axis = float(axes[a] @ axes[b]) > 1.0 - 1e-6
-            meet = np.all(np.minimum(boxes[a, 1], boxes[b, 1]) + touch_mm
-                          >= np.maximum(boxes[a, 0], boxes[b, 0]))
-            if same_axis and meet:
-                parent[root(a)] = root(b)
-    groups: dict[int, list[int]] = {}
-    for k in moving:
-        groups.setdefault(root(k), []).append(k)
-    return list(groups.values())
+    idx = np.asarray(moving, dtype=int)
+    lo, hi, ax = boxes[idx, 0], boxes[idx, 1], axes[idx]
+    same_axis = ax @ ax.T > 1.0 - 1e-6
+    meet = np.all(np.minimum(hi[:, None], hi[None]) + touch_mm
+                  >= np.maximum(lo[:, None], lo[None]), axis=-1)
+    count, label = connected_components(csr_matrix(same_axis & meet), directed=False)
+    return [[int(k) for k in idx[label == c]] for c in range(count)]
 
 
 def explode_offsets(meshes, instances, new: Collection[str], earlier: Collection[str] = (),
