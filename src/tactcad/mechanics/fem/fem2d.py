@@ -216,17 +216,16 @@ def assemble_elasticity(sb, lam, mu, chunk: int | None = None):
     for e0 in range(0, nel, chunk):
         sl = slice(e0, min(nel, e0 + chunk))
         g = G[:, :, sl, :]
+        # M_x[e, i, a, j, b] = sum_q w x g_ia g_jb, one contraction when lam, mu are numbers
         if fields:
             M_lam = np.einsum("iaeq,jbeq,eq->eiajb", g, g, W[sl] * lam_q[sl], optimize=True)
             M_mu = np.einsum("iaeq,jbeq,eq->eiajb", g, g, W[sl] * mu_q[sl], optimize=True)
-            lap = np.einsum("eicjc->eij", M_mu)
-            Kl = M_lam + M_mu.transpose(0, 1, 4, 3, 2) \
-                + lap[:, :, None, :, None] * eye[None, None, :, None, :]
         else:
-            Mab = np.einsum("iaeq,jbeq,eq->eiajb", g, g, W[sl], optimize=True)
-            lap = np.einsum("eicjc->eij", Mab)
-            Kl = lam * Mab + mu * Mab.transpose(0, 1, 4, 3, 2) \
-                + mu * lap[:, :, None, :, None] * eye[None, None, :, None, :]
+            M = np.einsum("iaeq,jbeq,eq->eiajb", g, g, W[sl], optimize=True)
+            M_lam, M_mu = lam * M, mu * M
+        lap = np.einsum("eicjc->eij", M_mu)
+        Kl = M_lam + M_mu.transpose(0, 1, 4, 3, 2) \
+            + lap[:, :, None, :, None] * eye[None, None, :, None, :]
         gd = (dim * edofs[:, sl].T[:, :, None] + np.arange(dim)[None, None, :])
         gd = gd.reshape(-1, nbf * dim)
         ne = gd.shape[0]
