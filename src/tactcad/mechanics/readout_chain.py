@@ -213,30 +213,50 @@ class ReadoutReport:
         return out
 
 
-def _unit_kobj_resolution(km: float, kr: float, dfm: float, dfr: float,
-                          rng: tuple[float, float], force_N: float) -> float:
-    from tactcad.mechanics.resolution import KOBJ_POINTS, unit_resolution
-
-    k_obj = np.geomspace(*rng, KOBJ_POINTS)
-    res = unit_resolution(km, kr, k_obj, force_N, dfm, force_resolution_reference_N=dfr)
-    return float(np.max(res["K_obj_resolution_rel"]))
-
-
-def array_resolution_rel(units: list[tuple[float, float, float, float]],
-                         rng: tuple[float, float], force_N: float) -> float | None:
+def array_resolution_rel(units: list, rng: tuple[float, float], force_N: float) -> float | None:
     """Worst relative K_obj resolution over the range of the array's best unit at each K_obj;
-    ``units`` = [(K_r, force resolution of the row's reference, K_m, force resolution of the
-    measuring element)] (N/mm, N, N/mm, N), one per measuring element."""
-    from tactcad.mechanics.resolution import KOBJ_POINTS, unit_resolution
+    ``units``: :class:`~tactcad.mechanics.resolution.ReadUnit` (or (K_r, force resolution of
+    the row's reference, K_m, force resolution of the measuring element) tuples; N/mm, N),
+    one per measuring element; None without a unit."""
+    from tactcad.mechanics.resolution import ReadUnit, worst_resolution_rel
 
     if not units:
         return None
-    k_obj = np.geomspace(*rng, KOBJ_POINTS)
-    best = np.full(k_obj.shape, np.inf)
-    for kr, dfr, km, dfm in units:
-        r = unit_resolution(km, kr, k_obj, force_N, dfm, force_resolution_reference_N=dfr)
-        best = np.minimum(best, r["K_obj_resolution_rel"])
-    return float(np.max(best))
+    return worst_resolution_rel([ReadUnit(*u) for u in units], rng, force_N)
+
+
+def row_units(plan: Plan, k: dict[str, float]) -> list[tuple]:
+    """(reference slot, measuring slot) of every sensing unit of ``plan``, in element order:
+    each element softer than its row's reference (:meth:`Plan.reference_of`) measures against
+    it; ``k``: K per distinct part (N/mm)."""
+    out = []
+    for slot in plan.slots:
+        ref = plan.reference_of(slot.row)  # each row reads against its own reference
+        if k[slot.geometry.part_name] < k[ref.geometry.part_name] * (1 - 1e-9):
+            out.append((ref, slot))
+    return out
+
+
+def element_force_resolution_N(plan: Plan, model: str = "closed-form",
+                               progress: Callable[[str], None] | None = None,
+                               chain: ReadoutChain | None = None) -> dict[str, dict]:
+    """Per distinct part of ``plan``: its grid strain per newton (:func:`gauge_strain_per_N`,
+    ``"eps"``), sensitivity (V/N, ``"S"``) and force resolution (N, ``"dF"``: the noise of one
+    averaged reading over |S|, 1 sigma) through the design's read-out chain at ``model``.
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+    """
+    chain = chain or readout_chain(plan)
+    noise = noise_budget_V(chain)["reading"]
+    out = {}
+    for name, g in plan.distinct_elements.items():
+        if progress:
+            progress(f"readout {model}: {name}")
+        eps = gauge_strain_per_N(g, plan.material, chain.grid_length_mm, model)
+        s = chain.volts_per_strain * eps["grid"]
+        out[name] = {"eps": eps, "S": s, "dF": noise / abs(s)}
+    return out
 
 
 def readout_report(plan: Plan, requirements, model: str = "closed-form",
@@ -262,25 +282,21 @@ def readout_report(plan: Plan, requirements, model: str = "closed-form",
     chain = readout_chain(plan)
     noise = noise_budget_V(chain)
     F, rng = requirements.full_scale_force_N, requirements.kobj_range_N_per_mm
-    per_part: dict[str, dict] = {}
+    per_part = element_force_resolution_N(plan, model, progress, chain)
     for name, g in plan.distinct_elements.items():
-        if progress:
-            progress(f"readout {model}: {name}")
-        k = stiffness[name] if stiffness is not None else \
+        per_part[name]["K"] = stiffness[name] if stiffness is not None else \
             estimate(model, g, plan.material).stiffness_N_per_mm
-        eps = gauge_strain_per_N(g, plan.material, chain.grid_length_mm, model)
-        s = chain.volts_per_strain * eps["grid"]
-        per_part[name] = {"K": k, "eps": eps, "S": s, "dF": noise["reading"] / abs(s)}
+    measuring = {m.number for _, m in row_units(plan, {n: d["K"] for n, d in per_part.items()})}
     records, units = [], []
     for slot in plan.slots:
         d = per_part[slot.geometry.part_name]
-        ref = plan.reference_of(slot.row)  # each row reads against its own reference
+        ref = plan.reference_of(slot.row)
         r = per_part[ref.geometry.part_name]
         is_ref = slot.number == ref.number
         kobj_res = None
-        if d["K"] < r["K"] * (1 - 1e-9):  # a unit: softer than its row's reference
-            kobj_res = _unit_kobj_resolution(d["K"], r["K"], d["dF"], r["dF"], rng, F)
+        if slot.number in measuring:
             units.append((r["K"], r["dF"], d["K"], d["dF"]))
+            kobj_res = array_resolution_rel(units[-1:], rng, F)
         records.append(_element_record(slot, d, is_ref, ref.number, kobj_res, chain, F))
     return ReadoutReport(plan.name, model, chain, noise, F, rng, records,
                          array_resolution_rel(units, rng, F))

@@ -1,9 +1,12 @@
-"""K_obj resolution of one sensing unit (eq. 1-3) when its forces are read to a resolution.
+"""K_obj resolution of one sensing unit (eq. 1-3) when its forces are read to a resolution,
+and of an array of units (its best unit at each K_obj).
 
 Units: N, N/mm.
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple, Sequence
 
 import numpy as np
 
@@ -46,3 +49,37 @@ def unit_resolution(k_m: float, k_r: float, k_obj, full_scale_force_N: float,
             "K_obj_resolution_N_per_mm": dk, "K_obj_resolution_rel": dk / k_obj}
 
 
+
+
+class ReadUnit(NamedTuple):
+    """A sensing unit as read: its reference's K and force resolution, its measuring
+    element's K and force resolution (N/mm, N, N/mm, N)."""
+
+    k_r: float
+    force_resolution_reference_N: float
+    k_m: float
+    force_resolution_measuring_N: float
+
+
+def best_unit_resolution_rel(units: Sequence[ReadUnit], k_obj, full_scale_force_N: float
+                             ) -> np.ndarray:
+    """The relative K_obj resolution of an array at each K_obj (array, N/mm): its best
+    unit's (:func:`unit_resolution` with each element's own force resolution); inf where
+    there is no unit.
+    """
+    k_obj = np.atleast_1d(np.asarray(k_obj, float))
+    best = np.full(k_obj.shape, np.inf)
+    for u in units:
+        r = unit_resolution(u.k_m, u.k_r, k_obj, full_scale_force_N,
+                            u.force_resolution_measuring_N,
+                            force_resolution_reference_N=u.force_resolution_reference_N)
+        best = np.minimum(best, r["K_obj_resolution_rel"])
+    return best
+
+
+def worst_resolution_rel(units: Sequence[ReadUnit], kobj_range: tuple[float, float],
+                         full_scale_force_N: float) -> float:
+    """The array's worst relative K_obj resolution over ``kobj_range`` ([LO, HI] N/mm,
+    :data:`KOBJ_POINTS` log-spaced points, ends included); inf without a unit."""
+    k_obj = np.geomspace(*kobj_range, KOBJ_POINTS)
+    return float(np.max(best_unit_resolution_rel(units, k_obj, full_scale_force_N)))

@@ -763,44 +763,31 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
                          max_full_scale_force_N=f_max, binding_limits=bind)
 
 
-#: Derived requirement values are written this much beyond margin + error, so
-#: that rounding cannot leave a margin a hair inside the error.
-ROOM_BEYOND_ERROR = 1e-6
-
-
 def requirements_table(targets: Targets, data: Mapping[str, Any]) -> dict[str, Any]:
     """The ``[requirements]`` table an inverse design writes: the targets, the K
     band over the web tolerance and the K_obj resolution the elements reach
-    over the range at the full-scale force, each padded by the closed form's
-    error on it and rounded up, so that its margin is at least that error and
+    over the range at the full-scale force, each element read through the
+    design's own read-out chain, each padded by the closed form's error on it
+    and rounded up, so that its margin is at least that error and
     ``verify --model auto`` decides it at the closed form
     (:mod:`tactcad.studies.verification`).
 
     Returns:
         The table; keys of :data:`tactcad.design.requirements_section.REQUIREMENT_KEYS`.
     """
-    from tactcad.studies.verification import (closed_form_k_error, element_figures,
-                                              resolution_error_rel, round_up, units_of,
-                                              web_band_rel, worst_resolution)
+    from tactcad.studies.verification import (element_figures, k_band_requirement,
+                                              kobj_resolution_requirement, sensing_units)
 
     plan = plan_from_dict(data, source="<inverse design>")
     lo, hi = targets.k_obj_range_N_per_mm
     F = targets.full_scale_force_N
-    pad = 1.0 + ROOM_BEYOND_ERROR
-    fig = element_figures(plan, "closed-form")
-    kr, kms = units_of(fig, plan)
-    k_err = max(fig.k_error.values())
-    if kms:
-        worst = worst_resolution(kr, kms, (lo, hi), F)
-        worst *= 1.0 + resolution_error_rel(kr, kms, (lo, hi), F, k_err, k_err)
-    else:
-        worst = worst_resolution(targets.k_r, [targets.k_m], (lo, hi), F)
-    band = max(web_band_rel(plan), 1e-3) * (1.0 + closed_form_k_error(plan))
+    units = sensing_units(plan, element_figures(plan, "closed-form"))
+    resolution, _ = kobj_resolution_requirement(units, (lo, hi), F)
     return {"full_scale_force_N": float(F),
             "kobj_range_N_per_mm": [float(lo), float(hi)],
             "kr_over_km": float(targets.kr_over_km),
-            "k_tolerance_rel": round_up(band * pad),
-            "kobj_resolution_rel": round_up(worst * pad)}
+            "k_tolerance_rel": k_band_requirement(plan)[0],
+            "kobj_resolution_rel": resolution}
 
 
 def report_points(targets: Targets, n: int = REPORT_POINTS) -> np.ndarray:

@@ -7,22 +7,28 @@ rounded to the safe side, with the reason stated:
 
 * full-scale force: the largest force every element carries within all its
   limits (:mod:`tactcad.mechanics.limits`), rounded down;
-* K_r / K_m: the stiffest element over the softest, rounded down;
+* K_r / K_m: the smallest row's reference over its softest measuring
+  element (the rule the record checks), rounded down;
 * K_obj range: [K_min, K_max] of the elements (eq. 2 reads best where the
   elements straddle the object);
 * K band: the largest relative K change over the web tolerance, rounded up;
 * K_obj resolution: the worst over the range at the full-scale force,
-  rounded up.
+  padded by its error estimate and rounded up.
 
-Sensing units. The reference is the stiffest element; each softer element
-is a measuring element paired with it. Pressed until the reference carries
-the full-scale force F, each unit reads K_obj with the resolution of
-:func:`tactcad.studies.inverse_design.unit_resolution` (forces read to 0.01 N);
-the array's resolution at a K_obj is its best unit's.
+Sensing units. Each element softer than its row's reference is a measuring
+element paired with it (:func:`tactcad.mechanics.readout_chain.row_units`).
+Pressed until the reference carries the full-scale force F, each unit reads
+K_obj with the resolution of :func:`tactcad.mechanics.resolution.unit_resolution`,
+each force read to the element's own force resolution through the design's
+``[readout]`` chain (gauge, bridge, amplifier, DAQ:
+:func:`tactcad.mechanics.readout_chain.element_force_resolution_N`), never a
+fixed figure; the array's resolution at a K_obj is its best unit's.
 
 :func:`verification_matrix` evaluates every requirement at one ladder level:
 one record per requirement with ``requirement``, ``target``, ``predicted``,
-``error_estimate_rel``, ``margin_rel``, ``model``, ``pass``.
+``error_estimate_rel``, ``margin_rel``, ``model``, ``pass``, ``verdict``. A
+record of several items (the rows' pairs of ``kr_over_km``) judges each item
+on its own error and takes the worst item's verdict (:func:`deciding_item`).
 
 Units: mm, N, MPa, N/mm.
 """
@@ -182,14 +188,6 @@ def closed_form_k_error(plan: Plan) -> float:
                for g in plan.distinct_elements.values())
 
 
-def units_of(fig: Figures, plan: Plan) -> tuple[float, list[float]]:
-    """(K_r, distinct K_m softer than K_r) of the array's sensing units (N/mm)."""
-    ks = [fig.k_of(s.number) for s in plan.slots]
-    kr = max(ks)
-    kms = sorted({k for k in ks if k < kr * (1 - 1e-9)})
-    return kr, kms
-
-
 @dataclass(frozen=True)
 class RowPair:
     """A row's reference and the softest measuring element of that row at one level.
@@ -206,10 +204,19 @@ class RowPair:
     reference_error_rel: float
     measuring_error_rel: float
 
-    def as_json(self, target: float) -> dict:
+    @property
+    def error_rel(self) -> float:
+        """The pair's K_r / K_m error estimate: its two K errors added."""
+        return self.reference_error_rel + self.measuring_error_rel
+
+    def as_json(self, target: float, threshold_rel: float = 0.0) -> dict:
+        """The pair as an item of the ``kr_over_km`` record, judged on its own error
+        (``threshold_rel``: the margin the requirement needs, :func:`verdict`)."""
+        margin = self.ratio / target - 1.0
         return {"row": self.row + 1, "reference_element": self.reference,
                 "measuring_element": self.measuring, "kr_over_km": self.ratio,
-                "margin_rel": self.ratio / target - 1.0}
+                "error_estimate_rel": self.error_rel, "margin_rel": margin,
+                "verdict": verdict(margin, self.error_rel, threshold_rel, margin >= threshold_rel)}
 
 
 def row_pairs(plan: Plan, fig: Figures) -> list[RowPair]:
@@ -227,40 +234,80 @@ def row_pairs(plan: Plan, fig: Figures) -> list[RowPair]:
     return out
 
 
-def resolution_rel(kr: float, kms: list[float], k_obj: np.ndarray, force_N: float) -> np.ndarray:
-    """The array's relative K_obj resolution at each K_obj: its best unit's
-    (inf where no element is softer than the reference)."""
-    from tactcad.mechanics.resolution import unit_resolution
+@dataclass(frozen=True)
+class SensingUnits:
+    """The design's sensing units at one level, each read through the design's read-out
+    chain (:mod:`tactcad.mechanics.readout_chain`): every element softer than its row's
+    reference measures against it (:func:`tactcad.mechanics.readout_chain.row_units`).
 
-    best = np.full(np.shape(k_obj), np.inf)
-    for km in kms:
-        best = np.minimum(best, unit_resolution(km, kr, k_obj, force_N)["K_obj_resolution_rel"])
-    return best
+    Attributes:
+        read: one :class:`~tactcad.mechanics.resolution.ReadUnit` per unit (K and force
+            resolution of reference and measuring element; N/mm, N).
+        errors: per unit, the level's K error estimate of (reference, measuring element).
+        force_resolution_N: per element number, its force resolution (N, 1 sigma).
+    """
+
+    read: tuple
+    errors: tuple
+    force_resolution_N: dict
+
+    def moved(self, sign_r: int, sign_m: int) -> list:
+        """The units with every reference's K moved by ``sign_r`` x its error and every
+        measuring element's by ``sign_m`` x its error."""
+        return [u._replace(k_r=u.k_r * (1 + sign_r * er), k_m=u.k_m * (1 + sign_m * em))
+                for u, (er, em) in zip(self.read, self.errors)]
 
 
-def worst_resolution(kr, kms, rng, force_N) -> float:
-    return float(np.max(resolution_rel(kr, kms, np.geomspace(*rng, KOBJ_POINTS), force_N)))
+def sensing_units(plan: Plan, fig: Figures) -> SensingUnits:
+    """The units of ``plan`` with the K of ``fig``'s level and each element's force
+    resolution through the read-out chain at that level (a FEM level reads the gauge
+    strain off the fem2d field).
+
+    Raises:
+        UnknownModelError: ``fig.model`` is not a ladder level.
+    """
+    from tactcad.mechanics.readout_chain import element_force_resolution_N, row_units
+    from tactcad.mechanics.resolution import ReadUnit
+
+    df = {name: d["dF"] for name, d in element_force_resolution_N(plan, fig.model).items()}
+    read, errors = [], []
+    for ref, meas in row_units(plan, fig.k):
+        r, m = ref.geometry.part_name, meas.geometry.part_name
+        read.append(ReadUnit(fig.k[r], df[r], fig.k[m], df[m]))
+        errors.append((fig.k_error[r], fig.k_error[m]))
+    return SensingUnits(tuple(read), tuple(errors),
+                        {s.number: df[s.geometry.part_name] for s in plan.slots})
 
 
-def resolution_error_rel(kr: float, kms: list[float], rng, force_N: float, err_r: float,
-                         err_m: float) -> float:
-    """The worst K_obj resolution's relative error from the K errors of the
-    reference (``err_r``) and the measuring elements (``err_m``): its largest
-    change with each K moved by its error, every sign combination."""
-    worst = worst_resolution(kr, kms, rng, force_N)
-    moved = [worst_resolution(kr * (1 + sr * err_r), [k * (1 + sm * err_m) for k in kms],
-                              rng, force_N) for sr in (-1, 1) for sm in (-1, 1)]
+def worst_resolution(units: SensingUnits, rng, force_N: float) -> float:
+    """The array's worst relative K_obj resolution over ``rng`` (N/mm) at ``force_N`` (N)."""
+    from tactcad.mechanics.resolution import worst_resolution_rel
+
+    return worst_resolution_rel(units.read, rng, force_N)
+
+
+def resolution_error_rel(units: SensingUnits, rng, force_N: float) -> float:
+    """The worst K_obj resolution's relative error from the K errors of the references and
+    the measuring elements: its largest change with each K moved by its own error, every
+    sign combination."""
+    from tactcad.mechanics.resolution import worst_resolution_rel
+
+    worst = worst_resolution(units, rng, force_N)
+    moved = [worst_resolution_rel(units.moved(sr, sm), rng, force_N)
+             for sr in (-1, 1) for sm in (-1, 1)]
     return max(abs(w / worst - 1.0) for w in moved)
 
 
-def readable_range(kr, kms, rng, force_N, target_rel) -> tuple[float, float] | None:
+def readable_range(units: SensingUnits, rng, force_N, target_rel) -> tuple[float, float] | None:
     """The widest K_obj interval around the range's geometric mean where the
     resolution is at most ``target_rel`` (N/mm), or None when the mean is not."""
+    from tactcad.mechanics.resolution import best_unit_resolution_rel
+
     lo, hi = rng
     centre = math.sqrt(lo * hi)
     grid = np.geomspace(lo / KOBJ_SEARCH_FACTOR, hi * KOBJ_SEARCH_FACTOR, 801)
     grid = np.unique(np.append(grid, [lo, hi, centre]))
-    ok = resolution_rel(kr, kms, grid, force_N) <= target_rel
+    ok = best_unit_resolution_rel(units.read, grid, force_N) <= target_rel
     i = int(np.searchsorted(grid, centre))
     if not ok[i]:
         return None
@@ -271,6 +318,47 @@ def readable_range(kr, kms, rng, force_N, target_rel) -> tuple[float, float] | N
     while b < len(grid) - 1 and ok[b + 1]:
         b += 1
     return float(grid[a]), float(grid[b])
+
+
+#: Derived requirement values are written this much beyond margin + error, so
+#: that rounding cannot leave a margin a hair inside the error.
+ROOM_BEYOND_ERROR = 1e-6
+
+#: The K_obj resolution written when no element is softer than its reference (none can be
+#: read): the largest ``requirements.kobj_resolution_rel`` allows.
+UNREADABLE_RESOLUTION_REL = 10.0
+
+
+def kobj_resolution_requirement(units: SensingUnits, rng, force_N: float) -> tuple[float, float]:
+    """(requirement, worst) of the K_obj resolution a design reaches: the worst over ``rng``
+    (N/mm) at ``force_N`` (N), each element read through the design's own read-out chain,
+    padded by its error estimate and rounded up, so that the level it was derived at
+    decides it (its margin clears its error); :data:`UNREADABLE_RESOLUTION_REL` and inf
+    without a unit."""
+    if not units.read:
+        return UNREADABLE_RESOLUTION_REL, math.inf
+    worst = worst_resolution(units, rng, force_N)
+    padded = worst * (1.0 + resolution_error_rel(units, rng, force_N)) * (1.0 + ROOM_BEYOND_ERROR)
+    return round_up(padded), worst
+
+
+#: The smallest K band a derived requirement states (a design without web tolerance).
+MIN_K_BAND_REL = 1e-3
+
+
+def k_band_requirement(plan: Plan) -> tuple[float, float]:
+    """(requirement, band) of the K band over the web tolerance (:func:`web_band_rel`, at
+    least :data:`MIN_K_BAND_REL`), padded by the closed form's K error and rounded up, so
+    that the closed form decides it."""
+    band = web_band_rel(plan)
+    padded = max(band, MIN_K_BAND_REL) * (1.0 + closed_form_k_error(plan))
+    return round_up(padded * (1.0 + ROOM_BEYOND_ERROR)), band
+
+
+def smallest_row_ratio(plan: Plan, fig: Figures) -> float:
+    """The smallest K_r / K_m over the rows' pairs (:func:`row_pairs`): the rule the
+    ``kr_over_km`` record checks, so a derived target is derived by it."""
+    return min(q.ratio for q in row_pairs(plan, fig))
 
 
 # ---------------------------------------------------------------------------
@@ -297,32 +385,26 @@ def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
         reasons["full_scale_force_N"] = (
             f"not stated: the largest force every element carries, {b.force_N:.4g} N, bound by "
             f"{LIMIT_WORDS[b.limit]} (element {b.element}, closed form), rounded down")
-    kr, kms = units_of(fig, plan)
     if "kr_over_km" not in values:
-        ratio = kr / kms[0] if kms else 1.0
+        ratio = smallest_row_ratio(plan, fig)
         values["kr_over_km"] = round_down(ratio) if ratio > 1 else 1.0
-        reasons["kr_over_km"] = (f"not stated: the stiffest element over the softest, "
-                                 f"{ratio:.4g} (closed form), rounded down")
+        reasons["kr_over_km"] = (f"not stated: the smallest row's reference over its softest "
+                                 f"measuring element, {ratio:.4g} (closed form), rounded down")
     if "kobj_range_N_per_mm" not in values:
-        k_min = kms[0] if kms else kr
-        values["kobj_range_N_per_mm"] = (_clean(k_min), _clean(kr))
+        ks = [fig.k_of(s.number) for s in plan.slots]
+        values["kobj_range_N_per_mm"] = (_clean(min(ks)), _clean(max(ks)))
         reasons["kobj_range_N_per_mm"] = (
             "not stated: the elements' own stiffness span (closed form); eq. 2 reads best "
             "where the elements straddle the object")
     if "k_tolerance_rel" not in values:
-        band = web_band_rel(plan)
-        values["k_tolerance_rel"] = round_up(band) if band > 0 else 0.01
+        values["k_tolerance_rel"], band = k_band_requirement(plan)
         reasons["k_tolerance_rel"] = (f"not stated: the largest K change over the web "
-                                      f"tolerance, {100 * band:.3g} %, rounded up")
+                                      f"tolerance, {100 * band:.3g} % (closed form), padded by "
+                                      f"its error and rounded up")
     if "kobj_resolution_rel" not in values:
-        worst = worst_resolution(kr, kms, values["kobj_range_N_per_mm"],
-                                 values["full_scale_force_N"]) if kms else math.inf
-        values["kobj_resolution_rel"] = round_up(worst) if math.isfinite(worst) else 10.0
-        reasons["kobj_resolution_rel"] = (
-            f"not stated: the worst K_obj resolution over the range at the full-scale force, "
-            f"{100 * worst:.3g} % (closed form, forces read to 0.01 N), rounded up"
-            if math.isfinite(worst) else
-            "not stated: no element is softer than the reference, so no K_obj can be read")
+        values["kobj_resolution_rel"], reasons["kobj_resolution_rel"] = \
+            derived_kobj_resolution(plan, fig, values["kobj_range_N_per_mm"],
+                                    values["full_scale_force_N"])
     return Requirements(
         full_scale_force_N=float(values["full_scale_force_N"]),
         kobj_range_N_per_mm=tuple(float(v) for v in values["kobj_range_N_per_mm"]),
@@ -331,6 +413,20 @@ def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
         reasons={k: reasons[k] for k in REQUIREMENT_KEYS}, stated=frozenset(stated),
         source=requirements_source(plan.raw), cites_paper=cites_paper(plan.raw),
         footprint_mm=stated_footprint(plan.raw))
+
+
+def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float) -> tuple[float, str]:
+    """The K_obj resolution requirement a design file leaves out and its reason: what the
+    design's own read-out chain reaches (:func:`kobj_resolution_requirement`)."""
+    units = sensing_units(plan, fig)
+    value, worst = kobj_resolution_requirement(units, rng, force_N)
+    if not math.isfinite(worst):
+        return value, "not stated: no element is softer than its row's reference, so no K_obj can be read"
+    forces = units.force_resolution_N.values()
+    return value, (f"not stated: the worst K_obj resolution over the range at the full-scale "
+                   f"force, {100 * worst:.3g} % ({fig.model}, each element read through the "
+                   f"design's [readout] chain to {1e3 * min(forces):.3g}-{1e3 * max(forces):.3g} "
+                   f"mN), padded by its error and rounded up")
 
 
 # ---------------------------------------------------------------------------
@@ -381,33 +477,27 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
                        binding_limit=b.limit, binding_words=LIMIT_WORDS[b.limit],
                        binding_element=b.element,
                        limits=[lim.as_json(lim is b) for lim in kinds.values()]))
-    kr, kms = units_of(fig, plan)
-    pairs = row_pairs(plan, fig)
-    worst = min(pairs, key=lambda q: (q.ratio, q.row))
-    err_r, err_m = worst.reference_error_rel, worst.measuring_error_rel
-    m = worst.ratio / req.kr_over_km - 1.0
-    out.append(_record("kr_over_km", req.kr_over_km, worst.ratio, err_r + err_m, m, model,
-                       m >= -req.k_tolerance_rel, reference_element=worst.reference,
-                       measuring_element=worst.measuring, row=worst.row + 1,
-                       pairs=[q.as_json(req.kr_over_km) for q in pairs]))
+    out.append(kr_over_km_record(row_pairs(plan, fig), req, model))
     band = web_band_rel(plan)
     out.append(_record("k_tolerance_rel", req.k_tolerance_rel, band, closed_form_k_error(plan),
                        req.k_tolerance_rel / band - 1.0 if band > 0 else math.inf,
                        "closed-form", band <= req.k_tolerance_rel))
     rng = req.kobj_range_N_per_mm
-    if kms:
-        worst = worst_resolution(kr, kms, rng, F)
-        res_err = resolution_error_rel(kr, kms, rng, F, err_r, err_m)
-        span = readable_range(kr, kms, rng, F, req.kobj_resolution_rel)
+    units = sensing_units(plan, fig)
+    if units.read:
+        worst = worst_resolution(units, rng, F)
+        res_err = resolution_error_rel(units, rng, F)
+        span = readable_range(units, rng, F, req.kobj_resolution_rel)
     else:
         worst, res_err, span = math.inf, 0.0, None
     out.append(_record("kobj_resolution_rel", req.kobj_resolution_rel, _finite_or_none(worst),
                        res_err, req.kobj_resolution_rel / worst - 1.0, model,
-                       worst <= req.kobj_resolution_rel))
+                       worst <= req.kobj_resolution_rel,
+                       force_resolution_N={str(n): f for n, f in units.force_resolution_N.items()},
+                       basis=READOUT_BASIS))
     m_rng = min(rng[0] / span[0], span[1] / rng[1]) - 1.0 if span else -1.0
     out.append(_record("kobj_range_N_per_mm", list(rng), list(span) if span else None, res_err,
                        m_rng, model, m_rng >= 0))
-    out.append(readout_resolution_record(plan, fig, req, res_err))
     from tactcad.studies.tolerance_budget import toleranced_band_record
 
     out.append(toleranced_band_record(plan, req.k_tolerance_rel, closed_form_k_error(plan)))
@@ -423,9 +513,39 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew
         r["level_fixed"] = r["model"] != model or r["requirement"] in LEVEL_FIXED
-        threshold = -req.k_tolerance_rel if r["requirement"] == "kr_over_km" else 0.0
-        r["verdict"] = verdict(r["margin_rel"], r["error_estimate_rel"], threshold, r["pass"])
+        r["verdict"] = verdict(r["margin_rel"], r["error_estimate_rel"],
+                               r.get("allowed_margin_rel", 0.0), r["pass"])
     return out
+
+
+#: How the K_obj resolution records read each force.
+READOUT_BASIS = ("each element read through the design's [readout] chain: noise of one "
+                 "averaged reading / sensitivity (tactcad readout)")
+
+#: Verdicts from the worst: a multi-item record takes its worst item's.
+VERDICT_RANK = {"fail": 0, "undecided": 1, "pass": 2}
+
+
+def deciding_item(items: Sequence[dict]) -> dict:
+    """The item that decides a record of several (pairs, elements): the worst verdict, each
+    item judged on its own margin and error; among equal verdicts the smallest margin."""
+    return min(items, key=lambda it: (VERDICT_RANK[it["verdict"]], it["margin_rel"]))
+
+
+def kr_over_km_record(pairs: Sequence[RowPair], req: Requirements, model: str) -> dict:
+    """``kr_over_km``: every row's pair judged on its own error (:meth:`RowPair.as_json`);
+    the record shows the pair that decides it (:func:`deciding_item`), so one pair that
+    fails beyond its error fails the record whatever the others do. A pair passes within
+    the K band the requirements allow (margin >= -k_tolerance_rel)."""
+    threshold = -req.k_tolerance_rel
+    items = [q.as_json(req.kr_over_km, threshold) for q in pairs]
+    worst = deciding_item(items)
+    return _record("kr_over_km", req.kr_over_km, worst["kr_over_km"],
+                   worst["error_estimate_rel"], worst["margin_rel"], model,
+                   all(it["margin_rel"] >= threshold for it in items),
+                   reference_element=worst["reference_element"],
+                   measuring_element=worst["measuring_element"], row=worst["row"],
+                   allowed_margin_rel=threshold, pairs=items)
 
 
 def footprint_record(footprint_mm: Sequence[float], envelope_mm: Sequence[float]) -> dict:
@@ -526,23 +646,6 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
         if len(chosen) == len(order):
             break
     return [chosen[k] for k in order], spent
-
-
-def readout_resolution_record(plan: Plan, fig: Figures, req: Requirements, error: float) -> dict:
-    """``kobj_resolution_rel`` with each element read through the design's read-out chain
-    (:mod:`tactcad.mechanics.readout_chain`: its noise-limited force resolution instead of a fixed
-    0.01 N); requirement ``kobj_resolution_rel_readout``."""
-    from tactcad.mechanics.readout_chain import readout_report
-
-    rep = readout_report(plan, req, fig.model, stiffness=fig.k)
-    worst = rep.array_kobj_resolution_rel
-    worst = math.inf if worst is None else worst
-    return _record("kobj_resolution_rel_readout", req.kobj_resolution_rel, _finite_or_none(worst),
-                   error, req.kobj_resolution_rel / worst - 1.0, fig.model,
-                   worst <= req.kobj_resolution_rel,
-                   force_resolution_N={str(r["element"]): r["force_resolution_N"]
-                                       for r in rep.records},
-                   basis="read-out chain: noise of one averaged reading / sensitivity")
 
 
 # ---------------------------------------------------------------------------

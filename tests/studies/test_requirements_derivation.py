@@ -1,0 +1,131 @@
+"""Derived requirements come from the design itself and are checked as they were derived:
+the K_obj resolution from the design's own read-out chain, K_r / K_m by the rule the record
+checks (each row's pair), and a record of several pairs takes its worst pair's verdict."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from tactcad import cli
+from tactcad.design.array_plan import default_design_data, plan_from_dict, read_toml, with_overrides
+from tactcad.mechanics.readout_chain import readout_report
+from tactcad.studies.verification import (RowPair, element_figures, kr_over_km_record,
+                                          requirements_of, row_pairs, verification_matrix)
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+#: A noisier read-out: one sample, gain 10, +/-10 V range (tens of mN per reading).
+NOISY_CHAIN = {"readout.samples_averaged": 1, "readout.amplifier_gain": 10.0,
+               "readout.daq_range_V": 10.0}
+#: The paper's design as a 2 x 2 whose second row's arms are nearly equal (7 and 8 mm).
+TWO_BY_TWO = {"array.columns": 2, "arms.lengths_mm": [4.0, 8.0, 7.0, 8.0]}
+
+
+def paper(drop_requirements=(), **overrides):
+    data = with_overrides(default_design_data(), overrides)
+    for key in drop_requirements:
+        data["requirements"].pop(key, None)
+    return plan_from_dict(data)
+
+
+def example(drop_requirements=(), **overrides):
+    data = with_overrides(read_toml(EXAMPLE, "design"), overrides)
+    for key in drop_requirements:
+        data["requirements"].pop(key, None)
+    return plan_from_dict(data, str(EXAMPLE))
+
+
+def record(records, key):
+    return next(r for r in records if r["requirement"] == key)
+
+
+@pytest.mark.parametrize("make", [paper, example])
+def test_the_derived_kobj_resolution_is_what_the_designs_read_out_chain_reaches(make):
+    plan = make(drop_requirements=("kobj_resolution_rel",))
+    req = requirements_of(plan)
+    reached = readout_report(plan, req).array_kobj_resolution_rel
+    # rounded up to two digits after padding by its error: at most one step above
+    assert reached < req.kobj_resolution_rel <= 1.1 * reached * 1.05
+    assert "0.01 N" not in req.reasons["kobj_resolution_rel"]
+    assert "[readout] chain" in req.reasons["kobj_resolution_rel"]
+    res = record(verification_matrix(plan, requirements=req), "kobj_resolution_rel")
+    assert res["predicted"] == pytest.approx(reached)
+    assert res["verdict"] == "pass" and 0 < res["margin_rel"] < 0.2
+    # a noisier chain reads forces worse: the requirement it derives follows it
+    noisy = make(drop_requirements=("kobj_resolution_rel",), **NOISY_CHAIN)
+    assert requirements_of(noisy).kobj_resolution_rel > 5 * req.kobj_resolution_rel
+
+
+def test_the_resolution_record_reads_each_element_through_the_chain():
+    plan = example()
+    res = record(verification_matrix(plan), "kobj_resolution_rel")
+    forces = {int(n): f for n, f in res["force_resolution_N"].items()}
+    assert set(forces) == {s.number for s in plan.slots}
+    assert all(0 < f < 0.01 for f in forces.values())  # the chain's, not a fixed 0.01 N
+    assert all(r["requirement"] != "kobj_resolution_rel_readout" for r in verification_matrix(plan))
+    # the same stated requirement fails once the chain is too noisy to reach it
+    noisy = record(verification_matrix(example(**NOISY_CHAIN)), "kobj_resolution_rel")
+    assert noisy["verdict"] == "fail" and noisy["predicted"] > noisy["target"]
+
+
+def test_design_writes_the_resolution_its_read_out_chain_reaches(tmp_path, capsys):
+    out = tmp_path / "tip.toml"
+    assert cli.main(["design", "--kr-over-km", "6", "--kobj-range", "5", "50",
+                     "--full-scale-force", "0.3", "--columns", "4", "--verify", "none",
+                     "--quiet", "--out", str(out)]) == 0
+    written = read_toml(out, "design")["requirements"]["kobj_resolution_rel"]
+    capsys.readouterr()
+    assert cli.main(["verify", "--design", str(out), "--model", "closed-form", "--json",
+                     "--quiet"]) == 0
+    res = record(json.loads(capsys.readouterr().out)["matrix"], "kobj_resolution_rel")
+    assert res["target"] == written and res["verdict"] == "pass"
+    assert res["margin_rel"] < 0.2  # the chain's figure, not a 0.01 N one 100 times worse
+
+
+def test_a_derived_ratio_is_the_smallest_rows_and_verify_passes_it(capsys):
+    plan = paper(drop_requirements=("kr_over_km",), **TWO_BY_TWO)
+    pairs = row_pairs(plan, element_figures(plan))
+    smallest = min(q.ratio for q in pairs)
+    assert max(q.ratio for q in pairs) > 2 * smallest  # rows differ: the rule matters
+    req = requirements_of(plan)
+    assert smallest * 0.95 < req.kr_over_km <= smallest
+    ratio = record(verification_matrix(plan, requirements=req), "kr_over_km")
+    assert ratio["verdict"] == "pass"
+    sets = [f"--set=array.columns=2", "--set=arms.lengths_mm=[4.0,8.0,7.0,8.0]"]
+    assert cli.main(["verify", "--model", "closed-form", "--json", "--quiet", *sets]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert all(r["verdict"] != "fail" for r in out["matrix"])
+    # every derived requirement is decided at the level it was derived from
+    assert record(out["matrix"], "k_tolerance_rel")["verdict"] == "pass"
+
+
+def _pair(row, ratio, error):
+    return RowPair(row, 2 * row + 1, 2 * row + 2, ratio, error / 2, error / 2)
+
+
+#: K_r / K_m 7 within a 10 % K band: a pair passes down to 6.3 (margin -10 %).
+TARGET, BAND = 7.0, 0.1
+ON_THE_EDGE = TARGET * (1 - BAND) * (1 - 1e-3)
+
+
+@pytest.mark.parametrize("pairs, expected, row", [
+    # the smaller ratio lies inside its wide error; the other misses beyond its narrow one
+    ([_pair(0, 5.9, 0.10), _pair(1, 6.0, 0.002)], "fail", 2),
+    # one pair fails clearly, the other sits on the edge of what the band allows
+    ([_pair(0, 5.0, 0.02), _pair(1, ON_THE_EDGE, 0.02)], "fail", 1),
+    ([_pair(0, 7.5, 0.02), _pair(1, ON_THE_EDGE, 0.02)], "undecided", 2),
+    ([_pair(0, 7.5, 0.02), _pair(1, 7.3, 0.02)], "pass", 2),
+])
+def test_a_record_of_pairs_takes_its_worst_pairs_verdict(pairs, expected, row):
+    from dataclasses import replace
+
+    from tactcad.studies.verification import verdict
+
+    req = replace(requirements_of(example()), kr_over_km=TARGET, k_tolerance_rel=BAND)
+    rec = kr_over_km_record(pairs, req, "closed-form")
+    assert expected in [p["verdict"] for p in rec["pairs"]] and rec["row"] == row
+    assert verdict(rec["margin_rel"], rec["error_estimate_rel"], rec["allowed_margin_rel"],
+                   rec["pass"]) == expected
+    assert rec["predicted"] == next(q.ratio for q in pairs if q.row + 1 == row)
