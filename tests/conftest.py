@@ -274,6 +274,7 @@ BROWSER_TESTS = {
     "export/test_review_page.py::test_page_served_by_any_web_server_shows_what_it_carries",
     "export/test_review_page.py::test_a_page_whose_watch_stopped_asks_less_and_less_often",
     "export/test_review_page.py::test_check_results_join_the_page",
+    "export/test_review_page.py::test_an_undecided_requirement_shows_as_undecided_not_pass",
 }
 
 

@@ -297,6 +297,29 @@ def test_check_results_join_the_page(exported, browser, plan):
         (out / "review/checks.js").unlink()
 
 
+@pytest.mark.slow
+def test_an_undecided_requirement_shows_as_undecided_not_pass(exported, browser, plan):
+    from tactcad.checks.check_result import CheckResult
+    from tactcad.checks.review_browser import wait_first_frame
+
+    out, _ = exported
+    write_checks_script(out, plan.design_hash, [("requirements", [
+        CheckResult("requirement", "footprint_mm", True, "undecided: margin +0.0 %",
+                    undecided=True),
+        CheckResult("requirement", "kr_over_km", True, "pass: margin +2.2 %")])])
+    try:
+        with browser() as page:
+            page.goto((out / REVIEW_PAGE).resolve().as_uri())
+            wait_first_frame(page)
+            rows = page.locator("#checks-body tr").all_inner_texts()
+            text = page.locator("#checks-body").inner_text()
+            assert "1 passed, 1 undecided, 0 failed" in text
+            footprint = next(r for r in rows if "footprint_mm" in r)
+            assert footprint.split("\t")[0] == "UNDECIDED"
+    finally:
+        (out / "review/checks.js").unlink()
+
+
 def test_requirements_of_the_manifest_show_as_the_verification_matrix():
     record = {"values": {"full_scale_force_N": 0.1},
               "closed_form_matrix": [{"requirement": "full_scale_force_N", "target": 0.1,

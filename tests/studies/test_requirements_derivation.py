@@ -129,3 +129,39 @@ def test_a_record_of_pairs_takes_its_worst_pairs_verdict(pairs, expected, row):
     assert verdict(rec["margin_rel"], rec["error_estimate_rel"], rec["allowed_margin_rel"],
                    rec["pass"]) == expected
     assert rec["predicted"] == next(q.ratio for q in pairs if q.row + 1 == row)
+
+
+def test_a_footprint_the_envelope_fills_exactly_is_undecided_not_met():
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.checks.requirement_checks import requirement_checks
+    from tactcad.design.tolerances import general_linear_tolerance_mm
+
+    x, y, z = array_envelope_mm(example())
+    room_x = general_linear_tolerance_mm(x, "f")  # ISO 2768-f: +/-0.15 mm from 30 to 120 mm
+    cases = [([x, y], "undecided"),  # 0 mm of room on both axes
+             ([x + room_x / 2, y + 5], "undecided"),  # room inside the envelope's deviation
+             ([x + 2 * room_x, y + 5], "pass"),
+             ([x - 2 * room_x, y + 5], "fail")]
+    for footprint, expected in cases:
+        plan = example(**{"requirements.footprint_mm": footprint})
+        rec = record(verification_matrix(plan, envelope_mm=(x, y, z)), "footprint_mm")
+        assert rec["verdict"] == expected, footprint
+        assert rec["binding_axis"] == "X" and len(rec["axes"]) == 2
+    exact = [c for c in requirement_checks(example(**{"requirements.footprint_mm": [x, y]}))
+             if c.subject == "footprint_mm"]
+    assert [c.status for c in exact] == ["undecided"] and exact[0].passed
+    # a coarser general class gives the envelope a wider deviation
+    assert general_linear_tolerance_mm(x, "c") > room_x > general_linear_tolerance_mm(5.0, "f")
+
+
+def test_the_review_pages_checks_count_an_undecided_requirement_apart():
+    from tactcad.checks.check_result import CheckResult
+    from tactcad.checks.review_results import checks_script
+
+    found = [CheckResult("requirement", "footprint_mm", True, "undecided: ...", undecided=True),
+             CheckResult("requirement", "kr_over_km", True, "pass: ..."),
+             CheckResult("requirement", "kobj_resolution_rel", False, "fail: ...")]
+    doc = json.loads(checks_script("ff", [("requirements", found)])
+                     .removeprefix("window.TACTCAD_CHECKS = ").rstrip(";\n"))
+    assert [c["status"] for c in doc["checks"]] == ["undecided", "pass", "fail"]
+    assert (doc["passed"], doc["undecided"], doc["failed"]) == (2, 1, 1)

@@ -10,12 +10,14 @@ from typing import Iterable
 
 from tactcad.atomic import write_bytes_atomic
 from tactcad.checks import groups as check_groups
+from tactcad.checks.check_result import status_of
 from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE, json_in_html
 
 
 def checks_script(design_sha256: str, groups: Iterable[tuple[str, Iterable]]) -> str:
     """``review/checks.js``: the check results for the page (``window.TACTCAD_CHECKS``),
-    each with its group's label; ``groups`` lists every registered check group
+    each with its group's label and its status (pass, fail or undecided: an undecided
+    requirement passes but the page does not show it as a pass); ``groups`` lists every registered check group
     (:data:`tactcad.checks.groups.CHECK_GROUPS`) with what it checks, in run order.
 
     Args:
@@ -31,9 +33,11 @@ def checks_script(design_sha256: str, groups: Iterable[tuple[str, Iterable]]) ->
         except KeyError:
             name = label
         checks += [{"group": name, "label": label, "check": r.check, "subject": r.subject,
-                    "passed": bool(r.passed), "detail": r.detail} for r in results]
+                    "passed": bool(r.passed), "status": status_of(r), "detail": r.detail}
+                   for r in results]
     bad = sum(not c["passed"] for c in checks)
     doc = {"design_sha256": design_sha256, "passed": len(checks) - bad, "failed": bad,
+           "undecided": sum(c["status"] == "undecided" for c in checks),
            "groups": [{"name": g.name, "checks": g.checks}
                       for g in check_groups.CHECK_GROUPS.values()],
            "checks": checks}

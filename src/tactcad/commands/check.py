@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from tactcad.checks.check_result import failures
+from tactcad.checks.check_result import failures, status_of
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
                               load_from_args)
 from tactcad.commands.finite_json import dumps
@@ -73,7 +73,7 @@ def run(args: argparse.Namespace) -> int:
                      "export_refusal": result.export_refusal, "passed": len(result) - len(bad),
                      "failed": len(bad), "junit": args.junit,
                      "checks": [{"check": r.check, "subject": r.subject, "passed": r.passed,
-                                 "detail": r.detail} for r in result.results
+                                 "status": status_of(r), "detail": r.detail} for r in result.results
                                 if not (r.passed and args.failures_only)]}, indent=1))
     else:
         print(f"{len(result) - len(bad)} passed, {len(bad)} failed")

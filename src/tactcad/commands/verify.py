@@ -73,7 +73,7 @@ def matrix_table(records: list[dict]) -> str:
     """The matrix as a Markdown table (one row per requirement, the level
     that decided it and the pair or element that binds; the limits of the
     full-scale force below it)."""
-    from tactcad.studies.verification import binding_text, percent_text, value_text
+    from tactcad.studies.verification import binding_text, margin_text, percent_text, value_text
 
     rows = ["| requirement | target | predicted | error est. | margin | model | verdict | "
             "binds |",
@@ -82,7 +82,7 @@ def matrix_table(records: list[dict]) -> str:
         rows.append(f"| {r['requirement']} | {value_text(r['target'])} | "
                     f"{value_text(r['predicted'])} | "
                     f"{percent_text(r['error_estimate_rel'], sign=False)} | "
-                    f"{percent_text(r['margin_rel'])} | {r['model']} | {r['verdict'].upper()} | "
+                    f"{margin_text(r)} | {r['model']} | {r['verdict'].upper()} | "
                     f"{binding_text(r)} |")
     for r in records:
         for lim in r.get("limits", ()):

@@ -494,9 +494,20 @@ function showChecks() {
     body.replaceChildren(el('p', 'Not run on this export yet: `tactcad check --out <this export>` adds its results here.'));
     return;
   }
+  // an undecided requirement passes the checks but is not shown as a pass
+  const status = (r) => r.status || (r.passed ? 'pass' : 'fail');
+  const counts = (found) => {
+    const bad = found.filter((r) => status(r) === 'fail').length;
+    const open = found.filter((r) => status(r) === 'undecided').length;
+    return [found.length - bad - open, open, bad];
+  };
+  const countText = ([good, open, bad]) =>
+    `${good} passed, ${open ? `${open} undecided, ` : ''}${bad} failed`;
+  const [good, open, bad] = counts(c.checks);
   const head = el('p');
-  head.append(el('span', `${c.passed} passed`, 'pass'), ', ',
-              el('span', `${c.failed} failed`, c.failed ? 'fail' : 'pass'));
+  head.append(el('span', `${good} passed`, 'pass'), ', ');
+  if (open) head.append(el('span', `${open} undecided`, 'undecided'), ', ');
+  head.append(el('span', `${bad} failed`, bad ? 'fail' : 'pass'));
   // one table per check group, in the order the groups run; failures first within each
   const groups = (c.groups || []).map((g) => g.name);
   for (const r of c.checks) if (!groups.includes(r.group)) groups.push(r.group);
@@ -505,10 +516,12 @@ function showChecks() {
   for (const name of groups) {
     const found = c.checks.filter((r) => r.group === name);
     if (!found.length) continue;
-    const bad = found.filter((r) => !r.passed).length;
-    const title = el('h3', `${name}: ${found.length - bad} passed, ${bad} failed`, bad ? 'fail' : 'pass');
-    const rows = [...found].sort((a, b) => a.passed - b.passed)
-      .map((r) => ({ result: r.passed ? 'pass' : 'FAIL', check: r.check, subject: r.subject, detail: r.detail }));
+    const n = counts(found);
+    const title = el('h3', `${name}: ${countText(n)}`, n[2] ? 'fail' : (n[1] ? 'undecided' : 'pass'));
+    const order = { fail: 0, undecided: 1, pass: 2 };
+    const rows = [...found].sort((a, b) => order[status(a)] - order[status(b)])
+      .map((r) => ({ result: { fail: 'FAIL', undecided: 'UNDECIDED', pass: 'pass' }[status(r)],
+                     check: r.check, subject: r.subject, detail: r.detail }));
     parts.push(title);
     if (described[name]) parts.push(el('p', described[name]));
     parts.push(table(['result', 'check', 'subject', 'detail'], rows));

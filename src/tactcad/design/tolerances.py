@@ -116,3 +116,30 @@ def tolerances_of(raw: Mapping[str, Any]) -> DesignTolerances:
     return DesignTolerances(sources=tuple(sorted(sources.items())),
                             **{k: (values[k] if k == "general" else float(values[k]))
                                for k in KEYS})
+
+
+#: ISO 2768-1:1989 table 1, permissible deviations for linear dimensions (+/- mm) by class:
+#: (upper end of the nominal size range in mm, deviation); class v has none below 3 mm.
+ISO_2768_LINEAR_MM: dict[str, tuple[tuple[float, float | None], ...]] = {
+    "f": ((3, 0.05), (6, 0.05), (30, 0.1), (120, 0.15), (400, 0.2), (1000, 0.3), (2000, 0.5)),
+    "m": ((3, 0.1), (6, 0.1), (30, 0.2), (120, 0.3), (400, 0.5), (1000, 0.8), (2000, 1.2),
+          (4000, 2.0)),
+    "c": ((3, 0.2), (6, 0.3), (30, 0.5), (120, 0.8), (400, 1.2), (1000, 2.0), (2000, 3.0),
+          (4000, 4.0)),
+    "v": ((3, None), (6, 0.5), (30, 1.0), (120, 1.5), (400, 2.5), (1000, 4.0), (2000, 6.0),
+          (4000, 8.0)),
+}
+
+
+def general_linear_tolerance_mm(size_mm: float, general: str) -> float:
+    """The +/- deviation (mm) ISO 2768-1 allows a linear dimension of ``size_mm`` (mm) in
+    tolerance class ``general`` (``f``, ``m``, ``c``, ``v``); a size below the table's
+    first range takes that range's, one beyond its last takes the last (the standard stops
+    at 4000 mm; class v starts at 0.5 mm deviation).
+
+    Raises:
+        KeyError: ``general`` is not a class of :data:`GENERAL_CLASSES`.
+    """
+    rows = ISO_2768_LINEAR_MM[general]
+    defined = [(top, dev) for top, dev in rows if dev is not None]
+    return next((dev for top, dev in defined if size_mm <= top), defined[-1][1])

@@ -147,14 +147,14 @@ def _verdict(record: dict) -> str:
 def verification_row(r: dict) -> dict:
     """One requirement as the page's table shows it (texts, in the CLI's columns;
     the page's script lists them in this order, ``VERIFY_COLUMNS``)."""
-    from tactcad.studies.verification import binding_text, percent_text, value_text
+    from tactcad.studies.verification import binding_text, margin_text, value_text
 
     err = r.get("error_estimate_rel")
     return {"requirement": r["requirement"], "verdict": _verdict(r).upper(),
             "target": value_text(r.get("target")),
             "predicted": value_text(r.get("predicted"))
             + ("" if err is None else f" \u00b1 {100 * err:.2g} %"),
-            "margin": percent_text(r.get("margin_rel")),
+            "margin": margin_text(r),
             "binds": binding_text(r), "model": r.get("model", "")}
 
 

@@ -505,7 +505,9 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
         if envelope_mm is None:
             raise ValueError("the design states requirements.footprint_mm: pass the array's "
                              "envelope (tactcad.assembly.inventory.array_envelope_mm)")
-        out.append(footprint_record(req.footprint_mm, envelope_mm))
+        from tactcad.design.tolerances import tolerances_of
+
+        out.append(footprint_record(req.footprint_mm, envelope_mm, tolerances_of(plan.raw).general))
     out.extend(resonance_records(plan, model, progress))
     out.extend(r for r in [thermal_record(plan, fig, req)] if r is not None)
     out += crosstalk_records(plan)
@@ -548,18 +550,32 @@ def kr_over_km_record(pairs: Sequence[RowPair], req: Requirements, model: str) -
                    allowed_margin_rel=threshold, pairs=items)
 
 
-def footprint_record(footprint_mm: Sequence[float], envelope_mm: Sequence[float]) -> dict:
+def footprint_record(footprint_mm: Sequence[float], envelope_mm: Sequence[float],
+                     general: str = "f") -> dict:
     """``footprint_mm``: the array's envelope (X, Y and, when the footprint
-    states it, Z; mm) against the footprint; the margin is the tightest axis's
-    room (footprint / envelope - 1). Geometry, not a model: no error estimate."""
-    axes = "XYZ"[:len(footprint_mm)]
+    states it, Z; mm) against the footprint, one item per axis (``axes``),
+    margin footprint / envelope - 1. Geometry, not a model: each axis's error
+    is the envelope's ISO 2768-1 deviation in the design's general class
+    ``general`` (:func:`tactcad.design.tolerances.general_linear_tolerance_mm`)
+    over its size, so an envelope that fills the footprint exactly is
+    undecided, not met. The record shows the axis with the worst verdict
+    (:func:`deciding_item`)."""
+    from tactcad.design.tolerances import general_linear_tolerance_mm
+
     env = [float(e) for e in envelope_mm[:len(footprint_mm)]]
-    margins = [f / e - 1.0 for f, e in zip(footprint_mm, env)]
-    worst = min(range(len(margins)), key=lambda k: margins[k])
+    axes = []
+    for axis, f, e in zip("XYZ", footprint_mm, env):
+        margin, error = f / e - 1.0, general_linear_tolerance_mm(e, general) / e
+        axes.append({"axis": axis, "footprint_mm": float(f), "envelope_mm": e,
+                     "error_estimate_rel": error, "margin_rel": margin,
+                     "verdict": verdict(margin, error, 0.0, margin >= 0)})
+    worst = deciding_item(axes)
     return {"requirement": "footprint_mm", "target": list(footprint_mm), "predicted": env,
-            "error_estimate_rel": 0.0, "margin_rel": margins[worst], "model": "geometry",
-            "pass": margins[worst] >= 0, "binding_axis": axes[worst],
-            "basis": "the assembly STEP's box from the parts' expected boxes"}
+            "error_estimate_rel": worst["error_estimate_rel"], "margin_rel": worst["margin_rel"],
+            "model": "geometry", "pass": all(a["margin_rel"] >= 0 for a in axes),
+            "binding_axis": worst["axis"], "axes": axes,
+            "basis": f"the assembly STEP's box from the parts' expected boxes, each axis to "
+                     f"ISO 2768-{general}"}
 
 
 #: Requirements computed the same way at every level (the K band over the web tolerance).
@@ -667,6 +683,14 @@ def percent_text(v: float | None, sign: bool = True) -> str:
     if v is None:
         return "n/a"
     return f"{100 * v:+.1f} %" if sign else f"{100 * v:.2f} %"
+
+
+def margin_text(record: dict) -> str:
+    """A record's margin in percent, with the margin it is allowed when that is not 0
+    (K_r / K_m within the K band: ``-20.2 % (allowed -24.0 %)``)."""
+    allowed = record.get("allowed_margin_rel")
+    text = percent_text(record.get("margin_rel"))
+    return text if not allowed else f"{text} (allowed {percent_text(allowed)})"
 
 
 def binding_text(record: dict) -> str:
