@@ -49,7 +49,6 @@ Units: K, ppm/K, N, N/K, W, mm; strain dimensionless.
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass
 
@@ -59,6 +58,7 @@ from tactcad.design.array_plan import Plan
 from tactcad.design.readout_section import ReadoutChain
 from tactcad.errors import DesignError
 from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+from tactcad.mechanics.verdicts import deciding_item, judged
 
 #: Poisson ratio of the calibration beam of the maker's thermal-output data (TN-504).
 CALIBRATION_POISSON = 0.285
@@ -258,22 +258,27 @@ def thermal_report(plan: Plan, requirements, model: str = "closed-form",
 
 
 def thermal_record(plan: Plan, fig, req) -> dict | None:
-    """``max_thermal_drift_N_per_K`` when the design states it (None otherwise): the worst
-    element's drift per kelvin as read; margin target / predicted - 1; error the level's K
-    error estimate of that element (the strain per newton comes from the same model)."""
+    """``max_thermal_drift_N_per_K`` when the design states it (None otherwise): each
+    element's drift per kelvin as read, margin target / drift - 1, error the level's K error
+    estimate of that element (the strain per newton comes from the same model), judged on
+    its own (``elements``); the record shows the element with the worst verdict (among
+    equals the largest drift; :func:`tactcad.mechanics.verdicts.deciding_item`)."""
     from tactcad.design.requirements_section import stated_thermal_drift
 
     target = stated_thermal_drift(plan.raw)
     if target is None:
         return None
     rep = thermal_report(plan, req, fig.model, stiffness=fig.k, errors=fig.k_error)
-    w = rep.worst
-    pred = w["drift_N_per_K"]
-    margin = target / pred - 1.0 if pred > 0 else math.inf
-    return {"requirement": "max_thermal_drift_N_per_K", "target": target, "predicted": pred,
-            "error_estimate_rel": w["error_estimate_rel"],
-            "margin_rel": margin if math.isfinite(margin) else None, "model": fig.model,
-            "pass": pred <= target, "binding_element": w["element"],
+    items = [judged({"element": r["element"], "drift_N_per_K": r["drift_N_per_K"],
+                     "error_estimate_rel": r["error_estimate_rel"],
+                     "margin_rel": target / r["drift_N_per_K"] - 1.0
+                     if r["drift_N_per_K"] > 0 else None}) for r in rep.records]
+    w = deciding_item(items)  # each element on its own error: the worst verdict decides
+    return {"requirement": "max_thermal_drift_N_per_K", "target": target,
+            "predicted": w["drift_N_per_K"], "error_estimate_rel": w["error_estimate_rel"],
+            "margin_rel": w["margin_rel"], "model": fig.model,
+            "pass": all(it["drift_N_per_K"] <= target for it in items),
+            "binding_element": w["element"], "elements": items,
             "self_heating_K": rep.self_heating_K,
             "basis": "TN-504 thermal output of the STC gauge / grid strain per newton, plus "
                      "the gauge factor's temperature coefficient at full scale"}

@@ -26,6 +26,7 @@ from typing import Any, Callable, Mapping
 
 from tactcad.design.array_plan import Plan
 from tactcad.design.requirements_section import stated_requirements
+from tactcad.mechanics.verdicts import deciding_item, judged
 
 REQUIREMENT = "min_first_resonance_Hz"
 
@@ -77,25 +78,28 @@ def first_frequencies(plan: Plan, modal_model: str,
 def resonance_records(plan: Plan, model: str,
                       progress: Callable[[str], None] | None = None) -> list[dict]:
     """The verification record of ``min_first_resonance_Hz`` at stiffness level
-    ``model`` (``[]`` when the design does not state it): predicted is the
-    lowest first frequency over the elements (Hz), margin predicted / target - 1,
+    ``model`` (``[]`` when the design does not state it): each element judged
+    on its own margin (its first frequency / target - 1) and error, the record
+    showing the one with the worst verdict (among equals the lowest first
+    frequency, Hz; :func:`tactcad.mechanics.verdicts.deciding_item`),
     ``model`` the stiffness level verified (so ``verify --model auto`` climbs
     on an undecided record), ``modal_model`` the modal level that served it
     (``binding_model`` the one that gave the lowest element: fem3d for an element
     whose out-of-plane modes may come first),
-    ``binding_element`` the element that has the lowest frequency."""
+    ``binding_element`` that element."""
     from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_level_for
 
     target = stated_requirements(plan.raw).get(REQUIREMENT)
     if target is None:
         return []
     level = modal_level_for(model)
-    rows = first_frequencies(plan, level, progress)
-    low = rows[0]
-    margin = low["first_Hz"] / float(target) - 1.0
+    rows = [judged({**row, "margin_rel": row["first_Hz"] / float(target) - 1.0})
+            for row in first_frequencies(plan, level, progress)]
+    low = deciding_item(rows)  # each element on its own error: the worst verdict decides
     return [{"requirement": REQUIREMENT, "target": float(target), "predicted": low["first_Hz"],
-             "error_estimate_rel": low["error_estimate_rel"], "margin_rel": margin,
-             "model": model, "modal_model": level, "pass": margin >= 0,
+             "error_estimate_rel": low["error_estimate_rel"], "margin_rel": low["margin_rel"],
+             "model": model, "modal_model": level,
+             "pass": all(row["margin_rel"] >= 0 for row in rows),
              "binding_element": low["elements"][0],
              "binding_part": low["part"], "binding_model": low["model"],
              "families": list(MODAL_LEVELS[low["model"]].families),

@@ -45,7 +45,7 @@ from tactcad.design.array_plan import Plan
 from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, requirements_source,
                                          stated_footprint, stated_requirements)
 from tactcad.mechanics.stack_crosstalk import crosstalk_records
-from tactcad.mechanics.resolution import KOBJ_POINTS
+from tactcad.mechanics.verdicts import VERDICTS, deciding_item, judged, verdict  # noqa: F401 (API)
 from tactcad.studies.resonance import resonance_records, resonance_summary
 from tactcad.mechanics.thermal_drift import thermal_record
 
@@ -212,11 +212,10 @@ class RowPair:
     def as_json(self, target: float, threshold_rel: float = 0.0) -> dict:
         """The pair as an item of the ``kr_over_km`` record, judged on its own error
         (``threshold_rel``: the margin the requirement needs, :func:`verdict`)."""
-        margin = self.ratio / target - 1.0
-        return {"row": self.row + 1, "reference_element": self.reference,
-                "measuring_element": self.measuring, "kr_over_km": self.ratio,
-                "error_estimate_rel": self.error_rel, "margin_rel": margin,
-                "verdict": verdict(margin, self.error_rel, threshold_rel, margin >= threshold_rel)}
+        return judged({"row": self.row + 1, "reference_element": self.reference,
+                       "measuring_element": self.measuring, "kr_over_km": self.ratio,
+                       "error_estimate_rel": self.error_rel,
+                       "margin_rel": self.ratio / target - 1.0}, threshold_rel)
 
 
 def row_pairs(plan: Plan, fig: Figures) -> list[RowPair]:
@@ -524,16 +523,6 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
 READOUT_BASIS = ("each element read through the design's [readout] chain: noise of one "
                  "averaged reading / sensitivity (tactcad readout)")
 
-#: Verdicts from the worst: a multi-item record takes its worst item's.
-VERDICT_RANK = {"fail": 0, "undecided": 1, "pass": 2}
-
-
-def deciding_item(items: Sequence[dict]) -> dict:
-    """The item that decides a record of several (pairs, elements): the worst verdict, each
-    item judged on its own margin and error; among equal verdicts the smallest margin."""
-    return min(items, key=lambda it: (VERDICT_RANK[it["verdict"]], it["margin_rel"]))
-
-
 def kr_over_km_record(pairs: Sequence[RowPair], req: Requirements, model: str) -> dict:
     """``kr_over_km``: every row's pair judged on its own error (:meth:`RowPair.as_json`);
     the record shows the pair that decides it (:func:`deciding_item`), so one pair that
@@ -565,10 +554,9 @@ def footprint_record(footprint_mm: Sequence[float], envelope_mm: Sequence[float]
     env = [float(e) for e in envelope_mm[:len(footprint_mm)]]
     axes = []
     for axis, f, e in zip("XYZ", footprint_mm, env):
-        margin, error = f / e - 1.0, general_linear_tolerance_mm(e, general) / e
-        axes.append({"axis": axis, "footprint_mm": float(f), "envelope_mm": e,
-                     "error_estimate_rel": error, "margin_rel": margin,
-                     "verdict": verdict(margin, error, 0.0, margin >= 0)})
+        axes.append(judged({"axis": axis, "footprint_mm": float(f), "envelope_mm": e,
+                            "error_estimate_rel": general_linear_tolerance_mm(e, general) / e,
+                            "margin_rel": f / e - 1.0}))
     worst = deciding_item(axes)
     return {"requirement": "footprint_mm", "target": list(footprint_mm), "predicted": env,
             "error_estimate_rel": worst["error_estimate_rel"], "margin_rel": worst["margin_rel"],
@@ -581,33 +569,6 @@ def footprint_record(footprint_mm: Sequence[float], envelope_mm: Sequence[float]
 #: Requirements computed the same way at every level (the K band over the web tolerance).
 LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm",
                "max_crosstalk_rel")
-
-#: A requirement's verdict at one level (:func:`verdict`).
-VERDICTS = ("pass", "fail", "undecided")
-
-
-def verdict(margin_rel: float | None, error_rel: float | None, threshold_rel: float,
-            nominal_pass: bool) -> str:
-    """``pass`` when the margin clears its threshold by more than the level's
-    error estimate, ``fail`` when it misses it by more, else ``undecided``
-    (the level cannot tell). Without a finite margin or error: the nominal
-    verdict.
-
-    Args:
-        margin_rel: the record's margin (positive: met), or None (infinite).
-        error_rel: the prediction's relative error estimate, or None.
-        threshold_rel: the margin the requirement needs (0; -K band for K_r/K_m).
-        nominal_pass: the verdict on the nominal prediction.
-    """
-    if margin_rel is None or error_rel is None or not math.isfinite(error_rel):
-        return "pass" if nominal_pass else "fail"
-    clearance = margin_rel - threshold_rel
-    if clearance >= error_rel:
-        return "pass"
-    if clearance < -error_rel:
-        return "fail"
-    return "undecided"
-
 
 def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
                       requirements: Requirements | None = None,
