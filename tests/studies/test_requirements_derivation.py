@@ -165,3 +165,15 @@ def test_the_review_pages_checks_count_an_undecided_requirement_apart():
                      .removeprefix("window.TACTCAD_CHECKS = ").rstrip(";\n"))
     assert [c["status"] for c in doc["checks"]] == ["undecided", "pass", "fail"]
     assert (doc["passed"], doc["undecided"], doc["failed"]) == (2, 1, 1)
+
+
+def test_design_fits_a_footprint_by_the_rule_verify_judges_it_by():
+    from tactcad.studies.footprint_fit import fits
+    from tactcad.studies.verification import footprint_met, least_footprint_mm
+
+    envelope = (46.04, 22.0, 11.5)
+    assert not fits(envelope, envelope[:2])  # filled exactly: undecided, not a fit
+    least = least_footprint_mm(envelope)
+    assert least == [46.2, 22.1]  # +/-0.15 and +/-0.1 mm (ISO 2768-f), up to 0.1 mm
+    assert fits(envelope, least) and footprint_met(envelope, least)
+    assert not fits(envelope, [least[0] - 0.1, least[1]])

@@ -71,8 +71,12 @@ class Layout:
 
 
 def fits(envelope_mm: Sequence[float], footprint_mm: Sequence[float]) -> bool:
-    """True when every axis the footprint states holds the envelope (mm)."""
-    return all(e <= f + 1e-9 for e, f in zip(envelope_mm, footprint_mm))
+    """True when every axis the footprint states holds the envelope with room for its
+    ISO 2768-f deviation (mm): the rule ``verify`` judges the footprint by
+    (:func:`tactcad.studies.verification.footprint_met`), so a design that fits passes."""
+    from tactcad.studies.verification import footprint_met
+
+    return footprint_met(envelope_mm, footprint_mm)
 
 
 def _sheet_tables(data: Mapping[str, Any], sheet_mm: float) -> dict[str, Any] | None:
@@ -228,10 +232,13 @@ def design_within_footprint(base: Plan, targets: Targets, footprint_mm: Sequence
         raise InverseDesignError(
             f"--footprint {' x '.join(f'{f:g}' for f in footprint_mm)} mm: no design meets the "
             "targets on any sheet tried, whatever its size")
+    from tactcad.studies.verification import least_footprint_mm
+
     _, env, where = min(nearest, key=lambda n: n[0])
     axes = len(footprint_mm)
     raise DesignError("--footprint", list(footprint_mm),
-                      f"at least {' x '.join(f'{e:.1f}' for e in env[:axes])} mm for these "
+                      f"at least {' x '.join(f'{f:g}' for f in least_footprint_mm(env, axes))} "
+                      "mm for these "
                       f"targets (the nearest feasible footprint: {where.words()})",
                       "shorter elements need thinner webs, which carry less force, and a "
                       f"thinner sheet (down to {min(SHEET_THICKNESSES_MM):g} mm) a smaller pitch; "

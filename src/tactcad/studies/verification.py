@@ -566,6 +566,33 @@ def footprint_record(footprint_mm: Sequence[float], envelope_mm: Sequence[float]
                      f"ISO 2768-{general}"}
 
 
+#: The step (mm) a least footprint is rounded up to.
+FOOTPRINT_STEP_MM = 0.1
+
+
+def footprint_met(envelope_mm: Sequence[float], footprint_mm: Sequence[float],
+                  general: str = "f") -> bool:
+    """True when :func:`footprint_record` passes every axis the footprint states: each
+    holds the envelope plus its ISO 2768-1 deviation in class ``general`` (mm); the rule
+    ``design --footprint`` designs to, so its design passes its own requirement."""
+    return all(a["verdict"] == "pass"
+               for a in footprint_record(footprint_mm, envelope_mm, general)["axes"])
+
+
+def least_footprint_mm(envelope_mm: Sequence[float], axes: int = 2,
+                       general: str = "f") -> list[float]:
+    """The smallest footprint (first ``axes`` of X, Y, Z; mm) an envelope meets
+    (:func:`footprint_met`): each axis plus its deviation, rounded up to
+    :data:`FOOTPRINT_STEP_MM`, so that it can be pasted as ``--footprint``."""
+    from tactcad.design.tolerances import general_linear_tolerance_mm
+
+    out = []
+    for e in envelope_mm[:axes]:
+        need = float(e) + general_linear_tolerance_mm(float(e), general)
+        out.append(round(math.ceil(need / FOOTPRINT_STEP_MM - 1e-9) * FOOTPRINT_STEP_MM, 6))
+    return out
+
+
 #: Requirements computed the same way at every level (the K band over the web tolerance).
 LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm",
                "max_crosstalk_rel")
