@@ -177,3 +177,19 @@ def test_design_fits_a_footprint_by_the_rule_verify_judges_it_by():
     assert least == [46.2, 22.1]  # +/-0.15 and +/-0.1 mm (ISO 2768-f), up to 0.1 mm
     assert fits(envelope, least) and footprint_met(envelope, least)
     assert not fits(envelope, [least[0] - 0.1, least[1]])
+
+
+def test_a_small_full_scale_force_writes_the_resolution_its_chain_reaches(tmp_path, capsys):
+    """At 0.01 N a fixed 0.01 N read-out resolved nothing (1400 %, refused as a
+    kobj_resolution_rel the user never wrote); the chain reads such forces."""
+    out = tmp_path / "cube.toml"
+    assert cli.main(["design", "--kr-over-km", "8", "--kobj-range", "3", "30",
+                     "--full-scale-force", "0.01", "--material", "CuBe-C17200-TF00",
+                     "--columns", "4", "--verify", "none", "--quiet", "--out", str(out)]) == 0
+    written = read_toml(out, "design")["requirements"]["kobj_resolution_rel"]
+    assert 0 < written < 10
+    capsys.readouterr()
+    assert cli.main(["verify", "--design", str(out), "--model", "closed-form", "--json",
+                     "--quiet"]) == 0
+    res = record(json.loads(capsys.readouterr().out)["matrix"], "kobj_resolution_rel")
+    assert res["verdict"] == "pass" and res["target"] == written
