@@ -30,9 +30,9 @@ in quadrature and divided by sqrt(samples). Force resolution = that noise
 / |S| (1 sigma).
 
 K_obj resolution: eq. 1-3 with each element's own force resolution
-(:func:`tactcad.mechanics.resolution.unit_resolution`); the reference is the
-stiffest element, every softer one measures (as ``verify``), pressed until
-the reference carries the full-scale force.
+(:func:`tactcad.mechanics.resolution.unit_resolution`); each row's reference
+reads with every element of the row softer than it (:func:`row_units`, as
+``verify``), pressed until the reference carries the full-scale force.
 
 Units: mm, N, MPa, V, N/mm, V/mm, V/N; strain dimensionless.
 """
