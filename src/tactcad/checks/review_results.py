@@ -17,8 +17,9 @@ from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE, json_in_html
 def checks_script(design_sha256: str, groups: Iterable[tuple[str, Iterable]]) -> str:
     """``review/checks.js``: the check results for the page (``window.TACTCAD_CHECKS``),
     each with its group's label and its status (pass, fail or undecided: an undecided
-    requirement passes but the page does not show it as a pass); ``groups`` lists every registered check group
-    (:data:`tactcad.checks.groups.CHECK_GROUPS`) with what it checks, in run order.
+    requirement passes but the page does not show it as a pass); ``groups`` lists every
+    registered check group (:data:`tactcad.checks.groups.CHECK_GROUPS`) with what it
+    checks, in run order.
 
     Args:
         design_sha256: the design the results are for (the page shows them only

@@ -420,7 +420,8 @@ def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float) -> tu
     units = sensing_units(plan, fig)
     value, worst = kobj_resolution_requirement(units, rng, force_N)
     if not math.isfinite(worst):
-        return value, "not stated: no element is softer than its row's reference, so no K_obj can be read"
+        return value, ("not stated: no element is softer than its row's reference, so no K_obj "
+                       "can be read")
     forces = units.force_resolution_N.values()
     return value, (f"not stated: the worst K_obj resolution over the range at the full-scale "
                    f"force, {100 * worst:.3g} % ({fig.model}, each element read through the "
@@ -522,6 +523,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
 #: How the K_obj resolution records read each force.
 READOUT_BASIS = ("each element read through the design's [readout] chain: noise of one "
                  "averaged reading / sensitivity (tactcad readout)")
+
 
 def kr_over_km_record(pairs: Sequence[RowPair], req: Requirements, model: str) -> dict:
     """``kr_over_km``: every row's pair judged on its own error (:meth:`RowPair.as_json`);
