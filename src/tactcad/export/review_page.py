@@ -122,7 +122,7 @@ def verification_view(requirements: dict) -> dict:
     limits = next((r["limits"] for r in matrix if r.get("limits")), [])
     view = {"verification matrix (closed form; tactcad verify --model auto decides the "
             "undecided)": rows,
-            "limits behind the full-scale force": limits,
+            "element force limits behind the rated full-scale force": limits,
             "requirements": requirements.get("values", {})}
     if (requirements.get("first_resonance") or {}).get("elements"):
         view["first natural frequencies (closed form, in the sheet's plane)"] = \
