@@ -329,7 +329,8 @@ def print_report(r: dict) -> None:
         print(f"{e['role']:<10} {','.join(map(str, same)):<16} {e['arm_length_mm']:>7g} "
               f"{e['K_target_N_per_mm']:>8.4g} {e['K_closed_form_N_per_mm']:>12.4g} "
               f"{ver + ' (' + e['verify_model'] + ')':>10} {diff:>7} "
-              f"{e['yield_limited_force_N']:>9.3g} {e['yield_safety_factor_at_target_force']:>5.2f} "
+              f"{e['yield_limited_force_N']:>9.3g} "
+              f"{e['yield_safety_factor_at_target_force']:>5.2f} "
               f"{1e6 * e['gauge_strain_at_target_force']:>9.0f}")
     print("K_obj N/mm      R   dR/dK_obj mm/N   dK_obj (0.01 N)   relative   [K from]")
     for u in r["units"]:

@@ -112,7 +112,7 @@ def verification_view(requirements: dict) -> dict:
     """The manifest's requirements record as the page's verification section,
     read as ``tactcad verify`` prints it: one row per requirement (verdict,
     target, predicted with its error, margin, what binds, level), failures
-    first, then undecided; the limits behind the full-scale force (the binding
+    first, then undecided; the element force limits behind the rated full-scale force (the binding
     one marked); the stated or derived values; each element's first natural
     frequency; and the requirements not met (the page's red banner)."""
     matrix = requirements.get("closed_form_matrix") or []

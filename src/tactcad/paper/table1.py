@@ -4,7 +4,7 @@ design (it cites the paper and its geometry can reach the measured K), the
 as-built webs that reproduce the measured K, the gauge strain at the paper's
 2 N design load, Table 2's R from the predicted K, the read-out chain's
 sensitivity against the measured K_v/K, the spread of equal-arm elements, and
-the full-scale force against the calibration's largest force.
+each element's yield-limited force against the calibration's largest force.
 
 Everything here compares with the paper; the general estimators
 (:mod:`tactcad.mechanics`) never import it. Units: mm, N, N/mm, V.
