@@ -104,7 +104,7 @@ def rig_sizing_words(plan: Plan, samples: list[float]) -> dict[str, str]:
     from tactcad.studies.verification import rated_full_scale_force
 
     rated = rated_full_scale_force(plan)
-    need = gauge_need(rated, max(samples))
+    need = gauge_need(rated, samples)
     gauge, short = choose_force_gauge(need)
     w = weights_for(element_loads_per_newton(plan, samples), rated)
     quote = lambda text: text.replace('"', "'")  # noqa: E731 - TOML basic strings

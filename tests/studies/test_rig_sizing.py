@@ -12,7 +12,7 @@ import pytest
 import tactcad
 from tactcad.design.rig_plan import rigs_from_dict
 from tactcad.project_folder import companion_tables
-from tactcad.studies.rig_sizing import (RESOLUTION_SHARE, SAMPLE_TRAVEL_MM, WEIGHT_COUNT_RANGE,
+from tactcad.studies.rig_sizing import (RESOLUTION_SHARE, WEIGHT_COUNT_RANGE,
                                         choose_force_gauge, element_loads_per_newton,
                                         gauge_need, gauge_shortfalls, weight_series_g,
                                         weights_for)
@@ -32,8 +32,10 @@ def plan(request):
 
 
 def test_the_papers_gauge_cannot_resolve_a_0p077_N_rating_and_the_chosen_one_can():
-    need = gauge_need(0.077, 5.0)
-    assert need.range_N == pytest.approx(5.0 * SAMPLE_TRAVEL_MM)
+    need = gauge_need(0.077, [5.0, 1.58, 0.5])  # the grasper: K_obj 0.5 ... 5 N/mm
+    # every sample pressed as deep as one element at the rating presses the softest
+    assert need.sample_depth_mm == pytest.approx(0.077 / 0.5)
+    assert need.range_N == pytest.approx(0.077 * 5.0 / 0.5)
     assert need.resolution_N == pytest.approx(RESOLUTION_SHARE * 0.077)
     assert gauge_shortfalls(5.0, 0.001, need) == ["resolution 0.001 N > 0.00077 N"]
     gauge, misses = choose_force_gauge(need)
@@ -44,8 +46,17 @@ def test_the_papers_gauge_cannot_resolve_a_0p077_N_rating_and_the_chosen_one_can
 
 
 def test_a_need_no_catalogue_gauge_meets_names_what_the_nearest_misses():
-    gauge, misses = choose_force_gauge(gauge_need(0.001, 30.0))  # 9 N to read to 10 uN
-    assert misses and gauge.range_N >= 9.0 and any("resolution" in m for m in misses)
+    gauge, misses = choose_force_gauge(gauge_need(0.001, [30.0, 1.0]))  # 30 mN to read to 10 uN
+    assert misses and gauge.range_N >= 0.03 and any("resolution" in m for m in misses)
+
+
+@pytest.mark.parametrize("rated", [0.01, 0.077, 0.33, 1.0, 2.5])
+@pytest.mark.parametrize("ratio", [1.0, 10.0, 20.0])
+def test_a_catalogue_gauge_fits_every_usual_rating_and_kobj_range(rated, ratio):
+    """Ratings of 10 mN to 2.5 N over K_obj ranges up to 20:1 all find a gauge
+    (the rigs made for a design then pass the check)."""
+    gauge, misses = choose_force_gauge(gauge_need(rated, [ratio, 1.0]))
+    assert not misses, (rated, ratio, gauge.model)
 
 
 def test_weights_take_the_most_loaded_element_to_at_most_the_rating(plan):
@@ -70,7 +81,7 @@ def test_the_rigs_made_for_a_design_are_sized_to_it(plan):
     rigs = rigs_from_dict(tables, plan)
     rated = rated_full_scale_force(plan)
     gauge = rigs.part("force_gauge")
-    need = gauge_need(rated, max(rigs.sample_stiffness_N_per_mm))
+    need = gauge_need(rated, rigs.sample_stiffness_N_per_mm)
     assert not gauge_shortfalls(gauge.range_N, gauge.resolution_N, need)
     assert gauge.model == choose_force_gauge(need)[0].model
     assert rigs.library["force_gauge"].process.startswith(gauge.model)  # the BOM's text

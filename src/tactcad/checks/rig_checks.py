@@ -59,7 +59,7 @@ def force_gauge_check(rigs, rated_N: float) -> CheckResult:
     from tactcad.studies.rig_sizing import choose_force_gauge, gauge_need, gauge_shortfalls
 
     g = rigs.part("force_gauge")
-    need = gauge_need(rated_N, max(rigs.sample_stiffness_N_per_mm))
+    need = gauge_need(rated_N, rigs.sample_stiffness_N_per_mm)
     short = gauge_shortfalls(g.range_N, g.resolution_N, need)
     subject = "calibration and sample rigs: force_gauge"
     text = f"{g.model} ({g.range_N:g} N, {g.resolution_N:g} N) against {need.words()}"

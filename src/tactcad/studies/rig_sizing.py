@@ -2,10 +2,11 @@
 and the loads the rigs put on the elements against the design's rating.
 
 * **Force gauge** (calibration and sample-stiffness rigs share it): its range
-  covers the largest force the rigs read, the rated full-scale force F
-  (calibration: six Z steps up to F) or the stiffest sample pressed
-  :data:`SAMPLE_TRAVEL_MM` deep (the paper's sample rig: 50 um steps to
-  300 um), whichever is larger; its resolution is at most
+  covers the largest force the rigs read: the rated full-scale force F
+  (calibration: six Z steps up to F), or the stiffest sample pressed as deep
+  as one element at F presses the softest, F / K_lo (the sample rig presses
+  every sample to one depth, as the paper's did to 300 um): F K_hi / K_lo,
+  which follows the design's K_obj range; its resolution is at most
   :data:`RESOLUTION_SHARE` of F. The rigs made for a design take the
   catalogue gauge (:mod:`tactcad.vocabulary.force_gauge_catalogue`) of
   smallest range that fits, of equal ranges the finest.
@@ -36,8 +37,6 @@ from tactcad.errors import DesignError
 from tactcad.mechanics.evaluation import STANDARD_GRAVITY, SampleSpec, ladder_stiffness_by_element
 from tactcad.vocabulary.force_gauge_catalogue import ForceGaugeModel, force_gauges
 
-#: Depth the sample rig presses each sample to (mm): the paper's 300 um.
-SAMPLE_TRAVEL_MM = 0.3
 #: The gauge resolves this share of the rated full-scale force (1 %: the first of
 #: the calibration's six steps to full scale is read to 6 %).
 RESOLUTION_SHARE = 0.01
@@ -66,12 +65,14 @@ class GaugeNeed:
 
     Attributes:
         rated_N: the design's rated full-scale force F (N).
-        sample_force_N: the stiffest sample at :data:`SAMPLE_TRAVEL_MM` (N).
+        sample_depth_mm: the sample rig's depth, F / K_lo (mm).
+        sample_force_N: the stiffest sample at that depth (N).
         range_N: the largest force read, max(F, sample force) (N).
         resolution_N: the coarsest resolution allowed, :data:`RESOLUTION_SHARE` x F (N).
     """
 
     rated_N: float
+    sample_depth_mm: float
     sample_force_N: float
     range_N: float
     resolution_N: float
@@ -79,20 +80,22 @@ class GaugeNeed:
     def words(self) -> str:
         """The need in words, with its reasons."""
         return (f"range >= {self.range_N:.3g} N (the rated full-scale force {self.rated_N:.3g} N, "
-                f"the stiffest sample {self.sample_force_N:.3g} N at {SAMPLE_TRAVEL_MM:g} mm), "
+                f"the stiffest sample {self.sample_force_N:.3g} N at the softest's "
+                f"{self.sample_depth_mm:.3g} mm), "
                 f"resolution <= {self.resolution_N:.3g} N ({100 * RESOLUTION_SHARE:g} % of "
                 f"{self.rated_N:.3g} N)")
 
 
-def gauge_need(rated_N: float, stiffest_sample_N_per_mm: float) -> GaugeNeed:
+def gauge_need(rated_N: float, samples_N_per_mm) -> GaugeNeed:
     """The force gauge a design's rigs need (see the module docstring).
 
     Args:
         rated_N: the design's rated full-scale force (N), > 0.
-        stiffest_sample_N_per_mm: the stiffest sample's K_obj (N/mm), > 0.
+        samples_N_per_mm: the samples' K_obj (N/mm), each > 0.
     """
-    sample = stiffest_sample_N_per_mm * SAMPLE_TRAVEL_MM
-    return GaugeNeed(rated_N, sample, max(rated_N, sample), RESOLUTION_SHARE * rated_N)
+    depth = rated_N / min(samples_N_per_mm)
+    sample = max(samples_N_per_mm) * depth
+    return GaugeNeed(rated_N, depth, sample, max(rated_N, sample), RESOLUTION_SHARE * rated_N)
 
 
 def gauge_shortfalls(range_N: float, resolution_N: float, need: GaugeNeed) -> list[str]:
