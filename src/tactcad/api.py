@@ -506,14 +506,18 @@ class Element:
                               element=self.number, modes=modes, **options)
 
     def strength(self, model: str = "closed-form") -> "StrengthRecord":
-        """Peak stress per newton at the hinge and the full-scale force.
+        """Peak stress per newton at the hinge, this element's yield-limited
+        force and its figures at the design's rated full-scale force.
 
         Args:
             model: ladder level, as for :meth:`stiffness`.
 
         Returns:
             :class:`~tactcad.mechanics.element_strength.StrengthRecord` (MPa/N, N,
-            strain, mm, and the limits exceeded in ``warnings``).
+            strain, mm, and the limits exceeded in ``warnings``):
+            ``full_scale_force_N`` is the design's rating (the same as
+            ``verify``'s and every element's), ``yield_limited_force_N`` this
+            element's own limit from yield.
 
         Raises:
             UnknownModelError: ``model`` is not a ladder level.
@@ -523,6 +527,7 @@ class Element:
         from tactcad.mechanics.ladder import UnknownModelError, models
         from tactcad.paper.paper_load import paper_load_of
         from tactcad.studies.strength_studies import element_stress
+        from tactcad.studies.verification import rated_full_scale_force
 
         if model not in models():
             raise UnknownModelError(model)
@@ -530,7 +535,7 @@ class Element:
         plan = self.project.plan
         stress = element_stress(self.geometry, plan.material, model)
         return strength_record(self.number, self.geometry, plan.material, plan.strength, stress,
-                               paper_load_of(plan))
+                               rated_full_scale_force(plan), paper_load_of(plan))
 
 
 @dataclass(frozen=True)

@@ -91,8 +91,53 @@ def _rigs_name(plan: Plan) -> str:
     return plan.name[:64 - len("_rigs")]
 
 
+def rig_sizing_words(plan: Plan, samples: list[float]) -> dict[str, str]:
+    """The rigs template's force gauge and weights, sized to ``plan``'s rated
+    full-scale force and its ``samples`` (N/mm) by :mod:`tactcad.studies.rig_sizing`,
+    with their reasons.
+
+    Raises:
+        DesignError: no weight of the 1-2-5 series fits the rating.
+    """
+    from tactcad.studies.rig_sizing import (choose_force_gauge, element_loads_per_newton,
+                                            gauge_need, weights_for)
+    from tactcad.studies.verification import rated_full_scale_force
+
+    rated = rated_full_scale_force(plan)
+    need = gauge_need(rated, samples)
+    gauge, short = choose_force_gauge(need)
+    w = weights_for(element_loads_per_newton(plan, samples), rated)
+    quote = lambda text: text.replace('"', "'")  # noqa: E731 - TOML basic strings
+    return {
+        "gauge_model": gauge.model, "gauge_range": repr(gauge.range_N),
+        "gauge_resolution": repr(gauge.resolution_N),
+        "gauge_stiffness": repr(gauge.stiffness_N_per_mm), "gauge_length": repr(gauge.length_mm),
+        "gauge_width": repr(gauge.width_mm), "gauge_depth": repr(gauge.depth_mm),
+        "gauge_shaft_diameter": repr(gauge.shaft_diameter_mm),
+        "gauge_shaft_length": repr(gauge.shaft_length_mm),
+        "gauge_reason": quote(
+            f"The catalogue gauge of smallest range for this design: {need.words()}; replace "
+            f"it with the gauge your lab uses if that fits too." if not short else
+            f"No catalogue gauge fits this design ({need.words()}); the nearest misses it "
+            f"({'; '.join(short)}): write the gauge your lab uses here (check: rigs fails "
+            f"until one fits)."),
+        "gauge_source": quote(gauge.source),
+        "weight_mass": repr(w.mass_g), "weight_diameter": repr(w.diameter_mm),
+        "weight_count": f"{w.count}",
+        "weight_preload": repr(math.floor(w.preload_N * 1e6) / 1e6),  # rounded down: within the rating
+        "weights_reason": quote(
+            f"{w.mass_g:g} g calibration weights (1-2-5 series) added one at a time: the "
+            f"preload and all {w.count} give {w.top_load_N:.3g} N, which puts "
+            f"{w.element_load_N:.3g} N on element {w.element}, the most loaded, within the "
+            f"rated full-scale force {rated:g} N."),
+        "weights_count_reason": quote(f"As many {w.mass_g:g} g weights as the rating allows "
+                                      f"after the preload, {w.count} load steps."),
+    }
+
+
 def companion_texts(plan: Plan) -> dict[str, str]:
-    """The rigs and scenes files made for ``plan`` (TOML text): kind -> text."""
+    """The rigs and scenes files made for ``plan`` (TOML text): kind -> text.
+    The force gauge and the weights are sized to the design (:func:`rig_sizing_words`)."""
     samples, reason = sample_stiffnesses(plan)
     count = len(plan.slots)
     tip = plan.distinct_elements[plan.slots[0].geometry.part_name]
@@ -102,6 +147,7 @@ def companion_texts(plan: Plan) -> dict[str, str]:
         "n_elements": f"{count}", "n_spacers": f"{len(plan.spacer_placements)}",
         "indenter": f"{tip.tip_width_mm:g} x {plan.sheet_thickness_mm:g}",
         "sample_stiff": repr(samples[0]), "sample_mid": repr(samples[len(samples) // 2]),
+        **rig_sizing_words(plan, samples),
     }
     return {"rigs": _template("rigs.toml").substitute(words),
             "scenes": _template("scenes.toml").substitute(words)}

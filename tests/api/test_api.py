@@ -122,6 +122,7 @@ def test_assembly_refuses_an_unknown_scene():
 def test_element_stiffness_and_strength_are_the_ladders():
     from tactcad.mechanics.ladder import estimate
     from tactcad.mechanics.element_strength import plan_strength
+    from tactcad.studies.verification import rated_full_scale_force
     from tactcad.paper.paper_load import paper_load_of
 
     project = tactcad.load()
@@ -131,8 +132,10 @@ def test_element_stiffness_and_strength_are_the_ladders():
     assert k.stiffness_N_per_mm == pytest.approx(ref.stiffness_N_per_mm, rel=1e-12)
     assert k.element == 8 and e.part_name == "element_a4mm"
     s = e.strength()
-    assert s == [r for r in plan_strength(project.plan, reference_load=paper_load_of(project.plan))
+    assert s == [r for r in plan_strength(project.plan, rated_full_scale_force(project.plan),
+                                          reference_load=paper_load_of(project.plan))
                  if r.element == 8][0]
+    assert s.full_scale_force_N == project.verify("closed-form").requirements["full_scale_force_N"]
     thick = project.with_values({"element.web_thickness_mm": 0.3}).element(8).stiffness()
     assert thick.stiffness_N_per_mm > 1.5 * k.stiffness_N_per_mm  # K ~ t^2.5
     assert e.solid.volume == pytest.approx(project.parts["element_a4mm"].volume)

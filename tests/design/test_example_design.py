@@ -85,7 +85,7 @@ def test_example_exports_hold_no_paper_text_and_give_its_full_scale_force(tmp_pa
     assert force["required_N"] == _stated()["full_scale_force_N"] and force["binding_limit"]
     for svg in (out / "drawings").glob("element_*.svg"):
         notes = " ".join(re.sub(r"<[^>]+>", " ", svg.read_text(encoding="utf-8")).split())
-        assert f"Full-scale tip force {force['required_N']:.3g} N" in notes
+        assert f"Rated full-scale force {force['required_N']:.3g} N" in notes
         assert force["binding_limit"] in notes or "bound by" in notes
     assert main(["check", "--design", str(EXAMPLE), "--out", str(out), "--quiet",
                  "--failures-only"]) == 0

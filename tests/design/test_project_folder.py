@@ -86,7 +86,8 @@ def test_a_bare_design_gets_rigs_made_for_it_never_the_papers(tmp_path):
     project = tactcad.load(_bare_design(tmp_path))
     assert project.validated.rigs_file == "rigs.toml (made for bare.toml)"
     assert project.validated.rigs.sample_stiffness_N_per_mm == (5.0, 2.24, 1.0)
-    assert companion_texts(project.plan)["rigs"].count("57.04") >= 1  # the gauge, to be measured
+    text = companion_texts(project.plan)["rigs"]
+    assert "measure your own gauge" in text and "Sauter" not in text  # sized: not the paper's
 
 
 @pytest.mark.parametrize("name, why", [

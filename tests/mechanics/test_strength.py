@@ -1,4 +1,5 @@
-"""Strength: peak stress at the flexure hinge, full-scale force, warnings, CLI."""
+"""Strength: peak stress at the flexure hinge, yield-limited force, figures at
+the design's rated full-scale force, warnings, CLI."""
 
 from __future__ import annotations
 
@@ -14,12 +15,14 @@ from tactcad.cli import main
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import CorrectionRangeWarning
-from tactcad.mechanics.element_strength import (KT_FIT_TOLERANCE, ReferenceLoad, full_scale_force,
-                                        nominal_stress_per_newton, plan_strength,
-                                        stress_concentration_factor, strength_summary)
+from tactcad.mechanics import element_strength
+from tactcad.mechanics.element_strength import (KT_FIT_TOLERANCE, ReferenceLoad,
+                                                nominal_stress_per_newton,
+                                                stress_concentration_factor, yield_limited_force)
 from tactcad.paper.paper_load import PAPER_LOAD, PAPER_LOAD_N, paper_load_of
+from tactcad.studies.verification import rated_full_scale_force
 
-JSON_KEYS = {"element", "stress_MPa_per_N", "full_scale_force_N",
+JSON_KEYS = {"element", "stress_MPa_per_N", "full_scale_force_N", "yield_limited_force_N",
              "yield_safety_factor_at_full_scale", "gauge_strain_at_full_scale",
              "tip_deflection_mm_at_full_scale"}
 
@@ -32,19 +35,51 @@ def test_stress_concentration_tends_to_one_and_grows_with_t_over_r():
     assert 1.1 < kt[3] < 1.2  # t/R = 0.5: Smith's double-notch form gives 1.106
 
 
-def test_full_scale_force_formula(plan):
+def plan_strength(plan, **options):
+    """The records at the design's own rated full-scale force."""
+    return element_strength.plan_strength(plan, rated_full_scale_force(plan), **options)
+
+
+def strength_summary(plan):
+    return element_strength.strength_summary(plan, rated_full_scale_force(plan))
+
+
+def test_yield_limited_force_and_the_figures_at_the_rated_force(plan):
+    rated = rated_full_scale_force(plan)
     rec = plan_strength(plan)[3]  # element 4, 8 mm arm
     y, sf = plan.material.yield_strength_MPa, plan.strength.safety_factor
-    assert rec.full_scale_force_N == pytest.approx(y / (rec.stress_MPa_per_N * sf), rel=1e-12)
-    assert rec.yield_safety_factor_at_full_scale == pytest.approx(sf)
+    assert rec.full_scale_force_N == rated
+    assert rec.yield_limited_force_N == pytest.approx(y / (rec.stress_MPa_per_N * sf), rel=1e-12)
+    assert rec.yield_limited_force_N != pytest.approx(rated)  # two forces, two names
+    assert rec.yield_safety_factor_at_full_scale == pytest.approx(
+        y / (rec.stress_MPa_per_N * rated), rel=1e-12)
     assert rec.gauge_strain_at_full_scale == pytest.approx(
-        6 * 8.0 / (69000 * 3.0 * 0.25**2) * rec.full_scale_force_N, rel=1e-12)
+        6 * 8.0 / (69000 * 3.0 * 0.25**2) * rated, rel=1e-12)
     assert rec.tip_deflection_mm_at_full_scale == pytest.approx(
-        rec.full_scale_force_N / rec.stiffness_N_per_mm, rel=1e-12)
-    assert float(full_scale_force(y, rec.stress_MPa_per_N, 2 * sf)) == pytest.approx(
-        rec.full_scale_force_N / 2)
+        rated / rec.stiffness_N_per_mm, rel=1e-12)
+    assert float(yield_limited_force(y, rec.stress_MPa_per_N, 2 * sf)) == pytest.approx(
+        rec.yield_limited_force_N / 2)
     with pytest.raises(ValueError):
-        full_scale_force(y, rec.stress_MPa_per_N, 0.5)
+        yield_limited_force(y, rec.stress_MPa_per_N, 0.5)
+    with pytest.raises(ValueError, match="full_scale_force_N"):
+        element_strength.plan_strength(plan, 0.0)
+
+
+def test_fatigue_and_gauge_warnings_are_judged_at_the_rated_force(plan):
+    """The paper's design is rated below its fatigue limit: no warning that
+    cycling to full scale exceeds it; at a rating above the limits, each
+    limit the rating exceeds is named with the rated force."""
+    rated = rated_full_scale_force(plan)
+    recs = plan_strength(plan)
+    assert all(r.fatigue_force_N >= rated for r in recs)
+    assert not any("fatigue" in w or "yield-limited" in w for r in recs for w in r.warnings)
+    high = element_strength.plan_strength(plan, 2.0)
+    weakest = min(high, key=lambda r: r.yield_limited_force_N)
+    assert weakest.yield_limited_force_N < 2.0
+    words = " ".join(weakest.warnings)
+    assert "the rated full-scale force 2 N exceeds this element's yield-limited force" in words
+    assert "cycling to the rated full-scale force 2 N" in words
+    assert "gauge strain at the rated full-scale force" in words
 
 
 def test_papers_8mm_arm_at_2N_is_above_6061_yield(plan):
@@ -55,7 +90,8 @@ def test_papers_8mm_arm_at_2N_is_above_6061_yield(plan):
     assert rec.stress_MPa_at_paper_load > plan.material.yield_strength_MPa
     assert any(w.startswith("at the paper's 2 N the web reaches") and "above the yield strength" in w
                for w in rec.warnings)
-    assert any("fatigue strain" in w for w in rec.warnings)
+    # the rated full-scale force (fatigue-bound) keeps the gauge below its fatigue strain
+    assert not any("fatigue strain" in w for w in rec.warnings)
 
 
 def test_the_general_code_gives_no_load_of_its_own(plan):
@@ -75,7 +111,7 @@ def test_stronger_grade_raises_full_scale_and_clears_the_yield_warning(design_da
     del design_data["material"]["youngs_modulus_MPa"], design_data["material"]["poisson_ratio"]
     plan = plan_from_dict(design_data)
     rec = next(r for r in plan_strength(plan) if r.arm_length_mm == 4.0)
-    assert rec.full_scale_force_N == pytest.approx(1170.0 / (rec.stress_MPa_per_N * 1.5))
+    assert rec.yield_limited_force_N == pytest.approx(1170.0 / (rec.stress_MPa_per_N * 1.5))
     assert not any("above the yield strength" in w for w in rec.warnings)
 
 
@@ -104,7 +140,8 @@ def test_cli_json_and_text(capsys):
     assert out["requirement"]["met"] and out["requirement"]["binding_limit"]
     assert main(["strength"]) == 0
     out = capsys.readouterr().out
-    assert "F_fs N" in out and "above the yield strength" in out
+    assert "F_yield N" in out and "rated full-scale force" in out
+    assert "above the yield strength" in out
 
 
 def test_cli_bad_grade_is_an_error_not_a_traceback(tmp_path, capsys):
@@ -153,9 +190,9 @@ def test_table1_comparison_uses_the_as_built_web(plan, capsys):
             s * m.max_support_force_N)
         assert r["yield_safety_factor_at_max_support_force_as_built"] == pytest.approx(
             y / (s * m.max_support_force_N))
-    # the thicker the as-built web, the larger the full-scale force at one arm length
+    # the thicker the as-built web, the larger the yield-limited force at one arm length
     four = sorted((r for r in rows if r["arm_length_mm"] == 4.0), key=lambda r: r["web_as_built_mm"])
-    assert four[0]["full_scale_force_as_built_N"] < four[-1]["full_scale_force_as_built_N"]
+    assert four[0]["yield_limited_force_as_built_N"] < four[-1]["yield_limited_force_as_built_N"]
     assert main(["strength", "--table1"]) == 0
     assert "max support N" in capsys.readouterr().out
 
@@ -187,7 +224,7 @@ def test_force_limits_broadcast_and_match_the_records(plan):
     recs = {r.arm_length_mm: r for r in plan_strength(plan)}
     for i, a in enumerate(arms):
         r = recs[a]
-        assert lim["yield"][i] == pytest.approx(r.full_scale_force_N)
+        assert lim["yield"][i] == pytest.approx(r.yield_limited_force_N)
         assert lim["fatigue"][i] == pytest.approx(r.fatigue_force_N)
         assert lim["gauge_fatigue"][i] == pytest.approx(r.gauge_fatigue_force_N)
     # 6061-T6 at R = -1 binds before the gauge and yield

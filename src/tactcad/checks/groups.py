@@ -152,6 +152,9 @@ for _group in (
         CheckGroup("requirements", "the design's verification matrix at the closed form, "
                    "before any export", "tactcad.checks.requirement_checks", "requirement_group",
                    on_export=False),
+        CheckGroup("rigs", "the test rigs against the design's rated full-scale force: no rig "
+                   "loads an element beyond it, the force gauge's range and resolution fit it",
+                   "tactcad.checks.rig_checks", "rig_group", on_export=False),
         CheckGroup("parts", "each part's solid: valid, volume, bounding box; its STEP "
                    "file read back", _CHECKS, "part_group", suite="part"),
         CheckGroup("dxf", "each shop DXF read back: closed contours, wire EDM rules, the web on "

@@ -233,7 +233,7 @@ def design_report(result, verify: str, progress=None) -> dict:
                          "arm_length_mm": g.arm_length_mm,
                          "K_target_N_per_mm": t.k_r if role == "reference" else t.k_m,
                          **cache[g.part_name], "verify_model": verify,
-                         "full_scale_force_N": s["full_scale_force_N"],
+                         "yield_limited_force_N": s["yield_limited_force_N"],
                          "yield_safety_factor_at_target_force":
                              s["yield_safety_factor_at_full_scale"] * s["full_scale_force_N"]
                              / t.full_scale_force_N,
@@ -317,7 +317,7 @@ def print_report(r: dict) -> None:
           f"{r['pitch_mm']:g} mm; references: elements {', '.join(map(str, r['references']))}")
     seen = set()
     print(f"{'role':<10} {'elements':<16} {'arm mm':>7} {'target':>8} {'closed form':>12} "
-          f"{'verified':>10} {'diff':>7} {'F_fs N':>7} {'SF@F':>5} {'ustrain@F':>9}")
+          f"{'verified':>10} {'diff':>7} {'F_yield N':>9} {'SF@F':>5} {'ustrain@F':>9}")
     for e in r["elements"]:
         if e["part"] in seen:
             continue
@@ -329,7 +329,8 @@ def print_report(r: dict) -> None:
         print(f"{e['role']:<10} {','.join(map(str, same)):<16} {e['arm_length_mm']:>7g} "
               f"{e['K_target_N_per_mm']:>8.4g} {e['K_closed_form_N_per_mm']:>12.4g} "
               f"{ver + ' (' + e['verify_model'] + ')':>10} {diff:>7} "
-              f"{e['full_scale_force_N']:>7.3g} {e['yield_safety_factor_at_target_force']:>5.2f} "
+              f"{e['yield_limited_force_N']:>9.3g} "
+              f"{e['yield_safety_factor_at_target_force']:>5.2f} "
               f"{1e6 * e['gauge_strain_at_target_force']:>9.0f}")
     print("K_obj N/mm      R   dR/dK_obj mm/N   dK_obj (0.01 N)   relative   [K from]")
     for u in r["units"]:

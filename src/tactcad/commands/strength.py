@@ -1,5 +1,6 @@
-"""``tactcad strength``: peak stress, full-scale force, gauge strain and tip
-deflection at full scale of every element of a design.
+"""``tactcad strength``: peak stress, yield-limited force, and the stress, gauge
+strain and tip deflection at the design's rated full-scale force of every
+element of a design.
 
 Examples::
 
@@ -20,23 +21,24 @@ from tactcad.commands import add_design_arg, add_output_args, plan_from_args, pr
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
-        "strength", help="full-scale force of every element from yield, safety factor and the "
-                         "peak stress at the flexure hinge",
+        "strength", help="every element's force limits and its stress, gauge strain and tip "
+                         "deflection at the design's rated full-scale force",
         description="Peak von Mises stress per newton at the flexure hinge of every element, "
-                    "the full-scale force = yield / (stress per N x safety factor), and the "
-                    "gauge strain and tip deflection at full scale; judges the design's "
-                    "required full-scale force ([requirements] full_scale_force_N, derived "
-                    "when absent) against every limit and exits 1 when it is not met; warns "
-                    "where full scale exceeds the fatigue strength or the gauge's fatigue or "
-                    "maximum strain. Units: MPa, N, mm, microstrain.")
+                    "its yield-limited force = yield / (stress per N x safety factor), and the "
+                    "stress, gauge strain and tip deflection at the design's rated full-scale "
+                    "force ([requirements] full_scale_force_N, derived when absent; the force "
+                    "verify and the drawings name); judges that rating against every element "
+                    "force limit and exits 1 when it is not met; warns where the rated force "
+                    "exceeds an element's yield-limited force, the fatigue strength or the "
+                    "gauge's fatigue or maximum strain. Units: MPa, N, mm, microstrain.")
     p.add_argument("--model", choices=models(), default="closed-form",
                    help=f"ladder level ({levels_help()} per distinct element; FEM stress "
                         "meshes are finer than the stiffness ones; default %(default)s)")
     add_design_arg(p)
     add_output_args(p, "print a JSON list of records")
     p.add_argument("--table1", action="store_true",
-                   help="the paper's design: compare the full-scale force with its measured "
-                        "max support force per element (design web and as-built web)")
+                   help="the paper's design: compare each element's yield-limited force with "
+                        "its measured max support force (design web and as-built web)")
     p.set_defaults(func=run)
 
 
@@ -68,20 +70,22 @@ def run(args: argparse.Namespace) -> int:
           f"gauge {s.gauge.name} (max {s.gauge.max_strain * 1e6:.0f}, fatigue "
           f"{s.gauge.fatigue_strain * 1e6:.0f} microstrain)")
     load = paper_load_of(plan)  # the paper's study load: its design only
-    print(f"{'el':>3} {'arm mm':>6} {'MPa/N':>7} {'K_t':>5} {'F_fs N':>7} {'SF':>4} "
+    print(f"rated full-scale force F_fs {judged['full_scale_force_N']:g} N; F_yield: the "
+          f"element's yield-limited force; SF, ue, tip: at F_fs")
+    print(f"{'el':>3} {'arm mm':>6} {'MPa/N':>7} {'K_t':>5} {'F_yield N':>9} {'SF':>5} "
           f"{'ue at F_fs':>10} {'tip um':>7}"
           + (f" {f'MPa at {load.force_N:g} N':>10}" if load else ""))
     for r in records:
         print(f"{r.element:>3} {r.arm_length_mm:>6.1f} {r.stress_MPa_per_N:>7.1f} "
-              f"{r.stress_concentration_factor:>5.3f} {r.full_scale_force_N:>7.3f} "
-              f"{r.yield_safety_factor_at_full_scale:>4.2f} "
+              f"{r.stress_concentration_factor:>5.3f} {r.yield_limited_force_N:>9.3f} "
+              f"{r.yield_safety_factor_at_full_scale:>5.2f} "
               f"{r.gauge_strain_at_full_scale * 1e6:>10.0f} "
               f"{r.tip_deflection_mm_at_full_scale * 1e3:>7.1f}"
               + (f" {r.stress_MPa_at_paper_load:>10.0f}" if load else ""))
-    print(f"required full-scale force {judged['full_scale_force_N']:g} N "
-          f"({judged['reason']}): {'met' if judged['met'] else 'NOT met'}; the elements carry at "
-          f"most {judged['largest_force_N']:.3g} N, bound by {judged['binding_limit']} "
-          f"(element {judged['binding_element']})")
+    print(f"rated full-scale force {judged['full_scale_force_N']:g} N "
+          f"({judged['reason']}): {'met' if judged['met'] else 'NOT met'}; the lowest element "
+          f"force limit is {judged['element_force_limit_N']:.3g} N, bound by "
+          f"{judged['binding_limit']} (element {judged['binding_element']})")
     seen = set()
     for r in records:
         for w in r.warnings:
@@ -93,8 +97,9 @@ def run(args: argparse.Namespace) -> int:
 
 
 def full_scale_judgement(plan, model: str, records) -> dict:
-    """The design's required full-scale force against every element's limits at ``model``
-    (the stress figures of ``records`` reused)."""
+    """The design's rated full-scale force against every element force limit at ``model``
+    (the stress figures of ``records`` reused; ``element_force_limit_N`` is the
+    lowest element force limit, the largest force every element carries)."""
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
     from tactcad.studies.verification import requirements_of
     from tactcad.mechanics.element_strength import ElementStress
@@ -107,7 +112,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
     errors = {r.part_name: r.stress_error_rel for r in records}
     b = binding(plan_limits(plan, model, stresses, errors))
     return {"full_scale_force_N": req.full_scale_force_N,
-            "reason": req.reasons["full_scale_force_N"], "largest_force_N": b.force_N,
+            "reason": req.reasons["full_scale_force_N"], "element_force_limit_N": b.force_N,
             "binding_limit": LIMIT_WORDS[b.limit], "binding_element": b.element,
             "met": b.force_N >= req.full_scale_force_N, "model": model}
 
@@ -119,14 +124,14 @@ def _run_table1(plan, model: str, as_json: bool) -> int:
     if as_json:
         print(json.dumps(rows, indent=2, allow_nan=False))
         return 0
-    print(f"Full-scale force ({model}, design web; closed form, as-built web) against Table 1's "
-          f"max support force, safety factor {plan.strength.safety_factor:g}")
-    print(f"{'el':>3} {'arm mm':>6} {'max support N':>13} {'F_fs N':>7} {'web as built':>12} "
-          f"{'F_fs built N':>12} {'MPa at max':>10} {'SF at max':>9}")
+    print(f"Yield-limited force ({model}, design web; closed form, as-built web) against "
+          f"Table 1's max support force, safety factor {plan.strength.safety_factor:g}")
+    print(f"{'el':>3} {'arm mm':>6} {'max support N':>13} {'F_yield N':>9} {'web as built':>12} "
+          f"{'F_yield built N':>15} {'MPa at max':>10} {'SF at max':>9}")
     for r in rows:
         print(f"{r['element']:>3} {r['arm_length_mm']:>6.1f} {r['max_support_force_N']:>13.2f} "
-              f"{r['full_scale_force_N']:>7.3f} {r['web_as_built_mm']:>12.3f} "
-              f"{r['full_scale_force_as_built_N']:>12.3f} "
+              f"{r['yield_limited_force_N']:>9.3f} {r['web_as_built_mm']:>12.3f} "
+              f"{r['yield_limited_force_as_built_N']:>15.3f} "
               f"{r['stress_MPa_at_max_support_force_as_built']:>10.0f} "
               f"{r['yield_safety_factor_at_max_support_force_as_built']:>9.2f}")
     return 0

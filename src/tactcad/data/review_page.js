@@ -434,17 +434,21 @@ function showSheets() {
 
 function showTables() {
   $('bom-table').replaceChildren(table(DATA.bom.columns, DATA.bom.rows));
-  const cols = ['element', 'part_name', 'arm_length_mm', 'stiffness_N_per_mm', 'full_scale_force_N',
+  // one rated full-scale force for the design (every record carries the same); each
+  // element's own limit is its yield-limited force
+  const cols = ['element', 'part_name', 'arm_length_mm', 'stiffness_N_per_mm', 'yield_limited_force_N',
                 'tip_deflection_mm_at_full_scale', 'stress_MPa_per_N', 'stress_MPa_at_full_scale',
                 'yield_safety_factor_at_full_scale', 'gauge_strain_at_full_scale', 'model'];
   const labels = { element: 'element', part_name: 'part', arm_length_mm: 'arm length (mm)',
-                   stiffness_N_per_mm: 'K (N/mm)', full_scale_force_N: 'full scale (N)',
-                   tip_deflection_mm_at_full_scale: 'δ at full scale (mm)',
-                   stress_MPa_per_N: 'stress (MPa/N)', stress_MPa_at_full_scale: 'stress at full scale (MPa)',
-                   yield_safety_factor_at_full_scale: 'yield safety factor',
-                   gauge_strain_at_full_scale: 'gauge strain at full scale', model: 'model' };
+                   stiffness_N_per_mm: 'K (N/mm)', yield_limited_force_N: 'yield-limited force (N)',
+                   tip_deflection_mm_at_full_scale: 'δ at rated full scale (mm)',
+                   stress_MPa_per_N: 'stress (MPa/N)', stress_MPa_at_full_scale: 'stress at rated full scale (MPa)',
+                   yield_safety_factor_at_full_scale: 'yield safety factor at rated full scale',
+                   gauge_strain_at_full_scale: 'gauge strain at rated full scale', model: 'model' };
   const box = $('elements-table');
-  box.replaceChildren(table(cols, DATA.elements, labels));
+  const rated = DATA.elements.length ? DATA.elements[0].full_scale_force_N : null;
+  box.replaceChildren(...(rated == null ? [] : [el('p', `rated full-scale force ${fmt(rated)} N (the design's)`)]),
+                      table(cols, DATA.elements, labels));
   const warned = DATA.elements.filter((r) => r.warnings && r.warnings.length);
   for (const r of warned) box.append(el('p', `element ${r.element}: ${r.warnings.join('; ')}`, 'warn'));
   showVerification();

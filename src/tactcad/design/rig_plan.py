@@ -32,7 +32,7 @@ from tactcad.partlib.base import PartData
 from tactcad.partlib.registry import derivation_order, rig_parts_lib
 from tactcad.partlib.sample import stiffnesses
 from tactcad.vocabulary.schema import (Derived, Problems, Section, Text, content_hash, integer,
-                                       read_assumptions, read_toml, validate)
+                                       number, read_assumptions, read_toml, validate)
 
 DEFAULT_RIGS = DEFAULT_DESIGN.parent / "rigs.toml"  # the default design's
 
@@ -45,6 +45,8 @@ class RigDesign:
         library: every rig part's derived data (:mod:`tactcad.partlib`), by
             its key, in :attr:`RigPart.order <tactcad.partlib.base.RigPart>`.
         derived: the parts' derived dimensions with their reasons, in that order.
+        evaluation_preload_N, beyond_rating_reason: ``[evaluation]``
+            (:class:`EvaluationSection`; None where left out).
     """
 
     name: str
@@ -55,6 +57,8 @@ class RigDesign:
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
     library: Mapping[str, PartData] = field(default_factory=dict)
+    evaluation_preload_N: float | None = None
+    beyond_rating_reason: str | None = None
 
     def part(self, key: str) -> Any:
         """The geometry (the data its builder reads) of part module ``key``.
@@ -82,8 +86,23 @@ class CalibrationSection(Section):
     element: Optional[integer(1, 1000)] = None  # default: the stiffest element (shortest arm)
 
 
+class EvaluationSection(Section):
+    """``[evaluation]``: the array evaluation rig's loads besides its weights.
+
+    ``preload_N``: the moving axis's weight on the sample before any weight is
+    added (N; the paper's 3.235 N; a counterbalanced axis's net weight); left
+    out, the rig's loads are unknown and ``check`` fails them.
+    ``beyond_rating_reason``: why a rig that loads an element beyond the
+    design's rated full-scale force is kept (``check`` then passes it, saying
+    so); left out, such a rig fails.
+    """
+
+    preload_N: Optional[number(0.0, 1e4, unit="N")] = None
+    beyond_rating_reason: Optional[Text] = None
+
+
 #: The tables of the rigs file that are not a part's.
-OWN_TABLES = ("rigs", "calibration", "assumptions")
+OWN_TABLES = ("rigs", "calibration", "evaluation", "assumptions")
 
 
 def _tables() -> dict[str, tuple[Any, Any]]:
@@ -95,6 +114,7 @@ def _tables() -> dict[str, tuple[Any, Any]]:
     return ({"rigs": (RigsSection, ...)}
             | {key: (part.section, ...) for key, part in parts if part.table_required}
             | {"calibration": (CalibrationSection, CalibrationSection()),
+               "evaluation": (EvaluationSection, EvaluationSection()),
                "assumptions": (dict[str, Any], {})}
             | {key: (part.section, part.section()) for key, part in parts if not part.table_required})
 
@@ -185,7 +205,8 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     return RigDesign(
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
         calibration_element=cal, derived=tuple(d for part in library.values() for d in part.derived),
-        assumptions=assumptions, library=library), p
+        assumptions=assumptions, library=library, evaluation_preload_N=r.evaluation.preload_N,
+        beyond_rating_reason=r.evaluation.beyond_rating_reason), p
 
 
 def rigs_from_dict(data: Mapping[str, Any], plan: Plan, source: str = "<dict>",

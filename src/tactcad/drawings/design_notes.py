@@ -22,7 +22,7 @@ from tactcad.drawings.sheet import fmt_mm
 
 @lru_cache(maxsize=8)
 def _force_figures(plan: Plan) -> tuple[float, dict]:
-    """(required full-scale force N, {part name: (largest force N, limit words)}),
+    """(rated full-scale force N, {part name: (element force limit N, limit words)}),
     closed form. Cached per plan (its design hash covers the requirements)."""
     from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits
     from tactcad.studies.verification import requirements_of
@@ -36,14 +36,15 @@ def _force_figures(plan: Plan) -> tuple[float, dict]:
 
 
 def full_scale_note(plan: Plan, part_name: str, yield_MPa: float, grade: str) -> str:
-    """The element's full-scale force note: the design's required force, the
-    largest force this element carries and the limit that binds it."""
-    required, per_part = _force_figures(plan)
-    largest, words = per_part[part_name]
-    verdict = "met" if largest >= required else "NOT met"
-    return (f"Full-scale tip force {required:.3g} N (the design's requirement, {verdict}): this "
-            f"element carries at most {largest:.3g} N, bound by {words} (closed form; yield "
-            f"{yield_MPa:g} MPa, {grade}). Do not load the tip beyond {required:.3g} N.")
+    """The element's full-scale force note: the design's rated full-scale
+    force, this element's force limit (the largest force it carries) and the
+    limit that binds it."""
+    rated, per_part = _force_figures(plan)
+    limit, words = per_part[part_name]
+    verdict = "met" if limit >= rated else "NOT met"
+    return (f"Rated full-scale force {rated:.3g} N (the design's, {verdict}): element force "
+            f"limit {limit:.3g} N, bound by {words} (closed form; yield "
+            f"{yield_MPa:g} MPa, {grade}). Do not load the tip beyond {rated:.3g} N.")
 
 
 @lru_cache(maxsize=8)

@@ -35,7 +35,7 @@ REL_TOL = 1e-9
 #: Element fields compared (manifest "strength" records), with their units.
 ELEMENT_FIELDS = {
     "part_name": "", "arm_length_mm": "mm", "stiffness_N_per_mm": "N/mm",
-    "stress_MPa_per_N": "MPa/N", "full_scale_force_N": "N",
+    "stress_MPa_per_N": "MPa/N", "full_scale_force_N": "N", "yield_limited_force_N": "N",
     "yield_safety_factor_at_full_scale": "", "gauge_strain_at_full_scale": "",
     "tip_deflection_mm_at_full_scale": "mm",
 }

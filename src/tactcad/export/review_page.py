@@ -112,7 +112,7 @@ def verification_view(requirements: dict) -> dict:
     """The manifest's requirements record as the page's verification section,
     read as ``tactcad verify`` prints it: one row per requirement (verdict,
     target, predicted with its error, margin, what binds, level), failures
-    first, then undecided; the limits behind the full-scale force (the binding
+    first, then undecided; the element force limits behind the rated full-scale force (the binding
     one marked); the stated or derived values; each element's first natural
     frequency; and the requirements not met (the page's red banner)."""
     matrix = requirements.get("closed_form_matrix") or []
@@ -122,7 +122,7 @@ def verification_view(requirements: dict) -> dict:
     limits = next((r["limits"] for r in matrix if r.get("limits")), [])
     view = {"verification matrix (closed form; tactcad verify --model auto decides the "
             "undecided)": rows,
-            "limits behind the full-scale force": limits,
+            "element force limits behind the rated full-scale force": limits,
             "requirements": requirements.get("values", {})}
     if (requirements.get("first_resonance") or {}).get("elements"):
         view["first natural frequencies (closed form, in the sheet's plane)"] = \

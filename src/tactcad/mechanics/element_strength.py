@@ -1,5 +1,6 @@
 """Strength of the sensing elements: peak stress at the flexure hinge, the
-full-scale force, and the gauge strain and tip deflection at full scale.
+yield-limited force, and the stress, gauge strain and tip deflection at the
+design's rated full-scale force.
 
 Peak stress per newton of tip force, at every level of the ladder:
 
@@ -33,14 +34,24 @@ default design) is close to plane strain at mid-width, where sigma_z ~ nu
 sigma_x lowers von Mises by sqrt(1 - nu + nu^2) = 0.88: fem3d's peak there is
 0.90 of the closed form, which is therefore conservative for wide webs.
 
-Full-scale force (N) = yield strength / (peak stress per N x safety factor);
-at it the gauge strain (gauge strain per N x force) is compared with the
-gauge's maximum and fatigue strain, and the stress with the fatigue
-strength; each exceedance becomes a warning of the record. A sensing
-element is pressed one way (R ~ 0) while the library's fatigue strengths and
-the gauges' fatigue strains are mostly fully reversed amplitudes: comparing
-the peak with them is conservative. The tip deflection at full scale is
-F / K at the same level.
+Two forces, never one name for both:
+
+* the **rated full-scale force** (``full_scale_force_N``) is the design's
+  rating, one force for the whole array (``[requirements]
+  full_scale_force_N``, derived when absent: :func:`tactcad.studies.
+  verification.requirements_of`); the caller passes it in;
+* an element's **yield-limited force** (``yield_limited_force_N``) = yield
+  strength / (peak stress per N x safety factor), one of the element's own
+  force limits (:mod:`tactcad.mechanics.limits` lists them all).
+
+At the rated full-scale force the gauge strain (gauge strain per N x force)
+is compared with the gauge's maximum and fatigue strain, the stress with the
+fatigue strength and the force with the yield-limited force; each
+exceedance becomes a warning of the record. A sensing element is pressed
+one way (R ~ 0) while the library's fatigue strengths and the gauges'
+fatigue strains are mostly fully reversed amplitudes: comparing the peak
+with them is conservative. The tip deflection at full scale is F / K at the
+same level.
 
 Units: mm, N, MPa, N/mm; strain dimensionless.
 """
@@ -132,8 +143,8 @@ def peak_stress_per_newton(web_mm, notch_radius_mm, arm_length_mm, sheet_mm) -> 
         * nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm)
 
 
-def full_scale_force(yield_strength_MPa, stress_MPa_per_N, safety_factor) -> np.ndarray:
-    """Full-scale force (N) = yield / (peak stress per N x safety factor).
+def yield_limited_force(yield_strength_MPa, stress_MPa_per_N, safety_factor) -> np.ndarray:
+    """An element's yield-limited force (N) = yield / (peak stress per N x safety factor).
 
     Raises:
         ValueError: a non-finite or non-positive input, or a safety factor < 1.
@@ -152,7 +163,7 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
     the geometry arrays (for design searches).
 
     Returns:
-        ``yield``: full-scale force, yield / (peak stress per N x safety factor);
+        ``yield``: yield-limited force, yield / (peak stress per N x safety factor);
         ``fatigue``: fatigue strength / peak stress per N (NaN without a
         fatigue strength); ``gauge_max`` and ``gauge_fatigue``: the gauge's
         maximum and fatigue strain / Euler-Bernoulli surface strain per N over
@@ -166,7 +177,7 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
     s = peak_stress_per_newton(web_mm, notch_radius_mm, arm_length_mm, sheet_mm)
     eps = nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm) / material.youngs_modulus_MPa
     fat = material.fatigue_strength_MPa
-    out = {"yield": full_scale_force(y, s, settings.safety_factor),
+    out = {"yield": yield_limited_force(y, s, settings.safety_factor),
            "fatigue": (fat / s) if fat is not None else np.full_like(s, np.nan),
            "gauge_max": settings.gauge.max_strain / eps,
            "gauge_fatigue": settings.gauge.fatigue_strain / eps}
@@ -248,7 +259,9 @@ class StrengthRecord:
     """Strength of one element of a plan at one ladder level.
 
     Attributes (units in the names): see :func:`strength_record`.
-    ``warnings`` lists every limit exceeded, in words.
+    ``full_scale_force_N`` is the design's rated full-scale force (the same
+    for every element); ``yield_limited_force_N`` this element's own limit
+    from yield. ``warnings`` lists every limit exceeded at the rated force, in words.
     """
 
     element: int
@@ -259,6 +272,7 @@ class StrengthRecord:
     stress_error_rel: float
     stress_concentration_factor: float
     full_scale_force_N: float
+    yield_limited_force_N: float
     yield_safety_factor_at_full_scale: float
     stress_MPa_at_full_scale: float
     gauge_strain_at_full_scale: float
@@ -294,31 +308,77 @@ def require_yield(material: Material) -> float:
         raise DesignError("material.yield_strength_MPa", None,
                           "a value in MPa, or a material.grade (one of "
                           + ", ".join(material_grades()) + ")",
-                          "the full-scale force needs the yield strength")
+                          "the element force limits need the yield strength")
     return float(material.yield_strength_MPa)
 
 
-def strength_record(element: int, g: ElementGeometry, material: Material,
-                    settings: StrengthSettings, es: ElementStress,
-                    reference_load: ReferenceLoad | None = None) -> StrengthRecord:
-    """Full-scale figures of one element from its per-newton response.
+def rated_force_warnings(force_N: float, yield_limited_N: float, stress_MPa: float,
+                         gauge_strain: float, es: ElementStress, material: Material,
+                         settings: StrengthSettings) -> list[str]:
+    """Every limit the rated full-scale force ``force_N`` exceeds, in words.
 
-    full_scale_force_N = yield / (stress_MPa_per_N x safety factor);
-    yield_safety_factor_at_full_scale = yield / stress at full scale;
-    gauge_strain_at_full_scale = gauge strain per N x full-scale force;
-    tip_deflection_mm_at_full_scale = full-scale force / K;
+    Args:
+        force_N: the design's rated full-scale force (N).
+        yield_limited_N: the element's yield-limited force (N).
+        stress_MPa, gauge_strain: peak stress and gauge strain at ``force_N``.
+        es: the element's per-newton response. material, settings: as the plan's.
+
+    Returns:
+        one sentence per exceedance: yield-limited force, fatigue strength,
+        gauge maximum strain, gauge fatigue strain (empty when none).
+    """
+    gauge, fat = settings.gauge, material.fatigue_strength_MPa
+    warn = []
+    if force_N > yield_limited_N:
+        warn.append(f"the rated full-scale force {force_N:.3g} N exceeds this element's "
+                    f"yield-limited force {yield_limited_N:.3g} N (safety factor "
+                    f"{settings.safety_factor:g})")
+    if fat is not None and stress_MPa > fat:
+        cyc = f" ({material.fatigue_cycles:.0e} cycles)" if material.fatigue_cycles else ""
+        warn.append(f"cycling to the rated full-scale force {force_N:.3g} N ({stress_MPa:.0f} "
+                    f"MPa) exceeds the fatigue strength {fat:.0f} MPa{cyc}: cycle below "
+                    f"{fat / es.stress_MPa_per_N:.3g} N")
+    if gauge_strain > gauge.max_strain:
+        warn.append(f"gauge strain at the rated full-scale force {gauge_strain * 1e6:.0f} "
+                    f"microstrain exceeds the gauge's maximum {gauge.max_strain * 1e6:.0f} "
+                    "microstrain")
+    if gauge_strain > gauge.fatigue_strain:
+        warn.append(f"gauge strain at the rated full-scale force {gauge_strain * 1e6:.0f} "
+                    f"microstrain exceeds the gauge's fatigue strain "
+                    f"{gauge.fatigue_strain * 1e6:.0f} microstrain ({gauge.fatigue_cycles:.0e} "
+                    f"cycles): cycle below {gauge.fatigue_strain / es.gauge_strain_per_N:.3g} N")
+    return warn
+
+
+def strength_record(element: int, g: ElementGeometry, material: Material,
+                    settings: StrengthSettings, es: ElementStress, full_scale_force_N: float,
+                    reference_load: ReferenceLoad | None = None) -> StrengthRecord:
+    """Figures of one element at the design's rated full-scale force from its
+    per-newton response.
+
+    full_scale_force_N = the rating given (N, the design's, one for the array);
+    yield_limited_force_N = yield / (stress_MPa_per_N x safety factor);
+    yield_safety_factor_at_full_scale = yield / stress at the rated force;
+    gauge_strain_at_full_scale = gauge strain per N x rated force;
+    tip_deflection_mm_at_full_scale = rated force / K;
     fatigue_force_N = fatigue strength / stress per N (None without one);
     gauge_fatigue_force_N = gauge fatigue strain / gauge strain per N;
-    stress and yield safety factor at ``reference_load``, and a warning when
-    it yields the web, only when one is given (None otherwise; the paper's
-    design load for the paper's design is :mod:`tactcad.paper.paper_load`'s).
+    warnings: :func:`rated_force_warnings`; stress and yield safety factor
+    at ``reference_load``, and a warning when it yields the web, only when
+    one is given (None otherwise; the paper's design load for the paper's
+    design is :mod:`tactcad.paper.paper_load`'s).
+
+    Args:
+        full_scale_force_N: the design's rated full-scale force (N), > 0
+            (:func:`tactcad.studies.verification.requirements_of`).
 
     Raises:
         DesignError: the material has no yield strength.
+        ValueError: a rated force that is not finite and > 0.
     """
     y = require_yield(material)
-    gauge = settings.gauge
-    f_fs = float(full_scale_force(y, es.stress_MPa_per_N, settings.safety_factor))
+    f_fs = float(_positive("full_scale_force_N", full_scale_force_N))
+    f_yield = float(yield_limited_force(y, es.stress_MPa_per_N, settings.safety_factor))
     s_fs = es.stress_MPa_per_N * f_fs
     eps_fs = es.gauge_strain_per_N * f_fs
     s_ref = None if reference_load is None else es.stress_MPa_per_N * reference_load.force_N
@@ -330,28 +390,18 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
         warn.append(f"at {reference_load.whose} {reference_load.force_N:g} N the web reaches "
                     f"{s_ref:.0f} MPa, above "
                     f"the yield strength {y:.0f} MPa of {material.grade or material.name}")
-    if fat is not None and s_fs > fat:
-        cyc = f" ({material.fatigue_cycles:.0e} cycles)" if material.fatigue_cycles else ""
-        warn.append(f"cycling to full scale ({s_fs:.0f} MPa) exceeds the fatigue strength "
-                    f"{fat:.0f} MPa{cyc}: cycle below {fat / es.stress_MPa_per_N:.3g} N")
-    if eps_fs > gauge.max_strain:
-        warn.append(f"gauge strain at full scale {eps_fs * 1e6:.0f} microstrain exceeds the "
-                    f"gauge's maximum {gauge.max_strain * 1e6:.0f} microstrain")
-    if eps_fs > gauge.fatigue_strain:
-        warn.append(f"gauge strain at full scale {eps_fs * 1e6:.0f} microstrain exceeds the "
-                    f"gauge's fatigue strain {gauge.fatigue_strain * 1e6:.0f} microstrain "
-                    f"({gauge.fatigue_cycles:.0e} cycles): cycle below "
-                    f"{gauge.fatigue_strain / es.gauge_strain_per_N:.3g} N")
+    warn += rated_force_warnings(f_fs, f_yield, s_fs, eps_fs, es, material, settings)
     return StrengthRecord(
         element=element, part_name=g.part_name, arm_length_mm=g.arm_length_mm, model=es.model,
         stress_MPa_per_N=es.stress_MPa_per_N, stress_error_rel=es.stress_error_rel,
         stress_concentration_factor=es.stress_MPa_per_N / nominal,
-        full_scale_force_N=f_fs, yield_safety_factor_at_full_scale=y / s_fs,
+        full_scale_force_N=f_fs, yield_limited_force_N=f_yield,
+        yield_safety_factor_at_full_scale=y / s_fs,
         stress_MPa_at_full_scale=s_fs, gauge_strain_at_full_scale=eps_fs,
         tip_deflection_mm_at_full_scale=f_fs / es.stiffness_N_per_mm,
         stiffness_N_per_mm=es.stiffness_N_per_mm,
         fatigue_force_N=None if fat is None else fat / es.stress_MPa_per_N,
-        gauge_fatigue_force_N=gauge.fatigue_strain / es.gauge_strain_per_N,
+        gauge_fatigue_force_N=settings.gauge.fatigue_strain / es.gauge_strain_per_N,
         stress_MPa_at_paper_load=s_ref,
         yield_safety_factor_at_paper_load=None if s_ref is None else y / s_ref,
         warnings=tuple(warn))
@@ -361,13 +411,16 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
 StressModel = Callable[[ElementGeometry, Material, str], ElementStress]
 
 
-def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
-                  stress: StressModel | None = None,
+def plan_strength(plan: Plan, full_scale_force_N: float, model: str = "closed-form",
+                  progress=None, stress: StressModel | None = None,
                   reference_load: ReferenceLoad | None = None) -> list[StrengthRecord]:
     """:class:`StrengthRecord` of every element of the plan at ``model``;
     distinct geometries are evaluated once.
 
     Args:
+        full_scale_force_N: the design's rated full-scale force (N;
+            :func:`tactcad.studies.verification.requirements_of`, which
+            :func:`tactcad.studies.strength_studies.plan_strength` reads).
         stress: the peak-stress evaluation; default :func:`closed_form_stress`
             (closed-form and beam). The FEM levels are run by
             :func:`tactcad.studies.strength_studies.plan_strength`, which passes its own.
@@ -394,15 +447,16 @@ def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
                 progress(f"{model}: {g.part_name}")
             cache[g.part_name] = stress(g, plan.material, model)
         out.append(strength_record(slot.number, g, plan.material, plan.strength,
-                                   cache[g.part_name], reference_load))
+                                   cache[g.part_name], full_scale_force_N, reference_load))
     return out
 
 
-def strength_summary(plan: Plan, model: str = "closed-form",
+def strength_summary(plan: Plan, full_scale_force_N: float, model: str = "closed-form",
                      reference_load: ReferenceLoad | None = None) -> list[dict]:
-    """JSON-ready strength records of every element (for the CLI, the drawings
-    and the manifest): keys ``element``, ``stress_MPa_per_N``,
-    ``full_scale_force_N``, ``yield_safety_factor_at_full_scale``,
+    """JSON-ready strength records of every element at the design's rated
+    ``full_scale_force_N`` (N) (for the CLI, the drawings and the manifest):
+    keys ``element``, ``stress_MPa_per_N``, ``full_scale_force_N`` (the
+    rating), ``yield_limited_force_N``, ``yield_safety_factor_at_full_scale``,
     ``gauge_strain_at_full_scale``, ``tip_deflection_mm_at_full_scale`` and
     the other fields of :class:`StrengthRecord` (those at ``reference_load``
     only with one). All numbers are finite.
@@ -411,7 +465,8 @@ def strength_summary(plan: Plan, model: str = "closed-form",
         ValueError: unknown model.
         DesignError: the material has no yield strength.
     """
-    recs = [r.as_json() for r in plan_strength(plan, model, reference_load=reference_load)]
+    recs = [r.as_json() for r in plan_strength(plan, full_scale_force_N, model,
+                                               reference_load=reference_load)]
     for r in recs:
         for k, v in r.items():
             if isinstance(v, float) and not math.isfinite(v):

@@ -34,8 +34,10 @@ from tactcad.mechanics.contact import ContactError, Punch, Sample, modulus_from_
 
 #: Weight of the moving axis with the array (N), the first grasping force.
 DEAD_WEIGHT_N = 3.235
+#: Standard gravity (m/s^2, CGPM 1901): a mass in kg times it is its weight in N.
+STANDARD_GRAVITY = 9.80665
 #: One added weight: 100 g under standard gravity (N).
-STEP_WEIGHT_N = 0.1 * 9.80665
+STEP_WEIGHT_N = 0.1 * STANDARD_GRAVITY
 #: Load steps reported by default: the dead weight and five added weights
 #: (the paper speaks of six average values of R per graph).
 DEFAULT_LOAD_STEPS = 6

@@ -30,6 +30,10 @@ def paper_load_of(plan: Plan) -> ReferenceLoad | None:
 
 
 def strength_summary(plan: Plan, model: str = "closed-form") -> list[dict]:
-    """:func:`tactcad.mechanics.element_strength.strength_summary` with the
-    paper's load for a design that cites the paper."""
-    return strength.strength_summary(plan, model, paper_load_of(plan))
+    """:func:`tactcad.mechanics.element_strength.strength_summary` at the
+    design's rated full-scale force, with the paper's load for a design that
+    cites the paper."""
+    from tactcad.studies.verification import rated_full_scale_force
+
+    return strength.strength_summary(plan, rated_full_scale_force(plan), model,
+                                     paper_load_of(plan))

@@ -4,7 +4,7 @@ design (it cites the paper and its geometry can reach the measured K), the
 as-built webs that reproduce the measured K, the gauge strain at the paper's
 2 N design load, Table 2's R from the predicted K, the read-out chain's
 sensitivity against the measured K_v/K, the spread of equal-arm elements, and
-the full-scale force against the calibration's largest force.
+each element's yield-limited force against the calibration's largest force.
 
 Everything here compares with the paper; the general estimators
 (:mod:`tactcad.mechanics`) never import it. Units: mm, N, N/mm, V.
@@ -275,14 +275,15 @@ def equal_arm_spread(plan: Plan) -> list[dict]:
 
 
 def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict]:
-    """The model's full-scale force against Table 1's "max support force" (the
-    largest force of each element's calibration), per calibrated element.
+    """Each element's yield-limited force against Table 1's "max support force"
+    (the largest force of each element's calibration), per calibrated element.
 
-    For each element: the full-scale force at ``model`` with the design web;
-    the as-built web that reproduces the measured K (corrected closed form,
-    :func:`as_built_webs`) and the closed-form
-    full-scale force and peak stress at the measured maximum force with that
-    web; and the yield safety factor the calibration ran at.
+    For each element: the yield-limited force (``yield_limited_force_N``) at
+    ``model`` with the design web; the as-built web that reproduces the
+    measured K (corrected closed form, :func:`as_built_webs`) and the
+    closed-form yield-limited force (``yield_limited_force_as_built_N``) and
+    peak stress at the measured maximum force with that web; and the yield
+    safety factor the calibration ran at.
 
     Returns:
         one dict per Table 1 element (element 5 has no calibration).
@@ -304,9 +305,9 @@ def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict
         s_max = s_built * meas.max_support_force_N
         out.append({"element": meas.element, "arm_length_mm": g.arm_length_mm,
                     "max_support_force_N": meas.max_support_force_N,
-                    "full_scale_force_N": design[meas.element].full_scale_force_N,
+                    "yield_limited_force_N": design[meas.element].yield_limited_force_N,
                     "web_as_built_mm": t_built,
-                    "full_scale_force_as_built_N": y / (s_built * sf),
+                    "yield_limited_force_as_built_N": y / (s_built * sf),
                     "stress_MPa_at_max_support_force_as_built": s_max,
                     "yield_safety_factor_at_max_support_force_as_built": y / s_max})
     return out

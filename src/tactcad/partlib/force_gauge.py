@@ -1,7 +1,8 @@
 """Digital force gauge on the Z axis's carriage (a bought part, modelled as
 its housing envelope with the measuring shaft): it carries the indenter and
 reads the force in the calibration and sample-stiffness rigs (the paper's
-Sauter FH 5; sources in ``hardware/purchased-parts.md``).
+Sauter FH 5; a new design's from the catalogue ``tactcad/data/force_gauges.toml``,
+chosen by :mod:`tactcad.studies.rig_sizing`; sources in ``hardware/purchased-parts.md``).
 
 Part frame: housing x = +-width/2 (across), y = 0 ... depth (y = 0: back face
 on the Z carriage), z = 0 ... length (lower end at z = 0); the shaft along

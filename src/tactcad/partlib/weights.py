@@ -1,5 +1,6 @@
 """Stacked weights on the axis carrier's shelf (bought parts): they load the
-array in the array-evaluation rig (the paper's 100 g steel weights).
+array in the array-evaluation rig (the paper's 100 g steel weights; a new design's
+sized to its rating by :mod:`tactcad.studies.rig_sizing`).
 
 Each weight is modelled as a steel cylinder of the given mass and density
 and diameter; its height follows. The rig stacks ``count`` of them on the

@@ -28,15 +28,28 @@ def design_samples(plan: Plan, n: int = DESIGN_SAMPLES) -> list[float]:
     return [float(f"{k:.3g}") for k in np.geomspace(lo, hi, n)]
 
 
-def tip_force_per_newton(plan: Plan, stiffness: dict[int, float], samples, spec) -> float:
-    """Largest element tip force (N) per newton of grasping force over ``samples``."""
+def element_tip_force_per_newton(plan: Plan, stiffness: dict[int, float], samples,
+                                 spec) -> dict[int, float]:
+    """Each element's largest tip force (N) per newton of grasping force over
+    ``samples`` (N/mm) in the evaluation rig (:func:`tactcad.mechanics.evaluation.simulate_rig`,
+    linear: the tip forces at a load W are W times these).
+
+    Raises:
+        ContactError: a stiffness or sample <= 0, or a bad sample spec.
+    """
     from tactcad.mechanics import evaluation as ev
 
     elements = ev.elements_from_plan(plan, stiffness)
     ref = ev.reference_element(elements)
     unit = None if spec.coupling == "none" else ev.unit_punch_compliance(elements, spec)
-    return max(float(np.max(ev.simulate_rig(elements, float(s), spec, [1.0], ref,
-                                            unit).tip_force_N)) for s in samples)
+    per_sample = np.array([ev.simulate_rig(elements, float(s), spec, [1.0], ref, unit).tip_force_N[0]
+                           for s in samples])
+    return {e.number: float(f) for e, f in zip(elements, per_sample.max(axis=0))}
+
+
+def tip_force_per_newton(plan: Plan, stiffness: dict[int, float], samples, spec) -> float:
+    """Largest element tip force (N) per newton of grasping force over ``samples``."""
+    return max(element_tip_force_per_newton(plan, stiffness, samples, spec).values())
 
 
 def loads_to_full_scale(plan: Plan, stiffness: dict[int, float], samples, spec, n_steps: int,

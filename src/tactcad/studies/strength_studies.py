@@ -89,17 +89,24 @@ def element_stress(g: ElementGeometry, material: Material, model: str = "closed-
 
 
 def plan_strength(plan: Plan, model: str = "closed-form", progress=None,
-                  reference_load: ReferenceLoad | None = None) -> list[StrengthRecord]:
+                  reference_load: ReferenceLoad | None = None,
+                  full_scale_force_N: float | None = None) -> list[StrengthRecord]:
     """:func:`tactcad.mechanics.element_strength.plan_strength` at any ladder level,
     the FEM ones (:func:`fem_peak_stress`) included, with the caller's
-    ``reference_load`` (none by default).
+    ``reference_load`` (none by default), at the design's rated full-scale
+    force: ``full_scale_force_N`` (N) when given, else
+    :func:`tactcad.studies.verification.rated_full_scale_force`.
 
     Raises:
         ValueError: unknown model.
         DesignError: the material has no yield strength.
     """
-    return _plan_strength(plan, model, progress, stress=element_stress,
+    from tactcad.studies.verification import rated_full_scale_force
+
+    force = rated_full_scale_force(plan) if full_scale_force_N is None else full_scale_force_N
+    return _plan_strength(plan, force, model, progress, stress=element_stress,
                           reference_load=reference_load)
+
 
 
 class KtFit(NamedTuple):

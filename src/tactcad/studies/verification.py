@@ -429,6 +429,17 @@ def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float) -> tu
                    f"mN), padded by its error and rounded up")
 
 
+def rated_full_scale_force(plan: Plan) -> float:
+    """The design's rated full-scale force (N), the one force every command,
+    drawing and page calls full scale: ``[requirements] full_scale_force_N``,
+    derived from the elements' limits when absent (:func:`requirements_of`).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    return requirements_of(plan).full_scale_force_N
+
+
 # ---------------------------------------------------------------------------
 # The verification matrix
 # ---------------------------------------------------------------------------

@@ -1,0 +1,70 @@
+"""The test rigs against the design's rating: no rig loads an element beyond the
+rated full-scale force, and the force gauge reads the range the rigs need to
+the resolution the rating asks (:mod:`tactcad.studies.rig_sizing`)."""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+from tactcad.checks.check_result import CheckResult
+from tactcad.checks.groups import CheckContext, Found
+
+
+def rig_group(context: CheckContext) -> Iterator[Found]:
+    """``rigs``: the rigs of the design against its rating (none without the rigs)."""
+    if context.project is None:
+        return
+    yield "rigs", rig_checks(context.plan, context.project.rigs)
+
+
+def rig_checks(plan, rigs) -> list[CheckResult]:
+    """The evaluation rig's top load and the force gauge against the design's
+    rated full-scale force (each result names the rig, the part, the load and
+    the rating)."""
+    from tactcad.studies.verification import rated_full_scale_force
+
+    rated = rated_full_scale_force(plan)
+    return [evaluation_load_check(plan, rigs, rated), force_gauge_check(rigs, rated)]
+
+
+def evaluation_load_check(plan, rigs, rated_N: float) -> CheckResult:
+    """Fails when the evaluation rig's top load puts more than ``rated_N`` (N)
+    on an element, or states no preload; a rig kept beyond the rating
+    (``[evaluation] beyond_rating_reason``) passes, saying so."""
+    from tactcad.studies.rig_sizing import evaluation_rig_load
+
+    subject = f"array evaluation rig: {rigs.library['weights'].name}"
+    load = evaluation_rig_load(plan, rigs, rated_N)
+    if load is None:
+        return CheckResult("rig load", subject, False,
+                           "[evaluation] preload_N is not stated: the moving axis's weight on the "
+                           f"sample is unknown, so the load on the elements (rated {rated_N:g} N) "
+                           "is too")
+    text = (f"{load.how} = {load.load_N:.4g} N puts {load.element_load_N:.3g} N on element "
+            f"{load.element}, rated full-scale force {rated_N:g} N")
+    if load.within_rating:
+        return CheckResult("rig load", subject, True, text)
+    text += f" (EXCEEDS the rating by {100 * (load.element_load_N / rated_N - 1):.0f} %)"
+    reason = rigs.beyond_rating_reason
+    if reason:
+        return CheckResult("rig load", subject, True, f"{text}; kept: {reason}")
+    return CheckResult("rig load", subject, False,
+                       f"{text}; lighter weights or a counterbalanced axis (rigs.toml [weights], "
+                       "[evaluation] preload_N), or state [evaluation] beyond_rating_reason")
+
+
+def force_gauge_check(rigs, rated_N: float) -> CheckResult:
+    """Fails when the force gauge's range or resolution misses what the
+    calibration and sample rigs read at ``rated_N`` (N) and the rig's stiffest sample."""
+    from tactcad.studies.rig_sizing import choose_force_gauge, gauge_need, gauge_shortfalls
+
+    g = rigs.part("force_gauge")
+    need = gauge_need(rated_N, rigs.sample_stiffness_N_per_mm)
+    short = gauge_shortfalls(g.range_N, g.resolution_N, need)
+    subject = "calibration and sample rigs: force_gauge"
+    text = f"{g.model} ({g.range_N:g} N, {g.resolution_N:g} N) against {need.words()}"
+    if not short:
+        return CheckResult("rig force gauge", subject, True, text)
+    fit, misses = choose_force_gauge(need)
+    hint = "; no catalogue gauge fits" if misses else f"; the catalogue's {fit.model} fits"
+    return CheckResult("rig force gauge", subject, False, f"{text}: {'; '.join(short)}{hint}")

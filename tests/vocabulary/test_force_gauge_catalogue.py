@@ -1,0 +1,26 @@
+"""The force gauge catalogue: real models with their makers' range and
+resolution, each naming its document."""
+
+from __future__ import annotations
+
+import pytest
+
+from tactcad.vocabulary import force_gauge_catalogue as cat
+
+
+def test_every_gauge_names_its_document_and_reads_below_its_range():
+    gauges = cat.force_gauges()
+    assert len(gauges) >= 4 and "Sauter FH 5" in {g.model for g in gauges}
+    for g in gauges:
+        assert g.model.split()[-1] in g.source and "data sheet" in g.source
+        assert 0 < g.resolution_N < g.range_N and g.stiffness_N_per_mm > 0
+    assert [g.range_N for g in gauges] == sorted(g.range_N for g in gauges)
+
+
+def test_a_bad_entry_is_refused_naming_model_and_field():
+    with pytest.raises(ValueError, match=r"'X'.range_N = -1: allowed a number > 0"):
+        cat._gauge("X", {"maker": "m", "range_N": -1, "resolution_N": 1, "stiffness_N_per_mm": 1,
+                         "length_mm": 1, "width_mm": 1, "depth_mm": 1, "shaft_diameter_mm": 1,
+                         "shaft_length_mm": 1, "source": "s"})
+    with pytest.raises(ValueError, match="has no resolution_N"):
+        cat._gauge("X", {"maker": "m", "range_N": 1})
