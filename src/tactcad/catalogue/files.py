@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from typing import Sequence
 
+from tactcad.vocabulary.schema import name_number
+
 DRAWING_DIR = "drawings"
 PDF_NAME = f"{DRAWING_DIR}/drawings.pdf"
 ARRAY_PNG = "images/array.png"
@@ -25,8 +27,7 @@ def profile_dxf_name(part: str, quantity: int) -> str:
 
 def sheet_dxf_name(material: str, thickness_mm: float) -> str:
     """``dxf/sheet_<material>_<t>mm.dxf`` (decimal point written ``p``)."""
-    t = f"{thickness_mm:g}".replace(".", "p")
-    return f"dxf/sheet_{material.replace(' ', '_')}_{t}mm.dxf"
+    return f"dxf/sheet_{material.replace(' ', '_')}_{name_number(thickness_mm)}mm.dxf"
 
 
 def sheet_material_names(cuts: Sequence[tuple[str, str, float]]) -> list[str]:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from tactcad.kernel.shapes import disc_prism, polygon_prism, single, union
 from tactcad.partlib.base import PartData, RigPart, Seat
 from tactcad.vocabulary.process import Method, Process
-from tactcad.vocabulary.schema import Derived, Problems, Section, Text, fmt, number
+from tactcad.vocabulary.schema import Derived, Problems, Section, Text, fmt, name_number, number
 
 COLOR = (0.15, 0.42, 0.78)  # the release collet's blue; distinct from every rig part
 
@@ -82,7 +82,7 @@ def derive(s: PushInFittingSection, context, p: Problems) -> PartData:
     volume = (math.sqrt(3) / 2 * af * af * g.hex_height_mm + math.pi * rb * rb * g.body_length_mm
               + math.pi * rt * rt * g.thread_length_mm)
     half_x, half_y = max(g.hex_across_corners_mm / 2, rb), max(af / 2, rb)
-    name = "push_in_fitting_M" + f"{g.thread_diameter_mm:g}".replace(".", "p")
+    name = "push_in_fitting_M" + name_number(g.thread_diameter_mm)
     return PartData(
         name=name, kind="purchased",
         process=Process(f"{s.catalogue_reference} push-in male connector, M{g.thread_diameter_mm:g} "

@@ -17,7 +17,7 @@ from typing import Optional
 from tactcad.partlib.base import BuildStep, PartData, RigPart, Seat
 from tactcad.kernel.shapes import box
 from tactcad.vocabulary.process import Method, Process
-from tactcad.vocabulary.schema import Problems, Section, Text, fmt, listing, number
+from tactcad.vocabulary.schema import Problems, Section, Text, fmt, listing, name_number, number
 
 #: Sample size when the rigs file gives none (the paper's phantom block), mm;
 #: larger when the array's tips need it, with this margin around them.
@@ -49,7 +49,7 @@ class SampleGeometry:
 
 def sample_name(stiffness_N_per_mm: float) -> str:
     """Part name of the rubber sample of the given stiffness, e.g. ``sample_k3p85``."""
-    return "sample_k" + f"{stiffness_N_per_mm:g}".replace(".", "p")
+    return "sample_k" + name_number(stiffness_N_per_mm)
 
 
 def sample_color(k: float, ks: tuple[float, ...]) -> tuple[float, float, float]:

@@ -14,7 +14,7 @@ import math
 from tactcad.partlib.base import PartData, RigPart, Seat, table_values, values_from
 from tactcad.kernel.shapes import cylinder
 from tactcad.vocabulary.process import Method, Process
-from tactcad.vocabulary.schema import Derived, Problems, Section, fmt, integer, number
+from tactcad.vocabulary.schema import Derived, Problems, Section, fmt, integer, name_number, number
 
 COLOR = (0.36, 0.38, 0.40)
 
@@ -22,7 +22,9 @@ COLOR = (0.36, 0.38, 0.40)
 class WeightsSection(Section):
     """``[weights]`` of ``rigs.toml``."""
 
-    mass_g: number(1.0, 10000.0, unit="g")
+    mass_g: number(0.001, 10000.0, unit="g",
+                   why="OIML R 111 nominal masses start at 1 mg; a rig for a design rated at "
+                       "centinewtons takes sub-gram weights")
     density_g_per_cm3: number(0.5, 25.0, unit="g/cm3")
     diameter_mm: number(5.0, 200.0)
     count: integer(0, 20)
@@ -46,7 +48,7 @@ def derive(w: WeightsSection, context, p: Problems) -> PartData:
     g = values_from(WeightSpec, w, height_mm=height)
     r = g.diameter_mm / 2
     return PartData(
-        name=f"weight_{g.mass_g:g}g", kind="purchased",
+        name=f"weight_{name_number(g.mass_g)}g", kind="purchased",
         process=Process(f"{g.mass_g:g} g steel weight (cylinder of {g.volume_mm3:.0f} mm3 at "
                         f"{g.density_g_per_cm3:g} g/cm3)", Method.BOUGHT),
         material="steel", color=COLOR, expected_volume_mm3=g.volume_mm3,

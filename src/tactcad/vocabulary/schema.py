@@ -50,6 +50,12 @@ def fmt(x: float) -> str:
     return f"{x:.6g}"
 
 
+def name_number(x: float) -> str:
+    """A number as part and file names carry it: ``%g`` with ``p`` for the decimal point
+    (1.5 -> ``1p5``), since STEP labels, DXF and file names keep no dots."""
+    return f"{x:g}".replace(".", "p")
+
+
 # ---------------------------------------------------------------------------
 # Field declarations
 # ---------------------------------------------------------------------------

@@ -26,7 +26,7 @@ from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.prism import Hole, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
 from tactcad.vocabulary.process import Method, Process
-from tactcad.vocabulary.schema import Section, number
+from tactcad.vocabulary.schema import Section, name_number, number
 
 if TYPE_CHECKING:
     from tactcad.kernel.shapes import Solid
@@ -85,7 +85,7 @@ class ElementGeometry:
     @property
     def part_name(self) -> str:
         """Distinct part name, e.g. ``element_a4mm`` or ``element_a4p5mm``."""
-        return "element_a" + f"{self.arm_length_mm:g}".replace(".", "p") + "mm"
+        return "element_a" + name_number(self.arm_length_mm) + "mm"
 
     @property
     def tip_centre_x_mm(self) -> float:

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 from tactcad.kernel.shapes import cylinder_z, difference, extrude, moved, polygon_face, union
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, PartData
 from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.schema import name_number
 from tactcad.vocabulary.standards import NUT_FACTOR, BoltSpec, tightening_torque_Nm
 
 if TYPE_CHECKING:
@@ -61,7 +62,7 @@ def hexagon_area(across_flats: float) -> float:
 
 def bolt_name(b: BoltSpec, length_mm: float) -> str:
     """Part name of a bolt, safe for file names and STEP labels: ``bolt_M2p5x30``."""
-    return f"bolt_{b.safe_name}x" + f"{length_mm:g}".replace(".", "p")
+    return f"bolt_{b.safe_name}x{name_number(length_mm)}"
 
 
 def nut_name(b: BoltSpec) -> str:
