@@ -250,7 +250,7 @@ class SensingUnits:
     errors: tuple
     force_resolution_N: dict
 
-    def moved(self, sign_r: int, sign_m: int) -> list:
+    def shifted_by_error(self, sign_r: int, sign_m: int) -> list:
         """The units with every reference's K moved by ``sign_r`` x its error and every
         measuring element's by ``sign_m`` x its error."""
         return [u._replace(k_r=u.k_r * (1 + sign_r * er), k_m=u.k_m * (1 + sign_m * em))
@@ -292,7 +292,7 @@ def resolution_error_rel(units: SensingUnits, rng, force_N: float) -> float:
     from tactcad.mechanics.resolution import worst_resolution_rel
 
     worst = worst_resolution(units, rng, force_N)
-    moved = [worst_resolution_rel(units.moved(sr, sm), rng, force_N)
+    moved = [worst_resolution_rel(units.shifted_by_error(sr, sm), rng, force_N)
              for sr in (-1, 1) for sm in (-1, 1)]
     return max(abs(w / worst - 1.0) for w in moved)
 
