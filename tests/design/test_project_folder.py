@@ -161,3 +161,49 @@ def test_hostile_companion_names_are_refused_naming_the_field(tmp_path, name):
     with pytest.raises(DesignErrors) as err:
         tactcad.load(design, set={"files.rigs": name})
     assert [e.field for e in err.value.errors] == ["files.rigs"]
+
+
+#: Characters that print nothing, or something else than themselves, in a file name:
+#: zero-width space, right-to-left override, byte order mark, no-break space, unassigned.
+INVISIBLE = ("\u200b", "\u202e", "\ufeff", "\u00a0", "\uffff")
+
+
+def _export_refused(design: Path, out: Path, capsys) -> str:
+    """stderr of an export of ``design`` into ``out`` that must be refused (exit 2, nothing written)."""
+    code = main(["export", "--design", str(design), "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert not out.exists()
+    assert "Traceback" not in err
+    return err
+
+
+@pytest.mark.parametrize("kind", ["rigs", "scenes"])
+@pytest.mark.parametrize("char", INVISIBLE)
+def test_a_companion_name_with_a_character_that_does_not_print_is_refused(tmp_path, capsys, kind,
+                                                                            char):
+    named = f"{kind}{char}.toml"
+    design = _bare_design(tmp_path, lambda t: t + f'\n[files]\n{kind} = "{named}"\n')
+    new_project(tmp_path / "p")  # a readable companion under that very name: not what refuses it
+    shutil.copy(tmp_path / "p" / f"{kind}.toml", tmp_path / named)
+    err = _export_refused(design, tmp_path / "out", capsys)
+    assert f"files.{kind} = {named!r}: allowed a file name of 1 ... 500 printable characters" in err
+    assert f"found U+{ord(char):04X}" in err
+
+
+@pytest.mark.parametrize("kind", ["rigs", "scenes"])
+def test_a_companion_name_that_is_a_symbolic_link_loop_is_refused(tmp_path, capsys, kind):
+    (tmp_path / "a.toml").symlink_to("b.toml")
+    (tmp_path / "b.toml").symlink_to("a.toml")
+    design = _bare_design(tmp_path, lambda t: t + f'\n[files]\n{kind} = "a.toml"\n')
+    err = _export_refused(design, tmp_path / "out", capsys)
+    assert f"files.{kind} = 'a.toml': allowed an existing {kind} file" in err
+    assert "a.toml is a symbolic link loop" in err
+
+
+def test_a_default_companion_that_is_a_symbolic_link_loop_is_refused_not_made_anew(tmp_path,
+                                                                                   capsys):
+    design = _bare_design(tmp_path)
+    (tmp_path / "rigs.toml").symlink_to("rigs.toml")
+    err = _export_refused(design, tmp_path / "out", capsys)
+    assert "files.rigs = 'rigs.toml': allowed a rigs file, or none, beside bare.toml" in err
