@@ -44,6 +44,8 @@ def _with(data, dotted, value):
     ("weights.count", -1, ["weights.count", "0 ... 20"]),
     ("calibration.element", 11, ["calibration.element", "1 ... 10"]),
     ("sample.stiffness_N_per_mm", [3.0, 3.0], ["sample.stiffness_N_per_mm", "distinct"]),
+    ("sample.stiffness_N_per_mm", [1.0, 1.0000001], ["sample.stiffness_N_per_mm", "distinct",
+                                                    "sample_k<value>"]),
     ("bracket.width_mm", 30.0, ["bracket.width_mm", "clamp bolts"]),
     ("cart.thickness_mm", None, ["cart.thickness_mm", "missing"]),
     ("cart.colour", "red", ["cart.colour", "unknown key"]),
