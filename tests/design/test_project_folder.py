@@ -53,7 +53,7 @@ def test_new_from_an_example_copies_its_own_rigs_and_makes_the_rest(tmp_path):
     assert project.validated.rigs_file == "rigs.toml"
     readme = (made.folder / "README.md").read_text(encoding="utf-8")
     assert "tactcad export --design ti_array_2x3.toml" in readme and "$" not in readme
-    assert "exports/" in (made.folder / ".gitignore").read_text(encoding="utf-8")
+    assert "exports*/" in (made.folder / ".gitignore").read_text(encoding="utf-8")
     assert (made.folder.stat().st_mode & 0o777) != 0o700  # a shared folder, not a temp one
 
 
@@ -207,3 +207,29 @@ def test_a_default_companion_that_is_a_symbolic_link_loop_is_refused_not_made_an
     (tmp_path / "rigs.toml").symlink_to("rigs.toml")
     err = _export_refused(design, tmp_path / "out", capsys)
     assert "files.rigs = 'rigs.toml': allowed a rigs file, or none, beside bare.toml" in err
+
+
+def _folders_the_readme_writes() -> set[str]:
+    """The output folders README's examples write in a project: each
+    ``--out NAME`` (not a design file or placeholder) and the Python
+    example's ``project.export("NAME", ...)``."""
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    named = re.findall(r"--out ([A-Za-z0-9_.-]+)", text) + re.findall(r'\.export\("([^"]+)"', text)
+    return {n for n in named if not n.endswith(".toml") and n not in ("DIR", "fingertip")}
+
+
+def test_the_projects_gitignore_keeps_every_folder_the_readme_writes_out_of_git(tmp_path):
+    import subprocess
+
+    folders = _folders_the_readme_writes()
+    assert {"exports", "exports-web0p2", "diff"} <= folders  # the Python example's among them
+    made = new_project(tmp_path / "p")
+    subprocess.run(["git", "init", "-q", str(made.folder)], check=True)
+    for name in sorted(folders):
+        (made.folder / name).mkdir()
+        (made.folder / name / "manifest.json").write_text("{}", encoding="utf-8")
+    ignored = subprocess.run(["git", "-C", str(made.folder), "check-ignore", *sorted(folders)],
+                             capture_output=True, text=True).stdout.split()
+    assert sorted(ignored) == sorted(folders)
+    assert subprocess.run(["git", "-C", str(made.folder), "check-ignore", "-q",
+                           made.design.name]).returncode == 1  # the design itself is kept
