@@ -18,7 +18,7 @@ Units: mm, N, MPa, N/mm, s.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
 from functools import cached_property
 from os import PathLike
@@ -78,16 +78,22 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
     design = Path(path) if path is not None else default_design()
     overrides = _checked_overrides(set)
     data = with_overrides(read_toml(design, "design file"), overrides)
-    return Project(_validated(data, design), data, design)
+    return Project(_validated(data, design, overrides), data, design)
 
 
-def _validated(data: Mapping[str, Any], design: Path) -> "ValidatedProject":
+def _validated(data: Mapping[str, Any], design: Path,
+               overrides: Iterable[str] = ()) -> "ValidatedProject":
     """The design tables with their rigs and scenes validated together; a
-    design with no rigs or scenes file gets ones made for it."""
+    design with no rigs or scenes file gets ones made for it. A refused value
+    of a key in ``overrides`` (``set``) is named as set, not as the file's."""
     from tactcad.design.project import project_with_design_data
+    from tactcad.errors import DesignErrors
     from tactcad.project_folder import companion_tables
 
-    return project_with_design_data(data, design, companions=companion_tables)
+    try:
+        return project_with_design_data(data, design, companions=companion_tables)
+    except DesignErrors as exc:
+        raise exc.sourced({key: "set" for key in overrides}) from None
 
 
 def _checked_overrides(values: Mapping[str, Any] | None) -> dict[str, Any]:
@@ -166,8 +172,9 @@ class Project:
         """
         from tactcad.design.array_plan import with_overrides
 
-        data = with_overrides(self._data, _checked_overrides(set))
-        return Project(_validated(data, self.source), data, self.source)
+        overrides = _checked_overrides(set)
+        data = with_overrides(self._data, overrides)
+        return Project(_validated(data, self.source, overrides), data, self.source)
 
     # --- solids ---
     @cached_property

@@ -19,7 +19,10 @@ def atomic_path(target: str | Path) -> Iterator[Path]:
     (``os.replace``, atomic on POSIX), on any error it is removed."""
     target = Path(target)
     target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=target.parent)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=target.parent)
+    except OSError as exc:  # no room for the temporary file: name the file being written
+        raise OSError(exc.errno, exc.strerror, str(target)) from exc
     os.close(fd)
     tmp_path = Path(tmp)
     os.chmod(tmp_path, 0o644)  # mkstemp creates 0600; exports are for sharing
@@ -135,9 +138,26 @@ def _exchange(a: Path, b: Path) -> bool:
 
 def staging_dir(target: Path) -> Path:
     """A new empty folder beside ``target`` (same file system, so it can take
-    its place in one rename), named ``.<target>.staging-*``."""
-    target.parent.mkdir(parents=True, exist_ok=True)
-    return Path(tempfile.mkdtemp(prefix=f".{target.name}.staging-", dir=target.parent))
+    its place in one rename), named ``.<target>.staging-*``.
+
+    Raises:
+        OSError: naming ``target`` (the folder asked for), not the staging one.
+    """
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        return Path(tempfile.mkdtemp(prefix=f".{target.name}.staging-", dir=target.parent))
+    except OSError as exc:
+        raise OSError(exc.errno, exc.strerror, str(target)) from exc
+
+
+def in_target(exc: OSError, staging: Path, target: Path) -> OSError:
+    """``exc`` with a path in ``staging`` (of :func:`staging_dir`) shown as the
+    same path in ``target``, the folder asked for, which the staging folder
+    becomes; an error that names no file (a failed write()) names ``target``."""
+    name = str(exc.filename or staging)
+    if exc.errno is None or not name.startswith(str(staging)):
+        return exc
+    return OSError(exc.errno, exc.strerror, str(target) + name[len(str(staging)):])
 
 
 def leftover_staging(target: Path) -> list[Path]:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import PurePath
-from typing import Iterable
+from typing import Iterable, Mapping
 
 #: Longest echo of a user's value in a message (a 100 000-entry list must not
 #: turn into a 500 kB error line).
@@ -77,6 +77,18 @@ class DesignErrors(DesignError):
 
     def __str__(self) -> str:
         return self.args[0]
+
+    def sourced(self, sources: Mapping[str, str]) -> "DesignErrors":
+        """These errors, each whose field is a key of ``sources`` or a part of
+        one (``arms.lengths_mm[3]`` of ``arms.lengths_mm``) named as coming
+        from ``sources[key]`` instead of its file: a value given elsewhere
+        than the file (``--set KEY=VALUE``) is refused as given there."""
+        def source(e: DesignError) -> str:
+            return next((src for key, src in sources.items()
+                         if e.field == key or e.field.startswith((key + "[", key + "."))), e.file)
+
+        return DesignErrors(DesignError(e.field, e.value, e.allowed, e.why, source(e))
+                            for e in self.errors)
 
 
 class SceneError(TactcadError):

@@ -24,7 +24,7 @@ from string import Template
 from typing import Any, Mapping
 
 from tactcad import __version__
-from tactcad.atomic import remove_tree, staging_dir, warn_left_behind
+from tactcad.atomic import in_target, remove_tree, staging_dir, warn_left_behind
 from tactcad.design.array_plan import EXAMPLES, Plan
 from tactcad.errors import DesignError
 
@@ -219,6 +219,16 @@ def _project_files(design_text: str, design_name: str, plan: Plan,
     return files
 
 
+def _write_text(path: Path, text: str) -> None:
+    """``path`` written with ``text`` (UTF-8, the user's umask); an error names it
+    (a failed write() names no file)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        path.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise exc if exc.filename else OSError(exc.errno, exc.strerror, str(path)) from exc
+
+
 def _umask() -> int:
     mask = os.umask(0o022)
     os.umask(mask)
@@ -250,21 +260,19 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
     folder = Path(folder)
     files = _project_files(design_text, design_name, plan, companions)
     _check_target(folder, list(files), force)
-    try:
-        staging = staging_dir(folder)
-    except OSError as exc:  # name the folder asked for, not the staging one
-        raise OSError(exc.errno, exc.strerror, str(folder)) from None
+    staging = staging_dir(folder)
     os.chmod(staging, 0o777 & ~_umask())  # a project folder, not a private temporary one
     try:
         for rel, text in files.items():
-            (staging / rel).parent.mkdir(parents=True, exist_ok=True)
-            (staging / rel).write_text(text, encoding="utf-8")
+            _write_text(staging / rel, text)
         if not folder.exists():
             os.rename(staging, folder)
         else:  # the design file last: a set cut short is no project
             for rel in files:
                 (folder / rel).parent.mkdir(parents=True, exist_ok=True)
                 os.replace(staging / rel, folder / rel)
+    except OSError as exc:  # name the file in the folder asked for, not in the staging one
+        raise in_target(exc, staging, folder) from exc
     finally:
         if staging.exists():
             warn_left_behind(remove_tree(staging))

@@ -58,7 +58,11 @@ def test_load_refuses_what_the_cli_refuses_with_the_same_message(capsys):
     code = cli.main(["stiffness", "--element", "1", "--set", "element.web_thickness_mm=1.55",
                      "--set", "element.nope_mm=1", "--json"])
     error = json.loads(capsys.readouterr().out)["error"]
-    assert code == 2 and error["message"] == str(caught.value)
+    # the same refusals; each names where its value came from: set=, or the --set typed
+    assert [e.file for e in caught.value.errors] == ["set", "set"]
+    typed = {"element.web_thickness_mm": "--set element.web_thickness_mm=1.55",
+             "element.nope_mm": "--set element.nope_mm=1"}
+    assert code == 2 and error["message"] == str(caught.value.sourced(typed))
 
 
 @pytest.mark.parametrize("bad", [{"nodot": 1}, {"": 1}, {3: 1}, [("element.x", 1)]])
@@ -183,7 +187,9 @@ def test_flexure_element_refuses_with_the_design_files_message():
         tactcad.FlexureElement(web_thickness_mm=1.55)
     with pytest.raises(DesignErrors) as by_file:
         tactcad.load(set={"element.web_thickness_mm": 1.55})
-    assert by_class.value.errors[0].line() == by_file.value.errors[0].line()
+    same = ("field", "value", "allowed", "why")
+    assert [getattr(by_class.value.errors[0], a) for a in same] == \
+        [getattr(by_file.value.errors[0], a) for a in same]
     with pytest.raises(DesignErrors) as arm:
         tactcad.FlexureElement(arm_length_mm=25)
     assert len(arm.value.errors) == 1  # once, not once per element of the array

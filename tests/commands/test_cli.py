@@ -13,10 +13,12 @@ from pathlib import Path
 
 import pytest
 
-from conftest import run_cli, warm_store_copy
+import tactcad
+from conftest import run_cli, warm_store_copy, with_default_companions
 from tactcad import cli
+from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.commands import parse_override, plan_from_args, progress_from_args
-from tactcad.errors import DesignError
+from tactcad.errors import DesignError, DesignErrors
 from tactcad.export.job import Job
 from tactcad.export.kinds import full_export_kinds
 from tactcad.export.kinds import parse_only
@@ -93,7 +95,31 @@ def test_out_of_range_set_is_refused_as_text_without_json(capsys):
     code = cli.main(["strength", "--set", "element.web_thickness_mm=3"])
     out = capsys.readouterr()
     assert code == 2 and out.out == ""
-    assert out.err.startswith("tactcad: error: macro_array.toml: element.web_thickness_mm = 3: allowed")
+    assert out.err.startswith("tactcad: error: --set element.web_thickness_mm=3: "
+                              "element.web_thickness_mm = 3: allowed")
+
+
+def test_a_refused_set_value_is_named_as_set_and_the_files_own_as_the_files(tmp_path, capsys):
+    design = tmp_path / "d.toml"
+    text = DEFAULT_DESIGN.read_text(encoding="utf-8").replace("[edm]\nwire_diameter_mm = 0.25",
+                                                              "[edm]\nwire_diameter_mm = 9.0")
+    design.write_text(text, encoding="utf-8")
+    with_default_companions(design)
+    code = cli.main(["strength", "--design", str(design), "--set", "element.web_thickness_mm=0.3",
+                     "--set", "element.web_thickness_mm=3", "--set", "arms.lengths_mm=[1]"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert "--set element.web_thickness_mm=3: element.web_thickness_mm = 3: allowed" in err
+    assert "--set arms.lengths_mm=[1]: arms.lengths_mm[1] = 1: allowed" in err  # an item of it
+    assert "d.toml: edm.wire_diameter_mm = 9.0: allowed" in err  # the file's own value
+    assert "d.toml: element.web_thickness_mm" not in err
+
+
+def test_the_api_names_a_refused_set_value_as_set():
+    with pytest.raises(DesignErrors) as err:
+        tactcad.load(set={"element.web_thickness_mm": 3.0})
+    assert [e.file for e in err.value.errors] == ["set"]
+    assert str(err.value).startswith("set: element.web_thickness_mm = 3.0: allowed")
 
 
 def test_json_error_never_writes_nan(capsys):

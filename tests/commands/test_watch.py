@@ -567,3 +567,13 @@ def test_a_ctrl_c_lost_on_its_way_still_stops_the_watch():
         restore()
         assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
         signal.signal(signal.SIGINT, before)
+
+
+def test_a_companion_named_as_a_symbolic_link_loop_is_watched_not_a_crash(tmp_path):
+    (tmp_path / "a.toml").symlink_to("b.toml")
+    (tmp_path / "b.toml").symlink_to("a.toml")
+    design = tmp_path / "d.toml"
+    design.write_text('[files]\nrigs = "a.toml"\n', encoding="utf-8")
+    files = watched_files(design)  # the refusal is the loader's; the watch waits for the fix
+    folder = tmp_path.resolve()
+    assert files == [folder / "d.toml", folder / "a.toml", folder / "scenes.toml"]

@@ -53,7 +53,7 @@ def test_new_from_an_example_copies_its_own_rigs_and_makes_the_rest(tmp_path):
     assert project.validated.rigs_file == "rigs.toml"
     readme = (made.folder / "README.md").read_text(encoding="utf-8")
     assert "tactcad export --design ti_array_2x3.toml" in readme and "$" not in readme
-    assert "exports/" in (made.folder / ".gitignore").read_text(encoding="utf-8")
+    assert "exports*/" in (made.folder / ".gitignore").read_text(encoding="utf-8")
     assert (made.folder.stat().st_mode & 0o777) != 0o700  # a shared folder, not a temp one
 
 
@@ -162,3 +162,75 @@ def test_hostile_companion_names_are_refused_naming_the_field(tmp_path, name):
     with pytest.raises(DesignErrors) as err:
         tactcad.load(design, set={"files.rigs": name})
     assert [e.field for e in err.value.errors] == ["files.rigs"]
+
+
+#: Characters that print nothing, or something else than themselves, in a file name:
+#: zero-width space, right-to-left override, byte order mark, no-break space, unassigned.
+INVISIBLE = ("\u200b", "\u202e", "\ufeff", "\u00a0", "\uffff")
+
+
+def _export_refused(design: Path, out: Path, capsys) -> str:
+    """stderr of an export of ``design`` into ``out`` that must be refused (exit 2, nothing written)."""
+    code = main(["export", "--design", str(design), "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert not out.exists()
+    assert "Traceback" not in err
+    return err
+
+
+@pytest.mark.parametrize("kind", ["rigs", "scenes"])
+@pytest.mark.parametrize("char", INVISIBLE)
+def test_a_companion_name_with_a_character_that_does_not_print_is_refused(tmp_path, capsys, kind,
+                                                                            char):
+    named = f"{kind}{char}.toml"
+    design = _bare_design(tmp_path, lambda t: t + f'\n[files]\n{kind} = "{named}"\n')
+    new_project(tmp_path / "p")  # a readable companion under that very name: not what refuses it
+    shutil.copy(tmp_path / "p" / f"{kind}.toml", tmp_path / named)
+    err = _export_refused(design, tmp_path / "out", capsys)
+    assert f"files.{kind} = {named!r}: allowed a file name of 1 ... 500 printable characters" in err
+    assert f"found U+{ord(char):04X}" in err
+
+
+@pytest.mark.parametrize("kind", ["rigs", "scenes"])
+def test_a_companion_name_that_is_a_symbolic_link_loop_is_refused(tmp_path, capsys, kind):
+    (tmp_path / "a.toml").symlink_to("b.toml")
+    (tmp_path / "b.toml").symlink_to("a.toml")
+    design = _bare_design(tmp_path, lambda t: t + f'\n[files]\n{kind} = "a.toml"\n')
+    err = _export_refused(design, tmp_path / "out", capsys)
+    assert f"files.{kind} = 'a.toml': allowed an existing {kind} file" in err
+    assert "a.toml is a symbolic link loop" in err
+
+
+def test_a_default_companion_that_is_a_symbolic_link_loop_is_refused_not_made_anew(tmp_path,
+                                                                                   capsys):
+    design = _bare_design(tmp_path)
+    (tmp_path / "rigs.toml").symlink_to("rigs.toml")
+    err = _export_refused(design, tmp_path / "out", capsys)
+    assert "files.rigs = 'rigs.toml': allowed a rigs file, or none, beside bare.toml" in err
+
+
+def _folders_the_readme_writes() -> set[str]:
+    """The output folders README's examples write in a project: each
+    ``--out NAME`` (not a design file or placeholder) and the Python
+    example's ``project.export("NAME", ...)``."""
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    named = re.findall(r"--out ([A-Za-z0-9_.-]+)", text) + re.findall(r'\.export\("([^"]+)"', text)
+    return {n for n in named if not n.endswith(".toml") and n not in ("DIR", "fingertip")}
+
+
+def test_the_projects_gitignore_keeps_every_folder_the_readme_writes_out_of_git(tmp_path):
+    import subprocess
+
+    folders = _folders_the_readme_writes()
+    assert {"exports", "exports-web0p2", "diff"} <= folders  # the Python example's among them
+    made = new_project(tmp_path / "p")
+    subprocess.run(["git", "init", "-q", str(made.folder)], check=True)
+    for name in sorted(folders):
+        (made.folder / name).mkdir()
+        (made.folder / name / "manifest.json").write_text("{}", encoding="utf-8")
+    ignored = subprocess.run(["git", "-C", str(made.folder), "check-ignore", *sorted(folders)],
+                             capture_output=True, text=True).stdout.split()
+    assert sorted(ignored) == sorted(folders)
+    assert subprocess.run(["git", "-C", str(made.folder), "check-ignore", "-q",
+                           made.design.name]).returncode == 1  # the design itself is kept

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from tactcad import __version__
-from tactcad.assembly.inventory import design_assemblies, instance_counts
+from tactcad.assembly.inventory import design_assemblies, fabricated_parts, instance_counts
 from tactcad.catalogue.array_catalogue import Method, Process, array_instances, array_parts
 from tactcad.catalogue.shop import stock_size, tightening_torque_Nm
 from tactcad.drawings.compose import part_hash
@@ -89,8 +89,9 @@ def test_one_drawing_per_fabricated_part_and_every_svg_parses(drawing_files, pla
     out, man, svgs = drawing_files
     specs, assemblies = design_assemblies(project)
     used = {i.part for inst in assemblies.values() for i in inst}
-    fabricated = {n for n, s in specs.items() if s.kind == "fabricated" and n in used}
-    assert set(svgs) == fabricated
+    placed = {n for n, s in specs.items() if s.kind == "fabricated" and n in used}
+    made, _ = fabricated_parts(project)
+    assert set(svgs) == {s.name for s in made} >= placed  # and the samples no scene shows
     assert {n for n, s in array_parts(plan).items() if s.kind == "fabricated"} <= set(svgs)
     for part, path in svgs.items():
         assert path.name == f"{part}.svg" and path.parent.name == "drawings"
@@ -173,11 +174,8 @@ def test_plate_dimensions_read_back_as_plan_values(drawing_files, plan):
 
 def test_title_blocks_carry_quantity_hash_version_material(drawing_files, plan, project):
     _, _, svgs = drawing_files
-    specs, assemblies = design_assemblies(project)
-    largest: dict[str, int] = {}
-    for inst in assemblies.values():
-        for part, n in instance_counts(inst).items():
-            largest[part] = max(largest.get(part, 0), n)
+    made, largest = fabricated_parts(project)  # the largest count in an assembly, else 1
+    specs = {s.name: s for s in made}
     array_counts = instance_counts(array_instances(plan))
     for part, path in svgs.items():
         tb = texts_by_id(path.read_text())
@@ -308,7 +306,7 @@ def test_rig_parts_are_drawn_when_the_scenes_show_them(drawing_files, plan, proj
     (indenter) or the generic one (sizes from the solid)."""
     pytest.importorskip("tactcad.assembly.scene_solver")
     _, _, svgs = drawing_files
-    specs, _ = design_assemblies(project)
+    specs = {s.name: s for s in fabricated_parts(project)[0]}
     if "indenter" in svgs:
         g = specs["indenter"].geometry
         assert_dims(dims(svgs["indenter"].read_text()), {

@@ -72,11 +72,8 @@ def test_every_file_the_bom_names_exists(exported, plan):
     # each fabricated part points to its drawing, each element to its DXF files
     by_part = {r["part"]: r["files"].split() for r in rows}
     for r in rows:
-        if r["type"] == "fabricated" and r["step"] == "samples-cast":
-            # the kit's samples are one block in several compounds: one shared drawing
-            assert any(f.startswith("drawings/sample_k") for f in by_part[r["part"]])
-        elif r["type"] == "fabricated":
-            assert f"drawings/{r['part']}.svg" in by_part[r["part"]]
+        if r["type"] == "fabricated":  # the kit's samples too, shown in a scene or not
+            assert f"drawings/{r['part']}.svg" in by_part[r["part"]] and r["stock"]
     for part in plan.distinct_elements:
         assert f"dxf/{part}_qty2.dxf" in by_part[part]
         assert "dxf/sheet_aluminium_3mm.dxf" in by_part[part]

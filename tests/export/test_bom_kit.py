@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from tactcad.assembly.inventory import design_assemblies
+from tactcad.assembly.inventory import design_assemblies, fabricated_parts
 from tactcad.design.project import load_project
 from tactcad.export.bom import bom_csv, complete_kit, kit_steps, sample_kit
 
@@ -64,3 +64,18 @@ def test_the_ti_example_kit_carries_no_paper_sample(kit):
         pytest.skip("the paper's design")
     text = " ".join(n for s in steps for n in s.notes)
     assert "10.01" not in text and "sample_k10p01" not in {r.part for r in rows}
+
+
+def test_every_sample_is_a_part_of_its_own_with_its_drawing_and_stock(kit):
+    """A sample no scene shows is cast and drawn as the shown ones are: its
+    own drawing (not another stiffness's) and its stock."""
+    project, _, _ = kit
+    assembled = design_assemblies(project)
+    rows = complete_kit(project, assembled, files=lambda spec: (f"drawings/{spec.name}.svg",))
+    by_part = {r.part: r for r in rows}
+    made, qty = fabricated_parts(project, assembled)
+    for part, (k, spec) in sample_kit(project).items():
+        row = by_part[part]
+        assert row.files == (f"drawings/{part}.svg",) and row.stock, row
+        assert f"measured stiffness {k:g} N/mm" in row.process
+        assert spec in made and qty[part] == row.quantity

@@ -22,14 +22,13 @@ def export(out: Path, *extra: str) -> int:
     return cli.main(["export", "--no-cache", "--quiet", "--out", str(out), *extra])
 
 
-@pytest.fixture
-def tiny_disk():
-    """A 1 MiB tmpfs (root only; skipped elsewhere)."""
+def _tmpfs(options: str):
+    """A tmpfs mounted with ``options`` (root only; the test is skipped elsewhere)."""
     if os.geteuid() != 0 or not shutil.which("mount"):
         pytest.skip("mounting a tmpfs needs root")
     mnt = Path(f"/tmp/tactcad-tinydisk-{uuid.uuid4().hex[:8]}")
     mnt.mkdir()
-    if subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(mnt)],
+    if subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(mnt)],
                       capture_output=True).returncode:
         mnt.rmdir()
         pytest.skip("cannot mount a tmpfs here")
@@ -38,6 +37,31 @@ def tiny_disk():
     finally:
         subprocess.run(["umount", str(mnt)], check=False)
         mnt.rmdir()
+
+
+@pytest.fixture
+def tiny_disk():
+    """A 1 MiB tmpfs."""
+    yield from _tmpfs("size=1m")
+
+
+@pytest.fixture
+def few_inodes():
+    """A tmpfs of 16 files and folders at most (a disk full of small files)."""
+    yield from _tmpfs("size=1m,nr_inodes=16")
+
+
+def fill_inodes(disk: Path, left: int) -> None:
+    """Make empty files on ``disk`` until only ``left`` more can be made."""
+    made = []
+    try:
+        while True:
+            made.append(disk / f"f{len(made)}")
+            made[-1].touch()
+    except OSError as exc:
+        assert exc.errno == errno.ENOSPC
+    for path in made[-1 - left:-1]:
+        path.unlink()
 
 
 def fill(disk: Path) -> None:
@@ -72,6 +96,30 @@ def test_a_full_disk_is_json_with_exit_3(tiny_disk, capsys):
                      "--out", str(tiny_disk / "ex")]) == 3
     err = json.loads(capsys.readouterr().out)["error"]
     assert err["exit_code"] == 3 and "disk full" in err["message"]
+
+
+@pytest.mark.parametrize("left", [0, 1])  # no room for the staging folder; for a file in it
+def test_a_disk_without_room_for_a_file_names_the_export_folder_not_a_hidden_one(
+        few_inodes, capsys, left):
+    out = few_inodes / "ex"
+    fill_inodes(few_inodes, left)
+    assert export(out, "--only", "bom") == 3
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "disk full" in err, err
+    assert f"{out}/bom." in err if left else f"{out}: disk full" in err
+    assert ".staging-" not in err and ".part" not in err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("disk", ["tiny_disk", "few_inodes"])
+def test_a_full_disk_in_new_names_the_projects_file_not_the_staging_folder(disk, request, capsys):
+    mnt = request.getfixturevalue(disk)
+    fill(mnt) if disk == "tiny_disk" else fill_inodes(mnt, 1)
+    assert cli.main(["new", str(mnt / "p")]) == 3
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"{mnt / 'p'}/" in err and "disk full" in err, err
+    assert ".staging-" not in err
+    assert not (mnt / "p").exists() and not list(mnt.glob(".p.staging-*"))
 
 
 class _Refused(RuntimeError):

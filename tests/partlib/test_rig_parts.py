@@ -10,6 +10,7 @@ import pytest
 
 from tactcad.errors import DesignError
 from tactcad.catalogue.rig_catalogue import RigPartSpec, rig_parts
+from tactcad.design.array_plan import EXAMPLES
 from tactcad.design.rig_plan import default_rigs_data, load_rigs, rigs_from_dict
 from tactcad.partlib.sample import sample_name
 from tactcad.vocabulary.standards import BEARINGS
@@ -44,6 +45,8 @@ def _with(data, dotted, value):
     ("weights.count", -1, ["weights.count", "0 ... 20"]),
     ("calibration.element", 11, ["calibration.element", "1 ... 10"]),
     ("sample.stiffness_N_per_mm", [3.0, 3.0], ["sample.stiffness_N_per_mm", "distinct"]),
+    ("sample.stiffness_N_per_mm", [1.0, 1.0000001], ["sample.stiffness_N_per_mm", "distinct",
+                                                    "sample_k<value>"]),
     ("bracket.width_mm", 30.0, ["bracket.width_mm", "clamp bolts"]),
     ("cart.thickness_mm", None, ["cart.thickness_mm", "missing"]),
     ("cart.colour", "red", ["cart.colour", "unknown key"]),
@@ -141,3 +144,19 @@ def test_cart_has_its_vacuum_clamping_features(plan, specs):
     # while the same probe beside the channel runs through material
     beside = probe.moved(bd.Location((0, 0, g.channel_diameter_mm)))
     assert common_volume(solid, beside) > 1.0
+
+
+@pytest.mark.parametrize("tip_width_mm", [1.5, 2.0])
+def test_the_indenter_drawing_note_gives_the_designs_own_face(tip_width_mm):
+    """The note names the indenter's face, the element's contact face (tip
+    width x sheet thickness), not the paper's 2 x 3 mm."""
+    import tactcad
+    from tactcad.drawings.part_sets import PEN
+    from tactcad.partlib.indenter import notes_after
+
+    design = EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml"
+    project = tactcad.load(design, set={"element.tip_width_mm": tip_width_mm,
+                                        "sheet.thickness_mm": 2.5})
+    g = rig_parts(project.plan, project.validated.rigs)["indenter"].geometry
+    note = " ".join(notes_after(g, PEN))
+    assert f"the {tip_width_mm:g} x 2.5 mm face lies flat" in note and "2 x 3 mm" not in note

@@ -15,6 +15,7 @@ from tactcad.design.array_plan import load_design, read_toml
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import CorrectionRangeWarning
 from tactcad.studies.inverse_design import (KEEP_WEB_ROOM, InverseDesignError, Targets, web_pool, design_for_targets,
+                                       quotes_not_its_own,
                                        reference_elements, search_webs, unit_resolution)
 from tactcad.mechanics.ladder import estimate
 from tactcad.mechanics.lumped_model import deflection_ratio
@@ -277,3 +278,21 @@ def test_a_designs_margins_clear_the_closed_forms_error(plan):
             {r["requirement"]: "pass" for r in records}
         band = next(r for r in records if r["requirement"] == "k_tolerance_rel")
         assert band["margin_rel"] >= band["error_estimate_rel"] > 0
+
+
+@pytest.mark.filterwarnings("ignore::tactcad.mechanics.correction.CorrectionRangeWarning")
+def test_a_reason_kept_from_the_base_quotes_no_value_the_new_design_does_not_vouch_for(
+        tmp_path, monkeypatch, capsys):
+    """The base's "1.5 mm lifts the 2 x 3 mm contact face" is not the reason of
+    a design whose contact face is 1 x 3 mm; a reason quoting its own value stays."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force",
+                 "0.3", "--set", "element.tip_width_mm=1", "--verify", "none", "--out",
+                 "face.toml", "--quiet"]) == 0
+    why = read_toml(tmp_path / "face.toml", "design")["assumptions"]
+    assert "contact face" not in why["element.tip_height_mm"]  # the base's claim, not made
+    assert "quotes 2 x 3 mm" in why["element.tip_height_mm"]  # says what it left out
+    assert why["clamp.bolt_spacing_mm"] == "Two bolts 6 mm apart centred on the clamped base."
+    for key, text in why.items():  # every kept reason quotes only its own value
+        if not text.startswith(("Kept from the base design", "tactcad design", "Raised to")):
+            assert quotes_not_its_own(key, text, read_toml(tmp_path / "face.toml", "d")) == [], key

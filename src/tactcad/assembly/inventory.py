@@ -15,9 +15,11 @@ from typing import Mapping, Sequence
 from tactcad.assembly.z_up import z_up_bbox
 from tactcad.assembly.rig_models import RigModel, scene_model, shown_instances
 from tactcad.catalogue.array_catalogue import PartSpec, array_instances, array_parts
+from tactcad.catalogue.rig_catalogue import rig_parts
 from tactcad.design.array_plan import Plan
 from tactcad.design.project import Project
 from tactcad.design.scene_specs import SceneSpec
+from tactcad.partlib.sample import stiffnesses
 
 
 @dataclass(frozen=True)
@@ -84,16 +86,31 @@ def part_quantities(assemblies: Mapping[str, Sequence]) -> dict[str, int]:
     return total
 
 
+def sample_kit(project: Project) -> dict[str, tuple[float, PartSpec]]:
+    """Every sample the rigs file names, shown in a scene or not:
+    ``{part: (stiffness N/mm, spec)}``, in the file's order; each its own part
+    (:func:`tactcad.partlib.sample.sample_name`), the same spec a scene places."""
+    data = project.rigs.library.get("sample")
+    if data is None:
+        return {}
+    specs = rig_parts(project.plan, project.rigs)
+    return {d.name: (k, specs[d.name]) for d, k in zip((data, *data.companions), stiffnesses(data))}
+
+
 def fabricated_parts(project: Project, assembled=None) -> tuple[list[PartSpec], dict[str, int]]:
-    """(fabricated part specs in catalogue order, quantity of every part).
-    Parts placed in no assembly are left out.
+    """(fabricated part specs, quantity of every part): the parts placed in an
+    assembly, in catalogue order, then the kit's samples no scene shows (one
+    each: the rigs file names them, so each is cast and drawn). Other parts
+    placed in no assembly are left out.
 
     Args:
         assembled: the result of :func:`design_assemblies`, if already at hand.
     """
     specs, assemblies = assembled or design_assemblies(project)
     qty = part_quantities(assemblies)
-    return [s for s in specs.values() if s.kind == "fabricated" and qty.get(s.name, 0) > 0], qty
+    placed = [s for s in specs.values() if s.kind == "fabricated" and qty.get(s.name, 0) > 0]
+    unshown = [s for _, s in sample_kit(project).values() if qty.get(s.name, 0) == 0]
+    return placed + unshown, {**qty, **{s.name: 1 for s in unshown}}
 
 
 def array_envelope_mm(plan: Plan) -> tuple[float, float, float]:

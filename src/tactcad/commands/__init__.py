@@ -110,9 +110,13 @@ def load_from_args(args: argparse.Namespace):
         DesignError: as :func:`plan_from_args`.
     """
     from tactcad.api import load
+    from tactcad.errors import DesignErrors
 
-    return load(getattr(args, "design", None),
-                set=parse_overrides(getattr(args, "overrides", None)))
+    texts = getattr(args, "overrides", None) or []
+    try:
+        return load(getattr(args, "design", None), set=parse_overrides(texts))
+    except DesignErrors as exc:  # a refused --set value is named as typed (the last of a key)
+        raise exc.sourced({parse_override(t)[0]: f"--set {t}" for t in texts}) from None
 
 
 def add_cache_args(p: argparse.ArgumentParser) -> None:

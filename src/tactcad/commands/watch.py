@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import threading
 from pathlib import Path
@@ -84,7 +85,8 @@ def watched_files(design: Path) -> list[Path]:
         tables = tomllib.loads(design.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
         tables = {}
-    return [design.resolve(), *(p.resolve() for p in companion_paths(design, tables).values())]
+    # realpath, not Path.resolve: Python 3.11's resolve raises on a symbolic link loop
+    return [Path(os.path.realpath(p)) for p in (design, *companion_paths(design, tables).values())]
 
 
 def run(args: argparse.Namespace) -> int:

@@ -31,9 +31,9 @@ from typing import Any, Mapping
 
 from pydantic import create_model
 
-from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, DateText, Derived, Name, Problems, Section, Text,
-                                       content_hash, fmt, integer, listing, number, read_assumptions,
-                                       read_toml, validate)
+from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, DateText, Derived, FileName, Name,
+                                       Problems, Section, Text, content_hash, fmt, integer,
+                                       listing, number, read_assumptions, read_toml, validate)
 from tactcad.vocabulary.material_library import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                           StrengthSettings, default_strength_settings,
                                           material_fields, material_grade, strength_settings)
@@ -277,8 +277,8 @@ class FilesSection(Section):
     """The project's other files, relative to the design file's folder (the
     rigs and scenes files; ``rigs.toml`` and ``scenes.toml`` when left out)."""
 
-    rigs: Text = None
-    scenes: Text = None
+    rigs: FileName = None
+    scenes: FileName = None
 
 
 class DesignTables(Section):

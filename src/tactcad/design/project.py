@@ -19,13 +19,14 @@ edited after validation cannot change what a run writes.
 
 from __future__ import annotations
 
+import errno
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Callable, Iterator, Mapping
 
 from tactcad.design.array_plan import DEFAULT_DESIGN, Plan, plan_from_model, validate_design
 from tactcad.design.rig_plan import DEFAULT_RIGS, RigDesign, validate_rigs
-from tactcad.vocabulary.schema import Problems, content_hash, fmt, read_toml
+from tactcad.vocabulary.schema import Problems, content_hash, fmt, read_toml, unprintable
 from tactcad.design.scene_specs import DEFAULT_SCENES, SceneSpec, validate_scenes
 from tactcad.errors import DesignError
 
@@ -172,6 +173,15 @@ def _is_file(path: Path) -> bool:
         return False
 
 
+def _loops(path: Path) -> bool:
+    """True when following ``path``'s symbolic links never ends (ELOOP)."""
+    try:
+        path.stat()
+    except OSError as exc:
+        return exc.errno == errno.ELOOP
+    return False
+
+
 def _inside(folder: Path, name: str) -> bool:
     """True when ``name`` is a relative path that stays inside ``folder``."""
     rel = Path(name)
@@ -179,8 +189,23 @@ def _inside(folder: Path, name: str) -> bool:
         return False
     try:
         return (folder / rel).resolve().is_relative_to(folder.resolve())
-    except (OSError, ValueError):  # a name the file system cannot hold
+    except (OSError, ValueError, RuntimeError):  # a name the file system cannot hold; a link loop
         return False
+
+
+def _refusal(folder: Path, name: str, kind: str, design_name: str) -> tuple[str, str] | None:
+    """(allowed, why) when ``name``, a companion's name in the design's
+    ``[files]`` table, cannot be read as its ``kind`` file; None when it can."""
+    if _loops(folder / name):  # before resolving: Python 3.11's resolve raises on a loop
+        return (f"an existing {kind} file in the design file's folder",
+                f"{name} is a symbolic link loop")
+    if not _inside(folder, name):
+        return ("a relative path inside the design file's folder",
+                "a sensor project reads no file outside its folder")
+    if not _is_file(folder / name):
+        return (f"an existing {kind} file in the design file's folder",
+                f"no file {name} beside {design_name}")
+    return None
 
 
 def _named(design: Mapping[str, Any] | None) -> dict[str, Any]:
@@ -213,18 +238,19 @@ def companion_files(design_file: Path, design: Mapping[str, Any] | None,
     folder = design_file.parent
     out: dict[str, Path | None] = {}
     for kind, name in _named(design).items():
-        if not isinstance(name, str) or not name or not name.isprintable():
-            # absent, or a wrong type or control characters: the schema says so
+        if name is None:
             beside = folder / COMPANIONS[kind]
-            out[kind] = beside if name is None and design_file.name and beside.is_file() else None
+            if design_file.name and _loops(beside):
+                problems.add(f"files.{kind}", COMPANIONS[kind], f"a {kind} file, or none, beside "
+                             f"{design_file.name}", f"{COMPANIONS[kind]} is a symbolic link loop")
+            out[kind] = beside if design_file.name and _is_file(beside) else None
             continue
         out[kind] = None
-        if not _inside(folder, name):
-            problems.add(f"files.{kind}", name, "a relative path inside the design file's folder",
-                         "a sensor project reads no file outside its folder")
-        elif not _is_file(folder / name):
-            problems.add(f"files.{kind}", name, f"an existing {kind} file in the design file's folder",
-                         f"no file {name} beside {design_file.name}")
+        if not isinstance(name, str) or not name or unprintable(name) is not None:
+            continue  # a wrong type, or characters that do not print: the schema says so
+        refused = _refusal(folder, name, kind, design_file.name)
+        if refused is not None:
+            problems.add(f"files.{kind}", name, *refused)
         else:
             out[kind] = folder / name
     return out

@@ -28,7 +28,7 @@ from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
 from tactcad import __version__
-from tactcad.assembly.inventory import instance_counts, part_quantities
+from tactcad.assembly.inventory import fabricated_parts, instance_counts, part_quantities, sample_kit
 from tactcad.atomic import write_bytes_atomic
 from tactcad.catalogue.array_catalogue import Instance, PartSpec
 from tactcad.design.array_plan import Plan
@@ -112,16 +112,20 @@ def bom_rows(instances: Sequence[Instance] | Mapping[str, Sequence[Instance]],
             raise KeyError(f"instance part {part!r} has no PartSpec")
     order = [n for n in specs if n in used]
     order.sort(key=lambda n: 0 if specs[n].kind == "fabricated" else 1)
-    rows = []
-    for k, name in enumerate(order, start=1):
-        spec = specs[name]
-        rows.append(BomRow(
-            item=k, part=name, quantity=used[name],
-            per_assembly=tuple((a, c.get(name, 0)) for a, c in per.items()),
-            kind=spec.kind, material=material_designation(spec, plan), process=spec.process,
-            key_dimensions=key_dimensions(spec), files=tuple(files(spec)),
-            stock=stock_size(spec) if spec.kind == "fabricated" else ""))
-    return rows
+    return [part_row(specs[name], k, used[name],
+                     tuple((a, c.get(name, 0)) for a, c in per.items()), files, plan)
+            for k, name in enumerate(order, start=1)]
+
+
+def part_row(spec: PartSpec, item: int, quantity: int, per_assembly: tuple[tuple[str, int], ...],
+             files: Callable[[PartSpec], Sequence[str]] = lambda spec: (),
+             plan: Plan | None = None) -> BomRow:
+    """The BOM row of the part ``spec``: material, process, key dimensions,
+    its files and, for a fabricated part, its stock (see :func:`bom_rows`)."""
+    return BomRow(item=item, part=spec.name, quantity=quantity, per_assembly=per_assembly,
+                  kind=spec.kind, material=material_designation(spec, plan), process=spec.process,
+                  key_dimensions=key_dimensions(spec), files=tuple(files(spec)),
+                  stock=stock_size(spec) if spec.kind == "fabricated" else "")
 
 
 def sensor_rows(plan: Plan, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]
@@ -230,16 +234,6 @@ def _element_count(rows: Sequence[BomRow], specs: Mapping[str, PartSpec]) -> int
                if specs.get(r.part) is not None and specs[r.part].builder == "element")
 
 
-def sample_kit(project) -> dict[str, tuple[float, object]]:
-    """Every sample the rigs file names: ``{part: (stiffness N/mm, PartData)}``."""
-    from tactcad.partlib.sample import stiffnesses
-
-    data = project.rigs.library.get("sample")
-    if data is None:
-        return {}
-    return {d.name: (k, d) for d, k in zip((data, *data.companions), stiffnesses(data))}
-
-
 def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
     """The build book's steps (:func:`tactcad.assembly.build_steps.build_steps`) for BOM ``rows``."""
     from tactcad.assembly.build_steps import build_steps
@@ -276,7 +270,6 @@ def complete_kit(project, assembled, files=lambda spec: ()) -> list[BomRow]:
     from dataclasses import replace
 
     from tactcad.assembly.build_steps import CONSUMABLES
-    from tactcad.catalogue.rig_catalogue import library_spec
 
     plan = project.plan
     specs, _ = assembled
@@ -284,14 +277,10 @@ def complete_kit(project, assembled, files=lambda spec: ()) -> list[BomRow]:
     names = {r.part for r in rows}
     per = [a for a, _ in rows[0].per_assembly] if rows else ["array"]
     elements = _element_count(rows, specs)
-    kit = sample_kit(project)
-    # every sample is the same block in another compound: the placed ones' drawing serves all
-    shown = next((r for r in rows if r.part in kit), None)
-    samples = [BomRow(item=0, part=part, quantity=1, per_assembly=tuple((a, 0) for a in per),
-                      kind="fabricated", material=data.material, process=str(data.process),
-                      key_dimensions=key_dimensions(library_spec(data, "sample")),
-                      files=shown.files if shown else ())
-               for part, (k, data) in kit.items() if part not in names]
+    # the samples no scene shows: made and drawn as every part is (fabricated_parts)
+    made, qty = fabricated_parts(project, assembled)
+    samples = [part_row(spec, 0, qty[spec.name], tuple((a, 0) for a in per), files, plan)
+               for spec in made if spec.name not in names]
     consumables = [BomRow(item=0, part=c.part, quantity=c.quantity(elements),
                           per_assembly=tuple((a, 0) for a in per), kind="consumable",
                           material=c.material, process=c.reference, key_dimensions=c.size,

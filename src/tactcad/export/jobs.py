@@ -330,7 +330,7 @@ def scene_part_files(plan, assemblies):
 def review_sources(run: Run) -> tuple[list[str], list[tuple[str, str]]]:
     """(scene names, array first; (sheet path, title) of every drawing, the assembly last)."""
     names = sorted(run.scenes, key=lambda n: n != "array")
-    parts, _ = fabricated_parts(run.plan, run.inventory)
+    parts, _ = fabricated_parts(run.project, run.inventory)
     sheets = [(drawing_name(s.name), f"{s.name} (fabrication drawing)") for s in parts]
     return names, sheets + [(ASSEMBLY_DRAWING, "array (assembly drawing)")]
 

@@ -23,6 +23,7 @@ the scene, the hidden parts and the sheets' zoom (``review_page.js``;
 
 from __future__ import annotations
 
+import os
 import tempfile
 import threading
 import time
@@ -164,7 +165,7 @@ def changes(files: Iterable[Path], poll: bool, stop: threading.Event | None = No
     folders = sorted({str(Path(f).parent) for f in files})
     first = True
     for found in watchfiles.watch(*folders,
-                                  watch_filter=lambda _c, p: str(Path(p).resolve()) in targets,
+                                  watch_filter=lambda _c, p: os.path.realpath(p) in targets,
                                   debounce=150, step=50, force_polling=poll, poll_delay_ms=200,
                                   stop_event=stop, rust_timeout=100, yield_on_timeout=True):
         if found or first:  # an empty set: nothing changed within rust_timeout

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Sequence
 
-from tactcad.atomic import (carry_over, disk_full_error, leftover_staging, publish_dir,
+from tactcad.atomic import (carry_over, disk_full_error, in_target, leftover_staging, publish_dir,
                             remove_partial_files, remove_tree, staging_dir, warn_left_behind,
                             write_bytes_atomic)
 from tactcad.design.project import Project
@@ -210,14 +210,6 @@ def _written_by_tactcad(out: Path) -> set[str]:
         return {MANIFEST}
 
 
-def _in_export_folder(exc: OSError, staging: Path, out: Path) -> OSError:
-    """``exc`` with a path in the staging folder shown as the export folder's path."""
-    name = str(exc.filename or staging)  # an error of write() names no file: the folder
-    if exc.errno is None or not name.startswith(str(staging)):
-        return exc
-    return OSError(exc.errno, exc.strerror, str(out) + name[len(str(staging)):])
-
-
 def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Project, log: Log,
                store: Store, with_manifest: bool, parts=None,
                dxf_version: str | None = None, partial: dict | None = None,
@@ -254,14 +246,14 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
         os.chmod(staging, 0o755)  # mkdtemp makes it private; an export folder is for sharing
         publish_dir(staging, out)
     except OSError as exc:  # name the file in the export folder, not in the staging one
-        raise _in_export_folder(exc, staging, out) from exc
+        raise in_target(exc, staging, out) from exc
     except (TactcadError, KeyboardInterrupt):
         raise
     except Exception as exc:  # a writer failing without an OSError: a full disk is said as such
         full = disk_full_error(staging)
         if full is None:
             raise
-        raise _in_export_folder(full, staging, out) from exc
+        raise in_target(full, staging, out) from exc
     finally:
         warn_left_behind(remove_tree(staging) if staging.exists() else [])
     builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded

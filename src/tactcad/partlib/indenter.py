@@ -150,7 +150,8 @@ def notes_after(g: IndenterGeometry, pen) -> list[str]:
     and the contact face."""
     return ["The M6 thread screws the indenter onto the force gauge's measuring shaft; "
             "contact face perpendicular to the thread axis within 0.02 (ISO 1101), so the "
-            "2 x 3 mm face lies flat on the element's tip."]
+            f"{pen.fmt_mm(g.contact_width_mm)} x {pen.fmt_mm(g.contact_depth_mm)} mm face lies "
+            "flat on the element's tip."]
 
 
 PART = RigPart(key="indenter", section=IndenterSection, host="", derive=derive, build=build,

@@ -78,9 +78,10 @@ def derive(s: SampleSection, context, p: Problems) -> PartData:
     width = max(SAMPLE_WIDTH_MM, need_w) if s.width_mm is None else \
         p.within("sample.width_mm", s.width_mm, need_w, why=why)
     stiffness = tuple(s.stiffness_N_per_mm)
-    if len(set(stiffness)) != len(stiffness):
-        p.add("sample.stiffness_N_per_mm", list(stiffness), "distinct values",
-              "each stiffness names one sample part")
+    names = [sample_name(k) for k in stiffness]
+    if len(set(names)) != len(names):  # 1 and 1.0000001 would both be sample_k1
+        p.add("sample.stiffness_N_per_mm", list(stiffness), "values distinct in their first 6 "
+              "significant digits", "each stiffness names one sample part, sample_k<value>")
     g = SampleGeometry(length, width, s.height_mm, s.material)
     first, *others = (_sample(g, k, stiffness) for k in stiffness)
     return PartData(**first, companions=tuple(PartData(**o) for o in others))

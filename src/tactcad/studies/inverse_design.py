@@ -61,6 +61,7 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 from dataclasses import dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
@@ -617,6 +618,55 @@ def neutral_assumptions(data: Mapping[str, Any], base_name: str) -> dict[str, st
     return out
 
 
+#: What a reason quotes of its design: dimensions ("1.5 mm", "2 x 3 mm") and bolt sizes ("M2").
+_QUOTED_DIMENSION = re.compile(r"\d+(?:\.\d+)?(?:\s*[x×]\s*\d+(?:\.\d+)?)*(?=\s*mm\b)")
+_QUOTED_BOLT = re.compile(r"\bM\d+(?:\.\d+)?\b")
+_REASON_KEY = re.compile(r"^(\w+)\.(\w+)(?:\[(\d+)\])?$")
+
+
+def _own_values(key: str, data: Mapping[str, Any]) -> list[Any]:
+    """The value(s) the reason ``key`` ("element.tip_height_mm",
+    "arms.lengths_mm[5]", 1-based) is given for in the design ``data``."""
+    m = _REASON_KEY.match(key)
+    table = data.get(m.group(1)) if m else None
+    value = table.get(m.group(2)) if isinstance(table, Mapping) else None
+    if isinstance(value, list):
+        k = int(m.group(3)) - 1 if m.group(3) else None
+        return value if k is None else value[k:k + 1]
+    return [] if value is None else [value]
+
+
+def quotes_not_its_own(key: str, reason: str, data: Mapping[str, Any]) -> list[str]:
+    """The dimensions ("2 x 3 mm") and bolt sizes ("M2") the reason for
+    ``key`` quotes that are not ``key``'s own value in the design ``data``:
+    values of other fields, or of another design, which a reason carried
+    into a new design cannot vouch for. Empty: the reason quotes only its
+    own value, as the design has it."""
+    own = _own_values(key, data)
+    numbers = [float(v) for v in own if isinstance(v, (int, float)) and not isinstance(v, bool)]
+
+    def held(quote: str) -> bool:
+        return all(any(math.isclose(float(v), n, rel_tol=1e-9) for n in numbers)
+                   for v in re.findall(r"\d+(?:\.\d+)?", quote))
+
+    dims = [f"{q} mm" for q in _QUOTED_DIMENSION.findall(reason) if not held(q)]
+    return dims + [b for b in _QUOTED_BOLT.findall(reason) if b not in own]
+
+
+def with_reasons_that_hold(data: dict[str, Any], carried: Mapping[str, str]) -> None:
+    """Replace, in ``data``'s ``[assumptions]``, each reason still as it was
+    carried from the base design (``carried``) that quotes other values than
+    its field's own in this design (:func:`quotes_not_its_own`), e.g. the
+    base's "2 x 3 mm contact face" in the tip height's reason, by a pointer
+    that names them: a reason is derived from the design it stands in."""
+    why = data.get("assumptions", {})
+    for key, text in carried.items():
+        quoted = quotes_not_its_own(key, text, data) if why.get(key) == text else []
+        if quoted:
+            why[key] = (f"Kept from the base design, whose reason quotes {', '.join(quoted)}: "
+                        "values of the base design, not checked for this one.")
+
+
 def with_grid(data: Mapping[str, Any], rows: int | None, columns: int | None) -> dict[str, Any]:
     """Raw tables with a new rows x columns grid; every arm the base's first
     (the inverse design rewrites them). Rows and columns are validated with
@@ -701,6 +751,7 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
         DesignError: the tables break a design rule (field named).
     """
     base_web = float(data["element"]["web_thickness_mm"])
+    carried = dict(data.get("assumptions", {}))  # the base's reasons, checked once values are set
     refusal = None
     for _ in range(ARM_HEIGHT_ROUNDS):
         plan = plan_from_dict(data, source="<inverse design>")
@@ -757,6 +808,7 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
         why["element.web_thickness_mm"] = (
             f"tactcad design: {t:g} mm by the web rule at {targets.full_scale_force_N:g} N: "
             f"{WEB_RULE}.")
+    with_reasons_that_hold(data, carried)
     data["requirements"] = requirements_table(targets, data)
     new_plan = plan_from_dict(data, source="<inverse design>")
     return InverseDesign(targets, data, new_plan, refs, web_changed, a_r, a_m,

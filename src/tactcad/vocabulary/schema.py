@@ -23,11 +23,12 @@ import re
 import tomllib
 import types
 import typing
+import unicodedata
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Annotated, Any, Mapping
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError
 from pydantic.fields import FieldInfo
 
 from tactcad.errors import DesignError, DesignErrors
@@ -70,7 +71,7 @@ class Limits:
     hi_open: bool = False
     unit: str = "mm"
     why: str = ""
-    kind: str = "number"  # number, integer, text, name, choice, list
+    kind: str = "number"  # number, integer, text, file, name, choice, list
 
     def text(self) -> str:
         """The allowed range in words, e.g. ``0.15 <= value <= 0.4 mm``."""
@@ -113,6 +114,39 @@ TEXT_PATTERN = r"^[^\x00-\x1f\x7f]*[^\x00-\x1f\x7f\s][^\x00-\x1f\x7f]*$"
 Text = Annotated[str, Field(min_length=1, max_length=MAX_TEXT, pattern=TEXT_PATTERN),
                  Limits(kind="text", unit="")]
 Name = Annotated[str, Field(pattern=NAME_PATTERN), Limits(kind="name", unit="")]
+
+#: What a character that ``str.isprintable`` refuses is, by Unicode general category.
+_UNPRINTABLE_KINDS = {"Cc": "a control character", "Cf": "an invisible format character",
+                      "Cs": "a surrogate", "Co": "a private-use character",
+                      "Cn": "an unassigned code point", "Zs": "a space other than U+0020",
+                      "Zl": "a line separator", "Zp": "a paragraph separator"}
+
+
+def unprintable(text: str) -> str | None:
+    """The first character of ``text`` that does not print as itself
+    (``str.isprintable``: controls, invisible format characters such as U+200B,
+    U+202E or U+FEFF, spaces other than U+0020 such as U+00A0, surrogates,
+    private-use and unassigned code points such as U+FFFF), or None."""
+    return next((c for c in text if not c.isprintable()), None)
+
+
+def unprintable_text(char: str) -> str:
+    """``U+200B, an invisible format character``: a refused character as a message names it."""
+    kind = _UNPRINTABLE_KINDS.get(unicodedata.category(char), "a character that does not print")
+    return f"U+{ord(char):04X}, {kind}"
+
+
+def _printable(text: str) -> str:
+    if unprintable(text) is not None:
+        raise ValueError("a character that does not print")
+    return text
+
+
+#: A file name (relative path) of the project, e.g. ``[files] rigs``: one line of
+#: printable characters, so that the name a user reads is the name on disk.
+FileName = Annotated[str, Field(min_length=1, max_length=MAX_TEXT, pattern=TEXT_PATTERN),
+                     AfterValidator(_printable), Limits(kind="file", unit="")]
+FILE_NAME_ALLOWED = f"a file name of 1 ... {MAX_TEXT} printable characters, not all spaces"
 #: A calendar date, ISO 8601 ``YYYY-MM-DD`` (a design revision's date).
 DateText = Annotated[str, Field(pattern=r"^[0-9]{4}-(0[1-9]|1[0-2])-(0[1-9]|[12][0-9]|3[01])$"),
                      Limits(kind="choice", unit="a date YYYY-MM-DD (ISO 8601)")]
@@ -260,6 +294,11 @@ def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> Design
         return DesignError(field, value, f"one line of text, 1 ... {MAX_TEXT} characters, no control "
                            "characters", why or "texts end up in DXF headers, drawings and the BOM",
                            file)
+    if limits.kind == "file":
+        bad = unprintable(value) if isinstance(value, str) else None
+        found = f" (found {unprintable_text(bad)})" if bad is not None else ""
+        return DesignError(field, value, FILE_NAME_ALLOWED + found,
+                           why or "the name a user reads must be the file's name on disk", file)
     if limits.kind == "name":
         return DesignError(field, value, NAME_ALLOWED,
                            "names end up in file names, DXF headers and drawings", file)
