@@ -5,12 +5,15 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import copy
 import shlex
 from pathlib import Path
+from typing import Any
 
 from tactcad.mechanics.ladder import is_meshed, models
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands import add_design_arg, add_output_args, progress_from_args
 from tactcad.commands.options import count, material_grade_name, number
+from tactcad.errors import DesignError
 
 
 
@@ -142,24 +145,24 @@ def run(args: argparse.Namespace) -> int:
     import tomli_w
 
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.studies.design_alternatives import design_or_alternatives
     from tactcad.studies.inverse_design import Targets
+    from tactcad.studies.layout_search import searched_design
 
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
-    base = plan_from_args(args)
-    layout = dict(grade=args.material, pitch_mm=args.pitch, rows=args.rows, columns=args.columns,
-                  name=path.stem.replace("-", "_") or "inverse_design")
-    if args.footprint is None:
-        result = design_or_alternatives(base, targets, **layout)
-    else:
+    data, design = start_from_args(args, name=path.stem.replace("-", "_") or "inverse_design")
+    kwargs = {}
+    if args.footprint is not None:
         from tactcad.assembly.inventory import array_envelope_mm
-        from tactcad.studies.footprint_fit import design_within_footprint
 
-        result = design_within_footprint(base, targets, tuple(args.footprint), array_envelope_mm,
-                                         **layout)
+        kwargs = dict(footprint_mm=tuple(args.footprint), envelope_of=array_envelope_mm)
+    try:
+        result = searched_design(data, targets, fixed=fixed_fields(args), validate=project_check(path),
+                                 name=data["design"]["name"], **kwargs)
+    except DesignError as exc:
+        raise as_options(exc, args, design) from None
     report = design_report(result, args.verify, progress_from_args(args))
     from tactcad import __version__
 
@@ -180,10 +183,105 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Design fields the command's options write (the option named in their errors).
+OPTION_FIELDS = {"array.rows": "--rows", "array.columns": "--columns", "array.pitch_mm": "--pitch",
+                 "material.grade": "--material", "material.name": "--material",
+                 "design.name": "--out", "requirements.footprint_mm": "--footprint",
+                 "requirements.kr_over_km": "--kr-over-km",
+                 "requirements.kobj_range_N_per_mm": "--kobj-range",
+                 "requirements.full_scale_force_N": "--full-scale-force"}
+
+
+def set_keys(args: argparse.Namespace) -> dict[str, Any]:
+    """The ``--set`` overrides, by key."""
+    from tactcad.commands import parse_overrides
+
+    return parse_overrides(getattr(args, "overrides", None))
+
+
+def fixed_fields(args: argparse.Namespace) -> set[str]:
+    """The free layout's fields the user fixed: by ``--set`` or ``--pitch``."""
+    from tactcad.studies.layout_search import FREE_FIELDS
+
+    fixed = set(set_keys(args)) & set(FREE_FIELDS)
+    if args.pitch is not None:
+        fixed.add("array.pitch_mm")
+    return fixed
+
+
+def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
+    """The raw tables the search starts from: the base design (``--design``,
+    else the working folder's or the shipped one) with every ``--set``, the
+    grade, grid and pitch asked for, and the new design's name. Its values are
+    checked field by field (types and ranges); the rules between fields are
+    left to the search, which may change the layout that breaks them.
+
+    Raises:
+        DesignError: a value out of its range, named as the user wrote it (the
+            ``--set`` key or the option) or, for the base file's own, with the file.
+    """
+    from tactcad.design.array_plan import read_toml, validate_design, with_overrides
+    from tactcad.errors import DesignErrors
+    from tactcad.project_folder import default_design
+    from tactcad.studies.inverse_design import start_tables
+
+    design = Path(args.design) if args.design else default_design()
+    raw = with_overrides(read_toml(design, "design file"), set_keys(args))
+    base_name = raw.get("design", {}).get("name", design.stem) if isinstance(
+        raw.get("design"), dict) else design.stem
+    data = start_tables(raw, str(base_name), grade=args.material, pitch_mm=args.pitch,
+                        rows=args.rows, columns=args.columns)
+    data["design"] = {**data.get("design", {}), "name": name}
+    model, problems = validate_design(data, design.name)
+    if model is None and problems.errors:
+        raise as_options(DesignErrors(problems.errors), args, design)
+    return data, design
+
+
+def as_options(exc: DesignError, args: argparse.Namespace, design: Path) -> DesignError:
+    """``exc`` with each error named as the user wrote it: a field an option
+    writes by the option, a ``--set`` key as ``--set``; the base file's own
+    fields keep the file. The alternatives are kept."""
+    from tactcad.errors import DesignError as Error, DesignErrors
+
+    keys = set_keys(args)
+    errors = getattr(exc, "errors", None) or (exc,)
+
+    def renamed(e):
+        if e.field in keys:
+            return Error(e.field, e.value, e.allowed, e.why, "--set", e.alternatives)
+        option = OPTION_FIELDS.get(e.field)
+        if option is not None:
+            return Error(option, e.value, e.allowed, e.why, "", e.alternatives)
+        return e
+
+    if not any(renamed(e) is not e for e in errors):
+        return exc
+    if hasattr(exc, "message") and len(errors) > 1:  # a refusal: its own words, fields renamed
+        exc.errors = tuple(renamed(e) for e in errors)
+        return exc
+    out = DesignErrors([renamed(e) for e in errors], exc.alternatives, what="the options")
+    return out
+
+
+def project_check(path: Path):
+    """raw tables -> the project that would be written at ``path``, validated
+    with the rigs and scenes made for it (:func:`tactcad.project_folder.companion_tables`);
+    raises :class:`DesignError` where the written design would be refused."""
+    from tactcad.design.project import project_with_design_data
+    from tactcad.project_folder import companion_tables
+
+    def check(data):
+        return project_with_design_data(copy.deepcopy(dict(data)), path,
+                                        companions=companion_tables)
+    return check
+
+
 def design_options(args: argparse.Namespace) -> list[str]:
-    """The options that shaped the design, as typed (for its header): the
-    targets, the grid, grade and pitch where given, the base design's file
-    name and every ``--set``."""
+    """The command line that made the design (for its header), every option
+    as typed so that running it again makes the same file: the targets, the
+    grid, grade, pitch and footprint where given, the base design, every
+    ``--set``, the verification level, ``--out`` and ``--force``."""
     words = [f"--kr-over-km {args.kr_over_km:g}",
              f"--kobj-range {args.kobj_range[0]:g} {args.kobj_range[1]:g}",
              f"--full-scale-force {args.full_scale_force:g}"]
@@ -193,10 +291,15 @@ def design_options(args: argparse.Namespace) -> list[str]:
                         ("--columns", args.columns), ("--pitch", args.pitch)):
         if value is not None:
             words.append(f"{flag} {value:g}" if isinstance(value, float) else f"{flag} {value}")
-    # the base design and its overrides shape the result too
     if getattr(args, "design", None):
-        words.append(f"--design {shlex.quote(Path(args.design).name)}")
-    words += [f"--set {shlex.quote(item)}" for item in getattr(args, "set", None) or ()]
+        words.append(f"--design {shlex.quote(args.design)}")
+    words += [f"--set {shlex.quote(item)}" for item in getattr(args, "overrides", None) or ()]
+    verify = getattr(args, "verify", None)
+    if verify is not None and verify != "fem3d":
+        words.append(f"--verify {verify}")
+    words.append(f"--out {shlex.quote(args.out)}")
+    if getattr(args, "force", False):
+        words.append("--force")
     return words
 
 
