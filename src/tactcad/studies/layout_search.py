@@ -483,14 +483,20 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
         if footprint_mm is None and (force_binds or not alternatives):
             tables = with_layout(data, best_c)
             near = nearest_targets(tables, targets, correction)
-            alternatives += [_alt(_option(a), "the nearest feasible " + a.field[2:].replace(
-                "-", " "), "target") for a in near if a.field != "--full-scale-force"]
+            alternatives += [_alt(_option(a), TARGET_WORDS[a.field], "target")
+                             for a in near if a.field != "--full-scale-force"]
             alternatives += [_alt(_option(a), a.words(), "change", meets_targets=a.meets_targets,
                                   largest_force_N=a.largest_force_N)
                              for a in relaxing_changes(tables, targets, correction,
                                                        better_than_N=best_m.largest_force_N)
                              if a.field != "sheet.thickness_mm"]
     return _error(errors, alternatives, targets)
+
+
+#: What each nearest target of :func:`tactcad.studies.design_alternatives.nearest_targets` is.
+TARGET_WORDS = {"--full-scale-force": "the largest full-scale force",
+                "--kr-over-km": "the nearest feasible K_r/K_m",
+                "--kobj-range": "the K_obj range moved to the nearest feasible, its width kept"}
 
 
 def _alt(option: str, words: str, kind: str, **more) -> dict:
@@ -549,7 +555,7 @@ def _stiffness_alternatives(data, targets, mechs, correction) -> list[dict]:
     if not mechs:
         return []
     tables = with_layout(data, mechs[0][0])
-    return [_alt(_option(a), "the nearest feasible " + a.field[2:].replace("-", " "), "target")
+    return [_alt(_option(a), TARGET_WORDS[a.field], "target")
             for a in nearest_targets(tables, targets, correction)]
 
 
