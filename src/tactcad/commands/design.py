@@ -25,11 +25,15 @@ def verify_levels() -> tuple[str, ...]:
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "design", help="inverse design: K_r/K_m, K_obj range and full-scale force -> design file",
-        description="Chooses the arm lengths (and, where the design's web cannot meet the "
-                    "limits, the web) of reference and measuring elements for a stiffness "
-                    "ratio K_r/K_m, an object-stiffness range and a full-scale force, within "
-                    "yield / safety factor and the gauge's fatigue strain; verifies the two "
-                    "element geometries at fem3d; writes the design TOML. Units: N/mm, N, mm.")
+        description="Chooses the arm lengths and the web of reference and measuring "
+                    "elements for a stiffness ratio K_r/K_m, an object-stiffness range and a "
+                    "full-scale force, within yield / safety factor and the gauge's fatigue "
+                    "strain; where the base design's layout cannot, searches the sheet, the "
+                    "ISO clamp bolt, the pitch and the tip width (each fixed by a --set of it, "
+                    "the pitch by --pitch), nearest the base first; verifies the two element "
+                    "geometries at the --verify level; writes the design TOML. A refusal names "
+                    "the targets that bind and the nearest feasible ones as options to paste. "
+                    "Units: N/mm, N, mm.")
     p.add_argument("--kr-over-km", type=number(1, 1e6, lo_open=True), required=True, metavar="X",
                    help="stiffness ratio K_r/K_m of a sensing unit (> 1; about 10 reads soft "
                         "objects with high sensitivity)")
@@ -46,7 +50,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="rows of the new grid (the model holds two clamped rows facing each "
                         "other: 2)")
     p.add_argument("--pitch", type=number(0, 1000, "mm", lo_open=True), metavar="MM", default=None,
-                   help="array pitch (default: the base design's)")
+                   help="array pitch, fixed (default: searched, starting from the base "
+                        "design's)")
     p.add_argument("--footprint", type=number(0, 1e4, "mm", lo_open=True), nargs=2,
                    metavar=("X", "Y"), default=None,
                    help="plan-view envelope (mm) the clamped array must fit: the design is "

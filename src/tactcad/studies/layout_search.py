@@ -53,11 +53,10 @@ from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_SPACER_MM, MIN_T
 from tactcad.design.domain import longest_grip_mm
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import range_warnings_unsaid
-from tactcad.studies.design_alternatives import (_nearest_on_scan, largest_feasible_force,
+from tactcad.studies.design_alternatives import (nearest_on_scan, largest_feasible_force,
                                                  nearest_targets,
                                                  relaxing_changes)
-from tactcad.studies.footprint_fit import (_design_at, _fitting_design, _length_grid, _stated,
-                                           Layout as LengthLayout, fits)
+from tactcad.studies.footprint_fit import design_in_footprint, fits, stated_footprint
 from tactcad.studies.inverse_design import (STIFFNESS_LIMITS, InverseDesign, InverseDesignError,
                                             Targets, binding_limits, design_from_tables,
                                             design_variant, max_full_scale_force_N,
@@ -373,25 +372,17 @@ def _attempt(tables, targets, name, correction, footprint_mm, envelope_of, valid
 def _within_footprint(tables, targets, footprint_mm, envelope_of, name, correction
                       ) -> InverseDesign | None:
     """The design on ``tables`` as asked when it fits, else with the longest
-    element that fits (:mod:`tactcad.studies.footprint_fit`), footprint stated."""
-    sheet = float(tables["sheet"]["thickness_mm"])
+    element that fits (:func:`tactcad.studies.footprint_fit.design_in_footprint`),
+    the footprint stated."""
     try:
         plain = design_from_tables(copy.deepcopy(tables), targets, name=name,
                                    correction=correction)
     except DesignError:
         plain = None
     if plain is not None and fits(envelope_of(plain.plan), footprint_mm):
-        return _stated(plain, footprint_mm, sheet, None)
-    length = _fitting_design(tables, footprint_mm, envelope_of, targets, correction, name,
-                             _length_grid(tables))
-    if length is None:
-        return None
-    d = _design_at(tables, length, targets, correction, name)
-    if d is None:
-        return None
-    return _stated(d, footprint_mm, sheet, LengthLayout(
-        sheet, float(tables["array"]["pitch_mm"]),
-        float(d.plan.element(1).geometry.overall_length_mm)))
+        return stated_footprint(plain, footprint_mm)
+    return design_in_footprint(tables, targets, footprint_mm, envelope_of,
+                               correction=correction, name=name)
 
 
 def _with_reasons(d: InverseDesign, start: FreeLayout, layout: FreeLayout,
@@ -637,7 +628,7 @@ def _derived_refusal(tables, targets: Targets, derived: Sequence[DesignError], m
 
     top = max(mech.largest_force_N, F)
     scan = np.geomspace(F / 100, top, 25)
-    near = _nearest_on_scan(scan, F, ok)
+    near = nearest_on_scan(scan, F, ok)
     if near is not None:  # offered to 3 digits, rounded away from the asked force
         offer = _round_away(near, F)
         near = offer if ok(offer) else None
