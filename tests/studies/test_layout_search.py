@@ -145,3 +145,33 @@ def test_fixed_fields_stay_and_candidates_come_nearest_first():
     assert {(c.sheet_mm, c.bolt) for c in kept} == {(start.sheet_mm, start.bolt)}
     assert not stack_fits(data, start)  # six 3 mm sheets at 4 mm need more than an M2
     assert any(stack_fits(data, c) for c in every)
+
+
+def test_a_stack_no_bolt_holds_is_refused_as_columns_with_the_most_that_do(tmp_path, capsys):
+    """A fixed 3 mm sheet: twelve columns need a longer bolt than the ISO table's;
+    the refusal offers the most columns any bolt holds, which then designs."""
+    argv = [*GRASPER, "--full-scale-force", "0.05", "--set", "sheet.thickness_mm=3",
+            "--columns", "12", "--out", str(tmp_path / "c.toml")]
+    code, doc = _run(argv, capsys)
+    err = doc["error"]
+    assert code == 2 and err["field"] == "--columns" and err["value"] == 12, err
+    option = err["alternatives"][0]["option"]
+    most = int(option.split()[1])
+    assert 1 <= most < 12 and err["allowed"] == f"at most {most}"
+    code, doc = _run(_with(argv, option), capsys)
+    assert code == 0, doc
+    plan = load_design(tmp_path / "c.toml")
+    assert (plan.columns, plan.sheet_thickness_mm) == (most, 3.0)
+
+
+def test_values_fixed_against_each_other_are_refused_as_the_user_wrote_them(tmp_path, capsys):
+    """A tip wider than the fixed pitch allows: no free value mends it, so the
+    refusal names the --set, not a field of the base design."""
+    code, doc = _run([*GRASPER, "--full-scale-force", "0.05", "--set", "element.tip_width_mm=5",
+                      "--pitch", "4", "--out", str(tmp_path / "t.toml")], capsys)
+    err = doc["error"]
+    assert code == 2 and err["field"] == "element.tip_width_mm", err
+    assert err["message"].startswith("--set: element.tip_width_mm = 5")
+    code, doc = _run([*GRASPER, "--full-scale-force", "0.05", "--set", "nosuch.key=1",
+                      "--out", str(tmp_path / "t.toml")], capsys)
+    assert code == 2 and doc["error"]["message"].startswith("--set: nosuch"), doc

@@ -239,8 +239,24 @@ def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
     data["design"] = {**data.get("design", {}), "name": name}
     model, problems = validate_design(data, design.name)
     if model is None and problems.errors:
-        raise as_options(DesignErrors(problems.errors), args, design)
+        # the user's own values first: a wrong --rows also breaks the arms list made for it
+        own = [e for e in problems.errors if written_by_user(e.field, args)]
+        raise as_options(DesignErrors(own or problems.errors), args, design)
     return data, design
+
+
+def written_by_user(field: str, args: argparse.Namespace) -> bool:
+    """True when the user wrote ``field``: by an option, or by a ``--set`` of it,
+    of a key inside it (a section) or of the list it indexes."""
+    return field in OPTION_FIELDS or _set_key_of(field, args) is not None
+
+
+def _set_key_of(field: str, args: argparse.Namespace) -> str | None:
+    """The ``--set`` key that wrote ``field``, or None."""
+    for key in set_keys(args):
+        if field == key or key.startswith(field + ".") or field.startswith(key + "["):
+            return key
+    return None
 
 
 def as_options(exc: DesignError, args: argparse.Namespace, design: Path) -> DesignError:
@@ -249,11 +265,10 @@ def as_options(exc: DesignError, args: argparse.Namespace, design: Path) -> Desi
     fields keep the file. The alternatives are kept."""
     from tactcad.errors import DesignError as Error, DesignErrors
 
-    keys = set_keys(args)
     errors = getattr(exc, "errors", None) or (exc,)
 
     def renamed(e):
-        if e.field in keys:
+        if _set_key_of(e.field, args) is not None:
             return Error(e.field, e.value, e.allowed, e.why, "--set", e.alternatives)
         option = OPTION_FIELDS.get(e.field)
         if option is not None:

@@ -434,13 +434,15 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
             errors.append(DesignError(
                 "--columns", columns, f"at most {most}" if most else "none",
                 f"no bolt{free} holds a stack of {columns} elements with both clamp plates and "
-                f"the rigs' bracket ear, at the thinnest sheet and least pitch the domain allows"))
+                f"the rigs' bracket ear, in any layout searched"))
             if most:
                 alternatives.append(_alt(f"--columns {most}", f"{most} columns: the longest "
                                          "stack a stock bolt holds", "target"))
             return _error(errors, alternatives, targets)
         mechs = [(c, _mechanics(seen, data, c, targets, correction)) for c in seen.stack_fit]
         mechs = [(c, m) for c, m in mechs if m is not None]
+        if not mechs:  # the values the user fixed break a rule no free value mends
+            return _rule_error(with_layout(data, seen.stack_fit[0]))
         stiff = [(c, m) for c, m in mechs if m.largest_force_N > 0]
         if not stiff:
             errors.append(_stiffness_error(data, targets, mechs))
@@ -553,58 +555,77 @@ def _stiffness_alternatives(data, targets, mechs, correction) -> list[dict]:
 def _footprint_refusal(data, targets: Targets, stiff, footprint_mm, envelope_of, validate,
                        name, correction, start) -> tuple[list[DesignError], list[dict]]:
     """The footprint's limit: the smallest envelope any layout meets, at the
-    asked force or, where its elements cannot carry it, the largest they do."""
+    asked force or, where its elements cannot carry it, the largest they do.
+    Where some layout fits at the force its elements carry, the footprint does
+    not bind: no error, and the largest such force is offered instead."""
     F = targets.full_scale_force_N
-    best = None
+    weighed = []  # (need, force, distance, layout, envelope)
     for c, m in stiff:
         force = min(F, m.largest_force_N)
         tables = with_layout(data, c)
         length = smallest_length_mm(tables, m, force)
         env = None if length is None else _envelope(tables, envelope_of, length)
-        if env is None:
-            continue
-        need = max(e / f for e, f in zip(env, footprint_mm))
-        key = (need, -force, c.distance(start))
-        if best is None or key < best[0]:
-            best = (key, c, force, env)
-    if best is None:
+        if env is not None:
+            weighed.append((max(e / f for e, f in zip(env, footprint_mm)), force,
+                            c.distance(start), c, env))
+    if not weighed:
         return [DesignError("--footprint", list(footprint_mm), "none for these targets",
                             "no layout's elements meet the stiffness targets")], []
-    _, c, force, env = best
+    fitting = [w for w in weighed if w[0] <= 1.0 + 1e-9]
+    if fitting:  # the force binds, not the footprint
+        _, force, _, c, _ = max(fitting, key=lambda w: (w[1], -w[2]))
+        force = _offered_force(with_layout(data, c), targets, force, correction)
+        d = _checked(with_layout(data, c), replace(targets, full_scale_force_N=force),
+                     footprint_mm, envelope_of, validate, name, correction)
+        return [], [] if d is None else [_alt(
+            f"--full-scale-force {force:g}",
+            f"the largest full-scale force within the footprint ({c.words()})", "target",
+            full_scale_force_N=force)]
+    need, force, _, c, env = min(weighed, key=lambda w: (w[0], -w[1], w[2]))
     axes = len(footprint_mm)
     tables = with_layout(data, c)
     if force < F:  # the force the layout carries, by whole designs
-        force = min(force, largest_feasible_force(tables, targets, correction) or force)
-    asked = replace(targets, full_scale_force_N=force)
+        force = _offered_force(tables, targets, force, correction)
     offer = [_ceil_step(e, FOOTPRINT_STEP_MM) for e in env[:axes]]
     for _ in range(4):  # a whole design within the offer; grown a step where it is not
-        d = _within_footprint(tables, asked, offer, envelope_of, name, correction)
-        ok = d is not None
-        if ok and validate is not None:
-            try:
-                validate(d.data)
-            except DesignError:
-                ok = False
-        if ok:
+        d = _checked(tables, replace(targets, full_scale_force_N=force), offer, envelope_of,
+                     validate, name, correction)
+        if d is not None:
             break
         offer = [o + FOOTPRINT_STEP_MM for o in offer]
-    else:
-        d = None
     err = DesignError("--footprint", list(footprint_mm),
                       f"at least {' x '.join(f'{e:.1f}' for e in env[:axes])} mm"
-                      + ("" if force >= F else f" at {_fmt(force)} N"),
+                      + ("" if force >= F else f" at {force:g} N"),
                       f"the smallest clamped array of any layout ({c.words()}); the soft arm for "
                       f"K_m = {targets.k_m:.4g} N/mm and the bolt pattern behind it set X, the "
                       "stack of sheets and spacers across the columns Y")
-    alts = []
-    if d is not None:
-        option = " ".join(_fmt(o) for o in offer)
-        words = f"the smallest footprint ({c.words()})"
-        alts.append(_alt(f"--footprint {option}" if force >= F else
-                         f"--full-scale-force {_fmt(force)} --footprint {option}",
-                         words if force >= F else words + ", at the force it carries", "target",
-                         largest_force_N=force))
-    return [err], alts
+    if d is None:
+        return [err], []
+    option = " ".join(_fmt(o) for o in offer)
+    words = f"the smallest footprint ({c.words()})"
+    return [err], [_alt(f"--footprint {option}" if force >= F else
+                        f"--full-scale-force {force:g} --footprint {option}",
+                        words if force >= F else words + ", at the force it carries", "target",
+                        full_scale_force_N=force)]
+
+
+def _offered_force(tables, targets: Targets, estimate_N: float, correction) -> float:
+    """The largest force (N, 3 digits, rounded down) whole designs on ``tables``
+    meet at the asked ratio and range, at most ``estimate_N``."""
+    whole = largest_feasible_force(tables, targets, correction)
+    return _round_away(min(estimate_N, whole) if whole > 0 else estimate_N, math.inf)
+
+
+def _checked(tables, targets: Targets, footprint_mm, envelope_of, validate, name, correction
+             ) -> InverseDesign | None:
+    """The design within ``footprint_mm``, validated as written, or None."""
+    d = _within_footprint(tables, targets, footprint_mm, envelope_of, name, correction)
+    if d is not None and validate is not None:
+        try:
+            validate(d.data)
+        except DesignError:
+            return None
+    return d
 
 
 def _derived_refusal(tables, targets: Targets, derived: Sequence[DesignError], mech: Mechanics,
@@ -650,6 +671,16 @@ def _round_away(x: float, asked: float) -> float:
     offer stays on the feasible side of the edge between them)."""
     e = 10.0 ** (math.floor(math.log10(x)) - 2)
     return (math.ceil(x / e - 1e-9) if x > asked else math.floor(x / e + 1e-9)) * e
+
+
+def _rule_error(tables: Mapping[str, Any]) -> DesignError:
+    """The design rules ``tables`` break (every one), or a plain error when none."""
+    try:
+        plan_from_dict(copy.deepcopy(dict(tables)), source="<layout search>")
+    except DesignError as exc:
+        return exc
+    return DesignError("--full-scale-force", None, "targets some layout meets",
+                       "no layout's elements could be weighed")
 
 
 def _other_error(seen: Attempts, targets: Targets, asked: str) -> DesignError:
