@@ -62,11 +62,15 @@ def test_the_shipped_bolt_does_not_refuse_more_columns_the_search_holds(tmp_path
     plan = load_design(tmp_path / "g.toml")
     assert plan.columns == 6
     base = load_design()
+    tip = plan.element(1).geometry.tip_width_mm
     changed = [f for f, a, b in ((FREE_FIELDS[0], plan.sheet_thickness_mm,
                                   base.sheet_thickness_mm),
                                  (FREE_FIELDS[1], plan.bolt.size, base.bolt.size),
-                                 (FREE_FIELDS[2], plan.pitch_mm, base.pitch_mm)) if a != b]
+                                 (FREE_FIELDS[2], plan.pitch_mm, base.pitch_mm),
+                                 (FREE_FIELDS[3], tip, base.element(1).geometry.tip_width_mm))
+               if a != b]
     assert changed  # the base layout cannot hold the stack
+    assert [c["field"] for c in doc["layout_changes"]] == changed
     why = tomllib.loads(text)["assumptions"]
     for field in changed:
         assert "instead of the base design's" in why[field], field

@@ -383,6 +383,8 @@ def design_report(result, verify: str, progress=None) -> dict:
             "web_thickness_mm": g.web_thickness_mm, "web_changed": result.web_changed,
             "notch_radius_mm": g.notch_radius_mm, "overall_length_mm": g.overall_length_mm,
             "pitch_mm": plan.pitch_mm, "references": list(result.references),
+            "layout_changes": [{"field": f, "base": a, "chosen": b}
+                               for f, a, b in result.layout_changes],
             "K_r_over_K_m": {"closed-form": ref["K_closed_form_N_per_mm"]
                              / meas["K_closed_form_N_per_mm"],
                              verify: None if ref["K_verified_N_per_mm"] is None else
@@ -438,6 +440,10 @@ def print_report(r: dict) -> None:
           f"{' (changed)' if r['web_changed'] else ' (kept)'}, notch radius "
           f"{r['notch_radius_mm']:g} mm, overall length {r['overall_length_mm']:g} mm, pitch "
           f"{r['pitch_mm']:g} mm; references: elements {', '.join(map(str, r['references']))}")
+    if r["layout_changes"]:
+        print("layout searched, changed from the base design: " + ", ".join(
+            f"{c['field']} {c['base']:g} -> {c['chosen']:g}" if isinstance(c["base"], float)
+            else f"{c['field']} {c['base']} -> {c['chosen']}" for c in r["layout_changes"]))
     seen = set()
     print(f"{'role':<10} {'elements':<16} {'arm mm':>7} {'target':>8} {'closed form':>12} "
           f"{'verified':>10} {'diff':>7} {'F_fs N':>7} {'SF@F':>5} {'ustrain@F':>9}")

@@ -639,6 +639,9 @@ class InverseDesign:
     arm_r_mm: float
     arm_m_mm: float
     notes: tuple[str, ...] = field(default=())
+    #: ``(field, base value, new value)`` of each layout value the search changed
+    #: (:mod:`tactcad.studies.layout_search`); empty when the base layout met the targets.
+    layout_changes: tuple[tuple[str, Any, Any], ...] = ()
     max_full_scale_force_N: float = 0.0
     binding_limits: tuple[str, ...] = ()
 

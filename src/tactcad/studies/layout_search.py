@@ -401,7 +401,8 @@ def _with_reasons(d: InverseDesign, start: FreeLayout, layout: FreeLayout,
             f" instead of the base design's {before[field]:g}" if isinstance(before[field], float)
             else f" instead of the base design's {before[field]}") + (
             f"; the layout nearest the base design that meets {asked} ({layout.words()}).")
-    return replace(d, data=data, plan=plan_from_dict(data, source="<inverse design>"))
+    return replace(d, data=data, plan=plan_from_dict(data, source="<inverse design>"),
+                   layout_changes=tuple((f, before[f], after[f]) for f in changed))
 
 
 # ---------------------------------------------------------------------------
