@@ -179,3 +179,16 @@ def test_values_fixed_against_each_other_are_refused_as_the_user_wrote_them(tmp_
     code, doc = _run([*GRASPER, "--full-scale-force", "0.05", "--set", "nosuch.key=1",
                       "--out", str(tmp_path / "t.toml")], capsys)
     assert code == 2 and doc["error"]["message"].startswith("--set: nosuch"), doc
+
+
+def test_a_roomy_footprint_is_not_named_and_the_force_within_it_designs(tmp_path, capsys):
+    argv = [*GRASPER, "--full-scale-force", "2", "--footprint", "100", "100",
+            "--out", str(tmp_path / "r.toml")]
+    code, doc = _run(argv, capsys)
+    err = doc["error"]
+    assert code == 2 and err["field"] == "--full-scale-force" and "errors" not in err, err
+    assert "--footprint =" not in err["message"]
+    option = err["alternatives"][0]["option"]
+    assert option.startswith("--full-scale-force ")
+    code, doc = _run(_with(argv, option), capsys)
+    assert code == 0, doc
