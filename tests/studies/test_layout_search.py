@@ -192,3 +192,20 @@ def test_a_roomy_footprint_is_not_named_and_the_force_within_it_designs(tmp_path
     assert option.startswith("--full-scale-force ")
     code, doc = _run(_with(argv, option), capsys)
     assert code == 0, doc
+
+
+@pytest.mark.parametrize("bolt", ["M1.6", "M2", "M2.5", "M3"])
+def test_every_iso_bolt_gets_the_dimensions_it_needs_under_the_tallest_arm(bolt):
+    """A larger bolt under a 5 mm arm needs a taller base and a wider spacing than
+    the shipped M2 design has; the layout's tables are raised to them and validate."""
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.studies.layout_search import FreeLayout, with_layout
+
+    data = start_tables(load_design().raw, "x", columns=2)
+    data["element"]["arm_height_mm"] = 5.0
+    start = layout_of(data)
+    tables = with_layout(data, FreeLayout(start.sheet_mm, start.pitch_mm, start.tip_width_mm,
+                                          bolt))
+    plan = plan_from_dict(tables)
+    assert plan.bolt.size == bolt
+    assert plan.element(1).geometry.base_height_mm >= 5.0 + plan.bolt.clearance_hole_mm + 2.0
