@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import copy
 import json
 import os
-import copy
 import shlex
 from pathlib import Path
 from typing import Any
@@ -230,18 +230,21 @@ def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
     from tactcad.project_folder import default_design
     from tactcad.studies.inverse_design import start_tables
 
+    def check(tables):
+        model, problems = validate_design(tables, design.name)
+        if model is None and problems.errors:
+            # the user's own values first: a wrong --rows also breaks the arms list made for it
+            own = [e for e in problems.errors if written_by_user(e.field, args)]
+            raise as_options(DesignErrors(own or problems.errors), args, design)
+        return model
+
     design = Path(args.design) if args.design else default_design()
     raw = with_overrides(read_toml(design, "design file"), set_keys(args))
-    base_name = raw.get("design", {}).get("name", design.stem) if isinstance(
-        raw.get("design"), dict) else design.stem
-    data = start_tables(raw, str(base_name), grade=args.material, pitch_mm=args.pitch,
+    base = check(raw)  # the base's own tables first: the start is made from them
+    data = start_tables(raw, base.design.name, grade=args.material, pitch_mm=args.pitch,
                         rows=args.rows, columns=args.columns)
-    data["design"] = {**data.get("design", {}), "name": name}
-    model, problems = validate_design(data, design.name)
-    if model is None and problems.errors:
-        # the user's own values first: a wrong --rows also breaks the arms list made for it
-        own = [e for e in problems.errors if written_by_user(e.field, args)]
-        raise as_options(DesignErrors(own or problems.errors), args, design)
+    data["design"] = {**data["design"], "name": name}
+    check(data)
     return data, design
 
 
