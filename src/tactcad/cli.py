@@ -90,7 +90,7 @@ def main(argv: list[str] | None = None) -> int:
     """Run one command; the exit code (see the ``EXIT_*`` constants).
 
     With ``--json`` an error is printed on stdout as one JSON object
-    ``{"error": {"message", "field", "value", "allowed", "exit_code"}}``
+    ``{"error": {"message", "field", "value", "allowed", "alternatives", "exit_code"}}``
     (see :func:`error_record`); without it as ``tactcad: error: ...`` on stderr.
     """
     try:
@@ -219,10 +219,20 @@ def end_like_ctrl_c() -> None:
 
 def error_record(exc: BaseException, exit_code: int, message: str | None = None) -> dict:
     """The fields of an error: message, field, value and allowed range (None
-    where the error names none) and the exit code."""
-    return {"message": str(exc) if message is None else message,
-            "field": getattr(exc, "field", None), "value": getattr(exc, "value", None),
-            "allowed": getattr(exc, "allowed", None), "exit_code": exit_code}
+    where the error names none), what to ask instead (``alternatives``, each
+    with the ``option`` to paste; empty where the error names none), every
+    error of several (``errors``: field, value, allowed, why; only where there
+    are several) and the exit code."""
+    record = {"message": str(exc) if message is None else message,
+              "field": getattr(exc, "field", None), "value": getattr(exc, "value", None),
+              "allowed": getattr(exc, "allowed", None),
+              "alternatives": list(getattr(exc, "alternatives", None) or ()),
+              "exit_code": exit_code}
+    several = getattr(exc, "errors", ())
+    if len(several) > 1:
+        record["errors"] = [{"field": e.field, "value": e.value, "allowed": e.allowed,
+                             "why": e.why} for e in several]
+    return record
 
 
 def report_error(record: dict, as_json: bool) -> int:

@@ -39,14 +39,19 @@ class DesignError(TactcadError, ValueError):
         allowed: human-readable allowed range or set, with units.
         why: the physical reason for the range ("" when it goes without saying).
         file: the file the field belongs to ("" when not known).
+        alternatives: what to ask instead, each a dict with at least
+            ``option`` (the options to paste, e.g. ``--full-scale-force 0.077``)
+            and ``words`` (what it gives); empty when the error names none.
     """
 
-    def __init__(self, field: str, value: object, allowed: str, why: str = "", file: str = ""):
+    def __init__(self, field: str, value: object, allowed: str, why: str = "", file: str = "",
+                 alternatives: Iterable[dict] = ()):
         self.field = field
         self.value = value
         self.allowed = allowed
         self.why = why
         self.file = file
+        self.alternatives = [dict(a) for a in alternatives]
         super().__init__(self.line())
 
     def line(self) -> str:
@@ -64,14 +69,16 @@ class DesignErrors(DesignError):
     holds them all; the message lists one per line.
     """
 
-    def __init__(self, errors: Iterable[DesignError]):
+    def __init__(self, errors: Iterable[DesignError], alternatives: Iterable[dict] = (),
+                 what: str = "the design files"):
         self.errors = tuple(errors)
         if not self.errors:
             raise ValueError("DesignErrors needs at least one error")
         first = self.errors[0]
-        super().__init__(first.field, first.value, first.allowed, first.why, first.file)
+        super().__init__(first.field, first.value, first.allowed, first.why, first.file,
+                         alternatives or first.alternatives)
         lines = [e.line() for e in self.errors]
-        head = lines[0] if len(lines) == 1 else f"{len(lines)} errors in the design files:\n  " + \
+        head = lines[0] if len(lines) == 1 else f"{len(lines)} errors in {what}:\n  " + \
             "\n  ".join(lines)
         self.args = (head,)
 

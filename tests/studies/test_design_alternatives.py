@@ -79,6 +79,8 @@ def test_the_refusal_reaches_the_command_line_as_its_json_error(tmp_path, capsys
     assert main(argv) == 2
     out = capsys.readouterr()
     doc = json.loads(out.out)
-    assert "Nearest feasible targets" in doc["error"]["message"] and doc["error"]["exit_code"] == 2
-    assert re.search("Changes that relax the limits|No other grade", doc["error"]["message"])
+    err = doc["error"]
+    assert "nearest feasible, to paste: --full-scale-force" in err["message"]
+    assert err["exit_code"] == 2 and err["field"] == "--full-scale-force" and err["value"] == 1.5
+    assert [a["option"].split()[0] for a in err["alternatives"]][0] == "--full-scale-force"
     assert not (tmp_path / "x.toml").exists()

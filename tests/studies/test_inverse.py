@@ -178,7 +178,7 @@ def test_cli_writes_a_project_folder(tmp_path, monkeypatch, capsys):
     text = design.read_text()
     assert text.startswith(
         f"# Written by tactcad {__version__}: `tactcad design --kr-over-km 3 --kobj-range 5 20 "
-        "--full-scale-force 0.3 --columns 4`.")
+        "--full-scale-force 0.3 --columns 4 --verify none --out finger-tip`.")
     # each row declares its reference, and the reasons name the design's own grid
     written = read_toml(design, "design file")
     assert written["arms"]["reference_elements"] == [2, 6]
@@ -206,15 +206,19 @@ def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
     assert main(["design", "--kr-over-km", "1000", "--kobj-range", "2", "10",
                  "--full-scale-force", "0.1", "--verify", "none", "--out", "x.toml"]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("tactcad: error: targets cannot be met") and "arms.lengths_mm" in err
+    assert err.startswith("tactcad: error: the targets cannot be met: --kr-over-km = 1000")
+    assert "K_m within the arm range" in err  # the limit, not the field the search sets
     assert not (tmp_path / "x.toml").exists()
 
 
 def test_five_percent_above_the_largest_force_is_refused_naming_every_binding_limit(
         tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
+    # the layout fixed, so that a larger force is not met by another sheet
     argv = ["design", "--kr-over-km", "10", "--kobj-range", "1", "5", "--material",
-            "Ti-6Al-4V-annealed", "--columns", "3", "--verify", "none", "--json"]
+            "Ti-6Al-4V-annealed", "--columns", "3", "--verify", "none", "--json", "--pitch", "4",
+            "--set", "sheet.thickness_mm=3", "--set", 'clamp.bolt_size="M2"',
+            "--set", "element.tip_width_mm=2"]
     assert main(argv + ["--full-scale-force", "0.1", "--out", "a.toml"]) == 0
     report = json.loads(capsys.readouterr().out)
     f_max, binding = report["max_full_scale_force_N"], report["binding_limits"]
@@ -225,7 +229,8 @@ def test_five_percent_above_the_largest_force_is_refused_naming_every_binding_li
     err = json.loads(capsys.readouterr().out)["error"]["message"]
     for name in binding:
         assert name in err
-    assert f"{f_max:.4g} N" in err
+    at_most = float(re.search(r"allowed at most ([0-9.]+) N", err)[1])  # whole designs, 3 digits
+    assert at_most == pytest.approx(f_max, rel=0.02)
     assert not (tmp_path / "b.toml").exists()
     # at the reported maximum itself the targets are met
     assert main(argv + ["--full-scale-force", f"{0.999 * f_max:.6g}", "--out", "c.toml"]) == 0

@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 import argparse
+import copy
 import json
 import os
 import shlex
 from pathlib import Path
+from typing import Any
 
 from tactcad.mechanics.ladder import is_meshed, models
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands import add_design_arg, add_output_args, progress_from_args
 from tactcad.commands.options import count, material_grade_name, number
+from tactcad.errors import DesignError
 
 
 
@@ -22,11 +25,15 @@ def verify_levels() -> tuple[str, ...]:
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "design", help="inverse design: K_r/K_m, K_obj range and full-scale force -> design file",
-        description="Chooses the arm lengths (and, where the design's web cannot meet the "
-                    "limits, the web) of reference and measuring elements for a stiffness "
-                    "ratio K_r/K_m, an object-stiffness range and a full-scale force, within "
-                    "yield / safety factor and the gauge's fatigue strain; verifies the two "
-                    "element geometries at fem3d; writes the design TOML. Units: N/mm, N, mm.")
+        description="Chooses the arm lengths and the web of reference and measuring "
+                    "elements for a stiffness ratio K_r/K_m, an object-stiffness range and a "
+                    "full-scale force, within yield / safety factor and the gauge's fatigue "
+                    "strain; where the base design's layout cannot, searches the sheet, the "
+                    "ISO clamp bolt, the pitch and the tip width (each fixed by a --set of it, "
+                    "the pitch by --pitch), nearest the base first; verifies the two element "
+                    "geometries at the --verify level; writes the design TOML. A refusal names "
+                    "the targets that bind and the nearest feasible ones as options to paste. "
+                    "Units: N/mm, N, mm.")
     p.add_argument("--kr-over-km", type=number(1, 1e6, lo_open=True), required=True, metavar="X",
                    help="stiffness ratio K_r/K_m of a sensing unit (> 1; about 10 reads soft "
                         "objects with high sensitivity)")
@@ -43,7 +50,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="rows of the new grid (the model holds two clamped rows facing each "
                         "other: 2)")
     p.add_argument("--pitch", type=number(0, 1000, "mm", lo_open=True), metavar="MM", default=None,
-                   help="array pitch (default: the base design's)")
+                   help="array pitch, fixed (default: searched, starting from the base "
+                        "design's)")
     p.add_argument("--footprint", type=number(0, 1e4, "mm", lo_open=True), nargs=2,
                    metavar=("X", "Y"), default=None,
                    help="plan-view envelope (mm) the clamped array must fit: the design is "
@@ -142,24 +150,24 @@ def run(args: argparse.Namespace) -> int:
     import tomli_w
 
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.studies.design_alternatives import design_or_alternatives
     from tactcad.studies.inverse_design import Targets
+    from tactcad.studies.layout_search import searched_design
 
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
-    base = plan_from_args(args)
-    layout = dict(grade=args.material, pitch_mm=args.pitch, rows=args.rows, columns=args.columns,
-                  name=path.stem.replace("-", "_") or "inverse_design")
-    if args.footprint is None:
-        result = design_or_alternatives(base, targets, **layout)
-    else:
+    data, design = start_from_args(args, name=path.stem.replace("-", "_") or "inverse_design")
+    kwargs = {}
+    if args.footprint is not None:
         from tactcad.assembly.inventory import array_envelope_mm
-        from tactcad.studies.footprint_fit import design_within_footprint
 
-        result = design_within_footprint(base, targets, tuple(args.footprint), array_envelope_mm,
-                                         **layout)
+        kwargs = dict(footprint_mm=tuple(args.footprint), envelope_of=array_envelope_mm)
+    try:
+        result = searched_design(data, targets, fixed=fixed_fields(args), validate=project_check(path),
+                                 name=data["design"]["name"], **kwargs)
+    except DesignError as exc:
+        raise as_options(exc, args, design) from None
     report = design_report(result, args.verify, progress_from_args(args))
     from tactcad import __version__
 
@@ -180,10 +188,123 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Design fields the command's options write (the option named in their errors).
+OPTION_FIELDS = {"array.rows": "--rows", "array.columns": "--columns", "array.pitch_mm": "--pitch",
+                 "material.grade": "--material", "material.name": "--material",
+                 "design.name": "--out", "requirements.footprint_mm": "--footprint",
+                 "requirements.kr_over_km": "--kr-over-km",
+                 "requirements.kobj_range_N_per_mm": "--kobj-range",
+                 "requirements.full_scale_force_N": "--full-scale-force"}
+
+
+def set_keys(args: argparse.Namespace) -> dict[str, Any]:
+    """The ``--set`` overrides, by key."""
+    from tactcad.commands import parse_overrides
+
+    return parse_overrides(getattr(args, "overrides", None))
+
+
+def fixed_fields(args: argparse.Namespace) -> set[str]:
+    """The free layout's fields the user fixed: by ``--set`` or ``--pitch``."""
+    from tactcad.studies.layout_search import FREE_FIELDS
+
+    fixed = set(set_keys(args)) & set(FREE_FIELDS)
+    if args.pitch is not None:
+        fixed.add("array.pitch_mm")
+    return fixed
+
+
+def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
+    """The raw tables the search starts from: the base design (``--design``,
+    else the working folder's or the shipped one) with every ``--set``, the
+    grade, grid and pitch asked for, and the new design's name. Its values are
+    checked field by field (types and ranges); the rules between fields are
+    left to the search, which may change the layout that breaks them.
+
+    Raises:
+        DesignError: a value out of its range, named as the user wrote it (the
+            ``--set`` key or the option) or, for the base file's own, with the file.
+    """
+    from tactcad.design.array_plan import read_toml, validate_design, with_overrides
+    from tactcad.errors import DesignErrors
+    from tactcad.project_folder import default_design
+    from tactcad.studies.inverse_design import start_tables
+
+    def check(tables):
+        model, problems = validate_design(tables, design.name)
+        if model is None and problems.errors:
+            # the user's own values first: a wrong --rows also breaks the arms list made for it
+            own = [e for e in problems.errors if written_by_user(e.field, args)]
+            raise as_options(DesignErrors(own or problems.errors), args, design)
+        return model
+
+    design = Path(args.design) if args.design else default_design()
+    raw = with_overrides(read_toml(design, "design file"), set_keys(args))
+    base = check(raw)  # the base's own tables first: the start is made from them
+    data = start_tables(raw, base.design.name, grade=args.material, pitch_mm=args.pitch,
+                        rows=args.rows, columns=args.columns)
+    data["design"] = {**data["design"], "name": name}
+    check(data)
+    return data, design
+
+
+def written_by_user(field: str, args: argparse.Namespace) -> bool:
+    """True when the user wrote ``field``: by an option, or by a ``--set`` of it,
+    of a key inside it (a section) or of the list it indexes."""
+    return field in OPTION_FIELDS or _set_key_of(field, args) is not None
+
+
+def _set_key_of(field: str, args: argparse.Namespace) -> str | None:
+    """The ``--set`` key that wrote ``field``, or None."""
+    for key in set_keys(args):
+        if field == key or key.startswith(field + ".") or field.startswith(key + "["):
+            return key
+    return None
+
+
+def as_options(exc: DesignError, args: argparse.Namespace, design: Path) -> DesignError:
+    """``exc`` with each error named as the user wrote it: a field an option
+    writes by the option, a ``--set`` key as ``--set``; the base file's own
+    fields keep the file. The alternatives are kept."""
+    from tactcad.errors import DesignError as Error, DesignErrors
+
+    errors = getattr(exc, "errors", None) or (exc,)
+
+    def renamed(e):
+        if _set_key_of(e.field, args) is not None:
+            return Error(e.field, e.value, e.allowed, e.why, "--set", e.alternatives)
+        option = OPTION_FIELDS.get(e.field)
+        if option is not None:
+            return Error(option, e.value, e.allowed, e.why, "", e.alternatives)
+        return e
+
+    if not any(renamed(e) is not e for e in errors):
+        return exc
+    if hasattr(exc, "message") and len(errors) > 1:  # a refusal: its own words, fields renamed
+        exc.errors = tuple(renamed(e) for e in errors)
+        return exc
+    out = DesignErrors([renamed(e) for e in errors], exc.alternatives, what="the options")
+    return out
+
+
+def project_check(path: Path):
+    """raw tables -> the project that would be written at ``path``, validated
+    with the rigs and scenes made for it (:func:`tactcad.project_folder.companion_tables`);
+    raises :class:`DesignError` where the written design would be refused."""
+    from tactcad.design.project import project_with_design_data
+    from tactcad.project_folder import companion_tables
+
+    def check(data):
+        return project_with_design_data(copy.deepcopy(dict(data)), path,
+                                        companions=companion_tables)
+    return check
+
+
 def design_options(args: argparse.Namespace) -> list[str]:
-    """The options that shaped the design, as typed (for its header): the
-    targets, the grid, grade and pitch where given, the base design's file
-    name and every ``--set``."""
+    """The command line that made the design (for its header), every option
+    as typed so that running it again makes the same file: the targets, the
+    grid, grade, pitch and footprint where given, the base design, every
+    ``--set``, the verification level, ``--out`` and ``--force``."""
     words = [f"--kr-over-km {args.kr_over_km:g}",
              f"--kobj-range {args.kobj_range[0]:g} {args.kobj_range[1]:g}",
              f"--full-scale-force {args.full_scale_force:g}"]
@@ -193,10 +314,15 @@ def design_options(args: argparse.Namespace) -> list[str]:
                         ("--columns", args.columns), ("--pitch", args.pitch)):
         if value is not None:
             words.append(f"{flag} {value:g}" if isinstance(value, float) else f"{flag} {value}")
-    # the base design and its overrides shape the result too
     if getattr(args, "design", None):
-        words.append(f"--design {shlex.quote(Path(args.design).name)}")
-    words += [f"--set {shlex.quote(item)}" for item in getattr(args, "set", None) or ()]
+        words.append(f"--design {shlex.quote(args.design)}")
+    words += [f"--set {shlex.quote(item)}" for item in getattr(args, "overrides", None) or ()]
+    verify = getattr(args, "verify", None)
+    if verify is not None and verify != "fem3d":
+        words.append(f"--verify {verify}")
+    words.append(f"--out {shlex.quote(args.out)}")
+    if getattr(args, "force", False):
+        words.append("--force")
     return words
 
 
@@ -260,6 +386,8 @@ def design_report(result, verify: str, progress=None) -> dict:
             "web_thickness_mm": g.web_thickness_mm, "web_changed": result.web_changed,
             "notch_radius_mm": g.notch_radius_mm, "overall_length_mm": g.overall_length_mm,
             "pitch_mm": plan.pitch_mm, "references": list(result.references),
+            "layout_changes": [{"field": f, "base": a, "chosen": b}
+                               for f, a, b in result.layout_changes],
             "K_r_over_K_m": {"closed-form": ref["K_closed_form_N_per_mm"]
                              / meas["K_closed_form_N_per_mm"],
                              verify: None if ref["K_verified_N_per_mm"] is None else
@@ -315,6 +443,10 @@ def print_report(r: dict) -> None:
           f"{' (changed)' if r['web_changed'] else ' (kept)'}, notch radius "
           f"{r['notch_radius_mm']:g} mm, overall length {r['overall_length_mm']:g} mm, pitch "
           f"{r['pitch_mm']:g} mm; references: elements {', '.join(map(str, r['references']))}")
+    if r["layout_changes"]:
+        print("layout searched, changed from the base design: " + ", ".join(
+            f"{c['field']} {c['base']:g} -> {c['chosen']:g}" if isinstance(c["base"], float)
+            else f"{c['field']} {c['base']} -> {c['chosen']}" for c in r["layout_changes"]))
     seen = set()
     print(f"{'role':<10} {'elements':<16} {'arm mm':>7} {'target':>8} {'closed form':>12} "
           f"{'verified':>10} {'diff':>7} {'F_yield N':>9} {'SF@F':>5} {'ustrain@F':>9}")

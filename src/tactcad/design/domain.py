@@ -21,10 +21,19 @@ from tactcad.design.array_plan import (ARM_RANGE_MM, MAX_COLUMNS, MIN_ARM_STEP_M
                                   WEB_RANGE_MM, default_design_data)
 from tactcad.design.rig_plan import default_rigs_data
 from tactcad.partlib.bracket import EAR_HEAD_CLEARANCE_MM
-from tactcad.vocabulary.standards import BOLTS
+from tactcad.vocabulary.standards import BOLTS, BoltSpec
 
 Pick = Callable[[float, float], float]
 Choose = Callable[[Sequence[Any]], Any]
+
+
+def longest_grip_mm(bolt: BoltSpec) -> float:
+    """The longest grip (mm) of ``bolt``'s longest stock length: the clamp plates
+    and the element/spacer stack it can hold with its nut, two thread pitches
+    beyond it (:func:`tactcad.design.array_plan.bolt_length`) and the rigs'
+    bracket ear, which the bracket bolt grips as well (the default rigs' ear)."""
+    ear = default_rigs_data()["bracket"]["ear_thickness_mm"]
+    return max(bolt.catalogue_lengths_mm) - bolt.nut_height_mm - 2 * bolt.thread_pitch_mm - ear
 
 
 def _count(pick: Pick, lo: int, hi: int) -> int:
@@ -47,9 +56,7 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
 
     sheet = pick(0.5, 10.0)
     plate = pick(1.0, 10.0)
-    # the rigs' bracket bolt grips the ear as well as the plates and the stack
-    ear = default_rigs_data()["bracket"]["ear_thickness_mm"]
-    longest = max(bolt.catalogue_lengths_mm) - bolt.nut_height_mm - 2 * bolt.thread_pitch_mm - ear
+    longest = longest_grip_mm(bolt)
     plate = min(plate, max(1.0, (longest - sheet) / 2 - 0.01))
     sheet = min(sheet, longest - 2 * plate - 0.01)
     pitch = pick(sheet + MIN_SPACER_MM, 20.0)

@@ -181,7 +181,7 @@ def _round_down(x: float) -> float:
     return math.floor(x / 10 ** e) * 10 ** e if x > 0 else 0.0
 
 
-def _nearest_on_scan(values: np.ndarray, asked: float, ok: Callable[[float], bool]
+def nearest_on_scan(values: np.ndarray, asked: float, ok: Callable[[float], bool]
                      ) -> float | None:
     """The value nearest ``asked`` (log distance) where ``ok`` holds: the scan's
     points tried nearest first until one holds, then bisection between it and
@@ -212,7 +212,7 @@ def nearest_targets(data: Mapping[str, Any], targets: Targets, correction=None
         out.append(Alternative("target", "--full-scale-force", float(f"{force:.3g}"), True,
                                force))
     ratios = np.geomspace(1.05, 1000.0, SCAN_POINTS)
-    ratio = _nearest_on_scan(ratios, targets.kr_over_km, lambda x: _feasible(
+    ratio = nearest_on_scan(ratios, targets.kr_over_km, lambda x: _feasible(
         data, replace(targets, kr_over_km=x), correction))
     if ratio is not None:
         ratio = float(f"{ratio:.3g}")
@@ -220,7 +220,7 @@ def nearest_targets(data: Mapping[str, Any], targets: Targets, correction=None
             out.append(Alternative("target", "--kr-over-km", ratio, True, 0.0))
     lo, hi = targets.k_obj_range_N_per_mm
     shifts = np.geomspace(1e-2, 1e2, SCAN_POINTS)
-    shift = _nearest_on_scan(shifts, 1.0, lambda c: _feasible(
+    shift = nearest_on_scan(shifts, 1.0, lambda c: _feasible(
         data, replace(targets, k_obj_range_N_per_mm=(lo * c, hi * c)), correction))
     if shift is not None:
         rng = (float(f"{lo * shift:.3g}"), float(f"{hi * shift:.3g}"))

@@ -158,6 +158,25 @@ def _design_at(data, length_mm, targets, correction, name) -> InverseDesign | No
         return None
 
 
+def design_in_footprint(tables: Mapping[str, Any], targets: Targets,
+                        footprint_mm: Sequence[float], envelope_of: Envelope, *,
+                        correction=None, name: str = "inverse_design",
+                        sheet0_mm: float | None = None) -> InverseDesign | None:
+    """The inverse design on ``tables`` with the longest element whose clamped
+    array fits ``footprint_mm`` (arms capped to it), the footprint stated and
+    the element length's reason written (and the sheet's, where it differs from
+    ``sheet0_mm``); None when no element length fits."""
+    length = _fitting_design(tables, footprint_mm, envelope_of, targets, correction, name,
+                             _length_grid(tables))
+    d = None if length is None else _design_at(tables, length, targets, correction, name)
+    if d is None:
+        return None
+    sheet = float(tables["sheet"]["thickness_mm"])
+    return _stated(d, footprint_mm, sheet if sheet0_mm is None else sheet0_mm, Layout(
+        sheet, float(tables["array"]["pitch_mm"]),
+        float(d.plan.element(1).geometry.overall_length_mm)))
+
+
 def _shortest_design(data, targets, correction, name, grid) -> InverseDesign | None:
     """The design with the shortest element of ``grid`` that meets the targets
     (bisection: a longer element allows every arm a shorter one does)."""
@@ -205,7 +224,7 @@ def design_within_footprint(base: Plan, targets: Targets, footprint_mm: Sequence
     except InverseDesignError as exc:
         raise refusal_with_alternatives(exc, data, targets, correction) from None
     if fits(envelope_of(plain.plan), footprint_mm):
-        return _stated(plain, footprint_mm, sheet0, None)
+        return stated_footprint(plain, footprint_mm)
     sheets = [sheet0] + [t for t in sorted(SHEET_THICKNESSES_MM, reverse=True) if t < sheet0]
     nearest: list[tuple[float, tuple[float, ...], Layout]] = []
     for sheet in sheets:
@@ -218,10 +237,8 @@ def design_within_footprint(base: Plan, targets: Targets, footprint_mm: Sequence
             smallest = None if length is not None else \
                 _shortest_design(tables, targets, correction, name, grid)
         if length is not None:  # designed again, its own warnings shown
-            d = _design_at(tables, length, targets, correction, name)
-            return _stated(d, footprint_mm, sheet0, Layout(
-                sheet, float(tables["array"]["pitch_mm"]),
-                float(d.plan.element(1).geometry.overall_length_mm)))
+            return design_in_footprint(tables, targets, footprint_mm, envelope_of,
+                                       correction=correction, name=name, sheet0_mm=sheet0)
         if smallest is not None:
             env = tuple(float(e) for e in envelope_of(smallest.plan))
             need = max(e / f for e, f in zip(env, footprint_mm))
@@ -244,6 +261,11 @@ def design_within_footprint(base: Plan, targets: Targets, footprint_mm: Sequence
                       f"thinner sheet (down to {min(SHEET_THICKNESSES_MM):g} mm) a smaller pitch; "
                       "a smaller full-scale force, a stiffer K_m or fewer columns shrink it "
                       "further")
+
+
+def stated_footprint(d: InverseDesign, footprint_mm: Sequence[float]) -> InverseDesign:
+    """``d`` as designed, with the footprint it fits stated as ``requirements.footprint_mm``."""
+    return _stated(d, footprint_mm, d.plan.sheet_thickness_mm, None)
 
 
 def _stated(d: InverseDesign, footprint_mm: Sequence[float], sheet0: float,

@@ -67,8 +67,9 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from tactcad.design.array_plan import ARM_RANGE_MM, BOLTS, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, plan_from_dict
-from tactcad.errors import DesignError, TactcadError
+from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_BASE_BELOW_ARM_MM, MIN_FASTENER_GAP_MM,
+                                       MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, plan_from_dict)
+from tactcad.errors import DesignError
 from tactcad.mechanics.correction import load_correction, range_warnings_unsaid
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
 from tactcad.mechanics.element_strength import force_limits
@@ -136,6 +137,7 @@ def design_variant(data: Mapping[str, Any], *, web_mm: float | None = None,
             why["element.arm_height_mm"] = (
                 f"Raised to web + notch radius + {ARM_HEIGHT_CLEARANCE_MM:g} mm so the notch "
                 "opens below the arm.")
+    fit_to_bolt(out)
     arms = out["arms"]["lengths_mm"]
     if arms and all(isinstance(a, (int, float)) for a in arms):
         need = required_overall_length_mm(out, max(arms), R)
@@ -146,6 +148,47 @@ def design_variant(data: Mapping[str, Any], *, web_mm: float | None = None,
                     f"Raised to {el['overall_length_mm']:g} mm so the clamped base behind the "
                     f"longest arm ({max(arms):g} mm) still holds the bolt pattern.")
     return out
+
+
+#: Dimensions raised to hold a bolt are rounded up to this step (mm).
+BOLT_FIT_STEP_MM = 0.1
+
+
+def _up(x: float) -> float:
+    return round(math.ceil(x / BOLT_FIT_STEP_MM - 1e-9) * BOLT_FIT_STEP_MM, 6)
+
+
+def fit_to_bolt(data: dict[str, Any]) -> None:
+    """Raise, in place, the dimensions that must hold the clamp bolt where they
+    are below the rules of :func:`tactcad.design.plan_from_dict` (a larger bolt
+    or a taller arm asks more): the bolt spacing (nuts and heads apart, holes
+    with a ligament), the base height (holes below the arm with a ligament each
+    side) and the bridge (mounting holes with 0.5 mm around them, below the
+    arm with its clearance). Each raised value's reason is written under
+    ``[assumptions]``; a table the rules would refuse for another reason is left
+    to them."""
+    el, cl = data.get("element", {}), data.get("clamp", {})
+    bolt = BOLTS.get(cl.get("bolt_size"))
+    keys = (el.get("arm_height_mm"), el.get("base_height_mm"), cl.get("bolt_spacing_mm"),
+            cl.get("bridge_height_mm"), cl.get("arm_clearance_mm"))
+    if bolt is None or not all(_finite(v) for v in keys):
+        return
+    arm_h, hole = float(el["arm_height_mm"]), bolt.clearance_hole_mm
+    widest = max(bolt.nut_across_corners_mm, bolt.head_diameter_mm)
+    need = {("clamp", "bolt_spacing_mm"): max(hole + MIN_LIGAMENT_MM, widest + MIN_FASTENER_GAP_MM),
+            ("clamp", "bridge_height_mm"): hole + 1.0}
+    need[("element", "base_height_mm")] = max(
+        arm_h + hole + 2 * MIN_LIGAMENT_MM, arm_h + MIN_BASE_BELOW_ARM_MM,
+        arm_h + float(cl["arm_clearance_mm"]) + max(float(cl["bridge_height_mm"]),
+                                                    need[("clamp", "bridge_height_mm")]))
+    why = data.get("assumptions")
+    for (section, key), least in need.items():
+        if float(data[section][key]) < least - 1e-9:
+            data[section][key] = _up(least)
+            if isinstance(why, dict):
+                why[f"{section}.{key}"] = (
+                    f"tactcad design: raised to {data[section][key]:g} mm, the least that holds "
+                    f"the {bolt.size} clamp bolt below a {arm_h:g} mm arm.")
 
 
 # ---------------------------------------------------------------------------
@@ -159,9 +202,22 @@ ARM_DECIMALS = 3
 REPORT_POINTS = 5
 
 
-class InverseDesignError(TactcadError):
+class InverseDesignError(DesignError):
     """The targets cannot be met; the message names every limit that binds and
-    the largest full-scale force the other targets allow."""
+    the largest full-scale force the other targets allow.
+
+    A :class:`~tactcad.errors.DesignError` whose field is the option it
+    refuses (``--full-scale-force`` when none is named), with the limits'
+    words as its message and what to ask instead as ``alternatives``.
+    """
+
+    def __init__(self, message: str, field: str = "--full-scale-force", value: Any = None,
+                 allowed: str = "", alternatives: Sequence[dict] = ()):
+        self.message = message
+        super().__init__(field, value, allowed, alternatives=alternatives)
+
+    def line(self) -> str:
+        return self.message
 
 
 @dataclass(frozen=True)
@@ -230,6 +286,18 @@ def tip_root_min_arm_mm(tip_width_mm: float, corner_radius_mm: float, notch_radi
     """Shortest arm whose tip-root fillet clears the notch by 0.5 mm (the rule
     of :func:`tactcad.design.plan_from_dict`), mm; broadcasts over R."""
     return tip_width_mm / 2 + corner_radius_mm + np.asarray(notch_radius_mm, float) + 0.5
+
+
+def mounting_min_arm_mm(bolt, arm_clearance_mm: float, pitch_mm: float,
+                        notch_radius_mm) -> np.ndarray:
+    """Shortest arm (mm) that leaves the two mounting bolts (a
+    :class:`~tactcad.vocabulary.standards.BoltSpec`) room between the rows'
+    innermost bases (the rule of :func:`tactcad.design.plan_from_dict`: the
+    bases end at pitch/2 + arm + R, the bolts sit half way, their shanks keep
+    the arm clearance to the bases and their heads a gap); broadcasts over R."""
+    inner_end = max(2 * arm_clearance_mm + bolt.nominal_diameter_mm,
+                    max(bolt.nut_across_corners_mm, bolt.head_diameter_mm) + MIN_FASTENER_GAP_MM)
+    return inner_end - pitch_mm / 2 - np.asarray(notch_radius_mm, float)
 
 
 @dataclass(frozen=True)
@@ -373,8 +441,12 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     else:
         webs = np.asarray(webs_mm, float)
     radii = np.maximum(g.notch_radius_mm, webs)
-    arm_lo = np.maximum(ARM_RANGE_MM[0], tip_root_min_arm_mm(g.tip_width_mm,
-                                                             g.inside_corner_radius_mm, radii))
+    arm_lo = np.maximum.reduce([np.full_like(webs, ARM_RANGE_MM[0]),
+                                tip_root_min_arm_mm(g.tip_width_mm, g.inside_corner_radius_mm,
+                                                    radii),
+                                mounting_min_arm_mm(plan.bolt,
+                                                    float(plan.raw["clamp"]["arm_clearance_mm"]),
+                                                    plan.pitch_mm, radii)])
     arm_hi = np.full_like(webs, ARM_RANGE_MM[1] if arm_max_mm is None
                           else min(ARM_RANGE_MM[1], arm_max_mm))
     a_r = arm_for_stiffness(targets.k_r, webs, radii, g, mat, corr, arm_lo, arm_hi)
@@ -544,7 +616,7 @@ def choose_web(search: WebSearch, design_web_mm: float) -> int:
         InverseDesignError: no web is feasible (the binding limit named).
     """
     if not search.feasible.any():
-        raise InverseDesignError(refusal_text(search))
+        raise InverseDesignError(refusal_text(search), value=search.force_N)
     pool, room = web_pool(search)
     own = np.flatnonzero(np.isclose(search.webs_mm, design_web_mm) & pool
                          & (room >= KEEP_WEB_ROOM))
@@ -568,6 +640,9 @@ class InverseDesign:
     arm_r_mm: float
     arm_m_mm: float
     notes: tuple[str, ...] = field(default=())
+    #: ``(field, base value, new value)`` of each layout value the search changed
+    #: (:mod:`tactcad.studies.layout_search`); empty when the base layout met the targets.
+    layout_changes: tuple[tuple[str, Any, Any], ...] = ()
     max_full_scale_force_N: float = 0.0
     binding_limits: tuple[str, ...] = ()
 
@@ -720,8 +795,22 @@ def design_tables(base: Plan, *, grade: str | None = None, pitch_mm: float | Non
     Raises:
         DesignError: a bad grade.
     """
-    data = copy.deepcopy(dict(base.raw))
-    data["assumptions"] = neutral_assumptions(data, base.name)
+    return start_tables(base.raw, base.name, grade=grade, pitch_mm=pitch_mm, rows=rows,
+                        columns=columns)
+
+
+def start_tables(raw: Mapping[str, Any], base_name: str, *, grade: str | None = None,
+                 pitch_mm: float | None = None, rows: int | None = None,
+                 columns: int | None = None) -> dict[str, Any]:
+    """:func:`design_tables` on a base design's raw tables (not validated: its
+    values are where the search starts, e.g. the shipped design's bolt with
+    more columns than it holds) and its name.
+
+    Raises:
+        DesignError: a bad grade.
+    """
+    data = copy.deepcopy(dict(raw))
+    data["assumptions"] = neutral_assumptions(data, base_name)
     data.pop("requirements", None)  # the new design's are written below
     data.pop("files", None)  # where the base design's rigs and scenes lie: not the new design's
     if grade is not None:
@@ -768,6 +857,7 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
         if raised is None:
             break
         data["element"]["arm_height_mm"] = raised
+        fit_to_bolt(data)  # a taller arm asks a taller base below it
         data.setdefault("assumptions", {})["element.arm_height_mm"] = (
             f"tactcad design: raised to {raised:g} mm so the longest arm ({longest:.3g} mm) keeps "
             f"arm / arm height <= {MAX_ARM_OVER_HEIGHT:g}, inside the range the closed form's "

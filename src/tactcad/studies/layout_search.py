@@ -1,0 +1,698 @@
+"""Inverse design over the layout the targets leave free, and refusals that
+name the asked targets.
+
+``tactcad design`` asks for sensing targets (K_r/K_m, a K_obj range, a
+full-scale force, optionally a footprint) on a grid and a material. The base
+design's other values are where the search starts, not constraints: the sheet
+thickness (:data:`STOCK_SHEETS_MM`), the clamp bolt (the ISO table,
+:data:`tactcad.vocabulary.standards.BOLTS`), the pitch and the tip width are
+free within the design domain unless the user fixes them (an option or a
+``--set`` of the field, :data:`FREE_FIELDS`).
+
+Method (closed form throughout; the caller verifies only the design chosen):
+
+1. Candidate layouts, nearest the start first: fewest values changed, then the
+   smallest change (log distance). The pitch is the start's, or the sheet plus
+   the start's spacer, or the sheet plus the least spacer; the tip the start's,
+   narrowed to the pitch's tip gap where it must be.
+2. Each layout's stack must fit the longest stock of its bolt with both clamp
+   plates and the rigs' bracket ear (:func:`tactcad.design.domain.longest_grip_mm`).
+3. Each (sheet, tip) pair's web search (:func:`tactcad.studies.inverse_design.search_webs`,
+   about 25 ms) gives the largest full-scale force its elements carry at the
+   asked K_r and K_m; the layouts that cannot carry the asked force are skipped.
+4. The rest get a whole inverse design (within the footprint when one is
+   asked, :mod:`tactcad.studies.footprint_fit`), validated as the written
+   project will be (the caller's ``validate``); the first that passes is the
+   design, with the reason for each changed value under ``[assumptions]``.
+
+When none passes, the refusal (:class:`InverseDesignError`, a
+:class:`~tactcad.errors.DesignError`) names each asked target that binds, with
+the limit behind it, and the nearest feasible targets as options to paste,
+each checked by a whole design: the largest force any layout carries (bound by
+yield / safety factor, fatigue or the gauge's strain), the smallest footprint
+(with the force its layout carries where the asked one is out of reach), the
+most columns any bolt's stack holds, the K_r/K_m and K_obj range nearest the
+asked ones, and a derived requirement the targets break (e.g. the K_obj
+resolution a small force gives) as the force that meets it.
+
+Units: mm, N, N/mm.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import warnings
+from dataclasses import dataclass, replace
+from typing import Any, Callable, Mapping, Sequence
+
+import numpy as np
+
+from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_SPACER_MM, MIN_TIP_GAP_MM, Plan,
+                                       plan_from_dict)
+from tactcad.design.domain import longest_grip_mm
+from tactcad.errors import DesignError
+from tactcad.mechanics.correction import range_warnings_unsaid
+from tactcad.studies.design_alternatives import (nearest_on_scan, largest_feasible_force,
+                                                 nearest_targets,
+                                                 relaxing_changes)
+from tactcad.studies.footprint_fit import design_in_footprint, fits, stated_footprint
+from tactcad.studies.inverse_design import (STIFFNESS_LIMITS, InverseDesign, InverseDesignError,
+                                            Targets, binding_limits, design_from_tables,
+                                            design_variant, max_full_scale_force_N,
+                                            mounting_min_arm_mm,
+                                            required_overall_length_mm, search_webs,
+                                            tip_root_min_arm_mm)
+
+#: Fields the search may change unless the user fixes them.
+FREE_FIELDS = ("sheet.thickness_mm", "clamp.bolt_size", "array.pitch_mm", "element.tip_width_mm")
+#: Sheet thicknesses searched (mm): stock plate and sheet gauges over the
+#: domain's 0.5-10 mm, the start's own added.
+STOCK_SHEETS_MM = (0.5, 0.8, 1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0)
+#: The narrowest contact face the domain allows (mm, ``element.tip_width_mm``).
+MIN_TIP_WIDTH_MM = 0.5
+#: Whole designs tried before the search refuses (each 0.1-1 s on the closed form).
+MAX_DESIGNS = 10
+#: A layout whose web search carries less than this share of the asked force
+#: is skipped (the whole design, with its taller arm, differs a little).
+FORCE_SCREEN = 0.95
+#: Footprints offered are rounded up to this step (mm).
+FOOTPRINT_STEP_MM = 1.0
+
+Envelope = Callable[[Plan], Sequence[float]]
+Validate = Callable[[Mapping[str, Any]], Any]
+
+
+@dataclass(frozen=True)
+class FreeLayout:
+    """The values the search may change (mm; the bolt by ISO size)."""
+
+    sheet_mm: float
+    pitch_mm: float
+    tip_width_mm: float
+    bolt: str
+
+    def values(self) -> dict[str, Any]:
+        return dict(zip(FREE_FIELDS, (self.sheet_mm, self.bolt, self.pitch_mm, self.tip_width_mm)))
+
+    def changed(self, start: "FreeLayout") -> tuple[str, ...]:
+        """The fields whose value differs from ``start``'s."""
+        mine, theirs = self.values(), start.values()
+        return tuple(f for f in FREE_FIELDS if not _same(mine[f], theirs[f]))
+
+    def distance(self, start: "FreeLayout") -> float:
+        """Log distance of the numbers plus the bolt's steps in the ISO table."""
+        sizes = list(BOLTS)
+        steps = abs(sizes.index(self.bolt) - sizes.index(start.bolt)) \
+            if self.bolt in BOLTS and start.bolt in BOLTS else 0
+        return (abs(math.log(self.sheet_mm / start.sheet_mm))
+                + abs(math.log(self.pitch_mm / start.pitch_mm))
+                + abs(math.log(self.tip_width_mm / start.tip_width_mm)) + 0.5 * steps)
+
+    def words(self) -> str:
+        return (f"sheet {self.sheet_mm:g} mm, pitch {self.pitch_mm:g} mm, tip {self.tip_width_mm:g}"
+                f" mm, {self.bolt} bolts")
+
+
+def _same(a: Any, b: Any) -> bool:
+    return math.isclose(a, b, abs_tol=1e-9) if isinstance(a, float) and isinstance(b, float) \
+        else a == b
+
+
+def layout_of(data: Mapping[str, Any]) -> FreeLayout:
+    """The free values of raw design tables."""
+    return FreeLayout(float(data["sheet"]["thickness_mm"]), float(data["array"]["pitch_mm"]),
+                      float(data["element"]["tip_width_mm"]), str(data["clamp"]["bolt_size"]))
+
+
+def with_layout(data: Mapping[str, Any], layout: FreeLayout) -> dict[str, Any]:
+    """``data`` with the layout's values, the dimensions that hold the bolt
+    raised where it needs them (:func:`tactcad.studies.inverse_design.fit_to_bolt`)."""
+    out = copy.deepcopy(dict(data))
+    out["sheet"] = {**out["sheet"], "thickness_mm": layout.sheet_mm}
+    out["array"] = {**out["array"], "pitch_mm": layout.pitch_mm}
+    out["element"] = {**out["element"], "tip_width_mm": layout.tip_width_mm}
+    out["clamp"] = {**out["clamp"], "bolt_size": layout.bolt}
+    el, arms = out["element"], out["arms"]["lengths_mm"]
+    R = max(float(el["notch_radius_mm"]), float(el["web_thickness_mm"]))
+    shortest = max(ARM_RANGE_MM[0], layout.tip_width_mm + 0.01,
+                   float(tip_root_min_arm_mm(layout.tip_width_mm, el["inside_corner_radius_mm"], R)),
+                   float(mounting_min_arm_mm(BOLTS[layout.bolt],
+                                             float(out["clamp"]["arm_clearance_mm"]),
+                                             layout.pitch_mm, R)))
+    # the arms are the design's to choose: until then each at least the shortest the
+    # layout allows, so that the tables are a design to start from
+    start_arm = max(shortest, max(arms)) if arms else shortest
+    return design_variant(out, arms_mm=[math.ceil(start_arm * 100 - 1e-9) / 100] * len(arms))
+
+
+def candidate_layouts(start: FreeLayout, fixed: frozenset[str]) -> list[FreeLayout]:
+    """Every layout the search tries (module docstring, step 1), nearest ``start`` first."""
+    def free(f: str) -> bool:
+        return f not in fixed
+
+    sheets = sorted({start.sheet_mm, *STOCK_SHEETS_MM}) if free(FREE_FIELDS[0]) \
+        else [start.sheet_mm]
+    bolts = list(BOLTS) if free(FREE_FIELDS[1]) else [start.bolt]
+    spacer = max(start.pitch_mm - start.sheet_mm, MIN_SPACER_MM)
+    out = set()
+    for sheet in sheets:
+        pitches = {start.pitch_mm} if not free(FREE_FIELDS[2]) else \
+            {p for p in (start.pitch_mm, sheet + spacer, sheet + MIN_SPACER_MM)
+             if p >= sheet + MIN_SPACER_MM - 1e-9}
+        for pitch in pitches:
+            tip = start.tip_width_mm
+            if tip > pitch - MIN_TIP_GAP_MM + 1e-9:
+                if free(FREE_FIELDS[3]):
+                    tip = pitch - MIN_TIP_GAP_MM
+                elif free(FREE_FIELDS[2]):
+                    pitch = tip + MIN_TIP_GAP_MM
+            if tip < MIN_TIP_WIDTH_MM - 1e-9 or pitch < sheet + MIN_SPACER_MM - 1e-9:
+                continue
+            out |= {FreeLayout(round(sheet, 6), round(pitch, 6), round(tip, 6), b) for b in bolts}
+    return sorted(out, key=lambda c: (len(c.changed(start)), c.distance(start), c.sheet_mm,
+                                      c.pitch_mm, c.tip_width_mm, c.bolt))
+
+
+def stack_grip_mm(data: Mapping[str, Any], layout: FreeLayout) -> float:
+    """The grip the layout's clamp bolts need (mm): the element/spacer stack and
+    both clamp plates (:func:`tactcad.design.array_plan.stack_length`)."""
+    columns = int(data["array"]["columns"])
+    return ((columns - 1) * layout.pitch_mm + layout.sheet_mm
+            + 2 * float(data["clamp"]["plate_thickness_mm"]))
+
+
+def stack_fits(data: Mapping[str, Any], layout: FreeLayout) -> bool:
+    """The layout's stack fits its bolt's longest stock (module docstring, step 2)."""
+    return stack_grip_mm(data, layout) <= longest_grip_mm(BOLTS[layout.bolt]) + 1e-9
+
+
+def most_columns(data: Mapping[str, Any], layouts: Sequence[FreeLayout]) -> int:
+    """The most columns some layout's stack holds (0: none holds one)."""
+    best = 0
+    plate = 2 * float(data["clamp"]["plate_thickness_mm"])
+    for c in layouts:
+        room = longest_grip_mm(BOLTS[c.bolt]) - plate - c.sheet_mm
+        if room >= -1e-9:
+            best = max(best, 1 + int(math.floor(room / c.pitch_mm + 1e-9)))
+    return best
+
+
+# ---------------------------------------------------------------------------
+# The elements' mechanics of a (sheet, tip) pair
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Mechanics:
+    """A web search on one layout's elements (step 3)."""
+
+    tables: dict[str, Any]
+    search: Any  # WebSearch
+    largest_force_N: float
+
+
+def mechanics_of(data: Mapping[str, Any], layout: FreeLayout, targets: Targets,
+                 correction=None) -> Mechanics | None:
+    """The web search on ``layout``'s elements; None where its tables break a
+    rule that does not depend on the clamp. The elements' stiffness and limits
+    do not depend on the bolt or the columns, so the search runs on one column
+    held by the smallest bolt, with every arm at the shortest the tip allows."""
+    smallest = min(BOLTS.values(), key=lambda b: b.nominal_diameter_mm).size
+    tables = with_layout(data, replace(layout, bolt=smallest))
+    tables["array"] = {**tables["array"], "columns": 1}
+    tables["arms"] = {"lengths_mm": tables["arms"]["lengths_mm"][:int(tables["array"]["rows"])]}
+    tables.pop("requirements", None)
+    try:
+        plan = plan_from_dict(tables, source="<layout search>")
+        with range_warnings_unsaid():
+            search = search_webs(plan, targets, correction)
+    except DesignError:
+        return None
+    return Mechanics(tables, search, max_full_scale_force_N(search, targets.full_scale_force_N))
+
+
+def smallest_length_mm(data: Mapping[str, Any], mech: Mechanics, force_N: float) -> float | None:
+    """The shortest overall element length (mm) whose bolt pattern holds the
+    longest arm of some web that meets the stiffness targets and carries
+    ``force_N`` (None: no web does), on ``data``'s bolt."""
+    s = mech.search
+    ok = np.ones(s.webs_mm.shape, bool)
+    for lim in s.limits[:STIFFNESS_LIMITS]:
+        ok &= lim.allowed
+    ok &= s.margin * s.force_N >= force_N * (1 - 1e-9)
+    if not ok.any():
+        return None
+    longest = np.fmax(s.arm_r_mm, s.arm_m_mm)[ok]
+    radii = s.radii_mm[ok]
+    need = min(required_overall_length_mm(data, float(a), float(r)) for a, r in zip(longest, radii))
+    return math.ceil(need * 2 - 1e-9) / 2
+
+
+# ---------------------------------------------------------------------------
+# The search
+# ---------------------------------------------------------------------------
+@dataclass
+class Attempts:
+    """What the search met, for its refusal."""
+
+    stack_fit: list[FreeLayout]
+    mechanics: dict[tuple[float, float], Mechanics | None]
+    derived: list[DesignError]
+    other: list[DesignError]
+
+
+def searched_design(data: Mapping[str, Any], targets: Targets, *, fixed: Sequence[str] = (),
+                    validate: Validate | None = None, footprint_mm: Sequence[float] | None = None,
+                    envelope_of: Envelope | None = None, name: str = "inverse_design",
+                    correction=None) -> InverseDesign:
+    """The inverse design nearest the start tables that meets ``targets`` (and
+    fits ``footprint_mm``), searched over the free layout (module docstring).
+
+    Args:
+        data: the start's raw tables (material, grid and the user's values set,
+            :func:`tactcad.studies.inverse_design.start_tables`); not modified.
+        fixed: fields of :data:`FREE_FIELDS` the user fixed.
+        validate: raw tables -> anything, raising :class:`DesignError` where
+            the written project would be refused (e.g. its rigs); None: the
+            design's own rules only.
+        footprint_mm: [X, Y] or [X, Y, Z] the clamped array must fit, or None.
+        envelope_of: plan -> its clamped array's (X, Y, Z), mm (with a footprint).
+
+    Returns:
+        The design, its changed values' reasons under ``[assumptions]``.
+
+    Raises:
+        InverseDesignError: no layout meets the targets; the binding limits of
+            the asked targets and the nearest feasible ones (``alternatives``).
+    """
+    start = layout_of(data)
+    fixed = frozenset(fixed)
+    layouts = candidate_layouts(start, fixed)
+    seen = Attempts([c for c in layouts if stack_fits(data, c)], {}, [], [])
+    F = targets.full_scale_force_N
+    tried = 0
+    with warnings.catch_warnings():  # the candidates, not the design written (its own warn)
+        warnings.simplefilter("ignore")
+        for layout in seen.stack_fit:
+            mech = _mechanics(seen, data, layout, targets, correction)
+            if mech is None or mech.largest_force_N < FORCE_SCREEN * F:
+                continue
+            if footprint_mm is not None and not _may_fit(data, layout, mech, F, footprint_mm,
+                                                         envelope_of):
+                continue
+            tried += 1
+            d = _attempt(with_layout(data, layout), targets, name, correction, footprint_mm,
+                         envelope_of, validate, seen)
+            if d is not None:
+                return _with_reasons(d, start, layout, footprint_mm)
+            if tried >= MAX_DESIGNS:
+                break
+    raise refusal(data, targets, start, seen, fixed, footprint_mm, envelope_of, validate, name,
+                  correction)
+
+
+def _mechanics(seen: Attempts, data, layout: FreeLayout, targets: Targets, correction
+               ) -> Mechanics | None:
+    key = (layout.sheet_mm, layout.tip_width_mm)
+    if key not in seen.mechanics:
+        seen.mechanics[key] = mechanics_of(data, layout, targets, correction)
+    return seen.mechanics[key]
+
+
+def _envelope(tables: Mapping[str, Any], envelope_of: Envelope, length_mm: float
+              ) -> tuple[float, ...] | None:
+    """The envelope of ``tables`` with elements ``length_mm`` long (its Y and Z do
+    not depend on the arms; X grows with the length)."""
+    out = copy.deepcopy(dict(tables))
+    out["element"] = {**out["element"], "overall_length_mm": float(length_mm)}
+    R = float(out["element"]["notch_radius_mm"])
+    arm = min(ARM_RANGE_MM[1], max(ARM_RANGE_MM[0],
+                                   length_mm - required_overall_length_mm(out, 0.0, R)))
+    out["arms"] = {"lengths_mm": [round(arm, 3)] * len(out["arms"]["lengths_mm"])}
+    out.pop("requirements", None)
+    try:
+        return tuple(float(e) for e in envelope_of(plan_from_dict(out, source="<footprint>")))
+    except DesignError:
+        return None
+
+
+def _may_fit(data, layout, mech, force_N, footprint_mm, envelope_of) -> bool:
+    """The smallest envelope the layout's web search allows at ``force_N`` fits."""
+    tables = with_layout(data, layout)
+    length = smallest_length_mm(tables, mech, force_N)
+    if length is None:
+        return False
+    env = _envelope(tables, envelope_of, length)
+    return env is not None and fits(env, [f + FOOTPRINT_STEP_MM for f in footprint_mm])
+
+
+def _attempt(tables, targets, name, correction, footprint_mm, envelope_of, validate,
+             seen: Attempts) -> InverseDesign | None:
+    """A whole design on ``tables`` (within the footprint), validated; None
+    when refused (the refusal kept in ``seen``)."""
+    try:
+        if footprint_mm is None:
+            d = design_from_tables(copy.deepcopy(tables), targets, name=name,
+                                   correction=correction)
+        else:
+            d = _within_footprint(tables, targets, footprint_mm, envelope_of, name, correction)
+            if d is None:
+                return None
+        if validate is not None:
+            validate(d.data)
+        return d
+    except InverseDesignError:
+        return None
+    except DesignError as exc:
+        errors = getattr(exc, "errors", (exc,))
+        derived = [e for e in errors if e.field.startswith("requirements.")]
+        (seen.derived if derived else seen.other).extend(derived or errors)
+        return None
+
+
+def _within_footprint(tables, targets, footprint_mm, envelope_of, name, correction
+                      ) -> InverseDesign | None:
+    """The design on ``tables`` as asked when it fits, else with the longest
+    element that fits (:func:`tactcad.studies.footprint_fit.design_in_footprint`),
+    the footprint stated."""
+    try:
+        plain = design_from_tables(copy.deepcopy(tables), targets, name=name,
+                                   correction=correction)
+    except DesignError:
+        plain = None
+    if plain is not None and fits(envelope_of(plain.plan), footprint_mm):
+        return stated_footprint(plain, footprint_mm)
+    return design_in_footprint(tables, targets, footprint_mm, envelope_of,
+                               correction=correction, name=name)
+
+
+def _with_reasons(d: InverseDesign, start: FreeLayout, layout: FreeLayout,
+                  footprint_mm) -> InverseDesign:
+    """``d`` with the reason of each free value it changed from the start."""
+    changed = layout.changed(start)
+    if not changed:
+        return d
+    data = copy.deepcopy(d.data)
+    why = data.setdefault("assumptions", {})
+    before, after = start.values(), layout.values()
+    asked = "the footprint and targets" if footprint_mm is not None else "the targets"
+    for field in changed:
+        why[field] = (f"tactcad design: {after[field]:g}" if isinstance(after[field], float)
+                      else f"tactcad design: {after[field]}") + (
+            f" instead of the base design's {before[field]:g}" if isinstance(before[field], float)
+            else f" instead of the base design's {before[field]}") + (
+            f"; the layout nearest the base design that meets {asked} ({layout.words()}).")
+    return replace(d, data=data, plan=plan_from_dict(data, source="<inverse design>"),
+                   layout_changes=tuple((f, before[f], after[f]) for f in changed))
+
+
+# ---------------------------------------------------------------------------
+# The refusal
+# ---------------------------------------------------------------------------
+def _fmt(x: float, digits: int = 3) -> str:
+    return f"{float(f'{x:.{digits}g}'):g}"
+
+
+def _ceil_step(x: float, step: float) -> float:
+    return math.ceil(x / step - 1e-9) * step
+
+
+def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, footprint_mm,
+            envelope_of, validate, name, correction) -> InverseDesignError:
+    """The error of a search that found no design: each asked target that
+    binds, its limit, and the nearest feasible targets (module docstring)."""
+    F = targets.full_scale_force_N
+    lo, hi = targets.k_obj_range_N_per_mm
+    asked = (f"K_r/K_m {targets.kr_over_km:g} over K_obj {lo:g}-{hi:g} N/mm in "
+             f"{data['material'].get('grade') or data['material'].get('name')}")
+    errors: list[DesignError] = []
+    alternatives: list[dict] = []
+    columns = int(data["array"]["columns"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        if not seen.stack_fit:
+            most = most_columns(data, candidate_layouts(start, fixed))
+            free = "" if FREE_FIELDS[1] in fixed else " of the ISO table"
+            errors.append(DesignError(
+                "--columns", columns, f"at most {most}" if most else "none",
+                f"no bolt{free} holds a stack of {columns} elements with both clamp plates and "
+                f"the rigs' bracket ear, in any layout searched"))
+            if most:
+                alternatives.append(_alt(f"--columns {most}", f"{most} columns: the longest "
+                                         "stack a stock bolt holds", "target"))
+            return _error(errors, alternatives, targets)
+        mechs = [(c, _mechanics(seen, data, c, targets, correction)) for c in seen.stack_fit]
+        mechs = [(c, m) for c, m in mechs if m is not None]
+        if not mechs:  # the values the user fixed break a rule no free value mends
+            return _rule_error(with_layout(data, seen.stack_fit[0]))
+        stiff = [(c, m) for c, m in mechs if m.largest_force_N > 0]
+        if not stiff:
+            errors.append(_stiffness_error(data, targets, mechs))
+            alternatives += _stiffness_alternatives(data, targets, mechs, correction)
+            return _error(errors, alternatives, targets)
+        best_c, best_m = max(stiff, key=lambda cm: (cm[1].largest_force_N, -cm[0].distance(start)))
+        force_binds = best_m.largest_force_N < F
+        if force_binds:
+            limits = _force_limits(best_m, targets)
+            f_best = largest_feasible_force(with_layout(data, best_c), targets, correction)
+            errors.append(DesignError(
+                "--full-scale-force", F,
+                f"at most {_fmt(f_best or best_m.largest_force_N)} N for {asked}",
+                f"bound by {limits}; at {best_c.words()}, the layout whose elements carry most"))
+            if f_best > 0 and footprint_mm is None:
+                alternatives.append(_alt(f"--full-scale-force {_fmt(f_best)}",
+                                         f"the largest full-scale force ({best_c.words()})",
+                                         "target", largest_force_N=f_best))
+        if footprint_mm is not None:
+            errors_fp, alts_fp = _footprint_refusal(data, targets, stiff, footprint_mm,
+                                                    envelope_of, validate, name, correction, start)
+            errors += errors_fp
+            alternatives += alts_fp
+        if not errors and seen.derived:
+            e, alt = _derived_refusal(with_layout(data, best_c), targets, seen.derived, best_m,
+                                      validate, name, correction)
+            errors.append(e)
+            alternatives += alt
+        if not errors:
+            errors.append(_other_error(seen, targets, asked))
+        if footprint_mm is None and (force_binds or not alternatives):
+            tables = with_layout(data, best_c)
+            near = nearest_targets(tables, targets, correction)
+            alternatives += [_alt(_option(a), TARGET_WORDS[a.field], "target")
+                             for a in near if a.field != "--full-scale-force"]
+            alternatives += [_alt(_option(a), a.words(), "change", meets_targets=a.meets_targets,
+                                  largest_force_N=a.largest_force_N)
+                             for a in relaxing_changes(tables, targets, correction,
+                                                       better_than_N=best_m.largest_force_N)
+                             if a.field != "sheet.thickness_mm"]
+    return _error(errors, alternatives, targets)
+
+
+#: What each nearest target of :func:`tactcad.studies.design_alternatives.nearest_targets` is.
+TARGET_WORDS = {"--full-scale-force": "the largest full-scale force",
+                "--kr-over-km": "the nearest feasible K_r/K_m",
+                "--kobj-range": "the K_obj range moved to the nearest feasible, its width kept"}
+
+
+def _alt(option: str, words: str, kind: str, **more) -> dict:
+    return {"option": option, "words": words, "kind": kind, **more}
+
+
+def _option(a) -> str:
+    """An :class:`~tactcad.studies.design_alternatives.Alternative` as options to paste."""
+    if a.field.startswith("--"):
+        value = " ".join(_fmt(v) for v in a.value) if isinstance(a.value, tuple) else _fmt(a.value)
+        return f"{a.field} {value}"
+    if a.field == "material.grade":
+        return f"--material {a.value}"
+    return f"--set '{a.field}=\"{a.value}\"'" if isinstance(a.value, str) \
+        else f"--set {a.field}={a.value:g}"
+
+
+def _error(errors: list[DesignError], alternatives: list[dict], targets: Targets
+           ) -> InverseDesignError:
+    """One error naming every binding target, then the options to paste."""
+    lines = [e.line() for e in errors]
+    text = "the targets cannot be met" + (": " if len(lines) == 1 else ":\n  ") + \
+        "\n  ".join(lines)
+    if alternatives:
+        text += "\nnearest feasible, to paste: " + "; ".join(
+            f"{a['option']} ({a['words']})" for a in alternatives)
+    first = errors[0]
+    out = InverseDesignError(text, first.field, first.value, first.allowed, alternatives)
+    out.errors = tuple(errors)
+    out.why = first.why
+    return out
+
+
+def _force_limits(mech: Mechanics, targets: Targets) -> str:
+    """The limits that bind just above the layout's largest force, in words."""
+    s = mech.search
+    above = replace(targets, full_scale_force_N=mech.largest_force_N * 1.001)
+    plan = plan_from_dict(copy.deepcopy(mech.tables), source="<layout search>")
+    with range_warnings_unsaid():
+        probe = search_webs(plan, above, webs_mm=s.webs_mm)
+    return "; ".join(lim.name for lim in binding_limits(probe))
+
+
+def _stiffness_error(data, targets: Targets, mechs) -> DesignError:
+    """No layout meets K_r and K_m within the arm range: the ratio is refused."""
+    c, m = mechs[0]
+    words = "; ".join(f"{lim.name}: {lim.detail}" for lim in binding_limits(m.search)
+                      if lim in m.search.limits[:STIFFNESS_LIMITS])
+    return DesignError("--kr-over-km", targets.kr_over_km,
+                       f"a ratio whose K_r = {targets.k_r:.4g} and K_m = {targets.k_m:.4g} N/mm "
+                       f"arms within {ARM_RANGE_MM[0]:g}-{ARM_RANGE_MM[1]:g} mm reach",
+                       f"{words} (with --kobj-range {' '.join(f'{k:g}' for k in targets.k_obj_range_N_per_mm)})")
+
+
+def _stiffness_alternatives(data, targets, mechs, correction) -> list[dict]:
+    if not mechs:
+        return []
+    tables = with_layout(data, mechs[0][0])
+    return [_alt(_option(a), TARGET_WORDS[a.field], "target")
+            for a in nearest_targets(tables, targets, correction)]
+
+
+def _footprint_refusal(data, targets: Targets, stiff, footprint_mm, envelope_of, validate,
+                       name, correction, start) -> tuple[list[DesignError], list[dict]]:
+    """The footprint's limit: the smallest envelope any layout meets, at the
+    asked force or, where its elements cannot carry it, the largest they do.
+    Where some layout fits at the force its elements carry, the footprint does
+    not bind: no error, and the largest such force is offered instead."""
+    F = targets.full_scale_force_N
+    weighed = []  # (need, force, distance, layout, envelope)
+    for c, m in stiff:
+        force = min(F, m.largest_force_N)
+        tables = with_layout(data, c)
+        length = smallest_length_mm(tables, m, force)
+        env = None if length is None else _envelope(tables, envelope_of, length)
+        if env is not None:
+            weighed.append((max(e / f for e, f in zip(env, footprint_mm)), force,
+                            c.distance(start), c, env))
+    if not weighed:
+        return [DesignError("--footprint", list(footprint_mm), "none for these targets",
+                            "no layout's elements meet the stiffness targets")], []
+    fitting = [w for w in weighed if w[0] <= 1.0 + 1e-9]
+    if fitting:  # the force binds, not the footprint
+        _, force, _, c, _ = max(fitting, key=lambda w: (w[1], -w[2]))
+        force = _offered_force(with_layout(data, c), targets, force, correction)
+        d = _checked(with_layout(data, c), replace(targets, full_scale_force_N=force),
+                     footprint_mm, envelope_of, validate, name, correction)
+        return [], [] if d is None else [_alt(
+            f"--full-scale-force {force:g}",
+            f"the largest full-scale force within the footprint ({c.words()})", "target",
+            full_scale_force_N=force)]
+    from tactcad.studies.verification import least_footprint_mm
+
+    need, force, _, c, env = min(weighed, key=lambda w: (w[0], -w[1], w[2]))
+    axes = len(footprint_mm)
+    tables = with_layout(data, c)
+    if force < F:  # the force the layout carries, by whole designs
+        force = _offered_force(tables, targets, force, correction)
+    offer = [_ceil_step(e, FOOTPRINT_STEP_MM) for e in env[:axes]]
+    for _ in range(4):  # a whole design within the offer; grown a step where it is not
+        d = _checked(tables, replace(targets, full_scale_force_N=force), offer, envelope_of,
+                     validate, name, correction)
+        if d is not None:
+            break
+        offer = [o + FOOTPRINT_STEP_MM for o in offer]
+    err = DesignError("--footprint", list(footprint_mm),
+                      f"at least {' x '.join(f'{e:g}' for e in least_footprint_mm(env, axes))} mm"
+                      + ("" if force >= F else f" at {force:g} N"),
+                      f"the smallest clamped array of any layout ({c.words()}); the soft arm for "
+                      f"K_m = {targets.k_m:.4g} N/mm and the bolt pattern behind it set X, the "
+                      "stack of sheets and spacers across the columns Y")
+    if d is None:
+        return [err], []
+    option = " ".join(_fmt(o) for o in offer)
+    words = f"the smallest footprint ({c.words()})"
+    return [err], [_alt(f"--footprint {option}" if force >= F else
+                        f"--full-scale-force {force:g} --footprint {option}",
+                        words if force >= F else words + ", at the force it carries", "target",
+                        full_scale_force_N=force)]
+
+
+def _offered_force(tables, targets: Targets, estimate_N: float, correction) -> float:
+    """The largest force (N, 3 digits, rounded down) whole designs on ``tables``
+    meet at the asked ratio and range, at most ``estimate_N``."""
+    whole = largest_feasible_force(tables, targets, correction)
+    return _round_away(min(estimate_N, whole) if whole > 0 else estimate_N, math.inf)
+
+
+def _checked(tables, targets: Targets, footprint_mm, envelope_of, validate, name, correction
+             ) -> InverseDesign | None:
+    """The design within ``footprint_mm``, validated as written, or None."""
+    d = _within_footprint(tables, targets, footprint_mm, envelope_of, name, correction)
+    if d is not None and validate is not None:
+        try:
+            validate(d.data)
+        except DesignError:
+            return None
+    return d
+
+
+def _derived_refusal(tables, targets: Targets, derived: Sequence[DesignError], mech: Mechanics,
+                     validate, name, correction) -> tuple[DesignError, list[dict]]:
+    """A requirement the design derives from the targets breaks its range (e.g.
+    the K_obj resolution a small force reaches): refused as the force that set
+    it, with the nearest force that meets it."""
+    e = derived[0]
+    F = targets.full_scale_force_N
+
+    def ok(force: float) -> bool:
+        try:
+            d = design_from_tables(copy.deepcopy(tables),
+                                   replace(targets, full_scale_force_N=force), name=name,
+                                   correction=correction)
+            if validate is not None:
+                validate(d.data)
+        except DesignError:
+            return False
+        return True
+
+    top = max(mech.largest_force_N, F)
+    scan = np.geomspace(F / 100, top, 25)
+    near = nearest_on_scan(scan, F, ok)
+    if near is not None:  # offered to 3 digits, rounded away from the asked force
+        offer = _round_away(near, F)
+        near = offer if ok(offer) else None
+    what = e.why or "a requirement the design derives"
+    side = "at least" if near is not None and near > F else "at most"
+    err = DesignError("--full-scale-force", F,
+                      f"{side} {near:g} N, where the design's {what} is within {e.allowed}"
+                      if near is not None else f"a force whose design's {what} is within "
+                      f"{e.allowed}", f"at {F:g} N it is {e.value!r}")
+    if near is None:
+        return err, []
+    return err, [_alt(f"--full-scale-force {near:g}",
+                      f"the nearest full-scale force whose design's {what} is within range",
+                      "target", full_scale_force_N=near)]
+
+
+def _round_away(x: float, asked: float) -> float:
+    """``x`` to 3 significant digits, rounded away from ``asked`` (so the
+    offer stays on the feasible side of the edge between them)."""
+    e = 10.0 ** (math.floor(math.log10(x)) - 2)
+    return (math.ceil(x / e - 1e-9) if x > asked else math.floor(x / e + 1e-9)) * e
+
+
+def _rule_error(tables: Mapping[str, Any]) -> DesignError:
+    """The design rules ``tables`` break (every one), or a plain error when none."""
+    try:
+        plan_from_dict(copy.deepcopy(dict(tables)), source="<layout search>")
+    except DesignError as exc:
+        return exc
+    return DesignError("--full-scale-force", None, "targets some layout meets",
+                       "no layout's elements could be weighed")
+
+
+def _other_error(seen: Attempts, targets: Targets, asked: str) -> DesignError:
+    """No layout passed for a reason the targets do not name: the first rule broken."""
+    if seen.other:
+        e = seen.other[0]
+        return DesignError(e.field, e.value, e.allowed, e.why)
+    return DesignError("--full-scale-force", targets.full_scale_force_N,
+                       f"a force the searched layouts carry for {asked}",
+                       f"none of the first {MAX_DESIGNS} layouts tried met every rule")
+
+

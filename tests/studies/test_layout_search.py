@@ -1,0 +1,212 @@
+"""``tactcad design`` searches the free layout (sheet, bolt, pitch, tip) before
+it refuses; a refusal names the asked targets that bind, with options to
+paste that work; the file written records the command that made it.
+
+The cases are not the paper's: the 2 x 6 Ti-6Al-4V grasper insert (K_r/K_m
+10 over 0.5-5 N/mm) and a 2 x 4 CuBe array."""
+
+from __future__ import annotations
+
+import json
+import re
+import shlex
+import tomllib
+
+import pytest
+
+from tactcad.cli import main
+from tactcad.design.array_plan import load_design
+from tactcad.studies.inverse_design import start_tables
+from tactcad.studies.layout_search import (FREE_FIELDS, candidate_layouts, layout_of,
+                                           stack_fits)
+
+pytestmark = pytest.mark.filterwarnings(
+    "ignore::tactcad.mechanics.correction.CorrectionRangeWarning")
+
+GRASPER = ["design", "--kr-over-km", "10", "--kobj-range", "0.5", "5", "--material",
+           "Ti-6Al-4V-annealed", "--columns", "6", "--verify", "none"]
+
+
+def _run(argv, capsys) -> tuple[int, dict]:
+    code = main([*argv, "--json"])
+    return code, json.loads(capsys.readouterr().out)
+
+
+def _with(argv: list[str], option: str) -> list[str]:
+    """``argv`` with the options of ``option`` (pasted text) replacing their old values."""
+    words = shlex.split(option)
+    out = list(argv)
+    i = 0
+    while i < len(words):
+        flag, j = words[i], i + 1
+        while j < len(words) and not words[j].startswith("--"):
+            j += 1
+        if flag in out:
+            k = out.index(flag)
+            n = 1
+            while k + n < len(out) and not out[k + n].startswith("--"):
+                n += 1
+            del out[k:k + n]
+        out += words[i:j]
+        i = j
+    return out
+
+
+def test_the_shipped_bolt_does_not_refuse_more_columns_the_search_holds(tmp_path, capsys):
+    """The base design's M2 cannot clamp six 3 mm sheets; the search changes the
+    layout instead of refusing with the base design's bolt rule."""
+    code, doc = _run([*GRASPER, "--full-scale-force", "0.05", "--out",
+                      str(tmp_path / "g.toml")], capsys)
+    assert code == 0, doc
+    text = (tmp_path / "g.toml").read_text(encoding="utf-8")
+    plan = load_design(tmp_path / "g.toml")
+    assert plan.columns == 6
+    base = load_design()
+    tip = plan.element(1).geometry.tip_width_mm
+    changed = [f for f, a, b in ((FREE_FIELDS[0], plan.sheet_thickness_mm,
+                                  base.sheet_thickness_mm),
+                                 (FREE_FIELDS[1], plan.bolt.size, base.bolt.size),
+                                 (FREE_FIELDS[2], plan.pitch_mm, base.pitch_mm),
+                                 (FREE_FIELDS[3], tip, base.element(1).geometry.tip_width_mm))
+               if a != b]
+    assert changed  # the base layout cannot hold the stack
+    assert [c["field"] for c in doc["layout_changes"]] == changed
+    why = tomllib.loads(text)["assumptions"]
+    for field in changed:
+        assert "instead of the base design's" in why[field], field
+    assert "tactcad design" in text.splitlines()[0]
+
+
+def test_a_refusal_names_the_asked_targets_and_its_alternatives_paste(tmp_path, capsys):
+    argv = [*GRASPER, "--full-scale-force", "2", "--footprint", "30", "8",
+            "--out", str(tmp_path / "g")]
+    code, doc = _run(argv, capsys)
+    err = doc["error"]
+    assert code == 2 and err["field"] == "--full-scale-force" and err["value"] == 2.0
+    assert re.match(r"at most [0-9.]+ N", err["allowed"])
+    fields = [e["field"] for e in err["errors"]]
+    assert fields == ["--full-scale-force", "--footprint"]
+    assert "array.columns" not in err["message"] and ".toml" not in err["message"]
+    assert err["alternatives"] and all(a["option"].startswith("--") for a in err["alternatives"])
+    force = float(re.match(r"at most ([0-9.]+)", err["allowed"])[1])
+    joint = next(a for a in err["alternatives"] if "--footprint" in a["option"])
+    assert float(shlex.split(joint["option"])[1]) <= force  # no more than any layout carries
+    code, doc = _run(_with(argv, joint["option"]), capsys)
+    assert code == 0, doc
+    assert not (tmp_path / "g" / "g.toml").read_text(encoding="utf-8").count("macro_array")
+
+
+def test_a_value_the_user_sets_is_kept_and_errors_name_it_as_written(tmp_path, capsys):
+    """A ``--set`` fixes its field: the search keeps it; a bad one is named as ``--set``."""
+    out = tmp_path / "g.toml"
+    code, doc = _run([*GRASPER, "--full-scale-force", "0.05", "--set",
+                      'clamp.bolt_size="M2.5"', "--out", str(out)], capsys)
+    assert code == 0, doc
+    assert load_design(out).bolt.size == "M2.5"
+    code, doc = _run([*GRASPER, "--full-scale-force", "0.05", "--set",
+                      "sheet.thickness_mm=20", "--out", str(tmp_path / "h.toml")], capsys)
+    assert code == 2 and doc["error"]["message"].startswith("--set: sheet.thickness_mm = 20")
+
+
+def test_a_derived_requirement_is_refused_as_the_option_that_set_it(tmp_path, capsys):
+    """A tiny force read through a weak chain (amplifier gain 1) gives a K_obj
+    resolution no requirement may state: refused as --full-scale-force, with the
+    force that meets it, which then designs."""
+    argv = ["design", "--kr-over-km", "8", "--kobj-range", "3", "30", "--full-scale-force", "0.002",
+            "--material", "CuBe-C17200-TF00", "--columns", "4", "--verify", "none",
+            "--set", "readout.amplifier_gain=1", "--out", str(tmp_path / "c.toml")]
+    code, doc = _run(argv, capsys)
+    err = doc["error"]
+    assert code == 2 and err["field"] == "--full-scale-force", err
+    assert "requirements." not in err["message"]
+    option = err["alternatives"][0]["option"]
+    assert float(shlex.split(option)[1]) > 0.01
+    code, doc = _run(_with(argv, option), capsys)
+    assert code == 0, doc
+
+
+def test_the_recorded_command_makes_the_same_file_again(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    argv = [*GRASPER, "--full-scale-force", "0.05", "--set", 'clamp.bolt_size="M2.5"',
+            "--set", "element.tip_height_mm=1.2", "--out", "g.toml"]
+    assert main(argv) == 0
+    first = (tmp_path / "g.toml").read_bytes()
+    line = first.decode("utf-8").splitlines()[0]
+    command = re.search(r"`tactcad (design .*)`", line)[1]
+    assert "--set 'clamp.bolt_size=\"M2.5\"'" in command and "--out g.toml" in command
+    (tmp_path / "g.toml").unlink()
+    capsys.readouterr()
+    assert main(shlex.split(command)) == 0
+    assert (tmp_path / "g.toml").read_bytes() == first
+
+
+def test_fixed_fields_stay_and_candidates_come_nearest_first():
+    data = start_tables(load_design().raw, "x", columns=6)
+    start = layout_of(data)
+    every = candidate_layouts(start, frozenset())
+    assert every[0] == start  # nothing changed comes first
+    assert [len(c.changed(start)) for c in every] == sorted(len(c.changed(start)) for c in every)
+    kept = candidate_layouts(start, frozenset(FREE_FIELDS[:2]))
+    assert {(c.sheet_mm, c.bolt) for c in kept} == {(start.sheet_mm, start.bolt)}
+    assert not stack_fits(data, start)  # six 3 mm sheets at 4 mm need more than an M2
+    assert any(stack_fits(data, c) for c in every)
+
+
+def test_a_stack_no_bolt_holds_is_refused_as_columns_with_the_most_that_do(tmp_path, capsys):
+    """A fixed 3 mm sheet: twelve columns need a longer bolt than the ISO table's;
+    the refusal offers the most columns any bolt holds, which then designs."""
+    argv = [*GRASPER, "--full-scale-force", "0.05", "--set", "sheet.thickness_mm=3",
+            "--columns", "12", "--out", str(tmp_path / "c.toml")]
+    code, doc = _run(argv, capsys)
+    err = doc["error"]
+    assert code == 2 and err["field"] == "--columns" and err["value"] == 12, err
+    option = err["alternatives"][0]["option"]
+    most = int(option.split()[1])
+    assert 1 <= most < 12 and err["allowed"] == f"at most {most}"
+    code, doc = _run(_with(argv, option), capsys)
+    assert code == 0, doc
+    plan = load_design(tmp_path / "c.toml")
+    assert (plan.columns, plan.sheet_thickness_mm) == (most, 3.0)
+
+
+def test_values_fixed_against_each_other_are_refused_as_the_user_wrote_them(tmp_path, capsys):
+    """A tip wider than the fixed pitch allows: no free value mends it, so the
+    refusal names the --set, not a field of the base design."""
+    code, doc = _run([*GRASPER, "--full-scale-force", "0.05", "--set", "element.tip_width_mm=5",
+                      "--pitch", "4", "--out", str(tmp_path / "t.toml")], capsys)
+    err = doc["error"]
+    assert code == 2 and err["field"] == "element.tip_width_mm", err
+    assert err["message"].startswith("--set: element.tip_width_mm = 5")
+    code, doc = _run([*GRASPER, "--full-scale-force", "0.05", "--set", "nosuch.key=1",
+                      "--out", str(tmp_path / "t.toml")], capsys)
+    assert code == 2 and doc["error"]["message"].startswith("--set: nosuch"), doc
+
+
+def test_a_roomy_footprint_is_not_named_and_the_force_within_it_designs(tmp_path, capsys):
+    argv = [*GRASPER, "--full-scale-force", "2", "--footprint", "100", "100",
+            "--out", str(tmp_path / "r.toml")]
+    code, doc = _run(argv, capsys)
+    err = doc["error"]
+    assert code == 2 and err["field"] == "--full-scale-force" and "errors" not in err, err
+    assert "--footprint =" not in err["message"]
+    option = err["alternatives"][0]["option"]
+    assert option.startswith("--full-scale-force ")
+    code, doc = _run(_with(argv, option), capsys)
+    assert code == 0, doc
+
+
+@pytest.mark.parametrize("bolt", ["M1.6", "M2", "M2.5", "M3"])
+def test_every_iso_bolt_gets_the_dimensions_it_needs_under_the_tallest_arm(bolt):
+    """A larger bolt under a 5 mm arm needs a taller base and a wider spacing than
+    the shipped M2 design has; the layout's tables are raised to them and validate."""
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.studies.layout_search import FreeLayout, with_layout
+
+    data = start_tables(load_design().raw, "x", columns=2)
+    data["element"]["arm_height_mm"] = 5.0
+    start = layout_of(data)
+    tables = with_layout(data, FreeLayout(start.sheet_mm, start.pitch_mm, start.tip_width_mm,
+                                          bolt))
+    plan = plan_from_dict(tables)
+    assert plan.bolt.size == bolt
+    assert plan.element(1).geometry.base_height_mm >= 5.0 + plan.bolt.clearance_hole_mm + 2.0
