@@ -212,11 +212,14 @@ def test_a_default_companion_that_is_a_symbolic_link_loop_is_refused_not_made_an
 
 def _folders_the_readme_writes() -> set[str]:
     """The output folders README's examples write in a project: each
-    ``--out NAME`` (not a design file or placeholder) and the Python
+    ``--out NAME`` (not of ``design`` or ``new``, which make projects, nor a
+    design file or placeholder) and the Python
     example's ``project.export("NAME", ...)``."""
     text = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
-    named = re.findall(r"--out ([A-Za-z0-9_.-]+)", text) + re.findall(r'\.export\("([^"]+)"', text)
-    return {n for n in named if not n.endswith(".toml") and n not in ("DIR", "fingertip")}
+    writes = [line for line in text.splitlines() if not re.search(r"tactcad (design|new)\b", line)]
+    named = [n for line in writes for n in re.findall(r"--out ([A-Za-z0-9_.-]+)", line)]
+    named += re.findall(r'\.export\("([^"]+)"', text)
+    return {n for n in named if not n.endswith(".toml") and n != "DIR"}
 
 
 def test_the_projects_gitignore_keeps_every_folder_the_readme_writes_out_of_git(tmp_path):
