@@ -216,7 +216,8 @@ def _folders_the_readme_writes() -> set[str]:
     design file or placeholder) and the Python
     example's ``project.export("NAME", ...)``."""
     text = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
-    writes = [line for line in text.splitlines() if not re.search(r"tactcad (design|new)\b", line)]
+    commands = text.replace("\\\n", " ").splitlines()  # a continued line is one command
+    writes = [line for line in commands if not re.search(r"tactcad (design|new)\b", line)]
     named = [n for line in writes for n in re.findall(r"--out ([A-Za-z0-9_.-]+)", line)]
     named += re.findall(r'\.export\("([^"]+)"', text)
     return {n for n in named if not n.endswith(".toml") and n != "DIR"}
