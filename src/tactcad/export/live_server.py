@@ -374,8 +374,6 @@ def serve(state: LiveState, port: int) -> Servers:
 #: Times one session starts its server process again after it ended; after that
 #: (or when no process can be started) the watching process serves the page itself.
 SERVER_RESTARTS = 5
-#: Seconds a server process is given to end once told to, before it is killed.
-SERVER_STOP_S = 2.0
 
 
 class ServerProcess:
@@ -411,28 +409,31 @@ class ServerProcess:
         return self._process.pid if self._conn is not None else 0
 
     def _start(self) -> None:
-        """Start the server process on the servers' sockets (the lock held or alone)."""
+        """Start the server process on the servers' sockets (the lock held or alone),
+        with the stop signals held (:func:`tactcad.stopping.stop_signals_held`)."""
         import multiprocessing
         import os
-        import signal
+
+        from tactcad.stopping import spawn_ready, stop_signals_held
 
         spawn = multiprocessing.get_context("spawn")
+        spawn_ready()
         reader, writer = spawn.Pipe(duplex=False)
         process = spawn.Process(target=_serve_apart, daemon=True, name="tactcad watch server",
                                 args=(reader, [s.socket for s in self.servers.servers],
                                       os.getpid()))
-        ignore = threading.current_thread() is threading.main_thread()
-        before = signal.signal(signal.SIGINT, signal.SIG_IGN) if ignore else None
-        try:  # Ctrl-C is this process's: the new interpreter starts with SIGINT ignored
-            process.start()
-        except BaseException:
+        try:
+            with stop_signals_held():
+                process.start()
+                self._process, self._conn, self._held = process, writer, Held()
+        except BaseException:  # not started, or a stop came meanwhile: none is left running
             writer.close()
+            if process.pid is not None:
+                process.kill()
+                process.join()
             raise
         finally:
             reader.close()
-            if ignore:
-                signal.signal(signal.SIGINT, before)
-        self._process, self._conn, self._held = process, writer, Held()
 
     def send(self) -> None:
         """Send the server process what changed in the state since the last send
@@ -480,20 +481,19 @@ class ServerProcess:
                 return
 
     def close(self) -> None:
-        """End the server process (told by closing its pipe, killed after
-        :data:`SERVER_STOP_S`); the caller then stops ``servers``, which closes
-        the sockets here and stops them if they were served here."""
+        """End the server process at once (killed and reaped: it holds nothing
+        the watch needs, and a stop must not wait for its interpreter to end);
+        the caller then stops ``servers``, which closes the sockets here and
+        stops them if they were served here."""
         self._closing.set()
         with self._lock:
             self.state.on_change = None
             conn, self._conn = self._conn, None
             if conn is None:
                 return
+            self._process.kill()
+            self._process.join()
             conn.close()
-            self._process.join(SERVER_STOP_S)
-            if self._process.is_alive():
-                self._process.kill()
-                self._process.join()
 
 
 def serve_apart(servers: Servers, state: LiveState, log: Log = print) -> ServerProcess | None:
@@ -512,11 +512,9 @@ def _serve_apart(reader: Any, sockets: list[socket.socket], parent: int) -> None
     (:meth:`LiveState.apply`), until the pipe closes. Ctrl-C and a closed
     terminal are the watching process's (``parent``) to handle; the process
     ends with it (Linux)."""
-    import signal
+    from tactcad.stopping import stop_signals_unblocked
 
-    for name in ("SIGINT", "SIGHUP"):
-        if hasattr(signal, name):
-            signal.signal(getattr(signal, name), signal.SIG_IGN)
+    stop_signals_unblocked(ignore=("SIGINT", "SIGHUP"))
     _die_with_parent(parent)
     state, servers = LiveState(), None
     while True:
