@@ -101,6 +101,13 @@ class LiveState:
                 self.previewed = False
         self._changed()
 
+    def announce(self, status: str) -> None:
+        """Say what the watch is doing (``status``, e.g. the first export under
+        way) without a new state to show."""
+        with self.lock:
+            self.status = status
+        self._changed()
+
     def _changed(self) -> None:
         if self.on_change is not None:
             self.on_change()
@@ -139,6 +146,13 @@ class LiveState:
         return json.dumps({"seq": self.seq, "sha256": self.sha256, "refusal": self.refusal,
                            "status": self.status, "unmet": list(self.unmet)}).encode()
 
+    def _nothing_yet(self) -> bytes:
+        """``GET /data`` before the first state is published: the same fields
+        with no data (as a refused export's), and what the watch is doing."""
+        return json.dumps({"seq": self.seq, "sha256": self.sha256, "checks": None,
+                           "data": None, "status": self.status,
+                           "refusal": self.refusal}).encode()
+
     def response(self, path: str) -> tuple[bytes, str] | None:
         """The body and content type of ``GET path``; None: not found."""
         folder, _, digest = path.rpartition("/")
@@ -149,7 +163,7 @@ class LiveState:
             if path == "/state":
                 return self._state_json(), "application/json"
             if path == "/data":
-                return self.view.data, "application/json"
+                return self.view.data if self.seq else self._nothing_yet(), "application/json"
             if path == "/checks.js":  # before any check has run: a script that says so
                 return self.checks_js or NO_CHECKS_JS, "text/javascript; charset=utf-8"
             if folder == "/scene" and digest in self.kept.glbs:
