@@ -4,7 +4,9 @@ files, scenes and images, so both cores work.
 
 The worker is forked (one process of a
 :class:`concurrent.futures.ProcessPoolExecutor`, fork context) as the run
-starts (the stop signals held meanwhile: :func:`tactcad.stopping.stop_signals_held`), and only while this process has not loaded the CAD kernel:
+starts (the stop signals held meanwhile:
+:func:`tactcad.stopping.stop_signals_held`), and only while this process
+has not loaded the CAD kernel:
 OpenCascade's thread pool does not survive a fork, so a process that has built or meshed a solid never forks
 (:func:`can_fork`), and the run then goes on in one process with the same
 result. Forked first, both processes import the kernel at the same time.
