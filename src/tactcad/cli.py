@@ -19,6 +19,7 @@ from typing import NoReturn
 
 from tactcad import __version__
 from tactcad.errors import TactcadError
+from tactcad.stopping import ENDING_SIGNALS, end_child_processes, exit_at_once_on_stop
 
 #: Exit codes: 0 done, 1 a check failed, 2 bad input (a named field, value and
 #: allowed range), 3 a file-system error (path and cause), 130 interrupted.
@@ -50,6 +51,11 @@ COMMAND_MODULES = (
     "tactcad.commands.diff",
     "tactcad.commands.watch",
 )
+
+#: Commands that run until they are stopped (Ctrl-C or an ending signal): a
+#: stop is their normal end (exit 0, a "stopped" line) whenever it comes,
+#: their start-up included (README: watch).
+RUN_UNTIL_STOPPED = ("watch",)
 
 
 class UsageError(TactcadError):
@@ -168,22 +174,36 @@ def dispatch(argv: list[str], as_json: bool) -> int:
         record["field"] = exc.filename
         return report_error(record, as_json)
     except KeyboardInterrupt as exc:
-        return report_interrupt(exc, as_json)
+        return report_interrupt(exc, as_json, command_of(argv))
     except ImportError as exc:
         # Ctrl-C while a compiled module (the CAD kernel) initialises surfaces
         # as "ImportError: initialization failed" caused by the interrupt
         if isinstance(exc.__cause__, KeyboardInterrupt):
-            return report_interrupt(exc.__cause__, as_json)
+            return report_interrupt(exc.__cause__, as_json, command_of(argv))
         raise
 
 
-def report_interrupt(exc: KeyboardInterrupt, as_json: bool) -> int:
+def command_of(argv: list[str]) -> str | None:
+    """The command a command line names (its first word that is not an option), if any."""
+    return next((word for word in argv if not word.startswith("-")), None)
+
+
+def report_interrupt(exc: KeyboardInterrupt, as_json: bool, command: str | None = None) -> int:
     """One line (or one JSON error) for Ctrl-C (:data:`EXIT_INTERRUPTED`) or
-    a terminating signal (128 + its number: 143 for SIGTERM, 129 for SIGHUP)."""
+    a terminating signal (128 + its number: 143 for SIGTERM, 129 for SIGHUP);
+    for a command of :data:`RUN_UNTIL_STOPPED`, its normal end: the line
+    ``<command>: stopped`` (with ``--json`` the event ``{"event": "stopped"}``
+    on stdout) and 0."""
     import signal
 
     from tactcad.errors import Terminated
 
+    if command in RUN_UNTIL_STOPPED:
+        if as_json:
+            print(json.dumps({"event": "stopped", "text": "stopped"}), flush=True)
+        else:
+            print(f"{command}: stopped", file=sys.stderr, flush=True)
+        return 0
     if isinstance(exc, Terminated):
         code = 128 + exc.signum
         message = (f"terminated by {signal.Signals(exc.signum).name}; the previous files are "
@@ -194,10 +214,6 @@ def report_interrupt(exc: KeyboardInterrupt, as_json: bool) -> int:
         return report_error(error_record(exc, code, message), as_json)
     print(f"tactcad: {message}", file=sys.stderr)
     return code
-
-
-#: Signals that end a run like Ctrl-C does (cleaned up, then 128 + the number).
-ENDING_SIGNALS = ("SIGTERM", "SIGHUP")
 
 
 def end_like_ctrl_c() -> None:
@@ -262,9 +278,14 @@ def console(argv: list[str] | None = None) -> NoReturn:
     loaded (OpenCascade's objects and modules freed one by one) and frees
     nothing the OS would not. Output is flushed and the ``atexit`` handlers
     (temporary folders left to a finaliser) run first; an export has closed
-    its worker process before it returns."""
+    its worker process before it returns; a child process still running then
+    is killed (``multiprocessing``'s exit would wait for it). A stop signal
+    from then on ends the process at once with the command's code
+    (:func:`tactcad.stopping.exit_at_once_on_stop`)."""
     end_like_ctrl_c()
     code = main(argv)
+    exit_at_once_on_stop(code)
+    end_child_processes()
     try:
         sys.stdout.flush()
         sys.stderr.flush()

@@ -408,3 +408,17 @@ def test_every_options_help_gives_its_default_and_no_literal_percent():
             if "%(default)" not in (action.help or "") and "default" not in (action.help or ""):
                 missing.append((" ".join(path), action.option_strings[0], action.default))
     assert missing == []
+
+
+def test_a_stop_before_the_watch_has_begun_is_its_normal_end(capsys):
+    """A Ctrl-C or SIGTERM while the command line is still being read (the
+    command modules load) ends ``watch`` as a stop at any later moment does
+    (README: exit 0, "stopped"); other commands say they were interrupted."""
+    from tactcad.cli import command_of, report_interrupt
+    from tactcad.errors import Terminated
+
+    assert command_of(["--quiet", "watch", "--out", "x"]) == "watch"
+    assert report_interrupt(Terminated(15), False, "watch") == 0
+    assert capsys.readouterr().err == "watch: stopped\n"
+    assert report_interrupt(KeyboardInterrupt(), False, "export") == 130
+    assert "interrupted" in capsys.readouterr().err

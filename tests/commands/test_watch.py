@@ -577,3 +577,29 @@ def test_a_companion_named_as_a_symbolic_link_loop_is_watched_not_a_crash(tmp_pa
     files = watched_files(design)  # the refusal is the loader's; the watch waits for the fix
     folder = tmp_path.resolve()
     assert files == [folder / "d.toml", folder / "a.toml", folder / "scenes.toml"]
+
+
+
+@pytest.mark.slow
+def test_a_watch_stopped_at_random_moments_ends_with_its_status(tmp_path, default_store):
+    """Ctrl-C (to the whole process group, as a terminal sends it) or SIGTERM
+    at random moments of the start-up, the first export, an edit's export and
+    serving: each watch ends with exit 0, its "stopped" line, no traceback
+    and no process of its group left (``tactcad bench watch-stop`` runs 20
+    and times them; a hang shows here as a round that did not end)."""
+    import random
+
+    from tactcad.benchmarks.watch_stop import EDIT_WINDOW_S, stop_round
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+
+    rng = random.Random()
+    store = warm_store_copy(default_store, tmp_path / "store")
+    files = watched_files(DEFAULT_DESIGN)
+    rounds = [("start", signal.SIGINT, rng.uniform(0.0, 6.0)),
+              ("start", signal.SIGTERM, rng.uniform(0.0, 6.0)),
+              ("edit", signal.SIGINT, rng.uniform(0.0, EDIT_WINDOW_S))]
+    for phase, signum, moment in rounds:
+        got = stop_round(files, phase, signum, moment, store_from=store, wait_s=120)
+        assert got.ended_s is not None, got  # it ended at all
+        assert got.exit_code == 0 and got.stopped_line and not got.traceback, got
+        assert got.left_behind == 0, got

@@ -146,6 +146,10 @@ def test_step_pictures_show_their_highlighted_parts(name, tmp_path):
         r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
         magenta = (g < 10) & (r > 60) & (abs(r - b) < 8)
         assert magenta.sum() > 50, p  # the step's new parts, in the highlight colour
+        # framed on them: not a few pixels in the whole rig (the terminal board, a
+        # sample: 3 % of the picture's width when the whole rig was framed)
+        rows, cols = np.nonzero(magenta)
+        assert max(np.ptp(cols) / rgb.shape[1], np.ptp(rows) / rgb.shape[0]) > 0.1, p
 
 
 def test_pdf_has_a_page_and_every_step_title(book):

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+from pathlib import Path
 
 from tactcad.export.live import LiveState
 from tactcad.export.live_page import checks_json
@@ -34,6 +35,34 @@ def test_the_exported_page_is_served_as_it_is_and_reads_its_data_when_served():
     state.publish("ab" * 32, "current", contents, page)
     assert state.response("/")[0] == page and state.response("/index.html")[0] == page
     assert b"fetch('/data'" in page and b"fetch('/', " not in page  # never the whole page again
+
+
+def test_data_before_the_first_export_says_what_the_watch_is_doing():
+    """``/data`` before anything is published: the fields the page reads (no
+    data to show, which it skips) and the watch's status, not ``null``."""
+    from tactcad.export.live import Loop
+    from tactcad.store import Store
+
+    state = LiveState()
+    doc = json.loads(state.response("/data")[0])
+    assert doc == {"seq": 0, "sha256": "", "checks": None, "data": None, "status": "starting",
+                   "refusal": None}
+    said = []
+    state.on_change = lambda: said.append(json.loads(state.response("/data")[0]).get("status"))
+
+    class Planless:  # the export fails at once, after the status is said
+        @property
+        def plan(self):
+            raise OSError("no plan")
+
+    assert Loop(lambda: Planless(), Path("unused"), Store(None), state, lambda s: None).update() \
+        is False
+    assert said[0] == "first export under way"
+    doc = json.loads(state.response("/data")[0])
+    assert doc["data"] is None and doc["status"] == "last edit refused" and "no plan" in \
+        doc["refusal"]
+    state.publish("ab" * 32, "current", _contents())
+    assert json.loads(state.response("/data")[0])["data"] is not None
 
 
 def test_data_names_scenes_and_sheets_by_sha256_and_carries_the_checks():

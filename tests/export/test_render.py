@@ -8,8 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tactcad.export.render import (_camera, _depth_planes, _screen, filtered_lookup, outline_mask,
-                                   raster_window, rasterise)
+from tactcad.export.render import (FIT_CONTEXT, FIT_LEAST, _camera, _depth_planes, _screen,
+                                   filtered_lookup, framed_extent, outline_mask, raster_window,
+                                   rasterise)
 
 
 def _reference_raster(tris, size_px, cam, margin=0.06):
@@ -166,3 +167,26 @@ def test_picture_is_the_same_from_kept_meshes_as_from_a_fresh_run(tmp_path):
         image_jobs(run, [])[0].make(run)
         pictures.append((run.staging / ARRAY_PNG).read_bytes())
     assert pictures[0] == pictures[1]
+
+
+def test_a_picture_framed_on_a_few_parts_shows_them_with_context_within_the_model():
+    """A build step's picture frames its new parts, not the whole rig: their box
+    with context around it, at least a share of the whole, never beyond it."""
+    rng = np.random.default_rng(3)
+    xy = rng.uniform(0.0, 100.0, (200, 3, 2))  # the rig on screen, 100 x 100
+    xy[:4] = rng.uniform([60.0, 20.0], [70.0, 24.0], (4, 3, 2))  # a step's small parts
+    fit = np.zeros(len(xy), dtype=bool)
+    fit[:4] = True
+    whole = framed_extent(xy)
+    lo, hi = framed_extent(xy, fit)
+    mine = xy[:4].reshape(-1, 2)
+    assert np.all(lo <= mine.min(axis=0)) and np.all(hi >= mine.max(axis=0))  # shown whole
+    assert np.all(lo >= whole[0]) and np.all(hi <= whole[1])  # no empty room past the rig
+    span = np.ptp(mine, axis=0).max()
+    assert np.all(hi - lo >= np.minimum(np.ptp(mine, axis=0) + 2 * FIT_CONTEXT * span,
+                                        whole[1] - whole[0]) - 1e-9)  # context around them
+    assert np.all(hi - lo >= FIT_LEAST * (whole[1] - whole[0]) - 1e-9)
+    assert np.all(hi - lo < 0.5 * (whole[1] - whole[0]))  # they fill the picture, not the rig
+    X, _, _ = _screen(np.concatenate([xy, np.zeros((len(xy), 3, 1))], axis=2), (400, 300),
+                      np.eye(3), 0.0, fit)
+    assert X[:4].min() >= 0 and X[:4].max() <= 400 and (X < 0).any()  # the rest is cut off

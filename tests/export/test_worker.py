@@ -147,3 +147,57 @@ def test_a_planner_that_cannot_be_sent_leaves_the_run_to_itself(tmp_path):
     while os.path.exists(f"/proc/{pid}") and time.monotonic() < end:
         time.sleep(0.1)
     assert not os.path.exists(f"/proc/{pid}")
+
+
+def test_a_stop_while_a_process_starts_acts_once_it_is_whole():
+    """A stop signal inside ``stop_signals_held`` raises when the block ends,
+    not in the middle (where a half-started child would wait on its pipe for
+    ever); the handler is put back; a child started inside begins with the
+    stop signals blocked, so a terminal's Ctrl-C does not end it half-started."""
+    import os
+    import signal
+    from concurrent.futures import ProcessPoolExecutor
+
+    import multiprocessing
+
+    from tactcad.stopping import spawn_ready, stop_signals_held
+
+    class Stopped(Exception):
+        pass
+
+    def stop(number, frame):
+        raise Stopped(number)
+
+    before = signal.signal(signal.SIGTERM, stop)
+    reached = False
+    try:
+        spawn_ready()
+        with pytest.raises(Stopped):
+            with stop_signals_held():
+                os.kill(os.getpid(), signal.SIGTERM)
+                pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"))
+                child_mask = pool.submit(signal.pthread_sigmask, signal.SIG_BLOCK, []).result()
+                reached = True
+        pool.shutdown()
+        assert reached and signal.getsignal(signal.SIGTERM) is stop
+        assert {signal.SIGINT, signal.SIGTERM, signal.SIGHUP} <= child_mask
+        assert signal.SIGTERM not in signal.pthread_sigmask(signal.SIG_BLOCK, [])
+    finally:
+        signal.signal(signal.SIGTERM, before)
+
+
+def test_a_session_worker_killed_as_it_starts_is_gone_at_once():
+    """The worker is killed by its parent's handle from the moment it is
+    started, before its own start-up has run (a pid the worker writes itself
+    is not there yet), and reaped: nothing is left for the exit to wait on."""
+    import multiprocessing
+    import os
+
+    from tactcad.export.worker import SessionWorker
+
+    worker = SessionWorker()
+    pid = worker.pid
+    assert pid and os.path.exists(f"/proc/{pid}")
+    worker.close()
+    assert not os.path.exists(f"/proc/{pid}")  # killed and reaped
+    assert pid not in {p.pid for p in multiprocessing.active_children()}

@@ -53,7 +53,7 @@ def layers_from_readme(text: str) -> list[str]:
     return layers
 
 
-FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store"}
+FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store", "tactcad.stopping"}
 TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands",
              "tactcad.project_folder": "commands"}
 LAYERS = layers_from_readme(README.read_text(encoding="utf-8"))

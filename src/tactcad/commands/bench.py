@@ -124,6 +124,21 @@ def register(sub: argparse._SubParsersAction) -> None:
                          "rounds, goals, load average, and under load: clients, seconds, "
                          "edits, requests, errors, p50_ms, p95_ms, p99_ms, max_ms, per route")
     wa.set_defaults(func=run_watch)
+    ws = bsub.add_parser("watch-stop", help="tactcad watch stopped at random moments (Ctrl-C "
+                                            "or SIGTERM; start-up, first export, an edit's "
+                                            "export, serving): each must end within 2 s "
+                                            "with exit 0 and no traceback")
+    add_design_arg(ws)
+    ws.add_argument("--rounds", type=count(1, 200, "watches stopped"), default=20, metavar="N",
+                    help="watches started and stopped once each, 1 ... 200 (default: 20)")
+    ws.add_argument("--latest", type=number(0, 600, "s"), default=12.0, metavar="S",
+                    help="the latest moment after the start a start-up round stops at, "
+                         "0 ... 600 s (default: 12 s)")
+    ws.add_argument("--seed", type=count(0, 2**31 - 1, "seed"), default=0, metavar="N",
+                    help="seed of the random moments (default: 0)")
+    add_output_args(ws, "print one JSON object: every round (phase, signal, moment_s, "
+                        "ended_s, exit_code, traceback, left_behind, good) and good of rounds")
+    ws.set_defaults(func=run_watch_stop)
     v = bsub.add_parser("verify", help="verify: each ladder level's matrix timed, then "
                                        "--model auto; its seconds and verdicts against the "
                                        "top level's")
@@ -208,6 +223,33 @@ def run_watch(args: argparse.Namespace) -> int:
         for line in load_lines(figures["load"]):
             print(line)
     return 0
+
+
+def run_watch_stop(args: argparse.Namespace) -> int:
+    """Stop ``tactcad watch`` at random moments (:mod:`tactcad.benchmarks.watch_stop`);
+    exit 1 when a round was not good.
+
+    Raises:
+        TimeoutError: an edit round's first export was not current in time.
+    """
+    from pathlib import Path
+
+    from tactcad.benchmarks.watch_stop import stop_figures
+    from tactcad.commands.watch import watched_files
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+
+    plan_from_args(args)  # a refused design stops here, not in the watch process
+    files = watched_files(Path(args.design) if args.design else DEFAULT_DESIGN)
+    figures = stop_figures(files, args.rounds, args.latest, args.seed,
+                           log=progress_from_args(args))
+    if args.json:
+        print(dumps(figures))
+    else:
+        print(f"tactcad bench watch-stop ({figures['cpus']} CPUs): {figures['good']} of "
+              f"{figures['of']} watches ended within {figures['goal_s']:g} s of the stop "
+              f"with exit 0, a 'stopped' line, no traceback and no process left; slowest "
+              f"{figures['slowest_s']} s")
+    return 0 if figures["good"] == figures["of"] else 1
 
 
 def load_lines(load: dict) -> list[str]:

@@ -41,23 +41,21 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def note_stop_signals(stop: threading.Event) -> Callable[[], None]:
-    """Set ``stop`` on Ctrl-C and on each signal that ends a run like it
-    (:data:`tactcad.cli.ENDING_SIGNALS`), then let the signal's own handler
-    raise as before; returns what puts the handlers back. In a suite run a
-    Ctrl-C that arrived while an edit was exported never surfaced: the
-    watch went on watching until it was killed (its KeyboardInterrupt lost
-    inside a library call, not found). The event is seen after the update
-    whatever became of the exception. Outside the main thread nothing is
-    installed (signals are the main thread's)."""
+    """Set ``stop`` on each signal that stops a run (Ctrl-C and
+    :data:`tactcad.stopping.ENDING_SIGNALS`), then let the signal's own
+    handler raise as before; returns what puts the handlers back. A stop's
+    exception can be lost (inside a library call) or change on its way (a
+    kernel module interrupted while it loads raises ImportError): the event
+    says a stop was asked whatever became of it. Outside the main thread
+    nothing is installed (signals are the main thread's)."""
     import signal
 
-    from tactcad.cli import ENDING_SIGNALS
+    from tactcad.stopping import stop_signal_numbers
 
     if threading.current_thread() is not threading.main_thread():
         return lambda: None
     previous = {}
-    for name in ("SIGINT", *ENDING_SIGNALS):
-        signum = getattr(signal, name)
+    for signum in stop_signal_numbers():
         handler = signal.getsignal(signum)
         if not callable(handler):  # ignored or the default: left as it is
             continue
@@ -90,13 +88,61 @@ def watched_files(design: Path) -> list[Path]:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Watch until stopped (see the command's help); 0 once stopped, by a stop at any moment.
+
+    Raises:
+        DesignError: a bad ``--port``, ``--out`` or ``--design`` (before anything starts).
+    """
+    import contextlib
+
     from tactcad.errors import DesignError
+    from tactcad.stopping import end_child_processes, exit_at_once_on_stop
 
     # the option first, before the exporter is loaded: a refusal is quick
     if not (args.port == 0 or 1024 <= args.port <= 65535):
         raise DesignError("--port", args.port, "1024 ... 65535, or 0 for any free port")
 
+    stop = threading.Event()
+    log = watch_log(args)
+    with contextlib.ExitStack() as started:
+        started.callback(note_stop_signals(stop))
+        started.callback(end_child_processes)  # what the closes below missed, if anything
+        try:
+            watch(args, log, stop, started)
+        except BaseException:
+            if not stop.is_set():  # an error of its own, not a stop's
+                raise
+            # a stop, whatever its exception became: the clean-up (the callbacks
+            # of ``started``) takes no long wait, and a second stop ends it at once
+            exit_at_once_on_stop(0)
+            log("stopped")
+    return 0
+
+
+def watch_log(args: argparse.Namespace) -> Callable[[str], None]:
+    """The watch's log: one JSON event a line on stdout with ``--json``, else
+    ``watch: ...`` lines on stderr (only refusals with ``--quiet``)."""
+    def log(line: str) -> None:
+        if args.json:
+            print(json.dumps({"event": line.split(" ", 1)[0], "text": line}), flush=True)
+        elif not args.quiet or line.startswith("refused"):
+            print(f"watch: {line}", file=sys.stderr, flush=True)
+    return log
+
+
+def watch(args: argparse.Namespace, log: Callable[[str], None], stop: threading.Event,
+          started) -> None:
+    """Serve, export and re-export until ``stop`` is set (a stop's exception
+    ends it sooner); each thing started is closed by ``started`` (a
+    :class:`contextlib.ExitStack`) as soon as it exists, so a stop at any
+    moment closes what there is.
+
+    Raises:
+        DesignError: a bad ``--out``, ``--design`` or a port that is taken.
+        KeyboardInterrupt: a stop (``stop`` set).
+    """
     from tactcad.commands import load_from_args
+    from tactcad.errors import DesignError
     from tactcad.export.freecad_review import keep_freecad
     from tactcad.export.live import LiveState, Loop, changes, serve, serve_apart
     from tactcad.export.run import check_out_dir
@@ -106,12 +152,6 @@ def run(args: argparse.Namespace) -> int:
 
     def load():  # the design, rigs and scenes files validated once per change
         return load_from_args(args).validated
-
-    def log(line: str) -> None:
-        if args.json:
-            print(json.dumps({"event": line.split(" ", 1)[0], "text": line}), flush=True)
-        elif not args.quiet or line.startswith("refused"):
-            print(f"watch: {line}", file=sys.stderr, flush=True)
 
     if args.design:
         design = Path(args.design)
@@ -126,32 +166,25 @@ def run(args: argparse.Namespace) -> int:
     except OSError as exc:
         raise DesignError("--port", args.port, f"a free port on 127.0.0.1, or 0 for any "
                           f"({exc.strerror or exc})") from None
+    started.callback(servers.stop)
     # the drawings' process, kept for the session: it loads the kernel while the first run plans
-    loop = Loop(load, Path(args.out), store_from_args(args), state, log, worker=session_worker())
+    loop = Loop(load, Path(args.out), store_from_args(args), state, log)
+    started.callback(loop.close)
+    loop.worker = session_worker()
     keep_freecad(True)  # one FreeCAD process for the review files of every run
+    started.callback(keep_freecad, False)
     # the page is served by a process of its own, so the exports do not slow its answers
     server = serve_apart(servers, state, log)
-    stop = threading.Event()
-    restore = note_stop_signals(stop)
-    try:
-        log(f"review page at {' and '.join(servers.urls())} (Ctrl-C stops)")
-        files = watched_files(design)
-        log("watching " + ", ".join(str(f) for f in files))
-        # the first: the files are watched; the watcher also ends once ``stop`` is set
-        for k, _ in enumerate(changes(files, args.poll, stop)):
-            if k:
-                log("change seen")
-            loop.update()
-            if stop.is_set():  # a Ctrl-C whose KeyboardInterrupt the update lost
-                raise KeyboardInterrupt
-        raise KeyboardInterrupt  # the watcher ended: only ``stop`` ends it
-    except KeyboardInterrupt:
-        log("stopped")
-    finally:
-        restore()
-        loop.close()
-        keep_freecad(False)
-        if server is not None:
-            server.close()
-        servers.stop()
-    return 0
+    if server is not None:
+        started.callback(server.close)
+    log(f"review page at {' and '.join(servers.urls())} (Ctrl-C stops)")
+    files = watched_files(design)
+    log("watching " + ", ".join(str(f) for f in files))
+    # the first: the files are watched; the watcher also ends once ``stop`` is set
+    for k, _ in enumerate(changes(files, args.poll, stop)):
+        if k:
+            log("change seen")
+        loop.update()
+        if stop.is_set():  # a stop whose KeyboardInterrupt the update lost
+            break
+    raise KeyboardInterrupt  # the watcher ended: only ``stop`` ends it

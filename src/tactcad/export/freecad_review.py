@@ -49,6 +49,7 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 from tactcad.atomic import write_bytes_atomic
+from tactcad.stopping import stop_signals_held
 from tactcad.assembly.z_up import Z_UP_MATRIX
 
 SCRIPT = Path(__file__).with_name("freecad_review_script.py")
@@ -170,8 +171,9 @@ class FreecadRun:
                    HOME=tmp, QT_QPA_PLATFORM="offscreen")  # FreeCAD's user config goes to HOME
         env.pop("PYTHONPATH", None)
         env.pop("PYTHONHOME", None)
-        self._proc = subprocess.Popen([exe, str(script)], env=env, cwd=tmp, text=True,
-                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        with stop_signals_held(block_in_children=False):  # never a Popen half made
+            self._proc = subprocess.Popen([exe, str(script)], env=env, cwd=tmp, text=True,
+                                          stdout=subprocess.PIPE, stderr=subprocess.PIPE)
 
     def result(self) -> dict:
         """The script's JSON result.
@@ -218,10 +220,11 @@ class FreecadServer:
         env = dict(os.environ, TACTCAD_FC_SERVE="1", HOME=tmp, QT_QPA_PLATFORM="offscreen")
         env.pop("PYTHONPATH", None)
         env.pop("PYTHONHOME", None)
-        self._proc = subprocess.Popen([exe, str(SCRIPT)], env=env, cwd=tmp, text=True,
-                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                      stderr=self._log)
-        self._count = 0
+        with stop_signals_held(block_in_children=False):  # never a Popen half made
+            self._proc = subprocess.Popen([exe, str(SCRIPT)], env=env, cwd=tmp, text=True,
+                                          stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                          stderr=self._log)
+        self._count = self._done = 0  # requests sent, and answered
         self._lines: queue.Queue = queue.Queue()  # its stdout, read as it comes (never blocks it)
         threading.Thread(target=self._read, daemon=True).start()
 
@@ -266,11 +269,17 @@ class FreecadServer:
                 raise RuntimeError(f"freecadcmd exited {self._proc.returncode} without a result:\n"
                                    f"{''.join(seen)[-2000:]}\n{self._log.read()[-2000:]}")
             if line.strip() == done:
+                self._done = number
                 return
             seen.append(line)
 
     def close(self) -> None:
-        """End FreeCAD (its stdin closed, then killed if it lingers) and remove its folder."""
+        """End FreeCAD and remove its folder: killed at once while a request is
+        unanswered (a run that was stopped or failed: its file is not wanted),
+        else told by its stdin closed (killed if it lingers)."""
+        if self.alive and self._done < self._count:
+            self._proc.kill()
+            self._proc.wait()
         if self.alive:
             try:
                 self._proc.stdin.close()

@@ -134,7 +134,9 @@ def step_picture(meshes, instances, highlight, target: Path, title: str,
     """Render a step's model: the ``highlight`` parts in :data:`HIGHLIGHT_RGB`
     moved by ``offsets`` (:func:`explode_offsets`, with the parts they carry),
     every other part grey where the model has it
-    (:func:`tactcad.export.render.render_assembly_png`).
+    (:func:`tactcad.export.render.render_assembly_png`); the picture frames
+    the highlighted parts with the model around them as context (a rig's few
+    small parts are not lost in the whole rig).
 
     Args:
         meshes: part name -> (vertices (n, 3) mm, triangles (m, 3)).
@@ -147,8 +149,9 @@ def step_picture(meshes, instances, highlight, target: Path, title: str,
     from tactcad.export.render import render_assembly_png
 
     colors = {i.part: HIGHLIGHT_RGB if i.part in highlight else CONTEXT_RGB for i in instances}
+    new = [k for k, i in enumerate(instances) if i.part in highlight]
     return render_assembly_png(meshes, instances, colors, target, title, size_px=(800, 500),
-                               offsets=offsets)
+                               offsets=offsets, fit=new)
 
 
 def explode_record(instances, offsets: dict[int, np.ndarray]) -> dict[str, list[float]]:

@@ -31,8 +31,9 @@ from tactcad.export.kinds import EXPORT_KINDS, full_export_kinds
 from tactcad.store import content_key
 
 PNG_DPI = 150
-#: the array picture's renderer: part meshes at the run's mesh tolerance, windowed z-buffer
-RENDER_VERSION = 2
+#: the array picture's renderer: part meshes at the run's mesh tolerance, windowed z-buffer;
+#: 3: the model below the title, a build step framed on its new parts
+RENDER_VERSION = 3
 
 
 def all_jobs(run: Run, kinds: Sequence[str] = ()) -> list[Job]:

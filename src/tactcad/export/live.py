@@ -96,6 +96,8 @@ class Loop:
         from tactcad.export.jobs import review_contents_of
         from tactcad.export.run import export
 
+        if not self.state.seq:  # nothing shown yet: the page and /data say what is going on
+            self.state.announce("first export under way")
         plan = project.plan
         parts = LiveParts(plan, self.solids, self.meshes)
         if (self.out / REVIEW_PAGE).is_file():

@@ -101,6 +101,13 @@ class LiveState:
                 self.previewed = False
         self._changed()
 
+    def announce(self, status: str) -> None:
+        """Say what the watch is doing (``status``, e.g. the first export under
+        way) without a new state to show."""
+        with self.lock:
+            self.status = status
+        self._changed()
+
     def _changed(self) -> None:
         if self.on_change is not None:
             self.on_change()
@@ -139,6 +146,13 @@ class LiveState:
         return json.dumps({"seq": self.seq, "sha256": self.sha256, "refusal": self.refusal,
                            "status": self.status, "unmet": list(self.unmet)}).encode()
 
+    def _nothing_yet(self) -> bytes:
+        """``GET /data`` before the first state is published: the same fields
+        with no data (as a refused export's), and what the watch is doing."""
+        return json.dumps({"seq": self.seq, "sha256": self.sha256, "checks": None,
+                           "data": None, "status": self.status,
+                           "refusal": self.refusal}).encode()
+
     def response(self, path: str) -> tuple[bytes, str] | None:
         """The body and content type of ``GET path``; None: not found."""
         folder, _, digest = path.rpartition("/")
@@ -149,7 +163,7 @@ class LiveState:
             if path == "/state":
                 return self._state_json(), "application/json"
             if path == "/data":
-                return self.view.data, "application/json"
+                return self.view.data if self.seq else self._nothing_yet(), "application/json"
             if path == "/checks.js":  # before any check has run: a script that says so
                 return self.checks_js or NO_CHECKS_JS, "text/javascript; charset=utf-8"
             if folder == "/scene" and digest in self.kept.glbs:
@@ -374,8 +388,6 @@ def serve(state: LiveState, port: int) -> Servers:
 #: Times one session starts its server process again after it ended; after that
 #: (or when no process can be started) the watching process serves the page itself.
 SERVER_RESTARTS = 5
-#: Seconds a server process is given to end once told to, before it is killed.
-SERVER_STOP_S = 2.0
 
 
 class ServerProcess:
@@ -411,28 +423,31 @@ class ServerProcess:
         return self._process.pid if self._conn is not None else 0
 
     def _start(self) -> None:
-        """Start the server process on the servers' sockets (the lock held or alone)."""
+        """Start the server process on the servers' sockets (the lock held or alone),
+        with the stop signals held (:func:`tactcad.stopping.stop_signals_held`)."""
         import multiprocessing
         import os
-        import signal
+
+        from tactcad.stopping import spawn_ready, stop_signals_held
 
         spawn = multiprocessing.get_context("spawn")
+        spawn_ready()
         reader, writer = spawn.Pipe(duplex=False)
         process = spawn.Process(target=_serve_apart, daemon=True, name="tactcad watch server",
                                 args=(reader, [s.socket for s in self.servers.servers],
                                       os.getpid()))
-        ignore = threading.current_thread() is threading.main_thread()
-        before = signal.signal(signal.SIGINT, signal.SIG_IGN) if ignore else None
-        try:  # Ctrl-C is this process's: the new interpreter starts with SIGINT ignored
-            process.start()
-        except BaseException:
+        try:
+            with stop_signals_held():
+                process.start()
+                self._process, self._conn, self._held = process, writer, Held()
+        except BaseException:  # not started, or a stop came meanwhile: none is left running
             writer.close()
+            if process.pid is not None:
+                process.kill()
+                process.join()
             raise
         finally:
             reader.close()
-            if ignore:
-                signal.signal(signal.SIGINT, before)
-        self._process, self._conn, self._held = process, writer, Held()
 
     def send(self) -> None:
         """Send the server process what changed in the state since the last send
@@ -480,20 +495,19 @@ class ServerProcess:
                 return
 
     def close(self) -> None:
-        """End the server process (told by closing its pipe, killed after
-        :data:`SERVER_STOP_S`); the caller then stops ``servers``, which closes
-        the sockets here and stops them if they were served here."""
+        """End the server process at once (killed and reaped: it holds nothing
+        the watch needs, and a stop must not wait for its interpreter to end);
+        the caller then stops ``servers``, which closes the sockets here and
+        stops them if they were served here."""
         self._closing.set()
         with self._lock:
             self.state.on_change = None
             conn, self._conn = self._conn, None
             if conn is None:
                 return
+            self._process.kill()
+            self._process.join()
             conn.close()
-            self._process.join(SERVER_STOP_S)
-            if self._process.is_alive():
-                self._process.kill()
-                self._process.join()
 
 
 def serve_apart(servers: Servers, state: LiveState, log: Log = print) -> ServerProcess | None:
@@ -512,11 +526,9 @@ def _serve_apart(reader: Any, sockets: list[socket.socket], parent: int) -> None
     (:meth:`LiveState.apply`), until the pipe closes. Ctrl-C and a closed
     terminal are the watching process's (``parent``) to handle; the process
     ends with it (Linux)."""
-    import signal
+    from tactcad.stopping import stop_signals_unblocked
 
-    for name in ("SIGINT", "SIGHUP"):
-        if hasattr(signal, name):
-            signal.signal(getattr(signal, name), signal.SIG_IGN)
+    stop_signals_unblocked(ignore=("SIGINT", "SIGHUP"))
     _die_with_parent(parent)
     state, servers = LiveState(), None
     while True:

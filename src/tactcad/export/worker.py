@@ -4,7 +4,9 @@ files, scenes and images, so both cores work.
 
 The worker is forked (one process of a
 :class:`concurrent.futures.ProcessPoolExecutor`, fork context) as the run
-starts, and only while this process has not loaded the CAD kernel:
+starts (the stop signals held meanwhile:
+:func:`tactcad.stopping.stop_signals_held`), and only while this process
+has not loaded the CAD kernel:
 OpenCascade's thread pool does not survive a fork, so a process that has built or meshed a solid never forks
 (:func:`can_fork`), and the run then goes on in one process with the same
 result. Forked first, both processes import the kernel at the same time.
@@ -22,6 +24,10 @@ function that plans the run's jobs), from which it plans the same jobs
 again; it keeps the solids it was handed by their content, so a run hands
 over only the parts that changed.
 
+Either worker is ended by its parent's handle on the process (kept from the
+moment it starts: :class:`_Started`), SIGKILL and reaped: a stop does not
+wait for the pool's own shutdown, nor for the worker to have started.
+
 ``TACTCAD_WORKERS=0`` keeps every run in one process.
 """
 
@@ -32,13 +38,13 @@ import os
 import pickle
 import signal
 import sys
-import threading
 import warnings
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable, Collection, Mapping, Sequence
 
 from tactcad.export.job import Job, Run, solid_key
+from tactcad.stopping import spawn_ready, stop_signals_held, stop_signals_unblocked
 
 #: The run and its jobs by name: set before the fork for a worker forked per
 #: run to inherit, or by each run's first message to a session worker.
@@ -100,14 +106,11 @@ class Worker:
     :class:`concurrent.futures.process.BrokenProcessPool`; none is forked again."""
 
     def __init__(self, run: Run, jobs: Sequence[Job]):
-        fork = multiprocessing.get_context("fork")
-        self._pid = fork.Value("i", 0, lock=False)  # the worker's, for kill()
+        self._context = _Started("fork")
         self._blobs: dict[str, bytes | None] = {}  # part name -> its hand-over (see _hand_over)
         _INHERITED.update(run=run, jobs={j.name: j for j in jobs})
         try:
-            self._pool = ProcessPoolExecutor(1, mp_context=fork, initializer=_start,
-                                             initargs=(self._pid,))
-            self._pool.submit(int)  # forks now, before the kernel loads here
+            self._pool = _started_pool(self._context)  # forks now, before the kernel loads here
         finally:
             _INHERITED.clear()  # the worker has its copy; this process needs none
 
@@ -125,12 +128,64 @@ class Worker:
         self._pool.shutdown(wait=True)
 
     def kill(self) -> None:
-        if self._pid.value:
-            try:
-                os.kill(self._pid.value, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+        _kill(self._context.processes)
         self._pool.shutdown(wait=False, cancel_futures=True)
+
+
+class _Started:
+    """The multiprocessing context (``method``: ``fork`` or ``spawn``) a pool
+    is given, keeping each process the pool makes with it (``processes``):
+    its parent's handle, so the process can be killed from the moment it
+    starts, before it has run a line (the pool's own list is private)."""
+
+    def __init__(self, method: str):
+        self._context = multiprocessing.get_context(method)
+        self.processes: list = []
+
+    def __getattr__(self, name: str):
+        return getattr(self._context, name)
+
+    def Process(self, *args, **kwargs):  # noqa: N802 (multiprocessing's name)
+        process = self._context.Process(*args, **kwargs)
+        self.processes.append(process)
+        return process
+
+
+def _started_pool(context: _Started) -> ProcessPoolExecutor:
+    """A one-process pool on ``context``, its process started now with the
+    stop signals held (:func:`tactcad.stopping.stop_signals_held`: never left
+    half-started by a Ctrl-C; one that came meanwhile raises once it is
+    whole, after the process is killed here).
+
+    Raises:
+        OSError: no process to be had (memory, process limit).
+        KeyboardInterrupt: a stop came while the process started.
+    """
+    if context.get_start_method() == "spawn":
+        spawn_ready()
+    try:
+        with stop_signals_held():
+            pool = ProcessPoolExecutor(1, mp_context=context, initializer=_start)
+            pool.submit(int)  # starts it now (spawn: it loads the kernel while the run plans)
+    except BaseException:
+        _kill(context.processes)
+        raise
+    return pool
+
+
+def _kill(processes: Sequence) -> None:
+    """SIGKILL each of ``processes`` that was started and reap it (the pool's
+    shutdown is not waited for: a worker killed mid-transfer can leave it
+    waiting on a pipe)."""
+    started = [p for p in processes if p.pid is not None]
+    for process in started:
+        process.kill()
+    for process in started:
+        process.join(KILL_REAP_S)
+
+
+#: Seconds a killed worker is waited for to be reaped (it ends at once).
+KILL_REAP_S = 5.0
 
 
 class NotMadeHere(BrokenProcessPool):
@@ -151,24 +206,15 @@ class SessionWorker:
         self._start()
 
     def _start(self) -> None:
-        spawn = multiprocessing.get_context("spawn")
-        self._pid = spawn.Value("i", 0, lock=False)
+        self._context = _Started("spawn")
         self._blobs: dict[str, bytes | None] = {}  # content key -> hand-over the worker holds
-        ignore = threading.current_thread() is threading.main_thread()
-        before = signal.signal(signal.SIGINT, signal.SIG_IGN) if ignore else None
-        try:  # Ctrl-C is this process's: the new interpreter starts with SIGINT ignored
-            self._pool = ProcessPoolExecutor(1, mp_context=spawn, initializer=_start,
-                                             initargs=(self._pid,))
-            self._pool.submit(int)  # starts it now: it loads the kernel while the run plans
-        finally:
-            if ignore:
-                signal.signal(signal.SIGINT, before)
+        self._pool = _started_pool(self._context)
         self.broken = False
 
     @property
     def pid(self) -> int:
-        """The worker's process id (0 until it has started)."""
-        return self._pid.value
+        """The worker's process id (0: none started)."""
+        return next((p.pid for p in self._context.processes if p.pid is not None), 0)
 
     def begin(self, run: Run, planner: Callable[[Run], Sequence[Job]]) -> "_SessionRun | None":
         """Ready the worker for ``run``, whose jobs ``planner(run)`` plans (a
@@ -197,17 +243,12 @@ class SessionWorker:
     def kill(self) -> None:
         """End the worker at once (its run was interrupted); the next run starts another."""
         self.broken = True
-        if self.pid:
-            try:
-                os.kill(self.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+        _kill(self._context.processes)
         self._pool.shutdown(wait=False, cancel_futures=True)
 
     def close(self) -> None:
-        """End the worker (the session ends)."""
+        """End the worker (the session ends): at once, as :meth:`kill`."""
         self.kill()
-        self._pool.shutdown(wait=True)
 
 
 class _SessionRun:
@@ -262,11 +303,11 @@ class _JobFuture:
         return self._future.cancel()
 
 
-def _start(pid) -> None:
-    """The worker's start: it tells its pid, dies with the run's process and
-    leaves Ctrl-C to it, then imports the kernel and the drawing modules."""
-    pid.value = os.getpid()
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+def _start() -> None:
+    """The worker's start: it leaves Ctrl-C to the run's process, ends at once
+    on the other stop signals (:func:`tactcad.stopping.stop_signals_unblocked`)
+    and with the run's process, then imports the kernel and the drawing modules."""
+    stop_signals_unblocked()
     try:  # Linux: SIGKILL when the parent dies, so a killed run leaves no worker behind
         import ctypes
 

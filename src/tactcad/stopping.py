@@ -1,0 +1,127 @@
+"""How a run is stopped: the signals that stop it, held while a process is
+started, and the process's last moments.
+
+Ctrl-C (SIGINT) and the ending signals (SIGTERM, SIGHUP;
+:data:`ENDING_SIGNALS`) raise in the main thread wherever it is. Raised in
+the middle of starting a process, that leaves a child half made: spawned,
+but never sent its start-up data, it waits on its pipe for ever and the
+parent's exit waits for it (``multiprocessing``'s exit joins its children).
+So processes are started within :func:`stop_signals_held`: a stop that
+arrives meanwhile is acted on once the process is whole, and the new
+process starts with the stop signals blocked, so a terminal's Ctrl-C (sent
+to every process of the job) does not end it half-started either; its own
+start-up decides what they do (:func:`stop_signals_unblocked`).
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+from contextlib import contextmanager
+from typing import Iterator
+
+#: Signals that end a run like Ctrl-C does (cleaned up, then 128 + the number).
+ENDING_SIGNALS = ("SIGTERM", "SIGHUP")
+#: Every signal that stops a run: Ctrl-C and the ending signals.
+STOP_SIGNALS = ("SIGINT", *ENDING_SIGNALS)
+
+
+def stop_signal_numbers() -> list[signal.Signals]:
+    """The numbers of :data:`STOP_SIGNALS` this system has."""
+    return [getattr(signal, name) for name in STOP_SIGNALS if hasattr(signal, name)]
+
+
+@contextmanager
+def stop_signals_held(block_in_children: bool = True) -> Iterator[None]:
+    """Start processes within: a stop signal that arrives meanwhile is handed
+    to its handler (which raises, as it would have) when the block ends,
+    not in the middle of a process start; processes started within begin
+    with the stop signals blocked when ``block_in_children`` (a blocked mask
+    is inherited), to be unblocked by their start-up code
+    (:func:`stop_signals_unblocked`). Outside the main thread only the mask
+    is set: the handlers run in the main thread, which this one does not
+    interrupt."""
+    numbers = stop_signal_numbers()
+    held: list[int] = []
+    previous = {}
+    if threading.current_thread() is threading.main_thread():
+        for number in numbers:
+            handler = signal.getsignal(number)
+            if callable(handler):  # ignored or at the default: nothing to hold
+                previous[number] = signal.signal(number, lambda n, _f: held.append(n))
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, numbers) if block_in_children else None
+    try:
+        yield
+    finally:
+        if mask is not None:
+            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        _put_back(list(previous.items()))
+        for number in held[:1]:  # the first stop raises; later ones add nothing
+            previous[number](number, None)
+
+
+def _put_back(handlers: list) -> None:
+    """Install ``handlers`` ((signal, handler) pairs) each in a ``finally`` of
+    the one before: a handler put back may run (and raise) at once, and the
+    others are put back all the same."""
+    if handlers:
+        try:
+            signal.signal(*handlers[0])
+        finally:
+            _put_back(handlers[1:])
+
+
+def spawn_ready() -> None:
+    """Start ``multiprocessing``'s resource tracker now if it is not running,
+    before :func:`stop_signals_held` for a ``spawn`` start: the tracker's own
+    start unblocks SIGINT and SIGTERM in the calling thread when it is done
+    (CPython's ``resource_tracker.ensure_running``), which would start the
+    new process with them unblocked."""
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()
+
+
+def stop_signals_unblocked(ignore: tuple[str, ...] = ("SIGINT",)) -> None:
+    """A started process's first act (see :func:`stop_signals_held`): the
+    signals ``ignore`` ignored (Ctrl-C is the parent's to handle: it stops
+    this process), the other stop signals at their defaults (the process
+    ends at once; its parent cleans up), then every stop signal unblocked
+    (one sent meanwhile is acted on now, or dropped if ignored)."""
+    for number in stop_signal_numbers():
+        ignored = number.name in ignore
+        signal.signal(number, signal.SIG_IGN if ignored else signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, stop_signal_numbers())
+
+
+def exit_at_once_on_stop(code: int) -> None:
+    """From now on a stop signal ends the process at once with ``code``
+    (``os._exit``): for a process that is already ending (its command has
+    returned, or a watch is closing down), where a second Ctrl-C or a
+    SIGTERM must neither raise in the middle of its clean-up (the
+    interpreter's ``Exception ignored in atexit callback``) nor wait for it.
+    Only in the main thread (signals are the main thread's)."""
+    if threading.current_thread() is not threading.main_thread():
+        return
+    for number in stop_signal_numbers():
+        if signal.getsignal(number) is not signal.SIG_IGN:
+            signal.signal(number, lambda _n, _f: os._exit(code))
+
+
+def end_child_processes(wait_s: float = 1.0) -> None:
+    """Kill every ``multiprocessing`` child of this process still running and
+    reap it (each waited for at most ``wait_s`` seconds): a process that
+    ends must not leave one, and ``multiprocessing``'s exit would wait for
+    it for as long as it runs (a child never sent its work waits for ever).
+    The drawing worker and the page's server hold nothing that needs a
+    goodbye: their parent has the files and the sockets."""
+    import sys
+
+    if "multiprocessing" not in sys.modules:  # none was started
+        return
+    children = sys.modules["multiprocessing"].active_children()
+    for child in children:
+        child.kill()
+    for child in children:
+        child.join(wait_s)
