@@ -32,6 +32,8 @@ extensions = [
 ]
 
 source_suffix = {".md": "markdown"}
+# option names stay as typed (--set, not an en dash), quotes straight
+smartquotes = False
 root_doc = "index"
 # _generated: the reference pages' generated parts, included by the pages themselves
 exclude_patterns = ["_build", "_generated", "Thumbs.db", ".DS_Store"]
@@ -48,7 +50,8 @@ html_css_files = ["tactcad.css"]
 html_theme_options = {
     "description": "CAD for spring-based tactile sensor arrays",
     "fixed_sidebar": True,
-    "page_width": "1180px",
+    "page_width": "1240px",
+    "body_max_width": "none",
     "sidebar_width": "250px",
     "show_relbars": True,
 }

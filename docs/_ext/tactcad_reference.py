@@ -43,6 +43,21 @@ def text(s: Any) -> str:
     return _MARKUP.sub(r"\\\1", " ".join(str(s).split()))
 
 
+#: A reStructuredText role or a literal in a docstring (``:mod:`x` ``, ````x````).
+_DOC_CODE = re.compile(r"(?::[\w:]+:)?`{1,2}([^`]+?)`{1,2}")
+
+
+def docstring(s: str) -> str:
+    """A docstring's text as Markdown on one line: its roles and literals as inline
+    code, the rest escaped."""
+    s = " ".join(s.split())
+    out, at = [], 0
+    for m in _DOC_CODE.finditer(s):
+        out += [_MARKUP.sub(r"\\\1", s[at:m.start()]), code(m.group(1).lstrip("~"))]
+        at = m.end()
+    return "".join(out + [_MARKUP.sub(r"\\\1", s[at:])])
+
+
 def code(s: Any) -> str:
     """``s`` as inline code (a backtick inside is doubled around)."""
     s = " ".join(str(s).split())
@@ -242,7 +257,7 @@ def schema_markdown() -> str:
                     rows = []
                 out.append(f"#### `[{key}]`\n")
                 if section.__doc__ and "BaseModel" not in section.__doc__:
-                    out.append(text(section.__doc__) + "\n")
+                    out.append(docstring(section.__doc__) + "\n")
                 out.append(f"Table: {_default_words(info)}.\n")
                 continue
             limits = _limits(info)
