@@ -4,7 +4,8 @@ Each page runs in a fresh folder holding a copy of the checkout's
 ``hardware/``; its blocks run in order and share that folder (a tutorial's
 ``cd fingertip`` holds for its next block). ``tactcad`` lines run in this
 process (:func:`conftest.run_cli`), so a page costs its commands, not an
-interpreter start each.
+interpreter start each; a slow page's exports start from the run's store of the
+example's export jobs.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import run_cli
+from conftest import EXAMPLE_DESIGN, _filled_store, run_cli, warm_store_copy
 from doc_pages import DOCS, ROOT, RUNNABLE, Block, blocks, is_slow, pages
 
 #: Commands whose exit 1 is an answer, not a failure: ``diff`` found a change.
@@ -142,7 +143,15 @@ RUNNERS = {"sh": run_sh, "console": run_console, "python": run_python, "toml": r
 
 
 @pytest.mark.parametrize("page", [_page_param(p) for p in PAGES])
-def test_page_code_runs(page, tmp_path):
+def test_page_code_runs(page, tmp_path, tmp_path_factory, monkeypatch):
+    if is_slow(page):
+        # a tutorial's export of the example starts from the run's store of its jobs
+        # (filled once per run by one cold export), as a lab's second export would
+        import tactcad.store
+
+        store = _filled_store(tmp_path_factory, "example-design", EXAMPLE_DESIGN)
+        monkeypatch.setattr(tactcad.store, "DEFAULT_STORE",
+                            warm_store_copy(store, tmp_path / "store"))
     work = tmp_path / "work"
     work.mkdir()
     shutil.copytree(ROOT / "hardware", work / "hardware")
