@@ -85,7 +85,8 @@ def test_the_sdist_and_wheel_carry_the_package_data(installed):
         names = [n.split("/", 1)[1] for n in tar.getnames() if "/" in n]
     for needed in ("hardware/macro_array/macro_array.toml", "hardware/ti_array_2x3/rigs.toml",
                    "src/tactcad/data/three/build/three.module.js", "tests/conftest.py",
-                   "LICENSE", "CHANGELOG.md", "constraints.txt", "src/tactcad/py.typed"):
+                   "LICENSE", "CHANGELOG.md", "constraints.txt", "src/tactcad/py.typed",
+                   "docs/conf.py", "docs/_ext/tactcad_reference.py", "docs/how-to/python.md"):
         assert needed in names, needed
     wheel = zipfile.ZipFile(next(dist.glob("tactcad-*.whl")))
     names = set(wheel.namelist())
