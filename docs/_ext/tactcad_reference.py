@@ -206,7 +206,7 @@ def _default_words(info: Any) -> str:
         return "required"
     default = info.default
     if default is PydanticUndefined or default is None:
-        return "derived or unused when left out"
+        return "optional"
     if isinstance(default, BaseModel):
         return "its keys' defaults"
     return code(default) if default not in ({}, []) else "empty"
@@ -226,14 +226,43 @@ def schema_keys(model: type[BaseModel], prefix: str = "") -> Iterator[tuple[str,
         yield from schema_keys(section, f"{key}.<name>." if keyed else f"{key}.")
 
 
-def _file_models() -> list[tuple[str, str, type[BaseModel]]]:
+def _file_models() -> list[tuple[str, str, type[BaseModel], str]]:
+    """(title, anchor, schema, the paper's example file of that kind)."""
     from tactcad.design.array_plan import DesignFile
     from tactcad.design.rig_plan import RigsFile
     from tactcad.design.scene_specs import ScenesFile
 
-    return [("The design file", "design", DesignFile),
-            ("rigs.toml", "rigs", RigsFile),
-            ("scenes.toml", "scenes", ScenesFile)]
+    return [("The design file", "design", DesignFile, "macro_array.toml"),
+            ("rigs.toml", "rigs", RigsFile, "rigs.toml"),
+            ("scenes.toml", "scenes", ScenesFile, "scenes.toml")]
+
+
+def example_values(file: str) -> tuple[dict[str, Any], dict[str, str]]:
+    """The paper's example file (shipped as ``tactcad/examples/macro_array``): its values
+    by dotted key and its ``[assumptions]``, the reason for each value the paper does
+    not give."""
+    import tomllib
+
+    import tactcad
+
+    path = Path(tactcad.__file__).parent / "examples" / "macro_array" / file
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    assumptions = {re.sub(r"\[\d+\]$", "", k): v for k, v in data.pop("assumptions", {}).items()}
+
+    def flat(table: dict, prefix: str = "") -> Iterator[tuple[str, Any]]:
+        for key, value in table.items():
+            if isinstance(value, dict):
+                yield from flat(value, f"{prefix}{key}.")
+            else:
+                yield prefix + key, value
+    return dict(flat(data)), assumptions
+
+
+def _example_cell(key: str, values: dict[str, Any], assumptions: dict[str, str]) -> str:
+    if key not in values:
+        return ""
+    reason = assumptions.get(key)
+    return code(values[key]) + (f": {text(reason)}" if reason else "")
 
 
 def schema_markdown() -> str:
@@ -246,14 +275,19 @@ def schema_markdown() -> str:
            "`scene.<name>.key`); *range* is what the validator allows, with its unit, "
            "*default* what a file that leaves the key out gets, *reason* why the range "
            "is what it is, where the schema states one. A value outside its range is "
-           "refused with the same range and reason (exit 2).\n"]
-    for title, anchor, model in _file_models():
+           "refused with the same range and reason (exit 2). The last column gives the "
+           "value in the files of the paper's array (`hardware/macro_array`) and, for a "
+           "value the paper does not give, the reason it was chosen (the files' "
+           "`[assumptions]`).\n"]
+    header = ["key", "range", "default", "reason", "the paper's array (why, where the paper is silent)"]
+    for title, anchor, model, example in _file_models():
+        values, assumptions = example_values(example)
         out.append(f"({anchor}-keys)=\n### {text(title)}\n")
         rows: list[list[str]] = []
         for key, info, section in schema_keys(model):
             if section is not None:
                 if rows:
-                    out.append(table(["key", "range", "default", "reason"], rows))
+                    out.append(table(header, rows))
                     rows = []
                 out.append(f"#### `[{key}]`\n")
                 if section.__doc__ and "BaseModel" not in section.__doc__:
@@ -262,9 +296,10 @@ def schema_markdown() -> str:
                 continue
             limits = _limits(info)
             rows.append([code(key), text(_type_words(info)), _default_words(info),
-                         text(limits.why) if limits and limits.why else ""])
+                         text(limits.why) if limits and limits.why else "",
+                         _example_cell(key, values, assumptions)])
         if rows:
-            out.append(table(["key", "range", "default", "reason"], rows))
+            out.append(table(header, rows))
     return "\n".join(out)
 
 
