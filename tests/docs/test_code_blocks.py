@@ -144,7 +144,8 @@ RUNNERS = {"sh": run_sh, "console": run_console, "python": run_python, "toml": r
 
 @pytest.mark.parametrize("page", [_page_param(p) for p in PAGES])
 def test_page_code_runs(page, tmp_path, tmp_path_factory, monkeypatch):
-    if is_slow(page):
+    exports = any("tactcad export" in b.code for b in blocks(page) if not b.not_run)
+    if is_slow(page) and exports:
         # a tutorial's export of the example starts from the run's store of its jobs
         # (filled once per run by one cold export), as a lab's second export would
         import tactcad.store
