@@ -39,11 +39,8 @@ DOCS_OUT ?= docs/_build/html
 docs: $(STAMP) ## build the documentation site (docs/) into docs/_build/html; open its index.html
 	$(BIN)/python -m sphinx -W --keep-going -q -b html docs $(DOCS_OUT)
 
-PAPER := hardware/macro_array/macro_array.toml
-docs-images: export ## refresh the pictures of README and the docs (docs/images): the export's, the paper's Table 2 and evaluation plots
-	cp $(OUT)/images/array.png $(OUT)/images/element_a4mm_drawing.png docs/images/
-	$(BIN)/tactcad table2 --design $(PAPER) --plot docs/images/table2_models.png --quiet > /dev/null
-	$(BIN)/tactcad evaluate --design $(PAPER) --stiffness table1 --plot docs/images/evaluate_fig7_halfspace.png --quiet > /dev/null
+docs-images: export ## refresh the pictures of README and the docs (docs/images) from the export: images, drawing sheets, review page, the paper's plots
+	$(BIN)/python scripts/docs_images.py $(OUT) --review
 
 check: $(STAMP) ## run the checks on exports/ (reused as it is after `make export`)
 	$(BIN)/tactcad check --design $(DESIGN) --out $(OUT)
