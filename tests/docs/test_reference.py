@@ -181,3 +181,32 @@ def test_every_page_is_in_the_site():
                 if line and not line.startswith(":"):
                     listed.add((page.parent / f"{line}.md").resolve())
     assert {p.resolve() for p in pages() if p.name != "index.md" or p.parent != DOCS} <= listed
+
+
+# --- the API page's examples ------------------------------------------------------------------
+def test_the_api_pages_examples_run():
+    """The docstring examples (``>>>``) of every module the API page documents run as shown."""
+    import doctest
+    import importlib
+
+    page = (DOCS / "reference" / "api.md").read_text(encoding="utf-8")
+    targets = re.findall(r"^\.\. auto(?:module|class|function|method):: ([\w.]+)", page, re.M)
+
+    def module_of(target: str) -> str:
+        """The module a documented name lives in (``a.b.Class.method`` -> ``a.b``)."""
+        while True:
+            try:
+                importlib.import_module(target)
+                return target
+            except ModuleNotFoundError:
+                target = target.rsplit(".", 1)[0]
+
+    modules = {module_of(t) for t in targets}
+    assert {"tactcad.api", "tactcad.errors"} <= modules
+    attempted = 0
+    for name in sorted(modules):
+        result = doctest.testmod(importlib.import_module(name),
+                                 optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+        assert result.failed == 0, name
+        attempted += result.attempted
+    assert attempted >= 4
