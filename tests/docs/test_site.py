@@ -3,13 +3,15 @@ opens from ``file://`` with nothing from the network."""
 
 from __future__ import annotations
 
+import os
 import re
+import shutil
 import subprocess
 import sys
 
 import pytest
 
-from doc_pages import DOCS
+from doc_pages import DOCS, ROOT
 
 #: What would make a page fetch something: a script, style sheet or picture from a host.
 FETCH = re.compile(r"""<(?:script|link|img|iframe)\b[^>]*\b(?:src|href)=["'](?:https?:)?//""", re.I)
@@ -18,9 +20,14 @@ FETCH = re.compile(r"""<(?:script|link|img|iframe)\b[^>]*\b(?:src|href)=["'](?:h
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     out = tmp_path_factory.mktemp("site")
+    # a copy of the sources: the build writes its generated pages beside them, and a test
+    # run writes nothing into the checkout
+    source = out / "docs"
+    shutil.copytree(DOCS, source, ignore=shutil.ignore_patterns("_build", "_generated"))
     proc = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b",
-                           "html", "-d", str(out / "doctrees"), str(DOCS), str(out / "html")],
-                          capture_output=True, text=True)
+                           "html", "-d", str(out / "doctrees"), str(source), str(out / "html")],
+                          capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
     assert proc.returncode == 0, proc.stderr[-4000:]
     assert "WARNING" not in proc.stderr and "ERROR" not in proc.stderr, proc.stderr[-4000:]
     return out / "html"
