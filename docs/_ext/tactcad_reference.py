@@ -12,7 +12,8 @@ so the site cannot drift from the code:
 * ``export_kinds.md`` and ``check_groups.md``: the registries
   :data:`tactcad.export.kinds.EXPORT_KINDS` and :data:`tactcad.checks.groups.CHECK_GROUPS`;
 * ``materials.md``: the material grades and strain gauges of
-  ``src/tactcad/data/materials.toml``, each value with its source.
+  ``src/tactcad/data/materials.toml`` and the force gauges of
+  ``src/tactcad/data/force_gauges.toml``, each value with its source.
 
 The pages are written into ``docs/_generated/`` (ignored by git) when Sphinx
 starts (``builder-inited``) and included by the hand-written reference pages.
@@ -336,7 +337,8 @@ def _sources(entry: Any) -> str:
 
 
 def materials_markdown() -> str:
-    """The material grades and strain gauges, each value with its document."""
+    """The material grades, strain gauges and force gauges, each value with its document."""
+    from tactcad.vocabulary.force_gauge_catalogue import force_gauges
     from tactcad.vocabulary.material_library import material_grades, strain_gauges
 
     grades = material_grades()
@@ -366,6 +368,12 @@ def materials_markdown() -> str:
         out.append(f"#### `{s.name}`\n")
         out.append(text(s.description) + "\n")
         out.append(_sources(s))
+    out.append("### Force gauges of the rigs\n")
+    out.append("Generated from `src/tactcad/data/force_gauges.toml`: the catalogue the rigs "
+               "made for a design take their gauge from (`tactcad.studies.rig_sizing`).\n")
+    out.append(table(["model", "maker", "range N", "resolution N", "stiffness N/mm", "source"],
+                     [[code(g.model), text(g.maker), number(g.range_N), number(g.resolution_N),
+                       number(g.stiffness_N_per_mm), text(g.source)] for g in force_gauges()]))
     return "\n".join(out)
 
 

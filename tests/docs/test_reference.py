@@ -130,6 +130,7 @@ def test_every_key_of_the_shipped_files_is_in_the_reference(file):
 def test_export_kinds_check_groups_and_library_are_listed():
     from tactcad.checks.groups import CHECK_GROUPS
     from tactcad.export.kinds import EXPORT_KINDS
+    from tactcad.vocabulary.force_gauge_catalogue import force_gauges
     from tactcad.vocabulary.material_library import material_grades, strain_gauges
 
     kinds, groups, library = (REF.export_kinds_markdown(), REF.check_groups_markdown(),
@@ -140,6 +141,7 @@ def test_export_kinds_check_groups_and_library_are_listed():
         assert f"#### `{name}`" in library and f"| `{name}` | {grade.youngs_modulus_MPa:.6g} |" \
             in library
     assert all(f"#### `{name}`" in library for name in strain_gauges())
+    assert all(f"| `{g.model}` | " in library for g in force_gauges()) and len(force_gauges()) >= 2
 
 
 def test_free_text_is_escaped_not_read_as_markup():
