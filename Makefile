@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed-stamp
 DESIGN ?= hardware/macro_array/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env lower-bounds typecheck vendor-three system-deps export docs-images check ci-example test test-fast bench-tests bench fuzz clean
+.PHONY: help env lower-bounds typecheck vendor-three system-deps export docs docs-images check ci-example test test-fast bench-tests bench fuzz clean
 
 help: ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
@@ -17,7 +17,7 @@ help: ## list the targets
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
-	$(BIN)/pip install --quiet -c constraints.txt -e ".[test]"
+	$(BIN)/pip install --quiet -c constraints.txt -e ".[test,docs]"
 	touch $(STAMP)
 
 env: $(STAMP) ## create .venv with the pinned CAD stack (build123d + cadquery on one OCP)
@@ -34,8 +34,13 @@ vendor-three: $(STAMP) ## refresh src/tactcad/data/three from the npm release we
 export: $(STAMP) ## build the default design (DESIGN=...) into exports/ (OUT=...)
 	$(BIN)/tactcad export --design $(DESIGN) --out $(OUT)
 
-docs-images: export ## refresh README's pictures (docs/images) from exports/images
-	cp $(OUT)/images/array.png $(OUT)/images/element_a4mm_drawing.png docs/images/
+# Sphinx, every warning an error; no network: the equations are MathML written at build time
+DOCS_OUT ?= docs/_build/html
+docs: $(STAMP) ## build the documentation site (docs/) into docs/_build/html; open its index.html
+	$(BIN)/python -m sphinx -W --keep-going -q -b html docs $(DOCS_OUT)
+
+docs-images: export ## refresh the pictures of README and the docs (docs/images) from the export: images, drawing sheets, review page, the paper's plots
+	$(BIN)/python scripts/docs_images.py $(OUT) --review
 
 check: $(STAMP) ## run the checks on exports/ (reused as it is after `make export`)
 	$(BIN)/tactcad check --design $(DESIGN) --out $(OUT)
@@ -84,4 +89,4 @@ bench: $(STAMP) ## print the speed/accuracy benchmarks (export speed, stiffness 
 	$(BIN)/tactcad bench modal
 
 clean: ## remove generated files (exports/) and the environment
-	rm -rf $(OUT) $(VENV) .pytest_cache .hypothesis .tactcad-cache $(CI_OUT)
+	rm -rf $(OUT) $(VENV) .pytest_cache .hypothesis .tactcad-cache $(CI_OUT) docs/_build docs/_generated

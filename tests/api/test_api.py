@@ -1,5 +1,6 @@
 """The public Python API (``tactcad.load`` -> ``Project``), the build123d part
-classes, and README's "Use from Python" examples, run as they stand."""
+classes, and the documentation's Python examples (docs/how-to/python.md, the FreeCAD
+script of docs/how-to/freecad.md), run as they stand."""
 
 from __future__ import annotations
 
@@ -17,18 +18,16 @@ from tactcad import cli
 from tactcad.errors import DesignError, DesignErrors
 
 ROOT = Path(__file__).resolve().parents[2]
-#: The design README's example loads (its one path, replaced by this absolute one).
+#: The design the documentation's example loads (its one path, replaced by this absolute one).
 EXAMPLE_DESIGN = ROOT / "hardware" / "macro_array" / "macro_array.toml"
-README_EXAMPLE_DESIGN = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
-README_DESIGN_LINE = 'DESIGN = "fingertip/ti_array_2x3.toml"'
+DOCS_EXAMPLE_DESIGN = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+DOCS_DESIGN_LINE = 'DESIGN = "fingertip/ti_array_2x3.toml"'
 
 
-def readme_block(heading: str, index: int = 0) -> str:
-    """The ``index``-th python block of README's section ``heading``."""
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
-    section = text[text.index(heading):]
-    section = section[: section.index("\n## ", 1)] if "\n## " in section[1:] else section
-    return re.findall(r"```python\n(.*?)```", section, re.S)[index]
+def docs_block(page: str, index: int = 0) -> str:
+    """The ``index``-th python block of the documentation page ``page`` (under docs/)."""
+    text = (ROOT / "docs" / page).read_text(encoding="utf-8")
+    return re.findall(r"```python\n(.*?)```", text, re.S)[index]
 
 
 # --- import costs nothing -------------------------------------------------------------------
@@ -217,11 +216,11 @@ def test_show_is_optional():
         pytest.skip("ocp_vscode installed: show() would open the viewer")
 
 
-# --- README: "Use from Python" runs as written ------------------------------------------------
-def test_readme_python_example_runs(tmp_path):
-    code = readme_block("## Use from Python")
-    assert README_DESIGN_LINE in code  # the one path the example names
-    code = code.replace(README_DESIGN_LINE, f"DESIGN = {str(README_EXAMPLE_DESIGN)!r}")
+# --- docs: "Use tactcad from Python" runs as written --------------------------------------
+def test_docs_python_example_runs(tmp_path):
+    code = docs_block("how-to/python.md")
+    assert DOCS_DESIGN_LINE in code  # the one path the example names
+    code = code.replace(DOCS_DESIGN_LINE, f"DESIGN = {str(DOCS_EXAMPLE_DESIGN)!r}")
     script = tmp_path / "example.py"
     script.write_text(code, encoding="utf-8")
     out = subprocess.run([sys.executable, str(script)], cwd=tmp_path,
@@ -230,7 +229,7 @@ def test_readme_python_example_runs(tmp_path):
     assert out.returncode == 0, out.stderr
     assert out.stderr == ""  # no raw warning reaches the user
     lines = out.stdout.splitlines()
-    project = tactcad.load(README_EXAMPLE_DESIGN, set={"element.web_thickness_mm": 0.2})
+    project = tactcad.load(DOCS_EXAMPLE_DESIGN, set={"element.web_thickness_mm": 0.2})
     element = project.element(2)
     name = element.part_name
     assert lines[0] == f"{name} web 0.2 mm"
@@ -244,11 +243,11 @@ def test_readme_python_example_runs(tmp_path):
 
 
 @pytest.mark.slow
-def test_readme_freecad_snippet_runs_in_freecadcmd(freecad, tmp_path):
+def test_docs_freecad_script_runs_in_freecadcmd(freecad, tmp_path):
     project = tactcad.load()
     result = project.export(tmp_path / "exports", only="step", cache=False)
     array = next(f for f in result.files if f["path"] == "step/array.step")
-    code = readme_block("## Use from Python", 1)
+    code = docs_block("how-to/freecad.md")
     line = 'STEP = "exports/step/array.step"'
     assert line in code
     script = tmp_path / "review.py"

@@ -316,7 +316,7 @@ def test_reuse_refusal_reasons(tmp_path):
     assert "CAD stack" in reuse_refusal(plan, tmp_path)
 
 
-# --- ./tactcad and README ----------------------------------------------------------------------
+# --- ./tactcad -----------------------------------------------------------------------------------
 def launcher_checkout(tmp_path: Path) -> Path:
     """A copy of the launcher, Makefile, pyproject.toml and constraints.txt with a set-up .venv
     whose tactcad runs this source tree."""
@@ -352,19 +352,6 @@ def test_launcher_without_venv_says_how_to_set_up(tmp_path):
     proc = subprocess.run(["/bin/sh", str(root / "tactcad"), "--version"], capture_output=True,
                           text=True, env={"PATH": str(tools)})
     assert proc.returncode == 3 and "run 'make env'" in proc.stderr
-
-
-def test_readme_command_lines_name_real_commands():
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
-    commands = {path[0] for path, _ in leaf_parsers(cli.build_parser())}
-    used = re.findall(r"\./tactcad ([a-z][a-z0-9-]*)", text)
-    assert len(used) > 20 and set(used) <= commands
-    # a pip user's own sections type `tactcad`; from the checkout on it is ./tactcad
-    checkout = text[text.index("## Work in this checkout"):]
-    code_lines = [line for block in re.findall(r"```(?:sh)?\n(.*?)```", checkout, re.S)
-                  for line in block.splitlines()]
-    assert not [line for line in code_lines if re.match(r"(\$ )?tactcad ", line)]
-    assert not re.search(r"`tactcad [a-z]", checkout)  # every inline command line uses ./tactcad
 
 
 def test_ctrl_c_while_the_kernel_loads_is_one_line(monkeypatch, capsys):

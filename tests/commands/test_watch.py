@@ -495,7 +495,7 @@ def _descendants(pid: int) -> set[int]:
 @pytest.mark.slow
 def test_sigterm_mid_update_ends_the_watch_cleanly(tmp_path, default_store):
     """SIGTERM while an edit is being exported: the watch says "stopped" and exits
-    with 0 (README: stopping is a watch's normal end), leaving no staging folder
+    with 0 (docs/how-to/watch.md: stopping is a watch's normal end), leaving no staging folder
     in or beside --out, and none of its processes (drawing worker, freecadcmd,
     server process) behind; the last good export stays whole."""
     import time

@@ -210,23 +210,24 @@ def test_a_default_companion_that_is_a_symbolic_link_loop_is_refused_not_made_an
     assert "files.rigs = 'rigs.toml': allowed a rigs file, or none, beside bare.toml" in err
 
 
-def _folders_the_readme_writes() -> set[str]:
-    """The output folders README's examples write in a project: each
-    ``--out NAME`` (not of ``design`` or ``new``, which make projects, nor a
-    design file or placeholder) and the Python
+def _folders_the_docs_write() -> set[str]:
+    """The output folders the documentation's examples write in a project: each
+    ``--out NAME`` (not of ``tactcad design``, whose ``--out`` is a new design
+    file or project, nor a design file or placeholder) and the Python
     example's ``project.export("NAME", ...)``."""
-    text = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
-    commands = text.replace("\\\n", " ").splitlines()  # a continued line is one command
-    writes = [line for line in commands if not re.search(r"tactcad (design|new)\b", line)]
-    named = [n for line in writes for n in re.findall(r"--out ([A-Za-z0-9_.-]+)", line)]
+    from doc_pages import pages
+
+    text = "\n".join(p.read_text(encoding="utf-8") for p in pages()).replace("\\\n", " ")
+    lines = [line for line in text.splitlines() if not re.search(r"\btactcad design\b", line)]
+    named = [n for line in lines for n in re.findall(r"--out ([A-Za-z0-9_.-]+)", line)]
     named += re.findall(r'\.export\("([^"]+)"', text)
     return {n for n in named if not n.endswith(".toml") and n != "DIR"}
 
 
-def test_the_projects_gitignore_keeps_every_folder_the_readme_writes_out_of_git(tmp_path):
+def test_the_projects_gitignore_keeps_every_folder_the_docs_write_out_of_git(tmp_path):
     import subprocess
 
-    folders = _folders_the_readme_writes()
+    folders = _folders_the_docs_write()
     assert {"exports", "exports-web0p2", "diff"} <= folders  # the Python example's among them
     made = new_project(tmp_path / "p")
     subprocess.run(["git", "init", "-q", str(made.folder)], check=True)

@@ -5,7 +5,7 @@ to the new venv by one ``.pth`` line and checked against the wheel's ranges
 by ``pip check`` (installing them anew from the index took about a minute and
 proves only pip's resolver; `make env` resolves the same ranges). The steps are a user's first hour: ``tactcad new``, export,
 ``check --junit``, ``diff`` against the previous commit (the CI template's
-own steps), the README's Python example, ``export --only step`` and the
+own steps), the documentation's Python example, ``export --only step`` and the
 review page offline in Chromium; then a project made for a non-paper design
 is searched for the paper's samples, loads and text."""
 
@@ -85,7 +85,8 @@ def test_the_sdist_and_wheel_carry_the_package_data(installed):
         names = [n.split("/", 1)[1] for n in tar.getnames() if "/" in n]
     for needed in ("hardware/macro_array/macro_array.toml", "hardware/ti_array_2x3/rigs.toml",
                    "src/tactcad/data/three/build/three.module.js", "tests/conftest.py",
-                   "LICENSE", "CHANGELOG.md", "constraints.txt", "src/tactcad/py.typed"):
+                   "LICENSE", "CHANGELOG.md", "constraints.txt", "src/tactcad/py.typed",
+                   "docs/conf.py", "docs/_ext/tactcad_reference.py", "docs/how-to/python.md"):
         assert needed in names, needed
     wheel = zipfile.ZipFile(next(dist.glob("tactcad-*.whl")))
     names = set(wheel.namelist())
@@ -135,9 +136,9 @@ def test_a_labs_first_hour_from_the_wheel(installed, tmp_path, example_exported)
                 repo, env, ok=(0, 1), timings=timings)
     assert diff.returncode == 1 and "6.5" in diff.stdout
 
-    # the README's Python example, in a folder of its own
-    block = (ROOT / "README.md").read_text(encoding="utf-8").split("## Use from Python", 1)[1]
-    code = re.findall(r"```python\n(.*?)```", block, re.S)[0]
+    # the documentation's Python example, in a folder of its own
+    page = (ROOT / "docs" / "how-to" / "python.md").read_text(encoding="utf-8")
+    code = re.findall(r"```python\n(.*?)```", page, re.S)[0]
     work = tmp_path / "py"
     work.mkdir()
     _run([tactcad, "new", "fingertip"], work, env)

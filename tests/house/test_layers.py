@@ -2,11 +2,11 @@
 ones too) goes from a layer to one above it, and no modules import each other
 in a circle.
 
-The layer order is written once, in README's "Layout" section (the lines
+The layer order is written once, in the block of docs/reference/layout.md (the lines
 under ``src/tactcad/``, top to bottom); this file reads it from there. The
 mechanics read plans only: foundation, vocabulary, design, geometry and
 mechanics; the studies those and the mechanics; the paper those and the
-studies. And a module's name is one in the package (README's Layout): a
+studies. And a module's name is one in the package (docs/reference/layout.md): a
 ``commands/<name>.py`` is named after its command, and no module elsewhere
 has its name or another's.
 """
@@ -23,15 +23,15 @@ import pytest
 import tactcad
 
 SRC = Path(tactcad.__file__).resolve().parent
-README = SRC.parents[1] / "README.md"
+LAYOUT_PAGE = SRC.parents[1] / "docs" / "reference" / "layout.md"
 
 
-def layers_from_readme(text: str) -> list[str]:
-    """The layers of README's Layout block, top to bottom: a folder ``name/``
+def layers_from_layout_page(text: str) -> list[str]:
+    """The layers of the Layout page's block (docs/reference/layout.md), top to bottom: a folder ``name/``
     is the layer ``name``; a module file is in the layer :data:`FOUNDATION` or
     :data:`TOP_LEVEL` gives it (``errors.py ...`` the foundation, ``cli.py
     commands/`` and ``api.py`` the commands)."""
-    block = text.split("## Layout", 1)[1].split("```", 2)[1]
+    block = text.split("# Layout", 1)[1].split("```", 2)[1]
     layers, inside = [], False
     for line in block.splitlines():
         if line.startswith("src/tactcad/"):
@@ -56,7 +56,7 @@ def layers_from_readme(text: str) -> list[str]:
 FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store", "tactcad.stopping"}
 TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands",
              "tactcad.project_folder": "commands"}
-LAYERS = layers_from_readme(README.read_text(encoding="utf-8"))
+LAYERS = layers_from_layout_page(LAYOUT_PAGE.read_text(encoding="utf-8"))
 MECHANICS_MAY_USE = {"foundation", "vocabulary", "design", "geometry", "mechanics"}
 #: The design studies run the general models over many plans, never the reverse.
 STUDIES_MAY_USE = MECHANICS_MAY_USE | {"studies"}
@@ -208,7 +208,7 @@ def test_layer_names(module, layer):
     assert layer_of(module) == layer
 
 
-def test_the_one_layer_order_is_readmes_and_covers_every_package():
+def test_the_one_layer_order_is_the_layout_pages_and_covers_every_package():
     assert LAYERS[0] == "foundation" and LAYERS[-1] == "commands"
     assert len(set(LAYERS)) == len(LAYERS)
     packages = {p.name for p in SRC.iterdir() if (p / "__init__.py").is_file()}
@@ -216,7 +216,7 @@ def test_the_one_layer_order_is_readmes_and_covers_every_package():
 
 
 def repeated_module_names(src: Path, not_yet=NAME_RULE_NOT_YET) -> dict[str, list[str]]:
-    """Module file names that repeat in ``src`` (README's Layout: every
+    """Module file names that repeat in ``src`` (docs/reference/layout.md: every
     module but ``__init__.py`` has a name no other has; a ``commands/<name>.py``
     is named after its command, so only a module outside ``commands/`` can
     repeat its name), leaving out the folders ``not_yet``."""
@@ -231,7 +231,7 @@ def repeated_module_names(src: Path, not_yet=NAME_RULE_NOT_YET) -> dict[str, lis
 
 def test_every_module_name_is_one_in_the_package():
     repeated = repeated_module_names(SRC)
-    assert not repeated, "module names that repeat (README's Layout):\n" + "\n".join(
+    assert not repeated, "module names that repeat (docs/reference/layout.md):\n" + "\n".join(
         f"{name}: {', '.join(paths)}" for name, paths in sorted(repeated.items()))
 
 

@@ -1,7 +1,7 @@
 """The tests mirror the house: every test file sits in ``tests/<room>/`` where
 ``<room>`` is a package of ``src/tactcad/`` (the module under test's room), or
 in one of the few folders for what spans the house: ``api/`` (the Python API),
-``house/`` (the layer order, the repository's scripts) and ``end_to_end/``
+``house/`` (the layer order, the repository's scripts), ``docs/`` (the documentation site) and ``end_to_end/``
 (runs that need a whole process or install: the wheel, CI, the FreeCAD GUI).
 No test file sits at ``tests/`` itself or in a folder that is not a room."""
 
@@ -13,8 +13,9 @@ import tactcad
 
 TESTS = Path(__file__).resolve().parents[1]
 SRC = Path(tactcad.__file__).resolve().parent
-#: Test folders that mirror no package: the API module, the house as a whole, whole runs.
-BESIDE_THE_ROOMS = {"api", "house", "end_to_end"}
+#: Test folders that mirror no package: the API module, the house as a whole, whole runs,
+#: the documentation site (docs/).
+BESIDE_THE_ROOMS = {"api", "house", "end_to_end", "docs"}
 #: Folders of tests/ that hold no test (the shared data files).
 NOT_TESTS = {"data", "__pycache__"}
 

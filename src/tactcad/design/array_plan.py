@@ -9,7 +9,7 @@ The array's parts are modules of :mod:`tactcad.partlib.array` (the element's
 and the clamp's tables, each part's dimensions, spec, builder and drawing);
 their derivation stays here, one coupled derivation of the elements, the
 spacer, the clamp plates and the bolt pattern, because the part modules sit
-below this layer (README, "Layout") and read the plan it makes.
+below this layer (docs/reference/layout.md) and read the plan it makes.
 
 Units: mm, N, MPa throughout. Frames:
 

@@ -403,7 +403,7 @@ def synthetic_calibration(k_element: float, k_v: float, v0: float, *,
 # ---------------------------------------------------------------------------
 # Measured-calibration CSV: one reading per row
 # ---------------------------------------------------------------------------
-#: Columns of a calibration CSV, in order (see README "Calibration data format").
+#: Columns of a calibration CSV, in order (docs/how-to/calibration-data.md).
 CSV_COLUMNS = ("element", "run", "z_um", "force_N", "signal_V")
 #: Optional first comment line giving the force sensor stiffness, e.g. ``# k_sensor_N_per_mm = 57.04``.
 CSV_SENSOR_KEY = "k_sensor_N_per_mm"

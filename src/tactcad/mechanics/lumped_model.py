@@ -350,7 +350,7 @@ def sensitivity(r, k_m, k_r):
 def propagate_sigma(r, sigma_r, k_m, k_r):
     """Standard uncertainty of K_obj from that of R, to first order.
 
-    σ_K_obj = |dK_obj/dR| σ_R (first-order Taylor / delta method, GUM
+    ``σ_K_obj = |dK_obj/dR| σ_R`` (first-order Taylor / delta method, GUM
     section 5.1.2). The neglected second-order term, (K_r − K_m) σ_R²/(R − 1)³,
     is σ_R/(R − 1) times the first-order one, so the result holds while
     σ_R << R − 1; beyond that K_obj's distribution is skewed and wider.

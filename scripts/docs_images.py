@@ -1,0 +1,110 @@
+"""Refresh the pictures of README and the documentation (docs/images) from an export.
+
+``make docs-images`` runs it after ``make export``: every picture the pages
+show is made by tactcad itself, from the export folder given:
+
+* ``array.png`` and ``element_a4mm_drawing.png``: the export's own images
+  (``images/*.png``);
+* ``cart_drawing.png`` and ``assembly_sheet.png``: their pages of
+  ``drawings/drawings.pdf``, found by the drawing number in the title block
+  (``<design>-<part>``), rasterised as the export rasterises its drawing image;
+* ``review_page.png``: the review page opened offline in headless Chromium
+  (``--review``; skipped with a note where no Chromium is installed);
+* ``table2_models.png`` and ``evaluate_fig7_halfspace.png``: the plots of
+  ``tactcad table2`` and ``tactcad evaluate`` on the paper's design.
+
+The design chart (fem3d, minutes) and the diff overlay (two exports) are made
+by the commands their pages name.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import io
+import json
+import shutil
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+IMAGES = ROOT / "docs" / "images"
+PAPER = ROOT / "hardware" / "macro_array" / "macro_array.toml"
+#: Sheets shown in the pages: picture name -> the part whose drawing it is.
+SHEETS = {"cart_drawing.png": "cart", "assembly_sheet.png": "array"}
+PNG_DPI = 110
+
+
+def sheet_page(pdf: Path, drawing_number: str) -> int:
+    """The page of ``pdf`` whose title block carries ``drawing_number``."""
+    import pypdfium2
+
+    document = pypdfium2.PdfDocument(str(pdf))
+    for index in range(len(document)):
+        if drawing_number in document[index].get_textpage().get_text_range():
+            return index
+    raise SystemExit(f"docs_images: no page of {pdf} carries the drawing number {drawing_number}")
+
+
+def copy_export_images(exports: Path, images: Path) -> None:
+    for picture in sorted((exports / "images").glob("*.png")):  # array.png, <part>_drawing.png
+        shutil.copyfile(picture, images / picture.name)
+
+
+def render_sheets(exports: Path, images: Path) -> None:
+    from tactcad.export.render import pdf_page_png
+
+    design = json.loads((exports / "manifest.json").read_text(encoding="utf-8"))["design"]["name"]
+    pdf = exports / "drawings" / "drawings.pdf"
+    for picture, part in SHEETS.items():
+        pdf_page_png(pdf, sheet_page(pdf, f"{design}-{part}"), images / picture, PNG_DPI)
+
+
+def screenshot_review(exports: Path, images: Path) -> None:
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    if chromium is None:
+        print("docs_images: no chromium installed; review_page.png left as it was", file=sys.stderr)
+        return
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=chromium,
+                                    args=["--no-sandbox", "--use-gl=swiftshader"])
+        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        page.goto((exports / "review" / "index.html").resolve().as_uri())
+        page.wait_for_timeout(4000)  # the first frame of software WebGL, with margin
+        page.screenshot(path=str(images / "review_page.png"))
+        browser.close()
+
+
+def paper_plots(images: Path) -> None:
+    from tactcad.cli import main
+
+    for argv in (["table2", "--plot", str(images / "table2_models.png")],
+                 ["evaluate", "--stiffness", "table1", "--plot",
+                  str(images / "evaluate_fig7_halfspace.png")]):
+        with contextlib.redirect_stdout(io.StringIO()):  # the plot is the output wanted
+            code = main([*argv, "--design", str(PAPER), "--quiet"])
+        if code != 0:
+            raise SystemExit(f"docs_images: tactcad {' '.join(argv)} exited {code}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("exports", type=Path, help="an export folder of the paper's design")
+    parser.add_argument("--images", type=Path, default=IMAGES,
+                        help="the folder the pictures go to (default docs/images)")
+    parser.add_argument("--review", action="store_true",
+                        help="also screenshot the review page (needs Chromium)")
+    args = parser.parse_args(argv)
+    copy_export_images(args.exports, args.images)
+    render_sheets(args.exports, args.images)
+    if args.review:
+        screenshot_review(args.exports, args.images)
+    paper_plots(args.images)
+    print(f"docs_images: refreshed {args.images}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
