@@ -116,18 +116,21 @@ def load_from_args(args: argparse.Namespace):
 
 
 def add_cache_args(p: argparse.ArgumentParser) -> None:
-    """``--cache DIR`` and ``--no-cache``: the store of finished export jobs."""
+    """``--cache DIR`` and ``--no-cache``: the store of finished export jobs and
+    of the estimators' heavy results (FEM solves, :func:`tactcad.store.kept_result`)."""
     p.add_argument("--cache", metavar="DIR", default=None,
-                   help="store of finished export jobs, reused when nothing that shapes a file "
-                        "changed (default: .tactcad-cache in the working folder)")
+                   help="store of finished export jobs and FEM results, reused when nothing "
+                        "that shapes them changed (default: .tactcad-cache in the working "
+                        "folder)")
     p.add_argument("--no-cache", action="store_true",
-                   help="build and write every file afresh; read and write no store")
+                   help="build, write and solve everything afresh; read and write no store")
 
 
 def store_from_args(args: argparse.Namespace):
-    """The :class:`tactcad.store.Store` the options ask for."""
+    """The :class:`tactcad.store.Store` the options ask for; none for a command
+    without them (``bench`` measures what a run costs)."""
     from tactcad.store import DEFAULT_STORE, Store
 
-    if args.no_cache:
+    if getattr(args, "no_cache", True):
         return Store(None)
     return Store(Path(args.cache) if args.cache else DEFAULT_STORE)
