@@ -32,9 +32,10 @@ class Level(Protocol):
 
 L = TypeVar("L", bound=Level)
 
-#: Estimator options that only shape what a level reports while it runs, never
-#: its result: left out of the result's key.
-REPORTING_OPTIONS = frozenset({"progress", "verbose"})
+#: Estimator options that shape no kept result, left out of its key: what a
+#: level reports while it runs, and whether it hands back its mode shapes (a
+#: result with them is never kept).
+UNKEYED_OPTIONS = frozenset({"progress", "verbose", "keep_shapes"})
 
 
 class LevelRegistry(Generic[L]):
@@ -85,7 +86,7 @@ class LevelRegistry(Generic[L]):
         (keywords). A FEM level of tactcad's own (whose code is in the key)
         runs through the result store (:func:`tactcad.store.kept_result`),
         keyed by this ladder, the level's name, ``inputs`` and the options but
-        :data:`REPORTING_OPTIONS`; a kept result is reported on the
+        :data:`UNKEYED_OPTIONS`; a kept result is reported on the
         ``progress`` option as one line, ``<level> <label>: reused ...``.
 
         Args:
@@ -99,7 +100,7 @@ class LevelRegistry(Generic[L]):
         level = self.levels[name]
         if not (keep and level.meshed and level.module.startswith("tactcad.")):
             return estimator(*inputs, **options)
-        shaping = {k: v for k, v in sorted(options.items()) if k not in REPORTING_OPTIONS}
+        shaping = {k: v for k, v in sorted(options.items()) if k not in UNKEYED_OPTIONS}
         progress = options.get("progress")
         reused = None if progress is None else (
             lambda: progress(f"{name} {label}: reused from the result store (same inputs)"))
