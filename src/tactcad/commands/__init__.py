@@ -117,7 +117,9 @@ def load_from_args(args: argparse.Namespace):
 
 def add_cache_args(p: argparse.ArgumentParser) -> None:
     """``--cache DIR`` and ``--no-cache``: the store of finished export jobs and
-    of the estimators' heavy results (FEM solves, :func:`tactcad.store.kept_result`)."""
+    of the estimators' heavy results (FEM solves, :func:`tactcad.store.kept_result`),
+    for a command that exports or runs the estimators (not ``bench``, which
+    measures what each solve costs)."""
     p.add_argument("--cache", metavar="DIR", default=None,
                    help="store of finished export jobs and FEM results, reused when nothing "
                         "that shapes them changed (default: .tactcad-cache in the working "
@@ -127,10 +129,9 @@ def add_cache_args(p: argparse.ArgumentParser) -> None:
 
 
 def store_from_args(args: argparse.Namespace):
-    """The :class:`tactcad.store.Store` the options ask for; none for a command
-    without them (``bench`` measures what a run costs)."""
+    """The :class:`tactcad.store.Store` the options ask for."""
     from tactcad.store import DEFAULT_STORE, Store
 
-    if getattr(args, "no_cache", True):
+    if args.no_cache:
         return Store(None)
     return Store(Path(args.cache) if args.cache else DEFAULT_STORE)
