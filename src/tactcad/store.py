@@ -269,7 +269,7 @@ def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
     (:meth:`Store.remember`).
 
     Args:
-        kind: what is computed, e.g. ``"stiffness"``.
+        kind: what is computed, e.g. ``"fem3d convergence"``.
         compute: makes the value (picklable).
         inputs: everything the value depends on.
         reused: called once when a kept value is returned (a progress line).
