@@ -292,7 +292,8 @@ class Project:
         finally:
             self._report = _quiet
 
-    def verify(self, model: str = "auto", progress: Progress | None = None) -> "Verification":
+    def verify(self, model: str = "auto", progress: Progress | None = None,
+               cache: str | Path | None | bool = True) -> "Verification":
         """The verification matrix of the design's requirements.
 
         Args:
@@ -300,6 +301,9 @@ class Project:
                 each requirement (the closed form first, higher levels only
                 while one is undecided).
             progress: called with a line per element a level evaluates.
+            cache: the store that keeps FEM results (:func:`tactcad.store.kept_result`),
+                as for :meth:`export`: a level's solve is reused by the next
+                ``verify``, ``check`` or command with the same store.
 
         Returns:
             :class:`Verification`: the records (``requirement``, ``target``,
@@ -311,14 +315,20 @@ class Project:
             UnknownModelError: ``model`` is neither ``auto`` nor a ladder level.
             DesignError: the material has no yield strength.
         """
-        from tactcad.assembly.inventory import array_envelope_mm
         from tactcad.mechanics.ladder import UnknownModelError, models
+        from tactcad.store import keeping_results
+
+        if model != "auto" and model not in models():
+            raise UnknownModelError(model)
+        with keeping_results(_store(cache)):
+            return self._verify(model, progress)
+
+    def _verify(self, model: str, progress: Progress | None) -> "Verification":
+        from tactcad.assembly.inventory import array_envelope_mm
         from tactcad.studies.verification import (requirements_of, verification_auto,
                                                     verification_matrix)
         from tactcad.studies.strength_studies import element_stress
 
-        if model != "auto" and model not in models():
-            raise UnknownModelError(model)
         plan = self.plan
         req = requirements_of(plan)
         envelope = array_envelope_mm(plan)
@@ -343,7 +353,8 @@ class Project:
                 temporary folder, removed afterwards.
             scenes: check only these scenes (interference, sanity, STEP and
                 GLB read-back); ``None`` checks the array and every scene.
-            cache: the store of finished jobs, as for :meth:`export`.
+            cache: the store of finished jobs, as for :meth:`export`; it keeps
+                the FEM results of the checks too (as :meth:`verify`).
             progress: called with a line on the export (one per job run).
             on_group: called as ``on_group(label, results)`` when each group
                 of checks finishes: the groups of
@@ -365,6 +376,7 @@ class Project:
         from tactcad.export.reuse import reuse_refusal
         from tactcad.export.run import export, export_scenes
         from tactcad.export.selection import with_progress
+        from tactcad.store import keeping_results
 
         report = progress or _quiet
         groups: list[tuple[str, list]] = []
@@ -378,7 +390,8 @@ class Project:
         to_run = groups_to_run(scenes)
         context = CheckContext(self.plan, Path("."), self._cache, self.validated, scenes)
         # what reads the design alone (the verification matrix) runs before any export
-        run_groups([g for g in to_run if not g.on_export], context, done)
+        with keeping_results(_store(cache)):
+            run_groups([g for g in to_run if not g.on_export], context, done)
         try:
             with tempfile.TemporaryDirectory() as tmp:
                 folder = Path(out) if out is not None else Path(tmp)

@@ -159,7 +159,14 @@ def dispatch(argv: list[str], as_json: bool) -> int:
         if not getattr(args, "func", None):
             build_parser().print_help()
             return EXIT_INPUT
-        return int(args.func(args) or 0)
+        if not hasattr(args, "no_cache"):  # a command without a store (bench: costs)
+            return int(args.func(args) or 0)
+        from tactcad.commands import store_from_args
+        from tactcad.store import keeping_results
+
+        # a FEM result one command solved is reused by the next (--cache, --no-cache)
+        with keeping_results(store_from_args(args)):
+            return int(args.func(args) or 0)
     except UsageError as exc:  # argparse's wording, on one line
         if as_json:
             return report_error(error_record(exc, EXIT_INPUT), as_json)

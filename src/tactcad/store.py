@@ -11,10 +11,17 @@ Layout: ``<root>/<key[:2]>/<key>/records.json`` plus the job's files under
 their export-relative paths. An entry is written into a temporary folder and
 renamed into place, so a killed run never leaves a half entry; a damaged
 entry counts as a miss. Nothing here imports the CAD kernel.
+
+The same store keeps costly intermediate values (``<root>/memo/<key[:2]>/<key>.pickle``,
+:meth:`Store.memo`): a drawing sheet converted for the PDF, and the heavy
+results of the estimators (a FEM level's stiffness, peak stress or modes,
+:func:`kept_result`), so ``design``, ``verify``, ``modal``, ``stiffness`` and
+``check`` solve each once for all of them.
 """
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import functools
 import hashlib
@@ -23,10 +30,11 @@ import os
 import pickle
 import shutil
 import tempfile
+from contextvars import ContextVar
 from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path, PurePosixPath
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Iterator, Mapping, Sequence, TypeVar
 
 from tactcad.atomic import write_bytes_atomic
 
@@ -152,23 +160,43 @@ class Store:
             return None
         return records
 
-    def memo(self, key: str, compute: Callable[[], Any]) -> Any:
-        """``compute()``, or its pickled result stored under ``key`` by an
-        earlier run (for intermediate results too costly to redo, such as a
-        drawing sheet converted for the PDF). Unreadable entries are recomputed."""
+    def _memo_path(self, key: str) -> Path:
+        assert self.root is not None
+        return self.root / "memo" / key[:2] / f"{key}.pickle"
+
+    def recall(self, key: str) -> tuple[bool, Any]:
+        """``(True, value)`` for a value kept under ``key`` by an earlier run,
+        else ``(False, None)`` (nothing kept, an unreadable entry, or no store)."""
         if self.root is None:
-            return compute()
-        path = self.root / "memo" / key[:2] / f"{key}.pickle"
+            return False, None
         try:
-            return pickle.loads(path.read_bytes())
-        except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError):
-            pass
-        value = compute()
+            return True, pickle.loads(self._memo_path(key).read_bytes())
+        except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError,
+                ValueError, TypeError, IndexError):
+            return False, None
+
+    def remember(self, key: str, value: Any) -> None:
+        """Keep ``value`` (pickled) under ``key``, written atomically: a run
+        killed while writing leaves no entry, only a temporary file beside it.
+        Best effort: a store that cannot be written costs only the next run's time."""
+        if self.root is None:
+            return
+        path = self._memo_path(key)
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
             write_bytes_atomic(path, pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
         except OSError:
             pass
+
+    def memo(self, key: str, compute: Callable[[], Any]) -> Any:
+        """``compute()``, or its pickled result stored under ``key`` by an
+        earlier run (for intermediate results too costly to redo, such as a
+        drawing sheet converted for the PDF). Unreadable entries are recomputed."""
+        found, value = self.recall(key)
+        if found:
+            return value
+        value = compute()
+        self.remember(key, value)
         return value
 
     def keep(self, key: str, staging: Path, records: Sequence[dict]) -> None:
@@ -194,3 +222,75 @@ class Store:
         except OSError:
             if tmp is not None:
                 shutil.rmtree(tmp, ignore_errors=True)
+
+
+# ---------------------------------------------------------------------------
+# Heavy estimator results (FEM solves), kept in the same store
+# ---------------------------------------------------------------------------
+#: The store :func:`kept_result` uses and the values kept in this block's
+#: memory: none unless a command (``--cache DIR``, ``--no-cache``; by default
+#: :data:`DEFAULT_STORE`) or a caller (:func:`keeping_results`) opens a block.
+_RESULTS: ContextVar[tuple[Store, dict[str, Any]] | None] = ContextVar("tactcad_results",
+                                                                        default=None)
+
+T = TypeVar("T")
+
+
+@contextlib.contextmanager
+def keeping_results(store: Store) -> Iterator[Store]:
+    """Within the block, :func:`kept_result` keeps and reuses results in ``store``
+    and, for the block's length, in memory (so even ``Store(None)``, a run
+    with ``--no-cache``, solves each thing once). The commands that run the
+    estimators open one block with the store their ``--cache``/``--no-cache``
+    name; a Python caller may do the same.
+
+    Yields:
+        ``store``.
+    """
+    token = _RESULTS.set((store, {}))
+    try:
+        yield store
+    finally:
+        _RESULTS.reset(token)
+
+
+def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
+                reused: Callable[[], None] | None = None) -> T:
+    """``compute()``, or the value an earlier call (in this block, or an
+    earlier run) of the same ``kind`` with equal ``inputs`` kept in the
+    store of :func:`keeping_results`.
+
+    The key is :func:`content_key` of ``kind`` and ``inputs``: the inputs'
+    :func:`stable_repr` (an element's geometry, the material, the level and
+    its mesh settings), tactcad's own code and the stack's versions, so a
+    changed input, estimator or library misses; never a file path. Outside
+    a :func:`keeping_results` block, or when an input has no stable text (a
+    function), this is ``compute()``. A new value is written atomically
+    (:meth:`Store.remember`).
+
+    Args:
+        kind: what is computed, e.g. ``"fem3d convergence"``.
+        compute: makes the value (picklable).
+        inputs: everything the value depends on.
+        reused: called once when a kept value is returned (a progress line).
+
+    Returns:
+        the value.
+    """
+    block = _RESULTS.get()
+    if block is None:
+        return compute()
+    store, memory = block
+    try:
+        key = content_key(kind, *inputs)
+    except TypeError:
+        return compute()
+    found, value = (True, memory[key]) if key in memory else store.recall(key)
+    if found:
+        if reused is not None:
+            reused()
+    else:
+        value = compute()
+        store.remember(key, value)
+    memory[key] = value
+    return value

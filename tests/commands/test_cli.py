@@ -178,10 +178,12 @@ def test_progress_goes_to_stderr_unless_json_or_quiet(capsys):
 
 
 def test_fem2d_reports_each_mesh_level(capsys):
-    assert cli.main(["stiffness", "--element", "1", "--model", "fem2d"]) == 0
+    # --no-cache: a solve kept by an earlier test would report its reuse instead
+    assert cli.main(["stiffness", "--element", "1", "--model", "fem2d", "--no-cache"]) == 0
     err = capsys.readouterr().err
     assert [int(m) for m in re.findall(r"fem2d element_a4mm: mesh (\d)/3", err)] == [1, 2, 3]
-    assert cli.main(["stiffness", "--element", "1", "--model", "fem2d", "--quiet"]) == 0
+    assert cli.main(["stiffness", "--element", "1", "--model", "fem2d", "--quiet",
+                     "--no-cache"]) == 0
     assert "mesh" not in capsys.readouterr().err
 
 

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from tactcad.cli import main
-from tactcad.mechanics.fem.fields import von_mises, write_element_vtu
+from tactcad.mechanics.fem.field_files import write_element_vtu
+from tactcad.mechanics.fem.fields import von_mises
 
 
 def test_von_mises_of_simple_states():

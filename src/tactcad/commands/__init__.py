@@ -120,12 +120,16 @@ def load_from_args(args: argparse.Namespace):
 
 
 def add_cache_args(p: argparse.ArgumentParser) -> None:
-    """``--cache DIR`` and ``--no-cache``: the store of finished export jobs."""
+    """``--cache DIR`` and ``--no-cache``: the store of finished export jobs and
+    of the estimators' heavy results (FEM solves, :func:`tactcad.store.kept_result`),
+    for a command that exports or runs the estimators (not ``bench``, which
+    measures what each solve costs)."""
     p.add_argument("--cache", metavar="DIR", default=None,
-                   help="store of finished export jobs, reused when nothing that shapes a file "
-                        "changed (default: .tactcad-cache in the working folder)")
+                   help="store of finished export jobs and FEM results, reused when nothing "
+                        "that shapes them changed (default: .tactcad-cache in the working "
+                        "folder)")
     p.add_argument("--no-cache", action="store_true",
-                   help="build and write every file afresh; read and write no store")
+                   help="build, write and solve everything afresh; read and write no store")
 
 
 def store_from_args(args: argparse.Namespace):

@@ -16,7 +16,7 @@ from tactcad.mechanics.ladder import models
 
 def register(subparsers) -> None:
     """Add the ``calibrate`` sub-command."""
-    from tactcad.commands import add_design_arg, add_output_args
+    from tactcad.commands import add_cache_args, add_design_arg, add_output_args
     from tactcad.commands.options import PLOT_SUFFIXES, count, number, output_file
 
     p = subparsers.add_parser(
@@ -32,6 +32,7 @@ def register(subparsers) -> None:
                     "(force_gauge.stiffness_N_per_mm); the paper's linearity limit applies only "
                     "to a design that cites the paper.")
     add_design_arg(p)
+    add_cache_args(p)
     source = p.add_mutually_exclusive_group()
     source.add_argument("--data", metavar="FILE", default=None,
                         help="measured calibration readings: CSV (comma, semicolon or tab; decimal "

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.tolerance import add_cluster_args
 from tactcad.mechanics.stack_crosstalk import CROSSTALK_LEVELS, crosstalk_models
@@ -23,6 +23,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     + ". --sweep adds how plate thickness, bolt spacing and spacer grade change "
                     "crosstalk_rel (on Dask).")
     add_design_arg(p)
+    add_cache_args(p)
     p.add_argument("--model", choices=crosstalk_models(), default="stack-beam",
                    help="crosstalk level (default %(default)s)")
     p.add_argument("--sweep", action="store_true",

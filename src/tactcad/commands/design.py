@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from tactcad.mechanics.ladder import is_meshed, models
-from tactcad.commands import add_design_arg, add_output_args, progress_from_args
+from tactcad.commands import add_cache_args, add_design_arg, add_output_args, progress_from_args
 from tactcad.commands.options import count, material_grade_name, number
 from tactcad.errors import DesignError
 
@@ -67,6 +67,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--verify", choices=verify_levels(), default="fem3d",
                    help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
     add_design_arg(p)
+    add_cache_args(p)
     add_output_args(p, "print JSON")
     p.set_defaults(func=run)
 

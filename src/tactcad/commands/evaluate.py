@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.options import PLOT_SUFFIXES, count, number, output_file
 
 from tactcad.mechanics.ladder import models
@@ -31,6 +31,7 @@ def register(subparsers) -> None:
                     "punches at the tips on an elastic half-space or layer (modulus from K_obj "
                     "through a 2 x 3 mm punch). Units: N/mm, N, mm, um.")
     add_design_arg(p)
+    add_cache_args(p)
     p.add_argument("--samples", default=None, metavar="K1,K2,...",
                    help="sample stiffnesses K_obj (N/mm); default: five over the design's "
                         "required K_obj range (the paper's design: its eight samples)")

@@ -6,8 +6,8 @@ import argparse
 import json
 
 from tactcad.mechanics.ladder import is_meshed, levels_help, models
-from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
-                              load_from_args)
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+                              progress_from_args, load_from_args)
 from tactcad.commands.options import count, number
 from tactcad.errors import TactcadError
 
@@ -23,6 +23,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--model", choices=models(), default="closed-form",
                    help=f"ladder level: {levels_help()} (default %(default)s)")
     add_design_arg(p)
+    add_cache_args(p)
     add_output_args(p, "print JSON")
     p.add_argument("--vtk", metavar="DIR", default=None,
                    help="fem2d/fem3d: also write the finest mesh's displacement and von Mises "
@@ -37,6 +38,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="ladder level, or 'all' for every level side by side (fem3d takes ~30 s; "
                         "default %(default)s)")
     add_design_arg(t)
+    add_cache_args(t)
     add_output_args(t, "print JSON")
     t.set_defaults(func=run_table1)
 
@@ -52,7 +54,7 @@ def run_stiffness(args: argparse.Namespace) -> int:
     r = element.stiffness(args.model, **levels)
     vtu = None
     if args.vtk is not None:
-        from tactcad.mechanics.fem.fields import write_element_vtu
+        from tactcad.mechanics.fem.field_files import write_element_vtu
 
         vtu = write_element_vtu(args.vtk, slot.geometry, plan.material, args.model).path
         progress_from_args(args)(f"wrote {vtu} (displacement, von Mises stress under 1 N)")

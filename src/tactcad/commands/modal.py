@@ -6,7 +6,8 @@ import argparse
 import json
 from pathlib import Path
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+                              progress_from_args)
 from tactcad.commands.options import count
 from tactcad.errors import TactcadError
 from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_levels_help, modal_models
@@ -29,6 +30,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="fem2d/fem3d: also write each element's mode shapes as "
                         "DIR/<part>_modes_<model>.vtu (ParaView)")
     add_design_arg(p)
+    add_cache_args(p)
     add_output_args(p, "print JSON")
     p.set_defaults(func=run_modal)
 

@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 
 from tactcad.mechanics.ladder import models
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+                              progress_from_args)
 from tactcad.commands.finite_json import dumps
 
 
@@ -23,6 +24,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "closed-form and beam take the strain from bending along the profile, fem2d "
                     "and fem3d from the fem2d field. Units: V, N, mm.")
     add_design_arg(p)
+    add_cache_args(p)
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for K and the strain field (default closed-form)")
     add_output_args(p, "print one JSON object: the chain, its noise and one record per element")

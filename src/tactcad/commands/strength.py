@@ -15,7 +15,8 @@ import json
 
 from tactcad.design.requirements_section import cites_paper
 from tactcad.mechanics.ladder import levels_help, models
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+                              progress_from_args)
 
 
 
@@ -35,6 +36,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help=f"ladder level ({levels_help()} per distinct element; FEM stress "
                         "meshes are finer than the stiffness ones; default %(default)s)")
     add_design_arg(p)
+    add_cache_args(p)
     add_output_args(p, "print a JSON list of records")
     p.add_argument("--table1", action="store_true",
                    help="the paper's design: compare each element's yield-limited force with "

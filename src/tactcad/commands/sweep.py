@@ -7,7 +7,7 @@ import json
 from pathlib import Path
 
 from tactcad.mechanics.ladder import models
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.options import count, number
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.tolerance import add_cluster_args
@@ -24,6 +24,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     ssub = p.add_subparsers(dest="sweep", metavar="WHAT")
     g = ssub.add_parser("grid", help="K over web x arm (x notch radius): CSV and design chart PNG")
     add_design_arg(g)
+    add_cache_args(g)
     g.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level of every point (default %(default)s)")
     g.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=list(DEFAULT_WEBS_MM), metavar="MM",
@@ -52,6 +53,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     m = ssub.add_parser("montecarlo", help="tolerance Monte Carlo on Dask, CSV of the bands")
     add_design_arg(m)
+    add_cache_args(m)
     m.add_argument("--samples", type=count(1, 10**8, "samples"), default=100_000,
                    help="Monte Carlo samples (default %(default)s)")
     m.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0,

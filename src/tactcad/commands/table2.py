@@ -16,7 +16,7 @@ from tactcad.mechanics.ladder import models
 
 def register(subparsers) -> None:
     """Add the ``table2`` sub-command."""
-    from tactcad.commands import add_design_arg, add_output_args
+    from tactcad.commands import add_cache_args, add_design_arg, add_output_args
     from tactcad.commands.options import PLOT_SUFFIXES, output_file
 
     p = subparsers.add_parser(
@@ -26,6 +26,7 @@ def register(subparsers) -> None:
                     "thickness) scored on held-out rows only: leave-one-sample-out and "
                     "leave-one-element-out. Relative error |R_pred - R_meas|/R_meas.")
     add_design_arg(p)
+    add_cache_args(p)
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for element 5 (no Table 1 entry) in the coupled models "
                         "(default %(default)s)")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args
+from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count
 from tactcad.errors import DesignError
@@ -23,6 +23,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "error per kelvin (eq. 1-3), the self-heating at the excitation and what a "
                     "half-bridge dummy gauge would cancel. Units: K, N/K, ppm/K, W.")
     add_design_arg(p)
+    add_cache_args(p)
     p.add_argument("--element", type=count(1, 10_000, "an element number"), default=None,
                    help="only this element (default: every element)")
     p.add_argument("--model", choices=models(), default="closed-form",

@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 
 from tactcad.mechanics.ladder import levels_help, models
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args, progress_from_args
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+                              progress_from_args)
 from tactcad.commands.finite_json import dumps
 
 
@@ -25,6 +26,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "decided each and the seconds spent. Exit 1 when a requirement fails. "
                     "Units: N, N/mm, s.")
     add_design_arg(p)
+    add_cache_args(p)
     p.add_argument("--model", choices=("auto", *models()), default="auto",
                    help=f"ladder level ({levels_help()} per distinct element), or auto: the "
                         "cheapest level that decides each requirement (default %(default)s)")

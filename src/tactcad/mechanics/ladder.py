@@ -18,7 +18,7 @@ Units: mm, N, MPa, N/mm, s.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.errors import TactcadError
@@ -95,9 +95,13 @@ def estimate(model: str, g: ElementGeometry, material: Material, *, element: int
     """Tip stiffness of one element at the given ladder level.
 
     ``element`` and the level's ``options`` are keyword-only (each level's
-    estimator takes them so).
+    estimator takes them so). A FEM level's result is kept in the result
+    store and reused for the same geometry, material and options
+    (:meth:`~tactcad.mechanics.level_registry.LevelRegistry.run`), whichever
+    element number asks.
 
     Raises:
         UnknownModelError: ``model`` is not a level of :data:`LEVELS`.
     """
-    return LADDER.estimator(model)(g, material, element=element, **options)
+    result = LADDER.run(model, (g, material), options, label=g.part_name)
+    return result if result.element == element else replace(result, element=element)

@@ -5,13 +5,18 @@ a module and a function, imported only when the level is asked for, so a
 command that never runs the FEM never imports it, and a typical cost for
 help texts. Each ladder keeps its own level type (what its estimators take
 differs) and its own error for an unknown name; the registering, listing
-and dispatch are this module's, written once.
+and dispatch are this module's, written once, and so is the keeping of a
+FEM level's result in the result store (:meth:`LevelRegistry.run`,
+:func:`tactcad.store.kept_result`): ``design``, ``verify``, ``modal``,
+``stiffness`` and ``check`` solve each element once for all of them.
 """
 
 from __future__ import annotations
 
 import importlib
-from typing import Callable, Generic, Protocol, TypeVar
+from typing import Any, Callable, Generic, Mapping, Protocol, TypeVar
+
+from tactcad.store import kept_result
 
 
 class Level(Protocol):
@@ -21,9 +26,16 @@ class Level(Protocol):
     module: str
     function: str
     cost: str
+    #: a FEM level (seconds to minutes per element): its results are kept
+    meshed: bool
 
 
 L = TypeVar("L", bound=Level)
+
+#: Estimator options that shape no kept result, left out of its key: what a
+#: level reports while it runs, and whether it hands back its mode shapes (a
+#: result with them is never kept).
+UNKEYED_OPTIONS = frozenset({"progress", "verbose", "keep_shapes"})
 
 
 class LevelRegistry(Generic[L]):
@@ -67,3 +79,30 @@ class LevelRegistry(Generic[L]):
         if level is None:
             raise self.unknown(name)
         return getattr(importlib.import_module(level.module), level.function)
+
+    def run(self, name: str, inputs: tuple, options: Mapping[str, Any], *, label: str,
+            keep: bool = True) -> Any:
+        """Level ``name``'s estimator on ``inputs`` (positional) and ``options``
+        (keywords). A FEM level of tactcad's own (whose code is in the key)
+        runs through the result store (:func:`tactcad.store.kept_result`),
+        keyed by this ladder, the level's name, ``inputs`` and the options but
+        :data:`UNKEYED_OPTIONS`; a kept result is reported on the
+        ``progress`` option as one line, ``<level> <label>: reused ...``.
+
+        Args:
+            keep: False: never from or into the store (a result that holds
+                more than the store keeps, such as mode shapes).
+
+        Raises:
+            the ladder's ``unknown`` error: no level has that name.
+        """
+        estimator = self.estimator(name)
+        level = self.levels[name]
+        if not (keep and level.meshed and level.module.startswith("tactcad.")):
+            return estimator(*inputs, **options)
+        shaping = {k: v for k, v in sorted(options.items()) if k not in UNKEYED_OPTIONS}
+        progress = options.get("progress")
+        reused = None if progress is None else (
+            lambda: progress(f"{name} {label}: reused from the result store (same inputs)"))
+        return kept_result(f"{self.what} level", lambda: estimator(*inputs, **options), name,
+                           *inputs, shaping, reused=reused)

@@ -16,7 +16,7 @@ Units: mm, N, Hz, s.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.errors import TactcadError
@@ -94,9 +94,16 @@ def estimate_modes(model: str, g: ElementGeometry, material: Material, *,
                    element: int | None = None, modes: int = 3, **options) -> ModalResult:
     """The lowest ``modes`` natural frequencies (Hz) of one element at ``model``.
 
+    A FEM level's result is kept in the result store and reused for the same
+    geometry, material, mode count and options
+    (:meth:`~tactcad.mechanics.level_registry.LevelRegistry.run`), but for
+    one with its mode shapes (``keep_shapes``), which is solved afresh.
+
     Raises:
         UnknownModalModelError: ``model`` is not a level of :data:`MODAL_LEVELS`.
         DesignError: the material has no density.
         ValueError: modes < 1.
     """
-    return MODAL_LADDER.estimator(model)(g, material, element=element, modes=modes, **options)
+    result = MODAL_LADDER.run(model, (g, material), {"modes": modes, **options},
+                              label=g.part_name, keep=not options.get("keep_shapes"))
+    return result if result.element == element else replace(result, element=element)

@@ -108,7 +108,14 @@ def beam_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_m
 def fem2d_surface_strain_per_N(g: ElementGeometry, material: Material
                                ) -> tuple[np.ndarray, np.ndarray]:
     """(x, eps/F) on the top-face vertices of the default fem2d mesh (plane stress, unit force):
-    eps = sigma_xx / E on the free surface (sigma_yy = sigma_zz = 0). Sorted by x."""
+    eps = sigma_xx / E on the free surface (sigma_yy = sigma_zz = 0). Sorted by x.
+    Kept in the result store (:func:`tactcad.store.kept_result`) for the same element."""
+    from tactcad.store import kept_result
+
+    return kept_result("fem2d surface strain", lambda: _surface_strain(g, material), g, material)
+
+
+def _surface_strain(g: ElementGeometry, material: Material) -> tuple[np.ndarray, np.ndarray]:
     from tactcad.mechanics.fem.fem2d import solve_fem2d
     from tactcad.mechanics.fem.fields import vertex_stress
 

@@ -84,12 +84,14 @@ SUBDIVISIONS = 2
 @dataclass(frozen=True)
 class CrosstalkLevel:
     """One level of the crosstalk ladder: ``--model NAME``, its estimator
-    ``function(inputs) -> CrosstalkResult`` in ``module``, its typical cost."""
+    ``function(inputs) -> CrosstalkResult`` in ``module``, its typical cost,
+    and whether it meshes (its results are then kept in the result store)."""
 
     name: str
     module: str
     function: str
     cost: str
+    meshed: bool = False
 
 
 class UnknownCrosstalkModelError(TactcadError, ValueError):
@@ -112,7 +114,7 @@ for _level in (CrosstalkLevel("stack-beam", __name__, "estimate_stack_beam", "~5
                CrosstalkLevel("stack-timoshenko", __name__, "estimate_stack_timoshenko",
                               "~15 ms"),
                CrosstalkLevel("stack-fem3d", "tactcad.mechanics.stack_fem3d",
-                              "estimate_stack_fem3d", "~30 s")):
+                              "estimate_stack_fem3d", "~30 s", meshed=True)):
     register_crosstalk_level(_level)
 
 
@@ -477,10 +479,13 @@ def estimate_stack_timoshenko(inputs: StackInputs) -> CrosstalkResult:
 def estimate_crosstalk(inputs: StackInputs, model: str = "stack-beam") -> CrosstalkResult:
     """The crosstalk of ``inputs`` at level ``model``.
 
+    A meshed level's result is kept in the result store and reused for the
+    same stack (:meth:`~tactcad.mechanics.level_registry.LevelRegistry.run`).
+
     Raises:
         UnknownCrosstalkModelError: ``model`` is not a level of :data:`CROSSTALK_LEVELS`.
     """
-    return CROSSTALK_LADDER.estimator(model)(inputs)
+    return CROSSTALK_LADDER.run(model, (inputs,), {}, label="stack")
 
 
 def plan_crosstalk(plan: Plan, model: str = "stack-beam", **changes) -> CrosstalkResult:

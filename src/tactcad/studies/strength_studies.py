@@ -18,7 +18,7 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, richardson, single_threaded_blas,
                                         size_factors, solve_fem2d)
-from tactcad.mechanics.fem.fem3d import solve_fem3d
+from tactcad.mechanics.fem.fem3d import fem3d_convergence
 from tactcad.mechanics.fem.fields import peak_notch_stress
 from tactcad.mechanics.fem.fem_mesh import fem_region
 from tactcad.mechanics.ladder import is_meshed, meshed_models, models
@@ -27,6 +27,7 @@ from tactcad.mechanics.element_strength import (KT_FIT_GEOMETRIES,
                                         ElementStress, ReferenceLoad, StrengthRecord,
                                         closed_form_stress, nominal_stress_per_newton)
 from tactcad.mechanics.element_strength import plan_strength as _plan_strength
+from tactcad.store import kept_result
 
 
 def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d", *,
@@ -51,27 +52,32 @@ def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d"
     """
     if not is_meshed(model):
         raise ValueError(f"model must be a FEM level ({', '.join(meshed_models())}), got {model!r}")
-    region = fem_region(g)
-    peaks, sols = [], []
-    with single_threaded_blas():
-        for s in size_factors(levels, REFINEMENT_RATIO):
-            if model == "fem2d":
-                sol = solve_fem2d(g, material, size_factor=s, region=region, keep_field=True,
-                                  web_divisions=web_divisions or STRESS_WEB_DIVISIONS_2D)
-            else:
-                sol = solve_fem3d(g, material, size_factor=s, region=region, keep_field=True,
-                                  web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
-            peaks.append(peak_notch_stress(sol.field, g))
-            sols.append(_without_field(sol))
+    if model == "fem2d":
+        divisions = web_divisions or STRESS_WEB_DIVISIONS_2D
+        sols, peaks = kept_result("fem2d peak stress",
+                                  lambda: _fem2d_peaks(g, material, divisions, levels),
+                                  g, material, divisions, levels)
+    else:  # the stiffness level's solves (the same meshes at the default divisions)
+        conv = fem3d_convergence(g, material, levels=levels,
+                                 web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
+        sols, peaks = conv.solutions, conv.peaks
     rich = richardson([p.per_newton_MPa_per_N for p in peaks], REFINEMENT_RATIO)
     fin = sols[-1]
     return ElementStress(model, rich.extrapolated, rich.error_rel, fin.stiffness_N_per_mm,
                          abs(fin.gauge_strain) / fin.force_N, peaks[-1].location_mm)
 
 
-def _without_field(sol):
-    """The solve's scalars without its field (frees the mesh and basis)."""
-    return replace(sol, field=None)
+def _fem2d_peaks(g: ElementGeometry, material: Material, web_divisions: float, levels: int):
+    """(solves without their fields, peak stresses) of the plane-stress mesh sequence."""
+    region = fem_region(g)
+    peaks, sols = [], []
+    with single_threaded_blas():
+        for s in size_factors(levels, REFINEMENT_RATIO):
+            sol = solve_fem2d(g, material, size_factor=s, region=region, keep_field=True,
+                              web_divisions=web_divisions)
+            peaks.append(peak_notch_stress(sol.field, g))
+            sols.append(replace(sol, field=None))  # frees the mesh and basis
+    return tuple(sols), tuple(peaks)
 
 
 def element_stress(g: ElementGeometry, material: Material, model: str = "closed-form"

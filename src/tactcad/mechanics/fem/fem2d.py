@@ -365,8 +365,10 @@ def chebyshev_smoother(A, degree: int = 3):
 
     Returns:
         ``smooth(r, with_residual) -> (x, res)``: x approximates A^-1 r from
-        x = 0 (shape of r); ``res`` is r - A x when ``with_residual``, else
-        the residual before the last step (one product with A saved).
+        x = 0 (shape of r: one vector (n,) or a block of them (n, m), which
+        shares each product with A); ``res`` is r - A x when
+        ``with_residual``, else the residual before the last step (one
+        product with A saved).
     """
     dinv = 1.0 / A.diagonal()
     rng = np.random.default_rng(0)
@@ -383,13 +385,14 @@ def chebyshev_smoother(A, degree: int = 3):
     sigma = theta / delta
 
     def smooth(r, with_residual: bool):
+        di = dinv if r.ndim == 1 else dinv[:, None]
         rho = 1.0 / sigma
-        d = dinv * r / theta
+        d = di * r / theta
         x = d.copy()
         res = r - A @ d
         for k in range(degree - 1):
             rho_new = 1.0 / (2.0 * sigma - rho)
-            d = rho_new * rho * d + 2.0 * rho_new / delta * (dinv * res)
+            d = rho_new * rho * d + 2.0 * rho_new / delta * (di * res)
             rho = rho_new
             x += d
             if with_residual or k < degree - 2:
@@ -407,7 +410,8 @@ def _two_level_preconditioner(A, P, smooth_degree: int = 3):
     Smoother: :func:`chebyshev_smoother` of degree ``smooth_degree``, applied
     before and after the coarse correction, so the cycle is symmetric (usable
     in CG). The residuals are carried through the cycle: six products with A
-    per cycle at degree 3 where forming each residual anew takes eight.
+    per cycle at degree 3 where forming each residual anew takes eight. The
+    cycle takes one residual (n,) or a block (n, m) (an eigensolver's).
     """
     from scipy.sparse.linalg import splu
 
@@ -442,6 +446,34 @@ def p1_embedding(mesh, nscalar: int):
     cols = np.concatenate([np.arange(nv), edges[0], edges[1]])
     vals = np.concatenate([np.ones(nv), 0.5 * np.ones(ne), 0.5 * np.ones(ne)])
     return sp.csr_matrix((vals, (rows, cols)), shape=(nscalar, nv))
+
+
+def p_multigrid(mesh, nscalar: int, A_free, free: np.ndarray):
+    """The two-level P2/P1 preconditioner (:func:`_two_level_preconditioner`)
+    of a vector P2 system whose unknowns ``free`` are kept (the others fixed
+    and removed).
+
+    Args:
+        mesh: the scikit-fem mesh (2D or 3D).
+        nscalar: scalar P2 dofs (``basis.N``); the vector numbering is
+            interleaved, ``dim * s + c``.
+        A_free: the SPD matrix on the free unknowns (CSR), shape (len(free),) * 2.
+        free: indices of the kept unknowns, ascending.
+
+    Returns:
+        ``apply(r)``: approximately ``A_free^-1 r`` for a residual (n,) or a block (n, m).
+    """
+    import scipy.sparse as sp
+
+    dim = mesh.dim()
+    Pv = sp.kron(p1_embedding(mesh, nscalar), sp.eye(dim), format="csr")  # interleaved
+    kept = np.zeros(dim * nscalar, dtype=bool)
+    kept[free] = True
+    # coarse (vertex) unknowns that are themselves fixed are dropped
+    nv = int(mesh.nvertices)
+    vert_dofs = (dim * np.arange(nv)[:, None] + np.arange(dim)).ravel()
+    P = Pv[free][:, np.nonzero(kept[vert_dofs])[0]]
+    return _two_level_preconditioner(A_free, P.tocsr())
 
 
 def solve_elasticity(mesh, lam: float, mu: float, *, thickness: float, x_clamp: float,
@@ -537,20 +569,8 @@ def _solve_elasticity(mesh, lam, mu, *, thickness, x_clamp, contact, traction_MP
                   options={"SymmetricMode": True})
         u[I] = lu.solve(fc)
     else:
-        import scipy.sparse as sp
-
-        Ps = p1_embedding(mesh, sb.N)
-        Pv = sp.kron(Ps, sp.eye(dim), format="csr")  # interleaved numbering
-        Pi = Pv[I]
-        # coarse (vertex) unknowns that are themselves fixed are dropped
-        fixed = np.zeros(n, dtype=bool)
-        fixed[D] = True
-        nv = int(mesh.nvertices)
-        vert_dofs = (dim * np.arange(nv)[:, None] + np.arange(dim)).ravel()
-        Pi = Pi[:, np.nonzero(~fixed[vert_dofs])[0]]
         Acsr = Ac.tocsr()
-        M = _two_level_preconditioner(Acsr, Pi.tocsr())
-        u[I], iters = pcg(Acsr, fc, M, rtol=rtol)
+        u[I], iters = pcg(Acsr, fc, p_multigrid(mesh, sb.N, Acsr, I), rtol=rtol)
     compliance = float(f @ u)
     force = float(f.sum())
     eps_xx = float("nan")

@@ -51,7 +51,7 @@ from __future__ import annotations
 import math
 import resource
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 from tactcad.design.array_plan import ElementGeometry, Material
@@ -59,8 +59,10 @@ from tactcad.mechanics.fem.fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Conv
                     FemSolution, lame, single_threaded_blas, size_factors, skfem_mesh,
                     solve_elasticity_field)
 from tactcad.mechanics.fem.fem_mesh import FemRegion, fem_region, graded_layers, mesh_region
+from tactcad.mechanics.fem.fields import PeakStress, peak_notch_stress
 from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.richardson import richardson
+from tactcad.store import kept_result
 
 #: Finest-mesh neck size = web thickness / WEB_DIVISIONS_3D.
 WEB_DIVISIONS_3D = 6.0
@@ -141,9 +143,13 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
 
 @dataclass(frozen=True)
 class Convergence3D(Convergence):
-    """:class:`~tactcad.mechanics.fem.fem2d.Convergence` plus the peak memory."""
+    """:class:`~tactcad.mechanics.fem.fem2d.Convergence` plus the peak memory
+    and each mesh's peak stress at the hinge (coarsest first, under the solves'
+    force; :func:`~tactcad.mechanics.fem.fields.peak_notch_stress`), so the
+    stiffness and the strength levels read one set of solves."""
 
     peak_rss_mib: float = math.nan
+    peaks: tuple[PeakStress, ...] = ()
 
 
 def fem3d_convergence(g: ElementGeometry, material: Material, *,
@@ -154,19 +160,38 @@ def fem3d_convergence(g: ElementGeometry, material: Material, *,
                       verbose: bool = False,
                       progress: Callable[[str], None] | None = None) -> Convergence3D:
     """Solve on ``levels`` meshes (sizes r^(levels-1) ... 1 times the
-    default) and Richardson-extrapolate K and the gauge strain.
+    default), Richardson-extrapolate K and the gauge strain, and take each
+    mesh's peak stress at the hinge.
+
+    The sequence is kept in the result store (:func:`tactcad.store.kept_result`;
+    key: the geometry, material, region and every setting but ``verbose``
+    and ``progress``), so the stiffness level (:func:`estimate_fem3d`) and
+    the strength study's peak stress of the same element solve it once.
 
     With ``verbose`` each solve prints its K, unknowns, wall time and the
     process's peak RSS; ``progress`` gets one line per mesh level solved.
     """
-    t0 = time.perf_counter()
     region = fem_region(g) if region is None else region
-    sols = []
+    settings = {"web_divisions": web_divisions, "n_layers": n_layers, "grading": grading,
+                "ratio": ratio, "levels": levels, "curved": curved, "force_N": force_N,
+                "solver": solver}
+    return kept_result("fem3d convergence",
+                       lambda: _converge(g, material, region, settings, verbose, progress),
+                       g, material, region, settings)
+
+
+def _converge(g: ElementGeometry, material: Material, region: FemRegion, settings: dict,
+              verbose: bool, progress: Callable[[str], None] | None) -> Convergence3D:
+    t0 = time.perf_counter()
+    levels, ratio = settings["levels"], settings["ratio"]
+    solve = {k: v for k, v in settings.items() if k not in ("levels", "ratio")}
+    sols, peaks = [], []
     with single_threaded_blas():
         for s in size_factors(levels, ratio):
-            sol = solve_fem3d(g, material, size_factor=s, web_divisions=web_divisions,
-                              n_layers=n_layers, grading=grading, curved=curved,
-                              force_N=force_N, region=region, solver=solver)
+            sol = solve_fem3d(g, material, size_factor=s, region=region, keep_field=True,
+                              **solve)
+            peaks.append(peak_notch_stress(sol.field, g))
+            sol = replace(sol, field=None)  # frees the mesh and basis before the next solve
             sols.append(sol)
             if progress is not None:
                 progress(f"fem3d {g.part_name}: mesh {len(sols)}/{levels} (h x {s:.3f}), "
@@ -177,7 +202,8 @@ def fem3d_convergence(g: ElementGeometry, material: Material, *,
                       f"{peak_rss_mib():.0f} MiB")
     rk = richardson([s.stiffness_N_per_mm for s in sols], ratio)
     rg = richardson([s.gauge_strain for s in sols], ratio)
-    conv = Convergence3D(tuple(sols), rk, rg, time.perf_counter() - t0, peak_rss_mib())
+    conv = Convergence3D(tuple(sols), rk, rg, time.perf_counter() - t0, peak_rss_mib(),
+                         tuple(peaks))
     if verbose:
         print(f"fem3d {g.part_name}: K = {sols[-1].stiffness_N_per_mm:.5f} N/mm, Richardson "
               f"order {rk.order:.2f}, K_ext = {rk.extrapolated:.5f}, error "

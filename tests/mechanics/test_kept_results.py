@@ -1,0 +1,182 @@
+"""The estimators' heavy results are kept in the store by content key
+(:func:`tactcad.store.kept_result`) and reused by every command: a second call
+with the same element solves nothing, a changed input solves again.
+
+Solves are counted by a counter put in place of the solver, never by time.
+The fem3d tests put a stand-in for the solve itself (the keeping is under
+test, not the FEM; a real sequence takes minutes) and always name their own
+store, so no stand-in result reaches another test's store.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from tactcad.cli import main
+from tactcad.design.array_plan import load_design
+from tactcad.mechanics import ladder
+from tactcad.mechanics.fem import fem2d, fem3d
+from tactcad.mechanics.fem.fields import PeakStress
+from tactcad.store import Store, keeping_results
+from tactcad.studies.strength_studies import fem_peak_stress
+
+
+@pytest.fixture
+def counted(monkeypatch):
+    """``counted(module, name)``: the calls of ``module.name`` from now on (a list)."""
+    def install(module, name: str) -> list:
+        real, calls = getattr(module, name), []
+
+        def counting(*args, **kwargs):
+            calls.append(args)
+            return real(*args, **kwargs)
+
+        monkeypatch.setattr(module, name, counting)
+        return calls
+    return install
+
+
+@pytest.fixture
+def fem3d_solves(monkeypatch) -> list:
+    """fem3d's one-mesh solve replaced by a counted stand-in: the closed form's
+    K and gauge strain, converging with the mesh size, and a peak stress that
+    converges too. Returns the list of (part, size factor) solved."""
+    from tactcad.mechanics.closed_form import estimate_closed_form
+
+    calls: list = []
+
+    def solve(g, material, *, size_factor=1.0, force_N=fem2d.DEFAULT_FORCE_N,
+              keep_field=False, **settings):
+        calls.append((g.part_name, size_factor))
+        cf = estimate_closed_form(g, material)
+        k = cf.stiffness_N_per_mm * (1.0 + 0.01 * size_factor ** 2)
+        return fem2d.FemSolution(k, force_N / k, -cf.gauge_strain_per_N * force_N, force_N,
+                                 n_dofs=1000, n_cells=100, neck_size_mm=0.05, wall_time_s=0.0,
+                                 field=size_factor if keep_field else None)
+
+    def peak(field, g):
+        return PeakStress(100.0, 50.0 * (1.0 + 0.02 * field ** 2), (0.0, 0.0, 0.0))
+
+    monkeypatch.setattr(fem3d, "solve_fem3d", solve)
+    monkeypatch.setattr(fem3d, "peak_notch_stress", peak)
+    return calls
+
+
+def test_a_second_estimate_of_the_same_element_solves_nothing(plan, tmp_path, counted):
+    solves = counted(fem2d, "solve_fem2d")
+    g, mat = plan.element(1).geometry, plan.material
+    with keeping_results(Store(tmp_path / "store")):
+        first = ladder.estimate("fem2d", g, mat, element=1)
+        per_estimate = len(solves)
+        assert per_estimate == 3  # the Richardson sequence
+        # element 8 has element 1's geometry: its number is carried, nothing solved
+        again = ladder.estimate("fem2d", plan.element(8).geometry, mat, element=8)
+        assert len(solves) == per_estimate
+        assert again.element == 8 and replace(again, element=1) == first
+        # a changed geometry or material misses
+        thicker = replace(g, web_thickness_mm=g.web_thickness_mm + 0.01)
+        assert ladder.estimate("fem2d", thicker, mat).stiffness_N_per_mm > \
+            first.stiffness_N_per_mm
+        assert len(solves) == 2 * per_estimate
+        ladder.estimate("fem2d", g, replace(mat, youngs_modulus_MPa=70000.0))
+        assert len(solves) == 3 * per_estimate
+    # with no store (--no-cache) a block keeps its results for its length only
+    for _ in range(2):
+        with keeping_results(Store(None)):
+            ladder.estimate("fem2d", g, mat)
+            ladder.estimate("fem2d", g, mat)
+    assert len(solves) == 5 * per_estimate
+    assert not (tmp_path / "store" / "memo").exists() or len(list(
+        (tmp_path / "store" / "memo").rglob("*.pickle"))) == 3
+    # outside a block every call solves
+    ladder.estimate("fem2d", g, mat)
+    assert len(solves) == 6 * per_estimate
+
+
+def test_an_unreadable_entry_is_solved_again(plan, tmp_path, counted):
+    solves = counted(fem2d, "solve_fem2d")
+    g, mat = plan.element(1).geometry, plan.material
+    with keeping_results(Store(tmp_path / "store")):
+        first = ladder.estimate("fem2d", g, mat)
+    for entry in (tmp_path / "store" / "memo").rglob("*.pickle"):
+        entry.write_bytes(entry.read_bytes()[:20])  # a damaged entry
+    with keeping_results(Store(tmp_path / "store")):  # the next run
+        again = ladder.estimate("fem2d", g, mat)
+    assert len(solves) == 6
+    assert replace(again, wall_time_s=first.wall_time_s) == first
+
+
+def test_fem3d_stiffness_and_peak_stress_share_one_kept_sequence(plan, tmp_path, fem3d_solves):
+    g, mat = plan.element(1).geometry, plan.material
+    with keeping_results(Store(tmp_path / "store")):
+        k = ladder.estimate("fem3d", g, mat)
+        assert len(fem3d_solves) == 3
+        stress = fem_peak_stress(g, mat, "fem3d")  # the strength study's solves are the same
+        assert len(fem3d_solves) == 3
+        assert stress.stiffness_N_per_mm == k.stiffness_N_per_mm
+        assert ladder.estimate("fem3d", g, mat) == k
+        assert len(fem3d_solves) == 3
+        shorter = replace(g, arm_length_mm=g.arm_length_mm - 0.5)
+        fem_peak_stress(shorter, mat, "fem3d")
+        assert len(fem3d_solves) == 6
+
+
+def test_verify_right_after_design_solves_no_fem3d_again(tmp_path, monkeypatch, fem3d_solves,
+                                                         capsys):
+    monkeypatch.chdir(tmp_path)
+    store = ["--cache", str(tmp_path / "store")]
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                 "--full-scale-force", "0.3", "--material", "7075-T6", "--verify", "fem3d",
+                 "--out", "next.toml", "--json", *store]) == 0
+    distinct = len(load_design(tmp_path / "next.toml").distinct_elements)
+    assert len(fem3d_solves) == 3 * distinct
+    capsys.readouterr()
+    main(["verify", "--design", "next.toml", "--model", "fem3d", "--json", *store])
+    record = json.loads(capsys.readouterr().out)
+    assert record["model"] == "fem3d" and record["matrix"]
+    assert len(fem3d_solves) == 3 * distinct  # stiffness and peak stress from design's solves
+    # --no-cache solves afresh, each sequence once in the run
+    main(["verify", "--design", "next.toml", "--model", "fem3d", "--json", "--no-cache"])
+    assert len(fem3d_solves) == 6 * distinct
+
+
+def test_the_key_is_the_same_in_a_new_process(tmp_path):
+    """A second command in a new process reuses the first's solve (and says so)."""
+    argv = [sys.executable, "-m", "tactcad.cli", "stiffness", "--element", "1", "--model",
+            "fem2d", "--cache", str(tmp_path / "store")]
+    first = subprocess.run(argv, capture_output=True, text=True, cwd=tmp_path, check=True)
+    second = subprocess.run(argv, capture_output=True, text=True, cwd=tmp_path, check=True)
+    assert "mesh 3/3" in first.stderr and "reused" not in first.stderr
+    assert "fem2d element_a4mm: reused from the result store" in second.stderr
+    assert "mesh" not in second.stderr
+    assert second.stdout == first.stdout
+    assert not any(Path(tmp_path).glob("*.part"))
+
+
+def test_a_run_killed_while_keeping_a_result_leaves_no_entry(plan, tmp_path, counted,
+                                                             monkeypatch):
+    """The entry is written beside its place and renamed into it: killed just
+    before the rename, the run leaves nothing the next run would read."""
+    import os
+
+    solves = counted(fem2d, "solve_fem2d")
+    g, mat = plan.element(1).geometry, plan.material
+
+    def killed(src, dst):
+        raise KeyboardInterrupt
+
+    with monkeypatch.context() as m:
+        m.setattr(os, "replace", killed)
+        with pytest.raises(KeyboardInterrupt), keeping_results(Store(tmp_path / "store")):
+            ladder.estimate("fem2d", g, mat)
+    assert not list((tmp_path / "store").rglob("*.pickle"))
+    with keeping_results(Store(tmp_path / "store")):
+        ladder.estimate("fem2d", g, mat)
+    assert len(solves) == 6
+    assert len(list((tmp_path / "store").rglob("*.pickle"))) == 1
