@@ -19,7 +19,7 @@ import os
 import signal
 import threading
 from contextlib import contextmanager
-from typing import Iterator
+from typing import Callable, Iterator
 
 #: Signals that end a run like Ctrl-C does (cleaned up, then 128 + the number).
 ENDING_SIGNALS = ("SIGTERM", "SIGHUP")
@@ -95,18 +95,24 @@ def stop_signals_unblocked(ignore: tuple[str, ...] = ("SIGINT",)) -> None:
     signal.pthread_sigmask(signal.SIG_UNBLOCK, stop_signal_numbers())
 
 
-def exit_at_once_on_stop(code: int) -> None:
+def exit_at_once_on_stop(code: int) -> Callable[[], None]:
     """From now on a stop signal ends the process at once with ``code``
     (``os._exit``): for a process that is already ending (its command has
     returned, or a watch is closing down), where a second Ctrl-C or a
     SIGTERM must neither raise in the middle of its clean-up (the
     interpreter's ``Exception ignored in atexit callback``) nor wait for it.
-    Only in the main thread (signals are the main thread's)."""
-    if threading.current_thread() is not threading.main_thread():
-        return
-    for number in stop_signal_numbers():
-        if signal.getsignal(number) is not signal.SIG_IGN:
-            signal.signal(number, lambda _n, _f: os._exit(code))
+    Only in the main thread (signals are the main thread's).
+
+    Returns:
+        A function that puts the previous handlers back, for a caller whose
+        process goes on (a command run in-process, as the API and tests do).
+    """
+    previous: dict = {}
+    if threading.current_thread() is threading.main_thread():
+        for number in stop_signal_numbers():
+            if signal.getsignal(number) is not signal.SIG_IGN:
+                previous[number] = signal.signal(number, lambda _n, _f: os._exit(code))
+    return lambda: _put_back(list(previous.items()))
 
 
 def end_child_processes(wait_s: float = 1.0) -> None:

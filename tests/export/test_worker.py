@@ -201,3 +201,20 @@ def test_a_session_worker_killed_as_it_starts_is_gone_at_once():
     worker.close()
     assert not os.path.exists(f"/proc/{pid}")  # killed and reaped
     assert pid not in {p.pid for p in multiprocessing.active_children()}
+
+
+def test_ending_at_once_on_a_stop_is_undone_for_a_process_that_goes_on():
+    """A watch run in-process (the API, the tests) that was stopped ends its
+    clean-up with stop signals ending the process at once; when it returns,
+    the process's own handlers are back (else a later Ctrl-C would os._exit
+    the caller: a pytest worker crashed on a test that signals itself)."""
+    import signal
+
+    from tactcad.stopping import exit_at_once_on_stop, stop_signal_numbers
+
+    before = {n: signal.getsignal(n) for n in stop_signal_numbers()}
+    undo = exit_at_once_on_stop(0)
+    during = {n: signal.getsignal(n) for n in stop_signal_numbers()}
+    undo()
+    assert all(during[n] is not before[n] for n in before if before[n] is not signal.SIG_IGN)
+    assert {n: signal.getsignal(n) for n in stop_signal_numbers()} == before

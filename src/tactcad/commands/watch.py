@@ -104,6 +104,7 @@ def run(args: argparse.Namespace) -> int:
 
     stop = threading.Event()
     log = watch_log(args)
+    at_once_undone = None
     with contextlib.ExitStack() as started:
         started.callback(note_stop_signals(stop))
         started.callback(end_child_processes)  # what the closes below missed, if anything
@@ -114,8 +115,10 @@ def run(args: argparse.Namespace) -> int:
                 raise
             # a stop, whatever its exception became: the clean-up (the callbacks
             # of ``started``) takes no long wait, and a second stop ends it at once
-            exit_at_once_on_stop(0)
+            at_once_undone = exit_at_once_on_stop(0)
             log("stopped")
+    if at_once_undone is not None:  # the clean-up is done: this process may go on (in-process runs)
+        at_once_undone()
     return 0
 
 
