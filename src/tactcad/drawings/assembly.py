@@ -156,6 +156,7 @@ def compose_assembly(plan: Plan, solids: dict, items: dict[str, int]) -> Assembl
     _slot_table(a, plan)
     _notes(a, plan)
     _title_block(a, plan, items)
+    sh.settle()  # the labels last: each finds room among everything drawn
     return a
 
 
@@ -237,7 +238,8 @@ def _balloons(a: AssemblySheet, v: View, cam, specs, inst, items: dict[str, int]
     order = sorted(anchors, key=lambda p: anchors[p][0])
     n = len(order)
     pitch = max(2 * BALLOON_R + 3.0, (b[2] - b[0]) / max(n - 1, 1))
-    x_start = (b[0] + b[2]) / 2 - pitch * (n - 1) / 2
+    # centred over the view, but inside the frame when the row is wider than the view
+    x_start = max((b[0] + b[2]) / 2 - pitch * (n - 1) / 2, FRAME[0] + BALLOON_R + 3.0)
     y = b[1] - 14.0
     for k, part in enumerate(order):
         c = (x_start + k * pitch, y)
