@@ -8,7 +8,8 @@ width in Helvetica's metrics, from the cap line to the descender). A stroke
 crosses a text when more than :data:`TOLERANCE_MM` of its length lies inside
 that box grown by half the stroke's width (the ink of the line); two texts
 overlap when their boxes share more than :data:`TOLERANCE_MM` in both
-directions.
+directions. The measures are :mod:`tactcad.drawings.room`'s, the ones the
+sheets' labels are placed by, so a label set clear is measured clear.
 """
 
 from __future__ import annotations
@@ -24,13 +25,16 @@ import numpy as np
 
 from tactcad.checks.check_result import CheckResult
 from tactcad.checks.groups import CheckContext, Found
+from tactcad.drawings.room import (Box, Point, Segments, box_overlap, length_in_box,
+                                   lengths_in_boxes)
 from tactcad.drawings.sheet import CAP_HEIGHT_EM, text_box
 
 TOLERANCE_MM = 0.05     # overlap below this is rounding of the written coordinates
 CIRCLE_SEGMENTS = 72    # a circle as a polygon: 5 deg chords, off the arc by < 0.001 r
 
-Box = tuple[float, float, float, float]    # left, top, right, bottom (paper mm, y down)
-Point = tuple[float, float]
+__all__ = ["Box", "Point", "SheetLayout", "Overlap", "box_overlap", "length_in_box",
+           "lengths_in_boxes", "sheet_overlaps", "layout_of_svg", "check_sheet_files",
+           "sheet_group"]
 _SVG = "{http://www.w3.org/2000/svg}"
 
 
@@ -63,69 +67,20 @@ class Overlap:
         return f"{self.first} overlaps {self.second} by {self.overlap_mm:.2f} mm"
 
 
-def length_in_box(p: Point, q: Point, box: Box) -> float:
-    """Length (mm) of the segment ``p``-``q`` inside ``box`` (Liang-Barsky clipping)."""
-    x0, y0, x1, y1 = box
-    dx, dy = q[0] - p[0], q[1] - p[1]
-    t0, t1 = 0.0, 1.0
-    for edge_p, edge_q in ((-dx, p[0] - x0), (dx, x1 - p[0]), (-dy, p[1] - y0), (dy, y1 - p[1])):
-        if abs(edge_p) < 1e-15:
-            if edge_q < 0:
-                return 0.0
-            continue
-        t = edge_q / edge_p
-        if edge_p < 0:
-            t0 = max(t0, t)
-        else:
-            t1 = min(t1, t)
-        if t0 >= t1:
-            return 0.0
-    return (t1 - t0) * math.hypot(dx, dy)
-
-
-def box_overlap(a: Box, b: Box) -> float:
-    """The smaller side (mm) of the common part of two boxes; <= 0 when they do not meet."""
-    return min(min(a[2], b[2]) - max(a[0], b[0]), min(a[3], b[3]) - max(a[1], b[1]))
-
-
-def lengths_in_boxes(p: np.ndarray, q: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    """:func:`length_in_box` of many segments at once: ``p``, ``q`` (n, 2) their
-    ends, ``boxes`` (n, 4) the box each is clipped to; returns (n,) mm."""
-    d = q - p
-    t0, t1 = np.zeros(len(p)), np.ones(len(p))
-    outside = np.zeros(len(p), dtype=bool)
-    edges = ((-d[:, 0], p[:, 0] - boxes[:, 0]), (d[:, 0], boxes[:, 2] - p[:, 0]),
-             (-d[:, 1], p[:, 1] - boxes[:, 1]), (d[:, 1], boxes[:, 3] - p[:, 1]))
-    for edge_p, edge_q in edges:
-        parallel = np.abs(edge_p) < 1e-15
-        outside |= parallel & (edge_q < 0)
-        t = edge_q / np.where(parallel, 1.0, edge_p)
-        t0 = np.where(~parallel & (edge_p < 0), np.maximum(t0, t), t0)
-        t1 = np.where(~parallel & (edge_p > 0), np.minimum(t1, t), t1)
-    return np.where(outside | (t0 >= t1), 0.0, (t1 - t0) * np.hypot(d[:, 0], d[:, 1]))
-
-
 def sheet_overlaps(layout: SheetLayout, tol: float = TOLERANCE_MM) -> list[Overlap]:
-    """Every text over a stroke (the stroke's length inside the text's box)
-    and every pair of overlapping texts (:func:`box_overlap`) of one sheet,
-    larger than ``tol`` mm."""
-    # every stroke's segments as arrays: one text's box is clipped against all at once
-    segments = [(k, a, b, half) for k, (_, pts, half) in enumerate(layout.strokes)
-                for a, b in zip(pts, pts[1:])]
-    owner = np.array([s[0] for s in segments], dtype=int)
-    p = np.array([s[1] for s in segments], dtype=float).reshape(-1, 2)
-    q = np.array([s[2] for s in segments], dtype=float).reshape(-1, 2)
-    half = np.array([s[3] for s in segments], dtype=float)
-    grow = np.stack([-half, -half, half, half], axis=1)
+    """Every text over a stroke (the stroke's ink inside the text's box,
+    :meth:`~tactcad.drawings.room.Segments.ink_in`) and every pair of
+    overlapping texts (:func:`~tactcad.drawings.room.box_overlap`) of one
+    sheet, larger than ``tol`` mm: the measure the sheet's labels were placed by."""
+    ink = Segments()
+    for _, pts, half in layout.strokes:
+        ink.add(pts, half)
     found = []
     for i, (label, box) in enumerate(layout.texts):
         for other, obox in layout.texts[i + 1:]:
             if (o := box_overlap(box, obox)) > tol:
                 found.append(Overlap(layout.name, label, other, o))
-        if not segments:
-            continue
-        inside = np.bincount(owner, weights=lengths_in_boxes(p, q, np.asarray(box) + grow),
-                             minlength=len(layout.strokes))
+        inside = ink.ink_in(box)
         found += [Overlap(layout.name, label, layout.strokes[k][0], float(inside[k]))
                   for k in np.flatnonzero(inside > tol)]
     return found

@@ -24,7 +24,8 @@ from tactcad.drawings.design_notes import numbering_note
 from tactcad.drawings.drawing import FIRST_TIER
 from tactcad.drawings.frame import (FRAME, general_tolerance, revision_and_date, sheet_frame,
                                     title_cells, wrap_text)
-from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, Sheet, fmt_mm, text_width
+from tactcad.drawings.sheet import (DIM_TEXT_MM, LABEL_TEXT_MM, Point, Sheet, Spot, fmt_mm,
+                                    text_width)
 from tactcad.drawings.views import ISO_5455_SCALES, View, cameras_for, project, scale_text
 from tactcad.store import stable_repr
 
@@ -156,6 +157,7 @@ def compose_assembly(plan: Plan, solids: dict, items: dict[str, int]) -> Assembl
     _slot_table(a, plan)
     _notes(a, plan)
     _title_block(a, plan, items)
+    sh.settle()  # the labels last: each finds room among everything drawn
     return a
 
 
@@ -232,15 +234,21 @@ def _balloons(a: AssemblySheet, v: View, cam, specs, inst, items: dict[str, int]
     ends = {n: v.paper(*_to_view(cam, centre(i)))[0] for i in inst for n in ("front", "back")
             if i.name == f"clamp_plate_{n}"}
     for n, x in ends.items():
-        sh.text("balloons", (x, b[3] + 5.0), n.upper(), DIM_TEXT_MM, anchor="middle",
-                id=f"stack-{n}")
+        # under its clamp plate, else moved out past the stack's end or lower, where there is room
+        out = -1.0 if x < (b[0] + b[2]) / 2 else 1.0
+        spots = [Spot((x + out * dx, b[3] + 5.0 + dy), "middle")
+                 for dy in (0.0, 4.0, -3.0) for dx in (0.0, 4.0, 8.0, 12.0, 18.0)]
+        sh.label("balloons", n.upper(), spots, id=f"stack-{n}")
     order = sorted(anchors, key=lambda p: anchors[p][0])
     n = len(order)
     pitch = max(2 * BALLOON_R + 3.0, (b[2] - b[0]) / max(n - 1, 1))
-    x_start = (b[0] + b[2]) / 2 - pitch * (n - 1) / 2
+    # centred over the view, but inside the frame when the row is wider than the view
+    x_start = max((b[0] + b[2]) / 2 - pitch * (n - 1) / 2, FRAME[0] + BALLOON_R + 3.0)
     y = b[1] - 14.0
+    row = [(x_start + k * pitch, y) for k in range(n)]
+    order = uncrossed(order, row, anchors)
     for k, part in enumerate(order):
-        c = (x_start + k * pitch, y)
+        c = row[k]
         p = anchors[part]
         ang = math.atan2(p[1] - c[1], p[0] - c[0])
         start = (c[0] + BALLOON_R * math.cos(ang), c[1] + BALLOON_R * math.sin(ang))
@@ -250,6 +258,30 @@ def _balloons(a: AssemblySheet, v: View, cam, specs, inst, items: dict[str, int]
         sh.text("balloons", (c[0], c[1] + LABEL_TEXT_MM / 2), str(items[part]), LABEL_TEXT_MM,
                 anchor="middle", id=f"balloon-{part}")
         a.balloons[part] = items[part]
+
+
+def segments_cross(p: Point, q: Point, r: Point, t: Point) -> bool:
+    """Whether the segments ``p``-``q`` and ``r``-``t`` cross at a point inside both."""
+    def side(a: Point, b: Point, c: Point) -> float:
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    return (side(p, q, r) * side(p, q, t) < 0) and (side(r, t, p) * side(r, t, q) < 0)
+
+
+def uncrossed(order: list[str], row: list[Point], anchors: dict[str, Point]) -> list[str]:
+    """``order`` (the parts of the balloons at ``row``'s places, left to
+    right) with neighbours swapped until no two neighbours' leaders (balloon
+    centre to its part's ``anchors`` point) cross: a crossing leader runs
+    through the next balloon's number."""
+    order = list(order)
+    for _ in range(len(order) ** 2):
+        swapped = False
+        for k in range(len(order) - 1):
+            if segments_cross(row[k], anchors[order[k]], row[k + 1], anchors[order[k + 1]]):
+                order[k], order[k + 1] = order[k + 1], order[k]
+                swapped = True
+        if not swapped:
+            break
+    return order
 
 
 def _slot_table(a: AssemblySheet, plan: Plan) -> None:

@@ -21,7 +21,8 @@ import hashlib
 from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.catalogue.shop import material_designation, surface_finish
 from tactcad.design.array_plan import Plan
-from tactcad.drawings.drawing import Drawing, draw_views, finish_text, layout, material_text
+from tactcad.drawings.drawing import (Drawing, draw_views, finish_text, largest_scale, layout,
+                                      material_text, project_views, table_box)
 from tactcad.drawings.frame import (FRAME, TITLE_H, TITLE_W, general_tolerance, projection_symbol,
                                     revision_and_date, sheet_frame, title_cells)
 from tactcad.drawings.notes import draw_notes, notes_for, notes_top
@@ -90,6 +91,24 @@ def draw_finish_symbol(d: Drawing, at: tuple[float, float]) -> None:
                 DIM_TEXT_MM, id="finish-special")
 
 
+def place_hole_table(d: Drawing, views: dict, det: tuple | None) -> None:
+    """Stand the hole table, if any, in the right column over the title
+    block when there it lets the views be drawn at a larger scale than under
+    them, beside the notes (a long table under the views takes their height:
+    24 terminal holes left a 32 mm board at 2:1 with its labels crowded);
+    ``d.notes_top`` follows."""
+    if not d.table_rows:
+        return
+    under = largest_scale(views, det, d.notes_top, d.right_mm)
+    d.table_beside = True
+    beside_top = notes_top(d)
+    if (table_box(d)[1] - 4.0 >= FRAME[1] + 8.0
+            and largest_scale(views, det, beside_top, d.right_mm) > under):
+        d.notes_top = beside_top
+    else:
+        d.table_beside = False
+
+
 def drawing_inputs(plan: Plan, spec: PartSpec) -> tuple:
     """Everything of the plan that shapes the part's drawing: the part itself
     and, by part family, the plan values its notes and dimensions print."""
@@ -125,7 +144,9 @@ def compose(plan: Plan, spec: PartSpec, solid, quantity: int) -> Drawing:
     d.table_rows = hole_table_rows(d, solid)
     d.notes = notes_for(d)
     d.notes_top = notes_top(d)
-    layout(d, solid, detail_circle(spec))
+    views, det = project_views(d, solid), detail_circle(spec)
+    place_hole_table(d, views, det)
+    layout(d, views, det)
     family = drawing_of(spec)
     if family.section is not None:
         family.section(d, solid)
@@ -134,4 +155,5 @@ def compose(plan: Plan, spec: PartSpec, solid, quantity: int) -> Drawing:
     family.dimensions(d, solid)
     draw_notes(d)
     draw_title_block(d)
+    d.sheet.settle()  # the labels last: each finds room among everything drawn
     return d

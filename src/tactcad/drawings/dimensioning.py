@@ -6,11 +6,13 @@ radius callouts, and section views with their cutting-plane marks
 from __future__ import annotations
 
 import math
+from typing import Iterator
 
-from tactcad.drawings.drawing import (FIRST_TIER, TABLE_COLS, TABLE_ROW, TIER, Drawing, Hole2D)
+from tactcad.drawings.drawing import (FIRST_TIER, TABLE_COLS, TABLE_ROW, TIER, Drawing, Hole2D,
+                                      table_box)
 from tactcad.drawings.frame import FRAME, TITLE_W
-from tactcad.drawings.sheet import (DIM_TEXT_MM, LABEL_TEXT_MM, Point, Sheet, fmt_mm, text_box,
-                                    text_width)
+from tactcad.drawings.sheet import (DIM_TEXT_MM, LABEL_TEXT_MM, Point, Sheet, Spot, fmt_mm,
+                                    leader_spot, text_width)
 from tactcad.drawings.views import ISO_5455_SCALES, View, scale_text
 from tactcad.geometry.profile import Arc
 
@@ -38,7 +40,8 @@ def hole_marks(d: Drawing, view: View, holes: list[Hole2D]) -> None:
 
 def hole_callout(d: Drawing, view: View, holes: list[Hole2D], toward: tuple[float, float]) -> None:
     """One leader per distinct hole size and depth: ``2× Ø2.4 through`` at
-    the nearest such hole."""
+    the nearest such hole, its text where there is room near ``toward``
+    (:meth:`~tactcad.drawings.sheet.Sheet.leader`)."""
     by_size: dict[tuple[str, str], list[Hole2D]] = {}
     for h in holes:
         by_size.setdefault((fmt_mm(h.d), h.depth_text), []).append(h)
@@ -50,30 +53,9 @@ def hole_callout(d: Drawing, view: View, holes: list[Hole2D], toward: tuple[floa
         p1 = view.paper(*toward)
         p1 = (p1[0], p1[1] + 6.0 * k)
         text = (f"{len(hs)}× " if len(hs) > 1 else "") + f"Ø{size} {h.depth_text}"
-        p1 = clear_leader_end(d.sheet, p0, p1, text)
         name = "hole_diameter" if len(by_size) == 1 else f"hole_diameter_{k + 1}"
         d.sheet.leader([p0, p1], text, name)
         d.dimensions[name] = text
-
-
-#: Moves (paper mm) tried for a leader's end until its value crosses nothing.
-LEADER_MOVES = ((0.0, 0.0), (0.0, -6.0), (0.0, 6.0), (12.0, -6.0), (-12.0, -6.0), (0.0, -12.0),
-                (0.0, 12.0), (20.0, 0.0), (-20.0, 0.0))
-
-
-def clear_leader_end(sh: Sheet, p0: Point, p1: Point, text: str) -> Point:
-    """The end of a leader from ``p0`` near ``p1`` whose value (set as
-    :meth:`~tactcad.drawings.sheet.Sheet.leader` sets it) and shoulder cross
-    no line and no text drawn so far: ``p1`` moved by the first of
-    :data:`LEADER_MOVES` that is clear, else ``p1``."""
-    tw = text_width(text, DIM_TEXT_MM)
-    for dx, dy in LEADER_MOVES:
-        end = (p1[0] + dx, p1[1] + dy)
-        right = end[0] >= p0[0]
-        x = end[0] + 1.0 if right else end[0] - tw - 1.0
-        if sh.is_clear(text_box((x, end[1] - 1.0), text, DIM_TEXT_MM)):
-            return end
-    return p1
 
 
 def hole_dims_linear(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, float],
@@ -93,16 +75,18 @@ def hole_dims_linear(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[f
 #: Where a label may stand around its feature, tried in this order: up-right
 #: first (the habit of a hand drawing), then the other diagonals and sides.
 LABEL_DIRECTIONS_DEG = (45, 135, -45, -135, 0, 180, 90, -90)
+LABEL_GAPS_MM = (0.8, 2.0, 3.5, 5.0, 8.0)            # beside the feature
+LABEL_LEADER_MM = (6.0, 10.0, 15.0, 20.0, 28.0, 36.0)  # further out, on a leader
 
 
-def clear_label(sh: Sheet, centre: Point, radius: float, text: str, id: str) -> None:
-    """Set ``text`` (``DIM_TEXT_MM`` high) beside the round feature of paper
-    ``centre`` and ``radius`` (mm), at the first place in
-    :data:`LABEL_DIRECTIONS_DEG`, 0.8 ... 8 mm out from the feature, where it
-    crosses no line and no text drawn so far; else at the first place tried."""
-    w, h = text_width(text, DIM_TEXT_MM), DIM_TEXT_MM
-    first = None
-    for gap in (0.8, 2.0, 3.5, 5.0, 8.0):
+def feature_label_spots(centre: Point, radius: float, text: str,
+                        height_mm: float = DIM_TEXT_MM) -> Iterator[Spot]:
+    """Where the label of a round feature (paper ``centre`` and ``radius``,
+    mm) may stand: beside it, :data:`LABEL_GAPS_MM` out in each of
+    :data:`LABEL_DIRECTIONS_DEG`; then on a leader from its edge, ending
+    :data:`LABEL_LEADER_MM` out in those directions."""
+    w, h = text_width(text, height_mm), height_mm
+    for gap in LABEL_GAPS_MM:
         for deg in LABEL_DIRECTIONS_DEG:
             ux, uy = math.cos(math.radians(deg)), -math.sin(math.radians(deg))
             # the box's corner (or side middle) nearest the feature sits at the gap
@@ -111,12 +95,22 @@ def clear_label(sh: Sheet, centre: Point, radius: float, text: str, id: str) -> 
             # baseline: box bottom (0.25 h below it) at ey above the feature,
             # box top (h above it) at ey below it, box middle at ey beside it
             base = ey - 0.25 * h if uy < -0.3 else ey + h if uy > 0.3 else ey + 0.375 * h
-            at = (left, base)
-            first = first or at
-            if sh.is_clear(text_box(at, text, h)):
-                sh.text("dimensions", at, text, DIM_TEXT_MM, id=id)
-                return
-    sh.text("dimensions", first, text, DIM_TEXT_MM, id=id)
+            yield Spot((left, base))
+    for reach in LABEL_LEADER_MM:
+        for deg in LABEL_DIRECTIONS_DEG:
+            ux, uy = math.cos(math.radians(deg)), -math.sin(math.radians(deg))
+            edge = (centre[0] + ux * radius, centre[1] + uy * radius)
+            end = (centre[0] + ux * (radius + reach), centre[1] + uy * (radius + reach))
+            if abs(ux) < 1e-9:  # straight up or down: the shoulder turns right
+                end = (end[0] + 1e-6, end[1])
+            yield leader_spot([edge, end], text, height_mm)
+
+
+def clear_label(sh: Sheet, centre: Point, radius: float, text: str, id: str) -> None:
+    """Set ``text`` (``DIM_TEXT_MM`` high) by the round feature of paper
+    ``centre`` and ``radius`` (mm), at the first of
+    :func:`feature_label_spots` with room for it."""
+    sh.label("dimensions", text, feature_label_spots(centre, radius, text), id=id)
 
 
 def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, float]) -> None:
@@ -132,9 +126,8 @@ def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, 
     for i, h in enumerate(ordered, start=1):
         clear_label(sh, view.paper(h.x, h.y), h.d / 2 * view.scale, f"H{i}", f"hole-label-{i}")
     cols = TABLE_COLS
-    x0 = FRAME[2] - TITLE_W - 4 - sum(cols)
     row_h = TABLE_ROW
-    y0 = FRAME[3] - 8 - row_h * (len(ordered) + 1)  # clear of the centring mark
+    x0, y0, _, _ = table_box(d)
     sh.rect("hole-table", x0, y0, sum(cols), row_h * (len(ordered) + 1), "table")
     heads = ("Hole", "X", "Y", "Ø", "Depth")
     for r_i in range(len(ordered) + 2):
@@ -175,6 +168,31 @@ def thickness_dim(d: Drawing, name: str = "thickness", tol: float = 0.0) -> None
          plus_minus(t.bbox[3] - t.bbox[1], tol), name)
 
 
+def arc_angles(arc: Arc, preferred: float | None = None, step: float = 15.0) -> tuple[float, ...]:
+    """Where a radius dimension's arrowhead may touch ``arc`` (degrees,
+    counter-clockwise as seen in a view whose u, v are the arc's x, y):
+    ``preferred`` (default the arc's middle), then ``step`` apart on either
+    side of it in turn, a tenth of the sweep clear of the arc's ends.
+
+    Args:
+        arc: the arc, in view coordinates (mm).
+        preferred: the angle tried first (deg), or None.
+        step: spacing of the others (deg).
+    Returns:
+        The angles, preferred first.
+    """
+    a0 = math.degrees(math.atan2(arc.start[1] - arc.centre[1], arc.start[0] - arc.centre[0]))
+    sweep = math.degrees(arc.sweep)
+    lo, hi = sorted((a0, a0 + sweep))
+    lo, hi = lo + 0.1 * abs(sweep), hi - 0.1 * abs(sweep)
+    mid = (lo + hi) / 2
+    pref = mid if preferred is None else preferred + 360.0 * round((mid - preferred) / 360.0)
+    out = [pref]
+    for k in range(1, int(360 / step) + 1):
+        out += [a for a in (pref + k * step, pref - k * step) if lo <= a <= hi]
+    return tuple(out)
+
+
 def radius_callouts(d: Drawing, arcs: list[Arc], prefix: str = "inside_radius") -> None:
     f = d.front
     for k, a in enumerate(arcs):
@@ -185,7 +203,8 @@ def radius_callouts(d: Drawing, arcs: list[Arc], prefix: str = "inside_radius") 
         text = f"R{fmt_mm(a.radius)}"
         name = prefix if len(arcs) == 1 else f"{prefix}_{k + 1}"
         left = math.cos(math.radians(ang)) > 0
-        d.sheet.radius_dimension(c, r, ang, text, name, dist=-max(8.0, 3 * r), shoulder_right=not left)
+        d.sheet.radius_dimension(c, r, arc_angles(a, ang), text, name, dist=-max(8.0, 3 * r),
+                                 shoulder_right=not left)
         d.dimensions[name] = text
 
 
@@ -202,7 +221,7 @@ def add_section(d: Drawing, solid, normal: tuple, up: tuple, length_mm: float,
 
     lb = d.views["left"].paper_box()
     left = lb[2] + SECTION_GAP
-    room = FRAME[2] - 8.0 - left - FIRST_TIER - 2 * TIER
+    room = d.right_mm - 8.0 - left - FIRST_TIER - 2 * TIER
     top = lb[1] + 12.0
     room_h = d.notes_top - top - FIRST_TIER - 2 * TIER - 12.0
     scale = next((s for s in ISO_5455_SCALES if s <= 4 * d.scale and length_mm * s <= room

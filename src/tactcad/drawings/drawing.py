@@ -13,7 +13,7 @@ import numpy as np
 from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.catalogue.shop import material_designation, stock_size, surface_finish
 from tactcad.design.array_plan import ElementGeometry, Plan
-from tactcad.drawings.frame import FRAME
+from tactcad.drawings.frame import FRAME, TITLE_H, TITLE_W
 from tactcad.drawings.sheet import LABEL_TEXT_MM, Sheet, fmt_mm
 from tactcad.drawings.views import (CAMERAS, ISO_5455_SCALES, View, detail, project, scale_text)
 from tactcad.geometry.profile import Arc
@@ -59,10 +59,17 @@ class Drawing:
     cameras: dict = field(default_factory=lambda: dict(CAMERAS))
     notes_top: float = NOTES_TOP
     table_rows: int = 0
+    table_beside: bool = False   # the hole table right of the views, not under them
 
     @property
     def front(self) -> View:
         return self.views["front"]
+
+    @property
+    def right_mm(self) -> float:
+        """Paper x the views, their dimensions and any detail or section view
+        stay left of: the frame, or the hole table standing beside them."""
+        return table_box(self)[0] - 6.0 if self.table_rows and self.table_beside else FRAME[2]
 
 
 
@@ -133,7 +140,11 @@ def web_text(g: ElementGeometry) -> str:
     return f"{t} ±{fmt_mm(g.web_tolerance_mm)}" if g.web_tolerance_mm > 0 else t
 
 
-def views_fit(views: dict[str, View], s: float, det_d: float, notes_top: float = NOTES_TOP) -> bool:
+def views_fit(views: dict[str, View], s: float, det_d: float, notes_top: float = NOTES_TOP,
+              right: float = FRAME[2]) -> bool:
+    """Whether the three views at scale ``s`` (with a detail view ``det_d``
+    paper mm across, 0 for none) and their dimension margins fit between the
+    frame's left edge and paper x ``right``, and above ``notes_top`` (mm)."""
     f, t, l = views["front"], views["top"], views["left"]
     fw = (f.bbox[2] - f.bbox[0]) * s
     fh = (f.bbox[3] - f.bbox[1]) * s
@@ -141,27 +152,51 @@ def views_fit(views: dict[str, View], s: float, det_d: float, notes_top: float =
     th = (t.bbox[3] - t.bbox[1]) * s
     width = MARGIN["left"] + fw + MARGIN["right"] + lw + 12 + (det_d + 30 if det_d else 0)
     height = MARGIN["top"] + fh + MARGIN["below"] + th + 14
-    return (width <= FRAME[2] - FRAME[0] - 6) and (height <= notes_top - FRAME[1])
+    return (width <= right - FRAME[0] - 6) and (height <= notes_top - FRAME[1])
 
 
 TABLE_COLS = (14.0, 22.0, 22.0, 18.0, 22.0)
 TABLE_ROW = 6.0
+TABLE_BESIDE_BOTTOM = FRAME[3] - TITLE_H - 14.0  # a table beside the views ends above the finish symbol
 
 
-def layout(d: Drawing, solid, det: tuple | None = None) -> None:
-    """Project the views, pick the largest ISO 5455 scale that fits, place them.
+def table_box(d: Drawing) -> tuple[float, float, float, float]:
+    """(left, top, width, height) on paper (mm) of the hole table's
+    ``d.table_rows`` rows and its head: under the views, between the notes
+    and the title block (clear of the centring mark); or, with
+    ``d.table_beside``, in the right column over the title block."""
+    w, h = sum(TABLE_COLS), TABLE_ROW * (d.table_rows + 1)
+    if d.table_beside:
+        return (FRAME[2] - 6.0 - w, TABLE_BESIDE_BOTTOM - h, w, h)  # clear of the centring mark
+    return (FRAME[2] - TITLE_W - 4.0 - w, FRAME[3] - 8.0 - h, w, h)
+
+
+def project_views(d: Drawing, solid) -> dict[str, View]:
+    """The front, top and left views of ``solid`` in the drawing's cameras.
 
     A part with a plan profile is drawn in its sketch plane (front view from
     +z); any other part from the axis of its smallest extent (see
-    :func:`tactcad.drawings.views.orientation`). ``det``: (centre, radius) of
-    the detail view in model mm, or None for none."""
-    views = {name: project(solid, name, cameras=d.cameras) for name in ("front", "top", "left")}
-    chosen = ISO_5455_SCALES[-1]
+    :func:`tactcad.drawings.views.orientation`)."""
+    return {name: project(solid, name, cameras=d.cameras) for name in ("front", "top", "left")}
+
+
+def largest_scale(views: dict[str, View], det: tuple | None, notes_top: float,
+                  right: float) -> float:
+    """The largest ISO 5455 scale at which the views fit (:func:`views_fit`),
+    else the smallest; ``det``: (centre, radius) of the detail view in model
+    mm, or None."""
     for s in ISO_5455_SCALES:
         ds = smallest_detail_scale(s) if det else 0.0
-        if views_fit(views, s, 2 * det[1] * ds if det else 0.0, d.notes_top):
-            chosen = s
-            break
+        if views_fit(views, s, 2 * det[1] * ds if det else 0.0, notes_top, right):
+            return s
+    return ISO_5455_SCALES[-1]
+
+
+def layout(d: Drawing, views: dict[str, View], det: tuple | None = None) -> None:
+    """Pick the largest ISO 5455 scale at which the projected ``views`` fit
+    (:func:`largest_scale`) and place them. ``det``: (centre, radius) of the
+    detail view in model mm, or None for none."""
+    chosen = largest_scale(views, det, d.notes_top, d.right_mm)
     d.scale = chosen
     for v in views.values():
         v.scale = chosen
@@ -177,7 +212,7 @@ def layout(d: Drawing, solid, det: tuple | None = None) -> None:
     if det:
         lb = l.paper_box()
         left_d = lb[2] + 28.0
-        room = min(FRAME[2] - 8.0 - left_d, d.notes_top - top - 16.0, 150.0)
+        room = min(d.right_mm - 8.0 - left_d, d.notes_top - top - 16.0, 150.0)
         fitting = [s for s in ISO_5455_SCALES if s >= 4 * chosen - 1e-9 and 2 * det[1] * s <= room]
         d.detail_scale = max(fitting) if fitting else smallest_detail_scale(chosen)
         dv = detail(f, det[0], det[1], d.detail_scale, "A")

@@ -90,9 +90,11 @@ def wrap_text(text: str, width: float, h: float) -> list[str]:
 
 
 def sheet_frame(sh: Sheet) -> None:
-    """ISO 5457 frame and centring marks of an A3 sheet."""
+    """ISO 5457 frame and centring marks of an A3 sheet; the sheet's labels
+    stay inside the frame."""
     x0, y0, x1, y1 = FRAME
     sh.rect("frame", x0, y0, x1 - x0, y1 - y0, "frame")
+    sh.room = FRAME
     # centring marks (ISO 5457)
     w, h = sh.width_mm, sh.height_mm
     for p, q in (((w / 2, 0.0), (w / 2, y0 + 5)), ((w / 2, h), (w / 2, y1 - 5)),

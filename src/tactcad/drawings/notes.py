@@ -18,17 +18,19 @@ def notes_for(d: Drawing) -> list[str]:
 
 def note_lines(d: Drawing) -> list[list[str]]:
     x0 = FRAME[0] + 5.0
-    right = FRAME[2] - TITLE_W - 6.0 - (sum(TABLE_COLS) + 6.0 if d.table_rows else 0.0)
+    under = d.table_rows and not d.table_beside
+    right = FRAME[2] - TITLE_W - 6.0 - (sum(TABLE_COLS) + 6.0 if under else 0.0)
     width = 0.8 * (right - x0)  # room for a wider fallback font
     return [wrap_text(f"{k}. {note}", width, DIM_TEXT_MM) for k, note in enumerate(d.notes, start=1)]
 
 
 def notes_top(d: Drawing) -> float:
     """Paper y where the views must end: above the notes block (which ends
-    3 mm above the frame) and above the hole table, if any."""
+    3 mm above the frame) and above the hole table, if any stands under them."""
     lines = note_lines(d)
     height = 5.0 + sum(len(ls) * NOTE_LINE + 0.8 for ls in lines) + 3.0
-    table = (d.table_rows + 1) * TABLE_ROW + 8.0 + 8.0 if d.table_rows else 0.0
+    table = (d.table_rows + 1) * TABLE_ROW + 8.0 + 8.0 if d.table_rows and not d.table_beside \
+        else 0.0
     return min(NOTES_TOP, FRAME[3] - height, FRAME[3] - table)
 
 

@@ -21,9 +21,9 @@ from tactcad.catalogue.shop import tap_drill_mm, thread_text
 from tactcad.design.array_plan import Plan
 from tactcad.design.readout_section import readout_of
 from tactcad.design.tolerances import tolerances_of
-from tactcad.drawings.dimensioning import (add_section, dim, hole_callout, hole_dims_linear,
-                                           hole_marks, hole_table, plus_minus, radius_callouts,
-                                           section_marks, thickness_dim)
+from tactcad.drawings.dimensioning import (add_section, arc_angles, dim, hole_callout,
+                                           hole_dims_linear, hole_marks, hole_table, plus_minus,
+                                           radius_callouts, section_marks, thickness_dim)
 from tactcad.drawings.drawing import (FIRST_TIER, TIER, Drawing, Hole2D, holes_seen, inside_radii,
                                       part_thickness, web_text)
 from tactcad.drawings.sheet import fmt_mm
@@ -173,7 +173,7 @@ PEN = SimpleNamespace(
     dim=dim, hole_marks=hole_marks, Hole2D=Hole2D, thickness_dim=thickness_dim,
     generic_dims=generic_dims, section_marks=section_marks, add_section=add_section, fmt_mm=fmt_mm,
     thread_text=thread_text, tap_drill_mm=tap_drill_mm, FIRST_TIER=FIRST_TIER, TIER=TIER,
-    plus_minus=plus_minus, holes_seen=holes_seen, hole_dims_linear=hole_dims_linear,
+    plus_minus=plus_minus, arc_angles=arc_angles, holes_seen=holes_seen, hole_dims_linear=hole_dims_linear,
     hole_callout=hole_callout, web_text=web_text, part_thickness=part_thickness, sentence=sentence,
     tolerances=lambda plan: tolerances_of(plan.raw),
     readout=lambda plan: readout_of(plan.raw, plan.strength.gauge),

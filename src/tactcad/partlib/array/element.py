@@ -217,8 +217,9 @@ def _tip_root_radius(d, pen) -> None:
                and abs(s.radius - g.inside_corner_radius_mm) < 1e-9)
     c = d.front.paper(*fil.centre)
     text = f"R{pen.fmt_mm(fil.radius)}"
-    d.sheet.radius_dimension(c, fil.radius * d.front.scale, -45.0, text, "corner_radius",
-                             dist=(-10.0, -14.0, -18.0, -22.0), shoulder_right=False)
+    d.sheet.radius_dimension(c, fil.radius * d.front.scale, pen.arc_angles(fil, -45.0), text,
+                             "corner_radius", dist=(-10.0, -14.0, -18.0, -22.0),
+                             shoulder_right=False)
     d.dimensions["corner_radius"] = text
 
 
@@ -233,8 +234,11 @@ def _web_detail(d, pen, tol) -> None:
                              dv.paper(xh, 0)[0], wt, "web_thickness")
     d.dimensions["web_thickness"] = wt
     rtext = f"R{pen.plus_minus(g.notch_radius_mm, tol.notch_radius_mm)}"
-    d.sheet.radius_dimension(dv.paper(xh, yc), g.notch_radius_mm * dv.scale, 60.0, rtext,
-                             "notch_radius", dist=-10.0, shoulder_right=True)
+    notch = next(s for s in d.spec.profile.outer if isinstance(s, Arc)
+                 and abs(s.radius - g.notch_radius_mm) < 1e-9 and abs(s.centre[0] - xh) < 1e-9)
+    d.sheet.radius_dimension(dv.paper(xh, yc), g.notch_radius_mm * dv.scale,
+                             pen.arc_angles(notch, 60.0), rtext, "notch_radius", dist=-10.0,
+                             shoulder_right=True)
     d.dimensions["notch_radius"] = rtext
 
 

@@ -1,0 +1,137 @@
+"""Drawings never overlap: for random designs of the accepted domain
+(:func:`tactcad.design.domain.draw_design`) and for the sizes that once
+overlapped, the drawing sheets an export writes pass the ``drawings`` group of
+``tactcad check`` (no text over a line or another text) with no failure."""
+
+from __future__ import annotations
+
+import random
+from pathlib import Path
+
+import pytest
+
+from tactcad.checks.groups import CHECK_GROUPS, CheckContext
+from tactcad.design.array_plan import DEFAULT_DESIGN, with_overrides
+from tactcad.design.domain import draw_design
+from tactcad.design.project import project_from_data, project_of, project_with_design_data
+from tactcad.design.rig_plan import default_rigs_data
+from tactcad.design.scene_specs import DEFAULT_SCENES
+from tactcad.vocabulary.schema import Problems, read_toml
+
+from conftest import EXAMPLE_DESIGN
+
+#: The 2 x 6 titanium insert for a 10 mm grasper jaw (issue 41): the non-paper
+#: example with six columns on thinner sheet, a finer pitch and a narrower tip.
+GRASPER = {"array.columns": 6, "sheet.thickness_mm": 1.0, "array.pitch_mm": 2.0,
+           "element.tip_width_mm": 1.0,
+           "arms.lengths_mm": [19.605, 6.196, 19.605] * 4}
+
+
+def drawings_check(project, folder: Path, parts: tuple[str, ...] = ()) -> tuple[int, list[str]]:
+    """Draw the project's sheets as the export draws them (every fabricated
+    part's, numbered as the export's BOM, and the assembly sheet; of ``parts``
+    only, when given) into ``folder``/drawings and run the ``drawings`` check
+    group on them: (sheets checked, the failing checks' lines). No manifest is
+    written: the design studies it runs are other tests'."""
+    from tactcad.assembly.inventory import design_assemblies, fabricated_parts
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.drawings.assembly import compose_assembly
+    from tactcad.drawings.compose import compose
+    from tactcad.export.bom import complete_kit
+    from tactcad.solids.cache import PartCache
+
+    plan, cache = project.plan, PartCache(project.plan)
+    inventory = design_assemblies(project)
+    specs, quantity = fabricated_parts(project, inventory)
+    (folder / "drawings").mkdir(parents=True)
+    sheets = {s.name: lambda s=s: compose(plan, s, cache.solid(s), quantity[s.name]).sheet
+              for s in specs}
+    items = {r.part: r.item for r in complete_kit(project, inventory)}
+    sheets["assembly"] = lambda: compose_assembly(
+        plan, {n: cache.solid(s) for n, s in array_parts(plan).items()}, items).sheet
+    for name, draw in sheets.items():
+        if not parts or name in parts:
+            (folder / "drawings" / f"{name}.svg").write_text(draw().svg(), encoding="utf-8")
+    context = CheckContext(plan, folder, cache=cache, project=project)
+    results = [r for _, found in CHECK_GROUPS["drawings"].run(context) for r in found]
+    return len(results), [r.line() for r in results if not r.passed]
+
+
+def design_file_project(path: Path, overrides: dict):
+    """The project of a design file with ``--set`` style ``overrides``."""
+    return project_with_design_data(with_overrides(read_toml(path, "design file"), overrides), path)
+
+
+def domain_projects(seeds):
+    """(seed, project) of each accepted in-domain draw of ``seeds``, with the
+    default rigs and scenes files."""
+    rigs, scenes = default_rigs_data(), read_toml(DEFAULT_SCENES, "scenes file")
+    for seed in seeds:
+        rng = random.Random(seed)
+        data = draw_design(rng.uniform, rng.choice, name=f"domain{seed}")
+        problems = Problems("domain.toml")
+        plan, rig_design, scene_specs = project_from_data(data, rigs, scenes, problems,
+                                                          source="domain.toml")
+        if not problems:  # a refused draw is the domain test's (tests/design), not this one
+            yield seed, project_of(plan, rig_design, scene_specs, scenes)
+
+
+@pytest.mark.parametrize("overrides, parts", [
+    ({"element.tip_height_mm": 1.783}, ("element_a4mm",)),       # '2 ±0.02' over '1.783'
+    ({"element.notch_radius_mm": 1.339}, ("element_a4mm",)),     # 'R1.339 ±0.01' on detail A
+], ids=["tip_height_1.783", "notch_radius_1.339"])
+def test_the_paper_designs_element_sizes_that_overlapped_draw_clear(overrides, parts, tmp_path):
+    n, failed = drawings_check(design_file_project(DEFAULT_DESIGN, overrides), tmp_path, parts)
+    assert n == len(parts) and failed == []
+
+
+def test_the_2x6_titanium_grasper_insert_draws_clear(tmp_path):
+    """Every sheet of the grasper insert: both element sheets (0.09 mm over a
+    line), the indenter (2.64 mm) and the terminal board (14 overlaps, H16 on
+    H17 among them, its 24 holes at 2:1) once failed."""
+    project = design_file_project(EXAMPLE_DESIGN, GRASPER)
+    n, failed = drawings_check(project, tmp_path)
+    assert n >= 15 and failed == []
+    board = (tmp_path / "drawings" / "terminal_board.svg").read_text(encoding="utf-8")
+    assert "5:1" in board          # its hole table beside the views lets the board be drawn larger
+
+
+def test_a_few_random_designs_of_the_domain_draw_clear(tmp_path):
+    checked = 0
+    for seed, project in domain_projects(range(3)):
+        n, failed = drawings_check(project, tmp_path / str(seed))
+        assert failed == [], f"design seed {seed}"
+        checked += n
+    assert checked >= 45
+
+
+@pytest.mark.slow
+def test_thirty_random_designs_of_the_domain_draw_clear(tmp_path):
+    """N >= 30 accepted designs drawn over the whole domain (seeds from 1000):
+    every sheet of each passes the drawings check."""
+    designs = sheets = 0
+    failures = {}
+    for seed, project in domain_projects(range(1000, 1040)):
+        n, failed = drawings_check(project, tmp_path / str(seed))
+        designs, sheets = designs + 1, sheets + n
+        if failed:
+            failures[seed] = failed
+        if designs == 30:
+            break
+    print(f"drawings check: N = {designs} random in-domain designs, {sheets} sheets, "
+          f"{len(failures)} with overlaps")
+    assert designs == 30 and failures == {}
+
+
+def test_balloon_leaders_are_ordered_so_that_none_crosses_its_neighbour():
+    """Two parts seen at one x, one over the other, their balloons in a row to
+    the right: the left balloon takes the upper part, or the leaders cross and
+    one runs through the other's number."""
+    from tactcad.drawings.assembly import segments_cross, uncrossed
+
+    row = [(100.0, 20.0), (111.0, 20.0)]
+    anchors = {"lower": (80.0, 80.0), "upper": (80.0, 40.0)}
+    assert segments_cross(row[0], anchors["lower"], row[1], anchors["upper"])
+    order = uncrossed(["lower", "upper"], row, anchors)
+    assert order == ["upper", "lower"]
+    assert not segments_cross(row[0], anchors[order[0]], row[1], anchors[order[1]])
