@@ -193,3 +193,30 @@ def test_a_small_full_scale_force_writes_the_resolution_its_chain_reaches(tmp_pa
                      "--quiet"]) == 0
     res = record(json.loads(capsys.readouterr().out)["matrix"], "kobj_resolution_rel")
     assert res["verdict"] == "pass" and res["target"] == written
+
+
+def test_a_design_that_reads_no_kobj_is_not_judged_on_kobj_targets_it_never_stated():
+    """One column: each row is its own reference, no K_obj is read (eq. 3 needs a
+    pair), so no K_obj target is derived and verify has none to fail; a K_obj
+    target the file states still fails, the design cannot read it."""
+    keys = ("kobj_range_N_per_mm", "kobj_resolution_rel")
+    plan = example(drop_requirements=keys, **{"array.columns": 1, "arms.lengths_mm": [5.0, 6.0]})
+    judged = {r["requirement"] for r in verification_matrix(plan, "closed-form")}
+    assert not judged & set(keys) and "kr_over_km" in judged
+    stated = example(drop_requirements=("kobj_resolution_rel",),
+                     **{"array.columns": 1, "arms.lengths_mm": [5.0, 6.0]})
+    matrix = verification_matrix(stated, "closed-form")
+    assert record(matrix, "kobj_range_N_per_mm")["pass"] is False
+
+
+def test_a_derived_k_band_is_met_by_the_toleranced_design_it_was_derived_for():
+    """Not stated, k_tolerance_rel is derived from the web band; the Monte Carlo band
+    under every tolerance is judged against its own derivation (the larger), so a
+    design with a near-exact web but looser other tolerances passes what it derived."""
+    plan = example(drop_requirements=("k_tolerance_rel",), **{"element.web_tolerance_mm": 0.0005})
+    matrix = verification_matrix(plan, "closed-form")
+    web, toleranced = record(matrix, "k_tolerance_rel"), record(matrix, "k_tolerance_rel_toleranced")
+    assert toleranced["predicted"] > web["target"]  # the web alone is the narrower band
+    assert toleranced["pass"] and toleranced["target"] >= toleranced["predicted"]
+    stated = example(**{"element.web_tolerance_mm": 0.0005, "requirements.k_tolerance_rel": 0.004})
+    assert not record(verification_matrix(stated, "closed-form"), "k_tolerance_rel_toleranced")["pass"]

@@ -110,7 +110,8 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
                            tip_height_mm=pick(max(0.3, corner + MIN_TIP_WALL_MM), 5.0),
                            arm_height_mm=arm_h,
                            base_height_mm=base_h, overall_length_mm=overall,
-                           inside_corner_radius_mm=corner, web_tolerance_mm=pick(0.0, 0.1))
+                           inside_corner_radius_mm=corner,
+                           web_tolerance_mm=pick(0.0, min(0.1, web / 2)))
     data["arms"]["lengths_mm"] = arms
     data["clamp"].update(bolt_size=bolt.size, bolt_spacing_mm=spacing, plate_thickness_mm=plate,
                          bridge_height_mm=bridge, arm_clearance_mm=arm_clear)

@@ -70,20 +70,21 @@ class TolerancesSection(Section):
 
 def check_tolerances(d: Any, p: Problems) -> None:
     """Cross-field rules: one web tolerance, and tolerances smaller than what they tolerance."""
-    tol = getattr(d, "tolerances", None)
-    if tol is None:
-        return
     e = d.element
-    if tol.web_thickness_mm is not None and e.web_tolerance_mm is not None \
+    tol = getattr(d, "tolerances", None)
+    if tol is not None and tol.web_thickness_mm is not None and e.web_tolerance_mm is not None \
             and abs(tol.web_thickness_mm - e.web_tolerance_mm) > 1e-12:
         p.add("tolerances.web_thickness_mm", tol.web_thickness_mm,
               f"{fmt(e.web_tolerance_mm)} mm (element.web_tolerance_mm) or leave one of them out",
               "one web tolerance for the drawing and the study")
-    for key, nominal, what in (("web_thickness_mm", e.web_thickness_mm, "web"),
-                               ("notch_radius_mm", e.notch_radius_mm, "notch radius")):
-        v = getattr(tol, key)
+    bounded = [("element.web_tolerance_mm", e.web_tolerance_mm, e.web_thickness_mm, "web")]
+    if tol is not None:
+        bounded += [("tolerances.web_thickness_mm", tol.web_thickness_mm, e.web_thickness_mm, "web"),
+                    ("tolerances.notch_radius_mm", tol.notch_radius_mm, e.notch_radius_mm,
+                     "notch radius")]
+    for field, v, nominal, what in bounded:
         if v is not None and v > nominal / 2:
-            p.add(f"tolerances.{key}", v, f"<= {fmt(nominal / 2)} mm (half the {what})",
+            p.add(field, v, f"<= {fmt(nominal / 2)} mm (half the {what})",
                   "a larger tolerance lets the feature vanish in the tolerance study's draw")
 
 

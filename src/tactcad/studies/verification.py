@@ -429,6 +429,32 @@ def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float) -> tu
                    f"mN), padded by its error and rounded up")
 
 
+#: The requirements on reading K_obj (eq. 3), which apply where a row has a measuring element.
+KOBJ_KEYS = frozenset({"kobj_resolution_rel", "kobj_range_N_per_mm"})
+
+
+def kobj_records(units: SensingUnits, req: Requirements, force_N: float, model: str) -> list[dict]:
+    """The records of :data:`KOBJ_KEYS`: the worst relative K_obj resolution over the
+    required range and the range read within the required resolution, each element read
+    through the design's read-out chain at ``force_N`` (N); none read (no measuring
+    element) fails both."""
+    rng = req.kobj_range_N_per_mm
+    if units.read:
+        worst = worst_resolution(units, rng, force_N)
+        res_err = resolution_error_rel(units, rng, force_N)
+        span = readable_range(units, rng, force_N, req.kobj_resolution_rel)
+    else:
+        worst, res_err, span = math.inf, 0.0, None
+    m_rng = min(rng[0] / span[0], span[1] / rng[1]) - 1.0 if span else -1.0
+    return [_record("kobj_resolution_rel", req.kobj_resolution_rel, _finite_or_none(worst),
+                    res_err, req.kobj_resolution_rel / worst - 1.0, model,
+                    worst <= req.kobj_resolution_rel,
+                    force_resolution_N={str(n): f for n, f in units.force_resolution_N.items()},
+                    basis=READOUT_BASIS),
+            _record("kobj_range_N_per_mm", list(rng), list(span) if span else None, res_err,
+                    m_rng, model, m_rng >= 0)]
+
+
 def rated_full_scale_force(plan: Plan) -> float:
     """The design's rated full-scale force (N), the one force every command,
     drawing and page calls full scale: ``[requirements] full_scale_force_N``,
@@ -493,25 +519,15 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     out.append(_record("k_tolerance_rel", req.k_tolerance_rel, band, closed_form_k_error(plan),
                        req.k_tolerance_rel / band - 1.0 if band > 0 else math.inf,
                        "closed-form", band <= req.k_tolerance_rel))
-    rng = req.kobj_range_N_per_mm
     units = sensing_units(plan, fig)
-    if units.read:
-        worst = worst_resolution(units, rng, F)
-        res_err = resolution_error_rel(units, rng, F)
-        span = readable_range(units, rng, F, req.kobj_resolution_rel)
-    else:
-        worst, res_err, span = math.inf, 0.0, None
-    out.append(_record("kobj_resolution_rel", req.kobj_resolution_rel, _finite_or_none(worst),
-                       res_err, req.kobj_resolution_rel / worst - 1.0, model,
-                       worst <= req.kobj_resolution_rel,
-                       force_resolution_N={str(n): f for n, f in units.force_resolution_N.items()},
-                       basis=READOUT_BASIS))
-    m_rng = min(rng[0] / span[0], span[1] / rng[1]) - 1.0 if span else -1.0
-    out.append(_record("kobj_range_N_per_mm", list(rng), list(span) if span else None, res_err,
-                       m_rng, model, m_rng >= 0))
+    if units.read or KOBJ_KEYS & req.stated:
+        out.extend(kobj_records(units, req, F, model))
+    # else: no row has an element softer than its reference, so the design reads no K_obj
+    # and states no K_obj target: there is nothing of K_obj to verify (derived, none applies)
     from tactcad.studies.tolerance_budget import toleranced_band_record
 
-    out.append(toleranced_band_record(plan, req.k_tolerance_rel, closed_form_k_error(plan)))
+    out.append(toleranced_band_record(plan, req.k_tolerance_rel, closed_form_k_error(plan),
+                                      derived="k_tolerance_rel" not in req.stated))
     if req.footprint_mm is not None:
         if envelope_mm is None:
             raise ValueError("the design states requirements.footprint_mm: pass the array's "
