@@ -97,6 +97,17 @@ def test_bad_tolerances_are_refused_naming_the_field(key, value, field):
     assert field in str(exc.value)
 
 
+def test_a_web_tolerance_beyond_half_the_web_is_refused_by_the_validator_naming_it():
+    """Once accepted here and refused later by the tolerance study, half-way
+    through an export (a random in-domain design found it)."""
+    data = with_overrides(default_design_data(), {"element.web_thickness_mm": 0.15,
+                                                  "element.web_tolerance_mm": 0.08})
+    data.get("tolerances", {}).pop("web_thickness_mm", None)
+    with pytest.raises(DesignError) as exc:
+        plan_from_dict(data)
+    assert "element.web_tolerance_mm = 0.08" in str(exc.value) and "0.075" in str(exc.value)
+
+
 def test_tolerance_says_whether_the_band_holds_and_what_to_tighten(capsys):
     argv = ["tolerance", "--samples", "2000", "--json"]
     assert main([*argv, "--set", "requirements.k_tolerance_rel=0.3"]) == 0
