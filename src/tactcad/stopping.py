@@ -115,6 +115,42 @@ def exit_at_once_on_stop(code: int) -> Callable[[], None]:
     return lambda: _put_back(list(previous.items()))
 
 
+#: Bytes that hold a C ``struct sigaction`` on any system (Linux x86-64: 152).
+_SIGACTION_BYTES = 1024
+
+
+@contextmanager
+def signal_dispositions_kept() -> Iterator[None]:
+    """Put every signal's disposition back as it was, at the level of the
+    operating system, when the block ends: around a native library that
+    installs signal handlers of its own and leaves the signals at their
+    defaults. gmsh's initialisation does (its OpenCascade's
+    ``OSD::SetSignal``, set and unset): SIGPIPE is no longer ignored, so a
+    later write to a closed pipe (a killed worker's) ends the whole process
+    at once instead of raising ``BrokenPipeError``; Python's SIGTERM handler
+    and ``faulthandler``'s handlers are gone. Python's ``signal.getsignal``
+    answers from its own table and does not see the change, so the
+    dispositions are read and written with the C library's ``sigaction``;
+    where there is none (Windows) nothing is kept."""
+    import ctypes
+
+    try:
+        sigaction = ctypes.CDLL(None, use_errno=True).sigaction
+    except (OSError, AttributeError, TypeError):  # no C library to ask
+        sigaction = None
+    saved = {}
+    for number in signal.valid_signals() if sigaction is not None else ():
+        if number not in (signal.SIGKILL, signal.SIGSTOP):  # never caught nor changed
+            action = ctypes.create_string_buffer(_SIGACTION_BYTES)
+            if sigaction(int(number), None, action) == 0:
+                saved[number] = action
+    try:
+        yield
+    finally:
+        for number, action in saved.items():
+            sigaction(int(number), action, None)
+
+
 def end_child_processes(wait_s: float = 1.0) -> None:
     """Kill every ``multiprocessing`` child of this process still running and
     reap it (each waited for at most ``wait_s`` seconds): a process that

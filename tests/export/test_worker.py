@@ -207,7 +207,7 @@ def test_ending_at_once_on_a_stop_is_undone_for_a_process_that_goes_on():
     """A watch run in-process (the API, the tests) that was stopped ends its
     clean-up with stop signals ending the process at once; when it returns,
     the process's own handlers are back (else a later Ctrl-C would os._exit
-    the caller: a pytest worker crashed on a test that signals itself)."""
+    the caller)."""
     import signal
 
     from tactcad.stopping import exit_at_once_on_stop, stop_signal_numbers

@@ -384,3 +384,40 @@ def test_the_two_level_cycle_is_one_symmetric_operator():
     assert np.abs(Mv - textbook(v)).max() < 1e-9 * np.abs(Mv).max()
     assert abs(w @ Mv - v @ Mw) < 1e-9 * abs(w @ Mv)
     assert v @ Mv > 0 and w @ Mw > 0
+
+
+#: Meshes with gmsh, then writes to a closed pipe and signals itself SIGTERM:
+#: run in a fresh interpreter, as a process that signals itself must not be
+#: the test's own.
+GMSH_THEN_SIGNALS = """
+import os, signal
+from tactcad.mechanics.fem.fem_mesh import gmsh_session
+
+caught = []
+signal.signal(signal.SIGTERM, lambda number, frame: caught.append(number))
+with gmsh_session("signals"):
+    pass
+read_end, write_end = os.pipe()
+os.close(read_end)
+try:
+    os.write(write_end, b"x")
+except BrokenPipeError:
+    print("broken pipe raised")
+os.kill(os.getpid(), signal.SIGTERM)
+print("SIGTERM handled", caught == [signal.SIGTERM])
+"""
+
+
+def test_meshing_leaves_the_host_process_its_signal_handlers():
+    """gmsh's initialisation sets SIGPIPE, SIGTERM and the fault signals to
+    their defaults: a host process (the API, a watch session, a pytest
+    worker) that meshed once was then ended by SIGPIPE on a write to a killed
+    worker's pipe, and by SIGTERM without its clean-up. Its own dispositions
+    are kept: the write raises, the handler runs."""
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-c", GMSH_THEN_SIGNALS],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, f"ended by signal {-proc.returncode}: {proc.stderr[-2000:]}"
+    assert proc.stdout.split("\n")[:2] == ["broken pipe raised", "SIGTERM handled True"]

@@ -64,6 +64,7 @@ import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry
 from tactcad.geometry.profile import Arc, Line, Segment, contour_area, element_profile
+from tactcad.stopping import signal_dispositions_kept
 
 #: Default clamp margin, as a multiple of the larger of the notch radius and
 #: the arm height (see :func:`default_clamp_margin_mm`).
@@ -252,7 +253,10 @@ def gmsh_session(name: str) -> Iterator[object]:
 
     own = not gmsh.isInitialized()
     if own:
-        gmsh.initialize(readConfigFiles=False, interruptible=False)
+        # gmsh leaves SIGPIPE, SIGTERM and the fault signals at their defaults:
+        # a host process (the API, a watch session, a test worker) keeps its own
+        with signal_dispositions_kept():
+            gmsh.initialize(readConfigFiles=False, interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.Verbosity", 1)
