@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import Callable
 
 from tactcad.design.array_plan import Plan
 from tactcad.mechanics.correction import Correction, load_correction
@@ -133,27 +134,23 @@ def band_check(plan: Plan, report: ToleranceReport, target: float,
 
 
 def toleranced_band_record(plan: Plan, target: float, error: float,
-                           derived: bool = False) -> dict:
+                           derive: Callable[[float], float] | None = None) -> dict:
     """``verify``'s record ``k_tolerance_rel_toleranced``: the Monte Carlo band under every
     ``[tolerances]`` value (not the web alone) against the requirement.
 
     Args:
         plan: the design. target: ``k_tolerance_rel``. error: the closed form's K error.
-        derived: the design file does not state ``k_tolerance_rel`` (it was derived from
-            the web band alone): the target here is derived by this record's own rule, the
-            band under every tolerance padded by ``error`` and rounded up, where that is
-            larger (a derived target is checked as it was derived).
+        derive: where the design file does not state ``k_tolerance_rel`` (it was derived
+            from the web band alone), the rule that derives a K band requirement from a band
+            (:func:`tactcad.studies.verification.padded_band_requirement`): this record's
+            target is then the band under every tolerance so derived, where that is larger
+            (a derived target is checked as it was derived).
     """
-    from tactcad.studies.verification import (MIN_K_BAND_REL, ROOM_BEYOND_ERROR,
-                                              round_up)
-
     tol = Tolerances.of_plan(plan)
     report = run_tolerance(plan, samples=MONTE_CARLO_SAMPLES, seed=MONTE_CARLO_SEED,
                            tolerances=tol, k_obj=[1.0])
-    if derived:
-        band, _ = mc_band(report)
-        own = max(band, MIN_K_BAND_REL) * (1.0 + error) * (1.0 + ROOM_BEYOND_ERROR)
-        target = max(target, round_up(own))
+    if derive is not None:
+        target = max(target, derive(mc_band(report)[0]))
     check = band_check(plan, report, target)
     band = check["predicted_band_rel"]
     return {"requirement": "k_tolerance_rel_toleranced", "target": target, "predicted": band,

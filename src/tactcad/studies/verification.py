@@ -346,12 +346,17 @@ MIN_K_BAND_REL = 1e-3
 
 
 def k_band_requirement(plan: Plan) -> tuple[float, float]:
-    """(requirement, band) of the K band over the web tolerance (:func:`web_band_rel`, at
-    least :data:`MIN_K_BAND_REL`), padded by the closed form's K error and rounded up, so
-    that the closed form decides it."""
+    """(requirement, band) of the K band over the web tolerance (:func:`web_band_rel`):
+    :func:`padded_band_requirement` of it."""
     band = web_band_rel(plan)
-    padded = max(band, MIN_K_BAND_REL) * (1.0 + closed_form_k_error(plan))
-    return round_up(padded * (1.0 + ROOM_BEYOND_ERROR)), band
+    return padded_band_requirement(band, closed_form_k_error(plan)), band
+
+
+def padded_band_requirement(band: float, error: float) -> float:
+    """A K band requirement derived from a relative ``band``: at least
+    :data:`MIN_K_BAND_REL`, padded by the K ``error`` and rounded up, so that the closed
+    form decides it."""
+    return round_up(max(band, MIN_K_BAND_REL) * (1.0 + error) * (1.0 + ROOM_BEYOND_ERROR))
 
 
 def smallest_row_ratio(plan: Plan, fig: Figures) -> float:
@@ -526,8 +531,10 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     # and states no K_obj target: there is nothing of K_obj to verify (derived, none applies)
     from tactcad.studies.tolerance_budget import toleranced_band_record
 
-    out.append(toleranced_band_record(plan, req.k_tolerance_rel, closed_form_k_error(plan),
-                                      derived="k_tolerance_rel" not in req.stated))
+    error = closed_form_k_error(plan)
+    derive = None if "k_tolerance_rel" in req.stated else \
+        (lambda band: padded_band_requirement(band, error))
+    out.append(toleranced_band_record(plan, req.k_tolerance_rel, error, derive))
     if req.footprint_mm is not None:
         if envelope_mm is None:
             raise ValueError("the design states requirements.footprint_mm: pass the array's "
