@@ -59,6 +59,19 @@ def test_a_0p077_N_design_fails_the_papers_gauge():
     assert "resolution 0.001 N > 0.00077 N" in gauge.detail and "Mark-10" in gauge.detail
 
 
+def test_a_rating_finer_than_any_catalogue_gauge_resolves_is_undecided_not_failed():
+    """At 5 mN no gauge of the catalogue resolves 1 % of the rating: the rig that
+    holds the finest of the needed range is undecided (the lab's call), a coarser
+    one the catalogue could replace fails."""
+    project = tactcad.load(EXAMPLE, set={"requirements.full_scale_force_N": 0.005})
+    finest = {"model": "Mark-10 M5-012", "range_N": 0.5, "resolution_N": 0.0001}
+    _, gauge = rig_checks(project.plan, _rigs_with(project, force_gauge=finest))
+    assert gauge.passed and gauge.undecided and "finest gauge" in gauge.detail
+    coarse = {"model": "Sauter FH 5", "range_N": 5.0, "resolution_N": 0.001}
+    _, gauge = rig_checks(project.plan, _rigs_with(project, force_gauge=coarse))
+    assert not gauge.passed and not gauge.undecided
+
+
 def test_a_rig_without_its_preload_fails_naming_the_field():
     project = tactcad.load(EXAMPLE)
     rigs = _rigs_with(project, evaluation={})

@@ -55,7 +55,12 @@ def evaluation_load_check(plan, rigs, rated_N: float) -> CheckResult:
 
 def force_gauge_check(rigs, rated_N: float) -> CheckResult:
     """Fails when the force gauge's range or resolution misses what the
-    calibration and sample rigs read at ``rated_N`` (N) and the rig's stiffest sample."""
+    calibration and sample rigs read at ``rated_N`` (N) and the rig's stiffest
+    sample. Undecided (not failed) where only the resolution misses and the
+    rig already holds the catalogue's finest gauge of that range: no gauge of
+    the catalogue does better, so whether the calibration resolves the rating
+    is left to the lab (a finer instrument, or calibration by dead weights);
+    a range that is short always fails (the gauge would be overloaded)."""
     from tactcad.studies.rig_sizing import choose_force_gauge, gauge_need, gauge_shortfalls
 
     g = rigs.part("force_gauge")
@@ -66,5 +71,11 @@ def force_gauge_check(rigs, rated_N: float) -> CheckResult:
     if not short:
         return CheckResult("rig force gauge", subject, True, text)
     fit, misses = choose_force_gauge(need)
+    only_resolution = g.range_N >= need.range_N * (1 - 1e-9)
+    if misses and fit.model == g.model and only_resolution:
+        return CheckResult("rig force gauge", subject, True,
+                           f"{text}: {'; '.join(short)}; the catalogue's finest gauge of that "
+                           "range: a finer instrument or dead-weight calibration would resolve "
+                           "the rating", undecided=True)
     hint = "; no catalogue gauge fits" if misses else f"; the catalogue's {fit.model} fits"
     return CheckResult("rig force gauge", subject, False, f"{text}: {'; '.join(short)}{hint}")
