@@ -520,8 +520,8 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
                        binding_element=b.element,
                        limits=[lim.as_json(lim is b) for lim in kinds.values()]))
     out.append(kr_over_km_record(row_pairs(plan, fig), req, model))
-    band = web_band_rel(plan)
-    out.append(_record("k_tolerance_rel", req.k_tolerance_rel, band, closed_form_k_error(plan),
+    band, error = web_band_rel(plan), closed_form_k_error(plan)
+    out.append(_record("k_tolerance_rel", req.k_tolerance_rel, band, error,
                        req.k_tolerance_rel / band - 1.0 if band > 0 else math.inf,
                        "closed-form", band <= req.k_tolerance_rel))
     units = sensing_units(plan, fig)
@@ -531,7 +531,6 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     # and states no K_obj target: there is nothing of K_obj to verify (derived, none applies)
     from tactcad.studies.tolerance_budget import toleranced_band_record
 
-    error = closed_form_k_error(plan)
     derive = None if "k_tolerance_rel" in req.stated else \
         (lambda band: padded_band_requirement(band, error))
     out.append(toleranced_band_record(plan, req.k_tolerance_rel, error, derive))
