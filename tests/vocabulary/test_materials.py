@@ -104,3 +104,34 @@ def test_strength_table_is_optional(design_data):
         del design_data["assumptions"][k]
     s = plan_from_dict(design_data).strength
     assert s.safety_factor == 1.5 and s.gauge.name == DEFAULT_GAUGE
+
+
+def test_every_grade_has_a_modulus_coefficient_sourced_or_named_unsourced():
+    for g in material_grades().values():
+        assert -1e-3 < g.youngs_modulus_tc_per_K < 0.0, g.name
+        sourced, note = g.is_sourced("youngs_modulus_tc_per_K"), dict(g.unsourced).get(
+            "youngs_modulus_tc_per_K")
+        assert sourced != bool(note), g.name  # a document, or the stand-in's origin: one of them
+        prov = g.provenance("youngs_modulus_tc_per_K")
+        assert prov.strip() and (sourced or prov.startswith("unsourced:")), g.name
+    assert material_grade("6061-T6").is_sourced("youngs_modulus_tc_per_K")
+
+
+@pytest.mark.parametrize("table, words", [
+    ({"youngs_modulus_tc_per_K": 0.01}, "-0.002 ... 0.0001 1/K"),
+    ({"youngs_modulus_tc_per_K": "soft"}, "youngs_modulus_tc_per_K"),
+    ({"youngs_modulus_tc_per_K": -4e-4, "sources": {}}, "one of the two"),
+    ({"youngs_modulus_tc_per_K": -4e-4, "unsourced": {"youngs_modulus_tc_per_K": "x"}},
+     "one of the two"),
+])
+def test_a_library_grade_without_a_valid_modulus_coefficient_is_refused(table, words):
+    from tactcad.vocabulary.material_library import _grade_from_table, _library
+
+    base = dict(_library()["grades"]["6061-T6"])
+    base["sources"] = {k: v for k, v in base["sources"].items() if k != "youngs_modulus_tc_per_K"}
+    if "sources" not in table:
+        base["sources"]["youngs_modulus_tc_per_K"] = "a document"
+    base.update({k: v for k, v in table.items() if k != "sources"})
+    with pytest.raises(DesignError) as e:
+        _grade_from_table("X", base)
+    assert "grades.X." in str(e.value) and words in str(e.value)

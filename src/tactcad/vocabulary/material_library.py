@@ -67,6 +67,10 @@ class MaterialGrade:
         family: the metal in words (``aluminium``, ``titanium``), as drawings and BOM name it.
         cte_ppm_per_K: mean linear coefficient of thermal expansion near room
             temperature (ppm/K = 1e-6 /K); the thermal drift of a gauge bonded on it.
+        youngs_modulus_tc_per_K: temperature coefficient of Young's modulus
+            (1/E) dE/dT near room temperature (1/K); the span drift of a spring of it.
+        unsourced: (field, note) pairs of values no document was found for: the
+            note says where the stand-in comes from.
     """
 
     name: str
@@ -81,10 +85,21 @@ class MaterialGrade:
     sources: tuple[tuple[str, str], ...]
     family: str = ""
     cte_ppm_per_K: float = math.nan
+    youngs_modulus_tc_per_K: float = math.nan
+    unsourced: tuple[tuple[str, str], ...] = ()
 
     def source(self, field: str) -> str:
         """Document a value comes from ('' if none is recorded)."""
         return dict(self.sources).get(field, "")
+
+    def is_sourced(self, field: str) -> bool:
+        """True when a document backs ``field`` (False for a stand-in in ``unsourced``)."""
+        return bool(self.source(field)) and field not in dict(self.unsourced)
+
+    def provenance(self, field: str) -> str:
+        """The document ``field`` comes from, or ``unsourced: <where the stand-in comes from>``."""
+        note = dict(self.unsourced).get(field)
+        return f"unsourced: {note}" if note else self.source(field)
 
 
 @dataclass(frozen=True)
@@ -135,6 +150,25 @@ def _library() -> dict[str, Any]:
 
 #: Accepted CTE of a library grade (ppm/K): from invar (~1) to polymers (~200).
 CTE_RANGE_PPM_PER_K = (0.0, 200.0)
+#: Accepted temperature coefficient of Young's modulus (1/K): metals and alloys near room
+#: temperature lie within about -1e-3 ... 0 (constant-modulus alloys such as Elinvar near 0,
+#: a little positive at most).
+MODULUS_TC_RANGE_PER_K = (-2e-3, 1e-4)
+
+
+def _grade_modulus_tc(name: str, t: Mapping[str, Any]) -> float:
+    """The grade's (1/E) dE/dT, with its document in ``sources`` or its stand-in's origin in
+    ``unsourced`` (exactly one of them)."""
+    key = "youngs_modulus_tc_per_K"
+    tc = _number(f"grades.{name}.{key}", t.get(key), *MODULUS_TC_RANGE_PER_K, "1/K")
+    sourced = bool(t.get("sources", {}).get(key))
+    unsourced = bool(t.get("unsourced", {}).get(key))
+    if sourced == unsourced:
+        raise DesignError(f"grades.{name}.sources.{key}", None,
+                          "the document the modulus coefficient comes from in [sources], or, "
+                          "when none was found, the stand-in's origin in [unsourced] (one of "
+                          "the two)")
+    return tc
 
 
 def _grade_from_table(name: str, t: Mapping[str, Any]) -> MaterialGrade:
@@ -145,7 +179,8 @@ def _grade_from_table(name: str, t: Mapping[str, Any]) -> MaterialGrade:
         raise DesignError(f"grades.{name}.sources.cte_ppm_per_K", None, "the document the CTE "
                           "comes from")
     return MaterialGrade(name=name, description=t["description"], family=t.get("family", ""),
-                         cte_ppm_per_K=cte,
+                         cte_ppm_per_K=cte, youngs_modulus_tc_per_K=_grade_modulus_tc(name, t),
+                         unsourced=tuple(sorted(t.get("unsourced", {}).items())),
                          fatigue_cycles=float(t["fatigue_cycles"]),
                          fatigue_R_ratio=float(t["fatigue_R_ratio"]),
                          sources=tuple(sorted(t["sources"].items())),
