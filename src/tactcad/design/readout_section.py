@@ -14,7 +14,12 @@ Keys (units in the names):
 * ``grid_length_mm`` (along the arm), ``grid_width_mm`` (across the sheet):
   the active grid, over which the gauge averages the strain;
 * ``bridge``: ``"quarter"`` (one active gauge, three completion resistors);
-* ``excitation_V``: bridge supply;
+* ``excitation_V``: bridge supply (not stated: the highest the grid's power density
+  allows, Micro-Measurements TN-502, see :func:`tn502_excitation_V`);
+* ``lead_wires``: ``"three-wire"`` (one lead in the gauge's arm, one in the adjacent
+  completion arm, one sense line: the leads' temperature change cancels) or
+  ``"two-wire"`` (both leads in the gauge's arm); ``lead_length_mm`` (gauge to bridge
+  completion, one conductor) and ``lead_resistance_ohm_per_m`` (one conductor);
 * ``amplifier``, ``amplifier_gain``, ``amplifier_noise_nV_per_rtHz``,
   ``bandwidth_Hz``: the instrumentation amplifier and its noise;
 * ``daq``, ``daq_range_V`` (+/- input range), ``daq_bits``,
@@ -26,6 +31,7 @@ Keys (units in the names):
   material), ``gauge_factor_tc_pct_per_100K`` (gauge factor temperature
   coefficient), ``gauge_transverse_sensitivity`` (K_t),
   ``substrate_cte_ppm_per_K`` (not stated: the material grade's),
+  ``substrate_modulus_tc_per_K`` ((1/E) dE/dT of the element; not stated: the grade's),
   ``gauge_heat_transfer_W_per_mm2_K`` (grid to substrate, self-heating),
   ``dummy_gauge``: ``"none"`` or ``"half-bridge"`` (an unstrained gauge of the
   same lot on the same material in the adjacent arm).
@@ -56,6 +62,41 @@ AD621_BANDWIDTH_HZ = {10.0: 800e3, 100.0: 200e3}
 NOISE_UV_PER_V_RANGE = 28.0
 
 BRIDGES = ("quarter",)
+#: Lead-wire connections of a quarter bridge (``lead_wires``).
+LEAD_WIRES = ("three-wire", "two-wire")
+
+#: Grid power density (W/mm^2) the default excitation is set to: 1 W/in^2, the low end of
+#: Micro-Measurements Tech Note TN-502's 1-2 W/in^2 for thin steel sections. Assumption: a
+#: web a few tenths of a mm thick (titanium or steel conduct heat poorly, a thin aluminium
+#: web has little mass to sink it) is a thin section, and a static reading asks the low end.
+TN502_POWER_DENSITY_W_PER_MM2 = 1.0 / 645.16
+#: TN-502's range for thin steel sections, 1-2 W/in^2, in W/mm^2: above its top the thermal
+#: report flags the excitation.
+TN502_THIN_SECTION_W_PER_MM2 = (1.0 / 645.16, 2.0 / 645.16)
+#: Excitations are set in steps of this (V), rounded down.
+EXCITATION_STEP_V = 0.1
+
+
+def tn502_excitation_V(resistance_ohm: float, grid_area_mm2: float,
+                       power_density_W_per_mm2: float = TN502_POWER_DENSITY_W_PER_MM2) -> float:
+    """Bridge excitation that puts ``power_density_W_per_mm2`` into the grid of an equal-arm
+    bridge (TN-502: V = 2 sqrt(R_g P_g A_g)), rounded down to 0.1 V (at least 0.1 V).
+
+    Args:
+        resistance_ohm: gauge resistance (ohm). grid_area_mm2: active grid area (mm^2).
+        power_density_W_per_mm2: allowed grid power density (W/mm^2).
+
+    Returns:
+        Excitation (V).
+    """
+    exact = 2.0 * math.sqrt(resistance_ohm * power_density_W_per_mm2 * grid_area_mm2)
+    return max(EXCITATION_STEP_V, math.floor(exact / EXCITATION_STEP_V + 1e-9) * EXCITATION_STEP_V)
+
+
+def grid_power_density_W_per_mm2(excitation_V: float, resistance_ohm: float,
+                                 grid_area_mm2: float) -> float:
+    """Power per grid area of a quarter-bridge gauge (equal arms: V_ex^2 / (4 R_g A_g))."""
+    return excitation_V ** 2 / (4.0 * resistance_ohm * grid_area_mm2)
 #: Temperature compensation by a dummy gauge (``dummy_gauge``).
 DUMMY_GAUGES = ("none", "half-bridge")
 
@@ -69,8 +110,10 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
                            "grid, narrower than the sheet"),
     "bridge": ("quarter", "one active gauge per element in a quarter Wheatstone bridge with "
                           "three completion resistors"),
-    "excitation_V": (2.5, "assumption: 2.5 V keeps a 120 ohm gauge at 13 mW, the usual limit "
-                          "for a small grid on a thin web (self-heating)"),
+    "excitation_V": (None, "assumption: the grid power density of Micro-Measurements TN-502 "
+                           "for thin sections, 1 W/in^2 (low end of 1-2 W/in^2: a thin web "
+                           "sinks little heat, a static reading), V = 2 sqrt(R_g P A_g) "
+                           "rounded down to 0.1 V; state excitation_V to change it"),
     "amplifier": ("AD621", "Analog Devices AD621 instrumentation amplifier"),
     "amplifier_gain": (100.0, "assumption: the AD621's pin-strapped gain 100 (data sheet: fixed "
                               "gains 10 and 100)"),
@@ -97,6 +140,14 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
         0.0067, "assumption: conduction from grid to element through about 30 um of cured "
                 "epoxy and carrier at about 0.2 W/(m K) (0.2 / 30e-6 W/(m^2 K))"),
     "dummy_gauge": ("none", "one active gauge; no dummy gauge compensates temperature"),
+    "lead_wires": ("three-wire", "three-wire quarter bridge, as the BOM's lead wire assumes "
+                                 "([bom] lead_wire_m_per_element: three conductors)"),
+    "lead_length_mm": (500.0, "assumption: 0.5 m from gauge to bridge completion, as the BOM's "
+                              "lead wire ([bom] lead_wire_m_per_element = 3 x 0.5 m)"),
+    "lead_resistance_ohm_per_m": (0.538, "AWG 32 copper (the BOM's AWG 32-36): 0.2019 mm "
+                                         "diameter (ASTM B258), 1.724e-8 ohm m at 20 C "
+                                         "(annealed copper, IEC 60028)"),
+    "substrate_modulus_tc_per_K": (None, "the material grade's (1/E) dE/dT (materials library)"),
 }
 
 
@@ -133,6 +184,13 @@ class ReadoutSection(Section):
                                             ) = None
     dummy_gauge: choice(DUMMY_GAUGES, "an unstrained dummy gauge in the adjacent bridge arm"
                         ) = None
+    lead_wires: choice(LEAD_WIRES, "the quarter bridge's lead-wire connection") = None
+    lead_length_mm: number(0.0, 100_000.0, why="one lead conductor, gauge to bridge completion"
+                           ) = None
+    lead_resistance_ohm_per_m: number(0.0, 100.0, unit="ohm/m",
+                                      why="resistance of one lead conductor per metre") = None
+    substrate_modulus_tc_per_K: number(-2e-3, 1e-4, unit="1/K",
+                                       why="(1/E) dE/dT of the element under the gauge") = None
 
 
 def check_readout(d: Any, p: Problems) -> None:
@@ -180,6 +238,21 @@ class ReadoutChain(ResolvedSection):
     substrate_cte_ppm_per_K: float | None = None
     gauge_heat_transfer_W_per_mm2_K: float = 0.0067
     dummy_gauge: str = "none"
+    lead_wires: str = "three-wire"
+    lead_length_mm: float = 500.0
+    lead_resistance_ohm_per_m: float = 0.538
+    substrate_modulus_tc_per_K: float | None = None
+
+    @property
+    def lead_resistance_ohm(self) -> float:
+        """Resistance of one lead conductor (ohm)."""
+        return self.lead_resistance_ohm_per_m * self.lead_length_mm / 1000.0
+
+    @property
+    def grid_power_density_W_per_mm2(self) -> float:
+        """Power per grid area at the excitation (W/mm^2)."""
+        return grid_power_density_W_per_mm2(self.excitation_V, self.gauge_resistance_ohm,
+                                            self.grid_length_mm * self.grid_width_mm)
 
     @property
     def volts_per_strain(self) -> float:
@@ -192,7 +265,9 @@ class ReadoutChain(ResolvedSection):
         return 2.0 * self.daq_range_V / 2 ** self.daq_bits
 
     def derived_json(self) -> dict:
-        return {"volts_per_strain": self.volts_per_strain}
+        return {"volts_per_strain": self.volts_per_strain,
+                "grid_power_density_W_per_mm2": self.grid_power_density_W_per_mm2,
+                "lead_resistance_ohm": self.lead_resistance_ohm}
 
 
 def _nearest(table: Mapping[float, float], key: float) -> float | None:
@@ -217,6 +292,10 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
     values, sources = section_with_defaults(raw, "readout", {
         **{k: (v, f"library gauge {gauge.name}: {why}".rstrip(": "))
            for k, (v, why) in from_gauge.items()}, **DEFAULTS})
+    if values["excitation_V"] is None:
+        values["excitation_V"] = tn502_excitation_V(
+            float(values["gauge_resistance_ohm"]),
+            float(values["grid_length_mm"]) * float(values["grid_width_mm"]))
     gain = float(values["amplifier_gain"])
     if values["bandwidth_Hz"] is None:
         bw = _nearest(AD621_BANDWIDTH_HZ, gain) if values["amplifier"] == "AD621" else None
