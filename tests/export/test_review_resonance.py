@@ -25,3 +25,20 @@ def test_first_frequencies_and_a_stated_minimum_show_on_the_page():
     row = next(r for r in view[next(iter(view))] if r["requirement"] == "min_first_resonance_Hz")
     assert row["verdict"] == "FAIL" and row["binds"].startswith(f"element 1 ({lowest['part']}, closed-form")
     assert "min_first_resonance_Hz" in view["requirements not met"]
+
+
+def test_the_thermal_figures_show_on_the_page_with_the_span_and_the_kobj_force_range():
+    from tactcad.export.review_page import THERMAL_VIEW_KEY
+    from tactcad.mechanics.thermal_drift import thermal_report
+    from tactcad.studies.verification import requirements_of
+
+    plan = plan_from_dict(read_toml(EXAMPLE, "design"), str(EXAMPLE))
+    rep = thermal_report(plan, requirements_of(plan)).as_json()
+    view = verification_view(requirements_record(plan), rep)[THERMAL_VIEW_KEY]
+    assert "1/F" in THERMAL_VIEW_KEY
+    assert float(view["span per kelvin (ppm/K)"]["total"]) == \
+        float(f"{1e6 * rep['span_rel_per_K']:.4g}")
+    assert view["modulus coefficient sourced"] is False  # Ti-6Al-4V's is a stand-in
+    assert [r["element"] for r in view["elements"]] == [r["element"] for r in rep["elements"]]
+    assert view["worst K_obj error"].startswith(f"element {rep['worst_kobj_element']}:")
+    assert "at 10 % of full scale" in view["worst K_obj error"]

@@ -94,7 +94,8 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
     """
     manifest = {k: v for k, v in facts.items() if k != "files"}
     if "verification" not in manifest and manifest.get("requirements"):
-        manifest["verification"] = verification_view(manifest["requirements"])
+        manifest["verification"] = verification_view(manifest["requirements"],
+                                                      manifest.get("thermal"))
     svgs = {p: svg.encode("utf-8") for p, _, svg in sheets}
     data = {
         "manifest": manifest,
@@ -108,13 +109,14 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
     return ReviewContents(data, dict(scenes), {_sha256(b): b for b in svgs.values()})
 
 
-def verification_view(requirements: dict) -> dict:
+def verification_view(requirements: dict, thermal: dict | None = None) -> dict:
     """The manifest's requirements record as the page's verification section,
     read as ``tactcad verify`` prints it: one row per requirement (verdict,
     target, predicted with its error, margin, what binds, level), failures
     first, then undecided; the element force limits behind the rated full-scale force (the binding
     one marked); the stated or derived values; each element's first natural
-    frequency; and the requirements not met (the page's red banner)."""
+    frequency; the thermal drift per kelvin (:func:`thermal_view`, when the manifest has
+    it); and the requirements not met (the page's red banner)."""
     matrix = requirements.get("closed_form_matrix") or []
     order = {"fail": 0, "undecided": 1}
     rows = [verification_row(r) for r in sorted(
@@ -127,10 +129,50 @@ def verification_view(requirements: dict) -> dict:
     if (requirements.get("first_resonance") or {}).get("elements"):
         view["first natural frequencies (closed form, in the sheet's plane)"] = \
             requirements["first_resonance"]["elements"]
+    if thermal:
+        view[THERMAL_VIEW_KEY] = thermal_view(thermal)
     unmet = unmet_requirements(requirements)
     if unmet:
         view["requirements not met"] = unmet
     return view
+
+
+#: The verification section's heading of the thermal figures.
+THERMAL_VIEW_KEY = ("thermal drift per kelvin (closed form, tactcad thermal; the K_obj zero part "
+                    "scales as 1/F: full scale is the best case)")
+
+
+def thermal_view(thermal: dict) -> dict:
+    """The manifest's ``thermal`` record as the page shows it: the span per kelvin and its
+    terms, the self-heating, the worst K_obj error per kelvin (element and force named), and
+    per element zero, span, drift, self-heating offset and K_obj %/K at full scale and at the
+    lowest force fraction."""
+    low = min(thermal["force_fractions"])
+    rows = [{"element": r["element"], "role": r["role"],
+             "zero N/K": f"{r['zero_drift_N_per_K']:+.3g}",
+             "span N/K (full scale)": f"{r['span_drift_N_per_K']:.3g}",
+             "drift N/K": f"{r['drift_N_per_K']:.3g}",
+             "self-heating offset N": f"{r['self_heating_offset_N']:+.3g}",
+             "K_obj %/K at full scale": _pct(r["kobj_error_rel_per_K_at_full_scale"]),
+             f"K_obj %/K at {100 * low:g} % of full scale": _pct(r["kobj_error_rel_per_K"])}
+            for r in thermal["elements"]]
+    worst = thermal.get("worst_kobj_element")
+    return {"span per kelvin (ppm/K)": {k: f"{1e6 * v:+.4g}" for k, v in
+                                        {**thermal["span_terms_rel_per_K"],
+                                         "total": thermal["span_rel_per_K"]}.items()},
+            "modulus coefficient sourced": thermal["setting"]["substrate_modulus_tc_sourced"],
+            "lead wires": thermal["setting"]["lead_wires"],
+            "self-heating": f"{thermal['self_heating_K']:.3g} K, "
+                            f"{645.16 * thermal['grid_power_density_W_per_mm2']:.3g} W/in^2 "
+                            f"in the grid (TN-502 thin sections: 1-2 W/in^2)",
+            "worst K_obj error": None if worst is None else
+            f"element {worst}: {_pct(thermal['worst_kobj_error_rel_per_K'])} %/K at "
+            f"{100 * low:g} % of full scale",
+            "elements": rows}
+
+
+def _pct(rel: float | None) -> str:
+    return "n/a" if rel is None else f"{100 * rel:.3g}"
 
 
 def unmet_requirements(requirements: dict) -> list[str]:
