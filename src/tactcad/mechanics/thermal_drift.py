@@ -80,7 +80,7 @@ Units: K, ppm/K, 1/K, N, N/K, W, mm, ohm; strain dimensionless.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -208,12 +208,12 @@ class ThermalSetting:
                 "dummy_gauge": "half-bridge" if self.dummy else "none", "sources": self.sources}
 
 
-def _grade_of(plan: Plan, field: str, what: str, allowed: str):
+def _grade_of(plan: Plan, key: str, what: str, allowed: str):
     """The plan's library grade, or a DesignError naming the [readout] key to state instead."""
     from tactcad.vocabulary.material_library import material_grade
 
     if plan.material.grade is None:
-        raise DesignError(f"readout.{field}", None, allowed,
+        raise DesignError(f"readout.{key}", None, allowed,
                           f"the material names no library grade, so its {what} is unknown")
     return material_grade(plan.material.grade)
 
@@ -392,7 +392,12 @@ def kobj_thermal_error(plan: Plan, chain: ReadoutChain | None, force_N: float,
 
 @dataclass(frozen=True)
 class ThermalReport:
-    """What ``tactcad thermal`` prints; :meth:`as_json` is its JSON."""
+    """What ``tactcad thermal`` prints; :meth:`as_json` is its JSON.
+
+    ``span_terms_per_K``: :func:`span_terms_per_K`; ``lead_wires``: :func:`lead_wire_terms`;
+    ``self_heating_strain``: :func:`grid_heating_strain` at the grid's rise;
+    ``force_fractions``: the reference element's force levels the K_obj error is given at.
+    """
 
     design: str
     model: str
@@ -403,8 +408,8 @@ class ThermalReport:
     full_scale_force_N: float
     records: list[dict]
     seconds: float
-    span_terms_per_K: dict = None
-    lead_wires: dict = None
+    span_terms_per_K: dict[str, float] = field(default_factory=dict)
+    lead_wires: dict[str, float] = field(default_factory=dict)
     grid_power_density_W_per_mm2: float = 0.0
     self_heating_strain: float = 0.0
     force_fractions: tuple = READING_FORCE_FRACTIONS
