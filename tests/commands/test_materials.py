@@ -70,3 +70,19 @@ def test_a_material_named_as_its_grade_is_said_once():
     assert material_designation(spec, plan) == "Ti-6Al-4V-annealed"
     assert material_designation(array_parts(plan_from_dict(default_design_data()))["spacer"],
                                 plan_from_dict(default_design_data())) == "aluminium EN AW-6061-T6"
+
+
+def test_materials_lists_each_grades_modulus_coefficient_and_marks_a_stand_in(capsys):
+    from tactcad.cli import main
+    from tactcad.vocabulary.material_library import material_grades
+
+    assert main(["materials"]) == 0
+    text = capsys.readouterr().out
+    assert "dE/E dT 1/K" in text
+    for g in material_grades().values():
+        row = next(line for line in text.splitlines() if line.startswith(f"| {g.name} |"))
+        assert ("(unsourced)" in row) != g.is_sourced("youngs_modulus_tc_per_K")
+    assert main(["materials", "--json"]) == 0
+    grades = {g["grade"]: g for g in json.loads(capsys.readouterr().out)["grades"]}
+    assert grades["6061-T6"]["youngs_modulus_tc_per_K"] < 0
+    assert "youngs_modulus_tc_per_K" in grades["Ti-6Al-4V-annealed"]["unsourced"]

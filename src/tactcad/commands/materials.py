@@ -30,7 +30,10 @@ def library() -> dict:
                "yield_strength_MPa": g.yield_strength_MPa,
                "fatigue_strength_MPa": g.fatigue_strength_MPa, "fatigue_cycles": g.fatigue_cycles,
                "fatigue_R_ratio": g.fatigue_R_ratio, "density_g_per_cm3": g.density_g_per_cm3,
-               "cte_ppm_per_K": g.cte_ppm_per_K, "sources": dict(g.sources)} for g in material_grades().values()]
+               "cte_ppm_per_K": g.cte_ppm_per_K,
+               "youngs_modulus_tc_per_K": g.youngs_modulus_tc_per_K,
+               "sources": dict(g.sources), "unsourced": dict(g.unsourced)}
+              for g in material_grades().values()]
     gauges = [{"gauge": g.name, "description": g.description, "alloy": g.alloy,
                "resistance_ohm": g.resistance_ohm, "gauge_factor": g.gauge_factor,
                "bridge": g.bridge, "max_strain": g.max_strain, "fatigue_strain": g.fatigue_strain,
@@ -45,13 +48,16 @@ def run(args: argparse.Namespace) -> int:
         print(dumps(lib, indent=1))
         return 0
     print("| grade | E MPa | nu | yield MPa | fatigue MPa (cycles, R) | density g/cm^3 | "
-          "CTE ppm/K | description |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+          "CTE ppm/K | dE/E dT 1/K | description |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for g in lib["grades"]:
         print(f"| {g['grade']} | {g['youngs_modulus_MPa']:g} | {g['poisson_ratio']:g} | "
               f"{g['yield_strength_MPa']:g} | {g['fatigue_strength_MPa']:g} "
               f"({g['fatigue_cycles']:.0e}, {g['fatigue_R_ratio']:g}) | "
-              f"{g['density_g_per_cm3']:g} | {g['cte_ppm_per_K']:g} | {g['description']} |")
+              f"{g['density_g_per_cm3']:g} | {g['cte_ppm_per_K']:g} | "
+              f"{g['youngs_modulus_tc_per_K']:.3g}"
+              f"{' (unsourced)' if 'youngs_modulus_tc_per_K' in g['unsourced'] else ''} | "
+              f"{g['description']} |")
     print()
     print("| gauge | ohm | GF | max strain | fatigue strain (cycles) | description |")
     print("| --- | --- | --- | --- | --- | --- |")
