@@ -16,3 +16,11 @@ def test_the_amplifier_and_daq_named_in_readout_are_bought():
     n = len(plan.slots)
     assert items["instrumentation_amplifier"].quantity(n) == n
     assert items["signal_cable"].quantity(n) == n and items["daq"].quantity(n) == 1
+
+
+def test_the_lead_wire_names_the_readout_lead_connection():
+    default = {i.part: i for i in sensor_items(plan_from_dict(default_design_data()))}
+    assert "three-wire quarter bridge" in default["lead_wire"].reference
+    two = {i.part: i for i in sensor_items(plan_from_dict(with_overrides(
+        default_design_data(), {"readout.lead_wires": "two-wire"})))}
+    assert "two-wire quarter bridge" in two["lead_wire"].reference

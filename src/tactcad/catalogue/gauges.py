@@ -68,7 +68,7 @@ def sensor_items(plan: Plan) -> list[SensorItem]:
                    "pair"),
         SensorItem("lead_wire", bom.lead_wire_m_per_element, 0, 0, "m", "PTFE-insulated copper",
                    f"stranded lead wire, {bom.lead_wire_m_per_element:g} m per element "
-                   "(three-wire quarter bridge)", "AWG 32-36"),
+                   f"({ro.lead_wires} quarter bridge)", "AWG 32-36"),
         SensorItem("bridge_completion_resistor", 3, 0, 0, "pcs", "metal foil",
                    f"precision resistor {ro.gauge_resistance_ohm:g} ohm 0.1 % 5 ppm/K, three per "
                    "quarter bridge", "0805 SMD or axial 0.6 W"),
