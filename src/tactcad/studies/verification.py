@@ -162,22 +162,12 @@ def element_figures(plan: Plan, model: str = "closed-form",
 
 def web_band_rel(plan: Plan) -> float:
     """Largest relative K change of any element over web +/- web tolerance
-    (corrected closed form; a derivative of K, so the level hardly matters)."""
-    from dataclasses import replace
+    (corrected closed form; a derivative of K, so the level hardly matters;
+    :func:`tactcad.in_use.kobj_budget.web_tolerance_k_rel` per element)."""
+    from tactcad.in_use.kobj_budget import web_tolerance_k_rel
 
-    from tactcad.mechanics.ladder import estimate
-
-    worst = 0.0
-    for g in plan.distinct_elements.values():
-        k0 = estimate("closed-form", g, plan.material).stiffness_N_per_mm
-        for sign in (-1, 1):
-            t = g.web_thickness_mm + sign * g.web_tolerance_mm
-            if t <= 0:
-                continue
-            k = estimate("closed-form", replace(g, web_thickness_mm=t),
-                         plan.material).stiffness_N_per_mm
-            worst = max(worst, abs(k / k0 - 1.0))
-    return worst
+    return max((web_tolerance_k_rel(g, plan.material) for g in plan.distinct_elements.values()),
+               default=0.0)
 
 
 def closed_form_k_error(plan: Plan) -> float:
