@@ -49,7 +49,7 @@ every K_obj of the grid, before and after the correction the lab applies):
     design's own tip faces, the sample's modulus set so that the paper's 2 x 3 mm
     indenter reads K_obj); eq. 3 on the coupled R against the true K_obj. After the
     coupled inversion what remains is the coupled model's own error,
-    :data:`COUPLING_MODEL_ERROR_REL` of the bias.
+    :data:`COUPLING_MODEL_ERROR_REL` of the R shift it predicts, through ∂K_obj/∂R.
 (g) gauge model: each element's grid strain per newton at the budget's level against
     the next level that computes the strain anew (:func:`gauge_model_error_rel`); read
     with the predicted K_v it moves each deflection by that fraction. Calibration
@@ -345,16 +345,18 @@ def _coupled_ratios(ctx: Context, k_obj: np.ndarray) -> dict[int, np.ndarray]:
 
 def tissue_coupling(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(f) Eq. 3 on the R of tips coupled through a half-space sample against the true
-    K_obj (inf where the coupled R leaves eq. 3's domain); after the coupled inversion,
-    :data:`COUPLING_MODEL_ERROR_REL` of that."""
+    K_obj (inf where the coupled R leaves eq. 3's domain: eq. 3 cannot read it); after the
+    coupled inversion, the coupled model's error, :data:`COUPLING_MODEL_ERROR_REL` of the
+    R shift, through ∂K_obj/∂R."""
     key = f"coupled {op.k_obj.tolist()}"
     ratios = ctx.once(key, lambda: _coupled_ratios(ctx, op.k_obj))
     R = ratios[unit.measuring]
     inside = (R > 1.0) & (R < op.k_r / op.k_m)
     with np.errstate(all="ignore"):
         read = np.where(inside, (op.k_r - R * op.k_m) / (R - 1.0), np.nan)
-    rel = np.where(inside, np.abs(read / op.k_obj - 1.0), np.inf)
-    return Contribution(rel, rel * COUPLING_MODEL_ERROR_REL)
+    before = np.where(inside, np.abs(read / op.k_obj - 1.0), np.inf)
+    after = np.abs(eq3_partials(op)["dR"] * COUPLING_MODEL_ERROR_REL * (R - op.ratio)) / op.k_obj
+    return Contribution(before, after)
 
 
 def _strain_source(plan: Plan, model: str) -> str:
@@ -643,7 +645,8 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
                                    "fixed K error of the web tolerance is removed; the "
                                    "calibration's own standard error remains (calibration)",
         "tissue_coupling": f"half-space sample, rigid flat punches of the design's tip faces; "
-                           f"after correction {COUPLING_MODEL_ERROR_REL:g} of the bias (the "
-                           f"coupled model's error)"}
+                           f"after the coupled inversion "
+                           f"{COUPLING_MODEL_ERROR_REL:g} of its R shift (the coupled model's "
+                           f"error) through dK_obj/dR"}
     return KobjBudget(plan.name, model, float(force_N), float(delta_T_K), (lo, hi),
                       tuple(float(v) for v in k_obj), units, notes)
