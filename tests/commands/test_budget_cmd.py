@@ -67,3 +67,16 @@ def test_a_calibration_file_of_another_design_is_refused(tmp_path):
     assert r.returncode != 0
     msg = json.loads(r.stdout)["error"]["message"]
     assert "--calibration" in msg and "element 9" in msg and "1 ... 6" in msg
+
+
+def test_verify_reports_the_budget_and_judges_a_stated_accuracy():
+    r = run_cli("verify", "--design", TI, "--model", "closed-form", "--set",
+                "requirements.kobj_accuracy_rel=0.001", "--json")
+    d = json.loads(r.stdout)
+    assert r.returncode == 1  # 0.1 % is beyond what the budget allows
+    rec = [x for x in d["matrix"] if x["requirement"] == "kobj_accuracy_rel"]
+    assert rec and rec[0]["verdict"] == "fail"
+    assert d["kobj_budget"]["units"] and d["kobj_budget"]["model"] == "closed-form"
+    text = run_cli("verify", "--design", TI, "--model", "closed-form").stdout
+    assert "K_obj error budget, array" in text and "| RSS |" in text
+    assert "kobj_accuracy_rel" not in text  # not stated: reported, not judged

@@ -130,13 +130,23 @@ def render(budget) -> str:
         lines.append("| worst case | " + " | ".join(_pct(x) for x in u["worst_case_rel"]) + " |")
         lines.append("| dominant | " + " | ".join(d.replace("_", " ") for d in u["dominant"])
                      + " |")
-    a = budget.array
-    if a["unit"]:
-        lines += ["", "array (best unit at each K_obj):",
-                  f"| | K_obj {head} N/mm |", "| --- |" + " --- |" * len(budget.k_obj),
-                  "| unit | " + " | ".join(a["unit"]) + " |",
-                  "| RSS | " + " | ".join(_pct(x) for x in a["rss_rel"]) + " |",
-                  "| worst case | " + " | ".join(_pct(x) for x in a["worst_case_rel"]) + " |",
-                  "| dominant | " + " | ".join(d.replace("_", " ") for d in a["dominant"]) + " |"]
+    lines += ["", *render_array(budget)]
     lines += [""] + [f"  {k}: {v}" for k, v in budget.notes.items()]
     return "\n".join(lines)
+
+
+def render_array(budget) -> list[str]:
+    """The array's line of best units as text lines: at each K_obj the unit that reads it
+    best, its RSS and worst case after correction and the dominant source (none without a
+    unit)."""
+    a = budget.array
+    if not a["unit"]:
+        return []
+    head = " | ".join(f"{k:.3g}" for k in budget.k_obj)
+    return [f"K_obj error budget, array (best unit at each K_obj; {budget.model}, "
+            f"{budget.force_N:.4g} N on the reference, {budget.delta_T_K:g} K step):",
+            f"| | K_obj {head} N/mm |", "| --- |" + " --- |" * len(budget.k_obj),
+            "| unit | " + " | ".join(a["unit"]) + " |",
+            "| RSS | " + " | ".join(_pct(x) for x in a["rss_rel"]) + " |",
+            "| worst case | " + " | ".join(_pct(x) for x in a["worst_case_rel"]) + " |",
+            "| dominant | " + " | ".join(d.replace("_", " ") for d in a["dominant"]) + " |"]
