@@ -509,6 +509,11 @@ def budget_uncertainty_rel(ctx: Context, unit: Unit) -> float:
     return max(abs(err[p]) for p in parts) + max(ctx.k_error[p] for p in parts)
 
 
+def listed(values: np.ndarray) -> list[float | None]:
+    """``values`` as a list of floats, None where not finite (a reading eq. 3 cannot make)."""
+    return [float(v) if math.isfinite(v) else None for v in np.asarray(values, float)]
+
+
 def unit_budget(ctx: Context, unit: Unit, k_obj: np.ndarray) -> dict:
     """Every source's contribution for one unit over ``k_obj`` (N/mm), with the RSS and
     worst-case sums before and after correction and the source that dominates at each
@@ -520,13 +525,13 @@ def unit_budget(ctx: Context, unit: Unit, k_obj: np.ndarray) -> dict:
     before = np.array([parts[k].before for k in SOURCE_KEYS])
     return {"reference_element": unit.reference, "measuring_element": unit.measuring,
             "K_r_N_per_mm": op.k_r, "K_m_N_per_mm": op.k_m,
-            "R": op.ratio.tolist(), "force_measuring_N": op.force_m.tolist(),
-            "sources": {k: {"before_rel": parts[k].before.tolist(),
-                            "after_rel": parts[k].after.tolist()} for k in SOURCE_KEYS},
-            "rss_rel": np.sqrt(np.sum(after ** 2, axis=0)).tolist(),
-            "worst_case_rel": np.sum(after, axis=0).tolist(),
-            "rss_before_rel": np.sqrt(np.sum(before ** 2, axis=0)).tolist(),
-            "worst_case_before_rel": np.sum(before, axis=0).tolist(),
+            "R": listed(op.ratio), "force_measuring_N": listed(op.force_m),
+            "sources": {k: {"before_rel": listed(parts[k].before),
+                            "after_rel": listed(parts[k].after)} for k in SOURCE_KEYS},
+            "rss_rel": listed(np.sqrt(np.sum(after ** 2, axis=0))),
+            "worst_case_rel": listed(np.sum(after, axis=0)),
+            "rss_before_rel": listed(np.sqrt(np.sum(before ** 2, axis=0))),
+            "worst_case_before_rel": listed(np.sum(before, axis=0)),
             "dominant": [SOURCE_KEYS[i] for i in np.argmax(after, axis=0)],
             "uncertainty_rel": budget_uncertainty_rel(ctx, unit)}
 
