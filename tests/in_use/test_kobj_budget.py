@@ -200,10 +200,11 @@ def test_gauge_model_against_the_next_level_that_computes_the_strain(plan):
 def test_expected_calibration_error_matches_fits_of_simulated_runs():
     from tactcad.mechanics.calibration import fit_calibration, synthetic_calibration
 
-    k, k_v = 30.0, -40.0
-    want_k, want_kv = kb.expected_calibration_stderr_rel(k, k_v)
+    k, k_v, noise_v = 30.0, -40.0, 3e-4
+    want_k, want_kv = kb.expected_calibration_stderr_rel(k, k_v, noise_v)
     fits = [fit_calibration(d.z_travel_um, d.force_N, d.signal_V)
-            for d in (synthetic_calibration(k, k_v, 0.1, seed=s) for s in range(400))]
+            for d in (synthetic_calibration(k, k_v, 0.1, noise_signal_V=noise_v, seed=s)
+                      for s in range(400))]
     # the scatter of the fitted slopes is their standard error
     assert np.std([f.K_N_per_mm for f in fits]) / k == pytest.approx(want_k, rel=0.1)
     assert np.std([f.K_v_V_per_mm for f in fits]) / abs(k_v) == pytest.approx(want_kv, rel=0.1)

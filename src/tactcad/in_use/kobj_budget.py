@@ -58,7 +58,8 @@ every K_obj of the grid, before and after the correction the lab applies):
 (h) calibration uncertainty: the standard errors of the fitted K and K_v (eq. 4-6,
     :func:`tactcad.mechanics.calibration.fit_calibration`) of each element, from a
     calibration file when given, else the expected standard errors of the paper's
-    procedure (:func:`expected_calibration_stderr_rel`), all independent.
+    procedure (:func:`expected_calibration_stderr_rel`: the force read to 0.001 N, the
+    signal through the design's read-out chain), all independent.
 
 Totals: the RSS and the worst-case sum of the contributions after correction (as a
 calibrated, corrected sensor reads), and of those before. The budget's own relative
@@ -408,22 +409,26 @@ def gauge_model(ctx: Context, unit: Unit, op: Operating) -> Contribution:
 
 
 def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
+                                    signal_noise_V: float | None = None,
                                     k_sensor_N_per_mm: float | None = None) -> tuple[float, float]:
     """(σ_K / K, σ_K_v / |K_v|) the paper's calibration procedure leaves on one element.
 
     Ordinary least squares over the Z steps of
     :data:`~tactcad.mechanics.calibration.CALIBRATION_STEPS_UM`, :data:`CALIBRATION_REPEATS`
     runs, deflection Δ = z K_s / (K + K_s), the force read to
-    :data:`CALIBRATION_FORCE_NOISE_N` (n) and the signal to
-    :data:`~tactcad.mechanics.calibration.DEFAULT_NOISE_SIGNAL_V` (1 sigma): σ_slope =
+    :data:`CALIBRATION_FORCE_NOISE_N` (n) and the signal to ``signal_noise_V`` (1 sigma;
+    default :data:`~tactcad.mechanics.calibration.DEFAULT_NOISE_SIGNAL_V`): σ_slope =
     σ_residual / sqrt(Σ (Δ − mean Δ)²). The deflection is formed as z − F/K_s from the
     read force, so the force's noise enters both axes: the force residual is
     n (1 + K/K_s) (:func:`tactcad.mechanics.calibration.series_error_amplification`) and
     the signal residual adds K_v n / K_s in quadrature.
 
     Args:
-        k_element: K (N/mm). k_v_V_per_mm: K_v (V/mm). k_sensor_N_per_mm: the force
-            gauge's stiffness (N/mm), default the paper's (57.04 N/mm).
+        k_element: K (N/mm). k_v_V_per_mm: K_v (V/mm).
+        signal_noise_V: the signal's noise per reading (V, 1 sigma): the budget passes
+            its read-out chain's, the calibration reads through the same chain.
+        k_sensor_N_per_mm: the force gauge's stiffness (N/mm), default the paper's
+            (57.04 N/mm).
     """
     from tactcad.mechanics.calibration import (CALIBRATION_STEPS_UM, DEFAULT_NOISE_SIGNAL_V,
                                                K_SENSOR_N_PER_MM, series_error_amplification)
@@ -434,14 +439,17 @@ def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
     sxx = math.sqrt(float(np.sum((defl - defl.mean()) ** 2)))
     n = CALIBRATION_FORCE_NOISE_N
     force_residual = n * series_error_amplification(k_element, k_s).from_k_apparent
-    signal_residual = math.hypot(DEFAULT_NOISE_SIGNAL_V, k_v_V_per_mm * n / k_s)
+    v_noise = DEFAULT_NOISE_SIGNAL_V if signal_noise_V is None else signal_noise_V
+    signal_residual = math.hypot(v_noise, k_v_V_per_mm * n / k_s)
     return force_residual / sxx / k_element, signal_residual / sxx / abs(k_v_V_per_mm)
 
 
 def _calibration_stderr(ctx: Context) -> dict[int, tuple[float, float]]:
-    from tactcad.mechanics.readout_chain import element_force_resolution_N
+    from tactcad.mechanics.readout_chain import (element_force_resolution_N, noise_budget_V,
+                                                 readout_chain)
 
     per_part = ctx.once("readout", lambda: element_force_resolution_N(ctx.plan, ctx.model))
+    noise = noise_budget_V(readout_chain(ctx.plan))["reading"]
     out = {}
     for s in ctx.plan.slots:
         c = ctx.calibrations.get(s.number)
@@ -451,7 +459,7 @@ def _calibration_stderr(ctx: Context) -> dict[int, tuple[float, float]]:
         else:
             k = ctx.k_of(s.number)
             out[s.number] = expected_calibration_stderr_rel(
-                k, per_part[s.geometry.part_name]["S"] * k)
+                k, per_part[s.geometry.part_name]["S"] * k, noise)
     return out
 
 
@@ -643,7 +651,8 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         "gauge_model_compared_with": comparison_level(plan, model),
         "calibration": "fitted standard errors of the calibration file" if calibrations
         else "expected standard errors of the paper's procedure (25 um steps to 150 um, 3 "
-             "runs, force 0.001 N, signal 0.001 V, 1 sigma)",
+             "runs, force read to 0.001 N, signal to the read-out chain's noise of one "
+             "averaged reading, 1 sigma)",
         "totals": "RSS and worst-case sum of the contributions after correction (as a "
                   "calibrated, corrected sensor reads); *_before_rel without correction",
         "manufacturing_tolerance": "calibration measures each element's K (eq. 5), so the "
