@@ -256,3 +256,21 @@ def test_bad_inputs_are_named(ti_plan, kwargs, field):
     args = {"kobj_range": (1.0, 5.0), "force_N": 0.1, **kwargs}
     with pytest.raises(DesignError, match=field):
         kb.kobj_budget(ti_plan, **args)
+
+
+def test_the_modulus_coefficient_is_the_grades_when_the_library_carries_one(ti_plan, monkeypatch):
+    from types import SimpleNamespace
+
+    import tactcad.vocabulary.material_library as ml
+
+    tc, where = kb.modulus_tc_per_K(ti_plan)
+    if "stand-in" in where:  # today's library: the stated stand-in, said so
+        assert tc == kb.MODULUS_TC_STAND_IN_PER_K
+    grade = SimpleNamespace(name="g", youngs_modulus_tc_per_K=-5.5e-4,
+                            source=lambda field: f"doc of {field}")
+    monkeypatch.setattr(ml, "material_grade", lambda name: grade)
+    assert kb.modulus_tc_per_K(ti_plan) == (-5.5e-4, "grade g: doc of youngs_modulus_tc_per_K")
+    ctx = _context(ti_plan, delta_T=2.0)
+    unit = _first_unit(ctx)
+    span = kb.thermal_span(ctx, unit, _op(ctx, unit, np.array([2.0]))).after
+    assert span[0] == pytest.approx(5.5e-4 * 2.0)

@@ -255,7 +255,8 @@ def modulus_tc_per_K(plan: Plan) -> tuple[float, str]:
     grade = material_grade(plan.material.grade) if plan.material.grade else None
     tc = getattr(grade, "youngs_modulus_tc_per_K", None)
     if tc is not None and math.isfinite(tc):
-        return float(tc), f"grade {grade.name}: {grade.source('youngs_modulus_tc_per_K')}"
+        where = getattr(grade, "provenance", grade.source)  # a stand-in says where it is from
+        return float(tc), f"grade {grade.name}: {where('youngs_modulus_tc_per_K')}"
     return MODULUS_TC_STAND_IN_PER_K, ("the material library gives no temperature coefficient "
                                        "of E for this material: stand-in -4e-4 /K (6061 and "
                                        "Ti-6Al-4V, issue 42)")
@@ -643,10 +644,16 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
     units = [unit_budget(ctx, Unit(r.number, m.number), k_obj)
              for r, m in row_units(plan, dict(stiffness))]
     tc_e, tc_source = modulus_tc_per_K(plan)
+    _, per_newton, xt_error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     notes = {
+        "stack_crosstalk_N_per_N": float(np.max(np.abs(per_newton))) if per_newton.size else 0.0,
+        "stack_crosstalk_basis": f"the largest force a gauge reads per newton on a neighbour's "
+                                 f"tip (stack-timoshenko); the decoupling matrix leaves "
+                                 f"{xt_error:.3g} of it (its error estimate)",
         "operating_point": f"each unit pressed until its reference carries {force_N:.4g} N "
                            f"(eq. 1); the zero terms scale as 1/force",
-        "temperature_step": f"{delta_T_K:g} K between tare and reading",
+        "temperature_step": f"{delta_T_K:g} K between tare and reading; the self-heating "
+                            f"offset is constant at a fixed excitation and tared with the zero",
         "modulus_tc_per_K": tc_e, "modulus_tc_source": tc_source,
         "gauge_model_compared_with": comparison_level(plan, model),
         "calibration": "fitted standard errors of the calibration file" if calibrations
