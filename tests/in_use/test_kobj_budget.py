@@ -266,7 +266,9 @@ def test_the_modulus_coefficient_is_the_grades_when_the_library_carries_one(ti_p
     tc, where = kb.modulus_tc_per_K(ti_plan)
     if "stand-in" in where:  # today's library: the stated stand-in, said so
         assert tc == kb.MODULUS_TC_STAND_IN_PER_K
+    real = ml.material_grade(ti_plan.material.grade)
     grade = SimpleNamespace(name="g", youngs_modulus_tc_per_K=-5.5e-4,
+                            cte_ppm_per_K=real.cte_ppm_per_K,
                             source=lambda field: f"doc of {field}")
     monkeypatch.setattr(ml, "material_grade", lambda name: grade)
     assert kb.modulus_tc_per_K(ti_plan) == (-5.5e-4, "grade g: doc of youngs_modulus_tc_per_K")
