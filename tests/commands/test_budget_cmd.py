@@ -80,3 +80,23 @@ def test_verify_reports_the_budget_and_judges_a_stated_accuracy():
     text = run_cli("verify", "--design", TI, "--model", "closed-form").stdout
     assert "K_obj error budget, array" in text and "| RSS |" in text
     assert "kobj_accuracy_rel" not in text  # not stated: reported, not judged
+
+
+def test_a_material_of_unknown_cte_is_named_by_budget_and_reported_by_verify(tmp_path):
+    import re
+    import shutil
+
+    text = Path(TI).read_text(encoding="utf-8")
+    text = re.sub(r"\[material\][^\[]*", "[material]\nname = \"custom titanium\"\n"
+                  "youngs_modulus_MPa = 110000.0\npoisson_ratio = 0.34\nyield_strength_MPa = "
+                  "880.0\nfatigue_strength_MPa = 500.0\ndensity_g_per_cm3 = 4.43\n\n", text, count=1)
+    design = tmp_path / "custom.toml"
+    design.write_text(text, encoding="utf-8")
+    for name in ("rigs.toml", "scenes.toml"):
+        shutil.copy(Path(TI).parent / name, tmp_path / name)
+    r = run_cli("budget", "--design", str(design), "--json")
+    assert r.returncode != 0
+    assert "readout.substrate_cte_ppm_per_K" in json.loads(r.stdout)["error"]["message"]
+    v = run_cli("verify", "--design", str(design), "--model", "closed-form")
+    assert v.returncode == 0, v.stderr
+    assert "K_obj error budget not evaluated: readout.substrate_cte_ppm_per_K" in v.stdout
