@@ -275,6 +275,7 @@ BROWSER_TESTS = {
     "export/test_review_page.py::test_a_page_whose_watch_stopped_asks_less_and_less_often",
     "export/test_review_page.py::test_check_results_join_the_page",
     "export/test_review_page.py::test_an_undecided_requirement_shows_as_undecided_not_pass",
+    "export/test_review_budget.py::test_the_exported_page_shows_the_budget_table",
 }
 
 

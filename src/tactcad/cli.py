@@ -44,6 +44,7 @@ COMMAND_MODULES = (
     "tactcad.commands.tolerance",
     "tactcad.commands.readout",
     "tactcad.commands.thermal",
+    "tactcad.commands.budget",
     "tactcad.commands.crosstalk",
     "tactcad.commands.materials",
     "tactcad.commands.sweep",

@@ -52,9 +52,11 @@ def run(args: argparse.Namespace) -> int:
                                               stress=element_stress, envelope_mm=envelope), []
     ok = matrix_passed(records)
     open_ = undecided(records)
+    budget = kobj_budget_section(plan, req, args.model)
     if args.json:
         print(dumps({"design": plan.name, "model": args.model, "requirements": req.as_json(),
-                     "matrix": records, "levels": levels, "undecided": open_, "passed": ok},
+                     "matrix": records, "levels": levels, "undecided": open_, "passed": ok,
+                     "kobj_budget": budget if isinstance(budget, str) else budget.as_json()},
                     indent=1))
     else:
         print(f"design {plan.name}, model {args.model}")
@@ -67,8 +69,26 @@ def run(args: argparse.Namespace) -> int:
             top = records[0].get("levels_tried", [args.model])[-1]
             print(f"undecided at {top} (margin inside its error estimate): {', '.join(open_)}"
                   + ("" if args.model == "auto" else "; --model auto climbs the ladder"))
+        from tactcad.commands.budget import render_array
+
+        print(f"K_obj error budget not evaluated: {budget}" if isinstance(budget, str)
+              else "\n".join(render_array(budget)))
         print("no requirement fails" if ok else "a requirement is not met")
     return 0 if ok else 1
+
+
+def kobj_budget_section(plan, req, model: str):
+    """The design's K_obj error budget for verify's output (reported; judged only through
+    ``kobj_accuracy_rel``): at ``model``, the closed form for ``auto``; the refusal's text
+    when a source cannot be evaluated (a material of unknown CTE)."""
+    from tactcad.errors import DesignError
+    from tactcad.in_use.kobj_budget import DEFAULT_DELTA_T_K, kobj_budget
+
+    try:
+        return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
+                           DEFAULT_DELTA_T_K, "closed-form" if model == "auto" else model)
+    except DesignError as exc:
+        return str(exc)
 
 
 def matrix_table(records: list[dict]) -> str:

@@ -452,6 +452,7 @@ function showTables() {
   const warned = DATA.elements.filter((r) => r.warnings && r.warnings.length);
   for (const r of warned) box.append(el('p', `element ${r.element}: ${r.warnings.join('; ')}`, 'warn'));
   showVerification();
+  showBudget();
   showChecks();
   showProvenance();
 }
@@ -489,6 +490,12 @@ function showVerification() {  // the manifest's verification matrix, when the e
   const unmet = (v && v['requirements not met']) || [];
   setText($('unmet'), unmet.length ? `Requirements not met: ${unmet.join(', ')} (see Verification)` : '');
   $('unmet').classList.toggle('shown', unmet.length > 0);
+}
+
+function showBudget() {  // the K_obj error budget's table, in the columns the data lists
+  const b = DATA.kobj_budget;
+  $('budget').hidden = $('nav-budget').hidden = !b;
+  $('budget-body').replaceChildren(...(b ? [el('p', b.title), table(b.columns, b.rows)] : []));
 }
 
 function showChecks() {

@@ -28,6 +28,11 @@ Keys (units in the names):
 * ``max_crosstalk_rel``: the largest gauge crosstalk allowed (a neighbour's
   strain over the loaded gauge's own, :mod:`tactcad.mechanics.stack_crosstalk`);
   never derived (without it nothing is checked).
+* ``kobj_accuracy_rel``: the largest relative K_obj error the array may read with over
+  the whole K_obj range: the RSS of the K_obj error budget after correction
+  (:mod:`tactcad.in_use.kobj_budget`) at the full-scale force and its default
+  temperature step, each K_obj read by its best unit; never derived (without it the
+  budget is reported, not judged).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -47,7 +52,8 @@ REQUIREMENT_KEYS = ("full_scale_force_N", "kobj_range_N_per_mm", "kr_over_km",
                     "k_tolerance_rel", "kobj_resolution_rel")
 
 #: Requirements checked only when the file states them (never derived).
-STATED_ONLY_KEYS = ("min_first_resonance_Hz", "max_thermal_drift_N_per_K", "max_crosstalk_rel")
+STATED_ONLY_KEYS = ("min_first_resonance_Hz", "max_thermal_drift_N_per_K", "max_crosstalk_rel",
+                    "kobj_accuracy_rel")
 
 
 class RequirementsSection(Section):
@@ -73,6 +79,9 @@ class RequirementsSection(Section):
                                       why="equivalent tip force per kelvin of any element") = None
     max_crosstalk_rel: number(0.0, 1.0, lo_open=True, unit="",
                               why="largest off-diagonal gauge strain over its diagonal") = None
+    kobj_accuracy_rel: number(0.0, 10.0, lo_open=True, unit="",
+                              why="relative K_obj error (RSS of the K_obj error budget) over "
+                                  "the range") = None
     source: Text = None
 
 
@@ -80,6 +89,13 @@ def stated_thermal_drift(raw: Mapping[str, Any]) -> float | None:
     """``requirements.max_thermal_drift_N_per_K`` (N/K), or None when not stated."""
     table = raw.get("requirements") if isinstance(raw, Mapping) else None
     value = table.get("max_thermal_drift_N_per_K") if isinstance(table, Mapping) else None
+    return None if value is None else float(value)
+
+
+def stated_kobj_accuracy(raw: Mapping[str, Any]) -> float | None:
+    """``requirements.kobj_accuracy_rel`` (relative), or None when not stated."""
+    table = raw.get("requirements") if isinstance(raw, Mapping) else None
+    value = table.get("kobj_accuracy_rel") if isinstance(table, Mapping) else None
     return None if value is None else float(value)
 
 

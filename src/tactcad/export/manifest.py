@@ -63,6 +63,7 @@ def design_facts(plan: Plan) -> dict:
         "strength": [_strength_record(r) for r in strength_summary(plan)],
         "requirements": requirements_record(plan, array_envelope_mm(plan)),
         "thermal": _thermal_record(plan),
+        "kobj_budget": _kobj_budget_record(plan),
         "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
                     for d in plan.derived],
         "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],
@@ -83,6 +84,22 @@ def _thermal_record(plan: Plan) -> dict | None:
         return None
     out.pop("seconds")
     return out
+
+
+def _kobj_budget_record(plan: Plan) -> dict | None:
+    """The closed-form K_obj error budget (:mod:`tactcad.in_use.kobj_budget`) at the
+    full-scale force and the default temperature step over the required K_obj range;
+    None when a source cannot be evaluated (no CTE known for the material)."""
+    from tactcad.errors import DesignError
+    from tactcad.in_use.kobj_budget import DEFAULT_DELTA_T_K, kobj_budget
+    from tactcad.studies.verification import requirements_of
+
+    req = requirements_of(plan)
+    try:
+        return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
+                           DEFAULT_DELTA_T_K).as_json()
+    except DesignError:
+        return None
 
 
 def _strength_record(r: dict) -> dict:

@@ -105,8 +105,38 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
         "sheets": [{"path": p, "title": t, "sha256": _sha256(svgs[p])} for p, t, _ in sheets],
         "bom": bom_table(bom_csv), "elements": elements,
         "book": [step for step in book if step.get("scene") in scenes],
+        "kobj_budget": kobj_budget_view(manifest.get("kobj_budget")),
     }
     return ReviewContents(data, dict(scenes), {_sha256(b): b for b in svgs.values()})
+
+
+def kobj_budget_view(budget: dict | None) -> dict | None:
+    """The manifest's K_obj error budget as the page's table: one row per K_obj of the
+    grid, read by the array's best unit there, each source's relative K_obj error after
+    correction, the RSS, the worst case and the dominant source (texts with their units;
+    ``columns`` in the order the page shows them); None without a budget or a unit."""
+    if not budget or not budget.get("units"):
+        return None
+    from tactcad.in_use.kobj_budget import SOURCES
+
+    def pct(x) -> str:
+        return "unreadable" if x is None else f"{100 * x:.3g} %"
+
+    units = {f"{u['reference_element']}/{u['measuring_element']}": u for u in budget["units"]}
+    a = budget["array"]
+    columns = ["K_obj", "unit", *(s.words for s in SOURCES), "RSS", "worst case", "dominant"]
+    rows = []
+    for i, k in enumerate(budget["K_obj_N_per_mm"]):
+        u = units[a["unit"][i]]
+        rows.append({"K_obj": f"{k:.3g} N/mm", "unit": a["unit"][i],
+                     **{s.words: pct(u["sources"][s.key]["after_rel"][i]) for s in SOURCES},
+                     "RSS": pct(a["rss_rel"][i]), "worst case": pct(a["worst_case_rel"][i]),
+                     "dominant": a["dominant"][i].replace("_", " ")})
+    title = (f"{budget['model']}, {budget['force_N']:.4g} N on the reference, "
+             f"{budget['delta_T_K']:g} K step; relative K_obj error after correction, each "
+             f"K_obj read by its best unit (reference/measuring element); tactcad budget "
+             f"shows every unit and the figures before correction")
+    return {"title": title, "columns": columns, "rows": rows}
 
 
 def verification_view(requirements: dict, thermal: dict | None = None) -> dict:

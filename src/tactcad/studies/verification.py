@@ -162,22 +162,12 @@ def element_figures(plan: Plan, model: str = "closed-form",
 
 def web_band_rel(plan: Plan) -> float:
     """Largest relative K change of any element over web +/- web tolerance
-    (corrected closed form; a derivative of K, so the level hardly matters)."""
-    from dataclasses import replace
+    (corrected closed form; a derivative of K, so the level hardly matters;
+    :func:`tactcad.in_use.kobj_budget.web_tolerance_k_rel` per element)."""
+    from tactcad.in_use.kobj_budget import web_tolerance_k_rel
 
-    from tactcad.mechanics.ladder import estimate
-
-    worst = 0.0
-    for g in plan.distinct_elements.values():
-        k0 = estimate("closed-form", g, plan.material).stiffness_N_per_mm
-        for sign in (-1, 1):
-            t = g.web_thickness_mm + sign * g.web_tolerance_mm
-            if t <= 0:
-                continue
-            k = estimate("closed-form", replace(g, web_thickness_mm=t),
-                         plan.material).stiffness_N_per_mm
-            worst = max(worst, abs(k / k0 - 1.0))
-    return worst
+    return max((web_tolerance_k_rel(g, plan.material) for g in plan.distinct_elements.values()),
+               default=0.0)
 
 
 def closed_form_k_error(plan: Plan) -> float:
@@ -544,6 +534,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     out.extend(resonance_records(plan, model, progress))
     out.extend(r for r in [thermal_record(plan, fig, req)] if r is not None)
     out += crosstalk_records(plan)
+    out.extend(r for r in [kobj_accuracy_record(plan, fig, req)] if r is not None)
     for r in out:
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew
@@ -556,6 +547,49 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
 #: How the K_obj resolution records read each force.
 READOUT_BASIS = ("each element read through the design's [readout] chain: noise of one "
                  "averaged reading / sensitivity (tactcad readout)")
+
+
+def design_kobj_budget(plan: Plan, fig: Figures, req: Requirements):
+    """The design's K_obj error budget (:func:`tactcad.in_use.kobj_budget.kobj_budget`) at
+    ``fig``'s level over the required K_obj range, at the full-scale force and the default
+    temperature step."""
+    from tactcad.in_use.kobj_budget import DEFAULT_DELTA_T_K, kobj_budget
+
+    return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
+                       DEFAULT_DELTA_T_K, fig.model, fig.k, fig.k_error)
+
+
+def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements) -> dict | None:
+    """``kobj_accuracy_rel`` when the design states it (None otherwise): at each K_obj of
+    the budget's grid the RSS after correction of the unit that reads it best, margin
+    target / RSS - 1, error the budget's own uncertainty (gauge model plus K error of the
+    level), judged on its own (``points``); the record shows the point with the worst
+    verdict (:func:`deciding_item`)."""
+    from tactcad.design.requirements_section import stated_kobj_accuracy
+
+    target = stated_kobj_accuracy(plan.raw)
+    if target is None:
+        return None
+    budget = design_kobj_budget(plan, fig, req)
+    a = budget.array
+    items = [judged({"K_obj_N_per_mm": k, "unit": u, "rss_rel": rss, "dominant": dom,
+                     "error_estimate_rel": unc,
+                     "margin_rel": target / rss - 1.0 if rss > 0 and math.isfinite(rss)
+                     else (None if rss == 0 else -1.0)})
+             for k, u, rss, dom, unc in zip(budget.k_obj, a["unit"], a["rss_rel"],
+                                            a["dominant"], a["uncertainty_rel"])]
+    if not items:  # no unit: nothing reads K_obj, so the accuracy cannot be met
+        return _record("kobj_accuracy_rel", target, None, math.inf, -1.0, fig.model, False,
+                       basis="no element is softer than its row's reference")
+    w = deciding_item(items)
+    return _record("kobj_accuracy_rel", target, w["rss_rel"], w["error_estimate_rel"],
+                   w["margin_rel"], fig.model, all(it["rss_rel"] <= target for it in items),
+                   binding_kobj_N_per_mm=w["K_obj_N_per_mm"], binding_unit=w["unit"],
+                   dominant=w["dominant"], points=items, force_N=budget.force_N,
+                   verdict=w["verdict"],
+                   delta_T_K=budget.delta_T_K,
+                   basis="RSS of the K_obj error budget after correction (tactcad budget), "
+                         "each K_obj read by its best unit")
 
 
 def kr_over_km_record(pairs: Sequence[RowPair], req: Requirements, model: str) -> dict:
@@ -727,6 +761,9 @@ def binding_text(record: dict) -> str:
     if "binding_words" in record:
         element = record.get("binding_element")
         return record["binding_words"] + ("" if element is None else f" (element {element})")
+    if "binding_unit" in record:
+        return (f"unit {record['binding_unit']} at K_obj {record['binding_kobj_N_per_mm']:.3g} "
+                f"N/mm ({record['dominant'].replace('_', ' ')} dominates)")
     if "binding_axis" in record:
         return f"axis {record['binding_axis']}"
     if "binding_part" in record:  # the lowest first resonance and the level that found it

@@ -1,0 +1,152 @@
+"""``tactcad budget``: the K_obj error budget of every sensing unit, source by source."""
+
+from __future__ import annotations
+
+import argparse
+
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+                              progress_from_args)
+from tactcad.commands.finite_json import dumps
+from tactcad.commands.options import count, number, output_file
+from tactcad.mechanics.ladder import models
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    from tactcad.in_use.kobj_budget import BUDGET_POINTS, DEFAULT_DELTA_T_K
+
+    p = sub.add_parser(
+        "budget", help="the K_obj error budget: each source's relative K_obj error over the "
+                       "K_obj range, their RSS and worst case, the source that dominates",
+        description="For every sensing unit (a row's reference and a softer element of the "
+                    "row), pressed until the reference carries the reference force, at each "
+                    "K_obj of a log-spaced grid over the requirements' K_obj range: the "
+                    "relative K_obj error (eq. 3 and its derivatives) from read-out noise and "
+                    "quantisation, thermal zero and span over the temperature step, "
+                    "manufacturing tolerance, stack crosstalk, tissue coupling (a half-space "
+                    "sample under the design's tip faces), the gauge model and the "
+                    "calibration, before and after the correction each gets (calibration, "
+                    "decoupling matrix, coupled inversion); their RSS and worst-case sum, and "
+                    "the source that dominates. Units: N, K, N/mm; errors in percent.")
+    add_design_arg(p)
+    add_cache_args(p)
+    p.add_argument("--model", choices=models(), default="closed-form",
+                   help="ladder level for K and the gauge strain (default closed-form)")
+    p.add_argument("--force", type=number(0, 1000, "N", lo_open=True), default=None,
+                   metavar="N", help="force on the reference element at the reading (N; default "
+                                     "the design's full-scale force)")
+    p.add_argument("--delta-T", dest="delta_T", type=number(0, 100, "K"),
+                   default=DEFAULT_DELTA_T_K, metavar="K",
+                   help="temperature step between tare and reading (K; default %(default)s K)")
+    p.add_argument("--points", type=count(2, 101, "K_obj grid points"), default=BUDGET_POINTS,
+                   help="log-spaced K_obj points over the range (default %(default)s)")
+    p.add_argument("--calibration", metavar="FILE", default=None,
+                   help="measured calibration readings (as tactcad calibrate --data: CSV, LVM "
+                        "or TDMS): their fitted standard errors of K and K_v; default the "
+                        "expected errors of the paper's procedure")
+    p.add_argument("--out", metavar="FILE", type=output_file(".json", ".md"), default=None,
+                   help="also write the budget: .json as --json prints it, .md as the text")
+    add_output_args(p, "print one JSON object: the budget of every unit and of the array")
+    p.set_defaults(func=run)
+
+
+def calibrations_from_file(path: str, plan) -> dict:
+    """Element number -> fitted :class:`~tactcad.mechanics.calibration.Calibration` of the
+    readings in ``path``.
+
+    Raises:
+        DesignError: an element number the design does not have.
+        CalibrationError: the file cannot be read or fitted.
+    """
+    from tactcad.errors import DesignError
+    from tactcad.mechanics.calibration import fit_calibration
+    from tactcad.mechanics.measured_io import read_measured
+
+    data, _ = read_measured(path)
+    numbers = [s.number for s in plan.slots]
+    out = {}
+    for element, d in data.items():
+        if element not in numbers:
+            raise DesignError("--calibration", f"{path}: element {element}",
+                              f"element numbers of the design, {min(numbers)} ... {max(numbers)}")
+        out[element] = fit_calibration(d.z_travel_um, d.force_N, d.signal_V, d.k_sensor_N_per_mm)
+    return out
+
+
+def run(args: argparse.Namespace) -> int:
+    from tactcad.atomic import write_bytes_atomic
+    from tactcad.in_use.kobj_budget import kobj_budget
+    from tactcad.studies.verification import requirements_of
+
+    plan = plan_from_args(args)
+    progress = progress_from_args(args)
+    cal = calibrations_from_file(args.calibration, plan) if args.calibration else None
+    req = requirements_of(plan)
+    force = req.full_scale_force_N if args.force is None else args.force
+    progress(f"budget of {plan.name} at {force:g} N, {args.delta_T:g} K ({args.model})")
+    budget = kobj_budget(plan, req.kobj_range_N_per_mm, force, args.delta_T, args.model,
+                         calibrations=cal, points=args.points)
+    record = {**budget.as_json(), "kobj_range_reason": req.reasons["kobj_range_N_per_mm"],
+              "force_reason": "--force" if args.force is not None
+              else f"full-scale force: {req.reasons['full_scale_force_N']}"}
+    text = render(budget)
+    if args.out:
+        body = dumps(record, indent=1) if args.out.lower().endswith(".json") else text
+        write_bytes_atomic(args.out, (body + "\n").encode("utf-8"))
+    print(dumps(record, indent=1) if args.json else text)
+    return 0
+
+
+def _pct(x) -> str:
+    import math
+
+    return "unreadable" if x is None or not math.isfinite(x) else f"{100 * x:.3g} %"
+
+
+def render(budget) -> str:
+    """The budget as text: one table per unit (sources down, K_obj across, after correction;
+    the before-correction value in brackets where a correction changes it) and the array's
+    line of best units."""
+    from tactcad.in_use.kobj_budget import SOURCES
+
+    head = " | ".join(f"{k:.3g}" for k in budget.k_obj)
+    lines = [f"K_obj error budget of {budget.design} ({budget.model}): reference force "
+             f"{budget.force_N:.4g} N, temperature step {budget.delta_T_K:g} K, K_obj "
+             f"{budget.kobj_range_N_per_mm[0]:g} ... {budget.kobj_range_N_per_mm[1]:g} N/mm",
+             "  relative K_obj error after correction (before it in brackets)"]
+    if not budget.units:
+        lines.append("  no element is softer than its row's reference: the design reads no K_obj")
+    for u in budget.units:
+        lines += ["", f"unit {u['reference_element']}/{u['measuring_element']}: K_r "
+                      f"{u['K_r_N_per_mm']:.4g} N/mm, K_m {u['K_m_N_per_mm']:.4g} N/mm; budget "
+                      f"uncertainty {_pct(u['uncertainty_rel'])}",
+                  f"| source | K_obj {head} N/mm |",
+                  "| --- |" + " --- |" * len(budget.k_obj)]
+        for s in SOURCES:
+            v = u["sources"][s.key]
+            cells = [_pct(a) if a == b else f"{_pct(a)} ({_pct(b)})"
+                     for a, b in zip(v["after_rel"], v["before_rel"])]
+            lines.append(f"| {s.words} | " + " | ".join(cells) + " |")
+        lines.append("| RSS | " + " | ".join(_pct(x) for x in u["rss_rel"]) + " |")
+        lines.append("| worst case | " + " | ".join(_pct(x) for x in u["worst_case_rel"]) + " |")
+        lines.append("| dominant | " + " | ".join(d.replace("_", " ") for d in u["dominant"])
+                     + " |")
+    lines += ["", *render_array(budget)]
+    lines += [""] + [f"  {k}: {v}" for k, v in budget.notes.items()]
+    return "\n".join(lines)
+
+
+def render_array(budget) -> list[str]:
+    """The array's line of best units as text lines: at each K_obj the unit that reads it
+    best, its RSS and worst case after correction and the dominant source (none without a
+    unit)."""
+    a = budget.array
+    if not a["unit"]:
+        return []
+    head = " | ".join(f"{k:.3g}" for k in budget.k_obj)
+    return [f"K_obj error budget, array (best unit at each K_obj; {budget.model}, "
+            f"{budget.force_N:.4g} N on the reference, {budget.delta_T_K:g} K step):",
+            f"| | K_obj {head} N/mm |", "| --- |" + " --- |" * len(budget.k_obj),
+            "| unit | " + " | ".join(a["unit"]) + " |",
+            "| RSS | " + " | ".join(_pct(x) for x in a["rss_rel"]) + " |",
+            "| worst case | " + " | ".join(_pct(x) for x in a["worst_case_rel"]) + " |",
+            "| dominant | " + " | ".join(d.replace("_", " ") for d in a["dominant"]) + " |"]

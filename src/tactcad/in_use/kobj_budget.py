@@ -1,0 +1,673 @@
+"""The K_obj error budget of a design: what each source does to the K_obj a sensing unit reads.
+
+A sensing unit is a row's reference element (K_r) and a softer element of the same row
+(K_m) (:func:`tactcad.mechanics.readout_chain.row_units`). The unit is pressed into an
+object of stiffness K_obj until the reference carries the stated force F_r; eq. 1 then
+gives the element deflections
+
+    e_r = F_r / K_r,   Δ = e_r (K_r + K_obj) / K_obj,   e_m = K_obj Δ / (K_obj + K_m),
+
+and the reading is eq. 3 on the deflection ratio R = e_m / e_r (paper eq. 2):
+
+    K_obj = (K_r − R K_m) / (R − 1).
+
+Its derivatives (first order, GUM 5.1.2), used for every source below:
+
+    ∂K_obj/∂R   = −(K_r − K_m) / (R − 1)²
+    ∂K_obj/∂e_m = (∂K_obj/∂R) / e_r                 (R = e_m / e_r)
+    ∂K_obj/∂e_r = −(∂K_obj/∂R) e_m / e_r²
+    ∂K_obj/∂K_m = −R / (R − 1)
+    ∂K_obj/∂K_r = 1 / (R − 1)
+
+so that a common scale on both deflections (e_m ∂/∂e_m + e_r ∂/∂e_r = 0) and a common
+scale on both stiffnesses (K_m ∂/∂K_m + K_r ∂/∂K_r = K_obj: K_obj moves by the same
+fraction) follow from the formulas, not from a special case.
+
+Sources (one function each, :data:`SOURCES`; each returns the relative K_obj error at
+every K_obj of the grid, before and after the correction the lab applies):
+
+(a) read-out noise and quantisation: each element's force resolution through the
+    design's read-out chain (:func:`tactcad.mechanics.readout_chain.element_force_resolution_N`,
+    1 sigma) as a deflection resolution dF / K; the two are independent (quadrature).
+(b) thermal zero: each element's apparent tip force per kelvin (TN-504 thermal output
+    over the grid strain per newton, :func:`tactcad.mechanics.thermal_drift.thermal_report`;
+    zero with a half-bridge dummy gauge) times the temperature step; both elements
+    share the step (signed sum). It scales as 1 / F_r.
+(c) thermal span: the gauge factor's coefficient scales both deflections alike (cancels
+    in R); the modulus's coefficient (1/E) dE/dT scales K_m and K_r alike, and eq. 3
+    with the calibration's K then reads K_obj off by that fraction.
+(d) manufacturing tolerance: each element's K change over its web ± web tolerance
+    (the ladder's closed form); signs taken worst. Calibration measures each K (eq. 5),
+    so it removes this fixed error entirely: what remains is the calibration's own
+    uncertainty, source (h). After calibration (d) is 0.
+(e) stack crosstalk: the neighbours' tip forces (every tip pressed by the same body
+    travel Δ, eq. 1) times each gauge's crosstalk in newtons per newton of neighbour load
+    (S_ij / S_ii of :func:`tactcad.mechanics.stack_crosstalk.plan_crosstalk`); after
+    the decoupling matrix what remains is its model's error estimate times that.
+(f) tissue coupling: the array's tips pressed into one half-space sample couple through
+    it (:func:`tactcad.mechanics.evaluation.simulate_rig`, rigid flat punches of the
+    design's own tip faces, the sample's modulus set so that the paper's 2 x 3 mm
+    indenter reads K_obj); eq. 3 on the coupled R against the true K_obj. After the
+    coupled inversion what remains is the coupled model's own error,
+    :data:`COUPLING_MODEL_ERROR_REL` of the R shift it predicts, through ∂K_obj/∂R.
+(g) gauge model: each element's grid strain per newton at the budget's level against
+    the next level that computes the strain anew (:func:`gauge_model_error_rel`); read
+    with the predicted K_v it moves each deflection by that fraction. Calibration
+    measures K_v (eq. 4), so after calibration it leaves the reading and stays only in
+    the budget's own uncertainty (it scales (a) and (b)).
+(h) calibration uncertainty: the standard errors of the fitted K and K_v (eq. 4-6,
+    :func:`tactcad.mechanics.calibration.fit_calibration`) of each element, from a
+    calibration file when given, else the expected standard errors of the paper's
+    procedure (:func:`expected_calibration_stderr_rel`: the force read to 0.001 N, the
+    signal through the design's read-out chain), all independent.
+
+Totals: the RSS and the worst-case sum of the contributions after correction (as a
+calibrated, corrected sensor reads), and of those before. The budget's own relative
+uncertainty (:func:`budget_uncertainty_rel`) is the unit's largest gauge-model error
+plus its largest K error estimate of the level.
+
+Units: N, N/mm, mm, K; the contributions are relative (dimensionless).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Callable, Mapping, NamedTuple
+
+import numpy as np
+
+from tactcad.design.array_plan import Plan
+from tactcad.errors import DesignError
+
+#: Points of the log-spaced K_obj grid the budget is evaluated on (ends included).
+BUDGET_POINTS = 7
+#: Default temperature step between calibration (tare) and reading (K).
+DEFAULT_DELTA_T_K = 5.0
+#: Allowed temperature step (K) and reference force (N) of the options.
+DELTA_T_RANGE_K = (0.0, 100.0)
+#: Relative error of the coupled (punch) model against an independent one that remains
+#: after the coupled inversion: issue 42's acceptance bound for the tissue model (5 %).
+COUPLING_MODEL_ERROR_REL = 0.05
+#: The paper's calibration: force gauge resolution 0.001 N (Sauter FH5) as its noise, and
+#: three runs (paper, "Calibration").
+CALIBRATION_FORCE_NOISE_N = 0.001
+CALIBRATION_REPEATS = 3
+#: Stand-in temperature coefficient of Young's modulus (1/K) where the material library
+#: gives none: (1/E) dE/dT of about -4e-4 /K for 6061 and Ti-6Al-4V (issue 42).
+MODULUS_TC_STAND_IN_PER_K = -4e-4
+
+
+class Operating(NamedTuple):
+    """One unit pressed into objects of stiffness ``k_obj`` until its reference carries
+    ``force_r`` (eq. 1); arrays over the K_obj grid (N/mm, N, mm)."""
+
+    k_m: float
+    k_r: float
+    k_obj: np.ndarray
+    force_r: float
+    e_m: np.ndarray
+    e_r: np.ndarray
+    travel: np.ndarray
+
+    @property
+    def ratio(self) -> np.ndarray:
+        """R = e_m / e_r (eq. 2)."""
+        return self.e_m / self.e_r
+
+    @property
+    def force_m(self) -> np.ndarray:
+        return self.k_m * self.e_m
+
+
+def operating_point(k_m: float, k_r: float, k_obj, force_r_N: float) -> Operating:
+    """The deflections of a unit (K_m < K_r, N/mm) pressed until the reference carries
+    ``force_r_N`` (N) into objects ``k_obj`` (N/mm, array): eq. 1.
+
+    Raises:
+        DesignError: K_r <= K_m, a stiffness or the force <= 0.
+    """
+    k_obj = np.atleast_1d(np.asarray(k_obj, float))
+    if not (0 < k_m < k_r):
+        raise DesignError("K_m, K_r", (k_m, k_r), "0 < K_m < K_r N/mm (a sensing unit)")
+    if not force_r_N > 0 or np.any(k_obj <= 0):
+        raise DesignError("force_N, K_obj", (force_r_N, k_obj.tolist()), "> 0 N and > 0 N/mm")
+    e_r = np.full_like(k_obj, force_r_N / k_r)
+    travel = e_r * (k_r + k_obj) / k_obj
+    e_m = k_obj * travel / (k_obj + k_m)
+    return Operating(float(k_m), float(k_r), k_obj, float(force_r_N), e_m, e_r, travel)
+
+
+def eq3_partials(op: Operating) -> dict[str, np.ndarray]:
+    """The derivatives of eq. 3 at the operating point (see the module docstring):
+    ``dR`` (N/mm), ``de_m``, ``de_r`` (N/mm per mm), ``dK_m``, ``dK_r`` (dimensionless)."""
+    R = op.ratio
+    d_dr = -(op.k_r - op.k_m) / (R - 1.0) ** 2
+    return {"dR": d_dr, "de_m": d_dr / op.e_r, "de_r": -d_dr * op.e_m / op.e_r ** 2,
+            "dK_m": -R / (R - 1.0), "dK_r": 1.0 / (R - 1.0)}
+
+
+def kobj_from_deflections(e_m, e_r, k_m: float, k_r: float):
+    """Eq. 3 on R = e_m / e_r (N/mm), as the read-out forms it."""
+    R = np.asarray(e_m, float) / np.asarray(e_r, float)
+    return (k_r - R * k_m) / (R - 1.0)
+
+
+def signed_rel(op: Operating, de_m=0.0, de_r=0.0, dk_m=0.0, dk_r=0.0) -> np.ndarray:
+    """|dK_obj| / K_obj of correlated first-order changes of e_m, e_r (mm), K_m, K_r (N/mm)."""
+    p = eq3_partials(op)
+    d = p["de_m"] * de_m + p["de_r"] * de_r + p["dK_m"] * dk_m + p["dK_r"] * dk_r
+    return np.abs(d) / op.k_obj
+
+
+def quadrature_rel(op: Operating, de_m=0.0, de_r=0.0, dk_m=0.0, dk_r=0.0) -> np.ndarray:
+    """σ_K_obj / K_obj of independent standard uncertainties of e_m, e_r (mm), K_m, K_r (N/mm)."""
+    p = eq3_partials(op)
+    terms = [p["de_m"] * de_m, p["de_r"] * de_r, p["dK_m"] * dk_m, p["dK_r"] * dk_r]
+    return np.sqrt(sum(np.asarray(t) ** 2 for t in terms)) / op.k_obj
+
+
+# ---------------------------------------------------------------------------
+# The design's context: per-design inputs computed once, on demand
+# ---------------------------------------------------------------------------
+@dataclass
+class Context:
+    """What every source reads: the plan, the level, K and its error per distinct part,
+    the reference force (N), the temperature step (K), the calibration fits (element ->
+    :class:`~tactcad.mechanics.calibration.Calibration`) and a cache of per-design inputs."""
+
+    plan: Plan
+    model: str
+    k: Mapping[str, float]
+    k_error: Mapping[str, float]
+    force_N: float
+    delta_T_K: float
+    calibrations: Mapping[int, object] = field(default_factory=dict)
+    cache: dict = field(default_factory=dict)
+
+    def once(self, key: str, compute: Callable[[], object]):
+        if key not in self.cache:
+            self.cache[key] = compute()
+        return self.cache[key]
+
+    def k_of(self, number: int) -> float:
+        return float(self.k[self.plan.element(number).geometry.part_name])
+
+
+class Unit(NamedTuple):
+    """A sensing unit: its row's reference and its measuring element (element numbers)."""
+
+    reference: int
+    measuring: int
+
+
+class Contribution(NamedTuple):
+    """One source's relative K_obj error over the grid, before and after correction."""
+
+    before: np.ndarray
+    after: np.ndarray
+
+
+# ---------------------------------------------------------------------------
+# The sources: (context, unit, operating point) -> Contribution
+# ---------------------------------------------------------------------------
+def readout_noise(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(a) Each element's force resolution (1 sigma) through the read-out chain as a
+    deflection resolution dF / K, independent."""
+    from tactcad.mechanics.readout_chain import element_force_resolution_N
+
+    df = ctx.once("readout", lambda: element_force_resolution_N(ctx.plan, ctx.model))
+    part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
+    rel = quadrature_rel(op, de_m=df[part(unit.measuring)]["dF"] / op.k_m,
+                         de_r=df[part(unit.reference)]["dF"] / op.k_r)
+    return Contribution(rel, rel)
+
+
+def _thermal(ctx: Context):
+    from tactcad.mechanics.thermal_drift import thermal_report
+
+    needs = _Needs(ctx.force_N, (1.0, 2.0))  # the report's own K_obj figure is not used
+    return thermal_report(ctx.plan, needs, ctx.model, dict(ctx.k), dict(ctx.k_error))
+
+
+class _Needs(NamedTuple):
+    full_scale_force_N: float
+    kobj_range_N_per_mm: tuple[float, float]
+
+
+def thermal_zero(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(b) Each element's apparent tip force per kelvin times the temperature step, both
+    elements at the same step (signed); none with a half-bridge dummy gauge."""
+    rep = ctx.once("thermal", lambda: _thermal(ctx))
+    zero = {r["element"]: 0.0 if rep.setting.dummy else r["apparent_force_N_per_K"]
+            for r in rep.records}
+    dT = ctx.delta_T_K
+    rel = signed_rel(op, de_m=zero[unit.measuring] * dT / op.k_m,
+                     de_r=zero[unit.reference] * dT / op.k_r)
+    return Contribution(rel, rel)
+
+
+def modulus_tc_per_K(plan: Plan) -> tuple[float, str]:
+    """(1/E) dE/dT of the plan's material (1/K) and its source: the library grade's when it
+    carries one, else :data:`MODULUS_TC_STAND_IN_PER_K`, said so."""
+    from tactcad.vocabulary.material_library import material_grade
+
+    grade = material_grade(plan.material.grade) if plan.material.grade else None
+    tc = getattr(grade, "youngs_modulus_tc_per_K", None)
+    if tc is not None and math.isfinite(tc):
+        where = getattr(grade, "provenance", grade.source)  # a stand-in says where it is from
+        return float(tc), f"grade {grade.name}: {where('youngs_modulus_tc_per_K')}"
+    return MODULUS_TC_STAND_IN_PER_K, ("the material library gives no temperature coefficient "
+                                       "of E for this material: stand-in -4e-4 /K (6061 and "
+                                       "Ti-6Al-4V, issue 42)")
+
+
+def thermal_span(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(c) The gauge factor's coefficient on both deflections and the modulus's on both
+    stiffnesses, over the temperature step (signed)."""
+    rep = ctx.once("thermal", lambda: _thermal(ctx))
+    tc_e, _ = ctx.once("modulus_tc", lambda: modulus_tc_per_K(ctx.plan))
+    dT, gf = ctx.delta_T_K, rep.setting.gf_tc_per_K
+    rel = signed_rel(op, de_m=op.e_m * gf * dT, de_r=op.e_r * gf * dT,
+                     dk_m=op.k_m * tc_e * dT, dk_r=op.k_r * tc_e * dT)
+    return Contribution(rel, rel)
+
+
+def web_tolerance_k_rel(geometry, material) -> float:
+    """Largest relative K change of one element over its web ± web tolerance (the
+    ladder's closed form; a web that would vanish is skipped)."""
+    from tactcad.mechanics.ladder import estimate
+
+    k0 = estimate("closed-form", geometry, material).stiffness_N_per_mm
+    worst = 0.0
+    for sign in (-1, 1):
+        t = geometry.web_thickness_mm + sign * geometry.web_tolerance_mm
+        if t > 0:
+            k = estimate("closed-form", replace(geometry, web_thickness_mm=t),
+                         material).stiffness_N_per_mm
+            worst = max(worst, abs(k / k0 - 1.0))
+    return worst
+
+
+def manufacturing_tolerance(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(d) Both K off by their web tolerance's change, signs worst; calibration measures
+    each K, so none remains after it (its own error is (h))."""
+    band = ctx.once("tolerance", lambda: {
+        name: web_tolerance_k_rel(g, ctx.plan.material)
+        for name, g in ctx.plan.distinct_elements.items()})
+    part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
+    p = eq3_partials(op)
+    rel = (np.abs(p["dK_m"] * op.k_m * band[part(unit.measuring)])
+           + np.abs(p["dK_r"] * op.k_r * band[part(unit.reference)])) / op.k_obj
+    return Contribution(rel, np.zeros_like(rel))
+
+
+def _crosstalk(ctx: Context):
+    from tactcad.mechanics.stack_crosstalk import VERIFY_MODEL, plan_crosstalk
+
+    r = plan_crosstalk(ctx.plan, VERIFY_MODEL)
+    per_newton = r.sensitivity / np.diag(r.sensitivity)[:, None]  # N on gauge i per N on tip j
+    np.fill_diagonal(per_newton, 0.0)
+    return r.elements, per_newton, r.error_estimate_rel
+
+
+def stack_crosstalk(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(e) The neighbours' tip forces (every tip pressed by the same travel Δ, eq. 1) times
+    each gauge's crosstalk in N per N of neighbour load; after the decoupling matrix, its
+    model's error estimate of that."""
+    numbers, per_newton, error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
+    k = np.array([ctx.k_of(n) for n in numbers])
+    # tip forces of every element at each K_obj: K_j K_obj Δ / (K_j + K_obj), shape (n, grid)
+    forces = k[:, None] * op.k_obj * op.travel / (k[:, None] + op.k_obj)
+    seen = per_newton @ forces  # equivalent force each gauge reads from its neighbours (N)
+    i_m, i_r = numbers.index(unit.measuring), numbers.index(unit.reference)
+    rel = signed_rel(op, de_m=seen[i_m] / op.k_m, de_r=seen[i_r] / op.k_r)
+    return Contribution(rel, rel * error)
+
+
+def _coupled_ratios(ctx: Context, k_obj: np.ndarray) -> dict[int, np.ndarray]:
+    """R of every element against its row's reference at each K_obj, tips coupled through a
+    half-space sample (:func:`tactcad.mechanics.evaluation.simulate_rig`)."""
+    from tactcad.mechanics.evaluation import (SampleSpec, elements_from_plan, simulate_rig,
+                                              unit_punch_compliance)
+
+    elements = elements_from_plan(ctx.plan, {s.number: ctx.k_of(s.number)
+                                             for s in ctx.plan.slots})
+    spec = SampleSpec("halfspace")
+    unit_c = unit_punch_compliance(elements, spec)
+    refs = {s.number: ctx.plan.reference_of(s.row).number for s in ctx.plan.slots}
+    out = {s.number: np.empty(len(k_obj)) for s in ctx.plan.slots}
+    for i, kob in enumerate(k_obj):
+        res = simulate_rig(elements, float(kob), spec, loads_N=[1.0], unit_compliance=unit_c,
+                           references=refs)
+        for j, n in enumerate(res.elements):
+            out[int(n)][i] = res.ratio[0, j]
+    return out
+
+
+def tissue_coupling(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(f) Eq. 3 on the R of tips coupled through a half-space sample against the true
+    K_obj (inf where the coupled R leaves eq. 3's domain: eq. 3 cannot read it); after the
+    coupled inversion, the coupled model's error, :data:`COUPLING_MODEL_ERROR_REL` of the
+    R shift, through ∂K_obj/∂R."""
+    key = f"coupled {op.k_obj.tolist()}"
+    ratios = ctx.once(key, lambda: _coupled_ratios(ctx, op.k_obj))
+    R = ratios[unit.measuring]
+    inside = (R > 1.0) & (R < op.k_r / op.k_m)
+    with np.errstate(all="ignore"):
+        read = np.where(inside, (op.k_r - R * op.k_m) / (R - 1.0), np.nan)
+    before = np.where(inside, np.abs(read / op.k_obj - 1.0), np.inf)
+    after = np.abs(eq3_partials(op)["dR"] * COUPLING_MODEL_ERROR_REL * (R - op.ratio)) / op.k_obj
+    return Contribution(before, after)
+
+
+def _strain_source(plan: Plan, model: str) -> str:
+    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+
+    g = next(iter(plan.distinct_elements.values()))
+    return gauge_strain_per_N(g, plan.material, readout_chain(plan).grid_length_mm,
+                              model)["source"]
+
+
+def comparison_level(plan: Plan, model: str) -> str | None:
+    """The level the gauge strain at ``model`` is compared with: the next one up the
+    ladder that computes the strain anew, else the nearest below that does; None when
+    every level computes it alike."""
+    from tactcad.mechanics.ladder import models
+
+    levels = list(models())
+    own = _strain_source(plan, model)
+    i = levels.index(model)
+    for other in levels[i + 1:] + levels[:i][::-1]:
+        if _strain_source(plan, other) != own:
+            return other
+    return None
+
+
+def gauge_model_error_rel(plan: Plan, model: str) -> dict[str, float]:
+    """Per distinct part: its grid strain per newton at ``model`` over that at
+    :func:`comparison_level`, minus 1 (signed; 0 without another level)."""
+    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+
+    other = comparison_level(plan, model)
+    grid = readout_chain(plan).grid_length_mm
+    out = {}
+    for name, g in plan.distinct_elements.items():
+        own = gauge_strain_per_N(g, plan.material, grid, model)["grid"]
+        out[name] = 0.0 if other is None else \
+            own / gauge_strain_per_N(g, plan.material, grid, other)["grid"] - 1.0
+    return out
+
+
+def gauge_model(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(g) Each deflection read with the predicted K_v off by its gauge-model error
+    (signed, both at once); a calibration measures K_v, so none remains after it."""
+    err = ctx.once("gauge", lambda: gauge_model_error_rel(ctx.plan, ctx.model))
+    part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
+    rel = signed_rel(op, de_m=op.e_m * err[part(unit.measuring)],
+                     de_r=op.e_r * err[part(unit.reference)])
+    return Contribution(rel, np.zeros_like(rel))
+
+
+def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
+                                    signal_noise_V: float | None = None,
+                                    k_sensor_N_per_mm: float | None = None) -> tuple[float, float]:
+    """(σ_K / K, σ_K_v / |K_v|) the paper's calibration procedure leaves on one element.
+
+    Ordinary least squares over the Z steps of
+    :data:`~tactcad.mechanics.calibration.CALIBRATION_STEPS_UM`, :data:`CALIBRATION_REPEATS`
+    runs, deflection Δ = z K_s / (K + K_s), the force read to
+    :data:`CALIBRATION_FORCE_NOISE_N` (n) and the signal to ``signal_noise_V`` (1 sigma;
+    default :data:`~tactcad.mechanics.calibration.DEFAULT_NOISE_SIGNAL_V`): σ_slope =
+    σ_residual / sqrt(Σ (Δ − mean Δ)²). The deflection is formed as z − F/K_s from the
+    read force, so the force's noise enters both axes: the force residual is
+    n (1 + K/K_s) (:func:`tactcad.mechanics.calibration.series_error_amplification`) and
+    the signal residual adds K_v n / K_s in quadrature.
+
+    Args:
+        k_element: K (N/mm). k_v_V_per_mm: K_v (V/mm).
+        signal_noise_V: the signal's noise per reading (V, 1 sigma): the budget passes
+            its read-out chain's, the calibration reads through the same chain.
+        k_sensor_N_per_mm: the force gauge's stiffness (N/mm), default the paper's
+            (57.04 N/mm).
+    """
+    from tactcad.mechanics.calibration import (CALIBRATION_STEPS_UM, DEFAULT_NOISE_SIGNAL_V,
+                                               K_SENSOR_N_PER_MM, series_error_amplification)
+
+    k_s = K_SENSOR_N_PER_MM if k_sensor_N_per_mm is None else k_sensor_N_per_mm
+    z = np.tile(np.asarray(CALIBRATION_STEPS_UM, float) * 1e-3, CALIBRATION_REPEATS)
+    defl = z * k_s / (k_element + k_s)
+    sxx = math.sqrt(float(np.sum((defl - defl.mean()) ** 2)))
+    n = CALIBRATION_FORCE_NOISE_N
+    force_residual = n * series_error_amplification(k_element, k_s).from_k_apparent
+    v_noise = DEFAULT_NOISE_SIGNAL_V if signal_noise_V is None else signal_noise_V
+    signal_residual = math.hypot(v_noise, k_v_V_per_mm * n / k_s)
+    return force_residual / sxx / k_element, signal_residual / sxx / abs(k_v_V_per_mm)
+
+
+def _calibration_stderr(ctx: Context) -> dict[int, tuple[float, float]]:
+    from tactcad.mechanics.readout_chain import (element_force_resolution_N, noise_budget_V,
+                                                 readout_chain)
+
+    per_part = ctx.once("readout", lambda: element_force_resolution_N(ctx.plan, ctx.model))
+    noise = noise_budget_V(readout_chain(ctx.plan))["reading"]
+    out = {}
+    for s in ctx.plan.slots:
+        c = ctx.calibrations.get(s.number)
+        if c is not None:
+            out[s.number] = (c.stderr_K_N_per_mm / abs(c.K_N_per_mm),
+                             c.stderr_K_v_V_per_mm / abs(c.K_v_V_per_mm))
+        else:
+            k = ctx.k_of(s.number)
+            out[s.number] = expected_calibration_stderr_rel(
+                k, per_part[s.geometry.part_name]["S"] * k, noise)
+    return out
+
+
+def calibration(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(h) The standard errors of each element's fitted K (eq. 5) and K_v (eq. 4),
+    independent: the calibration file's fits, else the paper's procedure expected."""
+    se = ctx.once("calibration", lambda: _calibration_stderr(ctx))
+    (km, kvm), (kr, kvr) = se[unit.measuring], se[unit.reference]
+    rel = quadrature_rel(op, de_m=op.e_m * kvm, de_r=op.e_r * kvr, dk_m=op.k_m * km,
+                         dk_r=op.k_r * kr)
+    return Contribution(rel, rel)
+
+
+class Source(NamedTuple):
+    """One source of the budget: its key, its words and its function."""
+
+    key: str
+    words: str
+    function: Callable[[Context, Unit, Operating], Contribution]
+    correction: str
+
+
+#: The sources, in the order of issue 42's list.
+SOURCES = (
+    Source("readout_noise", "read-out noise and quantisation", readout_noise, "none"),
+    Source("thermal_zero", "thermal zero", thermal_zero, "none (a tare at the reading "
+           "temperature removes it)"),
+    Source("thermal_span", "thermal span", thermal_span, "none"),
+    Source("manufacturing_tolerance", "manufacturing tolerance", manufacturing_tolerance,
+           "calibration measures each K: none remains (its error is the calibration's)"),
+    Source("stack_crosstalk", "stack crosstalk", stack_crosstalk,
+           "the decoupling matrix: its model's error estimate remains"),
+    Source("tissue_coupling", "tissue coupling", tissue_coupling,
+           "the coupled inversion: the coupled model's error remains"),
+    Source("gauge_model", "gauge model", gauge_model,
+           "calibration measures K_v: none remains in the reading"),
+    Source("calibration", "calibration uncertainty", calibration, "none"),
+)
+SOURCE_KEYS = tuple(s.key for s in SOURCES)
+
+
+# ---------------------------------------------------------------------------
+# The budget
+# ---------------------------------------------------------------------------
+def kobj_grid(kobj_range: tuple[float, float], points: int = BUDGET_POINTS) -> np.ndarray:
+    """``points`` log-spaced K_obj over [LO, HI] (N/mm), ends included."""
+    return np.geomspace(float(kobj_range[0]), float(kobj_range[1]), points)
+
+
+def budget_uncertainty_rel(ctx: Context, unit: Unit) -> float:
+    """The unit's budget's own relative uncertainty: its largest gauge-model error plus its
+    largest K error estimate at the level (they scale the read-out and thermal terms)."""
+    err = ctx.once("gauge", lambda: gauge_model_error_rel(ctx.plan, ctx.model))
+    parts = [ctx.plan.element(n).geometry.part_name for n in unit]
+    return max(abs(err[p]) for p in parts) + max(ctx.k_error[p] for p in parts)
+
+
+def listed(values: np.ndarray) -> list[float | None]:
+    """``values`` as a list of floats, None where not finite (a reading eq. 3 cannot make)."""
+    return [float(v) if math.isfinite(v) else None for v in np.asarray(values, float)]
+
+
+def unit_budget(ctx: Context, unit: Unit, k_obj: np.ndarray) -> dict:
+    """Every source's contribution for one unit over ``k_obj`` (N/mm), with the RSS and
+    worst-case sums before and after correction and the source that dominates at each
+    K_obj (after correction)."""
+    op = operating_point(ctx.k_of(unit.measuring), ctx.k_of(unit.reference), k_obj,
+                         ctx.force_N)
+    parts = {s.key: s.function(ctx, unit, op) for s in SOURCES}
+    after = np.array([parts[k].after for k in SOURCE_KEYS])
+    before = np.array([parts[k].before for k in SOURCE_KEYS])
+    return {"reference_element": unit.reference, "measuring_element": unit.measuring,
+            "K_r_N_per_mm": op.k_r, "K_m_N_per_mm": op.k_m,
+            "R": listed(op.ratio), "force_measuring_N": listed(op.force_m),
+            "sources": {k: {"before_rel": listed(parts[k].before),
+                            "after_rel": listed(parts[k].after)} for k in SOURCE_KEYS},
+            "rss_rel": listed(np.sqrt(np.sum(after ** 2, axis=0))),
+            "worst_case_rel": listed(np.sum(after, axis=0)),
+            "rss_before_rel": listed(np.sqrt(np.sum(before ** 2, axis=0))),
+            "worst_case_before_rel": listed(np.sum(before, axis=0)),
+            "dominant": [SOURCE_KEYS[i] for i in np.argmax(after, axis=0)],
+            "uncertainty_rel": budget_uncertainty_rel(ctx, unit)}
+
+
+@dataclass(frozen=True)
+class KobjBudget:
+    """The budget of one design (:func:`kobj_budget`); :meth:`as_json` is its record."""
+
+    design: str
+    model: str
+    force_N: float
+    delta_T_K: float
+    kobj_range_N_per_mm: tuple[float, float]
+    k_obj: tuple[float, ...]
+    units: list[dict]
+    notes: dict
+
+    @property
+    def array(self) -> dict:
+        """At each K_obj the unit that reads it best (smallest RSS after correction): its
+        RSS, worst case, dominant source and the budget's own uncertainty."""
+        if not self.units:
+            return {"unit": [], "rss_rel": [], "worst_case_rel": [], "dominant": [],
+                    "uncertainty_rel": []}
+        rss = np.array([u["rss_rel"] for u in self.units])
+        best = np.argmin(rss, axis=0)
+        pick = lambda key: [self.units[b][key][i] for i, b in enumerate(best)]  # noqa: E731
+        return {"unit": [f"{self.units[b]['reference_element']}/"
+                         f"{self.units[b]['measuring_element']}" for b in best],
+                "rss_rel": pick("rss_rel"), "worst_case_rel": pick("worst_case_rel"),
+                "dominant": pick("dominant"),
+                "uncertainty_rel": [self.units[b]["uncertainty_rel"] for b in best]}
+
+    def worst_array_rss(self) -> tuple[float, float] | None:
+        """(worst RSS over the range of the array's best unit, that unit's budget
+        uncertainty), or None without a unit."""
+        a = self.array
+        if not a["rss_rel"]:
+            return None
+        i = int(np.argmax(a["rss_rel"]))
+        return float(a["rss_rel"][i]), float(a["uncertainty_rel"][i])
+
+    def as_json(self) -> dict:
+        return {"design": self.design, "model": self.model, "force_N": self.force_N,
+                "delta_T_K": self.delta_T_K,
+                "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
+                "K_obj_N_per_mm": list(self.k_obj),
+                "sources": [{"key": s.key, "words": s.words, "correction": s.correction}
+                            for s in SOURCES],
+                "units": self.units, "array": self.array, "notes": self.notes}
+
+
+def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
+                delta_T_K: float = DEFAULT_DELTA_T_K, model: str = "closed-form",
+                stiffness: Mapping[str, float] | None = None,
+                errors: Mapping[str, float] | None = None,
+                calibrations: Mapping[int, object] | None = None,
+                points: int = BUDGET_POINTS) -> KobjBudget:
+    """The K_obj error budget of every sensing unit of ``plan`` over ``kobj_range``.
+
+    Args:
+        plan: the design.
+        kobj_range: [LO, HI] of K_obj (N/mm): the requirements' range.
+        force_N: the force the reference carries at the reading (N): the design's
+            full-scale force by default at the caller.
+        delta_T_K: the temperature step between tare and reading (K), 0 ... 100.
+        model: ladder level of K and the gauge strain.
+        stiffness, errors: K (N/mm) and its relative error per distinct part at ``model``
+            (``verify`` passes its own); None estimates them.
+        calibrations: element number -> fitted
+            :class:`~tactcad.mechanics.calibration.Calibration` (a calibration file);
+            the others take the paper's procedure's expected standard errors.
+        points: K_obj grid points (log-spaced), 2 ... 101.
+
+    Returns:
+        :class:`KobjBudget`.
+
+    Raises:
+        DesignError: force, temperature step, range or points out of range.
+        UnknownModelError: ``model`` is not a ladder level.
+    """
+    from tactcad.mechanics.ladder import estimate
+    from tactcad.mechanics.readout_chain import row_units
+
+    lo, hi = (float(v) for v in kobj_range)
+    if not (0 < lo < hi):
+        raise DesignError("kobj_range_N_per_mm", [lo, hi], "[LO, HI] with 0 < LO < HI N/mm")
+    if not (math.isfinite(force_N) and force_N > 0):
+        raise DesignError("force_N", force_N, "a number > 0 N")
+    if not (math.isfinite(delta_T_K) and DELTA_T_RANGE_K[0] <= delta_T_K <= DELTA_T_RANGE_K[1]):
+        raise DesignError("delta_T_K", delta_T_K, "a number 0 ... 100 K")
+    if not 2 <= points <= 101:
+        raise DesignError("points", points, "an integer 2 ... 101")
+    if stiffness is None or errors is None:
+        est = {n: estimate(model, g, plan.material) for n, g in plan.distinct_elements.items()}
+        stiffness = {n: e.stiffness_N_per_mm for n, e in est.items()}
+        errors = {n: e.error_estimate_rel for n, e in est.items()}
+    ctx = Context(plan, model, stiffness, errors, float(force_N), float(delta_T_K),
+                  dict(calibrations or {}))
+    k_obj = kobj_grid((lo, hi), points)
+    units = [unit_budget(ctx, Unit(r.number, m.number), k_obj)
+             for r, m in row_units(plan, dict(stiffness))]
+    tc_e, tc_source = modulus_tc_per_K(plan)
+    _, per_newton, xt_error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
+    notes = {
+        "stack_crosstalk_N_per_N": float(np.max(np.abs(per_newton))) if per_newton.size else 0.0,
+        "stack_crosstalk_basis": f"the largest force a gauge reads per newton on a neighbour's "
+                                 f"tip (stack-timoshenko); the decoupling matrix leaves "
+                                 f"{xt_error:.3g} of it (its error estimate)",
+        "operating_point": f"each unit pressed until its reference carries {force_N:.4g} N "
+                           f"(eq. 1); the zero terms scale as 1/force",
+        "temperature_step": f"{delta_T_K:g} K between tare and reading; the self-heating "
+                            f"offset is constant at a fixed excitation and tared with the zero",
+        "modulus_tc_per_K": tc_e, "modulus_tc_source": tc_source,
+        "gauge_model_compared_with": comparison_level(plan, model),
+        "calibration": "fitted standard errors of the calibration file" if calibrations
+        else "expected standard errors of the paper's procedure (25 um steps to 150 um, 3 "
+             "runs, force read to 0.001 N, signal to the read-out chain's noise of one "
+             "averaged reading, 1 sigma)",
+        "totals": "RSS and worst-case sum of the contributions after correction (as a "
+                  "calibrated, corrected sensor reads); *_before_rel without correction",
+        "manufacturing_tolerance": "calibration measures each element's K (eq. 5), so the "
+                                   "fixed K error of the web tolerance is removed; the "
+                                   "calibration's own standard error remains (calibration)",
+        "tissue_coupling": f"half-space sample, rigid flat punches of the design's tip faces; "
+                           f"after the coupled inversion "
+                           f"{COUPLING_MODEL_ERROR_REL:g} of its R shift (the coupled model's "
+                           f"error) through dK_obj/dR"}
+    return KobjBudget(plan.name, model, float(force_N), float(delta_T_K), (lo, hi),
+                      tuple(float(v) for v in k_obj), units, notes)

@@ -1,0 +1,102 @@
+"""``tactcad budget``: both shipped examples, a non-paper design, the options and their refusals."""
+
+import json
+from pathlib import Path
+
+import pytest
+from conftest import run_cli
+
+ROOT = Path(__file__).resolve().parents[2]
+TI = str(ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
+MACRO = str(ROOT / "hardware" / "macro_array" / "macro_array.toml")
+SOURCES = {"readout_noise", "thermal_zero", "thermal_span", "manufacturing_tolerance",
+           "stack_crosstalk", "tissue_coupling", "gauge_model", "calibration"}
+
+
+@pytest.mark.parametrize("design", [MACRO, TI])
+def test_both_examples_have_every_source_at_every_kobj(design):
+    r = run_cli("budget", "--design", design, "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["units"] and len(d["K_obj_N_per_mm"]) == 7
+    for u in d["units"]:
+        assert set(u["sources"]) == SOURCES
+        assert all(len(v["after_rel"]) == 7 for v in u["sources"].values())
+        assert all(x > 0 for x in u["rss_rel"])
+    assert len(d["array"]["dominant"]) == 7
+
+
+def test_force_and_temperature_step_reach_the_budget():
+    base = json.loads(run_cli("budget", "--design", TI, "--json", "--delta-T", "2").stdout)
+    more = json.loads(run_cli("budget", "--design", TI, "--json", "--delta-T", "4",
+                              "--force", "0.05").stdout)
+    assert base["force_N"] == 0.1 and more["force_N"] == 0.05 and more["delta_T_K"] == 4
+    a, b = base["units"][0]["sources"], more["units"][0]["sources"]
+    # the span scales with the step; the zero with the step over the force
+    assert b["thermal_span"]["after_rel"][0] == pytest.approx(2 * a["thermal_span"]["after_rel"][0])
+    assert b["thermal_zero"]["after_rel"][0] == pytest.approx(4 * a["thermal_zero"]["after_rel"][0])
+
+
+def test_a_non_paper_design_of_four_columns_and_the_text_output(tmp_path):
+    out = tmp_path / "budget.md"
+    r = run_cli("budget", "--design", TI, "--set", "array.columns=4", "--set",
+                "arms.lengths_mm=[19.605,6.196,19.605,19.605,19.605,6.196,19.605,19.605]",
+                "--out", str(out), "--points", "5")
+    assert r.returncode == 0, r.stderr
+    assert "| RSS |" in r.stdout and "tissue coupling" in r.stdout and "N/mm" in r.stdout
+    assert out.read_text().strip() == r.stdout.strip()
+    assert r.stdout.count("\nunit ") == 6  # two rows, three measuring elements each
+
+
+@pytest.mark.parametrize("option, value, words", [("--delta-T", "150", "0 ... 100 (K)"),
+                                                   ("--force", "0", ">0 ... 1000 (N)"),
+                                                   ("--points", "1", "2 ... 101"),
+                                                   ("--out", "b.txt", ".json or .md")])
+def test_bad_options_name_the_option_the_value_and_the_range(option, value, words):
+    r = run_cli("budget", "--design", TI, option, value, "--json")
+    assert r.returncode == 2
+    msg = json.loads(r.stdout)["error"]["message"]
+    assert option in msg and value in msg and words in msg
+
+
+def test_a_calibration_file_of_another_design_is_refused(tmp_path):
+    cal = tmp_path / "cal.csv"
+    cal.write_text("element,run,z_um,force_N,signal_V\n" + "".join(
+        f"9,1,{z},{0.01 * z:.4f},{-0.001 * z:.4f}\n" for z in (0, 25, 50, 75)))
+    r = run_cli("budget", "--design", TI, "--calibration", str(cal), "--json")
+    assert r.returncode != 0
+    msg = json.loads(r.stdout)["error"]["message"]
+    assert "--calibration" in msg and "element 9" in msg and "1 ... 6" in msg
+
+
+def test_verify_reports_the_budget_and_judges_a_stated_accuracy():
+    r = run_cli("verify", "--design", TI, "--model", "closed-form", "--set",
+                "requirements.kobj_accuracy_rel=0.001", "--json")
+    d = json.loads(r.stdout)
+    assert r.returncode == 1  # 0.1 % is beyond what the budget allows
+    rec = [x for x in d["matrix"] if x["requirement"] == "kobj_accuracy_rel"]
+    assert rec and rec[0]["verdict"] == "fail"
+    assert d["kobj_budget"]["units"] and d["kobj_budget"]["model"] == "closed-form"
+    text = run_cli("verify", "--design", TI, "--model", "closed-form").stdout
+    assert "K_obj error budget, array" in text and "| RSS |" in text
+    assert "kobj_accuracy_rel" not in text  # not stated: reported, not judged
+
+
+def test_a_material_of_unknown_cte_is_named_by_budget_and_reported_by_verify(tmp_path):
+    import re
+    import shutil
+
+    text = Path(TI).read_text(encoding="utf-8")
+    text = re.sub(r"\[material\][^\[]*", "[material]\nname = \"custom titanium\"\n"
+                  "youngs_modulus_MPa = 110000.0\npoisson_ratio = 0.34\nyield_strength_MPa = "
+                  "880.0\nfatigue_strength_MPa = 500.0\ndensity_g_per_cm3 = 4.43\n\n", text, count=1)
+    design = tmp_path / "custom.toml"
+    design.write_text(text, encoding="utf-8")
+    for name in ("rigs.toml", "scenes.toml"):
+        shutil.copy(Path(TI).parent / name, tmp_path / name)
+    r = run_cli("budget", "--design", str(design), "--json")
+    assert r.returncode != 0
+    assert "readout.substrate_cte_ppm_per_K" in json.loads(r.stdout)["error"]["message"]
+    v = run_cli("verify", "--design", str(design), "--model", "closed-form")
+    assert v.returncode == 0, v.stderr
+    assert "K_obj error budget not evaluated: readout.substrate_cte_ppm_per_K" in v.stdout

@@ -1,0 +1,278 @@
+"""The K_obj error budget: eq. 3's derivative, each source against its own module, the totals."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tactcad.in_use import kobj_budget as kb
+
+ROOT = Path(__file__).resolve().parents[2]
+TI = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+#: The Ti example widened to 2 x 4: each row's soft elements beside its reference.
+FOUR_COLUMNS = [19.605, 6.196, 19.605, 19.605] * 2
+
+
+@pytest.fixture(scope="module")
+def ti_plan():
+    from tactcad.api import load
+
+    return load(str(TI)).plan
+
+
+def _context(plan, force=0.5, delta_T=5.0, calibrations=None):
+    from tactcad.mechanics.ladder import estimate
+
+    est = {n: estimate("closed-form", g, plan.material) for n, g in plan.distinct_elements.items()}
+    return kb.Context(plan, "closed-form", {n: e.stiffness_N_per_mm for n, e in est.items()},
+                      {n: e.error_estimate_rel for n, e in est.items()}, force, delta_T,
+                      calibrations or {})
+
+
+def _first_unit(ctx):
+    from tactcad.mechanics.readout_chain import row_units
+
+    ref, meas = row_units(ctx.plan, dict(ctx.k))[0]
+    return kb.Unit(ref.number, meas.number)
+
+
+def _op(ctx, unit, k_obj):
+    return kb.operating_point(ctx.k_of(unit.measuring), ctx.k_of(unit.reference), k_obj,
+                              ctx.force_N)
+
+
+def test_eq3_partials_match_a_finite_difference():
+    op = kb.operating_point(6.0, 40.0, [1.5, 7.0, 30.0], 0.8)
+    p = kb.eq3_partials(op)
+    base = kb.kobj_from_deflections(op.e_m, op.e_r, op.k_m, op.k_r)
+    assert np.allclose(base, op.k_obj, rtol=1e-12)  # eq. 1 then eq. 3 gives K_obj back
+    h = 1e-7
+    fd = {"de_m": (kb.kobj_from_deflections(op.e_m * (1 + h), op.e_r, op.k_m, op.k_r) - base)
+          / (op.e_m * h),
+          "de_r": (kb.kobj_from_deflections(op.e_m, op.e_r * (1 + h), op.k_m, op.k_r) - base)
+          / (op.e_r * h),
+          "dK_m": (kb.kobj_from_deflections(op.e_m, op.e_r, op.k_m * (1 + h), op.k_r) - base)
+          / (op.k_m * h),
+          "dK_r": (kb.kobj_from_deflections(op.e_m, op.e_r, op.k_m, op.k_r * (1 + h)) - base)
+          / (op.k_r * h)}
+    for key, value in fd.items():
+        assert np.allclose(p[key], value, rtol=1e-5), key
+
+
+def test_eq3_partials_agree_with_the_lumped_models_sensitivity():
+    from tactcad.mechanics.lumped_model import sensitivity
+
+    op = kb.operating_point(6.0, 40.0, [1.5, 7.0, 30.0], 0.8)
+    assert np.allclose(kb.eq3_partials(op)["dR"], sensitivity(op.ratio, 6.0, 40.0).value)
+
+
+def test_readout_noise_is_the_resolution_of_the_mechanics(plan):
+    from tactcad.mechanics.readout_chain import element_force_resolution_N
+    from tactcad.mechanics.resolution import unit_resolution
+
+    ctx = _context(plan)
+    unit = _first_unit(ctx)
+    k_obj = np.geomspace(2.0, 10.0, 5)
+    got = kb.readout_noise(ctx, unit, _op(ctx, unit, k_obj))
+    df = element_force_resolution_N(plan)
+    part = lambda n: plan.element(n).geometry.part_name  # noqa: E731
+    want = unit_resolution(ctx.k_of(unit.measuring), ctx.k_of(unit.reference), k_obj, 0.5,
+                           df[part(unit.measuring)]["dF"],
+                           force_resolution_reference_N=df[part(unit.reference)]["dF"])
+    assert np.allclose(got.after, want["K_obj_resolution_rel"], rtol=1e-9)
+    assert np.array_equal(got.before, got.after)
+
+
+def test_thermal_zero_from_the_apparent_forces_and_eq_3(ti_plan):
+    from tactcad.mechanics.lumped_model import sensitivity
+    from tactcad.mechanics.thermal_drift import thermal_report
+
+    ctx = _context(ti_plan, force=0.1, delta_T=4.0)
+    unit = _first_unit(ctx)
+    k_obj = np.geomspace(1.0, 5.0, 5)
+    op = _op(ctx, unit, k_obj)
+    got = kb.thermal_zero(ctx, unit, op).after
+    rep = thermal_report(ti_plan, kb._Needs(0.1, (1.0, 5.0)))
+    f = {r["element"]: r["apparent_force_N_per_K"] for r in rep.records}
+    # dR / R = f_m dT / F_m - f_r dT / F_r (each force read off by its own apparent force)
+    dR = op.ratio * (f[unit.measuring] * 4.0 / op.force_m - f[unit.reference] * 4.0 / 0.1)
+    want = np.abs(sensitivity(op.ratio, op.k_m, op.k_r).value * dR) / k_obj
+    assert np.allclose(got, want, rtol=1e-9)
+    assert np.all(got > 0)
+
+
+def test_thermal_zero_scales_as_one_over_the_force(ti_plan):
+    a, b = _context(ti_plan, force=0.1), _context(ti_plan, force=0.2)
+    unit = _first_unit(a)
+    k_obj = np.array([1.3, 4.0])
+    za = kb.thermal_zero(a, unit, _op(a, unit, k_obj)).after
+    zb = kb.thermal_zero(b, unit, _op(b, unit, k_obj)).after
+    assert np.allclose(za, 2 * zb, rtol=1e-9)
+
+
+def test_thermal_span_is_the_modulus_term_the_gauge_factor_cancels(plan):
+    ctx = _context(plan, delta_T=3.0)
+    unit = _first_unit(ctx)
+    tc, _ = kb.modulus_tc_per_K(plan)
+    got = kb.thermal_span(ctx, unit, _op(ctx, unit, np.geomspace(2, 10, 4))).after
+    assert np.allclose(got, abs(tc) * 3.0, rtol=1e-9)
+
+
+def test_manufacturing_tolerance_from_the_web_band_and_gone_after_calibration(plan):
+    from tactcad.studies.verification import web_band_rel
+
+    ctx = _context(plan)
+    unit = _first_unit(ctx)
+    bands = {n: kb.web_tolerance_k_rel(g, plan.material) for n, g in plan.distinct_elements.items()}
+    assert max(bands.values()) == pytest.approx(web_band_rel(plan), rel=1e-12)
+    op = _op(ctx, unit, np.array([3.0]))
+    got = kb.manufacturing_tolerance(ctx, unit, op)
+    R = op.ratio
+    part = lambda n: plan.element(n).geometry.part_name  # noqa: E731
+    want = (R / (R - 1) * op.k_m * bands[part(unit.measuring)]
+            + op.k_r / (R - 1) * bands[part(unit.reference)]) / 3.0
+    assert np.allclose(got.before, want, rtol=1e-9)
+    assert np.all(got.after == 0)
+
+
+def test_stack_crosstalk_from_the_sensitivity_matrix(plan):
+    from tactcad.mechanics.stack_crosstalk import VERIFY_MODEL, plan_crosstalk
+
+    ctx = _context(plan)
+    unit = _first_unit(ctx)
+    k_obj = 4.0
+    op = _op(ctx, unit, np.array([k_obj]))
+    got = kb.stack_crosstalk(ctx, unit, op)
+    r = plan_crosstalk(plan, VERIFY_MODEL)
+    S, numbers = r.sensitivity, list(r.elements)
+    travel = op.travel[0]
+
+    def seen(i):  # equivalent force on gauge i from every other tip (N)
+        return sum(S[i, j] / S[i, i] * ctx.k_of(n) * k_obj * travel / (ctx.k_of(n) + k_obj)
+                   for j, n in enumerate(numbers) if j != i)
+
+    x_m, x_r = seen(numbers.index(unit.measuring)), seen(numbers.index(unit.reference))
+    e_m, e_r = op.e_m[0] + x_m / op.k_m, op.e_r[0] + x_r / op.k_r
+    read = kb.kobj_from_deflections(e_m, e_r, op.k_m, op.k_r)
+    assert got.before[0] == pytest.approx(abs(read / k_obj - 1), rel=1e-3)
+    assert got.after[0] == pytest.approx(got.before[0] * r.error_estimate_rel, rel=1e-12)
+
+
+def test_tissue_coupling_from_the_rig_model_and_eq_3(ti_plan):
+    from tactcad.mechanics.evaluation import (SampleSpec, elements_from_plan, simulate_rig)
+    from tactcad.mechanics.lumped_model import object_stiffness
+
+    ctx = _context(ti_plan, force=0.1)
+    unit = _first_unit(ctx)
+    k_obj = 2.0
+    got = kb.tissue_coupling(ctx, unit, _op(ctx, unit, np.array([k_obj])))
+    elements = elements_from_plan(ti_plan, {s.number: ctx.k_of(s.number) for s in ti_plan.slots})
+    refs = {s.number: ti_plan.reference_of(s.row).number for s in ti_plan.slots}
+    res = simulate_rig(elements, k_obj, SampleSpec("halfspace"), references=refs)
+    R = res.ratio[0, list(res.elements).index(unit.measuring)]
+    read = object_stiffness(R, ctx.k_of(unit.measuring), ctx.k_of(unit.reference))
+    assert got.before[0] == pytest.approx(abs(read / k_obj - 1), rel=1e-9)
+    assert got.before[0] > 0.01  # tips 3 mm apart on one sample couple by several percent
+    op = _op(ctx, unit, np.array([k_obj]))
+    shifted = object_stiffness(op.ratio[0] + kb.COUPLING_MODEL_ERROR_REL * (R - op.ratio[0]),
+                               op.k_m, op.k_r)
+    assert got.after[0] == pytest.approx(abs(shifted / k_obj - 1), rel=0.05)
+
+
+def test_gauge_model_against_the_next_level_that_computes_the_strain(plan):
+    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+
+    assert kb.comparison_level(plan, "closed-form") == "fem2d"
+    assert kb.comparison_level(plan, "beam") == "fem2d"
+    err = kb.gauge_model_error_rel(plan, "closed-form")
+    grid = readout_chain(plan).grid_length_mm
+    name, g = next(iter(plan.distinct_elements.items()))
+    want = (gauge_strain_per_N(g, plan.material, grid, "closed-form")["grid"]
+            / gauge_strain_per_N(g, plan.material, grid, "fem2d")["grid"] - 1)
+    assert err[name] == pytest.approx(want, rel=1e-12)
+    ctx = _context(plan)
+    unit = _first_unit(ctx)
+    c = kb.gauge_model(ctx, unit, _op(ctx, unit, np.array([3.0])))
+    assert c.before[0] > 0 and c.after[0] == 0
+
+
+def test_expected_calibration_error_matches_fits_of_simulated_runs():
+    from tactcad.mechanics.calibration import fit_calibration, synthetic_calibration
+
+    k, k_v, noise_v = 30.0, -40.0, 3e-4
+    want_k, want_kv = kb.expected_calibration_stderr_rel(k, k_v, noise_v)
+    fits = [fit_calibration(d.z_travel_um, d.force_N, d.signal_V)
+            for d in (synthetic_calibration(k, k_v, 0.1, noise_signal_V=noise_v, seed=s)
+                      for s in range(400))]
+    # the scatter of the fitted slopes is their standard error
+    assert np.std([f.K_N_per_mm for f in fits]) / k == pytest.approx(want_k, rel=0.1)
+    assert np.std([f.K_v_V_per_mm for f in fits]) / abs(k_v) == pytest.approx(want_kv, rel=0.1)
+
+
+def test_calibration_takes_a_files_fit_for_its_elements(plan):
+    from tactcad.mechanics.calibration import fit_calibration, synthetic_calibration
+
+    ctx0 = _context(plan)
+    unit = _first_unit(ctx0)
+    data = synthetic_calibration(ctx0.k_of(unit.measuring), -50.0, 0.0, noise_force_N=0.01)
+    fit = fit_calibration(data.z_travel_um, data.force_N, data.signal_V)
+    ctx = _context(plan, calibrations={unit.measuring: fit})
+    op = _op(ctx, unit, np.array([3.0]))
+    se = kb._calibration_stderr(ctx)
+    assert se[unit.measuring] == (fit.stderr_K_N_per_mm / fit.K_N_per_mm,
+                                  fit.stderr_K_v_V_per_mm / abs(fit.K_v_V_per_mm))
+    assert kb.calibration(ctx, unit, op).after[0] > kb.calibration(ctx0, unit, op).after[0]
+
+
+def test_totals_are_the_rss_and_the_sum_and_the_dominant_source_is_the_largest(ti_plan):
+    b = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0)
+    assert len(b.k_obj) == kb.BUDGET_POINTS and b.k_obj[0] == 1.0 and b.k_obj[-1] == 5.0
+    for u in b.units:
+        after = np.array([u["sources"][k]["after_rel"] for k in kb.SOURCE_KEYS])
+        assert np.allclose(u["rss_rel"], np.sqrt((after ** 2).sum(0)))
+        assert np.allclose(u["worst_case_rel"], after.sum(0))
+        assert u["dominant"] == [kb.SOURCE_KEYS[i] for i in after.argmax(0)]
+        assert np.all(np.array(u["worst_case_rel"]) >= np.array(u["rss_rel"]))
+    arr = b.array
+    assert arr["rss_rel"] == [min(u["rss_rel"][i] for u in b.units) for i in range(len(b.k_obj))]
+
+
+def test_a_design_of_four_columns_has_its_budget():
+    from tactcad.api import load
+
+    plan = load(str(TI), set={"array.columns": 4, "arms.lengths_mm": FOUR_COLUMNS}).plan
+    b = kb.kobj_budget(plan, (1.0, 5.0), 0.1)
+    assert b.units and all(np.all(np.isfinite(u["rss_rel"])) for u in b.units)
+
+
+@pytest.mark.parametrize("kwargs, field", [({"force_N": 0.0}, "force_N"),
+                                           ({"delta_T_K": 101.0}, "delta_T_K"),
+                                           ({"kobj_range": (5.0, 1.0)}, "kobj_range_N_per_mm"),
+                                           ({"points": 1}, "points")])
+def test_bad_inputs_are_named(ti_plan, kwargs, field):
+    from tactcad.errors import DesignError
+
+    args = {"kobj_range": (1.0, 5.0), "force_N": 0.1, **kwargs}
+    with pytest.raises(DesignError, match=field):
+        kb.kobj_budget(ti_plan, **args)
+
+
+def test_the_modulus_coefficient_is_the_grades_when_the_library_carries_one(ti_plan, monkeypatch):
+    from types import SimpleNamespace
+
+    import tactcad.vocabulary.material_library as ml
+
+    tc, where = kb.modulus_tc_per_K(ti_plan)
+    if "stand-in" in where:  # today's library: the stated stand-in, said so
+        assert tc == kb.MODULUS_TC_STAND_IN_PER_K
+    real = ml.material_grade(ti_plan.material.grade)
+    grade = SimpleNamespace(name="g", youngs_modulus_tc_per_K=-5.5e-4,
+                            cte_ppm_per_K=real.cte_ppm_per_K,
+                            source=lambda field: f"doc of {field}")
+    monkeypatch.setattr(ml, "material_grade", lambda name: grade)
+    assert kb.modulus_tc_per_K(ti_plan) == (-5.5e-4, "grade g: doc of youngs_modulus_tc_per_K")
+    ctx = _context(ti_plan, delta_T=2.0)
+    unit = _first_unit(ctx)
+    span = kb.thermal_span(ctx, unit, _op(ctx, unit, np.array([2.0]))).after
+    assert span[0] == pytest.approx(5.5e-4 * 2.0)
