@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pytest
@@ -93,13 +94,19 @@ def test_thermal_zero_from_the_apparent_forces_and_eq_3(ti_plan):
     k_obj = np.geomspace(1.0, 5.0, 5)
     op = _op(ctx, unit, k_obj)
     got = kb.thermal_zero(ctx, unit, op).after
-    rep = thermal_report(ti_plan, kb._Needs(0.1, (1.0, 5.0)))
+    rep = thermal_report(ti_plan, _Needs(0.1, (1.0, 5.0)))
     f = {r["element"]: r["apparent_force_N_per_K"] for r in rep.records}
-    # dR / R = f_m dT / F_m - f_r dT / F_r (each force read off by its own apparent force)
+    # dR / R = f_m dT / F_m - f_r dT / F_r (each force read off by its own apparent force);
+    # the thermal model takes R's exact change, this its first order: within 1 %
     dR = op.ratio * (f[unit.measuring] * 4.0 / op.force_m - f[unit.reference] * 4.0 / 0.1)
-    want = np.abs(sensitivity(op.ratio, op.k_m, op.k_r).value * dR) / k_obj
-    assert np.allclose(got, want, rtol=1e-9)
-    assert np.all(got > 0)
+    want = sensitivity(op.ratio, op.k_m, op.k_r).value * dR / k_obj
+    assert np.allclose(np.abs(got), np.abs(want), rtol=1e-2)
+    assert np.array_equal(np.sign(got), np.sign(want))
+
+
+class _Needs(NamedTuple):
+    full_scale_force_N: float
+    kobj_range_N_per_mm: tuple[float, float]
 
 
 def test_thermal_zero_scales_as_one_over_the_force(ti_plan):
@@ -108,15 +115,20 @@ def test_thermal_zero_scales_as_one_over_the_force(ti_plan):
     k_obj = np.array([1.3, 4.0])
     za = kb.thermal_zero(a, unit, _op(a, unit, k_obj)).after
     zb = kb.thermal_zero(b, unit, _op(b, unit, k_obj)).after
-    assert np.allclose(za, 2 * zb, rtol=1e-9)
+    assert np.allclose(za, 2 * zb, rtol=1e-2)  # first order in 1 / F; R changes exactly
 
 
-def test_thermal_span_is_the_modulus_term_the_gauge_factor_cancels(plan):
+def test_thermal_span_is_the_modulus_and_expansion_term_the_gauge_factor_cancels(plan):
+    from tactcad.vocabulary.material_library import material_grade
+
     ctx = _context(plan, delta_T=3.0)
     unit = _first_unit(ctx)
     tc, _ = kb.modulus_tc_per_K(plan)
+    alpha = material_grade(plan.material.grade).cte_ppm_per_K * 1e-6
     got = kb.thermal_span(ctx, unit, _op(ctx, unit, np.geomspace(2, 10, 4))).after
-    assert np.allclose(got, abs(tc) * 3.0, rtol=1e-9)
+    # K_m and K_r scale alike by (1 + tc dT)(1 + alpha dT); eq. 3 reads K_obj scaled the same
+    assert np.allclose(got, 1.0 / ((1 + tc * 3.0) * (1 + alpha * 3.0)) - 1.0, rtol=1e-9)
+    assert got[0] > 0  # E falls with temperature faster than the spring grows
 
 
 def test_manufacturing_tolerance_from_the_web_band_and_gone_after_calibration(plan):
@@ -258,21 +270,15 @@ def test_bad_inputs_are_named(ti_plan, kwargs, field):
         kb.kobj_budget(ti_plan, **args)
 
 
-def test_the_modulus_coefficient_is_the_grades_when_the_library_carries_one(ti_plan, monkeypatch):
-    from types import SimpleNamespace
-
-    import tactcad.vocabulary.material_library as ml
+def test_the_modulus_coefficient_is_the_readout_sections_when_it_states_one(ti_plan):
+    from tactcad.api import load
 
     tc, where = kb.modulus_tc_per_K(ti_plan)
-    if "stand-in" in where:  # today's library: the stated stand-in, said so
-        assert tc == kb.MODULUS_TC_STAND_IN_PER_K
-    real = ml.material_grade(ti_plan.material.grade)
-    grade = SimpleNamespace(name="g", youngs_modulus_tc_per_K=-5.5e-4,
-                            cte_ppm_per_K=real.cte_ppm_per_K,
-                            source=lambda field: f"doc of {field}")
-    monkeypatch.setattr(ml, "material_grade", lambda name: grade)
-    assert kb.modulus_tc_per_K(ti_plan) == (-5.5e-4, "grade g: doc of youngs_modulus_tc_per_K")
-    ctx = _context(ti_plan, delta_T=2.0)
+    assert tc < 0 and "grade" in where
+    stated = load(str(TI), set={"readout.substrate_modulus_tc_per_K": -5.5e-4}).plan
+    assert kb.modulus_tc_per_K(stated)[0] == -5.5e-4
+    ctx = _context(stated, delta_T=2.0)
     unit = _first_unit(ctx)
     span = kb.thermal_span(ctx, unit, _op(ctx, unit, np.array([2.0]))).after
-    assert span[0] == pytest.approx(5.5e-4 * 2.0)
+    assert span[0] == pytest.approx(1.0 / ((1 - 5.5e-4 * 2.0) * (1 + 2.0 * 8.6e-6)) - 1.0,
+                                    rel=2e-2)

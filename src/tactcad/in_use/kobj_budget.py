@@ -95,7 +95,6 @@ CALIBRATION_FORCE_NOISE_N = 0.001
 CALIBRATION_REPEATS = 3
 #: Stand-in temperature coefficient of Young's modulus (1/K) where the material library
 #: gives none: (1/E) dE/dT of about -4e-4 /K for 6061 and Ti-6Al-4V (issue 42).
-MODULUS_TC_STAND_IN_PER_K = -4e-4
 
 
 class Operating(NamedTuple):
@@ -223,53 +222,50 @@ def readout_noise(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     return Contribution(rel, rel)
 
 
-def _thermal(ctx: Context):
-    from tactcad.mechanics.thermal_drift import thermal_report
+def _unit_thermal(ctx: Context, unit: Unit, op: Operating):
+    """The thermal model's K_obj error of ``unit`` at ``op`` (one call per force and grid):
+    :func:`tactcad.mechanics.thermal_drift.kobj_thermal_error`."""
+    from tactcad.mechanics.thermal_drift import kobj_thermal_error
 
-    needs = _Needs(ctx.force_N, (1.0, 2.0))  # the report's own K_obj figure is not used
-    return thermal_report(ctx.plan, needs, ctx.model, dict(ctx.k), dict(ctx.k_error))
-
-
-class _Needs(NamedTuple):
-    full_scale_force_N: float
-    kobj_range_N_per_mm: tuple[float, float]
+    key = f"thermal {op.force_r!r} {op.k_obj.tolist()!r}"
+    errors = ctx.once(key, lambda: kobj_thermal_error(
+        ctx.plan, None, op.force_r, ctx.delta_T_K, op.k_obj, ctx.model, dict(ctx.k)))
+    for e in errors:
+        if (e.element, e.reference_element) == (unit.measuring, unit.reference):
+            return e
+    raise DesignError("unit", f"{unit.reference}/{unit.measuring}",
+                      "a measuring element with its row's stiffer reference")
 
 
 def thermal_zero(ctx: Context, unit: Unit, op: Operating) -> Contribution:
-    """(b) Each element's apparent tip force per kelvin times the temperature step, both
-    elements at the same step (signed); none with a half-bridge dummy gauge."""
-    rep = ctx.once("thermal", lambda: _thermal(ctx))
-    zero = {r["element"]: 0.0 if rep.setting.dummy else r["apparent_force_N_per_K"]
-            for r in rep.records}
-    dT = ctx.delta_T_K
-    rel = signed_rel(op, de_m=zero[unit.measuring] * dT / op.k_m,
-                     de_r=zero[unit.reference] * dT / op.k_r)
+    """(b) The zero drift over the temperature step (thermal output, and two-wire leads
+    when the design has them; none with a half-bridge dummy gauge), through R and eq. 3
+    (signed; scales as 1 / force): :func:`tactcad.mechanics.thermal_drift.kobj_thermal_error`."""
+    rel = np.asarray(_unit_thermal(ctx, unit, op).zero_rel, float)
     return Contribution(rel, rel)
 
 
 def modulus_tc_per_K(plan: Plan) -> tuple[float, str]:
-    """(1/E) dE/dT of the plan's material (1/K) and its source: the library grade's when it
-    carries one, else :data:`MODULUS_TC_STAND_IN_PER_K`, said so."""
-    from tactcad.vocabulary.material_library import material_grade
+    """(1/E) dE/dT of the plan's elements (1/K) and its source, as the thermal model takes it
+    (:func:`tactcad.mechanics.thermal_drift.thermal_setting`: ``[readout]``'s, else the
+    library grade's, a stand-in marked unsourced).
 
-    grade = material_grade(plan.material.grade) if plan.material.grade else None
-    tc = getattr(grade, "youngs_modulus_tc_per_K", None)
-    if tc is not None and math.isfinite(tc):
-        where = getattr(grade, "provenance", grade.source)  # a stand-in says where it is from
-        return float(tc), f"grade {grade.name}: {where('youngs_modulus_tc_per_K')}"
-    return MODULUS_TC_STAND_IN_PER_K, ("the material library gives no temperature coefficient "
-                                       "of E for this material: stand-in -4e-4 /K (6061 and "
-                                       "Ti-6Al-4V, issue 42)")
+    Raises:
+        DesignError: the material names no grade and ``[readout]`` states no coefficient.
+    """
+    from tactcad.mechanics.thermal_drift import thermal_setting
+
+    setting = thermal_setting(plan)
+    return setting.modulus_tc_per_K, setting.sources["substrate_modulus_tc_per_K"]
 
 
 def thermal_span(ctx: Context, unit: Unit, op: Operating) -> Contribution:
-    """(c) The gauge factor's coefficient on both deflections and the modulus's on both
-    stiffnesses, over the temperature step (signed)."""
-    rep = ctx.once("thermal", lambda: _thermal(ctx))
-    tc_e, _ = ctx.once("modulus_tc", lambda: modulus_tc_per_K(ctx.plan))
-    dT, gf = ctx.delta_T_K, rep.setting.gf_tc_per_K
-    rel = signed_rel(op, de_m=op.e_m * gf * dT, de_r=op.e_r * gf * dT,
-                     dk_m=op.k_m * tc_e * dT, dk_r=op.k_r * tc_e * dT)
+    """(c) The springs' span drift over the temperature step: the modulus's coefficient and
+    the thermal expansion change K_m and K_r alike, which R cannot see (the gauge factor's
+    and the leads' span terms are common to both gauges and cancel in R); signed, the same at
+    every K_obj: :func:`tactcad.mechanics.thermal_drift.kobj_thermal_error`."""
+    rel = np.broadcast_to(np.asarray(_unit_thermal(ctx, unit, op).span_rel, float),
+                          op.k_obj.shape).copy()
     return Contribution(rel, rel)
 
 
