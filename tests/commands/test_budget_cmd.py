@@ -32,9 +32,12 @@ def test_force_and_temperature_step_reach_the_budget():
                               "--force", "0.05").stdout)
     assert base["force_N"] == 0.1 and more["force_N"] == 0.05 and more["delta_T_K"] == 4
     a, b = base["units"][0]["sources"], more["units"][0]["sources"]
-    # the span scales with the step; the zero with the step over the force
-    assert b["thermal_span"]["after_rel"][0] == pytest.approx(2 * a["thermal_span"]["after_rel"][0], rel=1e-2)
-    assert b["thermal_zero"]["after_rel"][0] == pytest.approx(4 * a["thermal_zero"]["after_rel"][0])
+    # the span scales with the step; the zero with the step over the force (to first order:
+    # the thermal model changes R exactly)
+    assert b["thermal_span"]["after_rel"][0] == pytest.approx(
+        2 * a["thermal_span"]["after_rel"][0], rel=1e-2)
+    assert b["thermal_zero"]["after_rel"][0] == pytest.approx(
+        4 * a["thermal_zero"]["after_rel"][0], rel=2e-2)
 
 
 def test_a_non_paper_design_of_four_columns_and_the_text_output(tmp_path):
