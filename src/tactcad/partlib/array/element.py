@@ -25,8 +25,8 @@ from tactcad.geometry.profile import Arc, element_profile
 from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.prism import Hole, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
-from tactcad.vocabulary.process import Method, Process
-from tactcad.vocabulary.schema import Section, name_number, number
+from tactcad.vocabulary.process import CUT_PROCESSES, DEFAULT_CUT_PROCESS, cut_process
+from tactcad.vocabulary.schema import Section, choice, name_number, number
 
 if TYPE_CHECKING:
     from tactcad.kernel.shapes import Solid
@@ -54,6 +54,8 @@ class ElementSection(Section):
     overall_length_mm: number(10.0, 60.0)
     inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
     web_tolerance_mm: number(0.0, 0.1) = None  # or [tolerances] web_thickness_mm
+    #: how the elements are cut (:data:`tactcad.vocabulary.process.CUT_PROCESSES`); wire-edm when left out
+    process: choice(CUT_PROCESSES, "the processes that cut a part from sheet") = None
 
 
 @dataclass(frozen=True)
@@ -81,6 +83,8 @@ class ElementGeometry:
     web_tolerance_mm: float
     bolt_holes: tuple[Hole, ...]
     start_hole_diameter_mm: float
+    #: the cut process's name (:func:`tactcad.vocabulary.process.cut_process`)
+    process: str = DEFAULT_CUT_PROCESS
 
     @property
     def part_name(self) -> str:
@@ -145,11 +149,11 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
 
 
 def element_data(g: ElementGeometry, material: str) -> PartData:
-    """The spec of one distinct element: wire EDM from ``material`` sheet,
-    volume = profile area x sheet thickness (mm^3)."""
+    """The spec of one distinct element: cut by its process (``[element]
+    process``) from ``material`` sheet, volume = profile area x sheet thickness (mm^3)."""
     prof = element_profile(g)
     return PartData(
-        name=g.part_name, kind="fabricated", process=Process("wire EDM from sheet", Method.SHEET),
+        name=g.part_name, kind="fabricated", process=cut_process(g.process).part_process(),
         material=material, color=element_shade(g.arm_length_mm),
         expected_volume_mm3=prof.area_mm2 * g.sheet_thickness_mm,
         expected_bbox_mm=prism_bbox(prof, g.sheet_thickness_mm), geometry=g, profile=prof,
