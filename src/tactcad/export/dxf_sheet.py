@@ -71,6 +71,7 @@ class ShopProfile:
         keep_out: points (mm, profile frame) the lead-ins stay away from: the
             web (thinnest section over the notch) and the contact-face centre.
         web_thickness_mm: the design web for elements, None otherwise.
+        web_tolerance_mm: +/- on the web as the drawing gives it, None without a web.
         designation: the material with alloy and temper, as the BOM and the
             drawings write it (:func:`tactcad.catalogue.shop.material_designation`).
         sheet_material: the material its nested sheet is named by
@@ -88,6 +89,7 @@ class ShopProfile:
     keep_out: tuple[Point, ...]
     file_mark: str
     web_thickness_mm: float | None = None
+    web_tolerance_mm: float | None = None
     designation: str = ""
     sheet_material: str = ""
     process: str = DEFAULT_CUT_PROCESS
@@ -174,6 +176,7 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
             material=specs[name].material, thickness_mm=specs[name].thickness_mm,
             copy_marks=tuple(f"E{n} {_arm_mark(g.arm_length_mm)}" for n in numbers),
             keep_out=element_keep_out(g), web_thickness_mm=g.web_thickness_mm,
+            web_tolerance_mm=g.web_tolerance_mm,
             designation=material_designation(specs[name], plan),
             process=specs[name].process.key or DEFAULT_CUT_PROCESS, wire=plan.edm,
             file_mark=f"{'/'.join(f'E{n}' for n in numbers)} {_arm_mark(g.arm_length_mm)} "
