@@ -15,7 +15,7 @@ from tactcad.catalogue.files import ARRAY_STEP
 from tactcad.design.array_plan import Plan
 from tactcad.assembly.inventory import array_envelope_mm
 from tactcad.studies.verification import requirements_record
-from tactcad.paper.paper_load import strength_summary
+from tactcad.studies.reference_loads import strength_summary
 from tactcad.store import stack_versions
 
 
