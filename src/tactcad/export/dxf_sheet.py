@@ -501,3 +501,21 @@ def write_shop_dxf_files(plan: Plan, staging: Path, log: Callable[[str], None],
                         "dxf_version": version, "process": group[0].process})
     log(f"  wrote {len(records)} DXF files in dxf/ ({version})")
     return records
+
+
+def shop_section(plan: Plan) -> dict:
+    """The DXF kind's section of the manifest: per cut part its process, what
+    its shop file is, the process's figures for its sheet (each with its rule
+    and source), its tabs and the stated cut order (mm)."""
+    out = {}
+    for sp in shop_profiles(plan):
+        cut, lim = sp.cut, sp.limits
+        x0, y0, x1, y1 = sp.profile.bbox_mm
+        count, width = cut.shop.tabs.tabs_for(max(x1 - x0, y1 - y0)) if cut.shop.tabs else (0, 0.0)
+        out[sp.part] = {"process": cut.name, "file_kind": cut.shop.kind,
+                        "thickness_mm": sp.thickness_mm,
+                        "figures": {k: f.as_json() for k, f in lim.figures().items()},
+                        "tabs": {"count": count, "width_mm": width},
+                        "cut_order": list(cut.shop.cut_order), "surface": cut.surface}
+    return out
+
