@@ -16,13 +16,13 @@ from tactcad.checks.check_result import failures
 from tactcad.checks.dxf_readback import (check_etch_artwork, cut_order_checks, read_dxf,
                                          tab_checks)
 from tactcad.checks.dxf_shop import check_shop_dxf_files
-from tactcad.design.array_plan import load_design, plan_from_dict, with_overrides
+from tactcad.design.array_plan import EXAMPLES, load_design, plan_from_dict, with_overrides
 from tactcad.export.dxf_sheet import shop_profiles, write_shop_dxf_files
 from tactcad.geometry.profile import contour_points
 from tactcad.vocabulary.process import EDM_TABS
 from tactcad.vocabulary.schema import read_toml
 
-TI = "hardware/ti_array_2x3/ti_array_2x3.toml"
+TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
 ETCHED = {"element.process": "photochemical-etching", "sheet.thickness_mm": 0.3}
 
 

@@ -11,11 +11,11 @@ import pytest
 
 from tactcad.checks.groups import CHECK_GROUPS
 from tactcad.checks.process_rules import part_rule_checks, process_rule_checks
-from tactcad.design.array_plan import load_design, plan_from_dict, with_overrides
+from tactcad.design.array_plan import EXAMPLES, load_design, plan_from_dict, with_overrides
 from tactcad.export.dxf_sheet import shop_profiles
 from tactcad.vocabulary.schema import read_toml
 
-TI = "hardware/ti_array_2x3/ti_array_2x3.toml"
+TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
 
 
 def _element(**overrides):

@@ -8,13 +8,13 @@ import warnings
 
 import pytest
 
-from tactcad.design.array_plan import load_design, plan_from_dict, with_overrides
+from tactcad.design.array_plan import EXAMPLES, load_design, plan_from_dict, with_overrides
 from tactcad.export import kinds, manifest
 from tactcad.export.manifest import (HEAD, MANIFEST_SECTIONS, ManifestSection, design_facts,
                                      register_section)
 from tactcad.vocabulary.schema import read_toml
 
-TI = "hardware/ti_array_2x3/ti_array_2x3.toml"
+TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
 KEYS = ["parts", "assemblies", "strength", "requirements", "thermal", "derived", "assumptions"]
 
 

@@ -12,11 +12,11 @@ import sys
 
 import pytest
 
-from tactcad.design.array_plan import DEFAULT_DESIGN, load_design
+from tactcad.design.array_plan import DEFAULT_DESIGN, EXAMPLES, load_design
 from tactcad.studies.reference_loads import (REFERENCE_LOAD_SOURCES, reference_load_of,
                                              strength_summary)
 
-TI = "hardware/ti_array_2x3/ti_array_2x3.toml"
+TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
 
 SCRIPT = """
 import json, os, sys

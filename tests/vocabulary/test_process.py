@@ -5,14 +5,15 @@ import pickle
 
 import pytest
 
-from tactcad.design.array_plan import EdmRules, load_design, plan_from_dict, with_overrides
+from tactcad.design.array_plan import (EXAMPLES, EdmRules, load_design, plan_from_dict,
+                                       with_overrides)
 from tactcad.errors import DesignError
 from tactcad.vocabulary.process import (CUT_PROCESSES, ETCH_FACTOR, ETCH_FLOOR_MM, ETCH_THIN_MM,
                                         ETCH_TOLERANCE_FLOOR_MM, LASER_KERF_MM, Method, Process,
                                         cut_process, process_names)
 from tactcad.vocabulary.schema import read_toml
 
-TI = "hardware/ti_array_2x3/ti_array_2x3.toml"
+TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
 WIRE = EdmRules(0.25, 0.025, 0.8)
 
 
