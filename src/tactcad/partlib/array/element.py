@@ -267,15 +267,22 @@ def notes(d, pen) -> list[str]:
     used = slots_using(plan, spec.name)
     fmt_mm = pen.fmt_mm
     resonance = pen.resonance_note(plan, spec.name)
+    cut = cut_process(g.process)
+    lim = cut.limits(g.sheet_thickness_mm, plan.edm, plan.material.grade or spec.material)
+    files = (f"{Path(pen.profile_dxf_name(spec.name, len(used))).name} (or the nested sheet "
+             f"{Path(pen.sheet_dxf_of(plan, spec)).name})")
+    if cut.shop.offset_outline:  # the file is the artwork, not the part
+        how = (f"; the file is the etch artwork, its outline "
+               f"{fmt_mm(lim.compensation_per_side_mm.value_mm)} mm outside the nominal contour")
+    else:
+        how = (f" along the nominal contour; the tool offset is the shop's CAM setting. Start "
+               f"holes Ø{fmt_mm(g.start_hole_diameter_mm)} at the bolt-hole centres")
     return [
         pen.web_note(plan, g),
-        f"Wire EDM from {fmt_mm(g.sheet_thickness_mm)} mm {spec.material} sheet along "
-        f"the nominal contour of {Path(pen.profile_dxf_name(spec.name, len(used))).name} "
-        f"(or the nested sheet {Path(pen.sheet_dxf_of(plan, spec)).name})"
-        f"; wire offset is the shop's CAM setting. Start holes "
-        f"Ø{fmt_mm(g.start_hole_diameter_mm)} at the bolt-hole centres.",
-        f"Inside corners not dimensioned: R >= {fmt_mm(plan.edm.min_inside_radius_mm)} "
-        f"(wire radius + spark gap). Do not break the edges of the web or of the "
+        f"{pen.sentence(cut.text)} ({fmt_mm(g.sheet_thickness_mm)} mm {spec.material}) "
+        f"from {files}{how}.",
+        f"Inside corners not dimensioned: R >= {fmt_mm(lim.min_inside_radius_mm.value_mm)} "
+        f"({lim.min_inside_radius_mm.rule}). Do not break the edges of the web or of the "
         f"contact face; deburr elsewhere.",
         f"Used as array element{'s' if len(used) > 1 else ''} "
         + ", ".join(str(k) for k in used) + f". {pen.gauge_note(plan, g)}",
