@@ -47,7 +47,8 @@ from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_mate
 from tactcad.catalogue.shop import material_designation
 from tactcad.export.dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, Tab,
                                 circle_entry, placed_extents, write_dxf)
-from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, CutProcess, ProcessLimits, cut_process
+from tactcad.vocabulary.process import (DEFAULT_CUT_PROCESS, CutProcess, ProcessLimits, WireSettings,
+                                        cut_process)
 
 DXF_VERSION_ENV = "TACTCAD_DXF_VERSION"  # the writer's option: R2010 (default) or R12
 LEAD_IN_MM = 1.0  # start point of the outer cut, this far outside the part
@@ -93,7 +94,7 @@ class ShopProfile:
     designation: str = ""
     sheet_material: str = ""
     process: str = DEFAULT_CUT_PROCESS
-    wire: object = None
+    wire: WireSettings | None = None
 
     @property
     def file_name(self) -> str:
