@@ -2,7 +2,7 @@
 reference load enters through its hook in the reference-load registry
 (:mod:`tactcad.studies.reference_loads`), so exporting a design that does not
 cite the paper never imports ``tactcad.paper`` (checked in a fresh process,
-every job in it); the paper's own design still gets its load."""
+every job in it); the paper's own design still imports it."""
 
 from __future__ import annotations
 
@@ -12,9 +12,7 @@ import sys
 
 import pytest
 
-from tactcad.design.array_plan import DEFAULT_DESIGN, EXAMPLES, load_design
-from tactcad.studies.reference_loads import (REFERENCE_LOAD_SOURCES, reference_load_of,
-                                             strength_summary)
+from tactcad.design.array_plan import DEFAULT_DESIGN, EXAMPLES
 
 TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
 
@@ -35,22 +33,6 @@ def _paper_modules(design, out, only=None) -> list[str]:
     args = [sys.executable, "-c", SCRIPT, str(design), str(out)] + ([only] if only else [])
     done = subprocess.run(args, capture_output=True, text=True, check=True)
     return json.loads(done.stdout.strip().splitlines()[-1])
-
-
-def test_the_paper_is_one_registered_source():
-    assert REFERENCE_LOAD_SOURCES["paper"].module == "tactcad.paper.paper_load"
-
-
-def test_a_new_design_has_no_reference_load_and_its_records_none():
-    plan = load_design(TI)
-    assert reference_load_of(plan) is None
-    assert not any("stress_MPa_at_paper_load" in r for r in strength_summary(plan))
-
-
-def test_the_paper_design_keeps_its_load():
-    plan = load_design(DEFAULT_DESIGN)
-    assert reference_load_of(plan).force_N == 2.0
-    assert all("stress_MPa_at_paper_load" in r for r in strength_summary(plan))
 
 
 def test_manifest_and_shop_files_of_a_new_design_import_no_paper(tmp_path):

@@ -1,4 +1,4 @@
-"""DXF for wire EDM: the nominal contour as closed polylines with bulges.
+"""DXF for the cutting shop: each contour as a closed polyline with bulges.
 
 What a cutting shop expects: lines and arcs only (no SPLINE/ELLIPSE), each
 contour one closed chain, flat on z = 0, units mm. The contour is nominal:
