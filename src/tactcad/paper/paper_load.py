@@ -15,7 +15,6 @@ from __future__ import annotations
 
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.design.requirements_section import cites_paper
-from tactcad.mechanics import element_strength as strength
 from tactcad.mechanics.element_strength import ElementStress, ReferenceLoad, StrengthRecord
 from tactcad.vocabulary.material_library import StrengthSettings
 
