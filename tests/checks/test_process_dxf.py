@@ -149,3 +149,15 @@ def test_etch_check_fails_on_an_uncompensated_outline(wire, etched):
     bad = check_etch_artwork(wout / wsp.file_name, "x", wsp.profile.outer,
                              [(h.centre, h.radius) for h in wsp.profile.holes], d)
     assert {r.check for r in failures(bad)} >= {"etch_compensation", "etch_holes", "etch_no_lead_ins"}
+
+
+def test_laser_files_pierce_instead_of_start_holes_and_pass_their_checks(tmp_path):
+    plan = _plan(**{"element.process": "laser-cutting", "sheet.thickness_mm": 0.5})
+    write_shop_dxf_files(plan, tmp_path, lambda s: None)
+    element = next(sp for sp in shop_profiles(plan) if sp.part.startswith("element_"))
+    doc = ezdxf.readfile(tmp_path / element.file_name)
+    assert not doc.modelspace().query('CIRCLE[layer=="START_HOLE"]')
+    assert doc.modelspace().query('LINE[layer=="TAB"]')
+    assert "pierce point" in doc.header.custom_vars.get("CUT_ORDER")
+    results = check_shop_dxf_files(plan, tmp_path)
+    assert not failures(results), "\n".join(r.line() for r in failures(results))

@@ -395,7 +395,7 @@ def _pieces(contours: list[Contour]) -> list[tuple[Contour, list[Contour]]]:
 def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
                       face_bbox_mm: tuple[float, float, float, float], edm: EdmRules,
                       web_thickness_mm: float | None = None, lead_ins: bool = True,
-                      marks: Sequence[str] = ()) -> list[CheckResult]:
+                      marks: Sequence[str] = (), start_holes: bool = True) -> list[CheckResult]:
     """Every DXF check for one wire-cut profile.
 
     Args:
@@ -406,6 +406,7 @@ def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
         web_thickness_mm: the design's web thickness, when the part has a flexure hinge.
         lead_ins: whether the file must carry one lead-in per contour (shop files do).
         marks: the part-mark texts the ``MARK`` layer must hold.
+        start_holes: whether every cut-out must hold a drilled start hole (wire EDM).
     """
     r = read_dxf(path)
     out = _file_checks(r, name)
@@ -421,7 +422,8 @@ def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
     bb = contour_bbox(outer.segments)
     dev = max(abs(a - b) for a, b in zip(bb, face_bbox_mm))
     out.append(CheckResult("dxf_bbox", name, dev <= BBOX_TOL_MM, f"max deviation {dev:.1e} mm"))
-    out += _piece_checks(name, outer, inner, r.start_holes, face_area_mm2, edm, web_thickness_mm)
+    out += _piece_checks(name, outer, inner, r.start_holes, face_area_mm2, edm, web_thickness_mm,
+                         start_holes=start_holes)
     if lead_ins:
         out += _lead_in_checks(name, r, [(outer, inner)], [web_thickness_mm is not None])
     if marks:
@@ -444,12 +446,14 @@ class SheetPart:
 
 
 def check_sheet_dxf(path: str | Path, name: str, parts: Sequence[SheetPart], edm: EdmRules,
-                    gap_mm: float, lead_ins: bool = True) -> list[CheckResult]:
+                    gap_mm: float, lead_ins: bool = True,
+                    start_holes: bool = True) -> list[CheckResult]:
     """Every check of a nested sheet, read from the file: file checks, closed
     contours, one outer contour per copy matched to its profile by area and
     box size, each copy's cutting rules (``edm``: anything with
-    ``min_inside_radius_mm`` and ``min_slot_width_mm``) and web, lead-ins and
-    start holes (``lead_ins``: a cutting tool's file), part marks, and the gap
+    ``min_inside_radius_mm`` and ``min_slot_width_mm``) and web, lead-ins
+    (``lead_ins``: a cutting tool's file) and drilled start holes
+    (``start_holes``: wire EDM's), part marks, and the gap
     between copies (outer contours >= ``gap_mm`` apart, no lead-in line
     crossing another copy)."""
     r = read_dxf(path)
@@ -476,7 +480,7 @@ def check_sheet_dxf(path: str | Path, name: str, parts: Sequence[SheetPart], edm
         size_dev = max(abs(match.size_mm[0] - (x1 - x0)), abs(match.size_mm[1] - (y1 - y0)))
         out.append(CheckResult("dxf_bbox", sub, size_dev <= BBOX_TOL_MM, f"size deviation {size_dev:.1e} mm"))
         out += _piece_checks(sub, outer, inner, r.start_holes, match.face_area_mm2, edm,
-                             match.web_thickness_mm, start_holes=lead_ins)
+                             match.web_thickness_mm, start_holes=start_holes)
         web_flags.append(match.web_thickness_mm is not None)
     if lead_ins:
         out += _lead_in_checks(name, r, pieces, web_flags)

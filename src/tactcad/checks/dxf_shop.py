@@ -89,7 +89,8 @@ def _profile_checks(out_dir: Path, sp: ShopProfile, plan: Plan) -> tuple[list[Ch
         return results, SheetPart(sp.part, drawn.area_mm2, (x1 - x0, y1 - y0), None, sp.copy_marks)
     area, bbox = _face(sp)
     results = check_profile_dxf(path, name, area, bbox, cut_rules(sp), sp.web_thickness_mm,
-                                lead_ins=True, marks=(sp.file_mark,))
+                                lead_ins=True, marks=(sp.file_mark,),
+                                start_holes=sp.cut.shop.start_holes)
     results += _process_checks(path, name, [sp], [sp])
     return results, SheetPart(sp.part, area, (bbox[2] - bbox[0], bbox[3] - bbox[1]),
                               sp.web_thickness_mm, sp.copy_marks)
@@ -111,7 +112,8 @@ def check_shop_dxf_files(plan: Plan, out_dir: str | Path) -> list[CheckResult]:
         rel = sheet_dxf_name(material, t)
         cutting = group[0].cut.shop.lead_ins
         results += check_sheet_dxf(out_dir / rel, Path(rel).name, expected, cut_rules(group[0]),
-                                   sheet_gap_mm(plan), lead_ins=cutting)
+                                   sheet_gap_mm(plan), lead_ins=cutting,
+                                   start_holes=group[0].cut.shop.start_holes)
         if cutting:
             results += _process_checks(out_dir / rel, Path(rel).name, group,
                                        _sheet_order(out_dir / rel, group))

@@ -112,10 +112,12 @@ class ShopProfile:
 
     @property
     def drawn(self) -> Profile:
-        """The contour its shop file draws: the nominal one, or the etch
-        artwork's compensated outline (:func:`compensated_profile`)."""
+        """The contour its shop file draws: the nominal one (with its start
+        holes where the process drills them), or the etch artwork's
+        compensated outline (:func:`compensated_profile`)."""
         if not self.cut.shop.offset_outline:
-            return self.profile
+            return self.profile if self.cut.shop.start_holes else replace(self.profile,
+                                                                            start_holes=())
         return compensated_profile(self.profile, self.limits.compensation_per_side_mm.value_mm)
 
 

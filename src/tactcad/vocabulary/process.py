@@ -157,12 +157,10 @@ class TabRule:
         return "; ".join(parts) + f"; above {lo:g} mm none"
 
 
-#: Cut order of a shop file whose parts are held by tabs (written into the file).
-TAB_CUT_ORDER = ("1 inner contours (holes, each from its start hole)",
-                 "2 outer contour, leaving the tabs uncut",
+#: The cut order's steps after the inner contours: with holding tabs, without.
+TAB_CUT_ORDER = ("2 outer contour, leaving the tabs uncut",
                  "3 tabs last: secure the part, then cut or break them off and dress the stubs")
-#: Cut order of a shop file without tabs.
-PLAIN_CUT_ORDER = ("1 inner contours (holes, each from its start hole)", "2 outer contour")
+PLAIN_CUT_ORDER = ("2 outer contour",)
 
 
 @dataclass(frozen=True)
@@ -178,6 +176,9 @@ class ShopFile:
         lead_ins: the file carries start points and lead-ins (a cutting tool
             that enters the sheet).
         notes: what the shop must know, one sentence each.
+        start_holes: the file carries a drilled start hole in each cut-out
+            (layer ``START_HOLE``: a wire is threaded through it); False for a
+            beam that pierces at the lead-in's start.
     """
 
     kind: str
@@ -185,13 +186,16 @@ class ShopFile:
     tabs: TabRule | None
     lead_ins: bool
     notes: tuple[str, ...]
+    start_holes: bool = False
 
     @property
     def cut_order(self) -> tuple[str, ...]:
         """The stated cut order (empty for a process that does not cut contour by contour)."""
         if not self.lead_ins:
             return ()
-        return TAB_CUT_ORDER if self.tabs else PLAIN_CUT_ORDER
+        entry = "start hole" if self.start_holes else "pierce point"
+        return ((f"1 inner contours (holes, each from its {entry})",)
+                + (TAB_CUT_ORDER if self.tabs else PLAIN_CUT_ORDER))
 
 
 @dataclass(frozen=True)
@@ -410,7 +414,7 @@ for _process in (
             ShopFile("wire-EDM cutting DXF", False, EDM_TABS, True,
                      ("nominal contour: the wire offset (kerf / 2) is the CAM's",
                       "tabs (layer TAB) are left uncut and cut last",
-                      WIRE_SURFACE + ".")),
+                      WIRE_SURFACE + "."), start_holes=True),
             WIRE_SURFACE, (WIRE_TOLERANCE_SOURCE, MICRO_JOINT_SOURCE)),
         CutProcess(
             "photochemical-etching", "photochemical etching from foil", ETCH_SHEET_MM,
@@ -429,6 +433,7 @@ for _process in (
                      ("nominal contour: kerf compensation (kerf / 2 outward of the part) is "
                       "the CAM's",
                       "micro-joints (layer TAB) are left uncut and broken off last",
+                      "each cut pierces at its lead-in's start: no drilled start holes",
                       LASER_SURFACE + ".")),
             LASER_SURFACE, (LASER_SOURCE, LASER_KERF_SOURCE, LASER_TOLERANCE_SOURCE))):
     register_process(_process)
