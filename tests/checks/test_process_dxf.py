@@ -161,3 +161,21 @@ def test_laser_files_pierce_instead_of_start_holes_and_pass_their_checks(tmp_pat
     assert "pierce point" in doc.header.custom_vars.get("CUT_ORDER")
     results = check_shop_dxf_files(plan, tmp_path)
     assert not failures(results), "\n".join(r.line() for r in failures(results))
+
+
+def test_one_sheet_cut_by_two_processes_becomes_two_shop_files(tmp_path):
+    """Etched elements and wire-cut spacers of one grade and thickness: a sheet per process."""
+    plan = _plan(**{"element.process": "photochemical-etching", "sheet.thickness_mm": 0.6,
+                    "array.pitch_mm": 1.2, "element.tip_width_mm": 1.0,
+                    "clamp.spacer_material": "Ti-6Al-4V-annealed"})
+    records = write_shop_dxf_files(plan, tmp_path, lambda s: None)
+    sheets = {r["path"]: r["process"] for r in records if r["kind"] == "dxf-sheet"}
+    assert sorted(sheets.values()) == ["photochemical-etching", "wire-edm"], sheets
+    assert len(sheets) == 2
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.drawings.part_sets import sheet_dxf_of
+
+    on = {sheet_dxf_of(plan, spec) for spec in array_parts(plan, ("element", "spacer")).values()}
+    assert on == set(sheets)  # the drawings name the sheet each part is on
+    results = check_shop_dxf_files(plan, tmp_path)
+    assert not failures(results), "\n".join(r.line() for r in failures(results))

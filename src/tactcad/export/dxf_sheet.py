@@ -43,7 +43,7 @@ from tactcad.catalogue.array_catalogue import PartSpec, array_parts
 from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_points
 from tactcad.errors import DesignError
-from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_material_names
+from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_names_by_process
 from tactcad.catalogue.shop import material_designation
 from tactcad.export.dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, Tab,
                                 circle_entry, placed_extents, write_dxf)
@@ -76,7 +76,7 @@ class ShopProfile:
         designation: the material with alloy and temper, as the BOM and the
             drawings write it (:func:`tactcad.catalogue.shop.material_designation`).
         sheet_material: the material its nested sheet is named by
-            (:func:`~tactcad.catalogue.files.sheet_material_names`).
+            (:func:`~tactcad.catalogue.files.sheet_names_by_process`).
         process: the name of its cut process (:func:`~tactcad.vocabulary.process.cut_process`).
         wire: the design's wire-EDM settings (``plan.edm``), which wire EDM's limits read.
     """
@@ -185,7 +185,7 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
             file_mark=f"{'/'.join(f'E{n}' for n in numbers)} {_arm_mark(g.arm_length_mm)} "
                       f"QTY {counts[name]}"))
     if "spacer" not in specs:  # one column: no spacer
-        return out
+        return _named_sheets(out)
     sp: PartSpec = specs["spacer"]
     out.append(ShopProfile(
         part="spacer", profile=_with_start_holes(sp.profile, plan.edm.start_hole_diameter_mm),
@@ -194,8 +194,15 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
         designation=material_designation(sp, plan),
         process=sp.process.key or DEFAULT_CUT_PROCESS, wire=plan.edm,
         file_mark=f"SPACER QTY {counts['spacer']}"))
-    names = sheet_material_names([(sp.material, sp.designation, sp.thickness_mm) for sp in out])
-    return [replace(sp, sheet_material=n) for sp, n in zip(out, names)]
+    return _named_sheets(out)
+
+
+def _named_sheets(profiles: Sequence[ShopProfile]) -> list[ShopProfile]:
+    """``profiles`` each with the name of its nested sheet: one grade, one
+    thickness and one process per sheet (:func:`~tactcad.catalogue.files.sheet_names_by_process`)."""
+    names = sheet_names_by_process([(sp.material, sp.designation, sp.thickness_mm, sp.process)
+                                    for sp in profiles])
+    return [replace(sp, sheet_material=n) for sp, n in zip(profiles, names)]
 
 
 
@@ -441,7 +448,8 @@ def _properties(plan: Plan, sp: ShopProfile) -> dict[str, str]:
 
 def sheets(plan: Plan) -> dict[tuple[str, float], list[ShopProfile]]:
     """Cut profiles grouped by sheet: (sheet material, thickness mm), one
-    grade and one thickness per sheet (:func:`~tactcad.catalogue.files.sheet_material_names`), in order
+    grade, one thickness and one process per sheet
+    (:func:`~tactcad.catalogue.files.sheet_names_by_process`), in order
     of first use."""
     return group_by_sheet(shop_profiles(plan))
 
