@@ -11,6 +11,8 @@ so the site cannot drift from the code:
   that also word the validator's refusals);
 * ``export_kinds.md`` and ``check_groups.md``: the registries
   :data:`tactcad.export.kinds.EXPORT_KINDS` and :data:`tactcad.checks.groups.CHECK_GROUPS`;
+* ``processes.md``: the cut processes of :data:`tactcad.vocabulary.process.CUT_PROCESSES`,
+  each rule's figure at example sheets with the rule and its source;
 * ``materials.md``: the material grades and strain gauges of
   ``src/tactcad/data/materials.toml`` and the force gauges of
   ``src/tactcad/data/force_gauges.toml``, each value with its source.
@@ -377,10 +379,52 @@ def materials_markdown() -> str:
     return "\n".join(out)
 
 
+#: Sheets (mm) at which the processes page states each rule's figure.
+PROCESS_SHEETS_MM = (0.1, 0.3, 1.0)
+
+
+def processes_markdown() -> str:
+    """The cut processes a design chooses from (``[element] process``), from their
+    registry: sheet range, each rule's figure at :data:`PROCESS_SHEETS_MM` (wire
+    EDM at the paper design's 0.25 mm wire and 0.025 mm spark gap), the rule and
+    its source, the shop file, tabs, cut order and surface."""
+    from tactcad.design.array_plan import EdmRules
+    from tactcad.vocabulary.process import CUT_PROCESSES, DEFAULT_CUT_PROCESS
+
+    wire = EdmRules(0.25, 0.025, 0.8)
+    out = ["Generated from the registry `tactcad.vocabulary.process.CUT_PROCESSES`. A design "
+           f"chooses its elements' process with `[element] process` (`{DEFAULT_CUT_PROCESS}` "
+           "when left out); the `process` check group holds every cut part to its rules and "
+           "the DXF kind writes what its shop receives. The figures are vendors' design-guide "
+           "values, to confirm with the shop.\n"]
+    for p in CUT_PROCESSES.values():
+        lo, hi = p.sheet_range_mm
+        out.append(f"### `{p.name}`\n")
+        out.append(f"{text(p.text)}; sheet {number(lo)}-{number(hi)} mm ({text(p.sheet_source)}).\n")
+        sheets = [t for t in PROCESS_SHEETS_MM if lo <= t <= hi] or [lo]
+        limits = [p.limits(t, wire, "stainless steel") for t in sheets]
+        rows = [[code(name)] + [number(lim.figures()[name].value_mm) for lim in limits]
+                + [text(fig.rule), text(fig.source)]
+                for name, fig in limits[0].figures().items()]
+        out.append(table(["figure"] + [f"{number(t)} mm sheet" for t in sheets]
+                         + ["rule", "source"], rows))
+        shop = p.shop
+        out.append(f"Shop file: {text(shop.kind)}"
+                   + ("; outline offset by the compensation" if shop.offset_outline else "")
+                   + (f"; holding tabs (layer `TAB`): {text(shop.tabs.text())} "
+                      f"({text(shop.tabs.source)})" if shop.tabs else "; no tabs")
+                   + ".\n")
+        if shop.cut_order:
+            out.append("Cut order: " + "; ".join(text(s) for s in shop.cut_order) + ".\n")
+        out.append("Notes: " + " ".join(text(n) for n in shop.notes) + "\n")
+        out.append(f"Surface: {text(p.surface)}.\n")
+    return "\n".join(out)
+
+
 #: The generated pages: file name -> the function that writes it.
 PAGES = {"cli.md": cli_markdown, "schema.md": schema_markdown,
          "export_kinds.md": export_kinds_markdown, "check_groups.md": check_groups_markdown,
-         "materials.md": materials_markdown}
+         "processes.md": processes_markdown, "materials.md": materials_markdown}
 
 
 def write_pages(folder: Path) -> list[Path]:

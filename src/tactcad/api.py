@@ -545,7 +545,7 @@ class Element:
         """
         from tactcad.mechanics.element_strength import strength_record
         from tactcad.mechanics.ladder import UnknownModelError, models
-        from tactcad.paper.paper_load import paper_load_of
+        from tactcad.studies.reference_loads import reference_load_of
         from tactcad.studies.strength_studies import element_stress
         from tactcad.studies.verification import rated_full_scale_force
 
@@ -555,7 +555,7 @@ class Element:
         plan = self.project.plan
         stress = element_stress(self.geometry, plan.material, model)
         return strength_record(self.number, self.geometry, plan.material, plan.strength, stress,
-                               rated_full_scale_force(plan), paper_load_of(plan))
+                               rated_full_scale_force(plan), reference_load_of(plan))
 
 
 @dataclass(frozen=True)

@@ -61,7 +61,8 @@ def test_plan_is_immutable(plan):
     ({"element.arm_height_mm": 0.6}, "element.arm_height_mm", "0.75"),  # web + notch > arm
     ({"array.pitch_mm": 3.0}, "array.pitch_mm", "sheet.thickness_mm"),
     ({"array.pitch_mm": 2.0}, "array.pitch_mm", "3"),
-    ({"sheet.thickness_mm": -3.0}, "sheet.thickness_mm", "0.5"),
+    ({"sheet.thickness_mm": -3.0}, "sheet.thickness_mm", "0.025"),  # the thinnest foil
+    ({"sheet.thickness_mm": 0.3}, "sheet.thickness_mm", "0.5"),  # wire EDM's sheet
     ({"array.rows": 3}, "array.rows", "2"),
     ({"array.columns": 0}, "array.columns", "1 ... 12"),
     ({"element.inside_corner_radius_mm": 0.1}, "element.inside_corner_radius_mm", "0.15"),

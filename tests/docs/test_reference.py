@@ -144,6 +144,16 @@ def test_export_kinds_check_groups_and_library_are_listed():
     assert all(f"| `{g.model}` | " in library for g in force_gauges()) and len(force_gauges()) >= 2
 
 
+def test_every_cut_process_is_listed_with_its_sources():
+    from tactcad.vocabulary.process import CUT_PROCESSES
+
+    page = REF.processes_markdown()
+    for name, process in CUT_PROCESSES.items():
+        assert f"### `{name}`" in page
+        assert all(REF.text(s) in page for s in process.sources), name
+    assert "| `compensation_per_side_mm` |" in page and "| `min_web_mm` |" in page
+
+
 def test_free_text_is_escaped_not_read_as_markup():
     assert REF.text("drawings/<part>.svg | *x*") == r"drawings\/\<part\>\.svg \| \*x\*"
     assert REF.table(["a"], [[REF.code("x|y")], [REF.text("p|q")]]).splitlines()[2:] == \

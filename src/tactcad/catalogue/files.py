@@ -43,6 +43,20 @@ def sheet_material_names(cuts: Sequence[tuple[str, str, float]]) -> list[str]:
             for family, grade, t in cuts]
 
 
+def sheet_names_by_process(cuts: Sequence[tuple[str, str, float, str]]) -> list[str]:
+    """:func:`sheet_material_names` of ``(family, grade, thickness mm, process)``
+    per cut, one process per sheet: where one sheet would be cut by two
+    processes, the cuts of every process after the first are named with it
+    (``Ti-6Al-4V-annealed-laser-cutting``), so a shop file is one process's."""
+    names = sheet_material_names([(family, grade, t) for family, grade, t, _ in cuts])
+    first: dict[tuple[str, float], str] = {}
+    out = []
+    for name, (_, _, t, process) in zip(names, cuts):
+        kept = first.setdefault((name, t), process)
+        out.append(name if kept == process else f"{name}-{process}")
+    return out
+
+
 def scene_step_name(name: str) -> str:
     """``scenes/<scene>.step``."""
     return f"scenes/{name}.step"

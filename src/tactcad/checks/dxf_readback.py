@@ -7,7 +7,7 @@ into exact arcs), never on the in-memory profile that wrote it.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Sequence
 
@@ -16,12 +16,13 @@ import shapely.geometry as sg
 
 from tactcad.checks.check_result import CheckResult
 from tactcad.design.array_plan import EdmRules
-from tactcad.export.dxf import CUT_LAYER, LEAD_LAYER, MARK_LAYER, START_LAYER
+from tactcad.export.dxf import CUT_LAYER, LEAD_LAYER, MARK_LAYER, ORDER_LAYER, START_LAYER, TAB_LAYER
 from tactcad.geometry.profile import (Arc, Line, Point, Segment, contour_area, contour_bbox,
                                       contour_points, inside_corners)
 
 ALLOWED_TYPES = {"LINE", "ARC", "CIRCLE", "LWPOLYLINE", "POLYLINE", "POINT", "TEXT"}
-NON_CUT_TYPES = {LEAD_LAYER: {"LINE", "POINT"}, MARK_LAYER: {"TEXT"}, START_LAYER: {"CIRCLE"}}
+NON_CUT_TYPES = {LEAD_LAYER: {"LINE", "POINT"}, MARK_LAYER: {"TEXT"}, START_LAYER: {"CIRCLE"},
+                 TAB_LAYER: {"LINE"}, ORDER_LAYER: {"TEXT"}}
 LEAD_IN_CLEARANCE_MM = 1.0  # an entry point this far at least from the web and the contact face
 CLOSE_TOL_MM = 1e-6
 AREA_RTOL = 1e-6
@@ -123,6 +124,9 @@ class DxfReading:
     extents: tuple[float, float, float, float]
     misplaced: list[str]  # "TYPE on LAYER" for entities on a layer that does not hold them
     version: str
+    tabs: list[tuple[Point, Point]] = field(default_factory=list)  # TAB layer lines
+    order: list[tuple[str, Point]] = field(default_factory=list)  # CUT_ORDER texts at their insert
+    properties: dict[str, str] = field(default_factory=dict)  # custom header properties (R2010)
 
 
 def read_dxf(path: str | Path) -> DxfReading:
@@ -142,6 +146,8 @@ def read_dxf(path: str | Path) -> DxfReading:
     points: list[Point] = []
     marks: list[str] = []
     misplaced: list[str] = []
+    tabs: list[tuple[Point, Point]] = []
+    order: list[tuple[str, Point]] = []
     max_z = 0.0
     for e in msp:
         t = e.dxftype()
@@ -169,6 +175,10 @@ def read_dxf(path: str | Path) -> DxfReading:
             points.append(tuple(e.dxf.location)[:2])
         elif layer == MARK_LAYER:
             marks.append(e.dxf.text)
+        elif layer == TAB_LAYER:
+            tabs.append((tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]))
+        elif layer == ORDER_LAYER:
+            order.append((e.dxf.text, tuple(e.dxf.insert)[:2]))
         elif layer != CUT_LAYER or t in ("POINT", "TEXT"):
             misplaced.append(f"{t} on {layer}")
         else:
@@ -184,7 +194,8 @@ def read_dxf(path: str | Path) -> DxfReading:
                       audit_errors=len(auditor.errors), max_abs_z=max_z, contours=contours,
                       start_holes=starts, lead_lines=leads, lead_points=points, marks=marks,
                       extents=(lo[0], lo[1], hi[0], hi[1]), misplaced=misplaced,
-                      version=doc.dxfversion)
+                      version=doc.dxfversion, tabs=tabs, order=order,
+                      properties=dict(doc.header.custom_vars) if doc.dxfversion != "AC1009" else {})
 
 
 # --- geometry on exact segments -------------------------------------------------
@@ -283,7 +294,8 @@ def _ccw(segments: tuple[Segment, ...]) -> tuple[Segment, ...]:
 
 
 def _piece_checks(name: str, outer: Contour, inner: list[Contour], starts: list[tuple[Point, float]],
-                  face_area_mm2: float, edm: EdmRules, web_thickness_mm: float | None) -> list[CheckResult]:
+                  face_area_mm2: float, edm: EdmRules, web_thickness_mm: float | None,
+                  start_holes: bool = True) -> list[CheckResult]:
     """Area, wire-EDM rules and web of one part (outer contour and its cut-outs) read from a file."""
     net = _net_area(outer, inner)
     rel = abs(net - face_area_mm2) / face_area_mm2
@@ -302,13 +314,14 @@ def _piece_checks(name: str, outer: Contour, inner: list[Contour], starts: list[
     min_slot = min(slot_widths, default=math.inf)
     out.append(CheckResult("edm_slot_width", name, min_slot >= edm.min_slot_width_mm - 1e-9,
                            f"narrowest slot {min_slot:.4g} mm, wire needs >= {edm.min_slot_width_mm:.4g} mm"))
-    missing = 0
-    for c in inner:
-        poly = _polygon(c.segments)
-        if not any(poly.contains(sg.Point(p).buffer(rad)) for p, rad in starts):
-            missing += 1
-    out.append(CheckResult("edm_start_holes", name, missing == 0,
-                           f"{len(inner)} closed cut-outs, {missing} without a start hole"))
+    if start_holes:
+        missing = 0
+        for c in inner:
+            poly = _polygon(c.segments)
+            if not any(poly.contains(sg.Point(p).buffer(rad)) for p, rad in starts):
+                missing += 1
+        out.append(CheckResult("edm_start_holes", name, missing == 0,
+                               f"{len(inner)} closed cut-outs, {missing} without a start hole"))
     if web_thickness_mm is not None:
         web = thinnest_ligament(segs)
         out.append(CheckResult("dxf_web_thickness", name, abs(web - web_thickness_mm) <= WEB_TOL_MM,
@@ -382,7 +395,7 @@ def _pieces(contours: list[Contour]) -> list[tuple[Contour, list[Contour]]]:
 def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
                       face_bbox_mm: tuple[float, float, float, float], edm: EdmRules,
                       web_thickness_mm: float | None = None, lead_ins: bool = True,
-                      marks: Sequence[str] = ()) -> list[CheckResult]:
+                      marks: Sequence[str] = (), start_holes: bool = True) -> list[CheckResult]:
     """Every DXF check for one wire-cut profile.
 
     Args:
@@ -393,6 +406,7 @@ def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
         web_thickness_mm: the design's web thickness, when the part has a flexure hinge.
         lead_ins: whether the file must carry one lead-in per contour (shop files do).
         marks: the part-mark texts the ``MARK`` layer must hold.
+        start_holes: whether every cut-out must hold a drilled start hole (wire EDM).
     """
     r = read_dxf(path)
     out = _file_checks(r, name)
@@ -408,7 +422,8 @@ def check_profile_dxf(path: str | Path, name: str, face_area_mm2: float,
     bb = contour_bbox(outer.segments)
     dev = max(abs(a - b) for a, b in zip(bb, face_bbox_mm))
     out.append(CheckResult("dxf_bbox", name, dev <= BBOX_TOL_MM, f"max deviation {dev:.1e} mm"))
-    out += _piece_checks(name, outer, inner, r.start_holes, face_area_mm2, edm, web_thickness_mm)
+    out += _piece_checks(name, outer, inner, r.start_holes, face_area_mm2, edm, web_thickness_mm,
+                         start_holes=start_holes)
     if lead_ins:
         out += _lead_in_checks(name, r, [(outer, inner)], [web_thickness_mm is not None])
     if marks:
@@ -431,12 +446,16 @@ class SheetPart:
 
 
 def check_sheet_dxf(path: str | Path, name: str, parts: Sequence[SheetPart], edm: EdmRules,
-                    gap_mm: float) -> list[CheckResult]:
+                    gap_mm: float, lead_ins: bool = True,
+                    start_holes: bool = True) -> list[CheckResult]:
     """Every check of a nested sheet, read from the file: file checks, closed
     contours, one outer contour per copy matched to its profile by area and
-    box size, each copy's wire-EDM rules and web, lead-ins, part marks, and
-    the gap between copies (outer contours >= ``gap_mm`` apart, no lead-in
-    line crossing another copy)."""
+    box size, each copy's cutting rules (``edm``: anything with
+    ``min_inside_radius_mm`` and ``min_slot_width_mm``) and web, lead-ins
+    (``lead_ins``: a cutting tool's file) and drilled start holes
+    (``start_holes``: wire EDM's), part marks, and the gap
+    between copies (outer contours >= ``gap_mm`` apart, no lead-in line
+    crossing another copy)."""
     r = read_dxf(path)
     out = _file_checks(r, name)
     out.append(CheckResult("dxf_closed_contours", name, bool(r.contours) and all(c.closed for c in r.contours),
@@ -461,9 +480,10 @@ def check_sheet_dxf(path: str | Path, name: str, parts: Sequence[SheetPart], edm
         size_dev = max(abs(match.size_mm[0] - (x1 - x0)), abs(match.size_mm[1] - (y1 - y0)))
         out.append(CheckResult("dxf_bbox", sub, size_dev <= BBOX_TOL_MM, f"size deviation {size_dev:.1e} mm"))
         out += _piece_checks(sub, outer, inner, r.start_holes, match.face_area_mm2, edm,
-                             match.web_thickness_mm)
+                             match.web_thickness_mm, start_holes=start_holes)
         web_flags.append(match.web_thickness_mm is not None)
-    out += _lead_in_checks(name, r, pieces, web_flags)
+    if lead_ins:
+        out += _lead_in_checks(name, r, pieces, web_flags)
     polys = [_polygon(o.segments) for o, _ in pieces]
     closest = min((polys[i].distance(polys[j]) for i in range(len(polys)) for j in range(i)),
                   default=math.inf)
@@ -481,3 +501,111 @@ def check_sheet_dxf(path: str | Path, name: str, parts: Sequence[SheetPart], edm
 def _reverse(segments: tuple[Segment, ...]) -> tuple[Segment, ...]:
     return tuple((Line(s.end, s.start) if isinstance(s, Line) else Arc(s.end, s.start, s.centre, not s.ccw))
                  for s in reversed(segments))
+
+
+# --- what a process adds to the file: tabs, cut order, etch compensation ---------
+TAB_TOL_MM = 1e-6
+#: How close the artwork's outline lies to the nominal one offset by the
+#: compensation (mm): the offset is drawn as short lines 1e-4 mm from the exact one.
+OFFSET_TOL_MM = 1e-3
+
+
+def outer_contours(r: DxfReading) -> list[Contour]:
+    """The outer contours of a file read back (one per part)."""
+    return [outer for outer, _ in _pieces(r.contours)]
+
+
+def tab_checks(name: str, r: DxfReading, expected: Sequence[tuple[int, float]]) -> list[CheckResult]:
+    """The holding tabs on layer ``TAB``: each a LINE with both ends on a
+    part's outer contour, as many per part and as wide as ``expected``
+    ((count, width mm) per outer contour, in the order of
+    :func:`outer_contours`)."""
+    outers = [_polygon(c.segments).exterior for c in outer_contours(r)]
+    problems = []
+    if len(outers) != len(expected):
+        problems.append(f"{len(outers)} parts, {len(expected)} expected")
+    counts = [0] * len(outers)
+    for a, b in r.tabs:
+        on = [i for i, ring in enumerate(outers)
+              if ring.distance(sg.Point(a)) <= 1e-6 and ring.distance(sg.Point(b)) <= 1e-6]
+        if not on:
+            problems.append(f"tab {tuple(round(v, 3) for v in a)} off every outer contour")
+            continue
+        counts[on[0]] += 1
+        want = expected[on[0]][1] if on[0] < len(expected) else 0.0
+        if abs(math.dist(a, b) - want) > TAB_TOL_MM:
+            problems.append(f"tab {math.dist(a, b):.4g} mm wide, rule {want:g} mm")
+    for i, (count, width) in enumerate(expected[:len(outers)]):
+        if counts[i] != count:
+            problems.append(f"part {i + 1}: {counts[i]} tabs, rule {count} x {width:g} mm")
+    total = sum(c for c, _ in expected)
+    return [CheckResult("dxf_tabs", name, not problems,
+                        "; ".join(problems[:3]) or f"{total} tabs on layer TAB, on the outer "
+                        "contours, by the rule's count and width")]
+
+
+def cut_order_checks(name: str, r: DxfReading, stated: bool) -> list[CheckResult]:
+    """The cut order: every lead-in start carries a number on ``CUT_ORDER``,
+    numbered 1 ... n per part with the outer contour last (its start lies
+    outside the part), and the file states the order in its ``CUT_ORDER``
+    property (R2010; ``stated``: the process states one)."""
+    problems = []
+    at = {(round(p[0], 6), round(p[1], 6)): t for t, p in r.order}
+    for start, _entry in r.lead_lines:
+        if (round(start[0], 6), round(start[1], 6)) not in at:
+            problems.append(f"lead-in at {tuple(round(v, 3) for v in start)} has no number")
+    for outer, inner in _pieces(r.contours):
+        poly = _polygon(outer.segments)
+        mine = [(t, p) for t, p in r.order if poly.buffer(2.0).contains(sg.Point(p))]
+        numbers = sorted(int(t) for t, _ in mine if t.isdigit())
+        if numbers != list(range(1, len(inner) + 2)):
+            problems.append(f"numbers {numbers}, expected 1 ... {len(inner) + 1}")
+            continue
+        last = [p for t, p in mine if t == str(len(inner) + 1)]
+        if any(poly.contains(sg.Point(p)) for p in last):
+            problems.append("the outer contour is not cut last")
+    if stated and r.version != "AC1009" and "CUT_ORDER" not in r.properties:
+        problems.append("no CUT_ORDER property")
+    return [CheckResult("dxf_cut_order", name, not problems,
+                        "; ".join(problems[:3]) or "inner contours first, the outer contour "
+                        "last, each lead-in numbered; " + r.properties.get("CUT_ORDER", "")[:60])]
+
+
+def check_etch_artwork(path: str | Path, name: str, nominal_outer: Sequence[Segment],
+                       nominal_holes: Sequence[tuple[Point, float]], offset_mm: float,
+                       marks: Sequence[str] = ()) -> list[CheckResult]:
+    """Every check of one etch artwork file: the file checks, closed contours,
+    the outline ``offset_mm`` outside the nominal one all round (its points
+    that far from the nominal contour, the nominal inside it) and each hole
+    the nominal's, smaller in radius by ``offset_mm``; no lead-ins (the etch
+    enters nowhere)."""
+    r = read_dxf(path)
+    out = _file_checks(r, name)
+    if not r.contours:
+        return out + [CheckResult("dxf_contours", name, False, f"no contour on layer {CUT_LAYER}")]
+    out.append(CheckResult("dxf_closed_contours", name, all(c.closed for c in r.contours),
+                           f"{len(r.contours)} contours"))
+    areas = [abs(contour_area(c.segments)) for c in r.contours]
+    outer = r.contours[max(range(len(areas)), key=areas.__getitem__)]
+    art = _polygon(outer.segments)
+    nominal = _polygon(tuple(nominal_outer))
+    dist = [nominal.exterior.distance(sg.Point(p)) for p in art.exterior.coords]
+    worst = max(abs(d - offset_mm) for d in dist)
+    out.append(CheckResult(
+        "etch_compensation", name, worst <= OFFSET_TOL_MM and art.contains(nominal),
+        f"outline {min(dist):.4f}-{max(dist):.4f} mm outside the nominal, compensation "
+        f"{offset_mm:.4f} mm per side (worst {worst:.1e} mm off)"))
+    circles = [(c.segments[0].centre, c.segments[0].radius) for c in r.contours
+               if c is not outer and len(c.segments) == 2 and all(isinstance(s, Arc) for s in c.segments)]
+    missing = [h for h in nominal_holes
+               if not any(math.dist(h[0], c) <= 1e-6 and abs(h[1] - offset_mm - rad) <= 1e-6
+                          for c, rad in circles)]
+    out.append(CheckResult("etch_holes", name, not missing and len(circles) == len(nominal_holes),
+                           f"{len(circles)} holes, each the nominal's radius less "
+                           f"{offset_mm:.4f} mm" + (f"; {len(missing)} not found" if missing else "")))
+    out.append(CheckResult("etch_no_lead_ins", name, not r.lead_lines and not r.start_holes,
+                           f"{len(r.lead_lines)} lead-ins, {len(r.start_holes)} start holes"))
+    if marks:
+        out.append(CheckResult("dxf_part_marks", name, sorted(r.marks) == sorted(marks),
+                               f"MARK layer: {', '.join(r.marks) or 'none'}"))
+    return out

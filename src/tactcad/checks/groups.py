@@ -155,10 +155,15 @@ for _group in (
         CheckGroup("rigs", "the test rigs against the design's rated full-scale force: no rig "
                    "loads an element beyond it, the force gauge's range and resolution fit it",
                    "tactcad.checks.rig_checks", "rig_group", on_export=False),
+        CheckGroup("process", "each part cut from sheet against its process's rules (sheet "
+                   "range, smallest hole, web and ligament, inside radius, slot, the web's "
+                   "tolerance), before any export", "tactcad.checks.process_rules",
+                   "process_group", suite="part", on_export=False),
         CheckGroup("parts", "each part's solid: valid, volume, bounding box; its STEP "
                    "file read back", _CHECKS, "part_group", suite="part"),
-        CheckGroup("dxf", "each shop DXF read back: closed contours, wire EDM rules, the web on "
-                   "the file, nesting", _CHECKS, "dxf_group", suite="part"),
+        CheckGroup("dxf", "each shop DXF read back: closed contours, the process's cutting "
+                   "rules, the web on the file, tabs and cut order, etch compensation, nesting",
+                   _CHECKS, "dxf_group", suite="part"),
         CheckGroup("array interference", "no two parts of the array overlap beyond their "
                    "declared contacts", _CHECKS, "interference_group", suite="array"),
         CheckGroup("array STEP", "the array's STEP assembly read back against the manifest",

@@ -336,7 +336,7 @@ def design_report(result, verify: str, progress=None) -> dict:
 
     from tactcad.studies.inverse_design import WEB_RULE, report_points, unit_resolution
     from tactcad.mechanics.ladder import estimate
-    from tactcad.paper.paper_load import strength_summary
+    from tactcad.studies.reference_loads import strength_summary
 
     plan, t = result.plan, result.targets
     strength = {r["element"]: r for r in strength_summary(plan)}

@@ -45,7 +45,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.paper.paper_load import paper_load_of
+    from tactcad.studies.reference_loads import reference_load_of
     from tactcad.studies.strength_studies import plan_strength
 
     plan = plan_from_args(args)
@@ -59,7 +59,7 @@ def run(args: argparse.Namespace) -> int:
     report = progress_from_args(args)
     progress = (lambda s: report(f"  ... {s}"))
     records = plan_strength(plan, args.model, progress=progress,
-                            reference_load=paper_load_of(plan))
+                            reference_load=reference_load_of(plan))
     judged = full_scale_judgement(plan, args.model, records)
     code = 0 if judged["met"] else 1
     if args.json:
@@ -71,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
           f"fatigue {_fmt_opt(m.fatigue_strength_MPa)} MPa, safety factor {s.safety_factor:g}, "
           f"gauge {s.gauge.name} (max {s.gauge.max_strain * 1e6:.0f}, fatigue "
           f"{s.gauge.fatigue_strain * 1e6:.0f} microstrain)")
-    load = paper_load_of(plan)  # the paper's study load: its design only
+    load = reference_load_of(plan)  # the paper's study load: its design only
     print(f"rated full-scale force F_fs {judged['full_scale_force_N']:g} N; F_yield: the "
           f"element's yield-limited force; SF, ue, tip: at F_fs")
     print(f"{'el':>3} {'arm mm':>6} {'MPa/N':>7} {'K_t':>5} {'F_yield N':>9} {'SF':>5} "

@@ -41,6 +41,7 @@ from tactcad.design.bom_section import BomSection, check_clamp_materials
 from tactcad.design.readout_section import ReadoutSection, check_readout
 from tactcad.design.requirements_section import RequirementsSection, check_requirements
 from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
+from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, THINNEST_SHEET_MM, check_sheet_process
 from tactcad.vocabulary.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 # the array's parts: their tables and dimensions (the derivation below couples them);
@@ -249,7 +250,9 @@ class StrengthSection(Section):
 
 
 class SheetSection(Section):
-    thickness_mm: number(0.5, 10.0)
+    #: down to the thinnest foil a cut process takes; each process checks its own range
+    #: (:func:`tactcad.vocabulary.process.check_sheet_process`)
+    thickness_mm: number(THINNEST_SHEET_MM, 10.0)
 
 
 class ArraySection(Section):
@@ -401,7 +404,7 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
 
 
 DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,
-                check_readout, check_tolerances, check_clamp_materials)
+                check_readout, check_tolerances, check_clamp_materials, check_sheet_process)
 
 
 # ---------------------------------------------------------------------------
@@ -542,7 +545,8 @@ def element_geometry(d: DesignFile, arm_mm: float, holes: tuple[Hole, ...]) -> E
         base_height_mm=e.base_height_mm, overall_length_mm=e.overall_length_mm,
         inside_corner_radius_mm=e.inside_corner_radius_mm, sheet_thickness_mm=d.sheet.thickness_mm,
         web_tolerance_mm=web_tolerance(d), bolt_holes=holes,
-        start_hole_diameter_mm=d.edm.start_hole_diameter_mm)
+        start_hole_diameter_mm=d.edm.start_hole_diameter_mm,
+        process=e.process or DEFAULT_CUT_PROCESS)
 
 
 def element_slots(d: DesignFile, holes: tuple[Hole, ...]) -> tuple[ElementSlot, ...]:

@@ -89,10 +89,14 @@ def element_web_note(plan: Plan, g: ElementGeometry) -> str:
     the thin-hinge law (:func:`tactcad.mechanics.closed_form.web_tolerance_stiffness_change`)
     and the paper's Table 1 spread (:mod:`tactcad.paper.data`)."""
     from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
-    from tactcad.paper.data import largest_equal_arm_spread
 
     up, dn = web_tolerance_stiffness_change(g.web_thickness_mm, g.web_tolerance_mm)
-    return web_tolerance_note(plan, g, web_text(g), up, dn, largest_equal_arm_spread())
+    spread = None
+    if cites_paper(plan.raw):  # the paper's data only for the paper's design
+        from tactcad.paper.data import largest_equal_arm_spread
+
+        spread = largest_equal_arm_spread()
+    return web_tolerance_note(plan, g, web_text(g), up, dn, spread)
 
 
 def gauge_note(plan: Plan, g: ElementGeometry) -> str:

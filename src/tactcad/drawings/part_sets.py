@@ -16,7 +16,7 @@ from typing import Callable
 
 
 from tactcad.catalogue.array_catalogue import PartSpec
-from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_material_names
+from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_names_by_process
 from tactcad.catalogue.shop import tap_drill_mm, thread_text
 from tactcad.design.array_plan import Plan
 from tactcad.design.readout_section import readout_of
@@ -185,14 +185,16 @@ PEN = SimpleNamespace(
 
 def sheet_dxf_of(plan: Plan, spec: PartSpec) -> str:
     """The nested sheet DXF a cut part is on: its family's name, or its grade's
-    when another grade of the family is cut at that thickness
-    (:func:`~tactcad.catalogue.files.sheet_material_names`)."""
+    when another grade of the family is cut at that thickness, with its process
+    when another process cuts that sheet
+    (:func:`~tactcad.catalogue.files.sheet_names_by_process`)."""
     from tactcad.catalogue.array_catalogue import array_parts
     from tactcad.catalogue.shop import material_designation
+    from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS
 
     cut = array_parts(plan, ("element", "spacer"))
-    names = sheet_material_names([(s.material, material_designation(s, plan), s.thickness_mm)
-                                  for s in cut.values()])
+    names = sheet_names_by_process([(s.material, material_designation(s, plan), s.thickness_mm,
+                                     s.process.key or DEFAULT_CUT_PROCESS) for s in cut.values()])
     return sheet_dxf_name(dict(zip(cut, names)).get(spec.name, spec.material), spec.thickness_mm)
 
 

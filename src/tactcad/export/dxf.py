@@ -1,4 +1,4 @@
-"""DXF for wire EDM: the nominal contour as closed polylines with bulges.
+"""DXF for the cutting shop: each contour as a closed polyline with bulges.
 
 What a cutting shop expects: lines and arcs only (no SPLINE/ELLIPSE), each
 contour one closed chain, flat on z = 0, units mm. The contour is nominal:
@@ -10,7 +10,16 @@ the wire offset (kerf / 2) is the shop's CAM setting. Layers:
   from it to the entry point on the contour (outside the part for the outer
   contour, from the start hole for an inner cut); the caller keeps the entry
   off the flexure web and the contact face;
-* ``MARK``: part marks (TEXT), never cut.
+* ``MARK``: part marks (TEXT), never cut;
+* ``TAB``: holding tabs (micro-joints): a LINE along the outer contour over
+  each stretch the cut leaves standing, cut or broken off last;
+* ``CUT_ORDER``: the cut order, a TEXT number at each contour's lead-in start
+  (inner contours first, then the outer one; the tabs last).
+
+What the drawn contour is follows the part's process
+(:mod:`tactcad.vocabulary.process`): the nominal contour for a cutting tool
+whose offset is the CAM's (wire EDM, laser), the compensated outline for etch
+artwork.
 
 Two DXF versions: ``R2010`` (default; closed LWPOLYLINE, ``$INSUNITS = 4``,
 ``$MEASUREMENT = 1``) and ``R12`` for old CAM (no LWPOLYLINE: a closed
@@ -36,9 +45,12 @@ CUT_LAYER = "CUT"
 START_LAYER = "START_HOLE"
 LEAD_LAYER = "LEAD_IN"
 MARK_LAYER = "MARK"
+TAB_LAYER = "TAB"
+ORDER_LAYER = "CUT_ORDER"
 DXF_VERSIONS = ("R2010", "R12")
 DEFAULT_DXF_VERSION = "R2010"
-LAYER_COLOURS = {CUT_LAYER: 1, START_LAYER: 3, LEAD_LAYER: 6, MARK_LAYER: 5}
+LAYER_COLOURS = {CUT_LAYER: 1, START_LAYER: 3, LEAD_LAYER: 6, MARK_LAYER: 5, TAB_LAYER: 2,
+                 ORDER_LAYER: 4}
 
 
 @dataclass(frozen=True)
@@ -59,14 +71,30 @@ class Mark:
 
 
 @dataclass(frozen=True)
+class Tab:
+    """A holding tab: the stretch of the outer contour from ``start`` to ``end``
+    (mm, on a straight edge) the cut leaves standing."""
+
+    start: Point
+    end: Point
+
+    @property
+    def width_mm(self) -> float:
+        return math.dist(self.start, self.end)
+
+
+@dataclass(frozen=True)
 class PlacedProfile:
-    """A profile moved by ``offset`` (mm), with its lead-ins and marks in the
-    profile's own frame (they move with it)."""
+    """A profile moved by ``offset`` (mm), with its lead-ins, marks, tabs and
+    cut-order labels (layer ``CUT_ORDER``) in the profile's own frame (they
+    move with it)."""
 
     profile: Profile
     offset: Point = (0.0, 0.0)
     lead_ins: tuple[LeadIn, ...] = ()
     marks: tuple[Mark, ...] = ()
+    tabs: tuple[Tab, ...] = ()
+    order: tuple[Mark, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -132,9 +160,12 @@ def _add_item(msp, version: str, it: PlacedProfile) -> None:
         s, e = _moved(li.start, off), _moved(li.entry, off)
         msp.add_point(s, dxfattribs={"layer": LEAD_LAYER})
         msp.add_line(s, e, dxfattribs={"layer": LEAD_LAYER})
-    for m in it.marks:
-        text = msp.add_text(m.text, height=m.height_mm, dxfattribs={"layer": MARK_LAYER})
-        text.dxf.insert = _moved(m.position, off)
+    for tab in it.tabs:
+        msp.add_line(_moved(tab.start, off), _moved(tab.end, off), dxfattribs={"layer": TAB_LAYER})
+    for layer, marks in ((MARK_LAYER, it.marks), (ORDER_LAYER, it.order)):
+        for m in marks:
+            text = msp.add_text(m.text, height=m.height_mm, dxfattribs={"layer": layer})
+            text.dxf.insert = _moved(m.position, off)
 
 
 def dxf_document(content: DxfFile, version: str = DEFAULT_DXF_VERSION) -> ezdxf.document.Drawing:

@@ -19,6 +19,15 @@ farthest from the flexure web and the contact face (for the elements the
 base's back face), from a start point :data:`LEAD_IN_MM` outside the part;
 each hole is entered from its start hole at the hole centre, on the side away
 from the web. Units mm throughout.
+
+Each part is drawn as its cut process's shop expects
+(:attr:`tactcad.vocabulary.process.CutProcess.shop`): wire EDM and laser the
+nominal contour with lead-ins, holding tabs (layer ``TAB``, by the part's
+size) and the cut order (layer ``CUT_ORDER`` and the ``CUT_ORDER`` header
+property: inner contours, outer contour, tabs last); etching the artwork, the
+outline offset outward by the etch compensation (holes smaller by it), with
+no lead-ins. The header carries the process, its compensation, kerf and
+tolerance and the notes its shop needs.
 """
 
 from __future__ import annotations
@@ -34,10 +43,12 @@ from tactcad.catalogue.array_catalogue import PartSpec, array_parts
 from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_points
 from tactcad.errors import DesignError
-from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_material_names
+from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_names_by_process
 from tactcad.catalogue.shop import material_designation
-from tactcad.export.dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, circle_entry,
-                  placed_extents, write_dxf)
+from tactcad.export.dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, Tab,
+                                circle_entry, placed_extents, write_dxf)
+from tactcad.vocabulary.process import (DEFAULT_CUT_PROCESS, CutProcess, ProcessLimits, WireSettings,
+                                        cut_process)
 
 DXF_VERSION_ENV = "TACTCAD_DXF_VERSION"  # the writer's option: R2010 (default) or R12
 LEAD_IN_MM = 1.0  # start point of the outer cut, this far outside the part
@@ -61,10 +72,13 @@ class ShopProfile:
         keep_out: points (mm, profile frame) the lead-ins stay away from: the
             web (thinnest section over the notch) and the contact-face centre.
         web_thickness_mm: the design web for elements, None otherwise.
+        web_tolerance_mm: +/- on the web as the drawing gives it, None without a web.
         designation: the material with alloy and temper, as the BOM and the
             drawings write it (:func:`tactcad.catalogue.shop.material_designation`).
         sheet_material: the material its nested sheet is named by
-            (:func:`~tactcad.catalogue.files.sheet_material_names`).
+            (:func:`~tactcad.catalogue.files.sheet_names_by_process`).
+        process: the name of its cut process (:func:`~tactcad.vocabulary.process.cut_process`).
+        wire: the design's wire-EDM settings (``plan.edm``), which wire EDM's limits read.
     """
 
     part: str
@@ -76,12 +90,58 @@ class ShopProfile:
     keep_out: tuple[Point, ...]
     file_mark: str
     web_thickness_mm: float | None = None
+    web_tolerance_mm: float | None = None
     designation: str = ""
     sheet_material: str = ""
+    process: str = DEFAULT_CUT_PROCESS
+    wire: WireSettings | None = None
 
     @property
     def file_name(self) -> str:
         return profile_dxf_name(self.part, self.quantity)
+
+    @property
+    def cut(self) -> CutProcess:
+        """Its cut process."""
+        return cut_process(self.process)
+
+    @property
+    def limits(self) -> ProcessLimits:
+        """What its process makes from its sheet (mm)."""
+        return self.cut.limits(self.thickness_mm, self.wire, self.designation or self.material)
+
+    @property
+    def drawn(self) -> Profile:
+        """The contour its shop file draws: the nominal one (with its start
+        holes where the process drills them), or the etch artwork's
+        compensated outline (:func:`compensated_profile`)."""
+        if not self.cut.shop.offset_outline:
+            return self.profile if self.cut.shop.start_holes else replace(self.profile,
+                                                                            start_holes=())
+        return compensated_profile(self.profile, self.limits.compensation_per_side_mm.value_mm)
+
+
+def compensated_profile(profile: Profile, offset_mm: float) -> Profile:
+    """``profile`` with its outline moved outward by ``offset_mm`` (round at
+    convex corners; a straight chain of short lines, 1e-4 mm from the exact
+    offset) and every hole smaller in radius by it; no start holes (etch
+    artwork is not entered by a tool).
+
+    Raises:
+        ValueError: a hole would close (radius <= ``offset_mm``).
+    """
+    import shapely.geometry as sg
+
+    if offset_mm <= 0:
+        return replace(profile, start_holes=())
+    grown = sg.Polygon(contour_points(profile.outer, 1e-4)).buffer(offset_mm, quad_segs=64)
+    ring = sg.polygon.orient(grown, 1.0).exterior.coords[:-1]
+    outer = tuple(Line(tuple(a), tuple(b)) for a, b in zip(ring, ring[1:] + ring[:1]))
+    for h in profile.holes:
+        if h.radius <= offset_mm:
+            raise ValueError(f"hole of radius {h.radius:g} mm closes under an etch compensation "
+                             f"of {offset_mm:g} mm")
+    return Profile(outer, tuple(Circle(h.centre, h.radius - offset_mm) for h in profile.holes), ())
 
 
 def element_keep_out(g: ElementGeometry) -> tuple[Point, ...]:
@@ -119,20 +179,30 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
             material=specs[name].material, thickness_mm=specs[name].thickness_mm,
             copy_marks=tuple(f"E{n} {_arm_mark(g.arm_length_mm)}" for n in numbers),
             keep_out=element_keep_out(g), web_thickness_mm=g.web_thickness_mm,
+            web_tolerance_mm=g.web_tolerance_mm,
             designation=material_designation(specs[name], plan),
+            process=specs[name].process.key or DEFAULT_CUT_PROCESS, wire=plan.edm,
             file_mark=f"{'/'.join(f'E{n}' for n in numbers)} {_arm_mark(g.arm_length_mm)} "
                       f"QTY {counts[name]}"))
     if "spacer" not in specs:  # one column: no spacer
-        return out
+        return _named_sheets(out)
     sp: PartSpec = specs["spacer"]
     out.append(ShopProfile(
         part="spacer", profile=_with_start_holes(sp.profile, plan.edm.start_hole_diameter_mm),
         quantity=counts["spacer"], material=sp.material, thickness_mm=sp.thickness_mm,
         copy_marks=("SPACER",) * counts["spacer"], keep_out=(),
         designation=material_designation(sp, plan),
+        process=sp.process.key or DEFAULT_CUT_PROCESS, wire=plan.edm,
         file_mark=f"SPACER QTY {counts['spacer']}"))
-    names = sheet_material_names([(sp.material, sp.designation, sp.thickness_mm) for sp in out])
-    return [replace(sp, sheet_material=n) for sp, n in zip(out, names)]
+    return _named_sheets(out)
+
+
+def _named_sheets(profiles: Sequence[ShopProfile]) -> list[ShopProfile]:
+    """``profiles`` each with the name of its nested sheet: one grade, one
+    thickness and one process per sheet (:func:`~tactcad.catalogue.files.sheet_names_by_process`)."""
+    names = sheet_names_by_process([(sp.material, sp.designation, sp.thickness_mm, sp.process)
+                                    for sp in profiles])
+    return [replace(sp, sheet_material=n) for sp, n in zip(profiles, names)]
 
 
 
@@ -176,7 +246,69 @@ def hole_lead_ins(profile: Profile, keep_out: Sequence[Point]) -> tuple[LeadIn, 
 
 
 def lead_ins(sp: ShopProfile) -> tuple[LeadIn, ...]:
+    """The lead-ins of ``sp``'s shop file: the outer cut's, then each hole's;
+    none for a process whose tool does not enter the sheet (etching)."""
+    if not sp.cut.shop.lead_ins:
+        return ()
     return (outer_lead_in(sp.profile, sp.keep_out),) + hole_lead_ins(sp.profile, sp.keep_out)
+
+
+# --- holding tabs and the cut order ----------------------------------------------
+#: A tab stays this far from a keep-out point (web, contact face) and from the lead-in's entry.
+TAB_CLEARANCE_MM = 1.0
+ORDER_HEIGHT_MM = 0.5
+
+
+def part_tabs(sp: ShopProfile, leads: Sequence[LeadIn]) -> tuple[Tab, ...]:
+    """The holding tabs of ``sp`` by its process's tab rule and its largest
+    side: each centred on a straight outer edge long enough for it, edges
+    farthest from the keep-out points (web, contact face) and from the outer
+    lead-in's entry first, one tab per edge while edges last, then more on the
+    longest. None for a process without tabs."""
+    rule = sp.cut.shop.tabs
+    if rule is None:
+        return ()
+    x0, y0, x1, y1 = sp.profile.bbox_mm
+    count, width = rule.tabs_for(max(x1 - x0, y1 - y0))
+    if count == 0:
+        return ()
+    avoid = list(sp.keep_out) + [li.entry for li in leads[:1]]
+    edges = [s for s in sp.profile.outer
+             if isinstance(s, Line) and s.length() >= width + 2 * TAB_CLEARANCE_MM]
+
+    def clearance(s: Line, f: float) -> float:
+        p = (s.start[0] + f * (s.end[0] - s.start[0]), s.start[1] + f * (s.end[1] - s.start[1]))
+        return _distance_to(avoid, p)
+
+    spots = sorted(((clearance(s, f), s.length(), i, f) for i, s in enumerate(edges)
+                    for f in (0.5, 0.25, 0.75)), key=lambda c: (c[3] != 0.5, -c[0], -c[1]))
+    tabs = []
+    for _, _, i, f in spots[:count]:
+        s = edges[i]
+        ux, uy = (s.end[0] - s.start[0]) / s.length(), (s.end[1] - s.start[1]) / s.length()
+        cx = s.start[0] + f * (s.end[0] - s.start[0])
+        cy = s.start[1] + f * (s.end[1] - s.start[1])
+        h = width / 2
+        tabs.append(Tab((round(cx - h * ux, 9), round(cy - h * uy, 9)),
+                        (round(cx + h * ux, 9), round(cy + h * uy, 9))))
+    return tuple(tabs)
+
+
+def cut_order_labels(sp: ShopProfile, leads: Sequence[LeadIn]) -> tuple[Mark, ...]:
+    """The cut order at the lead-in starts: the holes 1 ... n, the outer
+    contour n + 1 (its lead-in is the first of ``leads``); none without lead-ins."""
+    if not leads:
+        return ()
+    outer, holes = leads[0], leads[1:]
+    out = [Mark(str(k), li.start, ORDER_HEIGHT_MM) for k, li in enumerate(holes, start=1)]
+    return tuple(out) + (Mark(str(len(holes) + 1), outer.start, ORDER_HEIGHT_MM),)
+
+
+def placed(sp: ShopProfile, offset: Point, mark: Mark) -> PlacedProfile:
+    """One copy of ``sp`` as its process's shop file draws it, moved by ``offset``."""
+    leads = lead_ins(sp)
+    return PlacedProfile(sp.drawn, offset, leads, (mark,), part_tabs(sp, leads),
+                         cut_order_labels(sp, leads))
 
 
 # --- part marks -----------------------------------------------------------------
@@ -256,7 +388,7 @@ def shelf_layout(sizes: Sequence[tuple[float, float]], gap_mm: float,
 
 
 def _lead_extents(sp: ShopProfile, leads: Sequence[LeadIn]) -> tuple[float, float, float, float]:
-    x0, y0, x1, y1 = sp.profile.bbox_mm
+    x0, y0, x1, y1 = sp.drawn.bbox_mm
     xs = [x0, x1] + [li.start[0] for li in leads]
     ys = [y0, y1] + [li.start[1] for li in leads]
     return (min(xs), min(ys), max(xs), max(ys))
@@ -268,14 +400,13 @@ def nested_sheet(profiles: Sequence[ShopProfile], gap_mm: float) -> list[PlacedP
     and from one part's lead-in to the next part."""
     copies = []
     for sp in profiles:
-        leads = lead_ins(sp)
-        ext = _lead_extents(sp, leads)
+        ext = _lead_extents(sp, lead_ins(sp))
         for text in sp.copy_marks:
-            copies.append((sp, leads, ext, place_mark(sp.profile, text)))
-    sizes = [(e[2] - e[0], e[3] - e[1]) for _, _, e, _ in copies]
+            copies.append((sp, ext, place_mark(sp.profile, text)))
+    sizes = [(e[2] - e[0], e[3] - e[1]) for _, e, _ in copies]
     corners = shelf_layout(sizes, gap_mm)
-    return [PlacedProfile(sp.profile, (round(cx - ext[0], 6), round(cy - ext[1], 6)), leads, (mark,))
-            for (sp, leads, ext, mark), (cx, cy) in zip(copies, corners)]
+    return [placed(sp, (round(cx - ext[0], 6), round(cy - ext[1], 6)), mark)
+            for (sp, ext, mark), (cx, cy) in zip(copies, corners)]
 
 
 # --- the writer -----------------------------------------------------------------
@@ -292,15 +423,33 @@ def dxf_version_option() -> str:
     return version
 
 
+def process_properties(sp: ShopProfile) -> dict[str, str]:
+    """What the shop file's header says of the process: its name, the file's
+    kind, compensation, kerf, tolerance, tab rule, cut order and notes."""
+    cut, lim = sp.cut, sp.limits
+    out = {"PROCESS": cut.name, "FILE_KIND": cut.shop.kind,
+           "COMPENSATION_PER_SIDE_MM": f"{lim.compensation_per_side_mm.value_mm:.4g}",
+           "TOLERANCE_MM": f"+/-{lim.tolerance_mm.value_mm:.3g}"}
+    if lim.kerf_mm is not None:
+        out["KERF_MM"] = f"{lim.kerf_mm.value_mm:.4g}"
+    if cut.shop.tabs is not None:
+        out["TABS"] = cut.shop.tabs.text()
+    if cut.shop.cut_order:
+        out["CUT_ORDER"] = "; ".join(cut.shop.cut_order)
+    out["NOTES"] = " | ".join(cut.shop.notes)
+    return out
+
+
 def _properties(plan: Plan, sp: ShopProfile) -> dict[str, str]:
     return {"DESIGN": plan.name, "PART": sp.part, "QUANTITY": str(sp.quantity),
             "MATERIAL": sp.designation or sp.material, "THICKNESS_MM": f"{sp.thickness_mm:g}",
-            "MARKS": ", ".join(sp.copy_marks), "UNITS": "mm"}
+            "MARKS": ", ".join(sp.copy_marks), "UNITS": "mm", **process_properties(sp)}
 
 
 def sheets(plan: Plan) -> dict[tuple[str, float], list[ShopProfile]]:
     """Cut profiles grouped by sheet: (sheet material, thickness mm), one
-    grade and one thickness per sheet (:func:`~tactcad.catalogue.files.sheet_material_names`), in order
+    grade, one thickness and one process per sheet
+    (:func:`~tactcad.catalogue.files.sheet_names_by_process`), in order
     of first use."""
     return group_by_sheet(shop_profiles(plan))
 
@@ -316,7 +465,7 @@ def group_by_sheet(profiles: Sequence[ShopProfile]) -> dict[tuple[str, float], l
 def write_shop_profile(path: Path, plan: Plan, sp: ShopProfile, version: str = DEFAULT_DXF_VERSION) -> Path:
     """One profile's shop file: profile at its origin, lead-ins, the file mark,
     quantity and material in the header (R2010)."""
-    item = PlacedProfile(sp.profile, (0.0, 0.0), lead_ins(sp), (place_mark(sp.profile, sp.file_mark),))
+    item = placed(sp, (0.0, 0.0), place_mark(sp.profile, sp.file_mark))
     title = f"{plan.name} {sp.part} qty {sp.quantity}"
     return write_dxf(path, DxfFile((item,), title, _properties(plan, sp)), version)
 
@@ -345,13 +494,14 @@ def write_shop_dxf_files(plan: Plan, staging: Path, log: Callable[[str], None],
             write_shop_profile(staging / sp.file_name, plan, sp, version)
             records.append({"path": sp.file_name, "part": sp.part, "kind": "dxf-profile",
                             "quantity": sp.quantity, "marks": list(sp.copy_marks),
-                            "material": material, "thickness_mm": t, "dxf_version": version})
+                            "material": material, "thickness_mm": t, "dxf_version": version,
+                            "process": sp.process})
         rel = sheet_dxf_name(material, t)
         gap = sheet_gap_mm(plan)
         grades = ", ".join(dict.fromkeys(sp.designation or sp.material for sp in group))
         props = {"DESIGN": plan.name, "MATERIAL": grades, "THICKNESS_MM": f"{t:g}",
                  "PARTS": ", ".join(f"{sp.part} x{sp.quantity}" for sp in group),
-                 "GAP_MM": f"{gap:g}", "UNITS": "mm"}
+                 "GAP_MM": f"{gap:g}", "UNITS": "mm", **process_properties(group[0])}
         placed = tuple(nested_sheet(group, gap))
         write_dxf(staging / rel, DxfFile(placed, f"{plan.name} sheet {grades} {t:g} mm", props),
                   version)
@@ -359,6 +509,24 @@ def write_shop_dxf_files(plan: Plan, staging: Path, log: Callable[[str], None],
         records.append({"path": rel, "part": "sheet", "kind": "dxf-sheet", "material": material,
                         "thickness_mm": t, "parts": {sp.part: sp.quantity for sp in group},
                         "gap_mm": gap, "sheet_mm": [round(x1 + gap, 3), round(y1 + gap, 3)],
-                        "dxf_version": version})
+                        "dxf_version": version, "process": group[0].process})
     log(f"  wrote {len(records)} DXF files in dxf/ ({version})")
     return records
+
+
+def shop_section(plan: Plan) -> dict:
+    """The DXF kind's section of the manifest: per cut part its process, what
+    its shop file is, the process's figures for its sheet (each with its rule
+    and source), its tabs and the stated cut order (mm)."""
+    out = {}
+    for sp in shop_profiles(plan):
+        cut, lim = sp.cut, sp.limits
+        x0, y0, x1, y1 = sp.profile.bbox_mm
+        count, width = cut.shop.tabs.tabs_for(max(x1 - x0, y1 - y0)) if cut.shop.tabs else (0, 0.0)
+        out[sp.part] = {"process": cut.name, "file_kind": cut.shop.kind,
+                        "thickness_mm": sp.thickness_mm,
+                        "figures": {k: f.as_json() for k, f in lim.figures().items()},
+                        "tabs": {"count": count, "width_mm": width},
+                        "cut_order": list(cut.shop.cut_order), "surface": cut.surface}
+    return out
+

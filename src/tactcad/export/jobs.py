@@ -347,7 +347,7 @@ def review_contents_of(run: Run, *folders: Path):
     from tactcad.export.manifest import design_facts
     from tactcad.export.review_assets import three_version
     from tactcad.export.review_page import review_contents
-    from tactcad.paper.paper_load import strength_summary
+    from tactcad.studies.reference_loads import strength_summary
 
     def found(rel: str) -> Path | None:
         return next((f / rel for f in folders if (f / rel).is_file()), None)

@@ -44,6 +44,9 @@ class ExportKind:
             column; None when its files describe no single part.
         bom_rank: the place of its files in that column (smaller first: a
             shop reads the drawing, then the DXF, then the models).
+        manifest_section: ``(key, "module:function")``, ``function(plan)``
+            -> the kind's own section of ``manifest.json``
+            (:mod:`tactcad.export.manifest`), or None.
     """
 
     name: str
@@ -55,6 +58,7 @@ class ExportKind:
     in_full_export: bool = True
     part_files: str | None = None
     bom_rank: int = 0
+    manifest_section: tuple[str, str] | None = None
 
     def jobs(self, run: "Run", before: list["Job"]) -> list["Job"]:
         """The kind's jobs for ``run``, after the jobs ``before``."""
@@ -92,7 +96,8 @@ for _kind in (
         ExportKind("step", ("step",), "step/<part>.step, step/array.step", _JOBS, "step_jobs",
                    part_prefix="step", part_files="step_part_files", bom_rank=3),
         ExportKind("dxf", ("dxf",), "dxf/<part>_qty<n>.dxf, dxf/sheet_<material>_<t>mm.dxf",
-                   _JOBS, "dxf_jobs", part_files="dxf_part_files", bom_rank=2),
+                   _JOBS, "dxf_jobs", part_files="dxf_part_files", bom_rank=2,
+                   manifest_section=("shop", "tactcad.export.dxf_sheet:shop_section")),
         ExportKind("scenes", ("scene",), "scenes/<scene>.step (Z up) and .glb", _JOBS,
                    "scene_and_review_jobs", part_files="scene_part_files", bom_rank=4),
         ExportKind("drawings", ("drawing", "drawings"), "drawings/<part>.svg, drawings.pdf",

@@ -1,22 +1,77 @@
 """``manifest.json``: every file of an export with its sha256, the design's
-hash, the versions of tactcad and its CAD stack, the parts, the strength
-of every element and the design's requirements."""
+hash, the versions of tactcad and its CAD stack, and one section per
+registered source: the parts, the array assembly, the strength of every
+element, the design's requirements, the thermal drift, the derived values
+and assumptions, and each export kind's own section (the DXF kind's ``shop``:
+every cut part's process, its rules with their sources, tabs and cut order).
+
+The sections are a registry (:data:`MANIFEST_SECTIONS`, as the export kinds
+and check groups are): each names the function that makes it, imported only
+when the manifest is made, so this module names no room; a new section is one
+:func:`register_section`, an export kind's section its
+:attr:`~tactcad.export.kinds.ExportKind.manifest_section`.
+"""
 
 from __future__ import annotations
 
 import hashlib
+import importlib
+from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 from tactcad import __version__
-from tactcad.assembly.inventory import assembly_review, instance_counts
-from tactcad.catalogue.array_catalogue import PartSpec, array_instances, array_parts
-from tactcad.catalogue.files import ARRAY_STEP
 from tactcad.design.array_plan import Plan
-from tactcad.assembly.inventory import array_envelope_mm
-from tactcad.studies.verification import requirements_record
-from tactcad.paper.paper_load import strength_summary
 from tactcad.store import stack_versions
+
+
+@dataclass(frozen=True)
+class ManifestSection:
+    """One section of the manifest.
+
+    Attributes:
+        key: its key in ``manifest.json``.
+        function: ``"module:function"``, ``function(plan)`` -> the section's
+            JSON value.
+    """
+
+    key: str
+    function: str
+
+    def of(self, plan: Plan) -> Any:
+        """The section's value for ``plan`` (its module imported now)."""
+        module, name = self.function.split(":")
+        return getattr(importlib.import_module(module), name)(plan)
+
+
+#: The design's sections in the manifest's order (the export kinds' follow them).
+MANIFEST_SECTIONS: dict[str, ManifestSection] = {}
+
+
+def register_section(section: ManifestSection) -> None:
+    """Add a section to every manifest (after the others).
+
+    Raises:
+        ValueError: the key is taken.
+    """
+    if section.key in MANIFEST_SECTIONS or section.key in HEAD or section.key == "files":
+        raise ValueError(f"a manifest section {section.key!r} is registered already")
+    MANIFEST_SECTIONS[section.key] = section
+
+
+def manifest_sections() -> list[ManifestSection]:
+    """The registered sections, then each export kind's
+    (:attr:`~tactcad.export.kinds.ExportKind.manifest_section`), in order."""
+    from tactcad.export.kinds import EXPORT_KINDS
+
+    kinds = [ManifestSection(*k.manifest_section) for k in EXPORT_KINDS.values()
+             if k.manifest_section is not None]
+    return list(MANIFEST_SECTIONS.values()) + kinds
+
+
+#: The keys that come before the files.
+HEAD = ("design", "tactcad_version", "cad_stack", "units")
 
 
 def _sha256(path: Path) -> str:
@@ -34,9 +89,8 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
         p = out_dir / r["path"]
         files.append({**r, "sha256": _sha256(p), "bytes": p.stat().st_size})
     facts = design_facts(plan)
-    head = ("design", "tactcad_version", "cad_stack", "units")
-    return {**{k: facts[k] for k in head}, "files": files,
-            **{k: v for k, v in facts.items() if k not in head}}
+    return {**{k: facts[k] for k in HEAD}, "files": files,
+            **{k: v for k, v in facts.items() if k not in HEAD}}
 
 
 @lru_cache(maxsize=4)
@@ -45,11 +99,7 @@ def design_facts(plan: Plan) -> dict:
     verification matrix alone takes about 0.2 s, and a run, the review page
     and ``tactcad watch``'s preview all ask for it). Shared: read it, do not
     change it."""
-    specs = array_parts(plan)
-    inst = array_instances(plan)
-    counts = instance_counts(inst)
-    parts = {n: _part_record(s, counts.get(n, 0)) for n, s in specs.items()}
-    return {
+    head = {
         # the file's name only: an export names files relative to the project
         # folder, never by a path of the machine it was made on
         "design": {"name": plan.name, "source": Path(plan.source).name,
@@ -57,20 +107,47 @@ def design_facts(plan: Plan) -> dict:
         "tactcad_version": __version__,
         "cad_stack": stack_versions(),
         "units": "mm",
-        "parts": parts,
-        "assemblies": {"array": {"file": ARRAY_STEP, "instances": len(inst),
-                               **assembly_review(specs, inst)}},
-        "strength": [_strength_record(r) for r in strength_summary(plan)],
-        "requirements": requirements_record(plan, array_envelope_mm(plan)),
-        "thermal": _thermal_record(plan),
-        "kobj_budget": _kobj_budget_record(plan),
-        "derived": [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
-                    for d in plan.derived],
-        "assumptions": [{"field": k, "reason": v} for k, v in plan.assumptions],
     }
+    return {**head, **{s.key: s.of(plan) for s in manifest_sections()}}
 
 
-def _thermal_record(plan: Plan) -> dict | None:
+# --- the built-in sections ------------------------------------------------------
+def parts_section(plan: Plan) -> dict:
+    """Every part of the array: kind, process, material, quantity, volume, box."""
+    from tactcad.assembly.inventory import instance_counts
+    from tactcad.catalogue.array_catalogue import array_instances, array_parts
+
+    counts = instance_counts(array_instances(plan))
+    return {n: _part_record(s, counts.get(n, 0)) for n, s in array_parts(plan).items()}
+
+
+def assemblies_section(plan: Plan) -> dict:
+    """The array assembly: its STEP file, instance count and review."""
+    from tactcad.assembly.inventory import assembly_review
+    from tactcad.catalogue.array_catalogue import array_instances, array_parts
+    from tactcad.catalogue.files import ARRAY_STEP
+
+    inst = array_instances(plan)
+    return {"array": {"file": ARRAY_STEP, "instances": len(inst),
+                      **assembly_review(array_parts(plan), inst)}}
+
+
+def strength_section(plan: Plan) -> list[dict]:
+    """Every element's strength at the rated full-scale force (:func:`_strength_record`)."""
+    from tactcad.studies.reference_loads import strength_summary
+
+    return [_strength_record(r) for r in strength_summary(plan)]
+
+
+def requirements_section(plan: Plan) -> dict:
+    """The requirements and their verification at the closed form, in the array's envelope."""
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.studies.verification import requirements_record
+
+    return requirements_record(plan, array_envelope_mm(plan))
+
+
+def thermal_section(plan: Plan) -> dict | None:
     """The closed-form thermal drift of every element (:mod:`tactcad.mechanics.thermal_drift`);
     None when the material's CTE is unknown. The run time is left out (the manifest is
     compared across runs)."""
@@ -86,7 +163,7 @@ def _thermal_record(plan: Plan) -> dict | None:
     return out
 
 
-def _kobj_budget_record(plan: Plan) -> dict | None:
+def kobj_budget_section(plan: Plan) -> dict | None:
     """The closed-form K_obj error budget (:mod:`tactcad.in_use.kobj_budget`) at the
     full-scale force and the default temperature step over the required K_obj range;
     None when a source cannot be evaluated (no CTE known for the material)."""
@@ -102,6 +179,17 @@ def _kobj_budget_record(plan: Plan) -> dict | None:
         return None
 
 
+def derived_section(plan: Plan) -> list[dict]:
+    """The plan's derived values, each with its reason."""
+    return [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
+            for d in plan.derived]
+
+
+def assumptions_section(plan: Plan) -> list[dict]:
+    """The design file's assumptions."""
+    return [{"field": k, "reason": v} for k, v in plan.assumptions]
+
+
 def _strength_record(r: dict) -> dict:
     """An element's arm, stiffness K, yield-limited force, and its safety
     factor, gauge strain and tip deflection at the design's rated full-scale
@@ -114,7 +202,16 @@ def _strength_record(r: dict) -> dict:
     return {k: r[k] for k in keys}
 
 
-def _part_record(spec: PartSpec, count: int) -> dict:
+def _part_record(spec, count: int) -> dict:
     return {"kind": spec.kind, "process": spec.process, "material": spec.material,
             "quantity": count, "volume_mm3": spec.expected_volume_mm3,
             "bbox_mm": list(spec.expected_bbox_mm)}
+
+
+for _key, _function in (("parts", "parts_section"), ("assemblies", "assemblies_section"),
+                        ("strength", "strength_section"),
+                        ("requirements", "requirements_section"),
+                        ("thermal", "thermal_section"), ("kobj_budget", "kobj_budget_section"),
+                        ("derived", "derived_section"),
+                        ("assumptions", "assumptions_section")):
+    register_section(ManifestSection(_key, f"{__name__}:{_function}"))

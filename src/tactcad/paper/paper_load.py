@@ -15,7 +15,6 @@ from __future__ import annotations
 
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.design.requirements_section import cites_paper
-from tactcad.mechanics import element_strength as strength
 from tactcad.mechanics.element_strength import ElementStress, ReferenceLoad, StrengthRecord
 from tactcad.vocabulary.material_library import StrengthSettings
 
@@ -30,10 +29,9 @@ def paper_load_of(plan: Plan) -> ReferenceLoad | None:
 
 
 def strength_summary(plan: Plan, model: str = "closed-form") -> list[dict]:
-    """:func:`tactcad.mechanics.element_strength.strength_summary` at the
-    design's rated full-scale force, with the paper's load for a design that
-    cites the paper."""
-    from tactcad.studies.verification import rated_full_scale_force
+    """:func:`tactcad.studies.reference_loads.strength_summary`: the records at
+    the design's rated full-scale force, with the paper's load for a design that
+    cites the paper (the paper's hook there, :func:`paper_load_of`)."""
+    from tactcad.studies.reference_loads import strength_summary as summary
 
-    return strength.strength_summary(plan, rated_full_scale_force(plan), model,
-                                     paper_load_of(plan))
+    return summary(plan, model)

@@ -25,8 +25,8 @@ from tactcad.geometry.profile import Arc, element_profile
 from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.prism import Hole, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
-from tactcad.vocabulary.process import Method, Process
-from tactcad.vocabulary.schema import Section, name_number, number
+from tactcad.vocabulary.process import CUT_PROCESSES, DEFAULT_CUT_PROCESS, cut_process
+from tactcad.vocabulary.schema import Section, choice, name_number, number
 
 if TYPE_CHECKING:
     from tactcad.kernel.shapes import Solid
@@ -54,6 +54,8 @@ class ElementSection(Section):
     overall_length_mm: number(10.0, 60.0)
     inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
     web_tolerance_mm: number(0.0, 0.1) = None  # or [tolerances] web_thickness_mm
+    #: how the elements are cut (:data:`tactcad.vocabulary.process.CUT_PROCESSES`); wire-edm when left out
+    process: choice(CUT_PROCESSES, "the processes that cut a part from sheet") = None
 
 
 @dataclass(frozen=True)
@@ -81,6 +83,8 @@ class ElementGeometry:
     web_tolerance_mm: float
     bolt_holes: tuple[Hole, ...]
     start_hole_diameter_mm: float
+    #: the cut process's name (:func:`tactcad.vocabulary.process.cut_process`)
+    process: str = DEFAULT_CUT_PROCESS
 
     @property
     def part_name(self) -> str:
@@ -145,11 +149,11 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
 
 
 def element_data(g: ElementGeometry, material: str) -> PartData:
-    """The spec of one distinct element: wire EDM from ``material`` sheet,
-    volume = profile area x sheet thickness (mm^3)."""
+    """The spec of one distinct element: cut by its process (``[element]
+    process``) from ``material`` sheet, volume = profile area x sheet thickness (mm^3)."""
     prof = element_profile(g)
     return PartData(
-        name=g.part_name, kind="fabricated", process=Process("wire EDM from sheet", Method.SHEET),
+        name=g.part_name, kind="fabricated", process=cut_process(g.process).part_process(),
         material=material, color=element_shade(g.arm_length_mm),
         expected_volume_mm3=prof.area_mm2 * g.sheet_thickness_mm,
         expected_bbox_mm=prism_bbox(prof, g.sheet_thickness_mm), geometry=g, profile=prof,
@@ -263,15 +267,22 @@ def notes(d, pen) -> list[str]:
     used = slots_using(plan, spec.name)
     fmt_mm = pen.fmt_mm
     resonance = pen.resonance_note(plan, spec.name)
+    cut = cut_process(g.process)
+    lim = cut.limits(g.sheet_thickness_mm, plan.edm, plan.material.grade or spec.material)
+    files = (f"{Path(pen.profile_dxf_name(spec.name, len(used))).name} (or the nested sheet "
+             f"{Path(pen.sheet_dxf_of(plan, spec)).name})")
+    if cut.shop.offset_outline:  # the file is the artwork, not the part
+        how = (f"; the file is the etch artwork, its outline "
+               f"{fmt_mm(lim.compensation_per_side_mm.value_mm)} mm outside the nominal contour")
+    else:
+        how = (f" along the nominal contour; the tool offset is the shop's CAM setting. Start "
+               f"holes Ø{fmt_mm(g.start_hole_diameter_mm)} at the bolt-hole centres")
     return [
         pen.web_note(plan, g),
-        f"Wire EDM from {fmt_mm(g.sheet_thickness_mm)} mm {spec.material} sheet along "
-        f"the nominal contour of {Path(pen.profile_dxf_name(spec.name, len(used))).name} "
-        f"(or the nested sheet {Path(pen.sheet_dxf_of(plan, spec)).name})"
-        f"; wire offset is the shop's CAM setting. Start holes "
-        f"Ø{fmt_mm(g.start_hole_diameter_mm)} at the bolt-hole centres.",
-        f"Inside corners not dimensioned: R >= {fmt_mm(plan.edm.min_inside_radius_mm)} "
-        f"(wire radius + spark gap). Do not break the edges of the web or of the "
+        f"{pen.sentence(cut.text)} ({fmt_mm(g.sheet_thickness_mm)} mm {spec.material}) "
+        f"from {files}{how}.",
+        f"Inside corners not dimensioned: R >= {fmt_mm(lim.min_inside_radius_mm.value_mm)} "
+        f"({lim.min_inside_radius_mm.rule}). Do not break the edges of the web or of the "
         f"contact face; deburr elsewhere.",
         f"Used as array element{'s' if len(used) > 1 else ''} "
         + ", ".join(str(k) for k in used) + f". {pen.gauge_note(plan, g)}",
