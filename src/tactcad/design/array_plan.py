@@ -37,6 +37,9 @@ from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, DateText, Derived, Fi
 from tactcad.vocabulary.material_library import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                           StrengthSettings, default_strength_settings,
                                           material_fields, material_grade, strength_settings)
+from tactcad.design.construction_registry import (DEFAULT_CONSTRUCTION, construction,
+                                                  construction_name, construction_names,
+                                                  unknown_construction)
 from tactcad.design.bom_section import BomSection, check_clamp_materials
 from tactcad.design.readout_section import ReadoutSection, check_readout
 from tactcad.design.requirements_section import RequirementsSection, check_requirements
@@ -184,6 +187,8 @@ class Plan:
     references: tuple[int, ...] = ()
     references_reason: str = ""
     strength: StrengthSettings = field(default_factory=default_strength_settings)
+    #: the construction that derived it (:mod:`tactcad.design.construction_registry`)
+    construction: str = DEFAULT_CONSTRUCTION
     raw: Mapping[str, Any] = field(repr=False, compare=False, hash=False, default_factory=dict)
 
     def element(self, number: int) -> ElementSlot:
@@ -253,6 +258,8 @@ class SheetSection(Section):
 
 
 class ArraySection(Section):
+    #: how the array is made (:mod:`tactcad.design.construction_registry`); ``stacked`` when left out
+    construction: Text = None
     rows: integer(2, 2, why="the model is two clamped rows facing each other")
     columns: integer(1, MAX_COLUMNS)
     pitch_mm: number(0.0, 20.0, lo_open=True)
@@ -613,9 +620,31 @@ def derived_values(d: DesignFile, leg: Derived, holes: tuple[Hole, Hole],
 # ---------------------------------------------------------------------------
 # Public API
 # ---------------------------------------------------------------------------
-def validate_design(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile | None, Problems]:
-    """The design file's model and every refusal (types and ranges, then the
-    cross-field rules, then the rules of the derived bolt pattern)."""
+def validate_design(data: Mapping[str, Any], file: str = "") -> tuple[Any, Problems]:
+    """The design file's model and every refusal, by the construction its
+    ``[array] construction`` chooses (:mod:`tactcad.design.construction_registry`).
+
+    Args:
+        data: the design file's tables.
+        file: the file's name for the messages.
+
+    Returns:
+        (the construction's model of the file, or None; the refusals). An
+        unknown construction is one refusal naming the allowed ones.
+    """
+    name = construction_name(data)
+    if name not in construction_names():
+        p = Problems(file)
+        error = unknown_construction(name)
+        p.add(error.field, error.value, error.allowed, error.why)
+        return None, p
+    return construction(name).validate(data, file)
+
+
+def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile | None, Problems]:
+    """The stacked construction's model of the design file and every refusal
+    (types and ranges, then the cross-field rules, then the rules of the
+    derived bolt pattern)."""
     p = Problems(file)
     data = with_grade_defaults(data)
     model = validate(DesignFile, data, p)
@@ -673,8 +702,16 @@ def shaping_tables(data: Mapping[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in data.items() if k != "files"}
 
 
-def plan_from_model(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
-    """The plan of a design that passed :func:`validate_design`."""
+def plan_from_model(d: Any, data: Mapping[str, Any], source: str) -> Plan:
+    """The plan of a design that passed :func:`validate_design`, derived by
+    its construction (:mod:`tactcad.design.construction_registry`)."""
+    return construction(construction_name(data)).derive(d, data, source)
+
+
+def derive_plan(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
+    """The stacked construction's plan of a design that passed :func:`validate_tables`:
+    the elements, spacers, clamp plates and bolt pattern, each derived
+    dimension with its reason."""
     p = Problems()
     data = with_grade_defaults(data)
     leg = clamp_leg(d)
