@@ -134,10 +134,40 @@ class Placement:
     dy_mm: float
     dz_mm: float
     turned: bool = False
+    #: turned a quarter about the y axis: the part's x runs along the array's
+    #: +z and its z along -x (a comb's row runs along the array's z)
+    quarter_turn: bool = False
 
     def apply(self, x: float, y: float, z: float) -> tuple[float, float, float]:
+        if self.quarter_turn:
+            x, z = -z, x
         s = -1.0 if self.turned else 1.0
         return (s * x + self.dx_mm, y + self.dy_mm, s * z + self.dz_mm)
+
+
+@dataclass(frozen=True)
+class HardStop:
+    """An element's overload stop (element frame, mm): a gap under the arm's
+    free end that closes on a fixed face (the comb's spine) and so stops the
+    tip before the notch yields.
+
+    Attributes:
+        element: the element's number.
+        gap_mm: the stop's gap at the arm's free end (mm): the travel there
+            when it engages.
+        lever_mm: the gap's distance from the notch centre (mm); the tip's
+            travel at engagement is ``gap x arm length / lever``.
+        kind: ``cut`` (the gap is cut in the sheet, at least the process's
+            minimum slot) or ``set`` (the cut gap is the minimum slot and a
+            shim set at assembly closes it to ``gap_mm``).
+        cut_mm: the gap the process cuts (mm).
+    """
+
+    element: int
+    gap_mm: float
+    lever_mm: float
+    kind: str
+    cut_mm: float
 
 
 @dataclass(frozen=True)
@@ -173,16 +203,22 @@ class Plan:
     pitch_mm: float
     slots: tuple[ElementSlot, ...]
     edm: EdmRules
-    bolt: BoltSpec
-    bolt_length_mm: float
-    bolt_positions_xy_mm: tuple[tuple[float, float], ...]  # array frame, axis along z
-    spacer: SpacerGeometry
-    spacer_placements: tuple[Placement, ...]
-    clamp: ClampPlateGeometry
-    clamp_plate_z_mm: tuple[float, float]  # front face z of the front and back plate
-    stack_length_mm: float
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
+    # the stacked construction's bolts, spacers and clamp plates (None in another construction)
+    bolt: BoltSpec | None = None
+    bolt_length_mm: float | None = None
+    bolt_positions_xy_mm: tuple[tuple[float, float], ...] = ()  # array frame, axis along z
+    spacer: SpacerGeometry | None = None
+    spacer_placements: tuple[Placement, ...] = ()
+    clamp: ClampPlateGeometry | None = None
+    clamp_plate_z_mm: tuple[float, float] | None = None  # front face z of the front and back plate
+    stack_length_mm: float | None = None
+    #: the monolithic comb's sheets, spacer and fasteners (None in another construction)
+    comb: Any = None
+    #: each element's hard stop (:class:`HardStop`), in element order; () when the
+    #: construction gives its elements none
+    hard_stops: tuple["HardStop", ...] = ()
     #: Each row's reference element and why (:func:`row_references`).
     references: tuple[int, ...] = ()
     references_reason: str = ""

@@ -122,3 +122,13 @@ register_construction(Construction(
     ("element", "spacer", "clamp_plate", "gauge", "bolt"),
     "each row is as long as an element (>= 10 mm) and the stack is columns x pitch; "
     "M2 bolts, 3 mm plates: about 60 x 14 mm at the least"))
+
+register_construction(Construction(
+    "monolithic-comb",
+    "one row's elements cut from one thin sheet on a shared spine with a stop ledge under "
+    "every arm; the rows face each other across a thin spacer on ISO 8734 dowel pins and "
+    "M1.2/M1.6 screws (fits a grasper's jaw)",
+    "tactcad.design.comb_plan",
+    ("comb_sheet",),
+    "each element is post + notch + arm + half the tip long (arms >= 2 mm): about "
+    "columns x 4 mm along the row and 6 mm across two 1 mm rows"))
