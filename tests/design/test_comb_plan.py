@@ -112,3 +112,35 @@ def test_the_comb_outline_is_one_closed_contour_over_the_row(plan):
     for a, b in zip(prof.outer, prof.outer[1:] + prof.outer[:1]):
         assert a.end == pytest.approx(b.start)
     assert len(prof.holes) == len(sheet.holes)
+
+
+def test_the_comb_sheets_dxf_reads_back_and_meets_the_wire_rules(plan, tmp_path):
+    from tactcad.checks.dxf_readback import check_profile_dxf
+    from tactcad.export.dxf import write_profile_dxf
+
+    for sheet in plan.comb.sheets:
+        prof = comb_profile(sheet)
+        path = write_profile_dxf(tmp_path / f"{sheet.part_name}.dxf", prof, sheet.part_name)
+        thinnest = min(e.web_thickness_mm for e in sheet.elements)
+        results = check_profile_dxf(path, sheet.part_name, prof.area_mm2, prof.bbox_mm, plan.edm,
+                                    web_thickness_mm=thinnest, lead_ins=False)
+        assert [r.line() for r in results if not r.passed] == []
+        assert any(r.check == "edm_inside_radius" for r in results)
+
+
+def test_a_pitch_without_room_for_the_fillet_at_the_next_post_is_refused(data):
+    # the slot after the longest element (0.2 mm) is wider than the wire's; a
+    # fillet of 0.25 mm at the next post would reach under the arm's end
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"element.inside_corner_radius_mm": 0.25,
+                                             "element.tip_height_mm": 0.8}))
+    assert "arms.lengths_mm[2]" in [e.field for e in caught.value.errors]
+
+
+def test_a_project_of_a_construction_the_rigs_cannot_hold_is_refused_by_name():
+    from tactcad.design.project import load_project
+
+    with pytest.raises(DesignErrors) as caught:
+        load_project(GRASPER)
+    assert caught.value.field == "array.construction"
+    assert "stacked" in caught.value.allowed

@@ -247,6 +247,20 @@ class Plan:
         return self.slots[self.references[row] - 1]
 
     @property
+    def tip_field_mm(self) -> tuple[float, float]:
+        """(along the array's z, across its x) extent of every contact face (mm),
+        from the slots' placements, whatever the construction."""
+        xs, zs = [], []
+        for slot in self.slots:
+            g = slot.geometry
+            for x in (g.overall_length_mm - g.tip_width_mm, g.overall_length_mm):
+                for z in (0.0, g.sheet_thickness_mm):
+                    wx, _, wz = slot.placement.apply(x, g.tip_top_y_mm, z)
+                    xs.append(wx)
+                    zs.append(wz)
+        return max(zs) - min(zs), max(xs) - min(xs)
+
+    @property
     def distinct_elements(self) -> dict[str, ElementGeometry]:
         """Distinct element profiles by part name, in order of first use."""
         out: dict[str, ElementGeometry] = {}

@@ -326,15 +326,18 @@ def _check_arms(d: CombTables, p: Problems) -> None:
     tip_root = e.tip_width_mm / 2 + e.inside_corner_radius_mm + e.notch_radius_mm + 0.5
     seen: dict[float, float] = {}
     for i, (a, web) in enumerate(zip(arms, webs(d)), start=1):
-        room = d.array.pitch_mm - slot - (element_length(d, a) - a)
+        # the slot after the tip: the wire's width, and room for the fillet at the next post
+        gap = max(slot, e.inside_corner_radius_mm)
+        room = d.array.pitch_mm - gap - (element_length(d, a) - a)
         if a < tip_root - 1e-9:
             p.add(f"arms.lengths_mm[{i}]", a, f">= {fmt(tip_root)} mm",
                   "the tip root fillet must clear the notch by 0.5 mm")
         elif a > room + 1e-9:
             p.add(f"arms.lengths_mm[{i}]", a,
-                  f"<= {fmt(room)} mm, or array.pitch_mm >= {fmt(element_length(d, a) + slot)} mm",
-                  f"the element (post + notch radius + arm + half the tip) and the wire's "
-                  f"{fmt(slot)} mm slot after it must fit the pitch {fmt(d.array.pitch_mm)} mm")
+                  f"<= {fmt(room)} mm, or array.pitch_mm >= {fmt(element_length(d, a) + gap)} mm",
+                  f"the element (post + notch radius + arm + half the tip) and a {fmt(gap)} mm "
+                  f"slot after it (the wire's slot, the fillet at the next post) must fit the "
+                  f"pitch {fmt(d.array.pitch_mm)} mm")
         for other, other_web in seen.items():
             if abs(a - other) < MIN_ARM_STEP_MM and web != other_web:
                 p.add(f"comb.web_thicknesses_mm[{i}]", web, f"{fmt(other_web)} mm (the web of "

@@ -41,6 +41,8 @@ class Construction:
         parts: the keys of the array part modules (:func:`tactcad.partlib.registry.array_parts_lib`)
             that make its parts, in the part list's order.
         scales_to_mm: the smallest row length it reaches (mm) and why, for the reference page.
+        test_rigs: True when the test rigs' bracket can hold it (its plan has
+            the clamp plate's mounting holes the bracket bolts to).
     """
 
     name: str
@@ -48,6 +50,7 @@ class Construction:
     module: str
     parts: tuple[str, ...]
     scales_to_mm: str = ""
+    test_rigs: bool = False
 
     def _function(self, name: str) -> Callable[..., Any]:
         return getattr(importlib.import_module(self.module), name)
@@ -114,6 +117,24 @@ def construction_of(plan: Any) -> Construction:
     return construction(plan.construction)
 
 
+def check_test_rigs(plan: Any, problems: Any, file: str) -> bool:
+    """Refuse (in ``problems``) a plan whose construction the test rigs cannot
+    hold; True when they can.
+
+    Args:
+        plan: the design's plan.
+        problems: the rig file's :class:`~tactcad.vocabulary.schema.Problems`.
+        file: the design file's name (the refusal names its field).
+    """
+    if construction_of(plan).test_rigs:
+        return True
+    held = ", ".join(c.name for c in CONSTRUCTIONS.values() if c.test_rigs)
+    problems.add("array.construction", plan.construction, f"one of {held} for a project with "
+                 "test rigs", "the rigs' bracket bolts to the clamp plate's mounting holes; "
+                 f"{plan.construction} has no mount for the test rigs yet", file=file)
+    return False
+
+
 register_construction(Construction(
     "stacked",
     "separate wire-cut element sheets stacked on bolts with spacers between and clamp "
@@ -121,7 +142,7 @@ register_construction(Construction(
     "tactcad.design.array_plan",
     ("element", "spacer", "clamp_plate", "gauge", "bolt"),
     "each row is as long as an element (>= 10 mm) and the stack is columns x pitch; "
-    "M2 bolts, 3 mm plates: about 60 x 14 mm at the least"))
+    "M2 bolts, 3 mm plates: about 60 x 14 mm at the least", test_rigs=True))
 
 register_construction(Construction(
     "monolithic-comb",

@@ -125,7 +125,8 @@ def comb_profile(sheet: CombSheet) -> Profile:
 
     The walk runs along the spine's underside, up the row's far end, then back
     over every element from the last to the first: along its stop ledge to its
-    post, up the notch's back wall, over the notch, down the arm's front wall,
+    post (an inside corner filleted at the element's inside corner radius, as is
+    the slot's floor at the post's back), up the notch's back wall, over the notch, down the arm's front wall,
     along the arm's underside, up the tip's front face, over the contact face
     and back along the flat top over the web to the post's back face. The
     element's own contour (:func:`tactcad.geometry.profile.element_profile`)
@@ -138,11 +139,17 @@ def comb_profile(sheet: CombSheet) -> Profile:
         R, xh, yc = g.notch_radius_mm, x0 + g.hinge_x_mm, g.notch_centre_y_mm
         L, H, w, r = x0 + g.overall_length_mm, g.base_height_mm, g.tip_width_mm, g.inside_corner_radius_mm
         ledge = sheet.ledges_mm[i]
-        pts += [(xh - R, ledge), (xh - R, yc), ("arc", (xh, yc), False), (xh + R, yc),
+        # the ledge meets the post's front wall in a fillet of the wire's inside radius
+        pts += [(xh - R + r, ledge), ("arc", (xh - R + r, ledge + r), False), (xh - R, ledge + r),
+                (xh - R, yc), ("arc", (xh, yc), False), (xh + R, yc),
                 (xh + R, g.arm_underside_y_mm), (L, g.arm_underside_y_mm), (L, g.tip_top_y_mm),
                 (L - w, g.tip_top_y_mm), (L - w, H + r), ("arc", (L - w - r, H + r), False),
                 (L - w - r, H), (x0, H)]
-        pts.append((x0, sheet.ledges_mm[i - 1]) if i > 0 else (x0, 0.0))
+        if i == 0:
+            pts.append((x0, 0.0))
+        else:  # the post's back wall meets the slot's floor in a fillet too
+            floor = sheet.ledges_mm[i - 1]
+            pts += [(x0, floor + r), ("arc", (x0 - r, floor + r), False), (x0 - r, floor)]
     holes = tuple(Circle((x, y), d / 2) for x, y, d in hole_circles(sheet.holes))
     starts = tuple(Circle(c.centre, sheet.start_hole_diameter_mm / 2) for c in holes)
     return Profile(outer=_chain(_without_repeats(pts)), holes=holes, start_holes=starts)
