@@ -334,6 +334,28 @@ def check_groups_markdown() -> str:
             + table(["group", "checks", "runs on", "JUnit suite"], rows))
 
 
+def constructions_markdown() -> str:
+    """The constructions (``[array] construction``), from their registry."""
+    from tactcad.design.construction_registry import CONSTRUCTIONS, DEFAULT_CONSTRUCTION
+
+    rows = [[code(c.name) + (" (default)" if c.name == DEFAULT_CONSTRUCTION else ""),
+             text(c.summary), ", ".join(code(k) for k in c.parts), text(c.scales_to_mm),
+             code(c.module)] for c in CONSTRUCTIONS.values()]
+    from tactcad.partlib.array.comb_sheet import CombSection
+    from tactcad.vocabulary.schema import _limits
+
+    comb_rows = [[code(f"comb.{key}"), text(_type_words(info)), _default_words(info),
+                  text(_limits(info).why) if _limits(info) and _limits(info).why else ""]
+                 for key, info, section in schema_keys(CombSection) if section is None]
+    return ("Generated from the registry `tactcad.design.construction_registry.CONSTRUCTIONS`; "
+            "a design file chooses one with `[array] construction`.\n\n"
+            + table(["construction", "how the array is made", "part modules", "how small",
+                     "derivation"], rows)
+            + "\n\nThe `monolithic-comb`'s table `[comb]` (in place of `[clamp]`; its "
+            "`[element]` leaves out `base_height_mm` and `overall_length_mm`, which it derives):\n\n"
+            + table(["key", "range", "default", "reason"], comb_rows))
+
+
 def _sources(entry: Any) -> str:
     return "\n".join(f"- {code(field)}: {text(doc)}" for field, doc in entry.sources) + "\n"
 
@@ -424,7 +446,8 @@ def processes_markdown() -> str:
 #: The generated pages: file name -> the function that writes it.
 PAGES = {"cli.md": cli_markdown, "schema.md": schema_markdown,
          "export_kinds.md": export_kinds_markdown, "check_groups.md": check_groups_markdown,
-         "processes.md": processes_markdown, "materials.md": materials_markdown}
+         "processes.md": processes_markdown, "constructions.md": constructions_markdown,
+         "materials.md": materials_markdown}
 
 
 def write_pages(folder: Path) -> list[Path]:

@@ -127,7 +127,7 @@ def test_new_on_the_command_line_says_what_it_wrote(tmp_path, capsys):
     out = json.loads(capsys.readouterr().out)
     assert Path(out["design"]).name == "ti_array_2x3.toml" and "rigs.toml" in out["files"]
     assert main(["new", str(tmp_path / "q"), "--example", "nope"]) == 2
-    assert "--example = 'nope': allowed one of macro_array, ti_array_2x3" in capsys.readouterr().err
+    assert f"--example = 'nope': allowed one of {', '.join(sorted(examples()))}" in capsys.readouterr().err
     assert not (tmp_path / "q").exists()
 
 

@@ -17,6 +17,7 @@ from typing import Any, Collection
 
 from tactcad.catalogue.gauges import gauge_body, gauge_placements
 from tactcad.design.array_plan import Placement, Plan
+from tactcad.design.construction_registry import construction_of
 from tactcad.partlib.array.fasteners import bolt_name, bolt_volume, nut_name
 from tactcad.partlib.array.strain_gauge import GAUGE_PART
 from tactcad.partlib.array import strain_gauge
@@ -98,11 +99,14 @@ def array_parts(plan: Plan, families: Collection[str] | None = None) -> dict[str
 
 
 def _make_array_parts(plan: Plan, families: Collection[str] | None) -> dict[str, PartSpec]:
-    """The parts of the array part modules the design uses
-    (:func:`tactcad.partlib.registry.array_parts_for` its tables, in order), as specs."""
+    """The parts of the array part modules the design uses (those of its
+    construction, :mod:`tactcad.design.construction_registry`, and of them
+    :func:`tactcad.partlib.registry.array_parts_for` its tables, in order), as specs."""
     lib = array_parts_lib()
+    made_by = construction_of(plan).parts
     modules = [part for part in array_parts_for(plan.raw)
-               if families is None or (part.replaces or part.key) in families]
+               if (part.replaces or part.key) in made_by
+               and (families is None or (part.replaces or part.key) in families)]
     tables = {key: part.section.model_validate(plan.raw[key]) for key, part in lib.items()
               if part.section is not None and key in plan.raw}
     # the gauge's body reads the read-out chain: made only when the gauge is asked for

@@ -152,6 +152,9 @@ for _group in (
         CheckGroup("requirements", "the design's verification matrix at the closed form, "
                    "before any export", "tactcad.checks.requirement_checks", "requirement_group",
                    on_export=False),
+        CheckGroup("hard stops", "each element's hard stop engages after its rated deflection "
+                   "and before its yield-limited one", "tactcad.checks.stop_checks", "stop_group",
+                   on_export=False),
         CheckGroup("rigs", "the test rigs against the design's rated full-scale force: no rig "
                    "loads an element beyond it, the force gauge's range and resolution fit it",
                    "tactcad.checks.rig_checks", "rig_group", on_export=False),

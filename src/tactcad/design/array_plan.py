@@ -37,6 +37,9 @@ from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, DateText, Derived, Fi
 from tactcad.vocabulary.material_library import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                           StrengthSettings, default_strength_settings,
                                           material_fields, material_grade, strength_settings)
+from tactcad.design.construction_registry import (DEFAULT_CONSTRUCTION, construction,
+                                                  construction_name, construction_names,
+                                                  unknown_construction)
 from tactcad.design.bom_section import BomSection, check_clamp_materials
 from tactcad.design.readout_section import ReadoutSection, check_readout
 from tactcad.design.requirements_section import RequirementsSection, check_requirements
@@ -132,10 +135,40 @@ class Placement:
     dy_mm: float
     dz_mm: float
     turned: bool = False
+    #: turned a quarter about the y axis: the part's x runs along the array's
+    #: +z and its z along -x (a comb's row runs along the array's z)
+    quarter_turn: bool = False
 
     def apply(self, x: float, y: float, z: float) -> tuple[float, float, float]:
+        if self.quarter_turn:
+            x, z = -z, x
         s = -1.0 if self.turned else 1.0
         return (s * x + self.dx_mm, y + self.dy_mm, s * z + self.dz_mm)
+
+
+@dataclass(frozen=True)
+class HardStop:
+    """An element's overload stop (element frame, mm): a gap under the arm's
+    free end that closes on a fixed face (the comb's spine) and so stops the
+    tip before the notch yields.
+
+    Attributes:
+        element: the element's number.
+        gap_mm: the stop's gap at the arm's free end (mm): the travel there
+            when it engages.
+        lever_mm: the gap's distance from the notch centre (mm); the tip's
+            travel at engagement is ``gap x arm length / lever``.
+        kind: ``cut`` (the gap is cut in the sheet, at least the process's
+            minimum slot) or ``set`` (the cut gap is the minimum slot and a
+            shim set at assembly closes it to ``gap_mm``).
+        cut_mm: the gap the process cuts (mm).
+    """
+
+    element: int
+    gap_mm: float
+    lever_mm: float
+    kind: str
+    cut_mm: float
 
 
 @dataclass(frozen=True)
@@ -171,20 +204,28 @@ class Plan:
     pitch_mm: float
     slots: tuple[ElementSlot, ...]
     edm: EdmRules
-    bolt: BoltSpec
-    bolt_length_mm: float
-    bolt_positions_xy_mm: tuple[tuple[float, float], ...]  # array frame, axis along z
-    spacer: SpacerGeometry
-    spacer_placements: tuple[Placement, ...]
-    clamp: ClampPlateGeometry
-    clamp_plate_z_mm: tuple[float, float]  # front face z of the front and back plate
-    stack_length_mm: float
     derived: tuple[Derived, ...]
     assumptions: tuple[tuple[str, str], ...]
+    # the stacked construction's bolts, spacers and clamp plates (None in another construction)
+    bolt: BoltSpec | None = None
+    bolt_length_mm: float | None = None
+    bolt_positions_xy_mm: tuple[tuple[float, float], ...] = ()  # array frame, axis along z
+    spacer: SpacerGeometry | None = None
+    spacer_placements: tuple[Placement, ...] = ()
+    clamp: ClampPlateGeometry | None = None
+    clamp_plate_z_mm: tuple[float, float] | None = None  # front face z of the front and back plate
+    stack_length_mm: float | None = None
+    #: the monolithic comb's sheets, spacer and fasteners (None in another construction)
+    comb: Any = None
+    #: each element's hard stop (:class:`HardStop`), in element order; () when the
+    #: construction gives its elements none
+    hard_stops: tuple["HardStop", ...] = ()
     #: Each row's reference element and why (:func:`row_references`).
     references: tuple[int, ...] = ()
     references_reason: str = ""
     strength: StrengthSettings = field(default_factory=default_strength_settings)
+    #: the construction that derived it (:mod:`tactcad.design.construction_registry`)
+    construction: str = DEFAULT_CONSTRUCTION
     raw: Mapping[str, Any] = field(repr=False, compare=False, hash=False, default_factory=dict)
 
     def element(self, number: int) -> ElementSlot:
@@ -205,6 +246,20 @@ class Plan:
     def reference_of(self, row: int) -> ElementSlot:
         """The reference element's slot of one row (0-based)."""
         return self.slots[self.references[row] - 1]
+
+    @property
+    def tip_field_mm(self) -> tuple[float, float]:
+        """(along the array's z, across its x) extent of every contact face (mm),
+        from the slots' placements, whatever the construction."""
+        xs, zs = [], []
+        for slot in self.slots:
+            g = slot.geometry
+            for x in (g.overall_length_mm - g.tip_width_mm, g.overall_length_mm):
+                for z in (0.0, g.sheet_thickness_mm):
+                    wx, _, wz = slot.placement.apply(x, g.tip_top_y_mm, z)
+                    xs.append(wx)
+                    zs.append(wz)
+        return max(zs) - min(zs), max(xs) - min(xs)
 
     @property
     def distinct_elements(self) -> dict[str, ElementGeometry]:
@@ -256,6 +311,8 @@ class SheetSection(Section):
 
 
 class ArraySection(Section):
+    #: how the array is made (:mod:`tactcad.design.construction_registry`); ``stacked`` when left out
+    construction: Text = None
     rows: integer(2, 2, why="the model is two clamped rows facing each other")
     columns: integer(1, MAX_COLUMNS)
     pitch_mm: number(0.0, 20.0, lo_open=True)
@@ -617,9 +674,31 @@ def derived_values(d: DesignFile, leg: Derived, holes: tuple[Hole, Hole],
 # ---------------------------------------------------------------------------
 # Public API
 # ---------------------------------------------------------------------------
-def validate_design(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile | None, Problems]:
-    """The design file's model and every refusal (types and ranges, then the
-    cross-field rules, then the rules of the derived bolt pattern)."""
+def validate_design(data: Mapping[str, Any], file: str = "") -> tuple[Any, Problems]:
+    """The design file's model and every refusal, by the construction its
+    ``[array] construction`` chooses (:mod:`tactcad.design.construction_registry`).
+
+    Args:
+        data: the design file's tables.
+        file: the file's name for the messages.
+
+    Returns:
+        (the construction's model of the file, or None; the refusals). An
+        unknown construction is one refusal naming the allowed ones.
+    """
+    name = construction_name(data)
+    if name not in construction_names():
+        p = Problems(file)
+        error = unknown_construction(name)
+        p.add(error.field, error.value, error.allowed, error.why)
+        return None, p
+    return construction(name).validate(data, file)
+
+
+def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile | None, Problems]:
+    """The stacked construction's model of the design file and every refusal
+    (types and ranges, then the cross-field rules, then the rules of the
+    derived bolt pattern)."""
     p = Problems(file)
     data = with_grade_defaults(data)
     model = validate(DesignFile, data, p)
@@ -677,8 +756,16 @@ def shaping_tables(data: Mapping[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in data.items() if k != "files"}
 
 
-def plan_from_model(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
-    """The plan of a design that passed :func:`validate_design`."""
+def plan_from_model(d: Any, data: Mapping[str, Any], source: str) -> Plan:
+    """The plan of a design that passed :func:`validate_design`, derived by
+    its construction (:mod:`tactcad.design.construction_registry`)."""
+    return construction(construction_name(data)).derive(d, data, source)
+
+
+def derive_plan(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
+    """The stacked construction's plan of a design that passed :func:`validate_tables`:
+    the elements, spacers, clamp plates and bolt pattern, each derived
+    dimension with its reason."""
     p = Problems()
     data = with_grade_defaults(data)
     leg = clamp_leg(d)

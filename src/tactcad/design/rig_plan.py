@@ -28,6 +28,7 @@ from typing import Any, Mapping, Optional
 from pydantic import create_model
 
 from tactcad.design.array_plan import DEFAULT_DESIGN, Plan
+from tactcad.design.construction_registry import check_test_rigs
 from tactcad.partlib.base import PartData
 from tactcad.partlib.registry import derivation_order, rig_parts_lib
 from tactcad.partlib.sample import stiffnesses
@@ -196,7 +197,7 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
     p = Problems(file)
     r = validate(RigsFile, data, p)
     assumptions = read_assumptions(data, RigsFile, p, "cart.bearing")
-    if r is None:
+    if r is None or not check_test_rigs(plan, p, Path(plan.source).name):
         return None, p
     library = _library(r, plan, p)
     cal = _calibration_element(r, plan, p)

@@ -60,9 +60,9 @@ def sample_color(k: float, ks: tuple[float, ...]) -> tuple[float, float, float]:
 
 
 def tip_field(plan) -> tuple[float, float]:
-    """(along the stack, across the rows) extent of the array's contact faces, mm."""
-    g = plan.slots[0].geometry
-    return plan.stack_length_mm, plan.pitch_mm + g.tip_width_mm
+    """(along the stack, across the rows) extent of the array's contact faces, mm
+    (:attr:`tactcad.design.array_plan.Plan.tip_field_mm`, whatever the construction)."""
+    return plan.tip_field_mm
 
 
 def derive(s: SampleSection, context, p: Problems) -> PartData:

@@ -3,7 +3,10 @@ deep groove ball bearings, and the stock-length rule shared by every bolt.
 
 Sources: ISO 273 (clearance holes, medium series), ISO 4762 (socket head cap
 screws: head diameter d_k, head height k, stock lengths), ISO 4032 (hex nuts:
-width across flats s, height m), ISO 15 (bearing boundary dimensions, series 02).
+width across flats s, height m), ISO 15 (bearing boundary dimensions, series 02);
+below M1.6, where ISO 4762 and ISO 4032 end, DIN 912 (socket head cap screws
+M1.2: d_k 2.3, k 1.2, s 0.9) and DIN 934 (hex nuts M1.2: s 3.0, m 1.0); ISO 8734
+(hardened dowel pins, tolerance m6: nominal diameters and stock lengths).
 """
 
 from __future__ import annotations
@@ -17,7 +20,7 @@ LENGTH_TOLERANCE_MM = 1e-9
 
 
 #: Hexagon socket size s (mm) of ISO 4762 socket head cap screws, by thread size.
-ISO_4762_SOCKET_MM = {"M1.6": 1.5, "M2": 1.5, "M2.5": 2.0, "M3": 2.5, "M4": 3.0, "M5": 4.0}
+ISO_4762_SOCKET_MM = {"M1.2": 0.9, "M1.6": 1.5, "M2": 1.5, "M2.5": 2.0, "M3": 2.5, "M4": 3.0, "M5": 4.0}
 
 
 @dataclass(frozen=True)
@@ -52,6 +55,11 @@ class BoltSpec:
         return self.size.replace(".", "p")
 
 
+#: Miniature socket head cap screws below the clamp bolts' table (DIN 912, nut
+#: DIN 934; ISO 273 medium clearance hole 1.4 mm), for constructions small
+#: enough for a grasper's jaw (:data:`MINIATURE_SCREWS`).
+M1P2 = BoltSpec("M1.2", 1.2, 1.4, 0.25, 2.3, 1.2, 3.0, 1.0, (3, 4, 5, 6, 8, 10))
+
 #: The array's clamp bolts.
 BOLTS: dict[str, BoltSpec] = {
     "M1.6": BoltSpec("M1.6", 1.6, 1.8, 0.35, 3.0, 1.6, 3.2, 1.3,
@@ -63,6 +71,26 @@ BOLTS: dict[str, BoltSpec] = {
     "M3": BoltSpec("M3", 3.0, 3.4, 0.5, 5.5, 3.0, 5.5, 2.4,
                    (5, 6, 8, 10, 12, 16, 20, 25, 30, 35, 40)),
 }
+
+#: Screws of the miniature constructions (the comb's rows): M1.2 (DIN 912) and
+#: the clamp table's M1.6 (ISO 4762).
+MINIATURE_SCREWS: dict[str, BoltSpec] = {"M1.2": M1P2, "M1.6": BOLTS["M1.6"]}
+
+#: ISO 8734 hardened dowel pins (m6; the hole is reamed to the nominal
+#: diameter, H7): nominal diameter (mm) -> stock lengths (mm).
+DOWEL_PINS: dict[float, tuple[float, ...]] = {
+    1.0: (3, 4, 5, 6, 8, 10),
+    1.5: (4, 5, 6, 8, 10, 12),
+    2.0: (5, 6, 8, 10, 12, 16),
+}
+
+
+def shortest_dowel_length(diameter_mm: float, needed_mm: float) -> float | None:
+    """The shortest ISO 8734 stock length of a dowel pin >= ``needed_mm`` (mm),
+    or None when even the longest is too short."""
+    fits = [n for n in DOWEL_PINS[diameter_mm] if n >= needed_mm - LENGTH_TOLERANCE_MM]
+    return float(min(fits)) if fits else None
+
 
 #: The rigs' screws: the array's sizes and M4 for the wheel axles.
 RIG_BOLTS: dict[str, BoltSpec] = {

@@ -1,0 +1,461 @@
+"""The ``monolithic-comb`` construction: design file -> validated plan.
+
+One row's elements are cut from one thin sheet, each element's flexure
+profile (the stacked element's: base, notch hinge, arm, tip) standing on a
+common spine; the two rows' sheets face each other across a thin spacer and
+are located by two ISO 8734 dowel pins and held by miniature socket head cap
+screws through the spine. A row runs along the array's z (a grasper jaw's
+length), so the two rows' tips of one column lie at the same distance from the
+jaw's pivot. Under every arm a ledge of the spine is a hard stop: the arm's
+free end lands on it after a set travel (the stop gap).
+
+The derivation here gives every dimension with its reason (:class:`Derived`);
+each element's profile is an :class:`~tactcad.partlib.array.element.ElementGeometry`,
+so the mechanics (closed form, FEM) read the comb's elements as they read the
+stacked array's. The wire-EDM rule of the minimum slot (wire diameter + two
+spark gaps, ``[edm]``) bounds every cut gap: the column pitch less the
+element, the notch and each stop gap. Units: mm, N, MPa.
+"""
+
+from __future__ import annotations
+
+import copy
+from typing import Any, Mapping
+
+from tactcad.design.array_plan import (MIN_ARM_STEP_MM, MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM,
+                                       MIN_SPACER_MM, MIN_TIP_WALL_MM, ArmsSection, ArraySection,
+                                       DesignSection, EdmSection, ElementSlot, FilesSection,
+                                       HardStop, Material, MaterialSection, Placement, Plan,
+                                       SheetSection, StrengthSection, design_hash, edm_rules,
+                                       row_references, shaping_tables, with_grade_defaults,
+                                       _grade_error)
+from tactcad.design.bom_section import BomSection
+from tactcad.design.readout_section import ReadoutSection, check_readout
+from tactcad.design.requirements_section import (RequirementsSection, check_requirements,
+                                                 stated_footprint)
+from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
+from tactcad.errors import DesignError
+from tactcad.partlib.array.comb_sheet import CombGeometry, CombSection, CombSheet
+from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN, NOTCH_RADIUS_MAX_MM,
+                                           WEB_RANGE_MM, ElementGeometry)
+from tactcad.partlib.array.prism import Hole
+from tactcad.vocabulary.material_library import material_fields, strength_settings
+from tactcad.vocabulary.schema import (Derived, Problems, Section, fmt, listing, number,
+                                       read_assumptions, validate)
+from tactcad.vocabulary.standards import (DOWEL_PINS, MINIATURE_SCREWS, shortest_dowel_length,
+                                          shortest_stock_length)
+
+#: Thinnest shim a stop gap is set with at assembly (mm): feeler stock starts at 0.02 mm.
+MIN_SET_GAP_MM = 0.02
+#: Fasteners: two dowel pins (one at each end of the row) and two screws.
+DOWELS_PER_ROW = 2
+SCREWS_PER_ROW = 2
+
+
+class CombElementSection(Section):
+    """``[element]`` of a comb: the profile every element shares (mm). The
+    base is each element's post (``[comb] post_length_mm``) and its height
+    follows from the spine and the stop gaps, so neither is given here."""
+
+    web_thickness_mm: number(*WEB_RANGE_MM, why=FITTED_DOMAIN)
+    notch_radius_mm: number(0.0, NOTCH_RADIUS_MAX_MM, lo_open=True)
+    tip_width_mm: number(0.3, 20.0)
+    tip_height_mm: number(0.3, 5.0)
+    arm_height_mm: number(0.0, 5.0, lo_open=True)
+    inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
+    web_tolerance_mm: number(0.0, 0.1) = None  # or [tolerances] web_thickness_mm
+
+
+class CombTables(Section):
+    """A ``monolithic-comb`` design file: ``[comb]`` in place of ``[clamp]``."""
+
+    design: DesignSection
+    material: MaterialSection
+    sheet: SheetSection
+    array: ArraySection
+    element: CombElementSection
+    arms: ArmsSection
+    comb: CombSection
+    edm: EdmSection
+    strength: StrengthSection = None
+    requirements: RequirementsSection = None
+    readout: ReadoutSection = None
+    tolerances: TolerancesSection = None
+    bom: BomSection = None
+    files: FilesSection = None
+    assumptions: dict[str, Any] = {}
+
+
+# ---------------------------------------------------------------------------
+# Derivations: small pure functions from the validated file
+# ---------------------------------------------------------------------------
+def element_count(d: CombTables) -> int:
+    return d.array.rows * d.array.columns
+
+
+def webs(d: CombTables) -> list[float]:
+    """Each element's web (mm): ``[comb] web_thicknesses_mm``, else the shared one."""
+    given = d.comb.web_thicknesses_mm
+    return list(given) if given is not None else [d.element.web_thickness_mm] * element_count(d)
+
+
+def stop_gaps(d: CombTables) -> list[float]:
+    """Each element's stop travel at its arm's free end (mm): ``[comb]
+    stop_gaps_mm``, else the process's minimum slot."""
+    given = d.comb.stop_gaps_mm
+    slot = edm_rules(d).min_slot_width_mm
+    return list(given) if given is not None else [slot] * element_count(d)
+
+
+def cut_gap(gap_mm: float, min_slot_mm: float) -> tuple[float, str]:
+    """(the gap the process cuts, the stop's kind): a gap at least the minimum
+    slot is cut as it is (``cut``); a narrower one is cut at the slot and set
+    to its width with a shim at assembly (``set``)."""
+    return (gap_mm, "cut") if gap_mm >= min_slot_mm else (min_slot_mm, "set")
+
+
+def element_length(d: CombTables, arm_mm: float) -> float:
+    """An element's length along the row (mm): post + notch radius + arm + half the tip."""
+    e = d.element
+    return d.comb.post_length_mm + e.notch_radius_mm + arm_mm + e.tip_width_mm / 2
+
+
+def screw(d: CombTables):
+    return MINIATURE_SCREWS[d.comb.screw_size]
+
+
+def dowel_diameter(d: CombTables) -> float:
+    return float(d.comb.dowel_diameter_mm)
+
+
+def spine_height(d: CombTables) -> Derived:
+    """The spine's height (mm): the screw's head and nut lie on the sheets'
+    outer faces and must stay below the arms (a head over a flexing arm would
+    clamp it), with the fastener gap above and below; the holes keep a ligament."""
+    s = screw(d)
+    widest = max(s.head_diameter_mm, s.nut_across_corners_mm)
+    height = max(widest + 2 * MIN_FASTENER_GAP_MM, s.clearance_hole_mm + 2 * MIN_LIGAMENT_MM,
+                 dowel_diameter(d) + 2 * MIN_LIGAMENT_MM)
+    return Derived("spine_height", height, "mm",
+                   f"{s.size} head ({fmt(s.head_diameter_mm)} mm) and nut "
+                   f"({fmt(s.nut_across_corners_mm)} mm across corners) below the arms with a "
+                   f"{fmt(MIN_FASTENER_GAP_MM)} mm gap each side")
+
+
+def row_length(d: CombTables) -> Derived:
+    return Derived("row_length", d.array.columns * d.array.pitch_mm, "mm",
+                   "columns x pitch: every element's cell with the slot after it")
+
+
+def fastener_positions(d: CombTables) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """(screw x, dowel x) along the row (mm): a dowel pin near each end, its
+    hole a ligament from the end; the screws at the quarter points between."""
+    length = row_length(d).value
+    edge = dowel_diameter(d) / 2 + MIN_LIGAMENT_MM
+    return (length / 4, 3 * length / 4), (edge, length - edge)
+
+
+def arm_underside(d: CombTables) -> float:
+    """y of every arm's underside (mm): the spine plus the widest cut stop gap,
+    so the tips' contact faces lie in one plane."""
+    slot = edm_rules(d).min_slot_width_mm
+    return spine_height(d).value + max(cut_gap(g, slot)[0] for g in stop_gaps(d))
+
+
+def comb_element(d: CombTables, arm_mm: float, web_mm: float) -> ElementGeometry:
+    """An element's profile in its own frame (the sheet frame at its offset)."""
+    e = d.element
+    base = arm_underside(d) + e.arm_height_mm
+    return ElementGeometry(
+        arm_length_mm=arm_mm, web_thickness_mm=web_mm, notch_radius_mm=e.notch_radius_mm,
+        tip_width_mm=e.tip_width_mm, tip_height_mm=e.tip_height_mm,
+        arm_height_mm=e.arm_height_mm, base_height_mm=base,
+        overall_length_mm=element_length(d, arm_mm),
+        inside_corner_radius_mm=e.inside_corner_radius_mm, sheet_thickness_mm=d.sheet.thickness_mm,
+        web_tolerance_mm=tolerances_of(d.model_dump(exclude_none=True)).web_thickness_mm,
+        bolt_holes=(), start_hole_diameter_mm=d.edm.start_hole_diameter_mm)
+
+
+def fastener_holes(d: CombTables) -> tuple[Hole, ...]:
+    """The screw (ISO 273 medium clearance) and dowel (reamed) holes of a sheet and the spacer."""
+    screws, dowels = fastener_positions(d)
+    y = spine_height(d).value / 2
+    return (tuple(Hole(x, y, screw(d).clearance_hole_mm) for x in screws)
+            + tuple(Hole(x, y, dowel_diameter(d)) for x in dowels))
+
+
+def comb_sheets(d: CombTables) -> tuple[CombSheet, ...]:
+    cols, pitch = d.array.columns, d.array.pitch_mm
+    slot = edm_rules(d).min_slot_width_mm
+    y_arm = arm_underside(d)
+    arms, web, gaps = d.arms.lengths_mm, webs(d), stop_gaps(d)
+    out = []
+    for row in range(d.array.rows):
+        numbers = range(row * cols, row * cols + cols)
+        out.append(CombSheet(
+            row=row, elements=tuple(comb_element(d, arms[i], web[i]) for i in numbers),
+            offsets_mm=tuple(c * pitch for c in range(cols)),
+            ledges_mm=tuple(y_arm - cut_gap(gaps[i], slot)[0] for i in numbers),
+            length_mm=row_length(d).value, spine_height_mm=spine_height(d).value,
+            thickness_mm=d.sheet.thickness_mm, holes=fastener_holes(d),
+            start_hole_diameter_mm=d.edm.start_hole_diameter_mm))
+    return tuple(out)
+
+
+def grip(d: CombTables) -> float:
+    """The screws' grip (mm): both sheets and the spacer."""
+    return d.array.rows * d.sheet.thickness_mm + d.comb.spacer_thickness_mm
+
+
+def screw_length(d: CombTables) -> tuple[float | None, Derived]:
+    s = screw(d)
+    needed = grip(d) + s.nut_height_mm + 2 * s.thread_pitch_mm
+    length = shortest_stock_length(s, needed)
+    return length, Derived("screw_length", length or needed, "mm",
+                           f"shortest stock {s.size} length >= grip {fmt(grip(d))} + nut "
+                           f"{fmt(s.nut_height_mm)} + 2 thread pitches")
+
+
+def dowel_length(d: CombTables) -> tuple[float | None, Derived]:
+    length = shortest_dowel_length(dowel_diameter(d), grip(d))
+    return length, Derived("dowel_length", length or grip(d), "mm",
+                           f"shortest ISO 8734 stock length >= grip {fmt(grip(d))}, "
+                           "the pin's ends flush or proud")
+
+
+def envelope(d: CombTables) -> tuple[float, float, float]:
+    """(across the rows: the screw's head to its end; along the row; height to
+    the contact faces), mm."""
+    s = screw(d)
+    length = screw_length(d)[0] or screw_length(d)[1].value
+    height = arm_underside(d) + d.element.arm_height_mm + d.element.tip_height_mm
+    return (s.head_height_mm + max(length, grip(d)), row_length(d).value, height)
+
+
+def comb_geometry(d: CombTables) -> CombGeometry:
+    screws, dowels = fastener_positions(d)
+    return CombGeometry(
+        sheets=comb_sheets(d), spacer_thickness_mm=d.comb.spacer_thickness_mm, screw=screw(d),
+        screw_length_mm=screw_length(d)[1].value, dowel_diameter_mm=dowel_diameter(d),
+        dowel_length_mm=dowel_length(d)[1].value, screw_x_mm=screws, dowel_x_mm=dowels,
+        fastener_y_mm=spine_height(d).value / 2, envelope_mm=envelope(d))
+
+
+def element_slots(d: CombTables, sheets: tuple[CombSheet, ...]) -> tuple[ElementSlot, ...]:
+    """Each row's sheet turned a quarter about y so its row runs along the
+    array's +z: row 1's sheet on the -x side of the spacer, row 2's on the +x
+    side; element c of both rows at the same z (the same radius from a jaw's pivot)."""
+    t, s = d.sheet.thickness_mm, d.comb.spacer_thickness_mm
+    dx = (-s / 2, s / 2 + t)
+    out = []
+    for sheet in sheets:
+        for c, (g, x0) in enumerate(zip(sheet.elements, sheet.offsets_mm)):
+            out.append(ElementSlot(sheet.row * d.array.columns + c + 1, sheet.row, c, g,
+                                   Placement(dx[sheet.row], 0.0, x0, quarter_turn=True)))
+    return tuple(out)
+
+
+def hard_stops(d: CombTables, sheets: tuple[CombSheet, ...]) -> tuple[HardStop, ...]:
+    slot = edm_rules(d).min_slot_width_mm
+    out, gaps = [], stop_gaps(d)
+    for sheet in sheets:
+        for c, g in enumerate(sheet.elements):
+            number = sheet.row * d.array.columns + c + 1
+            gap = gaps[number - 1]
+            cut, kind = cut_gap(gap, slot)
+            out.append(HardStop(number, gap, g.arm_length_mm + g.tip_width_mm / 2, kind, cut))
+    return tuple(out)
+
+
+def derived_values(d: CombTables) -> tuple[Derived, ...]:
+    slot = edm_rules(d).min_slot_width_mm
+    longest = max(element_length(d, a) for a in d.arms.lengths_mm)
+    return (
+        row_length(d), spine_height(d),
+        Derived("arm_underside_y", arm_underside(d), "mm",
+                "spine + the widest cut stop gap: every contact face in one plane"),
+        Derived("min_slot", slot, "mm", "wire-EDM slot: wire diameter + two spark gaps ([edm])"),
+        Derived("slot_after_longest_element", d.array.pitch_mm - longest, "mm",
+                f"pitch - the longest element ({fmt(longest)} mm: post + notch radius + arm + "
+                "half the tip)"),
+        Derived("fastener_y", spine_height(d).value / 2, "mm", "screws and dowels mid-spine"),
+        Derived("dowel_x", fastener_positions(d)[1][0], "mm",
+                f"a dowel near each end: its radius + a {fmt(MIN_LIGAMENT_MM)} mm ligament from the end"),
+        Derived("screw_x", fastener_positions(d)[0][0], "mm", "screws at the row's quarter points"),
+        screw_length(d)[1], dowel_length(d)[1],
+        Derived("envelope_across_rows", envelope(d)[0], "mm",
+                "screw head + screw length (the rows, spacer, nut and thread end between)"),
+    )
+
+
+# ---------------------------------------------------------------------------
+# Cross-field rules (every one reported)
+# ---------------------------------------------------------------------------
+def _check_element(d: CombTables, p: Problems) -> None:
+    e, edm = d.element, edm_rules(d)
+    r_min = edm.min_inside_radius_mm
+    p.within("element.notch_radius_mm", e.notch_radius_mm,
+             max(max(webs(d)), r_min, edm.min_slot_width_mm / 2), NOTCH_RADIUS_MAX_MM,
+             why="R >= every web (t/R <= 1) and the notch (2 R wide) >= the wire's slot")
+    over = max(webs(d)) + e.notch_radius_mm
+    p.within("element.arm_height_mm", e.arm_height_mm, over + r_min,
+             why=f"the arm must reach below web + notch radius = {fmt(over)} mm by the wire's "
+                 f"inside radius {fmt(r_min)} mm")
+    p.within("element.inside_corner_radius_mm", e.inside_corner_radius_mm, r_min,
+             why="inside corner radius >= wire radius + spark gap")
+    p.within("element.tip_height_mm", e.tip_height_mm, e.inside_corner_radius_mm + MIN_TIP_WALL_MM,
+             why=f"the tip-root fillet must end on the tip's side, {fmt(MIN_TIP_WALL_MM)} mm "
+                 "below the contact face")
+
+
+def _check_lists(d: CombTables, p: Problems) -> bool:
+    """Every per-element list has rows x columns entries; False when one has not."""
+    n, ok = element_count(d), True
+    for field, value in (("arms.lengths_mm", d.arms.lengths_mm),
+                         ("comb.stop_gaps_mm", d.comb.stop_gaps_mm),
+                         ("comb.web_thicknesses_mm", d.comb.web_thicknesses_mm)):
+        if value is not None and len(value) != n:
+            p.add(field, list(value), f"a list of {n} values (rows x columns)")
+            ok = False
+    return ok
+
+
+def _check_arms(d: CombTables, p: Problems) -> None:
+    e, arms = d.element, d.arms.lengths_mm
+    slot = edm_rules(d).min_slot_width_mm
+    tip_root = e.tip_width_mm / 2 + e.inside_corner_radius_mm + e.notch_radius_mm + 0.5
+    seen: dict[float, float] = {}
+    for i, (a, web) in enumerate(zip(arms, webs(d)), start=1):
+        # the slot after the tip: the wire's width, and room for the fillet at the next post
+        gap = max(slot, e.inside_corner_radius_mm)
+        room = d.array.pitch_mm - gap - (element_length(d, a) - a)
+        if a < tip_root - 1e-9:
+            p.add(f"arms.lengths_mm[{i}]", a, f">= {fmt(tip_root)} mm",
+                  "the tip root fillet must clear the notch by 0.5 mm")
+        elif a > room + 1e-9:
+            p.add(f"arms.lengths_mm[{i}]", a,
+                  f"<= {fmt(room)} mm, or array.pitch_mm >= {fmt(element_length(d, a) + gap)} mm",
+                  f"the element (post + notch radius + arm + half the tip) and a {fmt(gap)} mm "
+                  f"slot after it (the wire's slot, the fillet at the next post) must fit the "
+                  f"pitch {fmt(d.array.pitch_mm)} mm")
+        for other, other_web in seen.items():
+            if abs(a - other) < MIN_ARM_STEP_MM and web != other_web:
+                p.add(f"comb.web_thicknesses_mm[{i}]", web, f"{fmt(other_web)} mm (the web of "
+                      f"the other {fmt(other)} mm arm)", "one arm length is one element part")
+        seen.setdefault(a, web)
+
+
+def _check_comb(d: CombTables, p: Problems) -> None:
+    c = d.comb
+    p.within("comb.spacer_thickness_mm", c.spacer_thickness_mm, MIN_SPACER_MM,
+             why=f"the two rows' arms flex on either side of it: a {fmt(MIN_SPACER_MM)} mm "
+                 "plate at the least")
+    p.within("comb.post_length_mm", c.post_length_mm, edm_rules(d).min_inside_radius_mm * 2,
+             why="the post must hold the notch's back wall and the tip's neighbour's slot")
+    if c.stop_gaps_mm is not None:
+        for i, g in enumerate(c.stop_gaps_mm, start=1):
+            p.within(f"comb.stop_gaps_mm[{i}]", g, MIN_SET_GAP_MM,
+                     why=f"a gap narrower than the wire's slot is set with a shim; the thinnest "
+                         f"is {fmt(MIN_SET_GAP_MM)} mm")
+    length = row_length(d).value
+    screws, dowels = fastener_positions(d)
+    s = screw(d)
+    reach = max(s.head_diameter_mm, s.nut_across_corners_mm) / 2 + dowel_diameter(d) / 2
+    if screws[0] - dowels[0] < reach + MIN_FASTENER_GAP_MM - 1e-9:
+        p.add("array.pitch_mm", d.array.pitch_mm,
+              f">= {fmt(4 * (dowels[0] + reach + MIN_FASTENER_GAP_MM) / d.array.columns)} mm, or "
+              "more columns, or a smaller screw",
+              f"the row ({fmt(length)} mm) is too short for the dowels and {s.size} screws "
+              f"{fmt(MIN_FASTENER_GAP_MM)} mm apart")
+    if screw_length(d)[0] is None:
+        p.add("comb.screw_size", c.screw_size, "a longer screw's size",
+              f"the grip needs {fmt(screw_length(d)[1].value)} mm; longest stock "
+              f"{fmt(max(s.catalogue_lengths_mm))} mm")
+    if dowel_length(d)[0] is None:
+        p.add("comb.dowel_diameter_mm", c.dowel_diameter_mm, "a dowel with longer stock",
+              f"the grip is {fmt(grip(d))} mm; longest stock "
+              f"{fmt(max(DOWEL_PINS[dowel_diameter(d)]))} mm")
+
+
+def _check_footprint(d: CombTables, p: Problems) -> None:
+    """A stated footprint [X, Y(, Z)] holds the comb's envelope (across the
+    rows, along the row, height)."""
+    stated = stated_footprint(d.model_dump(exclude_none=True))
+    if stated is None:
+        return
+    env = envelope(d)
+    for axis, (have, room) in enumerate(zip(env, stated)):
+        if have > room + 1e-9:
+            p.add(f"requirements.footprint_mm[{axis + 1}]", room, f">= {fmt(have)} mm",
+                  f"the comb's envelope is {' x '.join(fmt(v) for v in env)} mm")
+
+
+def _check_arm_domain(d: CombTables, p: Problems) -> None:
+    for i, a in enumerate(d.arms.lengths_mm, start=1):
+        p.within(f"arms.lengths_mm[{i}]", a, *ARM_RANGE_MM, why=FITTED_DOMAIN)
+
+
+COMB_RULES = (_check_element, _check_arms, _check_comb, _check_arm_domain, check_requirements,
+              check_readout, check_tolerances)
+
+
+# ---------------------------------------------------------------------------
+# The construction's entry points (tactcad.design.construction_registry)
+# ---------------------------------------------------------------------------
+def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[CombTables | None, Problems]:
+    """The comb's model of the design file and every refusal: types and
+    ranges, then the cross-field rules, then the envelope against a stated
+    footprint.
+
+    Args:
+        data: the design file's tables.
+        file: the file's name for the messages.
+
+    Returns:
+        (the model or None, the refusals).
+    """
+    p = Problems(file)
+    data = with_grade_defaults(data)
+    model = validate(CombTables, data, p)
+    read_assumptions(data, CombTables, p, "comb.post_length_mm")
+    grade_error = _grade_error(data)
+    if grade_error is not None:
+        p.add(grade_error.field, grade_error.value, grade_error.allowed, grade_error.why)
+    if model is None:
+        return None, p
+    try:
+        material_fields(data["material"])
+        strength_settings(data.get("strength"))
+    except DesignError as exc:
+        if grade_error is None:
+            p.extend([exc])
+    if d_refs := model.arms.reference_elements:
+        from tactcad.design.array_plan import _check_references
+        _check_references(d_refs, model.array.rows, model.array.columns, p)
+    if not _check_lists(model, p):
+        return model, p
+    for rule in COMB_RULES:
+        rule(model, p)
+    if not p:
+        _check_footprint(model, p)
+    return model, p
+
+
+def derive_plan(d: CombTables, data: Mapping[str, Any], source: str) -> Plan:
+    """The comb's plan of a design that passed :func:`validate_tables`."""
+    p = Problems()
+    data = with_grade_defaults(data)
+    sheets = comb_sheets(d)
+    refs, why = row_references(d)
+    return Plan(
+        name=d.design.name, description=d.design.description, source=source,
+        design_hash=design_hash(shaping_tables(data)),
+        material=Material(d.material.name, d.material.youngs_modulus_MPa, d.material.poisson_ratio,
+                          **material_fields(data["material"])),
+        strength=strength_settings(data.get("strength")),
+        sheet_thickness_mm=d.sheet.thickness_mm, rows=d.array.rows, columns=d.array.columns,
+        pitch_mm=d.array.pitch_mm, slots=element_slots(d, sheets), edm=edm_rules(d),
+        derived=derived_values(d), references=refs, references_reason=why,
+        assumptions=read_assumptions(data, CombTables, p, "comb.post_length_mm"),
+        construction="monolithic-comb", comb=comb_geometry(d), hard_stops=hard_stops(d, sheets),
+        raw=copy.deepcopy(dict(data)))

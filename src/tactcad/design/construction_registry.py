@@ -1,0 +1,155 @@
+"""The array's constructions, one registry: how a validated design becomes parts.
+
+A construction is a way of making the array: ``stacked`` (separate wire-cut
+element sheets stacked on bolts with spacers and clamp plates, the paper's)
+and ``monolithic-comb`` (one row's elements cut from one thin sheet on a
+shared spine, rows on dowel pins and ISO screws, small enough for a grasper's
+jaw). The design file chooses one with ``[array] construction`` (``stacked``
+when left out).
+
+Each entry names the module that owns the construction: its schema (the
+design file's tables), its rules (every refusal at once), its derivation
+(validated design -> :class:`~tactcad.design.array_plan.Plan`, each derived
+dimension with its reason) and the array part modules its parts come from
+(:mod:`tactcad.partlib.array`). The module is imported by name only when the
+construction is asked for, as the estimator ladders do
+(:mod:`tactcad.mechanics.level_registry`): a caller asks this registry and
+never names a construction.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from typing import Any, Callable, Mapping
+
+from tactcad.errors import DesignError
+
+#: The construction of a design file that names none.
+DEFAULT_CONSTRUCTION = "stacked"
+
+
+@dataclass(frozen=True)
+class Construction:
+    """One way of making the array.
+
+    Attributes:
+        name: the value of ``[array] construction``.
+        summary: one line for help texts and the reference page.
+        module: the module that owns it; it defines ``validate_tables(data,
+            file) -> (model | None, Problems)`` and ``derive_plan(model, data, source) -> Plan``.
+        parts: the keys of the array part modules (:func:`tactcad.partlib.registry.array_parts_lib`)
+            that make its parts, in the part list's order.
+        scales_to_mm: the smallest row length it reaches (mm) and why, for the reference page.
+        test_rigs: True when the test rigs' bracket can hold it (its plan has
+            the clamp plate's mounting holes the bracket bolts to).
+    """
+
+    name: str
+    summary: str
+    module: str
+    parts: tuple[str, ...]
+    scales_to_mm: str = ""
+    test_rigs: bool = False
+
+    def _function(self, name: str) -> Callable[..., Any]:
+        return getattr(importlib.import_module(self.module), name)
+
+    def validate(self, data: Mapping[str, Any], file: str = "") -> tuple[Any, Any]:
+        """The design file's model under this construction and every refusal
+        (:class:`~tactcad.vocabulary.schema.Problems`)."""
+        return self._function("validate_tables")(data, file)
+
+    def derive(self, model: Any, data: Mapping[str, Any], source: str) -> Any:
+        """The plan of a design that passed :meth:`validate`."""
+        return self._function("derive_plan")(model, data, source)
+
+
+CONSTRUCTIONS: dict[str, Construction] = {}
+
+
+def register_construction(construction: Construction) -> None:
+    """Add a construction to the registry.
+
+    Raises:
+        ValueError: one of that name is registered already.
+    """
+    if construction.name in CONSTRUCTIONS:
+        raise ValueError(f"a construction {construction.name!r} is registered already")
+    CONSTRUCTIONS[construction.name] = construction
+
+
+def construction_names() -> tuple[str, ...]:
+    """Every construction's name, in order of registration."""
+    return tuple(CONSTRUCTIONS)
+
+
+def unknown_construction(name: Any) -> DesignError:
+    """The refusal of a construction no entry has (names every allowed one)."""
+    return DesignError("array.construction", name, "one of " + ", ".join(construction_names()),
+                       "the constructions tactcad can derive, make and check")
+
+
+def construction(name: str) -> Construction:
+    """The registered construction ``name``.
+
+    Raises:
+        DesignError: no construction has that name (the message lists the allowed ones).
+    """
+    found = CONSTRUCTIONS.get(name) if isinstance(name, str) else None
+    if found is None:
+        raise unknown_construction(name)
+    return found
+
+
+def construction_name(data: Mapping[str, Any]) -> Any:
+    """The construction a design file's tables choose: ``[array] construction``,
+    :data:`DEFAULT_CONSTRUCTION` when left out (the value as given otherwise,
+    so that a wrong one is refused with its name)."""
+    array = data.get("array") if isinstance(data, Mapping) else None
+    if isinstance(array, Mapping) and "construction" in array:
+        return array["construction"]
+    return DEFAULT_CONSTRUCTION
+
+
+def construction_of(plan: Any) -> Construction:
+    """The construction a plan was derived by."""
+    return construction(plan.construction)
+
+
+def check_test_rigs(plan: Any, problems: Any, file: str) -> bool:
+    """Refuse (in ``problems``) a plan whose construction the test rigs cannot
+    hold; True when they can.
+
+    Args:
+        plan: the design's plan.
+        problems: the rig file's :class:`~tactcad.vocabulary.schema.Problems`.
+        file: the design file's name (the refusal names its field).
+    """
+    if construction_of(plan).test_rigs:
+        return True
+    held = ", ".join(c.name for c in CONSTRUCTIONS.values() if c.test_rigs)
+    problems.add("array.construction", plan.construction, f"one of {held} for a project with "
+                 "test rigs", "the rigs' bracket bolts to the clamp plate's mounting holes; "
+                 f"{plan.construction} has no mount for the test rigs yet", file=file)
+    return False
+
+
+register_construction(Construction(
+    "stacked",
+    "separate wire-cut element sheets stacked on bolts with spacers between and clamp "
+    "plates outside (the paper's array)",
+    "tactcad.design.array_plan",
+    ("element", "spacer", "clamp_plate", "gauge", "bolt"),
+    "each row is as long as an element (>= 10 mm) and the stack is columns x pitch; "
+    "M2 bolts, 3 mm plates: about 60 x 14 mm at the least", test_rigs=True))
+
+register_construction(Construction(
+    "monolithic-comb",
+    "one row's elements cut from one thin sheet on a shared spine with a stop ledge under "
+    "every arm; the rows face each other across a thin spacer on ISO 8734 dowel pins and "
+    "M1.2/M1.6 screws (fits a grasper's jaw)",
+    "tactcad.design.comb_plan",
+    ("comb_sheet",),
+    "each element is post + notch + arm + half the tip long (arms >= 2 mm): about "
+    "columns x 4 mm along the row and 6 mm across two 1 mm rows"))

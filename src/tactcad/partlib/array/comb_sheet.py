@@ -1,0 +1,213 @@
+"""The monolithic comb's sheet (a made part, one per row): one row's elements
+cut from one thin sheet, each element's flexure profile standing on a common
+spine, with a stop ledge under every arm and the screw and dowel holes in the
+spine.
+
+Here under the key ``comb_sheet``: the design file's ``[comb]`` table, the
+sheet's dimensions (:class:`CombSheet`, :class:`CombGeometry`), its exact
+outline (:func:`comb_profile`), spec, builder and shop drawing's notes. The
+comb's derivation (pitch, spine, fasteners, stops) is
+:mod:`tactcad.design.comb_plan` (above this layer); this module reads the
+result from the plan.
+
+Sheet frame: x along the row (0 = the first post's back face), y up (0 = the
+spine's underside, the tips' contact faces on top), z through the sheet (0 ...
+sheet thickness). Each element's own frame is the sheet frame shifted by its
+offset along x, so its :class:`~tactcad.partlib.array.element.ElementGeometry`
+is the element's profile the mechanics read. Units: mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from tactcad.geometry.profile import Circle, Profile, _chain
+from tactcad.kernel.shapes import extrude_profile
+from tactcad.partlib.array.element import WEB_RANGE_MM, FITTED_DOMAIN, ElementGeometry
+from tactcad.partlib.array.prism import Hole, hole_circles, prism_bbox
+from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
+from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.schema import Section, choice, listing, number
+from tactcad.vocabulary.standards import DOWEL_PINS, MINIATURE_SCREWS, BoltSpec
+
+if TYPE_CHECKING:
+    from tactcad.kernel.shapes import Solid
+
+COLOR: RGB = (0.72, 0.70, 0.66)  # titanium grey
+#: Most elements one comb carries (two rows of twelve, as the stacked array).
+MAX_COMB_ELEMENTS = 24
+
+
+class CombSection(Section):
+    """``[comb]`` of a ``monolithic-comb`` design (mm): the posts, the spacer
+    between the rows, the screws and dowel pins, each element's stop gap and
+    web."""
+
+    post_length_mm: number(0.3, 5.0, why="each element's clamped post along the row")
+    spacer_thickness_mm: number(0.1, 2.0, why="the plate between the two rows' sheets; "
+                                               "the two rows' arms flex on either side of it")
+    screw_size: choice(MINIATURE_SCREWS, "socket head cap screws (DIN 912 M1.2, ISO 4762 M1.6)")
+    dowel_diameter_mm: choice(tuple(f"{d:g}" for d in DOWEL_PINS),
+                              "ISO 8734 dowel pin diameters (mm), as text")
+    #: each element's stop travel at its arm's free end (element order); left
+    #: out: the process's minimum slot for every element
+    stop_gaps_mm: listing(number(0.0, 1.0, lo_open=True), 2, MAX_COMB_ELEMENTS,
+                          "one gap per element (mm), rows x columns") = None
+    #: each element's web (element order); left out: ``element.web_thickness_mm``
+    web_thicknesses_mm: listing(number(*WEB_RANGE_MM, why=FITTED_DOMAIN), 2, MAX_COMB_ELEMENTS,
+                                "one web per element (mm), rows x columns") = None
+
+
+@dataclass(frozen=True)
+class CombSheet:
+    """One row's comb sheet (sheet frame, mm).
+
+    Attributes:
+        row: the row (0-based).
+        elements: each element's profile in its own frame (offset along x).
+        offsets_mm: x of each element's frame origin in the sheet frame.
+        ledges_mm: y of the stop ledge under each element's arm (the spine's
+            top there): the arm's underside less the element's cut gap.
+        length_mm: the row's length along x.
+        spine_height_mm: the spine's height (the fasteners' band).
+        thickness_mm: the sheet's thickness.
+        holes: the screw and dowel holes in the spine.
+        start_hole_diameter_mm: the wire's start holes in the holes.
+    """
+
+    row: int
+    elements: tuple[ElementGeometry, ...]
+    offsets_mm: tuple[float, ...]
+    ledges_mm: tuple[float, ...]
+    length_mm: float
+    spine_height_mm: float
+    thickness_mm: float
+    holes: tuple[Hole, ...]
+    start_hole_diameter_mm: float
+
+    @property
+    def part_name(self) -> str:
+        """``comb_row1``, ``comb_row2``: one part per row (their arms differ)."""
+        return f"comb_row{self.row + 1}"
+
+
+@dataclass(frozen=True)
+class CombGeometry:
+    """The comb: its row sheets, the spacer between them and the fasteners (mm).
+
+    Attributes:
+        sheets: the rows' sheets.
+        spacer_thickness_mm: the plate between the rows (its outline is the spine's).
+        screw: the screws through sheets and spacer (head on row 1, nut on row 2).
+        screw_length_mm: their ISO stock length.
+        dowel_diameter_mm, dowel_length_mm: the ISO 8734 dowel pins that locate the rows.
+        screw_x_mm, dowel_x_mm: the fasteners' positions along the row.
+        fastener_y_mm: their height (mid-spine).
+        envelope_mm: (across the rows with head and screw end, along the row,
+            height to the contact faces).
+    """
+
+    sheets: tuple[CombSheet, ...]
+    spacer_thickness_mm: float
+    screw: BoltSpec
+    screw_length_mm: float
+    dowel_diameter_mm: float
+    dowel_length_mm: float
+    screw_x_mm: tuple[float, ...]
+    dowel_x_mm: tuple[float, ...]
+    fastener_y_mm: float
+    envelope_mm: tuple[float, float, float]
+
+
+def comb_profile(sheet: CombSheet) -> Profile:
+    """Exact outline of one row's comb sheet (CCW, lines and arcs; sheet frame, mm).
+
+    The walk runs along the spine's underside, up the row's far end, then back
+    over every element from the last to the first: along its stop ledge to its
+    post (an inside corner filleted at the element's inside corner radius, as is
+    the slot's floor at the post's back), up the notch's back wall, over the notch, down the arm's front wall,
+    along the arm's underside, up the tip's front face, over the contact face
+    and back along the flat top over the web to the post's back face. The
+    element's own contour (:func:`tactcad.geometry.profile.element_profile`)
+    is walked the same way, so the web, notch and arm are the element's.
+    """
+    pts: list = [(0.0, 0.0), (sheet.length_mm, 0.0), (sheet.length_mm, sheet.ledges_mm[-1])]
+    n = len(sheet.elements)
+    for i in reversed(range(n)):
+        g, x0 = sheet.elements[i], sheet.offsets_mm[i]
+        R, xh, yc = g.notch_radius_mm, x0 + g.hinge_x_mm, g.notch_centre_y_mm
+        L, H, w, r = x0 + g.overall_length_mm, g.base_height_mm, g.tip_width_mm, g.inside_corner_radius_mm
+        ledge = sheet.ledges_mm[i]
+        # the ledge meets the post's front wall in a fillet of the wire's inside radius
+        pts += [(xh - R + r, ledge), ("arc", (xh - R + r, ledge + r), False), (xh - R, ledge + r),
+                (xh - R, yc), ("arc", (xh, yc), False), (xh + R, yc),
+                (xh + R, g.arm_underside_y_mm), (L, g.arm_underside_y_mm), (L, g.tip_top_y_mm),
+                (L - w, g.tip_top_y_mm), (L - w, H + r), ("arc", (L - w - r, H + r), False),
+                (L - w - r, H), (x0, H)]
+        if i == 0:
+            pts.append((x0, 0.0))
+        else:  # the post's back wall meets the slot's floor in a fillet too
+            floor = sheet.ledges_mm[i - 1]
+            pts += [(x0, floor + r), ("arc", (x0 - r, floor + r), False), (x0 - r, floor)]
+    holes = tuple(Circle((x, y), d / 2) for x, y, d in hole_circles(sheet.holes))
+    starts = tuple(Circle(c.centre, sheet.start_hole_diameter_mm / 2) for c in holes)
+    return Profile(outer=_chain(_without_repeats(pts)), holes=holes, start_holes=starts)
+
+
+def _without_repeats(points: list) -> list:
+    """The walk less a vertex that repeats the one before (the first post's
+    back face ends where the walk began)."""
+    out: list = []
+    for p in points:
+        if out and not (isinstance(p, tuple) and p and p[0] == "arc") and p == out[-1]:
+            continue
+        out.append(p)
+    if len(out) > 1 and out[-1] == out[0]:
+        out.pop()
+    return out
+
+
+def build(sheet: CombSheet) -> Solid:
+    """The comb sheet in its sheet frame, extruded along +z (mm)."""
+    return extrude_profile(comb_profile(sheet), sheet.thickness_mm)
+
+
+def specs(context: ArrayContext) -> tuple[PartData, ...]:
+    """One part per row sheet of the plan's comb (none without a comb)."""
+    comb = context.plan.comb
+    if comb is None:
+        return ()
+    out = []
+    for sheet in comb.sheets:
+        prof = comb_profile(sheet)
+        out.append(PartData(
+            name=sheet.part_name, kind="fabricated",
+            process=Process("wire EDM from sheet", Method.SHEET),
+            material=context.plan.material.name, color=COLOR,
+            expected_volume_mm3=prof.area_mm2 * sheet.thickness_mm,
+            expected_bbox_mm=prism_bbox(prof, sheet.thickness_mm), geometry=sheet, profile=prof,
+            thickness_mm=sheet.thickness_mm))
+    return tuple(out)
+
+
+def notes(d, pen) -> list[str]:
+    """The comb sheet's notes: the process, the stops and the holes' fits."""
+    sheet = d.spec.geometry
+    gaps = ", ".join(pen.fmt_mm(e.arm_underside_y_mm - ledge)
+                     for e, ledge in zip(sheet.elements, sheet.ledges_mm))
+    return [f"{pen.sentence(d.spec.process)}, {d.spec.material}, sheet "
+            f"{pen.fmt_mm(sheet.thickness_mm)}: {len(sheet.elements)} elements on one spine.",
+            f"Stop gaps under the arms, element by element: {gaps}; a gap narrower than the "
+            f"wire's slot is cut at the slot and set with a shim at assembly.",
+            "Dowel holes reamed H7; screw holes ISO 273 medium."]
+
+
+def plan_values(plan, spec, pen) -> tuple:
+    """What of the plan the drawing prints: the comb and the sheet."""
+    return (plan.comb, plan.sheet_thickness_mm)
+
+
+PART = ArrayPart(key="comb_sheet", build=build, specs=specs, order=5,
+                 drawing=DrawingRecord(notes_of=notes, plan_values=plan_values),
+                 assembly=BuildStep("comb-rows"))

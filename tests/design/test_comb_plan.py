@@ -1,0 +1,146 @@
+"""The monolithic comb's derivation: it fits the grasper's jaw, every cut
+is at least the wire's slot, the fasteners come from the ISO tables, and its
+elements are profiles the mechanics read as the stacked array's."""
+
+from __future__ import annotations
+
+import pytest
+
+from tactcad.design.array_plan import EXAMPLES, plan_from_dict, with_overrides
+from tactcad.design.comb_plan import MIN_SET_GAP_MM
+from tactcad.errors import DesignErrors
+from tactcad.geometry.profile import Arc
+from tactcad.mechanics.closed_form import estimate_closed_form
+from tactcad.partlib.array.comb_sheet import comb_profile
+from tactcad.vocabulary.schema import read_toml
+from tactcad.vocabulary.standards import DOWEL_PINS, MINIATURE_SCREWS
+
+GRASPER = EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+
+
+@pytest.fixture(scope="module")
+def data():
+    return read_toml(GRASPER, "design file")
+
+
+@pytest.fixture(scope="module")
+def plan(data):
+    return plan_from_dict(data)
+
+
+def test_the_comb_fits_the_stated_footprint(plan, data):
+    across, along, _ = plan.comb.envelope_mm
+    x, y = data["requirements"]["footprint_mm"]
+    assert plan.construction == "monolithic-comb"
+    assert across <= x and along <= y
+
+
+def test_every_cut_is_at_least_the_wire_slot(plan):
+    slot = plan.edm.min_slot_width_mm
+    for sheet in plan.comb.sheets:
+        for e, x0, ledge in zip(sheet.elements, sheet.offsets_mm, sheet.ledges_mm):
+            assert plan.pitch_mm - e.overall_length_mm >= slot - 1e-9  # slot after the tip
+            assert 2 * e.notch_radius_mm >= slot                        # the notch
+            assert e.arm_underside_y_mm - ledge >= slot - 1e-9          # the stop gap as cut
+
+
+def test_the_fasteners_come_from_the_iso_tables(plan):
+    c = plan.comb
+    assert c.screw is MINIATURE_SCREWS[c.screw.size]
+    assert c.screw_length_mm in c.screw.catalogue_lengths_mm
+    assert c.dowel_length_mm in DOWEL_PINS[c.dowel_diameter_mm]
+    sheet = plan.comb.sheets[0]
+    head = max(c.screw.head_diameter_mm, c.screw.nut_across_corners_mm)
+    assert head < sheet.spine_height_mm  # head and nut stay below the arms
+    for hole in sheet.holes:  # a ligament to the row's ends
+        assert hole.diameter_mm / 2 < hole.x_mm < sheet.length_mm - hole.diameter_mm / 2
+
+
+def test_a_pitch_too_short_for_the_longest_element_is_refused(data):
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"array.pitch_mm": 4.3}))
+    fields = [e.field for e in caught.value.errors]
+    assert "arms.lengths_mm[2]" in fields
+
+
+def test_a_footprint_the_comb_does_not_fit_is_refused(data):
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"requirements.footprint_mm": [8.0, 25.0]}))
+    assert caught.value.field == "requirements.footprint_mm[2]"
+
+
+def test_a_stop_gap_below_the_thinnest_shim_is_refused(data):
+    gaps = list(data["comb"]["stop_gaps_mm"])
+    gaps[0] = MIN_SET_GAP_MM / 2
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"comb.stop_gaps_mm": gaps}))
+    assert caught.value.field == "comb.stop_gaps_mm[1]"
+
+
+def test_the_stacked_tables_are_refused_under_the_comb(data):
+    stacked = read_toml(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml", "design file")
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(stacked, {"array.construction": "monolithic-comb"}))
+    assert "comb" in {e.field.split(".")[0] for e in caught.value.errors}
+
+
+def test_the_two_rows_tips_of_a_column_share_their_distance_along_the_row(plan):
+    for c in range(plan.columns):
+        a, b = plan.slots[c], plan.slots[plan.columns + c]
+        assert a.tip_centre_world_mm[2] == pytest.approx(b.tip_centre_world_mm[2])
+        assert a.tip_centre_world_mm[1] == pytest.approx(b.tip_centre_world_mm[1])
+        assert a.tip_centre_world_mm[0] < 0 < b.tip_centre_world_mm[0]
+
+
+def test_the_mechanics_read_the_comb_elements_and_reach_the_ratio(plan, data):
+    k = {s.number: estimate_closed_form(s.geometry, plan.material).stiffness_N_per_mm
+         for s in plan.slots}
+    ratio = k[plan.references[0]] / k[2]
+    assert ratio == pytest.approx(data["requirements"]["kr_over_km"], rel=0.05)
+
+
+def test_the_comb_outline_is_one_closed_contour_over_the_row(plan):
+    sheet = plan.comb.sheets[0]
+    prof = comb_profile(sheet)
+    x0, y0, x1, y1 = prof.bbox_mm
+    assert (x0, y0) == pytest.approx((0.0, 0.0))
+    assert x1 == pytest.approx(sheet.length_mm)
+    assert y1 == pytest.approx(sheet.elements[0].tip_top_y_mm)
+    notches = [s for s in prof.outer if isinstance(s, Arc) and s.radius == pytest.approx(
+        sheet.elements[0].notch_radius_mm)]
+    assert len(notches) == len(sheet.elements)
+    for a, b in zip(prof.outer, prof.outer[1:] + prof.outer[:1]):
+        assert a.end == pytest.approx(b.start)
+    assert len(prof.holes) == len(sheet.holes)
+
+
+def test_the_comb_sheets_dxf_reads_back_and_meets_the_wire_rules(plan, tmp_path):
+    from tactcad.checks.dxf_readback import check_profile_dxf
+    from tactcad.export.dxf import write_profile_dxf
+
+    for sheet in plan.comb.sheets:
+        prof = comb_profile(sheet)
+        path = write_profile_dxf(tmp_path / f"{sheet.part_name}.dxf", prof, sheet.part_name)
+        thinnest = min(e.web_thickness_mm for e in sheet.elements)
+        results = check_profile_dxf(path, sheet.part_name, prof.area_mm2, prof.bbox_mm, plan.edm,
+                                    web_thickness_mm=thinnest, lead_ins=False)
+        assert [r.line() for r in results if not r.passed] == []
+        assert any(r.check == "edm_inside_radius" for r in results)
+
+
+def test_a_pitch_without_room_for_the_fillet_at_the_next_post_is_refused(data):
+    # the slot after the longest element (0.2 mm) is wider than the wire's; a
+    # fillet of 0.25 mm at the next post would reach under the arm's end
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"element.inside_corner_radius_mm": 0.25,
+                                             "element.tip_height_mm": 0.8}))
+    assert "arms.lengths_mm[2]" in [e.field for e in caught.value.errors]
+
+
+def test_a_project_of_a_construction_the_rigs_cannot_hold_is_refused_by_name():
+    from tactcad.design.project import load_project
+
+    with pytest.raises(DesignErrors) as caught:
+        load_project(GRASPER)
+    assert caught.value.field == "array.construction"
+    assert "stacked" in caught.value.allowed
