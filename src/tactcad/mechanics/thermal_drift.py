@@ -226,7 +226,7 @@ def thermal_report(plan: Plan, requirements, model: str = "closed-form",
             k, err = est.stiffness_N_per_mm, est.error_estimate_rel
         else:
             k, err = stiffness[name], errors[name]
-        eps = gauge_strain_per_N(g, plan.material, chain.grid_length_mm, model)["grid"]
+        eps = gauge_strain_per_N(g, plan.material, chain, model)["grid"]
         parts[name] = {"K": k, "err": err, "eps": eps, "f": app / eps}
     gf_term = F * abs(s.gf_tc_per_K)
     records = []
