@@ -219,6 +219,22 @@ def freecad():
     return exe
 
 
+@pytest.fixture(scope="session")
+def ccx():
+    """CalculiX's ``ccx`` (Debian's ``calculix-ccx``): installed here if missing and the
+    user is root (scripts/install-system-deps.sh), else the test is skipped saying so."""
+    exe = shutil.which("ccx")
+    if exe is None:
+        if os.geteuid() != 0 or shutil.which("apt-get") is None:
+            if os.environ.get("CI"):
+                pytest.fail("ccx is missing in CI and cannot be installed here")
+            pytest.skip("ccx is not installed (as root: apt-get install -y calculix-ccx)")
+        subprocess.run(["sh", str(INSTALLER)], check=True, timeout=900)
+        exe = shutil.which("ccx")
+        assert exe is not None, "scripts/install-system-deps.sh did not install ccx"
+    return exe
+
+
 def with_default_companions(design: Path) -> Path:
     """``design`` (a file written in a test) with the default design's rigs
     and scenes files copied beside it, as its ``[files]`` table names them."""

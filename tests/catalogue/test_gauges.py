@@ -33,7 +33,17 @@ def test_gauge_body_follows_the_readout_grid_and_stays_on_the_sheet():
     assert body.grid_length_mm == 1.5 and body.length_mm == pytest.approx(1.5 + 1.6)
     assert body.width_mm == 3.0  # the carrier is cut to the sheet
     x0, y0, z0, x1, y1, z1 = spec.expected_bbox_mm
-    assert (x1 - x0, y1 - y0, z1 - z0) == pytest.approx((3.1, 0.05, 3.0))
+    # as thick as the catalogue gauge's glue line + carrier
+    gauge = _plan().strength.gauge
+    assert (x1 - x0, y1 - y0, z1 - z0) == pytest.approx(
+        (3.1, gauge.backing_thickness_mm + gauge.adhesive_thickness_mm, 3.0))
+
+
+def test_gauge_body_thickness_follows_the_readout_layer():
+    spec = array_parts(_plan(**{"readout.gauge_backing_thickness_mm": 0.025,
+                                "readout.adhesive_thickness_mm": 0.01}))[GAUGE_PART]
+    x0, y0, z0, x1, y1, z1 = spec.expected_bbox_mm
+    assert y1 - y0 == pytest.approx(0.035)
 
 
 def test_gauge_solid_matches_its_spec():

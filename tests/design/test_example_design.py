@@ -145,8 +145,9 @@ def test_example_meets_every_requirement_and_its_binding_limit_holds_at_fem3d():
     decides every requirement ``pass`` (each margin beyond its level's error),
     and the limit that binds the full-scale force, computed again at fem3d for
     the element it binds (three P2 meshes, Richardson), binds there too, the
-    closed form's plane-stress value erring towards safety within its stated
-    error. (`tactcad bench verify` compares auto with the whole fem3d matrix.)"""
+    closed form's value (its gauge strain carries the fem3d-fitted plane-strain
+    factor) within its stated error. (`tactcad bench verify` compares auto with
+    the whole fem3d matrix.)"""
     from tactcad.mechanics.limits import binding, element_limits
     from tactcad.studies.strength_studies import element_stress, fem_peak_stress
     from tactcad.studies.verification import verification_auto
@@ -161,5 +162,4 @@ def test_example_meets_every_requirement_and_its_binding_limit_holds_at_fem3d():
     fem = fem_peak_stress(g, plan.material, "fem3d")
     at_fem3d = binding(element_limits(number, g, plan, fem, fem.stress_error_rel))
     assert at_fem3d.limit == cf["binding_limit"]
-    assert cf["predicted"] < at_fem3d.force_N
-    assert 1 - cf["predicted"] / at_fem3d.force_N <= cf["error_estimate_rel"]
+    assert abs(1 - cf["predicted"] / at_fem3d.force_N) <= cf["error_estimate_rel"]

@@ -12,6 +12,7 @@ import pytest
 from tactcad.design.array_plan import default_design_data, plan_from_dict, with_overrides
 from tactcad.design.project import load_project
 from tactcad.errors import DesignError
+from tactcad.drawings.sheet import fmt_mm
 from tactcad.export.bom import CSV_ENCODING, write_bom_files
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,7 +36,9 @@ def test_example_bom_has_gauges_for_every_element_plus_spares_and_its_own_plate_
     gauge = rows["strain_gauge"]
     assert int(gauge["quantity"]) == n + 2 and gauge["spares"] == "2"
     assert "grid 0.6 x 1 mm" in gauge["process_or_reference"]
-    assert gauge["key_dimensions_mm"] == "2.2 x 0.05 x 2"  # the modelled body: carrier
+    # the modelled body: carrier outline, as thick as the catalogue's glue line + carrier
+    layer = plan.strength.gauge.grid_height_mm
+    assert gauge["key_dimensions_mm"] == f"2.2 x {fmt_mm(layer, 2)} x 2"
     assert int(rows["solder_terminal_pair"]["quantity"]) == n + 2
     assert int(rows["bridge_completion_resistor"]["quantity"]) == 3 * n
     assert rows["lead_wire"]["unit"] == "m" and float(rows["lead_wire"]["quantity"]) >= 1.5 * n

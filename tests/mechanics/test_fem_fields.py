@@ -10,7 +10,8 @@ import pytest
 
 from tactcad.cli import main
 from tactcad.mechanics.fem.field_files import write_element_vtu
-from tactcad.mechanics.fem.fields import von_mises
+from tactcad.mechanics.fem.fields import (FaceStrain, face_rectangle_average, top_face_strain,
+                                          von_mises)
 
 
 def test_von_mises_of_simple_states():
@@ -93,3 +94,49 @@ def test_recovered_stress_at_the_gauge_is_uniaxial(plan):
     assert sig[0, 0] == pytest.approx(E * sol.gauge_strain, rel=0.01)
     assert abs(sig[1, 1]) < 0.02 * abs(sig[0, 0]) and sig[2, 2] == 0.0
     assert abs(sig[0, 0]) < peak_notch_stress(sol.field, g).von_mises_MPa
+
+
+# ---------------------------------------------------------------------------
+# The face average integrates a piecewise-linear face strain exactly
+# ---------------------------------------------------------------------------
+def _grid_face(nx: int, nz: int, x1: float, z1: float, f, sym_plane_z=None) -> FaceStrain:
+    xs, zs = np.linspace(0, x1, nx + 1), np.linspace(0, z1, nz + 1)
+    tris = []
+    for i in range(nx):
+        for j in range(nz):
+            a, b = (xs[i], zs[j]), (xs[i + 1], zs[j])
+            c, d = (xs[i + 1], zs[j + 1]), (xs[i], zs[j + 1])
+            tris += [(a, b, c), (a, c, d)]
+    corners = np.array(tris)
+    return FaceStrain(corners, f(corners[..., 0], corners[..., 1]), sym_plane_z)
+
+
+def test_face_average_is_exact_for_a_linear_strain():
+    face = _grid_face(7, 5, 4.0, 3.0, lambda x, z: 2.0 + 3.0 * x - 0.5 * z)
+    # a rectangle that cuts the triangles anywhere: the mean of a linear field is its centre value
+    got = face_rectangle_average(face, (0.37, 2.91), (0.55, 2.2))
+    assert got == pytest.approx(2.0 + 3.0 * (0.37 + 2.91) / 2 - 0.5 * (0.55 + 2.2) / 2, rel=1e-12)
+
+
+def test_face_average_folds_a_grid_across_the_mid_plane_of_a_half_model():
+    f = lambda x, z: 1.0 + x + 2.0 * z  # noqa: E731
+    half = _grid_face(6, 6, 2.0, 1.5, f, sym_plane_z=1.5)
+    # the grid 1.0 ... 2.0 across z reads 1.0 ... 1.5 and its mirror 1.0 ... 1.5 (mean z 1.25)
+    got = face_rectangle_average(half, (0.5, 1.5), (1.0, 2.0))
+    assert got == pytest.approx(1.0 + 1.0 + 2.0 * 1.25, rel=1e-12)
+    with pytest.raises(ValueError, match="covers"):
+        face_rectangle_average(_grid_face(2, 2, 1.0, 1.0, f), (0.5, 1.5), (0.0, 1.0))
+
+
+def test_top_face_strain_of_a_fem3d_solve_meets_its_gauge_point(plan):
+    """The face's per-cell strain over a tiny square at the gauge point agrees with the
+    solve's nodal-averaged gauge strain there (one coarse mesh, about a second)."""
+    from tactcad.mechanics.fem.fem3d import solve_fem3d
+
+    g = plan.element(1).geometry
+    sol = solve_fem3d(g, plan.material, size_factor=2.0, keep_field=True)
+    face = top_face_strain(sol.field, g.base_height_mm)
+    b, x = g.sheet_thickness_mm, g.hinge_x_mm
+    tiny = face_rectangle_average(face, (x - 0.005, x + 0.005), (b / 2 - 0.01, b / 2 + 0.01))
+    assert tiny == pytest.approx(sol.gauge_strain / sol.force_N, rel=0.02)
+    assert face.sym_plane_z == b / 2

@@ -16,13 +16,14 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from tactcad.cli import main
 from tactcad.design.array_plan import load_design
 from tactcad.mechanics import ladder
 from tactcad.mechanics.fem import fem2d, fem3d
-from tactcad.mechanics.fem.fields import PeakStress
+from tactcad.mechanics.fem.fields import FaceStrain, PeakStress
 from tactcad.store import Store, keeping_results
 from tactcad.studies.strength_studies import fem_peak_stress
 
@@ -65,6 +66,9 @@ def fem3d_solves(monkeypatch) -> list:
 
     monkeypatch.setattr(fem3d, "solve_fem3d", solve)
     monkeypatch.setattr(fem3d, "peak_notch_stress", peak)
+    monkeypatch.setattr(fem3d, "top_face_strain", lambda field, y_top_mm: FaceStrain(
+        np.array([[[-1e3, 0.0], [1e3, 0.0], [1e3, 1e3]], [[-1e3, 0.0], [1e3, 1e3], [-1e3, 1e3]]]),
+        np.full((2, 3), -1e-3 * (1.0 + 0.01 * field ** 2)), None))
     return calls
 
 

@@ -8,87 +8,34 @@ of the cut face fixed, ``*FREQUENCY``. The first frequency in ccx's ``.dat``
 must agree with fem3d's within 1 % (measured 0.41 % at this mesh of 19k
 nodes, 5.6 s of ccx; 0.23 % at 34k nodes, 14.5 s, with half the web at the
 notch and 0.6 mm elsewhere). ``ccx`` is Debian's ``calculix-ccx``
-(scripts/install-system-deps.sh); when it is missing the test installs it
-as root, else it is skipped saying so.
+(scripts/install-system-deps.sh); when it is missing the ``ccx`` fixture
+(tests/conftest.py) installs it as root, else the test is skipped saying so.
 """
 
 from __future__ import annotations
 
-import os
 import re
-import shutil
 import subprocess
 from pathlib import Path
 
-import numpy as np
 import pytest
 
-from conftest import INSTALLER, run_cli
+from calculix_jobs import mesh_element, write_mesh
+from conftest import run_cli
 
 PART = "element_a4mm"
-
-
-@pytest.fixture(scope="module")
-def ccx():
-    exe = shutil.which("ccx")
-    if exe is None:
-        if os.geteuid() != 0 or shutil.which("apt-get") is None:
-            if os.environ.get("CI"):
-                pytest.fail("ccx is missing in CI and cannot be installed here")
-            pytest.skip("ccx is not installed (as root: apt-get install -y calculix-ccx)")
-        subprocess.run(["sh", str(INSTALLER)], check=True, timeout=900)
-        exe = shutil.which("ccx")
-        assert exe is not None, "scripts/install-system-deps.sh did not install ccx"
-    return exe
 
 
 def write_ccx_input(step: Path, inp: Path, *, x_clamp: float, neck_box, neck_size: float,
                     size_max: float, E: float, nu: float, rho_t_mm3: float, modes: int) -> int:
     """Mesh ``step`` cut at x >= x_clamp with gmsh (order 2) and write a
     CalculiX frequency job; returns the node count."""
-    import gmsh
-
-    gmsh.initialize(readConfigFiles=False, interruptible=False)  # Ctrl-C stays this process's
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        occ = gmsh.model.occ
-        vols = occ.importShapes(str(step))
-        cut, _ = occ.intersect(vols, [(3, occ.addBox(x_clamp, -1e3, -1e3, 2e3, 2e3, 2e3))])
-        occ.synchronize()
-        faces = [t for _, t in gmsh.model.getBoundary(cut, oriented=False)
-                 if np.allclose(gmsh.model.getBoundingBox(2, t)[::3], x_clamp, atol=1e-6)]
-        assert faces, "the cut face at the clamp line was not found"
-        (x0, y0, x1, y1) = neck_box
-        f = gmsh.model.mesh.field.add("Box")
-        for k, v in dict(VIn=neck_size, VOut=size_max, XMin=x0, XMax=x1, YMin=y0, YMax=y1,
-                         ZMin=-1e3, ZMax=1e3, Thickness=x1 - x0).items():
-            gmsh.model.mesh.field.setNumber(f, k, v)
-        gmsh.model.mesh.field.setAsBackgroundMesh(f)
-        gmsh.option.setNumber("Mesh.MeshSizeMax", size_max)
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 24)
-        gmsh.option.setNumber("Mesh.ElementOrder", 2)
-        gmsh.model.mesh.generate(3)
-        tags, xyz, _ = gmsh.model.mesh.getNodes()
-        types, _, nodes = gmsh.model.mesh.getElements(3)
-        # gmsh's 10-node tetrahedron lists its last two edge nodes the other way round
-        conn = nodes[list(types).index(11)].reshape(-1, 10)[:, [0, 1, 2, 3, 4, 5, 6, 7, 9, 8]]
-        clamp = sorted({int(n) for t in faces
-                        for n in gmsh.model.mesh.getNodes(2, t, includeBoundary=True)[0]})
-    finally:
-        gmsh.finalize()
+    mesh = mesh_element(step, x_clamp=x_clamp, neck_box=neck_box, neck_size=neck_size,
+                        size_max=size_max)
     with open(inp, "w", encoding="ascii") as fh:
-        fh.write("*NODE\n")
-        fh.writelines(f"{int(t)}, {x:.12g}, {y:.12g}, {z:.12g}\n"
-                      for t, (x, y, z) in zip(tags, xyz.reshape(-1, 3)))
-        fh.write("*ELEMENT, TYPE=C3D10, ELSET=SOLID\n")
-        fh.writelines(f"{i + 1}, " + ", ".join(str(int(n)) for n in row) + "\n"
-                      for i, row in enumerate(conn))
-        fh.write("*NSET, NSET=CLAMP\n")
-        fh.writelines(f"{n},\n" for n in clamp)
-        fh.write(f"*MATERIAL, NAME=SHEET\n*ELASTIC\n{E}, {nu}\n*DENSITY\n{rho_t_mm3}\n"
-                 "*SOLID SECTION, ELSET=SOLID, MATERIAL=SHEET\n*BOUNDARY\nCLAMP, 1, 3\n"
-                 f"*STEP\n*FREQUENCY\n{modes}\n*END STEP\n")
-    return len(tags)
+        write_mesh(fh, mesh, E, nu, rho_t_mm3)
+        fh.write(f"*STEP\n*FREQUENCY\n{modes}\n*END STEP\n")
+    return len(mesh.tags)
 
 
 def read_ccx_frequencies(dat: Path) -> list[float]:

@@ -45,10 +45,13 @@ def test_grid_average_is_below_the_peak_and_tends_to_it_for_a_short_grid():
 def test_fem2d_field_average_agrees_with_beam_theory_over_the_grid():
     plan = load_design()
     g, m = plan.element(1).geometry, plan.material
-    fem = gauge_strain_per_N(g, m, 0.6, "fem2d")
-    beam = gauge_strain_per_N(g, m, 0.6, "closed-form")
+    chain = readout_chain(plan)
+    fem = gauge_strain_per_N(g, m, chain, "fem2d")
+    beam = gauge_strain_per_N(g, m, chain, "closed-form")
     assert fem["grid"] < 0 and beam["grid"] < 0
-    assert fem["grid"] == pytest.approx(beam["grid"], rel=0.05)
+    # both carry the fitted width factor; fem2d's own profile against EB x C's: the fit's error
+    assert fem["surface"] == pytest.approx(beam["surface"], rel=beam["error_rel"] + 0.01)
+    assert fem["read_factor"] == beam["read_factor"]
     assert fem["source"] != beam["source"]
 
 

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from tactcad.mechanics.gauge_strain import point_strain_factor
 from tactcad.cli import main
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError
@@ -53,8 +54,10 @@ def test_yield_limited_force_and_the_figures_at_the_rated_force(plan):
     assert rec.yield_limited_force_N != pytest.approx(rated)  # two forces, two names
     assert rec.yield_safety_factor_at_full_scale == pytest.approx(
         y / (rec.stress_MPa_per_N * rated), rel=1e-12)
-    assert rec.gauge_strain_at_full_scale == pytest.approx(
-        6 * 8.0 / (69000 * 3.0 * 0.25**2) * rated, rel=1e-12)
+    g = plan.element(4).geometry
+    assert rec.gauge_strain_at_full_scale == pytest.approx(  # EB x the fitted point factor
+        6 * 8.0 / (69000 * 3.0 * 0.25**2) * point_strain_factor(g, plan.material).factor * rated,
+        rel=1e-12)
     assert rec.tip_deflection_mm_at_full_scale == pytest.approx(
         rated / rec.stiffness_N_per_mm, rel=1e-12)
     assert float(yield_limited_force(y, rec.stress_MPa_per_N, 2 * sf)) == pytest.approx(

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from tactcad.design.array_plan import Plan
 from tactcad.design.bom_section import bom_settings
-from tactcad.design.readout_section import readout_of
+from tactcad.design.readout_section import carrier_width_mm, readout_of
 from tactcad.partlib.array.strain_gauge import GaugeBody
 
 
@@ -89,21 +89,20 @@ def sensor_items(plan: Plan) -> list[SensorItem]:
 # ---------------------------------------------------------------------------
 # The gauge as a part: a foil gauge body bonded over each element's web
 # ---------------------------------------------------------------------------
-#: Carrier beyond the grid at each end along the arm and at each side (mm), and the
-#: thickness of carrier, foil and adhesive together (mm): the usual build of an open
+#: Carrier beyond the grid at each end along the arm (mm): the usual build of an open
 #: foil gauge on a polyimide carrier (catalogue outlines of 0.6 mm grids are about
-#: 2.5 x 2 mm and 0.05 mm thick).
+#: 2.5 x 2 mm; the side margin is :data:`~tactcad.design.readout_section.CARRIER_SIDE_MM`).
+#: The body's thickness is the catalogue gauge's glue line + carrier (``[readout]``
+#: grid height; the 5 um foil is left out).
 CARRIER_END_MM = 0.8
-CARRIER_SIDE_MM = 0.5
-GAUGE_THICKNESS_MM = 0.05
 
 
 def gauge_body(plan: Plan) -> GaugeBody:
     """The gauge body of ``plan``: the ``[readout]`` grid with its carrier, no wider than
-    the sheet."""
+    the sheet, as thick as glue line + carrier."""
     ro = readout_of(plan.raw, plan.strength.gauge)
-    width = min(ro.grid_width_mm + 2 * CARRIER_SIDE_MM, plan.sheet_thickness_mm)
-    return GaugeBody(ro.grid_length_mm + 2 * CARRIER_END_MM, width, GAUGE_THICKNESS_MM,
+    width = carrier_width_mm(ro.grid_width_mm, plan.sheet_thickness_mm)
+    return GaugeBody(ro.grid_length_mm + 2 * CARRIER_END_MM, width, ro.grid_height_mm,
                      ro.grid_length_mm, ro.grid_width_mm)
 
 

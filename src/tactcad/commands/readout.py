@@ -68,12 +68,20 @@ def render(report) -> str:
              f"{1e6 * report.noise_V['reading']:.1f} uV rms; full-scale force "
              f"{report.full_scale_force_N:.4g} N; K_obj range {report.kobj_range_N_per_mm[0]:g}-"
              f"{report.kobj_range_N_per_mm[1]:g} N/mm",
-             "| element | role | K N/mm | strain/N (grid) | grid/peak | K_v/K V/N | K_v V/mm | "
-             "force res. N | K_obj res. |",
-             "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+             f"  grid {1e3 * c.grid_height_mm:.0f} um above the top face (glue line + carrier, "
+             f"{c.gauge_backing_modulus_MPa:g} MPa): the grid reads the face's strain x "
+             "'read'; the layer stiffens the web by 'stiff.'",
+             "| element | role | K N/mm | strain/N (face) | error | read | stiff. | "
+             "strain/N (grid) | face grid/peak | K_v/K V/N | K_v V/mm | force res. N | "
+             "K_obj res. |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in report.records:
         res = "n/a" if r["kobj_resolution_rel"] is None else f"{100 * r['kobj_resolution_rel']:.2f} %"
+        flag = " (outside fit)" if r["strain_outside_fit"] else ""
         lines.append(f"| {r['element']} | {r['role']} | {r['stiffness_N_per_mm']:.4g} | "
+                     f"{r['surface_strain_per_N']:.4g} | {100 * r['strain_error_rel']:.2g} %"
+                     f"{flag} | {r['grid_read_factor']:.3f} | "
+                     f"{100 * r['gauge_stiffening_rel']:.2g} % | "
                      f"{r['gauge_strain_per_N']:.4g} | {r['grid_over_peak']:.3f} | "
                      f"{r['sensitivity_V_per_N']:.4g} | {r['k_v_V_per_mm']:.4g} | "
                      f"{r['force_resolution_N']:.2g} | {res} |")
@@ -83,6 +91,7 @@ def render(report) -> str:
                          f"{r['full_scale_signal_V']:.3g} V exceeds the DAQ range "
                          f"+/-{c.daq_range_V:g} V: lower readout.amplifier_gain or raise "
                          f"readout.daq_range_V")
+    lines += [f"  {note}" for note in report.fit_range_notes()]
     arr = report.array_kobj_resolution_rel
     lines.append(f"array K_obj resolution (worst over the range, best unit): "
                  f"{'n/a' if arr is None else f'{100 * arr:.2f} %'}")

@@ -13,6 +13,10 @@ Keys (units in the names):
 * ``gauge_factor`` (-), ``gauge_resistance_ohm``;
 * ``grid_length_mm`` (along the arm), ``grid_width_mm`` (across the sheet):
   the active grid, over which the gauge averages the strain;
+* ``gauge_backing_thickness_mm``, ``adhesive_thickness_mm``,
+  ``gauge_backing_modulus_MPa``: the carrier and glue line under the grid
+  (default: the library gauge's), which lift the grid above the web's
+  surface and stiffen a thin web (:func:`tactcad.mechanics.readout_chain.bonded_grid_factor`);
 * ``bridge``: ``"quarter"`` (one active gauge, three completion resistors);
 * ``excitation_V``: bridge supply (not stated: the highest the grid's power density
   allows, Micro-Measurements TN-502, see :func:`tn502_excitation_V`);
@@ -158,6 +162,10 @@ class ReadoutSection(Section):
     gauge_resistance_ohm: number(10.0, 10000.0, unit="ohm") = None
     grid_length_mm: number(0.1, 20.0, why="active grid length along the arm") = None
     grid_width_mm: number(0.1, 20.0, why="active grid width across the sheet") = None
+    gauge_backing_thickness_mm: number(0.0, 0.5, why="carrier under the foil grid") = None
+    adhesive_thickness_mm: number(0.0, 0.5, why="cured glue line under the carrier") = None
+    gauge_backing_modulus_MPa: number(0.0, 200000.0, unit="MPa",
+                                      why="Young's modulus of carrier and glue line") = None
     bridge: choice(BRIDGES, "one active gauge per element") = None
     excitation_V: number(0.1, 15.0, unit="V", why="bridge supply") = None
     amplifier: Text = None
@@ -253,6 +261,14 @@ class ReadoutChain(ResolvedSection):
         """Power per grid area at the excitation (W/mm^2)."""
         return grid_power_density_W_per_mm2(self.excitation_V, self.gauge_resistance_ohm,
                                             self.grid_length_mm * self.grid_width_mm)
+    gauge_backing_thickness_mm: float = 0.0
+    adhesive_thickness_mm: float = 0.0
+    gauge_backing_modulus_MPa: float = 0.0
+
+    @property
+    def grid_height_mm(self) -> float:
+        """Height of the foil grid above the web's top face: glue line + carrier (mm)."""
+        return self.gauge_backing_thickness_mm + self.adhesive_thickness_mm
 
     @property
     def volts_per_strain(self) -> float:
@@ -268,6 +284,17 @@ class ReadoutChain(ResolvedSection):
         return {"volts_per_strain": self.volts_per_strain,
                 "grid_power_density_W_per_mm2": self.grid_power_density_W_per_mm2,
                 "lead_resistance_ohm": self.lead_resistance_ohm}
+
+
+#: Carrier beyond the grid at each side across the sheet (mm): catalogue outlines of
+#: 0.6 mm grids are about 2.5 x 2 mm.
+CARRIER_SIDE_MM = 0.5
+
+
+def carrier_width_mm(grid_width_mm: float, sheet_mm: float) -> float:
+    """Width of the gauge's carrier across the sheet: the grid and a side margin each
+    way, no wider than the sheet (mm)."""
+    return min(grid_width_mm + 2 * CARRIER_SIDE_MM, sheet_mm)
 
 
 def _nearest(table: Mapping[float, float], key: float) -> float | None:
@@ -288,7 +315,13 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
     """
     gs = dict(gauge.sources)
     from_gauge = {"gauge_factor": (gauge.gauge_factor, gs.get("gauge_factor", "")),
-                  "gauge_resistance_ohm": (gauge.resistance_ohm, gs.get("resistance_ohm", ""))}
+                  "gauge_resistance_ohm": (gauge.resistance_ohm, gs.get("resistance_ohm", "")),
+                  "gauge_backing_thickness_mm": (gauge.backing_thickness_mm,
+                                                 gs.get("backing_thickness_mm", "")),
+                  "adhesive_thickness_mm": (gauge.adhesive_thickness_mm,
+                                            gs.get("adhesive_thickness_mm", "")),
+                  "gauge_backing_modulus_MPa": (gauge.backing_modulus_MPa,
+                                                gs.get("backing_modulus_MPa", ""))}
     values, sources = section_with_defaults(raw, "readout", {
         **{k: (v, f"library gauge {gauge.name}: {why}".rstrip(": "))
            for k, (v, why) in from_gauge.items()}, **DEFAULTS})

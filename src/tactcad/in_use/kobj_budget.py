@@ -357,42 +357,15 @@ def tissue_coupling(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     return Contribution(before, after)
 
 
-def _strain_source(plan: Plan, model: str) -> str:
-    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
-
-    g = next(iter(plan.distinct_elements.values()))
-    return gauge_strain_per_N(g, plan.material, readout_chain(plan).grid_length_mm,
-                              model)["source"]
-
-
-def comparison_level(plan: Plan, model: str) -> str | None:
-    """The level the gauge strain at ``model`` is compared with: the next one up the
-    ladder that computes the strain anew, else the nearest below that does; None when
-    every level computes it alike."""
-    from tactcad.mechanics.ladder import models
-
-    levels = list(models())
-    own = _strain_source(plan, model)
-    i = levels.index(model)
-    for other in levels[i + 1:] + levels[:i][::-1]:
-        if _strain_source(plan, other) != own:
-            return other
-    return None
-
-
 def gauge_model_error_rel(plan: Plan, model: str) -> dict[str, float]:
-    """Per distinct part: its grid strain per newton at ``model`` over that at
-    :func:`comparison_level`, minus 1 (signed; 0 without another level)."""
+    """Per distinct part: the estimated relative error of the grid strain per newton at
+    ``model`` (:func:`tactcad.mechanics.readout_chain.gauge_strain_per_N`'s ``error_rel``:
+    the width correction's fit residual at the closed form and beam, the mesh's at fem3d)."""
     from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
 
-    other = comparison_level(plan, model)
-    grid = readout_chain(plan).grid_length_mm
-    out = {}
-    for name, g in plan.distinct_elements.items():
-        own = gauge_strain_per_N(g, plan.material, grid, model)["grid"]
-        out[name] = 0.0 if other is None else \
-            own / gauge_strain_per_N(g, plan.material, grid, other)["grid"] - 1.0
-    return out
+    chain = readout_chain(plan)
+    return {name: float(gauge_strain_per_N(g, plan.material, chain, model)["error_rel"])
+            for name, g in plan.distinct_elements.items()}
 
 
 def gauge_model(ctx: Context, unit: Unit, op: Operating) -> Contribution:
@@ -651,7 +624,9 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         "temperature_step": f"{delta_T_K:g} K between tare and reading; the self-heating "
                             f"offset is constant at a fixed excitation and tared with the zero",
         "modulus_tc_per_K": tc_e, "modulus_tc_source": tc_source,
-        "gauge_model_compared_with": comparison_level(plan, model),
+        "gauge_model": "the grid strain's own error estimate at the level (the width "
+                       "correction's fit residual at closed form and beam; a calibration "
+                       "measures K_v, so none remains after it)",
         "calibration": "fitted standard errors of the calibration file" if calibrations
         else "expected standard errors of the paper's procedure (25 um steps to 150 um, 3 "
              "runs, force read to 0.001 N, signal to the read-out chain's noise of one "

@@ -39,7 +39,9 @@ the beam is as stiff as the uncorrected closed form, so its model error is
 Gauge strain: the bending moment at the notch centre, M = F a (equilibrium),
 converted to the top-surface strain eps = M (t/2) / (E b t^3 / 12) (neutral
 axis at the centroid of the b x t section); it carries no discretisation
-error.
+error. :func:`estimate_beam` reports it times the fem3d-fitted point factor
+of :mod:`tactcad.mechanics.gauge_strain`, as the closed form does (the web
+of a wide sheet bends near plane strain).
 
 Units: mm, N, MPa, N/mm.
 """
@@ -53,7 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry, Material
-from tactcad.mechanics.closed_form import ALPHA_SHEAR, correction_factor
+from tactcad.mechanics.closed_form import ALPHA_SHEAR, corrected_point_strain, correction_factor
 from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.richardson import richardson
 
@@ -297,7 +299,7 @@ def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None
 
     Returns:
         :class:`StiffnessResult` with model ``beam``: K of the finest mesh, the
-        gauge strain per newton, and an error estimate that adds the Richardson
+        gauge strain per newton (times the fem3d-fitted point factor), and an error estimate that adds the Richardson
         discretisation error to the model error of beam theory at the notch:
         |1/f - 1|, f = K_corrected / K_EB of the fem3d-fitted correction
         (:func:`tactcad.mechanics.closed_form.correction_factor`; beam theory
@@ -312,6 +314,7 @@ def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None
     model_error = abs(1.0 / correction_factor(g, material) - 1.0)
     return StiffnessResult(element=element, model=MODEL_NAME,
                            stiffness_N_per_mm=conv.stiffness_N_per_mm[-1],
-                           gauge_strain_per_N=conv.gauge_strain_per_N,
+                           gauge_strain_per_N=conv.gauge_strain_per_N
+                           * corrected_point_strain(g, material),
                            error_estimate_rel=conv.error_estimate_rel + model_error,
                            wall_time_s=time.perf_counter() - start)

@@ -86,8 +86,11 @@ def range_warnings_unsaid() -> Iterator[None]:
     """Estimates made inside issue no :class:`CorrectionRangeWarning`: for the
     candidates a search weighs or a grid's points, which are not the design
     the user asked about (or report their range themselves)."""
+    from tactcad.mechanics.gauge_strain import GaugeStrainRangeWarning
+
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", CorrectionRangeWarning)
+        warnings.simplefilter("ignore", GaugeStrainRangeWarning)
         yield
 
 

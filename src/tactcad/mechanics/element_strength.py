@@ -166,8 +166,10 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
         ``yield``: yield-limited force, yield / (peak stress per N x safety factor);
         ``fatigue``: fatigue strength / peak stress per N (NaN without a
         fatigue strength); ``gauge_max`` and ``gauge_fatigue``: the gauge's
-        maximum and fatigue strain / Euler-Bernoulli surface strain per N over
-        the web, 6 a / (E b t^2); ``binding``: the smallest of them.
+        maximum and fatigue strain / the surface strain per N over the web,
+        Euler-Bernoulli's 6 a / (E b t^2) x the fem3d-fitted point factor of
+        :mod:`tactcad.mechanics.gauge_strain` (as the closed-form level reports it);
+        ``binding``: the smallest of them.
 
     Raises:
         DesignError: the material has no yield strength.
@@ -175,7 +177,11 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
     """
     y = require_yield(material)
     s = peak_stress_per_newton(web_mm, notch_radius_mm, arm_length_mm, sheet_mm)
-    eps = nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm) / material.youngs_modulus_MPa
+    from tactcad.mechanics.gauge_strain import point_factor
+
+    eps = (nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm)
+           / material.youngs_modulus_MPa
+           * point_factor(web_mm, notch_radius_mm, sheet_mm, material.poisson_ratio))
     fat = material.fatigue_strength_MPa
     out = {"yield": yield_limited_force(y, s, settings.safety_factor),
            "fatigue": (fat / s) if fat is not None else np.full_like(s, np.nan),

@@ -14,13 +14,14 @@ and K at a ladder level, :class:`tactcad.mechanics.element_strength.ElementStres
   rotation 2R / d, i.e. a tip travel a 2R / d (small rotations).
 
 Stress-based limits carry the stress's error estimate, strain- and
-travel-based ones K's; below fem3d the stress and the gauge strain are plane
-stress, so the stress- and strain-based limits also carry the plane model's
-bound against 3D: a wide web is near plane strain at mid-width, its surface
-strain per newton lower by 1 - nu^2 and its von Mises stress by about as
-much, so the plane-stress force limit is low by up to nu^2 of the 3D one
-(default design: fem3d's peak stress 9.8 % below the closed form's; the
-titanium example's gauge-limited force 11.6 % below fem3d's, nu^2 = 11.7 %).
+travel-based ones K's; below fem3d the stress is plane stress, so the
+stress-based limits also carry the plane model's bound against 3D: a wide
+web is near plane strain at mid-width, its von Mises stress lower by about
+1 - nu^2, so the plane-stress force limit is low by up to nu^2 of the 3D one
+(default design: fem3d's peak stress 9.8 % below the closed form's). The
+gauge strain of the closed form and beam carries the fem3d-fitted plane-strain
+factor (:mod:`tactcad.mechanics.gauge_strain`), so their strain-based limits
+carry that fit's error instead; fem2d's strain is still plane stress (nu^2).
 Units: mm, N, MPa, N/mm.
 """
 
@@ -29,6 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from tactcad.design.array_plan import ElementGeometry, Plan
+from tactcad.mechanics.gauge_strain import point_strain_factor
 from tactcad.mechanics.ladder import is_meshed
 
 #: Names of the limits, in the order they are listed.
@@ -72,16 +74,19 @@ def notch_closing_travel_mm(g: ElementGeometry) -> float:
 
 
 def element_limits(number: int, g: ElementGeometry, plan: Plan, es, k_error_rel: float,
-                   plane_error_rel: float = 0.0) -> list[ForceLimit]:
+                   plane_error_rel: float = 0.0,
+                   strain_model_error_rel: float | None = None) -> list[ForceLimit]:
     """Every :class:`ForceLimit` of one element from its per-newton response ``es``
     (:class:`tactcad.mechanics.element_strength.ElementStress`), K's error estimate and,
-    for the levels whose stress and gauge strain are plane stress (closed form,
-    beam, fem2d), the plane model's bound against 3D (nu^2), added to the
-    stress- and strain-based limits' errors."""
+    for the levels whose stress is plane stress (closed form, beam, fem2d), the plane
+    model's bound against 3D (nu^2), added to the stress-based limits' errors; the
+    strain-based ones add ``strain_model_error_rel`` (the gauge strain's own model
+    error; ``None``: the same plane bound)."""
     mat, st = plan.material, plan.strength
     s, eps, k = es.stress_MPa_per_N, es.gauge_strain_per_N, es.stiffness_N_per_mm
     stress_err = es.stress_error_rel + plane_error_rel
-    strain_err = k_error_rel + plane_error_rel
+    strain_err = k_error_rel + (plane_error_rel if strain_model_error_rel is None
+                                else strain_model_error_rel)
     out = [ForceLimit("yield", number, g.part_name, mat.yield_strength_MPa / (s * st.safety_factor),
                       stress_err,
                       f"{mat.yield_strength_MPa:g} MPa / ({s:.4g} MPa/N x {st.safety_factor:g})")]
@@ -139,8 +144,10 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
         # fem2d's K error already holds its plane model error for K: not for the strain
         k_err = k_errors[g.part_name] - (plane_model_error(g, plan.material)
                                          if model == "fem2d" else 0.0)
+        # the closed form's and the beam's gauge strain carry the fitted plane-strain factor
+        strain_err = None if is_meshed(model) else point_strain_factor(g, plan.material).error_rel
         out.extend(element_limits(slot.number, g, plan, stresses[g.part_name],
-                                  max(k_err, 0.0), bound))
+                                  max(k_err, 0.0), bound, strain_err))
     return out
 
 

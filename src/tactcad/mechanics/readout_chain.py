@@ -1,18 +1,34 @@
 """Read-out chain of a design: gauge strain, signal, noise and resolution per element.
 
 Gauge strain. The gauge sits on the flat top face centred over the notch
-centre x_h and reads the strain averaged over its grid length L_g:
+centre x_h and across the sheet, and reads the strain averaged over its
+grid, length L_g along x, width W across:
 
-    eps_avg / F = (1 / L_g) * integral over [x_h - L_g/2, x_h + L_g/2] of eps(x) / F dx.
+    eps_avg / F = (1 / (L_g W)) * integral over the grid of eps_xx / F dA.
 
-``closed-form`` and ``beam`` take eps(x) from Euler-Bernoulli bending along
-the real profile, eps(x) / F = -6 (x_F - x) / (E b h(x)^2) with the section
-height h(x) of the notch (t + R - sqrt(R^2 - (x - x_h)^2)), the base block
-behind it and the arm in front (x_F: load point; negative: the top face is
-in compression under an upward tip force). ``fem2d`` and ``fem3d`` take it
-from the plane-stress P2 field of :mod:`tactcad.mechanics.fem.fem2d` on the
-top-surface vertices (sigma_xx / E on the free surface), so the notch's
-own strain concentration is in it.
+Per level (:func:`gauge_strain_per_N`):
+
+* ``fem3d``: fem3d's own eps_xx on the top face (the P2 field of the kept
+  stiffness solve, :func:`tactcad.mechanics.fem.fields.face_rectangle_average`),
+  integrated exactly over the grid's rectangle; its error is the Richardson
+  estimate over the three meshes.
+* ``closed-form`` and ``beam``: Euler-Bernoulli bending along the real
+  profile, eps(x) / F = -6 (x_F - x) / (E b h(x)^2) with the section height
+  h(x) of the notch (t + R - sqrt(R^2 - (x - x_h)^2)), the base block behind
+  it and the arm in front (x_F: load point; negative: the top face is in
+  compression under an upward tip force), averaged over L_g, times the
+  fem3d-fitted factor C of :mod:`tactcad.mechanics.gauge_strain` (the web's
+  near plane strain in a wide sheet, and EB's too peaked profile); its
+  error is the fit's, larger outside the fitted range (flagged).
+* ``fem2d``: the plane-stress P2 field of :mod:`tactcad.mechanics.fem.fem2d`
+  on the top-surface vertices (sigma_xx / E on the free surface), averaged
+  over L_g, times the width part 1 - nu^2 phi of that fit.
+
+The grid lies a glue line + carrier above the face and the layer stiffens
+the web: every level's face average is multiplied by the transformed-section
+factor of :func:`tactcad.mechanics.gauge_strain.bonded_grid_factor` (catalogue
+thicknesses and modulus, ``[readout]``), so the sensitivity, K_v, the force
+resolution and the thermal figures read the strain the grid itself sees.
 
 Signal. Quarter bridge, linearised: V_out = G V_ex GF eps / 4
 (Hoffmann, "An Introduction to Measurements using Strain Gages", HBM 1989,
@@ -54,7 +70,6 @@ BOLTZMANN_J_PER_K = 1.380649e-23
 BRIDGE_TEMPERATURE_K = 296.0
 #: Points per mm of grid for the beam-theory average (Gauss-Legendre per piece).
 GAUSS_POINTS = 64
-#: Levels whose gauge strain comes from the fem2d field.
 
 
 def readout_chain(plan: Plan) -> ReadoutChain:
@@ -139,21 +154,105 @@ def field_grid_strain_per_N(x: np.ndarray, eps: np.ndarray, span: tuple[float, f
         float(np.trapz(ys, xs) / (b - a))
 
 
-def gauge_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: float,
-                       model: str) -> dict:
-    """Grid-averaged and peak top-face strain per newton of one element.
+def fem3d_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: float,
+                            grid_width_mm: float) -> dict:
+    """fem3d's own top-face strain per newton averaged over the grid (centred over the notch
+    and across the sheet; a grid wider than the sheet covers the sheet), from the
+    stiffness level's kept solves (:func:`~tactcad.mechanics.fem.fem3d.fem3d_convergence`
+    with its defaults: no solve of its own when ``stiffness --model fem3d`` ran).
 
     Returns:
-        ``{"grid": eps_avg/F, "peak": eps/F at the notch centre, "source": str}`` (1/N, signed).
+        ``{"surface": grid average (1/N, signed), "peak": eps/F at the notch centre,
+        mid-width, "error_rel": Richardson error of the grid average}``.
     """
+    from tactcad.mechanics.fem.fem2d import REFINEMENT_RATIO
+    from tactcad.mechanics.fem.fem3d import fem3d_convergence
+    from tactcad.mechanics.fem.fields import face_rectangle_average
+    from tactcad.mechanics.richardson import richardson
+
+    conv = fem3d_convergence(g, material)
+    b = g.sheet_thickness_mm
+    w = min(grid_width_mm, b)
+    span, across = grid_span_mm(g, grid_length_mm), (b / 2 - w / 2, b / 2 + w / 2)
+    vals = [face_rectangle_average(f, span, across) for f in conv.faces]
+    fin = conv.finest
+    return {"surface": vals[-1], "peak": fin.gauge_strain / fin.force_N,
+            "error_rel": richardson(vals, REFINEMENT_RATIO).error_rel}
+
+
+def surface_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: float,
+                              grid_width_mm: float, model: str) -> dict:
+    """The top face's strain per newton averaged over the grid at ladder level ``model``
+    (module doc), without the gauge layer.
+
+    Returns:
+        ``{"surface", "peak"}`` (1/N, signed), ``"error_rel"`` (estimated relative error of
+        "surface"), ``"outside_fit"`` (coordinates of the fitted factor outside its range,
+        empty for fem3d), ``"source"`` (text).
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+    """
+    from tactcad.mechanics.gauge_strain import (grid_strain_factor, point_strain_factor,
+                                                width_strain_factor)
+    from tactcad.mechanics.ladder import LADDER
+
+    LADDER.estimator(model)  # an unknown level is refused here
+    if model == "fem3d":
+        return {**fem3d_grid_strain_per_N(g, material, grid_length_mm, grid_width_mm),
+                "outside_fit": (),
+                "source": "fem3d's own top-face field averaged over the grid's area"}
     if is_meshed(model):
         x, eps = fem2d_surface_strain_per_N(g, material)
-        return {"grid": field_grid_strain_per_N(x, eps, grid_span_mm(g, grid_length_mm)),
-                "peak": float(np.interp(g.hinge_x_mm, x, eps)),
-                "source": "fem2d plane-stress field on the top face"}
-    return {"grid": beam_grid_strain_per_N(g, material, grid_length_mm),
-            "peak": float(beam_surface_strain_per_N(g, material, g.hinge_x_mm)),
-            "source": "Euler-Bernoulli bending along the profile"}
+        grid, point = (width_strain_factor(g, material, grid_width_mm),
+                       width_strain_factor(g, material, 0.0))
+        return {"surface": grid.factor * field_grid_strain_per_N(
+                    x, eps, grid_span_mm(g, grid_length_mm)),
+                "peak": point.factor * float(np.interp(g.hinge_x_mm, x, eps)),
+                "error_rel": grid.error_rel, "outside_fit": grid.outside,
+                "source": "fem2d plane-stress field on the top face x (1 - nu^2 phi), "
+                          "fem3d-fitted width factor"}
+    grid = grid_strain_factor(g, material, grid_length_mm, grid_width_mm)
+    point = point_strain_factor(g, material)
+    return {"surface": grid.factor * beam_grid_strain_per_N(g, material, grid_length_mm),
+            "peak": point.factor * float(beam_surface_strain_per_N(g, material, g.hinge_x_mm)),
+            "error_rel": grid.error_rel, "outside_fit": grid.outside,
+            "source": "Euler-Bernoulli bending along the profile x the fem3d-fitted "
+                      "width and profile factor"}
+
+
+def gauge_strain_per_N(g: ElementGeometry, material: Material, chain: ReadoutChain,
+                       model: str) -> dict:
+    """The strain per newton the gauge of ``chain`` reads on one element at ``model``.
+
+    Args:
+        g: the element. material: its material.
+        chain: the design's read-out (grid length and width, glue line, carrier).
+        model: ladder level (module doc).
+
+    Returns:
+        ``{"grid": what the grid reads (1/N, signed; the surface average times the bonded
+        layer's read factor), "surface": the top face's grid average, "peak": the face's
+        strain at the notch centre, mid-width, "error_rel": estimated relative error of
+        "surface", "outside_fit": flagged coordinates (module doc), "read_factor",
+        "height_factor", "stiffening_rel" (:class:`~tactcad.mechanics.gauge_strain.BondedGrid`),
+        "source": str}``.
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+    """
+    from tactcad.design.readout_section import carrier_width_mm
+    from tactcad.mechanics.gauge_strain import bonded_grid_factor
+
+    face = surface_grid_strain_per_N(g, material, chain.grid_length_mm, chain.grid_width_mm,
+                                     model)
+    b = g.sheet_thickness_mm
+    layer = bonded_grid_factor(g.web_thickness_mm, b, material.youngs_modulus_MPa,
+                               chain.grid_height_mm, chain.gauge_backing_modulus_MPa,
+                               carrier_width_mm(chain.grid_width_mm, b))
+    return {**face, "grid": face["surface"] * layer.read_factor,
+            "read_factor": layer.read_factor, "height_factor": layer.height_factor,
+            "stiffening_rel": layer.stiffening_rel}
 
 
 # ---------------------------------------------------------------------------
@@ -202,6 +301,13 @@ class ReadoutReport:
     array_kobj_resolution_rel: float | None
     table1: dict | None = None
 
+    def fit_range_notes(self) -> list[str]:
+        """One note per element whose gauge-strain factor is outside its fitted range."""
+        return [f"element {r['element']}: the gauge-strain factor is outside its fitted "
+                f"range ({', '.join(r['strain_outside_fit'])}); estimated error "
+                f"{100 * r['strain_error_rel']:.1f} % (extrapolated)"
+                for r in self.records if r.get("strain_outside_fit")]
+
     def as_json(self) -> dict:
         out = {"design": self.design, "model": self.model, "chain": self.chain.as_json(),
                "noise_V_rms": self.noise_V, "full_scale_force_N": self.full_scale_force_N,
@@ -214,7 +320,12 @@ class ReadoutReport:
                    "force_resolution_N: noise of one averaged reading / |sensitivity| (1 sigma).",
                    "kobj_resolution_rel: worst over the required K_obj range at the full-scale "
                    "force, each element read to its own force resolution (eq. 1-3).",
-                   "full_scale_signal_V does not include the bridge's offset V0."]}
+                   "full_scale_signal_V does not include the bridge's offset V0.",
+                   "gauge_strain_per_N: what the grid reads, surface_strain_per_N (the top "
+                   "face's grid average at the model level, strain_error_rel its estimated "
+                   "error) x grid_read_factor (the grid a glue line + carrier above the "
+                   "face, with the layer's stiffening gauge_stiffening_rel of the web)."]
+               + self.fit_range_notes()}
         if self.table1 is not None:
             out["table1"] = self.table1
         return out
@@ -260,7 +371,7 @@ def element_force_resolution_N(plan: Plan, model: str = "closed-form",
     for name, g in plan.distinct_elements.items():
         if progress:
             progress(f"readout {model}: {name}")
-        eps = gauge_strain_per_N(g, plan.material, chain.grid_length_mm, model)
+        eps = gauge_strain_per_N(g, plan.material, chain, model)
         s = chain.volts_per_strain * eps["grid"]
         out[name] = {"eps": eps, "S": s, "dF": noise / abs(s)}
     return out
@@ -317,9 +428,15 @@ def _element_record(slot, d: dict, is_ref: bool, ref: int, kobj_res: float | Non
             "role": "reference" if is_ref else "measuring",
             "stiffness_N_per_mm": d["K"],
             "gauge_strain_per_N": d["eps"]["grid"],
+            "surface_strain_per_N": d["eps"]["surface"],
             "peak_strain_per_N": d["eps"]["peak"],
-            "grid_over_peak": d["eps"]["grid"] / d["eps"]["peak"],
+            "grid_over_peak": d["eps"]["surface"] / d["eps"]["peak"],
             "strain_source": d["eps"]["source"],
+            "strain_error_rel": d["eps"]["error_rel"],
+            "strain_outside_fit": list(d["eps"]["outside_fit"]),
+            "grid_read_factor": d["eps"]["read_factor"],
+            "grid_height_factor": d["eps"]["height_factor"],
+            "gauge_stiffening_rel": d["eps"]["stiffening_rel"],
             "sensitivity_V_per_N": d["S"],
             "k_v_V_per_mm": d["S"] * d["K"],
             "force_resolution_N": d["dF"],

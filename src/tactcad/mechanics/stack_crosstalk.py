@@ -196,7 +196,8 @@ def stack_inputs(plan: Plan, **changes) -> StackInputs:
     spacer_grade = material_grade(changes.pop("spacer_grade", grades["spacer"]),
                                   "spacer_grade")
     plate = material_grade(grades["clamp_plate"], "clamp.material")
-    grid = readout_chain(plan).grid_length_mm
+    chain = readout_chain(plan)
+    grid = chain.grid_length_mm
     t = plan.sheet_thickness_mm
     c = plan.clamp
     bolt_x = sorted(abs(x) for x, _ in plan.bolt_positions_xy_mm)
@@ -210,7 +211,7 @@ def stack_inputs(plan: Plan, **changes) -> StackInputs:
         tip_x = abs(s.placement.apply(g.tip_centre_x_mm, 0.0, 0.0)[0])
         levers.append(centre_x - tip_x)
         ks.append(estimate_closed_form(g, plan.material, element=s.number).stiffness_N_per_mm)
-        own.append(gauge_strain_per_N(g, plan.material, grid, "closed-form")["grid"])
+        own.append(gauge_strain_per_N(g, plan.material, chain, "closed-form")["grid"])
         fracs.append((g.hinge_x_mm - grid / 2, g.hinge_x_mm + grid / 2))
     head = plan.bolt.head_diameter_mm
     spacing = plan.bolt_positions_xy_mm[1][0] - plan.bolt_positions_xy_mm[0][0]

@@ -321,7 +321,7 @@ def _part_figures(plan: Plan, chain: ReadoutChain, model: str,
             k, err = est.stiffness_N_per_mm, est.error_estimate_rel
         else:
             k, err = stiffness[name], None
-        eps = gauge_strain_per_N(g, plan.material, chain.grid_length_mm, model)["grid"]
+        eps = gauge_strain_per_N(g, plan.material, chain, model)["grid"]
         out[name] = {"K": k, "err": err, "eps": eps}
     return out
 

@@ -190,7 +190,7 @@ def simulate_design_calibration(plan, model: str = "closed-form",
         if chain is None:
             k_v = gauge_gain_V_per_strain * r.gauge_strain_per_N * r.stiffness_N_per_mm
         else:  # the design's read-out: the volts per newton tactcad readout reports
-            eps = gauge_strain_per_N(slot.geometry, plan.material, chain.grid_length_mm, model)
+            eps = gauge_strain_per_N(slot.geometry, plan.material, chain, model)
             k_v = chain.volts_per_strain * eps["grid"] * r.stiffness_N_per_mm
         steps = {}
         if full_scale_force_N is not None:  # Z travel (um) at which the element carries F

@@ -227,7 +227,7 @@ def readout_table1(records: list[dict], chain: ReadoutChain, plan: Plan,
         ratios.append(s_ratio)
         g = replace(g0, web_thickness_mm=web)
         s_built = chain.volts_per_strain * gauge_strain_per_N(
-            g, plan.material, chain.grid_length_mm, "closed-form")["grid"]
+            g, plan.material, chain, "closed-form")["grid"]
         rec["table1_as_built_web_mm"] = web
         rec["table1_sensitivity_ratio_as_built_web"] = row.K_v_over_K_V_per_N / s_built
         as_built.append(rec["table1_sensitivity_ratio_as_built_web"])

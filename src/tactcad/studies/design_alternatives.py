@@ -181,6 +181,11 @@ def _round_down(x: float) -> float:
     return math.floor(x / 10 ** e) * 10 ** e if x > 0 else 0.0
 
 
+def _round_up(x: float) -> float:
+    e = math.floor(math.log10(x)) - 2
+    return math.ceil(x / 10 ** e - 1e-9) * 10 ** e if x > 0 else 0.0
+
+
 def nearest_on_scan(values: np.ndarray, asked: float, ok: Callable[[float], bool]
                      ) -> float | None:
     """The value nearest ``asked`` (log distance) where ``ok`` holds: the scan's
@@ -215,7 +220,9 @@ def nearest_targets(data: Mapping[str, Any], targets: Targets, correction=None
     ratio = nearest_on_scan(ratios, targets.kr_over_km, lambda x: _feasible(
         data, replace(targets, kr_over_km=x), correction))
     if ratio is not None:
-        ratio = float(f"{ratio:.3g}")
+        # three digits, rounded away from the asked ratio (it does not hold): the rounded
+        # value stays on the feasible side of the edge the scan found
+        ratio = (_round_down(ratio) if ratio < targets.kr_over_km else _round_up(ratio))
         if _feasible(data, replace(targets, kr_over_km=ratio), correction):
             out.append(Alternative("target", "--kr-over-km", ratio, True, 0.0))
     lo, hi = targets.k_obj_range_N_per_mm

@@ -43,7 +43,8 @@ STRENGTH_KEYS = ("safety_factor", "gauge")
 _CORE_MATERIAL_KEYS = ("name", "youngs_modulus_MPa", "poisson_ratio")
 _GRADE_FIELDS = ("youngs_modulus_MPa", "poisson_ratio", "yield_strength_MPa",
                  "fatigue_strength_MPa", "density_g_per_cm3")
-_GAUGE_FIELDS = ("resistance_ohm", "gauge_factor", "max_strain", "fatigue_strain")
+_GAUGE_FIELDS = ("resistance_ohm", "gauge_factor", "max_strain", "fatigue_strain",
+                 "backing_thickness_mm", "adhesive_thickness_mm", "backing_modulus_MPa")
 
 # Ranges a design file's own values must fall in (MPa, g/cm^3).
 STRENGTH_RANGE_MPA = (1.0, 5000.0)
@@ -115,6 +116,9 @@ class StrainGauge:
         fatigue_strain: alternating strain amplitude survived for
             ``fatigue_cycles`` cycles.
         sources: (field, document) pairs.
+        backing_thickness_mm: the carrier under the foil grid (mm).
+        adhesive_thickness_mm: the cured glue line under the carrier (mm).
+        backing_modulus_MPa: Young's modulus of carrier and glue line (MPa).
     """
 
     name: str
@@ -127,6 +131,14 @@ class StrainGauge:
     fatigue_strain: float
     fatigue_cycles: float
     sources: tuple[tuple[str, str], ...]
+    backing_thickness_mm: float = 0.0
+    adhesive_thickness_mm: float = 0.0
+    backing_modulus_MPa: float = 0.0
+
+    @property
+    def grid_height_mm(self) -> float:
+        """Height of the foil grid above the surface it is bonded to: glue line + carrier (mm)."""
+        return self.backing_thickness_mm + self.adhesive_thickness_mm
 
 
 @dataclass(frozen=True)

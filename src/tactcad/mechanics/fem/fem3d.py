@@ -35,7 +35,10 @@ fill-in grows fast in 3D; PCG needs a few seconds and under 0.5 GiB at
 
 Outputs as for fem2d: K from the energy, gauge strain ``eps_xx`` at the
 top face over the web at x = hinge_x on the mid-plane (the centre of a gauge
-bonded across the web), Richardson error estimate over three meshes.
+bonded across the web), Richardson error estimate over three meshes; and,
+per mesh, ``eps_xx`` on the whole flat top face
+(:func:`~tactcad.mechanics.fem.fields.top_face_strain`), which the read-out
+averages over the gauge grid's area.
 
 Sources: scikit-fem documentation (``MeshTet2``, ``ElementTetP2``,
 ``Basis``, ``FacetBasis``, ``condense``); gmsh reference manual
@@ -59,7 +62,7 @@ from tactcad.mechanics.fem.fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Conv
                     FemSolution, lame, single_threaded_blas, size_factors, skfem_mesh,
                     solve_elasticity_field)
 from tactcad.mechanics.fem.fem_mesh import FemRegion, fem_region, graded_layers, mesh_region
-from tactcad.mechanics.fem.fields import PeakStress, peak_notch_stress
+from tactcad.mechanics.fem.fields import FaceStrain, PeakStress, peak_notch_stress, top_face_strain
 from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.richardson import richardson
 from tactcad.store import kept_result
@@ -143,13 +146,15 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
 
 @dataclass(frozen=True)
 class Convergence3D(Convergence):
-    """:class:`~tactcad.mechanics.fem.fem2d.Convergence` plus the peak memory
-    and each mesh's peak stress at the hinge (coarsest first, under the solves'
-    force; :func:`~tactcad.mechanics.fem.fields.peak_notch_stress`), so the
-    stiffness and the strength levels read one set of solves."""
+    """:class:`~tactcad.mechanics.fem.fem2d.Convergence` plus the peak memory,
+    each mesh's peak stress at the hinge (coarsest first, under the solves'
+    force; :func:`~tactcad.mechanics.fem.fields.peak_notch_stress`) and each
+    mesh's eps_xx on the flat top face (:func:`~tactcad.mechanics.fem.fields.top_face_strain`,
+    per newton), so the stiffness, strength and read-out levels read one set of solves."""
 
     peak_rss_mib: float = math.nan
     peaks: tuple[PeakStress, ...] = ()
+    faces: tuple[FaceStrain, ...] = ()
 
 
 def fem3d_convergence(g: ElementGeometry, material: Material, *,
@@ -185,12 +190,13 @@ def _converge(g: ElementGeometry, material: Material, region: FemRegion, setting
     t0 = time.perf_counter()
     levels, ratio = settings["levels"], settings["ratio"]
     solve = {k: v for k, v in settings.items() if k not in ("levels", "ratio")}
-    sols, peaks = [], []
+    sols, peaks, faces = [], [], []
     with single_threaded_blas():
         for s in size_factors(levels, ratio):
             sol = solve_fem3d(g, material, size_factor=s, region=region, keep_field=True,
                               **solve)
             peaks.append(peak_notch_stress(sol.field, g))
+            faces.append(top_face_strain(sol.field, g.base_height_mm))
             sol = replace(sol, field=None)  # frees the mesh and basis before the next solve
             sols.append(sol)
             if progress is not None:
@@ -203,7 +209,7 @@ def _converge(g: ElementGeometry, material: Material, region: FemRegion, setting
     rk = richardson([s.stiffness_N_per_mm for s in sols], ratio)
     rg = richardson([s.gauge_strain for s in sols], ratio)
     conv = Convergence3D(tuple(sols), rk, rg, time.perf_counter() - t0, peak_rss_mib(),
-                         tuple(peaks))
+                         tuple(peaks), tuple(faces))
     if verbose:
         print(f"fem3d {g.part_name}: K = {sols[-1].stiffness_N_per_mm:.5f} N/mm, Richardson "
               f"order {rk.order:.2f}, K_ext = {rk.extrapolated:.5f}, error "

@@ -36,11 +36,17 @@ from tactcad.design.array_plan import ElementGeometry
 from tactcad.mechanics.fem.fem2d import DisplacementField
 
 
-def vertex_stress(field: DisplacementField) -> np.ndarray:
-    """Cauchy stress at every mesh vertex, averaged over the cells sharing it.
+def cell_vertex_gradients(field: DisplacementField, cells: np.ndarray | None = None
+                          ) -> np.ndarray:
+    """Displacement gradient of the P2 field at the vertices of each cell (not averaged).
+
+    Args:
+        field: a solve's displacement field.
+        cells: the cells to evaluate (indices; ``None``: every cell).
 
     Returns:
-        shape (n_vertices, 3, 3), MPa, under the field's force.
+        ``grad[i, j, e, k] = d u_i / d x_j`` at local vertex k of cell e (of ``cells``),
+        shape (dim, dim, n_cells, dim + 1), under the field's force.
     """
     from skfem import CellBasis
 
@@ -48,10 +54,21 @@ def vertex_stress(field: DisplacementField) -> np.ndarray:
     mesh = sb.mesh
     dim = mesh.dim()
     ref = mesh.init_refdom().p  # (dim, dim + 1): local vertex k of every cell
-    cb = CellBasis(mesh, sb.elem, quadrature=(ref, np.full(dim + 1, 1.0 / (dim + 1))))
+    cb = CellBasis(mesh, sb.elem, elements=cells,
+                   quadrature=(ref, np.full(dim + 1, 1.0 / (dim + 1))))
     u = field.displacement
-    # grad[i, j, e, k] = d u_i / d x_j at local vertex k of cell e
-    grad = np.array([np.array(cb.interpolate(u[c::dim]).grad) for c in range(dim)])
+    return np.array([np.array(cb.interpolate(u[c::dim]).grad) for c in range(dim)])
+
+
+def vertex_stress(field: DisplacementField) -> np.ndarray:
+    """Cauchy stress at every mesh vertex, averaged over the cells sharing it.
+
+    Returns:
+        shape (n_vertices, 3, 3), MPa, under the field's force.
+    """
+    mesh = field.basis.mesh
+    dim = mesh.dim()
+    grad = cell_vertex_gradients(field)
     eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
     tr = np.einsum("iiek->ek", eps)
     nv = mesh.p.shape[1]
@@ -69,6 +86,130 @@ def vertex_stress(field: DisplacementField) -> np.ndarray:
             out[:, i, j] = np.bincount(verts.ravel(), weights=cell_sig[i, j].T.ravel(),
                                        minlength=nv)
     return out / np.maximum(count, 1.0)[:, None, None]
+
+
+# ---------------------------------------------------------------------------
+# The strain a bonded gauge averages: eps_xx on the flat top face (3D)
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class FaceStrain:
+    """eps_xx of a 3D solve on the flat top face, exactly as the P2 field has it.
+
+    Each boundary triangle of the face carries the strain of the one tetrahedron it
+    bounds at its three corners; a P2 displacement's strain is linear in a
+    straight cell, so the face's strain is piecewise linear (discontinuous
+    between triangles) and :func:`face_rectangle_average` integrates it exactly.
+
+    Attributes:
+        corners_mm: (x, z) of each triangle's corners, shape (m, 3, 2) (mm).
+        strain_per_N: eps_xx at those corners per newton of tip force, shape (m, 3) (1/N).
+        sym_plane_z: z of the half model's mid-plane (mm), or None for a whole model.
+    """
+
+    corners_mm: np.ndarray
+    strain_per_N: np.ndarray
+    sym_plane_z: float | None
+
+
+def top_face_strain(field: DisplacementField, y_top_mm: float, *,
+                    tol_mm: float = 1e-7) -> FaceStrain:
+    """eps_xx on the boundary face y = ``y_top_mm`` of a 3D solve, per newton.
+
+    Raises:
+        ValueError: a 2D field, or no boundary triangle lies on that face.
+    """
+    mesh = field.basis.mesh
+    if mesh.dim() != 3:
+        raise ValueError("top_face_strain needs a 3D field")
+    facets = mesh.boundary_facets()
+    verts = mesh.facets[:, facets]
+    on_face = np.all(np.abs(mesh.p[1, verts] - y_top_mm) < tol_mm, axis=0)
+    if not on_face.any():
+        raise ValueError(f"no boundary face at y = {y_top_mm} mm")
+    facets, verts = facets[on_face], verts[:, on_face]
+    cells = mesh.f2t[0, facets]
+    exx = cell_vertex_gradients(field, cells)[0, 0]  # (m, 4): at the cell's local vertices
+    local = np.argmax(mesh.t[:, cells][None, :, :] == verts[:, None, :], axis=1)  # (3, m)
+    strain = np.take_along_axis(exx, local.T, axis=1) / field.force_N
+    corners = mesh.p[[0, 2]][:, verts].transpose(2, 1, 0)
+    return FaceStrain(corners, strain, field.sym_plane_z)
+
+
+def _clip_polygon(poly: list, axis: int, bound: float, keep_below: bool) -> list:
+    """Sutherland-Hodgman: the part of ``poly`` ((x, z) points) on one side of a line."""
+    def inside(p):
+        return p[axis] <= bound if keep_below else p[axis] >= bound
+
+    out = []
+    for k, cur in enumerate(poly):
+        prev = poly[k - 1]
+        if inside(cur) != inside(prev):
+            s = (bound - prev[axis]) / (cur[axis] - prev[axis])
+            out.append(prev + s * (cur - prev))
+        if inside(cur):
+            out.append(cur)
+    return out
+
+
+def face_rectangle_average(face: FaceStrain, x_span_mm: tuple[float, float],
+                           z_span_mm: tuple[float, float]) -> float:
+    """Mean of the face's eps_xx per newton over the rectangle x_span x z_span (1/N).
+
+    Each face triangle is clipped to the rectangle and its linear strain
+    integrated over the clipped polygon (exact for the piecewise-linear
+    face strain). On a half model the rectangle is mirrored about the
+    mid-plane first: its part beyond the mid-plane is read at the mirror z
+    (the strain is symmetric), so a grid centred on the mid-plane averages
+    the half it covers.
+
+    Raises:
+        ValueError: an empty rectangle, or one the face does not cover.
+    """
+    (x0, x1), (z0, z1) = sorted(x_span_mm), sorted(z_span_mm)
+    if not (x1 > x0 and z1 > z0):
+        raise ValueError(f"empty rectangle x {x_span_mm}, z {z_span_mm} (mm)")
+    pieces = [(z0, z1)]
+    zm = face.sym_plane_z
+    if zm is not None and z1 > zm:  # fold the part past the mid-plane onto the half model
+        pieces = [(min(z0, zm), zm)] if z0 < zm else []
+        pieces.append((max(2 * zm - z1, 0.0), 2 * zm - max(z0, zm)))
+    c, v = face.corners_mm, face.strain_per_N
+    total = area = 0.0
+    for za, zb in pieces:
+        if zb <= za:
+            continue
+        near = ((c[:, :, 0].max(1) > x0) & (c[:, :, 0].min(1) < x1)
+                & (c[:, :, 1].max(1) > za) & (c[:, :, 1].min(1) < zb))
+        for tri, val in zip(c[near], v[near]):
+            poly = [tri[0], tri[1], tri[2]]
+            for axis, bound, below in ((0, x0, False), (0, x1, True), (1, za, False),
+                                       (1, zb, True)):
+                poly = _clip_polygon(poly, axis, bound, below) if poly else poly
+            if len(poly) < 3:
+                continue
+            t = _linear_on_triangle(tri, val)
+            for p, q in zip(poly[1:-1], poly[2:]):
+                a = 0.5 * abs((p[0] - poly[0][0]) * (q[1] - poly[0][1])
+                              - (q[0] - poly[0][0]) * (p[1] - poly[0][1]))
+                total += a * (t(poly[0]) + t(p) + t(q)) / 3.0
+                area += a
+    want = (x1 - x0) * (z1 - z0)
+    if not np.isclose(area, want, rtol=1e-6):
+        raise ValueError(f"the top face covers {area:.6g} of the {want:.6g} mm^2 asked "
+                         f"(x {x_span_mm}, z {z_span_mm} mm)")
+    return total / area
+
+
+def _linear_on_triangle(tri: np.ndarray, val: np.ndarray):
+    """The linear function through ``val`` at the triangle's corners ((x, z) points)."""
+    m = np.array([[tri[1][0] - tri[0][0], tri[2][0] - tri[0][0]],
+                  [tri[1][1] - tri[0][1], tri[2][1] - tri[0][1]]])
+    inv = np.linalg.inv(m)
+
+    def f(p):
+        l1, l2 = inv @ (np.asarray(p) - tri[0])
+        return val[0] + l1 * (val[1] - val[0]) + l2 * (val[2] - val[0])
+    return f
 
 
 def von_mises(sigma: np.ndarray) -> np.ndarray:

@@ -1,0 +1,162 @@
+"""The gauge strain beyond plane-stress beam theory: the fitted width and profile
+factor, the bonded layer, the exact face average, and the read-out that carries them."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from tactcad.mechanics.gauge_strain import (GAUGE_STRAIN_FILE, StrainCorrection,
+                                            bonded_grid_factor, grid_strain_factor,
+                                            load_strain_correction, point_strain_factor)
+from tactcad.studies.gauge_strain_sweep import _residuals, samples
+
+
+# ---------------------------------------------------------------------------
+# The bonded layer: transformed section
+# ---------------------------------------------------------------------------
+def test_a_layer_without_stiffness_lifts_the_grid_by_the_height_ratio():
+    b = bonded_grid_factor(0.25, 3.0, 69000.0, 0.05, 0.0, 1.0)
+    assert b.read_factor == pytest.approx((0.125 + 0.05) / 0.125)
+    assert b.stiffening_rel == 0.0
+
+
+def test_a_layer_of_the_web_material_across_the_sheet_is_a_thicker_web():
+    t, h, E, w = 0.2, 0.05, 1.0e5, 3.0
+    got = bonded_grid_factor(t, w, E, h, E, w)
+    # one web t + h: top-face strain per moment 6 / (E w (t + h)^2) against 6 / (E w t^2)
+    assert got.read_factor == pytest.approx((t / (t + h)) ** 2, rel=1e-12)
+    assert got.stiffening_rel == pytest.approx(((t + h) / t) ** 3 - 1, rel=1e-12)
+    assert got.neutral_axis_shift_mm == pytest.approx(h / 2, rel=1e-12)
+
+
+def test_bonded_grid_refuses_bad_input():
+    with pytest.raises(ValueError, match="web"):
+        bonded_grid_factor(0.0, 3.0, 1e5, 0.05, 3e3, 1.0)
+
+
+# ---------------------------------------------------------------------------
+# The fitted factor and its file
+# ---------------------------------------------------------------------------
+def test_the_fitted_file_reproduces_its_residuals():
+    doc = json.loads(GAUGE_STRAIN_FILE.read_text())
+    corr = load_strain_correction()
+    fit_pts = [p for p in doc["points"] if p["set"] == "fit"]
+    r = _residuals(corr, *samples(fit_pts))
+    assert np.abs(r).max() == pytest.approx(doc["fit"]["max"], rel=1e-9)
+    hold = [p for p in doc["points"] if p["set"] == "holdout"]
+    assert hold, "the file keeps a hold-out set"
+    assert np.abs(_residuals(corr, *samples(hold))).max() == pytest.approx(
+        doc["holdout"]["max"], rel=1e-9)
+    assert corr.error_rel == max(doc["fit"]["max"], doc["holdout"]["max"])
+
+
+def test_wide_sheet_point_factor_tends_to_plane_strain(plan):
+    g, mat = plan.element(1).geometry, plan.material
+    corr = load_strain_correction()
+    # a vanishing hinge length against the width: phi -> 1, the point factor -> (1 - nu^2)(1 + c3 s)
+    wide = replace(g, sheet_thickness_mm=1e6)
+    c3 = corr.coefficients[2]
+    s = g.web_thickness_mm / g.notch_radius_mm
+    assert point_strain_factor(wide, mat).factor == pytest.approx(
+        (1 - mat.poisson_ratio ** 2) * (1 + c3 * s), rel=1e-6)
+
+
+def test_outside_the_fitted_range_is_flagged_with_a_larger_error(plan):
+    g, mat = plan.element(1).geometry, plan.material
+    inside = grid_strain_factor(g, mat, 0.6, 1.0)
+    assert inside.outside == ()
+    assert inside.error_rel == load_strain_correction().error_rel
+    long_grid = grid_strain_factor(g, mat, 2.5 * g.notch_radius_mm, 1.0)  # xi = 1.25
+    assert long_grid.outside == ("grid_over_notch",)
+    assert long_grid.error_rel > inside.error_rel
+
+
+def test_closed_form_stiffness_result_carries_the_point_factor(plan):
+    from tactcad.mechanics.closed_form import estimate_closed_form, gauge_strain_per_newton
+
+    g, mat = plan.element(1).geometry, plan.material
+    eb = float(gauge_strain_per_newton(g.web_thickness_mm, g.arm_length_mm,
+                                       E=mat.youngs_modulus_MPa, b=g.sheet_thickness_mm))
+    got = estimate_closed_form(g, mat).gauge_strain_per_N
+    assert got == pytest.approx(eb * point_strain_factor(g, mat).factor, rel=1e-12)
+    assert estimate_closed_form(g, mat, corrected=False).gauge_strain_per_N == eb
+
+
+def test_closed_form_warns_outside_the_strain_fit(plan):
+    from tactcad.mechanics.closed_form import estimate_closed_form
+    from tactcad.mechanics.gauge_strain import GaugeStrainRangeWarning
+
+    g, mat = plan.element(1).geometry, plan.material
+    with pytest.warns(GaugeStrainRangeWarning, match="gauge strain"):
+        estimate_closed_form(replace(g, sheet_thickness_mm=0.9), mat)  # b/t 3.6
+
+
+# ---------------------------------------------------------------------------
+# The read-out carries them
+# ---------------------------------------------------------------------------
+def test_readout_grid_strain_is_the_corrected_face_times_the_bonded_layer(plan):
+    from tactcad.mechanics.readout_chain import (beam_grid_strain_per_N, gauge_strain_per_N,
+                                                 readout_chain)
+
+    chain = readout_chain(plan)
+    g, mat = plan.element(1).geometry, plan.material
+    got = gauge_strain_per_N(g, mat, chain, "closed-form")
+    c = grid_strain_factor(g, mat, chain.grid_length_mm, chain.grid_width_mm)
+    assert got["surface"] == pytest.approx(
+        c.factor * beam_grid_strain_per_N(g, mat, chain.grid_length_mm), rel=1e-12)
+    layer = bonded_grid_factor(g.web_thickness_mm, g.sheet_thickness_mm, mat.youngs_modulus_MPa,
+                               chain.grid_height_mm, chain.gauge_backing_modulus_MPa,
+                               min(chain.grid_width_mm + 1.0, g.sheet_thickness_mm))
+    assert got["grid"] == pytest.approx(got["surface"] * layer.read_factor, rel=1e-12)
+    assert got["error_rel"] == c.error_rel and got["outside_fit"] == ()
+    # the catalogue gauge lifts the grid 55 um: more than the surface, less than without stiffness
+    assert 1.0 < got["read_factor"] < got["height_factor"]
+    assert got["height_factor"] == pytest.approx(
+        1 + chain.grid_height_mm / (g.web_thickness_mm / 2))
+
+
+def test_readout_report_flags_a_grid_outside_the_fit(plan):
+    from tactcad.mechanics.readout_chain import readout_report
+    from tactcad.studies.verification import requirements_of
+
+    raw = json.loads(json.dumps(plan.raw))
+    raw.setdefault("readout", {})["grid_length_mm"] = 1.5  # xi = 1.5 at R = 0.5
+    from tactcad.design.array_plan import plan_from_dict
+
+    long_plan = plan_from_dict(raw, source="<test>")
+    rep = readout_report(long_plan, requirements_of(long_plan)).as_json()
+    assert all(r["strain_outside_fit"] == ["grid_over_notch"] for r in rep["elements"])
+    assert any("outside its fitted range" in n for n in rep["notes"])
+
+
+def test_catalogue_gauges_state_their_layer_with_a_source():
+    from tactcad.vocabulary.material_library import strain_gauges
+
+    for gauge in strain_gauges().values():
+        assert 0.02 <= gauge.grid_height_mm <= 0.08
+        assert gauge.backing_modulus_MPa > 0
+        for key in ("backing_thickness_mm", "adhesive_thickness_mm", "backing_modulus_MPa"):
+            assert gauge.source(key) if hasattr(gauge, "source") else dict(gauge.sources)[key]
+
+
+def test_model_coordinates_examples_inside_the_fit():
+    from pathlib import Path
+
+    from tactcad.api import load
+    from tactcad.mechanics.readout_chain import readout_chain
+
+    root = Path(__file__).resolve().parents[2]
+    for design in ("hardware/macro_array/macro_array.toml",
+                   "hardware/ti_array_2x3/ti_array_2x3.toml"):
+        plan = load(root / design).plan
+        chain = readout_chain(plan)
+        for g in plan.distinct_elements.values():
+            f = grid_strain_factor(g, plan.material, chain.grid_length_mm, chain.grid_width_mm)
+            assert f.outside == (), (design, g.part_name, f.coordinates)
+            assert math.isfinite(f.factor) and 0.8 < f.factor < 1.2
+    assert isinstance(load_strain_correction(), StrainCorrection)
