@@ -25,7 +25,7 @@ from tactcad.geometry.profile import Arc, element_profile
 from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.prism import Hole, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
-from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.process import ELEMENT_PROCESS
 from tactcad.vocabulary.schema import Section, name_number, number
 
 if TYPE_CHECKING:
@@ -149,7 +149,7 @@ def element_data(g: ElementGeometry, material: str) -> PartData:
     volume = profile area x sheet thickness (mm^3)."""
     prof = element_profile(g)
     return PartData(
-        name=g.part_name, kind="fabricated", process=Process("wire EDM from sheet", Method.SHEET),
+        name=g.part_name, kind="fabricated", process=ELEMENT_PROCESS,
         material=material, color=element_shade(g.arm_length_mm),
         expected_volume_mm3=prof.area_mm2 * g.sheet_thickness_mm,
         expected_bbox_mm=prism_bbox(prof, g.sheet_thickness_mm), geometry=g, profile=prof,
