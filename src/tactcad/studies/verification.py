@@ -543,7 +543,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
         out.append(footprint_record(req.footprint_mm, envelope_mm, tolerances_of(plan.raw).general))
     out.extend(resonance_records(plan, model, progress))
     out.extend(r for r in [thermal_record(plan, fig, req)] if r is not None)
-    out += crosstalk_records(plan)
+    out += crosstalk_records(plan, F, units.force_resolution_N)
     for r in out:
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew
