@@ -48,7 +48,8 @@ FATIGUE_DATUM_STRESSES = ("amplitude", "maximum")
 #: Keys every grade's fatigue datum states (the datum defined one way, with its source).
 FATIGUE_DATUM_KEYS = ("fatigue_datum_MPa", "fatigue_datum_stress", "fatigue_R_ratio",
                       "fatigue_cycles", "fatigue_specimen")
-_GAUGE_FIELDS = ("resistance_ohm", "gauge_factor", "max_strain", "fatigue_strain")
+_GAUGE_FIELDS = ("resistance_ohm", "gauge_factor", "max_strain", "fatigue_strain",
+                 "installed_mass_mg", "terminal_pair_mass_mg", "lead_mass_mg_per_mm")
 
 # Ranges a design file's own values must fall in (MPa, g/cm^3).
 STRENGTH_RANGE_MPA = (1.0, 5000.0)
@@ -115,6 +116,9 @@ class StrainGauge:
         fatigue_strain: alternating strain amplitude survived for
             ``fatigue_cycles`` cycles.
         sources: (field, document) pairs.
+        installed_mass_mg: the gauge with its adhesive line (mg).
+        terminal_pair_mass_mg: its pair of solder terminals with solder (mg).
+        lead_mass_mg_per_mm: its three-wire lead per mm (mg/mm).
     """
 
     name: str
@@ -127,6 +131,9 @@ class StrainGauge:
     fatigue_strain: float
     fatigue_cycles: float
     sources: tuple[tuple[str, str], ...]
+    installed_mass_mg: float = 0.0
+    terminal_pair_mass_mg: float = 0.0
+    lead_mass_mg_per_mm: float = 0.0
 
 
 @dataclass(frozen=True)
