@@ -30,13 +30,17 @@ def test_one_element_with_its_mode_shapes(tmp_path):
     assert rec["elements"] == [4] and len(rec["modes"]) == 2
     assert Path(rec["vtu"]).is_file() and Path(rec["vtu"]).parent == tmp_path
     text = run_cli("modal", "--element", "4").stdout
-    assert "element_a8mm (element 4)" in text and "fem3d adds the out-of-plane ones" in text
+    assert "element_a8mm (element 4)" in text and "first out-of-plane one estimated" in text
+    assert "(out-of-plane)" in text and "without the" in text  # the gauge installation's mass
+    bare = run_cli("modal", "--element", "4", "--bare").stdout
+    assert "bare element" in bare and "without the" not in bare
 
 
 def test_bad_options_are_refused_in_one_line(tmp_path):
     for argv, words in ((["--modes", "0"], "--modes"), (["--model", "beam"], "--model"),
                         (["--element", "99"], "element"),
-                        (["--vtu", str(tmp_path)], "--model fem2d or fem3d")):
+                        (["--vtu", str(tmp_path)], "--model fem2d or fem3d"),
+                        (["--tip-mass-mg", "-3"], "--tip-mass-mg")):
         done = run_cli("modal", *argv)
         assert done.returncode == 2, argv
         assert words in done.stderr and "Traceback" not in done.stderr

@@ -103,6 +103,11 @@ def test_gauge_factor_and_resistance_follow_the_library_gauge():
     ("readout.daq_bits", 12.5, "readout.daq_bits"),
     ("readout.excitation_V", "2.5", "readout.excitation_V"),
     ("readout.gain", 100, "readout.gain"),
+    ("readout.filter_order", 9, "readout.filter_order"),
+    ("readout.filter_corner_Hz", 0.0, "readout.filter_corner_Hz"),
+    ("readout.daq_ranges_V", [], "readout.daq_ranges_V"),
+    ("readout.daq_ranges_V", [0.5, -1.0], "readout.daq_ranges_V[2]"),
+    ("readout.daq_range_margin", 0.5, "readout.daq_range_margin"),
 ])
 def test_bad_readout_values_are_refused_naming_the_field(key, value, field):
     with pytest.raises(DesignError) as exc:
@@ -186,3 +191,65 @@ def test_a_smaller_variant_of_the_papers_design_compares_only_its_table1_element
     assert recs[1]["table1_k_v_V_per_mm"] == -7.3  # element 1: Table 1's arm, 4 mm
     assert recs[2]["table1_k_v_V_per_mm"] is None  # element 2 has 5 mm, Table 1's has 7 mm
     assert out["table1"]["elements"] == 1
+
+
+def test_butterworth_noise_bandwidth_is_the_integral_of_the_power_response():
+    """ENBW / f_c = integral of 1 / (1 + x^2n) dx over x >= 0 (pi/2 for the RC filter)."""
+    import numpy as np
+
+    from tactcad.design.readout_section import butterworth_noise_bandwidth_ratio
+
+    x = np.linspace(0.0, 2000.0, 2_000_001)
+    for n in (1, 2, 4):
+        integral = np.trapezoid(1.0 / (1.0 + x ** (2 * n)), x) + (
+            2000.0 ** (1 - 2 * n) / (2 * n - 1))  # the tail beyond x = 2000
+        assert butterworth_noise_bandwidth_ratio(n) == pytest.approx(integral, rel=1e-4)
+
+
+def test_anti_alias_filter_sets_the_noise_bandwidth_and_lowers_the_force_resolution():
+    """The amplifier and bridge noise scale with sqrt(noise bandwidth): the filter's
+    bandwidth replaces the amplifier's 200 kHz pole, the DAQ and quantisation terms stay."""
+    import math
+
+    filtered = readout_chain(_plan())
+    open_chain = readout_chain(_plan(**{"readout.filter_order": 0,
+                                        "readout.daq_range_V": filtered.daq_range_V}))
+    assert filtered.filter_order >= 1 and open_chain.filter_corner_Hz == math.inf
+    assert open_chain.noise_bandwidth_Hz == pytest.approx(math.pi / 2 * open_chain.bandwidth_Hz)
+    assert filtered.noise_bandwidth_Hz == pytest.approx(math.pi / 2 * filtered.filter_corner_Hz)
+    a, b = noise_budget_V(open_chain), noise_budget_V(filtered)
+    ratio = math.sqrt(filtered.noise_bandwidth_Hz / open_chain.noise_bandwidth_Hz)
+    assert b["amplifier"] == pytest.approx(a["amplifier"] * ratio)
+    assert b["bridge_johnson"] == pytest.approx(a["bridge_johnson"] * ratio)
+    assert b["daq"] == a["daq"] and b["quantisation"] == a["quantisation"]
+    ra = _report(_plan(**{"readout.filter_order": 0,
+                          "readout.daq_range_V": filtered.daq_range_V}))
+    rb = _report(_plan())
+    for x, y in zip(ra.records, rb.records):
+        assert y["force_resolution_N"] == pytest.approx(
+            x["force_resolution_N"] * b["reading"] / a["reading"])
+        assert y["force_resolution_N"] < x["force_resolution_N"]
+    with pytest.raises(DesignError) as exc:
+        _plan(**{"readout.filter_order": 0, "readout.filter_corner_Hz": 500.0})
+    assert exc.value.field == "readout.filter_corner_Hz"
+
+
+def test_daq_range_is_the_smallest_that_holds_the_signal_with_margin():
+    """Not stated, the range is the smallest of the DAQ's that holds the margin times the
+    signal at the gauge's fatigue strain; a higher gain moves it up; a stated range stays."""
+    plan = _plan()
+    chain = readout_chain(plan)
+    need = chain.daq_range_margin * chain.volts_per_strain * plan.strength.gauge.fatigue_strain
+    assert chain.daq_range_V >= need
+    assert all(r < need for r in chain.daq_ranges_V if r < chain.daq_range_V)
+    assert chain.source("daq_range_V").startswith("chosen")
+    # the full-scale signal fits in it
+    assert all(r["daq_range_used_rel"] <= 1 for r in _report(plan).records)
+    louder = readout_chain(_plan(**{"readout.excitation_V": 10.0}))
+    assert louder.daq_range_V > chain.daq_range_V
+    stated = readout_chain(_plan(**{"readout.daq_range_V": 5.0}))
+    assert stated.daq_range_V == 5.0 and stated.source("daq_range_V") == "design file"
+    # a smaller range lowers the DAQ noise and the quantisation step, so the resolution
+    assert noise_budget_V(chain)["reading"] < noise_budget_V(stated)["reading"]
+    none_holds = readout_chain(_plan(**{"readout.daq_ranges_V": [0.1, 0.2]}))
+    assert none_holds.daq_range_V == 0.2 and "none holds" in none_holds.source("daq_range_V")

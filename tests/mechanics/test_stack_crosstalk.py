@@ -111,3 +111,45 @@ def test_stated_requirement_gets_a_record(small):
     (rec,) = crosstalk_records(replace(small, raw=raw))
     assert rec["requirement"] == "max_crosstalk_rel" and not rec["pass"]
     assert rec["predicted"] > 1e-9 and rec["margin_rel"] < 0
+
+
+def test_each_level_estimates_its_error_against_the_next_level_up(small_inputs):
+    """stack-beam's error is its distance to stack-timoshenko plus that level's own
+    estimate (as the stiffness ladder's): not the shear term alone, which is tiny."""
+    beam = estimate_crosstalk(small_inputs, "stack-beam")
+    timo = estimate_crosstalk(small_inputs, "stack-timoshenko")
+    distance = abs(beam.crosstalk_rel - timo.crosstalk_rel) / beam.crosstalk_rel
+    assert beam.error_estimate_rel == pytest.approx(distance + timo.error_estimate_rel)
+    assert beam.error_estimate_rel >= timo.error_estimate_rel > 100 * distance
+
+
+def test_crosstalk_in_force_against_the_force_resolution(small_inputs):
+    """A neighbour at full scale reads |S_ij / S_ii| F_fs on gauge i; set against that
+    element's force-resolution step, the worst pair is the largest such ratio."""
+    from tactcad.mechanics.stack_crosstalk import crosstalk_in_force
+
+    r = estimate_crosstalk(small_inputs, "stack-beam")
+    n = len(r.elements)
+    steps = {e: 1e-5 * (1 + k) for k, e in enumerate(r.elements)}  # unequal steps
+    q = crosstalk_in_force(r, 0.5, steps)
+    i, j = r.elements.index(q["gauge"]), r.elements.index(q["loaded_element"])
+    ratio = abs(r.sensitivity[i, j] / r.sensitivity[i, i])
+    assert q["force_per_N_of_neighbour_load"] == pytest.approx(ratio)
+    assert q["crosstalk_force_N"] == pytest.approx(ratio * 0.5)
+    assert q["force_resolution_steps"] == pytest.approx(ratio * 0.5 / steps[q["gauge"]])
+    every = [abs(r.sensitivity[a, b] / r.sensitivity[a, a]) * 0.5 / steps[r.elements[a]]
+             for a in range(n) for b in range(n) if a != b]
+    assert q["force_resolution_steps"] == pytest.approx(max(every))
+
+
+def test_verify_record_states_the_crosstalk_in_force(small):
+    from dataclasses import replace
+
+    from tactcad.mechanics.stack_crosstalk import crosstalk_records
+
+    raw = {**small.raw, "requirements": {"max_crosstalk_rel": 1e-3}}
+    steps = {s.number: 1e-5 for s in small.slots}
+    (rec,) = crosstalk_records(replace(small, raw=raw), 0.2, steps)
+    q = rec["in_force"]
+    assert q["crosstalk_force_N"] == pytest.approx(q["force_per_N_of_neighbour_load"] * 0.2)
+    assert q["force_resolution_N"] == 1e-5

@@ -268,3 +268,36 @@ def test_a_design_that_does_not_cite_the_paper_has_no_figures_at_the_papers_load
     records = plan_strength(plan, reference_load=paper_load_of(plan))
     assert records and all(r.stress_MPa_at_paper_load is None for r in records)
     assert all("paper" not in key for r in records for key in r.as_json())
+
+
+def test_wire_edm_surface_factor_lowers_the_fatigue_limited_force(plan):
+    """The element's process (wire EDM) holds the notch to k_a x the smooth
+    fully reversed amplitude; a process without a surface factor would allow
+    1/k_a more force."""
+    from tactcad.vocabulary.process import ELEMENT_PROCESS, Method, Process
+    from tactcad.mechanics.element_strength import notch_fatigue_strength
+
+    mat = plan.material
+    edm = notch_fatigue_strength(mat)
+    polished = notch_fatigue_strength(mat, Process("polished", Method.SHEET))
+    k_a = ELEMENT_PROCESS.surface.factor(mat.ultimate_strength_MPa)
+    assert 0 < k_a < 1
+    assert edm.surface_factor == pytest.approx(k_a) and polished.surface_factor == 1.0
+    assert edm.strength_MPa == pytest.approx(k_a * mat.fatigue_strength_MPa)
+    recs = plan_strength(plan)
+    for r in recs:
+        smooth_force = mat.fatigue_strength_MPa / r.stress_MPa_per_N
+        assert r.fatigue_force_N == pytest.approx(k_a * smooth_force)
+        assert r.fatigue_force_N < smooth_force
+        assert r.fatigue_surface_factor == pytest.approx(k_a)
+
+
+def test_surface_factor_falls_with_the_ultimate_strength():
+    """Marin's form: a harder alloy loses more to the same surface; never above the ceiling."""
+    from tactcad.vocabulary.process import WIRE_EDM_SURFACE as s
+
+    soft, hard = s.factor(300.0), s.factor(1300.0)
+    assert hard < soft <= s.ceiling
+    assert hard == pytest.approx(s.marin_a_MPa * 1300.0 ** s.marin_b)
+    with pytest.raises(ValueError, match="ultimate"):
+        s.factor(0.0)

@@ -109,12 +109,13 @@ def test_a_value_the_user_sets_is_kept_and_errors_name_it_as_written(tmp_path, c
 
 
 def test_a_derived_requirement_is_refused_as_the_option_that_set_it(tmp_path, capsys):
-    """A tiny force read through a weak chain (amplifier gain 1) gives a K_obj
+    """A tiny force read through a weak chain (amplifier gain 1, +/-5 V range) gives a K_obj
     resolution no requirement may state: refused as --full-scale-force, with the
     force that meets it, which then designs."""
     argv = ["design", "--kr-over-km", "8", "--kobj-range", "3", "30", "--full-scale-force", "0.002",
             "--material", "CuBe-C17200-TF00", "--columns", "4", "--verify", "none",
-            "--set", "readout.amplifier_gain=1", "--out", str(tmp_path / "c.toml")]
+            "--set", "readout.amplifier_gain=1", "--set", "readout.daq_range_V=5",
+            "--out", str(tmp_path / "c.toml")]
     code, doc = _run(argv, capsys)
     err = doc["error"]
     assert code == 2 and err["field"] == "--full-scale-force", err

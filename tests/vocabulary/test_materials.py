@@ -135,3 +135,60 @@ def test_a_library_grade_without_a_valid_modulus_coefficient_is_refused(table, w
     with pytest.raises(DesignError) as e:
         _grade_from_table("X", base)
     assert "grades.X." in str(e.value) and words in str(e.value)
+
+
+def test_every_grade_states_its_fatigue_datum_one_way():
+    """The data file itself: each grade names which stress its datum is, R, cycles,
+    specimen, the ultimate strength the conversion needs, and their sources."""
+    import tomllib
+    from importlib import resources
+
+    from tactcad.vocabulary.material_library import FATIGUE_DATUM_KEYS, FATIGUE_DATUM_STRESSES
+
+    text = resources.files("tactcad").joinpath("data", "materials.toml").read_text("utf-8")
+    grades = tomllib.loads(text)["grades"]
+    assert set(REQUIRED_GRADES) <= set(grades)
+    for name, t in grades.items():
+        assert "fatigue_strength_MPa" not in t, name  # the datum has one name, not two
+        for key in FATIGUE_DATUM_KEYS + ("ultimate_strength_MPa",):
+            assert key in t, (name, key)
+        assert t["fatigue_datum_stress"] in FATIGUE_DATUM_STRESSES, name
+        assert t["fatigue_specimen"].strip(), name
+        for key in ("fatigue_datum_MPa", "ultimate_strength_MPa"):
+            assert t["sources"][key].strip(), (name, key)
+        # an amplitude datum cannot put the cycle's maximum above the ultimate strength
+        r = t["fatigue_R_ratio"]
+        peak = (t["fatigue_datum_MPa"] if t["fatigue_datum_stress"] == "maximum"
+                else 2 * t["fatigue_datum_MPa"] / (1 - r))
+        assert peak < t["ultimate_strength_MPa"], name
+
+
+def test_fully_reversed_amplitude_from_a_maximum_at_R():
+    """sigma_a = sigma_max (1 - R)/2, sigma_m = sigma_max (1 + R)/2, then Goodman."""
+    from tactcad.vocabulary.material_library import fully_reversed_amplitude
+
+    s_max, r, s_u = 510.0, 0.1, 950.0
+    s_a, s_m = s_max * (1 - r) / 2, s_max * (1 + r) / 2
+    got = fully_reversed_amplitude(s_max, "maximum", r, s_u)
+    assert got == pytest.approx(s_a / (1 - s_m / s_u))
+    # the same cycle stated as its amplitude converts to the same value
+    assert fully_reversed_amplitude(s_a, "amplitude", r, s_u) == pytest.approx(got)
+    # a fully reversed amplitude is its own value; R = 0 maximum: half of it is mean
+    assert fully_reversed_amplitude(100.0, "amplitude", -1.0, 300.0) == 100.0
+    assert fully_reversed_amplitude(200.0, "maximum", 0.0, 300.0) == pytest.approx(100 / (1 - 1 / 3))
+    with pytest.raises(ValueError, match="mean stress"):
+        fully_reversed_amplitude(600.0, "maximum", 0.5, 400.0)
+    with pytest.raises(ValueError, match="amplitude or maximum|one of"):
+        fully_reversed_amplitude(100.0, "peak", -1.0, 300.0)
+
+
+def test_ti_datum_is_a_maximum_stress_converted():
+    """The Ti-6Al-4V datum (510 MPa at R = 0.1) is a maximum stress: the model's
+    fully reversed amplitude is below the datum, not the datum itself."""
+    from tactcad.vocabulary.material_library import fully_reversed_amplitude
+
+    ti = material_grade("Ti-6Al-4V-annealed")
+    assert ti.fatigue_datum_stress == "maximum" and ti.fatigue_R_ratio == pytest.approx(0.1)
+    assert ti.fatigue_strength_MPa == pytest.approx(fully_reversed_amplitude(
+        ti.fatigue_datum_MPa, "maximum", ti.fatigue_R_ratio, ti.ultimate_strength_MPa))
+    assert ti.fatigue_strength_MPa < ti.fatigue_datum_MPa

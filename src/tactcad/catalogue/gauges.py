@@ -77,7 +77,9 @@ def sensor_items(plan: Plan) -> list[SensorItem]:
         # the rest of the [readout] chain: one amplifier per quarter bridge, one DAQ
         SensorItem("instrumentation_amplifier", 1, 0, 0, "pcs", "electronic assembly",
                    f"{ro.amplifier}, gain {ro.amplifier_gain:g}, one per quarter bridge "
-                   f"(excitation {ro.excitation_V:g} V)", f"bandwidth {ro.bandwidth_Hz:g} Hz"),
+                   f"(excitation {ro.excitation_V:g} V)" + (
+                       f", anti-alias low-pass {ro.filter_corner_Hz:g} Hz order {ro.filter_order}"
+                       if ro.filter_order else ""), f"bandwidth {ro.bandwidth_Hz:g} Hz"),
         SensorItem("daq", 0, 1, 0, "pcs", "electronic instrument",
                    f"{ro.daq}, +/-{ro.daq_range_V:g} V range, {ro.daq_bits}-bit; one "
                    "differential input per element", "one channel per element"),

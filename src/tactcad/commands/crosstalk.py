@@ -38,13 +38,26 @@ def run(args: argparse.Namespace) -> int:
 
     plan = plan_from_args(args)
     result = plan_crosstalk(plan, args.model)
+    in_force = _in_force(plan, result)
     rows = _sweep(plan, args) if args.sweep else None
     if args.json:
-        print(dumps({"design": plan.name, **result.as_json(),
+        print(dumps({"design": plan.name, **result.as_json(), "in_force": in_force,
                      **({} if rows is None else {"sweep": rows})}, indent=1))
         return 0
-    print(render(plan.name, result, rows))
+    print(render(plan.name, result, rows, in_force))
     return 0
+
+
+def _in_force(plan, result) -> dict:
+    """The crosstalk in newtons at the rated full-scale force against each gauge's force
+    resolution through the design's read-out chain (closed form)."""
+    from tactcad.mechanics.readout_chain import element_force_resolution_N
+    from tactcad.mechanics.stack_crosstalk import crosstalk_in_force
+    from tactcad.studies.verification import rated_full_scale_force
+
+    per_part = element_force_resolution_N(plan)
+    step = {s.number: per_part[s.geometry.part_name]["dF"] for s in plan.slots}
+    return crosstalk_in_force(result, rated_full_scale_force(plan), step)
 
 
 def _sweep(plan, args) -> list[dict]:
@@ -59,16 +72,24 @@ def _sweep(plan, args) -> list[dict]:
         return crosstalk_sweep(points, dask_mapper(client, progress=False))
 
 
-def render(design: str, r, rows) -> str:
-    """The result as text: the figures, the sensitivity matrix in microstrain per newton, the sweep."""
+def render(design: str, r, rows, in_force: dict | None = None) -> str:
+    """The result as text: the figures, the crosstalk in newtons against the force
+    resolution, the sensitivity matrix in microstrain per newton, the sweep."""
     lines = [f"crosstalk of {design} ({r.model}, {r.seconds:.3g} s): crosstalk_rel "
              f"{r.crosstalk_rel:.3g} (gauge {r.worst[0]} under a force on element {r.worst[1]}), "
-             f"error estimate {100 * r.error_estimate_rel:.2g} %",
-             f"  tip-displacement matrix asymmetry {r.asymmetry_rel:.2g} (Maxwell-Betti)",
-             f"  model: {r.basis}",
-             "gauge strain per newton on each tip (microstrain/N):",
-             "| gauge | " + " | ".join(str(e) for e in r.elements) + " |",
-             "| --- |" + " --- |" * len(r.elements)]
+             f"error estimate {100 * r.error_estimate_rel:.2g} %"]
+    if in_force is not None:
+        q = in_force
+        lines.append(f"  in force: element {q['loaded_element']} at the full-scale "
+                     f"{q['full_scale_force_N']:.3g} N reads {q['crosstalk_force_N']:.3g} N on gauge "
+                     f"{q['gauge']} ({q['force_per_N_of_neighbour_load']:.3g} N per N), "
+                     f"{q['force_resolution_steps']:.3g} of its force-resolution step "
+                     f"{q['force_resolution_N']:.3g} N")
+    lines += [f"  tip-displacement matrix asymmetry {r.asymmetry_rel:.2g} (Maxwell-Betti)",
+              f"  model: {r.basis}",
+              "gauge strain per newton on each tip (microstrain/N):",
+              "| gauge | " + " | ".join(str(e) for e in r.elements) + " |",
+              "| --- |" + " --- |" * len(r.elements)]
     for e, row in zip(r.elements, r.sensitivity):
         lines.append(f"| {e} | " + " | ".join(f"{1e6 * v:.4g}" for v in row) + " |")
     if rows:

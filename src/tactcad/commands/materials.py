@@ -24,12 +24,18 @@ def register(sub: argparse._SubParsersAction) -> None:
 def library() -> dict:
     """The library as JSON-ready records."""
     from tactcad.vocabulary.material_library import material_grades, strain_gauges
+    from tactcad.vocabulary.process import ELEMENT_PROCESS
 
     grades = [{"grade": g.name, "description": g.description,
                "youngs_modulus_MPa": g.youngs_modulus_MPa, "poisson_ratio": g.poisson_ratio,
                "yield_strength_MPa": g.yield_strength_MPa,
-               "fatigue_strength_MPa": g.fatigue_strength_MPa, "fatigue_cycles": g.fatigue_cycles,
-               "fatigue_R_ratio": g.fatigue_R_ratio, "density_g_per_cm3": g.density_g_per_cm3,
+               "ultimate_strength_MPa": g.ultimate_strength_MPa,
+               "fatigue_datum_MPa": g.fatigue_datum_MPa,
+               "fatigue_datum_stress": g.fatigue_datum_stress, "fatigue_cycles": g.fatigue_cycles,
+               "fatigue_R_ratio": g.fatigue_R_ratio, "fatigue_specimen": g.fatigue_specimen,
+               "fatigue_strength_MPa": g.fatigue_strength_MPa,
+               "wire_edm_surface_factor": ELEMENT_PROCESS.surface.factor(g.ultimate_strength_MPa),
+               "density_g_per_cm3": g.density_g_per_cm3,
                "cte_ppm_per_K": g.cte_ppm_per_K,
                "youngs_modulus_tc_per_K": g.youngs_modulus_tc_per_K,
                "sources": dict(g.sources), "unsourced": dict(g.unsourced)}
@@ -47,13 +53,16 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(dumps(lib, indent=1))
         return 0
-    print("| grade | E MPa | nu | yield MPa | fatigue MPa (cycles, R) | density g/cm^3 | "
-          "CTE ppm/K | dE/E dT 1/K | description |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| grade | E MPa | nu | yield MPa | ultimate MPa | fatigue datum MPa (stress, R, "
+          "cycles) | fully reversed MPa | wire-EDM k_a | density g/cm^3 | CTE ppm/K | "
+          "dE/E dT 1/K | description |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for g in lib["grades"]:
         print(f"| {g['grade']} | {g['youngs_modulus_MPa']:g} | {g['poisson_ratio']:g} | "
-              f"{g['yield_strength_MPa']:g} | {g['fatigue_strength_MPa']:g} "
-              f"({g['fatigue_cycles']:.0e}, {g['fatigue_R_ratio']:g}) | "
+              f"{g['yield_strength_MPa']:g} | {g['ultimate_strength_MPa']:g} | "
+              f"{g['fatigue_datum_MPa']:g} ({g['fatigue_datum_stress']}, R {g['fatigue_R_ratio']:g}, "
+              f"{g['fatigue_cycles']:.0e}) | {g['fatigue_strength_MPa']:.4g} | "
+              f"{g['wire_edm_surface_factor']:.2f} | "
               f"{g['density_g_per_cm3']:g} | {g['cte_ppm_per_K']:g} | "
               f"{g['youngs_modulus_tc_per_K']:.3g}"
               f"{' (unsourced)' if 'youngs_modulus_tc_per_K' in g['unsourced'] else ''} | "

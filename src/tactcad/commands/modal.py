@@ -26,6 +26,12 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--modes", type=count(1, 20, "modes per element"), default=3,
                    help="modes per element, 1 ... 20 (FEM levels; the closed form gives the "
                         "first; default %(default)s)")
+    p.add_argument("--bare", action="store_true",
+                   help="leave out the gauge installation's mass (gauge, adhesive, lead, "
+                        "terminals; counted by default at their places)")
+    p.add_argument("--tip-mass-mg", type=float, default=0.0, metavar="MG",
+                   help="a further mass at the contact centre (mg; a tip cover, a pad), "
+                        "0 ... 10000 (default 0)")
     p.add_argument("--vtu", metavar="DIR", default=None,
                    help="fem2d/fem3d: also write each element's mode shapes as "
                         "DIR/<part>_modes_<model>.vtu (ParaView)")
@@ -33,6 +39,18 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_cache_args(p)
     add_output_args(p, "print JSON")
     p.set_defaults(func=run_modal)
+
+
+def _added_masses(plan, g, args) -> tuple:
+    """The gauge installation's point masses (none with ``--bare``) and the ``--tip-mass-mg``."""
+    from tactcad.mechanics.gauge_mass import gauge_installation_masses
+    from tactcad.mechanics.modal_result import PointMass
+
+    masses = () if args.bare else gauge_installation_masses(plan, g)
+    if args.tip_mass_mg:
+        masses += (PointMass("tip mass (--tip-mass-mg)", args.tip_mass_mg * 1e-3,
+                             *g.contact_centre_mm, "command line"),)
+    return masses
 
 
 def run_modal(args: argparse.Namespace) -> int:
@@ -43,6 +61,8 @@ def run_modal(args: argparse.Namespace) -> int:
     if args.vtu is not None and not meshed:
         raise TactcadError(f"--vtu {args.vtu}: allowed with --model fem2d or fem3d only "
                            f"(got --model {args.model})")
+    if not 0.0 <= args.tip_mass_mg <= 10_000.0 or args.tip_mass_mg != args.tip_mass_mg:
+        raise TactcadError(f"--tip-mass-mg {args.tip_mass_mg:g}: allowed 0 ... 10000 mg")
     plan = plan_from_args(args)
     report = progress_from_args(args)
     if args.element is not None:
@@ -55,9 +75,12 @@ def run_modal(args: argparse.Namespace) -> int:
     records = []
     for part, (g, numbers) in chosen.items():
         opts = {"progress": report, "keep_shapes": args.vtu is not None} if meshed else {}
+        masses = _added_masses(plan, g, args)
         r = estimate_modes(args.model, g, plan.material, element=numbers[0], modes=args.modes,
-                           **opts)
-        rec = {"part": part, "elements": numbers, **r.as_json()}
+                           added_masses=masses, **opts)
+        rec = {"part": part, "elements": numbers, **r.as_json(),
+               "added_masses": [{"name": m.name, "mass_g": m.mass_g, "x_mm": m.x_mm,
+                                 "y_mm": m.y_mm, "source": m.source} for m in masses]}
         if args.vtu is not None:
             path = write_modes_vtu(Path(args.vtu) / f"{part}_modes_{args.model}.vtu", r.solve)
             rec["vtu"] = str(path)
@@ -73,11 +96,17 @@ def run_modal(args: argparse.Namespace) -> int:
     families = MODAL_LEVELS[args.model].families
     print(f"natural frequencies, model {args.model} (clamped as in the stiffness model; "
           f"{' and '.join(families)} modes"
-          + ("" if "out-of-plane" in families else ", fem3d adds the out-of-plane ones") + ")")
+          + ("" if "out-of-plane" in families else
+             ", fem3d adds the out-of-plane ones" if args.model != "closed-form" else
+             "; the first out-of-plane one estimated between its bounds") + "; "
+          + ("bare element" if args.bare else "with the gauge installation's mass")
+          + (f" and {args.tip_mass_mg:g} mg at the tip" if args.tip_mass_mg else "") + ")")
     for rec in records:
         els = ", ".join(str(n) for n in rec["elements"])
         freqs = ", ".join(f"{m['frequency_Hz']:.1f} ({m['family']})" for m in rec["modes"])
-        print(f"  {rec['part']} (element {els}): {freqs} Hz; error estimate "
+        bare = (f"; {rec['bare_first_Hz']:.1f} Hz without the {1e3 * rec['added_mass_g']:.3g} mg"
+                if rec["bare_first_Hz"] is not None else "")
+        print(f"  {rec['part']} (element {els}): {freqs} Hz{bare}; error estimate "
               f"{100 * rec['error_estimate_rel']:.2f} %, {rec['wall_time_s']:.3g} s")
     print(f"lowest first frequency: {lowest['first_Hz']:.1f} Hz ({lowest['part']})")
     return 0

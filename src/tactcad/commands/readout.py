@@ -56,14 +56,30 @@ def _g(x, fmt: str = ".4g") -> str:
     return "n/a" if x is None else format(x, fmt)
 
 
+def _filter_text(c) -> str:
+    """The anti-alias filter and the noise bandwidth it sets, in words."""
+    if c.filter_order < 1:
+        return f"no anti-alias filter (noise bandwidth {c.noise_bandwidth_Hz:.4g} Hz)"
+    return (f"anti-alias filter {c.filter_corner_Hz:g} Hz order {c.filter_order} (noise "
+            f"bandwidth {c.noise_bandwidth_Hz:.4g} Hz)")
+
+
+def _assumed_text(c) -> str:
+    """The filter and DAQ range choices with where they come from."""
+    return "; ".join(f"{key} {getattr(c, key):g}: {c.source(key)}"
+                     for key in ("filter_corner_Hz", "filter_order", "daq_range_V")
+                     if c.source(key) != "design file") or "none (all stated)"
+
+
 def render(report) -> str:
     """The report as text: the chain, the noise and one table row per element."""
     c = report.chain
     lines = [f"read-out of {report.design} ({report.model}): gauge {c.gauge_name}, GF "
              f"{c.gauge_factor:g}, {c.gauge_resistance_ohm:g} ohm, grid {c.grid_length_mm:g} x "
              f"{c.grid_width_mm:g} mm, {c.bridge} bridge at {c.excitation_V:g} V, {c.amplifier} "
-             f"gain {c.amplifier_gain:g}, {c.daq} +/-{c.daq_range_V:g} V {c.daq_bits} bit, "
-             f"{c.samples_averaged} samples averaged",
+             f"gain {c.amplifier_gain:g}, {_filter_text(c)}, {c.daq} +/-{c.daq_range_V:g} V "
+             f"{c.daq_bits} bit, {c.samples_averaged} samples averaged",
+             f"  assumed (change in [readout]): {_assumed_text(c)}",
              f"  {c.volts_per_strain:.4g} V per unit strain; noise of one reading "
              f"{1e6 * report.noise_V['reading']:.1f} uV rms; full-scale force "
              f"{report.full_scale_force_N:.4g} N; K_obj range {report.kobj_range_N_per_mm[0]:g}-"

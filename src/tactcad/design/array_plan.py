@@ -88,8 +88,13 @@ MAX_COLUMNS = 12
 class Material:
     """Sheet material (MPa, g/cm^3). The strength fields come from the
     library grade (:mod:`tactcad.vocabulary.material_library`) unless the design gives them;
-    None when neither does. ``fatigue_cycles`` and ``fatigue_R_ratio`` belong
-    to a library fatigue strength; ``sources`` names each value's document."""
+    None when neither does. ``fatigue_strength_MPa`` is the fully reversed
+    (R = -1) amplitude of a smooth specimen (a library grade's datum converted:
+    :func:`tactcad.vocabulary.material_library.fully_reversed_amplitude`);
+    ``fatigue_cycles`` and ``fatigue_R_ratio`` (-1) belong to a library
+    fatigue strength; ``ultimate_strength_MPa`` comes with a library grade
+    (the surface factor at the notch needs it); ``sources`` names each
+    value's document."""
 
     name: str
     youngs_modulus_MPa: float
@@ -101,6 +106,7 @@ class Material:
     fatigue_R_ratio: float | None = None
     density_g_per_cm3: float | None = None
     sources: tuple[tuple[str, str], ...] = ()
+    ultimate_strength_MPa: float | None = None
 
 
 @dataclass(frozen=True)

@@ -26,9 +26,14 @@ Keys (units in the names):
   completion, one conductor) and ``lead_resistance_ohm_per_m`` (one conductor);
 * ``amplifier``, ``amplifier_gain``, ``amplifier_noise_nV_per_rtHz``,
   ``bandwidth_Hz``: the instrumentation amplifier and its noise;
-* ``daq``, ``daq_range_V`` (+/- input range), ``daq_bits``,
-  ``daq_noise_uV_rms`` (random noise of that range, one sample),
-  ``samples_averaged``;
+* ``filter_corner_Hz``, ``filter_order``: the anti-alias low-pass filter
+  before the DAQ (Butterworth; order 0: none), which sets the noise bandwidth
+  (:attr:`ReadoutChain.noise_bandwidth_Hz`);
+* ``daq``, ``daq_ranges_V`` (the DAQ's +/- input ranges), ``daq_range_V``
+  (the range used; not stated: the smallest of ``daq_ranges_V`` that holds
+  ``daq_range_margin`` x the signal at the gauge's fatigue strain,
+  :func:`chosen_daq_range`), ``daq_bits``, ``daq_noise_uV_rms`` (random noise
+  of that range, one sample), ``samples_averaged``;
 * thermal (:mod:`tactcad.mechanics.thermal_drift`): ``gauge_stc_ppm_per_K``
   (the gauge's self-temperature-compensation number: 06 steel-matched =
   10.8, 13 aluminium-matched = 23.4; not stated: matched to the element's
@@ -50,7 +55,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from tactcad.vocabulary.schema import (Problems, ResolvedSection, Section, Text, choice, fmt,
-                                       integer, number, section_with_defaults)
+                                       integer, listing, number, section_with_defaults)
 
 #: Input ranges (+/- V) of the NI USB-6258 and the random noise of one sample
 #: in each (uV rms). Source: NI 625x Specifications (371291H), AI absolute
@@ -60,6 +65,25 @@ NI_6258_NOISE_UV_RMS = {0.1: 15.0, 0.2: 16.0, 0.5: 21.0, 1.0: 32.0, 2.0: 57.0, 5
 #: AD621 pin-strapped gains and the amplifier's -3 dB bandwidth at each (Hz).
 #: Source: Analog Devices AD621 data sheet (gain 10: 800 kHz; gain 100: 200 kHz).
 AD621_BANDWIDTH_HZ = {10.0: 800e3, 100.0: 200e3}
+
+#: The NI USB-6258's +/- input ranges (V). Source: NI 625x Specifications (371291H).
+NI_6258_RANGES_V = tuple(sorted(NI_6258_NOISE_UV_RMS))
+
+def butterworth_noise_bandwidth_ratio(order: int) -> float:
+    """ENBW / f_c of a Butterworth low-pass of ``order`` >= 1 (dimensionless).
+
+    The equivalent noise bandwidth is the integral of |H(f)|^2 = 1 / (1 + (f/f_c)^2n)
+    over f: (pi / 2n) / sin(pi / 2n) x f_c (1.571 at n = 1, the RC filter's pi/2;
+    1.111 at 2; 1.026 at 4).
+
+    Raises:
+        ValueError: an order below 1.
+    """
+    if order < 1:
+        raise ValueError(f"filter order must be >= 1; got {order!r}")
+    x = math.pi / (2 * order)
+    return x / math.sin(x)
+
 
 #: Random noise per volt of range (uV rms / V) where no table applies: the
 #: NI 625x figure at +/-5 and +/-10 V (28 ppm of the range).
@@ -124,10 +148,21 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
     "amplifier_noise_nV_per_rtHz": (9.0, "AD621 data sheet: input voltage noise 9 nV/sqrt(Hz) "
                                          "at 1 kHz, gain 100"),
     "bandwidth_Hz": (None, "AD621 data sheet: -3 dB bandwidth at the gain (200 kHz at 100, "
-                           "800 kHz at 10); no filter assumed"),
+                           "800 kHz at 10)"),
+    "filter_corner_Hz": (1000.0, "assumption: a 1 kHz anti-alias low-pass before the DAQ: a "
+                                 "grasp's force changes within tens of Hz; without it the "
+                                 "amplifier's 200 kHz bandwidth carries its noise to the DAQ"),
+    "filter_order": (1, "assumption: a first-order (RC) filter, noise bandwidth pi/2 x the "
+                        "corner (Butterworth order n: (pi/2n)/sin(pi/2n) x the corner)"),
     "daq": ("NI USB-6258", "NI USB-6258 M Series DAQ"),
-    "daq_range_V": (5.0, "assumption: +/-5 V, the NI USB-6258 range (+/-0.1 ... 10 V) that holds "
-                         "an amplified bridge offset of a few volts and the signal"),
+    "daq_ranges_V": (list(NI_6258_RANGES_V), "NI 625x specifications: input ranges +/-0.1, "
+                                              "0.2, 0.5, 1, 2, 5, 10 V"),
+    "daq_range_margin": (1.25, "assumption: the range holds 1.25 x the largest signal (room "
+                               "for the nulled bridge's residual offset and a short overload)"),
+    "daq_range_V": (None, "chosen: the smallest of readout.daq_ranges_V that holds "
+                          "readout.daq_range_margin x the signal at the gauge's fatigue strain "
+                          "(the most the rated full-scale force may put on any gauge: strength "
+                          "holds it there)"),
     "daq_bits": (16, "NI 625x specifications: 16-bit ADC"),
     "daq_noise_uV_rms": (None, "NI 625x specifications: random noise sigma of the chosen range "
                                "(+/-5 V: 140 uV rms)"),
@@ -171,8 +206,15 @@ class ReadoutSection(Section):
     amplifier: Text = None
     amplifier_gain: number(1.0, 10000.0, unit="", why="instrumentation amplifier gain") = None
     amplifier_noise_nV_per_rtHz: number(0.1, 1000.0, unit="nV/sqrt(Hz)") = None
-    bandwidth_Hz: number(0.1, 10e6, unit="Hz", why="noise bandwidth of the chain") = None
+    bandwidth_Hz: number(0.1, 10e6, unit="Hz", why="-3 dB bandwidth of the amplifier") = None
+    filter_corner_Hz: number(0.1, 10e6, unit="Hz", why="-3 dB corner of the anti-alias "
+                             "low-pass before the DAQ") = None
+    filter_order: integer(0, 8, why="Butterworth order of the anti-alias filter; 0: none") = None
     daq: Text = None
+    daq_ranges_V: listing(number(0.01, 100.0, unit="V"), 1, 16,
+                          "a list of the DAQ's +/- input ranges, 0.01 ... 100 V") = None
+    daq_range_margin: number(1.0, 10.0, unit="", why="the chosen range over the largest "
+                             "signal") = None
     daq_range_V: number(0.01, 100.0, unit="V", why="+/- input range of the DAQ") = None
     daq_bits: integer(8, 32, why="ADC resolution") = None
     daq_noise_uV_rms: number(0.01, 10000.0, unit="uV rms",
@@ -210,6 +252,9 @@ def check_readout(d: Any, p: Problems) -> None:
     if ro.grid_width_mm is not None and ro.grid_width_mm > sheet:
         p.add("readout.grid_width_mm", ro.grid_width_mm, f"<= sheet.thickness_mm = {fmt(sheet)} mm",
               "the grid lies on the element's top face, one sheet thick")
+    if ro.filter_corner_Hz is not None and ro.filter_order == 0:
+        p.add("readout.filter_corner_Hz", ro.filter_corner_Hz, "no corner with filter_order = 0",
+              "order 0 means no anti-alias filter; give an order of 1 ... 8 for the corner")
     shortest = min(d.arms.lengths_mm)
     if ro.grid_length_mm is not None and ro.grid_length_mm > shortest:
         p.add("readout.grid_length_mm", ro.grid_length_mm, f"<= {fmt(shortest)} mm (shortest arm)",
@@ -250,6 +295,13 @@ class ReadoutChain(ResolvedSection):
     lead_length_mm: float = 500.0
     lead_resistance_ohm_per_m: float = 0.538
     substrate_modulus_tc_per_K: float | None = None
+    gauge_backing_thickness_mm: float = 0.0
+    adhesive_thickness_mm: float = 0.0
+    gauge_backing_modulus_MPa: float = 0.0
+    filter_corner_Hz: float = math.inf
+    filter_order: int = 0
+    daq_ranges_V: tuple[float, ...] = ()
+    daq_range_margin: float = 1.0
 
     @property
     def lead_resistance_ohm(self) -> float:
@@ -261,14 +313,22 @@ class ReadoutChain(ResolvedSection):
         """Power per grid area at the excitation (W/mm^2)."""
         return grid_power_density_W_per_mm2(self.excitation_V, self.gauge_resistance_ohm,
                                             self.grid_length_mm * self.grid_width_mm)
-    gauge_backing_thickness_mm: float = 0.0
-    adhesive_thickness_mm: float = 0.0
-    gauge_backing_modulus_MPa: float = 0.0
 
     @property
     def grid_height_mm(self) -> float:
         """Height of the foil grid above the web's top face: glue line + carrier (mm)."""
         return self.gauge_backing_thickness_mm + self.adhesive_thickness_mm
+
+    @property
+    def noise_bandwidth_Hz(self) -> float:
+        """Equivalent noise bandwidth of the chain (Hz): the anti-alias filter's
+        (:func:`butterworth_noise_bandwidth_ratio` x its corner) where it is below the
+        amplifier's single pole (pi/2 x ``bandwidth_Hz``), else the amplifier's."""
+        amplifier = 0.5 * math.pi * self.bandwidth_Hz
+        if self.filter_order < 1:
+            return amplifier
+        return min(amplifier, butterworth_noise_bandwidth_ratio(self.filter_order)
+                   * self.filter_corner_Hz)
 
     @property
     def volts_per_strain(self) -> float:
@@ -283,7 +343,8 @@ class ReadoutChain(ResolvedSection):
     def derived_json(self) -> dict:
         return {"volts_per_strain": self.volts_per_strain,
                 "grid_power_density_W_per_mm2": self.grid_power_density_W_per_mm2,
-                "lead_resistance_ohm": self.lead_resistance_ohm}
+                "lead_resistance_ohm": self.lead_resistance_ohm,
+                "noise_bandwidth_Hz": self.noise_bandwidth_Hz}
 
 
 #: Carrier beyond the grid at each side across the sheet (mm): catalogue outlines of
@@ -303,6 +364,14 @@ def _nearest(table: Mapping[float, float], key: float) -> float | None:
         if math.isclose(k, key, rel_tol=1e-9):
             return v
     return None
+
+
+def chosen_daq_range(ranges_V, signal_V: float, margin: float) -> tuple[float, bool]:
+    """The smallest of ``ranges_V`` (+/- V) that holds ``margin`` x ``signal_V`` (V), and
+    whether one does (else the largest range, False)."""
+    need = margin * abs(signal_V)
+    holding = sorted(r for r in ranges_V if r >= need)
+    return (holding[0], True) if holding else (max(ranges_V), False)
 
 
 def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
@@ -335,6 +404,23 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
         values["bandwidth_Hz"] = bw if bw is not None else 10e3
         if bw is None:
             sources["bandwidth_Hz"] = "assumption: 10 kHz noise bandwidth (no data for this gain)"
+    values["daq_ranges_V"] = tuple(float(r) for r in values["daq_ranges_V"])
+    if values["daq_range_V"] is None:  # the smallest range for the largest signal in service
+        signal = (gain * float(values["excitation_V"]) * float(values["gauge_factor"]) / 4.0
+                  * gauge.fatigue_strain)
+        rng, holds = chosen_daq_range(values["daq_ranges_V"], signal,
+                                      float(values["daq_range_margin"]))
+        values["daq_range_V"] = rng
+        sources["daq_range_V"] = (
+            f"chosen: +/-{rng:g} V, the smallest of readout.daq_ranges_V holding "
+            f"{float(values['daq_range_margin']):g} x {signal:.3g} V, the signal at the gauge's "
+            f"fatigue strain {gauge.fatigue_strain:g} ({gauge.name})" if holds else
+            f"chosen: +/-{rng:g} V, the largest of readout.daq_ranges_V; none holds "
+            f"{float(values['daq_range_margin']):g} x {signal:.3g} V, the signal at the gauge's "
+            f"fatigue strain: lower readout.amplifier_gain or readout.excitation_V")
+    if values["filter_order"] == 0:
+        values["filter_corner_Hz"] = math.inf
+        sources["filter_corner_Hz"] = "no anti-alias filter (readout.filter_order = 0)"
     if values["daq_noise_uV_rms"] is None:
         noise = _nearest(NI_6258_NOISE_UV_RMS, float(values["daq_range_V"])) \
             if values["daq"] == "NI USB-6258" else None

@@ -47,11 +47,16 @@ Two forces, never one name for both:
 At the rated full-scale force the gauge strain (gauge strain per N x force)
 is compared with the gauge's maximum and fatigue strain, the stress with the
 fatigue strength and the force with the yield-limited force; each
-exceedance becomes a warning of the record. A sensing element is pressed
-one way (R ~ 0) while the library's fatigue strengths and the gauges'
-fatigue strains are mostly fully reversed amplitudes: comparing the peak
-with them is conservative. The tip deflection at full scale is F / K at the
-same level.
+exceedance becomes a warning of the record. The fatigue strength at the
+notch (:func:`notch_fatigue_strength`) is the library's smooth-specimen
+datum converted to the fully reversed amplitude (Goodman:
+:func:`tactcad.vocabulary.material_library.fully_reversed_amplitude`) times
+the surface factor of the element's process
+(:data:`tactcad.vocabulary.process.ELEMENT_PROCESS`: wire EDM, whose recast
+layer sits at the notch root). A sensing element is pressed one way (R ~ 0)
+while that strength and the gauges' fatigue strains are fully reversed
+amplitudes: comparing the peak with them is conservative. The tip
+deflection at full scale is F / K at the same level.
 
 Units: mm, N, MPa, N/mm; strain dimensionless.
 """
@@ -68,6 +73,7 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
 from tactcad.vocabulary.material_library import StrengthSettings
+from tactcad.vocabulary.process import ELEMENT_PROCESS, Process
 from tactcad.mechanics.ladder import estimate, is_meshed, models
 
 #: Exponent of K_t = (1 + t/(2R))^p for the single-sided circular notch in
@@ -157,6 +163,51 @@ def yield_limited_force(yield_strength_MPa, stress_MPa_per_N, safety_factor) -> 
     return y / (s * sf)
 
 
+class NotchFatigue(NamedTuple):
+    """The fatigue strength at the element's notch root.
+
+    Attributes:
+        smooth_MPa: fully reversed amplitude of the smooth specimen (MPa).
+        surface_factor: the process's surface factor k_a (<= 1).
+        strength_MPa: smooth_MPa x surface_factor, what the peak stress is held to (MPa).
+        surface: the surface in words and why its factor (with sources).
+    """
+
+    smooth_MPa: float
+    surface_factor: float
+    strength_MPa: float
+    surface: str
+
+
+def notch_fatigue_strength(material: Material, process: Process = ELEMENT_PROCESS
+                           ) -> NotchFatigue | None:
+    """The fatigue strength at the notch root of an element made by ``process``.
+
+    The material's fully reversed smooth-specimen amplitude times the
+    process's surface factor k_a (:class:`tactcad.vocabulary.process.SurfaceFatigue`,
+    evaluated at the ultimate strength; at the yield strength, an upper bound
+    on k_a, when the design gives no grade and so no ultimate strength).
+
+    Args:
+        material: the sheet material. process: how the element is cut
+            (default the elements' wire EDM).
+
+    Returns:
+        :class:`NotchFatigue`, or None without a fatigue strength.
+    """
+    smooth = material.fatigue_strength_MPa
+    if smooth is None:
+        return None
+    if process.surface is None:
+        return NotchFatigue(smooth, 1.0, smooth, f"{process}: no surface factor stated")
+    s_u = material.ultimate_strength_MPa or material.yield_strength_MPa
+    if s_u is None:
+        return NotchFatigue(smooth, process.surface.ceiling, smooth * process.surface.ceiling,
+                            process.surface.surface + " (no ultimate strength: the ceiling)")
+    k_a = process.surface.factor(s_u)
+    return NotchFatigue(smooth, k_a, smooth * k_a, process.surface.surface)
+
+
 def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Material,
                  settings: StrengthSettings) -> dict[str, np.ndarray]:
     """Closed-form tip-force limits (N) of element geometries, broadcast over
@@ -164,12 +215,12 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
 
     Returns:
         ``yield``: yield-limited force, yield / (peak stress per N x safety factor);
-        ``fatigue``: fatigue strength / peak stress per N (NaN without a
-        fatigue strength); ``gauge_max`` and ``gauge_fatigue``: the gauge's
-        maximum and fatigue strain / the surface strain per N over the web,
-        Euler-Bernoulli's 6 a / (E b t^2) x the fem3d-fitted point factor of
-        :mod:`tactcad.mechanics.gauge_strain` (as the closed-form level reports it);
-        ``binding``: the smallest of them.
+        ``fatigue``: fatigue strength at the notch (:func:`notch_fatigue_strength`)
+        / peak stress per N (NaN without a fatigue strength); ``gauge_max`` and
+        ``gauge_fatigue``: the gauge's maximum and fatigue strain / the surface strain
+        per N over the web, Euler-Bernoulli's 6 a / (E b t^2) x the fem3d-fitted point
+        factor of :mod:`tactcad.mechanics.gauge_strain` (as the closed-form level reports
+        it); ``binding``: the smallest of them.
 
     Raises:
         DesignError: the material has no yield strength.
@@ -182,9 +233,9 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
     eps = (nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm)
            / material.youngs_modulus_MPa
            * point_factor(web_mm, notch_radius_mm, sheet_mm, material.poisson_ratio))
-    fat = material.fatigue_strength_MPa
+    notch = notch_fatigue_strength(material)
     out = {"yield": yield_limited_force(y, s, settings.safety_factor),
-           "fatigue": (fat / s) if fat is not None else np.full_like(s, np.nan),
+           "fatigue": (notch.strength_MPa / s) if notch else np.full_like(s, np.nan),
            "gauge_max": settings.gauge.max_strain / eps,
            "gauge_fatigue": settings.gauge.fatigue_strain / eps}
     out["binding"] = np.fmin.reduce([out["yield"], out["fatigue"], out["gauge_max"],
@@ -291,6 +342,8 @@ class StrengthRecord:
     stress_MPa_at_paper_load: float | None
     yield_safety_factor_at_paper_load: float | None
     warnings: tuple[str, ...] = field(default=())
+    fatigue_strength_at_notch_MPa: float | None = None
+    fatigue_surface_factor: float | None = None
 
     def as_json(self) -> dict:
         """Plain dict for JSON (all numbers finite; ``warnings`` a list); the
@@ -333,7 +386,8 @@ def rated_force_warnings(force_N: float, yield_limited_N: float, stress_MPa: flo
         one sentence per exceedance: yield-limited force, fatigue strength,
         gauge maximum strain, gauge fatigue strain (empty when none).
     """
-    gauge, fat = settings.gauge, material.fatigue_strength_MPa
+    gauge, notch = settings.gauge, notch_fatigue_strength(material)
+    fat = notch.strength_MPa if notch else None
     warn = []
     if force_N > yield_limited_N:
         warn.append(f"the rated full-scale force {force_N:.3g} N exceeds this element's "
@@ -342,7 +396,8 @@ def rated_force_warnings(force_N: float, yield_limited_N: float, stress_MPa: flo
     if fat is not None and stress_MPa > fat:
         cyc = f" ({material.fatigue_cycles:.0e} cycles)" if material.fatigue_cycles else ""
         warn.append(f"cycling to the rated full-scale force {force_N:.3g} N ({stress_MPa:.0f} "
-                    f"MPa) exceeds the fatigue strength {fat:.0f} MPa{cyc}: cycle below "
+                    f"MPa) exceeds the fatigue strength at the notch {fat:.0f} MPa{cyc}, surface "
+                    f"factor {notch.surface_factor:.2f}: cycle below "
                     f"{fat / es.stress_MPa_per_N:.3g} N")
     if gauge_strain > gauge.max_strain:
         warn.append(f"gauge strain at the rated full-scale force {gauge_strain * 1e6:.0f} "
@@ -367,7 +422,8 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     yield_safety_factor_at_full_scale = yield / stress at the rated force;
     gauge_strain_at_full_scale = gauge strain per N x rated force;
     tip_deflection_mm_at_full_scale = rated force / K;
-    fatigue_force_N = fatigue strength / stress per N (None without one);
+    fatigue_force_N = fatigue strength at the notch / stress per N (None without one);
+    fatigue_strength_at_notch_MPa, fatigue_surface_factor: :func:`notch_fatigue_strength`;
     gauge_fatigue_force_N = gauge fatigue strain / gauge strain per N;
     warnings: :func:`rated_force_warnings`; stress and yield safety factor
     at ``reference_load``, and a warning when it yields the web, only when
@@ -390,7 +446,7 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     s_ref = None if reference_load is None else es.stress_MPa_per_N * reference_load.force_N
     nominal = float(nominal_stress_per_newton(g.web_thickness_mm, g.arm_length_mm,
                                               g.sheet_thickness_mm))
-    fat = material.fatigue_strength_MPa
+    notch = notch_fatigue_strength(material)
     warn = []
     if reference_load is not None and s_ref is not None and s_ref > y:
         warn.append(f"at {reference_load.whose} {reference_load.force_N:g} N the web reaches "
@@ -406,7 +462,9 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
         stress_MPa_at_full_scale=s_fs, gauge_strain_at_full_scale=eps_fs,
         tip_deflection_mm_at_full_scale=f_fs / es.stiffness_N_per_mm,
         stiffness_N_per_mm=es.stiffness_N_per_mm,
-        fatigue_force_N=None if fat is None else fat / es.stress_MPa_per_N,
+        fatigue_force_N=None if notch is None else notch.strength_MPa / es.stress_MPa_per_N,
+        fatigue_strength_at_notch_MPa=None if notch is None else notch.strength_MPa,
+        fatigue_surface_factor=None if notch is None else notch.surface_factor,
         gauge_fatigue_force_N=settings.gauge.fatigue_strain / es.gauge_strain_per_N,
         stress_MPa_at_paper_load=s_ref,
         yield_safety_factor_at_paper_load=None if s_ref is None else y / s_ref,

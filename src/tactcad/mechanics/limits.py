@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.mechanics.gauge_strain import point_strain_factor
 from tactcad.mechanics.ladder import is_meshed
+from tactcad.mechanics.element_strength import notch_fatigue_strength
 
 #: Names of the limits, in the order they are listed.
 LIMIT_NAMES = ("yield", "fatigue", "gauge_fatigue", "gauge_max", "travel")
@@ -90,10 +91,12 @@ def element_limits(number: int, g: ElementGeometry, plan: Plan, es, k_error_rel:
     out = [ForceLimit("yield", number, g.part_name, mat.yield_strength_MPa / (s * st.safety_factor),
                       stress_err,
                       f"{mat.yield_strength_MPa:g} MPa / ({s:.4g} MPa/N x {st.safety_factor:g})")]
-    if mat.fatigue_strength_MPa is not None:
-        out.append(ForceLimit("fatigue", number, g.part_name, mat.fatigue_strength_MPa / s,
+    notch = notch_fatigue_strength(mat)
+    if notch is not None:
+        out.append(ForceLimit("fatigue", number, g.part_name, notch.strength_MPa / s,
                               stress_err,
-                              f"{mat.fatigue_strength_MPa:g} MPa / {s:.4g} MPa/N"))
+                              f"{notch.smooth_MPa:.4g} MPa x surface factor "
+                              f"{notch.surface_factor:.2f} ({notch.surface}) / {s:.4g} MPa/N"))
     gauge = st.gauge
     out.append(ForceLimit("gauge_fatigue", number, g.part_name, gauge.fatigue_strain / eps,
                           strain_err, f"{1e6 * gauge.fatigue_strain:.0f} microstrain "

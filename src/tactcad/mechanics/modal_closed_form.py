@@ -1,5 +1,5 @@
-"""Modal level "closed-form": the first in-plane natural frequency from a
-Rayleigh quotient, f1 = (1 / 2 pi) sqrt(K / m_eff).
+"""Modal level "closed-form": the first in-plane and the first out-of-plane
+natural frequency from Rayleigh quotients, f1 = (1 / 2 pi) sqrt(K / m_eff).
 
 Trial shape: the element's static deflection under a tip force at the
 contact centre (the shape the stiffness K is defined by), split as the
@@ -32,11 +32,30 @@ Error estimate: half the closed form's K error (f ~ sqrt K) plus
 fem3d's first in-plane frequency measured over the design domain's corners
 (at most 1.5 %, thick web in a thin sheet; tests/mechanics/test_modal.py).
 
-In-plane only: out-of-plane bending and twisting of the web are not
-estimated here (beam-theory quotients for them missed fem3d by 20-170 %
-at the corners: a short wide web does not twist as a Saint-Venant strip).
-In a thin sheet (b below about the web's height: 0.5 mm sheet, 1 mm web)
-the first mode is out of the plane; only fem3d finds it.
+Added mass (gauge, adhesive, leads, solder pads, anything bonded on):
+each :class:`~tactcad.mechanics.modal_result.PointMass` m_i at (x_i, y_i)
+adds m_i |u(x_i, y_i)|^2 to m_eff (the same trial shape; zero behind the
+hinge, which is taken as still): omega1^2 = K / (m_eff + sum m_i |u_i|^2).
+A mass at the contact centre (|u| = 1) lowers f1 by 1 - sqrt(m_eff /
+(m_eff + m)).
+
+Out of the plane: the arm swings out of the sheet's plane by bending about
+the other axis and by twisting the web about its own axis; two bounds by
+Rayleigh(-Ritz) (:func:`out_of_plane_bounds`), from x = x_h - R (where the
+notch begins) on the exact profile's vertical chords (h(x) by b):
+
+* upper, the web's twist restrained: the static deflection of a Timoshenko
+  cantilever (I = h b^3 / 12, A = h b, shear factor 5/6) under a load out of
+  the plane at the contact centre (:func:`bending_rayleigh`);
+* lower, the web free to twist as a Saint-Venant strip (J of each chord's
+  rectangle, Roark table 10.1): Rayleigh-Ritz on that bending shape and the
+  twist about the web's axis (x, y = y_w), the lowest root.
+
+A short web (length ~ 2R, a few webs wide) twists with its ends' warping
+held, between the two. The level reports their geometric mean, with the
+error estimate sqrt(upper / lower) - 1 that reaches both. fem3d's first
+out-of-plane mode lay inside the bounds on every element of both shipped
+examples (docs/explanation/modal.md).
 
 Units: mm, N, MPa, t/mm^3, Hz, s.
 """
@@ -45,13 +64,14 @@ from __future__ import annotations
 
 import math
 import time
+from typing import Callable
 
 import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.geometry.profile import contour_points, element_profile
 from tactcad.mechanics.fem.fem_mesh import clip_chain
-from tactcad.mechanics.modal_result import ModalResult, Mode, density_t_per_mm3
+from tactcad.mechanics.modal_result import ModalResult, Mode, PointMass, density_t_per_mm3
 
 #: Model error of the Rayleigh quotient against fem3d's first in-plane
 #: frequency (relative), beyond half the K error: measured at the domain's corners.
@@ -59,6 +79,43 @@ SHAPE_ERROR_REL = 0.03
 
 #: Vertical chords of the mass integral.
 N_CHORDS = 1200
+
+#: Sheet thickness / web thickness below which the out-of-plane modes may come
+#: first and the base behind the notch bends out of the plane too: there the
+#: closed form's out-of-plane bounds are not verified (resonance takes fem3d).
+OUT_OF_PLANE_SHEET_OVER_WEB = 3.0
+#: The out-of-plane error estimate taken in such a thin sheet: at the domain's
+#: thin-sheet corner (0.5 mm sheet, 1 mm web) both bounds lay 35 % above
+#: fem3d's 2321 Hz.
+THIN_SHEET_OUT_OF_PLANE_ERROR_REL = 0.5
+
+#: Shear correction factor of a rectangular section (Timoshenko and Gere,
+#: Mechanics of Materials): the out-of-plane cantilever's shear deflection.
+SHEAR_FACTOR = 5.0 / 6.0
+
+
+
+def chord_integrals(points: np.ndarray, xs: np.ndarray, y0: float,
+                    powers: tuple[int, ...]) -> tuple[np.ndarray, ...]:
+    """integral (y - y0)^n dy over the polygon's vertical chords at ``xs``, for each n of
+    ``powers`` (shapes (m,), mm^(n+1)); the polygon closed, first point not repeated."""
+    p = np.asarray(points, float)
+    q = np.roll(p, -1, axis=0)
+    x0, y_0, x1, y1 = p[:, 0], p[:, 1], q[:, 0], q[:, 1]
+    X = xs[:, None]
+    crosses = (np.minimum(x0, x1) <= X) & (X < np.maximum(x0, x1)) & (x0 != x1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ys = y_0 + (X - x0) * (y1 - y_0) / (x1 - x0)
+    ys = np.where(crosses, ys, np.nan)
+    ys = np.sort(ys, axis=1)  # NaN last; crossings come in pairs (inside between)
+    out = [np.zeros(len(xs)) for _ in powers]
+    cnt = np.sum(crosses, axis=1)
+    for k in range(0, int(cnt.max(initial=0)) - 1, 2):
+        a, b = ys[:, k], ys[:, k + 1]
+        ok = np.isfinite(a) & np.isfinite(b)
+        for total, n in zip(out, powers):
+            total += np.where(ok, ((b - y0) ** (n + 1) - (a - y0) ** (n + 1)) / (n + 1), 0.0)
+    return tuple(out)
 
 
 def chord_moments(points: np.ndarray, xs: np.ndarray, y0: float) -> tuple[np.ndarray, np.ndarray]:
@@ -72,23 +129,7 @@ def chord_moments(points: np.ndarray, xs: np.ndarray, y0: float) -> tuple[np.nda
     Returns:
         (integral dy, integral (y - y0)^2 dy) at each x, shapes (m,), (mm, mm^3).
     """
-    p = np.asarray(points, float)
-    q = np.roll(p, -1, axis=0)
-    x0, y_0, x1, y1 = p[:, 0], p[:, 1], q[:, 0], q[:, 1]
-    X = xs[:, None]
-    crosses = (np.minimum(x0, x1) <= X) & (X < np.maximum(x0, x1)) & (x0 != x1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ys = y_0 + (X - x0) * (y1 - y_0) / (x1 - x0)
-    ys = np.where(crosses, ys, np.nan)
-    ys = np.sort(ys, axis=1)  # NaN last; crossings come in pairs (inside between)
-    length = np.zeros(len(xs))
-    second = np.zeros(len(xs))
-    cnt = np.sum(crosses, axis=1)
-    for k in range(0, int(cnt.max(initial=0)) - 1, 2):
-        a, b = ys[:, k], ys[:, k + 1]
-        ok = np.isfinite(a) & np.isfinite(b)
-        length += np.where(ok, b - a, 0.0)
-        second += np.where(ok, ((b - y0) ** 3 - (a - y0) ** 3) / 3.0, 0.0)
+    length, second = chord_integrals(points, xs, y0, (0, 2))
     return length, second
 
 
@@ -99,6 +140,132 @@ def arm_shape(s: np.ndarray, a: float) -> np.ndarray:
     inside = s**2 * (3 * a - s) / (2 * a**3)
     beyond = 1.0 + 1.5 * (s - a) / a
     return np.where(s <= a, inside, beyond)
+
+
+def in_plane_shape_sq(g: ElementGeometry, arm_share: float, x_mm: float, y_mm: float) -> float:
+    """|u|^2 of the in-plane trial shape at (x, y) per unit deflection of the contact
+    centre (0 behind the hinge, taken as still)."""
+    xh, yw = g.web_centre_mm
+    a = g.contact_centre_mm[0] - xh
+    s = x_mm - xh
+    if s < 0:
+        return 0.0
+    rot = 1.0 - arm_share
+    uy = rot * s / a + arm_share * float(arm_shape(np.array(s), a))
+    ux = -rot * (y_mm - yw) / a
+    return ux * ux + uy * uy
+
+
+def added_mass_t(masses, shape_sq) -> float:
+    """sum m_i |u_i|^2 (t) of ``masses`` (:class:`PointMass`) for a trial shape
+    ``shape_sq(x, y)`` normalised at the contact centre."""
+    return float(sum(m.mass_t * shape_sq(m.x_mm, m.y_mm) for m in masses))
+
+
+def bending_rayleigh(xs: np.ndarray, dx: float, depth_mm: float, width_mm: np.ndarray,
+                     E_MPa: float, G_MPa: float, rho_t_per_mm3: float, x_load_mm: float,
+                     ) -> tuple[float, float, np.ndarray]:
+    """Rayleigh quotient of a Timoshenko cantilever of varying width with its
+    static deflection under a unit load at ``x_load_mm`` as the trial shape.
+
+    The cantilever is clamped at xs[0] - dx/2 and sampled at the cell
+    centres ``xs`` (mm, spacing ``dx``); the section is ``width_mm`` (array)
+    by ``depth_mm`` in the bending direction: I = w d^3 / 12, A = w d.
+    Slope = integral of M / (E I) plus the shear angle V / (k G A) (k = 5/6).
+
+    Returns:
+        (K at the load (N/mm), m_eff (t), shape normalised to 1 at the load).
+        For a uniform bar loaded at its end, f = sqrt(K / m_eff) / 2 pi is
+        1.5 % above the exact first bending frequency (Rayleigh's upper bound:
+        sqrt(140 / 11) against 1.875^2).
+    """
+    w = np.asarray(width_mm, float)
+    inertia = w * depth_mm ** 3 / 12.0
+    area = w * depth_mm
+    moment = np.clip(x_load_mm - xs, 0.0, None)
+    shear = (xs < x_load_mm).astype(float)
+    curvature = moment / (E_MPa * inertia)
+    edges = np.concatenate([[0.0], np.cumsum(curvature * dx)])
+    slope = 0.5 * (edges[:-1] + edges[1:]) + shear / (SHEAR_FACTOR * G_MPa * area)
+    w_edges = np.concatenate([[0.0], np.cumsum(slope * dx)])
+    deflection = 0.5 * (w_edges[:-1] + w_edges[1:])
+    at_load = float(np.interp(x_load_mm, xs, deflection))
+    shape = deflection / at_load
+    m_eff = float(rho_t_per_mm3 * np.sum(shape ** 2 * area) * dx)
+    return 1.0 / at_load, m_eff, shape
+
+
+def rectangle_torsion_constant(long_mm, short_mm) -> np.ndarray:
+    """Saint-Venant torsion constant J (mm^4) of a solid rectangle (array-like sides):
+    a c^3 (1/3 - 0.21 c/a (1 - c^4 / (12 a^4))), a the longer side, c the shorter
+    (Roark's Formulas for Stress and Strain, 7th ed., table 10.1 case 4)."""
+    a = np.maximum(long_mm, short_mm)
+    c = np.minimum(long_mm, short_mm)
+    return a * c ** 3 * (1 / 3 - 0.21 * c / a * (1 - c ** 4 / (12 * a ** 4)))
+
+
+def out_of_plane_bounds(g: ElementGeometry, material: Material,
+                        added_masses: tuple[PointMass, ...] = ()) -> tuple[float, float]:
+    """(upper, lower) bound on the first out-of-plane frequency (Hz) (module docstring):
+    the web's twist restrained (bending alone) and free as a Saint-Venant strip, each by
+    Rayleigh(-Ritz) on the shapes below: the Timoshenko cantilever's bending out of the plane
+    (:func:`bending_rayleigh`) and the twist about the web's axis (x, y = y_w) under a
+    unit torque, phi(x) = integral of dx / (G J(x)) with J of each chord's h(x) x b
+    rectangle (:func:`rectangle_torsion_constant`); the mass matrix from the exact
+    profile's chords (u_z = w(x) + phi(x) (y - y_w), plus the twist's u_y) and the
+    ``added_masses`` at their places; the lowest root of det(K - omega^2 M) = 0."""
+    rho = density_t_per_mm3(material)
+    xh, yw = g.web_centre_mm
+    x0 = xh - g.notch_radius_mm
+    outline = clip_chain(element_profile(g).outer, x0)
+    pts = np.array(contour_points(outline, sagitta_mm=1e-4))
+    x_max = float(pts[:, 0].max())
+    dx = (x_max - x0) / N_CHORDS
+    xs = x0 + dx * (np.arange(N_CHORDS) + 0.5)
+    height, first, second = chord_integrals(pts, xs, yw, (0, 1, 2))
+    b = g.sheet_thickness_mm
+    E = material.youngs_modulus_MPa
+    G = E / (2 * (1 + material.poisson_ratio))
+    h = np.maximum(height, 1e-9)
+    k_w, _, w = bending_rayleigh(xs, dx, b, h, E, G, rho, g.contact_centre_mm[0])
+    twist_edges = np.concatenate([[0.0], np.cumsum(dx / (G * rectangle_torsion_constant(h, b)))])
+    phi = 0.5 * (twist_edges[:-1] + twist_edges[1:])
+    k_phi = 1.0 / phi[-1]  # N mm / rad at the free end
+    phi = phi / phi[-1]
+    # kinetic energy: u_z = a w + c phi (y - yw), u_y = -c phi z (about the mid-plane)
+    m_ww = rho * b * np.sum(w * w * h) * dx
+    m_wp = rho * b * np.sum(w * phi * first) * dx
+    m_pp = rho * b * np.sum(phi * phi * (second + h * b * b / 12.0)) * dx
+    for m in added_masses:
+        wi = float(np.interp(m.x_mm, xs, w, left=0.0))
+        pi = float(np.interp(m.x_mm, xs, phi, left=0.0)) * (m.y_mm - yw)
+        m_ww, m_wp, m_pp = m_ww + m.mass_t * wi * wi, m_wp + m.mass_t * wi * pi, \
+            m_pp + m.mass_t * pi * pi
+    stiffness = np.diag([k_w, k_phi])
+    mass = np.array([[m_ww, m_wp], [m_wp, m_pp]])
+    from scipy.linalg import eigh
+
+    lam = eigh(stiffness, mass, eigvals_only=True)
+    return (math.sqrt(k_w / m_ww) / (2 * math.pi), math.sqrt(max(lam[0], 0.0)) / (2 * math.pi))
+
+
+def out_of_plane_may_lead(g: ElementGeometry) -> bool:
+    """True when the sheet is thinner than :data:`OUT_OF_PLANE_SHEET_OVER_WEB` webs: the
+    out-of-plane modes may come first and the closed form's bounds are not verified."""
+    return g.sheet_thickness_mm < OUT_OF_PLANE_SHEET_OVER_WEB * g.web_thickness_mm
+
+
+def out_of_plane_frequency(g: ElementGeometry, material: Material,
+                           added_masses: tuple[PointMass, ...] = ()) -> tuple[float, float]:
+    """(first out-of-plane frequency (Hz), its relative error estimate): the geometric
+    mean of :func:`out_of_plane_bounds`, with the error sqrt(upper / lower) - 1 that
+    reaches both bounds; in a thin sheet (:func:`out_of_plane_may_lead`) at least
+    :data:`THIN_SHEET_OUT_OF_PLANE_ERROR_REL`."""
+    upper, lower = out_of_plane_bounds(g, material, added_masses)
+    err = math.sqrt(upper / lower) - 1.0
+    if out_of_plane_may_lead(g):
+        err = max(err, THIN_SHEET_OUT_OF_PLANE_ERROR_REL)
+    return math.sqrt(upper * lower), err
 
 
 def effective_mass_t(g: ElementGeometry, material: Material, arm_share: float) -> float:
@@ -129,17 +296,23 @@ def effective_mass_t(g: ElementGeometry, material: Material, arm_share: float) -
 
 def estimate_modal_closed_form(g: ElementGeometry, material: Material, *,
                                element: int | None = None, modes: int = 1,
-                               progress=None, keep_shapes: bool = False) -> ModalResult:
-    """First in-plane natural frequency by Rayleigh's quotient (module docstring).
+                               progress=None, keep_shapes: bool = False,
+                               added_masses: tuple[PointMass, ...] = ()) -> ModalResult:
+    """First in-plane and first out-of-plane natural frequency by Rayleigh's
+    quotient (module docstring), with ``added_masses`` counted.
 
     Args:
         g: element geometry (mm). material: E (MPa), nu, density (g/cm^3).
         element: paper element number, carried into the result.
-        modes: modes asked for (the closed form gives the first in-plane one only).
+        modes: modes asked for: 1 gives the lower of the two, 2 or more both.
+        added_masses: :class:`~tactcad.mechanics.modal_result.PointMass` on the element.
 
     Returns:
-        :class:`~tactcad.mechanics.modal_result.ModalResult` with one mode
-        (Hz) and the error estimate (half the K error + :data:`SHAPE_ERROR_REL`).
+        :class:`~tactcad.mechanics.modal_result.ModalResult` with the modes
+        (Hz), ascending, the frequency without the added masses
+        (``bare_first_Hz``) and the error estimate of the first (half the K
+        error + :data:`SHAPE_ERROR_REL` in the plane; half the K error + the
+        bounds' half-spread out of it, :func:`out_of_plane_frequency`).
 
     Raises:
         DesignError: the material has no density. ValueError: modes < 1.
@@ -155,10 +328,22 @@ def estimate_modal_closed_form(g: ElementGeometry, material: Material, *,
                                    **_geometry_kwargs(g, material))
     beta = float((parts.arm_bending + parts.arm_shear) / parts.total)
     m = effective_mass_t(g, material, beta)
-    f1 = math.sqrt(k.stiffness_N_per_mm / m) / (2 * math.pi)
-    return ModalResult(element=element, model="closed-form", modes=(Mode(1, f1, "in-plane"),),
-                       error_estimate_rel=0.5 * k.error_estimate_rel + SHAPE_ERROR_REL,
+    m_add = added_mass_t(added_masses, lambda x, y: in_plane_shape_sq(g, beta, x, y))
+    f_in = math.sqrt(k.stiffness_N_per_mm / (m + m_add)) / (2 * math.pi)
+    f_out, out_error = out_of_plane_frequency(g, material, added_masses)
+    f_out_bare = out_of_plane_frequency(g, material)[0] if added_masses else f_out
+    found = sorted([(f_in, "in-plane", math.sqrt(k.stiffness_N_per_mm / m) / (2 * math.pi),
+                     SHAPE_ERROR_REL),
+                    (f_out, "out-of-plane", f_out_bare, out_error)])[:max(1, min(modes, 2))]
+    total = sum(p.mass_g for p in added_masses)
+    return ModalResult(element=element, model="closed-form",
+                       modes=tuple(Mode(i + 1, f, fam) for i, (f, fam, _, _) in enumerate(found)),
+                       error_estimate_rel=0.5 * k.error_estimate_rel + found[0][3],
                        wall_time_s=time.perf_counter() - t0,
-                       basis=(f"Rayleigh quotient: K {k.stiffness_N_per_mm:.4g} N/mm over "
-                              f"m_eff {m * 1e6:.4g} g (static deflection shape, arm share "
-                              f"{beta:.3f})"))
+                       added_mass_g=total, bare_first_Hz=found[0][2] if added_masses else None,
+                       basis=(f"Rayleigh quotient: in the plane K {k.stiffness_N_per_mm:.4g} N/mm "
+                              f"over m_eff {m * 1e6:.4g} g (static deflection shape, arm share "
+                              f"{beta:.3f}); out of it {f_out:.4g} Hz +/- {100 * out_error:.0f} %, "
+                              "between the web's twist restrained and free (Rayleigh-Ritz)"
+                              + (f"; added {total * 1e3:.3g} mg, effective {m_add * 1e9:.3g} mg "
+                                 "in the plane" if added_masses else "")))

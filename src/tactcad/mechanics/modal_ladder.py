@@ -2,7 +2,7 @@
 
 Three levels, declared once in :data:`MODAL_LEVELS` (as the stiffness
 ladder's :data:`tactcad.mechanics.ladder.LEVELS`): ``closed-form`` (Rayleigh
-quotient, first in-plane mode), ``fem2d`` (plane-stress P2, in-plane
+quotients, first in-plane mode and an estimate of the first out-of-plane one), ``fem2d`` (plane-stress P2, in-plane
 modes) and ``fem3d`` (3D P2 half model in both mid-plane families, the
 reference). Every ``--model`` choice of ``tactcad modal``, its help, the
 verification record and ``bench modal`` read it. Each level returns a
@@ -35,9 +35,11 @@ class ModalLevel:
             keep_shapes=False)`` -> :class:`ModalResult`.
         meshed: a FEM level (mode shapes, progress lines).
         cost: typical wall time per distinct element, for help texts.
-        families: the mode families it finds ("in-plane": bending in the
-            sheet's plane, the sensing direction; "out-of-plane": bending out
-            of it and twisting).
+        families: the mode families it resolves over the whole design domain
+            ("in-plane": bending in the sheet's plane, the sensing direction;
+            "out-of-plane": bending out of it and twisting). The closed form
+            also estimates the first out-of-plane mode, verified only in sheets
+            of three webs and more, so it does not list that family.
     """
 
     name: str

@@ -31,6 +31,30 @@ def density_t_per_mm3(material: Material) -> float:
 
 
 @dataclass(frozen=True)
+class PointMass:
+    """A mass carried by the element that is not of its sheet (gauge, adhesive, lead,
+    solder pad, a tip cover): the modal levels add it at its place.
+
+    Attributes:
+        name: what it is. mass_g: its mass (g).
+        x_mm, y_mm: where it sits in the element frame (mm; the sheet's plane, on its
+            mid-plane across the sheet).
+        source: where the figure comes from (a data sheet, or an estimate stated as such).
+    """
+
+    name: str
+    mass_g: float
+    x_mm: float
+    y_mm: float
+    source: str = ""
+
+    @property
+    def mass_t(self) -> float:
+        """The mass in t (the mm-N-s system's unit; 1 g = 1e-6 t)."""
+        return self.mass_g * 1e-6
+
+
+@dataclass(frozen=True)
 class Mode:
     """One natural mode: its number (1 = lowest), frequency (Hz) and family
     ("in-plane": bending in the sheet's plane, the sensing direction;
@@ -39,6 +63,9 @@ class Mode:
     number: int
     frequency_Hz: float
     family: str
+
+    def as_json(self) -> dict:
+        return {"mode": self.number, "frequency_Hz": self.frequency_Hz, "family": self.family}
 
 
 @dataclass(frozen=True)
@@ -52,6 +79,8 @@ class ModalResult:
         error_estimate_rel: estimated relative error of the first frequency.
         wall_time_s: wall-clock time of the evaluation (s).
         basis: how the level got them, in words.
+        added_mass_g: the point masses counted (g, total; 0: the bare element).
+        bare_first_Hz: the first frequency without them (Hz; None when none are counted).
     """
 
     element: int | None
@@ -60,6 +89,8 @@ class ModalResult:
     error_estimate_rel: float
     wall_time_s: float
     basis: str = ""
+    added_mass_g: float = 0.0
+    bare_first_Hz: float | None = None
     #: a FEM level's finest solve, when asked for (mode shapes to VTU)
     solve: object = field(default=None, repr=False, compare=False)
 
@@ -68,9 +99,15 @@ class ModalResult:
         """The lowest natural frequency (Hz)."""
         return self.modes[0].frequency_Hz
 
+    def first_of(self, family: str) -> float | None:
+        """The lowest frequency of ``family`` (Hz), None when the level found none."""
+        return next((m.frequency_Hz for m in self.modes if m.family == family), None)
+
     def as_json(self) -> dict:
         return {"element": self.element, "model": self.model, "first_Hz": self.first_Hz,
-                "modes": [{"mode": m.number, "frequency_Hz": m.frequency_Hz,
-                           "family": m.family} for m in self.modes],
+                "first_in_plane_Hz": self.first_of("in-plane"),
+                "first_out_of_plane_Hz": self.first_of("out-of-plane"),
+                "modes": [m.as_json() for m in self.modes],
+                "added_mass_g": self.added_mass_g, "bare_first_Hz": self.bare_first_Hz,
                 "error_estimate_rel": self.error_estimate_rel, "wall_time_s": self.wall_time_s,
                 "basis": self.basis}

@@ -38,8 +38,10 @@ Per element: sensitivity S = G V_ex GF eps_avg / (4 F) (V/N), K_v = S K
 (V/mm, eq. 4-6 of the paper's calibration).
 
 Noise (one reading, ``samples_averaged`` samples averaged, white noise):
-the amplifier's input noise density e_n over the noise bandwidth
-(pi/2 x the -3 dB bandwidth of a single pole), the bridge's Johnson noise
+the amplifier's input noise density e_n over the chain's noise bandwidth
+(the anti-alias filter's: pi/2 x its corner for first order, (pi/2n)/sin(pi/2n)
+x the corner for a Butterworth of order n; the amplifier's single pole,
+pi/2 x its -3 dB bandwidth, without one), the bridge's Johnson noise
 (source resistance = gauge resistance for four equal arms), both times the
 gain, the DAQ's random noise and the quantisation step / sqrt(12), summed
 in quadrature and divided by sqrt(samples). Force resolution = that noise
@@ -265,7 +267,7 @@ def noise_budget_V(chain: ReadoutChain) -> dict[str, float]:
     sample each), ``per_sample`` (quadrature sum), ``reading`` (per_sample /
     sqrt(samples_averaged)).
     """
-    bw_noise = 0.5 * math.pi * chain.bandwidth_Hz  # single-pole noise bandwidth
+    bw_noise = chain.noise_bandwidth_Hz  # anti-alias filter or the amplifier's pole
     amp = chain.amplifier_gain * chain.amplifier_noise_nV_per_rtHz * 1e-9 * math.sqrt(bw_noise)
     johnson = chain.amplifier_gain * math.sqrt(4 * BOLTZMANN_J_PER_K * BRIDGE_TEMPERATURE_K
                                                * chain.gauge_resistance_ohm * bw_noise)

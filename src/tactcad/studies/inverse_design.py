@@ -72,7 +72,7 @@ from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_BASE_BELOW_ARM_M
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import load_correction, range_warnings_unsaid
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
-from tactcad.mechanics.element_strength import force_limits
+from tactcad.mechanics.element_strength import force_limits, notch_fatigue_strength
 from tactcad.studies.tolerance_montecarlo import corrected_stiffness
 
 #: Clearance (mm) between the notch bottom and the arm's underside when the
@@ -504,11 +504,13 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
               f"the stiffness targets' arms carry at most {np.max(f_gauge_max):.3g} N at any web "
               f"within {1e6 * gauge.max_strain:.0f} microstrain, asked {F:g} N"),
     )
-    if mat.fatigue_strength_MPa is not None:
-        limits += (Limit("material fatigue strength at the full-scale force",
+    notch = notch_fatigue_strength(mat)
+    if notch is not None:
+        limits += (Limit("material fatigue strength at the notch at the full-scale force",
                          "material.fatigue_strength_MPa", fat_margin >= 1.0,
                          f"the stiffness targets' arms carry at most {np.nanmax(f_fatigue):.3g} N "
-                         f"at any web within {mat.fatigue_strength_MPa:g} MPa, asked {F:g} N"),)
+                         f"at any web within {notch.strength_MPa:.4g} MPa (surface factor "
+                         f"{notch.surface_factor:.2f}), asked {F:g} N"),)
     margin = np.minimum.reduce([y_margin, g_margin, gm_margin, fat_margin])
     return WebSearch(webs, radii, a_r, a_m, margin, limits, F, arm_lo, arm_hi,
                      closed_form_force_error(plan))

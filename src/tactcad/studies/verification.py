@@ -533,7 +533,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
         out.append(footprint_record(req.footprint_mm, envelope_mm, tolerances_of(plan.raw).general))
     out.extend(resonance_records(plan, model, progress))
     out.extend(r for r in [thermal_record(plan, fig, req)] if r is not None)
-    out += crosstalk_records(plan)
+    out += crosstalk_records(plan, F, units.force_resolution_N)
     out.extend(r for r in [kobj_accuracy_record(plan, fig, req)] if r is not None)
     for r in out:
         r["stated"] = r["requirement"] in req.stated

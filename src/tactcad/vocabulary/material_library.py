@@ -42,9 +42,15 @@ STRENGTH_KEYS = ("safety_factor", "gauge")
 
 _CORE_MATERIAL_KEYS = ("name", "youngs_modulus_MPa", "poisson_ratio")
 _GRADE_FIELDS = ("youngs_modulus_MPa", "poisson_ratio", "yield_strength_MPa",
-                 "fatigue_strength_MPa", "density_g_per_cm3")
+                 "ultimate_strength_MPa", "density_g_per_cm3")
+#: What a grade's fatigue datum may be: the stress amplitude or the maximum stress of the cycle.
+FATIGUE_DATUM_STRESSES = ("amplitude", "maximum")
+#: Keys every grade's fatigue datum states (the datum defined one way, with its source).
+FATIGUE_DATUM_KEYS = ("fatigue_datum_MPa", "fatigue_datum_stress", "fatigue_R_ratio",
+                      "fatigue_cycles", "fatigue_specimen")
 _GAUGE_FIELDS = ("resistance_ohm", "gauge_factor", "max_strain", "fatigue_strain",
-                 "backing_thickness_mm", "adhesive_thickness_mm", "backing_modulus_MPa")
+                 "backing_thickness_mm", "adhesive_thickness_mm", "backing_modulus_MPa",
+                 "installed_mass_mg", "terminal_pair_mass_mg", "lead_mass_mg_per_mm")
 
 # Ranges a design file's own values must fall in (MPa, g/cm^3).
 STRENGTH_RANGE_MPA = (1.0, 5000.0)
@@ -61,8 +67,14 @@ class MaterialGrade:
         description: alloy, temper / heat treatment.
         youngs_modulus_MPa: E (MPa). poisson_ratio: nu.
         yield_strength_MPa: 0.2 % offset tensile yield (MPa).
-        fatigue_strength_MPa: stress amplitude of the smooth specimen at
-            ``fatigue_cycles`` cycles and stress ratio ``fatigue_R_ratio`` (MPa).
+        ultimate_strength_MPa: ultimate tensile strength S_u (MPa).
+        fatigue_datum_MPa: the fatigue datum as its source gives it (MPa): the
+            ``fatigue_datum_stress`` ("amplitude" or "maximum") of the smooth
+            specimen ``fatigue_specimen`` at ``fatigue_cycles`` cycles and stress
+            ratio ``fatigue_R_ratio``.
+        fatigue_strength_MPa: the datum converted to the fully reversed (R = -1)
+            stress amplitude (Goodman, :func:`fully_reversed_amplitude`), the
+            form the strength model uses (MPa).
         density_g_per_cm3: density (g/cm^3).
         sources: (field, document) pairs naming where each value comes from.
         family: the metal in words (``aluminium``, ``titanium``), as drawings and BOM name it.
@@ -86,6 +98,10 @@ class MaterialGrade:
     sources: tuple[tuple[str, str], ...]
     family: str = ""
     cte_ppm_per_K: float = math.nan
+    ultimate_strength_MPa: float = math.nan
+    fatigue_datum_MPa: float = math.nan
+    fatigue_datum_stress: str = "amplitude"
+    fatigue_specimen: str = ""
     youngs_modulus_tc_per_K: float = math.nan
     unsourced: tuple[tuple[str, str], ...] = ()
 
@@ -119,6 +135,9 @@ class StrainGauge:
         backing_thickness_mm: the carrier under the foil grid (mm).
         adhesive_thickness_mm: the cured glue line under the carrier (mm).
         backing_modulus_MPa: Young's modulus of carrier and glue line (MPa).
+        installed_mass_mg: the gauge with its adhesive line (mg).
+        terminal_pair_mass_mg: its pair of solder terminals with solder (mg).
+        lead_mass_mg_per_mm: its three-wire lead per mm (mg/mm).
     """
 
     name: str
@@ -134,6 +153,9 @@ class StrainGauge:
     backing_thickness_mm: float = 0.0
     adhesive_thickness_mm: float = 0.0
     backing_modulus_MPa: float = 0.0
+    installed_mass_mg: float = 0.0
+    terminal_pair_mass_mg: float = 0.0
+    lead_mass_mg_per_mm: float = 0.0
 
     @property
     def grid_height_mm(self) -> float:
@@ -183,6 +205,66 @@ def _grade_modulus_tc(name: str, t: Mapping[str, Any]) -> float:
     return tc
 
 
+def fully_reversed_amplitude(datum_MPa: float, datum_stress: str, R_ratio: float,
+                             ultimate_MPa: float) -> float:
+    """The fully reversed (R = -1) stress amplitude equivalent to a fatigue datum.
+
+    The datum's cycle: from a maximum stress, sigma_a = sigma_max (1 - R) / 2
+    and sigma_m = sigma_max (1 + R) / 2; from an amplitude, sigma_m =
+    sigma_a (1 + R) / (1 - R). The Goodman line through the ultimate strength
+    then gives sigma_ar = sigma_a / (1 - sigma_m / S_u) (Shigley's Mechanical
+    Engineering Design, 9th ed., section 6-12, eq. 6-41 solved for S_e).
+
+    Args:
+        datum_MPa: the datum (MPa), > 0.
+        datum_stress: ``"amplitude"`` or ``"maximum"``.
+        R_ratio: stress ratio sigma_min / sigma_max of the datum's test, -1 <= R < 1.
+        ultimate_MPa: ultimate tensile strength S_u (MPa), above the cycle's mean stress.
+
+    Returns:
+        the fully reversed amplitude (MPa); the datum itself at R = -1.
+
+    Raises:
+        ValueError: an unknown ``datum_stress``, R outside [-1, 1), or a mean
+            stress at or above the ultimate strength.
+    """
+    if datum_stress not in FATIGUE_DATUM_STRESSES:
+        raise ValueError(f"fatigue datum stress must be one of {', '.join(FATIGUE_DATUM_STRESSES)}; "
+                         f"got {datum_stress!r}")
+    if not -1.0 <= R_ratio < 1.0:
+        raise ValueError(f"fatigue R ratio must be -1 <= R < 1; got {R_ratio!r}")
+    if datum_stress == "maximum":
+        amplitude, mean = datum_MPa * (1 - R_ratio) / 2, datum_MPa * (1 + R_ratio) / 2
+    else:
+        amplitude, mean = datum_MPa, datum_MPa * (1 + R_ratio) / (1 - R_ratio)
+    if not mean < ultimate_MPa:
+        raise ValueError(f"the fatigue datum's mean stress {mean:.4g} MPa is not below the "
+                         f"ultimate strength {ultimate_MPa:.4g} MPa")
+    return amplitude / (1 - mean / ultimate_MPa)
+
+
+def _fatigue_datum(name: str, t: Mapping[str, Any]) -> dict[str, Any]:
+    # each grade states its fatigue datum one way (which stress, R, cycles, specimen, source)
+    for key in FATIGUE_DATUM_KEYS + ("ultimate_strength_MPa",):
+        if key not in t:
+            raise DesignError(f"grades.{name}.{key}", None, "the fatigue datum stated one way: "
+                              + ", ".join(FATIGUE_DATUM_KEYS) + " and ultimate_strength_MPa")
+    for key in ("fatigue_datum_MPa", "ultimate_strength_MPa"):
+        if not t.get("sources", {}).get(key):
+            raise DesignError(f"grades.{name}.sources.{key}", None, "the document it comes from")
+    kind = t["fatigue_datum_stress"]
+    if kind not in FATIGUE_DATUM_STRESSES:
+        raise DesignError(f"grades.{name}.fatigue_datum_stress", kind,
+                          " or ".join(FATIGUE_DATUM_STRESSES))
+    datum = _number(f"grades.{name}.fatigue_datum_MPa", t["fatigue_datum_MPa"],
+                    *STRENGTH_RANGE_MPA, "MPa")
+    r_ratio = _number(f"grades.{name}.fatigue_R_ratio", t["fatigue_R_ratio"], -1.0, 0.99, "")
+    return {"fatigue_datum_MPa": datum, "fatigue_datum_stress": kind,
+            "fatigue_specimen": str(t["fatigue_specimen"]),
+            "fatigue_strength_MPa": fully_reversed_amplitude(datum, kind, r_ratio,
+                                                             float(t["ultimate_strength_MPa"]))}
+
+
 def _grade_from_table(name: str, t: Mapping[str, Any]) -> MaterialGrade:
     # every grade carries its CTE and the document it comes from (the thermal drift needs it)
     cte = _number(f"grades.{name}.cte_ppm_per_K", t.get("cte_ppm_per_K"), *CTE_RANGE_PPM_PER_K,
@@ -190,12 +272,20 @@ def _grade_from_table(name: str, t: Mapping[str, Any]) -> MaterialGrade:
     if not t.get("sources", {}).get("cte_ppm_per_K"):
         raise DesignError(f"grades.{name}.sources.cte_ppm_per_K", None, "the document the CTE "
                           "comes from")
+    fatigue = _fatigue_datum(name, t)
+    sources = dict(t["sources"])
+    sources["fatigue_strength_MPa"] = (
+        f"fully reversed amplitude {fatigue['fatigue_strength_MPa']:.4g} MPa converted (Goodman, "
+        f"S_u {t['ultimate_strength_MPa']:g} MPa) from the {fatigue['fatigue_datum_stress']} "
+        f"{fatigue['fatigue_datum_MPa']:g} MPa at R = {t['fatigue_R_ratio']:g}: "
+        + sources["fatigue_datum_MPa"])
     return MaterialGrade(name=name, description=t["description"], family=t.get("family", ""),
                          cte_ppm_per_K=cte, youngs_modulus_tc_per_K=_grade_modulus_tc(name, t),
                          unsourced=tuple(sorted(t.get("unsourced", {}).items())),
                          fatigue_cycles=float(t["fatigue_cycles"]),
                          fatigue_R_ratio=float(t["fatigue_R_ratio"]),
-                         sources=tuple(sorted(t["sources"].items())),
+                         sources=tuple(sorted(sources.items())),
+                         **fatigue,
                          **{k: float(t[k]) for k in _GRADE_FIELDS})
 
 
@@ -287,29 +377,33 @@ def _number(field: str, value: Any, lo: float, hi: float, unit: str) -> float:
 def material_fields(table: Mapping[str, Any]) -> dict[str, Any]:
     """Strength fields of a design's ``[material]`` table, resolved.
 
-    With ``grade`` the library supplies yield and fatigue strength, fatigue
-    cycles and R ratio and density; the table's own ``yield_strength_MPa``,
-    ``fatigue_strength_MPa`` or ``density_g_per_cm3`` override them. Without a
-    grade only the table's own values are known (others are None).
+    With ``grade`` the library supplies yield, ultimate and fatigue strength
+    (the grade's datum converted to the fully reversed amplitude, so R = -1),
+    fatigue cycles and density; the table's own ``yield_strength_MPa``,
+    ``fatigue_strength_MPa`` (read as a fully reversed amplitude of a smooth
+    specimen) or ``density_g_per_cm3`` override them. Without a grade only
+    the table's own values are known (others are None).
 
     Returns:
         keyword arguments for :class:`tactcad.design.Material` beyond name, E
-        and nu: grade, yield_strength_MPa, fatigue_strength_MPa,
-        fatigue_cycles, fatigue_R_ratio, density_g_per_cm3, sources.
+        and nu: grade, yield_strength_MPa, ultimate_strength_MPa,
+        fatigue_strength_MPa, fatigue_cycles, fatigue_R_ratio,
+        density_g_per_cm3, sources.
 
     Raises:
         DesignError: unknown grade (naming the allowed grades) or a value
             outside its range.
     """
     out: dict[str, Any] = {"grade": None, "yield_strength_MPa": None,
-                           "fatigue_strength_MPa": None, "fatigue_cycles": None,
+                           "ultimate_strength_MPa": None, "fatigue_strength_MPa": None, "fatigue_cycles": None,
                            "fatigue_R_ratio": None, "density_g_per_cm3": None, "sources": ()}
     sources: dict[str, str] = {}
     if "grade" in table:
         g = material_grade(table["grade"])
         out.update(grade=g.name, yield_strength_MPa=g.yield_strength_MPa,
+                   ultimate_strength_MPa=g.ultimate_strength_MPa,
                    fatigue_strength_MPa=g.fatigue_strength_MPa, fatigue_cycles=g.fatigue_cycles,
-                   fatigue_R_ratio=g.fatigue_R_ratio, density_g_per_cm3=g.density_g_per_cm3)
+                   fatigue_R_ratio=-1.0, density_g_per_cm3=g.density_g_per_cm3)
         sources.update(g.sources)
     for key, (lo, hi), unit in (("yield_strength_MPa", STRENGTH_RANGE_MPA, "MPa"),
                                 ("fatigue_strength_MPa", STRENGTH_RANGE_MPA, "MPa"),

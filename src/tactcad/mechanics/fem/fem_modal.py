@@ -26,6 +26,17 @@ sensing direction) and once with ``u_x = u_y = 0`` there (antisymmetric:
 bending out of the plane, twisting); both spectra are merged, each mode
 labelled with its family.
 
+Each mode's direction is read off its modal displacement
+(:func:`mode_direction`): the share of its kinetic energy in each component
+names it "in-plane" (u_y: bending in the sheet's plane), "out-of-plane"
+(u_z: bending out of it), "torsion" (u_y in the antisymmetric family: the
+arm twisting about its length) or "axial" (u_x in the symmetric family).
+
+Added mass (:class:`~tactcad.mechanics.modal_result.PointMass`: gauge,
+adhesive, leads, pads): lumped on the mesh vertex nearest its place, on the
+mid-plane (the 3D half model carries half of it), in every displacement
+component.
+
 Error estimate: the first frequency on three meshes (sizes r^2, r, 1 times
 the default) Richardson-extrapolated (:mod:`tactcad.mechanics.richardson`);
 fem2d adds the plane model's frequency error against 3D
@@ -55,7 +66,7 @@ from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, assemble_elasticity, 
                                          p_multigrid, plane_model_error, single_threaded_blas,
                                          size_factors, skfem_mesh)
 from tactcad.mechanics.fem.fem_mesh import WEB_DIVISIONS, FemRegion, fem_region, graded_layers, mesh_region
-from tactcad.mechanics.modal_result import ModalResult, Mode, density_t_per_mm3
+from tactcad.mechanics.modal_result import ModalResult, Mode, PointMass, density_t_per_mm3
 from tactcad.mechanics.richardson import richardson
 
 #: 3D modal meshes: neck size = web thickness / WEB_DIVISIONS_MODAL_3D and
@@ -87,6 +98,8 @@ class ModalSolve:
     basis: object = field(repr=False)
     shapes: tuple[np.ndarray, ...] = field(repr=False)  # full interleaved vectors per mode
     sym_plane_z: float | None = None
+    #: each mode's mid-plane family (the half model's boundary condition, :data:`FAMILIES`)
+    mid_plane_families: tuple[str, ...] = ()
 
 
 def _mass_scalar(sb):
@@ -206,6 +219,47 @@ def lobpcg_lowest(A, M, k: int, precondition: Callable) -> tuple[np.ndarray, np.
                        f"(estimated eigenvalue errors {err.tolist()})")
 
 
+def mode_direction(vector: np.ndarray, scalar_mass, dim: int, family: str) -> str:
+    """A mode's direction from its displacement (module docstring): the component
+    carrying most of its kinetic energy v_c^T M v_c, read with its mid-plane family.
+
+    Args:
+        vector: the mode, interleaved (dim * node + component).
+        scalar_mass: the scalar P2 mass matrix (one component).
+        dim: 2 or 3. family: "in-plane" (symmetric) or "out-of-plane" (antisymmetric).
+
+    Returns:
+        "in-plane", "out-of-plane", "torsion" or "axial".
+    """
+    energy = [float(vector[c::dim] @ (scalar_mass @ vector[c::dim])) for c in range(dim)]
+    main = int(np.argmax(energy))
+    if main == 2:
+        return "out-of-plane"
+    if family == "out-of-plane":
+        return "torsion" if main == 1 else "out-of-plane"
+    return "in-plane" if main == 1 else "axial"
+
+
+def _add_point_masses(M, mesh, sb, masses: tuple[PointMass, ...], dim: int,
+                      sym_plane_z: float | None):
+    """M with each point mass lumped on the vertex nearest its place (mid-plane in 3D;
+    half of it on a half model)."""
+    if not masses:
+        return M
+    M = M.tolil()
+    # the corner vertices (a curved mesh also lists its mid-side nodes in p)
+    corners = np.unique(mesh.t[:dim + 1])
+    p = mesh.p[:, corners]
+    for m in masses:
+        where = np.array([m.x_mm, m.y_mm] + ([sym_plane_z] if dim == 3 else []))
+        vertex = int(corners[np.argmin(np.sum((p - where[:, None]) ** 2, axis=0))])
+        node = int(sb.nodal_dofs[0, vertex])
+        share = 0.5 if sym_plane_z is not None else 1.0
+        for c in range(dim):
+            M[dim * node + c, dim * node + c] += share * m.mass_t
+    return M.tocsr()
+
+
 def _facet_dofs(mesh, sb, predicate) -> np.ndarray:
     facets = mesh.facets_satisfying(predicate, boundaries_only=True)
     return sb.get_dofs(facets).all()
@@ -214,7 +268,7 @@ def _facet_dofs(mesh, sb, predicate) -> np.ndarray:
 def solve_modes(mesh, material: Material, *, thickness: float, x_clamp: float, modes: int,
                 plane: str | None, sym_plane_z: float | None = None,
                 families: tuple[str, ...] = ("in-plane",), intorder: int | None = None,
-                solver: str = "direct") -> ModalSolve:
+                solver: str = "direct", added_masses: tuple[PointMass, ...] = ()) -> ModalSolve:
     """The lowest ``modes`` natural frequencies of a clamped P2 mesh.
 
     Args:
@@ -229,9 +283,11 @@ def solve_modes(mesh, material: Material, *, thickness: float, x_clamp: float, m
         solver: "direct" (shift-invert about 0, SuperLU) or "lobpcg"
             (:func:`lobpcg_lowest` with the two-level p-multigrid
             preconditioner of the stiffness solves; a 3D mesh's memory).
+        added_masses: point masses lumped on the nearest vertex (:func:`_add_point_masses`).
 
     Returns:
-        :class:`ModalSolve`, frequencies ascending over the families.
+        :class:`ModalSolve`, frequencies ascending over the families, each
+        mode's direction read off its displacement (:func:`mode_direction`).
 
     Raises:
         DesignError: the material has no density.
@@ -252,7 +308,9 @@ def solve_modes(mesh, material: Material, *, thickness: float, x_clamp: float, m
     sb = Basis(mesh, p2, intorder=intorder)
     lam_, mu = lame(material, plane)
     A = assemble_elasticity(sb, lam_, mu) * thickness
-    M = _vector_mass(sb, rho, dim) * thickness
+    scalar_mass = _mass_scalar(sb)
+    M = _add_point_masses(_vector_mass(sb, rho, dim) * thickness, mesh, sb, added_masses, dim,
+                          sym_plane_z)
     tol = 1e-7
     cd = _facet_dofs(mesh, sb, lambda x: np.abs(x[0] - x_clamp) < tol)
     if len(cd) == 0:
@@ -269,12 +327,14 @@ def solve_modes(mesh, material: Material, *, thickness: float, x_clamp: float, m
                 comps = (2,) if fam == "in-plane" else (0, 1)
                 fixed = np.union1d(fixed, (dim * sd[:, None] + np.array(comps)[None, :]).ravel())
             lam, vecs = _lowest_modes(A, M, fixed, modes, precondition)
-            found += [(float(l), fam, vecs[:, i]) for i, l in enumerate(lam)]
+            found += [(float(l), mode_direction(vecs[:, i], scalar_mass, dim, fam), vecs[:, i],
+                       fam) for i, l in enumerate(lam)]
     found.sort(key=lambda f: f[0])
     found = found[:modes]
-    freqs = tuple(math.sqrt(max(l, 0.0)) / (2 * math.pi) for l, _, _ in found)
-    return ModalSolve(freqs, tuple(f for _, f, _ in found), A.shape[0],
-                      time.perf_counter() - t0, sb, tuple(v for _, _, v in found), sym_plane_z)
+    freqs = tuple(math.sqrt(max(l, 0.0)) / (2 * math.pi) for l, _, _, _ in found)
+    return ModalSolve(freqs, tuple(f[1] for f in found), A.shape[0],
+                      time.perf_counter() - t0, sb, tuple(f[2] for f in found), sym_plane_z,
+                      tuple(f[3] for f in found))
 
 
 def plane_frequency_error(g: ElementGeometry, material: Material) -> float:
@@ -306,22 +366,25 @@ def _mesh(g: ElementGeometry, region: FemRegion, dim: int, size_factor: float):
 
 
 def solve_element_modes(g: ElementGeometry, material: Material, *, dim: int, modes: int = 3,
-                        size_factor: float = 1.0, region: FemRegion | None = None) -> ModalSolve:
+                        size_factor: float = 1.0, region: FemRegion | None = None,
+                        added_masses: tuple[PointMass, ...] = ()) -> ModalSolve:
     """One mesh's modes of an element: plane stress (``dim`` 2) or the 3D
     half model in both families (``dim`` 3). Raises as :func:`solve_modes`."""
     region = fem_region(g) if region is None else region
     mesh = _mesh(g, region, dim, size_factor)
     if dim == 2:
         return solve_modes(mesh, material, thickness=g.sheet_thickness_mm,
-                           x_clamp=region.x_clamp, modes=modes, plane="stress")
+                           x_clamp=region.x_clamp, modes=modes, plane="stress",
+                           added_masses=added_masses)
     return solve_modes(mesh, material, thickness=1.0, x_clamp=region.x_clamp, modes=modes,
                        plane=None, sym_plane_z=g.sheet_thickness_mm / 2,
-                       families=tuple(FAMILIES), solver="lobpcg")
+                       families=tuple(FAMILIES), solver="lobpcg", added_masses=added_masses)
 
 
 def _estimate(model: str, dim: int, g: ElementGeometry, material: Material, *,
               element: int | None, modes: int, ratio: float,
-              progress: Callable[[str], None] | None, keep: bool) -> ModalResult:
+              progress: Callable[[str], None] | None, keep: bool,
+              added_masses: tuple[PointMass, ...] = ()) -> ModalResult:
     if modes < 1:
         raise ValueError(f"modes = {modes!r}: allowed 1 or more")
     t0 = time.perf_counter()
@@ -331,7 +394,8 @@ def _estimate(model: str, dim: int, g: ElementGeometry, material: Material, *,
     for i, s in enumerate(size_factors(3, ratio)):
         # the coarser meshes only feed the first frequency's Richardson estimate
         sols.append(solve_element_modes(g, material, dim=dim, modes=modes if i == 2 else 1,
-                                        size_factor=s, region=region))
+                                        size_factor=s, region=region,
+                                        added_masses=added_masses))
         if progress is not None:
             progress(f"{model} modal {g.part_name}: mesh {i + 1}/3 (h x {s:.3f}), "
                      f"{sols[-1].n_dofs} unknowns, {sols[-1].wall_time_s:.1f} s")
@@ -346,6 +410,7 @@ def _estimate(model: str, dim: int, g: ElementGeometry, material: Material, *,
                                                                           fin.families))),
         solve=fin if keep else None,
         error_estimate_rel=err, wall_time_s=time.perf_counter() - t0,
+        added_mass_g=sum(m.mass_g for m in added_masses),
         basis=(f"P2 {'plane stress' if dim == 2 else '3D half model, both mid-plane families'}, "
                f"consistent mass, shift-invert about 0, Richardson over 3 meshes "
                f"(order {rich.order:.2f})"))
@@ -355,7 +420,8 @@ def _estimate(model: str, dim: int, g: ElementGeometry, material: Material, *,
 def estimate_modal_fem2d(g: ElementGeometry, material: Material, *, element: int | None = None,
                          modes: int = 3, ratio: float = REFINEMENT_RATIO,
                          progress: Callable[[str], None] | None = None,
-                         keep_shapes: bool = False) -> ModalResult:
+                         keep_shapes: bool = False,
+                         added_masses: tuple[PointMass, ...] = ()) -> ModalResult:
     """Modal level "fem2d": plane-stress P2 modes (in-plane only), three meshes.
 
     Returns:
@@ -367,13 +433,14 @@ def estimate_modal_fem2d(g: ElementGeometry, material: Material, *, element: int
         ValueError: modes < 1. DesignError: no density.
     """
     return _estimate("fem2d", 2, g, material, element=element, modes=modes, ratio=ratio,
-                     progress=progress, keep=keep_shapes)
+                     progress=progress, keep=keep_shapes, added_masses=added_masses)
 
 
 def estimate_modal_fem3d(g: ElementGeometry, material: Material, *, element: int | None = None,
                          modes: int = 3, ratio: float = REFINEMENT_RATIO,
                          progress: Callable[[str], None] | None = None,
-                         keep_shapes: bool = False) -> ModalResult:
+                         keep_shapes: bool = False,
+                         added_masses: tuple[PointMass, ...] = ()) -> ModalResult:
     """Modal level "fem3d" (the reference): 3D P2 half model in both
     mid-plane families (:data:`FAMILIES`), three meshes.
 
@@ -386,7 +453,7 @@ def estimate_modal_fem3d(g: ElementGeometry, material: Material, *, element: int
         ValueError: modes < 1. DesignError: no density.
     """
     return _estimate("fem3d", 3, g, material, element=element, modes=modes, ratio=ratio,
-                     progress=progress, keep=keep_shapes)
+                     progress=progress, keep=keep_shapes, added_masses=added_masses)
 
 
 def write_modes_vtu(path: str | Path, solve: ModalSolve) -> Path:
@@ -410,7 +477,8 @@ def write_modes_vtu(path: str | Path, solve: ModalSolve) -> Path:
     cells = mesh.t.T.astype(np.int64)
     data = {}
     mirrored = solve.sym_plane_z is not None
-    for k, (f, fam, vec) in enumerate(zip(solve.frequencies_Hz, solve.families, solve.shapes)):
+    mid = solve.mid_plane_families or solve.families
+    for k, (f, fam, vec) in enumerate(zip(solve.frequencies_Hz, mid, solve.shapes)):
         d = np.zeros((nv, 3))
         for c in range(dim):
             d[:, c] = vec[c::dim][:nv]  # P2 vertex dofs come first
