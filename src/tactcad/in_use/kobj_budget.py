@@ -507,10 +507,10 @@ def unit_budget(ctx: Context, unit: Unit, k_obj: np.ndarray) -> dict:
             "sources": {k: {"before_rel": listed(parts[k].before),
                             "after_rel": listed(parts[k].after)} for k in SOURCE_KEYS},
             "rss_rel": listed(np.sqrt(np.sum(after ** 2, axis=0))),
-            "worst_case_rel": listed(np.sum(after, axis=0)),
+            "worst_case_rel": listed(np.sum(np.abs(after), axis=0)),
             "rss_before_rel": listed(np.sqrt(np.sum(before ** 2, axis=0))),
-            "worst_case_before_rel": listed(np.sum(before, axis=0)),
-            "dominant": [SOURCE_KEYS[i] for i in np.argmax(after, axis=0)],
+            "worst_case_before_rel": listed(np.sum(np.abs(before), axis=0)),
+            "dominant": [SOURCE_KEYS[i] for i in np.argmax(np.abs(after), axis=0)],
             "uncertainty_rel": budget_uncertainty_rel(ctx, unit)}
 
 

@@ -176,7 +176,7 @@ def fem3d_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_
     b = g.sheet_thickness_mm
     w = min(grid_width_mm, b)
     span, across = grid_span_mm(g, grid_length_mm), (b / 2 - w / 2, b / 2 + w / 2)
-    vals = [face_rectangle_average(f, span, across) for f in conv.faces]
+    vals = [face_rectangle_average(f, span, across) for f in conv.top_face_strains]
     fin = conv.finest
     return {"surface": vals[-1], "peak": fin.gauge_strain / fin.force_N,
             "error_rel": richardson(vals, REFINEMENT_RATIO).error_rel}

@@ -108,7 +108,7 @@ def evaluate_point(design: Sequence[float], label: str) -> dict:
                 continue
             span = grid_span_mm(g, L)
             vals = [face_rectangle_average(f, span, (b / 2 - W / 2, b / 2 + W / 2))
-                    for f in conv.faces]
+                    for f in conv.top_face_strains]
             rec["grids"].append({"L": L, "W": W, "fem3d": vals[-1],
                                  "err": richardson(vals, REFINEMENT_RATIO).error_rel,
                                  "eb": beam_grid_strain_per_N(g, m, L)})

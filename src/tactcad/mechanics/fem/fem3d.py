@@ -154,7 +154,7 @@ class Convergence3D(Convergence):
 
     peak_rss_mib: float = math.nan
     peaks: tuple[PeakStress, ...] = ()
-    faces: tuple[FaceStrain, ...] = ()
+    top_face_strains: tuple[FaceStrain, ...] = ()
 
 
 def fem3d_convergence(g: ElementGeometry, material: Material, *,
