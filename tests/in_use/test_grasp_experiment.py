@@ -4,7 +4,7 @@ import pytest
 
 from tactcad.design.array_plan import load_design
 from tactcad.errors import DesignError
-from tactcad.in_use.grasp import grasp, solve_tips, tissue_compliance
+from tactcad.in_use.grasp_experiment import grasp, solve_tips, tissue_compliance
 from tactcad.in_use.jaw_kinematics import JawGeometry
 from tactcad.mechanics.contact import Punch
 from tactcad.mechanics.evaluation import ladder_stiffness_by_element
