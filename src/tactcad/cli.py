@@ -45,6 +45,7 @@ COMMAND_MODULES = (
     "tactcad.commands.readout",
     "tactcad.commands.thermal",
     "tactcad.commands.budget",
+    "tactcad.commands.grasp",
     "tactcad.commands.crosstalk",
     "tactcad.commands.materials",
     "tactcad.commands.sweep",

@@ -1,0 +1,221 @@
+"""``tactcad grasp``: the grasp as a virtual experiment and the leads through the shaft."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from tactcad.commands import add_cache_args, add_design_arg, add_output_args, parse_overrides
+from tactcad.commands.finite_json import dumps
+from tactcad.commands.options import number
+from tactcad.mechanics.ladder import models
+
+#: Defaults, each stated where it is used (mm, degrees).
+DEFAULT_PIVOT_BEHIND_MM = 5.0
+DEFAULT_SLAB_MM = 3.0
+DEFAULT_OPENING_DEG = 60.0
+DEFAULT_JAW_BEYOND_MM = 2.0
+DEFAULT_LEAD_CHANNEL_MM = 3.0
+#: The grasp's fields and the options that set them (an error names the option).
+OPTION_OF = {"force_N": "--force-N", "angle_deg": "--angle-deg",
+             "jaw.pivot_u_mm": "--pivot-mm", "jaw.pivot_v_mm": "--pivot-mm",
+             "jaw.jaw_length_mm": "--jaw-length-mm", "jaw.opening_angle_deg": "--opening-deg",
+             "jaw.slab_thickness_mm": "--slab-thickness-mm", "k_obj_N_per_mm": "--kobj",
+             "channel_diameter_mm": "--lead-channel-mm"}
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    from tactcad.in_use.grasp_experiment import COUPLINGS, PROFILES
+
+    p = sub.add_parser(
+        "grasp", help="the grasp as a virtual experiment: a pivoting jaw closes on tissue; "
+                      "each unit's radii, travels, R and K_obj read, as laid out and paired "
+                      "at equal radius; the leads through the shaft",
+        description="A jaw pivoting about a pin across its width closes on a tissue slab "
+                    "(or a wedge filling the open jaw) at a given angle or grasp force. The "
+                    "tips are rigid punches on their elements' springs, coupled through the "
+                    "tissue (a layer of the slab's thickness on the opposing jaw), each "
+                    "element capped by its hard stop. For every sensing unit: the two tips' "
+                    "radii and their ratio (equal within 2 %), their travels, R read, K_obj "
+                    "read by eq. 3 against the true one, and corrected for the travels; for "
+                    "the design's layout and the units laid across the jaw's width at equal "
+                    "radius, side by side; every element's force against its rating. Then "
+                    "the leads (three per three-wire quarter bridge, AWG 36 PTFE 0.25 mm) "
+                    "against the shaft's lead channel. Units: mm, N, N/mm, degrees.")
+    add_design_arg(p)
+    add_cache_args(p)
+    how = p.add_mutually_exclusive_group()
+    how.add_argument("--angle-deg", type=number(0, 90, "degrees"), default=None,
+                     help="the jaw's closing angle above the opposing jaw (degrees)")
+    how.add_argument("--force-N", dest="force_N", type=number(0, 1000, "N", lo_open=True),
+                     default=None, help="the grasp force the tips put on the tissue (N; "
+                                        "default half the rated full-scale force on every "
+                                        "element)")
+    p.add_argument("--slab-thickness-mm", type=number(0, 100, "mm", lo_open=True),
+                   default=DEFAULT_SLAB_MM,
+                   help="the tissue's thickness (mm; default %(default)s mm, assumed: give "
+                        "your tissue's); a wedge's at the last tip")
+    p.add_argument("--profile", choices=PROFILES, default="slab",
+                   help="the tissue between the jaws: a flat slab, or a wedge that fills the "
+                        "open jaw so the travel grows with the radius (default %(default)s)")
+    p.add_argument("--kobj", type=number(0, 1e4, "N/mm", lo_open=True), default=None,
+                   help="the tissue's true local stiffness under one tip (N/mm; default the "
+                        "geometric mean of the requirements' K_obj range)")
+    p.add_argument("--pivot-mm", type=number(-500, 500, "mm"), nargs=2, metavar=("X", "Y"),
+                   default=None,
+                   help="the pin in the insert's frame (mm): X along the rows, Y across them, "
+                        "from the first element's tip centre (default -5 0: 5 mm behind the "
+                        "first tip)")
+    p.add_argument("--jaw-length-mm", type=number(1, 200, "mm"), default=None,
+                   help="the jaw from pin to end (mm; default the last tip's radius + 2 mm)")
+    p.add_argument("--opening-deg", type=number(0, 90, "degrees", lo_open=True),
+                   default=DEFAULT_OPENING_DEG,
+                   help="the jaw's full opening (degrees; default %(default)s, assumed)")
+    p.add_argument("--coupling", choices=COUPLINGS, default="layer",
+                   help="the tissue between the tips: a layer of the slab's thickness on the "
+                        "opposing jaw, a half-space, or none (eq. 1; default %(default)s)")
+    p.add_argument("--model", choices=models(), default="closed-form",
+                   help="ladder level for the elements' K (default closed-form)")
+    p.add_argument("--lead-channel-mm", type=number(0, 50, "mm", lo_open=True),
+                   default=DEFAULT_LEAD_CHANNEL_MM,
+                   help="the shaft's lead channel diameter (mm; default %(default)s mm, "
+                        "assumed: give your shaft's)")
+    add_output_args(p, "print one JSON object: the jaw, both layouts' tips and units, the "
+                       "leads")
+    p.set_defaults(func=run)
+
+
+def _option_error(exc):
+    """A grasp error re-worded to name the command-line option that set the field."""
+    from tactcad.errors import DesignError
+
+    option = OPTION_OF.get(exc.field)
+    return DesignError(option, exc.value, exc.allowed, exc.why) if option else exc
+
+
+def design_plan_from_args(args: argparse.Namespace):
+    """The plan of ``--design`` with every ``--set``: the design file alone, since the grasp
+    needs neither the test rigs nor the scenes (a construction the rigs cannot hold yet is
+    still grasped).
+
+    Raises:
+        DesignError: unreadable file, bad ``--set``, a value out of range.
+    """
+    from pathlib import Path
+
+    from tactcad.design.array_plan import plan_from_dict, with_overrides
+    from tactcad.errors import DesignErrors
+    from tactcad.project_folder import default_design
+    from tactcad.vocabulary.schema import read_toml
+
+    path = Path(args.design) if getattr(args, "design", None) else default_design()
+    texts = getattr(args, "overrides", None) or []
+    data = with_overrides(read_toml(path, "design file"), parse_overrides(texts))
+    try:
+        return plan_from_dict(data, source=str(path), file=path.name)
+    except DesignErrors as exc:  # a refused --set value is named as typed
+        from tactcad.commands import parse_override
+
+        raise exc.sourced({parse_override(t)[0]: f"--set {t}" for t in texts}) from None
+
+
+def run(args: argparse.Namespace) -> int:
+    from tactcad.errors import DesignError
+    from tactcad.in_use.grasp_experiment import grasp
+    from tactcad.in_use.jaw_kinematics import JawGeometry
+    from tactcad.in_use.radius_pairs import insert_frame
+    from tactcad.in_use.shaft_leads import leads_check
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.mechanics.readout_chain import readout_chain, row_units
+    from tactcad.studies.verification import requirements_of
+
+    plan = design_plan_from_args(args)
+    req = requirements_of(plan)
+    rated = float(req.full_scale_force_N)
+    lo, hi = req.kobj_range_N_per_mm
+    k_obj = args.kobj if args.kobj is not None else math.sqrt(lo * hi)
+    pivot = args.pivot_mm or [-DEFAULT_PIVOT_BEHIND_MM, 0.0]
+    last = max(u for u, _ in insert_frame(plan).values())
+    length = args.jaw_length_mm or (last - pivot[0] + DEFAULT_JAW_BEYOND_MM)
+    force = args.force_N if args.angle_deg is not None or args.force_N is not None \
+        else 0.5 * rated * len(plan.slots)
+    k = ladder_stiffness_by_element(plan, args.model)
+    by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
+    units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
+    try:
+        jaw = JawGeometry(pivot[0], pivot[1], length, args.opening_deg, args.slab_thickness_mm)
+        result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=args.angle_deg,
+                       force_N=force, coupling=args.coupling, profile=args.profile)
+        leads = leads_check(len(plan.slots), args.lead_channel_mm,
+                            readout_chain(plan).lead_wires)
+    except DesignError as exc:
+        raise _option_error(exc) from None
+    record = {**result.as_json(), "model": args.model, "leads": leads.as_json(),
+              "reasons": {
+                  "rated_force_N": req.reasons["full_scale_force_N"],
+                  "K_obj": "--kobj" if args.kobj is not None else
+                  f"the geometric mean of the K_obj range {lo:g} ... {hi:g} N/mm",
+                  "force_N": "--force-N" if args.force_N is not None else
+                  ("--angle-deg" if args.angle_deg is not None else
+                   f"half the rated {rated:g} N on each of {len(plan.slots)} elements"),
+                  "pivot": "--pivot-mm" if args.pivot_mm else
+                  f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows",
+                  "jaw_length_mm": "--jaw-length-mm" if args.jaw_length_mm else
+                  f"the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm"}}
+    print(dumps(record, indent=1) if args.json else render(record))
+    return 0
+
+
+def _f(x, digits: int = 4) -> str:
+    return "-" if x is None else f"{x:.{digits}g}"
+
+
+def _pct(x) -> str:
+    return "-" if x is None or not math.isfinite(x) else f"{100 * x:+.3g} %"
+
+
+def unit_table(layout: dict) -> list[str]:
+    """One layout's units as a Markdown table."""
+    lines = ["| unit | r_r mm | r_m mm | r_m/r_r | Δ_r mm | Δ_m mm | R true | R read | "
+             "K_obj read | error | K_obj corrected | error | note |",
+             "| --- |" + " --- |" * 12]
+    for u in layout["units"]:
+        lines.append(
+            f"| {u['unit']} | {_f(u['r_reference_mm'])} | {_f(u['r_measuring_mm'])} | "
+            f"{_f(u['radius_ratio'])} | {_f(u['travel_reference_mm'])} | "
+            f"{_f(u['travel_measuring_mm'])} | {_f(u['R_true'])} | {_f(u['R_read'])} | "
+            f"{_f(u['K_obj_read_N_per_mm'])} | {_pct(u['error_rel'])} | "
+            f"{_f(u['K_obj_corrected_N_per_mm'])} | {_pct(u['error_corrected_rel'])} | "
+            f"{u['why'] or ('equal radius' if abs(u['radius_ratio'] - 1) <= 0.02 else 'radii differ')} |")
+    return lines
+
+
+def render(record: dict) -> str:
+    """The grasp and the leads as text."""
+    j = record["jaw"]
+    lines = [f"Grasp of {record['design']} ({record['model']}): pin at "
+             f"({j['pivot_u_mm']:g}, {j['pivot_v_mm']:g}) mm, jaw {j['jaw_length_mm']:.4g} mm, "
+             f"{record['profile']} {j['slab_thickness_mm']:g} mm, K_obj "
+             f"{record['K_obj_N_per_mm']:.4g} N/mm, {record['coupling']} coupling, rated "
+             f"{record['rated_force_N']:g} N per element"]
+    for key in ("as_laid_out", "paired"):
+        lay = record[key]
+        over = [t["site"] for t in lay["tips"] if t["over_rating"]]
+        stops = [t["site"] for t in lay["tips"] if t["on_stop"]]
+        lines += ["", f"{lay['layout']}: angle {lay['angle_deg']:.4g} degrees, grasp force "
+                      f"{lay['total_force_N']:.4g} N; largest element force "
+                      f"{max(t['element_force_N'] for t in lay['tips']):.4g} N; over the "
+                      f"rating: {', '.join(map(str, over)) or 'none'}; on a stop: "
+                      f"{', '.join(map(str, stops)) or 'none'}", *unit_table(lay)]
+    pl = record["paired_layout"]
+    if pl["reason"]:
+        lines += ["", f"paired layout: {pl['reason']} (unplaced: "
+                      f"{', '.join(pl['unplaced']) or 'none'})"]
+    ld = record["leads"]
+    lines += ["", f"leads: {ld['bridges']} {ld['connection']} quarter bridges, {ld['leads']} "
+                  f"leads of {ld['wire_diameter_mm']:g} mm (AWG 36 PTFE), packing "
+                  f"{ld['packing_factor']:g}: bundle {ld['bundle_diameter_mm']:.3g} mm in a "
+                  f"{ld['channel_diameter_mm']:g} mm channel: "
+                  f"{'fits' if ld['fits'] else 'does NOT fit'}"]
+    lines += [""] + [f"  {k}: {v}" for k, v in {**record["notes"], **record["reasons"]}.items()]
+    return "\n".join(lines)

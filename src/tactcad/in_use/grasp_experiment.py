@@ -1,0 +1,405 @@
+"""The grasp as a virtual experiment: a pivoting jaw closes on a tissue slab; each element's
+travel, deflection and force, each unit's R and K_obj reading against the true K_obj, for the
+units as the design lays them out and paired at equal radius, side by side.
+
+Model (units mm, N, N/mm, degrees):
+
+* Kinematics (:mod:`tactcad.in_use.jaw_kinematics`): at a closing angle θ the jaw presses a
+  tip at radius r into the tissue by Δ = max(0, t(r) − r sin θ), t(r) the tissue's thickness
+  there: a flat ``slab`` (t = h: the tips near the pivot are pressed most) or a ``wedge``
+  that fills the open jaw (t = h r / r_last, h at the last tip: the jaw closing from first
+  contact presses every tip in proportion to its radius, Δ = r (h / r_last − sin θ)).
+* Each tip is a rigid flat punch (the design's contact face) on a spring K (the element);
+  the tissue couples the tips: its surface displacements are w = C P for the tip forces P
+  (:func:`tissue_compliance`: rigid punches on a layer of the slab's thickness on the
+  opposing jaw, or a half-space, :mod:`tactcad.mechanics.contact`), its modulus set so that
+  one tip face alone sees K_obj (the tissue's local stiffness per tip). Coupling "none" is
+  eq. 1: C = I / K_obj.
+* A tip with deflection e: e + w = Δ, P = K e until its hard stop engages at the tip travel
+  e_s (:func:`tactcad.mechanics.hard_stops.engagement_travel_mm`); then e = e_s, the element
+  carries K e_s and the stop the rest of P. Tips whose force would pull (P < 0) lift off.
+* A unit reads R = e_m / e_r and K_obj by eq. 3, and, corrected for its tips' travels,
+  R Δ_r / Δ_m (the jaw's angle known from the grasper, the slab's thickness assumed).
+* Force mode: the angle at which the tips' forces on the slab sum to the grasp force
+  (bisection; the force falls as the jaw opens).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from tactcad.design.array_plan import Plan
+from tactcad.errors import DesignError
+from tactcad.in_use.jaw_kinematics import JawGeometry, check_angle_deg, indentation_mm
+from tactcad.in_use.kobj_budget import kobj_from_deflections
+from tactcad.in_use.radius_pairs import insert_frame, paired_layout, unit_radii
+from tactcad.mechanics.contact import Punch, Sample, single_punch_compliance, solve_punches
+from tactcad.mechanics.hard_stops import engagement_travel_mm
+
+#: Tissue profiles between the jaws (see the module docstring).
+PROFILES = ("slab", "wedge")
+#: Tissue couplings: none (eq. 1), a half-space, a layer of the slab's thickness.
+COUPLINGS = ("none", "halfspace", "layer")
+#: Poisson's ratio of soft tissue, nearly incompressible (as the evaluation's samples).
+TISSUE_POISSON_RATIO = 0.49
+#: Boundary-element cell edge (mm): a 1 x 1 mm face gets 4 x 4 cells.
+CELL_MM = 0.25
+#: Bisection steps of the force mode (the angle to 90° / 2^60).
+BISECTION_STEPS = 60
+#: Active-set passes of the stops and lift-off before the solve is declared stuck.
+ACTIVE_SET_PASSES = 100
+
+
+def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thickness_mm: float,
+                      coupling: str = "layer",
+                      poisson_ratio: float = TISSUE_POISSON_RATIO) -> np.ndarray:
+    """The tissue's compliance under the tips (mm/N), shape (m, m): the one place the grasp
+    asks the tissue model (re-point it here for another).
+
+    Args:
+        punches: the tips' contact faces in the surface plane (mm).
+        k_obj_N_per_mm: the tissue's local stiffness under one tip face alone (N/mm), > 0.
+        slab_thickness_mm: the slab on the opposing jaw (mm), > 0 (``layer`` only).
+        coupling: ``none`` (I / K_obj), ``halfspace`` or ``layer`` (Steinbrenner's layer on a
+            rigid base, :mod:`tactcad.mechanics.contact`).
+        poisson_ratio: ν of the tissue.
+
+    Raises:
+        DesignError: K_obj <= 0 or an unknown coupling.
+    """
+    if not (math.isfinite(k_obj_N_per_mm) and k_obj_N_per_mm > 0):
+        raise DesignError("k_obj_N_per_mm", k_obj_N_per_mm, "> 0 N/mm")
+    if coupling not in COUPLINGS:
+        raise DesignError("coupling", coupling, " | ".join(COUPLINGS))
+    if coupling == "none":
+        return np.eye(len(punches)) / k_obj_N_per_mm
+    sample = Sample(1.0, poisson_ratio, slab_thickness_mm if coupling == "layer" else None)
+    unit = solve_punches(punches, sample, CELL_MM).compliance_mm_per_N
+    # E such that one face alone sees K_obj: every compliance scales as 1/E
+    own = np.mean([single_punch_compliance(p.width_x_mm, p.depth_z_mm, sample, CELL_MM)
+                   for p in punches])
+    return unit / (k_obj_N_per_mm * own)
+
+
+@dataclass(frozen=True)
+class TipSolution:
+    """The tips pressed by given travels (arrays over the tips)."""
+
+    travel_mm: np.ndarray
+    deflection_mm: np.ndarray
+    tip_force_N: np.ndarray
+    element_force_N: np.ndarray
+    stop_force_N: np.ndarray
+    engaged: np.ndarray
+    in_contact: np.ndarray
+
+
+def solve_tips(travel_mm, stiffness_N_per_mm, engage_mm, compliance) -> TipSolution:
+    """Tip deflections and forces for imposed travels, with hard stops and lift-off
+    (active set: free tips P/K + (C P) = Δ, engaged tips (C P) = Δ − e_s, lifted tips P = 0).
+
+    Args:
+        travel_mm: Δ per tip (mm), shape (m,).
+        stiffness_N_per_mm: K per tip, shape (m,).
+        engage_mm: stop engagement travel per tip (mm; inf without a stop), shape (m,).
+        compliance: the tissue's C (mm/N), shape (m, m).
+
+    Raises:
+        DesignError: the active set does not settle (should not happen for C positive definite).
+    """
+    d = np.asarray(travel_mm, float)
+    k = np.asarray(stiffness_N_per_mm, float)
+    e_s = np.asarray(engage_mm, float)
+    c = np.asarray(compliance, float)
+    contact = d > 0
+    engaged = np.zeros(len(d), bool)
+    force = np.zeros(len(d))
+    for _ in range(ACTIVE_SET_PASSES):
+        idx = np.flatnonzero(contact)
+        force = np.zeros(len(d))
+        if idx.size:
+            a = c[np.ix_(idx, idx)] + np.diag(np.where(engaged[idx], 0.0, 1.0 / k[idx]))
+            rhs = d[idx] - np.where(engaged[idx], e_s[idx], 0.0)
+            force[idx] = np.linalg.solve(a, rhs)
+        deflection = np.where(engaged, e_s, force / k) * contact
+        lifted = contact & (force < -1e-12)
+        new_engaged = contact & ~lifted & (engaged & (force >= k * e_s) | (deflection > e_s))
+        if not lifted.any() and np.array_equal(new_engaged, engaged):
+            element = k * deflection
+            return TipSolution(d, deflection, force, element, force - element, engaged, contact)
+        contact &= ~lifted
+        engaged = new_engaged & contact
+    raise DesignError("grasp", "the stops and lift-off did not settle",
+                      f"a settled contact within {ACTIVE_SET_PASSES} passes")
+
+
+@dataclass(frozen=True)
+class Tips:
+    """The tips of one layout: label, radius, face, stiffness and stop per tip."""
+
+    labels: tuple[int, ...]
+    radius_mm: np.ndarray
+    punches: list[Punch]
+    stiffness_N_per_mm: np.ndarray
+    engage_mm: np.ndarray
+
+
+def tips_as_laid_out(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float]) -> Tips:
+    """The design's own tips: each element at its slot, with its stiffness and stop."""
+    frame = insert_frame(plan)
+    stops = stop_travels(plan)
+    numbers = tuple(s.number for s in plan.slots)
+    radii = unit_radii(jaw, frame, [(n, n) for n in numbers])
+    return Tips(numbers, np.array([r.r_reference_mm for r in radii]), _punches(plan),
+                np.array([stiffness[n] for n in numbers]),
+                np.array([stops.get(n, math.inf) for n in numbers]))
+
+
+def stop_travels(plan: Plan) -> dict[int, float]:
+    """Element number -> the tip travel (mm) at which its hard stop engages (none: absent)."""
+    return {s.element: engagement_travel_mm(s, plan.element(s.element).geometry.arm_length_mm)
+            for s in plan.hard_stops}
+
+
+def _punches(plan: Plan) -> list[Punch]:
+    out = []
+    for slot in plan.slots:
+        x, _, z = slot.tip_centre_world_mm
+        out.append(Punch(x, z, *slot.geometry.contact_face_mm))
+    return out
+
+
+def tips_paired(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float],
+                units: list[tuple[int, int]]) -> tuple[Tips, list[tuple], dict]:
+    """The same tip sites with the units laid by the equal-radius rule
+    (:func:`tactcad.in_use.radius_pairs.paired_layout`): a site takes the stiffness and
+    stop of the element laid on it; sites no unit takes keep their own element.
+
+    Returns:
+        (tips, the paired units as (reference site, measuring site, design unit), the
+        layout's JSON).
+    """
+    base = tips_as_laid_out(plan, jaw, stiffness)
+    layout = paired_layout(plan, units)
+    k, e_s = base.stiffness_N_per_mm.copy(), base.engage_mm.copy()
+    index = {n: i for i, n in enumerate(base.labels)}
+    sites = []
+    for s in layout.sites:
+        for element, site in zip(s.unit, (s.reference_site, s.measuring_site)):
+            k[index[site]] = base.stiffness_N_per_mm[index[element]]
+            e_s[index[site]] = base.engage_mm[index[element]]
+        sites.append((s.reference_site, s.measuring_site, s.unit))
+    return Tips(base.labels, base.radius_mm, base.punches, k, e_s), sites, layout.as_json()
+
+
+@dataclass(frozen=True)
+class LayoutGrasp:
+    """One layout's grasp: the angle, each tip's state, each unit's reading."""
+
+    name: str
+    angle_deg: float
+    total_force_N: float
+    tips: list[dict]
+    units: list[dict]
+
+    def as_json(self) -> dict:
+        return {"layout": self.name, "angle_deg": self.angle_deg,
+                "total_force_N": self.total_force_N, "tips": self.tips, "units": self.units}
+
+
+def tissue_thickness_mm(radius_mm: np.ndarray, thickness_mm: float, profile: str) -> np.ndarray:
+    """The tissue's thickness under each tip (mm): ``slab`` h everywhere; ``wedge`` h r / r_last.
+
+    Raises:
+        DesignError: an unknown profile.
+    """
+    r = np.asarray(radius_mm, float)
+    if profile == "slab":
+        return np.full(r.shape, thickness_mm)
+    if profile == "wedge":
+        return thickness_mm * r / r.max()
+    raise DesignError("profile", profile, " | ".join(PROFILES))
+
+
+def press(tips: Tips, compliance: np.ndarray, slab_mm: float, angle_deg: float,
+          profile: str = "slab") -> TipSolution:
+    """The tips' solution with the jaw closed to ``angle_deg`` on the tissue's profile."""
+    thickness = tissue_thickness_mm(tips.radius_mm, slab_mm, profile)
+    travel = np.array([indentation_mm(t, r, angle_deg)
+                       for t, r in zip(thickness, tips.radius_mm)])
+    return solve_tips(travel, tips.stiffness_N_per_mm, tips.engage_mm, compliance)
+
+
+def angle_for_force(tips: Tips, compliance: np.ndarray, slab_mm: float, opening_deg: float,
+                    force_N: float, profile: str = "slab") -> float:
+    """The closing angle (degrees) at which the tips' forces on the slab sum to ``force_N``.
+
+    Raises:
+        DesignError: the force is out of reach between the jaw closed and fully open.
+    """
+    def total(angle: float) -> float:
+        return float(press(tips, compliance, slab_mm, angle, profile).tip_force_N.sum())
+
+    closed, opened = total(0.0), total(opening_deg)
+    if not opened <= force_N <= closed:
+        raise DesignError("force_N", force_N,
+                          f"{opened:.4g} ... {closed:.4g} N (jaw open {opening_deg:g} degrees "
+                          f"... closed flat on the {slab_mm:g} mm {profile})")
+    lo, hi = 0.0, opening_deg  # force(lo) >= force_N >= force(hi)
+    for _ in range(BISECTION_STEPS):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if total(mid) >= force_N else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def unit_reading(ref: int, meas: int, sol: TipSolution, tips: Tips, k_obj: float,
+                 unit: tuple[int, int] | None = None) -> dict:
+    """One unit's travels, deflections, R and K_obj read (eq. 3), raw and corrected for its
+    tips' travels, against the true K_obj; ``valid`` False with why when a tip lifted off or
+    sits on its stop. ``unit``: the design's unit laid on these sites (default the sites)."""
+    i, j = tips.labels.index(ref), tips.labels.index(meas)
+    k_r, k_m = float(tips.stiffness_N_per_mm[i]), float(tips.stiffness_N_per_mm[j])
+    e_r, e_m = float(sol.deflection_mm[i]), float(sol.deflection_mm[j])
+    d_r, d_m = float(sol.travel_mm[i]), float(sol.travel_mm[j])
+    why = [f"element at site {n} {w}" for n, w, bad in
+           ((ref, "not in contact", not sol.in_contact[i]),
+            (meas, "not in contact", not sol.in_contact[j]),
+            (ref, "on its stop", sol.engaged[i]), (meas, "on its stop", sol.engaged[j])) if bad]
+    name = unit or (ref, meas)
+    out = {"unit": f"{name[0]}/{name[1]}", "reference": ref, "measuring": meas, "r_reference_mm": float(tips.radius_mm[i]),
+           "r_measuring_mm": float(tips.radius_mm[j]),
+           "radius_ratio": float(tips.radius_mm[j] / tips.radius_mm[i]),
+           "travel_reference_mm": d_r, "travel_measuring_mm": d_m,
+           "deflection_reference_mm": e_r, "deflection_measuring_mm": e_m,
+           "K_r_N_per_mm": k_r, "K_m_N_per_mm": k_m,
+           "R_true": (k_r + k_obj) / (k_m + k_obj), "K_obj_true_N_per_mm": k_obj,
+           "valid": not why, "why": "; ".join(why)}
+    if e_r <= 0 or d_m <= 0:
+        return {**out, "R_read": None, "K_obj_read_N_per_mm": None, "error_rel": None,
+                "R_corrected": None, "K_obj_corrected_N_per_mm": None,
+                "error_corrected_rel": None}
+    r_read = e_m / e_r
+    r_corr = r_read * d_r / d_m
+    k_read = float(kobj_from_deflections(r_read, 1.0, k_m, k_r)) if r_read != 1 else math.inf
+    k_corr = float(kobj_from_deflections(r_corr, 1.0, k_m, k_r)) if r_corr != 1 else math.inf
+    return {**out, "R_read": r_read, "K_obj_read_N_per_mm": k_read,
+            "error_rel": k_read / k_obj - 1, "R_corrected": r_corr,
+            "K_obj_corrected_N_per_mm": k_corr, "error_corrected_rel": k_corr / k_obj - 1}
+
+
+def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float) -> list[dict]:
+    """Each tip's travel, deflection, forces (element, stop, on the slab) and rating verdict."""
+    out = []
+    for i, n in enumerate(tips.labels):
+        f = float(sol.element_force_N[i])
+        out.append({"site": n, "radius_mm": float(tips.radius_mm[i]),
+                    "K_N_per_mm": float(tips.stiffness_N_per_mm[i]),
+                    "travel_mm": float(sol.travel_mm[i]),
+                    "deflection_mm": float(sol.deflection_mm[i]),
+                    "tip_force_N": float(sol.tip_force_N[i]), "element_force_N": f,
+                    "stop_force_N": float(sol.stop_force_N[i]),
+                    "stop_engage_mm": float(tips.engage_mm[i]) if math.isfinite(tips.engage_mm[i])
+                    else None,
+                    "on_stop": bool(sol.engaged[i]), "in_contact": bool(sol.in_contact[i]),
+                    "over_rating": f > rated_force_N * (1 + 1e-9)})
+    return out
+
+
+@dataclass(frozen=True)
+class GraspResult:
+    """The grasp experiment: inputs, the as-laid-out and the paired layouts side by side."""
+
+    design: str
+    jaw: JawGeometry
+    k_obj_N_per_mm: float
+    coupling: str
+    profile: str
+    rated_force_N: float
+    as_laid_out: LayoutGrasp
+    paired: LayoutGrasp
+    layout: dict
+    notes: dict = field(default_factory=dict)
+
+    def as_json(self) -> dict:
+        j = self.jaw
+        return {"design": self.design,
+                "jaw": {"pivot_u_mm": j.pivot_u_mm, "pivot_v_mm": j.pivot_v_mm,
+                        "jaw_length_mm": j.jaw_length_mm,
+                        "opening_angle_deg": j.opening_angle_deg,
+                        "slab_thickness_mm": j.slab_thickness_mm,
+                        "axis_angle_deg": j.axis_angle_deg},
+                "K_obj_N_per_mm": self.k_obj_N_per_mm, "coupling": self.coupling,
+                "profile": self.profile, "rated_force_N": self.rated_force_N, "as_laid_out": self.as_laid_out.as_json(),
+                "paired": self.paired.as_json(), "paired_layout": self.layout,
+                "notes": self.notes}
+
+
+def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGeometry,
+                 k_obj: float, coupling: str, rated_force_N: float,
+                 angle_deg: float | None, force_N: float | None,
+                 profile: str = "slab") -> LayoutGrasp:
+    """One layout closed at ``angle_deg`` or to the grasp force ``force_N`` (one of them)."""
+    c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling)
+    if angle_deg is None:
+        angle_deg = angle_for_force(tips, c, jaw.slab_thickness_mm, jaw.opening_angle_deg,
+                                    float(force_N), profile)
+    check_angle_deg(jaw, angle_deg)
+    sol = press(tips, c, jaw.slab_thickness_mm, angle_deg, profile)
+    return LayoutGrasp(name, float(angle_deg), float(sol.tip_force_N.sum()),
+                       tip_records(tips, sol, rated_force_N),
+                       [unit_reading(u[0], u[1], sol, tips, k_obj, u[2] if len(u) > 2 else u[:2])
+                        for u in units])
+
+
+def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list[tuple[int, int]],
+          k_obj_N_per_mm: float, rated_force_N: float, angle_deg: float | None = None,
+          force_N: float | None = None, coupling: str = "layer",
+          profile: str = "slab") -> GraspResult:
+    """The jaw closed on the slab, the design's layout and the equal-radius one side by side.
+
+    Args:
+        plan: the design.
+        jaw: the jaw and the slab.
+        stiffness: element number -> K (N/mm), e.g.
+            :func:`tactcad.mechanics.evaluation.ladder_stiffness_by_element`.
+        units: the design's (reference, measuring) element numbers
+            (:func:`tactcad.mechanics.readout_chain.row_units`).
+        k_obj_N_per_mm: the tissue's true local stiffness under one tip (N/mm), > 0.
+        rated_force_N: each element's rated full-scale force (N), > 0.
+        angle_deg: the closing angle (degrees), 0 ... the jaw's opening; or
+        force_N: the grasp force (N) the tips put on the slab, > 0 (each layout finds its angle).
+        coupling: ``layer`` (default), ``halfspace`` or ``none``.
+        profile: the tissue between the jaws, ``slab`` (default) or ``wedge``.
+
+    Returns:
+        :class:`GraspResult`.
+
+    Raises:
+        DesignError: both or neither of angle and force, or a value out of range.
+    """
+    if (angle_deg is None) == (force_N is None):
+        raise DesignError("angle_deg / force_N", (angle_deg, force_N), "exactly one of them")
+    if force_N is not None and not (math.isfinite(force_N) and force_N > 0):
+        raise DesignError("force_N", force_N, "> 0 N")
+    if not (math.isfinite(rated_force_N) and rated_force_N > 0):
+        raise DesignError("rated_force_N", rated_force_N, "> 0 N")
+    laid = tips_as_laid_out(plan, jaw, stiffness)
+    paired, sites, layout = tips_paired(plan, jaw, stiffness, units)
+    if profile not in PROFILES:
+        raise DesignError("profile", profile, " | ".join(PROFILES))
+    args = (jaw, k_obj_N_per_mm, coupling, rated_force_N, angle_deg, force_N, profile)
+    notes = {"profile": f"{profile}: " + ("uniform thickness h" if profile == "slab" else
+                                          "thickness h r / r_last, filling the open jaw"),
+             "tissue": f"{coupling} coupling, ν {TISSUE_POISSON_RATIO:g}, its modulus set so "
+                       f"one tip face alone sees K_obj",
+             "correction": "R corrected = R read x travel_r / travel_m (the jaw's angle and "
+                           "the slab's thickness known)",
+             "paired_units": "each paired unit is the design unit named, laid on the two "
+                             "sites across the jaw"}
+    return GraspResult(plan.name, jaw, float(k_obj_N_per_mm), coupling, profile,
+                       float(rated_force_N),
+                       grasp_layout("as laid out", laid, units, *args),
+                       grasp_layout("paired", paired, sites, *args), layout, notes)

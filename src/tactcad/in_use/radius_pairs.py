@@ -1,0 +1,180 @@
+"""Sensing units in a pivoting jaw: each unit's two radii, the rule that lays every pair at
+one radius, and the correction of R where a pair cannot be.
+
+A unit (a row's reference and one of its measuring elements,
+:func:`tactcad.mechanics.readout_chain.row_units`) reads R = e_m / e_r; in a jaw that turns
+about a pin the two tips' travels differ with their radii and R carries their ratio
+(:mod:`tactcad.in_use.jaw_kinematics`). Two tips side by side across the jaw's width are at
+one radius, so the placement rule pairs each unit across the width and lays the units
+along the jaw: on the plan's own tip sites, column by column, the tip of row 2i takes a
+unit's reference and the tip of row 2i + 1 its measuring element. A single-row array has no
+such pairs; its units keep their radii and R is corrected by r_r / r_m (travel in
+proportion to the radius). Units: mm.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from tactcad.design.array_plan import Plan
+from tactcad.in_use.jaw_kinematics import JawGeometry, tip_radius_mm
+
+#: The largest |r_m / r_r − 1| of a unit at "equal radius" (issue 43: within 2 %).
+EQUAL_RADIUS_TOLERANCE_REL = 0.02
+
+
+def insert_frame(plan: Plan) -> dict[int, tuple[float, float]]:
+    """Every tip centre in the insert's frame (mm): element number -> (u, v).
+
+    Origin the first element's tip centre; u along the first row (its first tip to its last;
+    a one-column array: the array's z); v across, u turned a quarter in the face plane.
+    Works from the plan's slots whatever the construction.
+    """
+    row = plan.row_slots(0)
+    x0, _, z0 = row[0].tip_centre_world_mm
+    x1, _, z1 = row[-1].tip_centre_world_mm
+    length = math.hypot(x1 - x0, z1 - z0)
+    ux, uz = ((x1 - x0) / length, (z1 - z0) / length) if length > 1e-9 else (0.0, 1.0)
+    out = {}
+    for slot in plan.slots:
+        x, _, z = slot.tip_centre_world_mm
+        dx, dz = x - x0, z - z0
+        out[slot.number] = (dx * ux + dz * uz, -dx * uz + dz * ux)
+    return out
+
+
+@dataclass(frozen=True)
+class UnitRadii:
+    """One unit's two tips in the jaw.
+
+    Attributes:
+        reference, measuring: element numbers (or site labels of a paired layout).
+        r_reference_mm, r_measuring_mm: their radii from the pin (mm).
+    """
+
+    reference: int
+    measuring: int
+    r_reference_mm: float
+    r_measuring_mm: float
+
+    @property
+    def ratio(self) -> float:
+        """r_m / r_r."""
+        return self.r_measuring_mm / self.r_reference_mm
+
+    @property
+    def equal(self) -> bool:
+        """True when the two radii agree within :data:`EQUAL_RADIUS_TOLERANCE_REL`."""
+        return abs(self.ratio - 1.0) <= EQUAL_RADIUS_TOLERANCE_REL + 1e-12
+
+    @property
+    def r_correction(self) -> float:
+        """The factor on the read R for travel in proportion to the radius: r_r / r_m."""
+        return self.r_reference_mm / self.r_measuring_mm
+
+    def as_json(self) -> dict:
+        return {"reference": self.reference, "measuring": self.measuring,
+                "r_reference_mm": self.r_reference_mm, "r_measuring_mm": self.r_measuring_mm,
+                "radius_ratio": self.ratio, "equal_radius": self.equal,
+                "R_correction_factor": self.r_correction}
+
+
+def unit_radii(jaw: JawGeometry, positions: dict[int, tuple[float, float]],
+               units: list[tuple[int, int]]) -> list[UnitRadii]:
+    """Each unit's two radii (mm) from its tips' insert-frame positions.
+
+    Args:
+        jaw: the jaw.
+        positions: element number -> (u, v) in the insert frame (mm), e.g. :func:`insert_frame`.
+        units: (reference, measuring) element numbers.
+
+    Raises:
+        DesignError: a tip behind the pin or beyond the jaw's end.
+    """
+    def r(n: int) -> float:
+        return tip_radius_mm(jaw, *positions[n])
+
+    return [UnitRadii(ref, meas, r(ref), r(meas)) for ref, meas in units]
+
+
+@dataclass(frozen=True)
+class PairSite:
+    """A unit laid by the placement rule: the design's unit and the two tip sites it takes.
+
+    Attributes:
+        unit: the design's (reference, measuring) element numbers.
+        reference_site, measuring_site: the plan's slots (element numbers) whose tip
+            positions the unit's reference and measuring tips take.
+        reference_uv_mm, measuring_uv_mm: those positions in the insert frame (mm).
+    """
+
+    unit: tuple[int, int]
+    reference_site: int
+    measuring_site: int
+    reference_uv_mm: tuple[float, float]
+    measuring_uv_mm: tuple[float, float]
+
+    def as_json(self) -> dict:
+        return {"unit": f"{self.unit[0]}/{self.unit[1]}", "reference_site": self.reference_site,
+                "measuring_site": self.measuring_site,
+                "reference_uv_mm": list(self.reference_uv_mm),
+                "measuring_uv_mm": list(self.measuring_uv_mm)}
+
+
+@dataclass(frozen=True)
+class PairedLayout:
+    """The placement rule's answer.
+
+    Attributes:
+        sites: the units laid across the width, in order along the jaw.
+        unplaced: the design's units the array has no pair site for.
+        reason: why some or all units could not be paired ("" when every unit is).
+    """
+
+    sites: tuple[PairSite, ...]
+    unplaced: tuple[tuple[int, int], ...]
+    reason: str
+
+    def as_json(self) -> dict:
+        return {"sites": [s.as_json() for s in self.sites],
+                "unplaced": [f"{r}/{m}" for r, m in self.unplaced], "reason": self.reason}
+
+
+def pair_sites(plan: Plan) -> list[tuple[int, int]]:
+    """The plan's across-the-width site pairs (element numbers), in order along the rows:
+    column by column, rows (0, 1), (2, 3), ...; none for a single row."""
+    out = []
+    for column in range(plan.columns):
+        by_row = {s.row: s.number for s in plan.slots if s.column == column}
+        out += [(by_row[r], by_row[r + 1]) for r in range(0, plan.rows - 1, 2)
+                if r in by_row and r + 1 in by_row]
+    return out
+
+
+def paired_layout(plan: Plan, units: list[tuple[int, int]]) -> PairedLayout:
+    """Lay the design's units so that each pair's two tips are at one radius: across the
+    jaw's width (rows 2i and 2i + 1 of one column), units along its length, on the plan's
+    own tip sites. The jaw's axis must run along the rows for the pairs to be at one radius
+    (check it with :func:`unit_radii`).
+
+    Args:
+        plan: the design (its tip sites).
+        units: the design's (reference, measuring) element numbers, laid in this order.
+
+    Returns:
+        :class:`PairedLayout`; units beyond the sites are listed as unplaced, with why.
+    """
+    frame = insert_frame(plan)
+    sites = pair_sites(plan)
+    laid = tuple(PairSite(u, a, b, frame[a], frame[b]) for u, (a, b) in zip(units, sites))
+    unplaced = tuple(units[len(sites):])
+    if not sites:
+        reason = (f"a single row has no two tips across the jaw: the units keep their radii "
+                  f"and R is corrected by r_r / r_m")
+    elif unplaced:
+        reason = (f"{plan.columns} columns x {plan.rows // 2} row pairs give {len(sites)} "
+                  f"pair sites for {len(units)} units")
+    else:
+        reason = ""
+    return PairedLayout(laid, unplaced, reason)

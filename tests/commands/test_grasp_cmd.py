@@ -1,0 +1,54 @@
+"""``tactcad grasp``: both designs, paired vs as laid out, the leads, the refusals."""
+
+import json
+from pathlib import Path
+
+import pytest
+from conftest import run_cli
+
+ROOT = Path(__file__).resolve().parents[2]
+TI = str(ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
+COMB = str(ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")
+
+
+def test_the_comb_paired_at_equal_radius_reads_closer_than_as_laid_out():
+    r = run_cli("grasp", "--design", COMB, "--profile", "wedge", "--kobj", "1", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    laid, paired = d["as_laid_out"]["units"], d["paired"]["units"]
+    assert len(laid) == 10 and len(paired) == 6
+    assert all(abs(u["radius_ratio"] - 1) <= 0.02 for u in paired)
+    assert not any(abs(u["radius_ratio"] - 1) <= 0.02 for u in laid)
+    assert max(abs(u["error_rel"]) for u in paired) < min(abs(u["error_rel"]) for u in laid)
+    assert d["leads"]["leads"] == 36 and d["leads"]["fits"]
+
+
+def test_the_pivot_and_the_angle_reach_the_grasp():
+    r = run_cli("grasp", "--design", TI, "--pivot-mm", "-10", "0", "--angle-deg", "10",
+                "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["jaw"]["pivot_u_mm"] == -10 and d["as_laid_out"]["angle_deg"] == 10
+    assert min(u["r_reference_mm"] for u in d["as_laid_out"]["units"]) == pytest.approx(14.0)
+
+
+def test_a_non_paper_design_and_the_text_table():
+    r = run_cli("grasp", "--design", TI, "--set", "array.columns=4", "--set",
+                "arms.lengths_mm=[19.605,6.196,19.605,19.605,19.605,6.196,19.605,19.605]",
+                "--lead-channel-mm", "1")
+    assert r.returncode == 0, r.stderr
+    assert "| unit | r_r mm |" in r.stdout and "paired:" in r.stdout
+    assert "does NOT fit" in r.stdout
+
+
+@pytest.mark.parametrize("options, words", [(["--force-N", "0"], "--force-N"),
+                                            (["--pivot-mm", "3", "0"], "--pivot-mm"),
+                                            (["--force-N", "900"], "--force-N"),
+                                            (["--angle-deg", "80", "--opening-deg", "30"],
+                                             "--angle-deg"),
+                                            (["--slab-thickness-mm", "-1"],
+                                             "--slab-thickness-mm")])
+def test_bad_options_name_the_option_the_value_and_the_range(options, words):
+    r = run_cli("grasp", "--design", TI, *options)
+    assert r.returncode == 2
+    assert words in r.stderr and "allowed" in r.stderr and "Traceback" not in r.stderr

@@ -1,0 +1,100 @@
+"""The grasp as a virtual experiment: travels, stops, readings, paired vs as laid out."""
+import numpy as np
+import pytest
+
+from tactcad.design.array_plan import load_design
+from tactcad.errors import DesignError
+from tactcad.in_use.grasp_experiment import grasp, solve_tips, tissue_compliance
+from tactcad.in_use.jaw_kinematics import JawGeometry
+from tactcad.mechanics.contact import Punch
+from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+from tactcad.mechanics.readout_chain import row_units
+
+COMB = "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml"
+TI = "hardware/ti_array_2x3/ti_array_2x3.toml"
+
+
+def setup(path):
+    plan = load_design(path)
+    k = ladder_stiffness_by_element(plan)
+    units = [(r.number, m.number)
+             for r, m in row_units(plan, {s.geometry.part_name: k[s.number] for s in plan.slots})]
+    return plan, k, units
+
+
+JAW = JawGeometry(-5.0, 0.0, 40.0, 60.0, 3.0)
+
+
+@pytest.mark.parametrize("path", [COMB, TI])
+def test_without_coupling_paired_units_read_the_true_kobj(path):
+    plan, k, units = setup(path)
+    g = grasp(plan, JAW, k, units, 1.0, 1.0, force_N=0.05, coupling="none", profile="wedge")
+    for u in g.paired.units:
+        assert u["valid"] and u["radius_ratio"] == pytest.approx(1.0)
+        assert u["K_obj_read_N_per_mm"] == pytest.approx(1.0, rel=1e-9)
+
+
+def test_as_laid_out_R_carries_the_travel_ratio_and_the_correction_removes_it():
+    plan, k, units = setup(COMB)
+    g = grasp(plan, JAW, k, units, 1.0, 1.0, force_N=0.3, coupling="none", profile="wedge")
+    for u in g.as_laid_out.units:
+        ratio = u["travel_measuring_mm"] / u["travel_reference_mm"]
+        assert u["R_read"] == pytest.approx(ratio * u["R_true"], rel=1e-9)
+        assert u["K_obj_corrected_N_per_mm"] == pytest.approx(1.0, rel=1e-9)
+        # wedge: travel in proportion to the radius
+        assert ratio == pytest.approx(u["radius_ratio"], rel=1e-9)
+
+
+def test_tissue_coupling_biases_the_paired_reading_but_not_its_radius():
+    plan, k, units = setup(COMB)
+    g = grasp(plan, JAW, k, units, 1.0, 1.0, force_N=0.3, coupling="layer", profile="wedge")
+    errors = [u["error_rel"] for u in g.paired.units]
+    laid = [abs(u["error_rel"]) for u in g.as_laid_out.units]
+    assert all(abs(e) > 1e-3 for e in errors)
+    assert max(abs(e) for e in errors) < min(laid)
+
+
+def test_the_force_mode_finds_the_angle_of_the_grasp_force():
+    plan, k, units = setup(COMB)
+    g = grasp(plan, JAW, k, units, 2.0, 0.05, force_N=0.4, profile="slab")
+    assert g.as_laid_out.total_force_N == pytest.approx(0.4, rel=1e-6)
+    assert g.paired.total_force_N == pytest.approx(0.4, rel=1e-6)
+
+
+def test_a_hard_grasp_puts_elements_on_their_stops_and_the_stop_takes_the_rest():
+    plan, k, units = setup(COMB)
+    g = grasp(plan, JAW, k, units, 2.0, 0.05, angle_deg=4.0)
+    on = [t for t in g.as_laid_out.tips if t["on_stop"]]
+    assert on
+    for t in on:
+        assert t["deflection_mm"] == pytest.approx(t["stop_engage_mm"])
+        assert t["element_force_N"] + t["stop_force_N"] == pytest.approx(t["tip_force_N"])
+        assert t["stop_force_N"] > 0
+    assert not any(u["valid"] for u in g.as_laid_out.units if "on its stop" in u["why"])
+
+
+def test_solve_tips_lifts_a_tip_that_would_pull():
+    c = np.array([[1.0, 0.9], [0.9, 1.0]])
+    sol = solve_tips([1.0, 0.01], [10.0, 10.0], [np.inf, np.inf], c)
+    assert not sol.in_contact[1] and sol.tip_force_N[1] == 0.0 and sol.tip_force_N[0] > 0
+
+
+def test_the_coupled_tissue_is_symmetric_and_one_face_sees_kobj():
+    faces = [Punch(0.0, 0.0, 1.0, 1.0), Punch(0.0, 4.6, 1.0, 1.0)]
+    for coupling in ("layer", "halfspace"):
+        c = tissue_compliance(faces, 2.0, 3.0, coupling)
+        assert np.allclose(c, c.T)
+        assert 1 / c[0, 0] == pytest.approx(2.0, rel=0.05)
+    assert tissue_compliance(faces, 2.0, 3.0, "halfspace")[0, 1] > 0
+
+
+@pytest.mark.parametrize("kw,field", [(dict(angle_deg=5.0, force_N=1.0), "angle_deg / force_N"),
+                                      (dict(force_N=1e4), "force_N"),
+                                      (dict(angle_deg=80.0), "angle_deg"),
+                                      (dict(angle_deg=5.0, coupling="x"), "coupling"),
+                                      (dict(angle_deg=5.0, profile="x"), "profile")])
+def test_bad_grasp_inputs_name_the_field(kw, field):
+    plan, k, units = setup(COMB)
+    with pytest.raises(DesignError) as e:
+        grasp(plan, JAW, k, units, 1.0, 0.05, **kw)
+    assert e.value.field == field

@@ -1,0 +1,66 @@
+"""Units in a pivoting jaw: radii from the plan's tips, the equal-radius rule, the correction."""
+import pytest
+
+from tactcad.design.array_plan import load_design
+from tactcad.in_use.jaw_kinematics import JawGeometry
+from tactcad.in_use.radius_pairs import (EQUAL_RADIUS_TOLERANCE_REL, insert_frame, paired_layout,
+                                         unit_radii)
+from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+from tactcad.mechanics.readout_chain import row_units
+
+DESIGNS = ["hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml",
+           "hardware/ti_array_2x3/ti_array_2x3.toml"]
+
+
+def units_of(plan):
+    k = ladder_stiffness_by_element(plan)
+    by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
+    return [(r.number, m.number) for r, m in row_units(plan, by_part)]
+
+
+def jaw_for(plan, behind=5.0):
+    length = max(u for u, _ in insert_frame(plan).values()) + behind + 1.0
+    return JawGeometry(-behind, 0.0, length, 30.0, 3.0)
+
+
+@pytest.mark.parametrize("path", DESIGNS)
+def test_insert_frame_runs_along_the_first_row(path):
+    plan = load_design(path)
+    frame = insert_frame(plan)
+    first = plan.row_slots(0)
+    assert frame[first[0].number] == pytest.approx((0.0, 0.0))
+    assert frame[first[-1].number][1] == pytest.approx(0.0, abs=1e-9)
+    assert frame[first[-1].number][0] > 0
+
+
+@pytest.mark.parametrize("path", DESIGNS)
+def test_the_rule_puts_every_laid_unit_at_one_radius(path):
+    plan = load_design(path)
+    units = units_of(plan)
+    jaw = jaw_for(plan)
+    layout = paired_layout(plan, units)
+    assert layout.sites
+    positions = {}
+    pairs = []
+    for i, s in enumerate(layout.sites):
+        positions[2 * i], positions[2 * i + 1] = s.reference_uv_mm, s.measuring_uv_mm
+        pairs.append((2 * i, 2 * i + 1))
+    for u in unit_radii(jaw, positions, pairs):
+        assert u.equal and abs(u.ratio - 1) <= EQUAL_RADIUS_TOLERANCE_REL
+
+
+def test_the_comb_as_laid_out_fails_equal_radius_and_corrects_by_the_radii():
+    plan = load_design(DESIGNS[0])
+    radii = unit_radii(jaw_for(plan), insert_frame(plan), units_of(plan))
+    assert radii and not any(u.equal for u in radii)
+    for u in radii:
+        assert u.r_correction == pytest.approx(u.r_reference_mm / u.r_measuring_mm)
+
+
+def test_more_units_than_sites_are_listed_with_the_reason():
+    plan = load_design(DESIGNS[0])
+    units = units_of(plan)
+    layout = paired_layout(plan, units)
+    assert len(layout.sites) == plan.columns * (plan.rows // 2)
+    assert len(layout.sites) + len(layout.unplaced) == len(units)
+    assert "pair sites" in layout.reason
