@@ -391,3 +391,13 @@ def test_finite_json_replaces_non_finite():
 
     text = dumps({"a": float("nan"), "b": [np.float64("inf"), 1.5], "c": np.int64(3)})
     assert strict_json(text) == {"a": None, "b": [None, 1.5], "c": 3}
+
+
+def test_the_sample_modulus_comes_from_the_designs_own_tip_face():
+    """K_obj is what one tip reads: a lone tip of any face sees compliance 1/K_obj on the coupled sample."""
+    from tactcad.mechanics.contact import Punch
+    from tactcad.mechanics.evaluation import ArrayElement, SampleSpec, sample_compliance
+
+    for face in ((1.0, 3.0), (2.0, 3.0), (0.6, 1.0)):
+        lone = [ArrayElement(1, 10.0, Punch(0.0, 0.0, *face))]
+        assert sample_compliance(lone, 4.0, SampleSpec("halfspace"))[0, 0] == pytest.approx(1 / 4.0, rel=1e-9)
