@@ -58,12 +58,15 @@ TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands",
              "tactcad.project_folder": "commands"}
 LAYERS = layers_from_layout_page(LAYOUT_PAGE.read_text(encoding="utf-8"))
 MECHANICS_MAY_USE = {"foundation", "vocabulary", "design", "geometry", "mechanics"}
+#: The sensor in use reads the plans and the mechanics' results, never the CAD kernel.
+IN_USE_MAY_USE = MECHANICS_MAY_USE | {"in_use"}
 #: The design studies run the general models over many plans, never the reverse.
-STUDIES_MAY_USE = MECHANICS_MAY_USE | {"studies"}
+STUDIES_MAY_USE = IN_USE_MAY_USE | {"studies"}
 #: The paper's reproduction reads the general models and the studies, never the reverse.
 PAPER_MAY_USE = STUDIES_MAY_USE | {"paper"}
 #: The layers whose imports are a set, not "everything above in the order".
-MAY_USE = {"mechanics": MECHANICS_MAY_USE, "studies": STUDIES_MAY_USE, "paper": PAPER_MAY_USE}
+MAY_USE = {"mechanics": MECHANICS_MAY_USE, "in_use": IN_USE_MAY_USE, "studies": STUDIES_MAY_USE,
+           "paper": PAPER_MAY_USE}
 
 
 #: Folders of src/tactcad left out of the one-name rule (none: every module

@@ -34,6 +34,7 @@ Units: mm, N, MPa, N/mm; R and κ dimensionless.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
@@ -137,12 +138,19 @@ def coupled_sample_from_punches(numbers: Sequence[int], punches: Sequence[Punch]
     Raises:
         ContactError: bad punches or tissue.
     """
-    unit = Sample(1.0, tissue.poisson_ratio, tissue.thickness_mm)
     face = tissue.indenter_face_mm or (punches[0].width_x_mm, punches[0].depth_z_mm)
-    c1 = single_punch_compliance(float(face[0]), float(face[1]), unit, tissue.cell_mm)
-    c = solve_punches(list(punches), unit, tissue.cell_mm).compliance_mm_per_N
-    return CoupledSample(tuple(int(n) for n in numbers), c / c1, tissue,
-                         (float(face[0]), float(face[1])))
+    face = (float(face[0]), float(face[1]))
+    normalised = _normalised_compliance(tuple(punches), tissue, face)
+    return CoupledSample(tuple(int(n) for n in numbers), normalised.copy(), tissue, face)
+
+
+@functools.lru_cache(maxsize=32)
+def _normalised_compliance(punches: tuple[Punch, ...], tissue: Tissue,
+                           face: tuple[float, float]) -> np.ndarray:
+    """Ĉ of the punches, cached: a design search asks the same tips again and again."""
+    unit = Sample(1.0, tissue.poisson_ratio, tissue.thickness_mm)
+    c1 = single_punch_compliance(face[0], face[1], unit, tissue.cell_mm)
+    return solve_punches(list(punches), unit, tissue.cell_mm).compliance_mm_per_N / c1
 
 
 def coupled_sample(plan, tissue: Tissue = Tissue()) -> CoupledSample:
@@ -315,3 +323,54 @@ def apparent_kobj_factor(sample: CoupledSample, stiffness: Mapping[int, float],
             r = min(max(r, 1 + 1e-12), (k_r / k_m) * (1 - 1e-12))  # outside eq. 3's domain: its end
             logs.append(np.log(object_stiffness(r, k_m, k_r) / float(k)))
     return float(np.exp(np.mean(logs)))
+
+
+#: The centring's fixed point stops when the factor moves less than this (relative).
+CENTRING_TOL = 1e-3
+#: At most this many rounds of the centring's fixed point.
+CENTRING_ROUNDS = 8
+
+
+def centred_seen_factor(plan, units: Sequence[tuple[int, int]], kr_over_km: float,
+                        k_obj_range: tuple[float, float], tissue: Tissue = Tissue()) -> float:
+    """The K_obj factor s at which elements K_m = s sqrt(K_lo K_hi / X), K_r = X K_m see the range
+    centred through the coupling: s = :func:`apparent_kobj_factor` of those very stiffnesses
+    (a fixed point; the tips' places and faces do not depend on the arms).
+
+    Args:
+        plan: a design (its tips' positions and faces; the arms are not used).
+        units: (measuring, reference) element numbers.
+        kr_over_km: X.
+        k_obj_range: (K_lo, K_hi) (N/mm).
+        tissue: the sample model.
+
+    Returns:
+        s (dimensionless).
+    """
+    sample = coupled_sample(plan, tissue)
+    refs = {r for _, r in units}
+    lo, hi = k_obj_range
+    s = 1.0
+    for _ in range(CENTRING_ROUNDS):
+        k_m = s * float(np.sqrt(lo * hi / kr_over_km))
+        stiffness = {n: (kr_over_km * k_m if n in refs else k_m) for n in sample.numbers}
+        new = apparent_kobj_factor(sample, stiffness, units, k_obj_range)
+        done = abs(new / s - 1.0) <= CENTRING_TOL
+        s = new
+        if done:
+            break
+    return s
+
+
+def coupling_report(plan, stiffness: Mapping[int, float], units: Sequence[tuple[int, int]],
+                    k_obj_values, tissue: Tissue = Tissue()) -> dict:
+    """Per unit: κ, R by eq. 2 and coupled, eq. 3's K_obj bias and the coupled inversion's
+    over ``k_obj_values`` (N/mm), with the tissue model stated.
+
+    Raises:
+        ContactError: as :func:`coupled_ratio`.
+    """
+    sample = coupled_sample(plan, tissue)
+    return {"tissue": tissue.describe(), "poisson_ratio": tissue.poisson_ratio,
+            "thickness_mm": tissue.thickness_mm,
+            "units": [unit_bias(sample, stiffness, u, k_obj_values).as_json() for u in units]}
