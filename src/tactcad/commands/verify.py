@@ -52,10 +52,13 @@ def run(args: argparse.Namespace) -> int:
                                               stress=element_stress, envelope_mm=envelope), []
     ok = matrix_passed(records)
     open_ = undecided(records)
+    from tactcad.studies.verification import tissue_coupling_record
+
+    tissue = tissue_coupling_record(plan, req)
     if args.json:
         print(dumps({"design": plan.name, "model": args.model, "requirements": req.as_json(),
-                     "matrix": records, "levels": levels, "undecided": open_, "passed": ok},
-                    indent=1))
+                     "matrix": records, "levels": levels, "undecided": open_, "passed": ok,
+                     "tissue_coupling": tissue}, indent=1))
     else:
         print(f"design {plan.name}, model {args.model}")
         print(matrix_table(records))
@@ -63,12 +66,28 @@ def run(args: argparse.Namespace) -> int:
             print(f"  {key}: {why}")
         for level in levels:
             print(f"  {level['model']}: {level['seconds']:.2f} s")
+        print(tissue_text(tissue))
         if open_:
             top = records[0].get("levels_tried", [args.model])[-1]
             print(f"undecided at {top} (margin inside its error estimate): {', '.join(open_)}"
                   + ("" if args.model == "auto" else "; --model auto climbs the ladder"))
         print("no requirement fails" if ok else "a requirement is not met")
     return 0 if ok else 1
+
+
+def tissue_text(record: dict) -> str:
+    """The tissue coupling's K_obj bias, worst unit, by eq. 3 and by the coupled inversion."""
+    if not record["units"]:
+        return "tissue coupling: no sensing unit"
+    parts = []
+    for key, words in (("eq3", "eq. 3"), ("coupled", "coupled inversion (eq. 3 corrected)")):
+        worst = min(record[key]["items"], key=lambda it: (it["bias_rel"] is not None,
+                                                            -abs(it["bias_rel"] or 0)))
+        bias = "no answer" if worst["bias_rel"] is None else f"{100 * worst['bias_rel']:+.3g} %"
+        parts.append(f"{words} worst {bias} (unit {worst['unit'][0]}/{worst['unit'][1]}): "
+                     f"{record[key]['verdict'].upper()}")
+    return (f"tissue coupling ({record['tissue']}), K_obj bias over the range against the "
+            f"{100 * record['target_rel']:.3g} % resolution: " + "; ".join(parts))
 
 
 def matrix_table(records: list[dict]) -> str:
