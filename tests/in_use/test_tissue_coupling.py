@@ -89,3 +89,29 @@ def test_a_measured_ratio_outside_the_model_is_refused_by_name():
 def test_bad_tissue_is_refused_by_name(field, kwargs):
     with pytest.raises(ContactError, match=field):
         Tissue(**kwargs)
+
+
+def test_lumped_offers_the_coupled_inversion_beside_eq3(capsys):
+    """`lumped --coupled-design` reads back the K_obj its coupled R came from; eq. 3 reads it high."""
+    import json
+
+    from tactcad.cli import main
+
+    plan = load_design(TI)
+    k = ladder_stiffness_by_element(plan)
+    unit = design_units(plan, k)[0]
+    r = coupled_ratio(coupled_sample(plan), k, unit, 2.0)
+    argv = ["lumped", "--km", repr(k[unit[0]]), "--kr", repr(k[unit[1]]), "--r", repr(r),
+            "--coupled-design", TI, "--unit", str(unit[0]), "--json"]
+    assert main(argv) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["coupled"]["k_obj_coupled_N_per_mm"] == pytest.approx(2.0, rel=1e-8)
+    assert out["k_obj_N_per_mm"] > 2.0 * 1.02
+
+
+def test_lumped_names_a_unit_that_is_not_measuring(capsys):
+    from tactcad.cli import main
+
+    assert main(["lumped", "--km", "1", "--kr", "10", "--r", "2", "--coupled-design", TI,
+                 "--unit", "2"]) == 2
+    assert "--unit = 2" in capsys.readouterr().err
