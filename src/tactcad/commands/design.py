@@ -64,6 +64,17 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "system folders")
     p.add_argument("--force", action="store_true",
                    help="overwrite an existing file (default: refuse)")
+    p.add_argument("--tissue-coupling", choices=("on", "off"), default="on",
+                   help="on (default): K_r and K_m centred on the K_obj range as the units see it "
+                        "through one sample under all tips (rigid flat punches of the tip faces on "
+                        "an elastic half-space or layer), each unit's coupled R checked to span "
+                        "the range; off: eq. 2 alone (each tip on its own object spring)")
+    p.add_argument("--tissue-poisson", type=number(0, 0.5, ""), metavar="NU", default=0.5,
+                   help="Poisson ratio of the tissue (0 ... 0.5; default 0.5, nearly "
+                        "incompressible soft tissue and rubber)")
+    p.add_argument("--tissue-thickness", type=number(0, 1e4, "mm", lo_open=True), metavar="MM",
+                   default=None, help="tissue layer thickness on a rigid base (mm; default: a "
+                                      "half-space)")
     p.add_argument("--verify", choices=verify_levels(), default="fem3d",
                    help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
     add_design_arg(p)
@@ -154,7 +165,8 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.studies.inverse_design import Targets
     from tactcad.studies.layout_search import searched_design
 
-    targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
+    targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force,
+                      tissue=tissue_of(args) if args.tissue_coupling == "on" else None)
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
@@ -170,6 +182,7 @@ def run(args: argparse.Namespace) -> int:
     except DesignError as exc:
         raise as_options(exc, args, design) from None
     report = design_report(result, args.verify, progress_from_args(args))
+    report["tissue_coupling"] = coupling_summary(result, args)
     from tactcad import __version__
 
     header = (f"# Written by tactcad {__version__}: "
@@ -187,6 +200,28 @@ def run(args: argparse.Namespace) -> int:
     else:
         print_report(report)
     return 0
+
+
+def tissue_of(args: argparse.Namespace):
+    """The tissue model the options ask for (:class:`tactcad.in_use.tissue_coupling.Tissue`)."""
+    from tactcad.in_use.tissue_coupling import Tissue
+
+    return Tissue(poisson_ratio=args.tissue_poisson, thickness_mm=args.tissue_thickness)
+
+
+def coupling_summary(result, args: argparse.Namespace) -> dict:
+    """The coupling figures of the written design (per unit κ and eq. 3's K_obj bias, before and
+    after the coupled correction), with the model used or eq. 2's choice."""
+    from tactcad.in_use.tissue_coupling import coupling_report
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.studies.inverse_design import report_points, sensing_unit_numbers
+
+    plan = result.plan
+    rep = coupling_report(plan, ladder_stiffness_by_element(plan), sensing_unit_numbers(plan),
+                          report_points(result.targets), tissue_of(args))
+    return {"mode": args.tissue_coupling, "kobj_seen_factor": result.targets.kobj_seen_factor,
+            "assumption": result.data.get("assumptions", {}).get("requirements.kobj_range_N_per_mm"),
+            **rep}
 
 
 #: Design fields the command's options write (the option named in their errors).
@@ -470,6 +505,23 @@ def print_report(r: dict) -> None:
         print(f"{u['K_obj_N_per_mm']:>10.3g} {u['R']:>6.3f} {u['dR_dKobj_per_N_per_mm']:>16.4f} "
               f"{u['K_obj_resolution_N_per_mm']:>17.3g} {100 * u['K_obj_resolution_rel']:>9.2f}%"
               f"   {u['stiffness_from']}")
+    c = r.get("tissue_coupling")
+    if c:
+        worst = max((u for u in c["units"]), key=lambda u: abs(u["worst_eq3_rel"] or float("inf")))
+        if c["mode"] == "off":
+            head = "eq. 2 alone (--tissue-coupling off)"
+        elif "eq. 2's centring" not in (c["assumption"] or ""):
+            head = "K_r, K_m centred on the range as the coupled units see it"
+        else:
+            head = "every unit's coupled R spans the range; K_r, K_m at eq. 2's centring (see [assumptions])"
+
+        eq3 = worst["worst_eq3_rel"]
+        print(f"tissue coupling: {head} (K_obj seen x{c['kobj_seen_factor']:.3g}); coupling "
+              f"{min(u['coupling'] for u in c['units']):.3f}-{max(u['coupling'] for u in c['units']):.3f}; "
+              f"eq. 3's K_obj bias worst "
+              + ("unreadable" if eq3 is None else f"{100 * eq3:+.1f} %")
+              + f" (unit {worst['unit'][0]}/{worst['unit'][1]}), coupled inversion "
+              f"{100 * max(abs(u['worst_corrected_rel']) for u in c['units']):.1g} %")
     print(f"web rule: {r['web_rule']}")
     for line in margin_lines(r["margins"]):
         print(line)

@@ -38,8 +38,45 @@ def register(subparsers) -> None:
                        help="measured deflection ratio R (dimensionless): print K_obj")
     p.add_argument("--sigma-r", type=float, default=None, metavar="SIGMA",
                    help="standard uncertainty of R: print sigma of K_obj (first order)")
+    p.add_argument("--coupled-design", metavar="DESIGN.toml", default=None,
+                   help="also the coupled form beside eq. 2-3: every tip of this design on one "
+                        "elastic half-space (nu 0.5; in_use/tissue_coupling), --km and --kr the "
+                        "unit's elements, the others at the closed form")
+    p.add_argument("--unit", type=int, metavar="ELEMENT", default=None,
+                   help="with --coupled-design: the measuring element (its row's reference "
+                        "is the unit's other tip)")
     add_output_args(p, "print one JSON object instead of text")
     p.set_defaults(func=run)
+
+
+def coupled_form(design: str, unit: int | None, k_m: float, k_r: float, k_obj: float | None,
+                 r: float | None) -> dict:
+    """The coupled R (eq. 2 corrected) from K_obj, or the coupled K_obj (eq. 3 corrected) from
+    R, for measuring element ``unit`` of ``design`` against its row's reference, every tip on
+    one half-space (:mod:`tactcad.in_use.tissue_coupling`); K_m, K_r for the unit's two
+    elements, the others' K at the closed form.
+
+    Raises:
+        TactcadError: ``unit`` missing or no measuring element of the design (named).
+        tactcad.mechanics.contact.ContactError: R outside the coupled model's range.
+    """
+    from tactcad.design.array_plan import load_design
+    from tactcad.in_use.tissue_coupling import (coupled_object_stiffness, coupled_ratio, coupled_sample,
+                                                design_units)
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+
+    plan = load_design(design)
+    k = ladder_stiffness_by_element(plan)
+    pairs = dict(design_units(plan, k))
+    if unit not in pairs:
+        raise TactcadError(f"--unit = {unit!r}: allowed a measuring element of {plan.name}: "
+                           f"{sorted(pairs)}")
+    pair = (unit, pairs[unit])
+    k = {**k, pair[0]: k_m, pair[1]: k_r}
+    sample = coupled_sample(plan)
+    if r is None:
+        return {"unit": list(pair), "r_coupled": float(coupled_ratio(sample, k, pair, k_obj))}
+    return {"unit": list(pair), "k_obj_coupled_N_per_mm": coupled_object_stiffness(sample, k, pair, r)}
 
 
 def evaluate(k_m: float, k_r: float, k_obj: float | None = None, r: float | None = None,
@@ -106,6 +143,9 @@ def _results(lumped, k_m, k_r, k_obj, r, sigma_r) -> dict:
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad lumped``; returns the exit code (0)."""
     result = evaluate(args.km, args.kr, k_obj=args.kobj, r=args.r, sigma_r=args.sigma_r)
+    if args.coupled_design is not None:
+        result["coupled"] = coupled_form(args.coupled_design, args.unit, args.km, args.kr,
+                                         args.kobj, args.r)
     if args.json:
         print(dumps(result))
         return 0
@@ -119,6 +159,13 @@ def run(args: argparse.Namespace) -> int:
         print(f"K_obj = {result['k_obj_N_per_mm']:.6g} N/mm (given)")
         print(f"R = {result['r']:.6g} (eq. 2), R - 1 = {result['r_minus_one']:.6g}")
     print(f"dK_obj/dR = {result['sensitivity_dk_obj_dr_N_per_mm']:.6g} N/mm")
+    c = result.get("coupled")
+    if c and "r_coupled" in c:
+        print(f"R = {c['r_coupled']:.6g} (eq. 2 corrected: unit {c['unit'][0]}/{c['unit'][1]} "
+              f"of {args.coupled_design}, every tip on one half-space)")
+    elif c:
+        print(f"K_obj = {c['k_obj_coupled_N_per_mm']:.6g} N/mm (eq. 3 corrected: unit "
+              f"{c['unit'][0]}/{c['unit'][1]} of {args.coupled_design}, every tip on one half-space)")
     if "sigma_k_obj_N_per_mm" in result:
         print(f"sigma_K_obj = {result['sigma_k_obj_N_per_mm']:.6g} N/mm "
               f"(first order, sigma_R = {result['sigma_r']:.6g})")

@@ -53,11 +53,14 @@ def run(args: argparse.Namespace) -> int:
     ok = matrix_passed(records)
     open_ = undecided(records)
     budget = kobj_budget_section(plan, req, args.model)
+    from tactcad.studies.verification import tissue_coupling_record
+
+    tissue = tissue_coupling_record(plan, req)
     if args.json:
         print(dumps({"design": plan.name, "model": args.model, "requirements": req.as_json(),
                      "matrix": records, "levels": levels, "undecided": open_, "passed": ok,
-                     "kobj_budget": budget if isinstance(budget, str) else budget.as_json()},
-                    indent=1))
+                     "kobj_budget": budget if isinstance(budget, str) else budget.as_json(),
+                     "tissue_coupling": tissue}, indent=1))
     else:
         print(f"design {plan.name}, model {args.model}")
         print(matrix_table(records))
@@ -65,6 +68,7 @@ def run(args: argparse.Namespace) -> int:
             print(f"  {key}: {why}")
         for level in levels:
             print(f"  {level['model']}: {level['seconds']:.2f} s")
+        print(tissue_text(tissue))
         if open_:
             top = records[0].get("levels_tried", [args.model])[-1]
             print(f"undecided at {top} (margin inside its error estimate): {', '.join(open_)}"
@@ -89,6 +93,21 @@ def kobj_budget_section(plan, req, model: str):
                            DEFAULT_DELTA_T_K, "closed-form" if model == "auto" else model)
     except DesignError as exc:
         return str(exc)
+
+
+def tissue_text(record: dict) -> str:
+    """The tissue coupling's K_obj bias, worst unit, by eq. 3 and by the coupled inversion."""
+    if not record["units"]:
+        return "tissue coupling: no sensing unit"
+    parts = []
+    for key, words in (("eq3", "eq. 3"), ("coupled", "coupled inversion (eq. 3 corrected)")):
+        worst = min(record[key]["items"], key=lambda it: (it["bias_rel"] is not None,
+                                                            -abs(it["bias_rel"] or 0)))
+        bias = "no answer" if worst["bias_rel"] is None else f"{100 * worst['bias_rel']:+.3g} %"
+        parts.append(f"{words} worst {bias} (unit {worst['unit'][0]}/{worst['unit'][1]}): "
+                     f"{record[key]['verdict'].upper()}")
+    return (f"tissue coupling ({record['tissue']}), K_obj bias over the range against the "
+            f"{100 * record['target_rel']:.3g} % resolution: " + "; ".join(parts))
 
 
 def matrix_table(records: list[dict]) -> str:

@@ -14,8 +14,9 @@ time; each element's deflection is divided by that of the stiffest element
   eq. 1), which gives R_i = (K_r + K_obj)/(K_i + K_obj) (eq. 2) at every load;
 * sample, ``"halfspace"`` or ``"layer"``: w = C P with C the compliance matrix
   of rigid flat punches at the tips' contact faces (:mod:`tactcad.mechanics.contact`),
-  its modulus set so that one 2 x 3 mm punch alone has stiffness K_obj (the
-  paper measured K_obj with a 2 x 3 mm indenter).
+  its modulus set so that one tip face of the design alone has stiffness K_obj
+  (K_obj is what one tip reads; the paper measured it with a 2 x 3 mm indenter,
+  its tips' own face).
 
 Then P = (diag(1/K) + C)⁻¹ 1 Δ, linear in Δ, so R does not depend on the load
 (what the paper's Fig. 6 shows within scatter).
@@ -41,8 +42,6 @@ STEP_WEIGHT_N = 0.1 * STANDARD_GRAVITY
 #: Load steps reported by default: the dead weight and five added weights
 #: (the paper speaks of six average values of R per graph).
 DEFAULT_LOAD_STEPS = 6
-#: The paper's indenter for K_obj: a 2 x 3 mm flat face (mm).
-INDENTER_FACE_MM = (2.0, 3.0)
 #: Rubber is nearly incompressible; the paper gives no Poisson ratio.
 DEFAULT_POISSON_RATIO = 0.5
 COUPLINGS = ("none", "halfspace", "layer")
@@ -135,18 +134,24 @@ def _check_k_obj(k_obj: float) -> None:
         raise ContactError("K_obj_N_per_mm", k_obj, "> 0 N/mm")
 
 
+def indenter_face_mm(elements) -> tuple[float, float]:
+    """The face K_obj is defined against: the design's own tip face (the first element's) (mm)."""
+    p = elements[0].punch
+    return (p.width_x_mm, p.depth_z_mm)
+
+
 def sample_compliance(elements, k_obj: float, spec: SampleSpec,
                       unit_compliance: np.ndarray | None = None) -> np.ndarray:
     """Compliance matrix of the sample seen by the tips (mm/N), shape (m, m).
 
     ``none``: diag(1/K_obj). Coupled: the punch compliance matrix at modulus
-    E = K_obj C_indenter(E = 1), i.e. C = C(E = 1)/E. ``unit_compliance``
+    E = K_obj C_tip(E = 1) (one tip face alone, :func:`indenter_face_mm`), i.e. C = C(E = 1)/E. ``unit_compliance``
     (the E = 1 matrix) may be passed to avoid solving it again per sample.
     """
     _check_k_obj(k_obj)
     if spec.coupling == "none":
         return np.eye(len(elements)) / k_obj
-    modulus = modulus_from_punch_stiffness(k_obj, *INDENTER_FACE_MM, spec.poisson_ratio,
+    modulus = modulus_from_punch_stiffness(k_obj, *indenter_face_mm(elements), spec.poisson_ratio,
                                            spec.layer_thickness_mm, spec.cell_mm)
     if unit_compliance is None:
         unit_compliance = unit_punch_compliance(elements, spec)
@@ -196,7 +201,7 @@ def simulate_rig(elements, k_obj: float, spec: SampleSpec, loads_N=None, referen
 
     Args:
         elements: sequence of :class:`ArrayElement` (all in contact).
-        k_obj: sample stiffness K_obj against a 2 x 3 mm indenter (N/mm), > 0.
+        k_obj: sample stiffness K_obj, one tip face alone on it (N/mm), > 0.
         spec: :class:`SampleSpec` (coupling, ν, thickness).
         loads_N: grasping forces (N), default :func:`load_steps_N`.
         reference: element number of the reference; default :func:`reference_element`.
@@ -251,10 +256,10 @@ def ladder_stiffness_by_element(plan, model: str = "closed-form") -> dict[int, f
     return out
 
 
-def _rig_record(res: RigResult, spec: SampleSpec) -> dict:
+def _rig_record(res: RigResult, spec: SampleSpec, face_mm: tuple[float, float]) -> dict:
     modulus = None
     if spec.coupling != "none":
-        modulus = modulus_from_punch_stiffness(res.k_obj_N_per_mm, *INDENTER_FACE_MM,
+        modulus = modulus_from_punch_stiffness(res.k_obj_N_per_mm, *face_mm,
                                                spec.poisson_ratio, spec.layer_thickness_mm,
                                                spec.cell_mm)
     return {
@@ -309,7 +314,7 @@ def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec:
     unit = None if spec.coupling == "none" else unit_punch_compliance(elements, spec)
     loads = load_steps_N(n_steps) if loads_N is None else np.asarray(loads_N, float)
     results = [simulate_rig(elements, s, spec, loads, ref, unit, references) for s in samples]
-    records = [_rig_record(r, spec) for r in results]
+    records = [_rig_record(r, spec, indenter_face_mm(elements)) for r in results]
     fig6_index = int(np.argmin([abs(s - fig6_sample) for s in samples]))
     refs = set(own.values())
     measuring = [e for e in elements if e.number not in refs]

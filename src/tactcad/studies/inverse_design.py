@@ -228,6 +228,12 @@ class Targets:
         kr_over_km: X = K_r / K_m (> 1).
         k_obj_range_N_per_mm: (K_lo, K_hi), object stiffnesses to read (N/mm).
         full_scale_force_N: F, force every element must carry (N).
+        tissue: the sample under the tips
+            (:class:`tactcad.in_use.tissue_coupling.Tissue`), or None for eq. 2
+            alone (each tip on its own object spring).
+        kobj_seen_factor: the factor by which eq. 2 sees K_obj through the tissue
+            coupling; the stiffnesses centre on the range so seen
+            (:func:`design_from_tables` sets it; 1: eq. 2 alone).
 
     Raises:
         DesignError: naming the option (``--kr-over-km``, ``--kobj-range``,
@@ -237,6 +243,8 @@ class Targets:
     kr_over_km: float
     k_obj_range_N_per_mm: tuple[float, float]
     full_scale_force_N: float
+    tissue: Any = None
+    kobj_seen_factor: float = 1.0
 
     def __post_init__(self):
         x = self.kr_over_km
@@ -250,12 +258,16 @@ class Targets:
         f = self.full_scale_force_N
         if not _finite(f) or not 0.0 < f <= 1000.0:
             raise DesignError("--full-scale-force", f, "0 < value <= 1000 N")
+        s = self.kobj_seen_factor
+        if not _finite(s) or not 0.01 <= s <= 100.0:
+            raise DesignError("--tissue-coupling", s, "a K_obj factor 0.01 ... 100 seen through the tissue")
 
     @property
     def k_m(self) -> float:
-        """K_m = sqrt(K_lo K_hi / X) (N/mm), see the module docstring."""
+        """K_m = s sqrt(K_lo K_hi / X) (N/mm), s the K_obj factor the tissue coupling makes
+        eq. 2 see (1 without it), see the module docstring."""
         lo, hi = self.k_obj_range_N_per_mm
-        return math.sqrt(lo * hi / self.kr_over_km)
+        return self.kobj_seen_factor * math.sqrt(lo * hi / self.kr_over_km)
 
     @property
     def k_r(self) -> float:
@@ -827,6 +839,59 @@ def start_tables(raw: Mapping[str, Any], base_name: str, *, grade: str | None = 
     return with_grid(data, rows, columns)
 
 
+def sensing_unit_numbers(plan: Plan) -> list[tuple[int, int]]:
+    """(measuring, reference) element numbers an inverse design makes: each element of a row
+    against its row's reference (:func:`reference_elements`)."""
+    refs = reference_elements(plan.rows, plan.columns)
+    return [(s.number, refs[s.row]) for s in plan.slots if s.number not in refs]
+
+
+def centred_for_tissue(plan: Plan, targets: Targets) -> Targets:
+    """``targets`` with the K_obj factor eq. 2 sees through the tissue on ``plan``'s tips
+    (:func:`tactcad.in_use.tissue_coupling.centred_seen_factor`); unchanged without a tissue."""
+    if targets.tissue is None:
+        return targets
+    from tactcad.in_use.tissue_coupling import centred_seen_factor
+
+    s = centred_seen_factor(plan, sensing_unit_numbers(plan), targets.kr_over_km,
+                            targets.k_obj_range_N_per_mm, targets.tissue)
+    return replace(targets, kobj_seen_factor=s)
+
+
+def coupled_span_misses(plan: Plan, targets: Targets) -> list[str]:
+    """Units whose coupled R does not fall strictly, above 1, over the asked K_obj range on
+    ``targets.tissue`` (one line each; none without a tissue): the coupled inversion
+    (eq. 3 corrected) then has no single answer there."""
+    if targets.tissue is None:
+        return []
+    from tactcad.in_use.tissue_coupling import coupled_ratio, coupled_sample
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+
+    k = ladder_stiffness_by_element(plan)
+    sample = coupled_sample(plan, targets.tissue)
+    points = report_points(targets)
+    out = []
+    for unit in sensing_unit_numbers(plan):
+        r = np.atleast_1d(coupled_ratio(sample, k, unit, points))
+        if not (np.all(np.diff(r) < 0) and r[-1] > 1.0):
+            out.append(f"unit {unit[0]}/{unit[1]}: coupled R {r[0]:.4g} ... {r[-1]:.4g} over K_obj "
+                       f"{points[0]:g} ... {points[-1]:g} N/mm")
+    return out
+
+
+def tissue_assumption(targets: Targets, note: str = "") -> str:
+    """The design's stated assumption on the object under the tips."""
+    if targets.tissue is None:
+        return ("tactcad design --tissue-coupling off: K_r and K_m centred on the range by eq. 2 "
+                "alone (each tip on its own object spring); tips on one sample couple and bias "
+                "eq. 3's K_obj (`verify` reports it)")
+    return (f"tactcad design --tissue-coupling on: {targets.tissue.describe()}; "
+            + (note or f"K_r and K_m centred on the K_obj range as the units see it through the "
+                       f"coupling (K_obj seen x{targets.kobj_seen_factor:.3g})")
+            + "; every unit's coupled R spans the range (read it with the coupled inversion, "
+              "eq. 3 corrected)")
+
+
 def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "inverse_design",
                        correction=None, arm_max_mm: float | None = None,
                        shortest_element: bool = False) -> InverseDesign:
@@ -837,10 +902,49 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
     the overall length becomes the shortest that holds the longest arm's bolt
     pattern (0.5 mm steps) instead of only growing when it must.
 
+    With a tissue (``targets.tissue``) the stiffnesses centre on the K_obj
+    range as the units see it through the coupling (:func:`centred_for_tissue`);
+    where that centring breaks a limit, eq. 2's centring is kept if every unit's
+    coupled R still spans the range (so stated); a design whose coupled R does
+    not span it is refused naming the coupling.
+
     Raises:
         InverseDesignError: the targets cannot be met.
         DesignError: the tables break a design rule (field named).
     """
+    kw = dict(name=name, correction=correction, arm_max_mm=arm_max_mm,
+              shortest_element=shortest_element)
+    centred = centred_for_tissue(plan_from_dict(copy.deepcopy(data), source="<inverse design>"),
+                                 targets)
+    note = ""
+    try:
+        d = _design_from_tables(copy.deepcopy(data), centred, **kw)
+    except InverseDesignError as exc:
+        if centred is targets:
+            raise
+        try:  # eq. 2's centring: the range may still be read through the coupling
+            d = _design_from_tables(data, targets, **kw)
+        except InverseDesignError:
+            raise exc from None
+        note = (f"K_r and K_m at eq. 2's centring: centred for the coupling (K_obj seen "
+                f"x{centred.kobj_seen_factor:.3g}, K_m {centred.k_m:.4g} N/mm) they break "
+                f"{', '.join(d.binding_limits) or 'a limit'} at this force, so the sensitivity "
+                f"peak sits off the range's centre by that factor")
+    misses = coupled_span_misses(d.plan, d.targets)
+    if misses:
+        raise InverseDesignError(
+            "the tissue coupling binds: a unit's coupled R does not fall over the K_obj range ("
+            + "; ".join(misses) + ")", field="--tissue-coupling", value="on",
+            allowed="off (eq. 2 alone), or a wider pitch or a narrower K_obj range")
+    d.data.setdefault("assumptions", {})["requirements.kobj_range_N_per_mm"] = \
+        tissue_assumption(d.targets, note)
+    return d
+
+
+def _design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "inverse_design",
+                        correction=None, arm_max_mm: float | None = None,
+                        shortest_element: bool = False) -> InverseDesign:
+    """:func:`design_from_tables` for the stiffnesses of ``targets`` as they stand."""
     base_web = float(data["element"]["web_thickness_mm"])
     carried = dict(data.get("assumptions", {}))  # the base's reasons, checked once values are set
     refusal = None

@@ -58,7 +58,7 @@ from tactcad.studies.design_alternatives import (nearest_on_scan, largest_feasib
                                                  relaxing_changes)
 from tactcad.studies.footprint_fit import design_in_footprint, fits, stated_footprint
 from tactcad.studies.inverse_design import (STIFFNESS_LIMITS, InverseDesign, InverseDesignError,
-                                            Targets, binding_limits, design_from_tables,
+                                            Targets, binding_limits, centred_for_tissue, design_from_tables,
                                             design_variant, max_full_scale_force_N,
                                             mounting_min_arm_mm,
                                             required_overall_length_mm, search_webs,
@@ -224,10 +224,26 @@ def mechanics_of(data: Mapping[str, Any], layout: FreeLayout, targets: Targets,
     try:
         plan = plan_from_dict(tables, source="<layout search>")
         with range_warnings_unsaid():
-            search = search_webs(plan, targets, correction)
+            searches = [search_webs(plan, t, correction)
+                        for t in centrings(with_layout(data, layout), targets)]
     except DesignError:
         return None
-    return Mechanics(tables, search, max_full_scale_force_N(search, targets.full_scale_force_N))
+    forces = [max_full_scale_force_N(s, targets.full_scale_force_N) for s in searches]
+    best = int(np.argmax(forces))  # the centring a whole design would fall back to, if it must
+    return Mechanics(tables, searches[best], forces[best])
+
+
+def centrings(tables: Mapping[str, Any], targets: Targets) -> list[Targets]:
+    """The stiffness centrings a whole design on ``tables`` may take: with a tissue, the
+    coupled one (:func:`tactcad.studies.inverse_design.centred_for_tissue`, on the whole
+    array's tips) and eq. 2's it falls back to; without, eq. 2's alone."""
+    if targets.tissue is None:
+        return [targets]
+    try:
+        plan = plan_from_dict(copy.deepcopy(dict(tables)), source="<layout search>")
+    except DesignError:  # the whole array breaks a rule: its design is refused on its own
+        return [targets]
+    return [centred_for_tissue(plan, targets), targets]
 
 
 def smallest_length_mm(data: Mapping[str, Any], mech: Mechanics, force_N: float) -> float | None:
@@ -422,7 +438,8 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
     binds, its limit, and the nearest feasible targets (module docstring)."""
     F = targets.full_scale_force_N
     lo, hi = targets.k_obj_range_N_per_mm
-    asked = (f"K_r/K_m {targets.kr_over_km:g} over K_obj {lo:g}-{hi:g} N/mm in "
+    asked = (f"K_r/K_m {targets.kr_over_km:g} over K_obj {lo:g}-{hi:g} N/mm"
+             f"{' (with the tissue coupling)' if targets.tissue is not None else ''} in "
              f"{data['material'].get('grade') or data['material'].get('name')}")
     errors: list[DesignError] = []
     alternatives: list[dict] = []

@@ -799,3 +799,46 @@ def requirements_record(plan: Plan, envelope_mm: Sequence[float] | None = None) 
                                  "binding_limit": force["binding_words"],
                                  "binding_element": force["binding_element"],
                                  "met": force["pass"]}}
+
+
+#: The tissue model's relative error on a bias: its agreement with the independent
+#: elastic-block model (tests/in_use/test_tissue_coupling_fem.py, within 5 %).
+TISSUE_MODEL_ERROR_REL = 0.05
+#: K_obj points per unit of the tissue-coupling record (log-spaced, ends included).
+TISSUE_POINTS = 5
+
+
+def tissue_coupling_record(plan: Plan, req: Requirements, tissue=None) -> dict:
+    """The K_obj bias the tissue coupling causes, per unit, worst over the K_obj range, read by
+    eq. 3 and by the coupled inversion (eq. 3 corrected), each judged against the K_obj
+    resolution the design requires (margin = target / |bias| - 1, error estimate
+    :data:`TISSUE_MODEL_ERROR_REL`; :func:`tactcad.mechanics.verdicts.judged`; a reading eq. 3
+    cannot answer fails). Not a requirement of the matrix: how K_obj must be read.
+
+    Args:
+        tissue: :class:`tactcad.in_use.tissue_coupling.Tissue` (default: half-space, ν 0.5).
+    """
+    from tactcad.in_use.tissue_coupling import Tissue, coupling_report, design_units
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.mechanics.verdicts import deciding_item, judged
+
+    tissue = tissue or Tissue()
+    k = ladder_stiffness_by_element(plan)
+    points = np.geomspace(*req.kobj_range_N_per_mm, TISSUE_POINTS)
+    rep = coupling_report(plan, k, design_units(plan, k), points, tissue)
+    target = req.kobj_resolution_rel
+
+    def item(unit: dict, key: str) -> dict:
+        bias = unit[key]
+        margin = None if bias is None else (target / abs(bias) - 1.0 if bias else None)
+        return judged({"unit": unit["unit"], "bias_rel": bias, "margin_rel": margin,
+                       "error_estimate_rel": TISSUE_MODEL_ERROR_REL, "pass": bias is not None})
+
+    out = {"tissue": rep["tissue"], "target_rel": target, "units": rep["units"]}
+    for key, name in (("worst_eq3_rel", "eq3"), ("worst_corrected_rel", "coupled")):
+        items = [item(u, key) for u in rep["units"]]
+        for it in items:
+            if it["bias_rel"] is None:
+                it["verdict"] = "fail"  # eq. 3 has no answer for the coupled R there
+        out[name] = {"items": items, "verdict": deciding_item(items)["verdict"] if items else "pass"}
+    return out

@@ -1,0 +1,376 @@
+"""The tissue under the tips: rigid flat punches of the design's tip faces on one elastic sample.
+
+Eq. 1-3 of the paper treat the object under each tip as its own spring K_obj.
+Tips pressed into one sample interact through it: a force on one tip lowers
+the surface under its neighbours. The model here:
+
+* the sample is an elastic half-space, or a layer of stated thickness on a
+  rigid base (:mod:`tactcad.mechanics.contact`: Love's (1929) rectangle and
+  Boussinesq's point load, K. L. Johnson, *Contact Mechanics*, 1985, sec. 3.2-3.3;
+  Steinbrenner's layer), with Poisson ratio ν (default 0.5, soft tissue and
+  rubber are nearly incompressible: an assumption the user can change);
+* the tips are rigid flat punches of the design's own contact faces
+  (``slot.geometry.contact_face_mm``, a face wide across the sheet) at the
+  design's tip positions (pitch and row spacing), all pressing the sample
+  (a grasp presses every tip);
+* K_obj is what one tip alone reads: the single-punch stiffness of the
+  design's tip face, so Young's modulus is E = K_obj C₁ with C₁ the
+  single-punch compliance at E = 1, and the tips' compliance matrix is
+  C = Ĉ / K_obj with Ĉ = C(E = 1) / C₁ (dimensionless, diagonal about 1).
+
+With every tip on a spring K_i moved by one travel Δ, the tip forces are
+P = (diag(1/K) + Ĉ/K_obj)⁻¹ 1 Δ and the element deflections e_i = P_i/K_i, so
+a unit's coupled deflection ratio R = e_m / e_r does not depend on Δ. For two
+tips alone it is eq. 2 with K_obj replaced by K_obj / (1 − κ), κ = Ĉ_mr/Ĉ_mm
+the coupling coefficient: eq. 3 then reads K_obj / (1 − κ). The coupled
+inversion (eq. 3 corrected) solves R_coupled(K_obj) = R by a bracketing root
+find on ln K_obj (R_coupled falls monotonically with K_obj).
+
+Limits: linear elastic, frictionless, small strain; no viscoelasticity nor
+strain-stiffening (soft tissue has both: K_obj then depends on rate and depth).
+
+Units: mm, N, MPa, N/mm; R and κ dimensionless.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from typing import Mapping, Sequence
+
+import numpy as np
+from scipy.optimize import brentq
+
+from tactcad.mechanics.contact import (DEFAULT_CELL_MM, ContactError, Punch, Sample, check_sample,
+                                       single_punch_compliance, solve_punches)
+from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
+
+#: Soft tissue and rubber phantoms are nearly incompressible (an assumption the user can change).
+TISSUE_POISSON_RATIO = 0.5
+#: How far beyond the asked K_obj the coupled inversion searches for its root (factor either way).
+INVERSION_BRACKET = 1e3
+#: Relative tolerance of the coupled inversion's root (on ln K_obj).
+INVERSION_RTOL = 1e-10
+#: Which tips press the sample: the whole array (a grasp) or the unit's two tips alone.
+PRESSING = ("array", "unit")
+
+
+@dataclass(frozen=True)
+class Tissue:
+    """The sample under the tips, besides its stiffness K_obj.
+
+    Attributes:
+        poisson_ratio: ν, 0 ... 0.5 (default 0.5: nearly incompressible tissue).
+        thickness_mm: layer thickness on a rigid base (mm), or None for a half-space.
+        cell_mm: boundary-element cell edge (mm).
+        indenter_face_mm: (width across the sheet, depth along it) of the flat
+            indenter K_obj is defined against (mm); None: the design's own tip face.
+
+    Raises:
+        ContactError: naming the field, value and allowed range.
+    """
+
+    poisson_ratio: float = TISSUE_POISSON_RATIO
+    thickness_mm: float | None = None
+    cell_mm: float = DEFAULT_CELL_MM
+    indenter_face_mm: tuple[float, float] | None = None
+
+    def __post_init__(self):
+        check_sample(Sample(1.0, self.poisson_ratio, self.thickness_mm))
+        if not (np.isfinite(self.cell_mm) and self.cell_mm > 0):
+            raise ContactError("tissue.cell_mm", self.cell_mm, "> 0 mm")
+
+    def describe(self) -> str:
+        """One line for an assumption: the sample model and ν."""
+        body = ("an elastic half-space" if self.thickness_mm is None
+                else f"an elastic layer {self.thickness_mm:g} mm thick on a rigid base")
+        return (f"the tissue is {body} (ν = {self.poisson_ratio:g}), linear and frictionless, "
+                "the tips rigid flat punches of the design's faces at its pitch and row spacing; "
+                "K_obj is one tip's stiffness on it alone")
+
+
+def tip_punches(plan) -> tuple[tuple[int, ...], tuple[Punch, ...]]:
+    """Element numbers and their contact faces as punches on the sample plane (x, z) (mm).
+
+    The face is centred on ``slot.tip_centre_world_mm``; its size is
+    ``slot.geometry.contact_face_mm`` (width along x, depth along z, the sheet).
+    """
+    numbers, punches = [], []
+    for slot in plan.slots:
+        x, _, z = slot.tip_centre_world_mm
+        w, d = slot.geometry.contact_face_mm
+        numbers.append(int(slot.number))
+        punches.append(Punch(float(x), float(z), float(w), float(d)))
+    return tuple(numbers), tuple(punches)
+
+
+@dataclass(frozen=True, eq=False)
+class CoupledSample:
+    """The tips' normalised compliance on one sample: C = ``normalised`` / K_obj.
+
+    Attributes:
+        numbers: element numbers, shape (m,).
+        normalised: Ĉ = C(E = 1) / C₁, shape (m, m) (dimensionless).
+        tissue: the :class:`Tissue` it was built for.
+        indenter_face_mm: the face K_obj is defined against (mm).
+    """
+
+    numbers: tuple[int, ...]
+    normalised: np.ndarray
+    tissue: Tissue
+    indenter_face_mm: tuple[float, float]
+
+    def index(self, number: int) -> int:
+        if number not in self.numbers:
+            raise ContactError("element", number, f"one of {list(self.numbers)}")
+        return self.numbers.index(number)
+
+    def coupling(self, a: int, b: int) -> float:
+        """κ_ab = C_ab / C_aa: the travel of tip a per travel of tip b's own load (dimensionless)."""
+        i, j = self.index(a), self.index(b)
+        return float(self.normalised[i, j] / self.normalised[i, i])
+
+
+def coupled_sample_from_punches(numbers: Sequence[int], punches: Sequence[Punch],
+                                tissue: Tissue = Tissue()) -> CoupledSample:
+    """:class:`CoupledSample` of the given punches (see the module docstring).
+
+    Raises:
+        ContactError: bad punches or tissue.
+    """
+    face = tissue.indenter_face_mm or (punches[0].width_x_mm, punches[0].depth_z_mm)
+    face = (float(face[0]), float(face[1]))
+    normalised = _normalised_compliance(tuple(punches), tissue, face)
+    return CoupledSample(tuple(int(n) for n in numbers), normalised.copy(), tissue, face)
+
+
+@functools.lru_cache(maxsize=32)
+def _normalised_compliance(punches: tuple[Punch, ...], tissue: Tissue,
+                           face: tuple[float, float]) -> np.ndarray:
+    """Ĉ of the punches, cached: a design search asks the same tips again and again."""
+    unit = Sample(1.0, tissue.poisson_ratio, tissue.thickness_mm)
+    c1 = single_punch_compliance(face[0], face[1], unit, tissue.cell_mm)
+    return solve_punches(list(punches), unit, tissue.cell_mm).compliance_mm_per_N / c1
+
+
+def coupled_sample(plan, tissue: Tissue = Tissue()) -> CoupledSample:
+    """:class:`CoupledSample` of a design's tips (:func:`tip_punches`)."""
+    numbers, punches = tip_punches(plan)
+    return coupled_sample_from_punches(numbers, punches, tissue)
+
+
+def _pressing(sample: CoupledSample, unit: tuple[int, int], pressing: str) -> list[int]:
+    if pressing not in PRESSING:
+        raise ContactError("pressing", pressing, " | ".join(PRESSING))
+    return list(range(len(sample.numbers))) if pressing == "array" else \
+        [sample.index(unit[0]), sample.index(unit[1])]
+
+
+def _stiffness_vector(sample: CoupledSample, stiffness: Mapping[int, float], rows: list[int]) -> np.ndarray:
+    k = np.array([float(stiffness[sample.numbers[i]]) for i in rows])
+    if not np.all(np.isfinite(k) & (k > 0)):
+        raise ContactError("element stiffness (N/mm)", k.tolist(), "finite values > 0 N/mm")
+    return k
+
+
+def coupled_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple[int, int],
+                  k_obj, pressing: str = "array") -> np.ndarray:
+    """R = e_m / e_r of a unit on the coupled sample (eq. 2 corrected).
+
+    Args:
+        sample: :class:`CoupledSample`.
+        stiffness: K per element number (N/mm), every pressing tip's.
+        unit: (measuring element, reference element).
+        k_obj: K_obj (N/mm), scalar or array, each > 0.
+        pressing: ``array`` (every tip presses, as in a grasp) or ``unit`` (its two tips alone).
+
+    Returns:
+        R, the shape of ``k_obj``.
+
+    Raises:
+        ContactError: K_obj <= 0, a stiffness <= 0, an unknown element.
+    """
+    rows = _pressing(sample, unit, pressing)
+    k = _stiffness_vector(sample, stiffness, rows)
+    c_hat = sample.normalised[np.ix_(rows, rows)]
+    im, ir = rows.index(sample.index(unit[0])), rows.index(sample.index(unit[1]))
+    kobj = np.asarray(k_obj, float)
+    if not np.all(np.isfinite(kobj) & (kobj > 0)):
+        raise ContactError("K_obj_N_per_mm", kobj.tolist(), "> 0 N/mm")
+    out = np.empty(kobj.shape)
+    for idx, kv in np.ndenumerate(kobj):
+        force = np.linalg.solve(np.diag(1.0 / k) + c_hat / kv, np.ones(len(k)))
+        e = force / k
+        out[idx] = e[im] / e[ir]
+    return out if out.ndim else float(out)
+
+
+def coupled_object_stiffness(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple[int, int],
+                             r: float, pressing: str = "array",
+                             bracket_N_per_mm: tuple[float, float] | None = None) -> float:
+    """K_obj from a measured R with the coupling (eq. 3 corrected), by a root find on ln K_obj.
+
+    Args:
+        sample, stiffness, unit, pressing: as :func:`coupled_ratio`.
+        r: the measured deflection ratio R.
+        bracket_N_per_mm: (lo, hi) K_obj to search (N/mm); default K_m/1000 ... 1000 K_r.
+
+    Returns:
+        K_obj (N/mm).
+
+    Raises:
+        ContactError: R outside the range the coupled model spans over the bracket
+            (named with that range).
+    """
+    k_m, k_r = float(stiffness[unit[0]]), float(stiffness[unit[1]])
+    lo, hi = bracket_N_per_mm or (k_m / INVERSION_BRACKET, k_r * INVERSION_BRACKET)
+
+    def excess(log_k: float) -> float:
+        return coupled_ratio(sample, stiffness, unit, float(np.exp(log_k)), pressing) - r
+
+    f_lo, f_hi = excess(np.log(lo)), excess(np.log(hi))
+    if not (np.isfinite(r) and f_lo * f_hi <= 0):
+        raise ContactError("R", r, f"{f_hi + r:.6g} ... {f_lo + r:.6g} (the coupled R over K_obj "
+                                   f"{lo:.3g} ... {hi:.3g} N/mm)")
+    return float(np.exp(brentq(excess, np.log(lo), np.log(hi), rtol=INVERSION_RTOL)))
+
+
+@dataclass(frozen=True)
+class UnitBias:
+    """One unit's K_obj bias over a K_obj range.
+
+    Attributes:
+        unit: (measuring, reference) element numbers.
+        coupling: κ between its two tips (dimensionless).
+        k_obj_N_per_mm: the K_obj points (N/mm).
+        ratio_eq2, ratio_coupled: R by eq. 2 and on the coupled sample.
+        bias_eq3_rel: eq. 3's K_obj from the coupled R over the true K_obj, minus 1.
+        bias_corrected_rel: the coupled inversion's, minus 1 (its round-off and root tolerance).
+    """
+
+    unit: tuple[int, int]
+    coupling: float
+    k_obj_N_per_mm: tuple[float, ...]
+    ratio_eq2: tuple[float, ...]
+    ratio_coupled: tuple[float, ...]
+    bias_eq3_rel: tuple[float, ...]
+    bias_corrected_rel: tuple[float, ...]
+
+    @property
+    def worst_eq3_rel(self) -> float:
+        """The largest |bias| of eq. 3 over the range, signed; inf where eq. 3 has no answer."""
+        if not all(np.isfinite(self.bias_eq3_rel)):
+            return float("inf")
+        return max(self.bias_eq3_rel, key=abs)
+
+    @property
+    def worst_corrected_rel(self) -> float:
+        return max(self.bias_corrected_rel, key=abs)
+
+    def as_json(self) -> dict:
+        return {"unit": list(self.unit), "coupling": self.coupling,
+                "K_obj_N_per_mm": list(self.k_obj_N_per_mm), "R_eq2": list(self.ratio_eq2),
+                "R_coupled": list(self.ratio_coupled),
+                "bias_eq3_rel": [b if np.isfinite(b) else None for b in self.bias_eq3_rel],
+                "bias_corrected_rel": list(self.bias_corrected_rel),
+                "worst_eq3_rel": self.worst_eq3_rel if np.isfinite(self.worst_eq3_rel) else None, "worst_corrected_rel": self.worst_corrected_rel}
+
+
+def unit_bias(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple[int, int],
+              k_obj_values, pressing: str = "array") -> UnitBias:
+    """The K_obj bias eq. 3 makes on a coupled sample, and the coupled inversion's, for one unit.
+
+    Raises:
+        ContactError: as :func:`coupled_ratio`.
+    """
+    m, r = unit
+    k_m, k_r = float(stiffness[m]), float(stiffness[r])
+    ks = np.asarray(k_obj_values, float)
+    r_c = np.atleast_1d(coupled_ratio(sample, stiffness, unit, ks, pressing))
+    r_2 = np.array([deflection_ratio(k_m, k_r, float(k)) for k in ks])
+    # eq. 3 has no answer where the coupled R leaves 1 < R < K_r/K_m: NaN, an unreadable K_obj
+    eq3 = object_stiffness(r_c, np.full_like(r_c, k_m), np.full_like(r_c, k_r)).value
+    corrected = np.array([coupled_object_stiffness(sample, stiffness, unit, float(x), pressing)
+                          for x in r_c])
+    return UnitBias((int(m), int(r)), sample.coupling(m, r), tuple(map(float, ks)),
+                    tuple(map(float, r_2)), tuple(map(float, r_c)),
+                    tuple(map(float, eq3 / ks - 1)), tuple(map(float, corrected / ks - 1)))
+
+
+def design_units(plan, stiffness: Mapping[int, float]) -> list[tuple[int, int]]:
+    """(measuring, reference) element numbers of the plan's sensing units: every element softer
+    than its row's reference (:func:`tactcad.mechanics.readout_chain.row_units`)."""
+    from tactcad.mechanics.readout_chain import row_units
+
+    by_part = {s.geometry.part_name: float(stiffness[s.number]) for s in plan.slots}
+    return [(int(m.number), int(r.number)) for r, m in row_units(plan, by_part)]
+
+
+def apparent_kobj_factor(sample: CoupledSample, stiffness: Mapping[int, float],
+                         units: Sequence[tuple[int, int]], k_obj_range: tuple[float, float],
+                         pressing: str = "array") -> float:
+    """The factor eq. 3 reads K_obj high by on the coupled sample, geometric mean over units and range ends.
+
+    The K_obj a unit's elements see through eq. 2 is this factor times the
+    true one (exactly 1/(1 − κ) for two tips alone); ``design`` centres its
+    stiffnesses on the range so seen.
+    """
+    logs = []
+    for unit in units:
+        k_m, k_r = float(stiffness[unit[0]]), float(stiffness[unit[1]])
+        for k in k_obj_range:
+            r = float(coupled_ratio(sample, stiffness, unit, float(k), pressing))
+            r = min(max(r, 1 + 1e-12), (k_r / k_m) * (1 - 1e-12))  # outside eq. 3's domain: its end
+            logs.append(np.log(object_stiffness(r, k_m, k_r) / float(k)))
+    return float(np.exp(np.mean(logs)))
+
+
+#: The centring's fixed point stops when the factor moves less than this (relative).
+CENTRING_TOL = 1e-3
+#: At most this many rounds of the centring's fixed point.
+CENTRING_ROUNDS = 8
+
+
+def centred_seen_factor(plan, units: Sequence[tuple[int, int]], kr_over_km: float,
+                        k_obj_range: tuple[float, float], tissue: Tissue = Tissue()) -> float:
+    """The K_obj factor s at which elements K_m = s sqrt(K_lo K_hi / X), K_r = X K_m see the range
+    centred through the coupling: s = :func:`apparent_kobj_factor` of those very stiffnesses
+    (a fixed point; the tips' places and faces do not depend on the arms).
+
+    Args:
+        plan: a design (its tips' positions and faces; the arms are not used).
+        units: (measuring, reference) element numbers.
+        kr_over_km: X.
+        k_obj_range: (K_lo, K_hi) (N/mm).
+        tissue: the sample model.
+
+    Returns:
+        s (dimensionless).
+    """
+    sample = coupled_sample(plan, tissue)
+    refs = {r for _, r in units}
+    lo, hi = k_obj_range
+    s = 1.0
+    for _ in range(CENTRING_ROUNDS):
+        k_m = s * float(np.sqrt(lo * hi / kr_over_km))
+        stiffness = {n: (kr_over_km * k_m if n in refs else k_m) for n in sample.numbers}
+        new = apparent_kobj_factor(sample, stiffness, units, k_obj_range)
+        done = abs(new / s - 1.0) <= CENTRING_TOL
+        s = new
+        if done:
+            break
+    return s
+
+
+def coupling_report(plan, stiffness: Mapping[int, float], units: Sequence[tuple[int, int]],
+                    k_obj_values, tissue: Tissue = Tissue()) -> dict:
+    """Per unit: κ, R by eq. 2 and coupled, eq. 3's K_obj bias and the coupled inversion's
+    over ``k_obj_values`` (N/mm), with the tissue model stated.
+
+    Raises:
+        ContactError: as :func:`coupled_ratio`.
+    """
+    sample = coupled_sample(plan, tissue)
+    return {"tissue": tissue.describe(), "poisson_ratio": tissue.poisson_ratio,
+            "thickness_mm": tissue.thickness_mm,
+            "units": [unit_bias(sample, stiffness, u, k_obj_values).as_json() for u in units]}

@@ -1,0 +1,117 @@
+"""The tissue under the tips: coupled compliance, eq. 2 / eq. 3 corrected, their limits."""
+import math
+
+import numpy as np
+import pytest
+
+from tactcad.design.array_plan import load_design
+from tactcad.in_use.tissue_coupling import (Tissue, coupled_object_stiffness, coupled_ratio, coupled_sample,
+                                            coupled_sample_from_punches, design_units, tip_punches, unit_bias)
+from tactcad.mechanics.contact import ContactError, Punch, Sample, single_punch_compliance
+from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+from tactcad.mechanics.lumped_model import deflection_ratio
+
+TI = "hardware/ti_array_2x3/ti_array_2x3.toml"
+
+
+def two_tips(pitch_mm, face=(2.0, 3.0), tissue=Tissue()):
+    punches = [Punch(0.0, 0.0, *face), Punch(pitch_mm, 0.0, *face)]
+    return coupled_sample_from_punches((1, 2), punches, tissue)
+
+
+def test_far_tips_couple_as_boussinesq_point_loads():
+    """At a pitch of ten faces the neighbour's load acts as a point load: κ = (1 − ν²)/(π E r) / C₁."""
+    pitch, nu = 30.0, 0.5
+    c1 = single_punch_compliance(2.0, 3.0, Sample(1.0, nu))
+    point = (1 - nu ** 2) / (math.pi * 1.0 * pitch) / c1
+    assert two_tips(pitch).coupling(1, 2) == pytest.approx(point, rel=0.01)
+
+
+def test_coupling_falls_with_pitch():
+    kappas = [two_tips(p).coupling(1, 2) for p in (2.5, 4.0, 8.0)]
+    assert kappas[0] > kappas[1] > kappas[2] > 0
+
+
+def test_two_tips_alone_read_eq2_with_the_coupled_compliance():
+    """Two tips on one spring each: R = (1 + K_r c')/(1 + K_m c'), c' = (Ĉ_mm − Ĉ_mr)/K_obj (eq. 2 form)."""
+    sample = two_tips(4.0)
+    c = sample.normalised
+    k = {1: 2.0, 2: 20.0}
+    for k_obj in (0.5, 3.0, 40.0):
+        c_eff = (c[0, 0] - c[0, 1]) / k_obj
+        expected = (1 + k[2] * c_eff) / (1 + k[1] * c_eff)
+        assert coupled_ratio(sample, k, (1, 2), k_obj) == pytest.approx(expected, rel=1e-10)
+
+
+def test_uncoupled_limit_is_eq2():
+    sample = two_tips(400.0)
+    k = {1: 2.0, 2: 20.0}
+    assert coupled_ratio(sample, k, (1, 2), 5.0) == pytest.approx(deflection_ratio(2.0, 20.0, 5.0), rel=2e-3)
+
+
+def test_coupled_inversion_reads_back_the_sample_on_a_design():
+    plan = load_design(TI)
+    k = ladder_stiffness_by_element(plan)
+    sample = coupled_sample(plan)
+    unit = design_units(plan, k)[0]
+    for k_obj in (0.7, 2.0, 6.0):
+        r = coupled_ratio(sample, k, unit, k_obj)
+        assert coupled_object_stiffness(sample, k, unit, r) == pytest.approx(k_obj, rel=1e-8)
+
+
+def test_bias_of_eq3_is_the_coupling_and_the_correction_removes_it():
+    plan = load_design(TI)
+    k = ladder_stiffness_by_element(plan)
+    sample = coupled_sample(plan)
+    b = unit_bias(sample, k, design_units(plan, k)[0], np.geomspace(1, 5, 3))
+    assert min(b.bias_eq3_rel) > 0.02  # tips at 4 mm on one sample: eq. 3 reads high
+    assert abs(b.worst_corrected_rel) < 1e-8
+
+
+def test_tips_are_the_designs_own_faces_and_positions():
+    plan = load_design(TI)
+    numbers, punches = tip_punches(plan)
+    assert numbers == tuple(s.number for s in plan.slots)
+    for slot, p in zip(plan.slots, punches):
+        assert (p.width_x_mm, p.depth_z_mm) == tuple(slot.geometry.contact_face_mm)
+        assert p.x_mm == pytest.approx(slot.tip_centre_world_mm[0])
+
+
+def test_a_measured_ratio_outside_the_model_is_refused_by_name():
+    sample = two_tips(4.0)
+    with pytest.raises(ContactError, match="R = 50"):
+        coupled_object_stiffness(sample, {1: 2.0, 2: 20.0}, (1, 2), 50.0)
+
+
+@pytest.mark.parametrize("field, kwargs", [("poisson_ratio", {"poisson_ratio": 0.7}),
+                                           ("thickness_mm", {"thickness_mm": -1.0}),
+                                           ("tissue.cell_mm", {"cell_mm": 0.0})])
+def test_bad_tissue_is_refused_by_name(field, kwargs):
+    with pytest.raises(ContactError, match=field):
+        Tissue(**kwargs)
+
+
+def test_lumped_offers_the_coupled_inversion_beside_eq3(capsys):
+    """`lumped --coupled-design` reads back the K_obj its coupled R came from; eq. 3 reads it high."""
+    import json
+
+    from tactcad.cli import main
+
+    plan = load_design(TI)
+    k = ladder_stiffness_by_element(plan)
+    unit = design_units(plan, k)[0]
+    r = coupled_ratio(coupled_sample(plan), k, unit, 2.0)
+    argv = ["lumped", "--km", repr(k[unit[0]]), "--kr", repr(k[unit[1]]), "--r", repr(r),
+            "--coupled-design", TI, "--unit", str(unit[0]), "--json"]
+    assert main(argv) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["coupled"]["k_obj_coupled_N_per_mm"] == pytest.approx(2.0, rel=1e-8)
+    assert out["k_obj_N_per_mm"] > 2.0 * 1.02
+
+
+def test_lumped_names_a_unit_that_is_not_measuring(capsys):
+    from tactcad.cli import main
+
+    assert main(["lumped", "--km", "1", "--kr", "10", "--r", "2", "--coupled-design", TI,
+                 "--unit", "2"]) == 2
+    assert "--unit = 2" in capsys.readouterr().err
