@@ -366,12 +366,14 @@ def gauge_model_error_rel(plan: Plan, model: str) -> dict[str, float]:
 
 
 def gauge_model(ctx: Context, unit: Unit, op: Operating) -> Contribution:
-    """(g) Each deflection read with the predicted K_v off by its gauge-model error
-    (signed, both at once); a calibration measures K_v, so none remains after it."""
+    """(g) Each deflection read with the predicted K_v off by its gauge-model error, the two
+    elements' errors taken independent (in quadrature: the width correction's residual
+    differs from one web to the next, so it need not cancel in R); a calibration measures
+    K_v, so none remains after it."""
     err = ctx.once("gauge", lambda: gauge_model_error_rel(ctx.plan, ctx.model))
     part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
-    rel = signed_rel(op, de_m=op.e_m * err[part(unit.measuring)],
-                     de_r=op.e_r * err[part(unit.reference)])
+    rel = quadrature_rel(op, de_m=op.e_m * err[part(unit.measuring)],
+                         de_r=op.e_r * err[part(unit.reference)])
     return Contribution(rel, np.zeros_like(rel))
 
 
