@@ -43,6 +43,13 @@ class Construction:
         scales_to_mm: the smallest row length it reaches (mm) and why, for the reference page.
         test_rigs: True when the test rigs' bracket can hold it (its plan has
             the clamp plate's mounting holes the bracket bolts to).
+
+    The module also places its parts: ``placed_parts(plan)`` gives every placed
+    part but the strain gauges as (instance name, part name, placement),
+    ``touching(plan)`` the instance pairs in face contact, and
+    ``element_holder(plan, slot)`` the instance that carries an element (its
+    gauge is bonded to it); the gauges are placed for any construction by
+    :func:`tactcad.catalogue.array_catalogue.array_instances`.
     """
 
     name: str
@@ -63,6 +70,19 @@ class Construction:
     def derive(self, model: Any, data: Mapping[str, Any], source: str) -> Any:
         """The plan of a design that passed :meth:`validate`."""
         return self._function("derive_plan")(model, data, source)
+
+    def placed_parts(self, plan: Any) -> tuple[tuple[str, str, Any], ...]:
+        """(instance name, part name, :class:`~tactcad.design.array_plan.Placement`) of
+        every placed part of ``plan`` but the strain gauges (array frame, mm)."""
+        return tuple(self._function("placed_parts")(plan))
+
+    def touching(self, plan: Any) -> set[frozenset[str]]:
+        """Instance pairs of :meth:`placed_parts` in face contact (zero volume)."""
+        return set(self._function("touching")(plan))
+
+    def element_holder(self, plan: Any, slot: Any) -> str:
+        """The instance of :meth:`placed_parts` that carries element ``slot``."""
+        return self._function("element_holder")(plan, slot)
 
 
 CONSTRUCTIONS: dict[str, Construction] = {}
@@ -150,6 +170,6 @@ register_construction(Construction(
     "every arm; the rows face each other across a thin spacer on ISO 8734 dowel pins and "
     "M1.2/M1.6 screws (fits a grasper's jaw)",
     "tactcad.design.comb_plan",
-    ("comb_sheet",),
+    ("comb_sheet", "gauge"),
     "each element is post + notch + arm + half the tip long (arms >= 2 mm): about "
     "columns x 4 mm along the row and 6 mm across two 1 mm rows"))
