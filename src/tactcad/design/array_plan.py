@@ -882,3 +882,20 @@ def touching(plan: Plan) -> set[frozenset[str]]:
         pairs.add(frozenset({f"nut_{i}", "clamp_plate_back"}))
         pairs.add(frozenset({f"bolt_{i}", f"nut_{i}"}))
     return pairs
+
+
+def mount_frames(plan: Plan) -> dict[str, Any]:
+    """The stack's mount for the test rigs: ``mount`` on the front clamp plate
+    between its two bridge holes (the bracket's ear seats there) and ``nut_k``
+    on the back clamp plate at bridge hole k (the through bolts' nuts)."""
+    from tactcad.geometry.frames import Frame
+
+    c = plan.clamp
+    mount = c.holes[-2:]
+    y_h = mount[0].y_mm
+    z_front, z_back = plan.clamp_plate_z_mm
+    frames = {"mount": Frame((0.0, y_h, z_front), (1, 0, 0), (0, 0, -1), "clamp_plate_front")}
+    for k, h in enumerate(mount, start=1):
+        frames[f"nut_{k}"] = Frame((h.x_mm, y_h, z_back + c.thickness_mm), (1, 0, 0), (0, 0, 1),
+                                   "clamp_plate_back")
+    return frames

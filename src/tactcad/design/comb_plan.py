@@ -484,3 +484,8 @@ def element_holder(plan: Plan, slot: ElementSlot) -> str:
 def touching(plan: Plan) -> set[frozenset[str]]:
     """No two placed comb parts touch: the rows stand the spacer's thickness apart."""
     return set()
+
+
+def mount_frames(plan: Plan) -> dict:
+    """None yet: the comb has no mount for the test rigs' bracket."""
+    return {}

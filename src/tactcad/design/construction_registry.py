@@ -46,7 +46,8 @@ class Construction:
 
     The module also places its parts: ``placed_parts(plan)`` gives every placed
     part but the strain gauges as (instance name, part name, placement),
-    ``touching(plan)`` the instance pairs in face contact, and
+    ``touching(plan)`` the instance pairs in face contact, ``mount_frames(plan)``
+    the frames the test rigs' bracket mates with, and
     ``element_holder(plan, slot)`` the instance that carries an element (its
     gauge is bonded to it); the gauges are placed for any construction by
     :func:`tactcad.catalogue.array_catalogue.array_instances`.
@@ -79,6 +80,12 @@ class Construction:
     def touching(self, plan: Any) -> set[frozenset[str]]:
         """Instance pairs of :meth:`placed_parts` in face contact (zero volume)."""
         return set(self._function("touching")(plan))
+
+    def mount_frames(self, plan: Any) -> dict[str, Any]:
+        """The array's joint frames the test rigs' bracket mates with (name ->
+        :class:`~tactcad.geometry.frames.Frame`, array frame); empty for a
+        construction without a mount for the test rigs."""
+        return dict(self._function("mount_frames")(plan))
 
     def element_holder(self, plan: Any, slot: Any) -> str:
         """The instance of :meth:`placed_parts` that carries element ``slot``."""

@@ -251,7 +251,7 @@ def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
     for r in rows:  # sample rows of the kit carry no spec
         if r.part in samples:
             items = [(p, q, "sample" if p == r.part else b, f) for p, q, b, f in items]
-    board = project.rigs.library.get("terminal_board")
+    board = project.rigs.library.get("terminal_board") if project.rigs is not None else None
     pairs = int(board.attributes.get("terminal_pairs", 0)) if board is not None else 0
     gauge = next((r for r in rows if r.part == "strain_gauge"), None)
     adhesive = next((r for r in rows if r.part == "gauge_adhesive"), None)
