@@ -340,6 +340,8 @@ def constructions_markdown() -> str:
 
     rows = [[code(c.name) + (" (default)" if c.name == DEFAULT_CONSTRUCTION else ""),
              text(c.summary), ", ".join(code(k) for k in c.parts), text(c.scales_to_mm),
+             "yes" if c.test_rigs else "none (no rigs file, no rig scenes)",
+             "yes" if c.stack_crosstalk else "none (no crosstalk files; manifest `left_out`)",
              code(c.module)] for c in CONSTRUCTIONS.values()]
     from tactcad.partlib.array.comb_sheet import CombSection
     from tactcad.vocabulary.schema import _limits
@@ -350,7 +352,7 @@ def constructions_markdown() -> str:
     return ("Generated from the registry `tactcad.design.construction_registry.CONSTRUCTIONS`; "
             "a design file chooses one with `[array] construction`.\n\n"
             + table(["construction", "how the array is made", "part modules", "how small",
-                     "derivation"], rows)
+                     "test rigs", "stack crosstalk", "derivation"], rows)
             + "\n\nThe `monolithic-comb`'s table `[comb]` (in place of `[clamp]`; its "
             "`[element]` leaves out `base_height_mm` and `overall_length_mm`, which it derives):\n\n"
             + table(["key", "range", "default", "reason"], comb_rows))

@@ -135,12 +135,3 @@ def test_a_pitch_without_room_for_the_fillet_at_the_next_post_is_refused(data):
         plan_from_dict(with_overrides(data, {"element.inside_corner_radius_mm": 0.25,
                                              "element.tip_height_mm": 0.8}))
     assert "arms.lengths_mm[2]" in [e.field for e in caught.value.errors]
-
-
-def test_a_project_of_a_construction_the_rigs_cannot_hold_is_refused_by_name():
-    from tactcad.design.project import load_project
-
-    with pytest.raises(DesignErrors) as caught:
-        load_project(GRASPER)
-    assert caught.value.field == "array.construction"
-    assert "stacked" in caught.value.allowed

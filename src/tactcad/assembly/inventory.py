@@ -90,7 +90,7 @@ def sample_kit(project: Project) -> dict[str, tuple[float, PartSpec]]:
     """Every sample the rigs file names, shown in a scene or not:
     ``{part: (stiffness N/mm, spec)}``, in the file's order; each its own part
     (:func:`tactcad.partlib.sample.sample_name`), the same spec a scene places."""
-    data = project.rigs.library.get("sample")
+    data = project.rigs.library.get("sample") if project.rigs is not None else None
     if data is None:
         return {}
     specs = rig_parts(project.plan, project.rigs)

@@ -33,6 +33,7 @@ from tactcad.catalogue.array_catalogue import (PartSpec, array_contacts, array_i
                                      bolt_name, nut_name)
 from tactcad.catalogue.rig_catalogue import bolt_frames, nut_frames, rig_parts, seat_frame
 from tactcad.design.array_plan import Placement, Plan
+from tactcad.design.construction_registry import construction_of
 from tactcad.design.project import Project
 from tactcad.design.rig_plan import RigDesign
 from tactcad.design.scene_specs import RIGS, SceneSpec
@@ -140,24 +141,18 @@ class RigModel:
 
 
 def _array_node(plan: Plan, name: str = "array", group: str = "array") -> Node:
-    """The array as one sub-assembly (array frame) with its joint frames:
-    ``mount`` (front clamp plate, between the bridge holes), ``nut_k``
-    (back clamp plate, bridge hole k), ``tip_n`` (element n's contact face
-    centre) and ``tips`` (centroid of the tip plane)."""
-    c = plan.clamp
-    mount = c.holes[-2:]
-    y_h = mount[0].y_mm
-    z_front, z_back = plan.clamp_plate_z_mm
-    frames: dict[str, Frame] = {
-        "mount": Frame((0.0, y_h, z_front), (1, 0, 0), (0, 0, -1), "clamp_plate_front")}
-    for k, h in enumerate(mount, start=1):
-        frames[f"nut_{k}"] = Frame((h.x_mm, y_h, z_back + c.thickness_mm), (1, 0, 0), (0, 0, 1),
-                                   "clamp_plate_back")
+    """The array as one sub-assembly (array frame) with its joint frames: the
+    mount its construction declares for the test rigs (the stacked array's
+    ``mount`` and ``nut_k``; none for a construction without one),
+    ``tip_n`` (element n's contact face centre, on the instance that carries
+    it) and ``tips`` (centroid of the tip plane)."""
+    made = construction_of(plan)
+    frames: dict[str, Frame] = dict(made.mount_frames(plan))
     tips = []
     for s in plan.slots:
         p = s.tip_centre_world_mm
         tips.append(p)
-        frames[f"tip_{s.number}"] = Frame(p, (1, 0, 0), (0, 1, 0), f"element_{s.number}")
+        frames[f"tip_{s.number}"] = Frame(p, (1, 0, 0), (0, 1, 0), made.element_holder(plan, s))
     cz = sum(p[2] for p in tips) / len(tips)
     cx = sum(p[0] for p in tips) / len(tips)
     frames["tips"] = Frame((cx, tips[0][1], cz), (1, 0, 0), (0, 1, 0))

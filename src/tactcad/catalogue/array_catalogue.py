@@ -18,7 +18,7 @@ from typing import Any, Collection
 from tactcad.catalogue.gauges import gauge_body, gauge_placements
 from tactcad.design.array_plan import Placement, Plan
 from tactcad.design.construction_registry import construction_of
-from tactcad.partlib.array.fasteners import bolt_name, bolt_volume, nut_name
+from tactcad.partlib.array.fasteners import bolt_name, bolt_volume, nut_name  # noqa: F401 (re-exported)
 from tactcad.partlib.array.strain_gauge import GAUGE_PART
 from tactcad.partlib.array import strain_gauge
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, Bbox, PartData
@@ -140,42 +140,19 @@ def part_material_names(plan: Plan) -> dict[str, str]:
 
 
 def array_instances(plan: Plan) -> list[Instance]:
-    """Every placed part of the array assembly (array frame, mm)."""
-    out = [Instance(f"element_{s.number}", s.geometry.part_name, s.placement) for s in plan.slots]
-    for i, pl in enumerate(plan.spacer_placements, start=1):
-        out.append(Instance(f"spacer_{i}", "spacer", pl))
-    z_front, z_back = plan.clamp_plate_z_mm
+    """Every placed part of the array assembly (array frame, mm): those its
+    construction places (:meth:`~tactcad.design.construction_registry.Construction.placed_parts`)
+    and each element's strain gauge."""
+    out = [Instance(*placed) for placed in construction_of(plan).placed_parts(plan)]
     out += [Instance(f"gauge_{n}", GAUGE_PART, pl) for n, pl in gauge_placements(plan)]
-    out.append(Instance("clamp_plate_front", "clamp_plate", Placement(0.0, 0.0, z_front)))
-    out.append(Instance("clamp_plate_back", "clamp_plate", Placement(0.0, 0.0, z_back)))
-    bolt = bolt_name(plan.bolt, plan.bolt_length_mm)
-    nut = nut_name(plan.bolt)
-    z_nut = z_back + plan.clamp.thickness_mm
-    for i, (x, y) in enumerate(plan.bolt_positions_xy_mm, start=1):
-        out.append(Instance(f"bolt_{i}", bolt, Placement(x, y, z_front)))
-        out.append(Instance(f"nut_{i}", nut, Placement(x, y, z_nut)))
     return out
 
 
 def array_contacts(plan: Plan) -> set[frozenset[str]]:
-    """Instance pairs the design declares as touching (face contact, zero volume)."""
-    inst = array_instances(plan)
-    names = {i.name for i in inst}
-    pairs: set[frozenset[str]] = set()
-    per_row = plan.columns
-    for s in plan.slots:
-        col = s.column
-        row_offset = s.row * (per_row - 1)
-        for k in (col, col + 1):  # spacer before / after the element in its row
-            if 1 <= k <= per_row - 1:
-                pairs.add(frozenset({f"element_{s.number}", f"spacer_{row_offset + k}"}))
-        pairs.add(frozenset({f"element_{s.number}", f"gauge_{s.number}"}))  # bonded
-        if col == 0:
-            pairs.add(frozenset({f"element_{s.number}", "clamp_plate_front"}))
-        if col == per_row - 1:
-            pairs.add(frozenset({f"element_{s.number}", "clamp_plate_back"}))
-    for i in range(1, len(plan.bolt_positions_xy_mm) + 1):
-        pairs.add(frozenset({f"bolt_{i}", "clamp_plate_front"}))
-        pairs.add(frozenset({f"nut_{i}", "clamp_plate_back"}))
-        pairs.add(frozenset({f"bolt_{i}", f"nut_{i}"}))
+    """Instance pairs the design declares as touching (face contact, zero
+    volume): its construction's and each gauge bonded to its element's holder."""
+    made = construction_of(plan)
+    names = {i.name for i in array_instances(plan)}
+    pairs = made.touching(plan)
+    pairs |= {frozenset({made.element_holder(plan, s), f"gauge_{s.number}"}) for s in plan.slots}
     return {p for p in pairs if p <= names}

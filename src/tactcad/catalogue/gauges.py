@@ -116,7 +116,6 @@ def gauge_placements(plan: Plan):
     out = []
     for s in plan.slots:
         g, p = s.geometry, s.placement
-        sx = -1.0 if p.turned else 1.0
-        out.append((s.number, Placement(sx * g.hinge_x_mm + p.dx_mm, g.base_height_mm + p.dy_mm,
-                                        sx * g.sheet_thickness_mm / 2 + p.dz_mm, p.turned)))
+        centre = p.apply(g.hinge_x_mm, g.base_height_mm, g.sheet_thickness_mm / 2)
+        out.append((s.number, Placement(*centre, p.turned, p.quarter_turn)))
     return out

@@ -11,8 +11,15 @@ from tactcad.checks.groups import CheckContext, Found
 
 
 def rig_group(context: CheckContext) -> Iterator[Found]:
-    """``rigs``: the rigs of the design against its rating (none without the rigs)."""
+    """``rigs``: the rigs of the design against its rating (none without the
+    rigs; a project without test rigs gets one result that says so and why)."""
+    from tactcad.design.project import has_test_rigs, no_test_rigs_reason
+
     if context.project is None:
+        return
+    if not has_test_rigs(context.project):
+        yield "rigs", [CheckResult("test rigs", "project", True,
+                                   "not checked: " + no_test_rigs_reason(context.project))]
         return
     yield "rigs", rig_checks(context.plan, context.project.rigs)
 

@@ -842,3 +842,66 @@ def with_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> dic
 def default_design_data() -> dict[str, Any]:
     """Raw TOML tables of the default design (a fresh copy)."""
     return read_toml(DEFAULT_DESIGN, "design file")
+
+
+def placed_parts(plan: Plan) -> list[tuple[str, str, Placement]]:
+    """The stacked array's placed parts but the gauges (the construction
+    registry's ``placed_parts``): elements, spacers, both clamp plates, bolts
+    and nuts as (instance name, part name, placement), array frame, mm."""
+    from tactcad.partlib.array.fasteners import bolt_name, nut_name
+
+    out = [(f"element_{s.number}", s.geometry.part_name, s.placement) for s in plan.slots]
+    out += [(f"spacer_{i}", "spacer", pl) for i, pl in enumerate(plan.spacer_placements, start=1)]
+    z_front, z_back = plan.clamp_plate_z_mm
+    out.append(("clamp_plate_front", "clamp_plate", Placement(0.0, 0.0, z_front)))
+    out.append(("clamp_plate_back", "clamp_plate", Placement(0.0, 0.0, z_back)))
+    bolt, nut = bolt_name(plan.bolt, plan.bolt_length_mm), nut_name(plan.bolt)
+    z_nut = z_back + plan.clamp.thickness_mm
+    for i, (x, y) in enumerate(plan.bolt_positions_xy_mm, start=1):
+        out.append((f"bolt_{i}", bolt, Placement(x, y, z_front)))
+        out.append((f"nut_{i}", nut, Placement(x, y, z_nut)))
+    return out
+
+
+def element_holder(plan: Plan, slot: ElementSlot) -> str:
+    """Each element of the stack is its own instance."""
+    return f"element_{slot.number}"
+
+
+def touching(plan: Plan) -> set[frozenset[str]]:
+    """The stack's face contacts: each element with the spacers either side of
+    it in its row and the end elements with the clamp plates; bolts on the
+    front plate, nuts on the back plate, each bolt in its nut."""
+    pairs: set[frozenset[str]] = set()
+    per_row = plan.columns
+    for s in plan.slots:
+        col, row_offset = s.column, s.row * (per_row - 1)
+        for k in (col, col + 1):  # spacer before / after the element in its row
+            if 1 <= k <= per_row - 1:
+                pairs.add(frozenset({f"element_{s.number}", f"spacer_{row_offset + k}"}))
+        if col == 0:
+            pairs.add(frozenset({f"element_{s.number}", "clamp_plate_front"}))
+        if col == per_row - 1:
+            pairs.add(frozenset({f"element_{s.number}", "clamp_plate_back"}))
+    for i in range(1, len(plan.bolt_positions_xy_mm) + 1):
+        pairs.add(frozenset({f"bolt_{i}", "clamp_plate_front"}))
+        pairs.add(frozenset({f"nut_{i}", "clamp_plate_back"}))
+        pairs.add(frozenset({f"bolt_{i}", f"nut_{i}"}))
+    return pairs
+
+
+def mount_frames(plan: Plan) -> dict[str, Any]:
+    """The stack's mount for the test rigs: ``mount`` on the front clamp plate
+    between its two bridge holes (the bracket's ear seats there) and ``nut_k``
+    on the back clamp plate at bridge hole k (the through bolts' nuts)."""
+    from tactcad.geometry.frames import Frame
+
+    c = plan.clamp
+    mount = c.holes[-2:]
+    y_h = mount[0].y_mm
+    z_front, z_back = plan.clamp_plate_z_mm
+    frames = {"mount": Frame((0.0, y_h, z_front), (1, 0, 0), (0, 0, -1), "clamp_plate_front")}
+    for k, h in enumerate(mount, start=1):
+        frames[f"nut_{k}"] = Frame((h.x_mm, y_h, z_back + c.thickness_mm), (1, 0, 0), (0, 0, 1),
+                                   "clamp_plate_back")
+    return frames

@@ -459,3 +459,33 @@ def derive_plan(d: CombTables, data: Mapping[str, Any], source: str) -> Plan:
         assumptions=read_assumptions(data, CombTables, p, "comb.post_length_mm"),
         construction="monolithic-comb", comb=comb_geometry(d), hard_stops=hard_stops(d, sheets),
         raw=copy.deepcopy(dict(data)))
+
+
+def sheet_placement(plan: Plan, row: int) -> Placement:
+    """Row ``row``'s sheet in the array frame: turned a quarter about y as its
+    elements are (:func:`element_slots`), its first element at z = 0."""
+    first = next(s for s in plan.slots if s.row == row and s.column == 0)
+    return Placement(first.placement.dx_mm, first.placement.dy_mm, first.placement.dz_mm,
+                     quarter_turn=True)
+
+
+def placed_parts(plan: Plan) -> list[tuple[str, str, Placement]]:
+    """The comb's placed parts but the gauges (the construction registry's
+    ``placed_parts``): one sheet per row, array frame, mm."""
+    return [(sheet.part_name, sheet.part_name, sheet_placement(plan, sheet.row))
+            for sheet in plan.comb.sheets]
+
+
+def element_holder(plan: Plan, slot: ElementSlot) -> str:
+    """An element is cut in its row's sheet."""
+    return plan.comb.sheets[slot.row].part_name
+
+
+def touching(plan: Plan) -> set[frozenset[str]]:
+    """No two placed comb parts touch: the rows stand the spacer's thickness apart."""
+    return set()
+
+
+def mount_frames(plan: Plan) -> dict:
+    """None yet: the comb has no mount for the test rigs' bracket."""
+    return {}

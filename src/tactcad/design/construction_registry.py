@@ -43,6 +43,17 @@ class Construction:
         scales_to_mm: the smallest row length it reaches (mm) and why, for the reference page.
         test_rigs: True when the test rigs' bracket can hold it (its plan has
             the clamp plate's mounting holes the bracket bolts to).
+        stack_crosstalk: True when the stack crosstalk model
+            (:mod:`tactcad.mechanics.stack_crosstalk`: elements coupled through
+            the clamped stack's bolts and plates) describes it.
+
+    The module also places its parts: ``placed_parts(plan)`` gives every placed
+    part but the strain gauges as (instance name, part name, placement),
+    ``touching(plan)`` the instance pairs in face contact, ``mount_frames(plan)``
+    the frames the test rigs' bracket mates with, and
+    ``element_holder(plan, slot)`` the instance that carries an element (its
+    gauge is bonded to it); the gauges are placed for any construction by
+    :func:`tactcad.catalogue.array_catalogue.array_instances`.
     """
 
     name: str
@@ -51,6 +62,7 @@ class Construction:
     parts: tuple[str, ...]
     scales_to_mm: str = ""
     test_rigs: bool = False
+    stack_crosstalk: bool = False
 
     def _function(self, name: str) -> Callable[..., Any]:
         return getattr(importlib.import_module(self.module), name)
@@ -63,6 +75,25 @@ class Construction:
     def derive(self, model: Any, data: Mapping[str, Any], source: str) -> Any:
         """The plan of a design that passed :meth:`validate`."""
         return self._function("derive_plan")(model, data, source)
+
+    def placed_parts(self, plan: Any) -> tuple[tuple[str, str, Any], ...]:
+        """(instance name, part name, :class:`~tactcad.design.array_plan.Placement`) of
+        every placed part of ``plan`` but the strain gauges (array frame, mm)."""
+        return tuple(self._function("placed_parts")(plan))
+
+    def touching(self, plan: Any) -> set[frozenset[str]]:
+        """Instance pairs of :meth:`placed_parts` in face contact (zero volume)."""
+        return set(self._function("touching")(plan))
+
+    def mount_frames(self, plan: Any) -> dict[str, Any]:
+        """The array's joint frames the test rigs' bracket mates with (name ->
+        :class:`~tactcad.geometry.frames.Frame`, array frame); empty for a
+        construction without a mount for the test rigs."""
+        return dict(self._function("mount_frames")(plan))
+
+    def element_holder(self, plan: Any, slot: Any) -> str:
+        """The instance of :meth:`placed_parts` that carries element ``slot``."""
+        return self._function("element_holder")(plan, slot)
 
 
 CONSTRUCTIONS: dict[str, Construction] = {}
@@ -117,6 +148,30 @@ def construction_of(plan: Any) -> Construction:
     return construction(plan.construction)
 
 
+def stack_crosstalk_reason(plan: Any) -> str:
+    """"" when the stack crosstalk model describes ``plan``'s construction, else
+    why not (one sentence for the manifest and the K_obj budget)."""
+    if construction_of(plan).stack_crosstalk:
+        return ""
+    return (f"no stack crosstalk model for the construction {plan.construction}: the model "
+            "couples elements through a clamped stack's bolts and plates")
+
+
+def left_out(plan: Any) -> list[dict[str, str]]:
+    """What an export of ``plan`` leaves out because its construction does not
+    declare it, each as ``{"what": ..., "reason": ...}`` (the manifest's
+    ``left_out`` section; empty for the stacked array)."""
+    made, out = construction_of(plan), []
+    if not made.stack_crosstalk:
+        out.append({"what": "crosstalk/decoupling.csv, crosstalk/decoupling.json and the K_obj "
+                            "budget's crosstalk term", "reason": stack_crosstalk_reason(plan)})
+    if not made.test_rigs:
+        out.append({"what": "test rigs: their scenes, parts, drawings, BOM rows and build steps",
+                    "reason": f"the construction {plan.construction} has no mount for the "
+                              "test rigs' bracket (it bolts to the stacked array's clamp plate)"})
+    return out
+
+
 def check_test_rigs(plan: Any, problems: Any, file: str) -> bool:
     """Refuse (in ``problems``) a plan whose construction the test rigs cannot
     hold; True when they can.
@@ -142,7 +197,8 @@ register_construction(Construction(
     "tactcad.design.array_plan",
     ("element", "spacer", "clamp_plate", "gauge", "bolt"),
     "each row is as long as an element (>= 10 mm) and the stack is columns x pitch; "
-    "M2 bolts, 3 mm plates: about 60 x 14 mm at the least", test_rigs=True))
+    "M2 bolts, 3 mm plates: about 60 x 14 mm at the least", test_rigs=True,
+    stack_crosstalk=True))
 
 register_construction(Construction(
     "monolithic-comb",
@@ -150,6 +206,6 @@ register_construction(Construction(
     "every arm; the rows face each other across a thin spacer on ISO 8734 dowel pins and "
     "M1.2/M1.6 screws (fits a grasper's jaw)",
     "tactcad.design.comb_plan",
-    ("comb_sheet",),
+    ("comb_sheet", "gauge"),
     "each element is post + notch + arm + half the tip long (arms >= 2 mm): about "
     "columns x 4 mm along the row and 6 mm across two 1 mm rows"))

@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any, Callable, Iterator, Mapping
 
 from tactcad.design.array_plan import DEFAULT_DESIGN, Plan, plan_from_model, validate_design
+from tactcad.design.construction_registry import construction_of
 from tactcad.design.rig_plan import DEFAULT_RIGS, RigDesign, validate_rigs
 from tactcad.vocabulary.schema import Problems, content_hash, fmt, read_toml, unprintable
 from tactcad.design.scene_specs import DEFAULT_SCENES, SceneSpec, validate_scenes
@@ -32,6 +33,20 @@ from tactcad.errors import DesignError
 
 #: The companion files of a design, with the name each has when ``[files]`` leaves it out.
 COMPANIONS = {"rigs": "rigs.toml", "scenes": "scenes.toml"}
+
+#: Why a project has no test rigs (the manifest and the checks state it).
+NO_TEST_RIGS = ("no test rigs: the construction {construction} has no mount for the rigs' "
+                "bracket, and the design has no rigs file")
+
+
+def has_test_rigs(project: "Project") -> bool:
+    """True when the project has test rigs (its rigs file was validated)."""
+    return project.rigs is not None
+
+
+def no_test_rigs_reason(project: "Project") -> str:
+    """Why ``project`` has no test rigs (one sentence naming its construction)."""
+    return NO_TEST_RIGS.format(construction=project.plan.construction)
 #: Makes the companions' raw tables for a plan that has none: kind -> tables.
 CompanionMaker = Callable[[Plan], Mapping[str, Mapping[str, Any]]]
 
@@ -67,7 +82,9 @@ class Project:
 
     Attributes:
         plan: the array's :class:`~tactcad.design.array_plan.Plan`.
-        rigs: the rigs' :class:`~tactcad.design.rig_plan.RigDesign`, derived against ``plan``.
+        rigs: the rigs' :class:`~tactcad.design.rig_plan.RigDesign`, derived against ``plan``;
+            None for a construction without a mount for the test rigs (its
+            project has no test rigs: :data:`NO_TEST_RIGS` says why).
         scenes: the scenes by name (:class:`~tactcad.design.scene_specs.SceneSpec`), in file order.
         design_sha256, rigs_sha256, scenes_sha256: sha256 of each file's
             validated tables (canonical JSON; the design's after ``--set``), so
@@ -77,7 +94,7 @@ class Project:
     """
 
     plan: Plan
-    rigs: RigDesign
+    rigs: RigDesign | None
     scenes: Mapping[str, SceneSpec]
     design_sha256: str
     rigs_sha256: str
@@ -96,12 +113,14 @@ class Project:
                 "scenes": self.scenes_sha256}
 
 
-def project_of(plan: Plan, rigs: RigDesign, scenes: Mapping[str, SceneSpec],
+def project_of(plan: Plan, rigs: RigDesign | None, scenes: Mapping[str, SceneSpec],
                scenes_data: Mapping[str, Any] | None = None, scenes_file: str = "") -> Project:
     """A :class:`Project` of parts already validated (a plan, its rigs, scenes),
     e.g. a design made in code; ``scenes_data``: the scenes file's tables, for its hash."""
     scenes_hash = content_hash(scenes_data if scenes_data is not None
                                else {n: repr(s) for n, s in scenes.items()})
+    if rigs is None:
+        return Project(plan, None, scenes, plan.design_hash, "", scenes_hash, "", scenes_file)
     return Project(plan, rigs, scenes, plan.design_hash, rigs.rigs_hash, scenes_hash,
                    rigs.source, scenes_file)
 
@@ -127,6 +146,18 @@ def _check_sample_stiffness(scenes: Mapping[str, SceneSpec], rigs: RigDesign,
                          file=scenes_file)
 
 
+def _check_scenes_without_rigs(scenes: Mapping[str, SceneSpec], plan: Plan, problems: Problems,
+                               scenes_file: str) -> None:
+    """Refuse a scene of a test rig in a project without test rigs."""
+    from tactcad.design.scene_specs import RIGS_WITHOUT_TEST_RIGS
+
+    for s in scenes.values():
+        if s.rig not in RIGS_WITHOUT_TEST_RIGS:
+            problems.add(f"scene.{s.name}.rig", s.rig, "one of " + ", ".join(
+                RIGS_WITHOUT_TEST_RIGS), NO_TEST_RIGS.format(construction=plan.construction),
+                file=scenes_file)
+
+
 def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems) -> Plan | None:
     if design is None:
         return None
@@ -148,6 +179,8 @@ def _companions_of(plan: Plan | None, rigs: Mapping[str, Any] | None,
         problems.extend(found.errors)
     if rig_design is not None and specs:
         _check_sample_stiffness(specs, rig_design, problems, scenes_file)
+    if rigs is None and plan is not None and not construction_of(plan).test_rigs:
+        _check_scenes_without_rigs(specs, plan, problems, scenes_file)
     return rig_design, specs
 
 
@@ -300,6 +333,8 @@ def project_with_design_data(data: Mapping[str, Any] | None, path: Path,
               for kind, f in files.items()}
     named = _named(data)
     absent = [k for k, f in files.items() if f is None and named[k] is None]
+    if plan is not None and "rigs" in absent and not construction_of(plan).test_rigs:
+        absent.remove("rigs")  # nothing to hold it: the project has no test rigs
     if absent and plan is not None:
         if companions is None:
             for kind in absent:
@@ -312,8 +347,8 @@ def project_with_design_data(data: Mapping[str, Any] | None, path: Path,
     rigs, scenes = _companions_of(plan, tables["rigs"], tables["scenes"], problems,
                                   labels["rigs"], labels["scenes"])
     problems.raise_if_any()
-    return project_of(plan, replace(rigs, source=labels["rigs"]), scenes, tables["scenes"],
-                      labels["scenes"])
+    return project_of(plan, replace(rigs, source=labels["rigs"]) if rigs is not None else None,
+                      scenes, tables["scenes"], labels["scenes"])
 
 
 def project_for_plan(plan: Plan, rigs_file: str | Path | None = None,

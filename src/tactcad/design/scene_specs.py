@@ -34,6 +34,8 @@ RIG_GROUPS: dict[str, tuple[str, ...]] = {
                          "bracket", "array", "cart", "sample_holder", "sample"),
 }
 RIGS = tuple(RIG_GROUPS)
+#: The scenes a project without test rigs can show (the array alone, its cut sheet).
+RIGS_WITHOUT_TEST_RIGS = ("array", "wirecut")
 MAX_SCENES = 64
 
 

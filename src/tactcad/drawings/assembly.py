@@ -312,8 +312,10 @@ def _slot_table(a: AssemblySheet, plan: Plan) -> None:
             x += w
 
 
-def _notes(a: AssemblySheet, plan: Plan) -> None:
-    sh = a.sheet
+def _clamp_lines(a: AssemblySheet, plan: Plan) -> list[str]:
+    """The stack and its clamp bolts, for a plan that has them (none otherwise)."""
+    if plan.bolt is None:
+        return []
     b = plan.bolt
     bolt = bolt_name(b, plan.bolt_length_mm)
     n_bolts = len(plan.bolt_positions_xy_mm)
@@ -329,6 +331,26 @@ def _notes(a: AssemblySheet, plan: Plan) -> None:
     lines.append(f"Tighten the nuts crosswise in two passes to {a.torque_Nm:.2f} N·m "
                  f"({TORQUE_SOURCE}); check the tips of each row lie in one plane "
                  f"before the second pass.")
+    return lines
+
+
+def _row_sheet_lines(plan: Plan) -> list[str]:
+    """The row sheets facing each other on their spine, for a plan of row sheets."""
+    comb = plan.comb
+    if comb is None:
+        return []
+    s = comb.screw
+    return [f"Row sheets {', '.join(sh.part_name for sh in comb.sheets)} face each other across a "
+            f"{fmt_mm(comb.spacer_thickness_mm)} mm spacer, located on {len(comb.dowel_x_mm)}× "
+            f"ISO 8734 {fmt_mm(comb.dowel_diameter_mm)} x {fmt_mm(comb.dowel_length_mm)} dowel "
+            f"pins and held by {len(comb.screw_x_mm)}× DIN 912 {s.size}x"
+            f"{fmt_mm(comb.screw_length_mm)} screws with DIN 934 nuts (spacer, pins and screws: "
+            f"purchased-parts.md; not drawn)."]
+
+
+def _notes(a: AssemblySheet, plan: Plan) -> None:
+    sh = a.sheet
+    lines = _clamp_lines(a, plan) + _row_sheet_lines(plan)
     lines.append("Balloon numbers are the items of bom.csv / bom.md. Element profiles: the DXF "
                  "files of the slot map (dxf/); " + numbering_note(plan))
     lines.append(f"Untoleranced dimensions of the parts: {general_tolerance(plan)}; see each part's "

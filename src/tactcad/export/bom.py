@@ -135,11 +135,7 @@ def sensor_rows(plan: Plan, rows: Sequence[BomRow], specs: Mapping[str, PartSpec
     spares."""
     from tactcad.catalogue.gauges import sensor_items
 
-    elements = {a: 0 for a, _ in rows[0].per_assembly} if rows else {"array": 0}
-    for r in rows:
-        if specs.get(r.part) is not None and specs[r.part].builder == "element":
-            for a, n in r.per_assembly:
-                elements[a] = elements.get(a, 0) + n
+    elements = _elements_per_assembly(rows, specs)
     n_max = max(elements.values(), default=0)
     out = []
     modelled = {r.part for r in rows}  # the gauge is a placed part: its row is counted
@@ -228,10 +224,28 @@ def _placed_and_sensor_rows(plan: Plan, assembled, files=lambda spec: ()) -> lis
     return with_spares(plan, rows) + sensor_rows(plan, rows, specs)
 
 
+def _elements_carried(spec: PartSpec | None) -> int:
+    """Sensing elements one copy of a part carries: an element part one, a
+    sheet cut with a row of elements (its geometry's ``elements``) that many."""
+    if spec is None:
+        return 0
+    return 1 if spec.builder == "element" else len(getattr(spec.geometry, "elements", ()) or ())
+
+
+def _elements_per_assembly(rows: Sequence[BomRow], specs: Mapping[str, PartSpec]
+                           ) -> dict[str, int]:
+    """Sensing elements per assembly, by the parts that carry them."""
+    elements = {a: 0 for a, _ in rows[0].per_assembly} if rows else {"array": 0}
+    for r in rows:
+        carried = _elements_carried(specs.get(r.part))
+        for a, n in r.per_assembly:
+            elements[a] = elements.get(a, 0) + n * carried
+    return elements
+
+
 def _element_count(rows: Sequence[BomRow], specs: Mapping[str, PartSpec]) -> int:
-    """Elements of the array (placed element parts in the ``array`` assembly)."""
-    return sum(dict(r.per_assembly).get("array", 0) for r in rows
-               if specs.get(r.part) is not None and specs[r.part].builder == "element")
+    """Elements of the array (carried by its parts in the ``array`` assembly)."""
+    return _elements_per_assembly(rows, specs).get("array", 0)
 
 
 def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
@@ -251,7 +265,7 @@ def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
     for r in rows:  # sample rows of the kit carry no spec
         if r.part in samples:
             items = [(p, q, "sample" if p == r.part else b, f) for p, q, b, f in items]
-    board = project.rigs.library.get("terminal_board")
+    board = project.rigs.library.get("terminal_board") if project.rigs is not None else None
     pairs = int(board.attributes.get("terminal_pairs", 0)) if board is not None else 0
     gauge = next((r for r in rows if r.part == "strain_gauge"), None)
     adhesive = next((r for r in rows if r.part == "gauge_adhesive"), None)

@@ -85,8 +85,14 @@ def write_crosstalk_files(plan: Plan, staging: Path, log: Callable[[str], None])
 
 
 def crosstalk_jobs(run, before) -> list:
-    """One job writing both files; it reads only the plan."""
+    """One job writing both files; it reads only the plan. None for a
+    construction the stack crosstalk model does not describe (the manifest's
+    ``left_out`` says so)."""
+    from tactcad.design.construction_registry import stack_crosstalk_reason
     from tactcad.export.job import Job
+
+    if stack_crosstalk_reason(run.plan):
+        return []
 
     def make(run) -> list[dict]:
         return write_crosstalk_files(run.plan, run.staging, run.log)

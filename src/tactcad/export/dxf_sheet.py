@@ -45,6 +45,7 @@ from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_point
 from tactcad.errors import DesignError
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_names_by_process
 from tactcad.catalogue.shop import material_designation
+from tactcad.partlib.array.comb_sheet import CombSheet
 from tactcad.export.dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, Tab,
                                 circle_entry, placed_extents, write_dxf)
 from tactcad.vocabulary.process import (DEFAULT_CUT_PROCESS, CutProcess, ProcessLimits, WireSettings,
@@ -160,7 +161,7 @@ def _with_start_holes(profile: Profile, start_diameter_mm: float) -> Profile:
 
 
 #: The part modules whose parts are cut from a profile (the clamp plate is milled).
-CUT_FAMILIES = ("element", "spacer")
+CUT_FAMILIES = ("element", "spacer", "comb_sheet")
 
 
 def shop_profiles(plan: Plan) -> list[ShopProfile]:
@@ -170,8 +171,9 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
     counts: dict[str, int] = {"spacer": len(plan.spacer_placements)}
     for slot in plan.slots:
         counts[slot.geometry.part_name] = counts.get(slot.geometry.part_name, 0) + 1
-    out = []
-    for name in plan.distinct_elements:
+    out = [_row_sheet_profile(plan, spec) for spec in specs.values()
+           if isinstance(spec.geometry, CombSheet)]
+    for name in (n for n in plan.distinct_elements if n in specs):
         g = specs[name].geometry
         numbers = [s.number for s in plan.slots if s.geometry.part_name == name]
         out.append(ShopProfile(
@@ -195,6 +197,25 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
         process=sp.process.key or DEFAULT_CUT_PROCESS, wire=plan.edm,
         file_mark=f"SPACER QTY {counts['spacer']}"))
     return _named_sheets(out)
+
+
+def _row_sheet_profile(plan: Plan, spec: PartSpec) -> ShopProfile:
+    """The cut profile of a sheet that carries a whole row's elements (one
+    copy): the lead-ins keep away from every element's web and contact face,
+    and the read-back holds the sheet to its thinnest web."""
+    sheet: CombSheet = spec.geometry
+    keep = tuple((x + x0, y) for g, x0 in zip(sheet.elements, sheet.offsets_mm)
+                 for x, y in element_keep_out(g))
+    thinnest = min(sheet.elements, key=lambda g: g.web_thickness_mm)
+    numbers = [s.number for s in plan.slots if s.row == sheet.row]
+    mark = f"ROW{sheet.row + 1} E{numbers[0]}-E{numbers[-1]}"
+    return ShopProfile(
+        part=spec.name, profile=spec.profile, quantity=1, material=spec.material,
+        thickness_mm=spec.thickness_mm, copy_marks=(mark,), keep_out=keep,
+        web_thickness_mm=thinnest.web_thickness_mm, web_tolerance_mm=thinnest.web_tolerance_mm,
+        designation=material_designation(spec, plan),
+        process=spec.process.key or DEFAULT_CUT_PROCESS, wire=plan.edm,
+        file_mark=f"{mark} QTY 1")
 
 
 def _named_sheets(profiles: Sequence[ShopProfile]) -> list[ShopProfile]:

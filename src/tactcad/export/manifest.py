@@ -33,7 +33,7 @@ class ManifestSection:
     Attributes:
         key: its key in ``manifest.json``.
         function: ``"module:function"``, ``function(plan)`` -> the section's
-            JSON value.
+            JSON value, or None to leave the section out for that design.
     """
 
     key: str
@@ -108,7 +108,9 @@ def design_facts(plan: Plan) -> dict:
         "cad_stack": stack_versions(),
         "units": "mm",
     }
-    return {**head, **{s.key: s.of(plan) for s in manifest_sections()}}
+    sections = {s.key: s.of(plan) for s in manifest_sections()}
+    # a section with nothing to say for this design (None) is left out
+    return {**head, **{k: v for k, v in sections.items() if v is not None}}
 
 
 # --- the built-in sections ------------------------------------------------------
@@ -202,6 +204,15 @@ def _strength_record(r: dict) -> dict:
     return {k: r[k] for k in keys}
 
 
+def left_out_section(plan: Plan) -> list[dict[str, str]] | None:
+    """What this export leaves out and why
+    (:func:`tactcad.design.construction_registry.left_out`); None (no section)
+    when it leaves nothing out."""
+    from tactcad.design.construction_registry import left_out
+
+    return left_out(plan) or None
+
+
 def _part_record(spec, count: int) -> dict:
     return {"kind": spec.kind, "process": spec.process, "material": spec.material,
             "quantity": count, "volume_mm3": spec.expected_volume_mm3,
@@ -213,5 +224,6 @@ for _key, _function in (("parts", "parts_section"), ("assemblies", "assemblies_s
                         ("requirements", "requirements_section"),
                         ("thermal", "thermal_section"), ("kobj_budget", "kobj_budget_section"),
                         ("derived", "derived_section"),
-                        ("assumptions", "assumptions_section")):
+                        ("assumptions", "assumptions_section"),
+                        ("left_out", "left_out_section")):
     register_section(ManifestSection(_key, f"{__name__}:{_function}"))

@@ -300,8 +300,12 @@ def manufacturing_tolerance(ctx: Context, unit: Unit, op: Operating) -> Contribu
 
 
 def _crosstalk(ctx: Context):
+    from tactcad.design.construction_registry import stack_crosstalk_reason
     from tactcad.mechanics.stack_crosstalk import VERIFY_MODEL, plan_crosstalk
 
+    if stack_crosstalk_reason(ctx.plan):  # no model of this construction's coupling: no term
+        numbers = [s.number for s in ctx.plan.slots]
+        return numbers, np.zeros((len(numbers), len(numbers))), 0.0
     r = plan_crosstalk(ctx.plan, VERIFY_MODEL)
     per_newton = r.sensitivity / np.diag(r.sensitivity)[:, None]  # N on gauge i per N on tip j
     np.fill_diagonal(per_newton, 0.0)

@@ -35,6 +35,13 @@ if TYPE_CHECKING:
     from tactcad.kernel.shapes import Solid
 
 COLOR: RGB = (0.72, 0.70, 0.66)  # titanium grey
+
+
+def sheet_shade(row: int) -> RGB:
+    """Row ``row``'s sheet colour: the titanium grey, each next row 0.1 darker,
+    so the facing rows tell apart in STEP, GLB and FreeCAD (a scene refuses
+    two parts of one colour)."""
+    return tuple(round(max(c - 0.1 * row, 0.0), 4) for c in COLOR)  # type: ignore[return-value]
 #: Most elements one comb carries (two rows of twelve, as the stacked array).
 MAX_COMB_ELEMENTS = 24
 
@@ -184,7 +191,7 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
         out.append(PartData(
             name=sheet.part_name, kind="fabricated",
             process=Process("wire EDM from sheet", Method.SHEET),
-            material=context.plan.material.name, color=COLOR,
+            material=context.plan.material.name, color=sheet_shade(sheet.row),
             expected_volume_mm3=prof.area_mm2 * sheet.thickness_mm,
             expected_bbox_mm=prism_bbox(prof, sheet.thickness_mm), geometry=sheet, profile=prof,
             thickness_mm=sheet.thickness_mm))
