@@ -209,9 +209,10 @@ def test_expected_calibration_error_matches_fits_of_simulated_runs():
     from tactcad.mechanics.calibration import fit_calibration, synthetic_calibration
 
     k, k_v, noise_v = 30.0, -40.0, 3e-4
-    want_k, want_kv = kb.expected_calibration_stderr_rel(k, k_v, noise_v)
+    want_k, want_kv = kb.expected_calibration_stderr_rel(k, k_v, noise_v, force_noise_N=0.001)
     fits = [fit_calibration(d.z_travel_um, d.force_N, d.signal_V)
-            for d in (synthetic_calibration(k, k_v, 0.1, noise_signal_V=noise_v, seed=s)
+            for d in (synthetic_calibration(k, k_v, 0.1, noise_signal_V=noise_v,
+                                            noise_force_N=0.001, seed=s)
                       for s in range(400))]
     # the scatter of the fitted slopes is their standard error
     assert np.std([f.K_N_per_mm for f in fits]) / k == pytest.approx(want_k, rel=0.1)
@@ -278,3 +279,15 @@ def test_the_modulus_coefficient_is_the_readout_sections_when_it_states_one(ti_p
     span = kb.thermal_span(ctx, unit, _op(ctx, unit, np.array([2.0]))).after
     assert span[0] == pytest.approx(1.0 / ((1 - 5.5e-4 * 2.0) * (1 + 2.0 * 8.6e-6)) - 1.0,
                                     rel=2e-2)
+
+
+def test_the_calibration_default_is_a_catalogue_gauge_that_holds_the_force(ti_plan):
+    from tactcad.vocabulary.force_gauge_catalogue import force_gauges
+
+    small, large = kb.calibration_force_gauge(0.1), kb.calibration_force_gauge(40.0)
+    assert small.range_N >= 0.1 and large.range_N >= 40.0
+    assert all(g.range_N >= small.range_N for g in force_gauges() if g.range_N >= 0.1)
+    assert small.resolution_N <= large.resolution_N
+    b = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0).as_json()
+    text = str(b)
+    assert small.model in text and "paper" not in text

@@ -42,7 +42,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--calibration", metavar="FILE", default=None,
                    help="measured calibration readings (as tactcad calibrate --data: CSV, LVM "
                         "or TDMS): their fitted standard errors of K and K_v; default the "
-                        "expected errors of the paper's procedure")
+                        "expected errors of a static calibration on the catalogue force gauge "
+                        "whose range holds the force")
     p.add_argument("--out", metavar="FILE", type=output_file(".json", ".md"), default=None,
                    help="also write the budget: .json as --json prints it, .md as the text")
     add_output_args(p, "print one JSON object: the budget of every unit and of the array")

@@ -90,9 +90,7 @@ DELTA_T_RANGE_K = (0.0, 100.0)
 #: the bound its independent check holds it to (5 %; the scikit-fem block of
 #: tests/in_use/test_tissue_coupling_fem.py measured -3.2 % at 4 mm and 1.5 mm pitch).
 COUPLING_MODEL_ERROR_REL = 0.05
-#: The paper's calibration: force gauge resolution 0.001 N (Sauter FH5) as its noise, and
-#: three runs (paper, "Calibration").
-CALIBRATION_FORCE_NOISE_N = 0.001
+#: Runs of the static calibration over its Z steps (as the paper's "Calibration" did).
 CALIBRATION_REPEATS = 3
 #: Stand-in temperature coefficient of Young's modulus (1/K) where the material library
 #: gives none: (1/E) dE/dT of about -4e-4 /K for 6061 and Ti-6Al-4V (issue 42).
@@ -381,15 +379,28 @@ def gauge_model(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     return Contribution(rel, np.zeros_like(rel))
 
 
+def calibration_force_gauge(force_N: float):
+    """The force gauge a static calibration up to ``force_N`` (N) is expected on: of the
+    catalogue's (:func:`tactcad.vocabulary.force_gauge_catalogue.force_gauges`) the smallest
+    range that holds the force, finest resolution first (the rule the rigs' sizing follows);
+    the largest range when none holds it."""
+    from tactcad.vocabulary.force_gauge_catalogue import force_gauges
+
+    gauges = force_gauges()
+    holding = [g for g in gauges if g.range_N >= force_N]
+    return min(holding, key=lambda g: (g.range_N, g.resolution_N)) if holding else gauges[-1]
+
+
 def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
                                     signal_noise_V: float | None = None,
-                                    k_sensor_N_per_mm: float | None = None) -> tuple[float, float]:
-    """(σ_K / K, σ_K_v / |K_v|) the paper's calibration procedure leaves on one element.
+                                    k_sensor_N_per_mm: float | None = None,
+                                    force_noise_N: float | None = None) -> tuple[float, float]:
+    """(σ_K / K, σ_K_v / |K_v|) a static calibration (eq. 4-6) leaves on one element.
 
     Ordinary least squares over the Z steps of
     :data:`~tactcad.mechanics.calibration.CALIBRATION_STEPS_UM`, :data:`CALIBRATION_REPEATS`
     runs, deflection Δ = z K_s / (K + K_s), the force read to
-    :data:`CALIBRATION_FORCE_NOISE_N` (n) and the signal to ``signal_noise_V`` (1 sigma;
+    ``force_noise_N`` (n, the force gauge's resolution) and the signal to ``signal_noise_V`` (1 sigma;
     default :data:`~tactcad.mechanics.calibration.DEFAULT_NOISE_SIGNAL_V`): σ_slope =
     σ_residual / sqrt(Σ (Δ − mean Δ)²). The deflection is formed as z − F/K_s from the
     read force, so the force's noise enters both axes: the force residual is
@@ -400,8 +411,10 @@ def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
         k_element: K (N/mm). k_v_V_per_mm: K_v (V/mm).
         signal_noise_V: the signal's noise per reading (V, 1 sigma): the budget passes
             its read-out chain's, the calibration reads through the same chain.
-        k_sensor_N_per_mm: the force gauge's stiffness (N/mm), default the paper's
-            (57.04 N/mm).
+        k_sensor_N_per_mm: the force gauge's stiffness (N/mm), default
+            :data:`~tactcad.mechanics.calibration.K_SENSOR_N_PER_MM`.
+        force_noise_N: the force gauge's resolution (N), default that of
+            :func:`calibration_force_gauge` at 1 N.
     """
     from tactcad.mechanics.calibration import (CALIBRATION_STEPS_UM, DEFAULT_NOISE_SIGNAL_V,
                                                K_SENSOR_N_PER_MM, series_error_amplification)
@@ -410,7 +423,7 @@ def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
     z = np.tile(np.asarray(CALIBRATION_STEPS_UM, float) * 1e-3, CALIBRATION_REPEATS)
     defl = z * k_s / (k_element + k_s)
     sxx = math.sqrt(float(np.sum((defl - defl.mean()) ** 2)))
-    n = CALIBRATION_FORCE_NOISE_N
+    n = calibration_force_gauge(1.0).resolution_N if force_noise_N is None else force_noise_N
     force_residual = n * series_error_amplification(k_element, k_s).from_k_apparent
     v_noise = DEFAULT_NOISE_SIGNAL_V if signal_noise_V is None else signal_noise_V
     signal_residual = math.hypot(v_noise, k_v_V_per_mm * n / k_s)
@@ -431,14 +444,17 @@ def _calibration_stderr(ctx: Context) -> dict[int, tuple[float, float]]:
                              c.stderr_K_v_V_per_mm / abs(c.K_v_V_per_mm))
         else:
             k = ctx.k_of(s.number)
+            gauge = calibration_force_gauge(ctx.force_N)
             out[s.number] = expected_calibration_stderr_rel(
-                k, per_part[s.geometry.part_name]["S"] * k, noise)
+                k, per_part[s.geometry.part_name]["S"] * k, noise, gauge.stiffness_N_per_mm,
+                gauge.resolution_N)
     return out
 
 
 def calibration(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(h) The standard errors of each element's fitted K (eq. 5) and K_v (eq. 4),
-    independent: the calibration file's fits, else the paper's procedure expected."""
+    independent: the calibration file's fits, else those a static calibration on the
+    catalogue gauge of :func:`calibration_force_gauge` is expected to leave."""
     se = ctx.once("calibration", lambda: _calibration_stderr(ctx))
     (km, kvm), (kr, kvr) = se[unit.measuring], se[unit.reference]
     rel = quadrature_rel(op, de_m=op.e_m * kvm, de_r=op.e_r * kvr, dk_m=op.k_m * km,
@@ -584,7 +600,8 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
             (``verify`` passes its own); None estimates them.
         calibrations: element number -> fitted
             :class:`~tactcad.mechanics.calibration.Calibration` (a calibration file);
-            the others take the paper's procedure's expected standard errors.
+            the others take the expected standard errors of a static calibration
+            (:func:`expected_calibration_stderr_rel`).
         points: K_obj grid points (log-spaced), 2 ... 101.
 
     Returns:
@@ -616,6 +633,7 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
     units = [unit_budget(ctx, Unit(r.number, m.number), k_obj)
              for r, m in row_units(plan, dict(stiffness))]
     tc_e, tc_source = modulus_tc_per_K(plan)
+    gauge = calibration_force_gauge(float(force_N))
     _, per_newton, xt_error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     notes = {
         "stack_crosstalk_N_per_N": float(np.max(np.abs(per_newton))) if per_newton.size else 0.0,
@@ -631,9 +649,11 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
                        "correction's fit residual at closed form and beam; a calibration "
                        "measures K_v, so none remains after it)",
         "calibration": "fitted standard errors of the calibration file" if calibrations
-        else "expected standard errors of the paper's procedure (25 um steps to 150 um, 3 "
-             "runs, force read to 0.001 N, signal to the read-out chain's noise of one "
-             "averaged reading, 1 sigma)",
+        else (f"expected standard errors of a static calibration on the {gauge.maker} "
+              f"{gauge.model} force gauge (range {gauge.range_N:g} N, read to "
+              f"{gauge.resolution_N:g} N, {gauge.stiffness_N_per_mm:g} N/mm): Z steps of "
+              f"25 um to 150 um, {CALIBRATION_REPEATS} runs, the signal to the read-out "
+              f"chain's noise of one averaged reading, 1 sigma"),
         "totals": "RSS and worst-case sum of the contributions after correction (as a "
                   "calibrated, corrected sensor reads); *_before_rel without correction",
         "manufacturing_tolerance": "calibration measures each element's K (eq. 5), so the "
