@@ -1,0 +1,54 @@
+"""The grasper jaw that carries the comb insert: its solid against the
+volume its derivation expects, and refusals naming field, value and range."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from tactcad.design.array_plan import load_design
+from tactcad.errors import DesignError
+from tactcad.partlib.grasper_jaw import build, insert_envelope_mm, jaw_part
+
+GRASPER = Path(__file__).parents[2] / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+
+
+@pytest.fixture(scope="module")
+def comb_plan():
+    return load_design(GRASPER)
+
+
+def test_pocket_holds_the_insert_envelope_with_its_clearance(comb_plan):
+    g = jaw_part(comb_plan, {"pocket_clearance_mm": 0.15}).geometry
+    across, along, _ = insert_envelope_mm(comb_plan)
+    assert g.pocket_length_mm == pytest.approx(along + 0.3)
+    assert g.pocket_width_mm == pytest.approx(across + 0.3)
+    assert g.window_length_mm <= g.pocket_length_mm and g.window_width_mm <= g.pocket_width_mm
+
+
+@pytest.mark.slow
+def test_jaw_builds_one_valid_solid_of_the_expected_volume_and_box(comb_plan):
+    data = jaw_part(comb_plan)
+    solid = build(data.geometry)
+    assert solid.is_valid
+    assert solid.volume == pytest.approx(data.expected_volume_mm3, rel=1e-6)
+    bb = solid.bounding_box()
+    assert (bb.min.X, bb.min.Y, bb.min.Z, bb.max.X, bb.max.Y, bb.max.Z) == pytest.approx(
+        data.expected_bbox_mm, abs=1e-6)
+
+
+@pytest.mark.parametrize("table, words", [
+    ({"shaft_class_mm": "5"}, ["grasper_jaw.shaft_class_mm", "'5'", ">= 6.4 mm"]),
+    ({"shaft_class_mm": "7"}, ["grasper_jaw.shaft_class_mm", "5, 10"]),
+    ({"face_wall_mm": 0.6}, ["grasper_jaw.face_wall_mm", "0.6", "< 0.5 mm"]),
+    ({"pocket_length_mm": 20.0}, ["grasper_jaw.pocket_length_mm", "20", ">= 27.8 mm"]),
+    ({"length_mm": 200}, ["grasper_jaw.length_mm", "200", "5 <= value <= 80 mm"]),
+    ({"length_mm": 30}, ["grasper_jaw.length_mm", "30"]),
+    ({"thickness_mm": 4.0}, ["grasper_jaw.thickness_mm", "4"]),
+])
+def test_bad_jaw_values_name_field_value_and_range(comb_plan, table, words):
+    with pytest.raises(DesignError) as info:
+        jaw_part(comb_plan, table)
+    for w in words:
+        assert w in str(info.value), str(info.value)
