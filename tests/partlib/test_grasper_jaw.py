@@ -52,3 +52,27 @@ def test_bad_jaw_values_name_field_value_and_range(comb_plan, table, words):
         jaw_part(comb_plan, table)
     for w in words:
         assert w in str(info.value), str(info.value)
+
+
+@pytest.mark.slow
+def test_shaft_builds_a_tube_of_the_expected_volume():
+    from tactcad.partlib.grasper_shaft import build as build_shaft, shaft_part
+
+    data = shaft_part({"shaft_class_mm": "5", "length_mm": 270.0})
+    solid = build_shaft(data.geometry)
+    assert solid.is_valid
+    assert solid.volume == pytest.approx(data.expected_volume_mm3, rel=1e-6)
+    assert data.attributes["lead_channel_diameter_mm"] == pytest.approx(4.0)
+
+
+@pytest.mark.parametrize("table, words", [
+    ({"wall_mm": 2.4, "shaft_class_mm": "5"}, ["grasper_shaft.wall_mm", "2.4", "<= 2.25 mm"]),
+    ({"length_mm": 50.0}, ["grasper_shaft.length_mm", "50", "100 <= value <= 500 mm"]),
+])
+def test_bad_shaft_values_name_field_value_and_range(table, words):
+    from tactcad.partlib.grasper_shaft import shaft_part
+
+    with pytest.raises(DesignError) as info:
+        shaft_part(table)
+    for w in words:
+        assert w in str(info.value), str(info.value)

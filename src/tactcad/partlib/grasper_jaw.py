@@ -212,8 +212,29 @@ def notes_after(g: GrasperJawGeometry, pen) -> list[str]:
 
 
 
-JawFile = create_model("JawFile", __base__=Section,
-                       grasper_jaw=(GrasperJawSection, GrasperJawSection()))
+def part_from_table(key: str, section: type[Section], derive, table: Mapping[str, Any] | None,
+                    context: Any = None, file: str = "") -> PartData:
+    """A part module's data from its table ``[key]`` alone (defaults where left
+    out), outside a rigs file: validated as the rigs file validates it, so a
+    refusal names ``key.field``.
+
+    Raises:
+        DesignErrors: every refusal, each naming the field, value and allowed range.
+    """
+    p = Problems(file)
+    model = create_model(f"{section.__name__}File", __base__=Section, **{key: (section, section())})
+    t = validate(model, {key: dict(table or {})}, p)
+    p.raise_if_any()
+    out = derive(getattr(t, key), context, p)
+    p.raise_if_any()
+    return out
+
+
+@dataclass(frozen=True)
+class PlanContext:
+    """The context of a derivation that reads the array's plan alone."""
+
+    plan: Any
 
 
 def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> PartData:
@@ -222,17 +243,7 @@ def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> Pa
     Raises:
         DesignErrors: every refusal, each naming the field, value and allowed range.
     """
-    p = Problems(file)
-    t = validate(JawFile, {"grasper_jaw": dict(table or {})}, p)
-    p.raise_if_any()
-    out = derive(t.grasper_jaw, _Plan(plan), p)
-    p.raise_if_any()
-    return out
-
-
-@dataclass(frozen=True)
-class _Plan:
-    plan: Any
+    return part_from_table("grasper_jaw", GrasperJawSection, derive, table, PlanContext(plan), file)
 
 
 JAW = RigPart(key="grasper_jaw", section=GrasperJawSection, host="", derive=derive, build=build,
