@@ -76,3 +76,24 @@ def test_bad_shaft_values_name_field_value_and_range(table, words):
         shaft_part(table)
     for w in words:
         assert w in str(info.value), str(info.value)
+
+
+def test_the_slab_covers_the_jaw_face_unless_sized(comb_plan):
+    from tactcad.partlib.tissue_slab import slab_part
+
+    jaw = jaw_part(comb_plan).geometry
+    g = slab_part(jaw, {"thickness_mm": 4.0}).geometry
+    assert (g.length_mm, g.width_mm, g.thickness_mm) == (jaw.length_mm, jaw.width_mm, 4.0)
+    assert slab_part(jaw, {"length_mm": 50.0}).geometry.length_mm == 50.0
+    with pytest.raises(DesignError) as info:
+        slab_part(jaw, {"thickness_mm": 0.0})
+    assert "tissue_slab.thickness_mm" in str(info.value) and "0 < value <= 100 mm" in str(info.value)
+
+
+@pytest.mark.slow
+def test_the_slab_builds_its_box(comb_plan):
+    from tactcad.partlib.tissue_slab import build as build_slab, slab_part
+
+    data = slab_part(jaw_part(comb_plan).geometry)
+    solid = build_slab(data.geometry)
+    assert solid.is_valid and solid.volume == pytest.approx(data.expected_volume_mm3, rel=1e-9)

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from types import SimpleNamespace
 from typing import Any, Mapping, Optional
 
 from pydantic import create_model
@@ -167,8 +168,8 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
                 f"tip field {fmt(field_across)} mm + {fmt(j.window_clearance_mm)} mm each side"))
     return PartData(
         name="grasper_jaw", kind="fabricated",
-        process=Process(f"bought-in grasper jaw, {j.material}: pocket and tip window by wire EDM "
-                        "and milling, pin hole reamed", Method.BAR),
+        process=Process("bought-in grasper jaw, machined for the insert: pocket and tip window by "
+                        "wire EDM and milling, pin hole reamed", Method.BAR),
         material=j.material, color=COLOR,
         expected_volume_mm3=jaw_volume_mm3(g), expected_bbox_mm=(0.0, -width / 2, 0.0,
                                                                 j.length_mm, width / 2,
@@ -213,10 +214,11 @@ def notes_after(g: GrasperJawGeometry, pen) -> list[str]:
 
 
 def part_from_table(key: str, section: type[Section], derive, table: Mapping[str, Any] | None,
-                    context: Any = None, file: str = "") -> PartData:
+                    file: str = "", **context: Any) -> PartData:
     """A part module's data from its table ``[key]`` alone (defaults where left
     out), outside a rigs file: validated as the rigs file validates it, so a
-    refusal names ``key.field``.
+    refusal names ``key.field``; ``context`` holds what the derivation reads
+    (``plan=...``, ``jaw=...``).
 
     Raises:
         DesignErrors: every refusal, each naming the field, value and allowed range.
@@ -225,16 +227,9 @@ def part_from_table(key: str, section: type[Section], derive, table: Mapping[str
     model = create_model(f"{section.__name__}File", __base__=Section, **{key: (section, section())})
     t = validate(model, {key: dict(table or {})}, p)
     p.raise_if_any()
-    out = derive(getattr(t, key), context, p)
+    out = derive(getattr(t, key), SimpleNamespace(**context), p)
     p.raise_if_any()
     return out
-
-
-@dataclass(frozen=True)
-class PlanContext:
-    """The context of a derivation that reads the array's plan alone."""
-
-    plan: Any
 
 
 def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> PartData:
@@ -243,7 +238,7 @@ def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> Pa
     Raises:
         DesignErrors: every refusal, each naming the field, value and allowed range.
     """
-    return part_from_table("grasper_jaw", GrasperJawSection, derive, table, PlanContext(plan), file)
+    return part_from_table("grasper_jaw", GrasperJawSection, derive, table, file, plan=plan)
 
 
 JAW = RigPart(key="grasper_jaw", section=GrasperJawSection, host="", derive=derive, build=build,

@@ -64,8 +64,8 @@ def derive(s: GrasperShaftSection, context, p: Problems) -> PartData:
     r = od / 2
     return PartData(
         name="grasper_shaft", kind="fabricated",
-        process=Process(f"bought-in grasper shaft, {s.material} tube {fmt(od)} x {fmt(s.wall_mm)} "
-                        "mm, cut to length", Method.ROUND_BAR),
+        process=Process(f"bought-in grasper shaft, tube {fmt(od)} x {fmt(s.wall_mm)} mm wall, cut to "
+                        "length", Method.ROUND_BAR),
         material=s.material, color=COLOR, expected_volume_mm3=shaft_volume_mm3(g),
         expected_bbox_mm=(0.0, -r, -r, s.length_mm, r, r), geometry=g,
         derived=(Derived("grasper_shaft_lead_channel", bore, "mm",
@@ -93,7 +93,7 @@ def shaft_part(table: Mapping[str, Any] | None = None, file: str = "") -> PartDa
     Raises:
         DesignErrors: every refusal, each naming the field, value and allowed range.
     """
-    return part_from_table("grasper_shaft", GrasperShaftSection, derive, table, None, file)
+    return part_from_table("grasper_shaft", GrasperShaftSection, derive, table, file)
 
 
 SHAFT = RigPart(key="grasper_shaft", section=GrasperShaftSection, host="", derive=derive,
