@@ -38,14 +38,26 @@ def test_jaw_builds_one_valid_solid_of_the_expected_volume_and_box(comb_plan):
         data.expected_bbox_mm, abs=1e-6)
 
 
+def test_the_default_closed_jaws_pass_the_trocar(comb_plan):
+    from tactcad.partlib.grasper_jaw import closed_thickness_limit_mm
+
+    data = jaw_part(comb_plan)
+    g = data.geometry
+    closed = next(d for d in data.derived if d.name == "grasper_jaw_closed_diagonal")
+    assert closed.value <= 10.0
+    assert g.thickness_mm + 1.5 <= closed_thickness_limit_mm(10.0, g.width_mm)
+
+
 @pytest.mark.parametrize("table, words", [
     ({"shaft_class_mm": "5"}, ["grasper_jaw.shaft_class_mm", "'5'", ">= 6.4 mm"]),
+    ({"width_clearance_mm": 1.0, "thickness_mm": 6.0},
+     ["grasper_jaw.thickness_mm", "6", "<= 4.3589 mm", "10 mm trocar"]),
     ({"shaft_class_mm": "7"}, ["grasper_jaw.shaft_class_mm", "5, 10"]),
     ({"face_wall_mm": 0.6}, ["grasper_jaw.face_wall_mm", "0.6", "< 0.5 mm"]),
     ({"pocket_length_mm": 20.0}, ["grasper_jaw.pocket_length_mm", "20", ">= 27.8 mm"]),
     ({"length_mm": 200}, ["grasper_jaw.length_mm", "200", "5 <= value <= 80 mm"]),
     ({"length_mm": 30}, ["grasper_jaw.length_mm", "30"]),
-    ({"thickness_mm": 4.0}, ["grasper_jaw.thickness_mm", "4"]),
+    ({"thickness_mm": 4.0}, ["grasper_jaw.thickness_mm", "4", ">= 5.4941 mm"]),
 ])
 def test_bad_jaw_values_name_field_value_and_range(comb_plan, table, words):
     with pytest.raises(DesignError) as info:

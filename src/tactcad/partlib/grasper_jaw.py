@@ -46,9 +46,10 @@ class GrasperJawSection(Section):
     """``[grasper_jaw]``: the jaw, its pin, pocket and tip window (mm, degrees)."""
 
     shaft_class_mm: choice(SHAFT_CLASSES_MM, why="the trocar the instrument passes") = "10"
-    width_clearance_mm: number(0.0, 3.0) = 1.0  # jaw width = class - clearance
+    width_clearance_mm: number(0.0, 6.0) = 3.5  # jaw width = class - clearance
     length_mm: number(5.0, 80.0) = 34.0
-    thickness_mm: number(1.0, 10.0) = 6.0
+    thickness_mm: number(1.0, 10.0) = 5.6
+    opposing_jaw_mm: number(0.5, 10.0) = 1.5  # the other jaw's thickness, closed on this one
     pin_diameter_mm: number(0.5, 4.0) = 1.5
     pin_inset_mm: number(0.5, 20.0) = 2.5  # pin axis from the proximal end
     pocket_clearance_mm: number(0.0, 1.0) = 0.1
@@ -83,6 +84,12 @@ class GrasperJawGeometry:
     @property
     def pocket_centre_x_mm(self) -> float:
         return self.pocket_x0_mm + self.pocket_length_mm / 2
+
+
+def closed_thickness_limit_mm(trocar_mm: float, width_mm: float) -> float:
+    """The thickest closed pair of jaws (mm) of width ``width_mm`` whose
+    rectangular section passes a round trocar of ``trocar_mm``: sqrt(D² - w²)."""
+    return math.sqrt(max(trocar_mm ** 2 - width_mm ** 2, 0.0))
 
 
 def insert_envelope_mm(plan) -> tuple[float, float, float] | None:
@@ -141,6 +148,14 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
         p.within("grasper_jaw.thickness_mm", j.thickness_mm, env[2] - j.tip_proud_mm,
                  why=f"the insert ({fmt(env[2])} mm high) stands {fmt(j.tip_proud_mm)} mm proud "
                      "and stays inside the jaw's back")
+    closed = math.hypot(width, j.thickness_mm + j.opposing_jaw_mm)
+    if closed > SHAFT_CLASSES_MM[j.shaft_class_mm] + 1e-9:
+        p.add("grasper_jaw.thickness_mm", j.thickness_mm,
+              f"<= {fmt(closed_thickness_limit_mm(SHAFT_CLASSES_MM[j.shaft_class_mm], width))} mm "
+              f"with the {fmt(j.opposing_jaw_mm)} mm opposing jaw",
+              f"the closed jaws ({fmt(width)} x {fmt(j.thickness_mm + j.opposing_jaw_mm)} mm, "
+              f"diagonal {fmt(round(closed, 4))} mm) pass the {j.shaft_class_mm} mm trocar; a "
+              "narrower jaw (width_clearance_mm) leaves room for a thicker one")
     x1 = j.length_mm - j.distal_wall_mm
     x0 = x1 - pl
     least = j.pin_inset_mm + j.pin_diameter_mm / 2 + MIN_WALL_MM
@@ -158,6 +173,9 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
     derived = (
         Derived("grasper_jaw_width", width, "mm",
                 f"shaft class {j.shaft_class_mm} mm less {fmt(j.width_clearance_mm)} mm clearance"),
+        Derived("grasper_jaw_closed_diagonal", closed, "mm",
+                f"both jaws closed, {fmt(width)} x {fmt(j.thickness_mm + j.opposing_jaw_mm)} mm, "
+                f"inside the {j.shaft_class_mm} mm trocar"),
         Derived("grasper_jaw_pocket_length", pl, "mm", why_env or "stated"),
         Derived("grasper_jaw_pocket_width", pw, "mm", why_env or "stated"),
         Derived("grasper_jaw_pocket_depth", depth, "mm",
