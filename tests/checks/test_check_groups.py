@@ -42,7 +42,7 @@ def test_registering_a_taken_name_or_an_unknown_suite_rule_is_refused(with_dummy
 def test_the_groups_run_in_order_and_scenes_keep_the_design_only_groups(with_dummy):
     assert [g.name for g in groups_to_run()][-1] == "tip marks"
     only_scenes = [g.name for g in groups_to_run(["array"])]
-    assert only_scenes == ["requirements", "hard stops", "rigs", "process", "scenes"]
+    assert only_scenes == ["requirements", "hard stops", "rigs", "process", "grasper", "scenes"]
     without_project = [g.name for g in groups_to_run(project=False)]
     assert "scenes" not in without_project and "tip marks" in without_project
 

@@ -162,6 +162,9 @@ for _group in (
                    "range, smallest hole, web and ligament, inside radius, slot, the web's "
                    "tolerance), before any export", "tactcad.checks.process_rules",
                    "process_group", suite="part", on_export=False),
+        CheckGroup("grasper", "the insert's envelope inside the grasper jaw's pocket and its "
+                   "leads through the shaft's lead channel (kernel-free, before any export)",
+                   "tactcad.checks.grasper_fit", "grasper_group", on_export=False),
         CheckGroup("parts", "each part's solid: valid, volume, bounding box; its STEP "
                    "file read back", _CHECKS, "part_group", suite="part"),
         CheckGroup("dxf", "each shop DXF read back: closed contours, the process's cutting "

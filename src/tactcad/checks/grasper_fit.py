@@ -1,0 +1,87 @@
+"""The insert in the grasper, kernel-free: the array's envelope inside the
+jaw's pocket (a box test in the jaw's frame) and the insert's leads through
+the shaft's lead channel (:mod:`tactcad.in_use.shaft_leads`).
+
+The jaw and shaft are the defaults of :mod:`tactcad.partlib.grasper_jaw` and
+:mod:`tactcad.partlib.grasper_shaft` until a project can state them; the
+check runs on a construction whose envelope the plan gives without a kernel
+(the monolithic comb, the grasper's insert). Units: mm.
+"""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+from tactcad.checks.check_result import CheckResult
+from tactcad.checks.groups import CheckContext, Found
+from tactcad.vocabulary.schema import fmt
+
+
+def grasper_group(context: CheckContext) -> Iterator[Found]:
+    """``grasper``: the insert in the default jaw and its leads through the
+    default shaft (none for a construction without a kernel-free envelope)."""
+    from tactcad.partlib.grasper_jaw import insert_envelope_mm, jaw_part
+    from tactcad.partlib.grasper_shaft import shaft_part
+
+    envelope = insert_envelope_mm(context.plan)
+    if envelope is None:
+        return
+    jaw = jaw_part(context.plan).geometry
+    tip_h = context.plan.slots[0].geometry.tip_height_mm
+    yield "grasper", [pocket_fit(envelope, jaw, tip_h),
+                      shaft_leads_result(context.plan, shaft_part().geometry)]
+
+
+def pocket_clearances_mm(envelope_mm: tuple[float, float, float], jaw,
+                         tip_height_mm: float) -> dict[str, float]:
+    """The insert's room in the jaw (mm), negative where it interferes.
+
+    The insert is centred in the pocket with its contact faces ``jaw.tip_proud_mm``
+    above the jaw's face.
+
+    Args:
+        envelope_mm: the insert's envelope (across the rows, along the row, height), mm.
+        jaw: the jaw's :class:`~tactcad.partlib.grasper_jaw.GrasperJawGeometry`.
+        tip_height_mm: the tips' height above the arms (mm).
+
+    Returns:
+        ``across`` and ``along``: pocket less envelope, each side; ``back``:
+        the insert's underside above the jaw's back; ``under_wall``: the arms'
+        tops below the face wall's underside.
+    """
+    across, along, height = envelope_mm
+    underside = jaw.thickness_mm + jaw.tip_proud_mm - height
+    arm_top = jaw.thickness_mm + jaw.tip_proud_mm - tip_height_mm
+    return {"across": (jaw.pocket_width_mm - across) / 2,
+            "along": (jaw.pocket_length_mm - along) / 2,
+            "back": underside,
+            "under_wall": jaw.pocket_depth_mm - arm_top}
+
+
+def pocket_fit(envelope_mm: tuple[float, float, float], jaw, tip_height_mm: float) -> CheckResult:
+    """Fails when the insert's envelope leaves the jaw's pocket (any clearance
+    of :func:`pocket_clearances_mm` below zero); the detail gives every one."""
+    room = pocket_clearances_mm(envelope_mm, jaw, tip_height_mm)
+    detail = ", ".join(f"{k} {fmt(round(v, 6))} mm" for k, v in room.items())
+    worst = min(room, key=room.get)
+    ok = room[worst] >= 0.0
+    return CheckResult("pocket fit", "grasper_jaw: insert in the pocket", ok,
+                       f"insert {' x '.join(fmt(v) for v in envelope_mm)} mm in pocket "
+                       f"{fmt(jaw.pocket_width_mm)} x {fmt(jaw.pocket_length_mm)} x "
+                       f"{fmt(jaw.pocket_depth_mm)} mm: {detail}"
+                       + ("" if ok else f"; interferes at {worst}"))
+
+
+def shaft_leads_result(plan, shaft) -> CheckResult:
+    """Fails when the bundle of the insert's leads (one quarter bridge per
+    element, the design's lead-wire connection) is wider than the shaft's
+    lead channel."""
+    from tactcad.in_use.shaft_leads import leads_check
+    from tactcad.mechanics.readout_chain import readout_chain
+
+    leads = leads_check(len(plan.slots), shaft.bore_diameter_mm, readout_chain(plan).lead_wires)
+    return CheckResult("lead channel", "grasper_shaft: leads in the bore", leads.fits,
+                       f"{leads.leads} leads ({leads.connection}, Ø{fmt(leads.wire_diameter_mm)} "
+                       f"mm) bundle Ø{fmt(round(leads.bundle_diameter_mm, 4))} mm in the "
+                       f"Ø{fmt(leads.channel_diameter_mm)} mm channel, fill "
+                       f"{leads.fill:.0%}")

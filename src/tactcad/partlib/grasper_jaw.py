@@ -1,0 +1,263 @@
+"""The jaw of a laparoscopic grasper that carries the tactile insert (a
+bought-in grasper body in 17-4PH or 316L stainless steel, machined to take
+the insert): a bar of the shaft class's width less a clearance, a pivot pin
+hole across it near its proximal end, a pocket opened from the back that
+takes the insert, and a window through the jaw's face wall over the tip field
+through which the tips stand proud of the face by a set height.
+
+The pocket follows the insert's envelope (a monolithic comb's
+``plan.comb.envelope_mm``: across the rows, along the row, height) plus a
+clearance on every side unless the table sets it; a stated pocket is checked
+against the envelope. The insert sits in the pocket with its contact faces
+``tip_proud_mm`` above the jaw face; the face wall stays above the arms when
+wall + proud < the element's tip height (``element.tip_height_mm``).
+
+Not yet in the rigs file: the jaw is the insert's host in use, not a test rig
+(``JAW`` is the module's part; a project's scenes place it once a project
+without rigs can carry parts of its own). Part frame: x along the jaw from
+its proximal end (x = 0), y across it (centred), z = 0 on its back, the
+grasping face at z = thickness. Units: mm, degrees.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from types import SimpleNamespace
+from typing import Any, Mapping, Optional
+
+from pydantic import create_model
+
+from tactcad.kernel.shapes import box, cut, cylinder
+from tactcad.partlib.base import DrawingRecord, PartData, RigPart, Seat
+from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.schema import Derived, Problems, Section, choice, fmt, number, validate
+
+#: Trocar classes (mm): the instrument's shaft diameter.
+SHAFT_CLASSES_MM = {"5": 5.0, "10": 10.0}
+#: The jaw body's steels (a bought-in grasper's jaw machined for the insert).
+JAW_STEELS = ("17-4PH stainless steel", "316L stainless steel")
+#: Least steel left between the pin hole and the pocket, and behind the pocket's far end, mm.
+MIN_WALL_MM = 0.5
+COLOR = (0.72, 0.74, 0.78)
+
+
+class GrasperJawSection(Section):
+    """``[grasper_jaw]``: the jaw, its pin, pocket and tip window (mm, degrees)."""
+
+    shaft_class_mm: choice(SHAFT_CLASSES_MM, why="the trocar the instrument passes") = "10"
+    width_clearance_mm: number(0.0, 6.0) = 3.5  # jaw width = class - clearance
+    length_mm: number(5.0, 80.0) = 34.0
+    thickness_mm: number(1.0, 10.0) = 5.6
+    opposing_jaw_mm: number(0.5, 10.0) = 1.5  # the other jaw's thickness, closed on this one
+    pin_diameter_mm: number(0.5, 4.0) = 1.5
+    pin_inset_mm: number(0.5, 20.0) = 2.5  # pin axis from the proximal end
+    pocket_clearance_mm: number(0.0, 1.0) = 0.1
+    pocket_length_mm: Optional[number(1.0, 80.0)] = None  # default: the insert's row + clearance
+    pocket_width_mm: Optional[number(0.5, 10.0)] = None  # default: across the rows + clearance
+    face_wall_mm: number(0.1, 3.0) = 0.3
+    tip_proud_mm: number(0.0, 3.0) = 0.3
+    window_clearance_mm: number(0.0, 1.0) = 0.1
+    distal_wall_mm: number(0.3, 10.0) = 1.0  # steel beyond the pocket's far end
+    opening_angle_deg: number(0.0, 90.0, lo_open=True, unit="degrees") = 30.0
+    material: choice(JAW_STEELS) = JAW_STEELS[0]
+
+
+@dataclass(frozen=True)
+class GrasperJawGeometry:
+    """The jaw, every size filled in (mm; frame: see the module doc)."""
+
+    length_mm: float
+    width_mm: float
+    thickness_mm: float
+    pin_x_mm: float
+    pin_diameter_mm: float
+    pocket_x0_mm: float
+    pocket_length_mm: float
+    pocket_width_mm: float
+    pocket_depth_mm: float
+    window_length_mm: float
+    window_width_mm: float
+    tip_proud_mm: float
+    opening_angle_deg: float
+
+    @property
+    def pocket_centre_x_mm(self) -> float:
+        return self.pocket_x0_mm + self.pocket_length_mm / 2
+
+
+def closed_thickness_limit_mm(trocar_mm: float, width_mm: float) -> float:
+    """The thickest closed pair of jaws (mm) of width ``width_mm`` whose
+    rectangular section passes a round trocar of ``trocar_mm``: sqrt(D² - w²)."""
+    return math.sqrt(max(trocar_mm ** 2 - width_mm ** 2, 0.0))
+
+
+def insert_envelope_mm(plan) -> tuple[float, float, float] | None:
+    """The insert's envelope (across the rows, along the row, height; mm) read
+    from the plan without a kernel: a monolithic comb's; None for another
+    construction (the stacked array's envelope is the assembly layer's)."""
+    comb = getattr(plan, "comb", None)
+    return None if comb is None else tuple(float(v) for v in comb.envelope_mm)
+
+
+def _pocket_side(p: Problems, field: str, stated: float | None, need: float | None,
+                 why: str) -> float:
+    """A pocket size: the envelope's need when left out, else the stated size
+    checked against it."""
+    if stated is None:
+        if need is None:
+            p.add(field, None, "a size in mm", "the insert's envelope is not known without a "
+                  "kernel for this construction: state the pocket")
+            return 1.0
+        return need
+    return stated if need is None else p.within(field, stated, need, why=why)
+
+
+def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
+    """The jaw for the array's insert (``context.plan``).
+
+    Args:
+        j: the validated ``[grasper_jaw]`` table.
+        context: has ``plan`` (the array's plan).
+        p: refusals are added here (field, value, allowed range, reason).
+
+    Returns:
+        The jaw's :class:`PartData` with its derived sizes and their reasons.
+    """
+    plan = context.plan
+    c = j.pocket_clearance_mm
+    env = insert_envelope_mm(plan)
+    width = SHAFT_CLASSES_MM[j.shaft_class_mm] - j.width_clearance_mm
+    why_env = (f"the insert's envelope {' x '.join(fmt(v) for v in env)} mm (across x along x "
+               f"height) + {fmt(c)} mm each side" if env else "")
+    pl = _pocket_side(p, "grasper_jaw.pocket_length_mm", j.pocket_length_mm,
+                      env and env[1] + 2 * c, why_env)
+    pw = _pocket_side(p, "grasper_jaw.pocket_width_mm", j.pocket_width_mm,
+                      env and env[0] + 2 * c, why_env)
+    if width < pw + 2 * MIN_WALL_MM - 1e-9:
+        p.add("grasper_jaw.shaft_class_mm", j.shaft_class_mm,
+              f"a class whose jaw (class less width_clearance_mm) is >= {fmt(pw + 2 * MIN_WALL_MM)} mm",
+              f"the jaw is {fmt(width)} mm; it holds the {fmt(pw)} mm pocket with "
+              f"{fmt(MIN_WALL_MM)} mm side walls")
+    depth = j.thickness_mm - j.face_wall_mm
+    tip_h = plan.slots[0].geometry.tip_height_mm
+    p.within("grasper_jaw.face_wall_mm", j.face_wall_mm, hi=tip_h - j.tip_proud_mm, hi_open=True,
+             why=f"face wall + tip_proud_mm ({fmt(j.tip_proud_mm)} mm) < the element's tip height "
+                 f"{fmt(tip_h)} mm, so the arms stay clear below the face wall")
+    if env:
+        p.within("grasper_jaw.thickness_mm", j.thickness_mm, env[2] - j.tip_proud_mm,
+                 why=f"the insert ({fmt(env[2])} mm high) stands {fmt(j.tip_proud_mm)} mm proud "
+                     "and stays inside the jaw's back")
+    closed = math.hypot(width, j.thickness_mm + j.opposing_jaw_mm)
+    if closed > SHAFT_CLASSES_MM[j.shaft_class_mm] + 1e-9:
+        p.add("grasper_jaw.thickness_mm", j.thickness_mm,
+              f"<= {fmt(closed_thickness_limit_mm(SHAFT_CLASSES_MM[j.shaft_class_mm], width))} mm "
+              f"with the {fmt(j.opposing_jaw_mm)} mm opposing jaw",
+              f"the closed jaws ({fmt(width)} x {fmt(j.thickness_mm + j.opposing_jaw_mm)} mm, "
+              f"diagonal {fmt(round(closed, 4))} mm) pass the {j.shaft_class_mm} mm trocar; a "
+              "narrower jaw (width_clearance_mm) leaves room for a thicker one")
+    x1 = j.length_mm - j.distal_wall_mm
+    x0 = x1 - pl
+    least = j.pin_inset_mm + j.pin_diameter_mm / 2 + MIN_WALL_MM
+    p.within("grasper_jaw.length_mm", j.length_mm, least + pl + j.distal_wall_mm,
+             why=f"pin, {fmt(MIN_WALL_MM)} mm of steel, the {fmt(pl)} mm pocket and the distal wall")
+    p.within("grasper_jaw.pin_inset_mm", j.pin_inset_mm, j.pin_diameter_mm / 2 + MIN_WALL_MM,
+             why="steel around the pin hole at the proximal end")
+    p.within("grasper_jaw.pin_diameter_mm", j.pin_diameter_mm, hi=j.thickness_mm - 2 * MIN_WALL_MM,
+             why="steel above and below the pin hole")
+    field_along, field_across = plan.tip_field_mm
+    wl = min(field_along + 2 * j.window_clearance_mm, pl)
+    ww = min(field_across + 2 * j.window_clearance_mm, pw)
+    g = GrasperJawGeometry(j.length_mm, width, j.thickness_mm, j.pin_inset_mm, j.pin_diameter_mm,
+                           x0, pl, pw, depth, wl, ww, j.tip_proud_mm, j.opening_angle_deg)
+    derived = (
+        Derived("grasper_jaw_width", width, "mm",
+                f"shaft class {j.shaft_class_mm} mm less {fmt(j.width_clearance_mm)} mm clearance"),
+        Derived("grasper_jaw_closed_diagonal", closed, "mm",
+                f"both jaws closed, {fmt(width)} x {fmt(j.thickness_mm + j.opposing_jaw_mm)} mm, "
+                f"inside the {j.shaft_class_mm} mm trocar"),
+        Derived("grasper_jaw_pocket_length", pl, "mm", why_env or "stated"),
+        Derived("grasper_jaw_pocket_width", pw, "mm", why_env or "stated"),
+        Derived("grasper_jaw_pocket_depth", depth, "mm",
+                f"thickness {fmt(j.thickness_mm)} less the face wall {fmt(j.face_wall_mm)} mm"),
+        Derived("grasper_jaw_window_length", wl, "mm",
+                f"tip field {fmt(field_along)} mm + {fmt(j.window_clearance_mm)} mm each end"),
+        Derived("grasper_jaw_window_width", ww, "mm",
+                f"tip field {fmt(field_across)} mm + {fmt(j.window_clearance_mm)} mm each side"))
+    return PartData(
+        name="grasper_jaw", kind="fabricated",
+        process=Process("bought-in grasper jaw, machined for the insert: pocket and tip window by "
+                        "wire EDM and milling, pin hole reamed", Method.BAR),
+        material=j.material, color=COLOR,
+        expected_volume_mm3=jaw_volume_mm3(g), expected_bbox_mm=(0.0, -width / 2, 0.0,
+                                                                j.length_mm, width / 2,
+                                                                j.thickness_mm),
+        geometry=g, derived=derived, attributes={"opening_angle_deg": j.opening_angle_deg},
+        frames={"pivot": Seat((j.pin_inset_mm, 0, j.thickness_mm / 2), (0, 1, 0), (1, 0, 0)),
+                "face": Seat((g.pocket_centre_x_mm, 0, j.thickness_mm), (0, 0, 1), (1, 0, 0)),
+                "pocket": Seat((g.pocket_centre_x_mm, 0, depth), (0, 0, -1), (1, 0, 0))})
+
+
+def jaw_volume_mm3(g: GrasperJawGeometry) -> float:
+    """The jaw's volume (mm^3): bar less pin hole, pocket and window (each cut
+    lies inside the bar and they do not overlap)."""
+
+    bar = g.length_mm * g.width_mm * g.thickness_mm
+    pin = math.pi * (g.pin_diameter_mm / 2) ** 2 * g.width_mm
+    pocket = g.pocket_length_mm * g.pocket_width_mm * g.pocket_depth_mm
+    window = g.window_length_mm * g.window_width_mm * (g.thickness_mm - g.pocket_depth_mm)
+    return bar - pin - pocket - window
+
+
+def build(g: GrasperJawGeometry):
+    """The jaw bar with its pin hole, back pocket and face window (build123d ``Solid``)."""
+    w = g.width_mm / 2
+    bar = box(0, -w, 0, g.length_mm, w, g.thickness_mm)
+    pin = cylinder(g.pin_diameter_mm / 2, (g.pin_x_mm, -w, g.thickness_mm / 2), (0, 1, 0),
+                   g.width_mm)
+    x0, pw = g.pocket_x0_mm, g.pocket_width_mm / 2
+    pocket = box(x0, -pw, 0, x0 + g.pocket_length_mm, pw, g.pocket_depth_mm)
+    cx, wl, ww = g.pocket_centre_x_mm, g.window_length_mm / 2, g.window_width_mm / 2
+    window = box(cx - wl, -ww, g.pocket_depth_mm, cx + wl, ww, g.thickness_mm)
+    return cut(bar, pin, pocket, window)
+
+
+def notes_after(g: GrasperJawGeometry, pen) -> list[str]:
+    """The drawing's notes after the process note: the insert's fit."""
+    return [f"The insert goes into the {pen.fmt_mm(g.pocket_length_mm)} x "
+            f"{pen.fmt_mm(g.pocket_width_mm)} mm pocket from the back; its contact faces stand "
+            f"{pen.fmt_mm(g.tip_proud_mm)} mm proud of the jaw face through the window.",
+            "Pin hole reamed H7 for the grasper's pivot pin."]
+
+
+
+def part_from_table(key: str, section: type[Section], derive, table: Mapping[str, Any] | None,
+                    file: str = "", **context: Any) -> PartData:
+    """A part module's data from its table ``[key]`` alone (defaults where left
+    out), outside a rigs file: validated as the rigs file validates it, so a
+    refusal names ``key.field``; ``context`` holds what the derivation reads
+    (``plan=...``, ``jaw=...``).
+
+    Raises:
+        DesignErrors: every refusal, each naming the field, value and allowed range.
+    """
+    p = Problems(file)
+    model = create_model(f"{section.__name__}File", __base__=Section, **{key: (section, section())})
+    t = validate(model, {key: dict(table or {})}, p)
+    p.raise_if_any()
+    out = derive(getattr(t, key), SimpleNamespace(**context), p)
+    p.raise_if_any()
+    return out
+
+
+def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> PartData:
+    """The jaw for ``plan`` from a ``[grasper_jaw]`` table (defaults where left out).
+
+    Raises:
+        DesignErrors: every refusal, each naming the field, value and allowed range.
+    """
+    return part_from_table("grasper_jaw", GrasperJawSection, derive, table, file, plan=plan)
+
+
+JAW = RigPart(key="grasper_jaw", section=GrasperJawSection, host="", derive=derive, build=build,
+              drawing=DrawingRecord(hole_table=False, notes_after=notes_after))

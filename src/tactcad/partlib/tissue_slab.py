@@ -1,0 +1,86 @@
+"""A tissue slab for the grasper scene (a stand-in, not a made part): a
+box of stated thickness lying on the opposing jaw, which the jaw closes on.
+It covers the jaw's face unless the table sets its size; its thickness is
+the grasp's slab (:class:`tactcad.in_use.jaw_kinematics.JawGeometry`,
+``slab_thickness_mm``, > 0 ... 100 mm). Not yet in a scenes file, like the
+jaw (:mod:`tactcad.partlib.grasper_jaw`). Part frame: slab centred in x and
+y, z = 0 on its underside. Units: mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Mapping, Optional
+
+from tactcad.kernel.shapes import box
+from tactcad.partlib.base import PartData, RigPart, Seat
+from tactcad.partlib.grasper_jaw import part_from_table
+from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.schema import Derived, Problems, Section, Text, fmt, number
+
+COLOR = (0.86, 0.45, 0.45)
+
+
+class TissueSlabSection(Section):
+    """``[tissue_slab]``: the slab (mm); a size left out covers the jaw's face."""
+
+    thickness_mm: number(0.0, 100.0, lo_open=True) = 3.0  # assumed, as `tactcad grasp`'s default
+    length_mm: Optional[number(1.0, 200.0)] = None
+    width_mm: Optional[number(1.0, 200.0)] = None
+    material: Text = "tissue (stand-in)"
+
+
+@dataclass(frozen=True)
+class TissueSlabGeometry:
+    """The slab (mm)."""
+
+    length_mm: float
+    width_mm: float
+    thickness_mm: float
+
+
+def derive(s: TissueSlabSection, context, p: Problems) -> PartData:
+    """The slab under the jaw ``context.jaw`` (a
+    :class:`~tactcad.partlib.grasper_jaw.GrasperJawGeometry`).
+
+    Args:
+        s: the validated ``[tissue_slab]`` table.
+        context: has ``jaw``, the jaw's geometry.
+        p: refusals are added here.
+
+    Returns:
+        The slab's :class:`PartData`.
+    """
+    jaw = context.jaw
+    why = f"covers the jaw's {fmt(jaw.length_mm)} x {fmt(jaw.width_mm)} mm face"
+    length = jaw.length_mm if s.length_mm is None else s.length_mm
+    width = jaw.width_mm if s.width_mm is None else s.width_mm
+    g = TissueSlabGeometry(length, width, s.thickness_mm)
+    return PartData(
+        name="tissue_slab", kind="purchased", process=Process("tissue or phantom", Method.BOUGHT),
+        material=s.material, color=COLOR, expected_volume_mm3=length * width * s.thickness_mm,
+        expected_bbox_mm=(-length / 2, -width / 2, 0.0, length / 2, width / 2, s.thickness_mm),
+        geometry=g, derived=(Derived("tissue_slab_length", length, "mm", why if s.length_mm is None
+                                     else "stated"),
+                             Derived("tissue_slab_width", width, "mm", why if s.width_mm is None
+                                     else "stated")),
+        frames={"bottom": Seat((0, 0, 0), (0, 0, -1), (1, 0, 0)),
+                "top": Seat((0, 0, s.thickness_mm), (0, 0, 1), (1, 0, 0))})
+
+
+def build(g: TissueSlabGeometry):
+    """Box ``length x width x thickness`` (build123d ``Solid``)."""
+    return box(-g.length_mm / 2, -g.width_mm / 2, 0, g.length_mm / 2, g.width_mm / 2,
+               g.thickness_mm)
+
+
+def slab_part(jaw, table: Mapping[str, Any] | None = None, file: str = "") -> PartData:
+    """The slab under ``jaw`` from a ``[tissue_slab]`` table (defaults where left out).
+
+    Raises:
+        DesignErrors: every refusal, each naming the field, value and allowed range.
+    """
+    return part_from_table("tissue_slab", TissueSlabSection, derive, table, file, jaw=jaw)
+
+
+SLAB = RigPart(key="tissue_slab", section=TissueSlabSection, host="", derive=derive, build=build)

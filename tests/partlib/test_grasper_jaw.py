@@ -1,0 +1,111 @@
+"""The grasper jaw that carries the comb insert: its solid against the
+volume its derivation expects, and refusals naming field, value and range."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from tactcad.design.array_plan import load_design
+from tactcad.errors import DesignError
+from tactcad.partlib.grasper_jaw import build, insert_envelope_mm, jaw_part
+
+GRASPER = Path(__file__).parents[2] / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+
+
+@pytest.fixture(scope="module")
+def comb_plan():
+    return load_design(GRASPER)
+
+
+def test_pocket_holds_the_insert_envelope_with_its_clearance(comb_plan):
+    g = jaw_part(comb_plan, {"pocket_clearance_mm": 0.15}).geometry
+    across, along, _ = insert_envelope_mm(comb_plan)
+    assert g.pocket_length_mm == pytest.approx(along + 0.3)
+    assert g.pocket_width_mm == pytest.approx(across + 0.3)
+    assert g.window_length_mm <= g.pocket_length_mm and g.window_width_mm <= g.pocket_width_mm
+
+
+@pytest.mark.slow
+def test_jaw_builds_one_valid_solid_of_the_expected_volume_and_box(comb_plan):
+    data = jaw_part(comb_plan)
+    solid = build(data.geometry)
+    assert solid.is_valid
+    assert solid.volume == pytest.approx(data.expected_volume_mm3, rel=1e-6)
+    bb = solid.bounding_box()
+    assert (bb.min.X, bb.min.Y, bb.min.Z, bb.max.X, bb.max.Y, bb.max.Z) == pytest.approx(
+        data.expected_bbox_mm, abs=1e-6)
+
+
+def test_the_default_closed_jaws_pass_the_trocar(comb_plan):
+    from tactcad.partlib.grasper_jaw import closed_thickness_limit_mm
+
+    data = jaw_part(comb_plan)
+    g = data.geometry
+    closed = next(d for d in data.derived if d.name == "grasper_jaw_closed_diagonal")
+    assert closed.value <= 10.0
+    assert g.thickness_mm + 1.5 <= closed_thickness_limit_mm(10.0, g.width_mm)
+
+
+@pytest.mark.parametrize("table, words", [
+    ({"shaft_class_mm": "5"}, ["grasper_jaw.shaft_class_mm", "'5'", ">= 6.4 mm"]),
+    ({"width_clearance_mm": 1.0, "thickness_mm": 6.0},
+     ["grasper_jaw.thickness_mm", "6", "<= 4.3589 mm", "10 mm trocar"]),
+    ({"shaft_class_mm": "7"}, ["grasper_jaw.shaft_class_mm", "5, 10"]),
+    ({"face_wall_mm": 0.6}, ["grasper_jaw.face_wall_mm", "0.6", "< 0.5 mm"]),
+    ({"pocket_length_mm": 20.0}, ["grasper_jaw.pocket_length_mm", "20", ">= 27.8 mm"]),
+    ({"length_mm": 200}, ["grasper_jaw.length_mm", "200", "5 <= value <= 80 mm"]),
+    ({"length_mm": 30}, ["grasper_jaw.length_mm", "30"]),
+    ({"thickness_mm": 4.0}, ["grasper_jaw.thickness_mm", "4", ">= 5.4941 mm"]),
+])
+def test_bad_jaw_values_name_field_value_and_range(comb_plan, table, words):
+    with pytest.raises(DesignError) as info:
+        jaw_part(comb_plan, table)
+    for w in words:
+        assert w in str(info.value), str(info.value)
+
+
+@pytest.mark.slow
+def test_shaft_builds_a_tube_of_the_expected_volume():
+    from tactcad.partlib.grasper_shaft import build as build_shaft, shaft_part
+
+    data = shaft_part({"shaft_class_mm": "5", "length_mm": 270.0})
+    solid = build_shaft(data.geometry)
+    assert solid.is_valid
+    assert solid.volume == pytest.approx(data.expected_volume_mm3, rel=1e-6)
+    assert data.attributes["lead_channel_diameter_mm"] == pytest.approx(4.0)
+
+
+@pytest.mark.parametrize("table, words", [
+    ({"wall_mm": 2.4, "shaft_class_mm": "5"}, ["grasper_shaft.wall_mm", "2.4", "<= 2.25 mm"]),
+    ({"length_mm": 50.0}, ["grasper_shaft.length_mm", "50", "100 <= value <= 500 mm"]),
+])
+def test_bad_shaft_values_name_field_value_and_range(table, words):
+    from tactcad.partlib.grasper_shaft import shaft_part
+
+    with pytest.raises(DesignError) as info:
+        shaft_part(table)
+    for w in words:
+        assert w in str(info.value), str(info.value)
+
+
+def test_the_slab_covers_the_jaw_face_unless_sized(comb_plan):
+    from tactcad.partlib.tissue_slab import slab_part
+
+    jaw = jaw_part(comb_plan).geometry
+    g = slab_part(jaw, {"thickness_mm": 4.0}).geometry
+    assert (g.length_mm, g.width_mm, g.thickness_mm) == (jaw.length_mm, jaw.width_mm, 4.0)
+    assert slab_part(jaw, {"length_mm": 50.0}).geometry.length_mm == 50.0
+    with pytest.raises(DesignError) as info:
+        slab_part(jaw, {"thickness_mm": 0.0})
+    assert "tissue_slab.thickness_mm" in str(info.value) and "0 < value <= 100 mm" in str(info.value)
+
+
+@pytest.mark.slow
+def test_the_slab_builds_its_box(comb_plan):
+    from tactcad.partlib.tissue_slab import build as build_slab, slab_part
+
+    data = slab_part(jaw_part(comb_plan).geometry)
+    solid = build_slab(data.geometry)
+    assert solid.is_valid and solid.volume == pytest.approx(data.expected_volume_mm3, rel=1e-9)
