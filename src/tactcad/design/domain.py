@@ -21,6 +21,7 @@ from tactcad.design.array_plan import (ARM_RANGE_MM, MAX_COLUMNS, MIN_ARM_STEP_M
                                   WEB_RANGE_MM, default_design_data)
 from tactcad.design.rig_plan import default_rigs_data
 from tactcad.partlib.bracket import EAR_HEAD_CLEARANCE_MM
+from tactcad.vocabulary.process import WIRE_TOLERANCE_MM
 from tactcad.vocabulary.standards import BOLTS, BoltSpec
 
 Pick = Callable[[float, float], float]
@@ -111,7 +112,8 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
                            arm_height_mm=arm_h,
                            base_height_mm=base_h, overall_length_mm=overall,
                            inside_corner_radius_mm=corner,
-                           web_tolerance_mm=pick(0.0, min(0.1, web / 2)))
+                           # drawn no finer than the cut process holds (wire EDM standard finish)
+                           web_tolerance_mm=pick(WIRE_TOLERANCE_MM, min(0.1, web / 2)))
     data["arms"]["lengths_mm"] = arms
     data["clamp"].update(bolt_size=bolt.size, bolt_spacing_mm=spacing, plate_thickness_mm=plate,
                          bridge_height_mm=bridge, arm_clearance_mm=arm_clear)
