@@ -506,9 +506,17 @@ def budget_uncertainty_rel(ctx: Context, unit: Unit) -> float:
     return max(abs(err[p]) for p in parts) + max(ctx.k_error[p] for p in parts)
 
 
+#: Significant digits the budget's figures keep: far finer than any of them is known, and
+#: coarse enough that the last bits a linear-algebra library leaves (another BLAS, another
+#: thread count) neither change the manifest nor flip a tie between symmetric units.
+BUDGET_DIGITS = 10
+
+
 def listed(values: np.ndarray) -> list[float | None]:
-    """``values`` as a list of floats, None where not finite (a reading eq. 3 cannot make)."""
-    return [float(v) if math.isfinite(v) else None for v in np.asarray(values, float)]
+    """``values`` as a list of floats to :data:`BUDGET_DIGITS` significant digits, None
+    where not finite (a reading eq. 3 cannot make)."""
+    return [float(f"{v:.{BUDGET_DIGITS}g}") if math.isfinite(v) else None
+            for v in np.asarray(values, float)]
 
 
 def unit_budget(ctx: Context, unit: Unit, k_obj: np.ndarray) -> dict:
