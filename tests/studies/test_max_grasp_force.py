@@ -92,3 +92,15 @@ def test_a_hard_stop_takes_the_force_beyond_its_engagement():
     for it in on_stop:  # the element carries K e_s, no more
         assert it["element_force_N"] == pytest.approx(
             fig.k_of(it["element"]) * stops[it["element"]], rel=1e-9)
+
+
+def test_verify_names_the_elements_beyond_their_rating():
+    from conftest import run_cli
+
+    r = run_cli("verify", "--design", TI, "--model", "closed-form", "--set",
+                "requirements.max_grasp_force_N=1")
+    assert r.returncode == 1
+    line = next(x for x in r.stdout.splitlines() if x.startswith("grasp at 1 N: FAIL"))
+    over = _record(1.0)["over_rating"]
+    assert over and all(words in line for words in over) and "3 mm slab" in line
+    assert "grasp at" not in run_cli("verify", "--design", TI, "--model", "closed-form").stdout
