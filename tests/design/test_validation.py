@@ -258,3 +258,14 @@ def test_a_long_path_in_a_refusal_keeps_its_file_name(tmp_path):
     assert text.startswith(repr(str(deep))[:10]) and "nothere.toml'" in text
     assert f"({len(repr(str(deep)))} characters)" in text
     assert len(text) < MAX_VALUE_CHARS + 40
+
+
+@pytest.mark.parametrize("value, words", [(0, "0 < value <= 100 N"), (150, "0 < value <= 100 N"),
+                                          ("five", "a finite number")])
+def test_max_grasp_force_out_of_range_is_refused_naming_it(design_data, value, words):
+    data = with_overrides(design_data, {"requirements.max_grasp_force_N": value})
+    with pytest.raises(DesignErrors) as info:
+        plan_from_dict(data)
+    line = next(e.line() for e in info.value.errors
+                if e.field == "requirements.max_grasp_force_N")
+    assert words in line and repr(value) in line, line

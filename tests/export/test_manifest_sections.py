@@ -15,8 +15,8 @@ from tactcad.export.manifest import (HEAD, MANIFEST_SECTIONS, ManifestSection, d
 from tactcad.vocabulary.schema import read_toml
 
 TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
-KEYS = ["parts", "assemblies", "strength", "requirements", "thermal", "kobj_budget", "derived",
-        "assumptions"]
+KEYS = ["parts", "assemblies", "strength", "requirements", "thermal", "kobj_budget",
+        "tissue_coupling", "grasp", "derived", "assumptions"]
 
 
 def front_matter(plan) -> str:

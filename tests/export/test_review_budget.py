@@ -45,8 +45,11 @@ def test_the_pages_script_lays_the_table_out_in_the_datas_columns():
           / "review_page.js").read_text(encoding="utf-8")
     html = (Path(__file__).resolve().parents[2] / "src" / "tactcad" / "data"
             / "review_page.html").read_text(encoding="utf-8")
-    assert "table(b.columns, b.rows)" in js and "showBudget();" in js
-    assert 'id="budget-body"' in html and 'id="nav-budget"' in html
+    assert "table(t.columns, t.rows)" in js and "showBudget();" in js
+    for section, key in (("budget", "kobj_budget"), ("tissue", "tissue_coupling"),
+                         ("grasp", "grasp")):
+        assert f"showTableSection(DATA.{key}, '{section}')" in js
+        assert f'id="{section}-body"' in html and f'id="nav-{section}"' in html
 
 
 def test_the_exported_page_shows_the_budget_table(exported, browser):

@@ -10,11 +10,10 @@ from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import number
 from tactcad.mechanics.ladder import models
 
-#: Defaults, each stated where it is used (mm, degrees).
-DEFAULT_PIVOT_BEHIND_MM = 5.0
-DEFAULT_SLAB_MM = 3.0
-DEFAULT_OPENING_DEG = 60.0
-DEFAULT_JAW_BEYOND_MM = 2.0
+from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
+                                             DEFAULT_PIVOT_BEHIND_MM, DEFAULT_SLAB_MM)
+
+#: Defaults, each stated where it is used (mm; the jaw's in in_use.grasp_experiment).
 DEFAULT_LEAD_CHANNEL_MM = 3.0
 #: The grasp's fields and the options that set them (an error names the option).
 OPTION_OF = {"force_N": "--force-N", "angle_deg": "--angle-deg",
@@ -121,9 +120,7 @@ def design_plan_from_args(args: argparse.Namespace):
 
 def run(args: argparse.Namespace) -> int:
     from tactcad.errors import DesignError
-    from tactcad.in_use.grasp_experiment import grasp
-    from tactcad.in_use.jaw_kinematics import JawGeometry
-    from tactcad.in_use.radius_pairs import insert_frame
+    from tactcad.in_use.grasp_experiment import default_jaw, grasp
     from tactcad.in_use.shaft_leads import leads_check
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.readout_chain import readout_chain, row_units
@@ -134,16 +131,14 @@ def run(args: argparse.Namespace) -> int:
     rated = float(req.full_scale_force_N)
     lo, hi = req.kobj_range_N_per_mm
     k_obj = args.kobj if args.kobj is not None else math.sqrt(lo * hi)
-    pivot = args.pivot_mm or [-DEFAULT_PIVOT_BEHIND_MM, 0.0]
-    last = max(u for u, _ in insert_frame(plan).values())
-    length = args.jaw_length_mm or (last - pivot[0] + DEFAULT_JAW_BEYOND_MM)
     force = args.force_N if args.angle_deg is not None or args.force_N is not None \
         else 0.5 * rated * len(plan.slots)
     k = ladder_stiffness_by_element(plan, args.model)
     by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
     units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
     try:
-        jaw = JawGeometry(pivot[0], pivot[1], length, args.opening_deg, args.slab_thickness_mm)
+        jaw = default_jaw(plan, args.pivot_mm, args.jaw_length_mm, args.opening_deg,
+                          args.slab_thickness_mm)
         result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=args.angle_deg,
                        force_N=force, coupling=args.coupling, profile=args.profile)
         leads = leads_check(len(plan.slots), args.lead_channel_mm,

@@ -69,6 +69,9 @@ def run(args: argparse.Namespace) -> int:
         for level in levels:
             print(f"  {level['model']}: {level['seconds']:.2f} s")
         print(tissue_text(tissue))
+        grasp = next((r for r in records if r["requirement"] == "max_grasp_force_N"), None)
+        if grasp:
+            print(grasp_text(grasp))
         if open_:
             top = records[0].get("levels_tried", [args.model])[-1]
             print(f"undecided at {top} (margin inside its error estimate): {', '.join(open_)}"
@@ -93,6 +96,14 @@ def kobj_budget_section(plan, req, model: str):
                            DEFAULT_DELTA_T_K, "closed-form" if model == "auto" else model)
     except DesignError as exc:
         return str(exc)
+
+
+def grasp_text(record: dict) -> str:
+    """The grasp at the maximum grasp force: the jaw and tissue assumed, the elements beyond
+    their rating with force and rating."""
+    over = "; ".join(record.get("over_rating") or []) or "every element within its rating"
+    return (f"grasp at {record['target']:g} N: {record['verdict'].upper()}: {over} "
+            f"({record['basis']})")
 
 
 def tissue_text(record: dict) -> str:

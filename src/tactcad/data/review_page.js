@@ -492,10 +492,15 @@ function showVerification() {  // the manifest's verification matrix, when the e
   $('unmet').classList.toggle('shown', unmet.length > 0);
 }
 
-function showBudget() {  // the K_obj error budget's table, in the columns the data lists
-  const b = DATA.kobj_budget;
-  $('budget').hidden = $('nav-budget').hidden = !b;
-  $('budget-body').replaceChildren(...(b ? [el('p', b.title), table(b.columns, b.rows)] : []));
+function showTableSection(t, id) {  // a section of one table (title, columns, rows) or hidden
+  $(id).hidden = $(`nav-${id}`).hidden = !t;
+  $(`${id}-body`).replaceChildren(...(t ? [el('p', t.title), table(t.columns, t.rows)] : []));
+}
+
+function showBudget() {  // the K_obj error budget, the tissue coupling, the grasp: one table each
+  showTableSection(DATA.kobj_budget, 'budget');
+  showTableSection(DATA.tissue_coupling, 'tissue');
+  showTableSection(DATA.grasp, 'grasp');
 }
 
 function showChecks() {

@@ -33,6 +33,10 @@ Keys (units in the names):
   (:mod:`tactcad.in_use.kobj_budget`) at the full-scale force and its default
   temperature step, each K_obj read by its best unit; never derived (without it the
   budget is reported, not judged).
+* ``max_grasp_force_N``: the largest grasp force the tips may put on the tissue (N): at it
+  (the grasp's force mode, :mod:`tactcad.in_use.grasp_experiment`, with its default jaw
+  and tissue) every element's force on its spring must stay within the rated full-scale
+  force, a hard stop taking the rest; never derived (without it nothing is checked).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -53,7 +57,7 @@ REQUIREMENT_KEYS = ("full_scale_force_N", "kobj_range_N_per_mm", "kr_over_km",
 
 #: Requirements checked only when the file states them (never derived).
 STATED_ONLY_KEYS = ("min_first_resonance_Hz", "max_thermal_drift_N_per_K", "max_crosstalk_rel",
-                    "kobj_accuracy_rel")
+                    "kobj_accuracy_rel", "max_grasp_force_N")
 
 
 class RequirementsSection(Section):
@@ -82,20 +86,31 @@ class RequirementsSection(Section):
     kobj_accuracy_rel: number(0.0, 10.0, lo_open=True, unit="",
                               why="relative K_obj error (RSS of the K_obj error budget) over "
                                   "the range") = None
+    max_grasp_force_N: number(0.0, 100.0, lo_open=True, unit="N",
+                              why="grasp force at which every element must stay within its "
+                                  "rating") = None
     source: Text = None
 
 
 def stated_thermal_drift(raw: Mapping[str, Any]) -> float | None:
     """``requirements.max_thermal_drift_N_per_K`` (N/K), or None when not stated."""
-    table = raw.get("requirements") if isinstance(raw, Mapping) else None
-    value = table.get("max_thermal_drift_N_per_K") if isinstance(table, Mapping) else None
-    return None if value is None else float(value)
+    return stated_number(raw, "max_thermal_drift_N_per_K")
 
 
 def stated_kobj_accuracy(raw: Mapping[str, Any]) -> float | None:
     """``requirements.kobj_accuracy_rel`` (relative), or None when not stated."""
+    return stated_number(raw, "kobj_accuracy_rel")
+
+
+def stated_max_grasp_force(raw: Mapping[str, Any]) -> float | None:
+    """``requirements.max_grasp_force_N`` (N), or None when not stated."""
+    return stated_number(raw, "max_grasp_force_N")
+
+
+def stated_number(raw: Mapping[str, Any], key: str) -> float | None:
+    """``requirements.<key>`` as a float, or None when the design does not state it."""
     table = raw.get("requirements") if isinstance(raw, Mapping) else None
-    value = table.get("kobj_accuracy_rel") if isinstance(table, Mapping) else None
+    value = table.get(key) if isinstance(table, Mapping) else None
     return None if value is None else float(value)
 
 

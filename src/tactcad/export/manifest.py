@@ -181,6 +181,26 @@ def kobj_budget_section(plan: Plan) -> dict | None:
         return None
 
 
+def tissue_coupling_section(plan: Plan) -> dict:
+    """The K_obj bias the tissue coupling causes per unit over the required K_obj range, by
+    eq. 3 and by the coupled inversion, judged against the K_obj resolution
+    (:func:`tactcad.studies.verification.tissue_coupling_record`, as verify prints it)."""
+    from tactcad.studies.verification import requirements_of, tissue_coupling_record
+
+    return tissue_coupling_record(plan, requirements_of(plan))
+
+
+def grasp_section(plan: Plan) -> dict | None:
+    """The grasp at the design's ``max_grasp_force_N`` (its verify record: every element's
+    force on its spring against its rating, the grasp's summary, the jaw and tissue assumed);
+    None when the design states no maximum grasp force."""
+    from tactcad.studies.verification import (element_figures, max_grasp_force_record,
+                                              requirements_of)
+
+    fig = element_figures(plan)
+    return max_grasp_force_record(plan, fig, requirements_of(plan, fig))
+
+
 def derived_section(plan: Plan) -> list[dict]:
     """The plan's derived values, each with its reason."""
     return [{"name": d.name, "value": d.value, "unit": d.unit, "reason": d.reason}
@@ -223,6 +243,8 @@ for _key, _function in (("parts", "parts_section"), ("assemblies", "assemblies_s
                         ("strength", "strength_section"),
                         ("requirements", "requirements_section"),
                         ("thermal", "thermal_section"), ("kobj_budget", "kobj_budget_section"),
+                        ("tissue_coupling", "tissue_coupling_section"),
+                        ("grasp", "grasp_section"),
                         ("derived", "derived_section"),
                         ("assumptions", "assumptions_section"),
                         ("left_out", "left_out_section")):

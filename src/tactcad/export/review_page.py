@@ -106,6 +106,8 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
         "bom": bom_table(bom_csv), "elements": elements,
         "book": [step for step in book if step.get("scene") in scenes],
         "kobj_budget": kobj_budget_view(manifest.get("kobj_budget")),
+        "tissue_coupling": tissue_coupling_view(manifest.get("tissue_coupling")),
+        "grasp": grasp_view(manifest.get("grasp")),
     }
     return ReviewContents(data, dict(scenes), {_sha256(b): b for b in svgs.values()})
 
@@ -136,6 +138,56 @@ def kobj_budget_view(budget: dict | None) -> dict | None:
              f"{budget['delta_T_K']:g} K step; relative K_obj error after correction, each "
              f"K_obj read by its best unit (reference/measuring element); tactcad budget "
              f"shows every unit and the figures before correction")
+    return {"title": title, "columns": columns, "rows": rows}
+
+
+def _signed_pct(x) -> str:
+    return "no answer" if x is None else f"{100 * x:+.3g} %"
+
+
+def tissue_coupling_view(record: dict | None) -> dict | None:
+    """The manifest's tissue coupling record as the page's table: one row per sensing unit,
+    its worst K_obj bias over the range by eq. 3 and by the coupled inversion, each with its
+    verdict against the K_obj resolution (texts with their units); None without a unit."""
+    if not record or not record.get("units"):
+        return None
+    eq3 = {tuple(it["unit"]): it for it in record["eq3"]["items"]}
+    coupled = {tuple(it["unit"]): it for it in record["coupled"]["items"]}
+    columns = ["unit", "coupling", "K_obj bias, eq. 3", "eq. 3", "K_obj bias, coupled inversion",
+               "coupled inversion"]
+    rows = []
+    for u in record["units"]:
+        key = tuple(u["unit"])
+        rows.append({"unit": f"{key[0]}/{key[1]}", "coupling": f"{u['coupling']:.3g}",
+                     "K_obj bias, eq. 3": _signed_pct(eq3[key]["bias_rel"]),
+                     "eq. 3": eq3[key]["verdict"].upper(),
+                     "K_obj bias, coupled inversion": _signed_pct(coupled[key]["bias_rel"]),
+                     "coupled inversion": coupled[key]["verdict"].upper()})
+    title = (f"{record['tissue']}; worst K_obj bias over the K_obj range per unit "
+             f"(reference/measuring element) against the {100 * record['target_rel']:.3g} % "
+             f"K_obj resolution required (error estimate of the tissue model "
+             f"{100 * record['eq3']['items'][0]['error_estimate_rel']:.3g} %)")
+    return {"title": title, "columns": columns, "rows": rows}
+
+
+def grasp_view(record: dict | None) -> dict | None:
+    """The manifest's grasp at the maximum grasp force as the page's table: one row per
+    element, its force on its spring, its stop's share, its rating, margin and verdict
+    (texts with their units); None when the design states no maximum grasp force."""
+    if not record:
+        return None
+    columns = ["element", "force on its spring", "on the stop", "rating", "margin", "verdict"]
+    rows = [{"element": str(it["element"]), "force on its spring": f"{it['element_force_N']:.4g} N",
+             "on the stop": f"{it['stop_force_N']:.4g} N" if it["on_stop"] else "-",
+             "rating": f"{it['rated_force_N']:.4g} N",
+             "margin": "-" if it["margin_rel"] is None else f"{100 * it['margin_rel']:+.3g} %",
+             "verdict": it["verdict"].upper()} for it in record.get("elements", [])]
+    lay = (record.get("grasp") or {}).get("as_laid_out")
+    at = (f"angle {lay['angle_deg']:.4g} degrees, largest element force "
+          f"{lay['largest_element_force_N']:.4g} N (element {lay['largest_element']}), the "
+          f"stops {lay['stop_force_N']:.4g} N; " if lay else "")
+    title = (f"grasp force {record['target']:g} N: {record['verdict'].upper()}; {at}"
+             f"{record['basis']}")
     return {"title": title, "columns": columns, "rows": rows}
 
 

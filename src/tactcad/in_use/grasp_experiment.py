@@ -51,6 +51,13 @@ CELL_MM = 0.25
 BISECTION_STEPS = 60
 #: Active-set passes of the stops and lift-off before the solve is declared stuck.
 ACTIVE_SET_PASSES = 100
+#: The grasp's default jaw and tissue (mm, degrees), each an assumption stated where used:
+#: the pin behind the first tip along the rows, the slab, the jaw's full opening, the jaw
+#: beyond the last tip.
+DEFAULT_PIVOT_BEHIND_MM = 5.0
+DEFAULT_SLAB_MM = 3.0
+DEFAULT_OPENING_DEG = 60.0
+DEFAULT_JAW_BEYOND_MM = 2.0
 
 
 def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thickness_mm: float,
@@ -403,3 +410,72 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
                        float(rated_force_N),
                        grasp_layout("as laid out", laid, units, *args),
                        grasp_layout("paired", paired, sites, *args), layout, notes)
+
+
+def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
+                jaw_length_mm: float | None = None, opening_deg: float = DEFAULT_OPENING_DEG,
+                slab_mm: float = DEFAULT_SLAB_MM) -> JawGeometry:
+    """The jaw of a design's grasp, each value not given taken by default: the pin
+    :data:`DEFAULT_PIVOT_BEHIND_MM` behind the first tip along the rows, the jaw reaching
+    :data:`DEFAULT_JAW_BEYOND_MM` beyond the last tip, :data:`DEFAULT_OPENING_DEG` open, a
+    :data:`DEFAULT_SLAB_MM` slab (mm, degrees).
+
+    Raises:
+        DesignError: a value out of range (:class:`JawGeometry`).
+    """
+    pivot = pivot_mm or (-DEFAULT_PIVOT_BEHIND_MM, 0.0)
+    last = max(u for u, _ in insert_frame(plan).values())
+    length = jaw_length_mm or (last - pivot[0] + DEFAULT_JAW_BEYOND_MM)
+    return JawGeometry(pivot[0], pivot[1], length, opening_deg, slab_mm)
+
+
+def default_assumptions(k_obj_range: tuple[float, float]) -> str:
+    """The default grasp's jaw and tissue in words (for a record that uses them)."""
+    lo, hi = k_obj_range
+    return (f"pin {DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows, jaw "
+            f"{DEFAULT_JAW_BEYOND_MM:g} mm beyond the last tip, {DEFAULT_OPENING_DEG:g} degrees "
+            f"open, a {DEFAULT_SLAB_MM:g} mm slab coupled as a layer on the opposing jaw (ν "
+            f"{TISSUE_POISSON_RATIO:g}), K_obj the geometric mean of the range {lo:g} ... "
+            f"{hi:g} N/mm; the design's layout")
+
+
+def design_grasp_at_force(plan: Plan, force_N: float, rated_force_N: float,
+                          k_obj_range: tuple[float, float],
+                          model: str = "closed-form") -> GraspResult:
+    """The grasp of a design at a grasp force with the default jaw and tissue
+    (:func:`default_jaw`, :func:`default_assumptions`), the elements' K at ``model``.
+
+    Args:
+        force_N: the grasp force the tips put on the slab (N), > 0.
+        rated_force_N: each element's rated full-scale force (N).
+        k_obj_range: the required K_obj range (N/mm); the tissue's K_obj is its geometric mean.
+
+    Raises:
+        DesignError: the force is out of the jaw's reach, or a value out of range.
+    """
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.mechanics.readout_chain import row_units
+
+    k = ladder_stiffness_by_element(plan, model)
+    by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
+    units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
+    return grasp(plan, default_jaw(plan), k, units, math.sqrt(k_obj_range[0] * k_obj_range[1]),
+                 rated_force_N, force_N=force_N)
+
+
+def grasp_summary(result: GraspResult) -> dict:
+    """One layout per key (``as_laid_out``, ``paired``): its angle, grasp force, the largest
+    element force and its element, the elements over their rating and those on a stop (N,
+    degrees)."""
+    def layout(lay: LayoutGrasp) -> dict:
+        top = max(lay.tips, key=lambda t: t["element_force_N"])
+        return {"angle_deg": lay.angle_deg, "grasp_force_N": lay.total_force_N,
+                "largest_element_force_N": top["element_force_N"],
+                "largest_element": top["site"],
+                "over_rating": [t["site"] for t in lay.tips if t["over_rating"]],
+                "on_stop": [t["site"] for t in lay.tips if t["on_stop"]],
+                "stop_force_N": sum(t["stop_force_N"] for t in lay.tips)}
+
+    return {"rated_force_N": result.rated_force_N, "K_obj_N_per_mm": result.k_obj_N_per_mm,
+            "slab_thickness_mm": result.jaw.slab_thickness_mm, "coupling": result.coupling,
+            "as_laid_out": layout(result.as_laid_out), "paired": layout(result.paired)}

@@ -535,6 +535,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     out.extend(r for r in [thermal_record(plan, fig, req)] if r is not None)
     out += crosstalk_records(plan, F, units.force_resolution_N)
     out.extend(r for r in [kobj_accuracy_record(plan, fig, req)] if r is not None)
+    out.extend(r for r in [max_grasp_force_record(plan, fig, req)] if r is not None)
     for r in out:
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew
@@ -590,6 +591,52 @@ def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements) -> dict | 
                    delta_T_K=budget.delta_T_K,
                    basis="RSS of the K_obj error budget after correction (tactcad budget), "
                          "each K_obj read by its best unit")
+
+
+def grasp_error_rel(fig: Figures) -> float:
+    """The grasp model's relative error on an element's force: the level's largest K error
+    and the tissue model's (:data:`TISSUE_MODEL_ERROR_REL`), root-sum-square."""
+    return math.hypot(max(fig.k_error.values(), default=0.0), TISSUE_MODEL_ERROR_REL)
+
+
+def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict | None:
+    """``max_grasp_force_N`` when the design states it (None otherwise): the grasp's force
+    mode at that grasp force (:func:`tactcad.in_use.grasp_experiment.design_grasp_at_force`:
+    its default jaw and tissue, the design's layout, the elements' K at ``fig``'s level);
+    each element's force on its spring against the rated full-scale force, margin
+    rating / force - 1, error :func:`grasp_error_rel`, judged on its own (``elements``), a
+    hard stop taking the force beyond its engagement; the record shows the element that
+    decides it (:func:`deciding_item`). A grasp force the jaw cannot reach fails."""
+    from tactcad.design.requirements_section import stated_max_grasp_force
+    from tactcad.errors import DesignError
+    from tactcad.in_use.grasp_experiment import (default_assumptions, design_grasp_at_force,
+                                                 grasp_summary)
+
+    target = stated_max_grasp_force(plan.raw)
+    if target is None:
+        return None
+    rated, basis = req.full_scale_force_N, default_assumptions(req.kobj_range_N_per_mm)
+    try:
+        result = design_grasp_at_force(plan, target, rated, req.kobj_range_N_per_mm, fig.model)
+    except DesignError as exc:
+        return _record("max_grasp_force_N", target, None, math.inf, -1.0, fig.model, False,
+                       verdict="fail", basis=f"{basis}; the grasp is out of reach: {exc}")
+    error = grasp_error_rel(fig)
+    items = [judged({"element": t["site"], "element_force_N": t["element_force_N"],
+                     "stop_force_N": t["stop_force_N"], "on_stop": t["on_stop"],
+                     "rated_force_N": rated, "error_estimate_rel": error,
+                     "margin_rel": rated / t["element_force_N"] - 1.0
+                     if t["element_force_N"] > 0 else None})
+             for t in result.as_laid_out.tips]
+    w = deciding_item(items)
+    over = [it for it in items if it["element_force_N"] > rated]
+    return _record("max_grasp_force_N", target, w["element_force_N"], error, w["margin_rel"],
+                   fig.model, not over, verdict=w["verdict"], binding_element=w["element"],
+                   rated_force_N=rated, elements=items, grasp=grasp_summary(result),
+                   over_rating=[f"element {it['element']}: {it['element_force_N']:.4g} N over "
+                                f"its rating {rated:.4g} N" for it in over],
+                   basis=f"{basis}; each element's force on its spring against the rated "
+                         f"full-scale force, a hard stop taking the rest")
 
 
 def kr_over_km_record(pairs: Sequence[RowPair], req: Requirements, model: str) -> dict:

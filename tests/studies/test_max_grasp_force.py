@@ -1,0 +1,106 @@
+"""``[requirements] max_grasp_force_N``: at that grasp force every element's force on its
+spring stays within its rating (verify, the grasp's force mode with its default jaw)."""
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+TI = str(ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
+
+
+def _record(force_N):
+    from tactcad.api import load
+    from tactcad.studies.verification import element_figures, max_grasp_force_record, requirements_of
+
+    sets = {} if force_N is None else {"requirements.max_grasp_force_N": force_N}
+    plan = load(TI, set=sets).plan
+    fig = element_figures(plan)
+    return max_grasp_force_record(plan, fig, requirements_of(plan, fig))
+
+
+def test_not_stated_is_not_judged():
+    assert _record(None) is None
+
+
+def test_elements_beyond_their_rating_fail_named_with_force_and_rating():
+    r = _record(1.0)
+    over = [it for it in r["elements"] if it["element_force_N"] > it["rated_force_N"]]
+    assert over and r["verdict"] == "fail" and not r["pass"]
+    assert r["predicted"] == pytest.approx(max(it["element_force_N"] for it in r["elements"]))
+    for it in over:
+        assert any(s.startswith(f"element {it['element']}: {it['element_force_N']:.4g} N")
+                   and f"rating {it['rated_force_N']:.4g} N" in s for s in r["over_rating"])
+    # the grasp's tip forces sum to the grasp force stated
+    assert r["grasp"]["as_laid_out"]["grasp_force_N"] == pytest.approx(1.0)
+    assert "3 mm slab" in r["basis"] and "60 degrees" in r["basis"]
+
+
+def test_a_light_grasp_within_every_rating_passes():
+    r = _record(1.0)
+    rated, worst = r["rated_force_N"], r["predicted"]
+    # the largest element force grows with the grasp force: scale well below the rating
+    light = _record(1.0 * rated / worst / 3)
+    assert light["verdict"] == "pass" and light["pass"]
+    assert light["predicted"] * (1 + light["error_estimate_rel"]) <= rated
+
+
+def test_inside_the_models_error_is_undecided():
+    lo, hi = 0.01, 1.0  # the largest element force below / above its rating
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        r = _record(mid)
+        if abs(r["margin_rel"]) < r["error_estimate_rel"] / 2:
+            break
+        lo, hi = (mid, hi) if r["margin_rel"] > 0 else (lo, mid)
+    assert r["verdict"] == "undecided"
+
+
+def test_a_grasp_force_the_jaw_cannot_reach_fails_with_why():
+    r = _record(99.0)
+    assert r["verdict"] == "fail" and r["predicted"] is None and "out of reach" in r["basis"]
+
+
+def test_the_matrix_carries_it_only_when_stated():
+    from tactcad.api import load
+    from tactcad.studies.verification import verification_matrix
+
+    def names(sets):
+        return [r["requirement"] for r in verification_matrix(load(TI, set=sets).plan)]
+
+    assert "max_grasp_force_N" not in names({})
+    rec = [r for r in verification_matrix(load(TI, set={"requirements.max_grasp_force_N": 1.0}).plan)
+           if r["requirement"] == "max_grasp_force_N"]
+    assert rec and rec[0]["stated"] and rec[0]["verdict"] == "fail"
+
+
+def test_a_hard_stop_takes_the_force_beyond_its_engagement():
+    from tactcad.design.array_plan import plan_from_dict, with_overrides
+    from tactcad.in_use.grasp_experiment import stop_travels
+    from tactcad.studies.verification import element_figures, max_grasp_force_record, requirements_of
+    from tactcad.vocabulary.schema import read_toml
+
+    path = ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+    plan = plan_from_dict(with_overrides(read_toml(path, "design file"),
+                                         {"requirements.max_grasp_force_N": 5.0}),
+                          source=str(path), file=path.name)
+    assert plan.hard_stops
+    fig = element_figures(plan)
+    r = max_grasp_force_record(plan, fig, requirements_of(plan, fig))
+    stops = stop_travels(plan)
+    on_stop = [it for it in r["elements"] if it["on_stop"]]
+    assert on_stop and all(it["stop_force_N"] > 0 for it in on_stop)
+    for it in on_stop:  # the element carries K e_s, no more
+        assert it["element_force_N"] == pytest.approx(
+            fig.k_of(it["element"]) * stops[it["element"]], rel=1e-9)
+
+
+def test_verify_names_the_elements_beyond_their_rating():
+    from conftest import run_cli
+
+    r = run_cli("verify", "--design", TI, "--model", "closed-form", "--set",
+                "requirements.max_grasp_force_N=1")
+    assert r.returncode == 1
+    line = next(x for x in r.stdout.splitlines() if x.startswith("grasp at 1 N: FAIL"))
+    over = _record(1.0)["over_rating"]
+    assert over and all(words in line for words in over) and "3 mm slab" in line
+    assert "grasp at" not in run_cli("verify", "--design", TI, "--model", "closed-form").stdout
