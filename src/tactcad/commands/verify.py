@@ -100,10 +100,11 @@ def kobj_budget_section(plan, req, model: str):
 
 def grasp_text(record: dict) -> str:
     """The grasp at the maximum grasp force: the jaw and tissue assumed, the elements beyond
-    their rating with force and rating."""
-    over = "; ".join(record.get("over_rating") or []) or "every element within its rating"
-    return (f"grasp at {record['target']:g} N: {record['verdict'].upper()}: {over} "
-            f"({record['basis']})")
+    their overload limit with force and limit, those past the rated force (on a stop or not)."""
+    over = "; ".join(record.get("over_limit") or []) or "every element within its overload limit"
+    past = "; ".join(record.get("past_rating") or [])
+    return (f"grasp at {record['target']:g} N: {record['verdict'].upper()}: {over}"
+            + (f"; past the rated force: {past}" if past else "") + f" ({record['basis']})")
 
 
 def tissue_text(record: dict) -> str:

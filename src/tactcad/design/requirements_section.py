@@ -35,8 +35,8 @@ Keys (units in the names):
   budget is reported, not judged).
 * ``max_grasp_force_N``: the largest grasp force the tips may put on the tissue (N): at it
   (the grasp's force mode, :mod:`tactcad.in_use.grasp_experiment`, with its default jaw
-  and tissue) every element's force on its spring must stay within the rated full-scale
-  force, a hard stop taking the rest; never derived (without it nothing is checked).
+  and tissue) every element's force on its spring must stay within its overload limit
+  (yield with the safety factor, the gauge's largest strain), a hard stop taking the rest; never derived (without it nothing is checked).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -88,7 +88,7 @@ class RequirementsSection(Section):
                                   "the range") = None
     max_grasp_force_N: number(0.0, 100.0, lo_open=True, unit="N",
                               why="grasp force at which every element must stay within its "
-                                  "rating") = None
+                                  "overload limit") = None
     source: Text = None
 
 

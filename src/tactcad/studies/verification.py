@@ -599,14 +599,34 @@ def grasp_error_rel(fig: Figures) -> float:
     return math.hypot(max(fig.k_error.values(), default=0.0), TISSUE_MODEL_ERROR_REL)
 
 
+#: The limits a grasp's one-off overload must stay within: the web's yield (with the
+#: design's safety factor) and the gauge's largest strain; fatigue and the rated reading
+#: range are the sensor's duty, not a grasp's (the hard stop exists to exceed the rating).
+OVERLOAD_LIMITS = ("yield", "gauge_max")
+
+
+def element_overload_limits_N(plan: Plan, fig: Figures) -> dict[int, float]:
+    """Each element's overload limit (N): the smallest of :data:`OVERLOAD_LIMITS` at
+    ``fig``'s level (:func:`tactcad.mechanics.limits.plan_limits`)."""
+    from tactcad.mechanics.limits import plan_limits
+
+    out: dict[int, float] = {}
+    for lim in plan_limits(plan, fig.model, fig.stresses, fig.k_error):
+        if lim.limit in OVERLOAD_LIMITS:
+            out[lim.element] = min(out.get(lim.element, math.inf), lim.force_N)
+    return out
+
+
 def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict | None:
     """``max_grasp_force_N`` when the design states it (None otherwise): the grasp's force
     mode at that grasp force (:func:`tactcad.in_use.grasp_experiment.design_grasp_at_force`:
     its default jaw and tissue, the design's layout, the elements' K at ``fig``'s level);
-    each element's force on its spring against the rated full-scale force, margin
-    rating / force - 1, error :func:`grasp_error_rel`, judged on its own (``elements``), a
-    hard stop taking the force beyond its engagement; the record shows the element that
-    decides it (:func:`deciding_item`). A grasp force the jaw cannot reach fails."""
+    each element's force on its spring against its overload limit
+    (:func:`element_overload_limits_N`: yield with the safety factor, the gauge's largest
+    strain), margin limit / force - 1, error :func:`grasp_error_rel`, judged on its own
+    (``elements``), a hard stop taking the force beyond its engagement; the record shows
+    the element that decides it (:func:`deciding_item`) and the elements past the rated
+    full-scale force (on their stops or not). A grasp force the jaw cannot reach fails."""
     from tactcad.design.requirements_section import stated_max_grasp_force
     from tactcad.errors import DesignError
     from tactcad.in_use.grasp_experiment import (default_assumptions, design_grasp_at_force,
@@ -622,21 +642,29 @@ def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict 
         return _record("max_grasp_force_N", target, None, math.inf, -1.0, fig.model, False,
                        verdict="fail", basis=f"{basis}; the grasp is out of reach: {exc}")
     error = grasp_error_rel(fig)
+    limit = element_overload_limits_N(plan, fig)
     items = [judged({"element": t["site"], "element_force_N": t["element_force_N"],
                      "stop_force_N": t["stop_force_N"], "on_stop": t["on_stop"],
-                     "rated_force_N": rated, "error_estimate_rel": error,
-                     "margin_rel": rated / t["element_force_N"] - 1.0
+                     "rated_force_N": rated, "overload_limit_N": limit[t["site"]],
+                     "error_estimate_rel": error,
+                     "margin_rel": limit[t["site"]] / t["element_force_N"] - 1.0
                      if t["element_force_N"] > 0 else None})
              for t in result.as_laid_out.tips]
     w = deciding_item(items)
-    over = [it for it in items if it["element_force_N"] > rated]
+    over = [it for it in items if it["element_force_N"] > it["overload_limit_N"]]
+    past_rating = [it for it in items if it["element_force_N"] > rated]
     return _record("max_grasp_force_N", target, w["element_force_N"], error, w["margin_rel"],
                    fig.model, not over, verdict=w["verdict"], binding_element=w["element"],
                    rated_force_N=rated, elements=items, grasp=grasp_summary(result),
-                   over_rating=[f"element {it['element']}: {it['element_force_N']:.4g} N over "
-                                f"its rating {rated:.4g} N" for it in over],
-                   basis=f"{basis}; each element's force on its spring against the rated "
-                         f"full-scale force, a hard stop taking the rest")
+                   over_limit=[f"element {it['element']}: {it['element_force_N']:.4g} N over "
+                               f"its overload limit {it['overload_limit_N']:.4g} N"
+                               for it in over],
+                   past_rating=[f"element {it['element']}: {it['element_force_N']:.4g} N "
+                                f"(rated {rated:.4g} N{', on its stop' if it['on_stop'] else ''})"
+                                for it in past_rating],
+                   basis=f"{basis}; each element's force on its spring against its overload "
+                         f"limit (yield with the safety factor, the gauge's largest strain), "
+                         f"a hard stop taking the rest")
 
 
 def kr_over_km_record(pairs: Sequence[RowPair], req: Requirements, model: str) -> dict:
