@@ -15,8 +15,10 @@ from tactcad.export.manifest import (HEAD, MANIFEST_SECTIONS, ManifestSection, d
 from tactcad.vocabulary.schema import read_toml
 
 TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
+#: The Ti example's sections: no maximum grasp force stated, so no grasp section (a
+#: section with nothing to say is left out).
 KEYS = ["parts", "assemblies", "strength", "requirements", "thermal", "kobj_budget",
-        "tissue_coupling", "grasp", "derived", "assumptions"]
+        "tissue_coupling", "derived", "assumptions"]
 
 
 def front_matter(plan) -> str:
