@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -181,24 +182,41 @@ def kobj_budget_section(plan: Plan) -> dict | None:
         return None
 
 
+#: Significant digits kept of a figure that comes out of a linear solve (the tissue and the
+#: grasp): another numpy build or thread count changes its last bits, never these.
+SOLVE_DIGITS = 10
+
+
+def significant(value, digits: int = SOLVE_DIGITS):
+    """``value`` with every float (in lists and dicts too) to ``digits`` significant digits;
+    non-finite floats and other values as they are."""
+    if isinstance(value, float):
+        return float(f"{value:.{digits}g}") if math.isfinite(value) else value
+    if isinstance(value, dict):
+        return {k: significant(v, digits) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [significant(v, digits) for v in value]
+    return value
+
+
 def tissue_coupling_section(plan: Plan) -> dict:
     """The K_obj bias the tissue coupling causes per unit over the required K_obj range, by
     eq. 3 and by the coupled inversion, judged against the K_obj resolution
     (:func:`tactcad.studies.verification.tissue_coupling_record`, as verify prints it)."""
     from tactcad.studies.verification import requirements_of, tissue_coupling_record
 
-    return tissue_coupling_record(plan, requirements_of(plan))
+    return significant(tissue_coupling_record(plan, requirements_of(plan)))
 
 
 def grasp_section(plan: Plan) -> dict | None:
     """The grasp at the design's ``max_grasp_force_N`` (its verify record: every element's
-    force on its spring against its rating, the grasp's summary, the jaw and tissue assumed);
+    force on its spring against its overload limit, the grasp's summary, the jaw and tissue assumed);
     None when the design states no maximum grasp force."""
     from tactcad.studies.verification import (element_figures, max_grasp_force_record,
                                               requirements_of)
 
     fig = element_figures(plan)
-    return max_grasp_force_record(plan, fig, requirements_of(plan, fig))
+    return significant(max_grasp_force_record(plan, fig, requirements_of(plan, fig)))
 
 
 def derived_section(plan: Plan) -> list[dict]:
