@@ -51,6 +51,10 @@ TISSUE_POISSON_RATIO = 0.5
 INVERSION_BRACKET = 1e3
 #: Relative tolerance of the coupled inversion's root (on ln K_obj).
 INVERSION_RTOL = 1e-10
+#: Decimals the coupled inversion's residual bias is given to: a step above the root
+#: tolerance, so the root find's and the solver's last bits (another numpy build) never
+#: show; below it the residual is 0.
+CORRECTED_DECIMALS = 9
 #: Which tips press the sample: the whole array (a grasp) or the unit's two tips alone.
 PRESSING = ("array", "unit")
 
@@ -245,7 +249,8 @@ class UnitBias:
         k_obj_N_per_mm: the K_obj points (N/mm).
         ratio_eq2, ratio_coupled: R by eq. 2 and on the coupled sample.
         bias_eq3_rel: eq. 3's K_obj from the coupled R over the true K_obj, minus 1.
-        bias_corrected_rel: the coupled inversion's, minus 1 (its round-off and root tolerance).
+        bias_corrected_rel: the coupled inversion's, minus 1 (its round-off and root
+            tolerance), to :data:`CORRECTED_DECIMALS` decimals.
     """
 
     unit: tuple[int, int]
@@ -294,7 +299,8 @@ def unit_bias(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple
                           for x in r_c])
     return UnitBias((int(m), int(r)), sample.coupling(m, r), tuple(map(float, ks)),
                     tuple(map(float, r_2)), tuple(map(float, r_c)),
-                    tuple(map(float, eq3 / ks - 1)), tuple(map(float, corrected / ks - 1)))
+                    tuple(map(float, eq3 / ks - 1)),
+                    tuple(round(float(x), CORRECTED_DECIMALS) for x in corrected / ks - 1))
 
 
 def design_units(plan, stiffness: Mapping[int, float]) -> list[tuple[int, int]]:
