@@ -191,7 +191,7 @@ def significant(value, digits: int = SOLVE_DIGITS):
     """``value`` with every float (in lists and dicts too) to ``digits`` significant digits;
     non-finite floats and other values as they are."""
     if isinstance(value, float):
-        return float(f"{value:.{digits}g}") if math.isfinite(value) else value
+        return float(f"{value:.{digits}g}") + 0.0 if math.isfinite(value) else value  # no -0.0
     if isinstance(value, dict):
         return {k: significant(v, digits) for k, v in value.items()}
     if isinstance(value, (list, tuple)):

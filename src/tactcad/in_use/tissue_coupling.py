@@ -300,7 +300,8 @@ def unit_bias(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple
     return UnitBias((int(m), int(r)), sample.coupling(m, r), tuple(map(float, ks)),
                     tuple(map(float, r_2)), tuple(map(float, r_c)),
                     tuple(map(float, eq3 / ks - 1)),
-                    tuple(round(float(x), CORRECTED_DECIMALS) for x in corrected / ks - 1))
+                    tuple(round(float(x), CORRECTED_DECIMALS) + 0.0  # no -0.0
+                          for x in corrected / ks - 1))
 
 
 def design_units(plan, stiffness: Mapping[int, float]) -> list[tuple[int, int]]:
