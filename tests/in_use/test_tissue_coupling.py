@@ -115,3 +115,22 @@ def test_lumped_names_a_unit_that_is_not_measuring(capsys):
     assert main(["lumped", "--km", "1", "--kr", "10", "--r", "2", "--coupled-design", TI,
                  "--unit", "2"]) == 2
     assert "--unit = 2" in capsys.readouterr().err
+
+
+def test_an_R_the_coupled_model_cannot_invert_is_unreadable_not_an_error(monkeypatch):
+    """A coupled R outside the range the model spans over its bracket has no answer: the
+    unit's corrected bias is None there (an unreadable K_obj), never a refused export."""
+    import tactcad.in_use.tissue_coupling as tc
+    from tactcad.mechanics.contact import ContactError, Punch
+
+    punches = (Punch(0.0, 0.0, 2.0, 3.0), Punch(4.0, 0.0, 2.0, 3.0))
+    sample = tc.coupled_sample_from_punches((1, 2), punches, tc.Tissue())
+
+    def refuse(*args, **kwargs):
+        raise ContactError("R", 0.99, "1.0 ... 1.02")
+
+    monkeypatch.setattr(tc, "coupled_object_stiffness", refuse)
+    bias = tc.unit_bias(sample, {1: 1.0, 2: 10.0}, (1, 2), [1.0, 5.0])
+    record = bias.as_json()
+    assert record["bias_corrected_rel"] == [None, None]
+    assert record["worst_corrected_rel"] is None and bias.worst_corrected_rel == float("inf")

@@ -521,10 +521,18 @@ def print_report(r: dict) -> None:
               f"eq. 3's K_obj bias worst "
               + ("unreadable" if eq3 is None else f"{100 * eq3:+.1f} %")
               + f" (unit {worst['unit'][0]}/{worst['unit'][1]}), coupled inversion "
-              f"{100 * max(abs(u['worst_corrected_rel']) for u in c['units']):.1g} %")
+              + corrected_worst_text([u["worst_corrected_rel"] for u in c["units"]]))
     print(f"web rule: {r['web_rule']}")
     for line in margin_lines(r["margins"]):
         print(line)
     print(f"largest feasible full-scale force for these stiffness targets: "
           f"{r['max_full_scale_force_N']:.4g} N, bound by " + "; ".join(r["binding_limits"]))
     print(f"wrote {r['out']}")
+
+
+def corrected_worst_text(biases: list) -> str:
+    """The coupled inversion's worst bias over the units (%), or "unreadable" where one has
+    no answer (its coupled R leaves the range the model spans)."""
+    if any(b is None for b in biases):
+        return "unreadable for some K_obj"
+    return f"{100 * max(abs(b) for b in biases):.1g} %"

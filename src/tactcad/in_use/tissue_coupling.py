@@ -35,6 +35,7 @@ Units: mm, N, MPa, N/mm; R and κ dimensionless.
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
@@ -270,6 +271,9 @@ class UnitBias:
 
     @property
     def worst_corrected_rel(self) -> float:
+        """The largest |bias| of the coupled inversion, signed; inf where it has no answer."""
+        if not all(np.isfinite(self.bias_corrected_rel)):
+            return float("inf")
         return max(self.bias_corrected_rel, key=abs)
 
     def as_json(self) -> dict:
@@ -277,8 +281,21 @@ class UnitBias:
                 "K_obj_N_per_mm": list(self.k_obj_N_per_mm), "R_eq2": list(self.ratio_eq2),
                 "R_coupled": list(self.ratio_coupled),
                 "bias_eq3_rel": [b if np.isfinite(b) else None for b in self.bias_eq3_rel],
-                "bias_corrected_rel": list(self.bias_corrected_rel),
-                "worst_eq3_rel": self.worst_eq3_rel if np.isfinite(self.worst_eq3_rel) else None, "worst_corrected_rel": self.worst_corrected_rel}
+                "bias_corrected_rel": [b if np.isfinite(b) else None
+                                       for b in self.bias_corrected_rel],
+                "worst_eq3_rel": self.worst_eq3_rel if np.isfinite(self.worst_eq3_rel) else None,
+                "worst_corrected_rel": self.worst_corrected_rel
+                if np.isfinite(self.worst_corrected_rel) else None}
+
+
+def _inverted_or_nan(sample: CoupledSample, stiffness: Mapping[int, float],
+                     unit: tuple[int, int], r: float, pressing: str) -> float:
+    """The coupled inversion's K_obj of ``r`` (N/mm), NaN where the coupled R over the
+    search bracket does not reach it (no answer: an unreadable K_obj)."""
+    try:
+        return coupled_object_stiffness(sample, stiffness, unit, r, pressing)
+    except ContactError:
+        return math.nan
 
 
 def unit_bias(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple[int, int],
@@ -295,13 +312,13 @@ def unit_bias(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple
     r_2 = np.array([deflection_ratio(k_m, k_r, float(k)) for k in ks])
     # eq. 3 has no answer where the coupled R leaves 1 < R < K_r/K_m: NaN, an unreadable K_obj
     eq3 = object_stiffness(r_c, np.full_like(r_c, k_m), np.full_like(r_c, k_r)).value
-    corrected = np.array([coupled_object_stiffness(sample, stiffness, unit, float(x), pressing)
+    corrected = np.array([_inverted_or_nan(sample, stiffness, unit, float(x), pressing)
                           for x in r_c])
     return UnitBias((int(m), int(r)), sample.coupling(m, r), tuple(map(float, ks)),
                     tuple(map(float, r_2)), tuple(map(float, r_c)),
                     tuple(map(float, eq3 / ks - 1)),
                     tuple(round(float(x), CORRECTED_DECIMALS) + 0.0  # no -0.0
-                          for x in corrected / ks - 1))
+                          if math.isfinite(x) else math.nan for x in corrected / ks - 1))
 
 
 def design_units(plan, stiffness: Mapping[int, float]) -> list[tuple[int, int]]:
