@@ -92,8 +92,6 @@ DELTA_T_RANGE_K = (0.0, 100.0)
 COUPLING_MODEL_ERROR_REL = 0.05
 #: Runs of the static calibration over its Z steps (as the paper's "Calibration" did).
 CALIBRATION_REPEATS = 3
-#: Stand-in temperature coefficient of Young's modulus (1/K) where the material library
-#: gives none: (1/E) dE/dT of about -4e-4 /K for 6061 and Ti-6Al-4V (issue 42).
 
 
 class Operating(NamedTuple):
