@@ -24,7 +24,7 @@ def test_the_default_jaw_holds_the_comb_and_the_shaft_its_leads(comb_plan):
     found = list(grasper_group(CheckContext(comb_plan, Path("."), None)))
     assert [label for label, _ in found] == ["grasper"]
     results = found[0][1]
-    assert [r.check for r in results] == ["pocket fit", "lead channel"]
+    assert [r.check for r in results] == ["pocket fit", "lead channel", "equal radius"]
     assert all(r.passed for r in results), [r.line() for r in results]
 
 
@@ -50,3 +50,13 @@ def test_a_face_wall_down_on_the_arms_fails(comb_plan):
 def test_the_stacked_array_has_no_kernel_free_grasper_check():
     plan = load_design(Path(__file__).parents[2] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
     assert list(grasper_group(CheckContext(plan, Path("."), None))) == []
+
+
+def test_a_comb_paired_along_its_rows_fails_equal_radius_naming_the_worst_unit():
+    from comb_variants import row_paired_comb
+
+    from tactcad.checks.grasper_fit import equal_radius_result
+
+    result = equal_radius_result(row_paired_comb())
+    assert not result.passed
+    assert "row pairing" in result.detail and "unit 1/6" in result.detail

@@ -4,6 +4,7 @@ import json
 from pathlib import Path
 
 import pytest
+from comb_variants import ROW_PAIRED
 from conftest import run_cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -11,8 +12,17 @@ TI = str(ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
 COMB = str(ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")
 
 
-def test_the_comb_paired_at_equal_radius_reads_closer_than_as_laid_out():
-    r = run_cli("grasp", "--design", COMB, "--profile", "wedge", "--kobj", "1", "--json")
+def row_paired_sets() -> list[str]:
+    """``--set`` options that pair the shipped comb along its rows (:data:`ROW_PAIRED`)."""
+    out = []
+    for key, value in ROW_PAIRED.items():
+        out += ["--set", f"{key}={json.dumps(value)}"]
+    return out
+
+
+def test_the_comb_paired_along_its_rows_reads_farther_than_at_equal_radius():
+    r = run_cli("grasp", "--design", COMB, *row_paired_sets(), "--profile", "wedge", "--kobj", "1",
+                "--json")
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     laid, paired = d["as_laid_out"]["units"], d["paired"]["units"]
@@ -21,6 +31,15 @@ def test_the_comb_paired_at_equal_radius_reads_closer_than_as_laid_out():
     assert not any(abs(u["radius_ratio"] - 1) <= 0.02 for u in laid)
     assert max(abs(u["error_rel"]) for u in paired) < min(abs(u["error_rel"]) for u in laid)
     assert d["leads"]["leads"] == 36 and d["leads"]["fits"]
+
+
+def test_the_shipped_comb_reads_every_unit_at_equal_radius_as_laid_out():
+    r = run_cli("grasp", "--design", COMB, "--profile", "wedge", "--kobj", "1", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    laid, paired = d["as_laid_out"]["units"], d["paired"]["units"]
+    assert len(laid) == 6 and all(abs(u["radius_ratio"] - 1) <= 0.02 for u in laid)
+    assert [u["R_read"] for u in laid] == pytest.approx([u["R_read"] for u in paired])
 
 
 def test_the_pivot_and_the_angle_reach_the_grasp():

@@ -60,7 +60,9 @@ def test_a_pitch_too_short_for_the_longest_element_is_refused(data):
     with pytest.raises(DesignErrors) as caught:
         plan_from_dict(with_overrides(data, {"array.pitch_mm": 4.3}))
     fields = [e.field for e in caught.value.errors]
-    assert "arms.lengths_mm[2]" in fields
+    arms = data["arms"]["lengths_mm"]
+    longest = arms.index(max(arms)) + 1
+    assert f"arms.lengths_mm[{longest}]" in fields
 
 
 def test_a_footprint_the_comb_does_not_fit_is_refused(data):
@@ -95,7 +97,8 @@ def test_the_two_rows_tips_of_a_column_share_their_distance_along_the_row(plan):
 def test_the_mechanics_read_the_comb_elements_and_reach_the_ratio(plan, data):
     k = {s.number: estimate_closed_form(s.geometry, plan.material).stiffness_N_per_mm
          for s in plan.slots}
-    ratio = k[plan.references[0]] / k[2]
+    reference, measuring = plan.unit_pairs[0]
+    ratio = k[reference] / k[measuring]
     assert ratio == pytest.approx(data["requirements"]["kr_over_km"], rel=0.05)
 
 
@@ -134,4 +137,47 @@ def test_a_pitch_without_room_for_the_fillet_at_the_next_post_is_refused(data):
     with pytest.raises(DesignErrors) as caught:
         plan_from_dict(with_overrides(data, {"element.inside_corner_radius_mm": 0.25,
                                              "element.tip_height_mm": 0.8}))
-    assert "arms.lengths_mm[2]" in [e.field for e in caught.value.errors]
+    arms = data["arms"]["lengths_mm"]
+    assert f"arms.lengths_mm[{arms.index(max(arms)) + 1}]" in [e.field for e in caught.value.errors]
+
+
+def test_column_pairing_reads_each_measuring_element_against_the_reference_beside_it(plan):
+    assert plan.pairing == "column"
+    for reference, measuring in plan.unit_pairs:
+        r, m = plan.element(reference), plan.element(measuring)
+        assert r.column == m.column and r.row != m.row
+        assert r.tip_centre_world_mm[2] == pytest.approx(m.tip_centre_world_mm[2])
+
+
+def test_every_comb_tip_lies_at_one_place_in_its_cell_whatever_its_arm(data):
+    p = plan_from_dict(with_overrides(data, {"arms.lengths_mm": [2.0, 2.5, 3.0, 2.0, 2.5, 3.0] * 2,
+                                             "comb.web_thicknesses_mm": [0.15] * 12}))
+    z = [s.tip_centre_world_mm[2] for s in p.row_slots(0)]
+    steps = [b - a for a, b in zip(z, z[1:])]
+    assert steps == pytest.approx([p.pitch_mm] * (p.columns - 1))
+
+
+@pytest.mark.parametrize("refs, field", [
+    ([1, 7], "arms.reference_elements"),              # one per row is the row pairing's form
+    ([1, 2, 3, 4, 5, 12], "arms.reference_elements"),  # not one row's elements
+])
+def test_column_pairing_refuses_references_that_are_not_one_row(data, refs, field):
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"arms.reference_elements": refs}))
+    assert caught.value.errors[0].field == field
+    assert "[1, 2, 3, 4, 5, 6] or [7, 8, 9, 10, 11, 12]" in caught.value.errors[0].allowed
+
+
+def test_column_pairing_left_unnamed_takes_the_row_of_shorter_arms(data):
+    d = with_overrides(data, {"arms.lengths_mm": [3.0] * 6 + [2.0] * 6,
+                              "comb.web_thicknesses_mm": [0.08] * 6 + [0.15] * 6})
+    d["arms"].pop("reference_elements")
+    p = plan_from_dict(d)
+    assert p.references == (7, 8, 9, 10, 11, 12) and "row 2" in p.references_reason
+
+
+def test_an_unknown_pairing_is_refused_naming_the_choices(data):
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"array.pairing": "diagonal"}))
+    assert caught.value.errors[0].field == "array.pairing"
+    assert "row" in caught.value.errors[0].allowed and "column" in caught.value.errors[0].allowed

@@ -9,13 +9,14 @@ from tactcad.in_use.jaw_kinematics import JawGeometry
 from tactcad.mechanics.contact import Punch
 from tactcad.mechanics.evaluation import ladder_stiffness_by_element
 from tactcad.mechanics.readout_chain import row_units
+from comb_variants import row_paired_comb
 
-COMB = "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml"
+COMB = "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml"  # paired along its rows here
 TI = "hardware/ti_array_2x3/ti_array_2x3.toml"
 
 
 def setup(path):
-    plan = load_design(path)
+    plan = row_paired_comb() if path == COMB else load_design(path)
     k = ladder_stiffness_by_element(plan)
     units = [(r.number, m.number)
              for r, m in row_units(plan, {s.geometry.part_name: k[s.number] for s in plan.slots})]

@@ -180,7 +180,7 @@ def test_tissue_coupling_from_the_rig_model_and_eq_3(ti_plan):
     k_obj = 2.0
     got = kb.tissue_coupling(ctx, unit, _op(ctx, unit, np.array([k_obj])))
     elements = elements_from_plan(ti_plan, {s.number: ctx.k_of(s.number) for s in ti_plan.slots})
-    refs = {s.number: ti_plan.reference_of(s.row).number for s in ti_plan.slots}
+    refs = {s.number: ti_plan.reference_for(s).number for s in ti_plan.slots}
     res = simulate_rig(elements, k_obj, SampleSpec("halfspace"), references=refs)
     R = res.ratio[0, list(res.elements).index(unit.measuring)]
     read = object_stiffness(R, ctx.k_of(unit.measuring), ctx.k_of(unit.reference))

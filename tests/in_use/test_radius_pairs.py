@@ -7,6 +7,7 @@ from tactcad.in_use.radius_pairs import (EQUAL_RADIUS_TOLERANCE_REL, insert_fram
                                          unit_radii)
 from tactcad.mechanics.evaluation import ladder_stiffness_by_element
 from tactcad.mechanics.readout_chain import row_units
+from comb_variants import row_paired_comb
 
 DESIGNS = ["hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml",
            "hardware/ti_array_2x3/ti_array_2x3.toml"]
@@ -49,16 +50,23 @@ def test_the_rule_puts_every_laid_unit_at_one_radius(path):
         assert u.equal and abs(u.ratio - 1) <= EQUAL_RADIUS_TOLERANCE_REL
 
 
-def test_the_comb_as_laid_out_fails_equal_radius_and_corrects_by_the_radii():
-    plan = load_design(DESIGNS[0])
+def test_the_comb_paired_along_its_rows_fails_equal_radius_and_corrects_by_the_radii():
+    plan = row_paired_comb()
     radii = unit_radii(jaw_for(plan), insert_frame(plan), units_of(plan))
     assert radii and not any(u.equal for u in radii)
     for u in radii:
         assert u.r_correction == pytest.approx(u.r_reference_mm / u.r_measuring_mm)
 
 
-def test_more_units_than_sites_are_listed_with_the_reason():
+def test_the_shipped_comb_pairs_every_unit_at_one_radius():
     plan = load_design(DESIGNS[0])
+    radii = unit_radii(jaw_for(plan), insert_frame(plan), units_of(plan))
+    assert plan.pairing == "column" and len(radii) == plan.columns
+    assert all(u.equal for u in radii)
+
+
+def test_more_units_than_sites_are_listed_with_the_reason():
+    plan = row_paired_comb()
     units = units_of(plan)
     layout = paired_layout(plan, units)
     assert len(layout.sites) == plan.columns * (plan.rows // 2)

@@ -29,7 +29,29 @@ def grasper_group(context: CheckContext) -> Iterator[Found]:
     jaw = jaw_part(context.plan).geometry
     tip_h = context.plan.slots[0].geometry.tip_height_mm
     yield "grasper", [pocket_fit(envelope, jaw, tip_h),
-                      shaft_leads_result(context.plan, shaft_part().geometry)]
+                      shaft_leads_result(context.plan, shaft_part().geometry),
+                      equal_radius_result(context.plan)]
+
+
+def equal_radius_result(plan) -> CheckResult:
+    """Fails when a unit's two tips lie at radii from the jaw's pin that differ by more
+    than :data:`~tactcad.in_use.radius_pairs.EQUAL_RADIUS_TOLERANCE_REL` (the jaw of the
+    grasp experiment, :func:`~tactcad.in_use.grasp_experiment.default_jaw`): its R would
+    carry their ratio (:mod:`tactcad.in_use.jaw_kinematics`)."""
+    from tactcad.in_use.grasp_experiment import default_jaw
+    from tactcad.in_use.radius_pairs import EQUAL_RADIUS_TOLERANCE_REL, insert_frame, unit_radii
+
+    radii = unit_radii(default_jaw(plan), insert_frame(plan), list(plan.unit_pairs))
+    worst = max(radii, key=lambda u: abs(u.ratio - 1.0), default=None)
+    if worst is None:
+        return CheckResult("equal radius", "array: every unit's tips at one radius", True,
+                           "no sensing unit")
+    ok = all(u.equal for u in radii)
+    return CheckResult("equal radius", "array: every unit's tips at one radius", ok,
+                       f"{len(radii)} units ({plan.pairing} pairing), worst r_m / r_r "
+                       f"{worst.ratio:.4f} (unit {worst.reference}/{worst.measuring}: "
+                       f"{worst.r_reference_mm:.4g} / {worst.r_measuring_mm:.4g} mm), allowed "
+                       f"within {EQUAL_RADIUS_TOLERANCE_REL:.0%}")
 
 
 def pocket_clearances_mm(envelope_mm: tuple[float, float, float], jaw,

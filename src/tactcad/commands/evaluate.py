@@ -111,7 +111,7 @@ def run(args: argparse.Namespace) -> int:
         loads = loads_to_full_scale(plan, stiffness, samples, spec, args.steps, force)
     middle = samples[len(samples) // 2]
     # each row reads against its own reference; the paper's rig read one for both rows
-    rows = None if paper else {s.number: plan.reference_of(s.row).number for s in plan.slots}
+    rows = None if paper else {s.number: plan.reference_for(s).number for s in plan.slots}
     report = ev.evaluation_report(plan, stiffness, samples, spec, n_steps=args.steps,
                                   loads_N=loads, references=rows,
                                   **({} if paper else {"fig6_sample": middle}))

@@ -32,7 +32,7 @@ from typing import Any, Mapping
 from pydantic import create_model
 
 from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, DateText, Derived, FileName, Name,
-                                       Problems, Section, Text, content_hash, fmt, integer,
+                                       Problems, Section, Text, choice, content_hash, fmt, integer,
                                        listing, number, read_assumptions, read_toml, validate)
 from tactcad.vocabulary.material_library import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                           StrengthSettings, default_strength_settings,
@@ -79,6 +79,10 @@ MIN_TIP_WALL_MM = 0.1
 #: Shortest base below the arm underside, mm (room for the clamp bolts and a gauge pad).
 MIN_BASE_BELOW_ARM_MM = 2.0
 MAX_COLUMNS = 12
+#: How a sensing unit pairs its elements: "row" (each row's reference against the
+#: row's other elements) or "column" (one row of references, each against the element
+#: beside it across the rows: the two tips at one distance along the row).
+PAIRINGS = ("row", "column")
 
 
 # ---------------------------------------------------------------------------
@@ -226,9 +230,12 @@ class Plan:
     #: each element's hard stop (:class:`HardStop`), in element order; () when the
     #: construction gives its elements none
     hard_stops: tuple["HardStop", ...] = ()
-    #: Each row's reference element and why (:func:`row_references`).
+    #: The reference elements and why (:func:`unit_references`): one per row with
+    #: ``pairing`` "row", one per column (all in one row) with "column".
     references: tuple[int, ...] = ()
     references_reason: str = ""
+    #: How the sensing units pair their elements (:data:`PAIRINGS`).
+    pairing: str = "row"
     strength: StrengthSettings = field(default_factory=default_strength_settings)
     #: the construction that derived it (:mod:`tactcad.design.construction_registry`)
     construction: str = DEFAULT_CONSTRUCTION
@@ -249,9 +256,20 @@ class Plan:
         """The slots of one row (0-based), in column order."""
         return tuple(s for s in self.slots if s.row == row)
 
-    def reference_of(self, row: int) -> ElementSlot:
-        """The reference element's slot of one row (0-based)."""
-        return self.slots[self.references[row] - 1]
+    def reference_for(self, slot: ElementSlot) -> ElementSlot:
+        """The reference ``slot`` is read against: its row's (pairing "row") or the
+        reference row's element in its column (pairing "column", the pair side by side
+        across the rows, so both tips lie at one distance along the row)."""
+        index = slot.column if self.pairing == "column" else slot.row
+        return self.slots[self.references[index] - 1]
+
+    @property
+    def unit_pairs(self) -> tuple[tuple[int, int], ...]:
+        """(reference, measuring) element numbers of every pair the pairing makes, in element
+        order (the read-out keeps those whose measuring element is the softer,
+        :func:`tactcad.mechanics.readout_chain.row_units`)."""
+        return tuple((self.reference_for(s).number, s.number) for s in self.slots
+                     if s.number not in self.references)
 
     @property
     def tip_field_mm(self) -> tuple[float, float]:
@@ -319,6 +337,9 @@ class SheetSection(Section):
 class ArraySection(Section):
     #: how the array is made (:mod:`tactcad.design.construction_registry`); ``stacked`` when left out
     construction: Text = None
+    #: how each sensing unit pairs a reference with a measuring element (:data:`PAIRINGS`);
+    #: ``row`` when left out
+    pairing: choice(PAIRINGS) = None
     rows: integer(2, 2, why="the model is two clamped rows facing each other")
     columns: integer(1, MAX_COLUMNS)
     pitch_mm: number(0.0, 20.0, lo_open=True)
@@ -327,10 +348,12 @@ class ArraySection(Section):
 class ArmsSection(Section):
     lengths_mm: listing(number(*ARM_RANGE_MM, why=FITTED_DOMAIN), 2, 2 * MAX_COLUMNS,
                         "a list of rows x columns lengths (mm)")
-    #: Each row's reference element (element numbers, one per row, in row
-    #: order); left out: each row's shortest arm (its stiffest element).
-    reference_elements: listing(integer(1, 2 * MAX_COLUMNS), 1, 2,
-                                "one element number per row, each in its row") = None
+    #: The reference elements: with ``array.pairing`` "row" one per row, in row
+    #: order (left out: each row's shortest arm, its stiffest element); with "column"
+    #: the reference row's elements in column order (left out: the row of shorter arms).
+    reference_elements: listing(integer(1, 2 * MAX_COLUMNS), 1, MAX_COLUMNS,
+                                "one element number per row, or with array.pairing = "
+                                "'column' one row's elements") = None
 
 
 class EdmSection(Section):
@@ -445,9 +468,7 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
     if len(arms) != n:
         p.add("arms.lengths_mm", arms, f"a list of {n} lengths (rows x columns)")
         return
-    refs = d.arms.reference_elements
-    if refs is not None:
-        _check_references(refs, d.array.rows, d.array.columns, p)
+    check_references(d, p)
     tip_root = e.tip_width_mm / 2 + e.inside_corner_radius_mm + e.notch_radius_mm + 0.5
     distinct = sorted(set(arms))
     for shorter, longer in zip(distinct, distinct[1:]):
@@ -498,8 +519,24 @@ def bolt_holes(d: DesignFile, leg: float) -> tuple[Hole, Hole]:
     return Hole(leg / 2 - s / 2, y, hole_d), Hole(leg / 2 + s / 2, y, hole_d)
 
 
-def _check_references(refs: list[int], rows: int, columns: int, p: Problems) -> None:
-    """Each row names one reference element, and it lies in that row."""
+def pairing_of(d: Any) -> str:
+    """The design's unit pairing (:data:`PAIRINGS`), "row" when ``array.pairing`` is left out."""
+    return d.array.pairing or "row"
+
+
+def check_references(d: Any, p: Problems) -> None:
+    """The named references fit the pairing: one per row, each in its row ("row"), or
+    every element of one row in column order ("column")."""
+    refs, rows, columns = d.arms.reference_elements, d.array.rows, d.array.columns
+    if refs is None:
+        return
+    if pairing_of(d) == "column":
+        row_firsts = [r * columns + 1 for r in range(rows)]
+        if not any(refs == list(range(f, f + columns)) for f in row_firsts):
+            options = " or ".join(str(list(range(f, f + columns))) for f in row_firsts)
+            p.add("arms.reference_elements", refs, f"one row's elements in column order: {options}",
+                  "with array.pairing = 'column' every column's reference lies in one row")
+        return
     if len(refs) != rows:
         p.add("arms.reference_elements", refs, f"a list of {rows} element numbers, one per row")
         return
@@ -511,16 +548,26 @@ def _check_references(refs: list[int], rows: int, columns: int, p: Problems) -> 
                   "each row's reference is pressed beside that row's measuring elements")
 
 
-def row_references(d: DesignFile) -> tuple[tuple[int, ...], str]:
-    """Each row's reference element (numbers, in row order) and the reason:
-    as the design file names them, else the row's shortest arm (its stiffest
-    element, as every element shares the web and notch; the lower number on a tie)."""
+def unit_references(d: Any) -> tuple[tuple[int, ...], str]:
+    """The reference elements (numbers) and the reason, by the design's pairing:
+    "row": each row's, as the file names them, else the row's shortest arm (its
+    stiffest element, as every element of a stacked array shares the web and notch;
+    the lower number on a tie); "column": the named row's elements, else the row
+    of the shorter arms in sum (row 1 on a tie)."""
     refs = d.arms.reference_elements
+    c, rows, arms = d.array.columns, d.array.rows, d.arms.lengths_mm
+    if pairing_of(d) == "column":
+        if refs is not None:
+            return tuple(refs), ("named by arms.reference_elements: each column's reference, "
+                                 "its pair beside it across the rows")
+        row = min(range(rows), key=lambda r: (sum(arms[r * c:(r + 1) * c]), r))
+        return tuple(range(row * c + 1, row * c + c + 1)), (
+            f"not named: row {row + 1}, the shorter arms; each column's pair lies side by side "
+            "across the rows")
     if refs is not None:
         return tuple(refs), "named by arms.reference_elements"
-    c, arms = d.array.columns, d.arms.lengths_mm
     chosen = tuple(min(range(r * c + 1, r * c + c + 1), key=lambda n: (arms[n - 1], n))
-                   for r in range(d.array.rows))
+                   for r in range(rows))
     return chosen, "not named: each row's shortest arm, its stiffest element"
 
 
@@ -793,7 +840,8 @@ def derive_plan(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
         spacer_placements=spacer_placements(d), clamp=clamp,
         clamp_plate_z_mm=(-d.clamp.plate_thickness_mm, stack), stack_length_mm=stack,
         derived=derived_values(d, leg, holes, clamp),
-        references=row_references(d)[0], references_reason=row_references(d)[1],
+        references=unit_references(d)[0], references_reason=unit_references(d)[1],
+        pairing=pairing_of(d),
         assumptions=read_assumptions(data, DesignFile, p, "element.notch_radius_mm"),
         raw=copy.deepcopy(dict(data)),
     )

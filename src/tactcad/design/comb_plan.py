@@ -26,9 +26,9 @@ from tactcad.design.array_plan import (MIN_ARM_STEP_MM, MIN_FASTENER_GAP_MM, MIN
                                        MIN_SPACER_MM, MIN_TIP_WALL_MM, ArmsSection, ArraySection,
                                        DesignSection, EdmSection, ElementSlot, FilesSection,
                                        HardStop, Material, MaterialSection, Placement, Plan,
-                                       SheetSection, StrengthSection, design_hash, edm_rules,
-                                       row_references, shaping_tables, with_grade_defaults,
-                                       _grade_error)
+                                       SheetSection, StrengthSection, check_references,
+                                       design_hash, edm_rules, pairing_of, shaping_tables,
+                                       unit_references, with_grade_defaults, _grade_error)
 from tactcad.design.bom_section import BomSection
 from tactcad.design.readout_section import ReadoutSection, check_readout
 from tactcad.design.requirements_section import (RequirementsSection, check_requirements,
@@ -163,14 +163,19 @@ def arm_underside(d: CombTables) -> float:
 
 
 def comb_element(d: CombTables, arm_mm: float, web_mm: float) -> ElementGeometry:
-    """An element's profile in its own frame (the sheet frame at its offset)."""
+    """An element's profile in its own frame (the sheet frame at its offset).
+
+    Every element of the comb is as long as the longest (:func:`element_length` of the
+    longest arm): a shorter arm's post grows by the difference, so every tip lies at one
+    place in its cell and a column's tips sit side by side across the rows (one radius
+    from a jaw's pivot, whatever their arms)."""
     e = d.element
     base = arm_underside(d) + e.arm_height_mm
     return ElementGeometry(
         arm_length_mm=arm_mm, web_thickness_mm=web_mm, notch_radius_mm=e.notch_radius_mm,
         tip_width_mm=e.tip_width_mm, tip_height_mm=e.tip_height_mm,
         arm_height_mm=e.arm_height_mm, base_height_mm=base,
-        overall_length_mm=element_length(d, arm_mm),
+        overall_length_mm=element_length(d, max(d.arms.lengths_mm)),
         inside_corner_radius_mm=e.inside_corner_radius_mm, sheet_thickness_mm=d.sheet.thickness_mm,
         web_tolerance_mm=tolerances_of(d.model_dump(exclude_none=True)).web_thickness_mm,
         bolt_holes=(), start_hole_diameter_mm=d.edm.start_hole_diameter_mm)
@@ -429,9 +434,7 @@ def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[CombTables
     except DesignError as exc:
         if grade_error is None:
             p.extend([exc])
-    if d_refs := model.arms.reference_elements:
-        from tactcad.design.array_plan import _check_references
-        _check_references(d_refs, model.array.rows, model.array.columns, p)
+    check_references(model, p)
     if not _check_lists(model, p):
         return model, p
     for rule in COMB_RULES:
@@ -446,7 +449,7 @@ def derive_plan(d: CombTables, data: Mapping[str, Any], source: str) -> Plan:
     p = Problems()
     data = with_grade_defaults(data)
     sheets = comb_sheets(d)
-    refs, why = row_references(d)
+    refs, why = unit_references(d)
     return Plan(
         name=d.design.name, description=d.design.description, source=source,
         design_hash=design_hash(shaping_tables(data)),
@@ -455,7 +458,7 @@ def derive_plan(d: CombTables, data: Mapping[str, Any], source: str) -> Plan:
         strength=strength_settings(data.get("strength")),
         sheet_thickness_mm=d.sheet.thickness_mm, rows=d.array.rows, columns=d.array.columns,
         pitch_mm=d.array.pitch_mm, slots=element_slots(d, sheets), edm=edm_rules(d),
-        derived=derived_values(d), references=refs, references_reason=why,
+        derived=derived_values(d), references=refs, references_reason=why, pairing=pairing_of(d),
         assumptions=read_assumptions(data, CombTables, p, "comb.post_length_mm"),
         construction="monolithic-comb", comb=comb_geometry(d), hard_stops=hard_stops(d, sheets),
         raw=copy.deepcopy(dict(data)))

@@ -332,7 +332,7 @@ def _coupled_ratios(ctx: Context, k_obj: np.ndarray) -> dict[int, np.ndarray]:
     stiffness = {s.number: ctx.k_of(s.number) for s in ctx.plan.slots}
     out = {}
     for s in ctx.plan.slots:
-        ref = ctx.plan.reference_of(s.row).number
+        ref = ctx.plan.reference_for(s).number
         if s.number != ref:
             out[s.number] = np.atleast_1d(coupled_ratio(sample, stiffness, (s.number, ref), k_obj))
     return out

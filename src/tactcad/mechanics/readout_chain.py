@@ -347,11 +347,11 @@ def array_resolution_rel(units: list, rng: tuple[float, float], force_N: float) 
 
 def row_units(plan: Plan, k: dict[str, float]) -> list[tuple]:
     """(reference slot, measuring slot) of every sensing unit of ``plan``, in element order:
-    each element softer than its row's reference (:meth:`Plan.reference_of`) measures against
-    it; ``k``: K per distinct part (N/mm)."""
+    each element softer than its reference (:meth:`Plan.reference_for`: its row's, or its
+    column's with ``pairing`` "column") measures against it; ``k``: K per distinct part (N/mm)."""
     out = []
     for slot in plan.slots:
-        ref = plan.reference_of(slot.row)  # each row reads against its own reference
+        ref = plan.reference_for(slot)
         if k[slot.geometry.part_name] < k[ref.geometry.part_name] * (1 - 1e-9):
             out.append((ref, slot))
     return out
@@ -410,7 +410,7 @@ def readout_report(plan: Plan, requirements, model: str = "closed-form",
     records, units = [], []
     for slot in plan.slots:
         d = per_part[slot.geometry.part_name]
-        ref = plan.reference_of(slot.row)
+        ref = plan.reference_for(slot)
         r = per_part[ref.geometry.part_name]
         is_ref = slot.number == ref.number
         kobj_res = None

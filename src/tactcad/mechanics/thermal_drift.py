@@ -380,7 +380,7 @@ def kobj_thermal_error(plan: Plan, chain: ReadoutChain | None, force_N: float,
     scale = spring_stiffness_scale(s, delta_T_K)
     out = []
     for slot in plan.slots:
-        ref = plan.reference_of(slot.row)
+        ref = plan.reference_for(slot)
         d, r = parts[slot.geometry.part_name], parts[ref.geometry.part_name]
         if not d["K"] < r["K"] * (1 - 1e-9):
             continue
@@ -533,7 +533,7 @@ def thermal_report(plan: Plan, requirements, model: str = "closed-form",
     records = []
     for slot in plan.slots:
         d = parts[slot.geometry.part_name]
-        ref = plan.reference_of(slot.row)
+        ref = plan.reference_for(slot)
         r = parts[ref.geometry.part_name]
         zero_quarter = quarter / d["eps"]
         zero = zero_read / d["eps"] + 0.0  # + 0.0: a cancelled zero prints 0, not -0

@@ -840,8 +840,9 @@ def start_tables(raw: Mapping[str, Any], base_name: str, *, grade: str | None = 
 
 
 def sensing_unit_numbers(plan: Plan) -> list[tuple[int, int]]:
-    """(measuring, reference) element numbers an inverse design makes: each element of a row
-    against its row's reference (:func:`reference_elements`)."""
+    """(measuring, reference) element numbers an inverse design makes on ``plan``'s grid
+    (whatever the base file's own references): each element of a row against its row's
+    reference (:func:`reference_elements`)."""
     refs = reference_elements(plan.rows, plan.columns)
     return [(s.number, refs[s.row]) for s in plan.slots if s.number not in refs]
 

@@ -209,15 +209,16 @@ class RowPair:
 
 
 def row_pairs(plan: Plan, fig: Figures) -> list[RowPair]:
-    """Per row, its reference (:attr:`~tactcad.design.array_plan.Plan.references`)
-    over the softest other element of the row (the row's smallest K_r / K_m);
-    a row of one element pairs the reference with itself (ratio 1)."""
+    """Per reference (:attr:`~tactcad.design.array_plan.Plan.references`: each row's, or
+    each column's with pairing "column") over the softest element read against it (its
+    smallest K_r / K_m); a reference read by no other element pairs with itself (ratio 1)."""
     out = []
-    for row in range(plan.rows):
-        ref = plan.reference_of(row)
-        others = [s for s in plan.row_slots(row) if s.number != ref.number] or [ref]
+    for number in plan.references:
+        ref = plan.element(number)
+        others = [s for s in plan.slots
+                  if s.number != number and plan.reference_for(s).number == number] or [ref]
         soft = min(others, key=lambda s: (fig.k_of(s.number), s.number))
-        out.append(RowPair(row, ref.number, soft.number, fig.k_of(ref.number) / fig.k_of(soft.number),
+        out.append(RowPair(ref.row, ref.number, soft.number, fig.k_of(ref.number) / fig.k_of(soft.number),
                            fig.k_error[ref.geometry.part_name],
                            fig.k_error[soft.geometry.part_name]))
     return out
