@@ -116,3 +116,14 @@ def test_a_leader_near_the_frame_turns_its_shoulder_back_onto_the_sheet():
     assert box[2] < 360.0               # left of where the leader starts
     first = next(leader_spots([(360.0, 60.0), (390.0, 40.0)], text))
     assert first.at[0] > 390.0          # the end asked for was tried first
+
+
+def test_a_title_block_value_too_long_for_its_cell_is_cut_at_a_word():
+    from tactcad.drawings.frame import fitted_text
+
+    text = "bought-in grasper jaw, machined for the insert: pocket and window by wire EDM"
+    room = text_width(text, 1.8) / 2
+    cut = fitted_text(text, 1.8, room)
+    assert cut.endswith(" …") and text.startswith(cut[:-2])
+    assert text_width(cut, 1.8) <= room
+    assert fitted_text("short", 1.8, room) == "short"

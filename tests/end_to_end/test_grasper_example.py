@@ -30,3 +30,11 @@ def test_the_grasper_example_exports_and_checks_with_no_failure(tmp_path):
     assert "mount" in left["test rigs"]
     assert not (out / "crosstalk").exists()
     assert {"comb_row1", "comb_row2"} <= set(manifest["parts"])
+    # the insert in the jaw, open and closed on the tissue: exported and checked
+    for scene in ("grasper-open", "grasper-closed"):
+        assert (out / "scenes" / f"{scene}.step").stat().st_size > 0
+        assert (out / "scenes" / f"{scene}.glb").stat().st_size > 0
+    assert (out / "drawings" / "grasper_jaw.svg").exists()
+    names = {c.get("name") for c in cases}
+    assert any("equal radius" in (n or "") for n in names) or \
+        any("equal radius" in (c.get("classname") or "") for c in cases)

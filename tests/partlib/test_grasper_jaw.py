@@ -54,7 +54,7 @@ def test_the_default_closed_jaws_pass_the_trocar(comb_plan):
      ["grasper_jaw.thickness_mm", "6", "<= 4.3589 mm", "10 mm trocar"]),
     ({"shaft_class_mm": "7"}, ["grasper_jaw.shaft_class_mm", "5, 10"]),
     ({"face_wall_mm": 0.6}, ["grasper_jaw.face_wall_mm", "0.6", "< 0.5 mm"]),
-    ({"pocket_length_mm": 20.0}, ["grasper_jaw.pocket_length_mm", "20", ">= 27.8 mm"]),
+    ({"pocket_length_mm": 20.0}, ["grasper_jaw.pocket_length_mm", "20", ">= 29 mm", "envelope"]),
     ({"length_mm": 200}, ["grasper_jaw.length_mm", "200", "5 <= value <= 80 mm"]),
     ({"length_mm": 30}, ["grasper_jaw.length_mm", "30"]),
     ({"thickness_mm": 4.0}, ["grasper_jaw.thickness_mm", "4", ">= 5.4941 mm"]),
@@ -109,3 +109,17 @@ def test_the_slab_builds_its_box(comb_plan):
     data = slab_part(jaw_part(comb_plan).geometry)
     solid = build_slab(data.geometry)
     assert solid.is_valid and solid.volume == pytest.approx(data.expected_volume_mm3, rel=1e-9)
+
+
+def test_the_window_lies_over_the_tip_field_not_the_pocket_centre(comb_plan):
+    from tactcad.partlib.grasper_jaw import tip_field_offset_mm
+
+    g = jaw_part(comb_plan).geometry
+    along, across = tip_field_offset_mm(comb_plan)
+    assert abs(along) > 0.5  # the comb's tips lie off its envelope's centre along the row
+    assert g.window_centre_mm == pytest.approx((g.pocket_centre_x_mm + along, across))
+    # the window stays within the pocket's outline
+    cx, cy = g.window_centre_mm
+    assert g.pocket_x0_mm <= cx - g.window_length_mm / 2
+    assert cx + g.window_length_mm / 2 <= g.pocket_x0_mm + g.pocket_length_mm
+    assert abs(cy) + g.window_width_mm / 2 <= g.pocket_width_mm / 2

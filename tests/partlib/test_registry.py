@@ -32,11 +32,19 @@ def test_a_part_table_is_optional_exactly_when_every_field_has_a_default():
 
 
 def test_every_part_module_answers_in_the_one_registry_of_builders():
-    from tactcad.partlib.registry import part_modules
+    from tactcad.partlib.registry import in_use_parts, part_modules
 
-    keys = [key for part in part_modules() for key in part.builders()]
+    keys = [key for part in (*part_modules(), *in_use_parts().values()) for key in part.builders()]
     assert len(keys) == len(set(keys)) and set(keys) == set(builders())
     assert {"element", "spacer", "clamp_plate", "gauge", "bolt", "nut"} <= set(keys)
+
+
+def test_the_parts_in_use_give_builders_but_no_rigs_file_table():
+    from tactcad.partlib.registry import in_use_parts, rig_parts_lib
+
+    assert set(in_use_parts()) == {"grasper_jaw", "grasper_shaft", "tissue_slab"}
+    assert not set(in_use_parts()) & set(rig_parts_lib())
+    assert {"grasper_jaw", "grasper_shaft", "tissue_slab"} <= set(builders())
 
 
 def _refused_while_patched(monkeypatch, name: str, value, cached, match: str) -> None:

@@ -29,8 +29,10 @@ from typing import Any, Mapping, Sequence
 from tactcad.partlib.base import BuildStep
 from tactcad.vocabulary.standards import NUT_FACTOR, PROOF_STRESS_MPA, tightening_torque_Nm  # noqa: F401
 
-#: The array's steps in build order.
-ARRAY_STEP_ORDER = ("array-gauges", "array-wiring", "array-stack", "array-bolts", "array-readout")
+#: The array's steps in build order (a construction's own: ``array-stack`` for the stacked
+#: array, ``comb-rows`` for the monolithic comb; a design has the steps of its parts only).
+ARRAY_STEP_ORDER = ("array-gauges", "array-wiring", "array-stack", "comb-rows", "array-bolts",
+                    "array-readout")
 
 
 @dataclass(frozen=True)
@@ -180,10 +182,22 @@ def screw_notes(parts: Sequence[tuple[str, int]], screws: Mapping) -> tuple[str,
     return tuple(notes)
 
 
+#: A rig's own step: title and notes (the others are assembled "as the scene model shows").
+RIG_STEPS: dict[str, tuple[str, tuple[str, ...]]] = {
+    "grasper": ("Seat the insert in the grasper's jaw", (
+        "Slide the insert into the jaw's pocket from its back, the first column at the pin "
+        "end, each contact face through the window in the face wall.",
+        "Check that every contact face stands proud of the jaw's face by the same height "
+        "before fixing the insert in the pocket.",
+        "Lead the gauges' wires back through the shaft's bore (the lead channel) without "
+        "pulling on the terminals.")),
+}
+
+
 def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int,
                 gauge_text: str, adhesive_text: str, bolt, terminal_pairs: int,
                 scenes: Sequence[str], sample_stiffness: Mapping[str, float],
-                screws: Mapping | None = None) -> list[Step]:
+                screws: Mapping | None = None, rigs: Mapping[str, str] | None = None) -> list[Step]:
     """The ordered steps consuming ``items``.
 
     Args:
@@ -196,6 +210,8 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
         sample_stiffness: measured stiffness (N/mm) of every sample part.
         screws: the rigs' screw parts -> their BoltSpec (each rig step gives
             their torques, :func:`screw_notes`).
+        rigs: scene -> its rig; a rig of :data:`RIG_STEPS` gives its scene's step its own
+            title and notes (the others: "Assemble the <scene>").
 
     Returns:
         Steps in build order, each with the items it consumes; steps that
@@ -219,9 +235,10 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
             continue
         if key.startswith("rig-"):
             scene = key[4:]
-            title, notes = f"Assemble the {scene}", (
+            title, notes = RIG_STEPS.get((rigs or {}).get(scene), (f"Assemble the {scene}", (
                 "Fit the parts on their joints as the scene model shows; screws finger-tight "
-                "first, then tighten.",) + screw_notes(parts, screws or {})
+                "first, then tighten.",)))
+            notes = tuple(notes) + screw_notes(parts, screws or {})
             sub, tool = scene, ("hex keys",)
         else:
             lead = declared.get(key, BuildStep(key, key))

@@ -196,6 +196,34 @@ def _array_model(plan: Plan) -> RigModel:
                     set(array_contacts(plan)), dict(array_parts(plan)), {"tips": "array"})
 
 
+def _grasper_model(plan: Plan, scene: SceneSpec | None) -> RigModel:
+    """The insert in a grasper's jaw above a tissue slab (:mod:`tactcad.assembly.grasper_rig`):
+    the array's ``jaw_seat`` frame mated, flipped, onto the jaw's ``insert`` frame; closed
+    (angle 0), the row sheets touch the slab.
+
+    Raises:
+        SceneError: the construction gives the array no seat for a jaw.
+        DesignErrors: the jaw cannot take the insert.
+    """
+    from tactcad.assembly.grasper_rig import grasper_layout
+
+    array = _array_node(plan)
+    if "jaw_seat" not in array.frames:
+        raise SceneError(f"rig grasper: the {plan.construction} construction gives the array no "
+                         "seat for a grasper's jaw (a construction that does: monolithic-comb)")
+    lay = grasper_layout(plan, scene)
+    groups = {"grasper_jaw": "jaw", "tissue_slab": "tissue", "grasper_shaft": "shaft"}
+    nodes = {name: _leaf(name, spec, groups[name]) for name, spec in lay.specs.items()}
+    nodes["array"] = array
+    contacts = set(array_contacts(plan))
+    if lay.angle_deg == 0.0:  # closed: every contact face on the slab's top face
+        contacts |= {frozenset({construction_of(plan).element_holder(plan, s), "tissue_slab"})
+                     for s in plan.slots}
+    return RigModel("grasper", nodes, dict(lay.roots),
+                    [Mate("array", "jaw_seat", "grasper_jaw", "insert", contact=False)], [],
+                    contacts, lay.specs | dict(array_parts(plan)), {"jaw_angle_deg": lay.angle_deg})
+
+
 class _Builder:
     """Collects nodes and joints of a rig in topological order."""
 
@@ -417,6 +445,8 @@ def rig_model(plan: Plan, rig: str, rigs: RigDesign | None = None,
         return _wirecut_model(plan)
     if rig == "array":
         return _array_model(plan)
+    if rig == "grasper":
+        return _grasper_model(plan, scene)
     if rigs is None and rig in RIGS:
         raise SceneError(f"rig {rig} needs the validated rigs of the project (rigs.toml)")
     if rig == "calibration":

@@ -490,5 +490,10 @@ def touching(plan: Plan) -> set[frozenset[str]]:
 
 
 def mount_frames(plan: Plan) -> dict:
-    """None yet: the comb has no mount for the test rigs' bracket."""
-    return {}
+    """The comb's frames for a host (array frame, mm): ``jaw_seat``, the centre of its
+    envelope (:attr:`CombGeometry.envelope_centre_mm`) on the tip plane, normal up (+y),
+    x across the rows; a grasper's jaw takes it. No mount for the test rigs' bracket yet."""
+    from tactcad.geometry.frames import Frame
+
+    x, z = plan.comb.envelope_centre_mm
+    return {"jaw_seat": Frame((x, plan.comb.envelope_mm[2], z), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0))}

@@ -32,10 +32,14 @@ RIG_GROUPS: dict[str, tuple[str, ...]] = {
                          "sample_holder", "sample"),
     "array-evaluation": ("base_plate", "column", "linear_axis", "carrier", "hanger_bar", "weights",
                          "bracket", "array", "cart", "sample_holder", "sample"),
+    "grasper": ("jaw", "array", "tissue", "shaft"),
 }
 RIGS = tuple(RIG_GROUPS)
-#: The scenes a project without test rigs can show (the array alone, its cut sheet).
-RIGS_WITHOUT_TEST_RIGS = ("array", "wirecut")
+#: The scenes a project without test rigs can show (the array alone, its cut sheet, the
+#: insert in a grasper's jaw).
+RIGS_WITHOUT_TEST_RIGS = ("array", "wirecut", "grasper")
+#: The grasper's jaw angle a scene may set, degrees (0: closed on the tissue).
+JAW_ANGLE_RANGE_DEG = (0.0, 90.0)
 MAX_SCENES = 64
 
 
@@ -49,6 +53,9 @@ class SceneSpec:
     groups: tuple[str, ...]
     detail: Mapping[str, str]  # kind -> level
     sample_stiffness_N_per_mm: float | None = None
+    #: rig ``grasper``: the jaw's angle about its pin (degrees; 0 closed on the tissue;
+    #: None: the jaw's opening angle)
+    jaw_angle_deg: float | None = None
 
 
 class DetailTable(Section):
@@ -63,6 +70,9 @@ class SceneTable(Section):
     detail: DetailTable = DetailTable()
     sample_stiffness_N_per_mm: Optional[number(0.0, 1e4, lo_open=True, unit="N/mm",
                                                why="a stiffness of the sample list of rigs.toml")] = None
+    jaw_angle_deg: Optional[number(*JAW_ANGLE_RANGE_DEG, unit="degrees",
+                                   why="rig grasper: the jaw's angle about its pin, 0 closed on "
+                                       "the tissue")] = None
 
 
 class ScenesFile(Section):
@@ -94,8 +104,11 @@ def _scene(name: str, t: SceneTable, default: Mapping[str, str], p: Problems) ->
     if unknown:
         p.add(f"{f}.groups", unknown, "groups of rig " + t.rig + ": " + ", ".join(RIG_GROUPS[t.rig]),
               "unknown group")
+    if t.jaw_angle_deg is not None and t.rig != "grasper":
+        p.add(f"{f}.jaw_angle_deg", t.jaw_angle_deg, "left out", "only rig grasper has a jaw")
     return SceneSpec(name, t.rig, t.description.strip(), tuple(t.groups),
-                     _detail(f"{f}.detail", t.detail, default, p), t.sample_stiffness_N_per_mm)
+                     _detail(f"{f}.detail", t.detail, default, p), t.sample_stiffness_N_per_mm,
+                     t.jaw_angle_deg)
 
 
 def validate_scenes(data: Mapping[str, Any], file: str = "") -> tuple[dict[str, SceneSpec], Problems]:

@@ -105,15 +105,29 @@ def sheet_frame(sh: Sheet) -> None:
 def title_cells(sh: Sheet, x0: float, y0: float, rh: float, cells: list[tuple]) -> None:
     """Title-block cells (ISO 7200): each ``(row, x offset, width, label,
     value, id, value height)`` in paper mm from the block's corner
-    ``(x0, y0)``, rows ``rh`` high; a value too wide for its cell is set smaller."""
+    ``(x0, y0)``, rows ``rh`` high; a value too wide for its cell is set smaller, down to
+    1.8 mm, and beyond that shortened at a word with an ellipsis (the drawing's notes give a
+    process in full)."""
     for row, dx, w, label, value, id, vh in cells:
         x, y = x0 + dx, y0 + row * rh
         sh.rect("title-block", x, y, w, rh, "table")
         sh.text("title-block", (x + 1.2, y + 2.4), label, 1.6)
         if value:
-            while text_width(value, vh) > 0.9 * (w - 3) and vh > 1.8:
+            room = 0.9 * (w - 3)
+            while text_width(value, vh) > room and vh > 1.8:
                 vh -= 0.25
-            sh.text("title-block", (x + 1.5, y + rh - 1.6), value, vh, id=id)
+            sh.text("title-block", (x + 1.5, y + rh - 1.6), fitted_text(value, vh, room), vh, id=id)
+
+
+def fitted_text(value: str, height_mm: float, room_mm: float) -> str:
+    """``value`` as set at ``height_mm`` in ``room_mm`` of paper: whole when it fits, else
+    cut after the last word that leaves room for an ellipsis."""
+    if text_width(value, height_mm) <= room_mm:
+        return value
+    words = value.split(" ")
+    while len(words) > 1 and text_width(" ".join(words) + " …", height_mm) > room_mm:
+        words.pop()
+    return " ".join(words).rstrip(",;:") + " …"
 
 
 def projection_symbol(sh: Sheet, px: float, py: float) -> None:

@@ -273,7 +273,8 @@ def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
               if getattr(spec, "builder", None) == "rig_bolt"}  # geometry: (BoltSpec, length)
     return build_steps(items, _element_count(rows, specs), gauge.process if gauge else "",
                        adhesive.process if adhesive else "the gauge adhesive",
-                       project.plan.bolt, pairs, scenes, samples, screws)
+                       project.plan.bolt, pairs, scenes, samples, screws,
+                       {name: spec.rig for name, spec in project.scenes.items()})
 
 
 def complete_kit(project, assembled, files=lambda spec: ()) -> list[BomRow]:

@@ -86,12 +86,21 @@ def stacks(boxes: np.ndarray, axes: np.ndarray, moving: Sequence[int],
     return [[int(k) for k in idx[label == c]] for c in range(count)]
 
 
+def lift_axis(part: str) -> int:
+    """The part-frame axis a new part is drawn lifted along in its step (0, 1, 2 for x, y, z):
+    a strain gauge off its bonded face (+y, :mod:`tactcad.partlib.array.strain_gauge`), any
+    other part along its z (the array's stacking axis)."""
+    from tactcad.partlib.array.strain_gauge import GAUGE_PART
+
+    return 1 if part == GAUGE_PART else 2
+
+
 def explode_offsets(meshes, instances, new: Collection[str], earlier: Collection[str] = (),
                     axes: Mapping[str, Sequence[float]] | None = None) -> dict[int, np.ndarray]:
     """World offsets (mm) of a step's exploded view. Each instance of a ``new``
     part moves along its joint axis (``axes``: instance name -> unit vector,
-    :meth:`tactcad.assembly.scene_solver.Scene.joint_axes`; else its own z
-    axis, the array's stacking axis) by :data:`EXPLODE_FACTOR` x its extent
+    :meth:`tactcad.assembly.scene_solver.Scene.joint_axes`; else its own
+    :func:`lift_axis`) by :data:`EXPLODE_FACTOR` x its extent
     along it (at least 2 mm). A stack of them (:func:`stacks`: the array's
     elements, spacers and clamp plates; a column on its base plate) is spread
     apart in its order instead: its first layer along the axis moves as a
@@ -110,7 +119,8 @@ def explode_offsets(meshes, instances, new: Collection[str], earlier: Collection
     for k in moving:
         m = matrices[k]
         given = (axes or {}).get(instances[k].name)
-        unit[k] = np.asarray(given, dtype=float) if given is not None else m[:3, 2]
+        unit[k] = np.asarray(given, dtype=float) if given is not None \
+            else m[:3, lift_axis(instances[k].part)]
         v = meshes[instances[k].part][0] @ m[:3, :3].T  # the part turned into the scene
         along = v @ unit[k]
         lift[k] = EXPLODE_FACTOR * max(float(along.max() - along.min()), 2.0)

@@ -12,9 +12,9 @@ against the envelope. The insert sits in the pocket with its contact faces
 ``tip_proud_mm`` above the jaw face; the face wall stays above the arms when
 wall + proud < the element's tip height (``element.tip_height_mm``).
 
-Not yet in the rigs file: the jaw is the insert's host in use, not a test rig
-(``JAW`` is the module's part; a project's scenes place it once a project
-without rigs can carry parts of its own). Part frame: x along the jaw from
+Not in the rigs file: the jaw is the insert's host in use, not a test rig
+(``IN_USE_PART`` is the module's part; the ``grasper`` rig of a project's
+scenes places it, :mod:`tactcad.assembly.rig_models`). Part frame: x along the jaw from
 its proximal end (x = 0), y across it (centred), z = 0 on its back, the
 grasping face at z = thickness. Units: mm, degrees.
 """
@@ -80,10 +80,18 @@ class GrasperJawGeometry:
     window_width_mm: float
     tip_proud_mm: float
     opening_angle_deg: float
+    #: the window's centre off the pocket's (along x, across y): the insert's tip field
+    #: off its envelope's centre (:func:`tip_field_offset_mm`)
+    window_offset_mm: tuple[float, float] = (0.0, 0.0)
 
     @property
     def pocket_centre_x_mm(self) -> float:
         return self.pocket_x0_mm + self.pocket_length_mm / 2
+
+    @property
+    def window_centre_mm(self) -> tuple[float, float]:
+        """(x, y) of the window's centre in the jaw frame (mm)."""
+        return self.pocket_centre_x_mm + self.window_offset_mm[0], self.window_offset_mm[1]
 
 
 def closed_thickness_limit_mm(trocar_mm: float, width_mm: float) -> float:
@@ -98,6 +106,29 @@ def insert_envelope_mm(plan) -> tuple[float, float, float] | None:
     construction (the stacked array's envelope is the assembly layer's)."""
     comb = getattr(plan, "comb", None)
     return None if comb is None else tuple(float(v) for v in comb.envelope_mm)
+
+
+def tip_field_offset_mm(plan) -> tuple[float, float]:
+    """(along the row, across the rows) of the insert's tip field centre off its envelope's
+    centre (mm; 0, 0 without a comb): the window lies over the tips, the pocket round the
+    envelope."""
+    comb = getattr(plan, "comb", None)
+    if comb is None:
+        return 0.0, 0.0
+    xs, zs = [], []
+    for slot in plan.slots:
+        g = slot.geometry
+        for x in (g.overall_length_mm - g.tip_width_mm, g.overall_length_mm):
+            for z in (0.0, g.sheet_thickness_mm):
+                wx, _, wz = slot.placement.apply(x, g.tip_top_y_mm, z)
+                xs.append(wx)
+                zs.append(wz)
+    cx, cz = comb.envelope_centre_mm
+    return (min(zs) + max(zs)) / 2 - cz, (min(xs) + max(xs)) / 2 - cx
+
+
+def _clamped(value: float, bound: float) -> float:
+    return max(min(value, bound), -bound)
 
 
 def _pocket_side(p: Problems, field: str, stated: float | None, need: float | None,
@@ -168,8 +199,11 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
     field_along, field_across = plan.tip_field_mm
     wl = min(field_along + 2 * j.window_clearance_mm, pl)
     ww = min(field_across + 2 * j.window_clearance_mm, pw)
+    off = tip_field_offset_mm(plan)
+    # the window stays inside the pocket's outline (its walls carry the face wall)
+    off = (_clamped(off[0], (pl - wl) / 2), _clamped(off[1], (pw - ww) / 2))
     g = GrasperJawGeometry(j.length_mm, width, j.thickness_mm, j.pin_inset_mm, j.pin_diameter_mm,
-                           x0, pl, pw, depth, wl, ww, j.tip_proud_mm, j.opening_angle_deg)
+                           x0, pl, pw, depth, wl, ww, j.tip_proud_mm, j.opening_angle_deg, off)
     derived = (
         Derived("grasper_jaw_width", width, "mm",
                 f"shaft class {j.shaft_class_mm} mm less {fmt(j.width_clearance_mm)} mm clearance"),
@@ -183,7 +217,10 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
         Derived("grasper_jaw_window_length", wl, "mm",
                 f"tip field {fmt(field_along)} mm + {fmt(j.window_clearance_mm)} mm each end"),
         Derived("grasper_jaw_window_width", ww, "mm",
-                f"tip field {fmt(field_across)} mm + {fmt(j.window_clearance_mm)} mm each side"))
+                f"tip field {fmt(field_across)} mm + {fmt(j.window_clearance_mm)} mm each side"),
+        Derived("grasper_jaw_window_offset", off[0], "mm",
+                f"along the jaw from the pocket's centre: the tip field's centre off the insert's "
+                f"envelope's ({fmt(round(off[1], 6))} mm across)"))
     return PartData(
         name="grasper_jaw", kind="fabricated",
         process=Process("bought-in grasper jaw, machined for the insert: pocket and tip window by "
@@ -195,7 +232,11 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
         geometry=g, derived=derived, attributes={"opening_angle_deg": j.opening_angle_deg},
         frames={"pivot": Seat((j.pin_inset_mm, 0, j.thickness_mm / 2), (0, 1, 0), (1, 0, 0)),
                 "face": Seat((g.pocket_centre_x_mm, 0, j.thickness_mm), (0, 0, 1), (1, 0, 0)),
-                "pocket": Seat((g.pocket_centre_x_mm, 0, depth), (0, 0, -1), (1, 0, 0))})
+                "pocket": Seat((g.pocket_centre_x_mm, 0, depth), (0, 0, -1), (1, 0, 0)),
+                # where the insert's contact faces lie: tip_proud_mm above the face, centred
+                # on the pocket; its x across the jaw takes the array's x (across the rows)
+                "insert": Seat((g.pocket_centre_x_mm, 0, j.thickness_mm + j.tip_proud_mm),
+                               (0, 0, -1), (0, 1, 0))})
 
 
 def jaw_volume_mm3(g: GrasperJawGeometry) -> float:
@@ -217,8 +258,8 @@ def build(g: GrasperJawGeometry):
                    g.width_mm)
     x0, pw = g.pocket_x0_mm, g.pocket_width_mm / 2
     pocket = box(x0, -pw, 0, x0 + g.pocket_length_mm, pw, g.pocket_depth_mm)
-    cx, wl, ww = g.pocket_centre_x_mm, g.window_length_mm / 2, g.window_width_mm / 2
-    window = box(cx - wl, -ww, g.pocket_depth_mm, cx + wl, ww, g.thickness_mm)
+    (cx, cy), wl, ww = g.window_centre_mm, g.window_length_mm / 2, g.window_width_mm / 2
+    window = box(cx - wl, cy - ww, g.pocket_depth_mm, cx + wl, cy + ww, g.thickness_mm)
     return cut(bar, pin, pocket, window)
 
 
@@ -259,5 +300,5 @@ def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> Pa
     return part_from_table("grasper_jaw", GrasperJawSection, derive, table, file, plan=plan)
 
 
-JAW = RigPart(key="grasper_jaw", section=GrasperJawSection, host="", derive=derive, build=build,
+IN_USE_PART = RigPart(key="grasper_jaw", section=GrasperJawSection, host="", derive=derive, build=build,
               drawing=DrawingRecord(hole_table=False, notes_after=notes_after))

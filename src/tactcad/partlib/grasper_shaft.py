@@ -5,8 +5,8 @@ lead channel the insert's leads run through to the handle
 with :mod:`tactcad.in_use.shaft_leads`).
 
 Shafts are typically 270-360 mm long (Khan et al., Int J Surg 2024); the
-default 330 mm lies inside that. Not yet in the rigs file, like the jaw
-(:mod:`tactcad.partlib.grasper_jaw`). Part frame: axis along +x from the
+default 330 mm lies inside that. Not in the rigs file: the ``grasper``
+rig places it, like the jaw (:mod:`tactcad.partlib.grasper_jaw`). Part frame: axis along +x from the
 distal end (x = 0, where the jaw's pivot sits), centred in y and z. Units: mm.
 """
 
@@ -96,5 +96,5 @@ def shaft_part(table: Mapping[str, Any] | None = None, file: str = "") -> PartDa
     return part_from_table("grasper_shaft", GrasperShaftSection, derive, table, file)
 
 
-SHAFT = RigPart(key="grasper_shaft", section=GrasperShaftSection, host="", derive=derive,
+IN_USE_PART = RigPart(key="grasper_shaft", section=GrasperShaftSection, host="", derive=derive,
                 build=build, drawing=DrawingRecord(hole_table=False))

@@ -25,6 +25,28 @@ Part = RigPart | ArrayPart
 
 
 @functools.cache
+def in_use_parts() -> dict[str, RigPart]:
+    """key -> part of every module that names an ``IN_USE_PART``: the parts of the sensor in
+    use (the grasper's jaw and shaft, the tissue), placed by the grasper scene from their
+    tables' defaults, never by a rigs file (a design without a grasper stays as it was).
+
+    Raises:
+        ValueError: two modules declare the same key.
+    """
+    out: dict[str, RigPart] = {}
+    package = importlib.import_module(PACKAGES[0])
+    for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda i: i.name):
+        if info.name in _FORM or info.ispkg:
+            continue
+        part = getattr(importlib.import_module(f"{PACKAGES[0]}.{info.name}"), "IN_USE_PART", None)
+        if isinstance(part, RigPart):
+            if part.key in out:
+                raise ValueError(f"partlib: two modules declare the part key {part.key!r}")
+            out[part.key] = part
+    return out
+
+
+@functools.cache
 def part_modules() -> tuple[Part, ...]:
     """The ``PART`` of every part module, package by package, by module name."""
     out = []
@@ -86,7 +108,7 @@ def builders() -> dict[str, Callable[[Any], Any]]:
         ValueError: two modules, or a module and a companion, share a builder key.
     """
     out: dict[str, Callable[[Any], Any]] = {}
-    for part in part_modules():
+    for part in (*part_modules(), *in_use_parts().values()):
         for key, build in part.builders().items():
             if key in out:
                 raise ValueError(f"partlib: builder key {key!r} is declared twice "

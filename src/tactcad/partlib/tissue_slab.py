@@ -2,8 +2,8 @@
 box of stated thickness lying on the opposing jaw, which the jaw closes on.
 It covers the jaw's face unless the table sets its size; its thickness is
 the grasp's slab (:class:`tactcad.in_use.jaw_kinematics.JawGeometry`,
-``slab_thickness_mm``, > 0 ... 100 mm). Not yet in a scenes file, like the
-jaw (:mod:`tactcad.partlib.grasper_jaw`). Part frame: slab centred in x and
+``slab_thickness_mm``, > 0 ... 100 mm). The ``grasper`` rig
+places it, like the jaw (:mod:`tactcad.partlib.grasper_jaw`). Part frame: slab centred in x and
 y, z = 0 on its underside. Units: mm.
 """
 
@@ -83,4 +83,4 @@ def slab_part(jaw, table: Mapping[str, Any] | None = None, file: str = "") -> Pa
     return part_from_table("tissue_slab", TissueSlabSection, derive, table, file, jaw=jaw)
 
 
-SLAB = RigPart(key="tissue_slab", section=TissueSlabSection, host="", derive=derive, build=build)
+IN_USE_PART = RigPart(key="tissue_slab", section=TissueSlabSection, host="", derive=derive, build=build)

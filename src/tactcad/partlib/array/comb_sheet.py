@@ -126,6 +126,15 @@ class CombGeometry:
     fastener_y_mm: float
     envelope_mm: tuple[float, float, float]
 
+    @property
+    def envelope_centre_mm(self) -> tuple[float, float]:
+        """(x across the rows, z along the row) of the envelope's centre in the array frame
+        (mm): it reaches from the screw's head on row 1's outer face across to the screw's
+        end, and over the row's length from z = 0."""
+        across, along, _ = self.envelope_mm
+        head = -(self.spacer_thickness_mm / 2 + self.sheets[0].thickness_mm) - self.screw.head_height_mm
+        return head + across / 2, along / 2
+
 
 def comb_profile(sheet: CombSheet) -> Profile:
     """Exact outline of one row's comb sheet (CCW, lines and arcs; sheet frame, mm).
@@ -215,6 +224,21 @@ def plan_values(plan, spec, pen) -> tuple:
     return (plan.comb, plan.sheet_thickness_mm)
 
 
+def stacking_notes(book) -> tuple[str, ...]:
+    """The comb's assembly: rows on the dowels, the screws, then each hard stop's shim."""
+    return ("Press the two dowel pins into row 1's reamed holes, then slide on the spacer "
+            "and row 2's sheet, gauged faces outward as the assembly model shows.",
+            "Fit the screws from row 1's side and their nuts on row 2's; tighten them evenly "
+            "with the rows pressed flat on a plate.",
+            "Set each hard stop: slide a shim of the element's stop gap (the sheet's drawing) "
+            "under its arm's end against the ledge, bond it to the ledge, and check that the "
+            "arm moves freely up to it.")
+
+
 PART = ArrayPart(key="comb_sheet", build=build, specs=specs, order=5,
                  drawing=DrawingRecord(notes_of=notes, plan_values=plan_values),
-                 assembly=BuildStep("comb-rows"))
+                 assembly=BuildStep("comb-rows", "Stack the comb's rows on their dowels and set "
+                                    "the hard stops",
+                                    tools=lambda book: ("flat granite or glass plate",
+                                                        "feeler gauges"),
+                                    notes=stacking_notes))
