@@ -11,7 +11,9 @@ show is made by tactcad itself, from the export folder given:
 * ``review_page.png``: the review page opened offline in headless Chromium
   (``--review``; skipped with a note where no Chromium is installed);
 * ``table2_models.png`` and ``evaluate_fig7_halfspace.png``: the plots of
-  ``tactcad table2`` and ``tactcad evaluate`` on the paper's design.
+  ``tactcad table2`` and ``tactcad evaluate`` on the paper's design;
+* ``grasper_open.png`` and ``grasper_closed.png``: the grasper example's scenes
+  ``grasper-open`` and ``grasper-closed`` rendered from the side (the export's renderer).
 
 The design chart (fem3d, minutes) and the diff overlay (two exports) are made
 by the commands their pages name.
@@ -33,6 +35,9 @@ PAPER = ROOT / "hardware" / "macro_array" / "macro_array.toml"
 #: Sheets shown in the pages: picture name -> the part whose drawing it is.
 SHEETS = {"cart_drawing.png": "cart", "assembly_sheet.png": "array"}
 PNG_DPI = 110
+GRASPER = ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+#: Grasper scenes shown in the pages: picture name -> scene.
+GRASPER_SCENES = {"grasper_open.png": "grasper-open", "grasper_closed.png": "grasper-closed"}
 
 
 def sheet_page(pdf: Path, drawing_number: str) -> int:
@@ -89,6 +94,24 @@ def paper_plots(images: Path) -> None:
             raise SystemExit(f"docs_images: tactcad {' '.join(argv)} exited {code}")
 
 
+def grasper_scenes(images: Path) -> None:
+    """The grasper example's jaw scenes, side-on (elevation 0), as the export renders its array."""
+    from tactcad.assembly.scene_solver import build_scene
+    from tactcad.design.project import load_project
+    from tactcad.export.render import render_assembly_png
+    from tactcad.solids.cache import PartCache
+
+    project = load_project(GRASPER)
+    cache = PartCache(project.plan)
+    for name, scene_name in GRASPER_SCENES.items():
+        scene, _ = build_scene(project, scene_name, cache)
+        meshes = {i.part: cache.mesh(scene.specs[i.part]) for i in scene.instances}
+        colors = {n: scene.specs[n].color for n in meshes}
+        render_assembly_png(meshes, scene.instances, colors, images / name,
+                            f"{project.plan.name}: scene {scene_name} (side view)", elev=0.0,
+                            azim=0.0)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("exports", type=Path, help="an export folder of the paper's design")
@@ -102,6 +125,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.review:
         screenshot_review(args.exports, args.images)
     paper_plots(args.images)
+    grasper_scenes(args.images)
     print(f"docs_images: refreshed {args.images}")
     return 0
 

@@ -398,8 +398,9 @@ def test_a_short_load_during_edits_has_no_error_and_prints_its_latencies(default
     text = "\n".join(load_lines(load))
     assert re.search(r"\d+ one-arm edits saved meanwhile: \d+ requests, 0 errors", text), text
     assert re.search(r"latency p50 [\d.]+ ms, p95 [\d.]+ ms, p99 [\d.]+ ms, max [\d.]+ ms", text)
-    # the new sheets are asked for once an edit's export finished; on a loaded machine
-    # the only edit may still be exporting when the load ends (the bench says so)
-    finished = not any("still exporting at the end of the load" in line for line in said)
-    for route in ("/state", "/data", "/scene") + (("/sheet",) if finished else ()):
+    # the new scene and sheets are asked for only by a client that saw the state change
+    # (the page it opened already carries what was there then): on a loaded machine the
+    # only edit may finish before any client's first /data, so their counts are the load's
+    # to report, not this test's to require
+    for route in ("/state", "/data"):
         assert re.search(rf"^\s+{route}\s+\d+ requests", text, re.M), route

@@ -72,6 +72,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_output_args(x, "print one JSON object: inputs_s and per level solve_s, crosstalk_rel, "
                        "error_estimate_rel, vs_last_level_rel, asymmetry_rel")
     x.set_defaults(func=run_crosstalk)
+    dj = bsub.add_parser("design-jaw", help="design --jaw on the grasper case at three forces "
+                                           "(goal: an answer <= 60 s)")
+    add_output_args(dj, "print one JSON object: each force's seconds and answer")
+    dj.set_defaults(func=run_design_jaw)
     c = bsub.add_parser("closed-form", help="corrected closed-form K evaluations/s (goal >= 1e7)")
     add_design_arg(c)
     add_output_args(c, "print one JSON object: evaluations per second and the goal")
@@ -157,6 +161,17 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_output_args(c, "print one JSON object: export_s, runs_s, median_s, groups, goal_s")
     c.set_defaults(func=run_check)
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
+
+
+def run_design_jaw(args: argparse.Namespace) -> int:
+    from tactcad.benchmarks.design_jaw_bench import design_jaw_figures, design_jaw_lines
+    from tactcad.design.array_plan import EXAMPLES, read_toml
+    from tactcad.design.construction_registry import construction
+
+    comb = construction("monolithic-comb")
+    figures = design_jaw_figures(read_toml(EXAMPLES / comb.jaw_template, "design file"))
+    print(dumps(figures) if args.json else "\n".join(design_jaw_lines(figures)))
+    return 0
 
 
 def run_check(args: argparse.Namespace) -> int:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import copy
 import json
+import math
 import os
 import shlex
 from pathlib import Path
@@ -20,6 +21,19 @@ from tactcad.errors import DesignError
 def verify_levels() -> tuple[str, ...]:
     """``--verify`` choices: the ladder's levels above the closed form, dearest first, or none."""
     return (*reversed(models()[1:]), "none")
+
+
+def jaw_classes() -> tuple[str, ...]:
+    """The grasper trocar classes a jaw can be designed to (mm)."""
+    from tactcad.partlib.grasper_jaw import SHAFT_CLASSES_MM
+
+    return tuple(SHAFT_CLASSES_MM)
+
+
+def construction_choices() -> tuple[str, ...]:
+    from tactcad.design.construction_registry import construction_names
+
+    return construction_names()
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -75,6 +89,15 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--tissue-thickness", type=number(0, 1e4, "mm", lo_open=True), metavar="MM",
                    default=None, help="tissue layer thickness on a rigid base (mm; default: a "
                                       "half-space)")
+    p.add_argument("--jaw", choices=jaw_classes(), default=None, metavar="CLASS",
+                   help="design an insert for the jaw of a laparoscopic grasper of this trocar "
+                        "class (mm: " + ", ".join(jaw_classes()) + "): searches every "
+                        "construction that seats in a jaw (sheet, pitch, arms, webs, hard stops) "
+                        "inside the jaw's pocket; writes the design and its scenes (the insert "
+                        "in the jaw), or names the binding limits and the nearest force")
+    p.add_argument("--construction", choices=("auto",) + construction_choices(), default="auto",
+                   help="construction of the array (default auto: the stacked array, or with "
+                        "--jaw every construction that seats in a jaw)")
     p.add_argument("--verify", choices=verify_levels(), default="fem3d",
                    help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
     add_design_arg(p)
@@ -167,6 +190,8 @@ def run(args: argparse.Namespace) -> int:
 
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force,
                       tissue=tissue_of(args) if args.tissue_coupling == "on" else None)
+    if args.jaw is not None or args.construction not in ("auto", "stacked"):
+        return run_jaw(args, targets)
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
@@ -200,6 +225,142 @@ def run(args: argparse.Namespace) -> int:
     else:
         print_report(report)
     return 0
+
+
+def jaw_constructions(args: argparse.Namespace) -> tuple[list, list[str]]:
+    """The constructions a jaw design searches (``--construction``, else every one whose
+    registry entry has a search to a jaw) and a line for each one left out.
+
+    Raises:
+        DesignError: ``--jaw`` missing, or a construction asked for that does not seat in a jaw.
+    """
+    from tactcad.design.construction_registry import construction, construction_names
+
+    if args.jaw is None:
+        raise DesignError("--jaw", None, "a trocar class: " + ", ".join(jaw_classes()),
+                          f"the {args.construction} construction is designed to a grasper's jaw")
+    names = construction_names() if args.construction == "auto" else (args.construction,)
+    chosen, left = [], []
+    for name in names:
+        c = construction(name)
+        if c.jaw_search() is not None:
+            chosen.append(c)
+        elif args.construction == "auto":
+            left.append(f"{name}: does not seat in a jaw ({c.scales_to_mm})")
+        else:
+            raise DesignError("--construction", name,
+                              "auto or a construction that seats in a jaw",
+                              f"{name} does not seat in a jaw ({c.scales_to_mm})")
+    return chosen, left
+
+
+def run_jaw(args: argparse.Namespace, targets) -> int:
+    """``design --jaw``: every construction that seats in the jaw searched; the design of
+    the one that counts (written with its scenes), or every binding limit."""
+    import tomli_w
+
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.atomic import write_bytes_atomic
+    from tactcad.studies.comb_design import scenes_text
+
+    if args.rows not in (None, 2):
+        raise DesignError("--rows", args.rows, "2", "the model holds two rows facing each other")
+    chosen, left = jaw_constructions(args)
+    folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
+    path = check_output_path(args.out, args.force) if folder is None else \
+        folder / f"{folder.name.replace('-', '_') or 'grasper_insert'}.toml"
+    name = path.stem.replace("-", "_") or "grasper_insert"
+    from tactcad.design.array_plan import EXAMPLES, read_toml
+    from tactcad.partlib.grasper_jaw import jaw_room
+
+    room = jaw_room(args.jaw)
+    refusals, result, used = [], None, None
+    for c in chosen:
+        base = read_toml(EXAMPLES / c.jaw_template, "design file")
+        try:
+            result = c.jaw_search()(targets, room, args.columns or 6, base, grade=args.material,
+                                    name=name, envelope_of=array_envelope_mm)
+            used = c.name
+            break
+        except DesignError as exc:
+            refusals.append((c.name, exc))
+    if result is None:
+        if len(refusals) == 1:
+            raise refusals[0][1]
+        raise DesignError("--jaw", args.jaw, "a jaw some construction fits",
+                          "; ".join(f"{n}: {e}" for n, e in refusals) or "no construction seats in a jaw")
+    scenes_name = f"{path.stem}-scenes.toml"
+    data = dict(result.data)
+    data["files"] = {"scenes": scenes_name}
+    from tactcad import __version__
+
+    header = (f"# Written by tactcad {__version__}: "
+              f"`tactcad design {' '.join(design_options(args))}`.\n"
+              f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
+    if folder is not None:
+        folder.mkdir(parents=True, exist_ok=True)
+    scenes_path = path.parent / scenes_name
+    if scenes_path.exists() and not args.force:
+        raise DesignError("--out", str(scenes_path), "a path with no file (or --force)",
+                          "the design's scenes file would be overwritten")
+    # the scenes first, the design last: a set cut short has no design file
+    write_bytes_atomic(scenes_path, scenes_text(path.stem).encode("utf-8"))
+    write_bytes_atomic(path, (header + tomli_w.dumps(data)).encode("utf-8"))
+    report = jaw_report(result, used, left, path)
+    if args.json:
+        print(json.dumps(report, indent=2, allow_nan=False))
+    else:
+        print_jaw_report(report)
+    return 0
+
+
+def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
+    """What ``design --jaw`` found: the room, the chosen design, every candidate, the checks
+    that run without the CAD kernel on the written design."""
+    from tactcad.design.project import load_project
+    from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
+
+    project = load_project(path)
+    groups = [g for g in groups_to_run() if not g.on_export]
+    checks = {}
+
+    def done(label: str, results: list) -> None:
+        checks[label] = {"passed": sum(r.passed for r in results),
+                         "failed": [r.line() for r in results if not r.passed]}
+
+    run_groups(groups, CheckContext(project.plan, path.parent, None, project), done)
+    d, room = result.data, result.room
+    return {
+        "out": str(path), "construction": construction, "left_out": left,
+        "jaw": {"shaft_class_mm": room.shaft_class_mm, "pocket_across_mm": room.across_mm,
+                "pocket_along_mm": room.along_mm, "height_mm": room.height_mm},
+        "sheet_mm": d["sheet"]["thickness_mm"], "pitch_mm": d["array"]["pitch_mm"],
+        "arms_mm": sorted(set(d["arms"]["lengths_mm"])),
+        "webs_mm": sorted(set(d["comb"]["web_thicknesses_mm"])),
+        "stop_gaps_mm": sorted(set(d["comb"]["stop_gaps_mm"])),
+        "candidates": [{"sheet_mm": c.sheet_mm, "km_scale": c.km_scale,
+                        "counts": c.plan is not None and not c.failures,
+                        "force_margin_rel": None if math.isinf(c.force_margin_rel) else c.force_margin_rel,
+                        "binding": list(c.failures[:1])} for c in result.candidates],
+        "checks": checks}
+
+
+def print_jaw_report(r: dict) -> None:
+    j = r["jaw"]
+    print(f"{r['out']}: {r['construction']} for the {j['shaft_class_mm']} mm jaw (pocket "
+          f"{j['pocket_across_mm']:g} x {j['pocket_along_mm']:g} mm, {j['height_mm']:g} mm high)")
+    for line in r["left_out"]:
+        print(f"  not searched: {line}")
+    print(f"  sheet {r['sheet_mm']:g} mm, pitch {r['pitch_mm']:g} mm, arms "
+          f"{', '.join(f'{a:g}' for a in r['arms_mm'])} mm, webs "
+          f"{', '.join(f'{w:g}' for w in r['webs_mm'])} mm, stop gaps "
+          f"{', '.join(f'{g:g}' for g in r['stop_gaps_mm'])} mm")
+    counted = sum(c["counts"] for c in r["candidates"])
+    print(f"  {len(r['candidates'])} candidates, {counted} count")
+    for label, c in r["checks"].items():
+        print(f"  check {label}: {c['passed']} passed, {len(c['failed'])} failed")
+        for line in c["failed"]:
+            print(f"    {line}")
 
 
 def tissue_of(args: argparse.Namespace):

@@ -46,6 +46,11 @@ class Construction:
         stack_crosstalk: True when the stack crosstalk model
             (:mod:`tactcad.mechanics.stack_crosstalk`: elements coupled through
             the clamped stack's bolts and plates) describes it.
+        jaw_design: ``"module:function"`` of its search to a grasper's jaw (``design
+            --jaw``: ``(targets, room, columns, base_tables, **options) -> design``); empty
+            when it does not seat in a jaw.
+        jaw_template: the shipped example (relative to the examples folder) whose fixed
+            details its jaw designs take.
 
     The module also places its parts: ``placed_parts(plan)`` gives every placed
     part but the strain gauges as (instance name, part name, placement),
@@ -63,6 +68,15 @@ class Construction:
     scales_to_mm: str = ""
     test_rigs: bool = False
     stack_crosstalk: bool = False
+    jaw_design: str = ""
+    jaw_template: str = ""
+
+    def jaw_search(self) -> Callable[..., Any] | None:
+        """Its search to a grasper's jaw (:attr:`jaw_design`), or None."""
+        if not self.jaw_design:
+            return None
+        module, function = self.jaw_design.split(":")
+        return getattr(importlib.import_module(module), function)
 
     def _function(self, name: str) -> Callable[..., Any]:
         return getattr(importlib.import_module(self.module), name)
@@ -208,4 +222,6 @@ register_construction(Construction(
     "tactcad.design.comb_plan",
     ("comb_sheet", "gauge"),
     "each element is post + notch + arm + half the tip long (arms >= 2 mm): about "
-    "columns x 4 mm along the row and 6 mm across two 1 mm rows"))
+    "columns x 4 mm along the row and 6 mm across two 1 mm rows",
+    jaw_design="tactcad.studies.comb_design:comb_for_jaw",
+    jaw_template="grasper_jaw_10mm/grasper_jaw_10mm.toml"))

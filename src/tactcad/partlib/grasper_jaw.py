@@ -94,6 +94,41 @@ class GrasperJawGeometry:
         return self.pocket_centre_x_mm + self.window_offset_mm[0], self.window_offset_mm[1]
 
 
+@dataclass(frozen=True)
+class JawRoom:
+    """The room a grasper's jaw of its table's defaults leaves its insert (mm).
+
+    Attributes:
+        shaft_class_mm: the trocar class ("5" or "10").
+        across_mm, along_mm: the pocket's largest width and length less its clearances.
+        height_mm: the insert's largest height (jaw thickness + the tips' proud height).
+    """
+
+    shaft_class_mm: str
+    across_mm: float
+    along_mm: float
+    height_mm: float
+
+
+def jaw_room(shaft_class_mm: str) -> JawRoom:
+    """The room of the default jaw of a trocar class, by this module's rules: the pocket
+    between the pin's steel and the distal wall along, between the side walls across.
+
+    Raises:
+        DesignError: ``--jaw`` not a class of :data:`SHAFT_CLASSES_MM`.
+    """
+    from tactcad.errors import DesignError
+
+    if shaft_class_mm not in SHAFT_CLASSES_MM:
+        raise DesignError("--jaw", shaft_class_mm, " or ".join(SHAFT_CLASSES_MM) + " (mm trocar class)")
+    j = GrasperJawSection(shaft_class_mm=shaft_class_mm)
+    width = SHAFT_CLASSES_MM[shaft_class_mm] - j.width_clearance_mm
+    c = j.pocket_clearance_mm
+    along = j.length_mm - j.distal_wall_mm - (j.pin_inset_mm + j.pin_diameter_mm / 2 + MIN_WALL_MM)
+    return JawRoom(shaft_class_mm, width - 2 * MIN_WALL_MM - 2 * c, along - 2 * c,
+                   j.thickness_mm + j.tip_proud_mm)
+
+
 def closed_thickness_limit_mm(trocar_mm: float, width_mm: float) -> float:
     """The thickest closed pair of jaws (mm) of width ``width_mm`` whose
     rectangular section passes a round trocar of ``trocar_mm``: sqrt(D² - w²)."""

@@ -1,0 +1,363 @@
+"""Designing an insert to a grasper's jaw: the monolithic comb searched over the sheet, its
+pitch, arms, webs and hard stops for a stiffness ratio, an object-stiffness range and a
+full-scale force, inside the room the jaw leaves.
+
+The room (:func:`tactcad.partlib.grasper_jaw.jaw_room`) is the jaw part's own derivation
+rules at its table's defaults: the pocket between the pin's steel and the distal wall
+along, between the side walls across, and the insert no taller than the jaw's thickness plus
+the tips' proud height. The comb's fixed details (tip, arm height, notch radius, post,
+spacer, ISO screws and dowels, wire) are the base comb's (the construction's
+``jaw_template``, the shipped ``examples/grasper_jaw_10mm``), each kept with its reason; what the search sets:
+
+* the pitch: the jaw's pocket length over the columns, to 0.1 mm;
+* the arms: the references' the fitted range's shortest (the stiffest), the measuring
+  elements' the longest the pitch leaves with the wire's slot;
+* the webs: each solved at the closed form for K_m = s sqrt(K_lo K_hi / X) and K_r = X K_m
+  (eq. 2's centre, each tip on its own object spring, scaled by s of :data:`KM_SCALES`: a
+  stiffer pair carries more force while verify still reads the K_obj range), to 1 µm;
+* the hard stops: engaging at :data:`STOP_MULTIPLE` x the rated deflection
+  (:func:`tactcad.mechanics.hard_stops.stop_gap_for`), a shim no thinner than the comb's
+  thinnest;
+* the pairing: by column, each reference beside its measuring element (one radius).
+
+Every sheet of :data:`SHEETS_MM` is tried at every scale; a candidate counts when its design validates and
+its verification matrix at the closed form fails nothing and every stop engages between its
+rated and its yield-limited deflection. Of those, the softest pair that carries the force
+with :data:`FORCE_MARGIN_REL` to spare is chosen (:func:`chosen`). When none counts, the refusal names each sheet's binding limit and the largest
+full-scale force any sheet carries, as an option to paste. Units: mm, N, N/mm.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass, replace
+from typing import Any, Callable, Mapping
+
+from tactcad.design.array_plan import plan_from_dict
+from tactcad.errors import DesignError, DesignErrors
+from tactcad.studies.inverse_design import InverseDesignError, Targets
+
+#: Sheet thicknesses searched (mm): Ti-6Al-4V and steel sheet of common stock.
+SHEETS_MM = (0.5, 0.6, 0.8, 1.0, 1.2, 1.5)
+#: A hard stop engages at this multiple of its element's rated deflection.
+STOP_MULTIPLE = 1.3
+#: Webs are solved to this step (mm): below wire EDM's tolerance.
+WEB_STEP_MM = 0.001
+#: The slot the search leaves after the longest element (mm): wider than a 0.1 mm wire's.
+SLOT_MM = 0.2
+#: K_m over eq. 2's centre sqrt(K_lo K_hi / X) searched: a stiffer pair carries more force
+#: and reads the range's low end with less resolution (verify's K_obj range decides).
+KM_SCALES = (1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0)
+#: The force margin a chosen comb keeps, where one can (the softest pair that keeps it is
+#: chosen; a stiffer one trades K_obj resolution for force).
+FORCE_MARGIN_REL = 0.2
+
+
+@dataclass(frozen=True)
+class CombCandidate:
+    """One sheet's comb at one K_m scale: its tables, plan (None when refused) and what
+    binds it."""
+
+    sheet_mm: float
+    km_scale: float
+    data: dict | None
+    plan: Any
+    failures: tuple[str, ...]
+    force_margin_rel: float
+    rated_force_N: float | None
+
+
+@dataclass(frozen=True)
+class CombDesign:
+    """The search's answer: the chosen comb and every candidate tried."""
+
+    data: dict
+    plan: Any
+    room: Any
+    candidates: tuple[CombCandidate, ...]
+
+
+def _floor(x: float, step: float) -> float:
+    return math.floor(x / step + 1e-9) * step
+
+
+def solve_web(geometry, material, k_target: float, lo: float, hi: float) -> float | None:
+    """The web (mm, to :data:`WEB_STEP_MM`) giving ``geometry`` the closed form's K
+    ``k_target`` (N/mm), or None when no web in [lo, hi] does."""
+    from scipy.optimize import brentq
+
+    from tactcad.mechanics.closed_form import estimate_closed_form
+
+    def k_minus(t: float) -> float:
+        g = replace(geometry, web_thickness_mm=t)
+        return estimate_closed_form(g, material).stiffness_N_per_mm - k_target
+
+    if k_minus(lo) * k_minus(hi) > 0:
+        return None
+    return round(brentq(k_minus, lo, hi, xtol=1e-7) / WEB_STEP_MM) * WEB_STEP_MM
+
+
+def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
+                targets: Targets, grade: str | None) -> tuple[dict, list[str]]:
+    """The comb's tables for one sheet, before its webs and stops (see the module doc), and
+    the limits already binding (none when it can go on)."""
+    d = copy.deepcopy(base)
+    e, comb = d["element"], d["comb"]
+    if grade is not None:
+        d["material"] = {"name": grade, "grade": grade}
+    pitch = _floor(min(room.along_mm / columns, 20.0), 0.1)
+    arm_r = 2.0
+    arm_m = _floor(pitch - SLOT_MM - comb["post_length_mm"] - e["notch_radius_mm"]
+                   - e["tip_width_mm"] / 2, 0.1)
+    n = 2 * columns
+    d["sheet"] = {"thickness_mm": sheet_mm}
+    d["array"] = {"construction": "monolithic-comb", "pairing": "column", "rows": 2,
+                  "columns": columns, "pitch_mm": round(pitch, 6)}
+    d["arms"] = {"lengths_mm": [arm_r] * columns + [round(arm_m, 6)] * columns,
+                 "reference_elements": list(range(1, columns + 1))}
+    comb["web_thicknesses_mm"] = [e["web_thickness_mm"]] * n
+    comb["stop_gaps_mm"] = [0.05] * n
+    lo, hi = targets.k_obj_range_N_per_mm
+    d["requirements"] = {"full_scale_force_N": targets.full_scale_force_N,
+                         "kobj_range_N_per_mm": [lo, hi], "kr_over_km": targets.kr_over_km,
+                         "footprint_mm": [round(room.across_mm, 6), round(room.along_mm, 6)]}
+    d.pop("files", None)
+    binding = []
+    if arm_m < arm_r + 0.5:
+        binding.append(f"the pitch {pitch:g} mm ({columns} columns in the jaw's {room.along_mm:g} mm) "
+                       f"leaves a measuring arm of {arm_m:g} mm, not longer than the reference's")
+    return d, binding
+
+
+def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, list[str]]:
+    """``d`` with every web solved for its K target and every stop gap set (see the module
+    doc); the binding limits when a web or the plan is refused."""
+    from tactcad.design.comb_plan import MIN_SET_GAP_MM
+    from tactcad.mechanics.hard_stops import stop_gap_for
+
+    plan = plan_from_dict(d)
+    columns = plan.columns
+    k_m = km_scale * centred_km(targets)
+    k_r = targets.kr_over_km * k_m
+    r = d["element"]["notch_radius_mm"]
+    webs = []
+    for number, k in ((1, k_r), (columns + 1, k_m)):
+        g = plan.element(number).geometry
+        web = solve_web(g, plan.material, k, 0.02, min(2 * r, d["sheet"]["thickness_mm"] * 2))
+        if web is None:
+            return d, [f"no web of element {number} ({g.arm_length_mm:g} mm arm) reaches "
+                       f"K = {k:.4g} N/mm at the closed form"]
+        webs.append(web)
+    d = copy.deepcopy(d)
+    d["comb"]["web_thicknesses_mm"] = [webs[0]] * columns + [webs[1]] * columns
+    plan = plan_from_dict(d)
+    gaps = []
+    for stop in plan.hard_stops:
+        g = plan.element(stop.element).geometry
+        from tactcad.mechanics.closed_form import estimate_closed_form
+
+        k = estimate_closed_form(g, plan.material).stiffness_N_per_mm
+        gap = stop_gap_for(STOP_MULTIPLE, targets.full_scale_force_N / k, stop, g.arm_length_mm)
+        gaps.append(max(math.ceil(gap / WEB_STEP_MM - 1e-9) * WEB_STEP_MM, MIN_SET_GAP_MM))
+    d["comb"]["stop_gaps_mm"] = [round(x, 6) for x in gaps]
+    return d, []
+
+
+def _short(value: Any) -> str:
+    """A record's value in 4 significant digits (lists item by item)."""
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_short(v) for v in value) + "]"
+    return f"{value:.4g}" if isinstance(value, float) else str(value)
+
+
+def judge(d: dict, envelope_of: Callable | None) -> tuple[Any, tuple[str, ...], float, float | None]:
+    """(plan, failures, full-scale-force margin, rated force) of a candidate's tables: the
+    design's validation, its verification matrix at the closed form and its hard stops."""
+    from tactcad.mechanics.hard_stops import stop_verdicts
+    from tactcad.studies.verification import rated_full_scale_force, verification_matrix
+
+    try:
+        plan = plan_from_dict(d)
+    except DesignErrors as exc:
+        return None, tuple(f"{e.field} = {e.value}: allowed {e.allowed}" for e in exc.errors), \
+            -math.inf, None
+    env = envelope_of(plan) if envelope_of is not None else None
+    records = verification_matrix(plan, "closed-form", envelope_mm=env)
+    fails = [f"{r['requirement']}: predicted {_short(r['predicted'])}, target {_short(r['target'])}"
+             for r in records if r["verdict"] == "fail"]
+    force = d["requirements"]["full_scale_force_N"]
+    fails += [f"hard stop of element {v.element}: engages at {v.multiple_of_rated:.2f} x the rated "
+              f"deflection, yield-limited at {v.yield_tip_mm:.4f} mm"
+              for v in stop_verdicts(plan, force) if not v.engages_between]
+    margin = next((r["margin_rel"] for r in records if r["requirement"] == "full_scale_force_N"),
+                  0.0)
+    probe = copy.deepcopy(d)
+    probe["requirements"].pop("full_scale_force_N")
+    try:
+        rated = rated_full_scale_force(plan_from_dict(probe))
+    except DesignErrors:
+        rated = None
+    return plan, tuple(fails), float(margin if margin is not None else 0.0), rated
+
+
+def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
+                 grade: str | None = None, name: str = "grasper_insert",
+                 envelope_of: Callable | None = None,
+                 progress: Callable[[str], None] | None = None) -> CombDesign:
+    """The monolithic comb that fits ``room`` and meets ``targets``.
+
+    Args:
+        targets: K_r/K_m, the K_obj range (N/mm) and the full-scale force (N).
+        room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`: ``across_mm``,
+            ``along_mm``, ``height_mm``, ``shaft_class_mm``).
+        columns: columns of the 2-row comb (1 ... 12).
+        base: the comb whose fixed details the design takes (a shipped comb's tables).
+        grade: material grade of the library (default the base's).
+        name: the design's name.
+        envelope_of: plan -> its footprint envelope (mm) for the footprint requirement.
+
+    Returns:
+        :class:`CombDesign`.
+
+    Raises:
+        DesignError: ``--columns`` out of range.
+        InverseDesignError: no sheet gives a comb that counts; names each sheet's binding
+            limit and the largest full-scale force any carries (``--full-scale-force``).
+    """
+    if not 1 <= columns <= 12:
+        raise DesignError("--columns", columns, "1 ... 12 for a comb in a jaw")
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    base = copy.deepcopy(dict(base))
+    with range_warnings_unsaid():  # the candidates are not the design asked about
+        tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
+                           progress) for sheet in SHEETS_MM for scale in KM_SCALES]
+    good = [c for c in tried if c.plan is not None and not c.failures]
+    if not good:
+        raise refusal(tried, targets, room, columns)
+    best = chosen(good)
+    data = named(best.data, name, targets, room, best, columns)
+    return CombDesign(data, plan_from_dict(data), room, tuple(tried))
+
+
+def chosen(good: list[CombCandidate]) -> CombCandidate:
+    """Of the candidates that count, the softest pair (the K_obj range read finest) that
+    carries the force with :data:`FORCE_MARGIN_REL` to spare, the thicker sheet on a tie;
+    when none has that margin, the one with the most."""
+    spare = [c for c in good if c.force_margin_rel >= FORCE_MARGIN_REL]
+    if spare:
+        return min(spare, key=lambda c: (c.km_scale, -c.sheet_mm))
+    return max(good, key=lambda c: (c.force_margin_rel, c.sheet_mm))
+
+
+def centred_km(targets: Targets) -> float:
+    """Eq. 2's centre of the K_obj range for K_m (N/mm): sqrt(K_lo K_hi / X)."""
+    lo, hi = targets.k_obj_range_N_per_mm
+    return math.sqrt(lo * hi / targets.kr_over_km)
+
+
+def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any,
+              targets: Targets, grade: str | None, envelope_of: Callable | None,
+              progress: Callable[[str], None] | None) -> CombCandidate:
+    """One sheet's comb at one K_m scale, judged (:func:`judge`), or the limit that binds
+    it first."""
+    if progress:
+        progress(f"comb on a {sheet:g} mm sheet, K_m {km_scale:g} x eq. 2's centre")
+    d, binding = comb_tables(base, sheet, columns, room, targets, grade)
+    if not binding:
+        try:
+            d, binding = with_webs_and_stops(d, targets, km_scale)
+        except DesignErrors as exc:
+            binding = [f"{e.field} = {e.value}: allowed {e.allowed}" for e in exc.errors]
+    if binding:
+        return CombCandidate(sheet, km_scale, None, None, tuple(binding), -math.inf, None)
+    plan, fails, margin, rated = judge(d, envelope_of)
+    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated)
+
+
+def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
+            columns: int) -> InverseDesignError:
+    """Why no sheet counts, and the largest force any carries (a pasteable option)."""
+    lines = []
+    for sheet in SHEETS_MM:  # each sheet's nearest candidate: its largest force margin
+        own = [c for c in tried if c.sheet_mm == sheet and c.failures]
+        if own:
+            c = max(own, key=lambda c: (c.force_margin_rel, c.km_scale))
+            lines.append(f"{sheet:g} mm sheet (nearest at K_m {c.km_scale:g} x eq. 2's centre): "
+                         f"{c.failures[0]}")
+    rated = [c.rated_force_N for c in tried if c.rated_force_N]
+    text = (f"no monolithic comb of 2 x {columns} fits the {room.shaft_class_mm} mm jaw "
+            f"({room.across_mm:g} x {room.along_mm:g} mm pocket, {room.height_mm:g} mm high) for "
+            f"K_r/K_m {targets.kr_over_km:g}, K_obj {targets.k_obj_range_N_per_mm[0]:g} ... "
+            f"{targets.k_obj_range_N_per_mm[1]:g} N/mm at {targets.full_scale_force_N:g} N:\n  "
+            + "\n  ".join(lines))
+    nearest = f"--full-scale-force {max(rated) * 0.99:.3g}" if rated else ""
+    return InverseDesignError(text + (f"\n  nearest: {nearest}" if nearest else ""),
+                              "--full-scale-force", targets.full_scale_force_N,
+                              nearest or "a design the jaw holds")
+
+
+def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
+          columns: int) -> dict:
+    """The chosen tables with their name, description and every reason."""
+    d = copy.deepcopy(d)
+    lo, hi = targets.k_obj_range_N_per_mm
+    d["design"] = {"name": name, "description": (
+        f"2 x {columns} monolithic comb for a {room.shaft_class_mm} mm grasper's jaw: "
+        f"K_r/K_m = {targets.kr_over_km:g} for K_obj {lo:g}-{hi:g} N/mm, full-scale force "
+        f"{targets.full_scale_force_N:g} N")}
+    comb, arms = d["comb"], d["arms"]["lengths_mm"]
+    why = {k: v for k, v in d.get("assumptions", {}).items()
+           if k.split(".")[0] in ("strength", "element", "edm") or k in (
+               "comb.post_length_mm", "comb.spacer_thickness_mm", "comb.screw_size",
+               "comb.dowel_diameter_mm")}
+    others = [c for c in SHEETS_MM if c != best.sheet_mm]
+    why.update({
+        "sheet.thickness_mm": (f"tactcad design --jaw {room.shaft_class_mm}: of "
+                               f"{', '.join(f'{s:g}' for s in SHEETS_MM)} mm, the sheet of the "
+                               f"softest pair that carries the full-scale force with "
+                               f"{FORCE_MARGIN_REL:.0%} to spare ({best.force_margin_rel:+.1%}); "
+                               f"tried also {', '.join(f'{s:g}' for s in others)} mm."),
+        "array.pairing": "Column pairing: each reference (row 1) beside its measuring element "
+                         "(row 2), both tips at one radius from the jaw's pin.",
+        "array.pitch_mm": (f"{columns} columns in the {room.along_mm:g} mm the jaw's pocket "
+                           f"leaves (to 0.1 mm)."),
+        "arms.lengths_mm": (f"References {arms[0]:g} mm (the fitted range's shortest), measuring "
+                            f"elements {arms[-1]:g} mm: the longest the pitch leaves with a "
+                            f"{SLOT_MM:g} mm slot."),
+        "arms.reference_elements": "Row 1: every column's reference.",
+        "comb.web_thicknesses_mm": (
+            f"Solved at the closed form for K_r = {targets.kr_over_km:g} K_m and K_m = "
+            f"{best.km_scale:g} x sqrt(K_lo K_hi / X) = {best.km_scale * centred_km(targets):.4g} "
+            f"N/mm (eq. 2's centre scaled by the least of {', '.join(f'{k:g}' for k in KM_SCALES)} "
+            f"that carries the force with {FORCE_MARGIN_REL:.0%} to spare while verify reads the "
+            f"K_obj range), to {WEB_STEP_MM * 1000:g} µm."),
+        "comb.stop_gaps_mm": (f"Each stop engages at {STOP_MULTIPLE:g} x its element's rated "
+                              f"deflection at the arm's end, a shim no thinner than "
+                              f"{min(comb['stop_gaps_mm']):g} mm."),
+        "requirements.full_scale_force_N": "Asked (--full-scale-force).",
+        "requirements.kobj_range_N_per_mm": "Asked (--kobj-range).",
+        "requirements.kr_over_km": "Asked (--kr-over-km).",
+        "requirements.footprint_mm": (f"The {room.shaft_class_mm} mm jaw's pocket less its "
+                                      "clearances (across, along)."),
+    })
+    d["assumptions"] = why
+    return d
+
+
+def scenes_text(design_stem: str) -> str:
+    """The scenes file of a comb designed to a jaw: the insert, and the insert in the jaw open
+    and closed on a tissue slab."""
+    return (f"# Scenes of {design_stem}: the comb insert, and the insert in the grasper's jaw.\n"
+            "# `tactcad scenes` lists the scenes, their groups and parts.\n\n"
+            "[detail]\nfabricated = \"full\"\npurchased = \"envelope\"\n\n"
+            "[scene.array]\nrig = \"array\"\n"
+            "description = \"The comb insert: two row sheets on their spine\"\n"
+            "groups = [\"array\"]\n\n"
+            "[scene.grasper-open]\nrig = \"grasper\"\n"
+            "description = \"The insert in the grasper's jaw, open above a tissue slab\"\n"
+            "groups = [\"jaw\", \"array\", \"tissue\"]\n\n"
+            "[scene.grasper-closed]\nrig = \"grasper\"\n"
+            "description = \"The jaw closed on the tissue slab: every contact face on its top\"\n"
+            "groups = [\"jaw\", \"array\", \"tissue\"]\njaw_angle_deg = 0\n")

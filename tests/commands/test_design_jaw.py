@@ -1,0 +1,59 @@
+"""``tactcad design --jaw``: the constructions that seat in a jaw searched, the design and its
+scenes written, its kernel-free checks passed; clear refusals."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from conftest import run_cli
+
+GRASPER_CASE = ["design", "--kr-over-km", "10", "--kobj-range", "0.5", "5", "--material",
+                "Ti-6Al-4V-annealed", "--columns", "6"]
+
+
+def test_the_grasper_case_writes_a_comb_and_its_scenes_that_check(tmp_path):
+    out = tmp_path / "insert.toml"
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10", "--out", str(out),
+                "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["construction"] == "monolithic-comb"
+    assert any(line.startswith("stacked:") for line in d["left_out"])
+    assert all(not c["failed"] for c in d["checks"].values()), d["checks"]
+    assert {"requirements", "hard stops", "grasper"} <= set(d["checks"])
+    assert (tmp_path / "insert-scenes.toml").exists()
+    assert 'scenes = "insert-scenes.toml"' in out.read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("args, option", [
+    (["--construction", "stacked", "--jaw", "10"], "--construction"),
+    (["--construction", "monolithic-comb"], "--jaw"),
+    (["--jaw", "7"], "--jaw"),
+    (["--jaw", "10", "--rows", "3"], "--rows"),
+])
+def test_a_jaw_design_asked_wrongly_names_the_option(tmp_path, args, option):
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", *args, "--out",
+                str(tmp_path / "x.toml"))
+    assert r.returncode == 2 and option in r.stderr and "Traceback" not in r.stderr
+    assert not (tmp_path / "x.toml").exists()
+
+
+def test_a_refused_jaw_design_writes_nothing_and_gives_a_pasteable_force(tmp_path):
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.3", "--jaw", "10", "--out",
+                str(tmp_path / "x.toml"))
+    assert r.returncode == 2 and "--full-scale-force 0." in r.stderr
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.slow
+def test_the_written_jaw_design_exports_and_passes_check(tmp_path):
+    out = tmp_path / "insert.toml"
+    assert run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10", "--out",
+                   str(out)).returncode == 0
+    x = tmp_path / "x"
+    r = run_cli("export", "--design", str(out), "--out", str(x), "--quiet")
+    assert r.returncode == 0, r.stderr
+    r = run_cli("check", "--design", str(out), "--out", str(x), "--quiet")
+    assert r.returncode == 0, r.stdout[-3000:]
+    assert (x / "scenes" / "grasper-closed.step").exists()

@@ -1,0 +1,90 @@
+"""Designing an insert to a grasper's jaw: the comb searched inside the jaw's room."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import pytest
+
+from tactcad.assembly.inventory import array_envelope_mm
+from tactcad.errors import DesignError
+from tactcad.mechanics.closed_form import estimate_closed_form
+from tactcad.mechanics.hard_stops import stop_verdicts
+from tactcad.design.array_plan import EXAMPLES
+from tactcad.partlib.grasper_jaw import MIN_WALL_MM, SHAFT_CLASSES_MM, GrasperJawSection, jaw_room
+from tactcad.studies.comb_design import comb_for_jaw
+from tactcad.vocabulary.schema import read_toml
+from tactcad.studies.inverse_design import InverseDesignError, Targets
+from tactcad.studies.verification import verification_matrix
+
+TI = "Ti-6Al-4V-annealed"
+
+
+BASE = read_toml(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml", "design file")
+
+
+def search(force_N: float, shaft: str = "10"):
+    return comb_for_jaw(Targets(10.0, (0.5, 5.0), force_N), jaw_room(shaft), 6, BASE, grade=TI,
+                        envelope_of=array_envelope_mm)
+
+
+@pytest.fixture(scope="module")
+def found():
+    return search(0.05)
+
+
+def test_the_room_is_the_default_jaws_pocket_less_its_walls_and_clearances():
+    j, room = GrasperJawSection(), jaw_room("10")
+    width = SHAFT_CLASSES_MM["10"] - j.width_clearance_mm
+    assert room.across_mm == pytest.approx(width - 2 * MIN_WALL_MM - 2 * j.pocket_clearance_mm)
+    assert room.height_mm == pytest.approx(j.thickness_mm + j.tip_proud_mm)
+    assert room.along_mm < j.length_mm - j.distal_wall_mm - j.pin_inset_mm
+
+
+def test_the_grasper_case_gives_a_comb_that_fits_reaches_the_ratio_and_stops_in_time(found):
+    plan, room = found.plan, found.room
+    assert plan.construction == "monolithic-comb" and plan.pairing == "column"
+    across, along, height = plan.comb.envelope_mm
+    assert across <= room.across_mm and along <= room.along_mm and height <= room.height_mm
+    k = {s.number: estimate_closed_form(s.geometry, plan.material).stiffness_N_per_mm
+         for s in plan.slots}
+    for reference, measuring in plan.unit_pairs:
+        assert k[reference] / k[measuring] == pytest.approx(10.0, rel=0.02)
+    assert all(v.engages_between for v in stop_verdicts(plan, 0.05))
+    records = verification_matrix(plan, "closed-form", envelope_mm=array_envelope_mm(plan))
+    assert not [r["requirement"] for r in records if r["verdict"] == "fail"]
+    assert "sheet.thickness_mm" in found.data["assumptions"]
+
+
+def test_a_force_no_comb_carries_is_refused_with_a_nearest_force_that_one_does():
+    with pytest.raises(InverseDesignError) as caught:
+        search(0.3)
+    text = caught.value.line()
+    assert "1 mm sheet" in text and "full_scale_force_N" in text
+    nearest = float(re.search(r"--full-scale-force ([\d.]+)", text).group(1))
+    assert 0.05 < nearest < 0.3
+    assert search(nearest).plan is not None
+
+
+def test_the_5_mm_class_names_the_pocket_too_narrow_for_any_sheet():
+    with pytest.raises(InverseDesignError) as caught:
+        search(0.05, "5")
+    assert "footprint" in caught.value.line() and "5 mm jaw" in caught.value.line()
+
+
+def test_an_unknown_trocar_class_is_refused_naming_the_option():
+    with pytest.raises(DesignError) as caught:
+        jaw_room("7")
+    assert caught.value.field == "--jaw" and "10" in caught.value.allowed
+    assert not math.isnan(jaw_room("10").along_mm)
+
+
+def test_the_design_jaw_bench_prints_each_forces_seconds_and_answer():
+    from tactcad.benchmarks.design_jaw_bench import design_jaw_figures, design_jaw_lines
+
+    figures = design_jaw_figures(BASE, (0.05,))
+    run = figures["runs"][0]
+    assert run["found"] and run["seconds"] > 0 and run["counted"] >= 1
+    lines = design_jaw_lines(figures)
+    assert lines[1].startswith("  0.05 N:") and "mm sheet" in lines[1]
