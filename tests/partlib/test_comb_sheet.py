@@ -18,9 +18,35 @@ def plan():
     return load_design(GRASPER)
 
 
-def test_the_comb_plan_makes_one_sheet_per_row_and_no_stacked_part(plan):
-    # the strain gauges are any construction's; nothing of the stack's
-    assert sorted(array_parts(plan)) == ["comb_row1", "comb_row2", "strain_gauge"]
+def test_the_comb_plan_makes_one_sheet_per_row_its_hardware_and_no_stacked_part(plan):
+    # the strain gauges are any construction's; nothing of the stack's (its spacer,
+    # clamp plates, M2+ bolts)
+    names = sorted(array_parts(plan))
+    assert [n for n in names if n.startswith("comb_row")] == ["comb_row1", "comb_row2"]
+    assert {"comb_spacer", "strain_gauge"} <= set(names)
+    assert any(n.startswith("dowel_pin_") for n in names)
+    assert not {"spacer", "clamp_plate"} & set(names)
+
+
+def test_the_comb_hardware_sits_in_the_sheets_holes(plan):
+    from tactcad.catalogue.array_catalogue import array_instances
+
+    placed = {i.name: i for i in array_instances(plan)}
+    c = plan.comb
+    for k, z in enumerate(c.screw_x_mm, start=1):
+        for name in (f"screw_{k}", f"nut_{k}"):
+            x, y, zz = placed[name].placement.apply(0.0, 0.0, 0.0)
+            assert (y, zz) == pytest.approx((c.fastener_y_mm, z))
+        # the head under row 1's outer face, the nut on row 2's
+        assert placed[f"screw_{k}"].placement.apply(0, 0, 0)[0] == pytest.approx(
+            -(c.spacer_thickness_mm / 2 + plan.sheet_thickness_mm))
+        assert placed[f"screw_{k}"].placement.apply(0, 0, 1)[0] > \
+            placed[f"screw_{k}"].placement.apply(0, 0, 0)[0]  # the shank runs to row 2
+    for k, z in enumerate(c.dowel_x_mm, start=1):
+        ends = [placed[f"dowel_{k}"].placement.apply(0, 0, t)[0] for t in (0.0, c.dowel_length_mm)]
+        assert ends[0] == pytest.approx(-ends[1])  # centred on the stack
+        holes = {round(h.x_mm, 9) for h in c.sheets[0].holes}
+        assert round(z, 9) in holes
 
 
 def test_the_stacked_plan_makes_no_comb_sheet():

@@ -474,9 +474,29 @@ def sheet_placement(plan: Plan, row: int) -> Placement:
 
 def placed_parts(plan: Plan) -> list[tuple[str, str, Placement]]:
     """The comb's placed parts but the gauges (the construction registry's
-    ``placed_parts``): one sheet per row, array frame, mm."""
-    return [(sheet.part_name, sheet.part_name, sheet_placement(plan, sheet.row))
-            for sheet in plan.comb.sheets]
+    ``placed_parts``), array frame, mm: one sheet per row, the spacer between them, a dowel
+    pin through each dowel hole (centred on the stack), a screw from row 1's outer face
+    through each screw hole and its nut on row 2's."""
+    from tactcad.partlib.array.comb_hardware import SPACER_PART, DowelPin, dowel_name
+    from tactcad.partlib.array.fasteners import bolt_name, nut_name
+
+    c, t = plan.comb, plan.sheet_thickness_mm
+    outer = c.spacer_thickness_mm / 2 + t  # each row's outer face, off the stack's middle
+    y = c.fastener_y_mm
+    out = [(sheet.part_name, sheet.part_name, sheet_placement(plan, sheet.row))
+           for sheet in c.sheets]
+    # the spacer as a sheet: its thickness along -x from +s/2
+    out.append((SPACER_PART, SPACER_PART,
+                Placement(c.spacer_thickness_mm / 2, 0.0, 0.0, quarter_turn=True)))
+    pin = DowelPin(c.dowel_diameter_mm, c.dowel_length_mm)
+    # turned and quarter-turned: a part's +z runs along the array's +x (row 1 to row 2)
+    out += [(f"dowel_{k}", dowel_name(pin), Placement(-pin.length_mm / 2, y, z, True, True))
+            for k, z in enumerate(c.dowel_x_mm, start=1)]
+    out += [(f"screw_{k}", bolt_name(c.screw, c.screw_length_mm),
+             Placement(-outer, y, z, True, True)) for k, z in enumerate(c.screw_x_mm, start=1)]
+    out += [(f"nut_{k}", nut_name(c.screw), Placement(outer, y, z, True, True))
+            for k, z in enumerate(c.screw_x_mm, start=1)]
+    return out
 
 
 def element_holder(plan: Plan, slot: ElementSlot) -> str:
@@ -485,8 +505,19 @@ def element_holder(plan: Plan, slot: ElementSlot) -> str:
 
 
 def touching(plan: Plan) -> set[frozenset[str]]:
-    """No two placed comb parts touch: the rows stand the spacer's thickness apart."""
-    return set()
+    """The comb's face contacts: the spacer on both rows, each dowel in its reamed holes
+    (rows and spacer), each screw's head on row 1 and its nut on row 2, screw and nut on
+    the thread."""
+    from tactcad.partlib.array.comb_hardware import SPACER_PART
+
+    rows = [sheet.part_name for sheet in plan.comb.sheets]
+    pairs = {frozenset({SPACER_PART, r}) for r in rows}
+    for k in range(1, len(plan.comb.dowel_x_mm) + 1):
+        pairs |= {frozenset({f"dowel_{k}", r}) for r in (*rows, SPACER_PART)}
+    for k in range(1, len(plan.comb.screw_x_mm) + 1):
+        pairs |= {frozenset({f"screw_{k}", rows[0]}), frozenset({f"nut_{k}", rows[-1]}),
+                  frozenset({f"screw_{k}", f"nut_{k}"})}
+    return pairs
 
 
 def mount_frames(plan: Plan) -> dict:

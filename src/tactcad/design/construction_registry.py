@@ -220,7 +220,7 @@ register_construction(Construction(
     "every arm; the rows face each other across a thin spacer on ISO 8734 dowel pins and "
     "M1.2/M1.6 screws (fits a grasper's jaw)",
     "tactcad.design.comb_plan",
-    ("comb_sheet", "gauge"),
+    ("comb_sheet", "comb_hardware", "gauge"),
     "each element is post + notch + arm + half the tip long (arms >= 2 mm): about "
     "columns x 4 mm along the row and 6 mm across two 1 mm rows",
     jaw_design="tactcad.studies.comb_design:comb_for_jaw",
