@@ -272,8 +272,8 @@ class Plan:
                      if s.number not in self.references)
 
     @property
-    def tip_field_mm(self) -> tuple[float, float]:
-        """(along the array's z, across its x) extent of every contact face (mm),
+    def tip_field_box_mm(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """((z min, z max), (x min, x max)) of every contact face in the array frame (mm),
         from the slots' placements, whatever the construction."""
         xs, zs = [], []
         for slot in self.slots:
@@ -283,7 +283,13 @@ class Plan:
                     wx, _, wz = slot.placement.apply(x, g.tip_top_y_mm, z)
                     xs.append(wx)
                     zs.append(wz)
-        return max(zs) - min(zs), max(xs) - min(xs)
+        return (min(zs), max(zs)), (min(xs), max(xs))
+
+    @property
+    def tip_field_mm(self) -> tuple[float, float]:
+        """(along the array's z, across its x) extent of every contact face (mm)."""
+        (z0, z1), (x0, x1) = self.tip_field_box_mm
+        return z1 - z0, x1 - x0
 
     @property
     def distinct_elements(self) -> dict[str, ElementGeometry]:

@@ -150,16 +150,9 @@ def tip_field_offset_mm(plan) -> tuple[float, float]:
     comb = getattr(plan, "comb", None)
     if comb is None:
         return 0.0, 0.0
-    xs, zs = [], []
-    for slot in plan.slots:
-        g = slot.geometry
-        for x in (g.overall_length_mm - g.tip_width_mm, g.overall_length_mm):
-            for z in (0.0, g.sheet_thickness_mm):
-                wx, _, wz = slot.placement.apply(x, g.tip_top_y_mm, z)
-                xs.append(wx)
-                zs.append(wz)
+    (z0, z1), (x0, x1) = plan.tip_field_box_mm
     cx, cz = comb.envelope_centre_mm
-    return (min(zs) + max(zs)) / 2 - cz, (min(xs) + max(xs)) / 2 - cx
+    return (z0 + z1) / 2 - cz, (x0 + x1) / 2 - cx
 
 
 def _clamped(value: float, bound: float) -> float:
