@@ -19,7 +19,8 @@ from typing import NoReturn
 
 from tactcad import __version__
 from tactcad.errors import TactcadError
-from tactcad.stopping import ENDING_SIGNALS, end_child_processes, exit_at_once_on_stop
+from tactcad.stopping import (ENDING_SIGNALS, act_on_held_stop, end_child_processes,
+                              exit_at_once_on_stop)
 
 #: Exit codes: 0 done, 1 a check failed, 2 bad input (a named field, value and
 #: allowed range), 3 a file-system error (path and cause), 130 interrupted.
@@ -290,9 +291,16 @@ def console(argv: list[str] | None = None) -> NoReturn:
     its worker process before it returns; a child process still running then
     is killed (``multiprocessing``'s exit would wait for it). A stop signal
     from then on ends the process at once with the command's code
-    (:func:`tactcad.stopping.exit_at_once_on_stop`)."""
-    end_like_ctrl_c()
-    code = main(argv)
+    (:func:`tactcad.stopping.exit_at_once_on_stop`). A stop that came while
+    the program loaded (:mod:`tactcad.__main__` holds them) or before
+    :func:`main` could catch it is the command's interrupt all the same."""
+    args = sys.argv[1:] if argv is None else list(argv)
+    try:  # a stop before main's own guard (held while loading, or in its first imports)
+        end_like_ctrl_c()
+        act_on_held_stop()
+        code = main(args)
+    except KeyboardInterrupt as exc:
+        code = report_interrupt(exc, "--json" in args, command_of(args))
     exit_at_once_on_stop(code)
     end_child_processes()
     try:

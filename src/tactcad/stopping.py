@@ -61,6 +61,46 @@ def stop_signals_held(block_in_children: bool = True) -> Iterator[None]:
             previous[number](number, None)
 
 
+#: Stop signals noted while the program loaded (None: no hold was set).
+_held_while_loading: list[int] | None = None
+
+
+def hold_stops_while_loading() -> None:
+    """The program's first act (``tactcad``, ``python -m tactcad``): a stop
+    signal that arrives while its modules load is noted, not raised, and
+    :func:`act_on_held_stop` acts on it once the command can answer it.
+    Raised in the middle of an import, Ctrl-C would end the run with the
+    interpreter's traceback instead of the command's own line and code (a
+    watch stopped at its start must end with exit 0 and "stopped")."""
+    global _held_while_loading
+    _held_while_loading = []
+    for number in stop_signal_numbers():
+        signal.signal(number, _note_held_stop)
+
+
+def _note_held_stop(signum: int, _frame) -> None:
+    if _held_while_loading is not None:
+        _held_while_loading.append(signum)
+
+
+def act_on_held_stop() -> None:
+    """End the hold of :func:`hold_stops_while_loading`: Ctrl-C raises
+    ``KeyboardInterrupt`` again, a signal still held goes to the handler the
+    program has installed since (at its default if none), and the first stop
+    that came while loading is acted on now (its handler runs and raises).
+    Nothing happens where no hold was set (a command run in-process)."""
+    global _held_while_loading
+    held, _held_while_loading = _held_while_loading, None
+    if held is None:
+        return
+    for number in stop_signal_numbers():
+        if signal.getsignal(number) is _note_held_stop:
+            signal.signal(number, signal.default_int_handler if number == signal.SIGINT
+                          else signal.SIG_DFL)
+    for number in held[:1]:  # the first stop acts; later ones add nothing
+        signal.raise_signal(number)
+
+
 def _put_back(handlers: list) -> None:
     """Install ``handlers`` ((signal, handler) pairs) each in a ``finally`` of
     the one before: a handler put back may run (and raise) at once, and the

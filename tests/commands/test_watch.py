@@ -580,6 +580,35 @@ def test_a_companion_named_as_a_symbolic_link_loop_is_watched_not_a_crash(tmp_pa
 
 
 
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_a_stop_at_the_programs_first_line_is_held_until_the_command_answers_it(tmp_path, signum):
+    """Ctrl-C or SIGTERM the moment ``python -m tactcad`` has its stop
+    handlers (its first line; the command line's modules load after it): the
+    watch's own end (exit 0, "stopped", no traceback), not an interrupted import."""
+    from tactcad.benchmarks.watch_stop import stop_round
+
+    design = tmp_path / "d.toml"
+    design.write_text("", encoding="utf-8")  # never exported: the stop comes first
+    got = stop_round([design], "start", signum, 0.0, wait_s=60)
+    assert got.exit_code == 0 and got.stopped_line and not got.traceback, got
+    assert got.left_behind == 0, got
+
+
+def test_a_command_stopped_while_it_loads_reports_the_interrupt_without_a_traceback(tmp_path):
+    """Not a watch: the held Ctrl-C is the command's interrupt (exit 130, its line)."""
+    from tactcad.benchmarks.watch_stop import program_started
+
+    proc = subprocess.Popen([sys.executable, "-m", "tactcad", "export", "--design",
+                             str(tmp_path / "none.toml"), "--out", str(tmp_path / "out")],
+                            stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=ctrl_c_at_its_default)
+    assert program_started(proc)
+    proc.send_signal(signal.SIGINT)
+    err = proc.communicate(timeout=60)[1]
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "interrupted" in err, err
+
+
 @pytest.mark.slow
 def test_a_watch_stopped_at_random_moments_ends_with_its_status(tmp_path, default_store):
     """Ctrl-C (to the whole process group, as a terminal sends it) or SIGTERM

@@ -54,8 +54,8 @@ def layers_from_layout_page(text: str) -> list[str]:
 
 
 FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store", "tactcad.stopping"}
-TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.api": "commands",
-             "tactcad.project_folder": "commands"}
+TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.__main__": "commands",
+             "tactcad.api": "commands", "tactcad.project_folder": "commands"}
 LAYERS = layers_from_layout_page(LAYOUT_PAGE.read_text(encoding="utf-8"))
 MECHANICS_MAY_USE = {"foundation", "vocabulary", "design", "geometry", "mechanics"}
 #: The sensor in use reads the plans and the mechanics' results, never the CAD kernel.

@@ -6,7 +6,9 @@ own process group, as a terminal's job, Ctrl-C at its default) and stops it
 once, alternately:
 
 * ``start``: at a moment drawn uniformly from 0 ... ``latest_s`` after the
-  start (start-up, the first export, serving);
+  program's first line (its stop signals held: :mod:`tactcad.__main__`;
+  before it the interpreter is starting, and a signal ends any program
+  there) through loading, the first export and serving;
 * ``edit``: once the first export is current, an edit of the first arm is
   saved and the stop comes 0 ... ``EDIT_WINDOW_S`` after the save (its export
   under way, or done and serving);
@@ -37,6 +39,8 @@ STOP_GOAL_S = 2.0
 EDIT_WINDOW_S = 4.0
 #: Seconds the first export is waited for in an ``edit`` round.
 FIRST_EXPORT_S = 600.0
+#: Seconds the program is given to reach its first line (the interpreter's start).
+PROGRAM_START_S = 30.0
 #: Seconds a watch that did not end is given after SIGKILL of its group.
 KILL_WAIT_S = 10.0
 
@@ -75,6 +79,27 @@ def _group(pgid: int) -> list[int]:
     return out
 
 
+def program_started(proc: subprocess.Popen) -> bool:
+    """Wait until ``proc`` runs the program's first line: SIGTERM caught
+    (``SigCgt`` of ``/proc/<pid>/status``; the interpreter alone leaves it at
+    its default). False if it ended or did not get there within
+    :data:`PROGRAM_START_S`; True at once where there is no ``/proc``."""
+    status = Path(f"/proc/{proc.pid}/status")
+    if not Path("/proc/self/status").exists():
+        return True
+    end = time.perf_counter() + PROGRAM_START_S
+    while time.perf_counter() < end and proc.poll() is None:
+        try:
+            caught = next(line.split()[1] for line in status.read_text().splitlines()
+                          if line.startswith("SigCgt:"))
+        except (OSError, StopIteration):
+            caught = "0"
+        if int(caught, 16) >> (signal.SIGTERM - 1) & 1:
+            return True
+        time.sleep(0.002)
+    return False
+
+
 def _at_default() -> None:
     """``preexec_fn``: Ctrl-C at its default, as a terminal's job has it."""
     signal.signal(signal.SIGINT, signal.SIG_DFL)
@@ -93,7 +118,7 @@ def stop_round(files: list[Path], phase: str, signum: int, moment_s: float,
         store = folder / "store"
         if store_from is not None:
             shutil.copytree(store_from, store)
-        proc = subprocess.Popen([sys.executable, "-m", "tactcad.cli", "watch", "--design",
+        proc = subprocess.Popen([sys.executable, "-m", "tactcad", "watch", "--design",
                                  str(folder / files[0].name), "--out", str(folder / "out"),
                                  "--port", "0", "--cache", str(store)],
                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
@@ -109,6 +134,9 @@ def stop_round(files: list[Path], phase: str, signum: int, moment_s: float,
         reader = threading.Thread(target=read, daemon=True)
         reader.start()
         try:
+            if not program_started(proc):
+                raise TimeoutError(f"bench watch-stop: the program did not start in "
+                                   f"{PROGRAM_START_S:g} s")
             if phase == "edit":
                 if not current.wait(FIRST_EXPORT_S):
                     raise TimeoutError(f"bench watch-stop: no first export in {FIRST_EXPORT_S:g} s")
