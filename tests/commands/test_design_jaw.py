@@ -4,6 +4,7 @@ scenes written, its kernel-free checks passed; clear refusals."""
 from __future__ import annotations
 
 import json
+import tomllib
 
 import pytest
 from conftest import run_cli
@@ -24,6 +25,41 @@ def test_the_grasper_case_writes_a_comb_and_its_scenes_that_check(tmp_path):
     assert {"requirements", "hard stops", "grasper"} <= set(d["checks"])
     assert (tmp_path / "insert-scenes.toml").exists()
     assert 'scenes = "insert-scenes.toml"' in out.read_text(encoding="utf-8")
+
+
+def test_a_labs_own_jaw_from_a_file_bounds_the_search_and_goes_into_the_design(tmp_path):
+    jaw = tmp_path / "our_jaw.toml"
+    jaw.write_text('[grasper_jaw]\nshaft_class_mm = "10"\npocket_width_mm = 5.0\n'
+                   'pocket_length_mm = 27.0\nopening_angle_deg = 40.0\n', encoding="utf-8")
+    out = tmp_path / "insert.toml"
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", str(jaw), "--out",
+                str(out), "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["jaw"]["jaw"] == "10 mm jaw of our_jaw.toml"
+    assert (d["jaw"]["pocket_across_mm"], d["jaw"]["pocket_along_mm"]) == pytest.approx((4.8, 26.8))
+    assert d["pitch_mm"] * 6 <= 26.8 and all(not c["failed"] for c in d["checks"].values())
+    written = tomllib.loads(out.read_text(encoding="utf-8"))
+    assert written["grasper_jaw"]["pocket_width_mm"] == 5.0
+    # no reason carried over from the template names the template's own jaw
+    assert not any("8 mm jaw" in why for why in written["assumptions"].values())
+    assert written["grasper_jaw"]["opening_angle_deg"] == 40.0
+
+
+@pytest.mark.parametrize("content, words", [
+    (None, "existing .toml"),
+    ('[grasper_shaft]\nlength_mm = 300.0\n', "no [grasper_jaw] table"),
+    ('[grasper_jaw]\npocket_width_mm = 9.0\n', "grasper_jaw.pocket_width_mm"),
+    ('[grasper_jaw\n', "valid TOML"),
+])
+def test_a_jaw_file_that_states_no_jaw_is_refused_by_name(tmp_path, content, words):
+    jaw = tmp_path / "jaw.toml"
+    if content is not None:
+        jaw.write_text(content, encoding="utf-8")
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", str(jaw), "--out",
+                str(tmp_path / "x.toml"))
+    assert r.returncode == 2 and words in r.stderr and "Traceback" not in r.stderr, r.stderr
+    assert not (tmp_path / "x.toml").exists()
 
 
 @pytest.mark.parametrize("args, option", [

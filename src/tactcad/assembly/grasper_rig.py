@@ -4,7 +4,8 @@ project's scenes, :mod:`tactcad.assembly.rig_models`).
 
 Parts: the jaw (:mod:`tactcad.partlib.grasper_jaw`, its pocket sized on the insert's
 envelope), the shaft (:mod:`tactcad.partlib.grasper_shaft`) and the slab
-(:mod:`tactcad.partlib.tissue_slab`), each from its table's defaults. The array's
+(:mod:`tactcad.partlib.tissue_slab`), each from the design's table of it (its defaults
+where left out; :func:`tactcad.partlib.grasper_jaw.design_table`). The array's
 ``jaw_seat`` frame (the centre of its envelope on the tip plane, given by its construction)
 is mated, flipped, onto the jaw's ``insert`` frame: the insert centred in the pocket, its
 contact faces ``tip_proud_mm`` above the jaw's face, the first column nearest the pin.
@@ -82,13 +83,13 @@ def grasper_layout(plan: Plan, scene: SceneSpec | None = None) -> GrasperLayout:
     Raises:
         DesignErrors: the jaw cannot take the insert (each refusal names the jaw's field).
     """
-    from tactcad.partlib.grasper_jaw import jaw_part
+    from tactcad.partlib.grasper_jaw import design_table, jaw_part
     from tactcad.partlib.grasper_shaft import shaft_part
     from tactcad.partlib.tissue_slab import slab_part
 
     jaw = library_spec(jaw_part(plan), "grasper_jaw")
-    slab = library_spec(slab_part(jaw.geometry), "tissue_slab")
-    shaft = library_spec(shaft_part(), "grasper_shaft")
+    slab = library_spec(slab_part(jaw.geometry, design_table(plan, "tissue_slab")), "tissue_slab")
+    shaft = library_spec(shaft_part(design_table(plan, "grasper_shaft")), "grasper_shaft")
     g, h = jaw.geometry, slab.geometry.thickness_mm
     angle = g.opening_angle_deg if scene is None or scene.jaw_angle_deg is None \
         else scene.jaw_angle_deg

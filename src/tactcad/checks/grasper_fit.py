@@ -2,9 +2,10 @@
 jaw's pocket (a box test in the jaw's frame) and the insert's leads through
 the shaft's lead channel (:mod:`tactcad.in_use.shaft_leads`).
 
-The jaw and shaft are the defaults of :mod:`tactcad.partlib.grasper_jaw` and
-:mod:`tactcad.partlib.grasper_shaft` until a project can state them; the
-check runs on a construction whose envelope the plan gives without a kernel
+The jaw and shaft are the design's ``[grasper_jaw]`` and ``[grasper_shaft]``
+(:mod:`tactcad.partlib.grasper_jaw`, :mod:`tactcad.partlib.grasper_shaft`;
+their defaults where left out); the check runs on a construction whose
+envelope the plan gives without a kernel
 (the monolithic comb, the grasper's insert). Units: mm.
 """
 
@@ -18,18 +19,20 @@ from tactcad.vocabulary.schema import fmt
 
 
 def grasper_group(context: CheckContext) -> Iterator[Found]:
-    """``grasper``: the insert in the default jaw and its leads through the
-    default shaft (none for a construction without a kernel-free envelope)."""
-    from tactcad.partlib.grasper_jaw import insert_envelope_mm, jaw_part
+    """``grasper``: the insert in the design's jaw and its leads through its shaft
+    (``[grasper_jaw]``, ``[grasper_shaft]``; their defaults where left out; none for a
+    construction without a kernel-free envelope)."""
+    from tactcad.partlib.grasper_jaw import design_table, insert_envelope_mm, jaw_part
     from tactcad.partlib.grasper_shaft import shaft_part
 
     envelope = insert_envelope_mm(context.plan)
     if envelope is None:
         return
     jaw = jaw_part(context.plan).geometry
+    shaft = shaft_part(design_table(context.plan, "grasper_shaft")).geometry
     tip_h = context.plan.slots[0].geometry.tip_height_mm
     yield "grasper", [pocket_fit(envelope, jaw, tip_h),
-                      shaft_leads_result(context.plan, shaft_part().geometry),
+                      shaft_leads_result(context.plan, shaft),
                       equal_radius_result(context.plan)]
 
 

@@ -30,6 +30,28 @@ def jaw_classes() -> tuple[str, ...]:
     return tuple(SHAFT_CLASSES_MM)
 
 
+def jaw_of(value: str) -> tuple[str | dict, str]:
+    """(a trocar class or a ``[grasper_jaw]`` table, the file it came from) of ``--jaw``.
+
+    Raises:
+        DesignError: ``--jaw`` neither a class nor a readable TOML file with a
+            ``[grasper_jaw]`` table.
+    """
+    from tactcad.design.array_plan import read_toml
+
+    if value in jaw_classes():
+        return value, ""
+    allowed = (", ".join(jaw_classes())
+               + " (mm trocar class) or a TOML file with a [grasper_jaw] table")
+    path = Path(value)
+    if path.suffix.lower() != ".toml" or not path.is_file():
+        raise DesignError("--jaw", value, allowed, "not a class, nor an existing .toml file")
+    table = read_toml(path, "jaw file").get("grasper_jaw")
+    if not isinstance(table, dict):
+        raise DesignError("--jaw", value, allowed, f"{path.name} has no [grasper_jaw] table")
+    return table, str(path)
+
+
 def construction_choices() -> tuple[str, ...]:
     from tactcad.design.construction_registry import construction_names
 
@@ -89,9 +111,12 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--tissue-thickness", type=number(0, 1e4, "mm", lo_open=True), metavar="MM",
                    default=None, help="tissue layer thickness on a rigid base (mm; default: a "
                                       "half-space)")
-    p.add_argument("--jaw", choices=jaw_classes(), default=None, metavar="CLASS",
-                   help="design an insert for the jaw of a laparoscopic grasper of this trocar "
-                        "class (mm: " + ", ".join(jaw_classes()) + "): searches every "
+    p.add_argument("--jaw", default=None, metavar="CLASS|FILE",
+                   help="design an insert for the jaw of a laparoscopic grasper: a trocar "
+                        "class's default jaw (mm: " + ", ".join(jaw_classes()) + ") or a TOML "
+                        "file whose [grasper_jaw] table states a lab's own jaw (its pocket "
+                        "width and length where given, else the most its body holds); "
+                        "searches every "
                         "construction that seats in a jaw (sheet, pitch, arms, webs, hard stops) "
                         "inside the jaw's pocket; writes the design and its scenes (the insert "
                         "in the jaw), or names the binding limits and the nearest force")
@@ -273,7 +298,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     from tactcad.design.array_plan import EXAMPLES, read_toml
     from tactcad.partlib.grasper_jaw import jaw_room
 
-    room = jaw_room(args.jaw)
+    room = jaw_room(*jaw_of(args.jaw))
     refusals, result, used = [], None, None
     for c in chosen:
         base = read_toml(EXAMPLES / c.jaw_template, "design file")
@@ -292,6 +317,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     scenes_name = f"{path.stem}-scenes.toml"
     data = dict(result.data)
     data["files"] = {"scenes": scenes_name}
+    data["grasper_jaw"] = dict(room.table or {})  # the jaw it was designed for, in its scenes
     from tactcad import __version__
 
     header = (f"# Written by tactcad {__version__}: "
@@ -332,7 +358,8 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
     d, room = result.data, result.room
     return {
         "out": str(path), "construction": construction, "left_out": left,
-        "jaw": {"shaft_class_mm": room.shaft_class_mm, "pocket_across_mm": room.across_mm,
+        "jaw": {"jaw": room.label, "shaft_class_mm": room.shaft_class_mm,
+                "pocket_across_mm": room.across_mm,
                 "pocket_along_mm": room.along_mm, "height_mm": room.height_mm},
         "sheet_mm": d["sheet"]["thickness_mm"], "pitch_mm": d["array"]["pitch_mm"],
         "arms_mm": sorted(set(d["arms"]["lengths_mm"])),
@@ -347,7 +374,7 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
 
 def print_jaw_report(r: dict) -> None:
     j = r["jaw"]
-    print(f"{r['out']}: {r['construction']} for the {j['shaft_class_mm']} mm jaw (pocket "
+    print(f"{r['out']}: {r['construction']} for the {j['jaw']} (pocket "
           f"{j['pocket_across_mm']:g} x {j['pocket_along_mm']:g} mm, {j['height_mm']:g} mm high)")
     for line in r["left_out"]:
         print(f"  not searched: {line}")

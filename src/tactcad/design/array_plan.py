@@ -55,7 +55,7 @@ from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN,  # noqa:
                                            ElementSection)
 from tactcad.partlib.array.prism import Hole
 from tactcad.partlib.array.spacer import SpacerGeometry
-from tactcad.partlib.registry import array_parts_lib
+from tactcad.partlib.registry import array_parts_lib, in_use_parts
 
 #: The example sensor projects shipped with tactcad, one folder each (the
 #: source tree's ``hardware/``, installed as package data ``tactcad/examples``).
@@ -402,10 +402,19 @@ def _part_tables() -> dict[str, tuple[Any, Any]]:
             if part.section is not None}
 
 
-#: The design file's schema: :class:`DesignTables` and the optional table of
-#: each array part module that reads one (:mod:`tactcad.partlib.array`).
+def in_use_tables() -> dict[str, tuple[Any, Any]]:
+    """The tables of the sensor's parts in use (``[grasper_jaw]``, ``[grasper_shaft]``,
+    ``[tissue_slab]``; :func:`tactcad.partlib.registry.in_use_parts`), each optional: a
+    design states the grasper its insert is for, and the grasper scene, the ``grasper``
+    checks and ``design --jaw`` read it (every field left out takes its default)."""
+    return {key: (part.section, None) for key, part in in_use_parts().items()}
+
+
+#: The design file's schema: :class:`DesignTables`, the optional table of
+#: each array part module that reads one (:mod:`tactcad.partlib.array`) and
+#: of each part in use (:func:`in_use_tables`).
 DesignFile = create_model("DesignFile", __base__=DesignTables, __doc__=DesignTables.__doc__,
-                          **_part_tables())
+                          **_part_tables(), **in_use_tables())
 
 
 # ---------------------------------------------------------------------------
@@ -493,8 +502,21 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
                   "the tip root fillet must clear the notch by 0.5 mm")
 
 
+def check_in_use(d: Any, p: Problems) -> None:
+    """The grasper's shaft passes the trocar its jaw is for: a stated
+    ``[grasper_shaft] shaft_class_mm`` is the jaw's (left out, it takes the jaw's)."""
+    jaw, shaft = getattr(d, "grasper_jaw", None), getattr(d, "grasper_shaft", None)
+    if jaw is None or shaft is None or "shaft_class_mm" not in shaft.model_fields_set:
+        return
+    if shaft.shaft_class_mm != jaw.shaft_class_mm:
+        p.add("grasper_shaft.shaft_class_mm", shaft.shaft_class_mm,
+              f"{jaw.shaft_class_mm!r}, the jaw's class (grasper_jaw.shaft_class_mm), or left out",
+              "the jaw and its shaft pass one trocar")
+
+
 DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,
-                check_readout, check_tolerances, check_clamp_materials, check_sheet_process)
+                check_readout, check_tolerances, check_clamp_materials, check_sheet_process,
+                check_in_use)
 
 
 # ---------------------------------------------------------------------------

@@ -22,13 +22,16 @@ from __future__ import annotations
 import copy
 from typing import Any, Mapping
 
+from pydantic import create_model
+
 from tactcad.design.array_plan import (MIN_ARM_STEP_MM, MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM,
                                        MIN_SPACER_MM, MIN_TIP_WALL_MM, ArmsSection, ArraySection,
                                        DesignSection, EdmSection, ElementSlot, FilesSection,
                                        HardStop, Material, MaterialSection, Placement, Plan,
                                        SheetSection, StrengthSection, check_references,
-                                       design_hash, edm_rules, pairing_of, shaping_tables,
-                                       unit_references, with_grade_defaults, _grade_error)
+                                       check_in_use, design_hash, edm_rules, in_use_tables,
+                                       pairing_of, shaping_tables, unit_references,
+                                       with_grade_defaults, _grade_error)
 from tactcad.design.bom_section import BomSection
 from tactcad.design.readout_section import ReadoutSection, check_readout
 from tactcad.design.requirements_section import (RequirementsSection, check_requirements,
@@ -84,6 +87,12 @@ class CombTables(Section):
     bom: BomSection = None
     files: FilesSection = None
     assumptions: dict[str, Any] = {}
+
+
+#: A comb's design file: :class:`CombTables` and the table of each part in use
+#: (the grasper's jaw and shaft, the tissue slab; each optional).
+CombFile = create_model("CombFile", __base__=CombTables, __doc__=CombTables.__doc__,
+                        **in_use_tables())
 
 
 # ---------------------------------------------------------------------------
@@ -401,7 +410,7 @@ def _check_arm_domain(d: CombTables, p: Problems) -> None:
 
 
 COMB_RULES = (_check_element, _check_arms, _check_comb, _check_arm_domain, check_requirements,
-              check_readout, check_tolerances)
+              check_readout, check_tolerances, check_in_use)
 
 
 # ---------------------------------------------------------------------------
@@ -421,8 +430,8 @@ def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[CombTables
     """
     p = Problems(file)
     data = with_grade_defaults(data)
-    model = validate(CombTables, data, p)
-    read_assumptions(data, CombTables, p, "comb.post_length_mm")
+    model = validate(CombFile, data, p)
+    read_assumptions(data, CombFile, p, "comb.post_length_mm")
     grade_error = _grade_error(data)
     if grade_error is not None:
         p.add(grade_error.field, grade_error.value, grade_error.allowed, grade_error.why)
@@ -459,7 +468,7 @@ def derive_plan(d: CombTables, data: Mapping[str, Any], source: str) -> Plan:
         sheet_thickness_mm=d.sheet.thickness_mm, rows=d.array.rows, columns=d.array.columns,
         pitch_mm=d.array.pitch_mm, slots=element_slots(d, sheets), edm=edm_rules(d),
         derived=derived_values(d), references=refs, references_reason=why, pairing=pairing_of(d),
-        assumptions=read_assumptions(data, CombTables, p, "comb.post_length_mm"),
+        assumptions=read_assumptions(data, CombFile, p, "comb.post_length_mm"),
         construction="monolithic-comb", comb=comb_geometry(d), hard_stops=hard_stops(d, sheets),
         raw=copy.deepcopy(dict(data)))
 

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import PurePath
 from types import SimpleNamespace
 from typing import Any, Mapping, Optional
 
@@ -96,37 +97,80 @@ class GrasperJawGeometry:
 
 @dataclass(frozen=True)
 class JawRoom:
-    """The room a grasper's jaw of its table's defaults leaves its insert (mm).
+    """The room a grasper's jaw leaves its insert (mm).
 
     Attributes:
         shaft_class_mm: the trocar class ("5" or "10").
-        across_mm, along_mm: the pocket's largest width and length less its clearances.
+        across_mm, along_mm: the pocket's width and length less its clearances: the
+            stated pocket's, else the largest the jaw's body holds.
         height_mm: the insert's largest height (jaw thickness + the tips' proud height).
+        option: the ``--jaw`` value that names this jaw (a class or a file).
+        table: the ``[grasper_jaw]`` table a design for this jaw states (the class alone
+            for a class's default jaw).
     """
 
     shaft_class_mm: str
     across_mm: float
     along_mm: float
     height_mm: float
+    option: str = ""
+    table: Mapping[str, Any] | None = None
+
+    @property
+    def label(self) -> str:
+        """The jaw in words: "10 mm jaw", or "10 mm jaw of my_jaw.toml" for a file's."""
+        own = self.option and self.option not in SHAFT_CLASSES_MM
+        return f"{self.shaft_class_mm} mm jaw" + (f" of {PurePath(self.option).name}" if own else "")
 
 
-def jaw_room(shaft_class_mm: str) -> JawRoom:
-    """The room of the default jaw of a trocar class, by this module's rules: the pocket
-    between the pin's steel and the distal wall along, between the side walls across.
+def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
+    """The room a jaw leaves its insert, by this module's rules: a trocar class's default
+    jaw, or a ``[grasper_jaw]`` table (a lab's own jaw; every field left out takes its
+    default). Its pocket where the table states one (width, length), else the most the
+    jaw's body holds: between the pin's steel and the distal wall along, between the side
+    walls across.
+
+    Args:
+        jaw: a class of :data:`SHAFT_CLASSES_MM` or the table's values.
+        file: the table's file, for the messages (it is also ``option``).
 
     Raises:
         DesignError: ``--jaw`` not a class of :data:`SHAFT_CLASSES_MM`.
+        DesignErrors: the table refused (each field, value and allowed range), or a stated
+            pocket the jaw's body cannot hold.
     """
     from tactcad.errors import DesignError
 
-    if shaft_class_mm not in SHAFT_CLASSES_MM:
-        raise DesignError("--jaw", shaft_class_mm, " or ".join(SHAFT_CLASSES_MM) + " (mm trocar class)")
-    j = GrasperJawSection(shaft_class_mm=shaft_class_mm)
-    width = SHAFT_CLASSES_MM[shaft_class_mm] - j.width_clearance_mm
+    if isinstance(jaw, str):
+        if jaw not in SHAFT_CLASSES_MM:
+            raise DesignError("--jaw", jaw, " or ".join(SHAFT_CLASSES_MM) + " (mm trocar class) "
+                              "or a TOML file with a [grasper_jaw] table")
+        table: dict[str, Any] = {"shaft_class_mm": jaw}
+    else:
+        table = dict(jaw)
+    j = validated_table("grasper_jaw", GrasperJawSection, table, file)
+    p = Problems(file)
+    width = SHAFT_CLASSES_MM[j.shaft_class_mm] - j.width_clearance_mm
+    most_along = j.length_mm - j.distal_wall_mm - (j.pin_inset_mm + j.pin_diameter_mm / 2
+                                                   + MIN_WALL_MM)
+    most_across = width - 2 * MIN_WALL_MM
+    across = _stated_pocket(p, "grasper_jaw.pocket_width_mm", j.pocket_width_mm, most_across,
+                            f"the {fmt(width)} mm jaw less {fmt(MIN_WALL_MM)} mm side walls")
+    along = _stated_pocket(p, "grasper_jaw.pocket_length_mm", j.pocket_length_mm, most_along,
+                           "the jaw between the pin's steel and the distal wall")
+    p.raise_if_any()
     c = j.pocket_clearance_mm
-    along = j.length_mm - j.distal_wall_mm - (j.pin_inset_mm + j.pin_diameter_mm / 2 + MIN_WALL_MM)
-    return JawRoom(shaft_class_mm, width - 2 * MIN_WALL_MM - 2 * c, along - 2 * c,
-                   j.thickness_mm + j.tip_proud_mm)
+    return JawRoom(j.shaft_class_mm, across - 2 * c, along - 2 * c,
+                   j.thickness_mm + j.tip_proud_mm,
+                   option=jaw if isinstance(jaw, str) else file, table=table)
+
+
+def _stated_pocket(p: Problems, field: str, stated: float | None, most: float, why: str) -> float:
+    """A pocket side of the room: the stated one within the most the jaw holds, else the most."""
+    if most <= 0:
+        p.add(field, stated, "a jaw with room for a pocket", f"{why} leaves {fmt(most)} mm")
+        return 0.0
+    return most if stated is None else p.within(field, stated, hi=most, why=why)
 
 
 def closed_thickness_limit_mm(trocar_mm: float, width_mm: float) -> float:
@@ -311,20 +355,47 @@ def part_from_table(key: str, section: type[Section], derive, table: Mapping[str
         DesignErrors: every refusal, each naming the field, value and allowed range.
     """
     p = Problems(file)
-    model = create_model(f"{section.__name__}File", __base__=Section, **{key: (section, section())})
-    t = validate(model, {key: dict(table or {})}, p)
-    p.raise_if_any()
-    out = derive(getattr(t, key), SimpleNamespace(**context), p)
+    out = derive(validated_table(key, section, table, file), SimpleNamespace(**context), p)
     p.raise_if_any()
     return out
 
 
-def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> PartData:
-    """The jaw for ``plan`` from a ``[grasper_jaw]`` table (defaults where left out).
+def validated_table(key: str, section: type[Section], table: Mapping[str, Any] | None,
+                    file: str = "") -> Any:
+    """The table ``[key]`` validated as a design or rigs file validates it (defaults where
+    left out), so a refusal names ``key.field``.
 
     Raises:
         DesignErrors: every refusal, each naming the field, value and allowed range.
     """
+    p = Problems(file)
+    model = create_model(f"{section.__name__}File", __base__=Section, **{key: (section, section())})
+    t = validate(model, {key: dict(table or {})}, p)
+    p.raise_if_any()
+    return getattr(t, key)
+
+
+def design_table(plan, key: str) -> dict[str, Any]:
+    """The design's table ``[key]`` of a part in use (``grasper_jaw``, ``grasper_shaft``,
+    ``tissue_slab``; empty where the design leaves it out). The shaft takes the jaw's
+    trocar class unless its table states one (the load checks they agree)."""
+    raw = getattr(plan, "raw", None) or {}
+    table = dict(raw.get(key) or {})
+    jaw_class = (raw.get("grasper_jaw") or {}).get("shaft_class_mm")
+    if key == "grasper_shaft" and "shaft_class_mm" not in table and jaw_class is not None:
+        table["shaft_class_mm"] = jaw_class
+    return table
+
+
+def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> PartData:
+    """The jaw for ``plan`` from a ``[grasper_jaw]`` table, by default the design's own
+    (:func:`design_table`; defaults where left out).
+
+    Raises:
+        DesignErrors: every refusal, each naming the field, value and allowed range.
+    """
+    if table is None:
+        table = design_table(plan, "grasper_jaw")
     return part_from_table("grasper_jaw", GrasperJawSection, derive, table, file, plan=plan)
 
 

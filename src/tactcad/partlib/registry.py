@@ -27,8 +27,9 @@ Part = RigPart | ArrayPart
 @functools.cache
 def in_use_parts() -> dict[str, RigPart]:
     """key -> part of every module that names an ``IN_USE_PART``: the parts of the sensor in
-    use (the grasper's jaw and shaft, the tissue), placed by the grasper scene from their
-    tables' defaults, never by a rigs file (a design without a grasper stays as it was).
+    use (the grasper's jaw and shaft, the tissue), placed by the grasper scene from the
+    design file's tables of them (each optional), never by a rigs file (a design without a
+    grasper stays as it was).
 
     Raises:
         ValueError: two modules declare the same key.

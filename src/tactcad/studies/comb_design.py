@@ -3,11 +3,13 @@ pitch, arms, webs and hard stops for a stiffness ratio, an object-stiffness rang
 full-scale force, inside the room the jaw leaves.
 
 The room (:func:`tactcad.partlib.grasper_jaw.jaw_room`) is the jaw part's own derivation
-rules at its table's defaults: the pocket between the pin's steel and the distal wall
-along, between the side walls across, and the insert no taller than the jaw's thickness plus
-the tips' proud height. The comb's fixed details (tip, arm height, notch radius, post,
-spacer, ISO screws and dowels, wire) are the base comb's (the construction's
-``jaw_template``, the shipped ``examples/grasper_jaw_10mm``), each kept with its reason; what the search sets:
+rules on a trocar class's default jaw or on a lab's ``[grasper_jaw]`` table: its stated
+pocket, else the pocket between the pin's steel and the distal wall along and between the
+side walls across, and the insert no taller than the jaw's thickness plus the tips' proud
+height. The comb's fixed details (tip, arm height, notch radius, post, spacer, ISO screws
+and dowels, wire) are the base comb's (the construction's ``jaw_template``, the shipped
+``examples/grasper_jaw_10mm``), each marked as not searched (the template's own reasons
+name its sizes); what the search sets:
 
 * the pitch: the jaw's pocket length over the columns, to 0.1 mm;
 * the arms: the references' the fitted range's shortest (the stiffest), the measuring
@@ -32,6 +34,7 @@ from __future__ import annotations
 import copy
 import math
 from dataclasses import dataclass, replace
+from pathlib import PurePath
 from typing import Any, Callable, Mapping
 
 from tactcad.design.array_plan import plan_from_dict
@@ -287,7 +290,7 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             lines.append(f"{sheet:g} mm sheet (nearest at K_m {c.km_scale:g} x eq. 2's centre): "
                          f"{c.failures[0]}")
     rated = [c.rated_force_N for c in tried if c.rated_force_N]
-    text = (f"no monolithic comb of 2 x {columns} fits the {room.shaft_class_mm} mm jaw "
+    text = (f"no monolithic comb of 2 x {columns} fits the {room.label} "
             f"({room.across_mm:g} x {room.along_mm:g} mm pocket, {room.height_mm:g} mm high) for "
             f"K_r/K_m {targets.kr_over_km:g}, K_obj {targets.k_obj_range_N_per_mm[0]:g} ... "
             f"{targets.k_obj_range_N_per_mm[1]:g} N/mm at {targets.full_scale_force_N:g} N:\n  "
@@ -302,19 +305,22 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
           columns: int) -> dict:
     """The chosen tables with their name, description and every reason."""
     d = copy.deepcopy(d)
+    template = d.get("design", {}).get("name", "the template")
     lo, hi = targets.k_obj_range_N_per_mm
     d["design"] = {"name": name, "description": (
-        f"2 x {columns} monolithic comb for a {room.shaft_class_mm} mm grasper's jaw: "
+        f"2 x {columns} monolithic comb for a grasper's {room.label}: "
         f"K_r/K_m = {targets.kr_over_km:g} for K_obj {lo:g}-{hi:g} N/mm, full-scale force "
         f"{targets.full_scale_force_N:g} N")}
     comb, arms = d["comb"], d["arms"]["lengths_mm"]
-    why = {k: v for k, v in d.get("assumptions", {}).items()
+    # the template's own reasons name its sizes (its jaw, its spine): not this design's
+    why = {k: f"Not searched: the comb template's value ({template}); check it for this jaw."
+           for k in d.get("assumptions", {})
            if k.split(".")[0] in ("strength", "element", "edm") or k in (
                "comb.post_length_mm", "comb.spacer_thickness_mm", "comb.screw_size",
                "comb.dowel_diameter_mm")}
     others = [c for c in SHEETS_MM if c != best.sheet_mm]
     why.update({
-        "sheet.thickness_mm": (f"tactcad design --jaw {room.shaft_class_mm}: of "
+        "sheet.thickness_mm": (f"tactcad design --jaw {PurePath(room.option).name}: of "
                                f"{', '.join(f'{s:g}' for s in SHEETS_MM)} mm, the sheet of the "
                                f"softest pair that carries the full-scale force with "
                                f"{FORCE_MARGIN_REL:.0%} to spare ({best.force_margin_rel:+.1%}); "
@@ -339,7 +345,7 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
         "requirements.full_scale_force_N": "Asked (--full-scale-force).",
         "requirements.kobj_range_N_per_mm": "Asked (--kobj-range).",
         "requirements.kr_over_km": "Asked (--kr-over-km).",
-        "requirements.footprint_mm": (f"The {room.shaft_class_mm} mm jaw's pocket less its "
+        "requirements.footprint_mm": (f"The pocket of the {room.label} less its "
                                       "clearances (across, along)."),
     })
     d["assumptions"] = why

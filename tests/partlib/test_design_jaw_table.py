@@ -1,0 +1,98 @@
+"""A design states the grasper its insert is for: ``[grasper_jaw]``, ``[grasper_shaft]``
+and ``[tissue_slab]`` in the design file, validated at load and read by the jaw scene,
+the ``grasper`` checks and ``design --jaw``'s room."""
+
+from __future__ import annotations
+
+import copy
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from tactcad.design.array_plan import plan_from_dict
+from tactcad.errors import DesignError, DesignErrors
+from tactcad.partlib.grasper_jaw import design_table, jaw_part, jaw_room
+from tactcad.partlib.grasper_shaft import shaft_part
+
+HARDWARE = Path(__file__).parents[2] / "hardware"
+GRASPER = HARDWARE / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+STACKED = HARDWARE / "ti_array_2x3" / "ti_array_2x3.toml"
+
+
+@pytest.fixture(scope="module")
+def comb_data():
+    return tomllib.loads(GRASPER.read_text(encoding="utf-8"))
+
+
+def with_tables(data: dict, **tables) -> dict:
+    out = copy.deepcopy(data)
+    out.update(tables)
+    return out
+
+
+def test_the_jaw_the_design_states_is_the_jaw_of_its_scene_and_checks(comb_data):
+    plain = jaw_part(plan_from_dict(comb_data)).geometry
+    plan = plan_from_dict(with_tables(comb_data, grasper_jaw={"opening_angle_deg": 45.0,
+                                                              "length_mm": 40.0}))
+    g = jaw_part(plan).geometry
+    assert (g.opening_angle_deg, g.length_mm) == (45.0, 40.0)
+    assert (plain.opening_angle_deg, plain.length_mm) != (45.0, 40.0)
+    # the pocket keeps its place from the distal end: a longer jaw moves it by the difference
+    assert g.pocket_x0_mm - plain.pocket_x0_mm == pytest.approx(40.0 - plain.length_mm)
+
+
+def test_the_shaft_takes_the_jaws_class_unless_it_states_one(comb_data):
+    plan = plan_from_dict(with_tables(comb_data, grasper_jaw={"shaft_class_mm": "10"}))
+    assert design_table(plan, "grasper_shaft") == {"shaft_class_mm": "10"}
+    assert shaft_part(design_table(plan, "grasper_shaft")).geometry.outer_diameter_mm == 10.0
+    with pytest.raises(DesignErrors) as err:
+        plan_from_dict(with_tables(comb_data, grasper_jaw={"shaft_class_mm": "10"},
+                                   grasper_shaft={"shaft_class_mm": "5"}))
+    assert "grasper_shaft.shaft_class_mm" in str(err.value) and "'10'" in str(err.value)
+
+
+@pytest.mark.parametrize("tables, field", [
+    ({"grasper_jaw": {"length_mm": 500.0}}, "grasper_jaw.length_mm"),
+    ({"grasper_jaw": {"shaft_class_mm": 10}}, "grasper_jaw.shaft_class_mm"),
+    ({"grasper_jaw": {"pocket_width": 5.0}}, "grasper_jaw.pocket_width"),
+    ({"tissue_slab": {"thickness_mm": -1.0}}, "tissue_slab.thickness_mm"),
+    ({"grasper_shaft": "10"}, "grasper_shaft"),
+])
+def test_a_bad_in_use_table_is_refused_at_load_naming_its_field(comb_data, tables, field):
+    with pytest.raises(DesignErrors) as err:
+        plan_from_dict(with_tables(comb_data, **tables))
+    assert field in str(err.value)
+
+
+def test_a_stacked_design_may_state_its_grasper_too():
+    data = tomllib.loads(STACKED.read_text(encoding="utf-8"))
+    plan = plan_from_dict(with_tables(data, grasper_jaw={"shaft_class_mm": "5"}))
+    assert design_table(plan, "grasper_jaw") == {"shaft_class_mm": "5"}
+
+
+def test_a_jaw_files_stated_pocket_is_the_room_less_its_clearances():
+    room = jaw_room({"pocket_width_mm": 5.0, "pocket_length_mm": 20.0,
+                     "pocket_clearance_mm": 0.2}, "my_jaw.toml")
+    assert (room.across_mm, room.along_mm) == pytest.approx((4.6, 19.6))
+    assert room.label == "10 mm jaw of my_jaw.toml" and room.option == "my_jaw.toml"
+    whole = jaw_room("10")
+    assert whole.across_mm > room.across_mm and whole.along_mm > room.along_mm
+    assert whole.label == "10 mm jaw" and whole.table == {"shaft_class_mm": "10"}
+
+
+@pytest.mark.parametrize("table, field", [
+    ({"pocket_width_mm": 6.0}, "grasper_jaw.pocket_width_mm"),  # the 6.5 mm jaw's walls
+    ({"pocket_length_mm": 33.0}, "grasper_jaw.pocket_length_mm"),  # past the pin's steel
+    ({"shaft_class_mm": "7"}, "grasper_jaw.shaft_class_mm"),
+])
+def test_a_pocket_the_jaw_cannot_hold_is_refused_naming_its_field(table, field):
+    with pytest.raises(DesignErrors) as err:
+        jaw_room(table, "j.toml")
+    assert field in str(err.value)
+
+
+def test_an_unknown_class_names_the_option():
+    with pytest.raises(DesignError) as err:
+        jaw_room("7")
+    assert err.value.field == "--jaw"
