@@ -96,3 +96,29 @@ def test_an_unknown_class_names_the_option():
     with pytest.raises(DesignError) as err:
         jaw_room("7")
     assert err.value.field == "--jaw"
+
+
+def test_the_grasp_runs_on_the_jaw_the_design_states(comb_data):
+    from tactcad.design.grasper_in_use import stated_grasper
+    from tactcad.in_use.grasp_experiment import DEFAULT_OPENING_DEG, default_jaw
+
+    plain = plan_from_dict(comb_data | {"grasper_jaw": {}})
+    base = stated_grasper(plain)
+    jaw = default_jaw(plain)
+    assert (jaw.pivot_u_mm, jaw.jaw_length_mm) == (base.pivot_u_mm, base.jaw_length_mm)
+    # the pin 0.5 mm nearer the jaw's heel is 0.5 mm further from the tips; a 2 mm longer
+    # jaw moves the pocket (held at the distal wall) and the tips 2 mm away from the pin
+    moved = stated_grasper(plan_from_dict(comb_data | {"grasper_jaw": {"pin_inset_mm": 2.0}}))
+    assert moved.pivot_u_mm - base.pivot_u_mm == pytest.approx(-0.5)
+    assert moved.jaw_length_mm - base.jaw_length_mm == pytest.approx(0.5)
+    longer = stated_grasper(plan_from_dict(comb_data | {"grasper_jaw": {"length_mm": 36.0}}))
+    assert longer.pivot_u_mm - base.pivot_u_mm == pytest.approx(-(36.0 - 34.0))
+    wide = default_jaw(plan_from_dict(comb_data | {"grasper_jaw": {"opening_angle_deg": 45.0},
+                                                   "tissue_slab": {"thickness_mm": 4.0}}))
+    assert (wide.opening_angle_deg, wide.slab_thickness_mm) == (45.0, 4.0)
+    # given values win over the stated ones
+    assert default_jaw(plain, opening_deg=20.0).opening_angle_deg == 20.0
+    # a design that states no grasper keeps the defaults
+    bare = {k: v for k, v in comb_data.items() if k not in ("grasper_jaw", "assumptions")}
+    assert stated_grasper(plan_from_dict(bare)) is None
+    assert default_jaw(plan_from_dict(bare)).opening_angle_deg == DEFAULT_OPENING_DEG

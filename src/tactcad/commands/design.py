@@ -46,7 +46,7 @@ def jaw_of(value: str) -> tuple[str | dict, str]:
     path = Path(value)
     if path.suffix.lower() != ".toml" or not path.is_file():
         raise DesignError("--jaw", value, allowed, "not a class, nor an existing .toml file")
-    table = read_toml(path, "jaw file").get("grasper_jaw")
+    table = read_toml(path, "--jaw").get("grasper_jaw")
     if not isinstance(table, dict):
         raise DesignError("--jaw", value, allowed, f"{path.name} has no [grasper_jaw] table")
     return table, str(path)

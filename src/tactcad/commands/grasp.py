@@ -51,8 +51,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                                         "default half the rated full-scale force on every "
                                         "element)")
     p.add_argument("--slab-thickness-mm", type=number(0, 100, "mm", lo_open=True),
-                   default=DEFAULT_SLAB_MM,
-                   help="the tissue's thickness (mm; default %(default)s mm, assumed: give "
+                   default=None,
+                   help="the tissue's thickness (mm; default the design's [tissue_slab] with "
+                        f"its [grasper_jaw], else {DEFAULT_SLAB_MM:g} mm, assumed: give "
                         "your tissue's); a wedge's at the last tip")
     p.add_argument("--profile", choices=PROFILES, default="slab",
                    help="the tissue between the jaws: a flat slab, or a wedge that fills the "
@@ -63,13 +64,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--pivot-mm", type=number(-500, 500, "mm"), nargs=2, metavar=("X", "Y"),
                    default=None,
                    help="the pin in the insert's frame (mm): X along the rows, Y across them, "
-                        "from the first element's tip centre (default -5 0: 5 mm behind the "
-                        "first tip)")
+                        "from the first element's tip centre (default the design's "
+                        f"[grasper_jaw], else -{DEFAULT_PIVOT_BEHIND_MM:g} 0: "
+                        f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip)")
     p.add_argument("--jaw-length-mm", type=number(1, 200, "mm"), default=None,
-                   help="the jaw from pin to end (mm; default the last tip's radius + 2 mm)")
+                   help="the jaw from pin to end (mm; default the design's [grasper_jaw], "
+                        f"else the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm)")
     p.add_argument("--opening-deg", type=number(0, 90, "degrees", lo_open=True),
-                   default=DEFAULT_OPENING_DEG,
-                   help="the jaw's full opening (degrees; default %(default)s, assumed)")
+                   default=None,
+                   help="the jaw's full opening (degrees; default the design's [grasper_jaw], "
+                        f"else {DEFAULT_OPENING_DEG:g}, assumed)")
     p.add_argument("--coupling", choices=COUPLINGS, default="layer",
                    help="the tissue between the tips: a layer of the slab's thickness on the "
                         "opposing jaw, a half-space, or none (eq. 1; default %(default)s)")
@@ -119,6 +123,7 @@ def design_plan_from_args(args: argparse.Namespace):
 
 
 def run(args: argparse.Namespace) -> int:
+    from tactcad.design.grasper_in_use import stated_grasper
     from tactcad.errors import DesignError
     from tactcad.in_use.grasp_experiment import default_jaw, grasp
     from tactcad.in_use.shaft_leads import leads_check
@@ -137,6 +142,7 @@ def run(args: argparse.Namespace) -> int:
     by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
     units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
     try:
+        stated = stated_grasper(plan) is not None
         jaw = default_jaw(plan, args.pivot_mm, args.jaw_length_mm, args.opening_deg,
                           args.slab_thickness_mm)
         result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=args.angle_deg,
@@ -154,9 +160,17 @@ def run(args: argparse.Namespace) -> int:
                   ("--angle-deg" if args.angle_deg is not None else
                    f"half the rated {rated:g} N on each of {len(plan.slots)} elements"),
                   "pivot": "--pivot-mm" if args.pivot_mm else
+                  "the design's [grasper_jaw]" if stated else
                   f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows",
                   "jaw_length_mm": "--jaw-length-mm" if args.jaw_length_mm else
-                  f"the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm"}}
+                  "the design's [grasper_jaw]" if stated else
+                  f"the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm",
+                  "opening_angle_deg": "--opening-deg" if args.opening_deg else
+                  "the design's [grasper_jaw]" if stated else
+                  f"{DEFAULT_OPENING_DEG:g} degrees, assumed",
+                  "slab_thickness_mm": "--slab-thickness-mm" if args.slab_thickness_mm else
+                  "the design's [tissue_slab]" if stated else
+                  f"{DEFAULT_SLAB_MM:g} mm, assumed"}}
     print(dumps(record, indent=1) if args.json else render(record))
     return 0
 

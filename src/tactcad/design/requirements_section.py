@@ -34,8 +34,8 @@ Keys (units in the names):
   temperature step, each K_obj read by its best unit; never derived (without it the
   budget is reported, not judged).
 * ``max_grasp_force_N``: the largest grasp force the tips may put on the tissue (N): at it
-  (the grasp's force mode, :mod:`tactcad.in_use.grasp_experiment`, with its default jaw
-  and tissue) every element's force on its spring must stay within its overload limit
+  (the grasp's force mode, :mod:`tactcad.in_use.grasp_experiment`, on the design's stated
+  ``[grasper_jaw]`` and ``[tissue_slab]`` or the default jaw and tissue) every element's force on its spring must stay within its overload limit
   (yield with the safety factor, the gauge's largest strain), a hard stop taking the rest; never derived (without it nothing is checked).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.

@@ -413,37 +413,54 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
 
 
 def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
-                jaw_length_mm: float | None = None, opening_deg: float = DEFAULT_OPENING_DEG,
-                slab_mm: float = DEFAULT_SLAB_MM) -> JawGeometry:
-    """The jaw of a design's grasp, each value not given taken by default: the pin
-    :data:`DEFAULT_PIVOT_BEHIND_MM` behind the first tip along the rows, the jaw reaching
-    :data:`DEFAULT_JAW_BEYOND_MM` beyond the last tip, :data:`DEFAULT_OPENING_DEG` open, a
-    :data:`DEFAULT_SLAB_MM` slab (mm, degrees).
+                jaw_length_mm: float | None = None, opening_deg: float | None = None,
+                slab_mm: float | None = None) -> JawGeometry:
+    """The jaw of a design's grasp, each value not given taken from the grasper the design
+    states (``[grasper_jaw]``, ``[tissue_slab]``: :func:`tactcad.design.grasper_in_use.stated_grasper`),
+    else by default: the pin :data:`DEFAULT_PIVOT_BEHIND_MM` behind the first tip along the
+    rows, the jaw reaching :data:`DEFAULT_JAW_BEYOND_MM` beyond the last tip,
+    :data:`DEFAULT_OPENING_DEG` open, a :data:`DEFAULT_SLAB_MM` slab (mm, degrees).
 
     Raises:
         DesignError: a value out of range (:class:`JawGeometry`).
+        DesignErrors: the stated jaw cannot take the insert (each refusal names its field).
     """
+    from tactcad.design.grasper_in_use import stated_grasper
+
+    stated = stated_grasper(plan)
+    if stated is not None:
+        pivot = pivot_mm or (stated.pivot_u_mm, stated.pivot_v_mm)
+        length = jaw_length_mm or stated.jaw_length_mm
+        opening = opening_deg or stated.opening_angle_deg
+        return JawGeometry(pivot[0], pivot[1], length, opening, slab_mm or stated.slab_thickness_mm)
     pivot = pivot_mm or (-DEFAULT_PIVOT_BEHIND_MM, 0.0)
     last = max(u for u, _ in insert_frame(plan).values())
     length = jaw_length_mm or (last - pivot[0] + DEFAULT_JAW_BEYOND_MM)
-    return JawGeometry(pivot[0], pivot[1], length, opening_deg, slab_mm)
+    return JawGeometry(pivot[0], pivot[1], length, opening_deg or DEFAULT_OPENING_DEG,
+                       slab_mm or DEFAULT_SLAB_MM)
 
 
-def default_assumptions(k_obj_range: tuple[float, float]) -> str:
-    """The default grasp's jaw and tissue in words (for a record that uses them)."""
+def default_assumptions(k_obj_range: tuple[float, float], plan: Plan | None = None) -> str:
+    """The grasp's jaw and tissue in words (for a record that uses them): the design's
+    stated grasper (:func:`default_jaw`) or the defaults."""
+    from tactcad.design.grasper_in_use import stated_grasper
+
     lo, hi = k_obj_range
-    return (f"pin {DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows, jaw "
-            f"{DEFAULT_JAW_BEYOND_MM:g} mm beyond the last tip, {DEFAULT_OPENING_DEG:g} degrees "
-            f"open, a {DEFAULT_SLAB_MM:g} mm slab coupled as a layer on the opposing jaw (ν "
-            f"{TISSUE_POISSON_RATIO:g}), K_obj the geometric mean of the range {lo:g} ... "
-            f"{hi:g} N/mm; the design's layout")
+    stated = None if plan is None else stated_grasper(plan)
+    jaw = stated.words() if stated is not None else (
+        f"pin {DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows, jaw "
+        f"{DEFAULT_JAW_BEYOND_MM:g} mm beyond the last tip, {DEFAULT_OPENING_DEG:g} degrees "
+        f"open, a {DEFAULT_SLAB_MM:g} mm slab")
+    return (f"{jaw} coupled as a layer on the opposing jaw (ν {TISSUE_POISSON_RATIO:g}), K_obj "
+            f"the geometric mean of the range {lo:g} ... {hi:g} N/mm; the design's layout")
 
 
 def design_grasp_at_force(plan: Plan, force_N: float, rated_force_N: float,
                           k_obj_range: tuple[float, float],
                           model: str = "closed-form") -> GraspResult:
-    """The grasp of a design at a grasp force with the default jaw and tissue
-    (:func:`default_jaw`, :func:`default_assumptions`), the elements' K at ``model``.
+    """The grasp of a design at a grasp force with its jaw and tissue (the design's stated
+    grasper or the defaults: :func:`default_jaw`, :func:`default_assumptions`), the
+    elements' K at ``model``.
 
     Args:
         force_N: the grasp force the tips put on the slab (N), > 0.

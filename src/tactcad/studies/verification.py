@@ -621,7 +621,7 @@ def element_overload_limits_N(plan: Plan, fig: Figures) -> dict[int, float]:
 def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict | None:
     """``max_grasp_force_N`` when the design states it (None otherwise): the grasp's force
     mode at that grasp force (:func:`tactcad.in_use.grasp_experiment.design_grasp_at_force`:
-    its default jaw and tissue, the design's layout, the elements' K at ``fig``'s level);
+    the design's stated jaw and tissue or the defaults, the design's layout, the elements' K at ``fig``'s level);
     each element's force on its spring against its overload limit
     (:func:`element_overload_limits_N`: yield with the safety factor, the gauge's largest
     strain), margin limit / force - 1, error :func:`grasp_error_rel`, judged on its own
@@ -636,7 +636,7 @@ def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict 
     target = stated_max_grasp_force(plan.raw)
     if target is None:
         return None
-    rated, basis = req.full_scale_force_N, default_assumptions(req.kobj_range_N_per_mm)
+    rated, basis = req.full_scale_force_N, default_assumptions(req.kobj_range_N_per_mm, plan)
     try:
         result = design_grasp_at_force(plan, target, rated, req.kobj_range_N_per_mm, fig.model)
     except DesignError as exc:

@@ -1,0 +1,71 @@
+"""The grasper a design states (``[grasper_jaw]``, ``[tissue_slab]``), seen from the
+insert: the jaw's pin, length and opening and the slab's thickness in the insert's frame,
+the values the grasp experiment and the equal-radius check take instead of their defaults.
+
+The insert sits in the jaw as the grasper scene seats it (:mod:`tactcad.assembly.grasper_rig`):
+its envelope centred in the pocket, the array's z (along the rows) along the jaw's x, the
+first column nearest the pin. Insert frame (:func:`tactcad.in_use.radius_pairs.insert_frame`):
+origin the first element's tip centre, u along the first row, v across. Units: mm, degrees.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+
+@dataclass(frozen=True)
+class StatedGrasper:
+    """The design's grasper in the insert's frame (mm, degrees).
+
+    Attributes:
+        pivot_u_mm, pivot_v_mm: the jaw's pin (along the rows, across them).
+        jaw_length_mm: from the pin to the jaw's end.
+        opening_angle_deg: the jaw's full opening.
+        slab_thickness_mm: the tissue slab's thickness.
+    """
+
+    pivot_u_mm: float
+    pivot_v_mm: float
+    jaw_length_mm: float
+    opening_angle_deg: float
+    slab_thickness_mm: float
+
+    def words(self) -> str:
+        """The jaw and tissue in words, for a record that uses them."""
+        return (f"the design's [grasper_jaw]: pin {-self.pivot_u_mm:.4g} mm behind the first "
+                f"tip along the rows, jaw {self.jaw_length_mm:.4g} mm from its pin, "
+                f"{self.opening_angle_deg:g} degrees open; a {self.slab_thickness_mm:g} mm slab "
+                f"([tissue_slab])")
+
+
+def stated_grasper(plan: Any) -> StatedGrasper | None:
+    """The grasper of a design that states ``[grasper_jaw]`` and whose construction gives
+    its envelope without a kernel (the monolithic comb); None otherwise.
+
+    Raises:
+        DesignErrors: the jaw cannot take the insert (each refusal names the jaw's field).
+    """
+    raw = getattr(plan, "raw", None) or {}
+    comb = getattr(plan, "comb", None)
+    if "grasper_jaw" not in raw or comb is None:
+        return None
+    from tactcad.partlib.grasper_jaw import design_table, jaw_part
+    from tactcad.partlib.tissue_slab import slab_part
+
+    jaw = jaw_part(plan).geometry
+    slab = slab_part(jaw, design_table(plan, "tissue_slab")).geometry
+    row = plan.row_slots(0)
+    x0, _, z0 = row[0].tip_centre_world_mm
+    x1, _, z1 = row[-1].tip_centre_world_mm
+    length = math.hypot(x1 - x0, z1 - z0)
+    ux, uz = ((x1 - x0) / length, (z1 - z0) / length) if length > 1e-9 else (0.0, 1.0)
+    cx, cz = comb.envelope_centre_mm
+    # the pin in the array's frame: on the jaw's axis (the envelope's centre across), its
+    # distance from the pocket's centre along the jaw's x, which is the array's z
+    dx, dz = cx - x0, cz + (jaw.pin_x_mm - jaw.pocket_centre_x_mm) - z0
+    return StatedGrasper(pivot_u_mm=dx * ux + dz * uz, pivot_v_mm=-dx * uz + dz * ux,
+                         jaw_length_mm=jaw.length_mm - jaw.pin_x_mm,
+                         opening_angle_deg=jaw.opening_angle_deg,
+                         slab_thickness_mm=slab.thickness_mm)
