@@ -93,3 +93,12 @@ def test_the_written_jaw_design_exports_and_passes_check(tmp_path):
     r = run_cli("check", "--design", str(out), "--out", str(x), "--quiet")
     assert r.returncode == 0, r.stdout[-3000:]
     assert (x / "scenes" / "grasper-closed.step").exists()
+
+
+def test_a_jaw_too_small_for_any_comb_names_the_pocket_needed_and_the_jaw_that_holds_it(tmp_path):
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "5", "--out",
+                str(tmp_path / "x.toml"))
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    line = next(x for x in r.stderr.splitlines() if "nearest jaw:" in x)
+    assert "0.5 mm sheet's comb" in line and line.endswith("--jaw 10"), line
+    assert not list(tmp_path.iterdir())

@@ -122,3 +122,20 @@ def test_the_grasp_runs_on_the_jaw_the_design_states(comb_data):
     bare = {k: v for k, v in comb_data.items() if k not in ("grasper_jaw", "assumptions")}
     assert stated_grasper(plan_from_dict(bare)) is None
     assert default_jaw(plan_from_dict(bare)).opening_angle_deg == DEFAULT_OPENING_DEG
+
+
+@pytest.mark.parametrize("shaft_class", ["5", "10"])
+def test_each_classs_default_jaw_passes_its_trocar_closed(shaft_class):
+    import math
+
+    from tactcad.partlib.grasper_jaw import (MIN_WALL_MM, SHAFT_CLASSES_MM, GrasperJawSection,
+                                             with_class_defaults)
+
+    j = with_class_defaults(GrasperJawSection(shaft_class_mm=shaft_class))
+    width = SHAFT_CLASSES_MM[shaft_class] - j.width_clearance_mm
+    assert math.hypot(width, j.thickness_mm + j.opposing_jaw_mm) <= SHAFT_CLASSES_MM[shaft_class]
+    assert j.pin_diameter_mm <= j.thickness_mm - 2 * MIN_WALL_MM  # steel round the pin
+    assert jaw_room(shaft_class).across_mm > 0
+    # a stated size wins over the class's
+    assert with_class_defaults(GrasperJawSection(shaft_class_mm=shaft_class,
+                                                 thickness_mm=2.0)).thickness_mm == 2.0

@@ -12,7 +12,8 @@ from tactcad.errors import DesignError
 from tactcad.mechanics.closed_form import estimate_closed_form
 from tactcad.mechanics.hard_stops import stop_verdicts
 from tactcad.design.array_plan import EXAMPLES
-from tactcad.partlib.grasper_jaw import MIN_WALL_MM, SHAFT_CLASSES_MM, GrasperJawSection, jaw_room
+from tactcad.partlib.grasper_jaw import (MIN_WALL_MM, SHAFT_CLASSES_MM, GrasperJawSection,
+                                         jaw_room, with_class_defaults)
 from tactcad.studies.comb_design import comb_for_jaw
 from tactcad.vocabulary.schema import read_toml
 from tactcad.studies.inverse_design import InverseDesignError, Targets
@@ -35,7 +36,7 @@ def found():
 
 
 def test_the_room_is_the_default_jaws_pocket_less_its_walls_and_clearances():
-    j, room = GrasperJawSection(), jaw_room("10")
+    j, room = with_class_defaults(GrasperJawSection()), jaw_room("10")
     width = SHAFT_CLASSES_MM["10"] - j.width_clearance_mm
     assert room.across_mm == pytest.approx(width - 2 * MIN_WALL_MM - 2 * j.pocket_clearance_mm)
     assert room.height_mm == pytest.approx(j.thickness_mm + j.tip_proud_mm)

@@ -304,7 +304,9 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
         base = read_toml(EXAMPLES / c.jaw_template, "design file")
         try:
             result = c.jaw_search()(targets, room, args.columns or 6, base, grade=args.material,
-                                    name=name, envelope_of=array_envelope_mm)
+                                    name=name, envelope_of=array_envelope_mm,
+                                    other_rooms={k: jaw_room(k) for k in jaw_classes()
+                                                 if k != args.jaw})
             used = c.name
             break
         except DesignError as exc:

@@ -38,6 +38,17 @@ from tactcad.vocabulary.schema import Derived, Problems, Section, choice, fmt, n
 SHAFT_CLASSES_MM = {"5": 5.0, "10": 10.0}
 #: The jaw body's steels (a bought-in grasper's jaw machined for the insert).
 JAW_STEELS = ("17-4PH stainless steel", "316L stainless steel")
+#: Each class's jaw where the table leaves it (mm): its width below the class (the
+#: clearance), thickness, the opposing jaw's thickness and the pin. Closed, the two jaws'
+#: section (width x both thicknesses) stays inside the trocar with room to spare (10 mm:
+#: 6.5 x 7.1 mm, diagonal 9.6 mm; 5 mm: 3.3 x 3.5 mm, diagonal 4.8 mm), the pin with
+#: 0.5 mm of steel above and below it.
+CLASS_DEFAULTS_MM = {
+    "5": {"width_clearance_mm": 1.7, "thickness_mm": 2.3, "opposing_jaw_mm": 1.2,
+          "pin_diameter_mm": 1.0},
+    "10": {"width_clearance_mm": 3.5, "thickness_mm": 5.6, "opposing_jaw_mm": 1.5,
+           "pin_diameter_mm": 1.5},
+}
 #: Least steel left between the pin hole and the pocket, and behind the pocket's far end, mm.
 MIN_WALL_MM = 0.5
 COLOR = (0.72, 0.74, 0.78)
@@ -47,11 +58,12 @@ class GrasperJawSection(Section):
     """``[grasper_jaw]``: the jaw, its pin, pocket and tip window (mm, degrees)."""
 
     shaft_class_mm: choice(SHAFT_CLASSES_MM, why="the trocar the instrument passes") = "10"
-    width_clearance_mm: number(0.0, 6.0) = 3.5  # jaw width = class - clearance
+    # width = class - clearance; this and the next three: the class's (CLASS_DEFAULTS_MM)
+    width_clearance_mm: Optional[number(0.0, 6.0)] = None
     length_mm: number(5.0, 80.0) = 34.0
-    thickness_mm: number(1.0, 10.0) = 5.6
-    opposing_jaw_mm: number(0.5, 10.0) = 1.5  # the other jaw's thickness, closed on this one
-    pin_diameter_mm: number(0.5, 4.0) = 1.5
+    thickness_mm: Optional[number(1.0, 10.0)] = None
+    opposing_jaw_mm: Optional[number(0.5, 10.0)] = None  # the other jaw, closed on this one
+    pin_diameter_mm: Optional[number(0.5, 4.0)] = None
     pin_inset_mm: number(0.5, 20.0) = 2.5  # pin axis from the proximal end
     pocket_clearance_mm: number(0.0, 1.0) = 0.1
     pocket_length_mm: Optional[number(1.0, 80.0)] = None  # default: the insert's row + clearance
@@ -148,7 +160,7 @@ def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
         table: dict[str, Any] = {"shaft_class_mm": jaw}
     else:
         table = dict(jaw)
-    j = validated_table("grasper_jaw", GrasperJawSection, table, file)
+    j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection, table, file))
     p = Problems(file)
     width = SHAFT_CLASSES_MM[j.shaft_class_mm] - j.width_clearance_mm
     most_along = j.length_mm - j.distal_wall_mm - (j.pin_inset_mm + j.pin_diameter_mm / 2
@@ -216,6 +228,13 @@ def _pocket_side(p: Problems, field: str, stated: float | None, need: float | No
     return stated if need is None else p.within(field, stated, need, why=why)
 
 
+def with_class_defaults(j: GrasperJawSection) -> GrasperJawSection:
+    """The table with every size it leaves out that depends on the class filled in
+    (:data:`CLASS_DEFAULTS_MM`)."""
+    own = CLASS_DEFAULTS_MM[j.shaft_class_mm]
+    return j.model_copy(update={k: v for k, v in own.items() if getattr(j, k) is None})
+
+
 def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
     """The jaw for the array's insert (``context.plan``).
 
@@ -228,6 +247,7 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
         The jaw's :class:`PartData` with its derived sizes and their reasons.
     """
     plan = context.plan
+    j = with_class_defaults(j)
     c = j.pocket_clearance_mm
     env = insert_envelope_mm(plan)
     width = SHAFT_CLASSES_MM[j.shaft_class_mm] - j.width_clearance_mm

@@ -207,7 +207,8 @@ def judge(d: dict, envelope_of: Callable | None) -> tuple[Any, tuple[str, ...], 
 def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
                  grade: str | None = None, name: str = "grasper_insert",
                  envelope_of: Callable | None = None,
-                 progress: Callable[[str], None] | None = None) -> CombDesign:
+                 progress: Callable[[str], None] | None = None,
+                 other_rooms: Mapping[str, Any] | None = None) -> CombDesign:
     """The monolithic comb that fits ``room`` and meets ``targets``.
 
     Args:
@@ -219,6 +220,8 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
         grade: material grade of the library (default the base's).
         name: the design's name.
         envelope_of: plan -> its footprint envelope (mm) for the footprint requirement.
+        other_rooms: ``--jaw`` value -> room of the jaws a refusal may offer instead (the
+            nearest that holds a comb the pocket is too small for).
 
     Returns:
         :class:`CombDesign`.
@@ -226,7 +229,9 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
     Raises:
         DesignError: ``--columns`` out of range.
         InverseDesignError: no sheet gives a comb that counts; names each sheet's binding
-            limit and the largest full-scale force any carries (``--full-scale-force``).
+            limit, the largest full-scale force any carries (``--full-scale-force``) and,
+            where the pocket is too small for every sheet's comb, the pocket the smallest
+            needs and a jaw of ``other_rooms`` that holds it (``--jaw``).
     """
     if not 1 <= columns <= 12:
         raise DesignError("--columns", columns, "1 ... 12 for a comb in a jaw")
@@ -238,7 +243,8 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
                            progress) for sheet in SHEETS_MM for scale in KM_SCALES]
     good = [c for c in tried if c.plan is not None and not c.failures]
     if not good:
-        raise refusal(tried, targets, room, columns)
+        raise refusal(tried, targets, room, columns,
+                      nearest_jaw(base, columns, room, targets, grade, other_rooms or {}))
     best = chosen(good)
     data = named(best.data, name, targets, room, best, columns)
     return CombDesign(data, plan_from_dict(data), room, tuple(tried))
@@ -279,9 +285,43 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
     return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated)
 
 
+def comb_envelope_mm(base: dict, sheet: float, columns: int, room: Any, targets: Targets,
+                     grade: str | None) -> tuple[float, float, float] | None:
+    """The envelope (across, along, height; mm) of one sheet's comb at the base's webs,
+    whatever the pocket (its footprint requirement left out); None when it has no plan."""
+    d, binding = comb_tables(base, sheet, columns, room, targets, grade)
+    d["requirements"].pop("footprint_mm", None)
+    try:
+        plan = plan_from_dict(d)
+    except DesignErrors:
+        return None
+    return None if binding else tuple(float(v) for v in plan.comb.envelope_mm)
+
+
+def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
+                other_rooms: Mapping[str, Any]) -> str:
+    """A line for a refusal when the pocket is too small across or too shallow for every
+    sheet's comb: the smallest comb's pocket and the first jaw of ``other_rooms`` that
+    holds it (empty when some sheet's comb fits the pocket: something else binds)."""
+    needs = [(sheet, env) for sheet in SHEETS_MM
+             if (env := comb_envelope_mm(base, sheet, columns, room, targets, grade))]
+    if not needs or any(env[0] <= room.across_mm and env[2] <= room.height_mm
+                        for _, env in needs):
+        return ""
+    sheet, env = min(needs, key=lambda n: (n[1][0], n[1][2]))
+    holds = [option for option, other in other_rooms.items()
+             if other.across_mm >= env[0] and other.height_mm >= env[2]
+             and other.along_mm >= env[1]]
+    where = f"--jaw {holds[0]}" if holds else "a jaw whose [grasper_jaw] pocket holds it"
+    return (f"nearest jaw: a pocket of {env[0]:.3g} mm across and {env[2]:.3g} mm high inside "
+            f"its clearances (the {sheet:g} mm sheet's comb, the smallest; this jaw's is "
+            f"{room.across_mm:.3g} x {room.height_mm:.3g} mm): {where}")
+
+
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
-            columns: int) -> InverseDesignError:
-    """Why no sheet counts, and the largest force any carries (a pasteable option)."""
+            columns: int, jaw_line: str = "") -> InverseDesignError:
+    """Why no sheet counts, the largest force any carries (a pasteable option) and, when
+    the pocket binds every sheet, the nearest jaw (``jaw_line``, :func:`nearest_jaw`)."""
     lines = []
     for sheet in SHEETS_MM:  # each sheet's nearest candidate: its largest force margin
         own = [c for c in tried if c.sheet_mm == sheet and c.failures]
@@ -296,6 +336,7 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             f"{targets.k_obj_range_N_per_mm[1]:g} N/mm at {targets.full_scale_force_N:g} N:\n  "
             + "\n  ".join(lines))
     nearest = f"--full-scale-force {max(rated) * 0.99:.3g}" if rated else ""
+    text += f"\n  {jaw_line}" if jaw_line else ""
     return InverseDesignError(text + (f"\n  nearest: {nearest}" if nearest else ""),
                               "--full-scale-force", targets.full_scale_force_N,
                               nearest or "a design the jaw holds")
