@@ -64,3 +64,36 @@ def test_each_sheet_builds_one_valid_solid_of_its_outline(plan):
     assert volume(solid) == pytest.approx(prof.area_mm2 * sheet.thickness_mm, rel=1e-6)
     x0, y0, z0, x1, y1, z1 = bbox_tuple(solid)
     assert (x1 - x0, z1 - z0) == pytest.approx((sheet.length_mm, sheet.thickness_mm), abs=1e-6)
+
+
+def test_each_stop_cut_wider_than_its_gap_gets_a_shim_that_leaves_the_gap(plan):
+    from tactcad.design.comb_plan import placed_parts, touching
+    from tactcad.partlib.array.comb_hardware import stop_shims
+
+    placed = {name: (part, where) for name, part, where in placed_parts(plan)}
+    stops = {s.element: s for s in plan.hard_stops}
+    shims = stop_shims(plan.comb)
+    assert len(shims) == sum(s.kind == "set" for s in stops.values()) > 0
+    for row, column, shim, _ in shims:
+        number = row * plan.columns + column + 1
+        stop, sheet = stops[number], plan.comb.sheets[row]
+        assert shim.thickness_mm == pytest.approx(stop.cut_mm - stop.gap_mm, abs=1e-9)
+        part, where = placed[f"shim_{number}"]
+        assert "." not in part and part in array_parts(plan)
+        # the shim's top, in the array frame, lies the stop gap under the arm's underside
+        arm = sheet.elements[column].arm_underside_y_mm + placed[sheet.part_name][1].dy_mm
+        assert arm - (where.dy_mm + shim.thickness_mm) == pytest.approx(stop.gap_mm, abs=1e-9)
+        assert frozenset({f"shim_{number}", sheet.part_name}) in touching(plan)
+
+
+def test_the_sheets_drawing_and_the_build_book_name_each_shim(plan):
+    from types import SimpleNamespace
+
+    from tactcad.partlib.array.comb_sheet import notes, stacking_notes
+
+    sheet = plan.comb.sheets[0]
+    pen = SimpleNamespace(fmt_mm=lambda x: f"{x:g}", sentence=lambda p: str(p))
+    spec = SimpleNamespace(geometry=sheet, process="wire EDM", material="Ti")
+    text = " ".join(notes(SimpleNamespace(spec=spec), pen))
+    assert f"shim {sheet.shims_mm[0]:g}" in text and f"cut {sheet.cut_gaps_mm[0]:g}" in text
+    assert "feeler" in " ".join(stacking_notes(None))

@@ -212,7 +212,8 @@ def comb_sheets(d: CombTables) -> tuple[CombSheet, ...]:
             ledges_mm=tuple(y_arm - cut_gap(gaps[i], slot)[0] for i in numbers),
             length_mm=row_length(d).value, spine_height_mm=spine_height(d).value,
             thickness_mm=d.sheet.thickness_mm, holes=fastener_holes(d),
-            start_hole_diameter_mm=d.edm.start_hole_diameter_mm))
+            start_hole_diameter_mm=d.edm.start_hole_diameter_mm,
+            stop_gaps_mm=tuple(gaps[i] for i in numbers)))
     return tuple(out)
 
 
@@ -485,8 +486,10 @@ def placed_parts(plan: Plan) -> list[tuple[str, str, Placement]]:
     """The comb's placed parts but the gauges (the construction registry's
     ``placed_parts``), array frame, mm: one sheet per row, the spacer between them, a dowel
     pin through each dowel hole (centred on the stack), a screw from row 1's outer face
-    through each screw hole and its nut on row 2's."""
-    from tactcad.partlib.array.comb_hardware import SPACER_PART, DowelPin, dowel_name
+    through each screw hole and its nut on row 2's, a shim on the ledge under each tip whose
+    gap is cut wider than its stop gap."""
+    from tactcad.partlib.array.comb_hardware import (SPACER_PART, DowelPin, dowel_name,
+                                                     shim_name, stop_shims)
     from tactcad.partlib.array.fasteners import bolt_name, nut_name
 
     c, t = plan.comb, plan.sheet_thickness_mm
@@ -505,7 +508,17 @@ def placed_parts(plan: Plan) -> list[tuple[str, str, Placement]]:
              Placement(-outer, y, z, True, True)) for k, z in enumerate(c.screw_x_mm, start=1)]
     out += [(f"nut_{k}", nut_name(c.screw), Placement(outer, y, z, True, True))
             for k, z in enumerate(c.screw_x_mm, start=1)]
+    for row, column, shim, (x, y_ledge) in stop_shims(c):
+        sheet = sheet_placement(plan, row)  # the shim in its sheet's frame, turned with it
+        out.append((shim_placed_name(plan, row, column), shim_name(shim),
+                    Placement(sheet.dx_mm, sheet.dy_mm + y_ledge, sheet.dz_mm + x,
+                              quarter_turn=True)))
     return out
+
+
+def shim_placed_name(plan: Plan, row: int, column: int) -> str:
+    """The placed name of the shim under element (row, column): ``shim_<element number>``."""
+    return f"shim_{row * plan.columns + column + 1}"
 
 
 def element_holder(plan: Plan, slot: ElementSlot) -> str:
@@ -516,7 +529,7 @@ def element_holder(plan: Plan, slot: ElementSlot) -> str:
 def touching(plan: Plan) -> set[frozenset[str]]:
     """The comb's face contacts: the spacer on both rows, each dowel in its reamed holes
     (rows and spacer), each screw's head on row 1 and its nut on row 2, screw and nut on
-    the thread."""
+    the thread, each stop shim on its row's ledge."""
     from tactcad.partlib.array.comb_hardware import SPACER_PART
 
     rows = [sheet.part_name for sheet in plan.comb.sheets]
@@ -526,6 +539,10 @@ def touching(plan: Plan) -> set[frozenset[str]]:
     for k in range(1, len(plan.comb.screw_x_mm) + 1):
         pairs |= {frozenset({f"screw_{k}", rows[0]}), frozenset({f"nut_{k}", rows[-1]}),
                   frozenset({f"screw_{k}", f"nut_{k}"})}
+    from tactcad.partlib.array.comb_hardware import stop_shims
+
+    pairs |= {frozenset({shim_placed_name(plan, row, column), rows[row]})
+              for row, column, _, _ in stop_shims(plan.comb)}
     return pairs
 
 

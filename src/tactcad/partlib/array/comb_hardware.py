@@ -1,11 +1,13 @@
 """The monolithic comb's hardware, placed: the spacer between the rows (a plate of the
-spine's outline with its holes), the ISO 8734 dowel pins that locate the rows, and the
-miniature socket head cap screws with their nuts that clamp them
+spine's outline with its holes), the ISO 8734 dowel pins that locate the rows, the
+miniature socket head cap screws with their nuts that clamp them, and the shims bonded on
+the stop ledges that close a gap the wire cuts wider to the stop gap
 (:class:`~tactcad.partlib.array.comb_sheet.CombGeometry` gives every size; the comb's
 derivation is :mod:`tactcad.design.comb_plan`'s).
 
 Part frames: the spacer as a comb sheet (x along the row, y up the spine, extruded along
-+z); a dowel pin along +z from z = 0; the screw and nut as
++z); a shim as a comb sheet too (its corner at the origin, the length along x, its
+thickness along y, the sheet's thickness along z); a dowel pin along +z from z = 0; the screw and nut as
 :mod:`tactcad.partlib.array.fasteners` builds them (head underside, nut seat at z = 0).
 The screw and nut have builder keys of their own so the comb's build step, not the
 stacked array's bolt step, consumes them. Units: mm.
@@ -18,11 +20,12 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from tactcad.geometry.profile import Circle, Profile, _chain
-from tactcad.kernel.shapes import cylinder, extrude_profile
+from tactcad.kernel.shapes import box, cylinder, extrude_profile
 from tactcad.partlib.array.fasteners import build_nut, build_screw, nut_data, screw_data
 from tactcad.partlib.array.prism import hole_circles, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, PartData
 from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.schema import name_number
 
 if TYPE_CHECKING:
     from tactcad.kernel.shapes import Solid
@@ -30,6 +33,7 @@ if TYPE_CHECKING:
 SPACER_COLOR: RGB = (0.55, 0.60, 0.68)
 DOWEL_COLOR: RGB = (0.78, 0.78, 0.74)  # ground, hardened steel
 SCREW_COLOR: RGB = (0.20, 0.20, 0.22)  # black oxide
+SHIM_COLOR: RGB = (0.85, 0.72, 0.45)  # brass-coloured, to stand out on the ledge
 #: Part names of the comb's hardware.
 SPACER_PART = "comb_spacer"
 #: ISO 4762 screws and ISO 4032 nuts start at M1.6; a smaller size is DIN 912 / DIN 934.
@@ -55,6 +59,39 @@ class DowelPin:
     length_mm: float
 
 
+@dataclass(frozen=True)
+class StopShim:
+    """A shim bonded on a stop ledge under an element's tip (mm): as long as the tip is
+    wide, ``thickness_mm`` high (the cut gap less the stop gap), as wide as the sheet."""
+
+    length_mm: float
+    thickness_mm: float
+    width_mm: float
+
+
+def stop_shims(comb) -> list[tuple[int, int, StopShim, tuple[float, float]]]:
+    """Every shim of the comb: (row, element's column, the shim, its corner (x, y) in the
+    row's sheet frame), for each element whose gap is cut wider than its stop gap."""
+    out = []
+    for sheet in comb.sheets:
+        for c, (g, x0, ledge, shim) in enumerate(zip(sheet.elements, sheet.offsets_mm,
+                                                     sheet.ledges_mm, sheet.shims_mm)):
+            if shim > 0:
+                s = StopShim(g.tip_width_mm, shim, sheet.thickness_mm)
+                out.append((sheet.row, c, s, (x0 + g.overall_length_mm - g.tip_width_mm, ledge)))
+    return out
+
+
+def shim_name(s: StopShim) -> str:
+    """Part name of a stop shim, safe for file names and STEP labels: ``stop_shim_0p11x1x1``."""
+    return (f"stop_shim_{name_number(s.thickness_mm)}x{name_number(s.length_mm)}"
+            f"x{name_number(s.width_mm)}")
+
+
+def build_shim(s: StopShim) -> "Solid":
+    return box(0.0, 0.0, 0.0, s.length_mm, s.thickness_mm, s.width_mm)
+
+
 def spacer_plate(comb) -> SpacerPlate:
     sheet = comb.sheets[0]
     return SpacerPlate(sheet.length_mm, sheet.spine_height_mm, comb.spacer_thickness_mm,
@@ -78,11 +115,13 @@ def build_dowel(p: DowelPin) -> "Solid":
 
 
 def dowel_name(p: DowelPin) -> str:
-    return f"dowel_pin_{p.diameter_mm:g}x{p.length_mm:g}"
+    """Part name of a dowel pin, safe for file names and STEP labels: ``dowel_pin_1p5x4``."""
+    return f"dowel_pin_{name_number(p.diameter_mm)}x{name_number(p.length_mm)}"
 
 
 def specs(context: ArrayContext) -> tuple[PartData, ...]:
-    """The spacer, a dowel pin, the screw and its nut of the plan's comb (none without)."""
+    """The spacer, a dowel pin, the screw and its nut, and a shim of each thickness the
+    stops take, of the plan's comb (none without)."""
     comb = context.plan.comb
     if comb is None:
         return ()
@@ -113,12 +152,29 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
                  builder="dowel_pin"),
         screw,
         replace(nut, builder="comb_nut"),
+        *(shim_data(s, k) for k, s in enumerate(sorted({s for _, _, s, _ in stop_shims(comb)},
+                                                       key=lambda s: s.thickness_mm))),
     )
+
+
+def shim_data(s: StopShim, k: int = 0) -> PartData:
+    """The ``k``-th thinnest stop shim, cut from stainless shim foil (bought to thickness);
+    each thickness a shade of its own (a scene tells its parts by colour)."""
+    return PartData(name=shim_name(s), kind="purchased",
+                    process=Process(f"stainless steel shim foil {s.thickness_mm:g} mm, cut to "
+                                    f"{s.length_mm:g} x {s.width_mm:g} mm and bonded on the "
+                                    "stop ledge", Method.BOUGHT),
+                    material="stainless steel shim foil",
+                    color=(SHIM_COLOR[0], max(SHIM_COLOR[1] - 0.04 * k, 0.0), SHIM_COLOR[2]),
+                    expected_volume_mm3=s.length_mm * s.thickness_mm * s.width_mm,
+                    expected_bbox_mm=(0.0, 0.0, 0.0, s.length_mm, s.thickness_mm, s.width_mm),
+                    geometry=s, builder="stop_shim")
 
 
 PART = ArrayPart(key="comb_hardware", build=build_spacer, specs=specs, order=6,
                  companion_builders={"dowel_pin": build_dowel, "comb_screw": build_screw,
-                                     "comb_nut": build_nut},
+                                     "comb_nut": build_nut, "stop_shim": build_shim},
                  # consumed where the comb sheet's step stacks the rows (its title and notes)
                  assembly=BuildStep("comb-rows",
-                                    companions=("dowel_pin", "comb_screw", "comb_nut")))
+                                    companions=("dowel_pin", "comb_screw", "comb_nut",
+                                                "stop_shim")))

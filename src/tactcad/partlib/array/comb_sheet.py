@@ -81,6 +81,8 @@ class CombSheet:
         thickness_mm: the sheet's thickness.
         holes: the screw and dowel holes in the spine.
         start_hole_diameter_mm: the wire's start holes in the holes.
+        stop_gaps_mm: each element's stop gap as designed (a gap narrower than the cut
+            one is set with a shim on the ledge: :attr:`shims_mm`).
     """
 
     row: int
@@ -92,6 +94,19 @@ class CombSheet:
     thickness_mm: float
     holes: tuple[Hole, ...]
     start_hole_diameter_mm: float
+    stop_gaps_mm: tuple[float, ...] = ()
+
+    @property
+    def cut_gaps_mm(self) -> tuple[float, ...]:
+        """Each element's gap as the wire cuts it (mm): arm underside to its ledge."""
+        return tuple(e.arm_underside_y_mm - ledge for e, ledge in zip(self.elements, self.ledges_mm))
+
+    @property
+    def shims_mm(self) -> tuple[float, ...]:
+        """The shim bonded on each element's ledge under its tip (mm; 0: the gap is cut as
+        designed): the cut gap less the stop gap."""
+        gaps = self.stop_gaps_mm or self.cut_gaps_mm
+        return tuple(round(max(cut - gap, 0.0), 6) for cut, gap in zip(self.cut_gaps_mm, gaps))
 
     @property
     def part_name(self) -> str:
@@ -210,12 +225,15 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
 def notes(d, pen) -> list[str]:
     """The comb sheet's notes: the process, the stops and the holes' fits."""
     sheet = d.spec.geometry
-    gaps = ", ".join(pen.fmt_mm(e.arm_underside_y_mm - ledge)
-                     for e, ledge in zip(sheet.elements, sheet.ledges_mm))
+    gaps = sheet.stop_gaps_mm or sheet.cut_gaps_mm
+    stops = ", ".join(pen.fmt_mm(gap) + (f" (cut {pen.fmt_mm(cut)}, shim {pen.fmt_mm(shim)})"
+                                         if shim > 0 else "")
+                      for gap, cut, shim in zip(gaps, sheet.cut_gaps_mm, sheet.shims_mm))
     return [f"{pen.sentence(d.spec.process)}, {d.spec.material}, sheet "
             f"{pen.fmt_mm(sheet.thickness_mm)}: {len(sheet.elements)} elements on one spine.",
-            f"Stop gaps under the arms, element by element: {gaps}; a gap narrower than the "
-            f"wire's slot is cut at the slot and set with a shim at assembly.",
+            f"Stop gaps under the arms' ends, element by element: {stops}; a gap narrower "
+            f"than the wire's slot is cut at the slot and closed to the stop gap by a shim "
+            f"bonded on the ledge under the tip.",
             "Dowel holes reamed H7; screw holes ISO 273 medium."]
 
 
@@ -230,9 +248,10 @@ def stacking_notes(book) -> tuple[str, ...]:
             "and row 2's sheet, gauged faces outward as the assembly model shows.",
             "Fit the screws from row 1's side and their nuts on row 2's; tighten them evenly "
             "with the rows pressed flat on a plate.",
-            "Set each hard stop: slide a shim of the element's stop gap (the sheet's drawing) "
-            "under its arm's end against the ledge, bond it to the ledge, and check that the "
-            "arm moves freely up to it.")
+            "Set each hard stop cut wider than its gap: bond the shim the sheet's drawing "
+            "names for the element (the cut gap less the stop gap) on the ledge under its tip, "
+            "then check the gap left with feeler gauges: the stop gap passes under the arm's "
+            "end, a blade 0.01 mm thicker does not, and the arm moves freely down to it.")
 
 
 PART = ArrayPart(key="comb_sheet", build=build, specs=specs, order=5,
