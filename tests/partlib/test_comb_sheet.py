@@ -97,3 +97,26 @@ def test_the_sheets_drawing_and_the_build_book_name_each_shim(plan):
     text = " ".join(notes(SimpleNamespace(spec=spec), pen))
     assert f"shim {sheet.shims_mm[0]:g}" in text and f"cut {sheet.cut_gaps_mm[0]:g}" in text
     assert "feeler" in " ".join(stacking_notes(None))
+
+
+def test_the_spacer_has_its_own_process_and_its_shop_file(plan):
+    import tomllib
+
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.errors import DesignErrors
+    from tactcad.export.dxf_sheet import shop_profiles
+    from tactcad.vocabulary.process import CUT_PROCESSES
+
+    t = plan.comb.spacer_thickness_mm
+    lo, hi = CUT_PROCESSES[plan.comb.spacer_process].sheet_range_mm
+    assert lo <= t <= hi  # a 0.4 mm spacer is below wire EDM's range: another process
+    assert plan.comb.spacer_process != "wire-edm"
+    spacer = next(sp for sp in shop_profiles(plan) if sp.part == "comb_spacer")
+    assert spacer.process == plan.comb.spacer_process and spacer.thickness_mm == t
+    data = tomllib.loads(GRASPER.read_text(encoding="utf-8"))
+    data["comb"]["spacer_process"] = "laser-cutting"
+    assert plan_from_dict(data).comb.spacer_process == "laser-cutting"
+    data["comb"]["spacer_process"] = "wire-edm"  # 0.4 mm: thinner than wire EDM takes
+    with pytest.raises(DesignErrors) as err:
+        plan_from_dict(data)
+    assert "comb.spacer_process" in str(err.value) and "wire-edm" in str(err.value)

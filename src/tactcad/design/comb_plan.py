@@ -43,6 +43,7 @@ from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN, NOTCH_RA
                                            WEB_RANGE_MM, ElementGeometry)
 from tactcad.partlib.array.prism import Hole
 from tactcad.vocabulary.material_library import material_fields, strength_settings
+from tactcad.vocabulary.process import CUT_PROCESSES, DEFAULT_CUT_PROCESS
 from tactcad.vocabulary.schema import (Derived, Problems, Section, fmt, listing, number,
                                        read_assumptions, validate)
 from tactcad.vocabulary.standards import (DOWEL_PINS, MINIATURE_SCREWS, shortest_dowel_length,
@@ -247,13 +248,38 @@ def envelope(d: CombTables) -> tuple[float, float, float]:
     return (s.head_height_mm + max(length, grip(d)), row_length(d).value, height)
 
 
+def spacer_process(d: CombTables) -> Derived:
+    """The spacer's cut process (``[comb] spacer_process``), else the first registered
+    process whose sheet range holds its thickness (value: the process's name)."""
+    t = d.comb.spacer_thickness_mm
+    if d.comb.spacer_process is not None:
+        return Derived("spacer_process", d.comb.spacer_process, "", "stated")
+    fits = [q for q in CUT_PROCESSES.values() if q.sheet_range_mm[0] <= t <= q.sheet_range_mm[1]]
+    name = fits[0].name if fits else DEFAULT_CUT_PROCESS
+    return Derived("spacer_process", name, "",
+                   f"the first process whose sheet range holds the {fmt(t)} mm spacer")
+
+
+def _check_spacer_process(d: CombTables, p: Problems) -> None:
+    """The spacer's thickness lies in its process's sheet range."""
+    name = spacer_process(d).value
+    lo, hi = CUT_PROCESSES[name].sheet_range_mm
+    t = d.comb.spacer_thickness_mm
+    if not lo - 1e-12 <= t <= hi + 1e-12:
+        field = "comb.spacer_process" if d.comb.spacer_process else "comb.spacer_thickness_mm"
+        p.add(field, d.comb.spacer_process or t,
+              f"a process whose sheet range holds the {fmt(t)} mm spacer ({name}: {lo:g} ... "
+              f"{hi:g} mm)", CUT_PROCESSES[name].sheet_source)
+
+
 def comb_geometry(d: CombTables) -> CombGeometry:
     screws, dowels = fastener_positions(d)
     return CombGeometry(
         sheets=comb_sheets(d), spacer_thickness_mm=d.comb.spacer_thickness_mm, screw=screw(d),
         screw_length_mm=screw_length(d)[1].value, dowel_diameter_mm=dowel_diameter(d),
         dowel_length_mm=dowel_length(d)[1].value, screw_x_mm=screws, dowel_x_mm=dowels,
-        fastener_y_mm=spine_height(d).value / 2, envelope_mm=envelope(d))
+        fastener_y_mm=spine_height(d).value / 2, envelope_mm=envelope(d),
+        spacer_process=spacer_process(d).value)
 
 
 def element_slots(d: CombTables, sheets: tuple[CombSheet, ...]) -> tuple[ElementSlot, ...]:
@@ -411,7 +437,7 @@ def _check_arm_domain(d: CombTables, p: Problems) -> None:
 
 
 COMB_RULES = (_check_element, _check_arms, _check_comb, _check_arm_domain, check_requirements,
-              check_readout, check_tolerances, check_in_use)
+              check_readout, check_tolerances, check_in_use, _check_spacer_process)
 
 
 # ---------------------------------------------------------------------------

@@ -45,6 +45,7 @@ from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_point
 from tactcad.errors import DesignError
 from tactcad.catalogue.files import profile_dxf_name, sheet_dxf_name, sheet_names_by_process
 from tactcad.catalogue.shop import material_designation
+from tactcad.partlib.array.comb_hardware import SPACER_PART as COMB_SPACER_PART
 from tactcad.partlib.array.comb_sheet import CombSheet
 from tactcad.export.dxf import (DEFAULT_DXF_VERSION, DXF_VERSIONS, DxfFile, LeadIn, Mark, PlacedProfile, Tab,
                                 circle_entry, placed_extents, write_dxf)
@@ -160,8 +161,9 @@ def _with_start_holes(profile: Profile, start_diameter_mm: float) -> Profile:
     return replace(profile, start_holes=starts)
 
 
-#: The part modules whose parts are cut from a profile (the clamp plate is milled).
-CUT_FAMILIES = ("element", "spacer", "comb_sheet")
+#: The part modules whose parts are cut from a profile (the clamp plate is milled; of the
+#: comb's hardware only its spacer is cut, the rest is bought).
+CUT_FAMILIES = ("element", "spacer", "comb_sheet", "comb_hardware")
 
 
 def shop_profiles(plan: Plan) -> list[ShopProfile]:
@@ -173,6 +175,8 @@ def shop_profiles(plan: Plan) -> list[ShopProfile]:
         counts[slot.geometry.part_name] = counts.get(slot.geometry.part_name, 0) + 1
     out = [_row_sheet_profile(plan, spec) for spec in specs.values()
            if isinstance(spec.geometry, CombSheet)]
+    out += [_plate_profile(plan, spec, "SPACER") for spec in specs.values()
+            if spec.name == COMB_SPACER_PART]
     for name in (n for n in plan.distinct_elements if n in specs):
         g = specs[name].geometry
         numbers = [s.number for s in plan.slots if s.geometry.part_name == name]
@@ -214,6 +218,17 @@ def _row_sheet_profile(plan: Plan, spec: PartSpec) -> ShopProfile:
         thickness_mm=spec.thickness_mm, copy_marks=(mark,), keep_out=keep,
         web_thickness_mm=thinnest.web_thickness_mm, web_tolerance_mm=thinnest.web_tolerance_mm,
         designation=material_designation(spec, plan),
+        process=spec.process.key or DEFAULT_CUT_PROCESS, wire=plan.edm,
+        file_mark=f"{mark} QTY 1")
+
+
+def _plate_profile(plan: Plan, spec: PartSpec, mark: str) -> ShopProfile:
+    """The cut profile of a plate without a flexure (one copy; its holes with the start
+    holes a wire needs: the shop file keeps them only for a process that drills them)."""
+    return ShopProfile(
+        part=spec.name, profile=_with_start_holes(spec.profile, plan.edm.start_hole_diameter_mm),
+        quantity=1, material=spec.material, thickness_mm=spec.thickness_mm,
+        copy_marks=(mark,), keep_out=(), designation=material_designation(spec, plan),
         process=spec.process.key or DEFAULT_CUT_PROCESS, wire=plan.edm,
         file_mark=f"{mark} QTY 1")
 

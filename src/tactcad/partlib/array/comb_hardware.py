@@ -24,7 +24,7 @@ from tactcad.kernel.shapes import box, cylinder, extrude_profile
 from tactcad.partlib.array.fasteners import build_nut, build_screw, nut_data, screw_data
 from tactcad.partlib.array.prism import hole_circles, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, PartData
-from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.process import Method, Process, cut_process
 from tactcad.vocabulary.schema import name_number
 
 if TYPE_CHECKING:
@@ -138,7 +138,7 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
         nut = replace(nut, process=Process(f"DIN 934 {comb.screw.size} hex nut", Method.BOUGHT))
     return (
         PartData(name=SPACER_PART, kind="fabricated",
-                 process=Process("wire EDM or laser cut from sheet", Method.SHEET),
+                 process=cut_process(comb.spacer_process, "comb.spacer_process").part_process(),
                  material=context.plan.material.name, color=SPACER_COLOR,
                  expected_volume_mm3=prof.area_mm2 * plate.thickness_mm,
                  expected_bbox_mm=prism_bbox(prof, plate.thickness_mm), geometry=plate,

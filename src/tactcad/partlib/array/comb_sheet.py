@@ -27,7 +27,7 @@ from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.element import WEB_RANGE_MM, FITTED_DOMAIN, ElementGeometry
 from tactcad.partlib.array.prism import Hole, hole_circles, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
-from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.process import CUT_PROCESSES, DEFAULT_CUT_PROCESS, Method, Process
 from tactcad.vocabulary.schema import Section, choice, listing, number
 from tactcad.vocabulary.standards import DOWEL_PINS, MINIATURE_SCREWS, BoltSpec
 
@@ -64,6 +64,10 @@ class CombSection(Section):
     #: each element's web (element order); left out: ``element.web_thickness_mm``
     web_thicknesses_mm: listing(number(*WEB_RANGE_MM, why=FITTED_DOMAIN), 2, MAX_COMB_ELEMENTS,
                                 "one web per element (mm), rows x columns") = None
+    #: how the spacer is cut (:data:`tactcad.vocabulary.process.CUT_PROCESSES`); left out:
+    #: the first process whose sheet range holds the spacer's thickness (wire EDM from
+    #: 0.5 mm, laser cutting below)
+    spacer_process: choice(CUT_PROCESSES, "the processes that cut a part from sheet") = None
 
 
 @dataclass(frozen=True)
@@ -128,6 +132,7 @@ class CombGeometry:
         fastener_y_mm: their height (mid-spine).
         envelope_mm: (across the rows with head and screw end, along the row,
             height to the contact faces).
+        spacer_process: the cut process of the spacer (its name).
     """
 
     sheets: tuple[CombSheet, ...]
@@ -140,6 +145,7 @@ class CombGeometry:
     dowel_x_mm: tuple[float, ...]
     fastener_y_mm: float
     envelope_mm: tuple[float, float, float]
+    spacer_process: str = DEFAULT_CUT_PROCESS
 
     @property
     def envelope_centre_mm(self) -> tuple[float, float]:
