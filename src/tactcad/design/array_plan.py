@@ -24,6 +24,7 @@ Units: mm, N, MPa throughout. Frames:
 from __future__ import annotations
 
 import copy
+import math
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -284,6 +285,24 @@ class Plan:
                     xs.append(wx)
                     zs.append(wz)
         return (min(zs), max(zs)), (min(xs), max(xs))
+
+    @property
+    def insert_axes(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """The insert's frame in the array's (x, z) plane (mm): its origin, the first
+        element's tip centre, and the unit vector u along the first row (its first tip to
+        its last; a one-column array: the array's z). v is u turned a quarter."""
+        row = self.row_slots(0)
+        x0, _, z0 = row[0].tip_centre_world_mm
+        x1, _, z1 = row[-1].tip_centre_world_mm
+        length = math.hypot(x1 - x0, z1 - z0)
+        u = ((x1 - x0) / length, (z1 - z0) / length) if length > 1e-9 else (0.0, 1.0)
+        return (x0, z0), u
+
+    def in_insert_frame(self, x_mm: float, z_mm: float) -> tuple[float, float]:
+        """A point of the array's (x, z) plane in the insert's frame (u, v; mm)."""
+        (x0, z0), (ux, uz) = self.insert_axes
+        dx, dz = x_mm - x0, z_mm - z0
+        return dx * ux + dz * uz, -dx * uz + dz * ux
 
     @property
     def tip_field_mm(self) -> tuple[float, float]:

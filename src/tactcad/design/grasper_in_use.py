@@ -10,7 +10,6 @@ origin the first element's tip centre, u along the first row, v across. Units: m
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -56,16 +55,11 @@ def stated_grasper(plan: Any) -> StatedGrasper | None:
 
     jaw = jaw_part(plan).geometry
     slab = slab_part(jaw, design_table(plan, "tissue_slab")).geometry
-    row = plan.row_slots(0)
-    x0, _, z0 = row[0].tip_centre_world_mm
-    x1, _, z1 = row[-1].tip_centre_world_mm
-    length = math.hypot(x1 - x0, z1 - z0)
-    ux, uz = ((x1 - x0) / length, (z1 - z0) / length) if length > 1e-9 else (0.0, 1.0)
     cx, cz = comb.envelope_centre_mm
     # the pin in the array's frame: on the jaw's axis (the envelope's centre across), its
     # distance from the pocket's centre along the jaw's x, which is the array's z
-    dx, dz = cx - x0, cz + (jaw.pin_x_mm - jaw.pocket_centre_x_mm) - z0
-    return StatedGrasper(pivot_u_mm=dx * ux + dz * uz, pivot_v_mm=-dx * uz + dz * ux,
+    pivot_u, pivot_v = plan.in_insert_frame(cx, cz + jaw.pin_x_mm - jaw.pocket_centre_x_mm)
+    return StatedGrasper(pivot_u_mm=pivot_u, pivot_v_mm=pivot_v,
                          jaw_length_mm=jaw.length_mm - jaw.pin_x_mm,
                          opening_angle_deg=jaw.opening_angle_deg,
                          slab_thickness_mm=slab.thickness_mm)

@@ -14,7 +14,6 @@ proportion to the radius). Units: mm.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from tactcad.design.array_plan import Plan
@@ -28,19 +27,14 @@ def insert_frame(plan: Plan) -> dict[int, tuple[float, float]]:
     """Every tip centre in the insert's frame (mm): element number -> (u, v).
 
     Origin the first element's tip centre; u along the first row (its first tip to its last;
-    a one-column array: the array's z); v across, u turned a quarter in the face plane.
-    Works from the plan's slots whatever the construction.
+    a one-column array: the array's z); v across, u turned a quarter in the face plane
+    (:attr:`tactcad.design.array_plan.Plan.insert_axes`). Works from the plan's slots
+    whatever the construction.
     """
-    row = plan.row_slots(0)
-    x0, _, z0 = row[0].tip_centre_world_mm
-    x1, _, z1 = row[-1].tip_centre_world_mm
-    length = math.hypot(x1 - x0, z1 - z0)
-    ux, uz = ((x1 - x0) / length, (z1 - z0) / length) if length > 1e-9 else (0.0, 1.0)
     out = {}
     for slot in plan.slots:
         x, _, z = slot.tip_centre_world_mm
-        dx, dz = x - x0, z - z0
-        out[slot.number] = (dx * ux + dz * uz, -dx * uz + dz * ux)
+        out[slot.number] = plan.in_insert_frame(x, z)
     return out
 
 
