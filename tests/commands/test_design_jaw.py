@@ -23,6 +23,10 @@ def test_the_grasper_case_writes_a_comb_and_its_scenes_that_check(tmp_path):
     assert any(line.startswith("stacked:") for line in d["left_out"])
     assert all(not c["failed"] for c in d["checks"].values()), d["checks"]
     assert {"requirements", "hard stops", "grasper"} <= set(d["checks"])
+    # every cut process judged on the rows: wire EDM cuts webs far thinner than the sheet,
+    # etching and laser cutting (a minimum web near the sheet's thickness) do not
+    assert d["processes"]["wire-edm"] == []
+    assert any("flexure web" in line for line in d["processes"]["laser-cutting"])
     assert (tmp_path / "insert-scenes.toml").exists()
     assert 'scenes = "insert-scenes.toml"' in out.read_text(encoding="utf-8")
 

@@ -358,6 +358,7 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
 
     run_groups(groups, CheckContext(project.plan, path.parent, None, project), done)
     d, room = result.data, result.room
+    processes = row_process_verdicts(project.plan)
     return {
         "out": str(path), "construction": construction, "left_out": left,
         "jaw": {"jaw": room.label, "shaft_class_mm": room.shaft_class_mm,
@@ -371,7 +372,27 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
                         "counts": c.plan is not None and not c.failures,
                         "force_margin_rel": None if math.isinf(c.force_margin_rel) else c.force_margin_rel,
                         "binding": list(c.failures[:1])} for c in result.candidates],
-        "checks": checks}
+        "processes": processes, "checks": checks}
+
+
+def row_process_verdicts(plan) -> dict[str, list[str]]:
+    """Each cut process (:data:`tactcad.vocabulary.process.CUT_PROCESSES`) against the
+    written comb's row sheets: the rules it breaks (``process`` check group's lines; empty
+    when it cuts them). A flexure's web, far thinner than its sheet, is what wire EDM cuts
+    and etching and laser cutting (min web about the sheet's thickness) do not."""
+    from dataclasses import replace
+
+    from tactcad.checks.process_rules import part_rule_checks
+    from tactcad.export.dxf_sheet import shop_profiles
+    from tactcad.partlib.array.comb_sheet import CombSheet
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.vocabulary.process import process_names
+
+    specs = array_parts(plan, ("comb_sheet",))
+    rows = [sp for sp in shop_profiles(plan)
+            if sp.part in specs and isinstance(specs[sp.part].geometry, CombSheet)]
+    return {name: [r.detail for sp in rows for r in part_rule_checks(replace(sp, process=name))
+                   if not r.passed] for name in process_names()}
 
 
 def print_jaw_report(r: dict) -> None:
@@ -386,6 +407,11 @@ def print_jaw_report(r: dict) -> None:
           f"{', '.join(f'{g:g}' for g in r['stop_gaps_mm'])} mm")
     counted = sum(c["counts"] for c in r["candidates"])
     print(f"  {len(r['candidates'])} candidates, {counted} count")
+    for name, broken in r["processes"].items():
+        # a rule's line without its process (the line's head) and its figure and source
+        first = broken[0].split("; rule:")[0].removeprefix(f"{name}: ") if broken else ""
+        print(f"  rows by {name}: " + ("its rules hold" if not broken else
+                                       f"{len(broken)} rules broken (first: {first})"))
     for label, c in r["checks"].items():
         print(f"  check {label}: {c['passed']} passed, {len(c['failed'])} failed")
         for line in c["failed"]:
