@@ -139,3 +139,16 @@ def test_each_classs_default_jaw_passes_its_trocar_closed(shaft_class):
     # a stated size wins over the class's
     assert with_class_defaults(GrasperJawSection(shaft_class_mm=shaft_class,
                                                  thickness_mm=2.0)).thickness_mm == 2.0
+
+
+@pytest.mark.parametrize("table, field", [
+    ({"tip_proud_mm": 2.0}, "grasper_jaw.tip_proud_mm"),  # no face wall would do: the proud height
+    ({"face_wall_mm": 0.6}, "grasper_jaw.face_wall_mm"),
+    ({"pocket_width_mm": 3.0}, "grasper_jaw.pocket_width_mm"),  # narrower than the insert
+])
+def test_a_stated_jaw_that_cannot_take_the_insert_names_the_field_to_change(comb_data, table,
+                                                                            field):
+    plan = plan_from_dict(with_tables(comb_data, grasper_jaw=table))
+    with pytest.raises(DesignErrors) as err:
+        jaw_part(plan)
+    assert [e.field for e in err.value.errors] == [field]

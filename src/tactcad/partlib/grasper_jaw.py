@@ -49,6 +49,8 @@ CLASS_DEFAULTS_MM = {
     "10": {"width_clearance_mm": 3.5, "thickness_mm": 5.6, "opposing_jaw_mm": 1.5,
            "pin_diameter_mm": 1.5},
 }
+#: Thinnest face wall over the pocket (mm): the steel the window is cut through.
+FACE_WALL_MIN_MM = 0.1
 #: Least steel left between the pin hole and the pocket, and behind the pocket's far end, mm.
 MIN_WALL_MM = 0.5
 COLOR = (0.72, 0.74, 0.78)
@@ -68,7 +70,7 @@ class GrasperJawSection(Section):
     pocket_clearance_mm: number(0.0, 1.0) = 0.1
     pocket_length_mm: Optional[number(1.0, 80.0)] = None  # default: the insert's row + clearance
     pocket_width_mm: Optional[number(0.5, 10.0)] = None  # default: across the rows + clearance
-    face_wall_mm: number(0.1, 3.0) = 0.3
+    face_wall_mm: number(FACE_WALL_MIN_MM, 3.0) = 0.3
     tip_proud_mm: number(0.0, 3.0) = 0.3
     window_clearance_mm: number(0.0, 1.0) = 0.1
     distal_wall_mm: number(0.3, 10.0) = 1.0  # steel beyond the pocket's far end
@@ -264,9 +266,17 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
               f"{fmt(MIN_WALL_MM)} mm side walls")
     depth = j.thickness_mm - j.face_wall_mm
     tip_h = plan.slots[0].geometry.tip_height_mm
-    p.within("grasper_jaw.face_wall_mm", j.face_wall_mm, hi=tip_h - j.tip_proud_mm, hi_open=True,
-             why=f"face wall + tip_proud_mm ({fmt(j.tip_proud_mm)} mm) < the element's tip height "
-                 f"{fmt(tip_h)} mm, so the arms stay clear below the face wall")
+    # face wall + proud height < the tip's height: the arms stay clear below the face wall;
+    # the field to change is the proud height when no face wall would do
+    if tip_h - j.tip_proud_mm <= FACE_WALL_MIN_MM:
+        p.within("grasper_jaw.tip_proud_mm", j.tip_proud_mm, hi=tip_h - j.face_wall_mm,
+                 hi_open=True, why=f"tip_proud_mm + the {fmt(j.face_wall_mm)} mm face wall < "
+                 f"the element's tip height {fmt(tip_h)} mm, so the arms stay clear below the "
+                 "face wall")
+    else:
+        p.within("grasper_jaw.face_wall_mm", j.face_wall_mm, hi=tip_h - j.tip_proud_mm,
+                 hi_open=True, why=f"face wall + tip_proud_mm ({fmt(j.tip_proud_mm)} mm) < the "
+                 f"element's tip height {fmt(tip_h)} mm, so the arms stay clear below the face wall")
     if env:
         p.within("grasper_jaw.thickness_mm", j.thickness_mm, env[2] - j.tip_proud_mm,
                  why=f"the insert ({fmt(env[2])} mm high) stands {fmt(j.tip_proud_mm)} mm proud "
