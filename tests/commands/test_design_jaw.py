@@ -106,3 +106,20 @@ def test_a_jaw_too_small_for_any_comb_names_the_pocket_needed_and_the_jaw_that_h
     line = next(x for x in r.stderr.splitlines() if "nearest jaw:" in x)
     assert "0.5 mm sheet's comb" in line and line.endswith("--jaw 10"), line
     assert not list(tmp_path.iterdir())
+
+
+def test_a_tapered_jaws_outline_bounds_each_sheets_comb(tmp_path):
+    jaw = tmp_path / "taper.toml"
+    jaw.write_text('[grasper_jaw]\nshaft_class_mm = "10"\npocket_outline_mm = [[4.0, -2.75], '
+                   '[33.0, -2.25], [33.0, 2.25], [4.0, 2.75]]\n', encoding="utf-8")
+    out = tmp_path / "insert.toml"
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", str(jaw), "--out",
+                str(out), "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    # only a sheet whose comb is no wider than the taper's tip (4.5 mm less clearances) fits
+    assert d["sheet_mm"] == 0.5 and all(not c["failed"] for c in d["checks"].values())
+    assert any("no stretch" in (c["binding"] or [""])[0] for c in d["candidates"]
+               if c["sheet_mm"] >= 1.2)
+    written = tomllib.loads(out.read_text(encoding="utf-8"))
+    assert len(written["grasper_jaw"]["pocket_outline_mm"]) == 4

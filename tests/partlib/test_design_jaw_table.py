@@ -152,3 +152,52 @@ def test_a_stated_jaw_that_cannot_take_the_insert_names_the_field_to_change(comb
     with pytest.raises(DesignErrors) as err:
         jaw_part(plan)
     assert [e.field for e in err.value.errors] == [field]
+
+
+TAPER = [[4.0, -2.75], [33.0, -2.25], [33.0, 2.25], [4.0, 2.75]]  # a jaw narrowing to its tip
+
+
+def test_an_outlines_stretch_for_a_band_is_exact():
+    from tactcad.partlib.grasper_jaw import outline_stretch_mm
+
+    assert outline_stretch_mm(TAPER, 4.5) == pytest.approx((4.0, 33.0))
+    # half width 2.75 - 0.5 (x - 4) / 29 >= 2.5 up to x = 18.5
+    assert outline_stretch_mm(TAPER, 5.0) == pytest.approx((4.0, 18.5))
+    assert outline_stretch_mm(TAPER, 5.6) is None
+    # two lobes joined by a neck: the longer lobe wins
+    lobes = [[4, -2], [10, -2], [10, -0.5], [12, -0.5], [12, -2], [30, -2], [30, 2], [12, 2],
+             [12, 0.5], [10, 0.5], [10, 2], [4, 2]]
+    assert outline_stretch_mm(lobes, 3.0) == pytest.approx((12.0, 30.0))
+    assert outline_stretch_mm(lobes, 0.8) == pytest.approx((4.0, 30.0))
+
+
+def test_the_pocket_is_placed_inside_a_stated_outline(comb_data):
+    from tactcad.checks.grasper_fit import pocket_inside_outline_mm
+
+    plan = plan_from_dict(with_tables(comb_data, grasper_jaw={"pocket_outline_mm": [
+        [4.0, -2.75], [33.0, -2.75], [33.0, 2.75], [4.0, 2.75]]}))
+    g = jaw_part(plan).geometry
+    assert g.pocket_outline_mm is not None and pocket_inside_outline_mm(g) >= 0
+    # the 5.4 mm pocket fits the band only where the taper is wide enough: refused, named
+    with pytest.raises(DesignErrors) as err:
+        jaw_part(plan_from_dict(with_tables(comb_data, grasper_jaw={"pocket_outline_mm": TAPER})))
+    assert [e.field for e in err.value.errors] == ["grasper_jaw.pocket_outline_mm"]
+
+
+@pytest.mark.parametrize("outline, words", [
+    ([[5, -1], [20, 1], [20, -1], [5, 1]], "simple polygon"),  # a bow tie
+    ([[2, -2], [20, -2], [20, 2], [2, 2]], "<= x <="),  # over the pin's steel
+    ([[5, -3], [20, -3], [20, 3], [5, 3]], "|y| <="),  # through the side walls
+])
+def test_a_bad_outline_is_refused_naming_it(outline, words):
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({"pocket_outline_mm": outline}, "j.toml")
+    assert "grasper_jaw.pocket_outline_mm" in str(err.value) and words in str(err.value)
+
+
+def test_a_jaw_outline_sets_the_room_each_sheet_gets():
+    room = jaw_room({"pocket_outline_mm": TAPER}, "taper.toml")
+    assert room.outline is not None
+    assert room.along_for(4.2) == pytest.approx(29.0 - 2 * room.clearance_mm)
+    assert room.along_for(4.8) < room.along_for(4.2)  # a wider comb gets a shorter stretch
+    assert room.along_for(6.0) == 0.0

@@ -72,15 +72,33 @@ def pocket_clearances_mm(envelope_mm: tuple[float, float, float], jaw,
     Returns:
         ``across`` and ``along``: pocket less envelope, each side; ``back``:
         the insert's underside above the jaw's back; ``under_wall``: the arms'
-        tops below the face wall's underside.
+        tops below the face wall's underside; with a stated pocket outline,
+        ``outline``: the pocket's least distance inside it (negative: the depth
+        of the pocket's part outside it).
     """
     across, along, height = envelope_mm
     underside = jaw.thickness_mm + jaw.tip_proud_mm - height
     arm_top = jaw.thickness_mm + jaw.tip_proud_mm - tip_height_mm
-    return {"across": (jaw.pocket_width_mm - across) / 2,
-            "along": (jaw.pocket_length_mm - along) / 2,
-            "back": underside,
-            "under_wall": jaw.pocket_depth_mm - arm_top}
+    out = {"across": (jaw.pocket_width_mm - across) / 2,
+           "along": (jaw.pocket_length_mm - along) / 2,
+           "back": underside,
+           "under_wall": jaw.pocket_depth_mm - arm_top}
+    if getattr(jaw, "pocket_outline_mm", None):
+        out["outline"] = pocket_inside_outline_mm(jaw)
+    return out
+
+
+def pocket_inside_outline_mm(jaw) -> float:
+    """How far the jaw's pocket lies inside its stated outline (mm): the least distance
+    from the pocket's edge to the outline's, negative by the farthest point outside."""
+    import shapely.geometry as sg
+
+    outline = sg.Polygon(jaw.pocket_outline_mm)
+    x0, w = jaw.pocket_x0_mm, jaw.pocket_width_mm / 2
+    pocket = sg.box(x0, -w, x0 + jaw.pocket_length_mm, w)
+    if outline.covers(pocket):
+        return outline.exterior.distance(pocket)
+    return -max(outline.distance(sg.Point(q)) for q in pocket.exterior.coords)
 
 
 def pocket_fit(envelope_mm: tuple[float, float, float], jaw, tip_height_mm: float) -> CheckResult:

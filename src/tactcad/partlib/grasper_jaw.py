@@ -32,7 +32,8 @@ from pydantic import create_model
 from tactcad.kernel.shapes import box, cut, cylinder
 from tactcad.partlib.base import DrawingRecord, PartData, RigPart, Seat
 from tactcad.vocabulary.process import Method, Process
-from tactcad.vocabulary.schema import Derived, Problems, Section, choice, fmt, number, validate
+from tactcad.vocabulary.schema import (Derived, Problems, Section, choice, fmt, listing, number,
+                                       validate)
 
 #: Trocar classes (mm): the instrument's shaft diameter.
 SHAFT_CLASSES_MM = {"5": 5.0, "10": 10.0}
@@ -70,6 +71,12 @@ class GrasperJawSection(Section):
     pocket_clearance_mm: number(0.0, 1.0) = 0.1
     pocket_length_mm: Optional[number(1.0, 80.0)] = None  # default: the insert's row + clearance
     pocket_width_mm: Optional[number(0.5, 10.0)] = None  # default: across the rows + clearance
+    #: the region of the jaw a pocket may take (a tapered or curved jaw), a polygon of
+    #: [x, y] points in the jaw's frame (x from the proximal end, y across from its axis;
+    #: mm); the pocket is placed inside it. Left out: the bar between the pin's steel and
+    #: the distal wall, less the side walls
+    pocket_outline_mm: Optional[listing(listing(number(-100.0, 100.0), 2, 2, "an [x, y] point "
+                                                "(mm)"), 3, 64, "3 ... 64 [x, y] points (mm)")] = None
     face_wall_mm: number(FACE_WALL_MIN_MM, 3.0) = 0.3
     tip_proud_mm: number(0.0, 3.0) = 0.3
     window_clearance_mm: number(0.0, 1.0) = 0.1
@@ -98,6 +105,8 @@ class GrasperJawGeometry:
     #: the window's centre off the pocket's (along x, across y): the insert's tip field
     #: off its envelope's centre (:func:`tip_field_offset_mm`)
     window_offset_mm: tuple[float, float] = (0.0, 0.0)
+    #: the region the pocket may take, as stated (``pocket_outline_mm``), or None
+    pocket_outline_mm: tuple[tuple[float, float], ...] | None = None
 
     @property
     def pocket_centre_x_mm(self) -> float:
@@ -107,6 +116,69 @@ class GrasperJawGeometry:
     def window_centre_mm(self) -> tuple[float, float]:
         """(x, y) of the window's centre in the jaw frame (mm)."""
         return self.pocket_centre_x_mm + self.window_offset_mm[0], self.window_offset_mm[1]
+
+
+def outline_stretch_mm(outline, across_mm: float) -> tuple[float, float] | None:
+    """The longest stretch (x0, x1) along the jaw over which ``outline`` (polygon points in
+    the jaw's frame, mm) holds a band ``across_mm`` wide centred on the jaw's axis; None
+    when it holds none. Exact: between two breakpoints (a vertex, or an edge crossing the
+    band's sides) a cross-section is inside for all of the stretch or for none of it."""
+    import shapely.geometry as sg
+
+    poly = sg.Polygon(outline)
+    h = across_mm / 2
+    pts = list(outline) + [outline[0]]
+    xs = {x for x, y in outline}
+    for (xa, ya), (xb, yb) in zip(pts, pts[1:]):
+        for side in (-h, h):
+            if (ya - side) * (yb - side) < 0:
+                xs.add(xa + (side - ya) * (xb - xa) / (yb - ya))
+    xs = sorted(xs)
+    good = [(a, b) for a, b in zip(xs, xs[1:])
+            if b > a and poly.covers(sg.LineString([((a + b) / 2, -h), ((a + b) / 2, h)]))]
+    merged: list[list[float]] = []
+    for a, b in good:
+        if merged and abs(merged[-1][1] - a) < 1e-12:
+            merged[-1][1] = b
+        else:
+            merged.append([a, b])
+    best = max(merged, key=lambda s: s[1] - s[0], default=None)
+    return None if best is None else (best[0], best[1])
+
+
+def _pocket_in_outline(p: Problems, outline, width_mm: float, length_mm: float,
+                       fallback_x0: float) -> float:
+    """The pocket's proximal end (x, mm) centred in the longest stretch of ``outline`` that
+    holds it ``width_mm`` wide on the jaw's axis; a refusal when none is ``length_mm`` long."""
+    stretch = outline_stretch_mm(outline, width_mm)
+    if stretch is None or stretch[1] - stretch[0] < length_mm - 1e-9:
+        got = "none" if stretch is None else f"{fmt(round(stretch[1] - stretch[0], 4))} mm"
+        p.add("grasper_jaw.pocket_outline_mm", [list(q) for q in outline],
+              f"an outline holding the {fmt(width_mm)} x {fmt(length_mm)} mm pocket on the "
+              "jaw's axis", f"its longest stretch {fmt(width_mm)} mm wide: {got}")
+        return fallback_x0
+    return (stretch[0] + stretch[1] - length_mm) / 2
+
+
+def _check_outline(p: Problems, outline, x_lo: float, x_hi: float, half_width: float) -> bool:
+    """A stated outline is one simple polygon inside the jaw's body (between the pin's
+    steel and the distal wall along, inside the side walls across)."""
+    import shapely.geometry as sg
+
+    field = "grasper_jaw.pocket_outline_mm"
+    poly = sg.Polygon(outline)
+    if not poly.is_valid or poly.area <= 0:
+        p.add(field, [list(q) for q in outline], "a simple polygon of non-zero area",
+              "its edges cross or it has no area")
+        return False
+    x0, y0, x1, y1 = poly.bounds
+    if x0 < x_lo - 1e-9 or x1 > x_hi + 1e-9 or max(-y0, y1) > half_width + 1e-9:
+        p.add(field, [list(q) for q in outline],
+              f"points with {fmt(x_lo)} <= x <= {fmt(x_hi)} mm and |y| <= {fmt(half_width)} mm",
+              "the jaw's body between the pin's steel and the distal wall, inside its "
+              f"{fmt(MIN_WALL_MM)} mm side walls")
+        return False
+    return True
 
 
 @dataclass(frozen=True)
@@ -129,6 +201,18 @@ class JawRoom:
     height_mm: float
     option: str = ""
     table: Mapping[str, Any] | None = None
+    outline: tuple[tuple[float, float], ...] | None = None
+    clearance_mm: float = 0.0
+
+    def along_for(self, across_mm: float) -> float:
+        """The pocket's length less its clearances (mm) for an insert ``across_mm`` wide:
+        ``along_mm`` within ``across_mm``; with an outline, its longest stretch that
+        holds the insert and its clearances; 0 where none does."""
+        if self.outline is None:
+            return self.along_mm if across_mm <= self.across_mm + 1e-9 else 0.0
+        stretch = outline_stretch_mm(self.outline, across_mm + 2 * self.clearance_mm)
+        return 0.0 if stretch is None else max(stretch[1] - stretch[0] - 2 * self.clearance_mm,
+                                               0.0)
 
     @property
     def label(self) -> str:
@@ -172,11 +256,34 @@ def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
                             f"the {fmt(width)} mm jaw less {fmt(MIN_WALL_MM)} mm side walls")
     along = _stated_pocket(p, "grasper_jaw.pocket_length_mm", j.pocket_length_mm, most_along,
                            "the jaw between the pin's steel and the distal wall")
+    outline = tuple(tuple(q) for q in j.pocket_outline_mm) if j.pocket_outline_mm else None
+    if outline:
+        x_hi = j.length_mm - j.distal_wall_mm
+        _check_outline(p, outline, x_hi - most_along, x_hi, most_across / 2)
     p.raise_if_any()
     c = j.pocket_clearance_mm
-    return JawRoom(j.shaft_class_mm, across - 2 * c, along - 2 * c,
+    if outline:  # its widest band on the axis and its longest stretch (bounds of the room)
+        across, along = round(_widest_band_mm(outline), 3), round(_longest_on_axis_mm(outline), 3)
+    return JawRoom(j.shaft_class_mm, max(across - 2 * c, 0.0), max(along - 2 * c, 0.0),
                    j.thickness_mm + j.tip_proud_mm,
-                   option=jaw if isinstance(jaw, str) else file, table=table)
+                   option=jaw if isinstance(jaw, str) else file, table=table, outline=outline,
+                   clearance_mm=c)
+
+
+def _widest_band_mm(outline) -> float:
+    """The widest band centred on the jaw's axis that some stretch of ``outline`` holds (mm,
+    to 1 µm)."""
+    lo, hi = 0.0, 200.0
+    while hi - lo > 1e-3:
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if outline_stretch_mm(outline, mid) else (lo, mid)
+    return lo
+
+
+def _longest_on_axis_mm(outline) -> float:
+    """The longest stretch of ``outline`` along the jaw's axis (mm; a band 1 µm wide)."""
+    stretch = outline_stretch_mm(outline, 1e-3)
+    return 0.0 if stretch is None else stretch[1] - stretch[0]
 
 
 def _stated_pocket(p: Problems, field: str, stated: float | None, most: float, why: str) -> float:
@@ -292,6 +399,9 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
     x1 = j.length_mm - j.distal_wall_mm
     x0 = x1 - pl
     least = j.pin_inset_mm + j.pin_diameter_mm / 2 + MIN_WALL_MM
+    outline = tuple(tuple(q) for q in j.pocket_outline_mm) if j.pocket_outline_mm else None
+    if outline and _check_outline(p, outline, least, x1, width / 2 - MIN_WALL_MM):
+        x0 = _pocket_in_outline(p, outline, pw, pl, x0)
     p.within("grasper_jaw.length_mm", j.length_mm, least + pl + j.distal_wall_mm,
              why=f"pin, {fmt(MIN_WALL_MM)} mm of steel, the {fmt(pl)} mm pocket and the distal wall")
     p.within("grasper_jaw.pin_inset_mm", j.pin_inset_mm, j.pin_diameter_mm / 2 + MIN_WALL_MM,
@@ -305,7 +415,8 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
     # the window stays inside the pocket's outline (its walls carry the face wall)
     off = (_clamped(off[0], (pl - wl) / 2), _clamped(off[1], (pw - ww) / 2))
     g = GrasperJawGeometry(j.length_mm, width, j.thickness_mm, j.pin_inset_mm, j.pin_diameter_mm,
-                           x0, pl, pw, depth, wl, ww, j.tip_proud_mm, j.opening_angle_deg, off)
+                           x0, pl, pw, depth, wl, ww, j.tip_proud_mm, j.opening_angle_deg, off,
+                           outline)
     derived = (
         Derived("grasper_jaw_width", width, "mm",
                 f"shaft class {j.shaft_class_mm} mm less {fmt(j.width_clearance_mm)} mm clearance"),

@@ -273,6 +273,10 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
     it first."""
     if progress:
         progress(f"comb on a {sheet:g} mm sheet, K_m {km_scale:g} x eq. 2's centre")
+    if getattr(room, "outline", None) is not None:
+        room, why = room_of_outline(base, sheet, columns, room, targets, grade)
+        if why:
+            return CombCandidate(sheet, km_scale, None, None, (why,), -math.inf, None)
     d, binding = comb_tables(base, sheet, columns, room, targets, grade)
     if not binding:
         try:
@@ -283,6 +287,21 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
         return CombCandidate(sheet, km_scale, None, None, tuple(binding), -math.inf, None)
     plan, fails, margin, rated = judge(d, envelope_of)
     return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated)
+
+
+def room_of_outline(base: dict, sheet: float, columns: int, room: Any, targets: Targets,
+                    grade: str | None) -> tuple[Any, str]:
+    """The room a jaw's pocket outline leaves one sheet's comb: as wide as the comb and as
+    long as the outline's longest stretch that holds it (``room.along_for``), and why there
+    is none."""
+    env = comb_envelope_mm(base, sheet, columns, room, targets, grade)
+    if env is None:
+        return room, f"the {sheet:g} mm sheet's comb has no plan"
+    along = room.along_for(env[0])
+    if along <= 0:
+        return room, (f"requirements.footprint_mm[1]: the pocket outline holds no stretch "
+                      f"{env[0]:.4g} mm wide (the comb across its rows) on the jaw's axis")
+    return replace(room, across_mm=env[0], along_mm=along), ""
 
 
 def comb_envelope_mm(base: dict, sheet: float, columns: int, room: Any, targets: Targets,
