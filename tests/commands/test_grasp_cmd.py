@@ -42,6 +42,22 @@ def test_the_shipped_comb_reads_every_unit_at_equal_radius_as_laid_out():
     assert [u["R_read"] for u in laid] == pytest.approx([u["R_read"] for u in paired])
 
 
+def test_the_jaw_and_shaft_the_design_states_are_the_grasps_and_said_so():
+    r = run_cli("grasp", "--design", COMB, "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["jaw"]["opening_angle_deg"] == 30.0  # the example's [grasper_jaw], not 60
+    assert d["reasons"]["pivot"] == "the design's [grasper_jaw]"
+    assert d["leads"]["channel_diameter_mm"] == 9.0  # the 10 mm shaft's bore, as check reads it
+    # a stacked design's stated jaw cannot seat its insert without the kernel: said, not used
+    r = run_cli("grasp", "--design", TI, "--set", 'grasper_jaw.shaft_class_mm="10"', "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert "is not used" in d["reasons"]["pivot"] and d["jaw"]["opening_angle_deg"] == 60.0
+    r = run_cli("grasp", "--design", TI, "--json")
+    assert json.loads(r.stdout)["leads"]["channel_diameter_mm"] == 3.0  # no grasper: assumed
+
+
 def test_the_pivot_and_the_angle_reach_the_grasp():
     r = run_cli("grasp", "--design", TI, "--pivot-mm", "-10", "0", "--angle-deg", "10",
                 "--json")
@@ -71,3 +87,15 @@ def test_bad_options_name_the_option_the_value_and_the_range(options, words):
     r = run_cli("grasp", "--design", TI, *options)
     assert r.returncode == 2
     assert words in r.stderr and "allowed" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_a_default_grasp_lighter_than_the_open_jaw_allows_is_the_jaw_fully_open():
+    # the example's jaw opens 30 degrees: a 3 mm slab near its pin is pressed already
+    r = run_cli("grasp", "--design", COMB, "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["as_laid_out"]["angle_deg"] == d["jaw"]["opening_angle_deg"]
+    assert d["reasons"]["force_N"].startswith("the jaw at its full opening")
+    # asked for, the same force is refused with the range the jaw reaches
+    r = run_cli("grasp", "--design", COMB, "--force-N", "0.3")
+    assert r.returncode == 2 and "--force-N" in r.stderr

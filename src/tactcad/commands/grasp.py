@@ -80,9 +80,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for the elements' K (default closed-form)")
     p.add_argument("--lead-channel-mm", type=number(0, 50, "mm", lo_open=True),
-                   default=DEFAULT_LEAD_CHANNEL_MM,
-                   help="the shaft's lead channel diameter (mm; default %(default)s mm, "
-                        "assumed: give your shaft's)")
+                   default=None,
+                   help="the shaft's lead channel diameter (mm; default the bore of the "
+                        "design's [grasper_shaft] when it states its grasper, else "
+                        f"{DEFAULT_LEAD_CHANNEL_MM:g} mm, assumed: give your shaft's)")
     add_output_args(p, "print one JSON object: the jaw, both layouts' tips and units, the "
                        "leads")
     p.set_defaults(func=run)
@@ -136,18 +137,35 @@ def run(args: argparse.Namespace) -> int:
     rated = float(req.full_scale_force_N)
     lo, hi = req.kobj_range_N_per_mm
     k_obj = args.kobj if args.kobj is not None else math.sqrt(lo * hi)
-    force = args.force_N if args.angle_deg is not None or args.force_N is not None \
-        else 0.5 * rated * len(plan.slots)
+    asked = args.angle_deg is not None or args.force_N is not None
+    force = args.force_N if asked else round(0.5 * rated * len(plan.slots), 12)
+    force_why = ("--force-N" if args.force_N is not None else "--angle-deg"
+                 if args.angle_deg is not None else
+                 f"half the rated {rated:g} N on each of {len(plan.slots)} elements")
     k = ladder_stiffness_by_element(plan, args.model)
     by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
     units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
     try:
         stated = stated_grasper(plan) is not None
+        unused = "grasper_jaw" in plan.raw and not stated
         jaw = default_jaw(plan, args.pivot_mm, args.jaw_length_mm, args.opening_deg,
                           args.slab_thickness_mm)
-        result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=args.angle_deg,
-                       force_N=force, coupling=args.coupling, profile=args.profile)
-        leads = leads_check(len(plan.slots), args.lead_channel_mm,
+        try:
+            result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=args.angle_deg,
+                           force_N=force, coupling=args.coupling, profile=args.profile)
+        except DesignError as exc:
+            if asked or exc.field != "force_N":
+                raise
+            # the default force below what the tissue takes with the jaw fully open: the
+            # grasp the jaw cannot make lighter
+            result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=jaw.opening_angle_deg,
+                           coupling=args.coupling, profile=args.profile)
+            force_why = (f"the jaw at its full opening: {force_why} ({force:g} N) is less "
+                         f"than the {result.as_laid_out.total_force_N:.4g} N the "
+                         f"{jaw.slab_thickness_mm:g} mm {args.profile} takes with the jaw "
+                         f"open {jaw.opening_angle_deg:g} degrees")
+        channel, channel_why = lead_channel_of(plan, args.lead_channel_mm)
+        leads = leads_check(len(plan.slots), channel,
                             readout_chain(plan).lead_wires)
     except DesignError as exc:
         raise _option_error(exc) from None
@@ -156,23 +174,40 @@ def run(args: argparse.Namespace) -> int:
                   "rated_force_N": req.reasons["full_scale_force_N"],
                   "K_obj": "--kobj" if args.kobj is not None else
                   f"the geometric mean of the K_obj range {lo:g} ... {hi:g} N/mm",
-                  "force_N": "--force-N" if args.force_N is not None else
-                  ("--angle-deg" if args.angle_deg is not None else
-                   f"half the rated {rated:g} N on each of {len(plan.slots)} elements"),
+                  "force_N": force_why,
                   "pivot": "--pivot-mm" if args.pivot_mm else
                   "the design's [grasper_jaw]" if stated else
-                  f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows",
+                  f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows"
+                  + (f" (the design's [grasper_jaw] is not used: the {plan.construction} "
+                     "construction's envelope needs the CAD kernel)" if unused else ""),
                   "jaw_length_mm": "--jaw-length-mm" if args.jaw_length_mm else
                   "the design's [grasper_jaw]" if stated else
                   f"the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm",
                   "opening_angle_deg": "--opening-deg" if args.opening_deg else
                   "the design's [grasper_jaw]" if stated else
                   f"{DEFAULT_OPENING_DEG:g} degrees, assumed",
+                  "lead_channel_mm": channel_why,
                   "slab_thickness_mm": "--slab-thickness-mm" if args.slab_thickness_mm else
                   "the design's [tissue_slab]" if stated else
                   f"{DEFAULT_SLAB_MM:g} mm, assumed"}}
     print(dumps(record, indent=1) if args.json else render(record))
     return 0
+
+
+def lead_channel_of(plan, given_mm: float | None) -> tuple[float, str]:
+    """(the lead channel's diameter in mm, where it comes from): ``--lead-channel-mm``, the
+    bore of the design's shaft when the design states its grasper (as the ``grasper``
+    check reads it), else :data:`DEFAULT_LEAD_CHANNEL_MM`, assumed."""
+    if given_mm is not None:
+        return given_mm, "--lead-channel-mm"
+    raw = getattr(plan, "raw", None) or {}
+    if "grasper_jaw" in raw or "grasper_shaft" in raw:
+        from tactcad.partlib.grasper_jaw import design_table
+        from tactcad.partlib.grasper_shaft import shaft_part
+
+        bore = shaft_part(design_table(plan, "grasper_shaft")).geometry.bore_diameter_mm
+        return bore, "the bore of the design's [grasper_shaft]"
+    return DEFAULT_LEAD_CHANNEL_MM, f"{DEFAULT_LEAD_CHANNEL_MM:g} mm, assumed"
 
 
 def _f(x, digits: int = 4) -> str:
