@@ -75,8 +75,9 @@ class GrasperJawSection(Section):
     #: [x, y] points in the jaw's frame (x from the proximal end, y across from its axis;
     #: mm); the pocket is placed inside it. Left out: the bar between the pin's steel and
     #: the distal wall, less the side walls
-    pocket_outline_mm: Optional[listing(listing(number(-100.0, 100.0), 2, 2, "an [x, y] point "
-                                                "(mm)"), 3, 64, "3 ... 64 [x, y] points (mm)")] = None
+    pocket_outline_mm: Optional[listing(listing(number(-100.0, 100.0), 2, 2,
+                                                "an [x, y] point (mm)"),
+                                        3, 64, "3 ... 64 [x, y] points (mm)")] = None
     face_wall_mm: number(FACE_WALL_MIN_MM, 3.0) = 0.3
     tip_proud_mm: number(0.0, 3.0) = 0.3
     window_clearance_mm: number(0.0, 1.0) = 0.1
@@ -218,7 +219,8 @@ class JawRoom:
     def label(self) -> str:
         """The jaw in words: "10 mm jaw", or "10 mm jaw of my_jaw.toml" for a file's."""
         own = self.option and self.option not in SHAFT_CLASSES_MM
-        return f"{self.shaft_class_mm} mm jaw" + (f" of {PurePath(self.option).name}" if own else "")
+        own_file = f" of {PurePath(self.option).name}" if own else ""
+        return f"{self.shaft_class_mm} mm jaw{own_file}"
 
 
 def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:

@@ -7,8 +7,9 @@ derivation is :mod:`tactcad.design.comb_plan`'s).
 
 Part frames: the spacer as a comb sheet (x along the row, y up the spine, extruded along
 +z); a shim as a comb sheet too (its corner at the origin, the length along x, its
-thickness along y, the sheet's thickness along z); a dowel pin along +z from z = 0; the screw and nut as
-:mod:`tactcad.partlib.array.fasteners` builds them (head underside, nut seat at z = 0).
+thickness along y, the sheet's thickness along z); a dowel pin along +z from z = 0; the
+screw and nut as :mod:`tactcad.partlib.array.fasteners` builds them (head underside, nut
+seat at z = 0).
 The screw and nut have builder keys of their own so the comb's build step, not the
 stacked array's bolt step, consumes them. Units: mm.
 """
