@@ -31,19 +31,24 @@ def test_the_grasper_case_writes_a_comb_and_its_scenes_that_check(tmp_path):
     assert 'scenes = "insert-scenes.toml"' in out.read_text(encoding="utf-8")
 
 
-def test_a_labs_own_jaw_from_a_file_bounds_the_search_and_goes_into_the_design(tmp_path):
-    jaw = tmp_path / "our_jaw.toml"
-    jaw.write_text('[grasper_jaw]\nshaft_class_mm = "10"\npocket_width_mm = 5.0\n'
-                   'pocket_length_mm = 27.0\nopening_angle_deg = 40.0\n', encoding="utf-8")
-    out = tmp_path / "insert.toml"
+def design_for_jaw_file(folder, name: str, table: str) -> tuple[dict, dict]:
+    """(the report, the written design) of the grasper case at 0.05 N for the jaw file
+    ``name`` whose ``[grasper_jaw]`` holds ``table`` (TOML lines)."""
+    jaw = folder / name
+    jaw.write_text(f"[grasper_jaw]\nshaft_class_mm = \"10\"\n{table}", encoding="utf-8")
+    out = folder / "insert.toml"
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", str(jaw), "--out",
                 str(out), "--json")
     assert r.returncode == 0, r.stderr
-    d = json.loads(r.stdout)
+    return json.loads(r.stdout), tomllib.loads(out.read_text(encoding="utf-8"))
+
+
+def test_a_labs_own_jaw_from_a_file_bounds_the_search_and_goes_into_the_design(tmp_path):
+    d, written = design_for_jaw_file(tmp_path, "our_jaw.toml", "pocket_width_mm = 5.0\n"
+                                     "pocket_length_mm = 27.0\nopening_angle_deg = 40.0\n")
     assert d["jaw"]["jaw"] == "10 mm jaw of our_jaw.toml"
     assert (d["jaw"]["pocket_across_mm"], d["jaw"]["pocket_along_mm"]) == pytest.approx((4.8, 26.8))
     assert d["pitch_mm"] * 6 <= 26.8 and all(not c["failed"] for c in d["checks"].values())
-    written = tomllib.loads(out.read_text(encoding="utf-8"))
     assert written["grasper_jaw"]["pocket_width_mm"] == 5.0
     # no reason carried over from the template names the template's own jaw
     assert not any("8 mm jaw" in why for why in written["assumptions"].values())
@@ -109,17 +114,10 @@ def test_a_jaw_too_small_for_any_comb_names_the_pocket_needed_and_the_jaw_that_h
 
 
 def test_a_tapered_jaws_outline_bounds_each_sheets_comb(tmp_path):
-    jaw = tmp_path / "taper.toml"
-    jaw.write_text('[grasper_jaw]\nshaft_class_mm = "10"\npocket_outline_mm = [[4.0, -2.75], '
-                   '[33.0, -2.25], [33.0, 2.25], [4.0, 2.75]]\n', encoding="utf-8")
-    out = tmp_path / "insert.toml"
-    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", str(jaw), "--out",
-                str(out), "--json")
-    assert r.returncode == 0, r.stderr
-    d = json.loads(r.stdout)
+    d, written = design_for_jaw_file(tmp_path, "taper.toml", "pocket_outline_mm = [[4.0, -2.75], "
+                                     "[33.0, -2.25], [33.0, 2.25], [4.0, 2.75]]\n")
     # only a sheet whose comb is no wider than the taper's tip (4.5 mm less clearances) fits
     assert d["sheet_mm"] == 0.5 and all(not c["failed"] for c in d["checks"].values())
     assert any("no stretch" in (c["binding"] or [""])[0] for c in d["candidates"]
                if c["sheet_mm"] >= 1.2)
-    written = tomllib.loads(out.read_text(encoding="utf-8"))
     assert len(written["grasper_jaw"]["pocket_outline_mm"]) == 4
