@@ -7,7 +7,9 @@ conventions of ``docs/about.md``:
 * a page that starts with the MyST comment ``% runs: slow (REASON)`` is run by
   the slow tests only;
 * ``sh``, ``console``, ``python`` and ``toml`` blocks run; ``text`` blocks are
-  pictures of trees or output and hold no command.
+  pictures of trees or output and hold no command;
+* a ``toml`` block whose first line is ``# file: NAME`` is a file the reader
+  saves as ``NAME`` (the page's later commands read it).
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ README = ROOT / "README.md"
 #: Languages of blocks that run (each as :mod:`test_code_blocks` says).
 RUNNABLE = ("sh", "console", "python", "toml")
 NOT_RUN = re.compile(r"^# not run: \S")
+SAVED_AS = re.compile(r"^# file: ([\w.-]+)[ \t]*$", re.M)
 SLOW = re.compile(r"^% runs: slow \(.+\)$", re.M)
 _FENCE = re.compile(r"^(`{3,})([^`\n]*)\n(.*?)^\1[ \t]*$", re.M | re.S)
 
@@ -39,6 +42,12 @@ class Block:
     @property
     def not_run(self) -> bool:
         return bool(NOT_RUN.match(self.code))
+
+    @property
+    def saved_as(self) -> str | None:
+        """The file name a ``# file: NAME`` first line gives the block, else None."""
+        m = SAVED_AS.match(self.code)
+        return m.group(1) if m else None
 
     def where(self) -> str:
         return f"docs/{self.page}:{self.line}"

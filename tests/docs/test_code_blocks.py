@@ -59,6 +59,17 @@ def test_the_runner_refuses_what_it_cannot_run(tmp_path):
         run_sh(Block("x.md", 1, "sh", "tactcad stiffness --element 99\n"), tmp_path)
 
 
+def test_a_toml_block_marked_with_a_file_name_is_saved_for_the_next_commands(tmp_path):
+    saved = Block("x.md", 1, "toml", "# file: our_jaw.toml\n[grasper_jaw]\nshaft_class_mm = '10'\n")
+    run_toml(saved, tmp_path)
+    assert tomllib.loads((tmp_path / "our_jaw.toml").read_text())["grasper_jaw"] == {
+        "shaft_class_mm": "10"}
+    run_toml(Block("x.md", 1, "toml", "[grasper_jaw]\n"), tmp_path / "nowhere")  # only read
+    with pytest.raises(AssertionError, match="x.md:1"):
+        run_toml(Block("x.md", 1, "toml", "# file: bad.toml\n[grasper_jaw\n"), tmp_path)
+    assert not (tmp_path / "bad.toml").exists()
+
+
 def test_a_marked_slow_page_says_why():
     for page in pages():
         marked = re.search(r"^% runs:", page.read_text(encoding="utf-8"), re.M)
@@ -136,6 +147,8 @@ def run_toml(block: Block, cwd: Path) -> Path:
         tomllib.loads(block.code)
     except tomllib.TOMLDecodeError as exc:
         raise AssertionError(f"{block.where()}: {exc}") from None
+    if block.saved_as:
+        (cwd / block.saved_as).write_text(block.code, encoding="utf-8")
     return cwd
 
 

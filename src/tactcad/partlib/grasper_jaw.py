@@ -164,11 +164,11 @@ def _pocket_in_outline(p: Problems, outline, width_mm: float, length_mm: float,
 def _check_outline(p: Problems, outline, x_lo: float, x_hi: float, half_width: float) -> bool:
     """A stated outline is one simple polygon inside the jaw's body (between the pin's
     steel and the distal wall along, inside the side walls across)."""
-    import shapely.geometry as sg
+    from shapely import Polygon, is_valid  # the function: a shape's .is_valid is the kernel's
 
     field = "grasper_jaw.pocket_outline_mm"
-    poly = sg.Polygon(outline)
-    if not poly.is_valid or poly.area <= 0:
+    poly = Polygon(outline)
+    if not is_valid(poly) or poly.area <= 0:
         p.add(field, [list(q) for q in outline], "a simple polygon of non-zero area",
               "its edges cross or it has no area")
         return False
