@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 
@@ -14,7 +15,7 @@ from tactcad.mechanics.hard_stops import stop_verdicts
 from tactcad.design.array_plan import EXAMPLES
 from tactcad.partlib.grasper_jaw import (MIN_WALL_MM, SHAFT_CLASSES_MM, GrasperJawSection,
                                          jaw_room, with_class_defaults)
-from tactcad.studies.comb_design import comb_for_jaw
+from tactcad.studies.comb_design import comb_for_jaw, fastener_pairs
 from tactcad.vocabulary.schema import read_toml
 from tactcad.studies.inverse_design import InverseDesignError, Targets
 from tactcad.studies.verification import verification_matrix
@@ -25,9 +26,9 @@ TI = "Ti-6Al-4V-annealed"
 BASE = read_toml(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml", "design file")
 
 
-def search(force_N: float, shaft: str = "10"):
-    return comb_for_jaw(Targets(10.0, (0.5, 5.0), force_N), jaw_room(shaft), 6, BASE, grade=TI,
-                        envelope_of=array_envelope_mm)
+def search(force_N: float, shaft: str = "10", room=None):
+    return comb_for_jaw(Targets(10.0, (0.5, 5.0), force_N), room or jaw_room(shaft), 6, BASE,
+                        grade=TI, envelope_of=array_envelope_mm)
 
 
 @pytest.fixture(scope="module")
@@ -56,6 +57,34 @@ def test_the_grasper_case_gives_a_comb_that_fits_reaches_the_ratio_and_stops_in_
     records = verification_matrix(plan, "closed-form", envelope_mm=array_envelope_mm(plan))
     assert not [r["requirement"] for r in records if r["verdict"] == "fail"]
     assert "sheet.thickness_mm" in found.data["assumptions"]
+
+
+def test_the_fasteners_are_the_first_pair_of_the_tables_the_row_and_the_jaw_hold(found):
+    tried, order = found.fasteners, fastener_pairs()
+    assert [(f.screw_size, f.dowel_diameter_mm) for f in tried] == order[:len(tried)]
+    assert not tried[-1].failures and all(f.failures for f in tried[:-1])
+    comb = found.data["comb"]
+    assert (comb["screw_size"], float(comb["dowel_diameter_mm"])) == (
+        tried[-1].screw_size, tried[-1].dowel_diameter_mm)
+    assert found.plan.comb.envelope_mm[2] <= found.room.height_mm
+    reason = found.data["assumptions"]["comb.screw_size"]
+    assert reason.startswith("Searched") and all(f.label in reason for f in tried[:-1])
+    assert not found.data["assumptions"]["comb.dowel_diameter_mm"].startswith("Not searched")
+
+
+def test_a_roomier_jaw_takes_the_largest_screw_and_dowel():
+    roomy = dataclasses.replace(jaw_room("10"), across_mm=9.0, height_mm=8.0)
+    got = search(0.05, room=roomy)
+    assert (got.data["comb"]["screw_size"], float(got.data["comb"]["dowel_diameter_mm"])) == \
+        fastener_pairs()[0]
+    assert len(got.fasteners) == 1
+
+
+def test_a_jaw_too_thin_for_every_comb_is_refused_naming_the_height():
+    thin = dataclasses.replace(jaw_room("10"), height_mm=4.0)
+    with pytest.raises(InverseDesignError) as caught:
+        search(0.05, room=thin)
+    assert "the comb's height" in caught.value.line() and "holds 4 mm" in caught.value.line()
 
 
 def test_a_force_no_comb_carries_is_refused_with_a_nearest_force_that_one_does():

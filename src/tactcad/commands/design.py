@@ -372,6 +372,9 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
                         "counts": c.plan is not None and not c.failures,
                         "force_margin_rel": None if math.isinf(c.force_margin_rel) else c.force_margin_rel,
                         "binding": list(c.failures[:1])} for c in result.candidates],
+        "fasteners": [{"screw_size": f.screw_size, "dowel_diameter_mm": f.dowel_diameter_mm,
+                       "counts": not f.failures, "binding": list(f.failures[:1])}
+                      for f in result.fasteners],
         "processes": processes, "checks": checks}
 
 
@@ -407,6 +410,11 @@ def print_jaw_report(r: dict) -> None:
           f"{', '.join(f'{g:g}' for g in r['stop_gaps_mm'])} mm")
     counted = sum(c["counts"] for c in r["candidates"])
     print(f"  {len(r['candidates'])} candidates, {counted} count")
+    if r["fasteners"]:
+        got, before = r["fasteners"][-1], r["fasteners"][:-1]
+        print(f"  fasteners: {got['screw_size']} screws, {got['dowel_diameter_mm']:g} mm dowels"
+              + (f" ({len(before)} larger pairs tried first; the first binds on "
+                 f"{before[0]['binding'][0]})" if before else " (the largest)"))
     for name, broken in r["processes"].items():
         # a rule's line without its process (the line's head) and its figure and source
         first = broken[0].split("; rule:")[0].removeprefix(f"{name}: ") if broken else ""

@@ -6,8 +6,8 @@ The room (:func:`tactcad.partlib.grasper_jaw.jaw_room`) is the jaw part's own de
 rules on a trocar class's default jaw or on a lab's ``[grasper_jaw]`` table: its stated
 pocket, else the pocket between the pin's steel and the distal wall along and between the
 side walls across, and the insert no taller than the jaw's thickness plus the tips' proud
-height. The comb's fixed details (tip, arm height, notch radius, post, spacer, ISO screws
-and dowels, wire) are the base comb's (the construction's ``jaw_template``, the shipped
+height. The comb's fixed details (tip, arm height, notch radius, post, spacer, wire) are
+the base comb's (the construction's ``jaw_template``, the shipped
 ``examples/grasper_jaw_10mm``), each marked as not searched (the template's own reasons
 name its sizes); what the search sets:
 
@@ -20,11 +20,16 @@ name its sizes); what the search sets:
 * the hard stops: engaging at :data:`STOP_MULTIPLE` x the rated deflection
   (:func:`tactcad.mechanics.hard_stops.stop_gap_for`), a shim no thinner than the comb's
   thinnest;
-* the pairing: by column, each reference beside its measuring element (one radius).
+* the pairing: by column, each reference beside its measuring element (one radius);
+* the fasteners, once the sheet and K_m are chosen: of the miniature screws
+  (:data:`tactcad.vocabulary.standards.MINIATURE_SCREWS`) and ISO 8734 dowels, the largest
+  screw, then the largest dowel, that the row and the jaw's height hold
+  (:func:`with_fasteners`; a larger screw clamps the rows harder and is set by hand with a
+  common key; the stiffness does not depend on them).
 
-Every sheet of :data:`SHEETS_MM` is tried at every scale; a candidate counts when its design validates and
-its verification matrix at the closed form fails nothing and every stop engages between its
-rated and its yield-limited deflection. Of those, the softest pair that carries the force
+Every sheet of :data:`SHEETS_MM` is tried at every scale; a candidate counts when its design
+validates, stands no taller than the jaw's room, its verification matrix at the closed form
+fails nothing and every stop engages between its rated and its yield-limited deflection. Of those, the softest pair that carries the force
 with :data:`FORCE_MARGIN_REL` to spare is chosen (:func:`chosen`). When none counts, the refusal names each sheet's binding limit and the largest
 full-scale force any sheet carries, as an option to paste. Units: mm, N, N/mm.
 """
@@ -79,6 +84,20 @@ class CombDesign:
     plan: Any
     room: Any
     candidates: tuple[CombCandidate, ...]
+    fasteners: tuple[FastenerTry, ...] = ()
+
+
+@dataclass(frozen=True)
+class FastenerTry:
+    """One screw and dowel pair tried on the chosen comb: what binds it (empty: it counts)."""
+
+    screw_size: str
+    dowel_diameter_mm: float
+    failures: tuple[str, ...]
+
+    @property
+    def label(self) -> str:
+        return f"{self.screw_size} screws, {self.dowel_diameter_mm:g} mm dowels"
 
 
 def _floor(x: float, step: float) -> float:
@@ -174,9 +193,11 @@ def _short(value: Any) -> str:
     return f"{value:.4g}" if isinstance(value, float) else str(value)
 
 
-def judge(d: dict, envelope_of: Callable | None) -> tuple[Any, tuple[str, ...], float, float | None]:
+def judge(d: dict, envelope_of: Callable | None, room: Any = None
+          ) -> tuple[Any, tuple[str, ...], float, float | None]:
     """(plan, failures, full-scale-force margin, rated force) of a candidate's tables: the
-    design's validation, its verification matrix at the closed form and its hard stops."""
+    design's validation, its verification matrix at the closed form, its hard stops and,
+    given the jaw's ``room``, its height (:func:`too_tall`)."""
     from tactcad.mechanics.hard_stops import stop_verdicts
     from tactcad.studies.verification import rated_full_scale_force, verification_matrix
 
@@ -193,6 +214,7 @@ def judge(d: dict, envelope_of: Callable | None) -> tuple[Any, tuple[str, ...], 
     fails += [f"hard stop of element {v.element}: engages at {v.multiple_of_rated:.2f} x the rated "
               f"deflection, yield-limited at {v.yield_tip_mm:.4f} mm"
               for v in stop_verdicts(plan, force) if not v.engages_between]
+    fails += too_tall(plan, room) if room is not None else ()
     margin = next((r["margin_rel"] for r in records if r["requirement"] == "full_scale_force_N"),
                   0.0)
     probe = copy.deepcopy(d)
@@ -245,9 +267,10 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
     if not good:
         raise refusal(tried, targets, room, columns,
                       nearest_jaw(base, columns, room, targets, grade, other_rooms or {}))
-    best = chosen(good)
-    data = named(best.data, name, targets, room, best, columns)
-    return CombDesign(data, plan_from_dict(data), room, tuple(tried))
+    with range_warnings_unsaid():
+        best, fasteners = with_fasteners(chosen(good), room, envelope_of)
+    data = named(best.data, name, targets, room, best, columns, fasteners)
+    return CombDesign(data, plan_from_dict(data), room, tuple(tried), fasteners)
 
 
 def chosen(good: list[CombCandidate]) -> CombCandidate:
@@ -285,8 +308,50 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
             binding = [f"{e.field} = {e.value}: allowed {e.allowed}" for e in exc.errors]
     if binding:
         return CombCandidate(sheet, km_scale, None, None, tuple(binding), -math.inf, None)
-    plan, fails, margin, rated = judge(d, envelope_of)
+    plan, fails, margin, rated = judge(d, envelope_of, room)
     return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated)
+
+
+def too_tall(plan: Any, room: Any) -> tuple[str, ...]:
+    """The failure of a comb taller than the jaw's room (its thickness and the tips' proud
+    height; mm), else none."""
+    height = float(plan.comb.envelope_mm[2])
+    if height <= room.height_mm + 1e-9:
+        return ()
+    return (f"the comb's height: {height:.4g} mm, the {room.label} holds "
+            f"{room.height_mm:.4g} mm (its thickness and the tips' proud height)",)
+
+
+def fastener_pairs() -> list[tuple[str, float]]:
+    """Every (screw size, dowel diameter mm) of the miniature tables, in the order tried:
+    the largest screw first, then the largest dowel."""
+    from tactcad.vocabulary.standards import DOWEL_PINS, MINIATURE_SCREWS
+
+    screws = sorted(MINIATURE_SCREWS, key=lambda k: -MINIATURE_SCREWS[k].nominal_diameter_mm)
+    return [(sc, dw) for sc in screws for dw in sorted(DOWEL_PINS, reverse=True)]
+
+
+def with_fasteners(best: CombCandidate, room: Any, envelope_of: Callable | None
+                   ) -> tuple[CombCandidate, tuple[FastenerTry, ...]]:
+    """The chosen comb with the first screw and dowel pair of :func:`fastener_pairs` that
+    counts (validates, passes :func:`judge` and stands in the room), and every pair tried up
+    to it. The chosen comb's own pair counts, so one always does."""
+    tried = []
+    for screw, dowel in fastener_pairs():
+        d = copy.deepcopy(best.data)
+        d["comb"]["screw_size"] = screw
+        d["comb"]["dowel_diameter_mm"] = f"{dowel:g}"
+        own = (screw, f"{dowel:g}") == (best.data["comb"]["screw_size"],
+                                         str(best.data["comb"]["dowel_diameter_mm"]))
+        if own:
+            tried.append(FastenerTry(screw, dowel, ()))
+            return best, tuple(tried)
+        plan, fails, margin, rated = judge(d, envelope_of, room)
+        tried.append(FastenerTry(screw, dowel, fails))
+        if plan is not None and not fails:
+            return replace(best, data=d, plan=plan, force_margin_rel=margin,
+                           rated_force_N=rated), tuple(tried)
+    return best, tuple(tried)
 
 
 def room_of_outline(base: dict, sheet: float, columns: int, room: Any, targets: Targets,
@@ -362,7 +427,7 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
 
 
 def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
-          columns: int) -> dict:
+          columns: int, fasteners: tuple[FastenerTry, ...] = ()) -> dict:
     """The chosen tables with their name, description and every reason."""
     d = copy.deepcopy(d)
     template = d.get("design", {}).get("name", "the template")
@@ -376,8 +441,10 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
     why = {k: f"Not searched: the comb template's value ({template}); check it for this jaw."
            for k in d.get("assumptions", {})
            if k.split(".")[0] in ("strength", "element", "edm") or k in (
-               "comb.post_length_mm", "comb.spacer_thickness_mm", "comb.screw_size",
-               "comb.dowel_diameter_mm")}
+               "comb.post_length_mm", "comb.spacer_thickness_mm")
+           or (not fasteners and k in ("comb.screw_size", "comb.dowel_diameter_mm"))}
+    if fasteners:
+        why.update(fastener_reasons(fasteners))
     others = [c for c in SHEETS_MM if c != best.sheet_mm]
     why.update({
         "sheet.thickness_mm": (f"tactcad design --jaw {PurePath(room.option).name}: of "
@@ -410,6 +477,19 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
     })
     d["assumptions"] = why
     return d
+
+
+def fastener_reasons(fasteners: tuple[FastenerTry, ...]) -> dict[str, str]:
+    """The reasons of the searched screw and dowel: the pair chosen and why each larger
+    one tried first does not count."""
+    got = fasteners[-1]
+    refused = "; ".join(f"{f.label}: {f.failures[0]}" for f in fasteners[:-1])
+    head = ("Searched (the largest screw, then dowel, of the miniature tables that the row and "
+            "the jaw's height hold: a harder clamp, a common key)")
+    tail = f"; tried first {refused}." if refused else ": the largest of the tables."
+    return {"comb.screw_size": f"{head}: {got.screw_size}{tail}",
+            "comb.dowel_diameter_mm": (f"Searched with the screw (comb.screw_size's reason): "
+                                       f"{got.dowel_diameter_mm:g} mm.")}
 
 
 def scenes_text(design_stem: str) -> str:
