@@ -38,6 +38,7 @@ import os
 import pickle
 import signal
 import sys
+import time
 import warnings
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -180,8 +181,14 @@ def _kill(processes: Sequence) -> None:
     started = [p for p in processes if p.pid is not None]
     for process in started:
         process.kill()
+    deadline = time.monotonic() + KILL_REAP_S
     for process in started:
-        process.join(KILL_REAP_S)
+        # the pool's own thread may reap it first: this join then finds no child and
+        # returns before that thread has set the exit code; ask again until it has
+        while process.exitcode is None and time.monotonic() < deadline:
+            process.join(0.05)
+            if process.exitcode is None:
+                time.sleep(0.001)
 
 
 #: Seconds a killed worker is waited for to be reaped (it ends at once).
