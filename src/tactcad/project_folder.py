@@ -135,9 +135,26 @@ def rig_sizing_words(plan: Plan, samples: list[float]) -> dict[str, str]:
     }
 
 
+def scenes_without_rigs_text(plan_name: str, grid: str) -> str:
+    """The scenes file of a design whose construction has no mount for the test
+    rigs (TOML text): the insert, and the insert in its grasper's jaw, open and
+    closed on a tissue slab; ``grid`` like ``"2 x 6"``."""
+    return _template("scenes-without-rigs.toml").substitute(name=plan_name, grid=grid)
+
+
+def _has_test_rigs(plan: Plan) -> bool:
+    from tactcad.design.construction_registry import construction_of
+
+    return construction_of(plan).test_rigs
+
+
 def companion_texts(plan: Plan) -> dict[str, str]:
     """The rigs and scenes files made for ``plan`` (TOML text): kind -> text.
-    The force gauge and the weights are sized to the design (:func:`rig_sizing_words`)."""
+    The force gauge and the weights are sized to the design (:func:`rig_sizing_words`).
+    A construction without a mount for the test rigs gets no rigs file, and
+    scenes of the insert and its grasper only (:func:`scenes_without_rigs_text`)."""
+    if not _has_test_rigs(plan):
+        return {"scenes": scenes_without_rigs_text(plan.name, f"{plan.rows} x {plan.columns}")}
     samples, reason = sample_stiffnesses(plan)
     count = len(plan.slots)
     tip = plan.distinct_elements[plan.slots[0].geometry.part_name]
@@ -172,12 +189,14 @@ class NewProject:
 _FILES_TABLE = re.compile(r"^\s*\[files\]\s*(#.*)?$", re.MULTILINE)
 
 
-def _with_files_table(text: str, rigs: str, scenes: str) -> str:
-    """The design text with a ``[files]`` table naming its rigs and scenes (kept when it has one)."""
+def _with_files_table(text: str, named: Mapping[str, str]) -> str:
+    """The design text with a ``[files]`` table naming its companions (kind ->
+    relative path: its rigs, where it has test rigs, and scenes; kept when it has one)."""
     if _FILES_TABLE.search(text):
         return text
+    lines = "".join(f'{kind} = "{path}"\n' for kind, path in named.items())
     return (text.rstrip("\n") + "\n\n# The project's other files, relative to this one.\n"
-            f'[files]\nrigs = "{rigs}"\nscenes = "{scenes}"\n')
+            f"[files]\n{lines}")
 
 
 def _check_target(folder: Path, names: list[str], force: bool) -> None:
@@ -204,18 +223,28 @@ def _named_files(plan: Plan) -> dict[str, str]:
 
 
 def _project_files(design_text: str, design_name: str, plan: Plan,
-                   companions: Mapping[str, str | None] | None) -> dict[str, str]:
+                   companions: Mapping[str, str | None] | None,
+                   purchased_parts: str | None = None) -> dict[str, str]:
     """Relative path -> text of every file of the project (the design's last)."""
-    made = companion_texts(plan)
+    made = companion_texts(plan)  # a construction without test rigs: scenes only
     texts = {k: (companions or {}).get(k) or made[k] for k in made}
-    names = _named_files(plan)
-    files = {names["rigs"]: texts["rigs"], names["scenes"]: texts["scenes"]}
+    names = {kind: path for kind, path in _named_files(plan).items() if kind in made}
+    files = {names[kind]: texts[kind] for kind in made}
     words = {"name": plan.name, "description": plan.description, "design": design_name,
-             "rigs": names["rigs"], "scenes": names["scenes"], "version": __version__}
+             "companions": (f"with its test rigs `{names['rigs']}` and the scenes `{names['scenes']}` "
+                            "(named in the design's `[files]` table)" if "rigs" in names else
+                            f"and the scenes `{names['scenes']}` (named in the design's "
+                            f"`[files]` table; the construction {plan.construction} has no "
+                            "mount for the test rigs)"),
+             "version": __version__}
     for template, target in EXTRA_FILES.items():
         files[target] = _template(template).substitute(words)
-    files[PURCHASED_PARTS] = (EXAMPLES / DEFAULT_EXAMPLE / PURCHASED_PARTS).read_text(encoding="utf-8")
-    files[design_name] = _with_files_table(design_text, names["rigs"], names["scenes"])
+    if purchased_parts is not None:
+        files[PURCHASED_PARTS] = purchased_parts
+    elif "rigs" in made:  # the rigs' bought parts, with their sources
+        files[PURCHASED_PARTS] = (EXAMPLES / DEFAULT_EXAMPLE / PURCHASED_PARTS).read_text(
+            encoding="utf-8")
+    files[design_name] = _with_files_table(design_text, names)
     return files
 
 
@@ -236,7 +265,8 @@ def _umask() -> int:
 
 
 def write_project(folder: str | Path, design_text: str, design_name: str, plan: Plan, *,
-                  companions: Mapping[str, str | None] | None = None, force: bool = False) -> NewProject:
+                  companions: Mapping[str, str | None] | None = None,
+                  purchased_parts: str | None = None, force: bool = False) -> NewProject:
     """Write a project folder around a validated design.
 
     Args:
@@ -247,7 +277,10 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
         design_name: the design file's name in the folder (``NAME.toml``).
         plan: the design's validated plan (for the rigs' samples and texts).
         companions: the rigs and scenes texts (kind -> text, or None) to
-            write instead of those made for ``plan`` (the design's own files).
+            write instead of those made for ``plan`` (the design's own files);
+            a construction without test rigs gets no rigs file.
+        purchased_parts: the text of ``purchased-parts.md`` (an example's own);
+            None: the test rigs' bought parts where the project has test rigs, else none.
 
     Returns:
         :class:`NewProject`.
@@ -258,7 +291,7 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
             the files are made in a staging folder beside it first).
     """
     folder = Path(folder)
-    files = _project_files(design_text, design_name, plan, companions)
+    files = _project_files(design_text, design_name, plan, companions, purchased_parts)
     _check_target(folder, list(files), force)
     staging = staging_dir(folder)
     os.chmod(staging, 0o777 & ~_umask())  # a project folder, not a private temporary one
@@ -319,8 +352,11 @@ def new_project(folder: str | Path, *, example: str | None = None,
     own = companion_files(source, data, Problems(source.name))
     companions = {kind: f.read_text(encoding="utf-8") if f is not None else None
                   for kind, f in own.items()}
+    own_parts = source.parent / PURCHASED_PARTS if from_design is None else None
     return write_project(folder, source.read_text(encoding="utf-8"), source.name, validated.plan,
-                         companions=companions, force=force)
+                         companions=companions, force=force,
+                         purchased_parts=own_parts.read_text(encoding="utf-8")
+                         if own_parts is not None and own_parts.is_file() else None)
 
 
 # --- which design a command works on ---------------------------------------------------------

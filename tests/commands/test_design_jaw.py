@@ -76,12 +76,42 @@ def test_a_jaw_file_that_states_no_jaw_is_refused_by_name(tmp_path, content, wor
     (["--construction", "monolithic-comb"], "--jaw"),
     (["--jaw", "7"], "--jaw"),
     (["--jaw", "10", "--rows", "3"], "--rows"),
+    # options the jaw decides itself are refused, not dropped unsaid
+    (["--jaw", "10", "--footprint", "30", "8"], "--footprint = '30 8': allowed only without --jaw"),
+    (["--jaw", "10", "--pitch", "4"], "--pitch"),
+    (["--jaw", "10", "--set", "array.pitch_mm=4"], "--set"),
+    (["--jaw", "10", "--verify", "beam"], "--verify"),
 ])
 def test_a_jaw_design_asked_wrongly_names_the_option(tmp_path, args, option):
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", *args, "--out",
                 str(tmp_path / "x.toml"))
     assert r.returncode == 2 and option in r.stderr and "Traceback" not in r.stderr
     assert not (tmp_path / "x.toml").exists()
+
+
+@pytest.mark.parametrize("name", ["insert.TOML", "insert.json", "insert.tml"])
+def test_an_out_name_that_names_a_file_is_not_made_a_folder(tmp_path, name):
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10", "--out",
+                str(tmp_path / name))
+    assert r.returncode == 2 and "--out" in r.stderr and "ending in .toml" in r.stderr, r.stderr
+    assert not list(tmp_path.iterdir())
+
+
+def test_a_jaw_design_into_a_folder_is_a_project_without_test_rigs_that_verifies(tmp_path):
+    folder = tmp_path / "our-insert"
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
+                "--tissue-poisson", "0.45", "--out", str(folder), "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert sorted(p.name for p in folder.iterdir()) == [
+        ".github", ".gitignore", "README.md", "our_insert.toml", "scenes.toml"]
+    text = (folder / "our_insert.toml").read_text(encoding="utf-8")
+    header = text.splitlines()[0]
+    # the header's command makes the same design: the jaw and the tissue are in it
+    assert "--jaw 10" in header and "--tissue-poisson 0.45" in header, header
+    assert tomllib.loads(text)["files"] == {"scenes": "scenes.toml"}
+    assert "no mount for the test rigs" in (folder / "README.md").read_text(encoding="utf-8")
+    r = run_cli("verify", "--design", str(folder / "our_insert.toml"), "--quiet")
+    assert r.returncode == 0, r.stderr
 
 
 def test_a_refused_jaw_design_writes_nothing_and_gives_a_pasteable_force(tmp_path):

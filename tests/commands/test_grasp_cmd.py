@@ -96,6 +96,10 @@ def test_a_default_grasp_lighter_than_the_open_jaw_allows_is_the_jaw_fully_open(
     d = json.loads(r.stdout)
     assert d["as_laid_out"]["angle_deg"] == d["jaw"]["opening_angle_deg"]
     assert d["reasons"]["force_N"].startswith("the jaw at its full opening")
+    # past the rating is not past the overload limit: each tip carries its own limit
+    tips = d["as_laid_out"]["tips"]
+    assert all(t["overload_limit_N"] > d["rated_force_N"] for t in tips)
+    assert any(t["over_rating"] for t in tips) and not any(t["over_overload_limit"] for t in tips)
     # asked for, the same force is refused with the range the jaw reaches
     r = run_cli("grasp", "--design", COMB, "--force-N", "0.3")
     assert r.returncode == 2 and "--force-N" in r.stderr

@@ -1,7 +1,7 @@
 """A project whose construction has no mount for the test rigs has no test
 rigs: without a rigs file it loads with none (the rigs check says so and
 why), a scene of a test rig is refused naming the scene's rig, and a rigs
-file for it is refused naming array.construction."""
+file its [files] table names is refused naming array.construction."""
 
 from __future__ import annotations
 
@@ -43,9 +43,13 @@ def test_a_test_rig_scene_without_test_rigs_is_refused_naming_its_rig(tmp_path):
     assert "array, wirecut" in str(err.value)
 
 
-def test_a_rigs_file_for_the_comb_is_refused_naming_the_construction(tmp_path):
+def test_a_rigs_file_named_for_the_comb_is_refused_naming_the_construction(tmp_path):
     design = _copy(tmp_path)
     shutil.copy(EXAMPLES / "ti_array_2x3" / "rigs.toml", design.parent / "rigs.toml")
+    # lying beside it, it is another design's of the folder: passed over
+    assert not has_test_rigs(load_project(design))
+    design.write_text(design.read_text(encoding="utf-8").replace(
+        "[files]\n", '[files]\nrigs = "rigs.toml"\n'), encoding="utf-8")
     with pytest.raises(DesignErrors) as err:
         load_project(design)
     assert "array.construction" in [e.field for e in err.value.errors]

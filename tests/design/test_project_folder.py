@@ -57,6 +57,39 @@ def test_new_from_an_example_copies_its_own_rigs_and_makes_the_rest(tmp_path):
     assert (made.folder.stat().st_mode & 0o777) != 0o700  # a shared folder, not a temp one
 
 
+def test_new_from_the_grasper_example_has_no_rigs_and_its_own_bought_parts(tmp_path):
+    made = new_project(tmp_path / "p", example="grasper_jaw_10mm")
+    assert "rigs.toml" not in made.files and not (made.folder / "rigs.toml").exists()
+    example = EXAMPLES / "grasper_jaw_10mm"
+    assert (made.folder / "purchased-parts.md").read_bytes() == \
+        (example / "purchased-parts.md").read_bytes()
+    project = tactcad.load(made.design)  # a rigs file would be refused for a comb
+    assert project.validated.rigs is None
+
+
+def test_new_around_a_comb_design_without_scenes_makes_scenes_of_the_insert_only(tmp_path):
+    text = (EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml").read_text(encoding="utf-8")
+    design = tmp_path / "comb.toml"
+    design.write_text(re.sub(r"\[files\]\nscenes = .*\n", "", text), encoding="utf-8")
+    made = new_project(tmp_path / "p", from_design=design)
+    assert set(made.files) == {"comb.toml", "scenes.toml", "README.md", ".gitignore",
+                               ".github/workflows/hardware.yml"}
+    scenes = tomllib.loads((made.folder / "scenes.toml").read_text(encoding="utf-8"))["scene"]
+    assert {s["rig"] for s in scenes.values()} == {"array", "grasper"}
+    assert tomllib.loads(made.design.read_text(encoding="utf-8"))["files"] == {
+        "scenes": "scenes.toml"}
+    assert set(tactcad.load(made.design).validated.scenes) == set(scenes)
+
+
+def test_a_comb_design_passes_over_a_rigs_file_that_only_lies_beside_it(tmp_path):
+    example = EXAMPLES / "grasper_jaw_10mm"
+    for name in ("grasper_jaw_10mm.toml", "scenes.toml"):
+        shutil.copy(example / name, tmp_path / name)
+    (tmp_path / "rigs.toml").write_text("not [ toml", encoding="utf-8")  # another design's
+    project = tactcad.load(tmp_path / "grasper_jaw_10mm.toml").validated  # not even read
+    assert project.rigs is None
+
+
 def test_new_around_a_design_makes_rigs_over_its_own_kobj_range(tmp_path):
     design = _bare_design(tmp_path)
     made = new_project(tmp_path / "p", from_design=design)

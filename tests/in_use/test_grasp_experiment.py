@@ -99,3 +99,19 @@ def test_bad_grasp_inputs_name_the_field(kw, field):
     with pytest.raises(DesignError) as e:
         grasp(plan, JAW, k, units, 1.0, 0.05, **kw)
     assert e.value.field == field
+
+
+def test_each_tip_is_judged_on_its_own_overload_limit_apart_from_its_rating():
+    plan, k, units = setup(COMB)
+    loose = grasp(plan, JAW, k, units, 2.0, 0.05, angle_deg=4.0)
+    assert all(t["overload_limit_N"] is None and not t["over_overload_limit"]
+               for t in loose.as_laid_out.tips)  # none given: the rating alone
+    hardest = max(t["element_force_N"] for t in loose.as_laid_out.tips)
+    # each element's limit between its rating and the hardest force: the loaded ones are past it
+    limits = {s.number: 0.5 * (0.05 + hardest) for s in plan.slots}
+    g = grasp(plan, JAW, k, units, 2.0, 0.05, angle_deg=4.0, overload_N=limits)
+    for lay in (g.as_laid_out, g.paired):
+        for t in lay.tips:
+            assert t["overload_limit_N"] == limits[t["site"]]
+            assert t["over_overload_limit"] == (t["element_force_N"] > limits[t["site"]])
+        assert any(t["over_overload_limit"] for t in lay.tips)

@@ -53,6 +53,9 @@ def test_the_default_closed_jaws_pass_the_trocar(comb_plan):
     ({"width_clearance_mm": 1.0, "thickness_mm": 6.0},
      ["grasper_jaw.thickness_mm", "6", "<= 4.3589 mm", "10 mm trocar"]),
     ({"shaft_class_mm": "7"}, ["grasper_jaw.shaft_class_mm", "5, 10"]),
+    # a class written as a number is named, with how to write it
+    ({"shaft_class_mm": 10}, ["grasper_jaw.shaft_class_mm = 10", "5, 10 as text",
+                              'shaft_class_mm = "10"']),
     ({"face_wall_mm": 0.6}, ["grasper_jaw.face_wall_mm", "0.6", "< 0.5 mm"]),
     ({"pocket_length_mm": 20.0}, ["grasper_jaw.pocket_length_mm", "20", ">= 29 mm", "envelope"]),
     ({"length_mm": 200}, ["grasper_jaw.length_mm", "200", "5 <= value <= 80 mm"]),

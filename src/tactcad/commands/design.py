@@ -148,6 +148,10 @@ def _check_not_system(out: str, folder: Path) -> None:
                           f"{', '.join(SYSTEM_TREES)})")
 
 
+#: ``--out`` names ending so are taken for a mistyped design file, not a new folder.
+FILE_LIKE_SUFFIXES = (".toml", ".tml", ".tom", ".json", ".yaml", ".yml", ".txt", ".cfg", ".ini")
+
+
 def check_project_folder(out: str) -> Path:
     """The resolved project folder ``--out DIR``: new, or an existing folder
     (its files are checked when the project is written), outside the system
@@ -166,6 +170,9 @@ def check_project_folder(out: str) -> Path:
     if folder.exists() and not folder.is_dir():
         raise DesignError("--out", out, "a file name ending in .toml, or a project folder",
                           "it is a file without .toml")
+    if not folder.exists() and folder.suffix.lower() in FILE_LIKE_SUFFIXES:
+        raise DesignError("--out", out, "a file name ending in .toml (lower case), or a "
+                          "project folder", f"{folder.suffix} names a file, not a folder")
     if not folder.parent.is_dir():
         raise DesignError("--out", out, "a folder in an existing folder",
                           f"{folder.parent} is not a folder")
@@ -279,6 +286,35 @@ def jaw_constructions(args: argparse.Namespace) -> tuple[list, list[str]]:
     return chosen, left
 
 
+#: Options of the stacked search that a jaw decides: option -> (its attribute, why).
+JAW_DECIDES = {
+    "--footprint": ("footprint", "the jaw's pocket (its outline, else its width and length) "
+                                 "is the envelope"),
+    "--pitch": ("pitch", "the pitch is searched inside the jaw's pocket"),
+    "--design": ("design", "the base design is the construction's own jaw example"),
+    "--set": ("overrides", "the base design is the construction's own jaw example"),
+}
+
+
+def refuse_options_a_jaw_sets(args: argparse.Namespace) -> None:
+    """Refuse an option that ``--jaw`` decides itself (:data:`JAW_DECIDES`), so none
+    is dropped unsaid.
+
+    Raises:
+        DesignError: naming the option, its value and why the jaw decides it.
+    """
+    for flag, (attr, why) in JAW_DECIDES.items():
+        value = getattr(args, attr, None)
+        if value not in (None, [], ()):
+            shown = " ".join(f"{v:g}" for v in value) if attr == "footprint" else \
+                (" ".join(value) if isinstance(value, list) else value)
+            raise DesignError(flag, shown, "only without --jaw", why)
+    if getattr(args, "verify", "fem3d") != "fem3d":
+        raise DesignError("--verify", args.verify, "only without --jaw",
+                          "a design to a jaw is checked by the checks that run without the "
+                          "CAD kernel; run `tactcad verify` on the written design")
+
+
 def run_jaw(args: argparse.Namespace, targets) -> int:
     """``design --jaw``: every construction that seats in the jaw searched; the design of
     the one that counts (written with its scenes), or every binding limit."""
@@ -286,10 +322,11 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
 
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.studies.comb_design import scenes_text
+    from tactcad.project_folder import scenes_without_rigs_text, write_project
 
     if args.rows not in (None, 2):
         raise DesignError("--rows", args.rows, "2", "the model holds two rows facing each other")
+    refuse_options_a_jaw_sets(args)
     chosen, left = jaw_constructions(args)
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
@@ -316,24 +353,27 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
             raise refusals[0][1]
         raise DesignError("--jaw", args.jaw, "a jaw some construction fits",
                           "; ".join(f"{n}: {e}" for n, e in refusals) or "no construction seats in a jaw")
-    scenes_name = f"{path.stem}-scenes.toml"
     data = dict(result.data)
-    data["files"] = {"scenes": scenes_name}
     data["grasper_jaw"] = dict(room.table or {})  # the jaw it was designed for, in its scenes
     from tactcad import __version__
 
     header = (f"# Written by tactcad {__version__}: "
               f"`tactcad design {' '.join(design_options(args))}`.\n"
               f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
-    if folder is not None:
-        folder.mkdir(parents=True, exist_ok=True)
-    scenes_path = path.parent / scenes_name
-    if scenes_path.exists() and not args.force:
-        raise DesignError("--out", str(scenes_path), "a path with no file (or --force)",
-                          "the design's scenes file would be overwritten")
-    # the scenes first, the design last: a set cut short has no design file
-    write_bytes_atomic(scenes_path, scenes_text(path.stem).encode("utf-8"))
-    write_bytes_atomic(path, (header + tomli_w.dumps(data)).encode("utf-8"))
+    grid = f"{result.plan.rows} x {result.plan.columns}"
+    scenes = scenes_without_rigs_text(name, grid)
+    if folder is not None:  # a project folder, as `tactcad new` makes (its [files] table added)
+        write_project(folder, header + tomli_w.dumps(data), path.name, result.plan,
+                      companions={"scenes": scenes}, force=args.force)
+    else:
+        scenes_path = path.parent / f"{path.stem}-scenes.toml"
+        data["files"] = {"scenes": scenes_path.name}
+        if scenes_path.exists() and not args.force:
+            raise DesignError("--out", str(scenes_path), "a path with no file (or --force)",
+                              "the design's scenes file would be overwritten")
+        # the scenes first, the design last: a set cut short has no design file
+        write_bytes_atomic(scenes_path, scenes.encode("utf-8"))
+        write_bytes_atomic(path, (header + tomli_w.dumps(data)).encode("utf-8"))
     report = jaw_report(result, used, left, path)
     if args.json:
         print(json.dumps(report, indent=2, allow_nan=False))
@@ -563,7 +603,8 @@ def project_check(path: Path):
 def design_options(args: argparse.Namespace) -> list[str]:
     """The command line that made the design (for its header), every option
     as typed so that running it again makes the same file: the targets, the
-    grid, grade, pitch and footprint where given, the base design, every
+    grid, grade, pitch and footprint where given, the jaw and construction,
+    the tissue options that differ from their defaults, the base design, every
     ``--set``, the verification level, ``--out`` and ``--force``."""
     words = [f"--kr-over-km {args.kr_over_km:g}",
              f"--kobj-range {args.kobj_range[0]:g} {args.kobj_range[1]:g}",
@@ -574,6 +615,17 @@ def design_options(args: argparse.Namespace) -> list[str]:
                         ("--columns", args.columns), ("--pitch", args.pitch)):
         if value is not None:
             words.append(f"{flag} {value:g}" if isinstance(value, float) else f"{flag} {value}")
+    if getattr(args, "jaw", None) is not None:
+        words.append(f"--jaw {shlex.quote(args.jaw)}")
+    if getattr(args, "construction", "auto") != "auto":
+        words.append(f"--construction {args.construction}")
+    if getattr(args, "tissue_coupling", "on") == "off":
+        words.append("--tissue-coupling off")
+    else:
+        if getattr(args, "tissue_poisson", 0.5) != 0.5:
+            words.append(f"--tissue-poisson {args.tissue_poisson:g}")
+        if getattr(args, "tissue_thickness", None) is not None:
+            words.append(f"--tissue-thickness {args.tissue_thickness:g}")
     if getattr(args, "design", None):
         words.append(f"--design {shlex.quote(args.design)}")
     words += [f"--set {shlex.quote(item)}" for item in getattr(args, "overrides", None) or ()]

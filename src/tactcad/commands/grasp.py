@@ -143,6 +143,7 @@ def run(args: argparse.Namespace) -> int:
                  if args.angle_deg is not None else
                  f"half the rated {rated:g} N on each of {len(plan.slots)} elements")
     k = ladder_stiffness_by_element(plan, args.model)
+    overload = overload_limits_of(plan)
     by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
     units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
     try:
@@ -152,14 +153,15 @@ def run(args: argparse.Namespace) -> int:
                           args.slab_thickness_mm)
         try:
             result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=args.angle_deg,
-                           force_N=force, coupling=args.coupling, profile=args.profile)
+                           force_N=force, coupling=args.coupling, profile=args.profile,
+                           overload_N=overload)
         except DesignError as exc:
             if asked or exc.field != "force_N":
                 raise
             # the default force below what the tissue takes with the jaw fully open: the
             # grasp the jaw cannot make lighter
             result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=jaw.opening_angle_deg,
-                           coupling=args.coupling, profile=args.profile)
+                           coupling=args.coupling, profile=args.profile, overload_N=overload)
             force_why = (f"the jaw at its full opening: {force_why} ({force:g} N) is less "
                          f"than the {result.as_laid_out.total_force_N:.4g} N the "
                          f"{jaw.slab_thickness_mm:g} mm {args.profile} takes with the jaw "
@@ -172,6 +174,9 @@ def run(args: argparse.Namespace) -> int:
     record = {**result.as_json(), "model": args.model, "leads": leads.as_json(),
               "reasons": {
                   "rated_force_N": req.reasons["full_scale_force_N"],
+                  "overload_limit_N": "each element's yield with the design's safety factor "
+                                      "or its gauge's largest strain, the smaller, at the "
+                                      "closed form (as verify's max_grasp_force_N reads it)",
                   "K_obj": "--kobj" if args.kobj is not None else
                   f"the geometric mean of the K_obj range {lo:g} ... {hi:g} N/mm",
                   "force_N": force_why,
@@ -192,6 +197,14 @@ def run(args: argparse.Namespace) -> int:
                   f"{DEFAULT_SLAB_MM:g} mm, assumed"}}
     print(dumps(record, indent=1) if args.json else render(record))
     return 0
+
+
+def overload_limits_of(plan) -> dict[int, float]:
+    """Element number -> its overload limit (N) at the closed form
+    (:func:`tactcad.studies.verification.element_overload_limits_N`)."""
+    from tactcad.studies.verification import element_figures, element_overload_limits_N
+
+    return element_overload_limits_N(plan, element_figures(plan))
 
 
 def lead_channel_of(plan, given_mm: float | None) -> tuple[float, str]:
@@ -245,12 +258,14 @@ def render(record: dict) -> str:
     for key in ("as_laid_out", "paired"):
         lay = record[key]
         over = [t["site"] for t in lay["tips"] if t["over_rating"]]
+        damaged = [t["site"] for t in lay["tips"] if t["over_overload_limit"]]
         stops = [t["site"] for t in lay["tips"] if t["on_stop"]]
         lines += ["", f"{lay['layout']}: angle {lay['angle_deg']:.4g} degrees, grasp force "
                       f"{lay['total_force_N']:.4g} N; largest element force "
                       f"{max(t['element_force_N'] for t in lay['tips']):.4g} N; over the "
-                      f"rating: {', '.join(map(str, over)) or 'none'}; on a stop: "
-                      f"{', '.join(map(str, stops)) or 'none'}", *unit_table(lay)]
+                      f"rating (reading past full scale): {', '.join(map(str, over)) or 'none'}; "
+                      f"over the overload limit: {', '.join(map(str, damaged)) or 'none'}; "
+                      f"on a stop: {', '.join(map(str, stops)) or 'none'}", *unit_table(lay)]
     pl = record["paired_layout"]
     if pl["reason"]:
         lines += ["", f"paired layout: {pl['reason']} (unplaced: "

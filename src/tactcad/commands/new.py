@@ -7,6 +7,7 @@ import argparse
 import json
 
 from tactcad.commands import add_output_args
+from tactcad.project_folder import DEFAULT_EXAMPLE, examples
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -14,7 +15,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "new", help="make a sensor project folder: design, rigs, scenes, README, CI workflow",
         description="Makes the folder DIR of a sensor project: the design file (naming its "
                     "rigs and scenes files in its [files] table), rigs.toml with samples over "
-                    "the design's own K_obj range (N/mm), scenes.toml, purchased-parts.md, a "
+                    "the design's own K_obj range (N/mm; none for a construction without a "
+                    "mount for the test rigs), scenes.toml, purchased-parts.md, a "
                     "README, a .gitignore (exports, cache) and .github/workflows/hardware.yml "
                     "(export, check --junit, diff). DIR may exist if it holds none of these "
                     "files (a new git repository, say). Builds no geometry.")
@@ -22,8 +24,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     start = p.add_mutually_exclusive_group()
     start.add_argument("--example", metavar="NAME", default=None,
                        help="start from this shipped example, its own rigs and scenes "
-                            "included (default: ti_array_2x3; macro_array is the paper's "
-                            "2 x 5 array)")
+                            "included: " + ", ".join(examples()) + " (default: "
+                            f"{DEFAULT_EXAMPLE}; macro_array is the paper's 2 x 5 array, "
+                            "grasper_jaw_10mm a comb insert for a 10 mm grasper's jaw)")
     start.add_argument("--from-design", metavar="FILE", default=None,
                        help="start from this design file; its rigs and scenes files are "
                             "copied where it has them, else made for it")

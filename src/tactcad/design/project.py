@@ -326,12 +326,16 @@ def project_with_design_data(data: Mapping[str, Any] | None, path: Path,
     """
     problems = problems if problems is not None else Problems(path.name)
     files = companion_files(path, data, problems)
+    named = _named(data)
+    plan = _plan_of(data, str(path), problems)
+    if plan is not None and not construction_of(plan).test_rigs and named["rigs"] is None:
+        # nothing to hold them: a rigs.toml that only lies beside it (another
+        # design's, in a shared folder) is not this project's
+        files["rigs"] = None
     tables = {kind: _read(f, f"{kind} file", problems) if f is not None else None
               for kind, f in files.items()}
-    plan = _plan_of(data, str(path), problems)
     labels = {kind: f.name if f is not None else f"{COMPANIONS[kind]} (made for {path.name})"
               for kind, f in files.items()}
-    named = _named(data)
     absent = [k for k, f in files.items() if f is None and named[k] is None]
     if plan is not None and "rigs" in absent and not construction_of(plan).test_rigs:
         absent.remove("rigs")  # nothing to hold it: the project has no test rigs

@@ -145,24 +145,29 @@ def solve_tips(travel_mm, stiffness_N_per_mm, engage_mm, compliance) -> TipSolut
 
 @dataclass(frozen=True)
 class Tips:
-    """The tips of one layout: label, radius, face, stiffness and stop per tip."""
+    """The tips of one layout: label, radius, face, stiffness, stop and overload limit
+    (N; inf where none is given) per tip."""
 
     labels: tuple[int, ...]
     radius_mm: np.ndarray
     punches: list[Punch]
     stiffness_N_per_mm: np.ndarray
     engage_mm: np.ndarray
+    overload_N: np.ndarray
 
 
-def tips_as_laid_out(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float]) -> Tips:
-    """The design's own tips: each element at its slot, with its stiffness and stop."""
+def tips_as_laid_out(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float],
+                     overload_N: dict[int, float] | None = None) -> Tips:
+    """The design's own tips: each element at its slot, with its stiffness, stop and
+    overload limit (``overload_N``: element -> N; none given: no limit)."""
     frame = insert_frame(plan)
     stops = stop_travels(plan)
     numbers = tuple(s.number for s in plan.slots)
     radii = unit_radii(jaw, frame, [(n, n) for n in numbers])
     return Tips(numbers, np.array([r.r_reference_mm for r in radii]), _punches(plan),
                 np.array([stiffness[n] for n in numbers]),
-                np.array([stops.get(n, math.inf) for n in numbers]))
+                np.array([stops.get(n, math.inf) for n in numbers]),
+                np.array([(overload_N or {}).get(n, math.inf) for n in numbers]))
 
 
 def stop_travels(plan: Plan) -> dict[int, float]:
@@ -180,26 +185,31 @@ def _punches(plan: Plan) -> list[Punch]:
 
 
 def tips_paired(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float],
-                units: list[tuple[int, int]]) -> tuple[Tips, list[tuple], dict]:
+                units: list[tuple[int, int]],
+                overload_N: dict[int, float] | None = None) -> tuple[Tips, list[tuple], dict]:
     """The same tip sites with the units laid by the equal-radius rule
-    (:func:`tactcad.in_use.radius_pairs.paired_layout`): a site takes the stiffness and
-    stop of the element laid on it; sites no unit takes keep their own element.
+    (:func:`tactcad.in_use.radius_pairs.paired_layout`): a site takes the stiffness,
+    stop and overload limit of the element laid on it; sites no unit takes keep their
+    own element.
 
     Returns:
         (tips, the paired units as (reference site, measuring site, design unit), the
         layout's JSON).
     """
-    base = tips_as_laid_out(plan, jaw, stiffness)
+    base = tips_as_laid_out(plan, jaw, stiffness, overload_N)
     layout = paired_layout(plan, units)
     k, e_s = base.stiffness_N_per_mm.copy(), base.engage_mm.copy()
+    limit = base.overload_N.copy()
     index = {n: i for i, n in enumerate(base.labels)}
     sites = []
     for s in layout.sites:
         for element, site in zip(s.unit, (s.reference_site, s.measuring_site)):
             k[index[site]] = base.stiffness_N_per_mm[index[element]]
             e_s[index[site]] = base.engage_mm[index[element]]
+            limit[index[site]] = base.overload_N[index[element]]
         sites.append((s.reference_site, s.measuring_site, s.unit))
-    return Tips(base.labels, base.radius_mm, base.punches, k, e_s), sites, layout.as_json()
+    return (Tips(base.labels, base.radius_mm, base.punches, k, e_s, limit), sites,
+            layout.as_json())
 
 
 @dataclass(frozen=True)
@@ -298,10 +308,13 @@ def unit_reading(ref: int, meas: int, sol: TipSolution, tips: Tips, k_obj: float
 
 
 def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float) -> list[dict]:
-    """Each tip's travel, deflection, forces (element, stop, on the slab) and rating verdict."""
+    """Each tip's travel, deflection, forces (element, stop, on the slab), its verdicts on
+    the rating (a reading past full scale) and on the overload limit (damage; None where
+    no limit is given)."""
     out = []
     for i, n in enumerate(tips.labels):
         f = float(sol.element_force_N[i])
+        limit = float(tips.overload_N[i])
         out.append({"site": n, "radius_mm": float(tips.radius_mm[i]),
                     "K_N_per_mm": float(tips.stiffness_N_per_mm[i]),
                     "travel_mm": float(sol.travel_mm[i]),
@@ -311,7 +324,9 @@ def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float) -> list[dict
                     "stop_engage_mm": float(tips.engage_mm[i]) if math.isfinite(tips.engage_mm[i])
                     else None,
                     "on_stop": bool(sol.engaged[i]), "in_contact": bool(sol.in_contact[i]),
-                    "over_rating": f > rated_force_N * (1 + 1e-9)})
+                    "over_rating": f > rated_force_N * (1 + 1e-9),
+                    "overload_limit_N": limit if math.isfinite(limit) else None,
+                    "over_overload_limit": f > limit * (1 + 1e-9)})
     return out
 
 
@@ -364,7 +379,7 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
 def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list[tuple[int, int]],
           k_obj_N_per_mm: float, rated_force_N: float, angle_deg: float | None = None,
           force_N: float | None = None, coupling: str = "layer",
-          profile: str = "slab") -> GraspResult:
+          profile: str = "slab", overload_N: dict[int, float] | None = None) -> GraspResult:
     """The jaw closed on the slab, the design's layout and the equal-radius one side by side.
 
     Args:
@@ -380,6 +395,9 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
         force_N: the grasp force (N) the tips put on the slab, > 0 (each layout finds its angle).
         coupling: ``layer`` (default), ``halfspace`` or ``none``.
         profile: the tissue between the jaws, ``slab`` (default) or ``wedge``.
+        overload_N: element number -> its overload limit (N; e.g.
+            :func:`tactcad.studies.verification.element_overload_limits_N`), judged per tip
+            beside the rating; None: the rating alone.
 
     Returns:
         :class:`GraspResult`.
@@ -393,8 +411,8 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
         raise DesignError("force_N", force_N, "> 0 N")
     if not (math.isfinite(rated_force_N) and rated_force_N > 0):
         raise DesignError("rated_force_N", rated_force_N, "> 0 N")
-    laid = tips_as_laid_out(plan, jaw, stiffness)
-    paired, sites, layout = tips_paired(plan, jaw, stiffness, units)
+    laid = tips_as_laid_out(plan, jaw, stiffness, overload_N)
+    paired, sites, layout = tips_paired(plan, jaw, stiffness, units, overload_N)
     if profile not in PROFILES:
         raise DesignError("profile", profile, " | ".join(PROFILES))
     args = (jaw, k_obj_N_per_mm, coupling, rated_force_N, angle_deg, force_N, profile)
@@ -490,6 +508,8 @@ def grasp_summary(result: GraspResult) -> dict:
                 "largest_element_force_N": top["element_force_N"],
                 "largest_element": top["site"],
                 "over_rating": [t["site"] for t in lay.tips if t["over_rating"]],
+                "over_overload_limit": [t["site"] for t in lay.tips
+                                        if t["over_overload_limit"]],
                 "on_stop": [t["site"] for t in lay.tips if t["on_stop"]],
                 "stop_force_N": sum(t["stop_force_N"] for t in lay.tips)}
 

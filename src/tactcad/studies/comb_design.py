@@ -491,19 +491,3 @@ def fastener_reasons(fasteners: tuple[FastenerTry, ...]) -> dict[str, str]:
             "comb.dowel_diameter_mm": (f"Searched with the screw (comb.screw_size's reason): "
                                        f"{got.dowel_diameter_mm:g} mm.")}
 
-
-def scenes_text(design_stem: str) -> str:
-    """The scenes file of a comb designed to a jaw: the insert, and the insert in the jaw open
-    and closed on a tissue slab."""
-    return (f"# Scenes of {design_stem}: the comb insert, and the insert in the grasper's jaw.\n"
-            "# `tactcad scenes` lists the scenes, their groups and parts.\n\n"
-            "[detail]\nfabricated = \"full\"\npurchased = \"envelope\"\n\n"
-            "[scene.array]\nrig = \"array\"\n"
-            "description = \"The comb insert: two row sheets on their spine\"\n"
-            "groups = [\"array\"]\n\n"
-            "[scene.grasper-open]\nrig = \"grasper\"\n"
-            "description = \"The insert in the grasper's jaw, open above a tissue slab\"\n"
-            "groups = [\"jaw\", \"array\", \"tissue\"]\n\n"
-            "[scene.grasper-closed]\nrig = \"grasper\"\n"
-            "description = \"The jaw closed on the tissue slab: every contact face on its top\"\n"
-            "groups = [\"jaw\", \"array\", \"tissue\"]\njaw_angle_deg = 0\n")

@@ -303,6 +303,11 @@ def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> Design
         return DesignError(field, value, NAME_ALLOWED,
                            "names end up in file names, DXF headers and drawings", file)
     if limits.kind == "choice":
+        if not isinstance(value, str) and not isinstance(value, bool) \
+                and f"{value}" in limits.unit.removeprefix("one of ").split(", "):
+            # 10 for "10": the names are text, so say how to write the one meant
+            return DesignError(field, value, limits.unit + " as text",
+                               f'write {field.rsplit(".", 1)[-1]} = "{value}"', file)
         return DesignError(field, value, limits.unit, why, file)
     if limits.kind == "list":
         return DesignError(field, value, limits.unit, why, file)
