@@ -43,6 +43,25 @@ class _TimeUp(BaseException):
     pass
 
 
+def test_warnings_alike_fold_into_the_first_and_one_closing_count(capsys):
+    import warnings
+
+    from tactcad.commands.notices import WarningLines
+    from tactcad.mechanics.gauge_strain import GaugeStrainRangeWarning
+
+    notes = WarningLines(echo=True)
+    with notes.capture():
+        for error in (0.02, 0.03, 0.025, 0.03):  # the last repeats a text: counted once
+            warnings.warn(GaugeStrainRangeWarning(f"gauge strain: b/t at {error}", error))
+        warnings.warn(UserWarning("another kind"))
+    err = capsys.readouterr().err.splitlines()
+    assert err == ["tactcad: warning: gauge strain: b/t at 0.02",
+                   "tactcad: warning: another kind",
+                   f"tactcad: warning: {GaugeStrainRangeWarning.fold_as}: 2 more alike, "
+                   "estimated error up to 3.0 %"]
+    assert notes.lines == [line.removeprefix("tactcad: warning: ") for line in err]
+
+
 @pytest.mark.slow
 @settings(max_examples=int(os.environ.get("TACTCAD_OPTION_EXAMPLES", 40)), deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])

@@ -791,12 +791,14 @@ def print_report(r: dict) -> None:
         else:
             head = "every unit's coupled R spans the range; K_r, K_m at eq. 2's centring (see [assumptions])"
 
+        from tactcad.in_use.tissue_coupling import unit_label
+
         eq3 = worst["worst_eq3_rel"]
         print(f"tissue coupling: {head} (K_obj seen x{c['kobj_seen_factor']:.3g}); coupling "
               f"{min(u['coupling'] for u in c['units']):.3f}-{max(u['coupling'] for u in c['units']):.3f}; "
               f"eq. 3's K_obj bias worst "
               + ("unreadable" if eq3 is None else f"{100 * eq3:+.1f} %")
-              + f" (unit {worst['unit'][0]}/{worst['unit'][1]}), coupled inversion "
+              + f" (unit {unit_label(worst['unit'])}), coupled inversion "
               + corrected_worst_text([u["worst_corrected_rel"] for u in c["units"]]))
     print(f"web rule: {r['web_rule']}")
     for line in margin_lines(r["margins"]):

@@ -159,13 +159,15 @@ def run(args: argparse.Namespace) -> int:
         print(f"K_obj = {result['k_obj_N_per_mm']:.6g} N/mm (given)")
         print(f"R = {result['r']:.6g} (eq. 2), R - 1 = {result['r_minus_one']:.6g}")
     print(f"dK_obj/dR = {result['sensitivity_dk_obj_dr_N_per_mm']:.6g} N/mm")
+    from tactcad.in_use.tissue_coupling import unit_label
+
     c = result.get("coupled")
     if c and "r_coupled" in c:
-        print(f"R = {c['r_coupled']:.6g} (eq. 2 corrected: unit {c['unit'][0]}/{c['unit'][1]} "
+        print(f"R = {c['r_coupled']:.6g} (eq. 2 corrected: unit {unit_label(c['unit'])} "
               f"of {args.coupled_design}, every tip on one half-space)")
     elif c:
         print(f"K_obj = {c['k_obj_coupled_N_per_mm']:.6g} N/mm (eq. 3 corrected: unit "
-              f"{c['unit'][0]}/{c['unit'][1]} of {args.coupled_design}, every tip on one half-space)")
+              f"{unit_label(c['unit'])} of {args.coupled_design}, every tip on one half-space)")
     if "sigma_k_obj_N_per_mm" in result:
         print(f"sigma_K_obj = {result['sigma_k_obj_N_per_mm']:.6g} N/mm "
               f"(first order, sigma_R = {result['sigma_r']:.6g})")

@@ -25,20 +25,43 @@ def one_line(message: object) -> str:
 
 
 class WarningLines:
-    """The distinct warnings of one run, in order; echoed to stderr when ``echo``."""
+    """The distinct warnings of one run, in order; echoed to stderr when ``echo``.
+
+    A warning whose object has a ``fold_as`` text (one of many alike, e.g. each element
+    geometry outside a fit) is shown the first time; the others of that text are counted
+    and told in one closing line, with the largest ``error_rel`` they carry.
+    """
 
     def __init__(self, echo: bool):
         self.echo = echo
         self.lines: list[str] = []
+        self.folded: dict[str, dict[str, float]] = {}  # fold -> its other texts' errors
+
+    def _add(self, text: str) -> None:
+        self.lines.append(text)
+        if self.echo:
+            print(f"tactcad: warning: {text}", file=sys.stderr, flush=True)
 
     def show(self, message, category, filename, lineno, file=None, line=None) -> None:
         """``warnings.showwarning`` while capturing: record, and echo once."""
         text = one_line(message)
         if text in self.lines:
             return
-        self.lines.append(text)
-        if self.echo:
-            print(f"tactcad: warning: {text}", file=sys.stderr, flush=True)
+        fold = getattr(message, "fold_as", "")
+        if fold and fold in self.folded:
+            self.folded[fold][text] = float(getattr(message, "error_rel", 0.0) or 0.0)
+            return
+        if fold:
+            self.folded[fold] = {}
+        self._add(text)
+
+    def close_folds(self) -> None:
+        """One line per folded kind that had more than its first warning."""
+        for fold, errors in self.folded.items():
+            if errors:
+                self._add(f"{fold}: {len(errors)} more alike, estimated error up to "
+                          f"{100 * max(errors.values()):.1f} %")
+        self.folded = {key: {} for key in self.folded}
 
     @contextlib.contextmanager
     def capture(self) -> Iterator["WarningLines"]:
@@ -47,7 +70,10 @@ class WarningLines:
             for category in _FOR_DEVELOPERS:
                 warnings.simplefilter("ignore", category)
             warnings.showwarning = self.show
-            yield self
+            try:
+                yield self
+            finally:
+                self.close_folds()
 
 
 def json_with_warnings(text: str, lines: list[str]) -> str | None:

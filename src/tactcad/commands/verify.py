@@ -107,19 +107,33 @@ def grasp_text(record: dict) -> str:
             + (f"; past the rated force: {past}" if past else "") + f" ({record['basis']})")
 
 
+#: How each reading of the tissue-coupling record is named, and what its verdict means
+#: (not a requirement of the matrix: how K_obj must be read).
+TISSUE_READINGS = (("eq3", "eq. 3 alone", {"pass": "may be read so", "fail": "must not be read "
+                                           "so", "undecided": "within its error of the limit"}),
+                   ("coupled", "the coupled inversion (eq. 3 corrected)",
+                    {"pass": "reads within it", "fail": "reads outside it",
+                     "undecided": "within its error of the limit"}))
+
+
 def tissue_text(record: dict) -> str:
-    """The tissue coupling's K_obj bias, worst unit, by eq. 3 and by the coupled inversion."""
+    """The tissue coupling's K_obj bias, worst unit (reference/measuring), by eq. 3 and by
+    the coupled inversion, each with what its verdict means for the reading."""
+    from tactcad.in_use.tissue_coupling import unit_label
+
     if not record["units"]:
         return "tissue coupling: no sensing unit"
     parts = []
-    for key, words in (("eq3", "eq. 3"), ("coupled", "coupled inversion (eq. 3 corrected)")):
+    for key, words, meaning in TISSUE_READINGS:
         worst = min(record[key]["items"], key=lambda it: (it["bias_rel"] is not None,
                                                             -abs(it["bias_rel"] or 0)))
         bias = "no answer" if worst["bias_rel"] is None else f"{100 * worst['bias_rel']:+.3g} %"
-        parts.append(f"{words} worst {bias} (unit {worst['unit'][0]}/{worst['unit'][1]}): "
-                     f"{record[key]['verdict'].upper()}")
+        verdict = record[key]["verdict"]
+        parts.append(f"{words} worst {bias} (unit {unit_label(worst['unit'])}): "
+                     f"{meaning.get(verdict, verdict)}")
     return (f"tissue coupling ({record['tissue']}), K_obj bias over the range against the "
-            f"{100 * record['target_rel']:.3g} % resolution: " + "; ".join(parts))
+            f"{100 * record['target_rel']:.3g} % resolution (how K_obj must be read, not a "
+            f"requirement): " + "; ".join(parts))
 
 
 def matrix_table(records: list[dict]) -> str:

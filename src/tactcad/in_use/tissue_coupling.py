@@ -321,6 +321,12 @@ def unit_bias(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple
                           if math.isfinite(x) else math.nan for x in corrected / ks - 1))
 
 
+def unit_label(unit: Sequence[int]) -> str:
+    """A (measuring, reference) unit as the house names a sensing unit everywhere a user
+    reads one (grasp, budget, verify): ``"reference/measuring"``."""
+    return f"{unit[1]}/{unit[0]}"
+
+
 def design_units(plan, stiffness: Mapping[int, float]) -> list[tuple[int, int]]:
     """(measuring, reference) element numbers of the plan's sensing units: every element softer
     than its row's reference (:func:`tactcad.mechanics.readout_chain.row_units`)."""

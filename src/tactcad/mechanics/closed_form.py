@@ -383,7 +383,7 @@ def corrected_point_strain(g: ElementGeometry, material: Material) -> float:
             f"gauge strain: {', '.join(f.outside)} outside the fem3d fit of the plane-strain "
             f"factor (t/R {f.coordinates['t_over_R']:.3g}, b/t "
             f"{f.coordinates['sheet_over_web']:.3g}, nu {f.coordinates['poisson_ratio']:.3g}); "
-            f"estimated error {100 * f.error_rel:.1f} %"), stacklevel=3)
+            f"estimated error {100 * f.error_rel:.1f} %", f.error_rel), stacklevel=3)
     return f.factor
 
 

@@ -74,7 +74,18 @@ RANGE_KEYS = ("t_over_R", "width_ratio", "poisson_ratio", "grid_over_notch",
 
 
 class GaugeStrainRangeWarning(UserWarning):
-    """The gauge-strain factor is applied outside the range it was fitted over."""
+    """The gauge-strain factor is applied outside the range it was fitted over.
+
+    Attributes:
+        error_rel: the estimated relative error of the factor there.
+        fold_as: what a run's output folds such warnings into (one per element geometry).
+    """
+
+    fold_as = "gauge strain outside the fem3d fit of the plane-strain factor"
+
+    def __init__(self, message: str, error_rel: float = 0.0):
+        super().__init__(message)
+        self.error_rel = error_rel
 
 
 @dataclass(frozen=True)

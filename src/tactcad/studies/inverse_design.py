@@ -865,7 +865,7 @@ def coupled_span_misses(plan: Plan, targets: Targets) -> list[str]:
     (eq. 3 corrected) then has no single answer there."""
     if targets.tissue is None:
         return []
-    from tactcad.in_use.tissue_coupling import coupled_ratio, coupled_sample
+    from tactcad.in_use.tissue_coupling import coupled_ratio, coupled_sample, unit_label
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
 
     k = ladder_stiffness_by_element(plan)
@@ -875,7 +875,7 @@ def coupled_span_misses(plan: Plan, targets: Targets) -> list[str]:
     for unit in sensing_unit_numbers(plan):
         r = np.atleast_1d(coupled_ratio(sample, k, unit, points))
         if not (np.all(np.diff(r) < 0) and r[-1] > 1.0):
-            out.append(f"unit {unit[0]}/{unit[1]}: coupled R {r[0]:.4g} ... {r[-1]:.4g} over K_obj "
+            out.append(f"unit {unit_label(unit)}: coupled R {r[0]:.4g} ... {r[-1]:.4g} over K_obj "
                        f"{points[0]:g} ... {points[-1]:g} N/mm")
     return out
 
