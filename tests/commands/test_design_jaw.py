@@ -151,3 +151,12 @@ def test_a_tapered_jaws_outline_bounds_each_sheets_comb(tmp_path):
     assert any("no stretch" in (c["binding"] or [""])[0] for c in d["candidates"]
                if c["sheet_mm"] >= 1.2)
     assert len(written["grasper_jaw"]["pocket_outline_mm"]) == 4
+
+
+def test_more_columns_than_the_jaw_holds_names_the_most_that_fit(tmp_path):
+    r = run_cli(*GRASPER_CASE[:-1], "7", "--full-scale-force", "0.05", "--jaw", "10", "--out",
+                str(tmp_path / "x.toml"))
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "leaves a measuring arm" in r.stderr
+    assert r.stderr.rstrip().endswith("nearest: --columns 6"), r.stderr[-400:]
+    assert not list(tmp_path.iterdir())

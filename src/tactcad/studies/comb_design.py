@@ -265,8 +265,11 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
                            progress) for sheet in SHEETS_MM for scale in KM_SCALES]
     good = [c for c in tried if c.plan is not None and not c.failures]
     if not good:
+        fewer = None if any(c.rated_force_N for c in tried) else \
+            nearest_columns(base, columns, room, targets, grade, envelope_of)
         raise refusal(tried, targets, room, columns,
-                      nearest_jaw(base, columns, room, targets, grade, other_rooms or {}))
+                      nearest_jaw(base, columns, room, targets, grade, other_rooms or {}),
+                      fewer)
     with range_warnings_unsaid():
         best, fasteners = with_fasteners(chosen(good), room, envelope_of)
     data = named(best.data, name, targets, room, best, columns, fasteners)
@@ -402,10 +405,31 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
             f"{room.across_mm:.3g} x {room.height_mm:.3g} mm): {where}")
 
 
+def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
+                    envelope_of: Callable | None) -> int | None:
+    """The most columns below ``columns`` whose comb counts in ``room`` (None: not even
+    one): asked when no sheet's comb of ``columns`` has a plan (the pitch or the arms bind
+    before any force is judged)."""
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    with range_warnings_unsaid():
+        for fewer in range(columns - 1, 0, -1):
+            for sheet in SHEETS_MM:
+                for scale in KM_SCALES:
+                    c = candidate(base, sheet, scale, fewer, room, targets, grade,
+                                  envelope_of, None)
+                    if c.plan is not None and not c.failures:
+                        return fewer
+    return None
+
+
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
-            columns: int, jaw_line: str = "") -> InverseDesignError:
+            columns: int, jaw_line: str = "", fewer_columns: int | None = None
+            ) -> InverseDesignError:
     """Why no sheet counts, the largest force any carries (a pasteable option) and, when
-    the pocket binds every sheet, the nearest jaw (``jaw_line``, :func:`nearest_jaw`)."""
+    the pocket binds every sheet, the nearest jaw (``jaw_line``, :func:`nearest_jaw`);
+    when the grid binds before any force, the most columns that count (``fewer_columns``,
+    :func:`nearest_columns`)."""
     lines = []
     for sheet in SHEETS_MM:  # each sheet's nearest candidate: its largest force margin
         own = [c for c in tried if c.sheet_mm == sheet and c.failures]
@@ -420,10 +444,12 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             f"{targets.k_obj_range_N_per_mm[1]:g} N/mm at {targets.full_scale_force_N:g} N:\n  "
             + "\n  ".join(lines))
     nearest = f"--full-scale-force {max(rated) * 0.99:.3g}" if rated else ""
+    option, value = "--full-scale-force", targets.full_scale_force_N
+    if not nearest and fewer_columns is not None:
+        nearest, option, value = f"--columns {fewer_columns}", "--columns", columns
     text += f"\n  {jaw_line}" if jaw_line else ""
     return InverseDesignError(text + (f"\n  nearest: {nearest}" if nearest else ""),
-                              "--full-scale-force", targets.full_scale_force_N,
-                              nearest or "a design the jaw holds")
+                              option, value, nearest or "a design the jaw holds")
 
 
 def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
