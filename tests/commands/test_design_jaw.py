@@ -48,6 +48,7 @@ def test_a_labs_own_jaw_from_a_file_bounds_the_search_and_goes_into_the_design(t
                                      "pocket_length_mm = 27.0\nopening_angle_deg = 40.0\n")
     assert d["jaw"]["jaw"] == "10 mm jaw of our_jaw.toml"
     assert (d["jaw"]["pocket_across_mm"], d["jaw"]["pocket_along_mm"]) == pytest.approx((4.8, 26.8))
+    assert d["jaw"]["height_mm"] == round(d["jaw"]["height_mm"], 6)  # no float noise
     assert d["pitch_mm"] * 6 <= 26.8 and all(not c["failed"] for c in d["checks"].values())
     assert written["grasper_jaw"]["pocket_width_mm"] == 5.0
     # no reason carried over from the template names the template's own jaw
@@ -56,7 +57,7 @@ def test_a_labs_own_jaw_from_a_file_bounds_the_search_and_goes_into_the_design(t
 
 
 @pytest.mark.parametrize("content, words", [
-    (None, "existing .toml"),
+    (None, "nor an existing file"),
     ('[grasper_shaft]\nlength_mm = 300.0\n', "no [grasper_jaw] table"),
     ('[grasper_jaw]\npocket_width_mm = 9.0\n', "grasper_jaw.pocket_width_mm"),
     ('[grasper_jaw\n', "valid TOML"),
@@ -141,6 +142,12 @@ def test_a_jaw_too_small_for_any_comb_names_the_pocket_needed_and_the_jaw_that_h
     line = next(x for x in r.stderr.splitlines() if "nearest jaw:" in x)
     assert "0.5 mm sheet's comb" in line and line.endswith("--jaw 10"), line
     assert not list(tmp_path.iterdir())
+
+
+def test_a_jaw_file_of_any_name_is_read_as_toml(tmp_path):
+    d, written = design_for_jaw_file(tmp_path, "our_jaw.cfg", "pocket_width_mm = 5.0\n")
+    assert d["jaw"]["jaw"] == "10 mm jaw of our_jaw.cfg"
+    assert written["grasper_jaw"]["pocket_width_mm"] == 5.0
 
 
 def test_a_tapered_jaws_outline_bounds_each_sheets_comb(tmp_path):

@@ -49,6 +49,14 @@ def test_the_jaw_and_shaft_the_design_states_are_the_grasps_and_said_so():
     assert d["jaw"]["opening_angle_deg"] == 30.0  # the example's [grasper_jaw], not 60
     assert d["reasons"]["pivot"] == "the design's [grasper_jaw]"
     assert d["leads"]["channel_diameter_mm"] == 9.0  # the 10 mm shaft's bore, as check reads it
+    # the example states its jaw only: the shaft and slab are their tables' defaults, said so
+    assert "[grasper_shaft] defaults" in d["reasons"]["lead_channel_mm"]
+    assert "[tissue_slab] defaults" in d["reasons"]["slab_thickness_mm"]
+    r = run_cli("grasp", "--design", COMB, "--set", "tissue_slab.thickness_mm=4", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["reasons"]["slab_thickness_mm"] == "the design's [tissue_slab]"
+    assert d["jaw"]["slab_thickness_mm"] == 4.0
     # a stacked design's stated jaw cannot seat its insert without the kernel: said, not used
     r = run_cli("grasp", "--design", TI, "--set", 'grasper_jaw.shaft_class_mm="10"', "--json")
     assert r.returncode == 0, r.stderr

@@ -44,8 +44,8 @@ def jaw_of(value: str) -> tuple[str | dict, str]:
     allowed = (", ".join(jaw_classes())
                + " (mm trocar class) or a TOML file with a [grasper_jaw] table")
     path = Path(value)
-    if path.suffix.lower() != ".toml" or not path.is_file():
-        raise DesignError("--jaw", value, allowed, "not a class, nor an existing .toml file")
+    if not path.is_file():  # any name: read as TOML, whose errors name it
+        raise DesignError("--jaw", value, allowed, "not a class, nor an existing file")
     table = read_toml(path, "--jaw").get("grasper_jaw")
     if not isinstance(table, dict):
         raise DesignError("--jaw", value, allowed, f"{path.name} has no [grasper_jaw] table")
@@ -401,9 +401,9 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
     processes = row_process_verdicts(project.plan)
     return {
         "out": str(path), "construction": construction, "left_out": left,
-        "jaw": {"jaw": room.label, "shaft_class_mm": room.shaft_class_mm,
-                "pocket_across_mm": room.across_mm,
-                "pocket_along_mm": room.along_mm, "height_mm": room.height_mm},
+        "jaw": {"jaw": room.label, "shaft_class_mm": room.shaft_class_mm,  # to 1 µm
+                "pocket_across_mm": round(room.across_mm, 6),
+                "pocket_along_mm": round(room.along_mm, 6), "height_mm": round(room.height_mm, 6)},
         "sheet_mm": d["sheet"]["thickness_mm"], "pitch_mm": d["array"]["pitch_mm"],
         "arms_mm": sorted(set(d["arms"]["lengths_mm"])),
         "webs_mm": sorted(set(d["comb"]["web_thicknesses_mm"])),

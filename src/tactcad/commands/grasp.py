@@ -193,7 +193,7 @@ def run(args: argparse.Namespace) -> int:
                   f"{DEFAULT_OPENING_DEG:g} degrees, assumed",
                   "lead_channel_mm": channel_why,
                   "slab_thickness_mm": "--slab-thickness-mm" if args.slab_thickness_mm else
-                  "the design's [tissue_slab]" if stated else
+                  stated_table_words(plan, "tissue_slab") if stated else
                   f"{DEFAULT_SLAB_MM:g} mm, assumed"}}
     print(dumps(record, indent=1) if args.json else render(record))
     return 0
@@ -205,6 +205,14 @@ def overload_limits_of(plan) -> dict[int, float]:
     from tactcad.studies.verification import element_figures, element_overload_limits_N
 
     return element_overload_limits_N(plan, element_figures(plan))
+
+
+def stated_table_words(plan, table: str) -> str:
+    """Where a grasper table's values come from: the design's own ``[table]``, or that
+    table's defaults for its stated jaw when the design leaves the table out."""
+    raw = getattr(plan, "raw", None) or {}
+    return (f"the design's [{table}]" if table in raw else
+            f"the [{table}] defaults (the design leaves the table out)")
 
 
 def lead_channel_of(plan, given_mm: float | None) -> tuple[float, str]:
@@ -219,7 +227,7 @@ def lead_channel_of(plan, given_mm: float | None) -> tuple[float, str]:
         from tactcad.partlib.grasper_shaft import shaft_part
 
         bore = shaft_part(design_table(plan, "grasper_shaft")).geometry.bore_diameter_mm
-        return bore, "the bore of the design's [grasper_shaft]"
+        return bore, "the bore of " + stated_table_words(plan, "grasper_shaft")
     return DEFAULT_LEAD_CHANNEL_MM, f"{DEFAULT_LEAD_CHANNEL_MM:g} mm, assumed"
 
 
