@@ -17,7 +17,7 @@ import os
 import sys
 from typing import NoReturn
 
-from tactcad import __version__
+from tactcad.version import __version__
 from tactcad.errors import TactcadError
 from tactcad.stopping import (ENDING_SIGNALS, act_on_held_stop, end_child_processes,
                               exit_at_once_on_stop)

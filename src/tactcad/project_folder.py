@@ -23,7 +23,7 @@ from pathlib import Path
 from string import Template
 from typing import Any, Mapping
 
-from tactcad import __version__
+from tactcad.version import __version__
 from tactcad.atomic import in_target, remove_tree, staging_dir, warn_left_behind
 from tactcad.design.array_plan import EXAMPLES, Plan
 from tactcad.errors import DesignError

@@ -369,7 +369,7 @@ def _notes(a: AssemblySheet, plan: Plan) -> None:
 
 
 def _title_block(a: AssemblySheet, plan: Plan, items: dict[str, int]) -> None:
-    from tactcad import __version__
+    from tactcad.version import __version__
 
     sh = a.sheet
     tw, rh = 180.0, 9.0

@@ -33,7 +33,7 @@ from tactcad.drawings.views import scale_text
 from tactcad.store import stable_repr
 
 def draw_title_block(d: Drawing) -> None:
-    from tactcad import __version__
+    from tactcad.version import __version__
 
     sh = d.sheet
     plan, spec = d.plan, d.spec

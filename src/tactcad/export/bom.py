@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
-from tactcad import __version__
+from tactcad.version import __version__
 from tactcad.assembly.inventory import fabricated_parts, instance_counts, part_quantities, sample_kit
 from tactcad.atomic import write_bytes_atomic
 from tactcad.catalogue.array_catalogue import Instance, PartSpec

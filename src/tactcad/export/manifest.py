@@ -22,7 +22,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-from tactcad import __version__
+from tactcad.version import __version__
 from tactcad.design.array_plan import Plan
 from tactcad.store import stack_versions
 

@@ -13,7 +13,7 @@ import hashlib
 import json
 from pathlib import Path
 
-from tactcad import __version__
+from tactcad.version import __version__
 from tactcad.catalogue.files import MANIFEST
 from tactcad.design.array_plan import Plan
 from tactcad.store import stack_versions
