@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 from tactcad.errors import (CheckFailure, DesignError, DesignErrors, ExportPathError, SceneError,
                             TactcadError, Terminated)
 
-from tactcad.version import __version__
+from tactcad.version import VERSION as __version__
 
 if TYPE_CHECKING:  # what type checkers see of the names imported on first use
     from tactcad.api import CheckReport, Element, Project, Verification, load

@@ -17,7 +17,7 @@ import os
 import sys
 from typing import NoReturn
 
-from tactcad.version import __version__
+from tactcad.version import VERSION
 from tactcad.errors import TactcadError
 from tactcad.stopping import (ENDING_SIGNALS, act_on_held_stop, end_child_processes,
                               exit_at_once_on_stop)
@@ -82,7 +82,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="tactcad",
         description="Generate CAD, wire-EDM DXF and stiffness estimates for spring-based "
                     "tactile sensor arrays. Units: mm, N, MPa, N/mm, s.")
-    parser.add_argument("--version", action="version", version=f"tactcad {__version__}")
+    parser.add_argument("--version", action="version", version=f"tactcad {VERSION}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in COMMAND_MODULES:
         try:

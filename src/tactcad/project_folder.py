@@ -23,7 +23,7 @@ from pathlib import Path
 from string import Template
 from typing import Any, Mapping
 
-from tactcad.version import __version__
+from tactcad.version import VERSION
 from tactcad.atomic import in_target, remove_tree, staging_dir, warn_left_behind
 from tactcad.design.array_plan import EXAMPLES, Plan
 from tactcad.errors import DesignError
@@ -236,7 +236,7 @@ def _project_files(design_text: str, design_name: str, plan: Plan,
                             f"and the scenes `{names['scenes']}` (named in the design's "
                             f"`[files]` table; the construction {plan.construction} has no "
                             "mount for the test rigs)"),
-             "version": __version__}
+             "version": VERSION}
     for template, target in EXTRA_FILES.items():
         files[target] = _template(template).substitute(words)
     if purchased_parts is not None:

@@ -1,4 +1,4 @@
 """The package version, written in this one place (the wheel reads it; every file that
 states the version that made it imports it from here)."""
 
-__version__ = "0.1.0"
+VERSION = "0.1.0"

@@ -53,7 +53,8 @@ def layers_from_layout_page(text: str) -> list[str]:
     return layers
 
 
-FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store", "tactcad.stopping"}
+FOUNDATION = {"tactcad", "tactcad.errors", "tactcad.atomic", "tactcad.store", "tactcad.stopping",
+              "tactcad.version"}
 TOP_LEVEL = {"tactcad.cli": "commands", "tactcad.__main__": "commands",
              "tactcad.api": "commands", "tactcad.project_folder": "commands"}
 LAYERS = layers_from_layout_page(LAYOUT_PAGE.read_text(encoding="utf-8"))

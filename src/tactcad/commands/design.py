@@ -240,9 +240,9 @@ def run(args: argparse.Namespace) -> int:
         raise as_options(exc, args, design) from None
     report = design_report(result, args.verify, progress_from_args(args))
     report["tissue_coupling"] = coupling_summary(result, args)
-    from tactcad.version import __version__
+    from tactcad.version import VERSION
 
-    header = (f"# Written by tactcad {__version__}: "
+    header = (f"# Written by tactcad {VERSION}: "
               f"`tactcad design {' '.join(design_options(args))}`.\n"
               f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
     text = header + tomli_w.dumps(result.data)
@@ -355,9 +355,9 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
                           "; ".join(f"{n}: {e}" for n, e in refusals) or "no construction seats in a jaw")
     data = dict(result.data)
     data["grasper_jaw"] = dict(room.table or {})  # the jaw it was designed for, in its scenes
-    from tactcad.version import __version__
+    from tactcad.version import VERSION
 
-    header = (f"# Written by tactcad {__version__}: "
+    header = (f"# Written by tactcad {VERSION}: "
               f"`tactcad design {' '.join(design_options(args))}`.\n"
               f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
     grid = f"{result.plan.rows} x {result.plan.columns}"

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
-from tactcad.version import __version__
+from tactcad.version import VERSION
 from tactcad.assembly.inventory import fabricated_parts, instance_counts, part_quantities, sample_kit
 from tactcad.atomic import write_bytes_atomic
 from tactcad.catalogue.array_catalogue import Instance, PartSpec
@@ -177,7 +177,7 @@ def _md_cell(text: str) -> str:
 def bom_markdown(plan: Plan, rows: Sequence[BomRow]) -> str:
     """The BOM as a Markdown document: the item table, then instances per assembly."""
     lines = [f"# Bill of materials: {plan.name}", "",
-             f"Design sha256 `{plan.design_hash[:12]}`, tactcad {__version__}. Units: mm. "
+             f"Design sha256 `{plan.design_hash[:12]}`, tactcad {VERSION}. Units: mm. "
              "Quantities are counted from the assemblies' placed instances. Stock: raw blank "
              f"per part; {STOCK_REASON}.", "",
              "| Item | Part | Qty | Unit | Spares | Type | Material | Stock | Process / reference "

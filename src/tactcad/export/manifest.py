@@ -22,7 +22,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-from tactcad.version import __version__
+from tactcad.version import VERSION
 from tactcad.design.array_plan import Plan
 from tactcad.store import stack_versions
 
@@ -105,7 +105,7 @@ def design_facts(plan: Plan) -> dict:
         # folder, never by a path of the machine it was made on
         "design": {"name": plan.name, "source": Path(plan.source).name,
                    "sha256": plan.design_hash},
-        "tactcad_version": __version__,
+        "tactcad_version": VERSION,
         "cad_stack": stack_versions(),
         "units": "mm",
     }

@@ -13,7 +13,7 @@ import hashlib
 import json
 from pathlib import Path
 
-from tactcad.version import __version__
+from tactcad.version import VERSION
 from tactcad.catalogue.files import MANIFEST
 from tactcad.design.array_plan import Plan
 from tactcad.store import stack_versions
@@ -41,7 +41,7 @@ def reuse_refusal(plan: Plan, out_dir: str | Path) -> str | None:
         return "made from another design"
     if "partial" in man:
         return "a partial export (--only/--part)"
-    if man.get("tactcad_version") != __version__ or man.get("cad_stack") != stack_versions():
+    if man.get("tactcad_version") != VERSION or man.get("cad_stack") != stack_versions():
         return "made by another tactcad version or CAD stack"
     for rel, want in listed:
         try:
