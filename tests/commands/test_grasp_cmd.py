@@ -99,7 +99,7 @@ def test_bad_options_name_the_option_the_value_and_the_range(options, words):
 
 def test_a_default_grasp_lighter_than_the_open_jaw_allows_is_the_jaw_fully_open():
     # the example's jaw opens 30 degrees: a 3 mm slab near its pin is pressed already
-    r = run_cli("grasp", "--design", COMB, "--json")
+    r = run_cli("grasp", "--design", COMB, "--profile", "slab", "--json")
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     assert d["as_laid_out"]["angle_deg"] == d["jaw"]["opening_angle_deg"]
@@ -109,5 +109,22 @@ def test_a_default_grasp_lighter_than_the_open_jaw_allows_is_the_jaw_fully_open(
     assert all(t["overload_limit_N"] > d["rated_force_N"] for t in tips)
     assert any(t["over_rating"] for t in tips) and not any(t["over_overload_limit"] for t in tips)
     # asked for, the same force is refused with the range the jaw reaches
-    r = run_cli("grasp", "--design", COMB, "--force-N", "0.3")
+    r = run_cli("grasp", "--design", COMB, "--profile", "slab", "--force-N", "0.3")
     assert r.returncode == 2 and "--force-N" in r.stderr
+
+
+def test_a_paired_design_is_set_against_its_units_laid_along_the_rows():
+    r = run_cli("grasp", "--design", COMB, "--kobj", "1", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["profile"] == "wedge"  # the default: every tip touches, every unit reads
+    assert d["paired_layout"]["as_laid_out"] and not d["along_rows_layout"]["as_laid_out"]
+    paired, along = d["paired"]["units"], d["along_rows"]["units"]
+    assert all(u["valid"] for u in paired + along)
+    assert all(u["radius_ratio"] > 1.02 for u in along)
+    # along the rows the travel ratio enters R; the travel correction takes most of it out
+    worst_paired = max(abs(u["error_rel"]) for u in paired)
+    assert min(abs(u["error_rel"]) for u in along) > 2 * worst_paired
+    assert all(abs(u["error_corrected_rel"]) < abs(u["error_rel"]) for u in along)
+    text = run_cli("grasp", "--design", COMB, "--kobj", "1").stdout
+    assert "paired: the design's own layout" in text and "along the rows: angle" in text

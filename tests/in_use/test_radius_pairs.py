@@ -72,3 +72,38 @@ def test_more_units_than_sites_are_listed_with_the_reason():
     assert len(layout.sites) == plan.columns * (plan.rows // 2)
     assert len(layout.sites) + len(layout.unplaced) == len(units)
     assert "pair sites" in layout.reason
+
+
+def test_along_the_rows_each_unit_spans_one_pitch_of_radius():
+    from tactcad.in_use.radius_pairs import along_row_layout
+
+    plan = load_design(DESIGNS[0])  # the comb, paired by column
+    units = units_of(plan)
+    layout = along_row_layout(plan, units)
+    assert layout.sites and not layout.unplaced
+    rows = {s.number: s.row for s in plan.slots}
+    jaw = jaw_for(plan)
+    frame = insert_frame(plan)
+    for s in layout.sites:
+        assert rows[s.reference_site] == rows[s.measuring_site]  # side by side on one row
+        (radii,) = unit_radii(jaw, frame, [(s.reference_site, s.measuring_site)])
+        assert radii.r_measuring_mm - radii.r_reference_mm == pytest.approx(plan.pitch_mm)
+        assert not radii.equal
+    # a row's reference shared by two measuring elements: fewer disjoint sites than units
+    plan = load_design(DESIGNS[1])
+    layout = along_row_layout(plan, units_of(plan))
+    assert len(layout.sites) == 2 and len(layout.unplaced) == 2 and "2 pair sites" in layout.reason
+
+
+def test_a_single_column_has_nothing_to_lay_along_its_rows():
+    from tactcad.design.array_plan import plan_from_dict, read_toml
+    from tactcad.in_use.radius_pairs import along_row_layout
+
+    d = read_toml(DESIGNS[1], "design file")
+    d["array"]["columns"] = 1
+    d["arms"]["lengths_mm"] = d["arms"]["lengths_mm"][:1] + d["arms"]["lengths_mm"][3:4]
+    d["arms"]["reference_elements"] = [1, 2]
+    plan = plan_from_dict(d)
+    layout = along_row_layout(plan, [(1, 2)])
+    assert layout.sites == () and layout.unplaced == ((1, 2),)
+    assert "single column" in layout.reason

@@ -15,6 +15,10 @@ from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPEN
 
 #: Defaults, each stated where it is used (mm; the jaw's in in_use.grasp_experiment).
 DEFAULT_LEAD_CHANNEL_MM = 3.0
+#: The tissue's profile a grasp assumes unless told: tissue filling the open jaw, so that every
+#: unit reads; a flat slab loads the tips near the pin first (their stops before the far tips
+#: touch), the case verify's max_grasp_force_N judges.
+DEFAULT_PROFILE = "wedge"
 #: The grasp's fields and the options that set them (an error names the option).
 OPTION_OF = {"force_N": "--force-N", "angle_deg": "--angle-deg",
              "jaw.pivot_u_mm": "--pivot-mm", "jaw.pivot_v_mm": "--pivot-mm",
@@ -55,9 +59,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="the tissue's thickness (mm; default the design's [tissue_slab] with "
                         f"its [grasper_jaw], else {DEFAULT_SLAB_MM:g} mm, assumed: give "
                         "your tissue's); a wedge's at the last tip")
-    p.add_argument("--profile", choices=PROFILES, default="slab",
-                   help="the tissue between the jaws: a flat slab, or a wedge that fills the "
-                        "open jaw so the travel grows with the radius (default %(default)s)")
+    p.add_argument("--profile", choices=PROFILES, default=DEFAULT_PROFILE,
+                   help="the tissue between the jaws: a wedge that fills the open jaw, so "
+                        "every tip touches at first contact and its travel grows with its "
+                        "radius, or a flat slab, pressed near the pin first (a hinged jaw "
+                        "reaches the far tips only once the near ones are on their stops; "
+                        "default %(default)s)")
     p.add_argument("--kobj", type=number(0, 1e4, "N/mm", lo_open=True), default=None,
                    help="the tissue's true local stiffness under one tip (N/mm; default the "
                         "geometric mean of the requirements' K_obj range)")
@@ -263,8 +270,13 @@ def render(record: dict) -> str:
              f"{record['profile']} {j['slab_thickness_mm']:g} mm, K_obj "
              f"{record['K_obj_N_per_mm']:.4g} N/mm, {record['coupling']} coupling, rated "
              f"{record['rated_force_N']:g} N per element"]
-    for key in ("as_laid_out", "paired"):
+    for key in ("as_laid_out", "paired", "along_rows"):
         lay = record[key]
+        if lay is None:
+            continue
+        if key != "as_laid_out" and record[f"{key}_layout"]["as_laid_out"]:
+            lines += ["", f"{lay['layout']}: the design's own layout (as laid out, above)"]
+            continue
         over = [t["site"] for t in lay["tips"] if t["over_rating"]]
         damaged = [t["site"] for t in lay["tips"] if t["over_overload_limit"]]
         stops = [t["site"] for t in lay["tips"] if t["on_stop"]]

@@ -1,6 +1,7 @@
 """The grasp as a virtual experiment: a pivoting jaw closes on a tissue slab; each element's
 travel, deflection and force, each unit's R and K_obj reading against the true K_obj, for the
-units as the design lays them out and paired at equal radius, side by side.
+units as the design lays them out, paired at equal radius and, where the design is paired
+already, laid along the rows (one pitch apart in radius), side by side.
 
 Model (units mm, N, N/mm, degrees):
 
@@ -35,7 +36,8 @@ from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
 from tactcad.in_use.jaw_kinematics import JawGeometry, check_angle_deg, indentation_mm
 from tactcad.in_use.kobj_budget import kobj_from_deflections
-from tactcad.in_use.radius_pairs import insert_frame, paired_layout, unit_radii
+from tactcad.in_use.radius_pairs import (PairedLayout, along_row_layout, insert_frame,
+                                         paired_layout, unit_radii)
 from tactcad.mechanics.contact import Punch, Sample, single_punch_compliance, solve_punches
 from tactcad.mechanics.hard_stops import engagement_travel_mm
 
@@ -184,20 +186,17 @@ def _punches(plan: Plan) -> list[Punch]:
     return out
 
 
-def tips_paired(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float],
-                units: list[tuple[int, int]],
-                overload_N: dict[int, float] | None = None) -> tuple[Tips, list[tuple], dict]:
-    """The same tip sites with the units laid by the equal-radius rule
-    (:func:`tactcad.in_use.radius_pairs.paired_layout`): a site takes the stiffness,
-    stop and overload limit of the element laid on it; sites no unit takes keep their
-    own element.
+def tips_on(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], layout: PairedLayout,
+            overload_N: dict[int, float] | None = None) -> tuple[Tips, list[tuple]]:
+    """The plan's tip sites with the units laid as ``layout`` lays them
+    (:func:`tactcad.in_use.radius_pairs.paired_layout` or
+    :func:`~tactcad.in_use.radius_pairs.along_row_layout`): a site takes the stiffness, stop
+    and overload limit of the element laid on it; sites no unit takes keep their own element.
 
     Returns:
-        (tips, the paired units as (reference site, measuring site, design unit), the
-        layout's JSON).
+        (tips, the laid units as (reference site, measuring site, design unit)).
     """
     base = tips_as_laid_out(plan, jaw, stiffness, overload_N)
-    layout = paired_layout(plan, units)
     k, e_s = base.stiffness_N_per_mm.copy(), base.engage_mm.copy()
     limit = base.overload_N.copy()
     index = {n: i for i, n in enumerate(base.labels)}
@@ -208,8 +207,19 @@ def tips_paired(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float],
             e_s[index[site]] = base.engage_mm[index[element]]
             limit[index[site]] = base.overload_N[index[element]]
         sites.append((s.reference_site, s.measuring_site, s.unit))
-    return (Tips(base.labels, base.radius_mm, base.punches, k, e_s, limit), sites,
-            layout.as_json())
+    return Tips(base.labels, base.radius_mm, base.punches, k, e_s, limit), sites
+
+
+def layout_json(layout: PairedLayout) -> dict:
+    """``layout``'s JSON with ``as_laid_out``: whether it is the design's own layout."""
+    return {**layout.as_json(), "as_laid_out": is_own_layout(layout)}
+
+
+def is_own_layout(layout: PairedLayout) -> bool:
+    """True when ``layout`` lays every unit on its own elements' sites (the design is laid
+    out so already)."""
+    return not layout.unplaced and all(s.unit == (s.reference_site, s.measuring_site)
+                                       for s in layout.sites)
 
 
 @dataclass(frozen=True)
@@ -332,7 +342,8 @@ def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float) -> list[dict
 
 @dataclass(frozen=True)
 class GraspResult:
-    """The grasp experiment: inputs, the as-laid-out and the paired layouts side by side."""
+    """The grasp experiment: inputs, the as-laid-out, the paired and, where the design is laid
+    out paired already, the along-the-rows layouts side by side."""
 
     design: str
     jaw: JawGeometry
@@ -344,6 +355,8 @@ class GraspResult:
     paired: LayoutGrasp
     layout: dict
     notes: dict = field(default_factory=dict)
+    along_rows: LayoutGrasp | None = None
+    along_rows_layout: dict | None = None
 
     def as_json(self) -> dict:
         j = self.jaw
@@ -356,7 +369,8 @@ class GraspResult:
                 "K_obj_N_per_mm": self.k_obj_N_per_mm, "coupling": self.coupling,
                 "profile": self.profile, "rated_force_N": self.rated_force_N, "as_laid_out": self.as_laid_out.as_json(),
                 "paired": self.paired.as_json(), "paired_layout": self.layout,
-                "notes": self.notes}
+                "along_rows": self.along_rows.as_json() if self.along_rows else None,
+                "along_rows_layout": self.along_rows_layout, "notes": self.notes}
 
 
 def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGeometry,
@@ -380,7 +394,8 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
           k_obj_N_per_mm: float, rated_force_N: float, angle_deg: float | None = None,
           force_N: float | None = None, coupling: str = "layer",
           profile: str = "slab", overload_N: dict[int, float] | None = None) -> GraspResult:
-    """The jaw closed on the slab, the design's layout and the equal-radius one side by side.
+    """The jaw closed on the slab: the design's layout, the equal-radius one and the units laid
+    along the rows, side by side.
 
     Args:
         plan: the design.
@@ -400,7 +415,9 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
             beside the rating; None: the rating alone.
 
     Returns:
-        :class:`GraspResult`.
+        :class:`GraspResult`; its ``along_rows`` (the units laid along the rows, the side the
+        equal-radius rule is measured against) only where the design's own layout is the
+        paired one and the plan has two tips along a row.
 
     Raises:
         DesignError: both or neither of angle and force, or a value out of range.
@@ -412,7 +429,9 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
     if not (math.isfinite(rated_force_N) and rated_force_N > 0):
         raise DesignError("rated_force_N", rated_force_N, "> 0 N")
     laid = tips_as_laid_out(plan, jaw, stiffness, overload_N)
-    paired, sites, layout = tips_paired(plan, jaw, stiffness, units, overload_N)
+    pairing = paired_layout(plan, units)
+    paired, sites = tips_on(plan, jaw, stiffness, pairing, overload_N)
+    along = along_row_layout(plan, units)
     if profile not in PROFILES:
         raise DesignError("profile", profile, " | ".join(PROFILES))
     args = (jaw, k_obj_N_per_mm, coupling, rated_force_N, angle_deg, force_N, profile)
@@ -424,10 +443,17 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
                            "the slab's thickness known)",
              "paired_units": "each paired unit is the design unit named, laid on the two "
                              "sites across the jaw"}
+    along_rows = None
+    if along.sites and is_own_layout(pairing):  # else the design's own is the unpaired side
+        tips, row_pairs = tips_on(plan, jaw, stiffness, along, overload_N)
+        along_rows = grasp_layout("along the rows", tips, row_pairs, *args)
+        notes["along_rows_units"] = ("each unit laid along the rows is the design unit named, "
+                                     "on two sites side by side along a row")
     return GraspResult(plan.name, jaw, float(k_obj_N_per_mm), coupling, profile,
                        float(rated_force_N),
                        grasp_layout("as laid out", laid, units, *args),
-                       grasp_layout("paired", paired, sites, *args), layout, notes)
+                       grasp_layout("paired", paired, sites, *args), layout_json(pairing),
+                       notes, along_rows, layout_json(along) if along_rows else None)
 
 
 def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,

@@ -9,7 +9,9 @@ one radius, so the placement rule pairs each unit across the width and lays the 
 along the jaw: on the plan's own tip sites, column by column, the tip of row 2i takes a
 unit's reference and the tip of row 2i + 1 its measuring element. A single-row array has no
 such pairs; its units keep their radii and R is corrected by r_r / r_m (travel in
-proportion to the radius). Units: mm.
+proportion to the radius). Its counterpart, the units laid along the rows (a reference and
+its measuring element side by side along the jaw, one pitch apart in radius), is what the
+rule is measured against. Units: mm.
 """
 
 from __future__ import annotations
@@ -135,15 +137,61 @@ class PairedLayout:
                 "unplaced": [f"{r}/{m}" for r, m in self.unplaced], "reason": self.reason}
 
 
+def side_by_side(plan: Plan, across: str) -> list[tuple[int, int]]:
+    """The plan's tip sites two by two (element numbers): ``across = "row"``, rows (0, 1),
+    (2, 3), ... of each column, column by column; ``"column"``, columns (0, 1), (2, 3), ...
+    of each row, row by row."""
+    held = "column" if across == "row" else "row"
+    count, span = (plan.columns, plan.rows) if across == "row" else (plan.rows, plan.columns)
+    out = []
+    for line in range(count):
+        by = {getattr(s, across): s.number for s in plan.slots if getattr(s, held) == line}
+        out += [(by[i], by[i + 1]) for i in range(0, span - 1, 2) if i in by and i + 1 in by]
+    return out
+
+
 def pair_sites(plan: Plan) -> list[tuple[int, int]]:
     """The plan's across-the-width site pairs (element numbers), in order along the rows:
     column by column, rows (0, 1), (2, 3), ...; none for a single row."""
-    out = []
-    for column in range(plan.columns):
-        by_row = {s.row: s.number for s in plan.slots if s.column == column}
-        out += [(by_row[r], by_row[r + 1]) for r in range(0, plan.rows - 1, 2)
-                if r in by_row and r + 1 in by_row]
-    return out
+    return side_by_side(plan, "row")
+
+
+def row_sites(plan: Plan) -> list[tuple[int, int]]:
+    """The plan's along-the-row site pairs (element numbers): row by row, columns (0, 1),
+    (2, 3), ...; none for a single column. Two such tips lie one pitch apart in radius."""
+    return side_by_side(plan, "column")
+
+
+def laid_on(plan: Plan, units: list[tuple[int, int]], sites: list[tuple[int, int]],
+            no_sites: str) -> PairedLayout:
+    """The design's ``units`` laid in order on the site pairs ``sites``; units beyond them
+    are listed as unplaced, ``no_sites`` the reason when there are none."""
+    frame = insert_frame(plan)
+    laid = tuple(PairSite(u, a, b, frame[a], frame[b]) for u, (a, b) in zip(units, sites))
+    unplaced = tuple(units[len(sites):])
+    if not sites:
+        reason = no_sites
+    elif unplaced:
+        reason = f"{len(sites)} pair sites for {len(units)} units"
+    else:
+        reason = ""
+    return PairedLayout(laid, unplaced, reason)
+
+
+def along_row_layout(plan: Plan, units: list[tuple[int, int]]) -> PairedLayout:
+    """Lay the design's units along the rows, each pair's two tips side by side on one row
+    (:func:`row_sites`), one pitch apart in radius: the layout the equal-radius rule is
+    measured against.
+
+    Args:
+        plan: the design (its tip sites).
+        units: the design's (reference, measuring) element numbers, laid in this order.
+
+    Returns:
+        :class:`PairedLayout`; units beyond the sites are listed as unplaced, with why.
+    """
+    return laid_on(plan, units, row_sites(plan),
+                   "a single column has no two tips along a row")
 
 
 def paired_layout(plan: Plan, units: list[tuple[int, int]]) -> PairedLayout:
@@ -159,16 +207,11 @@ def paired_layout(plan: Plan, units: list[tuple[int, int]]) -> PairedLayout:
     Returns:
         :class:`PairedLayout`; units beyond the sites are listed as unplaced, with why.
     """
-    frame = insert_frame(plan)
-    sites = pair_sites(plan)
-    laid = tuple(PairSite(u, a, b, frame[a], frame[b]) for u, (a, b) in zip(units, sites))
-    unplaced = tuple(units[len(sites):])
-    if not sites:
-        reason = (f"a single row has no two tips across the jaw: the units keep their radii "
-                  f"and R is corrected by r_r / r_m")
-    elif unplaced:
-        reason = (f"{plan.columns} columns x {plan.rows // 2} row pairs give {len(sites)} "
-                  f"pair sites for {len(units)} units")
-    else:
-        reason = ""
-    return PairedLayout(laid, unplaced, reason)
+    layout = laid_on(plan, units, pair_sites(plan),
+                     "a single row has no two tips across the jaw: the units keep their radii "
+                     "and R is corrected by r_r / r_m")
+    if layout.unplaced and layout.sites:
+        return PairedLayout(layout.sites, layout.unplaced,
+                            f"{plan.columns} columns x {plan.rows // 2} row pairs give "
+                            f"{len(layout.sites)} pair sites for {len(units)} units")
+    return layout
