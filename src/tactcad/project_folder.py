@@ -199,17 +199,17 @@ def _with_files_table(text: str, named: Mapping[str, str]) -> str:
             f"[files]\n{lines}")
 
 
-def _check_target(folder: Path, names: list[str], force: bool) -> None:
+def _check_target(folder: Path, names: list[str], force: bool, option: str = "DIR") -> None:
     if folder.exists() and not folder.is_dir():
-        raise DesignError("DIR", str(folder), "a new or existing folder", "it is a file")
+        raise DesignError(option, str(folder), "a new or existing folder", "it is a file")
     parent = folder.resolve().parent
     if not parent.is_dir() or not os.access(parent, os.W_OK | os.X_OK) \
             or (folder.exists() and not os.access(folder, os.W_OK | os.X_OK)):
-        raise DesignError("DIR", str(folder), "a folder this user can write, in an existing folder",
+        raise DesignError(option, str(folder), "a folder this user can write, in an existing folder",
                           f"{parent} is not one")
     clashes = [n for n in names if (folder / n).exists()]
     if clashes and not force:
-        raise DesignError("DIR", str(folder), "a folder without the project's files, or --force",
+        raise DesignError(option, str(folder), "a folder without the project's files, or --force",
                           f"it has {', '.join(sorted(clashes))} already")
 
 
@@ -266,7 +266,8 @@ def _umask() -> int:
 
 def write_project(folder: str | Path, design_text: str, design_name: str, plan: Plan, *,
                   companions: Mapping[str, str | None] | None = None,
-                  purchased_parts: str | None = None, force: bool = False) -> NewProject:
+                  purchased_parts: str | None = None, force: bool = False,
+                  option: str = "DIR") -> NewProject:
     """Write a project folder around a validated design.
 
     Args:
@@ -281,18 +282,21 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
             a construction without test rigs gets no rigs file.
         purchased_parts: the text of ``purchased-parts.md`` (an example's own);
             None: the test rigs' bought parts where the project has test rigs, else none.
+        force: overwrite the files the folder holds already.
+        option: the command's name of the folder, named by a refusal (``new``'s ``DIR``,
+            ``design``'s ``--out``).
 
     Returns:
         :class:`NewProject`.
 
     Raises:
-        DesignError: ``DIR`` is a file, or holds one of the files (without ``force``).
+        DesignError: ``option`` is a file, or holds one of the files (without ``force``).
         OSError: the folder cannot be written (nothing is left half-written:
             the files are made in a staging folder beside it first).
     """
     folder = Path(folder)
     files = _project_files(design_text, design_name, plan, companions, purchased_parts)
-    _check_target(folder, list(files), force)
+    _check_target(folder, list(files), force, option)
     staging = staging_dir(folder)
     os.chmod(staging, 0o777 & ~_umask())  # a project folder, not a private temporary one
     try:

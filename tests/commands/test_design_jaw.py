@@ -167,3 +167,21 @@ def test_more_columns_than_the_jaw_holds_names_the_most_that_fit(tmp_path):
     assert "leaves a measuring arm" in r.stderr
     assert r.stderr.rstrip().endswith("nearest: --columns 6"), r.stderr[-400:]
     assert not list(tmp_path.iterdir())
+
+
+def test_a_comb_as_the_layout_searchs_base_is_refused_naming_the_jaw_option(tmp_path):
+    comb = "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml"
+    out = tmp_path / "x.toml"
+    r = run_cli("design", "--design", comb, "--kr-over-km", "3", "--kobj-range", "5", "20",
+                "--full-scale-force", "0.3", "--verify", "none", "--out", str(out))
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "--design" in r.stderr and "monolithic-comb" in r.stderr
+    assert f"--jaw {comb}" in r.stderr and not out.exists()
+
+
+@pytest.mark.parametrize("name", ["mein Einsatz", "-dash", "ü"])
+def test_an_out_that_is_no_design_name_is_refused_before_the_search(tmp_path, name):
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
+                "--out", str(tmp_path / name))
+    assert r.returncode == 2 and "--out" in r.stderr and "starting with a letter" in r.stderr
+    assert not (tmp_path / name).exists()

@@ -128,3 +128,12 @@ def test_a_paired_design_is_set_against_its_units_laid_along_the_rows():
     assert all(abs(u["error_corrected_rel"]) < abs(u["error_rel"]) for u in along)
     text = run_cli("grasp", "--design", COMB, "--kobj", "1").stdout
     assert "paired: the design's own layout" in text and "along the rows: angle" in text
+
+
+def test_a_default_grasp_heavier_than_the_closed_jaw_allows_is_the_jaw_closed_flat():
+    r = run_cli("grasp", "--design", COMB, "--slab-thickness-mm", "0.001", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["as_laid_out"]["angle_deg"] == 0.0
+    assert 0 < d["as_laid_out"]["total_force_N"] < 0.5 * d["rated_force_N"] * 12
+    assert d["reasons"]["force_N"].startswith("the jaw closed flat")

@@ -250,7 +250,7 @@ def run(args: argparse.Namespace) -> int:
         write_bytes_atomic(path, text.encode("utf-8"))
     else:
         from tactcad.project_folder import write_project
-        write_project(folder, text, path.name, result.plan, force=args.force)
+        write_project(folder, text, path.name, result.plan, force=args.force, option="--out")
     report["out"] = str(path)
     if args.json:
         print(json.dumps(report, indent=2, allow_nan=False))
@@ -332,6 +332,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'grasper_insert'}.toml"
     name = path.stem.replace("-", "_") or "grasper_insert"
+    check_design_name(name, args.out)
     from tactcad.design.array_plan import EXAMPLES, read_toml
     from tactcad.partlib.grasper_jaw import jaw_room
 
@@ -364,7 +365,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     scenes = scenes_without_rigs_text(name, grid)
     if folder is not None:  # a project folder, as `tactcad new` makes (its [files] table added)
         write_project(folder, header + tomli_w.dumps(data), path.name, result.plan,
-                      companions={"scenes": scenes}, force=args.force)
+                      companions={"scenes": scenes}, force=args.force, option="--out")
     else:
         scenes_path = path.parent / f"{path.stem}-scenes.toml"
         data["files"] = {"scenes": scenes_path.name}
@@ -380,6 +381,30 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     else:
         print_jaw_report(report)
     return 0
+
+
+def shown_path(path: str) -> str:
+    """``path`` as a user reads it: relative to the working folder when inside it (the JSON
+    report keeps it whole)."""
+    try:
+        return os.path.relpath(path) if Path(path).resolve().is_relative_to(Path.cwd()) else path
+    except (OSError, ValueError):
+        return path
+
+
+def check_design_name(name: str, out: str) -> None:
+    """Refuse, before any search, an ``--out`` whose stem is no design name.
+
+    Raises:
+        DesignError: naming ``--out``, its value and the names allowed.
+    """
+    import re
+
+    from tactcad.vocabulary.schema import NAME_ALLOWED, NAME_PATTERN
+
+    if not re.fullmatch(NAME_PATTERN, name):
+        raise DesignError("--out", out, NAME_ALLOWED + " (its file or folder name is the "
+                          "design's name)", "names end up in file names, DXF headers and drawings")
 
 
 def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
@@ -440,7 +465,7 @@ def row_process_verdicts(plan) -> dict[str, list[str]]:
 
 def print_jaw_report(r: dict) -> None:
     j = r["jaw"]
-    print(f"{r['out']}: {r['construction']} for the {j['jaw']} (pocket "
+    print(f"{shown_path(r['out'])}: {r['construction']} for the {j['jaw']} (pocket "
           f"{j['pocket_across_mm']:g} x {j['pocket_along_mm']:g} mm, {j['height_mm']:g} mm high)")
     for line in r["left_out"]:
         print(f"  not searched: {line}")
@@ -541,6 +566,15 @@ def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
     design = Path(args.design) if args.design else default_design()
     raw = with_overrides(read_toml(design, "design file"), set_keys(args))
     base = check(raw)  # the base's own tables first: the start is made from them
+    from tactcad.design.construction_registry import DEFAULT_CONSTRUCTION, construction_name
+
+    construction = construction_name(raw)
+    if construction != DEFAULT_CONSTRUCTION:  # the layout search varies the stack's bolts
+        raise DesignError("--design", str(design), "a stacked design as the base of the "
+                          "layout search",
+                          f"it is a {construction} design: a comb is designed to a jaw with "
+                          f"--jaw 5, 10 or a file whose [grasper_jaw] table is the jaw (this "
+                          f"design's own: --jaw {shlex.quote(str(design))})")
     data = start_tables(raw, base.design.name, grade=args.material, pitch_mm=args.pitch,
                         rows=args.rows, columns=args.columns)
     data["design"] = {**data["design"], "name": name}
@@ -805,7 +839,7 @@ def print_report(r: dict) -> None:
         print(line)
     print(f"largest feasible full-scale force for these stiffness targets: "
           f"{r['max_full_scale_force_N']:.4g} N, bound by " + "; ".join(r["binding_limits"]))
-    print(f"wrote {r['out']}")
+    print(f"wrote {shown_path(r['out'])}")
 
 
 def corrected_worst_text(biases: list) -> str:

@@ -165,14 +165,23 @@ def run(args: argparse.Namespace) -> int:
         except DesignError as exc:
             if asked or exc.field != "force_N":
                 raise
-            # the default force below what the tissue takes with the jaw fully open: the
-            # grasp the jaw cannot make lighter
+            # the default force outside what the tissue takes: below it with the jaw fully
+            # open (the grasp the jaw cannot make lighter), or above it closed flat (a
+            # tissue too thin or soft for it)
             result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=jaw.opening_angle_deg,
                            coupling=args.coupling, profile=args.profile, overload_N=overload)
-            force_why = (f"the jaw at its full opening: {force_why} ({force:g} N) is less "
-                         f"than the {result.as_laid_out.total_force_N:.4g} N the "
-                         f"{jaw.slab_thickness_mm:g} mm {args.profile} takes with the jaw "
-                         f"open {jaw.opening_angle_deg:g} degrees")
+            tissue = f"{jaw.slab_thickness_mm:g} mm {args.profile}"
+            if result.as_laid_out.total_force_N > force:
+                force_why = (f"the jaw at its full opening: {force_why} ({force:g} N) is less "
+                             f"than the {result.as_laid_out.total_force_N:.4g} N the {tissue} "
+                             f"takes with the jaw open {jaw.opening_angle_deg:g} degrees")
+            else:
+                result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=0.0,
+                               coupling=args.coupling, profile=args.profile,
+                               overload_N=overload)
+                force_why = (f"the jaw closed flat: {force_why} ({force:g} N) is more than "
+                             f"the {result.as_laid_out.total_force_N:.4g} N the {tissue} "
+                             f"takes with the jaw closed")
         channel, channel_why = lead_channel_of(plan, args.lead_channel_mm)
         leads = leads_check(len(plan.slots), channel,
                             readout_chain(plan).lead_wires)
