@@ -21,3 +21,12 @@ def test_unknown_model_is_refused_in_one_line():
     r = run_cli("crosstalk", "--model", "fem9d", "--json")
     assert r.returncode == 2
     assert "stack-beam" in json.loads(r.stdout)["error"]["message"]
+
+
+def test_a_comb_has_no_stack_crosstalk_model_and_is_refused_by_its_construction():
+    r = run_cli("crosstalk", "--design", "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml",
+                "--json")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "array.construction" and error["value"] == "monolithic-comb"
+    assert "bolts and plates" in error["message"]

@@ -90,7 +90,8 @@ def test_a_non_paper_design_and_the_text_table():
                                             (["--angle-deg", "80", "--opening-deg", "30"],
                                              "--angle-deg"),
                                             (["--slab-thickness-mm", "-1"],
-                                             "--slab-thickness-mm")])
+                                             "--slab-thickness-mm"),
+                                            (["--jaw-length-mm", "1"], "--jaw-length-mm")])
 def test_bad_options_name_the_option_the_value_and_the_range(options, words):
     r = run_cli("grasp", "--design", TI, *options)
     assert r.returncode == 2
@@ -137,3 +138,9 @@ def test_a_default_grasp_heavier_than_the_closed_jaw_allows_is_the_jaw_closed_fl
     assert d["as_laid_out"]["angle_deg"] == 0.0
     assert 0 < d["as_laid_out"]["total_force_N"] < 0.5 * d["rated_force_N"] * 12
     assert d["reasons"]["force_N"].startswith("the jaw closed flat")
+
+
+def test_a_jaw_too_short_is_refused_for_the_length_its_farthest_tip_needs():
+    r = run_cli("grasp", "--design", COMB, "--jaw-length-mm", "1")
+    assert r.returncode == 2 and "--pivot-mm" not in r.stderr
+    assert "--jaw-length-mm = 1" in r.stderr and "at least 29.7 mm from the pin" in r.stderr

@@ -272,3 +272,12 @@ def test_the_projects_gitignore_keeps_every_folder_the_docs_write_out_of_git(tmp
     assert sorted(ignored) == sorted(folders)
     assert subprocess.run(["git", "-C", str(made.folder), "check-ignore", "-q",
                            made.design.name]).returncode == 1  # the design itself is kept
+
+
+def test_the_next_step_new_prints_can_be_pasted_for_a_folder_with_a_space(tmp_path, capsys):
+    import shlex
+
+    assert main(["new", str(tmp_path / "my proj")]) == 0
+    line = [x for x in capsys.readouterr().out.splitlines() if x.startswith("next: ")][0]
+    words = shlex.split(line.removeprefix("next: "))
+    assert words[:2] == ["cd", str(tmp_path / "my proj")] and words[2] == "&&"

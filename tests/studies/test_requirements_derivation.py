@@ -12,8 +12,9 @@ import pytest
 from tactcad import cli
 from tactcad.design.array_plan import default_design_data, plan_from_dict, read_toml, with_overrides
 from tactcad.mechanics.readout_chain import readout_report
-from tactcad.studies.verification import (RowPair, element_figures, kr_over_km_record,
-                                          requirements_of, row_pairs, verification_matrix)
+from tactcad.studies.verification import (UNREADABLE_RESOLUTION_REL, RowPair, element_figures,
+                                          kr_over_km_record, requirements_of, row_pairs,
+                                          verification_matrix)
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
 #: A noisier read-out: one sample, gain 10, +/-10 V range (tens of mN per reading).
@@ -220,3 +221,14 @@ def test_a_derived_k_band_is_met_by_the_toleranced_design_it_was_derived_for():
     assert toleranced["pass"] and toleranced["target"] >= toleranced["predicted"]
     stated = example(**{"element.web_tolerance_mm": 0.0005, "requirements.k_tolerance_rel": 0.004})
     assert not record(verification_matrix(stated, "closed-form"), "k_tolerance_rel_toleranced")["pass"]
+
+
+def test_a_force_too_small_for_the_read_out_fails_the_derived_resolution():
+    # 1 nN on the example's chain: its K_obj resolution is far past what a design may state
+    plan = example(drop_requirements=("kobj_resolution_rel",),
+                   **{"requirements.full_scale_force_N": 1e-9})
+    req = requirements_of(plan)
+    assert req.kobj_resolution_rel == UNREADABLE_RESOLUTION_REL
+    assert "too small for the read-out chain" in req.reasons["kobj_resolution_rel"]
+    res = record(verification_matrix(plan, requirements=req), "kobj_resolution_rel")
+    assert res["predicted"] > UNREADABLE_RESOLUTION_REL and res["verdict"] == "fail"

@@ -18,6 +18,10 @@ from tactcad.errors import DesignError
 
 
 
+#: The ladder level that checks a searched design (``--verify``), without ``--jaw``.
+DEFAULT_VERIFY = "fem3d"
+
+
 def verify_levels() -> tuple[str, ...]:
     """``--verify`` choices: the ladder's levels above the closed form, dearest first, or none."""
     return (*reversed(models()[1:]), "none")
@@ -123,8 +127,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--construction", choices=("auto",) + construction_choices(), default="auto",
                    help="construction of the array (default auto: the stacked array, or with "
                         "--jaw every construction that seats in a jaw)")
-    p.add_argument("--verify", choices=verify_levels(), default="fem3d",
-                   help="ladder level that checks the chosen geometry (default fem3d, ~1 min)")
+    p.add_argument("--verify", choices=verify_levels(), default=None,
+                   help=f"ladder level that checks the chosen geometry (default {DEFAULT_VERIFY}, "
+                        "~1 min; not with --jaw, whose design the checks that need no CAD "
+                        "kernel check: run tactcad verify on it)")
     add_design_arg(p)
     add_cache_args(p)
     add_output_args(p, "print JSON")
@@ -238,7 +244,7 @@ def run(args: argparse.Namespace) -> int:
                                  name=data["design"]["name"], **kwargs)
     except DesignError as exc:
         raise as_options(exc, args, design) from None
-    report = design_report(result, args.verify, progress_from_args(args))
+    report = design_report(result, args.verify or DEFAULT_VERIFY, progress_from_args(args))
     report["tissue_coupling"] = coupling_summary(result, args)
     from tactcad.version import VERSION
 
@@ -309,7 +315,7 @@ def refuse_options_a_jaw_sets(args: argparse.Namespace) -> None:
             shown = " ".join(f"{v:g}" for v in value) if attr == "footprint" else \
                 (" ".join(value) if isinstance(value, list) else value)
             raise DesignError(flag, shown, "only without --jaw", why)
-    if getattr(args, "verify", "fem3d") != "fem3d":
+    if getattr(args, "verify", None) is not None:
         raise DesignError("--verify", args.verify, "only without --jaw",
                           "a design to a jaw is checked by the checks that run without the "
                           "CAD kernel; run `tactcad verify` on the written design")
@@ -664,12 +670,10 @@ def design_options(args: argparse.Namespace) -> list[str]:
         words.append(f"--design {shlex.quote(args.design)}")
     words += [f"--set {shlex.quote(item)}" for item in getattr(args, "overrides", None) or ()]
     verify = getattr(args, "verify", None)
-    if verify is not None and verify != "fem3d":
+    if verify is not None and verify != DEFAULT_VERIFY:
         words.append(f"--verify {verify}")
     words.append(f"--out {shlex.quote(args.out)}")
-    if getattr(args, "force", False):
-        words.append("--force")
-    return words
+    return words  # no --force: the header's command, run again, refuses to overwrite
 
 
 def design_report(result, verify: str, progress=None) -> dict:

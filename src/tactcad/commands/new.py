@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shlex
 
 from tactcad.commands import add_output_args
 from tactcad.project_folder import DEFAULT_EXAMPLE, examples
@@ -49,5 +50,6 @@ def run(args: argparse.Namespace) -> int:
     for rel in made.files:
         print(f"  {rel}")
     design = made.design.name
-    print(f"next: cd {made.folder} && tactcad export --design {design} --out exports")
+    print(f"next: cd {shlex.quote(str(made.folder))} && tactcad export --design "
+          f"{shlex.quote(design)} --out exports")
     return 0

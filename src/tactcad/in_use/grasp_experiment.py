@@ -45,6 +45,10 @@ from tactcad.mechanics.hard_stops import engagement_travel_mm
 PROFILES = ("slab", "wedge")
 #: Tissue couplings: none (eq. 1), a half-space, a layer of the slab's thickness.
 COUPLINGS = ("none", "halfspace", "layer")
+#: What the travel correction leaves in a reading, by whether the tips are coupled.
+COUPLING_LEFT_IN = ("", "; the tissue's coupling between neighbouring tips stays in it "
+                        "(verify's coupled inversion and tactcad budget's tissue-coupling "
+                        "source take it out)")
 #: Poisson's ratio of soft tissue, nearly incompressible (as the evaluation's samples).
 TISSUE_POISSON_RATIO = 0.49
 #: Boundary-element cell edge (mm): a 1 x 1 mm face gets 4 x 4 cells.
@@ -440,7 +444,7 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
              "tissue": f"{coupling} coupling, ν {TISSUE_POISSON_RATIO:g}, its modulus set so "
                        f"one tip face alone sees K_obj",
              "correction": "R corrected = R read x travel_r / travel_m (the jaw's angle and "
-                           "the slab's thickness known)",
+                           "the slab's thickness known)" + COUPLING_LEFT_IN[coupling != "none"],
              "paired_units": "each paired unit is the design unit named, laid on the two "
                              "sites across the jaw"}
     along_rows = None

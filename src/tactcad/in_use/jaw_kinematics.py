@@ -87,6 +87,13 @@ class JawGeometry:
         return math.cos(a), math.sin(a)
 
 
+def along_jaw_mm(jaw: JawGeometry, u_mm: float, v_mm: float) -> float:
+    """A point's distance from the pin along the jaw's axis (mm; negative behind the pin),
+    unchecked: :func:`tip_radius_mm` is the checked radius."""
+    au, av = jaw.axis
+    return (u_mm - jaw.pivot_u_mm) * au + (v_mm - jaw.pivot_v_mm) * av
+
+
 def tip_radius_mm(jaw: JawGeometry, u_mm: float, v_mm: float) -> float:
     """A tip's radius (mm): its distance from the pin along the jaw's axis.
 
@@ -100,13 +107,15 @@ def tip_radius_mm(jaw: JawGeometry, u_mm: float, v_mm: float) -> float:
     Raises:
         DesignError: the tip lies behind the pin or beyond the jaw's end.
     """
-    au, av = jaw.axis
-    r = (u_mm - jaw.pivot_u_mm) * au + (v_mm - jaw.pivot_v_mm) * av
-    if not 0.0 < r <= jaw.jaw_length_mm:
-        raise DesignError("jaw.pivot_u_mm", jaw.pivot_u_mm,
-                          f"a pin that puts every tip on the jaw, 0 < r <= "
-                          f"{jaw.jaw_length_mm:g} mm (a tip at u = {u_mm:g}, v = {v_mm:g} mm "
-                          f"is at r = {r:.4g} mm)")
+    r = along_jaw_mm(jaw, u_mm, v_mm)
+    where = f"a tip at u = {u_mm:g}, v = {v_mm:g} mm is at r = {r:.4g} mm"
+    if r <= 0.0:
+        raise DesignError("jaw.pivot_u_mm", round(jaw.pivot_u_mm, 9),
+                          "a pin behind every tip (0 < r)", where)
+    if r > jaw.jaw_length_mm:
+        raise DesignError("jaw.jaw_length_mm", round(jaw.jaw_length_mm, 9),
+                          f"a jaw that reaches every tip, at least {r:.4g} mm from the pin",
+                          where)
     return r
 
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from tactcad.design.array_plan import Plan
-from tactcad.in_use.jaw_kinematics import JawGeometry, tip_radius_mm
+from tactcad.in_use.jaw_kinematics import JawGeometry, along_jaw_mm, tip_radius_mm
 
 #: The largest |r_m / r_r − 1| of a unit at "equal radius" (issue 43: within 2 %).
 EQUAL_RADIUS_TOLERANCE_REL = 0.02
@@ -88,6 +88,11 @@ def unit_radii(jaw: JawGeometry, positions: dict[int, tuple[float, float]],
     Raises:
         DesignError: a tip behind the pin or beyond the jaw's end.
     """
+    used = sorted({n for unit in units for n in unit})
+    # the farthest tip first: a jaw too short is refused for the length every tip needs
+    for n in sorted(used, key=lambda n: -along_jaw_mm(jaw, *positions[n]))[:1] + used:
+        tip_radius_mm(jaw, *positions[n])
+
     def r(n: int) -> float:
         return tip_radius_mm(jaw, *positions[n])
 

@@ -75,7 +75,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 from tactcad.design.array_plan import Plan
-from tactcad.errors import TactcadError
+from tactcad.errors import DesignError, TactcadError
 from tactcad.mechanics.level_registry import LevelRegistry
 
 #: Shear correction factor of a rectangle (Timoshenko and Gere).
@@ -497,9 +497,21 @@ def estimate_crosstalk(inputs: StackInputs, model: str = "stack-beam") -> Crosst
 
 
 def plan_crosstalk(plan: Plan, model: str = "stack-beam", **changes) -> CrosstalkResult:
-    """:func:`estimate_crosstalk` of the plan's stack (``changes``: :func:`stack_inputs`)."""
+    """:func:`estimate_crosstalk` of the plan's stack (``changes``: :func:`stack_inputs`).
+
+    Raises:
+        UnknownCrosstalkModelError: ``model`` is no level.
+        DesignError: the plan's construction is no clamped stack (the model couples the
+            elements through its bolts and plates; a comb has none).
+    """
+    from tactcad.design.construction_registry import stack_crosstalk_reason
+
     if model not in CROSSTALK_LEVELS:
         raise UnknownCrosstalkModelError(model)
+    why = stack_crosstalk_reason(plan)
+    if why:
+        raise DesignError("array.construction", plan.construction,
+                          "a construction the stack crosstalk model describes (stacked)", why)
     return estimate_crosstalk(stack_inputs(plan, **changes), model)
 
 

@@ -324,7 +324,8 @@ def kobj_resolution_requirement(units: SensingUnits, rng, force_N: float) -> tup
     (N/mm) at ``force_N`` (N), each element read through the design's own read-out chain,
     padded by its error estimate and rounded up, so that the level it was derived at
     decides it (its margin clears its error); :data:`UNREADABLE_RESOLUTION_REL` and inf
-    without a unit."""
+    without a unit. The value may exceed what a design may state (the search refuses it
+    as the force that set it)."""
     if not units.read:
         return UNREADABLE_RESOLUTION_REL, math.inf
     worst = worst_resolution(units, rng, force_N)
@@ -412,9 +413,12 @@ def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
 
 def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float) -> tuple[float, str]:
     """The K_obj resolution requirement a design file leaves out and its reason: what the
-    design's own read-out chain reaches (:func:`kobj_resolution_requirement`)."""
+    design's own read-out chain reaches (:func:`kobj_resolution_requirement`), at most
+    :data:`UNREADABLE_RESOLUTION_REL`, the largest a design may state (a design that reads
+    worse fails it: its full-scale force is too small for its read-out chain)."""
     units = sensing_units(plan, fig)
     value, worst = kobj_resolution_requirement(units, rng, force_N)
+    value = min(value, UNREADABLE_RESOLUTION_REL)
     if not math.isfinite(worst):
         return value, ("not stated: no element is softer than its row's reference, so no K_obj "
                        "can be read")
@@ -422,7 +426,10 @@ def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float) -> tu
     return value, (f"not stated: the worst K_obj resolution over the range at the full-scale "
                    f"force, {100 * worst:.3g} % ({fig.model}, each element read through the "
                    f"design's [readout] chain to {1e3 * min(forces):.3g}-{1e3 * max(forces):.3g} "
-                   f"mN), padded by its error and rounded up")
+                   f"mN), padded by its error and rounded up"
+                   + ("" if value < UNREADABLE_RESOLUTION_REL else
+                      f", at most {UNREADABLE_RESOLUTION_REL:g} (the largest a design may state: "
+                      f"the full-scale force is too small for the read-out chain)"))
 
 
 #: The requirements on reading K_obj (eq. 3), which apply where a row has a measuring element.
