@@ -185,3 +185,28 @@ def test_an_out_that_is_no_design_name_is_refused_before_the_search(tmp_path, na
                 "--out", str(tmp_path / name))
     assert r.returncode == 2 and "--out" in r.stderr and "starting with a letter" in r.stderr
     assert not (tmp_path / name).exists()
+
+
+def test_a_grasp_to_survive_is_judged_on_the_comb_and_written_as_its_requirement(tmp_path):
+    out = tmp_path / "insert.toml"
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
+                "--max-grasp-force", "15", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    written = tomllib.loads(out.read_text(encoding="utf-8"))
+    assert written["requirements"]["max_grasp_force_N"] == 15.0
+    assert written["assumptions"]["requirements.max_grasp_force_N"].startswith("Asked")
+    assert "--max-grasp-force 15" in out.read_text(encoding="utf-8").splitlines()[0]
+    r = run_cli("verify", "--design", str(out), "--json")
+    assert r.returncode == 0, r.stderr
+    grasp = [x for x in json.loads(r.stdout)["matrix"] if x["requirement"] == "max_grasp_force_N"]
+    assert grasp and grasp[0]["verdict"] == "pass"
+
+
+def test_a_grasp_beyond_the_jaws_reach_is_refused_by_its_option(tmp_path):
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
+                "--max-grasp-force", "100", "--out", str(tmp_path / "x.toml"))
+    assert r.returncode == 2 and "--max-grasp-force" in r.stderr and "out of reach" in r.stderr
+    assert not (tmp_path / "x.toml").exists()
+    r = run_cli("design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force",
+                "0.3", "--max-grasp-force", "10", "--out", str(tmp_path / "y.toml"))
+    assert r.returncode == 2 and "--max-grasp-force" in r.stderr and "only with --jaw" in r.stderr

@@ -82,6 +82,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="object stiffnesses to read (N/mm)")
     p.add_argument("--full-scale-force", type=number(0, 1e4, "N", lo_open=True), required=True, metavar="F",
                    help="force every element must carry (N)")
+    p.add_argument("--max-grasp-force", type=number(0, 100, "N", lo_open=True), default=None,
+                   metavar="F",
+                   help="with --jaw: the largest grasp the insert must survive (N): every "
+                        "element within its overload limit, its hard stop taking the rest "
+                        "(requirements.max_grasp_force_N; not judged when left out)")
     p.add_argument("--material", metavar="GRADE", type=material_grade_name, default=None,
                    help="material grade of the library (default: the base design's material)")
     p.add_argument("--columns", type=count(1, 100, "columns"), metavar="N", default=None,
@@ -230,6 +235,10 @@ def run(args: argparse.Namespace) -> int:
                       tissue=tissue_of(args) if args.tissue_coupling == "on" else None)
     if args.jaw is not None or args.construction not in ("auto", "stacked"):
         return run_jaw(args, targets)
+    if args.max_grasp_force is not None:
+        raise DesignError("--max-grasp-force", args.max_grasp_force, "only with --jaw",
+                          "a grasp is judged in the jaw the design is for; state "
+                          "requirements.max_grasp_force_N with the design's [grasper_jaw]")
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
@@ -350,7 +359,8 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
             result = c.jaw_search()(targets, room, args.columns or 6, base, grade=args.material,
                                     name=name, envelope_of=array_envelope_mm,
                                     other_rooms={k: jaw_room(k) for k in jaw_classes()
-                                                 if k != args.jaw})
+                                                 if k != args.jaw},
+                                    max_grasp_force_N=args.max_grasp_force)
             used = c.name
             break
         except DesignError as exc:
@@ -525,7 +535,8 @@ OPTION_FIELDS = {"array.rows": "--rows", "array.columns": "--columns", "array.pi
                  "design.name": "--out", "requirements.footprint_mm": "--footprint",
                  "requirements.kr_over_km": "--kr-over-km",
                  "requirements.kobj_range_N_per_mm": "--kobj-range",
-                 "requirements.full_scale_force_N": "--full-scale-force"}
+                 "requirements.full_scale_force_N": "--full-scale-force",
+                 "requirements.max_grasp_force_N": "--max-grasp-force"}
 
 
 def set_keys(args: argparse.Namespace) -> dict[str, Any]:
@@ -645,7 +656,8 @@ def design_options(args: argparse.Namespace) -> list[str]:
     as typed so that running it again makes the same file: the targets, the
     grid, grade, pitch and footprint where given, the jaw and construction,
     the tissue options that differ from their defaults, the base design, every
-    ``--set``, the verification level, ``--out`` and ``--force``."""
+    ``--set``, the verification level and ``--out`` (not ``--force``: run again, it
+    refuses to overwrite)."""
     words = [f"--kr-over-km {args.kr_over_km:g}",
              f"--kobj-range {args.kobj_range[0]:g} {args.kobj_range[1]:g}",
              f"--full-scale-force {args.full_scale_force:g}"]
@@ -657,6 +669,8 @@ def design_options(args: argparse.Namespace) -> list[str]:
             words.append(f"{flag} {value:g}" if isinstance(value, float) else f"{flag} {value}")
     if getattr(args, "jaw", None) is not None:
         words.append(f"--jaw {shlex.quote(args.jaw)}")
+    if getattr(args, "max_grasp_force", None) is not None:
+        words.append(f"--max-grasp-force {args.max_grasp_force:g}")
     if getattr(args, "construction", "auto") != "auto":
         words.append(f"--construction {args.construction}")
     if getattr(args, "tissue_coupling", "on") == "off":

@@ -27,7 +27,9 @@ name its sizes); what the search sets:
   (:func:`with_fasteners`; a larger screw clamps the rows harder and is set by hand with a
   common key; the stiffness does not depend on them).
 
-Every sheet of :data:`SHEETS_MM` is tried at every scale; a candidate counts when its design
+Asked for a grasp the insert must survive (``max_grasp_force_N``), the candidates that count
+are grasped in that order in the jaw they are for, and the first that survives is chosen
+(:func:`surviving`). Every sheet of :data:`SHEETS_MM` is tried at every scale; a candidate counts when its design
 validates, stands no taller than the jaw's room, its verification matrix at the closed form
 fails nothing and every stop engages between its rated and its yield-limited deflection. Of those, the softest pair that carries the force
 with :data:`FORCE_MARGIN_REL` to spare is chosen (:func:`chosen`). When none counts, the refusal names each sheet's binding limit and the largest
@@ -141,9 +143,11 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     comb["web_thicknesses_mm"] = [e["web_thickness_mm"]] * n
     comb["stop_gaps_mm"] = [0.05] * n
     lo, hi = targets.k_obj_range_N_per_mm
+    grasp = (base.get("requirements") or {}).get("max_grasp_force_N")  # asked, else none
     d["requirements"] = {"full_scale_force_N": targets.full_scale_force_N,
                          "kobj_range_N_per_mm": [lo, hi], "kr_over_km": targets.kr_over_km,
-                         "footprint_mm": [round(room.across_mm, 6), round(room.along_mm, 6)]}
+                         "footprint_mm": [round(room.across_mm, 6), round(room.along_mm, 6)],
+                         **({} if grasp is None else {"max_grasp_force_N": grasp})}
     d.pop("files", None)
     binding = []
     if arm_m < arm_r + 0.5:
@@ -193,6 +197,15 @@ def _short(value: Any) -> str:
     return f"{value:.4g}" if isinstance(value, float) else str(value)
 
 
+def failure_line(record: dict) -> str:
+    """A failed verification record in one line: its prediction against its target, or, where
+    it has none, why (its basis's last clause: a grasp out of the jaw's reach, say)."""
+    head = f"{record['requirement']}: "
+    if record.get("predicted") is None and record.get("basis"):
+        return head + str(record["basis"]).rsplit("; ", 1)[-1]
+    return head + f"predicted {_short(record['predicted'])}, target {_short(record['target'])}"
+
+
 def judge(d: dict, envelope_of: Callable | None, room: Any = None
           ) -> tuple[Any, tuple[str, ...], float, float | None]:
     """(plan, failures, full-scale-force margin, rated force) of a candidate's tables: the
@@ -207,9 +220,12 @@ def judge(d: dict, envelope_of: Callable | None, room: Any = None
         return None, tuple(f"{e.field} = {e.value}: allowed {e.allowed}" for e in exc.errors), \
             -math.inf, None
     env = envelope_of(plan) if envelope_of is not None else None
-    records = verification_matrix(plan, "closed-form", envelope_mm=env)
-    fails = [f"{r['requirement']}: predicted {_short(r['predicted'])}, target {_short(r['target'])}"
-             for r in records if r["verdict"] == "fail"]
+    try:
+        records = verification_matrix(plan, "closed-form", envelope_mm=env)
+    except DesignErrors as exc:  # a table the plan holds refuses it (the jaw's, say)
+        return None, tuple(f"{e.field} = {e.value}: allowed {e.allowed}" for e in exc.errors), \
+            -math.inf, None
+    fails = [failure_line(r) for r in records if r["verdict"] == "fail"]
     force = d["requirements"]["full_scale_force_N"]
     fails += [f"hard stop of element {v.element}: engages at {v.multiple_of_rated:.2f} x the rated "
               f"deflection, yield-limited at {v.yield_tip_mm:.4f} mm"
@@ -230,7 +246,8 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
                  grade: str | None = None, name: str = "grasper_insert",
                  envelope_of: Callable | None = None,
                  progress: Callable[[str], None] | None = None,
-                 other_rooms: Mapping[str, Any] | None = None) -> CombDesign:
+                 other_rooms: Mapping[str, Any] | None = None,
+                 max_grasp_force_N: float | None = None) -> CombDesign:
     """The monolithic comb that fits ``room`` and meets ``targets``.
 
     Args:
@@ -244,6 +261,8 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
         envelope_of: plan -> its footprint envelope (mm) for the footprint requirement.
         other_rooms: ``--jaw`` value -> room of the jaws a refusal may offer instead (the
             nearest that holds a comb the pocket is too small for).
+        max_grasp_force_N: the largest grasp the insert must survive (N): every candidate
+            is judged on it (``requirements.max_grasp_force_N``); None: not judged.
 
     Returns:
         :class:`CombDesign`.
@@ -260,6 +279,7 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
     from tactcad.mechanics.correction import range_warnings_unsaid
 
     base = copy.deepcopy(dict(base))
+    base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
     with range_warnings_unsaid():  # the candidates are not the design asked about
         tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                            progress) for sheet in SHEETS_MM for scale in KM_SCALES]
@@ -271,7 +291,9 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
                       nearest_jaw(base, columns, room, targets, grade, other_rooms or {}),
                       fewer)
     with range_warnings_unsaid():
-        best, fasteners = with_fasteners(chosen(good), room, envelope_of)
+        first = chosen(good) if max_grasp_force_N is None else \
+            surviving(good, max_grasp_force_N, room, envelope_of, targets, columns)
+        best, fasteners = with_fasteners(first, room, envelope_of)
     data = named(best.data, name, targets, room, best, columns, fasteners)
     return CombDesign(data, plan_from_dict(data), room, tuple(tried), fasteners)
 
@@ -280,10 +302,47 @@ def chosen(good: list[CombCandidate]) -> CombCandidate:
     """Of the candidates that count, the softest pair (the K_obj range read finest) that
     carries the force with :data:`FORCE_MARGIN_REL` to spare, the thicker sheet on a tie;
     when none has that margin, the one with the most."""
-    spare = [c for c in good if c.force_margin_rel >= FORCE_MARGIN_REL]
-    if spare:
-        return min(spare, key=lambda c: (c.km_scale, -c.sheet_mm))
-    return max(good, key=lambda c: (c.force_margin_rel, c.sheet_mm))
+    return in_preference(good)[0]
+
+
+def in_preference(good: list[CombCandidate]) -> list[CombCandidate]:
+    """The candidates that count in the order they are preferred (:func:`chosen`'s rule):
+    those with the force margin, softest pair first, thicker sheet on a tie; then the rest,
+    most margin first."""
+    spare = sorted((c for c in good if c.force_margin_rel >= FORCE_MARGIN_REL),
+                   key=lambda c: (c.km_scale, -c.sheet_mm))
+    short = sorted((c for c in good if c.force_margin_rel < FORCE_MARGIN_REL),
+                   key=lambda c: (-c.force_margin_rel, -c.sheet_mm))
+    return spare + short
+
+
+def surviving(good: list[CombCandidate], grasp_N: float, room: Any,
+              envelope_of: Callable | None, targets: Targets, columns: int) -> CombCandidate:
+    """The first candidate in :func:`in_preference`'s order that also survives a grasp of
+    ``grasp_N`` (N) in the jaw it is for (``requirements.max_grasp_force_N``, judged by
+    :func:`judge` with the jaw's ``[grasper_jaw]`` table): a grasp costs a contact solve, so
+    only the candidates that count otherwise are grasped.
+
+    Raises:
+        InverseDesignError: none survives; names the nearest one's binding limit.
+    """
+    nearest = None
+    for c in in_preference(good):
+        d = copy.deepcopy(c.data)
+        d["requirements"]["max_grasp_force_N"] = float(grasp_N)
+        d["grasper_jaw"] = dict(room.table or {})
+        plan, fails, margin, rated = judge(d, envelope_of, room)
+        if plan is not None and not fails:
+            return replace(c, data=d, plan=plan, force_margin_rel=margin, rated_force_N=rated)
+        nearest = nearest or fails
+    lo, hi = targets.k_obj_range_N_per_mm
+    text = (f"no monolithic comb of 2 x {columns} for the {room.label} (K_r/K_m "
+            f"{targets.kr_over_km:g}, K_obj {lo:g} ... {hi:g} N/mm at "
+            f"{targets.full_scale_force_N:g} N) survives a {grasp_N:g} N grasp "
+            f"(--max-grasp-force): of the "
+            f"{len(good)} that count, the first binds on {(nearest or ('?',))[0]}")
+    raise InverseDesignError(text, "--max-grasp-force", grasp_N,
+                             "a grasp the comb's hard stops hold")
 
 
 def centred_km(targets: Targets) -> float:
@@ -500,6 +559,8 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
         "requirements.kr_over_km": "Asked (--kr-over-km).",
         "requirements.footprint_mm": (f"The pocket of the {room.label} less its "
                                       "clearances (across, along)."),
+        **({"requirements.max_grasp_force_N": "Asked (--max-grasp-force)."}
+           if "max_grasp_force_N" in d["requirements"] else {}),
     })
     d["assumptions"] = why
     return d
