@@ -210,3 +210,16 @@ def test_a_grasp_beyond_the_jaws_reach_is_refused_by_its_option(tmp_path):
     r = run_cli("design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force",
                 "0.3", "--max-grasp-force", "10", "--out", str(tmp_path / "y.toml"))
     assert r.returncode == 2 and "--max-grasp-force" in r.stderr and "only with --jaw" in r.stderr
+
+
+@pytest.mark.parametrize("option, value, limit", [("--kobj-range", ["1000", "20000"], "10000"),
+                                                  ("--kr-over-km", ["2000"], "1000"),
+                                                  ("--full-scale-force", ["2000"], "1000")])
+def test_a_target_beyond_what_a_design_file_states_is_refused_by_its_option(
+        tmp_path, option, value, limit):
+    args = {"--kr-over-km": ["10"], "--kobj-range": ["0.5", "5"], "--full-scale-force": ["0.05"]}
+    args[option] = value
+    argv = ["design", *[w for k, v in args.items() for w in (k, *v)],
+            "--out", str(tmp_path / "x.toml")]
+    r = run_cli(*argv)
+    assert r.returncode == 2 and f"argument {option}" in r.stderr and f"... {limit}" in r.stderr

@@ -14,6 +14,8 @@ from typing import Any
 from tactcad.mechanics.ladder import is_meshed, models
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, progress_from_args
 from tactcad.commands.options import count, material_grade_name, number
+from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
+                                                 MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM)
 from tactcad.errors import DesignError
 
 
@@ -74,15 +76,18 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "geometries at the --verify level; writes the design TOML. A refusal names "
                     "the targets that bind and the nearest feasible ones as options to paste. "
                     "Units: N/mm, N, mm.")
-    p.add_argument("--kr-over-km", type=number(1, 1e6, lo_open=True), required=True, metavar="X",
+    p.add_argument("--kr-over-km", type=number(1, MAX_KR_OVER_KM, lo_open=True), required=True,
+                   metavar="X",
                    help="stiffness ratio K_r/K_m of a sensing unit (> 1; about 10 reads soft "
                         "objects with high sensitivity)")
-    p.add_argument("--kobj-range", type=number(0, 1e6, "N/mm", lo_open=True), nargs=2,
+    p.add_argument("--kobj-range", type=number(0, MAX_KOBJ_N_PER_MM, "N/mm", lo_open=True), nargs=2,
                    required=True, metavar=("LO", "HI"),
                    help="object stiffnesses to read (N/mm)")
-    p.add_argument("--full-scale-force", type=number(0, 1e4, "N", lo_open=True), required=True, metavar="F",
+    p.add_argument("--full-scale-force", type=number(0, MAX_FULL_SCALE_FORCE_N, "N", lo_open=True),
+                   required=True, metavar="F",
                    help="force every element must carry (N)")
-    p.add_argument("--max-grasp-force", type=number(0, 100, "N", lo_open=True), default=None,
+    p.add_argument("--max-grasp-force", type=number(0, MAX_GRASP_FORCE_N, "N", lo_open=True),
+                   default=None,
                    metavar="F",
                    help="with --jaw: the largest grasp the insert must survive (N): every "
                         "element within its overload limit, its hard stop taking the rest "

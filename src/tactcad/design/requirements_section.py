@@ -60,15 +60,22 @@ STATED_ONLY_KEYS = ("min_first_resonance_Hz", "max_thermal_drift_N_per_K", "max_
                     "kobj_accuracy_rel", "max_grasp_force_N")
 
 
+#: The largest targets a design file states (the design command's options take the same).
+MAX_FULL_SCALE_FORCE_N = 1000.0
+MAX_KOBJ_N_PER_MM = 1e4
+MAX_KR_OVER_KM = 1000.0
+MAX_GRASP_FORCE_N = 100.0
+
+
 class RequirementsSection(Section):
     """``[requirements]``: every key optional (derived from the design when absent)."""
 
-    full_scale_force_N: number(0.0, 1000.0, lo_open=True, unit="N",
+    full_scale_force_N: number(0.0, MAX_FULL_SCALE_FORCE_N, lo_open=True, unit="N",
                                why="tip force every element must carry") = None
-    kobj_range_N_per_mm: listing(number(0.0, 1e4, lo_open=True, unit="N/mm"), 2, 2,
-                                 "[LO, HI] with 0 < LO < HI <= 10000 N/mm",
+    kobj_range_N_per_mm: listing(number(0.0, MAX_KOBJ_N_PER_MM, lo_open=True, unit="N/mm"), 2, 2,
+                                 f"[LO, HI] with 0 < LO < HI <= {MAX_KOBJ_N_PER_MM:g} N/mm",
                                  "object stiffnesses the array must read") = None
-    kr_over_km: number(1.0, 1000.0, lo_open=True, unit="",
+    kr_over_km: number(1.0, MAX_KR_OVER_KM, lo_open=True, unit="",
                        why="eq. 2 needs a reference stiffer than the measuring element") = None
     k_tolerance_rel: number(0.0, 1.0, lo_open=True, unit="",
                             why="relative K band over the web tolerance") = None
@@ -86,7 +93,7 @@ class RequirementsSection(Section):
     kobj_accuracy_rel: number(0.0, 10.0, lo_open=True, unit="",
                               why="relative K_obj error (RSS of the K_obj error budget) over "
                                   "the range") = None
-    max_grasp_force_N: number(0.0, 100.0, lo_open=True, unit="N",
+    max_grasp_force_N: number(0.0, MAX_GRASP_FORCE_N, lo_open=True, unit="N",
                               why="grasp force at which every element must stay within its "
                                   "overload limit") = None
     source: Text = None
