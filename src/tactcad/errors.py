@@ -62,6 +62,12 @@ class DesignError(TactcadError, ValueError):
         return f"{self.file}: {text}" if self.file else text
 
 
+class RequirementFailure(DesignError):
+    """A design's requirement that its own prediction fails (``field``:
+    ``requirements.<name>``, ``value``: the target): the design would fail its own
+    ``check``. Unlike a target the search derives from the options, no option names it."""
+
+
 class DesignErrors(DesignError):
     """Every error found in one validation pass of the design files.
 

@@ -10,6 +10,7 @@ import warnings
 
 import ezdxf
 import pytest
+from process_variants import cut_by
 import shapely.geometry as sg
 
 from tactcad.checks.check_result import failures
@@ -23,7 +24,7 @@ from tactcad.vocabulary.process import EDM_TABS
 from tactcad.vocabulary.schema import read_toml
 
 TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
-ETCHED = {"element.process": "photochemical-etching", "sheet.thickness_mm": 0.3}
+ETCHED = cut_by("photochemical-etching", 0.3)
 
 
 def _plan(**overrides):
@@ -152,7 +153,7 @@ def test_etch_check_fails_on_an_uncompensated_outline(wire, etched):
 
 
 def test_laser_files_pierce_instead_of_start_holes_and_pass_their_checks(tmp_path):
-    plan = _plan(**{"element.process": "laser-cutting", "sheet.thickness_mm": 0.5})
+    plan = _plan(**cut_by("laser-cutting", 0.5))
     write_shop_dxf_files(plan, tmp_path, lambda s: None)
     element = next(sp for sp in shop_profiles(plan) if sp.part.startswith("element_"))
     doc = ezdxf.readfile(tmp_path / element.file_name)
@@ -165,9 +166,9 @@ def test_laser_files_pierce_instead_of_start_holes_and_pass_their_checks(tmp_pat
 
 def test_one_sheet_cut_by_two_processes_becomes_two_shop_files(tmp_path):
     """Etched elements and wire-cut spacers of one grade and thickness: a sheet per process."""
-    plan = _plan(**{"element.process": "photochemical-etching", "sheet.thickness_mm": 0.6,
+    plan = _plan(**cut_by("photochemical-etching", 0.6, **{
                     "array.pitch_mm": 1.2, "element.tip_width_mm": 1.0,
-                    "clamp.spacer_material": "Ti-6Al-4V-annealed"})
+                    "clamp.spacer_material": "Ti-6Al-4V-annealed"}))
     records = write_shop_dxf_files(plan, tmp_path, lambda s: None)
     sheets = {r["path"]: r["process"] for r in records if r["kind"] == "dxf-sheet"}
     assert sorted(sheets.values()) == ["photochemical-etching", "wire-edm"], sheets

@@ -14,7 +14,8 @@ from tactcad.vocabulary.process import process_names
 from tactcad.design.array_plan import EXAMPLES
 
 TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
-ETCH = ["--set", 'element.process="photochemical-etching"', "--set", "sheet.thickness_mm=0.3"]
+ETCH = ["--set", 'element.process="photochemical-etching"', "--set", "sheet.thickness_mm=0.3",
+        "--set", "element.web_tolerance_mm=0.045"]
 
 
 def test_an_etched_0p3_mm_design_exports_its_artwork(tmp_path, capsys):

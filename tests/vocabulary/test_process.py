@@ -4,6 +4,7 @@ the design file's choice and the refusal of an unknown process."""
 import pickle
 
 import pytest
+from process_variants import cut_by
 
 from tactcad.design.array_plan import (EXAMPLES, EdmRules, load_design, plan_from_dict,
                                        with_overrides)
@@ -96,8 +97,7 @@ def _ti(**overrides):
 
 def test_design_chooses_the_element_process():
     assert load_design(TI).slots[0].geometry.process == "wire-edm"
-    plan = plan_from_dict(_ti(**{"element.process": "photochemical-etching",
-                                 "sheet.thickness_mm": 0.3}))
+    plan = plan_from_dict(_ti(**cut_by("photochemical-etching", 0.3)))
     assert {s.geometry.process for s in plan.slots} == {"photochemical-etching"}
 
 
@@ -112,7 +112,8 @@ def test_design_refuses_an_unknown_process_naming_the_allowed_ones():
     ("photochemical-etching", 1.5, True), ("photochemical-etching", 1.51, False),
     ("laser-cutting", 0.3, True)])
 def test_sheet_lies_in_the_process_range(process, t, ok):
-    data = _ti(**{"element.process": process, "sheet.thickness_mm": t})
+    data = _ti(**(cut_by(process, t) if ok else {"element.process": process,
+                                                 "sheet.thickness_mm": t}))
     if ok:
         plan_from_dict(data)
         return

@@ -16,7 +16,7 @@ from tactcad.commands import add_cache_args, add_design_arg, add_output_args, pr
 from tactcad.commands.options import count, material_grade_name, number
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
                                                  MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM)
-from tactcad.errors import DesignError
+from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 
 
 
@@ -645,15 +645,40 @@ def as_options(exc: DesignError, args: argparse.Namespace, design: Path) -> Desi
 
 def project_check(path: Path):
     """raw tables -> the project that would be written at ``path``, validated
-    with the rigs and scenes made for it (:func:`tactcad.project_folder.companion_tables`);
-    raises :class:`DesignError` where the written design would be refused."""
+    with the rigs and scenes made for it (:func:`tactcad.project_folder.companion_tables`)
+    and its cut parts held to their processes' rules (the ``process`` check group's,
+    :func:`tactcad.checks.process_rules.process_rule_errors`); raises
+    :class:`DesignError` where the written design would be refused or fail that check."""
+    from tactcad.checks.process_rules import process_rule_errors
     from tactcad.design.project import project_with_design_data
     from tactcad.project_folder import companion_tables
 
     def check(data):
-        return project_with_design_data(copy.deepcopy(dict(data)), path,
-                                        companions=companion_tables)
+        project = project_with_design_data(copy.deepcopy(dict(data)), path,
+                                           companions=companion_tables)
+        broken = process_rule_errors(project.plan) or failed_requirements(project.plan)
+        if broken:
+            raise DesignErrors(broken, what="the design's own checks")
+        return project
     return check
+
+
+def _figure(value) -> str:
+    return f"{value:.4g}" if isinstance(value, float) else str(value)
+
+
+def failed_requirements(plan) -> list[DesignError]:
+    """Each requirement the closed form fails on ``plan`` by more than its error estimate
+    (:func:`design_margins`), as a refusal naming ``requirements.<name>``: a design that
+    would fail its own ``check`` is not written."""
+    return [RequirementFailure(f"requirements.{m['requirement']}", m["target"],
+                        f"a target the design meets (predicted {_figure(m['predicted'])}, margin "
+                        f"{100 * m['margin_rel']:+.1f} % beyond the closed form's error "
+                        f"{100 * (m['error_estimate_rel'] or 0):.2f} %)",
+                        "the base design's requirement, which this design fails at the closed "
+                        "form: loosen it with --set or change the targets")
+            for m in design_margins(plan, keys=("target", "predicted"))
+            if m["verdict"] == "fail"]
 
 
 def design_options(args: argparse.Namespace) -> list[str]:
@@ -770,7 +795,7 @@ def design_report(result, verify: str, progress=None) -> dict:
             "all_finite": all(math.isfinite(u["K_obj_resolution_N_per_mm"]) for u in units)}
 
 
-def design_margins(plan) -> list[dict]:
+def design_margins(plan, keys: tuple[str, ...] = ()) -> list[dict]:
     """Each requirement's margin against the closed form's error on the written
     design (the level ``verify --model auto`` starts at): requirement, margin_rel,
     error_estimate_rel, verdict and, where undecided, whether climbing the ladder
@@ -779,7 +804,7 @@ def design_margins(plan) -> list[dict]:
     from tactcad.studies.verification import verification_matrix
 
     return [{k: r[k] for k in ("requirement", "margin_rel", "error_estimate_rel", "verdict",
-                               "level_fixed")}
+                               "level_fixed", *keys)}
             for r in verification_matrix(plan, "closed-form",
                                          envelope_mm=array_envelope_mm(plan))]
 

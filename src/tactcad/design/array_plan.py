@@ -45,7 +45,8 @@ from tactcad.design.bom_section import BomSection, check_clamp_materials
 from tactcad.design.readout_section import ReadoutSection, check_readout
 from tactcad.design.requirements_section import RequirementsSection, check_requirements
 from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
-from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, THINNEST_SHEET_MM, check_sheet_process
+from tactcad.vocabulary.process import (CUT_PROCESSES, DEFAULT_CUT_PROCESS, THINNEST_SHEET_MM,
+                                        check_sheet_process, check_spacer_process)
 from tactcad.vocabulary.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 # the array's parts: their tables and dimensions (the derivation below couples them);
@@ -443,6 +444,26 @@ def edm_rules(d: DesignFile) -> EdmRules:
     return EdmRules(d.edm.wire_diameter_mm, d.edm.spark_gap_mm, d.edm.start_hole_diameter_mm)
 
 
+def check_web_tolerance_held(d: Any, p: Problems) -> None:
+    """Cross-field rule: the web's drawn tolerance (``tolerances.web_thickness_mm`` or
+    ``element.web_tolerance_mm``; left out, the default) is one the element's cut process
+    holds on the design's sheet (the ``process_tolerance`` check's figure), so that a
+    value no process can hold is refused when the file is read, not first by ``check``."""
+    tol_table = getattr(d, "tolerances", None)
+    stated = [(f, v) for f, v in
+              (("tolerances.web_thickness_mm", getattr(tol_table, "web_thickness_mm", None)),
+               ("element.web_tolerance_mm", d.element.web_tolerance_mm)) if v is not None]
+    if not stated:
+        return
+    field, tol = stated[0]
+    name = getattr(d.element, "process", None) or DEFAULT_CUT_PROCESS
+    material = " ".join(str(getattr(d.material, k, None) or "") for k in ("grade", "name"))
+    held = CUT_PROCESSES[name].limits(d.sheet.thickness_mm, edm_rules(d), material).tolerance_mm
+    if tol < held.value_mm - 1e-12:
+        p.add(field, tol, f">= {fmt(held.value_mm)} mm: what {name} holds on a "
+              f"{fmt(d.sheet.thickness_mm)} mm sheet ({held.rule})", held.source)
+
+
 def _check_array(d: DesignFile, p: Problems) -> None:
     sheet = d.sheet.thickness_mm
     p.within("array.pitch_mm", d.array.pitch_mm, sheet + MIN_SPACER_MM,
@@ -535,7 +556,7 @@ def check_in_use(d: Any, p: Problems) -> None:
 
 DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,
                 check_readout, check_tolerances, check_clamp_materials, check_sheet_process,
-                check_in_use)
+                check_spacer_process, check_web_tolerance_held, check_in_use)
 
 
 # ---------------------------------------------------------------------------

@@ -29,8 +29,9 @@ from tactcad.design.array_plan import (MIN_ARM_STEP_MM, MIN_FASTENER_GAP_MM, MIN
                                        DesignSection, EdmSection, ElementSlot, FilesSection,
                                        HardStop, Material, MaterialSection, Placement, Plan,
                                        SheetSection, StrengthSection, check_references,
-                                       check_in_use, design_hash, edm_rules, in_use_tables,
-                                       pairing_of, shaping_tables, unit_references,
+                                       check_in_use, check_web_tolerance_held, design_hash,
+                                       edm_rules, in_use_tables, pairing_of, shaping_tables,
+                                       unit_references,
                                        with_grade_defaults, _grade_error)
 from tactcad.design.bom_section import BomSection
 from tactcad.design.readout_section import ReadoutSection, check_readout
@@ -43,7 +44,7 @@ from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN, NOTCH_RA
                                            WEB_RANGE_MM, ElementGeometry)
 from tactcad.partlib.array.prism import Hole
 from tactcad.vocabulary.material_library import material_fields, strength_settings
-from tactcad.vocabulary.process import CUT_PROCESSES, DEFAULT_CUT_PROCESS
+from tactcad.vocabulary.process import CUT_PROCESSES, first_process_holding
 from tactcad.vocabulary.schema import (Derived, Problems, Section, fmt, listing, number,
                                        read_assumptions, validate)
 from tactcad.vocabulary.standards import (DOWEL_PINS, MINIATURE_SCREWS, shortest_dowel_length,
@@ -67,7 +68,7 @@ class CombElementSection(Section):
     tip_height_mm: number(0.3, 5.0)
     arm_height_mm: number(0.0, 5.0, lo_open=True)
     inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
-    web_tolerance_mm: number(0.0, 0.1) = None  # or [tolerances] web_thickness_mm
+    web_tolerance_mm: number(0.0, 0.25) = None  # or [tolerances] web_thickness_mm
 
 
 class CombTables(Section):
@@ -254,8 +255,7 @@ def spacer_process(d: CombTables) -> Derived:
     t = d.comb.spacer_thickness_mm
     if d.comb.spacer_process is not None:
         return Derived("spacer_process", d.comb.spacer_process, "", "stated")
-    fits = [q for q in CUT_PROCESSES.values() if q.sheet_range_mm[0] <= t <= q.sheet_range_mm[1]]
-    name = fits[0].name if fits else DEFAULT_CUT_PROCESS
+    name = first_process_holding(t)
     return Derived("spacer_process", name, "",
                    f"the first process whose sheet range holds the {fmt(t)} mm spacer")
 
@@ -437,7 +437,8 @@ def _check_arm_domain(d: CombTables, p: Problems) -> None:
 
 
 COMB_RULES = (_check_element, _check_arms, _check_comb, _check_arm_domain, check_requirements,
-              check_readout, check_tolerances, check_in_use, _check_spacer_process)
+              check_readout, check_tolerances, check_web_tolerance_held, check_in_use,
+              _check_spacer_process)
 
 
 # ---------------------------------------------------------------------------

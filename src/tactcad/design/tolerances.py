@@ -59,7 +59,7 @@ WEB_DEFAULT_REASON = ("wire EDM holds a thin web to about +/-0.02 mm with skim c
 class TolerancesSection(Section):
     """``[tolerances]``: every key optional (defaults in :data:`DEFAULTS`)."""
 
-    web_thickness_mm: number(0.0, 0.1, why="+/- web thickness") = None
+    web_thickness_mm: number(0.0, 0.25, why="+/- web thickness (etching holds 0.225 on 1.5 mm)") = None
     notch_radius_mm: number(0.0, 0.5, why="+/- notch radius") = None
     arm_length_mm: number(0.0, 0.5, why="+/- tip position from the notch centre") = None
     sheet_thickness_mm: number(0.0, 0.5, why="+/- sheet thickness") = None

@@ -68,12 +68,14 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_BASE_BELOW_ARM_MM, MIN_FASTENER_GAP_MM,
-                                       MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, plan_from_dict)
+                                       MIN_LIGAMENT_MM, WEB_RANGE_MM, EdmRules, Plan, plan_from_dict)
+from tactcad.design.tolerances import WEB_DEFAULT_MM
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import load_correction, range_warnings_unsaid
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
 from tactcad.mechanics.element_strength import force_limits, notch_fatigue_strength
 from tactcad.studies.tolerance_montecarlo import corrected_stiffness
+from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, ProcessLimits, cut_process
 
 #: Clearance (mm) between the notch bottom and the arm's underside when the
 #: arm height has to grow with the web and notch radius (as the correction fit).
@@ -151,6 +153,54 @@ def design_variant(data: Mapping[str, Any], *, web_mm: float | None = None,
 
 
 #: Dimensions raised to hold a bolt are rounded up to this step (mm).
+def process_limits_of(data: Mapping[str, Any]) -> ProcessLimits:
+    """What the element's cut process (``[element] process``) makes from the design's
+    sheet, for its material and wire settings (raw tables; mm)."""
+    el, mat, edm = data["element"], data["material"], data["edm"]
+    wire = EdmRules(float(edm["wire_diameter_mm"]), float(edm["spark_gap_mm"]),
+                    float(edm["start_hole_diameter_mm"]))
+    material = " ".join(str(mat.get(k) or "") for k in ("grade", "name"))
+    return cut_process(el.get("process") or DEFAULT_CUT_PROCESS).limits(
+        float(data["sheet"]["thickness_mm"]), wire, material)
+
+
+def held_to_process(data: Mapping[str, Any]) -> dict[str, Any]:
+    """Raw design tables whose element the cut process can make on the design's sheet:
+    the web's drawn tolerance raised to what the process holds, the notch radius to half
+    its narrowest slot and the inside-corner radius to its smallest, each raised value's
+    reason under ``[assumptions]``; values already within the rules are kept. The web
+    itself is the web search's (its limit: :func:`search_webs`).
+
+    Args:
+        data: raw tables (``element``, ``sheet``, ``material``, ``edm``); not modified.
+
+    Returns:
+        A new dict of raw tables (not validated).
+    """
+    out = copy.deepcopy(dict(data))
+    el = out["element"]
+    lim = process_limits_of(out)
+    why = out.setdefault("assumptions", {})
+    where = f"{lim.process} on {float(out['sheet']['thickness_mm']):g} mm sheet"
+    tol_table = out.get("tolerances") or {}
+    tol = tol_table.get("web_thickness_mm", el.get("web_tolerance_mm", WEB_DEFAULT_MM))
+    if float(tol) < lim.tolerance_mm.value_mm - 1e-12:
+        raised = round(lim.tolerance_mm.value_mm, 6)
+        el["web_tolerance_mm"] = raised
+        if "web_thickness_mm" in tol_table:
+            out["tolerances"] = {**tol_table, "web_thickness_mm": raised}
+        why["element.web_tolerance_mm"] = (f"+/-{raised:g} mm: what {where} holds "
+                                           f"({lim.tolerance_mm.rule}; {lim.tolerance_mm.source}).")
+    for key, fig, need in (("notch_radius_mm", lim.min_slot_mm, lim.min_slot_mm.value_mm / 2),
+                           ("inside_corner_radius_mm", lim.min_inside_radius_mm,
+                            lim.min_inside_radius_mm.value_mm)):
+        if float(el[key]) < need - 1e-12:
+            el[key] = math.ceil(need * 1000 - 1e-9) / 1000
+            why[f"element.{key}"] = (f"Raised to {el[key]:g} mm: what {where} cuts "
+                                     f"({fig.rule}; {fig.source}).")
+    return out
+
+
 BOLT_FIT_STEP_MM = 0.1
 
 
@@ -428,6 +478,25 @@ def limit_room(search: WebSearch) -> np.ndarray:
     return np.minimum(force_room(search), dimension_room(search))
 
 
+def webs_the_process_cuts(plan: Plan, webs_mm: np.ndarray) -> np.ndarray:
+    """The candidate webs (mm) the element's cut process leaves on the plan's sheet: a
+    web thinner than its minimum web is not a candidate (wire EDM has none).
+
+    Raises:
+        DesignError: ``sheet.thickness_mm``: no candidate web is left (the process's
+            minimum web on this sheet exceeds them all).
+    """
+    min_web = process_limits_of(plan.raw).min_web_mm
+    kept = webs_mm[webs_mm >= min_web.value_mm - 1e-9]
+    if kept.size == 0:
+        process = plan.raw["element"].get("process") or DEFAULT_CUT_PROCESS
+        raise DesignError("sheet.thickness_mm", plan.sheet_thickness_mm,
+                          f"a sheet on which {process} leaves a web of at most "
+                          f"{float(np.max(webs_mm)):g} mm", f"{min_web.rule} = "
+                          f"{min_web.value_mm:.4g} mm ({min_web.source})")
+    return kept
+
+
 def search_webs(plan: Plan, targets: Targets, correction=None,
                 webs_mm: Sequence[float] | None = None,
                 arm_max_mm: float | None = None) -> WebSearch:
@@ -452,6 +521,7 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
         webs = np.unique(np.append(grid, g.web_thickness_mm))
     else:
         webs = np.asarray(webs_mm, float)
+    webs = webs_the_process_cuts(plan, webs)
     radii = np.maximum(g.notch_radius_mm, webs)
     arm_lo = np.maximum.reduce([np.full_like(webs, ARM_RANGE_MM[0]),
                                 tip_root_min_arm_mm(g.tip_width_mm, g.inside_corner_radius_mm,

@@ -51,15 +51,17 @@ import numpy as np
 from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_SPACER_MM, MIN_TIP_GAP_MM, Plan,
                                        plan_from_dict)
 from tactcad.design.domain import longest_grip_mm
-from tactcad.errors import DesignError
+from tactcad.errors import DesignError, RequirementFailure
 from tactcad.mechanics.correction import range_warnings_unsaid
+from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, cut_process
 from tactcad.studies.design_alternatives import (nearest_on_scan, largest_feasible_force,
                                                  nearest_targets,
                                                  relaxing_changes)
 from tactcad.studies.footprint_fit import design_in_footprint, fits, stated_footprint
 from tactcad.studies.inverse_design import (STIFFNESS_LIMITS, InverseDesign, InverseDesignError,
                                             Targets, binding_limits, centred_for_tissue, design_from_tables,
-                                            design_variant, max_full_scale_force_N,
+                                            design_variant, held_to_process,
+                                            max_full_scale_force_N,
                                             mounting_min_arm_mm,
                                             required_overall_length_mm, search_webs,
                                             tip_root_min_arm_mm)
@@ -69,6 +71,9 @@ FREE_FIELDS = ("sheet.thickness_mm", "clamp.bolt_size", "array.pitch_mm", "eleme
 #: Sheet thicknesses searched (mm): stock plate and sheet gauges over the
 #: domain's 0.5-10 mm, the start's own added.
 STOCK_SHEETS_MM = (0.5, 0.8, 1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0)
+#: Foil gauges searched (mm) where the element's process cuts a flexure thinner than
+#: plate (etching, laser cutting): common precision strip thicknesses.
+FOIL_SHEETS_MM = (0.05, 0.075, 0.1, 0.125, 0.15, 0.2, 0.25, 0.3, 0.4)
 #: The narrowest contact face the domain allows (mm, ``element.tip_width_mm``).
 MIN_TIP_WIDTH_MM = 0.5
 #: Whole designs tried before the search refuses (each 0.1-1 s on the closed form).
@@ -143,15 +148,25 @@ def with_layout(data: Mapping[str, Any], layout: FreeLayout) -> dict[str, Any]:
     # the arms are the design's to choose: until then each at least the shortest the
     # layout allows, so that the tables are a design to start from
     start_arm = max(shortest, max(arms)) if arms else shortest
-    return design_variant(out, arms_mm=[math.ceil(start_arm * 100 - 1e-9) / 100] * len(arms))
+    return held_to_process(design_variant(out, arms_mm=[math.ceil(start_arm * 100 - 1e-9) / 100]
+                                          * len(arms)))
 
 
-def candidate_layouts(start: FreeLayout, fixed: frozenset[str]) -> list[FreeLayout]:
-    """Every layout the search tries (module docstring, step 1), nearest ``start`` first."""
+def process_sheets_mm(process: str | None) -> list[float]:
+    """The stock and foil sheets (mm) a flexure cut by ``process`` may be
+    (:meth:`~tactcad.vocabulary.process.CutProcess.flexure_sheet`; None: the default process)."""
+    lo, hi, _ = cut_process(process or DEFAULT_CUT_PROCESS).flexure_sheet()
+    return [t for t in (*FOIL_SHEETS_MM, *STOCK_SHEETS_MM) if lo - 1e-9 <= t <= hi + 1e-9]
+
+
+def candidate_layouts(start: FreeLayout, fixed: frozenset[str],
+                      process: str | None = None) -> list[FreeLayout]:
+    """Every layout the search tries (module docstring, step 1), nearest ``start`` first;
+    the sheets those a flexure of the element's ``process`` may be."""
     def free(f: str) -> bool:
         return f not in fixed
 
-    sheets = sorted({start.sheet_mm, *STOCK_SHEETS_MM}) if free(FREE_FIELDS[0]) \
+    sheets = sorted({start.sheet_mm, *process_sheets_mm(process)}) if free(FREE_FIELDS[0]) \
         else [start.sheet_mm]
     bolts = list(BOLTS) if free(FREE_FIELDS[1]) else [start.bolt]
     spacer = max(start.pitch_mm - start.sheet_mm, MIN_SPACER_MM)
@@ -302,7 +317,7 @@ def searched_design(data: Mapping[str, Any], targets: Targets, *, fixed: Sequenc
     """
     start = layout_of(data)
     fixed = frozenset(fixed)
-    layouts = candidate_layouts(start, fixed)
+    layouts = candidate_layouts(start, fixed, data["element"].get("process"))
     seen = Attempts([c for c in layouts if stack_fits(data, c)], {}, [], [])
     F = targets.full_scale_force_N
     tried = 0
@@ -380,7 +395,8 @@ def _attempt(tables, targets, name, correction, footprint_mm, envelope_of, valid
         return None
     except DesignError as exc:
         errors = getattr(exc, "errors", (exc,))
-        derived = [e for e in errors if e.field.startswith("requirements.")]
+        derived = [e for e in errors if e.field.startswith("requirements.")
+                   and not isinstance(e, RequirementFailure)]
         (seen.derived if derived else seen.other).extend(derived or errors)
         return None
 

@@ -278,6 +278,23 @@ class CutProcess:
     surface: str
     sources: tuple[str, ...] = field(default=())
     fatigue_surface: SurfaceFatigue | None = None
+    flexure_sheet_range_mm: tuple[float, float] | None = None
+    flexure_sheet_source: str = ""
+
+    def flexure_sheet(self) -> tuple[float, float, str]:
+        """(thinnest, thickest, source) of the sheet a flexure cut by this process may be
+        (mm): the process's own range narrowed by the flexure model's fitted range where it
+        states one (:attr:`flexure_sheet_range_mm`)."""
+        if self.flexure_sheet_range_mm is None:
+            return (*self.sheet_range_mm, self.sheet_source)
+        lo = max(self.sheet_range_mm[0], self.flexure_sheet_range_mm[0])
+        hi = min(self.sheet_range_mm[1], self.flexure_sheet_range_mm[1])
+        return lo, hi, self.flexure_sheet_source
+
+    def holds_sheet(self, thickness_mm: float) -> bool:
+        """True when the process cuts a plate of ``thickness_mm`` (mm)."""
+        lo, hi = self.sheet_range_mm
+        return lo - 1e-12 <= thickness_mm <= hi + 1e-12
 
     def limits(self, thickness_mm: float, wire: WireSettings, material: str = "") -> ProcessLimits:
         """The process's limits for a sheet of ``thickness_mm`` (mm) of ``material``
@@ -324,11 +341,22 @@ def cut_process(name: str, field_name: str = "element.process") -> CutProcess:
 
 
 # --- wire EDM ------------------------------------------------------------------
-#: Wire EDM's sheet in a design: the stiffness correction's fitted range (sheet
-#: 0.5-10 mm, data/stiffness_correction.json); thinner foil is etched or laser cut.
+#: What wire EDM cuts (mm): a plate up to the machine's cutting height; foil thinner
+#: than 0.1 mm is cut clamped between sacrificial plates, not on its own.
+WIRE_CUT_SHEET_MM = (0.1, 300.0)
+WIRE_CUT_SHEET_SOURCE = ("cutting heights of 300-600 mm on standard machines (First Rate Mold, "
+                         "'Cutting by spark erosion with travelling wire electrodes'); "
+                         "micrometre-scale fins of 0.117-0.5 mm cut in D2 steel (Ahmed et al., "
+                         "Micromachines 12(1):1, 2020); foil under 0.1 mm is cut clamped "
+                         "between sacrificial plates (shop practice)")
+#: A wire-cut flexure's sheet in a design: the stiffness correction's fitted range
+#: (sheet 0.5-10 mm, data/stiffness_correction.json); a thinner flexure is etched or laser
+#: cut. A rule of the flexure's model, not of the cut: a plain plate (a spacer) is judged
+#: by :data:`WIRE_CUT_SHEET_MM`.
 WIRE_SHEET_MM = (0.5, 10.0)
 WIRE_SHEET_SOURCE = ("the range the closed form's stiffness correction is fitted over "
-                     "(data/stiffness_correction.json); thinner foil is etched or laser cut")
+                     "(data/stiffness_correction.json); a thinner wire-cut flexure is outside "
+                     "the model: etch or laser cut it")
 WIRE_TOLERANCE_MM = 0.01
 WIRE_TOLERANCE_SOURCE = ("Mecvil, 'Wire EDM: tolerances, materials and industrial applications' "
                          "(mecvil.com): +/-0.02 mm roughing, +/-0.01 mm standard finish "
@@ -488,12 +516,14 @@ LASER_CUT_SURFACE = SurfaceFatigue(
 
 for _process in (
         CutProcess(
-            "wire-edm", "wire EDM from sheet", WIRE_SHEET_MM, WIRE_SHEET_SOURCE, _wire_limits,
+            "wire-edm", "wire EDM from sheet", WIRE_CUT_SHEET_MM, WIRE_CUT_SHEET_SOURCE,
+            _wire_limits,
             ShopFile("wire-EDM cutting DXF", False, EDM_TABS, True,
                      ("nominal contour: the wire offset (kerf / 2) is the CAM's",
                       "tabs (layer TAB) are left uncut and cut last",
                       WIRE_SURFACE + "."), start_holes=True),
-            WIRE_SURFACE, (WIRE_TOLERANCE_SOURCE, MICRO_JOINT_SOURCE), WIRE_EDM_SURFACE),
+            WIRE_SURFACE, (WIRE_TOLERANCE_SOURCE, MICRO_JOINT_SOURCE), WIRE_EDM_SURFACE,
+            flexure_sheet_range_mm=WIRE_SHEET_MM, flexure_sheet_source=WIRE_SHEET_SOURCE),
         CutProcess(
             "photochemical-etching", "photochemical etching from foil", ETCH_SHEET_MM,
             ETCH_SHEET_SOURCE, _etch_limits,
@@ -521,7 +551,7 @@ for _process in (
 
 #: The thinnest sheet a design may name: the thinnest any cut process takes
 #: (each process refuses a sheet outside its own range: :func:`check_sheet_process`).
-THINNEST_SHEET_MM = min(p.sheet_range_mm[0] for p in CUT_PROCESSES.values())
+THINNEST_SHEET_MM = min(p.flexure_sheet()[0] for p in CUT_PROCESSES.values())
 
 
 def check_sheet_process(d, p) -> None:
@@ -534,14 +564,45 @@ def check_sheet_process(d, p) -> None:
     """
     name = getattr(d.element, "process", None) or DEFAULT_CUT_PROCESS
     process = CUT_PROCESSES[name]
-    lo, hi = process.sheet_range_mm
+    lo, hi, source = process.flexure_sheet()
     t = d.sheet.thickness_mm
     if not lo - 1e-12 <= t <= hi + 1e-12:
         others = [q.name for q in CUT_PROCESSES.values()
-                  if q.sheet_range_mm[0] <= t <= q.sheet_range_mm[1] and q.name != name]
+                  if q.flexure_sheet()[0] <= t <= q.flexure_sheet()[1] and q.name != name]
         p.add("sheet.thickness_mm", t, f"{lo:g} <= value <= {hi:g} mm for element.process = "
               f"{name!r}" + (f", or element.process one of {', '.join(others)}" if others else ""),
+              source)
+
+
+def check_spacer_process(d, p) -> None:
+    """Cross-field rule of a stacked design: a stated ``[spacer] process`` cuts the
+    spacer's plate (thickness = array pitch - sheet, mm), so a spacer is judged by its
+    process's cutting range, not by a flexure's.
+
+    Args:
+        d: the validated design file (``d.spacer``, ``d.array.pitch_mm``, ``d.sheet.thickness_mm``).
+        p: the :class:`~tactcad.vocabulary.schema.Problems` the refusal is added to.
+    """
+    name = getattr(getattr(d, "spacer", None), "process", None)
+    if name is None or d.array.columns < 2:
+        return
+    t = d.array.pitch_mm - d.sheet.thickness_mm
+    process = CUT_PROCESSES[name]
+    if t > 0 and not process.holds_sheet(t):
+        lo, hi = process.sheet_range_mm
+        fits = [q.name for q in CUT_PROCESSES.values() if q.holds_sheet(t)]
+        p.add("spacer.process", name,
+              f"a process that cuts the {t:g} mm spacer (pitch - sheet); {name} cuts "
+              f"{lo:g}-{hi:g} mm" + (f": one of {', '.join(fits)}" if fits else ""),
               process.sheet_source)
+
+
+def first_process_holding(thickness_mm: float) -> str:
+    """The name of the first registered cut process that cuts a plate of
+    ``thickness_mm`` (mm); the default process when none does (its own check then
+    names the range)."""
+    fits = [q.name for q in CUT_PROCESSES.values() if q.holds_sheet(thickness_mm)]
+    return fits[0] if fits else DEFAULT_CUT_PROCESS
 
 
 #: The default cut process's part process (wire EDM): what an element is made by when the

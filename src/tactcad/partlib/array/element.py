@@ -53,7 +53,7 @@ class ElementSection(Section):
     base_height_mm: number(0.0, 30.0, lo_open=True)
     overall_length_mm: number(10.0, 60.0)
     inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
-    web_tolerance_mm: number(0.0, 0.1) = None  # or [tolerances] web_thickness_mm
+    web_tolerance_mm: number(0.0, 0.25) = None  # or [tolerances] web_thickness_mm
     #: how the elements are cut (:data:`tactcad.vocabulary.process.CUT_PROCESSES`); wire-edm when left out
     process: choice(CUT_PROCESSES, "the processes that cut a part from sheet") = None
 

@@ -18,12 +18,31 @@ from tactcad.geometry.profile import Profile, rectangle_profile
 from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.prism import DrilledPlate, hole_circles, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
-from tactcad.vocabulary.process import Method, Process
+from tactcad.vocabulary.process import CUT_PROCESSES, Process, cut_process, first_process_holding
+from tactcad.vocabulary.schema import Section, choice
 
 if TYPE_CHECKING:
     from tactcad.kernel.shapes import Solid
 
 COLOR: RGB = (0.60, 0.64, 0.68)
+
+
+class SpacerSection(Section):
+    """``[spacer]`` of the design file (optional): how the spacers are cut."""
+
+    #: the cut process (:data:`tactcad.vocabulary.process.CUT_PROCESSES`); left out: the
+    #: first registered process whose cutting range holds the spacer's thickness
+    process: choice(CUT_PROCESSES, "the processes that cut a part from sheet") = None
+
+
+def spacer_process(context: ArrayContext, thickness_mm: float) -> Process:
+    """The spacer's process: ``[spacer] process`` where the design states it, else the
+    first registered cut process whose cutting range holds ``thickness_mm`` (mm); a plain
+    plate, so the flexure model's sheet range does not apply
+    (:meth:`~tactcad.vocabulary.process.CutProcess.holds_sheet`)."""
+    table = context.tables.get(PART.key)
+    name = getattr(table, "process", None) or first_process_holding(thickness_mm)
+    return cut_process(name, "spacer.process").part_process()
 
 
 @dataclass(frozen=True)
@@ -53,8 +72,7 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
     s = plan.spacer
     prof = spacer_profile(s)
     return (PartData(
-        name="spacer", kind="fabricated",
-        process=Process("wire EDM or laser cut from sheet", Method.SHEET),
+        name="spacer", kind="fabricated", process=spacer_process(context, s.thickness_mm),
         material=context.materials["spacer"], color=COLOR,
         expected_volume_mm3=prof.area_mm2 * s.thickness_mm,
         expected_bbox_mm=prism_bbox(prof, s.thickness_mm), geometry=s, profile=prof,
@@ -75,6 +93,6 @@ def plan_values(plan, spec, pen) -> tuple:
     return (plan.spacer, plan.pitch_mm, plan.sheet_thickness_mm)
 
 
-PART = ArrayPart(key="spacer", build=build, specs=specs, order=20,
+PART = ArrayPart(key="spacer", build=build, specs=specs, order=20, section=SpacerSection,
                  drawing=DrawingRecord(notes_of=notes, plan_values=plan_values),
                  assembly=BuildStep("array-stack"))

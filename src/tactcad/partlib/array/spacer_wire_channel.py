@@ -21,7 +21,6 @@ from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array import spacer
 from tactcad.partlib.array.prism import hole_circles, prism_bbox
 from tactcad.partlib.base import ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
-from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import Problems, Section, number
 
 if TYPE_CHECKING:
@@ -109,7 +108,7 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
     s = channel_of(plan.spacer, context.tables[PART.key], plan.edm.min_inside_radius_mm)
     prof = channeled_profile(s)
     return (PartData(
-        name="spacer", kind="fabricated", process=Process("wire EDM or laser cut from sheet", Method.SHEET),
+        name="spacer", kind="fabricated", process=spacer.spacer_process(context, s.thickness_mm),
         material=context.materials["spacer"], color=spacer.COLOR,
         expected_volume_mm3=prof.area_mm2 * s.thickness_mm,
         expected_bbox_mm=prism_bbox(prof, s.thickness_mm), geometry=s, profile=prof,
