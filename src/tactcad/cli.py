@@ -116,7 +116,7 @@ def run_command(argv: list[str] | None) -> int:
     import contextlib
     import io
 
-    from tactcad.commands.notices import WarningLines, json_with_warnings
+    from tactcad.commands.notices import WarningLines, json_with_warnings, print_heads
 
     argv = sys.argv[1:] if argv is None else list(argv)
     as_json, quiet = "--json" in argv, "--quiet" in argv
@@ -125,6 +125,8 @@ def run_command(argv: list[str] | None) -> int:
     with notes.capture(), (contextlib.redirect_stdout(captured) if as_json
                            else contextlib.nullcontext()):
         code = dispatch(argv, as_json)
+    # the design a run worked on heads its stderr; an error stays one line
+    print_heads(echo=not (as_json or quiet) and code != EXIT_INPUT)
     if as_json:
         text = captured.getvalue()
         merged = json_with_warnings(text, notes.lines)

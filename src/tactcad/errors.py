@@ -55,8 +55,10 @@ class DesignError(TactcadError, ValueError):
         super().__init__(self.line())
 
     def line(self) -> str:
-        """``file: field = value: allowed ... (why)``."""
-        text = f"{self.field} = {short_repr(self.value)}: allowed {self.allowed}"
+        """``file: field = value: allowed ... (why)``; a field with no value (missing, or
+        an option not given) reads ``field (not given): allowed ...``, never ``= None``."""
+        given = " (not given)" if self.value is None else f" = {short_repr(self.value)}"
+        text = f"{self.field}{given}: allowed {self.allowed}"
         if self.why:
             text += f" ({self.why})"
         return f"{self.file}: {text}" if self.file else text

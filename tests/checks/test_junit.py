@@ -95,3 +95,26 @@ def test_check_junit_matches_the_checks_run_and_a_failure_fails(tmp_path, capsys
     failures = root.findall("testsuite/testcase/failure")
     assert root.get("failures") == "1" and len(failures) == 1
     assert failures[0].get("message") == broken.line()
+
+
+def test_an_undecided_requirement_is_its_own_status_in_the_line_the_counts_and_junit():
+    """`check` printed ``PASS requirement full_scale_force_N undecided`` and JUnit
+    passed it: undecided is neither, a ``<skipped>`` with its reason in JUnit."""
+    from tactcad.checks.check_result import counts_text, status_counts
+
+    found = [CheckResult("requirement", "full_scale_force_N", True, "undecided: margin +0.2 %",
+                         undecided=True),
+             CheckResult("requirement", "kr_over_km", True, "pass: margin +5 %"),
+             CheckResult("requirement", "footprint_mm", False, "fail: margin -3 %")]
+    assert [r.line().split()[0] for r in found] == ["UNDECIDED", "PASS", "FAIL"]
+    counts = status_counts(found)
+    assert counts == {"passed": 1, "undecided": 1, "failed": 1}
+    assert counts_text(counts) == "1 passed, 1 undecided, 1 failed"
+    assert counts_text(status_counts(found[1:])) == "1 passed, 1 failed"
+    root = ET.fromstring(junit_report([("requirements", found)], PARTS))
+    SCHEMA.validate(junit_report([("requirements", found)], PARTS).decode())
+    assert root.get("tests") == "3" and root.get("skipped") == "1" and root.get("failures") == "1"
+    case = next(c for c in root.iter("testcase") if c.get("name").endswith("full_scale_force_N"))
+    skipped = case.find("skipped")
+    assert skipped is not None and "margin +0.2 %" in skipped.get("message")
+    assert case.find("failure") is None

@@ -186,6 +186,7 @@ def test_a_tdms_file_cut_short_is_reported_in_tactcad_lines_only(tmp_path, capsy
     path.write_bytes((HW / "calibration_example.tdms").read_bytes()[:-10])
     assert main(["calibrate", "--data", str(path), "--map", "force_N=Dev1/ai0,signal_V=Dev1/ai1"]) == 2
     lines = capsys.readouterr().err.splitlines()
-    assert all(ln.startswith(("tactcad: warning: ", "tactcad: error: ")) for ln in lines), lines
+    assert all(ln.startswith(("tactcad: warning: ", "tactcad: error: ", "tactcad: design: "))
+               for ln in lines), lines
     assert any("npTDMS: Last segment of file has less data" in ln for ln in lines)
     assert lines[-1].startswith(f"tactcad: error: {path}: channel lengths")

@@ -25,11 +25,30 @@ class CheckResult:
         return status_of(self)
 
     def line(self) -> str:
-        return f"{'PASS' if self.passed else 'FAIL'}  {self.check:<24} {self.subject:<28} {self.detail}"
+        """``PASS``, ``FAIL`` or ``UNDECIDED``, the check, its subject and the detail."""
+        return f"{STATUS_LABELS[self.status]}  {self.check:<24} {self.subject:<28} {self.detail}"
+
+
+#: How each status is printed at the head of a check's line.
+STATUS_LABELS = {"pass": "PASS", "fail": "FAIL", "undecided": "UNDECIDED"}
 
 
 def failures(results) -> list[CheckResult]:
     return [r for r in results if not r.passed]
+
+
+def status_counts(results) -> dict[str, int]:
+    """How many of ``results`` passed, are undecided and failed: each result counted once
+    (``{"passed": n, "undecided": n, "failed": n}``)."""
+    found = [status_of(r) for r in results]
+    return {"passed": found.count("pass"), "undecided": found.count("undecided"),
+            "failed": found.count("fail")}
+
+
+def counts_text(counts: dict[str, int]) -> str:
+    """``3 passed, 1 undecided, 0 failed`` (the undecided count only where there are any)."""
+    open_ = f"{counts['undecided']} undecided, " if counts["undecided"] else ""
+    return f"{counts['passed']} passed, {open_}{counts['failed']} failed"
 
 
 def status_of(result) -> str:

@@ -1,7 +1,9 @@
 """Check results as a JUnit XML report, the format CI systems read.
 
 One ``<testcase>`` per check, named ``check: subject``; a failed check holds
-a ``<failure>`` whose message is the line ``tactcad check`` prints for it.
+a ``<failure>`` whose message is the line ``tactcad check`` prints for it, an
+undecided one (a requirement whose margin lies inside its model's error) a
+``<skipped>`` with that line as its reason, so CI counts it apart from a pass.
 Test cases are grouped into ``<testsuite>`` elements by what they check,
 as each check group declares (:mod:`tactcad.checks.groups`):
 
@@ -46,7 +48,7 @@ def junit_report(groups: Sequence[Group], part_names: Iterable[str],
         part_names: the design's part names, to give each part its suite.
         name: the report's name (the ``<testsuites>`` element's).
     """
-    from junitparser import Failure, JUnitXml, TestCase, TestSuite
+    from junitparser import Failure, JUnitXml, Skipped, TestCase, TestSuite
 
     names = list(part_names)
     suites: dict[str, TestSuite] = {}
@@ -59,6 +61,8 @@ def junit_report(groups: Sequence[Group], part_names: Iterable[str],
             case = TestCase(f"{r.check}: {r.subject}", classname=key, time=0.0)
             if not r.passed:
                 case.result = [Failure(r.line(), type_=r.check)]
+            elif getattr(r, "undecided", False):  # neither a pass nor a failure: its reason
+                case.result = [Skipped(r.line(), type_="undecided")]
             if r.detail:
                 case.system_out = r.detail
             suite.add_testcase(case)

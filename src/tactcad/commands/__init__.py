@@ -18,6 +18,8 @@ import tomllib
 from pathlib import Path
 from typing import Any, Callable
 
+from tactcad.commands.notices import print_heads
+
 SET_EXAMPLE = "element.web_thickness_mm=0.3"
 
 
@@ -44,7 +46,11 @@ def progress_from_args(args: argparse.Namespace) -> Callable[[str], None]:
     """Where progress lines go: stderr, flushed at once; nowhere with ``--json`` or ``--quiet``."""
     if getattr(args, "json", False) or getattr(args, "quiet", False):
         return lambda line: None
-    return lambda line: print(line, file=sys.stderr, flush=True)
+
+    def report(line: str) -> None:
+        print_heads()
+        print(line, file=sys.stderr, flush=True)
+    return report
 
 
 def parse_override(text: str) -> tuple[str, Any]:
@@ -102,6 +108,28 @@ def project_from_args(args: argparse.Namespace):
     return load_from_args(args).validated
 
 
+def announced_default_design() -> Path:
+    """The design a command without ``--design`` works on
+    (:func:`tactcad.project_folder.default_design`); where that is the shipped example,
+    the run's stderr is headed by a line naming it and how to start a project of one's
+    own (:func:`tactcad.commands.notices.announce`): a lab must not read the paper's
+    array's numbers as its own.
+
+    Raises:
+        DesignError: the working folder holds several design files.
+    """
+    from tactcad.commands.notices import announce
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+    from tactcad.project_folder import default_design
+
+    design = default_design()
+    if design == DEFAULT_DESIGN:
+        announce(f"design: the shipped example {DEFAULT_DESIGN.stem} (the paper's 2 x 5 "
+                 f"array): no design file in this folder and no --design; `tactcad new NAME` "
+                 f"makes a project of your own")
+    return design
+
+
 def load_from_args(args: argparse.Namespace):
     """The :class:`tactcad.api.Project` of ``--design`` with every ``--set``
     (:func:`tactcad.api.load`, which the Python API's users call too).
@@ -113,8 +141,11 @@ def load_from_args(args: argparse.Namespace):
     from tactcad.errors import DesignErrors
 
     texts = getattr(args, "overrides", None) or []
+    design = getattr(args, "design", None)
+    if design is None:
+        design = announced_default_design()
     try:
-        return load(getattr(args, "design", None), set=parse_overrides(texts))
+        return load(design, set=parse_overrides(texts))
     except DesignErrors as exc:  # a refused --set value is named as typed (the last of a key)
         raise exc.sourced({parse_override(t)[0]: f"--set {t}" for t in texts}) from None
 

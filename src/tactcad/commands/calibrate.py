@@ -158,7 +158,7 @@ def run(args: argparse.Namespace) -> int:
         calibrations = ca.from_fits(fits, "simulated" if args.simulate else "csv")
     else:
         if not cites_paper(plan.raw):  # Table 1's measurements belong to the paper's design
-            raise TactcadError("--data = None: allowed a data file (--data FILE) or --simulate "
+            raise TactcadError("--data (not given): allowed a data file (--data FILE) or --simulate "
                                f"for {plan.name}, which does not cite the paper (only the "
                                "paper's design is audited against its Table 1)")
         report["input"] = "table1"

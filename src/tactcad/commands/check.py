@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from tactcad.checks.check_result import failures, status_of
+from tactcad.checks.check_result import counts_text, status_counts, status_of
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
                               load_from_args)
 from tactcad.commands.finite_json import dumps
@@ -26,7 +26,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", metavar="DIR", default=None,
                    help="the export to check (exported here first unless it is the design's "
                         "current one); default: a temporary folder")
-    p.add_argument("--failures-only", action="store_true", help="print failing checks only")
+    p.add_argument("--failures-only", action="store_true",
+                   help="print failing and undecided checks only")
     p.add_argument("--scene", metavar="NAME", action="append", default=None,
                    help="check only this scene (repeatable): interference, geometry sanity, STEP "
                         "and GLB read-back; without it the array and every scene are checked")
@@ -48,12 +49,11 @@ def run(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
 
     def done(group: str, found: list) -> None:
-        bad = len(failures(found))
-        report(f"{group}: {len(found) - bad} passed, {bad} failed "
+        report(f"{group}: {counts_text(status_counts(found))} "
                f"({time.perf_counter() - t0:.1f} s)")
         if not args.json:
             for r in found:
-                if not (r.passed and args.failures_only):
+                if not (status_of(r) == "pass" and args.failures_only):
                     print(r.line(), flush=True)
 
     result = project.check(args.out, args.scene, cache=store_choice(args), progress=report,
@@ -64,19 +64,19 @@ def run(args: argparse.Namespace) -> int:
         write_junit(args.junit, result.groups, project.parts)
         report(f"wrote {args.junit} (JUnit XML, {len(result)} test cases)")
     bad = result.failures
+    counts = status_counts(result.results)
     if args.out:  # the export's review page shows them (review/checks.js)
         from tactcad.checks.review_results import write_checks_script
 
         write_checks_script(args.out, project.plan.design_hash, result.groups)
     if args.json:
         print(dumps({"out": args.out, "reused_export": result.reused_export,
-                     "export_refusal": result.export_refusal, "passed": len(result) - len(bad),
-                     "failed": len(bad), "junit": args.junit,
+                     "export_refusal": result.export_refusal, **counts, "junit": args.junit,
                      "checks": [{"check": r.check, "subject": r.subject, "passed": r.passed,
                                  "status": status_of(r), "detail": r.detail} for r in result.results
-                                if not (r.passed and args.failures_only)]}, indent=1))
+                                if not (status_of(r) == "pass" and args.failures_only)]}, indent=1))
     else:
-        print(f"{len(result) - len(bad)} passed, {len(bad)} failed")
+        print(counts_text(counts))
     return 1 if bad else 0
 
 

@@ -574,7 +574,7 @@ def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
     """
     from tactcad.design.array_plan import read_toml, validate_design, with_overrides
     from tactcad.errors import DesignErrors
-    from tactcad.project_folder import default_design
+    from tactcad.commands import announced_default_design
     from tactcad.studies.inverse_design import start_tables
 
     def check(tables):
@@ -585,7 +585,7 @@ def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
             raise as_options(DesignErrors(own or problems.errors), args, design)
         return model
 
-    design = Path(args.design) if args.design else default_design()
+    design = Path(args.design) if args.design else announced_default_design()
     raw = with_overrides(read_toml(design, "design file"), set_keys(args))
     base = check(raw)  # the base's own tables first: the start is made from them
     from tactcad.design.construction_registry import DEFAULT_CONSTRUCTION, construction_name

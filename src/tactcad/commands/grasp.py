@@ -116,10 +116,10 @@ def design_plan_from_args(args: argparse.Namespace):
 
     from tactcad.design.array_plan import plan_from_dict, with_overrides
     from tactcad.errors import DesignErrors
-    from tactcad.project_folder import default_design
+    from tactcad.commands import announced_default_design
     from tactcad.vocabulary.schema import read_toml
 
-    path = Path(args.design) if getattr(args, "design", None) else default_design()
+    path = Path(args.design) if getattr(args, "design", None) else announced_default_design()
     texts = getattr(args, "overrides", None) or []
     data = with_overrides(read_toml(path, "design file"), parse_overrides(texts))
     try:

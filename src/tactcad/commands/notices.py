@@ -18,6 +18,25 @@ from typing import Iterator
 
 _FOR_DEVELOPERS = (DeprecationWarning, PendingDeprecationWarning, ImportWarning, ResourceWarning)
 
+#: Lines that head a run's stderr (what the run works on), printed before its first
+#: progress or warning line, or when it ends if it printed none; dropped when it ends in
+#: an error (the error stays one line) and under ``--json``/``--quiet``.
+_HEADS: list[str] = []
+
+
+def announce(text: str) -> None:
+    """Head this run's stderr with ``tactcad: TEXT`` (see :data:`_HEADS`)."""
+    if text not in _HEADS:
+        _HEADS.append(text)
+
+
+def print_heads(echo: bool = True) -> None:
+    """Print (when ``echo``) and forget the announced heads."""
+    heads = list(_HEADS)
+    _HEADS.clear()
+    for text in heads if echo else ():
+        print(f"tactcad: {text}", file=sys.stderr, flush=True)
+
 
 def one_line(message: object) -> str:
     """The warning's text on one line (whitespace runs made one space)."""
@@ -40,6 +59,7 @@ class WarningLines:
     def _add(self, text: str) -> None:
         self.lines.append(text)
         if self.echo:
+            print_heads()
             print(f"tactcad: warning: {text}", file=sys.stderr, flush=True)
 
     def show(self, message, category, filename, lineno, file=None, line=None) -> None:

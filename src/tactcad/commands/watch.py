@@ -159,8 +159,8 @@ def watch(args: argparse.Namespace, log: Callable[[str], None], stop: threading.
     if args.design:
         design = Path(args.design)
     else:
-        from tactcad.project_folder import default_design
-        design = default_design()
+        from tactcad.commands import announced_default_design
+        design = announced_default_design()
     if not design.is_file():  # a file that exists but is refused is watched until it is mended
         raise DesignError("--design", str(design), "an existing design file (TOML)")
     state = LiveState()
