@@ -85,7 +85,7 @@ def test_a_measured_ratio_outside_the_model_is_refused_by_name():
 
 @pytest.mark.parametrize("field, kwargs", [("poisson_ratio", {"poisson_ratio": 0.7}),
                                            ("thickness_mm", {"thickness_mm": -1.0}),
-                                           ("tissue.cell_mm", {"cell_mm": 0.0})])
+                                           ("tissue.convergence_rel", {"convergence_rel": 0.0})])
 def test_bad_tissue_is_refused_by_name(field, kwargs):
     with pytest.raises(ContactError, match=field):
         Tissue(**kwargs)

@@ -122,7 +122,7 @@ def test_bad_sample_names_field(field, sample):
 
 def test_modulus_from_k_obj_gives_k_obj_back():
     e = contact.modulus_from_punch_stiffness(3.85, 2.0, 3.0, 0.5)
-    k = 1 / contact.single_punch_compliance(2.0, 3.0, contact.Sample(e, 0.5))
+    k = e / contact.unit_punch_compliance([contact.Punch(0.0, 0.0, 2.0, 3.0)], 0.5)[0, 0]
     assert k == pytest.approx(3.85, rel=1e-10)
 
 

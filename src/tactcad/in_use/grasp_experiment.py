@@ -38,7 +38,7 @@ from tactcad.in_use.jaw_kinematics import JawGeometry, check_angle_deg, indentat
 from tactcad.in_use.kobj_budget import kobj_from_deflections
 from tactcad.in_use.radius_pairs import (PairedLayout, along_row_layout, insert_frame,
                                          paired_layout, unit_radii)
-from tactcad.mechanics.contact import Punch, Sample, single_punch_compliance, solve_punches
+from tactcad.mechanics.contact import Punch, unit_punch_compliance
 from tactcad.mechanics.hard_stops import engagement_travel_mm
 
 #: Tissue profiles between the jaws (see the module docstring).
@@ -51,8 +51,6 @@ COUPLING_LEFT_IN = ("", "; the tissue's coupling between neighbouring tips stays
                         "source take it out)")
 #: Poisson's ratio of soft tissue, nearly incompressible (as the evaluation's samples).
 TISSUE_POISSON_RATIO = 0.49
-#: Boundary-element cell edge (mm): a 1 x 1 mm face gets 4 x 4 cells.
-CELL_MM = 0.25
 #: Bisection steps of the force mode (the angle to 90° / 2^60).
 BISECTION_STEPS = 60
 #: Active-set passes of the stops and lift-off before the solve is declared stuck.
@@ -89,11 +87,11 @@ def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thicknes
         raise DesignError("coupling", coupling, " | ".join(COUPLINGS))
     if coupling == "none":
         return np.eye(len(punches)) / k_obj_N_per_mm
-    sample = Sample(1.0, poisson_ratio, slab_thickness_mm if coupling == "layer" else None)
-    unit = solve_punches(punches, sample, CELL_MM).compliance_mm_per_N
+    thickness = slab_thickness_mm if coupling == "layer" else None
+    unit = unit_punch_compliance(punches, poisson_ratio, thickness)  # converged in the mesh
     # E such that one face alone sees K_obj: every compliance scales as 1/E
-    own = np.mean([single_punch_compliance(p.width_x_mm, p.depth_z_mm, sample, CELL_MM)
-                   for p in punches])
+    own = np.mean([unit_punch_compliance([Punch(0.0, 0.0, p.width_x_mm, p.depth_z_mm)],
+                                         poisson_ratio, thickness)[0, 0] for p in punches])
     return unit / (k_obj_N_per_mm * own)
 
 

@@ -42,8 +42,8 @@ from typing import Mapping, Sequence
 import numpy as np
 from scipy.optimize import brentq
 
-from tactcad.mechanics.contact import (DEFAULT_CELL_MM, ContactError, Punch, Sample, check_sample,
-                                       single_punch_compliance, solve_punches)
+from tactcad.mechanics.contact import (CONVERGED_REL, ContactError, Punch, Sample, check_sample,
+                                       converged_punches)
 from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
 
 #: Soft tissue and rubber phantoms are nearly incompressible (an assumption the user can change).
@@ -67,7 +67,8 @@ class Tissue:
     Attributes:
         poisson_ratio: ν, 0 ... 0.5 (default 0.5: nearly incompressible tissue).
         thickness_mm: layer thickness on a rigid base (mm), or None for a half-space.
-        cell_mm: boundary-element cell edge (mm).
+        convergence_rel: how closely the contact solver's successive mesh extrapolations
+            must agree (:func:`~tactcad.mechanics.contact.converged_punches`; default 0.1 %).
         indenter_face_mm: (width across the sheet, depth along it) of the flat
             indenter K_obj is defined against (mm); None: the design's own tip face.
 
@@ -77,13 +78,13 @@ class Tissue:
 
     poisson_ratio: float = TISSUE_POISSON_RATIO
     thickness_mm: float | None = None
-    cell_mm: float = DEFAULT_CELL_MM
+    convergence_rel: float = CONVERGED_REL
     indenter_face_mm: tuple[float, float] | None = None
 
     def __post_init__(self):
         check_sample(Sample(1.0, self.poisson_ratio, self.thickness_mm))
-        if not (np.isfinite(self.cell_mm) and self.cell_mm > 0):
-            raise ContactError("tissue.cell_mm", self.cell_mm, "> 0 mm")
+        if not (np.isfinite(self.convergence_rel) and 1e-6 <= self.convergence_rel <= 0.1):
+            raise ContactError("tissue.convergence_rel", self.convergence_rel, "1e-6 ... 0.1")
 
     def describe(self) -> str:
         """One line for an assumption: the sample model and ν."""
@@ -118,12 +119,15 @@ class CoupledSample:
         normalised: Ĉ = C(E = 1) / C₁, shape (m, m) (dimensionless).
         tissue: the :class:`Tissue` it was built for.
         indenter_face_mm: the face K_obj is defined against (mm).
+        error_rel: the contact solver's mesh error on Ĉ (the last change of its
+            extrapolation, relative; :class:`~tactcad.mechanics.contact.ConvergedPunches`).
     """
 
     numbers: tuple[int, ...]
     normalised: np.ndarray
     tissue: Tissue
     indenter_face_mm: tuple[float, float]
+    error_rel: float = 0.0
 
     def index(self, number: int) -> int:
         if number not in self.numbers:
@@ -145,17 +149,21 @@ def coupled_sample_from_punches(numbers: Sequence[int], punches: Sequence[Punch]
     """
     face = tissue.indenter_face_mm or (punches[0].width_x_mm, punches[0].depth_z_mm)
     face = (float(face[0]), float(face[1]))
-    normalised = _normalised_compliance(tuple(punches), tissue, face)
-    return CoupledSample(tuple(int(n) for n in numbers), normalised.copy(), tissue, face)
+    normalised, error = _normalised_compliance(tuple(punches), tissue, face)
+    return CoupledSample(tuple(int(n) for n in numbers), normalised.copy(), tissue, face, error)
 
 
 @functools.lru_cache(maxsize=32)
 def _normalised_compliance(punches: tuple[Punch, ...], tissue: Tissue,
-                           face: tuple[float, float]) -> np.ndarray:
-    """Ĉ of the punches, cached: a design search asks the same tips again and again."""
+                           face: tuple[float, float]) -> tuple[np.ndarray, float]:
+    """(Ĉ of the punches, its mesh error), converged in the mesh
+    (:func:`~tactcad.mechanics.contact.converged_punches`); cached: a design search asks
+    the same tips again and again."""
     unit = Sample(1.0, tissue.poisson_ratio, tissue.thickness_mm)
-    c1 = single_punch_compliance(face[0], face[1], unit, tissue.cell_mm)
-    return solve_punches(list(punches), unit, tissue.cell_mm).compliance_mm_per_N / c1
+    alone = converged_punches([Punch(0.0, 0.0, face[0], face[1])], unit, tissue.convergence_rel)
+    tips = converged_punches(list(punches), unit, tissue.convergence_rel)
+    c1 = float(alone.compliance_mm_per_N[0, 0])
+    return tips.compliance_mm_per_N / c1, max(alone.error_rel, tips.error_rel)
 
 
 def coupled_sample(plan, tissue: Tissue = Tissue()) -> CoupledSample:

@@ -31,7 +31,8 @@ from typing import Mapping
 
 import numpy as np
 
-from tactcad.mechanics.contact import ContactError, Punch, Sample, modulus_from_punch_stiffness, solve_punches
+from tactcad.mechanics.contact import ContactError, Punch, modulus_from_punch_stiffness
+from tactcad.mechanics.contact import unit_punch_compliance as converged_unit_compliance
 
 #: Weight of the moving axis with the array (N), the first grasping force.
 DEAD_WEIGHT_N = 3.235
@@ -73,13 +74,11 @@ class SampleSpec:
         coupling: ``none`` (eq. 1-2), ``halfspace`` or ``layer``.
         poisson_ratio: ν of the sample, 0 ... 0.5.
         thickness_mm: layer thickness (mm) for ``layer``; ignored otherwise.
-        cell_mm: boundary-element cell edge (mm).
     """
 
     coupling: str = "halfspace"
     poisson_ratio: float = DEFAULT_POISSON_RATIO
     thickness_mm: float | None = None
-    cell_mm: float = 0.25
 
     def __post_init__(self):
         if self.coupling not in COUPLINGS:
@@ -152,16 +151,17 @@ def sample_compliance(elements, k_obj: float, spec: SampleSpec,
     if spec.coupling == "none":
         return np.eye(len(elements)) / k_obj
     modulus = modulus_from_punch_stiffness(k_obj, *indenter_face_mm(elements), spec.poisson_ratio,
-                                           spec.layer_thickness_mm, spec.cell_mm)
+                                           spec.layer_thickness_mm)
     if unit_compliance is None:
         unit_compliance = unit_punch_compliance(elements, spec)
     return unit_compliance / modulus
 
 
 def unit_punch_compliance(elements, spec: SampleSpec) -> np.ndarray:
-    """Punch compliance matrix of the elements' faces on a sample with E = 1 MPa (mm/N)."""
-    sample = Sample(1.0, spec.poisson_ratio, spec.layer_thickness_mm)
-    return solve_punches([e.punch for e in elements], sample, spec.cell_mm).compliance_mm_per_N
+    """Punch compliance matrix of the elements' faces on a sample with E = 1 MPa (mm/N),
+    converged in the mesh (:func:`tactcad.mechanics.contact.unit_punch_compliance`)."""
+    return converged_unit_compliance([e.punch for e in elements], spec.poisson_ratio,
+                                     spec.layer_thickness_mm)
 
 
 @dataclass(frozen=True, eq=False)
@@ -260,8 +260,7 @@ def _rig_record(res: RigResult, spec: SampleSpec, face_mm: tuple[float, float]) 
     modulus = None
     if spec.coupling != "none":
         modulus = modulus_from_punch_stiffness(res.k_obj_N_per_mm, *face_mm,
-                                               spec.poisson_ratio, spec.layer_thickness_mm,
-                                               spec.cell_mm)
+                                               spec.poisson_ratio, spec.layer_thickness_mm)
     return {
         "K_obj_N_per_mm": res.k_obj_N_per_mm,
         "youngs_modulus_MPa": modulus,

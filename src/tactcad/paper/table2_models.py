@@ -145,7 +145,7 @@ class CoupledPredictor:
         self._unit: dict[tuple, np.ndarray] = {}
 
     def ratios(self, rows: Rows, index: np.ndarray, spec: ev.SampleSpec) -> np.ndarray:
-        key = (spec.coupling, spec.poisson_ratio, spec.layer_thickness_mm, spec.cell_mm)
+        key = (spec.coupling, spec.poisson_ratio, spec.layer_thickness_mm)
         if key not in self._unit:
             self._unit[key] = ev.unit_punch_compliance(self.elements, spec)
         numbers = [e.number for e in self.elements]
