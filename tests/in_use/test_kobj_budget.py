@@ -11,6 +11,7 @@ from tactcad.in_use import kobj_budget as kb
 
 ROOT = Path(__file__).resolve().parents[2]
 TI = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+MACRO = ROOT / "hardware" / "macro_array" / "macro_array.toml"
 #: The Ti example widened to 2 x 4: each row's soft elements beside its reference.
 FOUR_COLUMNS = [19.605, 6.196, 19.605, 19.605] * 2
 
@@ -186,10 +187,32 @@ def test_tissue_coupling_from_the_rig_model_and_eq_3(ti_plan):
     read = object_stiffness(R, ctx.k_of(unit.measuring), ctx.k_of(unit.reference))
     assert got.before[0] == pytest.approx(abs(read / k_obj - 1), rel=1e-9)
     assert got.before[0] > 0.01  # tips 3 mm apart on one sample couple by several percent
+    # after the coupled inversion: the model's error of the R shift, read back on the
+    # coupled curve itself (a coarser central difference of R over ln K_obj here)
+    from tactcad.in_use.tissue_coupling import coupled_ratio, coupled_sample
+
     op = _op(ctx, unit, np.array([k_obj]))
-    shifted = object_stiffness(op.ratio[0] + kb.COUPLING_MODEL_ERROR_REL * (R - op.ratio[0]),
-                               op.k_m, op.k_r)
-    assert got.after[0] == pytest.approx(abs(shifted / k_obj - 1), rel=0.05)
+    sample = coupled_sample(ti_plan)
+    k = {s.number: ctx.k_of(s.number) for s in ti_plan.slots}
+    pair = (unit.measuring, unit.reference)
+    slope = (coupled_ratio(sample, k, pair, k_obj * 1.01)
+             - coupled_ratio(sample, k, pair, k_obj / 1.01)) / (2 * np.log(1.01))
+    shift = (kb.COUPLING_MODEL_ERROR_REL + sample.error_rel) * (R - op.ratio[0])
+    assert got.after[0] == pytest.approx(abs(shift / slope), rel=1e-3)
+
+
+def test_the_tissue_terms_slope_is_the_coupled_models_not_eq_3s():
+    """On the macro array, whose R is compressed, the coupled R moves with ln K_obj about
+    half as fast as eq. 2's: the model's error costs twice what eq. 3's slope said."""
+    from tactcad.api import load
+
+    plan = load(str(MACRO)).plan
+    ctx = _context(plan, force=0.3)
+    unit = kb.Unit(1, 3)
+    op = _op(ctx, unit, np.array([2.34]))
+    eq3_slope = op.k_obj * kb.eq3_partials(op)["dR"] ** -1
+    coupled = kb.coupled_slope(ctx, unit, op.k_obj)
+    assert 0.3 < float(coupled[0] / eq3_slope[0]) < 0.7
 
 
 def test_gauge_model_is_the_levels_own_strain_error(plan):
@@ -291,3 +314,66 @@ def test_the_calibration_default_is_a_catalogue_gauge_that_holds_the_force(ti_pl
     b = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0).as_json()
     text = str(b)
     assert small.model in text and "paper" not in text
+
+
+def test_an_offset_tip_on_an_uncoupled_sample_is_eq_1_with_the_offset():
+    """The coplanarity model against eq. 1-3 by hand: with no coupling (Ĉ = I) a reference
+    standing d proud meets the object first; at the reference force F_r, e_r = F_r/K_r,
+    the body travel is e_r (K_r + K)/K - d and e_m = K travel / (K + K_m)."""
+    from tactcad.in_use.tissue_coupling import CoupledSample, Tissue
+
+    k = {1: 30.0, 2: 8.0}
+    sample = CoupledSample((1, 2), np.eye(2), Tissue(), (2.0, 3.0))
+    for d in (1e-3, -2e-3, 5e-3):
+        e_r = 0.3 / 30.0
+        e_m = 2.34 * (e_r * (30.0 + 2.34) / 2.34 - d) / (2.34 + 8.0)
+        got = kb.offset_ratio(sample, k, kb.Unit(1, 2), 2.34, 0.3, {1: d})
+        assert got == pytest.approx(e_m / e_r, rel=1e-12)
+    assert kb.offset_ratio(sample, k, kb.Unit(1, 2), 2.34, 0.3, {}) == pytest.approx(
+        (2.34 / (2.34 + 8.0)) / (2.34 / (2.34 + 30.0)), rel=1e-12)  # eq. 2
+
+
+def test_tip_coplanarity_is_in_the_budget_from_the_drawings_tolerance(ti_plan):
+    """A 1 um mismatch moves K_obj by several percent (the Ti units at their rating), so the
+    drawing's +/-0.02 mm cannot be read uncorrected; zeroing on a rigid flat leaves the
+    flat's flatness and the deflection resolution."""
+    req = ti_plan.raw["requirements"]
+    budget = kb.kobj_budget(ti_plan, tuple(req["kobj_range_N_per_mm"]), req["full_scale_force_N"])
+    assert "tip_coplanarity" in kb.SOURCE_KEYS
+    ctx = _context(ti_plan, force=req["full_scale_force_N"])
+    unit = _first_unit(ctx)
+    op = _op(ctx, unit, np.array(budget.k_obj))
+    one_um = kb._mismatch_rel(ctx, unit, op, 1e-3)
+    assert np.all(one_um > 0.01)
+    rec = next(u for u in budget.units if (u["reference_element"], u["measuring_element"])
+               == (unit.reference, unit.measuring))["sources"]["tip_coplanarity"]
+    before = np.array([x if x is not None else np.inf for x in rec["before_rel"]])
+    assert np.all(before > one_um)  # twice 0.02 mm is far worse than 1 um
+    after = np.array(rec["after_rel"])
+    residual = kb.tip_mismatch_after_zeroing_mm(ctx, unit)
+    assert kb.ZEROING_FLAT_FLATNESS_MM <= residual < 1e-3
+    assert after == pytest.approx(one_um * residual / 1e-3, rel=0.1)  # about linear in a small one
+    assert budget.tip_height["tolerance_mm"] == 0.02 and budget.tip_height["kobj_accuracy_rel"] is None
+
+
+def test_a_stated_accuracy_gives_the_tip_tolerance_the_drawing_must_hold(ti_plan):
+    """The budget drives the drawing: with kobj_accuracy_rel the budget names the tip-height
+    tolerance whose uncorrected mismatch fits what the other terms leave; drawn to it, the
+    coplanarity term before correction fills that room."""
+    from tactcad.design.array_plan import plan_from_dict, with_overrides
+
+    req = ti_plan.raw["requirements"]
+    rng, force = tuple(req["kobj_range_N_per_mm"]), req["full_scale_force_N"]
+    stated = plan_from_dict(with_overrides(ti_plan.raw, {"requirements.kobj_accuracy_rel": 0.1}))
+    needed = kb.kobj_budget(stated, rng, force).tip_height["tolerance_for_accuracy_mm"]
+    assert needed is not None and 1e-5 < needed < 0.01  # microns: below what wire EDM holds
+    drawn = plan_from_dict(with_overrides(stated.raw, {"tolerances.tip_height_mm": needed}))
+    budget = kb.kobj_budget(drawn, rng, force)
+    worst = 0.0
+    for u in budget.units:
+        before = np.array(u["sources"]["tip_coplanarity"]["before_rel"])
+        others = np.array([u["sources"][k]["after_rel"] for k in kb.SOURCE_KEYS
+                           if k != "tip_coplanarity"])
+        worst = max(worst, float(np.max(np.sqrt(before ** 2 + np.sum(others ** 2, axis=0)))))
+    assert worst == pytest.approx(0.1, rel=0.01)
+    assert f"+/-{needed:.3g} mm" in budget.notes["tip_coplanarity"]

@@ -14,6 +14,10 @@ Keys (symmetric +/- tolerances; units in the names):
 * ``arm_length_mm``: the tip position relative to the notch centre (the lever);
 * ``sheet_thickness_mm``: the sheet the elements are cut from;
 * ``contact_face_mm``: the contact face width;
+* ``tip_height_mm``: the contact face's height above the base's clamped edge (the
+  datum every element of the array shares), so twice it is the worst mismatch of two
+  tips' heights: the K_obj budget's coplanarity term reads it, and with
+  ``requirements.kobj_accuracy_rel`` states the tolerance it needs;
 * ``youngs_modulus_rel``: the material's modulus, relative;
 * ``general``: the ISO 2768-1 tolerance class for every other dimension
   (``f`` fine, ``m`` medium, ``c`` coarse, ``v`` very coarse).
@@ -44,6 +48,8 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
                                  "class for aluminium sheet; ground plate is finer); the "
                                  "elements are cut through it, so it is the element width"),
     "contact_face_mm": (0.02, "the contact face width is a wire-cut contour, to its accuracy"),
+    "tip_height_mm": (0.02, "the contact face and the base's clamped edge are wire-cut "
+                            "contours, each placed to the contour accuracy of wire EDM"),
     "youngs_modulus_rel": (0.02, "heat-to-heat scatter of wrought alloys; handbook moduli are "
                                  "typical values, not minima"),
     "general": ("f", "ISO 2768-f: the parts are wire-cut or milled to fine-class accuracy "
@@ -64,6 +70,8 @@ class TolerancesSection(Section):
     arm_length_mm: number(0.0, 0.5, why="+/- tip position from the notch centre") = None
     sheet_thickness_mm: number(0.0, 0.5, why="+/- sheet thickness") = None
     contact_face_mm: number(0.0, 0.5, why="+/- contact face width") = None
+    tip_height_mm: number(0.0, 0.5, why="+/- contact face height above the base's clamped "
+                                        "edge (tip coplanarity)") = None
     youngs_modulus_rel: number(0.0, 0.2, unit="", why="+/- relative Young's modulus") = None
     general: choice(tuple(GENERAL_CLASSES), "ISO 2768-1 tolerance class") = None
 
@@ -98,6 +106,7 @@ class DesignTolerances(ResolvedSection):
     arm_length_mm: float
     sheet_thickness_mm: float
     contact_face_mm: float
+    tip_height_mm: float
     youngs_modulus_rel: float
     general: str
 

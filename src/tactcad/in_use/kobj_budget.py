@@ -49,7 +49,18 @@ every K_obj of the grid, before and after the correction the lab applies):
     faces, the sample's modulus set so that one tip face alone reads K_obj, nu 0.5);
     eq. 3 on the coupled R against the true K_obj. After the
     coupled inversion what remains is the coupled model's own error,
-    :data:`COUPLING_MODEL_ERROR_REL` of the R shift it predicts, through ∂K_obj/∂R.
+    :data:`COUPLING_MODEL_ERROR_REL` of the R shift it predicts plus its mesh error
+    (``CoupledSample.error_rel``), through the coupled model's own slope ∂R/∂ln K_obj
+    (about half eq. 3's on the macro array: eq. 3's slope understated it).
+(i) tip coplanarity: the measuring tip recessed and the reference proud by the drawing's
+    tip-height tolerance (``[tolerances] tip_height_mm``; a mismatch of twice it, either
+    sign) on the coupled sample at the reference force, read by the coupled inversion.
+    After every unit is zeroed on a rigid flat (each tip's height offset read as its
+    deflection with every tip on one plane), the offset is known to the two elements'
+    deflection resolutions (the read-out chain's force resolution / K) and the flat's
+    flatness, in quadrature, which is what remains. With ``requirements.kobj_accuracy_rel`` stated,
+    :func:`tip_height_tolerance_for_accuracy_mm` gives the tolerance the drawing must hold
+    for the uncorrected term to fit in what the other terms leave.
 (g) gauge model: each element's grid strain per newton at the budget's level against
     the next level that computes the strain anew (:func:`gauge_model_error_rel`); read
     with the predicted K_v it moves each deflection by that fraction. Calibration
@@ -79,6 +90,7 @@ import numpy as np
 
 from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
+from tactcad.mechanics.contact import ContactError
 
 #: Points of the log-spaced K_obj grid the budget is evaluated on (ends included).
 BUDGET_POINTS = 7
@@ -338,11 +350,38 @@ def _coupled_ratios(ctx: Context, k_obj: np.ndarray) -> dict[int, np.ndarray]:
     return out
 
 
+def _tissue_sample(ctx: Context):
+    from tactcad.in_use.tissue_coupling import coupled_sample
+
+    return ctx.once("tissue sample", lambda: coupled_sample(ctx.plan))
+
+
+def _stiffness_by_number(ctx: Context) -> dict[int, float]:
+    return {s.number: ctx.k_of(s.number) for s in ctx.plan.slots}
+
+
+#: Relative K_obj step of the coupled model's slope ∂R/∂ln K_obj (central difference).
+SLOPE_STEP_REL = 1e-3
+
+
+def coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndarray:
+    """∂R/∂ln K_obj of ``unit`` on the coupled sample (every tip pressing), over
+    ``k_obj`` (N/mm): what a shift of R moves the coupled inversion's K_obj by."""
+    from tactcad.in_use.tissue_coupling import coupled_ratio
+
+    sample, stiffness = _tissue_sample(ctx), _stiffness_by_number(ctx)
+    pair = (unit.measuring, unit.reference)
+    up = np.atleast_1d(coupled_ratio(sample, stiffness, pair, k_obj * (1 + SLOPE_STEP_REL)))
+    down = np.atleast_1d(coupled_ratio(sample, stiffness, pair, k_obj * (1 - SLOPE_STEP_REL)))
+    return (up - down) / (np.log1p(SLOPE_STEP_REL) - np.log1p(-SLOPE_STEP_REL))
+
+
 def tissue_coupling(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(f) Eq. 3 on the R of tips coupled through a half-space sample against the true
     K_obj (inf where the coupled R leaves eq. 3's domain: eq. 3 cannot read it); after the
-    coupled inversion, the coupled model's error, :data:`COUPLING_MODEL_ERROR_REL` of the
-    R shift, through ∂K_obj/∂R."""
+    coupled inversion, the coupled model's error (:data:`COUPLING_MODEL_ERROR_REL` of the R
+    shift plus the contact solver's mesh error) through the coupled slope
+    (:func:`coupled_slope`)."""
     key = f"coupled {op.k_obj.tolist()}"
     ratios = ctx.once(key, lambda: _coupled_ratios(ctx, op.k_obj))
     R = ratios[unit.measuring]
@@ -350,7 +389,141 @@ def tissue_coupling(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     with np.errstate(all="ignore"):
         read = np.where(inside, (op.k_r - R * op.k_m) / (R - 1.0), np.nan)
     before = np.where(inside, np.abs(read / op.k_obj - 1.0), np.inf)
-    after = np.abs(eq3_partials(op)["dR"] * COUPLING_MODEL_ERROR_REL * (R - op.ratio)) / op.k_obj
+    model_error = COUPLING_MODEL_ERROR_REL + _tissue_sample(ctx).error_rel
+    with np.errstate(all="ignore"):
+        after = np.abs(model_error * (R - op.ratio) / coupled_slope(ctx, unit, op.k_obj))
+    return Contribution(before, np.where(np.isfinite(after), after, np.inf))
+
+
+def offset_ratio(sample, stiffness: Mapping[int, float], unit: Unit, k_obj: float,
+                 force_r_N: float, offsets_mm: Mapping[int, float]) -> float:
+    """R = e_m / e_r of ``unit`` on the coupled sample (every tip pressing) when tips stand
+    proud of the others by ``offsets_mm`` (element -> mm, + towards the tissue), pressed
+    until the reference carries ``force_r_N`` (N): P = (diag(1/K) + Ĉ/K_obj)⁻¹ (Δ 1 + d)."""
+    numbers = sample.numbers
+    k = np.array([float(stiffness[n]) for n in numbers])
+    d = np.array([float(offsets_mm.get(n, 0.0)) for n in numbers])
+    system = np.diag(1.0 / k) + sample.normalised / float(k_obj)
+    per_travel, fixed = np.linalg.solve(system, np.ones(len(k))), np.linalg.solve(system, d)
+    i_m, i_r = numbers.index(unit.measuring), numbers.index(unit.reference)
+    travel = (force_r_N - fixed[i_r]) / per_travel[i_r]
+    e = (travel * per_travel + fixed) / k
+    return float(e[i_m] / e[i_r])
+
+
+def _mismatch_rel(ctx: Context, unit: Unit, op: Operating, mismatch_mm: float) -> np.ndarray:
+    """The coupled inversion's worst |K_obj error| (either sign) when the unit's two tips'
+    heights differ by ``mismatch_mm`` (mm), over the grid; inf where it has no answer."""
+    from tactcad.in_use.tissue_coupling import coupled_object_stiffness
+
+    sample, stiffness = _tissue_sample(ctx), _stiffness_by_number(ctx)
+    out = np.zeros_like(op.k_obj)
+    for i, k in enumerate(op.k_obj):
+        for sign in (1.0, -1.0):
+            half = sign * mismatch_mm / 2
+            r = offset_ratio(sample, stiffness, unit, float(k), op.force_r,
+                             {unit.reference: half, unit.measuring: -half})
+            try:
+                read = coupled_object_stiffness(sample, stiffness,
+                                                (unit.measuring, unit.reference), r)
+                out[i] = max(out[i], abs(read / k - 1.0))
+            except ContactError:
+                out[i] = np.inf
+    return out
+
+
+#: Flatness of the rigid flat the units are zeroed on (mm): a gauge block's measuring face,
+#: ISO 3650 grade 1 (0.15 um up to 150 mm), larger than any face the tips span.
+ZEROING_FLAT_FLATNESS_MM = 0.15e-3
+
+
+def tip_mismatch_after_zeroing_mm(ctx: Context, unit: Unit) -> float:
+    """The tip-height mismatch left after zeroing on a rigid flat (mm): each element's
+    deflection resolution (the read-out chain's force resolution / K) and the flat's own
+    flatness (:data:`ZEROING_FLAT_FLATNESS_MM`), in quadrature."""
+    from tactcad.mechanics.readout_chain import element_force_resolution_N
+
+    df = ctx.once("readout", lambda: element_force_resolution_N(ctx.plan, ctx.model))
+    part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
+    return math.hypot(df[part(unit.measuring)]["dF"] / ctx.k_of(unit.measuring),
+                      df[part(unit.reference)]["dF"] / ctx.k_of(unit.reference),
+                      ZEROING_FLAT_FLATNESS_MM)
+
+
+#: Relative tolerance of the tip-height tolerance the accuracy needs (its root find).
+TOLERANCE_RTOL = 1e-3
+
+
+def _exact_tolerance(ctx: Context, pairs: list[Unit], units: list[dict], k_obj: np.ndarray,
+                     accuracy_rel: float, linear_mm: float) -> float:
+    """The tip-height tolerance (mm) at which the uncorrected coplanarity term, computed on
+    the coupled model (not linearised), fills the room the other terms leave: a root find
+    from the linear estimate ``linear_mm`` (the term grows faster than linearly at the top
+    of the K_obj range)."""
+    from scipy.optimize import brentq
+
+    ops = [operating_point(ctx.k_of(u.measuring), ctx.k_of(u.reference), k_obj, ctx.force_N)
+           for u in pairs]
+    others = [np.sum(np.array([[x if x is not None else math.inf for x in rec["sources"][k]
+                                ["after_rel"]] for k in SOURCE_KEYS if k != "tip_coplanarity"])
+                     ** 2, axis=0) for rec in units]
+
+    def excess(tol_mm: float) -> float:
+        return max(float(np.max(np.sqrt(_mismatch_rel(ctx, u, op, 2 * tol_mm) ** 2 + rest)))
+                   for u, op, rest in zip(pairs, ops, others)) / accuracy_rel - 1.0
+
+    hi = linear_mm
+    while excess(hi) < 0:
+        hi *= 2
+    lo = hi / 2
+    while excess(lo) > 0 and lo > 1e-9:
+        lo /= 2
+    return float(brentq(excess, lo, hi, rtol=TOLERANCE_RTOL)) if lo > 1e-9 else lo
+
+
+def tip_height_tolerance_mm(plan: Plan) -> float:
+    """The drawing's tip-height tolerance, +/- mm (``[tolerances] tip_height_mm``)."""
+    from tactcad.design.tolerances import tolerances_of
+
+    return tolerances_of(plan.raw).tip_height_mm
+
+
+def tip_height_tolerance_for_accuracy_mm(units: list[dict], accuracy_rel: float,
+                                         mismatch_after_mm: Mapping[tuple[int, int], float]
+                                         ) -> float | None:
+    """The largest tip-height tolerance (+/- mm) whose uncorrected coplanarity term (a
+    mismatch of twice it) fits, at every K_obj of every unit, within what the other terms
+    after correction leave of ``accuracy_rel`` (in quadrature); the term is linear in a
+    small mismatch, its slope read from the zeroed residual (``mismatch_after_mm``:
+    (reference, measuring) -> mm). None where the other terms leave no room.
+
+    Args:
+        units: the budget's unit records (:func:`unit_budget`).
+        accuracy_rel: ``requirements.kobj_accuracy_rel``.
+        mismatch_after_mm: the zeroed residual mismatch of each unit (mm).
+    """
+    allowed = math.inf
+    for u in units:
+        own = np.array([x if x is not None else math.inf
+                        for x in u["sources"]["tip_coplanarity"]["after_rel"]])
+        others = np.array([[x if x is not None else math.inf for x in u["sources"][k]["after_rel"]]
+                           for k in SOURCE_KEYS if k != "tip_coplanarity"])
+        room_sq = accuracy_rel ** 2 - np.sum(others ** 2, axis=0)
+        if np.any(room_sq <= 0) or not np.all(np.isfinite(own)):
+            return None
+        residual = mismatch_after_mm[(u["reference_element"], u["measuring_element"])]
+        slope = own / residual  # relative K_obj error per mm of mismatch
+        with np.errstate(divide="ignore"):
+            allowed = min(allowed, float(np.min(np.sqrt(room_sq) / slope)) / 2)
+    return allowed if math.isfinite(allowed) else None
+
+
+def tip_coplanarity(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(i) The tips' height mismatch: twice the drawing's tip-height tolerance before, the
+    deflection resolution after zeroing on a rigid flat, each through the coupled model."""
+    tol = tip_height_tolerance_mm(ctx.plan)
+    before = _mismatch_rel(ctx, unit, op, 2 * tol) if tol > 0 else np.zeros_like(op.k_obj)
+    after = _mismatch_rel(ctx, unit, op, tip_mismatch_after_zeroing_mm(ctx, unit))
     return Contribution(before, after)
 
 
@@ -469,7 +642,7 @@ class Source(NamedTuple):
     correction: str
 
 
-#: The sources, in the order of issue 42's list.
+#: The sources, in the order of the module docstring's list.
 SOURCES = (
     Source("readout_noise", "read-out noise and quantisation", readout_noise, "none"),
     Source("thermal_zero", "thermal zero", thermal_zero, "none (a tare at the reading "
@@ -484,6 +657,9 @@ SOURCES = (
     Source("gauge_model", "gauge model", gauge_model,
            "calibration measures K_v: none remains in the reading"),
     Source("calibration", "calibration uncertainty", calibration, "none"),
+    Source("tip_coplanarity", "tip coplanarity", tip_coplanarity,
+           "every unit zeroed on a rigid flat: the offset read to the elements' deflection "
+           "resolution remains"),
 )
 SOURCE_KEYS = tuple(s.key for s in SOURCES)
 
@@ -551,6 +727,7 @@ class KobjBudget:
     k_obj: tuple[float, ...]
     units: list[dict]
     notes: dict
+    tip_height: dict = field(default_factory=dict)
 
     @property
     def array(self) -> dict:
@@ -584,7 +761,8 @@ class KobjBudget:
                 "K_obj_N_per_mm": list(self.k_obj),
                 "sources": [{"key": s.key, "words": s.words, "correction": s.correction}
                             for s in SOURCES],
-                "units": self.units, "array": self.array, "notes": self.notes}
+                "units": self.units, "array": self.array, "notes": self.notes,
+                "tip_height": self.tip_height}
 
 
 def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
@@ -636,8 +814,9 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
     ctx = Context(plan, model, stiffness, errors, float(force_N), float(delta_T_K),
                   dict(calibrations or {}))
     k_obj = kobj_grid((lo, hi), points)
-    units = [unit_budget(ctx, Unit(r.number, m.number), k_obj)
-             for r, m in row_units(plan, dict(stiffness))]
+    pairs = [Unit(r.number, m.number) for r, m in row_units(plan, dict(stiffness))]
+    units = [unit_budget(ctx, u, k_obj) for u in pairs]
+    tip = tip_height_record(ctx, pairs, units, k_obj)
     tc_e, tc_source = modulus_tc_per_K(plan)
     gauge = calibration_force_gauge(float(force_N))
     _, per_newton, xt_error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
@@ -666,9 +845,40 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
                                    "fixed K error of the web tolerance is removed; the "
                                    "calibration's own standard error remains (calibration)",
         "tissue_coupling": f"half-space sample (nu 0.5), rigid flat punches of the design's tip "
-                           f"faces, one face alone reading K_obj; "
-                           f"after the coupled inversion "
+                           f"faces, one face alone reading K_obj, converged in the mesh to "
+                           f"{_tissue_sample(ctx).error_rel:.2g}; after the coupled inversion "
                            f"{COUPLING_MODEL_ERROR_REL:g} of its R shift (the coupled model's "
-                           f"error) through dK_obj/dR"}
+                           f"error) plus that mesh error, through the coupled model's own "
+                           f"slope dR/dlnK_obj",
+        "tip_coplanarity": tip["basis"]}
     return KobjBudget(plan.name, model, float(force_N), float(delta_T_K), (lo, hi),
-                      tuple(float(v) for v in k_obj), units, notes)
+                      tuple(float(v) for v in k_obj), units, notes, tip)
+
+
+def tip_height_record(ctx: Context, pairs: list[Unit], units: list[dict],
+                      k_obj: np.ndarray) -> dict:
+    """The budget's tip-height record: the drawing's tolerance, each unit's mismatch left
+    after zeroing on a rigid flat, and with ``requirements.kobj_accuracy_rel`` stated the
+    tolerance the accuracy needs (:func:`tip_height_tolerance_for_accuracy_mm`)."""
+    from tactcad.design.requirements_section import stated_kobj_accuracy
+
+    tol = tip_height_tolerance_mm(ctx.plan)
+    after = {(u.reference, u.measuring): tip_mismatch_after_zeroing_mm(ctx, u) for u in pairs}
+    accuracy = stated_kobj_accuracy(ctx.plan.raw)
+    needed = (tip_height_tolerance_for_accuracy_mm(units, accuracy, after)
+              if accuracy is not None and units else None)
+    if needed is not None:
+        needed = _exact_tolerance(ctx, pairs, units, k_obj, accuracy, needed)
+    basis = (f"the tips' heights differ by up to twice the drawing's +/-{tol:g} mm "
+             f"([tolerances] tip_height_mm) before correction; zeroed on a rigid flat (a gauge "
+             f"block face, flat to {1e3 * ZEROING_FLAT_FLATNESS_MM:g} um), by that flatness and "
+             f"the elements' deflection resolutions ({1e3 * max(after.values(), default=0):.3g} "
+             f"um at most)")
+    if accuracy is not None:
+        basis += ("; for K_obj within " + f"{100 * accuracy:g} % uncorrected the drawing must "
+                  + (f"hold +/-{needed:.3g} mm" if needed is not None else
+                     "hold what no tolerance gives (the other terms fill the accuracy): zero on "
+                     "a rigid flat"))
+    return {"tolerance_mm": tol, "mismatch_after_zeroing_mm": max(after.values(), default=0.0),
+            "kobj_accuracy_rel": accuracy, "tolerance_for_accuracy_mm": needed,
+            "basis": basis}

@@ -200,8 +200,9 @@ def dimensions(d, solid, pen) -> None:
     pen.dim(d, f, (L, g.arm_underside_y_mm), (xr, H), "v", "right", 0, pen.fmt_mm(g.arm_height_mm),
             "arm_height", outside="below")
     pen.dim(d, f, (xr, H), (L, top), "v", "right", 0, pen.fmt_mm(g.tip_height_mm), "tip_height")
-    pen.dim(d, f, (g.base_length_mm, 0.0), (L, top), "v", "right", 1, pen.fmt_mm(top),
-            "overall_height")
+    # the tip face's height above the clamped edge sets the tips' coplanarity (K_obj budget)
+    pen.dim(d, f, (g.base_length_mm, 0.0), (L, top), "v", "right", 1,
+            pen.plus_minus(top, tol.tip_height_mm), "overall_height")
     holes = pen.holes_seen(d.spec, solid, d.cameras)
     pen.hole_dims_linear(d, f, holes, (0.0, 0.0))
     pen.dim(d, f, (0.0, 0.0), (0.0, H), "v", "left", 1, pen.fmt_mm(H), "base_height")
