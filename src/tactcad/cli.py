@@ -126,7 +126,7 @@ def run_command(argv: list[str] | None) -> int:
                            else contextlib.nullcontext()):
         code = dispatch(argv, as_json)
     # the design a run worked on heads its stderr; an error stays one line
-    print_heads(echo=not (as_json or quiet) and code != EXIT_INPUT)
+    print_heads(echo=not (as_json or quiet) and code in (0, 1))
     if as_json:
         text = captured.getvalue()
         merged = json_with_warnings(text, notes.lines)

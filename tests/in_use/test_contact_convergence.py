@@ -2,7 +2,8 @@
 
 The contact solver's cells are graded towards each face's edges and refined with
 Richardson extrapolation until the compliances agree within 0.1 %; a uniform-cell
-boundary-element model with another kernel quadrature (tests/independent_bem.py) must
+boundary-element model with another kernel quadrature (tactcad.mechanics.contact_uniform,
+which shares no kernel or mesh with it; verify's check level) must
 give the same couplings C_ij/C_ii for the three shipped layouts to 1 %, and the
 coupled inversion of R made on it the same K_obj to 1 % (the uniform 0.25 mm cells of
 before read the macro array's C12/C11 4 % low, K_obj up to 17 % high)."""
@@ -14,13 +15,13 @@ import warnings
 
 import numpy as np
 import pytest
-from independent_bem import compliance, extrapolated_compliance
 
 from tactcad.design.array_plan import EXAMPLES, load_design
 from tactcad.in_use.tissue_coupling import (CoupledSample, Tissue, coupled_object_stiffness,
                                             coupled_ratio, coupled_sample, design_units,
                                             tip_punches)
 from tactcad.mechanics import contact
+from tactcad.mechanics.contact_uniform import uniform_check, uniform_compliance
 
 LAYOUTS = ("macro_array", "ti_array_2x3", "grasper_jaw_10mm")
 
@@ -32,12 +33,11 @@ def _plan(name):
 
 
 def _independent(plan):
-    """(punches as tuples, the independent model's Ĉ normalised by one face alone)."""
+    """(punches, the independent model's Ĉ normalised by one face alone)."""
     _, punches = tip_punches(plan)
-    faces = [(p.x_mm, p.z_mm, p.width_x_mm, p.depth_z_mm) for p in punches]
-    h = min(0.25, min(min(f[2], f[3]) for f in faces) / 8)
-    alone = extrapolated_compliance([(0.0, 0.0, *faces[0][2:])], h)[0, 0]
-    return faces, extrapolated_compliance(faces, h) / alone
+    face = contact.Punch(0.0, 0.0, punches[0].width_x_mm, punches[0].depth_z_mm)
+    alone = uniform_check([face]).compliance_mm_per_N[0, 0]
+    return punches, uniform_check(punches).compliance_mm_per_N / alone
 
 
 @pytest.fixture(scope="module", params=LAYOUTS)
@@ -85,10 +85,37 @@ def test_the_converged_square_punch_agrees_with_the_independent_model():
     side = 2.0
     ours = contact.converged_punches([contact.Punch(0.0, 0.0, side, side)],
                                      contact.Sample(1.0, 0.0)).compliance_mm_per_N[0, 0]
-    theirs = extrapolated_compliance([(0.0, 0.0, side, side)], 0.125)[0, 0]
+    square = contact.Punch(0.0, 0.0, side, side)
+    theirs = uniform_check([square]).compliance_mm_per_N[0, 0]
     assert ours == pytest.approx(theirs, rel=2e-3)
     # and the uniform cells it replaced were far off at the old 0.25 mm
-    assert abs(compliance([(0.0, 0.0, side, side)], 0.25)[0, 0] / theirs - 1) > 0.01
+    assert abs(uniform_compliance([square], 0.25)[0, 0] / theirs - 1) > 0.01
     # King's beta = 1.012 (1987, a coarse FE model) lies 0.9 % under both
     king = contact.SQUARE_PUNCH_BETA * 2 / math.sqrt(math.pi) * side
     assert 1 / ours == pytest.approx(king, rel=0.012)
+
+
+def test_verify_judges_the_coupled_inversion_against_the_check_level():
+    """verify's tissue row read the coupled inversion against its own R (worst +0 %, it could
+    not fail); it now reads R made on the check level. With the working couplings 4 % low,
+    as the uniform 0.25 mm cells left them, the macro array's row would have failed."""
+    from tactcad.in_use.tissue_coupling import check_level_sample, cross_level_bias
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.studies.verification import requirements_of, tissue_coupling_record
+
+    plan = _plan("macro_array")
+    req = requirements_of(plan)
+    record = tissue_coupling_record(plan, req)
+    assert "another discretisation" in record["check_level"]
+    worst = [abs(u["worst_corrected_rel"]) for u in record["units"]]
+    assert 0 < max(worst) < req.kobj_resolution_rel  # two levels, not one: never exactly 0
+    assert record["coupled"]["verdict"] == "pass"
+
+    k = ladder_stiffness_by_element(plan)
+    working = coupled_sample(plan, Tissue(poisson_ratio=0.5))
+    diag = np.diag(np.diag(working.normalised))
+    low = CoupledSample(working.numbers, diag + 0.96 * (working.normalised - diag),
+                        working.tissue, working.indenter_face_mm)
+    check = check_level_sample(plan)
+    bias = cross_level_bias(low, check, k, (3, 1), [2.34, 10.0])
+    assert np.nanmax(np.abs(bias)) > 0.05  # the old mesh's defect, caught

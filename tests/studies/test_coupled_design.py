@@ -88,7 +88,10 @@ def test_verify_records_the_kobj_bias_before_and_after_the_coupled_correction():
     worst_eq3 = max(abs(u["worst_eq3_rel"]) for u in rec["units"])
     assert worst_eq3 > rec["target_rel"]  # eq. 3 on one sample misreads by more than the resolution
     assert rec["eq3"]["verdict"] == "fail"
-    assert all(abs(u["worst_corrected_rel"]) < 1e-8 for u in rec["units"])
+    # the coupled inversion read against the check level: the two models' disagreement,
+    # small against the resolution but not the 0 of a model read against itself
+    worst = [abs(u["worst_corrected_rel"]) for u in rec["units"]]
+    assert 0 < max(worst) < rec["target_rel"]
     assert rec["coupled"]["verdict"] == "pass"
 
 

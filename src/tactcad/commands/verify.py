@@ -133,7 +133,9 @@ def tissue_text(record: dict) -> str:
                      f"{meaning.get(verdict, verdict)}")
     return (f"tissue coupling ({record['tissue']}), K_obj bias over the range against the "
             f"{100 * record['target_rel']:.3g} % resolution (how K_obj must be read, not a "
-            f"requirement): " + "; ".join(parts))
+            f"requirement): " + "; ".join(parts)
+            + (f"; the coupled inversion checked on {record['check_level']}"
+               if record.get("check_level") else ""))
 
 
 def matrix_table(records: list[dict]) -> str:

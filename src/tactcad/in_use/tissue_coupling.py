@@ -172,6 +172,40 @@ def coupled_sample(plan, tissue: Tissue = Tissue()) -> CoupledSample:
     return coupled_sample_from_punches(numbers, punches, tissue)
 
 
+def check_level_sample(plan, tissue: Tissue = Tissue()) -> CoupledSample | None:
+    """The design's tips on the check model of another discretisation
+    (:mod:`tactcad.mechanics.contact_uniform`: uniform cells, point-load quadrature,
+    first-order extrapolation), normalised as :func:`coupled_sample`; None for a layer
+    (the check model is a half-space). Its ``error_rel`` is its own mesh error."""
+    from tactcad.mechanics.contact_uniform import uniform_check
+
+    if tissue.thickness_mm is not None:
+        return None
+    numbers, punches = tip_punches(plan)
+    face = tissue.indenter_face_mm or (punches[0].width_x_mm, punches[0].depth_z_mm)
+    alone = uniform_check([Punch(0.0, 0.0, float(face[0]), float(face[1]))])
+    tips = uniform_check(punches)
+    return CoupledSample(tuple(int(n) for n in numbers),
+                         tips.compliance_mm_per_N / alone.compliance_mm_per_N[0, 0], tissue,
+                         (float(face[0]), float(face[1])), max(alone.error_rel, tips.error_rel))
+
+
+def cross_level_bias(working: CoupledSample, check: CoupledSample,
+                     stiffness: Mapping[int, float], unit: tuple[int, int], k_obj_values,
+                     pressing: str = "array") -> np.ndarray:
+    """K_obj the working model's coupled inversion reads from R made on the ``check``
+    sample, over the true K_obj (N/mm), minus 1: the two levels' disagreement on one unit
+    (NaN where the working model cannot read the check's R).
+
+    Raises:
+        ContactError: as :func:`coupled_ratio`.
+    """
+    ks = np.atleast_1d(np.asarray(k_obj_values, float))
+    r = np.atleast_1d(coupled_ratio(check, stiffness, unit, ks, pressing))
+    read = np.array([_inverted_or_nan(working, stiffness, unit, float(x), pressing) for x in r])
+    return read / ks - 1.0
+
+
 def _pressing(sample: CoupledSample, unit: tuple[int, int], pressing: str) -> list[int]:
     if pressing not in PRESSING:
         raise ContactError("pressing", pressing, " | ".join(PRESSING))
