@@ -215,3 +215,26 @@ def test_evaluate_reads_each_row_against_its_own_reference(capsys):
     first = report["samples"][0]["elements"]
     assert all(r == pytest.approx(1.0) for e in first if e["element"] in (2, 5) for r in e["R"])
     assert set(report["fig6"]["R"]) == {"1", "3", "4", "6"}
+
+
+def test_kr_over_km_is_judged_by_its_own_band_not_the_manufacturing_one():
+    """A row 12 % short of K_r/K_m 7 read 'margin -20 % (allowed -24 %)' and passed: the
+    band was the web tolerance's K band. The requirement's own band (default 10 %, or the
+    file's kr_over_km_tolerance_rel) decides it; the design as written passes."""
+    from tactcad.studies.verification import KR_OVER_KM_BAND_REL, requirements_of
+
+    plan = example()
+    req = requirements_of(plan)
+    assert req.kr_over_km_tolerance_rel == KR_OVER_KM_BAND_REL == 0.1
+    assert "not stated" in req.reasons["kr_over_km_tolerance_rel"]
+    ratio = next(r for r in verification_matrix(plan) if r["requirement"] == "kr_over_km")
+    assert ratio["verdict"] == "pass" and ratio["allowed_margin_rel"] == -0.1
+    short = example(**{"requirements.kr_over_km": ratio["predicted"] / 0.85,
+                       "requirements.k_tolerance_rel": 0.3})
+    assert next(r for r in verification_matrix(short)
+                if r["requirement"] == "kr_over_km")["verdict"] == "fail"
+    wide = example(**{"requirements.kr_over_km": ratio["predicted"] / 0.85,
+                      "requirements.kr_over_km_tolerance_rel": 0.2})
+    rec = next(r for r in verification_matrix(wide) if r["requirement"] == "kr_over_km")
+    assert rec["verdict"] == "pass" and rec["allowed_margin_rel"] == -0.2
+    assert requirements_of(wide).reasons["kr_over_km_tolerance_rel"] == "stated in the design file"

@@ -77,6 +77,9 @@ class RequirementsSection(Section):
                                  "object stiffnesses the array must read") = None
     kr_over_km: number(1.0, MAX_KR_OVER_KM, lo_open=True, unit="",
                        why="eq. 2 needs a reference stiffer than the measuring element") = None
+    kr_over_km_tolerance_rel: number(0.0, 1.0, lo_open=True, unit="",
+                                     why="how far below kr_over_km a row's K_r/K_m may lie "
+                                         "(default 0.1: the paper's 'about 10')") = None
     k_tolerance_rel: number(0.0, 1.0, lo_open=True, unit="",
                             why="relative K band over the web tolerance") = None
     kobj_resolution_rel: number(0.0, 10.0, lo_open=True, unit="",

@@ -43,7 +43,7 @@ import numpy as np
 
 from tactcad.design.array_plan import Plan
 from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, requirements_source,
-                                         stated_footprint, stated_requirements)
+                                         stated_footprint, stated_number, stated_requirements)
 from tactcad.mechanics.stack_crosstalk import crosstalk_records
 from tactcad.mechanics.verdicts import VERDICTS, deciding_item, judged, verdict  # noqa: F401 (API)
 from tactcad.studies.resonance import resonance_records, resonance_summary
@@ -53,6 +53,11 @@ from tactcad.mechanics.thermal_drift import thermal_record
 KOBJ_SEARCH_FACTOR = 100.0
 
 
+#: How far below its target a row's K_r / K_m may lie when the file states no band
+#: (``requirements.kr_over_km_tolerance_rel``): the paper's K_r/K_m "about 10".
+KR_OVER_KM_BAND_REL = 0.1
+
+
 @dataclass(frozen=True)
 class Requirements:
     """The requirement values of a design and where each comes from.
@@ -60,6 +65,8 @@ class Requirements:
     Attributes:
         full_scale_force_N (N), kobj_range_N_per_mm ((LO, HI) N/mm),
         kr_over_km, k_tolerance_rel, kobj_resolution_rel: the values.
+        kr_over_km_tolerance_rel: how far below ``kr_over_km`` a row's K_r / K_m may lie
+            (the requirement's own band; default :data:`KR_OVER_KM_BAND_REL`).
         reasons: per key, "stated in the design file" or the derivation.
         stated: the keys the design file states.
         source: the file's citation (``requirements.source``) or None.
@@ -76,11 +83,14 @@ class Requirements:
     source: str | None = None
     cites_paper: bool = False
     footprint_mm: tuple[float, ...] | None = None
+    kr_over_km_tolerance_rel: float = 0.1
 
     def as_json(self) -> dict:
         return {"full_scale_force_N": self.full_scale_force_N,
                 "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
-                "kr_over_km": self.kr_over_km, "k_tolerance_rel": self.k_tolerance_rel,
+                "kr_over_km": self.kr_over_km,
+                "kr_over_km_tolerance_rel": self.kr_over_km_tolerance_rel,
+                "k_tolerance_rel": self.k_tolerance_rel,
                 "kobj_resolution_rel": self.kobj_resolution_rel, "reasons": dict(self.reasons),
                 "stated": sorted(self.stated), "source": self.source,
                 **({} if self.footprint_mm is None else
@@ -401,12 +411,19 @@ def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
         values["kobj_resolution_rel"], reasons["kobj_resolution_rel"] = \
             derived_kobj_resolution(plan, fig, values["kobj_range_N_per_mm"],
                                     values["full_scale_force_N"])
+    band = stated_number(plan.raw, "kr_over_km_tolerance_rel")
+    reasons["kr_over_km_tolerance_rel"] = "stated in the design file" if band is not None else (
+        f"not stated: {100 * KR_OVER_KM_BAND_REL:g} %, the paper's 'about' its K_r/K_m of 10 "
+        f"for the MEMS array")
+    band = KR_OVER_KM_BAND_REL if band is None else band
     return Requirements(
         full_scale_force_N=float(values["full_scale_force_N"]),
+        kr_over_km_tolerance_rel=float(band),
         kobj_range_N_per_mm=tuple(float(v) for v in values["kobj_range_N_per_mm"]),
         kr_over_km=float(values["kr_over_km"]), k_tolerance_rel=float(values["k_tolerance_rel"]),
         kobj_resolution_rel=float(values["kobj_resolution_rel"]),
-        reasons={k: reasons[k] for k in REQUIREMENT_KEYS}, stated=frozenset(stated),
+        reasons={k: reasons[k] for k in (*REQUIREMENT_KEYS, "kr_over_km_tolerance_rel")},
+        stated=frozenset(stated),
         source=requirements_source(plan.raw), cites_paper=cites_paper(plan.raw),
         footprint_mm=stated_footprint(plan.raw))
 
@@ -679,8 +696,9 @@ def kr_over_km_record(pairs: Sequence[RowPair], req: Requirements, model: str) -
     """``kr_over_km``: every row's pair judged on its own error (:meth:`RowPair.as_json`);
     the record shows the pair that decides it (:func:`deciding_item`), so one pair that
     fails beyond its error fails the record whatever the others do. A pair passes within
-    the K band the requirements allow (margin >= -k_tolerance_rel)."""
-    threshold = -req.k_tolerance_rel
+    the requirement's own band (margin >= -kr_over_km_tolerance_rel), never the
+    manufacturing band (``k_tolerance_rel``: what the tolerance study answers)."""
+    threshold = -req.kr_over_km_tolerance_rel
     items = [q.as_json(req.kr_over_km, threshold) for q in pairs]
     worst = deciding_item(items)
     return _record("kr_over_km", req.kr_over_km, worst["kr_over_km"],
