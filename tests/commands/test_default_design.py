@@ -29,3 +29,26 @@ def test_inside_a_project_its_own_design_is_used_without_a_notice(tmp_path, monk
 def test_a_value_not_given_reads_as_such_never_as_none():
     text = str(DesignError("--design", None, "one of a.toml, b.toml"))
     assert text == "--design (not given): allowed one of a.toml, b.toml" and "None" not in text
+
+
+def test_a_simulated_calibration_takes_the_noise_of_the_designs_own_rig(tmp_path, monkeypatch,
+                                                                         capsys):
+    """calibrate --simulate added the paper rig's 0.001 N (the FH 5's) to a design whose rig
+    reads 0.0001 N: the noise is the rigs' force gauge's and the design's read-out chain's."""
+    import json
+
+    from tactcad.api import load
+    from tactcad.mechanics.readout_chain import noise_budget_V, readout_chain
+
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["new", "fingertip", "--quiet"]) == 0
+    monkeypatch.chdir(tmp_path / "fingertip")
+    project = load()  # the project folder's one design
+    gauge = project.validated.rigs.part("force_gauge")
+    capsys.readouterr()
+    assert cli.main(["calibrate", "--simulate", "--json"]) == 0
+    noise = json.loads(capsys.readouterr().out)["simulated_noise"]
+    assert noise["force_N"] == gauge.resolution_N and gauge.model in noise["force_source"]
+    assert noise["signal_V"] == noise_budget_V(readout_chain(project.plan))["reading"]
+    assert cli.main(["calibrate", "--simulate", "--json", "--noise-force", "0.002"]) == 0
+    assert json.loads(capsys.readouterr().out)["simulated_noise"]["force_N"] == 0.002

@@ -14,6 +14,36 @@ import argparse
 from tactcad.mechanics.ladder import models
 
 
+#: Signal noise (V, one sigma) of a simulated rig read with an explicit ``--gain`` (no
+#: read-out chain to take it from).
+GAIN_SIGNAL_NOISE_V = 0.001
+
+
+def simulated_noise(args: argparse.Namespace, project) -> tuple[tuple[float, str],
+                                                                tuple[float, str]]:
+    """((force noise N, its source), (signal noise V, its source)) of a simulated rig: the
+    options where given, else the rigs' force gauge's resolution and one reading's noise
+    of the design's read-out chain (:func:`tactcad.mechanics.readout_chain.noise_budget_V`),
+    never another design's figures."""
+    from tactcad.mechanics.readout_chain import noise_budget_V, readout_chain
+
+    if args.noise_force is not None:
+        force = (float(args.noise_force), "--noise-force")
+    else:
+        gauge = project.rigs.part("force_gauge")
+        force = (float(gauge.resolution_N), f"the rigs' force gauge {gauge.model}, read to "
+                                            f"{gauge.resolution_N:g} N")
+    if args.noise_signal is not None:
+        signal = (float(args.noise_signal), "--noise-signal")
+    elif args.gain is not None:
+        signal = (GAIN_SIGNAL_NOISE_V, "the default with --gain (no read-out chain)")
+    else:
+        chain = readout_chain(project.plan)
+        signal = (float(noise_budget_V(chain)["reading"]), "one reading of the design's "
+                                                           "[readout] chain")
+    return force, signal
+
+
 def register(subparsers) -> None:
     """Add the ``calibrate`` sub-command."""
     from tactcad.commands import add_cache_args, add_design_arg, add_output_args
@@ -53,10 +83,13 @@ def register(subparsers) -> None:
                    help="gauge gain of the simulated rig (V per unit strain of the peak strain); "
                         "default: the design's [readout] chain on the grid-averaged strain, "
                         "as tactcad readout")
-    p.add_argument("--noise-force", type=number(0, 100, "N"), default=0.001, metavar="N",
-                   help="force noise of the simulated rig (N, one sigma; default %(default)s N)")
-    p.add_argument("--noise-signal", type=number(0, 100, "V"), default=0.001, metavar="V",
-                   help="signal noise of the simulated rig (V, one sigma; default %(default)s V)")
+    p.add_argument("--noise-force", type=number(0, 100, "N"), default=None, metavar="N",
+                   help="force noise of the simulated rig (N, one sigma; default: the "
+                        "resolution of the rigs' force gauge)")
+    p.add_argument("--noise-signal", type=number(0, 100, "V"), default=None, metavar="V",
+                   help="signal noise of the simulated rig (V, one sigma; default: the noise of "
+                        f"one reading of the design's read-out chain, or {GAIN_SIGNAL_NOISE_V:g} "
+                        "V with --gain)")
     p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0,
                    help="random seed of the simulated rig (default %(default)s)")
     p.add_argument("--write-csv", metavar="CSV", type=output_file(".csv"), default=None,
@@ -113,8 +146,12 @@ def run(args: argparse.Namespace) -> int:
 
             # the paper's Z steps for its design; any other is loaded to its full-scale force
             force = None if cites_paper(plan.raw) else requirements_of(plan).full_scale_force_N
-            data = ca.simulate_design_calibration(plan, args.model, gain, args.noise_force,
-                                                  args.noise_signal, args.seed,
+            noise_force, noise_signal = simulated_noise(args, project)
+            report["simulated_noise"] = {"force_N": noise_force[0], "force_source": noise_force[1],
+                                         "signal_V": noise_signal[0],
+                                         "signal_source": noise_signal[1]}
+            data = ca.simulate_design_calibration(plan, args.model, gain, noise_force[0],
+                                                  noise_signal[0], args.seed,
                                                   full_scale_force_N=force,
                                                   k_sensor_N_per_mm=k_sensor)
             if force is not None:
@@ -133,8 +170,8 @@ def run(args: argparse.Namespace) -> int:
                     data, (f"simulated calibration of design {plan.name}, ladder {args.model}, "
                            f"gauge gain {report['simulated_gauge_gain_V_per_strain']:g} V/strain"
                            f"{'' if gain is not None else ' (read-out chain, grid strain)'}, "
-                           f"noise {args.noise_force:g} N, "
-                           f"{args.noise_signal:g} V, seed {args.seed}",)), encoding="utf-8")
+                           f"noise {noise_force[0]:g} N, "
+                           f"{noise_signal[0]:g} V, seed {args.seed}",)), encoding="utf-8")
                 report["written_csv"] = args.write_csv
         else:
             from tactcad.mechanics.measured_io import parse_mapping, read_measured
