@@ -190,6 +190,7 @@ def test_a_non_paper_project_carries_nothing_of_the_paper(installed, tmp_path):
         if not path.is_file() or path.suffix in GEOMETRY_SUFFIXES or ".tactcad-cache" in path.parts:
             continue
         text = path.read_text(encoding="utf-8", errors="replace")
+        # the paper's samples are stiffnesses: a percentage that reads 2.34 % is not one
         hits += [f"{path.relative_to(project)}: {mark}" for mark in PAPER_MARKS
-                 if re.search(rf"(?<![\w.]){re.escape(mark)}(?![\w])", text)]
+                 if re.search(rf"(?<![\w.]){re.escape(mark)}(?![\w])(?! ?%)", text)]
     assert hits == []

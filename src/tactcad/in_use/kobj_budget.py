@@ -478,7 +478,8 @@ def _exact_tolerance(ctx: Context, pairs: list[Unit], units: list[dict], k_obj: 
     lo = hi / 2
     while excess(lo) > 0 and lo > 1e-9:
         lo /= 2
-    return float(brentq(excess, lo, hi, rtol=TOLERANCE_RTOL)) if lo > 1e-9 else lo
+    found = float(brentq(excess, lo, hi, rtol=TOLERANCE_RTOL)) if lo > 1e-9 else lo
+    return float(f"{found:.3g}")  # a drawing's tolerance: three digits, never the last bits
 
 
 def tip_height_tolerance_mm(plan: Plan) -> float:
@@ -682,8 +683,15 @@ def budget_uncertainty_rel(ctx: Context, unit: Unit) -> float:
 
 #: Significant digits the budget's figures keep: far finer than any of them is known, and
 #: coarse enough that the last bits a linear-algebra library leaves (another BLAS, another
-#: thread count) neither change the manifest nor flip a tie between symmetric units.
-BUDGET_DIGITS = 10
+#: thread count, another array alignment) neither change the manifest nor flip a tie between
+#: symmetric units, after the coupled slope's finite difference (about 1e3 x) and the
+#: coplanarity's root finds have amplified them.
+BUDGET_DIGITS = 6
+
+
+def finite_or_inf(values) -> np.ndarray:
+    """A :func:`listed` list back as floats, None (a reading that cannot be made) as inf."""
+    return np.array([math.inf if v is None else float(v) for v in values])
 
 
 def listed(values: np.ndarray) -> list[float | None]:
@@ -736,8 +744,8 @@ class KobjBudget:
         if not self.units:
             return {"unit": [], "rss_rel": [], "worst_case_rel": [], "dominant": [],
                     "uncertainty_rel": []}
-        rss = np.array([u["rss_rel"] for u in self.units])
-        best = np.argmin(rss, axis=0)
+        rss = np.array([finite_or_inf(u["rss_rel"]) for u in self.units])
+        best = np.argmin(rss, axis=0)  # an unreadable unit (None) is never the best
         pick = lambda key: [self.units[b][key][i] for i, b in enumerate(best)]  # noqa: E731
         return {"unit": [f"{self.units[b]['reference_element']}/"
                          f"{self.units[b]['measuring_element']}" for b in best],
@@ -751,8 +759,9 @@ class KobjBudget:
         a = self.array
         if not a["rss_rel"]:
             return None
-        i = int(np.argmax(a["rss_rel"]))
-        return float(a["rss_rel"][i]), float(a["uncertainty_rel"][i])
+        i = int(np.argmax(finite_or_inf(a["rss_rel"])))
+        rss = a["rss_rel"][i]
+        return (math.inf if rss is None else float(rss)), float(a["uncertainty_rel"][i])
 
     def as_json(self) -> dict:
         return {"design": self.design, "model": self.model, "force_N": self.force_N,
@@ -879,6 +888,7 @@ def tip_height_record(ctx: Context, pairs: list[Unit], units: list[dict],
                   + (f"hold +/-{needed:.3g} mm" if needed is not None else
                      "hold what no tolerance gives (the other terms fill the accuracy): zero on "
                      "a rigid flat"))
-    return {"tolerance_mm": tol, "mismatch_after_zeroing_mm": max(after.values(), default=0.0),
+    worst_after = listed([max(after.values(), default=0.0)])[0]
+    return {"tolerance_mm": tol, "mismatch_after_zeroing_mm": worst_after,
             "kobj_accuracy_rel": accuracy, "tolerance_for_accuracy_mm": needed,
             "basis": basis}

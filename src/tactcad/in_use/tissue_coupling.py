@@ -50,8 +50,12 @@ from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
 TISSUE_POISSON_RATIO = 0.5
 #: How far beyond the asked K_obj the coupled inversion searches for its root (factor either way).
 INVERSION_BRACKET = 1e3
-#: Relative tolerance of the coupled inversion's root (on ln K_obj).
-INVERSION_RTOL = 1e-10
+#: Relative tolerance of the coupled inversion's root (on ln K_obj): near the machine's, so
+#: the root is set by the function, not by the path the root find took (a path that last
+#: bits of the compliance change would otherwise move the answer by the tolerance).
+INVERSION_RTOL = 4 * np.finfo(float).eps
+#: Absolute tolerance of that root (on ln K_obj).
+INVERSION_XTOL = 1e-14
 #: Decimals the coupled inversion's residual bias is given to: a step above the root
 #: tolerance, so the root find's and the solver's last bits (another numpy build) never
 #: show; below it the residual is 0.
@@ -203,7 +207,7 @@ def cross_level_bias(working: CoupledSample, check: CoupledSample,
     ks = np.atleast_1d(np.asarray(k_obj_values, float))
     r = np.atleast_1d(coupled_ratio(check, stiffness, unit, ks, pressing))
     read = np.array([_inverted_or_nan(working, stiffness, unit, float(x), pressing) for x in r])
-    return read / ks - 1.0
+    return np.round(read / ks - 1.0, CORRECTED_DECIMALS) + 0.0  # no -0.0
 
 
 def _pressing(sample: CoupledSample, unit: tuple[int, int], pressing: str) -> list[int]:
@@ -279,7 +283,8 @@ def coupled_object_stiffness(sample: CoupledSample, stiffness: Mapping[int, floa
     if not (np.isfinite(r) and f_lo * f_hi <= 0):
         raise ContactError("R", r, f"{f_hi + r:.6g} ... {f_lo + r:.6g} (the coupled R over K_obj "
                                    f"{lo:.3g} ... {hi:.3g} N/mm)")
-    return float(np.exp(brentq(excess, np.log(lo), np.log(hi), rtol=INVERSION_RTOL)))
+    return float(np.exp(brentq(excess, np.log(lo), np.log(hi), rtol=INVERSION_RTOL,
+                               xtol=INVERSION_XTOL)))
 
 
 @dataclass(frozen=True)

@@ -600,7 +600,8 @@ def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements) -> dict | 
     a = budget.array
     items = [judged({"K_obj_N_per_mm": k, "unit": u, "rss_rel": rss, "dominant": dom,
                      "error_estimate_rel": unc,
-                     "margin_rel": target / rss - 1.0 if rss > 0 and math.isfinite(rss)
+                     "margin_rel": -1.0 if rss is None  # no unit reads it
+                     else target / rss - 1.0 if rss > 0 and math.isfinite(rss)
                      else (None if rss == 0 else -1.0)})
              for k, u, rss, dom, unc in zip(budget.k_obj, a["unit"], a["rss_rel"],
                                             a["dominant"], a["uncertainty_rel"])]
@@ -609,7 +610,8 @@ def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements) -> dict | 
                        basis="no element is softer than its row's reference")
     w = deciding_item(items)
     return _record("kobj_accuracy_rel", target, w["rss_rel"], w["error_estimate_rel"],
-                   w["margin_rel"], fig.model, all(it["rss_rel"] <= target for it in items),
+                   w["margin_rel"], fig.model,
+                   all(it["rss_rel"] is not None and it["rss_rel"] <= target for it in items),
                    binding_kobj_N_per_mm=w["K_obj_N_per_mm"], binding_unit=w["unit"],
                    dominant=w["dominant"], points=items, force_N=budget.force_N,
                    verdict=w["verdict"],
