@@ -79,7 +79,7 @@ class RequirementsSection(Section):
                        why="eq. 2 needs a reference stiffer than the measuring element") = None
     kr_over_km_tolerance_rel: number(0.0, 1.0, lo_open=True, unit="",
                                      why="how far below kr_over_km a row's K_r/K_m may lie "
-                                         "(default 0.1: the paper's 'about 10')") = None
+                                         "(default 0.1)") = None
     k_tolerance_rel: number(0.0, 1.0, lo_open=True, unit="",
                             why="relative K band over the web tolerance") = None
     kobj_resolution_rel: number(0.0, 10.0, lo_open=True, unit="",

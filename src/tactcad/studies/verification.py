@@ -413,8 +413,8 @@ def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
                                     values["full_scale_force_N"])
     band = stated_number(plan.raw, "kr_over_km_tolerance_rel")
     reasons["kr_over_km_tolerance_rel"] = "stated in the design file" if band is not None else (
-        f"not stated: {100 * KR_OVER_KM_BAND_REL:g} %, the paper's 'about' its K_r/K_m of 10 "
-        f"for the MEMS array")
+        f"not stated: {100 * KR_OVER_KM_BAND_REL:g} %, a K_r/K_m 'about' its target, as a "
+        f"sensing unit's ratio is specified")
     band = KR_OVER_KM_BAND_REL if band is None else band
     return Requirements(
         full_scale_force_N=float(values["full_scale_force_N"]),
