@@ -38,7 +38,7 @@ from tactcad.in_use.jaw_kinematics import JawGeometry, check_angle_deg, indentat
 from tactcad.in_use.kobj_budget import kobj_from_deflections
 from tactcad.in_use.radius_pairs import (PairedLayout, along_row_layout, insert_frame,
                                          paired_layout, unit_radii)
-from tactcad.mechanics.contact import Punch, unit_punch_compliance
+from tactcad.mechanics.contact import Punch, single_punch_unit_compliance, unit_punch_compliance
 from tactcad.mechanics.hard_stops import engagement_travel_mm
 
 #: Tissue profiles between the jaws (see the module docstring).
@@ -90,8 +90,8 @@ def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thicknes
     thickness = slab_thickness_mm if coupling == "layer" else None
     unit = unit_punch_compliance(punches, poisson_ratio, thickness)  # converged in the mesh
     # E such that one face alone sees K_obj: every compliance scales as 1/E
-    own = np.mean([unit_punch_compliance([Punch(0.0, 0.0, p.width_x_mm, p.depth_z_mm)],
-                                         poisson_ratio, thickness)[0, 0] for p in punches])
+    own = np.mean([single_punch_unit_compliance(p.width_x_mm, p.depth_z_mm, poisson_ratio,
+                                                thickness) for p in punches])
     return unit / (k_obj_N_per_mm * own)
 
 

@@ -151,10 +151,16 @@ def coupled_sample_from_punches(numbers: Sequence[int], punches: Sequence[Punch]
     Raises:
         ContactError: bad punches or tissue.
     """
-    face = tissue.indenter_face_mm or (punches[0].width_x_mm, punches[0].depth_z_mm)
-    face = (float(face[0]), float(face[1]))
+    face = indenter_face(tissue, punches)
     normalised, error = _normalised_compliance(tuple(punches), tissue, face)
     return CoupledSample(tuple(int(n) for n in numbers), normalised.copy(), tissue, face, error)
+
+
+def indenter_face(tissue: Tissue, punches: Sequence[Punch]) -> tuple[float, float]:
+    """The face K_obj is defined against (mm): the tissue's stated indenter, else the first
+    tip's own face."""
+    face = tissue.indenter_face_mm or (punches[0].width_x_mm, punches[0].depth_z_mm)
+    return float(face[0]), float(face[1])
 
 
 @functools.lru_cache(maxsize=32)
@@ -186,12 +192,12 @@ def check_level_sample(plan, tissue: Tissue = Tissue()) -> CoupledSample | None:
     if tissue.thickness_mm is not None:
         return None
     numbers, punches = tip_punches(plan)
-    face = tissue.indenter_face_mm or (punches[0].width_x_mm, punches[0].depth_z_mm)
-    alone = uniform_check([Punch(0.0, 0.0, float(face[0]), float(face[1]))])
+    face = indenter_face(tissue, punches)
+    alone = uniform_check([Punch(0.0, 0.0, *face)])
     tips = uniform_check(punches)
     return CoupledSample(tuple(int(n) for n in numbers),
                          tips.compliance_mm_per_N / alone.compliance_mm_per_N[0, 0], tissue,
-                         (float(face[0]), float(face[1])), max(alone.error_rel, tips.error_rel))
+                         face, max(alone.error_rel, tips.error_rel))
 
 
 def cross_level_bias(working: CoupledSample, check: CoupledSample,

@@ -456,20 +456,23 @@ def modulus_from_punch_stiffness(k_obj_N_per_mm: float, width_x_mm: float, depth
     """
     if not (np.isfinite(k_obj_N_per_mm) and k_obj_N_per_mm > 0):
         raise ContactError("K_obj_N_per_mm", k_obj_N_per_mm, "> 0 N/mm")
-    return float(k_obj_N_per_mm * _unit_compliance(float(width_x_mm), float(depth_z_mm),
-                                                   float(poisson_ratio), thickness_mm))
+    return float(k_obj_N_per_mm * single_punch_unit_compliance(
+        float(width_x_mm), float(depth_z_mm), float(poisson_ratio), thickness_mm))
 
 
-@functools.lru_cache(maxsize=64)
-def _unit_compliance(width_x_mm: float, depth_z_mm: float, poisson_ratio: float,
-                     thickness_mm: float | None) -> float:
-    """Single-punch compliance at E = 1 MPa (mm/N), converged; cached: samples differ only in E."""
-    unit = Sample(1.0, poisson_ratio, thickness_mm)
+def single_punch_unit_compliance(width_x_mm: float, depth_z_mm: float, poisson_ratio: float,
+                                 thickness_mm: float | None = None) -> float:
+    """Compliance of one rigid face alone at E = 1 MPa (mm/N), converged in the mesh
+    (:func:`unit_punch_compliance`, whose cache serves it: samples differ only in E).
+
+    Raises:
+        ContactError: a face edge <= 0 or a bad sample.
+    """
     return float(unit_punch_compliance((Punch(0.0, 0.0, width_x_mm, depth_z_mm),),
                                        poisson_ratio, thickness_mm)[0, 0])
 
 
-@functools.lru_cache(maxsize=32)
+@functools.lru_cache(maxsize=64)
 def _converged_unit(punches: tuple[Punch, ...], poisson_ratio: float,
                     thickness_mm: float | None) -> ConvergedPunches:
     return converged_punches(punches, Sample(1.0, poisson_ratio, thickness_mm))
