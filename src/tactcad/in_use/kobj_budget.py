@@ -222,13 +222,18 @@ class Contribution(NamedTuple):
 def readout_noise(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(a) Each element's force resolution (1 sigma) through the read-out chain as a
     deflection resolution dF / K, independent."""
+    rel = quadrature_rel(op, de_m=deflection_resolution_mm(ctx, unit.measuring),
+                         de_r=deflection_resolution_mm(ctx, unit.reference))
+    return Contribution(rel, rel)
+
+
+def deflection_resolution_mm(ctx: Context, number: int) -> float:
+    """Element ``number``'s deflection resolution (mm, 1 sigma): its force resolution through
+    the read-out chain over its K."""
     from tactcad.mechanics.readout_chain import element_force_resolution_N
 
     df = ctx.once("readout", lambda: element_force_resolution_N(ctx.plan, ctx.model))
-    part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
-    rel = quadrature_rel(op, de_m=df[part(unit.measuring)]["dF"] / op.k_m,
-                         de_r=df[part(unit.reference)]["dF"] / op.k_r)
-    return Contribution(rel, rel)
+    return df[ctx.plan.element(number).geometry.part_name]["dF"] / ctx.k_of(number)
 
 
 def _unit_thermal(ctx: Context, unit: Unit, op: Operating):
@@ -441,13 +446,15 @@ def tip_mismatch_after_zeroing_mm(ctx: Context, unit: Unit) -> float:
     """The tip-height mismatch left after zeroing on a rigid flat (mm): each element's
     deflection resolution (the read-out chain's force resolution / K) and the flat's own
     flatness (:data:`ZEROING_FLAT_FLATNESS_MM`), in quadrature."""
-    from tactcad.mechanics.readout_chain import element_force_resolution_N
+    return math.hypot(deflection_resolution_mm(ctx, unit.measuring),
+                      deflection_resolution_mm(ctx, unit.reference), ZEROING_FLAT_FLATNESS_MM)
 
-    df = ctx.once("readout", lambda: element_force_resolution_N(ctx.plan, ctx.model))
-    part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
-    return math.hypot(df[part(unit.measuring)]["dF"] / ctx.k_of(unit.measuring),
-                      df[part(unit.reference)]["dF"] / ctx.k_of(unit.reference),
-                      ZEROING_FLAT_FLATNESS_MM)
+
+def _others_after_sq(record: dict) -> np.ndarray:
+    """The sum of squares, over the K_obj grid, of a unit record's terms after correction
+    other than the tips' coplanarity (inf where one cannot be read)."""
+    return np.sum([finite_or_inf(record["sources"][k]["after_rel"]) ** 2
+                   for k in SOURCE_KEYS if k != "tip_coplanarity"], axis=0)
 
 
 #: Relative tolerance of the tip-height tolerance the accuracy needs (its root find).
@@ -464,9 +471,7 @@ def _exact_tolerance(ctx: Context, pairs: list[Unit], units: list[dict], k_obj: 
 
     ops = [operating_point(ctx.k_of(u.measuring), ctx.k_of(u.reference), k_obj, ctx.force_N)
            for u in pairs]
-    others = [np.sum(np.array([[x if x is not None else math.inf for x in rec["sources"][k]
-                                ["after_rel"]] for k in SOURCE_KEYS if k != "tip_coplanarity"])
-                     ** 2, axis=0) for rec in units]
+    others = [_others_after_sq(rec) for rec in units]
 
     def excess(tol_mm: float) -> float:
         return max(float(np.max(np.sqrt(_mismatch_rel(ctx, u, op, 2 * tol_mm) ** 2 + rest)))
@@ -505,11 +510,8 @@ def tip_height_tolerance_for_accuracy_mm(units: list[dict], accuracy_rel: float,
     """
     allowed = math.inf
     for u in units:
-        own = np.array([x if x is not None else math.inf
-                        for x in u["sources"]["tip_coplanarity"]["after_rel"]])
-        others = np.array([[x if x is not None else math.inf for x in u["sources"][k]["after_rel"]]
-                           for k in SOURCE_KEYS if k != "tip_coplanarity"])
-        room_sq = accuracy_rel ** 2 - np.sum(others ** 2, axis=0)
+        own = finite_or_inf(u["sources"]["tip_coplanarity"]["after_rel"])
+        room_sq = accuracy_rel ** 2 - _others_after_sq(u)
         if np.any(room_sq <= 0) or not np.all(np.isfinite(own)):
             return None
         residual = mismatch_after_mm[(u["reference_element"], u["measuring_element"])]

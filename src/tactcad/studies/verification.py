@@ -83,7 +83,7 @@ class Requirements:
     source: str | None = None
     cites_paper: bool = False
     footprint_mm: tuple[float, ...] | None = None
-    kr_over_km_tolerance_rel: float = 0.1
+    kr_over_km_tolerance_rel: float = KR_OVER_KM_BAND_REL
 
     def as_json(self) -> dict:
         return {"full_scale_force_N": self.full_scale_force_N,
