@@ -46,7 +46,7 @@ from tactcad.design.readout_section import ReadoutSection, check_readout
 from tactcad.design.requirements_section import RequirementsSection, check_requirements
 from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
 from tactcad.vocabulary.process import (CUT_PROCESSES, DEFAULT_CUT_PROCESS, THINNEST_SHEET_MM,
-                                        check_sheet_process, check_spacer_process)
+                                        ProcessLimits, check_sheet_process, check_spacer_process)
 from tactcad.vocabulary.standards import BOLTS, BoltSpec, shortest_stock_length
 from tactcad.errors import DesignError
 # the array's parts: their tables and dimensions (the derivation below couples them);
@@ -444,6 +444,17 @@ def edm_rules(d: DesignFile) -> EdmRules:
     return EdmRules(d.edm.wire_diameter_mm, d.edm.spark_gap_mm, d.edm.start_hole_diameter_mm)
 
 
+def element_process_limits(data: Mapping[str, Any]) -> ProcessLimits:
+    """What the element's cut process (``[element] process``) makes from the design's
+    sheet, for its material and wire settings (raw tables, or a validated file's dump; mm)."""
+    el, mat, edm = data["element"], data["material"], data["edm"]
+    wire = EdmRules(float(edm["wire_diameter_mm"]), float(edm["spark_gap_mm"]),
+                    float(edm["start_hole_diameter_mm"]))
+    material = " ".join(str(mat.get(k) or "") for k in ("grade", "name"))
+    return CUT_PROCESSES[el.get("process") or DEFAULT_CUT_PROCESS].limits(
+        float(data["sheet"]["thickness_mm"]), wire, material)
+
+
 def check_web_tolerance_held(d: Any, p: Problems) -> None:
     """Cross-field rule: the web's drawn tolerance (``tolerances.web_thickness_mm`` or
     ``element.web_tolerance_mm``; left out, the default) is one the element's cut process
@@ -456,11 +467,10 @@ def check_web_tolerance_held(d: Any, p: Problems) -> None:
     if not stated:
         return
     field, tol = stated[0]
-    name = getattr(d.element, "process", None) or DEFAULT_CUT_PROCESS
-    material = " ".join(str(getattr(d.material, k, None) or "") for k in ("grade", "name"))
-    held = CUT_PROCESSES[name].limits(d.sheet.thickness_mm, edm_rules(d), material).tolerance_mm
+    limits = element_process_limits(d.model_dump(exclude_none=True))
+    held = limits.tolerance_mm
     if tol < held.value_mm - 1e-12:
-        p.add(field, tol, f">= {fmt(held.value_mm)} mm: what {name} holds on a "
+        p.add(field, tol, f">= {fmt(held.value_mm)} mm: what {limits.process} holds on a "
               f"{fmt(d.sheet.thickness_mm)} mm sheet ({held.rule})", held.source)
 
 

@@ -68,14 +68,14 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_BASE_BELOW_ARM_MM, MIN_FASTENER_GAP_MM,
-                                       MIN_LIGAMENT_MM, WEB_RANGE_MM, EdmRules, Plan, plan_from_dict)
+                                       MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, element_process_limits,
+                                       plan_from_dict)
 from tactcad.design.tolerances import WEB_DEFAULT_MM
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import load_correction, range_warnings_unsaid
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
 from tactcad.mechanics.element_strength import force_limits, notch_fatigue_strength
 from tactcad.studies.tolerance_montecarlo import corrected_stiffness
-from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, ProcessLimits, cut_process
 
 #: Clearance (mm) between the notch bottom and the arm's underside when the
 #: arm height has to grow with the web and notch radius (as the correction fit).
@@ -153,17 +153,6 @@ def design_variant(data: Mapping[str, Any], *, web_mm: float | None = None,
 
 
 #: Dimensions raised to hold a bolt are rounded up to this step (mm).
-def process_limits_of(data: Mapping[str, Any]) -> ProcessLimits:
-    """What the element's cut process (``[element] process``) makes from the design's
-    sheet, for its material and wire settings (raw tables; mm)."""
-    el, mat, edm = data["element"], data["material"], data["edm"]
-    wire = EdmRules(float(edm["wire_diameter_mm"]), float(edm["spark_gap_mm"]),
-                    float(edm["start_hole_diameter_mm"]))
-    material = " ".join(str(mat.get(k) or "") for k in ("grade", "name"))
-    return cut_process(el.get("process") or DEFAULT_CUT_PROCESS).limits(
-        float(data["sheet"]["thickness_mm"]), wire, material)
-
-
 def held_to_process(data: Mapping[str, Any]) -> dict[str, Any]:
     """Raw design tables whose element the cut process can make on the design's sheet:
     the web's drawn tolerance raised to what the process holds, the notch radius to half
@@ -179,7 +168,7 @@ def held_to_process(data: Mapping[str, Any]) -> dict[str, Any]:
     """
     out = copy.deepcopy(dict(data))
     el = out["element"]
-    lim = process_limits_of(out)
+    lim = element_process_limits(out)
     why = out.setdefault("assumptions", {})
     where = f"{lim.process} on {float(out['sheet']['thickness_mm']):g} mm sheet"
     tol_table = out.get("tolerances") or {}
@@ -486,12 +475,12 @@ def webs_the_process_cuts(plan: Plan, webs_mm: np.ndarray) -> np.ndarray:
         DesignError: ``sheet.thickness_mm``: no candidate web is left (the process's
             minimum web on this sheet exceeds them all).
     """
-    min_web = process_limits_of(plan.raw).min_web_mm
+    limits = element_process_limits(plan.raw)
+    min_web = limits.min_web_mm
     kept = webs_mm[webs_mm >= min_web.value_mm - 1e-9]
     if kept.size == 0:
-        process = plan.raw["element"].get("process") or DEFAULT_CUT_PROCESS
         raise DesignError("sheet.thickness_mm", plan.sheet_thickness_mm,
-                          f"a sheet on which {process} leaves a web of at most "
+                          f"a sheet on which {limits.process} leaves a web of at most "
                           f"{float(np.max(webs_mm)):g} mm", f"{min_web.rule} = "
                           f"{min_web.value_mm:.4g} mm ({min_web.source})")
     return kept
