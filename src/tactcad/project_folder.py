@@ -13,6 +13,7 @@ the project folder and the installed package.
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import re
@@ -316,6 +317,41 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
     return NewProject(folder, folder / design_name, tuple(files))
 
 
+#: ``name = "..."`` in a TOML table (a basic or literal string, a comment after it).
+_NAME_LINE = re.compile(r"""^(\s*name\s*=\s*)("[^"\\\n]*"|'[^'\n]*')(\s*(#.*)?)$""", re.MULTILINE)
+
+
+def project_design_name(folder_name: str) -> str | None:
+    """The design name a project folder gives its design (``palp-strip`` -> ``palp_strip``),
+    or None when the folder's name is no design name (:data:`NAME_PATTERN`)."""
+    from tactcad.vocabulary.schema import NAME_PATTERN
+
+    name = folder_name.replace("-", "_")
+    return name if re.fullmatch(NAME_PATTERN, name) else None
+
+
+def named_for_project(design_text: str, folder_name: str) -> tuple[str, str | None]:
+    """(text, name): the design file's text with its ``[design]`` name set to the project
+    folder's (:func:`project_design_name`), and that name; the text unchanged and None
+    when the folder's name is no design name or the file states its name otherwise than
+    on a ``name = "..."`` line of its ``[design]`` table (an inline table, say)."""
+    name = project_design_name(folder_name)
+    if name is None:
+        return design_text, None
+    head = re.search(r"^\[design\]\s*$", design_text, re.MULTILINE)
+    if head is None:
+        return design_text, None
+    nxt = re.search(r"^\[", design_text[head.end():], re.MULTILINE)
+    end = head.end() + (nxt.start() if nxt else len(design_text[head.end():]))
+    line = _NAME_LINE.search(design_text, head.end(), end)
+    if line is None:
+        return design_text, None
+    text = (design_text[:line.start(2)] + json.dumps(name) + design_text[line.end(2):])
+    if tomllib.loads(text).get("design", {}).get("name") != name:
+        return design_text, None
+    return text, name
+
+
 def new_project(folder: str | Path, *, example: str | None = None,
                 from_design: str | Path | None = None, force: bool = False) -> NewProject:
     """Make a sensor project folder (``tactcad new``).
@@ -351,13 +387,18 @@ def new_project(folder: str | Path, *, example: str | None = None,
     else:
         source = Path(from_design)
     data = read_toml(source, "design file")
+    # the design named for the project (``new palp`` writes palp.toml), where its text allows
+    text, name = named_for_project(source.read_text(encoding="utf-8"),
+                                   Path(folder).resolve().name)
+    if name is not None:
+        data = {**data, "design": {**data["design"], "name": name}}
     validated = project_with_design_data(data, source, companions=companion_tables)
     # the design's own rigs and scenes where it has them (validated above)
     own = companion_files(source, data, Problems(source.name))
     companions = {kind: f.read_text(encoding="utf-8") if f is not None else None
                   for kind, f in own.items()}
     own_parts = source.parent / PURCHASED_PARTS if from_design is None else None
-    return write_project(folder, source.read_text(encoding="utf-8"), source.name, validated.plan,
+    return write_project(folder, text, f"{name}.toml" if name else source.name, validated.plan,
                          companions=companions, force=force,
                          purchased_parts=own_parts.read_text(encoding="utf-8")
                          if own_parts is not None and own_parts.is_file() else None)

@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[2]
 #: The design the documentation's example loads (its one path, replaced by this absolute one).
 EXAMPLE_DESIGN = ROOT / "hardware" / "macro_array" / "macro_array.toml"
 DOCS_EXAMPLE_DESIGN = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
-DOCS_DESIGN_LINE = 'DESIGN = "fingertip/ti_array_2x3.toml"'
+DOCS_DESIGN_LINE = 'DESIGN = "fingertip/fingertip.toml"'
 
 
 def docs_block(page: str, index: int = 0) -> str:

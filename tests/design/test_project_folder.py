@@ -44,7 +44,7 @@ def test_the_examples_are_project_folders_shipped_in_the_package():
 
 def test_new_from_an_example_copies_its_own_rigs_and_makes_the_rest(tmp_path):
     made = new_project(tmp_path / "p", example="ti_array_2x3")
-    assert set(made.files) == {"ti_array_2x3.toml", "rigs.toml", "scenes.toml", "README.md",
+    assert set(made.files) == {"p.toml", "rigs.toml", "scenes.toml", "README.md",
                                ".gitignore", ".github/workflows/hardware.yml",
                                "purchased-parts.md"}
     example = EXAMPLES / "ti_array_2x3"
@@ -52,7 +52,7 @@ def test_new_from_an_example_copies_its_own_rigs_and_makes_the_rest(tmp_path):
     project = tactcad.load(made.design)
     assert project.validated.rigs_file == "rigs.toml"
     readme = (made.folder / "README.md").read_text(encoding="utf-8")
-    assert "tactcad export --design ti_array_2x3.toml" in readme and "$" not in readme
+    assert "tactcad export --design p.toml" in readme and "$" not in readme
     assert "exports*/" in (made.folder / ".gitignore").read_text(encoding="utf-8")
     assert (made.folder.stat().st_mode & 0o777) != 0o700  # a shared folder, not a temp one
 
@@ -72,7 +72,7 @@ def test_new_around_a_comb_design_without_scenes_makes_scenes_of_the_insert_only
     design = tmp_path / "comb.toml"
     design.write_text(re.sub(r"\[files\]\nscenes = .*\n", "", text), encoding="utf-8")
     made = new_project(tmp_path / "p", from_design=design)
-    assert set(made.files) == {"comb.toml", "scenes.toml", "README.md", ".gitignore",
+    assert set(made.files) == {"p.toml", "scenes.toml", "README.md", ".gitignore",
                                ".github/workflows/hardware.yml"}
     scenes = tomllib.loads((made.folder / "scenes.toml").read_text(encoding="utf-8"))["scene"]
     assert {s["rig"] for s in scenes.values()} == {"array", "grasper"}
@@ -149,16 +149,16 @@ def test_without_design_a_command_takes_the_project_folders_one_design(tmp_path,
     made = new_project(tmp_path / "p")
     monkeypatch.chdir(made.folder)
     assert default_design().resolve() == made.design.resolve()
-    assert tactcad.load().name == "ti_array_2x3"
+    assert tactcad.load().name == "p"
     shutil.copy(made.design, made.folder / "second.toml")
-    with pytest.raises(DesignError, match="--design.*one of second.toml, ti_array_2x3.toml"):
+    with pytest.raises(DesignError, match="--design.*one of p.toml, second.toml"):
         default_design()
 
 
 def test_new_on_the_command_line_says_what_it_wrote(tmp_path, capsys):
     assert main(["new", str(tmp_path / "p"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert Path(out["design"]).name == "ti_array_2x3.toml" and "rigs.toml" in out["files"]
+    assert Path(out["design"]).name == "p.toml" and "rigs.toml" in out["files"]
     assert main(["new", str(tmp_path / "q"), "--example", "nope"]) == 2
     assert f"--example = 'nope': allowed one of {', '.join(sorted(examples()))}" in capsys.readouterr().err
     assert not (tmp_path / "q").exists()
@@ -281,3 +281,19 @@ def test_the_next_step_new_prints_can_be_pasted_for_a_folder_with_a_space(tmp_pa
     line = [x for x in capsys.readouterr().out.splitlines() if x.startswith("next: ")][0]
     words = shlex.split(line.removeprefix("next: "))
     assert words[:2] == ["cd", str(tmp_path / "my proj")] and words[2] == "&&"
+
+
+def test_new_names_the_design_for_its_project_folder(tmp_path):
+    # `new palp-strip` writes palp_strip.toml named palp_strip, not the example's name
+    made = new_project(tmp_path / "palp-strip", example="ti_array_2x3")
+    assert made.design.name == "palp_strip.toml" and "ti_array_2x3.toml" not in made.files
+    assert tomllib.loads(made.design.read_text(encoding="utf-8"))["design"]["name"] == "palp_strip"
+    text = made.design.read_text(encoding="utf-8")
+    assert text.startswith("# Written by")  # the file's comments kept
+    assert (made.folder / "README.md").read_text(encoding="utf-8").startswith("# palp_strip")
+    assert tactcad.load(made.design).plan.name == "palp_strip"
+
+
+def test_a_folder_whose_name_is_no_design_name_keeps_the_examples(tmp_path):
+    made = new_project(tmp_path / "my sensor", example="ti_array_2x3")
+    assert made.design.name == "ti_array_2x3.toml"

@@ -96,6 +96,24 @@ def test_the_2x6_titanium_grasper_insert_draws_clear(tmp_path):
     assert "5:1" in board          # its hole table beside the views lets the board be drawn larger
 
 
+#: The 2 x 8 palpation strip (a lab's design): 32 terminal holes and a 17-row slot map.
+PALPATION_STRIP = {"array.columns": 8, "sheet.thickness_mm": 0.8, "array.pitch_mm": 1.0,
+                   "element.tip_width_mm": 0.8, "clamp.bolt_size": "M1.6",
+                   "element.arm_height_mm": 4.9, "element.overall_length_mm": 31.0,
+                   "arms.lengths_mm": [19.543] * 3 + [6.905] + [19.543] * 7 + [6.905]
+                   + [19.543] * 4, "arms.reference_elements": [4, 12]}
+
+
+def test_the_2x8_palpation_strip_draws_clear(tmp_path):
+    """The strip's slot map once covered the view along the bolts (41 overlaps) and its
+    terminal board's 32 hole labels crowded a 2:1 view under a one-block table (51)."""
+    project = design_file_project(EXAMPLE_DESIGN, PALPATION_STRIP)
+    n, failed = drawings_check(project, tmp_path, ("terminal_board", "assembly"))
+    assert n == 2 and failed == []
+    board = (tmp_path / "drawings" / "terminal_board.svg").read_text(encoding="utf-8")
+    assert "5:1" in board  # its table in two blocks under the views, the notes over the title
+
+
 def test_a_few_random_designs_of_the_domain_draw_clear(tmp_path):
     checked = 0
     for seed, project in domain_projects(range(3)):

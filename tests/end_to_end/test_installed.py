@@ -110,7 +110,7 @@ def test_a_labs_first_hour_from_the_wheel(installed, tmp_path, example_exported)
     git = ["git", "-c", "user.name=lab", "-c", "user.email=lab@example.org"]
     _run(["git", "init", "-q"], repo, env)
     _run([tactcad, "new", ".", "--example", "ti_array_2x3"], repo, env, timings=timings)
-    design = "ti_array_2x3.toml"
+    design = "lab_hardware.toml"  # named for its folder
     _run([*git, "add", "-A"], repo, env)
     _run([*git, "commit", "-qm", "sensor project"], repo, env)
 

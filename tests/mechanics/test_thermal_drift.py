@@ -331,3 +331,28 @@ def test_thermal_command_text_says_the_kobj_error_scales_as_one_over_f(capsys):
     assert main(["thermal", "--design", str(EXAMPLE)]) == 0
     text = capsys.readouterr().out
     assert "1/F" in text and "K_obj %/K at 10 %" in text and "span per K" in text
+
+
+def test_self_heating_is_stated_against_the_force_resolution_readout_quotes():
+    plan = _plan()
+    report = _report(plan)
+    by_part = {r["part"]: r for r in report.records}
+    quoted = {r["part"]: r["force_resolution_N"]
+              for r in readout_report(plan, requirements_of(plan)).records}
+    for part, rec in by_part.items():  # one figure: the read-out's own resolution
+        assert rec["force_resolution_N"] == pytest.approx(quoted[part], rel=1e-12)
+    worst = max(report.records, key=lambda r: abs(r["self_heating_offset_N"]))
+    line = next(x for x in render(report).splitlines() if "self-heating:" in x)
+    ratio = abs(worst["self_heating_offset_N"]) / worst["force_resolution_N"]
+    assert f"{ratio:.3g} x its force resolution" in line and f"element {worst['element']}" in line
+
+
+def test_a_new_design_chooses_its_excitation_instead_of_keeping_the_bases():
+    from tactcad.studies.inverse_design import start_tables
+
+    base = _plan(**{"readout.excitation_V": 2.5}).raw
+    data = start_tables(base, "base")
+    assert "excitation_V" not in data.get("readout", {})
+    assert "readout.excitation_V" not in data.get("assumptions", {})
+    kept = start_tables(base, "base", kept=frozenset({"readout.excitation_V"}))
+    assert kept["readout"]["excitation_V"] == 2.5  # the user's --set stays

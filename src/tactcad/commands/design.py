@@ -598,7 +598,7 @@ def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
                           f"--jaw 5, 10 or a file whose [grasper_jaw] table is the jaw (this "
                           f"design's own: --jaw {shlex.quote(str(design))})")
     data = start_tables(raw, base.design.name, grade=args.material, pitch_mm=args.pitch,
-                        rows=args.rows, columns=args.columns)
+                        rows=args.rows, columns=args.columns, kept=frozenset(set_keys(args)))
     data["design"] = {**data["design"], "name": name}
     check(data)
     return data, design

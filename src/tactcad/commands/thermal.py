@@ -83,7 +83,7 @@ def render(report) -> str:
              f"  self-heating: {1e3 * report.grid_power_W:.3g} mW in the grid "
              f"({density:.3g} W/in^2{above}; TN-502 thin sections 1-2 W/in^2), grid "
              f"+{report.self_heating_K:.3g} K above the element: an offset at switch-on "
-             f"(-alpha_STC dT_grid), removed by the tare",
+             f"(-alpha_STC dT_grid), removed by the tare" + _against_resolution(report.records),
              f"  K_obj error per K: worst |zero| + |span| over the K_obj range with the reference "
              f"at {100 * high:g} % and at {100 * low:g} % of full scale; the zero part scales as "
              f"1/F, so full scale is the best case"
@@ -106,3 +106,16 @@ def render(report) -> str:
 
 def _pct(rel: float | None) -> str:
     return "n/a" if rel is None else f"{100 * rel:.3g}"
+
+
+def _against_resolution(records: list[dict]) -> str:
+    """The largest self-heating offset against its element's force resolution (N), the
+    figure a lab compares it with: an offset many resolutions wide must be tared warm."""
+    worst = max(records, key=lambda r: abs(r["self_heating_offset_N"]))
+    offset = abs(worst["self_heating_offset_N"])
+    if offset == 0.0:
+        return ""
+    return (f"; largest {offset:.3g} N (element {worst['element']}), "
+            f"{offset / worst['force_resolution_N']:.3g} x its force resolution "
+            f"{worst['force_resolution_N']:.3g} N: tare after warm-up")
+

@@ -35,6 +35,9 @@ SLOT_COLS = (("Slot", 12.0), ("Row", 10.0), ("Col.", 10.0), ("Part", 30.0), ("Ar
              ("DXF file", 50.0), ("Orientation", 38.0))
 SIDE_BOX = (FRAME[0] + 15.0, FRAME[1] + 80.0, 200.0, 110.0)  # left, top, width, height (paper)
 FRONT_TOP_LIMIT = (FRAME[1] + 100.0, FRAME[1] + 190.0)         # paper y range of the other view
+SLOT_MAP_TOP = FRAME[1] + 12.0  # paper y of the slot map's top edge
+#: The slot map's greatest height (paper mm): the view along the bolts keeps 45 mm under it.
+SLOT_MAP_MAX_HEIGHT = FRONT_TOP_LIMIT[1] - 45.0 - 12.0 - SLOT_MAP_TOP
 # the views: along the bolts (+z) and across the stack (+x), y up
 ASSEMBLY_CAMERAS = {"front": cameras_for((0.0, 0.0, 1.0), (0.0, 1.0, 0.0))["front"],
                     "side": cameras_for((1.0, 0.0, 0.0), (0.0, 1.0, 0.0))["front"]}
@@ -137,8 +140,11 @@ def compose_assembly(plan: Plan, solids: dict, items: dict[str, int]) -> Assembl
     s.place(sx, sy)
     fx = s.paper_box()[2] + 30.0
     fw = FRAME[2] - 10.0 - fx
-    f.scale = _fit_scale(f, fw, FRONT_TOP_LIMIT[1] - FRONT_TOP_LIMIT[0])
-    f.place(fx + (fw - f.width) / 2, FRONT_TOP_LIMIT[0])
+    # under the slot map, whose height grows with the elements (a 2 x 8 strip's reaches
+    # past the view's usual top)
+    top = max(FRONT_TOP_LIMIT[0], SLOT_MAP_TOP + slot_map_height(len(plan.slots)) + 12.0)
+    f.scale = _fit_scale(f, fw, FRONT_TOP_LIMIT[1] - top)
+    f.place(fx + (fw - f.width) / 2, top)
     a.scale = s.scale
     sheet_frame(sh)
     for name, v in views.items():
@@ -284,30 +290,42 @@ def uncrossed(order: list[str], row: list[Point], anchors: dict[str, Point]) -> 
     return order
 
 
+def slot_map_row_height(elements: int) -> float:
+    """Row height of the slot map (paper mm): :data:`ROW_H`, less for an array whose map
+    would leave the view along the bolts under it less than its least height."""
+    return min(ROW_H, SLOT_MAP_MAX_HEIGHT / (elements + 1))
+
+
+def slot_map_height(elements: int) -> float:
+    """The slot map's height (paper mm): a header and one row per element."""
+    return slot_map_row_height(elements) * (elements + 1)
+
+
 def _slot_table(a: AssemblySheet, plan: Plan) -> None:
     sh = a.sheet
     rows = slot_map(plan)
     a.slot_rows = rows
     total = sum(w for _, w in SLOT_COLS)
     x0 = FRAME[2] - 6.0 - total
-    y0 = FRAME[1] + 12.0
+    y0 = SLOT_MAP_TOP
+    row_h = slot_map_row_height(len(rows))
     sh.text("slot-map", (x0, y0 - 2.0), "SLOT MAP (element number = slot)", LABEL_TEXT_MM,
             bold=True, id="slot-map-title")
     keys = ("slot", "row", "column", "part", "arm_mm", "dxf", "orientation")
-    sh.rect("slot-map", x0, y0, total, ROW_H * (len(rows) + 1), "table")
+    sh.rect("slot-map", x0, y0, total, row_h * (len(rows) + 1), "table")
     for r_i, row in enumerate([None, *rows]):
-        y = y0 + r_i * ROW_H
+        y = y0 + r_i * row_h
         if r_i:
             sh.line("slot-map", (x0, y), (x0 + total, y), "thin")
         x = x0
         for c_i, (head, w) in enumerate(SLOT_COLS):
             if r_i == 0 and c_i:
-                sh.line("slot-map", (x, y0), (x, y0 + ROW_H * (len(rows) + 1)), "thin")
+                sh.line("slot-map", (x, y0), (x, y0 + row_h * (len(rows) + 1)), "thin")
             text = head if row is None else str(row[keys[c_i]])
-            h = DIM_TEXT_MM
+            h = min(DIM_TEXT_MM, row_h - 2.0)
             while text_width(text, h) > w - 1.5 and h > 1.5:
                 h -= 0.1
-            sh.text("slot-map", (x + 1.0, y + ROW_H - 1.5), text, h,
+            sh.text("slot-map", (x + 1.0, y + row_h - 1.5), text, h,
                     id="" if row is None else f"slot-{row['slot']}-{keys[c_i]}")
             x += w
 

@@ -21,8 +21,9 @@ import hashlib
 from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.catalogue.shop import material_designation, surface_finish
 from tactcad.design.array_plan import Plan
-from tactcad.drawings.drawing import (Drawing, draw_views, finish_text, largest_scale, layout,
-                                      material_text, project_views, table_box)
+from tactcad.drawings.drawing import (MAX_TABLE_BLOCKS, Drawing, draw_views, finish_text,
+                                      largest_scale, layout, material_text, project_views,
+                                      table_box)
 from tactcad.drawings.frame import (FRAME, TITLE_H, TITLE_W, general_tolerance, projection_symbol,
                                     revision_and_date, sheet_frame, title_cells)
 from tactcad.drawings.notes import draw_notes, notes_for, notes_top
@@ -92,21 +93,28 @@ def draw_finish_symbol(d: Drawing, at: tuple[float, float]) -> None:
 
 
 def place_hole_table(d: Drawing, views: dict, det: tuple | None) -> None:
-    """Stand the hole table, if any, in the right column over the title
-    block when there it lets the views be drawn at a larger scale than under
-    them, beside the notes (a long table under the views takes their height:
-    24 terminal holes left a 32 mm board at 2:1 with its labels crowded);
-    ``d.notes_top`` follows."""
+    """Stand the hole table, if any, where the views are drawn at the largest scale: in
+    the right column over the title block, or under the views beside the notes (a long
+    table under the views takes their height: 24 terminal holes left a 32 mm board at 2:1
+    with its labels crowded), its rows in as few blocks side by side as that scale allows
+    (a long table beside the views would run off the sheet); ``d.notes_top`` follows."""
     if not d.table_rows:
         return
-    under = largest_scale(views, det, d.notes_top, d.right_mm)
-    d.table_beside = True
-    beside_top = notes_top(d)
-    if (table_box(d)[1] - 4.0 >= FRAME[1] + 8.0
-            and largest_scale(views, det, beside_top, d.right_mm) > under):
-        d.notes_top = beside_top
-    else:
-        d.table_beside = False
+    best = None
+    for blocks in range(1, MAX_TABLE_BLOCKS + 1):
+        for beside, over_title in ((True, False), (False, False), (False, True)):
+            d.table_blocks, d.table_beside, d.notes_over_title = blocks, beside, over_title
+            top = notes_top(d)
+            x0, y0, w, _ = table_box(d)
+            if ((beside and y0 - 4.0 < FRAME[1] + 8.0)
+                    or (not beside and not over_title and x0 < FRAME[0] + 60.0)
+                    or (over_title and x0 + w > FRAME[2] - TITLE_W - 4.0)):
+                continue  # off the sheet, or over the notes or the title block
+            scale = largest_scale(views, det, top, d.right_mm)
+            if best is None or scale > best[0] * (1 + 1e-9):
+                best = (scale, blocks, beside, over_title)
+    _, d.table_blocks, d.table_beside, d.notes_over_title = best or (0.0, 1, False, False)
+    d.notes_top = notes_top(d)
 
 
 def drawing_inputs(plan: Plan, spec: PartSpec) -> tuple:

@@ -8,8 +8,8 @@ from __future__ import annotations
 import math
 from typing import Iterator
 
-from tactcad.drawings.drawing import (FIRST_TIER, TABLE_COLS, TABLE_ROW, TIER, Drawing, Hole2D,
-                                      table_box)
+from tactcad.drawings.drawing import (FIRST_TIER, TABLE_BLOCK_GAP, TABLE_COLS, TABLE_ROW, TIER,
+                                      Drawing, Hole2D, table_box)
 from tactcad.drawings.frame import FRAME, TITLE_W
 from tactcad.drawings.sheet import (DIM_TEXT_MM, LABEL_TEXT_MM, Point, Sheet, Spot, fmt_mm,
                                     leader_spot, text_width)
@@ -76,7 +76,10 @@ def hole_dims_linear(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[f
 #: first (the habit of a hand drawing), then the other diagonals and sides.
 LABEL_DIRECTIONS_DEG = (45, 135, -45, -135, 0, 180, 90, -90)
 LABEL_GAPS_MM = (0.8, 2.0, 3.5, 5.0, 8.0)            # beside the feature
-LABEL_LEADER_MM = (6.0, 10.0, 15.0, 20.0, 28.0, 36.0)  # further out, on a leader
+LABEL_LEADER_MM = (6.0, 10.0, 15.0, 20.0, 28.0, 36.0, 46.0)  # further out, on a leader
+#: Leaders also run at these angles (deg) when the main ones are taken: a long row of
+#: close holes (a terminal board's) staggers its labels in more tiers.
+LABEL_LEADER_EXTRA_DEG = (60, 120, -60, -120, 30, 150, -30, -150)
 
 
 def feature_label_spots(centre: Point, radius: float, text: str,
@@ -97,7 +100,7 @@ def feature_label_spots(centre: Point, radius: float, text: str,
             base = ey - 0.25 * h if uy < -0.3 else ey + h if uy > 0.3 else ey + 0.375 * h
             yield Spot((left, base))
     for reach in LABEL_LEADER_MM:
-        for deg in LABEL_DIRECTIONS_DEG:
+        for deg in LABEL_DIRECTIONS_DEG + LABEL_LEADER_EXTRA_DEG:
             ux, uy = math.cos(math.radians(deg)), -math.sin(math.radians(deg))
             edge = (centre[0] + ux * radius, centre[1] + uy * radius)
             end = (centre[0] + ux * (radius + reach), centre[1] + uy * (radius + reach))
@@ -125,33 +128,43 @@ def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, 
     ordered = sorted(holes, key=lambda h: (h.y, h.x))
     for i, h in enumerate(ordered, start=1):
         clear_label(sh, view.paper(h.x, h.y), h.d / 2 * view.scale, f"H{i}", f"hole-label-{i}")
-    cols = TABLE_COLS
-    row_h = TABLE_ROW
     x0, y0, _, _ = table_box(d)
-    sh.rect("hole-table", x0, y0, sum(cols), row_h * (len(ordered) + 1), "table")
-    heads = ("Hole", "X", "Y", "Ø", "Depth")
-    for r_i in range(len(ordered) + 2):
+    per_block = d.table_block_rows
+    for b in range(d.table_blocks):
+        block = list(enumerate(ordered, start=1))[b * per_block:(b + 1) * per_block]
+        if block:
+            _hole_table_block(d, x0 + b * (sum(TABLE_COLS) + TABLE_BLOCK_GAP), y0, block,
+                              datum)
+    sh.text("hole-table", (x0, y0 - 2.0), "Hole positions from origin 0,0", DIM_TEXT_MM)
+
+
+def _hole_table_block(d: Drawing, x0: float, y0: float, rows: list[tuple[int, Hole2D]],
+                      datum: tuple[float, float]) -> None:
+    """One block of the hole table: its head and ``rows`` (number, hole) at paper
+    (``x0``, ``y0``), the top left corner (mm)."""
+    sh, cols, row_h = d.sheet, TABLE_COLS, TABLE_ROW
+    sh.rect("hole-table", x0, y0, sum(cols), row_h * (len(rows) + 1), "table")
+    for r_i in range(1, len(rows) + 1):
         y = y0 + r_i * row_h
-        if 0 < r_i < len(ordered) + 1:
-            sh.line("hole-table", (x0, y), (x0 + sum(cols), y), "thin")
+        sh.line("hole-table", (x0, y), (x0 + sum(cols), y), "thin")
     x = x0
     for w in cols[:-1]:
         x += w
-        sh.line("hole-table", (x, y0), (x, y0 + row_h * (len(ordered) + 1)), "thin")
+        sh.line("hole-table", (x, y0), (x, y0 + row_h * (len(rows) + 1)), "thin")
+
     def cell(col: int, row: int, text: str, id: str = "") -> None:
         cx = x0 + sum(cols[:col]) + cols[col] / 2
         cy = y0 + row * row_h + row_h / 2 + DIM_TEXT_MM / 2
         sh.text("hole-table", (cx, cy), text, DIM_TEXT_MM, anchor="middle", id=id,
                 cls="dim" if id else "")
-    for c, hd in enumerate(heads):
+    for c, hd in enumerate(("Hole", "X", "Y", "Ø", "Depth")):
         cell(c, 0, hd)
-    for i, h in enumerate(ordered, start=1):
+    for row, (i, h) in enumerate(rows, start=1):
         vals = (fmt_mm(h.x - datum[0]), fmt_mm(h.y - datum[1]), fmt_mm(h.d), h.depth_text)
-        cell(0, i, f"H{i}")
+        cell(0, row, f"H{i}")
         for c, (suffix, v) in enumerate(zip(("x", "y", "d", "depth"), vals), start=1):
-            cell(c, i, v, f"dim-hole_{i}_{suffix}")
+            cell(c, row, v, f"dim-hole_{i}_{suffix}")
             d.dimensions[f"hole_{i}_{suffix}"] = v
-    sh.text("hole-table", (x0, y0 - 2.0), "Hole positions from origin 0,0", DIM_TEXT_MM)
 
 
 def plus_minus(value: float, tol: float) -> str:

@@ -60,6 +60,13 @@ class Drawing:
     notes_top: float = NOTES_TOP
     table_rows: int = 0
     table_beside: bool = False   # the hole table right of the views, not under them
+    table_blocks: int = 1        # the hole table's rows in this many blocks side by side
+    notes_over_title: bool = False  # the notes over the title block, the table under the views
+
+    @property
+    def table_block_rows(self) -> int:
+        """Hole rows per block of the hole table (the last block may hold fewer)."""
+        return -(-self.table_rows // self.table_blocks)
 
     @property
     def front(self) -> View:
@@ -157,6 +164,9 @@ def views_fit(views: dict[str, View], s: float, det_d: float, notes_top: float =
 
 TABLE_COLS = (14.0, 22.0, 22.0, 18.0, 22.0)
 TABLE_ROW = 6.0
+TABLE_BLOCK_GAP = 3.0  # paper mm between the hole table's blocks
+#: Most blocks a long hole table is split into (a terminal board's 32 holes: two).
+MAX_TABLE_BLOCKS = 3
 TABLE_BESIDE_BOTTOM = FRAME[3] - TITLE_H - 14.0  # a table beside the views ends above the finish symbol
 
 
@@ -165,9 +175,14 @@ def table_box(d: Drawing) -> tuple[float, float, float, float]:
     ``d.table_rows`` rows and its head: under the views, between the notes
     and the title block (clear of the centring mark); or, with
     ``d.table_beside``, in the right column over the title block."""
-    w, h = sum(TABLE_COLS), TABLE_ROW * (d.table_rows + 1)
+    w = d.table_blocks * sum(TABLE_COLS) + (d.table_blocks - 1) * TABLE_BLOCK_GAP
+    h = TABLE_ROW * (d.table_block_rows + 1)
     if d.table_beside:
-        return (FRAME[2] - 6.0 - w, TABLE_BESIDE_BOTTOM - h, w, h)  # clear of the centring mark
+        # clear of the centring mark, and of the finish symbol when it reaches over it
+        bottom = TABLE_BESIDE_BOTTOM if w <= TITLE_W - 30.0 else TABLE_BESIDE_BOTTOM - 5.0
+        return (FRAME[2] - 6.0 - w, bottom - h, w, h)
+    if d.notes_over_title:  # from the frame's left, the notes gone over the title block
+        return (FRAME[0] + 5.5, FRAME[3] - 8.0 - h, w, h)
     return (FRAME[2] - TITLE_W - 4.0 - w, FRAME[3] - 8.0 - h, w, h)
 
 

@@ -859,6 +859,12 @@ def design_for_targets(base: Plan, targets: Targets, *, grade: str | None = None
     return design_from_tables(data, targets, name=name, correction=correction)
 
 
+#: Values a base design chose for its own gauge grid and web, left out of a new design so
+#: their rule chooses again: the bridge excitation (stated: the base's; not stated: the
+#: grid power density of Micro-Measurements TN-502 for the new grid).
+CHOSEN_FOR_THE_BASE = frozenset({"readout.excitation_V"})
+
+
 def design_tables(base: Plan, *, grade: str | None = None, pitch_mm: float | None = None,
                   rows: int | None = None, columns: int | None = None) -> dict[str, Any]:
     """The raw tables an inverse design starts from: ``base``'s, with its
@@ -874,16 +880,26 @@ def design_tables(base: Plan, *, grade: str | None = None, pitch_mm: float | Non
 
 def start_tables(raw: Mapping[str, Any], base_name: str, *, grade: str | None = None,
                  pitch_mm: float | None = None, rows: int | None = None,
-                 columns: int | None = None) -> dict[str, Any]:
+                 columns: int | None = None, kept: frozenset[str] = frozenset()) -> dict[str, Any]:
     """:func:`design_tables` on a base design's raw tables (not validated: its
     values are where the search starts, e.g. the shipped design's bolt with
     more columns than it holds) and its name.
+
+    Choices the base made for its own grid are not carried over (see
+    :data:`CHOSEN_FOR_THE_BASE`) unless ``kept`` names them (the ``--set`` keys
+    the user wrote): the new design gets their rule's value.
 
     Raises:
         DesignError: a bad grade.
     """
     data = copy.deepcopy(dict(raw))
     data["assumptions"] = neutral_assumptions(data, base_name)
+    for key in CHOSEN_FOR_THE_BASE - kept:
+        section, field = key.split(".")
+        if isinstance(data.get(section), dict) and data[section].pop(field, None) is not None:
+            data["assumptions"].pop(key, None)
+            if not data[section]:
+                del data[section]
     data.pop("requirements", None)  # the new design's are written below
     data.pop("files", None)  # where the base design's rigs and scenes lie: not the new design's
     if grade is not None:
