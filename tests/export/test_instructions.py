@@ -212,3 +212,15 @@ def test_a_stack_is_spread_apart_in_its_order():
     assert min(gaps) > 0.5, gaps  # in order, none touching
     assert all(np.allclose(off[n][:2], 0) for n in range(len(layers)))
     assert np.allclose(off[5], [0, 0, EXPLODE_FACTOR * 4.0])
+
+
+def test_a_step_fits_what_the_array_uses_and_says_the_spares_stay_in_the_kit(book):
+    project, rows, out, _ = book
+    steps = json.loads((out / BOOK_DATA).read_text())
+    gauge_row = next(r for r in rows if r.part == "strain_gauge")
+    assert gauge_row.spares > 0  # the BOM buys spares (bom.spares)
+    step = next(s for s in steps if any(p["part"] == "strain_gauge" for p in s["parts"]))
+    fitted = next(p["quantity"] for p in step["parts"] if p["part"] == "strain_gauge")
+    assert fitted == len(project.plan.slots) == gauge_row.quantity - gauge_row.spares
+    assert any(f"{gauge_row.spares} spare strain_gauge beyond the {fitted} fitted" in n
+               for n in step["notes"])

@@ -197,7 +197,8 @@ RIG_STEPS: dict[str, tuple[str, tuple[str, ...]]] = {
 def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int,
                 gauge_text: str, adhesive_text: str, bolt, terminal_pairs: int,
                 scenes: Sequence[str], sample_stiffness: Mapping[str, float],
-                screws: Mapping | None = None, rigs: Mapping[str, str] | None = None) -> list[Step]:
+                screws: Mapping | None = None, rigs: Mapping[str, str] | None = None,
+                spares: Mapping[str, int] | None = None) -> list[Step]:
     """The ordered steps consuming ``items``.
 
     Args:
@@ -212,6 +213,8 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
             their torques, :func:`screw_notes`).
         rigs: scene -> its rig; a rig of :data:`RIG_STEPS` gives its scene's step its own
             title and notes (the others: "Assemble the <scene>").
+        spares: part -> units bought beyond those fitted (not in ``items``' quantities);
+            the step that fits the part says how many stay in the kit.
 
     Returns:
         Steps in build order, each with the items it consumes; steps that
@@ -247,6 +250,9 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
             scene = _ARRAY_SCENE
             if key == _SAMPLES:
                 scene = next((s for s in scenes if "sample" in s), _ARRAY_SCENE)
+        notes = tuple(notes) + tuple(
+            f"{(spares or {})[p]} spare {p} beyond the {q} fitted here stay in the kit "
+            f"(bom.csv: spares)." for p, q in parts if (spares or {}).get(p))
         steps.append(Step(key, title, sub, tuple(parts), tool,
                           tuple(p for p, _ in parts if p in consumable), notes,
                           tuple(p for p, _ in parts), scene))

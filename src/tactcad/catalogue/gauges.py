@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from tactcad.design.array_plan import Plan
 from tactcad.design.bom_section import bom_settings
-from tactcad.design.readout_section import carrier_width_mm, readout_of
+from tactcad.design.readout_section import LEAD_WIRE, carrier_width_mm, readout_of
 from tactcad.partlib.array.strain_gauge import GaugeBody
 
 
@@ -68,7 +68,7 @@ def sensor_items(plan: Plan) -> list[SensorItem]:
                    "pair"),
         SensorItem("lead_wire", bom.lead_wire_m_per_element, 0, 0, "m", "PTFE-insulated copper",
                    f"stranded lead wire, {bom.lead_wire_m_per_element:g} m per element "
-                   f"({ro.lead_wires} quarter bridge)", "AWG 32-36"),
+                   f"({ro.lead_wires} quarter bridge)", f"AWG {LEAD_WIRE['awg']}"),
         SensorItem("bridge_completion_resistor", 3, 0, 0, "pcs", "metal foil",
                    f"precision resistor {ro.gauge_resistance_ohm:g} ohm 0.1 % 5 ppm/K, three per "
                    "quarter bridge", "0805 SMD or axial 0.6 W"),

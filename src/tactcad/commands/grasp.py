@@ -9,6 +9,7 @@ from tactcad.commands import add_cache_args, add_design_arg, add_output_args, pa
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import number
 from tactcad.mechanics.ladder import models
+from tactcad.design.readout_section import LEAD_WIRE
 
 from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
                                              DEFAULT_PIVOT_BEHIND_MM, DEFAULT_SLAB_MM)
@@ -301,7 +302,7 @@ def render(record: dict) -> str:
                       f"{', '.join(pl['unplaced']) or 'none'})"]
     ld = record["leads"]
     lines += ["", f"leads: {ld['bridges']} {ld['connection']} quarter bridges, {ld['leads']} "
-                  f"leads of {ld['wire_diameter_mm']:g} mm (AWG 36 PTFE), packing "
+                  f"leads of {ld['wire_diameter_mm']:g} mm (AWG {LEAD_WIRE['awg']} PTFE), packing "
                   f"{ld['packing_factor']:g}: bundle {ld['bundle_diameter_mm']:.3g} mm in a "
                   f"{ld['channel_diameter_mm']:g} mm channel: "
                   f"{'fits' if ld['fits'] else 'does NOT fit'}"]

@@ -101,6 +101,23 @@ TN502_POWER_DENSITY_W_PER_MM2 = 1.0 / 645.16
 #: TN-502's range for thin steel sections, 1-2 W/in^2, in W/mm^2: above its top the thermal
 #: report flags the excitation.
 TN502_THIN_SECTION_W_PER_MM2 = (1.0 / 645.16, 2.0 / 645.16)
+#: The lead wire of every quarter bridge, one wire for the thermal report's lead resistance,
+#: the BOM and the bundle through a grasper's shaft: AWG 36 copper (ASTM B258: 0.127 mm) in
+#: PTFE insulation to 0.25 mm outside diameter, the wire the gauge catalogue's lead mass
+#: (``lead_mass_mg_per_mm``) assumes.
+LEAD_WIRE = {"awg": 36, "conductor_diameter_mm": 0.127, "insulated_diameter_mm": 0.25}
+#: Annealed copper's resistivity at 20 C (ohm m; IEC 60028).
+COPPER_RESISTIVITY_OHM_M = 1.724e-8
+
+
+def lead_resistance_ohm_per_m(conductor_diameter_mm: float = LEAD_WIRE["conductor_diameter_mm"]
+                              ) -> float:
+    """Resistance per metre (ohm/m) of a round copper conductor: rho / (pi d^2 / 4)."""
+    return COPPER_RESISTIVITY_OHM_M / (math.pi * (conductor_diameter_mm * 1e-3) ** 2 / 4.0)
+
+
+#: The lead wire's resistance per metre (ohm/m, 4 decimals as the thermal report quotes it).
+LEAD_RESISTANCE_OHM_PER_M = round(lead_resistance_ohm_per_m(), 4)
 #: Excitations are set in steps of this (V), rounded down.
 EXCITATION_STEP_V = 0.1
 
@@ -183,9 +200,9 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
                                  "([bom] lead_wire_m_per_element: three conductors)"),
     "lead_length_mm": (500.0, "assumption: 0.5 m from gauge to bridge completion, as the BOM's "
                               "lead wire ([bom] lead_wire_m_per_element = 3 x 0.5 m)"),
-    "lead_resistance_ohm_per_m": (0.538, "AWG 32 copper (the BOM's AWG 32-36): 0.2019 mm "
-                                         "diameter (ASTM B258), 1.724e-8 ohm m at 20 C "
-                                         "(annealed copper, IEC 60028)"),
+    "lead_resistance_ohm_per_m": (None, "the lead wire's (LEAD_WIRE): AWG 36 copper, "
+                                        "0.127 mm diameter (ASTM B258), 1.724e-8 ohm m at 20 C "
+                                        "(annealed copper, IEC 60028)"),
     "substrate_modulus_tc_per_K": (None, "the material grade's (1/E) dE/dT (materials library)"),
 }
 
@@ -293,7 +310,7 @@ class ReadoutChain(ResolvedSection):
     dummy_gauge: str = "none"
     lead_wires: str = "three-wire"
     lead_length_mm: float = 500.0
-    lead_resistance_ohm_per_m: float = 0.538
+    lead_resistance_ohm_per_m: float = LEAD_RESISTANCE_OHM_PER_M
     substrate_modulus_tc_per_K: float | None = None
     gauge_backing_thickness_mm: float = 0.0
     adhesive_thickness_mm: float = 0.0
@@ -394,6 +411,8 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
     values, sources = section_with_defaults(raw, "readout", {
         **{k: (v, f"library gauge {gauge.name}: {why}".rstrip(": "))
            for k, (v, why) in from_gauge.items()}, **DEFAULTS})
+    if values["lead_resistance_ohm_per_m"] is None:
+        values["lead_resistance_ohm_per_m"] = LEAD_RESISTANCE_OHM_PER_M
     if values["excitation_V"] is None:
         values["excitation_V"] = tn502_excitation_V(
             float(values["gauge_resistance_ohm"]),

@@ -259,8 +259,9 @@ def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
         shown = [a for a, n in r.per_assembly if n and a != "wirecut"]
         return shown[0] if shown else "array"
 
-    items = [(r.part, r.quantity, getattr(specs.get(r.part), "builder", None), first(r))
-             for r in rows]
+    # a step consumes what is fitted; the spares stay in the kit, said in the step's notes
+    items = [(r.part, r.quantity - r.spares, getattr(specs.get(r.part), "builder", None),
+              first(r)) for r in rows]
     samples = {p: k for p, (k, _) in sample_kit(project).items()}
     for r in rows:  # sample rows of the kit carry no spec
         if r.part in samples:
@@ -274,7 +275,8 @@ def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
     return build_steps(items, _element_count(rows, specs), gauge.process if gauge else "",
                        adhesive.process if adhesive else "the gauge adhesive",
                        project.plan.bolt, pairs, scenes, samples, screws,
-                       {name: spec.rig for name, spec in project.scenes.items()})
+                       {name: spec.rig for name, spec in project.scenes.items()},
+                       spares={r.part: r.spares for r in rows if r.spares})
 
 
 def complete_kit(project, assembled, files=lambda spec: ()) -> list[BomRow]:

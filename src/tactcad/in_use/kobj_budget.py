@@ -845,8 +845,8 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
                        "correction's fit residual at closed form and beam; a calibration "
                        "measures K_v, so none remains after it)",
         "calibration": "fitted standard errors of the calibration file" if calibrations
-        else (f"expected standard errors of a static calibration on the {gauge.maker} "
-              f"{gauge.model} force gauge (range {gauge.range_N:g} N, read to "
+        else (f"expected standard errors of a static calibration on the {gauge.model} "
+              f"force gauge (range {gauge.range_N:g} N, read to "
               f"{gauge.resolution_N:g} N, {gauge.stiffness_N_per_mm:g} N/mm): Z steps of "
               f"25 um to 150 um, {CALIBRATION_REPEATS} runs, the signal to the read-out "
               f"chain's noise of one averaged reading, 1 sigma"),

@@ -18,14 +18,15 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
+from tactcad.design.readout_section import LEAD_WIRE
 from tactcad.errors import DesignError
 
 #: Leads per quarter bridge by connection (``readout.lead_wires``).
 LEADS_PER_BRIDGE = {"three-wire": 3, "two-wire": 2}
-#: AWG 36 copper conductor (mm) and its PTFE insulation's outside diameter (mm), as the
-#: gauge catalogue's lead mass assumes.
-CONDUCTOR_DIAMETER_MM = 0.127
-INSULATED_DIAMETER_MM = 0.25
+#: The design's lead wire (:data:`tactcad.design.readout_section.LEAD_WIRE`): its copper
+#: conductor's and its PTFE insulation's outside diameter (mm).
+CONDUCTOR_DIAMETER_MM = LEAD_WIRE["conductor_diameter_mm"]
+INSULATED_DIAMETER_MM = LEAD_WIRE["insulated_diameter_mm"]
 #: Packing factor of a loose bundle of round wires (assumption, see the module docstring).
 PACKING_FACTOR = 0.6
 

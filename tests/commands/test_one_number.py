@@ -1,0 +1,71 @@
+"""One number per quantity: a figure a lab reads in several commands is computed in one
+place, so every command's ``--json`` (and the BOM) quotes the same value: the force
+resolution (readout, thermal), the bridge excitation (readout, thermal, BOM), the lead
+wire (thermal's lead resistance, the BOM's lead wire, grasp's bundle through the shaft)."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from tactcad.catalogue.gauges import sensor_items
+from tactcad.cli import main
+from tactcad.design.array_plan import load_design
+from tactcad.design.readout_section import LEAD_WIRE
+
+ROOT = Path(__file__).resolve().parents[2]
+TI = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+GRASPER = ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+#: Annealed copper at 20 C (ohm m, IEC 60028), for an independent lead resistance.
+COPPER_OHM_M = 1.724e-8
+
+
+def command_json(argv: list[str], capsys) -> dict:
+    assert main([*argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.fixture(scope="module")
+def ti_readout_and_thermal():
+    import io
+    from contextlib import redirect_stdout
+
+    out = {}
+    for command in ("readout", "thermal"):
+        buf = io.StringIO()
+        with redirect_stdout(buf):
+            assert main([command, "--design", str(TI), "--json"]) == 0
+        out[command] = json.loads(buf.getvalue())
+    return out
+
+
+def test_the_force_resolution_is_one_figure_in_readout_and_thermal(ti_readout_and_thermal):
+    readout, thermal = ti_readout_and_thermal["readout"], ti_readout_and_thermal["thermal"]
+    quoted = {r["element"]: r["force_resolution_N"] for r in readout["elements"]}
+    for rec in thermal["elements"]:
+        assert rec["force_resolution_N"] == pytest.approx(quoted[rec["element"]], rel=1e-9)
+
+
+def test_the_excitation_is_one_figure_in_readout_thermal_and_the_bom(ti_readout_and_thermal):
+    readout, thermal = ti_readout_and_thermal["readout"], ti_readout_and_thermal["thermal"]
+    volts = readout["chain"]["excitation_V"]
+    # thermal's grid power is V^2 / (4 R_g) at the same excitation
+    assert thermal["grid_power_W"] == pytest.approx(
+        volts ** 2 / (4 * readout["chain"]["gauge_resistance_ohm"]), rel=1e-9)
+    amplifier = next(i for i in sensor_items(load_design(TI)) if "amplifier" in i.part)
+    assert f"excitation {volts:g} V" in amplifier.reference
+
+
+def test_the_lead_wire_is_one_wire_in_thermal_the_bom_and_the_shaft(ti_readout_and_thermal,
+                                                                     capsys):
+    chain = ti_readout_and_thermal["readout"]["chain"]
+    area_m2 = math.pi * (LEAD_WIRE["conductor_diameter_mm"] * 1e-3) ** 2 / 4
+    assert chain["lead_resistance_ohm_per_m"] == pytest.approx(COPPER_OHM_M / area_m2, rel=1e-4)
+    lead = next(i for i in sensor_items(load_design(TI)) if i.part == "lead_wire")
+    assert f"AWG {LEAD_WIRE['awg']}" in lead.key_dimensions
+    leads = command_json(["grasp", "--design", str(GRASPER)], capsys)["leads"]
+    assert leads["conductor_diameter_mm"] == LEAD_WIRE["conductor_diameter_mm"]
+    assert leads["wire_diameter_mm"] == LEAD_WIRE["insulated_diameter_mm"]
