@@ -105,12 +105,14 @@ def test_a_labs_first_hour_from_the_wheel(installed, tmp_path, example_exported)
     where = _run([python, "-c", "import tactcad; print(tactcad.__file__)"], tmp_path, env)
     assert str(bin_.parent) in where.stdout and str(ROOT) not in where.stdout
 
-    repo = tmp_path / "lab-hardware"
+    # named as the example: `new .` names the design for its folder, and the export below
+    # must write the very bytes of the checkout's own export of the example
+    repo = tmp_path / "ti_array_2x3"
     repo.mkdir()
     git = ["git", "-c", "user.name=lab", "-c", "user.email=lab@example.org"]
     _run(["git", "init", "-q"], repo, env)
     _run([tactcad, "new", ".", "--example", "ti_array_2x3"], repo, env, timings=timings)
-    design = "lab_hardware.toml"  # named for its folder
+    design = "ti_array_2x3.toml"  # named for its folder
     _run([*git, "add", "-A"], repo, env)
     _run([*git, "commit", "-qm", "sensor project"], repo, env)
 
