@@ -318,6 +318,7 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
 
 
 #: ``name = "..."`` in a TOML table (a basic or literal string, a comment after it).
+_TABLE_HEAD = re.compile(r"^\[", re.MULTILINE)
 _NAME_LINE = re.compile(r"""^(\s*name\s*=\s*)("[^"\\\n]*"|'[^'\n]*')(\s*(#.*)?)$""", re.MULTILINE)
 
 
@@ -341,9 +342,8 @@ def named_for_project(design_text: str, folder_name: str) -> tuple[str, str | No
     head = re.search(r"^\[design\]\s*$", design_text, re.MULTILINE)
     if head is None:
         return design_text, None
-    nxt = re.search(r"^\[", design_text[head.end():], re.MULTILINE)
-    end = head.end() + (nxt.start() if nxt else len(design_text[head.end():]))
-    line = _NAME_LINE.search(design_text, head.end(), end)
+    nxt = _TABLE_HEAD.search(design_text, head.end())
+    line = _NAME_LINE.search(design_text, head.end(), nxt.start() if nxt else len(design_text))
     if line is None:
         return design_text, None
     text = (design_text[:line.start(2)] + json.dumps(name) + design_text[line.end(2):])

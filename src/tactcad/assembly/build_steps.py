@@ -221,6 +221,7 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
         would consume nothing are left out.
     """
     modules = module_steps()
+    spares = spares or {}
     by_step: dict[str, list[tuple[str, int]]] = {}
     for part, qty, builder, first in items:
         by_step.setdefault(step_of_item(part, builder, first, modules), []).append((part, qty))
@@ -251,8 +252,8 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
             if key == _SAMPLES:
                 scene = next((s for s in scenes if "sample" in s), _ARRAY_SCENE)
         notes = tuple(notes) + tuple(
-            f"{(spares or {})[p]} spare {p} beyond the {q} fitted here stay in the kit "
-            f"(bom.csv: spares)." for p, q in parts if (spares or {}).get(p))
+            f"{spares[p]} spare {p} beyond the {q} fitted here stay in the kit "
+            f"(bom.csv: spares)." for p, q in parts if spares.get(p))
         steps.append(Step(key, title, sub, tuple(parts), tool,
                           tuple(p for p, _ in parts if p in consumable), notes,
                           tuple(p for p, _ in parts), scene))

@@ -265,7 +265,7 @@ def _check_spacer_process(d: CombTables, p: Problems) -> None:
     name = spacer_process(d).value
     lo, hi = CUT_PROCESSES[name].sheet_range_mm
     t = d.comb.spacer_thickness_mm
-    if not lo - 1e-12 <= t <= hi + 1e-12:
+    if not CUT_PROCESSES[name].holds_sheet(t):
         field = "comb.spacer_process" if d.comb.spacer_process else "comb.spacer_thickness_mm"
         p.add(field, d.comb.spacer_process or t,
               f"a process whose sheet range holds the {fmt(t)} mm spacer ({name}: {lo:g} ... "

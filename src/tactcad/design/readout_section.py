@@ -200,7 +200,8 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
                                  "([bom] lead_wire_m_per_element: three conductors)"),
     "lead_length_mm": (500.0, "assumption: 0.5 m from gauge to bridge completion, as the BOM's "
                               "lead wire ([bom] lead_wire_m_per_element = 3 x 0.5 m)"),
-    "lead_resistance_ohm_per_m": (None, "the lead wire's (LEAD_WIRE): AWG 36 copper, "
+    "lead_resistance_ohm_per_m": (LEAD_RESISTANCE_OHM_PER_M,
+                                  "the lead wire's (LEAD_WIRE): AWG 36 copper, "
                                         "0.127 mm diameter (ASTM B258), 1.724e-8 ohm m at 20 C "
                                         "(annealed copper, IEC 60028)"),
     "substrate_modulus_tc_per_K": (None, "the material grade's (1/E) dE/dT (materials library)"),
@@ -411,8 +412,6 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
     values, sources = section_with_defaults(raw, "readout", {
         **{k: (v, f"library gauge {gauge.name}: {why}".rstrip(": "))
            for k, (v, why) in from_gauge.items()}, **DEFAULTS})
-    if values["lead_resistance_ohm_per_m"] is None:
-        values["lead_resistance_ohm_per_m"] = LEAD_RESISTANCE_OHM_PER_M
     if values["excitation_V"] is None:
         values["excitation_V"] = tn502_excitation_V(
             float(values["gauge_resistance_ohm"]),

@@ -129,9 +129,9 @@ def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, 
     for i, h in enumerate(ordered, start=1):
         clear_label(sh, view.paper(h.x, h.y), h.d / 2 * view.scale, f"H{i}", f"hole-label-{i}")
     x0, y0, _, _ = table_box(d)
-    per_block = d.table_block_rows
+    per_block, numbered = d.table_block_rows, list(enumerate(ordered, start=1))
     for b in range(d.table_blocks):
-        block = list(enumerate(ordered, start=1))[b * per_block:(b + 1) * per_block]
+        block = numbered[b * per_block:(b + 1) * per_block]
         if block:
             _hole_table_block(d, x0 + b * (sum(TABLE_COLS) + TABLE_BLOCK_GAP), y0, block,
                               datum)

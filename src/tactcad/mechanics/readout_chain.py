@@ -357,6 +357,15 @@ def row_units(plan: Plan, k: dict[str, float]) -> list[tuple]:
     return out
 
 
+def force_resolution_N(chain: ReadoutChain, grid_strain_per_N: float,
+                       reading_noise_V: float | None = None) -> float:
+    """Force resolution (N, 1 sigma): the noise of one averaged reading over the
+    sensitivity |V/strain x grid strain per N|. ``reading_noise_V``: the chain's
+    (:func:`noise_budget_V`, ``"reading"``) when not given."""
+    noise = noise_budget_V(chain)["reading"] if reading_noise_V is None else reading_noise_V
+    return noise / abs(chain.volts_per_strain * grid_strain_per_N)
+
+
 def element_force_resolution_N(plan: Plan, model: str = "closed-form",
                                progress: Callable[[str], None] | None = None,
                                chain: ReadoutChain | None = None) -> dict[str, dict]:
@@ -375,7 +384,7 @@ def element_force_resolution_N(plan: Plan, model: str = "closed-form",
             progress(f"readout {model}: {name}")
         eps = gauge_strain_per_N(g, plan.material, chain, model)
         s = chain.volts_per_strain * eps["grid"]
-        out[name] = {"eps": eps, "S": s, "dF": noise / abs(s)}
+        out[name] = {"eps": eps, "S": s, "dF": force_resolution_N(chain, eps["grid"], noise)}
     return out
 
 

@@ -87,7 +87,8 @@ import numpy as np
 from tactcad.design.array_plan import Plan
 from tactcad.design.readout_section import (TN502_POWER_DENSITY_W_PER_MM2, ReadoutChain)
 from tactcad.errors import DesignError
-from tactcad.mechanics.readout_chain import gauge_strain_per_N, noise_budget_V, readout_chain
+from tactcad.mechanics.readout_chain import (force_resolution_N, gauge_strain_per_N,
+                                             noise_budget_V, readout_chain)
 from tactcad.mechanics.verdicts import deciding_item, judged
 
 #: Poisson ratio of the calibration beam of the maker's thermal-output data (TN-504).
@@ -554,8 +555,7 @@ def thermal_report(plan: Plan, requirements, model: str = "closed-form",
                "half_bridge_cancels_rel": abs(zero_quarter) / (abs(zero_quarter) + span_N)
                if abs(zero_quarter) + span_N else 0.0,
                "self_heating_offset_N": 0.0 if s.dummy else heating_strain / d["eps"],
-               # the same figure readout and budget quote (element_force_resolution_N)
-               "force_resolution_N": reading_noise_V / abs(chain.volts_per_strain * d["eps"]),
+               "force_resolution_N": force_resolution_N(chain, d["eps"], reading_noise_V),
                "reference_element": None if slot.number == ref.number else ref.number}
         if d["K"] < r["K"] * (1 - 1e-9):
             rec.update(_unit_record(d["K"], r["K"], zero_read / d["eps"], zero_read / r["eps"],
