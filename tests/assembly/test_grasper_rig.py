@@ -100,3 +100,62 @@ def test_the_grasper_scenes_build_no_part_to_place(project):
     before = Counter(BUILD_COUNTS)
     assemble(project, "grasper-open")
     assert Counter(BUILD_COUNTS) == before
+
+
+def jaw_face_corners_in_scene(g, angle_deg: float, pin_world) -> list[tuple[float, float]]:
+    """(x, height) of the jaw's face-side edge corners and 50 points along it, turned
+    ``angle_deg`` about the pin (the jaw's face is its lowest side as it opens)."""
+    from tactcad.assembly.grasper_rig import jaw_root
+
+    f = jaw_root(g, angle_deg, pin_world)
+    pts = []
+    for i in range(51):
+        x = g.length_mm * i / 50
+        p = [f.origin[k] + x * f.x_dir[k] + g.thickness_mm * f.z_dir[k] for k in range(3)]
+        pts.append((p[0], p[1]))
+    return pts
+
+
+@pytest.mark.parametrize("pin_inset, thickness, angle", [
+    (2.5, 5.6, 45.0), (2.5, 5.6, 90.0), (6.0, 8.0, 60.0), (-6.0, 5.5, 45.0), (2.5, 5.6, 10.0)])
+def test_the_slab_lies_clear_of_the_jaws_heel_at_every_angle_it_opens_to(pin_inset, thickness,
+                                                                         angle):
+    from dataclasses import replace
+
+    from tactcad.assembly.grasper_rig import SHAFT_CLEARANCE_MM, slab_start_mm
+    from tactcad.partlib.grasper_jaw import jaw_part
+
+    plan = load_project(GRASPER).plan
+    g = replace(jaw_part(plan).geometry, pin_x_mm=pin_inset, thickness_mm=thickness,
+                opening_angle_deg=angle)
+    slab_top = 3.0
+    pin = (0.0, pin_height_mm(g, slab_top), 0.0)
+    start = slab_start_mm(g, angle)
+    assert start >= SHAFT_CLEARANCE_MM
+    for a in (angle * k / 12 for k in range(13)):
+        under = [(x, y) for x, y in jaw_face_corners_in_scene(g, a, pin)
+                 if x >= start - 1e-9]
+        assert all(y >= slab_top - 1e-9 for _, y in under), (a, min(under, key=lambda q: q[1]))
+    # the heel of a jaw pinned inside it dips at a wide angle: the slab moves off the pin
+    if pin_inset > 0 and angle >= 45:
+        assert start > SHAFT_CLEARANCE_MM
+
+
+def test_the_lab_jaws_open_scene_puts_the_slab_past_the_heel_it_swings_down():
+    """The 10 mm class's jaw opened to 45 degrees (a lab's file): the slab moves forward so
+    the heel behind the pin clears it (the open scene's interference check, kernel-free)."""
+    from tactcad.assembly.grasper_rig import grasper_layout
+
+    import tomllib
+
+    from tactcad.design.array_plan import plan_from_dict
+
+    data = tomllib.loads(GRASPER.read_text(encoding="utf-8"))
+    data["grasper_jaw"]["opening_angle_deg"] = 60.0
+    layout = grasper_layout(plan_from_dict(data))
+    g = layout.specs["grasper_jaw"].geometry
+    slab = layout.specs["tissue_slab"].geometry
+    x0 = layout.roots["tissue_slab"].origin[0] - slab.length_mm / 2
+    pin = (0.0, pin_height_mm(g, slab.thickness_mm), 0.0)
+    assert all(y >= slab.thickness_mm - 1e-9
+               for x, y in jaw_face_corners_in_scene(g, 60.0, pin) if x >= x0)

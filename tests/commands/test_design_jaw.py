@@ -9,6 +9,8 @@ import tomllib
 import pytest
 from conftest import run_cli
 
+from tactcad.partlib.grasper_jaw import class_jaw_file_table
+
 GRASPER_CASE = ["design", "--kr-over-km", "10", "--kobj-range", "0.5", "5", "--material",
                 "Ti-6Al-4V-annealed", "--columns", "6"]
 
@@ -35,7 +37,9 @@ def design_for_jaw_file(folder, name: str, table: str) -> tuple[dict, dict]:
     """(the report, the written design) of the grasper case at 0.05 N for the jaw file
     ``name`` whose ``[grasper_jaw]`` holds ``table`` (TOML lines)."""
     jaw = folder / name
-    jaw.write_text(f"[grasper_jaw]\nshaft_class_mm = \"10\"\n{table}", encoding="utf-8")
+    keys = {**class_jaw_file_table("10"), **tomllib.loads(table)}  # the 10 mm class's jaw
+    jaw.write_text("[grasper_jaw]\n" + "".join(f"{k} = {json.dumps(v)}\n" for k, v in keys.items()),
+                   encoding="utf-8")
     out = folder / "insert.toml"
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", str(jaw), "--out",
                 str(out), "--json")
@@ -59,7 +63,7 @@ def test_a_labs_own_jaw_from_a_file_bounds_the_search_and_goes_into_the_design(t
 @pytest.mark.parametrize("content, words", [
     (None, "nor an existing file"),
     ('[grasper_shaft]\nlength_mm = 300.0\n', "no [grasper_jaw] table"),
-    ('[grasper_jaw]\npocket_width_mm = 9.0\n', "grasper_jaw.pocket_width_mm"),
+    ('[grasper_jaw]\npocket_width_mm = 9.0\n', "grasper_jaw.length_mm (not given)"),
     ('[grasper_jaw\n', "valid TOML"),
 ])
 def test_a_jaw_file_that_states_no_jaw_is_refused_by_name(tmp_path, content, words):

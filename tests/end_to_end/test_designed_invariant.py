@@ -5,7 +5,8 @@ and a pasteable alternative (or why none exists), and writes nothing.
 Targets are drawn by hypothesis (K_r/K_m, the K_obj range, the full-scale force,
 columns, material, a footprint or none) and run through the command line as a lab
 runs it: ``design --out DIR``, then ``export`` and ``check`` inside DIR. The lab
-cases that once broke this (the palpation strip) are pinned as regression tests."""
+cases that once broke this (the palpation strip, a lab's 12 mm jaw) are pinned as
+regression tests."""
 
 from __future__ import annotations
 
@@ -27,7 +28,9 @@ DRAWS = 10
 @st.composite
 def design_targets(draw) -> list[str]:
     """A ``design`` command line's targets: K_r/K_m 4-12, K_obj from 0.1-3 N/mm over a
-    3-20 x span, 0.01-1 N, 2-8 columns, a library material, a footprint or none."""
+    3-20 x span, 0.01-1 N, 2-8 columns, a library material; a footprint, the 10 mm class's
+    jaw, a lab's own jaw (a table: shaft 9-14 mm, its width and height passing it, the pivot
+    in the jaw or behind its heel, 30-60 degrees open) or none."""
     low = draw(st.floats(0.1, 3.0).map(lambda v: round(v, 2)))
     span = draw(st.floats(3.0, 20.0))
     args = ["--kr-over-km", f"{draw(st.floats(4.0, 12.0)):.2f}",
@@ -35,7 +38,19 @@ def design_targets(draw) -> list[str]:
             "--full-scale-force", f"{draw(st.floats(0.01, 1.0)):.3g}",
             "--columns", str(draw(st.integers(2, 8))),
             "--material", draw(st.sampled_from(MATERIALS))]
-    if draw(st.booleans()):
+    jaw = draw(st.sampled_from(("none", "none", "class", "file")))
+    if jaw == "class":
+        args += ["--jaw", "10"]
+    elif jaw == "file":  # a lab's own jaw: shaft, width, height and pivot drawn
+        shaft = draw(st.floats(9.0, 14.0).map(lambda v: round(v, 1)))
+        height = draw(st.floats(5.5, 7.0).map(lambda v: round(v, 2)))
+        width = round(min(draw(st.floats(6.0, 11.0)),
+                          (shaft ** 2 - (height + 1.5) ** 2) ** 0.5 - 0.01), 2)
+        args += ["--jaw", {"shaft_diameter_mm": shaft, "width_mm": width, "thickness_mm": height,
+                           "length_mm": draw(st.floats(28.0, 40.0).map(lambda v: round(v, 1))),
+                           "pin_inset_mm": draw(st.sampled_from((2.5, -6.0))),
+                           "opening_angle_deg": draw(st.sampled_from((30.0, 45.0, 60.0)))}]
+    elif draw(st.booleans()):
         args += ["--footprint", str(draw(st.integers(30, 120))), str(draw(st.integers(15, 60)))]
     return args
 
@@ -45,17 +60,31 @@ def run_cli(argv: list[str], capsys) -> tuple[int, str]:
     return code, capsys.readouterr().out
 
 
-def designed_or_refused(targets: list[str], folder: Path, capsys) -> None:
+def jaw_file_written(targets: list, folder: Path) -> list[str]:
+    """``targets`` with a drawn jaw (a table after ``--jaw``) written as a lab's jaw file
+    beside ``folder``; a design to a jaw takes no ``--verify`` (its checks need no kernel)."""
+    if "--jaw" not in targets:
+        return [*targets, "--verify", "none"]
+    i = targets.index("--jaw") + 1
+    if isinstance(targets[i], dict):
+        jaw = folder.parent / "lab_jaw.toml"
+        jaw.write_text("[grasper_jaw]\n" + "".join(f"{k} = {v!r}\n" for k, v in
+                                                  targets[i].items()), encoding="utf-8")
+        targets = [*targets[:i], str(jaw), *targets[i + 1:]]
+    return targets
+
+
+def designed_or_refused(targets: list, folder: Path, capsys) -> None:
     """Design ``targets`` into ``folder``; a refusal is judged as one, a design is exported
     and checked in its own folder (as ``cd DIR && tactcad check``)."""
-    code, out = run_cli(["design", *targets, "--verify", "none", "--out", str(folder),
-                         "--json"], capsys)
+    targets = jaw_file_written(targets, folder)
+    code, out = run_cli(["design", *targets, "--out", str(folder), "--json"], capsys)
     if code == 2:
         error = json.loads(out)["error"]
         assert error["field"] and error["allowed"], error
         assert error["alternatives"] or "none" in error["message"].lower(), error
-        for alt in error["alternatives"]:
-            assert alt["option"].startswith("--"), alt
+        for alt in error["alternatives"]:  # an option, or the jaw file's keys to write
+            assert alt["option"].startswith("--") or "grasper_jaw." in alt["option"], alt
         assert not folder.exists(), f"a refused design left {sorted(os.listdir(folder))}"
         return
     assert code == 0, out
@@ -102,3 +131,35 @@ def test_the_palpation_strip_designs_and_passes_its_check(tmp_path, capsys):
                          "--material", "7075-T6", "--columns", "8"],
                         tmp_path / "palp", capsys)
     assert (tmp_path / "palp" / "palp.toml").is_file()
+
+
+#: the lab's own 12 mm grasper (36 mm jaw, 7 x 26 mm pocket, pivot 6 mm behind the heel,
+#: 45 degrees open) at the height and width its first refusal asked for
+LAB_JAW = {"shaft_diameter_mm": 12.0, "width_mm": 9.74, "length_mm": 36.0, "thickness_mm": 5.5,
+           "pin_inset_mm": -6.0, "opening_angle_deg": 45.0, "pocket_width_mm": 7.0,
+           "pocket_length_mm": 26.0}
+LAB_TARGETS = ["--kr-over-km", "8", "--kobj-range", "0.3", "3", "--max-grasp-force", "20",
+               "--columns", "5", "--material", "CuBe-C17200-TF00"]
+
+
+def test_the_labs_12_mm_jaw_too_low_is_refused_with_the_keys_to_write(tmp_path, capsys):
+    targets = jaw_file_written([*LAB_TARGETS, "--full-scale-force", "0.099", "--jaw",
+                                {**LAB_JAW, "thickness_mm": 3.2, "width_mm": 11.0}],
+                               tmp_path / "lab")
+    code, out = run_cli(["design", *targets, "--out", str(tmp_path / "lab"), "--json"], capsys)
+    error = json.loads(out)["error"]
+    assert code == 2 and error["field"] == "--jaw", error
+    options = [a["option"] for a in error["alternatives"]]
+    assert options[0] == "grasper_jaw.thickness_mm = 5.5 and grasper_jaw.width_mm = 9.74 in " \
+                         "lab_jaw.toml" and "--jaw 10" in options, options
+    assert not (tmp_path / "lab").exists()
+
+
+@pytest.mark.slow
+def test_the_labs_12_mm_jaw_designs_and_passes_its_check(tmp_path, capsys):
+    # its open scene put the jaw into the tissue slab at 45 degrees; its pocket and shaft
+    # could not be stated
+    designed_or_refused([*LAB_TARGETS, "--full-scale-force", "0.099", "--jaw", LAB_JAW],
+                        tmp_path / "lab", capsys)
+    written = (tmp_path / "lab" / "lab.toml").read_text(encoding="utf-8")
+    assert "shaft_diameter_mm = 12.0" in written and "pin_inset_mm = -6.0" in written

@@ -12,7 +12,7 @@ import pytest
 
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError, DesignErrors
-from tactcad.partlib.grasper_jaw import design_table, jaw_part, jaw_room
+from tactcad.partlib.grasper_jaw import class_jaw_file_table, design_table, jaw_part, jaw_room
 from tactcad.partlib.grasper_shaft import shaft_part
 
 HARDWARE = Path(__file__).parents[2] / "hardware"
@@ -23,6 +23,10 @@ STACKED = HARDWARE / "ti_array_2x3" / "ti_array_2x3.toml"
 @pytest.fixture(scope="module")
 def comb_data():
     return tomllib.loads(GRASPER.read_text(encoding="utf-8"))
+
+
+#: a jaw file stating the 10 mm class's default jaw
+JAW_10 = class_jaw_file_table("10")
 
 
 def with_tables(data: dict, **tables) -> dict:
@@ -49,7 +53,7 @@ def test_the_shaft_takes_the_jaws_class_unless_it_states_one(comb_data):
     with pytest.raises(DesignErrors) as err:
         plan_from_dict(with_tables(comb_data, grasper_jaw={"shaft_class_mm": "10"},
                                    grasper_shaft={"shaft_class_mm": "5"}))
-    assert "grasper_shaft.shaft_class_mm" in str(err.value) and "'10'" in str(err.value)
+    assert "grasper_shaft.shaft_class_mm" in str(err.value) and "allowed 10 mm" in str(err.value)
 
 
 @pytest.mark.parametrize("tables, field", [
@@ -72,7 +76,7 @@ def test_a_stacked_design_may_state_its_grasper_too():
 
 
 def test_a_jaw_files_stated_pocket_is_the_room_less_its_clearances():
-    room = jaw_room({"pocket_width_mm": 5.0, "pocket_length_mm": 20.0,
+    room = jaw_room({**JAW_10, "pocket_width_mm": 5.0, "pocket_length_mm": 20.0,
                      "pocket_clearance_mm": 0.2}, "my_jaw.toml")
     assert (room.across_mm, room.along_mm) == pytest.approx((4.6, 19.6))
     assert room.label == "10 mm jaw of my_jaw.toml" and room.option == "my_jaw.toml"
@@ -88,7 +92,44 @@ def test_a_jaw_files_stated_pocket_is_the_room_less_its_clearances():
 ])
 def test_a_pocket_the_jaw_cannot_hold_is_refused_naming_its_field(table, field):
     with pytest.raises(DesignErrors) as err:
-        jaw_room(table, "j.toml")
+        jaw_room({**JAW_10, **table}, "j.toml")
+    assert field in str(err.value)
+
+
+#: the lab's own 12 mm grasper: jaw 36 x 11 mm, pocket 26 x 7 mm, pivot 6 mm behind the
+#: heel, 45 degrees open (its height is the lab's to state)
+LAB_JAW = {"shaft_diameter_mm": 12.0, "width_mm": 11.0, "length_mm": 36.0,
+           "thickness_mm": 3.2, "pin_inset_mm": -6.0, "opening_angle_deg": 45.0,
+           "pocket_width_mm": 7.0, "pocket_length_mm": 26.0}
+
+
+@pytest.mark.parametrize("key", ["width_mm", "length_mm", "thickness_mm", "pin_inset_mm",
+                                 "opening_angle_deg", "shaft_diameter_mm"])
+def test_a_jaw_file_that_leaves_a_key_out_is_refused_by_its_name(key):
+    table = {k: v for k, v in LAB_JAW.items() if k != key}
+    with pytest.raises(DesignErrors) as err:
+        jaw_room(table, "lab_jaw.toml")
+    assert len(err.value.errors) == 1 and f"grasper_jaw.{key}" in str(err.value)
+    assert "not given" in str(err.value)
+
+
+def test_a_labs_12_mm_jaw_with_its_7_mm_pocket_is_the_room_it_states():
+    room = jaw_room(LAB_JAW, "lab_jaw.toml")
+    assert (room.across_mm, room.along_mm) == pytest.approx((6.8, 25.8))
+    assert room.height_mm == pytest.approx(3.2 + 0.3)
+    assert room.label == "12 mm jaw of lab_jaw.toml"
+
+
+@pytest.mark.parametrize("change, field", [
+    ({"width_clearance_mm": 1.0}, "grasper_jaw.width_clearance_mm"),  # width stated twice
+    ({"width_mm": 12.5}, "grasper_jaw.width_mm"),  # wider than the shaft
+    ({"pin_inset_mm": 0.2}, "grasper_jaw.pin_inset_mm"),  # the pin cuts the heel
+    ({"shaft_class_mm": "10"}, "grasper_jaw.shaft_diameter_mm"),  # two shafts
+    ({"pocket_width_mm": 10.5}, "grasper_jaw.pocket_width_mm"),  # through the side walls
+])
+def test_a_jaw_stated_two_ways_or_past_its_steel_is_refused_naming_the_key(change, field):
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({**LAB_JAW, **change}, "lab_jaw.toml")
     assert field in str(err.value)
 
 
@@ -191,12 +232,12 @@ def test_the_pocket_is_placed_inside_a_stated_outline(comb_data):
 ])
 def test_a_bad_outline_is_refused_naming_it(outline, words):
     with pytest.raises(DesignErrors) as err:
-        jaw_room({"pocket_outline_mm": outline}, "j.toml")
+        jaw_room({**JAW_10, "pocket_outline_mm": outline}, "j.toml")
     assert "grasper_jaw.pocket_outline_mm" in str(err.value) and words in str(err.value)
 
 
 def test_a_jaw_outline_sets_the_room_each_sheet_gets():
-    room = jaw_room({"pocket_outline_mm": TAPER}, "taper.toml")
+    room = jaw_room({**JAW_10, "pocket_outline_mm": TAPER}, "taper.toml")
     assert room.outline is not None
     assert room.along_for(4.2) == pytest.approx(29.0 - 2 * room.clearance_mm)
     assert room.along_for(4.8) < room.along_for(4.2)  # a wider comb gets a shorter stretch

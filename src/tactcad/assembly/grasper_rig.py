@@ -11,11 +11,11 @@ is mated, flipped, onto the jaw's ``insert`` frame: the insert centred in the po
 contact faces ``tip_proud_mm`` above the jaw's face, the first column nearest the pin.
 
 Scene frame (mm, y up): x along the closed jaw from its pin to its tip, z across it. The
-slab lies on the opposing jaw (y = 0 ... slab thickness) from just in front of the pin (the
-jaw's heel swings down behind it as the jaw opens); the pin sits where the closed
-jaw's contact faces rest on the slab's top face. The scene's ``jaw_angle_deg`` turns the
-jaw about the pin (0: closed on the slab, every tip on its top face; left out: the jaw's
-opening angle). The shaft runs back from behind the jaw's heel, clear of the jaw's sweep.
+slab lies on the opposing jaw (y = 0 ... slab thickness) from in front of the pin and of
+where the jaw's heel swings below the slab's top as the jaw opens (:func:`slab_start_mm`);
+the pin sits where the closed jaw's contact faces rest on the slab's top face. The scene's
+``jaw_angle_deg`` turns the jaw about the pin (0: closed on the slab, every tip on its top
+face; left out: the jaw's opening angle). The shaft runs back from behind the jaw's heel, clear of the jaw's sweep.
 """
 
 from __future__ import annotations
@@ -49,6 +49,30 @@ def pin_height_mm(jaw, slab_thickness_mm: float) -> float:
     """The pin's height above the opposing jaw (mm): the closed jaw's contact faces
     (``tip_proud_mm`` above its face) rest on the slab's top."""
     return slab_thickness_mm + jaw.thickness_mm + jaw.tip_proud_mm - jaw.thickness_mm / 2
+
+
+def heel_reach_mm(jaw, angle_deg: float) -> float:
+    """How far in front of the pin (x, mm) the jaw dips below the closed contact plane when
+    turned ``angle_deg`` open: the heel behind the pin swings down as the jaw opens. Its
+    face edge, a distance d along the jaw from the pin, lies
+    ``tip_proud + t/2 (1 - cos a) + d sin a`` above the slab's top; the last point below it,
+    d0, lies at x = d0 cos a + t/2 sin a (-inf: no part of the jaw dips)."""
+    a = math.radians(angle_deg)
+    if math.sin(a) <= 0:
+        return -math.inf
+    t = jaw.thickness_mm
+    d0 = -(jaw.tip_proud_mm + t / 2 * (1 - math.cos(a))) / math.sin(a)
+    if d0 <= -jaw.pin_x_mm:  # the heel stays above the slab's top
+        return -math.inf
+    return d0 * math.cos(a) + t / 2 * math.sin(a)
+
+
+def slab_start_mm(jaw, angle_deg: float, steps: int = 90) -> float:
+    """The slab's near end (x, mm): :data:`SHAFT_CLEARANCE_MM` in front of the pin, or of
+    the farthest the jaw's heel reaches below the slab's top on its way open to
+    ``angle_deg`` (sampled every ``angle_deg / steps``), whichever is farther."""
+    reach = max(heel_reach_mm(jaw, angle_deg * i / steps) for i in range(1, steps + 1))
+    return max(reach, 0.0) + SHAFT_CLEARANCE_MM
 
 
 def shaft_offset_mm(jaw) -> float:
@@ -94,8 +118,10 @@ def grasper_layout(plan: Plan, scene: SceneSpec | None = None) -> GrasperLayout:
     angle = g.opening_angle_deg if scene is None or scene.jaw_angle_deg is None \
         else scene.jaw_angle_deg
     pin = (0.0, pin_height_mm(g, h), 0.0)
-    # the slab from just in front of the pin: the jaw's heel swings down behind it as it opens
-    slab_centre = SHAFT_CLEARANCE_MM + slab.geometry.length_mm / 2
+    # the slab in front of where the jaw's heel swings down as it opens (the widest angle
+    # any scene turns it to), so every scene of the design puts the slab in one place
+    slab_centre = slab_start_mm(g, max(g.opening_angle_deg, angle)) \
+        + slab.geometry.length_mm / 2
     roots = {jaw.name: jaw_root(g, angle, pin),
              slab.name: Frame((slab_centre, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)),
              shaft.name: Frame((-shaft_offset_mm(g), pin[1], 0.0), (-1.0, 0.0, 0.0),

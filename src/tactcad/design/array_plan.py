@@ -553,15 +553,20 @@ def _check_arms(d: DesignFile, p: Problems) -> None:
 
 
 def check_in_use(d: Any, p: Problems) -> None:
-    """The grasper's shaft passes the trocar its jaw is for: a stated
-    ``[grasper_shaft] shaft_class_mm`` is the jaw's (left out, it takes the jaw's)."""
+    """The grasper's shaft is the one its jaw passes: a stated ``[grasper_shaft]``
+    class or diameter is the jaw's (left out, it takes the jaw's)."""
+    from tactcad.partlib.grasper_jaw import bore_mm
+    from tactcad.partlib.grasper_shaft import shaft_diameter_mm
+
     jaw, shaft = getattr(d, "grasper_jaw", None), getattr(d, "grasper_shaft", None)
-    if jaw is None or shaft is None or "shaft_class_mm" not in shaft.model_fields_set:
+    stated = {"shaft_class_mm", "outer_diameter_mm"} & set(getattr(shaft, "model_fields_set", ()))
+    if jaw is None or shaft is None or not stated:
         return
-    if shaft.shaft_class_mm != jaw.shaft_class_mm:
-        p.add("grasper_shaft.shaft_class_mm", shaft.shaft_class_mm,
-              f"{jaw.shaft_class_mm!r}, the jaw's class (grasper_jaw.shaft_class_mm), or left out",
-              "the jaw and its shaft pass one trocar")
+    if abs(shaft_diameter_mm(shaft) - bore_mm(jaw)) > 1e-9:
+        field = "outer_diameter_mm" if "outer_diameter_mm" in stated else "shaft_class_mm"
+        p.add(f"grasper_shaft.{field}", getattr(shaft, field),
+              f"{fmt(bore_mm(jaw))} mm, the jaw's shaft (grasper_jaw.shaft_class_mm or "
+              "shaft_diameter_mm), or left out", "the jaw and its shaft pass one trocar")
 
 
 DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,

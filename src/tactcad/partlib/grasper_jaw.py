@@ -58,19 +58,37 @@ COLOR = (0.72, 0.74, 0.78)
 
 
 class GrasperJawSection(Section):
-    """``[grasper_jaw]``: the jaw, its pin, pocket and tip window (mm, degrees)."""
+    """``[grasper_jaw]``: the jaw, its pivot, pocket and tip window (mm, degrees). A lab's
+    own jaw file (``design --jaw FILE``) states the keys of :data:`JAW_FILE_KEYS`."""
 
-    shaft_class_mm: choice(SHAFT_CLASSES_MM, why="the trocar the instrument passes") = "10"
-    # width = class - clearance; this and the next three: the class's (CLASS_DEFAULTS_MM)
-    width_clearance_mm: Optional[number(0.0, 6.0)] = None
-    length_mm: number(5.0, 80.0) = 34.0
-    thickness_mm: Optional[number(1.0, 10.0)] = None
-    opposing_jaw_mm: Optional[number(0.5, 10.0)] = None  # the other jaw, closed on this one
-    pin_diameter_mm: Optional[number(0.5, 4.0)] = None
-    pin_inset_mm: number(0.5, 20.0) = 2.5  # pin axis from the proximal end
-    pocket_clearance_mm: number(0.0, 1.0) = 0.1
-    pocket_length_mm: Optional[number(1.0, 80.0)] = None  # default: the insert's row + clearance
-    pocket_width_mm: Optional[number(0.5, 10.0)] = None  # default: across the rows + clearance
+    shaft_class_mm: choice(SHAFT_CLASSES_MM, why="the trocar the instrument passes; its "
+                           "jaw's sizes where the table leaves them (CLASS_DEFAULTS_MM)") = "10"
+    shaft_diameter_mm: Optional[number(
+        2.0, 20.0, why="the bore the closed jaws pass (trocar or the instrument's shaft); "
+        "left out: the class's")] = None
+    width_mm: Optional[number(1.0, 20.0, why="the jaw across its face; left out: the shaft "
+                              "less width_clearance_mm")] = None
+    width_clearance_mm: Optional[number(
+        0.0, 6.0, why="the jaw's width below the shaft's diameter, where width_mm is left "
+        "out; left out: the class's")] = None
+    length_mm: number(5.0, 80.0, why="the jaw's body from its proximal end (heel) to its "
+                      "tip") = 34.0
+    thickness_mm: Optional[number(1.0, 10.0, why="the jaw's height, back to grasping face; "
+                                  "left out: the class's")] = None
+    opposing_jaw_mm: Optional[number(
+        0.5, 10.0, why="the other jaw's height, closed on this one (both pass the shaft); "
+        "left out: the class's")] = None
+    pin_diameter_mm: Optional[number(0.5, 4.0, why="the pivot pin; left out: the "
+                                     "class's")] = None
+    pin_inset_mm: number(-40.0, 40.0, why="the pivot: the pin's axis from the jaw's heel "
+                         "along the jaw; negative where the pivot lies behind the heel (the "
+                         "grasper's clevis carries the jaw, no pin hole in it)") = 2.5
+    pocket_clearance_mm: number(0.0, 1.0, why="the pocket's gap round the insert, each "
+                                "side") = 0.1
+    pocket_length_mm: Optional[number(1.0, 80.0, why="the pocket along the jaw; left out: "
+                                      "the insert's row + clearance")] = None
+    pocket_width_mm: Optional[number(0.5, 10.0, why="the pocket across the jaw; left out: "
+                                     "across the insert's rows + clearance")] = None
     #: the region of the jaw a pocket may take (a tapered or curved jaw), a polygon of
     #: [x, y] points in the jaw's frame (x from the proximal end, y across from its axis;
     #: mm); the pocket is placed inside it. Left out: the bar between the pin's steel and
@@ -78,12 +96,108 @@ class GrasperJawSection(Section):
     pocket_outline_mm: Optional[listing(listing(number(-100.0, 100.0), 2, 2,
                                                 "an [x, y] point (mm)"),
                                         3, 64, "3 ... 64 [x, y] points (mm)")] = None
-    face_wall_mm: number(FACE_WALL_MIN_MM, 3.0) = 0.3
-    tip_proud_mm: number(0.0, 3.0) = 0.3
-    window_clearance_mm: number(0.0, 1.0) = 0.1
-    distal_wall_mm: number(0.3, 10.0) = 1.0  # steel beyond the pocket's far end
-    opening_angle_deg: number(0.0, 90.0, lo_open=True, unit="degrees") = 30.0
+    face_wall_mm: number(FACE_WALL_MIN_MM, 3.0, why="the steel over the pocket the window "
+                         "is cut through") = 0.3
+    tip_proud_mm: number(0.0, 3.0, why="the contact faces above the jaw's face") = 0.3
+    window_clearance_mm: number(0.0, 1.0, why="the window's gap round the tip field") = 0.1
+    distal_wall_mm: number(0.3, 10.0, why="steel beyond the pocket's far end") = 1.0
+    opening_angle_deg: number(0.0, 90.0, lo_open=True, unit="degrees",
+                              why="the jaw fully open, about its pivot") = 30.0
     material: choice(JAW_STEELS) = JAW_STEELS[0]
+
+
+#: What a lab's own jaw file states, each key or one of its alternatives (a tuple): the
+#: jaw's size, pivot, opening and the shaft it passes. Left out, the key is refused by its
+#: name (a class's default jaw is ``--jaw 5`` or ``--jaw 10``).
+JAW_FILE_KEYS = (("shaft_diameter_mm", "shaft_class_mm"), ("width_mm", "width_clearance_mm"),
+                 "length_mm", "thickness_mm", "pin_inset_mm", "opening_angle_deg")
+
+
+def missing_jaw_file_keys(table: Mapping[str, Any]) -> list[str]:
+    """The keys of :data:`JAW_FILE_KEYS` a jaw file's ``[grasper_jaw]`` leaves out (an
+    alternative pair as "a or b")."""
+    missing = []
+    for key in JAW_FILE_KEYS:
+        options = key if isinstance(key, tuple) else (key,)
+        if not any(k in table for k in options):
+            missing.append(" or ".join(options))
+    return missing
+
+
+def class_jaw_file_table(shaft_class: str) -> dict[str, Any]:
+    """The keys of :data:`JAW_FILE_KEYS` for a trocar class's default jaw (the start of a
+    lab's own jaw file; mm, degrees).
+
+    Raises:
+        KeyError: ``shaft_class`` not one of :data:`SHAFT_CLASSES_MM`.
+    """
+    j = with_class_defaults(GrasperJawSection(shaft_class_mm=shaft_class))
+    return {"shaft_class_mm": shaft_class, "width_clearance_mm": j.width_clearance_mm,
+            "length_mm": j.length_mm, "thickness_mm": j.thickness_mm,
+            "pin_inset_mm": j.pin_inset_mm, "opening_angle_deg": j.opening_angle_deg}
+
+
+def bore_mm(j: GrasperJawSection) -> float:
+    """The bore the closed jaws pass (mm): ``shaft_diameter_mm``, else the class's."""
+    return j.shaft_diameter_mm if j.shaft_diameter_mm is not None \
+        else SHAFT_CLASSES_MM[j.shaft_class_mm]
+
+
+def jaw_width_mm(j: GrasperJawSection) -> float:
+    """The jaw's width (mm): ``width_mm``, else the bore less ``width_clearance_mm``
+    (the table with its class defaults filled in)."""
+    return j.width_mm if j.width_mm is not None else bore_mm(j) - j.width_clearance_mm
+
+
+def shaft_words(j: GrasperJawSection) -> str:
+    """The shaft the jaw passes, in words and as a label's key: "10" for a class, "12" for
+    a stated diameter (mm)."""
+    return fmt(bore_mm(j)) if j.shaft_diameter_mm is not None else j.shaft_class_mm
+
+
+def pin_in_bar(g) -> bool:
+    """Whether the pivot pin goes through the jaw's bar (False: behind its heel)."""
+    return g.pin_x_mm > 0
+
+
+def _check_stated_once(p: Problems, j: GrasperJawSection) -> None:
+    """A size stated two ways is refused (the jaw's width, the shaft's diameter); ``j``
+    with its class defaults (:func:`with_class_defaults`)."""
+    stated = j.model_fields_set
+    if j.width_mm is not None and j.width_clearance_mm is not None:
+        p.add("grasper_jaw.width_clearance_mm", j.width_clearance_mm, "left out with width_mm",
+              "the jaw's width is stated once: width_mm, or the shaft less width_clearance_mm")
+    if "shaft_diameter_mm" in stated and "shaft_class_mm" in stated \
+            and abs(j.shaft_diameter_mm - SHAFT_CLASSES_MM[j.shaft_class_mm]) > 1e-9:
+        p.add("grasper_jaw.shaft_diameter_mm", j.shaft_diameter_mm,
+              f"{fmt(SHAFT_CLASSES_MM[j.shaft_class_mm])} mm (shaft_class_mm = "
+              f"{j.shaft_class_mm!r}) or shaft_class_mm left out", "one shaft per jaw")
+    width = jaw_width_mm(j)
+    if width > bore_mm(j) + 1e-9:
+        p.add("grasper_jaw.width_mm", width, f"<= {fmt(bore_mm(j))} mm",
+              f"the jaw passes the {fmt(bore_mm(j))} mm shaft")
+
+
+def _check_pivot(p: Problems, j: GrasperJawSection) -> None:
+    """The pivot pin goes through the bar with steel round it, or lies behind the heel
+    clear of it."""
+    r = j.pin_diameter_mm / 2
+    if -r < j.pin_inset_mm < r + MIN_WALL_MM:
+        p.add("grasper_jaw.pin_inset_mm", j.pin_inset_mm,
+              f">= {fmt(r + MIN_WALL_MM)} mm (in the jaw) or <= {fmt(-r)} mm (behind its heel)",
+              f"the {fmt(j.pin_diameter_mm)} mm pin through the jaw with {fmt(MIN_WALL_MM)} mm "
+              "of steel behind it, or clear of the heel")
+    elif j.pin_inset_mm > 0:
+        p.within("grasper_jaw.pin_diameter_mm", j.pin_diameter_mm,
+                 hi=j.thickness_mm - 2 * MIN_WALL_MM, why="steel above and below the pin hole")
+
+
+def pocket_start_limit_mm(j: GrasperJawSection) -> float:
+    """The nearest the pocket comes to the heel (x, mm): past the pin's steel, or the
+    heel's wall when the pivot lies behind the heel."""
+    if j.pin_inset_mm > 0:
+        return j.pin_inset_mm + j.pin_diameter_mm / 2 + MIN_WALL_MM
+    return MIN_WALL_MM
 
 
 @dataclass(frozen=True)
@@ -187,7 +301,8 @@ class JawRoom:
     """The room a grasper's jaw leaves its insert (mm).
 
     Attributes:
-        shaft_class_mm: the trocar class ("5" or "10").
+        shaft_class_mm: the shaft the jaw passes: a trocar class ("5" or "10") or a stated
+            diameter ("12"), mm.
         across_mm, along_mm: the pocket's width and length less its clearances: the
             stated pocket's, else the largest the jaw's body holds.
         height_mm: the insert's largest height (jaw thickness + the tips' proud height).
@@ -239,7 +354,7 @@ def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
         DesignErrors: the table refused (each field, value and allowed range), or a stated
             pocket the jaw's body cannot hold.
     """
-    from tactcad.errors import DesignError
+    from tactcad.errors import DesignError, DesignErrors
 
     if isinstance(jaw, str):
         if jaw not in SHAFT_CLASSES_MM:
@@ -248,11 +363,22 @@ def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
         table: dict[str, Any] = {"shaft_class_mm": jaw}
     else:
         table = dict(jaw)
+        missing = Problems(file)
+        for key in missing_jaw_file_keys(table):
+            missing.add(f"grasper_jaw.{key}", None, "a value stated in the jaw file",
+                        "a lab's jaw file states the jaw's size, pivot, opening and shaft")
+        if missing:  # every refusal at once: the keys left out and the values refused
+            try:
+                validated_table("grasper_jaw", GrasperJawSection, table, file)
+            except DesignErrors as exc:
+                missing.extend(exc.errors)
+            missing.raise_if_any()
     j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection, table, file))
     p = Problems(file)
-    width = SHAFT_CLASSES_MM[j.shaft_class_mm] - j.width_clearance_mm
-    most_along = j.length_mm - j.distal_wall_mm - (j.pin_inset_mm + j.pin_diameter_mm / 2
-                                                   + MIN_WALL_MM)
+    _check_stated_once(p, j)
+    _check_pivot(p, j)
+    width = jaw_width_mm(j)
+    most_along = j.length_mm - j.distal_wall_mm - pocket_start_limit_mm(j)
     most_across = width - 2 * MIN_WALL_MM
     across = _stated_pocket(p, "grasper_jaw.pocket_width_mm", j.pocket_width_mm, most_across,
                             f"the {fmt(width)} mm jaw less {fmt(MIN_WALL_MM)} mm side walls")
@@ -266,7 +392,7 @@ def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
     c = j.pocket_clearance_mm
     if outline:  # its widest band on the axis and its longest stretch (bounds of the room)
         across, along = round(_widest_band_mm(outline), 3), round(_longest_on_axis_mm(outline), 3)
-    return JawRoom(j.shaft_class_mm, max(across - 2 * c, 0.0), max(along - 2 * c, 0.0),
+    return JawRoom(shaft_words(j), max(across - 2 * c, 0.0), max(along - 2 * c, 0.0),
                    j.thickness_mm + j.tip_proud_mm,
                    option=jaw if isinstance(jaw, str) else file, table=table, outline=outline,
                    clearance_mm=c)
@@ -339,10 +465,22 @@ def _pocket_side(p: Problems, field: str, stated: float | None, need: float | No
     return stated if need is None else p.within(field, stated, need, why=why)
 
 
+def defaults_class(j: GrasperJawSection) -> str:
+    """The class whose sizes fill what the table leaves out: the stated class, else (a
+    stated shaft diameter) the largest class it holds, else the smallest."""
+    if j.shaft_diameter_mm is None or "shaft_class_mm" in j.model_fields_set:
+        return j.shaft_class_mm
+    held = [k for k, d in SHAFT_CLASSES_MM.items() if d <= j.shaft_diameter_mm + 1e-9]
+    return max(held, key=SHAFT_CLASSES_MM.get) if held else min(SHAFT_CLASSES_MM,
+                                                                key=SHAFT_CLASSES_MM.get)
+
+
 def with_class_defaults(j: GrasperJawSection) -> GrasperJawSection:
     """The table with every size it leaves out that depends on the class filled in
     (:data:`CLASS_DEFAULTS_MM`)."""
-    own = CLASS_DEFAULTS_MM[j.shaft_class_mm]
+    own = dict(CLASS_DEFAULTS_MM[defaults_class(j)])
+    if j.width_mm is not None:  # the width stated: no clearance to fill in
+        own.pop("width_clearance_mm")
     return j.model_copy(update={k: v for k, v in own.items() if getattr(j, k) is None})
 
 
@@ -361,7 +499,8 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
     j = with_class_defaults(j)
     c = j.pocket_clearance_mm
     env = insert_envelope_mm(plan)
-    width = SHAFT_CLASSES_MM[j.shaft_class_mm] - j.width_clearance_mm
+    _check_stated_once(p, j)
+    width, bore, shaft = jaw_width_mm(j), bore_mm(j), shaft_words(j)
     why_env = (f"the insert's envelope {' x '.join(fmt(v) for v in env)} mm (across x along x "
                f"height) + {fmt(c)} mm each side" if env else "")
     pl = _pocket_side(p, "grasper_jaw.pocket_length_mm", j.pocket_length_mm,
@@ -369,10 +508,8 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
     pw = _pocket_side(p, "grasper_jaw.pocket_width_mm", j.pocket_width_mm,
                       env and env[0] + 2 * c, why_env)
     if width < pw + 2 * MIN_WALL_MM - 1e-9:
-        p.add("grasper_jaw.shaft_class_mm", j.shaft_class_mm,
-              f"a class whose jaw (class less width_clearance_mm) is >= {fmt(pw + 2 * MIN_WALL_MM)} mm",
-              f"the jaw is {fmt(width)} mm; it holds the {fmt(pw)} mm pocket with "
-              f"{fmt(MIN_WALL_MM)} mm side walls")
+        p.add("grasper_jaw.width_mm", width, f">= {fmt(pw + 2 * MIN_WALL_MM)} mm",
+              f"the jaw holds the {fmt(pw)} mm pocket with {fmt(MIN_WALL_MM)} mm side walls")
     depth = j.thickness_mm - j.face_wall_mm
     tip_h = plan.slots[0].geometry.tip_height_mm
     # face wall + proud height < the tip's height: the arms stay clear below the face wall;
@@ -391,25 +528,22 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
                  why=f"the insert ({fmt(env[2])} mm high) stands {fmt(j.tip_proud_mm)} mm proud "
                      "and stays inside the jaw's back")
     closed = math.hypot(width, j.thickness_mm + j.opposing_jaw_mm)
-    if closed > SHAFT_CLASSES_MM[j.shaft_class_mm] + 1e-9:
+    if closed > bore + 1e-9:
         p.add("grasper_jaw.thickness_mm", j.thickness_mm,
-              f"<= {fmt(closed_thickness_limit_mm(SHAFT_CLASSES_MM[j.shaft_class_mm], width))} mm "
+              f"<= {fmt(closed_thickness_limit_mm(bore, width) - j.opposing_jaw_mm)} mm "
               f"with the {fmt(j.opposing_jaw_mm)} mm opposing jaw",
               f"the closed jaws ({fmt(width)} x {fmt(j.thickness_mm + j.opposing_jaw_mm)} mm, "
-              f"diagonal {fmt(round(closed, 4))} mm) pass the {j.shaft_class_mm} mm trocar; a "
-              "narrower jaw (width_clearance_mm) leaves room for a thicker one")
+              f"diagonal {fmt(round(closed, 4))} mm) pass the {shaft} mm shaft; a "
+              "narrower jaw (width_mm) leaves room for a thicker one")
     x1 = j.length_mm - j.distal_wall_mm
     x0 = x1 - pl
-    least = j.pin_inset_mm + j.pin_diameter_mm / 2 + MIN_WALL_MM
+    least = pocket_start_limit_mm(j)
     outline = tuple(tuple(q) for q in j.pocket_outline_mm) if j.pocket_outline_mm else None
     if outline and _check_outline(p, outline, least, x1, width / 2 - MIN_WALL_MM):
         x0 = _pocket_in_outline(p, outline, pw, pl, x0)
     p.within("grasper_jaw.length_mm", j.length_mm, least + pl + j.distal_wall_mm,
              why=f"pin, {fmt(MIN_WALL_MM)} mm of steel, the {fmt(pl)} mm pocket and the distal wall")
-    p.within("grasper_jaw.pin_inset_mm", j.pin_inset_mm, j.pin_diameter_mm / 2 + MIN_WALL_MM,
-             why="steel around the pin hole at the proximal end")
-    p.within("grasper_jaw.pin_diameter_mm", j.pin_diameter_mm, hi=j.thickness_mm - 2 * MIN_WALL_MM,
-             why="steel above and below the pin hole")
+    _check_pivot(p, j)
     field_along, field_across = plan.tip_field_mm
     wl = min(field_along + 2 * j.window_clearance_mm, pl)
     ww = min(field_across + 2 * j.window_clearance_mm, pw)
@@ -421,10 +555,11 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
                            outline)
     derived = (
         Derived("grasper_jaw_width", width, "mm",
-                f"shaft class {j.shaft_class_mm} mm less {fmt(j.width_clearance_mm)} mm clearance"),
+                "stated" if j.width_mm is not None else
+                f"shaft {shaft} mm less {fmt(j.width_clearance_mm)} mm clearance"),
         Derived("grasper_jaw_closed_diagonal", closed, "mm",
                 f"both jaws closed, {fmt(width)} x {fmt(j.thickness_mm + j.opposing_jaw_mm)} mm, "
-                f"inside the {j.shaft_class_mm} mm trocar"),
+                f"inside the {shaft} mm shaft"),
         Derived("grasper_jaw_pocket_length", pl, "mm", why_env or "stated"),
         Derived("grasper_jaw_pocket_width", pw, "mm", why_env or "stated"),
         Derived("grasper_jaw_pocket_depth", depth, "mm",
@@ -459,7 +594,7 @@ def jaw_volume_mm3(g: GrasperJawGeometry) -> float:
     lies inside the bar and they do not overlap)."""
 
     bar = g.length_mm * g.width_mm * g.thickness_mm
-    pin = math.pi * (g.pin_diameter_mm / 2) ** 2 * g.width_mm
+    pin = math.pi * (g.pin_diameter_mm / 2) ** 2 * g.width_mm if pin_in_bar(g) else 0.0
     pocket = g.pocket_length_mm * g.pocket_width_mm * g.pocket_depth_mm
     window = g.window_length_mm * g.window_width_mm * (g.thickness_mm - g.pocket_depth_mm)
     return bar - pin - pocket - window
@@ -469,12 +604,14 @@ def build(g: GrasperJawGeometry):
     """The jaw bar with its pin hole, back pocket and face window (build123d ``Solid``)."""
     w = g.width_mm / 2
     bar = box(0, -w, 0, g.length_mm, w, g.thickness_mm)
-    pin = cylinder(g.pin_diameter_mm / 2, (g.pin_x_mm, -w, g.thickness_mm / 2), (0, 1, 0),
-                   g.width_mm)
     x0, pw = g.pocket_x0_mm, g.pocket_width_mm / 2
     pocket = box(x0, -pw, 0, x0 + g.pocket_length_mm, pw, g.pocket_depth_mm)
     (cx, cy), wl, ww = g.window_centre_mm, g.window_length_mm / 2, g.window_width_mm / 2
     window = box(cx - wl, cy - ww, g.pocket_depth_mm, cx + wl, cy + ww, g.thickness_mm)
+    if not pin_in_bar(g):  # the pivot behind the heel: the grasper's clevis holds the jaw
+        return cut(bar, pocket, window)
+    pin = cylinder(g.pin_diameter_mm / 2, (g.pin_x_mm, -w, g.thickness_mm / 2), (0, 1, 0),
+                   g.width_mm)
     return cut(bar, pin, pocket, window)
 
 
@@ -521,12 +658,14 @@ def validated_table(key: str, section: type[Section], table: Mapping[str, Any] |
 def design_table(plan, key: str) -> dict[str, Any]:
     """The design's table ``[key]`` of a part in use (``grasper_jaw``, ``grasper_shaft``,
     ``tissue_slab``; empty where the design leaves it out). The shaft takes the jaw's
-    trocar class unless its table states one (the load checks they agree)."""
+    trocar class or stated shaft diameter unless its table states one (the load checks they
+    agree)."""
     raw = getattr(plan, "raw", None) or {}
     table = dict(raw.get(key) or {})
-    jaw_class = (raw.get("grasper_jaw") or {}).get("shaft_class_mm")
-    if key == "grasper_shaft" and "shaft_class_mm" not in table and jaw_class is not None:
-        table["shaft_class_mm"] = jaw_class
+    jaw = raw.get("grasper_jaw") or {}
+    stated = {k: k for k in ("shaft_class_mm",)} | {"outer_diameter_mm": "shaft_diameter_mm"}
+    if key == "grasper_shaft" and not any(k in table for k in stated):
+        table.update({k: jaw[j] for k, j in stated.items() if j in jaw})
     return table
 
 

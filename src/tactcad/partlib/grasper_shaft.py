@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any, Mapping, Optional
 
 from tactcad.kernel.shapes import cut, cylinder
 from tactcad.partlib.base import DrawingRecord, PartData, RigPart, Seat
@@ -31,6 +31,8 @@ class GrasperShaftSection(Section):
     """``[grasper_shaft]``: the shaft tube (mm)."""
 
     shaft_class_mm: choice(SHAFT_CLASSES_MM, why="the trocar the instrument passes") = "10"
+    outer_diameter_mm: Optional[number(2.0, 20.0, why="the tube's diameter; left out: the "
+                                       "class's")] = None
     length_mm: number(100.0, 500.0) = 330.0  # typical 270-360 mm
     wall_mm: number(0.1, 3.0) = 0.5
     material: choice(JAW_STEELS) = JAW_STEELS[1]
@@ -56,7 +58,7 @@ def derive(s: GrasperShaftSection, context, p: Problems) -> PartData:
     Returns:
         The shaft's :class:`PartData`; its bore is the lead channel.
     """
-    od = SHAFT_CLASSES_MM[s.shaft_class_mm]
+    od = shaft_diameter_mm(s)
     p.within("grasper_shaft.wall_mm", s.wall_mm, hi=(od - MIN_BORE_MM) / 2,
              why=f"a lead channel of at least {fmt(MIN_BORE_MM)} mm inside the {fmt(od)} mm tube")
     bore = max(od - 2 * s.wall_mm, MIN_BORE_MM)
@@ -73,6 +75,12 @@ def derive(s: GrasperShaftSection, context, p: Problems) -> PartData:
         attributes={"lead_channel_diameter_mm": bore},
         frames={"distal": Seat((0, 0, 0), (-1, 0, 0), (0, 1, 0)),
                 "proximal": Seat((s.length_mm, 0, 0), (1, 0, 0), (0, 1, 0))})
+
+
+def shaft_diameter_mm(s: GrasperShaftSection) -> float:
+    """The tube's outer diameter (mm): stated, else the class's."""
+    return s.outer_diameter_mm if s.outer_diameter_mm is not None \
+        else SHAFT_CLASSES_MM[s.shaft_class_mm]
 
 
 def shaft_volume_mm3(g: GrasperShaftGeometry) -> float:

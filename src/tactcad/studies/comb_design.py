@@ -42,11 +42,12 @@ import copy
 import math
 from dataclasses import dataclass, replace
 from pathlib import PurePath
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, Sequence
 
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError, DesignErrors
 from tactcad.studies.inverse_design import InverseDesignError, Targets
+from tactcad.partlib.grasper_jaw import SHAFT_CLASSES_MM
 
 #: Sheet thicknesses searched (mm): Ti-6Al-4V and steel sheet of common stock.
 SHEETS_MM = (0.5, 0.6, 0.8, 1.0, 1.2, 1.5)
@@ -149,6 +150,8 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
                          "footprint_mm": [round(room.across_mm, 6), round(room.along_mm, 6)],
                          **({} if grasp is None else {"max_grasp_force_N": grasp})}
     d.pop("files", None)
+    if room.table:  # the jaw's own checks judge every candidate, as they judge the design
+        d["grasper_jaw"] = dict(room.table)
     binding = []
     if arm_m < arm_r + 0.5:
         binding.append(f"the pitch {pitch:g} mm ({columns} columns in the jaw's {room.along_mm:g} mm) "
@@ -445,23 +448,64 @@ def comb_envelope_mm(base: dict, sheet: float, columns: int, room: Any, targets:
 
 
 def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
-                other_rooms: Mapping[str, Any]) -> str:
+                other_rooms: Mapping[str, Any]) -> tuple[str, list[dict]]:
     """A line for a refusal when the pocket is too small across or too shallow for every
-    sheet's comb: the smallest comb's pocket and the first jaw of ``other_rooms`` that
-    holds it (empty when some sheet's comb fits the pocket: something else binds)."""
+    sheet's comb: the smallest comb's pocket, the jaw-file keys that would hold it (a lab's
+    own jaw) and the first jaw of ``other_rooms`` that holds it, with those as pasteable
+    alternatives (empty when some sheet's comb fits the pocket: something else binds)."""
     needs = [(sheet, env) for sheet in SHEETS_MM
              if (env := comb_envelope_mm(base, sheet, columns, room, targets, grade))]
     if not needs or any(env[0] <= room.across_mm and env[2] <= room.height_mm
                         for _, env in needs):
-        return ""
+        return "", []
     sheet, env = min(needs, key=lambda n: (n[1][0], n[1][2]))
     holds = [option for option, other in other_rooms.items()
              if other.across_mm >= env[0] and other.height_mm >= env[2]
              and other.along_mm >= env[1]]
-    where = f"--jaw {holds[0]}" if holds else "a jaw whose [grasper_jaw] pocket holds it"
+    keys = jaw_file_keys_needed(room, env)
+    edit = [f"{' and '.join(k for k, _ in keys)} in {PurePath(room.option).name}"] if keys else []
+    alternatives = [{"option": e, "words": "; ".join(w for _, w in keys)} for e in edit]
+    alternatives += [{"option": f"--jaw {h}", "words": f"the {h} mm class's default jaw holds "
+                      f"the {sheet:g} mm sheet's comb"} for h in holds[:1]]
+    where = " or ".join(edit + [f"--jaw {h}" for h in holds[:1]]) \
+        or "a jaw whose [grasper_jaw] pocket holds it"
     return (f"nearest jaw: a pocket of {env[0]:.3g} mm across and {env[2]:.3g} mm high inside "
             f"its clearances (the {sheet:g} mm sheet's comb, the smallest; this jaw's is "
-            f"{room.across_mm:.3g} x {room.height_mm:.3g} mm): {where}")
+            f"{room.across_mm:.3g} x {room.height_mm:.3g} mm): {where}", alternatives)
+
+
+def jaw_file_keys_needed(room: Any, env: Sequence[float]) -> list[tuple[str, str]]:
+    """The ``[grasper_jaw]`` settings (``key = value`` to write in a lab's own jaw file, with
+    why) that make its pocket hold a comb of envelope ``env`` (across, along, height; mm);
+    none for a class's default jaw (no file to edit)."""
+    table = room.table or {}
+    if not room.option or room.option in SHAFT_CLASSES_MM:
+        return []
+    from tactcad.partlib.grasper_jaw import (GrasperJawSection, bore_mm, jaw_width_mm,
+                                             validated_table, with_class_defaults)
+
+    j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection, table))
+    keys = []
+    if env[2] > room.height_mm + 1e-9:
+        need = math.ceil((j.thickness_mm + env[2] - room.height_mm) * 100) / 100
+        keys.append((f"grasper_jaw.thickness_mm = {need:g}",
+                     f"the comb stands {env[2]:.4g} mm high; the jaw's thickness and the tips' "
+                     f"proud height hold {room.height_mm:.4g} mm"))
+        closed = need + j.opposing_jaw_mm
+        if math.hypot(jaw_width_mm(j), closed) > bore_mm(j):  # the thicker jaw's width
+            widest = math.floor(math.sqrt(max(bore_mm(j) ** 2 - closed ** 2, 0.0)) * 100) / 100
+            keys.append((f"grasper_jaw.width_mm = {widest:g}",
+                         f"the closed jaws ({need:g} + {j.opposing_jaw_mm:g} mm) pass the "
+                         f"{bore_mm(j):g} mm shaft"
+                         + ("" if widest >= env[0] + 2 * room.clearance_mm + 1.0 else
+                            "; too narrow for the comb and its side walls: a larger shaft")))
+    if env[0] > room.across_mm + 1e-9:
+        need = env[0] + 2 * room.clearance_mm
+        keys.append((f"grasper_jaw.pocket_width_mm = {math.ceil(need * 100) / 100:g}",
+                     f"the comb is {env[0]:.4g} mm across its rows, with the pocket's "
+                     f"{room.clearance_mm:g} mm clearance each side (the jaw's width then "
+                     "holds it with its side walls)"))
+    return keys
 
 
 def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
@@ -483,12 +527,13 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
 
 
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
-            columns: int, jaw_line: str = "", fewer_columns: int | None = None
-            ) -> InverseDesignError:
-    """Why no sheet counts, the largest force any carries (a pasteable option) and, when
-    the pocket binds every sheet, the nearest jaw (``jaw_line``, :func:`nearest_jaw`);
-    when the grid binds before any force, the most columns that count (``fewer_columns``,
-    :func:`nearest_columns`)."""
+            columns: int, jaw: tuple[str, list[dict]] = ("", []),
+            fewer_columns: int | None = None) -> InverseDesignError:
+    """Why no sheet counts, the largest force any carries (a pasteable option) or, when
+    the pocket binds every sheet, the nearest jaw (``jaw``, :func:`nearest_jaw`'s line and
+    alternatives: no force helps then); when the grid binds before any force, the most
+    columns that count (``fewer_columns``, :func:`nearest_columns`)."""
+    jaw_line, jaw_alternatives = jaw
     lines = []
     for sheet in SHEETS_MM:  # each sheet's nearest candidate: its largest force margin
         own = [c for c in tried if c.sheet_mm == sheet and c.failures]
@@ -502,13 +547,21 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             f"K_r/K_m {targets.kr_over_km:g}, K_obj {targets.k_obj_range_N_per_mm[0]:g} ... "
             f"{targets.k_obj_range_N_per_mm[1]:g} N/mm at {targets.full_scale_force_N:g} N:\n  "
             + "\n  ".join(lines))
+    if jaw_line:  # the pocket holds no sheet's comb: no force or column count helps
+        first = (jaw_alternatives or [{"option": "--jaw"}])[0]["option"]
+        return InverseDesignError(text + f"\n  {jaw_line}", "--jaw", room.option,
+                                  "a jaw whose pocket holds the comb: " + first,
+                                  alternatives=jaw_alternatives)
     nearest = f"--full-scale-force {max(rated) * 0.99:.3g}" if rated else ""
     option, value = "--full-scale-force", targets.full_scale_force_N
+    words = "the largest full-scale force a comb of this jaw carries (less 1 %)"
     if not nearest and fewer_columns is not None:
         nearest, option, value = f"--columns {fewer_columns}", "--columns", columns
-    text += f"\n  {jaw_line}" if jaw_line else ""
+        words = "the most columns whose comb counts in this jaw"
     return InverseDesignError(text + (f"\n  nearest: {nearest}" if nearest else ""),
-                              option, value, nearest or "a design the jaw holds")
+                              option, value, nearest or "a design the jaw holds",
+                              alternatives=[{"option": nearest, "words": words}] if nearest
+                              else [])
 
 
 def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
