@@ -242,9 +242,6 @@ def _project_files(design_text: str, design_name: str, plan: Plan,
         files[target] = _template(template).substitute(words)
     if purchased_parts is not None:
         files[PURCHASED_PARTS] = purchased_parts
-    elif "rigs" in made:  # the rigs' bought parts, with their sources
-        files[PURCHASED_PARTS] = (EXAMPLES / DEFAULT_EXAMPLE / PURCHASED_PARTS).read_text(
-            encoding="utf-8")
     files[design_name] = _with_files_table(design_text, names)
     return files
 
@@ -265,6 +262,15 @@ def _umask() -> int:
     return mask
 
 
+def purchased_parts_of(design: Path) -> str:
+    """``purchased-parts.md`` for the project of ``design`` (its bought parts from its BOM:
+    :func:`tactcad.export.bom.purchased_parts_markdown`)."""
+    from tactcad.design.project import load_project
+    from tactcad.export.bom import purchased_parts_markdown
+
+    return purchased_parts_markdown(load_project(design))
+
+
 def write_project(folder: str | Path, design_text: str, design_name: str, plan: Plan, *,
                   companions: Mapping[str, str | None] | None = None,
                   purchased_parts: str | None = None, force: bool = False,
@@ -282,7 +288,7 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
             write instead of those made for ``plan`` (the design's own files);
             a construction without test rigs gets no rigs file.
         purchased_parts: the text of ``purchased-parts.md`` (an example's own);
-            None: the test rigs' bought parts where the project has test rigs, else none.
+            None: generated from the project's BOM (its bought parts and consumables).
         force: overwrite the files the folder holds already.
         option: the command's name of the folder, named by a refusal (``new``'s ``DIR``,
             ``design``'s ``--out``).
@@ -297,12 +303,16 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
     """
     folder = Path(folder)
     files = _project_files(design_text, design_name, plan, companions, purchased_parts)
-    _check_target(folder, list(files), force, option)
+    _check_target(folder, list(dict.fromkeys([PURCHASED_PARTS, *files])), force, option)
     staging = staging_dir(folder)
     os.chmod(staging, 0o777 & ~_umask())  # a project folder, not a private temporary one
     try:
         for rel, text in files.items():
             _write_text(staging / rel, text)
+        if PURCHASED_PARTS not in files:  # the project's own bought parts, from its BOM
+            text = purchased_parts_of(staging / design_name)
+            _write_text(staging / PURCHASED_PARTS, text)
+            files = {PURCHASED_PARTS: text, **files}  # the design file stays the last moved
         if not folder.exists():
             os.rename(staging, folder)
         else:  # the design file last: a set cut short is no project

@@ -86,6 +86,8 @@ def test_a_jaw_file_that_states_no_jaw_is_refused_by_name(tmp_path, content, wor
     (["--jaw", "10", "--pitch", "4"], "--pitch"),
     (["--jaw", "10", "--set", "array.pitch_mm=4"], "--set"),
     (["--jaw", "10", "--verify", "beam"], "--verify"),
+    (["--jaw", "10", "--process", "laser-cutting"], "--process"),
+    (["--process", "plasma"], "--process"),
 ])
 def test_a_jaw_design_asked_wrongly_names_the_option(tmp_path, args, option):
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", *args, "--out",
@@ -108,7 +110,7 @@ def test_a_jaw_design_into_a_folder_is_a_project_without_test_rigs_that_verifies
                 "--tissue-poisson", "0.45", "--out", str(folder), "--quiet")
     assert r.returncode == 0, r.stderr
     assert sorted(p.name for p in folder.iterdir()) == [
-        ".github", ".gitignore", "README.md", "our_insert.toml", "scenes.toml"]
+        ".github", ".gitignore", "README.md", "our_insert.toml", "purchased-parts.md", "scenes.toml"]
     text = (folder / "our_insert.toml").read_text(encoding="utf-8")
     header = text.splitlines()[0]
     # the header's command makes the same design: the jaw and the tissue are in it
@@ -227,3 +229,14 @@ def test_a_target_beyond_what_a_design_file_states_is_refused_by_its_option(
             "--out", str(tmp_path / "x.toml")]
     r = run_cli(*argv)
     assert r.returncode == 2 and f"argument {option}" in r.stderr and f"... {limit}" in r.stderr
+
+
+def test_process_is_the_elements_cut_process_of_the_search():
+    import argparse
+
+    from tactcad.commands.design import set_keys
+
+    args = argparse.Namespace(process="photochemical-etching", overrides=["sheet.thickness_mm=0.3"])
+    assert set_keys(args) == {"element.process": "photochemical-etching",
+                              "sheet.thickness_mm": 0.3}
+    assert set_keys(argparse.Namespace(process=None, overrides=None)) == {}

@@ -73,7 +73,7 @@ def test_new_around_a_comb_design_without_scenes_makes_scenes_of_the_insert_only
     design.write_text(re.sub(r"\[files\]\nscenes = .*\n", "", text), encoding="utf-8")
     made = new_project(tmp_path / "p", from_design=design)
     assert set(made.files) == {"p.toml", "scenes.toml", "README.md", ".gitignore",
-                               ".github/workflows/hardware.yml"}
+                               ".github/workflows/hardware.yml", "purchased-parts.md"}
     scenes = tomllib.loads((made.folder / "scenes.toml").read_text(encoding="utf-8"))["scene"]
     assert {s["rig"] for s in scenes.values()} == {"array", "grasper"}
     assert tomllib.loads(made.design.read_text(encoding="utf-8"))["files"] == {
@@ -297,3 +297,24 @@ def test_new_names_the_design_for_its_project_folder(tmp_path):
 def test_a_folder_whose_name_is_no_design_name_keeps_the_examples(tmp_path):
     made = new_project(tmp_path / "my sensor", example="ti_array_2x3")
     assert made.design.name == "ti_array_2x3.toml"
+
+
+def test_a_new_projects_bought_parts_are_its_own_boms(tmp_path):
+    # the Ti design's M2 x 20 clamp bolts and its rigs' force gauge, never the paper's
+    # array's M2 x 30 bolts or its FH 5; a comb's M1.2 screws and dowel pins
+    made = new_project(tmp_path / "ti", from_design=_bare_design(tmp_path))
+    text = (made.folder / "purchased-parts.md").read_text(encoding="utf-8")
+    bom = tactcad.load(made.design)
+    from tactcad.assembly.inventory import design_assemblies
+    from tactcad.export.bom import complete_kit
+
+    bought = [r.part for r in complete_kit(bom, design_assemblies(bom)) if r.kind != "fabricated"]
+    assert bought and all(f"| {part} |" in text for part in bought)
+    assert "bolt_M2x20" in text and "bolt_M2x30" not in text and "FH 5" not in text
+    assert "purchased-parts.md" in made.files and made.files[-1] == "ti.toml"
+    comb = (EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml").read_text(encoding="utf-8")
+    design = tmp_path / "comb.toml"
+    design.write_text(re.sub(r"\[files\]\nscenes = .*\n", "", comb), encoding="utf-8")
+    text = (new_project(tmp_path / "c", from_design=design).folder
+            / "purchased-parts.md").read_text(encoding="utf-8")
+    assert "M1.2" in text and "bolt_M2" not in text

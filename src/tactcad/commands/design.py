@@ -58,6 +58,12 @@ def jaw_of(value: str) -> tuple[str | dict, str]:
     return table, str(path)
 
 
+def process_choices() -> tuple[str, ...]:
+    from tactcad.vocabulary.process import process_names
+
+    return process_names()
+
+
 def construction_choices() -> tuple[str, ...]:
     from tactcad.design.construction_registry import construction_names
 
@@ -94,6 +100,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "(requirements.max_grasp_force_N; not judged when left out)")
     p.add_argument("--material", metavar="GRADE", type=material_grade_name, default=None,
                    help="material grade of the library (default: the base design's material)")
+    p.add_argument("--process", choices=process_choices(), default=None,
+                   help="the cut process of the elements (the registry's: tactcad processes; "
+                        "default: the base design's); the sheet is then searched over the "
+                        "stock that process cuts a flexure from, and every web, hole and slot "
+                        "held to its rules (element.process; not with --jaw, whose comb rows "
+                        "are laid out for wire EDM: the report judges them by every process)")
     p.add_argument("--columns", type=count(1, 100, "columns"), metavar="N", default=None,
                    help="columns of the new grid (2 rows x N; default: the base design's)")
     p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
@@ -313,6 +325,8 @@ JAW_DECIDES = {
     "--pitch": ("pitch", "the pitch is searched inside the jaw's pocket"),
     "--design": ("design", "the base design is the construction's own jaw example"),
     "--set": ("overrides", "the base design is the construction's own jaw example"),
+    "--process": ("process", "the comb's rows, slots and stop gaps are laid out for wire EDM; "
+                             "the report judges the written rows by every process"),
 }
 
 
@@ -548,7 +562,10 @@ def set_keys(args: argparse.Namespace) -> dict[str, Any]:
     """The ``--set`` overrides, by key."""
     from tactcad.commands import parse_overrides
 
-    return parse_overrides(getattr(args, "overrides", None))
+    keys = parse_overrides(getattr(args, "overrides", None))
+    if getattr(args, "process", None) is not None:  # --process NAME is element.process=NAME
+        keys["element.process"] = args.process
+    return keys
 
 
 def fixed_fields(args: argparse.Namespace) -> set[str]:
@@ -693,6 +710,8 @@ def design_options(args: argparse.Namespace) -> list[str]:
              f"--full-scale-force {args.full_scale_force:g}"]
     if getattr(args, "footprint", None) is not None:
         words.append(f"--footprint {args.footprint[0]:g} {args.footprint[1]:g}")
+    if getattr(args, "process", None) is not None:
+        words.append(f"--process {args.process}")
     for flag, value in (("--material", args.material), ("--rows", args.rows),
                         ("--columns", args.columns), ("--pitch", args.pitch)):
         if value is not None:

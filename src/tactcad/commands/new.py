@@ -17,7 +17,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Makes the folder DIR of a sensor project: the design file (naming its "
                     "rigs and scenes files in its [files] table), rigs.toml with samples over "
                     "the design's own K_obj range (N/mm; none for a construction without a "
-                    "mount for the test rigs), scenes.toml, purchased-parts.md, a "
+                    "mount for the test rigs), scenes.toml, purchased-parts.md (the bought "
+                    "parts of the design's BOM; an example's own list for --example), a "
                     "README, a .gitignore (exports, cache) and .github/workflows/hardware.yml "
                     "(export, check --junit, diff). DIR may exist if it holds none of these "
                     "files (a new git repository, say). Builds no geometry.")

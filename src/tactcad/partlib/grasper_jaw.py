@@ -330,6 +330,37 @@ class JawRoom:
         return 0.0 if stretch is None else max(stretch[1] - stretch[0] - 2 * self.clearance_mm,
                                                0.0)
 
+    def file_keys_to_hold(self, env: tuple[float, float, float]) -> list[tuple[str, str]]:
+        """The ``[grasper_jaw]`` settings (``key = value`` to write in a lab's own jaw file,
+        with why) that make its pocket hold an insert of envelope ``env`` (across, along,
+        height; mm): a thicker jaw (and the width that still passes the shaft closed) and a
+        wider pocket; none for a class's default jaw (no file to edit)."""
+        if not self.option or self.option in SHAFT_CLASSES_MM:
+            return []
+        j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection,
+                                                self.table or {}))
+        keys = []
+        if env[2] > self.height_mm + 1e-9:
+            need = math.ceil((j.thickness_mm + env[2] - self.height_mm) * 100) / 100
+            keys.append((f"grasper_jaw.thickness_mm = {need:g}",
+                         f"the insert stands {env[2]:.4g} mm high; the jaw's thickness and the "
+                         f"tips' proud height hold {self.height_mm:.4g} mm"))
+            closed = need + j.opposing_jaw_mm
+            if math.hypot(jaw_width_mm(j), closed) > bore_mm(j):  # the thicker jaw's width
+                widest = math.floor(math.sqrt(max(bore_mm(j) ** 2 - closed ** 2, 0.0)) * 100) / 100
+                roomy = widest >= env[0] + 2 * (self.clearance_mm + MIN_WALL_MM)
+                keys.append((f"grasper_jaw.width_mm = {widest:g}",
+                             f"the closed jaws ({need:g} + {j.opposing_jaw_mm:g} mm) pass the "
+                             f"{bore_mm(j):g} mm shaft" + ("" if roomy else "; too narrow for "
+                                                           "the insert and its side walls: a "
+                                                           "larger shaft")))
+        if env[0] > self.across_mm + 1e-9:
+            need = math.ceil((env[0] + 2 * self.clearance_mm) * 100) / 100
+            keys.append((f"grasper_jaw.pocket_width_mm = {need:g}",
+                         f"the insert is {env[0]:.4g} mm across its rows, with the pocket's "
+                         f"{self.clearance_mm:g} mm clearance each side"))
+        return keys
+
     @property
     def label(self) -> str:
         """The jaw in words: "10 mm jaw", or "10 mm jaw of my_jaw.toml" for a file's."""

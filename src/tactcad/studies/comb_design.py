@@ -42,12 +42,11 @@ import copy
 import math
 from dataclasses import dataclass, replace
 from pathlib import PurePath
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping
 
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError, DesignErrors
 from tactcad.studies.inverse_design import InverseDesignError, Targets
-from tactcad.partlib.grasper_jaw import SHAFT_CLASSES_MM
 
 #: Sheet thicknesses searched (mm): Ti-6Al-4V and steel sheet of common stock.
 SHEETS_MM = (0.5, 0.6, 0.8, 1.0, 1.2, 1.5)
@@ -462,7 +461,7 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
     holds = [option for option, other in other_rooms.items()
              if other.across_mm >= env[0] and other.height_mm >= env[2]
              and other.along_mm >= env[1]]
-    keys = jaw_file_keys_needed(room, env)
+    keys = room.file_keys_to_hold(env)
     edit = [f"{' and '.join(k for k, _ in keys)} in {PurePath(room.option).name}"] if keys else []
     alternatives = [{"option": e, "words": "; ".join(w for _, w in keys)} for e in edit]
     alternatives += [{"option": f"--jaw {h}", "words": f"the {h} mm class's default jaw holds "
@@ -472,40 +471,6 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
     return (f"nearest jaw: a pocket of {env[0]:.3g} mm across and {env[2]:.3g} mm high inside "
             f"its clearances (the {sheet:g} mm sheet's comb, the smallest; this jaw's is "
             f"{room.across_mm:.3g} x {room.height_mm:.3g} mm): {where}", alternatives)
-
-
-def jaw_file_keys_needed(room: Any, env: Sequence[float]) -> list[tuple[str, str]]:
-    """The ``[grasper_jaw]`` settings (``key = value`` to write in a lab's own jaw file, with
-    why) that make its pocket hold a comb of envelope ``env`` (across, along, height; mm);
-    none for a class's default jaw (no file to edit)."""
-    table = room.table or {}
-    if not room.option or room.option in SHAFT_CLASSES_MM:
-        return []
-    from tactcad.partlib.grasper_jaw import (GrasperJawSection, bore_mm, jaw_width_mm,
-                                             validated_table, with_class_defaults)
-
-    j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection, table))
-    keys = []
-    if env[2] > room.height_mm + 1e-9:
-        need = math.ceil((j.thickness_mm + env[2] - room.height_mm) * 100) / 100
-        keys.append((f"grasper_jaw.thickness_mm = {need:g}",
-                     f"the comb stands {env[2]:.4g} mm high; the jaw's thickness and the tips' "
-                     f"proud height hold {room.height_mm:.4g} mm"))
-        closed = need + j.opposing_jaw_mm
-        if math.hypot(jaw_width_mm(j), closed) > bore_mm(j):  # the thicker jaw's width
-            widest = math.floor(math.sqrt(max(bore_mm(j) ** 2 - closed ** 2, 0.0)) * 100) / 100
-            keys.append((f"grasper_jaw.width_mm = {widest:g}",
-                         f"the closed jaws ({need:g} + {j.opposing_jaw_mm:g} mm) pass the "
-                         f"{bore_mm(j):g} mm shaft"
-                         + ("" if widest >= env[0] + 2 * room.clearance_mm + 1.0 else
-                            "; too narrow for the comb and its side walls: a larger shaft")))
-    if env[0] > room.across_mm + 1e-9:
-        need = env[0] + 2 * room.clearance_mm
-        keys.append((f"grasper_jaw.pocket_width_mm = {math.ceil(need * 100) / 100:g}",
-                     f"the comb is {env[0]:.4g} mm across its rows, with the pocket's "
-                     f"{room.clearance_mm:g} mm clearance each side (the jaw's width then "
-                     "holds it with its side walls)"))
-    return keys
 
 
 def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
