@@ -39,7 +39,9 @@ from typing import Any, Callable, Iterator, Mapping, Sequence, TypeVar
 from tactcad.atomic import write_bytes_atomic
 
 #: Default store folder, relative to the working directory (git-ignored).
-DEFAULT_STORE = Path(".tactcad-cache")
+#: The store's folder name in a project (the working folder's by default).
+STORE_FOLDER = ".tactcad-cache"
+DEFAULT_STORE = Path(STORE_FOLDER)
 
 STACK_PACKAGES = ("build123d", "cadquery", "cadquery-ocp", "ezdxf", "trimesh", "manifold3d",
                   "numpy", "scipy", "scikit-fem", "gmsh", "svglib", "reportlab", "pypdfium2",

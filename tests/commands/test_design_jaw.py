@@ -240,3 +240,21 @@ def test_process_is_the_elements_cut_process_of_the_search():
     assert set_keys(args) == {"element.process": "photochemical-etching",
                               "sheet.thickness_mm": 0.3}
     assert set_keys(argparse.Namespace(process=None, overrides=None)) == {}
+
+
+def test_design_keeps_its_fem_results_in_the_project_it_writes(tmp_path):
+    # verify run in the project right after design solves nothing again
+    import argparse
+
+    from tactcad.commands import store_from_args
+    from tactcad.commands.design import project_store
+
+    def store(out, cache=None):
+        return store_from_args(argparse.Namespace(no_cache=False, cache=cache, out=str(out),
+                                                  default_store=project_store)).root
+
+    assert store(tmp_path / "palp") == tmp_path / "palp" / ".tactcad-cache"
+    assert store(tmp_path / "d" / "new.toml") == tmp_path / "d" / ".tactcad-cache"
+    assert store(tmp_path / "palp", cache=str(tmp_path / "c")) == tmp_path / "c"
+    assert store_from_args(argparse.Namespace(no_cache=False, cache=None)).root != \
+        tmp_path / "palp" / ".tactcad-cache"  # other commands: the working folder's

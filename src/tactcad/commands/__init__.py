@@ -150,23 +150,29 @@ def load_from_args(args: argparse.Namespace):
         raise exc.sourced({parse_override(t)[0]: f"--set {t}" for t in texts}) from None
 
 
-def add_cache_args(p: argparse.ArgumentParser) -> None:
+def add_cache_args(p: argparse.ArgumentParser,
+                   default_words: str = ".tactcad-cache in the working folder") -> None:
     """``--cache DIR`` and ``--no-cache``: the store of finished export jobs and
     of the estimators' heavy results (FEM solves, :func:`tactcad.store.kept_result`),
     for a command that exports or runs the estimators (not ``bench``, which
     measures what each solve costs)."""
     p.add_argument("--cache", metavar="DIR", default=None,
                    help="store of finished export jobs and FEM results, reused when nothing "
-                        "that shapes them changed (default: .tactcad-cache in the working "
-                        "folder)")
+                        f"that shapes them changed (default: {default_words})")
     p.add_argument("--no-cache", action="store_true",
                    help="build, write and solve everything afresh; read and write no store")
 
 
 def store_from_args(args: argparse.Namespace):
-    """The :class:`tactcad.store.Store` the options ask for."""
+    """The :class:`tactcad.store.Store` the options ask for: ``--cache DIR``, none with
+    ``--no-cache``, else the command's own default (``args.default_store(args)``: the
+    project folder ``design --out DIR`` writes) or :data:`tactcad.store.DEFAULT_STORE`."""
     from tactcad.store import DEFAULT_STORE, Store
 
     if args.no_cache:
         return Store(None)
-    return Store(Path(args.cache) if args.cache else DEFAULT_STORE)
+    if args.cache:
+        return Store(Path(args.cache))
+    # a command that writes a project keeps its results where the project's commands look
+    default = getattr(args, "default_store", None)
+    return Store(default(args) if default is not None else DEFAULT_STORE)

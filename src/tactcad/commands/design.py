@@ -154,9 +154,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "~1 min; not with --jaw, whose design the checks that need no CAD "
                         "kernel check: run tactcad verify on it)")
     add_design_arg(p)
-    add_cache_args(p)
+    add_cache_args(p, ".tactcad-cache in the folder the design is written to, where the "
+                      "project's commands find it")
     add_output_args(p, "print JSON")
-    p.set_defaults(func=run)
+    p.set_defaults(func=run, default_store=project_store)
 
 
 #: Folders whose whole tree a design file is never written into (the
@@ -239,6 +240,16 @@ def check_output_path(out: str, force: bool) -> Path:
     if not os.access(path if path.exists() else folder, os.W_OK):
         raise DesignError("--out", out, "a writable file in a writable folder")
     return path
+
+
+def project_store(args: argparse.Namespace) -> Path:
+    """Where ``design`` keeps its FEM results without ``--cache``: the store of the folder
+    the design is written to (``--out DIR``, or the folder of ``--out NEW.toml``), so
+    ``verify`` run in that folder right after solves nothing again."""
+    from tactcad.store import STORE_FOLDER
+
+    out = Path(args.out)
+    return (out if not args.out.endswith(".toml") else out.parent) / STORE_FOLDER
 
 
 def run(args: argparse.Namespace) -> int:

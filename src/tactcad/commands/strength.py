@@ -73,7 +73,8 @@ def run(args: argparse.Namespace) -> int:
           f"{s.gauge.fatigue_strain * 1e6:.0f} microstrain)")
     load = reference_load_of(plan)  # the paper's study load: its design only
     print(f"rated full-scale force F_fs {judged['full_scale_force_N']:g} N; F_yield: the "
-          f"element's yield-limited force; SF, ue, tip: at F_fs")
+          f"force at yield / safety factor {s.safety_factor:g}; SF: yield over the web's "
+          f"stress at F_fs (met when >= {s.safety_factor:g}); SF, ue, tip: at F_fs")
     print(f"{'el':>3} {'arm mm':>6} {'MPa/N':>7} {'K_t':>5} {'F_yield N':>9} {'SF':>5} "
           f"{'ue at F_fs':>10} {'tip um':>7}"
           + (f" {f'MPa at {load.force_N:g} N':>10}" if load else ""))

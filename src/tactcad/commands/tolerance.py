@@ -156,16 +156,19 @@ def print_report(report, name: str, wall_s: float) -> None:
               f"{e['K_mean_N_per_mm']:8.3f} {e['K_std_N_per_mm']:7.3f} "
               f"({100 * e['K_rel_std']:4.1f} %)  [{e['K_p2_5_N_per_mm']:.3f}, "
               f"{e['K_p97_5_N_per_mm']:.3f}]")
-    print("units (measuring/reference): R and reported K_obj at each true K_obj "
+    print("units (reference/measuring): R and reported K_obj at each true K_obj "
           "(eq. 3 with nominal K_m, K_r)")
     print(f"  {'unit':>6} {'K_obj':>6} {'R nom':>7} {'R mean':>7} {'R std':>6}  "
           f"{'K_obj mean':>10} {'std':>6} {'95 % interval':>17} {'out of eq.3':>11}")
+    from tactcad.in_use.tissue_coupling import unit_label
+
     for u in report.units:
         r, k = u["R"], u["K_obj_reported_N_per_mm"]
         interval = (f"[{k['p2_5']:.2f}, {k['p97_5']:.2f}]" if k["mean"] is not None
                     else "n/a")
         mean = f"{k['mean']:10.3f} {k['std']:6.3f}" if k["mean"] is not None else f"{'n/a':>17}"
-        print(f"  {u['measuring']:>3}/{u['reference']:<2} {u['K_obj_true_N_per_mm']:6.2f} "
+        label = unit_label((u["measuring"], u["reference"]))  # as every command names it
+        print(f"  {label:>6} {u['K_obj_true_N_per_mm']:6.2f} "
               f"{u['R_nominal']:7.4f} {r['mean']:7.4f} {r['std']:6.4f}  {mean} {interval:>17} "
               f"{100 * u['fraction_outside_eq3_domain']:10.1f}%")
     print("web tolerance that keeps K within +/-5 % (design tolerance in brackets):")
