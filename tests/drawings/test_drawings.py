@@ -544,3 +544,18 @@ def test_envelope_note_gives_the_footprint_margin(plan):
                                         "footprint_mm": [env[0] + 2.0, env[1] + 0.5]}}
     note = envelope_note(plan_from_dict(raw))
     assert "required footprint" in note and "margin X 2, Y 0.5 mm" in note
+
+
+def test_a_combs_slot_map_names_the_row_sheets_dxf_the_export_writes():
+    # the slot map named element_a2mm_qty5.dxf; the shop cuts a comb's elements from the
+    # row sheet's DXF (comb_row1_qty1.dxf), the file the export writes
+    from tactcad.catalogue.files import profile_dxf_name
+    from tactcad.design.array_plan import EXAMPLES
+    from tactcad.design.project import load_project
+    from tactcad.drawings.assembly import slot_map
+
+    comb_plan = load_project(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml").plan
+    written = {profile_dxf_name(sh.part_name, 1).split("/")[-1] for sh in comb_plan.comb.sheets}
+    rows = slot_map(comb_plan)
+    assert {r["dxf"] for r in rows} == written
+    assert all(r["part"] == f"comb_row{r['row']}" for r in rows)

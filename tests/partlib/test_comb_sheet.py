@@ -89,14 +89,20 @@ def test_each_stop_cut_wider_than_its_gap_gets_a_shim_that_leaves_the_gap(plan):
 def test_the_sheets_drawing_and_the_build_book_name_each_shim(plan):
     from types import SimpleNamespace
 
+    from tactcad.drawings.part_sets import PEN
     from tactcad.partlib.array.comb_sheet import notes, stacking_notes
 
     sheet = plan.comb.sheets[0]
-    pen = SimpleNamespace(fmt_mm=lambda x: f"{x:g}", sentence=lambda p: str(p))
     spec = SimpleNamespace(geometry=sheet, process="wire EDM", material="Ti")
-    text = " ".join(notes(SimpleNamespace(spec=spec), pen))
+    text = " ".join(notes(SimpleNamespace(spec=spec, plan=plan), PEN))
     assert f"shim {sheet.shims_mm[0]:g}" in text and f"cut {sheet.cut_gaps_mm[0]:g}" in text
     assert "feeler" in " ".join(stacking_notes(None))
+    # each run of like columns with its arm, web and tip, each with its tolerance
+    e, tol = sheet.elements[0], PEN.tolerances(plan)
+    assert f"arm {PEN.plus_minus(e.arm_length_mm, tol.arm_length_mm)}" in text
+    assert f"web {PEN.web_text(e)}" in text and "±" in PEN.web_text(e)
+    assert f"tip {PEN.plus_minus(e.tip_width_mm, tol.contact_face_mm)} wide" in text
+    assert f"columns 1-{len(sheet.elements)}" in text.lower() and "pitch" in text
 
 
 def test_the_spacer_has_its_own_process_and_its_shop_file(plan):

@@ -75,13 +75,20 @@ def stack_order(plan: Plan) -> dict[int, list[str]]:
 
 def slot_map(plan: Plan) -> list[dict]:
     """One row per element: slot (= element number), row and column (1-based),
-    part, arm length (mm), DXF file of its profile, orientation."""
+    the part that carries it (the element, or a comb's row sheet), arm length (mm), the DXF
+    file the shop cuts it from (its profile's, or its row sheet's: the files the export
+    writes, :func:`tactcad.catalogue.files.profile_dxf_name`), orientation."""
+    sheets = {sh.row: sh.part_name for sh in plan.comb.sheets} if plan.comb is not None else {}
+
+    def carrier(s) -> str:
+        return sheets.get(s.row, s.geometry.part_name)
+
     counts: dict[str, int] = {}
-    for s in plan.slots:
-        counts[s.geometry.part_name] = counts.get(s.geometry.part_name, 0) + 1
+    for s in plan.slots:  # a row sheet is one part, whatever it carries
+        counts[carrier(s)] = 1 if s.row in sheets else counts.get(carrier(s), 0) + 1
     rows = []
     for s in sorted(plan.slots, key=lambda s: s.number):
-        part = s.geometry.part_name
+        part = carrier(s)
         rows.append({"slot": s.number, "row": s.row + 1, "column": s.column + 1, "part": part,
                      "arm_mm": fmt_mm(s.geometry.arm_length_mm),
                      "dxf": profile_dxf_name(part, counts[part]).split("/")[-1],

@@ -228,8 +228,62 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
     return tuple(out)
 
 
+def dimensions(d, solid, pen) -> None:
+    """The general set (overall sizes one tier out, holes, radii) and, on the tier nearest
+    the part, the first column's arm (notch centre to tip centre, with its tolerance) chained
+    to the pitch of the next tip centre; each column's web, tip and stop gap are in the
+    notes (:func:`element_lines`)."""
+    pen.generic_dims(d, solid, top_k=1)
+    sheet, f = d.spec.geometry, d.front
+    tol = pen.tolerances(d.plan)
+    top = max(e.tip_top_y_mm for e in sheet.elements)
+    first = sheet.elements[0]
+    hinge = sheet.offsets_mm[0] + first.hinge_x_mm
+    tip = sheet.offsets_mm[0] + first.tip_centre_x_mm
+    pen.dim(d, f, (hinge, top), (tip, top), "h", "top", 0,
+            pen.plus_minus(first.arm_length_mm, tol.arm_length_mm), "arm_length")
+    if len(sheet.elements) > 1:
+        nxt = sheet.offsets_mm[1] + sheet.elements[1].tip_centre_x_mm
+        pen.dim(d, f, (tip, top), (nxt, top), "h", "top", 0, pen.fmt_mm(nxt - tip), "pitch")
+
+
+def element_lines(d, pen) -> list[str]:
+    """The sheet's elements as the shop makes and inspects them: each run of like columns
+    with its arm (tip centre to notch centre), web and notch, tip and stop gap, each with the
+    tolerance the design's table gives it (the tolerance study's), and the pitch of the tip
+    centres (its general tolerance)."""
+    sheet = d.spec.geometry
+    tol = pen.tolerances(d.plan)
+    gaps = sheet.stop_gaps_mm or sheet.cut_gaps_mm
+    keys = [(e.arm_length_mm, e.web_thickness_mm, e.web_tolerance_mm, e.notch_radius_mm,
+             e.tip_width_mm, e.tip_height_mm, gap) for e, gap in zip(sheet.elements, gaps)]
+    runs: list[list[int]] = []
+    for i, key in enumerate(keys):
+        if runs and keys[runs[-1][-1]] == key:
+            runs[-1].append(i)
+        else:
+            runs.append([i])
+    lines = []
+    for run in runs:
+        e, gap = sheet.elements[run[0]], gaps[run[0]]
+        cols = (f"column {run[0] + 1}" if len(run) == 1
+                else f"columns {run[0] + 1}-{run[-1] + 1}")
+        lines.append(f"{pen.sentence(cols)}: arm {pen.plus_minus(e.arm_length_mm, tol.arm_length_mm)}"
+                     f" (notch centre to tip centre), web {pen.web_text(e)} in notch "
+                     f"R{pen.fmt_mm(e.notch_radius_mm)} ±{pen.fmt_mm(tol.notch_radius_mm)}, "
+                     f"tip {pen.plus_minus(e.tip_width_mm, tol.contact_face_mm)} wide x "
+                     f"{pen.fmt_mm(e.tip_height_mm)}, stop gap {pen.fmt_mm(gap)} at the arm's end.")
+    centres = [off + e.tip_centre_x_mm for off, e in zip(sheet.offsets_mm, sheet.elements)]
+    steps = {round(b - a, 6) for a, b in zip(centres, centres[1:])}
+    if len(steps) == 1:
+        lines.append(f"Tip centres at a pitch of {pen.fmt_mm(steps.pop())} mm "
+                     f"({len(centres)} tips; general tolerance).")
+    return lines
+
+
 def notes(d, pen) -> list[str]:
-    """The comb sheet's notes: the process, the stops and the holes' fits."""
+    """The comb sheet's notes: the process, each run of like elements with its tolerances,
+    the stops and the holes' fits."""
     sheet = d.spec.geometry
     gaps = sheet.stop_gaps_mm or sheet.cut_gaps_mm
     stops = ", ".join(pen.fmt_mm(gap) + (f" (cut {pen.fmt_mm(cut)}, shim {pen.fmt_mm(shim)})"
@@ -237,6 +291,7 @@ def notes(d, pen) -> list[str]:
                       for gap, cut, shim in zip(gaps, sheet.cut_gaps_mm, sheet.shims_mm))
     return [f"{pen.sentence(d.spec.process)}, {d.spec.material}, sheet "
             f"{pen.fmt_mm(sheet.thickness_mm)}: {len(sheet.elements)} elements on one spine.",
+            *element_lines(d, pen),
             f"Stop gaps under the arms' ends, element by element: {stops}; a gap narrower "
             f"than the wire's slot is cut at the slot and closed to the stop gap by a shim "
             f"bonded on the ledge under the tip.",
@@ -244,8 +299,8 @@ def notes(d, pen) -> list[str]:
 
 
 def plan_values(plan, spec, pen) -> tuple:
-    """What of the plan the drawing prints: the comb and the sheet."""
-    return (plan.comb, plan.sheet_thickness_mm)
+    """What of the plan the drawing prints: the comb, the sheet and the tolerance table."""
+    return (plan.comb, plan.sheet_thickness_mm, pen.tolerances(plan))
 
 
 def stacking_notes(book) -> tuple[str, ...]:
@@ -261,7 +316,8 @@ def stacking_notes(book) -> tuple[str, ...]:
 
 
 PART = ArrayPart(key="comb_sheet", build=build, specs=specs, order=5,
-                 drawing=DrawingRecord(notes_of=notes, plan_values=plan_values),
+                 drawing=DrawingRecord(dimensions=dimensions, notes_of=notes,
+                                       plan_values=plan_values),
                  assembly=BuildStep("comb-rows", "Stack the comb's rows on their dowels and set "
                                     "the hard stops",
                                     tools=lambda book: ("flat granite or glass plate",
