@@ -605,7 +605,8 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
     return PartData(
         name="grasper_jaw", kind="fabricated",
         process=Process("bought-in grasper jaw, machined for the insert: pocket and tip window by "
-                        "wire EDM and milling, pin hole reamed", Method.BAR),
+                        "wire EDM and milling" + (", pin hole reamed" if pin_in_bar(g) else ""),
+                        Method.BAR),
         material=j.material, color=COLOR,
         expected_volume_mm3=jaw_volume_mm3(g), expected_bbox_mm=(0.0, -width / 2, 0.0,
                                                                 j.length_mm, width / 2,
@@ -647,11 +648,50 @@ def build(g: GrasperJawGeometry):
 
 
 def notes_after(g: GrasperJawGeometry, pen) -> list[str]:
-    """The drawing's notes after the process note: the insert's fit."""
-    return [f"The insert goes into the {pen.fmt_mm(g.pocket_length_mm)} x "
-            f"{pen.fmt_mm(g.pocket_width_mm)} mm pocket from the back; its contact faces stand "
+    """The drawing's notes after the process note: the pocket's depth and the face wall, the
+    insert's fit and the pivot (its pin hole, or the clevis behind the heel)."""
+    wall = g.thickness_mm - g.pocket_depth_mm
+    pivot = (f"Pin hole Ø{pen.fmt_mm(g.pin_diameter_mm)} H7 across the jaw, its axis "
+             f"{pen.fmt_mm(g.pin_x_mm)} mm from the heel at mid-height "
+             f"({pen.fmt_mm(g.thickness_mm / 2)} mm), reamed for the grasper's pivot pin."
+             if pin_in_bar(g) else
+             f"The pivot lies {pen.fmt_mm(-g.pin_x_mm)} mm behind the heel in the grasper's "
+             "clevis: no pin hole in the jaw.")
+    return [f"Pocket {pen.fmt_mm(g.pocket_length_mm)} x {pen.fmt_mm(g.pocket_width_mm)} mm, "
+            f"{pen.fmt_mm(g.pocket_depth_mm)} mm deep from the back, leaving a "
+            f"{pen.fmt_mm(wall)} mm face wall; the window "
+            f"{pen.fmt_mm(g.window_length_mm)} x {pen.fmt_mm(g.window_width_mm)} mm through it.",
+            f"The insert goes into the pocket from the back; its contact faces stand "
             f"{pen.fmt_mm(g.tip_proud_mm)} mm proud of the jaw face through the window.",
-            "Pin hole reamed H7 for the grasper's pivot pin."]
+            pivot]
+
+
+def dimensions(d, solid, pen) -> None:
+    """The general set one tier out, and in the view of the jaw's face: the pocket (from the
+    heel, along and across) and the window (from the heel, along and across), each on its own
+    tier. Seen from another side (a jaw thinner than it is wide is seen on its face), the
+    pocket and window are in the notes only."""
+    g, f = d.spec.geometry, d.front
+    u0, v0, u1, v1 = f.bbox
+    face_view = (abs(u0) < 1e-6 and abs(u1 - g.length_mm) < 1e-6
+                 and abs((v1 - v0) - g.width_mm) < 1e-6)
+    pen.generic_dims(d, solid, top_k=2 if face_view else 0, right_k=2 if face_view else 0)
+    if not face_view:
+        return
+    x0, x1 = g.pocket_x0_mm, g.pocket_x0_mm + g.pocket_length_mm
+    (cx, cy), wl, ww = g.window_centre_mm, g.window_length_mm / 2, g.window_width_mm / 2
+    pw = g.pocket_width_mm / 2
+    pen.dim(d, f, (0.0, v1), (x0, v1), "h", "top", 0, pen.fmt_mm(x0), "pocket_from_heel")
+    pen.dim(d, f, (x0, pw), (x1, pw), "h", "top", 0, pen.fmt_mm(g.pocket_length_mm),
+            "pocket_length")
+    pen.dim(d, f, (0.0, v1), (cx - wl, cy + ww), "h", "top", 1, pen.fmt_mm(cx - wl),
+            "window_from_heel")
+    pen.dim(d, f, (cx - wl, cy + ww), (cx + wl, cy + ww), "h", "top", 1,
+            pen.fmt_mm(g.window_length_mm), "window_length")
+    pen.dim(d, f, (x1, -pw), (x1, pw), "v", "right", 0, pen.fmt_mm(g.pocket_width_mm),
+            "pocket_width")
+    pen.dim(d, f, (cx + wl, cy - ww), (cx + wl, cy + ww), "v", "right", 1,
+            pen.fmt_mm(g.window_width_mm), "window_width")
 
 
 
@@ -713,4 +753,5 @@ def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> Pa
 
 
 IN_USE_PART = RigPart(key="grasper_jaw", section=GrasperJawSection, host="", derive=derive, build=build,
-              drawing=DrawingRecord(hole_table=False, notes_after=notes_after))
+              drawing=DrawingRecord(hole_table=False, notes_after=notes_after,
+                                    dimensions=dimensions))

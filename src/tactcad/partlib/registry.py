@@ -142,9 +142,10 @@ def array_parts_for(tables: Iterable[str]) -> list[ArrayPart]:
 
 
 def drawing_record(builder_key: str) -> DrawingRecord | None:
-    """The drawing of the part module whose own builder is ``builder_key``;
-    None for a bought part, a companion or an unknown key."""
-    part = next((p for p in part_modules() if p.builder_key == builder_key), None)
+    """The drawing of the part module (a rig's, the array's or one in use) whose own
+    builder is ``builder_key``; None for a bought part, a companion or an unknown key."""
+    modules = (*part_modules(), *in_use_parts().values())  # the jaw is drawn as any made part
+    part = next((p for p in modules if p.builder_key == builder_key), None)
     return part.drawing if part is not None else None
 
 
