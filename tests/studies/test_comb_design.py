@@ -118,3 +118,30 @@ def test_the_design_jaw_bench_prints_each_forces_seconds_and_answer():
     assert run["found"] and run["seconds"] > 0 and run["counted"] >= 1
     lines = design_jaw_lines(figures)
     assert lines[1].startswith("  0.05 N:") and "mm sheet" in lines[1]
+
+
+def test_every_stop_engages_below_its_elements_fatigue_limits_or_says_the_least_gap_binds(found):
+    # the measuring stops engaged at 1.3 x the rating, past their fatigue limits
+    from tactcad.design.comb_plan import MIN_SET_GAP_MM
+    from tactcad.mechanics.hard_stops import stop_verdicts
+
+    verdicts = stop_verdicts(found.plan, 0.05)
+    assert verdicts and all(v.engages_between for v in verdicts)
+    for v in verdicts:
+        assert v.below_fatigue or v.gap_mm == pytest.approx(MIN_SET_GAP_MM), v
+    reason = found.data["assumptions"]["comb.stop_gaps_mm"]
+    past = [v for v in verdicts if not v.below_fatigue]
+    assert ("the least gap binds" in reason) == bool(past)
+    assert all(f"element {v.element} at" in reason for v in past)
+
+
+@pytest.mark.parametrize("multiple, rated, fatigue, expected", [
+    (1.3, 1.0, 2.0, 1.3),  # the multiple comes first
+    (1.3, 1.0, 1.2, 1.1),  # midway to the fatigue limit
+    (1.3, 1.0, 0.9, 1.3),  # no fatigue limit above the rating: the multiple
+])
+def test_a_stop_engages_at_the_multiple_or_midway_to_the_fatigue_limit(multiple, rated, fatigue,
+                                                                         expected):
+    from tactcad.mechanics.hard_stops import engagement_force_N
+
+    assert engagement_force_N(multiple, rated, fatigue) == pytest.approx(expected)

@@ -14,6 +14,7 @@ safety factor). Units: mm, N, N/mm.
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass
 
 from tactcad.design.array_plan import HardStop, Plan
@@ -34,6 +35,10 @@ class StopVerdict:
         yield_tip_mm: the tip's deflection at the yield-limited force.
         stiffness_N_per_mm: the element's stiffness at the model.
         engages_between: True when rated < engagement < yield.
+        fatigue_tip_mm: the tip's deflection at the element's lowest fatigue limit (the
+            material's at the notch, the gauge's fatigue strain), inf without one.
+        fatigue_limit: which fatigue limit that is (``material fatigue``, ``gauge
+            fatigue``; "" without one).
     """
 
     element: int
@@ -45,14 +50,43 @@ class StopVerdict:
     yield_tip_mm: float
     stiffness_N_per_mm: float
     engages_between: bool
+    fatigue_tip_mm: float = math.inf
+    fatigue_limit: str = ""
 
     @property
     def multiple_of_rated(self) -> float:
         """Engagement travel over the rated deflection."""
         return self.engage_tip_mm / self.rated_tip_mm
 
+    @property
+    def engage_force_N(self) -> float:
+        """The force on the element (N) when its stop engages."""
+        return self.engage_tip_mm * self.stiffness_N_per_mm
+
+    @property
+    def below_fatigue(self) -> bool:
+        """True when the stop engages below the element's every fatigue limit: an overload
+        it stops never cycles the element past them."""
+        return self.engage_tip_mm < self.fatigue_tip_mm
+
     def as_json(self) -> dict:
-        return {**asdict(self), "multiple_of_rated": self.multiple_of_rated}
+        return {**asdict(self), "fatigue_tip_mm": _finite(self.fatigue_tip_mm),
+                "multiple_of_rated": self.multiple_of_rated,
+                "engage_force_N": self.engage_force_N, "below_fatigue": self.below_fatigue}
+
+
+def _finite(x: float) -> float | None:
+    return x if math.isfinite(x) else None
+
+
+def fatigue_limit_N(record) -> tuple[float, str]:
+    """(the element's lowest fatigue-limited force (N), which limit) of a strength record
+    (:class:`tactcad.mechanics.element_strength.ElementStrength`): the material's fatigue
+    strength at the notch or the gauge's fatigue strain; (inf, "") without either."""
+    limits = [(f, w) for f, w in ((record.fatigue_force_N, "material fatigue"),
+                                  (record.gauge_fatigue_force_N, "gauge fatigue"))
+              if f is not None and math.isfinite(f)]
+    return min(limits, default=(math.inf, ""))
 
 
 def engagement_travel_mm(stop: HardStop, arm_length_mm: float) -> float:
@@ -90,9 +124,19 @@ def stop_verdicts(plan: Plan, full_scale_force_N: float,
         engage = engagement_travel_mm(stop, plan.element(stop.element).geometry.arm_length_mm)
         rated = full_scale_force_N / r.stiffness_N_per_mm
         yielded = r.yield_limited_force_N / r.stiffness_N_per_mm
+        fatigue_N, fatigue = fatigue_limit_N(r)
         out.append(StopVerdict(stop.element, stop.kind, stop.gap_mm, stop.cut_mm, engage, rated,
-                               yielded, r.stiffness_N_per_mm, rated < engage < yielded))
+                               yielded, r.stiffness_N_per_mm, rated < engage < yielded,
+                               fatigue_N / r.stiffness_N_per_mm, fatigue))
     return out
+
+
+def engagement_force_N(multiple: float, rated_N: float, fatigue_N: float) -> float:
+    """The force (N) a stop is set to engage at: ``multiple`` x the rating, or midway between
+    the rating and the element's lowest fatigue limit where that is lower (an overload the
+    stop takes then never cycles the element past its fatigue limits)."""
+    return min(multiple * rated_N, (rated_N + fatigue_N) / 2) if fatigue_N > rated_N \
+        else multiple * rated_N
 
 
 def stop_gap_for(multiple: float, rated_tip_mm: float, stop: HardStop,

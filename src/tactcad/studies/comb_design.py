@@ -17,9 +17,10 @@ name its sizes); what the search sets:
 * the webs: each solved at the closed form for K_m = s sqrt(K_lo K_hi / X) and K_r = X K_m
   (eq. 2's centre, each tip on its own object spring, scaled by s of :data:`KM_SCALES`: a
   stiffer pair carries more force while verify still reads the K_obj range), to 1 µm;
-* the hard stops: engaging at :data:`STOP_MULTIPLE` x the rated deflection
-  (:func:`tactcad.mechanics.hard_stops.stop_gap_for`), a shim no thinner than the comb's
-  thinnest;
+* the hard stops: engaging at :data:`STOP_MULTIPLE` x the rated deflection, or midway to
+  the element's lowest fatigue limit where that comes first
+  (:func:`tactcad.mechanics.hard_stops.engagement_force_N`), a shim no thinner than the
+  comb's thinnest;
 * the pairing: by column, each reference beside its measuring element (one radius);
 * the fasteners, once the sheet and K_m are chosen: of the miniature screws
   (:data:`tactcad.vocabulary.standards.MINIATURE_SCREWS`) and ISO 8734 dowels, the largest
@@ -162,7 +163,8 @@ def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tup
     """``d`` with every web solved for its K target and every stop gap set (see the module
     doc); the binding limits when a web or the plan is refused."""
     from tactcad.design.comb_plan import MIN_SET_GAP_MM
-    from tactcad.mechanics.hard_stops import stop_gap_for
+    from tactcad.mechanics.element_strength import plan_strength
+    from tactcad.mechanics.hard_stops import engagement_force_N, fatigue_limit_N, stop_gap_for
 
     plan = plan_from_dict(d)
     columns = plan.columns
@@ -181,12 +183,14 @@ def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tup
     d["comb"]["web_thicknesses_mm"] = [webs[0]] * columns + [webs[1]] * columns
     plan = plan_from_dict(d)
     gaps = []
+    force = targets.full_scale_force_N
+    strength = {r.element: r for r in plan_strength(plan, force, "closed-form")}
     for stop in plan.hard_stops:
         g = plan.element(stop.element).geometry
-        from tactcad.mechanics.closed_form import estimate_closed_form
-
-        k = estimate_closed_form(g, plan.material).stiffness_N_per_mm
-        gap = stop_gap_for(STOP_MULTIPLE, targets.full_scale_force_N / k, stop, g.arm_length_mm)
+        r = strength[stop.element]
+        k = r.stiffness_N_per_mm
+        engage_N = engagement_force_N(STOP_MULTIPLE, force, fatigue_limit_N(r)[0])
+        gap = stop_gap_for(engage_N / force, force / k, stop, g.arm_length_mm)
         gaps.append(max(math.ceil(gap / WEB_STEP_MM - 1e-9) * WEB_STEP_MM, MIN_SET_GAP_MM))
     d["comb"]["stop_gaps_mm"] = [round(x, 6) for x in gaps]
     return d, []
@@ -529,6 +533,27 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
                               else [])
 
 
+def stop_reason(plan: Any, force_N: float) -> str:
+    """Why the stop gaps are what they are, with where each kind of stop engages: the rule
+    (:func:`tactcad.mechanics.hard_stops.engagement_force_N`), the least gap a shim sets, and
+    any stop that still engages past a fatigue limit (which binds)."""
+    from tactcad.design.comb_plan import MIN_SET_GAP_MM
+    from tactcad.mechanics.hard_stops import stop_verdicts
+
+    verdicts = stop_verdicts(plan, force_N)
+    multiples = sorted({round(v.multiple_of_rated, 2) for v in verdicts})
+    over = [v for v in verdicts if not v.below_fatigue]
+    words = (f"Each stop engages at {STOP_MULTIPLE:g} x its element's rated deflection, or "
+             f"midway to the element's lowest fatigue limit where that comes first, rounded up "
+             f"to 1 µm and no thinner than the {MIN_SET_GAP_MM:g} mm a shim sets: "
+             f"{', '.join(f'{m:g}' for m in multiples)} x the rating as built.")
+    if over:
+        words += (" Past a fatigue limit (the least gap binds): " + "; ".join(
+            f"element {v.element} at {v.engage_force_N:.4g} N ({v.fatigue_limit} "
+            f"{v.fatigue_tip_mm * v.stiffness_N_per_mm:.4g} N)" for v in over) + ".")
+    return words
+
+
 def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
           columns: int, fasteners: tuple[FastenerTry, ...] = ()) -> dict:
     """The chosen tables with their name, description and every reason."""
@@ -569,9 +594,7 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
             f"N/mm (eq. 2's centre scaled by the least of {', '.join(f'{k:g}' for k in KM_SCALES)} "
             f"that carries the force with {FORCE_MARGIN_REL:.0%} to spare while verify reads the "
             f"K_obj range), to {WEB_STEP_MM * 1000:g} µm."),
-        "comb.stop_gaps_mm": (f"Each stop engages at {STOP_MULTIPLE:g} x its element's rated "
-                              f"deflection at the arm's end, a shim no thinner than "
-                              f"{min(comb['stop_gaps_mm']):g} mm."),
+        "comb.stop_gaps_mm": stop_reason(best.plan, targets.full_scale_force_N),
         "requirements.full_scale_force_N": "Asked (--full-scale-force).",
         "requirements.kobj_range_N_per_mm": "Asked (--kobj-range).",
         "requirements.kr_over_km": "Asked (--kr-over-km).",
