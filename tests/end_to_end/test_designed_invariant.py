@@ -163,3 +163,26 @@ def test_the_labs_12_mm_jaw_designs_and_passes_its_check(tmp_path, capsys):
                         tmp_path / "lab", capsys)
     written = (tmp_path / "lab" / "lab.toml").read_text(encoding="utf-8")
     assert "shaft_diameter_mm = 12.0" in written and "pin_inset_mm = -6.0" in written
+
+
+@pytest.mark.slow
+def test_a_refusals_frontier_is_the_searchs_whatever_force_was_asked(tmp_path, capsys):
+    # K_r/K_m 10 over 1-5 N/mm in 7075-T6, 2 x 3: 50 N was told "at most 0.155 N", 0.3 N
+    # "at most 0.183 N", yet 0.163 N designed
+    case = ["design", "--kr-over-km", "10", "--kobj-range", "1", "5", "--material", "7075-T6",
+            "--columns", "3", "--verify", "none", "--json"]
+
+    def frontier(force: float) -> float:
+        code, out = run_cli([*case, "--full-scale-force", f"{force:g}", "--out",
+                             str(tmp_path / "x.toml")], capsys)
+        assert code == 2, out
+        alts = json.loads(out)["error"]["alternatives"]
+        return next(float(a["option"].split()[-1]) for a in alts
+                    if a["option"].startswith("--full-scale-force"))
+
+    most = frontier(50.0)
+    assert frontier(0.3) == most
+    assert frontier(round(most * 1.05, 4)) == most
+    code, out = run_cli([*case, "--full-scale-force", f"{most * 0.9:.4g}", "--out",
+                         str(tmp_path / "y.toml")], capsys)
+    assert code == 0, out

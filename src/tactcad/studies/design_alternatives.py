@@ -147,12 +147,17 @@ def _largest_force(data: Mapping[str, Any], targets: Targets, correction) -> flo
     return max_full_scale_force_N(search, targets.full_scale_force_N)
 
 
+#: Factor by which the bracket above a feasible force grows until a force fails.
+BRACKET_STEP = 1.25
+
+
 def largest_feasible_force(data: Mapping[str, Any], targets: Targets, correction=None) -> float:
     """The largest full-scale force (N, 3 significant digits, rounded down) the
     inverse design meets at the targets' ratio and range on ``data``; 0 when
     none. The web search's estimate (:func:`_largest_force`) is refined by
-    whole designs, which also raise the arm height with the arms: bisection
-    below the asked force, which is refused."""
+    whole designs, which also raise the arm height with the arms: a bracket grown from
+    the estimate by :data:`BRACKET_STEP` until a force fails (below the asked force, which
+    is refused), then bisection in it, so the answer does not move with the force asked."""
     est = _largest_force(data, targets, correction)
     if est <= 0:
         return 0.0
@@ -165,9 +170,10 @@ def largest_feasible_force(data: Mapping[str, Any], targets: Targets, correction
         lo *= 0.95
         if lo < est * 1e-3:
             return 0.0
-    hi = min(targets.full_scale_force_N, est * 1.05)  # a bracket as tight as the estimate
-    if hi > lo and ok(hi):
-        lo, hi = hi, targets.full_scale_force_N
+    asked = targets.full_scale_force_N
+    hi = min(asked, est * 1.05)  # a bracket as tight as the estimate
+    while hi > lo and ok(hi):  # grow it by steps, never to the asked force at once: the
+        lo, hi = hi, min(asked, hi * BRACKET_STEP)  # frontier is the same whatever was asked
     if lo >= hi:
         return _round_down(lo)
     for _ in range(FORCE_STEPS):
