@@ -217,6 +217,7 @@ def test_show_is_optional():
 
 
 # --- docs: "Use tactcad from Python" runs as written --------------------------------------
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_docs_python_example_runs(tmp_path):
     code = docs_block("how-to/python.md")
     assert DOCS_DESIGN_LINE in code  # the one path the example names

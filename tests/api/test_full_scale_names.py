@@ -33,6 +33,7 @@ def _json(capsys, argv: list[str]) -> dict:
 
 
 @pytest.mark.parametrize("values", [{}, TWO_BY_SIX], ids=["ti_2x3", "ti_2x6"])
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_every_command_page_drawing_and_the_api_give_one_rated_force(capsys, values):
     from tactcad.drawings.design_notes import full_scale_note
     from tactcad.mechanics.limits import plan_limits

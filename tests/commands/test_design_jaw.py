@@ -104,6 +104,7 @@ def test_an_out_name_that_names_a_file_is_not_made_a_folder(tmp_path, name):
     assert not list(tmp_path.iterdir())
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_jaw_design_into_a_folder_is_a_project_without_test_rigs_that_verifies(tmp_path):
     folder = tmp_path / "our-insert"
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
@@ -193,6 +194,7 @@ def test_an_out_that_is_no_design_name_is_refused_before_the_search(tmp_path, na
     assert not (tmp_path / name).exists()
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_grasp_to_survive_is_judged_on_the_comb_and_written_as_its_requirement(tmp_path):
     out = tmp_path / "insert.toml"
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
@@ -208,6 +210,7 @@ def test_a_grasp_to_survive_is_judged_on_the_comb_and_written_as_its_requirement
     assert grasp and grasp[0]["verdict"] == "pass"
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_grasp_beyond_the_jaws_reach_is_refused_by_its_option(tmp_path):
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
                 "--max-grasp-force", "100", "--out", str(tmp_path / "x.toml"))

@@ -42,6 +42,7 @@ def test_the_shipped_comb_reads_every_unit_at_equal_radius_as_laid_out():
     assert [u["R_read"] for u in laid] == pytest.approx([u["R_read"] for u in paired])
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_the_jaw_and_shaft_the_design_states_are_the_grasps_and_said_so():
     r = run_cli("grasp", "--design", COMB, "--json")
     assert r.returncode == 0, r.stderr
@@ -75,6 +76,7 @@ def test_the_pivot_and_the_angle_reach_the_grasp():
     assert min(u["r_reference_mm"] for u in d["as_laid_out"]["units"]) == pytest.approx(14.0)
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_non_paper_design_and_the_text_table():
     r = run_cli("grasp", "--design", TI, "--set", "array.columns=4", "--set",
                 "arms.lengths_mm=[19.605,6.196,19.605,19.605,19.605,6.196,19.605,19.605]",
@@ -131,6 +133,7 @@ def test_a_paired_design_is_set_against_its_units_laid_along_the_rows():
     assert "paired: the design's own layout" in text and "along the rows: angle" in text
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_default_grasp_heavier_than_the_closed_jaw_allows_is_the_jaw_closed_flat():
     r = run_cli("grasp", "--design", COMB, "--slab-thickness-mm", "0.001", "--json")
     assert r.returncode == 0, r.stderr

@@ -25,6 +25,7 @@ def test_every_command_and_option_is_found_by_introspection():
 
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(command_lines())
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_drawn_options_are_checked_or_refused_in_one_line(argv):
     try:
         args = cli.parse_checked(argv)

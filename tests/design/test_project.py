@@ -70,6 +70,7 @@ def test_hashes_follow_the_validated_data_not_the_layout(tmp_path, project):
     assert changed.scenes_sha256 == project.scenes_sha256
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_rigs_file_changed_after_validation_leaves_the_export_unchanged(tmp_path):
     """The run works from the validated project: a rigs or scenes file edited
     while the run goes on cannot change what it writes."""

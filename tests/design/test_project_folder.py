@@ -164,6 +164,7 @@ def test_new_on_the_command_line_says_what_it_wrote(tmp_path, capsys):
     assert not (tmp_path / "q").exists()
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_the_manifest_names_the_design_file_not_a_path():
     from tactcad.export.manifest import design_facts
 

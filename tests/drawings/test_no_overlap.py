@@ -114,6 +114,7 @@ def test_the_2x8_palpation_strip_draws_clear(tmp_path):
     assert "5:1" in board  # its table in two blocks under the views, the notes over the title
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_few_random_designs_of_the_domain_draw_clear(tmp_path):
     checked = 0
     for seed, project in domain_projects(range(3)):

@@ -114,6 +114,7 @@ def test_torque_grows_with_size():
 
 
 @pytest.mark.parametrize("name", ["macro_array", "ti_array_2x3"])
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_step_pictures_show_their_highlighted_parts(name, tmp_path):
     """Each array step picture is non-blank and carries the highlight colour;
     the page embeds it (so it opens offline)."""

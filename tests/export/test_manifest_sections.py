@@ -51,6 +51,7 @@ def test_a_taken_key_is_refused(key):
         register_section(ManifestSection(key, f"{__name__}:front_matter"))
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_the_shop_section_states_the_etch_compensation_with_its_source():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -35,6 +35,7 @@ def _paper_modules(design, out, only=None) -> list[str]:
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_manifest_and_shop_files_of_a_new_design_import_no_paper(tmp_path):
     assert _paper_modules(TI, tmp_path / "ti", "dxf,bom") == []
     assert _paper_modules(DEFAULT_DESIGN, tmp_path / "paper", "dxf,bom")  # the check can fail

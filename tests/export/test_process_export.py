@@ -4,6 +4,8 @@ artwork; an unknown process is refused naming the allowed ones."""
 
 from __future__ import annotations
 
+import pytest
+
 import json
 import warnings
 
@@ -18,6 +20,7 @@ ETCH = ["--set", 'element.process="photochemical-etching"', "--set", "sheet.thic
         "--set", "element.web_tolerance_mm=0.045"]
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_an_etched_0p3_mm_design_exports_its_artwork(tmp_path, capsys):
     out = tmp_path / "etched"
     with warnings.catch_warnings():  # the correction's range notice at a 0.3 mm sheet

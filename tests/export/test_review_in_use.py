@@ -3,6 +3,8 @@ review page: one table each, the figures with their units."""
 
 from __future__ import annotations
 
+import pytest
+
 import json
 from pathlib import Path
 
@@ -39,6 +41,7 @@ def test_without_a_maximum_grasp_force_no_grasp_section_and_no_table():
     assert tissue_coupling_view(None) is None and tissue_coupling_view({"units": []}) is None
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_stated_maximum_grasp_force_gives_the_grasp_and_its_table():
     facts = _facts({"requirements.max_grasp_force_N": 1.0})
     grasp = facts["grasp"]

@@ -59,6 +59,7 @@ def test_every_coupling_matches_the_independent_model_to_one_percent(layout):
     assert 0 < sample.error_rel <= contact.CONVERGED_REL
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_the_coupled_inversion_reads_the_independent_samples_k_obj_to_one_percent():
     """The macro array, whose R is compressed: R made on the independent model's sample,
     read back by tactcad's coupled inversion, at the paper's 2.34 N/mm and at 10 N/mm."""
@@ -95,6 +96,7 @@ def test_the_converged_square_punch_agrees_with_the_independent_model():
     assert 1 / ours == pytest.approx(king, rel=0.012)
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_verify_judges_the_coupled_inversion_against_the_check_level():
     """verify's tissue row read the coupled inversion against its own R (worst +0 %, it could
     not fail); it now reads R made on the check level. With the working couplings 4 % low,

@@ -5,6 +5,8 @@ needs no geometry never loads the kernel, not even to refuse an option."""
 
 from __future__ import annotations
 
+import pytest
+
 import ast
 import json
 import subprocess
@@ -128,6 +130,7 @@ ANSWERS_WITHOUT_GEOMETRY = [["stiffness", "--element", "1"], ["scenes"], ["lumpe
                             ["materials"], ["table2"], ["design", "--help"]]
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_commands_that_need_no_geometry_never_load_the_kernel():
     """One process runs every line in turn and reports, after each, its exit
     code and whether a kernel package was loaded."""

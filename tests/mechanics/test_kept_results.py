@@ -131,6 +131,7 @@ def test_fem3d_stiffness_and_peak_stress_share_one_kept_sequence(plan, tmp_path,
         assert len(fem3d_solves) == 6
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_verify_right_after_design_solves_no_fem3d_again(tmp_path, monkeypatch, fem3d_solves,
                                                          capsys):
     monkeypatch.chdir(tmp_path)

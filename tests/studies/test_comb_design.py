@@ -87,6 +87,7 @@ def test_a_jaw_too_thin_for_every_comb_is_refused_naming_the_height():
     assert "the comb's height" in caught.value.line() and "holds 4 mm" in caught.value.line()
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_force_no_comb_carries_is_refused_with_a_nearest_force_that_one_does():
     with pytest.raises(InverseDesignError) as caught:
         search(0.3)

@@ -72,6 +72,7 @@ def test_a_grade_that_meets_the_targets_is_offered_first_and_does(plan):
     assert d.plan.material.grade == first.value
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_the_refusal_reaches_the_command_line_as_its_json_error(tmp_path, capsys):
     argv = ["design", "--kr-over-km", "6", "--kobj-range", "5", "50", "--full-scale-force", "1.5",
             "--material", "17-4PH", "--columns", "4", "--out", str(tmp_path / "x.toml"),

@@ -202,6 +202,7 @@ def test_cli_writes_outside_the_working_folder(tmp_path, monkeypatch, capsys):
     assert (tmp_path / "outside.toml").is_file()
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     assert main(["design", "--kr-over-km", "1000", "--kobj-range", "2", "10",
@@ -212,6 +213,7 @@ def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
     assert not (tmp_path / "x.toml").exists()
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_five_percent_above_the_largest_force_is_refused_naming_every_binding_limit(
         tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)

@@ -77,6 +77,7 @@ def test_the_shipped_bolt_does_not_refuse_more_columns_the_search_holds(tmp_path
     assert "tactcad design" in text.splitlines()[0]
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_refusal_names_the_asked_targets_and_its_alternatives_paste(tmp_path, capsys):
     argv = [*GRASPER, "--full-scale-force", "2", "--footprint", "30", "8",
             "--out", str(tmp_path / "g")]
@@ -108,6 +109,7 @@ def test_a_value_the_user_sets_is_kept_and_errors_name_it_as_written(tmp_path, c
     assert code == 2 and doc["error"]["message"].startswith("--set: sheet.thickness_mm = 20")
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_derived_requirement_is_refused_as_the_option_that_set_it(tmp_path, capsys):
     """A tiny force read through a weak chain (amplifier gain 1, +/-5 V range) gives a K_obj
     resolution no requirement may state: refused as --full-scale-force, with the
@@ -153,6 +155,7 @@ def test_fixed_fields_stay_and_candidates_come_nearest_first():
     assert any(stack_fits(data, c) for c in every)
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_stack_no_bolt_holds_is_refused_as_columns_with_the_most_that_do(tmp_path, capsys):
     """A fixed 3 mm sheet: twelve columns need a longer bolt than the ISO table's;
     the refusal offers the most columns any bolt holds, which then designs."""
@@ -183,6 +186,7 @@ def test_values_fixed_against_each_other_are_refused_as_the_user_wrote_them(tmp_
     assert code == 2 and doc["error"]["message"].startswith("--set: nosuch"), doc
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_roomy_footprint_is_not_named_and_the_force_within_it_designs(tmp_path, capsys):
     argv = [*GRASPER, "--full-scale-force", "2", "--footprint", "100", "100",
             "--out", str(tmp_path / "r.toml")]

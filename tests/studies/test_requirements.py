@@ -75,6 +75,7 @@ def test_matrix_has_one_record_per_requirement_with_every_limit_and_the_binding_
     assert force["predicted"] == min(lim["force_N"] for lim in force["limits"])
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_requirement_the_design_cannot_meet_fails_verify_and_check_records(capsys):
     plan = _plan({"full_scale_force_N": 2.0})  # the 8 mm arm yields long before 2 N
     records = verification_matrix(plan)
@@ -90,6 +91,7 @@ def test_a_requirement_the_design_cannot_meet_fails_verify_and_check_records(cap
     assert out["matrix"][0]["binding_limit"] in LIMIT_NAMES
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_verify_cli_table_and_json(capsys):
     assert main(["verify", "--model", "closed-form", "--quiet"]) == 0
     text = capsys.readouterr().out

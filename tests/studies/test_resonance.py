@@ -59,6 +59,7 @@ def test_check_fails_on_a_resonance_below_the_minimum():
     assert "closed-form, in-plane modes" in bad[0].detail
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_auto_climbs_the_ladder_when_the_closed_form_cannot_decide():
     from tactcad.studies.strength_studies import element_stress
 

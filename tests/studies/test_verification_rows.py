@@ -192,6 +192,7 @@ def test_without_a_footprint_nothing_about_it_is_written():
     assert all(r["requirement"] != "footprint_mm" for r in verification_matrix(plan))
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_design_within_a_footprint_states_it_or_refuses_naming_the_envelope(tmp_path, capsys):
     args = ["design", "--kr-over-km", "6", "--kobj-range", "5", "50", "--full-scale-force",
             "0.3", "--columns", "4", "--verify", "none", "--quiet"]
