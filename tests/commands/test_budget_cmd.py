@@ -72,6 +72,7 @@ def test_a_calibration_file_of_another_design_is_refused(tmp_path):
     assert "--calibration" in msg and "element 9" in msg and "1 ... 6" in msg
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_verify_reports_the_budget_and_judges_a_stated_accuracy():
     r = run_cli("verify", "--design", TI, "--model", "closed-form", "--set",
                 "requirements.kobj_accuracy_rel=0.001", "--json")

@@ -85,6 +85,7 @@ def test_the_paper_designs_element_sizes_that_overlapped_draw_clear(overrides, p
     assert n == len(parts) and failed == []
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_the_2x6_titanium_grasper_insert_draws_clear(tmp_path):
     """Every sheet of the grasper insert: both element sheets (0.09 mm over a
     line), the indenter (2.64 mm) and the terminal board (14 overlaps, H16 on

@@ -76,6 +76,7 @@ def fill(disk: Path) -> None:
             assert exc.errno == errno.ENOSPC
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_full_disk_is_exit_3_naming_the_file_and_the_old_set_stays_whole(tiny_disk, capsys):
     out = tiny_disk / "ex"
     assert export(out, "--only", "bom") == 0

@@ -323,6 +323,7 @@ def test_a_load_counts_every_error_by_kind_and_each_route():
     assert figures["max_ms"] == pytest.approx(500.0)
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_simulated_reviewers_read_what_a_new_state_changed():
     """Reviewers open the page, poll /state and, on a new state, read /data, the
     shown scene and the new sheets, as the page does; they stop by themselves."""

@@ -72,6 +72,7 @@ def test_the_fasteners_are_the_first_pair_of_the_tables_the_row_and_the_jaw_hold
     assert not found.data["assumptions"]["comb.dowel_diameter_mm"].startswith("Not searched")
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_roomier_jaw_takes_the_largest_screw_and_dowel():
     roomy = dataclasses.replace(jaw_room("10"), across_mm=9.0, height_mm=8.0)
     got = search(0.05, room=roomy)

@@ -28,6 +28,7 @@ def _fingertip_tables(plan, grade="17-4PH-H900"):
     return data
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_refusal_names_the_force_limit_behind_the_largest_force_and_the_ways_out(plan):
     with pytest.raises(InverseDesignError) as exc:
         design_or_alternatives(plan, TOO_MUCH, grade="17-4PH-H900", columns=4)

@@ -23,6 +23,7 @@ def test_not_stated_is_not_judged():
     assert _record(None) is None
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_elements_beyond_their_overload_limit_fail_named_with_force_and_limit():
     r = _record(1.0)
     over = [it for it in r["elements"] if it["element_force_N"] > it["overload_limit_N"]]
@@ -100,6 +101,7 @@ def test_a_hard_stop_takes_the_force_beyond_its_engagement():
     assert r["pass"] and r["verdict"] == "pass" and r["past_rating"]
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_verify_names_the_elements_beyond_their_overload_limit():
     from conftest import run_cli
 

@@ -71,6 +71,7 @@ def test_the_resolution_record_reads_each_element_through_the_chain():
     assert noisy["verdict"] == "fail" and noisy["predicted"] > noisy["target"]
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_design_writes_the_resolution_its_read_out_chain_reaches(tmp_path, capsys):
     out = tmp_path / "tip.toml"
     assert cli.main(["design", "--kr-over-km", "6", "--kobj-range", "5", "50",
@@ -181,6 +182,7 @@ def test_design_fits_a_footprint_by_the_rule_verify_judges_it_by():
     assert not fits(envelope, [least[0] - 0.1, least[1]])
 
 
+@pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_small_full_scale_force_writes_the_resolution_its_chain_reaches(tmp_path, capsys):
     """At 0.01 N a fixed 0.01 N read-out resolved nothing (1400 %, refused as a
     kobj_resolution_rel the user never wrote); the chain reads such forces."""
