@@ -7,7 +7,7 @@ from functools import cached_property
 from pathlib import Path
 from typing import Any, Callable
 
-from tactcad.assembly.inventory import design_assemblies, scene_models
+from tactcad.assembly.inventory import design_assemblies, fabricated_parts, scene_models
 from tactcad.assembly.rig_models import RigModel
 from tactcad.catalogue.array_catalogue import Instance, PartSpec, array_instances, array_parts
 from tactcad.design.array_plan import Plan
@@ -31,6 +31,9 @@ class Run:
     dxf_version: str | None = None  # of the shop DXF files; None: R2010 (or $TACTCAD_DXF_VERSION)
     #: jobs the run's second process made (:mod:`tactcad.export.worker`), in the order collected
     worker_made: list[str] = field(default_factory=list)
+    #: kernel-free work the run needs at its end (the manifest's design facts), run in a
+    #: thread beside the jobs once the second process is forked (numpy releases the GIL)
+    background: Callable[[], Any] | None = None
 
     @property
     def plan(self) -> Plan:
@@ -53,6 +56,13 @@ class Run:
         """(every distinct part by name, {assembly: instances}); see
         :func:`tactcad.assembly.inventory.design_assemblies`."""
         return design_assemblies(self.project, self.scenes)
+
+    @property
+    def distinct_parts(self) -> int:
+        """Distinct parts the design's files show: every part of an assembly and the kit's
+        samples no scene shows (each drawn; :func:`tactcad.assembly.inventory.fabricated_parts`)."""
+        made, _ = fabricated_parts(self.project, self.inventory)
+        return len(set(self.inventory[0]) | {s.name for s in made})
 
     @cached_property
     def parts(self):

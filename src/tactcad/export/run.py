@@ -17,9 +17,11 @@ are gone with the old folder, files tactcad never wrote are kept.
 
 from __future__ import annotations
 
+import contextvars
 import errno
 import json
 import os
+import threading
 import time
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
@@ -34,7 +36,7 @@ from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rig_models import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
-from tactcad.export.manifest import manifest
+from tactcad.export.manifest import design_facts, manifest
 from tactcad.export.worker import SessionWorker, Worker, can_fork, worker_jobs
 from tactcad.catalogue.files import MANIFEST
 from tactcad.store import Store
@@ -48,7 +50,7 @@ class ExportResult:
     jobs_run: int = 0
     jobs_reused: int = 0
     builds: int = 0  # solids built in this run
-    distinct_parts: int = 0  # distinct parts of the design (array and scenes)
+    distinct_parts: int = 0  # distinct parts of the design (array, scenes, the kit's samples)
     worker_jobs: int = 0  # jobs made by the run's second process
 
     def as_json(self) -> dict:
@@ -65,6 +67,23 @@ class ExportResult:
         lines.append(f"{len(self.files)} files, {total:,d} B in {self.out_dir} ({self.seconds:.1f} s; "
                      f"{self.jobs_run} jobs run, {self.jobs_reused} reused from the cache)")
         return lines
+
+
+def _in_a_thread(work: Callable[[], object]) -> threading.Thread:
+    """``work`` started in a daemon thread in this context (the result store's block): its
+    value is kept where the run asks for it again (an error is left for that call to
+    raise). Started after the worker's fork: a fork never copies a running thread's locks."""
+    ctx = contextvars.copy_context()
+
+    def quietly() -> None:
+        try:
+            ctx.run(work)
+        except Exception:  # the run's own call computes it again and reports the error
+            pass
+
+    thread = threading.Thread(target=quietly, name="tactcad-background", daemon=True)
+    thread.start()
+    return thread
 
 
 def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker | None = None,
@@ -123,6 +142,7 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
             remove_partial_files(run.staging)  # what the worker was writing when it died
             done[name] = by_name[name].make(run)
 
+    beside = _in_a_thread(run.background) if run.background is not None else None
     try:
         for spec in {s.name: s for job in todo for s in job.needs}.values():
             run.parts.solid(spec)
@@ -226,6 +246,8 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
     staging = staging_dir(out)
     try:
         run = Run(project, staging, log, store, dxf_version)
+        if with_manifest:  # computed beside the jobs; the manifest then reads it
+            run.background = lambda: design_facts(project.plan)
         if parts is not None:
             run.parts = parts  # share the caller's solids (e.g. with the checks)
         jobs = jobs_of(run)
@@ -258,7 +280,7 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
         warn_left_behind(remove_tree(staging) if staging.exists() else [])
     builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded
     return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
-                        builds, len(run.inventory[0]), len(run.worker_made))
+                        builds, run.distinct_parts, len(run.worker_made))
 
 
 def export_scenes(project: Project, out_dir: str | Path, names: Sequence[str], log: Log = print,

@@ -126,11 +126,19 @@ def check_cell_mm(punches: Sequence[Punch]) -> float:
 
 def uniform_check(punches: Sequence[Punch]) -> UniformCheck:
     """First-order Richardson of :func:`uniform_compliance` on cells h and h/2
-    (h: :func:`check_cell_mm`).
+    (h: :func:`check_cell_mm`), kept in the result store (:func:`tactcad.store.kept_result`)
+    for the same punches: a re-export or verify of an unchanged design solves it once.
 
     Raises:
         ContactError: as :func:`uniform_compliance`.
     """
+    from tactcad.store import kept_result
+
+    return kept_result("uniform contact check", lambda: _uniform_check(punches),
+                       tuple(punches))
+
+
+def _uniform_check(punches: Sequence[Punch]) -> UniformCheck:
     h = check_cell_mm(punches)
     coarse, fine = uniform_compliance(punches, h), uniform_compliance(punches, h / 2)
     best = 2 * fine - coarse
