@@ -69,3 +69,19 @@ def test_the_lead_wire_is_one_wire_in_thermal_the_bom_and_the_shaft(ti_readout_a
     leads = command_json(["grasp", "--design", str(GRASPER)], capsys)["leads"]
     assert leads["conductor_diameter_mm"] == LEAD_WIRE["conductor_diameter_mm"]
     assert leads["wire_diameter_mm"] == LEAD_WIRE["insulated_diameter_mm"]
+
+
+@pytest.mark.slow  # a whole design through the command line
+def test_design_reads_the_kobj_resolution_with_the_read_out_chains_force_resolution(tmp_path,
+                                                                                  capsys):
+    # design printed dK_obj at a fixed 0.01 N (134 %), readout and verify 0.10 %
+    out = tmp_path / "d.toml"
+    d = command_json(["design", "--kr-over-km", "10", "--kobj-range", "1", "5",
+                      "--full-scale-force", "0.15", "--material", "7075-T6", "--columns", "3",
+                      "--verify", "none", "--design", str(TI), "--out", str(out)], capsys)
+    readout = command_json(["readout", "--design", str(out)], capsys)
+    by_role = {e["role"]: e["element"] for e in d["elements"]}
+    quoted = {r["element"]: r["force_resolution_N"] for r in readout["elements"]}
+    for role in ("reference", "measuring"):
+        assert d["force_resolution_N"][role] == pytest.approx(quoted[by_role[role]], rel=1e-9)
+    assert all(u["K_obj_resolution_rel"] < 0.05 for u in d["units"])  # not the 0.01 N figure's

@@ -759,6 +759,7 @@ def design_report(result, verify: str, progress=None) -> dict:
 
     from tactcad.studies.inverse_design import WEB_RULE, report_points, unit_resolution
     from tactcad.mechanics.ladder import estimate
+    from tactcad.mechanics.readout_chain import element_force_resolution_N
     from tactcad.studies.reference_loads import strength_summary
 
     plan, t = result.plan, result.targets
@@ -793,11 +794,15 @@ def design_report(result, verify: str, progress=None) -> dict:
                          "gauge_fatigue_force_N": s["gauge_fatigue_force_N"]})
     ref = next(e for e in elements if e["role"] == "reference")
     meas = next(e for e in elements if e["role"] == "measuring")
+    # each force read to the design's own read-out chain's resolution (as readout and verify)
+    chain = element_force_resolution_N(plan)
+    df_ref, df_meas = chain[ref["part"]]["dF"], chain[meas["part"]]["dF"]
     units = []
     for key in ("K_closed_form_N_per_mm", "K_verified_N_per_mm"):
         if meas[key] is None:
             continue
-        res = unit_resolution(meas[key], ref[key], report_points(t), t.full_scale_force_N)
+        res = unit_resolution(meas[key], ref[key], report_points(t), t.full_scale_force_N,
+                              df_meas, force_resolution_reference_N=df_ref)
         for i in range(len(res["R"])):
             units.append({"stiffness_from": "closed-form" if key.startswith("K_closed") else verify,
                           **{k: float(v[i]) for k, v in res.items()}})
@@ -817,7 +822,7 @@ def design_report(result, verify: str, progress=None) -> dict:
                              verify: None if ref["K_verified_N_per_mm"] is None else
                              ref["K_verified_N_per_mm"] / meas["K_verified_N_per_mm"]},
             "elements": elements, "units": units,
-            "force_resolution_N": 0.01,
+            "force_resolution_N": {"reference": df_ref, "measuring": df_meas},
             "max_full_scale_force_N": result.max_full_scale_force_N,
             "binding_limits": list(result.binding_limits),
             "web_rule": WEB_RULE,
@@ -888,7 +893,10 @@ def print_report(r: dict) -> None:
               f"{e['yield_limited_force_N']:>9.3g} "
               f"{e['yield_safety_factor_at_target_force']:>5.2f} "
               f"{1e6 * e['gauge_strain_at_target_force']:>9.0f}")
-    print("K_obj N/mm      R   dR/dK_obj mm/N   dK_obj (0.01 N)   relative   [K from]")
+    df = r["force_resolution_N"]
+    print(f"K_obj resolution with the read-out chain's force resolution (reference "
+          f"{df['reference']:.3g} N, measuring {df['measuring']:.3g} N; tactcad readout):")
+    print("K_obj N/mm      R   dR/dK_obj mm/N   dK_obj N/mm       relative   [K from]")
     for u in r["units"]:
         print(f"{u['K_obj_N_per_mm']:>10.3g} {u['R']:>6.3f} {u['dR_dKobj_per_N_per_mm']:>16.4f} "
               f"{u['K_obj_resolution_N_per_mm']:>17.3g} {100 * u['K_obj_resolution_rel']:>9.2f}%"
