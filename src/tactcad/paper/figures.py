@@ -76,6 +76,22 @@ def _finish(plt, fig, ax, xlabel: str, ylabel: str, title: str, path) -> Path:
     return out
 
 
+#: Markers cycled with the colours, so elements stay apart past the colour table's length.
+MARKERS = ("o", "s", "^", "D", "v")
+
+
+def distinct_styles(n: int) -> list[tuple[tuple[float, ...], str]]:
+    """``n`` (colour RGBA, marker) pairs, no two alike: matplotlib's 20-colour table
+    ``tab20`` (its darker shades first), each pass over it with the next marker of
+    :data:`MARKERS` (a 2 x 8 array's 16 elements: 16 colours)."""
+    import matplotlib
+
+    table = matplotlib.colormaps["tab20"].colors
+    colours = list(table[0::2]) + list(table[1::2])
+    return [(tuple(colours[i % len(colours)]), MARKERS[(i // len(colours)) % len(MARKERS)])
+            for i in range(n)]
+
+
 def plot_calibration(readings: list[dict], path: str | Path, title: str) -> Path:
     """Write force and signal against element deflection for each element (Fig. 4-like) to a PNG.
 
@@ -86,10 +102,10 @@ def plot_calibration(readings: list[dict], path: str | Path, title: str) -> Path
     """
     plt = _pyplot()
     fig, (ax_f, ax_v) = plt.subplots(1, 2, figsize=(10.0, 4.0), dpi=120)
-    for r in readings:
-        (line,) = ax_f.plot(r["deflection_um"], r["force_N"], "o", ms=3, label=f"element {r['element']}")
-        ax_v.plot(r["deflection_um"], r["signal_V"], "o", ms=3, color=line.get_color(),
-                  label=f"element {r['element']}")
+    for r, (colour, marker) in zip(readings, distinct_styles(len(readings))):
+        for ax, key in ((ax_f, "force_N"), (ax_v, "signal_V")):
+            ax.plot(r["deflection_um"], r[key], marker, ms=3, color=colour,
+                    label=f"element {r['element']}")
     ax_v.set_xlabel("element deflection Δ (um)")
     ax_v.set_ylabel("signal V (V)")
     ax_v.grid(True, alpha=0.3)
