@@ -107,3 +107,23 @@ def test_a_single_column_has_nothing_to_lay_along_its_rows():
     layout = along_row_layout(plan, [(1, 2)])
     assert layout.sites == () and layout.unplaced == ((1, 2),)
     assert "single column" in layout.reason
+
+
+def test_a_unit_with_no_site_along_the_rows_is_named_with_why_not_dropped():
+    # a 2 x 5 comb: each row's fifth tip has no neighbour, so unit 5/10 is not laid
+    from tactcad.design.array_plan import plan_from_dict, with_overrides
+    from tactcad.in_use.radius_pairs import along_row_layout
+    from comb_variants import COMB, comb_data
+
+    data = comb_data()
+    arms, webs = data["arms"]["lengths_mm"], data["comb"]["web_thicknesses_mm"]
+    gaps = data["comb"]["stop_gaps_mm"]
+    five = {"array.columns": 5, "arms.lengths_mm": arms[:5] + arms[6:11],
+            "arms.reference_elements": [1, 2, 3, 4, 5],
+            "comb.web_thicknesses_mm": webs[:5] + webs[6:11],
+            "comb.stop_gaps_mm": gaps[:5] + gaps[6:11]}
+    plan = plan_from_dict(with_overrides(data, five), source=COMB, file=COMB)
+    units = units_of(plan)
+    layout = along_row_layout(plan, units)
+    assert len(layout.sites) == 4 and len(layout.unplaced) == 1
+    assert "no neighbour" in layout.reason and "5 columns" in layout.reason

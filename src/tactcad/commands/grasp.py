@@ -296,10 +296,12 @@ def render(record: dict) -> str:
                       f"rating (reading past full scale): {', '.join(map(str, over)) or 'none'}; "
                       f"over the overload limit: {', '.join(map(str, damaged)) or 'none'}; "
                       f"on a stop: {', '.join(map(str, stops)) or 'none'}", *unit_table(lay)]
-    pl = record["paired_layout"]
-    if pl["reason"]:
-        lines += ["", f"paired layout: {pl['reason']} (unplaced: "
-                      f"{', '.join(pl['unplaced']) or 'none'})"]
+    for key, words in (("paired_layout", "paired layout"),
+                       ("along_rows_layout", "along the rows")):
+        pl = record.get(key)
+        if pl and pl["reason"]:  # units a layout has no sites for, said, not dropped
+            lines += ["", f"{words}: {pl['reason']} (not laid: "
+                          f"{', '.join(pl['unplaced']) or 'none'})"]
     ld = record["leads"]
     lines += ["", f"leads: {ld['bridges']} {ld['connection']} quarter bridges, {ld['leads']} "
                   f"leads of {ld['wire_diameter_mm']:g} mm (AWG {LEAD_WIRE['awg']} PTFE), packing "

@@ -195,8 +195,14 @@ def along_row_layout(plan: Plan, units: list[tuple[int, int]]) -> PairedLayout:
     Returns:
         :class:`PairedLayout`; units beyond the sites are listed as unplaced, with why.
     """
-    return laid_on(plan, units, row_sites(plan),
-                   "a single column has no two tips along a row")
+    layout = laid_on(plan, units, row_sites(plan), "a single column has no two tips along a row")
+    if layout.unplaced and layout.sites:  # an odd column count leaves each row's last tip
+        return PairedLayout(layout.sites, layout.unplaced,
+                            f"{len(layout.sites)} pair sites for {len(units)} units: "
+                            f"{plan.columns} columns give {plan.columns // 2} side by side "
+                            f"per row" + ("; each row's last tip has no neighbour along it"
+                                          if plan.columns % 2 else ""))
+    return layout
 
 
 def paired_layout(plan: Plan, units: list[tuple[int, int]]) -> PairedLayout:
