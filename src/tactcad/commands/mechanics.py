@@ -35,7 +35,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "level, with % error, plus the as-built web thickness and the "
                                    "gauge strain at 2 N.")
     t.add_argument("--model", choices=models() + ("all",), default="closed-form",
-                   help="ladder level, or 'all' for every level side by side (fem3d takes ~30 s; "
+                   help="ladder level, or 'all' for every level side by side (fem3d takes 10 s-2 min an "
+                        "element; "
                         "default %(default)s)")
     add_design_arg(t)
     add_cache_args(t)
