@@ -1,0 +1,141 @@
+"""A piezoresistive cantilever's read-out: the resistance change of a resistor diffused at
+the root of a silicon cantilever under a tip force, the bridge's output, and the noise that
+sets its force resolution (the read-out a silicon die carries in place of a foil gauge).
+
+The cantilever (length L from its clamped root to the tip force F, width w, thickness t)
+carries a surface bending stress sigma(x) = 6 F (L - x) / (w t^2) at a distance x from the
+root (Euler-Bernoulli). A resistor of length l_r along the beam from the root, its carriers in
+a layer near the surface, reads the stress averaged over its length,
+sigma_avg = 6 F (L - l_r / 2) / (w t^2), times the depth efficiency beta* (1 for carriers at
+the surface, 0 at the neutral axis; Park, Doll, Rastegar and Pruitt, "Piezoresistive
+cantilever performance, Part I", J. Microelectromech. Syst. 19(1), 2010, eq. 2-4), so
+dR / R = pi_l sigma_avg beta* (pi_l along the resistor: :mod:`tactcad.vocabulary.crystal`).
+
+A Wheatstone bridge with ``active`` of its four arms strained (1: a quarter bridge, its
+reference resistors on the die off the beam) gives V_out = V_bias active / 4 dR / R.
+
+Noise over the band [f_lo, f_hi] (Hz), each as an rms voltage at the bridge output:
+
+* Johnson noise of the bridge's resistance R (a quarter bridge's output sees R):
+  v^2 = 4 k_B T R (f_hi - f_lo) (Nyquist, Phys. Rev. 32, 1928);
+* Hooge 1/f noise of the active resistor with N carriers, biased at V_r across it:
+  v^2 = alpha_H V_r^2 / N ln(f_hi / f_lo) (Hooge, Phys. Lett. A 29, 1969; alpha_H 1e-7 for
+  annealed implants to 1e-4: Harley and Kenny, J. Microelectromech. Syst. 9(2), 2000).
+
+Units: N, m inside the formulas, inputs and outputs as named (um, V, ohm, K, Hz, 1/Pa).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+#: Boltzmann's constant (J/K, exact since the 2019 SI).
+BOLTZMANN_J_PER_K = 1.380649e-23
+
+
+@dataclass(frozen=True)
+class PiezoCantilever:
+    """A silicon cantilever with one diffused resistor at its root (um, 1/Pa).
+
+    Attributes:
+        length_um: root to the tip force.
+        width_um, thickness_um: the beam's section.
+        resistor_length_um: the resistor along the beam, from the root.
+        pi_longitudinal_per_Pa: pi_l along the resistor (1/Pa: Smith's x 1e-11).
+        depth_efficiency: beta*, 0 ... 1 (carriers' depth below the surface).
+    """
+
+    length_um: float
+    width_um: float
+    thickness_um: float
+    resistor_length_um: float
+    pi_longitudinal_per_Pa: float
+    depth_efficiency: float = 1.0
+
+    def __post_init__(self):
+        for name in ("length_um", "width_um", "thickness_um", "resistor_length_um"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value > 0):
+                raise ValueError(f"{name} = {value!r}: a finite length > 0 um")
+        if self.resistor_length_um > self.length_um:
+            raise ValueError(f"resistor_length_um = {self.resistor_length_um!r}: at most the "
+                             f"beam's length {self.length_um!r} um")
+        if not 0.0 <= self.depth_efficiency <= 1.0:
+            raise ValueError(f"depth_efficiency = {self.depth_efficiency!r}: 0 ... 1")
+
+    def average_stress_Pa_per_N(self) -> float:
+        """The surface bending stress averaged over the resistor, per newton at the tip (Pa/N):
+        6 (L - l_r / 2) / (w t^2)."""
+        um = 1e-6
+        arm = (self.length_um - self.resistor_length_um / 2) * um
+        return 6 * arm / (self.width_um * um * (self.thickness_um * um) ** 2)
+
+    def resistance_change_per_N(self) -> float:
+        """dR / R per newton at the tip (1/N): pi_l sigma_avg beta*."""
+        return (self.pi_longitudinal_per_Pa * self.average_stress_Pa_per_N()
+                * self.depth_efficiency)
+
+    def bridge_sensitivity_V_per_N(self, bias_V: float, active: int = 1) -> float:
+        """The bridge's output per newton (V/N): V_bias active / 4 dR / R per N.
+
+        Raises:
+            ValueError: ``active`` not 1, 2 or 4, or a non-finite bias.
+        """
+        if active not in (1, 2, 4):
+            raise ValueError(f"active = {active!r}: 1, 2 or 4 strained arms")
+        if not math.isfinite(bias_V):
+            raise ValueError(f"bias_V = {bias_V!r}: a finite voltage")
+        return bias_V * active / 4 * self.resistance_change_per_N()
+
+
+def johnson_noise_V(resistance_ohm: float, temperature_K: float, f_lo_Hz: float,
+                    f_hi_Hz: float) -> float:
+    """The rms Johnson noise (V) of ``resistance_ohm`` at ``temperature_K`` over
+    [f_lo, f_hi]: sqrt(4 k_B T R (f_hi - f_lo)) (Nyquist 1928).
+
+    Raises:
+        ValueError: a negative resistance or temperature, or f_hi < f_lo.
+    """
+    _band(f_lo_Hz, f_hi_Hz, allow_zero=True)
+    if resistance_ohm < 0 or temperature_K < 0:
+        raise ValueError(f"resistance {resistance_ohm!r} ohm and temperature {temperature_K!r} "
+                         "K: >= 0")
+    return math.sqrt(4 * BOLTZMANN_J_PER_K * temperature_K * resistance_ohm
+                     * (f_hi_Hz - f_lo_Hz))
+
+
+def hooge_noise_V(alpha_H: float, resistor_bias_V: float, carriers: float, f_lo_Hz: float,
+                  f_hi_Hz: float) -> float:
+    """The rms Hooge 1/f noise (V) of a resistor with ``carriers`` carriers biased at
+    ``resistor_bias_V`` over [f_lo, f_hi]: sqrt(alpha_H V^2 / N ln(f_hi / f_lo)) (Hooge 1969).
+
+    Raises:
+        ValueError: alpha_H < 0, carriers <= 0, f_lo <= 0 or f_hi < f_lo.
+    """
+    _band(f_lo_Hz, f_hi_Hz, allow_zero=False)
+    if alpha_H < 0 or not carriers > 0:
+        raise ValueError(f"alpha_H {alpha_H!r} >= 0 and carriers {carriers!r} > 0")
+    return math.sqrt(alpha_H * resistor_bias_V ** 2 / carriers * math.log(f_hi_Hz / f_lo_Hz))
+
+
+def carriers_in(doping_per_cm3: float, length_um: float, width_um: float,
+                junction_depth_um: float) -> float:
+    """The carriers of a uniformly doped resistor (count): doping x its volume (every dopant
+    ionised at room temperature)."""
+    volume_cm3 = length_um * width_um * junction_depth_um * 1e-12
+    return doping_per_cm3 * volume_cm3
+
+
+def force_resolution_N(cantilever: PiezoCantilever, bias_V: float, noise_V: float,
+                       active: int = 1) -> float:
+    """The smallest force (N, 1 sigma) the bridge resolves: its output noise over its
+    sensitivity."""
+    return noise_V / abs(cantilever.bridge_sensitivity_V_per_N(bias_V, active))
+
+
+def _band(f_lo: float, f_hi: float, allow_zero: bool) -> None:
+    low_ok = f_lo >= 0 if allow_zero else f_lo > 0
+    if not (math.isfinite(f_lo) and math.isfinite(f_hi) and low_ok and f_hi >= f_lo):
+        raise ValueError(f"band {f_lo!r} ... {f_hi!r} Hz: finite, "
+                         f"{'0 <=' if allow_zero else '0 <'} f_lo <= f_hi")
