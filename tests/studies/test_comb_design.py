@@ -147,3 +147,12 @@ def test_a_stop_engages_at_the_multiple_or_midway_to_the_fatigue_limit(multiple,
     from tactcad.mechanics.hard_stops import engagement_force_N
 
     assert engagement_force_N(multiple, rated, fatigue) == pytest.approx(expected)
+
+
+@pytest.mark.parametrize("margin, words", [(0.25, "with 20% to spare (+25.0%)"),
+                                           (0.046, "most force to spare (+4.6%): none")])
+def test_the_sheets_reason_says_the_rule_that_chose_it(margin, words):
+    # "with 20% to spare (+4.6%)" said a margin the sheet did not have
+    from tactcad.studies.comb_design import sheet_rule_words
+
+    assert words in sheet_rule_words(margin)

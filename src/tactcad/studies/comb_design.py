@@ -533,6 +533,16 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
                               else [])
 
 
+def sheet_rule_words(margin_rel: float) -> str:
+    """How the sheet was chosen, as :func:`chosen`'s rule took it: the softest pair with
+    :data:`FORCE_MARGIN_REL` to spare, or, none having it, the one with the most."""
+    if margin_rel >= FORCE_MARGIN_REL:
+        return (f"the sheet of the softest pair that carries the full-scale force with "
+                f"{FORCE_MARGIN_REL:.0%} to spare ({margin_rel:+.1%})")
+    return (f"the sheet of the pair with the most force to spare ({margin_rel:+.1%}): none "
+            f"that counts has {FORCE_MARGIN_REL:.0%}")
+
+
 def stop_reason(plan: Any, force_N: float) -> str:
     """Why the stop gaps are what they are, with where each kind of stop engages: the rule
     (:func:`tactcad.mechanics.hard_stops.engagement_force_N`), the least gap a shim sets, and
@@ -576,10 +586,9 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
     others = [c for c in SHEETS_MM if c != best.sheet_mm]
     why.update({
         "sheet.thickness_mm": (f"tactcad design --jaw {PurePath(room.option).name}: of "
-                               f"{', '.join(f'{s:g}' for s in SHEETS_MM)} mm, the sheet of the "
-                               f"softest pair that carries the full-scale force with "
-                               f"{FORCE_MARGIN_REL:.0%} to spare ({best.force_margin_rel:+.1%}); "
-                               f"tried also {', '.join(f'{s:g}' for s in others)} mm."),
+                               f"{', '.join(f'{s:g}' for s in SHEETS_MM)} mm, "
+                               + sheet_rule_words(best.force_margin_rel)
+                               + f"; tried also {', '.join(f'{s:g}' for s in others)} mm."),
         "array.pairing": "Column pairing: each reference (row 1) beside its measuring element "
                          "(row 2), both tips at one radius from the jaw's pin.",
         "array.pitch_mm": (f"{columns} columns in the {room.along_mm:g} mm the jaw's pocket "
