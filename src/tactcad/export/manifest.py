@@ -17,7 +17,6 @@ from __future__ import annotations
 import hashlib
 import importlib
 import math
-import threading
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -95,23 +94,12 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
             **{k: v for k, v in facts.items() if k not in HEAD}}
 
 
-#: One computation of a plan's facts at a time: an export computes them in a thread beside
-#: its jobs (:func:`tactcad.export.run.run_jobs`) while its review page may ask for them.
-_FACTS_LOCK = threading.Lock()
-
-
+@lru_cache(maxsize=4)
 def design_facts(plan: Plan) -> dict:
     """The manifest without its files: computed once per plan (the requirements'
     verification matrix alone takes about 0.2 s, and a run, the review page
     and ``tactcad watch``'s preview all ask for it). Shared: read it, do not
-    change it. Thread-safe: a second caller waits for the first's result."""
-    with _FACTS_LOCK:
-        return _design_facts(plan)
-
-
-@lru_cache(maxsize=4)
-def _design_facts(plan: Plan) -> dict:
-    """:func:`design_facts`, kept for the last four plans."""
+    change it."""
     head = {
         # the file's name only: an export names files relative to the project
         # folder, never by a path of the machine it was made on
@@ -124,9 +112,6 @@ def _design_facts(plan: Plan) -> dict:
     sections = {s.key: s.of(plan) for s in manifest_sections()}
     # a section with nothing to say for this design (None) is left out
     return {**head, **{k: v for k, v in sections.items() if v is not None}}
-
-
-design_facts.cache_clear = _design_facts.cache_clear  # type: ignore[attr-defined]
 
 
 # --- the built-in sections ------------------------------------------------------

@@ -36,7 +36,8 @@ from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rig_models import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
-from tactcad.export.manifest import design_facts, manifest
+from tactcad.export.manifest import manifest
+from tactcad.in_use.tissue_coupling import check_level_sample
 from tactcad.export.worker import SessionWorker, Worker, can_fork, worker_jobs
 from tactcad.catalogue.files import MANIFEST
 from tactcad.store import Store
@@ -72,7 +73,9 @@ class ExportResult:
 def _in_a_thread(work: Callable[[], object]) -> threading.Thread:
     """``work`` started in a daemon thread in this context (the result store's block): its
     value is kept where the run asks for it again (an error is left for that call to
-    raise). Started after the worker's fork: a fork never copies a running thread's locks."""
+    raise). Started after the worker's fork: a fork never copies a running thread's locks.
+    ``work`` must not touch the warnings filters (``catch_warnings`` is not thread-safe):
+    numpy's solves, as :func:`tactcad.in_use.tissue_coupling.check_level_sample`."""
     ctx = contextvars.copy_context()
 
     def quietly() -> None:
@@ -246,8 +249,8 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
     staging = staging_dir(out)
     try:
         run = Run(project, staging, log, store, dxf_version)
-        if with_manifest:  # computed beside the jobs; the manifest then reads it
-            run.background = lambda: design_facts(project.plan)
+        if with_manifest:  # the manifest's slowest part, numpy alone, solved beside the jobs
+            run.background = lambda: check_level_sample(project.plan)
         if parts is not None:
             run.parts = parts  # share the caller's solids (e.g. with the checks)
         jobs = jobs_of(run)
