@@ -1,7 +1,8 @@
 """One number per quantity: a figure a lab reads in several commands is computed in one
 place, so every command's ``--json`` (and the BOM) quotes the same value: the force
 resolution (readout, thermal), the bridge excitation (readout, thermal, BOM), the lead
-wire (thermal's lead resistance, the BOM's lead wire, grasp's bundle through the shaft)."""
+wire (thermal's lead resistance, the BOM's lead wire, grasp's bundle through the shaft),
+the gauge strain at the rating (strength, readout)."""
 
 from __future__ import annotations
 
@@ -85,3 +86,21 @@ def test_design_reads_the_kobj_resolution_with_the_read_out_chains_force_resolut
     for role in ("reference", "measuring"):
         assert d["force_resolution_N"][role] == pytest.approx(quoted[by_role[role]], rel=1e-9)
     assert all(u["K_obj_resolution_rel"] < 0.05 for u in d["units"])  # not the 0.01 N figure's
+
+
+@pytest.mark.parametrize("design", [TI, GRASPER], ids=["ti", "grasper"])
+def test_the_gauge_strain_at_the_rating_is_the_grids_in_strength_and_readout(design, capsys):
+    """strength's gauge strain and gauge fatigue force read the strain the grid reads (the
+    read-out's, bonded layer included), not the face's at the notch centre."""
+    readout = command_json(["readout", "--design", str(design)], capsys)
+    strength = command_json(["strength", "--design", str(design)], capsys)
+    grid = {r["element"]: abs(r["gauge_strain_per_N"]) for r in readout["elements"]}
+    face = {r["element"]: abs(r["peak_strain_per_N"]) for r in readout["elements"]}
+    rating = readout["full_scale_force_N"]
+    gauge_fatigue = load_design(design).strength.gauge.fatigue_strain
+    for rec in strength["elements"]:
+        n = rec["element"]
+        assert rec["full_scale_force_N"] == pytest.approx(rating, rel=1e-12)
+        assert rec["gauge_strain_at_full_scale"] == pytest.approx(grid[n] * rating, rel=1e-9)
+        assert rec["gauge_strain_at_full_scale"] != pytest.approx(face[n] * rating, rel=1e-3)
+        assert rec["gauge_fatigue_force_N"] == pytest.approx(gauge_fatigue / grid[n], rel=1e-9)

@@ -45,7 +45,9 @@ Two forces, never one name for both:
   force limits (:mod:`tactcad.mechanics.limits` lists them all).
 
 At the rated full-scale force the gauge strain (gauge strain per N x force)
-is compared with the gauge's maximum and fatigue strain, the stress with the
+is the one the plan's gauge grid reads (:func:`at_the_grid`: the face strain
+averaged over the grid and raised by the bonded layer, the read-out's number),
+and is compared with the gauge's maximum and fatigue strain, the stress with the
 fatigue strength and the force with the yield-limited force; each
 exceedance becomes a warning of the record. The fatigue strength at the
 notch (:func:`notch_fatigue_strength`) is the library's smooth-specimen
@@ -65,7 +67,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Callable, NamedTuple
 
 import numpy as np
@@ -209,18 +211,23 @@ def notch_fatigue_strength(material: Material, process: Process = ELEMENT_PROCES
 
 
 def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Material,
-                 settings: StrengthSettings) -> dict[str, np.ndarray]:
+                 settings: StrengthSettings, gauge_strain_per_N=None) -> dict[str, np.ndarray]:
     """Closed-form tip-force limits (N) of element geometries, broadcast over
     the geometry arrays (for design searches).
+
+    Args:
+        gauge_strain_per_N: what the gauge reads per newton on each geometry (1/N,
+            either sign; :func:`tactcad.mechanics.readout_chain.closed_form_grid_read_per_N`,
+            the number strength and the read-out quote); None: the face strain at the
+            notch centre, Euler-Bernoulli's 6 a / (E b t^2) x the fem3d-fitted point factor
+            of :mod:`tactcad.mechanics.gauge_strain`.
 
     Returns:
         ``yield``: yield-limited force, yield / (peak stress per N x safety factor);
         ``fatigue``: fatigue strength at the notch (:func:`notch_fatigue_strength`)
         / peak stress per N (NaN without a fatigue strength); ``gauge_max`` and
-        ``gauge_fatigue``: the gauge's maximum and fatigue strain / the surface strain
-        per N over the web, Euler-Bernoulli's 6 a / (E b t^2) x the fem3d-fitted point
-        factor of :mod:`tactcad.mechanics.gauge_strain` (as the closed-form level reports
-        it); ``binding``: the smallest of them.
+        ``gauge_fatigue``: the gauge's maximum and fatigue strain / the gauge strain per
+        N; ``binding``: the smallest of them.
 
     Raises:
         DesignError: the material has no yield strength.
@@ -228,11 +235,14 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
     """
     y = require_yield(material)
     s = peak_stress_per_newton(web_mm, notch_radius_mm, arm_length_mm, sheet_mm)
-    from tactcad.mechanics.gauge_strain import point_factor
+    if gauge_strain_per_N is None:
+        from tactcad.mechanics.gauge_strain import point_factor
 
-    eps = (nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm)
-           / material.youngs_modulus_MPa
-           * point_factor(web_mm, notch_radius_mm, sheet_mm, material.poisson_ratio))
+        eps = (nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm)
+               / material.youngs_modulus_MPa
+               * point_factor(web_mm, notch_radius_mm, sheet_mm, material.poisson_ratio))
+    else:
+        eps = np.abs(np.asarray(gauge_strain_per_N, float))
     notch = notch_fatigue_strength(material)
     out = {"yield": yield_limited_force(y, s, settings.safety_factor),
            "fatigue": (notch.strength_MPa / s) if notch else np.full_like(s, np.nan),
@@ -471,6 +481,18 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
         warnings=tuple(warn))
 
 
+def at_the_grid(es: ElementStress, g: ElementGeometry, plan: Plan) -> ElementStress:
+    """``es`` with the strain per newton the plan's gauge grid reads on ``g`` at
+    ``es.model`` (:func:`tactcad.mechanics.readout_chain.gauge_strain_per_N`'s
+    ``grid``: the face strain averaged over the grid, times the bonded layer's read
+    factor), in place of the face strain at one point: strength, the hard stops and the
+    read-out then quote one gauge strain. Unsigned (1/N)."""
+    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+
+    grid = gauge_strain_per_N(g, plan.material, readout_chain(plan), es.model)["grid"]
+    return replace(es, gauge_strain_per_N=abs(float(grid)))
+
+
 #: Evaluates one element's peak stress at a model: (geometry, material, model) -> ElementStress.
 StressModel = Callable[[ElementGeometry, Material, str], ElementStress]
 
@@ -509,7 +531,7 @@ def plan_strength(plan: Plan, full_scale_force_N: float, model: str = "closed-fo
         if g.part_name not in cache:
             if progress:
                 progress(f"{model}: {g.part_name}")
-            cache[g.part_name] = stress(g, plan.material, model)
+            cache[g.part_name] = at_the_grid(stress(g, plan.material, model), g, plan)
         out.append(strength_record(slot.number, g, plan.material, plan.strength,
                                    cache[g.part_name], full_scale_force_N, reference_load))
     return out

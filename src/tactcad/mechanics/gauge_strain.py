@@ -59,6 +59,8 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
+import numpy as np
+
 from tactcad.design.array_plan import ElementGeometry, Material
 
 #: The file the fitted coefficients come from.
@@ -274,6 +276,17 @@ def bonded_grid_factor(web_mm: float, sheet_mm: float, youngs_modulus_MPa: float
         raise ValueError(f"bonded_grid_factor: web {t!r}, sheet {b!r} mm and E {E!r} MPa must be "
                          f"> 0; grid height {h!r} mm, layer modulus {El!r} MPa and width {Wl!r} "
                          "mm >= 0")
+    read, stiffening, e = transformed_section(t, b, E, h, El, Wl)
+    return BondedGrid(float(read), (t / 2 + h) / (t / 2), float(stiffening), float(e))
+
+
+def transformed_section(web_mm, sheet_mm, youngs_modulus_MPa, grid_height_mm,
+                        layer_modulus_MPa, layer_width_mm):
+    """(read factor, EI_c / EI_0 - 1, neutral-axis shift e (mm)) of a web with a bonded
+    layer, broadcast over arrays, unchecked (:func:`bonded_grid_factor` checks one)."""
+    t, b, E, h, El, Wl = (np.asarray(v, float) for v in (
+        web_mm, sheet_mm, youngs_modulus_MPa, grid_height_mm, layer_modulus_MPa,
+        layer_width_mm))
     # heights from the web's mid-plane; the layer spans t/2 ... t/2 + h
     ea_web, ea_layer = E * b * t, El * Wl * h
     e = ea_layer * (t / 2 + h / 2) / (ea_web + ea_layer)
@@ -281,4 +294,4 @@ def bonded_grid_factor(web_mm: float, sheet_mm: float, youngs_modulus_MPa: float
     ei_c = (ei_0 + ea_web * e * e + El * Wl * h ** 3 / 12.0
             + ea_layer * (t / 2 + h / 2 - e) ** 2)
     read = ((t / 2 + h - e) / ei_c) / ((t / 2) / ei_0)
-    return BondedGrid(read, (t / 2 + h) / (t / 2), ei_c / ei_0 - 1.0, e)
+    return read, ei_c / ei_0 - 1.0, e

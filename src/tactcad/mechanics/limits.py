@@ -30,7 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from tactcad.design.array_plan import ElementGeometry, Plan
-from tactcad.mechanics.gauge_strain import point_strain_factor
+from tactcad.mechanics.gauge_strain import grid_strain_factor
 from tactcad.mechanics.ladder import is_meshed
 from tactcad.mechanics.element_strength import notch_fatigue_strength
 
@@ -125,12 +125,16 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
         ValueError: an FEM model without its ``stresses``.
     """
     from tactcad.mechanics.ladder import estimate
-    from tactcad.mechanics.element_strength import closed_form_stress, require_yield
+    from tactcad.mechanics.element_strength import (at_the_grid, closed_form_stress,
+                                                    require_yield)
 
     element_stress = closed_form_stress
     require_yield(plan.material)
     from tactcad.mechanics.fem.fem2d import plane_model_error
 
+    from tactcad.mechanics.readout_chain import readout_chain
+
+    chain = readout_chain(plan)
     stresses = dict(stresses or {})
     k_errors = dict(k_errors or {})
     out = []
@@ -138,6 +142,8 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
         g = slot.geometry
         if g.part_name not in stresses:
             stresses[g.part_name] = element_stress(g, plan.material, model)
+        # the gauge limits on the strain the grid reads (the read-out's), not the face's
+        stresses[g.part_name] = at_the_grid(stresses[g.part_name], g, plan)
         if g.part_name not in k_errors:
             k_errors[g.part_name] = estimate(model, g, plan.material).error_estimate_rel \
                 if not is_meshed(model) else stresses[g.part_name].stress_error_rel
@@ -147,8 +153,9 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
         # fem2d's K error already holds its plane model error for K: not for the strain
         k_err = k_errors[g.part_name] - (plane_model_error(g, plan.material)
                                          if model == "fem2d" else 0.0)
-        # the closed form's and the beam's gauge strain carry the fitted plane-strain factor
-        strain_err = None if is_meshed(model) else point_strain_factor(g, plan.material).error_rel
+        # the closed form's and the beam's grid strain carry the fitted grid factor's error
+        strain_err = None if is_meshed(model) else grid_strain_factor(
+            g, plan.material, chain.grid_length_mm, chain.grid_width_mm).error_rel
         out.extend(element_limits(slot.number, g, plan, stresses[g.part_name],
                                   max(k_err, 0.0), bound, strain_err))
     return out

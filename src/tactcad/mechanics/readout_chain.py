@@ -109,17 +109,58 @@ def grid_span_mm(g: ElementGeometry, grid_length_mm: float) -> tuple[float, floa
 
 
 def beam_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: float) -> float:
-    """Grid-averaged top-face strain per newton, beam theory (Gauss-Legendre on each
-    smooth piece of h(x): the notch walls are break points)."""
-    a, b = grid_span_mm(g, grid_length_mm)
-    R, xh = g.notch_radius_mm, g.hinge_x_mm
-    cuts = sorted({a, b, *[c for c in (xh - R, xh + R) if a < c < b]})
+    """Grid-averaged top-face strain per newton, beam theory (1/N, signed;
+    :func:`eb_grid_strain_per_N` on ``g``'s dimensions)."""
+    return float(eb_grid_strain_per_N(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,
+                                      grid_length_mm, g.sheet_thickness_mm,
+                                      material.youngs_modulus_MPa, g.base_height_mm,
+                                      g.arm_height_mm))
+
+
+def eb_grid_strain_per_N(web_mm, notch_radius_mm, arm_length_mm, grid_length_mm, sheet_mm,
+                         youngs_modulus_MPa, base_height_mm, arm_height_mm) -> np.ndarray:
+    """Euler-Bernoulli top-face strain per newton averaged over a grid centred over the
+    notch, broadcast over arrays of element dimensions (mm, MPa; 1/N, negative:
+    compression): eps / F = -6 (a - u) / (E b h(u)^2), u from the notch centre, h the
+    section under the flat top face (:func:`top_face_height_mm`); Gauss-Legendre on each
+    smooth piece (the notch walls u = +-R are break points). ``grid_length_mm`` > 0."""
+    t, R, a, L, b, E, hb, ha = np.broadcast_arrays(*(np.asarray(v, float) for v in (
+        web_mm, notch_radius_mm, arm_length_mm, grid_length_mm, sheet_mm, youngs_modulus_MPa,
+        base_height_mm, arm_height_mm)))
+    half = L / 2
+    r = np.minimum(R, half)
     nodes, weights = np.polynomial.legendre.leggauss(GAUSS_POINTS)
-    total = 0.0
-    for lo, hi in zip(cuts, cuts[1:]):
-        x = 0.5 * (hi - lo) * nodes + 0.5 * (hi + lo)
-        total += 0.5 * (hi - lo) * float(weights @ beam_surface_strain_per_N(g, material, x))
-    return total / (b - a)
+    total = np.zeros(t.shape)
+    for lo, hi in ((-half, -r), (-r, r), (r, half)):
+        u = (0.5 * (hi - lo))[..., None] * nodes + (0.5 * (hi + lo))[..., None]
+        Rn, tn = R[..., None], t[..., None]
+        notch = tn + Rn - np.sqrt(np.maximum(Rn * Rn - u * u, 0.0))
+        h = np.where(u < -Rn, hb[..., None], np.where(u > Rn, ha[..., None], notch))
+        eps = -6.0 * (a[..., None] - u) / (E[..., None] * b[..., None] * h * h)
+        total = total + 0.5 * (hi - lo) * (eps @ weights)
+    return total / L
+
+
+def closed_form_grid_read_per_N(web_mm, notch_radius_mm, arm_length_mm, g: ElementGeometry,
+                                material: Material, chain: ReadoutChain) -> np.ndarray:
+    """What the grid of ``chain`` reads per newton at the closed-form level on elements
+    like ``g`` with the given webs, notch radii and arm lengths (mm; broadcast; 1/N,
+    signed): the fem3d-fitted grid factor x the EB grid average x the bonded layer's read
+    factor, as :func:`gauge_strain_per_N` gives it for one element, without its error
+    estimate and range check (for design searches, whose candidates are not the design)."""
+    from tactcad.design.readout_section import carrier_width_mm
+    from tactcad.mechanics.gauge_strain import load_strain_correction, transformed_section
+
+    t, R, a = (np.asarray(v, float) for v in (web_mm, notch_radius_mm, arm_length_mm))
+    b, L, W = g.sheet_thickness_mm, chain.grid_length_mm, chain.grid_width_mm
+    corr = load_strain_correction()
+    factor = corr.factor(t / R, np.sqrt(t * R) / b, material.poisson_ratio, L / (2.0 * R),
+                         min(W, b) / b)
+    eb = eb_grid_strain_per_N(t, R, a, L, b, material.youngs_modulus_MPa, g.base_height_mm,
+                              g.arm_height_mm)
+    read = transformed_section(t, b, material.youngs_modulus_MPa, chain.grid_height_mm,
+                               chain.gauge_backing_modulus_MPa, carrier_width_mm(W, b))[0]
+    return factor * eb * read
 
 
 def fem2d_surface_strain_per_N(g: ElementGeometry, material: Material

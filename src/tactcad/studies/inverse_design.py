@@ -75,6 +75,7 @@ from tactcad.errors import DesignError
 from tactcad.mechanics.correction import load_correction, range_warnings_unsaid
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
 from tactcad.mechanics.element_strength import force_limits, notch_fatigue_strength
+from tactcad.mechanics.readout_chain import closed_form_grid_read_per_N, readout_chain
 from tactcad.studies.tolerance_montecarlo import corrected_stiffness
 
 #: Clearance (mm) between the notch bottom and the arm's underside when the
@@ -535,7 +536,10 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     # to the arm range where a target leaves it (those webs fail there anyway).
     arms = [np.where(np.isnan(a), np.where(k_short < k_t, arm_lo, arm_hi), a)
             for a, k_t in ((a_r, targets.k_r), (a_m, targets.k_m))]
-    limits_r, limits_m = (force_limits(webs, radii, a, b, mat, plan.strength) for a in arms)
+    chain = readout_chain(plan)  # the gauge limits on what the design's grid reads
+    limits_r, limits_m = (force_limits(webs, radii, a, b, mat, plan.strength,
+                                       closed_form_grid_read_per_N(webs, radii, a, g, mat, chain))
+                          for a in arms)
     f_yield = np.minimum(limits_r["yield"], limits_m["yield"])
     f_gauge = np.minimum(limits_r["gauge_fatigue"], limits_m["gauge_fatigue"])
     f_gauge_max = np.minimum(limits_r["gauge_max"], limits_m["gauge_max"])
