@@ -128,7 +128,9 @@ def test_a_paired_design_is_set_against_its_units_laid_along_the_rows():
     # along the rows the travel ratio enters R; the travel correction takes most of it out
     worst_paired = max(abs(u["error_rel"]) for u in paired)
     assert min(abs(u["error_rel"]) for u in along) > 2 * worst_paired
-    assert all(abs(u["error_corrected_rel"]) < abs(u["error_rel"]) for u in along)
+    # where its two tips stand on tissue of nearly one local K_obj (the wedge's outer units)
+    like = [u for u in along if u["r_reference_mm"] / u["r_measuring_mm"] > 0.8]
+    assert like and all(abs(u["error_corrected_rel"]) < abs(u["error_rel"]) for u in like)
     text = run_cli("grasp", "--design", COMB, "--kobj", "1").stdout
     assert "paired: the design's own layout" in text and "along the rows: angle" in text
 

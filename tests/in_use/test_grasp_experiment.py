@@ -115,3 +115,39 @@ def test_each_tip_is_judged_on_its_own_overload_limit_apart_from_its_rating():
             assert t["overload_limit_N"] == limits[t["site"]]
             assert t["over_overload_limit"] == (t["element_force_N"] > limits[t["site"]])
         assert any(t["over_overload_limit"] for t in lay.tips)
+
+
+def test_under_a_wedge_each_unit_is_judged_on_its_own_thickness_with_one_modulus():
+    """Under the wedge the tissue's thickness varies along the jaw (h r / r_last) and its
+    modulus does not: each equal-radius unit's true K_obj is its face alone on its own
+    thickness (higher where the tissue is thinner; the outermost unit's, on the slab's
+    thickness, is K_obj), and its bias follows the local thickness; each unit reads as its
+    two tips alone on a uniform layer of their thickness (an isolated two-face solve; the
+    rest of the jaw moves it by < 1 %)."""
+    from tactcad.in_use.grasp_experiment import tips_as_laid_out
+    from tactcad.mechanics.contact import single_punch_unit_compliance, unit_punch_compliance
+
+    plan, k, units = setup(COMB)
+    wedge = grasp(plan, JAW, k, units, 1.5, 1.0, force_N=0.3, profile="wedge")
+    paired = sorted(wedge.paired.units, key=lambda u: u["r_reference_mm"])
+    assert all(u["valid"] for u in paired)
+    thickness = [u["tissue_thickness_reference_mm"] for u in paired]
+    true = [u["K_obj_true_N_per_mm"] for u in paired]
+    errors = [u["error_rel"] for u in paired]
+    assert thickness == sorted(thickness) and thickness[-1] == pytest.approx(JAW.slab_thickness_mm)
+    assert true == sorted(true, reverse=True) and true[-1] == pytest.approx(1.5, rel=1e-9)
+    assert errors == sorted(errors) and errors[-1] - errors[0] > 0.05
+    tips = tips_as_laid_out(plan, JAW, k)
+    face = tips.punches[0]
+    E = 1.5 * single_punch_unit_compliance(face.width_x_mm, face.depth_z_mm, 0.49,
+                                           JAW.slab_thickness_mm)
+    for u in paired:
+        i, j = (tips.labels.index(n) for n in (u["reference"], u["measuring"]))
+        c = unit_punch_compliance([tips.punches[i], tips.punches[j]], 0.49,
+                                  round(u["tissue_thickness_reference_mm"], 9)) / E
+        d = u["travel_reference_mm"]
+        assert u["travel_measuring_mm"] == pytest.approx(d, rel=1e-9)
+        kr, km = u["K_r_N_per_mm"], u["K_m_N_per_mm"]
+        p = np.linalg.solve(c + np.diag([1 / kr, 1 / km]), [d, d])
+        r_alone = (p[1] / km) / (p[0] / kr)
+        assert u["R_read"] == pytest.approx(r_alone, rel=0.01)

@@ -258,14 +258,18 @@ def _pct(x) -> str:
 
 def unit_table(layout: dict) -> list[str]:
     """One layout's units as a Markdown table."""
-    lines = ["| unit | r_r mm | r_m mm | r_m/r_r | Δ_r mm | Δ_m mm | R true | R read | "
-             "K_obj read | error | K_obj corrected | error | note |",
-             "| --- |" + " --- |" * 12]
+    lines = ["| unit | r_r mm | r_m mm | r_m/r_r | tissue mm | Δ_r mm | Δ_m mm | K_obj true | "
+             "R true | R read | K_obj read | error | K_obj corrected | error | note |",
+             "| --- |" + " --- |" * 14]
     for u in layout["units"]:
+        t_r, t_m = u.get("tissue_thickness_reference_mm"), u.get("tissue_thickness_measuring_mm")
+        tissue = "-" if t_r is None else (_f(t_r, 3) if t_r == t_m
+                                          else f"{_f(t_r, 3)} / {_f(t_m, 3)}")
         lines.append(
             f"| {u['unit']} | {_f(u['r_reference_mm'])} | {_f(u['r_measuring_mm'])} | "
-            f"{_f(u['radius_ratio'])} | {_f(u['travel_reference_mm'])} | "
-            f"{_f(u['travel_measuring_mm'])} | {_f(u['R_true'])} | {_f(u['R_read'])} | "
+            f"{_f(u['radius_ratio'])} | {tissue} | {_f(u['travel_reference_mm'])} | "
+            f"{_f(u['travel_measuring_mm'])} | {_f(u['K_obj_true_N_per_mm'])} | "
+            f"{_f(u['R_true'])} | {_f(u['R_read'])} | "
             f"{_f(u['K_obj_read_N_per_mm'])} | {_pct(u['error_rel'])} | "
             f"{_f(u['K_obj_corrected_N_per_mm'])} | {_pct(u['error_corrected_rel'])} | "
             f"{u['why'] or ('equal radius' if abs(u['radius_ratio'] - 1) <= 0.02 else 'radii differ')} |")

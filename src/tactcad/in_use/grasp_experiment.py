@@ -66,17 +66,22 @@ DEFAULT_JAW_BEYOND_MM = 2.0
 
 def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thickness_mm: float,
                       coupling: str = "layer",
-                      poisson_ratio: float = TISSUE_POISSON_RATIO) -> np.ndarray:
+                      poisson_ratio: float = TISSUE_POISSON_RATIO,
+                      local_thickness_mm=None) -> np.ndarray:
     """The tissue's compliance under the tips (mm/N), shape (m, m): the one place the grasp
     asks the tissue model (re-point it here for another).
 
     Args:
         punches: the tips' contact faces in the surface plane (mm).
-        k_obj_N_per_mm: the tissue's local stiffness under one tip face alone (N/mm), > 0.
+        k_obj_N_per_mm: the tissue's local stiffness under one tip face alone on the
+            ``slab_thickness_mm`` layer (N/mm), > 0: it sets the one modulus of the tissue.
         slab_thickness_mm: the slab on the opposing jaw (mm), > 0 (``layer`` only).
         coupling: ``none`` (I / K_obj), ``halfspace`` or ``layer`` (Steinbrenner's layer on a
             rigid base, :mod:`tactcad.mechanics.contact`).
         poisson_ratio: ν of the tissue.
+        local_thickness_mm: the layer's thickness under each tip (mm, shape (m,); a wedge),
+            ``layer`` only; None: ``slab_thickness_mm`` under every tip
+            (:func:`local_layer_compliance`).
 
     Raises:
         DesignError: K_obj <= 0 or an unknown coupling.
@@ -92,7 +97,44 @@ def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thicknes
     # E such that one face alone sees K_obj: every compliance scales as 1/E
     own = np.mean([single_punch_unit_compliance(p.width_x_mm, p.depth_z_mm, poisson_ratio,
                                                 thickness) for p in punches])
+    if local_thickness_mm is not None and coupling == "layer":
+        unit = local_layer_compliance(punches, slab_thickness_mm, local_thickness_mm,
+                                      poisson_ratio, unit)
     return unit / (k_obj_N_per_mm * own)
+
+
+def local_layer_compliance(punches: list[Punch], slab_thickness_mm: float, local_thickness_mm,
+                           poisson_ratio: float, slab_unit: np.ndarray) -> np.ndarray:
+    """The faces' compliance at E = 1 MPa (mm/N, shape (m, m)) on a layer whose thickness
+    varies from tip to tip: faces on one thickness (a unit paired at equal radius under a
+    wedge) are solved together on a uniform layer of that thickness; between faces on
+    different thicknesses the slab's coupling is kept, scaled by each face's own softening,
+    C_ij = C_ij(slab) sqrt(s_i s_j) (:func:`local_softening`; an approximation, small
+    where such faces are far apart)."""
+    t = np.round(np.broadcast_to(np.asarray(local_thickness_mm, float), (len(punches),)), 9)
+    s = local_softening(punches, slab_thickness_mm, t, poisson_ratio)
+    out = slab_unit * np.sqrt(np.outer(s, s))
+    for h in np.unique(t):
+        group = np.flatnonzero(t == h)
+        out[np.ix_(group, group)] = unit_punch_compliance([punches[i] for i in group],
+                                                          poisson_ratio, float(h))
+    return out
+
+
+def local_softening(punches: list[Punch], slab_thickness_mm: float, local_thickness_mm,
+                    poisson_ratio: float = TISSUE_POISSON_RATIO) -> np.ndarray:
+    """Each face's compliance alone on its own layer thickness over its compliance on the
+    ``slab_thickness_mm`` layer (one modulus: below 1 where the tissue is thinner), shape
+    (m,). Each is a converged single-punch solve (:mod:`tactcad.mechanics.contact`)."""
+    t = np.broadcast_to(np.asarray(local_thickness_mm, float), (len(punches),))
+    if not np.all(np.isfinite(t) & (t > 0)):
+        raise DesignError("local_thickness_mm", t.tolist(), "> 0 mm at every tip")
+
+    def alone(p: Punch, h: float) -> float:
+        return single_punch_unit_compliance(p.width_x_mm, p.depth_z_mm, poisson_ratio,
+                                            float(round(h, 9)))
+
+    return np.array([alone(p, h) / alone(p, slab_thickness_mm) for p, h in zip(punches, t)])
 
 
 @dataclass(frozen=True)
@@ -239,6 +281,25 @@ class LayoutGrasp:
                 "total_force_N": self.total_force_N, "tips": self.tips, "units": self.units}
 
 
+#: What the tissue rests on, by coupling (the layer model's own base condition).
+BASE_WORDS = {"none": "no base: each tip on its own spring K_obj (eq. 1)",
+              "halfspace": "no base: an elastic half-space",
+              "layer": "a rigid base under the layer, its shear condition not modelled "
+                       "(Steinbrenner's approximation: between a frictionless and a bonded "
+                       "base; a bonded, nearly incompressible thin layer is stiffer)"}
+
+
+def wedge_words(jaw: JawGeometry, radius_mm) -> str:
+    """The wedge in words: its thickness law, its range under the tips and the angle at
+    which the jaw meets every tip at once."""
+    r = np.asarray(radius_mm, float)
+    t = tissue_thickness_mm(r, jaw.slab_thickness_mm, "wedge")
+    touch = math.degrees(math.asin(min(1.0, jaw.slab_thickness_mm / float(r.max()))))
+    return (f"thickness h r / r_last, {t.min():.3g} ... {t.max():.3g} mm under the tips, "
+            f"meeting every tip at once at {touch:.3g} degrees (the jaw opens to "
+            f"{jaw.opening_angle_deg:g})")
+
+
 def tissue_thickness_mm(radius_mm: np.ndarray, thickness_mm: float, profile: str) -> np.ndarray:
     """The tissue's thickness under each tip (mm): ``slab`` h everywhere; ``wedge`` h r / r_last.
 
@@ -284,12 +345,20 @@ def angle_for_force(tips: Tips, compliance: np.ndarray, slab_mm: float, opening_
     return 0.5 * (lo + hi)
 
 
-def unit_reading(ref: int, meas: int, sol: TipSolution, tips: Tips, k_obj: float,
-                 unit: tuple[int, int] | None = None) -> dict:
+def unit_reading(ref: int, meas: int, sol: TipSolution, tips: Tips, k_obj,
+                 unit: tuple[int, int] | None = None, thickness_mm=None) -> dict:
     """One unit's travels, deflections, R and K_obj read (eq. 3), raw and corrected for its
     tips' travels, against the true K_obj; ``valid`` False with why when a tip lifted off or
-    sits on its stop. ``unit``: the design's unit laid on these sites (default the sites)."""
+    sits on its stop. ``unit``: the design's unit laid on these sites (default the sites).
+
+    Args:
+        k_obj: the true K_obj (N/mm): one for every tip, or per tip (shape (m,): the tissue
+            under a wedge); a unit is judged against the geometric mean of its two tips'.
+        thickness_mm: the tissue's thickness under each tip (mm, shape (m,)), reported.
+    """
     i, j = tips.labels.index(ref), tips.labels.index(meas)
+    k_tips = np.broadcast_to(np.asarray(k_obj, float), (len(tips.labels),))
+    k_obj = float(math.sqrt(k_tips[i] * k_tips[j]))
     k_r, k_m = float(tips.stiffness_N_per_mm[i]), float(tips.stiffness_N_per_mm[j])
     e_r, e_m = float(sol.deflection_mm[i]), float(sol.deflection_mm[j])
     d_r, d_m = float(sol.travel_mm[i]), float(sol.travel_mm[j])
@@ -306,6 +375,9 @@ def unit_reading(ref: int, meas: int, sol: TipSolution, tips: Tips, k_obj: float
            "K_r_N_per_mm": k_r, "K_m_N_per_mm": k_m,
            "R_true": (k_r + k_obj) / (k_m + k_obj), "K_obj_true_N_per_mm": k_obj,
            "valid": not why, "why": "; ".join(why)}
+    if thickness_mm is not None:
+        out["tissue_thickness_reference_mm"] = float(thickness_mm[i])
+        out["tissue_thickness_measuring_mm"] = float(thickness_mm[j])
     if e_r <= 0 or d_m <= 0:
         return {**out, "R_read": None, "K_obj_read_N_per_mm": None, "error_rel": None,
                 "R_corrected": None, "K_obj_corrected_N_per_mm": None,
@@ -380,15 +452,23 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
                  angle_deg: float | None, force_N: float | None,
                  profile: str = "slab") -> LayoutGrasp:
     """One layout closed at ``angle_deg`` or to the grasp force ``force_N`` (one of them)."""
-    c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling)
+    local = (tissue_thickness_mm(tips.radius_mm, jaw.slab_thickness_mm, profile)
+             if profile != "slab" and coupling == "layer" else None)
+    c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling,
+                          local_thickness_mm=local)
+    # one modulus along the jaw: where the tissue is thinner, its true K_obj is higher
+    k_local = (np.full(len(tips.labels), k_obj) if local is None else
+               k_obj / local_softening(tips.punches, jaw.slab_thickness_mm, local))
     if angle_deg is None:
         angle_deg = angle_for_force(tips, c, jaw.slab_thickness_mm, jaw.opening_angle_deg,
                                     float(force_N), profile)
     check_angle_deg(jaw, angle_deg)
     sol = press(tips, c, jaw.slab_thickness_mm, angle_deg, profile)
+    thickness = tissue_thickness_mm(tips.radius_mm, jaw.slab_thickness_mm, profile)
     return LayoutGrasp(name, float(angle_deg), float(sol.tip_force_N.sum()),
                        tip_records(tips, sol, rated_force_N),
-                       [unit_reading(u[0], u[1], sol, tips, k_obj, u[2] if len(u) > 2 else u[:2])
+                       [unit_reading(u[0], u[1], sol, tips, k_local, u[2] if len(u) > 2 else u[:2],
+                                     thickness)
                         for u in units])
 
 
@@ -438,9 +518,14 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
         raise DesignError("profile", profile, " | ".join(PROFILES))
     args = (jaw, k_obj_N_per_mm, coupling, rated_force_N, angle_deg, force_N, profile)
     notes = {"profile": f"{profile}: " + ("uniform thickness h" if profile == "slab" else
-                                          "thickness h r / r_last, filling the open jaw"),
-             "tissue": f"{coupling} coupling, ν {TISSUE_POISSON_RATIO:g}, its modulus set so "
-                       f"one tip face alone sees K_obj",
+                                          wedge_words(jaw, laid.radius_mm)),
+             "tissue": f"{coupling} coupling, ν {TISSUE_POISSON_RATIO:g}, one modulus set so "
+                       f"one tip face alone on the {jaw.slab_thickness_mm:g} mm layer sees "
+                       "K_obj" + ("; under the wedge each tip's true K_obj is its face alone "
+                                  "on its own thickness, and each unit is judged against "
+                                  "its tips' (the geometric mean)"
+                                  if profile == "wedge" and coupling == "layer" else ""),
+             "base": BASE_WORDS.get(coupling, ""),
              "correction": "R corrected = R read x travel_r / travel_m (the jaw's angle and "
                            "the slab's thickness known)" + COUPLING_LEFT_IN[coupling != "none"],
              "paired_units": "each paired unit is the design unit named, laid on the two "
