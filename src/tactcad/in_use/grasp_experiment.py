@@ -628,4 +628,5 @@ def grasp_summary(result: GraspResult) -> dict:
 
     return {"rated_force_N": result.rated_force_N, "K_obj_N_per_mm": result.k_obj_N_per_mm,
             "slab_thickness_mm": result.jaw.slab_thickness_mm, "coupling": result.coupling,
+            "profile": result.profile, "opening_angle_deg": result.jaw.opening_angle_deg,
             "as_laid_out": layout(result.as_laid_out), "paired": layout(result.paired)}
