@@ -10,7 +10,8 @@ ROOT = Path(__file__).resolve().parents[2]
 TI = str(ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
 MACRO = str(ROOT / "hardware" / "macro_array" / "macro_array.toml")
 SOURCES = {"readout_noise", "thermal_zero", "thermal_span", "manufacturing_tolerance",
-           "stack_crosstalk", "tissue_coupling", "gauge_model", "calibration", "tip_coplanarity"}
+           "stack_crosstalk", "tissue_coupling", "gauge_model", "calibration", "tip_coplanarity",
+           "gauge_creep"}
 
 
 @pytest.mark.parametrize("design", [MACRO, TI])

@@ -377,3 +377,22 @@ def test_a_stated_accuracy_gives_the_tip_tolerance_the_drawing_must_hold(ti_plan
         worst = max(worst, float(np.max(np.sqrt(before ** 2 + np.sum(others ** 2, axis=0)))))
     assert worst == pytest.approx(0.1, rel=0.01)
     assert f"+/-{needed:.3g} mm" in budget.notes["tip_coplanarity"]
+
+
+def test_gauge_creep_is_each_readings_creep_through_eq3_in_quadrature(ti_plan):
+    """(j): each element's reading creeping by 0.1 % of itself, independently, moves K_obj by
+    the quadrature of eq. 3's partials times 0.1 % of each deflection (computed here by
+    finite differences of eq. 3, not its partials); compensation leaves 0.02 %."""
+    ctx = _context(ti_plan, force=0.1)
+    unit = _first_unit(ctx)
+    op = _op(ctx, unit, kb.kobj_grid((1.0, 5.0)))
+    got = kb.gauge_creep(ctx, unit, op)
+
+    def kobj(e_m, e_r):
+        return kb.kobj_from_deflections(e_m / e_r, 1.0, op.k_m, op.k_r)
+
+    for creep, rel in ((kb.GAUGE_CREEP_REL, got.before), (kb.COMPENSATED_CREEP_REL, got.after)):
+        d_m = kobj(op.e_m * (1 + creep), op.e_r) / op.k_obj - 1
+        d_r = kobj(op.e_m, op.e_r * (1 + creep)) / op.k_obj - 1
+        assert rel == pytest.approx(np.hypot(d_m, d_r), rel=2e-3)
+    assert np.all(got.after < got.before) and np.all(got.before > 0)

@@ -71,6 +71,13 @@ every K_obj of the grid, before and after the correction the lab applies):
     calibration file when given, else the expected standard errors of the paper's
     procedure (:func:`expected_calibration_stderr_rel`: the force read to 0.001 N, the
     signal through the design's read-out chain), all independent.
+(j) gauge creep: a bonded gauge's reading under a held load creeps by a fraction of the
+    reading (glue line and carrier relaxing; :data:`GAUGE_CREEP_REL` over
+    :data:`GAUGE_CREEP_MINUTES`, the figure beyond which a gauge maker calls an
+    installation faulty), each element's independently (two installations), in
+    quadrature; the same creep in both would cancel in R. Creep compensation (the end
+    loops a gauge maker matches to the spring) brings it to :data:`COMPENSATED_CREEP_REL`,
+    which remains. Hysteresis is not sized: no gauge maker's figure for it was found.
 
 Totals: the RSS and the worst-case sum of the contributions after correction (as a
 calibrated, corrected sensor reads), and of those before. The budget's own relative
@@ -636,6 +643,28 @@ def calibration(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     return Contribution(rel, rel)
 
 
+#: Creep of a bonded foil gauge's reading under a held load, relative, uncompensated: the
+#: limit beyond which the installation is faulty (Vishay Measurements Group, "Creep
+#: Compensation": compensation is "generally limited to transducers exhibiting less than
+#: +-0.1 % FS creep"; larger creep is generally a faulty gauge installation).
+GAUGE_CREEP_REL = 1e-3
+#: With the creep compensation a transducer maker matches to its spring (same note:
+#: commercial transducers "regularly achieve ... less than +-0.02 % of full scale" in 20 min).
+COMPENSATED_CREEP_REL = 2e-4
+#: The hold the creep figures are for (min).
+GAUGE_CREEP_MINUTES = 20.0
+
+
+def gauge_creep(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(j) Each element's reading creeping by :data:`GAUGE_CREEP_REL` of itself over a
+    held reading, the two independent (quadrature); after creep compensation
+    :data:`COMPENSATED_CREEP_REL` remains."""
+    def rel(creep: float) -> np.ndarray:
+        return quadrature_rel(op, de_m=creep * op.e_m, de_r=creep * op.e_r)
+
+    return Contribution(rel(GAUGE_CREEP_REL), rel(COMPENSATED_CREEP_REL))
+
+
 class Source(NamedTuple):
     """One source of the budget: its key, its words and its function."""
 
@@ -663,6 +692,9 @@ SOURCES = (
     Source("tip_coplanarity", "tip coplanarity", tip_coplanarity,
            "every unit zeroed on a rigid flat: the offset read to the elements' deflection "
            "resolution remains"),
+    Source("gauge_creep", f"gauge creep ({GAUGE_CREEP_MINUTES:g} min hold; hysteresis not "
+           "sized)", gauge_creep,
+           "creep compensation matched to the spring: 0.02 % of the reading remains"),
 )
 SOURCE_KEYS = tuple(s.key for s in SOURCES)
 

@@ -1,0 +1,161 @@
+"""The SOI bulk-micromachining process a silicon die is made in: its wafer stack, its masks
+(one GDSII layer each) and the layout rules the masks are checked against.
+
+A die's cantilevers are cut in the device layer of a silicon-on-insulator wafer by deep
+reactive-ion etching (the Bosch process) from the front, released by a second DRIE through
+the handle from the back (the buried oxide stops both, and is then removed under the
+beams); p-type piezoresistors are implanted at each beam's root, contacted through the
+oxide and wired in aluminium to bond pads on the die's heel.
+
+Each rule carries its value and where it comes from. The DRIE aspect ratio and the wafer
+ranges are the field's published figures; the lithography rules (widths, spaces,
+enclosures, alignment) are stated assumptions typical of a contact-lithography MEMS line,
+each marked so: a foundry's own rule deck replaces them (:data:`SOI_RULES`).
+
+Units: um (the masks' own unit; GDSII database unit 1 nm).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from tactcad.errors import DesignError
+
+#: A rule that is a stated assumption, not a published figure, starts its source so.
+ASSUMED = "assumption (a foundry's rule deck replaces it): "
+
+
+@dataclass(frozen=True)
+class MaskLayer:
+    """One photomask: its GDSII layer and datatype, and what it patterns."""
+
+    name: str
+    gds_layer: int
+    datatype: int
+    text: str
+
+
+#: The masks in process order, and the die outline (a layout layer, not a mask).
+MASKS = (
+    MaskLayer("piezo", 1, 0, "boron implant: the p-type piezoresistors at the beams' roots"),
+    MaskLayer("contact", 2, 0, "contact openings through the oxide onto the resistors' ends"),
+    MaskLayer("metal", 3, 0, "aluminium: the leads and the bond pads on the die's heel"),
+    MaskLayer("device_etch", 4, 0, "front DRIE through the device layer: the slot around "
+                                   "each beam"),
+    MaskLayer("handle_etch", 5, 0, "back DRIE through the handle: the window under the beams "
+                                   "(its edge is the beams' root)"),
+    MaskLayer("tip", 6, 0, "the post on each beam's free end that meets the tissue first"),
+    MaskLayer("die", 10, 0, "the die's outline (the dicing lane's inner edge); not a mask"),
+)
+MASK_BY_NAME = {m.name: m for m in MASKS}
+
+
+@dataclass(frozen=True)
+class Rule:
+    """One layout rule (um).
+
+    Attributes:
+        name: the rule's name in reports (``metal.width``).
+        layer: the mask it applies to (:data:`MASKS`); ``inside``: the mask that must
+            enclose it, for an enclosure rule.
+        kind: ``width`` (smallest feature), ``space`` (smallest gap between features) or
+            ``enclosure`` (``inside`` covers ``layer`` by at least the value).
+        value_um: the limit.
+        source: the figure's source, or :data:`ASSUMED` and why.
+    """
+
+    name: str
+    layer: str
+    kind: str
+    value_um: float
+    source: str
+    inside: str = ""
+
+
+@dataclass(frozen=True)
+class SoiStack:
+    """An SOI wafer's layers (um): the device layer the beams are cut in, the buried
+    oxide, the handle; the device layer's thickness tolerance (the beams' stiffness goes
+    as its cube)."""
+
+    device_um: float
+    box_um: float
+    handle_um: float
+    device_tolerance_um: float
+
+    def __post_init__(self):
+        for name, (lo, hi) in STACK_RANGES_UM.items():
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and lo <= value <= hi):
+                raise DesignError(f"soi.{name}", value, f"{lo:g} ... {hi:g} um "
+                                  f"({STACK_RANGE_SOURCE})")
+        if not 0 <= self.device_tolerance_um < self.device_um / 2:
+            raise DesignError("soi.device_tolerance_um", self.device_tolerance_um,
+                              f"0 ... {self.device_um / 2:g} um (half the device layer)")
+
+    @property
+    def total_um(self) -> float:
+        return self.device_um + self.box_um + self.handle_um
+
+
+#: The ranges SOI wafers for MEMS are sold in (um).
+STACK_RANGES_UM = {"device_um": (2.0, 100.0), "box_um": (0.5, 2.0), "handle_um": (300.0, 700.0)}
+STACK_RANGE_SOURCE = ("bonded SOI wafers for MEMS: device layer 2-100 um, buried oxide "
+                      "0.5-2 um, handle 300-700 um")
+#: Device-layer thicknesses a design searches (um): common stock thicknesses.
+DEVICE_LAYER_CHOICES_UM = (5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0, 60.0, 80.0, 100.0)
+#: The device layer's thickness tolerance (um), +-: typical of bonded-and-polished SOI.
+DEVICE_TOLERANCE_UM = 0.5
+DEVICE_TOLERANCE_SOURCE = ("bonded-and-polished SOI: device layer to +-0.5 to 1 um (the "
+                           "tighter end taken)")
+#: Buried oxide and handle of the default stack (um).
+DEFAULT_BOX_UM, DEFAULT_HANDLE_UM = 1.0, 400.0
+
+#: DRIE's largest trench depth / width (Bosch process): 20 the conservative end of the
+#: 20:1 to 30:1 such etches reach.
+DRIE_ASPECT_RATIO = 20.0
+DRIE_SOURCE = ("deep reactive-ion etching, Bosch process (Laermer and Schilp, US 5,501,893, "
+               "1996): aspect ratios about 20:1 to 30:1; 20:1 taken")
+#: Front-to-back alignment (um), +-.
+BACKSIDE_ALIGNMENT_UM = 2.0
+
+
+def drie_min_width_um(depth_um: float) -> float:
+    """The narrowest trench DRIE opens through ``depth_um`` of silicon (um): depth / the
+    aspect ratio, and never below the lithography's smallest feature."""
+    return max(depth_um / DRIE_ASPECT_RATIO, LITHO_MIN_UM)
+
+
+#: The lithography's smallest feature (um).
+LITHO_MIN_UM = 2.0
+
+
+def soi_rules(stack: SoiStack) -> tuple[Rule, ...]:
+    """The rules the masks of a die on ``stack`` are checked against (:class:`Rule`)."""
+    litho = ASSUMED + "contact lithography resolves about 2 um"
+    return (
+        Rule("device_etch.width", "device_etch", "width", drie_min_width_um(stack.device_um),
+             f"{DRIE_SOURCE}: {stack.device_um:g} um of device layer"),
+        Rule("device_etch.space", "device_etch", "space", 2 * LITHO_MIN_UM,
+             ASSUMED + "a beam or frame between two slots at least twice the lithography's "
+                       "smallest feature"),
+        Rule("handle_etch.width", "handle_etch", "width", drie_min_width_um(stack.handle_um),
+             f"{DRIE_SOURCE}: {stack.handle_um:g} um of handle"),
+        Rule("piezo.width", "piezo", "width", LITHO_MIN_UM, litho),
+        Rule("piezo.space", "piezo", "space", 2 * LITHO_MIN_UM,
+             ASSUMED + "two implants' lateral diffusion kept apart"),
+        Rule("contact.width", "contact", "width", 2 * LITHO_MIN_UM,
+             ASSUMED + "a contact at least twice the smallest feature, for its resistance"),
+        Rule("metal.width", "metal", "width", 1.5 * LITHO_MIN_UM,
+             ASSUMED + "aluminium wet-etched: its undercut takes about 1 um"),
+        Rule("metal.space", "metal", "space", 1.5 * LITHO_MIN_UM,
+             ASSUMED + "aluminium wet-etched: its undercut takes about 1 um"),
+        Rule("metal.contact_enclosure", "contact", "enclosure", LITHO_MIN_UM,
+             ASSUMED + "the metal covers each contact by one alignment step", inside="metal"),
+        Rule("piezo.contact_enclosure", "contact", "enclosure", LITHO_MIN_UM,
+             ASSUMED + "the implant covers each contact by one alignment step",
+             inside="piezo"),
+        Rule("tip.width", "tip", "width", 10.0,
+             ASSUMED + "a post at least 10 um across stands on its beam"),
+    )
