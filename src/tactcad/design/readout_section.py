@@ -33,7 +33,8 @@ Keys (units in the names):
   (the range used; not stated: the smallest of ``daq_ranges_V`` that holds
   ``daq_range_margin`` x the signal at the gauge's fatigue strain,
   :func:`chosen_daq_range`), ``daq_bits``, ``daq_noise_uV_rms`` (random noise
-  of that range, one sample), ``samples_averaged``;
+  of that range, one sample), ``samples_averaged``, ``sample_rate_Hz`` (with the
+  noise bandwidth it sets how much averaging gains: :attr:`ReadoutChain.effective_samples`);
 * thermal (:mod:`tactcad.mechanics.thermal_drift`): ``gauge_stc_ppm_per_K``
   (the gauge's self-temperature-compensation number: 06 steel-matched =
   10.8, 13 aluminium-matched = 23.4; not stated: matched to the element's
@@ -53,6 +54,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from typing import Any, Mapping
+
+import numpy as np
 
 from tactcad.vocabulary.schema import (Problems, ResolvedSection, Section, Text, choice, fmt,
                                        integer, listing, number, section_with_defaults)
@@ -184,6 +187,9 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
     "daq_noise_uV_rms": (None, "NI 625x specifications: random noise sigma of the chosen range "
                                "(+/-5 V: 140 uV rms)"),
     "samples_averaged": (10, "assumption: 10 readings averaged per value"),
+    "sample_rate_Hz": (1000.0, "assumption: 1 kS/s per channel (the filtered noise's "
+                               "correlation time, 1 / (4 x the noise bandwidth), sets how "
+                               "much averaging the samples gains)"),
     "gauge_stc_ppm_per_K": (None, "not stated: the gauge's STC number matched to the element "
                                   "material's CTE (the gauge one orders for that material)"),
     "gauge_factor_tc_pct_per_100K": (1.15, "HBM Y series (constantan) data sheet: temperature "
@@ -238,6 +244,8 @@ class ReadoutSection(Section):
     daq_noise_uV_rms: number(0.01, 10000.0, unit="uV rms",
                              why="random noise of one DAQ sample in the chosen range") = None
     samples_averaged: integer(1, 1_000_000, why="readings averaged per value") = None
+    sample_rate_Hz: number(0.1, 10e6, unit="Hz", why="samples per second per channel; "
+                           "with the noise bandwidth it sets the averaging gain") = None
     gauge_stc_ppm_per_K: number(0.0, 50.0, unit="ppm/K",
                                 why="the gauge's self-temperature-compensation number") = None
     gauge_factor_tc_pct_per_100K: number(-10.0, 10.0, unit="%/100 K",
@@ -320,6 +328,7 @@ class ReadoutChain(ResolvedSection):
     filter_order: int = 0
     daq_ranges_V: tuple[float, ...] = ()
     daq_range_margin: float = 1.0
+    sample_rate_Hz: float = 1000.0
 
     @property
     def lead_resistance_ohm(self) -> float:
@@ -349,6 +358,25 @@ class ReadoutChain(ResolvedSection):
                    * self.filter_corner_Hz)
 
     @property
+    def noise_correlation_time_s(self) -> float:
+        """Correlation time of the filtered analog noise (s): 1 / (4 B), B the noise
+        bandwidth; exact for a first-order low-pass (tau = RC, B = 1 / (4 RC)), the
+        equal-bandwidth first-order stand-in for the others."""
+        return 1.0 / (4.0 * self.noise_bandwidth_Hz)
+
+    @property
+    def effective_samples(self) -> float:
+        """How many independent samples the average of ``samples_averaged`` correlated ones
+        is worth: N / (1 + 2 sum_k (1 - k/N) rho^k), rho = exp(-dt / tau) the correlation of
+        neighbouring samples (dt = 1 / sample_rate_Hz; exponential correlation: the
+        variance of a mean of correlated samples, e.g. Bendat and Piersol, *Random Data*).
+        N for samples far apart, 1 for samples much closer than tau."""
+        n = self.samples_averaged
+        rho = math.exp(-1.0 / (self.sample_rate_Hz * self.noise_correlation_time_s))
+        k = np.arange(1, n)
+        return n / (1.0 + 2.0 * float(np.sum((1.0 - k / n) * rho ** k)))
+
+    @property
     def volts_per_strain(self) -> float:
         """Linearised quarter-bridge gain at the DAQ: G V_ex GF / 4 (V per unit strain)."""
         return self.amplifier_gain * self.excitation_V * self.gauge_factor / 4.0
@@ -362,7 +390,9 @@ class ReadoutChain(ResolvedSection):
         return {"volts_per_strain": self.volts_per_strain,
                 "grid_power_density_W_per_mm2": self.grid_power_density_W_per_mm2,
                 "lead_resistance_ohm": self.lead_resistance_ohm,
-                "noise_bandwidth_Hz": self.noise_bandwidth_Hz}
+                "noise_bandwidth_Hz": self.noise_bandwidth_Hz,
+                "noise_correlation_time_s": self.noise_correlation_time_s,
+                "effective_samples": self.effective_samples}
 
 
 #: Carrier beyond the grid at each side across the sheet (mm): catalogue outlines of

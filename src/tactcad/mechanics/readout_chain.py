@@ -37,14 +37,16 @@ relative nonlinearity GF |eps| / 2 (reported at the full-scale force).
 Per element: sensitivity S = G V_ex GF eps_avg / (4 F) (V/N), K_v = S K
 (V/mm, eq. 4-6 of the paper's calibration).
 
-Noise (one reading, ``samples_averaged`` samples averaged, white noise):
+Noise (one reading, ``samples_averaged`` samples averaged):
 the amplifier's input noise density e_n over the chain's noise bandwidth
 (the anti-alias filter's: pi/2 x its corner for first order, (pi/2n)/sin(pi/2n)
 x the corner for a Butterworth of order n; the amplifier's single pole,
 pi/2 x its -3 dB bandwidth, without one), the bridge's Johnson noise
 (source resistance = gauge resistance for four equal arms), both times the
 gain, the DAQ's random noise and the quantisation step / sqrt(12), summed
-in quadrature and divided by sqrt(samples). Force resolution = that noise
+in quadrature; averaging divides the filtered analog part by the square root of the
+effective sample count (correlated samples: :attr:`ReadoutChain.effective_samples`), the
+DAQ's and the quantisation by that of the sample count. Force resolution = that noise
 / |S| (1 sigma).
 
 K_obj resolution: eq. 1-3 with each element's own force resolution
@@ -305,8 +307,11 @@ def noise_budget_V(chain: ReadoutChain) -> dict[str, float]:
     """Noise of one reading at the DAQ (V rms), by source and in total.
 
     Keys: ``amplifier``, ``bridge_johnson``, ``daq``, ``quantisation`` (one
-    sample each), ``per_sample`` (quadrature sum), ``reading`` (per_sample /
-    sqrt(samples_averaged)).
+    sample each), ``per_sample`` (quadrature sum), ``reading``: the mean of
+    ``samples_averaged`` samples, the filtered analog noise (amplifier, Johnson) over
+    the chain's effective sample count (:attr:`ReadoutChain.effective_samples`: its
+    samples are correlated), the DAQ's noise and the quantisation (independent from
+    sample to sample) over the sample count.
     """
     bw_noise = chain.noise_bandwidth_Hz  # anti-alias filter or the amplifier's pole
     amp = chain.amplifier_gain * chain.amplifier_noise_nV_per_rtHz * 1e-9 * math.sqrt(bw_noise)
@@ -317,7 +322,8 @@ def noise_budget_V(chain: ReadoutChain) -> dict[str, float]:
     per_sample = math.sqrt(amp ** 2 + johnson ** 2 + daq ** 2 + quant ** 2)
     return {"amplifier": amp, "bridge_johnson": johnson, "daq": daq, "quantisation": quant,
             "per_sample": per_sample,
-            "reading": per_sample / math.sqrt(chain.samples_averaged)}
+            "reading": math.sqrt((amp ** 2 + johnson ** 2) / chain.effective_samples
+                                 + (daq ** 2 + quant ** 2) / chain.samples_averaged)}
 
 
 def bridge_nonlinearity_rel(gauge_factor: float, strain: float) -> float:
