@@ -51,6 +51,7 @@ COMMAND_MODULES = (
     "tactcad.commands.materials",
     "tactcad.commands.sweep",
     "tactcad.commands.design",
+    "tactcad.commands.die",
     "tactcad.commands.diff",
     "tactcad.commands.watch",
 )

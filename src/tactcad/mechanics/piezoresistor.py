@@ -139,3 +139,16 @@ def _band(f_lo: float, f_hi: float, allow_zero: bool) -> None:
     if not (math.isfinite(f_lo) and math.isfinite(f_hi) and low_ok and f_hi >= f_lo):
         raise ValueError(f"band {f_lo!r} ... {f_hi!r} Hz: finite, "
                          f"{'0 <=' if allow_zero else '0 <'} f_lo <= f_hi")
+
+
+def die_resistor(plan, beam) -> PiezoCantilever:
+    """A die beam's root piezoresistor (:class:`tactcad.design.mems_die.DiePlan`,
+    :class:`~tactcad.design.mems_die.Beam`): its legs along the beam from the root, the
+    plan's resistor length and pi_l, carriers in a box of the plan's junction depth x_j at
+    the surface (beta* = 1 - x_j / t: the box's mean distance from the neutral axis over
+    t / 2); the short bar joining the legs' far ends is left out."""
+    from tactcad.design.mems_die import JUNCTION_DEPTH_UM
+
+    return PiezoCantilever(beam.length_um, beam.width_um, beam.thickness_um,
+                           plan.resistor_length_um, plan.pi_longitudinal_per_Pa,
+                           1.0 - JUNCTION_DEPTH_UM / beam.thickness_um)

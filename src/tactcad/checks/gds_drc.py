@@ -1,0 +1,117 @@
+"""The die's masks read back with KLayout's own layout engine (``klayout.db``, headless):
+every rule of :func:`tactcad.vocabulary.soi_process.soi_rules` (widths, spaces,
+enclosures) and the read-back of the outlines the mechanics assumed (the beams left in the
+device layer over the handle window equal the plan's beams; each contact on its resistor
+and under its metal), as :class:`tactcad.checks.check_result.CheckResult` rows.
+
+KLayout's region checks are edge-based (Euclidian metric): ``width_check(d)`` flags a
+part of a shape narrower than d, ``space_check(d)`` two edges of different or the same
+shape closer than d, ``enclosing_check(other, d)`` an edge of ``other`` within d inside
+this region's edge. The GDS database unit (1 nm) is the checks' unit.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from tactcad.checks.check_result import CheckResult
+from tactcad.vocabulary.soi_process import MASK_BY_NAME, soi_rules
+
+#: How many violation markers a failed check quotes (um coordinates).
+MARKERS_QUOTED = 3
+
+
+def _regions(path: Path):
+    """(layout, top cell, mask name -> merged region) of a die GDS."""
+    import klayout.db as kdb
+
+    layout = kdb.Layout()
+    layout.read(str(path))
+    tops = layout.top_cells()
+    if len(tops) != 1:
+        raise ValueError(f"{path.name}: one top cell (the die) expected, found "
+                         f"{len(tops)}")
+    top = tops[0]
+    regions = {}
+    for name, mask in MASK_BY_NAME.items():
+        index = layout.find_layer(mask.gds_layer, mask.datatype)
+        region = kdb.Region() if index is None else kdb.Region(top.begin_shapes_rec(index))
+        regions[name] = region.merged()
+    return layout, top, regions
+
+
+def _where(edge_pairs, dbu: float) -> str:
+    """The first violation markers, as um coordinates."""
+    out = []
+    for ep in list(edge_pairs.each())[:MARKERS_QUOTED]:
+        box = ep.bbox()
+        out.append(f"({box.center().x * dbu:.1f}, {box.center().y * dbu:.1f}) um")
+    return ", ".join(out)
+
+
+def rule_results(path: Path, plan) -> list[CheckResult]:
+    """Each rule of the die's process checked on the GDS at ``path``."""
+    layout, _, regions = _regions(path)
+    dbu = layout.dbu
+    out = []
+    for rule in soi_rules(plan.stack):
+        d = int(round(rule.value_um / dbu))
+        region = regions[rule.layer]
+        if rule.kind == "width":
+            bad = region.width_check(d)
+        elif rule.kind == "space":
+            bad = region.space_check(d)
+        else:
+            bad = regions[rule.inside].enclosing_check(region, d)
+            outside = region - regions[rule.inside]
+            if not outside.is_empty():
+                out.append(CheckResult("gds_drc", rule.name, False,
+                                       f"{outside.count()} {rule.layer} shapes outside "
+                                       f"{rule.inside}"))
+                continue
+        n = bad.count()
+        words = (f"{rule.kind} >= {rule.value_um:.3g} um ({rule.source})" if n == 0 else
+                 f"{n} places below {rule.value_um:.3g} um, at {_where(bad, dbu)} "
+                 f"({rule.source})")
+        out.append(CheckResult("gds_drc", rule.name, n == 0, words))
+    return out
+
+
+def outline_results(path: Path, plan) -> list[CheckResult]:
+    """The masks against the plan the mechanics used: the device layer left over the
+    window (window less the front etch) equals the beams the stiffness assumed; every
+    post on its beam; the die's outline the plan's."""
+    import klayout.db as kdb
+
+    from tactcad.export.gds_masks import beam_outline
+
+    layout, _, regions = _regions(path)
+    dbu = layout.dbu
+
+    def poly(points):
+        return kdb.Polygon([kdb.Point(round(x / dbu), round(y / dbu)) for x, y in points])
+
+    beams = kdb.Region([poly(beam_outline(plan, b)) for b in plan.beams]).merged()
+    left = (regions["handle_etch"] - regions["device_etch"]).merged()
+    diff = left ^ beams
+    out = [CheckResult("gds_outline", "beams", diff.is_empty(),
+                       f"{len(plan.beams)} beams in the device layer over the window equal "
+                       "the plan's" if diff.is_empty() else
+                       f"{diff.count()} differences between the beams left over the window "
+                       f"and the plan's, area {diff.area() * dbu * dbu:.4g} um^2")]
+    stray = regions["tip"] - beams
+    out.append(CheckResult("gds_outline", "posts", stray.is_empty() and
+                           regions["tip"].count() == len(plan.beams),
+                           f"{regions['tip'].count()} posts, each on its beam"))
+    box = regions["die"].bbox()
+    size = (box.width() * dbu, box.height() * dbu)
+    ok = abs(size[0] - plan.die_length_um) < 1e-3 and abs(size[1] - plan.die_width_um) < 1e-3
+    out.append(CheckResult("gds_outline", "die", ok,
+                           f"{size[0]:g} x {size[1]:g} um (plan {plan.die_length_um:g} x "
+                           f"{plan.die_width_um:g})"))
+    return out
+
+
+def gds_checks(path: Path, plan) -> list[CheckResult]:
+    """:func:`rule_results` and :func:`outline_results` of the die GDS at ``path``."""
+    return rule_results(path, plan) + outline_results(path, plan)

@@ -1,0 +1,124 @@
+"""``tactcad die``: a silicon die for a grasper's jaw, from the stiffness targets to its masks:
+the die's plan (:mod:`tactcad.design.mems_die`), its GDSII masks for the die and a wafer
+(:mod:`tactcad.export.gds_masks`) and their read-back with KLayout against the process's
+rules and the plan (:mod:`tactcad.checks.gds_drc`)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from tactcad.commands import add_output_args
+from tactcad.commands.finite_json import dumps
+from tactcad.commands.options import count, number
+from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
+
+#: The written files, by what they hold ({name}: the die's name).
+DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "record": "{name}.json"}
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "die", help="a silicon MEMS die for a grasper's jaw: plan, GDSII masks, KLayout DRC",
+        description="Sizes two rows of piezoresistive cantilevers in an SOI wafer's device "
+                    "layer (reference row stiff, measuring row soft, paired across the die) "
+                    "for K_r/K_m and a K_obj range in the jaw's pocket; writes the die's "
+                    "masks (GDSII, one layer per mask), a wafer of dies and a JSON record of "
+                    "the plan with every derived dimension's reason, and reads the masks back "
+                    "with KLayout against the process's rules and the plan. Exit 1 when a "
+                    "check fails, 2 when the targets cannot be met (with what binds and a "
+                    "pasteable alternative). Units: um, N/mm, N, MPa.")
+    p.add_argument("--jaw", required=True, metavar="CLASS|FILE",
+                   help="the jaw the die seats in: a trocar class (5, 10) or a TOML file with "
+                        "a [grasper_jaw] table (its pocket bounds the die)")
+    p.add_argument("--kr-over-km", type=number(1, 1000, lo_open=True), required=True,
+                   metavar="X", help="stiffness ratio K_r/K_m of a unit (> 1; about 10)")
+    p.add_argument("--kobj-range", type=number(0, MAX_KOBJ_N_PER_MM, "N/mm", lo_open=True),
+                   nargs=2, required=True, metavar=("LO", "HI"),
+                   help="object stiffnesses to read (N/mm)")
+    p.add_argument("--full-scale-force", type=number(0, MAX_FULL_SCALE_FORCE_N, "N",
+                                                     lo_open=True),
+                   required=True, metavar="F", help="the rated force on each beam (N)")
+    p.add_argument("--columns", type=count(2, 50), default=5, metavar="N",
+                   help="units along the die (2 ... 50; default 5)")
+    p.add_argument("--pitch-um", type=number(50, 5000, "um"), default=1000.0, metavar="UM",
+                   help="the units' spacing along the die (um; default 1000)")
+    p.add_argument("--name", default="mems_die",
+                   help="the die's name: its GDS cell and file names (letters, digits, _; "
+                        "default mems_die)")
+    p.add_argument("--out", default="die", metavar="DIR",
+                   help="folder for the masks and the record (default ./die)")
+    add_output_args(p, "print the plan and the checks as one JSON object")
+    p.set_defaults(func=run)
+
+
+def _name(value: str) -> str:
+    import re
+
+    from tactcad.errors import DesignError
+
+    if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,31}", value or ""):
+        raise DesignError("--name", value, "a letter, then up to 31 letters, digits or _ "
+                          "(a GDSII cell name)")
+    return value
+
+
+def run(args: argparse.Namespace) -> int:
+    from tactcad.checks.check_result import counts_text, status_counts
+    from tactcad.checks.gds_drc import gds_checks
+    from tactcad.commands.design import jaw_of
+    from tactcad.design.mems_die import die_plan
+    from tactcad.export.gds_masks import write_die_gds, write_wafer_gds
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.studies.inverse_design import Targets
+
+    name = _name(args.name)
+    targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
+    room = jaw_room(*jaw_of(args.jaw))
+    plan = die_plan(targets, room, columns=args.columns, pitch_um=args.pitch_um, name=name)
+    out = Path(args.out)
+    files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
+    write_die_gds(plan, files["masks"])
+    _, dies = write_wafer_gds(plan, files["wafer"])
+    checks = gds_checks(files["masks"], plan)
+    counts = status_counts(checks)
+    from tactcad.mechanics.piezoresistor import die_resistor
+
+    die = plan.as_json()
+    die["resistance_change_per_N"] = {
+        b.role: die_resistor(plan, b).resistance_change_per_N()
+        for b in (plan.beams[0], plan.beams[plan.columns])}
+    record = {"die": die, "jaw": room.label, "wafer_dies": dies,
+              "files": {k: p.name for k, p in files.items()},
+              "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
+                          "detail": c.detail} for c in checks], "counts": counts}
+    from tactcad.atomic import write_bytes_atomic
+
+    write_bytes_atomic(files["record"], (dumps(record, indent=1) + "\n").encode())
+    if args.json:
+        print(dumps(record, indent=1))
+    else:
+        print(render(plan, room.label, dies, files, checks, counts_text(counts)))
+    return 1 if counts["failed"] else 0
+
+
+def render(plan, jaw: str, dies: int, files: dict, checks, counts: str) -> str:
+    """The die, its beams and its checks as text."""
+    d = plan
+    ref, meas = d.beams[0], d.beams[d.columns]
+    lines = [f"die {d.name} for the {jaw}: {d.die_length_um:g} x {d.die_width_um:g} x "
+             f"{d.thickness_um:g} um, 2 x {d.columns} beams at {d.pitch_um:g} um",
+             f"SOI: device {d.stack.device_um:g} um (+-{d.stack.device_tolerance_um:g}), "
+             f"oxide {d.stack.box_um:g} um, handle {d.stack.handle_um:g} um",
+             "| row | role | L um | w um | t um | K N/mm | target N/mm | stress at "
+             f"{d.full_scale_force_N:g} N MPa |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for b, k, target in ((ref, d.k_r_N_per_mm, d.targets[0]),
+                         (meas, d.k_m_N_per_mm, d.targets[1])):
+        lines.append(f"| {b.row} | {b.role} | {b.length_um:.4g} | {b.width_um:g} | "
+                     f"{b.thickness_um:g} | {k:.4g} | {target:.4g} | "
+                     f"{d.stress_MPa_at_rating(b):.4g} |")
+    lines += ["", "reasons:"] + [f"  {k}: {v}" for k, v in d.reasons.items()]
+    lines += ["", f"wrote {', '.join(str(p) for p in files.values())} ({dies} dies on the "
+                  "wafer)", "", *[c.line() for c in checks], "", counts]
+    return "\n".join(lines)

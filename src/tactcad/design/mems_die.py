@@ -1,0 +1,325 @@
+"""A silicon die for a grasper's jaw: two rows of piezoresistive cantilevers in an SOI
+wafer's device layer, the reference row stiff and the measuring row soft, paired across the
+die at equal distance from the jaw's pivot, sized from the stiffness targets and the jaw's
+pocket (the paper's lumped model, eq. 1-3, with K_r / K_m about 10).
+
+The die (um; x along the jaw, y across it, the die's lower-left corner at the origin):
+
+* a solid frame around a window the handle is etched away under (the back DRIE,
+  :mod:`tactcad.vocabulary.soi_process`); the window's edges across the die are the beams'
+  roots, so the front-to-back alignment moves every root;
+* row 1, the reference beams, clamped at the window's lower edge (y = frame), pointing +y;
+  row 2, the measuring beams, clamped at its upper edge, pointing -y; column j of both
+  rows at one x: a unit's two tips at one distance from the pivot;
+* each beam of width w and the device layer's thickness t, bent out of the wafer's plane
+  by the tissue's force on a post at its free end (L from the root to the post's centre);
+  K = E w t^3 / (4 L^3) (Euler-Bernoulli, clamped at the root), E the modulus along the
+  beam, <110> on a (100) wafer (:mod:`tactcad.vocabulary.crystal`);
+* a U-shaped p-type piezoresistor along each beam from its root (two legs joined at the
+  far end), contacted on the frame, each contact wired to its own bond pad on the frame
+  behind the beam (a quarter bridge per beam, completed off the die);
+* the device layer over the window etched away except the beams (front DRIE).
+
+Sizing (:func:`die_plan`): the stiffness targets (:class:`tactcad.studies.inverse_design.
+Targets`: K_m = sqrt(K_lo K_hi / X), K_r = X K_m) and the pitch along the die give, for each
+stock device-layer thickness and beam width, L = (E w t^3 / (4 K))^(1/3); of the pairs whose
+two beams, their posts and the slot between the tips fit across the window, each beam at
+least :data:`SLENDERNESS` times as long as it is wide, the die takes the one with the lowest
+root stress at the rating, 6 F L_m / (w t^2) (the thicker layer on a tie: its +-tolerance
+moves K by 3 dt / t). Every choice is kept with its reason.
+
+Units: um for the layout, mm and N/mm for the mechanics' interfaces as named.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from tactcad.errors import DesignError
+from tactcad.vocabulary.crystal import SILICON, SILICON_P_TYPE, in_plane_direction
+from tactcad.vocabulary.soi_process import (BACKSIDE_ALIGNMENT_UM, DEFAULT_BOX_UM,
+                                            DEFAULT_HANDLE_UM, DEVICE_LAYER_CHOICES_UM,
+                                            DEVICE_TOLERANCE_SOURCE, DEVICE_TOLERANCE_UM,
+                                            LITHO_MIN_UM, SoiStack, drie_min_width_um)
+
+#: Least beam length over width: Euler-Bernoulli's slender-beam form holds within a few %.
+SLENDERNESS = 3.0
+#: The frame along each long side (um): the contacts, the leads and the bond pads.
+FRAME_UM = 300.0
+#: Solid silicon at each end of the die beyond the outer columns' half pitch (um).
+END_UM = 250.0
+#: Bond pad side and the space between a beam's two pads (um).
+PAD_UM, PAD_SPACE_UM = 80.0, 20.0
+#: The pads' inner edge from the root line (um): room for the contacts and the jogs.
+PAD_SETBACK_UM = 60.0
+#: The post on each beam's free end: its side (at most the beam's width) and height (um).
+POST_MAX_UM, POST_HEIGHT_UM = 100.0, 50.0
+#: Piezoresistor legs: width, gap between them (um); the implant's margin to the beam's
+#: edges; the legs' run onto the frame for the contacts (um).
+LEG_UM, LEG_GAP_UM, RESISTOR_MARGIN_UM, RESISTOR_RUN_UM = 8.0, 8.0, 10.0, 20.0
+#: Contact side, the metal's cover beyond it and the metal lead's width (um).
+CONTACT_UM, METAL_ENCLOSURE_UM, LEAD_UM = 4.0, 3.0, 6.0
+#: The resistor's length over the reference beam's (both rows carry the same resistor, so
+#: that the two arms of a unit start equal): a third, where the root's stress is highest.
+RESISTOR_FRACTION = 1.0 / 3.0
+#: The implant's depth (um), carriers taken uniform over it (assumption: a shallow boron
+#: implant after its anneal).
+JUNCTION_DEPTH_UM = 0.5
+#: Columns per row and pitch along the die when the caller states none.
+DEFAULT_COLUMNS, DEFAULT_PITCH_UM = 5, 1000.0
+#: Beam widths searched (um): from the slot rule's smallest beam to the pitch's widest.
+WIDTH_STEP_UM = 5.0
+
+
+@dataclass(frozen=True)
+class Beam:
+    """One cantilever of the die (um; y_root the root line, direction +1 up, -1 down)."""
+
+    number: int
+    role: str
+    row: int
+    column: int
+    x_um: float
+    y_root_um: float
+    direction: int
+    length_um: float
+    width_um: float
+    thickness_um: float
+
+    @property
+    def tip_y_um(self) -> float:
+        """y of the post's centre (the tip force)."""
+        return self.y_root_um + self.direction * self.length_um
+
+
+@dataclass(frozen=True)
+class DiePlan:
+    """A validated die: its stack, beams, resistors, pads and outline, the mechanics at
+    the closed form, and the reason for every derived dimension (um, N/mm, MPa, N).
+
+    Attributes:
+        reasons: derived dimension -> why it has its value.
+    """
+
+    name: str
+    stack: SoiStack
+    rows: int
+    columns: int
+    pitch_um: float
+    die_length_um: float
+    die_width_um: float
+    frame_um: float
+    end_um: float
+    beam_width_um: float
+    reference_length_um: float
+    measuring_length_um: float
+    post_um: float
+    post_height_um: float
+    resistor_length_um: float
+    youngs_modulus_MPa: float
+    pi_longitudinal_per_Pa: float
+    k_r_N_per_mm: float
+    k_m_N_per_mm: float
+    targets: tuple[float, float]
+    full_scale_force_N: float
+    beams: tuple[Beam, ...]
+    reasons: dict = field(default_factory=dict, compare=False, hash=False)
+
+    @property
+    def window_um(self) -> tuple[float, float, float, float]:
+        """The handle window (x0, y0, x1, y1): the beams' roots are its long edges."""
+        return (self.end_um, self.frame_um, self.die_length_um - self.end_um,
+                self.die_width_um - self.frame_um)
+
+    @property
+    def thickness_um(self) -> float:
+        """The die's thickness with its posts (um)."""
+        return self.stack.total_um + self.post_height_um
+
+    def stress_MPa_at_rating(self, beam: Beam) -> float:
+        """The root's surface bending stress at the rated force (MPa): 6 F L / (w t^2)."""
+        return (6 * self.full_scale_force_N * beam.length_um * 1e-3
+                / (beam.width_um * 1e-3 * (beam.thickness_um * 1e-3) ** 2))
+
+    def as_json(self) -> dict:
+        return {"name": self.name, "stack": self.stack.__dict__, "rows": self.rows,
+                "columns": self.columns, "pitch_um": self.pitch_um,
+                "die_length_um": self.die_length_um, "die_width_um": self.die_width_um,
+                "die_thickness_um": self.thickness_um,
+                "beam_width_um": self.beam_width_um,
+                "reference_length_um": self.reference_length_um,
+                "measuring_length_um": self.measuring_length_um,
+                "post_um": self.post_um, "post_height_um": self.post_height_um,
+                "resistor_length_um": self.resistor_length_um,
+                "youngs_modulus_MPa": self.youngs_modulus_MPa,
+                "pi_longitudinal_per_Pa": self.pi_longitudinal_per_Pa,
+                "K_r_N_per_mm": self.k_r_N_per_mm, "K_m_N_per_mm": self.k_m_N_per_mm,
+                "targets_N_per_mm": {"K_r": self.targets[0], "K_m": self.targets[1]},
+                "full_scale_force_N": self.full_scale_force_N,
+                "stress_MPa_at_rating": {b.role: self.stress_MPa_at_rating(b)
+                                         for b in self.beams[:: self.columns]},
+                "reasons": dict(self.reasons)}
+
+
+def beam_stiffness_N_per_mm(youngs_modulus_MPa: float, width_um, thickness_um, length_um):
+    """K = E w t^3 / (4 L^3) of a cantilever tip-loaded out of plane (N/mm; um in)."""
+    return youngs_modulus_MPa * (width_um * 1e-3) * (thickness_um * 1e-3) ** 3 / (
+        4 * (length_um * 1e-3) ** 3)
+
+
+def length_for_stiffness_um(youngs_modulus_MPa: float, width_um: float, thickness_um: float,
+                            k_N_per_mm: float) -> float:
+    """L (um) at which a beam of width w, thickness t (um) has K (N/mm): the inverse of
+    :func:`beam_stiffness_N_per_mm`."""
+    return 1e3 * (youngs_modulus_MPa * width_um * 1e-3 * (thickness_um * 1e-3) ** 3
+                  / (4 * k_N_per_mm)) ** (1 / 3)
+
+
+def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
+             pitch_um: float = DEFAULT_PITCH_UM, name: str = "mems_die",
+             box_um: float = DEFAULT_BOX_UM, handle_um: float = DEFAULT_HANDLE_UM,
+             angle_from_110_deg: float = 0.0) -> DiePlan:
+    """The die for ``targets`` in the jaw's ``room``.
+
+    Args:
+        targets: :class:`tactcad.studies.inverse_design.Targets` (K_r / K_m, the K_obj
+            range, the rated full-scale force).
+        room: :class:`tactcad.partlib.grasper_jaw.JawRoom` (its pocket, mm).
+        columns: units along the die (2 ... 50). pitch_um: their spacing (um).
+        box_um, handle_um: the SOI stack's buried oxide and handle (um).
+        angle_from_110_deg: the beams' direction in the (100) wafer, from [110].
+
+    Returns:
+        :class:`DiePlan`.
+
+    Raises:
+        DesignError: a value out of range, or no stock device layer and beam width fit
+            (naming what binds and the largest K_m the die holds).
+    """
+    if not (isinstance(columns, int) and 2 <= columns <= 50):
+        raise DesignError("--columns", columns, "an integer 2 ... 50")
+    if not (isinstance(pitch_um, (int, float)) and math.isfinite(pitch_um)
+            and 50.0 <= pitch_um <= 5000.0):
+        raise DesignError("--pitch-um", pitch_um, "50 ... 5000 um")
+    width = round(room.across_mm * 1e3, 3)
+    length = columns * pitch_um + 2 * END_UM
+    if length > room.along_mm * 1e3 + 1e-6:
+        raise DesignError("--columns", columns,
+                          f"at most {int((room.along_mm * 1e3 - 2 * END_UM) // pitch_um)} "
+                          f"columns at {pitch_um:g} um pitch in the {room.label}'s "
+                          f"{room.along_mm:g} mm pocket")
+    direction = in_plane_direction(angle_from_110_deg)
+    E = float(SILICON.young_modulus_MPa(direction))
+    window = width - 2 * FRAME_UM
+    k_r, k_m = targets.k_r, targets.k_m
+    fitting = _fitting_beams(E, k_r, k_m, window, pitch_um)
+    if not fitting:
+        raise _no_fit(targets, room, window, pitch_um, E)
+    _, neg_t, w, slot, post, l_r, l_m = min(fitting)
+    t = -neg_t
+    stack = SoiStack(t, box_um, handle_um, DEVICE_TOLERANCE_UM)
+    beams = []
+    for row, (role, l, y0, sign) in enumerate((("reference", l_r, FRAME_UM, +1),
+                                               ("measuring", l_m, width - FRAME_UM, -1)),
+                                              start=1):
+        for c in range(columns):
+            beams.append(Beam(len(beams) + 1, role, row, c + 1,
+                              END_UM + (c + 0.5) * pitch_um, y0, sign, l, w, t))
+    resistor = RESISTOR_FRACTION * l_r
+    tol = DEVICE_TOLERANCE_UM / t
+    align = BACKSIDE_ALIGNMENT_UM
+    reasons = {
+        "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
+                     f"and the slot between the tips fit across the {window:g} um window, "
+                     f"the pair with the lowest root stress at the rating (the thicker "
+                     f"layer on a tie); its +-{DEVICE_TOLERANCE_UM:g} um "
+                     f"({DEVICE_TOLERANCE_SOURCE}) moves every K by +-{300 * tol:.2g} % "
+                     "alike (R keeps it)",
+        "beam_width_um": f"with the layer: the pair with the lowest root stress (a wider "
+                         f"beam is stressed less), beside the {slot:.3g} um DRIE slot in the "
+                         f"{pitch_um:g} um pitch, at most 1/{SLENDERNESS:g} of the reference "
+                         "beam's length (slender: Euler-Bernoulli) and wide enough for the "
+                         "resistor's two legs",
+        "reference_length_um": f"K_r = {k_r:.4g} N/mm = E w t^3 / (4 L^3), E = {E / 1e3:.4g} "
+                               f"GPa along the beam ({angle_from_110_deg:g} deg from <110> on "
+                               f"(100), {SILICON.source.split(',')[0]})",
+        "measuring_length_um": f"K_m = {k_m:.4g} N/mm the same way; K_r / K_m = "
+                               f"{targets.kr_over_km:g} gives L_m / L_r = "
+                               f"{targets.kr_over_km ** (1 / 3):.4g}",
+        "alignment": f"the back window's +-{align:g} um alignment moves both rows' roots "
+                     f"one way: K_r / K_m by +-{300 * align * (1 / l_r + 1 / l_m):.2g} %",
+        "resistor_length_um": f"{RESISTOR_FRACTION:.3g} of the reference beam, in both rows "
+                              "(equal arms), where the root's stress is highest",
+        "die_um": f"{width:g} um across (the {room.label}'s pocket, {room.across_mm:g} mm), "
+                  f"{length:g} um along: {columns} columns at {pitch_um:g} um and "
+                  f"{END_UM:g} um ends",
+        "post_um": f"a post {post:g} um square and {POST_HEIGHT_UM:g} um proud on each free "
+                   "end (assumption: SU-8 or plated; it meets the tissue before the beam)",
+        "strength": "undecided: no sourced strength of DRIE-etched silicon (a Weibull "
+                    "characteristic strength and modulus with the stressed area) is in the "
+                    "library yet; the stress at the rating is reported",
+    }
+    return DiePlan(name, stack, 2, columns, pitch_um, length, width, FRAME_UM, END_UM, w,
+                   l_r, l_m, post, POST_HEIGHT_UM, resistor, E,
+                   float(SILICON_P_TYPE.longitudinal(direction)) * 1e-11,
+                   float(beam_stiffness_N_per_mm(E, w, t, l_r)),
+                   float(beam_stiffness_N_per_mm(E, w, t, l_m)), (k_r, k_m),
+                   targets.full_scale_force_N, tuple(beams), reasons)
+
+
+def _resistor_width_um() -> float:
+    """The narrowest beam that holds the U-shaped resistor with its margins (um)."""
+    return 2 * LEG_UM + LEG_GAP_UM + 2 * RESISTOR_MARGIN_UM
+
+
+def _widths(widest: float, narrowest: float) -> list[float]:
+    """Beam widths from ``widest`` down, on a :data:`WIDTH_STEP_UM` grid (um)."""
+    n = int(math.floor((widest - narrowest) / WIDTH_STEP_UM))
+    return [round(widest - i * WIDTH_STEP_UM, 6) for i in range(max(n, 0) + 1)
+            if widest - i * WIDTH_STEP_UM >= narrowest]
+
+
+def _fitting_beams(E: float, k_r: float, k_m: float, window: float, pitch_um: float) -> list:
+    """Every stock device layer and beam width whose two beams, posts and the slot between
+    the tips fit across the window, slender (L_r >= :data:`SLENDERNESS` w): tuples
+    (the measuring beam's root stress per N, -t, w, slot, post, L_r, L_m), um."""
+    out = []
+    for t in DEVICE_LAYER_CHOICES_UM:
+        slot = drie_min_width_um(t)
+        for w in _widths(pitch_um - slot, _resistor_width_um()):
+            post = min(w, POST_MAX_UM)
+            l_r = length_for_stiffness_um(E, w, t, k_r)
+            l_m = length_for_stiffness_um(E, w, t, k_m)
+            if l_r + l_m + post + slot <= window and l_r >= SLENDERNESS * w:
+                out.append((6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m))
+    return out
+
+
+#: Steps of the K_obj range's scale a refusal searches for its alternative (x 1.05 each).
+SCALE_STEPS = 200
+
+
+def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignError:
+    """The refusal: no stock layer and width fits. Which way the targets miss (stiffer
+    tissue fits: the beams were too long for the window; softer fits: too stubby to be
+    slender beams) and the nearest scale of the K_obj range that designs (K_m and K_r go
+    as the range's scale), as a pasteable alternative."""
+    lo, hi = targets.k_obj_range_N_per_mm
+    for step in range(1, SCALE_STEPS + 1):
+        for scale, way in ((1.05 ** step, "stiffer"), (1.05 ** -step, "softer")):
+            if _fitting_beams(E, targets.k_r * scale, targets.k_m * scale, window, pitch_um):
+                why = ("the beams are too long for the window: the softest pair that fits "
+                       f"has K_m = {targets.k_m * scale:.4g} N/mm" if way == "stiffer" else
+                       "the reference beam would be too short to bend as a slender beam: the "
+                       f"stiffest that does has K_r = {targets.k_r * scale:.4g} N/mm")
+                return DesignError(
+                    "--kobj-range", [lo, hi],
+                    f"K_r {targets.k_r:.4g} and K_m {targets.k_m:.4g} N/mm in slender beams "
+                    f"(>= {SLENDERNESS:g} widths) that fit across the {window:g} um window of "
+                    f"the {room.label}", why,
+                    alternatives=[{"option": f"--kobj-range {lo * scale:.3g} {hi * scale:.3g}",
+                                   "words": f"the same span of tissues, {way}, that fits"}])
+    return DesignError("--kobj-range", [lo, hi], "targets whose beams fit the die",
+                       f"no K_obj range within x{1.05 ** SCALE_STEPS:.3g} of this one fits the "
+                       f"{window:g} um window at {pitch_um:g} um pitch: a wider jaw")

@@ -1,0 +1,186 @@
+"""The silicon die's masks as GDSII (gdstk): one layer per mask of
+:data:`tactcad.vocabulary.soi_process.MASKS`, for the die and for a wafer of dies.
+
+The polygons come from the die's plan alone (:func:`die_polygons`, a pure function of
+:class:`tactcad.design.mems_die.DiePlan`); the writers put them into cells. The GDS
+database unit is 1 nm, the user unit 1 um. Files are written whole or not at all (a
+temporary file beside the target, renamed).
+
+Layout per beam (beam-local u across it, v along it from the root towards the tip):
+the U-shaped resistor runs from v = -run on the frame to v = l_res on the beam; a contact
+sits at each leg's end on the frame, covered by metal that runs in a jog to the beam's own
+bond pad on the frame behind it.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from tactcad.design import mems_die as md
+from tactcad.design.mems_die import Beam, DiePlan
+from tactcad.vocabulary.soi_process import MASK_BY_NAME
+
+#: GDSII units: 1 um user unit, 1 nm database unit.
+GDS_UNIT_M, GDS_PRECISION_M = 1e-6, 1e-9
+#: A wafer layout's defaults: diameter and edge exclusion (mm), dicing lane (um).
+WAFER_MM, EDGE_EXCLUSION_MM, DICING_LANE_UM = 100.0, 5.0, 100.0
+
+Polygon = list[tuple[float, float]]
+
+
+def _rect(x0: float, y0: float, x1: float, y1: float) -> Polygon:
+    return [(min(x0, x1), min(y0, y1)), (max(x0, x1), min(y0, y1)),
+            (max(x0, x1), max(y0, y1)), (min(x0, x1), max(y0, y1))]
+
+
+def _local(beam: Beam, points) -> Polygon:
+    """Beam-local (u across, v from the root towards the tip) to die coordinates (um)."""
+    return [(beam.x_um + u, beam.y_root_um + beam.direction * v) for u, v in points]
+
+
+def beam_outline(plan: DiePlan, beam: Beam) -> Polygon:
+    """The beam in the device layer over the window: root to the post's far edge (um)."""
+    w, reach = beam.width_um, beam.length_um + plan.post_um / 2
+    return _local(beam, _rect(-w / 2, 0.0, w / 2, reach))
+
+
+def resistor_outline(plan: DiePlan, beam: Beam) -> Polygon:
+    """The U-shaped implant (one polygon, counter-clockwise in beam-local u, v)."""
+    g, leg, run, l = md.LEG_GAP_UM, md.LEG_UM, md.RESISTOR_RUN_UM, plan.resistor_length_um
+    h = g / 2 + leg
+    u_shape = [(-h, -run), (-g / 2, -run), (-g / 2, l - leg), (g / 2, l - leg), (g / 2, -run),
+               (h, -run), (h, l), (-h, l)]
+    return _local(beam, u_shape)
+
+
+def _contact_centres(beam: Beam) -> list[tuple[float, float]]:
+    """The two contacts' centres (beam-local): on each leg, a contact's enclosure from the
+    leg's end on the frame."""
+    u = md.LEG_GAP_UM / 2 + md.LEG_UM / 2
+    v = -md.RESISTOR_RUN_UM + md.LEG_UM / 2
+    return [(-u, v), (u, v)]
+
+
+def contact_outlines(beam: Beam) -> list[Polygon]:
+    c = md.CONTACT_UM / 2
+    return [_local(beam, _rect(u - c, v - c, u + c, v + c)) for u, v in _contact_centres(beam)]
+
+
+def metal_outlines(beam: Beam) -> list[Polygon]:
+    """Each contact's cover, its lead (a jog along the frame) and its bond pad, as one
+    polygon per contact (beam-local construction, no overlaps between the two)."""
+    out = []
+    half, lead = md.CONTACT_UM / 2 + md.METAL_ENCLOSURE_UM, md.LEAD_UM / 2
+    pad_v0 = -md.PAD_SETBACK_UM
+    pad_v1 = pad_v0 - md.PAD_UM
+    jog_v = -md.RESISTOR_RUN_UM - 20.0
+    for side, (u, v) in zip((-1, 1), _contact_centres(beam)):
+        pad_u = side * (md.PAD_SPACE_UM / 2 + md.PAD_UM / 2)
+        # cover + down to the jog + across to the pad's axis + down into the pad + the pad
+        x0, x1 = sorted((u, pad_u))
+        poly = _union_of_rects([
+            (u - half, v - half, u + half, v + half),
+            (u - lead, jog_v - lead, u + lead, v),
+            (x0 - lead, jog_v - lead, x1 + lead, jog_v + lead),
+            (pad_u - lead, pad_v0, pad_u + lead, jog_v),
+            (pad_u - md.PAD_UM / 2, pad_v1, pad_u + md.PAD_UM / 2, pad_v0)])
+        out.extend(_local(beam, p) for p in poly)
+    return out
+
+
+def _union_of_rects(rects) -> list[Polygon]:
+    import gdstk
+
+    polys = [gdstk.rectangle((x0, y0), (x1, y1)) for x0, y0, x1, y1 in rects]
+    merged = gdstk.boolean(polys[:1], polys[1:], "or", precision=1e-3)
+    return [[tuple(p) for p in poly.points] for poly in merged]
+
+
+def post_outline(plan: DiePlan, beam: Beam) -> Polygon:
+    p = plan.post_um / 2
+    return _local(beam, _rect(-p, beam.length_um - p, p, beam.length_um + p))
+
+
+def die_polygons(plan: DiePlan) -> dict[str, list[Polygon]]:
+    """Every mask's polygons of the die (um), keyed by mask name
+    (:data:`tactcad.vocabulary.soi_process.MASKS`)."""
+    import gdstk
+
+    window = _rect(*plan.window_um)
+    beams = [beam_outline(plan, b) for b in plan.beams]
+    etched = gdstk.boolean(gdstk.Polygon(window), [gdstk.Polygon(b) for b in beams], "not",
+                           precision=1e-3)
+    return {
+        "die": [_rect(0.0, 0.0, plan.die_length_um, plan.die_width_um)],
+        "handle_etch": [window],
+        "device_etch": [[tuple(p) for p in poly.points] for poly in etched],
+        "tip": [post_outline(plan, b) for b in plan.beams],
+        "piezo": [resistor_outline(plan, b) for b in plan.beams],
+        "contact": [c for b in plan.beams for c in contact_outlines(b)],
+        "metal": [m for b in plan.beams for m in metal_outlines(b)],
+    }
+
+
+def die_cell(plan: DiePlan):
+    """A gdstk cell named for the die holding :func:`die_polygons` on their layers."""
+    import gdstk
+
+    cell = gdstk.Cell(plan.name.upper())
+    for mask, polys in die_polygons(plan).items():
+        m = MASK_BY_NAME[mask]
+        for p in polys:
+            cell.add(gdstk.Polygon(p, layer=m.gds_layer, datatype=m.datatype))
+    return cell
+
+
+def wafer_sites(plan: DiePlan, wafer_mm: float = WAFER_MM,
+                edge_exclusion_mm: float = EDGE_EXCLUSION_MM,
+                lane_um: float = DICING_LANE_UM) -> list[tuple[float, float]]:
+    """Lower-left corners (um) of the dies a wafer holds whole inside its usable radius,
+    on a grid of die + dicing lane centred on the wafer."""
+    usable = (wafer_mm / 2 - edge_exclusion_mm) * 1e3
+    sx, sy = plan.die_length_um + lane_um, plan.die_width_um + lane_um
+    nx, ny = int(2 * usable // sx) + 2, int(2 * usable // sy) + 2
+    sites = []
+    for i in range(-nx // 2, nx // 2 + 1):
+        for j in range(-ny // 2, ny // 2 + 1):
+            x0, y0 = i * sx - plan.die_length_um / 2, j * sy - plan.die_width_um / 2
+            corners = [(x0, y0), (x0 + plan.die_length_um, y0), (x0, y0 + plan.die_width_um),
+                       (x0 + plan.die_length_um, y0 + plan.die_width_um)]
+            if all(math.hypot(x, y) <= usable for x, y in corners):
+                sites.append((x0, y0))
+    return sites
+
+
+def _write(lib, path: Path) -> Path:
+    """``lib`` to ``path`` whole (:func:`tactcad.atomic.write_atomic`)."""
+    from tactcad.atomic import write_atomic
+
+    return write_atomic(path, lambda tmp: lib.write_gds(str(tmp)))
+
+
+def write_die_gds(plan: DiePlan, path: Path) -> Path:
+    """The die's masks as one top cell (GDSII, um / nm)."""
+    import gdstk
+
+    lib = gdstk.Library(plan.name, unit=GDS_UNIT_M, precision=GDS_PRECISION_M)
+    lib.add(die_cell(plan))
+    return _write(lib, path)
+
+
+def write_wafer_gds(plan: DiePlan, path: Path, wafer_mm: float = WAFER_MM,
+                    edge_exclusion_mm: float = EDGE_EXCLUSION_MM) -> tuple[Path, int]:
+    """A wafer of dies (a ``WAFER`` top cell referencing the die cell at every site, and
+    the wafer's outline and usable circle on layer 11); returns (path, dies)."""
+    import gdstk
+
+    lib = gdstk.Library(f"{plan.name}_wafer", unit=GDS_UNIT_M, precision=GDS_PRECISION_M)
+    die = die_cell(plan)
+    wafer = gdstk.Cell("WAFER")
+    sites = wafer_sites(plan, wafer_mm, edge_exclusion_mm)
+    for x, y in sites:
+        wafer.add(gdstk.Reference(die, (x, y)))
+    wafer.add(gdstk.ellipse((0, 0), wafer_mm / 2 * 1e3, layer=11, tolerance=1.0))
+    lib.add(die, wafer)
+    return _write(lib, path), len(sites)

@@ -1,0 +1,155 @@
+"""The silicon die for a 5 mm jaw: sized from the targets, its masks written as GDSII and
+read back with KLayout against the process's rules and the plan."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+
+import numpy as np
+import pytest
+
+from conftest import run_cli
+from tactcad.checks.gds_drc import gds_checks
+from tactcad.design import mems_die as md
+from tactcad.errors import DesignError
+from tactcad.export.gds_masks import wafer_sites, write_die_gds, write_wafer_gds
+from tactcad.partlib.grasper_jaw import jaw_room
+from tactcad.studies.inverse_design import Targets
+
+#: Hopcroft, Nix and Kenny (2010), Table: E along <110> in a (100) wafer, 169 GPa.
+E_110_MPA = 169e3
+
+
+@pytest.fixture(scope="module")
+def die():
+    return md.die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"))
+
+
+def test_the_die_meets_the_targets_and_fits_the_5mm_jaws_pocket(die):
+    room = jaw_room("5")
+    k_m = math.sqrt(0.5 * 5.0 / 10.0)
+    assert die.targets == pytest.approx((10 * k_m, k_m), rel=1e-12)
+    for beam, k in ((die.beams[0], 10 * k_m), (die.beams[die.columns], k_m)):
+        w, t, L = (beam.width_um * 1e-3, beam.thickness_um * 1e-3, beam.length_um * 1e-3)
+        assert E_110_MPA * w * t ** 3 / (4 * L ** 3) == pytest.approx(k, rel=0.002)
+        assert beam.length_um >= md.SLENDERNESS * beam.width_um
+    assert die.die_width_um == pytest.approx(room.across_mm * 1e3)
+    assert die.die_length_um <= room.along_mm * 1e3
+    assert die.thickness_um <= room.height_mm * 1e3
+    x0, y0, x1, y1 = die.window_um
+    ref, meas = die.beams[0], die.beams[die.columns]
+    # the two tips of a unit at one distance from the pivot; the slot between them open
+    assert [b.x_um for b in die.beams[:die.columns]] == [b.x_um for b in die.beams[die.columns:]]
+    gap = (meas.tip_y_um - die.post_um / 2) - (ref.tip_y_um + die.post_um / 2)
+    assert gap >= die.stack.device_um / 20 - 1e-9
+    assert die.stack.device_um in md.DEVICE_LAYER_CHOICES_UM
+    assert set(die.reasons) >= {"device_um", "beam_width_um", "reference_length_um",
+                                "measuring_length_um", "alignment", "strength"}
+    assert die.reasons["strength"].startswith("undecided")
+
+
+def test_the_layer_and_width_give_the_lowest_stress_of_every_fitting_pair(die):
+    """No stock layer and width that fits is less stressed at the rating than the one
+    chosen (a brute-force sweep of its own)."""
+    chosen = die.stress_MPa_at_rating(die.beams[die.columns])
+    window = die.die_width_um - 2 * md.FRAME_UM
+    E = die.youngs_modulus_MPa
+    for t in md.DEVICE_LAYER_CHOICES_UM:
+        for w in np.arange(md._resistor_width_um(), die.pitch_um, 1.0):
+            l_r = md.length_for_stiffness_um(E, w, t, die.targets[0])
+            l_m = md.length_for_stiffness_um(E, w, t, die.targets[1])
+            slot = max(t / 20, 2.0)
+            if (l_r + l_m + min(w, md.POST_MAX_UM) + slot <= window
+                    and l_r >= md.SLENDERNESS * w and w <= die.pitch_um - slot):
+                stress = 6 * die.full_scale_force_N * l_m * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
+                assert stress >= chosen * (1 - 0.02)  # the search's 5 um width grid
+
+
+def test_the_piezoresistor_reads_the_average_root_stress_times_pi_l(die):
+    """dR/R per N = pi_l x 6 (L - l/2) / (w t^2) x (1 - x_j / t), pi_l = (pi11 + pi12 +
+    pi44) / 2 along <110> (Smith 1954, p-type: 71.8e-11 1/Pa)."""
+    beam = die.beams[0]
+    pi_l = (6.6 - 1.1 + 138.1) / 2 * 1e-11
+    m = 1e-6
+    stress = 6 * (beam.length_um - die.resistor_length_um / 2) * m / (
+        beam.width_um * m * (beam.thickness_um * m) ** 2)
+    beta = 1 - md.JUNCTION_DEPTH_UM / beam.thickness_um
+    from tactcad.mechanics.piezoresistor import die_resistor
+
+    assert die_resistor(die, beam).resistance_change_per_N() == pytest.approx(
+        pi_l * stress * beta, rel=1e-9)
+
+
+def test_the_masks_read_back_clean_and_equal_the_plan(die, tmp_path):
+    path = write_die_gds(die, tmp_path / "die.gds")
+    results = gds_checks(path, die)
+    assert results and all(r.passed for r in results), [r.line() for r in results
+                                                        if not r.passed]
+    names = {r.subject for r in results}
+    assert {"device_etch.width", "metal.space", "metal.contact_enclosure", "beams"} <= names
+
+
+def test_the_read_back_finds_a_beam_the_mechanics_did_not_assume(die, tmp_path):
+    path = write_die_gds(die, tmp_path / "die.gds")
+    longer = dataclasses.replace(die, beams=tuple(
+        dataclasses.replace(b, length_um=b.length_um + 5.0) if b.number == 1 else b
+        for b in die.beams))
+    beams = next(r for r in gds_checks(path, longer) if r.subject == "beams")
+    assert not beams.passed and "differences" in beams.detail
+
+
+def test_a_rule_broken_in_the_layout_is_found_with_where(die, tmp_path, monkeypatch):
+    monkeypatch.setattr(md, "LEG_GAP_UM", 1.0)  # the two legs 1 um apart: below 4 um
+    path = write_die_gds(die, tmp_path / "die.gds")
+    space = next(r for r in gds_checks(path, die) if r.subject == "piezo.space")
+    assert not space.passed and " um" in space.detail and "places below 4 um" in space.detail
+
+
+def test_the_wafer_holds_only_whole_dies_inside_its_usable_circle(die, tmp_path):
+    path, dies = write_wafer_gds(die, tmp_path / "wafer.gds")
+    sites = wafer_sites(die)
+    assert dies == len(sites) > 100 and path.stat().st_size > 0
+    r = 45e3  # 100 mm wafer, 5 mm edge exclusion
+    for x, y in sites:
+        assert math.hypot(x, y) <= r and math.hypot(x + die.die_length_um,
+                                                    y + die.die_width_um) <= r
+
+
+@pytest.mark.parametrize("kobj, words", [((50.0, 5000.0), "slender"),
+                                          ((1e-5, 1e-4), "too long")], ids=["stiff", "soft"])
+def test_targets_out_of_reach_are_refused_with_a_range_that_designs(kobj, words):
+    """Too stiff: the reference beam would be stubbier than a slender beam; too soft: the
+    pair spans more than the window even in the thinnest layer. Each refusal's pasted
+    range designs; a pocket too narrow for any slender pair says so."""
+    room = jaw_room("5")
+    with pytest.raises(DesignError) as err:
+        md.die_plan(Targets(10.0, kobj, 0.02), room)
+    e = err.value
+    assert e.field == "--kobj-range" and words in e.why and "window" in e.allowed
+    lo, hi = (float(v) for v in e.alternatives[0]["option"].split()[1:])
+    plan = md.die_plan(Targets(10.0, (lo, hi), 0.02), room)
+    assert plan.k_m_N_per_mm == pytest.approx(math.sqrt(lo * hi / 10), rel=1e-9)
+    narrow = dataclasses.replace(room, across_mm=0.8)  # a 200 um window: no slender pair
+    with pytest.raises(DesignError, match="a wider jaw"):
+        md.die_plan(Targets(10.0, kobj, 0.02), narrow)
+
+
+def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(tmp_path):
+    r = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.02", "--out", str(tmp_path / "die"), "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+    rec = json.loads(r.stdout)
+    assert rec["counts"]["failed"] == 0 and rec["wafer_dies"] > 100
+    assert sorted(p.name for p in (tmp_path / "die").iterdir()) == [
+        "mems_die.gds", "mems_die.json", "mems_die_wafer.gds"]
+    bad = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "50", "5000",
+                  "--full-scale-force", "0.02", "--out", str(tmp_path / "none"), "--json")
+    assert bad.returncode == 2
+    error = json.loads(bad.stdout)["error"]
+    assert error["field"] == "--kobj-range" and error["alternatives"]
+    assert not (tmp_path / "none").exists()
+    named = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                    "--full-scale-force", "0.02", "--name", "../x", "--out", str(tmp_path))
+    assert named.returncode == 2 and "--name" in named.stderr
