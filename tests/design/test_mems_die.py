@@ -143,7 +143,8 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     rec = json.loads(r.stdout)
     assert rec["counts"]["failed"] == 0 and rec["wafer_dies"] > 100
     assert sorted(p.name for p in (tmp_path / "die").iterdir()) == [
-        "mems_die.gds", "mems_die.json", "mems_die_wafer.gds"]
+        "mems_die.gds", "mems_die.json", "mems_die.step", "mems_die_masks.png",
+        "mems_die_wafer.gds"]
     bad = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "50", "5000",
                   "--full-scale-force", "0.02", "--out", str(tmp_path / "none"), "--json")
     assert bad.returncode == 2
@@ -153,3 +154,26 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     named = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
                     "--full-scale-force", "0.02", "--name", "../x", "--out", str(tmp_path))
     assert named.returncode == 2 and "--name" in named.stderr
+
+
+def test_the_solid_is_built_from_the_masks_and_the_stack(die, tmp_path):
+    """Each layer's volume from the masks' areas and the stack's thicknesses, computed here
+    by hand: the handle and the oxide are the die less the window, the device layer the die
+    less the window plus the beams, the posts square prisms."""
+    from tactcad.export.die_solid import write_die_step
+    from tactcad.kernel.step_writer import read_step_summary
+
+    s = die.stack
+    mm = 1e-3
+    x0, y0, x1, y1 = die.window_um
+    frame = (die.die_length_um * die.die_width_um - (x1 - x0) * (y1 - y0)) * mm * mm
+    beams = sum(b.width_um * (b.length_um + die.post_um / 2) for b in die.beams) * mm * mm
+    posts = len(die.beams) * (die.post_um * mm) ** 2 * die.post_height_um * mm
+    expected = (frame * (s.handle_um + s.box_um) * mm + (frame + beams) * s.device_um * mm
+                + posts)
+    summary = read_step_summary(write_die_step(die, tmp_path / "die.step"))
+    assert summary["volume_mm3"] == pytest.approx(expected, rel=1e-6)
+    assert summary["bbox_mm"][3:] == pytest.approx(
+        [die.die_length_um * mm, die.die_width_um * mm, die.thickness_um * mm], rel=1e-9)
+    assert sorted(summary["labels"]) == [f"mems_die_{k}" for k in
+                                         ("device", "handle", "oxide", "posts")]

@@ -14,7 +14,8 @@ from tactcad.commands.options import count, number
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 
 #: The written files, by what they hold ({name}: the die's name).
-DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "record": "{name}.json"}
+DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "step": "{name}.step",
+             "picture": "{name}_masks.png", "record": "{name}.json"}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -23,8 +24,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Sizes two rows of piezoresistive cantilevers in an SOI wafer's device "
                     "layer (reference row stiff, measuring row soft, paired across the die) "
                     "for K_r/K_m and a K_obj range in the jaw's pocket; writes the die's "
-                    "masks (GDSII, one layer per mask), a wafer of dies and a JSON record of "
-                    "the plan with every derived dimension's reason, and reads the masks back "
+                    "masks (GDSII, one layer per mask) with their picture, a wafer of dies, "
+                    "the die as a STEP assembly of its layers and a JSON record of the plan "
+                    "with every derived dimension's reason, and reads the masks back "
                     "with KLayout against the process's rules and the plan. Exit 1 when a "
                     "check fails, 2 when the targets cannot be met (with what binds and a "
                     "pasteable alternative). Units: um, N/mm, N, MPa.")
@@ -68,7 +70,8 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.checks.gds_drc import gds_checks
     from tactcad.commands.design import jaw_of
     from tactcad.design.mems_die import die_plan
-    from tactcad.export.gds_masks import write_die_gds, write_wafer_gds
+    from tactcad.export.die_solid import write_die_step
+    from tactcad.export.gds_masks import write_die_gds, write_mask_picture, write_wafer_gds
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
 
@@ -80,6 +83,8 @@ def run(args: argparse.Namespace) -> int:
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
     write_die_gds(plan, files["masks"])
     _, dies = write_wafer_gds(plan, files["wafer"])
+    write_die_step(plan, files["step"])
+    write_mask_picture(files["masks"], files["picture"])
     checks = gds_checks(files["masks"], plan)
     counts = status_counts(checks)
     from tactcad.mechanics.piezoresistor import die_resistor

@@ -184,3 +184,23 @@ def write_wafer_gds(plan: DiePlan, path: Path, wafer_mm: float = WAFER_MM,
     wafer.add(gdstk.ellipse((0, 0), wafer_mm / 2 * 1e3, layer=11, tolerance=1.0))
     lib.add(die, wafer)
     return _write(lib, path), len(sites)
+
+
+#: The mask picture's size (pixels).
+PICTURE_PX = (1600, 640)
+
+
+def write_mask_picture(gds_path: Path, png_path: Path, size_px: tuple[int, int] = PICTURE_PX
+                       ) -> Path:
+    """A picture of every mask layer of the GDS at ``gds_path`` (PNG; KLayout's own
+    renderer, headless), written whole."""
+    import klayout.lay as lay
+
+    from tactcad.atomic import write_atomic
+
+    view = lay.LayoutView()
+    view.load_layout(str(gds_path), True)
+    view.max_hier()
+    view.add_missing_layers()
+    view.zoom_fit()
+    return write_atomic(png_path, lambda tmp: view.save_image(str(tmp), *size_px))

@@ -1,0 +1,57 @@
+"""The silicon die as a solid model built from its masks and its wafer stack: the handle
+less the back window, the buried oxide under the frame (released under the beams), the
+device layer less the front etch (the beams standing free over the window) and the posts,
+each a part of one STEP assembly (mm) for the review and the jaw's scene.
+
+The outlines are :func:`tactcad.export.gds_masks.die_polygons`' (the masks' own polygons),
+so the solid and the GDS cannot disagree; the heights are the plan's stack (um -> mm).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from tactcad.design.mems_die import DiePlan
+
+#: Layer colours (RGB 0-1): silicon grey, oxide blue-white, posts amber.
+COLOURS = {"handle": (0.45, 0.47, 0.52), "oxide": (0.80, 0.85, 0.95),
+           "device": (0.55, 0.58, 0.66), "posts": (0.85, 0.60, 0.20)}
+UM = 1e-3  # mm per um
+
+
+def _prism(points, z0_um: float, height_um: float):
+    from tactcad.kernel.shapes import extrude, polygon_face
+
+    face = polygon_face([(x * UM, y * UM, z0_um * UM) for x, y in points])
+    return extrude(face, height_um * UM)
+
+
+def die_layer_solids(plan: DiePlan) -> dict:
+    """Layer name -> solid (mm): ``handle``, ``oxide``, ``device``, ``posts``."""
+    from tactcad.export.gds_masks import die_polygons
+    from tactcad.kernel import shapes
+    from tactcad.kernel.shapes import cut
+
+    masks = die_polygons(plan)
+    s = plan.stack
+    outline, window = masks["die"][0], masks["handle_etch"][0]
+    z_oxide, z_device = s.handle_um, s.handle_um + s.box_um
+    z_top = z_device + s.device_um
+    handle = cut(_prism(outline, 0.0, s.handle_um), _prism(window, -1.0, s.handle_um + 2.0))
+    oxide = cut(_prism(outline, z_oxide, s.box_um), _prism(window, z_oxide - 1.0, s.box_um + 2))
+    device = cut(_prism(outline, z_device, s.device_um),
+                 *[_prism(p, z_device - 1.0, s.device_um + 2.0) for p in masks["device_etch"]])
+    posts = shapes.Compound([_prism(p, z_top, plan.post_height_um) for p in masks["tip"]])
+    return {"handle": handle, "oxide": oxide, "device": device, "posts": posts}
+
+
+def write_die_step(plan: DiePlan, path: Path) -> Path:
+    """The die's layers as one STEP assembly (AP214, mm), each layer a named, coloured part
+    at its place in the stack."""
+    from tactcad.kernel.locations import offset
+    from tactcad.kernel.step_writer import StepInstance, StepPart, write_step
+
+    solids = die_layer_solids(plan)
+    parts = [StepPart(f"{plan.name}_{k}", v, COLOURS[k]) for k, v in solids.items()]
+    instances = [StepInstance(p.name, p.name, offset(0.0, 0.0, 0.0)) for p in parts]
+    return write_step(path, parts, instances, assembly_name=plan.name)
