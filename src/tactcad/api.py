@@ -543,7 +543,7 @@ class Element:
             UnknownModelError: ``model`` is not a ladder level.
             DesignError: the material has no yield strength.
         """
-        from tactcad.mechanics.element_strength import strength_record
+        from tactcad.mechanics.element_strength import at_the_grid, strength_record
         from tactcad.mechanics.ladder import UnknownModelError, models
         from tactcad.studies.reference_loads import reference_load_of
         from tactcad.studies.strength_studies import element_stress
@@ -553,7 +553,8 @@ class Element:
             raise UnknownModelError(model)
 
         plan = self.project.plan
-        stress = element_stress(self.geometry, plan.material, model)
+        stress = at_the_grid(element_stress(self.geometry, plan.material, model),
+                             self.geometry, plan)
         return strength_record(self.number, self.geometry, plan.material, plan.strength, stress,
                                rated_full_scale_force(plan), reference_load_of(plan))
 

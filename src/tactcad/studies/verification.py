@@ -150,7 +150,7 @@ def element_figures(plan: Plan, model: str = "closed-form",
     """
     from tactcad.mechanics.ladder import estimate
     from tactcad.mechanics.ladder import is_meshed
-    from tactcad.mechanics.element_strength import closed_form_stress
+    from tactcad.mechanics.element_strength import at_the_grid, closed_form_stress
 
     if stress is None:
         if is_meshed(model):
@@ -166,7 +166,8 @@ def element_figures(plan: Plan, model: str = "closed-form",
         opts = {"progress": progress} if progress and is_meshed(model) else {}
         r = estimate(model, g, plan.material, **opts)
         k[name], k_err[name] = r.stiffness_N_per_mm, r.error_estimate_rel
-        st[name] = element_stress(g, plan.material, model)
+        # the gauge strain the grid reads (strength, limits and read-out quote one)
+        st[name] = at_the_grid(element_stress(g, plan.material, model), g, plan)
     return Figures(model, k, k_err, st, {s.number: s.geometry.part_name for s in plan.slots})
 
 
