@@ -272,6 +272,10 @@ def report_error(record: dict, as_json: bool) -> int:
         print(json.dumps({"error": finite(record)}, indent=2, default=str, allow_nan=False))
     else:
         print(f"tactcad: error: {record['message']}", file=sys.stderr)
+        for alt in record.get("alternatives") or ():  # those the message does not quote
+            if alt.get("option") and alt["option"] not in record["message"]:
+                words = f" ({alt['words']})" if alt.get("words") else ""
+                print(f"  to paste: {alt['option']}{words}", file=sys.stderr)
     return record["exit_code"]
 
 

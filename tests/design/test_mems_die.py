@@ -151,6 +151,9 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     error = json.loads(bad.stdout)["error"]
     assert error["field"] == "--kobj-range" and error["alternatives"]
     assert not (tmp_path / "none").exists()
+    text = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "50", "5000",
+                   "--full-scale-force", "0.02", "--out", str(tmp_path / "none"))
+    assert f"to paste: {error['alternatives'][0]['option']}" in text.stderr
     named = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
                     "--full-scale-force", "0.02", "--name", "../x", "--out", str(tmp_path))
     assert named.returncode == 2 and "--name" in named.stderr

@@ -318,7 +318,7 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignEr
                     f"K_r {targets.k_r:.4g} and K_m {targets.k_m:.4g} N/mm in slender beams "
                     f"(>= {SLENDERNESS:g} widths) that fit across the {window:g} um window of "
                     f"the {room.label}", why,
-                    alternatives=[{"option": f"--kobj-range {lo * scale:.3g} {hi * scale:.3g}",
+                    alternatives=[{"option": f"--kobj-range {lo * scale:.4g} {hi * scale:.4g}",
                                    "words": f"the same span of tissues, {way}, that fits"}])
     return DesignError("--kobj-range", [lo, hi], "targets whose beams fit the die",
                        f"no K_obj range within x{1.05 ** SCALE_STEPS:.3g} of this one fits the "
