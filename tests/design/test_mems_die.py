@@ -180,3 +180,41 @@ def test_the_solid_is_built_from_the_masks_and_the_stack(die, tmp_path):
         [die.die_length_um * mm, die.die_width_um * mm, die.thickness_um * mm], rel=1e-9)
     assert sorted(summary["labels"]) == [f"mems_die_{k}" for k in
                                          ("device", "handle", "oxide", "posts")]
+
+
+def test_hole_mobility_follows_an_independent_fit_and_the_sheet_resistance_its_formula():
+    """Masetti's boron mobility against Arora, Hauser and Roulston's (IEEE Trans. Electron
+    Devices 29(2), 1982, 300 K: 54.3 + 407 / (1 + (N / 2.67e17)^0.88)) within 10 % over
+    1e15 ... 1e19 cm^-3; R_s = 1 / (q mu N x_j) by hand."""
+    from tactcad.mechanics.piezoresistor import hole_mobility_cm2_per_Vs, sheet_resistance_ohm
+
+    for n in (1e15, 1e16, 1e17, 1e18, 1e19):
+        arora = 54.3 + 407 / (1 + (n / 2.67e17) ** 0.88)
+        assert hole_mobility_cm2_per_Vs(n) == pytest.approx(arora, rel=0.10)
+    mu = hole_mobility_cm2_per_Vs(4e18)
+    assert sheet_resistance_ohm(4e18, 0.5) == pytest.approx(
+        1 / (1.602176634e-19 * mu * 4e18 * 0.5e-4), rel=1e-12)
+    with pytest.raises(ValueError, match="acceptors"):
+        hole_mobility_cm2_per_Vs(0.0)
+
+
+def test_the_dies_readout_noise_and_resolution(die):
+    """Johnson sqrt(4 k T R B), Hooge sqrt(alpha V^2 / N ln(f2/f1)) at half the bias, the
+    quarter bridge's V_b / 4 dR/R per N, resolution = noise / sensitivity; the soft row
+    reads more per newton than the stiff one."""
+    from tactcad.mechanics.piezoresistor import die_readout
+
+    r = die_readout(die, bias_V=2.0, f_lo_Hz=0.1, f_hi_Hz=100.0, alpha_H=1e-5)
+    k_b = 1.380649e-23
+    assert r["noise_V"]["johnson"] == pytest.approx(
+        math.sqrt(4 * k_b * 300 * r["resistance_ohm"] * 99.9), rel=1e-12)
+    assert r["noise_V"]["hooge"] == pytest.approx(
+        math.sqrt(1e-5 * 1.0 / r["carriers"] * math.log(1000)), rel=1e-12)
+    for row in r["rows"].values():
+        assert row["sensitivity_V_per_N"] == pytest.approx(
+            2.0 / 4 * row["resistance_change_per_N"], rel=1e-12)
+        assert row["force_resolution_N"] == pytest.approx(
+            r["noise_V"]["total"] / row["sensitivity_V_per_N"], rel=1e-12)
+    assert r["rows"]["measuring"]["sensitivity_V_per_N"] > r["rows"]["reference"][
+        "sensitivity_V_per_N"]
+    assert any("P(N)" in a for a in r["assumptions"])

@@ -87,13 +87,10 @@ def run(args: argparse.Namespace) -> int:
     write_mask_picture(files["masks"], files["picture"])
     checks = gds_checks(files["masks"], plan)
     counts = status_counts(checks)
-    from tactcad.mechanics.piezoresistor import die_resistor
+    from tactcad.mechanics.piezoresistor import die_readout
 
-    die = plan.as_json()
-    die["resistance_change_per_N"] = {
-        b.role: die_resistor(plan, b).resistance_change_per_N()
-        for b in (plan.beams[0], plan.beams[plan.columns])}
-    record = {"die": die, "jaw": room.label, "wafer_dies": dies,
+    readout = die_readout(plan)
+    record = {"die": plan.as_json(), "readout": readout, "jaw": room.label, "wafer_dies": dies,
               "files": {k: p.name for k, p in files.items()},
               "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
                           "detail": c.detail} for c in checks], "counts": counts}
@@ -103,26 +100,35 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(dumps(record, indent=1))
     else:
-        print(render(plan, room.label, dies, files, checks, counts_text(counts)))
+        print(render(plan, readout, room.label, dies, files, checks, counts_text(counts)))
     return 1 if counts["failed"] else 0
 
 
-def render(plan, jaw: str, dies: int, files: dict, checks, counts: str) -> str:
-    """The die, its beams and its checks as text."""
+def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts: str) -> str:
+    """The die, its beams, their read-out and the checks as text."""
     d = plan
     ref, meas = d.beams[0], d.beams[d.columns]
+    rows = readout["rows"]
     lines = [f"die {d.name} for the {jaw}: {d.die_length_um:g} x {d.die_width_um:g} x "
              f"{d.thickness_um:g} um, 2 x {d.columns} beams at {d.pitch_um:g} um",
              f"SOI: device {d.stack.device_um:g} um (+-{d.stack.device_tolerance_um:g}), "
              f"oxide {d.stack.box_um:g} um, handle {d.stack.handle_um:g} um",
              "| row | role | L um | w um | t um | K N/mm | target N/mm | stress at "
-             f"{d.full_scale_force_N:g} N MPa |",
-             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+             f"{d.full_scale_force_N:g} N MPa | dR/R per N | V/N | force resolution N |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for b, k, target in ((ref, d.k_r_N_per_mm, d.targets[0]),
                          (meas, d.k_m_N_per_mm, d.targets[1])):
+        r = rows[b.role]
         lines.append(f"| {b.row} | {b.role} | {b.length_um:.4g} | {b.width_um:g} | "
                      f"{b.thickness_um:g} | {k:.4g} | {target:.4g} | "
-                     f"{d.stress_MPa_at_rating(b):.4g} |")
+                     f"{d.stress_MPa_at_rating(b):.4g} | {r['resistance_change_per_N']:.4g} | "
+                     f"{r['sensitivity_V_per_N']:.4g} | {r['force_resolution_N']:.3g} |")
+    lines.append(f"resistors: {readout['resistance_ohm']:.4g} ohm "
+                 f"({readout['sheet_resistance_ohm_per_sq']:.4g} ohm/sq, boron "
+                 f"{d.acceptors_per_cm3:.2g} cm^-3), quarter bridge at {readout['bias_V']:g} V, "
+                 f"noise {1e9 * readout['noise_V']['total']:.3g} nV rms over "
+                 f"{readout['band_Hz'][0]:g}-{readout['band_Hz'][1]:g} Hz; "
+                 + "; ".join(readout["assumptions"]))
     lines += ["", "reasons:"] + [f"  {k}: {v}" for k, v in d.reasons.items()]
     lines += ["", f"wrote {', '.join(str(p) for p in files.values())} ({dies} dies on the "
                   "wafer)", "", *[c.line() for c in checks], "", counts]

@@ -63,9 +63,10 @@ CONTACT_UM, METAL_ENCLOSURE_UM, LEAD_UM = 4.0, 3.0, 6.0
 #: The resistor's length over the reference beam's (both rows carry the same resistor, so
 #: that the two arms of a unit start equal): a third, where the root's stress is highest.
 RESISTOR_FRACTION = 1.0 / 3.0
-#: The implant's depth (um), carriers taken uniform over it (assumption: a shallow boron
-#: implant after its anneal).
+#: The implant's depth (um), carriers taken uniform over it, and its dose (cm^-2)
+#: (assumptions: a shallow boron implant after its anneal).
 JUNCTION_DEPTH_UM = 0.5
+IMPLANT_DOSE_PER_CM2 = 2e14
 #: Columns per row and pitch along the die when the caller states none.
 DEFAULT_COLUMNS, DEFAULT_PITCH_UM = 5, 1000.0
 #: Beam widths searched (um): from the slot rule's smallest beam to the pitch's widest.
@@ -131,6 +132,11 @@ class DiePlan:
         """The handle window (x0, y0, x1, y1): the beams' roots are its long edges."""
         return (self.end_um, self.frame_um, self.die_length_um - self.end_um,
                 self.die_width_um - self.frame_um)
+
+    @property
+    def acceptors_per_cm3(self) -> float:
+        """The resistors' boron concentration (cm^-3): the dose over the junction depth."""
+        return IMPLANT_DOSE_PER_CM2 / (JUNCTION_DEPTH_UM * 1e-4)
 
     @property
     def thickness_um(self) -> float:

@@ -141,6 +141,38 @@ def _band(f_lo: float, f_hi: float, allow_zero: bool) -> None:
                          f"{'0 <=' if allow_zero else '0 <'} f_lo <= f_hi")
 
 
+#: Masetti, Severi and Solmi, "Modeling of carrier mobility against carrier concentration
+#: in arsenic-, phosphorus- and boron-doped silicon", IEEE Trans. Electron Devices 30(7),
+#: 1983: the boron (hole) constants (cm^2/(V s), cm^-3).
+MASETTI_BORON = {"mu_max": 470.5, "mu_min1": 44.9, "mu_min2": 0.0, "mu_1": 29.0,
+                 "p_c": 9.23e16, "c_r": 2.23e17, "c_s": 6.10e20, "alpha": 0.719, "beta": 2.0}
+#: The elementary charge (C, exact since the 2019 SI).
+ELEMENTARY_CHARGE_C = 1.602176634e-19
+
+
+def hole_mobility_cm2_per_Vs(acceptors_per_cm3: float) -> float:
+    """Hole mobility in boron-doped silicon at 300 K (cm^2/(V s)), Masetti's fit:
+    mu = mu_min1 exp(-P_c / N) + (mu_max - mu_min2) / (1 + (N / C_r)^alpha)
+    - mu_1 / (1 + (C_s / N)^beta) (:data:`MASETTI_BORON`).
+
+    Raises:
+        ValueError: a doping not finite and > 0.
+    """
+    n = acceptors_per_cm3
+    if not (math.isfinite(n) and n > 0):
+        raise ValueError(f"acceptors_per_cm3 = {n!r}: finite and > 0")
+    m = MASETTI_BORON
+    return (m["mu_min1"] * math.exp(-m["p_c"] / n)
+            + (m["mu_max"] - m["mu_min2"]) / (1 + (n / m["c_r"]) ** m["alpha"])
+            - m["mu_1"] / (1 + (m["c_s"] / n) ** m["beta"]))
+
+
+def sheet_resistance_ohm(acceptors_per_cm3: float, junction_depth_um: float) -> float:
+    """A uniformly doped layer's sheet resistance (ohm per square): 1 / (q mu N x_j)."""
+    return 1.0 / (ELEMENTARY_CHARGE_C * hole_mobility_cm2_per_Vs(acceptors_per_cm3)
+                  * acceptors_per_cm3 * junction_depth_um * 1e-4)
+
+
 def die_resistor(plan, beam) -> PiezoCantilever:
     """A die beam's root piezoresistor (:class:`tactcad.design.mems_die.DiePlan`,
     :class:`~tactcad.design.mems_die.Beam`): its legs along the beam from the root, the
@@ -152,3 +184,64 @@ def die_resistor(plan, beam) -> PiezoCantilever:
     return PiezoCantilever(beam.length_um, beam.width_um, beam.thickness_um,
                            plan.resistor_length_um, plan.pi_longitudinal_per_Pa,
                            1.0 - JUNCTION_DEPTH_UM / beam.thickness_um)
+
+
+def die_resistance_ohm(plan) -> float:
+    """One U-shaped resistor's resistance (ohm): the sheet resistance of the plan's implant
+    times its squares, two legs of (run onto the frame + length) / leg width and the bar
+    (leg gap + 2 legs) / leg width at the far end."""
+    from tactcad.design import mems_die as md
+
+    legs = 2 * (md.RESISTOR_RUN_UM + plan.resistor_length_um - md.LEG_UM) / md.LEG_UM
+    bar = (md.LEG_GAP_UM + 2 * md.LEG_UM) / md.LEG_UM
+    return sheet_resistance_ohm(plan.acceptors_per_cm3, md.JUNCTION_DEPTH_UM) * (legs + bar)
+
+
+def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float = 100.0,
+                alpha_H: float = 1e-5, temperature_K: float = 300.0) -> dict:
+    """Each row's read-out of a die: one resistor per beam in a quarter bridge (its three
+    other arms equal and unstrained, off the beam) biased at ``bias_V`` (V), over the band
+    [f_lo, f_hi] (Hz).
+
+    Returns:
+        ``{"resistance_ohm", "sheet_resistance_ohm_per_sq", "hole_mobility_cm2_per_Vs",
+        "carriers", "noise_V": {"johnson", "hooge", "total"}, "rows": {role: {
+        "resistance_change_per_N", "sensitivity_V_per_N", "force_resolution_N",
+        "full_scale_signal_V"}}, "assumptions": [...]}``. Noise: the bridge's Johnson noise
+        (its output resistance, R) and the active resistor's Hooge noise at V_bias / 2
+        across it (alpha_H, default 1e-5: the middle of Harley and Kenny's 1e-7 ... 1e-4).
+
+    Raises:
+        ValueError: a bias or band out of range.
+    """
+    from tactcad.design import mems_die as md
+
+    if not (math.isfinite(bias_V) and 0 < bias_V <= 20):
+        raise ValueError(f"bias_V = {bias_V!r}: 0 < V <= 20")
+    r = die_resistance_ohm(plan)
+    legs_um = 2 * (md.RESISTOR_RUN_UM + plan.resistor_length_um)
+    carriers = carriers_in(plan.acceptors_per_cm3, legs_um, md.LEG_UM, md.JUNCTION_DEPTH_UM)
+    johnson = johnson_noise_V(r, temperature_K, f_lo_Hz, f_hi_Hz)
+    hooge = hooge_noise_V(alpha_H, bias_V / 2, carriers, f_lo_Hz, f_hi_Hz)
+    total = math.hypot(johnson, hooge)
+    rows = {}
+    for beam in (plan.beams[0], plan.beams[plan.columns]):
+        c = die_resistor(plan, beam)
+        sens = c.bridge_sensitivity_V_per_N(bias_V)
+        rows[beam.role] = {"resistance_change_per_N": c.resistance_change_per_N(),
+                           "sensitivity_V_per_N": sens,
+                           "force_resolution_N": force_resolution_N(c, bias_V, total),
+                           "full_scale_signal_V": sens * plan.full_scale_force_N}
+    return {"resistance_ohm": r,
+            "sheet_resistance_ohm_per_sq": sheet_resistance_ohm(plan.acceptors_per_cm3,
+                                                                md.JUNCTION_DEPTH_UM),
+            "hole_mobility_cm2_per_Vs": hole_mobility_cm2_per_Vs(plan.acceptors_per_cm3),
+            "carriers": carriers, "bias_V": bias_V, "band_Hz": [f_lo_Hz, f_hi_Hz],
+            "noise_V": {"johnson": johnson, "hooge": hooge, "total": total},
+            "rows": rows,
+            "assumptions": [
+                f"alpha_H {alpha_H:g} (Harley and Kenny 2000: 1e-7 annealed ... 1e-4)",
+                "pi_l at Smith's 7.8 ohm cm: the doping factor P(N) at the implant's "
+                f"{plan.acceptors_per_cm3:.2g} cm^-3 (Kanda 1982) is not applied, so dR/R "
+                "is overstated",
+                "no amplifier noise: the bridge's own noise only"]}
