@@ -218,3 +218,25 @@ def test_the_dies_readout_noise_and_resolution(die):
     assert r["rows"]["measuring"]["sensitivity_V_per_N"] > r["rows"]["reference"][
         "sensitivity_V_per_N"]
     assert any("P(N)" in a for a in r["assumptions"])
+
+
+def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypatch):
+    """A full disk while the STEP is written: the masks already made are not moved in, no
+    staging folder is left, and the previous set stays whole."""
+    import errno
+
+    from tactcad.export import die_solid
+
+    args = ("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+            "--full-scale-force", "0.02", "--out", str(tmp_path / "die"))
+    assert run_cli(*args).returncode == 0
+    before = {p.name: p.read_bytes() for p in (tmp_path / "die").iterdir()}
+
+    def full_disk(plan, path):
+        raise OSError(errno.ENOSPC, "No space left on device", str(path))
+
+    monkeypatch.setattr(die_solid, "write_die_step", full_disk)
+    r = run_cli(*args[:-1], str(tmp_path / "die"), "--pitch-um", "900")
+    assert r.returncode != 0 and "disk full" in r.stderr and "Traceback" not in r.stderr
+    assert {p.name: p.read_bytes() for p in (tmp_path / "die").iterdir()} == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["die"]

@@ -6,6 +6,8 @@ rules and the plan (:mod:`tactcad.checks.gds_drc`)."""
 from __future__ import annotations
 
 import argparse
+import os
+import shutil
 from pathlib import Path
 
 from tactcad.commands import add_output_args
@@ -66,12 +68,14 @@ def _name(value: str) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    from tactcad.atomic import staging_dir
     from tactcad.checks.check_result import counts_text, status_counts
     from tactcad.checks.gds_drc import gds_checks
     from tactcad.commands.design import jaw_of
     from tactcad.design.mems_die import die_plan
     from tactcad.export.die_solid import write_die_step
     from tactcad.export.gds_masks import write_die_gds, write_mask_picture, write_wafer_gds
+    from tactcad.mechanics.piezoresistor import die_readout
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
 
@@ -81,22 +85,28 @@ def run(args: argparse.Namespace) -> int:
     plan = die_plan(targets, room, columns=args.columns, pitch_um=args.pitch_um, name=name)
     out = Path(args.out)
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
-    write_die_gds(plan, files["masks"])
-    _, dies = write_wafer_gds(plan, files["wafer"])
-    write_die_step(plan, files["step"])
-    write_mask_picture(files["masks"], files["picture"])
-    checks = gds_checks(files["masks"], plan)
-    counts = status_counts(checks)
-    from tactcad.mechanics.piezoresistor import die_readout
-
-    readout = die_readout(plan)
-    record = {"die": plan.as_json(), "readout": readout, "jaw": room.label, "wafer_dies": dies,
-              "files": {k: p.name for k, p in files.items()},
-              "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
-                          "detail": c.detail} for c in checks], "counts": counts}
-    from tactcad.atomic import write_bytes_atomic
-
-    write_bytes_atomic(files["record"], (dumps(record, indent=1) + "\n").encode())
+    # every file made in a staging folder beside OUT, then moved in: a failed or
+    # interrupted run leaves OUT's previous files as they were
+    staging = staging_dir(out)
+    try:
+        made = {k: staging / p.name for k, p in files.items()}
+        write_die_gds(plan, made["masks"])
+        _, dies = write_wafer_gds(plan, made["wafer"])
+        write_die_step(plan, made["step"])
+        write_mask_picture(made["masks"], made["picture"])
+        checks = gds_checks(made["masks"], plan)
+        counts = status_counts(checks)
+        readout = die_readout(plan)
+        record = {"die": plan.as_json(), "readout": readout, "jaw": room.label,
+                  "wafer_dies": dies, "files": {k: p.name for k, p in files.items()},
+                  "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
+                              "detail": c.detail} for c in checks], "counts": counts}
+        made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
+        out.mkdir(parents=True, exist_ok=True)
+        for k, path in made.items():
+            os.replace(path, files[k])
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
     if args.json:
         print(dumps(record, indent=1))
     else:
