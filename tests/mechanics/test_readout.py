@@ -296,3 +296,25 @@ def test_daq_range_is_the_smallest_that_holds_the_signal_with_margin():
     assert noise_budget_V(chain)["reading"] < noise_budget_V(stated)["reading"]
     none_holds = readout_chain(_plan(**{"readout.daq_ranges_V": [0.1, 0.2]}))
     assert none_holds.daq_range_V == 0.2 and "none holds" in none_holds.source("daq_range_V")
+
+
+def test_the_bonded_layer_raises_k_by_less_than_it_stiffens_the_web():
+    """The layer's K rise (EB over the carrier) is positive, below its stiffening of the
+    web's thinnest section (it covers only the carrier, and thicker sections gain less),
+    zero for a layer of no modulus, and grows with the glue line."""
+    import dataclasses
+
+    from tactcad.mechanics.readout_chain import gauge_layer_k_rel
+
+    plan = load_design()
+    g, m = plan.element(4).geometry, plan.material
+    chain = readout_chain(plan)
+    rel = gauge_layer_k_rel(g, m, chain)
+    web = gauge_strain_per_N(g, m, chain, "closed-form")["stiffening_rel"]
+    assert 0.02 < rel < web
+    assert gauge_layer_k_rel(g, m, dataclasses.replace(chain, gauge_backing_modulus_MPa=0.0)) == 0
+    thicker = dataclasses.replace(chain, adhesive_thickness_mm=chain.adhesive_thickness_mm + 0.02)
+    assert gauge_layer_k_rel(g, m, thicker) > rel
+    report = _report(plan)
+    assert all(r["gauge_layer_k_rel"] == pytest.approx(
+        gauge_layer_k_rel(plan.element(r["element"]).geometry, m, chain)) for r in report.records)

@@ -56,6 +56,13 @@ def _g(x, fmt: str = ".4g") -> str:
     return "n/a" if x is None else format(x, fmt)
 
 
+def _layer_k_text(report) -> str:
+    """The bonded layer's K rise over the elements, as a range in percent."""
+    rel = [r["gauge_layer_k_rel"] for r in report.records]
+    lo, hi = 100 * min(rel), 100 * max(rel)
+    return f"{lo:.2g} %" if round(lo, 1) == round(hi, 1) else f"{lo:.2g}-{hi:.2g} %"
+
+
 def _filter_text(c) -> str:
     """The anti-alias filter and the noise bandwidth it sets, in words."""
     if c.filter_order < 1:
@@ -86,7 +93,9 @@ def render(report) -> str:
              f"{report.kobj_range_N_per_mm[1]:g} N/mm",
              f"  grid {1e3 * c.grid_height_mm:.0f} um above the top face (glue line + carrier, "
              f"{c.gauge_backing_modulus_MPa:g} MPa): the grid reads the face's strain x "
-             "'read'; the layer stiffens the web by 'stiff.'",
+             "'read'; the layer stiffens the web by 'stiff.' and raises K by "
+             + _layer_k_text(report) + " (Euler-Bernoulli over the carrier; the K below "
+             "does not carry it: calibration measures K with the gauge bonded)",
              "| element | role | K N/mm | strain/N (face) | error | read | stiff. | "
              "strain/N (grid) | face grid/peak | K_v/K V/N | K_v V/mm | force res. N | "
              "K_obj res. |",
