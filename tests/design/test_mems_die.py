@@ -144,7 +144,7 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     assert rec["counts"]["failed"] == 0 and rec["wafer_dies"] > 100
     assert sorted(p.name for p in (tmp_path / "die").iterdir()) == [
         "mems_die.gds", "mems_die.json", "mems_die.step", "mems_die_masks.png",
-        "mems_die_wafer.gds"]
+        "mems_die_traveller.md", "mems_die_wafer.gds"]
     bad = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "50", "5000",
                   "--full-scale-force", "0.02", "--out", str(tmp_path / "none"), "--json")
     assert bad.returncode == 2
@@ -240,3 +240,22 @@ def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypat
     assert r.returncode != 0 and "disk full" in r.stderr and "Traceback" not in r.stderr
     assert {p.name: p.read_bytes() for p in (tmp_path / "die").iterdir()} == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["die"]
+
+
+def test_the_traveller_lists_every_mask_in_process_order_with_the_plans_figures(die):
+    """Each mask used once, the implant before the contacts before the metal, the front DRIE
+    before the back DRIE before the release; the stack, the dose and the sheet resistance
+    quoted; the stated parameters marked as assumptions."""
+    from tactcad.export.traveller import traveller_markdown, traveller_steps
+    from tactcad.vocabulary.soi_process import MASK_BY_NAME
+
+    steps = traveller_steps(die, 324.0)
+    masks = [s.mask for s in steps if s.mask]
+    assert sorted(masks) == sorted(MASK_BY_NAME)  # every mask once (the outline at dicing)
+    order = [s.name for s in steps]
+    for a, b in (("implant", "contact"), ("contact", "metal"), ("front DRIE", "back DRIE"),
+                 ("back DRIE", "release"), ("release", "dicing")):
+        assert order.index(a) < order.index(b)
+    text = traveller_markdown(die, 324.0, "mems_die.gds")
+    assert f"{die.stack.device_um:g} +-{die.stack.device_tolerance_um:g} um" in text
+    assert "324 ohm/sq" in text and "(assumption)" in text and "mems_die.gds" in text

@@ -17,7 +17,8 @@ from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ
 
 #: The written files, by what they hold ({name}: the die's name).
 DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "step": "{name}.step",
-             "picture": "{name}_masks.png", "record": "{name}.json"}
+             "picture": "{name}_masks.png", "traveller": "{name}_traveller.md",
+             "record": "{name}.json"}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -27,6 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "layer (reference row stiff, measuring row soft, paired across the die) "
                     "for K_r/K_m and a K_obj range in the jaw's pocket; writes the die's "
                     "masks (GDSII, one layer per mask) with their picture, a wafer of dies, "
+                    "the process traveller, "
                     "the die as a STEP assembly of its layers and a JSON record of the plan "
                     "with every derived dimension's reason, and reads the masks back "
                     "with KLayout against the process's rules and the plan. Exit 1 when a "
@@ -75,6 +77,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.design.mems_die import die_plan
     from tactcad.export.die_solid import write_die_step
     from tactcad.export.gds_masks import write_die_gds, write_mask_picture, write_wafer_gds
+    from tactcad.export.traveller import write_traveller
     from tactcad.mechanics.piezoresistor import die_readout
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
@@ -97,6 +100,8 @@ def run(args: argparse.Namespace) -> int:
         checks = gds_checks(made["masks"], plan)
         counts = status_counts(checks)
         readout = die_readout(plan)
+        write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
+                        made["traveller"])
         record = {"die": plan.as_json(), "readout": readout, "jaw": room.label,
                   "wafer_dies": dies, "files": {k: p.name for k, p in files.items()},
                   "checks": [{"check": c.check, "subject": c.subject, "status": c.status,

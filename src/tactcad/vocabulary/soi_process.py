@@ -40,7 +40,8 @@ class MaskLayer:
 MASKS = (
     MaskLayer("piezo", 1, 0, "boron implant: the p-type piezoresistors at the beams' roots"),
     MaskLayer("contact", 2, 0, "contact openings through the oxide onto the resistors' ends"),
-    MaskLayer("metal", 3, 0, "aluminium: the leads and the bond pads on the die's heel"),
+    MaskLayer("metal", 3, 0, "aluminium: the leads and each beam's bond pads on the frame "
+                             "behind it"),
     MaskLayer("device_etch", 4, 0, "front DRIE through the device layer: the slot around "
                                    "each beam"),
     MaskLayer("handle_etch", 5, 0, "back DRIE through the handle: the window under the beams "

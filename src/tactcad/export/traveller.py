@@ -1,0 +1,96 @@
+"""The die's process traveller: the steps a fab runs, in order, each with the mask it uses,
+its parameters and what it leaves (thicknesses, the implant's sheet resistance), as
+Markdown a lab hands to the cleanroom with the GDS.
+
+The steps are those of :mod:`tactcad.vocabulary.soi_process`'s flow. Each parameter is the
+plan's or marked as an assumption; a fab's own recipes replace the assumed ones. Nothing
+here is a recipe of a particular tool.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from tactcad.design import mems_die as md
+from tactcad.design.mems_die import DiePlan
+from tactcad.vocabulary.soi_process import (BACKSIDE_ALIGNMENT_UM, DRIE_ASPECT_RATIO,
+                                            MASK_BY_NAME)
+
+#: Parameters stated as assumptions (a fab's recipe replaces them).
+SCREEN_OXIDE_NM = 100.0
+METAL_NM = 500.0
+ANNEAL_C, ANNEAL_MIN = 1000.0, 30.0
+SINTER_C = 400.0
+
+
+@dataclass(frozen=True)
+class Step:
+    """One step: its name, the mask it uses (or ""), what is done and what it leaves."""
+
+    name: str
+    mask: str
+    action: str
+    leaves: str
+
+
+def traveller_steps(plan: DiePlan, sheet_resistance_ohm_per_sq: float) -> list[Step]:
+    """The die's steps in process order (um, nm, C, cm^-2)."""
+    s = plan.stack
+    assumed = " (assumption)"
+    return [
+        Step("start", "", f"SOI wafer: n-type device layer {s.device_um:g} +-"
+             f"{s.device_tolerance_um:g} um (its orientation (100), flat along <110>), buried "
+             f"oxide {s.box_um:g} um, handle {s.handle_um:g} um",
+             f"{s.total_um:g} um stack"),
+        Step("oxidation", "", f"thermal screen oxide {SCREEN_OXIDE_NM:g} nm{assumed}",
+             "oxide on the device layer"),
+        Step("implant", "piezo", f"boron, dose {md.IMPLANT_DOSE_PER_CM2:.2g} cm^-2 through the "
+             f"screen oxide{assumed}",
+             "p-type resistors at each beam's root"),
+        Step("anneal", "", f"{ANNEAL_C:g} C, {ANNEAL_MIN:g} min, N2{assumed}",
+             f"junction {md.JUNCTION_DEPTH_UM:g} um deep, {plan.acceptors_per_cm3:.2g} cm^-3, "
+             f"sheet resistance {sheet_resistance_ohm_per_sq:.3g} ohm/sq (Masetti mobility)"),
+        Step("contact", "contact", "oxide opened over each resistor's ends (buffered HF)",
+             f"{2 * len(plan.beams)} contacts of {md.CONTACT_UM:g} um"),
+        Step("metal", "metal", f"aluminium {METAL_NM:g} nm sputtered, wet-etched{assumed}; "
+             f"sintered {SINTER_C:g} C in forming gas{assumed}",
+             f"leads and {2 * len(plan.beams)} bond pads of {md.PAD_UM:g} um"),
+        Step("posts", "tip", f"posts {plan.post_height_um:g} um high on each beam's free end "
+             f"(SU-8 or plated{assumed})", f"{len(plan.beams)} posts of {plan.post_um:g} um"),
+        Step("front DRIE", "device_etch", f"Bosch etch through the {s.device_um:g} um device "
+             f"layer, stopping on the buried oxide (aspect ratio at most "
+             f"{DRIE_ASPECT_RATIO:g}:1)", "the beams outlined in the device layer"),
+        Step("back DRIE", "handle_etch", f"Bosch etch through the {s.handle_um:g} um handle from "
+             f"the back, aligned to the front to +-{BACKSIDE_ALIGNMENT_UM:g} um, stopping on "
+             "the buried oxide", "the window under the beams; its edges are the roots"),
+        Step("release", "", "buried oxide removed in the window (vapour HF)",
+             f"{len(plan.beams)} free cantilevers"),
+        Step("dicing", "die", f"dies of {plan.die_length_um:g} x {plan.die_width_um:g} um "
+             "(lanes outside the outline)", "the dies"),
+    ]
+
+
+def traveller_markdown(plan: DiePlan, sheet_resistance_ohm_per_sq: float, gds_name: str) -> str:
+    """The traveller as Markdown: the masks, then the steps as a table."""
+    lines = [f"# Process traveller: {plan.name}", "",
+             f"Masks in `{gds_name}` (GDSII, um; layer/datatype):", ""]
+    lines += [f"- {m.name} ({m.gds_layer}/{m.datatype}): {m.text}"
+              for m in MASK_BY_NAME.values()]
+    lines += ["", "| # | step | mask | what is done | leaves |", "| --- | --- | --- | --- | --- |"]
+    for i, step in enumerate(traveller_steps(plan, sheet_resistance_ohm_per_sq), start=1):
+        mask = (f"{step.mask} ({MASK_BY_NAME[step.mask].gds_layer})" if step.mask else "-")
+        lines.append(f"| {i} | {step.name} | {mask} | {step.action} | {step.leaves} |")
+    lines += ["", "Parameters marked '(assumption)' are stated, not derived: a fab's own recipe "
+              "replaces them. The implant's sheet resistance assumes the boron uniform over the "
+              "junction depth."]
+    return "\n".join(lines) + "\n"
+
+
+def write_traveller(plan: DiePlan, sheet_resistance_ohm_per_sq: float, gds_name: str,
+                    path: Path) -> Path:
+    """:func:`traveller_markdown` to ``path`` (UTF-8), written whole."""
+    from tactcad.atomic import write_atomic
+
+    text = traveller_markdown(plan, sheet_resistance_ohm_per_sq, gds_name)
+    return write_atomic(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))
