@@ -126,10 +126,16 @@ def test_the_palpation_strip_designs_and_passes_its_check(tmp_path, capsys):
     # a 2 x 8 strip in 7075-T6 on a 63 x 18 mm footprint: its 0.2 mm spacers were judged
     # by the flexure's sheet range, its slot map covered the plan view, its terminal
     # board's hole labels overlapped at 2:1
-    designed_or_refused(["--kr-over-km", "8", "--kobj-range", "0.2", "2",
-                         "--full-scale-force", "0.0395", "--footprint", "63", "18",
-                         "--material", "7075-T6", "--columns", "8"],
-                        tmp_path / "palp", capsys)
+    # (the lab asked 0.0395 N; refused, it pastes the force the refusal names, as a lab does)
+    targets = ["--kr-over-km", "8", "--kobj-range", "0.2", "2", "--full-scale-force", "0.0395",
+               "--footprint", "63", "18", "--material", "7075-T6", "--columns", "8"]
+    code, out = run_cli(["design", *targets, "--out", str(tmp_path / "asked"), "--json"], capsys)
+    if code == 2:
+        option = json.loads(out)["error"]["alternatives"][0]["option"].split()
+        assert option[0] == "--full-scale-force", option
+        targets[targets.index("--full-scale-force") + 1] = option[1]
+        assert not (tmp_path / "asked").exists()
+    designed_or_refused(targets, tmp_path / "palp", capsys)
     assert (tmp_path / "palp" / "palp.toml").is_file()
 
 

@@ -31,10 +31,6 @@ class Run:
     dxf_version: str | None = None  # of the shop DXF files; None: R2010 (or $TACTCAD_DXF_VERSION)
     #: jobs the run's second process made (:mod:`tactcad.export.worker`), in the order collected
     worker_made: list[str] = field(default_factory=list)
-    #: kernel-free work the run needs at its end (the manifest's tissue-coupling check
-    #: model, kept in the result store), run in a thread beside the jobs once the second
-    #: process is forked (numpy releases the GIL)
-    background: Callable[[], Any] | None = None
 
     @property
     def plan(self) -> Plan:

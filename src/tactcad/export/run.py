@@ -17,11 +17,9 @@ are gone with the old folder, files tactcad never wrote are kept.
 
 from __future__ import annotations
 
-import contextvars
 import errno
 import json
 import os
-import threading
 import time
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
@@ -37,7 +35,6 @@ from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rig_models import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
 from tactcad.export.manifest import manifest
-from tactcad.in_use.tissue_coupling import check_level_sample
 from tactcad.export.worker import SessionWorker, Worker, can_fork, worker_jobs
 from tactcad.catalogue.files import MANIFEST
 from tactcad.store import Store
@@ -68,25 +65,6 @@ class ExportResult:
         lines.append(f"{len(self.files)} files, {total:,d} B in {self.out_dir} ({self.seconds:.1f} s; "
                      f"{self.jobs_run} jobs run, {self.jobs_reused} reused from the cache)")
         return lines
-
-
-def _in_a_thread(work: Callable[[], object]) -> threading.Thread:
-    """``work`` started in a daemon thread in this context (the result store's block): its
-    value is kept where the run asks for it again (an error is left for that call to
-    raise). Started after the worker's fork: a fork never copies a running thread's locks.
-    ``work`` must not touch the warnings filters (``catch_warnings`` is not thread-safe):
-    numpy's solves, as :func:`tactcad.in_use.tissue_coupling.check_level_sample`."""
-    ctx = contextvars.copy_context()
-
-    def quietly() -> None:
-        try:
-            ctx.run(work)
-        except Exception:  # the run's own call computes it again and reports the error
-            pass
-
-    thread = threading.Thread(target=quietly, name="tactcad-background", daemon=True)
-    thread.start()
-    return thread
 
 
 def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker | None = None,
@@ -145,7 +123,6 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
             remove_partial_files(run.staging)  # what the worker was writing when it died
             done[name] = by_name[name].make(run)
 
-    beside = _in_a_thread(run.background) if run.background is not None else None
     try:
         for spec in {s.name: s for job in todo for s in job.needs}.values():
             run.parts.solid(spec)
@@ -249,8 +226,6 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
     staging = staging_dir(out)
     try:
         run = Run(project, staging, log, store, dxf_version)
-        if with_manifest:  # the manifest's slowest part, numpy alone, solved beside the jobs
-            run.background = lambda: check_level_sample(project.plan)
         if parts is not None:
             run.parts = parts  # share the caller's solids (e.g. with the checks)
         jobs = jobs_of(run)
