@@ -41,7 +41,7 @@ from tactcad.vocabulary.crystal import SILICON, SILICON_P_TYPE, in_plane_directi
 from tactcad.vocabulary.soi_process import (BACKSIDE_ALIGNMENT_UM, DEFAULT_BOX_UM,
                                             DEFAULT_HANDLE_UM, DEVICE_LAYER_CHOICES_UM,
                                             DEVICE_TOLERANCE_SOURCE, DEVICE_TOLERANCE_UM,
-                                            LITHO_MIN_UM, SoiStack, drie_min_width_um)
+                                            SoiStack, drie_min_width_um)
 
 #: Least beam length over width: Euler-Bernoulli's slender-beam form holds within a few %.
 SLENDERNESS = 3.0
