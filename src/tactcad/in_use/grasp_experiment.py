@@ -452,8 +452,8 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
                  angle_deg: float | None, force_N: float | None,
                  profile: str = "slab") -> LayoutGrasp:
     """One layout closed at ``angle_deg`` or to the grasp force ``force_N`` (one of them)."""
-    local = (tissue_thickness_mm(tips.radius_mm, jaw.slab_thickness_mm, profile)
-             if profile != "slab" and coupling == "layer" else None)
+    thickness = tissue_thickness_mm(tips.radius_mm, jaw.slab_thickness_mm, profile)
+    local = thickness if profile != "slab" and coupling == "layer" else None
     c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling,
                           local_thickness_mm=local)
     # one modulus along the jaw: where the tissue is thinner, its true K_obj is higher
@@ -464,7 +464,6 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
                                     float(force_N), profile)
     check_angle_deg(jaw, angle_deg)
     sol = press(tips, c, jaw.slab_thickness_mm, angle_deg, profile)
-    thickness = tissue_thickness_mm(tips.radius_mm, jaw.slab_thickness_mm, profile)
     return LayoutGrasp(name, float(angle_deg), float(sol.tip_force_N.sum()),
                        tip_records(tips, sol, rated_force_N),
                        [unit_reading(u[0], u[1], sol, tips, k_local, u[2] if len(u) > 2 else u[:2],
