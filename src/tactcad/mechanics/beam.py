@@ -226,13 +226,16 @@ def solve_beam(mesh: BeamMesh, E: float, nu: float, b: float, web_mm: float) -> 
                         gauge_strain_per_N=eps, deflection_mm_per_N=w, rotation_rad_per_N=rot)
 
 
-def unit_load_compliance(mesh: BeamMesh, E: float, nu: float, b: float) -> float:
+def unit_load_compliance(mesh: BeamMesh, E: float, nu: float, b: float,
+                         ei_factor=1.0) -> float:
     """Tip compliance (mm/N) of the same stepped beam by the unit-load method:
     sum over segments of integral M^2/(EI) + V^2/(kappa G A) with M = d, V = 1,
     i.e. L (d_a^2 + d_a d_b + d_b^2) / (3 EI) + L / (kappa G A), d = lever to
-    the load point. Equal to :func:`solve_beam` (a cross-check)."""
+    the load point. Equal to :func:`solve_beam` (a cross-check). ``ei_factor``
+    (scalar or one per segment) multiplies EI: a layer bonded on some segments."""
     x, h = mesh.x_mm, mesh.height_mm
     EI, kGA = _section(h, E, nu, b)
+    EI = EI * np.asarray(ei_factor, float)
     L = np.diff(x)
     db = x[-1] - x[1:]
     da = db + L

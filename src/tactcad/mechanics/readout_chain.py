@@ -143,34 +143,28 @@ def eb_grid_strain_per_N(web_mm, notch_radius_mm, arm_length_mm, grid_length_mm,
     return total / L
 
 
-#: Beam-theory points over the element for the gauge layer's stiffening integral.
-STIFFENING_POINTS = 4001
-
-
 def gauge_layer_k_rel(g: ElementGeometry, material: Material, chain: ReadoutChain) -> float:
     """How much the bonded gauge (glue line and carrier, :func:`~tactcad.mechanics.gauge_strain.
-    transformed_section`) raises the element's K, relative, by Euler-Bernoulli: the tip
-    compliance integral of (a - x)^2 / (E I(x)) from the notch's back edge to the tip, with
-    EI raised by the layer's transformed section over the carrier (the grid plus
-    :data:`~tactcad.design.readout_section.CARRIER_SIDE_MM` at each end, centred over the
-    notch), over the same integral bare; the section behind the notch is the base block's
-    and takes no share of the compliance worth the name. A stated estimate beside K: the
-    ladder's K does not carry it.
+    transformed_section`) raises the element's K, relative: the beam level's unit-load tip
+    compliance (:func:`tactcad.mechanics.beam.unit_load_compliance` on its stepped mesh)
+    with EI raised by the layer's transformed section on the segments under the carrier
+    (the grid plus :data:`~tactcad.design.readout_section.CARRIER_SIDE_MM` at each end,
+    centred over the notch), over the same compliance bare. A stated estimate beside K:
+    the ladder's K does not carry it.
     """
     from tactcad.design.readout_section import CARRIER_SIDE_MM, carrier_width_mm
+    from tactcad.mechanics.beam import beam_mesh, unit_load_compliance
     from tactcad.mechanics.gauge_strain import transformed_section
 
-    b, E = g.sheet_thickness_mm, material.youngs_modulus_MPa
-    x = np.linspace(g.hinge_x_mm - g.notch_radius_mm, g.tip_centre_x_mm, STIFFENING_POINTS)
-    h = top_face_height_mm(g, x)
-    weight = (g.tip_centre_x_mm - x) ** 2 / (E * b * h ** 3 / 12)
-    half = chain.grid_length_mm / 2 + CARRIER_SIDE_MM
-    stiff = transformed_section(h, b, E, chain.grid_height_mm, chain.gauge_backing_modulus_MPa,
+    b, E, nu = g.sheet_thickness_mm, material.youngs_modulus_MPa, material.poisson_ratio
+    mesh = beam_mesh(g)
+    middle = 0.5 * (mesh.x_mm[1:] + mesh.x_mm[:-1])
+    stiff = transformed_section(mesh.height_mm, b, E, chain.grid_height_mm,
+                                chain.gauge_backing_modulus_MPa,
                                 carrier_width_mm(chain.grid_width_mm, b))[1]
-    covered = np.abs(x - g.hinge_x_mm) <= half
-    bare = np.trapezoid(weight, x)
-    with_layer = np.trapezoid(weight / np.where(covered, 1.0 + stiff, 1.0), x)
-    return float(bare / with_layer - 1.0)
+    covered = np.abs(middle - g.hinge_x_mm) <= chain.grid_length_mm / 2 + CARRIER_SIDE_MM
+    bare = unit_load_compliance(mesh, E, nu, b)
+    return bare / unit_load_compliance(mesh, E, nu, b, np.where(covered, 1.0 + stiff, 1.0)) - 1
 
 
 def closed_form_grid_read_per_N(web_mm, notch_radius_mm, arm_length_mm, g: ElementGeometry,
