@@ -94,8 +94,8 @@ def render(report) -> str:
              f"  grid {1e3 * c.grid_height_mm:.0f} um above the top face (glue line + carrier, "
              f"{c.gauge_backing_modulus_MPa:g} MPa): the grid reads the face's strain x "
              "'read'; the layer stiffens the web by 'stiff.' and raises K by "
-             + _layer_k_text(report) + " (the beam level, the carrier's section stiffened; the K below "
-             "does not carry it: calibration measures K with the gauge bonded)",
+             + _layer_k_text(report) + " (the beam level, the carrier's section stiffened; "
+             "the K below does not carry it: calibration measures K with the gauge bonded)",
              "| element | role | K N/mm | strain/N (face) | error | read | stiff. | "
              "strain/N (grid) | face grid/peak | K_v/K V/N | K_v V/mm | force res. N | "
              "K_obj res. |",
