@@ -121,3 +121,45 @@ def test_verify_judges_the_coupled_inversion_against_the_check_level():
     check = check_level_sample(plan)
     bias = cross_level_bias(low, check, k, (3, 1), [2.34, 10.0])
     assert np.nanmax(np.abs(bias)) > 0.05  # the old mesh's defect, caught
+
+
+def _pairwise_influence(punches, h):
+    """The check model's influence matrix entry by entry: every collocation point against
+    every source cell, without the offset table the model gathers from."""
+    from tactcad.mechanics.contact_uniform import NEAR_CELLS, rectangle_integral
+
+    cells = []
+    for p in punches:
+        nx, nz = max(1, round(p.width_x_mm / h)), max(1, round(p.depth_z_mm / h))
+        dx, dz = p.width_x_mm / nx, p.depth_z_mm / nz
+        cells += [(p.x_mm - p.width_x_mm / 2 + (i + 0.5) * dx,
+                   p.z_mm - p.depth_z_mm / 2 + (k + 0.5) * dz, dx / 2, dz / 2)
+                  for i in range(nx) for k in range(nz)]
+    near = NEAR_CELLS * 2 * max(max(c[2], c[3]) for c in cells)
+    g, w = np.polynomial.legendre.leggauss(3)
+    a = np.empty((len(cells), len(cells)))
+    for i, (x, z, _, _) in enumerate(cells):
+        for j, (xs, zs, hx, hz) in enumerate(cells):
+            if math.hypot(x - xs, z - zs) < near:
+                a[i, j] = rectangle_integral(x, z, xs - hx, xs + hx, zs - hz, zs + hz)
+            else:
+                a[i, j] = sum(wi * wj * hx * hz / math.hypot(x - xs - hx * gi, z - zs - hz * gj)
+                              for gi, wi in zip(g, w) for gj, wj in zip(g, w))
+    return a
+
+
+@pytest.mark.parametrize("punches", [
+    [contact.Punch(0.0, 0.0, 1.0, 1.0), contact.Punch(1.6, 0.3, 1.0, 1.0)],  # equal pitch
+    [contact.Punch(0.0, 0.0, 1.0, 0.8), contact.Punch(2.3, 0.4, 0.7, 1.1),
+     contact.Punch(-1.7, 2.0, 1.3, 0.5)],  # every pitch its own
+])
+def test_the_offset_table_gives_the_pairwise_influence_matrix(punches, monkeypatch):
+    """The check model evaluates its kernel once per cell offset on equal pitches; the
+    compliance must be the one the entry-by-entry matrix gives."""
+    from tactcad.mechanics import contact_uniform
+
+    h = 0.2
+    direct = _pairwise_influence(punches, h)
+    monkeypatch.setattr(np.linalg, "solve", lambda a, b, _solve=np.linalg.solve: (
+        np.testing.assert_allclose(a, direct, rtol=1e-12, atol=0), _solve(a, b))[1])
+    contact_uniform.uniform_compliance(punches, h)

@@ -51,18 +51,71 @@ def rectangle_integral(x, z, x1, x2, z1, z2):
             + _corner(x1 - x, z1 - z))
 
 
-def _cells(punches: Sequence[Punch], h: float):
-    centres, half, owner = [], [], []
-    for k, p in enumerate(punches):
-        nx = max(1, round(p.width_x_mm / h))
-        nz = max(1, round(p.depth_z_mm / h))
-        gx, gz = np.meshgrid(p.x_mm - p.width_x_mm / 2 + (np.arange(nx) + 0.5) * p.width_x_mm / nx,
-                             p.z_mm - p.depth_z_mm / 2 + (np.arange(nz) + 0.5) * p.depth_z_mm / nz,
-                             indexing="ij")
-        centres.append(np.column_stack([gx.ravel(), gz.ravel()]))
-        half.append(np.tile([p.width_x_mm / nx / 2, p.depth_z_mm / nz / 2], (nx * nz, 1)))
-        owner.append(np.full(nx * nz, k))
-    return np.vstack(centres), np.vstack(half), np.concatenate(owner)
+@dataclass(frozen=True)
+class _Grid:
+    """One punch's uniform cells: first centre (x0, z0), pitch (dx, dz), counts (nx, nz) (mm);
+    cells in row-major (ix, iz) order."""
+
+    x0: float
+    z0: float
+    dx: float
+    dz: float
+    nx: int
+    nz: int
+
+    @property
+    def count(self) -> int:
+        return self.nx * self.nz
+
+    def index(self) -> tuple[np.ndarray, np.ndarray]:
+        """(ix, iz) of every cell, shape (count,) each."""
+        ix, iz = np.meshgrid(np.arange(self.nx), np.arange(self.nz), indexing="ij")
+        return ix.ravel(), iz.ravel()
+
+
+def _grid(p: Punch, h: float) -> _Grid:
+    nx = max(1, round(p.width_x_mm / h))
+    nz = max(1, round(p.depth_z_mm / h))
+    dx, dz = p.width_x_mm / nx, p.depth_z_mm / nz
+    return _Grid(p.x_mm - p.width_x_mm / 2 + dx / 2, p.z_mm - p.depth_z_mm / 2 + dz / 2,
+                 dx, dz, nx, nz)
+
+
+def _kernel(ox: np.ndarray, oz: np.ndarray, hx: float, hz: float, near_mm: float) -> np.ndarray:
+    """∫∫ dA / r over a source cell of half-edges (hx, hz) seen from a collocation point
+    at offset (ox, oz) from its centre (mm); broadcasts. Within ``near_mm`` of the centre
+    the exact rectangle integral, beyond it 3 x 3 Gauss quadrature of the point-load kernel."""
+    points, weights = np.polynomial.legendre.leggauss(3)
+    area = 4 * hx * hz
+    far = np.zeros(np.broadcast(ox, oz).shape)
+    with np.errstate(divide="ignore"):  # the own cell's point is replaced below
+        for gi, wi in zip(points, weights):
+            for gj, wj in zip(points, weights):
+                far += wi * wj / 4 * area / np.hypot(ox - hx * gi, oz - hz * gj)
+    near = np.broadcast_to(np.hypot(ox, oz) < near_mm, far.shape)
+    far[near] = rectangle_integral(*(np.broadcast_to(v, far.shape)[near] for v in (ox, oz)),
+                                   -hx, hx, -hz, hz)
+    return far
+
+
+def _block(target: _Grid, source: _Grid, near_mm: float) -> np.ndarray:
+    """The influence of ``source``'s cells at ``target``'s collocation points, shape
+    (target.count, source.count). On equal pitches every entry depends on the cells' index
+    offset only, so the kernel is evaluated once per offset and gathered."""
+    hx, hz = source.dx / 2, source.dz / 2
+    ti, tk = target.index()
+    si, sk = source.index()
+    if target.dx == source.dx and target.dz == source.dz:
+        di = np.arange(-(source.nx - 1), target.nx)
+        dk = np.arange(-(source.nz - 1), target.nz)
+        ox = (target.x0 - source.x0) + di * target.dx
+        oz = (target.z0 - source.z0) + dk * target.dz
+        table = _kernel(ox[:, None], oz[None, :], hx, hz, near_mm)
+        return table[ti[:, None] - si[None, :] + source.nx - 1,
+                     tk[:, None] - sk[None, :] + source.nz - 1]
+    ox = (target.x0 + ti * target.dx)[:, None] - (source.x0 + si * source.dx)[None, :]
+    oz = (target.z0 + tk * target.dz)[:, None] - (source.z0 + sk * source.dz)[None, :]
+    return _kernel(ox, oz, hx, hz, near_mm)
 
 
 def uniform_compliance(punches: Sequence[Punch], cell_mm: float) -> np.ndarray:
@@ -76,22 +129,11 @@ def uniform_compliance(punches: Sequence[Punch], cell_mm: float) -> np.ndarray:
         raise ContactError("punches", 0, "at least one punch")
     if not (np.isfinite(cell_mm) and cell_mm > 0):
         raise ContactError("cell_mm", cell_mm, "> 0 mm")
-    c, half, owner = _cells(punches, cell_mm)
-    area = 4 * half[:, 0] * half[:, 1]
-    points, weights = np.polynomial.legendre.leggauss(3)
-    a = np.zeros((len(c), len(c)))
-    with np.errstate(divide="ignore"):  # the own cell's point is replaced below
-        for gi, wi in zip(points, weights):
-            for gj, wj in zip(points, weights):
-                qx = c[None, :, 0] + half[None, :, 0] * gi
-                qz = c[None, :, 1] + half[None, :, 1] * gj
-                a += wi * wj / 4 * area[None, :] / np.hypot(c[:, None, 0] - qx,
-                                                            c[:, None, 1] - qz)
-    near = np.hypot(c[:, None, 0] - c[None, :, 0], c[:, None, 1] - c[None, :, 1]) \
-        < NEAR_CELLS * 2 * half.max()
-    i, j = np.nonzero(near)
-    a[i, j] = rectangle_integral(c[i, 0], c[i, 1], c[j, 0] - half[j, 0], c[j, 0] + half[j, 0],
-                                 c[j, 1] - half[j, 1], c[j, 1] + half[j, 1])
+    grids = [_grid(p, cell_mm) for p in punches]
+    near_mm = NEAR_CELLS * max(max(g.dx, g.dz) for g in grids)
+    a = np.block([[_block(t, s, near_mm) for s in grids] for t in grids])
+    area = np.concatenate([np.full(g.count, g.dx * g.dz) for g in grids])
+    owner = np.concatenate([np.full(g.count, k) for k, g in enumerate(grids)])
     incidence = np.zeros((len(owner), len(punches)))
     incidence[np.arange(len(owner)), owner] = 1.0
     # w = (1 - ν²) p I / (π E): the stiffness is π E/(1 - ν²) Σ area p per unit travel
