@@ -44,6 +44,27 @@ SCRIPT = textwrap.dedent('''
             Job("w2", "k2", writer("w2", ("w1",)), after=("w1",), worker=True),
             Job("w3", "k3", writer("w3", ("a",)), after=("a",), worker=True),
             Job("z", "kz", writer("z", ("w2", "w3")), after=("a", "w1", "w2", "w3"))]
+    if sys.argv[2] == "order":  # a job waits for the worker while another could run
+        import time
+        stamps = {}
+
+        def stamped(name, seconds=0.0):
+            def make(run):
+                start = time.time()
+                time.sleep(seconds)
+                return [{"path": name, "part": name, "kind": "test", "pid": os.getpid(),
+                         "start": start, "end": time.time()}]
+            return make
+
+        def prepare(run):
+            stamps["prepared"] = time.time()
+        jobs = [Job("w0", "k0", stamped("w0"), worker=True),  # a worker is forked for 2 or more
+                Job("w1", "k1", stamped("w1", 1.5), worker=True),
+                Job("y", "ky", stamped("y"), after=("w1",), prepare=prepare),
+                Job("x", "kx", stamped("x"))]
+        records, ran = run_jobs(Run(load_project(), staging, print), jobs, Store(None))
+        print(json.dumps({"records": records, **stamps}))
+        sys.exit(0)
     records, ran = run_jobs(Run(load_project(), staging, print), jobs, Store(None))
     print(json.dumps({"main": main_pid, "ran": ran, "kernel": "OCP" in sys.modules,
                       "records": records,
@@ -71,6 +92,18 @@ def test_worker_jobs_run_in_a_second_process_in_order(tmp_path):
     assert pids["w3"] == out["main"]  # it reads a job of this process: run here
     assert out["files"] == {"a": "a", "w1": "w1", "w2": "w1w2", "w3": "aw3", "z": "w1w2aw3z"}
     assert not out["kernel"]  # no job needed a solid: the kernel never loaded here
+
+
+@pytest.mark.slow
+def test_this_process_works_while_the_worker_makes_what_its_next_job_reads(tmp_path):
+    """A job that reads a worker's file waits; a later job that reads none runs first,
+    and the waiting job's ``prepare`` runs while the worker is still busy."""
+    out = run_script(tmp_path, "order")
+    rec = {r["path"]: r for r in out["records"]}
+    assert [r["path"] for r in out["records"]] == ["w0", "w1", "y", "x"]  # job order kept
+    assert rec["w1"]["pid"] != rec["x"]["pid"] == rec["y"]["pid"]
+    assert rec["x"]["end"] < rec["w1"]["end"]  # x did not wait behind y
+    assert out["prepared"] < rec["w1"]["end"] <= rec["y"]["start"]
 
 
 @pytest.mark.slow

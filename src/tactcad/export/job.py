@@ -86,6 +86,9 @@ class Job:
     #: may run in the run's second process (:mod:`tactcad.export.worker`): it
     #: reads only the plan, the solids in ``needs`` and the files of ``after``
     worker: bool = False
+    #: work of ``make`` that reads no file (e.g. the design's facts), done
+    #: while this process would otherwise wait for the worker's files
+    prepare: Callable[[Run], None] | None = None
 
 
 def solid_key(spec: PartSpec) -> str:

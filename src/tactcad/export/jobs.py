@@ -380,4 +380,12 @@ def review_page_jobs(run: Run, before: list[Job]) -> list[Job]:
                  "scenes": len(contents.scenes), "sheets": len(contents.data["sheets"])}]
     return [Job("review:page", content_key("review-page", [j.key for j in before],
                                            assets_identity()),
-                make, after=tuple(j.name for j in before))]
+                make, after=tuple(j.name for j in before), prepare=_review_facts)]
+
+
+def _review_facts(run: Run) -> None:
+    """The review page's design facts (cached per plan): they read no file, so they are
+    worked out while the drawings are still being made."""
+    from tactcad.export.manifest import design_facts
+
+    design_facts(run.plan)

@@ -129,10 +129,13 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
         for job in handed:
             futures[job.name] = worker.submit(job, {s.name: run.parts.solid(s) for s in job.needs})
         started = {job.name: job.start(run) for job in todo if job.start is not None}
-        for job in todo:
-            if job.start is None and job.name not in futures:
-                collect_reads(job)
-                done[job.name] = job.make(run)
+        here = [job for job in todo if job.start is None and job.name not in futures]
+        prepared: set[str] = set()
+        while here:
+            job = _next_here(here, futures, done, run, prepared)
+            here.remove(job)
+            collect_reads(job)
+            done[job.name] = job.make(run)
         for name in futures:
             if name not in done:
                 collect(name)
@@ -148,6 +151,25 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
     for job in todo:
         store.keep(job.key, run.staging, done[job.name])
     return [r for job in jobs for r in done[job.name]], len(todo)
+
+
+def _waits(job: Job, futures: dict, done: dict) -> bool:
+    """True if ``job`` reads a file the worker has not finished yet."""
+    return any(name in futures and name not in done and not futures[name].done()
+               for name in job.after)
+
+
+def _next_here(here: list[Job], futures: dict, done: dict, run: Run, prepared: set[str]) -> Job:
+    """The next job for this process: the first that waits for no worker file; if every
+    one waits, each job's ``prepare`` runs first (once), so the wait is spent on work."""
+    ready = next((job for job in here if not _waits(job, futures, done)), None)
+    if ready is not None:
+        return ready
+    for job in here:
+        if job.prepare is not None and job.name not in prepared:
+            prepared.add(job.name)
+            job.prepare(run)
+    return next((job for job in here if not _waits(job, futures, done)), here[0])
 
 
 #: Folders an export never replaces, whatever ``--out`` says.

@@ -306,6 +306,10 @@ class _JobFuture:
             warnings.warn(message, category, stacklevel=2)
         return records
 
+    def done(self) -> bool:
+        """True once the job has finished (or failed) in the worker."""
+        return self._future.done()
+
     def cancel(self) -> bool:
         return self._future.cancel()
 
