@@ -33,6 +33,44 @@ def test_the_grasper_case_writes_a_comb_and_its_scenes_that_check(tmp_path):
     assert 'scenes = "insert-scenes.toml"' in out.read_text(encoding="utf-8")
 
 
+def test_the_rows_cut_process_is_searched_refused_by_its_own_limits_and_written(tmp_path):
+    """``--jaw --process``: each sheet's refusal quotes the process's limit; the force
+    pasted from the refusal designs rows the process cuts, written as the rows' process."""
+    out = tmp_path / "etched.toml"
+    ask = [*GRASPER_CASE, "--jaw", "10", "--process", "photochemical-etching", "--out", str(out),
+           "--json"]
+    r = run_cli(*ask, "--full-scale-force", "0.05")
+    assert r.returncode == 2 and not out.exists(), r.stderr
+    err = json.loads(r.stdout)["error"]
+    assert "photochemical-etching holds in a" in err["message"], err["message"]
+    assert "wire" not in err["message"].split("\n", 1)[1]  # no wire EDM rule binds an etched comb
+    pasted = err["alternatives"][0]["option"].split()
+    assert pasted[0] == "--full-scale-force"
+    r = run_cli(*ask, *pasted)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["processes"]["photochemical-etching"] == []
+    assert all(not c["failed"] for c in d["checks"].values()), d["checks"]
+    written = tomllib.loads(out.read_text(encoding="utf-8"))
+    assert written["element"]["process"] == "photochemical-etching"
+    # an etched web is no thinner than the foil it is etched from
+    assert min(written["comb"]["web_thicknesses_mm"]) >= written["sheet"]["thickness_mm"]
+
+
+@pytest.mark.slow  # three refusals, each bracketing its force by whole searches
+def test_a_comb_refusals_force_is_the_searchs_frontier_whatever_was_asked(tmp_path):
+    """Asked 0.2 N or 0.3 N, the refusal names one force; 5 % above it is refused."""
+    def asked(force):
+        r = run_cli(*GRASPER_CASE, "--jaw", "10", "--full-scale-force", force, "--out",
+                    str(tmp_path / "x.toml"), "--json")
+        return r.returncode, json.loads(r.stdout)
+    named = {asked(f)[1]["error"]["allowed"] for f in ("0.2", "0.3")}
+    assert len(named) == 1, named
+    frontier = float(named.pop().split()[-1])
+    code, _ = asked(f"{frontier * 1.05:.4g}")
+    assert code == 2
+
+
 def design_for_jaw_file(folder, name: str, table: str) -> tuple[dict, dict]:
     """(the report, the written design) of the grasper case at 0.05 N for the jaw file
     ``name`` whose ``[grasper_jaw]`` holds ``table`` (TOML lines)."""
@@ -86,7 +124,6 @@ def test_a_jaw_file_that_states_no_jaw_is_refused_by_name(tmp_path, content, wor
     (["--jaw", "10", "--pitch", "4"], "--pitch"),
     (["--jaw", "10", "--set", "array.pitch_mm=4"], "--set"),
     (["--jaw", "10", "--verify", "beam"], "--verify"),
-    (["--jaw", "10", "--process", "laser-cutting"], "--process"),
     (["--process", "plasma"], "--process"),
 ])
 def test_a_jaw_design_asked_wrongly_names_the_option(tmp_path, args, option):

@@ -181,3 +181,55 @@ def test_an_unknown_pairing_is_refused_naming_the_choices(data):
         plan_from_dict(with_overrides(data, {"array.pairing": "diagonal"}))
     assert caught.value.errors[0].field == "array.pairing"
     assert "row" in caught.value.errors[0].allowed and "column" in caught.value.errors[0].allowed
+
+
+@pytest.mark.parametrize("process, field, words", [
+    ("photochemical-etching", "comb.web_thicknesses_mm", "photochemical-etching on a 1 mm sheet"),
+    ("laser-cutting", "element.web_tolerance_mm", "what laser-cutting holds"),
+])
+def test_rows_a_process_cannot_cut_are_refused_when_read_naming_its_limit(data, process, field,
+                                                                          words):
+    """The rows' ``[element] process`` shapes and judges the comb as the ``process`` check
+    does: the shipped 1 mm wire-cut comb, asked etched or laser cut, is refused."""
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"element.process": process}))
+    hit = [e for e in caught.value.errors if e.field == field]
+    assert hit and words in hit[0].allowed, [str(e) for e in caught.value.errors]
+
+
+def _etched(data):
+    """The shipped comb etched from 0.15 mm foil: webs 0.2 mm (no thinner than the foil),
+    the measuring arms 0.1 mm shorter for the etch's wider slot."""
+    n = len(data["comb"]["web_thicknesses_mm"])
+    arms = [min(a, 2.9) for a in data["arms"]["lengths_mm"]]
+    return with_overrides(data, {"element.process": "photochemical-etching",
+                                 "sheet.thickness_mm": 0.15, "element.web_tolerance_mm": 0.03,
+                                 "comb.web_thicknesses_mm": [0.2] * n, "arms.lengths_mm": arms})
+
+
+def test_the_rows_process_gives_the_slot_and_the_sheet_part_its_process(data):
+    """Etched from 0.15 mm foil (webs as thick as the foil, holes 1.5 x the thickness), the
+    comb's slots follow the etch's narrowest slot, not the wire's, and the row sheets are
+    etched parts (their DXF is etch artwork)."""
+    from tactcad.export.dxf_sheet import shop_profiles
+
+    plan = plan_from_dict(_etched(data))
+    slot = 1.5 * 0.15  # Ti is not among the alloys the etch guides list: 1.5 x thickness
+    for sheet in plan.comb.sheets:
+        for e in sheet.elements:
+            assert plan.pitch_mm - e.overall_length_mm >= slot - 1e-9
+            assert e.process == "photochemical-etching"
+    rows = [sp for sp in shop_profiles(plan) if sp.part.startswith("comb_row")]
+    assert rows and {sp.process for sp in rows} == {"photochemical-etching"}
+
+
+def test_the_envelope_reaches_a_dowel_pin_longer_than_the_screws_reach(data):
+    """Thin rows take a stock pin longer than the stack: the envelope across the rows
+    holds the pin's ends, centred on the stack (it was the screw's head to its end)."""
+    thin = plan_from_dict(_etched(data))
+    c = thin.comb
+    assert c.dowel_length_mm > 2 * 0.15 + c.spacer_thickness_mm
+    lo = c.envelope_from_x_mm
+    assert lo <= -c.dowel_length_mm / 2 + 1e-9
+    assert lo + c.envelope_mm[0] >= c.dowel_length_mm / 2 - 1e-9
+    assert c.envelope_centre_mm[0] == pytest.approx(lo + c.envelope_mm[0] / 2)

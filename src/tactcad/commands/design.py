@@ -104,8 +104,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="the cut process of the elements (the registry's: tactcad processes; "
                         "default: the base design's); the sheet is then searched over the "
                         "stock that process cuts a flexure from, and every web, hole and slot "
-                        "held to its rules (element.process; not with --jaw, whose comb rows "
-                        "are laid out for wire EDM: the report judges them by every process)")
+                        "held to its rules (element.process; with --jaw, the comb's rows: "
+                        "its slots, notch and corner radii, webs and tolerance)")
     p.add_argument("--columns", type=count(1, 100, "columns"), metavar="N", default=None,
                    help="columns of the new grid (2 rows x N; default: the base design's)")
     p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
@@ -336,8 +336,6 @@ JAW_DECIDES = {
     "--pitch": ("pitch", "the pitch is searched inside the jaw's pocket"),
     "--design": ("design", "the base design is the construction's own jaw example"),
     "--set": ("overrides", "the base design is the construction's own jaw example"),
-    "--process": ("process", "the comb's rows, slots and stop gaps are laid out for wire EDM; "
-                             "the report judges the written rows by every process"),
 }
 
 
@@ -390,7 +388,8 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
                                     name=name, envelope_of=array_envelope_mm,
                                     other_rooms={k: jaw_room(k) for k in jaw_classes()
                                                  if k != args.jaw},
-                                    max_grasp_force_N=args.max_grasp_force)
+                                    max_grasp_force_N=args.max_grasp_force,
+                                    process=args.process)
             used = c.name
             break
         except DesignError as exc:

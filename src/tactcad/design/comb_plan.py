@@ -20,6 +20,7 @@ element, the notch and each stop gap. Units: mm, N, MPa.
 from __future__ import annotations
 
 import copy
+from dataclasses import dataclass
 from typing import Any, Mapping
 
 from pydantic import create_model
@@ -44,8 +45,9 @@ from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN, NOTCH_RA
                                            WEB_RANGE_MM, ElementGeometry)
 from tactcad.partlib.array.prism import Hole
 from tactcad.vocabulary.material_library import material_fields, strength_settings
-from tactcad.vocabulary.process import CUT_PROCESSES, first_process_holding
-from tactcad.vocabulary.schema import (Derived, Problems, Section, fmt, listing, number,
+from tactcad.vocabulary.process import (CUT_PROCESSES, DEFAULT_CUT_PROCESS, ProcessLimits,
+                                        check_sheet_process, first_process_holding)
+from tactcad.vocabulary.schema import (Derived, Problems, Section, choice, fmt, number,
                                        read_assumptions, validate)
 from tactcad.vocabulary.standards import (DOWEL_PINS, MINIATURE_SCREWS, shortest_dowel_length,
                                           shortest_stock_length)
@@ -69,6 +71,9 @@ class CombElementSection(Section):
     arm_height_mm: number(0.0, 5.0, lo_open=True)
     inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
     web_tolerance_mm: number(0.0, 0.25) = None  # or [tolerances] web_thickness_mm
+    #: how the row sheets are cut (:data:`tactcad.vocabulary.process.CUT_PROCESSES`); wire-edm
+    #: when left out. Its slot, inside radius, thinnest web and tolerance shape the rows.
+    process: choice(CUT_PROCESSES, "the processes that cut a part from sheet") = None
 
 
 class CombTables(Section):
@@ -110,11 +115,40 @@ def webs(d: CombTables) -> list[float]:
     return list(given) if given is not None else [d.element.web_thickness_mm] * element_count(d)
 
 
+@dataclass(frozen=True)
+class RowRules:
+    """What the rows' cut process makes on the comb's sheet (mm): its narrowest slot and
+    smallest inside radius (the shapes the comb's layout keeps to) and all its limits."""
+
+    limits: ProcessLimits
+
+    @property
+    def min_slot_width_mm(self) -> float:
+        return self.limits.min_slot_mm.value_mm
+
+    @property
+    def min_inside_radius_mm(self) -> float:
+        return self.limits.min_inside_radius_mm.value_mm
+
+
+def row_process(d: CombTables) -> str:
+    """The rows' cut process (``[element] process``, else wire EDM)."""
+    return d.element.process or DEFAULT_CUT_PROCESS
+
+
+def row_rules(d: CombTables) -> RowRules:
+    """:class:`RowRules` of the rows' process on the comb's sheet and material (for wire
+    EDM: the design's ``[edm]`` wire and spark gap)."""
+    material = " ".join(str(v or "") for v in (d.material.grade, d.material.name))
+    return RowRules(CUT_PROCESSES[row_process(d)].limits(d.sheet.thickness_mm, edm_rules(d),
+                                                         material))
+
+
 def stop_gaps(d: CombTables) -> list[float]:
     """Each element's stop travel at its arm's free end (mm): ``[comb]
     stop_gaps_mm``, else the process's minimum slot."""
     given = d.comb.stop_gaps_mm
-    slot = edm_rules(d).min_slot_width_mm
+    slot = row_rules(d).min_slot_width_mm
     return list(given) if given is not None else [slot] * element_count(d)
 
 
@@ -169,7 +203,7 @@ def fastener_positions(d: CombTables) -> tuple[tuple[float, ...], tuple[float, .
 def arm_underside(d: CombTables) -> float:
     """y of every arm's underside (mm): the spine plus the widest cut stop gap,
     so the tips' contact faces lie in one plane."""
-    slot = edm_rules(d).min_slot_width_mm
+    slot = row_rules(d).min_slot_width_mm
     return spine_height(d).value + max(cut_gap(g, slot)[0] for g in stop_gaps(d))
 
 
@@ -189,7 +223,8 @@ def comb_element(d: CombTables, arm_mm: float, web_mm: float) -> ElementGeometry
         overall_length_mm=element_length(d, max(d.arms.lengths_mm)),
         inside_corner_radius_mm=e.inside_corner_radius_mm, sheet_thickness_mm=d.sheet.thickness_mm,
         web_tolerance_mm=tolerances_of(d.model_dump(exclude_none=True)).web_thickness_mm,
-        bolt_holes=(), start_hole_diameter_mm=d.edm.start_hole_diameter_mm)
+        bolt_holes=(), start_hole_diameter_mm=d.edm.start_hole_diameter_mm,
+        process=row_process(d))
 
 
 def fastener_holes(d: CombTables) -> tuple[Hole, ...]:
@@ -202,7 +237,7 @@ def fastener_holes(d: CombTables) -> tuple[Hole, ...]:
 
 def comb_sheets(d: CombTables) -> tuple[CombSheet, ...]:
     cols, pitch = d.array.columns, d.array.pitch_mm
-    slot = edm_rules(d).min_slot_width_mm
+    slot = row_rules(d).min_slot_width_mm
     y_arm = arm_underside(d)
     arms, web, gaps = d.arms.lengths_mm, webs(d), stop_gaps(d)
     out = []
@@ -240,13 +275,23 @@ def dowel_length(d: CombTables) -> tuple[float | None, Derived]:
                            "the pin's ends flush or proud")
 
 
-def envelope(d: CombTables) -> tuple[float, float, float]:
-    """(across the rows: the screw's head to its end; along the row; height to
-    the contact faces), mm."""
+def across_extent(d: CombTables) -> tuple[float, float]:
+    """(lowest, highest) x across the rows of the comb's parts (mm, from the stack's
+    middle): the screw from its head on row 1's outer face to its end (or the grip), and
+    the dowel pins, centred on the stack, where a stock pin is longer than that."""
     s = screw(d)
     length = screw_length(d)[0] or screw_length(d)[1].value
+    outer = grip(d) / 2  # each row's outer face
+    half_pin = (dowel_length(d)[0] or grip(d)) / 2
+    return (min(-outer - s.head_height_mm, -half_pin), max(-outer + max(length, grip(d)), half_pin))
+
+
+def envelope(d: CombTables) -> tuple[float, float, float]:
+    """(across the rows: the screw's head to its end, or a longer dowel pin's ends; along
+    the row; height to the contact faces), mm."""
+    lo, hi = across_extent(d)
     height = arm_underside(d) + d.element.arm_height_mm + d.element.tip_height_mm
-    return (s.head_height_mm + max(length, grip(d)), row_length(d).value, height)
+    return (hi - lo, row_length(d).value, height)
 
 
 def spacer_process(d: CombTables) -> Derived:
@@ -279,6 +324,7 @@ def comb_geometry(d: CombTables) -> CombGeometry:
         screw_length_mm=screw_length(d)[1].value, dowel_diameter_mm=dowel_diameter(d),
         dowel_length_mm=dowel_length(d)[1].value, screw_x_mm=screws, dowel_x_mm=dowels,
         fastener_y_mm=spine_height(d).value / 2, envelope_mm=envelope(d),
+        envelope_from_x_mm=across_extent(d)[0],
         spacer_process=spacer_process(d).value)
 
 
@@ -297,7 +343,7 @@ def element_slots(d: CombTables, sheets: tuple[CombSheet, ...]) -> tuple[Element
 
 
 def hard_stops(d: CombTables, sheets: tuple[CombSheet, ...]) -> tuple[HardStop, ...]:
-    slot = edm_rules(d).min_slot_width_mm
+    slot = row_rules(d).min_slot_width_mm
     out, gaps = [], stop_gaps(d)
     for sheet in sheets:
         for c, g in enumerate(sheet.elements):
@@ -309,13 +355,14 @@ def hard_stops(d: CombTables, sheets: tuple[CombSheet, ...]) -> tuple[HardStop, 
 
 
 def derived_values(d: CombTables) -> tuple[Derived, ...]:
-    slot = edm_rules(d).min_slot_width_mm
+    slot = row_rules(d).min_slot_width_mm
     longest = max(element_length(d, a) for a in d.arms.lengths_mm)
     return (
         row_length(d), spine_height(d),
         Derived("arm_underside_y", arm_underside(d), "mm",
                 "spine + the widest cut stop gap: every contact face in one plane"),
-        Derived("min_slot", slot, "mm", "wire-EDM slot: wire diameter + two spark gaps ([edm])"),
+        Derived("min_slot", slot, "mm", f"{row_process(d)}'s narrowest slot on the "
+                f"{fmt(d.sheet.thickness_mm)} mm sheet ({row_rules(d).limits.min_slot_mm.rule})"),
         Derived("slot_after_longest_element", d.array.pitch_mm - longest, "mm",
                 f"pitch - the longest element ({fmt(longest)} mm: post + notch radius + arm + "
                 "half the tip)"),
@@ -333,17 +380,17 @@ def derived_values(d: CombTables) -> tuple[Derived, ...]:
 # Cross-field rules (every one reported)
 # ---------------------------------------------------------------------------
 def _check_element(d: CombTables, p: Problems) -> None:
-    e, edm = d.element, edm_rules(d)
-    r_min = edm.min_inside_radius_mm
+    e, rules = d.element, row_rules(d)
+    r_min, cut = rules.min_inside_radius_mm, row_process(d)
     p.within("element.notch_radius_mm", e.notch_radius_mm,
-             max(max(webs(d)), r_min, edm.min_slot_width_mm / 2), NOTCH_RADIUS_MAX_MM,
-             why="R >= every web (t/R <= 1) and the notch (2 R wide) >= the wire's slot")
+             max(max(webs(d)), r_min, rules.min_slot_width_mm / 2), NOTCH_RADIUS_MAX_MM,
+             why=f"R >= every web (t/R <= 1) and the notch (2 R wide) >= {cut}'s narrowest slot")
     over = max(webs(d)) + e.notch_radius_mm
     p.within("element.arm_height_mm", e.arm_height_mm, over + r_min,
-             why=f"the arm must reach below web + notch radius = {fmt(over)} mm by the wire's "
-                 f"inside radius {fmt(r_min)} mm")
+             why=f"the arm must reach below web + notch radius = {fmt(over)} mm by {cut}'s "
+                 f"smallest inside radius {fmt(r_min)} mm")
     p.within("element.inside_corner_radius_mm", e.inside_corner_radius_mm, r_min,
-             why="inside corner radius >= wire radius + spark gap")
+             why=f"{cut}'s smallest inside radius ({rules.limits.min_inside_radius_mm.rule})")
     p.within("element.tip_height_mm", e.tip_height_mm, e.inside_corner_radius_mm + MIN_TIP_WALL_MM,
              why=f"the tip-root fillet must end on the tip's side, {fmt(MIN_TIP_WALL_MM)} mm "
                  "below the contact face")
@@ -363,11 +410,11 @@ def _check_lists(d: CombTables, p: Problems) -> bool:
 
 def _check_arms(d: CombTables, p: Problems) -> None:
     e, arms = d.element, d.arms.lengths_mm
-    slot = edm_rules(d).min_slot_width_mm
+    slot = row_rules(d).min_slot_width_mm
     tip_root = e.tip_width_mm / 2 + e.inside_corner_radius_mm + e.notch_radius_mm + 0.5
     seen: dict[float, float] = {}
     for i, (a, web) in enumerate(zip(arms, webs(d)), start=1):
-        # the slot after the tip: the wire's width, and room for the fillet at the next post
+        # the slot after the tip: the process's narrowest, and room for the fillet at the next post
         gap = max(slot, e.inside_corner_radius_mm)
         room = d.array.pitch_mm - gap - (element_length(d, a) - a)
         if a < tip_root - 1e-9:
@@ -377,7 +424,7 @@ def _check_arms(d: CombTables, p: Problems) -> None:
             p.add(f"arms.lengths_mm[{i}]", a,
                   f"<= {fmt(room)} mm, or array.pitch_mm >= {fmt(element_length(d, a) + gap)} mm",
                   f"the element (post + notch radius + arm + half the tip) and a {fmt(gap)} mm "
-                  f"slot after it (the wire's slot, the fillet at the next post) must fit the "
+                  f"slot after it (the process's narrowest slot, the fillet at the next post) must fit the "
                   f"pitch {fmt(d.array.pitch_mm)} mm")
         for other, other_web in seen.items():
             if abs(a - other) < MIN_ARM_STEP_MM and web != other_web:
@@ -391,12 +438,12 @@ def _check_comb(d: CombTables, p: Problems) -> None:
     p.within("comb.spacer_thickness_mm", c.spacer_thickness_mm, MIN_SPACER_MM,
              why=f"the two rows' arms flex on either side of it: a {fmt(MIN_SPACER_MM)} mm "
                  "plate at the least")
-    p.within("comb.post_length_mm", c.post_length_mm, edm_rules(d).min_inside_radius_mm * 2,
+    p.within("comb.post_length_mm", c.post_length_mm, row_rules(d).min_inside_radius_mm * 2,
              why="the post must hold the notch's back wall and the tip's neighbour's slot")
     if c.stop_gaps_mm is not None:
         for i, g in enumerate(c.stop_gaps_mm, start=1):
             p.within(f"comb.stop_gaps_mm[{i}]", g, MIN_SET_GAP_MM,
-                     why=f"a gap narrower than the wire's slot is set with a shim; the thinnest "
+                     why=f"a gap narrower than the process's slot is set with a shim; the thinnest "
                          f"is {fmt(MIN_SET_GAP_MM)} mm")
     length = row_length(d).value
     screws, dowels = fastener_positions(d)
@@ -436,9 +483,30 @@ def _check_arm_domain(d: CombTables, p: Problems) -> None:
         p.within(f"arms.lengths_mm[{i}]", a, *ARM_RANGE_MM, why=FITTED_DOMAIN)
 
 
+def _check_row_process(d: CombTables, p: Problems) -> None:
+    """The rows' process cuts the comb's sheet (its flexure range), leaves each web no
+    thinner than it can and cuts the fastener holes no smaller (the ``process`` check's
+    figures, refused when the file is read)."""
+    check_sheet_process(d, p)
+    limits = row_rules(d).limits
+    web, hole = limits.min_web_mm, limits.min_hole_mm
+    where = f"{limits.process} on a {fmt(d.sheet.thickness_mm)} mm sheet"
+    field = "comb.web_thicknesses_mm" if d.comb.web_thicknesses_mm else "element.web_thickness_mm"
+    thinnest = min(webs(d))
+    if thinnest < web.value_mm - 1e-9:
+        p.add(field, thinnest, f">= {fmt(web.value_mm)} mm: the thinnest web {where} leaves "
+              f"({web.rule}), or a thinner sheet or another element.process", web.source)
+    smallest = min(screw(d).clearance_hole_mm, dowel_diameter(d))
+    if smallest < hole.value_mm - 1e-9:
+        p.add("comb.dowel_diameter_mm" if dowel_diameter(d) <= screw(d).clearance_hole_mm
+              else "comb.screw_size", smallest,
+              f"a hole >= {fmt(hole.value_mm)} mm: the smallest {where} cuts ({hole.rule})",
+              hole.source)
+
+
 COMB_RULES = (_check_element, _check_arms, _check_comb, _check_arm_domain, check_requirements,
               check_readout, check_tolerances, check_web_tolerance_held, check_in_use,
-              _check_spacer_process)
+              _check_spacer_process, _check_row_process)
 
 
 # ---------------------------------------------------------------------------

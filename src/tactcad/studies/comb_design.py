@@ -47,7 +47,7 @@ from typing import Any, Callable, Mapping
 
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError, DesignErrors
-from tactcad.studies.inverse_design import InverseDesignError, Targets
+from tactcad.studies.inverse_design import InverseDesignError, Targets, held_to_process
 
 #: Sheet thicknesses searched (mm): Ti-6Al-4V and steel sheet of common stock.
 SHEETS_MM = (0.5, 0.6, 0.8, 1.0, 1.2, 1.5)
@@ -63,6 +63,9 @@ KM_SCALES = (1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0)
 #: The force margin a chosen comb keeps, where one can (the softest pair that keeps it is
 #: chosen; a stiffer one trades K_obj resolution for force).
 FORCE_MARGIN_REL = 0.2
+#: Bisections of a refusal's force bracket (a 1.25 x bracket to within 2.8 %: a force 5 %
+#: above the answer is refused, one below it designs); each costs a search of every sheet.
+FRONTIER_STEPS = 3
 
 
 @dataclass(frozen=True)
@@ -103,6 +106,27 @@ class FastenerTry:
         return f"{self.screw_size} screws, {self.dowel_diameter_mm:g} mm dowels"
 
 
+def sheets_of(base: Mapping[str, Any]) -> tuple[float, ...]:
+    """The sheets (mm) the comb is searched over: :data:`SHEETS_MM` for wire EDM; for
+    another process of the base's ``[element] process``, the foil and stock gauges its
+    flexure range holds (:func:`tactcad.studies.layout_search.process_sheets_mm`)."""
+    from tactcad.studies.layout_search import process_sheets_mm
+    from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS
+
+    process = (base.get("element") or {}).get("process") or DEFAULT_CUT_PROCESS
+    if process == DEFAULT_CUT_PROCESS:
+        return SHEETS_MM
+    return tuple(process_sheets_mm(process))
+
+
+def slot_of(d: Mapping[str, Any]) -> float:
+    """The slot the search leaves after the longest element (mm): :data:`SLOT_MM`, or the
+    narrowest the rows' process cuts on the sheet where that is wider."""
+    from tactcad.design.array_plan import element_process_limits
+
+    return max(SLOT_MM, element_process_limits(d).min_slot_mm.value_mm)
+
+
 def _floor(x: float, step: float) -> float:
     return math.floor(x / step + 1e-9) * step
 
@@ -131,12 +155,18 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     e, comb = d["element"], d["comb"]
     if grade is not None:
         d["material"] = {"name": grade, "grade": grade}
+    d["sheet"] = {"thickness_mm": sheet_mm}
+    if e.get("process"):  # the process's tolerance, notch and corner radii on this sheet
+        d = held_to_process(d)
+        e, comb = d["element"], d["comb"]
+    # a starting web the process leaves (each is solved next); the notch keeps t/R <= 1
+    e["web_thickness_mm"] = max(e["web_thickness_mm"], round(web_floor(d).value_mm, 6))
+    e["notch_radius_mm"] = max(e["notch_radius_mm"], e["web_thickness_mm"])
     pitch = _floor(min(room.along_mm / columns, 20.0), 0.1)
     arm_r = 2.0
-    arm_m = _floor(pitch - SLOT_MM - comb["post_length_mm"] - e["notch_radius_mm"]
+    arm_m = _floor(pitch - slot_of(d) - comb["post_length_mm"] - e["notch_radius_mm"]
                    - e["tip_width_mm"] / 2, 0.1)
     n = 2 * columns
-    d["sheet"] = {"thickness_mm": sheet_mm}
     d["array"] = {"construction": "monolithic-comb", "pairing": "column", "rows": 2,
                   "columns": columns, "pitch_mm": round(pitch, 6)}
     d["arms"] = {"lengths_mm": [arm_r] * columns + [round(arm_m, 6)] * columns,
@@ -178,6 +208,11 @@ def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tup
         if web is None:
             return d, [f"no web of element {number} ({g.arm_length_mm:g} mm arm) reaches "
                        f"K = {k:.4g} N/mm at the closed form"]
+        thinnest = web_floor(d)
+        if web < thinnest.value_mm - 1e-9:
+            return d, [f"web {web:g} mm of element {number} (K = {k:.4g} N/mm), below the "
+                       f"{thinnest.value_mm:g} mm {process_name(d)} holds in a "
+                       f"{d['sheet']['thickness_mm']:g} mm sheet ({thinnest.rule})"]
         webs.append(web)
     d = copy.deepcopy(d)
     d["comb"]["web_thicknesses_mm"] = [webs[0]] * columns + [webs[1]] * columns
@@ -194,6 +229,21 @@ def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tup
         gaps.append(max(math.ceil(gap / WEB_STEP_MM - 1e-9) * WEB_STEP_MM, MIN_SET_GAP_MM))
     d["comb"]["stop_gaps_mm"] = [round(x, 6) for x in gaps]
     return d, []
+
+
+def process_name(d: Mapping[str, Any]) -> str:
+    """The rows' cut process of raw comb tables (wire EDM when not stated)."""
+    from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS
+
+    return (d.get("element") or {}).get("process") or DEFAULT_CUT_PROCESS
+
+
+def web_floor(d: Mapping[str, Any]):
+    """The thinnest web the rows' process leaves on the sheet (a
+    :class:`~tactcad.vocabulary.process.Figure`, mm)."""
+    from tactcad.design.array_plan import element_process_limits
+
+    return element_process_limits(d).min_web_mm
 
 
 def _short(value: Any) -> str:
@@ -253,7 +303,8 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
                  envelope_of: Callable | None = None,
                  progress: Callable[[str], None] | None = None,
                  other_rooms: Mapping[str, Any] | None = None,
-                 max_grasp_force_N: float | None = None) -> CombDesign:
+                 max_grasp_force_N: float | None = None,
+                 process: str | None = None) -> CombDesign:
     """The monolithic comb that fits ``room`` and meets ``targets``.
 
     Args:
@@ -269,6 +320,10 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
             nearest that holds a comb the pocket is too small for).
         max_grasp_force_N: the largest grasp the insert must survive (N): every candidate
             is judged on it (``requirements.max_grasp_force_N``); None: not judged.
+        process: the rows' cut process (a name of
+            :data:`~tactcad.vocabulary.process.CUT_PROCESSES`; None: the base's): the sheets
+            searched are those its flexure range holds (:func:`sheets_of`), and every
+            web, slot, radius and tolerance is held to its rules on each sheet.
 
     Returns:
         :class:`CombDesign`.
@@ -286,22 +341,69 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
 
     base = copy.deepcopy(dict(base))
     base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
+    if process is not None:
+        base["element"]["process"] = process
     with range_warnings_unsaid():  # the candidates are not the design asked about
         tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
-                           progress) for sheet in SHEETS_MM for scale in KM_SCALES]
+                           progress) for sheet in sheets_of(base) for scale in KM_SCALES]
     good = [c for c in tried if c.plan is not None and not c.failures]
     if not good:
-        fewer = None if any(c.rated_force_N for c in tried) else \
+        rated = [c.rated_force_N for c in tried if c.rated_force_N]
+        fewer = None if rated else \
             nearest_columns(base, columns, room, targets, grade, envelope_of)
-        raise refusal(tried, targets, room, columns,
-                      nearest_jaw(base, columns, room, targets, grade, other_rooms or {}),
-                      fewer)
+        jaw = nearest_jaw(base, columns, room, targets, grade, other_rooms or {})
+        # the best-rated candidates first: the one that counts is found soonest
+        order = [(c.sheet_mm, c.km_scale) for c in
+                 sorted(tried, key=lambda c: -(c.rated_force_N or 0.0))]
+        frontier = None if not rated or jaw[0] else largest_comb_force(
+            max(rated) * 0.99, lambda force: comb_counts(base, force, columns, room, targets,
+                                                         grade, envelope_of, order))
+        raise refusal(tried, targets, room, columns, jaw, fewer, frontier)
     with range_warnings_unsaid():
         first = chosen(good) if max_grasp_force_N is None else \
             surviving(good, max_grasp_force_N, room, envelope_of, targets, columns)
         best, fasteners = with_fasteners(first, room, envelope_of)
     data = named(best.data, name, targets, room, best, columns, fasteners)
     return CombDesign(data, plan_from_dict(data), room, tuple(tried), fasteners)
+
+
+def comb_counts(base: dict, force_N: float, columns: int, room: Any, targets: Targets,
+                grade: str | None, envelope_of: Callable | None,
+                order: list[tuple[float, float]] | None = None) -> bool:
+    """True when some sheet's comb at some K_m scale counts at a full-scale force of
+    ``force_N`` (N); tried in ``order`` ((sheet mm, K_m scale) pairs; default every sheet
+    of :func:`sheets_of` at every scale), stopping at the first that counts."""
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    at = replace(targets, full_scale_force_N=force_N)
+    pairs = order or [(sheet, scale) for sheet in sheets_of(base) for scale in KM_SCALES]
+    with range_warnings_unsaid():
+        return any(c.plan is not None and not c.failures
+                   for c in (candidate(base, sheet, scale, columns, room, at, grade,
+                                       envelope_of, None) for sheet, scale in pairs))
+
+
+def largest_comb_force(estimate_N: float, counts: Callable[[float], bool]) -> float:
+    """The largest full-scale force (N, 3 significant digits, rounded down) at which a comb
+    counts (``counts``), from the candidates' own rating ``estimate_N``: a candidate's
+    stops and webs are set for the force asked, so its rating is only an estimate. Stepped
+    down from it until one counts, then a bracket grown by
+    :data:`~tactcad.studies.design_alternatives.BRACKET_STEP` until a force fails and
+    bisected, so the answer is the search's frontier whatever force was asked."""
+    from tactcad.studies.design_alternatives import BRACKET_STEP, _round_down
+
+    lo = estimate_N
+    while not counts(lo):
+        lo *= 0.9
+        if lo < estimate_N * 0.3:
+            return _round_down(estimate_N)  # nothing near counts: the estimate as it is
+    hi = lo * 1.05
+    while counts(hi):
+        lo, hi = hi, hi * BRACKET_STEP
+    for _ in range(FRONTIER_STEPS):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if counts(mid) else (lo, mid)
+    return _round_down(lo)
 
 
 def chosen(good: list[CombCandidate]) -> CombCandidate:
@@ -456,7 +558,7 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
     sheet's comb: the smallest comb's pocket, the jaw-file keys that would hold it (a lab's
     own jaw) and the first jaw of ``other_rooms`` that holds it, with those as pasteable
     alternatives (empty when some sheet's comb fits the pocket: something else binds)."""
-    needs = [(sheet, env) for sheet in SHEETS_MM
+    needs = [(sheet, env) for sheet in sheets_of(base)
              if (env := comb_envelope_mm(base, sheet, columns, room, targets, grade))]
     if not needs or any(env[0] <= room.across_mm and env[2] <= room.height_mm
                         for _, env in needs):
@@ -486,7 +588,7 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
 
     with range_warnings_unsaid():
         for fewer in range(columns - 1, 0, -1):
-            for sheet in SHEETS_MM:
+            for sheet in sheets_of(base):
                 for scale in KM_SCALES:
                     c = candidate(base, sheet, scale, fewer, room, targets, grade,
                                   envelope_of, None)
@@ -497,14 +599,16 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
 
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             columns: int, jaw: tuple[str, list[dict]] = ("", []),
-            fewer_columns: int | None = None) -> InverseDesignError:
-    """Why no sheet counts, the largest force any carries (a pasteable option) or, when
-    the pocket binds every sheet, the nearest jaw (``jaw``, :func:`nearest_jaw`'s line and
-    alternatives: no force helps then); when the grid binds before any force, the most
-    columns that count (``fewer_columns``, :func:`nearest_columns`)."""
+            fewer_columns: int | None = None,
+            frontier_N: float | None = None) -> InverseDesignError:
+    """Why no sheet counts, the largest force any carries (a pasteable option:
+    ``frontier_N``, :func:`largest_comb_force`, else the candidates' best rating less 1 %)
+    or, when the pocket binds every sheet, the nearest jaw (``jaw``, :func:`nearest_jaw`'s
+    line and alternatives: no force helps then); when the grid binds before any force, the
+    most columns that count (``fewer_columns``, :func:`nearest_columns`)."""
     jaw_line, jaw_alternatives = jaw
     lines = []
-    for sheet in SHEETS_MM:  # each sheet's nearest candidate: its largest force margin
+    for sheet in sorted({c.sheet_mm for c in tried}):  # each sheet's nearest: most margin
         own = [c for c in tried if c.sheet_mm == sheet and c.failures]
         if own:
             c = max(own, key=lambda c: (c.force_margin_rel, c.km_scale))
@@ -521,9 +625,10 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
         return InverseDesignError(text + f"\n  {jaw_line}", "--jaw", room.option,
                                   "a jaw whose pocket holds the comb: " + first,
                                   alternatives=jaw_alternatives)
-    nearest = f"--full-scale-force {max(rated) * 0.99:.3g}" if rated else ""
+    largest = frontier_N if frontier_N else (max(rated) * 0.99 if rated else None)
+    nearest = f"--full-scale-force {largest:.3g}" if largest else ""
     option, value = "--full-scale-force", targets.full_scale_force_N
-    words = "the largest full-scale force a comb of this jaw carries (less 1 %)"
+    words = "the largest full-scale force a comb of this jaw carries"
     if not nearest and fewer_columns is not None:
         nearest, option, value = f"--columns {fewer_columns}", "--columns", columns
         words = "the most columns whose comb counts in this jaw"
@@ -583,10 +688,11 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
            or (not fasteners and k in ("comb.screw_size", "comb.dowel_diameter_mm"))}
     if fasteners:
         why.update(fastener_reasons(fasteners))
-    others = [c for c in SHEETS_MM if c != best.sheet_mm]
+    searched = sheets_of(d)
+    others = [c for c in searched if c != best.sheet_mm]
     why.update({
         "sheet.thickness_mm": (f"tactcad design --jaw {PurePath(room.option).name}: of "
-                               f"{', '.join(f'{s:g}' for s in SHEETS_MM)} mm, "
+                               f"{', '.join(f'{s:g}' for s in searched)} mm ({process_name(d)}), "
                                + sheet_rule_words(best.force_margin_rel)
                                + f"; tried also {', '.join(f'{s:g}' for s in others)} mm."),
         "array.pairing": "Column pairing: each reference (row 1) beside its measuring element "
@@ -595,7 +701,7 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
                            f"leaves (to 0.1 mm)."),
         "arms.lengths_mm": (f"References {arms[0]:g} mm (the fitted range's shortest), measuring "
                             f"elements {arms[-1]:g} mm: the longest the pitch leaves with a "
-                            f"{SLOT_MM:g} mm slot."),
+                            f"{slot_of(d):g} mm slot."),
         "arms.reference_elements": "Row 1: every column's reference.",
         "comb.web_thicknesses_mm": (
             f"Solved at the closed form for K_r = {targets.kr_over_km:g} K_m and K_m = "

@@ -27,7 +27,7 @@ from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.element import WEB_RANGE_MM, FITTED_DOMAIN, ElementGeometry
 from tactcad.partlib.array.prism import Hole, hole_circles, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
-from tactcad.vocabulary.process import CUT_PROCESSES, DEFAULT_CUT_PROCESS, Method, Process
+from tactcad.vocabulary.process import CUT_PROCESSES, DEFAULT_CUT_PROCESS, cut_process
 from tactcad.vocabulary.schema import Section, choice, listing, number
 from tactcad.vocabulary.standards import DOWEL_PINS, MINIATURE_SCREWS, BoltSpec
 
@@ -133,6 +133,8 @@ class CombGeometry:
         envelope_mm: (across the rows with head and screw end, along the row,
             height to the contact faces).
         spacer_process: the cut process of the spacer (its name).
+        envelope_from_x_mm: where the envelope starts across the rows (mm, array frame):
+            the screw's head, or a dowel pin's end where a stock pin reaches further.
     """
 
     sheets: tuple[CombSheet, ...]
@@ -146,6 +148,8 @@ class CombGeometry:
     fastener_y_mm: float
     envelope_mm: tuple[float, float, float]
     spacer_process: str = DEFAULT_CUT_PROCESS
+    #: the envelope's lowest x across the rows (mm; None: the screw's head)
+    envelope_from_x_mm: float | None = None
 
     @property
     def envelope_centre_mm(self) -> tuple[float, float]:
@@ -153,6 +157,8 @@ class CombGeometry:
         (mm): it reaches from the screw's head on row 1's outer face across to the screw's
         end, and over the row's length from z = 0."""
         across, along, _ = self.envelope_mm
+        if self.envelope_from_x_mm is not None:
+            return self.envelope_from_x_mm + across / 2, along / 2
         head = -(self.spacer_thickness_mm / 2 + self.sheets[0].thickness_mm) - self.screw.head_height_mm
         return head + across / 2, along / 2
 
@@ -220,7 +226,7 @@ def specs(context: ArrayContext) -> tuple[PartData, ...]:
         prof = comb_profile(sheet)
         out.append(PartData(
             name=sheet.part_name, kind="fabricated",
-            process=Process("wire EDM from sheet", Method.SHEET),
+            process=cut_process(sheet.elements[0].process).part_process(),
             material=context.plan.material.name, color=sheet_shade(sheet.row),
             expected_volume_mm3=prof.area_mm2 * sheet.thickness_mm,
             expected_bbox_mm=prism_bbox(prof, sheet.thickness_mm), geometry=sheet, profile=prof,
