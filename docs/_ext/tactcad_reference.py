@@ -235,9 +235,14 @@ def _file_models() -> list[tuple[str, str, type[BaseModel], str]]:
     from tactcad.design.rig_plan import RigsFile
     from tactcad.design.scene_specs import ScenesFile
 
+    from tactcad.design.die_file import DieFile
+
     return [("The design file", "design", DesignFile, "macro_array.toml"),
             ("rigs.toml", "rigs", RigsFile, "rigs.toml"),
-            ("scenes.toml", "scenes", ScenesFile, "scenes.toml")]
+            ("scenes.toml", "scenes", ScenesFile, "scenes.toml"),
+            # the last column of a die's keys: the shipped 5 mm die's values
+            ("A silicon die's design file (tactcad die --design)", "die", DieFile,
+             "../grasper_jaw_5mm_mems/grasper_jaw_5mm_mems.toml")]
 
 
 def example_values(file: str) -> tuple[dict[str, Any], dict[str, str]]:

@@ -49,11 +49,26 @@ def _template(name: str) -> Template:
 
 
 def examples() -> dict[str, Path]:
-    """The shipped example projects: name -> its design file (one folder each)."""
+    """The shipped example projects: name -> its design file (one folder each); a silicon
+    die's folder (:func:`die_examples`) is not one of them."""
     out = {}
     for folder in sorted(p for p in EXAMPLES.iterdir() if p.is_dir()):
         design = folder / f"{folder.name}.toml"
-        if design.is_file():
+        if design.is_file() and design not in die_examples().values():
+            out[folder.name] = design
+    return out
+
+
+def die_examples() -> dict[str, Path]:
+    """The shipped silicon dies: name -> its die design file (a ``[die]`` table, read by
+    ``tactcad die --design``)."""
+    from tactcad.design.die_file import is_die_file
+    from tactcad.vocabulary.schema import read_toml
+
+    out = {}
+    for folder in sorted(p for p in EXAMPLES.iterdir() if p.is_dir()):
+        design = folder / f"{folder.name}.toml"
+        if design.is_file() and is_die_file(read_toml(design, "design file")):
             out[folder.name] = design
     return out
 

@@ -259,3 +259,69 @@ def test_the_traveller_lists_every_mask_in_process_order_with_the_plans_figures(
     text = traveller_markdown(die, 324.0, "mems_die.gds")
     assert f"{die.stack.device_um:g} +-{die.stack.device_tolerance_um:g} um" in text
     assert "324 ohm/sq" in text and "(assumption)" in text and "mems_die.gds" in text
+
+
+def test_the_shipped_die_example_is_read_from_its_file_and_passes_its_checks(tmp_path):
+    """hardware/grasper_jaw_5mm_mems: a [die] design file ``tactcad die --design`` reads
+    (the jaw, targets and name from it), writing every file of the die and passing its
+    KLayout read-back; it is a die, not one of the array examples ``tactcad new`` offers."""
+    from tactcad.project_folder import die_examples, examples
+
+    design = die_examples()["grasper_jaw_5mm_mems"]
+    assert "grasper_jaw_5mm_mems" not in examples()
+    r = run_cli("die", "--design", str(design), "--out", str(tmp_path / "die"), "--json")
+    assert r.returncode == 0, r.stderr
+    record = json.loads(r.stdout)
+    assert record["counts"]["failed"] == 0 and record["jaw"] == "5 mm jaw"
+    assert sorted(p.name for p in (tmp_path / "die").iterdir()) == sorted(
+        record["files"].values())
+    assert all(name.startswith("grasper_jaw_5mm_mems") for name in record["files"].values())
+    # the file's targets, not the command's defaults
+    assert record["die"]["full_scale_force_N"] == 0.02
+
+
+@pytest.mark.parametrize("table, field", [
+    ('jaw = "../outside.toml"', "die.jaw"),          # a jaw outside the sensor's folder
+    ('jaw = "5"\nkr_over_km = 0.5', "die.kr_over_km"),
+    ('jaw = "5"\nkobj_range_N_per_mm = [5.0, 0.5]', "die.kobj_range_N_per_mm"),
+    ('jaw = "5"\nname = "1bad name"', "die.name"),
+    ('jaw = "5"\ncolour = "red"', "die.colour"),
+])
+def test_a_die_file_out_of_its_domain_is_refused_by_field_and_writes_nothing(tmp_path, table,
+                                                                            field):
+    base = {"kr_over_km": "10.0", "kobj_range_N_per_mm": "[0.5, 5.0]",
+            "full_scale_force_N": "0.02"}
+    stated = dict(line.split(" = ", 1) for line in table.splitlines())
+    lines = [f"{k} = {v}" for k, v in {**base, **stated}.items()]
+    design = tmp_path / "sensor" / "die.toml"
+    design.parent.mkdir()
+    (tmp_path / "outside.toml").write_text("[grasper_jaw]\n", encoding="utf-8")
+    design.write_text("[die]\n" + "\n".join(lines) + "\n", encoding="utf-8")
+    r = run_cli("die", "--design", str(design), "--out", str(tmp_path / "die"))
+    assert r.returncode == 2 and field in r.stderr and "Traceback" not in r.stderr, r.stderr
+    assert not (tmp_path / "die").exists()
+
+
+def test_design_for_the_5_mm_jaw_writes_a_die_file_the_die_command_reads(tmp_path):
+    """No metal construction seats in the 5 mm jaw's pocket: ``design --jaw 5`` writes the
+    silicon die's design file, with why, and ``die --design`` makes the die it planned."""
+    out = tmp_path / "insert5.toml"
+    r = run_cli("design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.02", "--out", str(out), "--json")
+    assert r.returncode == 0, r.stderr
+    report = json.loads(r.stdout)
+    assert report["construction"] == "mems-die"
+    assert any(line.startswith("monolithic-comb:") for line in report["left_out"])
+    made = run_cli("die", "--design", str(out), "--out", str(tmp_path / "die"), "--json")
+    assert made.returncode == 0, made.stderr
+    assert json.loads(made.stdout)["die"] == report["die"]
+    # a die takes no metal's options: asked for by name, they are refused, not dropped;
+    # asked for a metal, the metal's refusal stands, with a jaw to paste
+    asked = ["design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+             "--full-scale-force", "0.02", "--material", "Ti-6Al-4V-annealed", "--out",
+             str(tmp_path / "x.toml")]
+    bad = run_cli(*asked, "--construction", "mems-die")
+    assert bad.returncode == 2 and "--material" in bad.stderr and "silicon" in bad.stderr
+    metal = run_cli(*asked, "--json")
+    assert metal.returncode == 2 and json.loads(metal.stdout)["error"]["alternatives"]
+    assert not (tmp_path / "x.toml").exists()

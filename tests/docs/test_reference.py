@@ -112,7 +112,8 @@ def flat_keys(data: dict, prefix: str = "") -> set[str]:
 
 
 @pytest.mark.parametrize("file", ["macro_array/macro_array.toml", "macro_array/rigs.toml",
-                                  "macro_array/scenes.toml", "ti_array_2x3/ti_array_2x3.toml"])
+                                  "macro_array/scenes.toml", "ti_array_2x3/ti_array_2x3.toml",
+                                  "grasper_jaw_5mm_mems/grasper_jaw_5mm_mems.toml"])
 def test_every_key_of_the_shipped_files_is_in_the_reference(file):
     """The shipped examples' keys, as written (scene names as ``<name>``, the free
     ``[assumptions]`` keys left out)."""

@@ -146,9 +146,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "construction that seats in a jaw (sheet, pitch, arms, webs, hard stops) "
                         "inside the jaw's pocket; writes the design and its scenes (the insert "
                         "in the jaw), or names the binding limits and the nearest force")
-    p.add_argument("--construction", choices=("auto",) + construction_choices(), default="auto",
+    p.add_argument("--construction", choices=("auto",) + construction_choices()
+                   + (DIE_CONSTRUCTION,), default="auto",
                    help="construction of the array (default auto: the stacked array, or with "
-                        "--jaw every construction that seats in a jaw)")
+                        "--jaw every construction that seats in a jaw, and a silicon die's "
+                        "design file where the jaw's pocket holds none; mems-die: the die "
+                        "only, with --jaw)")
     p.add_argument("--verify", choices=verify_levels(), default=None,
                    help=f"ladder level that checks the chosen geometry (default {DEFAULT_VERIFY}, "
                         "~1 min; not with --jaw, whose design the checks that need no CAD "
@@ -302,6 +305,89 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+#: ``--construction`` of a silicon die (not an array construction: its design file is read
+#: by ``tactcad die --design``).
+DIE_CONSTRUCTION = "mems-die"
+#: Options a die does not take: option -> (attribute, why).
+DIE_IGNORES = {"--material": ("material", "the die is single-crystal silicon"),
+               "--process": ("process", "the die is made by its SOI process (tactcad die)"),
+               "--max-grasp-force": ("max_grasp_force", "a die's grasp is not judged yet"),
+               "--tissue-thickness": ("tissue_thickness", "a die's tissue coupling is not "
+                                                          "computed yet")}
+
+
+def die_ignored(args: argparse.Namespace) -> dict[str, str]:
+    """The options given that a die does not take (:data:`DIE_IGNORES`): option -> why."""
+    return {option: why for option, (attr, why) in DIE_IGNORES.items()
+            if getattr(args, attr, None) is not None}
+
+
+def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder: Path | None,
+                     refusals: list, left: list[str]) -> int:
+    """``design --jaw`` where only a silicon die fits (or ``--construction mems-die``): the
+    die planned for the targets in the jaw's pocket (:func:`tactcad.design.mems_die.die_plan`;
+    its refusal is this command's) and its design file written at ``path`` (in ``folder``
+    when ``--out`` names one, with a lab's jaw file copied beside it), for ``tactcad die
+    --design``.
+
+    Raises:
+        DesignError: an option a die does not take (:data:`DIE_IGNORES`), or the die's own
+            refusal (what binds, with a K_obj range to paste).
+    """
+    import re
+
+    from tactcad.atomic import write_bytes_atomic
+    from tactcad.design.die_file import die_file_text
+    from tactcad.design.mems_die import die_plan
+
+    for option, why in die_ignored(args).items():
+        raise DesignError(option, getattr(args, DIE_IGNORES[option][0]),
+                          "only for a metal construction", why)
+    name = re.sub(r"[^A-Za-z0-9_]", "_", path.stem)
+    name = name if re.match(r"[A-Za-z]", name) else f"die_{name}"
+    columns = args.columns or 5
+    plan = die_plan(targets, room, columns=columns, name=name[:32])
+    jaw, jaw_file = jaw_of(args.jaw)
+    stated = args.jaw
+    if jaw_file:  # the lab's jaw beside the die's file: a sensor folder reads only itself
+        stated = f"{path.stem}_jaw.toml"
+    why = [f"{n}: {e.message if hasattr(e, 'message') else e}".splitlines()[0] for n, e in refusals]
+    reasons = {"die.jaw": (f"tactcad design --jaw {Path(args.jaw).name}: "
+                           + ("; ".join(why) if why else "a silicon die asked for") + "."),
+               "die.kr_over_km": "The ratio asked (--kr-over-km).",
+               "die.kobj_range_N_per_mm": "The range asked (--kobj-range).",
+               "die.full_scale_force_N": "The force asked (--full-scale-force).",
+               "die.columns": f"{columns} units along the die"
+                              + (" (--columns)." if args.columns else " (the default)."),
+               "die.pitch_um": "The die command's default spacing."}
+    text = die_file_text(stated, targets.kr_over_km, targets.k_obj_range_N_per_mm,
+                         targets.full_scale_force_N, columns, plan.pitch_um, plan.name,
+                         "tactcad design " + " ".join(design_options(args)), reasons)
+    if folder is not None:
+        folder.mkdir(parents=True, exist_ok=True)
+    if jaw_file:
+        import tomli_w
+
+        write_bytes_atomic(path.parent / stated,
+                           tomli_w.dumps({"grasper_jaw": dict(jaw)}).encode("utf-8"))
+    write_bytes_atomic(path, text.encode("utf-8"))
+    report = {"construction": DIE_CONSTRUCTION, "design": str(path), "jaw": room.label,
+              "left_out": [*left, *why], "die": plan.as_json(),
+              "next": f"tactcad die --design {shown_path(str(path))} --out die"}
+    if args.json:
+        print(json.dumps(report, indent=2, allow_nan=False))
+    else:
+        b_r, b_m = plan.beams[0], plan.beams[plan.columns]
+        print(f"{path}: silicon die for the {room.label} ({plan.die_length_um:g} x "
+              f"{plan.die_width_um:g} x {plan.thickness_um:g} um)")
+        for line in report["left_out"]:
+            print(f"  not searched: {line}")
+        print(f"  SOI device layer {plan.stack.device_um:g} um, beams {b_r.width_um:g} um wide: "
+              f"reference {b_r.length_um:.4g} um, measuring {b_m.length_um:.4g} um long")
+        print(f"  next: {report['next']} (masks, wafer, STEP, traveller, KLayout DRC)")
+    return 0
+
+
 def jaw_constructions(args: argparse.Namespace) -> tuple[list, list[str]]:
     """The constructions a jaw design searches (``--construction``, else every one whose
     registry entry has a search to a jaw) and a line for each one left out.
@@ -314,6 +400,8 @@ def jaw_constructions(args: argparse.Namespace) -> tuple[list, list[str]]:
     if args.jaw is None:
         raise DesignError("--jaw", None, "a trocar class: " + ", ".join(jaw_classes()),
                           f"the {args.construction} construction is designed to a grasper's jaw")
+    if args.construction == DIE_CONSTRUCTION:
+        return [], []
     names = construction_names() if args.construction == "auto" else (args.construction,)
     chosen, left = [], []
     for name in names:
@@ -394,6 +482,16 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
             break
         except DesignError as exc:
             refusals.append((c.name, exc))
+    if result is None and args.construction == DIE_CONSTRUCTION:
+        return write_die_design(args, targets, room, path, folder, refusals, left)
+    if result is None and all(e.field == "--jaw" for _, e in refusals) and \
+            not die_ignored(args):
+        # the pocket holds no metal construction: a silicon die lies flat in it, where one
+        # meets the targets (else the metal's refusal, with its jaws to paste, stands)
+        try:
+            return write_die_design(args, targets, room, path, folder, refusals, left)
+        except DesignError:
+            pass
     if result is None:
         if len(refusals) == 1:
             raise refusals[0][1]

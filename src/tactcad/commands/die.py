@@ -14,6 +14,7 @@ from tactcad.commands import add_output_args
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
+from tactcad.errors import DesignError
 
 #: The written files, by what they hold ({name}: the die's name).
 DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "step": "{name}.step",
@@ -34,22 +35,26 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "with KLayout against the process's rules and the plan. Exit 1 when a "
                     "check fails, 2 when the targets cannot be met (with what binds and a "
                     "pasteable alternative). Units: um, N/mm, N, MPa.")
-    p.add_argument("--jaw", required=True, metavar="CLASS|FILE",
+    p.add_argument("--design", metavar="FILE", default=None,
+                   help="a die design file (a [die] table: jaw, kr_over_km, "
+                        "kobj_range_N_per_mm, full_scale_force_N, columns, pitch_um, name; "
+                        "`tactcad design --jaw 5` writes one); in place of the options below")
+    p.add_argument("--jaw", metavar="CLASS|FILE",
                    help="the jaw the die seats in: a trocar class (5, 10) or a TOML file with "
                         "a [grasper_jaw] table (its pocket bounds the die)")
-    p.add_argument("--kr-over-km", type=number(1, 1000, lo_open=True), required=True,
+    p.add_argument("--kr-over-km", type=number(1, 1000, lo_open=True),
                    metavar="X", help="stiffness ratio K_r/K_m of a unit (> 1; about 10)")
     p.add_argument("--kobj-range", type=number(0, MAX_KOBJ_N_PER_MM, "N/mm", lo_open=True),
-                   nargs=2, required=True, metavar=("LO", "HI"),
+                   nargs=2, metavar=("LO", "HI"),
                    help="object stiffnesses to read (N/mm)")
     p.add_argument("--full-scale-force", type=number(0, MAX_FULL_SCALE_FORCE_N, "N",
                                                      lo_open=True),
-                   required=True, metavar="F", help="the rated force on each beam (N)")
-    p.add_argument("--columns", type=count(2, 50), default=5, metavar="N",
+                   metavar="F", help="the rated force on each beam (N)")
+    p.add_argument("--columns", type=count(2, 50), default=None, metavar="N",
                    help="units along the die (2 ... 50; default 5)")
-    p.add_argument("--pitch-um", type=number(50, 5000, "um"), default=1000.0, metavar="UM",
+    p.add_argument("--pitch-um", type=number(50, 5000, "um"), default=None, metavar="UM",
                    help="the units' spacing along the die (um; default 1000)")
-    p.add_argument("--name", default="mems_die",
+    p.add_argument("--name", default=None,
                    help="the die's name: its GDS cell and file names (letters, digits, _; "
                         "default mems_die)")
     p.add_argument("--out", default="die", metavar="DIR",
@@ -58,10 +63,44 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+#: The targets' options, by the die design file's key; and the options with defaults.
+TARGET_OPTIONS = {"jaw": "--jaw", "kr_over_km": "--kr-over-km",
+                  "kobj_range": "--kobj-range", "full_scale_force": "--full-scale-force"}
+DEFAULTS = {"columns": ("--columns", 5), "pitch_um": ("--pitch-um", 1000.0),
+            "name": ("--name", "mems_die")}
+
+
+def die_asked(args: argparse.Namespace) -> dict:
+    """The die asked for: from ``--design`` (:func:`tactcad.design.die_file.load_die_design`)
+    or from the options, each left out taking its default.
+
+    Raises:
+        DesignError: a target option missing without ``--design``, or given with it.
+    """
+    from tactcad.design.die_file import load_die_design
+
+    if args.design is None:
+        for key, option in TARGET_OPTIONS.items():
+            if getattr(args, key) is None:
+                raise DesignError(option, None, "a value, or --design FILE",
+                                  "the die's targets are the options or a die design file")
+        return {**{k: getattr(args, k) for k in TARGET_OPTIONS},
+                **{k: v if (v := getattr(args, k)) is not None else d
+                   for k, (_, d) in DEFAULTS.items()}}
+    given = [o for k, o in {**TARGET_OPTIONS, **{k: o for k, (o, _) in DEFAULTS.items()}}.items()
+             if getattr(args, k) is not None]
+    if given:
+        raise DesignError(given[0], getattr(args, given[0].lstrip("-").replace("-", "_")),
+                          "only without --design", f"{args.design} states it")
+    d = load_die_design(args.design)
+    return {"jaw": d.jaw, "kr_over_km": d.die.kr_over_km,
+            "kobj_range": tuple(d.die.kobj_range_N_per_mm),
+            "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
+            "pitch_um": d.die.pitch_um, "name": d.die.name}
+
+
 def _name(value: str) -> str:
     import re
-
-    from tactcad.errors import DesignError
 
     if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,31}", value or ""):
         raise DesignError("--name", value, "a letter, then up to 31 letters, digits or _ "
@@ -82,10 +121,12 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
 
-    name = _name(args.name)
-    targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force)
-    room = jaw_room(*jaw_of(args.jaw))
-    plan = die_plan(targets, room, columns=args.columns, pitch_um=args.pitch_um, name=name)
+    asked = die_asked(args)
+    name = _name(asked["name"])
+    targets = Targets(asked["kr_over_km"], tuple(asked["kobj_range"]), asked["full_scale_force"])
+    room = jaw_room(*jaw_of(asked["jaw"]))
+    plan = die_plan(targets, room, columns=asked["columns"], pitch_um=asked["pitch_um"],
+                    name=name)
     out = Path(args.out)
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
     # every file made in a staging folder beside OUT, then moved in: a failed or

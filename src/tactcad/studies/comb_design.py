@@ -580,26 +580,33 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
 
 
 def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
-                    envelope_of: Callable | None) -> int | None:
-    """The most columns below ``columns`` whose comb counts in ``room`` (None: not even
-    one): asked when no sheet's comb of ``columns`` has a plan (the pitch or the arms bind
+                    envelope_of: Callable | None) -> tuple[int, float | None] | None:
+    """The most columns below ``columns`` whose comb counts in ``room``: (columns, None);
+    else the most whose comb carries some smaller force, with that force (N, the
+    candidates' best rating less 1 %); None when no count below ``columns`` carries any.
+    Asked when no sheet's comb of ``columns`` has a plan (the pitch or the arms bind
     before any force is judged)."""
     from tactcad.mechanics.correction import range_warnings_unsaid
 
+    carrying: tuple[int, float] | None = None
     with range_warnings_unsaid():
         for fewer in range(columns - 1, 0, -1):
+            rated = []
             for sheet in sheets_of(base):
                 for scale in KM_SCALES:
                     c = candidate(base, sheet, scale, fewer, room, targets, grade,
                                   envelope_of, None)
                     if c.plan is not None and not c.failures:
-                        return fewer
-    return None
+                        return fewer, None
+                    rated += [c.rated_force_N] if c.rated_force_N else []
+            if rated and carrying is None:
+                carrying = (fewer, max(rated) * 0.99)
+    return carrying
 
 
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             columns: int, jaw: tuple[str, list[dict]] = ("", []),
-            fewer_columns: int | None = None,
+            fewer_columns: tuple[int, float | None] | None = None,
             frontier_N: float | None = None) -> InverseDesignError:
     """Why no sheet counts, the largest force any carries (a pasteable option:
     ``frontier_N``, :func:`largest_comb_force`, else the candidates' best rating less 1 %)
@@ -630,8 +637,16 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
     option, value = "--full-scale-force", targets.full_scale_force_N
     words = "the largest full-scale force a comb of this jaw carries"
     if not nearest and fewer_columns is not None:
-        nearest, option, value = f"--columns {fewer_columns}", "--columns", columns
+        fewer, force = fewer_columns
+        nearest, option, value = f"--columns {fewer}", "--columns", columns
         words = "the most columns whose comb counts in this jaw"
+        if force is not None:
+            nearest += f" --full-scale-force {force:.3g}"
+            words = ("the most columns whose comb carries a force in this jaw, and the "
+                     "largest force it carries")
+    if not nearest:  # say why there is nothing to paste
+        text += (f"\n  none to paste: no comb of 1 ... {columns} columns on these sheets "
+                 "carries any force in this jaw (each sheet's binding limit above)")
     return InverseDesignError(text + (f"\n  nearest: {nearest}" if nearest else ""),
                               option, value, nearest or "a design the jaw holds",
                               alternatives=[{"option": nearest, "words": words}] if nearest

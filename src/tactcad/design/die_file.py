@@ -1,0 +1,144 @@
+"""A silicon die's design file: the ``[die]`` table a sensor folder keeps for ``tactcad die
+--design FILE``, and what ``tactcad design --jaw`` writes when only a die fits the jaw.
+
+The file states the targets and the jaw; the die itself (device layer, beams, resistors) is
+derived from them each time (:func:`tactcad.design.mems_die.die_plan`), as an array's
+derived dimensions are from its design file. A jaw given as a file is read relative to the
+die file's folder and must lie in it (a sensor folder reads nothing from outside itself).
+
+Units: N/mm, N, um.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Mapping
+
+from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
+from tactcad.errors import DesignError
+from tactcad.vocabulary.schema import (Problems, Section, integer, listing, number, read_toml,
+                                       validate)
+
+#: The table that makes a TOML file a die's design file.
+DIE_TABLE = "die"
+
+
+class DieSection(Section):
+    """``[die]``: the targets and the jaw of a silicon die (N/mm, N, um)."""
+
+    jaw: str
+    kr_over_km: number(1.0, 1000.0, lo_open=True, unit="",
+                       why="the reference beam stiffer than the measuring one")
+    kobj_range_N_per_mm: listing(number(0.0, MAX_KOBJ_N_PER_MM, lo_open=True, unit="N/mm"), 2, 2,
+                                 f"[LO, HI] with 0 < LO < HI <= {MAX_KOBJ_N_PER_MM:g} N/mm",
+                                 "object stiffnesses the die must read")
+    full_scale_force_N: number(0.0, MAX_FULL_SCALE_FORCE_N, lo_open=True, unit="N",
+                               why="the rated force on each beam")
+    columns: integer(2, 50, why="units along the die") = 5
+    pitch_um: number(50.0, 5000.0, unit="um", why="the units' spacing along the die") = 1000.0
+    name: str = "mems_die"
+
+
+class DieFile(Section):
+    """A die's design file: ``[die]`` and its ``[assumptions]`` (reasons, by key)."""
+
+    die: DieSection
+    assumptions: dict[str, str] = {}
+
+
+@dataclass(frozen=True)
+class DieDesign:
+    """A validated die design file.
+
+    Attributes:
+        die: its ``[die]`` table.
+        jaw: ``--jaw``'s value for the die command (a trocar class, or the jaw file's path
+            resolved in the design's folder).
+        source: the file.
+    """
+
+    die: DieSection
+    jaw: str
+    source: Path
+
+
+def is_die_file(data: Mapping[str, Any]) -> bool:
+    """True when a design file's tables are a die's (a ``[die]`` table)."""
+    return isinstance(data, Mapping) and DIE_TABLE in data
+
+
+def load_die_design(path: str | Path) -> DieDesign:
+    """The die design file at ``path``, validated.
+
+    Raises:
+        DesignError: not a readable TOML file, or no ``[die]`` table.
+        DesignErrors: a field out of range; a jaw file outside the design's folder or
+            missing; LO >= HI.
+    """
+    source = Path(path)
+    data = read_toml(source, "design file")
+    if not is_die_file(data):
+        raise DesignError("design file", str(source), f"a file with a [{DIE_TABLE}] table",
+                          "an array's design file is read by the other commands")
+    problems = Problems(source.name)
+    model = validate(DieFile, data, problems)
+    if model is None:
+        problems.raise_if_any()
+    die = model.die
+    lo, hi = die.kobj_range_N_per_mm
+    if not lo < hi:
+        problems.add("die.kobj_range_N_per_mm", [lo, hi], "LO < HI")
+    jaw = _jaw(die.jaw, source, problems)
+    if not _cell_name(die.name):
+        problems.add("die.name", die.name, "a letter, then up to 31 letters, digits or _ "
+                     "(a GDSII cell name)")
+    problems.raise_if_any()
+    return DieDesign(die, jaw, source)
+
+
+def _cell_name(text: str) -> bool:
+    import re
+
+    return re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,31}", text) is not None
+
+
+def _jaw(value: str, source: Path, problems: Problems) -> str:
+    """``--jaw``'s value of the file's ``jaw``: a trocar class as it is, a file name
+    resolved in the design's folder (refused outside it or missing)."""
+    from tactcad.partlib.grasper_jaw import SHAFT_CLASSES_MM
+
+    classes = tuple(SHAFT_CLASSES_MM)
+    if value in classes:
+        return value
+    folder = source.resolve().parent
+    path = (folder / value).resolve()
+    if not path.is_relative_to(folder):
+        problems.add("die.jaw", value, "a trocar class (" + ", ".join(classes) + ") or a "
+                     "jaw file in the design's folder", "a sensor folder reads nothing outside it")
+    elif not path.is_file():
+        problems.add("die.jaw", value, "a trocar class (" + ", ".join(classes) + ") or an "
+                     "existing jaw file in the design's folder", f"no file {path.name} beside "
+                     f"{source.name}")
+    return str(path)
+
+
+def die_file_text(jaw: str, kr_over_km: float, kobj_range: tuple[float, float],
+                  full_scale_force_N: float, columns: int, pitch_um: float, name: str,
+                  command: str, reasons: Mapping[str, str] = {}) -> str:
+    """A die design file's text (TOML) for these targets, headed by the command that made
+    it and with the reasons of its values under ``[assumptions]``."""
+    import tomli_w
+
+    from tactcad.version import VERSION
+
+    data = {DIE_TABLE: {"jaw": jaw, "kr_over_km": float(kr_over_km),
+                        "kobj_range_N_per_mm": [float(v) for v in kobj_range],
+                        "full_scale_force_N": float(full_scale_force_N), "columns": int(columns),
+                        "pitch_um": float(pitch_um), "name": name}}
+    if reasons:
+        data["assumptions"] = dict(reasons)
+    return (f"# Written by tactcad {VERSION}: `{command}`.\n"
+            "# A silicon die: `tactcad die --design THIS_FILE` derives the die, writes its "
+            "masks, STEP and traveller and checks them.\n# Units: N/mm, N, um.\n\n"
+            + tomli_w.dumps(data))
