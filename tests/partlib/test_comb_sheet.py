@@ -103,6 +103,9 @@ def test_the_sheets_drawing_and_the_build_book_name_each_shim(plan):
     assert f"web {PEN.web_text(e)}" in text and "±" in PEN.web_text(e)
     assert f"tip {PEN.plus_minus(e.tip_width_mm, tol.contact_face_mm)} wide" in text
     assert f"columns 1-{len(sheet.elements)}" in text.lower() and "pitch" in text
+    # the stop gap with the tolerance the rows' process holds (wire EDM: +/-0.01 mm)
+    gap = (sheet.stop_gaps_mm or sheet.cut_gaps_mm)[0]
+    assert f"stop gap {PEN.plus_minus(gap, 0.01)} at the arm's end" in text
 
 
 def test_the_spacer_has_its_own_process_and_its_shop_file(plan):

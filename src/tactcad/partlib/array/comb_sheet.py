@@ -253,6 +253,14 @@ def dimensions(d, solid, pen) -> None:
         pen.dim(d, f, (tip, top), (nxt, top), "h", "top", 0, pen.fmt_mm(nxt - tip), "pitch")
 
 
+def gap_tolerance_mm(plan, sheet: CombSheet) -> float:
+    """The +/- a stop gap is held to (mm): what the rows' cut process holds on the sheet
+    (the gap as cut; a narrower gap is set by a shim on the cut ledge)."""
+    e = sheet.elements[0]
+    return cut_process(e.process).limits(sheet.thickness_mm, plan.edm,
+                                         plan.material.name).tolerance_mm.value_mm
+
+
 def element_lines(d, pen) -> list[str]:
     """The sheet's elements as the shop makes and inspects them: each run of like columns
     with its arm (tip centre to notch centre), web and notch, tip and stop gap, each with the
@@ -269,6 +277,7 @@ def element_lines(d, pen) -> list[str]:
             runs[-1].append(i)
         else:
             runs.append([i])
+    held = gap_tolerance_mm(d.plan, sheet)
     lines = []
     for run in runs:
         e, gap = sheet.elements[run[0]], gaps[run[0]]
@@ -278,7 +287,8 @@ def element_lines(d, pen) -> list[str]:
                      f" (notch centre to tip centre), web {pen.web_text(e)} in notch "
                      f"R{pen.fmt_mm(e.notch_radius_mm)} ±{pen.fmt_mm(tol.notch_radius_mm)}, "
                      f"tip {pen.plus_minus(e.tip_width_mm, tol.contact_face_mm)} wide x "
-                     f"{pen.fmt_mm(e.tip_height_mm)}, stop gap {pen.fmt_mm(gap)} at the arm's end.")
+                     f"{pen.fmt_mm(e.tip_height_mm)}, stop gap {pen.plus_minus(gap, held)} at the "
+                     "arm's end.")
     centres = [off + e.tip_centre_x_mm for off, e in zip(sheet.offsets_mm, sheet.elements)]
     steps = {round(b - a, 6) for a, b in zip(centres, centres[1:])}
     if len(steps) == 1:
