@@ -57,6 +57,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--name", default=None,
                    help="the die's name: its GDS cell and file names (letters, digits, _; "
                         "default mems_die)")
+    p.add_argument("--fe-check", action="store_true",
+                   help="also solve each row's beam in CalculiX with silicon's anisotropic "
+                        "stiffness (C3D8I, about 1 s a beam) and give the closed form's error "
+                        "in K and in the first resonance against it")
     p.add_argument("--out", default="die", metavar="DIR",
                    help="folder for the masks and the record (default ./die)")
     add_output_args(p, "print the plan and the checks as one JSON object")
@@ -117,6 +121,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.export.die_solid import write_die_step
     from tactcad.export.gds_masks import write_die_gds, write_mask_picture, write_wafer_gds
     from tactcad.export.traveller import write_traveller
+    from tactcad.mechanics.die_dynamics import calculix_beam_check, die_modes
     from tactcad.mechanics.piezoresistor import die_readout
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
@@ -143,7 +148,14 @@ def run(args: argparse.Namespace) -> int:
         readout = die_readout(plan)
         write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
                         made["traveller"])
+        modes = die_modes(plan)
+        fe = [calculix_beam_check(plan, b) for b in plan.beams[:: plan.columns]] \
+            if args.fe_check else []
         record = {"die": plan.as_json(), "readout": readout, "jaw": room.label,
+                  "resonance_Hz": {r: {"rayleigh": m.rayleigh_Hz, "exact": m.exact_Hz,
+                                       "rayleigh_error_rel": m.rayleigh_error_rel}
+                                   for r, m in modes.items()},
+                  "fe_check": [c.as_json() for c in fe],
                   "wafer_dies": dies, "files": {k: p.name for k, p in files.items()},
                   "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
                               "detail": c.detail} for c in checks], "counts": counts}
@@ -156,12 +168,14 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(dumps(record, indent=1))
     else:
-        print(render(plan, readout, room.label, dies, files, checks, counts_text(counts)))
+        print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
+                     modes, fe))
     return 1 if counts["failed"] else 0
 
 
-def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts: str) -> str:
-    """The die, its beams, their read-out and the checks as text."""
+def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts: str,
+           modes: dict | None = None, fe: list | None = None) -> str:
+    """The die, its beams, their read-out, resonances and FE check, and the checks as text."""
     d = plan
     ref, meas = d.beams[0], d.beams[d.columns]
     rows = readout["rows"]
@@ -185,6 +199,14 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
                  f"noise {1e9 * readout['noise_V']['total']:.3g} nV rms over "
                  f"{readout['band_Hz'][0]:g}-{readout['band_Hz'][1]:g} Hz; "
                  + "; ".join(readout["assumptions"]))
+    for role, m in (modes or {}).items():
+        lines.append(f"first resonance, {role} beam with its post: {m.rayleigh_Hz / 1e3:.4g} kHz "
+                     f"(Rayleigh; the exact Euler-Bernoulli root {m.exact_Hz / 1e3:.4g} kHz, "
+                     f"{100 * m.rayleigh_error_rel:+.2f} %)")
+    for c in fe or []:
+        lines.append(f"CalculiX, anisotropic C3D8I, {c.role} beam: K {c.k_fe_N_per_mm:.4g} N/mm "
+                     f"(closed form {100 * c.k_error_rel:+.2f} %), f1 {c.f1_fe_Hz / 1e3:.4g} kHz "
+                     f"(closed form {100 * c.f1_error_rel:+.2f} %)")
     lines += ["", "reasons:"] + [f"  {k}: {v}" for k, v in d.reasons.items()]
     lines += ["", f"wrote {', '.join(str(p) for p in files.values())} ({dies} dies on the "
                   "wafer)", "", *[c.line() for c in checks], "", counts]
