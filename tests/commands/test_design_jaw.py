@@ -15,6 +15,7 @@ GRASPER_CASE = ["design", "--kr-over-km", "10", "--kobj-range", "0.5", "5", "--m
                 "Ti-6Al-4V-annealed", "--columns", "6"]
 
 
+@pytest.mark.slow  # a whole design search
 def test_the_grasper_case_writes_a_comb_and_its_scenes_that_check(tmp_path):
     out = tmp_path / "insert.toml"
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10", "--out", str(out),
@@ -33,6 +34,7 @@ def test_the_grasper_case_writes_a_comb_and_its_scenes_that_check(tmp_path):
     assert 'scenes = "insert-scenes.toml"' in out.read_text(encoding="utf-8")
 
 
+@pytest.mark.slow  # a whole design search
 def test_the_rows_cut_process_is_searched_refused_by_its_own_limits_and_written(tmp_path):
     """``--jaw --process``: each sheet's refusal quotes the process's limit; the force
     pasted from the refusal designs rows the process cuts, written as the rows' process."""
@@ -159,6 +161,7 @@ def test_a_jaw_design_into_a_folder_is_a_project_without_test_rigs_that_verifies
     assert r.returncode == 0, r.stderr
 
 
+@pytest.mark.slow  # a whole design search
 def test_a_refused_jaw_design_writes_nothing_and_gives_a_pasteable_force(tmp_path):
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.3", "--jaw", "10", "--out",
                 str(tmp_path / "x.toml"))

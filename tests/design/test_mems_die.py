@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -325,3 +326,19 @@ def test_design_for_the_5_mm_jaw_writes_a_die_file_the_die_command_reads(tmp_pat
     metal = run_cli(*asked, "--json")
     assert metal.returncode == 2 and json.loads(metal.stdout)["error"]["alternatives"]
     assert not (tmp_path / "x.toml").exists()
+
+
+def test_a_die_files_value_is_overridden_by_set_and_checked_like_the_file(tmp_path):
+    design = str(Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+                 / "grasper_jaw_5mm_mems.toml")
+    r = run_cli("die", "--design", design, "--set", "die.full_scale_force_N=0.03", "--out",
+                str(tmp_path / "die"), "--json")
+    assert r.returncode == 0 and json.loads(r.stdout)["die"]["full_scale_force_N"] == 0.03
+    bad = run_cli("die", "--design", design, "--set", "die.force=0.03", "--out",
+                  str(tmp_path / "bad"))
+    assert bad.returncode == 2 and "die.force" in bad.stderr and "allowed keys" in bad.stderr
+    alone = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                    "--full-scale-force", "0.02", "--set", "die.columns=4", "--out",
+                    str(tmp_path / "x"))
+    assert alone.returncode == 2 and "only with --design" in alone.stderr
+    assert not (tmp_path / "bad").exists() and not (tmp_path / "x").exists()

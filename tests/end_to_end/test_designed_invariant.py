@@ -169,6 +169,7 @@ LAB_TARGETS = ["--kr-over-km", "8", "--kobj-range", "0.3", "3", "--max-grasp-for
                "--columns", "5", "--material", "CuBe-C17200-TF00"]
 
 
+@pytest.mark.slow  # a whole design search
 def test_the_labs_12_mm_jaw_too_low_is_refused_with_the_keys_to_write(tmp_path, capsys):
     targets = jaw_file_written([*LAB_TARGETS, "--full-scale-force", "0.099", "--jaw",
                                 {**LAB_JAW, "thickness_mm": 3.2, "width_mm": 11.0}],

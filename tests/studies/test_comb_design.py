@@ -81,6 +81,7 @@ def test_a_roomier_jaw_takes_the_largest_screw_and_dowel():
     assert len(got.fasteners) == 1
 
 
+@pytest.mark.slow  # a whole design search
 def test_a_jaw_too_thin_for_every_comb_is_refused_naming_the_height():
     thin = dataclasses.replace(jaw_room("10"), height_mm=4.0)
     with pytest.raises(InverseDesignError) as caught:
@@ -112,6 +113,7 @@ def test_an_unknown_trocar_class_is_refused_naming_the_option():
     assert not math.isnan(jaw_room("10").along_mm)
 
 
+@pytest.mark.slow  # a whole design search
 def test_the_design_jaw_bench_prints_each_forces_seconds_and_answer():
     from tactcad.benchmarks.design_jaw_bench import design_jaw_figures, design_jaw_lines
 

@@ -43,6 +43,7 @@ def test_a_refusal_names_the_force_limit_behind_the_largest_force_and_the_ways_o
         "material.grade", "sheet.thickness_mm", "strength.gauge"}
 
 
+@pytest.mark.slow  # a whole design search
 def test_each_nearest_target_is_met_and_lies_at_the_edge_of_the_feasible(plan):
     data = _fingertip_tables(plan)
     near = {a.field: a for a in nearest_targets(data, TOO_MUCH)}
@@ -59,6 +60,7 @@ def test_each_nearest_target_is_met_and_lies_at_the_edge_of_the_feasible(plan):
     design_from_tables(dict(data), Targets(6.0, (lo, hi), 1.5))
 
 
+@pytest.mark.slow  # a whole design search
 def test_a_grade_that_meets_the_targets_is_offered_first_and_does(plan):
     """6061 cannot carry 0.7 N at these stiffnesses; 17-4PH can, and is said to."""
     data = _fingertip_tables(plan, "6061-T6")

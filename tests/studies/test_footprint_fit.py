@@ -39,6 +39,7 @@ def test_a_footprint_smaller_than_the_plain_design_is_met_by_another_sheet(plan)
     assert all(r["pass"] for r in records.values()), records
 
 
+@pytest.mark.slow  # a whole design search
 def test_a_footprint_too_small_names_the_nearest_that_fits_and_that_one_does(plan):
     with pytest.raises(DesignError) as exc:
         design_within_footprint(plan, FINGERTIP, (40.0, 20.0), array_envelope_mm, **LAYOUT)

@@ -52,6 +52,7 @@ def _with(argv: list[str], option: str) -> list[str]:
     return out
 
 
+@pytest.mark.slow  # a whole design search
 def test_the_shipped_bolt_does_not_refuse_more_columns_the_search_holds(tmp_path, capsys):
     """The base design's M2 cannot clamp six 3 mm sheets; the search changes the
     layout instead of refusing with the base design's bolt rule."""

@@ -39,6 +39,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="a die design file (a [die] table: jaw, kr_over_km, "
                         "kobj_range_N_per_mm, full_scale_force_N, columns, pitch_um, name; "
                         "`tactcad design --jaw 5` writes one); in place of the options below")
+    p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
+                   help="with --design: override one value of the die file (repeatable), e.g. "
+                        "--set die.full_scale_force_N=0.03; checked like the file")
     p.add_argument("--jaw", metavar="CLASS|FILE",
                    help="the jaw the die seats in: a trocar class (5, 10) or a TOML file with "
                         "a [grasper_jaw] table (its pocket bounds the die)")
@@ -81,9 +84,13 @@ def die_asked(args: argparse.Namespace) -> dict:
     Raises:
         DesignError: a target option missing without ``--design``, or given with it.
     """
+    from tactcad.commands import parse_overrides
     from tactcad.design.die_file import load_die_design
 
     if args.design is None:
+        if args.overrides:
+            raise DesignError("--set", args.overrides[0], "only with --design",
+                              "it overrides a value of the die design file")
         for key, option in TARGET_OPTIONS.items():
             if getattr(args, key) is None:
                 raise DesignError(option, None, "a value, or --design FILE",
@@ -96,7 +103,7 @@ def die_asked(args: argparse.Namespace) -> dict:
     if given:
         raise DesignError(given[0], getattr(args, given[0].lstrip("-").replace("-", "_")),
                           "only without --design", f"{args.design} states it")
-    d = load_die_design(args.design)
+    d = load_die_design(args.design, parse_overrides(args.overrides))
     return {"jaw": d.jaw, "kr_over_km": d.die.kr_over_km,
             "kobj_range": tuple(d.die.kobj_range_N_per_mm),
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,

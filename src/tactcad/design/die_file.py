@@ -68,8 +68,9 @@ def is_die_file(data: Mapping[str, Any]) -> bool:
     return isinstance(data, Mapping) and DIE_TABLE in data
 
 
-def load_die_design(path: str | Path) -> DieDesign:
-    """The die design file at ``path``, validated.
+def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None) -> DieDesign:
+    """The die design file at ``path`` with ``overrides`` (``{"die.key": value}``, from
+    ``--set``) applied, validated.
 
     Raises:
         DesignError: not a readable TOML file, or no ``[die]`` table.
@@ -81,6 +82,10 @@ def load_die_design(path: str | Path) -> DieDesign:
     if not is_die_file(data):
         raise DesignError("design file", str(source), f"a file with a [{DIE_TABLE}] table",
                           "an array's design file is read by the other commands")
+    if overrides:
+        from tactcad.design.array_plan import with_overrides
+
+        data = with_overrides(data, overrides)
     problems = Problems(source.name)
     model = validate(DieFile, data, problems)
     if model is None:
