@@ -128,6 +128,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.export.die_solid import write_die_step
     from tactcad.export.gds_masks import write_die_gds, write_mask_picture, write_wafer_gds
     from tactcad.export.traveller import write_traveller
+    from tactcad.in_use.die_budget import die_budget
     from tactcad.mechanics.die_dynamics import calculix_beam_check, die_modes
     from tactcad.mechanics.piezoresistor import die_readout
     from tactcad.partlib.grasper_jaw import jaw_room
@@ -156,6 +157,7 @@ def run(args: argparse.Namespace) -> int:
         write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
                         made["traveller"])
         modes = die_modes(plan)
+        budget = die_budget(plan, readout)
         fe = [calculix_beam_check(plan, b) for b in plan.beams[:: plan.columns]] \
             if args.fe_check else []
         record = {"die": plan.as_json(), "readout": readout, "jaw": room.label,
@@ -163,6 +165,7 @@ def run(args: argparse.Namespace) -> int:
                                        "rayleigh_error_rel": m.rayleigh_error_rel}
                                    for r, m in modes.items()},
                   "fe_check": [c.as_json() for c in fe],
+                  "kobj_budget": budget.as_json(),
                   "wafer_dies": dies, "files": {k: p.name for k, p in files.items()},
                   "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
                               "detail": c.detail} for c in checks], "counts": counts}
@@ -176,12 +179,12 @@ def run(args: argparse.Namespace) -> int:
         print(dumps(record, indent=1))
     else:
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
-                     modes, fe))
+                     modes, fe, budget))
     return 1 if counts["failed"] else 0
 
 
 def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts: str,
-           modes: dict | None = None, fe: list | None = None) -> str:
+           modes: dict | None = None, fe: list | None = None, budget=None) -> str:
     """The die, its beams, their read-out, resonances and FE check, and the checks as text."""
     d = plan
     ref, meas = d.beams[0], d.beams[d.columns]
@@ -214,6 +217,15 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
         lines.append(f"CalculiX, anisotropic C3D8I, {c.role} beam: K {c.k_fe_N_per_mm:.4g} N/mm "
                      f"(closed form {100 * c.k_error_rel:+.2f} %), f1 {c.f1_fe_Hz / 1e3:.4g} kHz "
                      f"(closed form {100 * c.f1_error_rel:+.2f} %)")
+    if budget is not None:
+        ks = budget.k_obj_N_per_mm
+        lines += ["", "K_obj budget of the middle unit, relative, 1 sigma, at K_obj "
+                  + ", ".join(f"{k:.3g}" for k in ks) + " N/mm:"]
+        for term, values in budget.terms.items():
+            lines.append(f"  {term:<46} " + "  ".join(f"{100 * v:7.3f} %" for v in values)
+                         + f"   ({budget.reasons[term]})")
+        lines.append(f"  {'root sum square (without eq. 3 uncoupled)':<46} "
+                     + "  ".join(f"{100 * v:7.3f} %" for v in budget.total_rel))
     lines += ["", "reasons:"] + [f"  {k}: {v}" for k, v in d.reasons.items()]
     lines += ["", f"wrote {', '.join(str(p) for p in files.values())} ({dies} dies on the "
                   "wafer)", "", *[c.line() for c in checks], "", counts]

@@ -126,6 +126,8 @@ class DiePlan:
     full_scale_force_N: float
     beams: tuple[Beam, ...]
     reasons: dict = field(default_factory=dict, compare=False, hash=False)
+    #: the K_obj range the die reads (N/mm)
+    kobj_range_N_per_mm: tuple[float, float] = (0.0, 0.0)
 
     @property
     def window_um(self) -> tuple[float, float, float, float]:
@@ -162,6 +164,7 @@ class DiePlan:
                 "pi_longitudinal_per_Pa": self.pi_longitudinal_per_Pa,
                 "K_r_N_per_mm": self.k_r_N_per_mm, "K_m_N_per_mm": self.k_m_N_per_mm,
                 "targets_N_per_mm": {"K_r": self.targets[0], "K_m": self.targets[1]},
+                "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
                 "full_scale_force_N": self.full_scale_force_N,
                 "stress_MPa_at_rating": {b.role: self.stress_MPa_at_rating(b)
                                          for b in self.beams[:: self.columns]},
@@ -271,7 +274,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    float(SILICON_P_TYPE.longitudinal(direction)) * 1e-11,
                    float(beam_stiffness_N_per_mm(E, w, t, l_r)),
                    float(beam_stiffness_N_per_mm(E, w, t, l_m)), (k_r, k_m),
-                   targets.full_scale_force_N, tuple(beams), reasons)
+                   targets.full_scale_force_N, tuple(beams), reasons,
+                   tuple(float(v) for v in targets.k_obj_range_N_per_mm))
 
 
 def _resistor_width_um() -> float:
