@@ -301,3 +301,25 @@ def test_design_keeps_its_fem_results_in_the_project_it_writes(tmp_path):
     assert store(tmp_path / "palp", cache=str(tmp_path / "c")) == tmp_path / "c"
     assert store_from_args(argparse.Namespace(no_cache=False, cache=None)).root != \
         tmp_path / "palp" / ".tactcad-cache"  # other commands: the working folder's
+
+
+def test_a_design_stopped_after_its_solves_began_leaves_no_folder_it_made(tmp_path, monkeypatch,
+                                                                         capsys):
+    """A new --out DIR gets the store of the FEM solves made for it as they run; a refusal
+    or a Ctrl-C after that leaves no folder behind (an existing folder is left as it was)."""
+    from tactcad import cli
+    from tactcad.commands import design as cmd
+    from tactcad.errors import DesignError
+
+    def stopped(result, verify, progress=None):
+        (tmp_path / "strip" / ".tactcad-cache").mkdir(parents=True, exist_ok=True)
+        raise DesignError("--full-scale-force", 1.0, "a force the verify level finds carried")
+    monkeypatch.setattr(cmd, "design_report", stopped)
+    args = ["design", "--kr-over-km", "8", "--kobj-range", "0.2", "2", "--full-scale-force",
+            "0.03", "--out", str(tmp_path / "strip")]
+    assert cli.main(args) == 2
+    assert not (tmp_path / "strip").exists()
+    (tmp_path / "strip").mkdir()
+    (tmp_path / "strip" / "notes.txt").write_text("mine", encoding="utf-8")
+    assert cli.main(args) == 2
+    assert (tmp_path / "strip" / "notes.txt").read_text(encoding="utf-8") == "mine"

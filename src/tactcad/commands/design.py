@@ -256,6 +256,21 @@ def project_store(args: argparse.Namespace) -> Path:
 
 
 def run(args: argparse.Namespace) -> int:
+    """``design``: the searched design written, or a refusal that leaves no folder it made
+    (a new ``--out DIR`` that only got the store of the solves made for it)."""
+    out = Path(args.out)
+    made = not out.exists() and not args.out.endswith(".toml")
+    try:
+        return _run(args)
+    except (DesignError, KeyboardInterrupt):
+        if made and out.is_dir() and {p.name for p in out.iterdir()} <= {project_store(args).name}:
+            import shutil
+
+            shutil.rmtree(out, ignore_errors=True)
+        raise
+
+
+def _run(args: argparse.Namespace) -> int:
     import tomli_w
 
     from tactcad.atomic import write_bytes_atomic
