@@ -256,6 +256,12 @@ def keeping_results(store: Store) -> Iterator[Store]:
         _RESULTS.reset(token)
 
 
+def active_store() -> Store | None:
+    """The store of the enclosing :func:`keeping_results` block, or None outside one."""
+    block = _RESULTS.get()
+    return None if block is None else block[0]
+
+
 def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
                 reused: Callable[[], None] | None = None) -> T:
     """``compute()``, or the value an earlier call (in this block, or an

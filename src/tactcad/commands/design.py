@@ -876,6 +876,11 @@ def design_report(result, verify: str, progress=None) -> dict:
 
     plan, t = result.plan, result.targets
     strength = {r["element"]: r for r in strength_summary(plan)}
+    if verify != "none" and is_meshed(verify):  # one core per element, read back below
+        from tactcad.studies.parallel_solves import solve_side_by_side
+
+        solve_side_by_side(verify, list(plan.distinct_elements.values()), plan.material,
+                           progress)
     cache: dict[str, dict] = {}
     elements = []
     for slot in plan.slots:

@@ -634,7 +634,10 @@ def _footprint_refusal(data, targets: Targets, stiff, footprint_mm, envelope_of,
                       + ("" if force >= F else f" at {force:g} N"),
                       f"the smallest clamped array of any layout ({c.words()}); the soft arm for "
                       f"K_m = {targets.k_m:.4g} N/mm and the bolt pattern behind it set X, the "
-                      "stack of sheets and spacers across the columns Y")
+                      "stack of sheets and spacers across the columns Y"
+                      + ("" if d is not None else
+                         "; none to paste: no whole design of that layout validates within it "
+                         f"or {FOOTPRINT_STEP_MM * 4:g} mm more each way"))
     if d is None:
         return [err], []
     option = " ".join(_fmt(o) for o in offer)

@@ -1,0 +1,78 @@
+"""The distinct elements of a design solved at one ladder level side by side, one process
+each, into the store the command reads them back from.
+
+``tactcad design`` verifies its two element geometries at fem3d (about half a minute
+each on the finest mesh, one core each); solved in turn they take the sum, side by side
+about the longer. Each process opens the command's store (:func:`tactcad.store.
+keeping_results`) and solves one element; the command's own solve of it afterwards reads
+the kept result. The processes start by ``spawn`` (no state of this process shared) with
+the stop signals held (:mod:`tactcad.stopping`): Ctrl-C is this process's to handle (the
+processes ignore it and are killed with it), and a process that dies leaves its element to
+be solved here as before.
+
+Nothing is prefetched without a store on disk (``--no-cache``: a process's result would be
+lost), on one core, or for fewer than two elements.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any, Sequence
+
+
+def _start() -> None:
+    from tactcad.stopping import stop_signals_unblocked
+
+    stop_signals_unblocked()
+    try:  # Linux: killed with its parent, so a stopped command leaves no process behind
+        import ctypes
+        import signal
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+
+
+def _solve(root: str, model: str, geometry: Any, material: Any) -> None:
+    import warnings
+
+    from tactcad.mechanics.ladder import estimate
+    from tactcad.store import Store, keeping_results
+
+    with warnings.catch_warnings():  # the command warns once, when it reads the result
+        warnings.simplefilter("ignore")
+        with keeping_results(Store(Path(root))):
+            estimate(model, geometry, material)
+
+
+def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
+                       progress=None) -> int:
+    """Solve ``geometries`` at ``model`` in up to as many processes as cores, into the
+    active store; the number of processes used (0: nothing prefetched, see the module doc).
+    A failed or killed process is not an error: its element is solved later, here."""
+    from concurrent.futures import ProcessPoolExecutor, wait
+    import multiprocessing
+
+    from tactcad.stopping import spawn_ready, stop_signals_held
+    from tactcad.store import active_store
+
+    store = active_store()
+    cores = os.cpu_count() or 1
+    if store is None or store.root is None or cores < 2 or len(geometries) < 2:
+        return 0
+    n = min(cores, len(geometries))
+    if progress:
+        progress(f"{model}: {len(geometries)} elements solved side by side in {n} processes")
+    spawn_ready()
+    try:
+        with stop_signals_held():
+            pool = ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("spawn"),
+                                       initializer=_start)
+    except OSError:  # no process to be had: each is solved here, in turn
+        return 0
+    try:
+        wait([pool.submit(_solve, str(store.root), model, g, material) for g in geometries])
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
+    return n
