@@ -135,6 +135,7 @@ def test_fem3d_stiffness_and_peak_stress_share_one_kept_sequence(plan, tmp_path,
 def test_verify_right_after_design_solves_no_fem3d_again(tmp_path, monkeypatch, fem3d_solves,
                                                          capsys):
     monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("TACTCAD_WORKERS", "0")  # every solve in this process, where it is counted
     store = ["--cache", str(tmp_path / "store")]
     assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
                  "--full-scale-force", "0.3", "--material", "7075-T6", "--verify", "fem3d",

@@ -11,7 +11,7 @@ processes ignore it and are killed with it), and a process that dies leaves its 
 be solved here as before.
 
 Nothing is prefetched without a store on disk (``--no-cache``: a process's result would be
-lost), on one core, or for fewer than two elements.
+lost), on one core, for fewer than two elements, or with ``TACTCAD_WORKERS=0``.
 """
 
 from __future__ import annotations
@@ -59,7 +59,8 @@ def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
 
     store = active_store()
     cores = os.cpu_count() or 1
-    if store is None or store.root is None or cores < 2 or len(geometries) < 2:
+    if (store is None or store.root is None or cores < 2 or len(geometries) < 2
+            or os.environ.get("TACTCAD_WORKERS", "1") == "0"):  # one process asked for
         return 0
     n = min(cores, len(geometries))
     if progress:
