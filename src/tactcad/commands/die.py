@@ -111,11 +111,10 @@ def die_asked(args: argparse.Namespace) -> dict:
 
 
 def _name(value: str) -> str:
-    import re
+    from tactcad.design.die_file import CELL_NAME_WORDS, is_cell_name
 
-    if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,31}", value or ""):
-        raise DesignError("--name", value, "a letter, then up to 31 letters, digits or _ "
-                          "(a GDSII cell name)")
+    if not is_cell_name(value):
+        raise DesignError("--name", value, CELL_NAME_WORDS)
     return value
 
 

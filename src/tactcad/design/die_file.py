@@ -95,17 +95,21 @@ def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None
     if not lo < hi:
         problems.add("die.kobj_range_N_per_mm", [lo, hi], "LO < HI")
     jaw = _jaw(die.jaw, source, problems)
-    if not _cell_name(die.name):
-        problems.add("die.name", die.name, "a letter, then up to 31 letters, digits or _ "
-                     "(a GDSII cell name)")
+    if not is_cell_name(die.name):
+        problems.add("die.name", die.name, CELL_NAME_WORDS)
     problems.raise_if_any()
     return DieDesign(die, jaw, source)
 
 
-def _cell_name(text: str) -> bool:
+#: What a die's name may be: it names the GDSII cell and the die's files.
+CELL_NAME_WORDS = "a letter, then up to 31 letters, digits or _ (a GDSII cell name)"
+
+
+def is_cell_name(text: str) -> bool:
+    """True when ``text`` may name the die (:data:`CELL_NAME_WORDS`)."""
     import re
 
-    return re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,31}", text) is not None
+    return re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,31}", text or "") is not None
 
 
 def _jaw(value: str, source: Path, problems: Problems) -> str:
