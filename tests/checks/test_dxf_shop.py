@@ -140,3 +140,46 @@ def test_the_shop_files_name_the_material_as_the_bom_does(plan, tmp_path):
         doc = ezdxf.readfile(tmp_path / sp.file_name)
         assert doc.header.custom_vars.get("MATERIAL") == material_designation(specs[sp.part], plan)
         assert "EN AW-" in doc.header.custom_vars.get("MATERIAL")
+
+
+def _slotted_block(slot_mm: float) -> "Profile":
+    """A 20 x 10 mm block (CCW) with a 12 mm deep slot ``slot_mm`` wide cut in from its
+    right side: the slot's long edges are the longest edges farthest from (0, 0)."""
+    from tactcad.geometry.profile import Line, Profile
+    y0, y1 = 5 - slot_mm / 2, 5 + slot_mm / 2
+    pts = [(0, 0), (20, 0), (20, y0), (8, y0), (8, y1), (20, y1), (20, 10), (0, 10)]
+    return Profile(tuple(Line(a, b) for a, b in zip(pts, pts[1:] + pts[:1])), (), ())
+
+
+#: Points on the block's outside faces and one at the slot's end: the lead-in's entry keeps
+#: away from them, so the slot's long edges rank first.
+FACES = ([(x, 0.0) for x in range(21)] + [(x, 10.0) for x in range(21)]
+         + [(0.0, y) for y in range(11)] + [(7.0, 5.0)])
+
+
+@pytest.mark.parametrize("slot_mm", [0.4, 0.99, 3.0])
+def test_the_outer_lead_in_starts_outside_the_part_and_runs_clear_of_it(slot_mm):
+    # a slot narrower than the lead-in put the start in the part across it (a long comb row)
+    import shapely.geometry as sg
+    from tactcad.export.dxf_sheet import LEAD_IN_MM, outer_lead_in
+    from tactcad.geometry.profile import contour_points
+    profile = _slotted_block(slot_mm)
+    lead = outer_lead_in(profile, keep_out=FACES)
+    part = sg.Polygon(contour_points(profile.outer))
+    assert part.exterior.distance(sg.Point(lead.entry)) < 1e-9
+    assert part.distance(sg.Point(lead.start)) > LEAD_IN_MM * 0.1, lead
+    assert abs(math_dist(lead.start, lead.entry) - LEAD_IN_MM) < 1e-9
+    across_the_slot = lead.entry[0] > 8 and abs(abs(lead.entry[1] - 5) - slot_mm / 2) < 1e-9
+    assert across_the_slot == (slot_mm > LEAD_IN_MM), lead  # a long edge only with room
+
+
+def test_a_contour_with_no_straight_edge_is_refused():
+    from tactcad.export.dxf_sheet import outer_lead_in
+    from tactcad.geometry.profile import Arc, Profile
+    disc = Profile((Arc((1, 0), (-1, 0), (0, 0), True), Arc((-1, 0), (1, 0), (0, 0), True)), (), ())
+    with pytest.raises(ValueError, match="no straight edge"):
+        outer_lead_in(disc, keep_out=[])
+
+
+def math_dist(a, b) -> float:
+    return ((a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2) ** 0.5

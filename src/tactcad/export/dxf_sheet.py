@@ -39,6 +39,8 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Sequence
 
+import shapely.geometry as sg
+
 from tactcad.catalogue.array_catalogue import PartSpec, array_parts
 from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.geometry.profile import Circle, Line, Point, Profile, contour_points
@@ -251,24 +253,42 @@ def _distance_to(points: Sequence[Point], p: Point) -> float:
 def outer_lead_in(profile: Profile, keep_out: Sequence[Point], length_mm: float = LEAD_IN_MM) -> LeadIn:
     """Lead-in of the outer cut: the entry is the middle of the straight edge
     whose middle lies farthest from every keep-out point (the longest edge
-    when there is none); the start lies ``length_mm`` outside, on the normal.
+    when there is none), among the edges whose lead-in runs clear of the part;
+    the start lies ``length_mm`` outside, on the edge's outward normal.
+
+    An edge facing a slot narrower than ``length_mm`` (between a long arm and the
+    base) is passed over: its start would lie in the part across the slot.
 
     Raises:
-        ValueError: the outer contour has no straight edge.
+        ValueError: the outer contour has no straight edge with room for a lead-in.
     """
-    lines = [s for s in profile.outer if isinstance(s, Line)]
-    if not lines:
-        raise ValueError("outer contour has no straight edge for a lead-in")
+    part = sg.Polygon(contour_points(profile.outer))
+    ccw = part.exterior.is_ccw
+    edges = [(s, _edge_lead_in(s, length_mm, ccw)) for s in profile.outer if isinstance(s, Line)]
+    clear = [(s, lead) for s, lead in edges if _runs_clear(lead, part)]
+    if not clear:
+        raise ValueError(f"outer contour has no straight edge with {length_mm} mm clear outside "
+                         "it for a lead-in")
+    return max(clear, key=lambda e: (min(_distance_to(keep_out, e[1].entry), 1e9), e[0].length()))[1]
 
-    def mid(s: Line) -> Point:
-        return ((s.start[0] + s.end[0]) / 2, (s.start[1] + s.end[1]) / 2)
 
-    best = max(lines, key=lambda s: (min(_distance_to(keep_out, mid(s)), 1e9), s.length()))
-    (x0, y0), (x1, y1) = best.start, best.end
-    n = best.length()
-    outward = ((y1 - y0) / n, -(x1 - x0) / n)  # right of the direction of a CCW contour
-    entry = mid(best)
+def _edge_lead_in(edge: Line, length_mm: float, ccw: bool) -> LeadIn:
+    """The lead-in onto the middle of ``edge`` from ``length_mm`` outside, the
+    outside being the right of a counter-clockwise contour's direction."""
+    (x0, y0), (x1, y1) = edge.start, edge.end
+    n = edge.length()
+    side = 1.0 if ccw else -1.0
+    outward = (side * (y1 - y0) / n, -side * (x1 - x0) / n)
+    entry = ((x0 + x1) / 2, (y0 + y1) / 2)
     return LeadIn((entry[0] + length_mm * outward[0], entry[1] + length_mm * outward[1]), entry)
+
+
+def _runs_clear(lead: LeadIn, part: sg.Polygon) -> bool:
+    """Whether ``lead``'s line, its entry aside, lies outside ``part``."""
+    (sx, sy), (ex, ey) = lead.start, lead.entry
+    # stop a hair short of the entry, which lies on the part's edge
+    near_entry = (ex + (sx - ex) * 1e-6, ey + (sy - ey) * 1e-6)
+    return not sg.LineString([lead.start, near_entry]).intersects(part)
 
 
 def hole_lead_ins(profile: Profile, keep_out: Sequence[Point]) -> tuple[LeadIn, ...]:
