@@ -353,14 +353,16 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
 
     from tactcad.atomic import write_bytes_atomic
     from tactcad.design.die_file import die_file_text
-    from tactcad.design.mems_die import die_plan
+    from tactcad.design.mems_die import DEFAULT_COLUMNS, die_plan
 
-    for option, why in die_ignored(args).items():
+    ignored = die_ignored(args)
+    if ignored:  # the first option a die does not take
+        option, why = next(iter(ignored.items()))
         raise DesignError(option, getattr(args, DIE_IGNORES[option][0]),
                           "only for a metal construction", why)
     name = re.sub(r"[^A-Za-z0-9_]", "_", path.stem)
     name = name if re.match(r"[A-Za-z]", name) else f"die_{name}"
-    columns = args.columns or 5
+    columns = args.columns or DEFAULT_COLUMNS
     plan = die_plan(targets, room, columns=columns, name=name[:32])
     jaw, jaw_file = jaw_of(args.jaw)
     stated = args.jaw

@@ -13,6 +13,7 @@ from pathlib import Path
 from tactcad.commands import add_output_args
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number
+from tactcad.design.mems_die import DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.errors import DesignError
 
@@ -54,12 +55,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                                                      lo_open=True),
                    metavar="F", help="the rated force on each beam (N)")
     p.add_argument("--columns", type=count(2, 50), default=None, metavar="N",
-                   help="units along the die (2 ... 50; default 5)")
+                   help=f"units along the die (2 ... 50; default {DEFAULT_COLUMNS})")
     p.add_argument("--pitch-um", type=number(50, 5000, "um"), default=None, metavar="UM",
-                   help="the units' spacing along the die (um; default 1000)")
+                   help=f"the units' spacing along the die (um; default {DEFAULT_PITCH_UM:g})")
     p.add_argument("--name", default=None,
                    help="the die's name: its GDS cell and file names (letters, digits, _; "
-                        "default mems_die)")
+                        f"default {DEFAULT_DIE_NAME})")
     p.add_argument("--fe-check", action="store_true",
                    help="also solve each row's beam in CalculiX with silicon's anisotropic "
                         "stiffness (C3D8I, about 1 s a beam) and give the closed form's error "
@@ -73,8 +74,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 #: The targets' options, by the die design file's key; and the options with defaults.
 TARGET_OPTIONS = {"jaw": "--jaw", "kr_over_km": "--kr-over-km",
                   "kobj_range": "--kobj-range", "full_scale_force": "--full-scale-force"}
-DEFAULTS = {"columns": ("--columns", 5), "pitch_um": ("--pitch-um", 1000.0),
-            "name": ("--name", "mems_die")}
+DEFAULTS = {"columns": ("--columns", DEFAULT_COLUMNS), "pitch_um": ("--pitch-um", DEFAULT_PITCH_UM),
+            "name": ("--name", DEFAULT_DIE_NAME)}
 
 
 def die_asked(args: argparse.Namespace) -> dict:

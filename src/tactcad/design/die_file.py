@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
+from tactcad.design.mems_die import DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.errors import DesignError
 from tactcad.vocabulary.schema import (Problems, Section, integer, listing, number, read_toml,
@@ -35,9 +36,9 @@ class DieSection(Section):
                                  "object stiffnesses the die must read")
     full_scale_force_N: number(0.0, MAX_FULL_SCALE_FORCE_N, lo_open=True, unit="N",
                                why="the rated force on each beam")
-    columns: integer(2, 50, why="units along the die") = 5
-    pitch_um: number(50.0, 5000.0, unit="um", why="the units' spacing along the die") = 1000.0
-    name: str = "mems_die"
+    columns: integer(2, 50, why="units along the die") = DEFAULT_COLUMNS
+    pitch_um: number(50.0, 5000.0, unit="um", why="the units' spacing along the die") = DEFAULT_PITCH_UM
+    name: str = DEFAULT_DIE_NAME
 
 
 class DieFile(Section):

@@ -67,8 +67,9 @@ RESISTOR_FRACTION = 1.0 / 3.0
 #: (assumptions: a shallow boron implant after its anneal).
 JUNCTION_DEPTH_UM = 0.5
 IMPLANT_DOSE_PER_CM2 = 2e14
-#: Columns per row and pitch along the die when the caller states none.
-DEFAULT_COLUMNS, DEFAULT_PITCH_UM = 5, 1000.0
+#: Columns per row, pitch along the die and the die's name when the caller states none
+#: (the design file's, the die command's and design's defaults).
+DEFAULT_COLUMNS, DEFAULT_PITCH_UM, DEFAULT_DIE_NAME = 5, 1000.0, "mems_die"
 #: Beam widths searched (um): from the slot rule's smallest beam to the pitch's widest.
 WIDTH_STEP_UM = 5.0
 
@@ -186,7 +187,7 @@ def length_for_stiffness_um(youngs_modulus_MPa: float, width_um: float, thicknes
 
 
 def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
-             pitch_um: float = DEFAULT_PITCH_UM, name: str = "mems_die",
+             pitch_um: float = DEFAULT_PITCH_UM, name: str = DEFAULT_DIE_NAME,
              box_um: float = DEFAULT_BOX_UM, handle_um: float = DEFAULT_HANDLE_UM,
              angle_from_110_deg: float = 0.0) -> DiePlan:
     """The die for ``targets`` in the jaw's ``room``.
