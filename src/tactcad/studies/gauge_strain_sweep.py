@@ -14,7 +14,9 @@ range, residuals, a hold-out set (another Sobol seed) and the points to
 Domain (the gauge designs of the element domain of
 :mod:`tactcad.studies.correction_sweep`, with its grid rule for the other
 dimensions): web t 0.1-0.5 mm, notch radius R from t to 8 t (at most 2 mm),
-arm 4-20 mm, sheet b 1.5-6 mm (b/t about 3-60), nu 0.27-0.342; grids
+arm 4-20 mm, sheet b 1.5-6 mm (b/t about 3-60), nu 0.27-0.342, and a second
+Sobol set on the thin sheets a design searches, b 0.5-1.5 mm (:data:`THIN_SHEET_MM`,
+b/t down to 1, the width ratio sqrt(t R) / b up to about 1); grids
 L_g 0.3, 0.6, 1.0, 1.5 mm (<= arm), W 0.5, 1.0, 2.0 mm (<= b), fitted where
 the grid stays over the notch's inner part, L_g / (2 R) <= :data:`XI_MAX`.
 
@@ -45,20 +47,25 @@ R_OVER_T = (1.0, 8.0)
 NOTCH_RADIUS_MAX_MM = 2.0
 ARM_MM = (4.0, 20.0)
 SHEET_MM = (1.5, 6.0)
+#: The thin sheets of the second set: stock sheets a wire-cut design takes (0.5 mm the process's least).
+THIN_SHEET_MM = (0.5, 1.5)
 POISSON = (0.27, 0.342)
 GRID_LENGTHS_MM = (0.3, 0.6, 1.0, 1.5)
 GRID_WIDTHS_MM = (0.5, 1.0, 2.0)
 #: Largest grid length over notch diameter fitted.
 XI_MAX = 0.8
 FIT_SEED, HOLDOUT_SEED = 1, 2
+THIN_FIT_SEED, THIN_HOLDOUT_SEED = 3, 4
 
 
 def _log_between(lo: float, hi: float, u: float) -> float:
     return float(lo * (hi / lo) ** u)
 
 
-def sobol_designs(n: int, seed: int) -> list[tuple[float, float, float, float, float]]:
-    """``n`` designs (t, R, a, b, nu) of the domain (module doc), scrambled Sobol."""
+def sobol_designs(n: int, seed: int, sheet_mm: tuple[float, float] = SHEET_MM
+                  ) -> list[tuple[float, float, float, float, float]]:
+    """``n`` designs (t, R, a, b, nu) of the domain (module doc) with sheets in
+    ``sheet_mm``, scrambled Sobol."""
     from scipy.stats import qmc
 
     u = qmc.Sobol(d=5, scramble=True, seed=seed).random_base2(max(1, math.ceil(math.log2(n))))
@@ -66,7 +73,7 @@ def sobol_designs(n: int, seed: int) -> list[tuple[float, float, float, float, f
     for row in u[:n]:
         t = _log_between(*WEB_MM, row[0])
         R = min(NOTCH_RADIUS_MAX_MM, t * _log_between(*R_OVER_T, row[1]))
-        out.append((t, R, _log_between(*ARM_MM, row[2]), _log_between(*SHEET_MM, row[3]),
+        out.append((t, R, _log_between(*ARM_MM, row[2]), _log_between(*sheet_mm, row[3]),
                     POISSON[0] + (POISSON[1] - POISSON[0]) * float(row[4])))
     return out
 
@@ -167,8 +174,10 @@ def fit(points: list[dict]) -> dict:
            "source": (f"fem3d (P2 tetrahedra, half model, finest of three meshes) grid and "
                       f"centre strains on the top face against Euler-Bernoulli: {len(fit_pts)} "
                       f"designs of tactcad.studies.gauge_strain_sweep (Sobol seed {FIT_SEED} "
-                      f"and the Poisson range's ends), "
-                      f"grids L_g/(2R) <= {XI_MAX}; hold-out: Sobol seed {HOLDOUT_SEED}"),
+                      f"on sheets {SHEET_MM[0]:g}-{SHEET_MM[1]:g} mm, seed {THIN_FIT_SEED} on "
+                      f"sheets {THIN_SHEET_MM[0]:g}-{THIN_SHEET_MM[1]:g} mm, and the Poisson "
+                      f"range's ends), grids L_g/(2R) <= {XI_MAX}; hold-out: Sobol seeds "
+                      f"{HOLDOUT_SEED} and {THIN_HOLDOUT_SEED}"),
            "fem3d_error_rel_max": max([p["point_err"] for p in points]
                                       + [g["err"] for p in points for g in p["grids"]]),
            "points": points}
@@ -177,18 +186,47 @@ def fit(points: list[dict]) -> dict:
     return doc
 
 
+def _design_key(label: str, design: Sequence[float]) -> tuple:
+    return (label,) + tuple(round(float(v), 9) for v in design)
+
+
+def _point_key(p: dict) -> tuple:
+    return _design_key(p["set"], (p["web_mm"], p["notch_radius_mm"], p["arm_mm"], p["sheet_mm"],
+                                  p["poisson_ratio"]))
+
+
+def sweep_designs(n_fit: int, n_hold: int) -> list[tuple[str, list]]:
+    """(set, designs) of the sweep: each Sobol set of the thick and of the thin sheets
+    (the thin ones half as many) and the Poisson range's ends."""
+    n_thin, n_thin_hold = max(1, (2 * n_fit) // 3), max(1, (3 * n_hold) // 4)
+    return [("fit", sobol_designs(n_fit, FIT_SEED) + poisson_edge_designs()
+             + sobol_designs(n_thin, THIN_FIT_SEED, THIN_SHEET_MM)),
+            ("holdout", sobol_designs(n_hold, HOLDOUT_SEED)
+             + sobol_designs(n_thin_hold, THIN_HOLDOUT_SEED, THIN_SHEET_MM))]
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the sweep (``n_fit`` and ``n_holdout`` designs, default 24 and 8), fit, write."""
+    """Run the sweep (``n_fit`` and ``n_holdout`` designs of the thick sheets, default 24
+    and 8, and :func:`sweep_designs`'s thin ones), fit, write. A design whose point the
+    file already holds is read from it, not solved again."""
     from tactcad.errors import DesignError
 
     args = list(sys.argv[1:] if argv is None else argv)
     n_fit, n_hold = (int(args[0]), int(args[1])) if len(args) == 2 else (24, 8)
+    known = {}
+    if GAUGE_STRAIN_FILE.is_file():
+        known = {_point_key(p): p
+                 for p in json.loads(GAUGE_STRAIN_FILE.read_text(encoding="utf-8"))["points"]}
     points = []
-    for label, designs in (("fit", sobol_designs(n_fit, FIT_SEED) + poisson_edge_designs()),
-                           ("holdout", sobol_designs(n_hold, HOLDOUT_SEED))):
+    for label, designs in sweep_designs(n_fit, n_hold):
         for design in designs:
+            key = _design_key(label, design)
+            if key in known:
+                points.append(known[key])
+                continue
             try:
                 points.append(evaluate_point(design, label))
+                print(f"solved {label} {tuple(round(v, 4) for v in design)}", file=sys.stderr)
             except DesignError as exc:  # a design rule the grid rule cannot meet
                 print(f"skipped {design}: {exc}", file=sys.stderr)
     GAUGE_STRAIN_FILE.write_text(json.dumps(fit(points), indent=1) + "\n", encoding="utf-8")

@@ -544,8 +544,16 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     f_gauge = np.minimum(limits_r["gauge_fatigue"], limits_m["gauge_fatigue"])
     f_gauge_max = np.minimum(limits_r["gauge_max"], limits_m["gauge_max"])
     f_fatigue = np.fmin(limits_r["fatigue"], limits_m["fatigue"])  # NaN: no fatigue strength
-    y_margin, g_margin = f_yield / F, f_gauge / F
-    gm_margin = f_gauge_max / F
+    # a gauge limit holds when its margin clears the closed form's error on the grid's
+    # strain (two-sided: a level of the ladder within it may read more); the stress
+    # limits' plane-stress bound is one-sided, the 3D stress lower, so they hold at 1
+    from tactcad.mechanics.limits import plan_limits
+
+    cf_limits = plan_limits(plan, "closed-form")
+    err = strain_error(cf_limits)
+    clear = 1.0 + err
+    y_margin, g_margin = f_yield / F, f_gauge / (F * clear)
+    gm_margin = f_gauge_max / (F * clear)
     fat_margin = np.where(np.isnan(f_fatigue), np.inf, f_fatigue / F)
     i_thick, i_thin = int(np.argmax(webs)), int(np.argmin(webs))
     a_lo_txt = f"{arm_lo[i_thick]:.3g}"
@@ -572,11 +580,13 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
               f"(yield {mat.yield_strength_MPa:g} MPa / {sf:g}), asked {F:g} N"),
         Limit(f"gauge fatigue strain ({gauge.name}) at the full-scale force", "strength.gauge",
               g_margin >= 1.0,
-              f"the stiffness targets' arms carry at most {np.max(f_gauge):.3g} N at any web "
+              f"the stiffness targets' arms carry at most {np.max(f_gauge) / clear:.3g} N at any "
+              f"web{_cleared(err)} "
               f"within {1e6 * gauge.fatigue_strain:.0f} microstrain, asked {F:g} N"),
         Limit(f"gauge maximum strain ({gauge.name}) at the full-scale force", "strength.gauge",
               gm_margin >= 1.0,
-              f"the stiffness targets' arms carry at most {np.max(f_gauge_max):.3g} N at any web "
+              f"the stiffness targets' arms carry at most {np.max(f_gauge_max) / clear:.3g} N at "
+              f"any web{_cleared(err)} "
               f"within {1e6 * gauge.max_strain:.0f} microstrain, asked {F:g} N"),
     )
     notch = notch_fatigue_strength(mat)
@@ -588,16 +598,20 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
                          f"{notch.surface_factor:.2f}), asked {F:g} N"),)
     margin = np.minimum.reduce([y_margin, g_margin, gm_margin, fat_margin])
     return WebSearch(webs, radii, a_r, a_m, margin, limits, F, arm_lo, arm_hi,
-                     closed_form_force_error(plan))
+                     max(lim.error_estimate_rel for lim in cf_limits))
 
 
-def closed_form_force_error(plan: Plan) -> float:
-    """The largest error estimate of the closed form's tip-force limits on ``plan``'s
-    elements (:func:`tactcad.mechanics.limits.plan_limits`: the K_t fit or K error
-    plus the plane-stress bound nu^2), relative."""
-    from tactcad.mechanics.limits import plan_limits
+def _cleared(error_rel: float) -> str:
+    """The words for a force carried with the closed form's strain error cleared."""
+    return f" (its {100 * error_rel:.2g} % closed-form strain error cleared)" if error_rel > 0 else ""
 
-    return max(lim.error_estimate_rel for lim in plan_limits(plan, "closed-form"))
+
+def strain_error(limits) -> float:
+    """The largest error estimate of the gauge-strain limits among ``limits``
+    (:func:`tactcad.mechanics.limits.plan_limits`: K's error plus the fitted grid
+    factor's), relative."""
+    return max(lim.error_estimate_rel for lim in limits
+               if lim.limit in ("gauge_fatigue", "gauge_max"))
 
 
 #: Number of leading limits of :func:`search_webs` that concern stiffness (the
@@ -607,7 +621,9 @@ STIFFNESS_LIMITS = 4
 
 def max_full_scale_force_N(search: WebSearch, force_N: float) -> float:
     """The largest full-scale force (N) some web carries while meeting the
-    stiffness limits (0 when none does); ``force_N`` is the force the search was run for."""
+    stiffness limits (its gauge limits clearing the closed form's strain error:
+    :func:`search_webs`); 0 when none does. ``force_N`` is the force the search was
+    run for."""
     ok = np.ones(search.webs_mm.shape, bool)
     for lim in search.limits[:STIFFNESS_LIMITS]:
         ok &= lim.allowed
@@ -662,32 +678,26 @@ def refusal_text(search: WebSearch) -> str:
 
 
 #: The web rule in words, for the design's reasons and its report.
-WEB_RULE = ("among the feasible webs whose force margin clears the closed form's error (every "
-            "feasible web when none does), the design's own web while it leaves "
+WEB_RULE = ("among the feasible webs (each force limit's margin clearing the closed form's error "
+            "on it), the design's own web while it leaves "
             f"{100 * KEEP_WEB_ROOM:g} % room, else the one whose smallest room is largest (room: an "
             "arm's or the web's distance to the nearer end of its range over the range's span, "
-            "and, where some web clears the error, a force limit's margin beyond it)")
+            "and a force limit's margin beyond the closed form's error)")
 
 
 def web_pool(search: WebSearch) -> tuple[np.ndarray, np.ndarray]:
-    """(pool, room) of :func:`choose_web`: the feasible webs whose force margin
-    clears the closed form's error with :func:`limit_room`, or, when none
-    does, every feasible web with :func:`dimension_room`."""
-    ok = search.feasible
-    clears = ok & (force_room(search) >= 0.0)
-    return (clears, limit_room(search)) if clears.any() else (ok, dimension_room(search))
+    """(pool, room) of :func:`choose_web`: the feasible webs, whose force margins
+    clear the closed form's error, with :func:`limit_room`."""
+    return search.feasible, limit_room(search)
 
 
 def choose_web(search: WebSearch, design_web_mm: float) -> int:
     """Index of the chosen web (:data:`WEB_RULE`).
 
-    Where some feasible web's force margin clears the closed form's error
-    (:func:`force_room` >= 0), those webs are the pool and room is
-    :func:`limit_room`; where none does, no web lets the closed form decide the
-    force, so every feasible web is the pool and room is the dimensions'
-    alone (:func:`dimension_room`). The design's own web is kept while it is in
-    the pool with at least :data:`KEEP_WEB_ROOM` room; else the pool's web with
-    the largest room (ties: the thinner web).
+    The feasible webs are the pool (their force margins clear the closed form's
+    error: :func:`search_webs`), room is :func:`limit_room`. The design's own web
+    is kept while it is in the pool with at least :data:`KEEP_WEB_ROOM` room; else
+    the pool's web with the largest room (ties: the thinner web).
 
     Raises:
         InverseDesignError: no web is feasible (the binding limit named).
