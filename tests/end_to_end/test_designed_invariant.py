@@ -154,7 +154,7 @@ def test_an_etched_comb_for_the_10_mm_jaw_designs_and_passes_its_check(tmp_path,
     # its rows were laid out for wire EDM whatever the process; foil rows took stock dowel
     # pins longer than the stack, which the jaw's checks did not see
     designed_or_refused(["--kr-over-km", "10", "--kobj-range", "0.5", "5", "--material",
-                         "Ti-6Al-4V-annealed", "--columns", "6", "--full-scale-force", "0.02",
+                         "Ti-6Al-4V-annealed", "--columns", "6", "--full-scale-force", "0.0196",
                          "--jaw", "10", "--process", "photochemical-etching"],
                         tmp_path / "etched", capsys)
     assert (tmp_path / "etched" / "etched.toml").is_file()

@@ -161,6 +161,19 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
     return out
 
 
+#: The limits on the gauge's strain: their closed-form error is two-sided (a higher level
+#: may read more strain), unlike the stress limits' plane-stress bound.
+GAUGE_LIMITS = ("gauge_fatigue", "gauge_max")
+
+
+def uncleared_gauge_limits(limits: list[ForceLimit], force_N: float) -> list[ForceLimit]:
+    """The gauge limits among ``limits`` whose force does not clear ``force_N`` by their
+    error estimate, ``F_limit < F (1 + e)``: a design held to them at this level may fail
+    a higher one (fem3d reading more strain than the closed form's fit)."""
+    return [lim for lim in limits if lim.limit in GAUGE_LIMITS
+            and lim.force_N < force_N * (1.0 + lim.error_estimate_rel)]
+
+
 def binding(limits: list[ForceLimit]) -> ForceLimit:
     """The limit allowing the smallest force (ties: the first listed)."""
     return min(limits, key=lambda lim: lim.force_N)

@@ -265,9 +265,11 @@ def failure_line(record: dict) -> str:
 def judge(d: dict, envelope_of: Callable | None, room: Any = None
           ) -> tuple[Any, tuple[str, ...], float, float | None]:
     """(plan, failures, full-scale-force margin, rated force) of a candidate's tables: the
-    design's validation, its verification matrix at the closed form, its hard stops and,
-    given the jaw's ``room``, its height (:func:`too_tall`)."""
+    design's validation, its verification matrix at the closed form, its gauge limits
+    clearing the closed form's strain error (as the stacked search's webs do), its hard
+    stops and, given the jaw's ``room``, its height (:func:`too_tall`)."""
     from tactcad.mechanics.hard_stops import stop_verdicts
+    from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits, uncleared_gauge_limits
     from tactcad.studies.verification import rated_full_scale_force, verification_matrix
 
     try:
@@ -287,6 +289,10 @@ def judge(d: dict, envelope_of: Callable | None, room: Any = None
               f"deflection, yield-limited at {v.yield_tip_mm:.4f} mm"
               for v in stop_verdicts(plan, force) if not v.engages_between]
     fails += too_tall(plan, room) if room is not None else ()
+    fails += [f"{LIMIT_WORDS[lim.limit]} of element {lim.element}: {lim.force_N:.4g} N does not "
+              f"clear {force:g} N by the closed form's {100 * lim.error_estimate_rel:.2g} % "
+              "error on the grid's strain"
+              for lim in uncleared_gauge_limits(plan_limits(plan, "closed-form"), force)]
     margin = next((r["margin_rel"] for r in records if r["requirement"] == "full_scale_force_N"),
                   0.0)
     probe = copy.deepcopy(d)

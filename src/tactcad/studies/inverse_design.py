@@ -610,8 +610,9 @@ def strain_error(limits) -> float:
     """The largest error estimate of the gauge-strain limits among ``limits``
     (:func:`tactcad.mechanics.limits.plan_limits`: K's error plus the fitted grid
     factor's), relative."""
-    return max(lim.error_estimate_rel for lim in limits
-               if lim.limit in ("gauge_fatigue", "gauge_max"))
+    from tactcad.mechanics.limits import GAUGE_LIMITS
+
+    return max(lim.error_estimate_rel for lim in limits if lim.limit in GAUGE_LIMITS)
 
 
 #: Number of leading limits of :func:`search_webs` that concern stiffness (the
