@@ -69,18 +69,25 @@ def test_the_layer_and_width_give_the_lowest_stress_of_every_fitting_pair(die):
 
 
 def test_the_piezoresistor_reads_the_average_root_stress_times_pi_l(die):
-    """dR/R per N = pi_l x 6 (L - l/2) / (w t^2) x (1 - x_j / t), pi_l = (pi11 + pi12 +
-    pi44) / 2 along <110> (Smith 1954, p-type: 71.8e-11 1/Pa)."""
+    """dR/R per N = pi_l P x 6 (L - l/2) / (w t^2) x (1 - x_j / t) x gamma, pi_l = (pi11 +
+    pi12 + pi44) / 2 along <110> (Smith 1954, p-type: 71.8e-11 1/Pa), P Richter et al.'s
+    at 300 K (J. Appl. Phys. 104, 023715, 2008), gamma the legs' share of the squares."""
     beam = die.beams[0]
     pi_l = (6.6 - 1.1 + 138.1) / 2 * 1e-11
     m = 1e-6
     stress = 6 * (beam.length_um - die.resistor_length_um / 2) * m / (
         beam.width_um * m * (beam.thickness_um * m) ** 2)
     beta = 1 - md.JUNCTION_DEPTH_UM / beam.thickness_um
+    n = md.IMPLANT_DOSE_PER_CM2 / (md.JUNCTION_DEPTH_UM * 1e-4)
+    p_factor = 1 / (1 + (n / 6e19) ** 0.43 + (n / 7e20) ** 1.6)
+    legs = 2 * (die.resistor_length_um - md.LEG_UM) / md.LEG_UM
+    gamma = legs / (legs + 2 * md.RESISTOR_RUN_UM / md.LEG_UM
+                    + (md.LEG_GAP_UM + 2 * md.LEG_UM) / md.LEG_UM)
+    assert 0.5 < p_factor < 0.9 and 0.5 < gamma < 1
     from tactcad.mechanics.piezoresistor import die_resistor
 
     assert die_resistor(die, beam).resistance_change_per_N() == pytest.approx(
-        pi_l * stress * beta, rel=1e-9)
+        pi_l * p_factor * stress * beta * gamma, rel=1e-9)
 
 
 def test_the_masks_read_back_clean_and_equal_the_plan(die, tmp_path):
@@ -218,7 +225,14 @@ def test_the_dies_readout_noise_and_resolution(die):
             r["noise_V"]["total"] / row["sensitivity_V_per_N"], rel=1e-12)
     assert r["rows"]["measuring"]["sensitivity_V_per_N"] > r["rows"]["reference"][
         "sensitivity_V_per_N"]
-    assert any("P(N)" in a for a in r["assumptions"])
+    assert any("P(N, T)" in a for a in r["assumptions"])
+    # the amplifier's, and every term in the total
+    half = r["resistance_ohm"] / 2
+    amp = math.sqrt((1.2e-9) ** 2 * 99.9 + (6e-9) ** 2 * math.log(1000)
+                    + 2 * half ** 2 * ((2e-12) ** 2 * 99.9 + (25e-12) ** 2 * math.log(1000)))
+    assert r["noise_V"]["amplifier"] == pytest.approx(amp, rel=1e-12)
+    assert r["noise_V"]["total"] == pytest.approx(math.sqrt(
+        sum(r["noise_V"][k] ** 2 for k in ("johnson", "hooge", "amplifier"))), rel=1e-12)
 
 
 def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypatch):

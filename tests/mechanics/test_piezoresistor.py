@@ -74,3 +74,55 @@ def test_a_cantilever_outside_its_meaning_is_refused_naming_the_value(kwargs, wo
         hooge_noise_V(1e-6, 1.0, 1e7, 0.0, 10.0)
     with pytest.raises(ValueError, match="active"):
         BEAM.bridge_sensitivity_V_per_N(2.0, active=3)
+
+
+# --- against Doll and Pruitt's model, on a cantilever they state ------------------------------
+#: Harley and Kenny's 89 nm epitaxial cantilever as the test of Doll and Pruitt's PiezoD states
+#: it (MicrosystemsLab/PiezoD, matlab/tests/cantileverEpitaxyTest.m; the model of Park, Doll,
+#: Rastegar and Pruitt, "Piezoresistive cantilever performance, Part I", J. Microelectromech.
+#: Syst. 19(1), 2010): l 300 um, w 44 um, t 89 nm, l_pr 45 um (its U: legs w / 2 wide, a 2 um
+#: gap), boron 4e19 cm^-3 in the top 30 nm, 5 V on a quarter bridge, 10-1000 Hz, two 170 ohm
+#: contacts; and the figures that test expects (to 1 %).
+HARLEY = {"l_um": 300.0, "w_um": 44.0, "t_um": 0.089, "l_pr_um": 45.0, "gap_um": 2.0,
+          "bias_V": 5.0, "contact_ohm": 170.0, "pi_max_per_Pa": 72e-11}
+PIEZOD_EXPECTS = {"k_N_per_m": 4.85384e-05, "R_ohm": 6147.41, "Rs_ohm_per_sq": 946.393,
+                  "Nz_per_m2": 1.2e18, "beta_star": 0.315295, "S_V_per_N": 800764.0}
+
+
+def test_the_sensitivity_agrees_with_doll_and_pruitts_model_on_harleys_cantilever():
+    """Our quarter-bridge sensitivity V/4 pi_l beta* sigma_avg gamma, given the figures PiezoD
+    states (beta* with its P at the resistor's temperature, sheet and total resistance),
+    within 5 % of PiezoD's S. PiezoD divides dR by the whole R, contacts held, and multiplies
+    by gamma = R / (R + 2 R_c) again; gamma here is the strained legs' share of the whole R,
+    the contacts counted once, so S is compared with that second factor taken out. What is
+    left is the far bar's transverse pull (p-type pi_t = -pi_l), about 1 %, not modelled."""
+    h, e = HARLEY, PIEZOD_EXPECTS
+    w_pr = h["w_um"] / 2
+    strained_ohm = 2 * e["Rs_ohm_per_sq"] * h["l_pr_um"] / w_pr
+    beam = PiezoCantilever(h["l_um"], h["w_um"], h["t_um"], h["l_pr_um"], h["pi_max_per_Pa"],
+                           depth_efficiency=e["beta_star"],
+                           strained_share=strained_ohm / e["R_ohm"])
+    contacts_gamma = e["R_ohm"] / (e["R_ohm"] + 2 * h["contact_ohm"])
+    ours = beam.bridge_sensitivity_V_per_N(h["bias_V"])
+    assert ours == pytest.approx(e["S_V_per_N"] / contacts_gamma, rel=0.05)
+    assert ours > e["S_V_per_N"] / contacts_gamma  # the bar's pull is negative, and left out
+
+
+def test_harleys_stiffness_carriers_and_hooge_noise_by_the_same_equations():
+    """k = E w t^3 / (4 l^3) at PiezoD's 169 GPa; N z = N x_j; the Hooge noise of PiezoD's
+    integrated_noise, alpha V^2 / (4 N) ln(f2 / f1) for one strained arm, equals ours at V / 2
+    across the resistor, its carriers over the U's area w_pr (2 l_pr + w + gap)."""
+    from tactcad.design.mems_die import beam_stiffness_N_per_mm
+
+    h, e = HARLEY, PIEZOD_EXPECTS
+    k = beam_stiffness_N_per_mm(169e3, h["w_um"], h["t_um"], h["l_um"]) * 1e3  # N/m
+    assert k == pytest.approx(e["k_N_per_m"], rel=0.01)
+    nz = 4e19 * 30e-7 * 1e4  # cm^-3 x cm -> m^-2
+    assert nz == pytest.approx(e["Nz_per_m2"], rel=1e-9)
+    w_pr = h["w_um"] / 2
+    carriers = nz * w_pr * 1e-6 * (2 * h["l_pr_um"] + h["w_um"] + h["gap_um"]) * 1e-6
+    assert carriers == pytest.approx(carriers_in(4e19, (2 * h["l_pr_um"] + h["w_um"]
+                                                        + h["gap_um"]), w_pr, 0.030), rel=1e-9)
+    piezod = math.sqrt(1e-5 * h["bias_V"] ** 2 / (4 * carriers) * math.log(1000 / 10))
+    assert hooge_noise_V(1e-5, h["bias_V"] / 2, carriers, 10, 1000) == pytest.approx(piezod,
+                                                                                   rel=1e-12)

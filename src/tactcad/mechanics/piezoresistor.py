@@ -9,7 +9,13 @@ a layer near the surface, reads the stress averaged over its length,
 sigma_avg = 6 F (L - l_r / 2) / (w t^2), times the depth efficiency beta* (1 for carriers at
 the surface, 0 at the neutral axis; Park, Doll, Rastegar and Pruitt, "Piezoresistive
 cantilever performance, Part I", J. Microelectromech. Syst. 19(1), 2010, eq. 2-4), so
-dR / R = pi_l sigma_avg beta* (pi_l along the resistor: :mod:`tactcad.vocabulary.crystal`).
+dR / R = pi_l P(N, T) sigma_avg beta* gamma (pi_l along the resistor at low doping:
+:mod:`tactcad.vocabulary.crystal`). P(N, T) scales pi_l down with the doping N and the
+temperature T (Richter, Pedersen, Brandbyge, Thomsen and Hansen, "Piezoresistance in p-type
+silicon revisited", J. Appl. Phys. 104, 023715, 2008: :func:`piezoresistance_factor`); gamma
+is the strained share of the resistance: the legs on the beam over the whole resistor with
+its unstrained run onto the frame and its far bar (Park et al. 2010's gamma, the resistor's
+share of the total, taken here on the resistor's own squares).
 
 A Wheatstone bridge with ``active`` of its four arms strained (1: a quarter bridge, its
 reference resistors on the die off the beam) gives V_out = V_bias active / 4 dR / R.
@@ -20,7 +26,12 @@ Noise over the band [f_lo, f_hi] (Hz), each as an rms voltage at the bridge outp
   v^2 = 4 k_B T R (f_hi - f_lo) (Nyquist, Phys. Rev. 32, 1928);
 * Hooge 1/f noise of the active resistor with N carriers, biased at V_r across it:
   v^2 = alpha_H V_r^2 / N ln(f_hi / f_lo) (Hooge, Phys. Lett. A 29, 1969; alpha_H 1e-7 for
-  annealed implants to 1e-4: Harley and Kenny, J. Microelectromech. Syst. 9(2), 2000).
+  annealed implants to 1e-4: Harley and Kenny, J. Microelectromech. Syst. 9(2), 2000);
+* the instrumentation amplifier's voltage and current noise, each a white floor and a 1/f
+  part stated at 1 Hz, its current noise through R / 2 at each input:
+  v^2 = e_w^2 (f_hi - f_lo) + e_f^2 ln(f_hi / f_lo) + 2 (R/2)^2 (i_w^2 (f_hi - f_lo)
+  + i_f^2 ln(f_hi / f_lo)) (:class:`Amplifier`; the form of Doll and Pruitt's PiezoD,
+  ``cantilever.m``, ``integrated_noise``).
 
 Units: N, m inside the formulas, inputs and outputs as named (um, V, ohm, K, Hz, 1/Pa).
 """
@@ -42,8 +53,10 @@ class PiezoCantilever:
         length_um: root to the tip force.
         width_um, thickness_um: the beam's section.
         resistor_length_um: the resistor along the beam, from the root.
-        pi_longitudinal_per_Pa: pi_l along the resistor (1/Pa: Smith's x 1e-11).
-        depth_efficiency: beta*, 0 ... 1 (carriers' depth below the surface).
+        pi_longitudinal_per_Pa: pi_l along the resistor at low doping (1/Pa: Smith's x 1e-11).
+        depth_efficiency: beta*'s depth part, 0 ... 1 (carriers' depth below the surface).
+        doping_factor: P(N, T), 0 ... 1 (:func:`piezoresistance_factor`).
+        strained_share: gamma, 0 ... 1: the share of the resistance under the beam's stress.
     """
 
     length_um: float
@@ -52,6 +65,8 @@ class PiezoCantilever:
     resistor_length_um: float
     pi_longitudinal_per_Pa: float
     depth_efficiency: float = 1.0
+    doping_factor: float = 1.0
+    strained_share: float = 1.0
 
     def __post_init__(self):
         for name in ("length_um", "width_um", "thickness_um", "resistor_length_um"):
@@ -61,8 +76,10 @@ class PiezoCantilever:
         if self.resistor_length_um > self.length_um:
             raise ValueError(f"resistor_length_um = {self.resistor_length_um!r}: at most the "
                              f"beam's length {self.length_um!r} um")
-        if not 0.0 <= self.depth_efficiency <= 1.0:
-            raise ValueError(f"depth_efficiency = {self.depth_efficiency!r}: 0 ... 1")
+        for name in ("depth_efficiency", "doping_factor", "strained_share"):
+            value = getattr(self, name)
+            if not 0.0 <= value <= 1.0:
+                raise ValueError(f"{name} = {value!r}: 0 ... 1")
 
     def average_stress_Pa_per_N(self) -> float:
         """The surface bending stress averaged over the resistor, per newton at the tip (Pa/N):
@@ -72,9 +89,9 @@ class PiezoCantilever:
         return 6 * arm / (self.width_um * um * (self.thickness_um * um) ** 2)
 
     def resistance_change_per_N(self) -> float:
-        """dR / R per newton at the tip (1/N): pi_l sigma_avg beta*."""
-        return (self.pi_longitudinal_per_Pa * self.average_stress_Pa_per_N()
-                * self.depth_efficiency)
+        """dR / R per newton at the tip (1/N): pi_l P sigma_avg beta* gamma."""
+        return (self.pi_longitudinal_per_Pa * self.doping_factor * self.average_stress_Pa_per_N()
+                * self.depth_efficiency * self.strained_share)
 
     def bridge_sensitivity_V_per_N(self, bias_V: float, active: int = 1) -> float:
         """The bridge's output per newton (V/N): V_bias active / 4 dR / R per N.
@@ -117,6 +134,83 @@ def hooge_noise_V(alpha_H: float, resistor_bias_V: float, carriers: float, f_lo_
     if alpha_H < 0 or not carriers > 0:
         raise ValueError(f"alpha_H {alpha_H!r} >= 0 and carriers {carriers!r} > 0")
     return math.sqrt(alpha_H * resistor_bias_V ** 2 / carriers * math.log(f_hi_Hz / f_lo_Hz))
+
+
+@dataclass(frozen=True)
+class Amplifier:
+    """An instrumentation amplifier's input noise: white floors and 1/f parts at 1 Hz.
+
+    Attributes:
+        name: the part. voltage_white_V: e_w (V/sqrt(Hz)). voltage_1f_V: e_f at 1 Hz.
+        current_white_A: i_w (A/sqrt(Hz)). current_1f_A: i_f at 1 Hz. source: where from.
+    """
+
+    name: str
+    voltage_white_V: float
+    voltage_1f_V: float
+    current_white_A: float
+    current_1f_A: float
+    source: str
+
+    def noise_V(self, source_resistance_ohm: float, f_lo_Hz: float, f_hi_Hz: float) -> float:
+        """The rms input noise (V) over [f_lo, f_hi] with a bridge of output resistance
+        ``source_resistance_ohm`` (R / 2 at each input; module doc).
+
+        Raises:
+            ValueError: a negative resistance, f_lo <= 0 or f_hi < f_lo.
+        """
+        _band(f_lo_Hz, f_hi_Hz, allow_zero=False)
+        if not source_resistance_ohm >= 0:
+            raise ValueError(f"source resistance {source_resistance_ohm!r} ohm: >= 0")
+        white, decades = f_hi_Hz - f_lo_Hz, math.log(f_hi_Hz / f_lo_Hz)
+        half = source_resistance_ohm / 2
+        return math.sqrt(self.voltage_white_V ** 2 * white + self.voltage_1f_V ** 2 * decades
+                         + 2 * half ** 2 * (self.current_white_A ** 2 * white
+                                            + self.current_1f_A ** 2 * decades))
+
+
+#: A low-noise bridge amplifier, as Doll and Pruitt's PiezoD states it (``cantilever.m``,
+#: ``amplifier = 'INA103'``): 1.2 nV/sqrt(Hz) floor, 6 nV/sqrt(Hz) at 1 Hz, 2 pA/sqrt(Hz)
+#: floor, 25 pA/sqrt(Hz) at 1 Hz.
+INA103 = Amplifier("INA103", 1.2e-9, 6e-9, 2e-12, 25e-12,
+                   "Texas Instruments INA103 as PiezoD (Doll and Pruitt, cantilever.m) states it")
+
+#: Richter et al. 2008's P(N, T) for p-type silicon (module doc): N_b, N_c (cm^-3) and the
+#: exponents, as PiezoD's ``piezoresistance_factor`` takes them.
+RICHTER_P_TYPE = {"n_b": 6e19, "n_c": 7e20, "alpha": 0.43, "gamma": 1.6, "beta": 0.1,
+                  "eta": 3.0, "theta": 0.9}
+
+
+def piezoresistance_factor(acceptors_per_cm3: float, temperature_K: float = 300.0) -> float:
+    """P(N, T): pi_l at a boron doping N and temperature T over pi_l lightly doped at 300 K,
+    Theta^-theta / (1 + Theta^-beta (N / N_b)^alpha + Theta^-eta (N / N_c)^gamma),
+    Theta = T / 300 K (Richter et al. 2008; :data:`RICHTER_P_TYPE`).
+
+    Raises:
+        ValueError: a doping not finite and >= 0, or a temperature not finite and > 0.
+    """
+    n, c = acceptors_per_cm3, RICHTER_P_TYPE
+    if not (math.isfinite(n) and n >= 0):
+        raise ValueError(f"acceptors_per_cm3 = {n!r}: finite and >= 0")
+    if not (math.isfinite(temperature_K) and temperature_K > 0):
+        raise ValueError(f"temperature_K = {temperature_K!r}: finite and > 0")
+    theta = temperature_K / 300.0
+    return theta ** -c["theta"] / (1 + theta ** -c["beta"] * (n / c["n_b"]) ** c["alpha"]
+                                   + theta ** -c["eta"] * (n / c["n_c"]) ** c["gamma"])
+
+
+def step_profile_depth_efficiency(junction_depth_um: float, thickness_um: float) -> float:
+    """beta*'s depth part for carriers uniform from the surface to x_j: 1 - x_j / t (the
+    layer's mean distance from the neutral axis over t / 2; Park et al. 2010's beta* with a
+    step profile and P taken apart).
+
+    Raises:
+        ValueError: x_j not within (0, t].
+    """
+    if not 0 < junction_depth_um <= thickness_um:
+        raise ValueError(f"junction depth {junction_depth_um!r} um: within (0, "
+                         f"{thickness_um!r}] um, the beam's thickness")
+    return 1.0 - junction_depth_um / thickness_um
 
 
 def carriers_in(doping_per_cm3: float, length_um: float, width_um: float,
@@ -173,43 +267,59 @@ def sheet_resistance_ohm(acceptors_per_cm3: float, junction_depth_um: float) -> 
                   * acceptors_per_cm3 * junction_depth_um * 1e-4)
 
 
-def die_resistor(plan, beam) -> PiezoCantilever:
+def die_resistor(plan, beam, temperature_K: float = 300.0) -> PiezoCantilever:
     """A die beam's root piezoresistor (:class:`tactcad.design.mems_die.DiePlan`,
     :class:`~tactcad.design.mems_die.Beam`): its legs along the beam from the root, the
     plan's resistor length and pi_l, carriers in a box of the plan's junction depth x_j at
-    the surface (beta* = 1 - x_j / t: the box's mean distance from the neutral axis over
-    t / 2); the short bar joining the legs' far ends is left out."""
+    the surface (:func:`step_profile_depth_efficiency`), P(N, T) at the implant's doping
+    and gamma the legs' squares on the beam over the resistor's (:func:`die_squares`)."""
     from tactcad.design.mems_die import JUNCTION_DEPTH_UM
 
+    squares = die_squares(plan)
     return PiezoCantilever(beam.length_um, beam.width_um, beam.thickness_um,
                            plan.resistor_length_um, plan.pi_longitudinal_per_Pa,
-                           1.0 - JUNCTION_DEPTH_UM / beam.thickness_um)
+                           step_profile_depth_efficiency(JUNCTION_DEPTH_UM, beam.thickness_um),
+                           piezoresistance_factor(plan.acceptors_per_cm3, temperature_K),
+                           squares["strained"] / squares["total"])
+
+
+def die_squares(plan) -> dict[str, float]:
+    """The U-shaped resistor's squares: ``strained``, its two legs on the beam
+    (length less the bar's leg width, over the leg width), and ``total``, with the legs'
+    run onto the frame and the bar (leg gap + 2 legs) / leg width at the far end."""
+    from tactcad.design import mems_die as md
+
+    strained = 2 * (plan.resistor_length_um - md.LEG_UM) / md.LEG_UM
+    run = 2 * md.RESISTOR_RUN_UM / md.LEG_UM
+    bar = (md.LEG_GAP_UM + 2 * md.LEG_UM) / md.LEG_UM
+    return {"strained": strained, "total": strained + run + bar}
 
 
 def die_resistance_ohm(plan) -> float:
     """One U-shaped resistor's resistance (ohm): the sheet resistance of the plan's implant
-    times its squares, two legs of (run onto the frame + length) / leg width and the bar
-    (leg gap + 2 legs) / leg width at the far end."""
+    times its squares (:func:`die_squares`)."""
     from tactcad.design import mems_die as md
 
-    legs = 2 * (md.RESISTOR_RUN_UM + plan.resistor_length_um - md.LEG_UM) / md.LEG_UM
-    bar = (md.LEG_GAP_UM + 2 * md.LEG_UM) / md.LEG_UM
-    return sheet_resistance_ohm(plan.acceptors_per_cm3, md.JUNCTION_DEPTH_UM) * (legs + bar)
+    return (sheet_resistance_ohm(plan.acceptors_per_cm3, md.JUNCTION_DEPTH_UM)
+            * die_squares(plan)["total"])
 
 
 def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float = 100.0,
-                alpha_H: float = 1e-5, temperature_K: float = 300.0) -> dict:
+                alpha_H: float = 1e-5, temperature_K: float = 300.0,
+                amplifier: Amplifier = INA103) -> dict:
     """Each row's read-out of a die: one resistor per beam in a quarter bridge (its three
     other arms equal and unstrained, off the beam) biased at ``bias_V`` (V), over the band
     [f_lo, f_hi] (Hz).
 
     Returns:
         ``{"resistance_ohm", "sheet_resistance_ohm_per_sq", "hole_mobility_cm2_per_Vs",
-        "carriers", "noise_V": {"johnson", "hooge", "total"}, "rows": {role: {
+        "carriers", "doping_factor", "strained_share", "noise_V": {"johnson", "hooge",
+        "amplifier", "total"}, "rows": {role: {
         "resistance_change_per_N", "sensitivity_V_per_N", "force_resolution_N",
         "full_scale_signal_V"}}, "assumptions": [...]}``. Noise: the bridge's Johnson noise
-        (its output resistance, R) and the active resistor's Hooge noise at V_bias / 2
-        across it (alpha_H, default 1e-5: the middle of Harley and Kenny's 1e-7 ... 1e-4).
+        (its output resistance, R), the active resistor's Hooge noise at V_bias / 2
+        across it (alpha_H, default 1e-5: the middle of Harley and Kenny's 1e-7 ... 1e-4)
+        and ``amplifier``'s (default :data:`INA103`).
 
     Raises:
         ValueError: a bias or band out of range.
@@ -223,10 +333,11 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
     carriers = carriers_in(plan.acceptors_per_cm3, legs_um, md.LEG_UM, md.JUNCTION_DEPTH_UM)
     johnson = johnson_noise_V(r, temperature_K, f_lo_Hz, f_hi_Hz)
     hooge = hooge_noise_V(alpha_H, bias_V / 2, carriers, f_lo_Hz, f_hi_Hz)
-    total = math.hypot(johnson, hooge)
+    amp = amplifier.noise_V(r, f_lo_Hz, f_hi_Hz)
+    total = math.sqrt(johnson ** 2 + hooge ** 2 + amp ** 2)
     rows = {}
     for beam in (plan.beams[0], plan.beams[plan.columns]):
-        c = die_resistor(plan, beam)
+        c = die_resistor(plan, beam, temperature_K)
         sens = c.bridge_sensitivity_V_per_N(bias_V)
         rows[beam.role] = {"resistance_change_per_N": c.resistance_change_per_N(),
                            "sensitivity_V_per_N": sens,
@@ -237,11 +348,14 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
                                                                 md.JUNCTION_DEPTH_UM),
             "hole_mobility_cm2_per_Vs": hole_mobility_cm2_per_Vs(plan.acceptors_per_cm3),
             "carriers": carriers, "bias_V": bias_V, "band_Hz": [f_lo_Hz, f_hi_Hz],
-            "noise_V": {"johnson": johnson, "hooge": hooge, "total": total},
+            "doping_factor": c.doping_factor, "strained_share": c.strained_share,
+            "noise_V": {"johnson": johnson, "hooge": hooge, "amplifier": amp, "total": total},
             "rows": rows,
             "assumptions": [
                 f"alpha_H {alpha_H:g} (Harley and Kenny 2000: 1e-7 annealed ... 1e-4)",
-                "pi_l at Smith's 7.8 ohm cm: the doping factor P(N) at the implant's "
-                f"{plan.acceptors_per_cm3:.2g} cm^-3 (Kanda 1982) is not applied, so dR/R "
-                "is overstated",
-                "no amplifier noise: the bridge's own noise only"]}
+                f"pi_l at Smith's 7.8 ohm cm times P(N, T) = {c.doping_factor:.3f} at "
+                f"{plan.acceptors_per_cm3:.2g} cm^-3 and {temperature_K:g} K (Richter et al. "
+                "2008)",
+                f"gamma {c.strained_share:.3f}: the legs on the beam over the resistor's squares "
+                "(no contact resistance)",
+                f"amplifier {amplifier.name} ({amplifier.source})"]}
