@@ -303,6 +303,7 @@ def test_design_keeps_its_fem_results_in_the_project_it_writes(tmp_path):
         tmp_path / "palp" / ".tactcad-cache"  # other commands: the working folder's
 
 
+@pytest.mark.slow  # a whole design search
 def test_a_design_stopped_after_its_solves_began_leaves_no_folder_it_made(tmp_path, monkeypatch,
                                                                          capsys):
     """A new --out DIR gets the store of the FEM solves made for it as they run; a refusal

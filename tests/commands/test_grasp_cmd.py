@@ -20,6 +20,7 @@ def row_paired_sets() -> list[str]:
     return out
 
 
+@pytest.mark.slow  # contact solves of whole grasps
 def test_the_comb_paired_along_its_rows_reads_farther_than_at_equal_radius():
     r = run_cli("grasp", "--design", COMB, *row_paired_sets(), "--profile", "wedge", "--kobj", "1",
                 "--json")
@@ -67,6 +68,7 @@ def test_the_jaw_and_shaft_the_design_states_are_the_grasps_and_said_so():
     assert json.loads(r.stdout)["leads"]["channel_diameter_mm"] == 3.0  # no grasper: assumed
 
 
+@pytest.mark.slow  # contact solves of whole grasps
 def test_the_pivot_and_the_angle_reach_the_grasp():
     r = run_cli("grasp", "--design", TI, "--pivot-mm", "-10", "0", "--angle-deg", "10",
                 "--json")

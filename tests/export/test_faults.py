@@ -180,6 +180,7 @@ def test_a_writer_raising_enospc_names_the_export_path_not_the_staging(tmp_path,
     assert f"{tmp_path / 'ex'}/bom.csv: disk full" in err
 
 
+@pytest.mark.slow  # a whole export
 def test_leftovers_that_cannot_be_removed_are_named_in_one_warning(tmp_path, monkeypatch,
                                                                    capsys):
     out = tmp_path / "ex"

@@ -46,6 +46,7 @@ def layout(request):
     return request.param, plan, coupled_sample(plan, Tissue(poisson_ratio=0.5)), _independent(plan)[1]
 
 
+@pytest.mark.slow  # two contact models converged on each shipped layout
 def test_every_coupling_matches_the_independent_model_to_one_percent(layout):
     name, plan, sample, other = layout
     ours = sample.normalised / np.diag(sample.normalised)[:, None]

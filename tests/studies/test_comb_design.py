@@ -44,6 +44,7 @@ def test_the_room_is_the_default_jaws_pocket_less_its_walls_and_clearances():
     assert room.along_mm < j.length_mm - j.distal_wall_mm - j.pin_inset_mm
 
 
+@pytest.mark.slow  # a whole comb search (the module's fixture)
 def test_the_grasper_case_gives_a_comb_that_fits_reaches_the_ratio_and_stops_in_time(found):
     plan, room = found.plan, found.room
     assert plan.construction == "monolithic-comb" and plan.pairing == "column"
@@ -59,6 +60,7 @@ def test_the_grasper_case_gives_a_comb_that_fits_reaches_the_ratio_and_stops_in_
     assert "sheet.thickness_mm" in found.data["assumptions"]
 
 
+@pytest.mark.slow  # a whole comb search (the module's fixture)
 def test_the_fasteners_are_the_first_pair_of_the_tables_the_row_and_the_jaw_hold(found):
     tried, order = found.fasteners, fastener_pairs()
     assert [(f.screw_size, f.dowel_diameter_mm) for f in tried] == order[:len(tried)]

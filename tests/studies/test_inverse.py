@@ -167,6 +167,7 @@ def test_cli_refuses_a_file_that_is_no_design_or_folder(tmp_path, monkeypatch, c
     assert Path("notes.txt").read_text() == "mine"
 
 
+@pytest.mark.slow  # a whole design search
 def test_cli_writes_a_project_folder(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
@@ -306,6 +307,7 @@ def test_at_the_largest_force_the_gauge_limits_clear_the_closed_forms_strain_err
     assert gauge.force_N >= force * (1 + gauge.error_estimate_rel) > force * 1.01
 
 
+@pytest.mark.slow  # a whole design search
 @pytest.mark.filterwarnings("ignore::tactcad.mechanics.correction.CorrectionRangeWarning")
 def test_a_reason_kept_from_the_base_quotes_no_value_the_new_design_does_not_vouch_for(
         tmp_path, monkeypatch, capsys):

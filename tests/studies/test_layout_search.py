@@ -98,6 +98,7 @@ def test_a_refusal_names_the_asked_targets_and_its_alternatives_paste(tmp_path, 
     assert not (tmp_path / "g" / "g.toml").read_text(encoding="utf-8").count("macro_array")
 
 
+@pytest.mark.slow  # a whole design search
 def test_a_value_the_user_sets_is_kept_and_errors_name_it_as_written(tmp_path, capsys):
     """A ``--set`` fixes its field: the search keeps it; a bad one is named as ``--set``."""
     out = tmp_path / "g.toml"

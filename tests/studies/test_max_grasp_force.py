@@ -38,6 +38,7 @@ def test_elements_beyond_their_overload_limit_fail_named_with_force_and_limit():
     assert "3 mm slab" in r["basis"] and "60 degrees" in r["basis"]
 
 
+@pytest.mark.slow  # contact solves of whole grasps
 def test_a_light_grasp_within_every_limit_passes():
     r = _record(1.0)
     w = next(it for it in r["elements"] if it["element"] == r["binding_element"])

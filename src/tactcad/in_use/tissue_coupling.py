@@ -45,6 +45,7 @@ from scipy.optimize import brentq
 from tactcad.mechanics.contact import (CONVERGED_REL, ContactError, Punch, Sample, check_sample,
                                        converged_punches)
 from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
+from tactcad.store import kept_result
 
 #: Soft tissue and rubber phantoms are nearly incompressible (an assumption the user can change).
 TISSUE_POISSON_RATIO = 0.5
@@ -168,10 +169,17 @@ def _normalised_compliance(punches: tuple[Punch, ...], tissue: Tissue,
                            face: tuple[float, float]) -> tuple[np.ndarray, float]:
     """(Ĉ of the punches, its mesh error), converged in the mesh
     (:func:`~tactcad.mechanics.contact.converged_punches`); cached: a design search asks
-    the same tips again and again."""
+    the same tips again and again, and kept in the result store, so a design pasted from
+    a refusal, and the verify and export after it, read its layouts' solves back."""
     unit = Sample(1.0, tissue.poisson_ratio, tissue.thickness_mm)
-    alone = converged_punches([Punch(0.0, 0.0, face[0], face[1])], unit, tissue.convergence_rel)
-    tips = converged_punches(list(punches), unit, tissue.convergence_rel)
+
+    def solved(tips: list[Punch]):
+        return kept_result("converged punches",
+                           lambda: converged_punches(tips, unit, tissue.convergence_rel),
+                           tuple(tips), unit, tissue.convergence_rel)
+
+    alone = solved([Punch(0.0, 0.0, face[0], face[1])])
+    tips = solved(list(punches))
     c1 = float(alone.compliance_mm_per_N[0, 0])
     return tips.compliance_mm_per_N / c1, max(alone.error_rel, tips.error_rel)
 

@@ -336,10 +336,78 @@ def solve_punches(punches, sample: Sample, cell_mm: float = DEFAULT_CELL_MM,
     a = influence_matrix(mesh, sample)
     incidence = np.zeros((len(mesh.punch), len(punches)))
     incidence[np.arange(len(mesh.punch)), mesh.punch] = 1.0
-    pressure = np.linalg.solve(a, incidence)
+    pressure = solve_by_symmetry(a, incidence, mirror_maps(mesh))
     stiffness = incidence.T @ (mesh.area_mm2[:, None] * pressure)
     stiffness = 0.5 * (stiffness + stiffness.T)  # symmetric by reciprocity; remove round-off
     return PunchSolution(stiffness, np.linalg.inv(stiffness), pressure, mesh)
+
+
+def mirror_maps(mesh: CellMesh, tol_mm: float = 1e-9) -> list[np.ndarray]:
+    """The mesh's mirror symmetries about its centre lines along x and along z: for each
+    line the cells hold, the index of every cell's mirror image (an involution); a line
+    some cell has no image across (unequal tips, an uneven layout) is left out."""
+    lo = (mesh.centres - mesh.half).min(axis=0)
+    hi = (mesh.centres + mesh.half).max(axis=0)
+    centre = (lo + hi) / 2
+
+    def keys(points: np.ndarray) -> list[tuple]:
+        return [tuple(np.round(np.concatenate([c, h]) / tol_mm).astype(np.int64))
+                for c, h in zip(points, mesh.half)]
+
+    index = {k: i for i, k in enumerate(keys(mesh.centres))}
+    maps = []
+    for axis in (0, 1):
+        image = mesh.centres.copy()
+        image[:, axis] = 2 * centre[axis] - image[:, axis]
+        found = [index.get(k) for k in keys(image)]
+        if None not in found:
+            maps.append(np.array(found))
+    return maps
+
+
+def solve_by_symmetry(a: np.ndarray, rhs: np.ndarray, maps: list[np.ndarray]) -> np.ndarray:
+    """``solve(a, rhs)`` for a matrix that commutes with the cell permutations ``maps``
+    (mirror images: commuting involutions), one smaller system per character of their group.
+
+    For a character chi (a sign per mirror) and orbit representatives r, r' (cells
+    whose stabiliser chi is 1 on), A_chi[r, r'] = sum_g chi(g) A[r, g r'] / |Stab r'| and
+    b_chi[r] = sum_g chi(g) b[g r] / |G|; the solution is x at r and chi(g) x at g r. Two
+    mirrors split a dense n x n solve into four of about n/4 (about 16 times less work).
+    Without ``maps`` it is ``numpy.linalg.solve``.
+
+    Args:
+        a: (n, n) with ``a[g i, g j] == a[i, j]`` for every map g.
+        rhs: (n, k).
+        maps: index arrays of length n (see :func:`mirror_maps`).
+
+    Returns:
+        (n, k) solution.
+    """
+    if not maps:
+        return np.linalg.solve(a, rhs)
+    n = len(a)
+    group = [np.arange(n)]
+    for m in maps:  # the group the mirrors generate (they commute): 2 or 4 elements
+        group += [m[g] for g in group]
+    signs = [np.array([1.0])]
+    for _ in maps:
+        signs = [np.concatenate([s, t * s]) for s in signs for t in (1.0, -1.0)]
+    orbits = np.stack(group)  # (|G|, n): g(i)
+    reps = np.flatnonzero(orbits.min(axis=0) == np.arange(n))
+    fixed = orbits[:, reps] == reps[None, :]  # (|G|, reps): g fixes the representative
+    out = np.zeros((n, rhs.shape[1]))
+    for chi in signs:
+        valid = reps[np.all(~fixed | (chi[:, None] > 0), axis=0)]
+        if valid.size == 0:
+            continue
+        stab = np.sum(orbits[:, valid] == valid[None, :], axis=0)
+        a_chi = sum(c * a[np.ix_(valid, g[valid])] for c, g in zip(chi, group)) / stab[None, :]
+        b_chi = sum(c * rhs[g[valid]] for c, g in zip(chi, group)) / len(group)
+        x = np.linalg.solve(a_chi, b_chi)
+        for c, g in zip(chi, group):  # the solution at each image, summed over characters
+            out[g[valid]] += c * x / (np.sum(orbits[:, valid] == g[valid][None, :], axis=0)
+                                      [:, None])
+    return out
 
 
 #: Cells along every face edge at each level of :func:`converged_punches`.
