@@ -151,8 +151,13 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     rec = json.loads(r.stdout)
     assert rec["counts"]["failed"] == 0 and rec["wafer_dies"] > 100
     assert sorted(p.name for p in (tmp_path / "die").iterdir()) == [
-        "mems_die.gds", "mems_die.json", "mems_die.step", "mems_die_masks.png",
+        "mems_die.gds", "mems_die.json", "mems_die.step", "mems_die_bom.csv",
+        "mems_die_in_jaw.png", "mems_die_in_jaw.step", "mems_die_masks.png",
         "mems_die_traveller.md", "mems_die_wafer.gds"]
+    mount_checks = [c for c in rec["checks"] if c["check"].startswith("die_mount")]
+    assert len(mount_checks) > 10 and all(c["status"] == "pass" for c in mount_checks)
+    bom = (tmp_path / "die" / "mems_die_bom.csv").read_text(encoding="utf-8").splitlines()
+    assert bom[0] == "item,qty,kind,description,source" and bom[1].startswith("mems_die,1,")
     bad = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "50", "5000",
                   "--full-scale-force", "0.02", "--out", str(tmp_path / "none"), "--json")
     assert bad.returncode == 2
@@ -356,3 +361,48 @@ def test_a_die_files_value_is_overridden_by_set_and_checked_like_the_file(tmp_pa
                     str(tmp_path / "x"))
     assert alone.returncode == 2 and "only with --design" in alone.stderr
     assert not (tmp_path / "bad").exists() and not (tmp_path / "x").exists()
+
+
+# --- the die in its jaw ------------------------------------------------------------------------
+def test_the_mount_seats_die_and_carrier_in_a_face_pocket_of_the_5mm_jaw(die):
+    """Pocket = carrier (die + bond shelf) + clearance, open at the face, as deep as die,
+    attach and carrier; the device layer flush with the face, the posts proud by their
+    height; steel left under the pocket, beside it and before the pin."""
+    from tactcad.design import die_mount as dm
+    from tactcad.partlib.grasper_jaw import MIN_WALL_MM
+
+    m = dm.die_mount(die, {"shaft_class_mm": "5"})
+    stack = (die.stack.handle_um + die.stack.box_um + die.stack.device_um) / 1000
+    assert m.pocket_length_mm == pytest.approx(die.die_length_um / 1000 + dm.BOND_SHELF_MM + 0.2)
+    assert m.pocket_depth_mm == pytest.approx(stack + dm.DIE_ATTACH_MM + dm.CARRIER_MM)
+    assert m.die_z0_mm + stack == pytest.approx(m.face_z_mm)
+    assert m.post_proud_mm == pytest.approx(die.post_height_um / 1000)
+    assert m.jaw_thickness_mm - m.pocket_depth_mm >= MIN_WALL_MM
+    assert (m.jaw_width_mm - m.pocket_width_mm) / 2 >= MIN_WALL_MM - 1e-9
+    assert m.pocket_x0_mm >= m.pin_x_mm + m.pin_diameter_mm / 2 + MIN_WALL_MM
+
+
+@pytest.mark.parametrize("key, value", [("thickness_mm", 1.0), ("width_mm", 2.5),
+                                        ("length_mm", 8.0)])
+def test_a_jaw_that_cannot_hold_the_die_is_refused_by_its_key(die, key, value):
+    from tactcad.design.die_mount import die_mount
+
+    with pytest.raises(DesignError) as err:
+        die_mount(die, {"shaft_class_mm": "5", key: value})
+    assert err.value.field == f"grasper_jaw.{key}" and ">=" in err.value.allowed
+
+
+def test_the_mount_checks_find_a_die_sunk_into_its_carrier(die):
+    from dataclasses import replace
+
+    from tactcad.checks.die_mount_fit import mount_checks
+    from tactcad.design.die_mount import die_mount
+    from tactcad.export.die_scene import mount_solids
+
+    m = die_mount(die, {"shaft_class_mm": "5"})
+    assert all(c.passed for c in mount_checks(mount_solids(die, m), m, "mems_die_posts"))
+    sunk = replace(m, die_z0_mm=m.die_z0_mm - 0.1)  # into the carrier, posts below proud
+    failed = {(c.check, c.subject) for c in mount_checks(mount_solids(die, sunk), sunk,
+                                                         "mems_die_posts") if not c.passed}
+    assert ("die_mount_interference", "die_carrier / mems_die_handle") in failed
+    assert ("die_mount_proud", "mems_die_posts") in failed

@@ -20,7 +20,8 @@ from tactcad.errors import DesignError
 #: The written files, by what they hold ({name}: the die's name).
 DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "step": "{name}.step",
              "picture": "{name}_masks.png", "traveller": "{name}_traveller.md",
-             "record": "{name}.json"}
+             "scene": "{name}_in_jaw.step", "scene_picture": "{name}_in_jaw.png",
+             "bom": "{name}_bom.csv", "record": "{name}.json"}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -31,9 +32,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "for K_r/K_m and a K_obj range in the jaw's pocket; writes the die's "
                     "masks (GDSII, one layer per mask) with their picture, a wafer of dies, "
                     "the process traveller, "
-                    "the die as a STEP assembly of its layers and a JSON record of the plan "
-                    "with every derived dimension's reason, and reads the masks back "
-                    "with KLayout against the process's rules and the plan. Exit 1 when a "
+                    "the die as a STEP assembly of its layers, the die on its carrier in the "
+                    "jaw's face pocket (STEP and picture) with the insert's bill of "
+                    "materials, and a JSON record of the plan with every derived "
+                    "dimension's reason; reads the masks back with KLayout against the "
+                    "process's rules and the plan, and checks the mount's fit. Exit 1 when a "
                     "check fails, 2 when the targets cannot be met (with what binds and a "
                     "pasteable alternative). Units: um, N/mm, N, MPa.")
     p.add_argument("--design", metavar="FILE", default=None,
@@ -122,9 +125,13 @@ def _name(value: str) -> str:
 def run(args: argparse.Namespace) -> int:
     from tactcad.atomic import staging_dir
     from tactcad.checks.check_result import counts_text, status_counts
+    from tactcad.checks.die_mount_fit import mount_checks
     from tactcad.checks.gds_drc import gds_checks
     from tactcad.commands.design import jaw_of
+    from tactcad.design.die_mount import die_mount
     from tactcad.design.mems_die import die_plan
+    from tactcad.export.die_scene import (mount_bom_rows, mount_solids, write_mount_bom,
+                                          write_mount_picture, write_mount_step)
     from tactcad.export.die_solid import write_die_step
     from tactcad.export.gds_masks import write_die_gds, write_mask_picture, write_wafer_gds
     from tactcad.export.traveller import write_traveller
@@ -137,9 +144,11 @@ def run(args: argparse.Namespace) -> int:
     asked = die_asked(args)
     name = _name(asked["name"])
     targets = Targets(asked["kr_over_km"], tuple(asked["kobj_range"]), asked["full_scale_force"])
-    room = jaw_room(*jaw_of(asked["jaw"]))
+    jaw, jaw_file = jaw_of(asked["jaw"])
+    room = jaw_room(jaw, jaw_file)
     plan = die_plan(targets, room, columns=asked["columns"], pitch_um=asked["pitch_um"],
                     name=name)
+    mount = die_mount(plan, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
     out = Path(args.out)
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
     # every file made in a staging folder beside OUT, then moved in: a failed or
@@ -151,7 +160,11 @@ def run(args: argparse.Namespace) -> int:
         _, dies = write_wafer_gds(plan, made["wafer"])
         write_die_step(plan, made["step"])
         write_mask_picture(made["masks"], made["picture"])
-        checks = gds_checks(made["masks"], plan)
+        solids = mount_solids(plan, mount)
+        write_mount_step(solids, made["scene"], f"{name}_in_jaw")
+        write_mount_picture(solids, made["scene_picture"], f"{name} in the {room.label}")
+        write_mount_bom(mount_bom_rows(plan, mount, room.label), made["bom"])
+        checks = gds_checks(made["masks"], plan) + mount_checks(solids, mount, f"{name}_posts")
         counts = status_counts(checks)
         readout = die_readout(plan)
         write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
@@ -161,6 +174,7 @@ def run(args: argparse.Namespace) -> int:
         fe = [calculix_beam_check(plan, b) for b in plan.beams[:: plan.columns]] \
             if args.fe_check else []
         record = {"die": plan.as_json(), "readout": readout, "jaw": room.label,
+                  "mount": mount.as_json(),
                   "resonance_Hz": {r: {"rayleigh": m.rayleigh_Hz, "exact": m.exact_Hz,
                                        "rayleigh_error_rel": m.rayleigh_error_rel}
                                    for r, m in modes.items()},
@@ -179,12 +193,12 @@ def run(args: argparse.Namespace) -> int:
         print(dumps(record, indent=1))
     else:
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
-                     modes, fe, budget))
+                     modes, fe, budget, mount))
     return 1 if counts["failed"] else 0
 
 
 def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts: str,
-           modes: dict | None = None, fe: list | None = None, budget=None) -> str:
+           modes: dict | None = None, fe: list | None = None, budget=None, mount=None) -> str:
     """The die, its beams, their read-out, resonances and FE check, and the checks as text."""
     d = plan
     ref, meas = d.beams[0], d.beams[d.columns]
@@ -227,6 +241,8 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
         lines.append(f"  {'root sum square (without eq. 3 uncoupled)':<46} "
                      + "  ".join(f"{100 * v:7.3f} %" for v in budget.total_rel))
     lines += ["", "reasons:"] + [f"  {k}: {v}" for k, v in d.reasons.items()]
+    if mount is not None:
+        lines += ["", f"in the {jaw}:"] + [f"  {k}: {v}" for k, v in mount.reasons.items()]
     lines += ["", f"wrote {', '.join(str(p) for p in files.values())} ({dies} dies on the "
                   "wafer)", "", *[c.line() for c in checks], "", counts]
     return "\n".join(lines)

@@ -1,0 +1,146 @@
+"""How a silicon die sits in a grasper's jaw: a pocket cut into the jaw's grasping face,
+a carrier at its floor, the die bonded on the carrier with its device layer at the face,
+the posts standing proud of it (mm).
+
+The jaw is the class's default jaw (or a lab's own jaw table) read as the metal
+constructions read it (:class:`tactcad.partlib.grasper_jaw.GrasperJawSection`). Unlike a
+comb, whose tips reach through a window in a face wall, a die's posts stand only tens of
+microns above its device layer, so no face wall can stand over the die: the pocket opens
+at the face, and the die's frame lies flush with it (the device layer's top at the face,
+:data:`DEVICE_RECESS_MM` below it), the posts proud by their height less that recess. The
+carrier under the die (:data:`CARRIER_MM`, alumina) reaches past the die's proximal end by
+:data:`BOND_SHELF_MM`, where the flex cable to the shaft is soldered; the die is bonded to it
+by a die-attach layer of :data:`DIE_ATTACH_MM`. The pocket runs from the distal wall
+towards the pivot and keeps :data:`~tactcad.partlib.grasper_jaw.MIN_WALL_MM` of steel
+beside it, under it and before the pin.
+
+Units: mm (the die plan's um converted).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+from tactcad.design.mems_die import DiePlan
+from tactcad.errors import DesignError
+
+#: The carrier's thickness (mm): a thin-film alumina substrate (assumption: a stock 0.25 mm
+#: substrate, the one thin ceramics vendors list first).
+CARRIER_MM = 0.25
+#: The carrier beyond the die's proximal end (mm): room for the flex cable's solder pads.
+BOND_SHELF_MM = 1.0
+#: The die-attach layer (mm): a silver-filled epoxy film (assumption).
+DIE_ATTACH_MM = 0.025
+#: The device layer's top below the jaw's face (mm): flush, the posts alone proud.
+DEVICE_RECESS_MM = 0.0
+
+
+@dataclass(frozen=True)
+class DieMount:
+    """The jaw, its face pocket, the carrier and the die's place (mm; x along the jaw from
+    its heel, y across from its axis, z from its back to the grasping face).
+
+    Attributes:
+        jaw_length_mm, jaw_width_mm, jaw_thickness_mm: the jaw's bar.
+        pin_x_mm, pin_diameter_mm: the pivot pin's axis along the jaw and its diameter
+            (``pin_x_mm`` < 0: behind the heel, no hole in the bar).
+        pocket_x0_mm, pocket_length_mm, pocket_width_mm, pocket_depth_mm: the pocket,
+            open at the face, ``pocket_depth_mm`` down from it.
+        carrier_x0_mm, carrier_length_mm, carrier_width_mm, carrier_mm: the carrier on
+            the pocket's floor.
+        die_x0_mm, die_z0_mm: the die's proximal end and its handle's underside.
+        die_length_mm, die_width_mm, die_stack_mm: the die without its posts.
+        post_proud_mm: the posts' tops above the jaw's face.
+        reasons: derived value -> why.
+    """
+
+    jaw_length_mm: float
+    jaw_width_mm: float
+    jaw_thickness_mm: float
+    pin_x_mm: float
+    pin_diameter_mm: float
+    pocket_x0_mm: float
+    pocket_length_mm: float
+    pocket_width_mm: float
+    pocket_depth_mm: float
+    carrier_x0_mm: float
+    carrier_length_mm: float
+    carrier_width_mm: float
+    carrier_mm: float
+    die_x0_mm: float
+    die_z0_mm: float
+    die_length_mm: float
+    die_width_mm: float
+    die_stack_mm: float
+    post_proud_mm: float
+    reasons: dict = field(default_factory=dict, compare=False, hash=False)
+
+    @property
+    def face_z_mm(self) -> float:
+        return self.jaw_thickness_mm
+
+    def as_json(self) -> dict[str, Any]:
+        out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "reasons"}
+        return {**out, "reasons": dict(self.reasons)}
+
+
+def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
+    """The die's mount in the jaw ``jaw_table`` states (a ``[grasper_jaw]`` table; the
+    class's defaults fill it, as for a comb).
+
+    Raises:
+        DesignError: the jaw cannot hold the pocket: too narrow for the die and its side
+            walls, too thin for the die, carrier and the steel under them, or too short
+            between the pin's steel and the distal wall (the field named with what it needs).
+    """
+    from tactcad.partlib.grasper_jaw import (MIN_WALL_MM, GrasperJawSection,
+                                             jaw_width_mm, pocket_start_limit_mm,
+                                             validated_table, with_class_defaults)
+
+    j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection, dict(jaw_table)))
+    c = j.pocket_clearance_mm
+    die_l, die_w = plan.die_length_um * 1e-3, plan.die_width_um * 1e-3
+    stack = (plan.stack.handle_um + plan.stack.box_um + plan.stack.device_um) * 1e-3
+    width = jaw_width_mm(j)
+    pocket_w = die_w + 2 * c
+    if width < pocket_w + 2 * MIN_WALL_MM - 1e-9:
+        raise DesignError("grasper_jaw.width_mm", round(width, 4),
+                          f">= {pocket_w + 2 * MIN_WALL_MM:.4g} mm",
+                          f"the die is {die_w:g} mm across; its pocket ({c:g} mm clearance each "
+                          f"side) keeps {MIN_WALL_MM:g} mm side walls")
+    depth = stack + DIE_ATTACH_MM + CARRIER_MM + DEVICE_RECESS_MM
+    if j.thickness_mm < depth + MIN_WALL_MM - 1e-9:
+        raise DesignError("grasper_jaw.thickness_mm", j.thickness_mm,
+                          f">= {depth + MIN_WALL_MM:.4g} mm",
+                          f"the die ({stack:.4g} mm), its attach and carrier ({CARRIER_MM:g} mm) "
+                          f"in a pocket {depth:.4g} mm deep over {MIN_WALL_MM:g} mm of steel")
+    carrier_l = die_l + BOND_SHELF_MM
+    pocket_l = carrier_l + 2 * c
+    x1 = j.length_mm - j.distal_wall_mm
+    x0 = x1 - pocket_l
+    least = pocket_start_limit_mm(j)
+    if x0 < least - 1e-9:
+        raise DesignError("grasper_jaw.length_mm", j.length_mm,
+                          f">= {least + pocket_l + j.distal_wall_mm:.4g} mm",
+                          f"the pin's steel, the {pocket_l:.4g} mm pocket and the "
+                          f"{j.distal_wall_mm:g} mm distal wall")
+    face = j.thickness_mm
+    die_z0 = face - DEVICE_RECESS_MM - stack
+    post_proud = plan.post_height_um * 1e-3 - DEVICE_RECESS_MM
+    reasons = {
+        "pocket": f"{pocket_l:.4g} x {pocket_w:.4g} x {depth:.4g} mm, open at the face: the "
+                  f"carrier (the die's {die_l:g} mm and a {BOND_SHELF_MM:g} mm bond shelf) and "
+                  f"{c:g} mm clearance each side, ending {j.distal_wall_mm:g} mm before the tip",
+        "carrier": f"{CARRIER_MM:g} mm alumina (assumption: a stock thin-film substrate), "
+                   f"{carrier_l:.4g} x {die_w:g} mm: the die and, proximal to it, the flex "
+                   "cable's solder pads",
+        "die_attach": f"{DIE_ATTACH_MM:g} mm silver-filled epoxy (assumption)",
+        "post_proud": f"the device layer {DEVICE_RECESS_MM:g} mm below the face, its "
+                      f"{plan.post_height_um:g} um posts {post_proud * 1e3:.4g} um proud: a "
+                      "die's posts cannot reach through a face wall, so the pocket opens at "
+                      "the face",
+    }
+    return DieMount(j.length_mm, width, face, j.pin_inset_mm, j.pin_diameter_mm, x0, pocket_l,
+                    pocket_w, depth, x0 + c, carrier_l, die_w, CARRIER_MM,
+                    x0 + c + BOND_SHELF_MM, die_z0, die_l, die_w, stack, post_proud, reasons)
