@@ -152,7 +152,7 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     assert rec["counts"]["failed"] == 0 and rec["wafer_dies"] > 100
     assert sorted(p.name for p in (tmp_path / "die").iterdir()) == [
         "mems_die.gds", "mems_die.json", "mems_die.step", "mems_die_bom.csv",
-        "mems_die_in_jaw.png", "mems_die_in_jaw.step", "mems_die_masks.png",
+        "mems_die_drawing.svg", "mems_die_in_jaw.png", "mems_die_in_jaw.step", "mems_die_masks.png",
         "mems_die_traveller.md", "mems_die_wafer.gds"]
     mount_checks = [c for c in rec["checks"] if c["check"].startswith("die_mount")]
     assert len(mount_checks) > 10 and all(c["status"] == "pass" for c in mount_checks)
@@ -406,3 +406,26 @@ def test_the_mount_checks_find_a_die_sunk_into_its_carrier(die):
                                                          "mems_die_posts") if not c.passed}
     assert ("die_mount_interference", "die_carrier / mems_die_handle") in failed
     assert ("die_mount_proud", "mems_die_posts") in failed
+
+
+def test_the_drawing_dimensions_the_plans_die_and_carrier_clear_of_overlaps(die, tmp_path):
+    import xml.etree.ElementTree as ET
+
+    from tactcad.checks.sheet_overlap import sheet_file_results
+    from tactcad.design.die_mount import die_mount
+    from tactcad.drawings.die_sheet import die_sheet
+
+    m = die_mount(die, {"shaft_class_mm": "5"})
+    path = tmp_path / "die.svg"
+    path.write_text(die_sheet(die, m).svg(), encoding="utf-8")
+    texts = {el.get("id"): el.text for el in ET.parse(path).iter("{http://www.w3.org/2000/svg}text")
+             if el.get("id")}
+    ref, meas = die.beams[0], die.beams[die.columns]
+    expected = {"dim-die-length": die.die_length_um, "dim-die-width": die.die_width_um,
+                "dim-pitch": die.pitch_um, "dim-reference-length": ref.length_um,
+                "dim-measuring-length": meas.length_um, "dim-beam-width": ref.width_um,
+                "dim-carrier-length": m.carrier_length_mm * 1000,
+                "dim-carrier-width": m.carrier_width_mm * 1000}
+    for key, um in expected.items():
+        assert float(texts[key].split()[0]) == pytest.approx(um / 1000, abs=5e-4), key
+    assert all(r.passed for r in sheet_file_results(path))

@@ -153,16 +153,20 @@ def layout_of_svg(svg: str, name: str) -> SheetLayout:
 def check_sheet_files(folder: Path) -> list[CheckResult]:
     """One result per drawing sheet (``drawings/*.svg`` under ``folder``):
     passed when nothing overlaps, else the overlaps, largest first."""
-    results = []
-    for path in sorted((folder / "drawings").glob("*.svg")):
-        name = path.relative_to(folder).as_posix()
-        found = sorted(sheet_overlaps(layout_of_svg(path.read_text(encoding="utf-8"), name)),
-                       key=lambda o: -o.overlap_mm)
-        detail = ("no text over a line or another text" if not found else
-                  f"{len(found)} overlaps: " + "; ".join(o.text() for o in found[:5])
-                  + (" ..." if len(found) > 5 else ""))
-        results.append(CheckResult("text overlap", name, not found, detail))
-    return results
+    return [result for path in sorted((folder / "drawings").glob("*.svg"))
+            for result in sheet_file_results(path, path.relative_to(folder).as_posix())]
+
+
+def sheet_file_results(path: Path, name: str | None = None) -> list[CheckResult]:
+    """The one result of the sheet ``path`` (named ``name``, default the file's name):
+    passed when nothing overlaps, else the overlaps, largest first."""
+    name = name or path.name
+    found = sorted(sheet_overlaps(layout_of_svg(path.read_text(encoding="utf-8"), name)),
+                   key=lambda o: -o.overlap_mm)
+    detail = ("no text over a line or another text" if not found else
+              f"{len(found)} overlaps: " + "; ".join(o.text() for o in found[:5])
+              + (" ..." if len(found) > 5 else ""))
+    return [CheckResult("text overlap", name, not found, detail)]
 
 
 def sheet_group(context: CheckContext) -> Iterator[Found]:

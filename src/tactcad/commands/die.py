@@ -21,7 +21,8 @@ from tactcad.errors import DesignError
 DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "step": "{name}.step",
              "picture": "{name}_masks.png", "traveller": "{name}_traveller.md",
              "scene": "{name}_in_jaw.step", "scene_picture": "{name}_in_jaw.png",
-             "bom": "{name}_bom.csv", "record": "{name}.json"}
+             "bom": "{name}_bom.csv", "drawing": "{name}_drawing.svg",
+             "record": "{name}.json"}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -126,6 +127,8 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.atomic import staging_dir
     from tactcad.checks.check_result import counts_text, status_counts
     from tactcad.checks.die_mount_fit import mount_checks
+    from tactcad.checks.sheet_overlap import sheet_file_results
+    from tactcad.drawings.die_sheet import die_sheet
     from tactcad.checks.gds_drc import gds_checks
     from tactcad.commands.design import jaw_of
     from tactcad.design.die_mount import die_mount
@@ -164,7 +167,9 @@ def run(args: argparse.Namespace) -> int:
         write_mount_step(solids, made["scene"], f"{name}_in_jaw")
         write_mount_picture(solids, made["scene_picture"], f"{name} in the {room.label}")
         write_mount_bom(mount_bom_rows(plan, mount, room.label), made["bom"])
-        checks = gds_checks(made["masks"], plan) + mount_checks(solids, mount, f"{name}_posts")
+        made["drawing"].write_text(die_sheet(plan, mount).svg(), encoding="utf-8")
+        checks = (gds_checks(made["masks"], plan) + mount_checks(solids, mount, f"{name}_posts")
+                  + sheet_file_results(made["drawing"]))
         counts = status_counts(checks)
         readout = die_readout(plan)
         write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,

@@ -1,0 +1,120 @@
+"""The drawing of a silicon die and its carrier: one A3 sheet (ISO 5457 frame).
+
+* the die in plan at :data:`DIE_SCALE`, device side up: its outline, the back window
+  (hidden, dashed), each beam and its post, dimensioned: the die's length and width, the
+  pitch, both beams' lengths from their roots, the beam width and the post;
+* the carrier in plan at :data:`CARRIER_SCALE`: its length, width and bond shelf;
+* notes: the wafer and the beams' direction, the layer stack with the device layer's
+  tolerance (the one the beams' stiffness goes as the cube of), and the carrier's
+  material, thickness and die attach; units.
+
+A die is made by its masks (the GDS is the master; this sheet is for reading and
+inspection), so the dimensions are the plan's, in mm on the sheet.
+
+Units: mm on paper; die dimensions given in mm (um in the notes).
+"""
+
+from __future__ import annotations
+
+from tactcad.design.die_mount import DIE_ATTACH_MM, DieMount
+from tactcad.design.mems_die import DiePlan
+from tactcad.drawings.frame import FRAME, sheet_frame
+from tactcad.drawings.sheet import Sheet, fmt_mm
+
+#: Scales of the die's and of the carrier's plan views (paper mm per mm).
+DIE_SCALE = 40.0
+CARRIER_SCALE = 15.0
+NOTE_MM = 2.5
+
+
+def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
+    """The die's and its carrier's sheet (see the module doc)."""
+    sh = Sheet("A3", title=f"{plan.name}: die and carrier")
+    sheet_frame(sh)
+    x0, y0 = FRAME[0] + 35.0, FRAME[1] + 40.0  # the die's corner (x = 0, y = die width)
+    s = DIE_SCALE / 1000.0  # paper mm per um
+
+    def at(x_um: float, y_um: float) -> tuple[float, float]:
+        return (x0 + x_um * s, y0 + (plan.die_width_um - y_um) * s)
+
+    length, width = plan.die_length_um, plan.die_width_um
+    sh.polyline("die", [at(0, 0), at(length, 0), at(length, width), at(0, width)], "visible",
+                closed=True)
+    wx0, wy0, wx1, wy1 = plan.window_um
+    sh.polyline("die", [at(wx0, wy0), at(wx1, wy0), at(wx1, wy1), at(wx0, wy1)], "hidden",
+                closed=True)
+    for b in plan.beams:
+        tip = b.tip_y_um + b.direction * plan.post_um / 2
+        sh.polyline("die", [at(b.x_um - b.width_um / 2, b.y_root_um),
+                            at(b.x_um + b.width_um / 2, b.y_root_um),
+                            at(b.x_um + b.width_um / 2, tip),
+                            at(b.x_um - b.width_um / 2, tip)], "visible", closed=True)
+        p = plan.post_um / 2
+        sh.polyline("die", [at(b.x_um - p, b.tip_y_um - p), at(b.x_um + p, b.tip_y_um - p),
+                            at(b.x_um + p, b.tip_y_um + p), at(b.x_um - p, b.tip_y_um + p)],
+                    "visible", closed=True)
+    _die_dimensions(sh, plan, at)
+    _carrier_view(sh, plan, mount, x0, at(0, 0)[1] + 60.0)
+    _notes(sh, plan, mount, FRAME[0] + 235.0, FRAME[1] + 150.0)
+    sh.text("title", (FRAME[2] - 5.0, FRAME[3] - 5.0),
+            f"{plan.name}: die {DIE_SCALE:g}:1, carrier {CARRIER_SCALE:g}:1, mm", 3.5,
+            anchor="end")
+    return sh
+
+
+def _die_dimensions(sh: Sheet, plan: DiePlan, at) -> None:
+    length, width = plan.die_length_um, plan.die_width_um
+    top, bottom = at(0, width)[1], at(0, 0)[1]
+    sh.linear_dimension(at(0, width), at(length, width), "h", top - 12.0,
+                        fmt_mm(length / 1000), "die-length")
+    sh.linear_dimension(at(length, 0), at(length, width), "v", at(length, 0)[0] + 12.0,
+                        fmt_mm(width / 1000), "die-width")
+    ref, meas = plan.beams[0], plan.beams[plan.columns]
+    if plan.columns > 1:
+        nxt = plan.beams[1]
+        sh.linear_dimension(at(ref.x_um, width), at(nxt.x_um, width), "h", top - 6.0,
+                            fmt_mm(plan.pitch_um / 1000), "pitch")
+    for b, name, dx in ((ref, "reference", -8.0), (meas, "measuring", -8.0)):
+        sh.linear_dimension(at(b.x_um, b.y_root_um), at(b.x_um, b.tip_y_um), "v",
+                            at(0, 0)[0] + dx if b is ref else at(0, 0)[0] + dx - 8.0,
+                            fmt_mm(b.length_um / 1000), f"{name}-length")
+    last = plan.beams[plan.columns - 1]
+    sh.linear_dimension(at(last.x_um - last.width_um / 2, 0),
+                        at(last.x_um + last.width_um / 2, 0), "h", bottom + 8.0,
+                        fmt_mm(last.width_um / 1000), "beam-width")
+
+
+def _carrier_view(sh: Sheet, plan: DiePlan, m: DieMount, x0: float, y0: float) -> None:
+    s = CARRIER_SCALE
+    w, h = m.carrier_length_mm * s, m.carrier_width_mm * s
+    sh.rect("carrier", x0, y0, w, h, "visible")
+    shelf = (m.die_x0_mm - m.carrier_x0_mm) * s
+    sh.line("carrier", (x0 + shelf, y0), (x0 + shelf, y0 + h), "thin")
+    sh.text("carrier", (x0 + (shelf + w) / 2, y0 + h / 2 + 1.2), f"die {plan.name}", NOTE_MM,
+            anchor="middle")
+    sh.linear_dimension((x0, y0 + h), (x0 + w, y0 + h), "h", y0 + h + 10.0,
+                        fmt_mm(m.carrier_length_mm), "carrier-length")
+    sh.linear_dimension((x0, y0), (x0 + shelf, y0), "h", y0 - 6.0,
+                        f"{fmt_mm(m.die_x0_mm - m.carrier_x0_mm)} bond shelf", "bond-shelf")
+    sh.linear_dimension((x0 + w, y0), (x0 + w, y0 + h), "v", x0 + w + 10.0,
+                        fmt_mm(m.carrier_width_mm), "carrier-width")
+
+
+def _notes(sh: Sheet, plan: DiePlan, m: DieMount, x: float, y: float) -> None:
+    st = plan.stack
+    lines = [
+        "NOTES",
+        "1. Die: SOI on a (100) wafer, beams along <110>; the GDS masks are the master.",
+        f"2. Stack: device {st.device_um:g} um +-{st.device_tolerance_um:g} um (K as t^3), "
+        f"buried oxide {st.box_um:g} um,",
+        f"   handle {st.handle_um:g} um; posts {plan.post_height_um:g} um high, "
+        f"{plan.post_um:g} um square.",
+        "3. Back window (dashed) etched through the handle; the beams free over it.",
+        f"4. Carrier: alumina {m.carrier_mm:g} mm; die attach {DIE_ATTACH_MM:g} mm "
+        "silver-filled epoxy.",
+        f"5. In the jaw: the device layer flush with the face, the posts "
+        f"{m.post_proud_mm * 1000:.4g} um proud.",
+        "6. Dimensions in mm.",
+    ]
+    for k, text in enumerate(lines):
+        sh.text("notes", (x, y + k * (NOTE_MM + 2.0)), text, NOTE_MM, bold=k == 0)
