@@ -20,6 +20,7 @@ element, the notch and each stop gap. Units: mm, N, MPa.
 from __future__ import annotations
 
 import copy
+import functools
 from dataclasses import dataclass
 from typing import Any, Mapping
 
@@ -31,8 +32,8 @@ from tactcad.design.array_plan import (MIN_ARM_STEP_MM, MIN_FASTENER_GAP_MM, MIN
                                        HardStop, Material, MaterialSection, Placement, Plan,
                                        SheetSection, StrengthSection, check_references,
                                        check_in_use, check_web_tolerance_held, design_hash,
-                                       edm_rules, in_use_tables, pairing_of, shaping_tables,
-                                       unit_references,
+                                       EdmRules, edm_rules, in_use_tables, pairing_of,
+                                       shaping_tables, unit_references,
                                        with_grade_defaults, _grade_error)
 from tactcad.design.bom_section import BomSection
 from tactcad.design.readout_section import ReadoutSection, check_readout
@@ -140,8 +141,13 @@ def row_rules(d: CombTables) -> RowRules:
     """:class:`RowRules` of the rows' process on the comb's sheet and material (for wire
     EDM: the design's ``[edm]`` wire and spark gap)."""
     material = " ".join(str(v or "") for v in (d.material.grade, d.material.name))
-    return RowRules(CUT_PROCESSES[row_process(d)].limits(d.sheet.thickness_mm, edm_rules(d),
-                                                         material))
+    return _row_rules(row_process(d), d.sheet.thickness_mm, edm_rules(d), material)
+
+
+@functools.lru_cache(maxsize=64)
+def _row_rules(process: str, sheet_mm: float, wire: EdmRules, material: str) -> RowRules:
+    # one validation asks a dozen times for the same rules: worked out once per inputs
+    return RowRules(CUT_PROCESSES[process].limits(sheet_mm, wire, material))
 
 
 def stop_gaps(d: CombTables) -> list[float]:
