@@ -444,17 +444,33 @@ def designs_in(folder: str | Path) -> list[Path]:
     return found
 
 
+def die_designs_in(folder: str | Path) -> list[Path]:
+    """The silicon die design files of a folder: its ``*.toml`` files with a ``[die]``
+    table (:func:`tactcad.design.die_file.is_die_file`; unreadable files passed over)."""
+    from tactcad.design.die_file import is_die_file
+
+    found = []
+    for path in sorted(Path(folder).glob("*.toml")):
+        try:
+            tables = tomllib.loads(path.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+            continue
+        if is_die_file(tables):
+            found.append(path)
+    return found
+
+
 def default_design(folder: str | Path = ".") -> Path:
     """The design a command works on when none is named: the one design file
-    of the project folder ``folder`` (the working folder), else the shipped
-    example ``macro_array`` (the paper's 2 x 5 array).
+    of the project folder ``folder`` (the working folder; an array's or a silicon
+    die's), else the shipped example ``macro_array`` (the paper's 2 x 5 array).
 
     Raises:
         DesignError: the folder holds several design files (``--design`` must choose).
     """
     from tactcad.design.array_plan import DEFAULT_DESIGN
 
-    found = designs_in(folder)
+    found = designs_in(folder) + die_designs_in(folder)
     if len(found) > 1:
         raise DesignError("--design", None, "one of " + ", ".join(p.name for p in found),
                           f"{len(found)} design files in {Path(folder).resolve().name or '/'}")

@@ -429,3 +429,36 @@ def test_the_drawing_dimensions_the_plans_die_and_carrier_clear_of_overlaps(die,
     for key, um in expected.items():
         assert float(texts[key].split()[0]) == pytest.approx(um / 1000, abs=5e-4), key
     assert all(r.passed for r in sheet_file_results(path))
+
+
+# --- a die's folder: export and check, and the array commands' refusal ----------------------
+def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
+    # in a die's folder, `export` silently made the paper's array (the folder "held no
+    # design"); given it, every array command listed fifteen missing tables
+    design = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+              / "grasper_jaw_5mm_mems.toml")
+    (tmp_path / design.name).write_bytes(design.read_bytes())
+    for command in ("budget", "readout", "verify"):
+        r = run_cli(command, "--json", cwd=tmp_path)
+        assert r.returncode == 2, (command, r.stdout, r.stderr)
+        error = json.loads(r.stdout)["error"]
+        assert error["field"] == "--design" and "tactcad die --design" in error["message"]
+        assert "macro_array" not in r.stdout + r.stderr
+
+
+@pytest.mark.slow  # a die's whole export, then its read-back
+def test_a_die_folders_export_passes_its_check_and_a_missing_file_is_made_again(tmp_path):
+    r = run_cli("design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.02", "--out", str(tmp_path / "insert"))
+    assert r.returncode == 0, r.stderr
+    folder = tmp_path / "insert"
+    assert run_cli("export", cwd=folder).returncode == 0
+    names = sorted(p.name for p in (folder / "exports").iterdir())
+    assert "insert.gds" in names and "insert_drawing.svg" in names and "insert_in_jaw.step" in names
+    checked = run_cli("check", "--out", "exports", "--json", cwd=folder)
+    assert checked.returncode == 0, checked.stdout
+    assert json.loads(checked.stdout)["counts"]["failed"] == 0
+    (folder / "exports" / "insert_drawing.svg").unlink()
+    # a folder missing a file is exported there again, not judged half
+    again = run_cli("check", "--out", "exports", "--json", cwd=folder)
+    assert again.returncode == 0 and (folder / "exports" / "insert_drawing.svg").is_file()

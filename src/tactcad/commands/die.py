@@ -6,6 +6,8 @@ rules and the plan (:mod:`tactcad.checks.gds_drc`)."""
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import os
 import shutil
 from pathlib import Path
@@ -251,3 +253,116 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
     lines += ["", f"wrote {', '.join(str(p) for p in files.values())} ({dies} dies on the "
                   "wafer)", "", *[c.line() for c in checks], "", counts]
     return "\n".join(lines)
+
+
+# --- a die's folder: export and check ---------------------------------------------------------
+def die_design_of(args: argparse.Namespace) -> Path | None:
+    """The die design file ``export`` or ``check`` works on, or None for an array's:
+    ``--design``, else the working folder's one design file
+    (:func:`tactcad.project_folder.default_design`), when it holds a ``[die]`` table.
+
+    Raises:
+        DesignError: the folder holds several design files.
+    """
+    from tactcad.design.array_plan import read_toml
+    from tactcad.design.die_file import is_die_file
+    from tactcad.project_folder import default_design
+
+    design = Path(args.design) if getattr(args, "design", None) else default_design()
+    if design.suffix.lower() != ".toml" or not design.is_file():
+        return None  # the array's loader names what is wrong with it
+    return design if is_die_file(read_toml(design, "--design")) else None
+
+
+def _die_args(design: Path, args: argparse.Namespace, out: Path) -> argparse.Namespace:
+    return argparse.Namespace(design=str(design), overrides=getattr(args, "overrides", []),
+                              out=str(out), json=getattr(args, "json", False), fe_check=False,
+                              **{k: None for k in (*TARGET_OPTIONS, *DEFAULTS)})
+
+
+def export_die(design: Path, args: argparse.Namespace) -> int:
+    """``tactcad export`` of a die's design file: the die command's files into ``--out``."""
+    for option in ("scene", "only", "part"):
+        if getattr(args, option, None):
+            raise DesignError(f"--{option}", getattr(args, option), "left out for a die",
+                              f"{design.name} is a silicon die's design: its export is whole")
+    return run(_die_args(design, args, Path(args.out)))
+
+
+def check_die(design: Path, args: argparse.Namespace) -> int:
+    """``tactcad check`` of a die's design file: its export in ``--out`` (made there first when
+    that folder holds no whole export of this die; a temporary folder without ``--out``) read
+    back:
+    the masks against the process's rules and the plan, the mount's solids, the drawing, and
+    the record's plan against the design's.
+
+    Returns:
+        0, or 1 when a check fails.
+    """
+    import json as json_module
+    import tempfile
+
+    from tactcad.checks.check_result import CheckResult, counts_text, status_counts
+    from tactcad.checks.die_mount_fit import mount_checks
+    from tactcad.checks.gds_drc import gds_checks
+    from tactcad.checks.sheet_overlap import sheet_file_results
+    from tactcad.commands.design import jaw_of
+    from tactcad.design.die_mount import die_mount
+    from tactcad.design.mems_die import die_plan
+    from tactcad.export.die_scene import mount_solids
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.studies.inverse_design import Targets
+
+    if getattr(args, "scene", None):
+        raise DesignError("--scene", args.scene, "left out for a die",
+                          f"{design.name} is a silicon die's design: it has no scenes to choose")
+    asked = die_asked(_die_args(design, args, Path(".")))
+    name = _name(asked["name"])
+    jaw, jaw_file = jaw_of(asked["jaw"])
+    plan = die_plan(Targets(asked["kr_over_km"], tuple(asked["kobj_range"]),
+                            asked["full_scale_force"]), jaw_room(jaw, jaw_file),
+                    columns=asked["columns"], pitch_um=asked["pitch_um"], name=name)
+    with tempfile.TemporaryDirectory(prefix="tactcad-die-check-") as temp:
+        out = Path(args.out) if args.out else Path(temp)
+        files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
+        record = _record_of(files["record"])
+        current = (record is not None and all(p.is_file() for p in files.values())
+                   and record.get("die") == json_module.loads(dumps(plan.as_json())))
+        if not current:  # as an array's check does: exported there first
+            quiet = argparse.Namespace(**{**vars(args), "json": True})
+            with contextlib.redirect_stdout(io.StringIO()):
+                run(_die_args(design, quiet, out))
+            record = _record_of(files["record"])
+        missing = [p.name for p in files.values() if not p.is_file()]
+        mount = die_mount(plan, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
+        checks = [CheckResult("die_files", str(out), not missing,
+                              f"missing: {', '.join(missing)}" if missing
+                              else f"{len(files)} files of {name}")]
+        if not missing:
+            same = record.get("die") == json_module.loads(dumps(plan.as_json()))
+            checks.append(CheckResult("die_record", files["record"].name, same,
+                                      "the plan the design makes" if same else
+                                      "another plan than the design makes: export again"))
+            checks += (gds_checks(files["masks"], plan)
+                       + mount_checks(mount_solids(plan, mount), mount, f"{name}_posts")
+                       + sheet_file_results(files["drawing"]))
+        counts = status_counts(checks)
+        if args.json:
+            print(dumps({"design": str(design), "out": str(out),
+                         "checks": [{"check": c.check, "subject": c.subject,
+                                     "status": c.status, "detail": c.detail} for c in checks],
+                         "counts": counts}, indent=1))
+        else:
+            shown = [c for c in checks if not (args.failures_only and c.status == "pass")]
+            print("\n".join([f"checking the die {name} in {out}", *[c.line() for c in shown],
+                             counts_text(counts)]))
+    return 1 if counts["failed"] else 0
+
+
+def _record_of(path: Path) -> dict | None:
+    import json as json_module
+
+    try:
+        return json_module.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None

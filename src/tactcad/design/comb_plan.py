@@ -43,6 +43,7 @@ from tactcad.design.tolerances import TolerancesSection, check_tolerances, toler
 from tactcad.errors import DesignError
 from tactcad.partlib.array.comb_sheet import CombGeometry, CombSection, CombSheet
 from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN, NOTCH_RADIUS_MAX_MM,
+                                           WEB_TOLERANCE_RANGE_MM,
                                            WEB_RANGE_MM, ElementGeometry)
 from tactcad.partlib.array.prism import Hole
 from tactcad.vocabulary.material_library import material_fields, strength_settings
@@ -71,7 +72,7 @@ class CombElementSection(Section):
     tip_height_mm: number(0.3, 5.0)
     arm_height_mm: number(0.0, 5.0, lo_open=True)
     inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
-    web_tolerance_mm: number(0.0, 0.25) = None  # or [tolerances] web_thickness_mm
+    web_tolerance_mm: number(*WEB_TOLERANCE_RANGE_MM) = None  # or [tolerances] web_thickness_mm
     #: how the row sheets are cut (:data:`tactcad.vocabulary.process.CUT_PROCESSES`); wire-edm
     #: when left out. Its slot, inside radius, thinnest web and tolerance shape the rows.
     process: choice(CUT_PROCESSES, "the processes that cut a part from sheet") = None

@@ -20,6 +20,7 @@ from tactcad.design.array_plan import (ARM_RANGE_MM, MAX_COLUMNS, MIN_ARM_STEP_M
                                   MIN_TIP_GAP_MM, MIN_TIP_WALL_MM, NOTCH_RADIUS_MAX_MM,
                                   WEB_RANGE_MM, default_design_data)
 from tactcad.design.rig_plan import default_rigs_data
+from tactcad.partlib.array.element import WEB_TOLERANCE_RANGE_MM
 from tactcad.partlib.bracket import EAR_HEAD_CLEARANCE_MM
 from tactcad.vocabulary.process import WIRE_TOLERANCE_MM
 from tactcad.vocabulary.standards import BOLTS, BoltSpec
@@ -130,7 +131,7 @@ def draw_out_of_domain(pick: Pick, choose: Choose) -> tuple[str, Any]:
         ("element.tip_height_mm", 0.3, 5.0), ("sheet.thickness_mm", 0.5, 10.0),
         ("element.overall_length_mm", 10.0, 60.0), ("clamp.plate_thickness_mm", 1.0, 10.0),
         ("clamp.arm_clearance_mm", 0.2, 3.0), ("edm.wire_diameter_mm", 0.02, 0.35),
-        ("material.youngs_modulus_MPa", 1e3, 1e6), ("element.web_tolerance_mm", 0.0, 0.1)))
+        ("material.youngs_modulus_MPa", 1e3, 1e6), ("element.web_tolerance_mm", *WEB_TOLERANCE_RANGE_MM)))
     kind = choose(("below", "above", "nan", "inf", "bool", "text"))
     value: Any = {"below": lo - pick(1e-6, 100.0), "above": hi + pick(1e-6, 100.0),
                   "nan": math.nan, "inf": -math.inf, "bool": True, "text": f"{lo}"}[kind]

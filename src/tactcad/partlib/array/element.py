@@ -36,6 +36,9 @@ if TYPE_CHECKING:
 # sheet 0.5-10 mm). The plan refuses designs outside it rather than
 # extrapolate silently.
 WEB_RANGE_MM = (0.05, 1.0)
+#: The web's +/- tolerance a design file may state (mm): the finest a grinder holds to a
+#: laser cut's 0.1 mm and more (a process finer than the stated one is asked for).
+WEB_TOLERANCE_RANGE_MM = (0.0, 0.25)
 ARM_RANGE_MM = (2.0, 20.0)
 NOTCH_RADIUS_MAX_MM = 2.0
 #: Why a value must lie in the design domain (the refusal's reason).
@@ -53,7 +56,7 @@ class ElementSection(Section):
     base_height_mm: number(0.0, 30.0, lo_open=True)
     overall_length_mm: number(10.0, 60.0)
     inside_corner_radius_mm: number(0.0, 1.0, lo_open=True)
-    web_tolerance_mm: number(0.0, 0.25) = None  # or [tolerances] web_thickness_mm
+    web_tolerance_mm: number(*WEB_TOLERANCE_RANGE_MM) = None  # or [tolerances] web_thickness_mm
     #: how the elements are cut (:data:`tactcad.vocabulary.process.CUT_PROCESSES`); wire-edm when left out
     process: choice(CUT_PROCESSES, "the processes that cut a part from sheet") = None
 
