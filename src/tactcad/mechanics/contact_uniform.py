@@ -137,16 +137,37 @@ def uniform_compliance(punches: Sequence[Punch], cell_mm: float) -> np.ndarray:
     incidence = np.zeros((len(owner), len(punches)))
     incidence[np.arange(len(owner)), owner] = 1.0
     # w = (1 - ν²) p I / (π E): the stiffness is π E/(1 - ν²) Σ area p per unit travel
-    stiffness = np.pi * incidence.T @ (area[:, None] * _solve(a, incidence))
+    stiffness = np.pi * incidence.T @ (area[:, None] * _solve(a, incidence, _mirrors(grids)))
     return np.linalg.inv(0.5 * (stiffness + stiffness.T))
 
 
-def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a⁻¹ b. Cells of one size everywhere make ``a`` symmetric (each entry depends on the
-    offset only) and positive definite (the 1/r kernel is): Cholesky, half the work of LU;
-    else, or if Cholesky finds it not positive definite, LU."""
+def _mirrors(grids: Sequence[_Grid]) -> list[np.ndarray]:
+    """The cells' mirror images about the layout's centre lines
+    (:func:`tactcad.mechanics.contact.mirror_maps`), in the order of ``grids``' cells."""
+    from types import SimpleNamespace
+
+    from tactcad.mechanics.contact import mirror_maps
+
+    centres, half = [], []
+    for g in grids:
+        ix, iz = g.index()
+        centres.append(np.column_stack([g.x0 + ix * g.dx, g.z0 + iz * g.dz]))
+        half.append(np.tile([g.dx / 2, g.dz / 2], (g.count, 1)))
+    return mirror_maps(SimpleNamespace(centres=np.vstack(centres), half=np.vstack(half)))
+
+
+def _solve(a: np.ndarray, b: np.ndarray, maps: Sequence[np.ndarray] = ()) -> np.ndarray:
+    """a⁻¹ b. A layout with mirror symmetry splits into a system per symmetry class
+    (:func:`tactcad.mechanics.contact.solve_by_symmetry`: for two mirrors about an eighth
+    of the work). Else cells of one size everywhere make ``a`` symmetric (each entry
+    depends on the offset only) and positive definite (the 1/r kernel is): Cholesky, half
+    the work of LU; else, or if Cholesky finds it not positive definite, LU."""
     import scipy.linalg
 
+    if maps:
+        from tactcad.mechanics.contact import solve_by_symmetry
+
+        return solve_by_symmetry(a, b, list(maps))
     if np.allclose(a, a.T, rtol=1e-12, atol=0.0):
         try:
             return scipy.linalg.cho_solve(scipy.linalg.cho_factor(a, check_finite=False), b,
