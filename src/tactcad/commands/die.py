@@ -71,6 +71,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="also solve each row's beam in CalculiX with silicon's anisotropic "
                         "stiffness (C3D8I, about 1 s a beam) and give the closed form's error "
                         "in K and in the first resonance against it")
+    p.add_argument("--fem3d", action="store_true",
+                   help="solve each row's beam at the die's fem3d level (scikit-fem, silicon's "
+                        "anisotropic stiffness, triquadratic hexahedra, two meshes extrapolated; "
+                        "about 30 s) and state the closed form's K and f1 error against it")
     p.add_argument("--out", default="die", metavar="DIR",
                    help="folder for the masks and the record (default ./die)")
     add_output_args(p, "print the plan and the checks as one JSON object")
@@ -141,7 +145,8 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.export.gds_masks import write_die_gds, write_mask_picture, write_wafer_gds
     from tactcad.export.traveller import write_traveller
     from tactcad.in_use.die_budget import die_budget
-    from tactcad.mechanics.die_dynamics import calculix_beam_check, die_modes
+    from tactcad.mechanics.die_dynamics import (calculix_beam_check, die_modes,
+                                                first_resonance_Hz)
     from tactcad.mechanics.piezoresistor import die_readout
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
@@ -180,12 +185,19 @@ def run(args: argparse.Namespace) -> int:
         budget = die_budget(plan, readout)
         fe = [calculix_beam_check(plan, b) for b in plan.beams[:: plan.columns]] \
             if args.fe_check else []
+        fem3d = [die_beam_fem3d_kept(plan, b) for b in plan.beams[:: plan.columns]] \
+            if getattr(args, "fem3d", False) else []
         record = {"die": plan.as_json(), "readout": readout, "jaw": room.label,
                   "mount": mount.as_json(),
                   "resonance_Hz": {r: {"rayleigh": m.rayleigh_Hz, "exact": m.exact_Hz,
                                        "rayleigh_error_rel": m.rayleigh_error_rel}
                                    for r, m in modes.items()},
                   "fe_check": [c.as_json() for c in fe],
+                  "fem3d": [dict(r.as_json(), K_closed_form_error_rel=_closed_k(plan, r)
+                                 / r.k_N_per_mm - 1.0,
+                                 f1_closed_form_error_rel=first_resonance_Hz(
+                                     plan, _beam_of(plan, r.role)) / r.f1_Hz - 1.0)
+                            for r in fem3d],
                   "kobj_budget": budget.as_json(),
                   "wafer_dies": dies, "files": {k: p.name for k, p in files.items()},
                   "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
@@ -200,12 +212,13 @@ def run(args: argparse.Namespace) -> int:
         print(dumps(record, indent=1))
     else:
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
-                     modes, fe, budget, mount))
+                     modes, fe, budget, mount, record["fem3d"]))
     return 1 if counts["failed"] else 0
 
 
 def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts: str,
-           modes: dict | None = None, fe: list | None = None, budget=None, mount=None) -> str:
+           modes: dict | None = None, fe: list | None = None, budget=None, mount=None,
+           fem3d: list | None = None) -> str:
     """The die, its beams, their read-out, resonances and FE check, and the checks as text."""
     d = plan
     ref, meas = d.beams[0], d.beams[d.columns]
@@ -234,6 +247,12 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
         lines.append(f"first resonance, {role} beam with its post: {m.rayleigh_Hz / 1e3:.4g} kHz "
                      f"(Rayleigh; the exact Euler-Bernoulli root {m.exact_Hz / 1e3:.4g} kHz, "
                      f"{100 * m.rayleigh_error_rel:+.2f} %)")
+    for r in fem3d or []:
+        lines.append(f"fem3d (scikit-fem, anisotropic, triquadratic hexahedra), {r['role']} beam: "
+                     f"K {r['K_N_per_mm']:.4g} N/mm (+-{100 * r['K_error_rel']:.2g} %; closed "
+                     f"form {100 * r['K_closed_form_error_rel']:+.2f} %), f1 "
+                     f"{r['f1_Hz'] / 1e3:.4g} kHz (+-{100 * r['f1_error_rel']:.2g} %; closed "
+                     f"form {100 * r['f1_closed_form_error_rel']:+.2f} %), {r['wall_time_s']:.1f} s")
     for c in fe or []:
         lines.append(f"CalculiX, anisotropic C3D8I, {c.role} beam: K {c.k_fe_N_per_mm:.4g} N/mm "
                      f"(closed form {100 * c.k_error_rel:+.2f} %), f1 {c.f1_fe_Hz / 1e3:.4g} kHz "
@@ -277,6 +296,7 @@ def die_design_of(args: argparse.Namespace) -> Path | None:
 def _die_args(design: Path, args: argparse.Namespace, out: Path) -> argparse.Namespace:
     return argparse.Namespace(design=str(design), overrides=getattr(args, "overrides", []),
                               out=str(out), json=getattr(args, "json", False), fe_check=False,
+                              fem3d=False,
                               **{k: None for k in (*TARGET_OPTIONS, *DEFAULTS)})
 
 
@@ -366,3 +386,21 @@ def _record_of(path: Path) -> dict | None:
         return json_module.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
+
+
+def die_beam_fem3d_kept(plan, beam):
+    """:func:`tactcad.mechanics.die_fem3d.die_beam_fem3d`, kept in the result store for the
+    same plan and beam (a second run of the same die solves nothing)."""
+    from tactcad.mechanics.die_fem3d import die_beam_fem3d
+    from tactcad.store import kept_result
+
+    return kept_result("die beam fem3d", lambda: die_beam_fem3d(plan, beam),
+                       dumps(plan.as_json()), beam)
+
+
+def _beam_of(plan, role: str):
+    return next(b for b in plan.beams if b.role == role)
+
+
+def _closed_k(plan, result) -> float:
+    return plan.k_r_N_per_mm if result.role == "reference" else plan.k_m_N_per_mm

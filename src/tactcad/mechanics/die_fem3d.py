@@ -1,0 +1,184 @@
+"""A die's beam in 3D finite elements with silicon's full anisotropic stiffness
+(scikit-fem): the die's fem3d level, a model of another kind than the closed form and than
+CalculiX's brick (:func:`tactcad.mechanics.die_dynamics.calculix_beam_check`).
+
+The beam, root to the post's far edge, is meshed with triquadratic hexahedra (27 nodes,
+scikit-fem's ``ElementHex2``: bending without locking through a few layers), node planes at
+the post's centre and at its footprint's edges. The stiffness is assembled from the 4th-order
+tensor C_ijkl of silicon turned into the beam's frame (<110> along the beam on a (100)
+wafer, :meth:`tactcad.vocabulary.crystal.CubicElasticity.in_frame`), K_ia,jb =
+sum_q w g_ik C_akbl g_jl, per chunk of cells (no Python call per pair of basis functions).
+The root face is clamped. K: a uniform shear traction of total F over the cross-section at
+the post's centre (an internal plane of facets), K = F^2 / (f . u), f the consistent load
+vector, so f . u / F is the section's mean deflection. f1: the lowest eigenvalue of
+K u = omega^2 M u, M the silicon's consistent mass plus the post's as a surface density over
+its footprint on the top face (scipy ``eigsh``, shift-invert at 0). Each at two meshes,
+the second twice as fine every way, Richardson-extrapolated (order 4 for the energy of
+quadratic elements); the error estimate is the extrapolation's change.
+
+Units: mm, N, MPa, tonne/mm^3 (so N/mm over tonne is 1/s^2), Hz.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+#: Elements along, across, through the beam on the coarser mesh (the finer doubles each).
+DIVISIONS = (12, 2, 2)
+#: The convergence order of K and f1 Richardson assumes (quadratic elements, energy norm
+#: squared: h^4).
+ORDER = 4.0
+#: Voigt index of each pair of tensor indices (xx, yy, zz, yz, zx, xy).
+VOIGT = ((0, 5, 4), (5, 1, 3), (4, 3, 2))
+
+
+@dataclass(frozen=True)
+class DieBeamFem:
+    """One beam at the die's fem3d level.
+
+    Attributes:
+        role: the beam's row ("reference", "measuring").
+        k_N_per_mm: K, extrapolated. f1_Hz: the first resonance with its post, extrapolated.
+        k_error_rel, f1_error_rel: each extrapolation's change from the finer mesh.
+        dofs: the finer mesh's degrees of freedom. wall_time_s: both meshes.
+    """
+
+    role: str
+    k_N_per_mm: float
+    f1_Hz: float
+    k_error_rel: float
+    f1_error_rel: float
+    dofs: int
+    wall_time_s: float
+
+    def as_json(self) -> dict:
+        return {"role": self.role, "K_N_per_mm": self.k_N_per_mm, "f1_Hz": self.f1_Hz,
+                "K_error_rel": self.k_error_rel, "f1_error_rel": self.f1_error_rel,
+                "dofs": self.dofs, "wall_time_s": self.wall_time_s}
+
+
+def stiffness_tensor(voigt: np.ndarray) -> np.ndarray:
+    """C_ijkl (3, 3, 3, 3) of a 6 x 6 Voigt stiffness (MPa; engineering shear strains)."""
+    c = np.empty((3, 3, 3, 3))
+    for i in range(3):
+        for j in range(3):
+            for k in range(3):
+                for m in range(3):
+                    c[i, j, k, m] = voigt[VOIGT[i][j], VOIGT[k][m]]
+    return c
+
+
+def assemble_anisotropic(sb, c: np.ndarray, chunk: int = 200):
+    """The stiffness matrix of linear elasticity with the tensor ``c`` (MPa) on the vector
+    space over the scalar basis ``sb`` (interleaved numbering ``3 s + a``, scikit-fem's
+    ``ElementVector``'s), ``scipy.sparse.csr_matrix``, N/mm."""
+    import scipy.sparse as sp
+
+    nbf = sb.Nbfun
+    grads = np.array([sb.basis[i][0].grad for i in range(nbf)])  # (nbf, 3, nel, nq)
+    weights = sb.dx
+    edofs = sb.element_dofs
+    nel, n = edofs.shape[1], 3 * sb.N
+    rows, cols, vals = [], [], []
+    for e0 in range(0, nel, chunk):
+        sl = slice(e0, min(nel, e0 + chunk))
+        g = grads[:, :, sl, :]
+        # K[e, i, a, j, b] = sum_q w g_ik C_akbl g_jl
+        k = np.einsum("ikeq,akbl,jleq,eq->eiajb", g, c, g, weights[sl], optimize=True)
+        gd = (3 * edofs[:, sl].T[:, :, None] + np.arange(3)[None, None, :]).reshape(-1, 3 * nbf)
+        rows.append(np.broadcast_to(gd[:, :, None], k.shape[:1] + (3 * nbf, 3 * nbf)).ravel())
+        cols.append(np.broadcast_to(gd[:, None, :], k.shape[:1] + (3 * nbf, 3 * nbf)).ravel())
+        vals.append(k.reshape(-1))
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(n, n))
+
+
+def _planes(lo: float, hi: float, cuts: list[float], count: int) -> np.ndarray:
+    """About ``count`` divisions of [lo, hi] with node planes at every cut inside it."""
+    edges = sorted({lo, hi, *[c for c in cuts if lo < c < hi]})
+    out = [lo]
+    for a, b in zip(edges, edges[1:]):
+        parts = max(1, round(count * (b - a) / (hi - lo)))
+        out += list(np.linspace(a, b, parts + 1)[1:])
+    return np.array(out)
+
+
+def _solve(plan, beam, divisions: tuple[int, int, int]) -> tuple[float, float, int]:
+    """(K N/mm, f1 Hz, dofs) of ``beam`` on one mesh."""
+    from scipy.sparse.linalg import eigsh, spsolve
+    from skfem import (Basis, BilinearForm, ElementHex2, ElementVector, FacetBasis,
+                       LinearForm, MeshHex, condense)
+    from skfem.helpers import dot
+
+    from tactcad.mechanics.die_dynamics import POST_DENSITY_KG_M3, SILICON_DENSITY_KG_M3
+    from tactcad.vocabulary.crystal import SILICON
+
+    at = beam.length_um * 1e-3  # the post's centre: the force
+    half_post = plan.post_um * 1e-3 / 2
+    length = at + half_post
+    width, thick = beam.width_um * 1e-3, beam.thickness_um * 1e-3
+    post_y = min(half_post, width / 2)
+    nx, ny, nz = divisions
+    mesh = MeshHex.init_tensor(_planes(0.0, length, [at - half_post, at], nx),
+                               _planes(-width / 2, width / 2, [-post_y, post_y], ny),
+                               np.linspace(0.0, thick, nz + 1))
+    scalar = Basis(mesh, ElementHex2())
+    basis = Basis(mesh, ElementVector(ElementHex2()))
+    c = stiffness_tensor(SILICON.in_frame((1.0, 1.0, 0.0), (-1.0, 1.0, 0.0)))
+    k = assemble_anisotropic(scalar, c)
+    clamped = basis.get_dofs(lambda x: np.isclose(x[0], 0.0)).all()
+    section = FacetBasis(mesh, basis.elem,
+                         facets=mesh.facets_satisfying(lambda x: np.isclose(x[0], at)))
+    area = width * thick
+
+    @LinearForm
+    def shear(v, w):  # a unit force down (-z), spread evenly over the section
+        return -v[2] / area
+
+    f = shear.assemble(section)
+    u = np.zeros(basis.N)
+    u[np.setdiff1d(np.arange(basis.N), clamped)] = spsolve(*condense(k, f, D=clamped,
+                                                                      expand=False)[:2])
+    k_N_per_mm = 1.0 / float(f @ u)
+    rho = SILICON_DENSITY_KG_M3 * 1e-12  # tonne/mm^3
+    post_t = POST_DENSITY_KG_M3 * plan.post_um ** 2 * plan.post_height_um * 1e-18 * 1e-3
+
+    @BilinearForm
+    def mass(u_, v, w):
+        return w.density * dot(u_, v)
+
+    m = mass.assemble(basis, density=rho)
+    top = FacetBasis(mesh, basis.elem, facets=mesh.facets_satisfying(
+        lambda x: np.isclose(x[2], thick) & (np.abs(x[0] - at) <= half_post + 1e-12)
+        & (np.abs(x[1]) <= post_y + 1e-12)))
+    m = m + mass.assemble(top, density=post_t / (2 * half_post * 2 * post_y))
+    kk, mm = condense(k, m, D=clamped, expand=False)
+    lam = eigsh(kk, k=1, M=mm, sigma=0.0, which="LM", return_eigenvectors=False)
+    return k_N_per_mm, math.sqrt(float(lam[0])) / (2 * math.pi), basis.N
+
+
+def die_beam_fem3d(plan, beam, divisions: tuple[int, int, int] = DIVISIONS) -> DieBeamFem:
+    """``beam`` of ``plan`` at two meshes (``divisions`` and twice as fine), extrapolated
+    (module doc).
+
+    Raises:
+        ValueError: a division below 1.
+    """
+    if min(divisions) < 1:
+        raise ValueError(f"divisions {divisions!r}: each at least 1")
+    t0 = time.perf_counter()
+    coarse = _solve(plan, beam, divisions)
+    fine = _solve(plan, beam, tuple(2 * d for d in divisions))
+    r = 2.0 ** ORDER
+
+    def extrapolated(a: float, b: float) -> tuple[float, float]:
+        best = b + (b - a) / (r - 1.0)
+        return best, abs(best / b - 1.0)
+
+    k, k_err = extrapolated(coarse[0], fine[0])
+    f1, f_err = extrapolated(coarse[1], fine[1])
+    return DieBeamFem(beam.role, k, f1, k_err, f_err, fine[2], time.perf_counter() - t0)
