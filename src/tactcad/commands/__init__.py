@@ -23,16 +23,21 @@ from tactcad.commands.notices import print_heads
 SET_EXAMPLE = "element.web_thickness_mm=0.3"
 
 
-def add_design_arg(p: argparse.ArgumentParser) -> None:
-    """The ``--design FILE`` and ``--set KEY=VALUE`` options every command that reads a design shares."""
-    p.add_argument("--design", metavar="FILE", default=None,
-                   help="design file (TOML); default: the one design file of the working "
-                        "folder (a project made by tactcad new), else the shipped example "
-                        "macro_array (the paper's 2 x 5 array)")
+DESIGN_HELP = ("design file (TOML); default: the one design file of the working folder (a "
+               "project made by tactcad new), else the shipped example macro_array (the "
+               "paper's 2 x 5 array)")
+SET_HELP = ("override one value of the design file (repeatable): a dotted key and a TOML value, "
+            f"e.g. --set {SET_EXAMPLE} or --set 'arms.lengths_mm=[4,5,6,7,8,4,5,6,7,8]'; "
+            "checked like the file")
+
+
+def add_design_arg(p: argparse.ArgumentParser, design_help: str = DESIGN_HELP,
+                   set_help: str = SET_HELP) -> None:
+    """The ``--design FILE`` and ``--set KEY=VALUE`` options every command that reads a
+    design shares (a command whose file is another kind says so in its own help texts)."""
+    p.add_argument("--design", metavar="FILE", default=None, help=design_help)
     p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
-                   help="override one value of the design file (repeatable): a dotted key and a "
-                        f"TOML value, e.g. --set {SET_EXAMPLE} or "
-                        "--set 'arms.lengths_mm=[4,5,6,7,8,4,5,6,7,8]'; checked like the file")
+                   help=set_help)
 
 
 def add_output_args(p: argparse.ArgumentParser, json_help: str = "print one JSON object") -> None:

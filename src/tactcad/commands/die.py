@@ -12,7 +12,7 @@ import os
 import shutil
 from pathlib import Path
 
-from tactcad.commands import add_output_args
+from tactcad.commands import add_design_arg, add_output_args
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number
 from tactcad.design.mems_die import DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM
@@ -42,13 +42,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "process's rules and the plan, and checks the mount's fit. Exit 1 when a "
                     "check fails, 2 when the targets cannot be met (with what binds and a "
                     "pasteable alternative). Units: um, N/mm, N, MPa.")
-    p.add_argument("--design", metavar="FILE", default=None,
-                   help="a die design file (a [die] table: jaw, kr_over_km, "
-                        "kobj_range_N_per_mm, full_scale_force_N, columns, pitch_um, name; "
-                        "`tactcad design --jaw 5` writes one); in place of the options below")
-    p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
-                   help="with --design: override one value of the die file (repeatable), e.g. "
-                        "--set die.full_scale_force_N=0.03; checked like the file")
+    add_design_arg(p, "a die design file (a [die] table: jaw, kr_over_km, kobj_range_N_per_mm, "
+                      "full_scale_force_N, columns, pitch_um, name; `tactcad design --jaw 5` "
+                      "writes one); in place of the options below",
+                   "with --design: override one value of the die file (repeatable), e.g. --set "
+                   "die.full_scale_force_N=0.03; checked like the file")
     p.add_argument("--jaw", metavar="CLASS|FILE",
                    help="the jaw the die seats in: a trocar class (5, 10) or a TOML file with "
                         "a [grasper_jaw] table (its pocket bounds the die)")
