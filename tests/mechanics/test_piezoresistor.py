@@ -126,3 +126,31 @@ def test_harleys_stiffness_carriers_and_hooge_noise_by_the_same_equations():
     piezod = math.sqrt(1e-5 * h["bias_V"] ** 2 / (4 * carriers) * math.log(1000 / 10))
     assert hooge_noise_V(1e-5, h["bias_V"] / 2, carriers, 10, 1000) == pytest.approx(piezod,
                                                                                    rel=1e-12)
+
+
+def test_the_sensitivitys_temperature_coefficient_is_richters_slope():
+    """Lightly doped, P(N, T) is Theta^-0.9: d ln P / dT = -0.9 / 300 K at 300 K; doping
+    flattens it (Richter et al. 2008, Fig. 4's trend)."""
+    from tactcad.mechanics.piezoresistor import sensitivity_temperature_coefficient_per_K as tcs
+
+    assert tcs(1e14) == pytest.approx(-0.9 / 300, rel=1e-3)
+    assert tcs(1e14) < tcs(1e19) < tcs(1e20) < 0
+
+
+def test_the_dies_readout_states_its_sensitivitys_drift_and_self_heating():
+    from tactcad.design.mems_die import die_plan
+    from tactcad.mechanics.piezoresistor import SILICON_CONDUCTIVITY_W_PER_MK, die_readout
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.studies.inverse_design import Targets
+
+    plan = die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"))
+    r = die_readout(plan, bias_V=2.0)
+    beam = plan.beams[0]
+    power = 1.0 / r["resistance_ohm"]  # (2 V / 2)^2 / R
+    expected = power * plan.resistor_length_um * 1e-6 / (
+        2 * SILICON_CONDUCTIVITY_W_PER_MK * beam.width_um * 1e-6 * beam.thickness_um * 1e-6)
+    assert r["self_heating_K"] == pytest.approx(expected, rel=1e-12)
+    assert -0.004 < r["sensitivity_tc_per_K"] < -0.001
+    assert any("self-heating" in a for a in r["assumptions"])
+    doubled = die_readout(plan, bias_V=4.0)  # heating goes as the bias squared
+    assert doubled["self_heating_K"] == pytest.approx(4 * r["self_heating_K"], rel=1e-12)

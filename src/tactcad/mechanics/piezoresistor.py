@@ -304,6 +304,31 @@ def die_resistance_ohm(plan) -> float:
             * die_squares(plan)["total"])
 
 
+#: Silicon's thermal conductivity at 300 K (W/(m K)): Glassbrenner and Slack, "Thermal
+#: conductivity of silicon and germanium from 3 K to the melting point", Phys. Rev. 134,
+#: A1058, 1964.
+SILICON_CONDUCTIVITY_W_PER_MK = 148.0
+
+
+def sensitivity_temperature_coefficient_per_K(acceptors_per_cm3: float,
+                                              temperature_K: float = 300.0) -> float:
+    """The piezoresistive sensitivity's temperature coefficient (1/K): d ln P(N, T) / dT
+    (:func:`piezoresistance_factor`, central difference over 1 K)."""
+    up = piezoresistance_factor(acceptors_per_cm3, temperature_K + 0.5)
+    down = piezoresistance_factor(acceptors_per_cm3, temperature_K - 0.5)
+    return math.log(up / down)
+
+
+def root_self_heating_K(power_W: float, resistor_length_um: float, width_um: float,
+                        thickness_um: float) -> float:
+    """The resistor's mean temperature rise (K) over the frame: its power, spread evenly
+    along its legs from the root, conducted along the beam into the frame,
+    dT = P l_r / (2 k w t) (one-dimensional conduction; the air's share left out, so an
+    upper bound; k: :data:`SILICON_CONDUCTIVITY_W_PER_MK`)."""
+    area_m2 = width_um * 1e-6 * thickness_um * 1e-6
+    return power_W * resistor_length_um * 1e-6 / (2 * SILICON_CONDUCTIVITY_W_PER_MK * area_m2)
+
+
 def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float = 100.0,
                 alpha_H: float = 1e-5, temperature_K: float = 300.0,
                 amplifier: Amplifier = INA103) -> dict:
@@ -313,7 +338,8 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
 
     Returns:
         ``{"resistance_ohm", "sheet_resistance_ohm_per_sq", "hole_mobility_cm2_per_Vs",
-        "carriers", "doping_factor", "strained_share", "noise_V": {"johnson", "hooge",
+        "carriers", "doping_factor", "strained_share", "sensitivity_tc_per_K",
+        "self_heating_K", "noise_V": {"johnson", "hooge",
         "amplifier", "total"}, "rows": {role: {
         "resistance_change_per_N", "sensitivity_V_per_N", "force_resolution_N",
         "full_scale_signal_V"}}, "assumptions": [...]}``. Noise: the bridge's Johnson noise
@@ -335,6 +361,10 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
     hooge = hooge_noise_V(alpha_H, bias_V / 2, carriers, f_lo_Hz, f_hi_Hz)
     amp = amplifier.noise_V(r, f_lo_Hz, f_hi_Hz)
     total = math.sqrt(johnson ** 2 + hooge ** 2 + amp ** 2)
+    tcs = sensitivity_temperature_coefficient_per_K(plan.acceptors_per_cm3, temperature_K)
+    # the quarter bridge's active arm carries half the bias: (V/2)^2 / R
+    heating = root_self_heating_K((bias_V / 2) ** 2 / r, plan.resistor_length_um,
+                                  plan.beams[0].width_um, plan.beams[0].thickness_um)
     rows = {}
     for beam in (plan.beams[0], plan.beams[plan.columns]):
         c = die_resistor(plan, beam, temperature_K)
@@ -349,6 +379,7 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
             "hole_mobility_cm2_per_Vs": hole_mobility_cm2_per_Vs(plan.acceptors_per_cm3),
             "carriers": carriers, "bias_V": bias_V, "band_Hz": [f_lo_Hz, f_hi_Hz],
             "doping_factor": c.doping_factor, "strained_share": c.strained_share,
+            "sensitivity_tc_per_K": tcs, "self_heating_K": heating,
             "noise_V": {"johnson": johnson, "hooge": hooge, "amplifier": amp, "total": total},
             "rows": rows,
             "assumptions": [
@@ -358,4 +389,10 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
                 "2008)",
                 f"gamma {c.strained_share:.3f}: the legs on the beam over the resistor's squares "
                 "(no contact resistance)",
-                f"amplifier {amplifier.name} ({amplifier.source})"]}
+                f"amplifier {amplifier.name} ({amplifier.source})",
+                f"sensitivity {100 * tcs:+.3f} %/K (d ln P / dT); alike in both rows, so it "
+                "cancels in R at one temperature",
+                f"self-heating {heating * 1e3:.3g} mK at the root ((V/2)^2 / R = "
+                f"{1e6 * (bias_V / 2) ** 2 / r:.3g} uW conducted along the beam to the frame, "
+                "k 148 W/(m K), Glassbrenner and Slack 1964): its P(N, T) change "
+                f"{100 * abs(tcs) * heating:.2g} %"]}
