@@ -13,7 +13,10 @@ show is made by tactcad itself, from the export folder given:
 * ``table2_models.png`` and ``evaluate_fig7_halfspace.png``: the plots of
   ``tactcad table2`` and ``tactcad evaluate`` on the paper's design;
 * ``grasper_open.png`` and ``grasper_closed.png``: the grasper example's scenes
-  ``grasper-open`` and ``grasper-closed`` rendered from the side (the export's renderer).
+  ``grasper-open`` and ``grasper-closed`` rendered from the side (the export's renderer);
+* ``die_in_jaw.png``, ``die_masks.png`` and ``die_drawing.png``: the silicon die example's
+  mount in the 5 mm jaw, its masks (KLayout) and its drawing (the SVG in headless
+  Chromium; skipped with a note where none is installed), from ``tactcad die``.
 
 The design chart (fem3d, minutes) and the diff overlay (two exports) are made
 by the commands their pages name.
@@ -38,6 +41,7 @@ PNG_DPI = 110
 GRASPER = ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
 #: Grasper scenes shown in the pages: picture name -> scene.
 GRASPER_SCENES = {"grasper_open.png": "grasper-open", "grasper_closed.png": "grasper-closed"}
+DIE = ROOT / "hardware" / "grasper_jaw_5mm_mems" / "grasper_jaw_5mm_mems.toml"
 
 
 def sheet_page(pdf: Path, drawing_number: str) -> int:
@@ -112,6 +116,31 @@ def grasper_scenes(images: Path) -> None:
                             azim=0.0)
 
 
+def die_pictures(images: Path) -> None:
+    """The die example's jaw scene, masks and drawing, from a ``tactcad die`` run."""
+    import subprocess
+    import tempfile
+
+    from tactcad.cli import main
+
+    with tempfile.TemporaryDirectory() as tmp:
+        with contextlib.redirect_stdout(io.StringIO()):
+            code = main(["die", "--design", str(DIE), "--out", tmp, "--quiet"])
+        if code != 0:
+            raise SystemExit(f"docs_images: tactcad die exited {code}")
+        name = DIE.stem
+        shutil.copyfile(Path(tmp) / f"{name}_in_jaw.png", images / "die_in_jaw.png")
+        shutil.copyfile(Path(tmp) / f"{name}_masks.png", images / "die_masks.png")
+        chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+        if chromium is None:
+            print("docs_images: no Chromium: die_drawing.png left as it was")
+            return
+        subprocess.run([chromium, "--headless", "--no-sandbox", "--disable-gpu",
+                        f"--screenshot={images / 'die_drawing.png'}", "--window-size=1600,1130",
+                        (Path(tmp) / f"{name}_drawing.svg").as_uri()],
+                       check=True, capture_output=True, timeout=120)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("exports", type=Path, help="an export folder of the paper's design")
@@ -126,6 +155,7 @@ def main(argv: list[str] | None = None) -> int:
         screenshot_review(args.exports, args.images)
     paper_plots(args.images)
     grasper_scenes(args.images)
+    die_pictures(args.images)
     print(f"docs_images: refreshed {args.images}")
     return 0
 
