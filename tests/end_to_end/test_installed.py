@@ -196,3 +196,22 @@ def test_a_non_paper_project_carries_nothing_of_the_paper(installed, tmp_path):
         hits += [f"{path.relative_to(project)}: {mark}" for mark in PAPER_MARKS
                  if re.search(rf"(?<![\w.]){re.escape(mark)}(?![\w])(?! ?%)", text)]
     assert hits == []
+
+
+def test_a_die_for_the_5mm_jaw_from_the_wheel_exports_and_passes_its_check(installed, tmp_path):
+    # issue: `design --jaw 5 ...` writes a die whose export (GDS, STEP, traveller, drawing)
+    # passes `check`, KLayout's read-back included, from the wheel in a clean folder
+    bin_, env, _, _ = installed
+    tactcad = str(bin_ / "tactcad")
+    _run([tactcad, "design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+          "--full-scale-force", "0.02", "--out", "insert", "--quiet"], tmp_path, env)
+    folder = tmp_path / "insert"
+    _run([tactcad, "export", "--quiet"], folder, env)
+    made = sorted(p.name for p in (folder / "exports").iterdir())
+    for name in ("insert.gds", "insert.step", "insert_traveller.md", "insert_drawing.svg",
+                 "insert_in_jaw.step", "insert_bom.csv"):
+        assert name in made, made
+    checked = _run([tactcad, "check", "--out", "exports", "--json"], folder, env)
+    record = json.loads(checked.stdout)
+    assert record["counts"]["failed"] == 0
+    assert any(c["check"] == "gds_drc" for c in record["checks"])
