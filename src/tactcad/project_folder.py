@@ -433,15 +433,8 @@ def new_project(folder: str | Path, *, example: str | None = None,
 def designs_in(folder: str | Path) -> list[Path]:
     """The design files of a project folder: its ``*.toml`` files with a
     ``[design]`` and an ``[arms]`` table (unreadable files are passed over)."""
-    found = []
-    for path in sorted(Path(folder).glob("*.toml")):
-        try:
-            tables = tomllib.loads(path.read_text(encoding="utf-8"))
-        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
-            continue
-        if isinstance(tables.get("design"), dict) and isinstance(tables.get("arms"), dict):
-            found.append(path)
-    return found
+    return _tomls_where(folder, lambda t: isinstance(t.get("design"), dict)
+                        and isinstance(t.get("arms"), dict))
 
 
 def die_designs_in(folder: str | Path) -> list[Path]:
@@ -449,13 +442,18 @@ def die_designs_in(folder: str | Path) -> list[Path]:
     table (:func:`tactcad.design.die_file.is_die_file`; unreadable files passed over)."""
     from tactcad.design.die_file import is_die_file
 
+    return _tomls_where(folder, is_die_file)
+
+
+def _tomls_where(folder: str | Path, holds) -> list[Path]:
+    """The ``*.toml`` files of ``folder`` whose tables ``holds`` (unreadable ones passed over)."""
     found = []
     for path in sorted(Path(folder).glob("*.toml")):
         try:
             tables = tomllib.loads(path.read_text(encoding="utf-8"))
         except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
             continue
-        if is_die_file(tables):
+        if holds(tables):
             found.append(path)
     return found
 
