@@ -462,3 +462,17 @@ def test_a_die_folders_export_passes_its_check_and_a_missing_file_is_made_again(
     # a folder missing a file is exported there again, not judged half
     again = run_cli("check", "--out", "exports", "--json", cwd=folder)
     assert again.returncode == 0 and (folder / "exports" / "insert_drawing.svg").is_file()
+
+
+def test_a_die_is_not_written_into_a_folder_of_other_files(tmp_path):
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "notes.txt").write_text("mine", encoding="utf-8")
+    r = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.02", "--out", str(tmp_path / "mine"), "--json")
+    assert r.returncode == 2 and json.loads(r.stdout)["error"]["field"] == "--out"
+    assert sorted(p.name for p in (tmp_path / "mine").iterdir()) == ["notes.txt"]
+    # its own folder is written again
+    assert run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                   "--full-scale-force", "0.02", "--out", str(tmp_path / "die")).returncode == 0
+    assert run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                   "--full-scale-force", "0.02", "--out", str(tmp_path / "die")).returncode == 0

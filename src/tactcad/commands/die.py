@@ -159,6 +159,7 @@ def run(args: argparse.Namespace) -> int:
     mount = die_mount(plan, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
     out = Path(args.out)
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
+    refuse_a_foreign_folder(out, files["record"])
     # every file made in a staging folder beside OUT, then moved in: a failed or
     # interrupted run leaves OUT's previous files as they were
     staging = staging_dir(out)
@@ -375,6 +376,21 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
             print("\n".join([f"checking the die {name} in {out}", *[c.line() for c in shown],
                              counts_text(counts)]))
     return 1 if counts["failed"] else 0
+
+
+def refuse_a_foreign_folder(out: Path, record: Path) -> None:
+    """A die's files go into an empty or new folder, or one holding this die's own record:
+    never beside another's files (an array's export, another die), a mixed set.
+
+    Raises:
+        DesignError: ``--out`` a file, or a folder with files but no record of this die.
+    """
+    if out.exists() and not out.is_dir():
+        raise DesignError("--out", str(out), "a folder", f"{out} is a file")
+    if out.is_dir() and any(out.iterdir()) and "die" not in (_record_of(record) or {}):
+        raise DesignError("--out", str(out), "an empty or new folder, or one holding this "
+                          f"die's {record.name}",
+                          f"{out} holds other files: the die's would be mixed with them")
 
 
 def _record_of(path: Path) -> dict | None:
