@@ -476,3 +476,12 @@ def test_a_die_is_not_written_into_a_folder_of_other_files(tmp_path):
                    "--full-scale-force", "0.02", "--out", str(tmp_path / "die")).returncode == 0
     assert run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
                    "--full-scale-force", "0.02", "--out", str(tmp_path / "die")).returncode == 0
+
+
+def test_the_strength_reason_sets_the_root_stress_against_the_sourced_mean(die):
+    measuring = die.beams[die.columns]
+    stress = die.stress_MPa_at_rating(measuring)
+    reason = die.reasons["strength"]
+    assert reason.startswith("undecided") and f"{stress:.4g} MPa" in reason
+    assert f"{100 * stress / md.BOSCH_MEAN_STRENGTH_MPA:.2g} %" in reason
+    assert "132(9)" in reason and "no failure probability" in reason

@@ -67,6 +67,13 @@ RESISTOR_FRACTION = 1.0 / 3.0
 #: (assumptions: a shallow boron implant after its anneal).
 JUNCTION_DEPTH_UM = 0.5
 IMPLANT_DOSE_PER_CM2 = 2e14
+#: The mean tensile strength of Bosch-process DRIE silicon bars (MPa), as etched, and its
+#: source (bars 120 x 5 x 5 um; 3.6 GPa after a wet etch of the surface residue). A
+#: reference figure for the root stress, not a design strength: without the Weibull
+#: modulus and stressed area of a die's own sidewalls it gives no failure probability.
+BOSCH_MEAN_STRENGTH_MPA = 1900.0
+BOSCH_STRENGTH_SOURCE = ("IEEJ Trans. Sensors and Micromachines 132(9), 2012, p. 320: bars "
+                         "120 x 5 x 5 um, mean 1.9 GPa as etched, 3.6 GPa after a wet etch")
 #: Columns per row, pitch along the die and the die's name when the caller states none
 #: (the design file's, the die command's and design's defaults).
 DEFAULT_COLUMNS, DEFAULT_PITCH_UM, DEFAULT_DIE_NAME = 5, 1000.0, "mems_die"
@@ -238,6 +245,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                               END_UM + (c + 0.5) * pitch_um, y0, sign, l, w, t))
     resistor = RESISTOR_FRACTION * l_r
     tol = DEVICE_TOLERANCE_UM / t
+    # the highest root stress at the rating (the longer, measuring beam's): 6 F L / (w t^2)
+    root_MPa = 6 * targets.full_scale_force_N * l_m * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
     align = BACKSIDE_ALIGNMENT_UM
     reasons = {
         "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
@@ -266,9 +275,11 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                   f"{END_UM:g} um ends",
         "post_um": f"a post {post:g} um square and {POST_HEIGHT_UM:g} um proud on each free "
                    "end (assumption: SU-8 or plated; it meets the tissue before the beam)",
-        "strength": "undecided: no sourced strength of DRIE-etched silicon (a Weibull "
-                    "characteristic strength and modulus with the stressed area) is in the "
-                    "library yet; the stress at the rating is reported",
+        "strength": (f"undecided: the root's {root_MPa:.4g} MPa at the rating is "
+                     f"{100 * root_MPa / BOSCH_MEAN_STRENGTH_MPA:.2g} % of the mean tensile "
+                     f"strength of Bosch-etched silicon bars ({BOSCH_STRENGTH_SOURCE}); no "
+                     "Weibull modulus of DRIE sidewalls with its stressed area is sourced, so "
+                     "no failure probability is given"),
     }
     return DiePlan(name, stack, 2, columns, pitch_um, length, width, FRAME_UM, END_UM, w,
                    l_r, l_m, post, POST_HEIGHT_UM, resistor, E,
