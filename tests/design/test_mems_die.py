@@ -455,9 +455,11 @@ def test_a_die_folders_export_passes_its_check_and_a_missing_file_is_made_again(
     assert run_cli("export", cwd=folder).returncode == 0
     names = sorted(p.name for p in (folder / "exports").iterdir())
     assert "insert.gds" in names and "insert_drawing.svg" in names and "insert_in_jaw.step" in names
-    checked = run_cli("check", "--out", "exports", "--json", cwd=folder)
+    checked = run_cli("check", "--out", "exports", "--json", "--junit", "report.xml", cwd=folder)
     assert checked.returncode == 0, checked.stdout
     assert json.loads(checked.stdout)["counts"]["failed"] == 0
+    report = (folder / "report.xml").read_text(encoding="utf-8")  # a lab's CI reads it
+    assert 'failures="0"' in report and "gds_drc" in report
     (folder / "exports" / "insert_drawing.svg").unlink()
     # a folder missing a file is exported there again, not judged half
     again = run_cli("check", "--out", "exports", "--json", cwd=folder)

@@ -335,6 +335,11 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
     if getattr(args, "scene", None):
         raise DesignError("--scene", args.scene, "left out for a die",
                           f"{design.name} is a silicon die's design: it has no scenes to choose")
+    junit = getattr(args, "junit", None)
+    if junit is not None:
+        from tactcad.commands.check import junit_target
+
+        junit_target(junit)  # a bad path is refused before the checks run
     asked = die_asked(_die_args(design, args, Path(".")))
     name = _name(asked["name"])
     jaw, jaw_file = jaw_of(asked["jaw"])
@@ -366,8 +371,12 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
                        + mount_checks(mount_solids(plan, mount), mount, f"{name}_posts")
                        + sheet_file_results(files["drawing"]))
         counts = status_counts(checks)
+        if junit is not None:  # one suite, the die's: for a lab's CI as an array's check gives
+            from tactcad.checks.junit import write_junit
+
+            write_junit(junit, [(name, checks)], [name])
         if args.json:
-            print(dumps({"design": str(design), "out": str(out),
+            print(dumps({"design": str(design), "out": str(out), "junit": junit,
                          "checks": [{"check": c.check, "subject": c.subject,
                                      "status": c.status, "detail": c.detail} for c in checks],
                          "counts": counts}, indent=1))
