@@ -43,12 +43,12 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.commands.die import check_die, die_design_of
     from tactcad.export.selection import ReportingParts
 
+    if args.junit is not None:
+        junit_target(args.junit)  # a bad path is refused before the checks run
     die = die_design_of(args)
     if die is not None:  # a silicon die's folder: its export read back
         return check_die(die, args)
     project = load_from_args(args)
-    if args.junit is not None:
-        junit_target(args.junit)  # a bad path is refused before the checks run
     report = progress_from_args(args)
     t0 = time.perf_counter()
 
