@@ -320,16 +320,16 @@ def test_an_offset_tip_on_an_uncoupled_sample_is_eq_1_with_the_offset():
     """The coplanarity model against eq. 1-3 by hand: with no coupling (Ĉ = I) a reference
     standing d proud meets the object first; at the reference force F_r, e_r = F_r/K_r,
     the body travel is e_r (K_r + K)/K - d and e_m = K travel / (K + K_m)."""
-    from tactcad.in_use.tissue_coupling import CoupledSample, Tissue
+    from tactcad.in_use.tissue_coupling import CoupledSample, Tissue, offset_ratio
 
     k = {1: 30.0, 2: 8.0}
     sample = CoupledSample((1, 2), np.eye(2), Tissue(), (2.0, 3.0))
     for d in (1e-3, -2e-3, 5e-3):
         e_r = 0.3 / 30.0
         e_m = 2.34 * (e_r * (30.0 + 2.34) / 2.34 - d) / (2.34 + 8.0)
-        got = kb.offset_ratio(sample, k, kb.Unit(1, 2), 2.34, 0.3, {1: d})
+        got = offset_ratio(sample, k, (2, 1), 2.34, 0.3, {1: d})
         assert got == pytest.approx(e_m / e_r, rel=1e-12)
-    assert kb.offset_ratio(sample, k, kb.Unit(1, 2), 2.34, 0.3, {}) == pytest.approx(
+    assert offset_ratio(sample, k, (2, 1), 2.34, 0.3, {}) == pytest.approx(
         (2.34 / (2.34 + 8.0)) / (2.34 / (2.34 + 30.0)), rel=1e-12)  # eq. 2
 
 

@@ -70,6 +70,15 @@ def register(subparsers) -> None:
                              "or .tdms")
     source.add_argument("--simulate", action="store_true",
                         help="simulate the rig for the design (K and gauge strain from the ladder)")
+    source.add_argument("--flat", metavar="FILE", default=None,
+                        help="a zeroing run instead: each element's deflection (um) at each step "
+                             "of a rigid flat pressed on every tip, CSV element,step,"
+                             "deflection_um; prints each tip's height about the array's mean tip "
+                             "and each unit's mismatch, which tactcad lumped --flat takes out of "
+                             "K_obj")
+    p.add_argument("--contact-um", type=number(0, 1e4, "um"), default=0.0, metavar="UM",
+                   help="with --flat: a step counts where every element's deflection exceeds "
+                        "this (um, default 0: every tip touching the flat)")
     p.add_argument("--encoding", metavar="NAME", default=None,
                    help="text encoding of a CSV or LVM --data file (default UTF-8, or what its "
                         "byte order mark says), e.g. cp1252 or latin-1")
@@ -127,8 +136,13 @@ def run(args: argparse.Namespace) -> int:
 
     if args.write_csv and not args.simulate:
         raise TactcadError("--write-csv = given without --simulate: allowed only with --simulate")
-    if (args.encoding or args.map) and not args.data:
-        raise TactcadError("--encoding/--map = given without --data: allowed only with --data")
+    if args.map and not args.data:
+        raise TactcadError("--map = given without --data: allowed only with --data")
+    if args.encoding and not (args.data or args.flat):
+        raise TactcadError("--encoding = given without --data or --flat: allowed only with a "
+                           "data file")
+    if args.contact_um and not args.flat:
+        raise TactcadError("--contact-um = given without --flat: allowed only with --flat")
     if args.plot and not (args.simulate or args.data):
         raise TactcadError("--plot = given without --data or --simulate: allowed only with readings")
     from tactcad.commands import project_from_args
@@ -136,6 +150,8 @@ def run(args: argparse.Namespace) -> int:
 
     project = project_from_args(args)
     plan = project.plan
+    if args.flat:
+        return _run_flat(args, plan)
     # the force gauge in series: the data file's (its k_sensor comment), else the rigs'
     k_sensor = project.rigs.part("force_gauge").stiffness_N_per_mm
     report: dict = {"design": plan.name, "model": args.model}
@@ -214,6 +230,57 @@ def run(args: argparse.Namespace) -> int:
         print(dumps(report))
         return 0
     _print_text(report)
+    return 0
+
+
+def flat_report(plan, path: str, encoding: str | None, contact_um: float) -> dict:
+    """What ``calibrate --flat`` reports: each tip's height about the array's mean tip
+    (:func:`tactcad.in_use.tip_zeroing.tip_heights_on_flat`) and each sensing unit's
+    mismatch (measuring - reference, um) with its uncertainty.
+
+    Raises:
+        tactcad.mechanics.calibration.CalibrationError: the file cannot be read (named).
+        tactcad.in_use.tip_zeroing.ZeroingError: its steps give no heights (named).
+    """
+    from tactcad.in_use.tissue_coupling import design_units, unit_label
+    from tactcad.in_use.tip_zeroing import tip_heights_on_flat
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.mechanics.measured_io import read_flat_readings
+
+    steps, info = read_flat_readings(path, encoding)
+    elements = tuple(slot.number for slot in plan.slots)
+    heights = tip_heights_on_flat(steps, elements, 1e-3 * contact_um)
+    units = []
+    for unit in design_units(plan, ladder_stiffness_by_element(plan)):
+        d, s = heights.mismatch_mm(unit)
+        units.append({"unit": unit_label(unit), "measuring": unit[0], "reference": unit[1],
+                      "mismatch_um": 1e3 * d, "sigma_um": 1e3 * s})
+    return {"design": plan.name, "input": f"flat:{path}",
+            "data_file": {**info.as_dict(), "read_as": info.describe()},
+            "tip_heights": heights.as_json(), "units": units,
+            "next": f"tactcad lumped --coupled-design DESIGN --unit M --r R --force-r F "
+                    f"--flat {path}: K_obj with these heights taken out"}
+
+
+def _run_flat(args: argparse.Namespace, plan) -> int:
+    from tactcad.commands.finite_json import dumps
+
+    report = flat_report(plan, args.flat, args.encoding, args.contact_um)
+    if args.json:
+        print(dumps(report))
+        return 0
+    tips = report["tip_heights"]
+    print(f"design {report['design']}, zeroing on a rigid flat: {args.flat} "
+          f"({report['data_file']['read_as']})")
+    print(f"steps used {tips['steps_used']}, skipped {tips['steps_skipped']} (a tip out of "
+          f"contact); flat flatness {tips['flatness_um']:g} um in the uncertainty")
+    print("  elem  height um (+ proud)   +-")
+    for e, h in tips["heights_um"].items():
+        print(f"  {int(e):4d} {h:12.3f} {tips['sigma_um'][e]:13.3f}")
+    print("  unit   mismatch um (measuring - reference)   +-")
+    for u in report["units"]:
+        print(f"  {u['unit']:>6} {u['mismatch_um']:12.3f} {u['sigma_um']:30.3f}")
+    print(f"next: {report['next']}")
     return 0
 
 

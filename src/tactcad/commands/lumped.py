@@ -45,20 +45,35 @@ def register(subparsers) -> None:
     p.add_argument("--unit", type=int, metavar="ELEMENT", default=None,
                    help="with --coupled-design: the measuring element (its row's reference "
                         "is the unit's other tip)")
+    p.add_argument("--flat", metavar="FILE", default=None,
+                   help="with --coupled-design: the tips' heights read on a rigid flat (the "
+                        "zeroing run of tactcad calibrate --flat, CSV element,step,"
+                        "deflection_um), taken out of the coupled R or K_obj; needs --force-r")
+    p.add_argument("--force-r", type=float, metavar="N", default=None,
+                   help="with --flat: the reference element's force at the reading (N, its "
+                        "calibrated K_r times its deflection): a height offset is a length, so "
+                        "its effect on R depends on how far the elements deflect")
     add_output_args(p, "print one JSON object instead of text")
     p.set_defaults(func=run)
 
 
 def coupled_form(design: str, unit: int | None, k_m: float, k_r: float, k_obj: float | None,
-                 r: float | None) -> dict:
+                 r: float | None, flat: str | None = None, force_r_N: float | None = None
+                 ) -> dict:
     """The coupled R (eq. 2 corrected) from K_obj, or the coupled K_obj (eq. 3 corrected) from
     R, for measuring element ``unit`` of ``design`` against its row's reference, every tip on
     one half-space (:mod:`tactcad.in_use.tissue_coupling`); K_m, K_r for the unit's two
-    elements, the others' K at the closed form.
+    elements, the others' K at the closed form. With ``flat`` (a zeroing run's file) the
+    tips' heights read on it are taken out as well, at the reference's force ``force_r_N``
+    (:func:`~tactcad.in_use.tissue_coupling.offset_object_stiffness`); the K_obj's spread
+    over the unit's mismatch uncertainty is reported beside it.
 
     Raises:
-        TactcadError: ``unit`` missing or no measuring element of the design (named).
+        TactcadError: ``unit`` missing or no measuring element of the design (named);
+            ``flat`` without ``force_r_N`` or a force not > 0.
         tactcad.mechanics.contact.ContactError: R outside the coupled model's range.
+        tactcad.mechanics.calibration.CalibrationError, tactcad.in_use.tip_zeroing.ZeroingError:
+            the flat's file cannot be read or gives no heights.
     """
     from tactcad.design.array_plan import load_design
     from tactcad.in_use.tissue_coupling import (coupled_object_stiffness, coupled_ratio, coupled_sample,
@@ -74,9 +89,43 @@ def coupled_form(design: str, unit: int | None, k_m: float, k_r: float, k_obj: f
     pair = (unit, pairs[unit])
     k = {**k, pair[0]: k_m, pair[1]: k_r}
     sample = coupled_sample(plan)
+    out: dict = {"unit": list(pair)}
     if r is None:
-        return {"unit": list(pair), "r_coupled": float(coupled_ratio(sample, k, pair, k_obj))}
-    return {"unit": list(pair), "k_obj_coupled_N_per_mm": coupled_object_stiffness(sample, k, pair, r)}
+        out["r_coupled"] = float(coupled_ratio(sample, k, pair, k_obj))
+    else:
+        out["k_obj_coupled_N_per_mm"] = coupled_object_stiffness(sample, k, pair, r)
+    if flat is not None:
+        out["zeroed"] = _zeroed_form(plan, sample, k, pair, k_obj, r, flat, force_r_N)
+    return out
+
+
+def _zeroed_form(plan, sample, k: dict, pair: tuple[int, int], k_obj: float | None,
+                 r: float | None, flat: str, force_r_N: float | None) -> dict:
+    """The coupled R or K_obj with the tips' heights of a zeroing run taken out, and the
+    K_obj (or R) at the unit's mismatch moved by +-1 sigma."""
+    from tactcad.in_use.tip_zeroing import tip_heights_on_flat
+    from tactcad.in_use.tissue_coupling import offset_object_stiffness, offset_ratio
+    from tactcad.mechanics.measured_io import read_flat_readings
+
+    if force_r_N is None or not (math.isfinite(force_r_N) and force_r_N > 0):
+        raise TactcadError(f"--force-r = {force_r_N!r}: allowed > 0 N with --flat (the "
+                           "reference element's force at the reading)")
+    steps, _ = read_flat_readings(flat)
+    heights = tip_heights_on_flat(steps, tuple(s.number for s in plan.slots))
+    mismatch, sigma = heights.mismatch_mm(pair)
+    at = dict(heights.heights_mm)
+
+    def value(shift_mm: float) -> float:
+        moved = {**at, pair[0]: at[pair[0]] + shift_mm}
+        if r is None:
+            return offset_ratio(sample, k, pair, float(k_obj), force_r_N, moved)
+        return offset_object_stiffness(sample, k, pair, r, force_r_N, moved)
+
+    key = "r_zeroed" if r is None else "k_obj_zeroed_N_per_mm"
+    spread = sorted((value(-sigma), value(sigma)))
+    return {"flat": flat, "force_r_N": force_r_N, "mismatch_um": 1e3 * mismatch,
+            "mismatch_sigma_um": 1e3 * sigma, key: value(0.0),
+            f"{key}_at_sigma": spread}
 
 
 def evaluate(k_m: float, k_r: float, k_obj: float | None = None, r: float | None = None,
@@ -143,9 +192,19 @@ def _results(lumped, k_m, k_r, k_obj, r, sigma_r) -> dict:
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad lumped``; returns the exit code (0)."""
     result = evaluate(args.km, args.kr, k_obj=args.kobj, r=args.r, sigma_r=args.sigma_r)
+    if (args.flat or args.force_r is not None) and args.coupled_design is None:
+        raise TactcadError(f"--{'flat' if args.flat else 'force-r'} = given without "
+                           "--coupled-design: allowed only with it (the heights act through "
+                           "the coupled model)")
+    if args.force_r is not None and not args.flat:
+        raise TactcadError("--force-r = given without --flat: allowed only with --flat")
+    if args.flat and not (args.force_r is not None and math.isfinite(args.force_r)
+                          and args.force_r > 0):
+        raise TactcadError(f"--force-r = {args.force_r!r}: allowed > 0 N with --flat (the "
+                           "reference element's force at the reading)")
     if args.coupled_design is not None:
         result["coupled"] = coupled_form(args.coupled_design, args.unit, args.km, args.kr,
-                                         args.kobj, args.r)
+                                         args.kobj, args.r, args.flat, args.force_r)
     if args.json:
         print(dumps(result))
         return 0
@@ -168,6 +227,17 @@ def run(args: argparse.Namespace) -> int:
     elif c:
         print(f"K_obj = {c['k_obj_coupled_N_per_mm']:.6g} N/mm (eq. 3 corrected: unit "
               f"{unit_label(c['unit'])} of {args.coupled_design}, every tip on one half-space)")
+    z = (c or {}).get("zeroed")
+    if z and "k_obj_zeroed_N_per_mm" in z:
+        lo, hi = z["k_obj_zeroed_N_per_mm_at_sigma"]
+        print(f"K_obj = {z['k_obj_zeroed_N_per_mm']:.6g} N/mm (and the tips' heights of {z['flat']}"
+              f" taken out: mismatch {z['mismatch_um']:.3g} +- {z['mismatch_sigma_um']:.2g} um at "
+              f"F_r {z['force_r_N']:.4g} N; {lo:.6g} ... {hi:.6g} N/mm over +-1 sigma)")
+    elif z:
+        lo, hi = z["r_zeroed_at_sigma"]
+        print(f"R = {z['r_zeroed']:.6g} (and the tips' heights of {z['flat']}: mismatch "
+              f"{z['mismatch_um']:.3g} +- {z['mismatch_sigma_um']:.2g} um at F_r "
+              f"{z['force_r_N']:.4g} N; {lo:.6g} ... {hi:.6g} over +-1 sigma)")
     if "sigma_k_obj_N_per_mm" in result:
         print(f"sigma_K_obj = {result['sigma_k_obj_N_per_mm']:.6g} N/mm "
               f"(first order, sigma_R = {result['sigma_r']:.6g})")

@@ -97,6 +97,7 @@ import numpy as np
 
 from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
+from tactcad.in_use.tip_zeroing import ZEROING_FLAT_FLATNESS_MM
 from tactcad.mechanics.contact import ContactError
 
 #: Points of the log-spaced K_obj grid the budget is evaluated on (ends included).
@@ -407,34 +408,18 @@ def tissue_coupling(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     return Contribution(before, np.where(np.isfinite(after), after, np.inf))
 
 
-def offset_ratio(sample, stiffness: Mapping[int, float], unit: Unit, k_obj: float,
-                 force_r_N: float, offsets_mm: Mapping[int, float]) -> float:
-    """R = e_m / e_r of ``unit`` on the coupled sample (every tip pressing) when tips stand
-    proud of the others by ``offsets_mm`` (element -> mm, + towards the tissue), pressed
-    until the reference carries ``force_r_N`` (N): P = (diag(1/K) + Ĉ/K_obj)⁻¹ (Δ 1 + d)."""
-    numbers = sample.numbers
-    k = np.array([float(stiffness[n]) for n in numbers])
-    d = np.array([float(offsets_mm.get(n, 0.0)) for n in numbers])
-    system = np.diag(1.0 / k) + sample.normalised / float(k_obj)
-    per_travel, fixed = np.linalg.solve(system, np.ones(len(k))), np.linalg.solve(system, d)
-    i_m, i_r = numbers.index(unit.measuring), numbers.index(unit.reference)
-    travel = (force_r_N - fixed[i_r]) / per_travel[i_r]
-    e = (travel * per_travel + fixed) / k
-    return float(e[i_m] / e[i_r])
-
-
 def _mismatch_rel(ctx: Context, unit: Unit, op: Operating, mismatch_mm: float) -> np.ndarray:
     """The coupled inversion's worst |K_obj error| (either sign) when the unit's two tips'
     heights differ by ``mismatch_mm`` (mm), over the grid; inf where it has no answer."""
-    from tactcad.in_use.tissue_coupling import coupled_object_stiffness
+    from tactcad.in_use.tissue_coupling import coupled_object_stiffness, offset_ratio
 
     sample, stiffness = _tissue_sample(ctx), _stiffness_by_number(ctx)
     out = np.zeros_like(op.k_obj)
     for i, k in enumerate(op.k_obj):
         for sign in (1.0, -1.0):
             half = sign * mismatch_mm / 2
-            r = offset_ratio(sample, stiffness, unit, float(k), op.force_r,
-                             {unit.reference: half, unit.measuring: -half})
+            r = offset_ratio(sample, stiffness, (unit.measuring, unit.reference), float(k),
+                             op.force_r, {unit.reference: half, unit.measuring: -half})
             try:
                 read = coupled_object_stiffness(sample, stiffness,
                                                 (unit.measuring, unit.reference), r)
@@ -444,9 +429,6 @@ def _mismatch_rel(ctx: Context, unit: Unit, op: Operating, mismatch_mm: float) -
     return out
 
 
-#: Flatness of the rigid flat the units are zeroed on (mm): a gauge block's measuring face,
-#: ISO 3650 grade 1 (0.15 um up to 150 mm), larger than any face the tips span.
-ZEROING_FLAT_FLATNESS_MM = 0.15e-3
 
 
 def tip_mismatch_after_zeroing_mm(ctx: Context, unit: Unit) -> float:
@@ -690,8 +672,9 @@ SOURCES = (
            "calibration measures K_v: none remains in the reading"),
     Source("calibration", "calibration uncertainty", calibration, "none"),
     Source("tip_coplanarity", "tip coplanarity", tip_coplanarity,
-           "every unit zeroed on a rigid flat: the offset read to the elements' deflection "
-           "resolution remains"),
+           "every unit zeroed on a rigid flat (tactcad calibrate --flat; lumped --flat takes "
+           "the heights out): the offset read to the elements' deflection resolution and the "
+           "flat's flatness remains"),
     Source("gauge_creep", f"gauge creep ({GAUGE_CREEP_MINUTES:g} min hold; hysteresis not "
            "sized)", gauge_creep,
            "creep compensation matched to the spring: 0.02 % of the reading remains"),

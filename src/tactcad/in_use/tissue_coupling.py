@@ -301,6 +301,81 @@ def coupled_object_stiffness(sample: CoupledSample, stiffness: Mapping[int, floa
                                xtol=INVERSION_XTOL)))
 
 
+def offset_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple[int, int],
+                 k_obj: float, force_r_N: float, offsets_mm: Mapping[int, float]) -> float:
+    """R = e_m / e_r of a unit on the coupled sample (every tip pressing) when tips stand
+    proud of a common datum by ``offsets_mm``, pressed until the reference carries
+    ``force_r_N``: P = (diag(1/K) + Ĉ/K_obj)⁻¹ (Δ 1 + d), the travel Δ set by the reference's
+    force. With no offsets it is :func:`coupled_ratio` at any force.
+
+    Args:
+        sample, stiffness: as :func:`coupled_ratio`.
+        unit: (measuring element, reference element).
+        k_obj: K_obj (N/mm), > 0.
+        force_r_N: the reference element's force at the reading (N; K_r e_r), > 0.
+        offsets_mm: element -> its tip's height (mm, + towards the tissue); missing: 0.
+
+    Returns:
+        R (dimensionless).
+
+    Raises:
+        ContactError: K_obj or the force not > 0, an offset not finite.
+    """
+    if not (math.isfinite(k_obj) and k_obj > 0):
+        raise ContactError("K_obj_N_per_mm", k_obj, "> 0 N/mm")
+    if not (math.isfinite(force_r_N) and force_r_N > 0):
+        raise ContactError("force_r_N", force_r_N, "> 0 N (the reference element's force)")
+    numbers = sample.numbers
+    k = np.array([float(stiffness[n]) for n in numbers])
+    d = np.array([float(offsets_mm.get(n, 0.0)) for n in numbers])
+    if not np.all(np.isfinite(d)):
+        raise ContactError("tip offsets_mm", d.tolist(), "finite heights (mm)")
+    system = np.diag(1.0 / k) + sample.normalised / float(k_obj)
+    per_travel, fixed = np.linalg.solve(system, np.ones(len(k))), np.linalg.solve(system, d)
+    i_m, i_r = numbers.index(unit[0]), numbers.index(unit[1])
+    travel = (force_r_N - fixed[i_r]) / per_travel[i_r]
+    e = (travel * per_travel + fixed) / k
+    return float(e[i_m] / e[i_r])
+
+
+def offset_object_stiffness(sample: CoupledSample, stiffness: Mapping[int, float],
+                            unit: tuple[int, int], r: float, force_r_N: float,
+                            offsets_mm: Mapping[int, float],
+                            bracket_N_per_mm: tuple[float, float] | None = None) -> float:
+    """K_obj from a measured R with the coupling and the tips' measured heights taken out
+    (eq. 3 corrected for both): a root find on ln K_obj of :func:`offset_ratio` = R. The
+    heights are those read on a rigid flat (:mod:`tactcad.in_use.tip_zeroing`); with every
+    offset 0 this is :func:`coupled_object_stiffness`.
+
+    Args:
+        sample, stiffness, unit, force_r_N, offsets_mm: as :func:`offset_ratio`.
+        r: the measured deflection ratio R.
+        bracket_N_per_mm: (lo, hi) K_obj to search (N/mm); default K_m/1000 ... 1000 K_r.
+
+    Returns:
+        K_obj (N/mm).
+
+    Raises:
+        ContactError: R outside what the model spans over the bracket at this force and
+            these heights (named with that range), or an input as :func:`offset_ratio`.
+    """
+    k_m, k_r = float(stiffness[unit[0]]), float(stiffness[unit[1]])
+    lo, hi = bracket_N_per_mm or (k_m / INVERSION_BRACKET, k_r * INVERSION_BRACKET)
+
+    def excess(log_k: float) -> float:
+        return offset_ratio(sample, stiffness, unit, float(np.exp(log_k)), force_r_N,
+                            offsets_mm) - r
+
+    f_lo, f_hi = excess(np.log(lo)), excess(np.log(hi))
+    if not (np.isfinite(r) and np.isfinite(f_lo) and np.isfinite(f_hi) and f_lo * f_hi <= 0):
+        span = sorted((f_hi + r, f_lo + r))
+        raise ContactError("R", r, f"{span[0]:.6g} ... {span[1]:.6g} (R with the tips' heights "
+                                   f"at the reference's {force_r_N:.4g} N, K_obj {lo:.3g} ... "
+                                   f"{hi:.3g} N/mm)")
+    return float(np.exp(brentq(excess, np.log(lo), np.log(hi), rtol=INVERSION_RTOL,
+                               xtol=INVERSION_XTOL)))
+
+
 @dataclass(frozen=True)
 class UnitBias:
     """One unit's K_obj bias over a K_obj range.

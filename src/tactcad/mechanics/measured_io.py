@@ -570,3 +570,91 @@ def _read_tdms(p: Path, mapping: Mapping[str, str], default_k_sensor: float = K_
                                             f"(channel {used[c]!r})")
     return readings.result(where, k_sensor), ReadInfo(where, "tdms", mapping=used,
                                                       readings=readings.count)
+
+
+# ---------------------------------------------------------------------------
+# Readings on a rigid flat (tip zeroing): element, step, deflection_um
+# ---------------------------------------------------------------------------
+#: The columns of a rigid-flat zeroing file: element number, the flat's step (one position
+#: of the flat, every tip read at it) and the element's deflection there (um, from its
+#: calibrated signal).
+FLAT_COLUMNS = ("element", "step", "deflection_um")
+#: Largest |deflection| read on a flat (um): far past any flexure's travel, so a value past
+#: it is a damaged cell.
+FLAT_DEFLECTION_LIMIT_UM = 1e5
+
+
+def read_flat_readings(path, encoding: str | None = None
+                       ) -> tuple[dict[int, dict[int, float]], ReadInfo]:
+    """Each element's deflection at each step of a rigid flat pressed on every tip, from a
+    CSV file (header ``element,step,deflection_um`` in any order; comma, semicolon or tab;
+    decimal point or comma; ``#`` comments; encodings as :func:`read_measured`).
+
+    Args:
+        path: the file.
+        encoding: its text encoding by name; None: UTF-8 or what a byte order mark says.
+
+    Returns:
+        ({step: {element: deflection (mm)}} in the file's order, :class:`ReadInfo`).
+
+    Raises:
+        CalibrationError: the file cannot be read or is too large, a column is missing or
+            repeated, a value is not a number or out of range, an element is read twice in
+            one step; the message names the file, the line and the column.
+    """
+    p = Path(path)
+    where = str(p)
+    if encoding is not None:
+        _check_encoding(encoding)
+    try:
+        if not p.is_file():
+            raise CalibrationError(f"{where}: not a file: allowed a CSV file of "
+                                   f"{','.join(FLAT_COLUMNS)}")
+        size = p.stat().st_size
+        if size > MAX_BYTES:
+            raise CalibrationError(f"{where}: {size} bytes: allowed at most {MAX_BYTES} bytes")
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise CalibrationError(f"{where}: cannot be read ({exc.strerror or exc})") from None
+    text, used = decode(raw, encoding, where)
+    lines = [(n, line) for n, line in enumerate(text.splitlines(), start=1)
+             if line.strip().strip(",;\t") and not line.strip().startswith("#")]
+    if not lines:
+        raise CalibrationError(f"{where}: line 1: no header and no readings; allowed a header "
+                               f"{','.join(FLAT_COLUMNS)} and one reading per element and step")
+    header_n, header_line = lines[0]
+    separator, header = max(
+        ((sep, [h.strip() for h in next(csv.reader([header_line], delimiter=sep))])
+         for sep in _SEPARATORS), key=lambda sc: len(set(FLAT_COLUMNS) & set(sc[1])))
+    missing = [c for c in FLAT_COLUMNS if c not in header]
+    repeated = sorted({h for h in header if header.count(h) > 1})
+    if missing or repeated:
+        raise CalibrationError(f"{where}: line {header_n}: columns = {header}: allowed "
+                               f"{list(FLAT_COLUMNS)} once each (missing {missing}, repeated "
+                               f"{repeated}), separated by comma, semicolon or tab")
+    index = {c: header.index(c) for c in FLAT_COLUMNS}
+    decimal = _decimal_of(lines[1:], separator)
+    steps: dict[int, dict[int, float]] = {}
+    for n, line in lines[1:]:
+        cells = next(csv.reader([line], delimiter=separator))
+        if len(cells) != len(header):
+            raise CalibrationError(f"{where}: line {n}: {len(cells)} values: allowed "
+                                   f"{len(header)} ({separator.join(header)})")
+        at = lambda c, n=n: f"{where}: line {n}, column {c}"  # noqa: E731
+        values = {c: _number(cells[i], at(c), decimal) for c, i in index.items()}
+        element, step = _integer(values["element"], at("element")), _integer(values["step"],
+                                                                             at("step"))
+        if abs(values["deflection_um"]) > FLAT_DEFLECTION_LIMIT_UM:
+            raise CalibrationError(f"{at('deflection_um')} = {values['deflection_um']!r}: "
+                                   f"allowed |value| <= {FLAT_DEFLECTION_LIMIT_UM:g} um")
+        row = steps.setdefault(step, {})
+        if element in row:
+            raise CalibrationError(f"{at('element')} = {element}: read twice in step {step}: "
+                                   "allowed once per step")
+        row[element] = 1e-3 * values["deflection_um"]
+    if not steps:
+        raise CalibrationError(f"{where}: readings = 0: allowed one reading per element and "
+                               "step")
+    count = sum(len(row) for row in steps.values())
+    return steps, ReadInfo(where, "csv", used, separator, decimal,
+                           {c: c for c in FLAT_COLUMNS}, count)
