@@ -70,6 +70,7 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
             ``set`` key that is not ``section.key``.
     """
     from tactcad.design.array_plan import read_toml, with_overrides
+    from tactcad.design.die_file import refuse_a_die
     from tactcad.errors import DesignError
     from tactcad.project_folder import default_design
 
@@ -78,28 +79,9 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
     design = Path(path) if path is not None else default_design()
     overrides = _checked_overrides(set)
     tables = read_toml(design, "design file")
-    _refuse_a_die(tables, design)
+    refuse_a_die(tables, design)
     data = with_overrides(tables, overrides)
     return Project(_validated(data, design, overrides), data, design)
-
-
-def _refuse_a_die(tables: Mapping[str, Any], design: Path) -> None:
-    """A silicon die's design file is made by ``tactcad die`` (and ``export`` and ``check``
-    in its folder), not read as an array's: say so, not every array table it lacks.
-
-    Raises:
-        DesignError: ``tables`` are a die's.
-    """
-    from tactcad.design.die_file import is_die_file
-    from tactcad.errors import DesignError
-
-    if is_die_file(tables):
-        raise DesignError("--design", design.name, "an array's design file ([design], "
-                          "[material], [arms], ...)",
-                          f"{design.name} is a silicon die's ([die]): `tactcad die --design "
-                          f"{design.name}` makes it and prints its read-out, budget and "
-                          "resonances; `tactcad export` and `tactcad check` in its folder make "
-                          "and check its files")
 
 
 def _validated(data: Mapping[str, Any], design: Path,

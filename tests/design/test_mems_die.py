@@ -444,6 +444,16 @@ def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
         error = json.loads(r.stdout)["error"]
         assert error["field"] == "--design" and "tactcad die --design" in error["message"]
         assert "macro_array" not in r.stdout + r.stderr
+    # the commands that read a design file by their own path: grasp listed the fifteen
+    # missing tables, watch watched the die's file and refused each export
+    for argv, field in ((("grasp", "--design", design.name), "--design"),
+                        (("watch", "--design", design.name, "--port", "0"), "--design"),
+                        (("lumped", "--km", "1", "--kr", "10", "--r", "2", "--coupled-design",
+                          design.name, "--unit", "1"), "--coupled-design")):
+        r = run_cli(*argv, "--json", cwd=tmp_path)
+        assert r.returncode == 2, (argv, r.stdout, r.stderr)
+        error = json.loads(r.stdout)["error"]
+        assert error["field"] == field and "tactcad die --design" in error["message"], argv
 
 
 @pytest.mark.slow  # a die's whole export, then its read-back

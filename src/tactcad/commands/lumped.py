@@ -12,7 +12,7 @@ import argparse
 import math
 
 from tactcad.commands.finite_json import dumps
-from tactcad.errors import TactcadError
+from tactcad.errors import DesignError, TactcadError
 
 from tactcad.commands import add_output_args
 
@@ -80,7 +80,12 @@ def coupled_form(design: str, unit: int | None, k_m: float, k_r: float, k_obj: f
                                                 design_units)
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
 
-    plan = load_design(design)
+    try:
+        plan = load_design(design)
+    except DesignError as exc:  # name the option this command reads the file by
+        if exc.field != "--design":
+            raise
+        raise DesignError("--coupled-design", exc.value, exc.allowed, exc.why) from None
     k = ladder_stiffness_by_element(plan)
     pairs = dict(design_units(plan, k))
     if unit not in pairs:

@@ -101,6 +101,7 @@ def run(args: argparse.Namespace) -> int:
     # the option first, before the exporter is loaded: a refusal is quick
     if not (args.port == 0 or 1024 <= args.port <= 65535):
         raise DesignError("--port", args.port, "1024 ... 65535, or 0 for any free port")
+    _refuse_a_die_at_once(args)
 
     stop = threading.Event()
     log = watch_log(args)
@@ -120,6 +121,29 @@ def run(args: argparse.Namespace) -> int:
     if at_once_undone is not None:  # the clean-up is done: this process may go on (in-process runs)
         at_once_undone()
     return 0
+
+
+def _refuse_a_die_at_once(args: argparse.Namespace) -> None:
+    """A silicon die's design file is refused before anything starts: a watch re-exports an
+    array, and no edit turns a die's file into one (an unreadable file is the watch's own
+    refusal, which waits for the next save).
+
+    Raises:
+        DesignError: ``--design`` is a die's file.
+    """
+    from pathlib import Path
+
+    from tactcad.design.die_file import refuse_a_die
+    from tactcad.errors import DesignError
+    from tactcad.vocabulary.schema import read_toml
+
+    if not getattr(args, "design", None):
+        return
+    try:
+        tables = read_toml(Path(args.design), "design file")
+    except DesignError:
+        return
+    refuse_a_die(tables, Path(args.design))
 
 
 def watch_log(args: argparse.Namespace) -> Callable[[str], None]:

@@ -955,10 +955,15 @@ def load_design(path: str | Path | None = None) -> Plan:
     Raises:
         DesignError: unreadable file, missing/unknown key, or a value outside
             its allowed range (the message names file, field, value and range;
-            :class:`~tactcad.errors.DesignErrors` lists every one found).
+            :class:`~tactcad.errors.DesignErrors` lists every one found); a silicon
+            die's file (made by ``tactcad die``).
     """
+    from tactcad.design.die_file import refuse_a_die
+
     p = Path(path) if path is not None else DEFAULT_DESIGN
-    return plan_from_dict(read_toml(p, "design file"), source=str(p), file=p.name)
+    tables = read_toml(p, "design file")
+    refuse_a_die(tables, p)
+    return plan_from_dict(tables, source=str(p), file=p.name)
 
 
 def with_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:

@@ -69,6 +69,22 @@ def is_die_file(data: Mapping[str, Any]) -> bool:
     return isinstance(data, Mapping) and DIE_TABLE in data
 
 
+def refuse_a_die(tables: Mapping[str, Any], design: Path) -> None:
+    """A silicon die's design file is made by ``tactcad die`` (and ``export`` and ``check``
+    in its folder), not read as an array's: say so, not every array table it lacks.
+
+    Raises:
+        DesignError: ``tables`` are a die's.
+    """
+    if is_die_file(tables):
+        raise DesignError("--design", design.name, "an array's design file ([design], "
+                          "[material], [arms], ...)",
+                          f"{design.name} is a silicon die's ([die]): `tactcad die --design "
+                          f"{design.name}` makes it and prints its read-out, budget and "
+                          "resonances; `tactcad export` and `tactcad check` in its folder make "
+                          "and check its files")
+
+
 def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None) -> DieDesign:
     """The die design file at ``path`` with ``overrides`` (``{"die.key": value}``, from
     ``--set``) applied, validated.
