@@ -70,7 +70,7 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
             ``set`` key that is not ``section.key``.
     """
     from tactcad.design.array_plan import read_toml, with_overrides
-    from tactcad.design.die_file import refuse_a_die
+    from tactcad.design.file_kind import refuse_a_die
     from tactcad.errors import DesignError
     from tactcad.project_folder import default_design
 

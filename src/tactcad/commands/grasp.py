@@ -116,7 +116,7 @@ def design_plan_from_args(args: argparse.Namespace):
     from pathlib import Path
 
     from tactcad.design.array_plan import plan_from_dict, with_overrides
-    from tactcad.design.die_file import refuse_a_die
+    from tactcad.design.file_kind import refuse_a_die
     from tactcad.errors import DesignErrors
     from tactcad.commands import announced_default_design
     from tactcad.vocabulary.schema import read_toml

@@ -133,7 +133,7 @@ def _refuse_a_die_at_once(args: argparse.Namespace) -> None:
     """
     from pathlib import Path
 
-    from tactcad.design.die_file import refuse_a_die
+    from tactcad.design.file_kind import refuse_a_die
     from tactcad.errors import DesignError
     from tactcad.vocabulary.schema import read_toml
 

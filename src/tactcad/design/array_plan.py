@@ -958,7 +958,7 @@ def load_design(path: str | Path | None = None) -> Plan:
             :class:`~tactcad.errors.DesignErrors` lists every one found); a silicon
             die's file (made by ``tactcad die``).
     """
-    from tactcad.design.die_file import refuse_a_die
+    from tactcad.design.file_kind import refuse_a_die
 
     p = Path(path) if path is not None else DEFAULT_DESIGN
     tables = read_toml(p, "design file")

@@ -17,12 +17,12 @@ from typing import Any, Mapping
 
 from tactcad.design.mems_die import DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
+from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
 from tactcad.errors import DesignError
 from tactcad.vocabulary.schema import (Problems, Section, integer, listing, number, read_toml,
                                        validate)
 
 #: The table that makes a TOML file a die's design file.
-DIE_TABLE = "die"
 
 
 class DieSection(Section):
@@ -62,27 +62,6 @@ class DieDesign:
     die: DieSection
     jaw: str
     source: Path
-
-
-def is_die_file(data: Mapping[str, Any]) -> bool:
-    """True when a design file's tables are a die's (a ``[die]`` table)."""
-    return isinstance(data, Mapping) and DIE_TABLE in data
-
-
-def refuse_a_die(tables: Mapping[str, Any], design: Path) -> None:
-    """A silicon die's design file is made by ``tactcad die`` (and ``export`` and ``check``
-    in its folder), not read as an array's: say so, not every array table it lacks.
-
-    Raises:
-        DesignError: ``tables`` are a die's.
-    """
-    if is_die_file(tables):
-        raise DesignError("--design", design.name, "an array's design file ([design], "
-                          "[material], [arms], ...)",
-                          f"{design.name} is a silicon die's ([die]): `tactcad die --design "
-                          f"{design.name}` makes it and prints its read-out, budget and "
-                          "resonances; `tactcad export` and `tactcad check` in its folder make "
-                          "and check its files")
 
 
 def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None) -> DieDesign:

@@ -1,0 +1,40 @@
+"""What kind of design file a file's tables are: an array's, or a silicon die's.
+
+A die's file (a ``[die]`` table) is made by ``tactcad die`` and exported and checked in its
+folder; every array command refuses it by name rather than listing the array tables it
+lacks. This module imports nothing of the design's, so that every reader of a design file
+can ask it first.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Mapping
+
+from tactcad.errors import DesignError
+
+#: The table that makes a design file a die's.
+DIE_TABLE = "die"
+
+
+def is_die_file(data: Mapping[str, Any]) -> bool:
+    """True when a design file's tables are a die's (a ``[die]`` table)."""
+    return isinstance(data, Mapping) and DIE_TABLE in data
+
+
+def refuse_a_die(tables: Mapping[str, Any], design: Path) -> None:
+    """A silicon die's design file is made by ``tactcad die`` (and ``export`` and ``check``
+    in its folder), not read as an array's: say so, not every array table it lacks.
+
+    Raises:
+        DesignError: ``tables`` are a die's.
+    """
+    if is_die_file(tables):
+        raise DesignError("--design", design.name, "an array's design file ([design], "
+                          "[material], [arms], ...)",
+                          f"{design.name} is a silicon die's ([die]): `tactcad die --design "
+                          f"{design.name}` makes it and prints its read-out, budget and "
+                          "resonances; `tactcad export` and `tactcad check` in its folder make "
+                          "and check its files")
+
+
