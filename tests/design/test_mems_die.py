@@ -438,7 +438,7 @@ def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
     design = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
               / "grasper_jaw_5mm_mems.toml")
     (tmp_path / design.name).write_bytes(design.read_bytes())
-    for command in ("budget", "readout", "verify"):
+    for command in ("verify", "strength", "thermal"):
         r = run_cli(command, "--json", cwd=tmp_path)
         assert r.returncode == 2, (command, r.stdout, r.stderr)
         error = json.loads(r.stdout)["error"]
@@ -454,6 +454,41 @@ def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
         assert r.returncode == 2, (argv, r.stdout, r.stderr)
         error = json.loads(r.stdout)["error"]
         assert error["field"] == field and "tactcad die --design" in error["message"], argv
+
+
+def test_modal_budget_and_readout_print_the_dies_own_figures_and_refuse_an_arrays_options(
+        tmp_path):
+    """In a die's folder the three commands print what `tactcad die` records for the die,
+    from one planning, and write nothing; an option that chooses among an array's figures
+    is refused by name, not ignored."""
+    from tactcad.commands.die import plan_of
+    from tactcad.design.die_file import load_die_design
+    from tactcad.in_use.die_budget import die_budget
+    from tactcad.mechanics.die_dynamics import die_modes
+    from tactcad.mechanics.piezoresistor import die_readout
+
+    design = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+              / "grasper_jaw_5mm_mems.toml")
+    (tmp_path / design.name).write_bytes(design.read_bytes())
+    d = load_die_design(design)
+    plan = plan_of({"jaw": d.jaw, "kr_over_km": d.die.kr_over_km,
+                    "kobj_range": tuple(d.die.kobj_range_N_per_mm),
+                    "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
+                    "pitch_um": d.die.pitch_um, "name": d.die.name}).plan
+    shown = {c: json.loads(run_cli(c, "--json", cwd=tmp_path).stdout)
+             for c in ("modal", "budget", "readout")}
+    assert shown["modal"]["resonance_Hz"]["measuring"]["exact"] == pytest.approx(
+        die_modes(plan)["measuring"].exact_Hz, rel=1e-12)
+    assert shown["budget"]["kobj_budget"]["rss_rel"] == pytest.approx(
+        list(die_budget(plan).total_rel), rel=1e-12)
+    assert shown["readout"]["readout"]["rows"]["reference"]["force_resolution_N"] == \
+        pytest.approx(die_readout(plan)["rows"]["reference"]["force_resolution_N"], rel=1e-12)
+    assert sorted(p.name for p in tmp_path.iterdir()) == [design.name]  # nothing written
+    for argv, option in ((("modal", "--model", "fem3d"), "--model"),
+                         (("budget", "--delta-T", "3"), "--delta-T"),
+                         (("readout", "--model", "beam"), "--model")):
+        r = run_cli(*argv, "--json", cwd=tmp_path)
+        assert r.returncode == 2 and json.loads(r.stdout)["error"]["field"] == option, argv
 
 
 @pytest.mark.slow  # a die's whole export, then its read-back

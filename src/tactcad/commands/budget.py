@@ -9,6 +9,7 @@ from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, p
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number, output_file
 from tactcad.mechanics.ladder import models
+from tactcad.commands.die_views import die_view, keep_array_defaults
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -48,6 +49,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="also write the budget: .json as --json prints it, .md as the text")
     add_output_args(p, "print one JSON object: the budget of every unit and of the array")
     p.set_defaults(func=run)
+    keep_array_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def calibrations_from_file(path: str, plan) -> dict:
@@ -74,6 +76,9 @@ def calibrations_from_file(path: str, plan) -> dict:
 
 
 def run(args: argparse.Namespace) -> int:
+    shown = die_view("budget", args)  # a silicon die's design: its own figures
+    if shown is not None:
+        return shown
     from tactcad.atomic import write_bytes_atomic
     from tactcad.in_use.kobj_budget import kobj_budget
     from tactcad.studies.verification import requirements_of

@@ -10,7 +10,9 @@ import contextlib
 import io
 import os
 import shutil
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from tactcad.commands import add_design_arg, add_output_args
 from tactcad.commands.finite_json import dumps
@@ -127,6 +129,37 @@ def _name(value: str) -> str:
     return value
 
 
+@dataclass(frozen=True)
+class PlannedDie:
+    """A die planned from what was asked: the plan, the jaw's room it fits and the jaw as
+    the mount takes it (a trocar class or a lab's jaw file's table)."""
+
+    plan: Any
+    room: Any
+    jaw_stated: Any
+
+
+def plan_of(asked: dict) -> PlannedDie:
+    """The die's plan for ``asked`` (:func:`die_asked`): one planning for the die command,
+    a die folder's check and the array commands' views of a die.
+
+    Raises:
+        DesignError: a bad name, jaw or targets the die cannot meet (named).
+    """
+    from tactcad.commands.design import jaw_of
+    from tactcad.design.mems_die import die_plan
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.studies.inverse_design import Targets
+
+    name = _name(asked["name"])
+    targets = Targets(asked["kr_over_km"], tuple(asked["kobj_range"]), asked["full_scale_force"])
+    jaw, jaw_file = jaw_of(asked["jaw"])
+    room = jaw_room(jaw, jaw_file)
+    plan = die_plan(targets, room, columns=asked["columns"], pitch_um=asked["pitch_um"],
+                    name=name)
+    return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
+
+
 def run(args: argparse.Namespace) -> int:
     from tactcad.atomic import staging_dir
     from tactcad.checks.check_result import counts_text, status_counts
@@ -134,9 +167,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.checks.sheet_overlap import sheet_file_results
     from tactcad.drawings.die_sheet import die_sheet
     from tactcad.checks.gds_drc import gds_checks
-    from tactcad.commands.design import jaw_of
     from tactcad.design.die_mount import die_mount
-    from tactcad.design.mems_die import die_plan
     from tactcad.export.die_scene import (mount_bom_rows, mount_solids, write_mount_bom,
                                           write_mount_picture, write_mount_step)
     from tactcad.export.die_solid import write_die_step
@@ -146,17 +177,10 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.die_dynamics import (calculix_beam_check, die_modes,
                                                 first_resonance_Hz)
     from tactcad.mechanics.piezoresistor import die_readout
-    from tactcad.partlib.grasper_jaw import jaw_room
-    from tactcad.studies.inverse_design import Targets
 
-    asked = die_asked(args)
-    name = _name(asked["name"])
-    targets = Targets(asked["kr_over_km"], tuple(asked["kobj_range"]), asked["full_scale_force"])
-    jaw, jaw_file = jaw_of(asked["jaw"])
-    room = jaw_room(jaw, jaw_file)
-    plan = die_plan(targets, room, columns=asked["columns"], pitch_um=asked["pitch_um"],
-                    name=name)
-    mount = die_mount(plan, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
+    planned = plan_of(die_asked(args))
+    plan, room, name = planned.plan, planned.room, planned.plan.name
+    mount = die_mount(plan, planned.jaw_stated)
     out = Path(args.out)
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
     refuse_a_foreign_folder(out, files["record"])
@@ -188,9 +212,7 @@ def run(args: argparse.Namespace) -> int:
             if getattr(args, "fem3d", False) else []
         record = {"die": plan.as_json(), "readout": readout, "jaw": room.label,
                   "mount": mount.as_json(),
-                  "resonance_Hz": {r: {"rayleigh": m.rayleigh_Hz, "exact": m.exact_Hz,
-                                       "rayleigh_error_rel": m.rayleigh_error_rel}
-                                   for r, m in modes.items()},
+                  "resonance_Hz": modes_json(modes),
                   "fe_check": [c.as_json() for c in fe],
                   "fem3d": [dict(r.as_json(), K_closed_form_error_rel=_closed_k(plan, r)
                                  / r.k_N_per_mm - 1.0,
@@ -236,16 +258,8 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
                      f"{b.thickness_um:g} | {k:.4g} | {target:.4g} | "
                      f"{d.stress_MPa_at_rating(b):.4g} | {r['resistance_change_per_N']:.4g} | "
                      f"{r['sensitivity_V_per_N']:.4g} | {r['force_resolution_N']:.3g} |")
-    lines.append(f"resistors: {readout['resistance_ohm']:.4g} ohm "
-                 f"({readout['sheet_resistance_ohm_per_sq']:.4g} ohm/sq, boron "
-                 f"{d.acceptors_per_cm3:.2g} cm^-3), quarter bridge at {readout['bias_V']:g} V, "
-                 f"noise {1e9 * readout['noise_V']['total']:.3g} nV rms over "
-                 f"{readout['band_Hz'][0]:g}-{readout['band_Hz'][1]:g} Hz; "
-                 + "; ".join(readout["assumptions"]))
-    for role, m in (modes or {}).items():
-        lines.append(f"first resonance, {role} beam with its post: {m.rayleigh_Hz / 1e3:.4g} kHz "
-                     f"(Rayleigh; the exact Euler-Bernoulli root {m.exact_Hz / 1e3:.4g} kHz, "
-                     f"{100 * m.rayleigh_error_rel:+.2f} %)")
+    lines.append(resistor_line(plan, readout))
+    lines += mode_lines(modes or {})
     for r in fem3d or []:
         lines.append(f"fem3d (scikit-fem, anisotropic, triquadratic hexahedra), {r['role']} beam: "
                      f"K {r['K_N_per_mm']:.4g} N/mm (+-{100 * r['K_error_rel']:.2g} %; closed "
@@ -257,20 +271,50 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
                      f"(closed form {100 * c.k_error_rel:+.2f} %), f1 {c.f1_fe_Hz / 1e3:.4g} kHz "
                      f"(closed form {100 * c.f1_error_rel:+.2f} %)")
     if budget is not None:
-        ks = budget.k_obj_N_per_mm
-        lines += ["", "K_obj budget of the middle unit, relative, 1 sigma, at K_obj "
-                  + ", ".join(f"{k:.3g}" for k in ks) + " N/mm:"]
-        for term, values in budget.terms.items():
-            lines.append(f"  {term:<46} " + "  ".join(f"{100 * v:7.3f} %" for v in values)
-                         + f"   ({budget.reasons[term]})")
-        lines.append(f"  {'root sum square (without eq. 3 uncoupled)':<46} "
-                     + "  ".join(f"{100 * v:7.3f} %" for v in budget.total_rel))
+        lines += ["", *budget_lines(budget)]
     lines += ["", "reasons:"] + [f"  {k}: {v}" for k, v in d.reasons.items()]
     if mount is not None:
         lines += ["", f"in the {jaw}:"] + [f"  {k}: {v}" for k, v in mount.reasons.items()]
     lines += ["", f"wrote {', '.join(str(p) for p in files.values())} ({dies} dies on the "
                   "wafer)", "", *[c.line() for c in checks], "", counts]
     return "\n".join(lines)
+
+
+def resistor_line(plan, readout: dict) -> str:
+    """The resistors, their bridge and noise, and the read-out's assumptions, as one line."""
+    return (f"resistors: {readout['resistance_ohm']:.4g} ohm "
+            f"({readout['sheet_resistance_ohm_per_sq']:.4g} ohm/sq, boron "
+            f"{plan.acceptors_per_cm3:.2g} cm^-3), quarter bridge at {readout['bias_V']:g} V, "
+            f"noise {1e9 * readout['noise_V']['total']:.3g} nV rms over "
+            f"{readout['band_Hz'][0]:g}-{readout['band_Hz'][1]:g} Hz; "
+            + "; ".join(readout["assumptions"]))
+
+
+def mode_lines(modes: dict) -> list[str]:
+    """Each row's first resonance (:func:`tactcad.mechanics.die_dynamics.die_modes`), a line
+    each."""
+    return [f"first resonance, {role} beam with its post: {m.rayleigh_Hz / 1e3:.4g} kHz "
+            f"(Rayleigh; the exact Euler-Bernoulli root {m.exact_Hz / 1e3:.4g} kHz, "
+            f"{100 * m.rayleigh_error_rel:+.2f} %)" for role, m in modes.items()]
+
+
+def budget_lines(budget) -> list[str]:
+    """The die's K_obj budget (:func:`tactcad.in_use.die_budget.die_budget`) as a table."""
+    ks = budget.k_obj_N_per_mm
+    lines = ["K_obj budget of the middle unit, relative, 1 sigma, at K_obj "
+             + ", ".join(f"{k:.3g}" for k in ks) + " N/mm:"]
+    for term, values in budget.terms.items():
+        lines.append(f"  {term:<46} " + "  ".join(f"{100 * v:7.3f} %" for v in values)
+                     + f"   ({budget.reasons[term]})")
+    lines.append(f"  {'root sum square (without eq. 3 uncoupled)':<46} "
+                 + "  ".join(f"{100 * v:7.3f} %" for v in budget.total_rel))
+    return lines
+
+
+def modes_json(modes: dict) -> dict:
+    """Each row's first resonance (Hz) as the die's record holds it."""
+    return {r: {"rayleigh": m.rayleigh_Hz, "exact": m.exact_Hz,
+                "rayleigh_error_rel": m.rayleigh_error_rel} for r, m in modes.items()}
 
 
 # --- a die's folder: export and check ---------------------------------------------------------
@@ -325,23 +369,15 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
     from tactcad.checks.die_mount_fit import mount_checks
     from tactcad.checks.gds_drc import gds_checks
     from tactcad.checks.sheet_overlap import sheet_file_results
-    from tactcad.commands.design import jaw_of
     from tactcad.design.die_mount import die_mount
-    from tactcad.design.mems_die import die_plan
     from tactcad.export.die_scene import mount_solids
-    from tactcad.partlib.grasper_jaw import jaw_room
-    from tactcad.studies.inverse_design import Targets
 
     if getattr(args, "scene", None):
         raise DesignError("--scene", args.scene, "left out for a die",
                           f"{design.name} is a silicon die's design: it has no scenes to choose")
     junit = getattr(args, "junit", None)  # its path refused before, by check's own rule
-    asked = die_asked(_die_args(design, args, Path(".")))
-    name = _name(asked["name"])
-    jaw, jaw_file = jaw_of(asked["jaw"])
-    plan = die_plan(Targets(asked["kr_over_km"], tuple(asked["kobj_range"]),
-                            asked["full_scale_force"]), jaw_room(jaw, jaw_file),
-                    columns=asked["columns"], pitch_um=asked["pitch_um"], name=name)
+    planned = plan_of(die_asked(_die_args(design, args, Path("."))))
+    plan, name = planned.plan, planned.plan.name
     with tempfile.TemporaryDirectory(prefix="tactcad-die-check-") as temp:
         out = Path(args.out) if args.out else Path(temp)
         files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
@@ -354,7 +390,7 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
                 run(_die_args(design, quiet, out))
             record = _record_of(files["record"])
         missing = [p.name for p in files.values() if not p.is_file()]
-        mount = die_mount(plan, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
+        mount = die_mount(plan, planned.jaw_stated)
         checks = [CheckResult("die_files", str(out), not missing,
                               f"missing: {', '.join(missing)}" if missing
                               else f"{len(files)} files of {name}")]

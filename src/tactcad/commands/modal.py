@@ -11,6 +11,7 @@ from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, p
 from tactcad.commands.options import count
 from tactcad.errors import TactcadError
 from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_levels_help, modal_models
+from tactcad.commands.die_views import die_view, keep_array_defaults
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -39,6 +40,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_cache_args(p)
     add_output_args(p, "print JSON")
     p.set_defaults(func=run_modal)
+    keep_array_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def _added_masses(plan, g, args) -> tuple:
@@ -54,6 +56,9 @@ def _added_masses(plan, g, args) -> tuple:
 
 
 def run_modal(args: argparse.Namespace) -> int:
+    shown = die_view("modal", args)  # a silicon die's design: its own figures
+    if shown is not None:
+        return shown
     from tactcad.mechanics.fem.fem_modal import write_modes_vtu
     from tactcad.mechanics.modal_ladder import estimate_modes
 

@@ -8,6 +8,7 @@ from tactcad.mechanics.ladder import models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               progress_from_args)
 from tactcad.commands.finite_json import dumps
+from tactcad.commands.die_views import die_view, keep_array_defaults
 
 
 
@@ -29,9 +30,13 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="ladder level for K and the strain field (default closed-form)")
     add_output_args(p, "print one JSON object: the chain, its noise and one record per element")
     p.set_defaults(func=run)
+    keep_array_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def run(args: argparse.Namespace) -> int:
+    shown = die_view("readout", args)  # a silicon die's design: its own figures
+    if shown is not None:
+        return shown
     from dataclasses import replace
 
     from tactcad.design.requirements_section import cites_paper
