@@ -438,7 +438,7 @@ def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
     design = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
               / "grasper_jaw_5mm_mems.toml")
     (tmp_path / design.name).write_bytes(design.read_bytes())
-    for command in ("verify", "strength", "thermal"):
+    for command in ("verify", "strength", "tolerance"):
         r = run_cli(command, "--json", cwd=tmp_path)
         assert r.returncode == 2, (command, r.stdout, r.stderr)
         error = json.loads(r.stdout)["error"]
@@ -456,7 +456,7 @@ def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
         assert error["field"] == field and "tactcad die --design" in error["message"], argv
 
 
-def test_modal_budget_and_readout_print_the_dies_own_figures_and_refuse_an_arrays_options(
+def test_modal_budget_readout_and_thermal_print_the_dies_own_figures_not_an_arrays_options(
         tmp_path):
     """In a die's folder the three commands print what `tactcad die` records for the die,
     from one planning, and write nothing; an option that chooses among an array's figures
@@ -476,17 +476,20 @@ def test_modal_budget_and_readout_print_the_dies_own_figures_and_refuse_an_array
                     "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
                     "pitch_um": d.die.pitch_um, "name": d.die.name}).plan
     shown = {c: json.loads(run_cli(c, "--json", cwd=tmp_path).stdout)
-             for c in ("modal", "budget", "readout")}
+             for c in ("modal", "budget", "readout", "thermal")}
     assert shown["modal"]["resonance_Hz"]["measuring"]["exact"] == pytest.approx(
         die_modes(plan)["measuring"].exact_Hz, rel=1e-12)
     assert shown["budget"]["kobj_budget"]["rss_rel"] == pytest.approx(
         list(die_budget(plan).total_rel), rel=1e-12)
     assert shown["readout"]["readout"]["rows"]["reference"]["force_resolution_N"] == \
         pytest.approx(die_readout(plan)["rows"]["reference"]["force_resolution_N"], rel=1e-12)
+    assert shown["thermal"]["sensitivity_tc_per_K"] == pytest.approx(
+        die_readout(plan)["sensitivity_tc_per_K"], rel=1e-12)
     assert sorted(p.name for p in tmp_path.iterdir()) == [design.name]  # nothing written
     for argv, option in ((("modal", "--model", "fem3d"), "--model"),
                          (("budget", "--delta-T", "3"), "--delta-T"),
-                         (("readout", "--model", "beam"), "--model")):
+                         (("readout", "--model", "beam"), "--model"),
+                         (("thermal", "--element", "2"), "--element")):
         r = run_cli(*argv, "--json", cwd=tmp_path)
         assert r.returncode == 2 and json.loads(r.stdout)["error"]["field"] == option, argv
 

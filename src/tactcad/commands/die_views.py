@@ -1,6 +1,7 @@
-"""The array commands on a silicon die's design file: ``modal``, ``budget`` and ``readout``
-print the die's own resonances, K_obj budget and piezoresistive read-out (what ``tactcad
-die`` prints among its files), planned as the die command plans it and writing nothing.
+"""The array commands on a silicon die's design file: ``modal``, ``budget``, ``readout`` and
+``thermal`` print the die's own resonances, K_obj budget, piezoresistive read-out and its
+temperature terms (what ``tactcad die`` prints among its files), planned as the die command
+plans it and writing nothing.
 
 An option of the array command that has no meaning for a die (a ladder level, an element,
 a temperature step) is refused by name rather than ignored. ``grasp`` and ``crosstalk``
@@ -54,7 +55,7 @@ def _modal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     plan = _planned(design, args).plan
     modes = die_modes(plan)
     return ({"design": str(design), "die": plan.name, "resonance_Hz": modes_json(modes)},
-            [f"die {plan.name}: each row's first bending mode, clamped at the root", 
+            [f"die {plan.name}: each row's first bending mode, clamped at the root",
              *mode_lines(modes)])
 
 
@@ -85,9 +86,40 @@ def _readout(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     return {"design": str(design), "die": plan.name, "readout": readout}, lines
 
 
+def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    from tactcad.in_use.die_budget import TEMPERATURE_STEP_K, die_budget
+    from tactcad.mechanics.piezoresistor import die_readout
+
+    plan = _planned(design, args).plan
+    readout = die_readout(plan)
+    budget = die_budget(plan, readout)
+    tcs, heating = readout["sensitivity_tc_per_K"], readout["self_heating_K"]
+    term = budget.terms["temperature"]
+    zero = ("not sized: the bridge's three other arms are the same implant on the die's "
+            "frame, so their TCR cancels the active arm's to first order; their mismatch and "
+            "the beam's self-heating over the frame are not modelled")
+    report = {"design": str(design), "die": plan.name,
+              "sensitivity_tc_per_K": tcs, "self_heating_K": heating,
+              "temperature_step_K": TEMPERATURE_STEP_K,
+              "kobj_error_rel": {"k_obj_N_per_mm": budget.k_obj_N_per_mm.tolist(),
+                                 "temperature": [float(v) for v in term],
+                                 "reason": budget.reasons["temperature"]},
+              "zero": zero}
+    lines = [f"die {plan.name}: p-type resistors, boron {plan.acceptors_per_cm3:.2g} cm^-3",
+             f"span: sensitivity {100 * tcs:+.3g} %/K (d ln P / dT, Richter et al. 2008), "
+             "alike in both rows: it cancels in R at one temperature",
+             f"self-heating: {1e3 * heating:.3g} mK at the root, P(N, T) moved "
+             f"{100 * abs(tcs) * heating:.2g} %",
+             f"K_obj error over a {TEMPERATURE_STEP_K:g} K step at K_obj "
+             + ", ".join(f"{k:.3g}" for k in budget.k_obj_N_per_mm) + " N/mm: "
+             + ", ".join(f"{100 * v:.3f} %" for v in term) + f" ({budget.reasons['temperature']})",
+             f"zero: {zero}"]
+    return report, lines
+
+
 #: The array commands that print a die's own figures, and what they print.
 DIE_VIEWS: dict[str, Callable[[Path, argparse.Namespace], tuple[dict, list[str]]]] = {
-    "modal": _modal, "budget": _budget, "readout": _readout}
+    "modal": _modal, "budget": _budget, "readout": _readout, "thermal": _thermal}
 
 
 def die_view(command: str, args: argparse.Namespace) -> int | None:

@@ -9,6 +9,7 @@ from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count
 from tactcad.errors import DesignError
 from tactcad.mechanics.ladder import models
+from tactcad.commands.die_views import die_view, keep_array_defaults
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -34,9 +35,13 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="ladder level for K and the strain per newton (default closed-form)")
     add_output_args(p, "print one JSON object: the thermal inputs and one record per element")
     p.set_defaults(func=run)
+    keep_array_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def run(args: argparse.Namespace) -> int:
+    shown = die_view("thermal", args)  # a silicon die's design: its own figures
+    if shown is not None:
+        return shown
     from dataclasses import replace
 
     from tactcad.mechanics.thermal_drift import thermal_report
