@@ -438,7 +438,7 @@ def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
     design = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
               / "grasper_jaw_5mm_mems.toml")
     (tmp_path / design.name).write_bytes(design.read_bytes())
-    for command in ("verify", "strength", "tolerance"):
+    for command in ("crosstalk", "strength", "tolerance"):
         r = run_cli(command, "--json", cwd=tmp_path)
         assert r.returncode == 2, (command, r.stdout, r.stderr)
         error = json.loads(r.stdout)["error"]
@@ -485,6 +485,16 @@ def test_modal_budget_readout_and_thermal_print_the_dies_own_figures_not_an_arra
         pytest.approx(die_readout(plan)["rows"]["reference"]["force_resolution_N"], rel=1e-12)
     assert shown["thermal"]["sensitivity_tc_per_K"] == pytest.approx(
         die_readout(plan)["sensitivity_tc_per_K"], rel=1e-12)
+    # verify: the die has no stop of its own, and the carrier lies deeper under the tips
+    # than either beam bends before its root reaches the etched bars' mean strength
+    checked = run_cli("verify", "--json", cwd=tmp_path)
+    assert checked.returncode == 1
+    rows = {r["requirement"]: r for r in json.loads(checked.stdout)["matrix"]}
+    assert rows["hard_stop"]["verdict"] == "fail" and rows["kr_over_km"]["verdict"] == "pass"
+    assert rows["full_scale_force_N"]["verdict"] == "undecided"
+    assert rows["full_scale_force_N"]["predicted"] == pytest.approx(
+        d.die.full_scale_force_N * 1900.0 / max(plan.stress_MPa_at_rating(b)
+                                                for b in plan.beams), rel=1e-12)
     assert sorted(p.name for p in tmp_path.iterdir()) == [design.name]  # nothing written
     for argv, option in ((("modal", "--model", "fem3d"), "--model"),
                          (("budget", "--delta-T", "3"), "--delta-T"),

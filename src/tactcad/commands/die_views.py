@@ -1,11 +1,11 @@
-"""The array commands on a silicon die's design file: ``modal``, ``budget``, ``readout`` and
-``thermal`` print the die's own resonances, K_obj budget, piezoresistive read-out and its
-temperature terms (what ``tactcad die`` prints among its files), planned as the die command
-plans it and writing nothing.
+"""The array commands on a silicon die's design file: ``modal``, ``budget``, ``readout``,
+``thermal`` and ``verify`` print the die's own resonances, K_obj budget, piezoresistive
+read-out, its temperature terms and its verification matrix (:func:`die_verification`),
+planned as the die command plans it and writing nothing.
 
 An option of the array command that has no meaning for a die (a ladder level, an element,
 a temperature step) is refused by name rather than ignored. ``grasp`` and ``crosstalk``
-stay refused with their reason (:data:`NOT_FOR_A_DIE`).
+stay refused, naming ``tactcad die``.
 """
 
 from __future__ import annotations
@@ -117,9 +117,80 @@ def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     return report, lines
 
 
+def die_verification(plan) -> list[dict]:
+    """The die's verification matrix, one record per requirement in the array's keys
+    (:func:`tactcad.studies.verification.verification_matrix`), at the closed form:
+
+    * ``full_scale_force_N``: the rated force against the force at which the worse row's root
+      reaches the mean strength of Bosch-etched silicon, undecided whatever the margin (a
+      mean strength without its Weibull modulus gives no failure probability);
+    * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band;
+    * ``hard_stop``: whether anything stops a tip before its root breaks: the only thing
+      under a tip is the carrier at the bottom of the handle's window (handle and oxide
+      below the device layer); the verdict fails where the beam reaches the mean strength
+      first (the die has no stop of its own yet).
+    """
+    from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, BOSCH_STRENGTH_SOURCE
+    from tactcad.studies.verification import KR_OVER_KM_BAND_REL
+
+    rows = plan.beams[:: plan.columns]
+    stiffness = {"reference": plan.k_r_N_per_mm, "measuring": plan.k_m_N_per_mm}
+    stressed = max(rows, key=plan.stress_MPa_at_rating)
+    breaking_N = plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA / plan.stress_MPa_at_rating(
+        stressed)
+    target_ratio = plan.targets[0] / plan.targets[1]
+    ratio = plan.k_r_N_per_mm / plan.k_m_N_per_mm
+    gap_um = plan.stack.handle_um + plan.stack.box_um
+    fracture_travel_um = {b.role: 1e3 * plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA
+                          / plan.stress_MPa_at_rating(b) / stiffness[b.role] for b in rows}
+    first = min(fracture_travel_um, key=fracture_travel_um.get)
+    stops = gap_um < min(fracture_travel_um.values())
+    return [
+        {"requirement": "full_scale_force_N", "target": plan.full_scale_force_N,
+         "predicted": breaking_N, "error_estimate_rel": None,
+         "margin_rel": breaking_N / plan.full_scale_force_N - 1.0, "model": "closed-form",
+         "verdict": "undecided",
+         "binding_words": f"root at the mean strength of etched bars, {stressed.role} row; "
+                          f"no Weibull modulus, so no failure probability "
+                          f"({BOSCH_STRENGTH_SOURCE})"},
+        {"requirement": "kr_over_km", "target": target_ratio, "predicted": ratio,
+         "error_estimate_rel": None, "margin_rel": ratio / target_ratio - 1.0,
+         "allowed_margin_rel": -KR_OVER_KM_BAND_REL, "model": "closed-form",
+         "verdict": "pass" if ratio / target_ratio - 1.0 >= -KR_OVER_KM_BAND_REL else "fail",
+         "binding_words": "each column's reference and measuring beam"},
+        {"requirement": "hard_stop", "target": "engages before the root breaks",
+         "predicted": f"{gap_um:g} um to the carrier; the {first} beam breaks at "
+                      f"{fracture_travel_um[first]:.3g} um",
+         "error_estimate_rel": None, "margin_rel": None, "model": "closed-form",
+         "verdict": "pass" if stops else "fail",
+         "binding_words": "nothing under the tips but the carrier at the window's bottom (the "
+                          "die has no stop of its own: a timed back etch leaving a shelf "
+                          "under each tip would be one)"},
+    ]
+
+
+def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    from tactcad.commands.die import budget_lines
+    from tactcad.commands.verify import matrix_table
+    from tactcad.in_use.die_budget import die_budget
+    from tactcad.studies.verification import matrix_passed, undecided
+
+    plan = _planned(design, args).plan
+    records = die_verification(plan)
+    budget = die_budget(plan)
+    ok = matrix_passed(records)
+    report = {"design": str(design), "die": plan.name, "model": "closed-form",
+              "matrix": records, "undecided": undecided(records), "passed": ok,
+              "kobj_budget": budget.as_json()}
+    lines = [f"die {plan.name}, model closed-form", matrix_table(records),
+             *budget_lines(budget), "no requirement fails" if ok else "a requirement is not met"]
+    return report, lines
+
+
 #: The array commands that print a die's own figures, and what they print.
 DIE_VIEWS: dict[str, Callable[[Path, argparse.Namespace], tuple[dict, list[str]]]] = {
-    "modal": _modal, "budget": _budget, "readout": _readout, "thermal": _thermal}
+    "modal": _modal, "budget": _budget, "readout": _readout, "thermal": _thermal,
+    "verify": _verify}
 
 
 def die_view(command: str, args: argparse.Namespace) -> int | None:
@@ -137,4 +208,4 @@ def die_view(command: str, args: argparse.Namespace) -> int | None:
     _refuse_array_options(args, command, design)
     report, lines = DIE_VIEWS[command](design, args)
     print(dumps(report, indent=1) if args.json else "\n".join(lines))
-    return 0
+    return 0 if report.get("passed", True) else 1

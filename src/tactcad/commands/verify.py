@@ -8,6 +8,7 @@ from tactcad.mechanics.ladder import levels_help, models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               progress_from_args)
 from tactcad.commands.finite_json import dumps
+from tactcad.commands.die_views import die_view, keep_array_defaults
 
 
 
@@ -32,9 +33,13 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "cheapest level that decides each requirement (default %(default)s)")
     add_output_args(p, "print one JSON object: requirements and the matrix")
     p.set_defaults(func=run)
+    keep_array_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def run(args: argparse.Namespace) -> int:
+    shown = die_view("verify", args)  # a silicon die's design: its own matrix
+    if shown is not None:
+        return shown
     from tactcad.studies.verification import (matrix_passed, requirements_of, undecided,
                                                 verification_auto, verification_matrix)
     from tactcad.assembly.inventory import array_envelope_mm

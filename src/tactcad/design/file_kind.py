@@ -34,8 +34,8 @@ def refuse_a_die(tables: Mapping[str, Any], design: Path) -> None:
                           "[material], [arms], ...)",
                           f"{design.name} is a silicon die's ([die]): `tactcad die --design "
                           f"{design.name}` makes it and prints its read-out, budget and "
-                          "resonances; `tactcad modal`, `budget`, `readout` and `thermal` "
-                          "print those alone; `tactcad export` and `tactcad check` in its folder make and "
+                          "resonances; `tactcad modal`, `budget`, `readout`, `thermal` and "
+                          "`verify` print those alone; `tactcad export` and `tactcad check` in its folder make and "
                           "check its files")
 
 
