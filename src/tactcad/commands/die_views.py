@@ -171,9 +171,8 @@ def die_verification(plan) -> list[dict]:
 
 def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.commands.die import budget_lines
-    from tactcad.commands.verify import matrix_table
     from tactcad.in_use.die_budget import die_budget
-    from tactcad.studies.verification import matrix_passed, undecided
+    from tactcad.studies.verification import matrix_passed, matrix_table, undecided
 
     plan = _planned(design, args).plan
     records = die_verification(plan)

@@ -40,8 +40,9 @@ def run(args: argparse.Namespace) -> int:
     shown = die_view("verify", args)  # a silicon die's design: its own matrix
     if shown is not None:
         return shown
-    from tactcad.studies.verification import (matrix_passed, requirements_of, undecided,
-                                                verification_auto, verification_matrix)
+    from tactcad.studies.verification import (matrix_passed, matrix_table, requirements_of,
+                                                undecided, verification_auto,
+                                                verification_matrix)
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.studies.strength_studies import element_stress
 
@@ -143,24 +144,3 @@ def tissue_text(record: dict) -> str:
                if record.get("check_level") else ""))
 
 
-def matrix_table(records: list[dict]) -> str:
-    """The matrix as a Markdown table (one row per requirement, the level
-    that decided it and the pair or element that binds; the limits of the
-    full-scale force below it)."""
-    from tactcad.studies.verification import binding_text, margin_text, percent_text, value_text
-
-    rows = ["| requirement | target | predicted | error est. | margin | model | verdict | "
-            "binds |",
-            "| --- | --- | --- | --- | --- | --- | --- | --- |"]
-    for r in records:
-        rows.append(f"| {r['requirement']} | {value_text(r['target'])} | "
-                    f"{value_text(r['predicted'])} | "
-                    f"{percent_text(r['error_estimate_rel'], sign=False)} | "
-                    f"{margin_text(r)} | {r['model']} | {r['verdict'].upper()} | "
-                    f"{binding_text(r)} |")
-    for r in records:
-        for lim in r.get("limits", ()):
-            rows.append(f"|   limit: {lim['words']} (element {lim['element']}) | | "
-                        f"{lim['force_N']:.4g} N | {100 * lim['error_estimate_rel']:.2f} % | | | "
-                        f"{'binds' if lim['binding'] else ''} | |")
-    return "\n".join(rows)

@@ -852,6 +852,27 @@ def percent_text(v: float | None, sign: bool = True) -> str:
     return f"{100 * v:+.1f} %" if sign else f"{100 * v:.2f} %"
 
 
+def matrix_table(records: list[dict]) -> str:
+    """The matrix as a Markdown table (one row per requirement, the level
+    that decided it and the pair or element that binds; the limits of the
+    full-scale force below it)."""
+    rows = ["| requirement | target | predicted | error est. | margin | model | verdict | "
+            "binds |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for r in records:
+        rows.append(f"| {r['requirement']} | {value_text(r['target'])} | "
+                    f"{value_text(r['predicted'])} | "
+                    f"{percent_text(r['error_estimate_rel'], sign=False)} | "
+                    f"{margin_text(r)} | {r['model']} | {r['verdict'].upper()} | "
+                    f"{binding_text(r)} |")
+    for r in records:
+        for lim in r.get("limits", ()):
+            rows.append(f"|   limit: {lim['words']} (element {lim['element']}) | | "
+                        f"{lim['force_N']:.4g} N | {100 * lim['error_estimate_rel']:.2f} % | | | "
+                        f"{'binds' if lim['binding'] else ''} | |")
+    return "\n".join(rows)
+
+
 def margin_text(record: dict) -> str:
     """A record's margin in percent, with the margin it is allowed when that is not 0
     (K_r / K_m within the K band: ``-20.2 % (allowed -24.0 %)``)."""
