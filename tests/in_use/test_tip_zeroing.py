@@ -155,7 +155,7 @@ def test_calibrate_and_lumped_read_one_flat_on_a_non_paper_design(tmp_path, caps
 
 
 @pytest.mark.parametrize("extra, message", [
-    (["--flat", "f.csv"], "--force-r = None: allowed > 0 N with --flat"),
+    (["--flat", "f.csv"], "--force-r (not given): allowed > 0 N with --flat"),
     (["--flat", "f.csv", "--force-r", "-1"], "--force-r = -1.0: allowed > 0 N with --flat"),
     (["--force-r", "0.1"], "--force-r = given without --coupled-design"),
 ])
@@ -170,3 +170,23 @@ def test_lumped_refuses_a_flat_without_its_force_or_design(tmp_path, capsys, ext
         argv += extra
     assert main(argv) == 2
     assert message in json.loads(capsys.readouterr().out)["error"]["message"]
+
+
+def test_a_recessed_tip_clear_of_the_tissue_carries_nothing_at_a_light_load():
+    """By hand, uncoupled (Ĉ = I): the reference at height 0 carries F_r, so the body has
+    travelled F_r (1/K_r + 1/K_obj); a measuring tip recessed by d touches only past that,
+    and then carries (travel - d) / (1/K_m + 1/K_obj). The linear model alone gave it a
+    pulling force, and R < 0, at loads below contact."""
+    sample = CoupledSample((1, 2), np.eye(2), Tissue(), (2.0, 3.0))
+    k_r, k_m, k_obj, d = 30.0, 3.0, 2.0, 0.004
+    k = {1: k_r, 2: k_m}
+    for f_r in (1e-4, 0.005, 0.02, 0.3):
+        travel = f_r * (1 / k_r + 1 / k_obj)
+        p_m = max(travel - d, 0.0) / (1 / k_m + 1 / k_obj)
+        r = offset_ratio(sample, k, (2, 1), k_obj, f_r, {2: -d})
+        assert r >= 0.0
+        assert r == pytest.approx((p_m / k_m) / (f_r / k_r), rel=1e-9, abs=1e-12)
+    # inverted at a load where both touch, the heights taken out give K_obj back
+    r = offset_ratio(sample, k, (2, 1), k_obj, 0.3, {2: -d})
+    assert offset_object_stiffness(sample, k, (2, 1), r, 0.3, {2: -d}) == pytest.approx(
+        k_obj, rel=1e-8)

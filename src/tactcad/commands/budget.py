@@ -7,9 +7,9 @@ import argparse
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               progress_from_args)
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.options import count, number, output_file
+from tactcad.commands.options import count, number, output_file, keep_option_defaults
 from tactcad.mechanics.ladder import models
-from tactcad.commands.die_views import die_view, keep_array_defaults
+from tactcad.commands.die_views import die_view
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -49,7 +49,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="also write the budget: .json as --json prints it, .md as the text")
     add_output_args(p, "print one JSON object: the budget of every unit and of the array")
     p.set_defaults(func=run)
-    keep_array_defaults(p)  # a die's design: its view refuses an array's options
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def calibrations_from_file(path: str, plan) -> dict:

@@ -44,10 +44,16 @@ def simulated_noise(args: argparse.Namespace, project) -> tuple[tuple[float, str
     return force, signal
 
 
+#: The options a zeroing run (``--flat``) takes: the design, the file and the output.
+FLAT_OPTIONS = frozenset({"design", "overrides", "cache", "no_cache", "json", "quiet", "func",
+                          "command", "flat", "encoding", "contact_um"})
+
+
 def register(subparsers) -> None:
     """Add the ``calibrate`` sub-command."""
     from tactcad.commands import add_cache_args, add_design_arg, add_output_args
-    from tactcad.commands.options import PLOT_SUFFIXES, count, number, output_file
+    from tactcad.commands.options import (PLOT_SUFFIXES, count, keep_option_defaults, number,
+                                          output_file)
 
     p = subparsers.add_parser(
         "calibrate", help="fit K, K_v, V0 from calibration readings and audit them against the design",
@@ -109,6 +115,7 @@ def register(subparsers) -> None:
                    help="with --data or --simulate: write force and signal against deflection (Fig. 4)")
     add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)
+    keep_option_defaults(p)  # --flat refuses the fit's and the simulation's options
 
 
 def _fit_record(element: int, c) -> dict:
@@ -142,7 +149,15 @@ def run(args: argparse.Namespace) -> int:
         raise TactcadError("--encoding = given without --data or --flat: allowed only with a "
                            "data file")
     if args.contact_um and not args.flat:
-        raise TactcadError("--contact-um = given without --flat: allowed only with --flat")
+        raise TactcadError(f"--contact-um = {args.contact_um:g}: allowed only with --flat")
+    if args.flat:
+        from tactcad.commands.options import options_given
+
+        given = options_given(args, FLAT_OPTIONS)
+        if given:
+            raise TactcadError(f"{given[0][0]} = {given[0][1]!r}: allowed only without --flat "
+                               "(a zeroing run reads deflections; it fits and simulates "
+                               "nothing)")
     if args.plot and not (args.simulate or args.data):
         raise TactcadError("--plot = given without --data or --simulate: allowed only with readings")
     from tactcad.commands import project_from_args
@@ -243,13 +258,13 @@ def flat_report(plan, path: str, encoding: str | None, contact_um: float) -> dic
         tactcad.in_use.tip_zeroing.ZeroingError: its steps give no heights (named).
     """
     from tactcad.in_use.tissue_coupling import design_units, unit_label
-    from tactcad.in_use.tip_zeroing import tip_heights_on_flat
+    from tactcad.in_use.tip_zeroing import heights_of_file
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.measured_io import read_flat_readings
 
     steps, info = read_flat_readings(path, encoding)
     elements = tuple(slot.number for slot in plan.slots)
-    heights = tip_heights_on_flat(steps, elements, 1e-3 * contact_um)
+    heights = heights_of_file(path, steps, elements, contact_um)
     units = []
     for unit in design_units(plan, ladder_stiffness_by_element(plan)):
         d, s = heights.mismatch_mm(unit)

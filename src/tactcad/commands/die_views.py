@@ -1,7 +1,7 @@
 """The array commands on a silicon die's design file: ``modal``, ``budget``, ``readout``,
 ``thermal`` and ``verify`` print the die's own resonances, K_obj budget, piezoresistive
 read-out, its temperature terms and its verification matrix (:func:`die_verification`),
-planned as the die command plans it and writing nothing.
+planned as the die command plans it and writing no file of theirs (the result store aside).
 
 An option of the array command that has no meaning for a die (a ladder level, an element,
 a temperature step) is refused by name rather than ignored. ``grasp`` and ``crosstalk``
@@ -19,27 +19,18 @@ from tactcad.errors import DesignError
 
 #: Options every view takes as the array command does: the design, its overrides, output.
 SHARED_OPTIONS = frozenset({"design", "overrides", "json", "quiet", "cache", "no_cache", "func",
-                            "command", "array_defaults"})
-
-
-def keep_array_defaults(parser: argparse.ArgumentParser) -> None:
-    """Remember the parser's option defaults on its namespace (``array_defaults``), so that a
-    die's view can tell an option the user set from one left at its default."""
-    parser.set_defaults(array_defaults={a.dest: a.default for a in parser._actions
-                                        if a.dest != "help"})
+                            "command"})
 
 
 def _refuse_array_options(args: argparse.Namespace, command: str, design: Path) -> None:
-    defaults = getattr(args, "array_defaults", {}) or {}
-    for dest, default in defaults.items():
-        if dest in SHARED_OPTIONS:
-            continue
-        value = getattr(args, dest, default)
-        if value != default:
-            option = "--" + dest.replace("_", "-")
-            raise DesignError(option, value, f"left out for a die's design ({design.name})",
-                              f"`tactcad {command}` on a silicon die prints the die's own "
-                              "figures; this option chooses among an array's")
+    from tactcad.commands.options import options_given
+
+    given = options_given(args, SHARED_OPTIONS)
+    if given:
+        option, value = given[0]
+        raise DesignError(option, value, f"left out for a die's design ({design.name})",
+                          f"`tactcad {command}` on a silicon die prints the die's own "
+                          "figures; this option chooses among an array's")
 
 
 def _planned(design: Path, args: argparse.Namespace):

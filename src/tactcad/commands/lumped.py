@@ -15,6 +15,7 @@ from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError, TactcadError
 
 from tactcad.commands import add_output_args
+from tactcad.commands.options import number
 
 
 def register(subparsers) -> None:
@@ -49,6 +50,12 @@ def register(subparsers) -> None:
                    help="with --coupled-design: the tips' heights read on a rigid flat (the "
                         "zeroing run of tactcad calibrate --flat, CSV element,step,"
                         "deflection_um), taken out of the coupled R or K_obj; needs --force-r")
+    p.add_argument("--encoding", metavar="NAME", default=None,
+                   help="with --flat: the file's text encoding (default UTF-8, or what its byte "
+                        "order mark says), e.g. cp1252")
+    p.add_argument("--contact-um", type=number(0, 1e4, "um"), default=0.0, metavar="UM",
+                   help="with --flat: a step counts where every element's deflection exceeds "
+                        "this (um, default 0), as tactcad calibrate --flat")
     p.add_argument("--force-r", type=float, metavar="N", default=None,
                    help="with --flat: the reference element's force at the reading (N, its "
                         "calibrated K_r times its deflection): a height offset is a length, so "
@@ -58,8 +65,8 @@ def register(subparsers) -> None:
 
 
 def coupled_form(design: str, unit: int | None, k_m: float, k_r: float, k_obj: float | None,
-                 r: float | None, flat: str | None = None, force_r_N: float | None = None
-                 ) -> dict:
+                 r: float | None, flat: str | None = None, force_r_N: float | None = None,
+                 encoding: str | None = None, contact_um: float = 0.0) -> dict:
     """The coupled R (eq. 2 corrected) from K_obj, or the coupled K_obj (eq. 3 corrected) from
     R, for measuring element ``unit`` of ``design`` against its row's reference, every tip on
     one half-space (:mod:`tactcad.in_use.tissue_coupling`); K_m, K_r for the unit's two
@@ -89,7 +96,8 @@ def coupled_form(design: str, unit: int | None, k_m: float, k_r: float, k_obj: f
     k = ladder_stiffness_by_element(plan)
     pairs = dict(design_units(plan, k))
     if unit not in pairs:
-        raise TactcadError(f"--unit = {unit!r}: allowed a measuring element of {plan.name}: "
+        shown = "--unit (not given)" if unit is None else f"--unit = {unit!r}"
+        raise TactcadError(f"{shown}: allowed a measuring element of {plan.name}: "
                            f"{sorted(pairs)}")
     pair = (unit, pairs[unit])
     k = {**k, pair[0]: k_m, pair[1]: k_r}
@@ -100,23 +108,26 @@ def coupled_form(design: str, unit: int | None, k_m: float, k_r: float, k_obj: f
     else:
         out["k_obj_coupled_N_per_mm"] = coupled_object_stiffness(sample, k, pair, r)
     if flat is not None:
-        out["zeroed"] = _zeroed_form(plan, sample, k, pair, k_obj, r, flat, force_r_N)
+        out["zeroed"] = _zeroed_form(plan, sample, k, pair, k_obj, r, flat, force_r_N,
+                                     encoding, contact_um)
     return out
 
 
 def _zeroed_form(plan, sample, k: dict, pair: tuple[int, int], k_obj: float | None,
-                 r: float | None, flat: str, force_r_N: float | None) -> dict:
+                 r: float | None, flat: str, force_r_N: float | None,
+                 encoding: str | None = None, contact_um: float = 0.0) -> dict:
     """The coupled R or K_obj with the tips' heights of a zeroing run taken out, and the
     K_obj (or R) at the unit's mismatch moved by +-1 sigma."""
-    from tactcad.in_use.tip_zeroing import tip_heights_on_flat
+    from tactcad.in_use.tip_zeroing import heights_of_file
     from tactcad.in_use.tissue_coupling import offset_object_stiffness, offset_ratio
     from tactcad.mechanics.measured_io import read_flat_readings
 
     if force_r_N is None or not (math.isfinite(force_r_N) and force_r_N > 0):
-        raise TactcadError(f"--force-r = {force_r_N!r}: allowed > 0 N with --flat (the "
-                           "reference element's force at the reading)")
-    steps, _ = read_flat_readings(flat)
-    heights = tip_heights_on_flat(steps, tuple(s.number for s in plan.slots))
+        shown = "--force-r (not given)" if force_r_N is None else f"--force-r = {force_r_N!r}"
+        raise TactcadError(f"{shown}: allowed > 0 N with --flat (the reference element's force "
+                           "at the reading)")
+    steps, _ = read_flat_readings(flat, encoding)
+    heights = heights_of_file(flat, steps, tuple(s.number for s in plan.slots), contact_um)
     mismatch, sigma = heights.mismatch_mm(pair)
     at = dict(heights.heights_mm)
 
@@ -203,13 +214,19 @@ def run(args: argparse.Namespace) -> int:
                            "the coupled model)")
     if args.force_r is not None and not args.flat:
         raise TactcadError("--force-r = given without --flat: allowed only with --flat")
+    if (args.encoding or args.contact_um) and not args.flat:
+        raise TactcadError(f"--{'encoding' if args.encoding else 'contact-um'} = "
+                           f"{args.encoding or args.contact_um}: allowed only with --flat")
     if args.flat and not (args.force_r is not None and math.isfinite(args.force_r)
                           and args.force_r > 0):
-        raise TactcadError(f"--force-r = {args.force_r!r}: allowed > 0 N with --flat (the "
-                           "reference element's force at the reading)")
+        shown = "--force-r (not given)" if args.force_r is None else \
+            f"--force-r = {args.force_r!r}"
+        raise TactcadError(f"{shown}: allowed > 0 N with --flat (the reference element's "
+                           "force at the reading)")
     if args.coupled_design is not None:
         result["coupled"] = coupled_form(args.coupled_design, args.unit, args.km, args.kr,
-                                         args.kobj, args.r, args.flat, args.force_r)
+                                         args.kobj, args.r, args.flat, args.force_r,
+                                         args.encoding, args.contact_um)
     if args.json:
         print(dumps(result))
         return 0

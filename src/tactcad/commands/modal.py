@@ -8,10 +8,10 @@ from pathlib import Path
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               progress_from_args)
-from tactcad.commands.options import count
+from tactcad.commands.options import count, keep_option_defaults
 from tactcad.errors import TactcadError
 from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_levels_help, modal_models
-from tactcad.commands.die_views import die_view, keep_array_defaults
+from tactcad.commands.die_views import die_view
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -40,7 +40,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_cache_args(p)
     add_output_args(p, "print JSON")
     p.set_defaults(func=run_modal)
-    keep_array_defaults(p)  # a die's design: its view refuses an array's options
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def _added_masses(plan, g, args) -> tuple:

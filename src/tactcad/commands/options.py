@@ -188,3 +188,21 @@ def options_of(parser: argparse.ArgumentParser,
     for action in subs:
         for name, sub in action.choices.items():
             yield from options_of(sub, (*path, name))
+
+
+def keep_option_defaults(parser: argparse.ArgumentParser) -> None:
+    """Remember the parser's option defaults on its namespace (``option_defaults``), so that a
+    mode of the command can tell an option the user set from one left at its default
+    (:func:`options_given`)."""
+    parser.set_defaults(option_defaults={a.dest: a.default for a in parser._actions
+                                         if a.dest != "help"})
+
+
+def options_given(args: argparse.Namespace, besides: Sequence[str]) -> list[tuple[str, object]]:
+    """(``--option``, value) of every option set away from its default (a parser that
+    :func:`keep_option_defaults` marked), but those whose dest is in ``besides``."""
+    defaults = getattr(args, "option_defaults", None) or {}
+    return [("--" + dest.replace("_", "-"), getattr(args, dest))
+            for dest, default in defaults.items()
+            if dest not in besides and dest != "option_defaults"
+            and getattr(args, dest, default) != default]

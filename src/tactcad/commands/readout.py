@@ -8,7 +8,8 @@ from tactcad.mechanics.ladder import models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               progress_from_args)
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.die_views import die_view, keep_array_defaults
+from tactcad.commands.die_views import die_view
+from tactcad.commands.options import keep_option_defaults
 
 
 
@@ -30,7 +31,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="ladder level for K and the strain field (default closed-form)")
     add_output_args(p, "print one JSON object: the chain, its noise and one record per element")
     p.set_defaults(func=run)
-    keep_array_defaults(p)  # a die's design: its view refuses an array's options
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def run(args: argparse.Namespace) -> int:

@@ -6,10 +6,10 @@ import argparse
 
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.options import count
+from tactcad.commands.options import count, keep_option_defaults
 from tactcad.errors import DesignError
 from tactcad.mechanics.ladder import models
-from tactcad.commands.die_views import die_view, keep_array_defaults
+from tactcad.commands.die_views import die_view
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -35,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="ladder level for K and the strain per newton (default closed-form)")
     add_output_args(p, "print one JSON object: the thermal inputs and one record per element")
     p.set_defaults(func=run)
-    keep_array_defaults(p)  # a die's design: its view refuses an array's options
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def run(args: argparse.Namespace) -> int:

@@ -8,7 +8,8 @@ from tactcad.mechanics.ladder import levels_help, models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               progress_from_args)
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.die_views import die_view, keep_array_defaults
+from tactcad.commands.die_views import die_view
+from tactcad.commands.options import keep_option_defaults
 
 
 
@@ -33,7 +34,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "cheapest level that decides each requirement (default %(default)s)")
     add_output_args(p, "print one JSON object: requirements and the matrix")
     p.set_defaults(func=run)
-    keep_array_defaults(p)  # a die's design: its view refuses an array's options
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def run(args: argparse.Namespace) -> int:

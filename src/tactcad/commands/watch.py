@@ -124,26 +124,20 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _refuse_a_die_at_once(args: argparse.Namespace) -> None:
-    """A silicon die's design file is refused before anything starts: a watch re-exports an
-    array, and no edit turns a die's file into one (an unreadable file is the watch's own
-    refusal, which waits for the next save).
+    """A silicon die's design file (``--design``, or the working folder's one design file) is
+    refused before anything starts: a watch re-exports an array, and no edit turns a die's
+    file into one (an unreadable file is the watch's own refusal, which waits for the next
+    save).
 
     Raises:
-        DesignError: ``--design`` is a die's file.
+        DesignError: the design is a die's file.
     """
-    from pathlib import Path
+    from tactcad.commands.die import die_design_of
+    from tactcad.design.file_kind import die_refusal
 
-    from tactcad.design.file_kind import refuse_a_die
-    from tactcad.errors import DesignError
-    from tactcad.vocabulary.schema import read_toml
-
-    if not getattr(args, "design", None):
-        return
-    try:
-        tables = read_toml(Path(args.design), "design file")
-    except DesignError:
-        return
-    refuse_a_die(tables, Path(args.design))
+    design = die_design_of(args)
+    if design is not None:
+        raise die_refusal(design)
 
 
 def watch_log(args: argparse.Namespace) -> Callable[[str], None]:

@@ -22,20 +22,24 @@ def is_die_file(data: Mapping[str, Any]) -> bool:
     return isinstance(data, Mapping) and DIE_TABLE in data
 
 
+def die_refusal(design: Path) -> DesignError:
+    """The refusal of a silicon die's design file where an array's is read: it names the
+    die command and the array commands that print a die's own figures."""
+    return DesignError("--design", design.name, "an array's design file ([design], "
+                       "[material], [arms], ...)",
+                       f"{design.name} is a silicon die's ([die]): `tactcad die --design "
+                       f"{design.name}` makes it and prints its read-out, budget and "
+                       "resonances; `tactcad modal`, `budget`, `readout`, `thermal` and "
+                       "`verify` print those alone; `tactcad export` and `tactcad check` in "
+                       "its folder make and check its files")
+
+
 def refuse_a_die(tables: Mapping[str, Any], design: Path) -> None:
     """A silicon die's design file is made by ``tactcad die`` (and ``export`` and ``check``
     in its folder), not read as an array's: say so, not every array table it lacks.
 
     Raises:
-        DesignError: ``tables`` are a die's.
+        DesignError: ``tables`` are a die's (:func:`die_refusal`).
     """
     if is_die_file(tables):
-        raise DesignError("--design", design.name, "an array's design file ([design], "
-                          "[material], [arms], ...)",
-                          f"{design.name} is a silicon die's ([die]): `tactcad die --design "
-                          f"{design.name}` makes it and prints its read-out, budget and "
-                          "resonances; `tactcad modal`, `budget`, `readout`, `thermal` and "
-                          "`verify` print those alone; `tactcad export` and `tactcad check` in its folder make and "
-                          "check its files")
-
-
+        raise die_refusal(design)

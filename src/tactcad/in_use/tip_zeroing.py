@@ -113,10 +113,13 @@ def tip_heights_on_flat(steps: Mapping[int, Mapping[int, float]], elements: tupl
         else:
             skipped.append(step)
     if len(used) < MIN_CONTACT_STEPS:
+        shown = ", ".join(str(s) for s in skipped[:5]) + (", ..." if len(skipped) > 5 else "")
+        hint = ("; every deflection is at or below 0: are they signed the other way?"
+                if all(v <= 0 for row in steps.values() for v in row.values()) else "")
         raise ZeroingError(f"steps with every tip in contact (deflection > "
                            f"{1e3 * contact_mm:g} um) = {len(used)}: allowed >= "
-                           f"{MIN_CONTACT_STEPS}; press the flat further (steps "
-                           f"{skipped[:5]} leave a tip out of contact)")
+                           f"{MIN_CONTACT_STEPS}; press the flat further ({len(skipped)} steps "
+                           f"leave a tip out of contact: {shown}){hint}")
     d = np.array(rows)
     mean = d.mean(axis=0)
     scatter = d.std(axis=0, ddof=1) / math.sqrt(len(used))
@@ -124,6 +127,19 @@ def tip_heights_on_flat(steps: Mapping[int, Mapping[int, float]], elements: tupl
     return TipHeights({n: float(h) for n, h in zip(elements, mean)},
                       {n: float(s) for n, s in zip(elements, sigma)},
                       tuple(used), tuple(skipped), float(flatness_mm))
+
+
+def heights_of_file(path, steps: Mapping[int, Mapping[int, float]], elements: tuple[int, ...],
+                    contact_um: float = 0.0) -> TipHeights:
+    """:func:`tip_heights_on_flat` of a zeroing file's steps, a refusal naming the file.
+
+    Raises:
+        ZeroingError: as :func:`tip_heights_on_flat`, prefixed by ``path``.
+    """
+    try:
+        return tip_heights_on_flat(steps, elements, 1e-3 * contact_um)
+    except ZeroingError as exc:
+        raise ZeroingError(f"{path}: {exc}") from None
 
 
 def simulated_flat_steps(heights_mm: Mapping[int, float], travels_mm, noise_mm: float = 0.0,

@@ -301,12 +301,45 @@ def coupled_object_stiffness(sample: CoupledSample, stiffness: Mapping[int, floa
                                xtol=INVERSION_XTOL)))
 
 
+def contact_forces(sample: CoupledSample, k: np.ndarray, heights_mm: np.ndarray, k_obj: float,
+                   travel_mm: float) -> np.ndarray:
+    """Each tip's force (N, in ``sample.numbers``' order) with the array body moved
+    ``travel_mm`` towards the tissue and the tips standing ``heights_mm`` proud: a tip in
+    contact satisfies P/K + (Ĉ P / K_obj) = travel + d; a tip clear of the tissue carries
+    no force and stands above the surface its neighbours press down (a linear
+    complementarity problem, solved by active set: the most negative force leaves, the
+    deepest penetration joins, until neither remains).
+
+    Raises:
+        ContactError: the active set does not settle (never seen; named with the travel).
+    """
+    n = len(k)
+    system = np.diag(1.0 / k) + sample.normalised / k_obj
+    active = np.ones(n, bool)
+    for _ in range(4 * n + 4):
+        force = np.zeros(n)
+        idx = np.flatnonzero(active)
+        if idx.size:
+            force[idx] = np.linalg.solve(system[np.ix_(idx, idx)], travel_mm + heights_mm[idx])
+        penetration = np.where(active, -np.inf,
+                               travel_mm + heights_mm - sample.normalised @ force / k_obj)
+        if force.min() < 0.0:
+            active[int(np.argmin(force))] = False
+        elif penetration.max() > 0.0:
+            active[int(np.argmax(penetration))] = True
+        else:
+            return force
+    raise ContactError("travel_mm", travel_mm, "a travel whose contact set settles")
+
+
 def offset_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple[int, int],
                  k_obj: float, force_r_N: float, offsets_mm: Mapping[int, float]) -> float:
     """R = e_m / e_r of a unit on the coupled sample (every tip pressing) when tips stand
     proud of a common datum by ``offsets_mm``, pressed until the reference carries
-    ``force_r_N``: P = (diag(1/K) + Ĉ/K_obj)⁻¹ (Δ 1 + d), the travel Δ set by the reference's
-    force. With no offsets it is :func:`coupled_ratio` at any force.
+    ``force_r_N``: P = (diag(1/K) + Ĉ/K_obj)⁻¹ (Δ 1 + d) while every tip touches, the
+    travel Δ set by the reference's force. At a light load a recessed tip may stand clear
+    of the tissue: it then carries nothing (:func:`contact_forces`), and R is 0 when it is
+    the measuring tip. With no offsets it is :func:`coupled_ratio` at any force.
 
     Args:
         sample, stiffness: as :func:`coupled_ratio`.
@@ -316,7 +349,7 @@ def offset_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: tu
         offsets_mm: element -> its tip's height (mm, + towards the tissue); missing: 0.
 
     Returns:
-        R (dimensionless).
+        R (dimensionless), >= 0.
 
     Raises:
         ContactError: K_obj or the force not > 0, an offset not finite.
@@ -330,11 +363,22 @@ def offset_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: tu
     d = np.array([float(offsets_mm.get(n, 0.0)) for n in numbers])
     if not np.all(np.isfinite(d)):
         raise ContactError("tip offsets_mm", d.tolist(), "finite heights (mm)")
+    i_m, i_r = numbers.index(unit[0]), numbers.index(unit[1])
     system = np.diag(1.0 / k) + sample.normalised / float(k_obj)
     per_travel, fixed = np.linalg.solve(system, np.ones(len(k))), np.linalg.solve(system, d)
-    i_m, i_r = numbers.index(unit[0]), numbers.index(unit[1])
     travel = (force_r_N - fixed[i_r]) / per_travel[i_r]
-    e = (travel * per_travel + fixed) / k
+    force = travel * per_travel + fixed
+    if force.min() < 0.0:  # a tip clear of the tissue: the travel that gives the reference F_r
+        def excess(t: float) -> float:
+            return contact_forces(sample, k, d, float(k_obj), t)[i_r] - force_r_N
+
+        lo = -float(d.max()) - 1.0 / k_obj  # every tip clear: no force anywhere
+        hi = max(travel, lo) + 1e-9
+        while excess(hi) < 0.0:
+            hi = lo + 2.0 * (hi - lo)
+        force = contact_forces(sample, k, d, float(k_obj),
+                               brentq(excess, lo, hi, xtol=1e-15, rtol=INVERSION_RTOL))
+    e = force / k
     return float(e[i_m] / e[i_r])
 
 
