@@ -407,9 +407,10 @@ def test_cli_requires_exactly_one_of_kobj_and_r():
 
 def test_cli_domain_error_propagates_and_main_exits_2(monkeypatch, capsys):
     args = parse(["lumped", "--km", "40.12", "--kr", "80.38", "--r", "0.98"])
-    with pytest.raises(TactcadError, match="R = 0.98"):
+    with pytest.raises(TactcadError, match="--r = 0.98"):
         args.func(args)
     from tactcad import cli
     monkeypatch.setattr(cli, "COMMAND_MODULES", ("tactcad.commands.lumped",))
     assert cli.main(["lumped", "--km", "40.12", "--kr", "80.38", "--r", "0.98"]) == 2
-    assert "R = 0.98: must satisfy 1 < R < K_r/K_m" in capsys.readouterr().err
+    # named by the option that gave it (it was "R = 0.98: must satisfy ...", no option)
+    assert "--r = 0.98: allowed 1 < R < K_r/K_m" in capsys.readouterr().err

@@ -18,6 +18,11 @@ from tactcad.commands import add_output_args
 from tactcad.commands.options import number
 
 
+#: The option that gives each of the lumped model's inputs (its refusals name it).
+OPTION_OF_QUANTITY = {"R": "--r", "K_m": "--km", "K_r": "--kr", "K_obj": "--kobj",
+                      "sigma_R": "--sigma-r"}
+
+
 def register(subparsers) -> None:
     """Add the ``lumped`` sub-command to an ``argparse`` sub-parser collection."""
     p = subparsers.add_parser(
@@ -167,7 +172,10 @@ def evaluate(k_m: float, k_r: float, k_obj: float | None = None, r: float | None
         out = _results(lumped, k_m, k_r, k_obj, r, sigma_r)
     except lumped.LumpedDomainError as exc:
         if exc.quantity != "R" or k_obj is None:
-            raise
+            option = OPTION_OF_QUANTITY.get(exc.quantity)
+            if option is None:
+                raise
+            raise DesignError(option, float(exc.value), exc.condition) from None
         # R was computed from K_obj, not given: name what the user gave
         raise TactcadError(f"{_inputs(given)}: allowed a K_obj whose R = (K_r + K_obj)/(K_m + K_obj) "
                            f"lies strictly inside 1 ... K_r/K_m in double precision (R rounds to "
