@@ -307,6 +307,44 @@ def test_at_the_largest_force_the_gauge_limits_clear_the_closed_forms_strain_err
     assert gauge.force_N >= force * (1 + gauge.error_estimate_rel) > force * 1.01
 
 
+@pytest.mark.filterwarnings("ignore::tactcad.mechanics.gauge_strain.GaugeStrainRangeWarning")
+def test_each_candidate_web_is_cleared_by_its_own_strain_error_not_the_layouts(plan):
+    """The search held every web to the base layout's gauge-strain error; a thinner web lies
+    further outside the grid factor's fit, so its error is larger. At the sampled webs the
+    search uses each element's own closed-form error; between them the larger neighbour's."""
+    from dataclasses import replace
+
+    from tactcad.mechanics.limits import closed_form_gauge_error_rel
+    from tactcad.mechanics.readout_chain import readout_chain
+    from tactcad.studies.inverse_design import ERROR_SAMPLES, web_strain_errors
+
+    # a lab's own 0.2 mm notch: a web as thick as the radius reads outside the fit (t/R 1)
+    g = replace(plan.element(1).geometry, notch_radius_mm=0.2)
+    mat, chain = plan.material, readout_chain(plan)
+    webs = np.round(np.arange(0.08, 0.40001, 0.005), 6)
+    radii = np.maximum(g.notch_radius_mm, webs)
+    arms = [np.full_like(webs, 4.0), np.full_like(webs, 8.0)]
+    err = web_strain_errors(g, mat, chain, webs, radii, arms)
+
+    def own(i: int) -> float:
+        return max(closed_form_gauge_error_rel(replace(
+            g, web_thickness_mm=float(webs[i]), notch_radius_mm=float(radii[i]),
+            arm_length_mm=a), mat, chain) for a in (4.0, 8.0))
+
+    sampled = np.unique(np.linspace(0, len(webs) - 1, ERROR_SAMPLES).round().astype(int))
+    for i in sampled:
+        assert err[i] == pytest.approx(own(i), rel=1e-12)
+    between = [i for i in range(len(webs)) if i not in set(sampled)]
+    for i in between[::5]:
+        j = int(np.searchsorted(webs[sampled], webs[i]))
+        assert err[i] == max(err[sampled[j - 1]], err[sampled[j]])
+    # one error for every web was the layout's own (its 0.25 mm web at t/R 1): about 20 %,
+    # five times a 0.4 mm web's
+    layout = closed_form_gauge_error_rel(g, mat, chain)
+    assert err[-1] < layout / 4
+    assert err.max() > err.min() * 2
+
+
 @pytest.mark.slow  # a whole design search
 @pytest.mark.filterwarnings("ignore::tactcad.mechanics.correction.CorrectionRangeWarning")
 def test_a_reason_kept_from_the_base_quotes_no_value_the_new_design_does_not_vouch_for(

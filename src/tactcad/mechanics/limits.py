@@ -161,6 +161,22 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
     return out
 
 
+def closed_form_gauge_error_rel(g: ElementGeometry, material, chain) -> float:
+    """The closed form's error on element ``g``'s gauge limits, as :func:`plan_limits` gives
+    it at that level: K's error estimate plus the fitted grid-strain factor's (its fit
+    residual, and outside its range the extrapolation's change), relative.
+
+    Args:
+        g: the element; material: its material; chain: the design's read-out chain
+            (:func:`tactcad.mechanics.readout_chain.readout_chain`: the grid's size).
+    """
+    from tactcad.mechanics.ladder import estimate
+
+    k_err = estimate("closed-form", g, material).error_estimate_rel
+    return max(k_err, 0.0) + grid_strain_factor(g, material, chain.grid_length_mm,
+                                                chain.grid_width_mm).error_rel
+
+
 #: The limits on the gauge's strain: their closed-form error is two-sided (a higher level
 #: may read more strain), unlike the stress limits' plane-stress bound.
 GAUGE_LIMITS = ("gauge_fatigue", "gauge_max")

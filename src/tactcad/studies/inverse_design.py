@@ -545,13 +545,15 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     f_gauge_max = np.minimum(limits_r["gauge_max"], limits_m["gauge_max"])
     f_fatigue = np.fmin(limits_r["fatigue"], limits_m["fatigue"])  # NaN: no fatigue strength
     # a gauge limit holds when its margin clears the closed form's error on the grid's
-    # strain (two-sided: a level of the ladder within it may read more); the stress
-    # limits' plane-stress bound is one-sided, the 3D stress lower, so they hold at 1
+    # strain (two-sided: a level of the ladder within it may read more), each web's own
+    # (a thinner web may lie further outside the grid factor's fit); the stress limits'
+    # plane-stress bound is one-sided, the 3D stress lower, so they hold at 1
     from tactcad.mechanics.limits import plan_limits
 
     cf_limits = plan_limits(plan, "closed-form")
-    err = strain_error(cf_limits)
-    clear = 1.0 + err
+    web_err = web_strain_errors(g, mat, chain, webs, radii, arms)
+    clear = 1.0 + web_err
+    err = float(web_err[int(np.argmax(f_gauge / clear))])
     y_margin, g_margin = f_yield / F, f_gauge / (F * clear)
     gm_margin = f_gauge_max / (F * clear)
     fat_margin = np.where(np.isnan(f_fatigue), np.inf, f_fatigue / F)
@@ -580,12 +582,12 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
               f"(yield {mat.yield_strength_MPa:g} MPa / {sf:g}), asked {F:g} N"),
         Limit(f"gauge fatigue strain ({gauge.name}) at the full-scale force", "strength.gauge",
               g_margin >= 1.0,
-              f"the stiffness targets' arms carry at most {np.max(f_gauge) / clear:.3g} N at any "
+              f"the stiffness targets' arms carry at most {np.max(f_gauge / clear):.3g} N at any "
               f"web{_cleared(err)} "
               f"within {1e6 * gauge.fatigue_strain:.0f} microstrain, asked {F:g} N"),
         Limit(f"gauge maximum strain ({gauge.name}) at the full-scale force", "strength.gauge",
               gm_margin >= 1.0,
-              f"the stiffness targets' arms carry at most {np.max(f_gauge_max) / clear:.3g} N at "
+              f"the stiffness targets' arms carry at most {np.max(f_gauge_max / clear):.3g} N at "
               f"any web{_cleared(err)} "
               f"within {1e6 * gauge.max_strain:.0f} microstrain, asked {F:g} N"),
     )
@@ -601,18 +603,45 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
                      max(lim.error_estimate_rel for lim in cf_limits))
 
 
+#: Webs at which :func:`web_strain_errors` evaluates the closed form's gauge-strain error
+#: (each row's); between them a web takes the larger of its two neighbours'.
+ERROR_SAMPLES = 9
+
+
+def web_strain_errors(g, material, chain, webs: np.ndarray, radii: np.ndarray,
+                      arms: Sequence[np.ndarray]) -> np.ndarray:
+    """Per candidate web, the closed form's error on the gauge limits of the elements it
+    makes (:func:`tactcad.mechanics.limits.closed_form_gauge_error_rel`, the larger of the
+    rows'), relative, shape of ``webs``: evaluated at :data:`ERROR_SAMPLES` webs spread
+    over the candidates, a web between two of them taking the larger (the error grows
+    stepwise where a web leaves the grid factor's fit).
+
+    Args:
+        g: the layout's element (its sheet, profile and tip); material, chain: the design's.
+        webs, radii: the candidates' webs and notch radii (mm), ascending webs.
+        arms: per row, each candidate's arm (mm), shape of ``webs``.
+    """
+    from dataclasses import replace
+
+    from tactcad.mechanics.limits import closed_form_gauge_error_rel
+
+    order = np.argsort(webs)
+    picks = np.unique(np.linspace(0, len(webs) - 1, min(ERROR_SAMPLES, len(webs))).round()
+                      .astype(int))
+    sampled = order[picks]
+    at = np.array([max(closed_form_gauge_error_rel(
+        replace(g, web_thickness_mm=float(webs[i]), notch_radius_mm=float(radii[i]),
+                arm_length_mm=float(a[i])), material, chain) for a in arms) for i in sampled])
+    t = webs[sampled]
+    right = np.clip(np.searchsorted(t, webs), 0, len(t) - 1)
+    left = np.clip(right - 1, 0, len(t) - 1)
+    exact = np.isclose(t[right], webs)
+    return np.where(exact, at[right], np.maximum(at[left], at[right]))
+
+
 def _cleared(error_rel: float) -> str:
     """The words for a force carried with the closed form's strain error cleared."""
     return f" (its {100 * error_rel:.2g} % closed-form strain error cleared)" if error_rel > 0 else ""
-
-
-def strain_error(limits) -> float:
-    """The largest error estimate of the gauge-strain limits among ``limits``
-    (:func:`tactcad.mechanics.limits.plan_limits`: K's error plus the fitted grid
-    factor's), relative."""
-    from tactcad.mechanics.limits import GAUGE_LIMITS
-
-    return max(lim.error_estimate_rel for lim in limits if lim.limit in GAUGE_LIMITS)
 
 
 #: Number of leading limits of :func:`search_webs` that concern stiffness (the
