@@ -158,6 +158,7 @@ def test_calibrate_and_lumped_read_one_flat_on_a_non_paper_design(tmp_path, caps
     (["--flat", "f.csv"], "--force-r (not given): allowed > 0 N with --flat"),
     (["--flat", "f.csv", "--force-r", "-1"], "--force-r = -1.0: allowed > 0 N with --flat"),
     (["--force-r", "0.1"], "--force-r = given without --coupled-design"),
+    (["--flat", "f.csv", "--force-r", "50"], "--force-r = 50.0: allowed <= "),
 ])
 def test_lumped_refuses_a_flat_without_its_force_or_design(tmp_path, capsys, extra, message):
     flat = _write_flat(tmp_path / "f.csv", simulated_flat_steps(

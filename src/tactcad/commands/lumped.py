@@ -131,6 +131,11 @@ def _zeroed_form(plan, sample, k: dict, pair: tuple[int, int], k_obj: float | No
         shown = "--force-r (not given)" if force_r_N is None else f"--force-r = {force_r_N!r}"
         raise TactcadError(f"{shown}: allowed > 0 N with --flat (the reference element's force "
                            "at the reading)")
+    yield_N = _yield_force_N(plan, pair[1])
+    if yield_N is not None and force_r_N > yield_N:
+        raise DesignError("--force-r", force_r_N, f"<= {yield_N:.4g} N",
+                          f"the force at which the reference element {pair[1]} yields; a force "
+                          "in N, not mN or g")
     steps, _ = read_flat_readings(flat, encoding)
     heights = heights_of_file(flat, steps, tuple(s.number for s in plan.slots), contact_um)
     mismatch, sigma = heights.mismatch_mm(pair)
@@ -147,6 +152,19 @@ def _zeroed_form(plan, sample, k: dict, pair: tuple[int, int], k_obj: float | No
     return {"flat": flat, "force_r_N": force_r_N, "mismatch_um": 1e3 * mismatch,
             "mismatch_sigma_um": 1e3 * sigma, key: value(0.0),
             f"{key}_at_sigma": spread}
+
+
+def _yield_force_N(plan, element: int) -> float | None:
+    """The tip force (N) at which ``element`` yields at the closed form (its yield limit
+    without the safety factor), or None for a material without a yield strength."""
+    from tactcad.mechanics.limits import plan_limits
+
+    try:
+        limits = plan_limits(plan, "closed-form")
+    except DesignError:
+        return None
+    return next((lim.force_N * plan.strength.safety_factor for lim in limits
+                 if lim.element == element and lim.limit == "yield"), None)
 
 
 def evaluate(k_m: float, k_r: float, k_obj: float | None = None, r: float | None = None,

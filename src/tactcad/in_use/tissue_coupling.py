@@ -372,7 +372,7 @@ def offset_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: tu
         def excess(t: float) -> float:
             return contact_forces(sample, k, d, float(k_obj), t)[i_r] - force_r_N
 
-        lo = -float(d.max()) - 1.0 / k_obj  # every tip clear: no force anywhere
+        lo = -float(d.max())  # every tip at most touching the undisturbed surface: no force
         hi = max(travel, lo) + 1e-9
         while excess(hi) < 0.0:
             hi = lo + 2.0 * (hi - lo)
