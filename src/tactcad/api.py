@@ -69,8 +69,8 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
         DesignError: an unreadable file, a ``path`` that is no path, or a
             ``set`` key that is not ``section.key``.
     """
-    from tactcad.design.array_plan import read_toml, with_overrides
-    from tactcad.design.file_kind import refuse_a_die
+    from tactcad.design.array_plan import with_overrides
+    from tactcad.design.file_kind import read_array_tables
     from tactcad.errors import DesignError
     from tactcad.project_folder import default_design
 
@@ -78,9 +78,7 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
         raise DesignError("path", path, "a design file's path (str or pathlib.Path) or None")
     design = Path(path) if path is not None else default_design()
     overrides = _checked_overrides(set)
-    tables = read_toml(design, "design file")
-    refuse_a_die(tables, design)
-    data = with_overrides(tables, overrides)
+    data = with_overrides(read_array_tables(design), overrides)
     return Project(_validated(data, design, overrides), data, design)
 
 

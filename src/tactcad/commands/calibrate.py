@@ -44,9 +44,8 @@ def simulated_noise(args: argparse.Namespace, project) -> tuple[tuple[float, str
     return force, signal
 
 
-#: The options a zeroing run (``--flat``) takes: the design, the file and the output.
-FLAT_OPTIONS = frozenset({"design", "overrides", "cache", "no_cache", "json", "quiet", "func",
-                          "command", "flat", "encoding", "contact_um"})
+#: The options a zeroing run (``--flat``) takes besides the common ones: the file.
+FLAT_OPTIONS = frozenset({"flat", "encoding", "contact_um"})
 
 
 def register(subparsers) -> None:
@@ -151,9 +150,9 @@ def run(args: argparse.Namespace) -> int:
     if args.contact_um and not args.flat:
         raise TactcadError(f"--contact-um = {args.contact_um:g}: allowed only with --flat")
     if args.flat:
-        from tactcad.commands.options import options_given
+        from tactcad.commands.options import COMMON_OPTIONS, options_given
 
-        given = options_given(args, FLAT_OPTIONS)
+        given = options_given(args, COMMON_OPTIONS | FLAT_OPTIONS)
         if given:
             raise TactcadError(f"{given[0][0]} = {given[0][1]!r}: allowed only without --flat "
                                "(a zeroing run reads deflections; it fits and simulates "
@@ -258,13 +257,11 @@ def flat_report(plan, path: str, encoding: str | None, contact_um: float) -> dic
         tactcad.in_use.tip_zeroing.ZeroingError: its steps give no heights (named).
     """
     from tactcad.in_use.tissue_coupling import design_units, unit_label
-    from tactcad.in_use.tip_zeroing import heights_of_file
+    from tactcad.in_use.tip_zeroing import read_tip_heights
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
-    from tactcad.mechanics.measured_io import read_flat_readings
 
-    steps, info = read_flat_readings(path, encoding)
-    elements = tuple(slot.number for slot in plan.slots)
-    heights = heights_of_file(path, steps, elements, contact_um)
+    heights, info = read_tip_heights(path, tuple(slot.number for slot in plan.slots), encoding,
+                                     contact_um)
     units = []
     for unit in design_units(plan, ladder_stiffness_by_element(plan)):
         d, s = heights.mismatch_mm(unit)

@@ -17,15 +17,10 @@ from typing import Callable
 from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError
 
-#: Options every view takes as the array command does: the design, its overrides, output.
-SHARED_OPTIONS = frozenset({"design", "overrides", "json", "quiet", "cache", "no_cache", "func",
-                            "command"})
-
-
 def _refuse_array_options(args: argparse.Namespace, command: str, design: Path) -> None:
-    from tactcad.commands.options import options_given
+    from tactcad.commands.options import COMMON_OPTIONS, options_given
 
-    given = options_given(args, SHARED_OPTIONS)
+    given = options_given(args, COMMON_OPTIONS)
     if given:
         option, value = given[0]
         raise DesignError(option, value, f"left out for a die's design ({design.name})",

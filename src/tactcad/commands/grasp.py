@@ -116,16 +116,13 @@ def design_plan_from_args(args: argparse.Namespace):
     from pathlib import Path
 
     from tactcad.design.array_plan import plan_from_dict, with_overrides
-    from tactcad.design.file_kind import refuse_a_die
+    from tactcad.design.file_kind import read_array_tables
     from tactcad.errors import DesignErrors
     from tactcad.commands import announced_default_design
-    from tactcad.vocabulary.schema import read_toml
 
     path = Path(args.design) if getattr(args, "design", None) else announced_default_design()
     texts = getattr(args, "overrides", None) or []
-    tables = read_toml(path, "design file")
-    refuse_a_die(tables, path)
-    data = with_overrides(tables, parse_overrides(texts))
+    data = with_overrides(read_array_tables(path), parse_overrides(texts))
     try:
         return plan_from_dict(data, source=str(path), file=path.name)
     except DesignErrors as exc:  # a refused --set value is named as typed

@@ -123,21 +123,17 @@ def _zeroed_form(plan, sample, k: dict, pair: tuple[int, int], k_obj: float | No
                  encoding: str | None = None, contact_um: float = 0.0) -> dict:
     """The coupled R or K_obj with the tips' heights of a zeroing run taken out, and the
     K_obj (or R) at the unit's mismatch moved by +-1 sigma."""
-    from tactcad.in_use.tip_zeroing import heights_of_file
+    from tactcad.in_use.tip_zeroing import read_tip_heights
     from tactcad.in_use.tissue_coupling import offset_object_stiffness, offset_ratio
-    from tactcad.mechanics.measured_io import read_flat_readings
 
-    if force_r_N is None or not (math.isfinite(force_r_N) and force_r_N > 0):
-        shown = "--force-r (not given)" if force_r_N is None else f"--force-r = {force_r_N!r}"
-        raise TactcadError(f"{shown}: allowed > 0 N with --flat (the reference element's force "
-                           "at the reading)")
+    _check_force_r(force_r_N)
     yield_N = _yield_force_N(plan, pair[1])
     if yield_N is not None and force_r_N > yield_N:
         raise DesignError("--force-r", force_r_N, f"<= {yield_N:.4g} N",
                           f"the force at which the reference element {pair[1]} yields; a force "
                           "in N, not mN or g")
-    steps, _ = read_flat_readings(flat, encoding)
-    heights = heights_of_file(flat, steps, tuple(s.number for s in plan.slots), contact_um)
+    heights, _ = read_tip_heights(flat, tuple(s.number for s in plan.slots), encoding,
+                                  contact_um)
     mismatch, sigma = heights.mismatch_mm(pair)
     at = dict(heights.heights_mm)
 
@@ -152,6 +148,18 @@ def _zeroed_form(plan, sample, k: dict, pair: tuple[int, int], k_obj: float | No
     return {"flat": flat, "force_r_N": force_r_N, "mismatch_um": 1e3 * mismatch,
             "mismatch_sigma_um": 1e3 * sigma, key: value(0.0),
             f"{key}_at_sigma": spread}
+
+
+def _check_force_r(force_r_N: float | None) -> None:
+    """Refuse a reference force that is missing, not finite or not > 0 (with ``--flat``).
+
+    Raises:
+        TactcadError: naming ``--force-r`` and its value.
+    """
+    if force_r_N is None or not (math.isfinite(force_r_N) and force_r_N > 0):
+        shown = "--force-r (not given)" if force_r_N is None else f"--force-r = {force_r_N!r}"
+        raise TactcadError(f"{shown}: allowed > 0 N with --flat (the reference element's force "
+                           "at the reading)")
 
 
 def _yield_force_N(plan, element: int) -> float | None:
@@ -243,12 +251,8 @@ def run(args: argparse.Namespace) -> int:
     if (args.encoding or args.contact_um) and not args.flat:
         raise TactcadError(f"--{'encoding' if args.encoding else 'contact-um'} = "
                            f"{args.encoding or args.contact_um}: allowed only with --flat")
-    if args.flat and not (args.force_r is not None and math.isfinite(args.force_r)
-                          and args.force_r > 0):
-        shown = "--force-r (not given)" if args.force_r is None else \
-            f"--force-r = {args.force_r!r}"
-        raise TactcadError(f"{shown}: allowed > 0 N with --flat (the reference element's "
-                           "force at the reading)")
+    if args.flat:
+        _check_force_r(args.force_r)  # before the design is loaded: a quick refusal
     if args.coupled_design is not None:
         result["coupled"] = coupled_form(args.coupled_design, args.unit, args.km, args.kr,
                                          args.kobj, args.r, args.flat, args.force_r,

@@ -190,6 +190,12 @@ def options_of(parser: argparse.ArgumentParser,
             yield from options_of(sub, (*path, name))
 
 
+#: The options a command's every mode takes alike: the design and its overrides, the result
+#: store and the output (their dests), with argparse's own ``func``/``command``.
+COMMON_OPTIONS = frozenset({"design", "overrides", "json", "quiet", "cache", "no_cache", "func",
+                            "command"})
+
+
 def keep_option_defaults(parser: argparse.ArgumentParser) -> None:
     """Remember the parser's option defaults on its namespace (``option_defaults``), so that a
     mode of the command can tell an option the user set from one left at its default

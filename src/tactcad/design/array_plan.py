@@ -958,12 +958,10 @@ def load_design(path: str | Path | None = None) -> Plan:
             :class:`~tactcad.errors.DesignErrors` lists every one found); a silicon
             die's file (made by ``tactcad die``).
     """
-    from tactcad.design.file_kind import refuse_a_die
+    from tactcad.design.file_kind import read_array_tables
 
     p = Path(path) if path is not None else DEFAULT_DESIGN
-    tables = read_toml(p, "design file")
-    refuse_a_die(tables, p)
-    return plan_from_dict(tables, source=str(p), file=p.name)
+    return plan_from_dict(read_array_tables(p), source=str(p), file=p.name)
 
 
 def with_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:

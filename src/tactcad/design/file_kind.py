@@ -43,3 +43,17 @@ def refuse_a_die(tables: Mapping[str, Any], design: Path) -> None:
     """
     if is_die_file(tables):
         raise die_refusal(design)
+
+
+def read_array_tables(path: Path) -> dict:
+    """An array's design file's tables, read as TOML; a die's file refused by name
+    (:func:`die_refusal`) before any array table is looked for.
+
+    Raises:
+        DesignError: unreadable or not TOML (named), or a die's design file.
+    """
+    from tactcad.vocabulary.schema import read_toml
+
+    tables = read_toml(path, "design file")
+    refuse_a_die(tables, path)
+    return tables

@@ -129,15 +129,20 @@ def tip_heights_on_flat(steps: Mapping[int, Mapping[int, float]], elements: tupl
                       tuple(used), tuple(skipped), float(flatness_mm))
 
 
-def heights_of_file(path, steps: Mapping[int, Mapping[int, float]], elements: tuple[int, ...],
-                    contact_um: float = 0.0) -> TipHeights:
-    """:func:`tip_heights_on_flat` of a zeroing file's steps, a refusal naming the file.
+def read_tip_heights(path, elements: tuple[int, ...], encoding: str | None = None,
+                     contact_um: float = 0.0):
+    """(:func:`tip_heights_on_flat` of a zeroing file's steps, how the file was read
+    (:class:`tactcad.mechanics.measured_io.ReadInfo`)); a refusal of its steps names the file.
 
     Raises:
+        tactcad.mechanics.calibration.CalibrationError: the file cannot be read (named).
         ZeroingError: as :func:`tip_heights_on_flat`, prefixed by ``path``.
     """
+    from tactcad.mechanics.measured_io import read_flat_readings
+
+    steps, info = read_flat_readings(path, encoding)
     try:
-        return tip_heights_on_flat(steps, elements, 1e-3 * contact_um)
+        return tip_heights_on_flat(steps, elements, 1e-3 * contact_um), info
     except ZeroingError as exc:
         raise ZeroingError(f"{path}: {exc}") from None
 
