@@ -13,6 +13,7 @@ the project folder and the installed package.
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import os
@@ -51,25 +52,27 @@ def _template(name: str) -> Template:
 def examples() -> dict[str, Path]:
     """The shipped example projects: name -> its design file (one folder each); a silicon
     die's folder (:func:`die_examples`) is not one of them."""
-    out = {}
-    for folder in sorted(p for p in EXAMPLES.iterdir() if p.is_dir()):
-        design = folder / f"{folder.name}.toml"
-        if design.is_file() and design not in die_examples().values():
-            out[folder.name] = design
-    return out
+    return {name: design for name, (design, die) in _shipped_designs().items() if not die}
 
 
 def die_examples() -> dict[str, Path]:
     """The shipped silicon dies: name -> its die design file (a ``[die]`` table, read by
     ``tactcad die --design``)."""
+    return {name: design for name, (design, die) in _shipped_designs().items() if die}
+
+
+@functools.cache
+def _shipped_designs() -> dict[str, tuple[Path, bool]]:
+    # the package's examples, read once a process: every command's help lists them
+    # (name -> (design file, whether it is a die's))
     from tactcad.design.die_file import is_die_file
     from tactcad.vocabulary.schema import read_toml
 
     out = {}
     for folder in sorted(p for p in EXAMPLES.iterdir() if p.is_dir()):
         design = folder / f"{folder.name}.toml"
-        if design.is_file() and is_die_file(read_toml(design, "design file")):
-            out[folder.name] = design
+        if design.is_file():
+            out[folder.name] = (design, is_die_file(read_toml(design, "design file")))
     return out
 
 

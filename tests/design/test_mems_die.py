@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from conftest import run_cli
 from tactcad.checks.gds_drc import gds_checks
@@ -123,6 +125,17 @@ def test_the_wafer_holds_only_whole_dies_inside_its_usable_circle(die, tmp_path)
     for x, y in sites:
         assert math.hypot(x, y) <= r and math.hypot(x + die.die_length_um,
                                                     y + die.die_width_um) <= r
+
+
+@settings(max_examples=200, deadline=None)
+@given(k_r=st.floats(1e-3, 1e4), ratio=st.floats(1.5, 40.0), window=st.floats(100.0, 4000.0),
+       pitch=st.floats(40.0, 800.0))
+def test_the_refusals_quick_test_answers_as_the_whole_enumeration(k_r, ratio, window, pitch):
+    """A refusal scans scales of the targets with the narrowest width of each layer alone;
+    it finds a fitting pair exactly when enumerating every layer and width does."""
+    E = 169e3
+    whole = bool(md._fitting_beams(E, k_r, k_r / ratio, window, pitch))
+    assert md._any_fitting_beam(E, k_r, k_r / ratio, window, pitch) == whole
 
 
 @pytest.mark.parametrize("kobj, words", [((50.0, 5000.0), "slender"),

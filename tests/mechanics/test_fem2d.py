@@ -350,6 +350,29 @@ def test_assembly_is_the_elasticity_form_of_scikit_fem(element):
         assert abs(assemble_elasticity(scalar, 1.3e5, 0.8e5) - expected).max() < 1e-12 * scale
 
 
+@pytest.mark.parametrize("fixed", ["none", "some", "all-but-one"])
+def test_the_free_block_is_scikit_fems_condensed_matrix(fixed):
+    """``free_block`` keeps the rows and columns scikit-fem's ``condense`` keeps, in
+    order and to the bit, whichever unknowns are fixed."""
+    import scipy.sparse as sp
+    from skfem import condense
+
+    from tactcad.mechanics.fem.fem2d import free_block
+
+    rng = np.random.default_rng(3)
+    n = 40
+    A = sp.random(n, n, density=0.2, random_state=4, format="csr")
+    A = (A + A.T + sp.eye(n)).tocsr()
+    D = {"none": np.array([], dtype=int), "some": np.sort(rng.choice(n, 9, replace=False)),
+         "all-but-one": np.delete(np.arange(n), 17)}[fixed]
+    free = np.setdiff1d(np.arange(n), D)
+    expected = condense(A, np.zeros(n), D=D)[0] if len(D) else A
+    got = free_block(A, free)
+    assert got.shape == (len(free), len(free))
+    assert (got != expected).nnz == 0
+    assert np.array_equal(got.toarray(), A.toarray()[np.ix_(free, free)])
+
+
 def test_the_two_level_cycle_is_one_symmetric_operator():
     """The p-multigrid cycle that carries its residuals is the textbook cycle
     (smooth, correct on P1, smooth again, each residual formed anew), and

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Sequence
 
 import ezdxf
+import numpy as np
 import shapely.geometry as sg
 
 from tactcad.checks.check_result import CheckResult
@@ -207,18 +208,26 @@ def _angle_in_arc(arc: Arc, p: Point) -> bool:
     return d <= abs(sweep) + 1e-12
 
 
-def _ray_hit(origin: Point, direction: Point, line: Line) -> float:
-    """Distance along a ray to a line segment (inf if it misses)."""
-    (x0, y0), (x1, y1) = line.start, line.end
+def _ray_hits(origins: np.ndarray, directions: np.ndarray, lines: np.ndarray) -> np.ndarray:
+    """Distance along each ray to the first line segment it meets (inf if none).
+
+    Args:
+        origins, directions: shape (m, 2), the rays (mm; unit directions).
+        lines: shape (n, 4), each segment's (x0, y0, x1, y1) (mm).
+
+    Returns:
+        shape (m,), mm.
+    """
+    x0, y0, x1, y1 = (lines[:, k] for k in range(4))
     ex, ey = x1 - x0, y1 - y0
-    dx, dy = direction
-    den = dx * ey - dy * ex
-    if abs(den) < 1e-15:
-        return math.inf
-    wx, wy = x0 - origin[0], y0 - origin[1]
-    t = (wx * ey - wy * ex) / den  # along the ray
-    u = (wx * dy - wy * dx) / den  # along the segment
-    return t if t > 1e-12 and -1e-12 <= u <= 1 + 1e-12 else math.inf
+    dx, dy = directions[:, :1], directions[:, 1:]
+    den = dx * ey - dy * ex  # (m, n): parallel where it vanishes
+    wx, wy = x0 - origins[:, :1], y0 - origins[:, 1:]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (wx * ey - wy * ex) / den  # along the ray
+        u = (wx * dy - wy * dx) / den  # along the segment
+    met = (np.abs(den) >= 1e-15) & (t > 1e-12) & (u >= -1e-12) & (u <= 1 + 1e-12)
+    return np.where(met, t, np.inf).min(axis=1, initial=np.inf)
 
 
 def thinnest_ligament(segments: tuple[Segment, ...], samples: int = 720) -> float:
@@ -232,6 +241,7 @@ def thinnest_ligament(segments: tuple[Segment, ...], samples: int = 720) -> floa
     """
     best = math.inf
     lines = [o for o in segments if isinstance(o, Line)]
+    ends = np.array([(*ln.start, *ln.end) for ln in lines], dtype=float).reshape(-1, 4)
     for s in segments:
         if not (isinstance(s, Arc) and not s.ccw):
             continue
@@ -245,13 +255,12 @@ def thinnest_ligament(segments: tuple[Segment, ...], samples: int = 720) -> floa
             u = ((cx - x0) * ex + (cy - y0) * ey) / L2 if L2 else 0.0
             fx, fy = x0 + u * ex, y0 + u * ey
             angles.append(math.atan2(fy - cy, fx - cx))
-        for ang in angles:
-            direction = (math.cos(ang), math.sin(ang))
-            p = (cx + s.radius * direction[0], cy + s.radius * direction[1])
-            if not _angle_in_arc(s, p):
-                continue
-            hit = min(_ray_hit(p, direction, ln) for ln in lines)
-            best = min(best, hit)
+        rays = [((cx + s.radius * math.cos(a), cy + s.radius * math.sin(a)),
+                 (math.cos(a), math.sin(a))) for a in angles]
+        rays = [(p, d) for p, d in rays if _angle_in_arc(s, p)]
+        if rays:
+            origins, directions = (np.array(v, dtype=float) for v in zip(*rays))
+            best = min(best, float(_ray_hits(origins, directions, ends).min()))
     return best
 
 

@@ -318,6 +318,23 @@ def _fitting_beams(E: float, k_r: float, k_m: float, window: float, pitch_um: fl
     return out
 
 
+def _any_fitting_beam(E: float, k_r: float, k_m: float, window: float, pitch_um: float) -> bool:
+    """Whether :func:`_fitting_beams` finds any: each layer's narrowest width decides it, as
+    the beams' lengths (L ~ w^(1/3)) and the post grow with the width while the slenderness
+    L_r / w falls."""
+    for t in DEVICE_LAYER_CHOICES_UM:
+        slot = drie_min_width_um(t)
+        widths = _widths(pitch_um - slot, _resistor_width_um())
+        if not widths:
+            continue
+        w = min(widths)
+        l_r = length_for_stiffness_um(E, w, t, k_r)
+        l_m = length_for_stiffness_um(E, w, t, k_m)
+        if l_r + l_m + min(w, POST_MAX_UM) + slot <= window and l_r >= SLENDERNESS * w:
+            return True
+    return False
+
+
 #: Steps of the K_obj range's scale a refusal searches for its alternative (x 1.05 each).
 SCALE_STEPS = 200
 
@@ -330,7 +347,7 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignEr
     lo, hi = targets.k_obj_range_N_per_mm
     for step in range(1, SCALE_STEPS + 1):
         for scale, way in ((1.05 ** step, "stiffer"), (1.05 ** -step, "softer")):
-            if _fitting_beams(E, targets.k_r * scale, targets.k_m * scale, window, pitch_um):
+            if _any_fitting_beam(E, targets.k_r * scale, targets.k_m * scale, window, pitch_um):
                 why = ("the beams are too long for the window: the softest pair that fits "
                        f"has K_m = {targets.k_m * scale:.4g} N/mm" if way == "stiffer" else
                        "the reference beam would be too short to bend as a slender beam: the "

@@ -37,7 +37,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
-from typing import Mapping, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 from scipy.optimize import brentq
@@ -255,19 +255,49 @@ def coupled_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: t
     Raises:
         ContactError: K_obj <= 0, a stiffness <= 0, an unknown element.
     """
-    rows = _pressing(sample, unit, pressing)
-    k = _stiffness_vector(sample, stiffness, rows)
-    c_hat = sample.normalised[np.ix_(rows, rows)]
-    im, ir = rows.index(sample.index(unit[0])), rows.index(sample.index(unit[1]))
+    ratio = _unit_ratio(sample, stiffness, unit, pressing)
     kobj = np.asarray(k_obj, float)
     if not np.all(np.isfinite(kobj) & (kobj > 0)):
         raise ContactError("K_obj_N_per_mm", kobj.tolist(), "> 0 N/mm")
     out = np.empty(kobj.shape)
     for idx, kv in np.ndenumerate(kobj):
-        force = np.linalg.solve(np.diag(1.0 / k) + c_hat / kv, np.ones(len(k)))
-        e = force / k
-        out[idx] = e[im] / e[ir]
+        out[idx] = ratio(float(kv))
     return out if out.ndim else float(out)
+
+
+def _unit_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple[int, int],
+                pressing: str) -> Callable[[float], float]:
+    # R of one unit as a function of K_obj > 0, its inputs checked and gathered once (a
+    # root find evaluates it a dozen times, a budget thousands)
+    rows = _pressing(sample, unit, pressing)
+    k = _stiffness_vector(sample, stiffness, rows)
+    c_hat = sample.normalised[np.ix_(rows, rows)]
+    im, ir = rows.index(sample.index(unit[0])), rows.index(sample.index(unit[1]))
+    compliance, ones = np.diag(1.0 / k), np.ones(len(k))
+
+    def ratio(k_obj: float) -> float:
+        force = np.linalg.solve(compliance + c_hat / k_obj, ones)
+        return float((force[im] / k[im]) / (force[ir] / k[ir]))
+
+    return ratio
+
+
+def _root_on_log_k(ratio: Callable[[float], float], r: float, bracket: tuple[float, float],
+                   spanned: Callable[[float, float], str]) -> float:
+    # the K_obj in ``bracket`` (N/mm) where ratio(K_obj) = r, by Brent's method on ln K_obj;
+    # outside what the ratio spans over the bracket, the error names the span (``spanned``
+    # words the model and the bracket)
+    lo, hi = bracket
+
+    def excess(log_k: float) -> float:
+        return ratio(float(np.exp(log_k))) - r
+
+    f_lo, f_hi = excess(np.log(lo)), excess(np.log(hi))
+    if not (np.isfinite(r) and np.isfinite(f_lo) and np.isfinite(f_hi) and f_lo * f_hi <= 0):
+        span = sorted((f_hi + r, f_lo + r))
+        raise ContactError("R", r, f"{span[0]:.6g} ... {span[1]:.6g} ({spanned(lo, hi)})")
+    return float(np.exp(brentq(excess, np.log(lo), np.log(hi), rtol=INVERSION_RTOL,
+                               xtol=INVERSION_XTOL)))
 
 
 def coupled_object_stiffness(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple[int, int],
@@ -287,18 +317,16 @@ def coupled_object_stiffness(sample: CoupledSample, stiffness: Mapping[int, floa
         ContactError: R outside the range the coupled model spans over the bracket
             (named with that range).
     """
+    return _root_on_log_k(_unit_ratio(sample, stiffness, unit, pressing), r,
+                          _bracket(stiffness, unit, bracket_N_per_mm),
+                          lambda lo, hi: f"the coupled R over K_obj {lo:.3g} ... {hi:.3g} N/mm")
+
+
+def _bracket(stiffness: Mapping[int, float], unit: tuple[int, int],
+             stated: tuple[float, float] | None) -> tuple[float, float]:
+    # the K_obj an inversion searches (N/mm): as stated, else K_m/1000 ... 1000 K_r
     k_m, k_r = float(stiffness[unit[0]]), float(stiffness[unit[1]])
-    lo, hi = bracket_N_per_mm or (k_m / INVERSION_BRACKET, k_r * INVERSION_BRACKET)
-
-    def excess(log_k: float) -> float:
-        return coupled_ratio(sample, stiffness, unit, float(np.exp(log_k)), pressing) - r
-
-    f_lo, f_hi = excess(np.log(lo)), excess(np.log(hi))
-    if not (np.isfinite(r) and f_lo * f_hi <= 0):
-        raise ContactError("R", r, f"{f_hi + r:.6g} ... {f_lo + r:.6g} (the coupled R over K_obj "
-                                   f"{lo:.3g} ... {hi:.3g} N/mm)")
-    return float(np.exp(brentq(excess, np.log(lo), np.log(hi), rtol=INVERSION_RTOL,
-                               xtol=INVERSION_XTOL)))
+    return stated or (k_m / INVERSION_BRACKET, k_r * INVERSION_BRACKET)
 
 
 def contact_forces(sample: CoupledSample, k: np.ndarray, heights_mm: np.ndarray, k_obj: float,
@@ -403,21 +431,11 @@ def offset_object_stiffness(sample: CoupledSample, stiffness: Mapping[int, float
         ContactError: R outside what the model spans over the bracket at this force and
             these heights (named with that range), or an input as :func:`offset_ratio`.
     """
-    k_m, k_r = float(stiffness[unit[0]]), float(stiffness[unit[1]])
-    lo, hi = bracket_N_per_mm or (k_m / INVERSION_BRACKET, k_r * INVERSION_BRACKET)
-
-    def excess(log_k: float) -> float:
-        return offset_ratio(sample, stiffness, unit, float(np.exp(log_k)), force_r_N,
-                            offsets_mm) - r
-
-    f_lo, f_hi = excess(np.log(lo)), excess(np.log(hi))
-    if not (np.isfinite(r) and np.isfinite(f_lo) and np.isfinite(f_hi) and f_lo * f_hi <= 0):
-        span = sorted((f_hi + r, f_lo + r))
-        raise ContactError("R", r, f"{span[0]:.6g} ... {span[1]:.6g} (R with the tips' heights "
-                                   f"at the reference's {force_r_N:.4g} N, K_obj {lo:.3g} ... "
-                                   f"{hi:.3g} N/mm)")
-    return float(np.exp(brentq(excess, np.log(lo), np.log(hi), rtol=INVERSION_RTOL,
-                               xtol=INVERSION_XTOL)))
+    return _root_on_log_k(
+        lambda k_obj: offset_ratio(sample, stiffness, unit, k_obj, force_r_N, offsets_mm), r,
+        _bracket(stiffness, unit, bracket_N_per_mm),
+        lambda lo, hi: f"R with the tips' heights at the reference's {force_r_N:.4g} N, "
+                       f"K_obj {lo:.3g} ... {hi:.3g} N/mm")
 
 
 @dataclass(frozen=True)

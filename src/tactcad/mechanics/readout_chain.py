@@ -59,6 +59,7 @@ Units: mm, N, MPa, V, N/mm, V/mm, V/N; strain dimensionless.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Callable
@@ -119,6 +120,16 @@ def beam_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_m
                                       g.arm_height_mm))
 
 
+@functools.cache
+def gauss_legendre(points: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights on [-1, 1], shape (points,) each (numpy's
+    ``leggauss``, formed once per count: a 64-point rule costs a millisecond, and the
+    grid strain is evaluated thousands of times in a design search). Read-only arrays."""
+    nodes, weights = np.polynomial.legendre.leggauss(points)
+    nodes.flags.writeable = weights.flags.writeable = False
+    return nodes, weights
+
+
 def eb_grid_strain_per_N(web_mm, notch_radius_mm, arm_length_mm, grid_length_mm, sheet_mm,
                          youngs_modulus_MPa, base_height_mm, arm_height_mm) -> np.ndarray:
     """Euler-Bernoulli top-face strain per newton averaged over a grid centred over the
@@ -131,7 +142,7 @@ def eb_grid_strain_per_N(web_mm, notch_radius_mm, arm_length_mm, grid_length_mm,
         base_height_mm, arm_height_mm)))
     half = L / 2
     r = np.minimum(R, half)
-    nodes, weights = np.polynomial.legendre.leggauss(GAUSS_POINTS)
+    nodes, weights = gauss_legendre(GAUSS_POINTS)
     total = np.zeros(t.shape)
     for lo, hi in ((-half, -r), (-r, r), (r, half)):
         u = (0.5 * (hi - lo))[..., None] * nodes + (0.5 * (hi + lo))[..., None]

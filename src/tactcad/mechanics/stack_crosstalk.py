@@ -38,8 +38,8 @@ carry element i's base as a rigid body.
 
 Solution: the stack is a 1D finite-element beam (two-node elements, exact
 for point loads at the nodes) with a node at every element's mid-plane and
-every layer face; its stiffness is factorised once (``scipy.sparse.linalg.splu``)
-and serves all n unit tip loads.
+every layer face; its stiffness (a few hundred unknowns at most, held dense) is
+solved once for all n unit tip loads (``scipy.linalg.solve``, symmetric positive definite).
 
 Levels, declared once in :data:`CROSSTALK_LEVELS` (cheapest first):
 
@@ -71,8 +71,7 @@ from dataclasses import dataclass, replace
 from typing import Mapping
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.linalg import splu
+import scipy.linalg
 
 from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError, TactcadError
@@ -334,8 +333,8 @@ def solve_row(inputs: StackInputs, row: int, shear: bool) -> RowSolution:
             props.append((E, E / (2 * (1 + nu))))
     z = np.array(nodes)
     n = len(z)
-    Kb = sp.lil_matrix((2 * n, 2 * n))
-    Kt = sp.lil_matrix((n, n))
+    Kb = np.zeros((2 * n, 2 * n))
+    Kt = np.zeros((n, n))
     for e, (E, G) in enumerate(props):
         L = z[e + 1] - z[e]
         dofs = [2 * e, 2 * e + 1, 2 * e + 2, 2 * e + 3]
@@ -352,11 +351,10 @@ def solve_row(inputs: StackInputs, row: int, shear: bool) -> RowSolution:
     for j, (node, k) in enumerate(zip(at, idx)):
         Fb[2 * node, j] = 1.0
         Ft[node, j] = inputs.lever_mm[k]
-    Kb = Kb.tocsc()
     Ub = np.zeros_like(Fb)
-    Ub[free_b] = splu(Kb[free_b][:, free_b]).solve(Fb[free_b])
+    Ub[free_b] = scipy.linalg.solve(Kb[np.ix_(free_b, free_b)], Fb[free_b], assume_a="pos")
     Ut = np.zeros_like(Ft)
-    Ut[free_t] = splu(Kt.tocsc()[free_t][:, free_t]).solve(Ft[free_t])
+    Ut[free_t] = scipy.linalg.solve(Kt[np.ix_(free_t, free_t)], Ft[free_t], assume_a="pos")
     # bending moment at each loaded node from the element to its right (or left at the end)
     moment = np.zeros((len(idx), len(idx)))
     EIs = np.zeros(len(idx))

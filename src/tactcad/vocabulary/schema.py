@@ -17,6 +17,8 @@ Units: mm, N, MPa, N/mm, g as each field's name says.
 
 from __future__ import annotations
 
+import copy
+import functools
 import hashlib
 import json
 import re
@@ -387,12 +389,20 @@ def read_toml(path: Path, what: str) -> dict[str, Any]:
         raise DesignError(what, str(path), "a UTF-8 text file",
                           f"byte {exc.start} is not UTF-8") from None
     try:
-        return tomllib.loads(text)
+        return copy.deepcopy(_parsed_toml(text))
     except tomllib.TOMLDecodeError as exc:
         raise DesignError(what, str(path), "valid TOML", str(exc)) from None
     except RecursionError:
         raise DesignError(what, str(path), f"arrays and tables nested at most {MAX_NESTING} deep",
                           "nesting too deep to read") from None
+
+
+@functools.lru_cache(maxsize=64)
+def _parsed_toml(text: str) -> dict[str, Any]:
+    # a design command reads the same few files (its design, the base design, the rigs,
+    # the shipped examples) many times over; parsing is pure Python, a deep copy of the
+    # parsed tables a tenth of it. Keyed by the text, so an edited file is parsed anew.
+    return tomllib.loads(text)
 
 
 @dataclass(frozen=True)
