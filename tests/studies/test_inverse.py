@@ -203,6 +203,42 @@ def test_cli_writes_outside_the_working_folder(tmp_path, monkeypatch, capsys):
     assert (tmp_path / "outside.toml").is_file()
 
 
+def test_by_default_the_written_design_is_checked_as_verify_checks_it(tmp_path, monkeypatch,
+                                                                      capsys):
+    """``--verify auto``: the closed form decides a design whose margins clear its error, so
+    no FEM level runs; a requirement it leaves undecided climbs the ladder as ``verify``."""
+    from tactcad.commands import design as design_cmd
+    from tactcad.mechanics import ladder
+
+    monkeypatch.chdir(tmp_path)
+    solved = []
+    real = ladder.estimate
+    monkeypatch.setattr(ladder, "estimate", lambda model, *a, **k: (
+        solved.append(model), real(model, *a, **k))[1])
+    argv = ["design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force",
+            "0.3", "--json", "--quiet"]
+    assert main([*argv, "--out", "a.toml"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["verify"] == {"asked": "auto", "level": "closed-form"}
+    assert all(m["verdict"] == "pass" for m in report["margins"])
+    assert set(solved) == {"closed-form"}
+    assert all(e["K_verified_N_per_mm"] is None for e in report["elements"])
+    # a margin inside the closed form's error: the ladder climbs for it, and the K table
+    # carries the level it reached
+    monkeypatch.setattr(design_cmd, "design_margins", lambda plan, keys=(): [
+        {"requirement": "full_scale_force_N", "margin_rel": 0.001, "error_estimate_rel": 0.02,
+         "verdict": "undecided", "level_fixed": False}])
+    climbed = []
+    monkeypatch.setattr("tactcad.studies.verification.verification_auto",
+                        lambda plan, progress=None, **k: (climbed.append(plan.name),
+                                                          ([], [{"model": "fem2d"}]))[1])
+    assert main([*argv, "--out", "b.toml"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert climbed and report["verify"] == {"asked": "auto", "level": "fem2d"}
+    assert all(e["verify_model"] == "fem2d" and e["K_verified_N_per_mm"] > 0
+               for e in report["elements"])
+
+
 @pytest.mark.slow  # a whole chain through the command line or an export
 def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)

@@ -20,13 +20,15 @@ from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 
 
 
-#: The ladder level that checks a searched design (``--verify``), without ``--jaw``.
-DEFAULT_VERIFY = "fem3d"
+#: How a searched design is checked (``--verify``), without ``--jaw``: ``auto`` climbs the
+#: ladder only for a requirement the closed form leaves undecided, as ``verify`` does.
+DEFAULT_VERIFY = "auto"
 
 
 def verify_levels() -> tuple[str, ...]:
-    """``--verify`` choices: the ladder's levels above the closed form, dearest first, or none."""
-    return (*reversed(models()[1:]), "none")
+    """``--verify`` choices: auto, the ladder's levels above the closed form, dearest first,
+    or none."""
+    return ("auto", *reversed(models()[1:]), "none")
 
 
 def jaw_classes() -> tuple[str, ...]:
@@ -153,9 +155,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "design file where the jaw's pocket holds none; mems-die: the die "
                         "only, with --jaw)")
     p.add_argument("--verify", choices=verify_levels(), default=None,
-                   help=f"ladder level that checks the chosen geometry (default {DEFAULT_VERIFY}, "
-                        "~1 min; not with --jaw, whose design the checks that need no CAD "
-                        "kernel check: run tactcad verify on it)")
+                   help=f"how the chosen geometry is checked (default {DEFAULT_VERIFY}: the "
+                        "closed form, and a FEM level only for a requirement it leaves "
+                        "undecided, as `tactcad verify`; fem3d checks each element's K at the "
+                        "top of the ladder, about 1.5 min an element on two cores; not with "
+                        "--jaw, whose design the checks that need no CAD kernel check: run "
+                        "tactcad verify on it)")
     add_design_arg(p)
     add_cache_args(p, ".tactcad-cache in the folder the design is written to, where the "
                       "project's commands find it")
@@ -299,7 +304,12 @@ def _run(args: argparse.Namespace) -> int:
                                  name=data["design"]["name"], **kwargs)
     except DesignError as exc:
         raise as_options(exc, args, design) from None
-    report = design_report(result, args.verify or DEFAULT_VERIFY, progress_from_args(args))
+    progress = progress_from_args(args)
+    asked = args.verify or DEFAULT_VERIFY
+    margins = design_margins(result.plan)
+    level = auto_verify_level(result.plan, margins, progress) if asked == "auto" else asked
+    report = design_report(result, level, progress, margins)
+    report["verify"] = {"asked": asked, "level": level}
     report["tissue_coupling"] = coupling_summary(result, args)
     from tactcad.version import VERSION
 
@@ -864,11 +874,28 @@ def design_options(args: argparse.Namespace) -> list[str]:
     return words  # no --force: the header's command, run again, refuses to overwrite
 
 
-def design_report(result, verify: str, progress=None) -> dict:
+def auto_verify_level(plan, margins: list[dict], progress=None) -> str:
+    """The level ``design --verify auto`` checks a written design at: ``closed-form`` when
+    every requirement is decided there (``margins``, :func:`design_margins`), else the last
+    level :func:`tactcad.studies.verification.verification_auto` climbed to deciding them (its
+    solves kept in the store, so ``verify`` after ``design`` reads them back)."""
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.studies.strength_studies import element_stress
+    from tactcad.studies.verification import verification_auto
+
+    if all(m["verdict"] != "undecided" for m in margins):
+        return "closed-form"
+    _, levels = verification_auto(plan, progress, stress=element_stress,
+                                  envelope_mm=array_envelope_mm(plan))
+    return levels[-1]["model"]
+
+
+def design_report(result, verify: str, progress=None, margins: list[dict] | None = None) -> dict:
     """Figures of an :class:`~tactcad.studies.inverse_design.InverseDesign`: K per
-    element (closed form and ``verify`` level), strength at full scale, and
-    R, dR/dK_obj and the K_obj resolution over the K_obj range. ``progress``
-    gets a line per FEM mesh level of the verification."""
+    element (closed form and ``verify`` level; none at ``none`` or ``closed-form``), strength
+    at full scale, and R, dR/dK_obj and the K_obj resolution over the K_obj range.
+    ``progress`` gets a line per FEM mesh level of the verification; ``margins`` are
+    :func:`design_margins` of the design when already formed."""
     import math
 
     from tactcad.studies.inverse_design import WEB_RULE, report_points, unit_resolution
@@ -890,7 +917,8 @@ def design_report(result, verify: str, progress=None) -> dict:
         if g.part_name not in cache:
             cf = estimate("closed-form", g, plan.material)
             levels = {"progress": progress} if progress and is_meshed(verify) else {}
-            ver = None if verify == "none" else estimate(verify, g, plan.material, **levels)
+            ver = None if verify in ("none", "closed-form") else \
+                estimate(verify, g, plan.material, **levels)
             cache[g.part_name] = {
                 "K_closed_form_N_per_mm": cf.stiffness_N_per_mm,
                 "K_verified_N_per_mm": None if ver is None else ver.stiffness_N_per_mm,
@@ -945,7 +973,7 @@ def design_report(result, verify: str, progress=None) -> dict:
             "max_full_scale_force_N": result.max_full_scale_force_N,
             "binding_limits": list(result.binding_limits),
             "web_rule": WEB_RULE,
-            "margins": design_margins(plan),
+            "margins": design_margins(plan) if margins is None else margins,
             "all_finite": all(math.isfinite(u["K_obj_resolution_N_per_mm"]) for u in units)}
 
 
@@ -1042,6 +1070,13 @@ def print_report(r: dict) -> None:
     print(f"web rule: {r['web_rule']}")
     for line in margin_lines(r["margins"]):
         print(line)
+    v = r.get("verify")
+    if v and v["asked"] == "auto":
+        print("verify: auto: " + (
+            "the closed form decides every requirement, so no FEM level ran (`--verify fem3d` "
+            "checks each element's K at the top of the ladder)" if v["level"] == "closed-form"
+            else f"the ladder climbed to {v['level']} to decide what the closed form left "
+                 "undecided"))
     print(f"largest feasible full-scale force for these stiffness targets: "
           f"{r['max_full_scale_force_N']:.4g} N, bound by " + "; ".join(r["binding_limits"]))
     print(f"wrote {shown_path(r['out'])}")
