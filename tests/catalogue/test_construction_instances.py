@@ -47,6 +47,7 @@ def test_a_placements_cad_location_puts_a_point_where_the_plan_says(placement):
         assert (got.X, got.Y, got.Z) == pytest.approx(placement.apply(*local), abs=1e-9)
 
 
+@pytest.mark.slow  # every solid of a comb built and checked
 def test_the_placed_comb_has_no_interference_and_every_gauge_on_its_sheet(comb, tmp_path):
     found = [r for _, results in interference_group(CheckContext(comb, tmp_path, PartCache(comb),
                                                                  None, None)) for r in results]

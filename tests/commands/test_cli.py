@@ -333,6 +333,7 @@ def launcher_checkout(tmp_path: Path) -> Path:
     return tmp_path
 
 
+@pytest.mark.slow  # a new interpreter through the launcher
 def test_launcher_runs_the_checkouts_venv(tmp_path):
     root = launcher_checkout(tmp_path)
     proc = subprocess.run([str(root / "tactcad"), "lumped", "--km", "15.25", "--kr", "80.38",

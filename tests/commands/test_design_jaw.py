@@ -87,6 +87,7 @@ def design_for_jaw_file(folder, name: str, table: str) -> tuple[dict, dict]:
     return json.loads(r.stdout), tomllib.loads(out.read_text(encoding="utf-8"))
 
 
+@pytest.mark.slow  # a whole comb search through the command line
 def test_a_labs_own_jaw_from_a_file_bounds_the_search_and_goes_into_the_design(tmp_path):
     d, written = design_for_jaw_file(tmp_path, "our_jaw.toml", "pocket_width_mm = 5.0\n"
                                      "pocket_length_mm = 27.0\nopening_angle_deg = 40.0\n")
@@ -191,12 +192,14 @@ def test_a_jaw_too_small_for_any_comb_names_the_pocket_needed_and_the_jaw_that_h
     assert not list(tmp_path.iterdir())
 
 
+@pytest.mark.slow  # a whole comb search through the command line
 def test_a_jaw_file_of_any_name_is_read_as_toml(tmp_path):
     d, written = design_for_jaw_file(tmp_path, "our_jaw.cfg", "pocket_width_mm = 5.0\n")
     assert d["jaw"]["jaw"] == "10 mm jaw of our_jaw.cfg"
     assert written["grasper_jaw"]["pocket_width_mm"] == 5.0
 
 
+@pytest.mark.slow  # a whole comb search through the command line
 def test_a_tapered_jaws_outline_bounds_each_sheets_comb(tmp_path):
     d, written = design_for_jaw_file(tmp_path, "taper.toml", "pocket_outline_mm = [[4.0, -2.75], "
                                      "[33.0, -2.25], [33.0, 2.25], [4.0, 2.75]]\n")

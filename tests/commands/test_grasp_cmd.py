@@ -34,6 +34,7 @@ def test_the_comb_paired_along_its_rows_reads_farther_than_at_equal_radius():
     assert d["leads"]["leads"] == 36 and d["leads"]["fits"]
 
 
+@pytest.mark.slow  # a whole chain through the command line
 def test_the_shipped_comb_reads_every_unit_at_equal_radius_as_laid_out():
     r = run_cli("grasp", "--design", COMB, "--profile", "wedge", "--kobj", "1", "--json")
     assert r.returncode == 0, r.stderr
@@ -90,7 +91,9 @@ def test_a_non_paper_design_and_the_text_table():
 
 @pytest.mark.parametrize("options, words", [(["--force-N", "0"], "--force-N"),
                                             (["--pivot-mm", "3", "0"], "--pivot-mm"),
-                                            (["--force-N", "900"], "--force-N"),
+                                            # the jaw's limit is a grasp solved in full
+                                            pytest.param(["--force-N", "900"], "--force-N",
+                                                         marks=pytest.mark.slow),
                                             (["--angle-deg", "80", "--opening-deg", "30"],
                                              "--angle-deg"),
                                             (["--slab-thickness-mm", "-1"],

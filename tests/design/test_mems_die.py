@@ -253,6 +253,7 @@ def test_the_dies_readout_noise_and_resolution(die):
         sum(r["noise_V"][k] ** 2 for k in ("johnson", "hooge", "amplifier"))), rel=1e-12)
 
 
+@pytest.mark.slow  # a whole chain through the command line
 def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypatch):
     """A full disk while the STEP is written: the masks already made are not moved in, no
     staging folder is left, and the previous set stays whole."""
@@ -335,6 +336,7 @@ def test_a_die_file_out_of_its_domain_is_refused_by_field_and_writes_nothing(tmp
     assert not (tmp_path / "die").exists()
 
 
+@pytest.mark.slow  # a whole chain through the command line
 def test_design_for_the_5_mm_jaw_writes_a_die_file_the_die_command_reads(tmp_path):
     """No metal construction seats in the 5 mm jaw's pocket: ``design --jaw 5`` writes the
     silicon die's design file, with why, and ``die --design`` makes the die it planned."""
@@ -537,6 +539,7 @@ def test_a_die_folders_export_passes_its_check_and_a_missing_file_is_made_again(
     assert again.returncode == 0 and (folder / "exports" / "insert_drawing.svg").is_file()
 
 
+@pytest.mark.slow  # a whole chain through the command line
 def test_a_die_is_not_written_into_a_folder_of_other_files(tmp_path):
     (tmp_path / "mine").mkdir()
     (tmp_path / "mine" / "notes.txt").write_text("mine", encoding="utf-8")

@@ -105,6 +105,7 @@ PALPATION_STRIP = {"array.columns": 8, "sheet.thickness_mm": 0.8, "array.pitch_m
                    + [19.543] * 4, "arms.reference_elements": [4, 12]}
 
 
+@pytest.mark.slow  # a whole design's drawings
 def test_the_2x8_palpation_strip_draws_clear(tmp_path):
     """The strip's slot map once covered the view along the bolts (41 overlaps) and its
     terminal board's 32 hole labels crowded a 2:1 view under a one-block table (51)."""

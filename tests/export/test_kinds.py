@@ -60,6 +60,7 @@ def test_a_taken_name_or_prefix_is_refused():
         kinds.register_kind(kinds.ExportKind("pictures", ("image",), "x", __name__, "f"))
 
 
+@pytest.mark.slow  # a whole chain through an export
 def test_a_registered_kind_is_planned_selected_and_written(points_kind, project, tmp_path,
                                                           capsys):
     assert "points (points/arms.csv)" in _only_help()

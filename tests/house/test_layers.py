@@ -14,6 +14,7 @@ has its name or another's.
 from __future__ import annotations
 
 import ast
+import functools
 import re
 from collections import defaultdict
 from pathlib import Path
@@ -108,7 +109,7 @@ def imports_of(path: Path, types_too: bool = False) -> set[str]:
     me = module_name(path)
     package = me if path.name == "__init__.py" else me.rsplit(".", 1)[0]
     out = set()
-    tree = ast.parse(path.read_text(encoding="utf-8"))
+    tree = _tree(path)
     types_only = set() if types_too else _type_checking_only(tree)
     for node in ast.walk(tree):
         if id(node) in types_only:
@@ -134,8 +135,20 @@ def _exists(module: str) -> bool:
         or (SRC / rel / "__init__.py").is_file()
 
 
-def graph(types_too: bool = False) -> dict[str, set[str]]:
-    return {module_name(p): imports_of(p, types_too) for p in sorted(SRC.rglob("*.py"))}
+@functools.cache
+def _tree(path: Path) -> ast.Module:
+    # each source parsed once a process: four tests read the whole package
+    return ast.parse(path.read_text(encoding="utf-8"))
+
+
+@functools.cache
+def graph(types_too: bool = False) -> dict[str, frozenset[str]]:
+    return {module_name(p): frozenset(imports_of(p, types_too))
+            for p in sorted(SRC.rglob("*.py"))}
+
+
+#: the tests that read the whole import graph run in one process, which builds it once
+one_graph = pytest.mark.xdist_group("import-graph")
 
 
 #: Modules whose names for type checkers may go against the order: the
@@ -143,6 +156,7 @@ def graph(types_too: bool = False) -> dict[str, set[str]]:
 TYPE_NAMES_ANYWHERE = {"tactcad"}
 
 
+@one_graph
 @pytest.mark.parametrize("types_too", [False, True], ids=["run", "type-checking"])
 def test_every_import_goes_up_the_layers(types_too):
     """Imports the code runs, and (``type-checking``) those under ``if
@@ -165,6 +179,7 @@ def test_every_import_goes_up_the_layers(types_too):
     assert not bad, "imports against the layer order:\n" + "\n".join(bad)
 
 
+@one_graph
 @pytest.mark.parametrize("types_too", [False, True], ids=["run", "type-checking"])
 def test_no_import_circle(types_too):
     g = graph(types_too)

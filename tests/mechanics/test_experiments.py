@@ -71,6 +71,7 @@ def test_uniform_square_centre_and_corner_match_johnson_coefficients():
     assert float(corner) == pytest.approx(1.122, abs=1e-3)
 
 
+@pytest.mark.slow  # a mesh-convergence study
 def test_rigid_square_punch_converges_to_literature_compliance_factor():
     # K = beta (2/sqrt(pi)) E/(1 - nu^2) sqrt(A), beta = 1.012 for a square (King 1987).
     sample = contact.Sample(1.0, 0.3)

@@ -190,6 +190,7 @@ def test_extremes_are_finite_positive_and_converged(extremes):
         assert discretisation < ERROR_GOAL, (key, discretisation)
 
 
+@pytest.mark.slow  # eight mesh-convergence studies (the module's fixture)
 def test_extremes_are_monotonic(extremes):
     K = {k: r.stiffness_N_per_mm for k, r in extremes.items()}
     for a in (4.0, 8.0):

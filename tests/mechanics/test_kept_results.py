@@ -152,6 +152,7 @@ def test_verify_right_after_design_solves_no_fem3d_again(tmp_path, monkeypatch, 
     assert len(fem3d_solves) == 6 * distinct
 
 
+@pytest.mark.slow  # a second interpreter
 def test_the_key_is_the_same_in_a_new_process(tmp_path):
     """A second command in a new process reuses the first's solve (and says so)."""
     argv = [sys.executable, "-m", "tactcad.cli", "stiffness", "--element", "1", "--model",

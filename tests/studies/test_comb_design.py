@@ -126,6 +126,7 @@ def test_the_design_jaw_bench_prints_each_forces_seconds_and_answer():
     assert lines[1].startswith("  0.05 N:") and "mm sheet" in lines[1]
 
 
+@pytest.mark.slow  # a whole comb search (the module's fixture)
 def test_every_stop_engages_below_its_elements_fatigue_limits_or_says_the_least_gap_binds(found):
     # the measuring stops engaged at 1.3 x the rating, past their fatigue limits
     from tactcad.design.comb_plan import MIN_SET_GAP_MM

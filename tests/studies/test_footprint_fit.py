@@ -24,6 +24,7 @@ FINGERTIP = Targets(6.0, (5.0, 50.0), 0.5)
 LAYOUT = dict(grade="17-4PH-H900", columns=4)
 
 
+@pytest.mark.slow  # whole design searches
 def test_a_footprint_smaller_than_the_plain_design_is_met_by_another_sheet(plan):
     plain = design_for_targets(plan, FINGERTIP, **LAYOUT)
     x, y, _ = array_envelope_mm(plain.plan)

@@ -203,6 +203,7 @@ def test_cli_writes_outside_the_working_folder(tmp_path, monkeypatch, capsys):
     assert (tmp_path / "outside.toml").is_file()
 
 
+@pytest.mark.slow  # two whole design searches through the command line
 def test_by_default_the_written_design_is_checked_as_verify_checks_it(tmp_path, monkeypatch,
                                                                       capsys):
     """``--verify auto``: the closed form decides a design whose margins clear its error, so

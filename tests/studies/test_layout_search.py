@@ -130,6 +130,7 @@ def test_a_derived_requirement_is_refused_as_the_option_that_set_it(tmp_path, ca
     assert code == 0, doc
 
 
+@pytest.mark.slow  # two whole design searches
 def test_the_recorded_command_makes_the_same_file_again(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     argv = [*GRASPER, "--full-scale-force", "0.05", "--set", 'clamp.bolt_size="M2.5"',

@@ -12,6 +12,7 @@ from tactcad.store import Store, keeping_results
 from tactcad.studies.parallel_solves import solve_side_by_side
 
 
+@pytest.mark.slow  # processes started by spawn
 def test_the_elements_solved_side_by_side_are_read_back_not_solved_again(tmp_path, monkeypatch):
     plan = load_design(EXAMPLES / "macro_array" / "macro_array.toml")
     elements = list(plan.distinct_elements.values())[:2]
