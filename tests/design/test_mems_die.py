@@ -224,6 +224,38 @@ def test_hole_mobility_follows_an_independent_fit_and_the_sheet_resistance_its_f
         hole_mobility_cm2_per_Vs(0.0)
 
 
+def test_the_resistors_tcr_follows_arora_and_is_the_quarter_bridges_zero_drift(die):
+    """Arora's hole mobility at 300 K against Masetti's (two fits, 15 %); the TCR,
+    -d ln mu / dT, positive (lattice scattering rises with T) and larger where the lattice
+    term dominates; the read-out's zero drift is (V_bias / 4) TCR per K over each row's
+    V/N, and the budget's term grows with the temperature step's share of the rating."""
+    from tactcad.in_use.die_budget import die_budget
+    from tactcad.mechanics.piezoresistor import (die_readout, hole_mobility_arora_cm2_per_Vs,
+                                                 hole_mobility_cm2_per_Vs, resistor_tcr_per_K)
+
+    for n in (1e16, 1e17, 1e18, 4e18, 1e19, 1e20):
+        assert hole_mobility_arora_cm2_per_Vs(n, 300.0) == pytest.approx(
+            hole_mobility_cm2_per_Vs(n), rel=0.15)
+        assert hole_mobility_arora_cm2_per_Vs(n, 350.0) < hole_mobility_arora_cm2_per_Vs(n, 300.0)
+        assert 5e-4 < resistor_tcr_per_K(n) < 8e-3
+    assert resistor_tcr_per_K(1e16) > resistor_tcr_per_K(1e18)
+    for bad in ((4e18, 200.0), (4e18, 600.0), (-1.0, 300.0)):
+        with pytest.raises(ValueError, match="temperature_K|acceptors"):
+            hole_mobility_arora_cm2_per_Vs(*bad)
+    readout = die_readout(die, bias_V=2.0)
+    tcr = resistor_tcr_per_K(die.acceptors_per_cm3)
+    assert readout["resistor_tcr_per_K"] == tcr
+    assert readout["zero_drift_V_per_K"] == pytest.approx(2.0 / 4 * tcr, rel=1e-12)
+    for row in readout["rows"].values():
+        assert row["zero_drift_N_per_K"] == pytest.approx(
+            readout["zero_drift_V_per_K"] / row["sensitivity_V_per_N"], rel=1e-12)
+    term = die_budget(die, readout).terms["resistor zero drift"]
+    halved = die_budget(die, {**readout, "rows": {
+        role: {**r, "zero_drift_N_per_K": r["zero_drift_N_per_K"] / 2}
+        for role, r in readout["rows"].items()}}).terms["resistor zero drift"]
+    assert np.all(term > 0) and np.all(halved < term)
+
+
 def test_the_dies_readout_noise_and_resolution(die):
     """Johnson sqrt(4 k T R B), Hooge sqrt(alpha V^2 / N ln(f2/f1)) at half the bias, the
     quarter bridge's V_b / 4 dR/R per N, resolution = noise / sensitivity; the soft row

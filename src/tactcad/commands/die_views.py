@@ -81,15 +81,25 @@ def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     budget = die_budget(plan, readout)
     tcs, heating = readout["sensitivity_tc_per_K"], readout["self_heating_K"]
     term = budget.terms["temperature"]
-    zero = ("not sized: the bridge's three other arms are the same implant on the die's "
-            "frame, so their TCR cancels the active arm's to first order; their mismatch and "
-            "the beam's self-heating over the frame are not modelled")
+    rows = readout["rows"]
+    zero_term = budget.terms["resistor zero drift"]
+    zero = (f"TCR {1e6 * readout['resistor_tcr_per_K']:+.0f} ppm/K (Arora et al. 1982, every "
+            "acceptor ionised): each quarter bridge is completed off the die, so its zero "
+            f"moves {1e3 * readout['zero_drift_V_per_K']:.3g} mV per K, "
+            f"{1e3 * rows['reference']['zero_drift_N_per_K']:.3g} mN per K on the reference "
+            f"beam and {1e3 * rows['measuring']['zero_drift_N_per_K']:.3g} mN per K on the "
+            f"measuring beam ({100 * rows['reference']['zero_drift_N_per_K'] / plan.full_scale_force_N:.2g}"
+            " % of the rating per K); on-die reference resistors of the same implant would "
+            "cancel it to their mismatch")
     report = {"design": str(design), "die": plan.name,
               "sensitivity_tc_per_K": tcs, "self_heating_K": heating,
               "temperature_step_K": TEMPERATURE_STEP_K,
               "kobj_error_rel": {"k_obj_N_per_mm": budget.k_obj_N_per_mm.tolist(),
                                  "temperature": [float(v) for v in term],
-                                 "reason": budget.reasons["temperature"]},
+                                 "reason": budget.reasons["temperature"],
+                                 "resistor zero drift": [float(v) for v in zero_term]},
+              "resistor_tcr_per_K": readout["resistor_tcr_per_K"],
+              "zero_drift_N_per_K": {role: r["zero_drift_N_per_K"] for role, r in rows.items()},
               "zero": zero}
     lines = [f"die {plan.name}: p-type resistors, boron {plan.acceptors_per_cm3:.2g} cm^-3",
              f"span: sensitivity {100 * tcs:+.3g} %/K (d ln P / dT, Richter et al. 2008), "
@@ -99,7 +109,9 @@ def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
              f"K_obj error over a {TEMPERATURE_STEP_K:g} K step at K_obj "
              + ", ".join(f"{k:.3g}" for k in budget.k_obj_N_per_mm) + " N/mm: "
              + ", ".join(f"{100 * v:.3f} %" for v in term) + f" ({budget.reasons['temperature']})",
-             f"zero: {zero}"]
+             f"zero: {zero}",
+             f"K_obj error of the zero over the step (tared at the other temperature): "
+             + ", ".join(f"{100 * v:.3f} %" for v in zero_term)]
     return report, lines
 
 

@@ -124,10 +124,12 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
             done[name] = by_name[name].make(run)
 
     try:
-        for spec in {s.name: s for job in todo for s in job.needs}.values():
-            run.parts.solid(spec)
+        # each of the worker's jobs is handed over as soon as its own solids are built, so
+        # the worker draws while this process builds the rest (each part still built once)
         for job in handed:
             futures[job.name] = worker.submit(job, {s.name: run.parts.solid(s) for s in job.needs})
+        for spec in {s.name: s for job in todo for s in job.needs}.values():
+            run.parts.solid(spec)
         started = {job.name: job.start(run) for job in todo if job.start is not None}
         here = [job for job in todo if job.start is None and job.name not in futures]
         prepared: set[str] = set()

@@ -18,6 +18,11 @@ sigma bound / sqrt 3):
   IEEE Int. Frequency Control Symp. 1997, pp. 791-799; Gysin et al., Phys. Rev. B 69,
   045403 (2004)), both beams alike, over the stated temperature step; the resistors'
   sensitivity drift cancels in R (one doping, one temperature);
+* resistor zero drift: each beam's quarter bridge is completed off the die, so its
+  resistor's TCR moves the bridge's zero by (V_bias / 4) TCR per K
+  (:func:`tactcad.mechanics.piezoresistor.resistor_tcr_per_K`): over the same step each
+  beam reads a force it does not carry, both rows alike in sign, each over its own
+  sensitivity (a reading tared at another temperature);
 * tissue coupling: the tips press one tissue (rigid flat punches of the posts' faces on a
   half-space, :mod:`tactcad.in_use.tissue_coupling`), which eq. 2 alone leaves out: the
   bias of the uncoupled eq. 3 (removed by the coupled inversion, as on the metal arrays).
@@ -133,6 +138,18 @@ def die_budget(plan, readout: dict | None = None) -> DieBudget:
     reasons["temperature"] = (f"{TEMPERATURE_STEP_K:g} K step, <110> silicon's modulus "
                               f"{SILICON_TCE_PER_K * 1e6:g} ppm/K on both beams; the resistors' "
                               "sensitivity drift cancels in R")
+
+    d_temp = TEMPERATURE_STEP_K / math.sqrt(3)
+    zero_r = readout["rows"]["reference"]["zero_drift_N_per_K"] * d_temp
+    zero_m = readout["rows"]["measuring"]["zero_drift_N_per_K"] * d_temp
+    terms["resistor zero drift"] = np.abs(_read(k_m, k_r, ks, (e_m + zero_m / k_m)
+                                                / (e_r + zero_r / k_r)))
+    reasons["resistor zero drift"] = (
+        f"{TEMPERATURE_STEP_K:g} K step between tare and reading, the quarter bridge completed "
+        f"off the die: TCR {1e6 * readout['resistor_tcr_per_K']:+.0f} ppm/K reads "
+        f"{1e3 * zero_r / d_temp:.3g} mN per K on the reference, {1e3 * zero_m / d_temp:.3g} mN "
+        "per K on the measuring beam (on-die reference resistors of the same implant would "
+        "cancel it to their mismatch)")
 
     from tactcad.in_use.kobj_budget import COUPLING_MODEL_ERROR_REL
 

@@ -261,6 +261,42 @@ def hole_mobility_cm2_per_Vs(acceptors_per_cm3: float) -> float:
             - m["mu_1"] / (1 + (m["c_s"] / n) ** m["beta"]))
 
 
+#: Arora, Hauser and Roulston, "Electron and hole mobilities in silicon as a function of
+#: concentration and temperature", IEEE Trans. Electron Devices 29(2), 1982, pp. 292-295:
+#: the hole constants (cm^2/(V s), K, cm^-3); the fit holds over 250-500 K.
+ARORA_HOLES = {"mu_min": 54.3, "mu_min_exp": -0.57, "mu_0": 1.36e8, "mu_0_exp": -2.23,
+               "n_ref": 2.35e17, "n_ref_exp": 2.4, "alpha": 0.88, "alpha_exp": -0.146}
+
+
+def hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3: float, temperature_K: float) -> float:
+    """Hole mobility in boron-doped silicon at a temperature (cm^2/(V s)), Arora's fit:
+    mu = mu_min Tn^-0.57 + mu_0 T^-2.23 / (1 + (N / (N_ref Tn^2.4))^(alpha Tn^-0.146)),
+    Tn = T / 300 K (:data:`ARORA_HOLES`).
+
+    Raises:
+        ValueError: a doping not finite and > 0, or a temperature outside 250-500 K.
+    """
+    n, t = acceptors_per_cm3, temperature_K
+    if not (math.isfinite(n) and n > 0):
+        raise ValueError(f"acceptors_per_cm3 = {n!r}: finite and > 0")
+    if not (math.isfinite(t) and 250.0 <= t <= 500.0):
+        raise ValueError(f"temperature_K = {t!r}: 250 ... 500 K (the fit's range)")
+    a, tn = ARORA_HOLES, t / 300.0
+    exponent = a["alpha"] * tn ** a["alpha_exp"]
+    return (a["mu_min"] * tn ** a["mu_min_exp"]
+            + a["mu_0"] * t ** a["mu_0_exp"] / (1 + (n / (a["n_ref"] * tn ** a["n_ref_exp"]))
+                                                 ** exponent))
+
+
+def resistor_tcr_per_K(acceptors_per_cm3: float, temperature_K: float = 300.0) -> float:
+    """A p-type resistor's temperature coefficient of resistance (1/K): d ln rho / dT =
+    -d ln mu / dT with every acceptor ionised (:func:`hole_mobility_arora_cm2_per_Vs`,
+    central difference over 1 K); positive, the lattice scattering's rise with T."""
+    up = hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3, temperature_K + 0.5)
+    down = hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3, temperature_K - 0.5)
+    return -math.log(up / down)
+
+
 def sheet_resistance_ohm(acceptors_per_cm3: float, junction_depth_um: float) -> float:
     """A uniformly doped layer's sheet resistance (ohm per square): 1 / (q mu N x_j)."""
     return 1.0 / (ELEMENTARY_CHARGE_C * hole_mobility_cm2_per_Vs(acceptors_per_cm3)
@@ -333,16 +369,17 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
                 alpha_H: float = 1e-5, temperature_K: float = 300.0,
                 amplifier: Amplifier = INA103) -> dict:
     """Each row's read-out of a die: one resistor per beam in a quarter bridge (its three
-    other arms equal and unstrained, off the beam) biased at ``bias_V`` (V), over the band
-    [f_lo, f_hi] (Hz).
+    other arms equal, fixed resistors off the die: each beam's two pads are its resistor's
+    ends) biased at ``bias_V`` (V), over the band [f_lo, f_hi] (Hz). The active arm's TCR
+    is then the bridge's zero drift, (V_bias / 4) TCR per K, uncancelled.
 
     Returns:
         ``{"resistance_ohm", "sheet_resistance_ohm_per_sq", "hole_mobility_cm2_per_Vs",
         "carriers", "doping_factor", "strained_share", "sensitivity_tc_per_K",
-        "self_heating_K", "noise_V": {"johnson", "hooge",
-        "amplifier", "total"}, "rows": {role: {
+        "resistor_tcr_per_K", "zero_drift_V_per_K", "self_heating_K", "noise_V": {"johnson",
+        "hooge", "amplifier", "total"}, "rows": {role: {
         "resistance_change_per_N", "sensitivity_V_per_N", "force_resolution_N",
-        "full_scale_signal_V"}}, "assumptions": [...]}``. Noise: the bridge's Johnson noise
+        "full_scale_signal_V", "zero_drift_N_per_K"}}, "assumptions": [...]}``. Noise: the bridge's Johnson noise
         (its output resistance, R), the active resistor's Hooge noise at V_bias / 2
         across it (alpha_H, default 1e-5: the middle of Harley and Kenny's 1e-7 ... 1e-4)
         and ``amplifier``'s (default :data:`INA103`).
@@ -362,6 +399,8 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
     amp = amplifier.noise_V(r, f_lo_Hz, f_hi_Hz)
     total = math.sqrt(johnson ** 2 + hooge ** 2 + amp ** 2)
     tcs = sensitivity_temperature_coefficient_per_K(plan.acceptors_per_cm3, temperature_K)
+    tcr = resistor_tcr_per_K(plan.acceptors_per_cm3, temperature_K)
+    zero_V = bias_V / 4 * tcr  # the quarter bridge's output per K of the die
     # the quarter bridge's active arm carries half the bias: (V/2)^2 / R
     heating = root_self_heating_K((bias_V / 2) ** 2 / r, plan.resistor_length_um,
                                   plan.beams[0].width_um, plan.beams[0].thickness_um)
@@ -372,14 +411,16 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
         rows[beam.role] = {"resistance_change_per_N": c.resistance_change_per_N(),
                            "sensitivity_V_per_N": sens,
                            "force_resolution_N": force_resolution_N(c, bias_V, total),
-                           "full_scale_signal_V": sens * plan.full_scale_force_N}
+                           "full_scale_signal_V": sens * plan.full_scale_force_N,
+                           "zero_drift_N_per_K": zero_V / sens}
     return {"resistance_ohm": r,
             "sheet_resistance_ohm_per_sq": sheet_resistance_ohm(plan.acceptors_per_cm3,
                                                                 md.JUNCTION_DEPTH_UM),
             "hole_mobility_cm2_per_Vs": hole_mobility_cm2_per_Vs(plan.acceptors_per_cm3),
             "carriers": carriers, "bias_V": bias_V, "band_Hz": [f_lo_Hz, f_hi_Hz],
             "doping_factor": c.doping_factor, "strained_share": c.strained_share,
-            "sensitivity_tc_per_K": tcs, "self_heating_K": heating,
+            "sensitivity_tc_per_K": tcs, "resistor_tcr_per_K": tcr,
+            "zero_drift_V_per_K": zero_V, "self_heating_K": heating,
             "noise_V": {"johnson": johnson, "hooge": hooge, "amplifier": amp, "total": total},
             "rows": rows,
             "assumptions": [
@@ -392,6 +433,8 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
                 f"amplifier {amplifier.name} ({amplifier.source})",
                 f"sensitivity {100 * tcs:+.3f} %/K (d ln P / dT); alike in both rows, so it "
                 "cancels in R at one temperature",
+                f"TCR {1e6 * tcr:+.0f} ppm/K (Arora et al. 1982's hole mobility, every acceptor "
+                f"ionised): the quarter bridge's zero moves {1e3 * zero_V:.3g} mV per K",
                 f"self-heating {heating * 1e3:.3g} mK at the root ((V/2)^2 / R = "
                 f"{1e6 * (bias_V / 2) ** 2 / r:.3g} uW conducted along the beam to the frame, "
                 "k 148 W/(m K), Glassbrenner and Slack 1964): its P(N, T) change "
