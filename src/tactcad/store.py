@@ -256,6 +256,26 @@ def keeping_results(store: Store) -> Iterator[Store]:
         _RESULTS.reset(token)
 
 
+#: Inside :func:`only_kept`, :func:`kept_result` computes nothing: a value not kept raises.
+_ONLY_KEPT: ContextVar[bool] = ContextVar("tactcad_only_kept", default=False)
+
+
+class NotKept(LookupError):
+    """:func:`kept_result` inside :func:`only_kept` found no kept value (its ``kind``)."""
+
+
+@contextlib.contextmanager
+def only_kept() -> Iterator[None]:
+    """Within the block, :func:`kept_result` returns kept values and raises
+    :class:`NotKept` instead of computing one: whether a result is at hand, asked without
+    solving it (e.g. before solving the missing ones in other processes)."""
+    token = _ONLY_KEPT.set(True)
+    try:
+        yield
+    finally:
+        _ONLY_KEPT.reset(token)
+
+
 def active_store() -> Store | None:
     """The store of the enclosing :func:`keeping_results` block, or None outside one."""
     block = _RESULTS.get()
@@ -297,6 +317,8 @@ def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
     if found:
         if reused is not None:
             reused()
+    elif _ONLY_KEPT.get():
+        raise NotKept(kind)
     else:
         value = compute()
         store.remember(key, value)

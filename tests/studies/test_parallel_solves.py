@@ -33,3 +33,40 @@ def test_nothing_is_prefetched_without_a_store_on_disk_or_with_one_element():
     with keeping_results(Store(None)):
         assert solve_side_by_side("fem3d", elements, plan.material) == 0
     assert solve_side_by_side("fem3d", elements, plan.material) == 0  # no store block
+
+
+def test_elements_already_kept_are_not_handed_to_other_processes(tmp_path, monkeypatch):
+    """Only the elements the store does not hold are solved side by side: with one of two
+    kept, the other is left to the command (no process started); at the ladder's top
+    alone is it worth a process."""
+    import concurrent.futures
+
+    from tactcad.studies.parallel_solves import top_of_the_ladder
+
+    plan = load_design(EXAMPLES / "macro_array" / "macro_array.toml")
+    elements = list(plan.distinct_elements.values())[:2]
+    started = []
+
+    def pool(*args, **kwargs):
+        started.append(args)
+        raise OSError("no process in this test")
+    monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", pool)
+    with keeping_results(Store(tmp_path / "store")):
+        assert solve_side_by_side("fem2d", elements, plan.material) == 0
+        assert started  # neither kept: both would have gone to processes
+        started.clear()
+        estimate("fem2d", elements[0], plan.material)
+        assert solve_side_by_side("fem2d", elements, plan.material) == 0
+        assert not started
+    assert top_of_the_ladder("fem3d") and not top_of_the_ladder("fem2d")
+
+
+def test_only_kept_answers_from_the_store_and_computes_nothing(tmp_path):
+    from tactcad.store import NotKept, kept_result, only_kept
+
+    with keeping_results(Store(tmp_path / "store")):
+        with only_kept(), pytest.raises(NotKept):
+            kept_result("a sum", lambda: 1 + 1, "inputs")
+        assert kept_result("a sum", lambda: 1 + 1, "inputs") == 2
+        with only_kept():
+            assert kept_result("a sum", lambda: 3, "inputs") == 2

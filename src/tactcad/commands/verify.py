@@ -41,7 +41,8 @@ def run(args: argparse.Namespace) -> int:
     shown = die_view("verify", args)  # a silicon die's design: its own matrix
     if shown is not None:
         return shown
-    from tactcad.studies.verification import (matrix_passed, matrix_table, requirements_of,
+    from tactcad.studies.verification import (matrix_passed, matrix_table,
+                                                prefetch_top_level, requirements_of,
                                                 undecided, verification_auto,
                                                 verification_matrix)
     from tactcad.assembly.inventory import array_envelope_mm
@@ -55,6 +56,7 @@ def run(args: argparse.Namespace) -> int:
         records, levels = verification_auto(plan, progress, req, stress=element_stress,
                                             envelope_mm=envelope)
     else:
+        prefetch_top_level(plan, args.model, progress)
         records, levels = verification_matrix(plan, args.model, progress, req,
                                               stress=element_stress, envelope_mm=envelope), []
     ok = matrix_passed(records)

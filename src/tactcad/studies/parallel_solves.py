@@ -11,7 +11,8 @@ processes ignore it and are killed with it), and a process that dies leaves its 
 be solved here as before.
 
 Nothing is prefetched without a store on disk (``--no-cache``: a process's result would be
-lost), on one core, for fewer than two elements, or with ``TACTCAD_WORKERS=0``.
+lost), on one core, for fewer than two elements not yet kept in the store, or with
+``TACTCAD_WORKERS=0``.
 """
 
 from __future__ import annotations
@@ -46,6 +47,31 @@ def _solve(root: str, model: str, geometry: Any, material: Any) -> None:
             estimate(model, geometry, material)
 
 
+def _kept(model: str, geometry: Any, material: Any) -> bool:
+    """Whether the active store holds ``geometry``'s estimate at ``model`` (nothing solved)."""
+    import warnings
+
+    from tactcad.mechanics.ladder import estimate
+    from tactcad.store import NotKept, only_kept
+
+    try:
+        with warnings.catch_warnings(), only_kept():
+            warnings.simplefilter("ignore")
+            estimate(model, geometry, material)
+    except NotKept:
+        return False
+    return True
+
+
+def top_of_the_ladder(model: str) -> bool:
+    """Whether ``model`` is the ladder's dearest level, the one whose elements are worth a
+    process each (about a minute and a half an element; the levels below take seconds,
+    less than a process's start)."""
+    from tactcad.mechanics.ladder import models
+
+    return model == models()[-1]
+
+
 def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
                        progress=None) -> int:
     """Solve ``geometries`` at ``model`` in up to as many processes as cores, into the
@@ -61,6 +87,9 @@ def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
     cores = os.cpu_count() or 1
     if (store is None or store.root is None or cores < 2 or len(geometries) < 2
             or os.environ.get("TACTCAD_WORKERS", "1") == "0"):  # one process asked for
+        return 0
+    geometries = [g for g in geometries if not _kept(model, g, material)]
+    if len(geometries) < 2:  # one left is solved here, as soon
         return 0
     n = min(cores, len(geometries))
     if progress:
