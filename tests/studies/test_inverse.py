@@ -220,8 +220,13 @@ def test_by_default_the_written_design_is_checked_as_verify_checks_it(tmp_path, 
             "0.3", "--json", "--quiet"]
     assert main([*argv, "--out", "a.toml"]) == 0
     report = json.loads(capsys.readouterr().out)
-    assert report["verify"] == {"asked": "auto", "level": "closed-form"}
+    v = report["verify"]
+    assert (v["asked"], v["level"], v["passed"]) == ("auto", "closed-form", True)
+    assert [q["requirement"] for q in v["requirements"]] == \
+        [m["requirement"] for m in report["margins"]]
     assert all(m["verdict"] == "pass" for m in report["margins"])
+    assert set(report["K_r_over_K_m"]) == {"closed-form"} and report["K_r_over_K_m"][
+        "closed-form"] > 0
     assert set(solved) == {"closed-form"}
     assert all(e["K_verified_N_per_mm"] is None for e in report["elements"])
     # a margin inside the closed form's error: the ladder climbs for it, and the K table
@@ -230,12 +235,17 @@ def test_by_default_the_written_design_is_checked_as_verify_checks_it(tmp_path, 
         {"requirement": "full_scale_force_N", "margin_rel": 0.001, "error_estimate_rel": 0.02,
          "verdict": "undecided", "level_fixed": False}])
     climbed = []
+    decided = [{"requirement": "full_scale_force_N", "verdict": "fail", "margin_rel": -0.01,
+                "decided_by": "fem2d"}]
     monkeypatch.setattr("tactcad.studies.verification.verification_auto",
                         lambda plan, progress=None, **k: (climbed.append(plan.name),
-                                                          ([], [{"model": "fem2d"}]))[1])
-    assert main([*argv, "--out", "b.toml"]) == 0
+                                                          (decided, [{"model": "fem2d"}]))[1])
+    # a requirement the climb finds failing: the design is written and the command says so
+    assert main([*argv, "--out", "b.toml"]) == 1
     report = json.loads(capsys.readouterr().out)
-    assert climbed and report["verify"] == {"asked": "auto", "level": "fem2d"}
+    assert (tmp_path / "b.toml").is_file()
+    assert climbed and (report["verify"]["level"], report["verify"]["passed"]) == ("fem2d", False)
+    assert report["verify"]["requirements"] == decided
     assert all(e["verify_model"] == "fem2d" and e["K_verified_N_per_mm"] > 0
                for e in report["elements"])
 

@@ -80,8 +80,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "full-scale force, within yield / safety factor and the gauge's fatigue "
                     "strain; where the base design's layout cannot, searches the sheet, the "
                     "ISO clamp bolt, the pitch and the tip width (each fixed by a --set of it, "
-                    "the pitch by --pitch), nearest the base first; verifies the two element "
-                    "geometries at the --verify level; writes the design TOML. A refusal names "
+                    "the pitch by --pitch), nearest the base first; checks the written design "
+                    "as tactcad verify does (--verify); writes the design TOML. A refusal names "
                     "the targets that bind and the nearest feasible ones as options to paste. "
                     "Units: N/mm, N, mm.")
     p.add_argument("--kr-over-km", type=number(1, MAX_KR_OVER_KM, lo_open=True), required=True,
@@ -307,9 +307,9 @@ def _run(args: argparse.Namespace) -> int:
     progress = progress_from_args(args)
     asked = args.verify or DEFAULT_VERIFY
     margins = design_margins(result.plan)
-    level = auto_verify_level(result.plan, margins, progress) if asked == "auto" else asked
-    report = design_report(result, level, progress, margins)
-    report["verify"] = {"asked": asked, "level": level}
+    level, records = design_verification(result.plan, asked, margins, progress)
+    report = design_report(result, level or "none", progress, margins)
+    report["verify"] = verification_summary(asked, level, records)
     report["tissue_coupling"] = coupling_summary(result, args)
     from tactcad.version import VERSION
 
@@ -327,7 +327,7 @@ def _run(args: argparse.Namespace) -> int:
         print(json.dumps(report, indent=2, allow_nan=False))
     else:
         print_report(report)
-    return 0
+    return 0 if report["verify"]["passed"] else 1  # written, and its check fails
 
 
 #: ``--construction`` of a silicon die (not an array construction: its design file is read
@@ -874,20 +874,46 @@ def design_options(args: argparse.Namespace) -> list[str]:
     return words  # no --force: the header's command, run again, refuses to overwrite
 
 
-def auto_verify_level(plan, margins: list[dict], progress=None) -> str:
-    """The level ``design --verify auto`` checks a written design at: ``closed-form`` when
-    every requirement is decided there (``margins``, :func:`design_margins`), else the last
-    level :func:`tactcad.studies.verification.verification_auto` climbed to deciding them (its
-    solves kept in the store, so ``verify`` after ``design`` reads them back)."""
+def design_verification(plan, asked: str, margins: list[dict], progress=None
+                        ) -> tuple[str | None, list[dict]]:
+    """The written design's verification as ``tactcad verify --model <asked>`` makes it:
+    (the level it ended at, its records), (None, []) for ``none``.
+
+    ``auto``: the closed form's records (``margins``, :func:`design_margins`) when they
+    decide every requirement, else :func:`tactcad.studies.verification.verification_auto`
+    (each record at the level that decided it); a ladder level: the matrix at that level.
+    Solves at the ladder's top go side by side and into the store, so ``verify`` after
+    ``design`` reads them back."""
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.studies.strength_studies import element_stress
-    from tactcad.studies.verification import verification_auto
+    from tactcad.studies.verification import (prefetch_top_level, verification_auto,
+                                                verification_matrix)
 
-    if all(m["verdict"] != "undecided" for m in margins):
-        return "closed-form"
-    _, levels = verification_auto(plan, progress, stress=element_stress,
-                                  envelope_mm=array_envelope_mm(plan))
-    return levels[-1]["model"]
+    if asked == "none":
+        return None, []
+    if asked == "auto" and all(m["verdict"] != "undecided" for m in margins):
+        return "closed-form", margins
+    envelope = array_envelope_mm(plan)
+    if asked == "auto":
+        records, levels = verification_auto(plan, progress, stress=element_stress,
+                                            envelope_mm=envelope)
+        return levels[-1]["model"], records
+    prefetch_top_level(plan, asked, progress)
+    return asked, verification_matrix(plan, asked, progress, stress=element_stress,
+                                      envelope_mm=envelope)
+
+
+def verification_summary(asked: str, level: str | None, records: list[dict]) -> dict:
+    """The report's ``verify`` record: what was asked, the level reached, whether the matrix
+    passed (no requirement fails; an undecided one does not fail it) and each requirement's
+    verdict with its margin and the level that decided it."""
+    from tactcad.studies.verification import matrix_passed
+
+    return {"asked": asked, "level": level, "passed": matrix_passed(records),
+            "requirements": [{"requirement": r["requirement"], "verdict": r["verdict"],
+                              "margin_rel": r.get("margin_rel"),
+                              "decided_by": r.get("decided_by", r.get("model", level))}
+                             for r in records]}
 
 
 def design_report(result, verify: str, progress=None, margins: list[dict] | None = None) -> dict:
@@ -966,8 +992,9 @@ def design_report(result, verify: str, progress=None, margins: list[dict] | None
                                for f, a, b in result.layout_changes],
             "K_r_over_K_m": {"closed-form": ref["K_closed_form_N_per_mm"]
                              / meas["K_closed_form_N_per_mm"],
-                             verify: None if ref["K_verified_N_per_mm"] is None else
-                             ref["K_verified_N_per_mm"] / meas["K_verified_N_per_mm"]},
+                             **({} if ref["K_verified_N_per_mm"] is None else
+                                {verify: ref["K_verified_N_per_mm"]
+                                 / meas["K_verified_N_per_mm"]})},
             "elements": elements, "units": units,
             "force_resolution_N": {"reference": df_ref, "measuring": df_meas},
             "max_full_scale_force_N": result.max_full_scale_force_N,
@@ -1007,6 +1034,28 @@ def margin_lines(margins: list[dict]) -> list[str]:
                 "`verify --model auto` climbs the ladder to decide it")
         out.append(f"margin: {m['requirement']} {m['verdict']} at the closed form (margin "
                    f"{margin}, error {err}); {then}")
+    return out
+
+
+def verification_lines(v: dict | None) -> list[str]:
+    """The report's words on :func:`verification_summary`: how the design was checked, and
+    each requirement that was not passed at the closed form or that a FEM level decided."""
+    if not v or v["level"] is None:
+        return ["verify: none (`tactcad verify` checks the written design)"]
+    head = (f"verify: {v['asked']}: " + (
+        "the closed form decides every requirement, so no FEM level ran (`--verify fem3d` "
+        "checks each element's K at the top of the ladder)" if v["level"] == "closed-form"
+        else f"the matrix at {v['level']}" if v["asked"] != "auto"
+        else f"the ladder climbed to {v['level']} for what the closed form left undecided"))
+    out = [head]
+    for q in v["requirements"]:
+        if q["verdict"] != "pass" or q["decided_by"] != "closed-form":
+            margin = "" if q["margin_rel"] is None else f" {100 * q['margin_rel']:+.1f} %"
+            out.append(f"  {q['requirement']}: {q['verdict'].upper()}{margin} "
+                       f"({q['decided_by'] or 'no level decides it'})")
+    out.append("verify: no requirement fails" if v["passed"] else
+               "verify: a requirement FAILS: the design is written, and `tactcad verify` "
+               "reports the same")
     return out
 
 
@@ -1070,13 +1119,8 @@ def print_report(r: dict) -> None:
     print(f"web rule: {r['web_rule']}")
     for line in margin_lines(r["margins"]):
         print(line)
-    v = r.get("verify")
-    if v and v["asked"] == "auto":
-        print("verify: auto: " + (
-            "the closed form decides every requirement, so no FEM level ran (`--verify fem3d` "
-            "checks each element's K at the top of the ladder)" if v["level"] == "closed-form"
-            else f"the ladder climbed to {v['level']} to decide what the closed form left "
-                 "undecided"))
+    for line in verification_lines(r.get("verify")):
+        print(line)
     print(f"largest feasible full-scale force for these stiffness targets: "
           f"{r['max_full_scale_force_N']:.4g} N, bound by " + "; ".join(r["binding_limits"]))
     print(f"wrote {shown_path(r['out'])}")
