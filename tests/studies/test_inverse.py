@@ -250,6 +250,26 @@ def test_by_default_the_written_design_is_checked_as_verify_checks_it(tmp_path, 
                for e in report["elements"])
 
 
+@pytest.mark.slow  # two whole design searches through the command line
+def test_a_design_run_again_over_its_own_file_starts_where_it_started(tmp_path, monkeypatch,
+                                                                     capsys):
+    """``--force`` over the file a first run wrote: the folder's only design is that file,
+    which the second search must not start from (its web and reasons would differ)."""
+    monkeypatch.chdir(tmp_path)
+    argv = ["design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force",
+            "0.3", "--verify", "none", "--out", "x.toml"]
+    assert main(argv) == 0
+    first = (tmp_path / "x.toml").read_bytes()
+    capsys.readouterr()
+    assert main([*argv, "--force"]) == 0
+    err = capsys.readouterr().err
+    assert "not x.toml, the file this run replaces" in err
+    assert (tmp_path / "x.toml").read_bytes() == first
+    # another design in the folder is the base, and the run says so
+    assert main([*argv[:-1], "y.toml"]) == 0
+    assert "starts from x.toml, this folder's design" in capsys.readouterr().err
+
+
 @pytest.mark.slow  # a whole chain through the command line or an export
 def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)

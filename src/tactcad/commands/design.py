@@ -293,7 +293,8 @@ def _run(args: argparse.Namespace) -> int:
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
-    data, design = start_from_args(args, name=path.stem.replace("-", "_") or "inverse_design")
+    data, design = start_from_args(args, name=path.stem.replace("-", "_") or "inverse_design",
+                                   out=path)
     kwargs = {}
     if args.footprint is not None:
         from tactcad.assembly.inventory import array_envelope_mm
@@ -713,9 +714,32 @@ def fixed_fields(args: argparse.Namespace) -> set[str]:
     return fixed
 
 
-def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
+def base_design(out: Path | None) -> Path:
+    """The design a search without ``--design`` starts from, named on stderr: the working
+    folder's design, or the shipped example where the folder has none or its design is
+    ``out``, the file this run replaces (``--force``)."""
+    from tactcad.commands import announced_default_design
+    from tactcad.commands.notices import announce
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+    from tactcad.project_folder import default_design
+
+    found = default_design()
+    if found != DEFAULT_DESIGN and out is not None and found.resolve() == out.resolve():
+        announce(f"design: starts from the shipped example {DEFAULT_DESIGN.stem}, not "
+                 f"{found.name}, the file this run replaces; --design names a base")
+        return DEFAULT_DESIGN
+    if found != DEFAULT_DESIGN:
+        announce(f"design: starts from {found.name}, this folder's design; --design names "
+                 "another base")
+        return found
+    return announced_default_design()
+
+
+def start_from_args(args: argparse.Namespace, name: str, out: Path | None = None
+                    ) -> tuple[dict, Path]:
     """The raw tables the search starts from: the base design (``--design``,
-    else the working folder's or the shipped one) with every ``--set``, the
+    else the working folder's or the shipped one; never ``out``, the file the run
+    replaces, whose last search would otherwise start this one) with every ``--set``, the
     grade, grid and pitch asked for, and the new design's name. Its values are
     checked field by field (types and ranges); the rules between fields are
     left to the search, which may change the layout that breaks them.
@@ -737,7 +761,7 @@ def start_from_args(args: argparse.Namespace, name: str) -> tuple[dict, Path]:
             raise as_options(DesignErrors(own or problems.errors), args, design)
         return model
 
-    design = Path(args.design) if args.design else announced_default_design()
+    design = Path(args.design) if args.design else base_design(out)
     raw = with_overrides(read_toml(design, "design file"), set_keys(args))
     base = check(raw)  # the base's own tables first: the start is made from them
     from tactcad.design.construction_registry import DEFAULT_CONSTRUCTION, construction_name
