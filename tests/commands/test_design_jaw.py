@@ -315,7 +315,7 @@ def test_a_design_stopped_after_its_solves_began_leaves_no_folder_it_made(tmp_pa
     from tactcad.commands import design as cmd
     from tactcad.errors import DesignError
 
-    def stopped(result, verify, progress=None):
+    def stopped(result, verify, progress=None, margins=None):
         (tmp_path / "strip" / ".tactcad-cache").mkdir(parents=True, exist_ok=True)
         raise DesignError("--full-scale-force", 1.0, "a force the verify level finds carried")
     monkeypatch.setattr(cmd, "design_report", stopped)
