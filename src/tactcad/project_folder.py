@@ -289,6 +289,56 @@ def purchased_parts_of(design: Path) -> str:
     return purchased_parts_markdown(load_project(design))
 
 
+def _move_in(staging: Path, folder: Path, rels: list[str]) -> None:
+    """Move each of ``rels`` from ``staging`` into the existing ``folder``, the last
+    (the design file) last; a move that fails puts the folder back as it was (the
+    files it held restored, the files and folders made removed) and raises.
+
+    Raises:
+        OSError: a file could not be moved in (the folder is as it was).
+    """
+    kept = staging_dir(folder)  # the files replaced, until every move has gone through
+    placed: list[tuple[Path, bool]] = []
+    made_dirs: list[Path] = []
+    try:
+        for rel in rels:
+            target = folder / rel
+            made_dirs += _missing_parents(target, folder)
+            target.parent.mkdir(parents=True, exist_ok=True)
+            had = target.exists()
+            if had:
+                (kept / rel).parent.mkdir(parents=True, exist_ok=True)
+                os.replace(target, kept / rel)
+            placed.append((Path(rel), had))
+            os.replace(staging / rel, target)
+    except OSError:
+        _put_back(folder, kept, placed, made_dirs)
+        raise
+    finally:
+        warn_left_behind(remove_tree(kept))
+
+
+def _missing_parents(target: Path, folder: Path) -> list[Path]:
+    """The folders between ``folder`` and ``target`` that do not exist yet (outermost first)."""
+    missing = [p for p in target.relative_to(folder).parents if p != Path(".")]
+    return [folder / p for p in reversed(missing) if not (folder / p).exists()]
+
+
+def _put_back(folder: Path, kept: Path, placed: list[tuple[Path, bool]],
+              made_dirs: list[Path]) -> None:
+    """Undo :func:`_move_in`'s moves: the new files removed, the old ones restored,
+    the folders it made removed (innermost first)."""
+    for rel, had in reversed(placed):
+        (folder / rel).unlink(missing_ok=True)
+        if had:
+            os.replace(kept / rel, folder / rel)
+    for made in reversed(made_dirs):
+        try:
+            made.rmdir()
+        except OSError:
+            pass  # not empty or gone: leave it
+
+
 def write_project(folder: str | Path, design_text: str, design_name: str, plan: Plan, *,
                   companions: Mapping[str, str | None] | None = None,
                   purchased_parts: str | None = None, force: bool = False,
@@ -333,10 +383,8 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
             files = {PURCHASED_PARTS: text, **files}  # the design file stays the last moved
         if not folder.exists():
             os.rename(staging, folder)
-        else:  # the design file last: a set cut short is no project
-            for rel in files:
-                (folder / rel).parent.mkdir(parents=True, exist_ok=True)
-                os.replace(staging / rel, folder / rel)
+        else:
+            _move_in(staging, folder, list(files))
     except OSError as exc:  # name the file in the folder asked for, not in the staging one
         raise in_target(exc, staging, folder) from exc
     finally:

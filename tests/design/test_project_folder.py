@@ -319,3 +319,39 @@ def test_a_new_projects_bought_parts_are_its_own_boms(tmp_path):
     text = (new_project(tmp_path / "c", from_design=design).folder
             / "purchased-parts.md").read_text(encoding="utf-8")
     assert "M1.2" in text and "bolt_M2" not in text
+
+
+@pytest.mark.parametrize("fails_at", ["README.md", ".github/workflows/hardware.yml"])
+@pytest.mark.parametrize("again", [False, True])
+def test_a_write_into_an_existing_folder_that_fails_part_way_leaves_the_folder_as_it_was(
+        tmp_path, monkeypatch, fails_at, again):
+    import os
+
+    import tactcad.project_folder as pf
+
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    (repo / "notes.txt").write_text("the lab's own\n", encoding="utf-8")
+    if again:  # --force over a project: every file it held comes back
+        new_project(repo, example="macro_array")
+    before = {p.relative_to(repo).as_posix(): p.read_bytes()
+              for p in sorted(repo.rglob("*")) if p.is_file()}
+    dirs_before = sorted(p.relative_to(repo).as_posix() for p in repo.rglob("*") if p.is_dir())
+    real_replace = os.replace
+    failed = []
+
+    def replace(src, dst):  # the new file refused once (the old one may go back)
+        if Path(dst) == repo / fails_at and not failed:
+            failed.append(dst)
+            raise PermissionError(13, "Permission denied", str(dst))
+        return real_replace(src, dst)
+
+    monkeypatch.setattr(pf.os, "replace", replace)
+    with pytest.raises(PermissionError, match=re.escape(fails_at.split("/")[-1])):
+        new_project(repo, force=again)
+    after = {p.relative_to(repo).as_posix(): p.read_bytes()
+             for p in sorted(repo.rglob("*")) if p.is_file()}
+    assert after == before
+    assert sorted(p.relative_to(repo).as_posix() for p in repo.rglob("*") if p.is_dir()) \
+        == dirs_before
+    assert not list(tmp_path.glob(".repo.staging-*"))
