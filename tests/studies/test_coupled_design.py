@@ -105,3 +105,23 @@ def test_verify_prints_the_tissue_coupling_as_how_to_read_not_a_failed_requireme
     named = {f"{r}/{m}" for m, r in design_units(plan, ladder_stiffness_by_element(plan))}
     shown = re.findall(r"\(unit (\d+/\d+)\)", line)
     assert len(shown) == 2 and set(shown) <= named, (shown, named)
+
+
+def test_when_eq2s_centring_is_kept_the_factor_the_units_see_is_still_reported(monkeypatch):
+    """The report's "K_obj seen" is the coupling's factor, as [assumptions] quotes it, also when
+    the centring for the coupling broke a limit and eq. 2's centring was kept."""
+    import tactcad.studies.inverse_design as inv
+
+    real = inv._design_from_tables
+
+    def refuse_the_coupled_centring(data, targets, **kw):
+        if targets.kobj_seen_factor != 1.0:
+            raise inv.InverseDesignError("a limit binds")
+        return real(data, targets, **kw)
+
+    monkeypatch.setattr(inv, "_design_from_tables", refuse_the_coupled_centring)
+    kept = design_for_targets(load_design(TI), Targets(10.0, (1.0, 5.0), 0.1, tissue=Tissue()))
+    assert kept.targets.kobj_seen_factor == 1.0
+    assert abs(kept.coupling_seen_factor - 1) > 0.02
+    said = kept.data["assumptions"]["requirements.kobj_range_N_per_mm"]
+    assert f"x{kept.coupling_seen_factor:.3g}" in said and "eq. 2's centring" in said

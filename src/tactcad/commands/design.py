@@ -679,7 +679,9 @@ def coupling_summary(result, args: argparse.Namespace) -> dict:
     plan = result.plan
     rep = coupling_report(plan, ladder_stiffness_by_element(plan), sensing_unit_numbers(plan),
                           report_points(result.targets), tissue_of(args))
-    return {"mode": args.tissue_coupling, "kobj_seen_factor": result.targets.kobj_seen_factor,
+    return {"mode": args.tissue_coupling,
+            "kobj_seen_factor": result.coupling_seen_factor,
+            "centred_on_factor": result.targets.kobj_seen_factor,
             "assumption": result.data.get("assumptions", {}).get("requirements.kobj_range_N_per_mm"),
             **rep}
 
@@ -1129,7 +1131,8 @@ def print_report(r: dict) -> None:
         elif "eq. 2's centring" not in (c["assumption"] or ""):
             head = "K_r, K_m centred on the range as the coupled units see it"
         else:
-            head = "every unit's coupled R spans the range; K_r, K_m at eq. 2's centring (see [assumptions])"
+            head = ("every unit's coupled R spans the range; K_r, K_m at eq. 2's centring (x1, "
+                    "see [assumptions])")
 
         from tactcad.in_use.tissue_coupling import unit_label
 

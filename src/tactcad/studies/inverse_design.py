@@ -762,6 +762,9 @@ class InverseDesign:
     layout_changes: tuple[tuple[str, Any, Any], ...] = ()
     max_full_scale_force_N: float = 0.0
     binding_limits: tuple[str, ...] = ()
+    #: The K_obj factor the units see through the tissue coupling (1: no tissue). It differs
+    #: from ``targets.kobj_seen_factor`` (the centring used) when eq. 2's centring was kept.
+    coupling_seen_factor: float = 1.0
 
 
 #: The binding limits are those of a force this much above the largest feasible one.
@@ -1058,7 +1061,7 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
             allowed="off (eq. 2 alone), or a wider pitch or a narrower K_obj range")
     d.data.setdefault("assumptions", {})["requirements.kobj_range_N_per_mm"] = \
         tissue_assumption(d.targets, note)
-    return d
+    return replace(d, coupling_seen_factor=centred.kobj_seen_factor)
 
 
 def _design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "inverse_design",
