@@ -14,6 +14,7 @@ import errno
 import importlib
 import json
 import os
+import re
 import sys
 from typing import NoReturn
 
@@ -63,16 +64,66 @@ RUN_UNTIL_STOPPED = ("watch",)
 
 
 class UsageError(TactcadError):
-    """A command line argparse refuses (unknown option, bad choice, missing argument)."""
+    """A command line argparse refuses (unknown option, bad choice, missing argument).
+
+    Attributes:
+        field, value, allowed: read from argparse's message (:func:`usage_fields`;
+            None where it names none), for ``--json``'s error record.
+    """
 
     def __init__(self, parser: argparse.ArgumentParser, message: str):
         self.parser = parser
+        self.field, self.value, self.allowed = usage_fields(message)
         super().__init__(message)
+
+
+#: argparse's "argument --verify: ..." head, its option strings joined by "/".
+_ARGUMENT = re.compile(r"^argument (?P<names>[^:]+?): (?P<rest>.*)$", re.DOTALL)
+_INVALID_CHOICE = re.compile(r"^invalid choice: (?P<value>.*?) \(choose from (?P<choices>.*)\)$",
+                             re.DOTALL)
+_EXPECTED = re.compile(r"^expected (?P<n>one|\d+) arguments?$")
+#: The wording of tactcad's own argparse types (:mod:`tactcad.commands.options`).
+_TYPE_REFUSAL = re.compile(r"^(?P<value>'.*?'|\".*?\"): allowed (?P<allowed>.*)$", re.DOTALL)
+
+
+def _unquoted(text: str) -> str:
+    return text[1:-1] if len(text) >= 2 and text[0] == text[-1] and text[0] in "'\"" else text
+
+
+def usage_fields(message: str) -> tuple[str | None, str | None, str | None]:
+    """(field, value, allowed) of an argparse refusal: the option (its longest name) or
+    positional it names, the value refused and what is allowed, each None where the
+    message does not say (argparse 3.11's wording)."""
+    head = _ARGUMENT.match(message)
+    if head is not None:
+        field = max(head["names"].split("/"), key=len)
+        rest = head["rest"]
+        choice = _INVALID_CHOICE.match(rest)
+        if choice is not None:
+            return field, _unquoted(choice["value"]), "one of " + choice["choices"].replace("'", "")
+        typed = _TYPE_REFUSAL.match(rest)
+        if typed is not None:
+            return field, _unquoted(typed["value"]), typed["allowed"]
+        counted = _EXPECTED.match(rest)
+        if counted is not None:
+            n = counted["n"]
+            return field, None, f"{'1' if n == 'one' else n} value{'' if n == 'one' else 's'} after it"
+        return field, None, rest
+    for lead, allowed in (("unrecognized arguments: ", "an option of this command (see --help)"),
+                          ("the following arguments are required: ", "a value")):
+        if message.startswith(lead):
+            first = message[len(lead):].split(", ")[0].split(" ")[0]
+            return first, (first if lead.startswith("unrec") else None), allowed
+    return None, None, None
 
 
 class Parser(argparse.ArgumentParser):
     """An argument parser that raises :class:`UsageError` instead of exiting, so
     ``main`` can report a bad command line as JSON when ``--json`` is given."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)  # --foo is no --footprint: a typo is refused
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str):  # argparse's hook; it must not return
         raise UsageError(self, message)
@@ -145,10 +196,11 @@ def parse_checked(argv: list[str]) -> argparse.Namespace:
         UsageError: argparse refuses the line (unknown option, bad value for a typed option).
         DesignError: a value the rules for every option refuse (non-finite, empty text).
     """
-    from tactcad.commands.options import validate_options
+    from tactcad.commands.options import refuse_repeated, validate_options
 
     parser = build_parser()
     args = parser.parse_args(argv)
+    refuse_repeated(parser, args, argv)
     validate_options(parser, args)
     return args
 

@@ -138,6 +138,33 @@ def test_usage_errors_are_json_too(capsys):
     assert "the following arguments are required: --element" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("argv, field, value, allowed", [
+    (["stiffness"], "--element", None, "a value"),
+    (["stiffness", "--element", "1", "--model", "fem9"], "--model", "fem9", "one of "),
+    (["design", "--rows", "many"], "--rows", "many", "an integer 1 ... 100"),
+    (["design", "--footprint", "3"], "--footprint", None, "2 values after it"),
+    (["stiffness", "--element", "1", "--elem", "2"], "--elem", "--elem", "an option of this "),
+    (["nonsense"], "COMMAND", "nonsense", "one of new, export"),
+])
+def test_a_usage_error_in_json_names_its_field_value_and_allowed(capsys, argv, field, value,
+                                                                 allowed):
+    assert cli.main([*argv, "--json"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert (err["field"], err["value"]) == (field, value)
+    assert err["allowed"].startswith(allowed)
+
+
+@pytest.mark.parametrize("repeat", [["--model", "fem2d", "--model", "beam"],
+                                    ["--model=fem2d", "--model", "beam"]])
+def test_an_option_of_one_value_given_twice_is_refused_not_the_last_taken(capsys, repeat):
+    assert cli.main(["stiffness", "--element", "1", *repeat, "--json"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert err["field"] == "--model" and err["value"] == "fem2d then beam"
+    # options that gather may repeat
+    assert cli.main(["stiffness", "--element", "1", "--set", "element.web_thickness_mm=0.3",
+                     "--set", "element.web_thickness_mm=0.31", "--json"]) == 0
+
+
 def test_os_error_is_json_with_exit_3(capsys, tmp_path):
     blocker = tmp_path / "file"
     blocker.write_text("x")

@@ -179,6 +179,29 @@ def validate_options(parser: argparse.ArgumentParser, args: argparse.Namespace) 
                 setattr(args, action.dest, _checked_value(name, value))
 
 
+def refuse_repeated(parser: argparse.ArgumentParser, args: argparse.Namespace,
+                    argv: Sequence[str]) -> None:
+    """Refuse an option that takes one value given twice (``--verify fem3d --verify auto``):
+    argparse keeps the last silently. Options that gather (``--set``) or flags may repeat.
+
+    Raises:
+        DesignError: naming the option, both values and "once".
+    """
+    given = list(argv[:argv.index("--")] if "--" in argv else argv)
+    for p in chosen_parsers(parser, args):
+        for action in p._actions:
+            if type(action) is not argparse._StoreAction or not action.option_strings:
+                continue
+            spots = [i for i, token in enumerate(given)
+                     if token in action.option_strings
+                     or token.startswith(tuple(f"{o}=" for o in action.option_strings))]
+            if len(spots) > 1:
+                values = [given[i].split("=", 1)[1] if "=" in given[i] else
+                          (given[i + 1] if i + 1 < len(given) else "") for i in spots]
+                raise DesignError(option_name(action), " then ".join(values),
+                                  "the option once (each use replaces the last)")
+
+
 def options_of(parser: argparse.ArgumentParser,
                path: Sequence[str] = ()) -> Iterator[tuple[tuple[str, ...], argparse.ArgumentParser]]:
     """Every command (``("bench", "export")``) and its parser, for tests and fuzzing."""
