@@ -1024,6 +1024,7 @@ def design_report(result, verify: str, progress=None, margins: list[dict] | None
             "elements": elements, "units": units,
             "force_resolution_N": {"reference": df_ref, "measuring": df_meas},
             "max_full_scale_force_N": result.max_full_scale_force_N,
+            "max_full_scale_force_basis": MAX_FORCE_BASIS,
             "binding_limits": list(result.binding_limits),
             "web_rule": WEB_RULE,
             "margins": design_margins(plan) if margins is None else margins,
@@ -1042,6 +1043,12 @@ def design_margins(plan, keys: tuple[str, ...] = ()) -> list[dict]:
                                "level_fixed", *keys)}
             for r in verification_matrix(plan, "closed-form",
                                          envelope_mm=array_envelope_mm(plan))]
+
+
+#: Why design's largest force sits below the force limits `verify` and `strength` quote.
+MAX_FORCE_BASIS = ("each gauge limit less the closed form's error on the grid's strain, so "
+                   "that the closed form decides it; `verify` and `strength` quote the limits "
+                   "themselves, higher by up to that error")
 
 
 def margin_lines(margins: list[dict]) -> list[str]:
@@ -1149,7 +1156,8 @@ def print_report(r: dict) -> None:
     for line in verification_lines(r.get("verify")):
         print(line)
     print(f"largest feasible full-scale force for these stiffness targets: "
-          f"{r['max_full_scale_force_N']:.4g} N, bound by " + "; ".join(r["binding_limits"]))
+          f"{r['max_full_scale_force_N']:.4g} N, bound by " + "; ".join(r["binding_limits"])
+          + f" ({MAX_FORCE_BASIS})")
     print(f"wrote {shown_path(r['out'])}")
 
 
