@@ -123,16 +123,23 @@ def announced_default_design() -> Path:
     Raises:
         DesignError: the working folder holds several design files.
     """
-    from tactcad.commands.notices import announce
     from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.project_folder import default_design
 
     design = default_design()
     if design == DEFAULT_DESIGN:
-        announce(f"design: the shipped example {DEFAULT_DESIGN.stem} (the paper's 2 x 5 "
-                 f"array): no design file in this folder and no --design; `tactcad new NAME` "
-                 f"makes a project of your own")
+        announce_shipped_example()
     return design
+
+
+def announce_shipped_example() -> None:
+    """Head the run's stderr with the line saying it works on the shipped example."""
+    from tactcad.commands.notices import announce
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+
+    announce(f"design: the shipped example {DEFAULT_DESIGN.stem} (the paper's 2 x 5 "
+             f"array): no design file in this folder and no --design; `tactcad new NAME` "
+             f"makes a project of your own")
 
 
 def load_from_args(args: argparse.Namespace):

@@ -720,12 +720,12 @@ def base_design(out: Path | None) -> Path:
     """The design a search without ``--design`` starts from, named on stderr: the working
     folder's design, or the shipped example where the folder has none or its design is
     ``out``, the file this run replaces (``--force``)."""
-    from tactcad.commands import announced_default_design
+    from tactcad.commands import announce_shipped_example
     from tactcad.commands.notices import announce
     from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.project_folder import default_design
 
-    found = default_design()
+    found = default_design()  # the folder scanned once
     if found != DEFAULT_DESIGN and out is not None and found.resolve() == out.resolve():
         announce(f"design: starts from the shipped example {DEFAULT_DESIGN.stem}, not "
                  f"{found.name}, the file this run replaces; --design names a base")
@@ -734,7 +734,8 @@ def base_design(out: Path | None) -> Path:
         announce(f"design: starts from {found.name}, this folder's design; --design names "
                  "another base")
         return found
-    return announced_default_design()
+    announce_shipped_example()
+    return DEFAULT_DESIGN
 
 
 def start_from_args(args: argparse.Namespace, name: str, out: Path | None = None

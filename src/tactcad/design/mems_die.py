@@ -302,37 +302,42 @@ def _widths(widest: float, narrowest: float) -> list[float]:
             if widest - i * WIDTH_STEP_UM >= narrowest]
 
 
-def _fitting_beams(E: float, k_r: float, k_m: float, window: float, pitch_um: float) -> list:
-    """Every stock device layer and beam width whose two beams, posts and the slot between
-    the tips fit across the window, slender (L_r >= :data:`SLENDERNESS` w): tuples
-    (the measuring beam's root stress per N, -t, w, slot, post, L_r, L_m), um."""
+def _beam_pair(E: float, k_r: float, k_m: float, window: float, t: float, w: float,
+               slot: float) -> tuple | None:
+    """(root stress per N of the measuring beam, -t, w, slot, post, L_r, L_m) of the pair of
+    beams of width ``w`` in a ``t`` layer, or None when the two beams, the post and the slot
+    between the tips do not fit across the window or the reference beam is not slender
+    (L_r >= :data:`SLENDERNESS` w); um."""
+    post = min(w, POST_MAX_UM)
+    l_r = length_for_stiffness_um(E, w, t, k_r)
+    l_m = length_for_stiffness_um(E, w, t, k_m)
+    if l_r + l_m + post + slot <= window and l_r >= SLENDERNESS * w:
+        return 6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m
+    return None
+
+
+def _layer_widths(pitch_um: float) -> list[tuple[float, float, list[float]]]:
+    """(device layer, DRIE slot, beam widths that leave room for the resistor) per stock layer (um)."""
     out = []
     for t in DEVICE_LAYER_CHOICES_UM:
         slot = drie_min_width_um(t)
-        for w in _widths(pitch_um - slot, _resistor_width_um()):
-            post = min(w, POST_MAX_UM)
-            l_r = length_for_stiffness_um(E, w, t, k_r)
-            l_m = length_for_stiffness_um(E, w, t, k_m)
-            if l_r + l_m + post + slot <= window and l_r >= SLENDERNESS * w:
-                out.append((6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m))
+        out.append((t, slot, _widths(pitch_um - slot, _resistor_width_um())))
     return out
+
+
+def _fitting_beams(E: float, k_r: float, k_m: float, window: float, pitch_um: float) -> list:
+    """Every stock device layer and beam width whose pair fits (:func:`_beam_pair`)."""
+    pairs = (_beam_pair(E, k_r, k_m, window, t, w, slot)
+             for t, slot, widths in _layer_widths(pitch_um) for w in widths)
+    return [p for p in pairs if p is not None]
 
 
 def _any_fitting_beam(E: float, k_r: float, k_m: float, window: float, pitch_um: float) -> bool:
     """Whether :func:`_fitting_beams` finds any: each layer's narrowest width decides it, as
     the beams' lengths (L ~ w^(1/3)) and the post grow with the width while the slenderness
     L_r / w falls."""
-    for t in DEVICE_LAYER_CHOICES_UM:
-        slot = drie_min_width_um(t)
-        widths = _widths(pitch_um - slot, _resistor_width_um())
-        if not widths:
-            continue
-        w = min(widths)
-        l_r = length_for_stiffness_um(E, w, t, k_r)
-        l_m = length_for_stiffness_um(E, w, t, k_m)
-        if l_r + l_m + min(w, POST_MAX_UM) + slot <= window and l_r >= SLENDERNESS * w:
-            return True
-    return False
+    return any(_beam_pair(E, k_r, k_m, window, t, min(widths), slot) is not None
+               for t, slot, widths in _layer_widths(pitch_um) if widths)
 
 
 #: Steps of the K_obj range's scale a refusal searches for its alternative (x 1.05 each).

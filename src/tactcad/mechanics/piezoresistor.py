@@ -292,9 +292,14 @@ def resistor_tcr_per_K(acceptors_per_cm3: float, temperature_K: float = 300.0) -
     """A p-type resistor's temperature coefficient of resistance (1/K): d ln rho / dT =
     -d ln mu / dT with every acceptor ionised (:func:`hole_mobility_arora_cm2_per_Vs`,
     central difference over 1 K); positive, the lattice scattering's rise with T."""
-    up = hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3, temperature_K + 0.5)
-    down = hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3, temperature_K - 0.5)
-    return -math.log(up / down)
+    return -log_slope_per_K(lambda T: hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3, T),
+                            temperature_K)
+
+
+def log_slope_per_K(of_temperature, temperature_K: float) -> float:
+    """d ln f / dT of a positive ``f(T)`` (1/K), by a central difference over 1 K (every
+    temperature law here is smooth on that scale)."""
+    return math.log(of_temperature(temperature_K + 0.5) / of_temperature(temperature_K - 0.5))
 
 
 def sheet_resistance_ohm(acceptors_per_cm3: float, junction_depth_um: float) -> float:
@@ -350,9 +355,7 @@ def sensitivity_temperature_coefficient_per_K(acceptors_per_cm3: float,
                                               temperature_K: float = 300.0) -> float:
     """The piezoresistive sensitivity's temperature coefficient (1/K): d ln P(N, T) / dT
     (:func:`piezoresistance_factor`, central difference over 1 K)."""
-    up = piezoresistance_factor(acceptors_per_cm3, temperature_K + 0.5)
-    down = piezoresistance_factor(acceptors_per_cm3, temperature_K - 0.5)
-    return math.log(up / down)
+    return log_slope_per_K(lambda T: piezoresistance_factor(acceptors_per_cm3, T), temperature_K)
 
 
 def root_self_heating_K(power_W: float, resistor_length_um: float, width_um: float,
