@@ -5,9 +5,16 @@ from __future__ import annotations
 import io
 from pathlib import Path
 
-from reportlab.graphics import renderPDF
-from reportlab.pdfgen import canvas
-from svglib.svglib import svg2rlg
+import reportlab.rl_config
+
+# reportlab checks every attribute set on every shape (a developer's aid that costs a third
+# of a sheet's conversion); svglib's shapes need no checking. Set before reportlab.graphics
+# is first imported, which reads it when its classes are made.
+reportlab.rl_config.shapeChecking = 0
+
+from reportlab.graphics import renderPDF  # noqa: E402 - after the setting above
+from reportlab.pdfgen import canvas  # noqa: E402
+from svglib.svglib import svg2rlg  # noqa: E402
 
 from tactcad.store import Store, content_key
 

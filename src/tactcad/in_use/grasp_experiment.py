@@ -509,6 +509,8 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
         raise DesignError("force_N", force_N, "> 0 N")
     if not (math.isfinite(rated_force_N) and rated_force_N > 0):
         raise DesignError("rated_force_N", rated_force_N, "> 0 N")
+    if angle_deg is not None:  # refused before any contact is solved
+        check_angle_deg(jaw, angle_deg)
     laid = tips_as_laid_out(plan, jaw, stiffness, overload_N)
     pairing = paired_layout(plan, units)
     paired, sites = tips_on(plan, jaw, stiffness, pairing, overload_N)
