@@ -25,6 +25,28 @@ def test_table1_rows_cover_every_calibrated_element(plan):
         assert r.predicted.stiffness_N_per_mm > 0
 
 
+def test_table1_states_k_with_the_bonded_gauge_as_the_readout_does(plan):
+    """Table 1's "+ gauge" column is the read-out's own layer rise on each element (one
+    number per quantity), a stiffening of a few per cent, and the shift it gives is said."""
+    from tactcad.mechanics.readout_chain import readout_report
+    from tactcad.paper.table1 import gauge_layer_shift
+    from tactcad.studies.verification import requirements_of
+
+    rows = table1_comparison(plan, "closed-form")
+    report = readout_report(plan, requirements_of(plan))
+    by_element = {r["element"]: r["gauge_layer_k_rel"] for r in report.records}
+    for r in rows:
+        assert r.gauge_layer_k_rel == pytest.approx(by_element[r.element], rel=1e-12)
+        assert 0.02 < r.gauge_layer_k_rel < 0.15
+        assert r.with_gauge_layer_N_per_mm == pytest.approx(
+            r.predicted.stiffness_N_per_mm * (1 + r.gauge_layer_k_rel))
+    shift = gauge_layer_shift(rows)
+    bare, layered = shift["mean_error_percent"]
+    assert layered > bare  # a stiffer prediction reads higher against the same measurements
+    r = run_cli("table1", "--json")
+    assert r.returncode == 0 and json.loads(r.stdout)["gauge_layer"] == pytest.approx(shift)
+
+
 def test_longer_arm_is_softer_across_the_table(plan):
     rows = {r.arm_length_mm: r.predicted.stiffness_N_per_mm for r in table1_comparison(plan, "beam")}
     ks = [rows[a] for a in sorted(rows)]

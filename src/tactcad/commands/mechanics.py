@@ -74,7 +74,8 @@ def run_stiffness(args: argparse.Namespace) -> int:
 
 
 def run_table1(args: argparse.Namespace) -> int:
-    from tactcad.paper.table1 import PAPER_STRAIN_RANGE, as_built_webs, gauge_strain_at_paper_load, require_table1, table1_comparison, table2_predicted
+    from tactcad.mechanics.readout_chain import GAUGE_LAYER_K_ERROR_REL
+    from tactcad.paper.table1 import PAPER_STRAIN_RANGE, as_built_webs, gauge_layer_shift, gauge_strain_at_paper_load, require_table1, table1_comparison, table2_predicted
 
     plan = plan_from_args(args)
     require_table1(plan)
@@ -88,15 +89,26 @@ def run_table1(args: argparse.Namespace) -> int:
     t2 = table2_predicted(plan, args.model)
     if args.json:
         print(json.dumps({"model": args.model, "table1": [r.as_json() for r in rows],
+                          "gauge_layer": gauge_layer_shift(rows),
                           "as_built_web": webs, "gauge_strain_2N": strains, "table2": t2}, indent=2))
         return 0
     print(f"Table 1, model {args.model}: predicted vs measured K (N/mm)")
     print(f"{'el':>3} {'arm mm':>7} {'measured':>9} {'predicted':>10} {'error %':>8} {'est. err %':>10}"
-          f" {'as-built web mm':>16}")
+          f" {'+ gauge':>8} {'error %':>8} {'as-built web mm':>16}")
     for r, w in zip(rows, webs):
         print(f"{r.element:>3} {r.arm_length_mm:>7.1f} {r.measured_N_per_mm:>9.2f} "
               f"{r.predicted.stiffness_N_per_mm:>10.2f} {r.error_percent:>8.1f} "
-              f"{100 * r.predicted.error_estimate_rel:>10.2f} {w['web_as_built_mm']:>16.4f}")
+              f"{100 * r.predicted.error_estimate_rel:>10.2f} {r.with_gauge_layer_N_per_mm:>8.2f} "
+              f"{r.with_gauge_layer_error_percent:>8.1f} {w['web_as_built_mm']:>16.4f}")
+    shift = gauge_layer_shift(rows)
+    lo, hi = (100 * x for x in shift["k_rise_rel"])
+    (m0, m1), (a0, a1) = shift["mean_error_percent"], shift["mean_abs_error_percent"]
+    print(f"+ gauge: K with the bonded gauge's glue line and carrier on the web (the beam level's "
+          f"estimate, +{lo:.1f}" + ("" if hi - lo < 0.05 else f" ... +{hi:.1f}")
+          + f" %, which overstates a bonded-layer FE model's rise by up to "
+          f"{100 * GAUGE_LAYER_K_ERROR_REL:.0f} % of itself): mean error {m0:+.1f} -> {m1:+.1f} %, "
+          f"mean |error| {a0:.1f} -> {a1:.1f} %. The paper measured its elements with their "
+          "gauges bonded; its webs as cut (last column) move K far more")
     lo, hi = PAPER_STRAIN_RANGE
     print("gauge strain at 2 N (closed form, %): "
           + ", ".join(f"a={s['arm_length_mm']:g}: {s['strain_percent']:.3f}" for s in strains)

@@ -39,11 +39,25 @@ class Table1Prediction:
     arm_length_mm: float
     measured_N_per_mm: float
     predicted: StiffnessResult
+    #: K's relative rise from the bonded gauge (glue line and carrier) on the web, the
+    #: beam level's estimate (:func:`tactcad.mechanics.readout_chain.gauge_layer_k_rel`;
+    #: 0: not estimated). The paper measured its elements with their gauges bonded.
+    gauge_layer_k_rel: float = 0.0
 
     @property
     def error_percent(self) -> float:
         """(predicted - measured) / measured x 100."""
         return 100.0 * (self.predicted.stiffness_N_per_mm - self.measured_N_per_mm) / self.measured_N_per_mm
+
+    @property
+    def with_gauge_layer_N_per_mm(self) -> float:
+        """The prediction with the bonded gauge's stiffening (N/mm)."""
+        return self.predicted.stiffness_N_per_mm * (1.0 + self.gauge_layer_k_rel)
+
+    @property
+    def with_gauge_layer_error_percent(self) -> float:
+        """(prediction with the gauge layer - measured) / measured x 100."""
+        return 100.0 * (self.with_gauge_layer_N_per_mm - self.measured_N_per_mm) / self.measured_N_per_mm
 
     def as_json(self) -> dict:
         return {"element": self.element, "arm_length_mm": self.arm_length_mm,
@@ -52,7 +66,10 @@ class Table1Prediction:
                 "error_percent": self.error_percent,
                 "error_estimate_rel": self.predicted.error_estimate_rel,
                 "gauge_strain_per_N": self.predicted.gauge_strain_per_N,
-                "wall_time_s": self.predicted.wall_time_s}
+                "wall_time_s": self.predicted.wall_time_s,
+                "gauge_layer_k_rel": self.gauge_layer_k_rel,
+                "with_gauge_layer_N_per_mm": self.with_gauge_layer_N_per_mm,
+                "with_gauge_layer_error_percent": self.with_gauge_layer_error_percent}
 
 
 def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> list[Table1Prediction]:
@@ -61,7 +78,11 @@ def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> 
 
     Distinct geometries are evaluated once (elements with equal arms share them).
     """
+    from tactcad.mechanics.readout_chain import gauge_layer_k_rel, readout_chain
+
+    chain = readout_chain(plan)
     cache: dict[str, StiffnessResult] = {}
+    layer: dict[str, float] = {}
     rows = []
     for meas in table1():
         slot = plan.element(meas.element)
@@ -70,12 +91,24 @@ def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> 
             if progress:
                 progress(f"{model}: {key}")
             cache[key] = estimate(model, slot.geometry, plan.material)
+            layer[key] = gauge_layer_k_rel(slot.geometry, plan.material, chain)
         res = cache[key]
         rows.append(Table1Prediction(meas.element, slot.geometry.arm_length_mm, meas.stiffness_N_per_mm,
                               StiffnessResult(meas.element, res.model, res.stiffness_N_per_mm,
                                               res.gauge_strain_per_N, res.error_estimate_rel,
-                                              res.wall_time_s)))
+                                              res.wall_time_s), layer[key]))
     return rows
+
+
+def gauge_layer_shift(rows: list[Table1Prediction]) -> dict:
+    """How the bonded gauge's stiffening moves Table 1: the mean signed and mean absolute
+    error (%) over the rows without and with it, and the rise's range (relative)."""
+    bare = np.array([r.error_percent for r in rows])
+    layered = np.array([r.with_gauge_layer_error_percent for r in rows])
+    rise = [r.gauge_layer_k_rel for r in rows]
+    return {"mean_error_percent": [float(bare.mean()), float(layered.mean())],
+            "mean_abs_error_percent": [float(np.abs(bare).mean()), float(np.abs(layered).mean())],
+            "k_rise_rel": [float(min(rise)), float(max(rise))]}
 
 
 def table1_not_applicable(plan: Plan) -> str | None:
