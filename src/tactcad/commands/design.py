@@ -364,7 +364,8 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
 
     from tactcad.atomic import write_bytes_atomic
     from tactcad.design.die_file import die_file_text
-    from tactcad.design.mems_die import DEFAULT_COLUMNS, die_plan
+    from tactcad.design.mems_die import DEFAULT_COLUMNS
+    from tactcad.studies.die_doping import doped_die_plan
 
     ignored = die_ignored(args)
     if ignored:  # the first option a die does not take
@@ -374,7 +375,7 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     name = re.sub(r"[^A-Za-z0-9_]", "_", path.stem)
     name = name if re.match(r"[A-Za-z]", name) else f"die_{name}"
     columns = args.columns or DEFAULT_COLUMNS
-    plan = die_plan(targets, room, columns=columns, name=name[:32])
+    plan = doped_die_plan(targets, room, columns=columns, name=name[:32])
     jaw, jaw_file = jaw_of(args.jaw)
     stated = args.jaw
     if jaw_file:  # the lab's jaw beside the die's file: a sensor folder reads only itself

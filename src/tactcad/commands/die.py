@@ -147,7 +147,7 @@ def plan_of(asked: dict) -> PlannedDie:
         DesignError: a bad name, jaw or targets the die cannot meet (named).
     """
     from tactcad.commands.design import jaw_of
-    from tactcad.design.mems_die import die_plan
+    from tactcad.studies.die_doping import doped_die_plan
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
 
@@ -155,8 +155,8 @@ def plan_of(asked: dict) -> PlannedDie:
     targets = Targets(asked["kr_over_km"], tuple(asked["kobj_range"]), asked["full_scale_force"])
     jaw, jaw_file = jaw_of(asked["jaw"])
     room = jaw_room(jaw, jaw_file)
-    plan = die_plan(targets, room, columns=asked["columns"], pitch_um=asked["pitch_um"],
-                    name=name)
+    plan = doped_die_plan(targets, room, columns=asked["columns"], pitch_um=asked["pitch_um"],
+                          name=name)
     return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
 
 

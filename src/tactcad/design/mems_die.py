@@ -136,6 +136,8 @@ class DiePlan:
     reasons: dict = field(default_factory=dict, compare=False, hash=False)
     #: the K_obj range the die reads (N/mm)
     kobj_range_N_per_mm: tuple[float, float] = (0.0, 0.0)
+    #: the resistors' boron implant dose (cm^-2; :func:`tactcad.studies.die_doping.chosen_implant_dose`)
+    implant_dose_per_cm2: float = IMPLANT_DOSE_PER_CM2
 
     @property
     def window_um(self) -> tuple[float, float, float, float]:
@@ -146,7 +148,7 @@ class DiePlan:
     @property
     def acceptors_per_cm3(self) -> float:
         """The resistors' boron concentration (cm^-3): the dose over the junction depth."""
-        return IMPLANT_DOSE_PER_CM2 / (JUNCTION_DEPTH_UM * 1e-4)
+        return self.implant_dose_per_cm2 / (JUNCTION_DEPTH_UM * 1e-4)
 
     @property
     def thickness_um(self) -> float:
@@ -196,7 +198,9 @@ def length_for_stiffness_um(youngs_modulus_MPa: float, width_um: float, thicknes
 def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
              pitch_um: float = DEFAULT_PITCH_UM, name: str = DEFAULT_DIE_NAME,
              box_um: float = DEFAULT_BOX_UM, handle_um: float = DEFAULT_HANDLE_UM,
-             angle_from_110_deg: float = 0.0) -> DiePlan:
+             angle_from_110_deg: float = 0.0,
+             implant_dose_per_cm2: float = IMPLANT_DOSE_PER_CM2,
+             dose_reason: str = "") -> DiePlan:
     """The die for ``targets`` in the jaw's ``room``.
 
     Args:
@@ -206,6 +210,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         columns: units along the die (2 ... 50). pitch_um: their spacing (um).
         box_um, handle_um: the SOI stack's buried oxide and handle (um).
         angle_from_110_deg: the beams' direction in the (100) wafer, from [110].
+        implant_dose_per_cm2: the resistors' boron dose (cm^-2), > 0; ``dose_reason`` why
+            (:func:`tactcad.studies.die_doping.chosen_implant_dose` gives both).
 
     Returns:
         :class:`DiePlan`.
@@ -216,6 +222,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     """
     if not (isinstance(columns, int) and 2 <= columns <= 50):
         raise DesignError("--columns", columns, "an integer 2 ... 50")
+    if not (math.isfinite(implant_dose_per_cm2) and 1e11 <= implant_dose_per_cm2 <= 1e17):
+        raise DesignError("implant_dose_per_cm2", implant_dose_per_cm2, "1e11 ... 1e17 cm^-2")
     if not (isinstance(pitch_um, (int, float)) and math.isfinite(pitch_um)
             and 50.0 <= pitch_um <= 5000.0):
         raise DesignError("--pitch-um", pitch_um, "50 ... 5000 um")
@@ -273,6 +281,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         "die_um": f"{width:g} um across (the {room.label}'s pocket, {room.across_mm:g} mm), "
                   f"{length:g} um along: {columns} columns at {pitch_um:g} um and "
                   f"{END_UM:g} um ends",
+        "implant_dose_per_cm2": dose_reason or f"{implant_dose_per_cm2:.2g} cm^-2 (assumption)",
         "post_um": f"a post {post:g} um square and {POST_HEIGHT_UM:g} um proud on each free "
                    "end (assumption: SU-8 or plated; it meets the tissue before the beam)",
         "strength": (f"undecided: the root's {root_MPa:.4g} MPa at the rating is "
@@ -287,7 +296,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    float(beam_stiffness_N_per_mm(E, w, t, l_r)),
                    float(beam_stiffness_N_per_mm(E, w, t, l_m)), (k_r, k_m),
                    targets.full_scale_force_N, tuple(beams), reasons,
-                   tuple(float(v) for v in targets.k_obj_range_N_per_mm))
+                   tuple(float(v) for v in targets.k_obj_range_N_per_mm),
+                   float(implant_dose_per_cm2))
 
 
 def _resistor_width_um() -> float:

@@ -45,7 +45,7 @@ def traveller_steps(plan: DiePlan, sheet_resistance_ohm_per_sq: float) -> list[S
              f"{s.total_um:g} um stack"),
         Step("oxidation", "", f"thermal screen oxide {SCREEN_OXIDE_NM:g} nm{assumed}",
              "oxide on the device layer"),
-        Step("implant", "piezo", f"boron, dose {md.IMPLANT_DOSE_PER_CM2:.2g} cm^-2 through the "
+        Step("implant", "piezo", f"boron, dose {plan.implant_dose_per_cm2:.2g} cm^-2 through the "
              f"screen oxide{assumed}",
              "p-type resistors at each beam's root"),
         Step("anneal", "", f"{ANNEAL_C:g} C, {ANNEAL_MIN:g} min, N2{assumed}",

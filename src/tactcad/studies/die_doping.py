@@ -1,0 +1,81 @@
+"""The die's resistor doping: of the stock boron implant doses, the one whose quarter bridge
+drifts least per newton of signal.
+
+A die's bridge has one active resistor and three fixed arms off the die, so the resistor's
+TCR moves the bridge's zero uncancelled, (V_bias / 4) TCR per kelvin, while the signal per
+newton goes with the piezoresistance factor P(N, T). The zero drift in newtons per kelvin is
+therefore (V_bias / 4) TCR(N) / sensitivity, and its dependence on the doping is TCR(N) /
+P(N): the geometry, the bias and the beam cancel. Both fall with the doping at first (the
+mobility's temperature dependence weakens as impurity scattering takes over), then P falls
+faster than the TCR, so the ratio has a minimum near 3e18 cm^-3. The noise (Johnson and
+Hooge) falls as the dose rises and is not what binds: the die resolves a few parts in 1e5
+of its rating at any stock dose (``tactcad readout``).
+
+Sources: TCR from Arora, Hauser and Roulston's hole mobility (IEEE TED 29, 1982; every
+acceptor ionised, :func:`tactcad.mechanics.piezoresistor.resistor_tcr_per_K`); P(N, T) from
+Richter et al. (J. Appl. Phys. 104, 2008; :func:`~tactcad.mechanics.piezoresistor.piezoresistance_factor`).
+Units: cm^-2 (dose), cm^-3 (concentration), 1/K.
+"""
+
+from __future__ import annotations
+
+from tactcad.design.mems_die import JUNCTION_DEPTH_UM
+from tactcad.mechanics.piezoresistor import piezoresistance_factor, resistor_tcr_per_K
+
+#: The doses searched (cm^-2): a 1-2-5 series over what a boron implant for piezoresistors
+#: takes (light doses give 1e17 cm^-3 over the junction, heavy ones 1e20).
+STOCK_DOSES_PER_CM2 = (5e12, 1e13, 2e13, 5e13, 1e14, 2e14, 5e14, 1e15, 2e15, 5e15)
+#: The die's working temperature the drift is judged at (K).
+DOPING_TEMPERATURE_K = 300.0
+
+
+def acceptors_of_dose(dose_per_cm2: float) -> float:
+    """Boron concentration (cm^-3) of a dose spread evenly over the junction's depth."""
+    return dose_per_cm2 / (JUNCTION_DEPTH_UM * 1e-4)
+
+
+def drift_per_sensitivity_per_K(dose_per_cm2: float,
+                                temperature_K: float = DOPING_TEMPERATURE_K) -> float:
+    """TCR(N) / P(N, T) (1/K): the quarter bridge's zero drift per unit of its signal, up to
+    the geometry's factor, at the dose's concentration."""
+    n = acceptors_of_dose(dose_per_cm2)
+    return resistor_tcr_per_K(n, temperature_K) / piezoresistance_factor(n, temperature_K)
+
+
+def chosen_implant_dose(doses=STOCK_DOSES_PER_CM2) -> tuple[float, str]:
+    """(dose cm^-2, why): of ``doses``, the one with the least
+    :func:`drift_per_sensitivity_per_K`, with the runner-up and the worst in the reason.
+
+    Raises:
+        ValueError: no dose given.
+    """
+    if not doses:
+        raise ValueError("doses: at least one")
+    ranked = sorted(doses, key=drift_per_sensitivity_per_K)
+    best, worst = ranked[0], ranked[-1]
+
+    def words(dose: float) -> str:
+        return (f"{dose:.2g} cm^-2 ({acceptors_of_dose(dose):.2g} cm^-3, "
+                f"{1e6 * drift_per_sensitivity_per_K(dose):.0f} ppm/K)")
+
+    why = (f"of the stock doses {min(doses):.2g} ... {max(doses):.2g} cm^-2 (1-2-5 series), "
+           f"the one whose quarter bridge drifts least per newton of signal, TCR / P(N, T) at "
+           f"{DOPING_TEMPERATURE_K:g} K (Arora et al. 1982's mobility, Richter et al. 2008's "
+           f"P): {words(best)}"
+           + (f"; next {words(ranked[1])}" if len(ranked) > 1 else "")
+           + (f"; worst {words(worst)}" if len(ranked) > 2 else "")
+           + "; the noise falls with the dose and does not bind")
+    return best, why
+
+
+def doped_die_plan(targets, room, **kwargs):
+    """:func:`tactcad.design.mems_die.die_plan` with the implant dose of
+    :func:`chosen_implant_dose` (and its reason); ``kwargs`` as ``die_plan`` takes them.
+
+    Raises:
+        DesignError: as :func:`~tactcad.design.mems_die.die_plan`.
+    """
+    from tactcad.design.mems_die import die_plan
+
+    dose, why = chosen_implant_dose()
+    return die_plan(targets, room, implant_dose_per_cm2=dose, dose_reason=why, **kwargs)
