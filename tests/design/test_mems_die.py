@@ -98,7 +98,8 @@ def test_the_masks_read_back_clean_and_equal_the_plan(die, tmp_path):
     assert results and all(r.passed for r in results), [r.line() for r in results
                                                         if not r.passed]
     names = {r.subject for r in results}
-    assert {"device_etch.width", "metal.space", "metal.contact_enclosure", "beams"} <= names
+    assert {"device_etch.width", "metal.space", "metal.contact_enclosure", "beams",
+            "resistors"} <= names
 
 
 def test_the_read_back_finds_a_beam_the_mechanics_did_not_assume(die, tmp_path):
@@ -108,6 +109,17 @@ def test_the_read_back_finds_a_beam_the_mechanics_did_not_assume(die, tmp_path):
         for b in die.beams))
     beams = next(r for r in gds_checks(path, longer) if r.subject == "beams")
     assert not beams.passed and "differences" in beams.detail
+
+
+def test_the_read_back_finds_a_reference_resistor_moved_over_the_window(die, tmp_path,
+                                                                      monkeypatch):
+    """A reference resistor drawn where the beam's bending reaches (over the window) is
+    found: the read-out assumed it unstrained."""
+    monkeypatch.setattr(md, "REFERENCE_CLEAR_UM", -100.0)  # its far end 100 um into the window
+    path = write_die_gds(die, tmp_path / "die.gds")
+    monkeypatch.undo()
+    resistors = next(r for r in gds_checks(path, die) if r.subject == "resistors")
+    assert not resistors.passed and "over the window" in resistors.detail
 
 
 def test_a_rule_broken_in_the_layout_is_found_with_where(die, tmp_path, monkeypatch):
@@ -224,11 +236,11 @@ def test_hole_mobility_follows_an_independent_fit_and_the_sheet_resistance_its_f
         hole_mobility_cm2_per_Vs(0.0)
 
 
-def test_the_resistors_tcr_follows_arora_and_is_the_quarter_bridges_zero_drift(die):
+def test_the_resistors_tcr_follows_arora_and_cancels_in_the_half_bridge_to_its_mismatch(die):
     """Arora's hole mobility at 300 K against Masetti's (two fits, 15 %); the TCR,
     -d ln mu / dT, positive (lattice scattering rises with T) and larger where the lattice
-    term dominates; the read-out's zero drift is (V_bias / 4) TCR per K over each row's
-    V/N, and the budget's term grows with the temperature step's share of the rating."""
+    term dominates; the half bridge's zero drift is (V_bias / 4) TCR m per K (m the
+    mismatch to the on-die reference) over each row's V/N, and the budget's term grows with the temperature step's share of the rating."""
     from tactcad.in_use.die_budget import die_budget
     from tactcad.mechanics.piezoresistor import (die_readout, hole_mobility_arora_cm2_per_Vs,
                                                  hole_mobility_cm2_per_Vs, resistor_tcr_per_K)
@@ -245,7 +257,11 @@ def test_the_resistors_tcr_follows_arora_and_is_the_quarter_bridges_zero_drift(d
     readout = die_readout(die, bias_V=2.0)
     tcr = resistor_tcr_per_K(die.acceptors_per_cm3)
     assert readout["resistor_tcr_per_K"] == tcr
-    assert readout["zero_drift_V_per_K"] == pytest.approx(2.0 / 4 * tcr, rel=1e-12)
+    # the on-die reference (equal here) cancels the TCR to the stated mismatch
+    assert readout["reference_resistance_ohm"] == pytest.approx(readout["resistance_ohm"])
+    assert readout["uncancelled_zero_drift_V_per_K"] == pytest.approx(2.0 / 4 * tcr, rel=1e-12)
+    assert readout["zero_drift_V_per_K"] == pytest.approx(
+        2.0 / 4 * tcr * md.REFERENCE_TCR_MISMATCH_REL, rel=1e-12)
     for row in readout["rows"].values():
         assert row["zero_drift_N_per_K"] == pytest.approx(
             readout["zero_drift_V_per_K"] / row["sensitivity_V_per_N"], rel=1e-12)
@@ -257,8 +273,8 @@ def test_the_resistors_tcr_follows_arora_and_is_the_quarter_bridges_zero_drift(d
 
 
 def test_the_dies_readout_noise_and_resolution(die):
-    """Johnson sqrt(4 k T R B), Hooge sqrt(alpha V^2 / N ln(f2/f1)) at half the bias, the
-    quarter bridge's V_b / 4 dR/R per N, resolution = noise / sensitivity; the soft row
+    """Johnson sqrt(4 k T R B), Hooge sqrt(alpha V^2 / N ln(f2/f1)) of each die resistor at
+    half the bias, the half bridge's V_b / 4 dR/R per N (equal resistors), resolution = noise / sensitivity; the soft row
     reads more per newton than the stiff one."""
     from tactcad.mechanics.piezoresistor import die_readout
 
@@ -266,8 +282,9 @@ def test_the_dies_readout_noise_and_resolution(die):
     k_b = 1.380649e-23
     assert r["noise_V"]["johnson"] == pytest.approx(
         math.sqrt(4 * k_b * 300 * r["resistance_ohm"] * 99.9), rel=1e-12)
+    # both die resistors of the half bridge (equal here), each at half the bias
     assert r["noise_V"]["hooge"] == pytest.approx(
-        math.sqrt(1e-5 * 1.0 / r["carriers"] * math.log(1000)), rel=1e-12)
+        math.sqrt(2 * 1e-5 * 1.0 / r["carriers"] * math.log(1000)), rel=1e-12)
     for row in r["rows"].values():
         assert row["sensitivity_V_per_N"] == pytest.approx(
             2.0 / 4 * row["resistance_change_per_N"], rel=1e-12)
@@ -593,3 +610,43 @@ def test_the_strength_reason_sets_the_root_stress_against_the_sourced_mean(die):
     assert reason.startswith("undecided") and f"{stress:.4g} MPa" in reason
     assert f"{100 * stress / md.BOSCH_MEAN_STRENGTH_MPA:.2g} %" in reason
     assert "132(9)" in reason and "no failure probability" in reason
+
+
+def test_a_longer_resistor_keeps_a_shorter_reference_and_the_half_bridge_says_what_it_costs(die):
+    """Past REFERENCE_LEGS_MAX_UM the reference is shorter than the beam's resistor: rho < 1,
+    the signal falls by 4 rho / (1 + rho)^2 against V/4 dR/R, and the zero still drifts only by
+    the mismatch share of the TCR (the common TCR cancels whatever rho)."""
+    import dataclasses
+
+    from tactcad.mechanics.piezoresistor import die_readout
+
+    long = dataclasses.replace(die, resistor_length_um=md.REFERENCE_LEGS_MAX_UM * 1.5)
+    assert long.reference_resistor_length_um == md.REFERENCE_LEGS_MAX_UM
+    r = die_readout(long, bias_V=2.0)
+    rho = r["reference_resistance_ohm"] / r["resistance_ohm"]
+    assert 0.5 < rho < 1.0
+    for row in r["rows"].values():
+        assert row["sensitivity_V_per_N"] == pytest.approx(
+            2.0 * rho / (1 + rho) ** 2 * row["resistance_change_per_N"], rel=1e-12)
+    assert r["zero_drift_V_per_K"] == pytest.approx(
+        r["uncancelled_zero_drift_V_per_K"] * md.REFERENCE_TCR_MISMATCH_REL, rel=1e-12)
+
+
+def test_each_beam_has_its_reference_resistor_on_the_frame_and_three_pads(die, tmp_path):
+    """The masks carry two resistors, four contacts and three separate metal nets per beam;
+    the references lie on the frame, off the window (unstrained), and read back clean."""
+    from tactcad.export.gds_masks import die_polygons, reference_resistor_outline
+
+    polys = die_polygons(die)
+    n = len(die.beams)
+    assert (len(polys["piezo"]), len(polys["contact"]), len(polys["metal"])) == (2 * n, 4 * n,
+                                                                                  3 * n)
+    x0, y0, x1, y1 = die.window_um
+    for b in die.beams:
+        pts = reference_resistor_outline(die, b)
+        xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+        assert max(ys) < y0 or min(ys) > y1  # on the frame, beside the window
+        assert 0 < min(xs) and max(xs) < die.die_length_um
+    gds = write_die_gds(die, tmp_path / "die.gds")
+    failed = [r for r in gds_checks(gds, die) if not r.passed]
+    assert not failed, failed

@@ -1,7 +1,8 @@
 """The die's masks read back with KLayout's own layout engine (``klayout.db``, headless):
 every rule of :func:`tactcad.vocabulary.soi_process.soi_rules` (widths, spaces,
 enclosures) and the read-back of the outlines the mechanics assumed (the beams left in the
-device layer over the handle window equal the plan's beams; each contact on its resistor
+device layer over the handle window equal the plan's beams; the implant equals each beam's
+resistor and its reference, the references off the window; each contact on its resistor
 and under its metal), as :class:`tactcad.checks.check_result.CheckResult` rows.
 
 KLayout's region checks are edge-based (Euclidian metric): ``width_check(d)`` flags a
@@ -99,6 +100,18 @@ def outline_results(path: Path, plan) -> list[CheckResult]:
                        "the plan's" if diff.is_empty() else
                        f"{diff.count()} differences between the beams left over the window "
                        f"and the plan's, area {diff.area() * dbu * dbu:.4g} um^2")]
+    from tactcad.export.gds_masks import reference_resistor_outline, resistor_outline
+
+    references = kdb.Region([poly(reference_resistor_outline(plan, b)) for b in plan.beams])
+    resistors = kdb.Region([poly(resistor_outline(plan, b)) for b in plan.beams]) + references
+    drawn = regions["piezo"] ^ resistors.merged()
+    strained = references & regions["handle_etch"]
+    out.append(CheckResult("gds_outline", "resistors", drawn.is_empty() and strained.is_empty(),
+                           f"{len(plan.beams)} beam resistors at their roots and their "
+                           "references on the frame, off the window, as the read-out assumed"
+                           if drawn.is_empty() and strained.is_empty() else
+                           f"{drawn.count()} implant shapes differ from the plan's; "
+                           f"{strained.count()} references reach over the window"))
     stray = regions["tip"] - beams
     out.append(CheckResult("gds_outline", "posts", stray.is_empty() and
                            regions["tip"].count() == len(plan.beams),

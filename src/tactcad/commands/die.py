@@ -284,7 +284,8 @@ def resistor_line(plan, readout: dict) -> str:
     """The resistors, their bridge and noise, and the read-out's assumptions, as one line."""
     return (f"resistors: {readout['resistance_ohm']:.4g} ohm "
             f"({readout['sheet_resistance_ohm_per_sq']:.4g} ohm/sq, boron "
-            f"{plan.acceptors_per_cm3:.2g} cm^-3), quarter bridge at {readout['bias_V']:g} V, "
+            f"{plan.acceptors_per_cm3:.2g} cm^-3), half bridge with its on-die reference "
+            f"({readout['reference_resistance_ohm']:.4g} ohm) at {readout['bias_V']:g} V, "
             f"noise {1e9 * readout['noise_V']['total']:.3g} nV rms over "
             f"{readout['band_Hz'][0]:g}-{readout['band_Hz'][1]:g} Hz; "
             + "; ".join(readout["assumptions"]))

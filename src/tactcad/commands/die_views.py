@@ -61,7 +61,8 @@ def _readout(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
     plan = _planned(design, args).plan
     readout = die_readout(plan)
-    lines = [f"die {plan.name}: one p-type resistor per beam in a quarter bridge",
+    lines = [f"die {plan.name}: one p-type resistor per beam and its on-die reference in a "
+             "half bridge",
              "| role | dR/R per N | V/N | force resolution N |", "| --- | --- | --- | --- |"]
     for role, r in readout["rows"].items():
         lines.append(f"| {role} | {r['resistance_change_per_N']:.4g} | "
@@ -73,6 +74,7 @@ def _readout(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 
 def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    from tactcad.design.mems_die import REFERENCE_TCR_MISMATCH_REL
     from tactcad.in_use.die_budget import TEMPERATURE_STEP_K, die_budget
     from tactcad.mechanics.piezoresistor import die_readout
 
@@ -84,13 +86,14 @@ def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     rows = readout["rows"]
     zero_term = budget.terms["resistor zero drift"]
     zero = (f"TCR {1e6 * readout['resistor_tcr_per_K']:+.0f} ppm/K (Arora et al. 1982, every "
-            "acceptor ionised): each quarter bridge is completed off the die, so its zero "
-            f"moves {1e3 * readout['zero_drift_V_per_K']:.3g} mV per K, "
-            f"{1e3 * rows['reference']['zero_drift_N_per_K']:.3g} mN per K on the reference "
-            f"beam and {1e3 * rows['measuring']['zero_drift_N_per_K']:.3g} mN per K on the "
+            "acceptor ionised), the same in each beam's resistor and its on-die reference: it "
+            f"cancels in their half bridge to a {100 * REFERENCE_TCR_MISMATCH_REL:g} % mismatch "
+            f"(assumption), so the zero moves {1e6 * readout['zero_drift_V_per_K']:.3g} uV per "
+            f"K ({1e3 * readout['uncancelled_zero_drift_V_per_K']:.3g} mV per K uncancelled), "
+            f"{1e6 * rows['reference']['zero_drift_N_per_K']:.3g} uN per K on the reference "
+            f"beam and {1e6 * rows['measuring']['zero_drift_N_per_K']:.3g} uN per K on the "
             f"measuring beam ({100 * rows['reference']['zero_drift_N_per_K'] / plan.full_scale_force_N:.2g}"
-            " % of the rating per K); on-die reference resistors of the same implant would "
-            "cancel it to their mismatch")
+            " % of the rating per K)")
     report = {"design": str(design), "die": plan.name,
               "sensitivity_tc_per_K": tcs, "self_heating_K": heating,
               "temperature_step_K": TEMPERATURE_STEP_K,

@@ -16,8 +16,10 @@ The die (um; x along the jaw, y across it, the die's lower-left corner at the or
   K = E w t^3 / (4 L^3) (Euler-Bernoulli, clamped at the root), E the modulus along the
   beam, <110> on a (100) wafer (:mod:`tactcad.vocabulary.crystal`);
 * a U-shaped p-type piezoresistor along each beam from its root (two legs joined at the
-  far end), contacted on the frame, each contact wired to its own bond pad on the frame
-  behind the beam (a quarter bridge per beam, completed off the die);
+  far end), contacted on the frame, and beside it on the frame a reference resistor of the
+  same implant, unstrained: the two in series are the beam's half bridge, on three bond pads
+  behind the beam (completed off the die by two fixed arms), so the implant's TCR cancels
+  between them and the zero drifts only by their mismatch;
 * the device layer over the window etched away except the beams (front DRIE).
 
 Sizing (:func:`die_plan`): the stiffness targets (:class:`tactcad.studies.inverse_design.
@@ -53,6 +55,19 @@ END_UM = 250.0
 PAD_UM, PAD_SPACE_UM = 80.0, 20.0
 #: The pads' inner edge from the root line (um): room for the contacts and the jogs.
 PAD_SETBACK_UM = 60.0
+#: The on-die reference resistor of each beam's half bridge: the same implant, legs and gap
+#: as the beam's resistor, on the frame beside the root where the beam's bending does not
+#: reach (its axis this far along the die from the beam's), its far end this far from the
+#: window's edge, its legs at most this long; its third pad's centre along the die (um).
+REFERENCE_AXIS_UM, REFERENCE_CLEAR_UM, REFERENCE_LEGS_MAX_UM = 250.0, 20.0, 200.0
+THIRD_PAD_AXIS_UM = 350.0
+#: The leads' jog below each resistor's contacts and the steel-free margin kept at the
+#: frame's outer edge (um).
+LEAD_JOG_UM, FRAME_MARGIN_UM = 20.0, 20.0
+#: How far the two resistors' TCRs may differ, relative (assumption: one implant and anneal,
+#: 250 um apart on one die; a diffused pair's TCRs track to about a per cent of their value):
+#: the half bridge's zero drift is this share of the uncancelled one.
+REFERENCE_TCR_MISMATCH_REL = 0.01
 #: The post on each beam's free end: its side (at most the beam's width) and height (um).
 POST_MAX_UM, POST_HEIGHT_UM = 100.0, 50.0
 #: Piezoresistor legs: width, gap between them (um); the implant's margin to the beam's
@@ -146,6 +161,14 @@ class DiePlan:
                 self.die_width_um - self.frame_um)
 
     @property
+    def reference_resistor_length_um(self) -> float:
+        """The on-die reference resistor's length (um): the beam resistor's, at most
+        :data:`REFERENCE_LEGS_MAX_UM` (so that it and its leads fit in the frame). It need
+        not match: its TCR is the same implant's, so the half bridge's zero does not drift
+        whatever the two resistances (a mismatch only offsets it, tared)."""
+        return min(self.resistor_length_um, REFERENCE_LEGS_MAX_UM)
+
+    @property
     def acceptors_per_cm3(self) -> float:
         """The resistors' boron concentration (cm^-3): the dose over the junction depth."""
         return self.implant_dose_per_cm2 / (JUNCTION_DEPTH_UM * 1e-4)
@@ -222,6 +245,11 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     """
     if not (isinstance(columns, int) and 2 <= columns <= 50):
         raise DesignError("--columns", columns, "an integer 2 ... 50")
+    least_pitch = pads_span_um() + PAD_SPACE_UM
+    if pitch_um < least_pitch:
+        raise DesignError("--pitch-um", pitch_um, f">= {least_pitch:g} um",
+                          "each beam's three bond pads and its reference resistor lie on the "
+                          "frame within one pitch")
     if not (math.isfinite(implant_dose_per_cm2) and 1e11 <= implant_dose_per_cm2 <= 1e17):
         raise DesignError("implant_dose_per_cm2", implant_dose_per_cm2, "1e11 ... 1e17 cm^-2")
     if not (isinstance(pitch_um, (int, float)) and math.isfinite(pitch_um)
@@ -298,6 +326,13 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    targets.full_scale_force_N, tuple(beams), reasons,
                    tuple(float(v) for v in targets.k_obj_range_N_per_mm),
                    float(implant_dose_per_cm2))
+
+
+def pads_span_um() -> float:
+    """How far along the die one beam's pads and reference resistor reach (um): from the
+    first pad's outer edge to the third pad's."""
+    first = PAD_SPACE_UM / 2 + PAD_UM
+    return first + THIRD_PAD_AXIS_UM + PAD_UM / 2
 
 
 def _resistor_width_um() -> float:

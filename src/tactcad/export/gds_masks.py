@@ -8,8 +8,13 @@ temporary file beside the target, renamed).
 
 Layout per beam (beam-local u across it, v along it from the root towards the tip):
 the U-shaped resistor runs from v = -run on the frame to v = l_res on the beam; a contact
-sits at each leg's end on the frame, covered by metal that runs in a jog to the beam's own
-bond pad on the frame behind it.
+sits at each leg's end on the frame, covered by metal that runs in a jog to a bond pad on
+the frame behind it. Beside it on the frame (its axis at u = REFERENCE_AXIS_UM), the
+reference resistor, a U of the same implant, legs and gap, its closed end
+REFERENCE_CLEAR_UM from the window's edge and its contacts below. The two resistors form
+the beam's half bridge: pad 1 (u < 0) the beam resistor's first end, pad 2 (u > 0) the
+middle node (the beam resistor's second end and the reference's first, whose lead jogs
+below both), pad 3 (u = THIRD_PAD_AXIS_UM) the reference's second end.
 """
 
 from __future__ import annotations
@@ -45,48 +50,81 @@ def beam_outline(plan: DiePlan, beam: Beam) -> Polygon:
     return _local(beam, _rect(-w / 2, 0.0, w / 2, reach))
 
 
-def resistor_outline(plan: DiePlan, beam: Beam) -> Polygon:
-    """The U-shaped implant (one polygon, counter-clockwise in beam-local u, v)."""
-    g, leg, run, l = md.LEG_GAP_UM, md.LEG_UM, md.RESISTOR_RUN_UM, plan.resistor_length_um
+def _u_shape(legs_um: float, u0: float = 0.0, v0: float = 0.0) -> Polygon:
+    """A U of the implant's legs and gap (beam-local u, v; counter-clockwise): open end
+    (the contacts) at v0 - run, closed end at v0 + legs_um, axis at u0."""
+    g, leg, run, l = md.LEG_GAP_UM, md.LEG_UM, md.RESISTOR_RUN_UM, legs_um
     h = g / 2 + leg
-    u_shape = [(-h, -run), (-g / 2, -run), (-g / 2, l - leg), (g / 2, l - leg), (g / 2, -run),
-               (h, -run), (h, l), (-h, l)]
-    return _local(beam, u_shape)
+    return [(u0 + u, v0 + v) for u, v in
+            [(-h, -run), (-g / 2, -run), (-g / 2, l - leg), (g / 2, l - leg), (g / 2, -run),
+             (h, -run), (h, l), (-h, l)]]
 
 
-def _contact_centres(beam: Beam) -> list[tuple[float, float]]:
-    """The two contacts' centres (beam-local): on each leg, a contact's enclosure from the
-    leg's end on the frame."""
+def _reference_v0(plan: DiePlan) -> float:
+    """Where the reference U's legs start (beam-local v): its closed end
+    :data:`~tactcad.design.mems_die.REFERENCE_CLEAR_UM` from the window's edge."""
+    return -md.REFERENCE_CLEAR_UM - plan.reference_resistor_length_um
+
+
+def resistor_outline(plan: DiePlan, beam: Beam) -> Polygon:
+    """The beam's U-shaped implant at its root (one polygon, counter-clockwise)."""
+    return _local(beam, _u_shape(plan.resistor_length_um))
+
+
+def reference_resistor_outline(plan: DiePlan, beam: Beam) -> Polygon:
+    """The beam's reference resistor on the frame (one polygon, counter-clockwise)."""
+    return _local(beam, _u_shape(plan.reference_resistor_length_um, md.REFERENCE_AXIS_UM,
+                                 _reference_v0(plan)))
+
+
+def _contact_centres(plan: DiePlan) -> list[tuple[float, float]]:
+    """The four contacts' centres (beam-local): on each leg of each U, a contact's
+    enclosure from the leg's open end; the beam resistor's two, then the reference's."""
     u = md.LEG_GAP_UM / 2 + md.LEG_UM / 2
     v = -md.RESISTOR_RUN_UM + md.LEG_UM / 2
-    return [(-u, v), (u, v)]
+    a, v_ref = md.REFERENCE_AXIS_UM, _reference_v0(plan) + v
+    return [(-u, v), (u, v), (a - u, v_ref), (a + u, v_ref)]
 
 
-def contact_outlines(beam: Beam) -> list[Polygon]:
+def contact_outlines(plan: DiePlan, beam: Beam) -> list[Polygon]:
     c = md.CONTACT_UM / 2
-    return [_local(beam, _rect(u - c, v - c, u + c, v + c)) for u, v in _contact_centres(beam)]
+    return [_local(beam, _rect(u - c, v - c, u + c, v + c))
+            for u, v in _contact_centres(plan)]
 
 
-def metal_outlines(beam: Beam) -> list[Polygon]:
-    """Each contact's cover, its lead (a jog along the frame) and its bond pad, as one
-    polygon per contact (beam-local construction, no overlaps between the two)."""
-    out = []
+def metal_outlines(plan: DiePlan, beam: Beam) -> list[Polygon]:
+    """The half bridge's three nets, each its contacts' covers, leads and bond pad, merged
+    (beam-local construction; the nets do not touch): pad 1 the beam resistor's first end,
+    pad 2 the middle node, pad 3 the reference's second end."""
     half, lead = md.CONTACT_UM / 2 + md.METAL_ENCLOSURE_UM, md.LEAD_UM / 2
     pad_v0 = -md.PAD_SETBACK_UM
     pad_v1 = pad_v0 - md.PAD_UM
-    jog_v = -md.RESISTOR_RUN_UM - 20.0
-    for side, (u, v) in zip((-1, 1), _contact_centres(beam)):
-        pad_u = side * (md.PAD_SPACE_UM / 2 + md.PAD_UM / 2)
-        # cover + down to the jog + across to the pad's axis + down into the pad + the pad
-        x0, x1 = sorted((u, pad_u))
-        poly = _union_of_rects([
-            (u - half, v - half, u + half, v + half),
-            (u - lead, jog_v - lead, u + lead, v),
-            (x0 - lead, jog_v - lead, x1 + lead, jog_v + lead),
-            (pad_u - lead, pad_v0, pad_u + lead, jog_v),
-            (pad_u - md.PAD_UM / 2, pad_v1, pad_u + md.PAD_UM / 2, pad_v0)])
-        out.extend(_local(beam, p) for p in poly)
-    return out
+    (ua, va), (ub, vb), (uc, vc), (ud, vd) = _contact_centres(plan)
+    jog_v = -md.RESISTOR_RUN_UM - md.LEAD_JOG_UM
+    ref_jog_v = vc - md.LEG_UM / 2 - md.LEAD_JOG_UM
+
+    def pad(u_axis):
+        return (u_axis - md.PAD_UM / 2, pad_v1, u_axis + md.PAD_UM / 2, pad_v0)
+
+    def cover(u, v):
+        return (u - half, v - half, u + half, v + half)
+
+    def route(u, v, jog, u_axis, into_pad_from_below=False):
+        """Down from a contact to the jog, along it to the pad's axis, then into the pad."""
+        x0, x1 = sorted((u, u_axis))
+        stem = ((u_axis - lead, jog - lead, u_axis + lead, pad_v1) if into_pad_from_below
+                else (u_axis - lead, pad_v0, u_axis + lead, jog))
+        return [cover(u, v), (u - lead, jog - lead, u + lead, v),
+                (x0 - lead, jog - lead, x1 + lead, jog + lead), stem]
+
+    first = -(md.PAD_SPACE_UM / 2 + md.PAD_UM / 2)
+    middle = -first
+    nets = [route(ua, va, jog_v, first) + [pad(first)],
+            route(ub, vb, jog_v, middle) + route(uc, vc, ref_jog_v, middle, True)
+            + [pad(middle)],
+            route(ud, vd, ref_jog_v, md.THIRD_PAD_AXIS_UM, True)
+            + [pad(md.THIRD_PAD_AXIS_UM)]]
+    return [_local(beam, p) for net in nets for p in _union_of_rects(net)]
 
 
 def _union_of_rects(rects) -> list[Polygon]:
@@ -116,9 +154,10 @@ def die_polygons(plan: DiePlan) -> dict[str, list[Polygon]]:
         "handle_etch": [window],
         "device_etch": [[tuple(p) for p in poly.points] for poly in etched],
         "tip": [post_outline(plan, b) for b in plan.beams],
-        "piezo": [resistor_outline(plan, b) for b in plan.beams],
-        "contact": [c for b in plan.beams for c in contact_outlines(b)],
-        "metal": [m for b in plan.beams for m in metal_outlines(b)],
+        "piezo": [r for b in plan.beams
+                  for r in (resistor_outline(plan, b), reference_resistor_outline(plan, b))],
+        "contact": [c for b in plan.beams for c in contact_outlines(plan, b)],
+        "metal": [m for b in plan.beams for m in metal_outlines(plan, b)],
     }
 
 

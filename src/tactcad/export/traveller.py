@@ -52,10 +52,12 @@ def traveller_steps(plan: DiePlan, sheet_resistance_ohm_per_sq: float) -> list[S
              f"junction {md.JUNCTION_DEPTH_UM:g} um deep, {plan.acceptors_per_cm3:.2g} cm^-3, "
              f"sheet resistance {sheet_resistance_ohm_per_sq:.3g} ohm/sq (Masetti mobility)"),
         Step("contact", "contact", "oxide opened over each resistor's ends (buffered HF)",
-             f"{2 * len(plan.beams)} contacts of {md.CONTACT_UM:g} um"),
+             f"{4 * len(plan.beams)} contacts of {md.CONTACT_UM:g} um (each beam's resistor "
+             "and its reference)"),
         Step("metal", "metal", f"aluminium {METAL_NM:g} nm sputtered, wet-etched{assumed}; "
              f"sintered {SINTER_C:g} C in forming gas{assumed}",
-             f"leads and {2 * len(plan.beams)} bond pads of {md.PAD_UM:g} um"),
+             f"leads and {3 * len(plan.beams)} bond pads of {md.PAD_UM:g} um (a half bridge "
+             "per beam)"),
         Step("posts", "tip", f"posts {plan.post_height_um:g} um high on each beam's free end "
              f"(SU-8 or plated{assumed})", f"{len(plan.beams)} posts of {plan.post_um:g} um"),
         Step("front DRIE", "device_etch", f"Bosch etch through the {s.device_um:g} um device "

@@ -18,9 +18,10 @@ sigma bound / sqrt 3):
   IEEE Int. Frequency Control Symp. 1997, pp. 791-799; Gysin et al., Phys. Rev. B 69,
   045403 (2004)), both beams alike, over the stated temperature step; the resistors'
   sensitivity drift cancels in R (one doping, one temperature);
-* resistor zero drift: each beam's quarter bridge is completed off the die, so its
-  resistor's TCR moves the bridge's zero by (V_bias / 4) TCR per K
-  (:func:`tactcad.mechanics.piezoresistor.resistor_tcr_per_K`): over the same step each
+* resistor zero drift: each beam's resistor and its on-die reference of the same implant
+  make a half bridge, so their common TCR cancels and the zero moves by their mismatch,
+  (V_bias / 4) TCR m per K (:func:`tactcad.mechanics.piezoresistor.die_readout`,
+  :func:`~tactcad.mechanics.piezoresistor.resistor_tcr_per_K`): over the same step each
   beam reads a force it does not carry, both rows alike in sign, each over its own
   sensitivity (a reading tared at another temperature);
 * tissue coupling: the tips press one tissue (rigid flat punches of the posts' faces on a
@@ -37,6 +38,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
+from tactcad.design.mems_die import REFERENCE_TCR_MISMATCH_REL
 
 #: <110> silicon's modulus temperature coefficient (1/K): -64 ppm/K (module doc's sources).
 SILICON_TCE_PER_K = -64e-6
@@ -145,11 +148,11 @@ def die_budget(plan, readout: dict | None = None) -> DieBudget:
     terms["resistor zero drift"] = np.abs(_read(k_m, k_r, ks, (e_m + zero_m / k_m)
                                                 / (e_r + zero_r / k_r)))
     reasons["resistor zero drift"] = (
-        f"{TEMPERATURE_STEP_K:g} K step between tare and reading, the quarter bridge completed "
-        f"off the die: TCR {1e6 * readout['resistor_tcr_per_K']:+.0f} ppm/K reads "
-        f"{1e3 * zero_r / d_temp:.3g} mN per K on the reference, {1e3 * zero_m / d_temp:.3g} mN "
-        "per K on the measuring beam (on-die reference resistors of the same implant would "
-        "cancel it to their mismatch)")
+        f"{TEMPERATURE_STEP_K:g} K step between tare and reading, each beam's half bridge with "
+        f"its on-die reference: TCR {1e6 * readout['resistor_tcr_per_K']:+.0f} ppm/K, "
+        f"cancelled to a {100 * REFERENCE_TCR_MISMATCH_REL:g} % mismatch (assumption), reads "
+        f"{1e6 * zero_r / d_temp:.3g} uN per K on the reference, {1e6 * zero_m / d_temp:.3g} uN "
+        "per K on the measuring beam")
 
     from tactcad.in_use.kobj_budget import COUPLING_MODEL_ERROR_REL
 

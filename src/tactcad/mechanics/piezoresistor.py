@@ -324,25 +324,28 @@ def die_resistor(plan, beam, temperature_K: float = 300.0) -> PiezoCantilever:
                            squares["strained"] / squares["total"])
 
 
-def die_squares(plan) -> dict[str, float]:
+def die_squares(plan, resistor_length_um: float | None = None) -> dict[str, float]:
     """The U-shaped resistor's squares: ``strained``, its two legs on the beam
     (length less the bar's leg width, over the leg width), and ``total``, with the legs'
-    run onto the frame and the bar (leg gap + 2 legs) / leg width at the far end."""
+    run onto the frame and the bar (leg gap + 2 legs) / leg width at the far end;
+    ``resistor_length_um`` another U's legs (None: the beam resistor's)."""
     from tactcad.design import mems_die as md
 
-    strained = 2 * (plan.resistor_length_um - md.LEG_UM) / md.LEG_UM
+    length = plan.resistor_length_um if resistor_length_um is None else resistor_length_um
+    strained = 2 * (length - md.LEG_UM) / md.LEG_UM
     run = 2 * md.RESISTOR_RUN_UM / md.LEG_UM
     bar = (md.LEG_GAP_UM + 2 * md.LEG_UM) / md.LEG_UM
     return {"strained": strained, "total": strained + run + bar}
 
 
-def die_resistance_ohm(plan) -> float:
+def die_resistance_ohm(plan, resistor_length_um: float | None = None) -> float:
     """One U-shaped resistor's resistance (ohm): the sheet resistance of the plan's implant
-    times its squares (:func:`die_squares`)."""
+    times its squares (:func:`die_squares`); ``resistor_length_um`` another U's legs (the
+    on-die reference's), None the beam resistor's."""
     from tactcad.design import mems_die as md
 
     return (sheet_resistance_ohm(plan.acceptors_per_cm3, md.JUNCTION_DEPTH_UM)
-            * die_squares(plan)["total"])
+            * die_squares(plan, resistor_length_um)["total"])
 
 
 #: Silicon's thermal conductivity at 300 K (W/(m K)): Glassbrenner and Slack, "Thermal
@@ -371,10 +374,12 @@ def root_self_heating_K(power_W: float, resistor_length_um: float, width_um: flo
 def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float = 100.0,
                 alpha_H: float = 1e-5, temperature_K: float = 300.0,
                 amplifier: Amplifier = INA103) -> dict:
-    """Each row's read-out of a die: one resistor per beam in a quarter bridge (its three
-    other arms equal, fixed resistors off the die: each beam's two pads are its resistor's
-    ends) biased at ``bias_V`` (V), over the band [f_lo, f_hi] (Hz). The active arm's TCR
-    is then the bridge's zero drift, (V_bias / 4) TCR per K, uncancelled.
+    """Each row's read-out of a die: each beam's resistor and its on-die reference resistor
+    in series, a half bridge on the beam's three pads, completed off the die by two equal
+    fixed arms, biased at ``bias_V`` (V), over the band [f_lo, f_hi] (Hz). With rho =
+    R_ref / R, the output per relative change of R is V rho / (1 + rho)^2 (V / 4 at rho = 1);
+    the two resistors' common TCR cancels, and the zero drifts by their TCR mismatch,
+    V rho / (1 + rho)^2 TCR m per K (m: :data:`~tactcad.design.mems_die.REFERENCE_TCR_MISMATCH_REL`).
 
     Returns:
         ``{"resistance_ohm", "sheet_resistance_ohm_per_sq", "hole_mobility_cm2_per_Vs",
@@ -382,10 +387,11 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
         "resistor_tcr_per_K", "zero_drift_V_per_K", "self_heating_K", "noise_V": {"johnson",
         "hooge", "amplifier", "total"}, "rows": {role: {
         "resistance_change_per_N", "sensitivity_V_per_N", "force_resolution_N",
-        "full_scale_signal_V", "zero_drift_N_per_K"}}, "assumptions": [...]}``. Noise: the bridge's Johnson noise
-        (its output resistance, R), the active resistor's Hooge noise at V_bias / 2
-        across it (alpha_H, default 1e-5: the middle of Harley and Kenny's 1e-7 ... 1e-4)
-        and ``amplifier``'s (default :data:`INA103`).
+        "full_scale_signal_V", "zero_drift_N_per_K"}}, "reference_resistance_ohm",
+        "uncancelled_zero_drift_V_per_K", "assumptions": [...]}``. Noise: the bridge's
+        Johnson noise (its output resistance, about R), the Hooge noise of both die resistors
+        at their share of V_bias across each (alpha_H, default 1e-5: the middle of Harley and
+        Kenny's 1e-7 ... 1e-4) and ``amplifier``'s (default :data:`INA103`).
 
     Raises:
         ValueError: a bias or band out of range.
@@ -395,28 +401,40 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
     if not (math.isfinite(bias_V) and 0 < bias_V <= 20):
         raise ValueError(f"bias_V = {bias_V!r}: 0 < V <= 20")
     r = die_resistance_ohm(plan)
-    legs_um = 2 * (md.RESISTOR_RUN_UM + plan.resistor_length_um)
-    carriers = carriers_in(plan.acceptors_per_cm3, legs_um, md.LEG_UM, md.JUNCTION_DEPTH_UM)
-    johnson = johnson_noise_V(r, temperature_K, f_lo_Hz, f_hi_Hz)
-    hooge = hooge_noise_V(alpha_H, bias_V / 2, carriers, f_lo_Hz, f_hi_Hz)
+    r_ref = die_resistance_ohm(plan, plan.reference_resistor_length_um)
+    rho = r_ref / r
+    divider = 4 * rho / (1 + rho) ** 2  # the half bridge's output against V/4 dR/R
+    v_active, v_ref = bias_V / (1 + rho), bias_V * rho / (1 + rho)
+
+    def carriers_of(length_um: float) -> float:
+        legs_um = 2 * (md.RESISTOR_RUN_UM + length_um)
+        return carriers_in(plan.acceptors_per_cm3, legs_um, md.LEG_UM, md.JUNCTION_DEPTH_UM)
+
+    carriers = carriers_of(plan.resistor_length_um)
+    johnson = johnson_noise_V(r * rho / (1 + rho) + r / 2, temperature_K, f_lo_Hz, f_hi_Hz)
+    hooge = math.hypot(hooge_noise_V(alpha_H, v_active, carriers, f_lo_Hz, f_hi_Hz),
+                       hooge_noise_V(alpha_H, v_ref,
+                                     carriers_of(plan.reference_resistor_length_um),
+                                     f_lo_Hz, f_hi_Hz))
     amp = amplifier.noise_V(r, f_lo_Hz, f_hi_Hz)
     total = math.sqrt(johnson ** 2 + hooge ** 2 + amp ** 2)
     tcs = sensitivity_temperature_coefficient_per_K(plan.acceptors_per_cm3, temperature_K)
     tcr = resistor_tcr_per_K(plan.acceptors_per_cm3, temperature_K)
-    zero_V = bias_V / 4 * tcr  # the quarter bridge's output per K of the die
-    # the quarter bridge's active arm carries half the bias: (V/2)^2 / R
-    heating = root_self_heating_K((bias_V / 2) ** 2 / r, plan.resistor_length_um,
+    uncancelled_V = bias_V / 4 * divider * tcr  # one resistor alone against fixed arms
+    zero_V = uncancelled_V * md.REFERENCE_TCR_MISMATCH_REL  # the half bridge's, per K
+    heating = root_self_heating_K(v_active ** 2 / r, plan.resistor_length_um,
                                   plan.beams[0].width_um, plan.beams[0].thickness_um)
     rows = {}
     for beam in (plan.beams[0], plan.beams[plan.columns]):
         c = die_resistor(plan, beam, temperature_K)
-        sens = c.bridge_sensitivity_V_per_N(bias_V)
+        sens = c.bridge_sensitivity_V_per_N(bias_V) * divider
         rows[beam.role] = {"resistance_change_per_N": c.resistance_change_per_N(),
                            "sensitivity_V_per_N": sens,
-                           "force_resolution_N": force_resolution_N(c, bias_V, total),
+                           "force_resolution_N": total / abs(sens),
                            "full_scale_signal_V": sens * plan.full_scale_force_N,
                            "zero_drift_N_per_K": zero_V / sens}
-    return {"resistance_ohm": r,
+    return {"resistance_ohm": r, "reference_resistance_ohm": r_ref,
+            "uncancelled_zero_drift_V_per_K": uncancelled_V,
             "sheet_resistance_ohm_per_sq": sheet_resistance_ohm(plan.acceptors_per_cm3,
                                                                 md.JUNCTION_DEPTH_UM),
             "hole_mobility_cm2_per_Vs": hole_mobility_cm2_per_Vs(plan.acceptors_per_cm3),
@@ -437,8 +455,12 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
                 f"sensitivity {100 * tcs:+.3f} %/K (d ln P / dT); alike in both rows, so it "
                 "cancels in R at one temperature",
                 f"TCR {1e6 * tcr:+.0f} ppm/K (Arora et al. 1982's hole mobility, every acceptor "
-                f"ionised): the quarter bridge's zero moves {1e3 * zero_V:.3g} mV per K",
-                f"self-heating {heating * 1e3:.3g} mK at the root ((V/2)^2 / R = "
-                f"{1e6 * (bias_V / 2) ** 2 / r:.3g} uW conducted along the beam to the frame, "
+                f"ionised), alike in the beam's resistor and its on-die reference "
+                f"({r_ref / 1e3:.4g} kohm): it cancels in the half bridge to their mismatch, "
+                f"{100 * md.REFERENCE_TCR_MISMATCH_REL:g} % (assumption), so the zero moves "
+                f"{1e6 * zero_V:.3g} uV per K (one resistor against fixed arms: "
+                f"{1e3 * uncancelled_V:.3g} mV per K)",
+                f"self-heating {heating * 1e3:.3g} mK at the root (V_R^2 / R = "
+                f"{1e6 * v_active ** 2 / r:.3g} uW conducted along the beam to the frame, "
                 "k 148 W/(m K), Glassbrenner and Slack 1964): its P(N, T) change "
                 f"{100 * abs(tcs) * heating:.2g} %"]}

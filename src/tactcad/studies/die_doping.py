@@ -1,9 +1,10 @@
 """The die's resistor doping: of the stock boron implant doses, the one whose quarter bridge
 drifts least per newton of signal.
 
-A die's bridge has one active resistor and three fixed arms off the die, so the resistor's
-TCR moves the bridge's zero uncancelled, (V_bias / 4) TCR per kelvin, while the signal per
-newton goes with the piezoresistance factor P(N, T). The zero drift in newtons per kelvin is
+A die's bridge has one active resistor and, beside it on the frame, a reference of the same
+implant: their common TCR cancels and the zero moves by their mismatch, (V_bias / 4) TCR m
+per kelvin (m a fixed share of the TCR), while the signal per newton goes with the
+piezoresistance factor P(N, T). The zero drift in newtons per kelvin is
 therefore (V_bias / 4) TCR(N) / sensitivity, and its dependence on the doping is TCR(N) /
 P(N): the geometry, the bias and the beam cancel. Both fall with the doping at first (the
 mobility's temperature dependence weakens as impurity scattering takes over), then P falls
