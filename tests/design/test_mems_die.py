@@ -183,6 +183,8 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     assert len(mount_checks) > 10 and all(c["status"] == "pass" for c in mount_checks)
     bom = (tmp_path / "die" / "mems_die_bom.csv").read_text(encoding="utf-8").splitlines()
     assert bom[0] == "item,qty,kind,description,source" and bom[1].startswith("mems_die,1,")
+    # each beam's half bridge is completed off the die by two fixed arms
+    assert any(line.startswith("bridge_completion_resistor,20,") for line in bom)
     bad = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "50", "5000",
                   "--full-scale-force", "0.02", "--out", str(tmp_path / "none"), "--json")
     assert bad.returncode == 2

@@ -74,10 +74,20 @@ def write_mount_picture(solids: dict, path: Path, title: str) -> Path:
     return path
 
 
+#: The fixed arms that complete each beam's half bridge off the die: their tolerance (relative;
+#: a mismatch offsets the zero, tared) and temperature coefficient (ppm/K; it moves the zero as
+#: the die's own resistors' mismatch does, so it is chosen far below the implant's TCR).
+COMPLETION_TOLERANCE_REL, COMPLETION_TCR_PPM_PER_K = 0.001, 5.0
+
+
 def mount_bom_rows(plan: DiePlan, mount: DieMount, jaw_label: str) -> list[dict[str, str]]:
-    """The insert's bill of materials: the die, its carrier, the die attach and the jaw's
-    machining (quantity per jaw; the flex cable and its solder are the lab's to choose)."""
+    """The insert's bill of materials: the die, its carrier, the die attach, the jaw's
+    machining and the resistors that complete the beams' half bridges off the die (quantity
+    per jaw; the flex cable and its solder are the lab's to choose)."""
+    from tactcad.mechanics.piezoresistor import die_resistance_ohm
+
     m = mount
+    arms = 2 * len(plan.beams)
     return [
         {"item": plan.name, "qty": "1", "kind": "fabricated (SOI MEMS process)",
          "description": f"silicon die {m.die_length_mm:g} x {m.die_width_mm:g} x "
@@ -96,6 +106,12 @@ def mount_bom_rows(plan: DiePlan, mount: DieMount, jaw_label: str) -> list[dict[
                         f"{m.pocket_width_mm:.4g} x {m.pocket_depth_mm:.4g} mm, "
                         f"{m.jaw_length_mm - m.pocket_x0_mm - m.pocket_length_mm:.4g} mm from "
                         "its tip", "source": f"{plan.name}_in_jaw.step"},
+        {"item": "bridge_completion_resistor", "qty": str(arms), "kind": "bought",
+         "description": f"{die_resistance_ohm(plan):.3g} ohm (the die's resistor), "
+                        f"+-{100 * COMPLETION_TOLERANCE_REL:g} %, <= "
+                        f"{COMPLETION_TCR_PPM_PER_K:g} ppm/K thin film: the two fixed arms of "
+                        f"each of the {len(plan.beams)} beams' half bridges, at the amplifier",
+         "source": "assumption: a matched thin-film network"},
     ]
 
 
