@@ -36,6 +36,7 @@ from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
 from tactcad.in_use.jaw_kinematics import JawGeometry, check_angle_deg, indentation_mm
 from tactcad.in_use.kobj_budget import kobj_from_deflections
+from tactcad.in_use.tissue_coupling import TISSUE_POISSON_RATIO as TISSUE_COUPLING_POISSON_RATIO
 from tactcad.in_use.radius_pairs import (PairedLayout, along_row_layout, insert_frame,
                                          paired_layout, unit_radii)
 from tactcad.mechanics.contact import Punch, single_punch_unit_compliance, unit_punch_compliance
@@ -49,8 +50,8 @@ COUPLINGS = ("none", "halfspace", "layer")
 COUPLING_LEFT_IN = ("", "; the tissue's coupling between neighbouring tips stays in it "
                         "(verify's coupled inversion and tactcad budget's tissue-coupling "
                         "source take it out)")
-#: Poisson's ratio of soft tissue, nearly incompressible (as the evaluation's samples).
-TISSUE_POISSON_RATIO = 0.49
+#: Poisson's ratio of soft tissue: the tissue coupling's, one figure for every command.
+TISSUE_POISSON_RATIO = TISSUE_COUPLING_POISSON_RATIO
 #: Bisection steps of the force mode (the angle to 90° / 2^60).
 BISECTION_STEPS = 60
 #: Active-set passes of the stops and lift-off before the solve is declared stuck.
