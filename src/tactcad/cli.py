@@ -196,11 +196,11 @@ def parse_checked(argv: list[str]) -> argparse.Namespace:
         UsageError: argparse refuses the line (unknown option, bad value for a typed option).
         DesignError: a value the rules for every option refuse (non-finite, empty text).
     """
-    from tactcad.commands.options import refuse_repeated, validate_options
+    from tactcad.commands.options import validate_options, warn_repeated
 
     parser = build_parser()
     args = parser.parse_args(argv)
-    refuse_repeated(parser, args, argv)
+    warn_repeated(parser, args, argv)
     validate_options(parser, args)
     return args
 

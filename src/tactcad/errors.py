@@ -120,6 +120,11 @@ class CheckFailure(TactcadError):
     """A geometry, export or manufacturability check failed."""
 
 
+class RepeatedOptionWarning(UserWarning):
+    """An option of one value given more than once: the last is taken, as argparse does
+    (a pasted alternative appended to the command line replaces the value before it)."""
+
+
 class LeftoverWarning(UserWarning):
     """Files of an earlier or failed run that could not be removed (named in the message)."""
 

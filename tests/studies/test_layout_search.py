@@ -162,8 +162,8 @@ def test_fixed_fields_stay_and_candidates_come_nearest_first():
 def test_a_stack_no_bolt_holds_is_refused_as_columns_with_the_most_that_do(tmp_path, capsys):
     """A fixed 3 mm sheet: twelve columns need a longer bolt than the ISO table's;
     the refusal offers the most columns any bolt holds, which then designs."""
-    argv = [*GRASPER, "--full-scale-force", "0.05", "--set", "sheet.thickness_mm=3",
-            "--columns", "12", "--out", str(tmp_path / "c.toml")]
+    argv = [*_with(GRASPER, "--columns 12"), "--full-scale-force", "0.05", "--set",
+            "sheet.thickness_mm=3", "--out", str(tmp_path / "c.toml")]
     code, doc = _run(argv, capsys)
     err = doc["error"]
     assert code == 2 and err["field"] == "--columns" and err["value"] == 12, err

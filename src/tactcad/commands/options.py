@@ -179,14 +179,20 @@ def validate_options(parser: argparse.ArgumentParser, args: argparse.Namespace) 
                 setattr(args, action.dest, _checked_value(name, value))
 
 
-def refuse_repeated(parser: argparse.ArgumentParser, args: argparse.Namespace,
-                    argv: Sequence[str]) -> None:
-    """Refuse an option that takes one value given twice (``--verify fem3d --verify auto``):
-    argparse keeps the last silently. Options that gather (``--set``) or flags may repeat.
+def warn_repeated(parser: argparse.ArgumentParser, args: argparse.Namespace,
+                  argv: Sequence[str]) -> None:
+    """Say which value is taken when an option of one value is given twice
+    (``--verify fem3d --verify auto``): the last, as argparse takes it, so that an
+    alternative a refusal names can be pasted at the end of the command line. Options that
+    gather (``--set``) and flags may repeat without a word.
 
-    Raises:
-        DesignError: naming the option, both values and "once".
+    Warns:
+        RepeatedOptionWarning: naming the option, every value given and the one taken.
     """
+    import warnings
+
+    from tactcad.errors import RepeatedOptionWarning
+
     given = list(argv[:argv.index("--")] if "--" in argv else argv)
     for p in chosen_parsers(parser, args):
         for action in p._actions:
@@ -197,9 +203,15 @@ def refuse_repeated(parser: argparse.ArgumentParser, args: argparse.Namespace,
                      or token.startswith(tuple(f"{o}=" for o in action.option_strings))]
             if len(spots) > 1:
                 values = [given[i].split("=", 1)[1] if "=" in given[i] else
-                          (given[i + 1] if i + 1 < len(given) else "") for i in spots]
-                raise DesignError(option_name(action), " then ".join(values),
-                                  "the option once (each use replaces the last)")
+                          " ".join(given[i + 1:i + 1 + _arity(action)]) for i in spots]
+                warnings.warn(RepeatedOptionWarning(
+                    f"{option_name(action)} given {len(spots)} times ({', '.join(values)}): "
+                    f"the last, {values[-1]}, is taken"))
+
+
+def _arity(action: argparse.Action) -> int:
+    """How many words an option's value takes (1 unless ``nargs`` is a count)."""
+    return action.nargs if isinstance(action.nargs, int) else 1
 
 
 def options_of(parser: argparse.ArgumentParser,
