@@ -652,3 +652,49 @@ def test_each_beam_has_its_reference_resistor_on_the_frame_and_three_pads(die, t
     gds = write_die_gds(die, tmp_path / "die.gds")
     failed = [r for r in gds_checks(gds, die) if not r.passed]
     assert not failed, failed
+
+
+def test_a_rating_past_the_mean_strength_is_refused_with_a_force_that_designs():
+    """A rating at which even the least stressed fitting pair's root reaches the mean strength
+    of etched silicon is refused naming the force; the pasted force designs, and a file
+    whose rating is past it is refused by its key with a --set to paste."""
+    room = jaw_room("5")
+    with pytest.raises(DesignError) as err:
+        md.die_plan(Targets(10.0, (0.5, 5.0), 5.0), room)
+    e = err.value
+    assert e.field == "--full-scale-force" and "mean tensile strength" in e.why
+    force = float(e.alternatives[0]["option"].split()[1])
+    plan = md.die_plan(Targets(10.0, (0.5, 5.0), force), room)
+    stressed = max(plan.beams, key=plan.stress_MPa_at_rating)
+    assert plan.stress_MPa_at_rating(stressed) < md.BOSCH_MEAN_STRENGTH_MPA
+
+
+def test_a_die_file_rated_past_the_strength_is_refused_by_its_key(tmp_path):
+    import re
+
+    from tactcad.project_folder import die_examples
+
+    text = die_examples()["grasper_jaw_5mm_mems"].read_text(encoding="utf-8")
+    bad = tmp_path / "bad.toml"
+    bad.write_text(re.sub(r"full_scale_force_N = [0-9.e+-]+", "full_scale_force_N = 5.0", text,
+                          count=1), encoding="utf-8")
+    r = run_cli("readout", "--design", str(bad), "--json")
+    err = json.loads(r.stdout)["error"]
+    assert r.returncode == 2 and err["field"] == "die.full_scale_force_N"
+    assert err["alternatives"][0]["option"].startswith("--set die.full_scale_force_N=")
+
+
+def test_verify_fails_a_rating_at_the_mean_strength_and_leaves_one_below_it_undecided(die):
+    import dataclasses as dc
+
+    from tactcad.commands.die_views import die_verification
+
+    def verdict(plan):
+        return next(r for r in die_verification(plan)
+                    if r["requirement"] == "full_scale_force_N")["verdict"]
+
+    stressed = max(die.beams, key=die.stress_MPa_at_rating)
+    breaking = die.full_scale_force_N * md.BOSCH_MEAN_STRENGTH_MPA / die.stress_MPa_at_rating(
+        stressed)
+    assert verdict(die) == "undecided"
+    assert verdict(dc.replace(die, full_scale_force_N=1.01 * breaking)) == "fail"

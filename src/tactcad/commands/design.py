@@ -348,6 +348,15 @@ def die_ignored(args: argparse.Namespace) -> dict[str, str]:
             if getattr(args, attr, None) is not None}
 
 
+def one_refusal_line(construction: str, exc: DesignError) -> str:
+    """A construction's refusal on one line: its head and every reason under it (a refusal
+    of many lines lists one per sheet or limit), joined by "; "."""
+    text = exc.message if hasattr(exc, "message") else str(exc)
+    lines = [line.strip() for line in text.splitlines() if line.strip()]
+    return f"{construction}: " + " ".join(lines[:1]) + (
+        " " + "; ".join(lines[1:]) if len(lines) > 1 else "")
+
+
 def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder: Path | None,
                      refusals: list, left: list[str]) -> int:
     """``design --jaw`` where only a silicon die fits (or ``--construction mems-die``): the
@@ -380,7 +389,7 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     stated = args.jaw
     if jaw_file:  # the lab's jaw beside the die's file: a sensor folder reads only itself
         stated = f"{path.stem}_jaw.toml"
-    why = [f"{n}: {e.message if hasattr(e, 'message') else e}".splitlines()[0] for n, e in refusals]
+    why = [one_refusal_line(n, e) for n, e in refusals]
     reasons = {"die.jaw": (f"tactcad design --jaw {Path(args.jaw).name}: "
                            + ("; ".join(why) if why else "a silicon die asked for") + "."),
                "die.kr_over_km": "The ratio asked (--kr-over-km).",
@@ -519,8 +528,13 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
         # meets the targets (else the metal's refusal, with its jaws to paste, stands)
         try:
             return write_die_design(args, targets, room, path, folder, refusals, left)
-        except DesignError:
-            pass
+        except DesignError as die_refusal:  # neither fits: both say why, the die's first
+            raise DesignError(
+                die_refusal.field, die_refusal.value, die_refusal.allowed,
+                f"a silicon die: {die_refusal.why or die_refusal.allowed}; "
+                + "; ".join(one_refusal_line(n, e) for n, e in refusals),
+                alternatives=[*die_refusal.alternatives,
+                              *(a for _, e in refusals for a in e.alternatives)]) from None
     if result is None:
         if len(refusals) == 1:
             raise refusals[0][1]

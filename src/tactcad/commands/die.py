@@ -17,7 +17,8 @@ from typing import Any
 from tactcad.commands import add_design_arg, add_output_args
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number
-from tactcad.design.mems_die import DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM
+from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM,
+                                     LEAST_PITCH_UM)
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.errors import DesignError
 
@@ -62,8 +63,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                    metavar="F", help="the rated force on each beam (N)")
     p.add_argument("--columns", type=count(2, 50), default=None, metavar="N",
                    help=f"units along the die (2 ... 50; default {DEFAULT_COLUMNS})")
-    p.add_argument("--pitch-um", type=number(50, 5000, "um"), default=None, metavar="UM",
-                   help=f"the units' spacing along the die (um; default {DEFAULT_PITCH_UM:g})")
+    p.add_argument("--pitch-um", type=number(LEAST_PITCH_UM, 5000, "um"), default=None,
+                   metavar="UM",
+                   help=f"the units' spacing along the die ({LEAST_PITCH_UM:g} ... 5000 um: each "
+                        "beam's three bond pads and its reference resistor within one pitch; "
+                        f"default {DEFAULT_PITCH_UM:g})")
     p.add_argument("--name", default=None,
                    help="the die's name: its GDS cell and file names (letters, digits, _; "
                         f"default {DEFAULT_DIE_NAME})")
@@ -118,7 +122,31 @@ def die_asked(args: argparse.Namespace) -> dict:
     return {"jaw": d.jaw, "kr_over_km": d.die.kr_over_km,
             "kobj_range": tuple(d.die.kobj_range_N_per_mm),
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
-            "pitch_um": d.die.pitch_um, "name": d.die.name}
+            "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name}
+
+
+#: The die file's key of each target option (a refusal of a file's value names the key).
+FILE_KEYS = {"--jaw": "die.jaw", "--kr-over-km": "die.kr_over_km",
+             "--kobj-range": "die.kobj_range_N_per_mm",
+             "--full-scale-force": "die.full_scale_force_N", "--columns": "die.columns",
+             "--pitch-um": "die.pitch_um", "--name": "die.name"}
+
+
+def _as_file_keys(exc: DesignError, file: str) -> DesignError:
+    """``exc`` naming the die file's key instead of the option, its alternatives as
+    ``--set`` values to paste (the targets came from ``file``, not from options)."""
+    key = FILE_KEYS.get(exc.field)
+    if key is None:
+        return exc
+
+    def as_set(alt: dict) -> dict:
+        words = str(alt.get("option", "")).split()
+        if len(words) == 2 and words[0] in FILE_KEYS:
+            return {**alt, "option": f"--set {FILE_KEYS[words[0]]}={words[1]}"}
+        return alt
+
+    return DesignError(key, exc.value, exc.allowed, exc.why, file=file,
+                       alternatives=[as_set(a) for a in exc.alternatives])
 
 
 def _name(value: str) -> str:
@@ -155,8 +183,13 @@ def plan_of(asked: dict) -> PlannedDie:
     targets = Targets(asked["kr_over_km"], tuple(asked["kobj_range"]), asked["full_scale_force"])
     jaw, jaw_file = jaw_of(asked["jaw"])
     room = jaw_room(jaw, jaw_file)
-    plan = doped_die_plan(targets, room, columns=asked["columns"], pitch_um=asked["pitch_um"],
-                          name=name)
+    try:
+        plan = doped_die_plan(targets, room, columns=asked["columns"],
+                              pitch_um=asked["pitch_um"], name=name)
+    except DesignError as exc:
+        if asked.get("file"):
+            raise _as_file_keys(exc, asked["file"]) from None
+        raise
     return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
 
 

@@ -123,8 +123,9 @@ def die_verification(plan) -> list[dict]:
     (:func:`tactcad.studies.verification.verification_matrix`), at the closed form:
 
     * ``full_scale_force_N``: the rated force against the force at which the worse row's root
-      reaches the mean strength of Bosch-etched silicon, undecided whatever the margin (a
-      mean strength without its Weibull modulus gives no failure probability);
+      reaches the mean strength of Bosch-etched silicon: failed at or past it (half such
+      roots break), else undecided (a mean strength without its Weibull modulus gives no
+      failure probability);
     * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band;
     * ``hard_stop``: whether anything stops a tip before its root breaks: the only thing
       under a tip is the carrier at the bottom of the handle's window (handle and oxide
@@ -150,7 +151,8 @@ def die_verification(plan) -> list[dict]:
         {"requirement": "full_scale_force_N", "target": plan.full_scale_force_N,
          "predicted": breaking_N, "error_estimate_rel": None,
          "margin_rel": breaking_N / plan.full_scale_force_N - 1.0, "model": "closed-form",
-         "verdict": "undecided",
+         # past the mean strength half such roots break: a failure; below it undecided
+         "verdict": "fail" if breaking_N <= plan.full_scale_force_N else "undecided",
          "binding_words": f"root at the mean strength of etched bars, {stressed.role} row; "
                           f"no Weibull modulus, so no failure probability "
                           f"({BOSCH_STRENGTH_SOURCE})"},

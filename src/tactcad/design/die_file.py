@@ -15,7 +15,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-from tactcad.design.mems_die import DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM
+from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM,
+                                     LEAST_PITCH_UM)
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
 from tactcad.errors import DesignError
@@ -37,7 +38,9 @@ class DieSection(Section):
     full_scale_force_N: number(0.0, MAX_FULL_SCALE_FORCE_N, lo_open=True, unit="N",
                                why="the rated force on each beam")
     columns: integer(2, 50, why="units along the die") = DEFAULT_COLUMNS
-    pitch_um: number(50.0, 5000.0, unit="um", why="the units' spacing along the die") = DEFAULT_PITCH_UM
+    pitch_um: number(LEAST_PITCH_UM, 5000.0, unit="um",
+                     why="the units' spacing along the die: each beam's three bond pads and its "
+                         "reference resistor lie on the frame within one pitch") = DEFAULT_PITCH_UM
     name: str = DEFAULT_DIE_NAME
 
 

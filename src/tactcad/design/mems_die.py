@@ -245,16 +245,13 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     """
     if not (isinstance(columns, int) and 2 <= columns <= 50):
         raise DesignError("--columns", columns, "an integer 2 ... 50")
-    least_pitch = pads_span_um() + PAD_SPACE_UM
-    if pitch_um < least_pitch:
-        raise DesignError("--pitch-um", pitch_um, f">= {least_pitch:g} um",
-                          "each beam's three bond pads and its reference resistor lie on the "
-                          "frame within one pitch")
     if not (math.isfinite(implant_dose_per_cm2) and 1e11 <= implant_dose_per_cm2 <= 1e17):
         raise DesignError("implant_dose_per_cm2", implant_dose_per_cm2, "1e11 ... 1e17 cm^-2")
     if not (isinstance(pitch_um, (int, float)) and math.isfinite(pitch_um)
-            and 50.0 <= pitch_um <= 5000.0):
-        raise DesignError("--pitch-um", pitch_um, "50 ... 5000 um")
+            and LEAST_PITCH_UM <= pitch_um <= 5000.0):
+        raise DesignError("--pitch-um", pitch_um, f"{LEAST_PITCH_UM:g} ... 5000 um",
+                          "each beam's three bond pads and its reference resistor lie on the "
+                          "frame within one pitch")
     width = round(room.across_mm * 1e3, 3)
     length = columns * pitch_um + 2 * END_UM
     if length > room.along_mm * 1e3 + 1e-6:
@@ -283,6 +280,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     tol = DEVICE_TOLERANCE_UM / t
     # the highest root stress at the rating (the longer, measuring beam's): 6 F L / (w t^2)
     root_MPa = 6 * targets.full_scale_force_N * l_m * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
+    if root_MPa >= BOSCH_MEAN_STRENGTH_MPA:
+        raise _past_strength(targets.full_scale_force_N, root_MPa)
     align = BACKSIDE_ALIGNMENT_UM
     reasons = {
         "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
@@ -328,11 +327,31 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    float(implant_dose_per_cm2))
 
 
+def _past_strength(force_N: float, root_MPa: float) -> DesignError:
+    """The refusal of a rating at which even the least stressed fitting pair's measuring
+    root reaches the mean strength of etched silicon: half such dies would break at it."""
+    breaking_N = force_N * BOSCH_MEAN_STRENGTH_MPA / root_MPa
+    below = float(f"{0.99 * breaking_N:.2g}")
+    return DesignError("--full-scale-force", force_N, f"below {breaking_N:.3g} N",
+                       f"the measuring beam's root reaches the mean tensile strength of "
+                       f"Bosch-etched silicon ({BOSCH_MEAN_STRENGTH_MPA:g} MPa, "
+                       f"{BOSCH_STRENGTH_SOURCE}) at {breaking_N:.3g} N with the least stressed "
+                       f"beams that fit (root {root_MPa:.4g} MPa at {force_N:g} N)",
+                       alternatives=[{"option": f"--full-scale-force {below:g}",
+                                      "words": "below the mean strength (its failure "
+                                               "probability is not sized: no Weibull modulus)"}])
+
+
 def pads_span_um() -> float:
     """How far along the die one beam's pads and reference resistor reach (um): from the
     first pad's outer edge to the third pad's."""
     first = PAD_SPACE_UM / 2 + PAD_UM
     return first + THIRD_PAD_AXIS_UM + PAD_UM / 2
+
+
+#: The smallest pitch along the die (um): one beam's pads and reference resistor, and the
+#: pad space to the next beam's.
+LEAST_PITCH_UM = pads_span_um() + PAD_SPACE_UM
 
 
 def _resistor_width_um() -> float:
@@ -389,6 +408,16 @@ def _any_fitting_beam(E: float, k_r: float, k_m: float, window: float, pitch_um:
 SCALE_STEPS = 200
 
 
+def _designs(E: float, k_r: float, k_m: float, window: float, pitch_um: float,
+             force_N: float) -> bool:
+    """Whether a die designs at these stiffnesses: a fitting pair (:func:`_any_fitting_beam`)
+    whose least stressed measuring root stays below the mean strength at ``force_N``."""
+    if not _any_fitting_beam(E, k_r, k_m, window, pitch_um):
+        return False
+    per_N = min(_fitting_beams(E, k_r, k_m, window, pitch_um))[0]  # 6 L_m / (w t^2), 1/um^2
+    return force_N * per_N * 1e6 < BOSCH_MEAN_STRENGTH_MPA  # N/um^2 -> MPa
+
+
 def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignError:
     """The refusal: no stock layer and width fits. Which way the targets miss (stiffer
     tissue fits: the beams were too long for the window; softer fits: too stubby to be
@@ -397,7 +426,8 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignEr
     lo, hi = targets.k_obj_range_N_per_mm
     for step in range(1, SCALE_STEPS + 1):
         for scale, way in ((1.05 ** step, "stiffer"), (1.05 ** -step, "softer")):
-            if _any_fitting_beam(E, targets.k_r * scale, targets.k_m * scale, window, pitch_um):
+            if _designs(E, targets.k_r * scale, targets.k_m * scale, window, pitch_um,
+                        targets.full_scale_force_N):
                 why = ("the beams are too long for the window: the softest pair that fits "
                        f"has K_m = {targets.k_m * scale:.4g} N/mm" if way == "stiffer" else
                        "the reference beam would be too short to bend as a slender beam: the "

@@ -1,5 +1,5 @@
-"""The die's resistor doping: of the stock boron implant doses, the one whose quarter bridge
-drifts least per newton of signal.
+"""The die's resistor doping: of the stock boron implant doses, the one whose bridge drifts
+least per newton of signal.
 
 A die's bridge has one active resistor and, beside it on the frame, a reference of the same
 implant: their common TCR cancels and the zero moves by their mismatch, (V_bias / 4) TCR m
@@ -37,7 +37,7 @@ def acceptors_of_dose(dose_per_cm2: float) -> float:
 
 def drift_per_sensitivity_per_K(dose_per_cm2: float,
                                 temperature_K: float = DOPING_TEMPERATURE_K) -> float:
-    """TCR(N) / P(N, T) (1/K): the quarter bridge's zero drift per unit of its signal, up to
+    """TCR(N) / P(N, T) (1/K): the bridge's zero drift per unit of its signal, up to
     the geometry's factor, at the dose's concentration."""
     n = acceptors_of_dose(dose_per_cm2)
     return resistor_tcr_per_K(n, temperature_K) / piezoresistance_factor(n, temperature_K)
@@ -56,11 +56,11 @@ def chosen_implant_dose(doses=STOCK_DOSES_PER_CM2) -> tuple[float, str]:
     best, worst = ranked[0], ranked[-1]
 
     def words(dose: float) -> str:
-        return (f"{dose:.2g} cm^-2 ({acceptors_of_dose(dose):.2g} cm^-3, "
+        return (f"{dose:.2g} cm^-2 ({acceptors_of_dose(dose):.2g} cm^-3, TCR / P "
                 f"{1e6 * drift_per_sensitivity_per_K(dose):.0f} ppm/K)")
 
     why = (f"of the stock doses {min(doses):.2g} ... {max(doses):.2g} cm^-2 (1-2-5 series), "
-           f"the one whose quarter bridge drifts least per newton of signal, TCR / P(N, T) at "
+           f"the one whose bridge drifts least per newton of signal, TCR / P(N, T) at "
            f"{DOPING_TEMPERATURE_K:g} K (Arora et al. 1982's mobility, Richter et al. 2008's "
            f"P): {words(best)}"
            + (f"; next {words(ranked[1])}" if len(ranked) > 1 else "")
