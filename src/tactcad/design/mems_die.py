@@ -61,9 +61,8 @@ PAD_SETBACK_UM = 60.0
 #: window's edge, its legs at most this long; its third pad's centre along the die (um).
 REFERENCE_AXIS_UM, REFERENCE_CLEAR_UM, REFERENCE_LEGS_MAX_UM = 250.0, 20.0, 200.0
 THIRD_PAD_AXIS_UM = 350.0
-#: The leads' jog below each resistor's contacts and the steel-free margin kept at the
-#: frame's outer edge (um).
-LEAD_JOG_UM, FRAME_MARGIN_UM = 20.0, 20.0
+#: The leads' jog below each resistor's contacts (um).
+LEAD_JOG_UM = 20.0
 #: How far the two resistors' TCRs may differ, relative (assumption: one implant and anneal,
 #: 250 um apart on one die; a diffused pair's TCRs track to about a per cent of their value):
 #: the half bridge's zero drift is this share of the uncancelled one.
@@ -266,7 +265,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     fitting = _fitting_beams(E, k_r, k_m, window, pitch_um)
     if not fitting:
         raise _no_fit(targets, room, window, pitch_um, E)
-    _, neg_t, w, slot, post, l_r, l_m = min(fitting)
+    per_N, neg_t, w, slot, post, l_r, l_m = min(fitting)
     t = -neg_t
     stack = SoiStack(t, box_um, handle_um, DEVICE_TOLERANCE_UM)
     beams = []
@@ -279,7 +278,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     resistor = RESISTOR_FRACTION * l_r
     tol = DEVICE_TOLERANCE_UM / t
     # the highest root stress at the rating (the longer, measuring beam's): 6 F L / (w t^2)
-    root_MPa = 6 * targets.full_scale_force_N * l_m * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
+    root_MPa = _root_MPa(per_N, targets.full_scale_force_N)
     if root_MPa >= BOSCH_MEAN_STRENGTH_MPA:
         raise _past_strength(targets.full_scale_force_N, root_MPa)
     align = BACKSIDE_ALIGNMENT_UM
@@ -408,14 +407,20 @@ def _any_fitting_beam(E: float, k_r: float, k_m: float, window: float, pitch_um:
 SCALE_STEPS = 200
 
 
+def _root_MPa(per_N: float, force_N: float) -> float:
+    """The measuring root's surface stress (MPa) at ``force_N`` from a pair's 6 L_m / (w t^2)
+    (:func:`_beam_pair`'s first figure, 1/um^2): N/um^2 is 1e6 MPa."""
+    return force_N * per_N * 1e6
+
+
 def _designs(E: float, k_r: float, k_m: float, window: float, pitch_um: float,
              force_N: float) -> bool:
     """Whether a die designs at these stiffnesses: a fitting pair (:func:`_any_fitting_beam`)
     whose least stressed measuring root stays below the mean strength at ``force_N``."""
     if not _any_fitting_beam(E, k_r, k_m, window, pitch_um):
         return False
-    per_N = min(_fitting_beams(E, k_r, k_m, window, pitch_um))[0]  # 6 L_m / (w t^2), 1/um^2
-    return force_N * per_N * 1e6 < BOSCH_MEAN_STRENGTH_MPA  # N/um^2 -> MPa
+    per_N = min(_fitting_beams(E, k_r, k_m, window, pitch_um))[0]
+    return _root_MPa(per_N, force_N) < BOSCH_MEAN_STRENGTH_MPA
 
 
 def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignError:
