@@ -371,14 +371,23 @@ def write_project(folder: str | Path, design_text: str, design_name: str, plan: 
     """
     folder = Path(folder)
     files = _project_files(design_text, design_name, plan, companions, purchased_parts)
-    _check_target(folder, list(dict.fromkeys([PURCHASED_PARTS, *files])), force, option)
+    return _write_files(folder, files, force, option, purchased_parts_of)
+
+
+def _write_files(folder: Path, files: dict[str, str], force: bool, option: str,
+                 parts_of=None) -> NewProject:
+    # the project's files made in a staging folder, then moved in (the design file, last
+    # in ``files``, last); ``parts_of`` makes the bought-parts list from the staged design
+    design_name = list(files)[-1]
+    listed = [PURCHASED_PARTS, *files] if parts_of is not None else list(files)
+    _check_target(folder, list(dict.fromkeys(listed)), force, option)
     staging = staging_dir(folder)
     os.chmod(staging, 0o777 & ~_umask())  # a project folder, not a private temporary one
     try:
         for rel, text in files.items():
             _write_text(staging / rel, text)
-        if PURCHASED_PARTS not in files:  # the project's own bought parts, from its BOM
-            text = purchased_parts_of(staging / design_name)
+        if parts_of is not None and PURCHASED_PARTS not in files:  # its own, from its BOM
+            text = parts_of(staging / design_name)
             _write_text(staging / PURCHASED_PARTS, text)
             files = {PURCHASED_PARTS: text, **files}  # the design file stays the last moved
         if not folder.exists():
@@ -407,15 +416,17 @@ def project_design_name(folder_name: str) -> str | None:
     return name if re.fullmatch(NAME_PATTERN, name) else None
 
 
-def named_for_project(design_text: str, folder_name: str) -> tuple[str, str | None]:
-    """(text, name): the design file's text with its ``[design]`` name set to the project
-    folder's (:func:`project_design_name`), and that name; the text unchanged and None
-    when the folder's name is no design name or the file states its name otherwise than
-    on a ``name = "..."`` line of its ``[design]`` table (an inline table, say)."""
+def named_for_project(design_text: str, folder_name: str, table: str = "design"
+                      ) -> tuple[str, str | None]:
+    """(text, name): the design file's text with its ``[design]`` (or a die's ``[die]``,
+    ``table``) name set to the project folder's (:func:`project_design_name`), and that
+    name; the text unchanged and None when the folder's name is no design name or the
+    file states its name otherwise than on a ``name = "..."`` line of that table (an
+    inline table, say)."""
     name = project_design_name(folder_name)
     if name is None:
         return design_text, None
-    head = re.search(r"^\[design\]\s*$", design_text, re.MULTILINE)
+    head = re.search(rf"^\[{table}\]\s*$", design_text, re.MULTILINE)
     if head is None:
         return design_text, None
     nxt = _TABLE_HEAD.search(design_text, head.end())
@@ -423,7 +434,7 @@ def named_for_project(design_text: str, folder_name: str) -> tuple[str, str | No
     if line is None:
         return design_text, None
     text = (design_text[:line.start(2)] + json.dumps(name) + design_text[line.end(2):])
-    if tomllib.loads(text).get("design", {}).get("name") != name:
+    if tomllib.loads(text).get(table, {}).get("name") != name:
         return design_text, None
     return text, name
 
@@ -449,6 +460,7 @@ def new_project(folder: str | Path, *, example: str | None = None,
         OSError: the folder cannot be written.
     """
     from tactcad.design.array_plan import read_toml
+    from tactcad.design.die_file import is_die_file
     from tactcad.design.project import companion_files, project_with_design_data
     from tactcad.vocabulary.schema import Problems
 
@@ -456,13 +468,17 @@ def new_project(folder: str | Path, *, example: str | None = None,
         raise DesignError("--example", example, "either --example or --from-design, not both")
     if from_design is None:
         name = example or DEFAULT_EXAMPLE
+        if name in die_examples():
+            return new_die_project(folder, die_examples()[name], force=force)
         known = examples()
         if name not in known:
-            raise DesignError("--example", name, "one of " + ", ".join(known))
+            raise DesignError("--example", name, "one of " + ", ".join([*known, *die_examples()]))
         source = known[name]
     else:
         source = Path(from_design)
     data = read_toml(source, "design file")
+    if from_design is not None and is_die_file(data):
+        return new_die_project(folder, source, force=force)
     # the design named for the project (``new palp`` writes palp.toml), where its text allows
     text, name = named_for_project(source.read_text(encoding="utf-8"),
                                    Path(folder).resolve().name)
@@ -478,6 +494,33 @@ def new_project(folder: str | Path, *, example: str | None = None,
                          companions=companions, force=force,
                          purchased_parts=own_parts.read_text(encoding="utf-8")
                          if own_parts is not None and own_parts.is_file() else None)
+
+
+def new_die_project(folder: str | Path, source: Path, *, force: bool = False) -> NewProject:
+    """A silicon die's project folder (``tactcad new --example`` of a shipped die): its die
+    design file named for the folder where the folder's name may name the die, a README and
+    a .gitignore (a die has no rigs, scenes or bought-parts list).
+
+    Raises:
+        DesignError: ``folder`` a file, or holding one of the files (without ``force``).
+        OSError: the folder cannot be written (nothing is left half-written).
+    """
+    from tactcad.design.die_file import DIE_TABLE, is_cell_name, load_die_design
+
+    text, name = named_for_project(source.read_text(encoding="utf-8"), Path(folder).resolve().name,
+                                   DIE_TABLE)
+    if name is None or not is_cell_name(name):
+        text, name = source.read_text(encoding="utf-8"), None
+    design_name = f"{name}.toml" if name else source.name
+    design = load_die_design(source)
+    words = {"name": name or design.die.name, "design": design_name, "version": VERSION}
+    files = {"README.md": _template("README-die.md").substitute(words),
+             ".gitignore": _template("gitignore").substitute(words)}
+    jaw = Path(design.jaw)
+    if jaw.suffix.lower() == ".toml" and jaw.is_file():  # a lab's jaw file, kept beside it
+        files[design.die.jaw] = jaw.read_text(encoding="utf-8")
+    files[design_name] = text
+    return _write_files(Path(folder), files, force, "DIR")
 
 
 # --- which design a command works on ---------------------------------------------------------
@@ -523,4 +566,36 @@ def default_design(folder: str | Path = ".") -> Path:
     if len(found) > 1:
         raise DesignError("--design", None, "one of " + ", ".join(p.name for p in found),
                           f"{len(found)} design files in {Path(folder).resolve().name or '/'}")
+    if not found and (export := export_in(folder)) is not None:
+        raise _not_in_an_export(Path(folder), *export)
     return found[0] if found else DEFAULT_DESIGN
+
+
+def export_in(folder: str | Path) -> tuple[str, str] | None:
+    """(the record's file name, the design file it was made from) where ``folder`` holds an
+    export (an array's ``manifest.json``, a die's record) rather than a design; else None."""
+    for path in sorted(Path(folder).glob("*.json")):
+        try:
+            record = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, ValueError):
+            continue
+        if not isinstance(record, dict) or "files" not in record:
+            continue
+        design = record.get("design")
+        if isinstance(design, dict) and "source" in design:
+            return path.name, str(design["source"] or "")
+        if "die" in record:  # a die's record written before it named its design
+            return path.name, ""
+    return None
+
+
+def _not_in_an_export(folder: Path, record: str, source: str) -> DesignError:
+    # a command run among an export's files must not quietly work on the shipped example
+    beside = folder / ".." / source
+    where = (f"--design ../{source}" if source and beside.is_file()
+             else f"--design PATH/{source}" if source else "--design FILE")
+    return DesignError("--design", None, f"a design file ({where})",
+                       f"{folder.resolve().name or '/'} holds an export ({record}), not a "
+                       f"design: run the command in its project's folder or name the design",
+                       alternatives=[{"option": where, "words": "the design this export "
+                                                                 "was made from"}])

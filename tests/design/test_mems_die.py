@@ -698,3 +698,28 @@ def test_verify_fails_a_rating_at_the_mean_strength_and_leaves_one_below_it_unde
         stressed)
     assert verdict(die) == "undecided"
     assert verdict(dc.replace(die, full_scale_force_N=1.01 * breaking)) == "fail"
+
+
+def test_the_die_command_takes_its_folders_die_design_and_names_every_missing_target(
+        tmp_path, monkeypatch):
+    import argparse
+
+    from tactcad.commands.die import DEFAULTS, TARGET_OPTIONS, die_asked
+    from tactcad.errors import DesignErrors
+    from tactcad.project_folder import die_examples
+
+    bare = argparse.Namespace(design=None, overrides=[],
+                              **{k: None for k in (*TARGET_OPTIONS, *DEFAULTS)})
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(DesignErrors) as caught:  # no die here: every target named
+        die_asked(bare)
+    assert [e.field for e in caught.value.errors] == list(TARGET_OPTIONS.values())
+    example = die_examples()["grasper_jaw_5mm_mems"]
+    (tmp_path / "mine.toml").write_text(example.read_text(encoding="utf-8"), encoding="utf-8")
+    asked = die_asked(bare)
+    assert asked["file"] == "mine.toml" and asked["source"]["source"] == "mine.toml"
+    assert asked["kr_over_km"] == 10.0
+    # one target given: the options are the die's, the missing ones named
+    with pytest.raises(DesignErrors) as caught:
+        die_asked(argparse.Namespace(**{**vars(bare), "jaw": "5"}))
+    assert "--jaw" not in [e.field for e in caught.value.errors]

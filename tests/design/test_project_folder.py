@@ -355,3 +355,60 @@ def test_a_write_into_an_existing_folder_that_fails_part_way_leaves_the_folder_a
     assert sorted(p.relative_to(repo).as_posix() for p in repo.rglob("*") if p.is_dir()) \
         == dirs_before
     assert not list(tmp_path.glob(".repo.staging-*"))
+
+
+def test_new_from_the_die_example_makes_a_die_project_named_for_its_folder(tmp_path):
+    from tactcad.design.die_file import load_die_design
+
+    made = new_project(tmp_path / "my-die", example="grasper_jaw_5mm_mems")
+    assert sorted(made.files) == [".gitignore", "README.md", "my_die.toml"]
+    assert made.design == tmp_path / "my-die" / "my_die.toml"
+    assert load_die_design(made.design).die.name == "my_die"
+    assert default_design(made.folder) == made.design  # every command takes it
+    readme = (made.folder / "README.md").read_text(encoding="utf-8")
+    assert "my_die.toml" in readme and "$" not in readme.replace("```sh", "")
+    assert not any(s in readme for s in PAPER_SAMPLES)
+
+
+def test_new_from_a_die_design_file_keeps_its_labs_jaw_file_beside_it(tmp_path):
+    from tactcad.design.die_file import load_die_design
+
+    source = tmp_path / "src"
+    source.mkdir()
+    text = (EXAMPLES / "grasper_jaw_5mm_mems" / "grasper_jaw_5mm_mems.toml").read_text(
+        encoding="utf-8").replace('jaw = "5"', 'jaw = "lab_jaw.toml"')
+    (source / "die.toml").write_text(text, encoding="utf-8")
+    (source / "lab_jaw.toml").write_text("[grasper_jaw]\njaw_length_mm = 20.0\n",
+                                         encoding="utf-8")
+    made = new_project(tmp_path / "insert", from_design=source / "die.toml")
+    assert (made.folder / "lab_jaw.toml").read_text(encoding="utf-8") == \
+        (source / "lab_jaw.toml").read_text(encoding="utf-8")
+    assert load_die_design(made.design).jaw == str((made.folder / "lab_jaw.toml").resolve())
+
+
+@pytest.mark.parametrize("kind", ["array", "die"])
+def test_a_command_run_among_an_exports_files_names_the_design_not_the_shipped_example(
+        tmp_path, kind):
+    """An export folder holds a record naming its design file, no design: a command run
+    there must not quietly take the paper's array (the shipped example)."""
+    project = tmp_path / "lab"
+    project.mkdir()
+    exports = project / "exports"
+    exports.mkdir()
+    record = ({"design": {"name": "lab", "source": "lab.toml", "sha256": "0"}, "files": {}}
+              if kind == "array" else {"design": {"name": "lab", "source": "lab.toml"},
+                                       "die": {}, "files": {}})
+    (exports / ("manifest.json" if kind == "array" else "lab.json")).write_text(
+        json.dumps(record), encoding="utf-8")
+    with pytest.raises(DesignError) as caught:
+        default_design(exports)
+    assert caught.value.field == "--design" and "--design PATH/lab.toml" in caught.value.allowed
+    (project / "lab.toml").write_text("", encoding="utf-8")  # the design beside: pasteable
+    with pytest.raises(DesignError) as caught:
+        default_design(exports)
+    assert caught.value.alternatives[0]["option"] == "--design ../lab.toml"
+    # a folder holding other JSON is still a folder without a design
+    (exports / "manifest.json").unlink(missing_ok=True)
+    (exports / "lab.json").unlink(missing_ok=True)
+    (exports / "notes.json").write_text('{"files": 3}', encoding="utf-8")
+    assert default_design(exports) == DEFAULT_DESIGN

@@ -20,7 +20,7 @@ from tactcad.commands.options import count, number
 from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM,
                                      LEAST_PITCH_UM)
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
-from tactcad.errors import DesignError
+from tactcad.errors import DesignError, DesignErrors
 
 #: The written files, by what they hold ({name}: the die's name).
 DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "step": "{name}.step",
@@ -102,14 +102,19 @@ def die_asked(args: argparse.Namespace) -> dict:
     from tactcad.commands import parse_overrides
     from tactcad.design.die_file import load_die_design
 
+    if args.design is None and not _any_option_given(args):
+        folder_design = _folder_die_design()
+        if folder_design is not None:  # the working folder's die, as every command takes
+            args = argparse.Namespace(**{**vars(args), "design": str(folder_design)})
     if args.design is None:
         if args.overrides:
             raise DesignError("--set", args.overrides[0], "only with --design",
                               "it overrides a value of the die design file")
-        for key, option in TARGET_OPTIONS.items():
-            if getattr(args, key) is None:
-                raise DesignError(option, None, "a value, or --design FILE",
-                                  "the die's targets are the options or a die design file")
+        missing = [DesignError(option, None, "a value, or --design FILE",
+                               "the die's targets are the options or a die design file")
+                   for key, option in TARGET_OPTIONS.items() if getattr(args, key) is None]
+        if missing:
+            raise DesignErrors(missing, what="the die's targets")
         return {**{k: getattr(args, k) for k in TARGET_OPTIONS},
                 **{k: v if (v := getattr(args, k)) is not None else d
                    for k, (_, d) in DEFAULTS.items()}}
@@ -122,7 +127,32 @@ def die_asked(args: argparse.Namespace) -> dict:
     return {"jaw": d.jaw, "kr_over_km": d.die.kr_over_km,
             "kobj_range": tuple(d.die.kobj_range_N_per_mm),
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
-            "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name}
+            "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name,
+            "source": _source_of(Path(args.design))}
+
+
+def _any_option_given(args: argparse.Namespace) -> bool:
+    return any(getattr(args, k, None) is not None for k in (*TARGET_OPTIONS, *DEFAULTS))
+
+
+def _folder_die_design() -> Path | None:
+    # the working folder's one die design file; an array's folder or none gives None
+    from tactcad.design.array_plan import read_toml
+    from tactcad.design.die_file import is_die_file
+    from tactcad.project_folder import designs_in, die_designs_in
+
+    found = designs_in(".") + die_designs_in(".")
+    if len(found) == 1 and is_die_file(read_toml(found[0], "--design")):
+        return found[0]
+    return None
+
+
+def _source_of(design: Path) -> dict:
+    """The die design file a record comes from: its name and sha256 (as an array's manifest
+    names its design), so that a command run in the output folder can say where it is."""
+    import hashlib
+
+    return {"source": design.name, "sha256": hashlib.sha256(design.read_bytes()).hexdigest()}
 
 
 #: The die file's key of each target option (a refusal of a file's value names the key).
@@ -165,6 +195,8 @@ class PlannedDie:
     plan: Any
     room: Any
     jaw_stated: Any
+    #: the die design file's name and sha256, or None for a die asked by options
+    source: dict | None = None
 
 
 def plan_of(asked: dict) -> PlannedDie:
@@ -190,7 +222,8 @@ def plan_of(asked: dict) -> PlannedDie:
         if asked.get("file"):
             raise _as_file_keys(exc, asked["file"]) from None
         raise
-    return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
+    return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw,
+                      asked.get("source"))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -243,7 +276,8 @@ def run(args: argparse.Namespace) -> int:
             if args.fe_check else []
         fem3d = [die_beam_fem3d_kept(plan, b) for b in plan.beams[:: plan.columns]] \
             if getattr(args, "fem3d", False) else []
-        record = {"die": plan.as_json(), "readout": readout, "jaw": room.label,
+        record = {"design": {"name": name, **(planned.source or {"source": None})},
+                  "die": plan.as_json(), "readout": readout, "jaw": room.label,
                   "mount": mount.as_json(),
                   "resonance_Hz": modes_json(modes),
                   "fe_check": [c.as_json() for c in fe],

@@ -8,7 +8,7 @@ import json
 import shlex
 
 from tactcad.commands import add_output_args
-from tactcad.project_folder import DEFAULT_EXAMPLE, examples
+from tactcad.project_folder import DEFAULT_EXAMPLE, die_examples, examples
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -26,9 +26,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     start = p.add_mutually_exclusive_group()
     start.add_argument("--example", metavar="NAME", default=None,
                        help="start from this shipped example, its own rigs and scenes "
-                            "included: " + ", ".join(examples()) + " (default: "
-                            f"{DEFAULT_EXAMPLE}; macro_array is the paper's 2 x 5 array, "
-                            "grasper_jaw_10mm a comb insert for a 10 mm grasper's jaw)")
+                            "included: " + ", ".join([*examples(), *die_examples()])
+                            + f" (default: {DEFAULT_EXAMPLE}; macro_array is the paper's 2 x 5 "
+                            "array, grasper_jaw_10mm a comb insert for a 10 mm grasper's jaw, "
+                            "grasper_jaw_5mm_mems a silicon die for a 5 mm grasper: its "
+                            "project holds the die design file, a README and a .gitignore)")
     start.add_argument("--from-design", metavar="FILE", default=None,
                        help="start from this design file; its rigs and scenes files are "
                             "copied where it has them, else made for it")
