@@ -18,7 +18,7 @@ from tactcad.mechanics.stiffness_result import StiffnessResult
 
 PLAN = load_design()
 MAT = PLAN.material
-G0 = PLAN.element(1).geometry
+G0 = PLAN.element(1).geometry.bare()  # the levels' own sections (the gauge: test_bonded_layer)
 E, NU, B = MAT.youngs_modulus_MPa, MAT.poisson_ratio, G0.sheet_thickness_mm
 
 
@@ -64,7 +64,7 @@ def test_beam_agrees_with_closed_form_for_default_design():
     the beam adds only the 0.2 mm tip-root fillet, which stiffens a piece of the
     arm whose bending is < 1 % of the tip compliance, and its discretisation
     error (< 1e-4). Anything above 0.1 % would be a bug, not physics."""
-    for num, g in ((s.number, s.geometry) for s in PLAN.slots):
+    for num, g in ((s.number, s.geometry.bare()) for s in PLAN.slots):
         r = estimate_beam(g, MAT, element=num)
         parts = closed_form_compliance(
             g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,

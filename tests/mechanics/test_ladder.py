@@ -26,8 +26,9 @@ def test_table1_rows_cover_every_calibrated_element(plan):
 
 
 def test_table1_states_k_with_the_bonded_gauge_as_the_readout_does(plan):
-    """Table 1's "+ gauge" column is the read-out's own layer rise on each element (one
-    number per quantity), a stiffening of a few per cent, and the shift it gives is said."""
+    """Table 1 predicts K with the bonded gauge, as the paper measured it, and states the
+    element as cut beside it: the read-out's own layer rise on each element (one number
+    per quantity), a stiffening of a few per cent, and the shift it gives is said."""
     from tactcad.mechanics.readout_chain import readout_report
     from tactcad.paper.table1 import gauge_layer_shift
     from tactcad.studies.verification import requirements_of
@@ -38,8 +39,11 @@ def test_table1_states_k_with_the_bonded_gauge_as_the_readout_does(plan):
     for r in rows:
         assert r.gauge_layer_k_rel == pytest.approx(by_element[r.element], rel=1e-12)
         assert 0.02 < r.gauge_layer_k_rel < 0.15
-        assert r.with_gauge_layer_N_per_mm == pytest.approx(
-            r.predicted.stiffness_N_per_mm * (1 + r.gauge_layer_k_rel))
+        g = plan.element(r.element).geometry
+        assert r.predicted.stiffness_N_per_mm == pytest.approx(
+            estimate("closed-form", g, plan.material).stiffness_N_per_mm, rel=1e-12)
+        assert r.without_gauge_layer_N_per_mm == pytest.approx(
+            estimate("closed-form", g.bare(), plan.material).stiffness_N_per_mm, rel=1e-12)
     shift = gauge_layer_shift(rows)
     bare, layered = shift["mean_error_percent"]
     assert layered > bare  # a stiffer prediction reads higher against the same measurements
@@ -93,7 +97,9 @@ def test_stiffness_cli_json_keys():
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     assert set(data) == {"element", "model", "stiffness_N_per_mm", "gauge_strain_per_N",
-                         "error_estimate_rel", "wall_time_s", "warnings"}
+                         "error_estimate_rel", "wall_time_s", "warnings", "grid_strain_per_N",
+                         "with_gauge"}
+    assert data["with_gauge"] is True and data["grid_strain_per_N"] is None  # not meshed
     assert data["warnings"] == []  # the default design lies inside the fitted range
     assert data["element"] == 3 and data["stiffness_N_per_mm"] > 0
 

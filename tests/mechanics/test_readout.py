@@ -85,8 +85,13 @@ def test_fem2d_field_average_agrees_with_beam_theory_over_the_grid():
     assert fem["grid"] < 0 and beam["grid"] < 0
     # both carry the fitted width factor; fem2d's own profile against EB x C's: the fit's error
     assert fem["surface"] == pytest.approx(beam["surface"], rel=beam["error_rel"] + 0.01)
-    assert fem["read_factor"] == beam["read_factor"]
-    assert fem["source"] != beam["source"]
+    # fem2d meshes the glue line and carrier and reads the grid's own plane; the closed
+    # form multiplies the face by the transformed section's read factor: two models of the
+    # layer, within 3 % of each other
+    assert fem["read_factor"] != beam["read_factor"]
+    assert fem["read_factor"] == pytest.approx(beam["read_factor"], rel=0.03)
+    assert fem["grid"] == pytest.approx(beam["grid"], rel=beam["error_rel"] + 0.04)
+    assert fem["source"] != beam["source"] and "meshed" in fem["grid_source"]
 
 
 def test_quarter_bridge_signal_scales_with_excitation_gain_and_gauge_factor():
@@ -303,20 +308,27 @@ def test_daq_range_is_the_smallest_that_holds_the_signal_with_margin():
 def test_the_bonded_layer_raises_k_by_less_than_it_stiffens_the_web():
     """The layer's K rise (EB over the carrier) is positive, below its stiffening of the
     web's thinnest section (it covers only the carrier, and thicker sections gain less),
-    zero for a layer of no modulus, and grows with the glue line."""
+    nil for a layer of no modulus, and grows with the glue line; the read-out states the
+    rise its own K carries."""
     import dataclasses
 
-    from tactcad.mechanics.readout_chain import gauge_layer_k_rel
+    from tactcad.mechanics.ladder import estimate, gauge_k_rise
 
     plan = load_design()
     g, m = plan.element(4).geometry, plan.material
     chain = readout_chain(plan)
-    rel = gauge_layer_k_rel(g, m, chain)
+    rel = gauge_k_rise("closed-form", g, m)
     web = gauge_strain_per_N(g, m, chain, "closed-form")["stiffening_rel"]
     assert 0.02 < rel < web
-    assert gauge_layer_k_rel(g, m, dataclasses.replace(chain, gauge_backing_modulus_MPa=0.0)) == 0
-    thicker = dataclasses.replace(chain, adhesive_thickness_mm=chain.adhesive_thickness_mm + 0.02)
-    assert gauge_layer_k_rel(g, m, thicker) > rel
+    soft = dataclasses.replace(g, gauge=dataclasses.replace(g.gauge, modulus_MPa=1e-6))
+    assert gauge_k_rise("closed-form", soft, m) == pytest.approx(0.0, abs=1e-9)
+    thicker = dataclasses.replace(g, gauge=dataclasses.replace(
+        g.gauge, height_mm=g.gauge.height_mm + 0.02))
+    assert gauge_k_rise("closed-form", thicker, m) > rel
+    assert gauge_k_rise("closed-form", g.bare(), m) == 0.0
     report = _report(plan)
-    assert all(r["gauge_layer_k_rel"] == pytest.approx(
-        gauge_layer_k_rel(plan.element(r["element"]).geometry, m, chain)) for r in report.records)
+    assert all(r["gauge_layer_k_rel"] == pytest.approx(gauge_k_rise(
+        report.model, plan.element(r["element"]).geometry, m)) for r in report.records)
+    assert all(r["stiffness_N_per_mm"] == pytest.approx(estimate(
+        report.model, plan.element(r["element"]).geometry, m).stiffness_N_per_mm)
+        for r in report.records)

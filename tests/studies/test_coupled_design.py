@@ -31,7 +31,7 @@ def test_a_seen_factor_out_of_range_names_the_option():
 def test_coupled_design_centres_on_the_range_the_units_see():
     """After the coupled re-design, eq. 2 sees K_obj on the new design by the factor it was centred for."""
     plan = load_design(TI)
-    coupled = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.1, tissue=Tissue()))
+    coupled = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.09, tissue=Tissue()))
     factor = coupled.targets.kobj_seen_factor
     assert abs(factor - 1) > 0.02  # 2 x 3 mm tips at 4 mm pitch: the coupling moves the centre
     k = ladder_stiffness_by_element(coupled.plan)
@@ -45,7 +45,7 @@ def test_coupled_design_centres_on_the_range_the_units_see():
 
 def test_without_a_tissue_the_design_is_eq2s_and_says_so():
     plan = load_design(TI)
-    plain = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.1))
+    plain = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.09))
     assert plain.targets.kobj_seen_factor == 1.0
     assert "tissue-coupling off" in plain.data["assumptions"]["requirements.kobj_range_N_per_mm"]
 
@@ -56,7 +56,7 @@ def test_a_layout_whose_coupled_ratio_cannot_span_the_range_is_refused_naming_th
 
     monkeypatch.setattr(inv, "report_points", lambda targets, n=5: np.array([2.0, 1.0]))  # a rising R
     with pytest.raises(DesignError, match="tissue coupling binds") as info:
-        design_for_targets(load_design(TI), Targets(10.0, (1.0, 5.0), 0.1, tissue=Tissue()))
+        design_for_targets(load_design(TI), Targets(10.0, (1.0, 5.0), 0.09, tissue=Tissue()))
     assert info.value.field == "--tissue-coupling"
 
 
@@ -120,7 +120,7 @@ def test_when_eq2s_centring_is_kept_the_factor_the_units_see_is_still_reported(m
         return real(data, targets, **kw)
 
     monkeypatch.setattr(inv, "_design_from_tables", refuse_the_coupled_centring)
-    kept = design_for_targets(load_design(TI), Targets(10.0, (1.0, 5.0), 0.1, tissue=Tissue()))
+    kept = design_for_targets(load_design(TI), Targets(10.0, (1.0, 5.0), 0.09, tissue=Tissue()))
     assert kept.targets.kobj_seen_factor == 1.0
     assert abs(kept.coupling_seen_factor - 1) > 0.02
     said = kept.data["assumptions"]["requirements.kobj_range_N_per_mm"]

@@ -55,7 +55,7 @@ def test_design_meets_targets_and_limits_at_the_closed_form(plan):
 
 @pytest.mark.filterwarnings("ignore::tactcad.mechanics.correction.CorrectionRangeWarning")
 def test_design_changes_the_web_when_the_design_web_breaks_a_limit(plan):
-    t = Targets(3.0, (5.0, 20.0), 0.45)  # 0.45 N: the 0.25 mm web's K_m arm exceeds a limit
+    t = Targets(3.0, (5.0, 20.0), 0.4)  # 0.4 N: the 0.25 mm web's K_m arm exceeds a limit
     search = search_webs(plan, t)  # every candidate web, some beyond the correction's fit
     own = int(np.flatnonzero(np.isclose(search.webs_mm, 0.25))[0])
     assert not search.feasible[own]
@@ -312,7 +312,7 @@ def test_rows_and_columns_build_a_new_grid_and_arms_stay_in_the_corrections_rang
 
     with warnings.catch_warnings():  # the candidates weighed beyond the fit are not warned of
         warnings.simplefilter("error", CorrectionRangeWarning)
-        d = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.1), grade="Ti-6Al-4V-annealed",
+        d = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.09), grade="Ti-6Al-4V-annealed",
                                columns=4)
     assert (d.plan.rows, d.plan.columns, len(d.plan.slots)) == (2, 4, 8)
     assert d.references == reference_elements(2, 4)
@@ -363,7 +363,7 @@ def test_at_the_largest_force_the_gauge_limits_clear_the_closed_forms_strain_err
     from tactcad.mechanics.limits import binding, plan_limits, uncleared_gauge_limits
 
     kw = dict(grade="Ti-6Al-4V-annealed", columns=3)
-    first = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.1), **kw)
+    first = design_for_targets(plan, Targets(10.0, (1.0, 5.0), 0.09), **kw)
     assert any("gauge fatigue" in name for name in first.binding_limits)
     force = 0.999 * first.max_full_scale_force_N
     limits = plan_limits(design_for_targets(plan, Targets(10.0, (1.0, 5.0), force), **kw).plan,

@@ -86,9 +86,13 @@ def _assumed_text(c) -> str:
 
 def render(report) -> str:
     """The report as text: the chain, the noise and one table row per element."""
-    from tactcad.mechanics.readout_chain import GAUGE_LAYER_K_ERROR_REL
+    from tactcad.mechanics.ladder import gauge_rise_error_rel, is_meshed
 
     c = report.chain
+    rise_error = gauge_rise_error_rel(report.model)
+    how = ("its glue line and carrier meshed with the element" if is_meshed(report.model) else
+           f"the {report.model} level's layer term, within {100 * rise_error:.0f} % of itself "
+           "against fem3d with the layer meshed")
     lines = [f"read-out of {report.design} ({report.model}): gauge {c.gauge_name}, GF "
              f"{c.gauge_factor:g}, {c.gauge_resistance_ohm:g} ohm, grid {c.grid_length_mm:g} x "
              f"{c.grid_width_mm:g} mm, {c.bridge} bridge at {c.excitation_V:g} V, {c.amplifier} "
@@ -102,10 +106,8 @@ def render(report) -> str:
              f"  grid {1e3 * c.grid_height_mm:.0f} um above the top face (glue line + carrier, "
              f"{c.gauge_backing_modulus_MPa:g} MPa): the grid reads the face's strain x "
              "'read'; the layer stiffens the web by 'stiff.' and raises K by "
-             + _layer_k_text(report) + " (the beam level, the carrier's section stiffened: "
-             f"up to {100 * GAUGE_LAYER_K_ERROR_REL:.0f} % of it too high against a "
-             "bonded-layer FE model, the layer's shear lag; the K below does not carry it: "
-             "calibration measures K with the gauge bonded)",
+             + _layer_k_text(report) + f" ({how}); the K below carries it, as the "
+             "calibration measures K with the gauge bonded",
              "| element | role | K N/mm | strain/N (face) | error | read | stiff. | "
              "strain/N (grid) | face grid/peak | K_v/K V/N | K_v V/mm | force res. N | "
              "K_obj res. |",

@@ -24,6 +24,7 @@ Units: mm, N, MPa throughout. Frames:
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from importlib import resources
@@ -894,8 +895,25 @@ def shaping_tables(data: Mapping[str, Any]) -> dict[str, Any]:
 
 def plan_from_model(d: Any, data: Mapping[str, Any], source: str) -> Plan:
     """The plan of a design that passed :func:`validate_design`, derived by
-    its construction (:mod:`tactcad.design.construction_registry`)."""
-    return construction(construction_name(data)).derive(d, data, source)
+    its construction (:mod:`tactcad.design.construction_registry`), each element
+    carrying its bonded gauge (:func:`with_gauges`)."""
+    return with_gauges(construction(construction_name(data)).derive(d, data, source))
+
+
+def with_gauges(plan: Plan) -> Plan:
+    """``plan`` with each element's bonded gauge (:class:`~tactcad.partlib.array.element.
+    GaugeStack`: the read-out's grid, its height over the face and the installation's
+    modulus, :func:`tactcad.design.readout_section.readout_of`): every element is read by
+    one, and the stiffness it has in use is with it."""
+    from tactcad.design.readout_section import readout_of
+    from tactcad.partlib.array.element import GaugeStack
+
+    chain = readout_of(plan.raw, plan.strength.gauge)
+    stack = GaugeStack(chain.grid_length_mm, chain.grid_width_mm, chain.grid_height_mm,
+                       chain.gauge_backing_modulus_MPa)
+    return dataclasses.replace(plan, slots=tuple(
+        dataclasses.replace(s, geometry=dataclasses.replace(s.geometry, gauge=stack))
+        for s in plan.slots))
 
 
 def derive_plan(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:

@@ -289,6 +289,24 @@ def beam_convergence(g: ElementGeometry, material: Material, n_segments: int = D
                            gauge_strain_per_N=sols[-1].gauge_strain_per_N)
 
 
+def beam_layer_rise(g: ElementGeometry, youngs_modulus_MPa: float, poisson_ratio: float,
+                    layer, n_segments: int | None = None) -> float:
+    """The layer's K rise at the beam level, relative: the stepped beam's unit-load tip
+    compliance (:func:`unit_load_compliance`) with EI raised by the
+    layer's transformed section on the segments under the carrier, over the same bare."""
+    from tactcad.mechanics.gauge_strain import transformed_section
+
+    b, E = g.sheet_thickness_mm, youngs_modulus_MPa
+    mesh = beam_mesh(g, n_segments or DEFAULT_SEGMENTS)
+    middle = 0.5 * (mesh.x_mm[1:] + mesh.x_mm[:-1])
+    stiff = transformed_section(mesh.height_mm, b, E, layer.height_mm, layer.modulus_MPa,
+                                layer.width_mm)[1]
+    covered = (middle >= layer.x0_mm) & (middle <= layer.x1_mm)
+    bare = unit_load_compliance(mesh, E, poisson_ratio, b)
+    return bare / unit_load_compliance(mesh, E, poisson_ratio, b,
+                                       np.where(covered, 1.0 + stiff, 1.0)) - 1.0
+
+
 def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None = None,
                   n_segments: int = DEFAULT_SEGMENTS, clamp_x_mm: float | None = None,
                   include_fillet: bool = True) -> StiffnessResult:
@@ -299,6 +317,11 @@ def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None
         element: paper element number to carry in the result.
         n_segments: notch segments of the finest mesh (multiple of 8, >= 16).
         clamp_x_mm, include_fillet: see :func:`beam_mesh`.
+
+    The bonded gauge ``g`` carries (:attr:`~tactcad.partlib.array.element.ElementGeometry.
+    gauge`) raises EI by its layer's transformed section on the segments under the carrier
+    (:func:`beam_layer_rise`); the error estimate adds
+    :data:`~tactcad.mechanics.bonded_layer.BEAM_LAYER_ERROR_REL` of the rise.
 
     Returns:
         :class:`StiffnessResult` with model ``beam``: K of the finest mesh, the
@@ -315,8 +338,17 @@ def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None
     conv = beam_convergence(g, material, n_segments, clamp_x_mm=clamp_x_mm,
                             include_fillet=include_fillet)
     model_error = abs(1.0 / correction_factor(g, material) - 1.0)
+    k = conv.stiffness_N_per_mm[-1]
+    from tactcad.mechanics.bonded_layer import BEAM_LAYER_ERROR_REL, layer_of
+
+    layer = layer_of(g)
+    if layer is not None:
+
+        rise = beam_layer_rise(g, material.youngs_modulus_MPa, material.poisson_ratio, layer,
+                               n_segments)
+        k, model_error = k * (1.0 + rise), model_error + BEAM_LAYER_ERROR_REL * rise
     return StiffnessResult(element=element, model=MODEL_NAME,
-                           stiffness_N_per_mm=conv.stiffness_N_per_mm[-1],
+                           stiffness_N_per_mm=k,
                            gauge_strain_per_N=conv.gauge_strain_per_N
                            * corrected_point_strain(g, material),
                            error_estimate_rel=conv.error_estimate_rel + model_error,

@@ -69,6 +69,7 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.mechanics.correction import (IDENTITY, Correction, CorrectionRangeWarning, apply_correction,
                          load_correction)
+from tactcad.mechanics.bonded_layer import layer_of, with_gauge_layer
 from tactcad.mechanics.stiffness_result import StiffnessResult
 
 #: Shear coefficient of a rectangular section in the compliance integral,
@@ -338,6 +339,12 @@ def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int
             identity when absent).
         correction: explicit correction, overrides the file.
 
+    The bonded gauge ``g`` carries (:attr:`ElementGeometry.gauge`) makes K
+    1 / (1 / K + dC), dC the Euler-Bernoulli compliance its layer takes away
+    (:func:`~tactcad.mechanics.bonded_layer.closed_form_layer_k`), and the error
+    estimate adds :data:`~tactcad.mechanics.bonded_layer.CLOSED_FORM_LAYER_ERROR_REL`
+    of the rise.
+
     Returns:
         :class:`StiffnessResult` with model ``closed-form``. The gauge strain is
         the Euler-Bernoulli value at the notch centre times the fem3d-fitted
@@ -359,6 +366,13 @@ def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int
                                   b=g.sheet_thickness_mm)
     if corrected:
         eps = eps * corrected_point_strain(g, material)
+    layer = layer_of(g)
+    if layer is not None:
+        from tactcad.mechanics.bonded_layer import CLOSED_FORM_LAYER_ERROR_REL, closed_form_layer_k
+
+        k_layer = closed_form_layer_k(k, g, material.youngs_modulus_MPa, layer)
+        err += CLOSED_FORM_LAYER_ERROR_REL * (k_layer / k - 1.0)
+        k = k_layer
     return StiffnessResult(element=element, model=MODEL_NAME, stiffness_N_per_mm=k,
                            gauge_strain_per_N=float(eps), error_estimate_rel=err,
                            wall_time_s=time.perf_counter() - start)
@@ -395,7 +409,8 @@ def web_for_stiffness(k_target: float, g: ElementGeometry, material: Material, *
 
     All other dimensions are taken from ``g``; K(t) is strictly increasing, so
     the root in ``bracket_mm`` is unique (scipy ``brentq``). Used to infer the
-    as-built web of a calibrated element (Table 1).
+    as-built web of a calibrated element (Table 1). K is the element's with the bonded
+    gauge ``g`` carries (:func:`~tactcad.mechanics.bonded_layer.with_gauge_layer`).
 
     Raises:
         ValueError: ``k_target`` not finite and > 0, or outside
@@ -411,7 +426,8 @@ def web_for_stiffness(k_target: float, g: ElementGeometry, material: Material, *
     R, a = g.notch_radius_mm, g.arm_length_mm
 
     def k_of(t: float) -> float:
-        return _corrected(_parts(g, material, t), g, material, t, corr, warn=False)[0]
+        k = _corrected(_parts(g, material, t), g, material, t, corr, warn=False)[0]
+        return float(with_gauge_layer(k, g, t, R, a, material.youngs_modulus_MPa))
 
     lo, hi = bracket_mm
     k_lo, k_hi = k_of(lo), k_of(hi)

@@ -107,3 +107,32 @@ def estimate(model: str, g: ElementGeometry, material: Material, *, element: int
     """
     result = LADDER.run(model, (g, material), options, label=g.part_name)
     return result if result.element == element else replace(result, element=element)
+
+
+#: Each level's error in the bonded gauge's K rise, relative to the rise (a finite-element
+#: level meshes the layer: its discretisation error is K's own).
+GAUGE_RISE_ERROR_REL = {"closed-form": "CLOSED_FORM_LAYER_ERROR_REL", "beam": "BEAM_LAYER_ERROR_REL"}
+
+
+def gauge_rise_error_rel(model: str) -> float:
+    """The error of ``model``'s K rise from the bonded gauge, relative to the rise
+    (:data:`tactcad.mechanics.bonded_layer.CLOSED_FORM_LAYER_ERROR_REL`, ...; 0 for a level
+    that meshes the layer)."""
+    from tactcad.mechanics import bonded_layer
+
+    name = GAUGE_RISE_ERROR_REL.get(model)
+    return 0.0 if name is None else float(getattr(bonded_layer, name))
+
+
+def gauge_k_rise(model: str, g: ElementGeometry, material: Material) -> float:
+    """How much the bonded gauge ``g`` carries raises its K at ``model``, relative:
+    K(g) / K(g as cut) - 1 (0 for a bare ``g``); both from :func:`estimate` (a FEM level's
+    solves from the result store when kept).
+
+    Raises:
+        UnknownModelError: ``model`` is not a level of :data:`LEVELS`.
+    """
+    if g.gauge is None:
+        return 0.0
+    return (estimate(model, g, material).stiffness_N_per_mm
+            / estimate(model, g.bare(), material).stiffness_N_per_mm - 1.0)

@@ -154,41 +154,6 @@ def eb_grid_strain_per_N(web_mm, notch_radius_mm, arm_length_mm, grid_length_mm,
     return total / L
 
 
-#: The beam level's K rise of the bonded layer against a bonded-layer finite-element model:
-#: CalculiX, the element's profile in plane stress with the glue line and carrier as a
-#: second region bonded over the notch (tests/mechanics/test_gauge_layer_calculix.py,
-#: mesh-converged to 0.01 %) gives +6.4 % on the macro array's 4 mm element and +7.1 % on
-#: the Ti example's, where the beam level states +7.8 % and +8.5 %: it overstates the rise
-#: by about a fifth (its section acts fully over the carrier's length; the soft layer's
-#: shear lag at the carrier's ends does not). Stated as the estimate's error.
-GAUGE_LAYER_K_ERROR_REL = 0.25
-
-
-def gauge_layer_k_rel(g: ElementGeometry, material: Material, chain: ReadoutChain) -> float:
-    """How much the bonded gauge (glue line and carrier, :func:`~tactcad.mechanics.gauge_strain.
-    transformed_section`) raises the element's K, relative: the beam level's unit-load tip
-    compliance (:func:`tactcad.mechanics.beam.unit_load_compliance` on its stepped mesh)
-    with EI raised by the layer's transformed section on the segments under the carrier
-    (the grid plus :data:`~tactcad.design.readout_section.CARRIER_SIDE_MM` at each end,
-    centred over the notch), over the same compliance bare. A stated estimate beside K:
-    the ladder's K does not carry it. Its error against a bonded-layer FE model:
-    :data:`GAUGE_LAYER_K_ERROR_REL` (an overstatement).
-    """
-    from tactcad.design.readout_section import CARRIER_SIDE_MM, carrier_width_mm
-    from tactcad.mechanics.beam import beam_mesh, unit_load_compliance
-    from tactcad.mechanics.gauge_strain import transformed_section
-
-    b, E, nu = g.sheet_thickness_mm, material.youngs_modulus_MPa, material.poisson_ratio
-    mesh = beam_mesh(g)
-    middle = 0.5 * (mesh.x_mm[1:] + mesh.x_mm[:-1])
-    stiff = transformed_section(mesh.height_mm, b, E, chain.grid_height_mm,
-                                chain.gauge_backing_modulus_MPa,
-                                carrier_width_mm(chain.grid_width_mm, b))[1]
-    covered = np.abs(middle - g.hinge_x_mm) <= chain.grid_length_mm / 2 + CARRIER_SIDE_MM
-    bare = unit_load_compliance(mesh, E, nu, b)
-    return bare / unit_load_compliance(mesh, E, nu, b, np.where(covered, 1.0 + stiff, 1.0)) - 1
-
-
 def closed_form_grid_read_per_N(web_mm, notch_radius_mm, arm_length_mm, g: ElementGeometry,
                                 material: Material, chain: ReadoutChain) -> np.ndarray:
     """What the grid of ``chain`` reads per newton at the closed-form level on elements
@@ -289,6 +254,7 @@ def surface_grid_strain_per_N(g: ElementGeometry, material: Material, grid_lengt
     from tactcad.mechanics.ladder import LADDER
 
     LADDER.estimator(model)  # an unknown level is refused here
+    g = g.bare()  # the face as cut: the gauge's layer is the read factor's (or its own model's)
     if model == "fem3d":
         return {**fem3d_grid_strain_per_N(g, material, grid_length_mm, grid_width_mm),
                 "outside_fit": (),
@@ -341,9 +307,54 @@ def gauge_strain_per_N(g: ElementGeometry, material: Material, chain: ReadoutCha
     layer = bonded_grid_factor(g.web_thickness_mm, b, material.youngs_modulus_MPa,
                                chain.grid_height_mm, chain.gauge_backing_modulus_MPa,
                                carrier_width_mm(chain.grid_width_mm, b))
-    return {**face, "grid": face["surface"] * layer.read_factor,
-            "read_factor": layer.read_factor, "height_factor": layer.height_factor,
-            "stiffening_rel": layer.stiffening_rel}
+    out = {**face, "grid": face["surface"] * layer.read_factor,
+           "read_factor": layer.read_factor, "height_factor": layer.height_factor,
+           "stiffening_rel": layer.stiffening_rel}
+    meshed = meshed_grid_strain_per_N(g, material, chain, model)
+    if meshed is not None:  # the layer meshed: the grid's own plane, not the section's factor
+        out.update(meshed, read_factor=meshed["grid"] / face["surface"])
+    return out
+
+
+def meshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain: ReadoutChain,
+                             model: str) -> dict | None:
+    """At a finite-element level, of an element carrying the gauge of ``chain``: the strain
+    on the grid's plane (the layer's top) averaged over the grid, from the solves that give
+    its K (fem3d: over the grid's area; fem2d: along it, times the fem3d-fitted width
+    factor of the face). None at the other levels or for another gauge than ``g``'s.
+
+    Returns:
+        ``{"grid": 1/N (signed), "grid_error_rel": its estimated relative error,
+        "grid_source": text}``.
+    """
+    from tactcad.mechanics.bonded_layer import chain_layer, layer_of
+    from tactcad.mechanics.fem.fem2d import REFINEMENT_RATIO
+    from tactcad.mechanics.richardson import richardson
+
+    layer = layer_of(g)
+    if not is_meshed(model) or layer is None or layer != chain_layer(g, chain):
+        return None
+    if model == "fem3d":
+        from tactcad.mechanics.fem.fem3d import fem3d_convergence
+        from tactcad.mechanics.fem.fields import face_rectangle_average
+
+        conv = fem3d_convergence(g, material)
+        b, w = g.sheet_thickness_mm, min(chain.grid_width_mm, g.sheet_thickness_mm)
+        span, across = (layer.grid_x0_mm, layer.grid_x1_mm), (b / 2 - w / 2, b / 2 + w / 2)
+        vals = [face_rectangle_average(f, span, across) for f in conv.grid_plane_strains]
+        return {"grid": vals[-1], "grid_error_rel": richardson(vals, REFINEMENT_RATIO).error_rel,
+                "grid_source": "fem3d with the glue line and carrier meshed: the grid's "
+                               "plane averaged over its area"}
+    from tactcad.mechanics.fem.fem2d import fem2d_convergence
+    from tactcad.mechanics.gauge_strain import width_strain_factor
+
+    conv = fem2d_convergence(g, material)
+    vals = [s.grid_strain / s.force_N for s in conv.solutions]
+    width = width_strain_factor(g.bare(), material, chain.grid_width_mm)
+    return {"grid": width.factor * vals[-1],
+            "grid_error_rel": richardson(vals, REFINEMENT_RATIO).error_rel + width.error_rel,
+            "grid_source": "fem2d with the glue line and carrier meshed: the grid's plane "
+                           "along it, x the fem3d-fitted width factor"}
 
 
 # ---------------------------------------------------------------------------
@@ -499,7 +510,7 @@ def readout_report(plan: Plan, requirements, model: str = "closed-form",
         UnknownModelError: ``model`` is not a ladder level.
         DesignError: the material has no yield strength (the full-scale force needs it).
     """
-    from tactcad.mechanics.ladder import estimate
+    from tactcad.mechanics.ladder import estimate, gauge_k_rise, gauge_rise_error_rel
 
     chain = readout_chain(plan)
     noise = noise_budget_V(chain)
@@ -508,7 +519,8 @@ def readout_report(plan: Plan, requirements, model: str = "closed-form",
     for name, g in plan.distinct_elements.items():
         per_part[name]["K"] = stiffness[name] if stiffness is not None else \
             estimate(model, g, plan.material).stiffness_N_per_mm
-        per_part[name]["K_layer_rel"] = gauge_layer_k_rel(g, plan.material, chain)
+        per_part[name]["K_layer_rel"] = gauge_k_rise(model, g, plan.material)
+        per_part[name]["K_layer_error_rel"] = gauge_rise_error_rel(model)
     measuring = {m.number for _, m in row_units(plan, {n: d["K"] for n, d in per_part.items()})}
     records, units = [], []
     for slot in plan.slots:
@@ -543,7 +555,7 @@ def _element_record(slot, d: dict, is_ref: bool, ref: int, kobj_res: float | Non
             "grid_height_factor": d["eps"]["height_factor"],
             "gauge_stiffening_rel": d["eps"]["stiffening_rel"],
             "gauge_layer_k_rel": d["K_layer_rel"],
-            "gauge_layer_k_error_rel": GAUGE_LAYER_K_ERROR_REL,
+            "gauge_layer_k_error_rel": d["K_layer_error_rel"],
             "sensitivity_V_per_N": d["S"],
             "k_v_V_per_mm": d["S"] * d["K"],
             "force_resolution_N": d["dF"],

@@ -18,6 +18,9 @@ class StiffnessResult:
         error_estimate_rel: estimated relative error of K (e.g. Richardson
             estimate for FEM, fitted residual for corrected closed forms).
         wall_time_s: wall-clock time of the evaluation (s).
+        grid_strain_per_N: a finite-element level given the bonded gauge's layer: the
+            mean strain on the grid's plane (the layer's top) over the grid per newton
+            (1/N, magnitude); None otherwise.
     """
 
     element: int | None
@@ -26,6 +29,7 @@ class StiffnessResult:
     gauge_strain_per_N: float
     error_estimate_rel: float
     wall_time_s: float
+    grid_strain_per_N: float | None = None
 
     def as_json(self) -> dict:
         return asdict(self)

@@ -38,10 +38,11 @@ class Table1Prediction:
     element: int
     arm_length_mm: float
     measured_N_per_mm: float
+    #: K with the element's bonded gauge (glue line and carrier) on the web, as the paper
+    #: measured its elements
     predicted: StiffnessResult
-    #: K's relative rise from the bonded gauge (glue line and carrier) on the web, the
-    #: beam level's estimate (:func:`tactcad.mechanics.readout_chain.gauge_layer_k_rel`;
-    #: 0: not estimated). The paper measured its elements with their gauges bonded.
+    #: K's relative rise from that gauge at the same level
+    #: (:func:`tactcad.mechanics.ladder.gauge_k_rise`; 0: a bare element)
     gauge_layer_k_rel: float = 0.0
 
     @property
@@ -50,14 +51,15 @@ class Table1Prediction:
         return 100.0 * (self.predicted.stiffness_N_per_mm - self.measured_N_per_mm) / self.measured_N_per_mm
 
     @property
-    def with_gauge_layer_N_per_mm(self) -> float:
-        """The prediction with the bonded gauge's stiffening (N/mm)."""
-        return self.predicted.stiffness_N_per_mm * (1.0 + self.gauge_layer_k_rel)
+    def without_gauge_layer_N_per_mm(self) -> float:
+        """The prediction for the element as cut, without its gauge (N/mm)."""
+        return self.predicted.stiffness_N_per_mm / (1.0 + self.gauge_layer_k_rel)
 
     @property
-    def with_gauge_layer_error_percent(self) -> float:
-        """(prediction with the gauge layer - measured) / measured x 100."""
-        return 100.0 * (self.with_gauge_layer_N_per_mm - self.measured_N_per_mm) / self.measured_N_per_mm
+    def without_gauge_layer_error_percent(self) -> float:
+        """(prediction without the gauge - measured) / measured x 100."""
+        return (100.0 * (self.without_gauge_layer_N_per_mm - self.measured_N_per_mm)
+                / self.measured_N_per_mm)
 
     def as_json(self) -> dict:
         return {"element": self.element, "arm_length_mm": self.arm_length_mm,
@@ -68,8 +70,8 @@ class Table1Prediction:
                 "gauge_strain_per_N": self.predicted.gauge_strain_per_N,
                 "wall_time_s": self.predicted.wall_time_s,
                 "gauge_layer_k_rel": self.gauge_layer_k_rel,
-                "with_gauge_layer_N_per_mm": self.with_gauge_layer_N_per_mm,
-                "with_gauge_layer_error_percent": self.with_gauge_layer_error_percent}
+                "without_gauge_layer_N_per_mm": self.without_gauge_layer_N_per_mm,
+                "without_gauge_layer_error_percent": self.without_gauge_layer_error_percent}
 
 
 def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> list[Table1Prediction]:
@@ -78,9 +80,8 @@ def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> 
 
     Distinct geometries are evaluated once (elements with equal arms share them).
     """
-    from tactcad.mechanics.readout_chain import gauge_layer_k_rel, readout_chain
+    from tactcad.mechanics.ladder import gauge_k_rise
 
-    chain = readout_chain(plan)
     cache: dict[str, StiffnessResult] = {}
     layer: dict[str, float] = {}
     rows = []
@@ -91,7 +92,7 @@ def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> 
             if progress:
                 progress(f"{model}: {key}")
             cache[key] = estimate(model, slot.geometry, plan.material)
-            layer[key] = gauge_layer_k_rel(slot.geometry, plan.material, chain)
+            layer[key] = gauge_k_rise(model, slot.geometry, plan.material)
         res = cache[key]
         rows.append(Table1Prediction(meas.element, slot.geometry.arm_length_mm, meas.stiffness_N_per_mm,
                               StiffnessResult(meas.element, res.model, res.stiffness_N_per_mm,
@@ -103,8 +104,8 @@ def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> 
 def gauge_layer_shift(rows: list[Table1Prediction]) -> dict:
     """How the bonded gauge's stiffening moves Table 1: the mean signed and mean absolute
     error (%) over the rows without and with it, and the rise's range (relative)."""
-    bare = np.array([r.error_percent for r in rows])
-    layered = np.array([r.with_gauge_layer_error_percent for r in rows])
+    bare = np.array([r.without_gauge_layer_error_percent for r in rows])
+    layered = np.array([r.error_percent for r in rows])
     rise = [r.gauge_layer_k_rel for r in rows]
     return {"mean_error_percent": [float(bare.mean()), float(layered.mean())],
             "mean_abs_error_percent": [float(np.abs(bare).mean()), float(np.abs(layered).mean())],

@@ -110,7 +110,8 @@ def grid_geometry(web_mm: float, arm_mm: float, notch_radius_mm: float, *,
         poisson_ratio: nu. youngs_modulus_MPa: E (MPa).
 
     Returns:
-        (geometry of element 1, material) of the validated plan.
+        (geometry of element 1 as cut, without its gauge: the correction and the strain
+        factors are of the bare element's closed form, material) of the validated plan.
 
     Raises:
         DesignError: the combination breaks a design rule (field named).
@@ -128,7 +129,7 @@ def grid_geometry(web_mm: float, arm_mm: float, notch_radius_mm: float, *,
             "edm.spark_gap_mm": 0.0, "material.poisson_ratio": float(poisson_ratio),
             "material.youngs_modulus_MPa": float(youngs_modulus_MPa)}
     plan = plan_from_dict(with_overrides(data, over), source="<correction grid>")
-    return plan.element(1).geometry, plan.material
+    return plan.element(1).geometry.bare(), plan.material
 
 
 def _log_between(lo: float, hi: float, u: float) -> float:

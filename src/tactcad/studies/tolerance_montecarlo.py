@@ -50,6 +50,7 @@ import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
+from tactcad.mechanics.bonded_layer import with_gauge_layer
 from tactcad.mechanics.closed_form import closed_form_compliance, correction_coordinates
 from tactcad.mechanics.correction import Correction, load_correction
 from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
@@ -206,7 +207,9 @@ def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_M
             designs).
 
     Returns:
-        K of the broadcast shape (N/mm).
+        K of the broadcast shape (N/mm), with the bonded gauge ``g`` carries
+        (:func:`~tactcad.mechanics.bonded_layer.with_gauge_layer`), as the
+        closed-form level gives it.
 
     Raises:
         ValueError: a non-positive or non-finite input (see
@@ -219,7 +222,8 @@ def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_M
                                    nu=poisson_ratio, b=b)
     factor = correction.factor(**correction_coordinates(parts, web_mm, notch_radius_mm, b,
                                                          poisson_ratio))
-    return factor / parts.total
+    return with_gauge_layer(factor / parts.total, g, web_mm, notch_radius_mm, arm_length_mm,
+                            youngs_modulus_MPa)
 
 
 def stiffness_samples(plan: Plan, s: Samples, correction: Correction) -> np.ndarray:

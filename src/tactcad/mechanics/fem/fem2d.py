@@ -63,6 +63,7 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.mechanics.fem.fem_mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
                        mesh_region)
+from tactcad.mechanics.bonded_layer import BondedLayer
 from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.richardson import Richardson, richardson
 
@@ -103,6 +104,9 @@ class FemSolution:
     neck_size_mm: float
     wall_time_s: float
     field: "DisplacementField | None" = dataclasses.field(default=None, repr=False, compare=False)
+    #: the grid's mean eps_xx under ``force_N`` (signed) on its plane: the top of a bonded
+    #: layer, else the face; NaN when no grid was given
+    grid_strain: float = float("nan")
 
 
 @dataclass(frozen=True, eq=False)
@@ -611,7 +615,8 @@ def _solve_elasticity(mesh, lam, mu, *, thickness, x_clamp, contact, traction_MP
 def solve_fem2d(g: ElementGeometry, material: Material, *, plane: str = "stress",
                 size_factor: float = 1.0, web_divisions: float = WEB_DIVISIONS,
                 curved: bool = True, force_N: float = DEFAULT_FORCE_N,
-                region: FemRegion | None = None, keep_field: bool = False) -> FemSolution:
+                region: FemRegion | None = None, keep_field: bool = False,
+                layer: BondedLayer | None = None) -> FemSolution:
     """One plane FEM solve (P2 triangles) of the element's tip stiffness.
 
     Args:
@@ -625,6 +630,10 @@ def solve_fem2d(g: ElementGeometry, material: Material, *, plane: str = "stress"
         force_N: total tip force (N); K does not depend on it (linear).
         region: cropped outline; ``None`` uses :func:`fem_region` (g).
         keep_field: keep the displacement field in ``FemSolution.field``.
+        layer: the bonded gauge's glue line and carrier
+            (:class:`~tactcad.mechanics.bonded_layer.BondedLayer`), meshed as a second
+            region on the top face (plane stress, its modulus spread over the sheet);
+            the grid strain is then read on its top. None: the bare element.
 
     Raises:
         ValueError: unknown plane, non-positive force.
@@ -635,20 +644,66 @@ def solve_fem2d(g: ElementGeometry, material: Material, *, plane: str = "stress"
         raise ValueError(f"force_N must be > 0, got {force_N!r}")
     t0 = time.perf_counter()
     region = fem_region(g) if region is None else region
-    rm = mesh_region(g, region, dim=2, size_factor=size_factor, web_divisions=web_divisions)
+    rm = mesh_region(g, region, dim=2, size_factor=size_factor, web_divisions=web_divisions,
+                     layer_box=None if layer is None else layer.box(region.x_clamp),
+                     layer_marks_x=() if layer is None else (layer.grid_x0_mm, layer.grid_x1_mm))
     mesh = skfem_mesh(rm, curved=curved)
     lam, mu = lame(material, plane)
     L, w = g.overall_length_mm, g.tip_width_mm
     b = g.sheet_thickness_mm
+    lam_cells, mu_cells = layered_lame(lam, mu, rm.layer_cells, layer, b, plane)
     compliance, force, eps, n, _, (sb, u) = solve_elasticity_field(
-        mesh, lam, mu, thickness=b, x_clamp=region.x_clamp, contact=(L - w, L, g.tip_top_y_mm),
-        traction_MPa=force_N / (w * b), gauge_vertex=rm.gauge_vertex)
+        mesh, lam_cells, mu_cells, thickness=b, x_clamp=region.x_clamp,
+        contact=(L - w, L, g.tip_top_y_mm), traction_MPa=force_N / (w * b),
+        gauge_vertex=rm.gauge_vertex)
     field = DisplacementField(sb, u, lam, mu, plane, force_N) if keep_field else None
+    grid = float("nan") if layer is None else grid_plane_strain(rm.p, u, layer)
     return FemSolution(stiffness_N_per_mm=force**2 / compliance,
                        tip_deflection_mm=compliance / force,
                        gauge_strain=eps, force_N=force_N, n_dofs=n, n_cells=rm.t.shape[1],
                        neck_size_mm=rm.neck_size, wall_time_s=time.perf_counter() - t0,
-                       field=field)
+                       field=field, grid_strain=grid)
+
+
+def layered_lame(lam: float, mu: float, layer_cells: np.ndarray | None,
+                 layer: BondedLayer | None, sheet_mm: float, plane: str | None):
+    """(lambda, mu) per cell, shape (n_cells, 1), with a bonded layer's own (its modulus
+    spread over the sheet, :meth:`~tactcad.mechanics.bonded_layer.BondedLayer.
+    modulus_over_sheet_MPa`) on its cells; the numbers as they are without a layer (MPa)."""
+    if layer is None or layer_cells is None:
+        return lam, mu
+    from tactcad.design.array_plan import Material
+
+    spread = Material("bonded layer", layer.modulus_over_sheet_MPa(sheet_mm),
+                      layer.poisson_ratio)
+    lam_l, mu_l = lame(spread, plane)
+    return (np.where(layer_cells, lam_l, lam)[:, None],
+            np.where(layer_cells, mu_l, mu)[:, None])
+
+
+def grid_plane_strain(vertices: np.ndarray, u: np.ndarray, layer: BondedLayer) -> float:
+    """The grid's mean eps_xx on its plane (the layer's top): the difference of u_x at the
+    grid's ends (mesh vertices, ``vertices`` shape (dim, n); a P2 field's first n scalar
+    dofs are its vertices') over its length: the mean of du_x/dx along the line, exact for
+    the field. In 3D the ends are read where the vertices lie on the mid-plane side's
+    largest z (the symmetry plane of a half model).
+
+    Raises:
+        RuntimeError: a grid end is not a mesh vertex.
+    """
+    dim = vertices.shape[0]
+    ux = u[0::dim]
+    y = layer.grid_plane_y_mm
+    on_line = np.abs(vertices[1] - y) < 1e-7
+    if dim == 3:
+        on_line &= np.abs(vertices[2] - vertices[2].max()) < 1e-7
+    values = []
+    for x in (layer.grid_x0_mm, layer.grid_x1_mm):
+        hit = np.flatnonzero(on_line & (np.abs(vertices[0] - x) < 1e-7))
+        if len(hit) == 0:
+            raise RuntimeError(f"the grid's end x = {x:g} mm is not a mesh vertex")
+        values.append(ux[hit[0]])
+    return float((values[1] - values[0]) / layer.grid_length_mm)
 
 
 @dataclass(frozen=True)
@@ -680,7 +735,11 @@ def fem2d_convergence(g: ElementGeometry, material: Material, *, plane: str = "s
                       progress: Callable[[str], None] | None = None) -> Convergence:
     """Solve on ``levels`` meshes (sizes r^(levels-1) ... 1 times the default)
     and Richardson-extrapolate K and the gauge strain; ``progress`` gets one
-    line per mesh level solved."""
+    line per mesh level solved. The bonded gauge ``g`` carries is meshed as its
+    layer (:func:`solve_fem2d`, :func:`tactcad.mechanics.bonded_layer.layer_of`)."""
+    from tactcad.mechanics.bonded_layer import layer_of
+
+    layer = layer_of(g)
     t0 = time.perf_counter()
     region = fem_region(g) if region is None else region
     found = []
@@ -689,7 +748,7 @@ def fem2d_convergence(g: ElementGeometry, material: Material, *, plane: str = "s
             t_level = time.perf_counter()
             found.append(solve_fem2d(g, material, plane=plane, size_factor=s,
                                      web_divisions=web_divisions, curved=curved,
-                                     force_N=force_N, region=region))
+                                     force_N=force_N, region=region, layer=layer))
             if progress is not None:
                 progress(f"fem2d {g.part_name}: mesh {len(found)}/{levels} (h x {s:.3f}), "
                          f"{time.perf_counter() - t_level:.1f} s")
@@ -705,7 +764,8 @@ def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | Non
                    force_N: float = DEFAULT_FORCE_N,
                    margin_mm: float | None = None,
                    progress: Callable[[str], None] | None = None) -> StiffnessResult:
-    """Level-3 estimate: plane stress (or plane strain) P2 FEM, three meshes.
+    """Level-3 estimate: plane stress (or plane strain) P2 FEM, three meshes; the bonded
+    gauge ``g`` carries meshed as its layer (:func:`fem2d_convergence`).
 
     Args:
         g: element geometry (mm).
@@ -739,7 +799,8 @@ def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | Non
         stiffness_N_per_mm=fin.stiffness_N_per_mm,
         gauge_strain_per_N=abs(fin.gauge_strain) / force_N,
         error_estimate_rel=conv.stiffness.error_rel + plane_model_error(g, material, plane),
-        wall_time_s=conv.wall_time_s)
+        wall_time_s=conv.wall_time_s,
+        grid_strain_per_N=None if g.gauge is None else abs(fin.grid_strain) / force_N)
 
 
 def plane_model_error(g: ElementGeometry, material: Material, plane: str = "stress") -> float:

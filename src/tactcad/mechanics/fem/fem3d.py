@@ -59,8 +59,9 @@ from typing import Callable
 
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.mechanics.fem.fem2d import (DEFAULT_FORCE_N, REFINEMENT_RATIO, Convergence, DisplacementField,
-                    FemSolution, lame, single_threaded_blas, size_factors, skfem_mesh,
-                    solve_elasticity_field)
+                    FemSolution, grid_plane_strain, lame, layered_lame, single_threaded_blas,
+                    size_factors, skfem_mesh, solve_elasticity_field)
+from tactcad.mechanics.bonded_layer import BondedLayer, layer_of
 from tactcad.mechanics.fem.fem_mesh import FemRegion, fem_region, graded_layers, mesh_region
 from tactcad.mechanics.fem.fields import FaceStrain, PeakStress, peak_notch_stress, top_face_strain
 from tactcad.mechanics.stiffness_result import StiffnessResult
@@ -92,7 +93,8 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
                 web_divisions: float = WEB_DIVISIONS_3D, n_layers: int = N_LAYERS,
                 grading: float = Z_GRADING, curved: bool = True,
                 force_N: float = DEFAULT_FORCE_N, region: FemRegion | None = None,
-                solver: str = "pcg", keep_field: bool = False) -> FemSolution:
+                solver: str = "pcg", keep_field: bool = False,
+                layer: BondedLayer | None = None) -> FemSolution:
     """One 3D P2 solve (half model) of the element's tip stiffness.
 
     Args:
@@ -110,6 +112,10 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
         solver: "pcg" (default) or "direct" (SuperLU; small meshes only).
         keep_field: keep the half model's displacement field in
             ``FemSolution.field`` (mid-plane at z = b/2).
+        layer: the bonded gauge's glue line and carrier
+            (:class:`~tactcad.mechanics.bonded_layer.BondedLayer`), meshed on the top face
+            across the sheet, its modulus spread over it; the grid strain is read on its
+            top at the mid-plane. None: the bare element.
 
     Returns:
         :class:`~tactcad.mechanics.fem.fem2d.FemSolution` for the full element
@@ -128,20 +134,25 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
     nl = max(2, int(round(n_layers / size_factor)))
     layers = graded_layers(b / 2, nl, grading)
     rm = mesh_region(g, region, dim=3, size_factor=size_factor, web_divisions=web_divisions,
-                     depth_mm=b / 2, z_layers=layers)
+                     depth_mm=b / 2, z_layers=layers,
+                     layer_box=None if layer is None else layer.box(region.x_clamp),
+                     layer_marks_x=() if layer is None else (layer.grid_x0_mm,
+                                                             layer.grid_x1_mm))
     mesh = skfem_mesh(rm, curved=curved)
     lam, mu = lame(material, None)
     L, w = g.overall_length_mm, g.tip_width_mm
+    lam_cells, mu_cells = layered_lame(lam, mu, rm.layer_cells, layer, b, None)
     compliance, force_h, eps, n, _, (sb, u) = solve_elasticity_field(
-        mesh, lam, mu, thickness=1.0, x_clamp=region.x_clamp,
+        mesh, lam_cells, mu_cells, thickness=1.0, x_clamp=region.x_clamp,
         contact=(L - w, L, g.tip_top_y_mm), traction_MPa=force_N / (w * b),
         gauge_vertex=rm.gauge_vertex, sym_plane_z=b / 2, solver=solver, rtol=PCG_RTOL)
     deflection = compliance / force_h
     field = DisplacementField(sb, u, lam, mu, None, 2.0 * force_h, b / 2) if keep_field else None
+    grid = float("nan") if layer is None else grid_plane_strain(rm.p, u, layer)
     return FemSolution(stiffness_N_per_mm=2.0 * force_h / deflection,
                        tip_deflection_mm=deflection, gauge_strain=eps, force_N=2.0 * force_h,
                        n_dofs=n, n_cells=rm.t.shape[1], neck_size_mm=rm.neck_size,
-                       wall_time_s=time.perf_counter() - t0, field=field)
+                       wall_time_s=time.perf_counter() - t0, field=field, grid_strain=grid)
 
 
 @dataclass(frozen=True)
@@ -155,6 +166,8 @@ class Convergence3D(Convergence):
     peak_rss_mib: float = math.nan
     peaks: tuple[PeakStress, ...] = ()
     top_face_strains: tuple[FaceStrain, ...] = ()
+    #: with a bonded layer: each mesh's eps_xx on the grid's plane (the layer's top), per N
+    grid_plane_strains: tuple[FaceStrain, ...] = ()
 
 
 def fem3d_convergence(g: ElementGeometry, material: Material, *,
@@ -172,6 +185,8 @@ def fem3d_convergence(g: ElementGeometry, material: Material, *,
     key: the geometry, material, region and every setting but ``verbose``
     and ``progress``), so the stiffness level (:func:`estimate_fem3d`) and
     the strength study's peak stress of the same element solve it once.
+    The bonded gauge ``g`` carries is meshed as its layer (:func:`solve_fem3d`,
+    :func:`tactcad.mechanics.bonded_layer.layer_of`).
 
     With ``verbose`` each solve prints its K, unknowns, wall time and the
     process's peak RSS; ``progress`` gets one line per mesh level solved.
@@ -180,6 +195,9 @@ def fem3d_convergence(g: ElementGeometry, material: Material, *,
     settings = {"web_divisions": web_divisions, "n_layers": n_layers, "grading": grading,
                 "ratio": ratio, "levels": levels, "curved": curved, "force_N": force_N,
                 "solver": solver}
+    layer = layer_of(g)
+    if layer is not None:  # the bare element's key stays as it was
+        settings["layer"] = layer
     return kept_result("fem3d convergence",
                        lambda: _converge(g, material, region, settings, verbose, progress),
                        g, material, region, settings)
@@ -190,13 +208,16 @@ def _converge(g: ElementGeometry, material: Material, region: FemRegion, setting
     t0 = time.perf_counter()
     levels, ratio = settings["levels"], settings["ratio"]
     solve = {k: v for k, v in settings.items() if k not in ("levels", "ratio")}
-    sols, peaks, faces = [], [], []
+    sols, peaks, faces, grids = [], [], [], []
+    layer = settings.get("layer")
     with single_threaded_blas():
         for s in size_factors(levels, ratio):
             sol = solve_fem3d(g, material, size_factor=s, region=region, keep_field=True,
                               **solve)
             peaks.append(peak_notch_stress(sol.field, g))
             faces.append(top_face_strain(sol.field, g.base_height_mm))
+            if layer is not None:
+                grids.append(top_face_strain(sol.field, layer.grid_plane_y_mm))
             sol = replace(sol, field=None)  # frees the mesh and basis before the next solve
             sols.append(sol)
             if progress is not None:
@@ -209,7 +230,7 @@ def _converge(g: ElementGeometry, material: Material, region: FemRegion, setting
     rk = richardson([s.stiffness_N_per_mm for s in sols], ratio)
     rg = richardson([s.gauge_strain for s in sols], ratio)
     conv = Convergence3D(tuple(sols), rk, rg, time.perf_counter() - t0, peak_rss_mib(),
-                         tuple(peaks), tuple(faces))
+                         tuple(peaks), tuple(faces), tuple(grids))
     if verbose:
         print(f"fem3d {g.part_name}: K = {sols[-1].stiffness_N_per_mm:.5f} N/mm, Richardson "
               f"order {rk.order:.2f}, K_ext = {rk.extrapolated:.5f}, error "
@@ -225,7 +246,8 @@ def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | Non
                    margin_mm: float | None = None, solver: str = "pcg",
                    verbose: bool = False,
                    progress: Callable[[str], None] | None = None) -> StiffnessResult:
-    """Level-4 (reference) estimate: 3D P2 FEM of the half element, three meshes.
+    """Level-4 (reference) estimate: 3D P2 FEM of the half element, three meshes; the
+    bonded gauge ``g`` carries meshed as its layer (:func:`fem3d_convergence`).
 
     Args:
         g: element geometry (mm).
@@ -261,4 +283,5 @@ def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | Non
     return StiffnessResult(
         element=element, model="fem3d", stiffness_N_per_mm=fin.stiffness_N_per_mm,
         gauge_strain_per_N=abs(fin.gauge_strain) / force_N,
-        error_estimate_rel=conv.stiffness.error_rel, wall_time_s=conv.wall_time_s)
+        error_estimate_rel=conv.stiffness.error_rel, wall_time_s=conv.wall_time_s,
+        grid_strain_per_N=None if g.gauge is None else abs(fin.grid_strain) / force_N)

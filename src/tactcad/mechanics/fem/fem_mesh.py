@@ -320,6 +320,12 @@ def default_sizes(g: ElementGeometry, web_divisions: float = WEB_DIVISIONS) -> M
                      fillet=min(g.inside_corner_radius_mm / 2, far))
 
 
+#: Cells through a bonded layer's height (P2: its bending and axial strain, linear and
+#: constant through so thin a layer, are carried exactly by one; two keep the aspect
+#: ratio of the cells along it near one).
+LAYER_CELLS = 2
+
+
 def graded_layers(depth: float, n_layers: int, grading: float) -> list[float]:
     """Layer thicknesses (mm) of an extrusion of ``depth`` into ``n_layers``,
     growing geometrically from z = 0 so that the last layer is ``grading``
@@ -383,7 +389,8 @@ def _build_surface(gm, region: FemRegion, split_points: Sequence[tuple[float, fl
 
 
 def _size_fields(gm, sizes: MeshSizes, neck: tuple[float, float],
-                 arcs: Sequence[tuple[Arc, float]]) -> None:
+                 arcs: Sequence[tuple[Arc, float]],
+                 layer: tuple[float, float, float, float] | None = None) -> None:
     """Background size field: the minimum of the web size
     (t + d^2/2R) / web_divisions (d = distance from the neck) and thresholds
     on the distance to each arc's circle; all are MathEval expressions of x
@@ -412,6 +419,10 @@ def _size_fields(gm, sizes: MeshSizes, neck: tuple[float, float],
     ids.append(web)
     for arc, size in arcs:
         threshold(f"Abs({r(*arc.centre)}-({arc.radius!r}))", size, 0.0)
+    if layer is not None:  # a bonded layer: two cells through its height, grown away from it
+        x0, y0, x1, y1 = layer
+        inside = (y1 - y0) / LAYER_CELLS
+        threshold(f"Max(Max({x0!r}-x,x-({x1!r})),Max({y0!r}-y,y-({y1!r})))", inside, 0.0)
     mn = f.add("Min")
     f.setNumbers(mn, "FieldsList", ids)
     f.setAsBackgroundMesh(mn)
@@ -437,6 +448,8 @@ class RegionMesh:
         gauge_vertex: index of the vertex at the gauge point (x = hinge_x,
             y = base height; z = depth in 3D, i.e. the symmetry plane).
         mesh_time_s: wall time spent in gmsh (s).
+        layer_cells: cells of a bonded layer (bool, shape (n_cells,)), or None
+            when none was meshed.
     """
 
     p: np.ndarray
@@ -447,6 +460,7 @@ class RegionMesh:
     depth: float
     gauge_vertex: int
     mesh_time_s: float
+    layer_cells: np.ndarray | None = None
 
 
 def _read_mesh(gm, dim: int) -> tuple[np.ndarray, np.ndarray]:
@@ -479,7 +493,9 @@ def _classify_arcs(region: FemRegion, g: ElementGeometry):
 def mesh_region(g: ElementGeometry, region: FemRegion | None = None, *, dim: int = 2,
                 size_factor: float = 1.0, web_divisions: float = WEB_DIVISIONS,
                 depth_mm: float | None = None, sizes: MeshSizes | None = None,
-                z_layers: Sequence[float] | None = None) -> RegionMesh:
+                z_layers: Sequence[float] | None = None,
+                layer_box: tuple[float, float, float, float] | None = None,
+                layer_marks_x: Sequence[float] = ()) -> RegionMesh:
     """Mesh the FEM region with linear triangles (2D) or tetrahedra (3D).
 
     Args:
@@ -495,6 +511,11 @@ def mesh_region(g: ElementGeometry, region: FemRegion | None = None, *, dim: int
         z_layers: 3D only: layer thicknesses from z = 0 (see
             :func:`graded_layers`); their sum is scaled to ``depth_mm``.
             ``None`` meshes the solid with unstructured tetrahedra.
+        layer_box: (x0, y0, x1, y1) of a bonded layer's rectangle on the top face
+            (mm; :meth:`tactcad.mechanics.bonded_layer.BondedLayer.box`), meshed with
+            the body (shared nodes on the joint; in 3D extruded with it);
+            :attr:`RegionMesh.layer_cells` marks its cells.
+        layer_marks_x: x of mesh vertices on the layer's top edge (the grid's ends).
 
     Returns:
         :class:`RegionMesh` (vertex coordinates and cells; P2 fields are built
@@ -520,16 +541,29 @@ def mesh_region(g: ElementGeometry, region: FemRegion | None = None, *, dim: int
     with gmsh_session(f"tactcad_fem{dim}d") as gm:
         occ = gm.model.occ
         surf, _ = _build_surface(gm, region, [gauge])
+        faces = [(2, surf)]
+        if layer_box is not None:
+            x0, y0, x1, y1 = layer_box
+            top = sorted(x for x in layer_marks_x if x0 < x < x1)
+            corners = [(x0, y0), (x1, y0), (x1, y1), *[(x, y1) for x in reversed(top)],
+                       (x0, y1)]
+            ids = [occ.addPoint(x, y, 0.0) for x, y in corners]
+            edges = [occ.addLine(a, b) for a, b in zip(ids, ids[1:] + ids[:1])]
+            rect = occ.addPlaneSurface([occ.addCurveLoop(edges)])
+            joined, _ = occ.fragment([(2, surf)], [(2, rect)])
+            faces = [(d, t) for d, t in joined if d == 2]
         if dim == 3:
             if z_layers is None:
-                occ.extrude([(2, surf)], 0.0, 0.0, depth)
+                occ.extrude(faces, 0.0, 0.0, depth)
             else:
                 zs = np.cumsum(np.asarray(z_layers, dtype=float))
-                occ.extrude([(2, surf)], 0.0, 0.0, depth, numElements=[1] * len(zs),
+                occ.extrude(faces, 0.0, 0.0, depth, numElements=[1] * len(zs),
                             heights=list(zs / zs[-1]))
+            if len(faces) > 1:  # the two extruded bodies share their joint's nodes
+                occ.removeAllDuplicates()
         occ.synchronize()
         _size_fields(gm, sizes, neck, [(a, sizes.arc) for a in notch_segs]
-                     + [(a, sizes.fillet) for a in fillet_segs])
+                     + [(a, sizes.fillet) for a in fillet_segs], layer_box)
         gm.option.setNumber("Mesh.MeshSizeFactor", size_factor)
         gm.option.setNumber("Mesh.Algorithm", 6)
         gm.option.setNumber("Mesh.Algorithm3D", 1)
@@ -545,9 +579,16 @@ def mesh_region(g: ElementGeometry, region: FemRegion | None = None, *, dim: int
     gv = int(np.argmin(dist))
     if dist[gv] > 1e-8:
         raise RuntimeError("gauge point is not a mesh vertex")
+    layer_cells = None
+    if layer_box is not None:
+        cx, cy = p[0][t].mean(axis=0), p[1][t].mean(axis=0)
+        x0, y0, x1, y1 = layer_box
+        layer_cells = (cy > y0) & (cy < y1) & (cx > x0) & (cx < x1)
+        if not layer_cells.any():
+            raise RuntimeError("the bonded layer was not meshed")
     return RegionMesh(p=p, t=t, region=region, arcs=tuple(notch_segs + fillet_segs),
                       neck_size=sizes.neck * size_factor, depth=depth, gauge_vertex=gv,
-                      mesh_time_s=mesh_time)
+                      mesh_time_s=mesh_time, layer_cells=layer_cells)
 
 
 def curved_doflocs(doflocs: np.ndarray, p: np.ndarray, edge_vertices: np.ndarray,

@@ -62,7 +62,7 @@ from typing import Callable
 import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry, Material
-from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, assemble_elasticity, lame,
+from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, assemble_elasticity, lame, layered_lame,
                                          p_multigrid, plane_model_error, single_threaded_blas,
                                          size_factors, skfem_mesh)
 from tactcad.mechanics.fem.fem_mesh import WEB_DIVISIONS, FemRegion, fem_region, graded_layers, mesh_region
@@ -108,11 +108,19 @@ def _mass_scalar(sb):
     return asm(BilinearForm(lambda u, v, w: u * v), sb)
 
 
-def _vector_mass(sb, rho: float, dim: int):
+def _vector_mass(sb, rho, dim: int):
+    """The consistent mass matrix (interleaved numbering ``dim * s + c``, as
+    :func:`~tactcad.mechanics.fem.fem2d.assemble_elasticity`); ``rho`` a number or one
+    density per cell (t/mm^3)."""
     import scipy.sparse as sp
 
-    # interleaved numbering dim * s + c, as assemble_elasticity
-    return sp.kron(_mass_scalar(sb), sp.eye(dim), format="csr") * rho
+    if np.ndim(rho) == 0:
+        return sp.kron(_mass_scalar(sb), sp.eye(dim), format="csr") * rho
+    from skfem import BilinearForm, asm
+
+    weights = np.broadcast_to(np.asarray(rho, float)[:, None], sb.dx.shape)
+    scalar = asm(BilinearForm(lambda u, v, w: w.rho * u * v), sb, rho=weights)
+    return sp.kron(scalar, sp.eye(dim), format="csr")
 
 
 def _lowest_modes(A, M, fixed: np.ndarray, modes: int,
@@ -268,7 +276,9 @@ def _facet_dofs(mesh, sb, predicate) -> np.ndarray:
 def solve_modes(mesh, material: Material, *, thickness: float, x_clamp: float, modes: int,
                 plane: str | None, sym_plane_z: float | None = None,
                 families: tuple[str, ...] = ("in-plane",), intorder: int | None = None,
-                solver: str = "direct", added_masses: tuple[PointMass, ...] = ()) -> ModalSolve:
+                solver: str = "direct", added_masses: tuple[PointMass, ...] = (),
+                layer=None, layer_cells: np.ndarray | None = None,
+                sheet_mm: float | None = None) -> ModalSolve:
     """The lowest ``modes`` natural frequencies of a clamped P2 mesh.
 
     Args:
@@ -284,6 +294,10 @@ def solve_modes(mesh, material: Material, *, thickness: float, x_clamp: float, m
             (:func:`lobpcg_lowest` with the two-level p-multigrid
             preconditioner of the stiffness solves; a 3D mesh's memory).
         added_masses: point masses lumped on the nearest vertex (:func:`_add_point_masses`).
+        layer, layer_cells, sheet_mm: a bonded gauge's layer
+            (:class:`~tactcad.mechanics.bonded_layer.BondedLayer`), its cells and the
+            sheet it is spread over (mm): its stiffness on those cells, no mass of its own
+            (the gauge installation's mass is one of ``added_masses``).
 
     Returns:
         :class:`ModalSolve`, frequencies ascending over the families, each
@@ -306,11 +320,12 @@ def solve_modes(mesh, material: Material, *, thickness: float, x_clamp: float, m
     if intorder is None:
         intorder = 4
     sb = Basis(mesh, p2, intorder=intorder)
-    lam_, mu = lame(material, plane)
+    lam_, mu = layered_lame(*lame(material, plane), layer_cells, layer, sheet_mm, plane)
     A = assemble_elasticity(sb, lam_, mu) * thickness
     scalar_mass = _mass_scalar(sb)
-    M = _add_point_masses(_vector_mass(sb, rho, dim) * thickness, mesh, sb, added_masses, dim,
-                          sym_plane_z)
+    density = rho if layer_cells is None or layer is None else np.where(layer_cells, 0.0, rho)
+    M = _add_point_masses(_vector_mass(sb, density, dim) * thickness, mesh, sb, added_masses,
+                          dim, sym_plane_z)
     tol = 1e-7
     cd = _facet_dofs(mesh, sb, lambda x: np.abs(x[0] - x_clamp) < tol)
     if len(cd) == 0:
@@ -354,15 +369,21 @@ def plane_frequency_error(g: ElementGeometry, material: Material) -> float:
 
 
 def _mesh(g: ElementGeometry, region: FemRegion, dim: int, size_factor: float):
+    # the mesh, its bonded layer's cells (None for a bare element) and the layer
+    from tactcad.mechanics.bonded_layer import layer_of
+
+    layer = layer_of(g)
+    box = None if layer is None else layer.box(region.x_clamp)
     if dim == 2:
-        rm = mesh_region(g, region, dim=2, size_factor=size_factor, web_divisions=WEB_DIVISIONS)
+        rm = mesh_region(g, region, dim=2, size_factor=size_factor, web_divisions=WEB_DIVISIONS,
+                         layer_box=box)
     else:
         b = g.sheet_thickness_mm
         nl = max(2, int(round(N_LAYERS_MODAL / size_factor)))
         rm = mesh_region(g, region, dim=3, size_factor=size_factor,
                          web_divisions=WEB_DIVISIONS_MODAL_3D, depth_mm=b / 2,
-                         z_layers=graded_layers(b / 2, nl, Z_GRADING_MODAL))
-    return skfem_mesh(rm, curved=True)
+                         z_layers=graded_layers(b / 2, nl, Z_GRADING_MODAL), layer_box=box)
+    return skfem_mesh(rm, curved=True), rm.layer_cells, layer
 
 
 def solve_element_modes(g: ElementGeometry, material: Material, *, dim: int, modes: int = 3,
@@ -371,14 +392,16 @@ def solve_element_modes(g: ElementGeometry, material: Material, *, dim: int, mod
     """One mesh's modes of an element: plane stress (``dim`` 2) or the 3D
     half model in both families (``dim`` 3). Raises as :func:`solve_modes`."""
     region = fem_region(g) if region is None else region
-    mesh = _mesh(g, region, dim, size_factor)
+    mesh, cells, layer = _mesh(g, region, dim, size_factor)
+    bonded = {"layer": layer, "layer_cells": cells, "sheet_mm": g.sheet_thickness_mm}
     if dim == 2:
         return solve_modes(mesh, material, thickness=g.sheet_thickness_mm,
                            x_clamp=region.x_clamp, modes=modes, plane="stress",
-                           added_masses=added_masses)
+                           added_masses=added_masses, **bonded)
     return solve_modes(mesh, material, thickness=1.0, x_clamp=region.x_clamp, modes=modes,
                        plane=None, sym_plane_z=g.sheet_thickness_mm / 2,
-                       families=tuple(FAMILIES), solver="lobpcg", added_masses=added_masses)
+                       families=tuple(FAMILIES), solver="lobpcg", added_masses=added_masses,
+                       **bonded)
 
 
 def _estimate(model: str, dim: int, g: ElementGeometry, material: Material, *,

@@ -62,6 +62,26 @@ class ElementSection(Section):
 
 
 @dataclass(frozen=True)
+class GaugeStack:
+    """The foil strain gauge bonded on the element's flat top face, centred over the notch:
+    its grid, and the glue line and carrier under it (mm, MPa). The mechanics model it as a
+    layer that stiffens the web and lifts the grid off the face
+    (:mod:`tactcad.mechanics.bonded_layer`).
+
+    Attributes:
+        grid_length_mm: the grid along the element.
+        grid_width_mm: the grid across the sheet.
+        height_mm: face to grid plane (glue line and carrier).
+        modulus_MPa: the glue line and carrier's Young's modulus.
+    """
+
+    grid_length_mm: float
+    grid_width_mm: float
+    height_mm: float
+    modulus_MPa: float
+
+
+@dataclass(frozen=True)
 class ElementGeometry:
     """One distinct wire-cut flexure profile (element frame, mm).
 
@@ -88,6 +108,15 @@ class ElementGeometry:
     start_hole_diameter_mm: float
     #: the cut process's name (:func:`tactcad.vocabulary.process.cut_process`)
     process: str = DEFAULT_CUT_PROCESS
+    #: the bonded gauge the element carries in use (None: the bare element as cut); every
+    #: stiffness level models it (:mod:`tactcad.mechanics.bonded_layer`)
+    gauge: GaugeStack | None = None
+
+    def bare(self) -> "ElementGeometry":
+        """This element as cut, without its bonded gauge."""
+        from dataclasses import replace
+
+        return self if self.gauge is None else replace(self, gauge=None)
 
     @property
     def part_name(self) -> str:

@@ -1,0 +1,151 @@
+"""The bonded gauge in the mechanics: every element of a design carries its gauge's glue line
+and carrier (:class:`tactcad.partlib.array.element.GaugeStack`), every stiffness level models
+it (the closed form and the beam by their section, fem2d and fem3d by meshing it), and the
+stated error of each level's layer term holds against the meshed layer.
+
+The plane model's layer is checked against CalculiX in
+``test_gauge_layer_calculix.py``; fem3d's here (slow).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from tactcad.design.array_plan import EXAMPLES, load_design, plan_from_dict, with_overrides
+from tactcad.mechanics.bonded_layer import (CLOSED_FORM_LAYER_ERROR_REL, BEAM_LAYER_ERROR_REL,
+                                            chain_layer, layer_of)
+from tactcad.mechanics.correction import load_correction
+from tactcad.mechanics.ladder import estimate, gauge_k_rise
+from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+from tactcad.studies.tolerance_montecarlo import corrected_stiffness
+
+EXAMPLE_NAMES = ("macro_array", "ti_array_2x3", "grasper_jaw_10mm")
+
+
+def _plan(name: str):
+    return load_design(EXAMPLES / name / f"{name}.toml")
+
+
+@pytest.mark.parametrize("name", EXAMPLE_NAMES)
+def test_every_element_carries_the_gauge_its_readout_names(name):
+    plan = _plan(name)
+    chain = readout_chain(plan)
+    for slot in plan.slots:
+        g = slot.geometry
+        assert g.gauge is not None and g.bare().gauge is None and g.bare().bare() == g.bare()
+        assert (g.gauge.grid_length_mm, g.gauge.grid_width_mm, g.gauge.height_mm,
+                g.gauge.modulus_MPa) == (chain.grid_length_mm, chain.grid_width_mm,
+                                         chain.grid_height_mm, chain.gauge_backing_modulus_MPa)
+        assert layer_of(g) == chain_layer(g, chain)
+        layer = layer_of(g)
+        assert layer.x0_mm < layer.grid_x0_mm < g.hinge_x_mm < layer.grid_x1_mm < layer.x1_mm
+        assert layer.width_mm <= g.sheet_thickness_mm
+
+
+def test_a_design_whose_glue_line_is_thicker_gives_its_elements_a_taller_stack_and_a_stiffer_k():
+    base = load_design()
+    thick = plan_from_dict(with_overrides(base.raw, {"readout.adhesive_thickness_mm": 0.05}))
+    g0, g1 = base.element(1).geometry, thick.element(1).geometry
+    assert g1.gauge.height_mm > g0.gauge.height_mm
+    assert g1.bare() == g0.bare()  # the element as cut is the same
+    k0, k1 = (estimate("closed-form", g, base.material).stiffness_N_per_mm for g in (g0, g1))
+    assert k1 > k0
+
+
+@pytest.mark.parametrize("name", EXAMPLE_NAMES)
+def test_each_level_raises_k_and_the_closed_and_beam_terms_hold_against_the_meshed_layer(name):
+    """The closed form's and the beam's layer terms against fem2d with the layer meshed
+    (whose rise matches fem3d's to 2 %, slow test below): within the error each states."""
+    plan = _plan(name)
+    m = plan.material
+    for g in plan.distinct_elements.values():
+        rises = {model: gauge_k_rise(model, g, m) for model in ("closed-form", "beam", "fem2d")}
+        assert all(r > 0.01 for r in rises.values()), rises
+        fem = rises["fem2d"]
+        assert abs(rises["closed-form"] / fem - 1) <= CLOSED_FORM_LAYER_ERROR_REL, (g, rises)
+        assert abs(rises["beam"] / fem - 1) <= BEAM_LAYER_ERROR_REL, (g, rises)
+        # each level's error estimate carries its layer term's
+        bare = estimate("closed-form", g.bare(), m).error_estimate_rel
+        assert estimate("closed-form", g, m).error_estimate_rel == pytest.approx(
+            bare + CLOSED_FORM_LAYER_ERROR_REL * rises["closed-form"])
+
+
+@pytest.mark.parametrize("name", EXAMPLE_NAMES)
+def test_the_design_search_and_the_ladder_give_one_k_with_the_gauge(name):
+    """The vectorised closed form the design searches and the tolerance studies use, and
+    the ladder's closed-form level, are one number for an element with its gauge."""
+    plan = _plan(name)
+    m = plan.material
+    for g in plan.distinct_elements.values():
+        k = float(corrected_stiffness(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,
+                                      m.youngs_modulus_MPa, g, m.poisson_ratio,
+                                      load_correction()))
+        assert k == pytest.approx(estimate("closed-form", g, m).stiffness_N_per_mm, rel=1e-12)
+        bare = float(corrected_stiffness(g.web_thickness_mm, g.notch_radius_mm,
+                                         g.arm_length_mm, m.youngs_modulus_MPa, g.bare(),
+                                         m.poisson_ratio, load_correction()))
+        assert k > bare
+
+
+def test_a_layer_of_no_stiffness_lifts_the_grid_as_the_transformed_section_says():
+    """With the layer's modulus near nil the meshed grid plane reads the face's strain
+    extended linearly through the layer's height: the section's height factor
+    ((t/2 + h) / (t/2)) at the notch, averaged over the grid; the same mesh with the
+    layer's own modulus reads less (the layer stiffens the web)."""
+    from tactcad.mechanics.fem.fem2d import solve_fem2d
+
+    plan = load_design()
+    g, m = plan.element(1).geometry, plan.material
+    layer = layer_of(g)
+    limp = dataclasses.replace(layer, modulus_MPa=layer.modulus_MPa * 1e-6)
+    bonded = solve_fem2d(g.bare(), m, force_N=1.0, layer=layer).grid_strain
+    lifted = solve_fem2d(g.bare(), m, force_N=1.0, layer=limp).grid_strain
+    chain = readout_chain(plan)
+    face = gauge_strain_per_N(g, m, chain, "fem2d")
+    # the face's grid average (fem2d's own, before the width factor) times the lift
+    from tactcad.mechanics.gauge_strain import width_strain_factor
+
+    surface = face["surface"] / width_strain_factor(g.bare(), m, chain.grid_width_mm).factor
+    t, h = g.web_thickness_mm, layer.height_mm
+    assert lifted / surface == pytest.approx((t / 2 + h) / (t / 2), rel=0.05)
+    assert abs(bonded) < abs(lifted)
+
+
+def test_the_modal_fem_levels_mesh_the_layer_and_give_it_no_mass_of_its_own():
+    """The layer stiffens the element: fem2d's first frequency rises with it; its mass is
+    the gauge installation's added mass, not the layer's cells."""
+    from tactcad.mechanics.fem.fem_modal import solve_element_modes
+
+    plan = load_design()
+    g, m = plan.element(1).geometry, plan.material
+    with_layer = solve_element_modes(g, m, dim=2, modes=1).frequencies_Hz[0]
+    bare = solve_element_modes(g.bare(), m, dim=2, modes=1).frequencies_Hz[0]
+    rise = gauge_k_rise("fem2d", g, m)
+    # f ~ sqrt(K / m): the frequency rises by about half the K rise
+    assert with_layer / bare - 1 == pytest.approx(np.sqrt(1 + rise) - 1, rel=0.2)
+
+
+@pytest.mark.slow  # fem3d with and without the layer on four elements (about 2 min)
+@pytest.mark.parametrize("name,part", [("macro_array", "element_a4mm"),
+                                       ("ti_array_2x3", "element_a19p605mm"),
+                                       ("grasper_jaw_10mm", "element_a2mm"),
+                                       ("grasper_jaw_10mm", "element_a3mm")])
+def test_the_stated_layer_errors_hold_against_fem3d_with_the_layer_meshed(name, part):
+    plan = _plan(name)
+    g, m = plan.distinct_elements[part], plan.material
+    rises = {model: gauge_k_rise(model, g, m) for model in ("closed-form", "beam", "fem2d",
+                                                            "fem3d")}
+    fem3d = rises["fem3d"]
+    print(f"{name} {part}: K rise " + ", ".join(f"{k} {100 * v:.2f} %" for k, v in rises.items()))
+    assert abs(rises["closed-form"] / fem3d - 1) <= CLOSED_FORM_LAYER_ERROR_REL
+    assert abs(rises["beam"] / fem3d - 1) <= BEAM_LAYER_ERROR_REL
+    assert rises["fem2d"] == pytest.approx(fem3d, rel=0.03)
+    # the grid's strain: fem3d's own plane against the closed form's face x read factor
+    chain = readout_chain(plan)
+    fem = gauge_strain_per_N(g, m, chain, "fem3d")
+    cf = gauge_strain_per_N(g, m, chain, "closed-form")
+    assert "meshed" in fem["grid_source"]
+    assert fem["grid"] == pytest.approx(cf["grid"], rel=cf["error_rel"] + 0.05)
