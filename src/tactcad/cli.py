@@ -19,7 +19,7 @@ import sys
 from typing import NoReturn
 
 from tactcad.version import VERSION
-from tactcad.errors import TactcadError
+from tactcad.errors import DesignError, TactcadError
 from tactcad.stopping import (ENDING_SIGNALS, act_on_held_stop, end_child_processes,
                               exit_at_once_on_stop)
 
@@ -74,7 +74,16 @@ class UsageError(TactcadError):
     def __init__(self, parser: argparse.ArgumentParser, message: str):
         self.parser = parser
         self.field, self.value, self.allowed = usage_fields(message)
+        #: every argument the message names as missing or unknown: (name, allowed), in order
+        self.named = named_fields(message)
         super().__init__(message)
+
+    @property
+    def errors(self) -> list[DesignError]:
+        """One refusal per argument named (several only for a line missing or not knowing
+        several): the ``errors`` of the JSON record."""
+        return [DesignError(name, name if allowed == UNKNOWN_ALLOWED else None, allowed)
+                for name, allowed in self.named]
 
 
 #: argparse's "argument --verify: ..." head, its option strings joined by "/".
@@ -109,12 +118,40 @@ def usage_fields(message: str) -> tuple[str | None, str | None, str | None]:
             n = counted["n"]
             return field, None, f"{'1' if n == 'one' else n} value{'' if n == 'one' else 's'} after it"
         return field, None, rest
-    for lead, allowed in (("unrecognized arguments: ", "an option of this command (see --help)"),
-                          ("the following arguments are required: ", "a value")):
+    for lead, allowed in (("unrecognized arguments: ", UNKNOWN_ALLOWED),
+                          ("the following arguments are required: ", MISSING_ALLOWED)):
         if message.startswith(lead):
             first = message[len(lead):].split(", ")[0].split(" ")[0]
             return first, (first if lead.startswith("unrec") else None), allowed
     return None, None, None
+
+
+#: argparse's lists of missing and unknown arguments (tactcad joins the two with "; ").
+_LISTS = (("the following arguments are required: ", ", "), ("unrecognized arguments: ", " "))
+#: What a missing and an unknown argument allow.
+MISSING_ALLOWED, UNKNOWN_ALLOWED = "a value", "an option of this command (see --help)"
+
+
+def named_fields(message: str) -> list[tuple[str, str]]:
+    """(name, allowed) of every argument a "required" or "unrecognized" refusal names, in
+    order (an unknown option's ``=value`` cut off)."""
+    out = []
+    for part in message.split("; "):
+        for (lead, sep), allowed in zip(_LISTS, (MISSING_ALLOWED, UNKNOWN_ALLOWED)):
+            if part.startswith(lead):
+                out += [(w.split("=")[0], allowed) for w in part[len(lead):].split(sep) if w]
+    return out
+
+
+def unknown_options(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
+    """The options of ``argv`` its command's parser does not know (a refusal of a missing
+    argument names them too: argparse stops at the first)."""
+    sub = next((a for a in parser._actions if isinstance(a, argparse._SubParsersAction)), None)
+    if sub is None or not argv or argv[0] not in sub.choices:
+        return []
+    known = sub.choices[argv[0]]._option_string_actions
+    return [w for w in argv[1:] if w.startswith("-") and not re.match(r"^-\d", w)
+            and w != "--" and w.split("=")[0] not in known]
 
 
 class Parser(argparse.ArgumentParser):
@@ -199,7 +236,13 @@ def parse_checked(argv: list[str]) -> argparse.Namespace:
     from tactcad.commands.options import validate_options, warn_repeated
 
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except UsageError as exc:
+        unknown = unknown_options(parser, argv)
+        if not str(exc).startswith(_LISTS[0][0]) or not unknown:
+            raise
+        raise UsageError(exc.parser, f"{exc}; {_LISTS[1][0]}{' '.join(unknown)}") from None
     warn_repeated(parser, args, argv)
     validate_options(parser, args)
     return args

@@ -154,6 +154,22 @@ def test_a_usage_error_in_json_names_its_field_value_and_allowed(capsys, argv, f
     assert err["allowed"].startswith(allowed)
 
 
+def test_a_line_missing_several_arguments_and_holding_an_unknown_one_names_them_all(capsys):
+    """argparse stops at the first kind of fault; the refusal names every missing argument
+    and every option the command does not know, each in the JSON's errors."""
+    assert cli.main(["design", "--jaw", "5", "--bogus", "3", "--kobj-range", "1", "5",
+                     "--json"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    named = {e["field"]: e["allowed"] for e in err["errors"]}
+    assert list(named) == ["--kr-over-km", "--full-scale-force", "--out", "--bogus"]
+    assert named["--bogus"].startswith("an option of this command")
+    assert err["field"] == "--kr-over-km" and "--bogus" in err["message"]
+    # a negative number is a value, not an unknown option; one missing argument alone
+    assert cli.main(["lumped", "--km", "-1", "--json"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert "unrecognized" not in err["message"]
+
+
 @pytest.mark.parametrize("repeat", [["--model", "fem2d", "--model", "beam"],
                                     ["--model=fem2d", "--model", "beam"]])
 def test_an_option_of_one_value_given_twice_takes_the_last_and_says_so(capsys, repeat):
