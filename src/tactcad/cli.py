@@ -74,18 +74,29 @@ class UsageError(TactcadError):
     def __init__(self, parser: argparse.ArgumentParser, message: str):
         self.parser = parser
         self.field, self.value, self.allowed = usage_fields(message)
-        #: every argument the message names as missing or unknown: (name, allowed), in order
-        self.named = named_fields(message)
         super().__init__(message)
 
     @property
     def errors(self) -> list[DesignError]:
-        """One refusal per argument named (several only for a line missing or not knowing
-        several): the ``errors`` of the JSON record."""
-        return [DesignError(name, name if allowed == UNKNOWN_ALLOWED else None, allowed)
-                for name, allowed in self.named]
+        """One refusal per argument the message names (several for a line missing or not
+        knowing several, or holding a bad value and an unknown option): the ``errors`` of
+        the JSON record."""
+        out = []
+        for part in str(self).split("; "):
+            named = named_fields(part)
+            if named:
+                out += [DesignError(name, name if allowed == UNKNOWN_ALLOWED else None, allowed,
+                                    "not an option of this command"
+                                    if allowed == UNKNOWN_ALLOWED else "required")
+                        for name, allowed in named]
+            else:
+                field, value, allowed = usage_fields(part)
+                out.append(DesignError(field or "", value, allowed or part))
+        return out
 
 
+#: argparse's refusal of a required group left out ("one of the arguments --a --b is required").
+_ONE_OF = re.compile(r"^one of the arguments (?P<names>.+) is required$")
 #: argparse's "argument --verify: ..." head, its option strings joined by "/".
 _ARGUMENT = re.compile(r"^argument (?P<names>[^:]+?): (?P<rest>.*)$", re.DOTALL)
 _INVALID_CHOICE = re.compile(r"^invalid choice: (?P<value>.*?) \(choose from (?P<choices>.*)\)$",
@@ -103,6 +114,11 @@ def usage_fields(message: str) -> tuple[str | None, str | None, str | None]:
     """(field, value, allowed) of an argparse refusal: the option (its longest name) or
     positional it names, the value refused and what is allowed, each None where the
     message does not say (argparse 3.11's wording)."""
+    message = message.split("; ")[0]  # the first refusal (tactcad appends unknown options)
+    group = _ONE_OF.match(message)
+    if group is not None:
+        names = group["names"].split()
+        return names[0], None, "one of " + ", ".join(names)
     head = _ARGUMENT.match(message)
     if head is not None:
         field = max(head["names"].split("/"), key=len)
@@ -240,7 +256,7 @@ def parse_checked(argv: list[str]) -> argparse.Namespace:
         args = parser.parse_args(argv)
     except UsageError as exc:
         unknown = unknown_options(parser, argv)
-        if not str(exc).startswith(_LISTS[0][0]) or not unknown:
+        if not unknown or _LISTS[1][0] in str(exc):
             raise
         raise UsageError(exc.parser, f"{exc}; {_LISTS[1][0]}{' '.join(unknown)}") from None
     warn_repeated(parser, args, argv)

@@ -18,6 +18,7 @@ import json
 import math
 import os
 import re
+import shlex
 import tomllib
 from dataclasses import dataclass
 from importlib import resources
@@ -230,6 +231,12 @@ def _check_target(folder: Path, names: list[str], force: bool, option: str = "DI
     if clashes and not force:
         raise DesignError(option, str(folder), "a folder without the project's files, or --force",
                           f"it has {', '.join(sorted(clashes))} already")
+    others = sorted(p.name for p in (designs_in(folder) + die_designs_in(folder)
+                                     if folder.is_dir() else []) if p.name not in names)
+    if others:  # two design files: every command without --design would refuse the folder
+        raise DesignError(option, str(folder), "a folder without another design file",
+                          f"it holds {', '.join(others)}; a project folder holds one design "
+                          "(move it away, or choose another folder)")
 
 
 def _named_files(plan: Plan) -> dict[str, str]:
@@ -412,7 +419,7 @@ def project_design_name(folder_name: str) -> str | None:
     or None when the folder's name is no design name (:data:`NAME_PATTERN`)."""
     from tactcad.vocabulary.schema import NAME_PATTERN
 
-    name = folder_name.replace("-", "_")
+    name = folder_name.removesuffix(".toml").replace("-", "_")
     return name if re.fullmatch(NAME_PATTERN, name) else None
 
 
@@ -566,9 +573,26 @@ def default_design(folder: str | Path = ".") -> Path:
     if len(found) > 1:
         raise DesignError("--design", None, "one of " + ", ".join(p.name for p in found),
                           f"{len(found)} design files in {Path(folder).resolve().name or '/'}")
-    if not found and (export := export_in(folder)) is not None:
-        raise _not_in_an_export(Path(folder), *export)
+    if not found:
+        for where in _export_folders(Path(folder)):
+            if (export := export_in(where)) is not None:
+                raise _not_in_an_export(Path(folder), where, *export)
     return found[0] if found else DEFAULT_DESIGN
+
+
+#: How far up from the working folder an export is looked for (``exports/step`` is two).
+EXPORT_DEPTH = 3
+
+
+def _export_folders(folder: Path) -> list[Path]:
+    # the working folder and its parents up to EXPORT_DEPTH, stopping at a project folder
+    out, here = [], folder.resolve()
+    for _ in range(EXPORT_DEPTH + 1):
+        out.append(here)
+        if here.parent == here or designs_in(here.parent) or die_designs_in(here.parent):
+            break
+        here = here.parent
+    return out
 
 
 def export_in(folder: str | Path) -> tuple[str, str] | None:
@@ -589,13 +613,15 @@ def export_in(folder: str | Path) -> tuple[str, str] | None:
     return None
 
 
-def _not_in_an_export(folder: Path, record: str, source: str) -> DesignError:
+def _not_in_an_export(folder: Path, export: Path, record: str, source: str) -> DesignError:
     # a command run among an export's files must not quietly work on the shipped example
-    beside = folder / ".." / source
-    where = (f"--design ../{source}" if source and beside.is_file()
+    design = next((p / source for p in export.parents[:EXPORT_DEPTH]
+                   if source and (p / source).is_file()), None)
+    where = (f"--design {shlex.quote(os.path.relpath(design, folder))}" if design is not None
              else f"--design PATH/{source}" if source else "--design FILE")
+    inside = "" if export == folder.resolve() else f", and this folder lies inside it"
     return DesignError("--design", None, f"a design file ({where})",
-                       f"{folder.resolve().name or '/'} holds an export ({record}), not a "
-                       f"design: run the command in its project's folder or name the design",
+                       f"{export.name or '/'} holds an export ({record}), not a design"
+                       f"{inside}: run the command in its project's folder or name the design",
                        alternatives=[{"option": where, "words": "the design this export "
                                                                  "was made from"}])

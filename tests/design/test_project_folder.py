@@ -412,3 +412,26 @@ def test_a_command_run_among_an_exports_files_names_the_design_not_the_shipped_e
     (exports / "lab.json").unlink(missing_ok=True)
     (exports / "notes.json").write_text('{"files": 3}', encoding="utf-8")
     assert default_design(exports) == DEFAULT_DESIGN
+
+
+def test_a_command_deep_in_an_exports_folder_names_the_design_by_its_relative_path(tmp_path):
+    project = tmp_path / "lab"
+    (project / "exports" / "step").mkdir(parents=True)
+    (project / "lab.toml").write_text("", encoding="utf-8")
+    (project / "exports" / "manifest.json").write_text(json.dumps(
+        {"design": {"name": "lab", "source": "lab.toml"}, "files": {}}), encoding="utf-8")
+    with pytest.raises(DesignError) as caught:
+        default_design(project / "exports" / "step")
+    assert caught.value.alternatives[0]["option"] == "--design ../../lab.toml"
+    assert "lies inside it" in caught.value.why
+
+
+def test_a_new_project_is_not_written_beside_another_design_file(tmp_path):
+    folder = tmp_path / "twod"
+    folder.mkdir()
+    shutil.copy(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml", folder / "old.toml")
+    with pytest.raises(DesignError, match="old.toml"):
+        new_project(folder)
+    assert sorted(p.name for p in folder.iterdir()) == ["old.toml"]
+    made = new_project(tmp_path / "x.toml")  # a folder named like a file: no x.toml.toml
+    assert made.design.name == "x.toml"

@@ -149,3 +149,16 @@ def test_the_stated_layer_errors_hold_against_fem3d_with_the_layer_meshed(name, 
     cf = gauge_strain_per_N(g, m, chain, "closed-form")
     assert "meshed" in fem["grid_source"]
     assert fem["grid"] == pytest.approx(cf["grid"], rel=cf["error_rel"] + 0.05)
+
+
+@pytest.mark.parametrize("stack", [{"readout.gauge_backing_modulus_MPa": 0.0},
+                                   {"readout.gauge_backing_thickness_mm": 0.0,
+                                    "readout.adhesive_thickness_mm": 0.0}])
+def test_a_gauge_stack_of_no_modulus_or_no_height_leaves_the_element_bare(stack):
+    """The file may state 0 for either (the ranges allow it): no layer, K as cut, no crash."""
+    base = load_design()
+    plan = plan_from_dict(with_overrides(base.raw, stack))
+    g = plan.element(1).geometry
+    assert g.gauge is None
+    assert estimate("closed-form", g, plan.material).stiffness_N_per_mm == pytest.approx(
+        estimate("closed-form", base.element(1).geometry.bare(), base.material).stiffness_N_per_mm)

@@ -208,10 +208,14 @@ def test_audit_flags_a_disagreeing_element(plan):
 
 
 def _ladder_k_eps(plan):
+    """{element: (K, the grid's strain per newton, signed)} at the closed form."""
     from tactcad.mechanics import ladder
+    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
 
-    return {s.number: (r.stiffness_N_per_mm, r.gauge_strain_per_N)
-            for s in plan.slots for r in [ladder.estimate("closed-form", s.geometry, plan.material)]}
+    chain = readout_chain(plan)
+    return {s.number: (ladder.estimate("closed-form", s.geometry, plan.material).stiffness_N_per_mm,
+                       gauge_strain_per_N(s.geometry, plan.material, chain, "closed-form")["grid"])
+            for s in plan.slots}
 
 
 def test_table1_audit_flags_the_4mm_twins_with_their_ratio(plan):

@@ -332,3 +332,21 @@ def test_the_bonded_layer_raises_k_by_less_than_it_stiffens_the_web():
     assert all(r["stiffness_N_per_mm"] == pytest.approx(estimate(
         report.model, plan.element(r["element"]).geometry, m).stiffness_N_per_mm)
         for r in report.records)
+
+
+def test_readout_and_calibrate_fit_one_gain_of_the_grids_strain_through_table1():
+    """One quantity, one number: the gain through Table 1's signals at each element's
+    as-built web is the read-out's (its V per unit strain of the grid's strain) and
+    `calibrate`'s audit's, and both read the grid's strain, compressive over the web."""
+    from tactcad.paper import calibration_audit as ca
+
+    from tactcad.paper.table1 import readout_table1
+
+    plan = load_design()
+    report = _report(plan)
+    t = readout_table1(report.records, report.chain, plan, "closed-form")
+    audit = ca.audit(plan, ca.from_table1())
+    assert audit["gauge_gain_V_per_strain"] > 0
+    assert t["fitted_volts_per_strain_as_built"] == pytest.approx(
+        audit["gauge_gain_V_per_strain"], rel=1e-4)
+    assert all(r["gauge_strain_per_N"] < 0 for r in audit["elements"])

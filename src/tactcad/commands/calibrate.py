@@ -94,8 +94,8 @@ def register(subparsers) -> None:
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for the as-built web and gauge strain (default closed-form)")
     p.add_argument("--gain", type=float, default=None, metavar="V_PER_STRAIN",
-                   help="gauge gain of the simulated rig (V per unit strain of the peak strain); "
-                        "default: the design's [readout] chain on the grid-averaged strain, "
+                   help="gauge gain of the simulated rig (V per unit strain of the grid's "
+                        "strain, as the audit fits G); default: the design's [readout] chain's, "
                         "as tactcad readout")
     p.add_argument("--noise-force", type=number(0, 100, "N"), default=None, metavar="N",
                    help="force noise of the simulated rig (N, one sigma; default: the "

@@ -103,7 +103,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--material", metavar="GRADE", type=material_grade_name, default=None,
                    help="material grade of the library (default: the base design's material)")
     p.add_argument("--process", choices=process_choices(), default=None,
-                   help="the cut process of the elements (the registry's: tactcad processes; "
+                   help="the cut process of the elements (%(choices)s: the process registry's, each "
+                        "with its rules in the documentation's Processes page; "
                         "default: the base design's); the sheet is then searched over the "
                         "stock that process cuts a flexure from, and every web, hole and slot "
                         "held to its rules (element.process; with --jaw, the comb's rows: "

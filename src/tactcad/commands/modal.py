@@ -29,7 +29,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "first; default %(default)s)")
     p.add_argument("--bare", action="store_true",
                    help="leave out the gauge installation's mass (gauge, adhesive, lead, "
-                        "terminals; counted by default at their places)")
+                        "terminals; counted by default at their places); the stiffness stays "
+                        "the element's with its bonded gauge")
     p.add_argument("--tip-mass-mg", type=float, default=0.0, metavar="MG",
                    help="a further mass at the contact centre (mg; a tip cover, a pad), "
                         "0 ... 10000 (default 0)")
@@ -104,7 +105,8 @@ def run_modal(args: argparse.Namespace) -> int:
           + ("" if "out-of-plane" in families else
              ", fem3d adds the out-of-plane ones" if args.model != "closed-form" else
              "; the first out-of-plane one estimated between its bounds") + "; "
-          + ("bare element" if args.bare else "with the gauge installation's mass")
+          + ("without the gauge installation's mass (its glue line and carrier still in K)"
+             if args.bare else "with the gauge installation's mass")
           + (f" and {args.tip_mass_mg:g} mg at the tip" if args.tip_mass_mg else "") + ")")
     for rec in records:
         els = ", ".join(str(n) for n in rec["elements"])

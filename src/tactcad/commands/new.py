@@ -53,6 +53,8 @@ def run(args: argparse.Namespace) -> int:
     for rel in made.files:
         print(f"  {rel}")
     design = made.design.name
-    print(f"next: cd {shlex.quote(str(made.folder))} && tactcad export --design "
+    folder = str(made.folder)
+    folder = f"./{folder}" if folder.startswith("-") else folder  # not an option of cd
+    print(f"next: cd {shlex.quote(folder)} && tactcad export --design "
           f"{shlex.quote(design)} --out exports")
     return 0

@@ -108,7 +108,7 @@ def render(report) -> str:
              "'read'; the layer stiffens the web by 'stiff.' and raises K by "
              + _layer_k_text(report) + f" ({how}); the K below carries it, as the "
              "calibration measures K with the gauge bonded",
-             "| element | role | K N/mm | strain/N (face) | error | read | stiff. | "
+             "| element | role | K N/mm | strain/N (face) | its error | read | stiff. | "
              "strain/N (grid) | face grid/peak | K_v/K V/N | K_v V/mm | force res. N | "
              "K_obj res. |",
              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
@@ -149,7 +149,10 @@ def render(report) -> str:
                      f"{_g(t['fitted_gain_at_assumed_excitation'], '.0f')} at the assumed excitation")
         lines.append(f"  ratio spread {100 * t['sensitivity_ratio_rel_std']:.0f} % (1 sigma); at each "
                      f"element's as-built web {100 * t['as_built_web_ratio_rel_std']:.0f} %, mean "
-                     f"{t['as_built_web_ratio_mean']:.2f} (gain {t['gain_at_as_built_webs']:.0f})")
+                     f"{t['as_built_web_ratio_mean']:.2f} (gain {t['gain_at_as_built_webs']:.0f}); "
+                     f"one gain through the signals there: "
+                     f"{_g(t['fitted_volts_per_strain_as_built'])} V per unit strain, "
+                     "as `tactcad calibrate` fits it")
     elif report.table1 is not None and report.table1.get("not_applicable"):
         lines.append(f"Table 1 comparison: not applicable ({report.table1['not_applicable']})")
     return "\n".join(lines)

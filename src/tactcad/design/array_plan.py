@@ -904,13 +904,16 @@ def with_gauges(plan: Plan) -> Plan:
     """``plan`` with each element's bonded gauge (:class:`~tactcad.partlib.array.element.
     GaugeStack`: the read-out's grid, its height over the face and the installation's
     modulus, :func:`tactcad.design.readout_section.readout_of`): every element is read by
-    one, and the stiffness it has in use is with it."""
+    one, and the stiffness it has in use is with it. A stack of no height or no modulus
+    (the file may state either 0) is no layer: the elements stay bare."""
     from tactcad.design.readout_section import readout_of
     from tactcad.partlib.array.element import GaugeStack
 
     chain = readout_of(plan.raw, plan.strength.gauge)
-    stack = GaugeStack(chain.grid_length_mm, chain.grid_width_mm, chain.grid_height_mm,
-                       chain.gauge_backing_modulus_MPa)
+    stack = None
+    if chain.grid_height_mm > 0 and chain.gauge_backing_modulus_MPa > 0:
+        stack = GaugeStack(chain.grid_length_mm, chain.grid_width_mm, chain.grid_height_mm,
+                           chain.gauge_backing_modulus_MPa)
     return dataclasses.replace(plan, slots=tuple(
         dataclasses.replace(s, geometry=dataclasses.replace(s.geometry, gauge=stack))
         for s in plan.slots))

@@ -38,10 +38,11 @@ from tactcad.mechanics import calibration as cal
 from tactcad.paper import data as paper_data
 from tactcad.paper.calibration_table1 import table1_kv_over_k_check
 
-#: Gauge gain of the simulated rig (V per unit strain): quarter bridge at 2.5 V
-#: excitation, gauge factor 2.0 and an amplifier gain of 96 give 120 V per unit
-#: strain; negative as Table 1's K_v (assumption; the paper gives no figure).
-DEFAULT_GAUGE_GAIN_V_PER_STRAIN = -120.0
+#: Gauge gain of the simulated rig (V per unit strain of the grid's strain): quarter
+#: bridge at 2.5 V excitation, gauge factor 2.0 and an amplifier gain of 96 give 120 V per
+#: unit strain; the grid over the web is compressed, so K_v is negative, as Table 1's
+#: (assumption; the paper gives no figure).
+DEFAULT_GAUGE_GAIN_V_PER_STRAIN = 120.0
 #: Relative disagreement of signal and force data taken as a flag: gauge factor
 #: (±1 %), gauge position on a 0.25 mm web and bonding make ±25 % plausible.
 DEFAULT_GAIN_TOLERANCE = 0.25
@@ -111,6 +112,19 @@ def _at_web(model: str, g, material, web_mm: float):
         return ladder.estimate(model, replace(g, web_thickness_mm=float(web_mm)), material)
 
 
+def _grid_at_web(plan, model: str, g, web_mm: float) -> float:
+    """What the design's grid reads per newton (1/N, signed: the gauge over the web is
+    compressed) on ``g`` with the web ``web_mm``: the read-out's own strain
+    (:func:`tactcad.mechanics.readout_chain.gauge_strain_per_N`), so the gain fitted to it
+    is the read-out chain's V per unit strain."""
+    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the webs searched leave the fitted ranges on purpose
+        return float(gauge_strain_per_N(replace(g, web_thickness_mm=float(web_mm)), plan.material,
+                                        readout_chain(plan), model)["grid"])
+
+
 def as_built_web(g, material, k_target: float, model: str = "closed-form") -> float | None:
     """Web thickness (mm) at which ``model`` gives stiffness ``k_target`` (N/mm), other dimensions nominal.
 
@@ -124,8 +138,9 @@ def as_built_web(g, material, k_target: float, model: str = "closed-form") -> fl
     return float(brentq(f, lo, hi, xtol=1e-6))
 
 
-def _signal_web(g, material, signal_per_N: float, gain: float, model: str) -> float | None:
-    """Web at which the predicted signal per newton G ε(t) equals the measured S = K_v/K.
+def _signal_web(plan, g, signal_per_N: float, gain: float, model: str) -> float | None:
+    """Web at which the predicted signal per newton G ε(t) equals the measured S = K_v/K,
+    ε the grid's strain (:func:`_grid_at_web`).
 
     S is read against the force sensor directly, so unlike K and K_v it does
     not pass through the series-spring correction; ε falls as 1/t², so the
@@ -133,7 +148,7 @@ def _signal_web(g, material, signal_per_N: float, gain: float, model: str) -> fl
     """
     lo, hi = WEB_SEARCH_MM
     def f(t):
-        return gain * _at_web(model, g, material, t).gauge_strain_per_N - signal_per_N
+        return gain * _grid_at_web(plan, model, g, t) - signal_per_N
     if f(lo) * f(hi) > 0:
         return None
     return float(brentq(f, lo, hi, xtol=1e-6))
@@ -160,7 +175,8 @@ def simulate_design_calibration(plan, model: str = "closed-form",
     ``gauge_gain_V_per_strain``, G and ε are the design's read-out chain's
     (:func:`tactcad.mechanics.readout_chain.readout_chain`: G V_ex GF / 4 on the
     grid-averaged strain), so each element's V/N is ``tactcad readout``'s;
-    with one, ε is the peak strain at the hinge. 25 um steps to
+    with one, G is that gain on the same grid strain (the audit's G reads it back). 25 um
+    steps to
     150 um (with ``full_scale_force_N``: six equal steps up to the Z travel at
     which the element carries that force), three runs, Gaussian noise on
     force and signal; the force gauge in series has stiffness
@@ -178,7 +194,8 @@ def simulate_design_calibration(plan, model: str = "closed-form",
             np.isfinite(gauge_gain_V_per_strain) and gauge_gain_V_per_strain != 0):
         raise cal.CalibrationError(
             f"gauge_gain_V_per_strain = {gauge_gain_V_per_strain!r}: allowed a finite value != 0")
-    chain = readout_chain(plan) if gauge_gain_V_per_strain is None else None
+    chain = readout_chain(plan)
+    gain = chain.volts_per_strain if gauge_gain_V_per_strain is None else gauge_gain_V_per_strain
     rng = np.random.default_rng(seed)
     out = {}
     cache = {}
@@ -187,11 +204,9 @@ def simulate_design_calibration(plan, model: str = "closed-form",
         if key not in cache:
             cache[key] = _at_web(model, slot.geometry, plan.material, slot.geometry.web_thickness_mm)
         r = cache[key]
-        if chain is None:
-            k_v = gauge_gain_V_per_strain * r.gauge_strain_per_N * r.stiffness_N_per_mm
-        else:  # the design's read-out: the volts per newton tactcad readout reports
-            eps = gauge_strain_per_N(slot.geometry, plan.material, chain, model)
-            k_v = chain.volts_per_strain * eps["grid"] * r.stiffness_N_per_mm
+        # the grid's strain, as the read-out reports its volts per newton
+        eps = gauge_strain_per_N(slot.geometry, plan.material, chain, model)
+        k_v = gain * eps["grid"] * r.stiffness_N_per_mm
         steps = {}
         if full_scale_force_N is not None:  # Z travel (um) at which the element carries F
             z_max = full_scale_force_N / cal.apparent_stiffness(
@@ -253,7 +268,7 @@ def audit(plan, calibrations: list[ElementCalibration], model: str = "closed-for
     for c in calibrations:
         g = slots[c.element].geometry
         web = as_built_web(g, plan.material, c.K_N_per_mm, model)
-        eps = _at_web(model, g, plan.material, web).gauge_strain_per_N if web else None
+        eps = _grid_at_web(plan, model, g, web) if web else None
         amp = cal.series_error_amplification(c.K_N_per_mm, k_sensor)
         records.append({
             "element": c.element, "part": g.part_name, "arm_length_mm": g.arm_length_mm,
@@ -318,7 +333,7 @@ def _signal_gain(records, flags, tolerance, plan, model, slots) -> float | None:
         r["gain_leave_one_out_V_per_strain"] = g_loo
         r["signal_ratio"] = ratio
         geom = slots[r["element"]].geometry
-        web_sig = _signal_web(geom, plan.material, r["signal_per_N_V_per_N"], g_loo, model)
+        web_sig = _signal_web(plan, geom, r["signal_per_N_V_per_N"], g_loo, model)
         r["web_implied_by_signal_mm"] = web_sig
         r["K_implied_by_signal_N_per_mm"] = (
             None if web_sig is None else _at_web(model, geom, plan.material, web_sig).stiffness_N_per_mm)

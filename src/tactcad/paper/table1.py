@@ -152,7 +152,10 @@ def require_table1(plan: Plan, option: str = "--design") -> None:
     why = table1_not_applicable(plan)
     if why is not None:
         raise DesignError(option, Path(plan.source).name,
-                          "a design that cites the paper and can reproduce its Table 1", why)
+                          "a design that cites the paper and can reproduce its Table 1", why,
+                          alternatives=[{"option": "tactcad new paper --example macro_array",
+                                         "words": "the paper's 2 x 5 array as a project of "
+                                                  "its own; run table1 in it"}])
 
 
 def as_built_webs(plan: Plan) -> list[dict]:
@@ -236,7 +239,7 @@ def readout_table1(records: list[dict], chain: ReadoutChain, plan: Plan,
 
     by_element = {r.element: r for r in table1()}
     ratios = []
-    num = den = 0.0
+    num = den = num_built = den_built = 0.0
     for rec in records:
         row = by_element.get(rec["element"])
         if row is not None and abs(row.flexing_arm_length_mm - rec["arm_length_mm"]) > 1e-9:
@@ -265,10 +268,14 @@ def readout_table1(records: list[dict], chain: ReadoutChain, plan: Plan,
         rec["table1_as_built_web_mm"] = web
         rec["table1_sensitivity_ratio_as_built_web"] = row.K_v_over_K_V_per_N / s_built
         as_built.append(rec["table1_sensitivity_ratio_as_built_web"])
+        e_built = s_built / chain.volts_per_strain  # S = K_v / K, as calibrate reads Table 1
+        num_built += e_built * row.K_v_V_per_mm / row.stiffness_N_per_mm
+        den_built += e_built * e_built
         e = rec["gauge_strain_per_N"]
         num += e * row.K_v_over_K_V_per_N
         den += e * e
     fitted = num / den if den else None
+    fitted_built = num_built / den_built if den_built else None
     if not ratios:  # the comparison does not apply: said in one line, the sensor's answers stand
         return {"elements": 0, "not_applicable": "; ".join(unreachable) or
                 "no element of the design has a Table 1 element's arm"}
@@ -279,6 +286,8 @@ def readout_table1(records: list[dict], chain: ReadoutChain, plan: Plan,
             "as_built_web_ratio_mean": float(np.mean(as_built)),
             "as_built_web_ratio_rel_std": rel_std(as_built),
             "gain_at_as_built_webs": chain.amplifier_gain * float(np.mean(as_built)),
+            # one gain through the signals at the as-built webs: `tactcad calibrate`'s G
+            "fitted_volts_per_strain_as_built": fitted_built,
             "fitted_volts_per_strain": fitted,
             "assumed_volts_per_strain": chain.volts_per_strain,
             "fitted_gain_at_assumed_excitation": (fitted / (chain.excitation_V * chain.gauge_factor
