@@ -68,13 +68,16 @@ def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d"
 
 
 def _fem2d_peaks(g: ElementGeometry, material: Material, web_divisions: float, levels: int):
-    """(solves without their fields, peak stresses) of the plane-stress mesh sequence."""
+    """(solves without their fields, peak stresses) of the plane-stress mesh sequence, the
+    element's bonded gauge meshed with it as its stiffness level meshes it."""
+    from tactcad.mechanics.bonded_layer import layer_of
+
     region = fem_region(g)
     peaks, sols = [], []
     with single_threaded_blas():
         for s in size_factors(levels, REFINEMENT_RATIO):
             sol = solve_fem2d(g, material, size_factor=s, region=region, keep_field=True,
-                              web_divisions=web_divisions)
+                              web_divisions=web_divisions, layer=layer_of(g))
             peaks.append(peak_notch_stress(sol.field, g))
             sols.append(replace(sol, field=None))  # frees the mesh and basis
     return tuple(sols), tuple(peaks)

@@ -130,6 +130,9 @@ class DisplacementField:
     plane: str | None
     force_N: float
     sym_plane_z: float | None = None
+    #: the element's cells (bool per cell) where a bonded layer was meshed with it: the
+    #: stresses are the element's, of ``lam`` and ``mu`` (None: every cell)
+    body_cells: np.ndarray | None = None
 
 
 def lame(material: Material, plane: str | None) -> tuple[float, float]:
@@ -656,7 +659,9 @@ def solve_fem2d(g: ElementGeometry, material: Material, *, plane: str = "stress"
         mesh, lam_cells, mu_cells, thickness=b, x_clamp=region.x_clamp,
         contact=(L - w, L, g.tip_top_y_mm), traction_MPa=force_N / (w * b),
         gauge_vertex=rm.gauge_vertex)
-    field = DisplacementField(sb, u, lam, mu, plane, force_N) if keep_field else None
+    body = None if rm.layer_cells is None else ~rm.layer_cells
+    field = DisplacementField(sb, u, lam, mu, plane, force_N, body_cells=body) \
+        if keep_field else None
     grid = float("nan") if layer is None else grid_plane_strain(rm.p, u, layer)
     return FemSolution(stiffness_N_per_mm=force**2 / compliance,
                        tip_deflection_mm=compliance / force,

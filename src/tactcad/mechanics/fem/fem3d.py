@@ -147,7 +147,9 @@ def solve_fem3d(g: ElementGeometry, material: Material, *, size_factor: float = 
         contact=(L - w, L, g.tip_top_y_mm), traction_MPa=force_N / (w * b),
         gauge_vertex=rm.gauge_vertex, sym_plane_z=b / 2, solver=solver, rtol=PCG_RTOL)
     deflection = compliance / force_h
-    field = DisplacementField(sb, u, lam, mu, None, 2.0 * force_h, b / 2) if keep_field else None
+    body = None if rm.layer_cells is None else ~rm.layer_cells
+    field = DisplacementField(sb, u, lam, mu, None, 2.0 * force_h, b / 2, body_cells=body) \
+        if keep_field else None
     grid = float("nan") if layer is None else grid_plane_strain(rm.p, u, layer)
     return FemSolution(stiffness_N_per_mm=2.0 * force_h / deflection,
                        tip_deflection_mm=deflection, gauge_strain=eps, force_N=2.0 * force_h,

@@ -61,14 +61,17 @@ def cell_vertex_gradients(field: DisplacementField, cells: np.ndarray | None = N
 
 
 def vertex_stress(field: DisplacementField) -> np.ndarray:
-    """Cauchy stress at every mesh vertex, averaged over the cells sharing it.
+    """Cauchy stress at every mesh vertex, averaged over the element's cells sharing it
+    (a bonded layer's cells are left out: their stress is not the element's; a vertex of
+    the layer alone reads 0).
 
     Returns:
         shape (n_vertices, 3, 3), MPa, under the field's force.
     """
     mesh = field.basis.mesh
     dim = mesh.dim()
-    grad = cell_vertex_gradients(field)
+    cells = None if field.body_cells is None else np.flatnonzero(field.body_cells)
+    grad = cell_vertex_gradients(field, cells)
     eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
     tr = np.einsum("iiek->ek", eps)
     nv = mesh.p.shape[1]
@@ -78,7 +81,7 @@ def vertex_stress(field: DisplacementField) -> np.ndarray:
         cell_sig[i, i] += field.lam * tr
     if dim == 2 and field.plane == "strain":
         cell_sig[2, 2] = field.lam * tr
-    verts = mesh.t  # (dim + 1, n_cells): vertex of local vertex k in cell e
+    verts = mesh.t if cells is None else mesh.t[:, cells]  # vertex of local vertex k in cell e
     out = np.zeros((nv, 3, 3))
     count = np.bincount(verts.ravel(), minlength=nv).astype(float)
     for i in range(3):
@@ -241,7 +244,8 @@ def notch_vertices(p: np.ndarray, g: ElementGeometry) -> np.ndarray:
     the notch centre (the web and the notch's upper half). This keeps out the
     clamp line, whose fixed corners are singular, and the tip-root fillet."""
     xh, R, yc = g.hinge_x_mm, g.notch_radius_mm, g.notch_centre_y_mm
-    return (np.abs(p[0] - xh) <= R + 1e-9) & (p[1] >= yc - 1e-9)
+    return ((np.abs(p[0] - xh) <= R + 1e-9) & (p[1] >= yc - 1e-9)
+            & (p[1] <= g.base_height_mm + 1e-9))  # not a bonded layer's above the face
 
 
 def peak_notch_stress(field: DisplacementField, g: ElementGeometry) -> PeakStress:
