@@ -231,10 +231,10 @@ def run_command(argv: list[str] | None) -> int:
                            else contextlib.nullcontext()):
         code = dispatch(argv, as_json)
     # the design a run worked on heads its stderr; an error stays one line
-    print_heads(echo=not (as_json or quiet) and code in (0, 1))
+    heads = print_heads(echo=not (as_json or quiet) and code in (0, 1))
     if as_json:
         text = captured.getvalue()
-        merged = json_with_warnings(text, notes.lines)
+        merged = json_with_warnings(text, notes.lines, heads if code in (0, 1) else [])
         sys.stdout.write(text if merged is None else merged + "\n")
         if merged is None and not quiet:
             for line in notes.lines:

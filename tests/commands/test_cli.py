@@ -459,3 +459,18 @@ def test_a_stop_before_the_watch_has_begun_is_its_normal_end(capsys):
     assert capsys.readouterr().err == "watch: stopped\n"
     assert report_interrupt(KeyboardInterrupt(), False, "export") == 130
     assert "interrupted" in capsys.readouterr().err
+
+
+def test_json_says_when_it_worked_on_the_shipped_example(tmp_path):
+    """Text output heads stderr with the shipped example's name; --json carries the same
+    line as a notice, so a script does not read the paper's array as its own."""
+    from conftest import run_cli
+
+    r = run_cli("stiffness", "--element", "1", "--json", cwd=tmp_path)
+    assert r.returncode == 0 and r.stderr == ""
+    notices = json.loads(r.stdout)["notices"]
+    assert len(notices) == 1 and "shipped example macro_array" in notices[0]
+    (tmp_path / "p").mkdir()
+    assert run_cli("new", str(tmp_path / "p" / "q"), cwd=tmp_path).returncode == 0
+    own = run_cli("stiffness", "--element", "1", "--json", cwd=tmp_path / "p" / "q")
+    assert "notices" not in json.loads(own.stdout)

@@ -30,12 +30,14 @@ def announce(text: str) -> None:
         _HEADS.append(text)
 
 
-def print_heads(echo: bool = True) -> None:
-    """Print (when ``echo``) and forget the announced heads."""
+def print_heads(echo: bool = True) -> list[str]:
+    """Print (when ``echo``) and forget the announced heads; returns them (for ``--json``,
+    whose object carries them as ``notices``)."""
     heads = list(_HEADS)
     _HEADS.clear()
     for text in heads if echo else ():
         print(f"tactcad: {text}", file=sys.stderr, flush=True)
+    return heads
 
 
 def one_line(message: object) -> str:
@@ -96,10 +98,11 @@ class WarningLines:
                 self.close_folds()
 
 
-def json_with_warnings(text: str, lines: list[str]) -> str | None:
+def json_with_warnings(text: str, lines: list[str], notices: list[str] = ()) -> str | None:
     """The JSON object ``text`` with ``"warnings": lines`` added (joined to a
-    ``warnings`` list it has, NaN written as null); None when ``text`` is not one JSON object (a
-    list keeps its shape, and its warnings go to stderr)."""
+    ``warnings`` list it has, NaN written as null) and the run's heads as ``"notices"``
+    where it has any (such as the shipped example it worked on); None when ``text`` is not
+    one JSON object (a list keeps its shape, and its warnings go to stderr)."""
     from tactcad.commands.finite_json import finite
 
     try:
@@ -115,6 +118,8 @@ def json_with_warnings(text: str, lines: list[str]) -> str | None:
         obj["warnings"] = own + [w for w in lines if w not in own]
     else:
         return None
+    if notices:
+        obj["notices"] = list(notices)
     second = text.lstrip().split("\n", 2)[1:2]
     indent = len(second[0]) - len(second[0].lstrip(" ")) if second else 2
     return json.dumps(finite(obj), indent=indent or None, allow_nan=False)
