@@ -588,13 +588,14 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
 def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
                     envelope_of: Callable | None) -> tuple[int, float | None] | None:
     """The most columns below ``columns`` whose comb counts in ``room``: (columns, None);
-    else the most whose comb carries some smaller force, with that force (N, the
-    candidates' best rating less 1 %); None when no count below ``columns`` carries any.
-    Asked when no sheet's comb of ``columns`` has a plan (the pitch or the arms bind
-    before any force is judged)."""
+    else the most whose comb carries some smaller force, with that force (N: the search's
+    frontier from the candidates' best rating, :func:`largest_comb_force`, over the sheets
+    and K_m scales that rated, so that the force pasted designs); None when no count below
+    ``columns`` carries any. Asked when no sheet's comb of ``columns`` has a plan (the
+    pitch or the arms bind before any force is judged)."""
     from tactcad.mechanics.correction import range_warnings_unsaid
 
-    carrying: tuple[int, float] | None = None
+    carrying: tuple[int, float, list] | None = None
     with range_warnings_unsaid():
         for fewer in range(columns - 1, 0, -1):
             rated = []
@@ -604,10 +605,15 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
                                   envelope_of, None)
                     if c.plan is not None and not c.failures:
                         return fewer, None
-                    rated += [c.rated_force_N] if c.rated_force_N else []
+                    rated += [(c.rated_force_N, sheet, scale)] if c.rated_force_N else []
             if rated and carrying is None:
-                carrying = (fewer, max(rated) * 0.99)
-    return carrying
+                best = sorted(rated, reverse=True)
+                carrying = (fewer, best[0][0], [(sheet, scale) for _, sheet, scale in best])
+    if carrying is None:
+        return None
+    fewer, estimate, order = carrying
+    return fewer, largest_comb_force(estimate, lambda force: comb_counts(
+        base, force, fewer, room, targets, grade, envelope_of, order))
 
 
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
