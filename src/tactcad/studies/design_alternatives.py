@@ -236,9 +236,14 @@ def nearest_targets(data: Mapping[str, Any], targets: Targets, correction=None
     shift = nearest_on_scan(shifts, 1.0, lambda c: _feasible(
         data, replace(targets, k_obj_range_N_per_mm=(lo * c, hi * c)), correction))
     if shift is not None:
-        rng = (float(f"{lo * shift:.3g}"), float(f"{hi * shift:.3g}"))
-        if _feasible(data, replace(targets, k_obj_range_N_per_mm=rng), correction):
-            out.append(Alternative("target", "--kobj-range", rng, True, 0.0))
+        # three digits, the nearest first, then rounded away from the asked range (it does
+        # not hold), so that the rounded range stays on the feasible side of the edge
+        away = _round_up if shift > 1.0 else _round_down
+        for rng in ((float(f"{lo * shift:.3g}"), float(f"{hi * shift:.3g}")),
+                    (float(f"{away(lo * shift):.12g}"), float(f"{away(hi * shift):.12g}"))):
+            if _feasible(data, replace(targets, k_obj_range_N_per_mm=rng), correction):
+                out.append(Alternative("target", "--kobj-range", rng, True, 0.0))
+                break
     return out
 
 
