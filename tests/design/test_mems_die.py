@@ -99,7 +99,7 @@ def test_the_masks_read_back_clean_and_equal_the_plan(die, tmp_path):
                                                         if not r.passed]
     names = {r.subject for r in results}
     assert {"device_etch.width", "metal.space", "metal.contact_enclosure", "beams",
-            "resistors"} <= names
+            "resistors", "stops", "cavity_reference.width", "cavity_measuring.width"} <= names
 
 
 def test_the_read_back_finds_a_beam_the_mechanics_did_not_assume(die, tmp_path):
@@ -120,6 +120,63 @@ def test_the_read_back_finds_a_reference_resistor_moved_over_the_window(die, tmp
     monkeypatch.undo()
     resistors = next(r for r in gds_checks(path, die) if r.subject == "resistors")
     assert not resistors.passed and "over the window" in resistors.detail
+
+
+def test_the_read_back_finds_a_row_reaching_over_the_other_rows_cavity(die, tmp_path,
+                                                                        monkeypatch):
+    """Cavities split where the reference beams still run (half their length from the
+    root): those beams lie over the measuring row's deeper cavity, whose floor would not
+    stop them; the read-back names the row."""
+    wrong = die.frame_um + die.reference_length_um / 2
+    monkeypatch.setattr(md.DiePlan, "cavity_split_y_um", property(lambda plan: wrong))
+    path = write_die_gds(die, tmp_path / "die.gds")
+    monkeypatch.undo()
+    stops = next(r for r in gds_checks(path, die) if r.subject == "stops")
+    assert not stops.passed and "reference" in stops.detail
+
+
+def _rated_travel_by_the_series_springs(die, samples: int = 2001) -> tuple[float, float]:
+    """Each post's most travel in use (um) from the unit as springs in series: pressed by D
+    until the reference carries F, D = F / K_r + F / K_obj, the measuring post then goes
+    D K_obj / (K_m + K_obj); the largest over a fine sweep of the K_obj range."""
+    k_obj = np.geomspace(*die.kobj_range_N_per_mm, samples)
+    force = die.full_scale_force_N
+    travel = force / die.k_r_N_per_mm + force / k_obj
+    return 1e3 * force / die.k_r_N_per_mm, 1e3 * float(np.max(
+        travel * k_obj / (die.k_m_N_per_mm + k_obj)))
+
+
+def test_each_rows_cavity_stops_its_beam_between_its_rated_travel_and_its_fracture(die):
+    """The cavity under each row is the depth at which the beam's end (the post's far edge,
+    L + a: Euler-Bernoulli w(x) = F L^2 (3x - L) / (6 EI) beyond the load) meets the floor
+    when the post has gone 1.3 x its rated travel, in the shallowest cavity the +-5 %
+    allows, rounded up to 0.5 um; the travel at the deepest stays below the one at which the
+    root reaches the etched bars' mean strength; verify's row passes on it and fails a
+    cavity too deep or too shallow."""
+    from tactcad.commands.die_views import die_verification
+
+    rated = _rated_travel_by_the_series_springs(die)
+    fracture = {}
+    for beam, travel, depth in zip(die.beams[:: die.columns], rated, die.cavity_depths_um):
+        length, a = beam.length_um, die.post_um / 2
+        end_over_post = (3 * (length + a) - length) / (2 * length)
+        need = 1.3 * travel * end_over_post / 0.95
+        assert need <= depth < need + 0.5 + 1e-9 and (depth / 0.5) == pytest.approx(
+            round(depth / 0.5), abs=1e-9)
+        stiffness = die.k_r_N_per_mm if beam.role == "reference" else die.k_m_N_per_mm
+        fracture[beam.role] = (1e3 * die.full_scale_force_N * 1900.0
+                               / die.stress_MPa_at_rating(beam) / stiffness)
+        assert depth * 1.05 / end_over_post < fracture[beam.role]
+        assert die.rated_tip_um(beam) == pytest.approx(travel, rel=1e-4)
+    stop = {r["requirement"]: r for r in die_verification(die)}["hard_stop"]
+    assert stop["verdict"] == "pass" and stop["margin_rel"] > 0
+    ref = die.beams[0]
+    end = 1 + 0.75 * die.post_um / ref.length_um
+    for depth, verdict in ((fracture["reference"] * end, "fail"),
+                           (rated[0] * end, "fail")):
+        changed = dataclasses.replace(die, cavity_depths_um=(depth, die.cavity_depths_um[1]))
+        row = {r["requirement"]: r for r in die_verification(changed)}["hard_stop"]
+        assert row["verdict"] == verdict, (depth, row["predicted"])
 
 
 def test_a_rule_broken_in_the_layout_is_found_with_where(die, tmp_path, monkeypatch):
@@ -201,8 +258,9 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
 
 def test_the_solid_is_built_from_the_masks_and_the_stack(die, tmp_path):
     """Each layer's volume from the masks' areas and the stack's thicknesses, computed here
-    by hand: the handle and the oxide are the die less the window, the device layer the die
-    less the window plus the beams, the posts square prisms."""
+    by hand: the handle the die less each row's cavity to its depth, the oxide the die less
+    the window, the device layer the die less the window plus the beams, the posts square
+    prisms."""
     from tactcad.export.die_solid import write_die_step
     from tactcad.kernel.step_writer import read_step_summary
 
@@ -212,8 +270,12 @@ def test_the_solid_is_built_from_the_masks_and_the_stack(die, tmp_path):
     frame = (die.die_length_um * die.die_width_um - (x1 - x0) * (y1 - y0)) * mm * mm
     beams = sum(b.width_um * (b.length_um + die.post_um / 2) for b in die.beams) * mm * mm
     posts = len(die.beams) * (die.post_um * mm) ** 2 * die.post_height_um * mm
-    expected = (frame * (s.handle_um + s.box_um) * mm + (frame + beams) * s.device_um * mm
-                + posts)
+    split = (y0 + die.reference_length_um + die.post_um / 2
+             + y1 - die.measuring_length_um - die.post_um / 2) / 2
+    depth_r, depth_m = die.cavity_depths_um
+    cavities = (x1 - x0) * ((split - y0) * depth_r + (y1 - split) * depth_m) * mm ** 3
+    handle = die.die_length_um * die.die_width_um * s.handle_um * mm ** 3 - cavities
+    expected = (handle + frame * s.box_um * mm + (frame + beams) * s.device_um * mm + posts)
     summary = read_step_summary(write_die_step(die, tmp_path / "die.step"))
     assert summary["volume_mm3"] == pytest.approx(expected, rel=1e-6)
     assert summary["bbox_mm"][3:] == pytest.approx(
@@ -328,9 +390,10 @@ def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypat
 
 
 def test_the_traveller_lists_every_mask_in_process_order_with_the_plans_figures(die):
-    """Each mask used once, the implant before the contacts before the metal, the front DRIE
-    before the back DRIE before the release; the stack, the dose and the sheet resistance
-    quoted; the stated parameters marked as assumptions."""
+    """Each mask used once, the handle's cavities before the bond before the implant, the
+    implant before the contacts before the metal, the front DRIE (which frees the beams over
+    the cavities) before the dicing; the stack, the cavities' depths, the dose and the sheet
+    resistance quoted; the stated parameters marked as assumptions."""
     from tactcad.export.traveller import traveller_markdown, traveller_steps
     from tactcad.vocabulary.soi_process import MASK_BY_NAME
 
@@ -338,9 +401,14 @@ def test_the_traveller_lists_every_mask_in_process_order_with_the_plans_figures(
     masks = [s.mask for s in steps if s.mask]
     assert sorted(masks) == sorted(MASK_BY_NAME)  # every mask once (the outline at dicing)
     order = [s.name for s in steps]
-    for a, b in (("implant", "contact"), ("contact", "metal"), ("front DRIE", "back DRIE"),
-                 ("back DRIE", "release"), ("release", "dicing")):
+    for a, b in (("cavity etch, measuring row", "bond and thin"),
+                 ("cavity etch, reference row", "bond and thin"), ("bond and thin", "implant"),
+                 ("implant", "contact"), ("contact", "metal"), ("metal", "front DRIE"),
+                 ("front DRIE", "dicing")):
         assert order.index(a) < order.index(b)
+    by_mask = {s.mask: s.action for s in steps if s.mask}
+    assert f"{die.cavity_depths_um[0]:g} um" in by_mask["cavity_reference"]
+    assert f"{die.cavity_depths_um[1]:g} um" in by_mask["cavity_measuring"]
     text = traveller_markdown(die, 324.0, "mems_die.gds")
     assert f"{die.stack.device_um:g} +-{die.stack.device_tolerance_um:g} um" in text
     assert "324 ohm/sq" in text and "(assumption)" in text and "mems_die.gds" in text
@@ -551,12 +619,12 @@ def test_modal_budget_readout_and_thermal_print_the_dies_own_figures_not_an_arra
         pytest.approx(die_readout(plan)["rows"]["reference"]["force_resolution_N"], rel=1e-12)
     assert shown["thermal"]["sensitivity_tc_per_K"] == pytest.approx(
         die_readout(plan)["sensitivity_tc_per_K"], rel=1e-12)
-    # verify: the die has no stop of its own, and the carrier lies deeper under the tips
-    # than either beam bends before its root reaches the etched bars' mean strength
+    # verify: each row's cavity floor stops its beams past their rated travel and before
+    # their roots reach the etched bars' mean strength
     checked = run_cli("verify", "--json", cwd=tmp_path)
-    assert checked.returncode == 1
+    assert checked.returncode == 0, checked.stdout
     rows = {r["requirement"]: r for r in json.loads(checked.stdout)["matrix"]}
-    assert rows["hard_stop"]["verdict"] == "fail" and rows["kr_over_km"]["verdict"] == "pass"
+    assert rows["hard_stop"]["verdict"] == "pass" and rows["kr_over_km"]["verdict"] == "pass"
     assert rows["full_scale_force_N"]["verdict"] == "undecided"
     assert rows["full_scale_force_N"]["predicted"] == pytest.approx(
         d.die.full_scale_force_N * 1900.0 / max(plan.stress_MPa_at_rating(b)

@@ -1,9 +1,10 @@
 """The die's masks read back with KLayout's own layout engine (``klayout.db``, headless):
 every rule of :func:`tactcad.vocabulary.soi_process.soi_rules` (widths, spaces,
 enclosures) and the read-back of the outlines the mechanics assumed (the beams left in the
-device layer over the handle window equal the plan's beams; the implant equals each beam's
-resistor and its reference, the references off the window; each contact on its resistor
-and under its metal), as :class:`tactcad.checks.check_result.CheckResult` rows.
+device layer over the handle's cavities equal the plan's beams, each row over its own
+cavity, the hard stop the plan sized; the implant equals each beam's resistor and its
+reference, the references off the window; each contact on its resistor and under its
+metal), as :class:`tactcad.checks.check_result.CheckResult` rows.
 
 KLayout's region checks are edge-based (Euclidian metric): ``width_check(d)`` flags a
 part of a shape narrower than d, ``space_check(d)`` two edges of different or the same
@@ -80,8 +81,9 @@ def rule_results(path: Path, plan) -> list[CheckResult]:
 
 def outline_results(path: Path, plan) -> list[CheckResult]:
     """The masks against the plan the mechanics used: the device layer left over the
-    window (window less the front etch) equals the beams the stiffness assumed; every
-    post on its beam; the die's outline the plan's."""
+    window (the cavities less the front etch) equals the beams the stiffness assumed, each
+    row's beams over its own row's cavity (the stop the plan sized); every post on its
+    beam; the die's outline the plan's."""
     import klayout.db as kdb
 
     from tactcad.export.gds_masks import beam_outline
@@ -93,7 +95,8 @@ def outline_results(path: Path, plan) -> list[CheckResult]:
         return kdb.Polygon([kdb.Point(round(x / dbu), round(y / dbu)) for x, y in points])
 
     beams = kdb.Region([poly(beam_outline(plan, b)) for b in plan.beams]).merged()
-    left = (regions["handle_etch"] - regions["device_etch"]).merged()
+    window = (regions["cavity_reference"] + regions["cavity_measuring"]).merged()
+    left = (window - regions["device_etch"]).merged()
     diff = left ^ beams
     out = [CheckResult("gds_outline", "beams", diff.is_empty(),
                        f"{len(plan.beams)} beams in the device layer over the window equal "
@@ -105,7 +108,8 @@ def outline_results(path: Path, plan) -> list[CheckResult]:
     references = kdb.Region([poly(reference_resistor_outline(plan, b)) for b in plan.beams])
     resistors = kdb.Region([poly(resistor_outline(plan, b)) for b in plan.beams]) + references
     drawn = regions["piezo"] ^ resistors.merged()
-    strained = references & regions["handle_etch"]
+    out.append(_rows_over_their_cavities(plan, regions, poly))
+    strained = references & window
     out.append(CheckResult("gds_outline", "resistors", drawn.is_empty() and strained.is_empty(),
                            f"{len(plan.beams)} beam resistors at their roots and their "
                            "references on the frame, off the window, as the read-out assumed"
@@ -128,3 +132,23 @@ def outline_results(path: Path, plan) -> list[CheckResult]:
 def gds_checks(path: Path, plan) -> list[CheckResult]:
     """:func:`rule_results` and :func:`outline_results` of the die GDS at ``path``."""
     return rule_results(path, plan) + outline_results(path, plan)
+
+
+def _rows_over_their_cavities(plan, regions, poly) -> CheckResult:
+    """Each row's beams over its own cavity (mask ``cavity_<role>``), none reaching over
+    the other row's: the cavity's depth is the row's hard stop."""
+    import klayout.db as kdb
+
+    from tactcad.export.gds_masks import beam_outline
+
+    astray = []
+    for role in ("reference", "measuring"):
+        row = kdb.Region([poly(beam_outline(plan, b)) for b in plan.beams if b.role == role])
+        if not (row - regions[f"cavity_{role}"]).is_empty():
+            astray.append(role)
+    depths = ", ".join(f"{role} {d:g} um" for role, d in
+                       zip(("reference", "measuring"), plan.cavity_depths_um))
+    return CheckResult("gds_outline", "stops", not astray,
+                       f"each row's beams over its own cavity ({depths} deep: the rows' hard "
+                       "stops)" if not astray else
+                       f"the {' and '.join(astray)} beams reach beyond their row's cavity")

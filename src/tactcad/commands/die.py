@@ -314,7 +314,9 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
     lines = [f"die {d.name} for the {jaw}: {d.die_length_um:g} x {d.die_width_um:g} x "
              f"{d.thickness_um:g} um, 2 x {d.columns} beams at {d.pitch_um:g} um",
              f"SOI: device {d.stack.device_um:g} um (+-{d.stack.device_tolerance_um:g}), "
-             f"oxide {d.stack.box_um:g} um, handle {d.stack.handle_um:g} um",
+             f"oxide {d.stack.box_um:g} um, handle {d.stack.handle_um:g} um; cavities under "
+             f"the rows (their hard stops) {d.cavity_depths_um[0]:g} um (reference) and "
+             f"{d.cavity_depths_um[1]:g} um (measuring) deep",
              "| row | role | L um | w um | t um | K N/mm | target N/mm | stress at "
              f"{d.full_scale_force_N:g} N MPa | dR/R per N | V/N | force resolution N |",
              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]

@@ -127,10 +127,12 @@ def die_verification(plan) -> list[dict]:
       roots break), else undecided (a mean strength without its Weibull modulus gives no
       failure probability);
     * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band;
-    * ``hard_stop``: whether anything stops a tip before its root breaks: the only thing
-      under a tip is the carrier at the bottom of the handle's window (handle and oxide
-      below the device layer); the verdict fails where the beam reaches the mean strength
-      first (the die has no stop of its own yet).
+    * ``hard_stop``: each row's cavity floor against its beam: the post's travel when the
+      beam's end meets the floor, in the shallowest cavity the depth tolerance allows, past
+      the beam's rated travel (it reads its whole range), and in the deepest below the
+      travel at which its root reaches the mean strength (an overload rests on the floor
+      before the beam breaks); margin: the worse row's fracture travel over its deepest
+      engagement, less one.
     """
     from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, BOSCH_STRENGTH_SOURCE
     from tactcad.studies.verification import KR_OVER_KM_BAND_REL
@@ -142,11 +144,9 @@ def die_verification(plan) -> list[dict]:
         stressed)
     target_ratio = plan.targets[0] / plan.targets[1]
     ratio = plan.k_r_N_per_mm / plan.k_m_N_per_mm
-    gap_um = plan.stack.handle_um + plan.stack.box_um
     fracture_travel_um = {b.role: 1e3 * plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA
                           / plan.stress_MPa_at_rating(b) / stiffness[b.role] for b in rows}
-    first = min(fracture_travel_um, key=fracture_travel_um.get)
-    stops = gap_um < min(fracture_travel_um.values())
+    stop = _stop_row(plan, rows, fracture_travel_um)
     return [
         {"requirement": "full_scale_force_N", "target": plan.full_scale_force_N,
          "predicted": breaking_N, "error_estimate_rel": None,
@@ -161,15 +161,33 @@ def die_verification(plan) -> list[dict]:
          "allowed_margin_rel": -KR_OVER_KM_BAND_REL, "model": "closed-form",
          "verdict": "pass" if ratio / target_ratio - 1.0 >= -KR_OVER_KM_BAND_REL else "fail",
          "binding_words": "each column's reference and measuring beam"},
-        {"requirement": "hard_stop", "target": "engages before the root breaks",
-         "predicted": f"{gap_um:g} um to the carrier; the {first} beam breaks at "
-                      f"{fracture_travel_um[first]:.3g} um",
-         "error_estimate_rel": None, "margin_rel": None, "model": "closed-form",
-         "verdict": "pass" if stops else "fail",
-         "binding_words": "nothing under the tips but the carrier at the window's bottom (the "
-                          "die has no stop of its own: a timed back etch leaving a shelf "
-                          "under each tip would be one)"},
+        stop,
     ]
+
+
+def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
+    """The ``hard_stop`` record of :func:`die_verification`: each row's cavity floor."""
+    from tactcad.design.mems_die import STOP_MULTIPLE
+    from tactcad.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
+
+    words, margins, ok = [], [], True
+    for beam in rows:
+        _, shallow, deep = plan.stop_engagement_um(beam)
+        rated, breaks = plan.rated_tip_um(beam), fracture_travel_um[beam.role]
+        ok = ok and rated < shallow and deep < breaks
+        margins.append(breaks / deep - 1.0)
+        words.append(f"{beam.role}: cavity {plan.cavity_depth_of(beam):g} um, engages at "
+                     f"{shallow:.3g} ... {deep:.3g} um of post travel (rated {rated:.3g} um, "
+                     f"breaks at {breaks:.3g} um)")
+    return {"requirement": "hard_stop",
+            "target": f"engages past the rated travel (at {STOP_MULTIPLE:g} x) and before the "
+                      "root breaks",
+            "predicted": "; ".join(words), "error_estimate_rel": None,
+            "margin_rel": min(margins), "model": "closed-form",
+            "verdict": "pass" if ok else "fail",
+            "binding_words": f"each row's cavity floor under its beams' free ends (the depth "
+                             f"+-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %, the root at the mean "
+                             "strength of etched bars)"}
 
 
 def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:

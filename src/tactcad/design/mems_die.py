@@ -5,9 +5,11 @@ pocket (the paper's lumped model, eq. 1-3, with K_r / K_m about 10).
 
 The die (um; x along the jaw, y across it, the die's lower-left corner at the origin):
 
-* a solid frame around a window the handle is etched away under (the back DRIE,
-  :mod:`tactcad.vocabulary.soi_process`); the window's edges across the die are the beams'
-  roots, so the front-to-back alignment moves every root;
+* a solid frame around a window over two cavities etched into the handle before the wafer
+  is bonded (a cavity SOI wafer, :mod:`tactcad.vocabulary.soi_process`), one under each
+  row; the window's edges across the die are the beams' roots, so the front masks'
+  alignment to the buried cavities moves every root; each cavity's floor is its row's
+  hard stop (:func:`cavity_depth_um`);
 * row 1, the reference beams, clamped at the window's lower edge (y = frame), pointing +y;
   row 2, the measuring beams, clamped at its upper edge, pointing -y; column j of both
   rows at one x: a unit's two tips at one distance from the pivot;
@@ -20,7 +22,8 @@ The die (um; x along the jaw, y across it, the die's lower-left corner at the or
   same implant, unstrained: the two in series are the beam's half bridge, on three bond pads
   behind the beam (completed off the die by two fixed arms), so the implant's TCR cancels
   between them and the zero drifts only by their mismatch;
-* the device layer over the window etched away except the beams (front DRIE).
+* the device layer over the window etched away except the beams (front DRIE): the etch
+  breaks through into the cavities and frees the beams.
 
 Sizing (:func:`die_plan`): the stiffness targets (:class:`tactcad.studies.inverse_design.
 Targets`: K_m = sqrt(K_lo K_hi / X), K_r = X K_m) and the pitch along the die give, for each
@@ -28,7 +31,9 @@ stock device-layer thickness and beam width, L = (E w t^3 / (4 K))^(1/3); of the
 two beams, their posts and the slot between the tips fit across the window, each beam at
 least :data:`SLENDERNESS` times as long as it is wide, the die takes the one with the lowest
 root stress at the rating, 6 F L_m / (w t^2) (the thicker layer on a tie: its +-tolerance
-moves K by 3 dt / t). Every choice is kept with its reason.
+moves K by 3 dt / t). Each row's cavity is as deep as its beam's free end goes at
+:data:`STOP_MULTIPLE` x the beam's rated tip deflection, the cavity's depth tolerance
+taken off. Every choice is kept with its reason.
 
 Units: um for the layout, mm and N/mm for the mechanics' interfaces as named.
 """
@@ -40,7 +45,8 @@ from dataclasses import dataclass, field
 
 from tactcad.errors import DesignError
 from tactcad.vocabulary.crystal import SILICON, SILICON_P_TYPE, in_plane_direction
-from tactcad.vocabulary.soi_process import (BACKSIDE_ALIGNMENT_UM, DEFAULT_BOX_UM,
+from tactcad.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM, CAVITY_DEPTH_SOURCE,
+                                            CAVITY_DEPTH_TOLERANCE_REL, DEFAULT_BOX_UM,
                                             DEFAULT_HANDLE_UM, DEVICE_LAYER_CHOICES_UM,
                                             DEVICE_TOLERANCE_SOURCE, DEVICE_TOLERANCE_UM,
                                             SoiStack, drie_min_width_um)
@@ -93,6 +99,12 @@ BOSCH_STRENGTH_SOURCE = ("IEEJ Trans. Sensors and Micromachines 132(9), 2012, p.
 DEFAULT_COLUMNS, DEFAULT_PITCH_UM, DEFAULT_DIE_NAME = 5, 1000.0, "mems_die"
 #: Beam widths searched (um): from the slot rule's smallest beam to the pitch's widest.
 WIDTH_STEP_UM = 5.0
+#: A row's hard stop, its cavity's floor, engages at this multiple of its beam's rated tip
+#: deflection (the metal combs' rule, :data:`tactcad.studies.comb_design.STOP_MULTIPLE`):
+#: the beam reads its whole range, an overload rests on the floor.
+STOP_MULTIPLE = 1.3
+#: Cavity depths are drawn to this step (um), rounded up.
+CAVITY_STEP_UM = 0.5
 
 
 @dataclass(frozen=True)
@@ -152,12 +164,48 @@ class DiePlan:
     kobj_range_N_per_mm: tuple[float, float] = (0.0, 0.0)
     #: the resistors' boron implant dose (cm^-2; :func:`tactcad.studies.die_doping.chosen_implant_dose`)
     implant_dose_per_cm2: float = IMPLANT_DOSE_PER_CM2
+    #: each row's cavity depth under its beams, the row's hard stop (um): reference, measuring
+    cavity_depths_um: tuple[float, float] = (0.0, 0.0)
 
     @property
     def window_um(self) -> tuple[float, float, float, float]:
-        """The handle window (x0, y0, x1, y1): the beams' roots are its long edges."""
+        """The window over the cavities (x0, y0, x1, y1): the beams' roots are its long
+        edges."""
         return (self.end_um, self.frame_um, self.die_length_um - self.end_um,
                 self.die_width_um - self.frame_um)
+
+    @property
+    def cavity_split_y_um(self) -> float:
+        """Where the reference row's cavity meets the measuring row's (um): midway between
+        the two rows' free ends (each beam reaches the post's far edge)."""
+        ref_end = self.frame_um + self.reference_length_um + self.post_um / 2
+        meas_end = self.die_width_um - self.frame_um - self.measuring_length_um - self.post_um / 2
+        return (ref_end + meas_end) / 2
+
+    @property
+    def cavities_um(self) -> dict[str, tuple[float, float, float, float]]:
+        """Each row's cavity in the handle (x0, y0, x1, y1), by role: the window split at
+        :attr:`cavity_split_y_um`."""
+        x0, y0, x1, y1 = self.window_um
+        split = self.cavity_split_y_um
+        return {"reference": (x0, y0, x1, split), "measuring": (x0, split, x1, y1)}
+
+    def cavity_depth_of(self, beam: Beam) -> float:
+        """The depth of the cavity under ``beam`` (um)."""
+        return self.cavity_depths_um[0 if beam.role == "reference" else 1]
+
+    def rated_tip_um(self, beam: Beam) -> float:
+        """The most ``beam``'s post centre travels in use (um): :func:`rated_tip_deflections_um`."""
+        ref, meas = rated_tip_deflections_um(self.k_r_N_per_mm, self.k_m_N_per_mm,
+                                             self.full_scale_force_N, self.kobj_range_N_per_mm)
+        return ref if beam.role == "reference" else meas
+
+    def stop_engagement_um(self, beam: Beam) -> tuple[float, float, float]:
+        """The post centre's travel when ``beam``'s free end meets its cavity's floor (um):
+        (nominal, shallowest, deepest cavity within its depth tolerance)."""
+        at_post = self.cavity_depth_of(beam) / end_over_post(beam.length_um, self.post_um)
+        tol = CAVITY_DEPTH_TOLERANCE_REL
+        return at_post, at_post * (1 - tol), at_post * (1 + tol)
 
     @property
     def reference_resistor_length_um(self) -> float:
@@ -200,6 +248,8 @@ class DiePlan:
                 "full_scale_force_N": self.full_scale_force_N,
                 "stress_MPa_at_rating": {b.role: self.stress_MPa_at_rating(b)
                                          for b in self.beams[:: self.columns]},
+                "cavity_depths_um": {"reference": self.cavity_depths_um[0],
+                                     "measuring": self.cavity_depths_um[1]},
                 "reasons": dict(self.reasons)}
 
 
@@ -281,7 +331,10 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     root_MPa = _root_MPa(per_N, targets.full_scale_force_N)
     if root_MPa >= BOSCH_MEAN_STRENGTH_MPA:
         raise _past_strength(targets.full_scale_force_N, root_MPa)
-    align = BACKSIDE_ALIGNMENT_UM
+    align = CAVITY_ALIGNMENT_UM
+    rated = rated_tip_deflections_um(k_r, k_m, targets.full_scale_force_N,
+                                     targets.k_obj_range_N_per_mm)
+    depths = (cavity_depth_um(rated[0], l_r, post), cavity_depth_um(rated[1], l_m, post))
     reasons = {
         "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
                      f"and the slot between the tips fit across the {window:g} um window, "
@@ -300,8 +353,18 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         "measuring_length_um": f"K_m = {k_m:.4g} N/mm the same way; K_r / K_m = "
                                f"{targets.kr_over_km:g} gives L_m / L_r = "
                                f"{targets.kr_over_km ** (1 / 3):.4g}",
-        "alignment": f"the back window's +-{align:g} um alignment moves both rows' roots "
-                     f"one way: K_r / K_m by +-{300 * align * (1 / l_r + 1 / l_m):.2g} %",
+        "alignment": f"the front masks' +-{align:g} um alignment to the buried cavities "
+                     f"moves both rows' roots one way: K_r / K_m by "
+                     f"+-{300 * align * (1 / l_r + 1 / l_m):.2g} %",
+        "cavity_depths_um": (
+            f"reference {depths[0]:g} um, measuring {depths[1]:g} um: each row's beam end "
+            f"meets its cavity's floor at {STOP_MULTIPLE:g} x the post's rated travel "
+            f"({rated[0]:.3g} um: the rated force over K_r; {rated[1]:.3g} um: the deepest "
+            "the measuring post goes while its reference reads up to the rated force over "
+            "the K_obj range, eq. 1), the beam's end beyond the post "
+            f"(1 + 3 a / 2L), the depth's -{100 * CAVITY_DEPTH_TOLERANCE_REL:g} % "
+            f"({CAVITY_DEPTH_SOURCE}) taken off, rounded up to {CAVITY_STEP_UM:g} um; the "
+            "air squeezed under the beams is not modelled (a static reading)"),
         "resistor_length_um": f"{RESISTOR_FRACTION:.3g} of the reference beam, in both rows "
                               "(equal arms), where the root's stress is highest",
         "die_um": f"{width:g} um across (the {room.label}'s pocket, {room.across_mm:g} mm), "
@@ -323,7 +386,40 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    float(beam_stiffness_N_per_mm(E, w, t, l_m)), (k_r, k_m),
                    targets.full_scale_force_N, tuple(beams), reasons,
                    tuple(float(v) for v in targets.k_obj_range_N_per_mm),
-                   float(implant_dose_per_cm2))
+                   float(implant_dose_per_cm2), depths)
+
+
+def end_over_post(length_um: float, post_um: float) -> float:
+    """A tip-loaded cantilever's deflection at its free end, the post's far edge (L + a,
+    a = post / 2), over that at the post's centre (L): 1 + 3 a / (2 L) (Euler-Bernoulli:
+    the beam runs straight beyond the load, at the slope 3 delta / (2 L))."""
+    return 1.0 + 0.75 * post_um / length_um
+
+
+def rated_tip_deflections_um(k_r: float, k_m: float, force_N: float,
+                             kobj_range_N_per_mm) -> tuple[float, float]:
+    """The most each row's post travels in use (um): the reference's at the rated force,
+    F / K_r; the measuring one's while its reference reads up to F over the K_obj range,
+    F (K_r + K_lo) / (K_r (K_m + K_lo)) (eq. 1, uncoupled: the pair pressed into one K_obj
+    by one travel; deepest at the softest tissue when K_r > K_m).
+
+    Args:
+        k_r, k_m: the rows' stiffness (N/mm). force_N: the rated force (N).
+        kobj_range_N_per_mm: (K_lo, K_hi) (N/mm).
+    """
+    lo = min(kobj_range_N_per_mm)
+    reference = force_N / k_r
+    measuring = force_N * (k_r + lo) / (k_r * (k_m + lo))
+    return 1e3 * reference, 1e3 * max(measuring, reference)
+
+
+def cavity_depth_um(rated_um: float, length_um: float, post_um: float) -> float:
+    """A row's cavity depth (um): its beam's end meets the floor when the post has
+    travelled :data:`STOP_MULTIPLE` x ``rated_um`` in the shallowest cavity the depth
+    tolerance allows; rounded up to :data:`CAVITY_STEP_UM`."""
+    need = (STOP_MULTIPLE * rated_um * end_over_post(length_um, post_um)
+            / (1.0 - CAVITY_DEPTH_TOLERANCE_REL))
+    return CAVITY_STEP_UM * math.ceil(need / CAVITY_STEP_UM - 1e-9)
 
 
 def _past_strength(force_N: float, root_MPa: float) -> DesignError:

@@ -1,7 +1,7 @@
 """The drawing of a silicon die and its carrier: one A3 sheet (ISO 5457 frame).
 
-* the die in plan at :data:`DIE_SCALE`, device side up: its outline, the back window
-  (hidden, dashed), each beam and its post, dimensioned: the die's length and width, the
+* the die in plan at :data:`DIE_SCALE`, device side up: its outline, the two rows'
+  cavities in the handle (hidden, dashed), each beam and its post, dimensioned: the die's length and width, the
   pitch, both beams' lengths from their roots, the beam width and the post;
 * the carrier in plan at :data:`CARRIER_SCALE`: its length, width and bond shelf;
 * notes: the wafer and the beams' direction, the layer stack with the device layer's
@@ -20,6 +20,7 @@ from tactcad.design.die_mount import DIE_ATTACH_MM, DieMount
 from tactcad.design.mems_die import DiePlan
 from tactcad.drawings.frame import FRAME, sheet_frame
 from tactcad.drawings.sheet import Sheet, fmt_mm
+from tactcad.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
 
 #: Scales of the die's and of the carrier's plan views (paper mm per mm).
 DIE_SCALE = 40.0
@@ -40,9 +41,9 @@ def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
     length, width = plan.die_length_um, plan.die_width_um
     sh.polyline("die", [at(0, 0), at(length, 0), at(length, width), at(0, width)], "visible",
                 closed=True)
-    wx0, wy0, wx1, wy1 = plan.window_um
-    sh.polyline("die", [at(wx0, wy0), at(wx1, wy0), at(wx1, wy1), at(wx0, wy1)], "hidden",
-                closed=True)
+    for cx0, cy0, cx1, cy1 in plan.cavities_um.values():
+        sh.polyline("die", [at(cx0, cy0), at(cx1, cy0), at(cx1, cy1), at(cx0, cy1)], "hidden",
+                    closed=True)
     for b in plan.beams:
         tip = b.tip_y_um + b.direction * plan.post_um / 2
         sh.polyline("die", [at(b.x_um - b.width_um / 2, b.y_root_um),
@@ -109,7 +110,10 @@ def _notes(sh: Sheet, plan: DiePlan, m: DieMount, x: float, y: float) -> None:
         f"buried oxide {st.box_um:g} um,",
         f"   handle {st.handle_um:g} um; posts {plan.post_height_um:g} um high, "
         f"{plan.post_um:g} um square.",
-        "3. Back window (dashed) etched through the handle; the beams free over it.",
+        f"3. Cavities (dashed) in the handle under each row, reference "
+        f"{plan.cavity_depths_um[0]:g} um, measuring {plan.cavity_depths_um[1]:g} um deep",
+        f"   +-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %: their floors are the hard stops; the "
+        "beams free over them.",
         f"4. Carrier: alumina {m.carrier_mm:g} mm; die attach {DIE_ATTACH_MM:g} mm "
         "silver-filled epoxy.",
         f"5. In the jaw: the device layer flush with the face, the posts "

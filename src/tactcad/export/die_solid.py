@@ -1,7 +1,8 @@
 """The silicon die as a solid model built from its masks and its wafer stack: the handle
-less the back window, the buried oxide under the frame (released under the beams), the
-device layer less the front etch (the beams standing free over the window) and the posts,
-each a part of one STEP assembly (mm) for the review and the jaw's scene.
+less its two cavities (each row's to its own depth, the rows' hard stops), the buried oxide
+on the bond face around them (the thin oxide lining the cavities is not drawn), the device
+layer less the front etch (the beams standing free over the cavities) and the posts, each a
+part of one STEP assembly (mm) for the review and the jaw's scene.
 
 The outlines are :func:`tactcad.export.gds_masks.die_polygons`' (the masks' own polygons),
 so the solid and the GDS cannot disagree; the heights are the plan's stack (um -> mm).
@@ -34,11 +35,15 @@ def die_layer_solids(plan: DiePlan) -> dict:
 
     masks = die_polygons(plan)
     s = plan.stack
-    outline, window = masks["die"][0], masks["handle_etch"][0]
+    outline = masks["die"][0]
+    cavities = [(masks[f"cavity_{role}"][0], depth) for role, depth
+                in zip(("reference", "measuring"), plan.cavity_depths_um)]
     z_oxide, z_device = s.handle_um, s.handle_um + s.box_um
     z_top = z_device + s.device_um
-    handle = cut(_prism(outline, 0.0, s.handle_um), _prism(window, -1.0, s.handle_um + 2.0))
-    oxide = cut(_prism(outline, z_oxide, s.box_um), _prism(window, z_oxide - 1.0, s.box_um + 2))
+    handle = cut(_prism(outline, 0.0, s.handle_um),
+                 *[_prism(c, s.handle_um - depth, depth + 1.0) for c, depth in cavities])
+    oxide = cut(_prism(outline, z_oxide, s.box_um),
+                *[_prism(c, z_oxide - 1.0, s.box_um + 2.0) for c, _ in cavities])
     device = cut(_prism(outline, z_device, s.device_um),
                  *[_prism(p, z_device - 1.0, s.device_um + 2.0) for p in masks["device_etch"]])
     posts = shapes.Compound([_prism(p, z_top, plan.post_height_um) for p in masks["tip"]])

@@ -151,7 +151,8 @@ def die_polygons(plan: DiePlan) -> dict[str, list[Polygon]]:
                            precision=1e-3)
     return {
         "die": [_rect(0.0, 0.0, plan.die_length_um, plan.die_width_um)],
-        "handle_etch": [window],
+        "cavity_reference": [_rect(*plan.cavities_um["reference"])],
+        "cavity_measuring": [_rect(*plan.cavities_um["measuring"])],
         "device_etch": [[tuple(p) for p in poly.points] for poly in etched],
         "tip": [post_outline(plan, b) for b in plan.beams],
         "piezo": [r for b in plan.beams

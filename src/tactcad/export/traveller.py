@@ -14,8 +14,8 @@ from pathlib import Path
 
 from tactcad.design import mems_die as md
 from tactcad.design.mems_die import DiePlan
-from tactcad.vocabulary.soi_process import (BACKSIDE_ALIGNMENT_UM, DRIE_ASPECT_RATIO,
-                                            MASK_BY_NAME)
+from tactcad.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM, CAVITY_DEPTH_TOLERANCE_REL,
+                                            DRIE_ASPECT_RATIO, MASK_BY_NAME)
 
 #: Parameters stated as assumptions (a fab's recipe replaces them).
 SCREEN_OXIDE_NM = 100.0
@@ -38,11 +38,25 @@ def traveller_steps(plan: DiePlan, sheet_resistance_ohm_per_sq: float) -> list[S
     """The die's steps in process order (um, nm, C, cm^-2)."""
     s = plan.stack
     assumed = " (assumption)"
+    depth_r, depth_m = plan.cavity_depths_um
+    tol = 100 * CAVITY_DEPTH_TOLERANCE_REL
     return [
-        Step("start", "", f"SOI wafer: n-type device layer {s.device_um:g} +-"
-             f"{s.device_tolerance_um:g} um (its orientation (100), flat along <110>), buried "
-             f"oxide {s.box_um:g} um, handle {s.handle_um:g} um",
-             f"{s.total_um:g} um stack"),
+        Step("handle", "", f"handle wafer: (100) silicon, {s.handle_um:g} um "
+             "(or a cavity SOI wafer ordered from a wafer maker with the two cavity masks: "
+             "steps 1-5 are then its)", "the handle"),
+        Step("cavity etch, measuring row", "cavity_measuring",
+             f"timed DRIE {depth_m:g} um +-{tol:g} %{assumed}",
+             "the measuring row's cavity: its floor the beams' hard stop"),
+        Step("cavity etch, reference row", "cavity_reference",
+             f"resist sprayed over the first cavity; timed DRIE {depth_r:g} um +-{tol:g} %"
+             f"{assumed}", "the reference row's cavity: its floor the beams' hard stop"),
+        Step("bond oxide", "", f"thermal oxidation of the handle, {s.box_um:g} um",
+             "the buried oxide on the bond face (it lines the cavities too)"),
+        Step("bond and thin", "", f"n-type (100) device wafer fusion-bonded in vacuum, "
+             f"flat along <110>, annealed, ground and polished to {s.device_um:g} +-"
+             f"{s.device_tolerance_um:g} um",
+             f"{s.total_um:g} um stack over sealed cavities (the device layer bows into "
+             "them under the atmosphere until the front DRIE opens them)"),
         Step("oxidation", "", f"thermal screen oxide {SCREEN_OXIDE_NM:g} nm{assumed}",
              "oxide on the device layer"),
         Step("implant", "piezo", f"boron, dose {plan.implant_dose_per_cm2:.2g} cm^-2 through the "
@@ -61,13 +75,10 @@ def traveller_steps(plan: DiePlan, sheet_resistance_ohm_per_sq: float) -> list[S
         Step("posts", "tip", f"posts {plan.post_height_um:g} um high on each beam's free end "
              f"(SU-8 or plated{assumed})", f"{len(plan.beams)} posts of {plan.post_um:g} um"),
         Step("front DRIE", "device_etch", f"Bosch etch through the {s.device_um:g} um device "
-             f"layer, stopping on the buried oxide (aspect ratio at most "
-             f"{DRIE_ASPECT_RATIO:g}:1)", "the beams outlined in the device layer"),
-        Step("back DRIE", "handle_etch", f"Bosch etch through the {s.handle_um:g} um handle from "
-             f"the back, aligned to the front to +-{BACKSIDE_ALIGNMENT_UM:g} um, stopping on "
-             "the buried oxide", "the window under the beams; its edges are the roots"),
-        Step("release", "", "buried oxide removed in the window (vapour HF)",
-             f"{len(plan.beams)} free cantilevers"),
+             f"layer, aligned to the cavities to +-{CAVITY_ALIGNMENT_UM:g} um, breaking "
+             f"through into them (aspect ratio at most {DRIE_ASPECT_RATIO:g}:1)",
+             f"{len(plan.beams)} free cantilevers over their cavities; the cavities' edges "
+             "are the roots"),
         Step("dicing", "die", f"dies of {plan.die_length_um:g} x {plan.die_width_um:g} um "
              "(lanes outside the outline)", "the dies"),
     ]

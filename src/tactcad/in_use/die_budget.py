@@ -12,8 +12,9 @@ sigma bound / sqrt 3):
   (:func:`tactcad.mechanics.piezoresistor.die_readout`), the two independent;
 * device layer: both beams one layer, so K_r and K_m move together by 3 dt / t
   (dt: the SOI maker's +- on the layer); eq. 3 with the nominal K reads the shift;
-* backside alignment: the window's two edges are the two rows' roots, so a shift across
-  the die lengthens one row's beams and shortens the other's (K ~ L^-3): K_r / K_m moves;
+* cavity alignment: the cavities' outer edges are the two rows' roots, so the front
+  masks' shift across the die against them lengthens one row's beams and shortens the
+  other's (K ~ L^-3): K_r / K_m moves;
 * temperature: silicon's modulus along <110> falls by 64 ppm/K (Bourgeois et al., Proc.
   IEEE Int. Frequency Control Symp. 1997, pp. 791-799; Gysin et al., Phys. Rev. B 69,
   045403 (2004)), both beams alike, over the stated temperature step; the resistors'
@@ -103,7 +104,7 @@ def die_budget(plan, readout: dict | None = None) -> DieBudget:
     """
     from tactcad.mechanics.lumped_model import deflection_ratio
     from tactcad.mechanics.piezoresistor import die_readout
-    from tactcad.vocabulary.soi_process import BACKSIDE_ALIGNMENT_UM
+    from tactcad.vocabulary.soi_process import CAVITY_ALIGNMENT_UM
 
     readout = readout or die_readout(plan)
     k_m, k_r = plan.k_m_N_per_mm, plan.k_r_N_per_mm
@@ -129,12 +130,12 @@ def die_budget(plan, readout: dict | None = None) -> DieBudget:
     reasons["device layer"] = (f"+-{plan.stack.device_tolerance_um:g} um on the "
                                f"{ref.thickness_um:g} um layer, both beams alike (K ~ t^3)")
 
-    dl = BACKSIDE_ALIGNMENT_UM / math.sqrt(3)
-    terms["backside alignment"] = np.abs(_shifted(
+    dl = CAVITY_ALIGNMENT_UM / math.sqrt(3)
+    terms["cavity alignment"] = np.abs(_shifted(
         k_m, k_r, ks, (meas.length_um / (meas.length_um + dl)) ** 3,
         (ref.length_um / (ref.length_um - dl)) ** 3))
-    reasons["backside alignment"] = (f"+-{BACKSIDE_ALIGNMENT_UM:g} um across the die: one row's "
-                                     "beams longer, the other's shorter (K ~ L^-3)")
+    reasons["cavity alignment"] = (f"+-{CAVITY_ALIGNMENT_UM:g} um across the die: one row's "
+                                   "beams longer, the other's shorter (K ~ L^-3)")
 
     st = 1 + SILICON_TCE_PER_K * TEMPERATURE_STEP_K / math.sqrt(3)
     terms["temperature"] = np.abs(_shifted(k_m, k_r, ks, st, st))

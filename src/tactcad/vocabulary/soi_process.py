@@ -1,11 +1,13 @@
 """The SOI bulk-micromachining process a silicon die is made in: its wafer stack, its masks
 (one GDSII layer each) and the layout rules the masks are checked against.
 
-A die's cantilevers are cut in the device layer of a silicon-on-insulator wafer by deep
-reactive-ion etching (the Bosch process) from the front, released by a second DRIE through
-the handle from the back (the buried oxide stops both, and is then removed under the
-beams); p-type piezoresistors are implanted at each beam's root, contacted through the
-oxide and wired in aluminium to bond pads on the die's heel.
+A die's cantilevers are cut in the device layer of a cavity silicon-on-insulator wafer:
+before the wafer is bonded, a cavity is etched into the handle under each row of beams,
+each row's to its own depth (its floor is the row's hard stop), the handle oxidised (the
+buried oxide) and the device wafer fusion-bonded over it and thinned. Deep reactive-ion
+etching (the Bosch process) from the front cuts the beams and breaks through into the
+cavities, which frees them; p-type piezoresistors are implanted at each beam's root,
+contacted through the oxide and wired in aluminium to bond pads on the die's heel.
 
 Each rule carries its value and where it comes from. The DRIE aspect ratio and the wafer
 ranges are the field's published figures; the lithography rules (widths, spaces,
@@ -38,15 +40,19 @@ class MaskLayer:
 
 #: The masks in process order, and the die outline (a layout layer, not a mask).
 MASKS = (
+    MaskLayer("cavity_measuring", 7, 0, "the handle's cavity under the measuring row, etched "
+                                        "before bonding to its own depth (its edge the "
+                                        "beams' root, its floor their hard stop)"),
+    MaskLayer("cavity_reference", 5, 0, "the handle's cavity under the reference row, etched "
+                                        "before bonding (its edge is the beams' root, its "
+                                        "floor their hard stop)"),
     MaskLayer("piezo", 1, 0, "boron implant: the p-type piezoresistors at the beams' roots"),
     MaskLayer("contact", 2, 0, "contact openings through the oxide onto the resistors' ends"),
     MaskLayer("metal", 3, 0, "aluminium: the leads and each beam's bond pads on the frame "
                              "behind it"),
+    MaskLayer("tip", 6, 0, "the post on each beam's free end that meets the tissue first"),
     MaskLayer("device_etch", 4, 0, "front DRIE through the device layer: the slot around "
                                    "each beam"),
-    MaskLayer("handle_etch", 5, 0, "back DRIE through the handle: the window under the beams "
-                                   "(its edge is the beams' root)"),
-    MaskLayer("tip", 6, 0, "the post on each beam's free end that meets the tissue first"),
     MaskLayer("die", 10, 0, "the die's outline (the dicing lane's inner edge); not a mask"),
 )
 MASK_BY_NAME = {m.name: m for m in MASKS}
@@ -118,8 +124,14 @@ DEFAULT_BOX_UM, DEFAULT_HANDLE_UM = 1.0, 400.0
 DRIE_ASPECT_RATIO = 20.0
 DRIE_SOURCE = ("deep reactive-ion etching, Bosch process (Laermer and Schilp, US 5,501,893, "
                "1996): aspect ratios about 20:1 to 30:1; 20:1 taken")
-#: Front-to-back alignment (um), +-.
-BACKSIDE_ALIGNMENT_UM = 2.0
+#: The front masks' alignment to the buried cavities (um), +- (assumption: alignment
+#: marks etched with the cavities, read through the bonded stack in infrared or opened
+#: in the device layer; a front-to-back aligner's +-1 to 2 um, the looser end).
+CAVITY_ALIGNMENT_UM = 2.0
+#: A timed cavity etch's depth, relative, +-.
+CAVITY_DEPTH_TOLERANCE_REL = 0.05
+CAVITY_DEPTH_SOURCE = (ASSUMED + "a timed DRIE of a few to tens of um holds its depth "
+                       "across a wafer to about +-5 %")
 
 
 def drie_min_width_um(depth_um: float) -> float:
@@ -141,8 +153,12 @@ def soi_rules(stack: SoiStack) -> tuple[Rule, ...]:
         Rule("device_etch.space", "device_etch", "space", 2 * LITHO_MIN_UM,
              ASSUMED + "a beam or frame between two slots at least twice the lithography's "
                        "smallest feature"),
-        Rule("handle_etch.width", "handle_etch", "width", drie_min_width_um(stack.handle_um),
-             f"{DRIE_SOURCE}: {stack.handle_um:g} um of handle"),
+        Rule("cavity_reference.width", "cavity_reference", "width", 2 * LITHO_MIN_UM,
+             ASSUMED + "a cavity at least twice the smallest feature across (it is "
+                       "shallow: DRIE's aspect ratio does not bind)"),
+        Rule("cavity_measuring.width", "cavity_measuring", "width", 2 * LITHO_MIN_UM,
+             ASSUMED + "a cavity at least twice the smallest feature across (it is "
+                       "shallow: DRIE's aspect ratio does not bind)"),
         Rule("piezo.width", "piezo", "width", LITHO_MIN_UM, litho),
         Rule("piezo.space", "piezo", "space", 2 * LITHO_MIN_UM,
              ASSUMED + "two implants' lateral diffusion kept apart"),
