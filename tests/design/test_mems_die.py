@@ -179,6 +179,36 @@ def test_each_rows_cavity_stops_its_beam_between_its_rated_travel_and_its_fractu
         assert row["verdict"] == verdict, (depth, row["predicted"])
 
 
+@pytest.mark.parametrize("limit, value", [("POST_ASPECT_MAX", 2.0),
+                                           ("HANDLE_FLOOR_UM", 150.0)])
+def test_stops_deeper_than_the_die_allows_are_refused_with_a_lighter_rating(monkeypatch, limit,
+                                                                           value):
+    """Posts that would have to stand taller than their aspect allows, or a cavity that would
+    leave less than the handle's floor, refuse the rating by --full-scale-force; the rating
+    pasted designs under the same limit."""
+    soft = (0.05, 0.5)  # the measuring post goes about 260 um to its stop at 16.5 mN
+    assert md.die_plan(Targets(10.0, soft, 0.0165), jaw_room("5"))
+    monkeypatch.setattr(md, limit, value)
+    with pytest.raises(DesignError) as refused:
+        md.die_plan(Targets(10.0, soft, 0.0165), jaw_room("5"))
+    err = refused.value
+    assert err.field == "--full-scale-force" and err.value == 0.0165
+    lighter = float(err.alternatives[0]["option"].split()[-1])
+    assert 0 < lighter < 0.0165
+    plan = md.die_plan(Targets(10.0, soft, lighter), jaw_room("5"))
+    assert plan.post_height_um <= md.POST_ASPECT_MAX * plan.post_um
+    assert max(plan.cavity_depths_um) * 1.05 <= plan.stack.handle_um - md.HANDLE_FLOOR_UM
+
+
+def test_the_posts_stand_proud_of_the_face_when_their_beams_rest_on_their_stops():
+    """A soft range's measuring post goes a long way to its stop: the post is made taller
+    than that travel and its clearance, so that the face never meets the tissue first."""
+    plan = md.die_plan(Targets(10.0, (0.05, 0.5), 0.0165), jaw_room("5"))
+    deepest = max(plan.stop_engagement_um(b)[2] for b in plan.beams)
+    assert deepest > md.POST_HEIGHT_UM
+    assert deepest + md.POST_CLEARANCE_UM <= plan.post_height_um < deepest + 15.0 + 1e-9
+
+
 def test_a_rule_broken_in_the_layout_is_found_with_where(die, tmp_path, monkeypatch):
     monkeypatch.setattr(md, "LEG_GAP_UM", 1.0)  # the two legs 1 um apart: below 4 um
     path = write_die_gds(die, tmp_path / "die.gds")

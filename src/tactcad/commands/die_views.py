@@ -131,8 +131,9 @@ def die_verification(plan) -> list[dict]:
       beam's end meets the floor, in the shallowest cavity the depth tolerance allows, past
       the beam's rated travel (it reads its whole range), and in the deepest below the
       travel at which its root reaches the mean strength (an overload rests on the floor
-      before the beam breaks); margin: the worse row's fracture travel over its deepest
-      engagement, less one.
+      before the beam breaks, and before the post sinks to the face (the posts stand proud);
+      margin: the worse row's fracture travel or post height over its deepest engagement,
+      less one.
     """
     from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, BOSCH_STRENGTH_SOURCE
     from tactcad.studies.verification import KR_OVER_KM_BAND_REL
@@ -174,11 +175,12 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
     for beam in rows:
         _, shallow, deep = plan.stop_engagement_um(beam)
         rated, breaks = plan.rated_tip_um(beam), fracture_travel_um[beam.role]
-        ok = ok and rated < shallow and deep < breaks
-        margins.append(breaks / deep - 1.0)
+        ok = ok and rated < shallow and deep < min(breaks, plan.post_height_um)
+        margins.append(min(breaks, plan.post_height_um) / deep - 1.0)
         words.append(f"{beam.role}: cavity {plan.cavity_depth_of(beam):g} um, engages at "
                      f"{shallow:.3g} ... {deep:.3g} um of post travel (rated {rated:.3g} um, "
                      f"breaks at {breaks:.3g} um)")
+    words.append(f"posts {plan.post_height_um:g} um proud: still proud on their stops")
     return {"requirement": "hard_stop",
             "target": f"engages past the rated travel (at {STOP_MULTIPLE:g} x) and before the "
                       "root breaks",

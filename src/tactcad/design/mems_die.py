@@ -73,8 +73,19 @@ LEAD_JOG_UM = 20.0
 #: 250 um apart on one die; a diffused pair's TCRs track to about a per cent of their value):
 #: the half bridge's zero drift is this share of the uncancelled one.
 REFERENCE_TCR_MISMATCH_REL = 0.01
-#: The post on each beam's free end: its side (at most the beam's width) and height (um).
+#: The post on each beam's free end: its side (at most the beam's width) and least height
+#: (um).
 POST_MAX_UM, POST_HEIGHT_UM = 100.0, 50.0
+#: A post stands at least this much taller than its beam's deepest stop travel (um): the
+#: tissue sinks round a post, and the face must not meet it before the stop takes the
+#: overload (assumption); heights are drawn to :data:`POST_STEP_UM`.
+POST_CLEARANCE_UM, POST_STEP_UM = 10.0, 5.0
+#: The tallest post over its side (assumption: an SU-8 or plated post on a beam's end at
+#: 5:1, well inside the 10:1 and more SU-8 reaches on its own).
+POST_ASPECT_MAX = 5.0
+#: The handle left under the deepest cavity (um) (assumption: the die's floor keeps 100 um
+#: of silicon for its handling and bond).
+HANDLE_FLOOR_UM = 100.0
 #: Piezoresistor legs: width, gap between them (um); the implant's margin to the beam's
 #: edges; the legs' run onto the frame for the contacts (um).
 LEG_UM, LEG_GAP_UM, RESISTOR_MARGIN_UM, RESISTOR_RUN_UM = 8.0, 8.0, 10.0, 20.0
@@ -289,8 +300,10 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         :class:`DiePlan`.
 
     Raises:
-        DesignError: a value out of range, or no stock device layer and beam width fit
-            (naming what binds and the largest K_m the die holds).
+        DesignError: a value out of range, no stock device layer and beam width fit
+            (naming what binds and the largest K_m the die holds), or the rated travels
+            would need stops deeper than the handle allows or posts taller than they stand
+            (naming a lighter rating).
     """
     if not (isinstance(columns, int) and 2 <= columns <= 50):
         raise DesignError("--columns", columns, "an integer 2 ... 50")
@@ -335,6 +348,21 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     rated = rated_tip_deflections_um(k_r, k_m, targets.full_scale_force_N,
                                      targets.k_obj_range_N_per_mm)
     depths = (cavity_depth_um(rated[0], l_r, post), cavity_depth_um(rated[1], l_m, post))
+    deepest = max(d * (1 + CAVITY_DEPTH_TOLERANCE_REL) / end_over_post(length, post)
+                  for d, length in zip(depths, (l_r, l_m)))
+    post_height = post_height_um(deepest)
+    tallest, room_um = POST_ASPECT_MAX * post, handle_um - HANDLE_FLOOR_UM
+    if post_height > tallest:
+        raise _stops_too_deep(targets.full_scale_force_N, (tallest - POST_CLEARANCE_UM) / deepest,
+                              f"a post would go {deepest:.4g} um to its stop, and to stand "
+                              f"{POST_CLEARANCE_UM:g} um proud there it would be taller than "
+                              f"{POST_ASPECT_MAX:g} x its {post:g} um side ({tallest:g} um)")
+    if max(depths) * (1 + CAVITY_DEPTH_TOLERANCE_REL) > room_um:
+        raise _stops_too_deep(targets.full_scale_force_N,
+                              room_um / (max(depths) * (1 + CAVITY_DEPTH_TOLERANCE_REL)),
+                              f"the measuring row's {max(depths):g} um cavity (+"
+                              f"{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %) would leave less than "
+                              f"{HANDLE_FLOOR_UM:g} um of the {handle_um:g} um handle under it")
     reasons = {
         "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
                      f"and the slot between the tips fit across the {window:g} um window, "
@@ -371,8 +399,11 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                   f"{length:g} um along: {columns} columns at {pitch_um:g} um and "
                   f"{END_UM:g} um ends",
         "implant_dose_per_cm2": dose_reason or f"{implant_dose_per_cm2:.2g} cm^-2 (assumption)",
-        "post_um": f"a post {post:g} um square and {POST_HEIGHT_UM:g} um proud on each free "
-                   "end (assumption: SU-8 or plated; it meets the tissue before the beam)",
+        "post_um": f"a post {post:g} um square and {post_height:g} um proud on each free "
+                   f"end (SU-8 or plated; it meets the tissue before the beam): at least "
+                   f"{POST_HEIGHT_UM:g} um and {POST_CLEARANCE_UM:g} um more than the "
+                   f"deepest a post goes to its stop ({deepest:.3g} um), so that the face "
+                   "never meets the tissue before the stop takes an overload",
         "strength": (f"undecided: the root's {root_MPa:.4g} MPa at the rating is "
                      f"{100 * root_MPa / BOSCH_MEAN_STRENGTH_MPA:.2g} % of the mean tensile "
                      f"strength of Bosch-etched silicon bars ({BOSCH_STRENGTH_SOURCE}); no "
@@ -380,13 +411,32 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                      "no failure probability is given"),
     }
     return DiePlan(name, stack, 2, columns, pitch_um, length, width, FRAME_UM, END_UM, w,
-                   l_r, l_m, post, POST_HEIGHT_UM, resistor, E,
+                   l_r, l_m, post, post_height, resistor, E,
                    float(SILICON_P_TYPE.longitudinal(direction)) * 1e-11,
                    float(beam_stiffness_N_per_mm(E, w, t, l_r)),
                    float(beam_stiffness_N_per_mm(E, w, t, l_m)), (k_r, k_m),
                    targets.full_scale_force_N, tuple(beams), reasons,
                    tuple(float(v) for v in targets.k_obj_range_N_per_mm),
                    float(implant_dose_per_cm2), depths)
+
+
+def post_height_um(deepest_stop_travel_um: float) -> float:
+    """The posts' height (um): :data:`POST_HEIGHT_UM` at least, and
+    :data:`POST_CLEARANCE_UM` more than the deepest a post goes to its stop, rounded up to
+    :data:`POST_STEP_UM`."""
+    need = deepest_stop_travel_um + POST_CLEARANCE_UM
+    return max(POST_HEIGHT_UM, POST_STEP_UM * math.ceil(need / POST_STEP_UM - 1e-9))
+
+
+def _stops_too_deep(force_N: float, scale: float, why: str) -> DesignError:
+    """The refusal of a rating whose stops lie too deep (``why``): the travels go as the
+    force, so the alternative scales it by ``scale`` (< 1), 5 % lower for the depths'
+    rounding."""
+    below = float(f"{0.95 * force_N * scale:.2g}")
+    return DesignError("--full-scale-force", force_N, f"at most about {below:g} N", why,
+                       alternatives=[{"option": f"--full-scale-force {below:g}",
+                                      "words": "a lighter rating: shallower stops, shorter "
+                                               "posts"}])
 
 
 def end_over_post(length_um: float, post_um: float) -> float:
