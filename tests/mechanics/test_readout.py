@@ -108,14 +108,20 @@ def test_quarter_bridge_signal_scales_with_excitation_gain_and_gauge_factor():
 
 def test_averaging_more_samples_improves_force_resolution_by_its_square_root():
     """Samples far apart against the filtered noise's correlation time (1 kS/s behind a
-    1 kHz RC: rho = exp(-2 pi) = 0.002) average as independent ones (to 0.2 %); sampled
+    1 kHz RC: rho = exp(-2 pi) = 0.002) average their white noise as independent ones (to
+    0.2 %), while the 1/f part stays; sampled
     far faster than the filter passes (1 MS/s), averaging 40 gains almost nothing, as
     the exponential autocorrelation's sum says (computed here as a direct double sum)."""
-    a = _report(load_design())
-    b = _report(_plan(**{"readout.samples_averaged": 40}))
+    white = {"readout.amplifier_flicker_nV_per_rtHz_at_1Hz": 0.0}  # 1/f does not average
+    a = _report(_plan(**white))
+    b = _report(_plan(**white, **{"readout.samples_averaged": 40}))
     for x, y in zip(a.records, b.records):
         assert y["force_resolution_N"] == pytest.approx(x["force_resolution_N"] / 2, rel=2e-3)
     assert b.array_kobj_resolution_rel < a.array_kobj_resolution_rel
+    # with the amplifier's 1/f noise, averaging 4 x as many gains less than 2 x
+    c, d = _report(load_design()), _report(_plan(**{"readout.samples_averaged": 40}))
+    for x, y in zip(c.records, d.records):
+        assert x["force_resolution_N"] / 2 < y["force_resolution_N"] < x["force_resolution_N"]
     fast = readout_chain(_plan(**{"readout.samples_averaged": 40,
                                   "readout.sample_rate_Hz": 1e6}))
     rho = math.exp(-1e-6 / fast.noise_correlation_time_s)
@@ -350,3 +356,50 @@ def test_readout_and_calibrate_fit_one_gain_of_the_grids_strain_through_table1()
     assert t["fitted_volts_per_strain_as_built"] == pytest.approx(
         audit["gauge_gain_V_per_strain"], rel=1e-4)
     assert all(r["gauge_strain_per_N"] < 0 for r in audit["elements"])
+
+
+def test_the_ad621s_1_over_f_density_gives_back_its_data_sheets_low_band_figure():
+    """e_f from the AD621's 0.28 uV p-p over 0.1-10 Hz and its 9 nV/sqrt(Hz) floor: the
+    integral of e_w^2 + e_f^2 / f over the band (quadrature, not the closed form) is the
+    band's rms squared, (0.28 uV / 6.6)^2; a floor that accounts for the whole figure
+    leaves no 1/f part."""
+    from scipy.integrate import quad
+
+    from tactcad.design.readout_section import flicker_density_at_1Hz
+
+    e_f = flicker_density_at_1Hz(0.28, (0.1, 10.0), 9.0)
+    variance, _ = quad(lambda f: 9.0 ** 2 + e_f ** 2 / f, 0.1, 10.0)
+    assert variance == pytest.approx((280.0 / 6.6) ** 2, rel=1e-9)
+    assert 10.0 < e_f < 20.0  # a 1/f corner of a few Hz, as instrumentation amplifiers have
+    assert flicker_density_at_1Hz(0.28, (0.1, 10.0), 20.0) == 0.0
+    assert readout_chain(load_design()).amplifier_flicker_nV_per_rtHz_at_1Hz == pytest.approx(
+        e_f, rel=1e-12)
+
+
+def test_a_readings_1_over_f_noise_spans_tare_to_averaging_window_and_is_not_averaged():
+    """The reading's variance is the white part averaged plus the 1/f part over 1/T_tare ...
+    f_s / (2 N), by hand: G e_f sqrt(ln(f_hi / f_lo)) for the amplifier and
+    G (V_ex / 4) sqrt(alpha_H / N_e ln(f_hi / f_lo)) for the foil grid (Hooge's 2e-3, 8.7e22
+    electrons per cm^3 in half the grid's area of 5 um foil); a longer wait after the tare
+    reads more of it, a stated zero removes the amplifier's, another amplifier has none."""
+    chain = readout_chain(load_design())
+    f_lo, f_hi = 1 / 10.0, min(chain.noise_bandwidth_Hz, 1000.0 / (2 * 10))
+    assert chain.flicker_band_Hz == pytest.approx((f_lo, f_hi))
+    g, logs = chain.amplifier_gain, math.log(f_hi / f_lo)
+    n = noise_budget_V(chain)
+    assert n["amplifier_flicker"] == pytest.approx(
+        g * chain.amplifier_flicker_nV_per_rtHz_at_1Hz * 1e-9 * math.sqrt(logs), rel=1e-12)
+    electrons = 8.7e22 * 0.5 * (chain.grid_length_mm * 0.1) * (chain.grid_width_mm * 0.1) * 5e-4
+    assert n["gauge_flicker"] == pytest.approx(
+        g * chain.excitation_V / 4 * math.sqrt(2e-3 / electrons * logs), rel=1e-12)
+    assert n["gauge_flicker"] < 0.01 * n["amplifier_flicker"]  # a metal grid: negligible
+    quiet = readout_chain(_plan(**{"readout.amplifier_flicker_nV_per_rtHz_at_1Hz": 0.0}))
+    q = noise_budget_V(quiet)
+    assert q["amplifier_flicker"] == 0.0
+    assert n["reading"] ** 2 - q["reading"] ** 2 == pytest.approx(
+        n["amplifier_flicker"] ** 2, rel=1e-9)
+    later = noise_budget_V(readout_chain(_plan(**{"readout.tare_interval_s": 600.0})))
+    assert later["amplifier_flicker"] > n["amplifier_flicker"] and later["reading"] > n["reading"]
+    other = readout_chain(_plan(**{"readout.amplifier": "INA128"}))
+    assert other.amplifier_flicker_nV_per_rtHz_at_1Hz == 0.0
+    assert "not stated for INA128" in other.source("amplifier_flicker_nV_per_rtHz_at_1Hz")

@@ -100,7 +100,11 @@ def render(report) -> str:
              f"{c.daq_bits} bit, {c.samples_averaged} samples averaged",
              f"  assumed (change in [readout]): {_assumed_text(c)}",
              f"  {c.volts_per_strain:.4g} V per unit strain; noise of one reading "
-             f"{1e6 * report.noise_V['reading']:.1f} uV rms; full-scale force "
+             f"{1e6 * report.noise_V['reading']:.1f} uV rms, of it 1/f "
+             f"{1e6 * report.noise_V['amplifier_flicker']:.2g} uV (amplifier) and "
+             f"{1e6 * report.noise_V['gauge_flicker']:.2g} uV (foil grid, Hooge) over "
+             f"{c.flicker_band_Hz[0]:.3g}-{c.flicker_band_Hz[1]:.3g} Hz (tare to reading "
+             f"{c.tare_interval_s:g} s); full-scale force "
              f"{report.full_scale_force_N:.4g} N; K_obj range {report.kobj_range_N_per_mm[0]:g}-"
              f"{report.kobj_range_N_per_mm[1]:g} N/mm",
              f"  grid {1e3 * c.grid_height_mm:.0f} um above the top face (glue line + carrier, "

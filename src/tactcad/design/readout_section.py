@@ -25,7 +25,12 @@ Keys (units in the names):
   ``"two-wire"`` (both leads in the gauge's arm); ``lead_length_mm`` (gauge to bridge
   completion, one conductor) and ``lead_resistance_ohm_per_m`` (one conductor);
 * ``amplifier``, ``amplifier_gain``, ``amplifier_noise_nV_per_rtHz``,
-  ``bandwidth_Hz``: the instrumentation amplifier and its noise;
+  ``bandwidth_Hz``: the instrumentation amplifier and its white noise;
+  ``amplifier_flicker_nV_per_rtHz_at_1Hz``: its 1/f noise, the density e_f of the
+  1/f part at 1 Hz (e_n(f)^2 = e_w^2 + e_f^2 / f; not stated for the AD621: from its
+  data sheet's 0.1-10 Hz peak-to-peak figure, :func:`flicker_density_at_1Hz`; for
+  another amplifier: 0, named unstated); ``tare_interval_s``: the time from a tare to
+  the reading it zeroes, the lowest frequency the reading's 1/f noise reaches;
 * ``filter_corner_Hz``, ``filter_order``: the anti-alias low-pass filter
   before the DAQ (Butterworth; order 0: none), which sets the noise bandwidth
   (:attr:`ReadoutChain.noise_bandwidth_Hz`);
@@ -68,6 +73,32 @@ NI_6258_NOISE_UV_RMS = {0.1: 15.0, 0.2: 16.0, 0.5: 21.0, 1.0: 32.0, 2.0: 57.0, 5
 #: AD621 pin-strapped gains and the amplifier's -3 dB bandwidth at each (Hz).
 #: Source: Analog Devices AD621 data sheet (gain 10: 800 kHz; gain 100: 200 kHz).
 AD621_BANDWIDTH_HZ = {10.0: 800e3, 100.0: 200e3}
+
+#: AD621 input voltage noise over 0.1 ... 10 Hz, peak to peak (uV), with its white floor
+#: (nV/sqrt(Hz) at 1 kHz). Source: Analog Devices AD621 data sheet, features: "0.28 uV p-p
+#: Noise (0.1 Hz to 10 Hz)", "9 nV/sqrt(Hz), @ 1 kHz, Input Voltage Noise".
+AD621_LOW_BAND_NOISE_UV_PP, AD621_LOW_BAND_HZ = 0.28, (0.1, 10.0)
+#: A data sheet's peak-to-peak noise over its rms (Gaussian noise: +-3.3 sigma, the band
+#: exceeded 0.1 % of the time).
+PEAK_TO_PEAK_OVER_RMS = 6.6
+
+
+def flicker_density_at_1Hz(peak_to_peak_uV: float, band_Hz: tuple[float, float],
+                           white_nV_per_rtHz: float) -> float:
+    """The 1/f part of an amplifier's input noise density at 1 Hz (nV/sqrt(Hz)) from its
+    data sheet's low-band peak-to-peak figure: the band's rms (p-p / 6.6) squared is
+    e_w^2 (f_hi - f_lo) + e_f^2 ln(f_hi / f_lo), the integral of e_n(f)^2 = e_w^2 + e_f^2 / f;
+    0 when the white floor alone accounts for it.
+
+    Args:
+        peak_to_peak_uV: the p-p noise over ``band_Hz`` (uV). band_Hz: (f_lo, f_hi), Hz.
+        white_nV_per_rtHz: the white floor e_w (nV/sqrt(Hz)).
+    """
+    f_lo, f_hi = band_Hz
+    rms_nV = 1e3 * peak_to_peak_uV / PEAK_TO_PEAK_OVER_RMS
+    excess = rms_nV ** 2 - white_nV_per_rtHz ** 2 * (f_hi - f_lo)
+    return math.sqrt(max(excess, 0.0) / math.log(f_hi / f_lo))
+
 
 #: The NI USB-6258's +/- input ranges (V). Source: NI 625x Specifications (371291H).
 NI_6258_RANGES_V = tuple(sorted(NI_6258_NOISE_UV_RMS))
@@ -169,6 +200,14 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
                                          "at 1 kHz, gain 100"),
     "bandwidth_Hz": (None, "AD621 data sheet: -3 dB bandwidth at the gain (200 kHz at 100, "
                            "800 kHz at 10)"),
+    "amplifier_flicker_nV_per_rtHz_at_1Hz": (
+        None, "AD621 data sheet: 0.28 uV p-p over 0.1-10 Hz (rms = p-p / 6.6) less its "
+              "9 nV/sqrt(Hz) white floor over that band, the rest a 1/f density: e_f = "
+              "sqrt((rms^2 - e_w^2 9.9 Hz) / ln 100), 14.7 nV/sqrt(Hz) at 1 Hz (a 1/f corner "
+              "of 2.7 Hz)"),
+    "tare_interval_s": (10.0, "assumption: a reading taken 10 s after the tare that zeroes "
+                              "it (zeroed with the jaw open, read once it holds the tissue); "
+                              "its 1/f noise reaches down to 1 / 10 s"),
     "filter_corner_Hz": (1000.0, "assumption: a 1 kHz anti-alias low-pass before the DAQ: a "
                                  "grasp's force changes within tens of Hz; without it the "
                                  "amplifier's 200 kHz bandwidth carries its noise to the DAQ"),
@@ -231,6 +270,11 @@ class ReadoutSection(Section):
     amplifier_gain: number(1.0, 10000.0, unit="", why="instrumentation amplifier gain") = None
     amplifier_noise_nV_per_rtHz: number(0.1, 1000.0, unit="nV/sqrt(Hz)") = None
     bandwidth_Hz: number(0.1, 10e6, unit="Hz", why="-3 dB bandwidth of the amplifier") = None
+    amplifier_flicker_nV_per_rtHz_at_1Hz: number(
+        0.0, 10000.0, unit="nV/sqrt(Hz)", why="the amplifier's 1/f noise density at 1 Hz "
+        "(its 1/f part: e_n^2 = e_w^2 + e_f^2 / f)") = None
+    tare_interval_s: number(0.01, 1e6, unit="s", why="time from a tare to the reading it "
+                            "zeroes") = None
     filter_corner_Hz: number(0.1, 10e6, unit="Hz", why="-3 dB corner of the anti-alias "
                              "low-pass before the DAQ") = None
     filter_order: integer(0, 8, why="Butterworth order of the anti-alias filter; 0: none") = None
@@ -329,6 +373,8 @@ class ReadoutChain(ResolvedSection):
     daq_ranges_V: tuple[float, ...] = ()
     daq_range_margin: float = 1.0
     sample_rate_Hz: float = 1000.0
+    amplifier_flicker_nV_per_rtHz_at_1Hz: float = 0.0
+    tare_interval_s: float = 10.0
 
     @property
     def lead_resistance_ohm(self) -> float:
@@ -377,6 +423,17 @@ class ReadoutChain(ResolvedSection):
         return n / (1.0 + 2.0 * float(np.sum((1.0 - k / n) * rho ** k)))
 
     @property
+    def flicker_band_Hz(self) -> tuple[float, float]:
+        """The band a reading's 1/f noise spans (Hz): from 1 / ``tare_interval_s`` (the
+        tare removes what is slower) to the averaging window's noise bandwidth,
+        ``sample_rate_Hz`` / (2 ``samples_averaged``) (the mean of N samples is a boxcar of
+        N / f_s seconds), or the chain's noise bandwidth where that is lower; empty (f_hi =
+        f_lo) when the window is as long as the interval."""
+        f_lo = 1.0 / self.tare_interval_s
+        f_hi = min(self.noise_bandwidth_Hz, self.sample_rate_Hz / (2.0 * self.samples_averaged))
+        return f_lo, max(f_hi, f_lo)
+
+    @property
     def volts_per_strain(self) -> float:
         """Linearised quarter-bridge gain at the DAQ: G V_ex GF / 4 (V per unit strain)."""
         return self.amplifier_gain * self.excitation_V * self.gauge_factor / 4.0
@@ -392,7 +449,8 @@ class ReadoutChain(ResolvedSection):
                 "lead_resistance_ohm": self.lead_resistance_ohm,
                 "noise_bandwidth_Hz": self.noise_bandwidth_Hz,
                 "noise_correlation_time_s": self.noise_correlation_time_s,
-                "effective_samples": self.effective_samples}
+                "effective_samples": self.effective_samples,
+                "flicker_band_Hz": list(self.flicker_band_Hz)}
 
 
 #: Carrier beyond the grid at each side across the sheet (mm): catalogue outlines of
@@ -452,6 +510,17 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
         values["bandwidth_Hz"] = bw if bw is not None else 10e3
         if bw is None:
             sources["bandwidth_Hz"] = "assumption: 10 kHz noise bandwidth (no data for this gain)"
+    if values["amplifier_flicker_nV_per_rtHz_at_1Hz"] is None:
+        if values["amplifier"] == "AD621":
+            values["amplifier_flicker_nV_per_rtHz_at_1Hz"] = flicker_density_at_1Hz(
+                AD621_LOW_BAND_NOISE_UV_PP, AD621_LOW_BAND_HZ,
+                float(DEFAULTS["amplifier_noise_nV_per_rtHz"][0]))
+        else:
+            values["amplifier_flicker_nV_per_rtHz_at_1Hz"] = 0.0
+            sources["amplifier_flicker_nV_per_rtHz_at_1Hz"] = (
+                f"not stated for {values['amplifier']}: its 1/f noise is left out (state "
+                "readout.amplifier_flicker_nV_per_rtHz_at_1Hz from its data sheet's 0.1-10 Hz "
+                "figure)")
     values["daq_ranges_V"] = tuple(float(r) for r in values["daq_ranges_V"])
     if values["daq_range_V"] is None:  # the smallest range for the largest signal in service
         signal = (gain * float(values["excitation_V"]) * float(values["gauge_factor"]) / 4.0

@@ -46,8 +46,10 @@ pi/2 x its -3 dB bandwidth, without one), the bridge's Johnson noise
 gain, the DAQ's random noise and the quantisation step / sqrt(12), summed
 in quadrature; averaging divides the filtered analog part by the square root of the
 effective sample count (correlated samples: :attr:`ReadoutChain.effective_samples`), the
-DAQ's and the quantisation by that of the sample count. Force resolution = that noise
-/ |S| (1 sigma).
+DAQ's and the quantisation by that of the sample count. The 1/f noise of the amplifier
+(its data sheet's low-band figure) and of the foil grid (Hooge) over the band from the tare
+to the averaging window's bandwidth is added unaveraged (:func:`flicker_noise_V`). Force
+resolution = that noise / |S| (1 sigma).
 
 K_obj resolution: eq. 1-3 with each element's own force resolution
 (:func:`tactcad.mechanics.resolution.unit_resolution`); each row's reference
@@ -360,15 +362,55 @@ def meshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain: Read
 # ---------------------------------------------------------------------------
 # Signal and noise
 # ---------------------------------------------------------------------------
+#: Hooge's 1/f parameter of a metal (Hooge, "1/f noise is no surface effect", Phys. Lett. A
+#: 29, 139 (1969): alpha_H about 2e-3).
+HOOGE_ALPHA_METAL = 2e-3
+#: The foil grid's conductor (assumptions): constantan foil 5 um thick (foil gauges are
+#: etched from foil of a few um), covering half the grid's area, one conduction electron per
+#: atom of Cu55Ni45 (8.9 g/cm^3 over 61.4 g/mol: 8.7e22 cm^-3).
+FOIL_THICKNESS_UM, GRID_FILL, FOIL_ELECTRONS_PER_CM3 = 5.0, 0.5, 8.7e22
+
+
+def grid_carriers(chain: ReadoutChain) -> float:
+    """The conduction electrons in the gauge's foil grid (:data:`FOIL_ELECTRONS_PER_CM3` over
+    the grid's area x :data:`GRID_FILL` x :data:`FOIL_THICKNESS_UM`)."""
+    volume_cm3 = (GRID_FILL * chain.grid_length_mm * chain.grid_width_mm * 1e-2
+                  * FOIL_THICKNESS_UM * 1e-4)
+    return FOIL_ELECTRONS_PER_CM3 * volume_cm3
+
+
+def flicker_noise_V(chain: ReadoutChain) -> dict[str, float]:
+    """A reading's 1/f noise at the DAQ (V rms) over :attr:`ReadoutChain.flicker_band_Hz`:
+    the amplifier's, G e_f sqrt(ln(f_hi / f_lo)) (e_f: its 1/f density at 1 Hz), and the
+    foil grid's Hooge noise, G (V_ex / 4) sqrt(alpha_H / N ln(f_hi / f_lo)) (a quarter bridge
+    puts V_ex / 4 of each relative change of the gauge's resistance at its output). Averaging
+    the samples does not reduce it: the band ends at the averaging window's bandwidth.
+
+    Returns:
+        ``{"amplifier": V, "gauge": V}``.
+    """
+    from tactcad.mechanics.piezoresistor import hooge_noise_V
+
+    f_lo, f_hi = chain.flicker_band_Hz
+    decades = math.log(f_hi / f_lo)
+    amp = chain.amplifier_gain * chain.amplifier_flicker_nV_per_rtHz_at_1Hz * 1e-9 * math.sqrt(
+        decades)
+    gauge = chain.amplifier_gain * hooge_noise_V(HOOGE_ALPHA_METAL, chain.excitation_V / 4.0,
+                                                 grid_carriers(chain), f_lo, f_hi)
+    return {"amplifier": amp, "gauge": gauge}
+
+
 def noise_budget_V(chain: ReadoutChain) -> dict[str, float]:
     """Noise of one reading at the DAQ (V rms), by source and in total.
 
     Keys: ``amplifier``, ``bridge_johnson``, ``daq``, ``quantisation`` (one
-    sample each), ``per_sample`` (quadrature sum), ``reading``: the mean of
-    ``samples_averaged`` samples, the filtered analog noise (amplifier, Johnson) over
-    the chain's effective sample count (:attr:`ReadoutChain.effective_samples`: its
-    samples are correlated), the DAQ's noise and the quantisation (independent from
-    sample to sample) over the sample count.
+    sample each), ``per_sample`` (their quadrature sum), ``amplifier_flicker`` and
+    ``gauge_flicker`` (the reading's 1/f noise, :func:`flicker_noise_V`), ``reading``: the
+    mean of ``samples_averaged`` samples, the filtered white analog noise (amplifier,
+    Johnson) over the chain's effective sample count (:attr:`ReadoutChain.effective_samples`:
+    its samples are correlated), the DAQ's noise and the quantisation (independent from
+    sample to sample) over the sample count, and the 1/f noise, which averaging does not
+    reduce, in quadrature.
     """
     bw_noise = chain.noise_bandwidth_Hz  # anti-alias filter or the amplifier's pole
     amp = chain.amplifier_gain * chain.amplifier_noise_nV_per_rtHz * 1e-9 * math.sqrt(bw_noise)
@@ -376,11 +418,14 @@ def noise_budget_V(chain: ReadoutChain) -> dict[str, float]:
                                                * chain.gauge_resistance_ohm * bw_noise)
     daq = chain.daq_noise_uV_rms * 1e-6
     quant = chain.lsb_V / math.sqrt(12.0)
+    flicker = flicker_noise_V(chain)
     per_sample = math.sqrt(amp ** 2 + johnson ** 2 + daq ** 2 + quant ** 2)
     return {"amplifier": amp, "bridge_johnson": johnson, "daq": daq, "quantisation": quant,
-            "per_sample": per_sample,
+            "per_sample": per_sample, "amplifier_flicker": flicker["amplifier"],
+            "gauge_flicker": flicker["gauge"],
             "reading": math.sqrt((amp ** 2 + johnson ** 2) / chain.effective_samples
-                                 + (daq ** 2 + quant ** 2) / chain.samples_averaged)}
+                                 + (daq ** 2 + quant ** 2) / chain.samples_averaged
+                                 + flicker["amplifier"] ** 2 + flicker["gauge"] ** 2)}
 
 
 def bridge_nonlinearity_rel(gauge_factor: float, strain: float) -> float:
