@@ -608,10 +608,9 @@ def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
         error = json.loads(r.stdout)["error"]
         assert error["field"] == "--design" and "tactcad die --design" in error["message"]
         assert "macro_array" not in r.stdout + r.stderr
-    # the commands that read a design file by their own path: grasp listed the fifteen
-    # missing tables, watch watched the die's file and refused each export
-    for argv, field in ((("grasp", "--design", design.name), "--design"),
-                        (("watch", "--design", design.name, "--port", "0"), "--design"),
+    # the commands that read a design file by their own path: watch watched the die's file
+    # and refused each export
+    for argv, field in ((("watch", "--design", design.name, "--port", "0"), "--design"),
                         (("lumped", "--km", "1", "--kr", "10", "--r", "2", "--coupled-design",
                           design.name, "--unit", "1"), "--coupled-design")):
         r = run_cli(*argv, "--json", cwd=tmp_path)
@@ -821,3 +820,55 @@ def test_the_die_command_takes_its_folders_die_design_and_names_every_missing_ta
     with pytest.raises(DesignErrors) as caught:
         die_asked(argparse.Namespace(**{**vars(bare), "jaw": "5"}))
     assert "--jaw" not in [e.field for e in caught.value.errors]
+
+
+def test_the_grasp_on_a_die_presses_each_post_by_the_jaws_wedge_and_reads_each_column(die):
+    """The die in the 5 mm jaw closed on a wedge at a given angle, the tissue uncoupled (eq.
+    1): each post's radius is its x on the die's place less the pin's; its travel is
+    r (h / r_last - sin theta) (the wedge's law, by hand); each column's R reads the true
+    K_obj exactly by eq. 3; closed flat, every post rests on its cavity's floor and no unit
+    reads; pressed past its height, the face meets the tissue and its unit does not read."""
+    from tactcad.design.die_mount import die_mount
+    from tactcad.in_use.die_grasp import die_grasp, die_jaw
+
+    mount = die_mount(die, {"shaft_class_mm": "5"})
+    jaw = die_jaw(mount, 30.0, 3.0)
+    radius = {b.number: mount.die_x0_mm + b.x_um / 1e3 - mount.pin_x_mm for b in die.beams}
+    last = max(radius.values())
+    angle = math.degrees(math.asin(3.0 / last)) - 0.03  # just past the wedge's first touch
+    result = die_grasp(die, mount, jaw, 1.5, angle_deg=angle, coupling="none")
+    for tip in result.tips:
+        r = radius[tip["site"]]
+        assert tip["radius_mm"] == pytest.approx(r, rel=1e-12)
+        assert tip["travel_mm"] == pytest.approx(r * (3.0 / last - math.sin(math.radians(angle))),
+                                                 rel=1e-9)
+    assert len(result.units) == die.columns
+    for u in result.units:
+        assert u["valid"] and u["radius_ratio"] == pytest.approx(1.0)
+        assert u["error_rel"] == pytest.approx(0.0, abs=1e-9)
+    closed = die_grasp(die, mount, jaw, 1.5, angle_deg=0.0, coupling="none")
+    assert all(t["on_stop"] for t in closed.tips) and not any(u["valid"] for u in closed.units)
+    for t, b in zip(closed.tips, die.beams):
+        assert t["deflection_mm"] == pytest.approx(die.stop_engagement_um(b)[0] / 1e3, rel=1e-9)
+    assert all(t["face_in_contact"] for t in closed.tips)
+    assert all("the face meets the tissue" in u["why"] for u in closed.units)
+
+
+def test_grasp_in_a_dies_folder_prints_the_grasp_in_its_jaw_and_refuses_the_pin(tmp_path):
+    """`tactcad grasp` in a die's folder closes the die's own jaw (its pin, its opening) on
+    the default wedge at half the rating on every beam, writes nothing, and refuses the
+    options the die's mount decides (the pin, a ladder level) by name."""
+    design = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+              / "grasper_jaw_5mm_mems.toml")
+    (tmp_path / design.name).write_bytes(design.read_bytes())
+    r = run_cli("grasp", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    record = json.loads(r.stdout)
+    assert record["grasp"]["total_force_N"] == pytest.approx(0.5 * 0.02 * 10, rel=1e-6)
+    assert record["jaw"]["opening_angle_deg"] > 0 and record["profile"] == "wedge"
+    assert len(record["grasp"]["units"]) == 5 and all(u["valid"] for u in record["grasp"]["units"])
+    assert sorted(p.name for p in tmp_path.iterdir()) == [design.name]
+    for argv in (("--pivot-mm", "1", "2"), ("--model", "fem3d"), ("--jaw-length-mm", "20")):
+        refused = run_cli("grasp", *argv, "--json", cwd=tmp_path)
+        assert refused.returncode == 2
+        assert json.loads(refused.stdout)["error"]["field"] == argv[0]

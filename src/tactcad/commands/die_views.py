@@ -1,11 +1,13 @@
 """The array commands on a silicon die's design file: ``modal``, ``budget``, ``readout``,
-``thermal`` and ``verify`` print the die's own resonances, K_obj budget, piezoresistive
-read-out, its temperature terms and its verification matrix (:func:`die_verification`),
+``thermal``, ``verify`` and ``grasp`` print the die's own resonances, K_obj budget,
+piezoresistive read-out, its temperature terms, its verification matrix
+(:func:`die_verification`) and the grasp in its jaw (:mod:`tactcad.in_use.die_grasp`),
 planned as the die command plans it and writing no file of theirs (the result store aside).
 
 An option of the array command that has no meaning for a die (a ladder level, an element,
-a temperature step) is refused by name rather than ignored. ``grasp`` and ``crosstalk``
-stay refused, naming ``tactcad die``.
+a temperature step, the jaw's pin: the die's mount places it) is refused by name rather than
+ignored (:data:`DIE_OPTIONS` are those a die's view reads). ``crosstalk`` stays refused,
+naming ``tactcad die``.
 """
 
 from __future__ import annotations
@@ -17,10 +19,16 @@ from typing import Callable
 from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError
 
+#: The options of an array command a die's view reads, by command (the others are refused).
+DIE_OPTIONS: dict[str, frozenset] = {
+    "grasp": frozenset({"angle_deg", "force_N", "slab_thickness_mm", "profile", "kobj",
+                        "opening_deg", "coupling"})}
+
+
 def _refuse_array_options(args: argparse.Namespace, command: str, design: Path) -> None:
     from tactcad.commands.options import COMMON_OPTIONS, options_given
 
-    given = options_given(args, COMMON_OPTIONS)
+    given = options_given(args, COMMON_OPTIONS | DIE_OPTIONS.get(command, frozenset()))
     if given:
         option, value = given[0]
         raise DesignError(option, value, f"left out for a die's design ({design.name})",
@@ -209,10 +217,123 @@ def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     return report, lines
 
 
+def _jaw_opening_deg(jaw_stated) -> float:
+    """The opening of the jaw a die is mounted in (degrees): its table's, the class's
+    default filling what a lab's jaw file leaves out."""
+    from tactcad.partlib.grasper_jaw import (GrasperJawSection, validated_table,
+                                             with_class_defaults)
+
+    table = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection,
+                                                dict(jaw_stated)))
+    return float(table.opening_angle_deg)
+
+
+def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    import math
+
+    from tactcad.design.die_mount import die_mount
+    from tactcad.in_use.die_grasp import die_grasp, die_jaw
+    from tactcad.commands.options import GRASP_OPTION_OF as OPTION_OF
+
+    planned = _planned(design, args)
+    plan = planned.plan
+    mount = die_mount(plan, planned.jaw_stated)
+    lo, hi = plan.kobj_range_N_per_mm
+    k_obj = args.kobj if args.kobj is not None else math.sqrt(lo * hi)
+    opening = args.opening_deg if args.opening_deg is not None else _jaw_opening_deg(
+        planned.jaw_stated)
+    asked = args.angle_deg is not None or args.force_N is not None
+    force = args.force_N if asked else round(0.5 * plan.full_scale_force_N * len(plan.beams), 12)
+    force_why = ("--force-N" if args.force_N is not None else "--angle-deg"
+                 if args.angle_deg is not None else
+                 f"half the rated {plan.full_scale_force_N:g} N on each of {len(plan.beams)} "
+                 "beams")
+    try:
+        jaw = die_jaw(mount, opening, args.slab_thickness_mm)
+        shut = dict(coupling=args.coupling, profile=args.profile)
+        try:
+            result = die_grasp(plan, mount, jaw, k_obj, angle_deg=args.angle_deg,
+                               force_N=None if args.angle_deg is not None else force, **shut)
+        except DesignError as exc:
+            if asked or exc.field != "force_N":
+                raise
+            # the default force out of the tissue's reach: the jaw fully open or closed flat
+            result = die_grasp(plan, mount, jaw, k_obj, angle_deg=jaw.opening_angle_deg, **shut)
+            if result.total_force_N <= force:
+                result = die_grasp(plan, mount, jaw, k_obj, angle_deg=0.0, **shut)
+            force_why = (f"{force_why} ({force:g} N) is out of the tissue's reach: the jaw at "
+                         f"{result.angle_deg:g} degrees takes {result.total_force_N:.4g} N")
+    except DesignError as exc:
+        option = OPTION_OF.get(exc.field)
+        raise (DesignError(option, exc.value, exc.allowed, exc.why) if option else exc) from None
+    record = {"design": str(design), "die": plan.name,
+              "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": jaw.jaw_length_mm,
+                      "opening_angle_deg": jaw.opening_angle_deg,
+                      "slab_thickness_mm": jaw.slab_thickness_mm},
+              "K_obj_N_per_mm": k_obj, "coupling": args.coupling, "profile": args.profile,
+              "rated_force_N": plan.full_scale_force_N, "post_proud_mm": mount.post_proud_mm,
+              "grasp": result.as_json(),
+              "reasons": {"force_N": force_why,
+                          "K_obj": "--kobj" if args.kobj is not None else
+                          f"the geometric mean of the die's K_obj range {lo:g} ... {hi:g} N/mm",
+                          "opening": "--opening-deg" if args.opening_deg is not None else
+                          "the jaw's opening_angle_deg",
+                          "overload_limit_N": "each beam's root at the mean strength of "
+                                              "etched silicon bars (no Weibull modulus)",
+                          "error": "eq. 3 on the read R: the tissue's coupling between "
+                                   "neighbouring posts stays in it (the die's budget: the "
+                                   "coupled inversion removes it)"}}
+    return record, grasp_lines(plan, record, result)
+
+
+def grasp_lines(plan, record: dict, result) -> list[str]:
+    """The die's grasp as text: the jaw and tissue, each unit's reading, each post's force."""
+    jaw = record["jaw"]
+    um = 1e3
+    lines = [f"die {plan.name} in its jaw: pin at {jaw['pin_x_mm']:g} mm from the heel, "
+             f"{jaw['opening_angle_deg']:g} degrees open, {record['profile']} of tissue "
+             f"{jaw['slab_thickness_mm']:g} mm thick, K_obj {record['K_obj_N_per_mm']:.4g} N/mm "
+             f"({record['coupling']} coupling)",
+             f"closed to {result.angle_deg:.4g} degrees: grasp force "
+             f"{result.total_force_N:.4g} N ({record['reasons']['force_N']})",
+             "| unit | radius mm | travel r/m um | deflection r/m um | R read | K_obj read | "
+             "error | corrected | error | reads |", "| --- | --- | --- | --- | --- | --- | --- "
+             "| --- | --- | --- |"]
+
+    def pct(v):
+        return "n/a" if v is None else f"{100 * v:+.1f} %"
+
+    def num(v):
+        return "n/a" if v is None else f"{v:.4g}"
+
+    for u in result.units:
+        lines.append(f"| {u['unit']} | {u['r_reference_mm']:.3f} | "
+                     f"{um * u['travel_reference_mm']:.3g} / {um * u['travel_measuring_mm']:.3g} | "
+                     f"{um * u['deflection_reference_mm']:.3g} / "
+                     f"{um * u['deflection_measuring_mm']:.3g} | {num(u['R_read'])} | "
+                     f"{num(u['K_obj_read_N_per_mm'])} | {pct(u['error_rel'])} | "
+                     f"{num(u['K_obj_corrected_N_per_mm'])} | {pct(u['error_corrected_rel'])} | "
+                     f"{'yes' if u['valid'] else u['why']} |")
+    over = [t for t in result.tips if t["over_rating"]]
+    broken = [t for t in result.tips if t["over_overload_limit"]]
+    stopped = [t for t in result.tips if t["on_stop"]]
+    face = [t for t in result.tips if t["face_in_contact"]]
+    top = max(result.tips, key=lambda t: t["element_force_N"])
+    lines += [f"largest beam force {1e3 * top['element_force_N']:.3g} mN (beam {top['site']}, "
+              f"rated {1e3 * plan.full_scale_force_N:g} mN); over the rating: "
+              f"{', '.join(str(t['site']) for t in over) or 'none'}; on their stops: "
+              f"{', '.join(str(t['site']) for t in stopped) or 'none'}; past the breaking "
+              f"force: {', '.join(str(t['site']) for t in broken) or 'none'}; the face in "
+              f"the tissue beside posts: {', '.join(str(t['site']) for t in face) or 'none'} "
+              f"(posts {1e3 * record['post_proud_mm']:.3g} um proud)",
+              f"error: {record['reasons']['error']}"]
+    return lines
+
+
 #: The array commands that print a die's own figures, and what they print.
 DIE_VIEWS: dict[str, Callable[[Path, argparse.Namespace], tuple[dict, list[str]]]] = {
     "modal": _modal, "budget": _budget, "readout": _readout, "thermal": _thermal,
-    "verify": _verify}
+    "verify": _verify, "grasp": _grasp}
 
 
 def die_view(command: str, args: argparse.Namespace) -> int | None:

@@ -7,7 +7,7 @@ import math
 
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, parse_overrides
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.options import number
+from tactcad.commands.options import GRASP_OPTION_OF, keep_option_defaults, number
 from tactcad.mechanics.ladder import models
 from tactcad.design.readout_section import LEAD_WIRE
 
@@ -21,11 +21,7 @@ DEFAULT_LEAD_CHANNEL_MM = 3.0
 #: touch), the case verify's max_grasp_force_N judges.
 DEFAULT_PROFILE = "wedge"
 #: The grasp's fields and the options that set them (an error names the option).
-OPTION_OF = {"force_N": "--force-N", "angle_deg": "--angle-deg",
-             "jaw.pivot_u_mm": "--pivot-mm", "jaw.pivot_v_mm": "--pivot-mm",
-             "jaw.jaw_length_mm": "--jaw-length-mm", "jaw.opening_angle_deg": "--opening-deg",
-             "jaw.slab_thickness_mm": "--slab-thickness-mm", "k_obj_N_per_mm": "--kobj",
-             "channel_diameter_mm": "--lead-channel-mm"}
+OPTION_OF = GRASP_OPTION_OF
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -45,7 +41,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "the design's layout and the units laid across the jaw's width at equal "
                     "radius, side by side; every element's force against its rating. Then "
                     "the leads (three per three-wire quarter bridge, AWG 36 PTFE 0.25 mm) "
-                    "against the shaft's lead channel. Units: mm, N, N/mm, degrees.")
+                    "against the shaft's lead channel. On a silicon die's design file: the die's own "
+                    "jaw closed on the tissue, each column read as a unit (no leads). Units: "
+                    "mm, N, N/mm, degrees.")
     add_design_arg(p)
     add_cache_args(p)
     how = p.add_mutually_exclusive_group()
@@ -94,6 +92,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         f"{DEFAULT_LEAD_CHANNEL_MM:g} mm, assumed: give your shaft's)")
     add_output_args(p, "print one JSON object: the jaw, both layouts' tips and units, the "
                        "leads")
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
     p.set_defaults(func=run)
 
 
@@ -139,7 +138,11 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.readout_chain import readout_chain, row_units
     from tactcad.studies.verification import requirements_of
+    from tactcad.commands.die_views import die_view
 
+    shown = die_view("grasp", args)  # a silicon die's design: the grasp in its jaw
+    if shown is not None:
+        return shown
     plan = design_plan_from_args(args)
     req = requirements_of(plan)
     rated = float(req.full_scale_force_N)

@@ -227,6 +227,14 @@ def options_of(parser: argparse.ArgumentParser,
 
 #: The options a command's every mode takes alike: the design and its overrides, the result
 #: store and the output (their dests), with argparse's own ``func``/``command``.
+#: The grasp's fields and the options that set them (an error names the option).
+GRASP_OPTION_OF = {"force_N": "--force-N", "angle_deg": "--angle-deg",
+                   "jaw.pivot_u_mm": "--pivot-mm", "jaw.pivot_v_mm": "--pivot-mm",
+                   "jaw.jaw_length_mm": "--jaw-length-mm",
+                   "jaw.opening_angle_deg": "--opening-deg",
+                   "jaw.slab_thickness_mm": "--slab-thickness-mm", "k_obj_N_per_mm": "--kobj",
+                   "channel_diameter_mm": "--lead-channel-mm"}
+
 COMMON_OPTIONS = frozenset({"design", "overrides", "json", "quiet", "cache", "no_cache", "func",
                             "command"})
 
