@@ -514,10 +514,10 @@ def new_die_project(folder: str | Path, source: Path, *, force: bool = False) ->
     """
     from tactcad.design.die_file import DIE_TABLE, is_cell_name, load_die_design
 
-    text, name = named_for_project(source.read_text(encoding="utf-8"), Path(folder).resolve().name,
-                                   DIE_TABLE)
+    original = source.read_text(encoding="utf-8")
+    text, name = named_for_project(original, Path(folder).resolve().name, DIE_TABLE)
     if name is None or not is_cell_name(name):
-        text, name = source.read_text(encoding="utf-8"), None
+        text, name = original, None
     design_name = f"{name}.toml" if name else source.name
     design = load_die_design(source)
     words = {"name": name or design.die.name, "design": design_name, "version": VERSION}

@@ -142,27 +142,21 @@ def layer_compliance_change(web_mm, notch_radius_mm, arm_length_mm, sheet_mm,
     """
     from tactcad.mechanics.gauge_strain import transformed_section
 
-    t, R, a, b, E, hb, ha, wl = np.broadcast_arrays(*(np.asarray(v, float) for v in (
-        web_mm, notch_radius_mm, arm_length_mm, sheet_mm, youngs_modulus_MPa, base_height_mm,
-        arm_height_mm, layer_width_mm)))
+    from tactcad.mechanics.notch_profile import notch_integral
+
+    a, b, E, wl = np.broadcast_arrays(*(np.asarray(v, float) for v in (
+        arm_length_mm, sheet_mm, youngs_modulus_MPa, layer_width_mm)))
     u0, u1 = hinge_offsets_mm
-    nodes, weights = np.polynomial.legendre.leggauss(_GAUSS_POINTS)
-    total = np.zeros(t.shape)
-    Rn = R[..., None]
-    # smooth pieces: behind the notch, the notch, in front of it (each clipped to the carrier)
-    for lo, hi in ((np.full(R.shape, u0), np.clip(-R, u0, u1)),
-                   (np.clip(-R, u0, u1), np.clip(R, u0, u1)),
-                   (np.clip(R, u0, u1), np.full(R.shape, u1))):
-        half = 0.5 * (hi - lo)
-        u = half[..., None] * nodes + (0.5 * (hi + lo))[..., None]
-        notch = t[..., None] + Rn - np.sqrt(np.maximum(Rn * Rn - u * u, 0.0))
-        h = np.where(u < -Rn, hb[..., None], np.where(u > Rn, ha[..., None], notch))
+
+    def change(u, h):  # M^2 / EI x (1 / (1 + s) - 1), s the layer's rise of EI
         rise = transformed_section(h, b[..., None], E[..., None], layer_height_mm,
                                    layer_modulus_MPa, wl[..., None])[1]
         moment = a[..., None] - u
         ei = E[..., None] * b[..., None] * h ** 3 / 12.0
-        total = total + half * ((moment * moment / ei * (1.0 / (1.0 + rise) - 1.0)) @ weights)
-    return total
+        return moment * moment / ei * (1.0 / (1.0 + rise) - 1.0)
+
+    return notch_integral(u0, u1, web_mm, notch_radius_mm, base_height_mm, arm_height_mm,
+                          change, _GAUSS_POINTS)
 
 
 def layer_compliance_change_of(g: ElementGeometry, youngs_modulus_MPa: float,

@@ -109,19 +109,15 @@ def estimate(model: str, g: ElementGeometry, material: Material, *, element: int
     return result if result.element == element else replace(result, element=element)
 
 
-#: Each level's error in the bonded gauge's K rise, relative to the rise (a finite-element
-#: level meshes the layer: its discretisation error is K's own).
-GAUGE_RISE_ERROR_REL = {"closed-form": "CLOSED_FORM_LAYER_ERROR_REL", "beam": "BEAM_LAYER_ERROR_REL"}
-
-
 def gauge_rise_error_rel(model: str) -> float:
     """The error of ``model``'s K rise from the bonded gauge, relative to the rise
-    (:data:`tactcad.mechanics.bonded_layer.CLOSED_FORM_LAYER_ERROR_REL`, ...; 0 for a level
-    that meshes the layer)."""
-    from tactcad.mechanics import bonded_layer
+    (:data:`tactcad.mechanics.bonded_layer.CLOSED_FORM_LAYER_ERROR_REL` and
+    :data:`~tactcad.mechanics.bonded_layer.BEAM_LAYER_ERROR_REL`; 0 for a finite-element
+    level: it meshes the layer, and its discretisation error is K's own)."""
+    from tactcad.mechanics.bonded_layer import BEAM_LAYER_ERROR_REL, CLOSED_FORM_LAYER_ERROR_REL
 
-    name = GAUGE_RISE_ERROR_REL.get(model)
-    return 0.0 if name is None else float(getattr(bonded_layer, name))
+    return {"closed-form": CLOSED_FORM_LAYER_ERROR_REL,
+            "beam": BEAM_LAYER_ERROR_REL}.get(model, 0.0)
 
 
 def gauge_k_rise(model: str, g: ElementGeometry, material: Material) -> float:

@@ -61,7 +61,6 @@ Units: mm, N, MPa, V, N/mm, V/mm, V/N; strain dimensionless.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
 from typing import Callable
@@ -71,11 +70,12 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.design.readout_section import ReadoutChain, readout_of
 from tactcad.mechanics.ladder import is_meshed
+from tactcad.mechanics.notch_profile import notch_integral, notched_height_mm
 
 #: Boltzmann constant (J/K) and the bridge temperature assumed for its Johnson noise (K).
 BOLTZMANN_J_PER_K = 1.380649e-23
 BRIDGE_TEMPERATURE_K = 296.0
-#: Points per mm of grid for the beam-theory average (Gauss-Legendre per piece).
+#: Gauss-Legendre points on each smooth piece of the grid's span (the beam-theory average).
 GAUSS_POINTS = 64
 
 
@@ -89,12 +89,10 @@ def readout_chain(plan: Plan) -> ReadoutChain:
 # ---------------------------------------------------------------------------
 def top_face_height_mm(g: ElementGeometry, x_mm) -> np.ndarray:
     """Section height under the flat top face at ``x_mm`` (element frame, mm; array-like):
-    the base block behind the notch, the circular notch, the arm in front."""
-    x = np.asarray(x_mm, float)
-    R, t, xh = g.notch_radius_mm, g.web_thickness_mm, g.hinge_x_mm
-    d = np.clip(x - xh, -R, R)
-    notch = t + R - np.sqrt(np.maximum(R * R - d * d, 0.0))
-    return np.where(x < xh - R, g.base_height_mm, np.where(x > xh + R, g.arm_height_mm, notch))
+    the base block behind the notch, the circular notch, the arm in front
+    (:func:`tactcad.mechanics.notch_profile.notched_height_mm`)."""
+    return notched_height_mm(np.asarray(x_mm, float) - g.hinge_x_mm, g.web_thickness_mm,
+                             g.notch_radius_mm, g.base_height_mm, g.arm_height_mm)
 
 
 def beam_surface_strain_per_N(g: ElementGeometry, material: Material, x_mm) -> np.ndarray:
@@ -122,16 +120,6 @@ def beam_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_m
                                       g.arm_height_mm))
 
 
-@functools.cache
-def gauss_legendre(points: int) -> tuple[np.ndarray, np.ndarray]:
-    """Gauss-Legendre nodes and weights on [-1, 1], shape (points,) each (numpy's
-    ``leggauss``, formed once per count: a 64-point rule costs a millisecond, and the
-    grid strain is evaluated thousands of times in a design search). Read-only arrays."""
-    nodes, weights = np.polynomial.legendre.leggauss(points)
-    nodes.flags.writeable = weights.flags.writeable = False
-    return nodes, weights
-
-
 def eb_grid_strain_per_N(web_mm, notch_radius_mm, arm_length_mm, grid_length_mm, sheet_mm,
                          youngs_modulus_MPa, base_height_mm, arm_height_mm) -> np.ndarray:
     """Euler-Bernoulli top-face strain per newton averaged over a grid centred over the
@@ -139,21 +127,14 @@ def eb_grid_strain_per_N(web_mm, notch_radius_mm, arm_length_mm, grid_length_mm,
     compression): eps / F = -6 (a - u) / (E b h(u)^2), u from the notch centre, h the
     section under the flat top face (:func:`top_face_height_mm`); Gauss-Legendre on each
     smooth piece (the notch walls u = +-R are break points). ``grid_length_mm`` > 0."""
-    t, R, a, L, b, E, hb, ha = np.broadcast_arrays(*(np.asarray(v, float) for v in (
-        web_mm, notch_radius_mm, arm_length_mm, grid_length_mm, sheet_mm, youngs_modulus_MPa,
-        base_height_mm, arm_height_mm)))
-    half = L / 2
-    r = np.minimum(R, half)
-    nodes, weights = gauss_legendre(GAUSS_POINTS)
-    total = np.zeros(t.shape)
-    for lo, hi in ((-half, -r), (-r, r), (r, half)):
-        u = (0.5 * (hi - lo))[..., None] * nodes + (0.5 * (hi + lo))[..., None]
-        Rn, tn = R[..., None], t[..., None]
-        notch = tn + Rn - np.sqrt(np.maximum(Rn * Rn - u * u, 0.0))
-        h = np.where(u < -Rn, hb[..., None], np.where(u > Rn, ha[..., None], notch))
-        eps = -6.0 * (a[..., None] - u) / (E[..., None] * b[..., None] * h * h)
-        total = total + 0.5 * (hi - lo) * (eps @ weights)
-    return total / L
+    a, L, b, E = np.broadcast_arrays(*(np.asarray(v, float) for v in (
+        arm_length_mm, grid_length_mm, sheet_mm, youngs_modulus_MPa)))
+
+    def strain(u, h):  # eps / F = -6 (a - u) / (E b h^2)
+        return -6.0 * (a[..., None] - u) / (E[..., None] * b[..., None] * h * h)
+
+    return notch_integral(-L / 2, L / 2, web_mm, notch_radius_mm, base_height_mm,
+                          arm_height_mm, strain, GAUSS_POINTS) / L
 
 
 def closed_form_grid_read_per_N(web_mm, notch_radius_mm, arm_length_mm, g: ElementGeometry,
