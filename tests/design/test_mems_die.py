@@ -608,6 +608,8 @@ def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
         error = json.loads(r.stdout)["error"]
         assert error["field"] == "--design" and "tactcad die --design" in error["message"]
         assert "macro_array" not in r.stdout + r.stderr
+        if command == "crosstalk":  # what a die's crosstalk is, and where it is read
+            assert "tissue between its posts" in error["message"]
     # the commands that read a design file by their own path: watch watched the die's file
     # and refused each export
     for argv, field in ((("watch", "--design", design.name, "--port", "0"), "--design"),

@@ -36,6 +36,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.stack_crosstalk import plan_crosstalk
 
+    _refuse_a_die(args)
     plan = plan_from_args(args)
     result = plan_crosstalk(plan, args.model)
     in_force = _in_force(plan, result)
@@ -46,6 +47,30 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print(render(plan.name, result, rows, in_force))
     return 0
+
+
+def _refuse_a_die(args: argparse.Namespace) -> None:
+    """A silicon die's design file is refused with what its crosstalk is: its beams stand on
+    one solid frame bonded to the handle, not in a clamped stack, and what couples their
+    readings is the tissue between their posts.
+
+    Raises:
+        DesignError: ``--design`` (or the folder's design) is a die's.
+    """
+    from tactcad.commands.die import die_design_of
+    from tactcad.design.file_kind import die_refusal
+    from tactcad.errors import DesignError
+
+    design = die_design_of(args)
+    if design is None:
+        return
+    base = die_refusal(design)
+    raise DesignError(base.field, base.value, base.allowed,
+                      f"{base.why}. A die's beams stand on one solid frame bonded to its "
+                      "handle, not in a clamped stack: their coupling through it is not "
+                      "modelled; what couples a die's readings is the tissue between its "
+                      "posts, which `tactcad budget` gives (tissue coupling) and the coupled "
+                      "inversion removes")
 
 
 def _in_force(plan, result) -> dict:
