@@ -128,7 +128,7 @@ def die_asked(args: argparse.Namespace) -> dict:
             "kobj_range": tuple(d.die.kobj_range_N_per_mm),
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
             "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name,
-            "source": _source_of(Path(args.design))}
+            "source": _source_of(Path(args.design)), "strength": d.strength}
 
 
 def _any_option_given(args: argparse.Namespace) -> bool:
@@ -222,8 +222,28 @@ def plan_of(asked: dict) -> PlannedDie:
         if asked.get("file"):
             raise _as_file_keys(exc, asked["file"]) from None
         raise
+    if asked.get("strength") is not None:
+        plan = with_weibull(plan, asked["strength"])
     return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw,
                       asked.get("source"))
+
+
+def with_weibull(plan, pair):
+    """``plan`` judged by the lab's Weibull ``pair`` (its design file's ``[strength]``): the
+    plan with the pair and its strength reason."""
+    from dataclasses import replace
+
+    from tactcad.mechanics.die_strength import die_failure_probability
+
+    p_rated = die_failure_probability(replace(plan, weibull=pair),
+                                      lambda beam: plan.full_scale_force_N)
+    reasons = {**plan.reasons,
+               "strength": f"the die's failure probability at the rated force on every beam, "
+                           f"{p_rated:.3g}, from the lab's Weibull pair (m {pair.modulus:g}, "
+                           f"sigma_0 {pair.characteristic_MPa:g} MPa on {pair.reference_area_um2:g} "
+                           f"um^2; {pair.source}) over each beam's tensile face and sidewalls; "
+                           f"accepted up to {pair.failure_probability_max:g}"}
+    return replace(plan, weibull=pair, reasons=reasons)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -143,7 +143,7 @@ def die_verification(plan) -> list[dict]:
       margin: the worse row's fracture travel or post height over its deepest engagement,
       less one.
     """
-    from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, BOSCH_STRENGTH_SOURCE
+    from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA
     from tactcad.studies.verification import KR_OVER_KM_BAND_REL
 
     rows = plan.beams[:: plan.columns]
@@ -157,14 +157,8 @@ def die_verification(plan) -> list[dict]:
                           / plan.stress_MPa_at_rating(b) / stiffness[b.role] for b in rows}
     stop = _stop_row(plan, rows, fracture_travel_um)
     return [
-        {"requirement": "full_scale_force_N", "target": plan.full_scale_force_N,
-         "predicted": breaking_N, "error_estimate_rel": None,
-         "margin_rel": breaking_N / plan.full_scale_force_N - 1.0, "model": "closed-form",
-         # past the mean strength half such roots break: a failure; below it undecided
-         "verdict": "fail" if breaking_N <= plan.full_scale_force_N else "undecided",
-         "binding_words": f"root at the mean strength of etched bars, {stressed.role} row; "
-                          f"no Weibull modulus, so no failure probability "
-                          f"({BOSCH_STRENGTH_SOURCE})"},
+        _rated_row(plan, stressed, breaking_N) if plan.weibull is None else
+        _weibull_rated_row(plan),
         {"requirement": "kr_over_km", "target": target_ratio, "predicted": ratio,
          "error_estimate_rel": None, "margin_rel": ratio / target_ratio - 1.0,
          "allowed_margin_rel": -KR_OVER_KM_BAND_REL, "model": "closed-form",
@@ -172,6 +166,40 @@ def die_verification(plan) -> list[dict]:
          "binding_words": "each column's reference and measuring beam"},
         stop,
     ]
+
+
+def _rated_row(plan, stressed, breaking_N: float) -> dict:
+    """``full_scale_force_N`` without a Weibull pair: the rating against the force at which
+    the worse root reaches the etched bars' mean strength (past it: failed; else undecided)."""
+    from tactcad.design.mems_die import BOSCH_STRENGTH_SOURCE
+
+    return {"requirement": "full_scale_force_N", "target": plan.full_scale_force_N,
+            "predicted": breaking_N, "error_estimate_rel": None,
+            "margin_rel": breaking_N / plan.full_scale_force_N - 1.0, "model": "closed-form",
+            # past the mean strength half such roots break: a failure; below it undecided
+            "verdict": "fail" if breaking_N <= plan.full_scale_force_N else "undecided",
+            "binding_words": f"root at the mean strength of etched bars, {stressed.role} row; "
+                             f"no Weibull modulus, so no failure probability "
+                             f"({BOSCH_STRENGTH_SOURCE})"}
+
+
+def _weibull_rated_row(plan) -> dict:
+    """``full_scale_force_N`` with the lab's Weibull pair: the die's failure probability
+    with the rated force on every beam against the largest the lab accepts."""
+    from tactcad.mechanics.die_strength import die_failure_probability
+
+    pair = plan.weibull
+    p_f = die_failure_probability(plan, lambda beam: plan.full_scale_force_N)
+    return {"requirement": "full_scale_force_N",
+            "target": f"failure probability <= {pair.failure_probability_max:g}",
+            "predicted": p_f, "error_estimate_rel": None,
+            "margin_rel": pair.failure_probability_max / p_f - 1.0 if p_f > 0 else None,
+            "model": "closed-form",
+            "verdict": "pass" if p_f <= pair.failure_probability_max else "fail",
+            "binding_words": f"the die's failure probability at {plan.full_scale_force_N:g} N "
+                             f"on every beam, the lab's Weibull pair (m {pair.modulus:g}, "
+                             f"sigma_0 {pair.characteristic_MPa:g} MPa on "
+                             f"{pair.reference_area_um2:g} um^2; {pair.source})"}
 
 
 def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
@@ -189,6 +217,15 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
                      f"{shallow:.3g} ... {deep:.3g} um of post travel (rated {rated:.3g} um, "
                      f"breaks at {breaks:.3g} um)")
     words.append(f"posts {plan.post_height_um:g} um proud: still proud on their stops")
+    if plan.weibull is not None:  # every beam resting on its floor: the most it carries
+        from tactcad.mechanics.die_strength import die_failure_probability
+
+        stiffness = {"reference": plan.k_r_N_per_mm, "measuring": plan.k_m_N_per_mm}
+        p_stop = die_failure_probability(
+            plan, lambda b: stiffness[b.role] * 1e-3 * plan.stop_engagement_um(b)[2])
+        ok = ok and p_stop <= plan.weibull.failure_probability_max
+        words.append(f"the die's failure probability with every beam on its deepest stop "
+                     f"{p_stop:.3g} (accepted up to {plan.weibull.failure_probability_max:g})")
     return {"requirement": "hard_stop",
             "target": f"engages past the rated travel (at {STOP_MULTIPLE:g} x) and before the "
                       "root breaks",

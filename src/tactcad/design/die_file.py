@@ -16,14 +16,16 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM,
-                                     LEAST_PITCH_UM)
+                                     LEAST_PITCH_UM, WeibullPair)
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
 from tactcad.errors import DesignError
-from tactcad.vocabulary.schema import (Problems, Section, integer, listing, number, read_toml,
-                                       validate)
+from tactcad.vocabulary.schema import (Problems, Section, Text, integer, listing, number,
+                                       read_toml, validate)
 
-#: The table that makes a TOML file a die's design file.
+#: The die's largest failure probability a ``[strength]`` table accepts when it states none
+#: (assumption: one die in a thousand).
+DEFAULT_FAILURE_PROBABILITY_MAX = 1e-3
 
 
 class DieSection(Section):
@@ -44,10 +46,30 @@ class DieSection(Section):
     name: str = DEFAULT_DIE_NAME
 
 
+class DieStrengthSection(Section):
+    """``[strength]``, optional: a Weibull pair for the fracture strength of the lab's own
+    etched silicon, from its fab's test structures (:class:`tactcad.design.mems_die.
+    WeibullPair`); without it the die's strength is judged against a mean strength only
+    (undecided)."""
+
+    weibull_modulus: number(1.0, 100.0, lo_open=True, unit="",
+                            why="m of the fracture strength's Weibull distribution")
+    characteristic_strength_MPa: number(100.0, 20000.0, unit="MPa",
+                                        why="sigma_0: 63.2 % of the test structures break by it")
+    reference_area_um2: number(1.0, 1e9, unit="um^2",
+                               why="the test structures' effective area the pair is for")
+    source: Text
+    failure_probability_max: number(0.0, 0.5, lo_open=True, unit="",
+                                    why="the die's largest failure probability accepted"
+                                    ) = DEFAULT_FAILURE_PROBABILITY_MAX
+
+
 class DieFile(Section):
-    """A die's design file: ``[die]`` and its ``[assumptions]`` (reasons, by key)."""
+    """A die's design file: ``[die]``, optionally ``[strength]``, and its ``[assumptions]``
+    (reasons, by key)."""
 
     die: DieSection
+    strength: DieStrengthSection = None
     assumptions: dict[str, str] = {}
 
 
@@ -60,11 +82,13 @@ class DieDesign:
         jaw: ``--jaw``'s value for the die command (a trocar class, or the jaw file's path
             resolved in the design's folder).
         source: the file.
+        strength: the file's Weibull pair, or None.
     """
 
     die: DieSection
     jaw: str
     source: Path
+    strength: WeibullPair | None = None
 
 
 def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None) -> DieDesign:
@@ -97,7 +121,17 @@ def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None
     if not is_cell_name(die.name):
         problems.add("die.name", die.name, CELL_NAME_WORDS)
     problems.raise_if_any()
-    return DieDesign(die, jaw, source)
+    return DieDesign(die, jaw, source, weibull_of(model.strength))
+
+
+def weibull_of(section: DieStrengthSection | None) -> WeibullPair | None:
+    """The ``[strength]`` table as a :class:`~tactcad.design.mems_die.WeibullPair` (None
+    without one)."""
+    if section is None:
+        return None
+    return WeibullPair(section.weibull_modulus, section.characteristic_strength_MPa,
+                       section.reference_area_um2, section.source,
+                       section.failure_probability_max)
 
 
 #: What a die's name may be: it names the GDSII cell and the die's files.

@@ -119,6 +119,26 @@ CAVITY_STEP_UM = 0.5
 
 
 @dataclass(frozen=True)
+class WeibullPair:
+    """A lab's Weibull pair for the fracture strength of its own etched silicon (from its
+    fab's test structures; none is in the library): P_f = 1 - exp(-(A_eff / A_0)
+    (sigma / sigma_0)^m) for a surface of effective area A_eff at peak stress sigma.
+
+    Attributes:
+        modulus: m, > 1. characteristic_MPa: sigma_0, the stress at which 63.2 % of the
+            test structures break (MPa). reference_area_um2: A_0, the test structures'
+            effective area the pair is for (um^2). source: where the pair comes from.
+        failure_probability_max: the die's largest failure probability the lab accepts.
+    """
+
+    modulus: float
+    characteristic_MPa: float
+    reference_area_um2: float
+    source: str
+    failure_probability_max: float
+
+
+@dataclass(frozen=True)
 class Beam:
     """One cantilever of the die (um; y_root the root line, direction +1 up, -1 down)."""
 
@@ -177,6 +197,8 @@ class DiePlan:
     implant_dose_per_cm2: float = IMPLANT_DOSE_PER_CM2
     #: each row's cavity depth under its beams, the row's hard stop (um): reference, measuring
     cavity_depths_um: tuple[float, float] = (0.0, 0.0)
+    #: the lab's Weibull pair for its etched silicon, or None (strength then undecided)
+    weibull: WeibullPair | None = None
 
     @property
     def window_um(self) -> tuple[float, float, float, float]:
@@ -261,6 +283,7 @@ class DiePlan:
                                          for b in self.beams[:: self.columns]},
                 "cavity_depths_um": {"reference": self.cavity_depths_um[0],
                                      "measuring": self.cavity_depths_um[1]},
+                "weibull": None if self.weibull is None else dict(self.weibull.__dict__),
                 "reasons": dict(self.reasons)}
 
 

@@ -1,0 +1,64 @@
+"""The fracture probability of a silicon die's beams, from a lab's Weibull pair for its
+etched silicon (:class:`tactcad.design.mems_die.WeibullPair`).
+
+Silicon breaks from surface flaws, brittle and size-dependent: a surface of effective area
+A_eff at peak stress sigma breaks with P_f = 1 - exp(-(A_eff / A_0) (sigma / sigma_0)^m)
+(Weibull's weakest link on a surface population, A_0 the area the pair was measured on:
+e.g. Wachtman, Cannon and Matthewson, *Mechanical Properties of Ceramics*, 2nd ed.,
+ch. 6). A cantilever tip-loaded out of plane carries sigma(x, z) = sigma_root (1 - x / L)
+(2 z / t) (x from the root, z from the mid-plane); its tensile surfaces are the face under
+tension, w wide, and the tensile half of each DRIE sidewall:
+
+    A_eff = int (sigma / sigma_root)^m dA = L / (m + 1) (w + t / (m + 1)),
+
+both taken as the pair's population (the lab's test structures are etched as the die is:
+conservative for a polished face). The stress concentration at the root's corner, where the
+beam meets the frame, is not modelled. The beams break independently: the die's P_f is
+1 - prod(1 - P_f,i).
+
+Units: MPa, um, N.
+"""
+
+from __future__ import annotations
+
+import math
+
+from tactcad.design.mems_die import Beam, DiePlan, WeibullPair
+
+
+def effective_area_um2(length_um: float, width_um: float, thickness_um: float,
+                       modulus: float) -> float:
+    """A tip-loaded cantilever's effective area under its root's peak stress (um^2):
+    L / (m + 1) (w + t / (m + 1)) (the tensile face and half of each sidewall)."""
+    return length_um / (modulus + 1.0) * (width_um + thickness_um / (modulus + 1.0))
+
+
+def failure_probability(peak_MPa: float, area_um2: float, pair: WeibullPair) -> float:
+    """P_f = 1 - exp(-(A_eff / A_0) (sigma / sigma_0)^m) of a surface of effective area
+    ``area_um2`` at peak stress ``peak_MPa`` (0 at no tension)."""
+    if peak_MPa <= 0:
+        return 0.0
+    risk = area_um2 / pair.reference_area_um2 * (peak_MPa / pair.characteristic_MPa) ** pair.modulus
+    return -math.expm1(-risk)
+
+
+def beam_failure_probability(plan: DiePlan, beam: Beam, force_N: float) -> float:
+    """``beam``'s P_f at the tip force ``force_N`` (N) with the plan's Weibull pair.
+
+    Raises:
+        ValueError: the plan states no Weibull pair.
+    """
+    if plan.weibull is None:
+        raise ValueError(f"die {plan.name} states no Weibull pair")
+    stress = plan.stress_MPa_at_rating(beam) * force_N / plan.full_scale_force_N
+    area = effective_area_um2(beam.length_um, beam.width_um, beam.thickness_um,
+                              plan.weibull.modulus)
+    return failure_probability(stress, area, plan.weibull)
+
+
+def die_failure_probability(plan: DiePlan, force_of) -> float:
+    """The die's P_f with each beam at ``force_of(beam)`` (N): 1 - prod(1 - P_f,i)."""
+    survive = 1.0
+    for beam in plan.beams:
+        survive *= 1.0 - beam_failure_probability(plan, beam, force_of(beam))
+    return 1.0 - survive

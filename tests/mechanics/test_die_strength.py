@@ -1,0 +1,96 @@
+"""A silicon die's fracture probability from a lab's Weibull pair: the effective area of a
+tip-loaded cantilever, the weakest-link probability, and the verification rows it decides."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from conftest import run_cli
+from tactcad.design import mems_die as md
+from tactcad.design.mems_die import WeibullPair
+from tactcad.mechanics.die_strength import (die_failure_probability, effective_area_um2,
+                                            failure_probability)
+from tactcad.partlib.grasper_jaw import jaw_room
+from tactcad.studies.inverse_design import Targets
+
+EXAMPLE = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+           / "grasper_jaw_5mm_mems.toml")
+
+
+@pytest.fixture(scope="module")
+def die():
+    return md.die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"))
+
+
+@pytest.mark.parametrize("m", [2.0, 5.0, 12.0])
+def test_the_effective_area_is_the_stress_field_integrated_over_the_tensile_surfaces(m):
+    """sigma = sigma_root (1 - x / L) (2 z / t): the face under tension (z = t / 2, w wide)
+    and the tensile half of each sidewall (0 < z < t / 2), integrated numerically."""
+    from scipy.integrate import dblquad, quad
+
+    L, w, t = 420.0, 100.0, 40.0
+    face = w * quad(lambda x: (1 - x / L) ** m, 0, L)[0]
+    wall = dblquad(lambda z, x: ((1 - x / L) * 2 * z / t) ** m, 0, L, 0, t / 2)[0]
+    assert effective_area_um2(L, w, t, m) == pytest.approx(face + 2 * wall, rel=1e-9)
+
+
+def test_the_weakest_link_probability_is_weibulls():
+    """At sigma_0 on A_0 a surface breaks with 1 - 1/e; twice the area at the same stress
+    survives as the square; a compressive surface does not break."""
+    pair = WeibullPair(6.0, 2000.0, 5000.0, "a test", 1e-3)
+    assert failure_probability(2000.0, 5000.0, pair) == pytest.approx(1 - math.exp(-1))
+    one = 1 - failure_probability(1500.0, 5000.0, pair)
+    assert 1 - failure_probability(1500.0, 10000.0, pair) == pytest.approx(one ** 2)
+    assert failure_probability(-100.0, 5000.0, pair) == 0.0
+
+
+def test_a_stated_pair_decides_the_rated_force_and_the_stops(die):
+    """Without a pair the rating is undecided; with one, the die's failure probability at the
+    rating is 1 - prod exp(-(A_eff / A_0)(sigma / sigma_0)^m) over its beams (by hand) and
+    passes or fails against the lab's accepted maximum; the stop row adds every beam on its
+    deepest stop, which carries more than the rating."""
+    from tactcad.commands.die_views import die_verification
+
+    rows = {r["requirement"]: r for r in die_verification(die)}
+    assert rows["full_scale_force_N"]["verdict"] == "undecided"
+    pair = WeibullPair(5.0, 1500.0, 1e4, "a test", 1e-3)
+    judged = dataclasses.replace(die, weibull=pair)
+    risk = sum((b.length_um / 6 * (b.width_um + b.thickness_um / 6)) / 1e4
+               * (judged.stress_MPa_at_rating(b) / 1500.0) ** 5 for b in die.beams)
+    p_rated = die_failure_probability(judged, lambda b: die.full_scale_force_N)
+    assert p_rated == pytest.approx(1 - math.exp(-risk), rel=1e-9)
+    rows = {r["requirement"]: r for r in die_verification(judged)}
+    assert rows["full_scale_force_N"]["predicted"] == pytest.approx(p_rated)
+    assert rows["full_scale_force_N"]["verdict"] == ("pass" if p_rated <= 1e-3 else "fail")
+    lenient = dataclasses.replace(die, weibull=dataclasses.replace(pair,
+                                                                   failure_probability_max=0.5))
+    rows = {r["requirement"]: r for r in die_verification(lenient)}
+    assert rows["full_scale_force_N"]["verdict"] == "pass"
+    assert rows["hard_stop"]["verdict"] == "pass"
+    strong = dataclasses.replace(die, weibull=dataclasses.replace(pair, characteristic_MPa=8000.0))
+    rows = {r["requirement"]: r for r in die_verification(strong)}
+    assert rows["full_scale_force_N"]["verdict"] == "pass"
+
+
+def test_the_die_files_strength_table_is_validated_and_reaches_verify(tmp_path):
+    """A [strength] table in the die's file: verify judges the rating by it; a missing source
+    or a modulus out of range is refused by its key, nothing else run."""
+    text = EXAMPLE.read_text(encoding="utf-8")
+    table = ('\n[strength]\nweibull_modulus = 8.0\ncharacteristic_strength_MPa = 4000.0\n'
+             'reference_area_um2 = 20000.0\nsource = "the lab\'s test bars"\n')
+    (tmp_path / EXAMPLE.name).write_text(text + table, encoding="utf-8")
+    r = run_cli("verify", "--json", cwd=tmp_path)
+    rows = {x["requirement"]: x for x in json.loads(r.stdout)["matrix"]}
+    assert rows["full_scale_force_N"]["verdict"] in ("pass", "fail")
+    assert "the lab's test bars" in rows["full_scale_force_N"]["binding_words"]
+    for bad, key in ((table.replace('source = "the lab\'s test bars"\n', ""), "strength.source"),
+                     (table.replace("weibull_modulus = 8.0", "weibull_modulus = 0.5"),
+                      "strength.weibull_modulus")):
+        (tmp_path / EXAMPLE.name).write_text(text + bad, encoding="utf-8")
+        r = run_cli("verify", "--json", cwd=tmp_path)
+        assert r.returncode == 2 and key in r.stdout, r.stdout
