@@ -519,6 +519,7 @@ def new_die_project(folder: str | Path, source: Path, *, force: bool = False) ->
     if name is None or not is_cell_name(name):
         text, name = original, None
     design_name = f"{name}.toml" if name else source.name
+    text = text.replace(source.name, design_name)  # its comments name the file they are in
     design = load_die_design(source)
     words = {"name": name or design.die.name, "design": design_name, "version": VERSION}
     files = {"README.md": _template("README-die.md").substitute(words),

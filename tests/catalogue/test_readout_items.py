@@ -9,7 +9,8 @@ from tactcad.design.array_plan import default_design_data, plan_from_dict, with_
 
 def test_the_amplifier_and_daq_named_in_readout_are_bought():
     plan = plan_from_dict(with_overrides(default_design_data(), {
-        "readout.amplifier": "INA826 module", "readout.daq": "LabJack T7"}))
+        "readout.amplifier": "INA826 module", "readout.amplifier_noise_nV_per_rtHz": 18.0,
+        "readout.daq": "LabJack T7"}))
     items = {i.part: i for i in sensor_items(plan)}
     assert "INA826 module" in items["instrumentation_amplifier"].reference
     assert "LabJack T7" in items["daq"].reference

@@ -179,31 +179,32 @@ def test_each_rows_cavity_stops_its_beam_between_its_rated_travel_and_its_fractu
         assert row["verdict"] == verdict, (depth, row["predicted"])
 
 
-@pytest.mark.parametrize("limit, value", [("POST_ASPECT_MAX", 2.0),
-                                           ("HANDLE_FLOOR_UM", 150.0)])
-def test_stops_deeper_than_the_die_allows_are_refused_with_a_lighter_rating(monkeypatch, limit,
-                                                                           value):
-    """Posts that would have to stand taller than their aspect allows, or a cavity that would
-    leave less than the handle's floor, refuse the rating by --full-scale-force; the rating
-    pasted designs under the same limit."""
-    soft = (0.05, 0.5)  # the measuring post goes about 260 um to its stop at 16.5 mN
-    assert md.die_plan(Targets(10.0, soft, 0.0165), jaw_room("5"))
+@pytest.mark.parametrize("limit, value, kobj, force, words", [
+    ("POST_ASPECT_MAX", 0.6, (0.05, 0.5), 0.005, "taller than"),
+    ("CAVITY_DEPTH_MAX_UM", 8.0, (0.5, 5.0), 0.02, "timed etch"),
+    ("BOSCH_MEAN_STRENGTH_MPA", 200.0, (0.5, 5.0), 0.02, "mean tensile strength")])
+def test_a_rating_past_a_limit_is_refused_with_one_below_every_limit(monkeypatch, limit,
+                                                                     value, kobj, force, words):
+    """Each limit of the rating (the posts' height, the cavities' depth, the roots' strength),
+    made to bind, refuses --full-scale-force naming it; the rating pasted designs under the
+    same limits in one step."""
+    assert md.die_plan(Targets(10.0, kobj, force), jaw_room("5"))
     monkeypatch.setattr(md, limit, value)
     with pytest.raises(DesignError) as refused:
-        md.die_plan(Targets(10.0, soft, 0.0165), jaw_room("5"))
+        md.die_plan(Targets(10.0, kobj, force), jaw_room("5"))
     err = refused.value
-    assert err.field == "--full-scale-force" and err.value == 0.0165
+    assert err.field == "--full-scale-force" and err.value == force and words in err.why
     lighter = float(err.alternatives[0]["option"].split()[-1])
-    assert 0 < lighter < 0.0165
-    plan = md.die_plan(Targets(10.0, soft, lighter), jaw_room("5"))
+    assert 0 < lighter < force
+    plan = md.die_plan(Targets(10.0, kobj, lighter), jaw_room("5"))
     assert plan.post_height_um <= md.POST_ASPECT_MAX * plan.post_um
-    assert max(plan.cavity_depths_um) * 1.05 <= plan.stack.handle_um - md.HANDLE_FLOOR_UM
+    assert max(plan.cavity_depths_um) * 1.05 <= md.CAVITY_DEPTH_MAX_UM
 
 
 def test_the_posts_stand_proud_of_the_face_when_their_beams_rest_on_their_stops():
     """A soft range's measuring post goes a long way to its stop: the post is made taller
     than that travel and its clearance, so that the face never meets the tissue first."""
-    plan = md.die_plan(Targets(10.0, (0.05, 0.5), 0.0165), jaw_room("5"))
+    plan = md.die_plan(Targets(10.0, (0.05, 0.5), 0.005), jaw_room("5"))
     deepest = max(plan.stop_engagement_um(b)[2] for b in plan.beams)
     assert deepest > md.POST_HEIGHT_UM
     assert deepest + md.POST_CLEARANCE_UM <= plan.post_height_um < deepest + 15.0 + 1e-9
@@ -237,6 +238,18 @@ def test_the_refusals_quick_test_answers_as_the_whole_enumeration(k_r, ratio, wi
     assert md._any_fitting_beam(E, k_r, k_r / ratio, window, pitch) == whole
 
 
+def _options(text: str) -> dict[str, list[float]]:
+    """A pasted alternative's options and their numbers: ``--a 1 2 --b 3``."""
+    out: dict[str, list[float]] = {}
+    for word in text.split():
+        if word.startswith("--"):
+            key = word
+            out[key] = []
+        else:
+            out[key].append(float(word))
+    return out
+
+
 @pytest.mark.parametrize("kobj, words", [((50.0, 5000.0), "slender"),
                                           ((1e-5, 1e-4), "too long")], ids=["stiff", "soft"])
 def test_targets_out_of_reach_are_refused_with_a_range_that_designs(kobj, words):
@@ -248,8 +261,10 @@ def test_targets_out_of_reach_are_refused_with_a_range_that_designs(kobj, words)
         md.die_plan(Targets(10.0, kobj, 0.02), room)
     e = err.value
     assert e.field == "--kobj-range" and words in e.why and "window" in e.allowed
-    lo, hi = (float(v) for v in e.alternatives[0]["option"].split()[1:])
-    plan = md.die_plan(Targets(10.0, (lo, hi), 0.02), room)
+    pasted = _options(e.alternatives[0]["option"])
+    lo, hi = pasted["--kobj-range"]
+    force = pasted.get("--full-scale-force", [0.02])[0]  # a soft range: a lighter rating too
+    plan = md.die_plan(Targets(10.0, (lo, hi), force), room)
     assert plan.k_m_N_per_mm == pytest.approx(math.sqrt(lo * hi / 10), rel=1e-9)
     narrow = dataclasses.replace(room, across_mm=0.8)  # a 200 um window: no slender pair
     with pytest.raises(DesignError, match="a wider jaw"):
@@ -658,8 +673,9 @@ def test_modal_budget_readout_and_thermal_print_the_dies_own_figures_not_an_arra
     assert rows["hard_stop"]["verdict"] == "pass" and rows["kr_over_km"]["verdict"] == "pass"
     assert rows["full_scale_force_N"]["verdict"] == "undecided"
     assert rows["full_scale_force_N"]["predicted"] == pytest.approx(
-        d.die.full_scale_force_N * 1900.0 / max(plan.stress_MPa_at_rating(b)
-                                                for b in plan.beams), rel=1e-12)
+        min(d.die.full_scale_force_N * 1900.0 * d.die.full_scale_force_N
+            / (plan.stress_MPa_at_rating(b) * plan.rated_force_N(b)) for b in plan.beams),
+        rel=1e-12)
     assert sorted(p.name for p in tmp_path.iterdir()) == [design.name]  # nothing written
     for argv, option in ((("modal", "--model", "fem3d"), "--model"),
                          (("budget", "--delta-T", "3"), "--delta-T"),
@@ -705,11 +721,17 @@ def test_a_die_is_not_written_into_a_folder_of_other_files(tmp_path):
 
 
 def test_the_strength_reason_sets_the_root_stress_against_the_sourced_mean(die):
-    measuring = die.beams[die.columns]
-    stress = die.stress_MPa_at_rating(measuring)
+    """The more stressed root at its own beam's rated force: the reference's at the rating,
+    the measuring beam's at K_m x its rated travel (below the rating), by hand."""
+    stress = {b.role: 6 * f * b.length_um * 1e-3 / (b.width_um * 1e-3 * (b.thickness_um * 1e-3) ** 2)
+              for b, f in ((die.beams[0], die.full_scale_force_N),
+                           (die.beams[die.columns],
+                            die.k_m_N_per_mm * die.rated_tip_um(die.beams[die.columns]) * 1e-3))}
+    assert die.rated_force_N(die.beams[die.columns]) < die.full_scale_force_N
+    top = max(stress.values())
     reason = die.reasons["strength"]
-    assert reason.startswith("undecided") and f"{stress:.4g} MPa" in reason
-    assert f"{100 * stress / md.BOSCH_MEAN_STRENGTH_MPA:.2g} %" in reason
+    assert reason.startswith("undecided") and f"{top:.4g} MPa" in reason
+    assert f"{100 * top / md.BOSCH_MEAN_STRENGTH_MPA:.2g} %" in reason
     assert "132(9)" in reason and "no failure probability" in reason
 
 
@@ -792,9 +814,10 @@ def test_verify_fails_a_rating_at_the_mean_strength_and_leaves_one_below_it_unde
         return next(r for r in die_verification(plan)
                     if r["requirement"] == "full_scale_force_N")["verdict"]
 
-    stressed = max(die.beams, key=die.stress_MPa_at_rating)
-    breaking = die.full_scale_force_N * md.BOSCH_MEAN_STRENGTH_MPA / die.stress_MPa_at_rating(
-        stressed)
+    # the rating at which the worse root, at its own beam's rated force, reaches the mean
+    breaking = min(die.full_scale_force_N * md.BOSCH_MEAN_STRENGTH_MPA
+                   / (die.stress_MPa_at_rating(b) * die.rated_force_N(b) / die.full_scale_force_N)
+                   for b in die.beams)
     assert verdict(die) == "undecided"
     assert verdict(dc.replace(die, full_scale_force_N=1.01 * breaking)) == "fail"
 
@@ -874,3 +897,80 @@ def test_grasp_in_a_dies_folder_prints_the_grasp_in_its_jaw_and_refuses_the_pin(
         refused = run_cli("grasp", *argv, "--json", cwd=tmp_path)
         assert refused.returncode == 2
         assert json.loads(refused.stdout)["error"]["field"] == argv[0]
+
+
+def _refused_or_designed(targets, room):
+    """The plan of ``targets``, or of the alternative its refusal pastes (one step), with the
+    alternative's options."""
+    try:
+        return md.die_plan(targets, room), None
+    except DesignError as exc:
+        assert exc.alternatives, f"a refusal without an alternative: {exc}"
+        pasted = _options(exc.alternatives[0]["option"])
+        ratio = pasted.get("--kr-over-km", [targets.kr_over_km])[0]
+        kobj = tuple(pasted.get("--kobj-range", targets.k_obj_range_N_per_mm))
+        force = pasted.get("--full-scale-force", [targets.full_scale_force_N])[0]
+        return md.die_plan(Targets(ratio, kobj, force), room), exc
+
+
+@settings(max_examples=int(__import__("os").environ.get("DIE_EXAMPLES", "60")), deadline=None)
+@given(ratio=st.floats(2.0, 300.0), lo=st.floats(0.01, 50.0), span=st.floats(2.0, 100.0),
+       force=st.floats(1e-4, 0.2))
+def test_every_die_designed_or_pasted_passes_its_own_checks(tmp_path_factory, ratio, lo, span,
+                                                            force):
+    """Over the die's domain of targets: what die_plan designs, or what the refusal's
+    alternative designs in one paste, writes masks that pass every rule and read-back of
+    its check, and verify fails nothing but what the mean strength leaves undecided."""
+    from tactcad.commands.die_views import die_verification
+
+    room = jaw_room("5")
+    try:
+        plan, _ = _refused_or_designed(Targets(ratio, (lo, lo * span), force), room)
+    except DesignError as exc:  # only a jaw too narrow for any pair may refuse outright
+        assert "a wider jaw" in exc.why, exc
+        return
+    assert plan.beam_width_um >= plan.stack.device_um  # stiffer sideways than out of plane
+    gds = write_die_gds(plan, tmp_path_factory.mktemp("die") / "die.gds")
+    failed = [r.line() for r in gds_checks(gds, plan) if not r.passed]
+    assert not failed, failed
+    verdicts = {r["requirement"]: r["verdict"] for r in die_verification(plan)}
+    assert verdicts["hard_stop"] == "pass" and verdicts["kr_over_km"] == "pass", verdicts
+    assert verdicts["full_scale_force_N"] == "undecided"
+
+
+
+def test_a_ratio_no_beams_fit_is_refused_by_the_ratio_with_one_that_designs():
+    """K_r / K_m 1000 on a soft range: the beams' lengths part as its cube root and no pair
+    fits at any scale of the range; the refusal names --kr-over-km (not the range) and pastes
+    a smaller ratio with the rating that designs with it."""
+    room = jaw_room("5")
+    with pytest.raises(DesignError) as refused:
+        md.die_plan(Targets(1000.0, (0.05, 0.5), 0.0165), room)
+    err = refused.value
+    assert err.field == "--kr-over-km" and err.value == 1000.0
+    pasted = _options(err.alternatives[0]["option"])
+    ratio = pasted["--kr-over-km"][0]
+    force = pasted.get("--full-scale-force", [0.0165])[0]
+    assert 1 < ratio < 1000
+    assert md.die_plan(Targets(ratio, (0.05, 0.5), force), room)
+
+
+def test_a_rating_too_light_to_resolve_k_obj_is_refused_with_one_that_does():
+    """At 1e-6 N the bridges' noise moves K_obj by tens of per cent; at 1e-9 N no K_obj reads
+    (the budget says unreadable, it does not fail on eq. 3's range). The die refuses both by
+    --full-scale-force and pastes a rating whose read-out resolves K_obj to the die's 1 %."""
+    from tactcad.in_use.die_budget import die_budget
+    from tactcad.studies.die_doping import doped_die_plan, worst_readout_error_rel
+
+    room = jaw_room("5")
+    for force in (1e-6, 1e-9):
+        with pytest.raises(DesignError) as refused:
+            doped_die_plan(Targets(10.0, (0.5, 5.0), force), room)
+        err = refused.value
+        assert err.field == "--full-scale-force" and "resolves K_obj to 1 %" in err.allowed
+        heavier = float(err.alternatives[0]["option"].split()[-1])
+        plan = doped_die_plan(Targets(10.0, (0.5, 5.0), heavier), room)
+        assert worst_readout_error_rel(plan) <= plan.kobj_resolution_rel == 0.01
+    light = dataclasses.replace(md.die_plan(Targets(10.0, (0.5, 5.0), 0.02), room),
+                                full_scale_force_N=1e-9)
+    assert not np.isfinite(die_budget(light).terms["read-out noise"]).all()

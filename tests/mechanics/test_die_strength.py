@@ -50,8 +50,9 @@ def test_the_weakest_link_probability_is_weibulls():
 
 
 def test_a_stated_pair_decides_the_rated_force_and_the_stops(die):
-    """Without a pair the rating is undecided; with one, the die's failure probability at the
-    rating is 1 - prod exp(-(A_eff / A_0)(sigma / sigma_0)^m) over its beams (by hand) and
+    """Without a pair the rating is undecided; with one, the die's failure probability with
+    each beam at its rated force is 1 - prod exp(-(A_eff / A_0)(sigma / sigma_0)^m) over its
+    beams (by hand) and
     passes or fails against the lab's accepted maximum; the stop row adds every beam on its
     deepest stop, which carries more than the rating."""
     from tactcad.commands.die_views import die_verification
@@ -60,9 +61,12 @@ def test_a_stated_pair_decides_the_rated_force_and_the_stops(die):
     assert rows["full_scale_force_N"]["verdict"] == "undecided"
     pair = WeibullPair(5.0, 1500.0, 1e4, "a test", 1e-3)
     judged = dataclasses.replace(die, weibull=pair)
+    # each beam at its own rated force: the rating on a reference beam, K_m x its rated
+    # travel on a measuring one
     risk = sum((b.length_um / 6 * (b.width_um + b.thickness_um / 6)) / 1e4
-               * (judged.stress_MPa_at_rating(b) / 1500.0) ** 5 for b in die.beams)
-    p_rated = die_failure_probability(judged, lambda b: die.full_scale_force_N)
+               * (judged.stress_MPa_at_rating(b) * judged.rated_force_N(b)
+                  / die.full_scale_force_N / 1500.0) ** 5 for b in die.beams)
+    p_rated = die_failure_probability(judged, judged.rated_force_N)
     assert p_rated == pytest.approx(1 - math.exp(-risk), rel=1e-9)
     rows = {r["requirement"]: r for r in die_verification(judged)}
     assert rows["full_scale_force_N"]["predicted"] == pytest.approx(p_rated)

@@ -400,6 +400,17 @@ def test_a_readings_1_over_f_noise_spans_tare_to_averaging_window_and_is_not_ave
         n["amplifier_flicker"] ** 2, rel=1e-9)
     later = noise_budget_V(readout_chain(_plan(**{"readout.tare_interval_s": 600.0})))
     assert later["amplifier_flicker"] > n["amplifier_flicker"] and later["reading"] > n["reading"]
-    other = readout_chain(_plan(**{"readout.amplifier": "INA128"}))
+    other = readout_chain(_plan(**{"readout.amplifier": "INA128",
+                                   "readout.amplifier_noise_nV_per_rtHz": 8.0}))
     assert other.amplifier_flicker_nV_per_rtHz_at_1Hz == 0.0
     assert "not stated for INA128" in other.source("amplifier_flicker_nV_per_rtHz_at_1Hz")
+    assert "state readout.amplifier_gain for INA128" in other.source("amplifier_gain")
+
+
+def test_another_amplifier_without_its_noise_is_refused_by_the_key_it_needs():
+    """The noise defaults are the AD621's data sheet's: naming another amplifier without its
+    noise density is refused by that key, not read with the AD621's figures."""
+    with pytest.raises(DesignError) as refused:
+        _plan(**{"readout.amplifier": "INA128"})
+    assert "readout.amplifier_noise_nV_per_rtHz" in str(refused.value)
+    assert "INA128" in str(refused.value)

@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
+import math
 import os
 import shutil
 from dataclasses import dataclass
@@ -128,7 +129,8 @@ def die_asked(args: argparse.Namespace) -> dict:
             "kobj_range": tuple(d.die.kobj_range_N_per_mm),
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
             "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name,
-            "source": _source_of(Path(args.design)), "strength": d.strength}
+            "source": _source_of(Path(args.design)), "strength": d.strength,
+            "kobj_resolution_rel": d.die.kobj_resolution_rel}
 
 
 def _any_option_given(args: argparse.Namespace) -> bool:
@@ -216,8 +218,8 @@ def plan_of(asked: dict) -> PlannedDie:
     jaw, jaw_file = jaw_of(asked["jaw"])
     room = jaw_room(jaw, jaw_file)
     try:
-        plan = doped_die_plan(targets, room, columns=asked["columns"],
-                              pitch_um=asked["pitch_um"], name=name)
+        plan = doped_die_plan(targets, room, asked.get("kobj_resolution_rel"),
+                              columns=asked["columns"], pitch_um=asked["pitch_um"], name=name)
     except DesignError as exc:
         if asked.get("file"):
             raise _as_file_keys(exc, asked["file"]) from None
@@ -235,10 +237,10 @@ def with_weibull(plan, pair):
 
     from tactcad.mechanics.die_strength import die_failure_probability
 
-    p_rated = die_failure_probability(replace(plan, weibull=pair),
-                                      lambda beam: plan.full_scale_force_N)
+    judged = replace(plan, weibull=pair)
+    p_rated = die_failure_probability(judged, judged.rated_force_N)
     reasons = {**plan.reasons,
-               "strength": f"the die's failure probability at the rated force on every beam, "
+               "strength": f"the die's failure probability with every beam at its rated force, "
                            f"{p_rated:.3g}, from the lab's Weibull pair (m {pair.modulus:g}, "
                            f"sigma_0 {pair.characteristic_MPa:g} MPa on {pair.reference_area_um2:g} "
                            f"um^2; {pair.source}) over each beam's tensile face and sidewalls; "
@@ -332,20 +334,22 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
     ref, meas = d.beams[0], d.beams[d.columns]
     rows = readout["rows"]
     lines = [f"die {d.name} for the {jaw}: {d.die_length_um:g} x {d.die_width_um:g} x "
-             f"{d.thickness_um:g} um, 2 x {d.columns} beams at {d.pitch_um:g} um",
+             f"{d.thickness_um:g} um (with its posts), 2 x {d.columns} beams at {d.pitch_um:g} um",
              f"SOI: device {d.stack.device_um:g} um (+-{d.stack.device_tolerance_um:g}), "
              f"oxide {d.stack.box_um:g} um, handle {d.stack.handle_um:g} um; cavities under "
              f"the rows (their hard stops) {d.cavity_depths_um[0]:g} um (reference) and "
              f"{d.cavity_depths_um[1]:g} um (measuring) deep",
-             "| row | role | L um | w um | t um | K N/mm | target N/mm | stress at "
-             f"{d.full_scale_force_N:g} N MPa | dR/R per N | V/N | force resolution N |",
-             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+             "| row | role | L um | w um | t um | K N/mm | target N/mm | rated force mN | "
+             "root stress there MPa | dR/R per N | V/N | force resolution N |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for b, k, target in ((ref, d.k_r_N_per_mm, d.targets[0]),
                          (meas, d.k_m_N_per_mm, d.targets[1])):
         r = rows[b.role]
         lines.append(f"| {b.row} | {b.role} | {b.length_um:.4g} | {b.width_um:g} | "
                      f"{b.thickness_um:g} | {k:.4g} | {target:.4g} | "
-                     f"{d.stress_MPa_at_rating(b):.4g} | {r['resistance_change_per_N']:.4g} | "
+                     f"{1e3 * d.rated_force_N(b):.3g} | "
+                     f"{d.stress_MPa_at_rating(b) * d.rated_force_N(b) / d.full_scale_force_N:.4g}"
+                     f" | {r['resistance_change_per_N']:.4g} | "
                      f"{r['sensitivity_V_per_N']:.4g} | {r['force_resolution_N']:.3g} |")
     lines.append(resistor_line(plan, readout))
     lines += mode_lines(modes or {})
@@ -393,11 +397,14 @@ def budget_lines(budget) -> list[str]:
     ks = budget.k_obj_N_per_mm
     lines = ["K_obj budget of the middle unit, relative, 1 sigma, at K_obj "
              + ", ".join(f"{k:.3g}" for k in ks) + " N/mm:"]
+    def pct(v: float) -> str:
+        return f"{100 * v:7.3f} %" if math.isfinite(v) else "unreadable"
+
     for term, values in budget.terms.items():
-        lines.append(f"  {term:<46} " + "  ".join(f"{100 * v:7.3f} %" for v in values)
+        lines.append(f"  {term:<46} " + "  ".join(pct(v) for v in values)
                      + f"   ({budget.reasons[term]})")
     lines.append(f"  {'root sum square (without eq. 3 uncoupled)':<46} "
-                 + "  ".join(f"{100 * v:7.3f} %" for v in budget.total_rel))
+                 + "  ".join(pct(v) for v in budget.total_rel))
     return lines
 
 

@@ -31,7 +31,7 @@ def _refuse_array_options(args: argparse.Namespace, command: str, design: Path) 
     given = options_given(args, COMMON_OPTIONS | DIE_OPTIONS.get(command, frozenset()))
     if given:
         option, value = given[0]
-        raise DesignError(option, value, f"left out for a die's design ({design.name})",
+        raise DesignError(option, value, f"no value for a die's design ({design.name})",
                           f"`tactcad {command}` on a silicon die prints the die's own "
                           "figures; this option chooses among an array's")
 
@@ -130,10 +130,11 @@ def die_verification(plan) -> list[dict]:
     """The die's verification matrix, one record per requirement in the array's keys
     (:func:`tactcad.studies.verification.verification_matrix`), at the closed form:
 
-    * ``full_scale_force_N``: the rated force against the force at which the worse row's root
+    * ``full_scale_force_N``: the rated force against the rating at which the worse root, at
+      its own beam's rated force (:meth:`~tactcad.design.mems_die.DiePlan.rated_force_N`),
       reaches the mean strength of Bosch-etched silicon: failed at or past it (half such
       roots break), else undecided (a mean strength without its Weibull modulus gives no
-      failure probability);
+      failure probability); with the lab's Weibull pair, the die's failure probability;
     * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band;
     * ``hard_stop``: each row's cavity floor against its beam: the post's travel when the
       beam's end meets the floor, in the shallowest cavity the depth tolerance allows, past
@@ -148,9 +149,12 @@ def die_verification(plan) -> list[dict]:
 
     rows = plan.beams[:: plan.columns]
     stiffness = {"reference": plan.k_r_N_per_mm, "measuring": plan.k_m_N_per_mm}
-    stressed = max(rows, key=plan.stress_MPa_at_rating)
-    breaking_N = plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA / plan.stress_MPa_at_rating(
-        stressed)
+    # the rating at which each root, at its own beam's rated force, reaches the mean strength
+    rating_at_mean = {b.role: plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA
+                      / (plan.stress_MPa_at_rating(b) * plan.rated_force_N(b)
+                         / plan.full_scale_force_N) for b in rows}
+    stressed = min(rows, key=lambda b: rating_at_mean[b.role])
+    breaking_N = rating_at_mean[stressed.role]
     target_ratio = plan.targets[0] / plan.targets[1]
     ratio = plan.k_r_N_per_mm / plan.k_m_N_per_mm
     fracture_travel_um = {b.role: 1e3 * plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA
@@ -165,7 +169,26 @@ def die_verification(plan) -> list[dict]:
          "verdict": "pass" if ratio / target_ratio - 1.0 >= -KR_OVER_KM_BAND_REL else "fail",
          "binding_words": "each column's reference and measuring beam"},
         stop,
+        _resolution_row(plan),
     ]
+
+
+def _resolution_row(plan) -> dict:
+    """``kobj_resolution_rel``: the largest K_obj error the bridges' noise leaves over the
+    range at the rated force against the die's requirement."""
+    import math
+
+    from tactcad.studies.die_doping import worst_readout_error_rel
+
+    worst = worst_readout_error_rel(plan)
+    return {"requirement": "kobj_resolution_rel", "target": plan.kobj_resolution_rel,
+            "predicted": worst, "error_estimate_rel": None,
+            "margin_rel": plan.kobj_resolution_rel / worst - 1.0
+            if math.isfinite(worst) and worst > 0 else None,
+            "model": "closed-form",
+            "verdict": "pass" if worst <= plan.kobj_resolution_rel else "fail",
+            "binding_words": "the read-out noise term of the budget, worst over the K_obj "
+                             "range, the reference at the rated force"}
 
 
 def _rated_row(plan, stressed, breaking_N: float) -> dict:
@@ -178,9 +201,10 @@ def _rated_row(plan, stressed, breaking_N: float) -> dict:
             "margin_rel": breaking_N / plan.full_scale_force_N - 1.0, "model": "closed-form",
             # past the mean strength half such roots break: a failure; below it undecided
             "verdict": "fail" if breaking_N <= plan.full_scale_force_N else "undecided",
-            "binding_words": f"root at the mean strength of etched bars, {stressed.role} row; "
-                             f"no Weibull modulus, so no failure probability "
-                             f"({BOSCH_STRENGTH_SOURCE})"}
+            "binding_words": f"the {stressed.role} row's root at the mean strength of etched "
+                             f"bars at its beam's rated force ({1e3 * plan.rated_force_N(stressed):.3g}"
+                             f" mN at this rating); no Weibull modulus, so no failure "
+                             f"probability ({BOSCH_STRENGTH_SOURCE})"}
 
 
 def _weibull_rated_row(plan) -> dict:
@@ -189,15 +213,15 @@ def _weibull_rated_row(plan) -> dict:
     from tactcad.mechanics.die_strength import die_failure_probability
 
     pair = plan.weibull
-    p_f = die_failure_probability(plan, lambda beam: plan.full_scale_force_N)
+    p_f = die_failure_probability(plan, plan.rated_force_N)
     return {"requirement": "full_scale_force_N",
             "target": f"failure probability <= {pair.failure_probability_max:g}",
             "predicted": p_f, "error_estimate_rel": None,
             "margin_rel": pair.failure_probability_max / p_f - 1.0 if p_f > 0 else None,
             "model": "closed-form",
             "verdict": "pass" if p_f <= pair.failure_probability_max else "fail",
-            "binding_words": f"the die's failure probability at {plan.full_scale_force_N:g} N "
-                             f"on every beam, the lab's Weibull pair (m {pair.modulus:g}, "
+            "binding_words": f"the die's failure probability with every beam at its rated "
+                             f"force, the lab's Weibull pair (m {pair.modulus:g}, "
                              f"sigma_0 {pair.characteristic_MPa:g} MPa on "
                              f"{pair.reference_area_um2:g} um^2; {pair.source})"}
 
@@ -319,7 +343,8 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
                                               "etched silicon bars (no Weibull modulus)",
                           "error": "eq. 3 on the read R: the tissue's coupling between "
                                    "neighbouring posts stays in it (the die's budget: the "
-                                   "coupled inversion removes it)"}}
+                                   "coupled inversion removes it); a unit's two posts share "
+                                   "one radius, so the travel correction changes nothing"}}
     return record, grasp_lines(plan, record, result)
 
 
@@ -330,7 +355,7 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
     lines = [f"die {plan.name} in its jaw: pin at {jaw['pin_x_mm']:g} mm from the heel, "
              f"{jaw['opening_angle_deg']:g} degrees open, {record['profile']} of tissue "
              f"{jaw['slab_thickness_mm']:g} mm thick, K_obj {record['K_obj_N_per_mm']:.4g} N/mm "
-             f"({record['coupling']} coupling)",
+             f"(tissue coupling: {record['coupling']})",
              f"closed to {result.angle_deg:.4g} degrees: grasp force "
              f"{result.total_force_N:.4g} N ({record['reasons']['force_N']})",
              "| unit | radius mm | travel r/m um | deflection r/m um | R read | K_obj read | "
@@ -355,6 +380,7 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
     broken = [t for t in result.tips if t["over_overload_limit"]]
     stopped = [t for t in result.tips if t["on_stop"]]
     face = [t for t in result.tips if t["face_in_contact"]]
+    crushed = [t for t in result.tips if t.get("past_linear_tissue")]
     top = max(result.tips, key=lambda t: t["element_force_N"])
     lines += [f"largest beam force {1e3 * top['element_force_N']:.3g} mN (beam {top['site']}, "
               f"rated {1e3 * plan.full_scale_force_N:g} mN); over the rating: "
@@ -364,6 +390,12 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
               f"the tissue beside posts: {', '.join(str(t['site']) for t in face) or 'none'} "
               f"(posts {1e3 * record['post_proud_mm']:.3g} um proud)",
               f"error: {record['reasons']['error']}"]
+    if crushed:
+        from tactcad.in_use.grasp_experiment import LINEAR_TISSUE_STRAIN
+
+        lines.append(f"the tissue is compressed past {100 * LINEAR_TISSUE_STRAIN:g} % under "
+                     f"posts {', '.join(str(t['site']) for t in crushed)}: past the linear "
+                     "tissue model")
     return lines
 
 

@@ -12,7 +12,8 @@ from tactcad.mechanics.ladder import models
 from tactcad.design.readout_section import LEAD_WIRE
 
 from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
-                                             DEFAULT_PIVOT_BEHIND_MM, DEFAULT_SLAB_MM)
+                                             DEFAULT_PIVOT_BEHIND_MM, DEFAULT_SLAB_MM,
+                                             LINEAR_TISSUE_STRAIN)
 
 #: Defaults, each stated where it is used (mm; the jaw's in in_use.grasp_experiment).
 DEFAULT_LEAD_CHANNEL_MM = 3.0
@@ -32,7 +33,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                       "each unit's radii, travels, R and K_obj read, as laid out and paired "
                       "at equal radius; the leads through the shaft",
         description="A jaw pivoting about a pin across its width closes on a tissue slab "
-                    "(or a wedge filling the open jaw) at a given angle or grasp force. The "
+                    "(or a wedge thickening from the pin) at a given angle or grasp force. The "
                     "tips are rigid punches on their elements' springs, coupled through the "
                     "tissue (a layer of the slab's thickness on the opposing jaw), each "
                     "element capped by its hard stop. For every sensing unit: the two tips' "
@@ -59,9 +60,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                         f"its [grasper_jaw], else {DEFAULT_SLAB_MM:g} mm, assumed: give "
                         "your tissue's); a wedge's at the last tip")
     p.add_argument("--profile", choices=PROFILES, default=DEFAULT_PROFILE,
-                   help="the tissue between the jaws: a wedge that fills the open jaw, so "
-                        "every tip touches at first contact and its travel grows with its "
-                        "radius, or a flat slab, pressed near the pin first (a hinged jaw "
+                   help="the tissue between the jaws: a wedge, from nothing at the pin to "
+                        "the tissue's thickness at the last tip, so every tip touches at first "
+                        "contact and its travel grows with its radius, or a flat slab, pressed "
+                        "near the pin first (a hinged jaw "
                         "reaches the far tips only once the near ones are on their stops; "
                         "default %(default)s)")
     p.add_argument("--kobj", type=number(0, 1e4, "N/mm", lo_open=True), default=None,
@@ -297,6 +299,11 @@ def render(record: dict) -> str:
         over = [t["site"] for t in lay["tips"] if t["over_rating"]]
         damaged = [t["site"] for t in lay["tips"] if t["over_overload_limit"]]
         stops = [t["site"] for t in lay["tips"] if t["on_stop"]]
+        crushed = [t["site"] for t in lay["tips"] if t.get("past_linear_tissue")]
+        if crushed:
+            lines += ["", f"{lay['layout']}: the tissue is compressed past "
+                          f"{100 * LINEAR_TISSUE_STRAIN:g} % under tips "
+                          f"{', '.join(map(str, crushed))}: past the linear tissue model"]
         lines += ["", f"{lay['layout']}: angle {lay['angle_deg']:.4g} degrees, grasp force "
                       f"{lay['total_force_N']:.4g} N; largest element force "
                       f"{max(t['element_force_N'] for t in lay['tips']):.4g} N; over the "

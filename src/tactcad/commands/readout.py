@@ -101,8 +101,10 @@ def render(report) -> str:
              f"  assumed (change in [readout]): {_assumed_text(c)}",
              f"  {c.volts_per_strain:.4g} V per unit strain; noise of one reading "
              f"{1e6 * report.noise_V['reading']:.1f} uV rms, of it 1/f "
-             f"{1e6 * report.noise_V['amplifier_flicker']:.2g} uV (amplifier) and "
-             f"{1e6 * report.noise_V['gauge_flicker']:.2g} uV (foil grid, Hooge) over "
+             + (f"{1e6 * report.noise_V['amplifier_flicker']:.2g} uV (amplifier)"
+                if not c.source("amplifier_flicker_nV_per_rtHz_at_1Hz").startswith("not stated")
+                else f"of the {c.amplifier} not stated (left out)")
+             + f" and {1e6 * report.noise_V['gauge_flicker']:.2g} uV (foil grid, Hooge) over "
              f"{c.flicker_band_Hz[0]:.3g}-{c.flicker_band_Hz[1]:.3g} Hz (tare to reading "
              f"{c.tare_interval_s:g} s); full-scale force "
              f"{report.full_scale_force_N:.4g} N; K_obj range {report.kobj_range_N_per_mm[0]:g}-"

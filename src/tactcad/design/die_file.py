@@ -15,7 +15,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM,
+from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME,
+                                     DEFAULT_KOBJ_RESOLUTION_REL, DEFAULT_PITCH_UM,
                                      LEAST_PITCH_UM, WeibullPair)
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
@@ -44,6 +45,9 @@ class DieSection(Section):
                      why="the units' spacing along the die: each beam's three bond pads and its "
                          "reference resistor lie on the frame within one pitch") = DEFAULT_PITCH_UM
     name: str = DEFAULT_DIE_NAME
+    kobj_resolution_rel: number(0.0, 1.0, lo_open=True, unit="",
+                                why="the K_obj error the read-out noise may leave anywhere in "
+                                    "the range (1 sigma)") = DEFAULT_KOBJ_RESOLUTION_REL
 
 
 class DieStrengthSection(Section):

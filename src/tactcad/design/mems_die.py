@@ -83,9 +83,10 @@ POST_CLEARANCE_UM, POST_STEP_UM = 10.0, 5.0
 #: The tallest post over its side (assumption: an SU-8 or plated post on a beam's end at
 #: 5:1, well inside the 10:1 and more SU-8 reaches on its own).
 POST_ASPECT_MAX = 5.0
-#: The handle left under the deepest cavity (um) (assumption: the die's floor keeps 100 um
-#: of silicon for its handling and bond).
-HANDLE_FLOOR_UM = 100.0
+#: The deepest cavity a timed etch makes to its depth tolerance (um) (assumption: the
+#: +-5 % of :data:`~tactcad.vocabulary.soi_process.CAVITY_DEPTH_TOLERANCE_REL` holds for
+#: etches of a few to about 100 um; the 300-700 um handle keeps most of its thickness).
+CAVITY_DEPTH_MAX_UM = 100.0
 #: Piezoresistor legs: width, gap between them (um); the implant's margin to the beam's
 #: edges; the legs' run onto the frame for the contacts (um).
 LEG_UM, LEG_GAP_UM, RESISTOR_MARGIN_UM, RESISTOR_RUN_UM = 8.0, 8.0, 10.0, 20.0
@@ -114,6 +115,9 @@ WIDTH_STEP_UM = 5.0
 #: deflection (the metal combs' rule, :data:`tactcad.studies.comb_design.STOP_MULTIPLE`):
 #: the beam reads its whole range, an overload rests on the floor.
 STOP_MULTIPLE = 1.3
+#: The K_obj resolution a die must reach when its file states none (relative, 1 sigma;
+#: assumption: the read-out noise moves K_obj by under 1 % anywhere in the range).
+DEFAULT_KOBJ_RESOLUTION_REL = 0.01
 #: Cavity depths are drawn to this step (um), rounded up.
 CAVITY_STEP_UM = 0.5
 
@@ -199,6 +203,8 @@ class DiePlan:
     cavity_depths_um: tuple[float, float] = (0.0, 0.0)
     #: the lab's Weibull pair for its etched silicon, or None (strength then undecided)
     weibull: WeibullPair | None = None
+    #: the K_obj resolution the die must reach over its range (relative, 1 sigma)
+    kobj_resolution_rel: float = DEFAULT_KOBJ_RESOLUTION_REL
 
     @property
     def window_um(self) -> tuple[float, float, float, float]:
@@ -257,6 +263,14 @@ class DiePlan:
     def thickness_um(self) -> float:
         """The die's thickness with its posts (um)."""
         return self.stack.total_um + self.post_height_um
+
+    def rated_force_N(self, beam: Beam) -> float:
+        """The most ``beam`` carries in use (N): the rated force on a reference beam; on a
+        measuring beam K_m x its rated travel (:meth:`rated_tip_um`), the most it carries
+        while its reference reads up to the rated force."""
+        if beam.role == "reference":
+            return self.full_scale_force_N
+        return self.k_m_N_per_mm * self.rated_tip_um(beam) * 1e-3
 
     def stress_MPa_at_rating(self, beam: Beam) -> float:
         """The root's surface bending stress at the rated force (MPa): 6 F L / (w t^2)."""
@@ -324,9 +338,9 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
 
     Raises:
         DesignError: a value out of range, no stock device layer and beam width fit
-            (naming what binds and the largest K_m the die holds), or the rated travels
-            would need stops deeper than the handle allows or posts taller than they stand
-            (naming a lighter rating).
+            (naming what binds and the largest K_m the die holds), or the rating past the
+            roots' strength, the cavities' depth or the posts' height (naming a lighter
+            rating, :func:`_check_rating`).
     """
     if not (isinstance(columns, int) and 2 <= columns <= 50):
         raise DesignError("--columns", columns, "an integer 2 ... 50")
@@ -363,29 +377,13 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                               END_UM + (c + 0.5) * pitch_um, y0, sign, l, w, t))
     resistor = RESISTOR_FRACTION * l_r
     tol = DEVICE_TOLERANCE_UM / t
-    # the highest root stress at the rating (the longer, measuring beam's): 6 F L / (w t^2)
-    root_MPa = _root_MPa(per_N, targets.full_scale_force_N)
-    if root_MPa >= BOSCH_MEAN_STRENGTH_MPA:
-        raise _past_strength(targets.full_scale_force_N, root_MPa)
     align = CAVITY_ALIGNMENT_UM
-    rated = rated_tip_deflections_um(k_r, k_m, targets.full_scale_force_N,
-                                     targets.k_obj_range_N_per_mm)
-    depths = (cavity_depth_um(rated[0], l_r, post), cavity_depth_um(rated[1], l_m, post))
-    deepest = max(d * (1 + CAVITY_DEPTH_TOLERANCE_REL) / end_over_post(length, post)
-                  for d, length in zip(depths, (l_r, l_m)))
+    rating = _rating_of(min(fitting), k_r, k_m, targets.full_scale_force_N,
+                        targets.k_obj_range_N_per_mm)
+    rated, root_MPa, depths, deepest = (rating.rated_um, rating.root_MPa, rating.depths_um,
+                                        rating.deepest_um)
     post_height = post_height_um(deepest)
-    tallest, room_um = POST_ASPECT_MAX * post, handle_um - HANDLE_FLOOR_UM
-    if post_height > tallest:
-        raise _stops_too_deep(targets.full_scale_force_N, (tallest - POST_CLEARANCE_UM) / deepest,
-                              f"a post would go {deepest:.4g} um to its stop, and to stand "
-                              f"{POST_CLEARANCE_UM:g} um proud there it would be taller than "
-                              f"{POST_ASPECT_MAX:g} x its {post:g} um side ({tallest:g} um)")
-    if max(depths) * (1 + CAVITY_DEPTH_TOLERANCE_REL) > room_um:
-        raise _stops_too_deep(targets.full_scale_force_N,
-                              room_um / (max(depths) * (1 + CAVITY_DEPTH_TOLERANCE_REL)),
-                              f"the measuring row's {max(depths):g} um cavity (+"
-                              f"{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %) would leave less than "
-                              f"{HANDLE_FLOOR_UM:g} um of the {handle_um:g} um handle under it")
+    _check_rating(min(fitting), k_r, k_m, rating, targets.k_obj_range_N_per_mm)
     reasons = {
         "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
                      f"and the slot between the tips fit across the {window:g} um window, "
@@ -396,8 +394,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         "beam_width_um": f"with the layer: the pair with the lowest root stress (a wider "
                          f"beam is stressed less), beside the {slot:.3g} um DRIE slot in the "
                          f"{pitch_um:g} um pitch, at most 1/{SLENDERNESS:g} of the reference "
-                         "beam's length (slender: Euler-Bernoulli) and wide enough for the "
-                         "resistor's two legs",
+                         "beam's length (slender: Euler-Bernoulli), wide enough for the "
+                         "resistor's two legs and at least as wide as the layer is thick",
         "reference_length_um": f"K_r = {k_r:.4g} N/mm = E w t^3 / (4 L^3), E = {E / 1e3:.4g} "
                                f"GPa along the beam ({angle_from_110_deg:g} deg from <110> on "
                                f"(100), {SILICON.source.split(',')[0]})",
@@ -427,7 +425,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    f"{POST_HEIGHT_UM:g} um and {POST_CLEARANCE_UM:g} um more than the "
                    f"deepest a post goes to its stop ({deepest:.3g} um), so that the face "
                    "never meets the tissue before the stop takes an overload",
-        "strength": (f"undecided: the root's {root_MPa:.4g} MPa at the rating is "
+        "strength": (f"undecided: the more stressed root's {root_MPa:.4g} MPa at its beam's "
+                     f"rated force is "
                      f"{100 * root_MPa / BOSCH_MEAN_STRENGTH_MPA:.2g} % of the mean tensile "
                      f"strength of Bosch-etched silicon bars ({BOSCH_STRENGTH_SOURCE}); no "
                      "Weibull modulus of DRIE sidewalls with its stressed area is sourced, so "
@@ -451,15 +450,111 @@ def post_height_um(deepest_stop_travel_um: float) -> float:
     return max(POST_HEIGHT_UM, POST_STEP_UM * math.ceil(need / POST_STEP_UM - 1e-9))
 
 
-def _stops_too_deep(force_N: float, scale: float, why: str) -> DesignError:
-    """The refusal of a rating whose stops lie too deep (``why``): the travels go as the
-    force, so the alternative scales it by ``scale`` (< 1), 5 % lower for the depths'
-    rounding."""
-    below = float(f"{0.95 * force_N * scale:.2g}")
-    return DesignError("--full-scale-force", force_N, f"at most about {below:g} N", why,
-                       alternatives=[{"option": f"--full-scale-force {below:g}",
-                                      "words": "a lighter rating: shallower stops, shorter "
-                                               "posts"}])
+@dataclass(frozen=True)
+class _Rating:
+    """What a pair of beams does at a rating (um, MPa, N): each post's rated travel, the
+    more stressed root at its beam's rated force, the cavities' depths and the deepest a post
+    goes to its stop."""
+
+    force_N: float
+    rated_um: tuple[float, float]
+    root_MPa: float
+    depths_um: tuple[float, float]
+    deepest_um: float
+    #: the larger over the rows of the deepest stop's engagement over the travel at which the
+    #: root reaches the mean strength of etched silicon
+    stop_over_fracture: float = 0.0
+
+
+def _rating_of(pair: tuple, k_r: float, k_m: float, force_N: float, kobj_range) -> _Rating:
+    """:class:`_Rating` of a fitting ``pair`` (:func:`_beam_pair`'s tuple) at ``force_N``:
+    each root at its own beam's rated force (the reference's F, the measuring beam's K_m x
+    its rated travel: it never carries more while its reference reads up to F)."""
+    _, neg_t, w, _, post, l_r, l_m = pair
+    t = -neg_t
+    rated = rated_tip_deflections_um(k_r, k_m, force_N, kobj_range)
+    root = max(6 * f_N * length * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
+               for f_N, length in ((force_N, l_r), (k_m * rated[1] * 1e-3, l_m)))
+    depths = (cavity_depth_um(rated[0], l_r, post), cavity_depth_um(rated[1], l_m, post))
+    engage = [d * (1 + CAVITY_DEPTH_TOLERANCE_REL) / end_over_post(length, post)
+              for d, length in zip(depths, (l_r, l_m))]
+    # the tip travel at which a root reaches the mean strength: sigma = 6 K L delta / (w t^2)
+    fracture = [BOSCH_MEAN_STRENGTH_MPA * w * 1e-3 * (t * 1e-3) ** 2 / (6 * k * length * 1e-3)
+                * 1e3 for k, length in ((k_r, l_r), (k_m, l_m))]
+    return _Rating(force_N, rated, root, depths, max(engage),
+                   max(e / f for e, f in zip(engage, fracture)))
+
+
+def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
+    """The ratings at which each limit binds, with what binds (N, words); each scales with
+    the force (the roots' stress, the stops' depths and the posts' travel go as F): the more
+    stressed root at the mean strength of etched silicon, the deeper cavity at
+    :data:`CAVITY_DEPTH_MAX_UM` after its tolerance, the posts at :data:`POST_ASPECT_MAX` x
+    their side."""
+    force_N, depths_um, deepest_um = rating.force_N, rating.depths_um, rating.deepest_um
+    deepest_cavity = max(depths_um) * (1 + CAVITY_DEPTH_TOLERANCE_REL)
+    tallest = POST_ASPECT_MAX * post_um
+    return [
+        (force_N * BOSCH_MEAN_STRENGTH_MPA / rating.root_MPa,
+         f"the more stressed root reaches the mean tensile strength of Bosch-etched silicon "
+         f"({BOSCH_MEAN_STRENGTH_MPA:g} MPa, {BOSCH_STRENGTH_SOURCE}): {rating.root_MPa:.4g} "
+         "MPa at its beam's rated force"),
+        (force_N / rating.stop_over_fracture,
+         "a row's stop, in its deepest cavity, would engage past the travel at which its "
+         "root reaches the mean strength of etched silicon: the stop would not protect it"),
+        (force_N * CAVITY_DEPTH_MAX_UM / deepest_cavity,
+         f"the measuring row's cavity would be {max(depths_um):g} um deep (+"
+         f"{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %), past the {CAVITY_DEPTH_MAX_UM:g} um a timed "
+         "etch holds to its tolerance"),
+        (force_N * (tallest - POST_CLEARANCE_UM) / deepest_um if tallest >= POST_HEIGHT_UM
+         else math.inf,  # the least post taller than the aspect allows: no rating helps
+         f"a post would go {deepest_um:.4g} um to its stop, and to stand "
+         f"{POST_CLEARANCE_UM:g} um proud there it would be taller than {POST_ASPECT_MAX:g} x "
+         f"its {post_um:g} um side ({tallest:g} um)")]
+
+
+def _within_limits(rating: _Rating, post_um: float) -> bool:
+    return all(rating.force_N < limit for limit, _ in _rating_limits(rating, post_um))
+
+
+def _lighter_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating, kobj_range) -> float:
+    """The rating to paste for ``pair`` when ``rating`` passes a limit: 5 % below the lowest
+    limit, two digits, stepped down 5 % at a time until it designs (the depths and heights
+    round up)."""
+    post = pair[4]
+    force = _round_down_2(0.95 * min(limit for limit, _ in _rating_limits(rating, post)))
+    for _ in range(SCALE_STEPS):  # the limits all scale with the force: a few steps do
+        if _within_limits(_rating_of(pair, k_r, k_m, force, kobj_range), post):
+            break
+        force = _round_down_2(0.95 * force)
+    return force
+
+
+def _check_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating, kobj_range) -> None:
+    """Refuse a rating past any of :func:`_rating_limits`: the refusal names every limit
+    passed and pastes the rating below all of them (:func:`_lighter_rating`).
+
+    Raises:
+        DesignError: ``--full-scale-force``, the rating past a limit.
+    """
+    limits = _rating_limits(rating, pair[4])
+    force_N = rating.force_N
+    passed = [(limit, why) for limit, why in limits if force_N >= limit]
+    if not passed:
+        return
+    below = _lighter_rating(pair, k_r, k_m, rating, kobj_range)
+    raise DesignError("--full-scale-force", force_N, f"at most about {below:g} N",
+                      "; ".join(why for _, why in passed),
+                      alternatives=[{"option": f"--full-scale-force {below:g}",
+                                     "words": "a lighter rating, below every limit (strength "
+                                              "at the mean of etched bars; its failure "
+                                              "probability needs a Weibull pair)"}])
+
+
+def _round_down_2(value: float) -> float:
+    """``value`` rounded down to two significant digits."""
+    exponent = math.floor(math.log10(value)) - 1
+    return float(f"{math.floor(value / 10 ** exponent) * 10 ** exponent:.2g}")
 
 
 def end_over_post(length_um: float, post_um: float) -> float:
@@ -493,21 +588,6 @@ def cavity_depth_um(rated_um: float, length_um: float, post_um: float) -> float:
     need = (STOP_MULTIPLE * rated_um * end_over_post(length_um, post_um)
             / (1.0 - CAVITY_DEPTH_TOLERANCE_REL))
     return CAVITY_STEP_UM * math.ceil(need / CAVITY_STEP_UM - 1e-9)
-
-
-def _past_strength(force_N: float, root_MPa: float) -> DesignError:
-    """The refusal of a rating at which even the least stressed fitting pair's measuring
-    root reaches the mean strength of etched silicon: half such dies would break at it."""
-    breaking_N = force_N * BOSCH_MEAN_STRENGTH_MPA / root_MPa
-    below = float(f"{0.99 * breaking_N:.2g}")
-    return DesignError("--full-scale-force", force_N, f"below {breaking_N:.3g} N",
-                       f"the measuring beam's root reaches the mean tensile strength of "
-                       f"Bosch-etched silicon ({BOSCH_MEAN_STRENGTH_MPA:g} MPa, "
-                       f"{BOSCH_STRENGTH_SOURCE}) at {breaking_N:.3g} N with the least stressed "
-                       f"beams that fit (root {root_MPa:.4g} MPa at {force_N:g} N)",
-                       alternatives=[{"option": f"--full-scale-force {below:g}",
-                                      "words": "below the mean strength (its failure "
-                                               "probability is not sized: no Weibull modulus)"}])
 
 
 def pads_span_um() -> float:
@@ -549,11 +629,13 @@ def _beam_pair(E: float, k_r: float, k_m: float, window: float, t: float, w: flo
 
 
 def _layer_widths(pitch_um: float) -> list[tuple[float, float, list[float]]]:
-    """(device layer, DRIE slot, beam widths that leave room for the resistor) per stock layer (um)."""
+    """(device layer, DRIE slot, beam widths) per stock layer (um): widths that leave room
+    for the resistor and are at least the layer's thickness (a beam thicker than wide bends
+    more easily sideways, under the tissue's shear, than out of the wafer's plane)."""
     out = []
     for t in DEVICE_LAYER_CHOICES_UM:
         slot = drie_min_width_um(t)
-        out.append((t, slot, _widths(pitch_um - slot, _resistor_width_um())))
+        out.append((t, slot, _widths(pitch_um - slot, max(_resistor_width_um(), t))))
     return out
 
 
@@ -576,20 +658,24 @@ def _any_fitting_beam(E: float, k_r: float, k_m: float, window: float, pitch_um:
 SCALE_STEPS = 200
 
 
-def _root_MPa(per_N: float, force_N: float) -> float:
-    """The measuring root's surface stress (MPa) at ``force_N`` from a pair's 6 L_m / (w t^2)
-    (:func:`_beam_pair`'s first figure, 1/um^2): N/um^2 is 1e6 MPa."""
-    return force_N * per_N * 1e6
-
-
-def _designs(E: float, k_r: float, k_m: float, window: float, pitch_um: float,
-             force_N: float) -> bool:
-    """Whether a die designs at these stiffnesses: a fitting pair (:func:`_any_fitting_beam`)
-    whose least stressed measuring root stays below the mean strength at ``force_N``."""
+def _force_that_designs(E: float, k_r: float, k_m: float, window: float, pitch_um: float,
+                        force_N: float, kobj_range) -> float | None:
+    """None when no pair of beams with these stiffnesses fits the window; else the rating
+    that designs with them: ``force_N`` within its limits (:func:`_rating_limits`), else the
+    lighter one a refusal would paste (:func:`_lighter_rating`)."""
     if not _any_fitting_beam(E, k_r, k_m, window, pitch_um):
-        return False
-    per_N = min(_fitting_beams(E, k_r, k_m, window, pitch_um))[0]
-    return _root_MPa(per_N, force_N) < BOSCH_MEAN_STRENGTH_MPA
+        return None
+    pair = min(_fitting_beams(E, k_r, k_m, window, pitch_um))
+    rating = _rating_of(pair, k_r, k_m, force_N, kobj_range)
+    if _within_limits(rating, pair[4]):
+        return force_N
+    return _lighter_rating(pair, k_r, k_m, rating, kobj_range)
+
+
+def _with_force(option: str, force: float, asked: float) -> str:
+    """``option``, and the lighter rating to paste with it where the asked one does not
+    design."""
+    return option if force == asked else f"{option} --full-scale-force {force:g}"
 
 
 def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignError:
@@ -598,10 +684,14 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignEr
     slender beams) and the nearest scale of the K_obj range that designs (K_m and K_r go
     as the range's scale), as a pasteable alternative."""
     lo, hi = targets.k_obj_range_N_per_mm
+    asked = targets.full_scale_force_N
     for step in range(1, SCALE_STEPS + 1):
         for scale, way in ((1.05 ** step, "stiffer"), (1.05 ** -step, "softer")):
-            if _designs(E, targets.k_r * scale, targets.k_m * scale, window, pitch_um,
-                        targets.full_scale_force_N):
+            a, b = float(f"{lo * scale:.4g}"), float(f"{hi * scale:.4g}")  # as pasted
+            x = targets.kr_over_km
+            k_m = math.sqrt(a * b / x)
+            force = _force_that_designs(E, x * k_m, k_m, window, pitch_um, asked, (a, b))
+            if force is not None:
                 why = ("the beams are too long for the window: the softest pair that fits "
                        f"has K_m = {targets.k_m * scale:.4g} N/mm" if way == "stiffer" else
                        "the reference beam would be too short to bend as a slender beam: the "
@@ -611,8 +701,38 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignEr
                     f"K_r {targets.k_r:.4g} and K_m {targets.k_m:.4g} N/mm in slender beams "
                     f"(>= {SLENDERNESS:g} widths) that fit across the {window:g} um window of "
                     f"the {room.label}", why,
-                    alternatives=[{"option": f"--kobj-range {lo * scale:.4g} {hi * scale:.4g}",
+                    alternatives=[{"option": _with_force(f"--kobj-range {a:g} {b:g}", force,
+                                                         asked),
                                    "words": f"the same span of tissues, {way}, that fits"}])
+    fit = _fitting_ratio(targets, window, pitch_um, E)
+    if fit is not None:
+        ratio, force = fit
+        return DesignError(
+            "--kr-over-km", targets.kr_over_km,
+            f"at most about {ratio:g} for the K_obj range {lo:g} ... {hi:g} N/mm in the "
+            f"{room.label}",
+            f"the two beams' lengths part as the ratio's cube root: at {targets.kr_over_km:g} "
+            f"no pair of slender beams (>= {SLENDERNESS:g} widths) fits across the {window:g} "
+            f"um window at any scale of the K_obj range within x{1.05 ** SCALE_STEPS:.3g}",
+            alternatives=[{"option": _with_force(f"--kr-over-km {ratio:g}", force, asked),
+                           "words": "a smaller stiffness ratio whose beams fit"}])
     return DesignError("--kobj-range", [lo, hi], "targets whose beams fit the die",
                        f"no K_obj range within x{1.05 ** SCALE_STEPS:.3g} of this one fits the "
                        f"{window:g} um window at {pitch_um:g} um pitch: a wider jaw")
+
+
+def _fitting_ratio(targets, window: float, pitch_um: float, E: float) -> tuple | None:
+    """(the largest K_r / K_m below the asked one, three digits, x 1/1.05 steps, whose beams
+    fit for the same K_obj range, the rating that designs with it), or None
+    (K_m = sqrt(K_lo K_hi / X), K_r = X K_m)."""
+    lo, hi = targets.k_obj_range_N_per_mm
+    for step in range(1, SCALE_STEPS + 1):
+        ratio = float(f"{targets.kr_over_km / 1.05 ** step:.3g}")
+        if ratio <= 1.0:
+            return None
+        k_m = math.sqrt(lo * hi / ratio)
+        force = _force_that_designs(E, ratio * k_m, k_m, window, pitch_um,
+                                    targets.full_scale_force_N, (lo, hi))
+        if force is not None:
+            return ratio, force
+    return None

@@ -70,6 +70,9 @@ from tactcad.vocabulary.schema import (Problems, ResolvedSection, Section, Text,
 #: accuracy table, "Random noise, sigma".
 NI_6258_NOISE_UV_RMS = {0.1: 15.0, 0.2: 16.0, 0.5: 21.0, 1.0: 32.0, 2.0: 57.0, 5.0: 140.0,
                         10.0: 280.0}
+#: The amplifier the read-out assumes when the design names none: its noise and bandwidth
+#: defaults are its data sheet's.
+DEFAULT_AMPLIFIER = "AD621"
 #: AD621 pin-strapped gains and the amplifier's -3 dB bandwidth at each (Hz).
 #: Source: Analog Devices AD621 data sheet (gain 10: 800 kHz; gain 100: 200 kHz).
 AD621_BANDWIDTH_HZ = {10.0: 800e3, 100.0: 200e3}
@@ -193,7 +196,7 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
                            "for thin sections, 1 W/in^2 (low end of 1-2 W/in^2: a thin web "
                            "sinks little heat, a static reading), V = 2 sqrt(R_g P A_g) "
                            "rounded down to 0.1 V; state excitation_V to change it"),
-    "amplifier": ("AD621", "Analog Devices AD621 instrumentation amplifier"),
+    "amplifier": (DEFAULT_AMPLIFIER, "Analog Devices AD621 instrumentation amplifier"),
     "amplifier_gain": (100.0, "assumption: the AD621's pin-strapped gain 100 (data sheet: fixed "
                               "gains 10 and 100)"),
     "amplifier_noise_nV_per_rtHz": (9.0, "AD621 data sheet: input voltage noise 9 nV/sqrt(Hz) "
@@ -210,7 +213,7 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
                               "its 1/f noise reaches down to 1 / 10 s"),
     "filter_corner_Hz": (1000.0, "assumption: a 1 kHz anti-alias low-pass before the DAQ: a "
                                  "grasp's force changes within tens of Hz; without it the "
-                                 "amplifier's 200 kHz bandwidth carries its noise to the DAQ"),
+                                 "amplifier's whole bandwidth carries its noise to the DAQ"),
     "filter_order": (1, "assumption: a first-order (RC) filter, noise bandwidth pi/2 x the "
                         "corner (Butterworth order n: (pi/2n)/sin(pi/2n) x the corner)"),
     "daq": ("NI USB-6258", "NI USB-6258 M Series DAQ"),
@@ -325,6 +328,13 @@ def check_readout(d: Any, p: Problems) -> None:
     if ro.filter_corner_Hz is not None and ro.filter_order == 0:
         p.add("readout.filter_corner_Hz", ro.filter_corner_Hz, "no corner with filter_order = 0",
               "order 0 means no anti-alias filter; give an order of 1 ... 8 for the corner")
+    if ro.amplifier is not None and ro.amplifier != DEFAULT_AMPLIFIER \
+            and ro.amplifier_noise_nV_per_rtHz is None:
+        p.add("readout.amplifier_noise_nV_per_rtHz", None,
+              f"its value from the {ro.amplifier} data sheet (nV/sqrt(Hz))",
+              f"readout.amplifier = {ro.amplifier!r}: the noise defaults are the "
+              f"{DEFAULT_AMPLIFIER}'s data sheet's, not this amplifier's (state its 1/f "
+              "density at 1 Hz too, amplifier_flicker_nV_per_rtHz_at_1Hz, or it is left out)")
     shortest = min(d.arms.lengths_mm)
     if ro.grid_length_mm is not None and ro.grid_length_mm > shortest:
         p.add("readout.grid_length_mm", ro.grid_length_mm, f"<= {fmt(shortest)} mm (shortest arm)",
@@ -506,12 +516,17 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
             float(values["grid_length_mm"]) * float(values["grid_width_mm"]))
     gain = float(values["amplifier_gain"])
     if values["bandwidth_Hz"] is None:
-        bw = _nearest(AD621_BANDWIDTH_HZ, gain) if values["amplifier"] == "AD621" else None
+        bw = (_nearest(AD621_BANDWIDTH_HZ, gain) if values["amplifier"] == DEFAULT_AMPLIFIER
+              else None)
         values["bandwidth_Hz"] = bw if bw is not None else 10e3
         if bw is None:
             sources["bandwidth_Hz"] = "assumption: 10 kHz noise bandwidth (no data for this gain)"
+    if values["amplifier"] != DEFAULT_AMPLIFIER and sources["amplifier_gain"] != "design file":
+        sources["amplifier_gain"] = (f"assumption: gain {gain:g} (the {DEFAULT_AMPLIFIER}'s "
+                                     f"pin-strapped 100; state readout.amplifier_gain for "
+                                     f"{values['amplifier']})")
     if values["amplifier_flicker_nV_per_rtHz_at_1Hz"] is None:
-        if values["amplifier"] == "AD621":
+        if values["amplifier"] == DEFAULT_AMPLIFIER:
             values["amplifier_flicker_nV_per_rtHz_at_1Hz"] = flicker_density_at_1Hz(
                 AD621_LOW_BAND_NOISE_UV_PP, AD621_LOW_BAND_HZ,
                 float(DEFAULTS["amplifier_noise_nV_per_rtHz"][0]))

@@ -24,7 +24,7 @@ from pathlib import Path
 
 from tactcad.design import mems_die as md
 from tactcad.design.mems_die import Beam, DiePlan
-from tactcad.vocabulary.soi_process import MASK_BY_NAME
+from tactcad.vocabulary.soi_process import MASK_BY_NAME, METAL_SPACE_UM
 
 #: GDSII units: 1 um user unit, 1 nm database unit.
 GDS_UNIT_M, GDS_PRECISION_M = 1e-6, 1e-9
@@ -62,8 +62,14 @@ def _u_shape(legs_um: float, u0: float = 0.0, v0: float = 0.0) -> Polygon:
 
 def _reference_v0(plan: DiePlan) -> float:
     """Where the reference U's legs start (beam-local v): its closed end
-    :data:`~tactcad.design.mems_die.REFERENCE_CLEAR_UM` from the window's edge."""
-    return -md.REFERENCE_CLEAR_UM - plan.reference_resistor_length_um
+    :data:`~tactcad.design.mems_die.REFERENCE_CLEAR_UM` from the window's edge, or further
+    from it where a short reference would bring the jog of its leads within the metal's
+    spacing of the bond pads (the jog runs under the pads: its top edge is v0 less the
+    resistor's run and the jog, plus half a lead)."""
+    near = -md.REFERENCE_CLEAR_UM - plan.reference_resistor_length_um
+    under_pads = (-(md.PAD_SETBACK_UM + md.PAD_UM) - METAL_SPACE_UM + md.RESISTOR_RUN_UM
+                  + md.LEAD_JOG_UM - md.LEAD_UM / 2)
+    return min(near, under_pads)
 
 
 def resistor_outline(plan: DiePlan, beam: Beam) -> Polygon:

@@ -20,6 +20,7 @@ from tactcad.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM, CAVITY_DEPTH_TO
 #: Parameters stated as assumptions (a fab's recipe replaces them).
 SCREEN_OXIDE_NM = 100.0
 METAL_NM = 500.0
+HARD_MASK_NM = 1000.0
 ANNEAL_C, ANNEAL_MIN = 1000.0, 30.0
 SINTER_C = 400.0
 
@@ -72,11 +73,15 @@ def traveller_steps(plan: DiePlan, sheet_resistance_ohm_per_sq: float) -> list[S
              f"sintered {SINTER_C:g} C in forming gas{assumed}",
              f"leads and {3 * len(plan.beams)} bond pads of {md.PAD_UM:g} um (a half bridge "
              "per beam)"),
+        Step("front DRIE mask", "device_etch", f"PECVD oxide {HARD_MASK_NM:g} nm{assumed}, "
+             f"patterned aligned to the cavities to +-{CAVITY_ALIGNMENT_UM:g} um and etched "
+             "(before the posts: no lithography over them after)",
+             "the beams' outline in a hard mask over the device layer"),
         Step("posts", "tip", f"posts {plan.post_height_um:g} um high on each beam's free end "
              f"(SU-8 or plated{assumed})", f"{len(plan.beams)} posts of {plan.post_um:g} um"),
-        Step("front DRIE", "device_etch", f"Bosch etch through the {s.device_um:g} um device "
-             f"layer, aligned to the cavities to +-{CAVITY_ALIGNMENT_UM:g} um, breaking "
-             f"through into them (aspect ratio at most {DRIE_ASPECT_RATIO:g}:1)",
+        Step("front DRIE", "", f"Bosch etch through the {s.device_um:g} um device layer in the "
+             "hard mask's openings, breaking through into the cavities (aspect ratio at most "
+             f"{DRIE_ASPECT_RATIO:g}:1)",
              f"{len(plan.beams)} free cantilevers over their cavities; the cavities' edges "
              "are the roots"),
         Step("dicing", "die", f"dies of {plan.die_length_um:g} x {plan.die_width_um:g} um "

@@ -79,11 +79,13 @@ class DieBudget:
 
 
 def _read(k_m: float, k_r: float, ks: np.ndarray, r) -> np.ndarray:
-    """K_obj eq. 3 reads from ``r`` with the nominal K (N/mm) over the true ``ks``, minus 1."""
+    """K_obj eq. 3 reads from ``r`` with the nominal K (N/mm) over the true ``ks``, minus 1;
+    inf where ``r`` leaves eq. 3's range 1 < R < K_r / K_m (no K_obj reads it)."""
     from tactcad.mechanics.lumped_model import object_stiffness
 
-    return np.asarray([float(object_stiffness(float(x), k_m, k_r)) for x in np.atleast_1d(r)]) \
-        / ks - 1.0
+    read = [float(object_stiffness(float(x), k_m, k_r)) if 1.0 < x < k_r / k_m else math.inf
+            for x in np.atleast_1d(r)]
+    return np.asarray(read) / ks - 1.0
 
 
 def _shifted(k_m: float, k_r: float, ks: np.ndarray, s_m: float, s_r: float) -> np.ndarray:
@@ -92,6 +94,22 @@ def _shifted(k_m: float, k_r: float, ks: np.ndarray, s_m: float, s_r: float) -> 
 
     r = np.array([float(deflection_ratio(s_m * k_m, s_r * k_r, k)) for k in ks])
     return _read(k_m, k_r, ks, r)
+
+
+def readout_noise_term(plan, readout: dict, ks) -> np.ndarray:
+    """The K_obj error of the read-out noise at each true K_obj ``ks`` (N/mm; relative, 1
+    sigma): each deflection read to its bridge's force resolution over its K, the two
+    independent, at the point where the reference carries the rated force; inf where R
+    plus its noise leaves eq. 3's range 1 < R < K_r / K_m (unreadable)."""
+    from tactcad.mechanics.lumped_model import deflection_ratio
+
+    k_m, k_r = plan.k_m_N_per_mm, plan.k_r_N_per_mm
+    e_r = plan.full_scale_force_N / k_r
+    r = np.array([float(deflection_ratio(k_m, k_r, k)) for k in ks])
+    e_m = r * e_r
+    s_r = readout["rows"]["reference"]["force_resolution_N"] / k_r / e_r
+    s_m = readout["rows"]["measuring"]["force_resolution_N"] / k_m / e_m
+    return np.abs(_read(k_m, k_r, np.asarray(ks, float), r + r * np.hypot(s_r, s_m)))
 
 
 def die_budget(plan, readout: dict | None = None) -> DieBudget:
@@ -113,14 +131,10 @@ def die_budget(plan, readout: dict | None = None) -> DieBudget:
     ref, meas = plan.beams[0], plan.beams[plan.columns]
     terms, reasons = {}, {}
 
-    # read-out noise: at the point where the reference carries the rated force
+    # the deflections where the reference carries the rated force
     e_r = plan.full_scale_force_N / k_r
-    r = np.array([float(deflection_ratio(k_m, k_r, k)) for k in ks])
-    e_m = r * e_r
-    s_r = readout["rows"]["reference"]["force_resolution_N"] / k_r / e_r
-    s_m = readout["rows"]["measuring"]["force_resolution_N"] / k_m / e_m
-    sigma_r = r * np.hypot(s_r, s_m)
-    terms["read-out noise"] = np.abs(_read(k_m, k_r, ks, r + sigma_r))
+    e_m = np.array([float(deflection_ratio(k_m, k_r, k)) for k in ks]) * e_r
+    terms["read-out noise"] = readout_noise_term(plan, readout, ks)
     reasons["read-out noise"] = ("each deflection to the bridge's force resolution over its K, "
                                  f"the reference at the rated {plan.full_scale_force_N:g} N")
 

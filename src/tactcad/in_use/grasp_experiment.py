@@ -301,6 +301,22 @@ def wedge_words(jaw: JawGeometry, radius_mm) -> str:
             f"{jaw.opening_angle_deg:g})")
 
 
+def check_wedge_fits(jaw: JawGeometry, last_radius_mm: float) -> None:
+    """A wedge of the jaw's slab thickness at the last tip fits the open jaw: the jaw's face
+    there stands r_last sin(opening) above the opposing jaw.
+
+    Raises:
+        DesignError: ``jaw.slab_thickness_mm`` thicker than that gap (the largest named).
+    """
+    gap = last_radius_mm * math.sin(math.radians(jaw.opening_angle_deg))
+    if jaw.slab_thickness_mm > gap:
+        raise DesignError("jaw.slab_thickness_mm", jaw.slab_thickness_mm,
+                          f"at most {gap:.4g} mm (the open jaw's gap at the last tip, "
+                          f"{last_radius_mm:.4g} mm from the pin at {jaw.opening_angle_deg:g} "
+                          "degrees)", "a wedge of tissue thicker than the open jaw does not "
+                          "fit between the jaws: open the jaw wider or give a thinner tissue")
+
+
 def tissue_thickness_mm(radius_mm: np.ndarray, thickness_mm: float, profile: str) -> np.ndarray:
     """The tissue's thickness under each tip (mm): ``slab`` h everywhere; ``wedge`` h r / r_last.
 
@@ -392,10 +408,18 @@ def unit_reading(ref: int, meas: int, sol: TipSolution, tips: Tips, k_obj,
             "K_obj_corrected_N_per_mm": k_corr, "error_corrected_rel": k_corr / k_obj - 1}
 
 
-def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float) -> list[dict]:
+#: The tissue's compression under a tip past which the linear model no longer describes it
+#: (assumption: soft tissue stiffens beyond about 20 % strain).
+LINEAR_TISSUE_STRAIN = 0.2
+
+
+def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float,
+                thickness_mm=None) -> list[dict]:
     """Each tip's travel, deflection, forces (element, stop, on the slab), its verdicts on
     the rating (a reading past full scale) and on the overload limit (damage; None where
-    no limit is given)."""
+    no limit is given), and the tissue's compression under it (travel less deflection over
+    the tissue's thickness there, ``thickness_mm``; None without it) with whether it passes
+    :data:`LINEAR_TISSUE_STRAIN`."""
     out = []
     for i, n in enumerate(tips.labels):
         f = float(sol.element_force_N[i])
@@ -412,6 +436,9 @@ def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float) -> list[dict
                     "over_rating": f > rated_force_N * (1 + 1e-9),
                     "overload_limit_N": limit if math.isfinite(limit) else None,
                     "over_overload_limit": f > limit * (1 + 1e-9)})
+        if thickness_mm is not None:
+            strain = float((sol.travel_mm[i] - sol.deflection_mm[i]) / thickness_mm[i])
+            out[-1].update(tissue_strain=strain, past_linear_tissue=strain > LINEAR_TISSUE_STRAIN)
     return out
 
 
@@ -454,6 +481,8 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
                  profile: str = "slab") -> LayoutGrasp:
     """One layout closed at ``angle_deg`` or to the grasp force ``force_N`` (one of them)."""
     thickness = tissue_thickness_mm(tips.radius_mm, jaw.slab_thickness_mm, profile)
+    if profile == "wedge":
+        check_wedge_fits(jaw, float(np.max(tips.radius_mm)))
     local = thickness if profile != "slab" and coupling == "layer" else None
     c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling,
                           local_thickness_mm=local)
@@ -466,7 +495,7 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
     check_angle_deg(jaw, angle_deg)
     sol = press(tips, c, jaw.slab_thickness_mm, angle_deg, profile)
     return LayoutGrasp(name, float(angle_deg), float(sol.tip_force_N.sum()),
-                       tip_records(tips, sol, rated_force_N),
+                       tip_records(tips, sol, rated_force_N, thickness),
                        [unit_reading(u[0], u[1], sol, tips, k_local, u[2] if len(u) > 2 else u[:2],
                                      thickness)
                         for u in units])

@@ -20,6 +20,8 @@ Units: cm^-2 (dose), cm^-3 (concentration), 1/K.
 
 from __future__ import annotations
 
+from tactcad.errors import DesignError
+
 from tactcad.design.mems_die import JUNCTION_DEPTH_UM
 from tactcad.mechanics.piezoresistor import piezoresistance_factor, resistor_tcr_per_K
 
@@ -69,14 +71,88 @@ def chosen_implant_dose(doses=STOCK_DOSES_PER_CM2) -> tuple[float, str]:
     return best, why
 
 
-def doped_die_plan(targets, room, **kwargs):
+def doped_die_plan(targets, room, kobj_resolution_rel: float | None = None, **kwargs):
     """:func:`tactcad.design.mems_die.die_plan` with the implant dose of
-    :func:`chosen_implant_dose` (and its reason); ``kwargs`` as ``die_plan`` takes them.
+    :func:`chosen_implant_dose` (and its reason), refused where its read-out cannot resolve
+    K_obj to ``kobj_resolution_rel`` (default
+    :data:`~tactcad.design.mems_die.DEFAULT_KOBJ_RESOLUTION_REL`) anywhere in the range at
+    the rated force (the read-out noise term of the die's budget,
+    :func:`tactcad.in_use.die_budget.readout_noise_term`); ``kwargs`` as ``die_plan`` takes
+    them.
 
     Raises:
-        DesignError: as :func:`~tactcad.design.mems_die.die_plan`.
+        DesignError: as :func:`~tactcad.design.mems_die.die_plan`; ``--full-scale-force``
+            too light to resolve K_obj (with the rating that does, where one designs).
     """
+    import dataclasses
+
+    from tactcad.design.mems_die import DEFAULT_KOBJ_RESOLUTION_REL, die_plan
+
+    target = DEFAULT_KOBJ_RESOLUTION_REL if kobj_resolution_rel is None else kobj_resolution_rel
+    dose, why = chosen_implant_dose()
+    plan = die_plan(targets, room, implant_dose_per_cm2=dose, dose_reason=why, **kwargs)
+    worst = worst_readout_error_rel(plan)
+    if worst > target:
+        raise _too_light(targets, room, plan, worst, target, kwargs)
+    return dataclasses.replace(plan, kobj_resolution_rel=float(target))
+
+
+def die_plan_at(targets, room, force_N: float, kwargs):
+    """The doped die of ``targets`` at the rating ``force_N`` (N), without the resolution's
+    refusal."""
+    import dataclasses
+
     from tactcad.design.mems_die import die_plan
 
     dose, why = chosen_implant_dose()
-    return die_plan(targets, room, implant_dose_per_cm2=dose, dose_reason=why, **kwargs)
+    return die_plan(dataclasses.replace(targets, full_scale_force_N=force_N), room,
+                    implant_dose_per_cm2=dose, dose_reason=why, **kwargs)
+
+
+def worst_readout_error_rel(plan) -> float:
+    """The die's largest K_obj error from its read-out noise over its K_obj range (ends and
+    middle; relative, 1 sigma; inf where unreadable)."""
+    import math
+
+    import numpy as np
+
+    from tactcad.in_use.die_budget import readout_noise_term
+    from tactcad.mechanics.piezoresistor import die_readout
+
+    lo, hi = plan.kobj_range_N_per_mm
+    return float(np.max(readout_noise_term(plan, die_readout(plan),
+                                           np.array([lo, math.sqrt(lo * hi), hi]))))
+
+
+def _too_light(targets, room, plan, worst: float, target: float, kwargs) -> DesignError:
+    """The refusal of a rating too light to resolve K_obj: the read-out's error goes as one
+    over the rating (the deflections as F, the force resolution fixed), so the rating that
+    resolves it is F x worst / target (10 % more, two digits up), pasted where it designs."""
+    import dataclasses
+    import math
+
+    force = targets.full_scale_force_N
+    alternatives, heavier, error = [], force, worst
+    for _ in range(8):  # eq. 3 amplifies the noise unevenly: a few steps of F x error / target
+        scale = error / target if math.isfinite(error) else 1e3
+        heavier = float(f"{1.1 * heavier * scale:.2g}")
+        try:
+            heavy = die_plan_at(targets, room, heavier, kwargs)
+        except DesignError:
+            break  # heavier than the die's other limits allow
+        error = worst_readout_error_rel(heavy)
+        if error <= target:
+            alternatives = [{"option": f"--full-scale-force {heavier:g}",
+                             "words": f"a rating whose read-out resolves K_obj to "
+                                      f"{100 * target:g} %"}]
+            break
+    read = ("leaves K_obj unreadable" if not math.isfinite(worst) else
+            f"moves K_obj by {100 * worst:.3g} %")
+    return DesignError("--full-scale-force", force,
+                       f"a rating whose read-out resolves K_obj to {100 * target:g} % (1 sigma)",
+                       f"at {force:g} N the bridges' noise {read} somewhere in "
+                       f"{targets.k_obj_range_N_per_mm[0]:g} ... "
+                       f"{targets.k_obj_range_N_per_mm[1]:g} N/mm"
+                       + ("" if alternatives else "; no heavier rating designs within the "
+                          "die's other limits"),
+                       alternatives=alternatives)

@@ -142,6 +142,8 @@ def drie_min_width_um(depth_um: float) -> float:
 
 #: The lithography's smallest feature (um).
 LITHO_MIN_UM = 2.0
+#: Aluminium's smallest width and space (um): wet-etched, its undercut takes about 1 um.
+METAL_SPACE_UM = 1.5 * LITHO_MIN_UM
 
 
 def soi_rules(stack: SoiStack) -> tuple[Rule, ...]:
@@ -154,19 +156,21 @@ def soi_rules(stack: SoiStack) -> tuple[Rule, ...]:
              ASSUMED + "a beam or frame between two slots at least twice the lithography's "
                        "smallest feature"),
         Rule("cavity_reference.width", "cavity_reference", "width", 2 * LITHO_MIN_UM,
-             ASSUMED + "a cavity at least twice the smallest feature across (it is "
-                       "shallow: DRIE's aspect ratio does not bind)"),
+             ASSUMED + "a cavity at least twice the smallest feature across (at most "
+                       "100 um deep and as wide as the beams' row: DRIE's aspect ratio does "
+                       "not bind)"),
         Rule("cavity_measuring.width", "cavity_measuring", "width", 2 * LITHO_MIN_UM,
-             ASSUMED + "a cavity at least twice the smallest feature across (it is "
-                       "shallow: DRIE's aspect ratio does not bind)"),
+             ASSUMED + "a cavity at least twice the smallest feature across (at most "
+                       "100 um deep and as wide as the beams' row: DRIE's aspect ratio does "
+                       "not bind)"),
         Rule("piezo.width", "piezo", "width", LITHO_MIN_UM, litho),
         Rule("piezo.space", "piezo", "space", 2 * LITHO_MIN_UM,
              ASSUMED + "two implants' lateral diffusion kept apart"),
         Rule("contact.width", "contact", "width", 2 * LITHO_MIN_UM,
              ASSUMED + "a contact at least twice the smallest feature, for its resistance"),
-        Rule("metal.width", "metal", "width", 1.5 * LITHO_MIN_UM,
+        Rule("metal.width", "metal", "width", METAL_SPACE_UM,
              ASSUMED + "aluminium wet-etched: its undercut takes about 1 um"),
-        Rule("metal.space", "metal", "space", 1.5 * LITHO_MIN_UM,
+        Rule("metal.space", "metal", "space", METAL_SPACE_UM,
              ASSUMED + "aluminium wet-etched: its undercut takes about 1 um"),
         Rule("metal.contact_enclosure", "contact", "enclosure", LITHO_MIN_UM,
              ASSUMED + "the metal covers each contact by one alignment step", inside="metal"),
