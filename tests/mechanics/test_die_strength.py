@@ -55,7 +55,7 @@ def test_a_stated_pair_decides_the_rated_force_and_the_stops(die):
     beams (by hand) and
     passes or fails against the lab's accepted maximum; the stop row adds every beam on its
     deepest stop, which carries more than the rating."""
-    from tactcad.commands.die_views import die_verification
+    from tactcad.studies.die_verification import die_verification
 
     rows = {r["requirement"]: r for r in die_verification(die)}
     assert rows["full_scale_force_N"]["verdict"] == "undecided"

@@ -287,7 +287,7 @@ def run(args: argparse.Namespace) -> int:
         write_mount_bom(mount_bom_rows(plan, mount, room.label), made["bom"])
         made["drawing"].write_text(die_sheet(plan, mount).svg(), encoding="utf-8")
         checks = (gds_checks(made["masks"], plan) + mount_checks(solids, mount, f"{name}_posts")
-                  + sheet_file_results(made["drawing"]))
+                  + sheet_file_results(made["drawing"]) + die_requirement_checks(plan))
         counts = status_counts(checks)
         readout = die_readout(plan)
         write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
@@ -324,6 +324,25 @@ def run(args: argparse.Namespace) -> int:
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
                      modes, fe, budget, mount, record["fem3d"]))
     return 1 if counts["failed"] else 0
+
+
+def die_requirement_checks(plan) -> list:
+    """The die's verification matrix (:func:`tactcad.commands.die_views.die_verification`)
+    as check results, one per requirement: failed when its verdict is ``fail``; an
+    ``undecided`` one passes, marked undecided (a mean strength without a Weibull pair)."""
+    from tactcad.checks.check_result import CheckResult
+    from tactcad.studies.die_verification import die_verification
+    from tactcad.studies.verification import binding_text, margin_text, value_text
+
+    out = []
+    for r in die_verification(plan):
+        detail = (f"{r['verdict']}: target {value_text(r['target'])}, predicted "
+                  f"{value_text(r['predicted'])}, margin {margin_text(r)} ({r['model']})")
+        if binding_text(r):
+            detail += f", binds: {binding_text(r)}"
+        out.append(CheckResult("requirement", r["requirement"], r["verdict"] != "fail", detail,
+                               undecided=r["verdict"] == "undecided"))
+    return out
 
 
 def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts: str,

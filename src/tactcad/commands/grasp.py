@@ -103,7 +103,8 @@ def _option_error(exc):
     from tactcad.errors import DesignError
 
     option = OPTION_OF.get(exc.field)
-    return DesignError(option, exc.value, exc.allowed, exc.why) if option else exc
+    return (DesignError(option, exc.value, exc.allowed, exc.why, alternatives=exc.alternatives)
+            if option else exc)
 
 
 def design_plan_from_args(args: argparse.Namespace):

@@ -103,7 +103,8 @@ def render(report) -> str:
              f"{1e6 * report.noise_V['reading']:.1f} uV rms, of it 1/f "
              + (f"{1e6 * report.noise_V['amplifier_flicker']:.2g} uV (amplifier)"
                 if not c.source("amplifier_flicker_nV_per_rtHz_at_1Hz").startswith("not stated")
-                else f"of the {c.amplifier} not stated (left out)")
+                else f"none of the {c.amplifier}'s (its 1/f density not stated: left out, the "
+                     "noise is low by it)")
              + f" and {1e6 * report.noise_V['gauge_flicker']:.2g} uV (foil grid, Hooge) over "
              f"{c.flicker_band_Hz[0]:.3g}-{c.flicker_band_Hz[1]:.3g} Hz (tare to reading "
              f"{c.tare_interval_s:g} s); full-scale force "

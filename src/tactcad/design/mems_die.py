@@ -496,21 +496,32 @@ def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
     tallest = POST_ASPECT_MAX * post_um
     return [
         (force_N * BOSCH_MEAN_STRENGTH_MPA / rating.root_MPa,
-         f"the more stressed root reaches the mean tensile strength of Bosch-etched silicon "
-         f"({BOSCH_MEAN_STRENGTH_MPA:g} MPa, {BOSCH_STRENGTH_SOURCE}): {rating.root_MPa:.4g} "
-         "MPa at its beam's rated force"),
+         f"the more stressed root at the mean tensile strength of Bosch-etched silicon "
+         f"({BOSCH_MEAN_STRENGTH_MPA:g} MPa, {BOSCH_STRENGTH_SOURCE}; {rating.root_MPa:.4g} MPa at "
+         f"{force_N:g} N, at its beam's rated force)"),
         (force_N / rating.stop_over_fracture,
-         "a row's stop, in its deepest cavity, would engage past the travel at which its "
-         "root reaches the mean strength of etched silicon: the stop would not protect it"),
+         "a row's stop, in its deepest cavity, engaging only as its root reaches the mean "
+         f"strength ({100 * rating.stop_over_fracture:.3g} % of that travel at {force_N:g} N)"),
         (force_N * CAVITY_DEPTH_MAX_UM / deepest_cavity,
-         f"the measuring row's cavity would be {max(depths_um):g} um deep (+"
-         f"{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %), past the {CAVITY_DEPTH_MAX_UM:g} um a timed "
-         "etch holds to its tolerance"),
+         f"the measuring row's cavity at the {CAVITY_DEPTH_MAX_UM:g} um a timed etch holds to "
+         f"its +-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} % ({max(depths_um):g} um at {force_N:g} N)"),
         (force_N * (tallest - POST_CLEARANCE_UM) / deepest_um if tallest >= POST_HEIGHT_UM
          else math.inf,  # the least post taller than the aspect allows: no rating helps
-         f"a post would go {deepest_um:.4g} um to its stop, and to stand "
-         f"{POST_CLEARANCE_UM:g} um proud there it would be taller than {POST_ASPECT_MAX:g} x "
-         f"its {post_um:g} um side ({tallest:g} um)")]
+         f"a post standing {POST_CLEARANCE_UM:g} um proud at its stop taller than "
+         f"{POST_ASPECT_MAX:g} x its {post_um:g} um side ({tallest:g} um; its stop at "
+         f"{deepest_um:.4g} um of travel at {force_N:g} N)")]
+
+
+def rating_limits(plan: DiePlan) -> list[tuple[float, str]]:
+    """The ratings at which each limit of ``plan``'s rating binds, with what binds (N,
+    words; :func:`_rating_limits` on the plan's beams): the largest rating the die allows is
+    the least of them."""
+    ref, meas = plan.beams[0], plan.beams[plan.columns]
+    pair = (0.0, -ref.thickness_um, ref.width_um, 0.0, plan.post_um, ref.length_um,
+            meas.length_um)
+    rating = _rating_of(pair, plan.k_r_N_per_mm, plan.k_m_N_per_mm, plan.full_scale_force_N,
+                        plan.kobj_range_N_per_mm)
+    return _rating_limits(rating, plan.post_um)
 
 
 def _within_limits(rating: _Rating, post_um: float) -> bool:
@@ -544,7 +555,7 @@ def _check_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating, kobj_ran
         return
     below = _lighter_rating(pair, k_r, k_m, rating, kobj_range)
     raise DesignError("--full-scale-force", force_N, f"at most about {below:g} N",
-                      "; ".join(why for _, why in passed),
+                      "past " + "; past ".join(why for _, why in passed),
                       alternatives=[{"option": f"--full-scale-force {below:g}",
                                      "words": "a lighter rating, below every limit (strength "
                                               "at the mean of etched bars; its failure "

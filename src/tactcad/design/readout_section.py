@@ -73,6 +73,11 @@ NI_6258_NOISE_UV_RMS = {0.1: 15.0, 0.2: 16.0, 0.5: 21.0, 1.0: 32.0, 2.0: 57.0, 5
 #: The amplifier the read-out assumes when the design names none: its noise and bandwidth
 #: defaults are its data sheet's.
 DEFAULT_AMPLIFIER = "AD621"
+def is_default_amplifier(name: str) -> bool:
+    """Whether ``name`` names :data:`DEFAULT_AMPLIFIER` (any case, spaces around)."""
+    return name.strip().casefold() == DEFAULT_AMPLIFIER.casefold()
+
+
 #: AD621 pin-strapped gains and the amplifier's -3 dB bandwidth at each (Hz).
 #: Source: Analog Devices AD621 data sheet (gain 10: 800 kHz; gain 100: 200 kHz).
 AD621_BANDWIDTH_HZ = {10.0: 800e3, 100.0: 200e3}
@@ -328,7 +333,7 @@ def check_readout(d: Any, p: Problems) -> None:
     if ro.filter_corner_Hz is not None and ro.filter_order == 0:
         p.add("readout.filter_corner_Hz", ro.filter_corner_Hz, "no corner with filter_order = 0",
               "order 0 means no anti-alias filter; give an order of 1 ... 8 for the corner")
-    if ro.amplifier is not None and ro.amplifier != DEFAULT_AMPLIFIER \
+    if ro.amplifier is not None and not is_default_amplifier(ro.amplifier) \
             and ro.amplifier_noise_nV_per_rtHz is None:
         p.add("readout.amplifier_noise_nV_per_rtHz", None,
               f"its value from the {ro.amplifier} data sheet (nV/sqrt(Hz))",
@@ -516,17 +521,17 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
             float(values["grid_length_mm"]) * float(values["grid_width_mm"]))
     gain = float(values["amplifier_gain"])
     if values["bandwidth_Hz"] is None:
-        bw = (_nearest(AD621_BANDWIDTH_HZ, gain) if values["amplifier"] == DEFAULT_AMPLIFIER
+        bw = (_nearest(AD621_BANDWIDTH_HZ, gain) if is_default_amplifier(values["amplifier"])
               else None)
         values["bandwidth_Hz"] = bw if bw is not None else 10e3
         if bw is None:
             sources["bandwidth_Hz"] = "assumption: 10 kHz noise bandwidth (no data for this gain)"
-    if values["amplifier"] != DEFAULT_AMPLIFIER and sources["amplifier_gain"] != "design file":
+    if not is_default_amplifier(values["amplifier"]) and sources["amplifier_gain"] != "design file":
         sources["amplifier_gain"] = (f"assumption: gain {gain:g} (the {DEFAULT_AMPLIFIER}'s "
                                      f"pin-strapped 100; state readout.amplifier_gain for "
                                      f"{values['amplifier']})")
     if values["amplifier_flicker_nV_per_rtHz_at_1Hz"] is None:
-        if values["amplifier"] == DEFAULT_AMPLIFIER:
+        if is_default_amplifier(values["amplifier"]):
             values["amplifier_flicker_nV_per_rtHz_at_1Hz"] = flicker_density_at_1Hz(
                 AD621_LOW_BAND_NOISE_UV_PP, AD621_LOW_BAND_HZ,
                 float(DEFAULTS["amplifier_noise_nV_per_rtHz"][0]))

@@ -34,7 +34,8 @@ import numpy as np
 
 from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
-from tactcad.in_use.jaw_kinematics import JawGeometry, check_angle_deg, indentation_mm
+from tactcad.in_use.jaw_kinematics import (OPENING_ANGLE_RANGE_DEG, JawGeometry, check_angle_deg,
+                                            indentation_mm)
 from tactcad.in_use.kobj_budget import kobj_from_deflections
 from tactcad.in_use.tissue_coupling import TISSUE_POISSON_RATIO as TISSUE_COUPLING_POISSON_RATIO
 from tactcad.in_use.radius_pairs import (PairedLayout, along_row_layout, insert_frame,
@@ -310,11 +311,20 @@ def check_wedge_fits(jaw: JawGeometry, last_radius_mm: float) -> None:
     """
     gap = last_radius_mm * math.sin(math.radians(jaw.opening_angle_deg))
     if jaw.slab_thickness_mm > gap:
+        thinner = math.floor(gap * 1e3) / 1e3  # three decimals, down: it fits
+        wider = math.ceil(math.degrees(math.asin(min(1.0, jaw.slab_thickness_mm
+                                                      / last_radius_mm))) * 100) / 100
+        alternatives = [{"option": f"--slab-thickness-mm {thinner:g}",
+                         "words": "a thinner tissue that fits the open jaw"}]
+        if jaw.slab_thickness_mm < last_radius_mm and wider <= OPENING_ANGLE_RANGE_DEG[1]:
+            alternatives.append({"option": f"--opening-deg {wider:g}",
+                                 "words": "the jaw opened wide enough for this tissue"})
         raise DesignError("jaw.slab_thickness_mm", jaw.slab_thickness_mm,
-                          f"at most {gap:.4g} mm (the open jaw's gap at the last tip, "
+                          f"at most {thinner:g} mm (the open jaw's gap at the last tip, "
                           f"{last_radius_mm:.4g} mm from the pin at {jaw.opening_angle_deg:g} "
                           "degrees)", "a wedge of tissue thicker than the open jaw does not "
-                          "fit between the jaws: open the jaw wider or give a thinner tissue")
+                          "fit between the jaws: open the jaw wider or give a thinner tissue",
+                          alternatives=alternatives)
 
 
 def tissue_thickness_mm(radius_mm: np.ndarray, thickness_mm: float, profile: str) -> np.ndarray:

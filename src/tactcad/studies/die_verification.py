@@ -1,0 +1,139 @@
+"""A silicon die's verification matrix: one record per requirement in the array's keys
+(:func:`tactcad.studies.verification.verification_matrix`), at the closed form, for
+``tactcad verify`` on a die's file and the die's requirements check group.
+
+Units: N, um, MPa.
+"""
+
+from __future__ import annotations
+
+import math
+
+
+def die_verification(plan) -> list[dict]:
+    """The die's verification matrix, one record per requirement in the array's keys
+    (:func:`tactcad.studies.verification.verification_matrix`), at the closed form:
+
+    * ``full_scale_force_N``: the rated force against the rating at which the worse root, at
+      its own beam's rated force (:meth:`~tactcad.design.mems_die.DiePlan.rated_force_N`),
+      reaches the mean strength of Bosch-etched silicon: failed at or past it (half such
+      roots break), else undecided (a mean strength without its Weibull modulus gives no
+      failure probability); with the lab's Weibull pair, the die's failure probability;
+    * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band;
+    * ``hard_stop``: each row's cavity floor against its beam: the post's travel when the
+      beam's end meets the floor, in the shallowest cavity the depth tolerance allows, past
+      the beam's rated travel (it reads its whole range), and in the deepest below the
+      travel at which its root reaches the mean strength (an overload rests on the floor
+      before the beam breaks, and before the post sinks to the face (the posts stand proud);
+      margin: the worse row's fracture travel or post height over its deepest engagement,
+      less one.
+    """
+    from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA
+    from tactcad.studies.verification import KR_OVER_KM_BAND_REL
+
+    rows = plan.beams[:: plan.columns]
+    stiffness = {"reference": plan.k_r_N_per_mm, "measuring": plan.k_m_N_per_mm}
+    target_ratio = plan.targets[0] / plan.targets[1]
+    ratio = plan.k_r_N_per_mm / plan.k_m_N_per_mm
+    fracture_travel_um = {b.role: 1e3 * plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA
+                          / plan.stress_MPa_at_rating(b) / stiffness[b.role] for b in rows}
+    stop = _stop_row(plan, rows, fracture_travel_um)
+    return [
+        _rated_row(plan) if plan.weibull is None else _weibull_rated_row(plan),
+        {"requirement": "kr_over_km", "target": target_ratio, "predicted": ratio,
+         "error_estimate_rel": None, "margin_rel": ratio / target_ratio - 1.0,
+         "allowed_margin_rel": -KR_OVER_KM_BAND_REL, "model": "closed-form",
+         "verdict": "pass" if ratio / target_ratio - 1.0 >= -KR_OVER_KM_BAND_REL else "fail",
+         "binding_words": "each column's reference and measuring beam"},
+        stop,
+        _resolution_row(plan),
+    ]
+
+
+def _resolution_row(plan) -> dict:
+    """``kobj_resolution_rel``: the largest K_obj error the bridges' noise leaves over the
+    range at the rated force against the die's requirement."""
+    from tactcad.studies.die_doping import worst_readout_error_rel
+
+    worst = worst_readout_error_rel(plan)
+    return {"requirement": "kobj_resolution_rel", "target": plan.kobj_resolution_rel,
+            "predicted": worst, "error_estimate_rel": None,
+            "margin_rel": plan.kobj_resolution_rel / worst - 1.0
+            if math.isfinite(worst) and worst > 0 else None,
+            "model": "closed-form",
+            "verdict": "pass" if worst <= plan.kobj_resolution_rel else "fail",
+            "binding_words": "the read-out noise term of the budget, worst over the K_obj "
+                             "range, the reference at the rated force"}
+
+
+def _rated_row(plan) -> dict:
+    """``full_scale_force_N`` without a Weibull pair: the rating against the largest the die's
+    limits allow (:func:`tactcad.design.mems_die.rating_limits`: the more stressed root at the
+    etched bars' mean strength, a stop engaging before its root breaks, the cavities' depth,
+    the posts' height): failed at or past it, else undecided (a mean strength without its
+    Weibull modulus gives no failure probability)."""
+    from tactcad.design.mems_die import BOSCH_STRENGTH_SOURCE, rating_limits
+
+    largest, binds = min(rating_limits(plan), key=lambda lw: lw[0])
+    return {"requirement": "full_scale_force_N", "target": plan.full_scale_force_N,
+            "predicted": largest, "error_estimate_rel": None,
+            "margin_rel": largest / plan.full_scale_force_N - 1.0, "model": "closed-form",
+            "verdict": "fail" if largest <= plan.full_scale_force_N else "undecided",
+            "binding_words": f"the largest rating the die's limits allow: {binds}; no Weibull "
+                             f"modulus, so no failure probability ({BOSCH_STRENGTH_SOURCE})"}
+
+
+def _weibull_rated_row(plan) -> dict:
+    """``full_scale_force_N`` with the lab's Weibull pair: the die's failure probability
+    with the rated force on every beam against the largest the lab accepts."""
+    from tactcad.mechanics.die_strength import die_failure_probability
+
+    pair = plan.weibull
+    p_f = die_failure_probability(plan, plan.rated_force_N)
+    return {"requirement": "full_scale_force_N",
+            "target": f"failure probability <= {pair.failure_probability_max:g}",
+            "predicted": p_f, "error_estimate_rel": None,
+            "margin_rel": pair.failure_probability_max / p_f - 1.0 if p_f > 0 else None,
+            "model": "closed-form",
+            "verdict": "pass" if p_f <= pair.failure_probability_max else "fail",
+            "binding_words": f"the die's failure probability with every beam at its rated "
+                             f"force, the lab's Weibull pair (m {pair.modulus:g}, "
+                             f"sigma_0 {pair.characteristic_MPa:g} MPa on "
+                             f"{pair.reference_area_um2:g} um^2; {pair.source})"}
+
+
+def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
+    """The ``hard_stop`` record of :func:`die_verification`: each row's cavity floor."""
+    from tactcad.design.mems_die import STOP_MULTIPLE
+    from tactcad.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
+
+    words, margins, ok = [], [], True
+    for beam in rows:
+        _, shallow, deep = plan.stop_engagement_um(beam)
+        rated, breaks = plan.rated_tip_um(beam), fracture_travel_um[beam.role]
+        ok = ok and rated < shallow and deep < min(breaks, plan.post_height_um)
+        margins.append(min(breaks, plan.post_height_um) / deep - 1.0)
+        words.append(f"{beam.role}: cavity {plan.cavity_depth_of(beam):g} um, engages at "
+                     f"{shallow:.3g} ... {deep:.3g} um of post travel (rated {rated:.3g} um, "
+                     f"breaks at {breaks:.3g} um)")
+    words.append(f"posts {plan.post_height_um:g} um proud: still proud on their stops")
+    if plan.weibull is not None:  # every beam resting on its floor: the most it carries
+        from tactcad.mechanics.die_strength import die_failure_probability
+
+        stiffness = {"reference": plan.k_r_N_per_mm, "measuring": plan.k_m_N_per_mm}
+        p_stop = die_failure_probability(
+            plan, lambda b: stiffness[b.role] * 1e-3 * plan.stop_engagement_um(b)[2])
+        accepted = plan.weibull.failure_probability_max
+        ok = ok and p_stop <= accepted
+        margins.append(accepted / p_stop - 1.0 if p_stop > 0 else math.inf)
+        words.append(f"the die's failure probability with every beam on its deepest stop "
+                     f"{p_stop:.3g} (accepted up to {accepted:g}, the lab's Weibull pair)")
+    return {"requirement": "hard_stop",
+            "target": f"engages past the rated travel (at {STOP_MULTIPLE:g} x) and before the "
+                      "root breaks",
+            "predicted": "; ".join(words), "error_estimate_rel": None,
+            "margin_rel": min(margins), "model": "closed-form",
+            "verdict": "pass" if ok else "fail",
+            "binding_words": f"each row's cavity floor under its beams' free ends (the depth "
+                             f"+-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %, the root at the mean "
+                             "strength of etched bars)"}
