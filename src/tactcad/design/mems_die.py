@@ -478,9 +478,7 @@ def _rating_of(pair: tuple, k_r: float, k_m: float, force_N: float, kobj_range) 
     depths = (cavity_depth_um(rated[0], l_r, post), cavity_depth_um(rated[1], l_m, post))
     engage = [d * (1 + CAVITY_DEPTH_TOLERANCE_REL) / end_over_post(length, post)
               for d, length in zip(depths, (l_r, l_m))]
-    # the tip travel at which a root reaches the mean strength: sigma = 6 K L delta / (w t^2)
-    fracture = [BOSCH_MEAN_STRENGTH_MPA * w * 1e-3 * (t * 1e-3) ** 2 / (6 * k * length * 1e-3)
-                * 1e3 for k, length in ((k_r, l_r), (k_m, l_m))]
+    fracture = [fracture_travel_um(k, length, w, t) for k, length in ((k_r, l_r), (k_m, l_m))]
     return _Rating(force_N, rated, root, depths, max(engage),
                    max(e / f for e, f in zip(engage, fracture)))
 
@@ -566,6 +564,14 @@ def _round_down_2(value: float) -> float:
     """``value`` rounded down to two significant digits."""
     exponent = math.floor(math.log10(value)) - 1
     return float(f"{math.floor(value / 10 ** exponent) * 10 ** exponent:.2g}")
+
+
+def fracture_travel_um(k_N_per_mm: float, length_um: float, width_um: float,
+                       thickness_um: float) -> float:
+    """The post's travel (um) at which a cantilever's root reaches the mean strength of
+    etched silicon (:data:`BOSCH_MEAN_STRENGTH_MPA`): sigma = 6 K L delta / (w t^2)."""
+    return 1e3 * BOSCH_MEAN_STRENGTH_MPA * width_um * 1e-3 * (thickness_um * 1e-3) ** 2 / (
+        6 * k_N_per_mm * length_um * 1e-3)
 
 
 def end_over_post(length_um: float, post_um: float) -> float:

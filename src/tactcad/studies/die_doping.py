@@ -86,11 +86,10 @@ def doped_die_plan(targets, room, kobj_resolution_rel: float | None = None, **kw
     """
     import dataclasses
 
-    from tactcad.design.mems_die import DEFAULT_KOBJ_RESOLUTION_REL, die_plan
+    from tactcad.design.mems_die import DEFAULT_KOBJ_RESOLUTION_REL
 
     target = DEFAULT_KOBJ_RESOLUTION_REL if kobj_resolution_rel is None else kobj_resolution_rel
-    dose, why = chosen_implant_dose()
-    plan = die_plan(targets, room, implant_dose_per_cm2=dose, dose_reason=why, **kwargs)
+    plan = die_plan_at(targets, room, targets.full_scale_force_N, kwargs)
     worst = worst_readout_error_rel(plan)
     if worst > target:
         raise _too_light(targets, room, plan, worst, target, kwargs)

@@ -14,11 +14,12 @@ def die_verification(plan) -> list[dict]:
     """The die's verification matrix, one record per requirement in the array's keys
     (:func:`tactcad.studies.verification.verification_matrix`), at the closed form:
 
-    * ``full_scale_force_N``: the rated force against the rating at which the worse root, at
-      its own beam's rated force (:meth:`~tactcad.design.mems_die.DiePlan.rated_force_N`),
-      reaches the mean strength of Bosch-etched silicon: failed at or past it (half such
-      roots break), else undecided (a mean strength without its Weibull modulus gives no
-      failure probability); with the lab's Weibull pair, the die's failure probability;
+    * ``full_scale_force_N``: the rated force against the largest rating the die's limits
+      allow (:func:`tactcad.design.mems_die.rating_limits`: each root at its own beam's
+      rated force at the mean strength of Bosch-etched silicon, a stop engaging before its
+      root breaks, the cavities' depth, the posts' height): failed at or past it, else
+      undecided (a mean strength without its Weibull modulus gives no failure
+      probability); with the lab's Weibull pair, the die's failure probability;
     * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band;
     * ``hard_stop``: each row's cavity floor against its beam: the post's travel when the
       beam's end meets the floor, in the shallowest cavity the depth tolerance allows, past
@@ -28,16 +29,16 @@ def die_verification(plan) -> list[dict]:
       margin: the worse row's fracture travel or post height over its deepest engagement,
       less one.
     """
-    from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA
+    from tactcad.design.mems_die import fracture_travel_um
     from tactcad.studies.verification import KR_OVER_KM_BAND_REL
 
     rows = plan.beams[:: plan.columns]
     stiffness = {"reference": plan.k_r_N_per_mm, "measuring": plan.k_m_N_per_mm}
     target_ratio = plan.targets[0] / plan.targets[1]
     ratio = plan.k_r_N_per_mm / plan.k_m_N_per_mm
-    fracture_travel_um = {b.role: 1e3 * plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA
-                          / plan.stress_MPa_at_rating(b) / stiffness[b.role] for b in rows}
-    stop = _stop_row(plan, rows, fracture_travel_um)
+    fracture = {b.role: fracture_travel_um(stiffness[b.role], b.length_um, b.width_um,
+                                           b.thickness_um) for b in rows}
+    stop = _stop_row(plan, rows, fracture)
     return [
         _rated_row(plan) if plan.weibull is None else _weibull_rated_row(plan),
         {"requirement": "kr_over_km", "target": target_ratio, "predicted": ratio,
