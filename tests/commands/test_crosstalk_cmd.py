@@ -30,3 +30,22 @@ def test_a_comb_has_no_stack_crosstalk_model_and_is_refused_by_its_construction(
     error = json.loads(r.stdout)["error"]
     assert error["field"] == "array.construction" and error["value"] == "monolithic-comb"
     assert "bolts and plates" in error["message"]
+
+
+DIE = "hardware/grasper_jaw_5mm_mems/grasper_jaw_5mm_mems.toml"
+
+
+def test_a_dies_crosstalk_is_its_own_through_its_handle_and_an_arrays_options_are_refused():
+    # the die was refused ("not modelled"); its crosstalk is now the handle-and-attach FE's
+    r = run_cli("crosstalk", "--design", DIE, "--set", "die.columns=2", "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+    d = json.loads(r.stdout)
+    assert d["model"] == "attach-fem3d" and len(d["reading_per_N"]) == 4
+    assert 0 < d["crosstalk_rel"] < 1e-3 and d["error_estimate_rel"] > 0
+    q = d["in_force"]
+    assert q["beam"] != q["loaded_beam"] and q["force_resolution_steps"] > 0
+    for option in (("--model", "stack-fem3d"), ("--sweep",)):
+        r = run_cli("crosstalk", "--design", DIE, *option, "--json")
+        assert r.returncode == 2 and "Traceback" not in r.stderr, option
+        error = json.loads(r.stdout)["error"]
+        assert error["field"] == option[0] and "die" in error["message"], error

@@ -5,7 +5,9 @@ from __future__ import annotations
 import argparse
 
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
+from tactcad.commands.die_views import die_view
 from tactcad.commands.finite_json import dumps
+from tactcad.commands.options import keep_option_defaults
 from tactcad.commands.tolerance import add_cluster_args
 from tactcad.mechanics.stack_crosstalk import CROSSTALK_LEVELS, crosstalk_models
 
@@ -21,7 +23,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "decoupling matrix. Levels: " + ", ".join(
                         f"{n} {lv.cost}" for n, lv in CROSSTALK_LEVELS.items())
                     + ". --sweep adds how plate thickness, bolt spacing and spacer grade change "
-                    "crosstalk_rel (on Dask).")
+                    "crosstalk_rel (on Dask). A silicon die's design file: the die's crosstalk "
+                    "through its handle and die attach (3D FE, about a minute).")
     add_design_arg(p)
     add_cache_args(p)
     p.add_argument("--model", choices=crosstalk_models(), default="stack-beam",
@@ -31,12 +34,15 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_cluster_args(p, local_default=False)
     add_output_args(p, "print one JSON object: the matrices, crosstalk_rel, cost and the sweep")
     p.set_defaults(func=run)
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
 
 
 def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.stack_crosstalk import plan_crosstalk
 
-    _refuse_a_die(args)
+    shown = die_view("crosstalk", args)  # a silicon die's design: through its handle
+    if shown is not None:
+        return shown
     plan = plan_from_args(args)
     result = plan_crosstalk(plan, args.model)
     in_force = _in_force(plan, result)
@@ -47,30 +53,6 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print(render(plan.name, result, rows, in_force))
     return 0
-
-
-def _refuse_a_die(args: argparse.Namespace) -> None:
-    """A silicon die's design file is refused with what its crosstalk is: its beams stand on
-    one solid frame bonded to the handle, not in a clamped stack, and what couples their
-    readings is the tissue between their posts.
-
-    Raises:
-        DesignError: ``--design`` (or the folder's design) is a die's.
-    """
-    from tactcad.commands.die import die_design_of
-    from tactcad.design.file_kind import die_refusal
-    from tactcad.errors import DesignError
-
-    design = die_design_of(args)
-    if design is None:
-        return
-    base = die_refusal(design)
-    raise DesignError(base.field, base.value, base.allowed,
-                      f"{base.why}. A die's beams stand on one solid frame bonded to its "
-                      "handle, not in a clamped stack: their coupling through it is not "
-                      "modelled; what couples a die's readings is the tissue between its "
-                      "posts, which `tactcad budget` gives (tissue coupling) and the coupled "
-                      "inversion removes")
 
 
 def _in_force(plan, result) -> dict:

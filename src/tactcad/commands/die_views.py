@@ -1,13 +1,13 @@
 """The array commands on a silicon die's design file: ``modal``, ``budget``, ``readout``,
-``thermal``, ``verify`` and ``grasp`` print the die's own resonances, K_obj budget,
-piezoresistive read-out, its temperature terms, its verification matrix
-(:func:`die_verification`) and the grasp in its jaw (:mod:`tactcad.in_use.die_grasp`),
+``thermal``, ``verify``, ``grasp`` and ``crosstalk`` print the die's own resonances, K_obj
+budget, piezoresistive read-out, its temperature terms, its verification matrix
+(:func:`die_verification`), the grasp in its jaw (:mod:`tactcad.in_use.die_grasp`) and the
+crosstalk through its handle and attach (:mod:`tactcad.mechanics.die_crosstalk`),
 planned as the die command plans it and writing no file of theirs (the result store aside).
 
 An option of the array command that has no meaning for a die (a ladder level, an element,
 a temperature step, the jaw's pin: the die's mount places it) is refused by name rather than
-ignored (:data:`DIE_OPTIONS` are those a die's view reads). ``crosstalk`` stays refused,
-naming ``tactcad die``.
+ignored (:data:`DIE_OPTIONS` are those a die's view reads).
 """
 
 from __future__ import annotations
@@ -126,6 +126,44 @@ def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
              f"K_obj error of the zero over the step (tared at the other temperature): "
              + ", ".join(f"{100 * v:.3f} %" for v in zero_term)]
     return report, lines
+
+
+def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    from tactcad.mechanics.die_crosstalk import crosstalk_in_force, die_crosstalk
+    from tactcad.mechanics.piezoresistor import die_readout
+
+    plan = _planned(design, args).plan
+    result = die_crosstalk(plan)
+    resolution = {role: r["force_resolution_N"] for role, r in die_readout(plan)["rows"].items()}
+    in_force = crosstalk_in_force(plan, result, resolution)
+    report = {"design": str(design), "die": plan.name, **result.as_json(),
+              "in_force": in_force}
+    return report, crosstalk_lines(plan, result, in_force)
+
+
+def crosstalk_lines(plan, r, in_force: dict) -> list[str]:
+    """The die's crosstalk as text: the figures, the worst in newtons, each unit's reading
+    under every post's force over its own (ppm)."""
+    q = in_force
+    lines = [f"crosstalk of die {plan.name} ({r.model}, {r.seconds:.3g} s, {r.dofs} dofs): "
+             f"crosstalk_rel {r.crosstalk_rel:.3g} (beam {r.worst[0]} under a force on post "
+             f"{r.worst[1]}), error estimate {100 * r.error_estimate_rel:.2g} %",
+             f"  in force: post {q['loaded_beam']} at the {q['rated_force_N']:.3g} N it carries "
+             f"in use reads {q['crosstalk_force_N']:.3g} N on beam {q['beam']}, "
+             f"{q['force_resolution_steps']:.3g} of its force-resolution step "
+             f"{q['force_resolution_N']:.3g} N",
+             f"  model: {r.basis}",
+             "  in use the tissue between the posts couples the units far more: `tactcad "
+             "budget` gives that term and the coupled inversion removes it",
+             "each unit's reading under a force on each post, over its reading under its own "
+             "(ppm; own: dR/R per N):",
+             "| beam | own | " + " | ".join(str(b) for b in r.beams) + " |",
+             "| --- | --- |" + " --- |" * len(r.beams)]
+    s = r.reading_per_N
+    for i, b in enumerate(r.beams):
+        cells = ["" if i == j else f"{1e6 * s[i, j] / s[i, i]:.3g}" for j in range(len(r.beams))]
+        lines.append(f"| {b} | {s[i, i]:.4g} | " + " | ".join(cells) + " |")
+    return lines
 
 
 def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
@@ -268,7 +306,7 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
 #: The array commands that print a die's own figures, and what they print.
 DIE_VIEWS: dict[str, Callable[[Path, argparse.Namespace], tuple[dict, list[str]]]] = {
     "modal": _modal, "budget": _budget, "readout": _readout, "thermal": _thermal,
-    "verify": _verify, "grasp": _grasp}
+    "verify": _verify, "grasp": _grasp, "crosstalk": _crosstalk}
 
 
 def die_view(command: str, args: argparse.Namespace) -> int | None:

@@ -49,6 +49,7 @@ from tactcad.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM, CAVITY_DEPTH_SO
                                             CAVITY_DEPTH_TOLERANCE_REL, DEFAULT_BOX_UM,
                                             DEFAULT_HANDLE_UM, DEVICE_LAYER_CHOICES_UM,
                                             DEVICE_TOLERANCE_SOURCE, DEVICE_TOLERANCE_UM,
+                                            METAL_SPACE_UM,
                                             SoiStack, drie_min_width_um)
 
 #: Least beam length over width: Euler-Bernoulli's slender-beam form holds within a few %.
@@ -299,6 +300,19 @@ class DiePlan:
                                      "measuring": self.cavity_depths_um[1]},
                 "weibull": None if self.weibull is None else dict(self.weibull.__dict__),
                 "reasons": dict(self.reasons)}
+
+
+def reference_resistor_v0_um(plan: DiePlan) -> float:
+    """Where a beam's on-die reference resistor's legs start (beam-local v from the root
+    towards the tip, um; negative: on the frame): its closed end
+    :data:`REFERENCE_CLEAR_UM` from the window's edge, or further from it where a short
+    reference would bring the jog of its leads within the metal's spacing of the bond pads
+    (the jog runs under the pads: its top edge is v0 less the resistor's run and the jog,
+    plus half a lead)."""
+    near = -REFERENCE_CLEAR_UM - plan.reference_resistor_length_um
+    under_pads = (-(PAD_SETBACK_UM + PAD_UM) - METAL_SPACE_UM + RESISTOR_RUN_UM
+                  + LEAD_JOG_UM - LEAD_UM / 2)
+    return min(near, under_pads)
 
 
 def beam_stiffness_N_per_mm(youngs_modulus_MPa: float, width_um, thickness_um, length_um):

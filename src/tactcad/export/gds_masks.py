@@ -24,7 +24,7 @@ from pathlib import Path
 
 from tactcad.design import mems_die as md
 from tactcad.design.mems_die import Beam, DiePlan
-from tactcad.vocabulary.soi_process import MASK_BY_NAME, METAL_SPACE_UM
+from tactcad.vocabulary.soi_process import MASK_BY_NAME
 
 #: GDSII units: 1 um user unit, 1 nm database unit.
 GDS_UNIT_M, GDS_PRECISION_M = 1e-6, 1e-9
@@ -60,18 +60,6 @@ def _u_shape(legs_um: float, u0: float = 0.0, v0: float = 0.0) -> Polygon:
              (h, -run), (h, l), (-h, l)]]
 
 
-def _reference_v0(plan: DiePlan) -> float:
-    """Where the reference U's legs start (beam-local v): its closed end
-    :data:`~tactcad.design.mems_die.REFERENCE_CLEAR_UM` from the window's edge, or further
-    from it where a short reference would bring the jog of its leads within the metal's
-    spacing of the bond pads (the jog runs under the pads: its top edge is v0 less the
-    resistor's run and the jog, plus half a lead)."""
-    near = -md.REFERENCE_CLEAR_UM - plan.reference_resistor_length_um
-    under_pads = (-(md.PAD_SETBACK_UM + md.PAD_UM) - METAL_SPACE_UM + md.RESISTOR_RUN_UM
-                  + md.LEAD_JOG_UM - md.LEAD_UM / 2)
-    return min(near, under_pads)
-
-
 def resistor_outline(plan: DiePlan, beam: Beam) -> Polygon:
     """The beam's U-shaped implant at its root (one polygon, counter-clockwise)."""
     return _local(beam, _u_shape(plan.resistor_length_um))
@@ -80,7 +68,7 @@ def resistor_outline(plan: DiePlan, beam: Beam) -> Polygon:
 def reference_resistor_outline(plan: DiePlan, beam: Beam) -> Polygon:
     """The beam's reference resistor on the frame (one polygon, counter-clockwise)."""
     return _local(beam, _u_shape(plan.reference_resistor_length_um, md.REFERENCE_AXIS_UM,
-                                 _reference_v0(plan)))
+                                 md.reference_resistor_v0_um(plan)))
 
 
 def _contact_centres(plan: DiePlan) -> list[tuple[float, float]]:
@@ -88,7 +76,7 @@ def _contact_centres(plan: DiePlan) -> list[tuple[float, float]]:
     enclosure from the leg's open end; the beam resistor's two, then the reference's."""
     u = md.LEG_GAP_UM / 2 + md.LEG_UM / 2
     v = -md.RESISTOR_RUN_UM + md.LEG_UM / 2
-    a, v_ref = md.REFERENCE_AXIS_UM, _reference_v0(plan) + v
+    a, v_ref = md.REFERENCE_AXIS_UM, md.reference_resistor_v0_um(plan) + v
     return [(-u, v), (u, v), (a - u, v_ref), (a + u, v_ref)]
 
 
