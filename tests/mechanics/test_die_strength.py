@@ -81,6 +81,28 @@ def test_a_stated_pair_decides_the_rated_force_and_the_stops(die):
     assert rows["full_scale_force_N"]["verdict"] == "pass"
 
 
+def test_a_probabilitys_margin_is_the_force_at_which_the_die_reaches_the_accepted_one(die):
+    """The rated row's margin was the accepted probability over the predicted one
+    (+55751250 % on the example); it is the factor on the forces at which the die's failure
+    probability reaches the accepted one, found again by bisection on the probability."""
+    from tactcad.mechanics.die_strength import force_scale_at_probability
+    from tactcad.studies.die_verification import die_verification
+
+    judged = dataclasses.replace(die, weibull=WeibullPair(8.0, 4000.0, 2e4, "a test", 1e-3))
+    scale = force_scale_at_probability(judged, judged.rated_force_N, 1e-3)
+    lo, hi = 1.0, 100.0
+    for _ in range(200):
+        mid = (lo + hi) / 2
+        p = die_failure_probability(judged, lambda b: mid * judged.rated_force_N(b))
+        lo, hi = (mid, hi) if p < 1e-3 else (lo, mid)
+    assert scale == pytest.approx(lo, rel=1e-9)
+    rows = {r["requirement"]: r for r in die_verification(judged)}
+    assert rows["full_scale_force_N"]["margin_rel"] == pytest.approx(scale - 1.0)
+    assert 0 < rows["hard_stop"]["margin_rel"] < 10  # the travels' and the force's, not 1e5
+    with pytest.raises(ValueError, match="0 < P < 1"):
+        force_scale_at_probability(judged, judged.rated_force_N, 1.0)
+
+
 def test_the_die_files_strength_table_is_validated_and_reaches_verify(tmp_path):
     """A [strength] table in the die's file: verify judges the rating by it; a missing source
     or a modulus out of range is refused by its key, nothing else run."""

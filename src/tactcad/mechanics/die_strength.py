@@ -62,3 +62,22 @@ def die_failure_probability(plan: DiePlan, force_of) -> float:
     for beam in plan.beams:
         survive *= 1.0 - beam_failure_probability(plan, beam, force_of(beam))
     return 1.0 - survive
+
+
+def force_scale_at_probability(plan: DiePlan, force_of, probability: float) -> float:
+    """The factor on every beam's force (``force_of(beam)``, N) at which the die's failure
+    probability reaches ``probability``: every root's stress goes as its force, so the die's
+    risk goes as s^m, P_f(s) = 1 - exp(-s^m sum_i risk_i), and
+    s = (-ln(1 - P) / sum_i risk_i)^(1/m) (inf when no beam is in tension).
+
+    Raises:
+        ValueError: the plan states no Weibull pair, or ``probability`` not in (0, 1).
+    """
+    if plan.weibull is None:
+        raise ValueError(f"die {plan.name} states no Weibull pair")
+    if not 0.0 < probability < 1.0:
+        raise ValueError(f"probability = {probability!r}: 0 < P < 1")
+    risk = sum(-math.log1p(-beam_failure_probability(plan, b, force_of(b))) for b in plan.beams)
+    if risk <= 0:
+        return math.inf
+    return (-math.log1p(-probability) / risk) ** (1.0 / plan.weibull.modulus)

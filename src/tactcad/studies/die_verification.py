@@ -87,20 +87,24 @@ def _rated_row(plan) -> dict:
 def _weibull_rated_row(plan) -> dict:
     """``full_scale_force_N`` with the lab's Weibull pair: the die's failure probability
     with the rated force on every beam against the largest the lab accepts."""
-    from tactcad.mechanics.die_strength import die_failure_probability
+    from tactcad.mechanics.die_strength import (die_failure_probability,
+                                                force_scale_at_probability)
 
     pair = plan.weibull
     p_f = die_failure_probability(plan, plan.rated_force_N)
+    scale = force_scale_at_probability(plan, plan.rated_force_N, pair.failure_probability_max)
     return {"requirement": "full_scale_force_N",
             "target": f"failure probability <= {pair.failure_probability_max:g}",
             "predicted": p_f, "error_estimate_rel": None,
-            "margin_rel": pair.failure_probability_max / p_f - 1.0 if p_f > 0 else None,
-            "model": "closed-form",
+            "margin_rel": scale - 1.0, "model": "closed-form",
             "verdict": "pass" if p_f <= pair.failure_probability_max else "fail",
             "binding_words": f"the die's failure probability with every beam at its rated "
                              f"force, the lab's Weibull pair (m {pair.modulus:g}, "
                              f"sigma_0 {pair.characteristic_MPa:g} MPa on "
-                             f"{pair.reference_area_um2:g} um^2; {pair.source})"}
+                             f"{pair.reference_area_um2:g} um^2; {pair.source}); it reaches "
+                             f"{pair.failure_probability_max:g} at {scale:.3g} x the rating "
+                             f"({scale * plan.full_scale_force_N:.3g} N): the margin is in "
+                             "force"}
 
 
 def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
@@ -119,16 +123,22 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
                      f"breaks at {breaks:.3g} um)")
     words.append(f"posts {plan.post_height_um:g} um proud: still proud on their stops")
     if plan.weibull is not None:  # every beam resting on its floor: the most it carries
-        from tactcad.mechanics.die_strength import die_failure_probability
+        from tactcad.mechanics.die_strength import (die_failure_probability,
+                                                    force_scale_at_probability)
 
         stiffness = {"reference": plan.k_r_N_per_mm, "measuring": plan.k_m_N_per_mm}
-        p_stop = die_failure_probability(
-            plan, lambda b: stiffness[b.role] * 1e-3 * plan.stop_engagement_um(b)[2])
+
+        def on_stop(b):
+            return stiffness[b.role] * 1e-3 * plan.stop_engagement_um(b)[2]
+
+        p_stop = die_failure_probability(plan, on_stop)
         accepted = plan.weibull.failure_probability_max
         ok = ok and p_stop <= accepted
-        margins.append(accepted / p_stop - 1.0 if p_stop > 0 else math.inf)
+        scale = force_scale_at_probability(plan, on_stop, accepted)
+        margins.append(scale - 1.0)  # in force, as the travels' margins
         words.append(f"the die's failure probability with every beam on its deepest stop "
-                     f"{p_stop:.3g} (accepted up to {accepted:g}, the lab's Weibull pair)")
+                     f"{p_stop:.3g} (accepted up to {accepted:g}, the lab's Weibull pair; "
+                     f"reached at {scale:.3g} x the stops' forces)")
     return {"requirement": "hard_stop",
             "target": f"engages past the rated travel (at {STOP_MULTIPLE:g} x) and before the "
                       "root breaks",
