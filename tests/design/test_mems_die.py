@@ -897,35 +897,42 @@ def test_grasp_in_a_dies_folder_prints_the_grasp_in_its_jaw_and_refuses_the_pin(
         assert json.loads(refused.stdout)["error"]["field"] == argv[0]
 
 
-def _refused_or_designed(targets, room):
+def _refused_or_designed(targets, room, weibull=None):
     """The plan of ``targets``, or of the alternative its refusal pastes (one step), with the
     alternative's options."""
     try:
-        return md.die_plan(targets, room), None
+        return md.die_plan(targets, room, weibull=weibull), None
     except DesignError as exc:
+        if weibull is not None and exc.allowed == "no rating of these beams":
+            raise  # a pair too weak for any rating of these beams: said, nothing to paste
         assert exc.alternatives, f"a refusal without an alternative: {exc}"
         pasted = _options(exc.alternatives[0]["option"])
         ratio = pasted.get("--kr-over-km", [targets.kr_over_km])[0]
         kobj = tuple(pasted.get("--kobj-range", targets.k_obj_range_N_per_mm))
         force = pasted.get("--full-scale-force", [targets.full_scale_force_N])[0]
-        return md.die_plan(Targets(ratio, kobj, force), room), exc
+        return md.die_plan(Targets(ratio, kobj, force), room, weibull=weibull), exc
 
 
 @settings(max_examples=int(__import__("os").environ.get("DIE_EXAMPLES", "60")), deadline=None)
 @given(ratio=st.floats(2.0, 300.0), lo=st.floats(0.01, 50.0), span=st.floats(2.0, 100.0),
-       force=st.floats(1e-4, 0.2))
+       force=st.floats(1e-4, 0.2),
+       pair=st.none() | st.tuples(st.floats(3.0, 20.0), st.floats(200.0, 6000.0)))
 def test_every_die_designed_or_pasted_passes_its_own_checks(tmp_path_factory, ratio, lo, span,
-                                                            force):
-    """Over the die's domain of targets: what die_plan designs, or what the refusal's
-    alternative designs in one paste, writes masks that pass every rule and read-back of
-    its check, and verify fails nothing but what the mean strength leaves undecided."""
+                                                            force, pair):
+    """Over the die's domain of targets, with or without a lab's Weibull pair (m, sigma_0):
+    what die_plan designs, or what the refusal's alternative designs in one paste, writes
+    masks that pass every rule and read-back of its check, and verify fails nothing (the
+    rated force undecided without a pair)."""
     from tactcad.studies.die_verification import die_verification
 
     room = jaw_room("5")
+    weibull = None if pair is None else md.WeibullPair(pair[0], pair[1], 2e4, "a test", 1e-3)
     try:
-        plan, _ = _refused_or_designed(Targets(ratio, (lo, lo * span), force), room)
-    except DesignError as exc:  # only a jaw too narrow for any pair may refuse outright
-        assert "a wider jaw" in exc.why, exc
+        plan, _ = _refused_or_designed(Targets(ratio, (lo, lo * span), force), room, weibull)
+    except DesignError as exc:  # only a jaw too narrow for any pair may refuse outright, or
+        # a lab's pair too weak for the shallowest cavity at any rating (said, not pasted)
+        assert "a wider jaw" in exc.why or (
+            weibull is not None and exc.allowed == "no rating of these beams"), exc
         return
     assert plan.beam_width_um >= plan.stack.device_um  # stiffer sideways than out of plane
     gds = write_die_gds(plan, tmp_path_factory.mktemp("die") / "die.gds")
@@ -933,7 +940,7 @@ def test_every_die_designed_or_pasted_passes_its_own_checks(tmp_path_factory, ra
     assert not failed, failed
     verdicts = {r["requirement"]: r["verdict"] for r in die_verification(plan)}
     assert verdicts["hard_stop"] == "pass" and verdicts["kr_over_km"] == "pass", verdicts
-    assert verdicts["full_scale_force_N"] == "undecided"
+    assert verdicts["full_scale_force_N"] == ("undecided" if weibull is None else "pass")
 
 
 

@@ -103,6 +103,38 @@ def test_a_probabilitys_margin_is_the_force_at_which_the_die_reaches_the_accepte
         force_scale_at_probability(judged, judged.rated_force_N, 1.0)
 
 
+@pytest.mark.parametrize("sigma_0, modulus", [(600.0, 8.0), (300.0, 4.0), (900.0, 15.0)])
+def test_a_labs_pair_limits_the_rating_it_plans_and_the_pasted_rating_passes_verify(
+        sigma_0, modulus):
+    """The rating's strength limit was the etched bars' mean whatever pair the lab stated,
+    so a weak pair's die was planned and then failed verify with nothing to paste; now the
+    pair's failure probability at the rating and on the stops limits the plan, and the
+    refusal's paste designs a die whose verify passes."""
+    from tactcad.errors import DesignError
+    from tactcad.studies.die_verification import die_verification
+
+    pair = WeibullPair(modulus, sigma_0, 2e4, "a test", 1e-3)
+    targets = Targets(10.0, (0.5, 5.0), 0.02)
+    try:
+        plan = md.die_plan(targets, jaw_room("5"), weibull=pair)
+    except DesignError as exc:
+        assert "failure probability" in exc.why
+        force = float(exc.alternatives[0]["option"].split()[-1])
+        assert force < 0.02
+        plan = md.die_plan(dataclasses.replace(targets, full_scale_force_N=force),
+                           jaw_room("5"), weibull=pair)
+    assert plan.weibull == pair
+    rows = {r["requirement"]: r for r in die_verification(plan)}
+    assert rows["full_scale_force_N"]["verdict"] == "pass", rows["full_scale_force_N"]
+    assert rows["hard_stop"]["verdict"] == "pass", rows["hard_stop"]
+    # the plan's Weibull scale is the mechanics' own: both say where P_f reaches 1e-3
+    from tactcad.mechanics.die_strength import force_scale_at_probability
+
+    limits = md.rating_limits(plan)
+    scale = force_scale_at_probability(plan, plan.rated_force_N, 1e-3)
+    assert limits[0][0] == pytest.approx(scale * plan.full_scale_force_N, rel=1e-9)
+
+
 def test_the_die_files_strength_table_is_validated_and_reaches_verify(tmp_path):
     """A [strength] table in the die's file: verify judges the rating by it; a missing source
     or a modulus out of range is refused by its key, nothing else run."""

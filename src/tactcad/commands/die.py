@@ -219,7 +219,8 @@ def plan_of(asked: dict) -> PlannedDie:
     room = jaw_room(jaw, jaw_file)
     try:
         plan = doped_die_plan(targets, room, asked.get("kobj_resolution_rel"),
-                              columns=asked["columns"], pitch_um=asked["pitch_um"], name=name)
+                              columns=asked["columns"], pitch_um=asked["pitch_um"], name=name,
+                              weibull=asked.get("strength"))
     except DesignError as exc:
         if asked.get("file"):
             raise _as_file_keys(exc, asked["file"]) from None

@@ -334,7 +334,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
              box_um: float = DEFAULT_BOX_UM, handle_um: float = DEFAULT_HANDLE_UM,
              angle_from_110_deg: float = 0.0,
              implant_dose_per_cm2: float = IMPLANT_DOSE_PER_CM2,
-             dose_reason: str = "") -> DiePlan:
+             dose_reason: str = "", weibull: WeibullPair | None = None) -> DiePlan:
     """The die for ``targets`` in the jaw's ``room``.
 
     Args:
@@ -346,6 +346,9 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         angle_from_110_deg: the beams' direction in the (100) wafer, from [110].
         implant_dose_per_cm2: the resistors' boron dose (cm^-2), > 0; ``dose_reason`` why
             (:func:`tactcad.studies.die_doping.chosen_implant_dose` gives both).
+        weibull: the lab's Weibull pair for its etched silicon, or None: with a pair the
+            rating's strength limits are the die's failure probability at the rating and on
+            its stops (:func:`weibull_force_scale`), not the etched bars' mean strength.
 
     Returns:
         :class:`DiePlan`.
@@ -377,8 +380,9 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     window = width - 2 * FRAME_UM
     k_r, k_m = targets.k_r, targets.k_m
     fitting = _fitting_beams(E, k_r, k_m, window, pitch_um)
+    strength = None if weibull is None else RatingStrength(weibull, columns)
     if not fitting:
-        raise _no_fit(targets, room, window, pitch_um, E)
+        raise _no_fit(targets, room, window, pitch_um, E, strength)
     per_N, neg_t, w, slot, post, l_r, l_m = min(fitting)
     t = -neg_t
     stack = SoiStack(t, box_um, handle_um, DEVICE_TOLERANCE_UM)
@@ -393,7 +397,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     tol = DEVICE_TOLERANCE_UM / t
     align = CAVITY_ALIGNMENT_UM
     rating = _rating_of(min(fitting), k_r, k_m, targets.full_scale_force_N,
-                        targets.k_obj_range_N_per_mm)
+                        targets.k_obj_range_N_per_mm, strength)
     rated, root_MPa, depths, deepest = (rating.rated_um, rating.root_MPa, rating.depths_um,
                                         rating.deepest_um)
     post_height = post_height_um(deepest)
@@ -453,7 +457,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    float(beam_stiffness_N_per_mm(E, w, t, l_m)), (k_r, k_m),
                    targets.full_scale_force_N, tuple(beams), reasons,
                    tuple(float(v) for v in targets.k_obj_range_N_per_mm),
-                   float(implant_dose_per_cm2), depths)
+                   float(implant_dose_per_cm2), depths, weibull)
 
 
 def post_height_um(deepest_stop_travel_um: float) -> float:
@@ -478,23 +482,70 @@ class _Rating:
     #: the larger over the rows of the deepest stop's engagement over the travel at which the
     #: root reaches the mean strength of etched silicon
     stop_over_fracture: float = 0.0
+    #: the lab's Weibull pair and the columns it judges, or None (the mean strength alone)
+    strength: "RatingStrength | None" = None
+    #: with a pair: the factor on the rating at which the die's failure probability reaches
+    #: the accepted one, every beam at its rated force, and every beam on its deepest stop
+    weibull_scales: tuple[float, float] = (math.inf, math.inf)
 
 
-def _rating_of(pair: tuple, k_r: float, k_m: float, force_N: float, kobj_range) -> _Rating:
+@dataclass(frozen=True)
+class RatingStrength:
+    """What a rating's strength is judged by besides the etched bars' mean: the lab's
+    Weibull pair, over ``columns`` units of two beams."""
+
+    weibull: WeibullPair
+    columns: int
+
+
+def effective_area_um2(length_um: float, width_um: float, thickness_um: float,
+                       modulus: float) -> float:
+    """A tip-loaded cantilever's effective area under its root's peak stress (um^2):
+    L / (m + 1) (w + t / (m + 1)) (its tensile face and the tensile half of each sidewall;
+    :mod:`tactcad.mechanics.die_strength`)."""
+    return length_um / (modulus + 1.0) * (width_um + thickness_um / (modulus + 1.0))
+
+
+def weibull_force_scale(pair: WeibullPair, count: int, roots) -> float:
+    """The factor on every beam's force at which ``count`` units of the beams ``roots``
+    ((length um, width um, thickness um, root stress MPa) per beam of a unit) fail with the
+    pair's accepted probability: s = (-ln(1 - P) / risk)^(1/m), the risk
+    count sum A_eff / A_0 (sigma / sigma_0)^m (inf with no tension)."""
+    m = pair.modulus
+    risk = count * sum(effective_area_um2(l, w, t, m) / pair.reference_area_um2
+                       * (max(stress, 0.0) / pair.characteristic_MPa) ** m
+                       for l, w, t, stress in roots)
+    if risk <= 0:
+        return math.inf
+    return (-math.log1p(-pair.failure_probability_max) / risk) ** (1.0 / m)
+
+
+def _rating_of(pair: tuple, k_r: float, k_m: float, force_N: float, kobj_range,
+               strength: RatingStrength | None = None) -> _Rating:
     """:class:`_Rating` of a fitting ``pair`` (:func:`_beam_pair`'s tuple) at ``force_N``:
     each root at its own beam's rated force (the reference's F, the measuring beam's K_m x
-    its rated travel: it never carries more while its reference reads up to F)."""
+    its rated travel: it never carries more while its reference reads up to F); with a
+    ``strength``, the Weibull scales of the rating and of every beam on its deepest stop."""
     _, neg_t, w, _, post, l_r, l_m = pair
     t = -neg_t
+
+    def root_MPa(f_N: float, length: float) -> float:
+        return 6 * f_N * length * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
+
     rated = rated_tip_deflections_um(k_r, k_m, force_N, kobj_range)
-    root = max(6 * f_N * length * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
-               for f_N, length in ((force_N, l_r), (k_m * rated[1] * 1e-3, l_m)))
+    roots = (root_MPa(force_N, l_r), root_MPa(k_m * rated[1] * 1e-3, l_m))
     depths = (cavity_depth_um(rated[0], l_r, post), cavity_depth_um(rated[1], l_m, post))
     engage = [d * (1 + CAVITY_DEPTH_TOLERANCE_REL) / end_over_post(length, post)
               for d, length in zip(depths, (l_r, l_m))]
     fracture = [fracture_travel_um(k, length, w, t) for k, length in ((k_r, l_r), (k_m, l_m))]
-    return _Rating(force_N, rated, root, depths, max(engage),
-                   max(e / f for e, f in zip(engage, fracture)))
+    scales = (math.inf, math.inf)
+    if strength is not None:
+        on_stop = (root_MPa(k_r * engage[0] * 1e-3, l_r), root_MPa(k_m * engage[1] * 1e-3, l_m))
+        scales = tuple(weibull_force_scale(strength.weibull, strength.columns,
+                                           [(l_r, w, t, stresses[0]), (l_m, w, t, stresses[1])])
+                       for stresses in (roots, on_stop))
+    return _Rating(force_N, rated, max(roots), depths, max(engage),
+                   max(e / f for e, f in zip(engage, fracture)), strength, scales)
 
 
 def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
@@ -506,12 +557,21 @@ def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
     force_N, depths_um, deepest_um = rating.force_N, rating.depths_um, rating.deepest_um
     deepest_cavity = max(depths_um) * (1 + CAVITY_DEPTH_TOLERANCE_REL)
     tallest = POST_ASPECT_MAX * post_um
+    if rating.strength is None:
+        strength = [(force_N * BOSCH_MEAN_STRENGTH_MPA / rating.root_MPa,
+                     f"the more stressed root at the mean tensile strength of Bosch-etched "
+                     f"silicon ({BOSCH_MEAN_STRENGTH_MPA:g} MPa, {BOSCH_STRENGTH_SOURCE}; "
+                     f"{rating.root_MPa:.4g} MPa at {force_N:g} N, at its beam's rated force)")]
+    else:
+        accepted = rating.strength.weibull.failure_probability_max
+        strength = [(force_N * scale, f"the die's failure probability, {where}, at the "
+                                      f"{accepted:g} the lab accepts (its Weibull pair)")
+                    for scale, where in zip(rating.weibull_scales,
+                                            ("every beam at its rated force",
+                                             "every beam on its deepest stop"))]
     return [
-        (force_N * BOSCH_MEAN_STRENGTH_MPA / rating.root_MPa,
-         f"the more stressed root at the mean tensile strength of Bosch-etched silicon "
-         f"({BOSCH_MEAN_STRENGTH_MPA:g} MPa, {BOSCH_STRENGTH_SOURCE}; {rating.root_MPa:.4g} MPa at "
-         f"{force_N:g} N, at its beam's rated force)"),
-        (force_N / rating.stop_over_fracture,
+        *strength,
+        (force_N / rating.stop_over_fracture if rating.stop_over_fracture > 0 else math.inf,
          "a row's stop, in its deepest cavity, engaging only as its root reaches the mean "
          f"strength ({100 * rating.stop_over_fracture:.3g} % of that travel at {force_N:g} N)"),
         (force_N * CAVITY_DEPTH_MAX_UM / deepest_cavity,
@@ -531,8 +591,9 @@ def rating_limits(plan: DiePlan) -> list[tuple[float, str]]:
     ref, meas = plan.beams[0], plan.beams[plan.columns]
     pair = (0.0, -ref.thickness_um, ref.width_um, 0.0, plan.post_um, ref.length_um,
             meas.length_um)
+    strength = None if plan.weibull is None else RatingStrength(plan.weibull, plan.columns)
     rating = _rating_of(pair, plan.k_r_N_per_mm, plan.k_m_N_per_mm, plan.full_scale_force_N,
-                        plan.kobj_range_N_per_mm)
+                        plan.kobj_range_N_per_mm, strength)
     return _rating_limits(rating, plan.post_um)
 
 
@@ -540,22 +601,28 @@ def _within_limits(rating: _Rating, post_um: float) -> bool:
     return all(rating.force_N < limit for limit, _ in _rating_limits(rating, post_um))
 
 
-def _lighter_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating, kobj_range) -> float:
+def _lighter_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating,
+                    kobj_range) -> float | None:
     """The rating to paste for ``pair`` when ``rating`` passes a limit: 5 % below the lowest
     limit, two digits, stepped down 5 % at a time until it designs (the depths and heights
-    round up)."""
+    round up); None when none from :data:`LIGHTEST_PASTE_N` up does (a limit that does not
+    fall with the rating: the shallowest cavity or the least post drawn)."""
     post = pair[4]
-    force = _round_down_2(0.95 * min(limit for limit, _ in _rating_limits(rating, post)))
+    force = 0.95 * min(limit for limit, _ in _rating_limits(rating, post))
     for _ in range(SCALE_STEPS):  # the limits all scale with the force: a few steps do
-        if _within_limits(_rating_of(pair, k_r, k_m, force, kobj_range), post):
-            break
-        force = _round_down_2(0.95 * force)
-    return force
+        if not force >= LIGHTEST_PASTE_N:
+            return None
+        force = _round_down_2(force)
+        if _within_limits(_rating_of(pair, k_r, k_m, force, kobj_range, rating.strength), post):
+            return force
+        force *= 0.95
+    return None
 
 
 def _check_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating, kobj_range) -> None:
     """Refuse a rating past any of :func:`_rating_limits`: the refusal names every limit
-    passed and pastes the rating below all of them (:func:`_lighter_rating`).
+    passed and pastes the rating below all of them (:func:`_lighter_rating`), or says that
+    no lighter rating helps.
 
     Raises:
         DesignError: ``--full-scale-force``, the rating past a limit.
@@ -565,13 +632,21 @@ def _check_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating, kobj_ran
     passed = [(limit, why) for limit, why in limits if force_N >= limit]
     if not passed:
         return
+    why = "past " + "; past ".join(why for _, why in passed)
     below = _lighter_rating(pair, k_r, k_m, rating, kobj_range)
-    raise DesignError("--full-scale-force", force_N, f"at most about {below:g} N",
-                      "past " + "; past ".join(why for _, why in passed),
+    if below is None:
+        raise DesignError("--full-scale-force", force_N, "no rating of these beams",
+                          f"{why}; no lighter rating down to {LIGHTEST_PASTE_N:g} N is within "
+                          "every limit: the shallowest cavity and the least post drawn do not "
+                          "shrink with it" + ("" if rating.strength is None else
+                                              " (a stronger etch than the lab's Weibull pair "
+                                              "states, or a stiffer K_obj range)"))
+    raise DesignError("--full-scale-force", force_N, f"at most about {below:g} N", why,
                       alternatives=[{"option": f"--full-scale-force {below:g}",
-                                     "words": "a lighter rating, below every limit (strength "
-                                              "at the mean of etched bars; its failure "
-                                              "probability needs a Weibull pair)"}])
+                                     "words": "a lighter rating, below every limit" + (
+                                         " (strength at the mean of etched bars; its failure "
+                                         "probability needs a Weibull pair)"
+                                         if rating.strength is None else "")}])
 
 
 def _round_down_2(value: float) -> float:
@@ -687,20 +762,27 @@ def _any_fitting_beam(E: float, k_r: float, k_m: float, window: float, pitch_um:
 
 #: Steps of the K_obj range's scale a refusal searches for its alternative (x 1.05 each).
 SCALE_STEPS = 200
+#: The lightest rating a refusal pastes (N): below it no die reads K_obj anyway.
+LIGHTEST_PASTE_N = 1e-6
 
 
 def _force_that_designs(E: float, k_r: float, k_m: float, window: float, pitch_um: float,
-                        force_N: float, kobj_range) -> float | None:
+                        force_N: float, kobj_range,
+                        strength: RatingStrength | None = None) -> float | None:
     """None when no pair of beams with these stiffnesses fits the window; else the rating
     that designs with them: ``force_N`` within its limits (:func:`_rating_limits`), else the
-    lighter one a refusal would paste (:func:`_lighter_rating`)."""
+    lighter one a refusal would paste (:func:`_lighter_rating`), else ``force_N`` (no rating
+    helps: the plan's refusal of the rating says so)."""
     if not _any_fitting_beam(E, k_r, k_m, window, pitch_um):
         return None
     pair = min(_fitting_beams(E, k_r, k_m, window, pitch_um))
-    rating = _rating_of(pair, k_r, k_m, force_N, kobj_range)
+    rating = _rating_of(pair, k_r, k_m, force_N, kobj_range, strength)
     if _within_limits(rating, pair[4]):
         return force_N
-    return _lighter_rating(pair, k_r, k_m, rating, kobj_range)
+    lighter = _lighter_rating(pair, k_r, k_m, rating, kobj_range)
+    # no rating of these beams within a lab's weak pair: the beams fit, and the plan's own
+    # rating refusal says why nothing lighter helps
+    return force_N if lighter is None else lighter
 
 
 def _with_force(option: str, force: float, asked: float) -> str:
@@ -709,7 +791,8 @@ def _with_force(option: str, force: float, asked: float) -> str:
     return option if force == asked else f"{option} --full-scale-force {force:g}"
 
 
-def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignError:
+def _no_fit(targets, room, window: float, pitch_um: float, E: float,
+            strength: RatingStrength | None = None) -> DesignError:
     """The refusal: no stock layer and width fits. Which way the targets miss (stiffer
     tissue fits: the beams were too long for the window; softer fits: too stubby to be
     slender beams) and the nearest scale of the K_obj range that designs (K_m and K_r go
@@ -721,7 +804,8 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignEr
             a, b = float(f"{lo * scale:.4g}"), float(f"{hi * scale:.4g}")  # as pasted
             x = targets.kr_over_km
             k_m = math.sqrt(a * b / x)
-            force = _force_that_designs(E, x * k_m, k_m, window, pitch_um, asked, (a, b))
+            force = _force_that_designs(E, x * k_m, k_m, window, pitch_um, asked, (a, b),
+                                        strength)
             if force is not None:
                 why = ("the beams are too long for the window: the softest pair that fits "
                        f"has K_m = {targets.k_m * scale:.4g} N/mm" if way == "stiffer" else
@@ -735,7 +819,7 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignEr
                     alternatives=[{"option": _with_force(f"--kobj-range {a:g} {b:g}", force,
                                                          asked),
                                    "words": f"the same span of tissues, {way}, that fits"}])
-    fit = _fitting_ratio(targets, window, pitch_um, E)
+    fit = _fitting_ratio(targets, window, pitch_um, E, strength)
     if fit is not None:
         ratio, force = fit
         return DesignError(
@@ -752,7 +836,8 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float) -> DesignEr
                        f"{window:g} um window at {pitch_um:g} um pitch: a wider jaw")
 
 
-def _fitting_ratio(targets, window: float, pitch_um: float, E: float) -> tuple | None:
+def _fitting_ratio(targets, window: float, pitch_um: float, E: float,
+                   strength: RatingStrength | None = None) -> tuple | None:
     """(the largest K_r / K_m below the asked one, three digits, x 1/1.05 steps, whose beams
     fit for the same K_obj range, the rating that designs with it), or None
     (K_m = sqrt(K_lo K_hi / X), K_r = X K_m)."""
@@ -763,7 +848,7 @@ def _fitting_ratio(targets, window: float, pitch_um: float, E: float) -> tuple |
             return None
         k_m = math.sqrt(lo * hi / ratio)
         force = _force_that_designs(E, ratio * k_m, k_m, window, pitch_um,
-                                    targets.full_scale_force_N, (lo, hi))
+                                    targets.full_scale_force_N, (lo, hi), strength)
         if force is not None:
             return ratio, force
     return None

@@ -23,14 +23,10 @@ from __future__ import annotations
 
 import math
 
-from tactcad.design.mems_die import Beam, DiePlan, WeibullPair
+from tactcad.design.mems_die import Beam, DiePlan, WeibullPair, effective_area_um2
 
-
-def effective_area_um2(length_um: float, width_um: float, thickness_um: float,
-                       modulus: float) -> float:
-    """A tip-loaded cantilever's effective area under its root's peak stress (um^2):
-    L / (m + 1) (w + t / (m + 1)) (the tensile face and half of each sidewall)."""
-    return length_um / (modulus + 1.0) * (width_um + thickness_um / (modulus + 1.0))
+__all__ = ["effective_area_um2", "failure_probability", "beam_failure_probability",
+           "die_failure_probability", "force_scale_at_probability"]
 
 
 def failure_probability(peak_MPa: float, area_um2: float, pair: WeibullPair) -> float:
