@@ -42,6 +42,7 @@ def test_a_dies_crosstalk_is_its_own_through_its_handle_and_an_arrays_options_ar
     d = json.loads(r.stdout)
     assert d["model"] == "attach-fem3d" and len(d["reading_per_N"]) == 4
     assert 0 < d["crosstalk_rel"] < 1e-3 and d["error_estimate_rel"] > 0
+    assert d["worst"]["beam"] != d["worst"]["loaded_post"]
     q = d["in_force"]
     assert q["beam"] != q["loaded_beam"] and q["force_resolution_steps"] > 0
     for option in (("--model", "stack-fem3d"), ("--sweep",)):
@@ -49,3 +50,13 @@ def test_a_dies_crosstalk_is_its_own_through_its_handle_and_an_arrays_options_ar
         assert r.returncode == 2 and "Traceback" not in r.stderr, option
         error = json.loads(r.stdout)["error"]
         assert error["field"] == option[0] and "die" in error["message"], error
+
+
+def test_a_die_too_large_for_the_fe_is_refused_with_fewer_columns_to_paste():
+    # 28 columns ran out of memory with a raw traceback; the mesh's size is known first
+    r = run_cli("crosstalk", "--design", DIE, "--set", "die.columns=28", "--json")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "die.columns" and error["value"] == 28
+    most = int(error["alternatives"][0]["option"].split("=")[-1])
+    assert 2 <= most < 28

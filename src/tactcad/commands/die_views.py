@@ -129,10 +129,22 @@ def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 
 def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
-    from tactcad.mechanics.die_crosstalk import crosstalk_in_force, die_crosstalk
+    from tactcad.mechanics.die_crosstalk import (MAX_DOFS, crosstalk_in_force, die_crosstalk,
+                                                 mesh_dofs)
     from tactcad.mechanics.piezoresistor import die_readout
 
     plan = _planned(design, args).plan
+    dofs = mesh_dofs(plan)
+    if dofs > MAX_DOFS:
+        most = max(2, int(plan.columns * MAX_DOFS / dofs))
+        raise DesignError("die.columns", plan.columns,
+                          f"a die whose crosstalk mesh stays within {MAX_DOFS} degrees of "
+                          f"freedom (about {most} columns at {plan.pitch_um:g} um pitch)",
+                          f"the die's 3D FE would have about {dofs} (its memory grows "
+                          "faster than that); its units couple only with their nearest neighbours, "
+                          f"so a die of {most} columns gives the same worst pair",
+                          alternatives=[{"option": f"--set die.columns={most}",
+                                         "words": "the same die, fewer columns"}])
     result = die_crosstalk(plan)
     resolution = {role: r["force_resolution_N"] for role, r in die_readout(plan)["rows"].items()}
     in_force = crosstalk_in_force(plan, result, resolution)
@@ -145,24 +157,29 @@ def crosstalk_lines(plan, r, in_force: dict) -> list[str]:
     """The die's crosstalk as text: the figures, the worst in newtons, each unit's reading
     under every post's force over its own (ppm)."""
     q = in_force
+    error = 100 * r.error_estimate_rel
     lines = [f"crosstalk of die {plan.name} ({r.model}, {r.seconds:.3g} s, {r.dofs} dofs): "
-             f"crosstalk_rel {r.crosstalk_rel:.3g} (beam {r.worst[0]} under a force on post "
-             f"{r.worst[1]}), error estimate {100 * r.error_estimate_rel:.2g} %",
-             f"  in force: post {q['loaded_beam']} at the {q['rated_force_N']:.3g} N it carries "
-             f"in use reads {q['crosstalk_force_N']:.3g} N on beam {q['beam']}, "
-             f"{q['force_resolution_steps']:.3g} of its force-resolution step "
-             f"{q['force_resolution_N']:.3g} N",
+             f"crosstalk_rel {r.crosstalk_rel:.3g} (beam {r.worst[0]}'s half bridge under a "
+             f"force on post {r.worst[1]}), error estimate "
+             + (f"{error:.0f} %" if error >= 10 else f"{error:.2g} %"),
+             f"  in force (the pair with the most resolution steps): post {q['loaded_beam']} "
+             f"at the {q['rated_force_N']:.3g} N it carries in use reads "
+             f"{q['crosstalk_force_N']:.3g} N on beam {q['beam']}, "
+             f"{q['force_resolution_steps']:.3g} times its force resolution "
+             f"({q['force_resolution_N']:.3g} N)",
              f"  model: {r.basis}",
              "  in use the tissue between the posts couples the units far more: `tactcad "
              "budget` gives that term and the coupled inversion removes it",
-             "each unit's reading under a force on each post, over its reading under its own "
-             "(ppm; own: dR/R per N):",
-             "| beam | own | " + " | ".join(str(b) for b in r.beams) + " |",
-             "| --- | --- |" + " --- |" * len(r.beams)]
+             "  the matrix is not symmetric: each beam's reference resistor lies on the frame "
+             "on one side of its root, nearer one neighbour than the other",
+             "each beam's half-bridge reading under a force on each post, over its reading "
+             "under its own (ppm; own: dR/R per N):",
+             "| beam | row | own | " + " | ".join(str(b) for b in r.beams) + " |",
+             "| --- | --- | --- |" + " --- |" * len(r.beams)]
     s = r.reading_per_N
-    for i, b in enumerate(r.beams):
+    for i, (b, beam) in enumerate(zip(r.beams, plan.beams)):
         cells = ["" if i == j else f"{1e6 * s[i, j] / s[i, i]:.3g}" for j in range(len(r.beams))]
-        lines.append(f"| {b} | {s[i, i]:.4g} | " + " | ".join(cells) + " |")
+        lines.append(f"| {b} | {beam.role} | {s[i, i]:.4g} | " + " | ".join(cells) + " |")
     return lines
 
 

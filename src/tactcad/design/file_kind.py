@@ -30,7 +30,8 @@ def die_refusal(design: Path) -> DesignError:
                        f"{design.name} is a silicon die's ([die]): `tactcad die --design "
                        f"{design.name}` makes it and prints its read-out, budget and "
                        "resonances; `tactcad modal`, `budget`, `readout`, `thermal` and "
-                       "`verify` print those alone, `grasp` the grasp in its jaw; `tactcad "
+                       "`verify` print those alone, `grasp` the grasp in its jaw, `crosstalk` the "
+                       "crosstalk through the die; `tactcad "
                        "export` and `tactcad check` in its folder make and check its files")
 
 

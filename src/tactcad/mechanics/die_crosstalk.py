@@ -20,7 +20,8 @@ tangential k_t = G / h per unit area. Each beam is replaced by what its root han
 under a unit force on its post: on the frame's edge face under the beam, a uniform shear of
 1 N down and the bending stress M (z - z_c) / I of the moment M = L x 1 N (Euler-Bernoulli's
 root section). Triquadratic hexahedra (scikit-fem ``ElementHex2``), node planes at every
-beam's and resistor's edges, one factorisation (SuperLU) for every post's load. Each
+beam's and resistor's edges, one factorisation (SuperLU) per mesh for every post's load
+(four meshes with the error estimate's). Each
 resistor reads pi_l P sigma_l + pi_t P sigma_t on the die's top face (Smith's coefficients
 turned along and across its legs, :class:`tactcad.vocabulary.crystal.PiezoCoefficients`;
 P(N, T) of its implant), averaged over its footprint; a beam resistor's run onto the frame
@@ -35,7 +36,8 @@ own.
 Error estimate: the change of crosstalk_rel on a mesh with half the handle's layers, plus
 that mesh's largest change when the attach's modulus is halved or doubled (the film's
 modulus is the least known input: a silver-filled epoxy's is a few GPa and moves with its
-cure and filler; on the example die the two ends move crosstalk_rel by -60 % and +70 %).
+cure and filler; on the example die halving it moves crosstalk_rel +67 %, doubling it
+-60 %).
 
 Units: mm, N, MPa inside the solver; um for the plan's layout; readings 1/N.
 """
@@ -61,6 +63,9 @@ GROWTH = 1.5
 #: finest edge moved crosstalk_rel 3 %, a third handle layer 2 %, a largest edge of 250 um
 #: nothing; one handle layer instead of two (the error's coarser mesh) 9 %.
 MESH = (80.0, 400.0, 2)
+#: The largest mesh (degrees of freedom, :func:`mesh_dofs`) a run takes: a 10-column die in
+#: the 10 mm jaw's pocket (273 000) takes about 5 GB and 4 minutes on two cores.
+MAX_DOFS = 300_000
 
 
 @dataclass(frozen=True)
@@ -92,7 +97,8 @@ class DieCrosstalk:
     def as_json(self) -> dict:
         return {"model": self.model, "beams": list(self.beams),
                 "reading_per_N": self.reading_per_N.tolist(),
-                "crosstalk_rel": self.crosstalk_rel, "worst": list(self.worst),
+                "crosstalk_rel": self.crosstalk_rel,
+                "worst": {"beam": self.worst[0], "loaded_post": self.worst[1]},
                 "error_estimate_rel": self.error_estimate_rel, "dofs": self.dofs,
                 "cost_s": self.seconds, "basis": self.basis}
 
@@ -178,19 +184,26 @@ def resistor_footprints(plan) -> list[Footprint]:
     return out
 
 
+def _cuts(plan, footprints) -> tuple[list[float], list[float]]:
+    """The node planes every mesh of the die passes through (um): the window's, every
+    beam's and every resistor footprint's edges."""
+    x0, y0, x1, y1 = plan.window_um
+    xs, ys = [x0, x1], [y0, y1]
+    for b in plan.beams:
+        xs += [b.x_um - b.width_um / 2, b.x_um + b.width_um / 2]
+    for f in footprints:
+        xs += [f.x0, f.x1]
+        ys += [f.y0, f.y1]
+    return xs, ys
+
+
 def _mesh(plan, sizes: tuple[float, float, int], footprints):
     """The die's block (mm), the device layer cut away over the window; ``sizes``: the
     finest and largest edge in the plane (um) and the elements through the handle."""
     from skfem import MeshHex
 
     x0, y0, x1, y1 = plan.window_um
-    xs = [x0, x1]
-    for b in plan.beams:
-        xs += [b.x_um - b.width_um / 2, b.x_um + b.width_um / 2]
-    ys = [y0, y1]
-    for f in footprints:
-        xs += [f.x0, f.x1]
-        ys += [f.y0, f.y1]
+    xs, ys = _cuts(plan, footprints)
     t = plan.stack.device_um
     h = plan.stack.total_um
     mm = 1e-3
@@ -318,6 +331,16 @@ def _root_load(mesh, beam, t: float, h: float):
                          np.full_like(x[0], -1.0 / (w * t))])
 
     return facets, traction
+
+
+def mesh_dofs(plan, mesh: tuple[float, float, int] = MESH) -> int:
+    """The degrees of freedom of ``plan``'s block on ``mesh`` before the window's elements are
+    cut away (an upper bound, from the node planes alone: no mesh is built)."""
+    finest, largest, layers = mesh
+    xs, ys = _cuts(plan, resistor_footprints(plan))
+    nx = len(graded_planes(0.0, plan.die_length_um, xs, finest, largest)) - 1
+    ny = len(graded_planes(0.0, plan.die_width_um, ys, finest, largest)) - 1
+    return 3 * (2 * nx + 1) * (2 * ny + 1) * (2 * (layers + 1) + 1)
 
 
 def die_crosstalk(plan, mesh: tuple[float, float, int] = MESH,
