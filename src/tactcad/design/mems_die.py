@@ -506,18 +506,31 @@ def effective_area_um2(length_um: float, width_um: float, thickness_um: float,
     return length_um / (modulus + 1.0) * (width_um + thickness_um / (modulus + 1.0))
 
 
+def weibull_risk(area_um2: float, peak_MPa: float, pair: WeibullPair) -> float:
+    """A surface's Weibull risk of rupture, (A_eff / A_0) (sigma / sigma_0)^m, so that
+    P_f = 1 - exp(-risk) (0 at no tension)."""
+    if peak_MPa <= 0:
+        return 0.0
+    return area_um2 / pair.reference_area_um2 * (peak_MPa / pair.characteristic_MPa) ** pair.modulus
+
+
+def force_scale_of_risk(risk: float, probability: float, modulus: float) -> float:
+    """The factor on every force at which a total ``risk`` (at the forces as they are)
+    reaches ``probability``: stresses go as the forces, the risk as s^m, so
+    s = (-ln(1 - P) / risk)^(1/m) (inf at no risk)."""
+    if risk <= 0:
+        return math.inf
+    return (-math.log1p(-probability) / risk) ** (1.0 / modulus)
+
+
 def weibull_force_scale(pair: WeibullPair, count: int, roots) -> float:
     """The factor on every beam's force at which ``count`` units of the beams ``roots``
     ((length um, width um, thickness um, root stress MPa) per beam of a unit) fail with the
-    pair's accepted probability: s = (-ln(1 - P) / risk)^(1/m), the risk
-    count sum A_eff / A_0 (sigma / sigma_0)^m (inf with no tension)."""
-    m = pair.modulus
-    risk = count * sum(effective_area_um2(l, w, t, m) / pair.reference_area_um2
-                       * (max(stress, 0.0) / pair.characteristic_MPa) ** m
+    pair's accepted probability (:func:`force_scale_of_risk` of their summed
+    :func:`weibull_risk`)."""
+    risk = count * sum(weibull_risk(effective_area_um2(l, w, t, pair.modulus), stress, pair)
                        for l, w, t, stress in roots)
-    if risk <= 0:
-        return math.inf
-    return (-math.log1p(-pair.failure_probability_max) / risk) ** (1.0 / m)
+    return force_scale_of_risk(risk, pair.failure_probability_max, pair.modulus)
 
 
 def _rating_of(pair: tuple, k_r: float, k_m: float, force_N: float, kobj_range,

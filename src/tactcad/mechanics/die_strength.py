@@ -23,7 +23,8 @@ from __future__ import annotations
 
 import math
 
-from tactcad.design.mems_die import Beam, DiePlan, WeibullPair, effective_area_um2
+from tactcad.design.mems_die import (Beam, DiePlan, WeibullPair, effective_area_um2,
+                                     force_scale_of_risk, weibull_risk)
 
 __all__ = ["effective_area_um2", "failure_probability", "beam_failure_probability",
            "die_failure_probability", "force_scale_at_probability"]
@@ -32,10 +33,7 @@ __all__ = ["effective_area_um2", "failure_probability", "beam_failure_probabilit
 def failure_probability(peak_MPa: float, area_um2: float, pair: WeibullPair) -> float:
     """P_f = 1 - exp(-(A_eff / A_0) (sigma / sigma_0)^m) of a surface of effective area
     ``area_um2`` at peak stress ``peak_MPa`` (0 at no tension)."""
-    if peak_MPa <= 0:
-        return 0.0
-    risk = area_um2 / pair.reference_area_um2 * (peak_MPa / pair.characteristic_MPa) ** pair.modulus
-    return -math.expm1(-risk)
+    return -math.expm1(-weibull_risk(area_um2, peak_MPa, pair))
 
 
 def beam_failure_probability(plan: DiePlan, beam: Beam, force_N: float) -> float:
@@ -74,6 +72,4 @@ def force_scale_at_probability(plan: DiePlan, force_of, probability: float) -> f
     if not 0.0 < probability < 1.0:
         raise ValueError(f"probability = {probability!r}: 0 < P < 1")
     risk = sum(-math.log1p(-beam_failure_probability(plan, b, force_of(b))) for b in plan.beams)
-    if risk <= 0:
-        return math.inf
-    return (-math.log1p(-probability) / risk) ** (1.0 / plan.weibull.modulus)
+    return force_scale_of_risk(risk, probability, plan.weibull.modulus)
