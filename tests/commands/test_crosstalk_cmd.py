@@ -60,3 +60,30 @@ def test_a_die_too_large_for_the_fe_is_refused_with_fewer_columns_to_paste():
     assert error["field"] == "die.columns" and error["value"] == 28
     most = int(error["alternatives"][0]["option"].split("=")[-1])
     assert 2 <= most < 28
+
+
+def test_a_dies_crosstalk_is_kept_in_the_result_store_and_says_what_it_solves(tmp_path,
+                                                                             monkeypatch):
+    """The die's FE costs a minute: a second run of the same die reuses it (--cache), a
+    changed die solves again, and each run says which it did."""
+    from dataclasses import replace
+
+    from tactcad.commands.die_views import _crosstalk_kept
+    from tactcad.design.mems_die import die_plan
+    from tactcad.mechanics import die_crosstalk as dx
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.store import Store, keeping_results
+    from tactcad.studies.inverse_design import Targets
+
+    solved = []
+    monkeypatch.setattr(dx, "die_crosstalk", lambda plan: solved.append(plan) or len(solved))
+    plan = die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"), columns=2)
+    heard = []
+    with keeping_results(Store(tmp_path / "store")):
+        first = _crosstalk_kept(plan, 1000, heard.append)
+    with keeping_results(Store(tmp_path / "store")):  # a later run, the same store
+        again = _crosstalk_kept(plan, 1000, heard.append)
+        softer = replace(plan, attach=replace(plan.attach, modulus_MPa=100.0))
+        other = _crosstalk_kept(softer, 1000, heard.append)
+    assert (first, again, other) == (1, 1, 2) and solved == [plan, softer]
+    assert "3D FE" in heard[0] and "reused" in heard[1] and "3D FE" in heard[2]

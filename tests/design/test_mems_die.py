@@ -542,6 +542,68 @@ def test_a_die_files_value_is_overridden_by_set_and_checked_like_the_file(tmp_pa
     assert not (tmp_path / "bad").exists() and not (tmp_path / "x").exists()
 
 
+ATTACH_TABLE = ('\n[attach]\nmaterial = "a lab\'s silicone adhesive"\nmodulus_MPa = 5.0\n'
+                'thickness_um = 60.0\nsource = "its data sheet, cured 1 h at 150 C"\n')
+
+
+def test_a_die_files_attach_table_bonds_the_die_its_pocket_and_bom_say_so(tmp_path):
+    """An [attach] table states the film under the die: the plan carries it (stated), the
+    pocket deepens by its bond line over the assumption's, and the BOM names its material
+    and source; without one the plan keeps the assumption, marked as such."""
+    from tactcad.commands.die import die_asked, plan_of
+    from tactcad.design import die_mount as dm
+    from tactcad.design.mems_die import DEFAULT_DIE_ATTACH
+    from tactcad.export.die_scene import mount_bom_rows
+
+    shipped = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+               / "grasper_jaw_5mm_mems.toml").read_text(encoding="utf-8")
+    design = tmp_path / "die.toml"
+    design.write_text(shipped + ATTACH_TABLE, encoding="utf-8")
+
+    def planned(path):
+        import argparse
+
+        args = argparse.Namespace(design=str(path), overrides=[], jaw=None, kr_over_km=None,
+                                  kobj_range=None, full_scale_force=None, columns=None,
+                                  pitch_um=None, name=None)
+        return plan_of(die_asked(args)).plan
+
+    stated = planned(design)
+    assert stated.attach.stated and stated.attach.modulus_MPa == 5.0
+    assert "its data sheet" in stated.reasons["die_attach"]
+    bare = tmp_path / "bare.toml"
+    bare.write_text(shipped, encoding="utf-8")
+    assumed = planned(bare)
+    assert assumed.attach == DEFAULT_DIE_ATTACH and not assumed.attach.stated
+    assert "assumption" in assumed.attach.source
+    deep = dm.die_mount(stated, {"shaft_class_mm": "5"})
+    shallow = dm.die_mount(assumed, {"shaft_class_mm": "5"})
+    assert deep.pocket_depth_mm - shallow.pocket_depth_mm == pytest.approx(
+        (60.0 - DEFAULT_DIE_ATTACH.thickness_um) * 1e-3)
+    assert deep.attach_mm == pytest.approx(0.06)
+    row = next(r for r in mount_bom_rows(stated, deep, "5 mm jaw") if r["item"] == "die_attach")
+    assert "silicone adhesive" in row["description"] and "0.06 mm" in row["description"]
+    assert row["source"] == "its data sheet, cured 1 h at 150 C"
+
+
+@pytest.mark.parametrize("line, field", [("modulus_MPa = 0.0", "attach.modulus_MPa"),
+                                         ("thickness_um = 1e4", "attach.thickness_um"),
+                                         ("poisson = 0.5", "attach.poisson"),
+                                         ('source = ""', "attach.source")])
+def test_an_attach_table_out_of_its_domain_is_refused_by_key(tmp_path, line, field):
+    shipped = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+               / "grasper_jaw_5mm_mems.toml").read_text(encoding="utf-8")
+    key = line.split(" = ")[0]
+    table = "\n".join(line if row.startswith(key + " ") else row
+                      for row in ATTACH_TABLE.splitlines())
+    if key not in ATTACH_TABLE:
+        table += "\n" + line
+    design = tmp_path / "die.toml"
+    design.write_text(shipped + table + "\n", encoding="utf-8")
+    r = run_cli("readout", "--design", str(design))
+    assert r.returncode == 2 and field in r.stderr and "Traceback" not in r.stderr, r.stderr
+
+
 # --- the die in its jaw ------------------------------------------------------------------------
 def test_the_mount_seats_die_and_carrier_in_a_face_pocket_of_the_5mm_jaw(die):
     """Pocket = carrier (die + bond shelf) + clearance, open at the face, as deep as die,

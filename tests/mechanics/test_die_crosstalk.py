@@ -121,8 +121,8 @@ def test_a_units_reading_falls_with_the_loaded_posts_distance_along_its_row(smal
 def test_a_stiffer_attach_holds_the_frame_closer_and_the_mesh_is_stated(small_die):
     footprints = dx.resistor_footprints(small_die)
     one_layer = (80.0, 400.0, 1)
-    soft = dx._solve(small_die, one_layer, dx.ATTACH_MODULUS_MPA / 4, footprints)
-    hard = dx._solve(small_die, one_layer, dx.ATTACH_MODULUS_MPA * 4, footprints)
+    soft = dx._solve(small_die, one_layer, small_die.attach.modulus_MPa / 4, footprints)
+    hard = dx._solve(small_die, one_layer, small_die.attach.modulus_MPa * 4, footprints)
     off = ~np.eye(len(small_die.beams), dtype=bool)
     assert np.abs(hard[0][off]).max() < np.abs(soft[0][off]).max()
     with pytest.raises(ValueError, match="even"):
@@ -141,3 +141,23 @@ def test_the_worst_crosstalk_in_newtons_is_the_ratio_times_the_loaded_posts_forc
     assert q["crosstalk_force_N"] == pytest.approx(expected)
     assert q["force_resolution_steps"] == pytest.approx(
         expected / resolution[small_die.beams[i].role])
+
+
+@pytest.mark.slow
+def test_a_stated_attach_is_the_one_the_die_rests_on_and_narrows_the_error(small_die, result):
+    from dataclasses import replace
+
+    assumed = small_die.attach
+    stated = replace(small_die, attach=replace(assumed, stated=True, source="a data sheet"))
+    same = dx.die_crosstalk(stated)
+    assert same.reading_per_N == pytest.approx(result.reading_per_N)
+    # the modulus spans a quarter either way, not the assumption's half and double
+    assert same.error_estimate_rel < result.error_estimate_rel
+    assert "a data sheet" in same.basis and f"x/ {dx.STATED_MODULUS_SPAN:g}" in same.basis
+    # a four times thicker film is a four times softer bed: the frame tilts more
+    footprints, one_layer = dx.resistor_footprints(small_die), (80.0, 400.0, 1)
+    thicker = replace(small_die, attach=replace(assumed, thickness_um=4 * assumed.thickness_um))
+    off = ~np.eye(len(small_die.beams), dtype=bool)
+    thin = dx._solve(small_die, one_layer, assumed.modulus_MPa, footprints)[0]
+    thick = dx._solve(thicker, one_layer, assumed.modulus_MPa, footprints)[0]
+    assert np.abs(thick[off]).max() > np.abs(thin[off]).max()

@@ -130,7 +130,7 @@ def die_asked(args: argparse.Namespace) -> dict:
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
             "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name,
             "source": _source_of(Path(args.design)), "strength": d.strength,
-            "kobj_resolution_rel": d.die.kobj_resolution_rel}
+            "kobj_resolution_rel": d.die.kobj_resolution_rel, "attach": d.attach}
 
 
 def _any_option_given(args: argparse.Namespace) -> bool:
@@ -227,6 +227,8 @@ def plan_of(asked: dict) -> PlannedDie:
         raise
     if asked.get("strength") is not None:
         plan = with_weibull(plan, asked["strength"])
+    if asked.get("attach") is not None:
+        plan = with_attach(plan, asked["attach"])
     return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw,
                       asked.get("source"))
 
@@ -247,6 +249,18 @@ def with_weibull(plan, pair):
                            f"um^2; {pair.source}) over each beam's tensile face and sidewalls; "
                            f"accepted up to {pair.failure_probability_max:g}"}
     return replace(plan, weibull=pair, reasons=reasons)
+
+
+def with_attach(plan, attach):
+    """``plan`` bonded by the lab's die ``attach`` (its design file's ``[attach]``): the
+    plan with the film and its reason."""
+    from dataclasses import replace
+
+    reasons = {**plan.reasons,
+               "die_attach": f"{attach.material}, {attach.thickness_um:g} um, E "
+                             f"{attach.modulus_MPa:g} MPa, nu {attach.poisson:g} "
+                             f"({attach.source})"}
+    return replace(plan, attach=attach, reasons=reasons)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -129,8 +129,8 @@ def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 
 def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
-    from tactcad.mechanics.die_crosstalk import (MAX_DOFS, crosstalk_in_force, die_crosstalk,
-                                                 mesh_dofs)
+    from tactcad.commands import progress_from_args
+    from tactcad.mechanics.die_crosstalk import MAX_DOFS, crosstalk_in_force, mesh_dofs
     from tactcad.mechanics.piezoresistor import die_readout
 
     plan = _planned(design, args).plan
@@ -145,12 +145,30 @@ def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
                           f"so a die of {most} columns gives the same worst pair",
                           alternatives=[{"option": f"--set die.columns={most}",
                                          "words": "the same die, fewer columns"}])
-    result = die_crosstalk(plan)
+    result = _crosstalk_kept(plan, dofs, progress_from_args(args))
     resolution = {role: r["force_resolution_N"] for role, r in die_readout(plan)["rows"].items()}
     in_force = crosstalk_in_force(plan, result, resolution)
     report = {"design": str(design), "die": plan.name, **result.as_json(),
               "in_force": in_force}
     return report, crosstalk_lines(plan, result, in_force)
+
+
+def _crosstalk_kept(plan, dofs: int, report: Callable[[str], None]):
+    """The die's crosstalk, kept in the result store for the same plan and mesh (``--cache``,
+    ``--no-cache``): the second run of the same die solves nothing. ``report`` hears what
+    is solved or reused."""
+    from tactcad.mechanics.die_crosstalk import MESH, die_crosstalk
+    from tactcad.store import kept_result
+
+    def solve():
+        report(f"crosstalk of die {plan.name}: 3D FE of the die on its attach, about {dofs} "
+               "degrees of freedom, and three coarser meshes for the error estimate (about a "
+               "minute on two cores)")
+        return die_crosstalk(plan)
+
+    return kept_result("die crosstalk", solve, plan, MESH,
+                       reused=lambda: report(f"crosstalk of die {plan.name}: reused from the "
+                                             "result store (the same die and mesh)"))
 
 
 def crosstalk_lines(plan, r, in_force: dict) -> list[str]:

@@ -15,9 +15,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME,
+from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_ATTACH, DEFAULT_DIE_NAME,
                                      DEFAULT_KOBJ_RESOLUTION_REL, DEFAULT_PITCH_UM,
-                                     LEAST_PITCH_UM, WeibullPair)
+                                     LEAST_PITCH_UM, DieAttach, WeibullPair)
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
 from tactcad.errors import DesignError
@@ -68,12 +68,28 @@ class DieStrengthSection(Section):
                                     ) = DEFAULT_FAILURE_PROBABILITY_MAX
 
 
+class DieAttachSection(Section):
+    """``[attach]``, optional: the film bonding the die to its carrier, from its data sheet
+    (:class:`tactcad.design.mems_die.DieAttach`); without it the die's mount and crosstalk
+    take :data:`tactcad.design.mems_die.DEFAULT_DIE_ATTACH` (an assumption)."""
+
+    material: Text
+    modulus_MPa: number(1.0, 200000.0, unit="MPa",
+                        why="the cured film's Young's modulus: a silicone's few MPa to a "
+                            "solder's tens of GPa")
+    thickness_um: number(2.0, 500.0, unit="um", why="the cured bond line")
+    source: Text
+    poisson: number(0.0, 0.5, hi_open=True, unit="",
+                    why="the film's Poisson's ratio") = DEFAULT_DIE_ATTACH.poisson
+
+
 class DieFile(Section):
-    """A die's design file: ``[die]``, optionally ``[strength]``, and its ``[assumptions]``
-    (reasons, by key)."""
+    """A die's design file: ``[die]``, optionally ``[strength]`` and ``[attach]``, and its
+    ``[assumptions]`` (reasons, by key)."""
 
     die: DieSection
     strength: DieStrengthSection = None
+    attach: DieAttachSection = None
     assumptions: dict[str, str] = {}
 
 
@@ -87,12 +103,14 @@ class DieDesign:
             resolved in the design's folder).
         source: the file.
         strength: the file's Weibull pair, or None.
+        attach: the file's die attach, or None (the mount's assumption).
     """
 
     die: DieSection
     jaw: str
     source: Path
     strength: WeibullPair | None = None
+    attach: DieAttach | None = None
 
 
 def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None) -> DieDesign:
@@ -125,7 +143,16 @@ def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None
     if not is_cell_name(die.name):
         problems.add("die.name", die.name, CELL_NAME_WORDS)
     problems.raise_if_any()
-    return DieDesign(die, jaw, source, weibull_of(model.strength))
+    return DieDesign(die, jaw, source, weibull_of(model.strength), attach_of(model.attach))
+
+
+def attach_of(section: DieAttachSection | None) -> DieAttach | None:
+    """The ``[attach]`` table as a :class:`~tactcad.design.mems_die.DieAttach` (None without
+    one)."""
+    if section is None:
+        return None
+    return DieAttach(section.material, section.modulus_MPa, section.poisson,
+                     section.thickness_um, section.source, stated=True)
 
 
 def weibull_of(section: DieStrengthSection | None) -> WeibullPair | None:

@@ -10,7 +10,8 @@ at the face, and the die's frame lies flush with it (the device layer's top at t
 :data:`DEVICE_RECESS_MM` below it), the posts proud by their height less that recess. The
 carrier under the die (:data:`CARRIER_MM`, alumina) reaches past the die's proximal end by
 :data:`BOND_SHELF_MM`, where the flex cable to the shaft is soldered; the die is bonded to it
-by a die-attach layer of :data:`DIE_ATTACH_MM`. The pocket runs from the distal wall
+by its die-attach film (the plan's :attr:`~tactcad.design.mems_die.DiePlan.attach`: the lab's
+``[attach]`` table, else a 25 um silver-filled epoxy, an assumption). The pocket runs from the distal wall
 towards the pivot and keeps :data:`~tactcad.partlib.grasper_jaw.MIN_WALL_MM` of steel
 beside it, under it and before the pin.
 
@@ -22,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from tactcad.design.mems_die import DiePlan
+from tactcad.design.mems_die import DEFAULT_DIE_ATTACH, DiePlan
 from tactcad.errors import DesignError
 
 #: The carrier's thickness (mm): a thin-film alumina substrate (assumption: a stock 0.25 mm
@@ -30,8 +31,8 @@ from tactcad.errors import DesignError
 CARRIER_MM = 0.25
 #: The carrier beyond the die's proximal end (mm): room for the flex cable's solder pads.
 BOND_SHELF_MM = 1.0
-#: The die-attach layer (mm): a silver-filled epoxy film (assumption).
-DIE_ATTACH_MM = 0.025
+#: The die-attach layer (mm) when the die's file states none.
+DIE_ATTACH_MM = DEFAULT_DIE_ATTACH.thickness_um * 1e-3
 #: The device layer's top below the jaw's face (mm): flush, the posts alone proud.
 DEVICE_RECESS_MM = 0.0
 
@@ -49,6 +50,7 @@ class DieMount:
             open at the face, ``pocket_depth_mm`` down from it.
         carrier_x0_mm, carrier_length_mm, carrier_width_mm, carrier_mm: the carrier on
             the pocket's floor.
+        attach_mm: the die-attach film between the carrier and the die.
         die_x0_mm, die_z0_mm: the die's proximal end and its handle's underside.
         die_length_mm, die_width_mm, die_stack_mm: the die without its posts.
         post_proud_mm: the posts' tops above the jaw's face.
@@ -74,6 +76,7 @@ class DieMount:
     die_width_mm: float
     die_stack_mm: float
     post_proud_mm: float
+    attach_mm: float = DIE_ATTACH_MM
     reasons: dict = field(default_factory=dict, compare=False, hash=False)
 
     @property
@@ -109,7 +112,8 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
                           f">= {pocket_w + 2 * MIN_WALL_MM:.4g} mm",
                           f"the die is {die_w:g} mm across; its pocket ({c:g} mm clearance each "
                           f"side) keeps {MIN_WALL_MM:g} mm side walls")
-    depth = stack + DIE_ATTACH_MM + CARRIER_MM + DEVICE_RECESS_MM
+    attach = plan.attach.thickness_um * 1e-3
+    depth = stack + attach + CARRIER_MM + DEVICE_RECESS_MM
     if j.thickness_mm < depth + MIN_WALL_MM - 1e-9:
         raise DesignError("grasper_jaw.thickness_mm", j.thickness_mm,
                           f">= {depth + MIN_WALL_MM:.4g} mm",
@@ -135,7 +139,7 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
         "carrier": f"{CARRIER_MM:g} mm alumina (assumption: a stock thin-film substrate), "
                    f"{carrier_l:.4g} x {die_w:g} mm: the die and, proximal to it, the flex "
                    "cable's solder pads",
-        "die_attach": f"{DIE_ATTACH_MM:g} mm silver-filled epoxy (assumption)",
+        "die_attach": f"{attach:g} mm {plan.attach.material} ({plan.attach.source})",
         "post_proud": f"the device layer {DEVICE_RECESS_MM:g} mm below the face, its "
                       f"{plan.post_height_um:g} um posts {post_proud * 1e3:.4g} um proud: a "
                       "die's posts cannot reach through a face wall, so the pocket opens at "
@@ -143,4 +147,5 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
     }
     return DieMount(j.length_mm, width, face, j.pin_inset_mm, j.pin_diameter_mm, x0, pocket_l,
                     pocket_w, depth, x0 + c, carrier_l, die_w, CARRIER_MM,
-                    x0 + c + BOND_SHELF_MM, die_z0, die_l, die_w, stack, post_proud, reasons)
+                    x0 + c + BOND_SHELF_MM, die_z0, die_l, die_w, stack, post_proud, attach,
+                    reasons)

@@ -144,6 +144,38 @@ class WeibullPair:
 
 
 @dataclass(frozen=True)
+class DieAttach:
+    """The film that bonds the die's handle to its carrier: what the mount's pocket depth
+    and the die's crosstalk (the handle on Winkler springs) read of it.
+
+    Attributes:
+        material: what the film is (the BOM's and the drawing's words).
+        modulus_MPa: its Young's modulus, cured (MPa). poisson: its Poisson's ratio.
+        thickness_um: the cured bond line (um).
+        source: where the modulus comes from (a data sheet, a measurement, or the word
+            "assumption" and why).
+        stated: True when the lab's design file states it (its ``[attach]`` table); the
+            crosstalk's error estimate then spans :data:`tactcad.mechanics.die_crosstalk.
+            STATED_MODULUS_SPAN` instead of the assumption's.
+    """
+
+    material: str
+    modulus_MPa: float
+    poisson: float
+    thickness_um: float
+    source: str
+    stated: bool = False
+
+
+#: The die attach when a die's file states none (assumption): a cured silver-filled epoxy
+#: film, whose modulus is a few GPa and moves with its cure and filler, at a 25 um bond line.
+DEFAULT_DIE_ATTACH = DieAttach(
+    "silver-filled epoxy film", 4000.0, 0.35, 25.0,
+    "assumption: a cured silver-filled epoxy, a few GPa (no data sheet stated; the die's file "
+    "takes one as an [attach] table)")
+
+
+@dataclass(frozen=True)
 class Beam:
     """One cantilever of the die (um; y_root the root line, direction +1 up, -1 down)."""
 
@@ -206,6 +238,8 @@ class DiePlan:
     weibull: WeibullPair | None = None
     #: the K_obj resolution the die must reach over its range (relative, 1 sigma)
     kobj_resolution_rel: float = DEFAULT_KOBJ_RESOLUTION_REL
+    #: the film bonding the die to its carrier (the lab's ``[attach]``, else the assumption)
+    attach: DieAttach = DEFAULT_DIE_ATTACH
 
     @property
     def window_um(self) -> tuple[float, float, float, float]:
@@ -299,6 +333,7 @@ class DiePlan:
                 "cavity_depths_um": {"reference": self.cavity_depths_um[0],
                                      "measuring": self.cavity_depths_um[1]},
                 "weibull": None if self.weibull is None else dict(self.weibull.__dict__),
+                "attach": dict(self.attach.__dict__),
                 "reasons": dict(self.reasons)}
 
 

@@ -16,7 +16,7 @@ Units: mm on paper; die dimensions given in mm (um in the notes).
 
 from __future__ import annotations
 
-from tactcad.design.die_mount import DIE_ATTACH_MM, DieMount
+from tactcad.design.die_mount import DieMount
 from tactcad.design.mems_die import DiePlan
 from tactcad.drawings.frame import FRAME, sheet_frame
 from tactcad.drawings.sheet import Sheet, fmt_mm
@@ -114,8 +114,8 @@ def _notes(sh: Sheet, plan: DiePlan, m: DieMount, x: float, y: float) -> None:
         f"{plan.cavity_depths_um[0]:g} um, measuring {plan.cavity_depths_um[1]:g} um deep",
         f"   +-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %: their floors are the hard stops; the "
         "beams free over them.",
-        f"4. Carrier: alumina {m.carrier_mm:g} mm; die attach {DIE_ATTACH_MM:g} mm "
-        "silver-filled epoxy.",
+        f"4. Carrier: alumina {m.carrier_mm:g} mm; die attach {m.attach_mm:g} mm "
+        f"{plan.attach.material}.",
         f"5. In the jaw: the device layer flush with the face, the posts "
         f"{m.post_proud_mm * 1000:.4g} um proud.",
         "6. Dimensions in mm.",

@@ -11,7 +11,7 @@ import csv
 import io
 from pathlib import Path
 
-from tactcad.design.die_mount import CARRIER_MM, DIE_ATTACH_MM, DieMount
+from tactcad.design.die_mount import CARRIER_MM, DieMount
 from tactcad.design.mems_die import DiePlan
 
 #: Part colours (RGB 0-1): the jaw's steel, the alumina carrier; the die's layers as the
@@ -99,8 +99,9 @@ def mount_bom_rows(plan: DiePlan, mount: DieMount, jaw_label: str) -> list[dict[
                         f"{CARRIER_MM:g} mm, thin-film pads on its {m.carrier_length_mm - m.die_length_mm:.4g} mm "
                         "bond shelf", "source": "assumption: a stock thin-film substrate"},
         {"item": "die_attach", "qty": "1", "kind": "consumable",
-         "description": f"silver-filled epoxy film, {DIE_ATTACH_MM:g} mm, "
-                        f"{m.die_length_mm:g} x {m.die_width_mm:g} mm", "source": "assumption"},
+         "description": f"{plan.attach.material}, {m.attach_mm:g} mm, "
+                        f"{m.die_length_mm:g} x {m.die_width_mm:g} mm",
+         "source": plan.attach.source},
         {"item": "grasper_jaw", "qty": "1", "kind": "machined",
          "description": f"the {jaw_label}: face pocket {m.pocket_length_mm:.4g} x "
                         f"{m.pocket_width_mm:.4g} x {m.pocket_depth_mm:.4g} mm, "

@@ -33,11 +33,16 @@ resistance_change_per_N`); the model gives the rest. crosstalk_rel is the larges
 |S_ij / S_ii| (i != j): unit i's reading under a force on post j over its reading under its
 own.
 
+The film is the plan's :attr:`~tactcad.design.mems_die.DiePlan.attach`: the lab's
+``[attach]`` table (its data sheet's modulus, Poisson's ratio and bond line), else
+:data:`~tactcad.design.mems_die.DEFAULT_DIE_ATTACH` (an assumption).
+
 Error estimate: the change of crosstalk_rel on a mesh with half the handle's layers, plus
-that mesh's largest change when the attach's modulus is halved or doubled (the film's
-modulus is the least known input: a silver-filled epoxy's is a few GPa and moves with its
-cure and filler; on the example die halving it moves crosstalk_rel +67 %, doubling it
--60 %).
+that mesh's largest change when the attach's modulus is divided and multiplied by
+:data:`ATTACH_MODULUS_SPAN` (assumed: the film's modulus is then the least known input, a
+silver-filled epoxy's is a few GPa and moves with its cure and filler; on the example die
+halving it moves crosstalk_rel +67 %, doubling it -60 %) or :data:`STATED_MODULUS_SPAN`
+(stated by the lab).
 
 Units: mm, N, MPa inside the solver; um for the plan's layout; readings 1/N.
 """
@@ -50,11 +55,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: The die attach's Young's modulus (MPa) and Poisson's ratio (assumption: a cured
-#: silver-filled epoxy, a few GPa; halved and doubled in the error estimate).
-ATTACH_MODULUS_MPA, ATTACH_POISSON = 4000.0, 0.35
-#: The attach's modulus is taken this factor either way for the error estimate.
+#: An assumed attach's modulus is taken this factor either way for the error estimate.
 ATTACH_MODULUS_SPAN = 2.0
+#: A data sheet's modulus is taken this factor either way (assumption: a cured adhesive's
+#: modulus moves by about a quarter with its cure schedule, bond line voids and the
+#: temperature between 20 and 40 C, where a data sheet states one figure).
+STATED_MODULUS_SPAN = 1.25
 #: In the die's plane each element edge is at most this many times its neighbour's, from
 #: the finest at every beam's, resistor's and window's edge (:func:`graded_planes`).
 GROWTH = 1.5
@@ -287,8 +293,7 @@ def strains_on_springs(mesh, c: np.ndarray, springs_N_per_mm3: tuple[float, floa
 def _solve(plan, sizes: tuple[float, float, int], attach_modulus_MPa: float,
            footprints) -> tuple[np.ndarray, int]:
     """The frame's reading F (n x n, 1/N): unit i's frame share per newton on post j; and
-    the degrees of freedom."""
-    from tactcad.design.die_mount import DIE_ATTACH_MM
+    the degrees of freedom (the plan's attach at ``attach_modulus_MPa``)."""
     from tactcad.mechanics.die_fem3d import stiffness_tensor
     from tactcad.mechanics.piezoresistor import piezoresistance_factor
     from tactcad.vocabulary.crystal import SILICON, SILICON_P_TYPE
@@ -299,7 +304,8 @@ def _solve(plan, sizes: tuple[float, float, int], attach_modulus_MPa: float,
     t, h = plan.stack.device_um * mm, plan.stack.total_um * mm
     loads = [_root_load(mesh, b, t, h) for b in plan.beams]
     windows = [(f.x0 * mm, f.y0 * mm, f.x1 * mm, f.y1 * mm) for f in footprints]
-    springs = attach_springs_N_per_mm3(attach_modulus_MPa, ATTACH_POISSON, DIE_ATTACH_MM)
+    springs = attach_springs_N_per_mm3(attach_modulus_MPa, plan.attach.poisson,
+                                       plan.attach.thickness_um * mm)
     strains, dofs = strains_on_springs(mesh, c, springs, loads, windows)
     stresses = np.einsum("ijkl,wnkl->wnij", c, strains)
     p_factor = piezoresistance_factor(plan.acceptors_per_cm3)
@@ -343,23 +349,21 @@ def mesh_dofs(plan, mesh: tuple[float, float, int] = MESH) -> int:
     return 3 * (2 * nx + 1) * (2 * ny + 1) * (2 * (layers + 1) + 1)
 
 
-def die_crosstalk(plan, mesh: tuple[float, float, int] = MESH,
-                  attach_modulus_MPa: float = ATTACH_MODULUS_MPA) -> DieCrosstalk:
-    """The die's crosstalk through its handle and attach (module doc).
+def die_crosstalk(plan, mesh: tuple[float, float, int] = MESH) -> DieCrosstalk:
+    """The die's crosstalk through its handle and its attach (module doc).
 
     Args:
-        plan: :class:`tactcad.design.mems_die.DiePlan`.
+        plan: :class:`tactcad.design.mems_die.DiePlan` (its ``attach``: the film).
         mesh: the finest and largest element edge in the die's plane (um) and the
             elements through the handle (even, at least 2: the error's coarser mesh has
             half as many).
-        attach_modulus_MPa: the die attach's Young's modulus (MPa).
 
     Returns:
         :class:`DieCrosstalk`.
 
     Raises:
         ValueError: edges not 0 < finest <= largest, handle layers not an even integer
-            >= 2, a modulus not > 0.
+            >= 2, an attach's modulus or thickness not > 0.
     """
     from tactcad.mechanics.piezoresistor import die_resistor
 
@@ -371,11 +375,13 @@ def die_crosstalk(plan, mesh: tuple[float, float, int] = MESH,
     t0 = time.perf_counter()
     footprints = resistor_footprints(plan)
     own = np.diag([die_resistor(plan, b).resistance_change_per_N() for b in plan.beams])
-    frame, dofs = _solve(plan, mesh, attach_modulus_MPa, footprints)
+    attach = plan.attach
+    span = STATED_MODULUS_SPAN if attach.stated else ATTACH_MODULUS_SPAN
+    frame, dofs = _solve(plan, mesh, attach.modulus_MPa, footprints)
     coarser = (finest, largest, layers // 2)
     at_coarser = [worst_crosstalk(own + _off_diagonal(
-        _solve(plan, coarser, attach_modulus_MPa * f, footprints)[0]))[0]
-        for f in (1.0, 1 / ATTACH_MODULUS_SPAN, ATTACH_MODULUS_SPAN)]
+        _solve(plan, coarser, attach.modulus_MPa * f, footprints)[0]))[0]
+        for f in (1.0, 1 / span, span)]
     reading = own + _off_diagonal(frame)
     rel, worst = worst_crosstalk(reading)
     change = abs(rel - at_coarser[0]) + max(abs(at_coarser[0] - x) for x in at_coarser[1:])
@@ -383,8 +389,10 @@ def die_crosstalk(plan, mesh: tuple[float, float, int] = MESH,
     return DieCrosstalk("attach-fem3d", numbers, reading, rel,
                         (numbers[worst[0]], numbers[worst[1]]),
                         change / rel if rel > 0 else 0.0, dofs, time.perf_counter() - t0,
-                        "the die a silicon block on its die-attach film (Winkler springs, "
-                        f"E {attach_modulus_MPa:g} MPa, nu {ATTACH_POISSON:g}, assumption), "
+                        "the die a silicon block on its die-attach film (Winkler springs: "
+                        f"{attach.material}, {attach.thickness_um:g} um, E "
+                        f"{attach.modulus_MPa:g} MPa x/ {span:g} in the error, nu "
+                        f"{attach.poisson:g}; {attach.source}), "
                         "each beam's root section as its load, each resistor's "
                         "piezoresistive response over its footprint on the frame")
 
