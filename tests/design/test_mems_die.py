@@ -345,6 +345,30 @@ def test_hole_mobility_follows_an_independent_fit_and_the_sheet_resistance_its_f
         hole_mobility_cm2_per_Vs(0.0)
 
 
+def test_one_mobility_gives_the_sheet_resistance_and_the_tcr_at_every_temperature(die):
+    """Masetti's value at 300 K, Arora's slope in T: the sheet resistance at 310 K is the
+    300 K one grown by the TCR (ln R_s over the 10 K step, the TCR at its middle), the read-out's
+    resistance and mobility are those at its temperature, and the TCR is Arora's."""
+    from tactcad.mechanics.piezoresistor import (die_readout, hole_mobility_arora_cm2_per_Vs,
+                                                 hole_mobility_cm2_per_Vs,
+                                                 hole_mobility_masetti_cm2_per_Vs,
+                                                 log_slope_per_K, resistor_tcr_per_K,
+                                                 sheet_resistance_ohm)
+
+    for n in (1e16, 4e18, 1e20):
+        assert hole_mobility_cm2_per_Vs(n) == pytest.approx(hole_mobility_masetti_cm2_per_Vs(n),
+                                                            rel=1e-12)
+        arora_slope = log_slope_per_K(lambda t: hole_mobility_arora_cm2_per_Vs(n, t), 310.0)
+        assert resistor_tcr_per_K(n, 310.0) == pytest.approx(-arora_slope, rel=1e-9)
+        warm, cold = sheet_resistance_ohm(n, 0.5, 310.0), sheet_resistance_ohm(n, 0.5)
+        assert math.log(warm / cold) == pytest.approx(10 * resistor_tcr_per_K(n, 305.0),
+                                                      rel=2e-3)
+    body = die_readout(die, temperature_K=310.0)
+    room = die_readout(die)
+    assert body["resistance_ohm"] > room["resistance_ohm"]
+    assert body["hole_mobility_cm2_per_Vs"] < room["hole_mobility_cm2_per_Vs"]
+
+
 def test_the_resistors_tcr_follows_arora_and_cancels_in_the_half_bridge_to_its_mismatch(die):
     """Arora's hole mobility at 300 K against Masetti's (two fits, 15 %); the TCR,
     -d ln mu / dT, positive (lattice scattering rises with T) and larger where the lattice

@@ -244,7 +244,23 @@ MASETTI_BORON = {"mu_max": 470.5, "mu_min1": 44.9, "mu_min2": 0.0, "mu_1": 29.0,
 ELEMENTARY_CHARGE_C = 1.602176634e-19
 
 
-def hole_mobility_cm2_per_Vs(acceptors_per_cm3: float) -> float:
+def hole_mobility_cm2_per_Vs(acceptors_per_cm3: float, temperature_K: float = 300.0) -> float:
+    """Hole mobility in boron-doped silicon (cm^2/(V s)): the one mobility the die's sheet
+    resistance and TCR both read. At 300 K Masetti's fit (:func:`hole_mobility_masetti_cm2_per_Vs`,
+    fitted to heavily doped layers, where Arora's runs high); away from it that value
+    carried by Arora's relative change mu_A(N, T) / mu_A(N, 300 K)
+    (:func:`hole_mobility_arora_cm2_per_Vs`, the fit that has a temperature), so that
+    d ln mu / dT is Arora's.
+
+    Raises:
+        ValueError: a doping not finite and > 0, or a temperature outside 250-500 K.
+    """
+    at = hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3, temperature_K)
+    return (hole_mobility_masetti_cm2_per_Vs(acceptors_per_cm3) * at
+            / hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3, 300.0))
+
+
+def hole_mobility_masetti_cm2_per_Vs(acceptors_per_cm3: float) -> float:
     """Hole mobility in boron-doped silicon at 300 K (cm^2/(V s)), Masetti's fit:
     mu = mu_min1 exp(-P_c / N) + (mu_max - mu_min2) / (1 + (N / C_r)^alpha)
     - mu_1 / (1 + (C_s / N)^beta) (:data:`MASETTI_BORON`).
@@ -290,9 +306,9 @@ def hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3: float, temperature_K: floa
 
 def resistor_tcr_per_K(acceptors_per_cm3: float, temperature_K: float = 300.0) -> float:
     """A p-type resistor's temperature coefficient of resistance (1/K): d ln rho / dT =
-    -d ln mu / dT with every acceptor ionised (:func:`hole_mobility_arora_cm2_per_Vs`,
-    central difference over 1 K); positive, the lattice scattering's rise with T."""
-    return -log_slope_per_K(lambda T: hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3, T),
+    -d ln mu / dT with every acceptor ionised (:func:`hole_mobility_cm2_per_Vs`, Arora's
+    slope; central difference over 1 K); positive, the lattice scattering's rise with T."""
+    return -log_slope_per_K(lambda T: hole_mobility_cm2_per_Vs(acceptors_per_cm3, T),
                             temperature_K)
 
 
@@ -302,9 +318,11 @@ def log_slope_per_K(of_temperature, temperature_K: float) -> float:
     return math.log(of_temperature(temperature_K + 0.5) / of_temperature(temperature_K - 0.5))
 
 
-def sheet_resistance_ohm(acceptors_per_cm3: float, junction_depth_um: float) -> float:
-    """A uniformly doped layer's sheet resistance (ohm per square): 1 / (q mu N x_j)."""
-    return 1.0 / (ELEMENTARY_CHARGE_C * hole_mobility_cm2_per_Vs(acceptors_per_cm3)
+def sheet_resistance_ohm(acceptors_per_cm3: float, junction_depth_um: float,
+                         temperature_K: float = 300.0) -> float:
+    """A uniformly doped layer's sheet resistance (ohm per square) at a temperature (K):
+    1 / (q mu N x_j) (:func:`hole_mobility_cm2_per_Vs`)."""
+    return 1.0 / (ELEMENTARY_CHARGE_C * hole_mobility_cm2_per_Vs(acceptors_per_cm3, temperature_K)
                   * acceptors_per_cm3 * junction_depth_um * 1e-4)
 
 
@@ -338,13 +356,14 @@ def die_squares(plan, resistor_length_um: float | None = None) -> dict[str, floa
     return {"strained": strained, "total": strained + run + bar}
 
 
-def die_resistance_ohm(plan, resistor_length_um: float | None = None) -> float:
-    """One U-shaped resistor's resistance (ohm): the sheet resistance of the plan's implant
-    times its squares (:func:`die_squares`); ``resistor_length_um`` another U's legs (the
-    on-die reference's), None the beam resistor's."""
+def die_resistance_ohm(plan, resistor_length_um: float | None = None,
+                       temperature_K: float = 300.0) -> float:
+    """One U-shaped resistor's resistance (ohm) at a temperature (K): the sheet resistance
+    of the plan's implant times its squares (:func:`die_squares`); ``resistor_length_um``
+    another U's legs (the on-die reference's), None the beam resistor's."""
     from tactcad.design import mems_die as md
 
-    return (sheet_resistance_ohm(plan.acceptors_per_cm3, md.JUNCTION_DEPTH_UM)
+    return (sheet_resistance_ohm(plan.acceptors_per_cm3, md.JUNCTION_DEPTH_UM, temperature_K)
             * die_squares(plan, resistor_length_um)["total"])
 
 
@@ -400,8 +419,8 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
 
     if not (math.isfinite(bias_V) and 0 < bias_V <= 20):
         raise ValueError(f"bias_V = {bias_V!r}: 0 < V <= 20")
-    r = die_resistance_ohm(plan)
-    r_ref = die_resistance_ohm(plan, plan.reference_resistor_length_um)
+    r = die_resistance_ohm(plan, temperature_K=temperature_K)
+    r_ref = die_resistance_ohm(plan, plan.reference_resistor_length_um, temperature_K)
     rho = r_ref / r
     divider = 4 * rho / (1 + rho) ** 2  # the half bridge's output against V/4 dR/R
     v_active, v_ref = bias_V / (1 + rho), bias_V * rho / (1 + rho)
@@ -435,9 +454,10 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
                            "zero_drift_N_per_K": zero_V / sens}
     return {"resistance_ohm": r, "reference_resistance_ohm": r_ref,
             "uncancelled_zero_drift_V_per_K": uncancelled_V,
-            "sheet_resistance_ohm_per_sq": sheet_resistance_ohm(plan.acceptors_per_cm3,
-                                                                md.JUNCTION_DEPTH_UM),
-            "hole_mobility_cm2_per_Vs": hole_mobility_cm2_per_Vs(plan.acceptors_per_cm3),
+            "sheet_resistance_ohm_per_sq": sheet_resistance_ohm(
+                plan.acceptors_per_cm3, md.JUNCTION_DEPTH_UM, temperature_K),
+            "hole_mobility_cm2_per_Vs": hole_mobility_cm2_per_Vs(plan.acceptors_per_cm3,
+                                                                 temperature_K),
             "carriers": carriers, "bias_V": bias_V, "band_Hz": [f_lo_Hz, f_hi_Hz],
             "doping_factor": c.doping_factor, "strained_share": c.strained_share,
             "sensitivity_tc_per_K": tcs, "resistor_tcr_per_K": tcr,
@@ -454,7 +474,8 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
                 f"amplifier {amplifier.name} ({amplifier.source})",
                 f"sensitivity {100 * tcs:+.3f} %/K (d ln P / dT); alike in both rows, so it "
                 "cancels in R at one temperature",
-                f"TCR {1e6 * tcr:+.0f} ppm/K (Arora et al. 1982's hole mobility, every acceptor "
+                f"TCR {1e6 * tcr:+.0f} ppm/K (Arora et al. 1982's hole mobility's slope on "
+                f"Masetti et al. 1983's 300 K value, every acceptor "
                 f"ionised), alike in the beam's resistor and its on-die reference "
                 f"({r_ref / 1e3:.4g} kohm): it cancels in the half bridge to their mismatch, "
                 f"{100 * md.REFERENCE_TCR_MISMATCH_REL:g} % (assumption), so the zero moves "
