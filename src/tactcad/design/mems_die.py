@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from tactcad.errors import DesignError
 from tactcad.vocabulary.crystal import SILICON, SILICON_P_TYPE, in_plane_direction
@@ -568,14 +569,14 @@ def weibull_force_scale(pair: WeibullPair, count: int, roots) -> float:
     return force_scale_of_risk(risk, pair.failure_probability_max, pair.modulus)
 
 
-def _rating_of(pair: tuple, k_r: float, k_m: float, force_N: float, kobj_range,
+def _rating_of(pair: BeamPair, k_r: float, k_m: float, force_N: float, kobj_range,
                strength: RatingStrength | None = None) -> _Rating:
-    """:class:`_Rating` of a fitting ``pair`` (:func:`_beam_pair`'s tuple) at ``force_N``:
+    """:class:`_Rating` of a fitting ``pair`` at ``force_N``:
     each root at its own beam's rated force (the reference's F, the measuring beam's K_m x
     its rated travel: it never carries more while its reference reads up to F); with a
     ``strength``, the Weibull scales of the rating and of every beam on its deepest stop."""
-    _, neg_t, w, _, post, l_r, l_m = pair
-    t = -neg_t
+    t, w, post = pair.thickness_um, pair.width_um, pair.post_um
+    l_r, l_m = pair.reference_length_um, pair.measuring_length_um
 
     def root_MPa(f_N: float, length: float) -> float:
         return 6 * f_N * length * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
@@ -637,8 +638,8 @@ def rating_limits(plan: DiePlan) -> list[tuple[float, str]]:
     words; :func:`_rating_limits` on the plan's beams): the largest rating the die allows is
     the least of them."""
     ref, meas = plan.beams[0], plan.beams[plan.columns]
-    pair = (0.0, -ref.thickness_um, ref.width_um, 0.0, plan.post_um, ref.length_um,
-            meas.length_um)
+    pair = BeamPair(0.0, -ref.thickness_um, ref.width_um, 0.0, plan.post_um, ref.length_um,
+                    meas.length_um)
     strength = None if plan.weibull is None else RatingStrength(plan.weibull, plan.columns)
     rating = _rating_of(pair, plan.k_r_N_per_mm, plan.k_m_N_per_mm, plan.full_scale_force_N,
                         plan.kobj_range_N_per_mm, strength)
@@ -649,13 +650,13 @@ def _within_limits(rating: _Rating, post_um: float) -> bool:
     return all(rating.force_N < limit for limit, _ in _rating_limits(rating, post_um))
 
 
-def _lighter_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating,
+def _lighter_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating,
                     kobj_range) -> float | None:
     """The rating to paste for ``pair`` when ``rating`` passes a limit: 5 % below the lowest
     limit, two digits, stepped down 5 % at a time until it designs (the depths and heights
     round up); None when none from :data:`LIGHTEST_PASTE_N` up does (a limit that does not
     fall with the rating: the shallowest cavity or the least post drawn)."""
-    post = pair[4]
+    post = pair.post_um
     force = 0.95 * min(limit for limit, _ in _rating_limits(rating, post))
     for _ in range(SCALE_STEPS):  # the limits all scale with the force: a few steps do
         if not force >= LIGHTEST_PASTE_N:
@@ -667,7 +668,7 @@ def _lighter_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating,
     return None
 
 
-def _check_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating, kobj_range) -> None:
+def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_range) -> None:
     """Refuse a rating past any of :func:`_rating_limits`: the refusal names every limit
     passed and pastes the rating below all of them (:func:`_lighter_rating`), or says that
     no lighter rating helps.
@@ -675,7 +676,7 @@ def _check_rating(pair: tuple, k_r: float, k_m: float, rating: _Rating, kobj_ran
     Raises:
         DesignError: ``--full-scale-force``, the rating past a limit.
     """
-    limits = _rating_limits(rating, pair[4])
+    limits = _rating_limits(rating, pair.post_um)
     force_N = rating.force_N
     passed = [(limit, why) for limit, why in limits if force_N >= limit]
     if not passed:
@@ -768,17 +769,34 @@ def _widths(widest: float, narrowest: float) -> list[float]:
             if widest - i * WIDTH_STEP_UM >= narrowest]
 
 
+class BeamPair(NamedTuple):
+    """A reference and a measuring beam of one width in one device layer (um), ordered as
+    the search prefers them: the lowest root stress per newton of the measuring beam first,
+    then the thicker layer (``neg_t``: -t), then the narrower beam."""
+
+    root_MPa_per_N: float
+    neg_t: float
+    width_um: float
+    slot_um: float
+    post_um: float
+    reference_length_um: float
+    measuring_length_um: float
+
+    @property
+    def thickness_um(self) -> float:
+        return -self.neg_t
+
+
 def _beam_pair(E: float, k_r: float, k_m: float, window: float, t: float, w: float,
-               slot: float) -> tuple | None:
-    """(root stress per N of the measuring beam, -t, w, slot, post, L_r, L_m) of the pair of
-    beams of width ``w`` in a ``t`` layer, or None when the two beams, the post and the slot
-    between the tips do not fit across the window or the reference beam is not slender
-    (L_r >= :data:`SLENDERNESS` w); um."""
+               slot: float) -> BeamPair | None:
+    """The :class:`BeamPair` of width ``w`` in a ``t`` layer, or None when the two beams,
+    the post and the slot between the tips do not fit across the window or the reference
+    beam is not slender (L_r >= :data:`SLENDERNESS` w); um."""
     post = min(w, POST_MAX_UM)
     l_r = length_for_stiffness_um(E, w, t, k_r)
     l_m = length_for_stiffness_um(E, w, t, k_m)
     if l_r + l_m + post + slot <= window and l_r >= SLENDERNESS * w:
-        return 6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m
+        return BeamPair(6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m)
     return None
 
 
@@ -825,7 +843,7 @@ def _force_that_designs(E: float, k_r: float, k_m: float, window: float, pitch_u
         return None
     pair = min(_fitting_beams(E, k_r, k_m, window, pitch_um))
     rating = _rating_of(pair, k_r, k_m, force_N, kobj_range, strength)
-    if _within_limits(rating, pair[4]):
+    if _within_limits(rating, pair.post_um):
         return force_N
     lighter = _lighter_rating(pair, k_r, k_m, rating, kobj_range)
     # no rating of these beams within a lab's weak pair: the beams fit, and the plan's own

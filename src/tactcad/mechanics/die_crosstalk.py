@@ -179,15 +179,19 @@ def resistor_footprints(plan) -> list[Footprint]:
     v0 = md.reference_resistor_v0_um(plan)
     out = []
     for i, b in enumerate(plan.beams):
-        def span(v_lo, v_hi):
-            ys = sorted((b.y_root_um + b.direction * v_lo, b.y_root_um + b.direction * v_hi))
-            return ys
-        y0, y1 = span(-md.RESISTOR_RUN_UM, 0.0)
+        y0, y1 = _across_root(b, -md.RESISTOR_RUN_UM, 0.0)
         out.append(Footprint(i, b.x_um - half, y0, b.x_um + half, y1, run_share))
-        y0, y1 = span(v0 - md.RESISTOR_RUN_UM, v0 + plan.reference_resistor_length_um)
+        y0, y1 = _across_root(b, v0 - md.RESISTOR_RUN_UM, v0 + plan.reference_resistor_length_um)
         xr = b.x_um + md.REFERENCE_AXIS_UM
         out.append(Footprint(i, xr - half, y0, xr + half, y1, -1.0))
     return out
+
+
+def _across_root(beam, v_lo: float, v_hi: float) -> tuple[float, float]:
+    """The die's y span (low, high; um) of beam-local v_lo ... v_hi from its root line (v > 0
+    along the beam, v < 0 into the frame)."""
+    a, b = (beam.y_root_um + beam.direction * v for v in (v_lo, v_hi))
+    return min(a, b), max(a, b)
 
 
 def _cuts(plan, footprints) -> tuple[list[float], list[float]]:
