@@ -73,13 +73,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="the die's name: its GDS cell and file names (letters, digits, _; "
                         f"default {DEFAULT_DIE_NAME})")
     p.add_argument("--fe-check", action="store_true",
-                   help="also solve each row's beam in CalculiX with silicon's anisotropic "
-                        "stiffness (C3D8I, about 1 s a beam) and give the closed form's error "
-                        "in K and in the first resonance against it")
+                   help="also solve each row's beam on its frame block in CalculiX with "
+                        "silicon's anisotropic stiffness (C3D8I, about 15 s a beam) and give "
+                        "the closed form's error in K and in the first resonance against it")
     p.add_argument("--fem3d", action="store_true",
-                   help="solve each row's beam at the die's fem3d level (scikit-fem, silicon's "
-                        "anisotropic stiffness, triquadratic hexahedra, two meshes extrapolated; "
-                        "about 30 s) and state the closed form's K and f1 error against it")
+                   help="solve each row's beam on its frame block at the die's fem3d level "
+                        "(scikit-fem, silicon's anisotropic stiffness, triquadratic hexahedra, "
+                        "two meshes extrapolated; a few minutes) and state the closed form's K "
+                        "and f1 error against it")
     p.add_argument("--out", default="die", metavar="DIR",
                    help="folder for the masks and the record (default ./die)")
     add_output_args(p, "print the plan and the checks as one JSON object")
@@ -388,13 +389,15 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
     lines.append(resistor_line(plan, readout))
     lines += mode_lines(modes or {})
     for r in fem3d or []:
-        lines.append(f"fem3d (scikit-fem, anisotropic, triquadratic hexahedra), {r['role']} beam: "
+        lines.append(f"fem3d (scikit-fem, anisotropic, triquadratic hexahedra), {r['role']} beam "
+                     f"{r['root']}: "
                      f"K {r['K_N_per_mm']:.4g} N/mm (+-{100 * r['K_error_rel']:.2g} %; closed "
                      f"form {100 * r['K_closed_form_error_rel']:+.2f} %), f1 "
                      f"{r['f1_Hz'] / 1e3:.4g} kHz (+-{100 * r['f1_error_rel']:.2g} %; closed "
                      f"form {100 * r['f1_closed_form_error_rel']:+.2f} %), {r['wall_time_s']:.1f} s")
     for c in fe or []:
-        lines.append(f"CalculiX, anisotropic C3D8I, {c.role} beam: K {c.k_fe_N_per_mm:.4g} N/mm "
+        lines.append(f"CalculiX, anisotropic C3D8I, {c.role} beam on its frame: K "
+                     f"{c.k_fe_N_per_mm:.4g} N/mm "
                      f"(closed form {100 * c.k_error_rel:+.2f} %), f1 {c.f1_fe_Hz / 1e3:.4g} kHz "
                      f"(closed form {100 * c.f1_error_rel:+.2f} %)")
     if budget is not None:
