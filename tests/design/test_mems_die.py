@@ -1065,3 +1065,37 @@ def test_a_rating_too_light_to_resolve_k_obj_is_refused_with_one_that_does():
     light = dataclasses.replace(md.die_plan(Targets(10.0, (0.5, 5.0), 0.02), room),
                                 full_scale_force_N=1e-9)
     assert not np.isfinite(die_budget(light).terms["read-out noise"]).all()
+
+
+def test_the_fe_check_without_calculix_is_refused_in_one_line_and_writes_nothing(tmp_path):
+    """A lab PC without CalculiX: ``--fe-check`` is refused by name, before any file."""
+    import os
+    import subprocess
+    import sys
+
+    design = str(Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+                 / "grasper_jaw_5mm_mems.toml")
+    bare = tmp_path / "bin"  # a PATH with no ccx on it
+    bare.mkdir()
+    r = subprocess.run([sys.executable, "-m", "tactcad", "die", "--design", design,
+                        "--out", str(tmp_path / "die"), "--fe-check", "--json"],
+                       capture_output=True, text=True, env={**os.environ, "PATH": str(bare)})
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "--fe-check" and "ccx" in error["message"], error
+    assert not (tmp_path / "die").exists()
+
+
+def test_a_long_attach_material_stays_in_the_bom_and_off_the_drawing(die):
+    from dataclasses import replace
+
+    from tactcad.design import die_mount as dm
+    from tactcad.drawings.die_sheet import die_sheet
+    from tactcad.export.die_scene import mount_bom_rows
+
+    name = "a lab's silicone die-attach adhesive from its usual vendor, grade 2025D " * 3
+    long = replace(die, attach=replace(die.attach, material=name))
+    mount = dm.die_mount(long, {"shaft_class_mm": "5"})
+    assert name not in die_sheet(long, mount).svg()
+    row = next(r for r in mount_bom_rows(long, mount, "5 mm jaw") if r["item"] == "die_attach")
+    assert name in row["description"]

@@ -285,6 +285,9 @@ def run(args: argparse.Namespace) -> int:
     planned = plan_of(die_asked(args))
     plan, room, name = planned.plan, planned.room, planned.plan.name
     mount = die_mount(plan, planned.jaw_stated)
+    if getattr(args, "fe_check", False) and shutil.which("ccx") is None:  # before any file
+        raise DesignError("--fe-check", True, "CalculiX's ccx on the PATH",
+                          "the check solves each beam in CalculiX (apt-get install calculix-ccx)")
     out = Path(args.out)
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
     refuse_a_foreign_folder(out, files["record"])

@@ -115,7 +115,7 @@ def _notes(sh: Sheet, plan: DiePlan, m: DieMount, x: float, y: float) -> None:
         f"   +-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %: their floors are the hard stops; the "
         "beams free over them.",
         f"4. Carrier: alumina {m.carrier_mm:g} mm; die attach {m.attach_mm:g} mm "
-        f"{plan.attach.material}.",
+        "(its material: the BOM).",
         f"5. In the jaw: the device layer flush with the face, the posts "
         f"{m.post_proud_mm * 1000:.4g} um proud.",
         "6. Dimensions in mm.",
