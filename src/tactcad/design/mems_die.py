@@ -419,7 +419,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     strength = None if weibull is None else RatingStrength(weibull, columns)
     if not fitting:
         raise _no_fit(targets, room, window, pitch_um, E, strength)
-    per_N, neg_t, w, slot, post, l_r, l_m = min(fitting)
+    pair = min(fitting)
+    per_N, neg_t, w, slot, post, l_r, l_m = pair
     t = -neg_t
     stack = SoiStack(t, box_um, handle_um, DEVICE_TOLERANCE_UM)
     beams = []
@@ -432,12 +433,12 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     resistor = RESISTOR_FRACTION * l_r
     tol = DEVICE_TOLERANCE_UM / t
     align = CAVITY_ALIGNMENT_UM
-    rating = _rating_of(min(fitting), k_r, k_m, targets.full_scale_force_N,
+    rating = _rating_of(pair, k_r, k_m, targets.full_scale_force_N,
                         targets.k_obj_range_N_per_mm, strength)
     rated, root_MPa, depths, deepest = (rating.rated_um, rating.root_MPa, rating.depths_um,
                                         rating.deepest_um)
     post_height = post_height_um(deepest)
-    _check_rating(min(fitting), k_r, k_m, rating, targets.k_obj_range_N_per_mm)
+    _check_rating(pair, k_r, k_m, rating, targets.k_obj_range_N_per_mm)
     reasons = {
         "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
                      f"and the slot between the tips fit across the {window:g} um window, "

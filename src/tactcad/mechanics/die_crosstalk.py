@@ -250,10 +250,10 @@ def strains_on_springs(mesh, c: np.ndarray, springs_N_per_mm3: tuple[float, floa
         (strains (windows, loads, 3, 3), degrees of freedom): each window's mean strain.
     """
     import scipy.sparse as sp
-    from scipy.sparse.linalg import splu
     from skfem import Basis, BilinearForm, ElementHex2, FacetBasis, LinearForm
 
     from tactcad.mechanics.die_fem3d import assemble_anisotropic
+    from tactcad.mechanics.fem.sparse_lu import spd_lu
 
     element = ElementHex2()
     scalar = Basis(mesh, element)
@@ -266,9 +266,7 @@ def strains_on_springs(mesh, c: np.ndarray, springs_N_per_mm3: tuple[float, floa
         return u * v
 
     bed = sp.kron(area.assemble(bottom), sp.diags([k_t, k_t, k_n]))
-    k = (assemble_anisotropic(scalar, c) + bed).tocsc()
-    lu = splu(k, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-              options={"SymmetricMode": True})
+    lu = spd_lu(assemble_anisotropic(scalar, c) + bed)
     rhs = np.zeros((3 * scalar.N, len(loads)))
     for j, (facets, traction) in enumerate(loads):
         fb = FacetBasis(mesh, element, facets=facets)

@@ -218,10 +218,7 @@ def _brick(length: float, width: float, thick: float, div: tuple[int, int, int],
     beam from the root (x = 0), a plane of nodes at ``load_x`` (the post's centre, where
     the force acts), y across its width (centred), z through its thickness."""
     nx, ny, nz = div
-    n1 = max(1, min(nx - 1, round(nx * load_x / length)))
-    xs = np.concatenate([np.linspace(0, load_x, n1 + 1),
-                         np.linspace(load_x, length, nx - n1 + 1)[1:]])
-    ys, zs = np.linspace(-width / 2, width / 2, ny + 1), np.linspace(0, thick, nz + 1)
+    xs, ys, zs = _brick_planes(length, width, thick, div, load_x)
     idx = lambda i, j, k: 1 + i + (nx + 1) * (j + (ny + 1) * k)  # noqa: E731
     nodes = np.array([(x, y, z) for z in zs for y in ys for x in xs])
     elems = [(idx(i, j, k), idx(i + 1, j, k), idx(i + 1, j + 1, k), idx(i, j + 1, k),
@@ -229,6 +226,17 @@ def _brick(length: float, width: float, thick: float, div: tuple[int, int, int],
               idx(i, j + 1, k + 1))
              for k in range(nz) for j in range(ny) for i in range(nx)]
     return nodes, np.array(elems)
+
+
+def _brick_planes(length: float, width: float, thick: float, div: tuple[int, int, int],
+                  load_x: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The node planes of :func:`_brick` (mm): x evenly on each side of ``load_x``, y and
+    z evenly."""
+    nx, ny, nz = div
+    n1 = max(1, min(nx - 1, round(nx * load_x / length)))
+    xs = np.concatenate([np.linspace(0, load_x, n1 + 1),
+                         np.linspace(load_x, length, nx - n1 + 1)[1:]])
+    return xs, np.linspace(-width / 2, width / 2, ny + 1), np.linspace(0, thick, nz + 1)
 
 
 def _structured(xs: np.ndarray, ys: np.ndarray, zs: np.ndarray, solid) -> tuple:
@@ -335,14 +343,14 @@ def calculix_beam_check(plan, beam, divisions: tuple[int, int, int] = FE_DIVISIO
     length = (beam.length_um + plan.post_um / 2) * 1e-3  # the beam runs to the post's end
     width, thick = beam.width_um * 1e-3, beam.thickness_um * 1e-3
     at = beam.length_um * 1e-3  # the post's centre, where the force acts
-    nodes, elems = _brick(length, width, thick, divisions, at)
     held, on_beam = None, None
     if frame:
-        n1 = np.unique(nodes[:, 0])
-        block = beam_on_frame(plan, beam, n1, np.unique(nodes[:, 1]), np.unique(nodes[:, 2]))
+        block = beam_on_frame(plan, beam, *_brick_planes(length, width, thick, divisions, at))
         nodes, elems = _structured(block.xs, block.ys, block.zs, block.solid)
         held = np.flatnonzero(np.isclose(nodes[:, 2], -block.handle_mm))
         on_beam = (nodes[:, 2] > -1e-12) & (np.abs(nodes[:, 1]) <= width / 2 + 1e-12)
+    else:
+        nodes, elems = _brick(length, width, thick, divisions, at)
     # <110> along the beam, <-110> across it, [001] through the thickness
     c = SILICON.in_frame((1.0, 1.0, 0.0), (-1.0, 1.0, 0.0))
     rho = SILICON_DENSITY_KG_M3 * 1e-12  # kg/m^3 -> tonne/mm^3

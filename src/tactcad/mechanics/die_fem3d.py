@@ -152,16 +152,6 @@ def _mesh(plan, beam, divisions: tuple[int, int, int], frame: bool):
     return mesh, lambda x: np.isclose(x[2], -block.handle_mm)
 
 
-def _factorised(a):
-    """SuperLU of a symmetric positive definite ``a`` under a minimum-degree ordering of its
-    symmetric pattern (COLAMD, scipy's default, fills a 3D mesh's factor several times
-    more)."""
-    from scipy.sparse.linalg import splu
-
-    return splu(a.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                options={"SymmetricMode": True})
-
-
 def _solve(plan, beam, divisions: tuple[int, int, int],
            frame: bool = True) -> tuple[float, float, int]:
     """(K N/mm, f1 Hz, dofs) of ``beam`` on one mesh, on its frame or clamped at its root."""
@@ -171,6 +161,7 @@ def _solve(plan, beam, divisions: tuple[int, int, int],
     from skfem.helpers import dot
 
     from tactcad.mechanics.die_dynamics import POST_DENSITY_KG_M3, SILICON_DENSITY_KG_M3
+    from tactcad.mechanics.fem.sparse_lu import spd_lu
     from tactcad.vocabulary.crystal import SILICON
 
     at = beam.length_um * 1e-3  # the post's centre: the force
@@ -193,7 +184,7 @@ def _solve(plan, beam, divisions: tuple[int, int, int],
 
     f = shear.assemble(section)
     kk, ff, _, free = condense(k, f, D=clamped)
-    lu = _factorised(kk)
+    lu = spd_lu(kk)
     u = np.zeros(basis.N)
     u[free] = lu.solve(ff)
     k_N_per_mm = 1.0 / float(f @ u)

@@ -447,11 +447,9 @@ def _two_level_preconditioner(A, P, smooth_degree: int = 3):
     per cycle at degree 3 where forming each residual anew takes eight. The
     cycle takes one residual (n,) or a block (n, m) (an eigensolver's).
     """
-    from scipy.sparse.linalg import splu
+    from tactcad.mechanics.fem.sparse_lu import spd_lu
 
-    Ac = (P.T @ A @ P).tocsc()
-    lu = splu(Ac, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-              options={"SymmetricMode": True})
+    lu = spd_lu(P.T @ A @ P)
     smooth = chebyshev_smoother(A, smooth_degree)
 
     def apply(r):
@@ -598,10 +596,9 @@ def _solve_elasticity(mesh, lam, mu, *, thickness, x_clamp, contact, traction_MP
     Ac, fc = free_block(A, I), f[I]
     iters = 0
     if solver == "direct":
-        from scipy.sparse.linalg import splu
+        from tactcad.mechanics.fem.sparse_lu import spd_lu
 
-        lu = splu(Ac.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                  options={"SymmetricMode": True})
+        lu = spd_lu(Ac)
         u[I] = lu.solve(fc)
     else:
         Acsr = Ac.tocsr()
