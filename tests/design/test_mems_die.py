@@ -36,7 +36,12 @@ def test_the_die_meets_the_targets_and_fits_the_5mm_jaws_pocket(die):
     assert die.targets == pytest.approx((10 * k_m, k_m), rel=1e-12)
     for beam, k in ((die.beams[0], 10 * k_m), (die.beams[die.columns], k_m)):
         w, t, L = (beam.width_um * 1e-3, beam.thickness_um * 1e-3, beam.length_um * 1e-3)
-        assert E_110_MPA * w * t ** 3 / (4 * L ** 3) == pytest.approx(k, rel=0.002)
+        # bending over L + dL (the frame's give at the root), Timoshenko's shear over L
+        dl = md.root_extension_um(beam.width_um, beam.thickness_um) * 1e-3
+        compliance = 4 * (L + dl) ** 3 / (E_110_MPA * w * t ** 3) + L / (5 / 6 * 79.6e3 * w * t)
+        assert 1 / compliance == pytest.approx(k, rel=0.002)
+        assert 0.3 * t < dl < 0.7 * t
+        assert E_110_MPA * w * t ** 3 / (4 * L ** 3) > 1.03 * k  # clamped, it would be stiffer
         assert beam.length_um >= md.SLENDERNESS * beam.width_um
     assert die.die_width_um == pytest.approx(room.across_mm * 1e3)
     assert die.die_length_um <= room.along_mm * 1e3
@@ -46,11 +51,44 @@ def test_the_die_meets_the_targets_and_fits_the_5mm_jaws_pocket(die):
     # the two tips of a unit at one distance from the pivot; the slot between them open
     assert [b.x_um for b in die.beams[:die.columns]] == [b.x_um for b in die.beams[die.columns:]]
     gap = (meas.tip_y_um - die.post_um / 2) - (ref.tip_y_um + die.post_um / 2)
-    assert gap >= die.stack.device_um / 20 - 1e-9
+    assert gap >= max(die.stack.device_um / 20, die.post_um) - 1e-9  # the tissue's room
     assert die.stack.device_um in md.DEVICE_LAYER_CHOICES_UM
     assert set(die.reasons) >= {"device_um", "beam_width_um", "reference_length_um",
                                 "measuring_length_um", "alignment", "strength"}
     assert die.reasons["strength"].startswith("undecided")
+
+
+def test_the_roots_extension_grows_with_the_width_and_scales_with_the_layer():
+    """dL / t rises from a square beam to a wide one (a wider beam loads a wider stretch of
+    the frame), is held beyond the fitted widths and scales with t at one w / t."""
+    ratios = [0.5, 1.0, 1.5, 2.0, 3.0, 5.0, 8.0, 12.0, 30.0]
+    c = [md.root_extension_um(r * 40.0, 40.0) / 40.0 for r in ratios]
+    assert all(a <= b for a, b in zip(c, c[1:])) and c[1] < c[-2]
+    assert c[0] == c[1] and c[-1] == c[-2]  # held at the table's ends
+    assert md.root_extension_um(69.0, 20.0) == pytest.approx(md.root_extension_um(138.0, 40.0) / 2)
+    for bad in ((0.0, 40.0), (138.0, -1.0), (math.nan, 40.0), (138.0, math.inf)):
+        with pytest.raises(ValueError, match="width"):
+            md.root_extension_um(*bad)
+
+
+@settings(max_examples=300, deadline=None)
+@given(t=st.sampled_from(md.DEVICE_LAYER_CHOICES_UM), w_over_t=st.floats(1.0, 15.0),
+       l_over_t=st.floats(3.0, 80.0))
+def test_the_length_for_a_stiffness_inverts_the_beams_stiffness(t, w_over_t, l_over_t):
+    w, length = w_over_t * t, l_over_t * t
+    k = md.beam_stiffness_N_per_mm(E_110_MPA, w, t, length)
+    assert md.length_for_stiffness_um(E_110_MPA, w, t, k) == pytest.approx(length, rel=1e-9)
+    # on its frame the beam is softer than clamped, and the more so the shorter it is
+    clamped = md.clamped_beam_stiffness_N_per_mm(E_110_MPA, w, t, length)
+    longer = md.beam_stiffness_N_per_mm(E_110_MPA, w, t, 2 * length)
+    assert k < clamped and longer / md.clamped_beam_stiffness_N_per_mm(
+        E_110_MPA, w, t, 2 * length) > k / clamped
+
+
+def test_a_stiffness_no_beam_of_the_section_reaches_gives_no_length():
+    assert md.length_for_stiffness_um(E_110_MPA, 40.0, 40.0, 1e6) < 0
+    with pytest.raises(ValueError, match="K"):
+        md.length_for_stiffness_um(E_110_MPA, 40.0, 40.0, 0.0)
 
 
 def test_the_layer_and_width_give_the_lowest_stress_of_every_fitting_pair(die):
@@ -63,8 +101,8 @@ def test_the_layer_and_width_give_the_lowest_stress_of_every_fitting_pair(die):
         for w in np.arange(md._resistor_width_um(), die.pitch_um, 1.0):
             l_r = md.length_for_stiffness_um(E, w, t, die.targets[0])
             l_m = md.length_for_stiffness_um(E, w, t, die.targets[1])
-            slot = max(t / 20, 2.0)
-            if (l_r + l_m + min(w, md.POST_MAX_UM) + slot <= window
+            slot, post = max(t / 20, 2.0), min(w, md.POST_MAX_UM)
+            if (l_r + l_m + post + max(slot, post) <= window
                     and l_r >= md.SLENDERNESS * w and w <= die.pitch_um - slot):
                 stress = 6 * die.full_scale_force_N * l_m * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
                 assert stress >= chosen * (1 - 0.02)  # the search's 5 um width grid

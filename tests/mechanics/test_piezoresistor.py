@@ -112,10 +112,10 @@ def test_harleys_stiffness_carriers_and_hooge_noise_by_the_same_equations():
     """k = E w t^3 / (4 l^3) at PiezoD's 169 GPa; N z = N x_j; the Hooge noise of PiezoD's
     integrated_noise, alpha V^2 / (4 N) ln(f2 / f1) for one strained arm, equals ours at V / 2
     across the resistor, its carriers over the U's area w_pr (2 l_pr + w + gap)."""
-    from tactcad.design.mems_die import beam_stiffness_N_per_mm
+    from tactcad.design.mems_die import clamped_beam_stiffness_N_per_mm
 
     h, e = HARLEY, PIEZOD_EXPECTS
-    k = beam_stiffness_N_per_mm(169e3, h["w_um"], h["t_um"], h["l_um"]) * 1e3  # N/m
+    k = clamped_beam_stiffness_N_per_mm(169e3, h["w_um"], h["t_um"], h["l_um"]) * 1e3  # N/m
     assert k == pytest.approx(e["k_N_per_m"], rel=0.01)
     nz = 4e19 * 30e-7 * 1e4  # cm^-3 x cm -> m^-2
     assert nz == pytest.approx(e["Nz_per_m2"], rel=1e-9)
@@ -135,6 +135,17 @@ def test_the_sensitivitys_temperature_coefficient_is_richters_slope():
 
     assert tcs(1e14) == pytest.approx(-0.9 / 300, rel=1e-3)
     assert tcs(1e14) < tcs(1e19) < tcs(1e20) < 0
+
+
+@pytest.mark.parametrize("temperature_K", [250.0, 500.0])
+def test_the_tcr_holds_to_the_ends_of_the_mobilitys_range(temperature_K):
+    """At the ends of Arora's 250-500 K the TCR takes a one-sided difference (a centred one
+    would ask the fit half a kelvin outside it); it lies beside the TCR a kelvin inside."""
+    from tactcad.mechanics.piezoresistor import resistor_tcr_per_K
+
+    inside = temperature_K + (1.0 if temperature_K < 300 else -1.0)
+    at_end = resistor_tcr_per_K(1e19, temperature_K)
+    assert at_end > 0 and at_end == pytest.approx(resistor_tcr_per_K(1e19, inside), rel=0.02)
 
 
 def test_the_dies_readout_states_its_sensitivitys_drift_and_self_heating():

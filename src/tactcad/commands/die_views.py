@@ -15,7 +15,7 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
-from typing import Callable
+from typing import Any, Callable
 
 from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError
@@ -145,20 +145,23 @@ def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
                           f"so a die of {most} columns gives the same worst pair",
                           alternatives=[{"option": f"--set die.columns={most}",
                                          "words": "the same die, fewer columns"}])
-    result = _crosstalk_kept(plan, dofs, progress_from_args(args))
+    result, reused = _crosstalk_kept(plan, dofs, progress_from_args(args))
     resolution = {role: r["force_resolution_N"] for role, r in die_readout(plan)["rows"].items()}
     in_force = crosstalk_in_force(plan, result, resolution)
     report = {"design": str(design), "die": plan.name, **result.as_json(),
-              "in_force": in_force}
-    return report, crosstalk_lines(plan, result, in_force)
+              "reused": reused, "in_force": in_force}
+    return report, crosstalk_lines(plan, result, in_force, reused)
 
 
-def _crosstalk_kept(plan, dofs: int, report: Callable[[str], None]):
+def _crosstalk_kept(plan, dofs: int, report: Callable[[str], None]) -> tuple[Any, bool]:
     """The die's crosstalk, kept in the result store for the same plan and mesh (``--cache``,
     ``--no-cache``): the second run of the same die solves nothing. ``report`` hears what
-    is solved or reused."""
+    is solved or reused. Returns (the result, whether it was reused: its cost is then the
+    solve's that kept it)."""
     from tactcad.mechanics.die_crosstalk import MESH, die_crosstalk
     from tactcad.store import kept_result
+
+    reused = []
 
     def solve():
         report(f"crosstalk of die {plan.name}: 3D FE of the die on its attach, about {dofs} "
@@ -166,17 +169,23 @@ def _crosstalk_kept(plan, dofs: int, report: Callable[[str], None]):
                "minute on two cores)")
         return die_crosstalk(plan)
 
-    return kept_result("die crosstalk", solve, plan, MESH,
-                       reused=lambda: report(f"crosstalk of die {plan.name}: reused from the "
-                                             "result store (the same die and mesh)"))
+    def on_reuse() -> None:
+        reused.append(True)
+        report(f"crosstalk of die {plan.name}: reused from the result store (the same die "
+               "and mesh)")
+
+    return kept_result("die crosstalk", solve, plan, MESH, reused=on_reuse), bool(reused)
 
 
-def crosstalk_lines(plan, r, in_force: dict) -> list[str]:
+def crosstalk_lines(plan, r, in_force: dict, reused: bool = False) -> list[str]:
     """The die's crosstalk as text: the figures, the worst in newtons, each unit's reading
-    under every post's force over its own (ppm)."""
+    under every post's force over its own (ppm); ``reused``: from the result store (the
+    cost is then the solve's that kept it)."""
     q = in_force
     error = 100 * r.error_estimate_rel
-    lines = [f"crosstalk of die {plan.name} ({r.model}, {r.seconds:.3g} s, {r.dofs} dofs): "
+    cost = (f"solved in {r.seconds:.3g} s by an earlier run, reused" if reused
+            else f"{r.seconds:.3g} s")
+    lines = [f"crosstalk of die {plan.name} ({r.model}, {cost}, {r.dofs} dofs): "
              f"crosstalk_rel {r.crosstalk_rel:.3g} (beam {r.worst[0]}'s half bridge under a "
              f"force on post {r.worst[1]}), error estimate "
              + (f"{error:.0f} %" if error >= 10 else f"{error:.2g} %"),

@@ -15,8 +15,9 @@ The die (um; x along the jaw, y across it, the die's lower-left corner at the or
   rows at one x: a unit's two tips at one distance from the pivot;
 * each beam of width w and the device layer's thickness t, bent out of the wafer's plane
   by the tissue's force on a post at its free end (L from the root to the post's centre);
-  K = E w t^3 / (4 L^3) (Euler-Bernoulli, clamped at the root), E the modulus along the
-  beam, <110> on a (100) wafer (:mod:`tactcad.vocabulary.crystal`);
+  K = E w t^3 / (4 (L + dL)^3) (Euler-Bernoulli, E the modulus along the beam, <110> on a
+  (100) wafer, :mod:`tactcad.vocabulary.crystal`), dL the frame's give at the root as
+  extra length (:func:`root_extension_um`, fitted to the fem3d level on the frame);
 * a U-shaped p-type piezoresistor along each beam from its root (two legs joined at the
   far end), contacted on the frame, and beside it on the frame a reference resistor of the
   same implant, unstrained: the two in series are the beam's half bridge, on three bond pads
@@ -27,7 +28,7 @@ The die (um; x along the jaw, y across it, the die's lower-left corner at the or
 
 Sizing (:func:`die_plan`): the stiffness targets (:class:`tactcad.studies.inverse_design.
 Targets`: K_m = sqrt(K_lo K_hi / X), K_r = X K_m) and the pitch along the die give, for each
-stock device-layer thickness and beam width, L = (E w t^3 / (4 K))^(1/3); of the pairs whose
+stock device-layer thickness and beam width, L = (E w t^3 / (4 K))^(1/3) - dL; of the pairs whose
 two beams, their posts and the slot between the tips fit across the window, each beam at
 least :data:`SLENDERNESS` times as long as it is wide, the die takes the one with the lowest
 root stress at the rating, 6 F L_m / (w t^2) (the thicker layer on a tie: its +-tolerance
@@ -40,6 +41,7 @@ Units: um for the layout, mm and N/mm for the mechanics' interfaces as named.
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass, field
 from typing import NamedTuple
@@ -55,6 +57,27 @@ from tactcad.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM, CAVITY_DEPTH_SO
 
 #: Least beam length over width: Euler-Bernoulli's slender-beam form holds within a few %.
 SLENDERNESS = 3.0
+#: The frame's give at a beam's root as extra beam length, over the device layer's thickness
+#: t, at beam widths w / t: (w / t, dL / t). A die's beam is not clamped: its root runs into
+#: the device layer bonded on the handle, the cavity under the beam, and the frame turns and
+#: gives under the root's moment and shear. Each value is the bending length (with
+#: Timoshenko's shear over L beside it, :func:`beam_stiffness_N_per_mm`) that has the
+#: stiffness of tactcad's fem3d level on the frame
+#: (:func:`tactcad.mechanics.die_fem3d.die_beam_fem3d`, silicon's tensor, <110>, 1 um of
+#: buried oxide, extrapolated to within about 1 % in K), less the beam's length, for a
+#: 40 um layer at L / t = 10.5. A wider beam loads a wider stretch of the frame: dL grows
+#: towards the plane-strain value. (An independent isotropic model, CalculiX C3D20 graded
+#: at the corner, found 0.56 t on the example's section at two lengths.)
+ROOT_EXTENSION_OVER_T = ((1.0, 0.415), (2.0, 0.498), (3.45, 0.542), (6.0, 0.565),
+                         (12.0, 0.584))
+ROOT_EXTENSION_SOURCE = ("fitted to the die's fem3d level on its frame at w / t 1-12, "
+                         "L / t 10.5")
+#: Timoshenko's shear coefficient of a rectangular section (5/6).
+SHEAR_COEFFICIENT = 5.0 / 6.0
+#: The closed form's K against the fem3d level on the frame over the design's widths and
+#: lengths (relative, either way): off the fitted points (w / t 1.4-6, L / t 4.5-30) it lies
+#: within 0.6 % of fem3d, whose own extrapolation moves K by up to about 1 %.
+CLOSED_FORM_K_ERROR_REL = 0.02
 #: The frame along each long side (um): the contacts, the leads and the bond pads.
 FRAME_UM = 300.0
 #: Solid silicon at each end of the die beyond the outer columns' half pitch (um).
@@ -78,6 +101,12 @@ REFERENCE_TCR_MISMATCH_REL = 0.01
 #: The post on each beam's free end: its side (at most the beam's width) and least height
 #: (um).
 POST_MAX_UM, POST_HEIGHT_UM = 100.0, 50.0
+#: The least clear gap between a unit's two posts across the window, in post widths. The
+#: tissue between them couples the posts (eq. 3 reads K_obj off by their mutual compliance,
+#: which the coupled inversion removes to its model's own error), and the coupling grows
+#: steeply as they close: on the example die 5 um apart eq. 3 read K_obj 91 % off and the
+#: inversion left 4.6 %; a post width apart, 17 % and 0.9 % (the budget's tissue terms).
+TIP_GAP_OVER_POST = 1.0
 #: A post stands at least this much taller than its beam's deepest stop travel (um): the
 #: tissue sinks round a post, and the face must not meet it before the stop takes the
 #: overload (assumption); heights are drawn to :data:`POST_STEP_UM`.
@@ -308,6 +337,11 @@ class DiePlan:
             return self.full_scale_force_N
         return self.k_m_N_per_mm * self.rated_tip_um(beam) * 1e-3
 
+    def bending_length_um(self, beam: Beam) -> float:
+        """``beam``'s length from the root to its force with the frame's give at the root
+        (L + dL, um; :func:`root_extension_um`): K ~ 1 / (L + dL)^3."""
+        return beam.length_um + root_extension_um(beam.width_um, beam.thickness_um)
+
     def stress_MPa_at_rating(self, beam: Beam) -> float:
         """The root's surface bending stress at the rated force (MPa): 6 F L / (w t^2)."""
         return (6 * self.full_scale_force_N * beam.length_um * 1e-3
@@ -351,18 +385,97 @@ def reference_resistor_v0_um(plan: DiePlan) -> float:
     return min(near, under_pads)
 
 
-def beam_stiffness_N_per_mm(youngs_modulus_MPa: float, width_um, thickness_um, length_um):
-    """K = E w t^3 / (4 L^3) of a cantilever tip-loaded out of plane (N/mm; um in)."""
+def root_extension_um(width_um: float, thickness_um: float) -> float:
+    """The frame's give at a beam's root as extra beam length behind it (um): dL = c t, c
+    interpolated in log(w / t) over :data:`ROOT_EXTENSION_OVER_T` (held at its ends outside
+    the fitted widths).
+
+    Args:
+        width_um, thickness_um: the beam's width w and the device layer's thickness t (um),
+            each > 0.
+
+    Returns:
+        dL (um).
+
+    Raises:
+        ValueError: a width or thickness not finite and above 0.
+    """
+    if not (math.isfinite(width_um) and math.isfinite(thickness_um)
+            and width_um > 0 and thickness_um > 0):
+        raise ValueError(f"width {width_um!r} um, thickness {thickness_um!r} um: each finite "
+                         "and above 0")
+    logs = [math.log(ratio) for ratio, _ in ROOT_EXTENSION_OVER_T]
+    cs = [c for _, c in ROOT_EXTENSION_OVER_T]
+    at = min(max(math.log(width_um / thickness_um), logs[0]), logs[-1])
+    i = min(max(bisect.bisect_right(logs, at), 1), len(logs) - 1)
+    share = (at - logs[i - 1]) / (logs[i] - logs[i - 1])
+    return (cs[i - 1] + share * (cs[i] - cs[i - 1])) * thickness_um
+
+
+def clamped_beam_stiffness_N_per_mm(youngs_modulus_MPa: float, width_um, thickness_um,
+                                    length_um):
+    """K = E w t^3 / (4 L^3) of a cantilever clamped at its root and tip-loaded out of plane
+    (N/mm; MPa and um in; Euler-Bernoulli, the textbook's clamped root)."""
     return youngs_modulus_MPa * (width_um * 1e-3) * (thickness_um * 1e-3) ** 3 / (
         4 * (length_um * 1e-3) ** 3)
 
 
+def _shear_compliance_mm_per_N(width_um: float, thickness_um: float, length_um: float) -> float:
+    """A cantilever's shear deflection per newton at its force, L / (kappa G A) (mm/N):
+    Timoshenko, kappa = 5/6 for a rectangle, G = C44 (the shear modulus in any plane holding
+    the (100) wafer's normal, whatever the beam's direction in the wafer)."""
+    return (length_um * 1e-3) / (SHEAR_COEFFICIENT * SILICON.c44 * width_um * thickness_um
+                                 * 1e-6)
+
+
+def beam_stiffness_N_per_mm(youngs_modulus_MPa: float, width_um: float, thickness_um: float,
+                            length_um: float) -> float:
+    """K (N/mm) of a die's beam as made, its root run into the frame: bending over L + dL,
+    dL the frame's give at the root (:func:`root_extension_um`), and Timoshenko's shear over
+    L, 1 / K = (L + dL)^3 / (3 E I) + L / (kappa G A) (Timoshenko and Gere, *Mechanics of
+    Materials*; I = w t^3 / 12, G = C44); within :data:`CLOSED_FORM_K_ERROR_REL` of the fem3d
+    level on the frame over the design's beams.
+
+    Args:
+        youngs_modulus_MPa: E along the beam (MPa). width_um, thickness_um: w and t (um).
+        length_um: L, the root to the force (um), > 0.
+
+    Raises:
+        ValueError: a width or thickness not finite and above 0.
+    """
+    bending = 1.0 / clamped_beam_stiffness_N_per_mm(
+        youngs_modulus_MPa, width_um, thickness_um,
+        length_um + root_extension_um(width_um, thickness_um))
+    return 1.0 / (bending + _shear_compliance_mm_per_N(width_um, thickness_um, length_um))
+
+
 def length_for_stiffness_um(youngs_modulus_MPa: float, width_um: float, thickness_um: float,
                             k_N_per_mm: float) -> float:
-    """L (um) at which a beam of width w, thickness t (um) has K (N/mm): the inverse of
-    :func:`beam_stiffness_N_per_mm`."""
-    return 1e3 * (youngs_modulus_MPa * width_um * 1e-3 * (thickness_um * 1e-3) ** 3
-                  / (4 * k_N_per_mm)) ** (1 / 3)
+    """L (um) at which a beam of width w, thickness t (um) on its frame has K (N/mm): the
+    inverse of :func:`beam_stiffness_N_per_mm` (Newton's method from the length without
+    shear, which lies above the root: the compliance is convex in L). At or below 0 when no
+    beam of that section is so stiff.
+
+    Raises:
+        ValueError: a width or thickness not finite and above 0, or K not above 0.
+    """
+    if not (math.isfinite(k_N_per_mm) and k_N_per_mm > 0):
+        raise ValueError(f"K {k_N_per_mm!r} N/mm: finite and above 0")
+    dl = root_extension_um(width_um, thickness_um)
+    three_ei = clamped_beam_stiffness_N_per_mm(youngs_modulus_MPa, width_um, thickness_um,
+                                               1e3)  # K at 1 mm: 3 E I (N mm^2)
+    shear = _shear_compliance_mm_per_N(width_um, thickness_um, 1e3)  # per mm of length
+    length = 1e3 * (three_ei / k_N_per_mm) ** (1 / 3) - dl
+    if length <= 0:
+        return length
+    for _ in range(50):
+        lm = (length + dl) * 1e-3
+        excess = lm ** 3 / three_ei + shear * length * 1e-3 - 1.0 / k_N_per_mm
+        step = 1e3 * excess / (3 * lm ** 2 / three_ei + shear)
+        length -= step
+        if abs(step) < 1e-9 * length or length <= 0:
+            break
+    return length
 
 
 def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
@@ -433,6 +546,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     resistor = RESISTOR_FRACTION * l_r
     tol = DEVICE_TOLERANCE_UM / t
     align = CAVITY_ALIGNMENT_UM
+    dl = root_extension_um(w, t)
     rating = _rating_of(pair, k_r, k_m, targets.full_scale_force_N,
                         targets.k_obj_range_N_per_mm, strength)
     rated, root_MPa, depths, deepest = (rating.rated_um, rating.root_MPa, rating.depths_um,
@@ -441,7 +555,9 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     _check_rating(pair, k_r, k_m, rating, targets.k_obj_range_N_per_mm)
     reasons = {
         "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
-                     f"and the slot between the tips fit across the {window:g} um window, "
+                     f"and the gap between a unit's posts (at least a post's width: the "
+                     f"tissue between them couples them) fit across the {window:g} um "
+                     "window, "
                      f"the pair with the lowest root stress at the rating (the thicker "
                      f"layer on a tie); its +-{DEVICE_TOLERANCE_UM:g} um "
                      f"({DEVICE_TOLERANCE_SOURCE}) moves every K by +-{300 * tol:.2g} % "
@@ -451,15 +567,19 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                          f"{pitch_um:g} um pitch, at most 1/{SLENDERNESS:g} of the reference "
                          "beam's length (slender: Euler-Bernoulli), wide enough for the "
                          "resistor's two legs and at least as wide as the layer is thick",
-        "reference_length_um": f"K_r = {k_r:.4g} N/mm = E w t^3 / (4 L^3), E = {E / 1e3:.4g} "
-                               f"GPa along the beam ({angle_from_110_deg:g} deg from <110> on "
-                               f"(100), {SILICON.source.split(',')[0]})",
-        "measuring_length_um": f"K_m = {k_m:.4g} N/mm the same way; K_r / K_m = "
-                               f"{targets.kr_over_km:g} gives L_m / L_r = "
-                               f"{targets.kr_over_km ** (1 / 3):.4g}",
+        "reference_length_um": f"K_r = {k_r:.4g} N/mm, 1 / K = (L + dL)^3 / (3 E I) + "
+                               f"L / (5/6 G w t) (bending and Timoshenko's shear), E = "
+                               f"{E / 1e3:.4g} GPa along the beam ({angle_from_110_deg:g} deg "
+                               f"from <110> on (100), {SILICON.source.split(',')[0]}), G = "
+                               f"C44 = {SILICON.c44 / 1e3:.4g} GPa, dL = "
+                               f"{root_extension_um(w, t):.3g} um the frame's give at the root "
+                               f"({ROOT_EXTENSION_SOURCE}; K within "
+                               f"+-{100 * CLOSED_FORM_K_ERROR_REL:g} % of it)",
+        "measuring_length_um": f"K_m = {k_m:.4g} N/mm the same way (K_r / K_m = "
+                               f"{targets.kr_over_km:g})",
         "alignment": f"the front masks' +-{align:g} um alignment to the buried cavities "
                      f"moves both rows' roots one way: K_r / K_m by "
-                     f"+-{300 * align * (1 / l_r + 1 / l_m):.2g} %",
+                     f"+-{300 * align * (1 / (l_r + dl) + 1 / (l_m + dl)):.2g} %",
         "cavity_depths_um": (
             f"reference {depths[0]:g} um, measuring {depths[1]:g} um: each row's beam end "
             f"meets its cavity's floor at {STOP_MULTIPLE:g} x the post's rated travel "
@@ -788,15 +908,21 @@ class BeamPair(NamedTuple):
         return -self.neg_t
 
 
+def tip_gap_um(slot_um: float, post_um: float) -> float:
+    """The least clear gap between a unit's two posts (um): the DRIE slot, and at least
+    :data:`TIP_GAP_OVER_POST` post widths."""
+    return max(slot_um, TIP_GAP_OVER_POST * post_um)
+
+
 def _beam_pair(E: float, k_r: float, k_m: float, window: float, t: float, w: float,
                slot: float) -> BeamPair | None:
     """The :class:`BeamPair` of width ``w`` in a ``t`` layer, or None when the two beams,
-    the post and the slot between the tips do not fit across the window or the reference
-    beam is not slender (L_r >= :data:`SLENDERNESS` w); um."""
+    the post and the gap between a unit's posts (:func:`tip_gap_um`) do not fit across the
+    window or the reference beam is not slender (L_r >= :data:`SLENDERNESS` w); um."""
     post = min(w, POST_MAX_UM)
     l_r = length_for_stiffness_um(E, w, t, k_r)
     l_m = length_for_stiffness_um(E, w, t, k_m)
-    if l_r + l_m + post + slot <= window and l_r >= SLENDERNESS * w:
+    if l_r + l_m + post + tip_gap_um(slot, post) <= window and l_r >= SLENDERNESS * w:
         return BeamPair(6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m)
     return None
 

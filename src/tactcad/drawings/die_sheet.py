@@ -28,6 +28,11 @@ CARRIER_SCALE = 15.0
 NOTE_MM = 2.5
 
 
+#: The die's dimensions print to 0.1 um (mm to four places): a beam's width is the pitch
+#: less a DRIE slot in 5 um steps (92.5 um on a 50 um layer), its length any length.
+DIE_DECIMALS = 4
+
+
 def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
     """The die's and its carrier's sheet (see the module doc)."""
     sh = Sheet("A3", title=f"{plan.name}: die and carrier")
@@ -67,22 +72,22 @@ def _die_dimensions(sh: Sheet, plan: DiePlan, at) -> None:
     length, width = plan.die_length_um, plan.die_width_um
     top, bottom = at(0, width)[1], at(0, 0)[1]
     sh.linear_dimension(at(0, width), at(length, width), "h", top - 12.0,
-                        fmt_mm(length / 1000), "die-length")
+                        fmt_mm(length / 1000, DIE_DECIMALS), "die-length")
     sh.linear_dimension(at(length, 0), at(length, width), "v", at(length, 0)[0] + 12.0,
-                        fmt_mm(width / 1000), "die-width")
+                        fmt_mm(width / 1000, DIE_DECIMALS), "die-width")
     ref, meas = plan.beams[0], plan.beams[plan.columns]
     if plan.columns > 1:
         nxt = plan.beams[1]
         sh.linear_dimension(at(ref.x_um, width), at(nxt.x_um, width), "h", top - 6.0,
-                            fmt_mm(plan.pitch_um / 1000), "pitch")
+                            fmt_mm(plan.pitch_um / 1000, DIE_DECIMALS), "pitch")
     for b, name, dx in ((ref, "reference", -8.0), (meas, "measuring", -8.0)):
         sh.linear_dimension(at(b.x_um, b.y_root_um), at(b.x_um, b.tip_y_um), "v",
                             at(0, 0)[0] + dx if b is ref else at(0, 0)[0] + dx - 8.0,
-                            fmt_mm(b.length_um / 1000), f"{name}-length")
+                            fmt_mm(b.length_um / 1000, DIE_DECIMALS), f"{name}-length")
     last = plan.beams[plan.columns - 1]
     sh.linear_dimension(at(last.x_um - last.width_um / 2, 0),
                         at(last.x_um + last.width_um / 2, 0), "h", bottom + 8.0,
-                        fmt_mm(last.width_um / 1000), "beam-width")
+                        fmt_mm(last.width_um / 1000, DIE_DECIMALS), "beam-width")
 
 
 def _carrier_view(sh: Sheet, plan: DiePlan, m: DieMount, x0: float, y0: float) -> None:

@@ -145,11 +145,12 @@ def die_budget(plan, readout: dict | None = None) -> DieBudget:
                                f"{ref.thickness_um:g} um layer, both beams alike (K ~ t^3)")
 
     dl = CAVITY_ALIGNMENT_UM / math.sqrt(3)
+    l_m, l_r = plan.bending_length_um(meas), plan.bending_length_um(ref)
     terms["cavity alignment"] = np.abs(_shifted(
-        k_m, k_r, ks, (meas.length_um / (meas.length_um + dl)) ** 3,
-        (ref.length_um / (ref.length_um - dl)) ** 3))
+        k_m, k_r, ks, (l_m / (l_m + dl)) ** 3, (l_r / (l_r - dl)) ** 3))
     reasons["cavity alignment"] = (f"+-{CAVITY_ALIGNMENT_UM:g} um across the die: one row's "
-                                   "beams longer, the other's shorter (K ~ L^-3)")
+                                   "beams longer, the other's shorter (K ~ (L + dL)^-3, dL "
+                                   "the frame's give at the root)")
 
     st = 1 + SILICON_TCE_PER_K * TEMPERATURE_STEP_K / math.sqrt(3)
     terms["temperature"] = np.abs(_shifted(k_m, k_r, ks, st, st))

@@ -15,11 +15,12 @@ on a (100) wafer, :meth:`tactcad.vocabulary.crystal.CubicElasticity.in_frame`), 
 face fixed or the beam run into its frame block (:func:`beam_on_frame`: the die as made,
 held at the handle's underside), a unit force spread over the post centre's section for K
 and ``*FREQUENCY`` with the post's mass on its footprint's nodes for f1. Clamped, its K and
-f1 against the closed form's are the closed form's error from shear, the width's
+f1 against the clamped closed form's are that form's error from shear, the width's
 anticlastic stiffening (w/t of a few) and the anisotropic Poisson coupling, none of which
-K = E w t^3 / (4 L^3) carries. On its frame they add the frame's compliance at the root,
-which the closed form leaves out: the frame turns and gives under the root's moment and
-shear (on the example die K_r 14 % and K_m 7 % below the clamped beam's).
+K = E w t^3 / (4 L^3) carries. On its frame they add the frame's compliance at the root:
+the frame turns and gives under the root's moment and shear (on the example die K_r 14 %
+and K_m 7 % below the clamped beam's), which the closed form carries as extra length
+behind the root (:func:`tactcad.design.mems_die.root_extension_um`).
 
 Units: um for the die, mm, N, MPa, tonne/mm^3 and s inside CalculiX, Hz.
 """
@@ -143,14 +144,29 @@ def _masses_kg(plan, beam) -> tuple[float, float]:
     return m, post + overhang
 
 
+def closed_form_k_N_per_mm(plan, beam, frame: bool = True) -> float:
+    """The closed form's K of ``beam`` (N/mm): on its frame, the plan's (the root's give as
+    extra length, :func:`tactcad.design.mems_die.beam_stiffness_N_per_mm`), or clamped at
+    its root (E w t^3 / (4 L^3), the textbook cantilever an FE model with a fixed root
+    face is)."""
+    from tactcad.design.mems_die import clamped_beam_stiffness_N_per_mm
+
+    if frame:
+        return plan.k_r_N_per_mm if beam.role == "reference" else plan.k_m_N_per_mm
+    return float(clamped_beam_stiffness_N_per_mm(plan.youngs_modulus_MPa, beam.width_um,
+                                                 beam.thickness_um, beam.length_um))
+
+
 def _k_N_per_m(plan, beam) -> float:
-    return (plan.k_r_N_per_mm if beam.role == "reference" else plan.k_m_N_per_mm) * 1e3
+    return closed_form_k_N_per_mm(plan, beam) * 1e3
 
 
-def first_resonance_Hz(plan, beam) -> float:
-    """Rayleigh's first resonance of ``beam`` with its post (Hz), see the module doc."""
+def first_resonance_Hz(plan, beam, frame: bool = True) -> float:
+    """Rayleigh's first resonance of ``beam`` with its post (Hz), see the module doc: with
+    its K on its frame or, ``frame`` False, clamped at its root."""
     m, tip = _masses_kg(plan, beam)
-    return math.sqrt(_k_N_per_m(plan, beam) / (RAYLEIGH_FRACTION * m + tip)) / (2 * math.pi)
+    k = closed_form_k_N_per_mm(plan, beam, frame) * 1e3
+    return math.sqrt(k / (RAYLEIGH_FRACTION * m + tip)) / (2 * math.pi)
 
 
 def exact_first_resonance_Hz(plan, beam) -> float:
@@ -379,8 +395,8 @@ def calculix_beam_check(plan, beam, divisions: tuple[int, int, int] = FE_DIVISIO
         modal = _run(_deck(nodes, elems, c, rho, masses + "*STEP\n*FREQUENCY\n1\n*END STEP\n",
                            held), folder, "modal")
         f_fe = _first_frequency_Hz(modal)
-    k_closed = plan.k_r_N_per_mm if beam.role == "reference" else plan.k_m_N_per_mm
-    return FeCheck(beam.role, k_fe, k_closed, f_fe, first_resonance_Hz(plan, beam))
+    return FeCheck(beam.role, k_fe, closed_form_k_N_per_mm(plan, beam, frame), f_fe,
+                   first_resonance_Hz(plan, beam, frame))
 
 
 def _displacements(dat: str) -> dict[int, tuple[float, float, float]]:

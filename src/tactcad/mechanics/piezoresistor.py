@@ -282,6 +282,8 @@ def hole_mobility_masetti_cm2_per_Vs(acceptors_per_cm3: float) -> float:
 #: the hole constants (cm^2/(V s), K, cm^-3); the fit holds over 250-500 K.
 ARORA_HOLES = {"mu_min": 54.3, "mu_min_exp": -0.57, "mu_0": 1.36e8, "mu_0_exp": -2.23,
                "n_ref": 2.35e17, "n_ref_exp": 2.4, "alpha": 0.88, "alpha_exp": -0.146}
+#: The temperatures Arora's fit holds over (K).
+MOBILITY_FIT_RANGE_K = (250.0, 500.0)
 
 
 def hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3: float, temperature_K: float) -> float:
@@ -295,8 +297,9 @@ def hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3: float, temperature_K: floa
     n, t = acceptors_per_cm3, temperature_K
     if not (math.isfinite(n) and n > 0):
         raise ValueError(f"acceptors_per_cm3 = {n!r}: finite and > 0")
-    if not (math.isfinite(t) and 250.0 <= t <= 500.0):
-        raise ValueError(f"temperature_K = {t!r}: 250 ... 500 K (the fit's range)")
+    if not (math.isfinite(t) and MOBILITY_FIT_RANGE_K[0] <= t <= MOBILITY_FIT_RANGE_K[1]):
+        raise ValueError(f"temperature_K = {t!r}: {MOBILITY_FIT_RANGE_K[0]:g} ... "
+                         f"{MOBILITY_FIT_RANGE_K[1]:g} K (the fit's range)")
     a, tn = ARORA_HOLES, t / 300.0
     exponent = a["alpha"] * tn ** a["alpha_exp"]
     return (a["mu_min"] * tn ** a["mu_min_exp"]
@@ -309,13 +312,19 @@ def resistor_tcr_per_K(acceptors_per_cm3: float, temperature_K: float = 300.0) -
     -d ln mu / dT with every acceptor ionised (:func:`hole_mobility_cm2_per_Vs`, Arora's
     slope; central difference over 1 K); positive, the lattice scattering's rise with T."""
     return -log_slope_per_K(lambda T: hole_mobility_cm2_per_Vs(acceptors_per_cm3, T),
-                            temperature_K)
+                            temperature_K, within_K=MOBILITY_FIT_RANGE_K)
 
 
-def log_slope_per_K(of_temperature, temperature_K: float) -> float:
-    """d ln f / dT of a positive ``f(T)`` (1/K), by a central difference over 1 K (every
-    temperature law here is smooth on that scale)."""
-    return math.log(of_temperature(temperature_K + 0.5) / of_temperature(temperature_K - 0.5))
+def log_slope_per_K(of_temperature, temperature_K: float,
+                    within_K: tuple[float, float] | None = None) -> float:
+    """d ln f / dT of a positive ``f(T)`` (1/K), by a difference over 1 K centred on
+    ``temperature_K`` (every temperature law here is smooth on that scale), moved inside
+    ``within_K`` (lo, hi) where the law holds only there (so its ends take a one-sided
+    difference)."""
+    lo = temperature_K - 0.5
+    if within_K is not None:
+        lo = min(max(lo, within_K[0]), within_K[1] - 1.0)
+    return math.log(of_temperature(lo + 1.0) / of_temperature(lo))
 
 
 def sheet_resistance_ohm(acceptors_per_cm3: float, junction_depth_um: float,

@@ -20,7 +20,9 @@ def die_verification(plan) -> list[dict]:
       root breaks, the cavities' depth, the posts' height): failed at or past it, else
       undecided (a mean strength without its Weibull modulus gives no failure
       probability); with the lab's Weibull pair, the die's failure probability;
-    * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band;
+    * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band, each
+      K the closed form's on its frame within :data:`tactcad.design.mems_die.
+      CLOSED_FORM_K_ERROR_REL` of the fem3d level (so the ratio within twice that);
     * ``hard_stop``: each row's cavity floor against its beam: the post's travel when the
       beam's end meets the floor, in the shallowest cavity the depth tolerance allows, past
       the beam's rated travel (it reads its whole range), and in the deepest below the
@@ -29,23 +31,28 @@ def die_verification(plan) -> list[dict]:
       margin: the worse row's fracture travel or post height over its deepest engagement,
       less one.
     """
-    from tactcad.design.mems_die import fracture_travel_um
+    from tactcad.design.mems_die import CLOSED_FORM_K_ERROR_REL, fracture_travel_um
+    from tactcad.mechanics.verdicts import verdict
     from tactcad.studies.verification import KR_OVER_KM_BAND_REL
 
     rows = plan.beams[:: plan.columns]
     stiffness = {"reference": plan.k_r_N_per_mm, "measuring": plan.k_m_N_per_mm}
     target_ratio = plan.targets[0] / plan.targets[1]
     ratio = plan.k_r_N_per_mm / plan.k_m_N_per_mm
+    ratio_error = 2 * CLOSED_FORM_K_ERROR_REL  # each K's error, the worst way round
     fracture = {b.role: fracture_travel_um(stiffness[b.role], b.length_um, b.width_um,
                                            b.thickness_um) for b in rows}
     stop = _stop_row(plan, rows, fracture)
     return [
         _rated_row(plan) if plan.weibull is None else _weibull_rated_row(plan),
         {"requirement": "kr_over_km", "target": target_ratio, "predicted": ratio,
-         "error_estimate_rel": None, "margin_rel": ratio / target_ratio - 1.0,
+         "error_estimate_rel": ratio_error, "margin_rel": ratio / target_ratio - 1.0,
          "allowed_margin_rel": -KR_OVER_KM_BAND_REL, "model": "closed-form",
-         "verdict": "pass" if ratio / target_ratio - 1.0 >= -KR_OVER_KM_BAND_REL else "fail",
-         "binding_words": "each column's reference and measuring beam"},
+         "verdict": verdict(ratio / target_ratio - 1.0, ratio_error, -KR_OVER_KM_BAND_REL,
+                            ratio / target_ratio - 1.0 >= -KR_OVER_KM_BAND_REL),
+         "binding_words": "each column's reference and measuring beam, each on its frame "
+                          "(the closed form's K within +-"
+                          f"{100 * CLOSED_FORM_K_ERROR_REL:g} % of fem3d's)"},
         stop,
         _resolution_row(plan),
     ]
