@@ -66,8 +66,9 @@ def test_the_roots_extension_grows_with_the_width_and_scales_with_the_layer():
     assert all(a <= b for a, b in zip(c, c[1:])) and c[1] < c[-2]
     assert c[0] == c[1] and c[-1] == c[-2]  # held at the table's ends
     assert md.root_extension_um(69.0, 20.0) == pytest.approx(md.root_extension_um(138.0, 40.0) / 2)
-    for bad in ((0.0, 40.0), (138.0, -1.0), (math.nan, 40.0), (138.0, math.inf)):
-        with pytest.raises(ValueError, match="width"):
+    for bad, name in (((0.0, 40.0), "width_um"), ((138.0, -1.0), "thickness_um"),
+                      ((math.nan, 40.0), "width_um"), ((138.0, math.inf), "thickness_um")):
+        with pytest.raises(ValueError, match=f"{name} = .*allowed a finite number above 0"):
             md.root_extension_um(*bad)
 
 
@@ -87,8 +88,24 @@ def test_the_length_for_a_stiffness_inverts_the_beams_stiffness(t, w_over_t, l_o
 
 def test_a_stiffness_no_beam_of_the_section_reaches_gives_no_length():
     assert md.length_for_stiffness_um(E_110_MPA, 40.0, 40.0, 1e6) < 0
-    with pytest.raises(ValueError, match="K"):
+    with pytest.raises(ValueError, match="k_N_per_mm = 0.0"):
         md.length_for_stiffness_um(E_110_MPA, 40.0, 40.0, 0.0)
+
+
+@pytest.mark.parametrize("args, name", [((E_110_MPA, 128.0, 40.0, 0.0), "length_um"),
+                                        ((E_110_MPA, 128.0, 40.0, -10.0), "length_um"),
+                                        ((E_110_MPA, 128.0, 40.0, math.nan), "length_um"),
+                                        ((E_110_MPA, 128.0, 40.0, math.inf), "length_um"),
+                                        ((0.0, 128.0, 40.0, 388.0), "youngs_modulus_MPa"),
+                                        ((-1.0, 128.0, 40.0, 388.0), "youngs_modulus_MPa"),
+                                        ((E_110_MPA, 128.0, 40.0, "388"), "length_um"),
+                                        ((E_110_MPA, True, 40.0, 388.0), "width_um")])
+def test_the_beams_stiffness_refuses_a_value_out_of_its_meaning_by_name(args, name):
+    with pytest.raises(ValueError, match=f"{name} = "):
+        md.beam_stiffness_N_per_mm(*args)
+    if name == "youngs_modulus_MPa":
+        with pytest.raises(ValueError, match=name):
+            md.length_for_stiffness_um(args[0], 128.0, 40.0, 5.0)
 
 
 def test_the_layer_and_width_give_the_lowest_stress_of_every_fitting_pair(die):
@@ -594,6 +611,9 @@ def test_a_die_files_value_is_overridden_by_set_and_checked_like_the_file(tmp_pa
     r = run_cli("die", "--design", design, "--set", "die.full_scale_force_N=0.03", "--out",
                 str(tmp_path / "die"), "--json")
     assert r.returncode == 0 and json.loads(r.stdout)["die"]["full_scale_force_N"] == 0.03
+    # the record says what was set over the file, beside the file's name and hash
+    record = json.loads((tmp_path / "die" / "grasper_jaw_5mm_mems.json").read_text("utf-8"))
+    assert record["design"]["overrides"] == {"die.full_scale_force_N": 0.03}
     bad = run_cli("die", "--design", design, "--set", "die.force=0.03", "--out",
                   str(tmp_path / "bad"))
     assert bad.returncode == 2 and "die.force" in bad.stderr and "allowed keys" in bad.stderr
@@ -664,6 +684,17 @@ def test_an_attach_table_out_of_its_domain_is_refused_by_key(tmp_path, line, fie
     design.write_text(shipped + table + "\n", encoding="utf-8")
     r = run_cli("readout", "--design", str(design))
     assert r.returncode == 2 and field in r.stderr and "Traceback" not in r.stderr, r.stderr
+
+
+def test_a_value_where_a_table_belongs_is_refused_with_the_tables_keys(tmp_path):
+    shipped = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+               / "grasper_jaw_5mm_mems.toml").read_text(encoding="utf-8")
+    design = tmp_path / "die.toml"
+    design.write_text("attach = 5\n" + shipped, encoding="utf-8")
+    r = run_cli("die", "--design", str(design), "--out", str(tmp_path / "out"))
+    assert r.returncode == 2 and "attach = 5" in r.stderr, r.stderr
+    assert "table [attach]" in r.stderr and "modulus_MPa" in r.stderr
+    assert "dieattachsection" not in r.stderr.lower() and not (tmp_path / "out").exists()
 
 
 # --- the die in its jaw ------------------------------------------------------------------------
@@ -1103,6 +1134,21 @@ def test_a_rating_too_light_to_resolve_k_obj_is_refused_with_one_that_does():
     light = dataclasses.replace(md.die_plan(Targets(10.0, (0.5, 5.0), 0.02), room),
                                 full_scale_force_N=1e-9)
     assert not np.isfinite(die_budget(light).terms["read-out noise"]).all()
+
+
+def test_a_ratio_too_close_to_one_for_any_rating_is_refused_by_the_ratio():
+    """At K_r / K_m 1.001 R hardly moves with K_obj: no rating within the die's limits reads
+    K_obj to 1 %, so the refusal names the ratio and pastes one that designs and reads."""
+    from tactcad.studies.die_doping import doped_die_plan, worst_readout_error_rel
+
+    room = jaw_room("5")
+    with pytest.raises(DesignError) as refused:
+        doped_die_plan(Targets(1.001, (0.5, 5.0), 0.02), room)
+    err = refused.value
+    assert err.field == "--kr-over-km" and err.value == 1.001
+    wider = float(err.alternatives[0]["option"].split()[-1])
+    plan = doped_die_plan(Targets(wider, (0.5, 5.0), 0.02), room)
+    assert wider > 1.001 and worst_readout_error_rel(plan) <= 0.01
 
 
 def test_the_fe_check_without_calculix_is_refused_in_one_line_and_writes_nothing(tmp_path):

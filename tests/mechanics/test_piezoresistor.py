@@ -146,6 +146,9 @@ def test_the_tcr_holds_to_the_ends_of_the_mobilitys_range(temperature_K):
     inside = temperature_K + (1.0 if temperature_K < 300 else -1.0)
     at_end = resistor_tcr_per_K(1e19, temperature_K)
     assert at_end > 0 and at_end == pytest.approx(resistor_tcr_per_K(1e19, inside), rel=0.02)
+    outside = temperature_K + (-0.1 if temperature_K < 300 else 0.1)
+    with pytest.raises(ValueError, match="250 ... 500 K"):  # beyond the fit it is refused
+        resistor_tcr_per_K(1e19, outside)
 
 
 def test_the_dies_readout_states_its_sensitivitys_drift_and_self_heating():

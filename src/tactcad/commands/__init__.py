@@ -58,8 +58,9 @@ def progress_from_args(args: argparse.Namespace) -> Callable[[str], None]:
     return report
 
 
-def parse_override(text: str) -> tuple[str, Any]:
-    """``"section.key=VALUE"`` -> ``("section.key", value)``, VALUE read as a TOML value.
+def parse_override(text: str, example: str = SET_EXAMPLE) -> tuple[str, Any]:
+    """``"section.key=VALUE"`` -> ``("section.key", value)``, VALUE read as a TOML value;
+    ``example``: a key=value of the file's kind a refusal shows.
 
     Raises:
         DesignError: no ``=``, a key that is not ``section.key``, or a value
@@ -72,7 +73,7 @@ def parse_override(text: str) -> tuple[str, Any]:
     section, dot, name = key.partition(".")
     if not sep or not dot or not section or not name:
         raise DesignError("--set", text, f"KEY=VALUE with a dotted key of the design file, "
-                                         f"e.g. {SET_EXAMPLE}")
+                                         f"e.g. {example}")
     try:
         value = tomllib.loads(f"value = {raw.strip()}")["value"]
     except tomllib.TOMLDecodeError as exc:
@@ -82,9 +83,10 @@ def parse_override(text: str) -> tuple[str, Any]:
     return key, value
 
 
-def parse_overrides(texts: list[str] | None) -> dict[str, Any]:
-    """Every ``--set`` in order (a later one for the same key wins)."""
-    return dict(parse_override(t) for t in texts or ())
+def parse_overrides(texts: list[str] | None, example: str = SET_EXAMPLE) -> dict[str, Any]:
+    """Every ``--set`` in order (a later one for the same key wins); ``example`` as
+    :func:`parse_override` takes it."""
+    return dict(parse_override(t, example) for t in texts or ())
 
 
 def plan_from_args(args: argparse.Namespace):

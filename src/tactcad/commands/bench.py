@@ -6,6 +6,8 @@
   OpenCascade-only check for comparison.
 * ``bench stiffness``: the stiffness estimators, provided by
   ``tactcad.benchmarks.stiffness_bench.main(args)`` when that module is installed.
+* ``bench die``: a silicon die's beams, each stiffness level's cost and K error against
+  fem3d on the frame (:mod:`tactcad.benchmarks.die_bench`).
 * ``bench closed-form``, ``bench montecarlo``, ``bench sweep``: the design
   tools at scale (:mod:`tactcad.benchmarks.bench_scale`).
 """
@@ -34,7 +36,7 @@ MAX_LOAD_SECONDS = 600.0  # its duration at most (s)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("bench", help="speed benchmarks (export, stiffness, modal, closed-form, montecarlo, sweep)",
+    p = sub.add_parser("bench", help="speed benchmarks (export, stiffness, modal, die, closed-form, montecarlo, sweep)",
                        description="Print timings. Goals on two cores: cold export <= 8 s, "
                                    "no-change re-export <= 1.5 s, one changed arm <= 4 s, each "
                                    "distinct part built once; interference of the largest scene "
@@ -72,6 +74,17 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_output_args(x, "print one JSON object: inputs_s and per level solve_s, crosstalk_rel, "
                        "error_estimate_rel, vs_last_level_rel, asymmetry_rel")
     x.set_defaults(func=run_crosstalk)
+    dd = bsub.add_parser("die", help="a silicon die's beams: the cost and K error of each "
+                                     "stiffness level against fem3d on the frame "
+                                     "(tactcad.benchmarks.die_bench)")
+    add_design_arg(dd)
+    dd.add_argument("--beams", choices=("rows", "domain", "all"), default="all",
+                    help="the die's two rows, four beams at the corners of the sections its "
+                         "design makes, or both (default %(default)s; fem3d takes one to three "
+                         "minutes a beam)")
+    add_output_args(dd, "print one JSON object: every beam's K per level and the summary per "
+                        "level")
+    dd.set_defaults(func=run_die_bench)
     dj = bsub.add_parser("design-jaw", help="design --jaw on the grasper case at three forces "
                                            "(goal: an answer <= 60 s)")
     add_output_args(dj, "print one JSON object: each force's seconds and answer")
@@ -337,6 +350,19 @@ def run_modal_bench(args: argparse.Namespace) -> int:
     from tactcad.benchmarks.modal_bench import main
 
     return int(main(args, plan=plan_from_args(args)) or 0)
+
+
+def run_die_bench(args: argparse.Namespace) -> int:
+    from tactcad.benchmarks.die_bench import main
+    from tactcad.commands.die import die_design_of
+    from tactcad.commands.die_views import _planned
+    from tactcad.errors import DesignError
+
+    design = die_design_of(args)
+    if design is None:
+        raise DesignError("--design", getattr(args, "design", None), "a silicon die's design file",
+                          "bench die times a die's beams (a file with a [die] table)")
+    return int(main(args, _planned(design, args).plan) or 0)
 
 
 def run_crosstalk(args: argparse.Namespace) -> int:

@@ -125,12 +125,14 @@ def die_asked(args: argparse.Namespace) -> dict:
     if given:
         raise DesignError(given[0], getattr(args, given[0].lstrip("-").replace("-", "_")),
                           "only without --design", f"{args.design} states it")
-    d = load_die_design(args.design, parse_overrides(args.overrides))
+    overrides = parse_overrides(args.overrides, example=DIE_SET_EXAMPLE)
+    d = load_die_design(args.design, overrides)
     return {"jaw": d.jaw, "kr_over_km": d.die.kr_over_km,
             "kobj_range": tuple(d.die.kobj_range_N_per_mm),
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
             "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name,
-            "source": _source_of(Path(args.design)), "strength": d.strength,
+            "source": _source_of(Path(args.design), overrides),
+            "strength": d.strength,
             "kobj_resolution_rel": d.die.kobj_resolution_rel, "attach": d.attach}
 
 
@@ -150,14 +152,18 @@ def _folder_die_design() -> Path | None:
     return None
 
 
-def _source_of(design: Path) -> dict:
+def _source_of(design: Path, overrides: dict | None = None) -> dict:
     """The die design file a record comes from: its name and sha256 (as an array's manifest
-    names its design), so that a command run in the output folder can say where it is."""
+    names its design), so that a command run in the output folder can say where it is, and
+    the ``--set`` values the die was made with over the file's (key -> value)."""
     import hashlib
 
-    return {"source": design.name, "sha256": hashlib.sha256(design.read_bytes()).hexdigest()}
+    return {"source": design.name, "sha256": hashlib.sha256(design.read_bytes()).hexdigest(),
+            "overrides": dict(overrides or {})}
 
 
+#: A ``--set`` a refusal of a die's shows.
+DIE_SET_EXAMPLE = "die.kr_over_km=10"
 #: The die file's key of each target option (a refusal of a file's value names the key).
 FILE_KEYS = {"--jaw": "die.jaw", "--kr-over-km": "die.kr_over_km",
              "--kobj-range": "die.kobj_range_N_per_mm",
@@ -386,7 +392,7 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
         lines.append(f"| {b.row} | {b.role} | {b.length_um:.4g} | {b.width_um:g} | "
                      f"{b.thickness_um:g} | {k:.4g} | {target:.4g} | "
                      f"{1e3 * d.rated_force_N(b):.3g} | "
-                     f"{d.stress_MPa_at_rating(b) * d.rated_force_N(b) / d.full_scale_force_N:.4g}"
+                     f"{d.root_stress_MPa_at_rated_force(b):.4g}"
                      f" | {r['resistance_change_per_N']:.4g} | "
                      f"{r['sensitivity_V_per_N']:.4g} | {r['force_resolution_N']:.3g} |")
     lines.append(resistor_line(plan, readout))

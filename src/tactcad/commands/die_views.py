@@ -51,7 +51,8 @@ def _modal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     plan = _planned(design, args).plan
     modes = die_modes(plan)
     return ({"design": str(design), "die": plan.name, "resonance_Hz": modes_json(modes)},
-            [f"die {plan.name}: each row's first bending mode, clamped at the root",
+            [f"die {plan.name}: each row's first bending mode, its beam on the frame (the "
+             "closed form's K)",
              *mode_lines(modes)])
 
 

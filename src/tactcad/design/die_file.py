@@ -21,7 +21,8 @@ from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_ATTACH, DEFAUL
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
 from tactcad.errors import DesignError
-from tactcad.vocabulary.schema import (Problems, Section, Text, integer, listing, number,
+from tactcad.vocabulary.schema import (Problems, Section, Text, described_text, integer,
+                                       listing, number,
                                        read_toml, validate)
 
 #: The die's largest failure probability a ``[strength]`` table accepts when it states none
@@ -32,7 +33,8 @@ DEFAULT_FAILURE_PROBABILITY_MAX = 1e-3
 class DieSection(Section):
     """``[die]``: the targets and the jaw of a silicon die (N/mm, N, um)."""
 
-    jaw: str
+    jaw: described_text('a trocar class as text (jaw = "5") or a jaw file in the design\'s '
+                        'folder', "the jaw whose pocket the die fills")
     kr_over_km: number(1.0, 1000.0, lo_open=True, unit="",
                        why="the reference beam stiffer than the measuring one")
     kobj_range_N_per_mm: listing(number(0.0, MAX_KOBJ_N_PER_MM, lo_open=True, unit="N/mm"), 2, 2,

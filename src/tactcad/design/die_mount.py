@@ -23,14 +23,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from tactcad.design.mems_die import DEFAULT_DIE_ATTACH, DiePlan
+from tactcad.design.mems_die import BOND_SHELF_MM, DEFAULT_DIE_ATTACH, DiePlan
 from tactcad.errors import DesignError
 
 #: The carrier's thickness (mm): a thin-film alumina substrate (assumption: a stock 0.25 mm
 #: substrate, the one thin ceramics vendors list first).
 CARRIER_MM = 0.25
-#: The carrier beyond the die's proximal end (mm): room for the flex cable's solder pads.
-BOND_SHELF_MM = 1.0
 #: The die-attach layer (mm) when the die's file states none.
 DIE_ATTACH_MM = DEFAULT_DIE_ATTACH.thickness_um * 1e-3
 #: The device layer's top below the jaw's face (mm): flush, the posts alone proud.

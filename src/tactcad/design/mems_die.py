@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import bisect
 import math
+import numbers
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
@@ -80,6 +81,9 @@ SHEAR_COEFFICIENT = 5.0 / 6.0
 CLOSED_FORM_K_ERROR_REL = 0.02
 #: The frame along each long side (um): the contacts, the leads and the bond pads.
 FRAME_UM = 300.0
+#: The die's carrier beyond its proximal end (mm): room for the flex cable's solder pads
+#: (the jaw's pocket holds the die and this shelf, :mod:`tactcad.design.die_mount`).
+BOND_SHELF_MM = 1.0
 #: Solid silicon at each end of the die beyond the outer columns' half pitch (um).
 END_UM = 250.0
 #: Bond pad side and the space between a beam's two pads (um).
@@ -343,9 +347,21 @@ class DiePlan:
         return beam.length_um + root_extension_um(beam.width_um, beam.thickness_um)
 
     def stress_MPa_at_rating(self, beam: Beam) -> float:
-        """The root's surface bending stress at the rated force (MPa): 6 F L / (w t^2)."""
+        """The root's surface bending stress were ``beam`` to carry the die's rated
+        (full-scale) force (MPa): 6 F L / (w t^2); the stress per newton times that force."""
         return (6 * self.full_scale_force_N * beam.length_um * 1e-3
                 / (beam.width_um * 1e-3 * (beam.thickness_um * 1e-3) ** 2))
+
+    def root_stress_MPa_at_rated_force(self, beam: Beam) -> float:
+        """The root's surface bending stress at the most ``beam`` carries in use
+        (:meth:`rated_force_N`; MPa)."""
+        return self.stress_MPa_at_rating(beam) * self.rated_force_N(beam) / self.full_scale_force_N
+
+    @property
+    def tip_gap_um(self) -> float:
+        """The clear gap between a unit's two posts across the window (um)."""
+        ref, meas = self.beams[0], self.beams[self.columns]
+        return abs(meas.tip_y_um - ref.tip_y_um) - self.post_um
 
     def as_json(self) -> dict:
         return {"name": self.name, "stack": self.stack.__dict__, "rows": self.rows,
@@ -363,8 +379,10 @@ class DiePlan:
                 "targets_N_per_mm": {"K_r": self.targets[0], "K_m": self.targets[1]},
                 "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
                 "full_scale_force_N": self.full_scale_force_N,
-                "stress_MPa_at_rating": {b.role: self.stress_MPa_at_rating(b)
-                                         for b in self.beams[:: self.columns]},
+                "root_stress_MPa_at_rated_force": {
+                    b.role: self.root_stress_MPa_at_rated_force(b)
+                    for b in self.beams[:: self.columns]},
+                "tip_gap_um": self.tip_gap_um,
                 "cavity_depths_um": {"reference": self.cavity_depths_um[0],
                                      "measuring": self.cavity_depths_um[1]},
                 "weibull": None if self.weibull is None else dict(self.weibull.__dict__),
@@ -385,6 +403,18 @@ def reference_resistor_v0_um(plan: DiePlan) -> float:
     return min(near, under_pads)
 
 
+def _positive(**values: float) -> None:
+    """Refuse any of ``values`` (name -> value) that is not a finite real number above 0.
+
+    Raises:
+        ValueError: naming the argument, its value and the allowed range.
+    """
+    for name, value in values.items():
+        if isinstance(value, bool) or not isinstance(value, numbers.Real) \
+                or not math.isfinite(value) or value <= 0:
+            raise ValueError(f"{name} = {value!r}: allowed a finite number above 0")
+
+
 def root_extension_um(width_um: float, thickness_um: float) -> float:
     """The frame's give at a beam's root as extra beam length behind it (um): dL = c t, c
     interpolated in log(w / t) over :data:`ROOT_EXTENSION_OVER_T` (held at its ends outside
@@ -400,10 +430,7 @@ def root_extension_um(width_um: float, thickness_um: float) -> float:
     Raises:
         ValueError: a width or thickness not finite and above 0.
     """
-    if not (math.isfinite(width_um) and math.isfinite(thickness_um)
-            and width_um > 0 and thickness_um > 0):
-        raise ValueError(f"width {width_um!r} um, thickness {thickness_um!r} um: each finite "
-                         "and above 0")
+    _positive(width_um=width_um, thickness_um=thickness_um)
     logs = [math.log(ratio) for ratio, _ in ROOT_EXTENSION_OVER_T]
     cs = [c for _, c in ROOT_EXTENSION_OVER_T]
     at = min(max(math.log(width_um / thickness_um), logs[0]), logs[-1])
@@ -441,8 +468,9 @@ def beam_stiffness_N_per_mm(youngs_modulus_MPa: float, width_um: float, thicknes
         length_um: L, the root to the force (um), > 0.
 
     Raises:
-        ValueError: a width or thickness not finite and above 0.
+        ValueError: a modulus, width, thickness or length not a finite number above 0.
     """
+    _positive(youngs_modulus_MPa=youngs_modulus_MPa, length_um=length_um)
     bending = 1.0 / clamped_beam_stiffness_N_per_mm(
         youngs_modulus_MPa, width_um, thickness_um,
         length_um + root_extension_um(width_um, thickness_um))
@@ -457,10 +485,9 @@ def length_for_stiffness_um(youngs_modulus_MPa: float, width_um: float, thicknes
     beam of that section is so stiff.
 
     Raises:
-        ValueError: a width or thickness not finite and above 0, or K not above 0.
+        ValueError: a modulus, width, thickness or K not a finite number above 0.
     """
-    if not (math.isfinite(k_N_per_mm) and k_N_per_mm > 0):
-        raise ValueError(f"K {k_N_per_mm!r} N/mm: finite and above 0")
+    _positive(youngs_modulus_MPa=youngs_modulus_MPa, k_N_per_mm=k_N_per_mm)
     dl = root_extension_um(width_um, thickness_um)
     three_ei = clamped_beam_stiffness_N_per_mm(youngs_modulus_MPa, width_um, thickness_um,
                                                1e3)  # K at 1 mm: 3 E I (N mm^2)
@@ -519,11 +546,13 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                           "frame within one pitch")
     width = round(room.across_mm * 1e3, 3)
     length = columns * pitch_um + 2 * END_UM
-    if length > room.along_mm * 1e3 + 1e-6:
+    along_um = (room.along_mm - BOND_SHELF_MM) * 1e3  # the carrier's shelf shares the pocket
+    if length > along_um + 1e-6:
         raise DesignError("--columns", columns,
-                          f"at most {int((room.along_mm * 1e3 - 2 * END_UM) // pitch_um)} "
+                          f"at most {max(0, int((along_um - 2 * END_UM) // pitch_um))} "
                           f"columns at {pitch_um:g} um pitch in the {room.label}'s "
-                          f"{room.along_mm:g} mm pocket")
+                          f"{room.along_mm:g} mm pocket (the die and its carrier's "
+                          f"{BOND_SHELF_MM:g} mm bond shelf)")
     direction = in_plane_direction(angle_from_110_deg)
     E = float(SILICON.young_modulus_MPa(direction))
     window = width - 2 * FRAME_UM
@@ -577,6 +606,11 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                                f"+-{100 * CLOSED_FORM_K_ERROR_REL:g} % of it)",
         "measuring_length_um": f"K_m = {k_m:.4g} N/mm the same way (K_r / K_m = "
                                f"{targets.kr_over_km:g})",
+        "tip_gap_um": f"{window - l_r - l_m - post:.4g} um clear between a unit's two posts "
+                      f"across the window: at least {TIP_GAP_OVER_POST:g} post width "
+                      f"({post:g} um) and the {slot:.3g} um DRIE slot (the tissue between "
+                      "the posts couples them, eq. 3's error; the coupled inversion removes "
+                      "it to its model's own error)",
         "alignment": f"the front masks' +-{align:g} um alignment to the buried cavities "
                      f"moves both rows' roots one way: K_r / K_m by "
                      f"+-{300 * align * (1 / (l_r + dl) + 1 / (l_m + dl)):.2g} %",

@@ -1,9 +1,11 @@
 """The drawing of a silicon die and its carrier: one A3 sheet (ISO 5457 frame).
 
-* the die in plan at :data:`DIE_SCALE`, device side up: its outline, the two rows'
-  cavities in the handle (hidden, dashed), each beam and its post, dimensioned: the die's length and width, the
+* the die in plan at the largest of :data:`DIE_SCALES` at which it fits its room
+  (:data:`DIE_ROOM_MM`), device side up: its outline, the two rows' cavities in the handle
+  (hidden, dashed), each beam and its post, dimensioned: the die's length and width, the
   pitch, both beams' lengths from their roots, the beam width and the post;
-* the carrier in plan at :data:`CARRIER_SCALE`: its length, width and bond shelf;
+* below it the carrier in plan at the largest of :data:`CARRIER_SCALES` that fits
+  :data:`CARRIER_ROOM_MM`: its length, width and bond shelf;
 * notes: the wafer and the beams' direction, the layer stack with the device layer's
   tolerance (the one the beams' stiffness goes as the cube of), and the carrier's
   material, thickness and die attach; units.
@@ -22,9 +24,17 @@ from tactcad.drawings.frame import FRAME, sheet_frame
 from tactcad.drawings.sheet import Sheet, fmt_mm
 from tactcad.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
 
-#: Scales of the die's and of the carrier's plan views (paper mm per mm).
-DIE_SCALE = 40.0
-CARRIER_SCALE = 15.0
+#: Scales of the die's and of the carrier's plan views (paper mm per mm), largest first: a
+#: view takes the largest at which it fits its room (ISO 5455's enlargements, and 40:1 and
+#: 15:1, the example's).
+DIE_SCALES = (40.0, 20.0, 10.0, 5.0, 2.0)
+CARRIER_SCALES = (15.0, 10.0, 5.0, 2.0)
+#: The room of the die's plan view (paper mm, along and across the die): the frame's width
+#: less the beams' length dimensions on the left and the die's width on the right, and the
+#: top part of the sheet (the carrier and the notes below it).
+DIE_ROOM_MM = (330.0, 110.0)
+#: The carrier's room (paper mm): left of the notes, under the die's view.
+CARRIER_ROOM_MM = (170.0, 60.0)
 NOTE_MM = 2.5
 
 
@@ -38,7 +48,11 @@ def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
     sh = Sheet("A3", title=f"{plan.name}: die and carrier")
     sheet_frame(sh)
     x0, y0 = FRAME[0] + 35.0, FRAME[1] + 40.0  # the die's corner (x = 0, y = die width)
-    s = DIE_SCALE / 1000.0  # paper mm per um
+    die_scale = largest_scale(DIE_SCALES, (plan.die_length_um / 1000, plan.die_width_um / 1000),
+                              DIE_ROOM_MM)
+    carrier_scale = largest_scale(CARRIER_SCALES, (mount.carrier_length_mm,
+                                                   mount.carrier_width_mm), CARRIER_ROOM_MM)
+    s = die_scale / 1000.0  # paper mm per um
 
     def at(x_um: float, y_um: float) -> tuple[float, float]:
         return (x0 + x_um * s, y0 + (plan.die_width_um - y_um) * s)
@@ -60,12 +74,23 @@ def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
                             at(b.x_um + p, b.tip_y_um + p), at(b.x_um - p, b.tip_y_um + p)],
                     "visible", closed=True)
     _die_dimensions(sh, plan, at)
-    _carrier_view(sh, plan, mount, x0, at(0, 0)[1] + 60.0)
-    _notes(sh, plan, mount, FRAME[0] + 235.0, FRAME[1] + 150.0)
+    bottom = at(0, 0)[1]  # the die's lower edge on paper; its dimensions 8 mm below
+    _carrier_view(sh, plan, mount, x0, bottom + 45.0, carrier_scale)
+    _notes(sh, plan, mount, FRAME[0] + 235.0, bottom + 25.0)
     sh.text("title", (FRAME[2] - 5.0, FRAME[3] - 5.0),
-            f"{plan.name}: die {DIE_SCALE:g}:1, carrier {CARRIER_SCALE:g}:1, mm", 3.5,
+            f"{plan.name}: die {die_scale:g}:1, carrier {carrier_scale:g}:1, mm", 3.5,
             anchor="end")
     return sh
+
+
+def largest_scale(scales: tuple[float, ...], extent_mm: tuple[float, float],
+                  room_mm: tuple[float, float]) -> float:
+    """The largest of ``scales`` (largest first) at which a view of ``extent_mm`` fits
+    ``room_mm`` (paper mm), else the smallest."""
+    for scale in scales:
+        if all(e * scale <= r for e, r in zip(extent_mm, room_mm)):
+            return scale
+    return scales[-1]
 
 
 def _die_dimensions(sh: Sheet, plan: DiePlan, at) -> None:
@@ -90,8 +115,8 @@ def _die_dimensions(sh: Sheet, plan: DiePlan, at) -> None:
                         fmt_mm(last.width_um / 1000, DIE_DECIMALS), "beam-width")
 
 
-def _carrier_view(sh: Sheet, plan: DiePlan, m: DieMount, x0: float, y0: float) -> None:
-    s = CARRIER_SCALE
+def _carrier_view(sh: Sheet, plan: DiePlan, m: DieMount, x0: float, y0: float,
+                  s: float) -> None:
     w, h = m.carrier_length_mm * s, m.carrier_width_mm * s
     sh.rect("carrier", x0, y0, w, h, "visible")
     shelf = (m.die_x0_mm - m.carrier_x0_mm) * s

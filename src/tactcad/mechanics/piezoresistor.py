@@ -39,6 +39,7 @@ Units: N, m inside the formulas, inputs and outputs as named (um, V, ohm, K, Hz,
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 #: Boltzmann's constant (J/K, exact since the 2019 SI).
@@ -310,7 +311,17 @@ def hole_mobility_arora_cm2_per_Vs(acceptors_per_cm3: float, temperature_K: floa
 def resistor_tcr_per_K(acceptors_per_cm3: float, temperature_K: float = 300.0) -> float:
     """A p-type resistor's temperature coefficient of resistance (1/K): d ln rho / dT =
     -d ln mu / dT with every acceptor ionised (:func:`hole_mobility_cm2_per_Vs`, Arora's
-    slope; central difference over 1 K); positive, the lattice scattering's rise with T."""
+    slope; a difference over 1 K, one-sided at the fit's ends); positive, the lattice
+    scattering's rise with T.
+
+    Raises:
+        ValueError: a temperature outside :data:`MOBILITY_FIT_RANGE_K`, or a doping not
+            finite and > 0.
+    """
+    lo, hi = MOBILITY_FIT_RANGE_K
+    if not (isinstance(temperature_K, numbers.Real) and lo <= temperature_K <= hi):
+        raise ValueError(f"temperature_K = {temperature_K!r}: {lo:g} ... {hi:g} K (the fit's "
+                         "range)")
     return -log_slope_per_K(lambda T: hole_mobility_cm2_per_Vs(acceptors_per_cm3, T),
                             temperature_K, within_K=MOBILITY_FIT_RANGE_K)
 
@@ -322,8 +333,8 @@ def log_slope_per_K(of_temperature, temperature_K: float,
     ``within_K`` (lo, hi) where the law holds only there (so its ends take a one-sided
     difference)."""
     lo = temperature_K - 0.5
-    if within_K is not None:
-        lo = min(max(lo, within_K[0]), within_K[1] - 1.0)
+    if within_K is not None and within_K[0] <= temperature_K <= within_K[1]:
+        lo = min(max(lo, within_K[0]), within_K[1] - 1.0)  # outside it, the law refuses
     return math.log(of_temperature(lo + 1.0) / of_temperature(lo))
 
 

@@ -123,6 +123,23 @@ def worst_readout_error_rel(plan) -> float:
                                            np.array([lo, math.sqrt(lo * hi), hi]))))
 
 
+def _wider_ratio(targets, room, target: float, kwargs) -> float | None:
+    """The least of 1.5, 2, 3, 5 and 10 times ``targets``' K_r / K_m (two digits) whose die
+    designs and resolves K_obj to ``target`` at the same rating, or None."""
+    import dataclasses
+
+    for factor in (1.5, 2.0, 3.0, 5.0, 10.0):
+        ratio = float(f"{targets.kr_over_km * factor:.2g}")
+        try:
+            plan = die_plan_at(dataclasses.replace(targets, kr_over_km=ratio), room,
+                               targets.full_scale_force_N, kwargs)
+        except DesignError:
+            continue
+        if worst_readout_error_rel(plan) <= target:
+            return ratio
+    return None
+
+
 def _too_light(targets, room, plan, worst: float, target: float, kwargs) -> DesignError:
     """The refusal of a rating too light to resolve K_obj: the read-out's error goes as one
     over the rating (the deflections as F, the force resolution fixed), so the rating that
@@ -147,6 +164,19 @@ def _too_light(targets, room, plan, worst: float, target: float, kwargs) -> Desi
             break
     read = ("leaves K_obj unreadable" if not math.isfinite(worst) else
             f"moves K_obj by {100 * worst:.3g} %")
+    if not alternatives:  # no rating helps: R hardly moves with K_obj at so close a ratio
+        wider = _wider_ratio(targets, room, target, kwargs)
+        if wider is not None:
+            return DesignError(
+                "--kr-over-km", targets.kr_over_km,
+                f"a ratio whose R resolves K_obj to {100 * target:g} % (1 sigma) at the "
+                f"{force:g} N rating", f"at K_r / K_m {targets.kr_over_km:g} the bridges' "
+                f"noise {read} somewhere in {targets.k_obj_range_N_per_mm[0]:g} ... "
+                f"{targets.k_obj_range_N_per_mm[1]:g} N/mm, and no heavier rating within "
+                "the die's other limits resolves it",
+                alternatives=[{"option": f"--kr-over-km {wider:g}",
+                               "words": "the least of 1.5, 2, 3, 5, 10 x the ratio that "
+                                        "designs and resolves K_obj"}])
     return DesignError("--full-scale-force", force,
                        f"a rating whose read-out resolves K_obj to {100 * target:g} % (1 sigma)",
                        f"at {force:g} N the bridges' noise {read} somewhere in "

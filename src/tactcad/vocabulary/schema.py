@@ -73,7 +73,7 @@ class Limits:
     hi_open: bool = False
     unit: str = "mm"
     why: str = ""
-    kind: str = "number"  # number, integer, text, file, name, choice, list
+    kind: str = "number"  # number, integer, text, file, name, choice, list, described
 
     def text(self) -> str:
         """The allowed range in words, e.g. ``0.15 <= value <= 0.4 mm``."""
@@ -289,6 +289,10 @@ def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> Design
                                "sections " + keys, "unknown section", file)
         return DesignError(field, value, "keys " + keys if keys else "known keys", "unknown key",
                            file)
+    if kind in ("model_type", "dict_type"):  # a table's place holds a value
+        keys = _keys_of(section)
+        return DesignError(field, value, f"the table [{field}]" + (f" of keys {keys}" if keys else ""),
+                           why, file)
     if limits is None:
         return DesignError(field, value, err["msg"].lower().replace("input should be ", ""), why,
                            file)
@@ -311,7 +315,7 @@ def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> Design
             return DesignError(field, value, limits.unit + " as text",
                                f'write {field.rsplit(".", 1)[-1]} = "{value}"', file)
         return DesignError(field, value, limits.unit, why, file)
-    if limits.kind == "list":
+    if limits.kind in ("list", "described"):  # the allowed values in words
         return DesignError(field, value, limits.unit, why, file)
     if limits.kind == "integer":
         if kind in ("greater_than_equal", "less_than_equal"):
@@ -328,6 +332,12 @@ def choice(options: Mapping[str, Any] | tuple[str, ...], why: str = "") -> Any:
     names = tuple(options)
     return Annotated[typing.Literal[names], Limits(kind="choice", unit="one of " + ", ".join(names),
                                                    why=why)]
+
+
+def described_text(allowed: str, why: str = "") -> Any:
+    """A text field whose allowed values a loader checks itself, refused by type in the
+    words ``allowed``."""
+    return Annotated[str, Limits(kind="described", unit=allowed, why=why)]
 
 
 def listing(item: Any, lo: int, hi: int, allowed: str, why: str = "") -> Any:
