@@ -780,7 +780,8 @@ def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
          f"strength ({100 * rating.stop_over_fracture:.3g} % of that travel at {force_N:g} N)"),
         (force_N * CAVITY_DEPTH_MAX_UM / deepest_cavity,
          f"the measuring row's cavity at the {CAVITY_DEPTH_MAX_UM:g} um a timed etch holds to "
-         f"its +-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} % ({max(depths_um):g} um at {force_N:g} N)"),
+         f"its +-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %, its deep end ({max(depths_um):g} um "
+         f"+{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %: {deepest_cavity:.4g} um at {force_N:g} N)"),
         (force_N * (tallest - POST_CLEARANCE_UM) / deepest_um if tallest >= POST_HEIGHT_UM
          else math.inf,  # the least post taller than the aspect allows: no rating helps
          f"a post standing {POST_CLEARANCE_UM:g} um proud at its stop taller than "
