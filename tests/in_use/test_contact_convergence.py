@@ -60,6 +60,21 @@ def test_every_coupling_matches_the_independent_model_to_one_percent(layout):
     assert 0 < sample.error_rel <= contact.CONVERGED_REL
 
 
+def test_a_cell_budget_of_two_levels_states_the_corrections_size_not_infinity():
+    """Many tips (a long die) leave room for two meshes only: one extrapolation, whose
+    change from the finer mesh is the error stated (finite, not converged); with room for
+    more, the stated error is the change between two extrapolations, and smaller."""
+    tips = [contact.Punch(1.0 * i, 0.0, 0.1, 0.1) for i in range(3)]
+    sample = contact.Sample(1.0, 0.5)
+    two = contact.converged_punches(tips, sample, max_cells=3 * 12 * 12)
+    assert two.cells_per_edge == (8, 12) and not two.converged
+    assert math.isfinite(two.error_rel) and 0 < two.error_rel < 0.2
+    more = contact.converged_punches(tips, sample)
+    assert len(more.cells_per_edge) > 2 and more.error_rel < two.error_rel
+    assert more.compliance_mm_per_N[0, 0] == pytest.approx(two.compliance_mm_per_N[0, 0],
+                                                          rel=2 * two.error_rel)
+
+
 @pytest.mark.slow  # a whole chain through the command line or an export
 def test_the_coupled_inversion_reads_the_independent_samples_k_obj_to_one_percent():
     """The macro array, whose R is compressed: R made on the independent model's sample,

@@ -446,7 +446,9 @@ class ConvergedPunches:
         compliance_mm_per_N: the extrapolated compliance matrix C, shape (m, m) (mm/N).
         stiffness_N_per_mm: S = C⁻¹, shape (m, m) (N/mm).
         error_rel: the last change of the extrapolation (the largest relative change of a
-            compliance's diagonal or of a coupling C_ij/C_ii >= :data:`JUDGED_COUPLING`).
+            compliance's diagonal or of a coupling C_ij/C_ii >= :data:`JUDGED_COUPLING`);
+            where the cell budget held only two levels, the one extrapolation's change from
+            the finer level (Richardson's correction, an upper estimate).
         cells_per_edge: the levels solved (cells along each face edge).
         converged: ``error_rel`` within the asked tolerance (else the cell budget ran out).
     """
@@ -511,10 +513,12 @@ def converged_punches(punches, sample: Sample, rtol: float = CONVERGED_REL,
             change = _change_rel(extrapolations[-2], extrapolations[-1])
             if change <= rtol:
                 break
+    if len(extrapolations) == 1:  # the cell budget held two levels: the correction's size
+        change = _change_rel(levels[-1][1], extrapolations[-1])
     best = extrapolations[-1]
     best = 0.5 * (best + best.T)
     return ConvergedPunches(best, np.linalg.inv(best), change, tuple(n for n, _ in levels),
-                            change <= rtol)
+                            len(extrapolations) >= 2 and change <= rtol)
 
 
 def single_punch_compliance(width_x_mm: float, depth_z_mm: float, sample: Sample,
