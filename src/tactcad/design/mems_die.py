@@ -15,9 +15,10 @@ The die (um; x along the jaw, y across it, the die's lower-left corner at the or
   rows at one x: a unit's two tips at one distance from the pivot;
 * each beam of width w and the device layer's thickness t, bent out of the wafer's plane
   by the tissue's force on a post at its free end (L from the root to the post's centre);
-  K = E w t^3 / (4 (L + dL)^3) (Euler-Bernoulli, E the modulus along the beam, <110> on a
-  (100) wafer, :mod:`tactcad.vocabulary.crystal`), dL the frame's give at the root as
-  extra length (:func:`root_extension_um`, fitted to the fem3d level on the frame);
+  1 / K = (L + dL)^3 / (3 E I) + L / (kappa G A) (Euler-Bernoulli bending and Timoshenko's
+  shear, :func:`beam_stiffness_N_per_mm`; E the modulus along the beam, <110> on a (100)
+  wafer, :mod:`tactcad.vocabulary.crystal`), dL the frame's give at the root as extra length
+  (:func:`root_extension_um`, fitted to the fem3d level on the frame);
 * a U-shaped p-type piezoresistor along each beam from its root (two legs joined at the
   far end), contacted on the frame, and beside it on the frame a reference resistor of the
   same implant, unstrained: the two in series are the beam's half bridge, on three bond pads
@@ -28,8 +29,9 @@ The die (um; x along the jaw, y across it, the die's lower-left corner at the or
 
 Sizing (:func:`die_plan`): the stiffness targets (:class:`tactcad.studies.inverse_design.
 Targets`: K_m = sqrt(K_lo K_hi / X), K_r = X K_m) and the pitch along the die give, for each
-stock device-layer thickness and beam width, L = (E w t^3 / (4 K))^(1/3) - dL; of the pairs whose
-two beams, their posts and the slot between the tips fit across the window, each beam at
+stock device-layer thickness and beam width, the L that has K (:func:`length_for_stiffness_um`);
+of the pairs whose two beams, their posts and the gap between a unit's posts
+(:func:`tip_gap_um`) fit across the window, each beam at
 least :data:`SLENDERNESS` times as long as it is wide, the die takes the one with the lowest
 root stress at the rating, 6 F L_m / (w t^2) (the thicker layer on a tie: its +-tolerance
 moves K by 3 dt / t). Each row's cavity is as deep as its beam's free end goes at
@@ -76,8 +78,9 @@ ROOT_EXTENSION_SOURCE = ("fitted to the die's fem3d level on its frame at w / t 
 #: Timoshenko's shear coefficient of a rectangular section (5/6).
 SHEAR_COEFFICIENT = 5.0 / 6.0
 #: The closed form's K against the fem3d level on the frame over the design's widths and
-#: lengths (relative, either way): off the fitted points (w / t 1.4-6, L / t 4.5-30) it lies
-#: within 0.6 % of fem3d, whose own extrapolation moves K by up to about 1 %.
+#: lengths (relative, either way): off the fitted points (w / t 1-12, L / t 4.5-36) it lies
+#: within 0.9 % of fem3d (``tactcad bench die``), whose own extrapolation moves K by up to
+#: about 1 %.
 CLOSED_FORM_K_ERROR_REL = 0.02
 #: The frame along each long side (um): the contacts, the leads and the bond pads.
 FRAME_UM = 300.0
