@@ -23,7 +23,7 @@ and ``*FREQUENCY`` with the post's mass on its footprint's nodes for f1. Clamped
 f1 against the clamped closed form's are that form's error from shear, the width's
 anticlastic stiffening (w/t of a few) and the anisotropic Poisson coupling, none of which
 K = E w t^3 / (4 L^3) carries. On its frame they add the frame's compliance at the root:
-the frame turns and gives under the root's moment and shear (on the example die K_r 14 %
+the frame turns and gives under the root's moment and shear (on the example die K_r 15 %
 and K_m 7 % below the clamped beam's), which the closed form carries as extra length
 behind the root (:func:`tactcad.design.mems_die.root_extension_um`).
 

@@ -12,8 +12,10 @@ The beam runs into its frame block (the die as made; :func:`tactcad.mechanics.di
 beam_on_frame`): the device layer behind and beside the root, bonded on the buried oxide
 and the handle (one silicon solid), the cavity under the beam with the handle as its floor,
 held at the handle's underside. The frame turns and gives under the root's moment and shear:
-on the example die that makes K_r 14 % and K_m 7 % softer than the same beams clamped at the
-root (``frame=False``, the textbook cantilever the closed form's K = E w t^3 / (4 L^3) is).
+on the example die that makes K_r 15 % and K_m 7 % softer than the same beams clamped at the
+root (``frame=False``, the textbook cantilever K = E w t^3 / (4 L^3)); the die's closed form
+carries that give as extra length behind the root
+(:func:`tactcad.design.mems_die.root_extension_um`, fitted to this level).
 K: a uniform shear traction of total F over the cross-section at
 the post's centre (an internal plane of facets), K = F^2 / (f . u), f the consistent load
 vector, so f . u / F is the section's mean deflection. f1: the lowest eigenvalue of
@@ -216,7 +218,7 @@ def die_beam_fem3d(plan, beam, divisions: tuple[int, int, int] = DIVISIONS,
         plan: :class:`tactcad.design.mems_die.DiePlan`. beam: one of its beams.
         divisions: elements along, across and through the beam on the coarser mesh.
         frame: the beam on its frame block (the die as made); False: clamped at its root
-            (the textbook cantilever, as the closed form's Euler-Bernoulli term).
+            (the textbook cantilever, E w t^3 / (4 L^3) with shear and plate effects).
 
     Returns:
         :class:`DieBeamFem`.
