@@ -80,8 +80,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_design_arg(dd)
     dd.add_argument("--beams", choices=("rows", "domain", "all"), default="all",
                     help="the die's two rows, four beams at the corners of the sections its "
-                         "design makes, or both (default %(default)s; fem3d takes one to three "
-                         "minutes a beam)")
+                         "design makes, or both (default %(default)s; fem3d takes half a minute to "
+                         "a minute and a half a beam)")
     add_output_args(dd, "print one JSON object: every beam's K per level and the summary per "
                         "level")
     dd.set_defaults(func=run_die_bench)

@@ -79,8 +79,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--fem3d", action="store_true",
                    help="solve each row's beam on its frame block at the die's fem3d level "
                         "(scikit-fem, silicon's anisotropic stiffness, triquadratic hexahedra, "
-                        "two meshes extrapolated; a few minutes) and state the closed form's K "
-                        "and f1 error against it")
+                        "two meshes extrapolated; about a minute and a half) and state the "
+                        "closed form's K and f1 error against it")
     p.add_argument("--out", default="die", metavar="DIR",
                    help="folder for the masks and the record (default ./die)")
     add_output_args(p, "print the plan and the checks as one JSON object")
