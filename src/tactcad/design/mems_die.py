@@ -604,7 +604,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                                f"{E / 1e3:.4g} GPa along the beam ({angle_from_110_deg:g} deg "
                                f"from <110> on (100), {SILICON.source.split(',')[0]}), G = "
                                f"C44 = {SILICON.c44 / 1e3:.4g} GPa, dL = "
-                               f"{root_extension_um(w, t):.3g} um the frame's give at the root "
+                               f"{dl:.3g} um the frame's give at the root "
                                f"({ROOT_EXTENSION_SOURCE}; K within "
                                f"+-{100 * CLOSED_FORM_K_ERROR_REL:g} % of it)",
         "measuring_length_um": f"K_m = {k_m:.4g} N/mm the same way (K_r / K_m = "

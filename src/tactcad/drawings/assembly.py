@@ -26,7 +26,7 @@ from tactcad.drawings.frame import (FRAME, general_tolerance, revision_and_date,
                                     title_cells, wrap_text)
 from tactcad.drawings.sheet import (DIM_TEXT_MM, LABEL_TEXT_MM, Point, Sheet, Spot, fmt_mm,
                                     text_width)
-from tactcad.drawings.views import ISO_5455_SCALES, View, cameras_for, project, scale_text
+from tactcad.drawings.views import View, cameras_for, fitting_scale, project, scale_text
 from tactcad.store import stable_repr
 
 BALLOON_R = 4.0       # paper mm (ISO 6433: circle, item number inside)
@@ -105,9 +105,7 @@ def assembly_inputs(plan: Plan, items: dict[str, int]) -> tuple:
 
 def _fit_scale(v: View, width: float, height: float) -> float:
     """Largest ISO 5455 scale at which view ``v`` fits ``width`` x ``height`` (paper mm)."""
-    w, h = v.bbox[2] - v.bbox[0], v.bbox[3] - v.bbox[1]
-    return next((sc for sc in ISO_5455_SCALES if w * sc <= width and h * sc <= height),
-                ISO_5455_SCALES[-1])
+    return fitting_scale((v.bbox[2] - v.bbox[0], v.bbox[3] - v.bbox[1]), (width, height))
 
 
 def _compound(specs: dict[str, PartSpec], inst: list[Instance], solids: dict):

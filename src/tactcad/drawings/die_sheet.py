@@ -22,6 +22,7 @@ from tactcad.design.die_mount import DieMount
 from tactcad.design.mems_die import DiePlan
 from tactcad.drawings.frame import FRAME, sheet_frame
 from tactcad.drawings.sheet import Sheet, fmt_mm
+from tactcad.drawings.views import fitting_scale
 from tactcad.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
 
 #: Scales of the die's and of the carrier's plan views (paper mm per mm), largest first: a
@@ -48,10 +49,10 @@ def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
     sh = Sheet("A3", title=f"{plan.name}: die and carrier")
     sheet_frame(sh)
     x0, y0 = FRAME[0] + 35.0, FRAME[1] + 40.0  # the die's corner (x = 0, y = die width)
-    die_scale = largest_scale(DIE_SCALES, (plan.die_length_um / 1000, plan.die_width_um / 1000),
-                              DIE_ROOM_MM)
-    carrier_scale = largest_scale(CARRIER_SCALES, (mount.carrier_length_mm,
-                                                   mount.carrier_width_mm), CARRIER_ROOM_MM)
+    die_scale = fitting_scale((plan.die_length_um / 1000, plan.die_width_um / 1000), DIE_ROOM_MM,
+                              DIE_SCALES)
+    carrier_scale = fitting_scale((mount.carrier_length_mm, mount.carrier_width_mm),
+                                  CARRIER_ROOM_MM, CARRIER_SCALES)
     s = die_scale / 1000.0  # paper mm per um
 
     def at(x_um: float, y_um: float) -> tuple[float, float]:
@@ -81,16 +82,6 @@ def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
             f"{plan.name}: die {die_scale:g}:1, carrier {carrier_scale:g}:1, mm", 3.5,
             anchor="end")
     return sh
-
-
-def largest_scale(scales: tuple[float, ...], extent_mm: tuple[float, float],
-                  room_mm: tuple[float, float]) -> float:
-    """The largest of ``scales`` (largest first) at which a view of ``extent_mm`` fits
-    ``room_mm`` (paper mm), else the smallest."""
-    for scale in scales:
-        if all(e * scale <= r for e, r in zip(extent_mm, room_mm)):
-            return scale
-    return scales[-1]
 
 
 def _die_dimensions(sh: Sheet, plan: DiePlan, at) -> None:

@@ -33,6 +33,14 @@ CAMERAS: dict[str, tuple[tuple[float, float, float], tuple[float, float, float]]
 ISO_5455_SCALES: tuple[float, ...] = (50.0, 20.0, 10.0, 5.0, 2.0, 1.0, 0.5, 0.2, 0.1)
 
 
+def fitting_scale(extent_mm: tuple[float, float], room_mm: tuple[float, float],
+                  scales: tuple[float, ...] = ISO_5455_SCALES) -> float:
+    """The largest of ``scales`` (largest first) at which a view of ``extent_mm`` (model
+    mm, width and height) fits ``room_mm`` (paper mm), else the smallest."""
+    return next((sc for sc in scales
+                 if all(e * sc <= r for e, r in zip(extent_mm, room_mm))), scales[-1])
+
+
 def scale_text(scale: float) -> str:
     """``5:1``, ``1:1``, ``1:2`` for a scale factor (paper mm per model mm)."""
     if scale >= 1:
