@@ -37,7 +37,7 @@ if TYPE_CHECKING:  # types only: importing them at run time would load the kerne
     from tactcad.mechanics.modal_result import ModalResult
     from tactcad.mechanics.element_strength import StrengthRecord
 
-__all__ = ["load", "Project", "Element", "CheckReport"]
+__all__ = ["load", "Project", "DieProject", "Element", "CheckReport"]
 
 Progress = Callable[[str], None]
 
@@ -46,10 +46,13 @@ def _quiet(line: str) -> None:
     """Progress sink that prints nothing."""
 
 
-def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -> "Project":
+def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None
+         ) -> "Project | DieProject":
     """Read and validate a design file with its rigs and scenes files (those its
     ``[files]`` table names, else ``rigs.toml`` and ``scenes.toml`` beside it;
-    where it has none, ones made for it: samples over its own K_obj range).
+    where it has none, ones made for it: samples over its own K_obj range). Another
+    product's design file (a silicon die's ``[die]`` file) gives that product's object
+    (:class:`DieProject`), through its registry entry (:mod:`tactcad.products`).
 
     Args:
         path: TOML design file; ``None`` means the one design file of the
@@ -61,7 +64,8 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
             like the file (the CLI's ``--set``).
 
     Returns:
-        The validated :class:`Project`; no geometry is built yet.
+        The validated :class:`Project` (a die's: :class:`DieProject`); no geometry is
+        built yet.
 
     Raises:
         DesignErrors: every refusal of the three files at once (``.errors``),
@@ -72,12 +76,16 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
     from tactcad.design.array_plan import with_overrides
     from tactcad.design.file_kind import read_array_tables
     from tactcad.errors import DesignError
+    from tactcad.project_folder import product_of
     from tactcad.project_folder import default_design
 
     if path is not None and not isinstance(path, (str, PathLike)):
         raise DesignError("path", path, "a design file's path (str or pathlib.Path) or None")
     design = Path(path) if path is not None else default_design()
     overrides = _checked_overrides(set)
+    product = product_of(design)
+    if not product.is_default:
+        return product.hook("load")(design, overrides)
     data = with_overrides(read_array_tables(design), overrides)
     return Project(_validated(data, design, overrides), data, design)
 
@@ -413,6 +421,127 @@ class Project:
             self._report = _quiet
         return CheckReport(tuple((g, tuple(r)) for g, r in groups), refusal is None,
                            refusal, None if out is None else str(out))
+
+
+def load_die(design: Path, overrides: Mapping[str, Any] | None = None) -> "DieProject":
+    """A silicon die's design file as a :class:`DieProject` (the die product's ``load``
+    hook, :mod:`tactcad.products.silicon_die`), planned now.
+
+    Raises:
+        DesignErrors, DesignError: as ``tactcad die --design`` refuses the file or a value.
+    """
+    project = DieProject(Path(design), dict(overrides or {}))
+    project.plan  # planned now: a refusal at load, as an array's
+    return project
+
+
+class DieProject:
+    """A silicon die's validated design and what tactcad computes for it: the same reports
+    (the same numbers) ``tactcad stiffness``, ``strength``, ``readout``, ``modal``,
+    ``budget`` and ``verify`` print with ``--json`` on its file, and its export and check.
+
+    Build with :func:`load`. Units: um for the die's dimensions, N/mm, N, MPa, Hz.
+
+    Attributes:
+        source: the die design file's path.
+    """
+
+    def __init__(self, source: Path, overrides: Mapping[str, Any]):
+        self.source = Path(source)
+        self._overrides = dict(overrides)
+
+    def _args(self, **options: Any):
+        """The namespace the die's views read (as the CLI parses it), ``set`` as ``--set``."""
+        import argparse
+
+        import tomli_w
+
+        texts = [f"{k}={tomli_w.dumps({'v': v}).partition('=')[2].strip()}"
+                 for k, v in self._overrides.items()]
+        return argparse.Namespace(design=str(self.source), overrides=texts, json=True,
+                                  quiet=True, option_defaults={}, **options)
+
+    @cached_property
+    def planned(self):
+        """The die planned from its file (:class:`tactcad.commands.die.PlannedDie`: plan,
+        the jaw's room, the jaw as mounted)."""
+        from tactcad.commands.die import _die_args, die_asked, plan_of
+
+        return plan_of(die_asked(_die_args(self.source, self._args(), Path("."))))
+
+    @property
+    def plan(self):
+        """The die's :class:`~tactcad.design.mems_die.DiePlan` (um, N/mm, N, MPa), every
+        derived dimension with its reason (``plan.reasons``)."""
+        return self.planned.plan
+
+    @property
+    def name(self) -> str:
+        """The die's name (``[die] name``): its GDS cell and file names."""
+        return self.plan.name
+
+    def _report(self, command: str, **options: Any) -> dict:
+        from tactcad.products import product_named
+
+        view = product_named("silicon-die").view(command)
+        return view(self.source, self._args(**options))[0]
+
+    def stiffness(self, model: str = "closed-form") -> dict:
+        """Each row's beam K on its frame at ``model`` (``closed-form`` or ``fem3d``), as
+        ``tactcad stiffness --json`` gives it (N/mm, relative errors).
+
+        Raises:
+            DesignError: another model.
+        """
+        return self._report("stiffness", model=model)
+
+    def strength(self) -> dict:
+        """Each row's root stress at the force it carries against the strength of etched
+        silicon, and the rated-force requirement, as ``tactcad strength --json`` (MPa, N)."""
+        return self._report("strength", model="closed-form")
+
+    def readout(self) -> dict:
+        """The piezoresistive read-out, as ``tactcad readout --json`` (ohm, V/N, N)."""
+        return self._report("readout")
+
+    def modes(self) -> dict:
+        """Each row's first resonance, as ``tactcad modal --json`` (Hz)."""
+        return self._report("modal")
+
+    def budget(self) -> dict:
+        """The K_obj error budget, as ``tactcad budget --json`` (relative, 1 sigma)."""
+        return self._report("budget")
+
+    def verify(self) -> dict:
+        """The verification matrix, as ``tactcad verify --json`` (``passed``, ``matrix``)."""
+        return self._report("verify")
+
+    def export(self, out: str | Path = "exports", cache: Any = None,
+               progress: Progress | None = None) -> int:
+        """Write the die's files into ``out`` (masks, wafer, STEP, traveller, drawing, BOM,
+        scene, review page, manifest), as ``tactcad export`` does; the exit code (1: a check
+        failed).
+
+        Args:
+            out: the export folder (new, empty or this die's).
+            cache: accepted as an array's export takes it; a die's export is one job, and
+                the solves it keeps go to the result store on their own.
+            progress: told when the export starts and ends.
+
+        Raises:
+            DesignError: ``out`` holds other files than this die's.
+        """
+        import contextlib
+        import io
+
+        from tactcad.commands.die import export_die
+
+        report = progress or _quiet
+        report(f"exporting die {self.name} to {out}")
+        with contextlib.redirect_stdout(io.StringIO()):
+            code = export_die(self.source, self._args(out=str(out)))
+        report(f"exported die {self.name} to {out}")
+        return code
 
 
 def _store(cache: str | Path | None | bool):

@@ -231,7 +231,7 @@ def _check_target(folder: Path, names: list[str], force: bool, option: str = "DI
     if clashes and not force:
         raise DesignError(option, str(folder), "a folder without the project's files, or --force",
                           f"it has {', '.join(sorted(clashes))} already")
-    others = sorted(p.name for p in (designs_in(folder) + die_designs_in(folder)
+    others = sorted(p.name for p in (designs_in(folder) + other_product_designs_in(folder)
                                      if folder.is_dir() else []) if p.name not in names)
     if others:  # two design files: every command without --design would refuse the folder
         raise DesignError(option, str(folder), "a folder without another design file",
@@ -521,17 +521,58 @@ def new_die_project(folder: str | Path, source: Path, *, force: bool = False) ->
     design_name = f"{name}.toml" if name else source.name
     text = text.replace(source.name, design_name)  # its comments name the file they are in
     design = load_die_design(source)
-    words = {"name": name or design.die.name, "design": design_name, "version": VERSION}
-    files = {"README.md": _template("README-die.md").substitute(words),
-             ".gitignore": _template("gitignore").substitute(words)}
     jaw = Path(design.jaw)
-    if jaw.suffix.lower() == ".toml" and jaw.is_file():  # a lab's jaw file, kept beside it
-        files[design.die.jaw] = jaw.read_text(encoding="utf-8")
-    files[design_name] = text
+    jaw_text = (jaw.read_text(encoding="utf-8")  # a lab's jaw file, kept beside it
+                if jaw.suffix.lower() == ".toml" and jaw.is_file() else None)
+    files = die_project_files(text, design_name, name or design.die.name,
+                              {design.die.jaw: jaw_text} if jaw_text is not None else {})
     return _write_files(Path(folder), files, force, "DIR")
 
 
+def die_project_files(design_text: str, design_name: str, name: str,
+                      beside: Mapping[str, str] | None = None) -> dict[str, str]:
+    """Relative path -> text of a silicon die's project folder: a README, a .gitignore, the
+    CI workflow (export, check with a JUnit report, the diff on a pull request, as an
+    array's project has), the files ``beside`` it (a lab's jaw file) and the die's design
+    file (last: it is moved in last)."""
+    words = {"name": name, "design": design_name, "version": VERSION}
+    files = {"README.md": _template("README-die.md").substitute(words),
+             ".gitignore": _template("gitignore").substitute(words),
+             EXTRA_FILES["hardware.yml"]: _template("hardware.yml").substitute(words),
+             **dict(beside or {})}
+    files[design_name] = design_text
+    return files
+
+
+def write_die_project(folder: str | Path, design_text: str, design_name: str, name: str,
+                      beside: Mapping[str, str] | None = None, *, force: bool = False,
+                      option: str = "--out") -> NewProject:
+    """A silicon die's project folder around a design file's text (``tactcad design
+    --jaw ... --out DIR`` when a die is what fits): :func:`die_project_files`, made in a
+    staging folder and moved in.
+
+    Raises:
+        DesignError: ``option`` is a file, or holds one of the files (without ``force``).
+        OSError: the folder cannot be written (nothing is left half-written).
+    """
+    return _write_files(Path(folder), die_project_files(design_text, design_name, name, beside),
+                        force, option)
+
+
 # --- which design a command works on ---------------------------------------------------------
+def product_of(design: Path):
+    """The product (:class:`tactcad.products.Product`) of the design file ``design``, read
+    as TOML (:func:`tactcad.products.product_of_tables`).
+
+    Raises:
+        DesignError: the file is unreadable or not TOML (named).
+    """
+    from tactcad.products import product_of_tables
+    from tactcad.vocabulary.schema import read_toml
+
+    return product_of_tables(read_toml(design, "design file"))
+
+
 def designs_in(folder: str | Path) -> list[Path]:
     """The design files of a project folder: its ``*.toml`` files with a
     ``[design]`` and an ``[arms]`` table (unreadable files are passed over)."""
@@ -539,12 +580,13 @@ def designs_in(folder: str | Path) -> list[Path]:
                         and isinstance(t.get("arms"), dict))
 
 
-def die_designs_in(folder: str | Path) -> list[Path]:
-    """The silicon die design files of a folder: its ``*.toml`` files with a ``[die]``
-    table (:func:`tactcad.design.die_file.is_die_file`; unreadable files passed over)."""
-    from tactcad.design.die_file import is_die_file
+def other_product_designs_in(folder: str | Path) -> list[Path]:
+    """The design files of a folder that another product than the array claims (a silicon
+    die's ``[die]`` file, :func:`tactcad.products.product_of_tables`): its ``*.toml`` files
+    a registered product owns (unreadable files passed over)."""
+    from tactcad.products import product_of_tables
 
-    return _tomls_where(folder, is_die_file)
+    return _tomls_where(folder, lambda tables: not product_of_tables(tables).is_default)
 
 
 def _tomls_where(folder: str | Path, holds) -> list[Path]:
@@ -570,7 +612,7 @@ def default_design(folder: str | Path = ".") -> Path:
     """
     from tactcad.design.array_plan import DEFAULT_DESIGN
 
-    found = designs_in(folder) + die_designs_in(folder)
+    found = designs_in(folder) + other_product_designs_in(folder)
     if len(found) > 1:
         raise DesignError("--design", None, "one of " + ", ".join(p.name for p in found),
                           f"{len(found)} design files in {Path(folder).resolve().name or '/'}")
@@ -590,7 +632,7 @@ def _export_folders(folder: Path) -> list[Path]:
     out, here = [], folder.resolve()
     for _ in range(EXPORT_DEPTH + 1):
         out.append(here)
-        if here.parent == here or designs_in(here.parent) or die_designs_in(here.parent):
+        if here.parent == here or designs_in(here.parent) or other_product_designs_in(here.parent):
             break
         here = here.parent
     return out

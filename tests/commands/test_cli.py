@@ -135,7 +135,7 @@ def test_usage_errors_are_json_too(capsys):
     err = json.loads(capsys.readouterr().out)["error"]
     assert "--element" in err["message"] and err["exit_code"] == 2
     assert cli.main(["stiffness"]) == 2
-    assert "the following arguments are required: --element" in capsys.readouterr().err
+    assert "--element (not given): allowed a value" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("argv, field, value, allowed", [

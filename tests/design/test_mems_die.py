@@ -25,6 +25,11 @@ from tactcad.studies.inverse_design import Targets
 E_110_MPA = 169e3
 
 
+def _files_in(folder: Path) -> list[str]:
+    """Every file under ``folder``, as sorted paths relative to it."""
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())
+
+
 @pytest.fixture(scope="module")
 def die():
     return md.die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"))
@@ -332,10 +337,11 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     assert r.returncode == 0, r.stdout + r.stderr
     rec = json.loads(r.stdout)
     assert rec["counts"]["failed"] == 0 and rec["wafer_dies"] > 100
-    assert sorted(p.name for p in (tmp_path / "die").iterdir()) == [
-        "mems_die.gds", "mems_die.json", "mems_die.step", "mems_die_bom.csv",
+    assert _files_in(tmp_path / "die") == [
+        "manifest.json", "mems_die.gds", "mems_die.json", "mems_die.step", "mems_die_bom.csv",
         "mems_die_drawing.svg", "mems_die_in_jaw.png", "mems_die_in_jaw.step", "mems_die_masks.png",
-        "mems_die_traveller.md", "mems_die_wafer.gds"]
+        "mems_die_traveller.md", "mems_die_wafer.gds", "review/index.html",
+        "scenes/mems_die_in_jaw.glb"]
     mount_checks = [c for c in rec["checks"] if c["check"].startswith("die_mount")]
     assert len(mount_checks) > 10 and all(c["status"] == "pass" for c in mount_checks)
     bom = (tmp_path / "die" / "mems_die_bom.csv").read_text(encoding="utf-8").splitlines()
@@ -501,7 +507,7 @@ def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypat
     args = ("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
             "--full-scale-force", "0.02", "--out", str(tmp_path / "die"))
     assert run_cli(*args).returncode == 0
-    before = {p.name: p.read_bytes() for p in (tmp_path / "die").iterdir()}
+    before = {p: p.read_bytes() for p in (tmp_path / "die").rglob("*") if p.is_file()}
 
     def full_disk(plan, path):
         raise OSError(errno.ENOSPC, "No space left on device", str(path))
@@ -509,7 +515,7 @@ def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypat
     monkeypatch.setattr(die_solid, "write_die_step", full_disk)
     r = run_cli(*args[:-1], str(tmp_path / "die"), "--pitch-um", "900")
     assert r.returncode != 0 and "disk full" in r.stderr and "Traceback" not in r.stderr
-    assert {p.name: p.read_bytes() for p in (tmp_path / "die").iterdir()} == before
+    assert {p: p.read_bytes() for p in (tmp_path / "die").rglob("*") if p.is_file()} == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["die"]
 
 
@@ -550,9 +556,9 @@ def test_the_shipped_die_example_is_read_from_its_file_and_passes_its_checks(tmp
     assert r.returncode == 0, r.stderr
     record = json.loads(r.stdout)
     assert record["counts"]["failed"] == 0 and record["jaw"] == "5 mm jaw"
-    assert sorted(p.name for p in (tmp_path / "die").iterdir()) == sorted(
-        record["files"].values())
-    assert all(name.startswith("grasper_jaw_5mm_mems") for name in record["files"].values())
+    assert _files_in(tmp_path / "die") == sorted(record["files"].values())
+    assert all(Path(name).name.startswith("grasper_jaw_5mm_mems")
+               for kind, name in record["files"].items() if kind not in ("review", "manifest"))
     # the file's targets, not the command's defaults
     assert record["die"]["full_scale_force_N"] == 0.02
 
@@ -772,7 +778,7 @@ def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
     design = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
               / "grasper_jaw_5mm_mems.toml")
     (tmp_path / design.name).write_bytes(design.read_bytes())
-    for command in ("strength", "tolerance"):
+    for command in ("tolerance", "scenes"):
         r = run_cli(command, "--json", cwd=tmp_path)
         assert r.returncode == 2, (command, r.stdout, r.stderr)
         error = json.loads(r.stdout)["error"]

@@ -361,7 +361,11 @@ def test_new_from_the_die_example_makes_a_die_project_named_for_its_folder(tmp_p
     from tactcad.design.die_file import load_die_design
 
     made = new_project(tmp_path / "my-die", example="grasper_jaw_5mm_mems")
-    assert sorted(made.files) == [".gitignore", "README.md", "my_die.toml"]
+    # the CI workflow too, as an array's project has (export, check, diff)
+    assert sorted(made.files) == [".github/workflows/hardware.yml", ".gitignore", "README.md",
+                                  "my_die.toml"]
+    workflow = (made.folder / ".github/workflows/hardware.yml").read_text(encoding="utf-8")
+    assert "DESIGN: my_die.toml" in workflow
     assert made.design == tmp_path / "my-die" / "my_die.toml"
     assert load_die_design(made.design).die.name == "my_die"
     assert default_design(made.folder) == made.design  # every command takes it

@@ -81,12 +81,25 @@ def module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
+#: The package of the products (docs/reference/layout.md): each product's own code is laid
+#: out by layer inside its package (``products/<product>/<layer>/``).
+PRODUCTS = "products"
+
+
 def layer_of(module: str) -> str:
+    """The layer of ``module``: its top package's, but for a product's own code, which sits in
+    the layer its sub-package names (``tactcad.products.silicon_die.export.x``: export); a
+    product's registry entry (its package's ``__init__``) sits in the products layer."""
     if module in FOUNDATION:
         return "foundation"
     if module in TOP_LEVEL:
         return TOP_LEVEL[module]
-    top = module.split(".")[1]
+    parts = module.split(".")
+    if len(parts) > 3 and parts[1] == PRODUCTS:
+        if parts[3] not in LAYERS or parts[3] == PRODUCTS:
+            raise AssertionError(f"{module}: a product's code outside the layers {LAYERS}")
+        return parts[3]
+    top = parts[1]
     if top not in LAYERS:
         raise AssertionError(f"{module}: a module outside the layers {LAYERS}")
     return top
@@ -222,7 +235,11 @@ def test_the_checker_sees_function_local_and_relative_imports(tmp_path, monkeypa
 
 @pytest.mark.parametrize("module,layer", [("tactcad.store", "foundation"),
                                           ("tactcad.design.array_plan", "design"),
-                                          ("tactcad.mechanics.fem.fem3d", "mechanics")])
+                                          ("tactcad.mechanics.fem.fem3d", "mechanics"),
+                                          ("tactcad.products", "products"),
+                                          ("tactcad.products.silicon_die", "products"),
+                                          ("tactcad.products.silicon_die.export.die_review",
+                                           "export")])
 def test_layer_names(module, layer):
     assert layer_of(module) == layer
 

@@ -146,18 +146,26 @@ def announce_shipped_example() -> None:
 
 def load_from_args(args: argparse.Namespace):
     """The :class:`tactcad.api.Project` of ``--design`` with every ``--set``
-    (:func:`tactcad.api.load`, which the Python API's users call too).
+    (:func:`tactcad.api.load`, which the Python API's users call too): an array's, the
+    command's own; another product's design file is refused naming the commands that answer
+    for it (:meth:`tactcad.products.Product.refusal`).
 
     Raises:
-        DesignError: as :func:`plan_from_args`.
+        DesignError: as :func:`plan_from_args`, or another product's design file.
     """
     from tactcad.api import load
     from tactcad.errors import DesignErrors
+
+    from tactcad.project_folder import product_of
 
     texts = getattr(args, "overrides", None) or []
     design = getattr(args, "design", None)
     if design is None:
         design = announced_default_design()
+    if Path(design).suffix.lower() == ".toml" and Path(design).is_file():
+        product = product_of(Path(design))
+        if not product.is_default:  # an array command on another product's file
+            raise product.refusal(getattr(args, "command", None), Path(design))
     try:
         return load(design, set=parse_overrides(texts))
     except DesignErrors as exc:  # a refused --set value is named as typed (the last of a key)
@@ -190,3 +198,46 @@ def store_from_args(args: argparse.Namespace):
     # a command that writes a project keeps its results where the project's commands look
     default = getattr(args, "default_store", None)
     return Store(default(args) if default is not None else DEFAULT_STORE)
+
+
+def design_and_product(args: argparse.Namespace):
+    """(design file, :class:`~tactcad.products.Product`) a command works on: ``--design``,
+    else the working folder's one design file
+    (:func:`tactcad.project_folder.default_design`); None when that is no readable TOML
+    file (the array's loader then names what is wrong with it).
+
+    Raises:
+        DesignError: the folder holds several design files, or the file is not TOML.
+    """
+    from tactcad.project_folder import default_design, product_of
+
+    design = Path(args.design) if getattr(args, "design", None) else default_design()
+    if design.suffix.lower() != ".toml" or not design.is_file():
+        return None
+    return design, product_of(design)
+
+
+def product_view(command: str, args: argparse.Namespace) -> int | None:
+    """Run the product's answer to ``command`` when the design a command works on is not the
+    default product's (:func:`design_and_product`); None for the default product's design
+    (the command goes on with its own code).
+
+    Returns:
+        The exit code: 0, or 1 when the report says it did not pass.
+
+    Raises:
+        DesignError: the product has no answer to ``command`` (the refusal names those it
+            has), or the product's own refusals.
+    """
+    from tactcad.commands.finite_json import dumps
+
+    found = design_and_product(args)
+    if found is None or found[1].is_default:
+        return None
+    design, product = found
+    view = product.view(command)
+    if view is None:
+        raise product.refusal(command, design)
+    report, lines = view(design, args)
+    print(dumps(report, indent=1) if getattr(args, "json", False) else "\n".join(lines))
+    return 0 if report.get("passed", True) else 1

@@ -5,11 +5,10 @@ from __future__ import annotations
 import argparse
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
-                              progress_from_args)
+                              product_view, progress_from_args)
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number, output_file, keep_option_defaults
 from tactcad.mechanics.ladder import models
-from tactcad.commands.die_views import die_view
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -76,7 +75,7 @@ def calibrations_from_file(path: str, plan) -> dict:
 
 
 def run(args: argparse.Namespace) -> int:
-    shown = die_view("budget", args)  # a silicon die's design: its own figures
+    shown = product_view("budget", args)  # a silicon die's design: its own figures
     if shown is not None:
         return shown
     from tactcad.atomic import write_bytes_atomic

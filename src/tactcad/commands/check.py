@@ -40,14 +40,14 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.commands.die import check_die, die_design_of
+    from tactcad.commands import design_and_product
     from tactcad.export.selection import ReportingParts
 
     if args.junit is not None:
         junit_target(args.junit)  # a bad path is refused before the checks run
-    die = die_design_of(args)
-    if die is not None:  # a silicon die's folder: its export read back
-        return check_die(die, args)
+    found = design_and_product(args)
+    if found is not None and not found[1].is_default:  # another product's check (a die's)
+        return found[1].hook("check")(found[0], args)
     project = load_from_args(args)
     report = progress_from_args(args)
     t0 = time.perf_counter()

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
-from tactcad.commands.die_views import die_view
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+                              product_view)
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import keep_option_defaults
 from tactcad.commands.tolerance import add_cluster_args
@@ -40,7 +40,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.stack_crosstalk import plan_crosstalk
 
-    shown = die_view("crosstalk", args)  # a silicon die's design: through its handle
+    shown = product_view("crosstalk", args)  # a silicon die's design: through its handle
     if shown is not None:
         return shown
     plan = plan_from_args(args)

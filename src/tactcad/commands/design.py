@@ -402,17 +402,25 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     text = die_file_text(stated, targets.kr_over_km, targets.k_obj_range_N_per_mm,
                          targets.full_scale_force_N, columns, plan.pitch_um, plan.name,
                          "tactcad design " + " ".join(design_options(args)), reasons)
-    if folder is not None:
-        folder.mkdir(parents=True, exist_ok=True)
+    beside = {}
     if jaw_file:
         import tomli_w
 
-        write_bytes_atomic(path.parent / stated,
-                           tomli_w.dumps({"grasper_jaw": dict(jaw)}).encode("utf-8"))
-    write_bytes_atomic(path, text.encode("utf-8"))
+        beside[stated] = tomli_w.dumps({"grasper_jaw": dict(jaw)})
+    if folder is not None:  # a project folder, as an array's design writes one
+        from tactcad.project_folder import write_die_project
+
+        write_die_project(folder, text, path.name, plan.name, beside,
+                          force=getattr(args, "force", False))
+    else:
+        for rel, jaw_text in beside.items():
+            write_bytes_atomic(path.parent / rel, jaw_text.encode("utf-8"))
+        write_bytes_atomic(path, text.encode("utf-8"))
     report = {"construction": DIE_CONSTRUCTION, "design": str(path), "jaw": room.label,
               "left_out": [*left, *why], "die": plan.as_json(),
-              "next": f"tactcad die --design {shown_path(str(path))} --out die"}
+              "next": (f"cd {shown_path(str(folder))} && tactcad export --out exports && "
+                       "tactcad check --out exports" if folder is not None else
+                       f"tactcad die --design {shown_path(str(path))} --out die")}
     if args.json:
         print(json.dumps(report, indent=2, allow_nan=False))
     else:
@@ -423,7 +431,8 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
             print(f"  not searched: {line}")
         print(f"  SOI device layer {plan.stack.device_um:g} um, beams {b_r.width_um:g} um wide: "
               f"reference {b_r.length_um:.4g} um, measuring {b_m.length_um:.4g} um long")
-        print(f"  next: {report['next']} (masks, wafer, STEP, traveller, KLayout DRC)")
+        print(f"  next: {report['next']} (masks, wafer, STEP, traveller, review page, "
+              "KLayout DRC)")
     return 0
 
 
@@ -530,6 +539,8 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
         try:
             return write_die_design(args, targets, room, path, folder, refusals, left)
         except DesignError as die_refusal:  # neither fits: both say why, the die's first
+            if die_refusal.field == "--out":  # the die fits; its folder is refused
+                raise
             raise DesignError(
                 die_refusal.field, die_refusal.value, die_refusal.allowed,
                 f"a silicon die: {die_refusal.why or die_refusal.allowed}; "

@@ -28,7 +28,10 @@ DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "step": "{name}
              "picture": "{name}_masks.png", "traveller": "{name}_traveller.md",
              "scene": "{name}_in_jaw.step", "scene_picture": "{name}_in_jaw.png",
              "bom": "{name}_bom.csv", "drawing": "{name}_drawing.svg",
-             "record": "{name}.json"}
+             "record": "{name}.json", "glb": "scenes/{name}_in_jaw.glb",
+             "review": "review/index.html", "manifest": "manifest.json"}
+#: The files whose sha256 the manifest cannot hold: itself.
+NOT_IN_MANIFEST = ("manifest",)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -144,9 +147,9 @@ def _folder_die_design() -> Path | None:
     # the working folder's one die design file; an array's folder or none gives None
     from tactcad.design.array_plan import read_toml
     from tactcad.design.die_file import is_die_file
-    from tactcad.project_folder import designs_in, die_designs_in
+    from tactcad.project_folder import designs_in, other_product_designs_in
 
-    found = designs_in(".") + die_designs_in(".")
+    found = designs_in(".") + other_product_designs_in(".")
     if len(found) == 1 and is_die_file(read_toml(found[0], "--design")):
         return found[0]
     return None
@@ -287,6 +290,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.die_dynamics import (calculix_beam_check, closed_form_k_N_per_mm,
                                                 die_modes, first_resonance_Hz)
     from tactcad.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.studies.die_reports import die_beam_fem3d_kept
 
     planned = plan_of(die_asked(args))
     plan, room, name = planned.plan, planned.room, planned.plan.name
@@ -301,7 +305,9 @@ def run(args: argparse.Namespace) -> int:
     # interrupted run leaves OUT's previous files as they were
     staging = staging_dir(out)
     try:
-        made = {k: staging / p.name for k, p in files.items()}
+        made = {k: staging / p.relative_to(out) for k, p in files.items()}
+        for path in made.values():
+            path.parent.mkdir(parents=True, exist_ok=True)
         write_die_gds(plan, made["masks"])
         _, dies = write_wafer_gds(plan, made["wafer"])
         write_die_step(plan, made["step"])
@@ -334,13 +340,15 @@ def run(args: argparse.Namespace) -> int:
                                      plan, _beam_of(plan, r.role), r.frame) / r.f1_Hz - 1.0)
                             for r in fem3d],
                   "kobj_budget": budget.as_json(),
-                  "wafer_dies": dies, "files": {k: p.name for k, p in files.items()},
+                  "wafer_dies": dies, "files": {k: p.relative_to(out).as_posix() for k, p in files.items()},
                   "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
                               "detail": c.detail} for c in checks], "counts": counts}
         made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
+        _write_review_and_manifest(plan, planned.source, made, files, solids, budget, staging)
         out.mkdir(parents=True, exist_ok=True)
-        for k, path in made.items():
-            os.replace(path, files[k])
+        for k in sorted(made, key=lambda k: k == "manifest"):  # the manifest last
+            files[k].parent.mkdir(parents=True, exist_ok=True)
+            os.replace(made[k], files[k])
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     if args.json:
@@ -349,6 +357,35 @@ def run(args: argparse.Namespace) -> int:
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
                      modes, fe, budget, mount, record["fem3d"]))
     return 1 if counts["failed"] else 0
+
+
+def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dict, solids: dict,
+                               budget, staging: Path) -> None:
+    """The die's scene (GLB), review page and manifest, from the files made before them in
+    ``staging`` (:mod:`tactcad.products.silicon_die.export.die_review`)."""
+    from tactcad.products.silicon_die.studies.die_reports import (stiffness_report,
+                                                                  strength_report)
+    from tactcad.export.review_assets import import_map
+    from tactcad.export.review_page import write_review_page
+    from tactcad.products.silicon_die.export.die_review import (
+        beam_elements, design_head, die_manifest, manifest_text, review_contents_of_die,
+        write_scene_glb)
+    from tactcad.studies.die_verification import die_verification
+
+    write_scene_glb(solids, made["glb"], f"{plan.name}_in_jaw")
+    head = design_head(plan.name, source)
+    elements = beam_elements(strength_report(plan)[0], stiffness_report(plan)[0])
+    contents = review_contents_of_die(
+        head, die_verification(plan),
+        (files["drawing"].name, made["drawing"].read_text(encoding="utf-8")),
+        made["glb"].read_bytes(), made["bom"].read_text(encoding="utf-8-sig"), elements,
+        budget.as_json())
+    write_review_page(made["review"], contents, import_map())
+    listed = {k: made[k].relative_to(staging).as_posix() for k in made
+              if k not in NOT_IN_MANIFEST}
+    manifest = die_manifest(head, staging, listed, {"die": plan.as_json(),
+                                                     "elements": elements})
+    made["manifest"].write_text(manifest_text(manifest), encoding="utf-8")
 
 
 def die_requirement_checks(plan) -> list:
@@ -548,6 +585,12 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
                        + mount_checks(mount_solids(plan, mount), mount, f"{name}_posts")
                        + sheet_file_results(files["drawing"]))
         counts = status_counts(checks)
+        if not missing and args.out:  # the results on the export's review page, as an array's
+            from tactcad.checks.review_results import write_checks_script
+
+            sha = (json_module.loads(files["manifest"].read_text(encoding="utf-8"))
+                   .get("design", {}).get("sha256", ""))
+            write_checks_script(out, sha, [(f"die {name}", checks)])
         if junit is not None:  # one suite, the die's: for a lab's CI as an array's check gives
             from tactcad.checks.junit import write_junit
 
@@ -586,16 +629,6 @@ def _record_of(path: Path) -> dict | None:
         return json_module.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
-
-
-def die_beam_fem3d_kept(plan, beam):
-    """:func:`tactcad.mechanics.die_fem3d.die_beam_fem3d`, kept in the result store for the
-    same plan and beam (a second run of the same die solves nothing)."""
-    from tactcad.mechanics.die_fem3d import die_beam_fem3d
-    from tactcad.store import kept_result
-
-    return kept_result("die beam fem3d", lambda: die_beam_fem3d(plan, beam),
-                       dumps(plan.as_json()), beam)
 
 
 def _beam_of(plan, role: str):

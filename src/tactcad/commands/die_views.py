@@ -1,8 +1,12 @@
 """The array commands on a silicon die's design file: ``modal``, ``budget``, ``readout``,
-``thermal``, ``verify``, ``grasp`` and ``crosstalk`` print the die's own resonances, K_obj
-budget, piezoresistive read-out, its temperature terms, its verification matrix
-(:func:`die_verification`), the grasp in its jaw (:mod:`tactcad.in_use.die_grasp`) and the
-crosstalk through its handle and attach (:mod:`tactcad.mechanics.die_crosstalk`),
+``thermal``, ``verify``, ``grasp``, ``crosstalk``, ``strength`` and ``stiffness`` print the
+die's own resonances, K_obj budget, piezoresistive read-out, its temperature terms, its
+verification matrix (:func:`die_verification`), the grasp in its jaw
+(:mod:`tactcad.in_use.die_grasp`), the crosstalk through its handle and attach
+(:mod:`tactcad.mechanics.die_crosstalk`), each row's root stress against the strength of
+etched silicon and each row's K at the closed form or fem3d; the die product's registry
+entry (:mod:`tactcad.products.silicon_die`) names them (``<command>_view``), and
+:func:`tactcad.commands.product_view` runs them,
 planned as the die command plans it and writing no file of theirs (the result store aside).
 
 An option of the array command that has no meaning for a die (a ladder level, an element,
@@ -24,7 +28,8 @@ from tactcad.studies.die_verification import die_verification
 #: The options of an array command a die's view reads, by command (the others are refused).
 DIE_OPTIONS: dict[str, frozenset] = {
     "grasp": frozenset({"angle_deg", "force_N", "slab_thickness_mm", "profile", "kobj",
-                        "opening_deg", "coupling"})}
+                        "opening_deg", "coupling"}),
+    "strength": frozenset({"model"}), "stiffness": frozenset({"model"})}
 
 
 def _refuse_array_options(args: argparse.Namespace, command: str, design: Path) -> None:
@@ -348,25 +353,53 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
     return lines
 
 
-#: The array commands that print a die's own figures, and what they print.
-DIE_VIEWS: dict[str, Callable[[Path, argparse.Namespace], tuple[dict, list[str]]]] = {
-    "modal": _modal, "budget": _budget, "readout": _readout, "thermal": _thermal,
-    "verify": _verify, "grasp": _grasp, "crosstalk": _crosstalk}
+def _strength(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    from tactcad.products.silicon_die.studies.die_reports import strength_report
+
+    _only_closed_form(args, "strength")
+    report, lines = strength_report(_planned(design, args).plan)
+    return {"design": str(design), **report}, lines
 
 
-def die_view(command: str, args: argparse.Namespace) -> int | None:
-    """Run ``command``'s view of a die when ``--design`` (or the working folder's one design
-    file) is a die's; None for an array's design (the command goes on as usual).
+#: The stiffness levels a die's beams are solved at (the die's ladder).
+DIE_STIFFNESS_LEVELS = ("closed-form", "fem3d")
 
-    Raises:
-        DesignError: an option of the array command set (named), or the die's own refusals.
-    """
-    from tactcad.commands.die import die_design_of
 
-    design = die_design_of(args)
-    if design is None:
-        return None
-    _refuse_array_options(args, command, design)
-    report, lines = DIE_VIEWS[command](design, args)
-    print(dumps(report, indent=1) if args.json else "\n".join(lines))
-    return 0 if report.get("passed", True) else 1
+def _only_closed_form(args: argparse.Namespace, command: str,
+                      levels: tuple[str, ...] = ("closed-form",)) -> None:
+    model = getattr(args, "model", "closed-form")
+    if model not in levels:
+        raise DesignError("--model", model, "one of " + ", ".join(levels) + " for a die",
+                          f"`tactcad {command}` on a silicon die solves its beams at these "
+                          "levels")
+
+
+def _stiffness(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    from tactcad.products.silicon_die.studies.die_reports import stiffness_report
+
+    _only_closed_form(args, "stiffness", DIE_STIFFNESS_LEVELS)
+    report, lines = stiffness_report(_planned(design, args).plan,
+                                     getattr(args, "model", "closed-form"))
+    return {"design": str(design), **report}, lines
+
+
+def _viewed(command: str, view: Callable[[Path, argparse.Namespace], tuple[dict, list[str]]]):
+    """``view`` as the die's answer to the array command ``command`` (the die product's
+    hook, :mod:`tactcad.products.silicon_die`): an option of the array's that means nothing
+    for a die is refused by name first."""
+    def answer(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+        _refuse_array_options(args, command, design)
+        return view(design, args)
+    answer.__doc__ = f"``tactcad {command}`` on a silicon die's design file."
+    return answer
+
+
+modal_view = _viewed("modal", _modal)
+budget_view = _viewed("budget", _budget)
+readout_view = _viewed("readout", _readout)
+thermal_view = _viewed("thermal", _thermal)
+verify_view = _viewed("verify", _verify)
+grasp_view = _viewed("grasp", _grasp)
+crosstalk_view = _viewed("crosstalk", _crosstalk)
+strength_view = _viewed("strength", _strength)
+stiffness_view = _viewed("stiffness", _stiffness)

@@ -38,12 +38,12 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.commands.die import die_design_of, export_die
+    from tactcad.commands import design_and_product
     from tactcad.errors import DesignError
 
-    die = die_design_of(args)
-    if die is not None:  # a silicon die's folder: the die's files
-        return export_die(die, args)
+    found = design_and_product(args)
+    if found is not None and not found[1].is_default:  # another product's export (a die's)
+        return found[1].hook("export")(found[0], args)
     # the options first, before the design and the writers are loaded: a refusal is quick
     only, parts = parse_only(args.only), list(args.part or ())
     if args.scene and (only or parts):

@@ -141,9 +141,9 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.readout_chain import readout_chain, row_units
     from tactcad.studies.verification import requirements_of
-    from tactcad.commands.die_views import die_view
+    from tactcad.commands import product_view
 
-    shown = die_view("grasp", args)  # a silicon die's design: the grasp in its jaw
+    shown = product_view("grasp", args)  # a silicon die's design: the grasp in its jaw
     if shown is not None:
         return shown
     plan = design_plan_from_args(args)

@@ -7,19 +7,22 @@ import json
 
 from tactcad.mechanics.ladder import is_meshed, levels_help, models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
-                              progress_from_args, load_from_args)
-from tactcad.commands.options import count, number
-from tactcad.errors import TactcadError
+                              progress_from_args, load_from_args, product_view)
+from tactcad.commands.options import count, keep_option_defaults, number
+from tactcad.errors import DesignError, TactcadError
 
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("stiffness", help="tip stiffness K (N/mm) of one element at a ladder level",
                        description="Tip stiffness, gauge strain per newton, error estimate and wall "
-                                   "time of one sensing element. Units: N/mm, 1/N, s.")
-    p.add_argument("--element", type=count(1, 10_000, "an element number"), required=True,
-                   help="element number of the design (1 ... rows x columns, numbered along "
-                        "row 1, then row 2)")
+                                   "time of one sensing element (a silicon die: each row's "
+                                   "beam on its frame, closed-form or fem3d). Units: N/mm, "
+                                   "1/N, s.")
+    p.add_argument("--element", type=count(1, 10_000, "an element number"), default=None,
+                   help="element number of an array's design (1 ... rows x columns, numbered "
+                        "along row 1, then row 2; required for an array; a silicon die gives "
+                        "each row's beam)")
     p.add_argument("--model", choices=models(), default="closed-form",
                    help=f"ladder level: {levels_help()} (default %(default)s)")
     add_design_arg(p)
@@ -28,6 +31,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--vtk", metavar="DIR", default=None,
                    help="fem2d/fem3d: also write the finest mesh's displacement and von Mises "
                         "stress under 1 N as DIR/<part>_<model>.vtu (ParaView)")
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
     p.set_defaults(func=run_stiffness)
 
     t = sub.add_parser("table1", help="predicted vs measured stiffness of every element (Table 1)",
@@ -45,6 +49,13 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run_stiffness(args: argparse.Namespace) -> int:
+    shown = product_view("stiffness", args)  # a silicon die's design: each row's beam
+    if shown is not None:
+        return shown
+    if args.element is None:
+        raise DesignError("--element", None, "a value: an element number of the design (1 ... "
+                          "rows x columns)", "required for an array's design, whose stiffness "
+                          "is one element's (a die's file gives each row's beam)")
     project = load_from_args(args)
     plan, element = project.plan, project.element(args.element)
     slot = element.slot

@@ -7,11 +7,10 @@ import json
 from pathlib import Path
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
-                              progress_from_args)
+                              product_view, progress_from_args)
 from tactcad.commands.options import count, keep_option_defaults
 from tactcad.errors import TactcadError
 from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_levels_help, modal_models
-from tactcad.commands.die_views import die_view
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -57,7 +56,7 @@ def _added_masses(plan, g, args) -> tuple:
 
 
 def run_modal(args: argparse.Namespace) -> int:
-    shown = die_view("modal", args)  # a silicon die's design: its own figures
+    shown = product_view("modal", args)  # a silicon die's design: its own figures
     if shown is not None:
         return shown
     from tactcad.mechanics.fem.fem_modal import write_modes_vtu

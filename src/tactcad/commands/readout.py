@@ -6,9 +6,8 @@ import argparse
 
 from tactcad.mechanics.ladder import models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
-                              progress_from_args)
+                              product_view, progress_from_args)
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.die_views import die_view
 from tactcad.commands.options import keep_option_defaults
 
 
@@ -35,7 +34,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    shown = die_view("readout", args)  # a silicon die's design: its own figures
+    shown = product_view("readout", args)  # a silicon die's design: its own figures
     if shown is not None:
         return shown
     from dataclasses import replace

@@ -16,7 +16,8 @@ import json
 from tactcad.design.requirements_section import cites_paper
 from tactcad.mechanics.ladder import levels_help, models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
-                              progress_from_args)
+                              product_view, progress_from_args)
+from tactcad.commands.options import keep_option_defaults
 
 
 
@@ -41,10 +42,14 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--table1", action="store_true",
                    help="the paper's design: compare each element's yield-limited force with "
                         "its measured max support force (design web and as-built web)")
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    shown = product_view("strength", args)  # a silicon die's design: each row's beam root
+    if shown is not None:
+        return shown
     from tactcad.studies.reference_loads import reference_load_of
     from tactcad.studies.strength_studies import plan_strength
 

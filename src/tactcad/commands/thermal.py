@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
+                              product_view)
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, keep_option_defaults
 from tactcad.errors import DesignError
 from tactcad.mechanics.ladder import models
-from tactcad.commands.die_views import die_view
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -39,7 +39,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    shown = die_view("thermal", args)  # a silicon die's design: its own figures
+    shown = product_view("thermal", args)  # a silicon die's design: its own figures
     if shown is not None:
         return shown
     from dataclasses import replace

@@ -6,9 +6,8 @@ import argparse
 
 from tactcad.mechanics.ladder import levels_help, models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
-                              progress_from_args)
+                              product_view, progress_from_args)
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.die_views import die_view
 from tactcad.commands.options import keep_option_defaults
 
 
@@ -38,7 +37,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    shown = die_view("verify", args)  # a silicon die's design: its own matrix
+    shown = product_view("verify", args)  # a silicon die's design: its own matrix
     if shown is not None:
         return shown
     from tactcad.studies.verification import (matrix_passed, matrix_table,

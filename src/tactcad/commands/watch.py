@@ -124,7 +124,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _refuse_a_die_at_once(args: argparse.Namespace) -> None:
-    """A silicon die's design file (``--design``, or the working folder's one design file) is
+    """Another product's design file (a silicon die's) (``--design``, or the working folder's one design file) is
     refused before anything starts: a watch re-exports an array, and no edit turns a die's
     file into one (an unreadable file is the watch's own refusal, which waits for the next
     save).
@@ -132,12 +132,11 @@ def _refuse_a_die_at_once(args: argparse.Namespace) -> None:
     Raises:
         DesignError: the design is a die's file.
     """
-    from tactcad.commands.die import die_design_of
-    from tactcad.design.file_kind import die_refusal
+    from tactcad.commands import design_and_product
 
-    design = die_design_of(args)
-    if design is not None:
-        raise die_refusal(design)
+    found = design_and_product(args)
+    if found is not None and not found[1].is_default:
+        raise found[1].refusal("watch", found[0])
 
 
 def watch_log(args: argparse.Namespace) -> Callable[[str], None]:

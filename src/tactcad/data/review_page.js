@@ -436,15 +436,21 @@ function showTables() {
   $('bom-table').replaceChildren(table(DATA.bom.columns, DATA.bom.rows));
   // one rated full-scale force for the design (every record carries the same); each
   // element's own limit is its yield-limited force
-  const cols = ['element', 'part_name', 'arm_length_mm', 'stiffness_N_per_mm', 'yield_limited_force_N',
-                'tip_deflection_mm_at_full_scale', 'stress_MPa_per_N', 'stress_MPa_at_full_scale',
-                'yield_safety_factor_at_full_scale', 'gauge_strain_at_full_scale', 'model'];
+  // the columns the records have, in this order; a product's own figures (a die's beams)
+  // after them under their own names
+  const known = ['element', 'part_name', 'arm_length_mm', 'stiffness_N_per_mm', 'yield_limited_force_N',
+                 'tip_deflection_mm_at_full_scale', 'stress_MPa_per_N', 'stress_MPa_at_full_scale',
+                 'yield_safety_factor_at_full_scale', 'gauge_strain_at_full_scale', 'model'];
+  const present = new Set(DATA.elements.flatMap((r) => Object.keys(r)));
+  const cols = [...known.filter((c) => present.has(c) || !DATA.elements.length),
+                ...[...present].filter((c) => !known.includes(c) && c !== 'warnings' && c !== 'full_scale_force_N').sort()];
   const labels = { element: 'element', part_name: 'part', arm_length_mm: 'arm length (mm)',
                    stiffness_N_per_mm: 'K (N/mm)', yield_limited_force_N: 'yield-limited force (N)',
                    tip_deflection_mm_at_full_scale: 'δ at rated full scale (mm)',
                    stress_MPa_per_N: 'stress (MPa/N)', stress_MPa_at_full_scale: 'stress at rated full scale (MPa)',
                    yield_safety_factor_at_full_scale: 'yield safety factor at rated full scale',
-                   gauge_strain_at_full_scale: 'gauge strain at rated full scale', model: 'model' };
+                   gauge_strain_at_full_scale: 'gauge strain at rated full scale', model: 'model',
+                   strength_over_stress_at_rating: 'strength of etched silicon / root stress at its rated force' };
   const box = $('elements-table');
   const rated = DATA.elements.length ? DATA.elements[0].full_scale_force_N : null;
   box.replaceChildren(...(rated == null ? [] : [el('p', `rated full-scale force ${fmt(rated)} N (the design's)`)]),

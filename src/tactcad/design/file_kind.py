@@ -1,9 +1,10 @@
-"""What kind of design file a file's tables are: an array's, or a silicon die's.
+"""What kind of design file a file's tables are: an array's, or another product's (a
+silicon die's, :mod:`tactcad.products`).
 
-A die's file (a ``[die]`` table) is made by ``tactcad die`` and exported and checked in its
-folder; every array command refuses it by name rather than listing the array tables it
-lacks. This module imports nothing of the design's, so that every reader of a design file
-can ask it first.
+Another product's file (a die's ``[die]`` table) is read by the commands that answer for
+it; every array reader refuses it by name rather than listing the array tables it lacks.
+This module imports nothing of the design's, so that every reader of a design file can ask
+it first.
 """
 
 from __future__ import annotations
@@ -22,33 +23,24 @@ def is_die_file(data: Mapping[str, Any]) -> bool:
     return isinstance(data, Mapping) and DIE_TABLE in data
 
 
-def die_refusal(design: Path) -> DesignError:
-    """The refusal of a silicon die's design file where an array's is read: it names the
-    die command and the array commands that print a die's own figures."""
-    return DesignError("--design", design.name, "an array's design file ([design], "
-                       "[material], [arms], ...)",
-                       f"{design.name} is a silicon die's ([die]): `tactcad die --design "
-                       f"{design.name}` makes it and prints its read-out, budget and "
-                       "resonances; `tactcad modal`, `budget`, `readout`, `thermal` and "
-                       "`verify` print those alone, `grasp` the grasp in its jaw, `crosstalk` the "
-                       "crosstalk through the die; `tactcad "
-                       "export` and `tactcad check` in its folder make and check its files")
-
-
-def refuse_a_die(tables: Mapping[str, Any], design: Path) -> None:
-    """A silicon die's design file is made by ``tactcad die`` (and ``export`` and ``check``
-    in its folder), not read as an array's: say so, not every array table it lacks.
+def refuse_another_product(tables: Mapping[str, Any], design: Path) -> None:
+    """A design file of another product than the array's (a silicon die's) is refused by
+    name where an array's is read, naming the commands that do answer for it
+    (:meth:`tactcad.products.Product.refusal`), not every array table it lacks.
 
     Raises:
-        DesignError: ``tables`` are a die's (:func:`die_refusal`).
+        DesignError: ``tables`` are another product's.
     """
-    if is_die_file(tables):
-        raise die_refusal(design)
+    from tactcad.products import product_of_tables
+
+    product = product_of_tables(tables)
+    if not product.is_default:
+        raise product.refusal(None, design)
 
 
 def read_array_tables(path: Path) -> dict:
     """An array's design file's tables, read as TOML; a die's file refused by name
-    (:func:`die_refusal`) before any array table is looked for.
+    (:func:`refuse_another_product`) before any array table is looked for.
 
     Raises:
         DesignError: unreadable or not TOML (named), or a die's design file.
@@ -56,5 +48,5 @@ def read_array_tables(path: Path) -> dict:
     from tactcad.vocabulary.schema import read_toml
 
     tables = read_toml(path, "design file")
-    refuse_a_die(tables, path)
+    refuse_another_product(tables, path)
     return tables

@@ -187,11 +187,31 @@ def wafer_sites(plan: DiePlan, wafer_mm: float = WAFER_MM,
     return sites
 
 
+def gds_timestamp():
+    """The time a GDSII library's header records: ``SOURCE_DATE_EPOCH`` (the
+    reproducible-builds convention) when set, else 1970-01-01 UTC; never the clock, so that
+    the same die writes the same bytes (gdstk stamps the current time otherwise).
+
+    Raises:
+        DesignError: ``SOURCE_DATE_EPOCH`` is not a whole number of seconds (named).
+    """
+    import datetime
+    import os
+
+    from tactcad.drawings.frame import epoch_date
+
+    epoch_date(os.environ)  # a bad value refused by name
+    seconds = int(os.environ.get("SOURCE_DATE_EPOCH", "").strip() or 0)
+    return datetime.datetime.fromtimestamp(seconds, datetime.timezone.utc).replace(tzinfo=None)
+
+
 def _write(lib, path: Path) -> Path:
-    """``lib`` to ``path`` whole (:func:`tactcad.atomic.write_atomic`)."""
+    """``lib`` to ``path`` whole (:func:`tactcad.atomic.write_atomic`), stamped
+    :func:`gds_timestamp`."""
     from tactcad.atomic import write_atomic
 
-    return write_atomic(path, lambda tmp: lib.write_gds(str(tmp)))
+    stamp = gds_timestamp()
+    return write_atomic(path, lambda tmp: lib.write_gds(str(tmp), timestamp=stamp))
 
 
 def write_die_gds(plan: DiePlan, path: Path) -> Path:

@@ -1,0 +1,146 @@
+"""A die's export as every product's export ends: ``manifest.json`` (every file with its
+sha256, the design's name and hash, the versions) and ``review/index.html``, the one offline
+review page the arrays have (:mod:`tactcad.export.review_page`): the die on its carrier in
+the jaw in 3D, its drawing, its bill of materials, each row's beam as a sensing element
+(K, root stress), its verification matrix and K_obj budget, and ``tactcad check``'s results
+once a check has run.
+
+Units: the die's dimensions in um, the mount's solids in mm (as the STEP), N/mm, N, MPa.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any, Mapping
+
+#: The product the die's manifest and page name.
+PRODUCT_NAME = "silicon-die"
+#: The scene of the die on its carrier in the jaw's face pocket, as the page lists it.
+SCENE = "die_in_jaw"
+
+
+def file_sha256(path: Path) -> str:
+    """sha256 of a file's bytes (hex)."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def design_head(name: str, source: Mapping[str, Any] | None) -> dict:
+    """The manifest's and page's head: the design's name, file and sha256 (the die asked by
+    options has no file: its plan's own hash stands for it), the versions, the units."""
+    from tactcad.store import stack_versions
+    from tactcad.version import VERSION
+
+    source = dict(source or {})
+    return {"design": {"name": name, "source": source.get("source"),
+                       "sha256": source.get("sha256")
+                       or hashlib.sha256(name.encode("utf-8")).hexdigest(),
+                       "overrides": source.get("overrides", {})},
+            "product": PRODUCT_NAME, "tactcad_version": VERSION,
+            "cad_stack": stack_versions(), "units": "um (the die), mm (the mount's STEP)"}
+
+
+def die_manifest(head: Mapping[str, Any], folder: Path, files: Mapping[str, str],
+                 facts: Mapping[str, Any]) -> dict:
+    """The die's ``manifest.json``: ``head`` (:func:`design_head`), every written file
+    (``files``: kind -> path relative to ``folder``) with its sha256 and size, then ``facts``.
+
+    Raises:
+        OSError: a listed file cannot be read.
+    """
+    listed = [{"path": rel, "kind": kind, "sha256": file_sha256(folder / rel),
+               "bytes": (folder / rel).stat().st_size} for kind, rel in sorted(files.items())]
+    return {**head, "files": listed, **facts}
+
+
+def write_scene_glb(solids: Mapping[str, tuple[Any, tuple]], path: Path, name: str) -> int:
+    """The mount's solids (:func:`tactcad.export.die_scene.mount_solids`: part name ->
+    (solid in mm, colour)) as one binary glTF scene (:func:`tactcad.export.glb.write_glb`),
+    each part one instance at its place; returns the triangle count.
+
+    Raises:
+        OSError: the file cannot be written.
+    """
+    from tactcad.export.glb import write_glb
+    from tactcad.kernel.locations import offset
+    from tactcad.solids.tessellation import tessellate
+
+    specs = {part: SimpleNamespace(color=tuple(rgb), kind="die" if part.startswith(name)
+                                   else "mount", material="", attributes={})
+             for part, (_, rgb) in solids.items()}
+    here = offset(0.0, 0.0, 0.0)
+    scene = SimpleNamespace(
+        name=name, spec=SimpleNamespace(rig="grasper jaw"), specs=specs,
+        parts=lambda: specs,
+        instances=[SimpleNamespace(name=part, part=part, group=specs[part].kind, level=0,
+                                   location=here) for part in solids])
+    meshes = {part: tessellate(solid, 0.002) for part, (solid, _) in solids.items()}
+    return write_glb(path, scene, meshes)
+
+
+def beam_elements(strength: Mapping[str, Any], stiffness: Mapping[str, Any]) -> list[dict]:
+    """Each row's beam as the page's element table shows an array's elements: K (N/mm),
+    root stress per newton and at the force it carries (MPa), that force (N), the strength
+    of etched silicon over that stress (silicon is brittle: no yield), from the die's ``strength`` and ``stiffness`` reports (one row each)."""
+    k_of = {r["role"]: r for r in stiffness["rows"]}
+    return [{"element": r["row"], "part_name": f"{r['role']} beam",
+             "arm_length_mm": r["length_um"] / 1e3,
+             "stiffness_N_per_mm": k_of[r["role"]]["stiffness_N_per_mm"],
+             "full_scale_force_N": r["rated_force_N"],
+             "stress_MPa_per_N": r["root_stress_MPa_per_N"],
+             "stress_MPa_at_full_scale": r["root_stress_MPa_at_rated_force"],
+             "strength_over_stress_at_rating": r["strength_over_stress"],
+             "model": strength["model"]} for r in strength["rows"]]
+
+
+def budget_table(budget: Mapping[str, Any]) -> dict | None:
+    """The die's K_obj budget (:meth:`tactcad.in_use.die_budget.DieBudget.as_json`) as the
+    page's one-table section (title, columns, rows), or None when it has no terms."""
+    terms = budget.get("terms_rel") or {}
+    if not terms:
+        return None
+    ks = budget.get("k_obj_N_per_mm") or []
+    columns = ["term", *[f"K_obj {k:.3g} N/mm" for k in ks], "why"]
+    reasons = budget.get("reasons") or {}
+
+    def pct(v) -> str:
+        return f"{100 * v:.3g} %" if isinstance(v, (int, float)) and math.isfinite(v) \
+            else "unreadable"
+
+    rows = [{"term": term, **{c: pct(v) for c, v in zip(columns[1:-1], values)},
+             "why": reasons.get(term, "")} for term, values in terms.items()]
+    if budget.get("rss_rel"):
+        rows.append({"term": "root sum square", **{c: pct(v) for c, v in
+                                                   zip(columns[1:-1], budget["rss_rel"])},
+                     "why": f"without {budget.get('rss_leaves_out', '')}"})
+    return {"title": "K_obj error budget of the middle unit, relative, 1 sigma",
+            "columns": columns, "rows": rows}
+
+
+def review_contents_of_die(head: Mapping[str, Any], verification: list[dict],
+                           drawing: tuple[str, str], scene_glb: bytes, bom_csv: str,
+                           elements: list[dict], budget: Mapping[str, Any]):
+    """The review page's contents (:class:`tactcad.export.review_page.ReviewContents`) of a
+    die: ``drawing`` (export path, SVG text), the mount's GLB, the BOM's CSV text, the beams
+    as elements (:func:`beam_elements`), the verification records
+    (:func:`tactcad.studies.die_verification.die_verification`) and the K_obj budget; dated
+    as the sheets are (``SOURCE_DATE_EPOCH``, else undated), never by the clock."""
+    from tactcad.drawings.frame import epoch_date
+    from tactcad.export.review_assets import three_version
+    from tactcad.export.review_page import review_contents
+
+    facts = {**head, "requirements": {"closed_form_matrix": verification}}
+    contents = review_contents(facts, [(drawing[0], "the die and its carrier", drawing[1])],
+                               {SCENE: scene_glb}, bom_csv, elements, "A",
+                               epoch_date(os.environ) or "\u2014", three_version())
+    contents.data["kobj_budget"] = budget_table(budget)
+    return contents
+
+
+def manifest_text(manifest: Mapping[str, Any]) -> str:
+    """The manifest as written: JSON, sorted within each record as built, finite numbers."""
+    return json.dumps(manifest, indent=1, allow_nan=False) + "\n"

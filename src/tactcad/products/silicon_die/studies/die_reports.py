@@ -1,0 +1,116 @@
+"""The die's strength and stiffness as the commands and the API report them: each row's
+beam root against the strength of etched silicon, each row's K on its frame at the closed
+form or fem3d (the solve kept in the result store). One computation for ``tactcad strength``
+and ``stiffness`` on a die's file, the die's export (its review page and manifest) and
+:class:`tactcad.api.DieProject`.
+
+Units: um, N/mm, N, MPa, s.
+"""
+
+from __future__ import annotations
+
+import json
+
+from tactcad.studies.die_verification import die_verification
+from tactcad.studies.verification import matrix_table
+
+
+def die_beam_fem3d_kept(plan, beam):
+    """:func:`tactcad.mechanics.die_fem3d.die_beam_fem3d`, kept in the result store for the
+    same plan and beam (a second run of the same die solves nothing)."""
+    from tactcad.mechanics.die_fem3d import die_beam_fem3d
+    from tactcad.store import kept_result
+
+    return kept_result("die beam fem3d", lambda: die_beam_fem3d(plan, beam),
+                       json.dumps(plan.as_json(), sort_keys=True, default=str), beam)
+
+
+def strength_report(plan) -> tuple[dict, list[str]]:
+    """Each row's beam root at the force it carries in use against the mean strength of
+    etched silicon (and the lab's Weibull pair's failure probability, when stated), with the
+    rated-force requirement: (report, text lines). MPa, N, um."""
+    from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, BOSCH_STRENGTH_SOURCE
+    from tactcad.mechanics.die_strength import beam_failure_probability
+
+    rated = next(r for r in die_verification(plan) if r["requirement"] == "full_scale_force_N")
+    rows = []
+    for beam in plan.beams[:: plan.columns]:
+        force = plan.rated_force_N(beam)
+        per_N = plan.stress_MPa_at_rating(beam) / plan.full_scale_force_N
+        stress = per_N * force
+        rows.append({"role": beam.role, "row": beam.row, "length_um": beam.length_um,
+                     "width_um": beam.width_um, "thickness_um": beam.thickness_um,
+                     "root_stress_MPa_per_N": per_N, "rated_force_N": force,
+                     "root_stress_MPa_at_rated_force": stress,
+                     "fracture_force_N": BOSCH_MEAN_STRENGTH_MPA / per_N,
+                     "strength_over_stress": BOSCH_MEAN_STRENGTH_MPA / stress,
+                     "failure_probability_at_rated_force":
+                         None if plan.weibull is None
+                         else beam_failure_probability(plan, beam, force)})
+    report = {"die": plan.name, "model": "closed-form",
+              "strength_MPa": BOSCH_MEAN_STRENGTH_MPA, "strength_source": BOSCH_STRENGTH_SOURCE,
+              "rows": rows, "requirement": rated, "passed": rated["verdict"] != "fail",
+              "reasons": {"root_stress": "6 F L / (w t^2) at the root's face, the beam's "
+                                         "surface bending stress (the stress concentration "
+                                         "of the root's corner is not modelled)",
+                          "strength": "the mean tensile strength of Bosch-etched silicon "
+                                      "bars" + ("" if plan.weibull is None else
+                                                "; the failure probability from the lab's "
+                                                "Weibull pair")}}
+    lines = [f"die {plan.name}, model closed-form: each row's beam root at the force it "
+             f"carries in use; strength {BOSCH_MEAN_STRENGTH_MPA:g} MPa ({BOSCH_STRENGTH_SOURCE})",
+             "| row | role | L um | w um | t um | MPa/N | rated force mN | root MPa there | "
+             "fracture force mN | strength / stress | P_f at rating |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for r in rows:
+        p_f = r["failure_probability_at_rated_force"]
+        lines.append(f"| {r['row']} | {r['role']} | {r['length_um']:.4g} | {r['width_um']:g} | "
+                     f"{r['thickness_um']:g} | {r['root_stress_MPa_per_N']:.4g} | "
+                     f"{1e3 * r['rated_force_N']:.3g} | {r['root_stress_MPa_at_rated_force']:.4g}"
+                     f" | {1e3 * r['fracture_force_N']:.3g} | {r['strength_over_stress']:.3g} | "
+                     + ("n/a (no Weibull pair: state [strength])" if p_f is None
+                        else f"{p_f:.3g}") + " |")
+    lines += [report["reasons"]["root_stress"], matrix_table([rated])]
+    return report, lines
+
+
+def stiffness_report(plan, model: str = "closed-form") -> tuple[dict, list[str]]:
+    """Each row's beam K on its frame at ``model`` (``closed-form``, or ``fem3d`` with the
+    closed form's error against it; the fem3d solve kept in the result store): (report,
+    text lines). N/mm, um, s."""
+    from tactcad.design.mems_die import CLOSED_FORM_K_ERROR_REL, root_extension_um
+
+    rows = []
+    for beam, k, target in zip(plan.beams[:: plan.columns], (plan.k_r_N_per_mm, plan.k_m_N_per_mm),
+                               plan.targets):
+        row = {"role": beam.role, "row": beam.row, "length_um": beam.length_um,
+               "width_um": beam.width_um, "thickness_um": beam.thickness_um,
+               "root_extension_um": root_extension_um(beam.width_um, beam.thickness_um),
+               "target_N_per_mm": target, "model": "closed-form", "stiffness_N_per_mm": k,
+               "error_estimate_rel": CLOSED_FORM_K_ERROR_REL}
+        if model == "fem3d":
+            fem = die_beam_fem3d_kept(plan, beam)
+            row.update(model="fem3d", stiffness_N_per_mm=fem.k_N_per_mm,
+                       error_estimate_rel=fem.k_error_rel, closed_form_N_per_mm=k,
+                       closed_form_error_rel=k / fem.k_N_per_mm - 1.0,
+                       wall_time_s=fem.wall_time_s, dofs=fem.dofs)
+        rows.append(row)
+    report = {"die": plan.name, "model": model, "rows": rows,
+              "K_r_over_K_m": rows[0]["stiffness_N_per_mm"] / rows[1]["stiffness_N_per_mm"]}
+    lines = [f"die {plan.name}, model {model}: each row's beam on its frame (the device layer "
+             "on the handle, the cavity under the beam)",
+             "| row | role | L um | w um | t um | K N/mm | error | target N/mm |"
+             + (" closed form | s |" if model == "fem3d" else ""),
+             "| --- | --- | --- | --- | --- | --- | --- | --- |"
+             + (" --- | --- |" if model == "fem3d" else "")]
+    for r in rows:
+        lines.append(f"| {r['row']} | {r['role']} | {r['length_um']:.4g} | {r['width_um']:g} | "
+                     f"{r['thickness_um']:g} | {r['stiffness_N_per_mm']:.4g} | "
+                     f"+-{100 * r['error_estimate_rel']:.2g} % | {r['target_N_per_mm']:.4g} |"
+                     + (f" {100 * r['closed_form_error_rel']:+.2f} % | {r['wall_time_s']:.1f} |"
+                        if model == "fem3d" else ""))
+    lines.append(f"K_r / K_m {report['K_r_over_K_m']:.4g}; closed form: bending over L + dL "
+                 "(the frame's give at the root) and Timoshenko shear over L")
+    return report, lines
+
+

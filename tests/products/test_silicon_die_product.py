@@ -1,0 +1,111 @@
+"""The silicon die as a first-class product: `strength` and `stiffness` answer for it with
+the numbers its plan and its verification hold, `tactcad.load` gives its project, `design
+--jaw 5 --out DIR` writes a project folder, and its export ends with a review page and a
+manifest as an array's does."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from conftest import run_cli
+
+EXAMPLE = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+           / "grasper_jaw_5mm_mems.toml")
+
+
+@pytest.fixture
+def die_folder(tmp_path):
+    (tmp_path / EXAMPLE.name).write_bytes(EXAMPLE.read_bytes())
+    return tmp_path
+
+
+def test_strength_on_a_die_gives_each_rows_root_against_etched_silicon(die_folder):
+    from tactcad.commands.die import _die_args, die_asked, plan_of
+    from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA
+
+    r = run_cli("strength", "--json", cwd=die_folder)
+    assert r.returncode == 0, r.stdout + r.stderr
+    report = json.loads(r.stdout)
+    plan = plan_of(die_asked(_die_args(die_folder / EXAMPLE.name,
+                                       _Args(overrides=[]), Path(".")))).plan
+    for row, beam in zip(report["rows"], plan.beams[:: plan.columns]):
+        stress = plan.root_stress_MPa_at_rated_force(beam)  # the number the die command prints
+        assert row["root_stress_MPa_at_rated_force"] == pytest.approx(stress, rel=1e-12)
+        assert row["fracture_force_N"] * row["root_stress_MPa_per_N"] == pytest.approx(
+            BOSCH_MEAN_STRENGTH_MPA)
+    assert report["requirement"]["requirement"] == "full_scale_force_N"
+    refused = run_cli("strength", "--model", "fem2d", "--json", cwd=die_folder)
+    assert refused.returncode == 2 and json.loads(refused.stdout)["error"]["field"] == "--model"
+
+
+class _Args:
+    def __init__(self, **kw):
+        self.__dict__.update(kw)
+
+
+def test_stiffness_on_a_die_is_each_rows_beam_and_the_api_reads_the_same(die_folder):
+    import tactcad
+
+    r = run_cli("stiffness", "--json", cwd=die_folder)
+    assert r.returncode == 0, r.stdout + r.stderr
+    report = json.loads(r.stdout)
+    project = tactcad.load(die_folder / EXAMPLE.name)
+    assert type(project).__name__ == "DieProject"
+    ks = [row["stiffness_N_per_mm"] for row in report["rows"]]
+    assert ks == [project.plan.k_r_N_per_mm, project.plan.k_m_N_per_mm]
+    assert project.stiffness()["rows"] == report["rows"]  # one computation, CLI and API
+    assert project.strength()["rows"] == json.loads(
+        run_cli("strength", "--json", cwd=die_folder).stdout)["rows"]
+    smaller = tactcad.load(die_folder / EXAMPLE.name, set={"die.columns": 3})
+    assert smaller.plan.columns == 3
+    with pytest.raises(tactcad.DesignErrors, match="die.columns"):
+        tactcad.load(die_folder / EXAMPLE.name, set={"die.columns": "three"})
+    # an --element means nothing for a die: refused by name, not ignored
+    refused = run_cli("stiffness", "--element", "2", "--json", cwd=die_folder)
+    assert refused.returncode == 2 and json.loads(refused.stdout)["error"]["field"] == "--element"
+
+
+def test_stiffness_of_an_array_still_needs_its_element(tmp_path):
+    r = run_cli("stiffness", "--json", cwd=tmp_path)
+    assert r.returncode == 2 and json.loads(r.stdout)["error"]["field"] == "--element"
+
+
+def test_design_for_a_5mm_jaw_writes_a_die_project_folder(tmp_path):
+    argv = ("design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.05", "0.5",
+            "--full-scale-force", "0.005", "--out", "palp-die")
+    r = run_cli(*argv, cwd=tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    folder = tmp_path / "palp-die"
+    assert {p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file()} == {
+        "README.md", ".gitignore", ".github/workflows/hardware.yml", "palp_die.toml"}
+    assert "palp_die.toml" in (folder / ".github/workflows/hardware.yml").read_text()
+    again = run_cli(*argv, cwd=tmp_path)  # the folder holds the files: named, not searched
+    assert again.returncode == 2 and "--out" in again.stderr and "comb" not in again.stderr
+    assert run_cli(*argv, "--force", cwd=tmp_path).returncode == 0
+
+
+@pytest.mark.slow
+def test_a_dies_export_has_its_review_page_and_manifest_and_checks(die_folder):
+    r = run_cli("export", "--out", "exports", cwd=die_folder)
+    assert r.returncode == 0, r.stdout + r.stderr
+    out = die_folder / "exports"
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest["product"] == "silicon-die"
+    listed = {f["path"] for f in manifest["files"]}
+    assert {"review/index.html", "grasper_jaw_5mm_mems.gds", "scenes/"
+            "grasper_jaw_5mm_mems_in_jaw.glb"} <= listed
+    import hashlib
+
+    for f in manifest["files"]:
+        assert hashlib.sha256((out / f["path"]).read_bytes()).hexdigest() == f["sha256"]
+    page = (out / "review" / "index.html").read_text(encoding="utf-8")
+    assert manifest["design"]["sha256"] in page and "kr_over_km" in page
+    c = run_cli("check", "--out", "exports", "--junit", "report.xml", cwd=die_folder)
+    assert c.returncode == 0, c.stdout
+    assert (out / "review" / "checks.js").is_file()
+    # the same die writes the same bytes (the GDS header's time is not the clock's)
+    d = run_cli("diff", EXAMPLE.name, "exports", "--json", cwd=die_folder)
+    assert d.returncode == 0 and json.loads(d.stdout)["changed"] is False, d.stdout
