@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 from tactcad.mechanics.gauge_strain import (GAUGE_STRAIN_FILE, StrainCorrection,
-                                            bonded_grid_factor, grid_strain_factor,
-                                            load_strain_correction, point_strain_factor)
+                                            bonded_grid_factor, face_under_layer_factor,
+                                            grid_strain_factor, load_strain_correction,
+                                            point_strain_factor)
 from tactcad.studies.gauge_strain_sweep import _residuals, samples
 
 
@@ -32,6 +33,33 @@ def test_a_layer_of_the_web_material_across_the_sheet_is_a_thicker_web():
     assert got.read_factor == pytest.approx((t / (t + h)) ** 2, rel=1e-12)
     assert got.stiffening_rel == pytest.approx(((t + h) / t) ** 3 - 1, rel=1e-12)
     assert got.neutral_axis_shift_mm == pytest.approx(h / 2, rel=1e-12)
+
+
+def test_the_face_under_a_layer_without_stiffness_is_the_bare_face():
+    assert float(face_under_layer_factor(0.25, 3.0, 69000.0, 0.05, 0.0, 1.0)) == 1.0
+    assert float(face_under_layer_factor(0.25, 3.0, 69000.0, 0.0, 1e4, 1.0)) == 1.0
+
+
+def test_the_face_under_a_layer_of_the_web_material_is_inside_a_thicker_web():
+    t, h, E, w = 0.2, 0.05, 1.0e5, 3.0
+    # one web t + h: the old face lies (t - h) / 2 above its centroid, strain per moment
+    # 12 (t - h) / 2 / (E w (t + h)^3) against the bare web's 12 t / 2 / (E w t^3)
+    want = (t - h) / t * (t / (t + h)) ** 3
+    assert float(face_under_layer_factor(t, w, E, h, E, w)) == pytest.approx(want, rel=1e-12)
+
+
+def test_the_face_under_the_default_gauge_strains_less_than_the_bare_face(plan):
+    from tactcad.mechanics.bonded_layer import layer_face_factor, layer_of
+
+    g, mat = plan.element(1).geometry, plan.material
+    f = layer_face_factor(g, mat.youngs_modulus_MPa, layer_of(g))
+    b = bonded_grid_factor(g.web_thickness_mm, g.sheet_thickness_mm, mat.youngs_modulus_MPa,
+                           g.gauge.height_mm, g.gauge.modulus_MPa, layer_of(g).width_mm)
+    # the stiffened web and its risen neutral axis: 0.89 on the paper's 0.25 mm web
+    assert f == pytest.approx((1 - 2 * b.neutral_axis_shift_mm / g.web_thickness_mm)
+                              / (1 + b.stiffening_rel), rel=1e-12)
+    assert 0.85 < f < 0.93
+    assert layer_face_factor(g.bare(), mat.youngs_modulus_MPa, None) == 1.0
 
 
 def test_bonded_grid_refuses_bad_input():
@@ -76,15 +104,25 @@ def test_outside_the_fitted_range_is_flagged_with_a_larger_error(plan):
     assert long_grid.error_rel > inside.error_rel
 
 
-def test_closed_form_stiffness_result_carries_the_point_factor(plan):
+def test_closed_form_stiffness_result_carries_the_point_factor_and_the_layer(plan):
+    from tactcad.mechanics.bonded_layer import layer_face_factor, layer_of
     from tactcad.mechanics.closed_form import estimate_closed_form, gauge_strain_per_newton
 
     g, mat = plan.element(1).geometry, plan.material
     eb = float(gauge_strain_per_newton(g.web_thickness_mm, g.arm_length_mm,
                                        E=mat.youngs_modulus_MPa, b=g.sheet_thickness_mm))
+    layer = layer_face_factor(g, mat.youngs_modulus_MPa, layer_of(g))
+    assert layer < 1.0
+    # the face at the grid's centre under the gauge's glue line and carrier
     got = estimate_closed_form(g, mat).gauge_strain_per_N
-    assert got == pytest.approx(eb * point_strain_factor(g, mat).factor, rel=1e-12)
-    assert estimate_closed_form(g, mat, corrected=False).gauge_strain_per_N == eb
+    assert got == pytest.approx(eb * point_strain_factor(g, mat).factor * layer, rel=1e-12)
+    assert estimate_closed_form(g, mat, corrected=False).gauge_strain_per_N == pytest.approx(
+        eb * layer, rel=1e-14)
+    # the element as cut: the bare face
+    bare = g.bare()
+    assert estimate_closed_form(bare, mat).gauge_strain_per_N == pytest.approx(
+        eb * point_strain_factor(bare, mat).factor, rel=1e-12)
+    assert estimate_closed_form(bare, mat, corrected=False).gauge_strain_per_N == eb
 
 
 def test_closed_form_warns_outside_the_strain_fit(plan):

@@ -88,7 +88,8 @@ def run_stiffness(args: argparse.Namespace) -> int:
               + ("  (with its bonded gauge's glue line and carrier; `tactcad readout` states "
                  "how much they add)" if with_gauge else ""))
         print(f"  face strain         {r.gauge_strain_per_N * 1e6:10.2f} microstrain/N"
-              "  (the top face at the notch centre)")
+              "  (the top face at the notch centre"
+              + (", under the gauge's glue line and carrier)" if with_gauge else ")"))
         if grid is not None:
             print(f"  grid strain         {grid * 1e6:10.2f} microstrain/N"
                   "  (what the gauge reads: its grid's plane averaged over the grid)")
@@ -137,8 +138,10 @@ def run_table1(args: argparse.Namespace) -> int:
           f"(as cut) -> {m1:+.1f} %, mean |error| {a0:.1f} -> {a1:.1f} %; the paper's webs as "
           "built (last column) move K far more")
     lo, hi = PAPER_STRAIN_RANGE
-    print("face strain at the notch centre at 2 N (closed form, %; the paper's surface strain): "
-          + ", ".join(f"a={s['arm_length_mm']:g}: {s['strain_percent']:.3f}" for s in strains)
+    print("face strain at the notch centre at 2 N, the element as cut, without the gauge "
+          "(closed form, %; the paper's ANSYS surface strain): "
+          + ", ".join(f"a={s['arm_length_mm']:g}: {s['face_strain_as_cut_percent']:.3f}"
+                      for s in strains)
           + f"   paper: {100 * lo:.4f}-{100 * hi:.4f}")
     print(f"Table 2: eq. 2 with predicted K (K_r = {t2['k_r_predicted_N_per_mm']:.2f} N/mm): "
           f"{t2['n_in_domain']}/48 rows in domain, mean |R error| {t2['mean_abs_error']:.3f}, "

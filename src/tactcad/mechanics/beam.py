@@ -55,7 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry, Material
-from tactcad.mechanics.closed_form import ALPHA_SHEAR, corrected_point_strain, correction_factor
+from tactcad.mechanics.closed_form import ALPHA_SHEAR, correction_factor, face_strain_factor
 from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.richardson import richardson
 
@@ -178,7 +178,8 @@ class BeamSolution:
     Attributes:
         compliance_mm_per_N: tip deflection along +y per newton.
         hinge_moment_Nmm_per_N: bending moment at the notch centre per newton.
-        gauge_strain_per_N: top-surface strain over the thinnest section per newton.
+        gauge_strain_per_N: top-surface strain over the thinnest section per newton, of the
+            bare section (1/N; :func:`estimate_beam` carries it under the gauge's layer).
         deflection_mm_per_N: nodal deflections, shape (N + 1,).
         rotation_rad_per_N: nodal section rotations, shape (N + 1,).
     """
@@ -256,7 +257,8 @@ class BeamConvergence:
             if in [1, 3], else the formal order 2).
         error_estimate_rel: |K3 - K_extrapolated| / K_extrapolated, the
             discretisation error of the finest mesh.
-        gauge_strain_per_N: top-surface strain over the web per newton (finest mesh).
+        gauge_strain_per_N: top-surface strain over the web per newton (finest mesh), of
+            the bare section (1/N).
     """
 
     n_segments: tuple[int, int, int]
@@ -325,7 +327,10 @@ def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None
 
     Returns:
         :class:`StiffnessResult` with model ``beam``: K of the finest mesh, the
-        gauge strain per newton (times the fem3d-fitted point factor), and an error estimate that adds the Richardson
+        gauge strain per newton (1/N: the face strain at the grid's centre under the
+        gauge's layer, the bare section's times
+        :func:`~tactcad.mechanics.closed_form.face_strain_factor`, as the closed form's),
+        and an error estimate that adds the Richardson
         discretisation error to the model error of beam theory at the notch:
         |1/f - 1|, f = K_corrected / K_EB of the fem3d-fitted correction
         (:func:`tactcad.mechanics.closed_form.correction_factor`; beam theory
@@ -350,6 +355,6 @@ def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None
     return StiffnessResult(element=element, model=MODEL_NAME,
                            stiffness_N_per_mm=k,
                            gauge_strain_per_N=conv.gauge_strain_per_N
-                           * corrected_point_strain(g, material),
+                           * face_strain_factor(g, material),
                            error_estimate_rel=conv.error_estimate_rel + model_error,
                            wall_time_s=time.perf_counter() - start)

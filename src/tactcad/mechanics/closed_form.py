@@ -37,11 +37,18 @@ cancels at small t/R: relative accuracy is ~1e-15 for t/R from 1e-4 to 2 and
 For t/R -> 0 the hinge rotational stiffness tends to the classical
 2 E b t^(5/2) / (9 pi sqrt(2 R)).
 
-Gauge strain: surface strain on the flat top face over the thinnest section,
-eps / F = M c / (E I F) = 6 a / (E b t^2) (Euler-Bernoulli, neutral axis at the
+Gauge strain (``gauge_strain_per_N``, 1/N: strain per newton of tip force, x 1e6 for
+microstrain/N): the strain of the flat top face at the grid's centre (the notch
+centre, mid-width) under the bonded gauge's glue line and carrier, the quantity
+fem2d and fem3d read with the layer meshed. The bare section's Euler-Bernoulli
+face strain eps / F = M c / (E I F) = 6 a / (E b t^2) (neutral axis at the
 centroid of the b x t section), times the fem3d-fitted point factor of
 :mod:`tactcad.mechanics.gauge_strain` (a wide sheet holds the web near plane
-strain: about 1 - nu^2 at b/t = 12; fitted error about 2 %).
+strain: about 1 - nu^2 at b/t = 12; fitted error about 2 %), times the layer's
+face factor (the transformed section of web and layer: the layer stiffens the
+web and lifts its neutral axis, about 0.89 for the default gauge on the
+examples' webs; :func:`face_strain_factor`). An element without a gauge has the
+bare face's.
 
 Correction: the Euler-Bernoulli notch formulas are too stiff against fem3d
 at large t/R, and a wide sheet holds the web near plane strain. The
@@ -69,7 +76,7 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.mechanics.correction import (IDENTITY, Correction, CorrectionRangeWarning, apply_correction,
                          load_correction)
-from tactcad.mechanics.bonded_layer import layer_of, with_gauge_layer
+from tactcad.mechanics.bonded_layer import layer_face_factor, layer_of, with_gauge_layer
 from tactcad.mechanics.stiffness_result import StiffnessResult
 
 #: Shear coefficient of a rectangular section in the compliance integral,
@@ -83,7 +90,7 @@ WEB_BRACKET_MM = (0.05, 1.0)
 __all__ = ["ALPHA_SHEAR", "ComplianceParts", "Correction", "CorrectionRangeWarning",
            "IDENTITY", "NotchIntegrals", "closed_form_compliance", "closed_form_stiffness",
            "correction_factor", "corrected_point_strain",
-           "estimate_closed_form", "gauge_strain_per_newton", "notch_integrals",
+           "estimate_closed_form", "face_strain_factor", "gauge_strain_per_newton", "notch_integrals",
            "web_for_stiffness"]
 
 MODEL_NAME = "closed-form"
@@ -234,10 +241,12 @@ def closed_form_stiffness(web_mm, notch_radius_mm, arm_length_mm, *, arm_height_
 
 
 def gauge_strain_per_newton(web_mm, arm_length_mm, *, E, b) -> np.ndarray:
-    """Surface strain on the flat top face over the thinnest section per newton (1/N).
+    """Surface strain on the bare flat top face over the thinnest section per newton
+    (1/N, strain per N).
 
     eps / F = 6 a / (E b t^2) (Euler-Bernoulli, M = F a at the notch centre,
-    neutral axis at the centroid of the b x t section). Arrays broadcast.
+    neutral axis at the centroid of the bare b x t section). Arrays broadcast. The
+    closed form's ``gauge_strain_per_N`` is this times :func:`face_strain_factor`.
 
     Raises:
         ValueError: a non-finite or non-positive input.
@@ -346,10 +355,12 @@ def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int
     of the rise.
 
     Returns:
-        :class:`StiffnessResult` with model ``closed-form``. The gauge strain is
-        the Euler-Bernoulli value at the notch centre times the fem3d-fitted
-        point factor (:func:`~tactcad.mechanics.gauge_strain.point_strain_factor`;
-        ``corrected=False``: EB alone). The error estimate is the stiffness
+        :class:`StiffnessResult` with model ``closed-form``. The gauge strain
+        (1/N) is the face strain at the grid's centre under the gauge's layer: the
+        bare section's Euler-Bernoulli value at the notch centre times
+        :func:`face_strain_factor` (the fem3d-fitted point factor,
+        :func:`~tactcad.mechanics.gauge_strain.point_strain_factor`, left out when
+        ``corrected=False``, and the layer's face factor). The error estimate is the stiffness
         correction's (fit residual, plus the extrapolation change outside the
         fitted range), or 0.39 t/R when uncorrected.
 
@@ -364,8 +375,7 @@ def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int
     k, err = _corrected(_parts(g, material, t), g, material, t, corr, warn=True)
     eps = gauge_strain_per_newton(t, g.arm_length_mm, E=material.youngs_modulus_MPa,
                                   b=g.sheet_thickness_mm)
-    if corrected:
-        eps = eps * corrected_point_strain(g, material)
+    eps = eps * face_strain_factor(g, material, corrected=corrected)
     layer = layer_of(g)
     if layer is not None:
         from tactcad.mechanics.bonded_layer import CLOSED_FORM_LAYER_ERROR_REL, closed_form_layer_k
@@ -378,10 +388,33 @@ def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int
                            wall_time_s=time.perf_counter() - start)
 
 
-def corrected_point_strain(g: ElementGeometry, material: Material) -> float:
+def face_strain_factor(g: ElementGeometry, material: Material, *,
+                       corrected: bool = True) -> float:
+    """What carries the bare section's Euler-Bernoulli face strain at the notch centre
+    (6 a / (E b t^2), or the beam level's M (t/2) / (E I)) to the closed form's and the
+    beam level's ``gauge_strain_per_N``: the face strain at the grid's centre (the notch
+    centre, mid-width) under the bonded gauge ``g`` carries, as fem2d and fem3d read it
+    with the layer meshed. Dimensionless: the fem3d-fitted point factor
+    (:func:`corrected_point_strain`, of the bare element; 1 when not ``corrected``) x the
+    layer's face factor (:func:`~tactcad.mechanics.bonded_layer.layer_face_factor`, the
+    transformed section of web and layer; 1 for a bare ``g``).
+
+    Warns:
+        GaugeStrainRangeWarning: ``corrected`` and outside the point factor's fitted range.
+    """
+    point = corrected_point_strain(g, material, stacklevel=4) if corrected else 1.0
+    return point * layer_face_factor(g, material.youngs_modulus_MPa, layer_of(g))
+
+
+def corrected_point_strain(g: ElementGeometry, material: Material, *,
+                           stacklevel: int = 3) -> float:
     """The fem3d-fitted factor on the EB surface strain at the notch centre
     (:func:`~tactcad.mechanics.gauge_strain.point_strain_factor`), warning outside
-    its fitted range.
+    its fitted range (dimensionless; the bare element's).
+
+    Args:
+        stacklevel: the warning's, as :func:`warnings.warn` takes it (3: the caller of
+            the estimator that calls this).
 
     Warns:
         GaugeStrainRangeWarning: outside the range (names the coordinates and the
@@ -397,7 +430,7 @@ def corrected_point_strain(g: ElementGeometry, material: Material) -> float:
             f"gauge strain: {', '.join(f.outside)} outside the fem3d fit of the plane-strain "
             f"factor (t/R {f.coordinates['t_over_R']:.3g}, b/t "
             f"{f.coordinates['sheet_over_web']:.3g}, nu {f.coordinates['poisson_ratio']:.3g}); "
-            f"estimated error {100 * f.error_rel:.1f} %", f.error_rel), stacklevel=3)
+            f"estimated error {100 * f.error_rel:.1f} %", f.error_rel), stacklevel=stacklevel)
     return f.factor
 
 

@@ -273,7 +273,12 @@ class ElementStress:
         stress_error_rel: estimated relative error of the peak (Richardson
             for FEM; the fit tolerance for the closed form).
         stiffness_N_per_mm: K at the same level (N/mm).
-        gauge_strain_per_N: surface strain over the web per N (1/N).
+        gauge_strain_per_N: the gauge strain per N (1/N). As evaluated, the level's face
+            strain at the notch centre (:func:`closed_form_stress`: the stiffness result's,
+            under the gauge's layer; the FEM stress of
+            :func:`tactcad.studies.strength_studies.fem_peak_stress`: the bare mesh's);
+            strength, the limits and ``verify`` replace it with what the grid reads
+            (:func:`at_the_grid`) before they use it.
         peak_location_mm: where the peak is (element frame, mm); empty for
             the closed form (the notch root, x = hinge_x).
     """

@@ -46,7 +46,10 @@ the transformed section of web + layer (Timoshenko & Gere, "Mechanics of
 Materials", composite beams): neutral axis e above the web's mid-plane,
 bending stiffness EI_c, grid strain per moment (t/2 + h_g - e) / EI_c
 against the bare web's (t/2) / EI_0 (:func:`bonded_grid_factor`). With
-E_l -> 0 the factor is (t/2 + h_g) / (t/2).
+E_l -> 0 the factor is (t/2 + h_g) / (t/2). The face itself, under the layer,
+strains (t/2 - e) / EI_c per moment: the web's stiffening and the neutral axis's
+rise both lower it (:func:`face_under_layer_factor`; about 0.89 on a 0.25 mm
+aluminium or a 0.165 mm titanium web under the default 55 um gauge).
 
 Units: mm, MPa; strains and factors dimensionless.
 """
@@ -295,3 +298,22 @@ def transformed_section(web_mm, sheet_mm, youngs_modulus_MPa, grid_height_mm,
             + ea_layer * (t / 2 + h / 2 - e) ** 2)
     read = ((t / 2 + h - e) / ei_c) / ((t / 2) / ei_0)
     return read, ei_c / ei_0 - 1.0, e
+
+
+def face_under_layer_factor(web_mm, sheet_mm, youngs_modulus_MPa, grid_height_mm,
+                            layer_modulus_MPa, layer_width_mm):
+    """The face strain under a bonded layer over the bare face's, under the same moment
+    (dimensionless, <= 1; broadcast over arrays, unchecked): the transformed section's
+    (t/2 - e) / EI_c against the bare web's (t/2) / EI_0, i.e.
+    (1 - 2 e / t) / (EI_c / EI_0), e and EI_c of :func:`transformed_section` (the same
+    section as the grid's read factor). 1 for a layer of no modulus or no height.
+
+    Args: as :func:`bonded_grid_factor` (mm, MPa).
+
+    Source: the transformed (composite) section, e.g. Gere and Goodno, Mechanics of
+    Materials, sec. 6.2; Timoshenko and Gere, Mechanics of Materials (composite beams).
+    """
+    t = np.asarray(web_mm, float)
+    _, stiffening, e = transformed_section(web_mm, sheet_mm, youngs_modulus_MPa,
+                                           grid_height_mm, layer_modulus_MPa, layer_width_mm)
+    return (1.0 - 2.0 * e / t) / (1.0 + stiffening)

@@ -13,8 +13,16 @@ class StiffnessResult:
         element: paper element number (None for a bare geometry).
         model: estimator name: closed-form, beam, fem2d or fem3d.
         stiffness_N_per_mm: K, tip force / tip deflection along +y (N/mm).
-        gauge_strain_per_N: surface strain on the flat top face over the web
-            (the strain-gauge location) per newton of tip force (1/N).
+        gauge_strain_per_N: the face strain at the gauge grid's centre: the flat top
+            face over the notch centre, at mid-width, under the bonded gauge's glue line
+            and carrier when the element carries one (the bare face otherwise), per
+            newton of tip force (1/N, magnitude; x 1e6 for microstrain/N). The same
+            quantity at every level: fem2d and fem3d read it with the layer meshed, the
+            closed form and the beam level carry their bare section's through the
+            layer's transformed section
+            (:func:`tactcad.mechanics.closed_form.face_strain_factor`). Not what the
+            grid reads (its plane lies the layer's height above the face, and it
+            averages over its area): that is ``grid_strain_per_N`` or the read-out's.
         error_estimate_rel: estimated relative error of K (e.g. Richardson
             estimate for FEM, fitted residual for corrected closed forms).
         wall_time_s: wall-clock time of the evaluation (s).

@@ -142,7 +142,9 @@ class GridPoint:
 
 @dataclass(frozen=True)
 class GridRow:
-    """Result of one grid point (mm, N/mm, 1/N, s)."""
+    """Result of one grid point (mm, N/mm, 1/N, s). ``gauge_strain_per_N``: the level's
+    :attr:`~tactcad.mechanics.stiffness_result.StiffnessResult.gauge_strain_per_N`, the face
+    strain at the grid's centre under the gauge's glue line and carrier (1/N)."""
 
     model: str
     web_mm: float
