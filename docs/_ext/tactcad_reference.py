@@ -235,7 +235,7 @@ def _file_models() -> list[tuple[str, str, type[BaseModel], str]]:
     from tactcad.design.rig_plan import RigsFile
     from tactcad.design.scene_specs import ScenesFile
 
-    from tactcad.design.die_file import DieFile
+    from tactcad.products.silicon_die.design.die_file import DieFile
 
     return [("The design file", "design", DesignFile, "macro_array.toml"),
             ("rigs.toml", "rigs", RigsFile, "rigs.toml"),

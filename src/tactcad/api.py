@@ -471,7 +471,7 @@ class DieProject:
 
     @property
     def plan(self):
-        """The die's :class:`~tactcad.design.mems_die.DiePlan` (um, N/mm, N, MPa), every
+        """The die's :class:`~tactcad.products.silicon_die.design.mems_die.DiePlan` (um, N/mm, N, MPa), every
         derived dimension with its reason (``plan.reasons``)."""
         return self.planned.plan
 

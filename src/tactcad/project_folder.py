@@ -66,7 +66,7 @@ def die_examples() -> dict[str, Path]:
 def _shipped_designs() -> dict[str, tuple[Path, bool]]:
     # the package's examples, read once a process: every command's help lists them
     # (name -> (design file, whether it is a die's))
-    from tactcad.design.die_file import is_die_file
+    from tactcad.products.silicon_die.design.die_file import is_die_file
     from tactcad.vocabulary.schema import read_toml
 
     out = {}
@@ -467,7 +467,7 @@ def new_project(folder: str | Path, *, example: str | None = None,
         OSError: the folder cannot be written.
     """
     from tactcad.design.array_plan import read_toml
-    from tactcad.design.die_file import is_die_file
+    from tactcad.products.silicon_die.design.die_file import is_die_file
     from tactcad.design.project import companion_files, project_with_design_data
     from tactcad.vocabulary.schema import Problems
 
@@ -512,7 +512,8 @@ def new_die_project(folder: str | Path, source: Path, *, force: bool = False) ->
         DesignError: ``folder`` a file, or holding one of the files (without ``force``).
         OSError: the folder cannot be written (nothing is left half-written).
     """
-    from tactcad.design.die_file import DIE_TABLE, is_cell_name, load_die_design
+    from tactcad.products.silicon_die.design.die_file import (DIE_TABLE, is_cell_name,
+                                                              load_die_design)
 
     original = source.read_text(encoding="utf-8")
     text, name = named_for_project(original, Path(folder).resolve().name, DIE_TABLE)

@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 
 from conftest import run_cli
-from tactcad.benchmarks import die_bench
-from tactcad.design import mems_die as md
+from tactcad.products.silicon_die.benchmarks import die_bench
+from tactcad.products.silicon_die.design import mems_die as md
 from tactcad.partlib.grasper_jaw import jaw_room
 from tactcad.studies.inverse_design import Targets
 
@@ -34,7 +34,7 @@ def test_the_beams_are_the_dies_rows_and_slender_corners_of_its_layer(plan):
 def test_each_row_is_measured_against_the_reference_level(plan, monkeypatch):
     """fem3d replaced by a stand-in 3 % softer than the closed form: the closed form then
     reads +3.1 % against it, the clamped form more, and fem3d itself 0."""
-    from tactcad.mechanics import die_fem3d
+    from tactcad.products.silicon_die.mechanics import die_fem3d
 
     class Fake:
         def __init__(self, k):

@@ -68,9 +68,9 @@ def test_a_dies_crosstalk_is_kept_in_the_result_store_and_says_what_it_solves(tm
     changed die solves again, and each run says which it did."""
     from dataclasses import replace
 
-    from tactcad.commands.die_views import _crosstalk_kept
-    from tactcad.design.mems_die import die_plan
-    from tactcad.mechanics import die_crosstalk as dx
+    from tactcad.products.silicon_die.commands.die_views import _crosstalk_kept
+    from tactcad.products.silicon_die.design.mems_die import die_plan
+    from tactcad.products.silicon_die.mechanics import die_crosstalk as dx
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.store import Store, keeping_results
     from tactcad.studies.inverse_design import Targets

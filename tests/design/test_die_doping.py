@@ -5,14 +5,15 @@ import dataclasses
 
 import pytest
 
-from tactcad.design import mems_die as md
+from tactcad.products.silicon_die.design import mems_die as md
 from tactcad.errors import DesignError
-from tactcad.export.traveller import traveller_steps
-from tactcad.mechanics.piezoresistor import die_readout
+from tactcad.products.silicon_die.export.traveller import traveller_steps
+from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 from tactcad.partlib.grasper_jaw import jaw_room
-from tactcad.studies.die_doping import (STOCK_DOSES_PER_CM2, acceptors_of_dose,
-                                        chosen_implant_dose, doped_die_plan,
-                                        drift_per_sensitivity_per_K)
+from tactcad.products.silicon_die.studies.die_doping import (STOCK_DOSES_PER_CM2,
+                                                             acceptors_of_dose,
+                                                             chosen_implant_dose, doped_die_plan,
+                                                             drift_per_sensitivity_per_K)
 from tactcad.studies.inverse_design import Targets
 
 

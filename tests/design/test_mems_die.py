@@ -14,10 +14,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import run_cli
-from tactcad.checks.gds_drc import gds_checks
-from tactcad.design import mems_die as md
+from tactcad.products.silicon_die.checks.gds_drc import gds_checks
+from tactcad.products.silicon_die.design import mems_die as md
 from tactcad.errors import DesignError
-from tactcad.export.gds_masks import wafer_sites, write_die_gds, write_wafer_gds
+from tactcad.products.silicon_die.export.gds_masks import (wafer_sites, write_die_gds,
+                                                           write_wafer_gds)
 from tactcad.partlib.grasper_jaw import jaw_room
 from tactcad.studies.inverse_design import Targets
 
@@ -146,7 +147,7 @@ def test_the_piezoresistor_reads_the_average_root_stress_times_pi_l(die):
     gamma = legs / (legs + 2 * md.RESISTOR_RUN_UM / md.LEG_UM
                     + (md.LEG_GAP_UM + 2 * md.LEG_UM) / md.LEG_UM)
     assert 0.5 < p_factor < 0.9 and 0.5 < gamma < 1
-    from tactcad.mechanics.piezoresistor import die_resistor
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_resistor
 
     assert die_resistor(die, beam).resistance_change_per_N() == pytest.approx(
         pi_l * p_factor * stress * beta * gamma, rel=1e-9)
@@ -213,7 +214,7 @@ def test_each_rows_cavity_stops_its_beam_between_its_rated_travel_and_its_fractu
     allows, rounded up to 0.5 um; the travel at the deepest stays below the one at which the
     root reaches the etched bars' mean strength; verify's row passes on it and fails a
     cavity too deep or too shallow."""
-    from tactcad.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
 
     rated = _rated_travel_by_the_series_springs(die)
     fracture = {}
@@ -367,7 +368,7 @@ def test_the_solid_is_built_from_the_masks_and_the_stack(die, tmp_path):
     by hand: the handle the die less each row's cavity to its depth, the oxide the die less
     the window, the device layer the die less the window plus the beams, the posts square
     prisms."""
-    from tactcad.export.die_solid import write_die_step
+    from tactcad.products.silicon_die.export.die_solid import write_die_step
     from tactcad.kernel.step_writer import read_step_summary
 
     s = die.stack
@@ -394,7 +395,7 @@ def test_hole_mobility_follows_an_independent_fit_and_the_sheet_resistance_its_f
     """Masetti's boron mobility against Arora, Hauser and Roulston's (IEEE Trans. Electron
     Devices 29(2), 1982, 300 K: 54.3 + 407 / (1 + (N / 2.67e17)^0.88)) within 10 % over
     1e15 ... 1e19 cm^-3; R_s = 1 / (q mu N x_j) by hand."""
-    from tactcad.mechanics.piezoresistor import hole_mobility_cm2_per_Vs, sheet_resistance_ohm
+    from tactcad.products.silicon_die.mechanics.piezoresistor import hole_mobility_cm2_per_Vs, sheet_resistance_ohm
 
     for n in (1e15, 1e16, 1e17, 1e18, 1e19):
         arora = 54.3 + 407 / (1 + (n / 2.67e17) ** 0.88)
@@ -410,7 +411,7 @@ def test_one_mobility_gives_the_sheet_resistance_and_the_tcr_at_every_temperatur
     """Masetti's value at 300 K, Arora's slope in T: the sheet resistance at 310 K is the
     300 K one grown by the TCR (ln R_s over the 10 K step, the TCR at its middle), the read-out's
     resistance and mobility are those at its temperature, and the TCR is Arora's."""
-    from tactcad.mechanics.piezoresistor import (die_readout, hole_mobility_arora_cm2_per_Vs,
+    from tactcad.products.silicon_die.mechanics.piezoresistor import (die_readout, hole_mobility_arora_cm2_per_Vs,
                                                  hole_mobility_cm2_per_Vs,
                                                  hole_mobility_masetti_cm2_per_Vs,
                                                  log_slope_per_K, resistor_tcr_per_K,
@@ -435,8 +436,8 @@ def test_the_resistors_tcr_follows_arora_and_cancels_in_the_half_bridge_to_its_m
     -d ln mu / dT, positive (lattice scattering rises with T) and larger where the lattice
     term dominates; the half bridge's zero drift is (V_bias / 4) TCR m per K (m the
     mismatch to the on-die reference) over each row's V/N, and the budget's term grows with the temperature step's share of the rating."""
-    from tactcad.in_use.die_budget import die_budget
-    from tactcad.mechanics.piezoresistor import (die_readout, hole_mobility_arora_cm2_per_Vs,
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget
+    from tactcad.products.silicon_die.mechanics.piezoresistor import (die_readout, hole_mobility_arora_cm2_per_Vs,
                                                  hole_mobility_cm2_per_Vs, resistor_tcr_per_K)
 
     for n in (1e16, 1e17, 1e18, 4e18, 1e19, 1e20):
@@ -470,7 +471,7 @@ def test_the_dies_readout_noise_and_resolution(die):
     """Johnson sqrt(4 k T R B), Hooge sqrt(alpha V^2 / N ln(f2/f1)) of each die resistor at
     half the bias, the half bridge's V_b / 4 dR/R per N (equal resistors), resolution = noise / sensitivity; the soft row
     reads more per newton than the stiff one."""
-    from tactcad.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 
     r = die_readout(die, bias_V=2.0, f_lo_Hz=0.1, f_hi_Hz=100.0, alpha_H=1e-5)
     k_b = 1.380649e-23
@@ -502,7 +503,7 @@ def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypat
     staging folder is left, and the previous set stays whole."""
     import errno
 
-    from tactcad.export import die_solid
+    from tactcad.products.silicon_die.export import die_solid
 
     args = ("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
             "--full-scale-force", "0.02", "--out", str(tmp_path / "die"))
@@ -524,8 +525,8 @@ def test_the_traveller_lists_every_mask_in_process_order_with_the_plans_figures(
     implant before the contacts before the metal, the front DRIE (which frees the beams over
     the cavities) before the dicing; the stack, the cavities' depths, the dose and the sheet
     resistance quoted; the stated parameters marked as assumptions."""
-    from tactcad.export.traveller import traveller_markdown, traveller_steps
-    from tactcad.vocabulary.soi_process import MASK_BY_NAME
+    from tactcad.products.silicon_die.export.traveller import traveller_markdown, traveller_steps
+    from tactcad.products.silicon_die.vocabulary.soi_process import MASK_BY_NAME
 
     steps = traveller_steps(die, 324.0)
     masks = [s.mask for s in steps if s.mask]
@@ -639,9 +640,9 @@ def test_a_die_files_attach_table_bonds_the_die_its_pocket_and_bom_say_so(tmp_pa
     pocket deepens by its bond line over the assumption's, and the BOM names its material
     and source; without one the plan keeps the assumption, marked as such."""
     from tactcad.commands.die import die_asked, plan_of
-    from tactcad.design import die_mount as dm
-    from tactcad.design.mems_die import DEFAULT_DIE_ATTACH
-    from tactcad.export.die_scene import mount_bom_rows
+    from tactcad.products.silicon_die.design import die_mount as dm
+    from tactcad.products.silicon_die.design.mems_die import DEFAULT_DIE_ATTACH
+    from tactcad.products.silicon_die.export.die_scene import mount_bom_rows
 
     shipped = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
                / "grasper_jaw_5mm_mems.toml").read_text(encoding="utf-8")
@@ -708,7 +709,7 @@ def test_the_mount_seats_die_and_carrier_in_a_face_pocket_of_the_5mm_jaw(die):
     """Pocket = carrier (die + bond shelf) + clearance, open at the face, as deep as die,
     attach and carrier; the device layer flush with the face, the posts proud by their
     height; steel left under the pocket, beside it and before the pin."""
-    from tactcad.design import die_mount as dm
+    from tactcad.products.silicon_die.design import die_mount as dm
     from tactcad.partlib.grasper_jaw import MIN_WALL_MM
 
     m = dm.die_mount(die, {"shaft_class_mm": "5"})
@@ -725,7 +726,7 @@ def test_the_mount_seats_die_and_carrier_in_a_face_pocket_of_the_5mm_jaw(die):
 @pytest.mark.parametrize("key, value", [("thickness_mm", 1.0), ("width_mm", 2.5),
                                         ("length_mm", 8.0)])
 def test_a_jaw_that_cannot_hold_the_die_is_refused_by_its_key(die, key, value):
-    from tactcad.design.die_mount import die_mount
+    from tactcad.products.silicon_die.design.die_mount import die_mount
 
     with pytest.raises(DesignError) as err:
         die_mount(die, {"shaft_class_mm": "5", key: value})
@@ -735,9 +736,9 @@ def test_a_jaw_that_cannot_hold_the_die_is_refused_by_its_key(die, key, value):
 def test_the_mount_checks_find_a_die_sunk_into_its_carrier(die):
     from dataclasses import replace
 
-    from tactcad.checks.die_mount_fit import mount_checks
-    from tactcad.design.die_mount import die_mount
-    from tactcad.export.die_scene import mount_solids
+    from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.export.die_scene import mount_solids
 
     m = die_mount(die, {"shaft_class_mm": "5"})
     assert all(c.passed for c in mount_checks(mount_solids(die, m), m, "mems_die_posts"))
@@ -752,8 +753,8 @@ def test_the_drawing_dimensions_the_plans_die_and_carrier_clear_of_overlaps(die,
     import xml.etree.ElementTree as ET
 
     from tactcad.checks.sheet_overlap import sheet_file_results
-    from tactcad.design.die_mount import die_mount
-    from tactcad.drawings.die_sheet import die_sheet
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.drawings.die_sheet import die_sheet
 
     m = die_mount(die, {"shaft_class_mm": "5"})
     path = tmp_path / "die.svg"
@@ -801,10 +802,10 @@ def test_modal_budget_readout_and_thermal_print_the_dies_own_figures_not_an_arra
     from one planning, and write nothing; an option that chooses among an array's figures
     is refused by name, not ignored."""
     from tactcad.commands.die import plan_of
-    from tactcad.design.die_file import load_die_design
-    from tactcad.in_use.die_budget import die_budget
-    from tactcad.mechanics.die_dynamics import die_modes
-    from tactcad.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.design.die_file import load_die_design
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget
+    from tactcad.products.silicon_die.mechanics.die_dynamics import die_modes
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 
     design = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
               / "grasper_jaw_5mm_mems.toml")
@@ -900,7 +901,7 @@ def test_a_longer_resistor_keeps_a_shorter_reference_and_the_half_bridge_says_wh
     the mismatch share of the TCR (the common TCR cancels whatever rho)."""
     import dataclasses
 
-    from tactcad.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 
     long = dataclasses.replace(die, resistor_length_um=md.REFERENCE_LEGS_MAX_UM * 1.5)
     assert long.reference_resistor_length_um == md.REFERENCE_LEGS_MAX_UM
@@ -917,7 +918,8 @@ def test_a_longer_resistor_keeps_a_shorter_reference_and_the_half_bridge_says_wh
 def test_each_beam_has_its_reference_resistor_on_the_frame_and_three_pads(die, tmp_path):
     """The masks carry two resistors, four contacts and three separate metal nets per beam;
     the references lie on the frame, off the window (unstrained), and read back clean."""
-    from tactcad.export.gds_masks import die_polygons, reference_resistor_outline
+    from tactcad.products.silicon_die.export.gds_masks import (die_polygons,
+                                                               reference_resistor_outline)
 
     polys = die_polygons(die)
     n = len(die.beams)
@@ -967,7 +969,7 @@ def test_a_die_file_rated_past_the_strength_is_refused_by_its_key(tmp_path):
 def test_verify_fails_a_rating_at_the_mean_strength_and_leaves_one_below_it_undecided(die):
     import dataclasses as dc
 
-    from tactcad.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
 
     def verdict(plan):
         return next(r for r in die_verification(plan)
@@ -1012,8 +1014,8 @@ def test_the_grasp_on_a_die_presses_each_post_by_the_jaws_wedge_and_reads_each_c
     r (h / r_last - sin theta) (the wedge's law, by hand); each column's R reads the true
     K_obj exactly by eq. 3; closed flat, every post rests on its cavity's floor and no unit
     reads; pressed past its height, the face meets the tissue and its unit does not read."""
-    from tactcad.design.die_mount import die_mount
-    from tactcad.in_use.die_grasp import die_grasp, die_jaw
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.in_use.die_grasp import die_grasp, die_jaw
 
     mount = die_mount(die, {"shaft_class_mm": "5"})
     jaw = die_jaw(mount, 30.0, 3.0)
@@ -1084,7 +1086,7 @@ def test_every_die_designed_or_pasted_passes_its_own_checks(tmp_path_factory, ra
     what die_plan designs, or what the refusal's alternative designs in one paste, writes
     masks that pass every rule and read-back of its check, and verify fails nothing (the
     rated force undecided without a pair)."""
-    from tactcad.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
 
     room = jaw_room("5")
     weibull = None if pair is None else md.WeibullPair(pair[0], pair[1], 2e4, "a test", 1e-3)
@@ -1125,8 +1127,9 @@ def test_a_rating_too_light_to_resolve_k_obj_is_refused_with_one_that_does():
     """At 1e-6 N the bridges' noise moves K_obj by tens of per cent; at 1e-9 N no K_obj reads
     (the budget says unreadable, it does not fail on eq. 3's range). The die refuses both by
     --full-scale-force and pastes a rating whose read-out resolves K_obj to the die's 1 %."""
-    from tactcad.in_use.die_budget import die_budget
-    from tactcad.studies.die_doping import doped_die_plan, worst_readout_error_rel
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget
+    from tactcad.products.silicon_die.studies.die_doping import (doped_die_plan,
+                                                                 worst_readout_error_rel)
 
     room = jaw_room("5")
     for force in (1e-6, 1e-9):
@@ -1145,7 +1148,8 @@ def test_a_rating_too_light_to_resolve_k_obj_is_refused_with_one_that_does():
 def test_a_ratio_too_close_to_one_for_any_rating_is_refused_by_the_ratio():
     """At K_r / K_m 1.001 R hardly moves with K_obj: no rating within the die's limits reads
     K_obj to 1 %, so the refusal names the ratio and pastes one that designs and reads."""
-    from tactcad.studies.die_doping import doped_die_plan, worst_readout_error_rel
+    from tactcad.products.silicon_die.studies.die_doping import (doped_die_plan,
+                                                                 worst_readout_error_rel)
 
     room = jaw_room("5")
     with pytest.raises(DesignError) as refused:
@@ -1179,9 +1183,9 @@ def test_the_fe_check_without_calculix_is_refused_in_one_line_and_writes_nothing
 def test_a_long_attach_material_stays_in_the_bom_and_off_the_drawing(die):
     from dataclasses import replace
 
-    from tactcad.design import die_mount as dm
-    from tactcad.drawings.die_sheet import die_sheet
-    from tactcad.export.die_scene import mount_bom_rows
+    from tactcad.products.silicon_die.design import die_mount as dm
+    from tactcad.products.silicon_die.drawings.die_sheet import die_sheet
+    from tactcad.products.silicon_die.export.die_scene import mount_bom_rows
 
     name = "a lab's silicone die-attach adhesive from its usual vendor, grade 2025D " * 3
     long = replace(die, attach=replace(die.attach, material=name))

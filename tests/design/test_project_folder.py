@@ -358,7 +358,7 @@ def test_a_write_into_an_existing_folder_that_fails_part_way_leaves_the_folder_a
 
 
 def test_new_from_the_die_example_makes_a_die_project_named_for_its_folder(tmp_path):
-    from tactcad.design.die_file import load_die_design
+    from tactcad.products.silicon_die.design.die_file import load_die_design
 
     made = new_project(tmp_path / "my-die", example="grasper_jaw_5mm_mems")
     # the CI workflow too, as an array's project has (export, check, diff)
@@ -375,7 +375,7 @@ def test_new_from_the_die_example_makes_a_die_project_named_for_its_folder(tmp_p
 
 
 def test_new_from_a_die_design_file_keeps_its_labs_jaw_file_beside_it(tmp_path):
-    from tactcad.design.die_file import load_die_design
+    from tactcad.products.silicon_die.design.die_file import load_die_design
 
     source = tmp_path / "src"
     source.mkdir()

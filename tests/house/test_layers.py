@@ -283,3 +283,55 @@ def test_the_name_rule_sees_a_repeat(tmp_path):
     (tmp_path / "kernel" / "step.py").write_text("")
     assert repeated_module_names(tmp_path)["step.py"] == ["checks/step.py", "kernel/step.py"]
     assert "step.py" not in repeated_module_names(tmp_path, not_yet=("checks",))
+
+
+def modules_named_after_a_product(src: Path, tables: dict[str, str]) -> list[str]:
+    """Modules outside a product's package whose name is the product's (its design table,
+    ``die``, alone or as the first word: ``die_budget.py``), but the command named after it
+    (``commands/die.py``): a product's own code lives in its package
+    (``products/<package>/<layer>/``), never beside the generic rooms as their twin.
+
+    Args:
+        tables: design table -> the product's package under ``products/``.
+    """
+    out = []
+    for p in sorted(src.rglob("*.py")):
+        rel = p.relative_to(src)
+        for table, package in tables.items():
+            named = p.stem == table or p.stem.startswith(f"{table}_")
+            own = rel.parts[:2] == ("products", package)
+            command = rel.parts[0] == "commands" and p.stem == table
+            if named and not own and not command:
+                out.append(rel.as_posix())
+    return out
+
+
+def _product_tables() -> dict[str, str]:
+    import importlib
+    import pkgutil
+
+    import tactcad.products as registry
+
+    out = {}
+    for info in pkgutil.iter_modules(registry.__path__):
+        product = getattr(importlib.import_module(f"tactcad.products.{info.name}"), "PRODUCT",
+                          None)
+        if product is not None and product.design_table:
+            out[product.design_table] = info.name
+    return out
+
+
+def test_a_products_own_modules_live_in_its_package():
+    tables = _product_tables()
+    assert tables == {"die": "silicon_die"}
+    outside = modules_named_after_a_product(SRC, tables)
+    assert not outside, "a product's modules outside its package:\n" + "\n".join(outside)
+
+
+def test_the_product_rule_sees_a_twin_beside_the_rooms(tmp_path):
+    for rel in ("mechanics/die_fem3d.py", "commands/die.py", "products/silicon_die/in_use/"
+                "die_budget.py", "design/dies.py", "export/die.py"):
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text("")
+    assert modules_named_after_a_product(tmp_path, {"die": "silicon_die"}) == [
+        "export/die.py", "mechanics/die_fem3d.py"]

@@ -8,9 +8,9 @@ import dataclasses
 import numpy as np
 import pytest
 
-from tactcad.design.mems_die import die_plan
-from tactcad.in_use import die_budget as db
-from tactcad.mechanics.piezoresistor import die_readout
+from tactcad.products.silicon_die.design.mems_die import die_plan
+from tactcad.products.silicon_die.in_use import die_budget as db
+from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 from tactcad.partlib.grasper_jaw import jaw_room
 from tactcad.studies.inverse_design import Targets
 

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from scipy.special import kei, keip, ker
 
-from tactcad.design.mems_die import die_plan
-from tactcad.mechanics import die_crosstalk as dx
+from tactcad.products.silicon_die.design.mems_die import die_plan
+from tactcad.products.silicon_die.mechanics import die_crosstalk as dx
 from tactcad.partlib.grasper_jaw import jaw_room
 from tactcad.studies.inverse_design import Targets
 
@@ -93,7 +93,7 @@ def result(small_die):
 
 
 def test_the_dies_crosstalk_is_each_units_own_reading_and_the_frames_share(small_die, result):
-    from tactcad.mechanics.piezoresistor import die_resistor
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_resistor
 
     n = len(small_die.beams)
     s = result.reading_per_N

@@ -11,8 +11,8 @@ import shutil
 
 import pytest
 
-from tactcad.design.mems_die import die_plan
-from tactcad.mechanics import die_dynamics as dd
+from tactcad.products.silicon_die.design.mems_die import die_plan
+from tactcad.products.silicon_die.mechanics import die_dynamics as dd
 from tactcad.partlib.grasper_jaw import jaw_room
 from tactcad.studies.inverse_design import Targets
 
@@ -61,7 +61,8 @@ def test_the_anisotropic_assembly_of_an_isotropic_tensor_is_the_isotropic_one():
     import numpy as np
     from skfem import Basis, ElementTetP2, MeshTet
 
-    from tactcad.mechanics.die_fem3d import assemble_anisotropic, stiffness_tensor
+    from tactcad.products.silicon_die.mechanics.die_fem3d import (assemble_anisotropic,
+                                                                  stiffness_tensor)
     from tactcad.mechanics.fem.fem2d import assemble_elasticity
 
     e, nu = 169e3, 0.28
@@ -80,7 +81,7 @@ def test_the_anisotropic_assembly_of_an_isotropic_tensor_is_the_isotropic_one():
 def test_the_tensor_of_a_turned_crystal_keeps_its_symmetries():
     import numpy as np
 
-    from tactcad.mechanics.die_fem3d import stiffness_tensor
+    from tactcad.products.silicon_die.mechanics.die_fem3d import stiffness_tensor
     from tactcad.vocabulary.crystal import SILICON
 
     c = stiffness_tensor(SILICON.in_frame((1.0, 1.0, 0.0), (-1.0, 1.0, 0.0)))
@@ -96,7 +97,7 @@ def test_the_dies_fem3d_agrees_with_calculix_to_one_percent(plan):
     """Two FE models of another kind (scikit-fem triquadratic hexahedra, a uniform shear on
     the section, a consistent surface mass for the post; CalculiX C3D8I, nodal loads and
     lumped nodal masses) agree to 1 % in K and f1 on both rows, each converged to 0.1 %."""
-    from tactcad.mechanics.die_fem3d import die_beam_fem3d
+    from tactcad.products.silicon_die.mechanics.die_fem3d import die_beam_fem3d
 
     for beam in plan.beams[:: plan.columns]:
         ours = die_beam_fem3d(plan, beam, frame=False)
@@ -115,8 +116,8 @@ def test_on_its_frame_the_dies_fem3d_agrees_with_calculix_to_one_percent(plan):
     two meshes, each extrapolated the same way, to 1 % in K and f1; both well below the
     clamped beam's K, and the design's closed form (the root's give as extra length)
     within its stated error of fem3d's."""
-    from tactcad.design.mems_die import CLOSED_FORM_K_ERROR_REL
-    from tactcad.mechanics.die_fem3d import FRAME_ORDER, die_beam_fem3d
+    from tactcad.products.silicon_die.design.mems_die import CLOSED_FORM_K_ERROR_REL
+    from tactcad.products.silicon_die.mechanics.die_fem3d import FRAME_ORDER, die_beam_fem3d
 
     r = 2.0 ** FRAME_ORDER
     for beam in plan.beams[:: plan.columns]:
@@ -163,7 +164,7 @@ def test_the_frame_gives_under_the_root_and_the_shorter_beam_loses_more(plan):
     """On its frame each beam is softer than clamped at its root; the root's compliance
     adds about a fixed length behind it, so the share it takes grows as t / L: the short
     reference beam loses more than the measuring one (coarse meshes, both ways alike)."""
-    from tactcad.mechanics.die_fem3d import _solve
+    from tactcad.products.silicon_die.mechanics.die_fem3d import _solve
 
     lost = {}
     for beam in plan.beams[:: plan.columns]:

@@ -11,10 +11,11 @@ from pathlib import Path
 import pytest
 
 from conftest import run_cli
-from tactcad.design import mems_die as md
-from tactcad.design.mems_die import WeibullPair
-from tactcad.mechanics.die_strength import (die_failure_probability, effective_area_um2,
-                                            failure_probability)
+from tactcad.products.silicon_die.design import mems_die as md
+from tactcad.products.silicon_die.design.mems_die import WeibullPair
+from tactcad.products.silicon_die.mechanics.die_strength import (die_failure_probability,
+                                                                 effective_area_um2,
+                                                                 failure_probability)
 from tactcad.partlib.grasper_jaw import jaw_room
 from tactcad.studies.inverse_design import Targets
 
@@ -55,7 +56,7 @@ def test_a_stated_pair_decides_the_rated_force_and_the_stops(die):
     beams (by hand) and
     passes or fails against the lab's accepted maximum; the stop row adds every beam on its
     deepest stop, which carries more than the rating."""
-    from tactcad.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
 
     rows = {r["requirement"]: r for r in die_verification(die)}
     assert rows["full_scale_force_N"]["verdict"] == "undecided"
@@ -85,8 +86,8 @@ def test_a_probabilitys_margin_is_the_force_at_which_the_die_reaches_the_accepte
     """The rated row's margin was the accepted probability over the predicted one
     (+55751250 % on the example); it is the factor on the forces at which the die's failure
     probability reaches the accepted one, found again by bisection on the probability."""
-    from tactcad.mechanics.die_strength import force_scale_at_probability
-    from tactcad.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.mechanics.die_strength import force_scale_at_probability
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
 
     judged = dataclasses.replace(die, weibull=WeibullPair(8.0, 4000.0, 2e4, "a test", 1e-3))
     scale = force_scale_at_probability(judged, judged.rated_force_N, 1e-3)
@@ -111,7 +112,7 @@ def test_a_labs_pair_limits_the_rating_it_plans_and_the_pasted_rating_passes_ver
     pair's failure probability at the rating and on the stops limits the plan, and the
     refusal's paste designs a die whose verify passes."""
     from tactcad.errors import DesignError
-    from tactcad.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
 
     pair = WeibullPair(modulus, sigma_0, 2e4, "a test", 1e-3)
     targets = Targets(10.0, (0.5, 5.0), 0.02)
@@ -128,7 +129,7 @@ def test_a_labs_pair_limits_the_rating_it_plans_and_the_pasted_rating_passes_ver
     assert rows["full_scale_force_N"]["verdict"] == "pass", rows["full_scale_force_N"]
     assert rows["hard_stop"]["verdict"] == "pass", rows["hard_stop"]
     # the plan's Weibull scale is the mechanics' own: both say where P_f reaches 1e-3
-    from tactcad.mechanics.die_strength import force_scale_at_probability
+    from tactcad.products.silicon_die.mechanics.die_strength import force_scale_at_probability
 
     limits = md.rating_limits(plan)
     scale = force_scale_at_probability(plan, plan.rated_force_N, 1e-3)

@@ -10,8 +10,10 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from tactcad.mechanics.piezoresistor import (BOLTZMANN_J_PER_K, PiezoCantilever, carriers_in,
-                                             force_resolution_N, hooge_noise_V, johnson_noise_V)
+from tactcad.products.silicon_die.mechanics.piezoresistor import (BOLTZMANN_J_PER_K,
+                                                                  PiezoCantilever, carriers_in,
+                                                                  force_resolution_N,
+                                                                  hooge_noise_V, johnson_noise_V)
 from tactcad.vocabulary.crystal import SILICON_P_TYPE, WAFER_110
 
 PI_L = SILICON_P_TYPE.longitudinal(WAFER_110) * 1e-11  # 1/Pa
@@ -112,7 +114,7 @@ def test_harleys_stiffness_carriers_and_hooge_noise_by_the_same_equations():
     """k = E w t^3 / (4 l^3) at PiezoD's 169 GPa; N z = N x_j; the Hooge noise of PiezoD's
     integrated_noise, alpha V^2 / (4 N) ln(f2 / f1) for one strained arm, equals ours at V / 2
     across the resistor, its carriers over the U's area w_pr (2 l_pr + w + gap)."""
-    from tactcad.design.mems_die import clamped_beam_stiffness_N_per_mm
+    from tactcad.products.silicon_die.design.mems_die import clamped_beam_stiffness_N_per_mm
 
     h, e = HARLEY, PIEZOD_EXPECTS
     k = clamped_beam_stiffness_N_per_mm(169e3, h["w_um"], h["t_um"], h["l_um"]) * 1e3  # N/m
@@ -131,7 +133,7 @@ def test_harleys_stiffness_carriers_and_hooge_noise_by_the_same_equations():
 def test_the_sensitivitys_temperature_coefficient_is_richters_slope():
     """Lightly doped, P(N, T) is Theta^-0.9: d ln P / dT = -0.9 / 300 K at 300 K; doping
     flattens it (Richter et al. 2008, Fig. 4's trend)."""
-    from tactcad.mechanics.piezoresistor import sensitivity_temperature_coefficient_per_K as tcs
+    from tactcad.products.silicon_die.mechanics.piezoresistor import sensitivity_temperature_coefficient_per_K as tcs
 
     assert tcs(1e14) == pytest.approx(-0.9 / 300, rel=1e-3)
     assert tcs(1e14) < tcs(1e19) < tcs(1e20) < 0
@@ -141,7 +143,7 @@ def test_the_sensitivitys_temperature_coefficient_is_richters_slope():
 def test_the_tcr_holds_to_the_ends_of_the_mobilitys_range(temperature_K):
     """At the ends of Arora's 250-500 K the TCR takes a one-sided difference (a centred one
     would ask the fit half a kelvin outside it); it lies beside the TCR a kelvin inside."""
-    from tactcad.mechanics.piezoresistor import resistor_tcr_per_K
+    from tactcad.products.silicon_die.mechanics.piezoresistor import resistor_tcr_per_K
 
     inside = temperature_K + (1.0 if temperature_K < 300 else -1.0)
     at_end = resistor_tcr_per_K(1e19, temperature_K)
@@ -152,8 +154,8 @@ def test_the_tcr_holds_to_the_ends_of_the_mobilitys_range(temperature_K):
 
 
 def test_the_dies_readout_states_its_sensitivitys_drift_and_self_heating():
-    from tactcad.design.mems_die import die_plan
-    from tactcad.mechanics.piezoresistor import SILICON_CONDUCTIVITY_W_PER_MK, die_readout
+    from tactcad.products.silicon_die.design.mems_die import die_plan
+    from tactcad.products.silicon_die.mechanics.piezoresistor import SILICON_CONDUCTIVITY_W_PER_MK, die_readout
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
 

@@ -24,7 +24,7 @@ def die_folder(tmp_path):
 
 def test_strength_on_a_die_gives_each_rows_root_against_etched_silicon(die_folder):
     from tactcad.commands.die import _die_args, die_asked, plan_of
-    from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA
+    from tactcad.products.silicon_die.design.mems_die import BOSCH_MEAN_STRENGTH_MPA
 
     r = run_cli("strength", "--json", cwd=die_folder)
     assert r.returncode == 0, r.stdout + r.stderr

@@ -7,7 +7,7 @@
 * ``bench stiffness``: the stiffness estimators, provided by
   ``tactcad.benchmarks.stiffness_bench.main(args)`` when that module is installed.
 * ``bench die``: a silicon die's beams, each stiffness level's cost and K error against
-  fem3d on the frame (:mod:`tactcad.benchmarks.die_bench`).
+  fem3d on the frame (:mod:`tactcad.products.silicon_die.benchmarks.die_bench`).
 * ``bench closed-form``, ``bench montecarlo``, ``bench sweep``: the design
   tools at scale (:mod:`tactcad.benchmarks.bench_scale`).
 """
@@ -76,7 +76,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     x.set_defaults(func=run_crosstalk)
     dd = bsub.add_parser("die", help="a silicon die's beams: the cost and K error of each "
                                      "stiffness level against fem3d on the frame "
-                                     "(tactcad.benchmarks.die_bench)")
+                                     "(tactcad.products.silicon_die.benchmarks.die_bench)")
     add_design_arg(dd)
     dd.add_argument("--beams", choices=("rows", "domain", "all"), default="all",
                     help="the die's two rows, four beams at the corners of the sections its "
@@ -353,9 +353,9 @@ def run_modal_bench(args: argparse.Namespace) -> int:
 
 
 def run_die_bench(args: argparse.Namespace) -> int:
-    from tactcad.benchmarks.die_bench import main
+    from tactcad.products.silicon_die.benchmarks.die_bench import main
     from tactcad.commands.die import die_design_of
-    from tactcad.commands.die_views import _planned
+    from tactcad.products.silicon_die.commands.die_views import _planned
     from tactcad.errors import DesignError
 
     design = die_design_of(args)
@@ -372,7 +372,8 @@ def run_crosstalk(args: argparse.Namespace) -> int:
 
 
 def run_closed_form(args: argparse.Namespace) -> int:
-    from tactcad.benchmarks.bench_scale import CLOSED_FORM_GOAL_PER_S, closed_form_rate, load_average
+    from tactcad.benchmarks.bench_scale import (CLOSED_FORM_GOAL_PER_S, closed_form_rate,
+                                                load_average)
 
     rate = closed_form_rate(plan_from_args(args))
     flag = "ok" if rate >= CLOSED_FORM_GOAL_PER_S else "under goal"

@@ -361,7 +361,7 @@ def one_refusal_line(construction: str, exc: DesignError) -> str:
 def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder: Path | None,
                      refusals: list, left: list[str]) -> int:
     """``design --jaw`` where only a silicon die fits (or ``--construction mems-die``): the
-    die planned for the targets in the jaw's pocket (:func:`tactcad.design.mems_die.die_plan`;
+    die planned for the targets in the jaw's pocket (:func:`tactcad.products.silicon_die.design.mems_die.die_plan`;
     its refusal is this command's) and its design file written at ``path`` (in ``folder``
     when ``--out`` names one, with a lab's jaw file copied beside it), for ``tactcad die
     --design``.
@@ -373,9 +373,9 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     import re
 
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.design.die_file import die_file_text
-    from tactcad.design.mems_die import DEFAULT_COLUMNS
-    from tactcad.studies.die_doping import doped_die_plan
+    from tactcad.products.silicon_die.design.die_file import die_file_text
+    from tactcad.products.silicon_die.design.mems_die import DEFAULT_COLUMNS
+    from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
 
     ignored = die_ignored(args)
     if ignored:  # the first option a die does not take

@@ -1,7 +1,7 @@
 """``tactcad die``: a silicon die for a grasper's jaw, from the stiffness targets to its masks:
-the die's plan (:mod:`tactcad.design.mems_die`), its GDSII masks for the die and a wafer
-(:mod:`tactcad.export.gds_masks`) and their read-back with KLayout against the process's
-rules and the plan (:mod:`tactcad.checks.gds_drc`)."""
+the die's plan (:mod:`tactcad.products.silicon_die.design.mems_die`), its GDSII masks for the die and a wafer
+(:mod:`tactcad.products.silicon_die.export.gds_masks`) and their read-back with KLayout against the process's
+rules and the plan (:mod:`tactcad.products.silicon_die.checks.gds_drc`)."""
 
 from __future__ import annotations
 
@@ -18,8 +18,8 @@ from typing import Any
 from tactcad.commands import add_design_arg, add_output_args
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number
-from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME, DEFAULT_PITCH_UM,
-                                     LEAST_PITCH_UM)
+from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME,
+                                                          DEFAULT_PITCH_UM, LEAST_PITCH_UM)
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.errors import DesignError, DesignErrors
 
@@ -98,14 +98,14 @@ DEFAULTS = {"columns": ("--columns", DEFAULT_COLUMNS), "pitch_um": ("--pitch-um"
 
 
 def die_asked(args: argparse.Namespace) -> dict:
-    """The die asked for: from ``--design`` (:func:`tactcad.design.die_file.load_die_design`)
+    """The die asked for: from ``--design`` (:func:`tactcad.products.silicon_die.design.die_file.load_die_design`)
     or from the options, each left out taking its default.
 
     Raises:
         DesignError: a target option missing without ``--design``, or given with it.
     """
     from tactcad.commands import parse_overrides
-    from tactcad.design.die_file import load_die_design
+    from tactcad.products.silicon_die.design.die_file import load_die_design
 
     if args.design is None and not _any_option_given(args):
         folder_design = _folder_die_design()
@@ -146,7 +146,7 @@ def _any_option_given(args: argparse.Namespace) -> bool:
 def _folder_die_design() -> Path | None:
     # the working folder's one die design file; an array's folder or none gives None
     from tactcad.design.array_plan import read_toml
-    from tactcad.design.die_file import is_die_file
+    from tactcad.products.silicon_die.design.die_file import is_die_file
     from tactcad.project_folder import designs_in, other_product_designs_in
 
     found = designs_in(".") + other_product_designs_in(".")
@@ -192,7 +192,7 @@ def _as_file_keys(exc: DesignError, file: str) -> DesignError:
 
 
 def _name(value: str) -> str:
-    from tactcad.design.die_file import CELL_NAME_WORDS, is_cell_name
+    from tactcad.products.silicon_die.design.die_file import CELL_NAME_WORDS, is_cell_name
 
     if not is_cell_name(value):
         raise DesignError("--name", value, CELL_NAME_WORDS)
@@ -219,7 +219,7 @@ def plan_of(asked: dict) -> PlannedDie:
         DesignError: a bad name, jaw or targets the die cannot meet (named).
     """
     from tactcad.commands.design import jaw_of
-    from tactcad.studies.die_doping import doped_die_plan
+    from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
 
@@ -248,7 +248,7 @@ def with_weibull(plan, pair):
     plan with the pair and its strength reason."""
     from dataclasses import replace
 
-    from tactcad.mechanics.die_strength import die_failure_probability
+    from tactcad.products.silicon_die.mechanics.die_strength import die_failure_probability
 
     judged = replace(plan, weibull=pair)
     p_rated = die_failure_probability(judged, judged.rated_force_N)
@@ -276,20 +276,24 @@ def with_attach(plan, attach):
 def run(args: argparse.Namespace) -> int:
     from tactcad.atomic import staging_dir
     from tactcad.checks.check_result import counts_text, status_counts
-    from tactcad.checks.die_mount_fit import mount_checks
+    from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.checks.sheet_overlap import sheet_file_results
-    from tactcad.drawings.die_sheet import die_sheet
-    from tactcad.checks.gds_drc import gds_checks
-    from tactcad.design.die_mount import die_mount
-    from tactcad.export.die_scene import (mount_bom_rows, mount_solids, write_mount_bom,
-                                          write_mount_picture, write_mount_step)
-    from tactcad.export.die_solid import write_die_step
-    from tactcad.export.gds_masks import write_die_gds, write_mask_picture, write_wafer_gds
-    from tactcad.export.traveller import write_traveller
-    from tactcad.in_use.die_budget import die_budget
-    from tactcad.mechanics.die_dynamics import (calculix_beam_check, closed_form_k_N_per_mm,
-                                                die_modes, first_resonance_Hz)
-    from tactcad.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.drawings.die_sheet import die_sheet
+    from tactcad.products.silicon_die.checks.gds_drc import gds_checks
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.export.die_scene import (mount_bom_rows, mount_solids,
+                                                               write_mount_bom,
+                                                               write_mount_picture,
+                                                               write_mount_step)
+    from tactcad.products.silicon_die.export.die_solid import write_die_step
+    from tactcad.products.silicon_die.export.gds_masks import (write_die_gds, write_mask_picture,
+                                                               write_wafer_gds)
+    from tactcad.products.silicon_die.export.traveller import write_traveller
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget
+    from tactcad.products.silicon_die.mechanics.die_dynamics import (calculix_beam_check,
+                                                                     closed_form_k_N_per_mm,
+                                                                     die_modes, first_resonance_Hz)
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
     from tactcad.products.silicon_die.studies.die_reports import die_beam_fem3d_kept
 
     planned = plan_of(die_asked(args))
@@ -370,7 +374,7 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
     from tactcad.products.silicon_die.export.die_review import (
         beam_elements, design_head, die_manifest, manifest_text, review_contents_of_die,
         write_scene_glb)
-    from tactcad.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
 
     write_scene_glb(solids, made["glb"], f"{plan.name}_in_jaw")
     head = design_head(plan.name, source)
@@ -389,11 +393,11 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
 
 
 def die_requirement_checks(plan) -> list:
-    """The die's verification matrix (:func:`tactcad.commands.die_views.die_verification`)
+    """The die's verification matrix (:func:`tactcad.products.silicon_die.commands.die_views.die_verification`)
     as check results, one per requirement: failed when its verdict is ``fail``; an
     ``undecided`` one passes, marked undecided (a mean strength without a Weibull pair)."""
     from tactcad.checks.check_result import CheckResult
-    from tactcad.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
     from tactcad.studies.verification import binding_text, margin_text, value_text
 
     out = []
@@ -469,7 +473,7 @@ def resistor_line(plan, readout: dict) -> str:
 
 
 def mode_lines(modes: dict) -> list[str]:
-    """Each row's first resonance (:func:`tactcad.mechanics.die_dynamics.die_modes`), a line
+    """Each row's first resonance (:func:`tactcad.products.silicon_die.mechanics.die_dynamics.die_modes`), a line
     each."""
     return [f"first resonance, {role} beam with its post: {m.rayleigh_Hz / 1e3:.4g} kHz "
             f"(Rayleigh; the exact Euler-Bernoulli root {m.exact_Hz / 1e3:.4g} kHz, "
@@ -477,7 +481,7 @@ def mode_lines(modes: dict) -> list[str]:
 
 
 def budget_lines(budget) -> list[str]:
-    """The die's K_obj budget (:func:`tactcad.in_use.die_budget.die_budget`) as a table."""
+    """The die's K_obj budget (:func:`tactcad.products.silicon_die.in_use.die_budget.die_budget`) as a table."""
     ks = budget.k_obj_N_per_mm
     lines = ["K_obj budget of the middle unit, relative, 1 sigma, at K_obj "
              + ", ".join(f"{k:.3g}" for k in ks) + " N/mm:"]
@@ -508,7 +512,7 @@ def die_design_of(args: argparse.Namespace) -> Path | None:
         DesignError: the folder holds several design files.
     """
     from tactcad.design.array_plan import read_toml
-    from tactcad.design.die_file import is_die_file
+    from tactcad.products.silicon_die.design.die_file import is_die_file
     from tactcad.project_folder import default_design
 
     design = Path(args.design) if getattr(args, "design", None) else default_design()
@@ -547,11 +551,11 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
     import tempfile
 
     from tactcad.checks.check_result import CheckResult, counts_text, status_counts
-    from tactcad.checks.die_mount_fit import mount_checks
-    from tactcad.checks.gds_drc import gds_checks
+    from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
+    from tactcad.products.silicon_die.checks.gds_drc import gds_checks
     from tactcad.checks.sheet_overlap import sheet_file_results
-    from tactcad.design.die_mount import die_mount
-    from tactcad.export.die_scene import mount_solids
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.export.die_scene import mount_solids
 
     if getattr(args, "scene", None):
         raise DesignError("--scene", args.scene, "left out for a die",

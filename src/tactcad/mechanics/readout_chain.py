@@ -370,7 +370,7 @@ def flicker_noise_V(chain: ReadoutChain) -> dict[str, float]:
     Returns:
         ``{"amplifier": V, "gauge": V}``.
     """
-    from tactcad.mechanics.piezoresistor import hooge_noise_V
+    from tactcad.products.silicon_die.mechanics.piezoresistor import hooge_noise_V
 
     f_lo, f_hi = chain.flicker_band_Hz
     decades = math.log(f_hi / f_lo)

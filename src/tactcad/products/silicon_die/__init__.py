@@ -4,13 +4,13 @@ jaw (``tactcad die``; a ``[die]`` design file).
 
 Its registry entry: the array commands that answer for a die, its export and check, its
 project folder and its object in the Python API. The die's own models are planned by
-:mod:`tactcad.design.mems_die` and read by the views of
-:mod:`tactcad.commands.die_views`.
+:mod:`tactcad.products.silicon_die.design.mems_die` and read by the views of
+:mod:`tactcad.products.silicon_die.commands.die_views`.
 """
 
 from tactcad.products import Product
 
-_VIEWS = "tactcad.commands.die_views"
+_VIEWS = "tactcad.products.silicon_die.commands.die_views"
 
 PRODUCT = Product(
     name="silicon-die",

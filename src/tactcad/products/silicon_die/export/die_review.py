@@ -58,7 +58,7 @@ def die_manifest(head: Mapping[str, Any], folder: Path, files: Mapping[str, str]
 
 
 def write_scene_glb(solids: Mapping[str, tuple[Any, tuple]], path: Path, name: str) -> int:
-    """The mount's solids (:func:`tactcad.export.die_scene.mount_solids`: part name ->
+    """The mount's solids (:func:`tactcad.products.silicon_die.export.die_scene.mount_solids`: part name ->
     (solid in mm, colour)) as one binary glTF scene (:func:`tactcad.export.glb.write_glb`),
     each part one instance at its place; returns the triangle count.
 
@@ -98,7 +98,7 @@ def beam_elements(strength: Mapping[str, Any], stiffness: Mapping[str, Any]) -> 
 
 
 def budget_table(budget: Mapping[str, Any]) -> dict | None:
-    """The die's K_obj budget (:meth:`tactcad.in_use.die_budget.DieBudget.as_json`) as the
+    """The die's K_obj budget (:meth:`tactcad.products.silicon_die.in_use.die_budget.DieBudget.as_json`) as the
     page's one-table section (title, columns, rows), or None when it has no terms."""
     terms = budget.get("terms_rel") or {}
     if not terms:
@@ -127,7 +127,7 @@ def review_contents_of_die(head: Mapping[str, Any], verification: list[dict],
     """The review page's contents (:class:`tactcad.export.review_page.ReviewContents`) of a
     die: ``drawing`` (export path, SVG text), the mount's GLB, the BOM's CSV text, the beams
     as elements (:func:`beam_elements`), the verification records
-    (:func:`tactcad.studies.die_verification.die_verification`) and the K_obj budget; dated
+    (:func:`tactcad.products.silicon_die.studies.die_verification.die_verification`) and the K_obj budget; dated
     as the sheets are (``SOURCE_DATE_EPOCH``, else undated), never by the clock."""
     from tactcad.drawings.frame import epoch_date
     from tactcad.export.review_assets import three_version

@@ -11,14 +11,14 @@ from __future__ import annotations
 
 import json
 
-from tactcad.studies.die_verification import die_verification
+from tactcad.products.silicon_die.studies.die_verification import die_verification
 from tactcad.studies.verification import matrix_table
 
 
 def die_beam_fem3d_kept(plan, beam):
-    """:func:`tactcad.mechanics.die_fem3d.die_beam_fem3d`, kept in the result store for the
+    """:func:`tactcad.products.silicon_die.mechanics.die_fem3d.die_beam_fem3d`, kept in the result store for the
     same plan and beam (a second run of the same die solves nothing)."""
-    from tactcad.mechanics.die_fem3d import die_beam_fem3d
+    from tactcad.products.silicon_die.mechanics.die_fem3d import die_beam_fem3d
     from tactcad.store import kept_result
 
     return kept_result("die beam fem3d", lambda: die_beam_fem3d(plan, beam),
@@ -29,8 +29,9 @@ def strength_report(plan) -> tuple[dict, list[str]]:
     """Each row's beam root at the force it carries in use against the mean strength of
     etched silicon (and the lab's Weibull pair's failure probability, when stated), with the
     rated-force requirement: (report, text lines). MPa, N, um."""
-    from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, BOSCH_STRENGTH_SOURCE
-    from tactcad.mechanics.die_strength import beam_failure_probability
+    from tactcad.products.silicon_die.design.mems_die import (BOSCH_MEAN_STRENGTH_MPA,
+                                                              BOSCH_STRENGTH_SOURCE)
+    from tactcad.products.silicon_die.mechanics.die_strength import beam_failure_probability
 
     rated = next(r for r in die_verification(plan) if r["requirement"] == "full_scale_force_N")
     rows = []
@@ -78,7 +79,8 @@ def stiffness_report(plan, model: str = "closed-form") -> tuple[dict, list[str]]
     """Each row's beam K on its frame at ``model`` (``closed-form``, or ``fem3d`` with the
     closed form's error against it; the fem3d solve kept in the result store): (report,
     text lines). N/mm, um, s."""
-    from tactcad.design.mems_die import CLOSED_FORM_K_ERROR_REL, root_extension_um
+    from tactcad.products.silicon_die.design.mems_die import (CLOSED_FORM_K_ERROR_REL,
+                                                              root_extension_um)
 
     rows = []
     for beam, k, target in zip(plan.beams[:: plan.columns], (plan.k_r_N_per_mm, plan.k_m_N_per_mm),

@@ -1,6 +1,6 @@
 """A die's beam in 3D finite elements with silicon's full anisotropic stiffness
 (scikit-fem): the die's fem3d level, a model of another kind than the closed form and than
-CalculiX's brick (:func:`tactcad.mechanics.die_dynamics.calculix_beam_check`).
+CalculiX's brick (:func:`tactcad.products.silicon_die.mechanics.die_dynamics.calculix_beam_check`).
 
 The beam, root to the post's far edge, is meshed with triquadratic hexahedra (27 nodes,
 scikit-fem's ``ElementHex2``: bending without locking through a few layers), node planes at
@@ -8,14 +8,14 @@ the post's centre and at its footprint's edges. The stiffness is assembled from 
 tensor C_ijkl of silicon turned into the beam's frame (<110> along the beam on a (100)
 wafer, :meth:`tactcad.vocabulary.crystal.CubicElasticity.in_frame`), K_ia,jb =
 sum_q w g_ik C_akbl g_jl, per chunk of cells (no Python call per pair of basis functions).
-The beam runs into its frame block (the die as made; :func:`tactcad.mechanics.die_dynamics.
+The beam runs into its frame block (the die as made; :func:`tactcad.products.silicon_die.mechanics.die_dynamics.
 beam_on_frame`): the device layer behind and beside the root, bonded on the buried oxide
 and the handle (one silicon solid), the cavity under the beam with the handle as its floor,
 held at the handle's underside. The frame turns and gives under the root's moment and shear:
 on the example die that makes K_r 15 % and K_m 7 % softer than the same beams clamped at the
 root (``frame=False``, the textbook cantilever K = E w t^3 / (4 L^3)); the die's closed form
 carries that give as extra length behind the root
-(:func:`tactcad.design.mems_die.root_extension_um`, fitted to this level).
+(:func:`tactcad.products.silicon_die.design.mems_die.root_extension_um`, fitted to this level).
 K: a uniform shear traction of total F over the cross-section at
 the post's centre (an internal plane of facets), K = F^2 / (f . u), f the consistent load
 vector, so f . u / F is the section's mean deflection. f1: the lowest eigenvalue of
@@ -131,11 +131,11 @@ def _planes(lo: float, hi: float, cuts: list[float], count: int) -> np.ndarray:
 
 def _mesh(plan, beam, divisions: tuple[int, int, int], frame: bool):
     """The beam's hexahedra (its root clamped) or the beam on its frame block (the block
-    held at the handle's underside; :func:`tactcad.mechanics.die_dynamics.beam_on_frame`),
+    held at the handle's underside; :func:`tactcad.products.silicon_die.mechanics.die_dynamics.beam_on_frame`),
     and a predicate of the held points."""
     from skfem import MeshHex
 
-    from tactcad.mechanics.die_dynamics import beam_on_frame
+    from tactcad.products.silicon_die.mechanics.die_dynamics import beam_on_frame
 
     at = beam.length_um * 1e-3  # the post's centre: the force
     half_post = plan.post_um * 1e-3 / 2
@@ -167,7 +167,8 @@ def _solve(plan, beam, divisions: tuple[int, int, int],
     from scipy.sparse.linalg import LinearOperator, eigsh
     from skfem import Basis, BilinearForm, ElementHex2, FacetBasis, LinearForm, condense
 
-    from tactcad.mechanics.die_dynamics import POST_DENSITY_KG_M3, SILICON_DENSITY_KG_M3
+    from tactcad.products.silicon_die.mechanics.die_dynamics import (POST_DENSITY_KG_M3,
+                                                                     SILICON_DENSITY_KG_M3)
     from tactcad.mechanics.fem.sparse_lu import spd_lu
     from tactcad.vocabulary.crystal import SILICON
 
@@ -225,7 +226,7 @@ def die_beam_fem3d(plan, beam, divisions: tuple[int, int, int] = DIVISIONS,
     (module doc).
 
     Args:
-        plan: :class:`tactcad.design.mems_die.DiePlan`. beam: one of its beams.
+        plan: :class:`tactcad.products.silicon_die.design.mems_die.DiePlan`. beam: one of its beams.
         divisions: elements along, across and through the beam on the coarser mesh.
         frame: the beam on its frame block (the die as made); False: clamped at its root
             (the textbook cantilever, E w t^3 / (4 L^3) with shear and plate effects).

@@ -21,8 +21,8 @@ def mount_checks(solids: dict, mount, posts_part: str) -> list[CheckResult]:
     heights against the face, and the posts' proud height against the mount's.
 
     Args:
-        solids: part name -> (solid, colour) (:func:`tactcad.export.die_scene.mount_solids`).
-        mount: the :class:`tactcad.design.die_mount.DieMount` they were placed by.
+        solids: part name -> (solid, colour) (:func:`tactcad.products.silicon_die.export.die_scene.mount_solids`).
+        mount: the :class:`tactcad.products.silicon_die.design.die_mount.DieMount` they were placed by.
         posts_part: the name of the die's posts part.
     """
     from tactcad.kernel.inspect import bbox_tuple, common_volume

@@ -8,7 +8,7 @@ mass (:func:`exact_first_resonance_Hz`: 1 + cos l cosh l + l (M/m)(cos l sinh l 
 sin l cosh l) = 0; Blevins, *Formulas for Natural Frequency and Mode Shape*, 1979,
 table 8-1 case 4 (the beam with a tip mass), whose Rayleigh form is the closed form's).
 K is the die's closed form on the frame (the root's give and shear,
-:func:`tactcad.design.mems_die.beam_stiffness_N_per_mm`); the exact equation takes the
+:func:`tactcad.products.silicon_die.design.mems_die.beam_stiffness_N_per_mm`); the exact equation takes the
 uniform beam of length L with that K (EI = K L^3 / 3). Against fem3d on the frame Rayleigh
 reads the example's f1 4.4 % (reference) and 2 % (measuring) high: the lumped post leaves
 out its rotary inertia, and the frame's give is not a massless extra length.
@@ -25,7 +25,7 @@ anticlastic stiffening (w/t of a few) and the anisotropic Poisson coupling, none
 K = E w t^3 / (4 L^3) carries. On its frame they add the frame's compliance at the root:
 the frame turns and gives under the root's moment and shear (on the example die K_r 15 %
 and K_m 7 % below the clamped beam's), which the closed form carries as extra length
-behind the root (:func:`tactcad.design.mems_die.root_extension_um`).
+behind the root (:func:`tactcad.products.silicon_die.design.mems_die.root_extension_um`).
 
 Units: um for the die, mm, N, MPa, tonne/mm^3 and s inside CalculiX, Hz.
 """
@@ -151,10 +151,10 @@ def _masses_kg(plan, beam) -> tuple[float, float]:
 
 def closed_form_k_N_per_mm(plan, beam, frame: bool = True) -> float:
     """The closed form's K of ``beam`` (N/mm): on its frame, the plan's (the root's give as
-    extra length, :func:`tactcad.design.mems_die.beam_stiffness_N_per_mm`), or clamped at
+    extra length, :func:`tactcad.products.silicon_die.design.mems_die.beam_stiffness_N_per_mm`), or clamped at
     its root (E w t^3 / (4 L^3), the textbook cantilever an FE model with a fixed root
     face is)."""
-    from tactcad.design.mems_die import clamped_beam_stiffness_N_per_mm
+    from tactcad.products.silicon_die.design.mems_die import clamped_beam_stiffness_N_per_mm
 
     if frame:
         return plan.k_r_N_per_mm if beam.role == "reference" else plan.k_m_N_per_mm

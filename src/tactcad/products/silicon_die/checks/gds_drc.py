@@ -1,5 +1,5 @@
 """The die's masks read back with KLayout's own layout engine (``klayout.db``, headless):
-every rule of :func:`tactcad.vocabulary.soi_process.soi_rules` (widths, spaces,
+every rule of :func:`tactcad.products.silicon_die.vocabulary.soi_process.soi_rules` (widths, spaces,
 enclosures) and the read-back of the outlines the mechanics assumed (the beams left in the
 device layer over the handle's cavities equal the plan's beams, each row over its own
 cavity, the hard stop the plan sized; the implant equals each beam's resistor and its
@@ -17,7 +17,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from tactcad.checks.check_result import CheckResult
-from tactcad.vocabulary.soi_process import MASK_BY_NAME, soi_rules
+from tactcad.products.silicon_die.vocabulary.soi_process import MASK_BY_NAME, soi_rules
 
 #: How many violation markers a failed check quotes (um coordinates).
 MARKERS_QUOTED = 3
@@ -86,7 +86,7 @@ def outline_results(path: Path, plan) -> list[CheckResult]:
     beam; the die's outline the plan's."""
     import klayout.db as kdb
 
-    from tactcad.export.gds_masks import beam_outline
+    from tactcad.products.silicon_die.export.gds_masks import beam_outline
 
     layout, _, regions = _regions(path)
     dbu = layout.dbu
@@ -103,7 +103,8 @@ def outline_results(path: Path, plan) -> list[CheckResult]:
                        "the plan's" if diff.is_empty() else
                        f"{diff.count()} differences between the beams left over the window "
                        f"and the plan's, area {diff.area() * dbu * dbu:.4g} um^2")]
-    from tactcad.export.gds_masks import reference_resistor_outline, resistor_outline
+    from tactcad.products.silicon_die.export.gds_masks import (reference_resistor_outline,
+                                                               resistor_outline)
 
     references = kdb.Region([poly(reference_resistor_outline(plan, b)) for b in plan.beams])
     resistors = kdb.Region([poly(resistor_outline(plan, b)) for b in plan.beams]) + references
@@ -139,7 +140,7 @@ def _rows_over_their_cavities(plan, regions, poly) -> CheckResult:
     the other row's: the cavity's depth is the row's hard stop."""
     import klayout.db as kdb
 
-    from tactcad.export.gds_masks import beam_outline
+    from tactcad.products.silicon_die.export.gds_masks import beam_outline
 
     astray = []
     for role in ("reference", "measuring"):

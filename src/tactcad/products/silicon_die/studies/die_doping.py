@@ -13,8 +13,8 @@ Hooge) falls as the dose rises and is not what binds: the die resolves a few par
 of its rating at any stock dose (``tactcad readout``).
 
 Sources: TCR from Arora, Hauser and Roulston's hole mobility (IEEE TED 29, 1982; every
-acceptor ionised, :func:`tactcad.mechanics.piezoresistor.resistor_tcr_per_K`); P(N, T) from
-Richter et al. (J. Appl. Phys. 104, 2008; :func:`~tactcad.mechanics.piezoresistor.piezoresistance_factor`).
+acceptor ionised, :func:`tactcad.products.silicon_die.mechanics.piezoresistor.resistor_tcr_per_K`); P(N, T) from
+Richter et al. (J. Appl. Phys. 104, 2008; :func:`~tactcad.products.silicon_die.mechanics.piezoresistor.piezoresistance_factor`).
 Units: cm^-2 (dose), cm^-3 (concentration), 1/K.
 """
 
@@ -22,8 +22,9 @@ from __future__ import annotations
 
 from tactcad.errors import DesignError
 
-from tactcad.design.mems_die import JUNCTION_DEPTH_UM
-from tactcad.mechanics.piezoresistor import piezoresistance_factor, resistor_tcr_per_K
+from tactcad.products.silicon_die.design.mems_die import JUNCTION_DEPTH_UM
+from tactcad.products.silicon_die.mechanics.piezoresistor import (piezoresistance_factor,
+                                                                  resistor_tcr_per_K)
 
 #: The doses searched (cm^-2): a 1-2-5 series over what a boron implant for piezoresistors
 #: takes (light doses give 1e17 cm^-3 over the junction, heavy ones 1e20).
@@ -72,21 +73,21 @@ def chosen_implant_dose(doses=STOCK_DOSES_PER_CM2) -> tuple[float, str]:
 
 
 def doped_die_plan(targets, room, kobj_resolution_rel: float | None = None, **kwargs):
-    """:func:`tactcad.design.mems_die.die_plan` with the implant dose of
+    """:func:`tactcad.products.silicon_die.design.mems_die.die_plan` with the implant dose of
     :func:`chosen_implant_dose` (and its reason), refused where its read-out cannot resolve
     K_obj to ``kobj_resolution_rel`` (default
-    :data:`~tactcad.design.mems_die.DEFAULT_KOBJ_RESOLUTION_REL`) anywhere in the range at
+    :data:`~tactcad.products.silicon_die.design.mems_die.DEFAULT_KOBJ_RESOLUTION_REL`) anywhere in the range at
     the rated force (the read-out noise term of the die's budget,
-    :func:`tactcad.in_use.die_budget.readout_noise_term`); ``kwargs`` as ``die_plan`` takes
+    :func:`tactcad.products.silicon_die.in_use.die_budget.readout_noise_term`); ``kwargs`` as ``die_plan`` takes
     them.
 
     Raises:
-        DesignError: as :func:`~tactcad.design.mems_die.die_plan`; ``--full-scale-force``
+        DesignError: as :func:`~tactcad.products.silicon_die.design.mems_die.die_plan`; ``--full-scale-force``
             too light to resolve K_obj (with the rating that does, where one designs).
     """
     import dataclasses
 
-    from tactcad.design.mems_die import DEFAULT_KOBJ_RESOLUTION_REL
+    from tactcad.products.silicon_die.design.mems_die import DEFAULT_KOBJ_RESOLUTION_REL
 
     target = DEFAULT_KOBJ_RESOLUTION_REL if kobj_resolution_rel is None else kobj_resolution_rel
     plan = die_plan_at(targets, room, targets.full_scale_force_N, kwargs)
@@ -101,7 +102,7 @@ def die_plan_at(targets, room, force_N: float, kwargs):
     refusal."""
     import dataclasses
 
-    from tactcad.design.mems_die import die_plan
+    from tactcad.products.silicon_die.design.mems_die import die_plan
 
     dose, why = chosen_implant_dose()
     return die_plan(dataclasses.replace(targets, full_scale_force_N=force_N), room,
@@ -115,8 +116,8 @@ def worst_readout_error_rel(plan) -> float:
 
     import numpy as np
 
-    from tactcad.in_use.die_budget import readout_noise_term
-    from tactcad.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.in_use.die_budget import readout_noise_term
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 
     lo, hi = plan.kobj_range_N_per_mm
     return float(np.max(readout_noise_term(plan, die_readout(plan),

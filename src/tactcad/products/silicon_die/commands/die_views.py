@@ -2,8 +2,8 @@
 ``thermal``, ``verify``, ``grasp``, ``crosstalk``, ``strength`` and ``stiffness`` print the
 die's own resonances, K_obj budget, piezoresistive read-out, its temperature terms, its
 verification matrix (:func:`die_verification`), the grasp in its jaw
-(:mod:`tactcad.in_use.die_grasp`), the crosstalk through its handle and attach
-(:mod:`tactcad.mechanics.die_crosstalk`), each row's root stress against the strength of
+(:mod:`tactcad.products.silicon_die.in_use.die_grasp`), the crosstalk through its handle and attach
+(:mod:`tactcad.products.silicon_die.mechanics.die_crosstalk`), each row's root stress against the strength of
 etched silicon and each row's K at the closed form or fem3d; the die product's registry
 entry (:mod:`tactcad.products.silicon_die`) names them (``<command>_view``), and
 :func:`tactcad.commands.product_view` runs them,
@@ -23,7 +23,7 @@ from typing import Any, Callable
 
 from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError
-from tactcad.studies.die_verification import die_verification
+from tactcad.products.silicon_die.studies.die_verification import die_verification
 
 #: The options of an array command a die's view reads, by command (the others are refused).
 DIE_OPTIONS: dict[str, frozenset] = {
@@ -51,7 +51,7 @@ def _planned(design: Path, args: argparse.Namespace):
 
 def _modal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.commands.die import mode_lines, modes_json
-    from tactcad.mechanics.die_dynamics import die_modes
+    from tactcad.products.silicon_die.mechanics.die_dynamics import die_modes
 
     plan = _planned(design, args).plan
     modes = die_modes(plan)
@@ -63,7 +63,7 @@ def _modal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 def _budget(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.commands.die import budget_lines
-    from tactcad.in_use.die_budget import die_budget
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget
 
     plan = _planned(design, args).plan
     budget = die_budget(plan)
@@ -73,7 +73,7 @@ def _budget(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 def _readout(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.commands.die import resistor_line
-    from tactcad.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 
     plan = _planned(design, args).plan
     readout = die_readout(plan)
@@ -90,9 +90,9 @@ def _readout(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 
 def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
-    from tactcad.design.mems_die import REFERENCE_TCR_MISMATCH_REL
-    from tactcad.in_use.die_budget import TEMPERATURE_STEP_K, die_budget
-    from tactcad.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.design.mems_die import REFERENCE_TCR_MISMATCH_REL
+    from tactcad.products.silicon_die.in_use.die_budget import TEMPERATURE_STEP_K, die_budget
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 
     plan = _planned(design, args).plan
     readout = die_readout(plan)
@@ -136,8 +136,8 @@ def _thermal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.commands import progress_from_args
-    from tactcad.mechanics.die_crosstalk import MAX_DOFS, crosstalk_in_force, mesh_dofs
-    from tactcad.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.mechanics.die_crosstalk import MAX_DOFS, crosstalk_in_force, mesh_dofs
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 
     plan = _planned(design, args).plan
     dofs = mesh_dofs(plan)
@@ -164,7 +164,7 @@ def _crosstalk_kept(plan, dofs: int, report: Callable[[str], None]) -> tuple[Any
     ``--no-cache``): the second run of the same die solves nothing. ``report`` hears what
     is solved or reused. Returns (the result, whether it was reused: its cost is then the
     solve's that kept it)."""
-    from tactcad.mechanics.die_crosstalk import MESH, die_crosstalk
+    from tactcad.products.silicon_die.mechanics.die_crosstalk import MESH, die_crosstalk
     from tactcad.store import kept_result
 
     reused = []
@@ -218,7 +218,7 @@ def crosstalk_lines(plan, r, in_force: dict, reused: bool = False) -> list[str]:
 
 def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.commands.die import budget_lines
-    from tactcad.in_use.die_budget import die_budget
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget
     from tactcad.studies.verification import matrix_passed, matrix_table, undecided
 
     plan = _planned(design, args).plan
@@ -245,8 +245,8 @@ def _jaw_opening_deg(jaw_stated) -> float:
 
 
 def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
-    from tactcad.design.die_mount import die_mount
-    from tactcad.in_use.die_grasp import die_grasp, die_jaw
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.in_use.die_grasp import die_grasp, die_jaw
     from tactcad.commands.options import GRASP_OPTION_OF as OPTION_OF
 
     planned = _planned(design, args)

@@ -10,7 +10,7 @@ at the face, and the die's frame lies flush with it (the device layer's top at t
 :data:`DEVICE_RECESS_MM` below it), the posts proud by their height less that recess. The
 carrier under the die (:data:`CARRIER_MM`, alumina) reaches past the die's proximal end by
 :data:`BOND_SHELF_MM`, where the flex cable to the shaft is soldered; the die is bonded to it
-by its die-attach film (the plan's :attr:`~tactcad.design.mems_die.DiePlan.attach`: the lab's
+by its die-attach film (the plan's :attr:`~tactcad.products.silicon_die.design.mems_die.DiePlan.attach`: the lab's
 ``[attach]`` table, else a 25 um silver-filled epoxy, an assumption). The pocket runs from the distal wall
 towards the pivot and keeps :data:`~tactcad.partlib.grasper_jaw.MIN_WALL_MM` of steel
 beside it, under it and before the pin.
@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from tactcad.design.mems_die import BOND_SHELF_MM, DEFAULT_DIE_ATTACH, DiePlan
+from tactcad.products.silicon_die.design.mems_die import BOND_SHELF_MM, DEFAULT_DIE_ATTACH, DiePlan
 from tactcad.errors import DesignError
 
 #: The carrier's thickness (mm): a thin-film alumina substrate (assumption: a stock 0.25 mm

@@ -7,7 +7,7 @@ film. An unloaded beam carries no moment whatever its root does (statics of a fr
 cantilever), so a neighbour's beam resistor reads the die's strain only where its legs run
 onto the frame to their contacts; its on-die reference resistor lies wholly on the frame
 and reads it all. The unit's reading is the beam resistor's relative change less its
-reference's (the half bridge, :func:`tactcad.mechanics.piezoresistor.die_readout`).
+reference's (the half bridge, :func:`tactcad.products.silicon_die.mechanics.piezoresistor.die_readout`).
 
 Model (``attach-fem3d``, the die's one crosstalk level). The die is a block of silicon, the
 handle, buried oxide and device layer as one solid with silicon's full anisotropic
@@ -28,14 +28,14 @@ P(N, T) of its implant), averaged over its footprint; a beam resistor's run onto
 is weighted by its share of the resistor's squares.
 
 The diagonal is each unit's own reading, its beam resistor's bending response as the
-read-out states it (:meth:`tactcad.mechanics.piezoresistor.PiezoCantilever.
+read-out states it (:meth:`tactcad.products.silicon_die.mechanics.piezoresistor.PiezoCantilever.
 resistance_change_per_N`); the model gives the rest. crosstalk_rel is the largest
 |S_ij / S_ii| (i != j): unit i's reading under a force on post j over its reading under its
 own.
 
-The film is the plan's :attr:`~tactcad.design.mems_die.DiePlan.attach`: the lab's
+The film is the plan's :attr:`~tactcad.products.silicon_die.design.mems_die.DiePlan.attach`: the lab's
 ``[attach]`` table (its data sheet's modulus, Poisson's ratio and bond line), else
-:data:`~tactcad.design.mems_die.DEFAULT_DIE_ATTACH` (an assumption).
+:data:`~tactcad.products.silicon_die.design.mems_die.DEFAULT_DIE_ATTACH` (an assumption).
 
 Error estimate: the change of crosstalk_rel on a mesh with half the handle's layers, plus
 that mesh's largest change when the attach's modulus is divided and multiplied by
@@ -170,8 +170,8 @@ def resistor_footprints(plan) -> list[Footprint]:
     """Every unit's resistors where they lie on the frame (um): the beam resistor's run to
     its contacts (weighted by the run's share of its squares) and the on-die reference
     resistor (weight -1: it is the half bridge's other arm)."""
-    from tactcad.design import mems_die as md
-    from tactcad.mechanics.piezoresistor import die_squares
+    from tactcad.products.silicon_die.design import mems_die as md
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_squares
 
     half = md.LEG_GAP_UM / 2 + md.LEG_UM
     squares = die_squares(plan)
@@ -233,7 +233,7 @@ def strains_on_springs(mesh, c: np.ndarray, springs_N_per_mm3: tuple[float, floa
     """A solid on a Winkler bed: each load's mean strain over each window of its top face.
 
     One scalar basis (triquadratic hexahedra) carries the three displacement components,
-    interleaved (3 s + a, as :func:`~tactcad.mechanics.die_fem3d.assemble_anisotropic`
+    interleaved (3 s + a, as :func:`~tactcad.products.silicon_die.mechanics.die_fem3d.assemble_anisotropic`
     numbers them); K is factorised once (SuperLU, minimum degree on its symmetric pattern:
     a tenth of COLAMD's fill) for every load.
 
@@ -252,7 +252,7 @@ def strains_on_springs(mesh, c: np.ndarray, springs_N_per_mm3: tuple[float, floa
     import scipy.sparse as sp
     from skfem import Basis, BilinearForm, ElementHex2, FacetBasis, LinearForm
 
-    from tactcad.mechanics.die_fem3d import assemble_anisotropic
+    from tactcad.products.silicon_die.mechanics.die_fem3d import assemble_anisotropic
     from tactcad.mechanics.fem.sparse_lu import spd_lu
 
     element = ElementHex2()
@@ -296,8 +296,8 @@ def _solve(plan, sizes: tuple[float, float, int], attach_modulus_MPa: float,
            footprints) -> tuple[np.ndarray, int]:
     """The frame's reading F (n x n, 1/N): unit i's frame share per newton on post j; and
     the degrees of freedom (the plan's attach at ``attach_modulus_MPa``)."""
-    from tactcad.mechanics.die_fem3d import stiffness_tensor
-    from tactcad.mechanics.piezoresistor import piezoresistance_factor
+    from tactcad.products.silicon_die.mechanics.die_fem3d import stiffness_tensor
+    from tactcad.products.silicon_die.mechanics.piezoresistor import piezoresistance_factor
     from tactcad.vocabulary.crystal import SILICON, SILICON_P_TYPE
 
     mesh = _mesh(plan, sizes, footprints)
@@ -355,7 +355,7 @@ def die_crosstalk(plan, mesh: tuple[float, float, int] = MESH) -> DieCrosstalk:
     """The die's crosstalk through its handle and its attach (module doc).
 
     Args:
-        plan: :class:`tactcad.design.mems_die.DiePlan` (its ``attach``: the film).
+        plan: :class:`tactcad.products.silicon_die.design.mems_die.DiePlan` (its ``attach``: the film).
         mesh: the finest and largest element edge in the die's plane (um) and the
             elements through the handle (even, at least 2: the error's coarser mesh has
             half as many).
@@ -367,7 +367,7 @@ def die_crosstalk(plan, mesh: tuple[float, float, int] = MESH) -> DieCrosstalk:
         ValueError: edges not 0 < finest <= largest, handle layers not an even integer
             >= 2, an attach's modulus or thickness not > 0.
     """
-    from tactcad.mechanics.piezoresistor import die_resistor
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_resistor
 
     finest, largest, layers = mesh
     if not (math.isfinite(finest) and math.isfinite(largest) and 0 < finest <= largest):
@@ -417,13 +417,13 @@ def worst_crosstalk(reading: np.ndarray) -> tuple[float, tuple[int, int]]:
 
 def crosstalk_in_force(plan, result: DieCrosstalk, resolution_N: dict[str, float]) -> dict:
     """The worst crosstalk in newtons: over every pair, the force unit i reads when post j
-    carries the most it carries in use (:meth:`~tactcad.design.mems_die.DiePlan.
+    carries the most it carries in use (:meth:`~tactcad.products.silicon_die.design.mems_die.DiePlan.
     rated_force_N`), S_ij F_j / S_ii, against unit i's force resolution.
 
     Args:
         plan: the die's plan; result: its :class:`DieCrosstalk`.
         resolution_N: each row's force resolution (N) by role ("reference",
-            "measuring"; :func:`tactcad.mechanics.piezoresistor.die_readout`'s rows).
+            "measuring"; :func:`tactcad.products.silicon_die.mechanics.piezoresistor.die_readout`'s rows).
 
     Returns:
         ``{"loaded_beam", "beam", "rated_force_N", "crosstalk_force_N",

@@ -18,12 +18,12 @@ Units: mm on paper; die dimensions given in mm (um in the notes).
 
 from __future__ import annotations
 
-from tactcad.design.die_mount import DieMount
-from tactcad.design.mems_die import DiePlan
+from tactcad.products.silicon_die.design.die_mount import DieMount
+from tactcad.products.silicon_die.design.mems_die import DiePlan
 from tactcad.drawings.frame import FRAME, sheet_frame
 from tactcad.drawings.sheet import Sheet, fmt_mm
 from tactcad.drawings.views import fitting_scale
-from tactcad.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
+from tactcad.products.silicon_die.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
 
 #: Scales of the die's and of the carrier's plan views (paper mm per mm), largest first: a
 #: view takes the largest at which it fits its room (ISO 5455's enlargements, and 40:1 and

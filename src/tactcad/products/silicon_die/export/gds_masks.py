@@ -1,8 +1,8 @@
 """The silicon die's masks as GDSII (gdstk): one layer per mask of
-:data:`tactcad.vocabulary.soi_process.MASKS`, for the die and for a wafer of dies.
+:data:`tactcad.products.silicon_die.vocabulary.soi_process.MASKS`, for the die and for a wafer of dies.
 
 The polygons come from the die's plan alone (:func:`die_polygons`, a pure function of
-:class:`tactcad.design.mems_die.DiePlan`); the writers put them into cells. The GDS
+:class:`tactcad.products.silicon_die.design.mems_die.DiePlan`); the writers put them into cells. The GDS
 database unit is 1 nm, the user unit 1 um. Files are written whole or not at all (a
 temporary file beside the target, renamed).
 
@@ -22,9 +22,9 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from tactcad.design import mems_die as md
-from tactcad.design.mems_die import Beam, DiePlan
-from tactcad.vocabulary.soi_process import MASK_BY_NAME
+from tactcad.products.silicon_die.design import mems_die as md
+from tactcad.products.silicon_die.design.mems_die import Beam, DiePlan
+from tactcad.products.silicon_die.vocabulary.soi_process import MASK_BY_NAME
 
 #: GDSII units: 1 um user unit, 1 nm database unit.
 GDS_UNIT_M, GDS_PRECISION_M = 1e-6, 1e-9
@@ -136,7 +136,7 @@ def post_outline(plan: DiePlan, beam: Beam) -> Polygon:
 
 def die_polygons(plan: DiePlan) -> dict[str, list[Polygon]]:
     """Every mask's polygons of the die (um), keyed by mask name
-    (:data:`tactcad.vocabulary.soi_process.MASKS`)."""
+    (:data:`tactcad.products.silicon_die.vocabulary.soi_process.MASKS`)."""
     import gdstk
 
     window = _rect(*plan.window_um)

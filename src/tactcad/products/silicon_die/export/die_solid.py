@@ -4,7 +4,7 @@ on the bond face around them (the thin oxide lining the cavities is not drawn), 
 layer less the front etch (the beams standing free over the cavities) and the posts, each a
 part of one STEP assembly (mm) for the review and the jaw's scene.
 
-The outlines are :func:`tactcad.export.gds_masks.die_polygons`' (the masks' own polygons),
+The outlines are :func:`tactcad.products.silicon_die.export.gds_masks.die_polygons`' (the masks' own polygons),
 so the solid and the GDS cannot disagree; the heights are the plan's stack (um -> mm).
 """
 
@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from tactcad.design.mems_die import DiePlan
+from tactcad.products.silicon_die.design.mems_die import DiePlan
 
 #: Layer colours (RGB 0-1): silicon grey, oxide blue-white, posts amber.
 COLOURS = {"handle": (0.45, 0.47, 0.52), "oxide": (0.80, 0.85, 0.95),
@@ -29,7 +29,7 @@ def _prism(points, z0_um: float, height_um: float):
 
 def die_layer_solids(plan: DiePlan) -> dict:
     """Layer name -> solid (mm): ``handle``, ``oxide``, ``device``, ``posts``."""
-    from tactcad.export.gds_masks import die_polygons
+    from tactcad.products.silicon_die.export.gds_masks import die_polygons
     from tactcad.kernel import shapes
     from tactcad.kernel.shapes import cut
 

@@ -347,12 +347,12 @@ def sheet_resistance_ohm(acceptors_per_cm3: float, junction_depth_um: float,
 
 
 def die_resistor(plan, beam, temperature_K: float = 300.0) -> PiezoCantilever:
-    """A die beam's root piezoresistor (:class:`tactcad.design.mems_die.DiePlan`,
-    :class:`~tactcad.design.mems_die.Beam`): its legs along the beam from the root, the
+    """A die beam's root piezoresistor (:class:`tactcad.products.silicon_die.design.mems_die.DiePlan`,
+    :class:`~tactcad.products.silicon_die.design.mems_die.Beam`): its legs along the beam from the root, the
     plan's resistor length and pi_l, carriers in a box of the plan's junction depth x_j at
     the surface (:func:`step_profile_depth_efficiency`), P(N, T) at the implant's doping
     and gamma the legs' squares on the beam over the resistor's (:func:`die_squares`)."""
-    from tactcad.design.mems_die import JUNCTION_DEPTH_UM
+    from tactcad.products.silicon_die.design.mems_die import JUNCTION_DEPTH_UM
 
     squares = die_squares(plan)
     return PiezoCantilever(beam.length_um, beam.width_um, beam.thickness_um,
@@ -367,7 +367,7 @@ def die_squares(plan, resistor_length_um: float | None = None) -> dict[str, floa
     (length less the bar's leg width, over the leg width), and ``total``, with the legs'
     run onto the frame and the bar (leg gap + 2 legs) / leg width at the far end;
     ``resistor_length_um`` another U's legs (None: the beam resistor's)."""
-    from tactcad.design import mems_die as md
+    from tactcad.products.silicon_die.design import mems_die as md
 
     length = plan.resistor_length_um if resistor_length_um is None else resistor_length_um
     strained = 2 * (length - md.LEG_UM) / md.LEG_UM
@@ -381,7 +381,7 @@ def die_resistance_ohm(plan, resistor_length_um: float | None = None,
     """One U-shaped resistor's resistance (ohm) at a temperature (K): the sheet resistance
     of the plan's implant times its squares (:func:`die_squares`); ``resistor_length_um``
     another U's legs (the on-die reference's), None the beam resistor's."""
-    from tactcad.design import mems_die as md
+    from tactcad.products.silicon_die.design import mems_die as md
 
     return (sheet_resistance_ohm(plan.acceptors_per_cm3, md.JUNCTION_DEPTH_UM, temperature_K)
             * die_squares(plan, resistor_length_um)["total"])
@@ -418,7 +418,7 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
     fixed arms, biased at ``bias_V`` (V), over the band [f_lo, f_hi] (Hz). With rho =
     R_ref / R, the output per relative change of R is V rho / (1 + rho)^2 (V / 4 at rho = 1);
     the two resistors' common TCR cancels, and the zero drifts by their TCR mismatch,
-    V rho / (1 + rho)^2 TCR m per K (m: :data:`~tactcad.design.mems_die.REFERENCE_TCR_MISMATCH_REL`).
+    V rho / (1 + rho)^2 TCR m per K (m: :data:`~tactcad.products.silicon_die.design.mems_die.REFERENCE_TCR_MISMATCH_REL`).
 
     Returns:
         ``{"resistance_ohm", "sheet_resistance_ohm_per_sq", "hole_mobility_cm2_per_Vs",
@@ -435,7 +435,7 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
     Raises:
         ValueError: a bias or band out of range.
     """
-    from tactcad.design import mems_die as md
+    from tactcad.products.silicon_die.design import mems_die as md
 
     if not (math.isfinite(bias_V) and 0 < bias_V <= 20):
         raise ValueError(f"bias_V = {bias_V!r}: 0 < V <= 20")

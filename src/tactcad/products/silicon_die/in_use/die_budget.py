@@ -9,7 +9,7 @@ ends and the geometric middle of the K_obj range (1 sigma; a +- bound taken unif
 sigma bound / sqrt 3):
 
 * read-out noise: each deflection read to the bridge's force resolution over its K
-  (:func:`tactcad.mechanics.piezoresistor.die_readout`), the two independent;
+  (:func:`tactcad.products.silicon_die.mechanics.piezoresistor.die_readout`), the two independent;
 * device layer: both beams one layer, so K_r and K_m move together by 3 dt / t
   (dt: the SOI maker's +- on the layer); eq. 3 with the nominal K reads the shift;
 * cavity alignment: the cavities' outer edges are the two rows' roots, so the front
@@ -21,8 +21,8 @@ sigma bound / sqrt 3):
   sensitivity drift cancels in R (one doping, one temperature);
 * resistor zero drift: each beam's resistor and its on-die reference of the same implant
   make a half bridge, so their common TCR cancels and the zero moves by their mismatch,
-  (V_bias / 4) TCR m per K (:func:`tactcad.mechanics.piezoresistor.die_readout`,
-  :func:`~tactcad.mechanics.piezoresistor.resistor_tcr_per_K`): over the same step each
+  (V_bias / 4) TCR m per K (:func:`tactcad.products.silicon_die.mechanics.piezoresistor.die_readout`,
+  :func:`~tactcad.products.silicon_die.mechanics.piezoresistor.resistor_tcr_per_K`): over the same step each
   beam reads a force it does not carry, both rows alike in sign, each over its own
   sensitivity (a reading tared at another temperature);
 * tissue coupling: the tips press one tissue (rigid flat punches of the posts' faces on a
@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tactcad.design.mems_die import REFERENCE_TCR_MISMATCH_REL
+from tactcad.products.silicon_die.design.mems_die import REFERENCE_TCR_MISMATCH_REL
 
 #: <110> silicon's modulus temperature coefficient (1/K): -64 ppm/K (module doc's sources).
 SILICON_TCE_PER_K = -64e-6
@@ -116,13 +116,13 @@ def die_budget(plan, readout: dict | None = None) -> DieBudget:
     """The die's K_obj budget (see the module doc) at its K_obj range's ends and middle.
 
     Args:
-        plan: :class:`tactcad.design.mems_die.DiePlan`.
-        readout: :func:`tactcad.mechanics.piezoresistor.die_readout` of the plan (made
+        plan: :class:`tactcad.products.silicon_die.design.mems_die.DiePlan`.
+        readout: :func:`tactcad.products.silicon_die.mechanics.piezoresistor.die_readout` of the plan (made
             here when not given).
     """
     from tactcad.mechanics.lumped_model import deflection_ratio
-    from tactcad.mechanics.piezoresistor import die_readout
-    from tactcad.vocabulary.soi_process import CAVITY_ALIGNMENT_UM
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.vocabulary.soi_process import CAVITY_ALIGNMENT_UM
 
     readout = readout or die_readout(plan)
     k_m, k_r = plan.k_m_N_per_mm, plan.k_r_N_per_mm

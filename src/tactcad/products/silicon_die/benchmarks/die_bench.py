@@ -3,13 +3,13 @@
 Beams: the die's two rows (its reference and its measuring beam) and, with ``domain``, four
 beams in the die's device layer at the corners of the sections a die's design makes (beam
 width over layer thickness 1 to 12, length over thickness 4.5 to 36, each at least
-:data:`tactcad.design.mems_die.SLENDERNESS` widths long). Levels, each on every beam:
+:data:`tactcad.products.silicon_die.design.mems_die.SLENDERNESS` widths long). Levels, each on every beam:
 
 * ``clamped``: the textbook cantilever clamped at its root, E w t^3 / (4 L^3) (no stated
   error: it leaves out the frame's give at the root);
 * ``closed-form``: the die's closed form, the root's give as extra length and Timoshenko's
-  shear (:func:`tactcad.design.mems_die.beam_stiffness_N_per_mm`; stated
-  :data:`tactcad.design.mems_die.CLOSED_FORM_K_ERROR_REL`);
+  shear (:func:`tactcad.products.silicon_die.design.mems_die.beam_stiffness_N_per_mm`; stated
+  :data:`tactcad.products.silicon_die.design.mems_die.CLOSED_FORM_K_ERROR_REL`);
 * ``calculix``: CalculiX C3D8I on the frame block, one mesh (when ``ccx`` is installed; its
   mesh error not estimated);
 * ``fem3d``: the die's fem3d level on the frame, two meshes extrapolated: the reference (its
@@ -36,7 +36,7 @@ DOMAIN = ((1.0, 4.5), (1.0, 36.0), (6.0, 18.0), (12.0, 36.0))
 def beams(plan, which: str = "all") -> list[tuple[str, object, object]]:
     """(label, plan, beam) of the benchmark's beams: ``rows``, ``domain`` or ``all``; a
     domain beam carries a post as wide as the beam (at most the die's largest post)."""
-    from tactcad.design.mems_die import POST_MAX_UM
+    from tactcad.products.silicon_die.design.mems_die import POST_MAX_UM
 
     out = []
     if which in ("rows", "all"):
@@ -53,10 +53,11 @@ def beams(plan, which: str = "all") -> list[tuple[str, object, object]]:
 
 def _levels(calculix: bool) -> dict:
     """Level name -> (plan, beam) -> (K N/mm, stated error or None)."""
-    from tactcad.design.mems_die import (CLOSED_FORM_K_ERROR_REL, beam_stiffness_N_per_mm,
-                                         clamped_beam_stiffness_N_per_mm)
-    from tactcad.mechanics.die_dynamics import calculix_beam_check
-    from tactcad.mechanics.die_fem3d import die_beam_fem3d
+    from tactcad.products.silicon_die.design.mems_die import (CLOSED_FORM_K_ERROR_REL,
+                                                              beam_stiffness_N_per_mm,
+                                                              clamped_beam_stiffness_N_per_mm)
+    from tactcad.products.silicon_die.mechanics.die_dynamics import calculix_beam_check
+    from tactcad.products.silicon_die.mechanics.die_fem3d import die_beam_fem3d
 
     def section(plan, beam):
         return plan.youngs_modulus_MPa, beam.width_um, beam.thickness_um, beam.length_um

@@ -2,7 +2,7 @@
 --design FILE``, and what ``tactcad design --jaw`` writes when only a die fits the jaw.
 
 The file states the targets and the jaw; the die itself (device layer, beams, resistors) is
-derived from them each time (:func:`tactcad.design.mems_die.die_plan`), as an array's
+derived from them each time (:func:`tactcad.products.silicon_die.design.mems_die.die_plan`), as an array's
 derived dimensions are from its design file. A jaw given as a file is read relative to the
 die file's folder and must lie in it (a sensor folder reads nothing from outside itself).
 
@@ -15,9 +15,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-from tactcad.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_ATTACH, DEFAULT_DIE_NAME,
-                                     DEFAULT_KOBJ_RESOLUTION_REL, DEFAULT_PITCH_UM,
-                                     LEAST_PITCH_UM, DieAttach, WeibullPair)
+from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_ATTACH,
+                                                          DEFAULT_DIE_NAME,
+                                                          DEFAULT_KOBJ_RESOLUTION_REL,
+                                                          DEFAULT_PITCH_UM, LEAST_PITCH_UM,
+                                                          DieAttach, WeibullPair)
 from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
 from tactcad.errors import DesignError
@@ -54,7 +56,7 @@ class DieSection(Section):
 
 class DieStrengthSection(Section):
     """``[strength]``, optional: a Weibull pair for the fracture strength of the lab's own
-    etched silicon, from its fab's test structures (:class:`tactcad.design.mems_die.
+    etched silicon, from its fab's test structures (:class:`tactcad.products.silicon_die.design.mems_die.
     WeibullPair`); without it the die's strength is judged against a mean strength only
     (undecided)."""
 
@@ -72,8 +74,8 @@ class DieStrengthSection(Section):
 
 class DieAttachSection(Section):
     """``[attach]``, optional: the film bonding the die to its carrier, from its data sheet
-    (:class:`tactcad.design.mems_die.DieAttach`); without it the die's mount and crosstalk
-    take :data:`tactcad.design.mems_die.DEFAULT_DIE_ATTACH` (an assumption)."""
+    (:class:`tactcad.products.silicon_die.design.mems_die.DieAttach`); without it the die's mount and crosstalk
+    take :data:`tactcad.products.silicon_die.design.mems_die.DEFAULT_DIE_ATTACH` (an assumption)."""
 
     material: Text
     modulus_MPa: number(1.0, 200000.0, unit="MPa",
@@ -149,7 +151,7 @@ def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None
 
 
 def attach_of(section: DieAttachSection | None) -> DieAttach | None:
-    """The ``[attach]`` table as a :class:`~tactcad.design.mems_die.DieAttach` (None without
+    """The ``[attach]`` table as a :class:`~tactcad.products.silicon_die.design.mems_die.DieAttach` (None without
     one)."""
     if section is None:
         return None
@@ -158,7 +160,7 @@ def attach_of(section: DieAttachSection | None) -> DieAttach | None:
 
 
 def weibull_of(section: DieStrengthSection | None) -> WeibullPair | None:
-    """The ``[strength]`` table as a :class:`~tactcad.design.mems_die.WeibullPair` (None
+    """The ``[strength]`` table as a :class:`~tactcad.products.silicon_die.design.mems_die.WeibullPair` (None
     without one)."""
     if section is None:
         return None

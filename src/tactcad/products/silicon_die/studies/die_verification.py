@@ -15,13 +15,13 @@ def die_verification(plan) -> list[dict]:
     (:func:`tactcad.studies.verification.verification_matrix`), at the closed form:
 
     * ``full_scale_force_N``: the rated force against the largest rating the die's limits
-      allow (:func:`tactcad.design.mems_die.rating_limits`: each root at its own beam's
+      allow (:func:`tactcad.products.silicon_die.design.mems_die.rating_limits`: each root at its own beam's
       rated force at the mean strength of Bosch-etched silicon, a stop engaging before its
       root breaks, the cavities' depth, the posts' height): failed at or past it, else
       undecided (a mean strength without its Weibull modulus gives no failure
       probability); with the lab's Weibull pair, the die's failure probability;
     * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band, each
-      K the closed form's on its frame within :data:`tactcad.design.mems_die.
+      K the closed form's on its frame within :data:`tactcad.products.silicon_die.design.mems_die.
       CLOSED_FORM_K_ERROR_REL` of the fem3d level (so the ratio within twice that);
     * ``hard_stop``: each row's cavity floor against its beam: the post's travel when the
       beam's end meets the floor, in the shallowest cavity the depth tolerance allows, past
@@ -31,7 +31,8 @@ def die_verification(plan) -> list[dict]:
       margin: the worse row's fracture travel or post height over its deepest engagement,
       less one.
     """
-    from tactcad.design.mems_die import CLOSED_FORM_K_ERROR_REL, fracture_travel_um
+    from tactcad.products.silicon_die.design.mems_die import (CLOSED_FORM_K_ERROR_REL,
+                                                              fracture_travel_um)
     from tactcad.mechanics.verdicts import verdict
     from tactcad.studies.verification import KR_OVER_KM_BAND_REL
 
@@ -61,7 +62,7 @@ def die_verification(plan) -> list[dict]:
 def _resolution_row(plan) -> dict:
     """``kobj_resolution_rel``: the largest K_obj error the bridges' noise leaves over the
     range at the rated force against the die's requirement."""
-    from tactcad.studies.die_doping import worst_readout_error_rel
+    from tactcad.products.silicon_die.studies.die_doping import worst_readout_error_rel
 
     worst = worst_readout_error_rel(plan)
     return {"requirement": "kobj_resolution_rel", "target": plan.kobj_resolution_rel,
@@ -76,11 +77,11 @@ def _resolution_row(plan) -> dict:
 
 def _rated_row(plan) -> dict:
     """``full_scale_force_N`` without a Weibull pair: the rating against the largest the die's
-    limits allow (:func:`tactcad.design.mems_die.rating_limits`: the more stressed root at the
+    limits allow (:func:`tactcad.products.silicon_die.design.mems_die.rating_limits`: the more stressed root at the
     etched bars' mean strength, a stop engaging before its root breaks, the cavities' depth,
     the posts' height): failed at or past it, else undecided (a mean strength without its
     Weibull modulus gives no failure probability)."""
-    from tactcad.design.mems_die import BOSCH_STRENGTH_SOURCE, rating_limits
+    from tactcad.products.silicon_die.design.mems_die import BOSCH_STRENGTH_SOURCE, rating_limits
 
     largest, binds = min(rating_limits(plan), key=lambda lw: lw[0])
     return {"requirement": "full_scale_force_N", "target": plan.full_scale_force_N,
@@ -94,7 +95,7 @@ def _rated_row(plan) -> dict:
 def _weibull_rated_row(plan) -> dict:
     """``full_scale_force_N`` with the lab's Weibull pair: the die's failure probability
     with the rated force on every beam against the largest the lab accepts."""
-    from tactcad.mechanics.die_strength import (die_failure_probability,
+    from tactcad.products.silicon_die.mechanics.die_strength import (die_failure_probability,
                                                 force_scale_at_probability)
 
     pair = plan.weibull
@@ -116,8 +117,8 @@ def _weibull_rated_row(plan) -> dict:
 
 def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
     """The ``hard_stop`` record of :func:`die_verification`: each row's cavity floor."""
-    from tactcad.design.mems_die import STOP_MULTIPLE
-    from tactcad.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
+    from tactcad.products.silicon_die.design.mems_die import STOP_MULTIPLE
+    from tactcad.products.silicon_die.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
 
     words, margins, ok = [], [], True
     for beam in rows:
@@ -130,7 +131,7 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
                      f"breaks at {breaks:.3g} um)")
     words.append(f"posts {plan.post_height_um:g} um proud: still proud on their stops")
     if plan.weibull is not None:  # every beam resting on its floor: the most it carries
-        from tactcad.mechanics.die_strength import (die_failure_probability,
+        from tactcad.products.silicon_die.mechanics.die_strength import (die_failure_probability,
                                                     force_scale_at_probability)
 
         stiffness = {"reference": plan.k_r_N_per_mm, "measuring": plan.k_m_N_per_mm}

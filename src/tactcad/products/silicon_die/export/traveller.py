@@ -2,7 +2,7 @@
 its parameters and what it leaves (thicknesses, the implant's sheet resistance), as
 Markdown a lab hands to the cleanroom with the GDS.
 
-The steps are those of :mod:`tactcad.vocabulary.soi_process`'s flow. Each parameter is the
+The steps are those of :mod:`tactcad.products.silicon_die.vocabulary.soi_process`'s flow. Each parameter is the
 plan's or marked as an assumption; a fab's own recipes replace the assumed ones. Nothing
 here is a recipe of a particular tool.
 """
@@ -12,10 +12,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from tactcad.design import mems_die as md
-from tactcad.design.mems_die import DiePlan
-from tactcad.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM, CAVITY_DEPTH_TOLERANCE_REL,
-                                            DRIE_ASPECT_RATIO, MASK_BY_NAME)
+from tactcad.products.silicon_die.design import mems_die as md
+from tactcad.products.silicon_die.design.mems_die import DiePlan
+from tactcad.products.silicon_die.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM,
+                                                                 CAVITY_DEPTH_TOLERANCE_REL,
+                                                                 DRIE_ASPECT_RATIO, MASK_BY_NAME)
 
 #: Parameters stated as assumptions (a fab's recipe replaces them).
 SCREEN_OXIDE_NM = 100.0

@@ -3,7 +3,7 @@ two beams are read as a unit, as the metal arrays' grasp reads theirs
 (:mod:`tactcad.in_use.grasp_experiment`, whose contact, stops and readings this module uses
 unchanged).
 
-The die's tips (mm, the jaw's frame of :class:`tactcad.design.die_mount.DieMount`: x along
+The die's tips (mm, the jaw's frame of :class:`tactcad.products.silicon_die.design.die_mount.DieMount`: x along
 the jaw from its heel, y across it from its axis):
 
 * each beam's post is a rigid flat punch of the post's face at the post's centre on the
@@ -11,9 +11,9 @@ the jaw from its heel, y across it from its axis):
 * its radius is its distance from the pin along the jaw: a column's two posts share one x,
   so each unit is paired at equal radius by construction;
 * its hard stop engages when the beam's free end meets its cavity's floor
-  (:meth:`tactcad.design.mems_die.DiePlan.stop_engagement_um`, the nominal depth);
+  (:meth:`tactcad.products.silicon_die.design.mems_die.DiePlan.stop_engagement_um`, the nominal depth);
 * its overload limit is the force at which its root reaches the mean strength of etched
-  silicon (:data:`tactcad.design.mems_die.BOSCH_MEAN_STRENGTH_MPA`);
+  silicon (:data:`tactcad.products.silicon_die.design.mems_die.BOSCH_MEAN_STRENGTH_MPA`);
 * the die's face stays out of the tissue while every post's travel less its deflection is
   below the post's height proud of the face: past it the face meets the tissue, which the
   punch model does not carry, and the units whose posts it reaches do not read
@@ -30,8 +30,8 @@ import math
 
 import numpy as np
 
-from tactcad.design.die_mount import DieMount
-from tactcad.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, DiePlan
+from tactcad.products.silicon_die.design.die_mount import DieMount
+from tactcad.products.silicon_die.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, DiePlan
 from tactcad.in_use.grasp_experiment import (DEFAULT_SLAB_MM, LayoutGrasp, Tips, grasp_layout)
 from tactcad.in_use.jaw_kinematics import JawGeometry
 from tactcad.mechanics.contact import Punch

@@ -6,7 +6,7 @@ pocket (the paper's lumped model, eq. 1-3, with K_r / K_m about 10).
 The die (um; x along the jaw, y across it, the die's lower-left corner at the origin):
 
 * a solid frame around a window over two cavities etched into the handle before the wafer
-  is bonded (a cavity SOI wafer, :mod:`tactcad.vocabulary.soi_process`), one under each
+  is bonded (a cavity SOI wafer, :mod:`tactcad.products.silicon_die.vocabulary.soi_process`), one under each
   row; the window's edges across the die are the beams' roots, so the front masks'
   alignment to the buried cavities moves every root; each cavity's floor is its row's
   hard stop (:func:`cavity_depth_um`);
@@ -51,12 +51,15 @@ from typing import NamedTuple
 
 from tactcad.errors import DesignError
 from tactcad.vocabulary.crystal import SILICON, SILICON_P_TYPE, in_plane_direction
-from tactcad.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM, CAVITY_DEPTH_SOURCE,
-                                            CAVITY_DEPTH_TOLERANCE_REL, DEFAULT_BOX_UM,
-                                            DEFAULT_HANDLE_UM, DEVICE_LAYER_CHOICES_UM,
-                                            DEVICE_TOLERANCE_SOURCE, DEVICE_TOLERANCE_UM,
-                                            METAL_SPACE_UM,
-                                            SoiStack, drie_min_width_um)
+from tactcad.products.silicon_die.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM,
+                                                                 CAVITY_DEPTH_SOURCE,
+                                                                 CAVITY_DEPTH_TOLERANCE_REL,
+                                                                 DEFAULT_BOX_UM, DEFAULT_HANDLE_UM,
+                                                                 DEVICE_LAYER_CHOICES_UM,
+                                                                 DEVICE_TOLERANCE_SOURCE,
+                                                                 DEVICE_TOLERANCE_UM,
+                                                                 METAL_SPACE_UM, SoiStack,
+                                                                 drie_min_width_um)
 
 #: Least beam length over width: Euler-Bernoulli's slender-beam form holds within a few %.
 SLENDERNESS = 3.0
@@ -66,7 +69,7 @@ SLENDERNESS = 3.0
 #: gives under the root's moment and shear. Each value is the bending length (with
 #: Timoshenko's shear over L beside it, :func:`beam_stiffness_N_per_mm`) that has the
 #: stiffness of tactcad's fem3d level on the frame
-#: (:func:`tactcad.mechanics.die_fem3d.die_beam_fem3d`, silicon's tensor, <110>, 1 um of
+#: (:func:`tactcad.products.silicon_die.mechanics.die_fem3d.die_beam_fem3d`, silicon's tensor, <110>, 1 um of
 #: buried oxide, extrapolated to within about 1 % in K), less the beam's length, for a
 #: 40 um layer at L / t = 10.5. A wider beam loads a wider stretch of the frame: dL grows
 #: towards the plane-strain value. (An independent isotropic model, CalculiX C3D20 graded
@@ -85,7 +88,7 @@ CLOSED_FORM_K_ERROR_REL = 0.02
 #: The frame along each long side (um): the contacts, the leads and the bond pads.
 FRAME_UM = 300.0
 #: The die's carrier beyond its proximal end (mm): room for the flex cable's solder pads
-#: (the jaw's pocket holds the die and this shelf, :mod:`tactcad.design.die_mount`).
+#: (the jaw's pocket holds the die and this shelf, :mod:`tactcad.products.silicon_die.design.die_mount`).
 BOND_SHELF_MM = 1.0
 #: Solid silicon at each end of the die beyond the outer columns' half pitch (um).
 END_UM = 250.0
@@ -122,7 +125,7 @@ POST_CLEARANCE_UM, POST_STEP_UM = 10.0, 5.0
 #: 5:1, well inside the 10:1 and more SU-8 reaches on its own).
 POST_ASPECT_MAX = 5.0
 #: The deepest cavity a timed etch makes to its depth tolerance (um) (assumption: the
-#: +-5 % of :data:`~tactcad.vocabulary.soi_process.CAVITY_DEPTH_TOLERANCE_REL` holds for
+#: +-5 % of :data:`~tactcad.products.silicon_die.vocabulary.soi_process.CAVITY_DEPTH_TOLERANCE_REL` holds for
 #: etches of a few to about 100 um; the 300-700 um handle keeps most of its thickness).
 CAVITY_DEPTH_MAX_UM = 100.0
 #: Piezoresistor legs: width, gap between them (um); the implant's margin to the beam's
@@ -192,7 +195,7 @@ class DieAttach:
         source: where the modulus comes from (a data sheet, a measurement, or the word
             "assumption" and why).
         stated: True when the lab's design file states it (its ``[attach]`` table); the
-            crosstalk's error estimate then spans :data:`tactcad.mechanics.die_crosstalk.
+            crosstalk's error estimate then spans :data:`tactcad.products.silicon_die.mechanics.die_crosstalk.
             STATED_MODULUS_SPAN` instead of the assumption's.
     """
 
@@ -267,7 +270,7 @@ class DiePlan:
     reasons: dict = field(default_factory=dict, compare=False, hash=False)
     #: the K_obj range the die reads (N/mm)
     kobj_range_N_per_mm: tuple[float, float] = (0.0, 0.0)
-    #: the resistors' boron implant dose (cm^-2; :func:`tactcad.studies.die_doping.chosen_implant_dose`)
+    #: the resistors' boron implant dose (cm^-2; :func:`tactcad.products.silicon_die.studies.die_doping.chosen_implant_dose`)
     implant_dose_per_cm2: float = IMPLANT_DOSE_PER_CM2
     #: each row's cavity depth under its beams, the row's hard stop (um): reference, measuring
     cavity_depths_um: tuple[float, float] = (0.0, 0.0)
@@ -524,7 +527,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         box_um, handle_um: the SOI stack's buried oxide and handle (um).
         angle_from_110_deg: the beams' direction in the (100) wafer, from [110].
         implant_dose_per_cm2: the resistors' boron dose (cm^-2), > 0; ``dose_reason`` why
-            (:func:`tactcad.studies.die_doping.chosen_implant_dose` gives both).
+            (:func:`tactcad.products.silicon_die.studies.die_doping.chosen_implant_dose` gives both).
         weibull: the lab's Weibull pair for its etched silicon, or None: with a pair the
             rating's strength limits are the die's failure probability at the rating and on
             its stops (:func:`weibull_force_scale`), not the etched bars' mean strength.
@@ -696,7 +699,7 @@ def effective_area_um2(length_um: float, width_um: float, thickness_um: float,
                        modulus: float) -> float:
     """A tip-loaded cantilever's effective area under its root's peak stress (um^2):
     L / (m + 1) (w + t / (m + 1)) (its tensile face and the tensile half of each sidewall;
-    :mod:`tactcad.mechanics.die_strength`)."""
+    :mod:`tactcad.products.silicon_die.mechanics.die_strength`)."""
     return length_um / (modulus + 1.0) * (width_um + thickness_um / (modulus + 1.0))
 
 

@@ -1,5 +1,5 @@
 """The fracture probability of a silicon die's beams, from a lab's Weibull pair for its
-etched silicon (:class:`tactcad.design.mems_die.WeibullPair`).
+etched silicon (:class:`tactcad.products.silicon_die.design.mems_die.WeibullPair`).
 
 Silicon breaks from surface flaws, brittle and size-dependent: a surface of effective area
 A_eff at peak stress sigma breaks with P_f = 1 - exp(-(A_eff / A_0) (sigma / sigma_0)^m)
@@ -23,8 +23,9 @@ from __future__ import annotations
 
 import math
 
-from tactcad.design.mems_die import (Beam, DiePlan, WeibullPair, effective_area_um2,
-                                     force_scale_of_risk, weibull_risk)
+from tactcad.products.silicon_die.design.mems_die import (Beam, DiePlan, WeibullPair,
+                                                          effective_area_um2, force_scale_of_risk,
+                                                          weibull_risk)
 
 __all__ = ["effective_area_um2", "failure_probability", "beam_failure_probability",
            "die_failure_probability", "force_scale_at_probability"]

@@ -1,5 +1,5 @@
 """The die in its jaw: the jaw with its face pocket, the carrier and the die's layers as
-solids (:class:`tactcad.design.die_mount.DieMount`'s places), written as one STEP assembly,
+solids (:class:`tactcad.products.silicon_die.design.die_mount.DieMount`'s places), written as one STEP assembly,
 a shaded picture, and the bill of materials of the die's insert.
 
 Units: mm.
@@ -11,8 +11,8 @@ import csv
 import io
 from pathlib import Path
 
-from tactcad.design.die_mount import CARRIER_MM, DieMount
-from tactcad.design.mems_die import DiePlan
+from tactcad.products.silicon_die.design.die_mount import CARRIER_MM, DieMount
+from tactcad.products.silicon_die.design.mems_die import DiePlan
 
 #: Part colours (RGB 0-1): the jaw's steel, the alumina carrier; the die's layers as the
 #: die's own STEP colours them.
@@ -23,7 +23,7 @@ CARRIER_RGB = (0.93, 0.91, 0.84)
 def mount_solids(plan: DiePlan, mount: DieMount) -> dict[str, tuple[object, tuple]]:
     """Part name -> (solid in the jaw's frame, colour): ``jaw``, ``carrier`` and the die's
     layers (``<die>_handle``, ``_oxide``, ``_device``, ``_posts``)."""
-    from tactcad.export.die_solid import COLOURS, die_layer_solids
+    from tactcad.products.silicon_die.export.die_solid import COLOURS, die_layer_solids
     from tactcad.kernel.shapes import box, cut, cylinder, translated
 
     m = mount
@@ -84,7 +84,7 @@ def mount_bom_rows(plan: DiePlan, mount: DieMount, jaw_label: str) -> list[dict[
     """The insert's bill of materials: the die, its carrier, the die attach, the jaw's
     machining and the resistors that complete the beams' half bridges off the die (quantity
     per jaw; the flex cable and its solder are the lab's to choose)."""
-    from tactcad.mechanics.piezoresistor import die_resistance_ohm
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_resistance_ohm
 
     m = mount
     arms = 2 * len(plan.beams)

@@ -1,0 +1,1 @@
+"""The silicon die's benchmark: each stiffness level's cost and error."""

@@ -1,0 +1,1 @@
+"""The array commands' answers for a silicon die."""

@@ -1,0 +1,1 @@
+"""The silicon die's drawing sheet."""

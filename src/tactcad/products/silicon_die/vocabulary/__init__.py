@@ -1,0 +1,1 @@
+"""The silicon die's process: the SOI stack, masks and rules."""
