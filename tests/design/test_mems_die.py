@@ -522,8 +522,8 @@ def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypat
 
 def test_the_traveller_lists_every_mask_in_process_order_with_the_plans_figures(die):
     """Each mask used once, the handle's cavities before the bond before the implant, the
-    implant before the contacts before the metal, the front DRIE (which frees the beams over
-    the cavities) before the dicing; the stack, the cavities' depths, the dose and the sheet
+    implant before the contacts before the metal, the front DRIE (down to the oxide that still
+    holds the beams) before the dicing before the release; the stack, the cavities' depths, the dose and the sheet
     resistance quoted; the stated parameters marked as assumptions."""
     from tactcad.products.silicon_die.export.traveller import traveller_markdown, traveller_steps
     from tactcad.products.silicon_die.vocabulary.soi_process import MASK_BY_NAME
@@ -535,7 +535,8 @@ def test_the_traveller_lists_every_mask_in_process_order_with_the_plans_figures(
     for a, b in (("cavity etch, measuring row", "bond and thin"),
                  ("cavity etch, reference row", "bond and thin"), ("bond and thin", "implant"),
                  ("implant", "contact"), ("contact", "metal"), ("metal", "front DRIE"),
-                 ("front DRIE", "dicing")):
+                 ("front DRIE", "dicing"), ("dicing", "release"),
+                 ("alignment marks", "cavity etch, measuring row"), ("pad opening", "posts")):
         assert order.index(a) < order.index(b)
     by_mask = {s.mask: s.action for s in steps if s.mask}
     assert f"{die.cavity_depths_um[0]:g} um" in by_mask["cavity_reference"]

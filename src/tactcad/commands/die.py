@@ -280,6 +280,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.checks.sheet_overlap import sheet_file_results
     from tactcad.products.silicon_die.drawings.die_sheet import die_sheet
     from tactcad.products.silicon_die.checks.gds_drc import gds_checks
+    from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
     from tactcad.products.silicon_die.design.die_mount import die_mount
     from tactcad.products.silicon_die.export.die_scene import (mount_bom_rows, mount_solids,
                                                                write_mount_bom,
@@ -321,12 +322,14 @@ def run(args: argparse.Namespace) -> int:
         write_mount_picture(solids, made["scene_picture"], f"{name} in the {room.label}")
         write_mount_bom(mount_bom_rows(plan, mount, room.label), made["bom"])
         made["drawing"].write_text(die_sheet(plan, mount).svg(), encoding="utf-8")
-        checks = (gds_checks(made["masks"], plan) + mount_checks(solids, mount, f"{name}_posts")
-                  + sheet_file_results(made["drawing"]) + die_requirement_checks(plan))
-        counts = status_counts(checks)
         readout = die_readout(plan)
         write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
                         made["traveller"])
+        checks = (gds_checks(made["masks"], plan)
+                  + traveller_checks(made["traveller"], made["masks"])
+                  + mount_checks(solids, mount, f"{name}_posts")
+                  + sheet_file_results(made["drawing"]) + die_requirement_checks(plan))
+        counts = status_counts(checks)
         modes = die_modes(plan)
         budget = die_budget(plan, readout)
         fe = [calculix_beam_check(plan, b) for b in plan.beams[:: plan.columns]] \
@@ -553,6 +556,7 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
     from tactcad.checks.check_result import CheckResult, counts_text, status_counts
     from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.products.silicon_die.checks.gds_drc import gds_checks
+    from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
     from tactcad.checks.sheet_overlap import sheet_file_results
     from tactcad.products.silicon_die.design.die_mount import die_mount
     from tactcad.products.silicon_die.export.die_scene import mount_solids
@@ -586,6 +590,7 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
                                       "the plan the design makes" if same else
                                       "another plan than the design makes: export again"))
             checks += (gds_checks(files["masks"], plan)
+                       + traveller_checks(files["traveller"], files["masks"])
                        + mount_checks(mount_solids(plan, mount), mount, f"{name}_posts")
                        + sheet_file_results(files["drawing"]))
         counts = status_counts(checks)

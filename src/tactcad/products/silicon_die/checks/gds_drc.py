@@ -42,6 +42,11 @@ def _regions(path: Path):
     return layout, top, regions
 
 
+def mask_regions(path: Path) -> dict:
+    """Mask name -> its merged region (KLayout) in the die GDS at ``path``."""
+    return _regions(path)[2]
+
+
 def _where(edge_pairs, dbu: float) -> str:
     """The first violation markers, as um coordinates."""
     out = []

@@ -98,7 +98,7 @@ def metal_outlines(plan: DiePlan, beam: Beam) -> list[Polygon]:
     ref_jog_v = vc - md.LEG_UM / 2 - md.LEAD_JOG_UM
 
     def pad(u_axis):
-        return (u_axis - md.PAD_UM / 2, pad_v1, u_axis + md.PAD_UM / 2, pad_v0)
+        return pad_rect(u_axis)
 
     def cover(u, v):
         return (u - half, v - half, u + half, v + half)
@@ -111,14 +111,52 @@ def metal_outlines(plan: DiePlan, beam: Beam) -> list[Polygon]:
         return [cover(u, v), (u - lead, jog - lead, u + lead, v),
                 (x0 - lead, jog - lead, x1 + lead, jog + lead), stem]
 
-    first = -(md.PAD_SPACE_UM / 2 + md.PAD_UM / 2)
-    middle = -first
+    first, middle, third = pad_axes_um()
     nets = [route(ua, va, jog_v, first) + [pad(first)],
             route(ub, vb, jog_v, middle) + route(uc, vc, ref_jog_v, middle, True)
             + [pad(middle)],
-            route(ud, vd, ref_jog_v, md.THIRD_PAD_AXIS_UM, True)
-            + [pad(md.THIRD_PAD_AXIS_UM)]]
+            route(ud, vd, ref_jog_v, third, True) + [pad(third)]]
     return [_local(beam, p) for net in nets for p in _union_of_rects(net)]
+
+
+def pad_rect(u_axis: float, inset: float = 0.0) -> tuple[float, float, float, float]:
+    """A bond pad on its axis ``u_axis`` (beam-local u0, v0, u1, v1, um), shrunk by
+    ``inset`` on every side."""
+    v0 = -md.PAD_SETBACK_UM
+    return (u_axis - md.PAD_UM / 2 + inset, v0 - md.PAD_UM + inset,
+            u_axis + md.PAD_UM / 2 - inset, v0 - inset)
+
+
+def pad_axes_um() -> tuple[float, float, float]:
+    """The three bond pads' axes of a beam's half bridge (beam-local u, um)."""
+    first = -(md.PAD_SPACE_UM / 2 + md.PAD_UM / 2)
+    return first, -first, md.THIRD_PAD_AXIS_UM
+
+
+def pad_openings(plan: DiePlan, beam: Beam) -> list[Polygon]:
+    """The hard mask's openings over ``beam``'s three bond pads (um): each pad inset by
+    :data:`~tactcad.products.silicon_die.vocabulary.soi_process.PAD_OPEN_INSET_UM`."""
+    from tactcad.products.silicon_die.vocabulary.soi_process import PAD_OPEN_INSET_UM
+
+    return [_local(beam, _rect(*pad_rect(u, PAD_OPEN_INSET_UM))) for u in pad_axes_um()]
+
+
+def alignment_marks(plan: DiePlan) -> tuple[list[Polygon], list[Polygon]]:
+    """The handle's alignment marks, a cross in each end of the die's frame, and the windows
+    cleared over them in the device layer (um): (marks, windows)."""
+    from tactcad.products.silicon_die.vocabulary.soi_process import (MARK_ARM_UM,
+                                                                     MARK_WIDTH_UM,
+                                                                     MARK_WINDOW_MARGIN_UM)
+
+    arm, half = MARK_ARM_UM / 2, MARK_WIDTH_UM / 2
+    marks, windows = [], []
+    for x in (plan.end_um / 2, plan.die_length_um - plan.end_um / 2):
+        y = plan.die_width_um / 2
+        marks += _union_of_rects([(x - arm, y - half, x + arm, y + half),
+                                  (x - half, y - arm, x + half, y + arm)])
+        reach = arm + MARK_WINDOW_MARGIN_UM
+        windows.append(_rect(x - reach, y - reach, x + reach, y + reach))
+    return marks, windows
 
 
 def _union_of_rects(rects) -> list[Polygon]:
@@ -143,8 +181,12 @@ def die_polygons(plan: DiePlan) -> dict[str, list[Polygon]]:
     beams = [beam_outline(plan, b) for b in plan.beams]
     etched = gdstk.boolean(gdstk.Polygon(window), [gdstk.Polygon(b) for b in beams], "not",
                            precision=1e-3)
+    marks, windows = alignment_marks(plan)
     return {
         "die": [_rect(0.0, 0.0, plan.die_length_um, plan.die_width_um)],
+        "align": marks,
+        "mark_window": windows,
+        "pad_open": [o for b in plan.beams for o in pad_openings(plan, b)],
         "cavity_reference": [_rect(*plan.cavities_um["reference"])],
         "cavity_measuring": [_rect(*plan.cavities_um["measuring"])],
         "device_etch": [[tuple(p) for p in poly.points] for poly in etched],

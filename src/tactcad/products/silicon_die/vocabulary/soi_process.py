@@ -2,12 +2,15 @@
 (one GDSII layer each) and the layout rules the masks are checked against.
 
 A die's cantilevers are cut in the device layer of a cavity silicon-on-insulator wafer:
-before the wafer is bonded, a cavity is etched into the handle under each row of beams,
-each row's to its own depth (its floor is the row's hard stop), the handle oxidised (the
-buried oxide) and the device wafer fusion-bonded over it and thinned. Deep reactive-ion
-etching (the Bosch process) from the front cuts the beams and breaks through into the
-cavities, which frees them; p-type piezoresistors are implanted at each beam's root,
-contacted through the oxide and wired in aluminium to bond pads on the die's heel.
+alignment marks are etched into the handle, then a cavity under each row of beams, each
+row's to its own depth (its floor is the row's hard stop); both wafers are oxidised (the
+buried oxide; the device wafer's share spans the cavities as the front etch's stop) and the
+device wafer fusion-bonded over the handle and thinned. Windows over the marks let every
+front mask align to them. p-type piezoresistors are implanted at each beam's root,
+contacted through the oxide and wired in aluminium to bond pads on the die's heel; a hard
+mask of oxide, opened over the pads, carries the beams' outline. Deep reactive-ion etching
+(the Bosch process) from the front cuts the beams down to the oxide spanning the cavities,
+the wafer is diced with the beams still held by it, and HF vapour frees them die by die.
 
 Each rule carries its value and where it comes from. The DRIE aspect ratio and the wafer
 ranges are the field's published figures; the lithography rules (widths, spaces,
@@ -40,19 +43,25 @@ class MaskLayer:
 
 #: The masks in process order, and the die outline (a layout layer, not a mask).
 MASKS = (
+    MaskLayer("align", 8, 0, "alignment marks etched into the handle first: the cavities and "
+                             "every front mask are aligned to them"),
     MaskLayer("cavity_measuring", 7, 0, "the handle's cavity under the measuring row, etched "
                                         "before bonding to its own depth (its edge the "
                                         "beams' root, its floor their hard stop)"),
     MaskLayer("cavity_reference", 5, 0, "the handle's cavity under the reference row, etched "
                                         "before bonding (its edge is the beams' root, its "
                                         "floor their hard stop)"),
+    MaskLayer("mark_window", 9, 0, "windows etched through the device layer over the "
+                                   "handle's marks after bonding, so the front masks see them"),
     MaskLayer("piezo", 1, 0, "boron implant: the p-type piezoresistors at the beams' roots"),
     MaskLayer("contact", 2, 0, "contact openings through the oxide onto the resistors' ends"),
     MaskLayer("metal", 3, 0, "aluminium: the leads and each beam's bond pads on the frame "
                              "behind it"),
-    MaskLayer("tip", 6, 0, "the post on each beam's free end that meets the tissue first"),
     MaskLayer("device_etch", 4, 0, "front DRIE through the device layer: the slot around "
-                                   "each beam"),
+                                   "each beam (patterned into the hard mask)"),
+    MaskLayer("pad_open", 11, 0, "openings in the hard mask's oxide over the bond pads"),
+    MaskLayer("tip", 6, 0, "the post on each beam's free end that meets the tissue first "
+                           "(the last lithography: nothing is patterned over the posts)"),
     MaskLayer("die", 10, 0, "the die's outline (the dicing lane's inner edge); not a mask"),
 )
 MASK_BY_NAME = {m.name: m for m in MASKS}
@@ -146,6 +155,14 @@ LITHO_MIN_UM = 2.0
 METAL_SPACE_UM = 1.5 * LITHO_MIN_UM
 
 
+#: Around each alignment mark, the device layer cleared by this much (um).
+MARK_WINDOW_MARGIN_UM = 20.0
+#: A bond pad's edge kept under the hard mask's oxide (um): its opening inset by this.
+PAD_OPEN_INSET_UM = 5.0
+#: The alignment mark: a cross of two arms (um), in each end of the die's frame.
+MARK_ARM_UM, MARK_WIDTH_UM = 100.0, 10.0
+
+
 def soi_rules(stack: SoiStack) -> tuple[Rule, ...]:
     """The rules the masks of a die on ``stack`` are checked against (:class:`Rule`)."""
     litho = ASSUMED + "contact lithography resolves about 2 um"
@@ -179,4 +196,14 @@ def soi_rules(stack: SoiStack) -> tuple[Rule, ...]:
              inside="piezo"),
         Rule("tip.width", "tip", "width", 10.0,
              ASSUMED + "a post at least 10 um across stands on its beam"),
+        Rule("align.width", "align", "width", 2 * LITHO_MIN_UM,
+             ASSUMED + "a mark's arm at least twice the smallest feature, read by the "
+                       "aligner's optics"),
+        Rule("mark_window.align_enclosure", "align", "enclosure", MARK_WINDOW_MARGIN_UM,
+             ASSUMED + "the device layer cleared around each mark by the aligner's capture "
+                       "range", inside="mark_window"),
+        Rule("pad_open.metal_enclosure", "pad_open", "enclosure", LITHO_MIN_UM,
+             ASSUMED + "each pad's edge stays under oxide by one alignment step",
+             inside="metal"),
     )
+
