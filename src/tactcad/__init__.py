@@ -22,13 +22,16 @@ from tactcad.errors import (CheckFailure, DesignError, DesignErrors, ExportPathE
 from tactcad.version import VERSION as __version__
 
 if TYPE_CHECKING:  # what type checkers see of the names imported on first use
-    from tactcad.api import CheckReport, Element, Project, Verification, load
+    from tactcad.api import (CheckReport, DieProject, Element, Project, Verification, load,
+                             load_die)
     from tactcad.assembly.part_objects import FlexureArray, FlexureElement, show
 
 #: Public name -> the module that defines it (imported on first access).
 _PUBLIC = {
     "load": "tactcad.api",
+    "load_die": "tactcad.api",
     "Project": "tactcad.api",
+    "DieProject": "tactcad.api",
     "Element": "tactcad.api",
     "CheckReport": "tactcad.api",
     "Verification": "tactcad.api",

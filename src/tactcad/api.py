@@ -37,7 +37,7 @@ if TYPE_CHECKING:  # types only: importing them at run time would load the kerne
     from tactcad.mechanics.modal_result import ModalResult
     from tactcad.mechanics.element_strength import StrengthRecord
 
-__all__ = ["load", "Project", "DieProject", "Element", "CheckReport"]
+__all__ = ["load", "load_die", "Project", "DieProject", "Element", "CheckReport"]
 
 Progress = Callable[[str], None]
 
@@ -46,8 +46,7 @@ def _quiet(line: str) -> None:
     """Progress sink that prints nothing."""
 
 
-def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None
-         ) -> "Project | DieProject":
+def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -> "Project":
     """Read and validate a design file with its rigs and scenes files (those its
     ``[files]`` table names, else ``rigs.toml`` and ``scenes.toml`` beside it;
     where it has none, ones made for it: samples over its own K_obj range). Another
@@ -64,8 +63,9 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None
             like the file (the CLI's ``--set``).
 
     Returns:
-        The validated :class:`Project` (a die's: :class:`DieProject`); no geometry is
-        built yet.
+        The validated :class:`Project`; no geometry is built yet. A die's design file gives
+        its :class:`DieProject` (typed as the array's :class:`Project` here, which most
+        scripts load: a typed script that loads a die calls :func:`load_die`).
 
     Raises:
         DesignErrors: every refusal of the three files at once (``.errors``),
@@ -84,8 +84,9 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None
     design = Path(path) if path is not None else default_design()
     overrides = _checked_overrides(set)
     product = product_of(design)
-    if not product.is_default:
-        return product.hook("load")(design, overrides)
+    if not product.is_default:  # another product's object (a die's DieProject)
+        loaded: Any = product.hook("load")(design, overrides)
+        return loaded
     data = with_overrides(read_array_tables(design), overrides)
     return Project(_validated(data, design, overrides), data, design)
 
@@ -423,14 +424,23 @@ class Project:
                            refusal, None if out is None else str(out))
 
 
-def load_die(design: Path, overrides: Mapping[str, Any] | None = None) -> "DieProject":
-    """A silicon die's design file as a :class:`DieProject` (the die product's ``load``
-    hook, :mod:`tactcad.products.silicon_die`), planned now.
+def load_die(path: str | Path, set: Mapping[str, Any] | None = None) -> "DieProject":
+    """A silicon die's design file as a :class:`DieProject`, planned now (the die product's
+    ``load`` hook, :mod:`tactcad.products.silicon_die`; :func:`load` calls it for a die's
+    file).
+
+    Args:
+        path: the die's design file (a ``[die]`` table).
+        set: values to override by dotted key (``{"die.columns": 4}``), checked like the file.
 
     Raises:
         DesignErrors, DesignError: as ``tactcad die --design`` refuses the file or a value.
     """
-    project = DieProject(Path(design), dict(overrides or {}))
+    from tactcad.errors import DesignError
+
+    if not isinstance(path, (str, PathLike)):
+        raise DesignError("path", path, "a die design file's path (str or pathlib.Path)")
+    project = DieProject(Path(path), _checked_overrides(set))
     project.plan  # planned now: a refusal at load, as an array's
     return project
 
@@ -484,6 +494,7 @@ class DieProject:
         from tactcad.products import product_named
 
         view = product_named("silicon-die").view(command)
+        assert view is not None, command  # the die's registry entry names each one used here
         return view(self.source, self._args(**options))[0]
 
     def stiffness(self, model: str = "closed-form") -> dict:

@@ -53,7 +53,8 @@ def test_stiffness_on_a_die_is_each_rows_beam_and_the_api_reads_the_same(die_fol
     assert r.returncode == 0, r.stdout + r.stderr
     report = json.loads(r.stdout)
     project = tactcad.load(die_folder / EXAMPLE.name)
-    assert type(project).__name__ == "DieProject"
+    assert isinstance(project, tactcad.DieProject)
+    assert tactcad.load_die(die_folder / EXAMPLE.name).plan == project.plan  # the typed door
     ks = [row["stiffness_N_per_mm"] for row in report["rows"]]
     assert ks == [project.plan.k_r_N_per_mm, project.plan.k_m_N_per_mm]
     assert project.stiffness()["rows"] == report["rows"]  # one computation, CLI and API
