@@ -110,3 +110,41 @@ def test_a_dies_export_has_its_review_page_and_manifest_and_checks(die_folder):
     # the same die writes the same bytes (the GDS header's time is not the clock's)
     d = run_cli("diff", EXAMPLE.name, "exports", "--json", cwd=die_folder)
     assert d.returncode == 0 and json.loads(d.stdout)["changed"] is False, d.stdout
+
+
+def test_a_die_takes_a_grasp_force_judged_as_grasp_computes_it(die_folder):
+    """`max_grasp_force_N` in a die's file: verify closes the die's jaw to it on the
+    default tissue (the grasp command's own defaults) and judges each beam against its
+    breaking force, the stops taking the rest; a force the jaw cannot reach fails."""
+    r = run_cli("verify", "--set", "die.max_grasp_force_N=2", "--json", cwd=die_folder)
+    assert r.returncode == 0, r.stdout
+    row = next(x for x in json.loads(r.stdout)["matrix"]
+               if x["requirement"] == "max_grasp_force_N")
+    assert row["verdict"] == "pass" and row["margin_rel"] > 0
+    g = json.loads(run_cli("grasp", "--force-N", "2", "--json", cwd=die_folder).stdout)
+    beam = int(row["binding_words"].split(":")[0].split()[-1])
+    tip = next(t for t in g["grasp"]["tips"] if t["site"] == beam)
+    assert tip["element_force_N"] == pytest.approx(row["predicted"], rel=1e-12)
+    far = run_cli("verify", "--set", "die.max_grasp_force_N=90", "--json", cwd=die_folder)
+    assert far.returncode == 1
+    row = next(x for x in json.loads(far.stdout)["matrix"]
+               if x["requirement"] == "max_grasp_force_N")
+    assert row["verdict"] == "fail" and "reach" in row["binding_words"]
+    bad = run_cli("verify", "--set", "die.max_grasp_force_N=-1", "--json", cwd=die_folder)
+    assert bad.returncode == 2
+    assert json.loads(bad.stdout)["error"]["field"].endswith("max_grasp_force_N")
+
+
+def test_design_for_a_die_takes_max_grasp_force_or_pastes_the_jaws_reach(tmp_path):
+    argv = ("design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.05", "0.5",
+            "--full-scale-force", "0.005", "--out", "gripped")
+    far = run_cli(*argv, "--max-grasp-force", "50", "--json", cwd=tmp_path)
+    assert far.returncode == 2 and not (tmp_path / "gripped").exists()
+    error = json.loads(far.stdout)["error"]
+    assert error["field"] == "--max-grasp-force"
+    paste = error["alternatives"][0]["option"].split()[-1]
+    r = run_cli(*argv, "--max-grasp-force", paste, cwd=tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    text = (tmp_path / "gripped" / "gripped.toml").read_text(encoding="utf-8")
+    assert f"max_grasp_force_N = {float(paste)}" in text
+    assert run_cli("verify", cwd=tmp_path / "gripped").returncode == 0

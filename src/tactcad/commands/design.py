@@ -338,7 +338,6 @@ DIE_CONSTRUCTION = "mems-die"
 #: Options a die does not take: option -> (attribute, why).
 DIE_IGNORES = {"--material": ("material", "the die is single-crystal silicon"),
                "--process": ("process", "the die is made by its SOI process (tactcad die)"),
-               "--max-grasp-force": ("max_grasp_force", "a die's grasp is not judged yet"),
                "--tissue-thickness": ("tissue_thickness", "a die's tissue coupling is not "
                                                           "computed yet")}
 
@@ -399,9 +398,14 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
                "die.columns": f"{columns} units along the die"
                               + (" (--columns)." if args.columns else " (the default)."),
                "die.pitch_um": "The die command's default spacing."}
+    grasp = getattr(args, "max_grasp_force", None)
+    if grasp is not None:  # judged as verify judges it, before anything is written
+        _die_survives_grasp(plan, jaw, grasp)
+        reasons["die.max_grasp_force_N"] = "Asked (--max-grasp-force)."
     text = die_file_text(stated, targets.kr_over_km, targets.k_obj_range_N_per_mm,
                          targets.full_scale_force_N, columns, plan.pitch_um, plan.name,
-                         "tactcad design " + " ".join(design_options(args)), reasons)
+                         "tactcad design " + " ".join(design_options(args)), reasons,
+                         max_grasp_force_N=grasp)
     beside = {}
     if jaw_file:
         import tomli_w
@@ -434,6 +438,49 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
         print(f"  next: {report['next']} (masks, wafer, STEP, traveller, review page, "
               "KLayout DRC)")
     return 0
+
+
+def _die_survives_grasp(plan, jaw, grasp_N: float) -> None:
+    """A die asked to survive the grasp ``grasp_N`` (N) in its jaw (``jaw``: a trocar class
+    or a jaw table), judged by verify's own row
+    (:func:`tactcad.products.silicon_die.studies.die_verification.die_verification`).
+
+    Raises:
+        DesignError: ``--max-grasp-force`` the die does not survive or the jaw cannot reach.
+    """
+    from dataclasses import replace
+
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
+
+    judged = replace(plan, max_grasp_force_N=float(grasp_N))
+    stated = {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw
+    row = next(r for r in die_verification(judged, die_mount(judged, stated))
+               if r["requirement"] == "max_grasp_force_N")
+    if row["verdict"] == "fail":
+        raise DesignError("--max-grasp-force", grasp_N, "a grasp the die survives in its jaw",
+                          row["binding_words"], alternatives=_reachable_grasp(judged, stated))
+
+
+def _reachable_grasp(plan, stated) -> list[dict]:
+    """The grasp to paste when the asked one is out of the jaw's reach: the force of the jaw
+    closed flat on the default tissue, rounded down to two digits (none when it is 0)."""
+    import math
+
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.in_use.die_grasp import die_grasp, die_jaw
+
+    mount = die_mount(plan, stated)
+    lo, hi = plan.kobj_range_N_per_mm
+    flat = die_grasp(plan, mount, die_jaw(mount, mount.opening_angle_deg), math.sqrt(lo * hi),
+                     angle_deg=0.0).total_force_N
+    if not flat > 0:
+        return []
+    digits = 10 ** (math.floor(math.log10(flat)) - 1)
+    paste = math.floor(flat / digits) * digits
+    return [{"option": f"--max-grasp-force {paste:.3g}",
+             "words": f"the most this jaw reaches, closed flat on the default tissue "
+                      f"({flat:.4g} N)"}]
 
 
 def jaw_constructions(args: argparse.Namespace) -> tuple[list, list[str]]:
@@ -539,8 +586,8 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
         try:
             return write_die_design(args, targets, room, path, folder, refusals, left)
         except DesignError as die_refusal:  # neither fits: both say why, the die's first
-            if die_refusal.field == "--out":  # the die fits; its folder is refused
-                raise
+            if die_refusal.field in ("--out", "--max-grasp-force"):  # the die fits the
+                raise  # targets: its folder or its grasp is refused, not the construction
             raise DesignError(
                 die_refusal.field, die_refusal.value, die_refusal.allowed,
                 f"a silicon die: {die_refusal.why or die_refusal.allowed}; "

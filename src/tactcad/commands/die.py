@@ -136,7 +136,8 @@ def die_asked(args: argparse.Namespace) -> dict:
             "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name,
             "source": _source_of(Path(args.design), overrides),
             "strength": d.strength,
-            "kobj_resolution_rel": d.die.kobj_resolution_rel, "attach": d.attach}
+            "kobj_resolution_rel": d.die.kobj_resolution_rel, "attach": d.attach,
+            "max_grasp_force": d.die.max_grasp_force_N}
 
 
 def _any_option_given(args: argparse.Namespace) -> bool:
@@ -239,6 +240,10 @@ def plan_of(asked: dict) -> PlannedDie:
         plan = with_weibull(plan, asked["strength"])
     if asked.get("attach") is not None:
         plan = with_attach(plan, asked["attach"])
+    if asked.get("max_grasp_force") is not None:
+        from dataclasses import replace
+
+        plan = replace(plan, max_grasp_force_N=float(asked["max_grasp_force"]))
     return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw,
                       asked.get("source"))
 
@@ -328,7 +333,7 @@ def run(args: argparse.Namespace) -> int:
         checks = (gds_checks(made["masks"], plan)
                   + traveller_checks(made["traveller"], made["masks"])
                   + mount_checks(solids, mount, f"{name}_posts")
-                  + sheet_file_results(made["drawing"]) + die_requirement_checks(plan))
+                  + sheet_file_results(made["drawing"]) + die_requirement_checks(plan, mount))
         counts = status_counts(checks)
         modes = die_modes(plan)
         budget = die_budget(plan, readout)
@@ -351,7 +356,8 @@ def run(args: argparse.Namespace) -> int:
                   "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
                               "detail": c.detail} for c in checks], "counts": counts}
         made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
-        _write_review_and_manifest(plan, planned.source, made, files, solids, budget, staging)
+        _write_review_and_manifest(plan, planned.source, made, files, solids, budget, staging,
+                                   mount)
         out.mkdir(parents=True, exist_ok=True)
         for k in sorted(made, key=lambda k: k == "manifest"):  # the manifest last
             files[k].parent.mkdir(parents=True, exist_ok=True)
@@ -367,7 +373,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dict, solids: dict,
-                               budget, staging: Path) -> None:
+                               budget, staging: Path, mount) -> None:
     """The die's scene (GLB), review page and manifest, from the files made before them in
     ``staging`` (:mod:`tactcad.products.silicon_die.export.die_review`)."""
     from tactcad.products.silicon_die.studies.die_reports import (stiffness_report,
@@ -383,7 +389,7 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
     head = design_head(plan.name, source)
     elements = beam_elements(strength_report(plan)[0], stiffness_report(plan)[0])
     contents = review_contents_of_die(
-        head, die_verification(plan),
+        head, die_verification(plan, mount),
         (files["drawing"].name, made["drawing"].read_text(encoding="utf-8")),
         made["glb"].read_bytes(), made["bom"].read_text(encoding="utf-8-sig"), elements,
         budget.as_json())
@@ -395,7 +401,7 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
     made["manifest"].write_text(manifest_text(manifest), encoding="utf-8")
 
 
-def die_requirement_checks(plan) -> list:
+def die_requirement_checks(plan, mount=None) -> list:
     """The die's verification matrix (:func:`tactcad.products.silicon_die.commands.die_views.die_verification`)
     as check results, one per requirement: failed when its verdict is ``fail``; an
     ``undecided`` one passes, marked undecided (a mean strength without a Weibull pair)."""
@@ -404,7 +410,7 @@ def die_requirement_checks(plan) -> list:
     from tactcad.studies.verification import binding_text, margin_text, value_text
 
     out = []
-    for r in die_verification(plan):
+    for r in die_verification(plan, mount):
         detail = (f"{r['verdict']}: target {value_text(r['target'])}, predicted "
                   f"{value_text(r['predicted'])}, margin {margin_text(r)} ({r['model']})")
         if binding_text(r):
@@ -581,7 +587,7 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
         missing = [p.name for p in files.values() if not p.is_file()]
         mount = die_mount(plan, planned.jaw_stated)
         # the requirements first, as the array's check and the die's export order them
-        checks = die_requirement_checks(plan) + [CheckResult("die_files", str(out), not missing,
+        checks = die_requirement_checks(plan, mount) + [CheckResult("die_files", str(out), not missing,
                               f"missing: {', '.join(missing)}" if missing
                               else f"{len(files)} files of {name}")]
         if not missing:

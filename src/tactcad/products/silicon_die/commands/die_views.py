@@ -221,8 +221,11 @@ def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.products.silicon_die.in_use.die_budget import die_budget
     from tactcad.studies.verification import matrix_passed, matrix_table, undecided
 
-    plan = _planned(design, args).plan
-    records = die_verification(plan)
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+
+    planned = _planned(design, args)
+    plan = planned.plan
+    records = die_verification(plan, die_mount(plan, planned.jaw_stated))
     budget = die_budget(plan)
     ok = matrix_passed(records)
     report = {"design": str(design), "die": plan.name, "model": "closed-form",
@@ -231,17 +234,6 @@ def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     lines = [f"die {plan.name}, model closed-form", matrix_table(records),
              *budget_lines(budget), "no requirement fails" if ok else "a requirement is not met"]
     return report, lines
-
-
-def _jaw_opening_deg(jaw_stated) -> float:
-    """The opening of the jaw a die is mounted in (degrees): its table's, the class's
-    default filling what a lab's jaw file leaves out."""
-    from tactcad.partlib.grasper_jaw import (GrasperJawSection, validated_table,
-                                             with_class_defaults)
-
-    table = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection,
-                                                dict(jaw_stated)))
-    return float(table.opening_angle_deg)
 
 
 def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
@@ -254,8 +246,7 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     mount = die_mount(plan, planned.jaw_stated)
     lo, hi = plan.kobj_range_N_per_mm
     k_obj = args.kobj if args.kobj is not None else math.sqrt(lo * hi)
-    opening = args.opening_deg if args.opening_deg is not None else _jaw_opening_deg(
-        planned.jaw_stated)
+    opening = args.opening_deg if args.opening_deg is not None else mount.opening_angle_deg
     asked = args.angle_deg is not None or args.force_N is not None
     force = args.force_N if asked else round(0.5 * plan.full_scale_force_N * len(plan.beams), 12)
     force_why = ("--force-N" if args.force_N is not None else "--angle-deg"

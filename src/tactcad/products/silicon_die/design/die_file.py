@@ -20,7 +20,8 @@ from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAU
                                                           DEFAULT_KOBJ_RESOLUTION_REL,
                                                           DEFAULT_PITCH_UM, LEAST_PITCH_UM,
                                                           DieAttach, WeibullPair)
-from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
+from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
+                                                 MAX_KOBJ_N_PER_MM)
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
 from tactcad.errors import DesignError
 from tactcad.vocabulary.schema import (Problems, Section, Text, described_text, integer,
@@ -52,6 +53,10 @@ class DieSection(Section):
     kobj_resolution_rel: number(0.0, 1.0, lo_open=True, unit="",
                                 why="the K_obj error the read-out noise may leave anywhere in "
                                     "the range (1 sigma)") = DEFAULT_KOBJ_RESOLUTION_REL
+    max_grasp_force_N: number(0.0, MAX_GRASP_FORCE_N, lo_open=True, unit="N",
+                              why="the largest grasp force the die must survive in its jaw: "
+                                  "at it no beam past its breaking force, a hard stop taking "
+                                  "the rest (not judged when left out)") = None
 
 
 class DieStrengthSection(Section):
@@ -202,7 +207,8 @@ def _jaw(value: str, source: Path, problems: Problems) -> str:
 
 def die_file_text(jaw: str, kr_over_km: float, kobj_range: tuple[float, float],
                   full_scale_force_N: float, columns: int, pitch_um: float, name: str,
-                  command: str, reasons: Mapping[str, str] = {}) -> str:
+                  command: str, reasons: Mapping[str, str] = {},
+                  max_grasp_force_N: float | None = None) -> str:
     """A die design file's text (TOML) for these targets, headed by the command that made
     it and with the reasons of its values under ``[assumptions]``."""
     import tomli_w
@@ -213,6 +219,8 @@ def die_file_text(jaw: str, kr_over_km: float, kobj_range: tuple[float, float],
                         "kobj_range_N_per_mm": [float(v) for v in kobj_range],
                         "full_scale_force_N": float(full_scale_force_N), "columns": int(columns),
                         "pitch_um": float(pitch_um), "name": name}}
+    if max_grasp_force_N is not None:
+        data[DIE_TABLE]["max_grasp_force_N"] = float(max_grasp_force_N)
     if reasons:
         data["assumptions"] = dict(reasons)
     return (f"# Written by tactcad {VERSION}: `{command}`.\n"

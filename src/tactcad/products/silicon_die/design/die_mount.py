@@ -53,6 +53,7 @@ class DieMount:
         die_length_mm, die_width_mm, die_stack_mm: the die without its posts.
         post_proud_mm: the posts' tops above the jaw's face.
         reasons: derived value -> why.
+        opening_angle_deg: how far the jaw opens (degrees).
     """
 
     jaw_length_mm: float
@@ -76,6 +77,8 @@ class DieMount:
     post_proud_mm: float
     attach_mm: float = DIE_ATTACH_MM
     reasons: dict = field(default_factory=dict, compare=False, hash=False)
+    #: how far the jaw opens (degrees): the jaw table's ``opening_angle_deg`` (the grasp's)
+    opening_angle_deg: float = 0.0
 
     @property
     def face_z_mm(self) -> float:
@@ -146,4 +149,4 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
     return DieMount(j.length_mm, width, face, j.pin_inset_mm, j.pin_diameter_mm, x0, pocket_l,
                     pocket_w, depth, x0 + c, carrier_l, die_w, CARRIER_MM,
                     x0 + c + BOND_SHELF_MM, die_z0, die_l, die_w, stack, post_proud, attach,
-                    reasons)
+                    reasons, float(j.opening_angle_deg))

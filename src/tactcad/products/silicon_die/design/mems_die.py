@@ -280,6 +280,8 @@ class DiePlan:
     kobj_resolution_rel: float = DEFAULT_KOBJ_RESOLUTION_REL
     #: the film bonding the die to its carrier (the lab's ``[attach]``, else the assumption)
     attach: DieAttach = DEFAULT_DIE_ATTACH
+    #: the largest grasp force the die must survive in its jaw (N), or None (not judged)
+    max_grasp_force_N: float | None = None
 
     @property
     def window_um(self) -> tuple[float, float, float, float]:
@@ -393,6 +395,8 @@ class DiePlan:
                                      "measuring": self.cavity_depths_um[1]},
                 "weibull": None if self.weibull is None else dict(self.weibull.__dict__),
                 "attach": dict(self.attach.__dict__),
+                **({} if self.max_grasp_force_N is None
+                   else {"max_grasp_force_N": self.max_grasp_force_N}),
                 "reasons": dict(self.reasons)}
 
 

@@ -107,6 +107,20 @@ def die_grasp(plan: DiePlan, mount: DieMount, jaw: JawGeometry, k_obj_N_per_mm: 
         coupling, plan.full_scale_force_N, angle_deg, force_N, profile), mount.post_proud_mm)
 
 
+def grasp_at_force(plan: DiePlan, mount: DieMount, force_N: float) -> LayoutGrasp:
+    """The die's jaw closed to the grasp force ``force_N`` (N) on the grasp's default tissue:
+    a wedge of the default thickness, coupled through its layer, K_obj the geometric mean of
+    the die's range, the jaw at its own opening (``mount.opening_angle_deg``); what a die's
+    ``max_grasp_force_N`` is judged on.
+
+    Raises:
+        DesignError: a force out of the jaw's reach (named).
+    """
+    lo, hi = plan.kobj_range_N_per_mm
+    return die_grasp(plan, mount, die_jaw(mount, mount.opening_angle_deg), math.sqrt(lo * hi),
+                     force_N=force_N)
+
+
 def with_face_contact(layout: LayoutGrasp, post_proud_mm: float) -> LayoutGrasp:
     """``layout`` with each tip's ``face_in_contact`` (its travel less its deflection past
     ``post_proud_mm``: the tissue reaches the die's face beside the post) and each unit whose

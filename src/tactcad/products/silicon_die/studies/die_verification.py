@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 
 
-def die_verification(plan) -> list[dict]:
+def die_verification(plan, mount=None) -> list[dict]:
     """The die's verification matrix, one record per requirement in the array's keys
     (:func:`tactcad.studies.verification.verification_matrix`), at the closed form:
 
@@ -56,7 +56,52 @@ def die_verification(plan) -> list[dict]:
                           f"{100 * CLOSED_FORM_K_ERROR_REL:g} % of fem3d's)"},
         stop,
         _resolution_row(plan),
+        *([_grasp_row(plan, mount)]
+          if plan.max_grasp_force_N is not None and mount is not None else []),
     ]
+
+
+def _grasp_row(plan, mount) -> dict:
+    """``max_grasp_force_N``: the die's jaw closed to that force on the default tissue
+    (:func:`tactcad.products.silicon_die.in_use.die_grasp.grasp_at_force`); each beam's force
+    on its spring against its breaking force (its root at the mean strength of etched
+    silicon), a hard stop taking the rest; fails when a beam passes it or the jaw cannot
+    reach the force."""
+    from tactcad.errors import DesignError
+    from tactcad.products.silicon_die.in_use.die_grasp import grasp_at_force
+
+    target = plan.max_grasp_force_N
+    base = {"requirement": "max_grasp_force_N", "target": target, "error_estimate_rel": None,
+            "model": "closed-form"}
+    try:
+        result = grasp_at_force(plan, mount, target)
+    except DesignError as exc:
+        return {**base, "predicted": None, "margin_rel": None, "verdict": "fail",
+                "binding_words": f"the grasp is out of the jaw's reach: {exc.allowed}"}
+    loaded = [t for t in result.tips if t["element_force_N"] > 0 and t["overload_limit_N"]]
+    worst = max(loaded, key=lambda t: t["element_force_N"] / t["overload_limit_N"],
+                default=None)
+    if worst is None:
+        return {**base, "predicted": 0.0, "margin_rel": None, "verdict": "pass",
+                "binding_words": "no post meets the tissue at that force"}
+    over = [t["site"] for t in result.tips if t["over_overload_limit"]]
+    stopped = [t["site"] for t in result.tips if t["on_stop"]]
+    face = [t["site"] for t in result.tips if t.get("face_in_contact")]
+    stop_N = max(t["stop_force_N"] for t in result.tips)
+    margin = worst["overload_limit_N"] / worst["element_force_N"] - 1.0
+    return {**base, "predicted": worst["element_force_N"], "margin_rel": margin,
+            "verdict": "fail" if over else "pass",
+            "binding_words": f"beam {worst['site']}: {1e3 * worst['element_force_N']:.3g} mN "
+                             f"on its spring at the {target:g} N grasp (jaw at "
+                             f"{result.angle_deg:.3g} degrees), breaking force "
+                             f"{1e3 * worst['overload_limit_N']:.3g} mN; on their stops: "
+                             f"{', '.join(map(str, stopped)) or 'none'} (the most a stop "
+                             f"takes {stop_N:.3g} N: the posts' and the cavity floor's "
+                             "strength under it is not judged)"
+                             + (f"; the die's face in the tissue beside posts "
+                                f"{', '.join(map(str, face))} (past the punch model)"
+                                if face else "")
+                             + (f"; past breaking: {', '.join(map(str, over))}" if over else "")}
 
 
 def _resolution_row(plan) -> dict:
