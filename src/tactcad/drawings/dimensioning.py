@@ -167,9 +167,11 @@ def _hole_table_block(d: Drawing, x0: float, y0: float, rows: list[tuple[int, Ho
             d.dimensions[f"hole_{i}_{suffix}"] = v
 
 
-def plus_minus(value: float, tol: float) -> str:
-    """A dimension with its symmetric tolerance, ``19.8 ±0.02`` (no tolerance: the value)."""
-    return f"{fmt_mm(value)} ±{fmt_mm(tol)}" if tol > 0 else fmt_mm(value)
+def plus_minus(value: float, tol: float, decimals: int = 3) -> str:
+    """A dimension with its symmetric tolerance, ``19.8 ±0.02`` (no tolerance: the value),
+    each to ``decimals`` places."""
+    return (f"{fmt_mm(value, decimals)} ±{fmt_mm(tol, decimals)}" if tol > 0
+            else fmt_mm(value, decimals))
 
 
 def thickness_dim(d: Drawing, name: str = "thickness", tol: float = 0.0) -> None:

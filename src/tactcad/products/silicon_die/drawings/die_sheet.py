@@ -7,8 +7,10 @@
 * below it the carrier in plan at the largest of :data:`CARRIER_SCALES` that fits
   :data:`CARRIER_ROOM_MM`: its length, width and bond shelf;
 * notes: the wafer and the beams' direction, the layer stack with the device layer's
-  tolerance (the one the beams' stiffness goes as the cube of), and the carrier's
-  material, thickness and die attach; units.
+  tolerance (the one the beams' stiffness goes as the cube of), the cavities' depth
+  tolerance, the carrier's material, thickness and die attach; units; the process's
+  tolerances on the beams' lengths (the front masks' alignment to the cavities), the
+  beams' width (DRIE's bias) and the die's outline (dicing), printed on those dimensions.
 
 A die is made by its masks (the GDS is the master; this sheet is for reading and
 inspection), so the dimensions are the plan's, in mm on the sheet.
@@ -23,7 +25,11 @@ from tactcad.products.silicon_die.design.mems_die import DiePlan
 from tactcad.drawings.frame import FRAME, sheet_frame
 from tactcad.drawings.sheet import Sheet, fmt_mm
 from tactcad.drawings.views import fitting_scale
-from tactcad.products.silicon_die.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
+from tactcad.drawings.dimensioning import plus_minus
+from tactcad.products.silicon_die.vocabulary.soi_process import (CAVITY_ALIGNMENT_UM,
+                                                                 CAVITY_DEPTH_TOLERANCE_REL,
+                                                                 DICING_TOLERANCE_UM,
+                                                                 DRIE_WIDTH_TOLERANCE_UM)
 
 #: Scales of the die's and of the carrier's plan views (paper mm per mm), largest first: a
 #: view takes the largest at which it fits its room (ISO 5455's enlargements, and 40:1 and
@@ -87,10 +93,11 @@ def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
 def _die_dimensions(sh: Sheet, plan: DiePlan, at) -> None:
     length, width = plan.die_length_um, plan.die_width_um
     top, bottom = at(0, width)[1], at(0, 0)[1]
+    cut = DICING_TOLERANCE_UM / 1000
     sh.linear_dimension(at(0, width), at(length, width), "h", top - 12.0,
-                        fmt_mm(length / 1000, DIE_DECIMALS), "die-length")
+                        plus_minus(length / 1000, cut, DIE_DECIMALS), "die-length")
     sh.linear_dimension(at(length, 0), at(length, width), "v", at(length, 0)[0] + 12.0,
-                        fmt_mm(width / 1000, DIE_DECIMALS), "die-width")
+                        plus_minus(width / 1000, cut, DIE_DECIMALS), "die-width")
     ref, meas = plan.beams[0], plan.beams[plan.columns]
     if plan.columns > 1:
         nxt = plan.beams[1]
@@ -99,11 +106,13 @@ def _die_dimensions(sh: Sheet, plan: DiePlan, at) -> None:
     for b, name, dx in ((ref, "reference", -8.0), (meas, "measuring", -8.0)):
         sh.linear_dimension(at(b.x_um, b.y_root_um), at(b.x_um, b.tip_y_um), "v",
                             at(0, 0)[0] + dx if b is ref else at(0, 0)[0] + dx - 8.0,
-                            fmt_mm(b.length_um / 1000, DIE_DECIMALS), f"{name}-length")
+                            plus_minus(b.length_um / 1000, CAVITY_ALIGNMENT_UM / 1000,
+                                       DIE_DECIMALS), f"{name}-length")
     last = plan.beams[plan.columns - 1]
     sh.linear_dimension(at(last.x_um - last.width_um / 2, 0),
                         at(last.x_um + last.width_um / 2, 0), "h", bottom + 8.0,
-                        fmt_mm(last.width_um / 1000, DIE_DECIMALS), "beam-width")
+                        plus_minus(last.width_um / 1000, DRIE_WIDTH_TOLERANCE_UM / 1000,
+                                   DIE_DECIMALS), "beam-width")
 
 
 def _carrier_view(sh: Sheet, plan: DiePlan, m: DieMount, x0: float, y0: float,
@@ -139,7 +148,11 @@ def _notes(sh: Sheet, plan: DiePlan, m: DieMount, x: float, y: float) -> None:
         "(its material: the BOM).",
         f"5. In the jaw: the device layer flush with the face, the posts "
         f"{m.post_proud_mm * 1000:.4g} um proud.",
-        "6. Dimensions in mm.",
+        f"6. Dimensions in mm. Tolerances: beam lengths +-{CAVITY_ALIGNMENT_UM:g} um (the "
+        "front masks aligned to the",
+        f"   cavities' marks), beam width +-{DRIE_WIDTH_TOLERANCE_UM:g} um (DRIE's bias), "
+        f"die outline +-{DICING_TOLERANCE_UM:g} um (dicing);",
+        "   the pitch and the posts as the masks draw them.",
     ]
     for k, text in enumerate(lines):
         sh.text("notes", (x, y + k * (NOTE_MM + 2.0)), text, NOTE_MM, bold=k == 0)

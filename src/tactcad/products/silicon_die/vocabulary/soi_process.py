@@ -137,6 +137,13 @@ DRIE_SOURCE = ("deep reactive-ion etching, Bosch process (Laermer and Schilp, US
 #: marks etched with the cavities, read through the bonded stack in infrared or opened
 #: in the device layer; a front-to-back aligner's +-1 to 2 um, the looser end).
 CAVITY_ALIGNMENT_UM = 2.0
+#: A DRIE'd feature's width across a wafer (um), +-: the etch's bias spread (assumption: a
+#: Bosch etch holds its critical dimension to about +-0.5 um, its sidewall scallops
+#: 0.1-0.3 um).
+DRIE_WIDTH_TOLERANCE_UM = 0.5
+#: Where a dicing saw's cut lands (um), +-: the die's outline (assumption: a dicing saw's
+#: cut placement, about +-10 um).
+DICING_TOLERANCE_UM = 10.0
 #: A timed cavity etch's depth, relative, +-.
 CAVITY_DEPTH_TOLERANCE_REL = 0.05
 CAVITY_DEPTH_SOURCE = (ASSUMED + "a timed DRIE of a few to tens of um holds its depth "
