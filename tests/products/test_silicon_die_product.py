@@ -148,3 +148,26 @@ def test_design_for_a_die_takes_max_grasp_force_or_pastes_the_jaws_reach(tmp_pat
     text = (tmp_path / "gripped" / "gripped.toml").read_text(encoding="utf-8")
     assert f"max_grasp_force_N = {float(paste)}" in text
     assert run_cli("verify", cwd=tmp_path / "gripped").returncode == 0
+
+
+@pytest.mark.parametrize("kr_over_km, kobj, force", [
+    (10.0, (0.05, 0.5), 0.05),    # the measuring row's cavity binds
+    (10.0, (0.5, 5.0), 0.6),      # the strength of etched silicon at a root
+    (4.0, (0.2, 2.0), 1.0),
+    (20.0, (0.02, 0.2), 0.2)])
+def test_the_dies_refusal_states_its_true_frontier(kr_over_km, kobj, force):
+    """The rating a refusal states designs, and 1 % above it is refused (it was 'about',
+    5 % steps below the limit)."""
+    from tactcad.errors import DesignError
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.products.silicon_die.design.mems_die import die_plan
+    from tactcad.studies.inverse_design import Targets
+
+    room = jaw_room("5")
+    with pytest.raises(DesignError) as refused:
+        die_plan(Targets(kr_over_km, kobj, force), room)
+    paste = float(refused.value.alternatives[0]["option"].split()[-1])
+    assert f"at most {paste:g} N" in refused.value.allowed
+    assert die_plan(Targets(kr_over_km, kobj, paste), room).full_scale_force_N == paste
+    with pytest.raises(DesignError, match="full-scale-force"):
+        die_plan(Targets(kr_over_km, kobj, 1.01 * paste), room)

@@ -818,20 +818,48 @@ def _within_limits(rating: _Rating, post_um: float) -> bool:
 
 def _lighter_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating,
                     kobj_range) -> float | None:
-    """The rating to paste for ``pair`` when ``rating`` passes a limit: 5 % below the lowest
-    limit, two digits, stepped down 5 % at a time until it designs (the depths and heights
-    round up); None when none from :data:`LIGHTEST_PASTE_N` up does (a limit that does not
-    fall with the rating: the shallowest cavity or the least post drawn)."""
+    """The rating to paste for ``pair`` when ``rating`` passes a limit: the largest rating
+    within every limit (:func:`_within_limits`), found by bisection (the limits grow with
+    the force, the cavities' depths and the posts' heights in steps), rounded down to three
+    significant digits, so that it designs and 1 % more does not; None when none from
+    :data:`LIGHTEST_PASTE_N` up designs (a limit that does not fall with the rating: the
+    shallowest cavity or the least post drawn)."""
     post = pair.post_um
-    force = 0.95 * min(limit for limit, _ in _rating_limits(rating, post))
-    for _ in range(SCALE_STEPS):  # the limits all scale with the force: a few steps do
-        if not force >= LIGHTEST_PASTE_N:
+
+    def holds(force: float) -> bool:
+        return _within_limits(_rating_of(pair, k_r, k_m, force, kobj_range, rating.strength),
+                              post)
+
+    low = min(limit for limit, _ in _rating_limits(rating, post))  # the limits scale with F
+    for _ in range(SCALE_STEPS):  # a force within every limit, stepping down from there
+        if not low >= LIGHTEST_PASTE_N:
             return None
-        force = _round_down_2(force)
-        if _within_limits(_rating_of(pair, k_r, k_m, force, kobj_range, rating.strength), post):
-            return force
-        force *= 0.95
-    return None
+        if holds(low):
+            break
+        low *= 0.95
+    else:
+        return None
+    high = low * 1.05
+    while holds(high):  # and one past them: the asked rating itself is
+        low, high = high, high * 1.05
+        if high > rating.force_N:
+            high = rating.force_N
+            break
+    for _ in range(FRONTIER_BISECTIONS):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if holds(middle) else (low, middle)
+    paste = _round_down_3(low)
+    return paste if holds(paste) else None
+
+
+#: Bisections of the rating's frontier: 40 halve its bracket (5 % wide) to 1e-13.
+FRONTIER_BISECTIONS = 40
+
+
+def _round_down_3(value: float) -> float:
+    """``value`` rounded down to three significant digits (within 1 % of it, below)."""
+    exponent = math.floor(math.log10(value)) - 2
+    return float(f"{math.floor(value / 10 ** exponent) * 10 ** exponent:.3g}")
 
 
 def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_range) -> None:
@@ -856,18 +884,12 @@ def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_
                           "shrink with it" + ("" if rating.strength is None else
                                               " (a stronger etch than the lab's Weibull pair "
                                               "states, or a stiffer K_obj range)"))
-    raise DesignError("--full-scale-force", force_N, f"at most about {below:g} N", why,
+    raise DesignError("--full-scale-force", force_N, f"at most {below:g} N", why,
                       alternatives=[{"option": f"--full-scale-force {below:g}",
                                      "words": "a lighter rating, below every limit" + (
                                          " (strength at the mean of etched bars; its failure "
                                          "probability needs a Weibull pair)"
                                          if rating.strength is None else "")}])
-
-
-def _round_down_2(value: float) -> float:
-    """``value`` rounded down to two significant digits."""
-    exponent = math.floor(math.log10(value)) - 1
-    return float(f"{math.floor(value / 10 ** exponent) * 10 ** exponent:.2g}")
 
 
 def fracture_travel_um(k_N_per_mm: float, length_um: float, width_um: float,
