@@ -171,3 +171,26 @@ def test_the_dies_refusal_states_its_true_frontier(kr_over_km, kobj, force):
     assert die_plan(Targets(kr_over_km, kobj, paste), room).full_scale_force_N == paste
     with pytest.raises(DesignError, match="full-scale-force"):
         die_plan(Targets(kr_over_km, kobj, 1.01 * paste), room)
+
+
+def test_a_thin_robotic_jaw_gets_the_die_where_no_comb_fits(tmp_path):
+    """A wristed instrument's jaw 2.5 mm thick: no comb fits it (its refusal is not the
+    jaw's pocket but its arms), so auto tries the die, which does, and says why not the comb
+    (it was refused with the comb's refusal alone)."""
+    (tmp_path / "robot_jaw.toml").write_text(
+        "[grasper_jaw]\nshaft_class_mm = \"10\"\nwidth_mm = 4.0\nlength_mm = 20.0\n"
+        "thickness_mm = 2.5\npin_diameter_mm = 1.5\npin_inset_mm = 2.0\n"
+        "opening_angle_deg = 45.0\n", encoding="utf-8")
+    argv = ("design", "--jaw", "robot_jaw.toml", "--kr-over-km", "10", "--kobj-range", "0.05",
+            "0.5", "--out", "robot")
+    too_much = run_cli(*argv, "--full-scale-force", "0.01", "--json", cwd=tmp_path)
+    assert too_much.returncode == 2
+    error = json.loads(too_much.stdout)["error"]
+    assert "silicon die" in error["message"] and "monolithic-comb" in error["message"]
+    paste = error["alternatives"][0]["option"].split()[-1]
+    r = run_cli(*argv, "--full-scale-force", paste, cwd=tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    text = (tmp_path / "robot" / "robot.toml").read_text(encoding="utf-8")
+    assert "[die]" in text and "monolithic-comb" in text  # why not the comb, in its reasons
+    assert (tmp_path / "robot" / "robot_jaw.toml").is_file()
+    assert run_cli("verify", cwd=tmp_path / "robot").returncode == 0

@@ -579,10 +579,10 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
             refusals.append((c.name, exc))
     if result is None and args.construction == DIE_CONSTRUCTION:
         return write_die_design(args, targets, room, path, folder, refusals, left)
-    if result is None and all(e.field == "--jaw" for _, e in refusals) and \
-            not die_ignored(args):
-        # the pocket holds no metal construction: a silicon die lies flat in it, where one
-        # meets the targets (else the metal's refusal, with its jaws to paste, stands)
+    if result is None and args.construction == "auto" and not die_ignored(args):
+        # no metal construction meets the targets in this jaw (its pocket, its height, or a
+        # limit): a silicon die lies flat in the pocket, where one meets them; else both
+        # refusals stand, each with what binds and what to paste
         try:
             return write_die_design(args, targets, room, path, folder, refusals, left)
         except DesignError as die_refusal:  # neither fits: both say why, the die's first
