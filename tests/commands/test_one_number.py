@@ -94,8 +94,8 @@ def test_the_gauge_strain_at_the_rating_is_the_grids_in_strength_and_readout(des
     read-out's, bonded layer included), not the face's at the notch centre."""
     readout = command_json(["readout", "--design", str(design)], capsys)
     strength = command_json(["strength", "--design", str(design)], capsys)
-    grid = {r["element"]: abs(r["gauge_strain_per_N"]) for r in readout["elements"]}
-    face = {r["element"]: abs(r["peak_strain_per_N"]) for r in readout["elements"]}
+    grid = {r["element"]: abs(r["grid_strain_per_N"]) for r in readout["elements"]}
+    face = {r["element"]: abs(r["face_strain_as_cut_per_N"]) for r in readout["elements"]}
     rating = readout["full_scale_force_N"]
     gauge_fatigue = load_design(design).strength.gauge.fatigue_strain
     for rec in strength["elements"]:

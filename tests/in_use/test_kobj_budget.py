@@ -216,11 +216,11 @@ def test_the_tissue_terms_slope_is_the_coupled_models_not_eq_3s():
 
 
 def test_gauge_model_is_the_levels_own_strain_error(plan):
-    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+    from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
     err = kb.gauge_model_error_rel(plan, "closed-form")
     name, g = next(iter(plan.distinct_elements.items()))
-    want = gauge_strain_per_N(g, plan.material, readout_chain(plan), "closed-form")["error_rel"]
+    want = grid_strain_per_N(g, plan.material, readout_chain(plan), "closed-form")["error_rel"]
     assert err[name] == pytest.approx(want, rel=1e-12) and err[name] > 0
     ctx = _context(plan)
     unit = _first_unit(ctx)

@@ -121,8 +121,8 @@ def test_gauge_strain_matches_closed_form_and_lever():
         g = slot.geometry
         r = estimate_beam(g, MAT)
         c = estimate_closed_form(g, MAT)  # both: EB x the fitted point factor
-        assert r.gauge_strain_per_N == pytest.approx(c.gauge_strain_per_N, rel=1e-12)
-        strains[g.arm_length_mm] = r.gauge_strain_per_N
+        assert r.face_strain_per_N == pytest.approx(c.face_strain_per_N, rel=1e-12)
+        strains[g.arm_length_mm] = r.face_strain_per_N
     arms = np.array(sorted(strains))
     eps = np.array([strains[a] for a in arms])
     np.testing.assert_allclose(eps / arms, eps[0] / arms[0], rtol=1e-12)
@@ -148,7 +148,7 @@ def test_random_in_domain(t, a, frac):
     g = _geometry(t, R, a)
     r = estimate_beam(g, MAT, n_segments=64)
     assert math.isfinite(r.stiffness_N_per_mm) and r.stiffness_N_per_mm > 0
-    assert math.isfinite(r.gauge_strain_per_N) and r.gauge_strain_per_N > 0
+    assert math.isfinite(r.face_strain_per_N) and r.face_strain_per_N > 0
     disc = beam_convergence(g, MAT, 64).error_estimate_rel
     assert 0 <= disc < 1e-3
     assert disc < r.error_estimate_rel < 1.0  # plus a finite model error

@@ -19,7 +19,7 @@ from tactcad.mechanics.bonded_layer import (CLOSED_FORM_LAYER_ERROR_REL, BEAM_LA
                                             chain_layer, layer_of)
 from tactcad.mechanics.correction import load_correction
 from tactcad.mechanics.ladder import estimate, gauge_k_rise
-from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 from tactcad.studies.tolerance_montecarlo import corrected_stiffness
 
 EXAMPLE_NAMES = ("macro_array", "ti_array_2x3", "grasper_jaw_10mm")
@@ -104,7 +104,7 @@ def test_a_layer_of_no_stiffness_lifts_the_grid_as_the_transformed_section_says(
     bonded = solve_fem2d(g.bare(), m, force_N=1.0, layer=layer).grid_strain
     lifted = solve_fem2d(g.bare(), m, force_N=1.0, layer=limp).grid_strain
     chain = readout_chain(plan)
-    face = gauge_strain_per_N(g, m, chain, "fem2d")
+    face = grid_strain_per_N(g, m, chain, "fem2d")
     # the face's grid average (fem2d's own, before the width factor) times the lift
     from tactcad.mechanics.gauge_strain import width_strain_factor
 
@@ -145,8 +145,8 @@ def test_the_stated_layer_errors_hold_against_fem3d_with_the_layer_meshed(name, 
     assert rises["fem2d"] == pytest.approx(fem3d, rel=0.03)
     # the grid's strain: fem3d's own plane against the closed form's face x read factor
     chain = readout_chain(plan)
-    fem = gauge_strain_per_N(g, m, chain, "fem3d")
-    cf = gauge_strain_per_N(g, m, chain, "closed-form")
+    fem = grid_strain_per_N(g, m, chain, "fem3d")
+    cf = grid_strain_per_N(g, m, chain, "closed-form")
     assert "meshed" in fem["grid_source"]
     assert fem["grid"] == pytest.approx(cf["grid"], rel=cf["error_rel"] + 0.05)
 

@@ -178,7 +178,7 @@ def test_estimate_closed_form_result(monkeypatch, tmp_path):
         k = closed_form_stiffness(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm, **KW)
         assert r.stiffness_N_per_mm == pytest.approx(float(k), rel=1e-14)
         # EB at the notch centre x the fitted plane-strain factor (its own file)
-        assert r.gauge_strain_per_N == pytest.approx(
+        assert r.face_strain_per_N == pytest.approx(
             6 * g.arm_length_mm / (E * B * g.web_thickness_mm**2)
             * point_strain_factor(g, MAT).factor, rel=1e-14)
         assert r.error_estimate_rel == pytest.approx(
@@ -314,8 +314,8 @@ def test_estimate_closed_form_with_correction():
         r0.stiffness_N_per_mm * (1 + EXAMPLE_GAIN) / (1 + q * (0.39 * s + 0.05 * s * s)),
         rel=1e-14)
     assert r1.error_estimate_rel == 0.01
-    assert r1.gauge_strain_per_N == pytest.approx(
-        r0.gauge_strain_per_N * point_strain_factor(g, MAT).factor, rel=1e-14)
+    assert r1.face_strain_per_N == pytest.approx(
+        r0.face_strain_per_N * point_strain_factor(g, MAT).factor, rel=1e-14)
 
 
 # ---------------------------------------------------------------------------

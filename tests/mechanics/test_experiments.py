@@ -210,11 +210,11 @@ def test_audit_flags_a_disagreeing_element(plan):
 def _ladder_k_eps(plan):
     """{element: (K, the grid's strain per newton, signed)} at the closed form."""
     from tactcad.mechanics import ladder
-    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+    from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
     chain = readout_chain(plan)
     return {s.number: (ladder.estimate("closed-form", s.geometry, plan.material).stiffness_N_per_mm,
-                       gauge_strain_per_N(s.geometry, plan.material, chain, "closed-form")["grid"])
+                       grid_strain_per_N(s.geometry, plan.material, chain, "closed-form")["grid"])
             for s in plan.slots}
 
 

@@ -110,8 +110,8 @@ def test_fem3d_between_plane_stress_and_plane_strain(plan, conv_4mm):
 def test_fem3d_gauge_strain(plan, conv_4mm):
     g = _elem(plan, 4.0)
     eps3 = conv_4mm.finest.gauge_strain / conv_4mm.finest.force_N
-    eps2 = estimate_fem2d(g, plan.material, plane="stress").gauge_strain_per_N
-    eps_pe = estimate_fem2d(g, plan.material, plane="strain").gauge_strain_per_N
+    eps2 = estimate_fem2d(g, plan.material, plane="stress").face_strain_per_N
+    eps_pe = estimate_fem2d(g, plan.material, plane="strain").face_strain_per_N
     assert eps3 < 0  # upward tip force compresses the top face over the web
     # per newton, the stiffer 3D web strains less than plane stress, more than plane strain
     assert eps_pe < abs(eps3) < eps2

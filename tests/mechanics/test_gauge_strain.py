@@ -114,15 +114,15 @@ def test_closed_form_stiffness_result_carries_the_point_factor_and_the_layer(pla
     layer = layer_face_factor(g, mat.youngs_modulus_MPa, layer_of(g))
     assert layer < 1.0
     # the face at the grid's centre under the gauge's glue line and carrier
-    got = estimate_closed_form(g, mat).gauge_strain_per_N
+    got = estimate_closed_form(g, mat).face_strain_per_N
     assert got == pytest.approx(eb * point_strain_factor(g, mat).factor * layer, rel=1e-12)
-    assert estimate_closed_form(g, mat, corrected=False).gauge_strain_per_N == pytest.approx(
+    assert estimate_closed_form(g, mat, corrected=False).face_strain_per_N == pytest.approx(
         eb * layer, rel=1e-14)
     # the element as cut: the bare face
     bare = g.bare()
-    assert estimate_closed_form(bare, mat).gauge_strain_per_N == pytest.approx(
+    assert estimate_closed_form(bare, mat).face_strain_per_N == pytest.approx(
         eb * point_strain_factor(bare, mat).factor, rel=1e-12)
-    assert estimate_closed_form(bare, mat, corrected=False).gauge_strain_per_N == eb
+    assert estimate_closed_form(bare, mat, corrected=False).face_strain_per_N == eb
 
 
 def test_closed_form_warns_outside_the_strain_fit(plan):
@@ -138,15 +138,15 @@ def test_closed_form_warns_outside_the_strain_fit(plan):
 # The read-out carries them
 # ---------------------------------------------------------------------------
 def test_readout_grid_strain_is_the_corrected_face_times_the_bonded_layer(plan):
-    from tactcad.mechanics.readout_chain import (beam_grid_strain_per_N, gauge_strain_per_N,
+    from tactcad.mechanics.readout_chain import (beam_face_mean_strain_per_N, grid_strain_per_N,
                                                  readout_chain)
 
     chain = readout_chain(plan)
     g, mat = plan.element(1).geometry, plan.material
-    got = gauge_strain_per_N(g, mat, chain, "closed-form")
+    got = grid_strain_per_N(g, mat, chain, "closed-form")
     c = grid_strain_factor(g, mat, chain.grid_length_mm, chain.grid_width_mm)
     assert got["surface"] == pytest.approx(
-        c.factor * beam_grid_strain_per_N(g, mat, chain.grid_length_mm), rel=1e-12)
+        c.factor * beam_face_mean_strain_per_N(g, mat, chain.grid_length_mm), rel=1e-12)
     layer = bonded_grid_factor(g.web_thickness_mm, g.sheet_thickness_mm, mat.youngs_modulus_MPa,
                                chain.grid_height_mm, chain.gauge_backing_modulus_MPa,
                                min(chain.grid_width_mm + 1.0, g.sheet_thickness_mm))

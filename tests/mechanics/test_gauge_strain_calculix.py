@@ -89,7 +89,7 @@ def test_fem3d_grid_strain_agrees_with_calculix(design, part, ccx, tmp_path):
     from tactcad.api import load
     from tactcad.mechanics.fem.fem_mesh import fem_region
     from tactcad.mechanics.readout_chain import (grid_span_mm, readout_chain,
-                                                 surface_grid_strain_per_N)
+                                                 face_mean_strain_as_cut_per_N)
     from tactcad.store import Store, keeping_results
 
     root = Path(__file__).resolve().parents[2]
@@ -122,7 +122,7 @@ def test_fem3d_grid_strain_agrees_with_calculix(design, part, ccx, tmp_path):
     ccx_eps = grid_mean_strain(top, ux, grid_span_mm(g, chain.grid_length_mm),
                                (zc - w / 2, zc + w / 2)) / FORCE_N
     with keeping_results(Store(None)):
-        ours = surface_grid_strain_per_N(g, mat, chain.grid_length_mm, chain.grid_width_mm,
+        ours = face_mean_strain_as_cut_per_N(g, mat, chain.grid_length_mm, chain.grid_width_mm,
                                          "fem3d")
     print(f"{design} {part}: fem3d grid {ours['surface']:.6e}, ccx {ccx_eps:.6e} "
           f"({nodes} nodes), ratio {ours['surface'] / ccx_eps:.5f}")

@@ -31,8 +31,8 @@ def _extremes(design: str):
 @pytest.mark.parametrize("which", ("stiffest", "softest"))
 def test_closed_form_gauge_strain_within_3_percent_of_fem3d(design, which):
     from tactcad.mechanics.ladder import estimate
-    from tactcad.mechanics.readout_chain import (gauge_strain_per_N, readout_chain,
-                                                 surface_grid_strain_per_N)
+    from tactcad.mechanics.readout_chain import (grid_strain_per_N, readout_chain,
+                                                 face_mean_strain_as_cut_per_N)
     from tactcad.store import Store, keeping_results
 
     plan, (stiff, soft) = _extremes(design)
@@ -49,26 +49,26 @@ def test_closed_form_gauge_strain_within_3_percent_of_fem3d(design, which):
         real = fem3d._converge
         fem3d._converge = lambda *a, **k: solved.append(a) or real(*a, **k)
         try:
-            fem = surface_grid_strain_per_N(g, mat, L, W, "fem3d")
-            read = gauge_strain_per_N(g, mat, chain, "fem3d")
+            fem = face_mean_strain_as_cut_per_N(g, mat, L, W, "fem3d")
+            read = grid_strain_per_N(g, mat, chain, "fem3d")
         finally:
             fem3d._converge = real
     assert not solved, "the read-out solved again instead of reading the kept solves"
     for model in ("closed-form", "beam"):
-        cf = surface_grid_strain_per_N(g, mat, L, W, model)
-        point = estimate(model, g, mat).gauge_strain_per_N
+        cf = face_mean_strain_as_cut_per_N(g, mat, L, W, model)
+        point = estimate(model, g, mat).face_strain_per_N
         print(f"{design} {g.part_name} {model}: grid {cf['surface']:.5e} vs fem3d "
               f"{fem['surface']:.5e} ({cf['surface'] / fem['surface']:.4f}); point {point:.5e} "
-              f"vs {ref.gauge_strain_per_N:.5e} ({point / ref.gauge_strain_per_N:.4f})")
+              f"vs {ref.face_strain_per_N:.5e} ({point / ref.face_strain_per_N:.4f})")
         assert cf["surface"] == pytest.approx(fem["surface"], rel=0.03)
-        assert point == pytest.approx(ref.gauge_strain_per_N, rel=0.03)
+        assert point == pytest.approx(ref.face_strain_per_N, rel=0.03)
         # the stated error estimate covers the difference
         assert abs(cf["surface"] / fem["surface"] - 1) <= cf["error_rel"] + fem["error_rel"]
-    assert fem["peak"] == pytest.approx(-ref.gauge_strain_per_N, rel=1e-12)
+    assert fem["peak"] == pytest.approx(-ref.face_strain_per_N, rel=1e-12)
     assert read["grid"] == pytest.approx(fem["surface"] * read["read_factor"], rel=1e-12)
 
 
-#: fem3d's ``gauge_strain_per_N`` (1/N) on the examples' elements as installed (the gauge's
+#: fem3d's ``face_strain_per_N`` (1/N) on the examples' elements as installed (the gauge's
 #: glue line and carrier meshed), default meshes, Richardson error < 0.05 %: measured with
 #: ``tactcad stiffness --model fem3d --json`` (macro_array elements 1 and 4, ti_array_2x3
 #: elements 1 and 2); :func:`test_installed_face_strain_within_3_percent_of_fem3d` solves
@@ -83,7 +83,7 @@ FEM3D_FACE_STRAIN_PER_N = {
 
 @pytest.mark.parametrize("design,part", sorted(FEM3D_FACE_STRAIN_PER_N))
 def test_installed_face_strain_is_fem3d_s_quantity(design, part):
-    """One name, one quantity: the closed form's and the beam's ``gauge_strain_per_N`` on
+    """One name, one quantity: the closed form's and the beam's ``face_strain_per_N`` on
     the element as installed is the face strain under the gauge's layer, as fem3d's is
     (it meshes the layer): within 3 % of fem3d's recorded figure, where the bare face's
     lies about 11 % above it."""
@@ -95,9 +95,9 @@ def test_installed_face_strain_is_fem3d_s_quantity(design, part):
     assert g.gauge is not None
     fem = FEM3D_FACE_STRAIN_PER_N[(design, part)]
     for model in ("closed-form", "beam"):
-        got = estimate(model, g, mat).gauge_strain_per_N
+        got = estimate(model, g, mat).face_strain_per_N
         assert got == pytest.approx(fem, rel=0.03), model
-    bare = estimate("closed-form", g.bare(), mat).gauge_strain_per_N
+    bare = estimate("closed-form", g.bare(), mat).face_strain_per_N
     assert bare / fem - 1 > 0.08  # the quantity the closed form reported before
 
 
@@ -116,10 +116,10 @@ def test_installed_face_strain_within_3_percent_of_fem3d(design, which):
     assert g.gauge is not None
     mat = plan.material
     with keeping_results(Store(None)):
-        ref = estimate("fem3d", g, mat).gauge_strain_per_N
+        ref = estimate("fem3d", g, mat).face_strain_per_N
     assert ref == pytest.approx(FEM3D_FACE_STRAIN_PER_N[(design, g.part_name)], rel=1e-4)
     for model in ("closed-form", "beam"):
-        got = estimate(model, g, mat).gauge_strain_per_N
+        got = estimate(model, g, mat).face_strain_per_N
         print(f"{design} {g.part_name} {model}: face strain under the layer {got:.5e} vs "
               f"fem3d {ref:.5e} ({got / ref:.4f})")
         assert got == pytest.approx(ref, rel=0.03)

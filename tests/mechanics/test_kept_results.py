@@ -57,7 +57,7 @@ def fem3d_solves(monkeypatch) -> list:
         calls.append((g.part_name, size_factor))
         cf = estimate_closed_form(g, material)
         k = cf.stiffness_N_per_mm * (1.0 + 0.01 * size_factor ** 2)
-        return fem2d.FemSolution(k, force_N / k, -cf.gauge_strain_per_N * force_N, force_N,
+        return fem2d.FemSolution(k, force_N / k, -cf.face_strain_per_N * force_N, force_N,
                                  n_dofs=1000, n_cells=100, neck_size_mm=0.05, wall_time_s=0.0,
                                  field=size_factor if keep_field else None)
 

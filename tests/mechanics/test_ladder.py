@@ -76,9 +76,9 @@ def test_gauge_strain_grows_with_the_lever(plan):
     # the paper's ANSYS strain is the bare face's: the element as cut, not under the gauge
     g = plan.element(1).geometry
     assert g.gauge is not None
-    bare = estimate("closed-form", g.bare(), plan.material).gauge_strain_per_N
+    bare = estimate("closed-form", g.bare(), plan.material).face_strain_per_N
     assert s[0]["face_strain_as_cut_percent"] == pytest.approx(200 * bare, rel=1e-12)
-    assert estimate("closed-form", g, plan.material).gauge_strain_per_N < 0.95 * bare
+    assert estimate("closed-form", g, plan.material).face_strain_per_N < 0.95 * bare
 
 
 def test_table2_with_predicted_stiffness_reports_out_of_domain_rows(plan):
@@ -103,10 +103,10 @@ def test_stiffness_cli_json_keys():
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     assert set(data) - {"notices"} == {"element", "model", "stiffness_N_per_mm",
-                                       "gauge_strain_per_N", "error_estimate_rel",
+                                       "face_strain_per_N", "error_estimate_rel",
                                        "wall_time_s", "warnings", "grid_strain_per_N",
                                        "with_gauge"}
-    assert data["with_gauge"] is True and data["grid_strain_per_N"] > data["gauge_strain_per_N"]
+    assert data["with_gauge"] is True and data["grid_strain_per_N"] > data["face_strain_per_N"]
     assert data["warnings"] == []  # the default design lies inside the fitted range
     assert data["element"] == 3 and data["stiffness_N_per_mm"] > 0
 

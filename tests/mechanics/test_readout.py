@@ -14,9 +14,10 @@ from tactcad.cli import main
 from tactcad.design.array_plan import default_design_data, load_design, plan_from_dict, with_overrides
 from tactcad.errors import DesignError
 from tactcad.paper.data import table1
-from tactcad.mechanics.readout_chain import (beam_grid_strain_per_N, beam_surface_strain_per_N,
-                                       bridge_nonlinearity_rel, gauge_strain_per_N,
-                                       noise_budget_V, readout_chain, readout_report)
+from tactcad.mechanics.readout_chain import (beam_face_mean_strain_per_N,
+                                             beam_surface_strain_per_N, bridge_nonlinearity_rel,
+                                             grid_strain_per_N, noise_budget_V, readout_chain,
+                                             readout_report)
 from tactcad.studies.verification import requirements_of, verification_matrix
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -38,19 +39,19 @@ def test_grid_average_is_below_the_peak_and_tends_to_it_for_a_short_grid():
     peak = float(beam_surface_strain_per_N(g, m, g.hinge_x_mm))
     # peak: eps/F = 6 a / (E b t^2), compressive on the top face
     assert peak == pytest.approx(-6 * g.arm_length_mm / (m.youngs_modulus_MPa * 3.0 * 0.25 ** 2))
-    short, default, long_ = (beam_grid_strain_per_N(g, m, L) for L in (0.02, 0.6, 2.0))
+    short, default, long_ = (beam_face_mean_strain_per_N(g, m, L) for L in (0.02, 0.6, 2.0))
     assert short == pytest.approx(peak, rel=1e-3)
     assert abs(long_) < abs(default) < abs(peak)
 
 
 def test_the_searchs_vectorised_grid_reading_is_the_read_outs_for_each_element():
     """closed_form_grid_read_per_N (design searches, over arrays of candidates) reads what
-    gauge_strain_per_N reads for one element, on every shipped example (three materials,
+    grid_strain_per_N reads for one element, on every shipped example (three materials,
     grids inside and outside the fitted range), and an independent trapezoid average of the
     EB face strain agrees with the Gauss-Legendre one to 1e-5."""
     import numpy as np
 
-    from tactcad.mechanics.readout_chain import closed_form_grid_read_per_N, eb_grid_strain_per_N
+    from tactcad.mechanics.readout_chain import closed_form_grid_read_per_N, eb_face_mean_strain_per_N
 
     from tactcad.project_folder import die_examples
 
@@ -64,13 +65,13 @@ def test_the_searchs_vectorised_grid_reading_is_the_read_outs_for_each_element()
                                           [g.notch_radius_mm for g in gs],
                                           [g.arm_length_mm for g in gs], gs[0], plan.material,
                                           chain)
-        one = [gauge_strain_per_N(g, plan.material, chain, "closed-form")["grid"] for g in gs]
+        one = [grid_strain_per_N(g, plan.material, chain, "closed-form")["grid"] for g in gs]
         assert vec == pytest.approx(one, rel=1e-12), design.name
         g = gs[0]
         L = chain.grid_length_mm
         x = np.linspace(g.hinge_x_mm - L / 2, g.hinge_x_mm + L / 2, 200001)
         trapezoid = np.trapezoid(beam_surface_strain_per_N(g, plan.material, x), x) / L
-        assert float(eb_grid_strain_per_N(g.web_thickness_mm, g.notch_radius_mm,
+        assert float(eb_face_mean_strain_per_N(g.web_thickness_mm, g.notch_radius_mm,
                                           g.arm_length_mm, L, g.sheet_thickness_mm,
                                           plan.material.youngs_modulus_MPa, g.base_height_mm,
                                           g.arm_height_mm)) == pytest.approx(trapezoid, rel=1e-5)
@@ -80,8 +81,8 @@ def test_fem2d_field_average_agrees_with_beam_theory_over_the_grid():
     plan = load_design()
     g, m = plan.element(1).geometry, plan.material
     chain = readout_chain(plan)
-    fem = gauge_strain_per_N(g, m, chain, "fem2d")
-    beam = gauge_strain_per_N(g, m, chain, "closed-form")
+    fem = grid_strain_per_N(g, m, chain, "fem2d")
+    beam = grid_strain_per_N(g, m, chain, "closed-form")
     assert fem["grid"] < 0 and beam["grid"] < 0
     # both carry the fitted width factor; fem2d's own profile against EB x C's: the fit's error
     assert fem["surface"] == pytest.approx(beam["surface"], rel=beam["error_rel"] + 0.01)
@@ -178,7 +179,7 @@ def test_readout_json_on_the_papers_design_sets_table1_beside_each_element(capsy
     recs = {r["element"]: r for r in out["elements"]}
     for number, row in measured.items():
         r = recs[number]
-        for key in ("gauge_strain_per_N", "k_v_V_per_mm", "sensitivity_V_per_N",
+        for key in ("grid_strain_per_N", "k_v_V_per_mm", "sensitivity_V_per_N",
                     "force_resolution_N", "kobj_resolution_rel"):
             assert key in r
         assert r["table1_k_v_V_per_mm"] == row.K_v_V_per_mm
@@ -324,7 +325,7 @@ def test_the_bonded_layer_raises_k_by_less_than_it_stiffens_the_web():
     g, m = plan.element(4).geometry, plan.material
     chain = readout_chain(plan)
     rel = gauge_k_rise("closed-form", g, m)
-    web = gauge_strain_per_N(g, m, chain, "closed-form")["stiffening_rel"]
+    web = grid_strain_per_N(g, m, chain, "closed-form")["stiffening_rel"]
     assert 0.02 < rel < web
     soft = dataclasses.replace(g, gauge=dataclasses.replace(g.gauge, modulus_MPa=1e-6))
     assert gauge_k_rise("closed-form", soft, m) == pytest.approx(0.0, abs=1e-9)
@@ -355,7 +356,7 @@ def test_readout_and_calibrate_fit_one_gain_of_the_grids_strain_through_table1()
     assert audit["gauge_gain_V_per_strain"] > 0
     assert t["fitted_volts_per_strain_as_built"] == pytest.approx(
         audit["gauge_gain_V_per_strain"], rel=1e-4)
-    assert all(r["gauge_strain_per_N"] < 0 for r in audit["elements"])
+    assert all(r["grid_strain_per_N"] < 0 for r in audit["elements"])
 
 
 def test_the_ad621s_1_over_f_density_gives_back_its_data_sheets_low_band_figure():

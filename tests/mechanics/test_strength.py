@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from tactcad.mechanics.gauge_strain import point_strain_factor
-from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 from tactcad.cli import main
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError
@@ -58,7 +58,7 @@ def test_yield_limited_force_and_the_figures_at_the_rated_force(plan):
     g = plan.element(4).geometry
     # what the grid reads: the face average over the grid x the bonded layer, not the face's
     # strain at the notch centre (EB x the fitted point factor), which it exceeds here
-    grid = gauge_strain_per_N(g, plan.material, readout_chain(plan), "closed-form")
+    grid = grid_strain_per_N(g, plan.material, readout_chain(plan), "closed-form")
     assert rec.gauge_strain_at_full_scale == pytest.approx(abs(grid["grid"]) * rated, rel=1e-12)
     face = 6 * 8.0 / (69000 * 3.0 * 0.25**2) * point_strain_factor(g, plan.material).factor
     assert rec.gauge_strain_at_full_scale > 1.05 * face * rated

@@ -65,7 +65,7 @@ def test_one_element_matches_the_hand_calculation_from_the_published_relations()
     hand_strain = 1.01 / (1 - 0.285 * 0.01) * (23.6 - 10.8) * 1e-6
     rep = _report(plan)
     assert rep.apparent_strain_per_K == pytest.approx(hand_strain, rel=1e-12)
-    eps_per_N = readout_report(plan, requirements_of(plan)).records[3]["gauge_strain_per_N"]
+    eps_per_N = readout_report(plan, requirements_of(plan)).records[3]["grid_strain_per_N"]
     elem = rep.records[3]
     assert elem["zero_drift_N_per_K"] == pytest.approx(hand_strain / eps_per_N, rel=1e-9)
     # span: modulus, expansion, gauge factor and one lead (three-wire) at full scale
@@ -164,7 +164,7 @@ def test_self_heating_offset_is_the_warm_grid_form_not_the_substrate_mismatch():
     # so the offset reads as a positive force
     plan = _plan(**{"readout.excitation_V": 2.5})
     rep = _report(plan)
-    eps = rep.records[0]["gauge_strain_per_N"]
+    eps = rep.records[0]["grid_strain_per_N"]
     assert eps < 0
     hand = -rep.setting.stc_ppm_per_K * 1e-6 * rep.self_heating_K / eps
     assert rep.records[0]["self_heating_offset_N"] == pytest.approx(hand, rel=1e-12)

@@ -316,7 +316,7 @@ def _print_text(report: dict) -> None:
     print("  elem  K N/mm  web mm  S V/N    eps/N     S/(G eps)  K from S  amplif.")
     for r in audit["elements"]:
         print(f"  {r['element']:4d} {r['K_N_per_mm']:7.2f} {_fmt(r['web_as_built_mm'], '7.3f')} "
-              f"{r['signal_per_N_V_per_N']:7.3f} {_fmt(r['gauge_strain_per_N'], '9.2e')} "
+              f"{r['signal_per_N_V_per_N']:7.3f} {_fmt(r['grid_strain_per_N'], '9.2e')} "
               f"{_fmt(r.get('signal_ratio'), '9.2f')} {_fmt(r.get('K_implied_by_signal_N_per_mm'), '9.2f')} "
               f"{r['series_amplification']:7.2f}")
     for c in report.get("table1_consistency", []):

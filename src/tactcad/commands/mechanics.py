@@ -73,10 +73,10 @@ def run_stiffness(args: argparse.Namespace) -> int:
     with_gauge = slot.geometry.gauge is not None
     grid = r.grid_strain_per_N
     if grid is None and with_gauge:  # what the grid reads, as `readout` gives it at this level
-        from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+        from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
-        grid = abs(gauge_strain_per_N(slot.geometry, plan.material, readout_chain(plan),
-                                      args.model)["grid"])
+        grid = abs(grid_strain_per_N(slot.geometry, plan.material, readout_chain(plan),
+                                     args.model)["grid"])
     if args.json:
         out = {**r.as_json(), "grid_strain_per_N": grid, "with_gauge": with_gauge}
         if vtu is not None:
@@ -87,7 +87,7 @@ def run_stiffness(args: argparse.Namespace) -> int:
         print(f"  K                   {r.stiffness_N_per_mm:10.4f} N/mm"
               + ("  (with its bonded gauge's glue line and carrier; `tactcad readout` states "
                  "how much they add)" if with_gauge else ""))
-        print(f"  face strain         {r.gauge_strain_per_N * 1e6:10.2f} microstrain/N"
+        print(f"  face strain         {r.face_strain_per_N * 1e6:10.2f} microstrain/N"
               "  (the top face at the notch centre"
               + (", under the gauge's glue line and carrier)" if with_gauge else ")"))
         if grid is not None:

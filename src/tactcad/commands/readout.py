@@ -114,18 +114,18 @@ def render(report) -> str:
              "'read'; the layer stiffens the web by 'stiff.' and raises K by "
              + _layer_k_text(report) + f" ({how}); the K below carries it, as the "
              "calibration measures K with the gauge bonded",
-             "| element | role | K N/mm | strain/N (face) | its error | read | stiff. | "
-             "strain/N (grid) | face grid/peak | K_v/K V/N | K_v V/mm | force res. N | "
+             "| element | role | K N/mm | face mean strain/N (as cut) | its error | read | "
+             "stiff. | grid strain/N | face mean/centre (as cut) | K_v/K V/N | K_v V/mm | force res. N | "
              "K_obj res. |",
              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in report.records:
         res = "n/a" if r["kobj_resolution_rel"] is None else f"{100 * r['kobj_resolution_rel']:.2f} %"
         flag = " (outside fit)" if r["strain_outside_fit"] else ""
         lines.append(f"| {r['element']} | {r['role']} | {r['stiffness_N_per_mm']:.4g} | "
-                     f"{r['surface_strain_per_N']:.4g} | {100 * r['strain_error_rel']:.2g} %"
+                     f"{r['face_mean_strain_as_cut_per_N']:.4g} | {100 * r['strain_error_rel']:.2g} %"
                      f"{flag} | {r['grid_read_factor']:.3f} | "
                      f"{100 * r['gauge_stiffening_rel']:.2g} % | "
-                     f"{r['gauge_strain_per_N']:.4g} | {r['grid_over_peak']:.3f} | "
+                     f"{r['grid_strain_per_N']:.4g} | {r['face_mean_over_centre_as_cut']:.3f} | "
                      f"{r['sensitivity_V_per_N']:.4g} | {r['k_v_V_per_mm']:.4g} | "
                      f"{r['force_resolution_N']:.2g} | {res} |")
     for r in report.records:

@@ -114,8 +114,9 @@ def full_scale_judgement(plan, model: str, records) -> dict:
 
     req = requirements_of(plan)
     stresses = {r.part_name: ElementStress(model, r.stress_MPa_per_N, r.stress_error_rel,
-                                           r.stiffness_N_per_mm,
-                                           r.gauge_strain_at_full_scale / r.full_scale_force_N)
+                                           r.stiffness_N_per_mm, grid_strain_per_N=(
+                                               r.gauge_strain_at_full_scale
+                                               / r.full_scale_force_N))
                 for r in records}
     errors = {r.part_name: r.stress_error_rel for r in records}
     b = binding(plan_limits(plan, model, stresses, errors))

@@ -103,7 +103,7 @@ def run_grid_cmd(args: argparse.Namespace) -> int:
           f"{'ustrain/N':>10} {'est. err':>9} {'time s':>8}")
     for row in rows:
         print(f"{row.model:<12} {row.web_mm:>7g} {row.arm_mm:>7g} {row.notch_radius_mm:>6g} "
-              f"{row.K_N_per_mm:>10.4g} {1e6 * row.gauge_strain_per_N:>10.1f} "
+              f"{row.K_N_per_mm:>10.4g} {1e6 * row.face_strain_per_N:>10.1f} "
               f"{100 * row.error_estimate_rel:>8.2f}% {row.wall_time_s:>8.3g}")
     print(f"wrote {csv_path} and {png_path}")
     return 0

@@ -521,12 +521,12 @@ def tip_coplanarity(ctx: Context, unit: Unit, op: Operating) -> Contribution:
 
 def gauge_model_error_rel(plan: Plan, model: str) -> dict[str, float]:
     """Per distinct part: the estimated relative error of the grid strain per newton at
-    ``model`` (:func:`tactcad.mechanics.readout_chain.gauge_strain_per_N`'s ``error_rel``:
+    ``model`` (:func:`tactcad.mechanics.readout_chain.grid_strain_per_N`'s ``error_rel``:
     the width correction's fit residual at the closed form and beam, the mesh's at fem3d)."""
-    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+    from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
     chain = readout_chain(plan)
-    return {name: float(gauge_strain_per_N(g, plan.material, chain, model)["error_rel"])
+    return {name: float(grid_strain_per_N(g, plan.material, chain, model)["error_rel"])
             for name, g in plan.distinct_elements.items()}
 
 

@@ -178,7 +178,7 @@ class BeamSolution:
     Attributes:
         compliance_mm_per_N: tip deflection along +y per newton.
         hinge_moment_Nmm_per_N: bending moment at the notch centre per newton.
-        gauge_strain_per_N: top-surface strain over the thinnest section per newton, of the
+        face_strain_as_cut_per_N: top-surface strain over the thinnest section per newton, of the
             bare section (1/N; :func:`estimate_beam` carries it under the gauge's layer).
         deflection_mm_per_N: nodal deflections, shape (N + 1,).
         rotation_rad_per_N: nodal section rotations, shape (N + 1,).
@@ -186,7 +186,7 @@ class BeamSolution:
 
     compliance_mm_per_N: float
     hinge_moment_Nmm_per_N: float
-    gauge_strain_per_N: float
+    face_strain_as_cut_per_N: float
     deflection_mm_per_N: np.ndarray
     rotation_rad_per_N: np.ndarray
 
@@ -224,7 +224,7 @@ def solve_beam(mesh: BeamMesh, E: float, nu: float, b: float, web_mm: float) -> 
     moment = float(x[-1] - x[mesh.hinge_node])
     eps = moment * (web_mm / 2.0) / (E * b * web_mm**3 / 12.0)
     return BeamSolution(compliance_mm_per_N=float(w[-1]), hinge_moment_Nmm_per_N=moment,
-                        gauge_strain_per_N=eps, deflection_mm_per_N=w, rotation_rad_per_N=rot)
+                        face_strain_as_cut_per_N=eps, deflection_mm_per_N=w, rotation_rad_per_N=rot)
 
 
 def unit_load_compliance(mesh: BeamMesh, E: float, nu: float, b: float,
@@ -257,7 +257,7 @@ class BeamConvergence:
             if in [1, 3], else the formal order 2).
         error_estimate_rel: |K3 - K_extrapolated| / K_extrapolated, the
             discretisation error of the finest mesh.
-        gauge_strain_per_N: top-surface strain over the web per newton (finest mesh), of
+        face_strain_as_cut_per_N: top-surface strain over the web per newton (finest mesh), of
             the bare section (1/N).
     """
 
@@ -266,7 +266,7 @@ class BeamConvergence:
     observed_order: float
     extrapolated_N_per_mm: float
     error_estimate_rel: float
-    gauge_strain_per_N: float
+    face_strain_as_cut_per_N: float
 
 
 def beam_convergence(g: ElementGeometry, material: Material, n_segments: int = DEFAULT_SEGMENTS,
@@ -288,7 +288,7 @@ def beam_convergence(g: ElementGeometry, material: Material, n_segments: int = D
     return BeamConvergence(n_segments=ns, stiffness_N_per_mm=ks, observed_order=rk.order,
                            extrapolated_N_per_mm=rk.extrapolated,
                            error_estimate_rel=rk.error_rel,
-                           gauge_strain_per_N=sols[-1].gauge_strain_per_N)
+                           face_strain_as_cut_per_N=sols[-1].face_strain_as_cut_per_N)
 
 
 def beam_layer_rise(g: ElementGeometry, youngs_modulus_MPa: float, poisson_ratio: float,
@@ -354,7 +354,7 @@ def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None
         k, model_error = k * (1.0 + rise), model_error + BEAM_LAYER_ERROR_REL * rise
     return StiffnessResult(element=element, model=MODEL_NAME,
                            stiffness_N_per_mm=k,
-                           gauge_strain_per_N=conv.gauge_strain_per_N
+                           face_strain_per_N=conv.face_strain_as_cut_per_N
                            * face_strain_factor(g, material),
                            error_estimate_rel=conv.error_estimate_rel + model_error,
                            wall_time_s=time.perf_counter() - start)

@@ -37,7 +37,7 @@ cancels at small t/R: relative accuracy is ~1e-15 for t/R from 1e-4 to 2 and
 For t/R -> 0 the hinge rotational stiffness tends to the classical
 2 E b t^(5/2) / (9 pi sqrt(2 R)).
 
-Gauge strain (``gauge_strain_per_N``, 1/N: strain per newton of tip force, x 1e6 for
+Face strain (``face_strain_per_N``, 1/N: strain per newton of tip force, x 1e6 for
 microstrain/N): the strain of the flat top face at the grid's centre (the notch
 centre, mid-width) under the bonded gauge's glue line and carrier, the quantity
 fem2d and fem3d read with the layer meshed. The bare section's Euler-Bernoulli
@@ -246,7 +246,7 @@ def gauge_strain_per_newton(web_mm, arm_length_mm, *, E, b) -> np.ndarray:
 
     eps / F = 6 a / (E b t^2) (Euler-Bernoulli, M = F a at the notch centre,
     neutral axis at the centroid of the bare b x t section). Arrays broadcast. The
-    closed form's ``gauge_strain_per_N`` is this times :func:`face_strain_factor`.
+    closed form's ``face_strain_per_N`` is this times :func:`face_strain_factor`.
 
     Raises:
         ValueError: a non-finite or non-positive input.
@@ -384,7 +384,7 @@ def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int
         err += CLOSED_FORM_LAYER_ERROR_REL * (k_layer / k - 1.0)
         k = k_layer
     return StiffnessResult(element=element, model=MODEL_NAME, stiffness_N_per_mm=k,
-                           gauge_strain_per_N=float(eps), error_estimate_rel=err,
+                           face_strain_per_N=float(eps), error_estimate_rel=err,
                            wall_time_s=time.perf_counter() - start)
 
 
@@ -392,7 +392,7 @@ def face_strain_factor(g: ElementGeometry, material: Material, *,
                        corrected: bool = True) -> float:
     """What carries the bare section's Euler-Bernoulli face strain at the notch centre
     (6 a / (E b t^2), or the beam level's M (t/2) / (E I)) to the closed form's and the
-    beam level's ``gauge_strain_per_N``: the face strain at the grid's centre (the notch
+    beam level's ``face_strain_per_N``: the face strain at the grid's centre (the notch
     centre, mid-width) under the bonded gauge ``g`` carries, as fem2d and fem3d read it
     with the layer meshed. Dimensionless: the fem3d-fitted point factor
     (:func:`corrected_point_strain`, of the bare element; 1 when not ``corrected``) x the

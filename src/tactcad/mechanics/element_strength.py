@@ -44,9 +44,9 @@ Two forces, never one name for both:
   strength / (peak stress per N x safety factor), one of the element's own
   force limits (:mod:`tactcad.mechanics.limits` lists them all).
 
-At the rated full-scale force the gauge strain (gauge strain per N x force)
-is the one the plan's gauge grid reads (:func:`at_the_grid`: the face strain
-averaged over the grid and raised by the bonded layer, the read-out's number),
+At the rated full-scale force the gauge strain (``grid_strain_per_N`` x force)
+is the one the plan's gauge grid reads (:func:`at_the_grid`: the mean strain on
+the grid's plane over the grid, the read-out's ``grid_strain_per_N``),
 and is compared with the gauge's maximum and fatigue strain, the stress with the
 fatigue strength and the force with the yield-limited force; each
 exceedance becomes a warning of the record. The fatigue strength at the
@@ -211,15 +211,15 @@ def notch_fatigue_strength(material: Material, process: Process = ELEMENT_PROCES
 
 
 def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Material,
-                 settings: StrengthSettings, gauge_strain_per_N=None) -> dict[str, np.ndarray]:
+                 settings: StrengthSettings, grid_strain_per_N=None) -> dict[str, np.ndarray]:
     """Closed-form tip-force limits (N) of element geometries, broadcast over
     the geometry arrays (for design searches).
 
     Args:
-        gauge_strain_per_N: what the gauge reads per newton on each geometry (1/N,
+        grid_strain_per_N: what the gauge's grid reads per newton on each geometry (1/N,
             either sign; :func:`tactcad.mechanics.readout_chain.closed_form_grid_read_per_N`,
-            the number strength and the read-out quote); None: the face strain at the
-            notch centre, Euler-Bernoulli's 6 a / (E b t^2) x the fem3d-fitted point factor
+            the number strength and the read-out quote); None: the face strain as cut at
+            the notch centre, Euler-Bernoulli's 6 a / (E b t^2) x the fem3d-fitted point factor
             of :mod:`tactcad.mechanics.gauge_strain`.
 
     Returns:
@@ -235,14 +235,14 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
     """
     y = require_yield(material)
     s = peak_stress_per_newton(web_mm, notch_radius_mm, arm_length_mm, sheet_mm)
-    if gauge_strain_per_N is None:
+    if grid_strain_per_N is None:
         from tactcad.mechanics.gauge_strain import point_factor
 
         eps = (nominal_stress_per_newton(web_mm, arm_length_mm, sheet_mm)
                / material.youngs_modulus_MPa
                * point_factor(web_mm, notch_radius_mm, sheet_mm, material.poisson_ratio))
     else:
-        eps = np.abs(np.asarray(gauge_strain_per_N, float))
+        eps = np.abs(np.asarray(grid_strain_per_N, float))
     notch = notch_fatigue_strength(material)
     out = {"yield": yield_limited_force(y, s, settings.safety_factor),
            "fatigue": (notch.strength_MPa / s) if notch else np.full_like(s, np.nan),
@@ -273,22 +273,33 @@ class ElementStress:
         stress_error_rel: estimated relative error of the peak (Richardson
             for FEM; the fit tolerance for the closed form).
         stiffness_N_per_mm: K at the same level (N/mm).
-        gauge_strain_per_N: the gauge strain per N (1/N). As evaluated, the level's face
-            strain at the notch centre (:func:`closed_form_stress`: the stiffness result's,
-            under the gauge's layer; the FEM stress of
-            :func:`tactcad.studies.strength_studies.fem_peak_stress`: the bare mesh's);
-            strength, the limits and ``verify`` replace it with what the grid reads
-            (:func:`at_the_grid`) before they use it.
         peak_location_mm: where the peak is (element frame, mm); empty for
             the closed form (the notch root, x = hinge_x).
+        grid_strain_per_N: what the plan's gauge grid reads per N (1/N, magnitude: the
+            mean strain on the grid's plane over the grid, the read-out's
+            ``grid_strain_per_N``). None as the stress evaluations give it
+            (:func:`closed_form_stress`,
+            :func:`tactcad.studies.strength_studies.fem_peak_stress`); strength, the
+            limits and ``verify`` set it (:func:`at_the_grid`) before they use it.
     """
 
     model: str
     stress_MPa_per_N: float
     stress_error_rel: float
     stiffness_N_per_mm: float
-    gauge_strain_per_N: float
     peak_location_mm: tuple[float, ...] = ()
+    grid_strain_per_N: float | None = None
+
+    def read_strain_per_N(self) -> float:
+        """:attr:`grid_strain_per_N`, which the gauge-strain figures and limits need.
+
+        Raises:
+            ValueError: not set (:func:`at_the_grid` sets it).
+        """
+        if self.grid_strain_per_N is None:
+            raise ValueError(f"ElementStress at {self.model}: grid_strain_per_N is not set "
+                             "(at_the_grid gives it)")
+        return self.grid_strain_per_N
 
 
 def closed_form_stress(g: ElementGeometry, material: Material, model: str = "closed-form"
@@ -305,7 +316,7 @@ def closed_form_stress(g: ElementGeometry, material: Material, model: str = "clo
         warnings.warn(f"{g.part_name}: t/R = {t_over_r:.3g} is outside the K_t fit range "
                       f"{KT_FIT_RANGE[0]:g} ... {KT_FIT_RANGE[1]:g}; estimated error "
                       f"{100 * err:.0f} %", StrengthRangeWarning, stacklevel=2)
-    return ElementStress(model, s, err, r.stiffness_N_per_mm, r.gauge_strain_per_N)
+    return ElementStress(model, s, err, r.stiffness_N_per_mm)
 
 
 # ---------------------------------------------------------------------------
@@ -422,7 +433,7 @@ def rated_force_warnings(force_N: float, yield_limited_N: float, stress_MPa: flo
         warn.append(f"gauge strain at the rated full-scale force {gauge_strain * 1e6:.0f} "
                     f"microstrain exceeds the gauge's fatigue strain "
                     f"{gauge.fatigue_strain * 1e6:.0f} microstrain ({gauge.fatigue_cycles:.0e} "
-                    f"cycles): cycle below {gauge.fatigue_strain / es.gauge_strain_per_N:.3g} N")
+                    f"cycles): cycle below {gauge.fatigue_strain / es.read_strain_per_N():.3g} N")
     return warn
 
 
@@ -435,7 +446,7 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     full_scale_force_N = the rating given (N, the design's, one for the array);
     yield_limited_force_N = yield / (stress_MPa_per_N x safety factor);
     yield_safety_factor_at_full_scale = yield / stress at the rated force;
-    gauge_strain_at_full_scale = gauge strain per N x rated force;
+    gauge_strain_at_full_scale = grid_strain_per_N x rated force (what the grid reads);
     tip_deflection_mm_at_full_scale = rated force / K;
     fatigue_force_N = fatigue strength at the notch / stress per N (None without one);
     fatigue_strength_at_notch_MPa, fatigue_surface_factor: :func:`notch_fatigue_strength`;
@@ -457,7 +468,7 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     f_fs = float(_positive("full_scale_force_N", full_scale_force_N))
     f_yield = float(yield_limited_force(y, es.stress_MPa_per_N, settings.safety_factor))
     s_fs = es.stress_MPa_per_N * f_fs
-    eps_fs = es.gauge_strain_per_N * f_fs
+    eps_fs = es.read_strain_per_N() * f_fs
     s_ref = None if reference_load is None else es.stress_MPa_per_N * reference_load.force_N
     nominal = float(nominal_stress_per_newton(g.web_thickness_mm, g.arm_length_mm,
                                               g.sheet_thickness_mm))
@@ -480,7 +491,7 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
         fatigue_force_N=None if notch is None else notch.strength_MPa / es.stress_MPa_per_N,
         fatigue_strength_at_notch_MPa=None if notch is None else notch.strength_MPa,
         fatigue_surface_factor=None if notch is None else notch.surface_factor,
-        gauge_fatigue_force_N=settings.gauge.fatigue_strain / es.gauge_strain_per_N,
+        gauge_fatigue_force_N=settings.gauge.fatigue_strain / es.read_strain_per_N(),
         stress_MPa_at_paper_load=s_ref,
         yield_safety_factor_at_paper_load=None if s_ref is None else y / s_ref,
         warnings=tuple(warn))
@@ -488,14 +499,14 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
 
 def at_the_grid(es: ElementStress, g: ElementGeometry, plan: Plan) -> ElementStress:
     """``es`` with the strain per newton the plan's gauge grid reads on ``g`` at
-    ``es.model`` (:func:`tactcad.mechanics.readout_chain.gauge_strain_per_N`'s
-    ``grid``: the face strain averaged over the grid, times the bonded layer's read
-    factor), in place of the face strain at one point: strength, the hard stops and the
-    read-out then quote one gauge strain. Unsigned (1/N)."""
-    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+    ``es.model`` (:func:`tactcad.mechanics.readout_chain.grid_strain_per_N`'s
+    ``grid``: the mean strain on the grid's plane over the grid) as its
+    ``grid_strain_per_N``: strength, the hard stops and the read-out then quote one
+    gauge strain. Unsigned (1/N)."""
+    from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
-    grid = gauge_strain_per_N(g, plan.material, readout_chain(plan), es.model)["grid"]
-    return replace(es, gauge_strain_per_N=abs(float(grid)))
+    grid = grid_strain_per_N(g, plan.material, readout_chain(plan), es.model)["grid"]
+    return replace(es, grid_strain_per_N=abs(float(grid)))
 
 
 #: Evaluates one element's peak stress at a model: (geometry, material, model) -> ElementStress.

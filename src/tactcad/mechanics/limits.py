@@ -84,7 +84,7 @@ def element_limits(number: int, g: ElementGeometry, plan: Plan, es, k_error_rel:
     strain-based ones add ``strain_model_error_rel`` (the gauge strain's own model
     error; ``None``: the same plane bound)."""
     mat, st = plan.material, plan.strength
-    s, eps, k = es.stress_MPa_per_N, es.gauge_strain_per_N, es.stiffness_N_per_mm
+    s, eps, k = es.stress_MPa_per_N, es.read_strain_per_N(), es.stiffness_N_per_mm
     stress_err = es.stress_error_rel + plane_error_rel
     strain_err = k_error_rel + (plane_error_rel if strain_model_error_rel is None
                                 else strain_model_error_rel)

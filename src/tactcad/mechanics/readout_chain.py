@@ -6,7 +6,7 @@ grid, length L_g along x, width W across:
 
     eps_avg / F = (1 / (L_g W)) * integral over the grid of eps_xx / F dA.
 
-Per level (:func:`gauge_strain_per_N`):
+Per level (:func:`grid_strain_per_N`):
 
 * ``fem3d``: fem3d's own eps_xx on the top face (the P2 field of the kept
   stiffness solve, :func:`tactcad.mechanics.fem.fields.face_rectangle_average`),
@@ -111,17 +111,18 @@ def grid_span_mm(g: ElementGeometry, grid_length_mm: float) -> tuple[float, floa
     return g.hinge_x_mm - grid_length_mm / 2, g.hinge_x_mm + grid_length_mm / 2
 
 
-def beam_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: float) -> float:
-    """Grid-averaged top-face strain per newton, beam theory (1/N, signed;
-    :func:`eb_grid_strain_per_N` on ``g``'s dimensions)."""
-    return float(eb_grid_strain_per_N(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,
-                                      grid_length_mm, g.sheet_thickness_mm,
-                                      material.youngs_modulus_MPa, g.base_height_mm,
-                                      g.arm_height_mm))
+def beam_face_mean_strain_per_N(g: ElementGeometry, material: Material,
+                                grid_length_mm: float) -> float:
+    """Top-face strain per newton averaged over the grid's span, beam theory (1/N, signed;
+    :func:`eb_face_mean_strain_per_N` on ``g``'s dimensions)."""
+    return float(eb_face_mean_strain_per_N(g.web_thickness_mm, g.notch_radius_mm,
+                                           g.arm_length_mm, grid_length_mm,
+                                           g.sheet_thickness_mm, material.youngs_modulus_MPa,
+                                           g.base_height_mm, g.arm_height_mm))
 
 
-def eb_grid_strain_per_N(web_mm, notch_radius_mm, arm_length_mm, grid_length_mm, sheet_mm,
-                         youngs_modulus_MPa, base_height_mm, arm_height_mm) -> np.ndarray:
+def eb_face_mean_strain_per_N(web_mm, notch_radius_mm, arm_length_mm, grid_length_mm,
+                              sheet_mm, youngs_modulus_MPa, base_height_mm, arm_height_mm) -> np.ndarray:
     """Euler-Bernoulli top-face strain per newton averaged over a grid centred over the
     notch, broadcast over arrays of element dimensions (mm, MPa; 1/N, negative:
     compression): eps / F = -6 (a - u) / (E b h(u)^2), u from the notch centre, h the
@@ -142,7 +143,7 @@ def closed_form_grid_read_per_N(web_mm, notch_radius_mm, arm_length_mm, g: Eleme
     """What the grid of ``chain`` reads per newton at the closed-form level on elements
     like ``g`` with the given webs, notch radii and arm lengths (mm; broadcast; 1/N,
     signed): the fem3d-fitted grid factor x the EB grid average x the bonded layer's read
-    factor, as :func:`gauge_strain_per_N` gives it for one element, without its error
+    factor, as :func:`grid_strain_per_N` gives it for one element, without its error
     estimate and range check (for design searches, whose candidates are not the design)."""
     from tactcad.design.readout_section import carrier_width_mm
     from tactcad.mechanics.gauge_strain import load_strain_correction, transformed_section
@@ -152,7 +153,7 @@ def closed_form_grid_read_per_N(web_mm, notch_radius_mm, arm_length_mm, g: Eleme
     corr = load_strain_correction()
     factor = corr.factor(t / R, np.sqrt(t * R) / b, material.poisson_ratio, L / (2.0 * R),
                          min(W, b) / b)
-    eb = eb_grid_strain_per_N(t, R, a, L, b, material.youngs_modulus_MPa, g.base_height_mm,
+    eb = eb_face_mean_strain_per_N(t, R, a, L, b, material.youngs_modulus_MPa, g.base_height_mm,
                               g.arm_height_mm)
     read = transformed_section(t, b, material.youngs_modulus_MPa, chain.grid_height_mm,
                                chain.gauge_backing_modulus_MPa, carrier_width_mm(W, b))[0]
@@ -183,7 +184,8 @@ def _surface_strain(g: ElementGeometry, material: Material) -> tuple[np.ndarray,
     return p[0, top][order], sxx[order] / material.youngs_modulus_MPa
 
 
-def field_grid_strain_per_N(x: np.ndarray, eps: np.ndarray, span: tuple[float, float]) -> float:
+def field_face_mean_strain_per_N(x: np.ndarray, eps: np.ndarray,
+                                 span: tuple[float, float]) -> float:
     """Average of a sampled strain profile over ``span`` (linear between samples)."""
     a, b = span
     inside = x[(x > a) & (x < b)]
@@ -193,8 +195,8 @@ def field_grid_strain_per_N(x: np.ndarray, eps: np.ndarray, span: tuple[float, f
         float(np.trapz(ys, xs) / (b - a))
 
 
-def fem3d_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: float,
-                            grid_width_mm: float) -> dict:
+def fem3d_face_mean_strain_per_N(g: ElementGeometry, material: Material,
+                                 grid_length_mm: float, grid_width_mm: float) -> dict:
     """fem3d's own top-face strain per newton averaged over the grid (centred over the notch
     and across the sheet; a grid wider than the sheet covers the sheet), from the
     stiffness level's kept solves (:func:`~tactcad.mechanics.fem.fem3d.fem3d_convergence`
@@ -219,13 +221,15 @@ def fem3d_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_
             "error_rel": richardson(vals, REFINEMENT_RATIO).error_rel}
 
 
-def surface_grid_strain_per_N(g: ElementGeometry, material: Material, grid_length_mm: float,
-                              grid_width_mm: float, model: str) -> dict:
-    """The top face's strain per newton averaged over the grid at ladder level ``model``
-    (module doc), without the gauge layer.
+def face_mean_strain_as_cut_per_N(g: ElementGeometry, material: Material,
+                                  grid_length_mm: float, grid_width_mm: float,
+                                  model: str) -> dict:
+    """The top face's strain per newton averaged over the grid's span at ladder level
+    ``model`` (module doc), on the element as cut (without the gauge's layer).
 
     Returns:
-        ``{"surface", "peak"}`` (1/N, signed), ``"error_rel"`` (estimated relative error of
+        ``{"surface"}``: that mean, ``{"peak"}``: the face as cut at the grid's centre
+        (notch centre, mid-width) (1/N, signed), ``"error_rel"`` (estimated relative error of
         "surface"), ``"outside_fit"`` (coordinates of the fitted factor outside its range,
         empty for fem3d), ``"source"`` (text).
 
@@ -239,14 +243,14 @@ def surface_grid_strain_per_N(g: ElementGeometry, material: Material, grid_lengt
     LADDER.estimator(model)  # an unknown level is refused here
     g = g.bare()  # the face as cut: the gauge's layer is the read factor's (or its own model's)
     if model == "fem3d":
-        return {**fem3d_grid_strain_per_N(g, material, grid_length_mm, grid_width_mm),
+        return {**fem3d_face_mean_strain_per_N(g, material, grid_length_mm, grid_width_mm),
                 "outside_fit": (),
                 "source": "fem3d's own top-face field averaged over the grid's area"}
     if is_meshed(model):
         x, eps = fem2d_surface_strain_per_N(g, material)
         grid, point = (width_strain_factor(g, material, grid_width_mm),
                        width_strain_factor(g, material, 0.0))
-        return {"surface": grid.factor * field_grid_strain_per_N(
+        return {"surface": grid.factor * field_face_mean_strain_per_N(
                     x, eps, grid_span_mm(g, grid_length_mm)),
                 "peak": point.factor * float(np.interp(g.hinge_x_mm, x, eps)),
                 "error_rel": grid.error_rel, "outside_fit": grid.outside,
@@ -254,16 +258,18 @@ def surface_grid_strain_per_N(g: ElementGeometry, material: Material, grid_lengt
                           "fem3d-fitted width factor"}
     grid = grid_strain_factor(g, material, grid_length_mm, grid_width_mm)
     point = point_strain_factor(g, material)
-    return {"surface": grid.factor * beam_grid_strain_per_N(g, material, grid_length_mm),
+    return {"surface": grid.factor * beam_face_mean_strain_per_N(g, material, grid_length_mm),
             "peak": point.factor * float(beam_surface_strain_per_N(g, material, g.hinge_x_mm)),
             "error_rel": grid.error_rel, "outside_fit": grid.outside,
             "source": "Euler-Bernoulli bending along the profile x the fem3d-fitted "
                       "width and profile factor"}
 
 
-def gauge_strain_per_N(g: ElementGeometry, material: Material, chain: ReadoutChain,
-                       model: str) -> dict:
-    """The strain per newton the gauge of ``chain`` reads on one element at ``model``.
+def grid_strain_per_N(g: ElementGeometry, material: Material, chain: ReadoutChain,
+                      model: str) -> dict:
+    """The strain per newton the gauge of ``chain`` reads on one element at ``model``: the
+    mean strain on the grid's plane over the grid (``"grid"``; the read-out's, strength's
+    and the budgets' ``grid_strain_per_N``), with the face figures as cut it comes from.
 
     Args:
         g: the element. material: its material.
@@ -272,8 +278,10 @@ def gauge_strain_per_N(g: ElementGeometry, material: Material, chain: ReadoutCha
 
     Returns:
         ``{"grid": what the grid reads (1/N, signed; the surface average times the bonded
-        layer's read factor), "surface": the top face's grid average, "peak": the face's
-        strain at the notch centre, mid-width, "error_rel": estimated relative error of
+        layer's read factor), "surface": the top face's mean over the grid's span as cut
+        (the read-out's ``face_mean_strain_as_cut_per_N``), "peak": the face's strain as
+        cut at the notch centre, mid-width (``face_strain_as_cut_per_N``), "error_rel":
+        estimated relative error of
         "surface", "outside_fit": flagged coordinates (module doc), "read_factor",
         "height_factor", "stiffening_rel" (:class:`~tactcad.mechanics.gauge_strain.BondedGrid`),
         "source": str}``.
@@ -284,8 +292,8 @@ def gauge_strain_per_N(g: ElementGeometry, material: Material, chain: ReadoutCha
     from tactcad.design.readout_section import carrier_width_mm
     from tactcad.mechanics.gauge_strain import bonded_grid_factor
 
-    face = surface_grid_strain_per_N(g, material, chain.grid_length_mm, chain.grid_width_mm,
-                                     model)
+    face = face_mean_strain_as_cut_per_N(g, material, chain.grid_length_mm,
+                                         chain.grid_width_mm, model)
     b = g.sheet_thickness_mm
     layer = bonded_grid_factor(g.web_thickness_mm, b, material.youngs_modulus_MPa,
                                chain.grid_height_mm, chain.gauge_backing_modulus_MPa,
@@ -453,10 +461,17 @@ class ReadoutReport:
                    "kobj_resolution_rel: worst over the required K_obj range at the full-scale "
                    "force, each element read to its own force resolution (eq. 1-3).",
                    "full_scale_signal_V does not include the bridge's offset V0.",
-                   "gauge_strain_per_N: what the grid reads, surface_strain_per_N (the top "
-                   "face's grid average at the model level, strain_error_rel its estimated "
-                   "error) x grid_read_factor (the grid a glue line + carrier above the "
-                   "face, with the layer's stiffening gauge_stiffening_rel of the web)."]
+                   "grid_strain_per_N: what the grid reads (the mean strain on the grid's "
+                   "plane over the grid), face_mean_strain_as_cut_per_N (the top face as cut, "
+                   "without the gauge's layer, averaged over the grid's span at the model "
+                   "level, strain_error_rel its estimated error) x grid_read_factor (the grid "
+                   "a glue line + carrier above the face, with the layer's stiffening "
+                   "gauge_stiffening_rel of the web).",
+                   "face_strain_as_cut_per_N: the top face as cut at the grid's centre (notch "
+                   "centre, mid-width); face_mean_over_centre_as_cut: "
+                   "face_mean_strain_as_cut_per_N / face_strain_as_cut_per_N. The face strain "
+                   "under the gauge's layer at the grid's centre is stiffness's "
+                   "face_strain_per_N."]
                + self.fit_range_notes()}
         if self.table1 is not None:
             out["table1"] = self.table1
@@ -499,7 +514,7 @@ def force_resolution_N(chain: ReadoutChain, grid_strain_per_N: float,
 def element_force_resolution_N(plan: Plan, model: str = "closed-form",
                                progress: Callable[[str], None] | None = None,
                                chain: ReadoutChain | None = None) -> dict[str, dict]:
-    """Per distinct part of ``plan``: its grid strain per newton (:func:`gauge_strain_per_N`,
+    """Per distinct part of ``plan``: its grid strain per newton (:func:`grid_strain_per_N`,
     ``"eps"``), sensitivity (V/N, ``"S"``) and force resolution (N, ``"dF"``: the noise of one
     averaged reading over |S|, 1 sigma) through the design's read-out chain at ``model``.
 
@@ -512,7 +527,7 @@ def element_force_resolution_N(plan: Plan, model: str = "closed-form",
     for name, g in plan.distinct_elements.items():
         if progress:
             progress(f"readout {model}: {name}")
-        eps = gauge_strain_per_N(g, plan.material, chain, model)
+        eps = grid_strain_per_N(g, plan.material, chain, model)
         s = chain.volts_per_strain * eps["grid"]
         out[name] = {"eps": eps, "S": s, "dF": force_resolution_N(chain, eps["grid"], noise)}
     return out
@@ -570,10 +585,10 @@ def _element_record(slot, d: dict, is_ref: bool, ref: int, kobj_res: float | Non
             "arm_length_mm": slot.geometry.arm_length_mm,
             "role": "reference" if is_ref else "measuring",
             "stiffness_N_per_mm": d["K"],
-            "gauge_strain_per_N": d["eps"]["grid"],
-            "surface_strain_per_N": d["eps"]["surface"],
-            "peak_strain_per_N": d["eps"]["peak"],
-            "grid_over_peak": d["eps"]["surface"] / d["eps"]["peak"],
+            "grid_strain_per_N": d["eps"]["grid"],
+            "face_mean_strain_as_cut_per_N": d["eps"]["surface"],
+            "face_strain_as_cut_per_N": d["eps"]["peak"],
+            "face_mean_over_centre_as_cut": d["eps"]["surface"] / d["eps"]["peak"],
             "strain_source": d["eps"]["source"],
             "strain_error_rel": d["eps"]["error_rel"],
             "strain_outside_fit": list(d["eps"]["outside_fit"]),

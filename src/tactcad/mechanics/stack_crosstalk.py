@@ -30,7 +30,7 @@ estimates); the grid reads the mean of that factor over its length (f_i).
 The free arm carries no load from a neighbour (statics of an unloaded
 cantilever). Twist gives shear, no eps_xx.
 The diagonal adds each gauge's own grid strain
-(:func:`tactcad.mechanics.readout_chain.gauge_strain_per_N`).
+(:func:`tactcad.mechanics.readout_chain.grid_strain_per_N`).
 
 Tip displacement. u_i = F_i / K_i (own stiffness, the stiffness ladder's
 closed form) + w(z_i) + d_i phi(z_i): the stack's deflection and twist
@@ -193,7 +193,7 @@ def stack_inputs(plan: Plan, **changes) -> StackInputs:
     """
     from tactcad.design.bom_section import clamp_grades
     from tactcad.mechanics.closed_form import estimate_closed_form
-    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+    from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
     from tactcad.vocabulary.material_library import material_grade
 
     grades = clamp_grades(plan.raw)
@@ -215,7 +215,7 @@ def stack_inputs(plan: Plan, **changes) -> StackInputs:
         tip_x = abs(s.placement.apply(g.tip_centre_x_mm, 0.0, 0.0)[0])
         levers.append(centre_x - tip_x)
         ks.append(estimate_closed_form(g, plan.material, element=s.number).stiffness_N_per_mm)
-        own.append(gauge_strain_per_N(g, plan.material, chain, "closed-form")["grid"])
+        own.append(grid_strain_per_N(g, plan.material, chain, "closed-form")["grid"])
         fracs.append((g.hinge_x_mm - grid / 2, g.hinge_x_mm + grid / 2))
     head = plan.bolt.head_diameter_mm
     spacing = plan.bolt_positions_xy_mm[1][0] - plan.bolt_positions_xy_mm[0][0]

@@ -13,7 +13,7 @@ class StiffnessResult:
         element: paper element number (None for a bare geometry).
         model: estimator name: closed-form, beam, fem2d or fem3d.
         stiffness_N_per_mm: K, tip force / tip deflection along +y (N/mm).
-        gauge_strain_per_N: the face strain at the gauge grid's centre: the flat top
+        face_strain_per_N: the face strain at the gauge grid's centre: the flat top
             face over the notch centre, at mid-width, under the bonded gauge's glue line
             and carrier when the element carries one (the bare face otherwise), per
             newton of tip force (1/N, magnitude; x 1e6 for microstrain/N). The same
@@ -34,7 +34,7 @@ class StiffnessResult:
     element: int | None
     model: str
     stiffness_N_per_mm: float
-    gauge_strain_per_N: float
+    face_strain_per_N: float
     error_estimate_rel: float
     wall_time_s: float
     grid_strain_per_N: float | None = None

@@ -87,7 +87,7 @@ import numpy as np
 from tactcad.design.array_plan import Plan
 from tactcad.design.readout_section import (TN502_POWER_DENSITY_W_PER_MM2, ReadoutChain)
 from tactcad.errors import DesignError
-from tactcad.mechanics.readout_chain import (force_resolution_N, gauge_strain_per_N,
+from tactcad.mechanics.readout_chain import (force_resolution_N, grid_strain_per_N,
                                              noise_budget_V, readout_chain)
 from tactcad.mechanics.verdicts import deciding_item, judged
 
@@ -322,7 +322,7 @@ def _part_figures(plan: Plan, chain: ReadoutChain, model: str,
             k, err = est.stiffness_N_per_mm, est.error_estimate_rel
         else:
             k, err = stiffness[name], None
-        eps = gauge_strain_per_N(g, plan.material, chain, model)["grid"]
+        eps = grid_strain_per_N(g, plan.material, chain, model)["grid"]
         out[name] = {"K": k, "err": err, "eps": eps}
     return out
 
@@ -542,7 +542,7 @@ def thermal_report(plan: Plan, requirements, model: str = "closed-form",
         span_N = F * abs(span)
         rec = {"element": slot.number, "part": slot.geometry.part_name,
                "role": "reference" if slot.number == ref.number else "measuring",
-               "gauge_strain_per_N": d["eps"], "error_estimate_rel": d["err"],
+               "grid_strain_per_N": d["eps"], "error_estimate_rel": d["err"],
                "apparent_force_N_per_K": app / d["eps"],
                "lead_wire_force_N_per_K": leads["zero_strain_per_K"] / d["eps"],
                "zero_drift_N_per_K": zero,

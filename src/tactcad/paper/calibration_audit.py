@@ -115,14 +115,14 @@ def _at_web(model: str, g, material, web_mm: float):
 def _grid_at_web(plan, model: str, g, web_mm: float) -> float:
     """What the design's grid reads per newton (1/N, signed: the gauge over the web is
     compressed) on ``g`` with the web ``web_mm``: the read-out's own strain
-    (:func:`tactcad.mechanics.readout_chain.gauge_strain_per_N`), so the gain fitted to it
+    (:func:`tactcad.mechanics.readout_chain.grid_strain_per_N`), so the gain fitted to it
     is the read-out chain's V per unit strain."""
-    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+    from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the webs searched leave the fitted ranges on purpose
-        return float(gauge_strain_per_N(replace(g, web_thickness_mm=float(web_mm)), plan.material,
-                                        readout_chain(plan), model)["grid"])
+        return float(grid_strain_per_N(replace(g, web_thickness_mm=float(web_mm)), plan.material,
+                                       readout_chain(plan), model)["grid"])
 
 
 def as_built_web(g, material, k_target: float, model: str = "closed-form") -> float | None:
@@ -188,7 +188,7 @@ def simulate_design_calibration(plan, model: str = "closed-form",
     Raises:
         CalibrationError: a gain of 0 or non-finite, or negative noise.
     """
-    from tactcad.mechanics.readout_chain import gauge_strain_per_N, readout_chain
+    from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
     if gauge_gain_V_per_strain is not None and not (
             np.isfinite(gauge_gain_V_per_strain) and gauge_gain_V_per_strain != 0):
@@ -205,7 +205,7 @@ def simulate_design_calibration(plan, model: str = "closed-form",
             cache[key] = _at_web(model, slot.geometry, plan.material, slot.geometry.web_thickness_mm)
         r = cache[key]
         # the grid's strain, as the read-out reports its volts per newton
-        eps = gauge_strain_per_N(slot.geometry, plan.material, chain, model)
+        eps = grid_strain_per_N(slot.geometry, plan.material, chain, model)
         k_v = gain * eps["grid"] * r.stiffness_N_per_mm
         steps = {}
         if full_scale_force_N is not None:  # Z travel (um) at which the element carries F
@@ -284,7 +284,7 @@ def audit(plan, calibrations: list[ElementCalibration], model: str = "closed-for
             "web_design_mm": g.web_thickness_mm, "web_tolerance_mm": g.web_tolerance_mm,
             "web_as_built_mm": web,
             "web_deviation_mm": None if web is None else web - g.web_thickness_mm,
-            "gauge_strain_per_N": eps,
+            "grid_strain_per_N": eps,
         })
         if web is None:
             flags.append(_flag([c.element], "as-built web", c.K_N_per_mm, 0.0,
@@ -317,11 +317,11 @@ def audit(plan, calibrations: list[ElementCalibration], model: str = "closed-for
 
 def _signal_gain(records, flags, tolerance, plan, model, slots) -> float | None:
     """Fit the common gain; per element the leave-one-out gain, S/(G ε) and the K its signal implies."""
-    usable = [r for r in records if r["gauge_strain_per_N"]]
+    usable = [r for r in records if r["grid_strain_per_N"]]
     if not usable:
         return None
     s = np.array([r["signal_per_N_V_per_N"] for r in usable])
-    eps = np.array([r["gauge_strain_per_N"] for r in usable])
+    eps = np.array([r["grid_strain_per_N"] for r in usable])
     gain = _gain_through_origin(s, eps)
     for i, r in enumerate(usable):
         others = np.arange(len(usable)) != i
@@ -363,8 +363,8 @@ def _twins(records, flags, tolerance, plan, model, slots) -> list[dict]:
                 allowed = k_hi.stiffness_N_per_mm / k_lo.stiffness_N_per_mm
                 ratio = b["K_N_per_mm"] / a["K_N_per_mm"]
                 s_ratio = b["signal_per_N_V_per_N"] / a["signal_per_N_V_per_N"]
-                e_ratio = (None if not (a["gauge_strain_per_N"] and b["gauge_strain_per_N"])
-                           else b["gauge_strain_per_N"] / a["gauge_strain_per_N"])
+                e_ratio = (None if not (a["grid_strain_per_N"] and b["grid_strain_per_N"])
+                           else b["grid_strain_per_N"] / a["grid_strain_per_N"])
                 pair = [a["element"], b["element"]]
                 out.append({"part": part, "elements": pair, "stiffness_ratio": ratio,
                             "allowed_stiffness_ratio": allowed,

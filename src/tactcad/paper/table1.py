@@ -20,7 +20,7 @@ from tactcad.design.array_plan import Plan
 from tactcad.mechanics.closed_form import web_for_stiffness
 from tactcad.mechanics.ladder import estimate
 from tactcad.mechanics.lumped_model import deflection_ratio
-from tactcad.mechanics.readout_chain import ReadoutChain, gauge_strain_per_N, rel_std
+from tactcad.mechanics.readout_chain import ReadoutChain, grid_strain_per_N, rel_std
 from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.element_strength import peak_stress_per_newton, require_yield
 from tactcad.paper.data import table1, table2
@@ -67,7 +67,7 @@ class Table1Prediction:
                 "predicted_N_per_mm": self.predicted.stiffness_N_per_mm,
                 "error_percent": self.error_percent,
                 "error_estimate_rel": self.predicted.error_estimate_rel,
-                "gauge_strain_per_N": self.predicted.gauge_strain_per_N,
+                "face_strain_per_N": self.predicted.face_strain_per_N,
                 "wall_time_s": self.predicted.wall_time_s,
                 "gauge_layer_k_rel": self.gauge_layer_k_rel,
                 "without_gauge_layer_N_per_mm": self.without_gauge_layer_N_per_mm,
@@ -96,7 +96,7 @@ def table1_comparison(plan: Plan, model: str = "closed-form", progress=None) -> 
         res = cache[key]
         rows.append(Table1Prediction(meas.element, slot.geometry.arm_length_mm, meas.stiffness_N_per_mm,
                               StiffnessResult(meas.element, res.model, res.stiffness_N_per_mm,
-                                              res.gauge_strain_per_N, res.error_estimate_rel,
+                                              res.face_strain_per_N, res.error_estimate_rel,
                                               res.wall_time_s), layer[key]))
     return rows
 
@@ -180,7 +180,7 @@ def gauge_strain_at_paper_load(plan: Plan, model: str = "closed-form",
     line and carrier) under the paper's 2 N tip load for each arm length (%), next to the
     paper's reported 0.2711-0.6316 % range (its ANSYS surface strain of the bare
     element): ``{"arm_length_mm", "face_strain_as_cut_percent"}``. The level's
-    ``gauge_strain_per_N`` on the bare geometry (:meth:`ElementGeometry.bare`); on the
+    ``face_strain_per_N`` on the bare geometry (:meth:`ElementGeometry.bare`); on the
     element as installed the face under the layer strains about 11 % less."""
     from dataclasses import replace
 
@@ -189,7 +189,7 @@ def gauge_strain_at_paper_load(plan: Plan, model: str = "closed-form",
     for a in arms_mm:
         r = estimate(model, replace(g0, arm_length_mm=a), plan.material)
         out.append({"arm_length_mm": a,
-                    "face_strain_as_cut_percent": 100 * PAPER_LOAD_N * r.gauge_strain_per_N})
+                    "face_strain_as_cut_percent": 100 * PAPER_LOAD_N * r.face_strain_per_N})
     return out
 
 
@@ -268,7 +268,7 @@ def readout_table1(records: list[dict], chain: ReadoutChain, plan: Plan,
                    reconciling_gain=chain.amplifier_gain * s_ratio)
         ratios.append(s_ratio)
         g = replace(g0, web_thickness_mm=web)
-        s_built = chain.volts_per_strain * gauge_strain_per_N(
+        s_built = chain.volts_per_strain * grid_strain_per_N(
             g, plan.material, chain, "closed-form")["grid"]
         rec["table1_as_built_web_mm"] = web
         rec["table1_sensitivity_ratio_as_built_web"] = row.K_v_over_K_V_per_N / s_built
@@ -276,7 +276,7 @@ def readout_table1(records: list[dict], chain: ReadoutChain, plan: Plan,
         e_built = s_built / chain.volts_per_strain  # S = K_v / K, as calibrate reads Table 1
         num_built += e_built * row.K_v_V_per_mm / row.stiffness_N_per_mm
         den_built += e_built * e_built
-        e = rec["gauge_strain_per_N"]
+        e = rec["grid_strain_per_N"]
         num += e * row.K_v_over_K_V_per_N
         den += e * e
     fitted = num / den if den else None

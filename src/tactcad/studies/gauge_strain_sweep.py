@@ -4,7 +4,7 @@ For each design of a scrambled Sobol set, fem3d (three meshes) gives its own
 eps_xx on the flat top face; per grid (length L_g, width W, centred over the
 notch at mid-width) its average (:func:`tactcad.mechanics.fem.fields.face_rectangle_average`,
 Richardson error over the three meshes) is set against the Euler-Bernoulli
-grid average of :func:`tactcad.mechanics.readout_chain.beam_grid_strain_per_N`,
+grid average of :func:`tactcad.mechanics.readout_chain.beam_face_mean_strain_per_N`,
 and fem3d's point strain at the notch centre against EB's. The model of
 :mod:`tactcad.mechanics.gauge_strain` is fitted to these ratios
 (scipy.optimize.least_squares, relative residuals) and written with its
@@ -95,7 +95,7 @@ def evaluate_point(design: Sequence[float], label: str) -> dict:
     from tactcad.mechanics.fem.fem2d import REFINEMENT_RATIO
     from tactcad.mechanics.fem.fem3d import fem3d_convergence
     from tactcad.mechanics.fem.fields import face_rectangle_average
-    from tactcad.mechanics.readout_chain import (beam_grid_strain_per_N,
+    from tactcad.mechanics.readout_chain import (beam_face_mean_strain_per_N,
                                                  beam_surface_strain_per_N, grid_span_mm)
     from tactcad.mechanics.richardson import richardson
     from tactcad.studies.correction_sweep import grid_geometry
@@ -118,7 +118,7 @@ def evaluate_point(design: Sequence[float], label: str) -> dict:
                     for f in conv.top_face_strains]
             rec["grids"].append({"L": L, "W": W, "fem3d": vals[-1],
                                  "err": richardson(vals, REFINEMENT_RATIO).error_rel,
-                                 "eb": beam_grid_strain_per_N(g, m, L)})
+                                 "eb": beam_face_mean_strain_per_N(g, m, L)})
     rec["wall_time_s"] = time.perf_counter() - t0
     return rec
 

@@ -44,8 +44,8 @@ def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d"
 
     Returns:
         :class:`ElementStress`: the extrapolated peak per N (the finest mesh's
-        value when the sequence is not monotone), its Richardson error, K and
-        gauge strain of the finest mesh.
+        value when the sequence is not monotone), its Richardson error, K and where
+        the peak is (its ``grid_strain_per_N``: :func:`~tactcad.mechanics.element_strength.at_the_grid`).
 
     Raises:
         ValueError: unknown model.
@@ -73,8 +73,7 @@ def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d"
     from tactcad.mechanics.ladder import estimate
 
     k = estimate(model, installed, material).stiffness_N_per_mm  # K in use, with the gauge
-    return ElementStress(model, rich.extrapolated, rich.error_rel, k,
-                         abs(fin.gauge_strain) / fin.force_N, peaks[-1].location_mm)
+    return ElementStress(model, rich.extrapolated, rich.error_rel, k, peaks[-1].location_mm)
 
 
 def _fem2d_peaks(g: ElementGeometry, material: Material, web_divisions: float, levels: int):

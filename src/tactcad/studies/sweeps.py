@@ -142,8 +142,8 @@ class GridPoint:
 
 @dataclass(frozen=True)
 class GridRow:
-    """Result of one grid point (mm, N/mm, 1/N, s). ``gauge_strain_per_N``: the level's
-    :attr:`~tactcad.mechanics.stiffness_result.StiffnessResult.gauge_strain_per_N`, the face
+    """Result of one grid point (mm, N/mm, 1/N, s). ``face_strain_per_N``: the level's
+    :attr:`~tactcad.mechanics.stiffness_result.StiffnessResult.face_strain_per_N`, the face
     strain at the grid's centre under the gauge's glue line and carrier (1/N)."""
 
     model: str
@@ -151,7 +151,7 @@ class GridRow:
     arm_mm: float
     notch_radius_mm: float
     K_N_per_mm: float
-    gauge_strain_per_N: float
+    face_strain_per_N: float
     error_estimate_rel: float
     wall_time_s: float
 
@@ -165,7 +165,7 @@ def evaluate_point(p: GridPoint) -> GridRow:
     with range_warnings_unsaid():  # the grid reports its own range
         r = estimate(p.model, g, p.material)
     return GridRow(p.model, g.web_thickness_mm, g.arm_length_mm, g.notch_radius_mm,
-                   r.stiffness_N_per_mm, r.gauge_strain_per_N, r.error_estimate_rel,
+                   r.stiffness_N_per_mm, r.face_strain_per_N, r.error_estimate_rel,
                    r.wall_time_s)
 
 

@@ -799,7 +799,7 @@ def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | Non
     return StiffnessResult(
         element=element, model="fem2d" if plane == "stress" else "fem2d-plane-strain",
         stiffness_N_per_mm=fin.stiffness_N_per_mm,
-        gauge_strain_per_N=abs(fin.gauge_strain) / force_N,
+        face_strain_per_N=abs(fin.gauge_strain) / force_N,
         error_estimate_rel=conv.stiffness.error_rel + plane_model_error(g, material, plane),
         wall_time_s=conv.wall_time_s,
         grid_strain_per_N=None if g.gauge is None else abs(fin.grid_strain) / force_N)

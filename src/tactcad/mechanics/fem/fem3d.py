@@ -284,6 +284,6 @@ def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | Non
     fin = conv.finest
     return StiffnessResult(
         element=element, model="fem3d", stiffness_N_per_mm=fin.stiffness_N_per_mm,
-        gauge_strain_per_N=abs(fin.gauge_strain) / force_N,
+        face_strain_per_N=abs(fin.gauge_strain) / force_N,
         error_estimate_rel=conv.stiffness.error_rel, wall_time_s=conv.wall_time_s,
         grid_strain_per_N=None if g.gauge is None else abs(fin.grid_strain) / force_N)

@@ -1,0 +1,100 @@
+"""One name, one quantity: a strain, stiffness or stress name in the commands' ``--json``
+means the same figure in every command that prints it at the same level
+(docs/reference/glossary.md): ``stiffness``'s, ``readout``'s and ``strength``'s, at the
+closed form, on the macro array and the Ti array. ``gauge_strain_per_N``, which meant the
+face strain in one command and the grid strain in another, is printed by none."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from conftest import run_cli
+
+ROOT = Path(__file__).resolve().parents[2]
+MACRO = ROOT / "hardware" / "macro_array" / "macro_array.toml"
+TI = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+#: The old name of two quantities (face strain in ``stiffness``, grid strain in ``readout``).
+OLD_NAME = "gauge_strain_per_N"
+
+
+def _json(*argv) -> dict:
+    out = run_cli(*argv, "--json")
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout)
+
+
+def _keys(data) -> set[str]:
+    """Every key of a JSON document, at any depth."""
+    if isinstance(data, dict):
+        return set(data) | set().union(*(_keys(v) for v in data.values()))
+    if isinstance(data, list):
+        return set().union(*(_keys(v) for v in data))
+    return set()
+
+
+@pytest.fixture(scope="module", params=[MACRO, TI], ids=["macro", "ti"])
+def printed(request) -> dict:
+    design = request.param
+    readout = _json("readout", "--design", design)
+    strength = _json("strength", "--design", design)
+    stiffness = {r["element"]: _json("stiffness", "--design", design, "--element",
+                                     r["element"])
+                 for r in readout["elements"]}
+    return {"design": design, "readout": readout, "strength": strength,
+            "stiffness": stiffness}
+
+
+def test_no_command_prints_the_old_name(printed):
+    docs = [printed["readout"], printed["strength"], *printed["stiffness"].values()]
+    for doc in docs:
+        assert OLD_NAME not in _keys(doc)
+    assert all("face_strain_per_N" in s for s in printed["stiffness"].values())
+    assert all("grid_strain_per_N" in r for r in printed["readout"]["elements"])
+
+
+def test_the_grid_strain_is_one_figure_in_stiffness_readout_and_strength(printed):
+    readout = {r["element"]: r for r in printed["readout"]["elements"]}
+    for rec in printed["strength"]["elements"]:
+        n = rec["element"]
+        grid = abs(readout[n]["grid_strain_per_N"])
+        assert printed["stiffness"][n]["grid_strain_per_N"] == pytest.approx(grid, rel=1e-12)
+        # strength prints it at the rating: grid_strain_per_N x the full-scale force
+        assert rec["gauge_strain_at_full_scale"] / rec["full_scale_force_N"] == \
+            pytest.approx(grid, rel=1e-12)
+
+
+def test_the_stiffness_is_one_figure_in_stiffness_readout_and_strength(printed):
+    readout = {r["element"]: r for r in printed["readout"]["elements"]}
+    assert printed["readout"]["model"] == "closed-form"
+    for rec in printed["strength"]["elements"]:
+        n = rec["element"]
+        assert rec["model"] == "closed-form"
+        k = printed["stiffness"][n]["stiffness_N_per_mm"]
+        assert printed["stiffness"][n]["model"] == "closed-form"
+        assert readout[n]["stiffness_N_per_mm"] == pytest.approx(k, rel=1e-12)
+        assert rec["stiffness_N_per_mm"] == pytest.approx(k, rel=1e-12)
+
+
+def test_the_face_strains_say_where_and_whether_as_cut(printed):
+    """stiffness's face_strain_per_N is the face under the gauge's layer; readout's
+    face_strain_as_cut_per_N the same point on the element as cut (the closed form's
+    stiffness result of the bare element); neither is what the grid reads."""
+    from tactcad.design.array_plan import load_design
+    from tactcad.mechanics.ladder import estimate
+
+    plan = load_design(printed["design"])
+    for r in printed["readout"]["elements"]:
+        n = r["element"]
+        g = plan.element(n).geometry
+        bare = estimate("closed-form", g.bare(), plan.material).face_strain_per_N
+        assert abs(r["face_strain_as_cut_per_N"]) == pytest.approx(bare, rel=1e-12)
+        face = printed["stiffness"][n]["face_strain_per_N"]
+        assert face == pytest.approx(
+            estimate("closed-form", g, plan.material).face_strain_per_N, rel=1e-12)
+        # the layer relieves the face under it; the grid, above the face, reads more
+        assert face < 0.95 * bare
+        assert abs(r["grid_strain_per_N"]) > 1.05 * face
+        assert r["face_mean_over_centre_as_cut"] == pytest.approx(
+            r["face_mean_strain_as_cut_per_N"] / r["face_strain_as_cut_per_N"], rel=1e-12)
