@@ -15,10 +15,10 @@ from tactcad.errors import DesignError, TactcadError
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("stiffness", help="tip stiffness K (N/mm) of one element at a ladder level",
-                       description="Tip stiffness, gauge strain per newton, error estimate and wall "
-                                   "time of one sensing element (a silicon die: each row's "
-                                   "beam on its frame, closed-form or fem3d). Units: N/mm, "
-                                   "1/N, s.")
+                       description="Tip stiffness, face strain at the grid's centre and grid "
+                                   "strain per newton, error estimate and wall time of one "
+                                   "sensing element (a silicon die: each row's beam on its "
+                                   "frame, closed-form or fem3d). Units: N/mm, 1/N, s.")
     p.add_argument("--element", type=count(1, 10_000, "an element number"), default=None,
                    help="element number of an array's design (1 ... rows x columns, numbered "
                         "along row 1, then row 2; required for an array; a silicon die gives "

@@ -327,7 +327,7 @@ def estimate_beam(g: ElementGeometry, material: Material, *, element: int | None
 
     Returns:
         :class:`StiffnessResult` with model ``beam``: K of the finest mesh, the
-        gauge strain per newton (1/N: the face strain at the grid's centre under the
+        ``face_strain_per_N`` (1/N: the face strain at the grid's centre under the
         gauge's layer, the bare section's times
         :func:`~tactcad.mechanics.closed_form.face_strain_factor`, as the closed form's),
         and an error estimate that adds the Richardson

@@ -450,7 +450,7 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
     tip_deflection_mm_at_full_scale = rated force / K;
     fatigue_force_N = fatigue strength at the notch / stress per N (None without one);
     fatigue_strength_at_notch_MPa, fatigue_surface_factor: :func:`notch_fatigue_strength`;
-    gauge_fatigue_force_N = gauge fatigue strain / gauge strain per N;
+    gauge_fatigue_force_N = gauge fatigue strain / grid_strain_per_N;
     warnings: :func:`rated_force_warnings`; stress and yield safety factor
     at ``reference_load``, and a warning when it yields the web, only when
     one is given (None otherwise; the paper's design load for the paper's

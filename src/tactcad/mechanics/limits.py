@@ -1,12 +1,12 @@
 """Every limit on an element's tip force, at one ladder level, with the one that binds.
 
-For one element geometry (its peak hinge stress per N, gauge strain per N
-and K at a ladder level, :class:`tactcad.mechanics.element_strength.ElementStress`):
+For one element geometry (its peak hinge stress per N, grid strain per N
+(what the gauge's grid reads, ``grid_strain_per_N``) and K at a ladder level, :class:`tactcad.mechanics.element_strength.ElementStress`):
 
 * ``yield``: yield strength / (peak stress per N x safety factor);
 * ``fatigue``: fatigue strength / peak stress per N (absent without one);
-* ``gauge_fatigue``: the gauge's fatigue strain / gauge strain per N;
-* ``gauge_max``: the gauge's maximum strain / gauge strain per N;
+* ``gauge_fatigue``: the gauge's fatigue strain / grid strain per N;
+* ``gauge_max``: the gauge's maximum strain / grid strain per N;
 * ``travel``: K x the tip travel that closes the notch. Pressed on its
   contact face the arm turns about the web and its underside swings toward
   the base's front face across the notch, a gap 2R wide, at a depth

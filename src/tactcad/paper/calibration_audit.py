@@ -1,8 +1,8 @@
 """Calibration rig for a design, and the audit of measured calibrations against the design.
 
-Simulation: each element of a plan gets K and the gauge strain per newton ε
-from the stiffness ladder; its signal per deflection is K_v = G ε K with a
-gauge gain G (V per unit strain, bridge and amplifier together); the paper's
+Simulation: each element of a plan gets K from the stiffness ladder and the grid
+strain per newton ε (what its gauge reads, ``grid_strain_per_N``); its signal per
+deflection is K_v = G ε K with a gauge gain G (V per unit strain, bridge and amplifier together); the paper's
 rig (:func:`.calibration.synthetic_calibration`) then gives readings with
 noise, the data of the paper's Fig. 4.
 

@@ -784,8 +784,8 @@ def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | Non
 
     Returns:
         :class:`StiffnessResult` with model "fem2d" (plane stress) or
-        "fem2d-plane-strain": K of the finest mesh (N/mm), magnitude of the
-        gauge strain per N (1/N; compressive), error estimate of K: the
+        "fem2d-plane-strain": K of the finest mesh (N/mm), ``face_strain_per_N``:
+        magnitude of the face strain at the grid's centre per N (1/N; compressive), error estimate of K: the
         Richardson discretisation error plus the plane model's error against
         3D (:func:`plane_model_error`), total wall time (s).
 

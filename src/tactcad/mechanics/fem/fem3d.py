@@ -268,7 +268,8 @@ def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | Non
 
     Returns:
         :class:`StiffnessResult` with model "fem3d": K of the finest mesh
-        (N/mm), magnitude of the gauge strain per N (1/N; the top face over
+        (N/mm), ``face_strain_per_N``: magnitude of the face strain at the grid's
+        centre per N (1/N; the top face over
         the web is compressed by an upward tip force; the signed value is
         ``FemSolution.gauge_strain``), Richardson error estimate of K, total
         wall time (s).
