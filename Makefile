@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed-stamp
 DESIGN ?= hardware/macro_array/macro_array.toml
 OUT    ?= exports
 
-.PHONY: help env lower-bounds typecheck vendor-three system-deps export docs docs-images check ci-example test test-fast bench-tests bench fuzz clean
+.PHONY: help env lower-bounds typecheck vendor-three system-deps export docs docs-images check ci-example test test-deep test-fast bench-tests bench fuzz clean
 
 help: ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-12s %s\n", $$1, $$2}'
@@ -68,6 +68,9 @@ system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd
 
 test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included; one process per core, TEST_JOBS=0 for one)
 	$(ONE_THREAD) $(BIN)/python -m pytest -q -n $(TEST_JOBS) $(XDIST)
+
+test-deep: $(STAMP) system-deps ## make test with every random design the property tests were written with (30 exported, 30 designed; nightly or before a release)
+	TACTCAD_TEST_DEPTH=deep $(ONE_THREAD) $(BIN)/python -m pytest -q -n $(TEST_JOBS) $(XDIST)
 
 test-fast: $(STAMP) ## the inner loop: every test not marked slow (no full export, no FreeCAD, no fem3d)
 	$(ONE_THREAD) $(BIN)/python -m pytest -q -n $(FAST_JOBS) $(XDIST) -m "not slow"

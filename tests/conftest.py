@@ -22,6 +22,14 @@ def _test_key(nodeid: str) -> str:
     return path.removeprefix("tests/") + "::" + name.split("[")[0].split("@")[0]
 
 
+def pytest_configure(config):
+    """Refuse a ``TACTCAD_TEST_DEPTH`` that is neither depth (:mod:`depth`)."""
+    from depth import DEPTH, DEPTHS
+
+    if DEPTH not in DEPTHS:
+        raise pytest.UsageError(f"TACTCAD_TEST_DEPTH = {DEPTH!r}: allowed {' or '.join(DEPTHS)}")
+
+
 @pytest.hookimpl(tryfirst=True)  # before pytest-xdist's own hook reads the group marks
 def pytest_collection_modifyitems(config, items):
     """Mark every test that uses a costly fixture as slow, so that

@@ -11,6 +11,8 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
+from depth import draws
+
 from tactcad.catalogue.array_catalogue import array_parts
 from tactcad.checks.dxf_readback import check_profile_dxf
 from tactcad.checks.solids import check_solid
@@ -131,9 +133,9 @@ def _project(data):
 
 
 #: Whole designs built per run of the suite: the suite's share of the domain's
-#: draws; ``make fuzz`` (scripts/fuzz.py) builds 1000 with the same draw and also
+#: draws (10 in ``make test``, 30 in ``make test-deep``); ``make fuzz`` (scripts/fuzz.py) builds 1000 with the same draw and also
 #: checks each scene's interference.
-WHOLE_DESIGNS = 30
+WHOLE_DESIGNS = draws(10, 30)
 
 
 @pytest.mark.slow

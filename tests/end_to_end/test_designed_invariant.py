@@ -18,11 +18,13 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, seed, settings
 from hypothesis import strategies as st
 
+from depth import draws
 from tactcad import cli
 
 MATERIALS = ("7075-T6", "6061-T6", "Ti-6Al-4V-annealed", "17-4PH-H900", "CuBe-C17200-TF00")
-#: Draws per slow test; the slow set runs three such tests (N = 30 in all).
-DRAWS = 10
+#: Draws per slow test; the slow set runs three such tests (6 in all in ``make test``, 30 in
+#: ``make test-deep``).
+DRAWS = draws(2, 10)
 
 
 @st.composite

@@ -12,10 +12,12 @@ import pytest
 import tomli_w
 
 from tactcad import cli
+from depth import draws
 from tactcad.design.domain import draw_design
 
-#: How many random designs the slow set exports and checks (seeds from 2000).
-DESIGNS = 30
+#: How many random designs the slow set exports and checks (seeds from 2000): a share in
+#: ``make test``, 30 in ``make test-deep``.
+DESIGNS = draws(6, 30)
 
 
 def export_and_check(seed: int, folder, capsys) -> tuple[int, int, str]:
