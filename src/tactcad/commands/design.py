@@ -387,7 +387,7 @@ def _other_classes_holding(c, args: argparse.Namespace, base, targets) -> list[d
 
     for k in jaw_classes():
         if k != args.jaw and not c.jaw_screen()(jaw_room(k), args.columns or 6, base, targets,
-                                                args.material):
+                                                args.material, args.process):
             return [{"words": "", "option": f"--jaw {k}"}]
     return []
 
@@ -698,8 +698,8 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     for c in chosen:
         base = read_toml(EXAMPLES / c.jaw_template, "design file")
         screen = c.jaw_screen() if args.construction == "auto" else None
-        missed = screen(room, args.columns or 6, base, targets, args.material) if screen \
-            else []
+        missed = screen(room, args.columns or 6, base, targets, args.material,
+                        args.process) if screen else []
         if missed:
             misfits.append((c.name, missed + _other_classes_holding(c, args, base, targets)))
             continue
@@ -744,15 +744,18 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
                               *(a for _, e in refusals for a in e.alternatives),
                               *misfit_alternatives(misfits)]) from None
     if result is None and misfits:  # nothing fits the jaw: each product's binding size
+        pasted = [*misfit_alternatives(misfits),
+                  *(a for _, e in refusals for a in e.alternatives)]
         untried = ([f"silicon die: not tried ({', '.join(die_ignored(args))}: a metal's "
                     "options)"] if args.construction == "auto" and die_ignored(args) else [])
         raise DesignError(
             "--jaw", args.jaw, "a jaw that holds " + " or ".join(
                 ["a " + n for n, _ in misfits] + [n for n, _ in refusals]),
             "\n  ".join([""] + [one_refusal_line(n, misfit_words(m)) for n, m in misfits]
-                        + [one_refusal_line(n, e) for n, e in refusals] + untried),
-            alternatives=[*misfit_alternatives(misfits),
-                          *(a for _, e in refusals for a in e.alternatives)])
+                        + [one_refusal_line(n, e) for n, e in refusals] + untried
+                        + ([] if pasted else ["none to paste: no option or jaw file key "
+                                              "makes one of them fit this jaw"])),
+            alternatives=pasted)
     if result is None:
         if len(refusals) == 1:
             raise refusals[0][1]

@@ -52,9 +52,10 @@ class Construction:
         jaw_template: the shipped example (relative to the examples folder) whose fixed
             details its jaw designs take.
         jaw_fit: ``"module:function"`` of its screen against a jaw before the search
-            (``(room, columns, base_tables, targets, grade) -> list of misfits``, each a dict
-            with ``words``, the dimension that binds against the jaw's key, and ``option``
-            to paste or ""; empty when its smallest build fits the room); empty: no screen.
+            (``(room, columns, base_tables, targets, grade, process) -> list of
+            misfits``, each a dict with ``words``, the dimension that binds against the
+            jaw's key, and ``option`` to paste or ""; empty when its smallest build fits
+            the room); empty: no screen.
 
     The module also places its parts: ``placed_parts(plan)`` gives every placed
     part but the strain gauges as (instance name, part name, placement),

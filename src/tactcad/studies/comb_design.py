@@ -571,7 +571,7 @@ def least_pitch_mm(base: dict, sheet: float, columns: int, room: Any, targets: T
 
 
 def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targets,
-                grade: str | None = None) -> list[dict]:
+                grade: str | None = None, process: str | None = None) -> list[dict]:
     """The dimensions in which the smallest comb of ``columns`` (of every sheet, at its
     least pitch) cannot fit the jaw's ``room``, before any search: its height against the
     jaw's thickness and the tips' proud height, its width across the rows against the
@@ -586,9 +586,12 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
         base: the comb template's tables.
         targets: the targets (the comb's tables carry them; its size does not depend on them).
         grade: the material grade, or None for the base's.
+        process: the rows' cut process (None: the base's): its sheets are the ones held.
     """
     tables: dict = copy.deepcopy(dict(base))
     tables["requirements"] = {}
+    if process is not None:
+        tables["element"]["process"] = process
     roomy = replace(room, across_mm=1e3, along_mm=1e3, height_mm=1e3, outline=None, table=None)
     smallest = None
     for sheet in sheets_of(tables):
