@@ -561,6 +561,15 @@ def with_kobj_accuracy(result, accuracy_rel: float, refuse: bool = False):
     :func:`tactcad.studies.verification.kobj_accuracy_record`); with ``refuse``, judged
     here at the closed form.
 
+    Args:
+        result: the searched design (its ``data`` and ``plan``).
+        accuracy_rel: ``--kobj-accuracy`` (relative).
+        refuse: judge it now and refuse a miss (a design to a jaw), else leave it to the
+            design's verification.
+
+    Returns:
+        The design with the requirement stated and its plan made anew.
+
     Raises:
         DesignError: with ``refuse``, an accuracy the design does not reach, naming
             ``--kobj-accuracy`` and the accuracy it reaches to paste.

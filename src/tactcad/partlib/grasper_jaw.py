@@ -85,8 +85,9 @@ class GrasperJawSection(Section):
     opposing_jaw_mm: Optional[number(
         0.5, 10.0, why="the other jaw's height, closed on this one (both pass the shaft); "
         "left out: the class's")] = None
-    pin_diameter_mm: Optional[number(0.5, 4.0, why="the pivot pin; left out: the "
-                                     "class's")] = None
+    pin_diameter_mm: Optional[number(0.5, 4.0, why="the pivot pin: any the jaw's body "
+                                     "holds with a tenth of its thickness (at least 0.2 mm) "
+                                     "of steel round the hole; left out: the class's")] = None
     pin_inset_mm: number(-40.0, 40.0, why="the pivot: the pin's axis from the jaw's heel "
                          "along the jaw; negative where the pivot lies behind the heel (the "
                          "grasper's clevis carries the jaw, no pin hole in it)") = 2.5
@@ -191,16 +192,28 @@ def _check_stated_once(p: Problems, j: GrasperJawSection) -> None:
 
 
 def pin_wall_mm(thickness_mm: float) -> float:
-    """The least steel round the pivot pin's hole in a jaw ``thickness_mm`` thick (mm):
-    :data:`PIN_WALL_REL` of the thickness, at least :data:`PIN_WALL_MIN_MM`."""
+    """The least steel round the pivot pin's hole in a jaw.
+
+    Args:
+        thickness_mm: the jaw's thickness, back to grasping face (mm).
+
+    Returns:
+        :data:`PIN_WALL_REL` of the thickness, at least :data:`PIN_WALL_MIN_MM` (mm).
+    """
     return max(PIN_WALL_MIN_MM, PIN_WALL_REL * thickness_mm)
 
 
 def pin_limits_mm(j: GrasperJawSection) -> tuple[float, float]:
-    """(the largest pin diameter, the least inset of that pin's axis from the heel) the jaw's
-    body allows for a pin through it (mm): the hole with :func:`pin_wall_mm` of steel above
-    and below it within ``thickness_mm``, and behind it within the heel; ``j`` with its class
-    defaults (:func:`with_class_defaults`)."""
+    """The pins the jaw's own body allows through it.
+
+    Args:
+        j: the ``[grasper_jaw]`` table with its class defaults (:func:`with_class_defaults`).
+
+    Returns:
+        (the largest pin diameter, the least inset of the stated pin's axis from the heel),
+        mm: the hole with :func:`pin_wall_mm` of steel above and below it within
+        ``thickness_mm``, and behind it within the heel.
+    """
     wall = pin_wall_mm(j.thickness_mm)
     return j.thickness_mm - 2 * wall, j.pin_diameter_mm / 2 + wall
 

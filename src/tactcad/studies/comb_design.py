@@ -560,9 +560,17 @@ def comb_envelope_mm(base: dict, sheet: float, columns: int, room: Any, targets:
 
 def least_pitch_mm(base: dict, sheet: float, columns: int, room: Any, targets: Targets,
                    grade: str | None) -> float:
-    """The least pitch (mm, to 0.1 mm) at which one sheet's comb has a measuring arm longer
-    than the reference's by 0.5 mm (:func:`comb_tables`' rule: reference arm 2 mm, the
-    measuring arm the pitch less the slot, post, notch and half the tip)."""
+    """The least pitch at which one sheet's comb has a measuring arm 0.5 mm longer than the
+    reference's (:func:`comb_tables`' rule: reference arm 2 mm, the measuring arm the pitch
+    less the slot, post, notch and half the tip).
+
+    Args:
+        base: the comb template's tables. sheet: the sheet (mm). columns: the columns.
+        room: the jaw's room (mm). targets: the targets. grade: the grade, or None.
+
+    Returns:
+        The pitch (mm, rounded up to 0.1 mm).
+    """
     d, _ = comb_tables(base, sheet, columns, room, targets, grade)
     e, comb = d["element"], d["comb"]
     need = 2.0 + 0.5 + slot_of(d) + comb["post_length_mm"] + e["notch_radius_mm"] \
@@ -587,6 +595,10 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
         targets: the targets (the comb's tables carry them; its size does not depend on them).
         grade: the material grade, or None for the base's.
         process: the rows' cut process (None: the base's): its sheets are the ones held.
+
+    Returns:
+        The misfits (see above); ``[]`` when some sheet's smallest comb fits, or when no
+        sheet's comb has a plan (the search then says why).
     """
     tables: dict = copy.deepcopy(dict(base))
     tables["requirements"] = {}
@@ -645,7 +657,14 @@ def _misses(env: tuple[float, float, float], along: float, room: Any) -> list[st
 
 
 def room_keys(room: Any) -> dict[str, str]:
-    """The jaw file's keys behind a room's height, width and length, in words (mm)."""
+    """The jaw file's keys behind a room's height, width and length, in words.
+
+    Args:
+        room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
+
+    Returns:
+        ``{"height", "across", "along"}`` -> the keys (and clearances, mm) behind each.
+    """
     t = dict(room.table or {})
     c = room.clearance_mm
     height = "thickness_mm + tip_proud_mm"

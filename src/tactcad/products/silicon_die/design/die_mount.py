@@ -184,8 +184,12 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
 
 
 def least_pocket_depth_mm() -> float:
-    """The shallowest pocket any die takes (mm): the thinnest stock device layer on the
-    default buried oxide and handle, the default die attach and the stock carrier."""
+    """The shallowest pocket any die takes.
+
+    Returns:
+        The thinnest stock device layer on the default buried oxide and handle, the default
+        die attach and the stock carrier (mm).
+    """
     from tactcad.products.silicon_die.vocabulary.soi_process import (DEFAULT_BOX_UM,
                                                                      DEFAULT_HANDLE_UM,
                                                                      DEVICE_LAYER_CHOICES_UM)

@@ -106,9 +106,16 @@ def _grasp_row(plan, mount) -> dict:
 
 
 def worst_budget_rel(plan) -> float:
-    """The die's K_obj budget's worst root sum square over its range (relative, 1 sigma;
-    :func:`tactcad.products.silicon_die.in_use.die_budget.die_budget`: each term before any
-    calibration, so an upper bound; inf where a K_obj is unreadable)."""
+    """The die's K_obj budget's worst root sum square over its range.
+
+    Args:
+        plan: the die (:class:`~tactcad.products.silicon_die.design.mems_die.DiePlan`).
+
+    Returns:
+        The worst relative error, 1 sigma
+        (:func:`tactcad.products.silicon_die.in_use.die_budget.die_budget`: each term before
+        any calibration, so an upper bound; inf where a K_obj is unreadable).
+    """
     from tactcad.products.silicon_die.in_use.die_budget import die_budget
 
     return float(max(die_budget(plan).total_rel))
@@ -116,8 +123,15 @@ def worst_budget_rel(plan) -> float:
 
 def accuracy_row(plan, worst: float | None = None) -> dict:
     """``kobj_accuracy_rel``: the die's K_obj budget's worst root sum square over the range
-    (:func:`worst_budget_rel`, or ``worst`` when already computed) against the stated
-    accuracy; fails where it is larger."""
+    against the stated accuracy; fails where it is larger.
+
+    Args:
+        plan: the die, its ``kobj_accuracy_rel`` stated (relative).
+        worst: :func:`worst_budget_rel` of the plan when already computed.
+
+    Returns:
+        The verification record (requirement, target, predicted, margin_rel, verdict, ...).
+    """
     worst = worst_budget_rel(plan) if worst is None else worst
     target = plan.kobj_accuracy_rel
     readable = math.isfinite(worst) and worst > 0
