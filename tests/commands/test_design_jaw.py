@@ -183,12 +183,20 @@ def test_the_written_jaw_design_exports_and_passes_check(tmp_path):
     assert (x / "scenes" / "grasper-closed.step").exists()
 
 
-def test_a_jaw_too_small_for_any_comb_names_the_pocket_needed_and_the_jaw_that_holds_it(tmp_path):
+def test_a_jaw_too_small_for_any_comb_names_the_sizes_that_bind_and_the_jaw_that_holds_it(
+        tmp_path):
+    """Screened before any search: the smallest comb's height and width against the 5 mm
+    jaw's, each naming the jaw's keys, and the class whose jaw holds it to paste."""
     r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "5", "--out",
                 str(tmp_path / "x.toml"))
     assert r.returncode == 2 and "Traceback" not in r.stderr
-    line = next(x for x in r.stderr.splitlines() if "nearest jaw:" in x)
-    assert "0.5 mm sheet's comb" in line and line.endswith("--jaw 10"), line
+    line = next(x for x in r.stderr.splitlines() if "monolithic-comb: does not fit" in x)
+    assert line.strip().startswith("monolithic-comb: does not fit: height 5.79 mm (the 0.5 mm "
+                                   "sheet's comb"), line
+    assert "vs the jaw's 2.6 mm (thickness_mm + tip_proud_mm)" in line
+    assert "width 4.2 mm" in line and "vs the pocket's 2.1 mm" in line
+    assert "silicon die: not tried (--material" in r.stderr  # the die takes no metal
+    assert r.stderr.splitlines()[-1].strip().startswith("to paste: --jaw 10")
     assert not list(tmp_path.iterdir())
 
 
@@ -214,8 +222,9 @@ def test_more_columns_than_the_jaw_holds_names_the_most_that_fit(tmp_path):
     r = run_cli(*GRASPER_CASE[:-1], "7", "--full-scale-force", "0.05", "--jaw", "10", "--out",
                 str(tmp_path / "x.toml"))
     assert r.returncode == 2 and "Traceback" not in r.stderr
-    assert "leaves a measuring arm" in r.stderr
-    assert r.stderr.rstrip().endswith("nearest: --columns 6"), r.stderr[-400:]
+    assert "length 30.1 mm (7 columns at its least pitch 4.3 mm) vs the pocket's 29.1 mm" \
+        in r.stderr
+    assert r.stderr.splitlines()[-1].strip().startswith("to paste: --columns 6"), r.stderr[-400:]
     assert not list(tmp_path.iterdir())
 
 

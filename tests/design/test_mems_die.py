@@ -1194,3 +1194,23 @@ def test_a_long_attach_material_stays_in_the_bom_and_off_the_drawing(die):
     assert name not in die_sheet(long, mount).svg()
     row = next(r for r in mount_bom_rows(long, mount, "5 mm jaw") if r["item"] == "die_attach")
     assert name in row["description"]
+
+
+@pytest.mark.slow  # the die planned and its verification matrix (its budget's coupling)
+def test_the_robotic_jaw_example_seats_its_die_in_the_labs_own_pocket():
+    """hardware/robotic_jaw_8mm_mems: the die's file names the lab's jaw file beside it (a
+    2.6 mm jaw, its 0.85 mm pocket stated); the die seats in that pocket on a carrier lapped
+    to fill it, and its verification fails nothing (the rating's strength stays undecided
+    without a Weibull pair)."""
+    import tactcad
+    from tactcad.products.silicon_die.design.die_mount import CARRIER_MM, die_mount
+    from tactcad.project_folder import die_examples
+
+    project = tactcad.load_die(die_examples()["robotic_jaw_8mm_mems"])
+    plan, jaw_table = project.plan, project.planned.jaw_stated
+    assert jaw_table["thickness_mm"] == 2.6 and jaw_table["pocket_depth_mm"] == 0.85
+    mount = die_mount(plan, jaw_table)
+    assert mount.pocket_depth_mm == 0.85 and mount.carrier_mm > CARRIER_MM
+    assert mount.die_z0_mm - mount.carrier_mm - mount.attach_mm == pytest.approx(2.6 - 0.85)
+    verdicts = {r["requirement"]: r["verdict"] for r in project.verify()["matrix"]}
+    assert "fail" not in verdicts.values() and verdicts["kr_over_km"] == "pass"

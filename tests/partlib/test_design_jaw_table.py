@@ -242,3 +242,73 @@ def test_a_jaw_outline_sets_the_room_each_sheet_gets():
     assert room.along_for(4.2) == pytest.approx(29.0 - 2 * room.clearance_mm)
     assert room.along_for(4.8) < room.along_for(4.2)  # a wider comb gets a shorter stretch
     assert room.along_for(6.0) == 0.0
+
+
+#: a wristed robotic instrument's thin jaw in an 8 mm shaft (its pin 1.5 mm, 1.1 mm from
+#: the heel: the jaw's 2.6 mm thickness leaves 0.26 mm of steel round it)
+ROBOT_JAW = {"shaft_diameter_mm": 8.0, "width_mm": 4.2, "length_mm": 16.0,
+             "thickness_mm": 2.6, "opposing_jaw_mm": 2.6, "pin_diameter_mm": 1.5,
+             "pin_inset_mm": 1.1, "opening_angle_deg": 45.0}
+
+
+def test_a_jaw_files_errors_are_refused_all_at_once_each_with_its_range():
+    """An opening of 180 degrees no longer hides the pin's and the pocket's errors: one
+    refusal lists every key, its value and the range the jaw allows."""
+    bad = {**ROBOT_JAW, "opening_angle_deg": 180.0, "pin_diameter_mm": 2.2,
+           "pin_inset_mm": 0.5, "pocket_depth_mm": 3.0}
+    with pytest.raises(DesignErrors) as err:
+        jaw_room(bad, "robot.toml")
+    lines = {e.field: e.line() for e in err.value.errors}
+    assert set(lines) == {"grasper_jaw.opening_angle_deg", "grasper_jaw.pin_diameter_mm",
+                          "grasper_jaw.pin_inset_mm", "grasper_jaw.pocket_depth_mm"}
+    assert "0 < value <= 90 degrees" in lines["grasper_jaw.opening_angle_deg"]
+    assert "<= 2.08 mm" in lines["grasper_jaw.pin_diameter_mm"]  # 2.6 less 2 x 0.26 mm
+    assert ">= 1.36 mm" in lines["grasper_jaw.pin_inset_mm"]  # 1.1 mm radius + 0.26 mm
+    assert "0 < value < 2.6 mm" in lines["grasper_jaw.pocket_depth_mm"]
+
+
+def test_a_key_left_out_does_not_raise_errors_of_the_keys_read_with_it():
+    table = {k: v for k, v in ROBOT_JAW.items() if k != "thickness_mm"} | {"pin_diameter_mm": 3.9}
+    with pytest.raises(DesignErrors) as err:
+        jaw_room(table, "robot.toml")
+    # the pin is judged against a thickness the file does not state: not judged
+    assert [e.field for e in err.value.errors] == ["grasper_jaw.thickness_mm"]
+
+
+@pytest.mark.parametrize("change, ok", [
+    ({}, True),  # a 1.5 mm pin 1.1 mm from the heel of a 2.6 mm jaw (was: <= 1.6 mm, >= 1.25)
+    ({"thickness_mm": 2.4, "opposing_jaw_mm": 2.4, "pin_inset_mm": 1.0}, True),
+    ({"pin_diameter_mm": 2.08, "pin_inset_mm": 1.3}, True),
+    ({"pin_diameter_mm": 2.1}, False),   # 0.25 mm above and below: < a tenth of 2.6 mm
+    ({"pin_inset_mm": 1.0}, False),      # 0.25 mm behind it
+    ({"pin_inset_mm": -0.75}, True),     # behind the heel, clear of it
+])
+def test_any_pin_the_jaws_own_body_allows_is_accepted(change, ok):
+    table = {**ROBOT_JAW, **change}
+    if ok:
+        assert jaw_room(table, "robot.toml").across_mm > 0
+    else:
+        with pytest.raises(DesignErrors) as err:
+            jaw_room(table, "robot.toml")
+        assert next(iter(change)) in str(err.value) and "allowed" in str(err.value)
+
+
+def test_a_jaw_the_shaft_cannot_pass_closed_is_refused_before_any_search():
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({**JAW_10, "width_clearance_mm": None, "width_mm": 6.5, "thickness_mm": 6.5},
+                 "thick.toml")
+    e = err.value.errors[0]
+    assert len(err.value.errors) == 1 and e.field == "grasper_jaw.thickness_mm"
+    assert "<= 6.0993 mm" in e.allowed and "opposing_jaw_mm" in e.allowed
+
+
+def test_a_stated_pocket_depth_sets_the_combs_face_wall(comb_data):
+    plan = plan_from_dict(with_tables(comb_data, grasper_jaw={"pocket_depth_mm": 5.2}))
+    g = jaw_part(plan).geometry
+    assert g.pocket_depth_mm == 5.2 and g.thickness_mm - g.pocket_depth_mm == pytest.approx(0.4)
+    for depth, words in ((5.55, "<= 5.5 mm"), (4.0, "5.1 < value")):  # too thin; arms hit it
+        with pytest.raises(DesignErrors) as err:
+            jaw_part(plan_from_dict(with_tables(comb_data,
+                                                grasper_jaw={"pocket_depth_mm": depth})))
+        assert [e.field for e in err.value.errors] == ["grasper_jaw.pocket_depth_mm"]
+        assert words in err.value.errors[0].allowed

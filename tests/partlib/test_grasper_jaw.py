@@ -127,3 +127,24 @@ def test_the_window_lies_over_the_tip_field_not_the_pocket_centre(comb_plan):
     assert g.pocket_x0_mm <= cx - g.window_length_mm / 2
     assert cx + g.window_length_mm / 2 <= g.pocket_x0_mm + g.pocket_length_mm
     assert abs(cy) + g.window_width_mm / 2 <= g.pocket_width_mm / 2
+
+
+def test_the_smallest_comb_is_screened_against_the_jaw_naming_the_size_that_binds():
+    """Before a search: the comb's rows stand on edge 5.8 mm high, so a 2.6 mm robotic jaw
+    holds none, said as height against the jaw's keys; the 10 mm class's jaw passes."""
+    from tactcad.design.array_plan import EXAMPLES, read_toml
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.studies.comb_design import comb_misfit
+    from tactcad.studies.inverse_design import Targets
+
+    base = read_toml(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml", "design file")
+    targets = Targets(10.0, (0.5, 5.0), 0.05)
+    assert comb_misfit(jaw_room("10"), 6, base, targets) == []
+    thin = {"shaft_diameter_mm": 8.0, "width_mm": 4.2, "length_mm": 16.0, "thickness_mm": 2.6,
+            "opposing_jaw_mm": 2.6, "pin_inset_mm": 1.1, "opening_angle_deg": 45.0}
+    missed = comb_misfit(jaw_room(thin, "robot.toml"), 6, base, targets)
+    assert missed[0]["words"].startswith("height 5.79 mm") and "2.9 mm" in missed[0]["words"]
+    assert "thickness_mm" in missed[0]["words"]
+    assert "grasper_jaw.thickness_mm = " in missed[0]["option"]
+    seven = comb_misfit(jaw_room("10"), 7, base, targets)  # 7 x 4.3 mm > the 29.3 mm pocket
+    assert [m["option"] for m in seven] == ["--columns 6"]

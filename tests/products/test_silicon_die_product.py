@@ -194,3 +194,77 @@ def test_a_thin_robotic_jaw_gets_the_die_where_no_comb_fits(tmp_path):
     assert "[die]" in text and "monolithic-comb" in text  # why not the comb, in its reasons
     assert (tmp_path / "robot" / "robot_jaw.toml").is_file()
     assert run_cli("verify", cwd=tmp_path / "robot").returncode == 0
+
+
+#: an 8 mm wristed instrument's 2.6 mm jaw (the shipped robotic example's), as a table
+ROBOT_JAW = {"shaft_diameter_mm": 8.0, "width_mm": 4.2, "length_mm": 16.0,
+             "thickness_mm": 2.6, "opposing_jaw_mm": 2.6, "pin_diameter_mm": 1.5,
+             "pin_inset_mm": 1.1, "opening_angle_deg": 45.0}
+
+
+def test_a_stated_pocket_depth_is_the_dies_and_its_carrier_fills_it():
+    from tactcad.errors import DesignError
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.products.silicon_die.design.die_mount import CARRIER_MM, die_mount
+    from tactcad.products.silicon_die.design.mems_die import die_plan
+    from tactcad.studies.inverse_design import Targets
+
+    plan = die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room(ROBOT_JAW, "robot.toml"))
+    own = die_mount(plan, ROBOT_JAW)
+    assert own.carrier_mm == CARRIER_MM  # no depth stated: the die machines its own pocket
+    stated = die_mount(plan, {**ROBOT_JAW, "pocket_depth_mm": 0.9})
+    assert stated.pocket_depth_mm == 0.9
+    assert stated.carrier_mm == pytest.approx(0.9 - stated.die_stack_mm - stated.attach_mm)
+    assert stated.carrier_mm > CARRIER_MM and "pocket_depth_mm" in stated.reasons["carrier"]
+    for depth in (own.pocket_depth_mm - 0.01, 2.2):  # no stock carrier fits; no steel under
+        with pytest.raises(DesignError) as err:
+            die_mount(plan, {**ROBOT_JAW, "pocket_depth_mm": depth})
+        assert err.value.field == "grasper_jaw.pocket_depth_mm"
+        assert f"{own.pocket_depth_mm:.4g} ... 2.1 mm" == err.value.allowed
+
+
+def test_a_pocket_no_product_fits_is_refused_naming_its_keys_for_each(tmp_path):
+    """A 0.5 x 1 mm pocket: the comb's width and length and the die's, each against the
+    pocket's key (it was '--columns = 4: allowed at most 0 columns'), with what to paste."""
+    (tmp_path / "tiny.toml").write_text(
+        "[grasper_jaw]\nshaft_class_mm = \"10\"\nwidth_clearance_mm = 3.5\nlength_mm = 34.0\n"
+        "thickness_mm = 5.6\npin_inset_mm = 2.5\nopening_angle_deg = 30.0\n"
+        "pocket_width_mm = 0.5\npocket_length_mm = 1.0\n", encoding="utf-8")
+    r = run_cli("design", "--jaw", "tiny.toml", "--kr-over-km", "10", "--kobj-range", "0.5",
+                "5", "--full-scale-force", "0.02", "--columns", "4", "--out", "x", "--json",
+                cwd=tmp_path)
+    assert r.returncode == 2 and not (tmp_path / "x").exists()
+    error = json.loads(r.stdout)["error"]
+    lines = error["message"].splitlines()
+    comb = next(x for x in lines if x.strip().startswith("monolithic-comb: does not fit"))
+    die = next(x for x in lines if x.strip().startswith("silicon die: does not fit"))
+    assert "pocket_width_mm 0.5" in comb and "pocket_length_mm 1" in comb
+    assert "vs the pocket's 0.3 mm" in die and "(pocket_length_mm)" in die
+    assert "at most 0 columns" not in error["allowed"]
+    pasted = [a["option"] for a in error["alternatives"]]
+    assert "grasper_jaw.pocket_length_mm = 5.7 in tiny.toml" in pasted and "--jaw 10" in pasted
+
+
+@pytest.mark.slow  # two die designs and a verify through the command line
+def test_design_for_a_die_takes_a_kobj_accuracy_or_pastes_what_it_reaches(tmp_path):
+    """--kobj-accuracy with --jaw on a die: its budget's worst root sum square is judged
+    before anything is written; the accuracy a refusal pastes designs, and verify judges it
+    from the file."""
+    (tmp_path / "robot.toml").write_text(
+        "[grasper_jaw]\n" + "".join(f"{k} = {v!r}\n".replace("'", '"')
+                                    for k, v in ROBOT_JAW.items()), encoding="utf-8")
+    argv = ("design", "--jaw", "robot.toml", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+            "--full-scale-force", "0.02", "--out", "robot")
+    tight = run_cli(*argv, "--kobj-accuracy", "0.001", "--json", cwd=tmp_path)
+    assert tight.returncode == 2 and not (tmp_path / "robot").exists()
+    error = json.loads(tight.stdout)["error"]
+    assert error["field"] == "--kobj-accuracy" and error["allowed"].startswith(">= 0.0")
+    paste = error["alternatives"][0]["option"].split()[-1]
+    r = run_cli(*argv, "--kobj-accuracy", paste, cwd=tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    text = (tmp_path / "robot" / "robot.toml").read_text(encoding="utf-8")
+    assert f"kobj_accuracy_rel = {float(paste)}" in text
+    v = run_cli("verify", "--json", cwd=tmp_path / "robot")
+    row = next(x for x in json.loads(v.stdout)["matrix"]
+               if x["requirement"] == "kobj_accuracy_rel")
+    assert v.returncode == 0 and row["verdict"] == "pass" and row["predicted"] <= float(paste)

@@ -100,6 +100,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="with --jaw: the largest grasp the insert must survive (N): every "
                         "element within its overload limit, its hard stop taking the rest "
                         "(requirements.max_grasp_force_N; not judged when left out)")
+    p.add_argument("--kobj-accuracy", type=number(0, 10, "", lo_open=True), default=None,
+                   metavar="REL",
+                   help="the largest relative K_obj error the design may read with over its "
+                        "range (0 < REL <= 10; 0.1 = 10 %%): for a metal array the root sum "
+                        "square of its K_obj budget after correction "
+                        "(requirements.kobj_accuracy_rel, judged by verify), for a silicon "
+                        "die its budget's worst root sum square before calibration "
+                        "([die] kobj_accuracy_rel); a design that misses it is refused with "
+                        "the accuracy it reaches to paste (not judged when left out)")
     p.add_argument("--material", metavar="GRADE", type=material_grade_name, default=None,
                    help="material grade of the library (default: the base design's material)")
     p.add_argument("--process", choices=process_choices(), default=None,
@@ -306,6 +315,8 @@ def _run(args: argparse.Namespace) -> int:
                                  name=data["design"]["name"], **kwargs)
     except DesignError as exc:
         raise as_options(exc, args, design) from None
+    if args.kobj_accuracy is not None:
+        result = with_kobj_accuracy(result, args.kobj_accuracy)
     progress = progress_from_args(args)
     asked = args.verify or DEFAULT_VERIFY
     margins = design_margins(result.plan)
@@ -348,9 +359,44 @@ def die_ignored(args: argparse.Namespace) -> dict[str, str]:
             if getattr(args, attr, None) is not None}
 
 
-def one_refusal_line(construction: str, exc: DesignError) -> str:
+def misfit_words(misfits: list[dict]) -> str:
+    """A product's misfits against a jaw (:func:`tactcad.studies.comb_design.comb_misfit`,
+    :func:`tactcad.products.silicon_die.design.die_mount.die_misfit`) in words: "does not
+    fit: " and each dimension that binds against the jaw's key, joined by "; "."""
+    return "does not fit: " + "; ".join(m["words"] for m in misfits if m.get("words"))
+
+
+def misfit_alternatives(misfits: list[tuple[str, list[dict]]]) -> list[dict]:
+    """The pasteable alternatives of every product's misfits (``option``, ``words``: the
+    product it makes fit), each once."""
+    out, seen = [], set()
+    for name, missed in misfits:
+        for m in missed:
+            if m.get("option") and m["option"] not in seen:
+                seen.add(m["option"])
+                out.append({"option": m["option"], "words": f"a jaw the {name} fits"
+                            if not m["option"].startswith("--columns")
+                            else f"the most columns of the {name} the pocket holds"})
+    return out
+
+
+def _other_classes_holding(c, args: argparse.Namespace, base, targets) -> list[dict]:
+    """``--jaw CLASS`` for the first trocar class's default jaw (other than the one asked)
+    that the construction ``c``'s smallest build fits (its screen finds no misfit)."""
+    from tactcad.partlib.grasper_jaw import jaw_room
+
+    for k in jaw_classes():
+        if k != args.jaw and not c.jaw_screen()(jaw_room(k), args.columns or 6, base, targets,
+                                                args.material, args.process):
+            return [{"words": "", "option": f"--jaw {k}"}]
+    return []
+
+
+def one_refusal_line(construction: str, exc: DesignError | str) -> str:
     """A construction's refusal on one line: its head and every reason under it (a refusal
-    of many lines lists one per sheet or limit), joined by "; "."""
+    of many lines lists one per sheet or limit), joined by "; " (a text: as it is)."""
+    if isinstance(exc, str):
+        return f"{construction}: {exc}"
     text = exc.message if hasattr(exc, "message") else str(exc)
     lines = [line.strip() for line in text.splitlines() if line.strip()]
     return f"{construction}: " + " ".join(lines[:1]) + (
@@ -386,6 +432,9 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     columns = args.columns or DEFAULT_COLUMNS
     plan = doped_die_plan(targets, room, columns=columns, name=name[:32])
     jaw, jaw_file = jaw_of(args.jaw)
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+
+    die_mount(plan, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)  # it seats
     stated = args.jaw
     if jaw_file:  # the lab's jaw beside the die's file: a sensor folder reads only itself
         stated = f"{path.stem}_jaw.toml"
@@ -402,10 +451,14 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     if grasp is not None:  # judged as verify judges it, before anything is written
         _die_survives_grasp(plan, jaw, grasp)
         reasons["die.max_grasp_force_N"] = "Asked (--max-grasp-force)."
+    accuracy = getattr(args, "kobj_accuracy", None)
+    if accuracy is not None:
+        _die_reads_to(plan, accuracy)
+        reasons["die.kobj_accuracy_rel"] = "Asked (--kobj-accuracy)."
     text = die_file_text(stated, targets.kr_over_km, targets.k_obj_range_N_per_mm,
                          targets.full_scale_force_N, columns, plan.pitch_um, plan.name,
                          "tactcad design " + " ".join(design_options(args)), reasons,
-                         max_grasp_force_N=grasp)
+                         max_grasp_force_N=grasp, kobj_accuracy_rel=accuracy)
     beside = {}
     if jaw_file:
         import tomli_w
@@ -418,7 +471,8 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
                           force=getattr(args, "force", False))
     else:
         for rel, jaw_text in beside.items():
-            write_bytes_atomic(path.parent / rel, jaw_text.encode("utf-8"))
+            if (path.parent / rel).resolve() != Path(jaw_file).resolve():  # not the lab's
+                write_bytes_atomic(path.parent / rel, jaw_text.encode("utf-8"))  # own file
         write_bytes_atomic(path, text.encode("utf-8"))
     report = {"construction": DIE_CONSTRUCTION, "design": str(path), "jaw": room.label,
               "left_out": [*left, *why], "die": plan.as_json(),
@@ -429,7 +483,8 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
         print(json.dumps(report, indent=2, allow_nan=False))
     else:
         b_r, b_m = plan.beams[0], plan.beams[plan.columns]
-        print(f"{path}: silicon die for the {room.label} ({plan.die_length_um:g} x "
+        print(f"{shown_path(str(path))}: silicon die for the {room.label} "
+              f"({plan.die_length_um:g} x "
               f"{plan.die_width_um:g} x {plan.thickness_um:g} um)")
         for line in report["left_out"]:
             print(f"  not searched: {line}")
@@ -460,6 +515,90 @@ def _die_survives_grasp(plan, jaw, grasp_N: float) -> None:
     if row["verdict"] == "fail":
         raise DesignError("--max-grasp-force", grasp_N, "a grasp the die survives in its jaw",
                           row["binding_words"], alternatives=_reachable_grasp(judged, stated))
+
+
+def _die_reads_to(plan, accuracy_rel: float) -> None:
+    """A die asked to read K_obj to ``accuracy_rel`` (relative), judged by verify's own row
+    (:func:`tactcad.products.silicon_die.studies.die_verification.accuracy_row`: its K_obj
+    budget's worst root sum square over the range).
+
+    Raises:
+        DesignError: ``--kobj-accuracy`` tighter than the die's budget reaches, with the
+            accuracy it does reach (rounded up to two digits) to paste.
+    """
+    from dataclasses import replace
+
+    from tactcad.products.silicon_die.studies.die_verification import accuracy_row
+
+    row = accuracy_row(replace(plan, kobj_accuracy_rel=float(accuracy_rel)))
+    if row["verdict"] == "fail":
+        raise DesignError("--kobj-accuracy", accuracy_rel,
+                          f">= {_up2(row['predicted'])} for this die",
+                          row["binding_words"] + f": {row['predicted']:.3g}",
+                          alternatives=_accuracy_paste(row["predicted"]))
+
+
+def _up2(value: float) -> str:
+    """``value`` rounded up to two significant digits, as text ("inf" stays)."""
+    if not math.isfinite(value) or value <= 0:
+        return f"{value:g}"
+    step = 10 ** (math.floor(math.log10(value)) - 1)
+    return f"{math.ceil(value / step - 1e-9) * step:.2g}"
+
+
+def _accuracy_paste(reached: float) -> list[dict]:
+    """``--kobj-accuracy`` at what a design reaches (rounded up), when finite and <= 10."""
+    if not (math.isfinite(reached) and 0 < reached <= 10):
+        return []
+    return [{"option": f"--kobj-accuracy {_up2(reached)}",
+             "words": "the accuracy this design reaches over the K_obj range"}]
+
+
+def with_kobj_accuracy(result, accuracy_rel: float, refuse: bool = False):
+    """A searched metal design (:class:`~tactcad.studies.inverse_design.InverseDesign` or a
+    jaw's comb design) stating ``requirements.kobj_accuracy_rel`` = ``accuracy_rel``, its
+    plan made anew, so that its verification judges it (the K_obj budget after correction,
+    :func:`tactcad.studies.verification.kobj_accuracy_record`); with ``refuse``, judged
+    here at the closed form.
+
+    Args:
+        result: the searched design (its ``data`` and ``plan``).
+        accuracy_rel: ``--kobj-accuracy`` (relative).
+        refuse: judge it now and refuse a miss (a design to a jaw), else leave it to the
+            design's verification.
+
+    Returns:
+        The design with the requirement stated and its plan made anew.
+
+    Raises:
+        DesignError: with ``refuse``, an accuracy the design does not reach, naming
+            ``--kobj-accuracy`` and the accuracy it reaches to paste.
+    """
+    from dataclasses import replace
+
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.studies.verification import verification_matrix
+
+    data = copy.deepcopy(dict(result.data))
+    data.setdefault("requirements", {})["kobj_accuracy_rel"] = float(accuracy_rel)
+    data.setdefault("assumptions", {})["requirements.kobj_accuracy_rel"] = \
+        "Asked (--kobj-accuracy)."
+    plan = plan_from_dict(data, source="<inverse design>")
+    if refuse:
+        from tactcad.assembly.inventory import array_envelope_mm
+
+        row = next((r for r in verification_matrix(plan, "closed-form",
+                                                   envelope_mm=array_envelope_mm(plan))
+                    if r["requirement"] == "kobj_accuracy_rel"), None)
+        if row is not None and row["verdict"] == "fail":
+            reached = row.get("predicted")
+            reached = math.inf if reached is None else float(reached)
+            raise DesignError("--kobj-accuracy", accuracy_rel,
+                              f">= {_up2(reached)} for this design",
+                              "the root sum square of its K_obj error budget after correction, "
+                              "worst over the K_obj range (tactcad budget)",
+                              alternatives=_accuracy_paste(reached))
+    return replace(result, data=data, plan=plan)
 
 
 def _reachable_grasp(plan, stated) -> list[dict]:
@@ -564,8 +703,15 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
 
     room = jaw_room(*jaw_of(args.jaw))
     refusals, result, used = [], None, None
+    misfits = []  # (product, its misfits): not searched, each dimension that binds said
     for c in chosen:
         base = read_toml(EXAMPLES / c.jaw_template, "design file")
+        screen = c.jaw_screen() if args.construction == "auto" else None
+        missed = screen(room, args.columns or 6, base, targets, args.material,
+                        args.process) if screen else []
+        if missed:
+            misfits.append((c.name, missed + _other_classes_holding(c, args, base, targets)))
+            continue
         try:
             result = c.jaw_search()(targets, room, args.columns or 6, base, grade=args.material,
                                     name=name, envelope_of=array_envelope_mm,
@@ -577,28 +723,55 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
             break
         except DesignError as exc:
             refusals.append((c.name, exc))
-    if result is None and args.construction == DIE_CONSTRUCTION:
-        return write_die_design(args, targets, room, path, folder, refusals, left)
-    if result is None and args.construction == "auto" and not die_ignored(args):
+    die_on = args.construction == DIE_CONSTRUCTION or (
+        args.construction == "auto" and not die_ignored(args))
+    if result is None and die_on:
+        from tactcad.products.silicon_die.design.die_mount import die_misfit
+        from tactcad.products.silicon_die.design.mems_die import DEFAULT_COLUMNS
+
+        missed = die_misfit(room, room.table or {}, args.columns or DEFAULT_COLUMNS)
+        if missed:
+            misfits.append(("silicon die", missed))
+            die_on = False
+    told = refusals + [(n, misfit_words(m)) for n, m in misfits]
+    if result is None and die_on and args.construction == DIE_CONSTRUCTION:
+        return write_die_design(args, targets, room, path, folder, told, left)
+    if result is None and die_on:
         # no metal construction meets the targets in this jaw (its pocket, its height, or a
         # limit): a silicon die lies flat in the pocket, where one meets them; else both
         # refusals stand, each with what binds and what to paste
         try:
-            return write_die_design(args, targets, room, path, folder, refusals, left)
+            return write_die_design(args, targets, room, path, folder, told, left)
         except DesignError as die_refusal:  # neither fits: both say why, the die's first
-            if die_refusal.field in ("--out", "--max-grasp-force"):  # the die fits the
-                raise  # targets: its folder or its grasp is refused, not the construction
+            if die_refusal.field in ("--out", "--max-grasp-force", "--kobj-accuracy"):
+                raise  # the die fits the targets: its folder or a requirement is refused
             raise DesignError(
                 die_refusal.field, die_refusal.value, die_refusal.allowed,
                 f"a silicon die: {die_refusal.why or die_refusal.allowed}; "
-                + "; ".join(one_refusal_line(n, e) for n, e in refusals),
+                + "; ".join(one_refusal_line(n, e) for n, e in told),
                 alternatives=[*die_refusal.alternatives,
-                              *(a for _, e in refusals for a in e.alternatives)]) from None
+                              *(a for _, e in refusals for a in e.alternatives),
+                              *misfit_alternatives(misfits)]) from None
+    if result is None and misfits:  # nothing fits the jaw: each product's binding size
+        pasted = [*misfit_alternatives(misfits),
+                  *(a for _, e in refusals for a in e.alternatives)]
+        untried = ([f"silicon die: not tried ({', '.join(die_ignored(args))}: a metal's "
+                    "options)"] if args.construction == "auto" and die_ignored(args) else [])
+        raise DesignError(
+            "--jaw", args.jaw, "a jaw that holds " + " or ".join(
+                ["a " + n for n, _ in misfits] + [n for n, _ in refusals]),
+            "\n  ".join([""] + [one_refusal_line(n, misfit_words(m)) for n, m in misfits]
+                        + [one_refusal_line(n, e) for n, e in refusals] + untried
+                        + ([] if pasted else ["none to paste: no option or jaw file key "
+                                              "makes one of them fit this jaw"])),
+            alternatives=pasted)
     if result is None:
         if len(refusals) == 1:
             raise refusals[0][1]
         raise DesignError("--jaw", args.jaw, "a jaw some construction fits",
                           "; ".join(f"{n}: {e}" for n, e in refusals) or "no construction seats in a jaw")
+    if args.kobj_accuracy is not None:
+        result = with_kobj_accuracy(result, args.kobj_accuracy, refuse=True)
     data = dict(result.data)
     data["grasper_jaw"] = dict(room.table or {})  # the jaw it was designed for, in its scenes
     from tactcad.version import VERSION
@@ -767,7 +940,8 @@ OPTION_FIELDS = {"array.rows": "--rows", "array.columns": "--columns", "array.pi
                  "requirements.kr_over_km": "--kr-over-km",
                  "requirements.kobj_range_N_per_mm": "--kobj-range",
                  "requirements.full_scale_force_N": "--full-scale-force",
-                 "requirements.max_grasp_force_N": "--max-grasp-force"}
+                 "requirements.max_grasp_force_N": "--max-grasp-force",
+                 "requirements.kobj_accuracy_rel": "--kobj-accuracy"}
 
 
 def set_keys(args: argparse.Namespace) -> dict[str, Any]:
@@ -956,6 +1130,8 @@ def design_options(args: argparse.Namespace) -> list[str]:
         words.append(f"--jaw {shlex.quote(args.jaw)}")
     if getattr(args, "max_grasp_force", None) is not None:
         words.append(f"--max-grasp-force {args.max_grasp_force:g}")
+    if getattr(args, "kobj_accuracy", None) is not None:
+        words.append(f"--kobj-accuracy {args.kobj_accuracy:g}")
     if getattr(args, "construction", "auto") != "auto":
         words.append(f"--construction {args.construction}")
     if getattr(args, "tissue_coupling", "on") == "off":

@@ -137,7 +137,8 @@ def die_asked(args: argparse.Namespace) -> dict:
             "source": _source_of(Path(args.design), overrides),
             "strength": d.strength,
             "kobj_resolution_rel": d.die.kobj_resolution_rel, "attach": d.attach,
-            "max_grasp_force": d.die.max_grasp_force_N}
+            "max_grasp_force": d.die.max_grasp_force_N,
+            "kobj_accuracy": d.die.kobj_accuracy_rel}
 
 
 def _any_option_given(args: argparse.Namespace) -> bool:
@@ -244,6 +245,10 @@ def plan_of(asked: dict) -> PlannedDie:
         from dataclasses import replace
 
         plan = replace(plan, max_grasp_force_N=float(asked["max_grasp_force"]))
+    if asked.get("kobj_accuracy") is not None:
+        from dataclasses import replace
+
+        plan = replace(plan, kobj_accuracy_rel=float(asked["kobj_accuracy"]))
     return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw,
                       asked.get("source"))
 

@@ -51,6 +51,11 @@ class Construction:
             when it does not seat in a jaw.
         jaw_template: the shipped example (relative to the examples folder) whose fixed
             details its jaw designs take.
+        jaw_fit: ``"module:function"`` of its screen against a jaw before the search
+            (``(room, columns, base_tables, targets, grade, process) -> list of
+            misfits``, each a dict with ``words``, the dimension that binds against the
+            jaw's key, and ``option`` to paste or ""; empty when its smallest build fits
+            the room); empty: no screen.
 
     The module also places its parts: ``placed_parts(plan)`` gives every placed
     part but the strain gauges as (instance name, part name, placement),
@@ -70,6 +75,14 @@ class Construction:
     stack_crosstalk: bool = False
     jaw_design: str = ""
     jaw_template: str = ""
+    jaw_fit: str = ""
+
+    def jaw_screen(self) -> Callable[..., Any] | None:
+        """Its screen against a jaw (:attr:`jaw_fit`), or None."""
+        if not self.jaw_fit:
+            return None
+        module, function = self.jaw_fit.split(":")
+        return getattr(importlib.import_module(module), function)
 
     def jaw_search(self) -> Callable[..., Any] | None:
         """Its search to a grasper's jaw (:attr:`jaw_design`), or None."""
@@ -224,4 +237,5 @@ register_construction(Construction(
     "each element is post + notch + arm + half the tip long (arms >= 2 mm): about "
     "columns x 4 mm along the row and 6 mm across two 1 mm rows",
     jaw_design="tactcad.studies.comb_design:comb_for_jaw",
-    jaw_template="grasper_jaw_10mm/grasper_jaw_10mm.toml"))
+    jaw_template="grasper_jaw_10mm/grasper_jaw_10mm.toml",
+    jaw_fit="tactcad.studies.comb_design:comb_misfit"))

@@ -54,6 +54,13 @@ CLASS_DEFAULTS_MM = {
 FACE_WALL_MIN_MM = 0.1
 #: Least steel left between the pin hole and the pocket, and behind the pocket's far end, mm.
 MIN_WALL_MM = 0.5
+#: The steel round the pivot pin's hole (above, below and behind it), as a fraction of the
+#: jaw's thickness: a jaw's ligaments scale with its section (assumption: a tenth, 0.56 mm
+#: on the 10 mm class's 5.6 mm jaw, 0.25 mm on a 2.5 mm robotic jaw).
+PIN_WALL_REL = 0.1
+#: The thinnest steel round a reamed pin hole whatever the jaw (mm; assumption: below it
+#: the wall breaks out when the hole is reamed).
+PIN_WALL_MIN_MM = 0.2
 COLOR = (0.72, 0.74, 0.78)
 
 
@@ -78,8 +85,9 @@ class GrasperJawSection(Section):
     opposing_jaw_mm: Optional[number(
         0.5, 10.0, why="the other jaw's height, closed on this one (both pass the shaft); "
         "left out: the class's")] = None
-    pin_diameter_mm: Optional[number(0.5, 4.0, why="the pivot pin; left out: the "
-                                     "class's")] = None
+    pin_diameter_mm: Optional[number(0.5, 4.0, why="the pivot pin: any the jaw's body "
+                                     "holds with a tenth of its thickness (at least 0.2 mm) "
+                                     "of steel round the hole; left out: the class's")] = None
     pin_inset_mm: number(-40.0, 40.0, why="the pivot: the pin's axis from the jaw's heel "
                          "along the jaw; negative where the pivot lies behind the heel (the "
                          "grasper's clevis carries the jaw, no pin hole in it)") = 2.5
@@ -93,6 +101,11 @@ class GrasperJawSection(Section):
     #: [x, y] points in the jaw's frame (x from the proximal end, y across from its axis;
     #: mm); the pocket is placed inside it. Left out: the bar between the pin's steel and
     #: the distal wall, less the side walls
+    pocket_depth_mm: Optional[number(
+        0.0, 10.0, lo_open=True, why="the pocket's depth as the lab machines it: from the "
+        "jaw's back for a comb (the face wall the rest), from the grasping face for a die "
+        "(its carrier fills what the die leaves); less than thickness_mm; left out: each "
+        "construction's own")] = None
     pocket_outline_mm: Optional[listing(listing(number(-100.0, 100.0), 2, 2,
                                                 "an [x, y] point (mm)"),
                                         3, 64, "3 ... 64 [x, y] points (mm)")] = None
@@ -178,18 +191,79 @@ def _check_stated_once(p: Problems, j: GrasperJawSection) -> None:
               f"the jaw passes the {fmt(bore_mm(j))} mm shaft")
 
 
+def pin_wall_mm(thickness_mm: float) -> float:
+    """The least steel round the pivot pin's hole in a jaw.
+
+    Args:
+        thickness_mm: the jaw's thickness, back to grasping face (mm).
+
+    Returns:
+        :data:`PIN_WALL_REL` of the thickness, at least :data:`PIN_WALL_MIN_MM` (mm).
+    """
+    return max(PIN_WALL_MIN_MM, PIN_WALL_REL * thickness_mm)
+
+
+def pin_limits_mm(j: GrasperJawSection) -> tuple[float, float]:
+    """The pins the jaw's own body allows through it.
+
+    Args:
+        j: the ``[grasper_jaw]`` table with its class defaults (:func:`with_class_defaults`).
+
+    Returns:
+        (the largest pin diameter, the least inset of the stated pin's axis from the heel),
+        mm: the hole with :func:`pin_wall_mm` of steel above and below it within
+        ``thickness_mm``, and behind it within the heel.
+    """
+    wall = pin_wall_mm(j.thickness_mm)
+    return j.thickness_mm - 2 * wall, j.pin_diameter_mm / 2 + wall
+
+
 def _check_pivot(p: Problems, j: GrasperJawSection) -> None:
-    """The pivot pin goes through the bar with steel round it, or lies behind the heel
-    clear of it."""
+    """The pivot pin goes through the bar with steel round it (:func:`pin_limits_mm`, from
+    the jaw's own thickness), or lies behind the heel clear of it; each refusal names the
+    key, its value and the range the jaw's body allows."""
     r = j.pin_diameter_mm / 2
-    if -r < j.pin_inset_mm < r + MIN_WALL_MM:
+    wall = pin_wall_mm(j.thickness_mm)
+    most_d, least_x = pin_limits_mm(j)
+    if j.pin_inset_mm > -r:  # through the bar (or cutting its heel)
+        p.within("grasper_jaw.pin_diameter_mm", j.pin_diameter_mm, hi=round(most_d, 4),
+                 why=f"the {fmt(j.thickness_mm)} mm thick jaw keeps {fmt(round(wall, 4))} mm of "
+                     "steel above and below the pin hole: a tenth of its thickness, at least "
+                     f"{fmt(PIN_WALL_MIN_MM)} mm")
+    if -r < j.pin_inset_mm < least_x - 1e-9:
         p.add("grasper_jaw.pin_inset_mm", j.pin_inset_mm,
-              f">= {fmt(r + MIN_WALL_MM)} mm (in the jaw) or <= {fmt(-r)} mm (behind its heel)",
-              f"the {fmt(j.pin_diameter_mm)} mm pin through the jaw with {fmt(MIN_WALL_MM)} mm "
-              "of steel behind it, or clear of the heel")
-    elif j.pin_inset_mm > 0:
-        p.within("grasper_jaw.pin_diameter_mm", j.pin_diameter_mm,
-                 hi=j.thickness_mm - 2 * MIN_WALL_MM, why="steel above and below the pin hole")
+              f">= {fmt(round(least_x, 4))} mm (in the jaw) or <= {fmt(-r)} mm (behind its "
+              "heel)", f"the {fmt(j.pin_diameter_mm)} mm pin through the jaw with "
+              f"{fmt(round(wall, 4))} mm of steel behind it, or clear of the heel")
+    elif j.pin_inset_mm > j.length_mm - least_x + 1e-9:
+        p.add("grasper_jaw.pin_inset_mm", j.pin_inset_mm,
+              f"<= {fmt(round(j.length_mm - least_x, 4))} mm",
+              f"the pin inside the {fmt(j.length_mm)} mm jaw with {fmt(round(wall, 4))} mm "
+              "of steel round it")
+
+
+def _check_depth(p: Problems, j: GrasperJawSection) -> None:
+    """A stated pocket depth lies inside the jaw: 0 < depth < ``thickness_mm``."""
+    if j.pocket_depth_mm is not None:
+        p.within("grasper_jaw.pocket_depth_mm", j.pocket_depth_mm, 0.0, j.thickness_mm,
+                 lo_open=True, hi_open=True,
+                 why=f"a pocket inside the jaw's {fmt(j.thickness_mm)} mm thickness "
+                     "(thickness_mm)")
+
+
+def _check_closed(p: Problems, j: GrasperJawSection) -> None:
+    """The two jaws closed pass the shaft: width x (thickness + the opposing jaw) inside its
+    bore (refused naming ``thickness_mm``, with the width and opposing jaw's keys)."""
+    width, bore = jaw_width_mm(j), bore_mm(j)
+    closed = math.hypot(width, j.thickness_mm + j.opposing_jaw_mm)
+    if closed > bore + 1e-9:
+        p.add("grasper_jaw.thickness_mm", j.thickness_mm,
+              f"<= {fmt(round(closed_thickness_limit_mm(bore, width) - j.opposing_jaw_mm, 4))}"
+              f" mm with the {fmt(j.opposing_jaw_mm)} mm opposing jaw (opposing_jaw_mm)",
+              f"the closed jaws ({fmt(width)} x {fmt(j.thickness_mm + j.opposing_jaw_mm)} mm, "
+              f"diagonal {fmt(round(closed, 4))} mm) pass the {shaft_words(j)} mm shaft; a "
+              "narrower jaw (width_mm) or a thinner opposing jaw (opposing_jaw_mm) leaves room "
+              "for a thicker one")
 
 
 def pocket_start_limit_mm(j: GrasperJawSection) -> float:
@@ -354,7 +428,18 @@ class JawRoom:
                              f"{bore_mm(j):g} mm shaft" + ("" if roomy else "; too narrow for "
                                                            "the insert and its side walls: a "
                                                            "larger shaft")))
-        if env[0] > self.across_mm + 1e-9:
+        wide = math.ceil((env[0] + 2 * (self.clearance_mm + MIN_WALL_MM)) * 100) / 100
+        if env[0] > self.across_mm + 1e-9 and jaw_width_mm(j) < wide - 1e-9 \
+                and not any(k.startswith("grasper_jaw.width_mm") for k, _ in keys):
+            thick = j.thickness_mm if env[2] <= self.height_mm + 1e-9 else \
+                math.ceil((j.thickness_mm + env[2] - self.height_mm) * 100) / 100
+            fits = math.hypot(wide, thick + j.opposing_jaw_mm) <= bore_mm(j) + 1e-9
+            keys.append((f"grasper_jaw.width_mm = {wide:g}",
+                         f"the pocket and its {MIN_WALL_MM:g} mm side walls"
+                         + ("" if fits else f"; the closed jaws then pass no "
+                            f"{bore_mm(j):g} mm shaft: a larger shaft")))
+        widened = any(k.startswith("grasper_jaw.width_mm") for k, _ in keys)
+        if env[0] > self.across_mm + 1e-9 and (j.pocket_width_mm is not None or not widened):
             need = math.ceil((env[0] + 2 * self.clearance_mm) * 100) / 100
             keys.append((f"grasper_jaw.pocket_width_mm = {need:g}",
                          f"the insert is {env[0]:.4g} mm across its rows, with the pocket's "
@@ -385,7 +470,7 @@ def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
         DesignErrors: the table refused (each field, value and allowed range), or a stated
             pocket the jaw's body cannot hold.
     """
-    from tactcad.errors import DesignError, DesignErrors
+    from tactcad.errors import DesignError
 
     if isinstance(jaw, str):
         if jaw not in SHAFT_CLASSES_MM:
@@ -394,32 +479,37 @@ def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
         table: dict[str, Any] = {"shaft_class_mm": jaw}
     else:
         table = dict(jaw)
-        missing = Problems(file)
-        for key in missing_jaw_file_keys(table):
-            missing.add(f"grasper_jaw.{key}", None, "a value stated in the jaw file",
-                        "a lab's jaw file states the jaw's size, pivot, opening and shaft")
-        if missing:  # every refusal at once: the keys left out and the values refused
-            try:
-                validated_table("grasper_jaw", GrasperJawSection, table, file)
-            except DesignErrors as exc:
-                missing.extend(exc.errors)
-            missing.raise_if_any()
-    j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection, table, file))
     p = Problems(file)
-    _check_stated_once(p, j)
-    _check_pivot(p, j)
+    j, unread = _jaw_read(p, table, file, own_file=not isinstance(jaw, str))
+    # every rule between keys whose values were read: all refusals at once
+    rules = ((_check_stated_once, {"width_mm", "width_clearance_mm", "shaft_diameter_mm",
+                                   "shaft_class_mm"}),
+             (_check_pivot, {"pin_diameter_mm", "pin_inset_mm", "thickness_mm", "length_mm"}),
+             (_check_depth, {"pocket_depth_mm", "thickness_mm"}),
+             (_check_closed, {"thickness_mm", "opposing_jaw_mm", "width_mm",
+                              "width_clearance_mm", "shaft_diameter_mm", "shaft_class_mm"}))
+    for rule, keys in rules:
+        if not keys & unread:
+            rule(p, j)
     width = jaw_width_mm(j)
     most_along = j.length_mm - j.distal_wall_mm - pocket_start_limit_mm(j)
     most_across = width - 2 * MIN_WALL_MM
-    across = _stated_pocket(p, "grasper_jaw.pocket_width_mm", j.pocket_width_mm, most_across,
-                            f"the {fmt(width)} mm jaw less {fmt(MIN_WALL_MM)} mm side walls")
-    along = _stated_pocket(p, "grasper_jaw.pocket_length_mm", j.pocket_length_mm, most_along,
-                           "the jaw between the pin's steel and the distal wall")
+    across = along = 0.0
+    if not {"pocket_width_mm", "width_mm", "width_clearance_mm"} & unread:
+        across = _stated_pocket(p, "grasper_jaw.pocket_width_mm", j.pocket_width_mm,
+                                most_across, f"the {fmt(width)} mm jaw less {fmt(MIN_WALL_MM)} "
+                                "mm side walls")
+    if not {"pocket_length_mm", "length_mm", "pin_inset_mm", "pin_diameter_mm"} & unread:
+        along = _stated_pocket(p, "grasper_jaw.pocket_length_mm", j.pocket_length_mm,
+                               most_along, "the jaw between the pin's steel and the distal wall")
     outline = tuple(tuple(q) for q in j.pocket_outline_mm) if j.pocket_outline_mm else None
     if outline:
         x_hi = j.length_mm - j.distal_wall_mm
         _check_outline(p, outline, x_hi - most_along, x_hi, most_across / 2)
-    p.raise_if_any()
+    if p.errors:
+        from tactcad.errors import DesignErrors
+
+        raise DesignErrors(p.errors, what="the jaw file" if file else "the jaw")
     c = j.pocket_clearance_mm
     if outline:  # its widest band on the axis and its longest stretch (bounds of the room)
         across, along = round(_widest_band_mm(outline), 3), round(_longest_on_axis_mm(outline), 3)
@@ -427,6 +517,36 @@ def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
                    j.thickness_mm + j.tip_proud_mm,
                    option=jaw if isinstance(jaw, str) else file, table=table, outline=outline,
                    clearance_mm=c)
+
+
+def _jaw_read(p: Problems, table: Mapping[str, Any], file: str,
+              own_file: bool) -> tuple[GrasperJawSection, set[str]]:
+    """The jaw table validated with its class defaults, every refusal of a key's own range
+    (and, for a lab's own file, each key of :data:`JAW_FILE_KEYS` left out) added to ``p``;
+    with the keys it refused (or left out) read as their defaults, so that the rules between
+    the other keys still run: (the table, the keys not read from it)."""
+    from tactcad.errors import DesignErrors
+
+    unread: set[str] = set()
+    if own_file:
+        for key in missing_jaw_file_keys(table):
+            p.add(f"grasper_jaw.{key}", None, "a value stated in the jaw file",
+                  "a lab's jaw file states the jaw's size, pivot, opening and shaft")
+            unread.update(key.split(" or "))
+    try:
+        j = validated_table("grasper_jaw", GrasperJawSection, table, file)
+    except DesignErrors as exc:
+        p.extend(exc.errors)
+        bad = {e.field.split(".")[1].split("[")[0] for e in exc.errors
+               if e.field.startswith("grasper_jaw.") and e.field.count(".") >= 1}
+        unread.update(bad)
+        try:  # the rest read without the refused keys (an unknown key refused alone)
+            j = validated_table("grasper_jaw", GrasperJawSection,
+                                {k: v for k, v in table.items() if k not in bad}, file)
+        except DesignErrors:
+            j = GrasperJawSection()
+            unread.update(table)
+    return with_class_defaults(j), unread
 
 
 def _widest_band_mm(outline) -> float:
@@ -541,11 +661,15 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
     if width < pw + 2 * MIN_WALL_MM - 1e-9:
         p.add("grasper_jaw.width_mm", width, f">= {fmt(pw + 2 * MIN_WALL_MM)} mm",
               f"the jaw holds the {fmt(pw)} mm pocket with {fmt(MIN_WALL_MM)} mm side walls")
-    depth = j.thickness_mm - j.face_wall_mm
     tip_h = plan.slots[0].geometry.tip_height_mm
+    if j.pocket_depth_mm is not None:  # the lab's pocket: the face wall what it leaves
+        j = _with_stated_depth(p, j, tip_h)
+    depth = j.thickness_mm - j.face_wall_mm
     # face wall + proud height < the tip's height: the arms stay clear below the face wall;
     # the field to change is the proud height when no face wall would do
-    if tip_h - j.tip_proud_mm <= FACE_WALL_MIN_MM:
+    if j.pocket_depth_mm is not None:
+        pass  # the stated depth is judged by these rules (_with_stated_depth)
+    elif tip_h - j.tip_proud_mm <= FACE_WALL_MIN_MM:
         p.within("grasper_jaw.tip_proud_mm", j.tip_proud_mm, hi=tip_h - j.face_wall_mm,
                  hi_open=True, why=f"tip_proud_mm + the {fmt(j.face_wall_mm)} mm face wall < "
                  f"the element's tip height {fmt(tip_h)} mm, so the arms stay clear below the "
@@ -559,13 +683,7 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
                  why=f"the insert ({fmt(env[2])} mm high) stands {fmt(j.tip_proud_mm)} mm proud "
                      "and stays inside the jaw's back")
     closed = math.hypot(width, j.thickness_mm + j.opposing_jaw_mm)
-    if closed > bore + 1e-9:
-        p.add("grasper_jaw.thickness_mm", j.thickness_mm,
-              f"<= {fmt(closed_thickness_limit_mm(bore, width) - j.opposing_jaw_mm)} mm "
-              f"with the {fmt(j.opposing_jaw_mm)} mm opposing jaw",
-              f"the closed jaws ({fmt(width)} x {fmt(j.thickness_mm + j.opposing_jaw_mm)} mm, "
-              f"diagonal {fmt(round(closed, 4))} mm) pass the {shaft} mm shaft; a "
-              "narrower jaw (width_mm) leaves room for a thicker one")
+    _check_closed(p, j)
     x1 = j.length_mm - j.distal_wall_mm
     x0 = x1 - pl
     least = pocket_start_limit_mm(j)
@@ -594,6 +712,8 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
         Derived("grasper_jaw_pocket_length", pl, "mm", why_env or "stated"),
         Derived("grasper_jaw_pocket_width", pw, "mm", why_env or "stated"),
         Derived("grasper_jaw_pocket_depth", depth, "mm",
+                f"stated (pocket_depth_mm), leaving a {fmt(round(j.face_wall_mm, 4))} mm face "
+                "wall" if j.pocket_depth_mm is not None else
                 f"thickness {fmt(j.thickness_mm)} less the face wall {fmt(j.face_wall_mm)} mm"),
         Derived("grasper_jaw_window_length", wl, "mm",
                 f"tip field {fmt(field_along)} mm + {fmt(j.window_clearance_mm)} mm each end"),
@@ -619,6 +739,28 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
                 # on the pocket; its x across the jaw takes the array's x (across the rows)
                 "insert": Seat((g.pocket_centre_x_mm, 0, j.thickness_mm + j.tip_proud_mm),
                                (0, 0, -1), (0, 1, 0))})
+
+
+def _with_stated_depth(p: Problems, j: GrasperJawSection, tip_h: float) -> GrasperJawSection:
+    """The table with the face wall a stated pocket depth leaves (``thickness_mm`` less
+    ``pocket_depth_mm``, the pocket cut from the back), the depth refused where that wall is
+    thinner than :data:`FACE_WALL_MIN_MM` or leaves the arms no room below it (wall + proud
+    height < the element's tip height ``tip_h``, mm), or where a face wall is stated too."""
+    _check_depth(p, j)
+    if "face_wall_mm" in j.model_fields_set:
+        p.add("grasper_jaw.face_wall_mm", j.face_wall_mm, "left out with pocket_depth_mm",
+              "the face wall is what the stated pocket depth leaves of the jaw's thickness")
+    least = j.thickness_mm - (tip_h - j.tip_proud_mm)
+    most = j.thickness_mm - FACE_WALL_MIN_MM
+    if not least < j.pocket_depth_mm <= most + 1e-9:
+        p.add("grasper_jaw.pocket_depth_mm", j.pocket_depth_mm,
+              f"{fmt(round(max(least, 0.0), 4))} < value <= {fmt(round(most, 4))} mm"
+              if least < most else "none: the tips are too short for this jaw",
+              f"a comb's pocket from the back leaves a face wall of at least "
+              f"{fmt(FACE_WALL_MIN_MM)} mm, and wall + tip_proud_mm ({fmt(j.tip_proud_mm)} mm) < "
+              f"the element's tip height {fmt(tip_h)} mm, so the arms stay clear below it")
+    wall = min(max(j.thickness_mm - j.pocket_depth_mm, FACE_WALL_MIN_MM), 3.0)
+    return j.model_copy(update={"face_wall_mm": wall})
 
 
 def jaw_volume_mm3(g: GrasperJawGeometry) -> float:

@@ -558,6 +558,125 @@ def comb_envelope_mm(base: dict, sheet: float, columns: int, room: Any, targets:
     return None if binding else tuple(float(v) for v in plan.comb.envelope_mm)
 
 
+def least_pitch_mm(base: dict, sheet: float, columns: int, room: Any, targets: Targets,
+                   grade: str | None) -> float:
+    """The least pitch at which one sheet's comb has a measuring arm 0.5 mm longer than the
+    reference's (:func:`comb_tables`' rule: reference arm 2 mm, the measuring arm the pitch
+    less the slot, post, notch and half the tip).
+
+    Args:
+        base: the comb template's tables. sheet: the sheet (mm). columns: the columns.
+        room: the jaw's room (mm). targets: the targets. grade: the grade, or None.
+
+    Returns:
+        The pitch (mm, rounded up to 0.1 mm).
+    """
+    d, _ = comb_tables(base, sheet, columns, room, targets, grade)
+    e, comb = d["element"], d["comb"]
+    need = 2.0 + 0.5 + slot_of(d) + comb["post_length_mm"] + e["notch_radius_mm"] \
+        + e["tip_width_mm"] / 2
+    return math.ceil(round(need * 10, 6)) / 10
+
+
+def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targets,
+                grade: str | None = None, process: str | None = None) -> list[dict]:
+    """The dimensions in which the smallest comb of ``columns`` (of every sheet, at its
+    least pitch) cannot fit the jaw's ``room``, before any search: its height against the
+    jaw's thickness and the tips' proud height, its width across the rows against the
+    pocket's width, its length against the pocket's length (mm). Each a dict: ``words``
+    (the comb's size against the jaw's, naming the jaw file's key) and ``option`` (what to
+    paste: fewer columns where they fit the length, or ""). Empty when some sheet's
+    smallest comb fits every dimension (the search then decides).
+
+    Args:
+        room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
+        columns: columns of the 2-row comb.
+        base: the comb template's tables.
+        targets: the targets (the comb's tables carry them; its size does not depend on them).
+        grade: the material grade, or None for the base's.
+        process: the rows' cut process (None: the base's): its sheets are the ones held.
+
+    Returns:
+        The misfits (see above); ``[]`` when some sheet's smallest comb fits, or when no
+        sheet's comb has a plan (the search then says why).
+    """
+    tables: dict = copy.deepcopy(dict(base))
+    tables["requirements"] = {}
+    if process is not None:
+        tables["element"]["process"] = process
+    roomy = replace(room, across_mm=1e3, along_mm=1e3, height_mm=1e3, outline=None, table=None)
+    smallest = None
+    for sheet in sheets_of(tables):
+        pitch = least_pitch_mm(tables, sheet, columns, roomy, targets, grade)
+        env = comb_envelope_mm(tables, sheet, columns, replace(roomy, along_mm=pitch * columns),
+                               targets, grade)
+        if env is None:
+            continue
+        along = pitch * columns
+        misses = _misses(env, along, room)
+        if not misses:
+            return []
+        if smallest is None or (len(misses), env[0]) < (len(smallest[2]), smallest[1][0]):
+            smallest = (sheet, env, misses, pitch)
+    if smallest is None:
+        return []  # no sheet's comb has a plan: the search says why
+    sheet, env, misses, pitch = smallest
+    out = []
+    keys = room_keys(room)
+    edit = room.file_keys_to_hold(env)  # a lab's own jaw: the keys that would hold it
+    paste = (f"{' and '.join(k for k, _ in edit)} in {PurePath(room.option).name}"
+             if edit and ("height" in misses or "across" in misses) else "")
+    for dim in misses:
+        if dim == "height":
+            out.append({"words": f"height {env[2]:.3g} mm (the {sheet:g} mm sheet's comb, "
+                                 f"its rows on edge) vs the jaw's {room.height_mm:.3g} mm "
+                                 f"({keys['height']})", "option": paste})
+            paste = ""
+        elif dim == "across":
+            out.append({"words": f"width {env[0]:.3g} mm across its two rows (the {sheet:g} "
+                                 f"mm sheet's) vs the pocket's {room.across_mm:.3g} mm "
+                                 f"({keys['across']})", "option": paste})
+            paste = ""
+        else:
+            fit = int((room.along_mm + 1e-9) // pitch)
+            out.append({"words": f"length {pitch * columns:.3g} mm ({columns} columns at its "
+                                 f"least pitch {pitch:g} mm) vs the pocket's "
+                                 f"{room.along_mm:.3g} mm ({keys['along']})",
+                        "option": f"--columns {fit}" if fit >= 1 and len(misses) == 1 else ""})
+    return out
+
+
+def _misses(env: tuple[float, float, float], along: float, room: Any) -> list[str]:
+    """Which of a comb's height, width across its rows and length (``env``, ``along``; mm)
+    the jaw's ``room`` does not hold (an outline's room: its height alone)."""
+    misses = ["height"] if env[2] > room.height_mm + 1e-9 else []
+    if room.outline is None:
+        misses += ["across"] if env[0] > room.across_mm + 1e-9 else []
+        misses += ["along"] if along > room.along_mm + 1e-9 else []
+    return misses
+
+
+def room_keys(room: Any) -> dict[str, str]:
+    """The jaw file's keys behind a room's height, width and length, in words.
+
+    Args:
+        room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
+
+    Returns:
+        ``{"height", "across", "along"}`` -> the keys (and clearances, mm) behind each.
+    """
+    t = dict(room.table or {})
+    c = room.clearance_mm
+    height = "thickness_mm + tip_proud_mm"
+    across = (f"pocket_width_mm {t['pocket_width_mm']:g} less {c:g} mm clearance each side"
+              if "pocket_width_mm" in t else
+              f"the jaw's width less its side walls and {c:g} mm clearance each side")
+    along = (f"pocket_length_mm {t['pocket_length_mm']:g} less {c:g} mm clearance each end"
+             if "pocket_length_mm" in t else
+             "length_mm between the pin's steel and the distal wall")
+    return {"height": height, "across": across, "along": along}
+
+
 def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
                 other_rooms: Mapping[str, Any]) -> tuple[str, list[dict]]:
     """A line for a refusal when the pocket is too small across or too shallow for every

@@ -53,6 +53,10 @@ class DieSection(Section):
     kobj_resolution_rel: number(0.0, 1.0, lo_open=True, unit="",
                                 why="the K_obj error the read-out noise may leave anywhere in "
                                     "the range (1 sigma)") = DEFAULT_KOBJ_RESOLUTION_REL
+    kobj_accuracy_rel: number(0.0, 10.0, lo_open=True, unit="",
+                              why="the largest K_obj error the die may read with over its "
+                                  "range: the worst root sum square of its K_obj budget "
+                                  "(tactcad budget; not judged when left out)") = None
     max_grasp_force_N: number(0.0, MAX_GRASP_FORCE_N, lo_open=True, unit="N",
                               why="the largest grasp force the die must survive in its jaw: "
                                   "at it no beam past its breaking force, a hard stop taking "
@@ -208,7 +212,8 @@ def _jaw(value: str, source: Path, problems: Problems) -> str:
 def die_file_text(jaw: str, kr_over_km: float, kobj_range: tuple[float, float],
                   full_scale_force_N: float, columns: int, pitch_um: float, name: str,
                   command: str, reasons: Mapping[str, str] = {},
-                  max_grasp_force_N: float | None = None) -> str:
+                  max_grasp_force_N: float | None = None,
+                  kobj_accuracy_rel: float | None = None) -> str:
     """A die design file's text (TOML) for these targets, headed by the command that made
     it and with the reasons of its values under ``[assumptions]``."""
     import tomli_w
@@ -221,6 +226,8 @@ def die_file_text(jaw: str, kr_over_km: float, kobj_range: tuple[float, float],
                         "pitch_um": float(pitch_um), "name": name}}
     if max_grasp_force_N is not None:
         data[DIE_TABLE]["max_grasp_force_N"] = float(max_grasp_force_N)
+    if kobj_accuracy_rel is not None:
+        data[DIE_TABLE]["kobj_accuracy_rel"] = float(kobj_accuracy_rel)
     if reasons:
         data["assumptions"] = dict(reasons)
     return (f"# Written by tactcad {VERSION}: `{command}`.\n"

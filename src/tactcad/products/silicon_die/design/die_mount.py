@@ -20,6 +20,7 @@ Units: mm (the die plan's um converted).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
@@ -93,10 +94,22 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
     """The die's mount in the jaw ``jaw_table`` states (a ``[grasper_jaw]`` table; the
     class's defaults fill it, as for a comb).
 
+    The pocket's depth is the lab's where the table states ``pocket_depth_mm`` (the carrier
+    then fills what the die and its attach leave: thicker than the stock
+    :data:`CARRIER_MM`), else the die, its attach and the stock carrier.
+
+    Args:
+        plan: the die (:class:`~tactcad.products.silicon_die.design.mems_die.DiePlan`).
+        jaw_table: the ``[grasper_jaw]`` table (mm, degrees).
+
+    Returns:
+        The :class:`DieMount` (mm).
+
     Raises:
         DesignError: the jaw cannot hold the pocket: too narrow for the die and its side
-            walls, too thin for the die, carrier and the steel under them, or too short
-            between the pin's steel and the distal wall (the field named with what it needs).
+            walls, too thin for the die, carrier and the steel under them, a stated pocket
+            depth outside what the die and the steel under it allow, or too short between
+            the pin's steel and the distal wall (the field named with what it needs).
     """
     from tactcad.partlib.grasper_jaw import (MIN_WALL_MM, GrasperJawSection,
                                              jaw_width_mm, pocket_start_limit_mm,
@@ -114,12 +127,24 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
                           f"the die is {die_w:g} mm across; its pocket ({c:g} mm clearance each "
                           f"side) keeps {MIN_WALL_MM:g} mm side walls")
     attach = plan.attach.thickness_um * 1e-3
-    depth = stack + attach + CARRIER_MM + DEVICE_RECESS_MM
-    if j.thickness_mm < depth + MIN_WALL_MM - 1e-9:
+    least = stack + attach + CARRIER_MM + DEVICE_RECESS_MM
+    if j.thickness_mm < least + MIN_WALL_MM - 1e-9:
         raise DesignError("grasper_jaw.thickness_mm", j.thickness_mm,
-                          f">= {depth + MIN_WALL_MM:.4g} mm",
+                          f">= {least + MIN_WALL_MM:.4g} mm",
                           f"the die ({stack:.4g} mm), its attach and carrier ({CARRIER_MM:g} mm) "
-                          f"in a pocket {depth:.4g} mm deep over {MIN_WALL_MM:g} mm of steel")
+                          f"in a pocket {least:.4g} mm deep over {MIN_WALL_MM:g} mm of steel")
+    depth, carrier = least, CARRIER_MM
+    if j.pocket_depth_mm is not None:  # the lab's pocket: the carrier fills what the die leaves
+        most = j.thickness_mm - MIN_WALL_MM
+        if not least - 1e-9 <= j.pocket_depth_mm <= most + 1e-9:
+            raise DesignError("grasper_jaw.pocket_depth_mm", j.pocket_depth_mm,
+                              f"{least:.4g} ... {most:.4g} mm",
+                              f"from the face: the die ({stack:.4g} mm), its attach "
+                              f"({attach:g} mm) and at least the {CARRIER_MM:g} mm stock "
+                              f"carrier, over {MIN_WALL_MM:g} mm of steel in the "
+                              f"{j.thickness_mm:g} mm jaw")
+        depth = j.pocket_depth_mm
+        carrier = depth - stack - attach - DEVICE_RECESS_MM
     carrier_l = die_l + BOND_SHELF_MM
     pocket_l = carrier_l + 2 * c
     x1 = j.length_mm - j.distal_wall_mm
@@ -134,12 +159,18 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
     die_z0 = face - DEVICE_RECESS_MM - stack
     post_proud = plan.post_height_um * 1e-3 - DEVICE_RECESS_MM
     reasons = {
-        "pocket": f"{pocket_l:.4g} x {pocket_w:.4g} x {depth:.4g} mm, open at the face: the "
+        "pocket": f"{pocket_l:.4g} x {pocket_w:.4g} x {depth:.4g} mm"
+                  + (" (its depth the lab's, pocket_depth_mm)" if j.pocket_depth_mm is not None
+                     else "") + ", open at the face: the "
                   f"carrier (the die's {die_l:g} mm and a {BOND_SHELF_MM:g} mm bond shelf) and "
                   f"{c:g} mm clearance each side, ending {j.distal_wall_mm:g} mm before the tip",
-        "carrier": f"{CARRIER_MM:g} mm alumina (assumption: a stock thin-film substrate), "
-                   f"{carrier_l:.4g} x {die_w:g} mm: the die and, proximal to it, the flex "
-                   "cable's solder pads",
+        "carrier": (f"{CARRIER_MM:g} mm alumina (assumption: a stock thin-film substrate)"
+                    if j.pocket_depth_mm is None else
+                    f"{carrier:.4g} mm alumina: the lab's {depth:g} mm pocket (pocket_depth_mm) "
+                    f"less the die and its attach (assumption: a thin-film substrate lapped "
+                    f"to it from stock no thinner than {CARRIER_MM:g} mm)")
+                   + f", {carrier_l:.4g} x {die_w:g} mm: the die and, proximal to it, the "
+                     "flex cable's solder pads",
         "die_attach": f"{attach:g} mm {plan.attach.material} ({plan.attach.source})",
         "post_proud": f"the device layer {DEVICE_RECESS_MM:g} mm below the face, its "
                       f"{plan.post_height_um:g} um posts {post_proud * 1e3:.4g} um proud: a "
@@ -147,6 +178,88 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
                       "the face",
     }
     return DieMount(j.length_mm, width, face, j.pin_inset_mm, j.pin_diameter_mm, x0, pocket_l,
-                    pocket_w, depth, x0 + c, carrier_l, die_w, CARRIER_MM,
+                    pocket_w, depth, x0 + c, carrier_l, die_w, carrier,
                     x0 + c + BOND_SHELF_MM, die_z0, die_l, die_w, stack, post_proud, attach,
                     reasons, float(j.opening_angle_deg))
+
+
+def least_pocket_depth_mm() -> float:
+    """The shallowest pocket any die takes.
+
+    Returns:
+        The thinnest stock device layer on the default buried oxide and handle, the default
+        die attach and the stock carrier (mm).
+    """
+    from tactcad.products.silicon_die.vocabulary.soi_process import (DEFAULT_BOX_UM,
+                                                                     DEFAULT_HANDLE_UM,
+                                                                     DEVICE_LAYER_CHOICES_UM)
+
+    stack = (DEFAULT_HANDLE_UM + DEFAULT_BOX_UM + min(DEVICE_LAYER_CHOICES_UM)) * 1e-3
+    return stack + DIE_ATTACH_MM + CARRIER_MM + DEVICE_RECESS_MM
+
+
+def die_misfit(room, jaw_table: Mapping[str, Any], columns: int,
+               pitch_um: float | None = None) -> list[dict]:
+    """The dimensions in which no die of ``columns`` fits the jaw, before it is planned: the
+    jaw's thickness (or its stated pocket depth) against the thinnest die on its attach and
+    carrier over the steel under them, the pocket's width against the die's frame, the
+    pocket's length against the columns at ``pitch_um`` (default the die command's) and
+    the carrier's bond shelf (mm).
+
+    Args:
+        room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
+        jaw_table: its ``[grasper_jaw]`` table.
+        columns: the die's units along it.
+        pitch_um: their spacing (um).
+
+    Returns:
+        Each misfit a dict: ``words`` (the die's size against the jaw's, naming the jaw
+        file's key) and ``option`` (what to paste: fewer columns, or a jaw file's key and
+        value; "" where there is none); empty when the die may fit (its plan decides).
+    """
+    from tactcad.partlib.grasper_jaw import (MIN_WALL_MM, GrasperJawSection, validated_table,
+                                             with_class_defaults)
+    from tactcad.products.silicon_die.design.mems_die import (DEFAULT_PITCH_UM, END_UM,
+                                                              FRAME_UM)
+
+    j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection, dict(jaw_table)))
+    own = room.option and room.option not in ("5", "10")
+    where = f" in {room.option}" if own else ""
+    pitch = DEFAULT_PITCH_UM if pitch_um is None else pitch_um
+    least = least_pocket_depth_mm()
+    out = []
+    if j.thickness_mm < least + MIN_WALL_MM - 1e-9:
+        need = math.ceil((least + MIN_WALL_MM) * 100) / 100
+        out.append({"words": f"thickness: the thinnest die, its attach and carrier "
+                             f"({least:.3g} mm) over {MIN_WALL_MM:g} mm of steel need "
+                             f"{least + MIN_WALL_MM:.3g} mm vs the jaw's {j.thickness_mm:g} mm "
+                             "(thickness_mm)",
+                    "option": f"grasper_jaw.thickness_mm = {need:g}{where}" if own else ""})
+    elif j.pocket_depth_mm is not None and j.pocket_depth_mm < least - 1e-9:
+        need = math.ceil(least * 100) / 100
+        out.append({"words": f"depth: the thinnest die, its attach and carrier need "
+                             f"{least:.3g} mm vs the pocket's {j.pocket_depth_mm:g} mm "
+                             "(pocket_depth_mm)",
+                    "option": f"grasper_jaw.pocket_depth_mm = {need:g}{where}" if own else ""})
+    if room.across_mm * 1e3 <= 2 * FRAME_UM + 1e-6:
+        out.append({"words": f"width: the die's two {FRAME_UM:g} um frames and its beams "
+                             f"between need more than {2 * FRAME_UM * 1e-3:g} mm vs the "
+                             f"pocket's {room.across_mm:.3g} mm inside its clearances "
+                             "(pocket_width_mm, or width_mm less the side walls)",
+                    "option": ""})
+    along_um = (room.along_mm - BOND_SHELF_MM) * 1e3
+    most = int((along_um - 2 * END_UM + 1e-6) // pitch)
+    if most < columns:
+        length = (columns * pitch + 2 * END_UM) * 1e-3 + BOND_SHELF_MM
+        key = "pocket_length_mm" if "pocket_length_mm" in (room.table or {}) else "length_mm"
+        option = f"--columns {most}" if most >= 2 else ""
+        if not option and own and key == "pocket_length_mm":
+            need = math.ceil(((columns * pitch + 2 * END_UM) * 1e-3 + BOND_SHELF_MM
+                              + 2 * room.clearance_mm) * 100) / 100
+            option = f"grasper_jaw.pocket_length_mm = {need:g}{where}"
+        out.append({"words": f"length: {columns} columns at {pitch:g} um, the die's ends and "
+                             f"the carrier's {BOND_SHELF_MM:g} mm bond shelf need "
+                             f"{length:.3g} mm vs the pocket's {room.along_mm:.3g} mm inside "
+                             f"its clearances ({key}); at most {max(most, 0)} columns fit",
+                    "option": option})
+    return out

@@ -282,6 +282,9 @@ class DiePlan:
     attach: DieAttach = DEFAULT_DIE_ATTACH
     #: the largest grasp force the die must survive in its jaw (N), or None (not judged)
     max_grasp_force_N: float | None = None
+    #: the largest K_obj error the die may read with (relative: its budget's worst root sum
+    #: square), or None (not judged)
+    kobj_accuracy_rel: float | None = None
 
     @property
     def window_um(self) -> tuple[float, float, float, float]:
@@ -397,6 +400,8 @@ class DiePlan:
                 "attach": dict(self.attach.__dict__),
                 **({} if self.max_grasp_force_N is None
                    else {"max_grasp_force_N": self.max_grasp_force_N}),
+                **({} if self.kobj_accuracy_rel is None
+                   else {"kobj_accuracy_rel": self.kobj_accuracy_rel}),
                 "reasons": dict(self.reasons)}
 
 

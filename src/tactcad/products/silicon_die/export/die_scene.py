@@ -96,8 +96,10 @@ def mount_bom_rows(plan: DiePlan, mount: DieMount, jaw_label: str) -> list[dict[
                         f"{plan.name}_traveller.md"},
         {"item": "die_carrier", "qty": "1", "kind": "bought, cut to size",
          "description": f"alumina {m.carrier_length_mm:.4g} x {m.carrier_width_mm:g} x "
-                        f"{CARRIER_MM:g} mm, thin-film pads on its {m.carrier_length_mm - m.die_length_mm:.4g} mm "
-                        "bond shelf", "source": "assumption: a stock thin-film substrate"},
+                        f"{m.carrier_mm:.4g} mm, thin-film pads on its {m.carrier_length_mm - m.die_length_mm:.4g} mm "
+                        "bond shelf", "source": "assumption: a stock thin-film substrate"
+                        + ("" if abs(m.carrier_mm - CARRIER_MM) < 1e-9 else
+                           f" lapped to the jaw's {m.pocket_depth_mm:g} mm pocket")},
         {"item": "die_attach", "qty": "1", "kind": "consumable",
          "description": f"{plan.attach.material}, {m.attach_mm:g} mm, "
                         f"{m.die_length_mm:g} x {m.die_width_mm:g} mm",

@@ -58,6 +58,7 @@ def die_verification(plan, mount=None) -> list[dict]:
         _resolution_row(plan),
         *([_grasp_row(plan, mount)]
           if plan.max_grasp_force_N is not None and mount is not None else []),
+        *([accuracy_row(plan)] if plan.kobj_accuracy_rel is not None else []),
     ]
 
 
@@ -102,6 +103,47 @@ def _grasp_row(plan, mount) -> dict:
                                 f"{', '.join(map(str, face))} (past the punch model)"
                                 if face else "")
                              + (f"; past breaking: {', '.join(map(str, over))}" if over else "")}
+
+
+def worst_budget_rel(plan) -> float:
+    """The die's K_obj budget's worst root sum square over its range.
+
+    Args:
+        plan: the die (:class:`~tactcad.products.silicon_die.design.mems_die.DiePlan`).
+
+    Returns:
+        The worst relative error, 1 sigma
+        (:func:`tactcad.products.silicon_die.in_use.die_budget.die_budget`: each term before
+        any calibration, so an upper bound; inf where a K_obj is unreadable).
+    """
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget
+
+    return float(max(die_budget(plan).total_rel))
+
+
+def accuracy_row(plan, worst: float | None = None) -> dict:
+    """``kobj_accuracy_rel``: the die's K_obj budget's worst root sum square over the range
+    against the stated accuracy; fails where it is larger.
+
+    Args:
+        plan: the die, its ``kobj_accuracy_rel`` stated (relative).
+        worst: :func:`worst_budget_rel` of the plan when already computed.
+
+    Returns:
+        The verification record (requirement, target, predicted, margin_rel, verdict, ...).
+    """
+    worst = worst_budget_rel(plan) if worst is None else worst
+    target = plan.kobj_accuracy_rel
+    readable = math.isfinite(worst) and worst > 0
+    return {"requirement": "kobj_accuracy_rel", "target": target, "predicted": worst,
+            "error_estimate_rel": None,
+            "margin_rel": target / worst - 1.0 if readable else None,
+            "model": "closed-form", "verdict": "pass" if worst <= target else "fail",
+            "binding_words": "the root sum square of the die's K_obj budget (tactcad budget: "
+                             "read-out noise, device layer, cavity alignment, temperature, "
+                             "resistor zero drift and the coupled inversion's residue), worst "
+                             "over the K_obj range, each term before calibration (an upper "
+                             "bound)"}
 
 
 def _resolution_row(plan) -> dict:
