@@ -65,7 +65,7 @@ def test_a_stated_pair_decides_the_rated_force_and_the_stops(die):
     # each beam at its own rated force: the rating on a reference beam, K_m x its rated
     # travel on a measuring one
     risk = sum((b.length_um / 6 * (b.width_um + b.thickness_um / 6)) / 1e4
-               * (judged.stress_MPa_at_rating(b) * judged.rated_force_N(b)
+               * (judged.peak_stress_MPa_at_rating(b) * judged.rated_force_N(b)
                   / die.full_scale_force_N / 1500.0) ** 5 for b in die.beams)
     p_rated = die_failure_probability(judged, judged.rated_force_N)
     assert p_rated == pytest.approx(1 - math.exp(-risk), rel=1e-9)

@@ -42,7 +42,8 @@ def die_verification(plan, mount=None) -> list[dict]:
     ratio = plan.k_r_N_per_mm / plan.k_m_N_per_mm
     ratio_error = 2 * CLOSED_FORM_K_ERROR_REL  # each K's error, the worst way round
     fracture = {b.role: fracture_travel_um(stiffness[b.role], b.length_um, b.width_um,
-                                           b.thickness_um) for b in rows}
+                                           b.thickness_um, plan.root_stress_concentration(b))
+                for b in rows}
     stop = _stop_row(plan, rows, fracture)
     return [
         _rated_row(plan) if plan.weibull is None else _weibull_rated_row(plan),
@@ -173,7 +174,9 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
         margins.append(min(breaks, plan.post_height_um) / deep - 1.0)
         words.append(f"{beam.role}: cavity {plan.cavity_depth_of(beam):g} um, engages at "
                      f"{shallow:.3g} ... {deep:.3g} um of post travel (rated {rated:.3g} um, "
-                     f"breaks at {breaks:.3g} um)")
+                     f"breaks at {breaks:.3g} um: its root fillets' peak, K_t "
+                     f"{plan.root_stress_concentration(beam):.3g} x the nominal, at the mean "
+                     "strength)")
     words.append(f"posts {plan.post_height_um:g} um proud: still proud on their stops")
     if plan.weibull is not None:  # every beam resting on its floor: the most it carries
         from tactcad.products.silicon_die.mechanics.die_strength import (die_failure_probability,
