@@ -104,7 +104,9 @@ def test_a_probabilitys_margin_is_the_force_at_which_the_die_reaches_the_accepte
         force_scale_at_probability(judged, judged.rated_force_N, 1.0)
 
 
-@pytest.mark.parametrize("sigma_0, modulus", [(600.0, 8.0), (300.0, 4.0), (900.0, 15.0)])
+# (sigma_0 300 MPa at m 4 leaves no rating at all since the roots' fillets' peak is judged:
+# the stops' shallowest cavity already passes it; 400 MPa is the weak pair here)
+@pytest.mark.parametrize("sigma_0, modulus", [(600.0, 8.0), (400.0, 4.0), (900.0, 15.0)])
 def test_a_labs_pair_limits_the_rating_it_plans_and_the_pasted_rating_passes_verify(
         sigma_0, modulus):
     """The rating's strength limit was the etched bars' mean whatever pair the lab stated,

@@ -543,9 +543,9 @@ ROOT_FILLET_RANGE_UM = (0.0, 20.0)
 #: K_t = 1 + c (K_t,chart - 1), fitted to the die's fem3d level
 #: (:func:`tactcad.products.silicon_die.mechanics.die_fem3d.root_peak_fem3d`, level 3, the
 #: arc's element edge r / 8) on the example die's reference beam (w 128, t 40, L 388 um) at
-#: r = 4, 8, 16 um: K_t 2.08, 1.69, 1.49, each c = 0.616, 0.560, 0.624 on the chart's
-#: 2.74, 2.23, 1.79; c = 0.60 reads them within -1.7, +2.9, -1.3 %, and the measuring beam
-#: (L 863 um, r 4 um: 2.02) within +0.9 %. Only this section is fitted: at r = 4 um on
+#: r = 4, 8, 16 um: K_t 2.04, 1.69, 1.49, each c = 0.599, 0.560, 0.624 on the chart's
+#: 2.74, 2.23, 1.79; c = 0.60 reads them within +0.1, +2.9, -1.3 %, and the measuring beam
+#: (L 863 um, r 4 um: 2.02) within +0.9 % (level 4: 2.06 on both beams, -1.0 / -1.1 %). Only this section is fitted: at r = 4 um on
 #: beams 60 and 240 um wide in the 40 um layer fem3d reads 1.93 and 2.10 against the closed
 #: form's 1.71 and 2.42 (the concentration follows r / t more than r / w).
 ROOT_KT_OUT_OF_PLANE = 0.60
@@ -572,7 +572,8 @@ def root_stress_concentration(radius_um: float, width_um: float, thickness_um: f
     its fillets; the in-plane one (:func:`shoulder_fillet_kt`, bending, r / d = r / w at
     D / d = :data:`ROOT_KT_D_OVER_D`) has the shape, and the die's fem3d level on filleted
     roots sets its size: K_t = 1 + :data:`ROOT_KT_OUT_OF_PLANE` (K_t,chart - 1), within 3 %
-    of fem3d at r / w 0.03-0.125 on the example's section (w / t 3.2). Below the chart's
+    of fem3d at r / w 0.03-0.125 on the example's section (w / t 3.2; other sections are
+    not fitted, see the factor's note). Below the chart's
     smallest r / d (h / r = 20) its K_t - 1 is carried on as (r / d)^-1/2
     (:data:`BELOW_CHART_EXPONENT`).
 
@@ -962,7 +963,8 @@ def _rating_of(pair: BeamPair, k_r: float, k_m: float, force_N: float, kobj_rang
 def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
     """The ratings at which each limit binds, with what binds (N, words); each scales with
     the force (the roots' stress, the stops' depths and the posts' travel go as F): the more
-    stressed root at the mean strength of etched silicon, the deeper cavity at
+    stressed root's peak (K_t x the nominal) at the mean strength of etched silicon, the
+    stops engaging before it, the deeper cavity at
     :data:`CAVITY_DEPTH_MAX_UM` after its tolerance, the posts at :data:`POST_ASPECT_MAX` x
     their side."""
     force_N, depths_um, deepest_um = rating.force_N, rating.depths_um, rating.deepest_um
@@ -984,7 +986,7 @@ def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
     return [
         *strength,
         (force_N / rating.stop_over_fracture if rating.stop_over_fracture > 0 else math.inf,
-         "a row's stop, in its deepest cavity, engaging only as its root reaches the mean "
+         "a row's stop, in its deepest cavity, engaging only as its root's peak reaches the mean "
          f"strength ({100 * rating.stop_over_fracture:.3g} % of that travel at {force_N:g} N)"),
         (force_N * CAVITY_DEPTH_MAX_UM / deepest_cavity,
          f"the measuring row's cavity at the {CAVITY_DEPTH_MAX_UM:g} um a timed etch holds to "

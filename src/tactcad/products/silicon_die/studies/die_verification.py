@@ -65,7 +65,7 @@ def die_verification(plan, mount=None) -> list[dict]:
 def _grasp_row(plan, mount) -> dict:
     """``max_grasp_force_N``: the die's jaw closed to that force on the default tissue
     (:func:`tactcad.products.silicon_die.in_use.die_grasp.grasp_at_force`); each beam's force
-    on its spring against its breaking force (its root at the mean strength of etched
+    on its spring against its breaking force (its root's peak at the mean strength of etched
     silicon), a hard stop taking the rest; fails when a beam passes it or the jaw cannot
     reach the force."""
     from tactcad.errors import DesignError
@@ -202,5 +202,5 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
             "margin_rel": min(margins), "model": "closed-form",
             "verdict": "pass" if ok else "fail",
             "binding_words": f"each row's cavity floor under its beams' free ends (the depth "
-                             f"+-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %, the root at the mean "
-                             "strength of etched bars)"}
+                             f"+-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %, the root's peak on its "
+                             "fillets at the mean strength of etched bars)"}
