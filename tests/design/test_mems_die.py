@@ -225,8 +225,8 @@ def test_each_rows_cavity_stops_its_beam_between_its_rated_travel_and_its_fractu
         assert need <= depth < need + 0.5 + 1e-9 and (depth / 0.5) == pytest.approx(
             round(depth / 0.5), abs=1e-9)
         stiffness = die.k_r_N_per_mm if beam.role == "reference" else die.k_m_N_per_mm
-        fracture[beam.role] = (1e3 * die.full_scale_force_N * 1900.0
-                               / die.stress_MPa_at_rating(beam) / stiffness)
+        fracture[beam.role] = (1e3 * die.full_scale_force_N * 1900.0  # the fillets' peak
+                               / die.peak_stress_MPa_at_rating(beam) / stiffness)
         assert depth * 1.05 / end_over_post < fracture[beam.role]
         assert die.rated_tip_um(beam) == pytest.approx(travel, rel=1e-4)
     stop = {r["requirement"]: r for r in die_verification(die)}["hard_stop"]
@@ -833,10 +833,14 @@ def test_modal_budget_readout_and_thermal_print_the_dies_own_figures_not_an_arra
     rows = {r["requirement"]: r for r in json.loads(checked.stdout)["matrix"]}
     assert rows["hard_stop"]["verdict"] == "pass" and rows["kr_over_km"]["verdict"] == "pass"
     assert rows["full_scale_force_N"]["verdict"] == "undecided"
-    # the largest rating the die's limits allow: here the measuring row's cavity at 100 um
-    # (+5 %), its depth going as the rating (rounded up to 0.5 um)
-    assert rows["full_scale_force_N"]["predicted"] == pytest.approx(
-        d.die.full_scale_force_N * 100.0 / (plan.cavity_depths_um[1] * 1.05), rel=1e-12)
+    # the largest rating the die's limits allow: here a row's stop, which must engage
+    # before its root fillets' peak reaches the etched bars' mean strength (the measuring
+    # row's cavity at 100 um (+5 %) binds a little above it)
+    limits = md.rating_limits(plan)
+    assert rows["full_scale_force_N"]["predicted"] == pytest.approx(min(l for l, _ in limits),
+                                                                    rel=1e-12)
+    assert min(limits)[1].startswith("a row's stop")
+    assert min(limits)[0] < d.die.full_scale_force_N * 100.0 / (plan.cavity_depths_um[1] * 1.05)
     assert sorted(p.name for p in tmp_path.iterdir()) == [design.name]  # nothing written
     for argv, option in ((("modal", "--model", "fem3d"), "--model"),
                          (("budget", "--delta-T", "3"), "--delta-T"),
@@ -882,9 +886,13 @@ def test_a_die_is_not_written_into_a_folder_of_other_files(tmp_path):
 
 
 def test_the_strength_reason_sets_the_root_stress_against_the_sourced_mean(die):
-    """The more stressed root at its own beam's rated force: the reference's at the rating,
-    the measuring beam's at K_m x its rated travel (below the rating), by hand."""
-    stress = {b.role: 6 * f * b.length_um * 1e-3 / (b.width_um * 1e-3 * (b.thickness_um * 1e-3) ** 2)
+    """The more stressed root's peak at its own beam's rated force: the reference's at the
+    rating, the measuring beam's at K_m x its rated travel (below the rating), by hand: K_t of
+    the root's fillets x 6 F L / (w t^2)."""
+    kt = md.root_stress_concentration(die.root_fillet_um, die.beam_width_um,
+                                      die.stack.device_um)
+    stress = {b.role: kt * 6 * f * b.length_um * 1e-3
+              / (b.width_um * 1e-3 * (b.thickness_um * 1e-3) ** 2)
               for b, f in ((die.beams[0], die.full_scale_force_N),
                            (die.beams[die.columns],
                             die.k_m_N_per_mm * die.rated_tip_um(die.beams[die.columns]) * 1e-3))}
@@ -976,9 +984,11 @@ def test_verify_fails_a_rating_at_the_mean_strength_and_leaves_one_below_it_unde
         return next(r for r in die_verification(plan)
                     if r["requirement"] == "full_scale_force_N")["verdict"]
 
-    # the rating at which the worse root, at its own beam's rated force, reaches the mean
+    # the rating at which the worse root's peak, at its own beam's rated force, reaches the
+    # mean
     breaking = min(die.full_scale_force_N * md.BOSCH_MEAN_STRENGTH_MPA
-                   / (die.stress_MPa_at_rating(b) * die.rated_force_N(b) / die.full_scale_force_N)
+                   / (die.peak_stress_MPa_at_rating(b) * die.rated_force_N(b)
+                      / die.full_scale_force_N)
                    for b in die.beams)
     assert verdict(die) == "undecided"
     assert verdict(dc.replace(die, full_scale_force_N=1.01 * breaking)) == "fail"

@@ -65,7 +65,7 @@ def test_a_stated_pair_decides_the_rated_force_and_the_stops(die):
     # each beam at its own rated force: the rating on a reference beam, K_m x its rated
     # travel on a measuring one
     risk = sum((b.length_um / 6 * (b.width_um + b.thickness_um / 6)) / 1e4
-               * (judged.stress_MPa_at_rating(b) * judged.rated_force_N(b)
+               * (judged.peak_stress_MPa_at_rating(b) * judged.rated_force_N(b)
                   / die.full_scale_force_N / 1500.0) ** 5 for b in die.beams)
     p_rated = die_failure_probability(judged, judged.rated_force_N)
     assert p_rated == pytest.approx(1 - math.exp(-risk), rel=1e-9)
@@ -104,7 +104,9 @@ def test_a_probabilitys_margin_is_the_force_at_which_the_die_reaches_the_accepte
         force_scale_at_probability(judged, judged.rated_force_N, 1.0)
 
 
-@pytest.mark.parametrize("sigma_0, modulus", [(600.0, 8.0), (300.0, 4.0), (900.0, 15.0)])
+# (sigma_0 300 MPa at m 4 leaves no rating at all since the roots' fillets' peak is judged:
+# the stops' shallowest cavity already passes it; 400 MPa is the weak pair here)
+@pytest.mark.parametrize("sigma_0, modulus", [(600.0, 8.0), (400.0, 4.0), (900.0, 15.0)])
 def test_a_labs_pair_limits_the_rating_it_plans_and_the_pasted_rating_passes_verify(
         sigma_0, modulus):
     """The rating's strength limit was the etched bars' mean whatever pair the lab stated,

@@ -32,9 +32,15 @@ def test_strength_on_a_die_gives_each_rows_root_against_etched_silicon(die_folde
     plan = plan_of(die_asked(_die_args(die_folder / EXAMPLE.name,
                                        _Args(overrides=[]), Path(".")))).plan
     for row, beam in zip(report["rows"], plan.beams[:: plan.columns]):
-        stress = plan.root_stress_MPa_at_rated_force(beam)  # the number the die command prints
-        assert row["root_stress_MPa_at_rated_force"] == pytest.approx(stress, rel=1e-12)
-        assert row["fracture_force_N"] * row["root_stress_MPa_per_N"] == pytest.approx(
+        # the root's peak on its fillets, the number the die command prints
+        stress = plan.root_peak_stress_MPa_at_rated_force(beam)
+        assert row["root_peak_stress_MPa_at_rated_force"] == pytest.approx(stress, rel=1e-12)
+        assert row["root_peak_stress_MPa_per_N"] == pytest.approx(
+            row["root_stress_concentration_factor"] * row["root_nominal_stress_MPa_per_N"],
+            rel=1e-12)
+        assert row["root_stress_concentration_factor"] > 1.0
+        assert row["root_fillet_um"] == plan.root_fillet_um
+        assert row["fracture_force_N"] * row["root_peak_stress_MPa_per_N"] == pytest.approx(
             BOSCH_MEAN_STRENGTH_MPA)
     assert report["requirement"]["requirement"] == "full_scale_force_N"
     refused = run_cli("strength", "--model", "fem2d", "--json", cwd=die_folder)

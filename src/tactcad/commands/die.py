@@ -138,7 +138,8 @@ def die_asked(args: argparse.Namespace) -> dict:
             "strength": d.strength,
             "kobj_resolution_rel": d.die.kobj_resolution_rel, "attach": d.attach,
             "max_grasp_force": d.die.max_grasp_force_N,
-            "kobj_accuracy": d.die.kobj_accuracy_rel}
+            "kobj_accuracy": d.die.kobj_accuracy_rel,
+            "root_fillet_um": d.die.root_fillet_um}
 
 
 def _any_option_given(args: argparse.Namespace) -> bool:
@@ -232,7 +233,9 @@ def plan_of(asked: dict) -> PlannedDie:
     try:
         plan = doped_die_plan(targets, room, asked.get("kobj_resolution_rel"),
                               columns=asked["columns"], pitch_um=asked["pitch_um"], name=name,
-                              weibull=asked.get("strength"))
+                              weibull=asked.get("strength"),
+                              **({} if asked.get("root_fillet_um") is None
+                                 else {"root_fillet_um": asked["root_fillet_um"]}))
     except DesignError as exc:
         if asked.get("file"):
             raise _as_file_keys(exc, asked["file"]) from None
@@ -439,7 +442,7 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
              f"the rows (their hard stops) {d.cavity_depths_um[0]:g} um (reference) and "
              f"{d.cavity_depths_um[1]:g} um (measuring) deep",
              "| row | role | L um | w um | t um | K N/mm | target N/mm | rated force mN | "
-             "root stress there MPa | dR/R per N | V/N | force resolution N |",
+             "root peak stress there MPa | dR/R per N | V/N | force resolution N |",
              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for b, k, target in ((ref, d.k_r_N_per_mm, d.targets[0]),
                          (meas, d.k_m_N_per_mm, d.targets[1])):
@@ -447,7 +450,7 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
         lines.append(f"| {b.row} | {b.role} | {b.length_um:.4g} | {b.width_um:g} | "
                      f"{b.thickness_um:g} | {k:.4g} | {target:.4g} | "
                      f"{1e3 * d.rated_force_N(b):.3g} | "
-                     f"{d.root_stress_MPa_at_rated_force(b):.4g}"
+                     f"{d.root_peak_stress_MPa_at_rated_force(b):.4g}"
                      f" | {r['resistance_change_per_N']:.4g} | "
                      f"{r['sensitivity_V_per_N']:.4g} | {r['force_resolution_N']:.3g} |")
     lines.append(resistor_line(plan, readout))

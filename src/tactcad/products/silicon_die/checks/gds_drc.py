@@ -2,7 +2,8 @@
 every rule of :func:`tactcad.products.silicon_die.vocabulary.soi_process.soi_rules` (widths, spaces,
 enclosures) and the read-back of the outlines the mechanics assumed (the beams left in the
 device layer over the handle's cavities equal the plan's beams, each row over its own
-cavity, the hard stop the plan sized; the implant equals each beam's resistor and its
+cavity, the hard stop the plan sized; each beam's two root corners filleted at the plan's
+radius, every vertex of the drawn arcs on the mask's outline; the implant equals each beam's resistor and its
 reference, the references off the window; each contact on its resistor and under its
 metal), as :class:`tactcad.checks.check_result.CheckResult` rows.
 
@@ -115,6 +116,7 @@ def outline_results(path: Path, plan) -> list[CheckResult]:
     resistors = kdb.Region([poly(resistor_outline(plan, b)) for b in plan.beams]) + references
     drawn = regions["piezo"] ^ resistors.merged()
     out.append(_rows_over_their_cavities(plan, regions, poly))
+    out.append(_fillets_drawn(plan, left, dbu))
     strained = references & window
     out.append(CheckResult("gds_outline", "resistors", drawn.is_empty() and strained.is_empty(),
                            f"{len(plan.beams)} beam resistors at their roots and their "
@@ -138,6 +140,46 @@ def outline_results(path: Path, plan) -> list[CheckResult]:
 def gds_checks(path: Path, plan) -> list[CheckResult]:
     """:func:`rule_results` and :func:`outline_results` of the die GDS at ``path``."""
     return rule_results(path, plan) + outline_results(path, plan)
+
+
+#: How far a drawn fillet's vertex may lie off its arc (um): the GDS's 1 nm grid, twice.
+FILLET_VERTEX_TOLERANCE_UM = 2e-3
+
+
+def _fillets_drawn(plan, left, dbu: float) -> CheckResult:
+    """Each beam's two root fillets in the device layer left over the window (``left``,
+    KLayout region): at each root corner, every vertex of the drawn quarter circle
+    (:func:`tactcad.products.silicon_die.export.gds_masks.fillet_arc`) is a vertex of the
+    mask's outline, on the arc of the plan's radius to the grid; a square corner, or a
+    fillet of another radius, fails."""
+    from tactcad.products.silicon_die.export.gds_masks import FILLET_SEGMENTS, _local, fillet_arc
+
+    r = plan.root_fillet_um
+    vertices = {(p.x, p.y) for poly in left.each() for p in poly.each_point_hull()}
+    tol = FILLET_VERTEX_TOLERANCE_UM / dbu
+    missing = []
+    for beam in plan.beams:
+        for side in (-1, +1):
+            arc = _local(beam, fillet_arc(r, beam.width_um / 2, side))
+            found = sum(1 for x, y in arc if _near(vertices, x / dbu, y / dbu, tol))
+            if found < len(arc):
+                missing.append(f"beam {beam.number} {'left' if side < 0 else 'right'} "
+                               f"({found} of {len(arc)} arc vertices)")
+    corners = 2 * len(plan.beams)
+    return CheckResult("gds_outline", "fillets", not missing,
+                       f"{corners} root corners filleted at r = {r:g} um ({FILLET_SEGMENTS} "
+                       "chords a quarter circle) in the device etch's mask"
+                       if not missing else
+                       f"{len(missing)} of {corners} root corners not filleted at r = {r:g} "
+                       f"um: {', '.join(missing[:MARKERS_QUOTED])}")
+
+
+def _near(vertices, x: float, y: float, tol: float):
+    """The integer-grid vertices within ``tol`` of (x, y) (database units)."""
+    reach = int(tol) + 1
+    ix, iy = round(x), round(y)
+    return [(ix + i, iy + j) for i in range(-reach, reach + 1) for j in range(-reach, reach + 1)
+            if (ix + i, iy + j) in vertices]
 
 
 def _rows_over_their_cavities(plan, regions, poly) -> CheckResult:

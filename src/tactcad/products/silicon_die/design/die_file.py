@@ -19,7 +19,9 @@ from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAU
                                                           DEFAULT_DIE_NAME,
                                                           DEFAULT_KOBJ_RESOLUTION_REL,
                                                           DEFAULT_PITCH_UM, LEAST_PITCH_UM,
-                                                          DieAttach, WeibullPair)
+                                                          ROOT_FILLET_RANGE_UM, DieAttach,
+                                                          WeibullPair)
+from tactcad.products.silicon_die.vocabulary.soi_process import DRIE_MIN_RADIUS_UM
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
                                                  MAX_KOBJ_N_PER_MM)
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
@@ -61,6 +63,12 @@ class DieSection(Section):
                               why="the largest grasp force the die must survive in its jaw: "
                                   "at it no beam past its breaking force, a hard stop taking "
                                   "the rest (not judged when left out)") = None
+    root_fillet_um: number(ROOT_FILLET_RANGE_UM[0], ROOT_FILLET_RANGE_UM[1], lo_open=True,
+                           unit="um",
+                           why="the fillet where each beam's sidewalls meet the frame, drawn "
+                               "into the device etch; its K_t raises the root's peak stress "
+                               "(default: the smallest radius the etch draws reliably)"
+                           ) = DRIE_MIN_RADIUS_UM
 
 
 class DieStrengthSection(Section):

@@ -58,6 +58,8 @@ from tactcad.products.silicon_die.vocabulary.soi_process import (CAVITY_ALIGNMEN
                                                                  DEVICE_LAYER_CHOICES_UM,
                                                                  DEVICE_TOLERANCE_SOURCE,
                                                                  DEVICE_TOLERANCE_UM,
+                                                                 DRIE_MIN_RADIUS_SOURCE,
+                                                                 DRIE_MIN_RADIUS_UM,
                                                                  METAL_SPACE_UM, SoiStack,
                                                                  drie_min_width_um)
 
@@ -285,6 +287,8 @@ class DiePlan:
     #: the largest K_obj error the die may read with (relative: its budget's worst root sum
     #: square), or None (not judged)
     kobj_accuracy_rel: float | None = None
+    #: the fillet's radius where each beam's sidewalls meet the frame at its root (um)
+    root_fillet_um: float = DRIE_MIN_RADIUS_UM
 
     @property
     def window_um(self) -> tuple[float, float, float, float]:
@@ -358,15 +362,33 @@ class DiePlan:
         return beam.length_um + root_extension_um(beam.width_um, beam.thickness_um)
 
     def stress_MPa_at_rating(self, beam: Beam) -> float:
-        """The root's surface bending stress were ``beam`` to carry the die's rated
-        (full-scale) force (MPa): 6 F L / (w t^2); the stress per newton times that force."""
+        """The root's nominal surface bending stress were ``beam`` to carry the die's rated
+        (full-scale) force (MPa): 6 F L / (w t^2), the stress the piezoresistor reads; the
+        fillets' peak is :meth:`peak_stress_MPa_at_rating`."""
         return (6 * self.full_scale_force_N * beam.length_um * 1e-3
                 / (beam.width_um * 1e-3 * (beam.thickness_um * 1e-3) ** 2))
 
+    def root_stress_concentration(self, beam: Beam) -> float:
+        """K_t of ``beam``'s root fillets (:func:`root_stress_concentration`): the root's
+        peak stress over its nominal 6 F L / (w t^2)."""
+        return root_stress_concentration(self.root_fillet_um, beam.width_um, beam.thickness_um)
+
+    def peak_stress_MPa_at_rating(self, beam: Beam) -> float:
+        """The root's peak stress, on its fillets' top edge, were ``beam`` to carry the
+        die's rated force (MPa): K_t x 6 F L / (w t^2); what strength, the stops and the
+        rating's limits judge."""
+        return self.root_stress_concentration(beam) * self.stress_MPa_at_rating(beam)
+
     def root_stress_MPa_at_rated_force(self, beam: Beam) -> float:
-        """The root's surface bending stress at the most ``beam`` carries in use
+        """The root's nominal surface bending stress at the most ``beam`` carries in use
         (:meth:`rated_force_N`; MPa)."""
         return self.stress_MPa_at_rating(beam) * self.rated_force_N(beam) / self.full_scale_force_N
+
+    def root_peak_stress_MPa_at_rated_force(self, beam: Beam) -> float:
+        """The root's peak stress (K_t x the nominal) at the most ``beam`` carries in use
+        (:meth:`rated_force_N`; MPa)."""
+        return (self.peak_stress_MPa_at_rating(beam) * self.rated_force_N(beam)
+                / self.full_scale_force_N)
 
     @property
     def tip_gap_um(self) -> float:
@@ -390,8 +412,15 @@ class DiePlan:
                 "targets_N_per_mm": {"K_r": self.targets[0], "K_m": self.targets[1]},
                 "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
                 "full_scale_force_N": self.full_scale_force_N,
-                "root_stress_MPa_at_rated_force": {
+                "root_fillet_um": self.root_fillet_um,
+                "root_stress_concentration_factor": {
+                    b.role: self.root_stress_concentration(b)
+                    for b in self.beams[:: self.columns]},
+                "root_nominal_stress_MPa_at_rated_force": {
                     b.role: self.root_stress_MPa_at_rated_force(b)
+                    for b in self.beams[:: self.columns]},
+                "root_peak_stress_MPa_at_rated_force": {
+                    b.role: self.root_peak_stress_MPa_at_rated_force(b)
                     for b in self.beams[:: self.columns]},
                 "tip_gap_um": self.tip_gap_um,
                 "cavity_depths_um": {"reference": self.cavity_depths_um[0],
@@ -452,6 +481,156 @@ def root_extension_um(width_um: float, thickness_um: float) -> float:
     i = min(max(bisect.bisect_right(logs, at), 1), len(logs) - 1)
     share = (at - logs[i - 1]) / (logs[i] - logs[i - 1])
     return (cs[i - 1] + share * (cs[i] - cs[i - 1])) * thickness_um
+
+
+#: Roark's fits of the stepped flat bar's shoulder-fillet factor (Young and Budynas,
+#: *Roark's Formulas for Stress and Strain*, 7th ed., 2002, Table 17.1, case 3, from the
+#: charts Peterson's *Stress Concentration Factors* collects): K_t = C1 + C2 (2h/D) +
+#: C3 (2h/D)^2 + C4 (2h/D)^3, h = (D - d) / 2 the shoulder's height, each C_i = a + b
+#: sqrt(h/r) + c h/r; per loading, (a, b, c) of C1 ... C4 for 0.1 <= h/r <= 2 and for
+#: 2 < h/r <= 20. ``bending`` is in the plane of the fillets (case 3b): no published chart
+#: covers a bar bent out of that plane, as a die's beam is.
+SHOULDER_FILLET_FITS = {
+    "tension": (((1.007, 1.000, -0.031), (-0.114, -0.585, 0.314), (0.241, -0.992, -0.271),
+                 (-0.134, 0.577, -0.012)),
+                ((1.042, 0.982, -0.036), (-0.074, -0.156, -0.010), (-3.418, 1.220, -0.005),
+                 (3.450, -2.046, 0.051))),
+    "bending": (((1.007, 1.000, -0.031), (-0.270, -2.404, 0.749), (0.677, 1.133, -0.904),
+                 (-0.414, 0.271, 0.186)),
+                ((1.042, 0.982, -0.036), (-3.599, 1.619, -0.431), (6.084, -5.607, 1.158),
+                 (-2.527, 3.006, -0.691))),
+}
+SHOULDER_FILLET_SOURCE = ("Roark's Formulas for Stress and Strain, 7th ed. (Young and Budynas "
+                          "2002), Table 17.1 case 3b: a stepped flat bar bent in the plane of "
+                          "its shoulder fillets, Peterson's charts fitted")
+#: The shoulder's height over the fillet's radius the fits cover.
+SHOULDER_H_OVER_R_RANGE = (0.1, 20.0)
+
+
+def shoulder_fillet_kt(radius_over_d: float, big_d_over_d: float,
+                       loading: str = "bending") -> float:
+    """K_t of a stepped flat bar's shoulder fillets (:data:`SHOULDER_FILLET_FITS`): the peak
+    stress on the fillet over the nominal stress of the narrow section (tension P / (d h);
+    in-plane bending 6 M / (h d^2)).
+
+    Args:
+        radius_over_d: r / d, the fillet's radius over the narrow section's width, > 0.
+        big_d_over_d: D / d, the wide section over the narrow, > 1.
+        loading: ``"tension"`` or ``"bending"`` (in the fillets' plane).
+
+    Returns:
+        K_t (>= 1).
+
+    Raises:
+        ValueError: an unknown loading, or h / r = (D / d - 1) / (2 r / d) outside the fits'
+            :data:`SHOULDER_H_OVER_R_RANGE`.
+    """
+    if loading not in SHOULDER_FILLET_FITS:
+        raise ValueError(f"loading = {loading!r}: allowed {sorted(SHOULDER_FILLET_FITS)}")
+    _positive(radius_over_d=radius_over_d)
+    h_over_r = (big_d_over_d - 1.0) / (2.0 * radius_over_d)
+    lo, hi = SHOULDER_H_OVER_R_RANGE
+    if not lo * (1 - 1e-9) <= h_over_r <= hi * (1 + 1e-9):  # the ends as written
+        raise ValueError(f"h / r = {h_over_r:.4g} (r / d = {radius_over_d:g}, D / d = "
+                         f"{big_d_over_d:g}): allowed {lo:g} ... {hi:g}, the fits' range")
+    fit = SHOULDER_FILLET_FITS[loading][0 if h_over_r <= 2.0 else 1]
+    cs = [a + b * math.sqrt(h_over_r) + c * h_over_r for a, b, c in fit]
+    x = 1.0 - 1.0 / big_d_over_d  # 2 h / D
+    return cs[0] + cs[1] * x + cs[2] * x * x + cs[3] * x ** 3
+
+
+#: The root fillet's radii a die takes (um): above 0, at most this (the fit of
+#: :data:`ROOT_KT_OUT_OF_PLANE` spans r / w 0.03-0.125, r / t 0.1-0.4 on the example's
+#: section; a larger fillet is a taper, not a fillet); and beside each beam the fillets of
+#: neighbouring beams must leave the DRIE slot open (:func:`check_root_fillet`).
+ROOT_FILLET_RANGE_UM = (0.0, 20.0)
+#: The die's out-of-plane factor on the in-plane chart's concentration:
+#: K_t = 1 + c (K_t,chart - 1), fitted to the die's fem3d level
+#: (:func:`tactcad.products.silicon_die.mechanics.die_fem3d.root_peak_fem3d`, level 3, the
+#: arc's element edge r / 8) on the example die's reference beam (w 128, t 40, L 388 um) at
+#: r = 4, 8, 16 um: K_t 2.04, 1.69, 1.49, each c = 0.599, 0.560, 0.624 on the chart's
+#: 2.74, 2.23, 1.79; c = 0.60 reads them within +0.1, +2.9, -1.3 %, and the measuring beam
+#: (L 863 um, r 4 um: 2.02) within +0.9 % (level 4: 2.06 on both beams, -1.0 / -1.1 %). Only this section is fitted: at r = 4 um on
+#: beams 60 and 240 um wide in the 40 um layer fem3d reads 1.93 and 2.10 against the closed
+#: form's 1.71 and 2.42 (the concentration follows r / t more than r / w).
+ROOT_KT_OUT_OF_PLANE = 0.60
+#: The chart's wide section over the narrow (D / d): the frame is far wider than the beam;
+#: the in-plane charts' concentration has all but stopped growing with D / d by 2.
+ROOT_KT_D_OVER_D = 2.0
+#: Below the chart's smallest r / d (h / r = 20 at D / d = 2: r / w = 0.025), K_t,chart - 1
+#: is carried on as (r / d)^-1/2, the fits' own leading term (C1's sqrt(h / r)) as the
+#: shoulder deepens; untested against fem3d there (at r = 2 um on the example's beam, r / w
+#: 0.016, fem3d's level 3 reads 2.73 and still rising against the closed form's 2.44: past
+#: the chart the closed form reads low).
+BELOW_CHART_EXPONENT = -0.5
+ROOT_KT_SOURCE = (f"{SHOULDER_FILLET_SOURCE}, at D / d = {ROOT_KT_D_OVER_D:g} and r / d = "
+                  f"r / w, its concentration taken x {ROOT_KT_OUT_OF_PLANE:g} for bending out "
+                  "of the fillets' plane (no published chart covers it: the factor is fitted "
+                  "to the die's fem3d level on filleted roots)")
+
+
+def root_stress_concentration(radius_um: float, width_um: float, thickness_um: float) -> float:
+    """K_t of a die beam's root fillets under its tip force, bent out of the wafer's plane:
+    the peak stress on the fillets' top edge over the root's nominal 6 F L / (w t^2).
+
+    No published chart gives a shoulder fillet's factor for a bar bent out of the plane of
+    its fillets; the in-plane one (:func:`shoulder_fillet_kt`, bending, r / d = r / w at
+    D / d = :data:`ROOT_KT_D_OVER_D`) has the shape, and the die's fem3d level on filleted
+    roots sets its size: K_t = 1 + :data:`ROOT_KT_OUT_OF_PLANE` (K_t,chart - 1), within 3 %
+    of fem3d at r / w 0.03-0.125 on the example's section (w / t 3.2; other sections are
+    not fitted, see the factor's note). Below the chart's
+    smallest r / d (h / r = 20) its K_t - 1 is carried on as (r / d)^-1/2
+    (:data:`BELOW_CHART_EXPONENT`).
+
+    Args:
+        radius_um: the fillet's radius r (um), > 0.
+        width_um, thickness_um: the beam's w and t (um), > 0.
+
+    Returns:
+        K_t (> 1).
+
+    Raises:
+        ValueError: a radius, width or thickness not a finite number above 0.
+    """
+    _positive(radius_um=radius_um, width_um=width_um, thickness_um=thickness_um)
+    r_over_d = radius_um / width_um
+    smallest = (ROOT_KT_D_OVER_D - 1.0) / (2.0 * SHOULDER_H_OVER_R_RANGE[1])
+    chart = shoulder_fillet_kt(max(r_over_d, smallest), ROOT_KT_D_OVER_D, "bending") - 1.0
+    if r_over_d < smallest:
+        chart *= (r_over_d / smallest) ** BELOW_CHART_EXPONENT
+    return 1.0 + ROOT_KT_OUT_OF_PLANE * chart
+
+
+def check_root_fillet(root_fillet_um, width_um: float | None = None,
+                      pitch_um: float | None = None, slot_um: float | None = None) -> None:
+    """Refuse a root fillet radius outside :data:`ROOT_FILLET_RANGE_UM`, or, given the beam,
+    one whose fillets and the neighbouring beam's close the DRIE slot between them
+    (pitch - w - 2 r below the slot) or reach past half the beam's width.
+
+    Args:
+        root_fillet_um: r (um). width_um, pitch_um, slot_um: the beam's width, the pitch
+            and the narrowest DRIE trench (um), or None (the range alone).
+
+    Raises:
+        DesignError: ``die.root_fillet_um``, naming the value and the allowed range.
+    """
+    lo, hi = ROOT_FILLET_RANGE_UM
+    if isinstance(root_fillet_um, bool) or not isinstance(root_fillet_um, numbers.Real) \
+            or not math.isfinite(root_fillet_um) or not lo < root_fillet_um <= hi:
+        raise DesignError("die.root_fillet_um", root_fillet_um,
+                          f"above {lo:g} and at most {hi:g} um",
+                          "the fillet where each beam's sidewalls meet the frame; its K_t is "
+                          "fitted up to there, and a larger one is a taper")
+    if width_um is None:
+        return
+    most = min(hi, width_um / 2, (pitch_um - width_um - slot_um) / 2)
+    if root_fillet_um > most:
+        raise DesignError("die.root_fillet_um", root_fillet_um,
+                          f"above {lo:g} and at most {most:.4g} um for the {width_um:g} um "
+                          f"beams at {pitch_um:g} um pitch",
+                          f"each fillet fits beside its beam (at most half its width) and "
+                          f"the fillets of neighbouring beams leave the {slot_um:.3g} um DRIE "
+                          "slot between them")
 
 
 def clamped_beam_stiffness_N_per_mm(youngs_modulus_MPa: float, width_um, thickness_um,
@@ -525,7 +704,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
              box_um: float = DEFAULT_BOX_UM, handle_um: float = DEFAULT_HANDLE_UM,
              angle_from_110_deg: float = 0.0,
              implant_dose_per_cm2: float = IMPLANT_DOSE_PER_CM2,
-             dose_reason: str = "", weibull: WeibullPair | None = None) -> DiePlan:
+             dose_reason: str = "", weibull: WeibullPair | None = None,
+             root_fillet_um: float = DRIE_MIN_RADIUS_UM) -> DiePlan:
     """The die for ``targets`` in the jaw's ``room``.
 
     Args:
@@ -540,12 +720,17 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         weibull: the lab's Weibull pair for its etched silicon, or None: with a pair the
             rating's strength limits are the die's failure probability at the rating and on
             its stops (:func:`weibull_force_scale`), not the etched bars' mean strength.
+        root_fillet_um: the fillet's radius where each beam's sidewalls meet the frame
+            (um; :func:`check_root_fillet`): its K_t (:func:`root_stress_concentration`)
+            raises the root's stress the search, the rating and the stops judge.
 
     Returns:
         :class:`DiePlan`.
 
     Raises:
-        DesignError: a value out of range, no stock device layer and beam width fit
+        DesignError: a value out of range (``die.root_fillet_um`` outside
+            :data:`ROOT_FILLET_RANGE_UM`, or wider than the slot beside the chosen beam
+            leaves), no stock device layer and beam width fit
             (naming what binds and the largest K_m the die holds), or the rating past the
             roots' strength, the cavities' depth or the posts' height (naming a lighter
             rating, :func:`_check_rating`).
@@ -554,6 +739,7 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         raise DesignError("--columns", columns, "an integer 2 ... 50")
     if not (math.isfinite(implant_dose_per_cm2) and 1e11 <= implant_dose_per_cm2 <= 1e17):
         raise DesignError("implant_dose_per_cm2", implant_dose_per_cm2, "1e11 ... 1e17 cm^-2")
+    check_root_fillet(root_fillet_um)
     if not (isinstance(pitch_um, (int, float)) and math.isfinite(pitch_um)
             and LEAST_PITCH_UM <= pitch_um <= 5000.0):
         raise DesignError("--pitch-um", pitch_um, f"{LEAST_PITCH_UM:g} ... 5000 um",
@@ -572,13 +758,15 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     E = float(SILICON.young_modulus_MPa(direction))
     window = width - 2 * FRAME_UM
     k_r, k_m = targets.k_r, targets.k_m
-    fitting = _fitting_beams(E, k_r, k_m, window, pitch_um)
+    fitting = _fitting_beams(E, k_r, k_m, window, pitch_um, root_fillet_um)
     strength = None if weibull is None else RatingStrength(weibull, columns)
     if not fitting:
-        raise _no_fit(targets, room, window, pitch_um, E, strength)
+        raise _no_fit(targets, room, window, pitch_um, E, strength, root_fillet_um)
     pair = min(fitting)
-    per_N, neg_t, w, slot, post, l_r, l_m = pair
+    per_N, neg_t, w, slot, post, l_r, l_m = pair[:7]
     t = -neg_t
+    check_root_fillet(root_fillet_um, w, pitch_um, slot)
+    kt = root_stress_concentration(root_fillet_um, w, t)
     stack = SoiStack(t, box_um, handle_um, DEVICE_TOLERANCE_UM)
     beams = []
     for row, (role, l, y0, sign) in enumerate((("reference", l_r, FRAME_UM, +1),
@@ -598,6 +786,13 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     post_height = post_height_um(deepest)
     _check_rating(pair, k_r, k_m, rating, targets.k_obj_range_N_per_mm)
     reasons = {
+        "root_fillet_um": f"{root_fillet_um:g} um fillets where each beam's sidewalls meet the "
+                          "frame, drawn into the device etch's mask"
+                          + (f" ({DRIE_MIN_RADIUS_SOURCE})" if root_fillet_um == DRIE_MIN_RADIUS_UM
+                             else " (the design file's)")
+                          + f": K_t = {kt:.3g}, the root's peak stress over its nominal "
+                          f"6 F L / (w t^2) ({ROOT_KT_SOURCE}); the strength, the stops and "
+                          "the rating judge the peak",
         "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
                      f"and the gap between a unit's posts (at least a post's width: the "
                      f"tissue between them couples them) fit across the {window:g} um "
@@ -649,8 +844,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    f"{POST_HEIGHT_UM:g} um and {POST_CLEARANCE_UM:g} um more than the "
                    f"deepest a post goes to its stop ({deepest:.3g} um), so that the face "
                    "never meets the tissue before the stop takes an overload",
-        "strength": (f"undecided: the more stressed root's {root_MPa:.4g} MPa at its beam's "
-                     f"rated force is "
+        "strength": (f"undecided: the more stressed root's peak {root_MPa:.4g} MPa (K_t "
+                     f"{kt:.3g} x the nominal) at its beam's rated force is "
                      f"{100 * root_MPa / BOSCH_MEAN_STRENGTH_MPA:.2g} % of the mean tensile "
                      f"strength of Bosch-etched silicon bars ({BOSCH_STRENGTH_SOURCE}); no "
                      "Weibull modulus of DRIE sidewalls with its stressed area is sourced, so "
@@ -663,7 +858,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    float(beam_stiffness_N_per_mm(E, w, t, l_m)), (k_r, k_m),
                    targets.full_scale_force_N, tuple(beams), reasons,
                    tuple(float(v) for v in targets.k_obj_range_N_per_mm),
-                   float(implant_dose_per_cm2), depths, weibull)
+                   float(implant_dose_per_cm2), depths, weibull,
+                   root_fillet_um=float(root_fillet_um))
 
 
 def post_height_um(deepest_stop_travel_um: float) -> float:
@@ -741,22 +937,24 @@ def weibull_force_scale(pair: WeibullPair, count: int, roots) -> float:
 
 def _rating_of(pair: BeamPair, k_r: float, k_m: float, force_N: float, kobj_range,
                strength: RatingStrength | None = None) -> _Rating:
-    """:class:`_Rating` of a fitting ``pair`` at ``force_N``:
+    """:class:`_Rating` of a fitting ``pair`` at ``force_N``, every root's stress its peak on
+    the fillets (K_t x 6 F L / (w t^2), :func:`root_stress_concentration`):
     each root at its own beam's rated force (the reference's F, the measuring beam's K_m x
     its rated travel: it never carries more while its reference reads up to F); with a
     ``strength``, the Weibull scales of the rating and of every beam on its deepest stop."""
     t, w, post = pair.thickness_um, pair.width_um, pair.post_um
     l_r, l_m = pair.reference_length_um, pair.measuring_length_um
+    kt = root_stress_concentration(pair.root_fillet_um, w, t)
 
-    def root_MPa(f_N: float, length: float) -> float:
-        return 6 * f_N * length * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
+    def root_MPa(f_N: float, length: float) -> float:  # the peak, on the fillets
+        return kt * 6 * f_N * length * 1e-3 / (w * 1e-3 * (t * 1e-3) ** 2)
 
     rated = rated_tip_deflections_um(k_r, k_m, force_N, kobj_range)
     roots = (root_MPa(force_N, l_r), root_MPa(k_m * rated[1] * 1e-3, l_m))
     depths = (cavity_depth_um(rated[0], l_r, post), cavity_depth_um(rated[1], l_m, post))
     engage = [d * (1 + CAVITY_DEPTH_TOLERANCE_REL) / end_over_post(length, post)
               for d, length in zip(depths, (l_r, l_m))]
-    fracture = [fracture_travel_um(k, length, w, t) for k, length in ((k_r, l_r), (k_m, l_m))]
+    fracture = [fracture_travel_um(k, length, w, t, kt) for k, length in ((k_r, l_r), (k_m, l_m))]
     scales = (math.inf, math.inf)
     if strength is not None:
         on_stop = (root_MPa(k_r * engage[0] * 1e-3, l_r), root_MPa(k_m * engage[1] * 1e-3, l_m))
@@ -770,7 +968,8 @@ def _rating_of(pair: BeamPair, k_r: float, k_m: float, force_N: float, kobj_rang
 def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
     """The ratings at which each limit binds, with what binds (N, words); each scales with
     the force (the roots' stress, the stops' depths and the posts' travel go as F): the more
-    stressed root at the mean strength of etched silicon, the deeper cavity at
+    stressed root's peak (K_t x the nominal) at the mean strength of etched silicon, the
+    stops engaging before it, the deeper cavity at
     :data:`CAVITY_DEPTH_MAX_UM` after its tolerance, the posts at :data:`POST_ASPECT_MAX` x
     their side."""
     force_N, depths_um, deepest_um = rating.force_N, rating.depths_um, rating.deepest_um
@@ -778,7 +977,8 @@ def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
     tallest = POST_ASPECT_MAX * post_um
     if rating.strength is None:
         strength = [(force_N * BOSCH_MEAN_STRENGTH_MPA / rating.root_MPa,
-                     f"the more stressed root at the mean tensile strength of Bosch-etched "
+                     f"the more stressed root's peak (K_t x 6 F L / (w t^2), on its fillets) "
+                     f"at the mean tensile strength of Bosch-etched "
                      f"silicon ({BOSCH_MEAN_STRENGTH_MPA:g} MPa, {BOSCH_STRENGTH_SOURCE}; "
                      f"{rating.root_MPa:.4g} MPa at {force_N:g} N, at its beam's rated force)")]
     else:
@@ -791,7 +991,7 @@ def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
     return [
         *strength,
         (force_N / rating.stop_over_fracture if rating.stop_over_fracture > 0 else math.inf,
-         "a row's stop, in its deepest cavity, engaging only as its root reaches the mean "
+         "a row's stop, in its deepest cavity, engaging only as its root's peak reaches the mean "
          f"strength ({100 * rating.stop_over_fracture:.3g} % of that travel at {force_N:g} N)"),
         (force_N * CAVITY_DEPTH_MAX_UM / deepest_cavity,
          f"the measuring row's cavity at the {CAVITY_DEPTH_MAX_UM:g} um a timed etch holds to "
@@ -810,7 +1010,7 @@ def rating_limits(plan: DiePlan) -> list[tuple[float, str]]:
     the least of them."""
     ref, meas = plan.beams[0], plan.beams[plan.columns]
     pair = BeamPair(0.0, -ref.thickness_um, ref.width_um, 0.0, plan.post_um, ref.length_um,
-                    meas.length_um)
+                    meas.length_um, plan.root_fillet_um)
     strength = None if plan.weibull is None else RatingStrength(plan.weibull, plan.columns)
     rating = _rating_of(pair, plan.k_r_N_per_mm, plan.k_m_N_per_mm, plan.full_scale_force_N,
                         plan.kobj_range_N_per_mm, strength)
@@ -898,11 +1098,18 @@ def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_
 
 
 def fracture_travel_um(k_N_per_mm: float, length_um: float, width_um: float,
-                       thickness_um: float) -> float:
-    """The post's travel (um) at which a cantilever's root reaches the mean strength of
-    etched silicon (:data:`BOSCH_MEAN_STRENGTH_MPA`): sigma = 6 K L delta / (w t^2)."""
+                       thickness_um: float, root_kt: float) -> float:
+    """The post's travel (um) at which a cantilever's root peak reaches the mean strength of
+    etched silicon (:data:`BOSCH_MEAN_STRENGTH_MPA`): sigma = K_t 6 K L delta / (w t^2).
+
+    Args:
+        k_N_per_mm: the beam's K (N/mm). length_um, width_um, thickness_um: L, w, t (um).
+        root_kt: K_t of the root's fillets (:func:`root_stress_concentration`), >= 1.
+
+    Returns:
+        The travel (um)."""
     return 1e3 * BOSCH_MEAN_STRENGTH_MPA * width_um * 1e-3 * (thickness_um * 1e-3) ** 2 / (
-        6 * k_N_per_mm * length_um * 1e-3)
+        6 * root_kt * k_N_per_mm * length_um * 1e-3)
 
 
 def end_over_post(length_um: float, post_um: float) -> float:
@@ -964,7 +1171,9 @@ def _widths(widest: float, narrowest: float) -> list[float]:
 
 class BeamPair(NamedTuple):
     """A reference and a measuring beam of one width in one device layer (um), ordered as
-    the search prefers them: the lowest root stress per newton of the measuring beam first,
+    the search prefers them: the lowest nominal root stress per newton of the measuring beam
+    (6 L / (w t^2): the fillets' K_t, fitted on the example's section alone, does not rank
+    sections) first,
     then the thicker layer (``neg_t``: -t), then the narrower beam."""
 
     root_MPa_per_N: float
@@ -974,6 +1183,8 @@ class BeamPair(NamedTuple):
     post_um: float
     reference_length_um: float
     measuring_length_um: float
+    #: the root fillets' radius (um)
+    root_fillet_um: float = DRIE_MIN_RADIUS_UM
 
     @property
     def thickness_um(self) -> float:
@@ -987,7 +1198,7 @@ def tip_gap_um(slot_um: float, post_um: float) -> float:
 
 
 def _beam_pair(E: float, k_r: float, k_m: float, window: float, t: float, w: float,
-               slot: float) -> BeamPair | None:
+               slot: float, fillet_um: float = DRIE_MIN_RADIUS_UM) -> BeamPair | None:
     """The :class:`BeamPair` of width ``w`` in a ``t`` layer, or None when the two beams,
     the post and the gap between a unit's posts (:func:`tip_gap_um`) do not fit across the
     window or the reference beam is not slender (L_r >= :data:`SLENDERNESS` w); um."""
@@ -995,34 +1206,39 @@ def _beam_pair(E: float, k_r: float, k_m: float, window: float, t: float, w: flo
     l_r = length_for_stiffness_um(E, w, t, k_r)
     l_m = length_for_stiffness_um(E, w, t, k_m)
     if l_r + l_m + post + tip_gap_um(slot, post) <= window and l_r >= SLENDERNESS * w:
-        return BeamPair(6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m)
+        return BeamPair(6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m, fillet_um)
     return None
 
 
-def _layer_widths(pitch_um: float) -> list[tuple[float, float, list[float]]]:
+def _layer_widths(pitch_um: float, fillet_um: float = DRIE_MIN_RADIUS_UM
+                  ) -> list[tuple[float, float, list[float]]]:
     """(device layer, DRIE slot, beam widths) per stock layer (um): widths that leave room
     for the resistor and are at least the layer's thickness (a beam thicker than wide bends
-    more easily sideways, under the tissue's shear, than out of the wafer's plane)."""
+    more easily sideways, under the tissue's shear, than out of the wafer's plane), and
+    leave the slot open between the root fillets (``fillet_um``) of neighbouring beams."""
     out = []
     for t in DEVICE_LAYER_CHOICES_UM:
         slot = drie_min_width_um(t)
-        out.append((t, slot, _widths(pitch_um - slot, max(_resistor_width_um(), t))))
+        out.append((t, slot, [w for w in _widths(pitch_um - slot, max(_resistor_width_um(), t))
+                              if w <= pitch_um - slot - 2 * fillet_um]))
     return out
 
 
-def _fitting_beams(E: float, k_r: float, k_m: float, window: float, pitch_um: float) -> list:
+def _fitting_beams(E: float, k_r: float, k_m: float, window: float, pitch_um: float,
+                   fillet_um: float = DRIE_MIN_RADIUS_UM) -> list:
     """Every stock device layer and beam width whose pair fits (:func:`_beam_pair`)."""
-    pairs = (_beam_pair(E, k_r, k_m, window, t, w, slot)
-             for t, slot, widths in _layer_widths(pitch_um) for w in widths)
+    pairs = (_beam_pair(E, k_r, k_m, window, t, w, slot, fillet_um)
+             for t, slot, widths in _layer_widths(pitch_um, fillet_um) for w in widths)
     return [p for p in pairs if p is not None]
 
 
-def _any_fitting_beam(E: float, k_r: float, k_m: float, window: float, pitch_um: float) -> bool:
+def _any_fitting_beam(E: float, k_r: float, k_m: float, window: float, pitch_um: float,
+                      fillet_um: float = DRIE_MIN_RADIUS_UM) -> bool:
     """Whether :func:`_fitting_beams` finds any: each layer's narrowest width decides it, as
     the beams' lengths (L ~ w^(1/3)) and the post grow with the width while the slenderness
     L_r / w falls."""
-    return any(_beam_pair(E, k_r, k_m, window, t, min(widths), slot) is not None
-               for t, slot, widths in _layer_widths(pitch_um) if widths)
+    return any(_beam_pair(E, k_r, k_m, window, t, min(widths), slot, fillet_um) is not None
+               for t, slot, widths in _layer_widths(pitch_um, fillet_um) if widths)
 
 
 #: Steps of the K_obj range's scale a refusal searches for its alternative (x 1.05 each).
@@ -1033,14 +1249,15 @@ LIGHTEST_PASTE_N = 1e-6
 
 def _force_that_designs(E: float, k_r: float, k_m: float, window: float, pitch_um: float,
                         force_N: float, kobj_range,
-                        strength: RatingStrength | None = None) -> float | None:
+                        strength: RatingStrength | None = None,
+                        fillet_um: float = DRIE_MIN_RADIUS_UM) -> float | None:
     """None when no pair of beams with these stiffnesses fits the window; else the rating
     that designs with them: ``force_N`` within its limits (:func:`_rating_limits`), else the
     lighter one a refusal would paste (:func:`_lighter_rating`), else ``force_N`` (no rating
     helps: the plan's refusal of the rating says so)."""
-    if not _any_fitting_beam(E, k_r, k_m, window, pitch_um):
+    if not _any_fitting_beam(E, k_r, k_m, window, pitch_um, fillet_um):
         return None
-    pair = min(_fitting_beams(E, k_r, k_m, window, pitch_um))
+    pair = min(_fitting_beams(E, k_r, k_m, window, pitch_um, fillet_um))
     rating = _rating_of(pair, k_r, k_m, force_N, kobj_range, strength)
     if _within_limits(rating, pair.post_um):
         return force_N
@@ -1057,7 +1274,8 @@ def _with_force(option: str, force: float, asked: float) -> str:
 
 
 def _no_fit(targets, room, window: float, pitch_um: float, E: float,
-            strength: RatingStrength | None = None) -> DesignError:
+            strength: RatingStrength | None = None,
+            fillet_um: float = DRIE_MIN_RADIUS_UM) -> DesignError:
     """The refusal: no stock layer and width fits. Which way the targets miss (stiffer
     tissue fits: the beams were too long for the window; softer fits: too stubby to be
     slender beams) and the nearest scale of the K_obj range that designs (K_m and K_r go
@@ -1070,7 +1288,7 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float,
             x = targets.kr_over_km
             k_m = math.sqrt(a * b / x)
             force = _force_that_designs(E, x * k_m, k_m, window, pitch_um, asked, (a, b),
-                                        strength)
+                                        strength, fillet_um)
             if force is not None:
                 why = ("the beams are too long for the window: the softest pair that fits "
                        f"has K_m = {targets.k_m * scale:.4g} N/mm" if way == "stiffer" else
@@ -1084,7 +1302,7 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float,
                     alternatives=[{"option": _with_force(f"--kobj-range {a:g} {b:g}", force,
                                                          asked),
                                    "words": f"the same span of tissues, {way}, that fits"}])
-    fit = _fitting_ratio(targets, window, pitch_um, E, strength)
+    fit = _fitting_ratio(targets, window, pitch_um, E, strength, fillet_um)
     if fit is not None:
         ratio, force = fit
         return DesignError(
@@ -1102,7 +1320,8 @@ def _no_fit(targets, room, window: float, pitch_um: float, E: float,
 
 
 def _fitting_ratio(targets, window: float, pitch_um: float, E: float,
-                   strength: RatingStrength | None = None) -> tuple | None:
+                   strength: RatingStrength | None = None,
+                   fillet_um: float = DRIE_MIN_RADIUS_UM) -> tuple | None:
     """(the largest K_r / K_m below the asked one, three digits, x 1/1.05 steps, whose beams
     fit for the same K_obj range, the rating that designs with it), or None
     (K_m = sqrt(K_lo K_hi / X), K_r = X K_m)."""
@@ -1113,7 +1332,7 @@ def _fitting_ratio(targets, window: float, pitch_um: float, E: float,
             return None
         k_m = math.sqrt(lo * hi / ratio)
         force = _force_that_designs(E, ratio * k_m, k_m, window, pitch_um,
-                                    targets.full_scale_force_N, (lo, hi), strength)
+                                    targets.full_scale_force_N, (lo, hi), strength, fillet_um)
         if force is not None:
             return ratio, force
     return None

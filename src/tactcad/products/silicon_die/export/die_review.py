@@ -91,8 +91,8 @@ def beam_elements(strength: Mapping[str, Any], stiffness: Mapping[str, Any]) -> 
              "arm_length_mm": r["length_um"] / 1e3,
              "stiffness_N_per_mm": k_of[r["role"]]["stiffness_N_per_mm"],
              "full_scale_force_N": r["rated_force_N"],
-             "stress_MPa_per_N": r["root_stress_MPa_per_N"],
-             "stress_MPa_at_full_scale": r["root_stress_MPa_at_rated_force"],
+             "stress_MPa_per_N": r["root_peak_stress_MPa_per_N"],
+             "stress_MPa_at_full_scale": r["root_peak_stress_MPa_at_rated_force"],
              "strength_over_stress_at_rating": r["strength_over_stress"],
              "model": strength["model"]} for r in strength["rows"]]
 

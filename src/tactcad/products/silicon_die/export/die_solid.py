@@ -5,7 +5,9 @@ layer less the front etch (the beams standing free over the cavities) and the po
 part of one STEP assembly (mm) for the review and the jaw's scene.
 
 The outlines are :func:`tactcad.products.silicon_die.export.gds_masks.die_polygons`' (the masks' own polygons),
-so the solid and the GDS cannot disagree; the heights are the plan's stack (um -> mm).
+so the solid and the GDS cannot disagree (the beams' root fillets, quarter circles of
+straight chords in the mask, are the solid's faceted fillets); the heights are the plan's
+stack (um -> mm).
 """
 
 from __future__ import annotations

@@ -6,6 +6,10 @@ The polygons come from the die's plan alone (:func:`die_polygons`, a pure functi
 database unit is 1 nm, the user unit 1 um. Files are written whole or not at all (a
 temporary file beside the target, renamed).
 
+Each beam's outline (:func:`beam_outline`) carries a fillet of the plan's
+``root_fillet_um`` at each root corner, where a sidewall meets the window's edge: the device
+etch's mask, the STEP solid and the checks all read it.
+
 Layout per beam (beam-local u across it, v along it from the root towards the tip):
 the U-shaped resistor runs from v = -run on the frame to v = l_res on the beam; a contact
 sits at each leg's end on the frame, covered by metal that runs in a jog to a bond pad on
@@ -44,10 +48,43 @@ def _local(beam: Beam, points) -> Polygon:
     return [(beam.x_um + u, beam.y_root_um + beam.direction * v) for u, v in points]
 
 
+#: Straight segments each root fillet's quarter circle is drawn with: the chords lie within
+#: r (1 - cos(pi / 4 / n)) of the arc, 0.2 % of r at 16 (8 nm at the 4 um default, under
+#: the DRIE's +-0.5 um bias and on the GDS's 1 nm grid).
+FILLET_SEGMENTS = 16
+
+
+def fillet_arc(radius_um: float, half_width_um: float, side: int,
+               segments: int = FILLET_SEGMENTS) -> Polygon:
+    """One root fillet's quarter circle (beam-local u across, v from the root, um), from
+    the window's edge (v = 0, u = side (w/2 + r)) to the beam's sidewall (u = side w/2,
+    v = r): the arc tangent to both, centred at (side (w/2 + r), r), ``segments`` + 1
+    vertices.
+
+    Args:
+        radius_um: r, > 0. half_width_um: w / 2. side: -1 (the beam's u < 0 side) or +1.
+        segments: chords along the quarter circle, >= 1.
+
+    Returns:
+        The arc's vertices, from the window's edge to the sidewall.
+    """
+    cu, cv = side * (half_width_um + radius_um), radius_um
+    out = []
+    for i in range(segments + 1):
+        a = 0.5 * math.pi * i / segments  # 0 at the window's edge, pi/2 at the sidewall
+        out.append((cu - side * radius_um * math.sin(a), cv - radius_um * math.cos(a)))
+    return out
+
+
 def beam_outline(plan: DiePlan, beam: Beam) -> Polygon:
-    """The beam in the device layer over the window: root to the post's far edge (um)."""
-    w, reach = beam.width_um, beam.length_um + plan.post_um / 2
-    return _local(beam, _rect(-w / 2, 0.0, w / 2, reach))
+    """The beam in the device layer over the window: root to the post's far edge, with a
+    fillet of the plan's ``root_fillet_um`` where each sidewall meets the window's edge
+    (:func:`fillet_arc`); one polygon (um), counter-clockwise. The masks, the solid and the
+    checks all take the beam's outline from here."""
+    w, reach, r = beam.width_um, beam.length_um + plan.post_um / 2, plan.root_fillet_um
+    right = fillet_arc(r, w / 2, +1)  # from (w/2 + r, 0) up to (w/2, r)
+    left = fillet_arc(r, w / 2, -1)[::-1]  # from (-w/2, r) down to (-w/2 - r, 0)
+    return _local(beam, [*right, (w / 2, reach), (-w / 2, reach), *left])
 
 
 def _u_shape(legs_um: float, u0: float = 0.0, v0: float = 0.0) -> Polygon:

@@ -54,9 +54,11 @@ def die_tips(plan: DiePlan, mount: DieMount) -> Tips:
 
 
 def breaking_force_N(plan: DiePlan, beam) -> float:
-    """The tip force at which ``beam``'s root reaches the mean strength of etched silicon
-    (N): the rated force scaled by the mean strength over the root's stress at it."""
-    return plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA / plan.stress_MPa_at_rating(beam)
+    """The tip force at which ``beam``'s root peak (K_t x 6 F L / (w t^2), on its fillets)
+    reaches the mean strength of etched silicon (N): the rated force scaled by the mean
+    strength over the root's peak stress at it."""
+    return (plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA
+            / plan.peak_stress_MPa_at_rating(beam))
 
 
 def die_units(plan: DiePlan) -> list[tuple[int, int]]:

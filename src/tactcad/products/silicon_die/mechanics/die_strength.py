@@ -12,9 +12,11 @@ tension, w wide, and the tensile half of each DRIE sidewall:
     A_eff = int (sigma / sigma_root)^m dA = L / (m + 1) (w + t / (m + 1)),
 
 both taken as the pair's population (the lab's test structures are etched as the die is:
-conservative for a polished face). The stress concentration at the root's corner, where the
-beam meets the frame, is not modelled. The beams break independently: the die's P_f is
-1 - prod(1 - P_f,i).
+conservative for a polished face). The peak is the root's on its fillets, K_t x the nominal
+6 F L / (w t^2) (:func:`tactcad.products.silicon_die.design.mems_die.root_stress_concentration`),
+applied to the whole effective area: conservative, as only the fillets' few um carry the
+concentration (the area under it is not integrated). The beams break independently: the
+die's P_f is 1 - prod(1 - P_f,i).
 
 Units: MPa, um, N.
 """
@@ -45,7 +47,7 @@ def beam_failure_probability(plan: DiePlan, beam: Beam, force_N: float) -> float
     """
     if plan.weibull is None:
         raise ValueError(f"die {plan.name} states no Weibull pair")
-    stress = plan.stress_MPa_at_rating(beam) * force_N / plan.full_scale_force_N
+    stress = plan.peak_stress_MPa_at_rating(beam) * force_N / plan.full_scale_force_N
     area = effective_area_um2(beam.length_um, beam.width_um, beam.thickness_um,
                               plan.weibull.modulus)
     return failure_probability(stress, area, plan.weibull)

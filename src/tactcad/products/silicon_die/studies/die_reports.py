@@ -30,19 +30,25 @@ def strength_report(plan) -> tuple[dict, list[str]]:
     etched silicon (and the lab's Weibull pair's failure probability, when stated), with the
     rated-force requirement: (report, text lines). MPa, N, um."""
     from tactcad.products.silicon_die.design.mems_die import (BOSCH_MEAN_STRENGTH_MPA,
-                                                              BOSCH_STRENGTH_SOURCE)
+                                                              BOSCH_STRENGTH_SOURCE,
+                                                              ROOT_KT_SOURCE)
     from tactcad.products.silicon_die.mechanics.die_strength import beam_failure_probability
 
     rated = next(r for r in die_verification(plan) if r["requirement"] == "full_scale_force_N")
     rows = []
     for beam in plan.beams[:: plan.columns]:
         force = plan.rated_force_N(beam)
-        per_N = plan.stress_MPa_at_rating(beam) / plan.full_scale_force_N
+        nominal_per_N = plan.stress_MPa_at_rating(beam) / plan.full_scale_force_N
+        kt = plan.root_stress_concentration(beam)
+        per_N = kt * nominal_per_N
         stress = per_N * force
         rows.append({"role": beam.role, "row": beam.row, "length_um": beam.length_um,
                      "width_um": beam.width_um, "thickness_um": beam.thickness_um,
-                     "root_stress_MPa_per_N": per_N, "rated_force_N": force,
-                     "root_stress_MPa_at_rated_force": stress,
+                     "root_fillet_um": plan.root_fillet_um,
+                     "root_nominal_stress_MPa_per_N": nominal_per_N,
+                     "root_stress_concentration_factor": kt,
+                     "root_peak_stress_MPa_per_N": per_N, "rated_force_N": force,
+                     "root_peak_stress_MPa_at_rated_force": stress,
                      "fracture_force_N": BOSCH_MEAN_STRENGTH_MPA / per_N,
                      "strength_over_stress": BOSCH_MEAN_STRENGTH_MPA / stress,
                      "failure_probability_at_rated_force":
@@ -51,23 +57,27 @@ def strength_report(plan) -> tuple[dict, list[str]]:
     report = {"die": plan.name, "model": "closed-form",
               "strength_MPa": BOSCH_MEAN_STRENGTH_MPA, "strength_source": BOSCH_STRENGTH_SOURCE,
               "rows": rows, "requirement": rated, "passed": rated["verdict"] != "fail",
-              "reasons": {"root_stress": "6 F L / (w t^2) at the root's face, the beam's "
-                                         "surface bending stress (the stress concentration "
-                                         "of the root's corner is not modelled)",
+              "reasons": {"root_stress": "the root's peak on its fillets' top edge: K_t x "
+                                         "6 F L / (w t^2), the beam's nominal surface "
+                                         f"bending stress at the root, K_t of its "
+                                         f"{plan.root_fillet_um:g} um fillets "
+                                         f"({ROOT_KT_SOURCE})",
                           "strength": "the mean tensile strength of Bosch-etched silicon "
                                       "bars" + ("" if plan.weibull is None else
                                                 "; the failure probability from the lab's "
                                                 "Weibull pair")}}
     lines = [f"die {plan.name}, model closed-form: each row's beam root at the force it "
              f"carries in use; strength {BOSCH_MEAN_STRENGTH_MPA:g} MPa ({BOSCH_STRENGTH_SOURCE})",
-             "| row | role | L um | w um | t um | MPa/N | rated force mN | root MPa there | "
-             "fracture force mN | strength / stress | P_f at rating |",
-             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+             "| row | role | L um | w um | t um | K_t | peak MPa/N | rated force mN | "
+             "root peak MPa there | fracture force mN | strength / stress | P_f at rating |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in rows:
         p_f = r["failure_probability_at_rated_force"]
         lines.append(f"| {r['row']} | {r['role']} | {r['length_um']:.4g} | {r['width_um']:g} | "
-                     f"{r['thickness_um']:g} | {r['root_stress_MPa_per_N']:.4g} | "
-                     f"{1e3 * r['rated_force_N']:.3g} | {r['root_stress_MPa_at_rated_force']:.4g}"
+                     f"{r['thickness_um']:g} | {r['root_stress_concentration_factor']:.3g} | "
+                     f"{r['root_peak_stress_MPa_per_N']:.4g} | "
+                     f"{1e3 * r['rated_force_N']:.3g} | "
+                     f"{r['root_peak_stress_MPa_at_rated_force']:.4g}"
                      f" | {1e3 * r['fracture_force_N']:.3g} | {r['strength_over_stress']:.3g} | "
                      + ("n/a (no Weibull pair: state [strength])" if p_f is None
                         else f"{p_f:.3g}") + " |")

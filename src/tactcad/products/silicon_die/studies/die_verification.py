@@ -42,7 +42,8 @@ def die_verification(plan, mount=None) -> list[dict]:
     ratio = plan.k_r_N_per_mm / plan.k_m_N_per_mm
     ratio_error = 2 * CLOSED_FORM_K_ERROR_REL  # each K's error, the worst way round
     fracture = {b.role: fracture_travel_um(stiffness[b.role], b.length_um, b.width_um,
-                                           b.thickness_um) for b in rows}
+                                           b.thickness_um, plan.root_stress_concentration(b))
+                for b in rows}
     stop = _stop_row(plan, rows, fracture)
     return [
         _rated_row(plan) if plan.weibull is None else _weibull_rated_row(plan),
@@ -65,7 +66,7 @@ def die_verification(plan, mount=None) -> list[dict]:
 def _grasp_row(plan, mount) -> dict:
     """``max_grasp_force_N``: the die's jaw closed to that force on the default tissue
     (:func:`tactcad.products.silicon_die.in_use.die_grasp.grasp_at_force`); each beam's force
-    on its spring against its breaking force (its root at the mean strength of etched
+    on its spring against its breaking force (its root's peak at the mean strength of etched
     silicon), a hard stop taking the rest; fails when a beam passes it or the jaw cannot
     reach the force."""
     from tactcad.errors import DesignError
@@ -215,7 +216,9 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
         margins.append(min(breaks, plan.post_height_um) / deep - 1.0)
         words.append(f"{beam.role}: cavity {plan.cavity_depth_of(beam):g} um, engages at "
                      f"{shallow:.3g} ... {deep:.3g} um of post travel (rated {rated:.3g} um, "
-                     f"breaks at {breaks:.3g} um)")
+                     f"breaks at {breaks:.3g} um: its root fillets' peak, K_t "
+                     f"{plan.root_stress_concentration(beam):.3g} x the nominal, at the mean "
+                     "strength)")
     words.append(f"posts {plan.post_height_um:g} um proud: still proud on their stops")
     if plan.weibull is not None:  # every beam resting on its floor: the most it carries
         from tactcad.products.silicon_die.mechanics.die_strength import (die_failure_probability,
@@ -241,5 +244,5 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
             "margin_rel": min(margins), "model": "closed-form",
             "verdict": "pass" if ok else "fail",
             "binding_words": f"each row's cavity floor under its beams' free ends (the depth "
-                             f"+-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %, the root at the mean "
-                             "strength of etched bars)"}
+                             f"+-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %, the root's peak on its "
+                             "fillets at the mean strength of etched bars)"}

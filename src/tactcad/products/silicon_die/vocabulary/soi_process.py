@@ -158,6 +158,17 @@ def drie_min_width_um(depth_um: float) -> float:
 
 #: The lithography's smallest feature (um).
 LITHO_MIN_UM = 2.0
+#: The smallest corner radius the device etch draws reliably (um): twice the lithography's
+#: smallest feature. Contact lithography rounds every drawn corner to about its resolution
+#: (2 um) whatever the mask says, so a drawn arc prints as drawn only above that; at twice
+#: it the Bosch etch's +-0.5 um bias (:data:`DRIE_WIDTH_TOLERANCE_UM`) moves the radius by
+#: an eighth and its 0.1-0.3 um scallops stay a small part of it. The default of a beam
+#: root's fillet (``[die] root_fillet_um``).
+DRIE_MIN_RADIUS_UM = 2 * LITHO_MIN_UM
+DRIE_MIN_RADIUS_SOURCE = (ASSUMED + "the smallest radius the device etch draws as drawn: twice "
+                          "the lithography's 2 um smallest feature (contact lithography "
+                          "rounds any corner to about its resolution; the Bosch etch's "
+                          "+-0.5 um bias then moves the radius by an eighth)")
 #: Aluminium's smallest width and space (um): wet-etched, its undercut takes about 1 um.
 METAL_SPACE_UM = 1.5 * LITHO_MIN_UM
 
