@@ -185,3 +185,96 @@ def test_the_peak_stress_is_the_elements_not_the_layers():
         element_stress(g.bare(), m, "fem2d").stress_MPa_per_N)
     assert checked.stiffness_N_per_mm == pytest.approx(
         estimate("fem2d", g, m).stiffness_N_per_mm)
+
+
+def _layer_args(g):
+    """The layer arguments of :func:`layer_compliance_change` for ``g``'s gauge."""
+    from tactcad.design.readout_section import CARRIER_SIDE_MM, carrier_width_mm
+
+    s = g.gauge
+    half = s.grid_length_mm / 2 + CARRIER_SIDE_MM
+    return (g.sheet_thickness_mm, g.base_height_mm, g.arm_height_mm, (-half, half),
+            s.height_mm, s.modulus_MPa, carrier_width_mm(s.grid_width_mm, g.sheet_thickness_mm))
+
+
+def _table_error_in_k(g, material, t, R, a):
+    """max |K_table / K_quadrature - 1| of the layered closed form at (t, R, a), and
+    whether the call took the table."""
+    from tactcad.mechanics.bonded_layer import (_table_for, layer_compliance_change,
+                                                layer_compliance_change_quadrature)
+
+    E = material.youngs_modulus_MPa
+    b, hb, ha, span, hl, El, wl = _layer_args(g)
+    args = (b, E, hb, ha, span, hl, El, wl)
+    took_table = _table_for(t, R, a, *args) is not None
+    k_bare = corrected_stiffness(t, R, a, E, g.bare(), material.poisson_ratio, load_correction())
+    fast = layer_compliance_change(t, R, a, *args)
+    ref = layer_compliance_change_quadrature(t, R, a, *args)
+    return float(np.max(np.abs((1 / k_bare + ref) / (1 / k_bare + fast) - 1))), took_table
+
+
+def test_the_tabulated_layer_term_holds_the_quadrature_over_the_benchmarks_designs():
+    """``bench closed-form``'s designs (webs 0.15-0.4 mm, arms 4-8 mm, radii web-2 mm) in
+    calls large enough for the table: K within its stated error of the 24-point
+    quadrature, and within 1e-4."""
+    from tactcad.mechanics.bonded_layer import TABLE_K_ERROR_REL
+
+    plan = load_design()
+    rng = np.random.default_rng(7)
+    n = 20_000
+    t = rng.uniform(0.15, 0.4, n)
+    a = rng.uniform(4.0, 8.0, n)
+    R = rng.uniform(t, 2.0)
+    err, took_table = _table_error_in_k(plan.element(1).geometry, plan.material, t, R, a)
+    assert took_table
+    assert err <= TABLE_K_ERROR_REL <= 1e-4
+    print(f"benchmark's designs: max |dK/K| {err:.2e}")
+
+
+@pytest.mark.parametrize("name", EXAMPLE_NAMES)
+def test_the_tabulated_layer_term_holds_the_quadrature_around_the_examples_elements(name):
+    """Every element of the shipped examples with its web and notch radius +-30 % (the
+    grasper's 78 um web down to 55 um, whose K the layer raises by 75 %): K within the
+    table's stated error of the quadrature."""
+    from tactcad.mechanics.bonded_layer import TABLE_K_ERROR_REL
+
+    plan = _plan(name)
+    rng = np.random.default_rng(3)
+    n = 8192
+    for g in plan.distinct_elements.values():
+        t = g.web_thickness_mm * rng.uniform(0.7, 1.3, n)
+        R = g.notch_radius_mm * rng.uniform(0.7, 1.3, n)
+        a = np.full(n, g.arm_length_mm)
+        err, took_table = _table_error_in_k(g, plan.material, t, R, a)
+        assert took_table
+        assert err <= TABLE_K_ERROR_REL, (g, err)
+        print(f"{name} a = {g.arm_length_mm} mm: max |dK/K| {err:.2e}")
+
+
+def test_small_calls_a_varying_modulus_and_designs_off_the_table_take_the_quadrature():
+    """One element, a modulus drawn per sample and webs or radii outside the table's
+    domain are the quadrature's own numbers; the rest of a large call the table's."""
+    from tactcad.mechanics.bonded_layer import (TABLE_MIN_ELEMENTS, TABLE_RADIUS_RANGE_MM,
+                                                TABLE_WEB_RANGE_MM, layer_compliance_change,
+                                                layer_compliance_change_quadrature)
+
+    plan = load_design()
+    g, E = plan.element(1).geometry, plan.material.youngs_modulus_MPa
+    b, hb, ha, span, hl, El, wl = _layer_args(g)
+    rest = (hb, ha, span, hl, El, wl)
+    one = (g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm)
+    assert layer_compliance_change(*one, b, E, *rest) == \
+        layer_compliance_change_quadrature(*one, b, E, *rest)
+    n = TABLE_MIN_ELEMENTS
+    rng = np.random.default_rng(5)
+    t, R, a = rng.uniform(0.15, 0.4, n), rng.uniform(0.4, 2.0, n), rng.uniform(4.0, 8.0, n)
+    modulus = E * rng.uniform(0.98, 1.02, n)
+    np.testing.assert_array_equal(layer_compliance_change(t, R, a, b, modulus, *rest),
+                                  layer_compliance_change_quadrature(t, R, a, b, modulus, *rest))
+    t[:10] = 1.5 * TABLE_WEB_RANGE_MM[1]
+    R[10:20] = 1.5 * TABLE_RADIUS_RANGE_MM[1]
+    fast = layer_compliance_change(t, R, a, b, E, *rest)
+    ref = layer_compliance_change_quadrature(t, R, a, b, E, *rest)
+    np.testing.assert_array_equal(fast[:20], ref[:20])
+    assert not np.array_equal(fast[20:], ref[20:])
+    np.testing.assert_allclose(fast[20:], ref[20:], rtol=2e-4)
