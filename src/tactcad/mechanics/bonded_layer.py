@@ -15,18 +15,16 @@ carrier's own thickness, as a finite-element code with a section thickness per r
 would model it).
 
 The closed form's layer term (:func:`layer_compliance_change`) is the unit-load integral
-of the layer's change of the section's bending flexibility over the carrier; its moments
-in u depend on the web and notch radius alone for one element family, so large vectorised
-calls (design searches, ``tactcad bench closed-form``) read them from a table built once
-from the Gauss-Legendre quadrature, which stays the reference for everything else.
+of the layer's change of the section's bending flexibility over the carrier: exact in u
+where the section is flat, a 10-point rule in a coordinate that flattens the notch's
+peak across it, checked against the 24-point Gauss-Legendre quadrature in u
+(:func:`layer_compliance_change_quadrature`, the reference).
 
 Units: mm, MPa.
 """
 
 from __future__ import annotations
 
-import functools
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -200,153 +198,149 @@ def layer_compliance_change_quadrature(web_mm, notch_radius_mm, arm_length_mm, s
     return a * a * i0 - 2.0 * a * i1 + i2
 
 
-#: The table's domain (mm; its nodes reach a little beyond): webs and notch radii inside it,
-#: on a symmetric carrier, take the table (:class:`_MomentTable`), others the quadrature.
-#: It holds the benchmark's designs (webs 0.15-0.4 mm, radii web-2 mm) and the shipped
-#: examples' (webs 78-250 um, radii 0.3-0.5 mm).
-TABLE_WEB_RANGE_MM = (0.04, 0.8)
-TABLE_RADIUS_RANGE_MM = (0.04, 4.0)
-#: The table's nodes per octave of t and of its radius coordinate (:class:`_MomentTable`):
-#: 2^5, spaced 1/64 to 1/32 in ln.
-TABLE_OCTAVE_BITS = 5
-#: Calls of fewer elements than this take the quadrature (a table costs about 0.1 s to
-#: build, once per element family, modulus and layer; the quadrature 2 us an element).
-TABLE_MIN_ELEMENTS = 4096
-#: The table's largest error in K against the quadrature over its domain, stated
-#: (tests/mechanics/test_bonded_layer.py measures it on the benchmark's designs and on the
-#: examples' elements with webs and radii +-30 %: at most about 4e-5, at the grasper's
-#: thinnest webs, whose K the layer raises by up to 75 %).
-TABLE_K_ERROR_REL = 1e-4
-
-_MANTISSA_BITS = 52  # IEEE 754 double
+#: Gauss-Legendre points on the notch piece in the flattening coordinate sigma of
+#: :func:`_layer_moments` (the fast quadrature of :func:`layer_compliance_change`; 5
+#: evaluations of g on a carrier centred over the notch). Measured in K against the 24-point
+#: reference on the benchmark's designs and the examples' elements +-30 %: 8 points err by
+#: up to 2.2e-4, 10 by 8e-6, 12 by 1e-6; over webs 0.04-0.8 mm and radii 0.04-4 mm
+#: against the converged integral: 10 points 8.5e-5, 12 1.4e-5, 14 1.2e-6.
+NOTCH_POINTS = 10
 
 
-def _octave_cells(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(k, f) of v > 0 (float64) on a grid of 2^TABLE_OCTAVE_BITS cells per octave,
-    uniform in v within each octave: k the cell's key (the float's exponent and leading
-    mantissa bits, rising with v), f in [0, 1) the position in the cell (the rest of the
-    mantissa). A log-spaced grid without a logarithm: two integer operations."""
-    shift = _MANTISSA_BITS - TABLE_OCTAVE_BITS
-    bits = v.view(np.int64)
-    rest = (bits & ((1 << shift) - 1)).astype(float)
-    rest *= 2.0 ** -shift
-    return bits >> shift, rest
+def _section_flexibility_change(h, eb, ea_layer, ei_layer, layer_height_mm):
+    """g(h) = 1 / EI_c - 1 / EI_0 of :func:`_flexibility_change` (1/(N mm^2), <= 0) from
+    the web's E b, the layer's E A and its own E I: EI_c = EI_0 + EI_l + EA_w EA_l d^2 /
+    (EA_w + EA_l), d = (h + h_l) / 2 the distance of the two centroids, the same
+    transformed section with the rise written as one sum (no 1 / (1 + s) - 1). In place
+    on a node's arrays; a flat piece's one height (h not of E b h's shape) out of place."""
+    ea_web = eb * h
+    if np.ndim(ea_web) == 0 or np.shape(h) != np.shape(ea_web):
+        rise = ei_layer + ea_web * ea_layer * (0.25 * (h + layer_height_mm) ** 2) / (
+            ea_web + ea_layer)
+        ei0 = ea_web * h * h / 12.0
+        return -rise / ((ei0 + rise) * ei0)
+    d = h + layer_height_mm
+    d *= d
+    d *= 0.25 * ea_layer
+    d *= ea_web
+    d /= ea_web + ea_layer
+    d += ei_layer  # EI_c - EI_0
+    ei0 = h * h
+    ei0 *= ea_web
+    ei0 *= 1.0 / 12.0
+    out = ei0 + d
+    out *= ei0
+    np.divide(d, out, out=out)
+    np.negative(out, out=out)
+    return out
 
 
-def _octave_nodes(lo: float, hi: float) -> tuple[int, np.ndarray]:
-    """(key of the first node, node values) of the grid of :func:`_octave_cells` from the
-    node at or below ``lo`` to the node above ``hi``."""
-    k0 = int(_octave_cells(np.array([lo]))[0][0])
-    k1 = int(_octave_cells(np.array([hi]))[0][0]) + 1
-    keys = np.arange(k0, k1 + 1)
-    shift = _MANTISSA_BITS - TABLE_OCTAVE_BITS
-    return k0, (keys << shift).view(np.float64)
+def _sigma(u, R, k, positive: bool):
+    """sigma = tan(psi / 2) of :func:`_layer_moments` at u on the notch (clipped to its
+    walls; ``positive``: u >= 0): tan(theta / 2) = s / (1 + sqrt(1 - s^2)), s = sin(theta)
+    = u / R, tan(psi) = tan(theta / 2) / k, and the half angle of that."""
+    s = np.minimum(u / R, 1.0) if positive else np.clip(u / R, -1.0, 1.0)
+    tan_psi = s / ((1.0 + np.sqrt(1.0 - s * s)) * k)
+    return tan_psi / (1.0 + np.sqrt(1.0 + tan_psi * tan_psi))
 
 
-class _MomentTable:
-    """I0 and I2 of :func:`layer_compliance_change_quadrature` on a grid over (t, R), for
-    one sheet, modulus, base and arm height, layer, and a carrier symmetric about the notch
-    centre (-c ... c); bilinear between the nodes. I1 is exact: on a symmetric carrier the
-    notch's share of it is nil (h is even in u), and the flat pieces' is
-    (g(h_a) - g(h_b)) (c^2 - R^2) / 2 for R < c.
+def _layer_moments(web_mm, notch_radius_mm, sheet_mm, youngs_modulus_MPa, base_height_mm,
+                   arm_height_mm, hinge_offsets_mm, layer_height_mm, layer_modulus_MPa,
+                   layer_width_mm):
+    """(I0, I1, I2) of :func:`_layer_moments_quadrature`, fast: on the flat pieces
+    (behind and in front of the notch) g is constant and int u^k du exact; on the notch
+    u = R sin(theta), tan(theta / 2) = k tan(psi), k = sqrt(t / (t + 2 R)), which makes
+    h = t sec^2(psi) / (1 + k^2 tan^2(psi)) and dtheta / h^3 a trigonometric polynomial
+    in psi (the web's peak of width sqrt(t R) spread over the range, the walls' square-root
+    slope gone); Gauss-Legendre with :data:`NOTCH_POINTS` points in sigma = tan(psi / 2)
+    (the nodes' tan(psi) = 2 sigma / (1 - sigma^2) rational: no tangent per node), the
+    nodes in sigma > 0 alone on a carrier symmetric about the notch centre (the integrand
+    even, the notch's part of I1 nil)."""
+    from tactcad.mechanics.notch_profile import gauss_legendre
 
-    Coordinates: t, and Y = R / c + sqrt(max((R / c)^2 - 1, 0)), i.e. R / c while the notch
-    lies inside the carrier (R <= c) and exp(arccosh(R / c)) once the carrier clips it:
-    there the moments go as sqrt(R - c), which Y makes smooth, and R = c (Y = 1, the kink
-    between the two) is a node. Both on grids of :data:`TABLE_OCTAVE_BITS` (32 nodes an
-    octave, :func:`_octave_cells`). Values: I0 t^3 / sqrt(R) (the web's 1/t^3 peak over
-    a width sqrt(t R) taken out) and I2 / I0, the flat pieces included. The bilinear
-    error in I0 is about 1e-4 relative at most, in I2 / I0 a few 1e-4, which enters dC
-    over a^2 + I2 / I0 at a few per cent at most; in K about 4e-5 at most
-    (:data:`TABLE_K_ERROR_REL`).
-    """
-
-    def __init__(self, sheet_mm, youngs_modulus_MPa, base_height_mm, arm_height_mm, half_mm,
-                 layer_height_mm, layer_modulus_MPa, layer_width_mm):
-        from tactcad.mechanics.notch_profile import gauss_legendre, notched_height_mm
-
-        (t_lo, t_hi), (r_lo, r_hi) = TABLE_WEB_RANGE_MM, TABLE_RADIUS_RANGE_MM
-        c = half_mm
-        self.inv_half, self.half2 = 1.0 / c, c * c
-        self.kx0, web = _octave_nodes(t_lo, t_hi)
-        self.ky0, y = _octave_nodes(r_lo / c, (r_hi + math.sqrt(max(r_hi ** 2 - c * c, 0.0)))
-                                    / c)
-        self.ny = y.size
-        radius = c * np.where(y <= 1.0, y, (y * y + 1.0) / (2.0 * y))
-        # inside: a node at or below and one above in each direction (R a hair inside:
-        # Y is R's image under rounding)
-        self.t_range = (web[0], web[-1])
-        self.r_range = (radius[0] * (1 + 1e-12), radius[-1] * (1 - 1e-12))
-        t, R = np.meshgrid(web, radius, indexing="ij")
-
-        def g(h):
-            return _flexibility_change(h, sheet_mm, youngs_modulus_MPa, layer_height_mm,
-                                       layer_modulus_MPa, layer_width_mm)
-
-        # the notch piece as the quadrature takes it (its Gauss-Legendre rule on -w ... w,
-        # w = min(R, c)), the flat pieces exactly (g constant; the rule is exact there too)
-        nodes, weights = gauss_legendre(_GAUSS_POINTS)
-        w = np.minimum(R, c)
-        u = w[..., None] * nodes
-        gu = g(notched_height_mm(u, t[..., None], R[..., None], base_height_mm, arm_height_mm))
-        gb, ga = g(base_height_mm), g(arm_height_mm)
-        i0 = w * (gu @ weights) + (gb + ga) * np.maximum(c - R, 0.0)
-        i2 = w * ((u * u * gu) @ weights) + (gb + ga) * np.maximum(c ** 3 - R ** 3, 0.0) / 3.0
-        self.i0_scaled = np.ascontiguousarray((i0 * t ** 3 / np.sqrt(R)).ravel())
-        self.i2_over_i0 = np.ascontiguousarray((i2 / i0).ravel())
-        self.i1_flat = 0.5 * float(ga - gb)
-
-    def covers(self, t: np.ndarray, R: np.ndarray) -> np.ndarray:
-        """True where (t, R) lies inside the nodes."""
-        return ((t >= self.t_range[0]) & (t < self.t_range[1])
-                & (R >= self.r_range[0]) & (R < self.r_range[1]))
-
-    def change(self, t: np.ndarray, R: np.ndarray, a: np.ndarray) -> np.ndarray:
-        """dC = I0 (a^2 + I2 / I0) - 2 a I1 at (t, R) inside the nodes (mm/N)."""
-        r = R * self.inv_half
-        d2 = r * r
-        d2 -= 1.0  # (R^2 - c^2) / c^2
-        y = np.maximum(d2, 0.0)
-        np.sqrt(y, out=y)
-        y += r
-        kx, px = _octave_cells(np.ascontiguousarray(t))
-        ky, py = _octave_cells(y)
-        n00 = kx - self.kx0
-        n00 *= self.ny
-        n00 += ky
-        n00 -= self.ky0
-        n01, n10 = n00 + 1, n00 + self.ny
-        n11 = n10 + 1
-        i0, q = (self._bilinear(v, n00, n01, n10, n11, px, py)
-                 for v in (self.i0_scaled, self.i2_over_i0))
-        i0 *= np.sqrt(R)
-        i0 /= t * t * t
-        q += a * a
-        q *= i0
-        np.minimum(d2, 0.0, out=d2)  # -(c^2 - R^2) / c^2 inside the carrier, else 0
-        d2 *= 2.0 * self.i1_flat * self.half2
-        d2 *= a
-        q += d2  # - 2 a I1
-        return q
-
-    @staticmethod
-    def _bilinear(values, n00, n01, n10, n11, px, py):
-        v00, v01, v10, v11 = (values.take(n) for n in (n00, n01, n10, n11))
-        v01 -= v00
-        v01 *= py
-        v00 += v01  # along y at x_i
-        v11 -= v10
-        v11 *= py
-        v10 += v11  # along y at x_i+1
-        v10 -= v00
-        v10 *= px
-        v00 += v10
-        return v00
+    t, R = np.broadcast_arrays(*(np.asarray(v, float) for v in (web_mm, notch_radius_mm)))
+    b, E, hb, ha, hl, El, wl = (np.asarray(v, float) for v in (
+        sheet_mm, youngs_modulus_MPa, base_height_mm, arm_height_mm, layer_height_mm,
+        layer_modulus_MPa, layer_width_mm))
+    eb = E * b
+    ea_layer = El * wl * hl
+    ei_layer = ea_layer * hl * hl / 12.0
+    u0, u1 = (np.asarray(v, float) for v in hinge_offsets_mm)
+    two_r = 2.0 * R
+    k2 = t / (t + two_r)
+    k = np.sqrt(k2)
+    symmetric = bool(np.all(u0 == -u1))
+    s1 = _sigma(u1, R, k, symmetric)
+    nodes, weights = gauss_legendre(NOTCH_POINTS)
+    if symmetric:  # the rule's nodes come in +- pairs: the integrand is even in sigma
+        half, mid = s1, 0.0
+        keep = nodes > 0
+        nodes, weights = nodes[keep], 2.0 * weights[keep]
+    else:
+        s0 = _sigma(u0, R, k, False)
+        half, mid = 0.5 * (s1 - s0), 0.5 * (s1 + s0)
+    # in sigma: tan(theta / 2) = k tan(psi) = 2 k sigma / m, m = 1 - sigma^2, so with
+    # p = 2 k sigma and D = m^2 + p^2: sin^2(theta / 2) = p^2 / D, cos^2(theta / 2) = m^2 / D,
+    # cos(theta) = (m^2 - p^2) / D, and du / dsigma = R cos(theta) dtheta / dsigma
+    # = 4 R k (1 + sigma^2) cos(theta) / D
+    scale = 4.0 * R * k * half
+    four_k2 = 4.0 * k2
+    four_r2 = 4.0 * R * R
+    i0 = i1 = i2 = 0.0
+    for z, w in zip(nodes, weights):
+        sg = half * z
+        if not symmetric:
+            sg += mid
+        sg2 = sg * sg
+        m2 = 1.0 - sg2
+        m2 *= m2
+        p2 = four_k2 * sg2
+        inv = 1.0 / (m2 + p2)
+        y = p2 * inv  # sin^2(theta / 2)
+        jac = m2 - p2
+        jac *= inv  # cos(theta)
+        jac *= inv
+        sg2 += 1.0
+        jac *= sg2
+        jac *= scale * w
+        u2 = m2 * inv
+        u2 *= y
+        u2 *= four_r2  # u^2 = R^2 sin^2(theta)
+        y *= two_r
+        y += t  # h
+        gj = _section_flexibility_change(y, eb, ea_layer, ei_layer, hl)
+        gj *= jac
+        if not symmetric:
+            i1 = i1 + gj * np.copysign(np.sqrt(u2), sg)
+        i0 = i0 + gj
+        i2 = i2 + gj * u2
+    # the flat pieces, g constant: behind the notch (u0 ... -R), in front (R ... u1)
+    gb, ga = (_section_flexibility_change(h, eb, ea_layer, ei_layer, hl) for h in (hb, ha))
+    if symmetric:  # -c ... -w and w ... c, w = min(R, c)
+        w = np.minimum(R, u1)
+        w2 = w * w
+        c2 = u1 * u1
+        g = gb + ga
+        i0 = i0 + g * (u1 - w)
+        i1 = (ga - gb) * (0.5 * (c2 - w2))
+        i2 = i2 + g * ((c2 * u1 - w2 * w) / 3.0)
+        return i0, i1, i2
+    for g, lo, hi in ((gb, u0, np.clip(-R, u0, u1)), (ga, np.clip(R, u0, u1), u1)):
+        lo2, hi2 = lo * lo, hi * hi
+        i0 = i0 + g * (hi - lo)
+        i1 = i1 + g * (0.5 * (hi2 - lo2))
+        i2 = i2 + g * ((hi2 * hi - lo2 * lo) / 3.0)
+    return i0, i1, i2
 
 
-@functools.lru_cache(maxsize=16)
-def _moment_table(*key) -> _MomentTable:
-    return _MomentTable(*key)
+#: The fast quadrature's largest error in K against the 24-point reference, stated
+#: (tests/mechanics/test_bonded_layer.py measures it on the benchmark's designs, with the
+#: modulus fixed and drawn per design, and on the examples' elements with webs and radii
+#: +-30 %, the grasper's 78 um webs down to 55 um, whose K the layer raises by up to 75 %:
+#: at most 8e-6, on the Ti example's elements; 6e-6 on the benchmark's). Over webs 0.04-0.8 mm and radii 0.04-4 mm it holds 1e-4 of the converged
+#: integral (its worst: the thinnest webs with the notch just inside the carrier), where
+#: the 24-point reference itself errs by up to 1.2e-4.
+LAYER_K_ERROR_REL = 1e-4
 
 
 def layer_compliance_change(web_mm, notch_radius_mm, arm_length_mm, sheet_mm,
@@ -362,15 +356,13 @@ def layer_compliance_change(web_mm, notch_radius_mm, arm_length_mm, sheet_mm,
     :func:`tactcad.mechanics.gauge_strain.transformed_section`).
 
     The arm length leaves the integral: dC = a^2 I0 - 2 a I1 + I2, I_k = int u^k g(h(u)) du,
-    g = 1 / EI_c - 1 / EI_0, and the I_k depend only on (t, R) for one element family,
-    modulus and layer. So a call of :data:`TABLE_MIN_ELEMENTS` or more elements on one
-    sheet, modulus, base and arm height and layer, with a carrier symmetric about the
-    notch centre, reads them from a table over (t, R) built once from the quadrature
-    (:class:`_MomentTable`, cached; elements outside :data:`TABLE_WEB_RANGE_MM` x
-    :data:`TABLE_RADIUS_RANGE_MM` take the quadrature), within
-    :data:`TABLE_K_ERROR_REL` of it in K; every other call (one element, a modulus that
-    varies along the arrays) is the quadrature
-    (:func:`layer_compliance_change_quadrature`, the reference).
+    g = 1 / EI_c - 1 / EI_0. Behind and in front of the notch g is constant and the
+    integrals in u exact; across the notch a substitution that flattens the web's peak
+    and the walls' square-root slope (:func:`_layer_moments`) takes Gauss-Legendre with
+    :data:`NOTCH_POINTS` points (5 evaluations of g on a carrier centred over the notch),
+    within :data:`LAYER_K_ERROR_REL` in K of the 24-point quadrature
+    (:func:`layer_compliance_change_quadrature`, the reference), for one element or many,
+    a modulus fixed or varying along the arrays.
 
     Args:
         hinge_offsets_mm: the carrier's ends from the notch centre (u0 < u1, mm).
@@ -380,51 +372,15 @@ def layer_compliance_change(web_mm, notch_radius_mm, arm_length_mm, sheet_mm,
     Young and Budynas, Roark's Formulas for Stress and Strain, 7th ed., sec. 8.1; the
     transformed section, e.g. Gere and Goodno, Mechanics of Materials, sec. 6.2.
     """
-    args = (web_mm, notch_radius_mm, arm_length_mm, sheet_mm, youngs_modulus_MPa,
-            base_height_mm, arm_height_mm, hinge_offsets_mm, layer_height_mm,
-            layer_modulus_MPa, layer_width_mm)
-    table = _table_for(*args)
-    if table is None:
-        return layer_compliance_change_quadrature(*args)
-    t, R, a = np.broadcast_arrays(*(np.asarray(v, float) for v in (
-        web_mm, notch_radius_mm, arm_length_mm)))
-    # the extremes first: one pass each, where a mask is four
-    if (t.min() >= table.t_range[0] and t.max() < table.t_range[1]
-            and R.min() >= table.r_range[0] and R.max() < table.r_range[1]):
-        return table.change(t, R, a)
-    inside = table.covers(t, R)
-    out = np.empty(t.shape)
-    out[inside] = table.change(t[inside], R[inside], a[inside])
-    rest = ~inside
-    out[rest] = layer_compliance_change_quadrature(
-        t[rest], R[rest], a[rest], *args[3:])
-    return out
-
-
-def _table_for(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, youngs_modulus_MPa,
-               base_height_mm, arm_height_mm, hinge_offsets_mm, layer_height_mm,
-               layer_modulus_MPa, layer_width_mm) -> _MomentTable | None:
-    """The table of a call that can take one (:func:`layer_compliance_change`), else None."""
-    if max(np.size(web_mm), np.size(notch_radius_mm), np.size(arm_length_mm)) \
-            < TABLE_MIN_ELEMENTS:
-        return None
-    one = []
-    for v in (sheet_mm, youngs_modulus_MPa, base_height_mm, arm_height_mm, layer_height_mm,
-              layer_modulus_MPa, layer_width_mm):
-        arr = np.asarray(v, float)
-        first = float(arr.flat[0]) if arr.size else math.nan
-        if arr.size != 1 and not (arr.size and np.all(arr == first)):
-            return None
-        one.append(first)
-    u0, u1 = (float(v) for v in hinge_offsets_mm)
-    half = 0.5 * (u1 - u0)
-    if not (abs(u0 + u1) <= 1e-9 * half and TABLE_RADIUS_RANGE_MM[0] < half
-            < TABLE_RADIUS_RANGE_MM[1]):
-        return None
-    if not all(math.isfinite(v) and v > 0 for v in one):
-        return None
-    b, E, hb, ha, hl, El, wl = one
-    return _moment_table(b, E, hb, ha, half, hl, El, wl)
+    i0, i1, i2 = _layer_moments(web_mm, notch_radius_mm, sheet_mm, youngs_modulus_MPa,
+                                base_height_mm, arm_height_mm, hinge_offsets_mm,
+                                layer_height_mm, layer_modulus_MPa, layer_width_mm)
+    a = np.asarray(arm_length_mm, float)
+    i1 = i1 * (2.0 * a)
+    i0 = i0 * (a * a)
+    i0 -= i1
+    i0 += i2
+    return i0
 
 
 def layer_compliance_change_of(g: ElementGeometry, youngs_modulus_MPa: float,
@@ -462,10 +418,7 @@ def with_gauge_layer(k_bare_N_per_mm, g: ElementGeometry, web_mm, notch_radius_m
     """Closed-form K with the bonded gauge ``g`` carries, broadcast over candidate webs,
     notch radii, arm lengths and moduli (mm, MPa; the other dimensions ``g``'s):
     1 / (1 / K + dC) (:func:`layer_compliance_change`, the carrier centred over each
-    candidate's notch); ``k_bare_N_per_mm`` as it is for a bare ``g`` (N/mm). Calls of
-    :data:`TABLE_MIN_ELEMENTS` or more candidates at one modulus read dC's moments from
-    the cached table over (t, R) (within :data:`TABLE_K_ERROR_REL` of the quadrature in
-    K); one element, few, or a modulus varying along the arrays take the quadrature."""
+    candidate's notch); ``k_bare_N_per_mm`` as it is for a bare ``g`` (N/mm)."""
     from tactcad.design.readout_section import CARRIER_SIDE_MM, carrier_width_mm
 
     k = np.asarray(k_bare_N_per_mm, float)
