@@ -185,3 +185,100 @@ def test_the_peak_stress_is_the_elements_not_the_layers():
         element_stress(g.bare(), m, "fem2d").stress_MPa_per_N)
     assert checked.stiffness_N_per_mm == pytest.approx(
         estimate("fem2d", g, m).stiffness_N_per_mm)
+
+
+def _layer_args(g):
+    """The layer arguments of :func:`layer_compliance_change` for ``g``'s gauge."""
+    from tactcad.design.readout_section import CARRIER_SIDE_MM, carrier_width_mm
+
+    s = g.gauge
+    half = s.grid_length_mm / 2 + CARRIER_SIDE_MM
+    return (g.sheet_thickness_mm, g.base_height_mm, g.arm_height_mm, (-half, half),
+            s.height_mm, s.modulus_MPa, carrier_width_mm(s.grid_width_mm, g.sheet_thickness_mm))
+
+
+def _layer_error_in_k(g, material, t, R, a, modulus=None, span=None):
+    """max |K_fast / K_quadrature - 1| of the layered closed form at (t, R, a): the layer
+    term of :func:`layer_compliance_change` against the 24-point reference, at the
+    material's modulus or ``modulus`` (broadcast), on ``g``'s carrier or ``span``."""
+    from tactcad.mechanics.bonded_layer import (layer_compliance_change,
+                                                layer_compliance_change_quadrature)
+
+    E = material.youngs_modulus_MPa if modulus is None else modulus
+    b, hb, ha, carrier, hl, El, wl = _layer_args(g)
+    args = (b, E, hb, ha, carrier if span is None else span, hl, El, wl)
+    k_bare = corrected_stiffness(t, R, a, E, g.bare(), material.poisson_ratio, load_correction())
+    fast = layer_compliance_change(t, R, a, *args)
+    ref = layer_compliance_change_quadrature(t, R, a, *args)
+    return float(np.max(np.abs((1 / k_bare + ref) / (1 / k_bare + fast) - 1)))
+
+
+def _benchmark_designs(n=20_000):
+    rng = np.random.default_rng(7)
+    t = rng.uniform(0.15, 0.4, n)
+    a = rng.uniform(4.0, 8.0, n)
+    R = rng.uniform(t, 2.0)
+    return t, R, a, rng
+
+
+def test_the_layer_term_holds_the_reference_quadrature_over_the_benchmarks_designs():
+    """``bench closed-form``'s designs (webs 0.15-0.4 mm, arms 4-8 mm, radii web-2 mm):
+    K within the stated error of the 24-point quadrature, and within 1e-4, at the
+    material's modulus and with a modulus drawn per design (the Monte Carlo's draw)."""
+    from tactcad.mechanics.bonded_layer import LAYER_K_ERROR_REL
+
+    plan = load_design()
+    g, m = plan.element(1).geometry, plan.material
+    t, R, a, rng = _benchmark_designs()
+    err = _layer_error_in_k(g, m, t, R, a)
+    err_e = _layer_error_in_k(g, m, t, R, a, m.youngs_modulus_MPa * rng.uniform(0.9, 1.1, t.size))
+    assert max(err, err_e) <= LAYER_K_ERROR_REL <= 1e-4
+    print(f"benchmark's designs: max |dK/K| {err:.2e}, modulus per design {err_e:.2e}")
+
+
+@pytest.mark.parametrize("name", EXAMPLE_NAMES)
+def test_the_layer_term_holds_the_reference_quadrature_around_the_examples_elements(name):
+    """Every element of the shipped examples with its web and notch radius +-30 % (the
+    grasper's 78 um web down to 55 um, whose K the layer raises by 75 %) and the modulus
+    +-10 %, as a Monte Carlo draws them (an (n, elements) array, a modulus per row): K
+    within the stated error of the 24-point quadrature."""
+    from tactcad.mechanics.bonded_layer import LAYER_K_ERROR_REL
+
+    plan = _plan(name)
+    rng = np.random.default_rng(3)
+    n = 4096
+    for g in plan.distinct_elements.values():
+        t = g.web_thickness_mm * rng.uniform(0.7, 1.3, (n, 2))
+        R = g.notch_radius_mm * rng.uniform(0.7, 1.3, (n, 2))
+        a = np.full(2, g.arm_length_mm)
+        modulus = plan.material.youngs_modulus_MPa * rng.uniform(0.9, 1.1, (n, 1))
+        err = _layer_error_in_k(g, plan.material, t, R, a)
+        err_e = _layer_error_in_k(g, plan.material, t, R, a, modulus)
+        assert max(err, err_e) <= LAYER_K_ERROR_REL, (g, err, err_e)
+        print(f"{name} a = {g.arm_length_mm} mm: max |dK/K| {err:.2e}, "
+              f"modulus per sample {err_e:.2e}")
+
+
+def test_one_element_a_modulus_per_sample_and_an_off_centre_carrier_give_one_layer_term():
+    """The layer term of one element is the same number as that element's entry in a
+    vectorised call, whether the modulus is one or drawn per sample (the modulus enters
+    each sample's own section: no first-order term, no table); a carrier off the notch
+    centre (the general rule, both signs of u) holds the reference as the centred one."""
+    from tactcad.mechanics.bonded_layer import (LAYER_K_ERROR_REL, layer_compliance_change,
+                                                layer_compliance_change_quadrature)
+
+    plan = load_design()
+    g, m = plan.element(1).geometry, plan.material
+    b, hb, ha, (u0, u1), hl, El, wl = _layer_args(g)
+    rest = (hb, ha, (u0, u1), hl, El, wl)
+    t, R, a, rng = _benchmark_designs(2048)
+    modulus = m.youngs_modulus_MPa * rng.uniform(0.9, 1.1, t.size)
+    many = layer_compliance_change(t, R, a, b, modulus, *rest)
+    for i in range(0, t.size, 97):
+        one = layer_compliance_change(t[i], R[i], a[i], b, modulus[i], *rest)
+        assert np.ndim(one) == 0
+        assert one == pytest.approx(many[i], rel=1e-13)
+    np.testing.assert_allclose(many, layer_compliance_change_quadrature(t, R, a, b, modulus,
+                                                                         *rest), rtol=1e-4)
+    for span in ((0.6 * u0, u1), (u0, 0.3 * u1), (0.1, u1)):
+        assert _layer_error_in_k(g, m, t, R, a, modulus, span) <= LAYER_K_ERROR_REL

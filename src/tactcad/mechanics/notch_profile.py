@@ -47,11 +47,13 @@ def notch_integral(lo_mm, hi_mm, web_mm, notch_radius_mm, base_height_mm, arm_he
         lo_mm, hi_mm: the span (mm; lo <= hi), broadcast with the element's dimensions.
         web_mm, notch_radius_mm, base_height_mm, arm_height_mm: the element (mm, broadcast).
         integrand: f(u, h) on arrays of shape (..., points) (u and h with a trailing node
-            axis; the caller's own arrays take ``[..., None]``), returning that shape.
+            axis; the caller's own arrays take ``[..., None]``), returning that shape, or
+            that shape behind leading axes of its own (several integrands at once).
         points: Gauss-Legendre nodes per piece.
 
     Returns:
-        The integral, shape of the broadcast inputs.
+        The integral, shape of the broadcast inputs (behind the integrand's own leading
+        axes).
     """
     lo, hi, t, R, hb, ha = np.broadcast_arrays(*(np.asarray(v, float) for v in (
         lo_mm, hi_mm, web_mm, notch_radius_mm, base_height_mm, arm_height_mm)))

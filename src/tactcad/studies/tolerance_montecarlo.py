@@ -209,7 +209,8 @@ def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_M
     Returns:
         K of the broadcast shape (N/mm), with the bonded gauge ``g`` carries
         (:func:`~tactcad.mechanics.bonded_layer.with_gauge_layer`), as the
-        closed-form level gives it.
+        closed-form level gives it (a modulus drawn per sample enters each
+        sample's layer term exactly).
 
     Raises:
         ValueError: a non-positive or non-finite input (see
