@@ -19,7 +19,7 @@ from tactcad.studies.inverse_design import Targets
 
 @pytest.fixture(scope="module")
 def die():
-    return doped_die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"), columns=5)
+    return doped_die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5"), columns=5)
 
 
 def test_the_chosen_dose_has_the_least_drift_per_newton_and_the_minimum_is_inside_the_series():
@@ -56,4 +56,4 @@ def test_the_plan_and_traveller_carry_the_chosen_dose_with_its_reason(die):
 @pytest.mark.parametrize("dose", [0.0, float("nan"), 1e20])
 def test_a_dose_out_of_range_is_refused_by_name(dose):
     with pytest.raises(DesignError, match="implant_dose_per_cm2"):
-        md.die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"), implant_dose_per_cm2=dose)
+        md.die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5"), implant_dose_per_cm2=dose)

@@ -84,7 +84,7 @@ def test_graded_planes_pass_every_cut_and_grow_from_it():
 
 @pytest.fixture(scope="module")
 def small_die():
-    return die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"), columns=3)
+    return die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5"), columns=3)
 
 
 @pytest.fixture(scope="module")

@@ -1,5 +1,6 @@
-"""A silicon die's fracture probability from a lab's Weibull pair: the effective area of a
-tip-loaded cantilever, the weakest-link probability, and the verification rows it decides."""
+"""A silicon die's fracture probability from a Weibull pair (a lab's, or the design default
+when its file states none): the effective area of a tip-loaded cantilever and of its root
+fillets, the weakest-link probability, and the verification rows it decides."""
 
 from __future__ import annotations
 
@@ -25,7 +26,7 @@ EXAMPLE = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_m
 
 @pytest.fixture(scope="module")
 def die():
-    return md.die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"))
+    return md.die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5"))
 
 
 @pytest.mark.parametrize("m", [2.0, 5.0, 12.0])
@@ -50,28 +51,44 @@ def test_the_weakest_link_probability_is_weibulls():
     assert failure_probability(-100.0, 5000.0, pair) == 0.0
 
 
+def _fillets_area_by_hand(r: float, t: float, m: float) -> float:
+    """Two root fillets' surface at the peak (um^2): each arc pi r / 2 over the tensile half
+    of the thickness, under the linear gradient (2 z / t)^m integrated (t / (2 (m + 1))),
+    and an r x r square of the face beside it taken wholly at the peak."""
+    return 2 * (math.pi * r / 2 * t / (2 * (m + 1)) + r * r)
+
+
 def test_a_stated_pair_decides_the_rated_force_and_the_stops(die):
-    """Without a pair the rating is undecided; with one, the die's failure probability with
-    each beam at its rated force is 1 - prod exp(-(A_eff / A_0)(sigma / sigma_0)^m) over its
-    beams (by hand) and
-    passes or fails against the lab's accepted maximum; the stop row adds every beam on its
-    deepest stop, which carries more than the rating."""
+    """Without a stated pair the rating is decided by the design default (named in the row);
+    with the lab's, the die's failure probability with each beam at its rated force is
+    1 - exp(-sum risk) over its beams (by hand: the bending surface at the root's nominal
+    6 F L / (w t^2), the fillets' surface at K_t x it) and passes or fails against the
+    lab's accepted maximum; the stop row adds every beam on its deepest stop, which carries
+    more than the rating."""
     from tactcad.products.silicon_die.studies.die_verification import die_verification
 
     rows = {r["requirement"]: r for r in die_verification(die)}
-    assert rows["full_scale_force_N"]["verdict"] == "undecided"
+    assert die.weibull == md.DESIGN_STRENGTH
+    assert rows["full_scale_force_N"]["verdict"] == "pass"
+    assert "the design-default Weibull pair" in rows["full_scale_force_N"]["binding_words"]
     pair = WeibullPair(5.0, 1500.0, 1e4, "a test", 1e-3)
     judged = dataclasses.replace(die, weibull=pair)
     # each beam at its own rated force: the rating on a reference beam, K_m x its rated
     # travel on a measuring one
-    risk = sum((b.length_um / 6 * (b.width_um + b.thickness_um / 6)) / 1e4
-               * (judged.peak_stress_MPa_at_rating(b) * judged.rated_force_N(b)
-                  / die.full_scale_force_N / 1500.0) ** 5 for b in die.beams)
+    risk = 0.0
+    for b in die.beams:
+        w, t, L = b.width_um * 1e-3, b.thickness_um * 1e-3, b.length_um * 1e-3
+        nominal = 6 * judged.rated_force_N(b) * L / (w * t * t)
+        kt = md.root_stress_concentration(die.root_fillet_um, b.width_um, b.thickness_um)
+        bending = b.length_um / 6 * (b.width_um + b.thickness_um / 6)
+        fillets = _fillets_area_by_hand(die.root_fillet_um, b.thickness_um, 5.0)
+        risk += (bending * (nominal / 1500.0) ** 5 + fillets * (kt * nominal / 1500.0) ** 5) / 1e4
     p_rated = die_failure_probability(judged, judged.rated_force_N)
     assert p_rated == pytest.approx(1 - math.exp(-risk), rel=1e-9)
     rows = {r["requirement"]: r for r in die_verification(judged)}
     assert rows["full_scale_force_N"]["predicted"] == pytest.approx(p_rated)
     assert rows["full_scale_force_N"]["verdict"] == ("pass" if p_rated <= 1e-3 else "fail")
+    assert "the lab's Weibull pair" in rows["full_scale_force_N"]["binding_words"]
     lenient = dataclasses.replace(die, weibull=dataclasses.replace(pair,
                                                                    failure_probability_max=0.5))
     rows = {r["requirement"]: r for r in die_verification(lenient)}
@@ -155,3 +172,71 @@ def test_the_die_files_strength_table_is_validated_and_reaches_verify(tmp_path):
         (tmp_path / EXAMPLE.name).write_text(text + bad, encoding="utf-8")
         r = run_cli("verify", "--json", cwd=tmp_path)
         assert r.returncode == 2 and key in r.stdout, r.stdout
+
+
+def test_the_fillets_add_their_own_small_surface_at_the_peak():
+    """The root fillets' term of a beam's Weibull risk: no surface for no fillet, the
+    closed form by hand for one; with it the beam's risk exceeds the bending surface's alone
+    (at the nominal), by less than the old judgement, the whole bending surface at the
+    fillets' peak."""
+    pair = md.DESIGN_STRENGTH
+    m, L, w, t, r = pair.modulus, 420.0, 128.0, 40.0, 4.0
+    assert md.fillet_effective_area_um2(0.0, t, m) == 0.0
+    assert md.fillet_effective_area_um2(r, t, m) == pytest.approx(
+        _fillets_area_by_hand(r, t, m), rel=1e-12)
+    kt = md.root_stress_concentration(r, w, t)
+    assert kt > 1.5
+    nominal = 300.0
+    bending = effective_area_um2(L, w, t, m)
+    alone = md.weibull_risk(bending, nominal, pair)
+    assert md.beam_weibull_risk(L, w, t, nominal, kt, 0.0, pair) == pytest.approx(alone)
+    with_fillets = md.beam_weibull_risk(L, w, t, nominal, kt, r, pair)
+    old = md.weibull_risk(bending, kt * nominal, pair)  # the peak over the whole area
+    assert alone < with_fillets < old
+    assert with_fillets - alone == pytest.approx(
+        md.weibull_risk(_fillets_area_by_hand(r, t, m), kt * nominal, pair), rel=1e-12)
+
+
+def test_a_die_file_without_a_strength_table_has_its_rating_decided_by_the_default(tmp_path):
+    """The shipped 5 mm example states no [strength]: verify decides its rating (pass, not
+    undecided) by the design-default pair, named with its figures, and the stops' row too."""
+    import tomllib
+
+    text = EXAMPLE.read_text(encoding="utf-8")
+    assert "strength" not in tomllib.loads(text)  # no [strength] table
+    (tmp_path / EXAMPLE.name).write_text(text, encoding="utf-8")
+    r = run_cli("verify", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stdout
+    rows = {x["requirement"]: x for x in json.loads(r.stdout)["matrix"]}
+    rated = rows["full_scale_force_N"]
+    assert rated["verdict"] == "pass" and 0 < rated["predicted"] <= 1e-3
+    assert "the design-default Weibull pair" in rated["binding_words"]
+    assert "m 5, sigma_0 2000 MPa on 1200 um^2" in rated["binding_words"]
+    assert "the design-default Weibull pair" in rows["hard_stop"]["predicted"]
+    assert "undecided" not in {x["verdict"] for x in rows.values()}
+
+
+def test_a_labs_strength_table_replaces_the_default_and_a_stronger_pair_rates_more(tmp_path):
+    """12 mN is past the design default's frontier for the 5 mm example (9.47 mN): without a
+    table the file's rating is refused by its key naming the default; with the lab's
+    stronger pair (sigma_0 3 GPa on the same area and m) it designs and verify passes it by
+    the lab's pair, named with its source, and the default is not named."""
+    text = EXAMPLE.read_text(encoding="utf-8")
+    (tmp_path / EXAMPLE.name).write_text(text, encoding="utf-8")
+    heavier = ("--set", "die.full_scale_force_N=0.012")
+    refused = run_cli("verify", *heavier, "--json", cwd=tmp_path)
+    assert refused.returncode == 2, refused.stdout
+    error = json.loads(refused.stdout)["error"]
+    assert error["field"] == "die.full_scale_force_N"
+    assert "the design-default Weibull pair" in error["message"]
+    table = ('\n[strength]\nweibull_modulus = 5.0\ncharacteristic_strength_MPa = 3000.0\n'
+             'reference_area_um2 = 1200.0\nsource = "the lab\'s own DRIE test bars"\n')
+    (tmp_path / EXAMPLE.name).write_text(text + table, encoding="utf-8")
+    r = run_cli("verify", *heavier, "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stdout
+    rated = {x["requirement"]: x for x in json.loads(r.stdout)["matrix"]}["full_scale_force_N"]
+    assert rated["verdict"] == "pass" and rated["predicted"] <= 1e-3
+    assert "the lab's Weibull pair" in rated["binding_words"]
+    assert "the lab's own DRIE test bars" in rated["binding_words"]
+    assert "design-default" not in rated["binding_words"]
+    assert "m 5, sigma_0 3000 MPa on 1200 um^2" in rated["binding_words"]

@@ -82,7 +82,7 @@ def test_stiffness_of_an_array_still_needs_its_element(tmp_path):
 
 def test_design_for_a_5mm_jaw_writes_a_die_project_folder(tmp_path):
     argv = ("design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.05", "0.5",
-            "--full-scale-force", "0.005", "--out", "palp-die")
+            "--full-scale-force", "0.002", "--out", "palp-die")
     r = run_cli(*argv, cwd=tmp_path)
     assert r.returncode == 0, r.stdout + r.stderr
     folder = tmp_path / "palp-die"
@@ -143,7 +143,7 @@ def test_a_die_takes_a_grasp_force_judged_as_grasp_computes_it(die_folder):
 
 def test_design_for_a_die_takes_max_grasp_force_or_pastes_the_jaws_reach(tmp_path):
     argv = ("design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.05", "0.5",
-            "--full-scale-force", "0.005", "--out", "gripped")
+            "--full-scale-force", "0.002", "--out", "gripped")
     far = run_cli(*argv, "--max-grasp-force", "50", "--json", cwd=tmp_path)
     assert far.returncode == 2 and not (tmp_path / "gripped").exists()
     error = json.loads(far.stdout)["error"]
@@ -215,7 +215,7 @@ def test_a_stated_pocket_depth_is_the_dies_and_its_carrier_fills_it():
     from tactcad.products.silicon_die.design.mems_die import die_plan
     from tactcad.studies.inverse_design import Targets
 
-    plan = die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room(ROBOT_JAW, "robot.toml"))
+    plan = die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room(ROBOT_JAW, "robot.toml"))
     own = die_mount(plan, ROBOT_JAW)
     assert own.carrier_mm == CARRIER_MM  # no depth stated: the die machines its own pocket
     stated = die_mount(plan, {**ROBOT_JAW, "pocket_depth_mm": 0.9})
@@ -237,7 +237,7 @@ def test_a_pocket_no_product_fits_is_refused_naming_its_keys_for_each(tmp_path):
         "thickness_mm = 5.6\npin_inset_mm = 2.5\nopening_angle_deg = 30.0\n"
         "pocket_width_mm = 0.5\npocket_length_mm = 1.0\n", encoding="utf-8")
     r = run_cli("design", "--jaw", "tiny.toml", "--kr-over-km", "10", "--kobj-range", "0.5",
-                "5", "--full-scale-force", "0.02", "--columns", "4", "--out", "x", "--json",
+                "5", "--full-scale-force", "0.009", "--columns", "4", "--out", "x", "--json",
                 cwd=tmp_path)
     assert r.returncode == 2 and not (tmp_path / "x").exists()
     error = json.loads(r.stdout)["error"]
@@ -260,7 +260,7 @@ def test_design_for_a_die_takes_a_kobj_accuracy_or_pastes_what_it_reaches(tmp_pa
         "[grasper_jaw]\n" + "".join(f"{k} = {v!r}\n".replace("'", '"')
                                     for k, v in ROBOT_JAW.items()), encoding="utf-8")
     argv = ("design", "--jaw", "robot.toml", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
-            "--full-scale-force", "0.02", "--out", "robot")
+            "--full-scale-force", "0.009", "--out", "robot")
     tight = run_cli(*argv, "--kobj-accuracy", "0.001", "--json", cwd=tmp_path)
     assert tight.returncode == 2 and not (tmp_path / "robot").exists()
     error = json.loads(tight.stdout)["error"]

@@ -147,7 +147,8 @@ IMPLANT_DOSE_PER_CM2 = 2e14
 #: reference figure for the root stress, not a design strength: without the Weibull
 #: modulus and stressed area of a die's own sidewalls it gives no failure probability.
 BOSCH_MEAN_STRENGTH_MPA = 1900.0
-BOSCH_STRENGTH_SOURCE = ("IEEJ Trans. Sensors and Micromachines 132(9), 2012, p. 320: bars "
+BOSCH_STRENGTH_SOURCE = ("Uesugi, Hirai, Sugano, Tsuchiya and Tabata, IEEJ Trans. Sensors and "
+                         "Micromachines 132(9), 2012, p. 320: bars "
                          "120 x 5 x 5 um, mean 1.9 GPa as etched, 3.6 GPa after a wet etch")
 #: Columns per row, pitch along the die and the die's name when the caller states none
 #: (the design file's, the die command's and design's defaults).
@@ -167,15 +168,17 @@ CAVITY_STEP_UM = 0.5
 
 @dataclass(frozen=True)
 class WeibullPair:
-    """A lab's Weibull pair for the fracture strength of its own etched silicon (from its
-    fab's test structures; none is in the library): P_f = 1 - exp(-(A_eff / A_0)
-    (sigma / sigma_0)^m) for a surface of effective area A_eff at peak stress sigma.
+    """A Weibull pair for the fracture strength of etched silicon: P_f = 1 - exp(-(A_eff /
+    A_0) (sigma / sigma_0)^m) for a surface of effective area A_eff at peak stress sigma.
+    A lab's own pair (its fab's test structures, a die file's ``[strength]`` table), or
+    :data:`DESIGN_STRENGTH` when the lab states none.
 
     Attributes:
         modulus: m, > 1. characteristic_MPa: sigma_0, the stress at which 63.2 % of the
             test structures break (MPa). reference_area_um2: A_0, the test structures'
             effective area the pair is for (um^2). source: where the pair comes from.
-        failure_probability_max: the die's largest failure probability the lab accepts.
+        failure_probability_max: the die's largest failure probability accepted.
+        stated: True for a lab's own pair, False for :data:`DESIGN_STRENGTH`.
     """
 
     modulus: float
@@ -183,6 +186,38 @@ class WeibullPair:
     reference_area_um2: float
     source: str
     failure_probability_max: float
+    stated: bool = True
+
+    @property
+    def whose(self) -> str:
+        """The words that name the pair in a verdict: the lab's, or the design default."""
+        return "the lab's Weibull pair" if self.stated else \
+            "the design-default Weibull pair (the file states no [strength] table)"
+
+
+#: The Weibull modulus a die is designed with when its file states no pair: the low end of
+#: the 5-20 reported for etched single-crystal silicon (a low m extrapolates most harshly
+#: from a test bar to a die's larger area and to a small failure probability).
+DESIGN_WEIBULL_MODULUS = 5.0
+#: The design-default pair's characteristic strength (MPa): the mean of the Bosch-etched bars
+#: as etched (:data:`BOSCH_MEAN_STRENGTH_MPA`) taken as a Weibull mean at
+#: :data:`DESIGN_WEIBULL_MODULUS`, sigma_0 = mean / Gamma(1 + 1/m) = 2.07 GPa, rounded down.
+DESIGN_CHARACTERISTIC_MPA = 2000.0
+#: Its reference area (um^2): the bars' two DRIE sidewalls, 2 x 120 x 5 um, the smaller
+#: surface the bars' flaws can lie on (a smaller A_0 judges a die's area more harshly).
+DESIGN_REFERENCE_AREA_UM2 = 1200.0
+#: The die's largest failure probability at its rating and on its stops when the file
+#: states none (assumption: one die in a thousand; a die file's ``[strength]`` states its own).
+DESIGN_FAILURE_PROBABILITY_MAX = 1e-3
+#: The pair a die is designed and judged with when its file states none: a conservative
+#: design strength for Bosch-etched silicon (the constants above), so that every die's
+#: rating is decided; a lab's ``[strength]`` table replaces it.
+DESIGN_STRENGTH = WeibullPair(
+    DESIGN_WEIBULL_MODULUS, DESIGN_CHARACTERISTIC_MPA, DESIGN_REFERENCE_AREA_UM2,
+    "m the low end of the 5-20 reported for etched silicon; sigma_0 the mean "
+    f"{BOSCH_MEAN_STRENGTH_MPA:g} MPa of Bosch-etched bars as etched (Uesugi et al., IEEJ "
+    "Trans. SM 132(9), 2012) over Gamma(1 + 1/m), rounded down; A_0 the bars' two DRIE "
+    "sidewalls", DESIGN_FAILURE_PROBABILITY_MAX, stated=False)
 
 
 @dataclass(frozen=True)
@@ -717,9 +752,11 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
         angle_from_110_deg: the beams' direction in the (100) wafer, from [110].
         implant_dose_per_cm2: the resistors' boron dose (cm^-2), > 0; ``dose_reason`` why
             (:func:`tactcad.products.silicon_die.studies.die_doping.chosen_implant_dose` gives both).
-        weibull: the lab's Weibull pair for its etched silicon, or None: with a pair the
-            rating's strength limits are the die's failure probability at the rating and on
-            its stops (:func:`weibull_force_scale`), not the etched bars' mean strength.
+        weibull: the lab's Weibull pair for its etched silicon, or None for
+            :data:`DESIGN_STRENGTH` (the design default): the rating's strength limits are
+            the die's failure probability at the rating and on its stops
+            (:func:`weibull_force_scale`), besides a stop engaging before a root's peak
+            reaches the etched bars' mean strength.
         root_fillet_um: the fillet's radius where each beam's sidewalls meet the frame
             (um; :func:`check_root_fillet`): its K_t (:func:`root_stress_concentration`)
             raises the root's stress the search, the rating and the stops judge.
@@ -759,7 +796,8 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     window = width - 2 * FRAME_UM
     k_r, k_m = targets.k_r, targets.k_m
     fitting = _fitting_beams(E, k_r, k_m, window, pitch_um, root_fillet_um)
-    strength = None if weibull is None else RatingStrength(weibull, columns)
+    weibull = DESIGN_STRENGTH if weibull is None else weibull
+    strength = RatingStrength(weibull, columns)
     if not fitting:
         raise _no_fit(targets, room, window, pitch_um, E, strength, root_fillet_um)
     pair = min(fitting)
@@ -844,12 +882,12 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                    f"{POST_HEIGHT_UM:g} um and {POST_CLEARANCE_UM:g} um more than the "
                    f"deepest a post goes to its stop ({deepest:.3g} um), so that the face "
                    "never meets the tissue before the stop takes an overload",
-        "strength": (f"undecided: the more stressed root's peak {root_MPa:.4g} MPa (K_t "
-                     f"{kt:.3g} x the nominal) at its beam's rated force is "
-                     f"{100 * root_MPa / BOSCH_MEAN_STRENGTH_MPA:.2g} % of the mean tensile "
-                     f"strength of Bosch-etched silicon bars ({BOSCH_STRENGTH_SOURCE}); no "
-                     "Weibull modulus of DRIE sidewalls with its stressed area is sourced, so "
-                     "no failure probability is given"),
+        "strength": (f"judged by {weibull.whose}: the die's failure probability with every "
+                     f"beam at its rated force and with every beam on its deepest stop within "
+                     f"{weibull.failure_probability_max:g} (m {weibull.modulus:g}, sigma_0 "
+                     f"{weibull.characteristic_MPa:g} MPa on {weibull.reference_area_um2:g} "
+                     f"um^2; {weibull.source}); the more stressed root's peak {root_MPa:.4g} "
+                     f"MPa (K_t {kt:.3g} x the nominal) at its beam's rated force"),
     }
     return DiePlan(name, stack, 2, columns, pitch_um, length, width, FRAME_UM, END_UM, w,
                    l_r, l_m, post, post_height, resistor, E,
@@ -908,6 +946,36 @@ def effective_area_um2(length_um: float, width_um: float, thickness_um: float,
     return length_um / (modulus + 1.0) * (width_um + thickness_um / (modulus + 1.0))
 
 
+def fillet_effective_area_um2(root_fillet_um: float, thickness_um: float,
+                              modulus: float) -> float:
+    """The surface of a beam's two root fillets judged at the root's peak stress (um^2):
+    each fillet's arc (pi r / 2) over the tensile half of the thickness under its linear
+    bending gradient (t / (2 (m + 1))), and a square of side r of the face beside it, taken
+    wholly at the peak (conservative: the concentration falls off within about r of the
+    fillet). 0 for no fillet."""
+    r = max(float(root_fillet_um), 0.0)
+    return 2.0 * (math.pi * r / 2.0 * thickness_um / (2.0 * (modulus + 1.0)) + r * r)
+
+
+def beam_weibull_risk(length_um: float, width_um: float, thickness_um: float,
+                      nominal_MPa: float, root_kt: float, root_fillet_um: float,
+                      pair: WeibullPair) -> float:
+    """A tip-loaded beam's Weibull risk of rupture (P_f = 1 - exp(-risk)): its bending
+    surface at the root's nominal stress (:func:`effective_area_um2`) and its root fillets
+    at the peak, K_t x the nominal (:func:`fillet_effective_area_um2`).
+
+    Args:
+        length_um, width_um, thickness_um: the beam (um). nominal_MPa: 6 F L / (w t^2) at
+            its force (MPa). root_kt: K_t of its root fillets. root_fillet_um: their radius.
+        pair: the Weibull pair judged by.
+    """
+    m = pair.modulus
+    return (weibull_risk(effective_area_um2(length_um, width_um, thickness_um, m),
+                         nominal_MPa, pair)
+            + weibull_risk(fillet_effective_area_um2(root_fillet_um, thickness_um, m),
+                           root_kt * nominal_MPa, pair))
+
+
 def weibull_risk(area_um2: float, peak_MPa: float, pair: WeibullPair) -> float:
     """A surface's Weibull risk of rupture, (A_eff / A_0) (sigma / sigma_0)^m, so that
     P_f = 1 - exp(-risk) (0 at no tension)."""
@@ -927,11 +995,11 @@ def force_scale_of_risk(risk: float, probability: float, modulus: float) -> floa
 
 def weibull_force_scale(pair: WeibullPair, count: int, roots) -> float:
     """The factor on every beam's force at which ``count`` units of the beams ``roots``
-    ((length um, width um, thickness um, root stress MPa) per beam of a unit) fail with the
-    pair's accepted probability (:func:`force_scale_of_risk` of their summed
-    :func:`weibull_risk`)."""
-    risk = count * sum(weibull_risk(effective_area_um2(l, w, t, pair.modulus), stress, pair)
-                       for l, w, t, stress in roots)
+    ((length um, width um, thickness um, nominal root stress MPa, K_t, fillet radius um) per
+    beam of a unit) fail with the pair's accepted probability (:func:`force_scale_of_risk`
+    of their summed :func:`beam_weibull_risk`)."""
+    risk = count * sum(beam_weibull_risk(l, w, t, stress, kt, r, pair)
+                       for l, w, t, stress, kt, r in roots)
     return force_scale_of_risk(risk, pair.failure_probability_max, pair.modulus)
 
 
@@ -958,9 +1026,11 @@ def _rating_of(pair: BeamPair, k_r: float, k_m: float, force_N: float, kobj_rang
     scales = (math.inf, math.inf)
     if strength is not None:
         on_stop = (root_MPa(k_r * engage[0] * 1e-3, l_r), root_MPa(k_m * engage[1] * 1e-3, l_m))
+        r = pair.root_fillet_um  # the Weibull risk takes the nominal and the fillets' K_t
         scales = tuple(weibull_force_scale(strength.weibull, strength.columns,
-                                           [(l_r, w, t, stresses[0]), (l_m, w, t, stresses[1])])
-                       for stresses in (roots, on_stop))
+                                           [(l_r, w, t, peaks[0] / kt, kt, r),
+                                            (l_m, w, t, peaks[1] / kt, kt, r)])
+                       for peaks in (roots, on_stop))
     return _Rating(force_N, rated, max(roots), depths, max(engage),
                    max(e / f for e, f in zip(engage, fracture)), strength, scales)
 
@@ -984,7 +1054,7 @@ def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
     else:
         accepted = rating.strength.weibull.failure_probability_max
         strength = [(force_N * scale, f"the die's failure probability, {where}, at the "
-                                      f"{accepted:g} the lab accepts (its Weibull pair)")
+                                      f"{accepted:g} {rating.strength.weibull.whose} accepts")
                     for scale, where in zip(rating.weibull_scales,
                                             ("every beam at its rated force",
                                              "every beam on its deepest stop"))]
@@ -1087,8 +1157,9 @@ def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_
                           f"{why}; no lighter rating down to {LIGHTEST_PASTE_N:g} N is within "
                           "every limit: the shallowest cavity and the least post drawn do not "
                           "shrink with it" + ("" if rating.strength is None else
-                                              " (a stronger etch than the lab's Weibull pair "
-                                              "states, or a stiffer K_obj range)"))
+                                              " (a stronger etch than "
+                                              f"{rating.strength.weibull.whose} states, or "
+                                              "a stiffer K_obj range)"))
     raise DesignError("--full-scale-force", force_N, f"at most {below:g} N", why,
                       alternatives=[{"option": f"--full-scale-force {below:g}",
                                      "words": "a lighter rating, below every limit" + (

@@ -1,5 +1,7 @@
-"""The fracture probability of a silicon die's beams, from a lab's Weibull pair for its
-etched silicon (:class:`tactcad.products.silicon_die.design.mems_die.WeibullPair`).
+"""The fracture probability of a silicon die's beams, from a Weibull pair for its etched
+silicon (:class:`tactcad.products.silicon_die.design.mems_die.WeibullPair`: the lab's own,
+or the design default :data:`tactcad.products.silicon_die.design.mems_die.DESIGN_STRENGTH`
+when the die's file states none).
 
 Silicon breaks from surface flaws, brittle and size-dependent: a surface of effective area
 A_eff at peak stress sigma breaks with P_f = 1 - exp(-(A_eff / A_0) (sigma / sigma_0)^m)
@@ -12,11 +14,13 @@ tension, w wide, and the tensile half of each DRIE sidewall:
     A_eff = int (sigma / sigma_root)^m dA = L / (m + 1) (w + t / (m + 1)),
 
 both taken as the pair's population (the lab's test structures are etched as the die is:
-conservative for a polished face). The peak is the root's on its fillets, K_t x the nominal
-6 F L / (w t^2) (:func:`tactcad.products.silicon_die.design.mems_die.root_stress_concentration`),
-applied to the whole effective area: conservative, as only the fillets' few um carry the
-concentration (the area under it is not integrated). The beams break independently: the
-die's P_f is 1 - prod(1 - P_f,i).
+conservative for a polished face), at the root's nominal 6 F L / (w t^2). The root's
+fillets carry the peak, K_t x the nominal
+(:func:`tactcad.products.silicon_die.design.mems_die.root_stress_concentration`), over their
+own small surface (:func:`tactcad.products.silicon_die.design.mems_die.fillet_effective_area_um2`:
+each arc over the tensile half of the thickness and a square of side r of the face beside
+it, all at the peak), added to the beam's risk. The beams break independently: the die's
+P_f is 1 - prod(1 - P_f,i).
 
 Units: MPa, um, N.
 """
@@ -26,8 +30,8 @@ from __future__ import annotations
 import math
 
 from tactcad.products.silicon_die.design.mems_die import (Beam, DiePlan, WeibullPair,
-                                                          effective_area_um2, force_scale_of_risk,
-                                                          weibull_risk)
+                                                          beam_weibull_risk, effective_area_um2,
+                                                          force_scale_of_risk, weibull_risk)
 
 __all__ = ["effective_area_um2", "failure_probability", "beam_failure_probability",
            "die_failure_probability", "force_scale_at_probability"]
@@ -47,10 +51,11 @@ def beam_failure_probability(plan: DiePlan, beam: Beam, force_N: float) -> float
     """
     if plan.weibull is None:
         raise ValueError(f"die {plan.name} states no Weibull pair")
-    stress = plan.peak_stress_MPa_at_rating(beam) * force_N / plan.full_scale_force_N
-    area = effective_area_um2(beam.length_um, beam.width_um, beam.thickness_um,
-                              plan.weibull.modulus)
-    return failure_probability(stress, area, plan.weibull)
+    nominal = plan.stress_MPa_at_rating(beam) * force_N / plan.full_scale_force_N
+    risk = beam_weibull_risk(beam.length_um, beam.width_um, beam.thickness_um, nominal,
+                             plan.root_stress_concentration(beam), plan.root_fillet_um,
+                             plan.weibull)
+    return -math.expm1(-risk)
 
 
 def die_failure_probability(plan: DiePlan, force_of) -> float:

@@ -64,8 +64,8 @@ def strength_report(plan) -> tuple[dict, list[str]]:
                                          f"({ROOT_KT_SOURCE})",
                           "strength": "the mean tensile strength of Bosch-etched silicon "
                                       "bars" + ("" if plan.weibull is None else
-                                                "; the failure probability from the lab's "
-                                                "Weibull pair")}}
+                                                "; the failure probability from "
+                                                f"{plan.weibull.whose}")}}
     lines = [f"die {plan.name}, model closed-form: each row's beam root at the force it "
              f"carries in use; strength {BOSCH_MEAN_STRENGTH_MPA:g} MPa ({BOSCH_STRENGTH_SOURCE})",
              "| row | role | L um | w um | t um | K_t | peak MPa/N | rated force mN | "

@@ -19,7 +19,9 @@ def die_verification(plan, mount=None) -> list[dict]:
       rated force at the mean strength of Bosch-etched silicon, a stop engaging before its
       root breaks, the cavities' depth, the posts' height): failed at or past it, else
       undecided (a mean strength without its Weibull modulus gives no failure
-      probability); with the lab's Weibull pair, the die's failure probability;
+      probability: only for a plan made without any pair); with its Weibull pair (the
+      lab's, or the design default every designed die carries), the die's failure
+      probability;
     * ``kr_over_km``: the rows' K_r / K_m against the target, within the 'about' band, each
       K the closed form's on its frame within :data:`tactcad.products.silicon_die.design.mems_die.
       CLOSED_FORM_K_ERROR_REL` of the fem3d level (so the ratio within twice that);
@@ -181,8 +183,9 @@ def _rated_row(plan) -> dict:
 
 
 def _weibull_rated_row(plan) -> dict:
-    """``full_scale_force_N`` with the lab's Weibull pair: the die's failure probability
-    with the rated force on every beam against the largest the lab accepts."""
+    """``full_scale_force_N`` with the plan's Weibull pair (the lab's, or the design
+    default's): the die's failure probability with the rated force on every beam against
+    the largest the pair accepts."""
     from tactcad.products.silicon_die.mechanics.die_strength import (die_failure_probability,
                                                 force_scale_at_probability)
 
@@ -195,7 +198,7 @@ def _weibull_rated_row(plan) -> dict:
             "margin_rel": scale - 1.0, "model": "closed-form",
             "verdict": "pass" if p_f <= pair.failure_probability_max else "fail",
             "binding_words": f"the die's failure probability with every beam at its rated "
-                             f"force, the lab's Weibull pair (m {pair.modulus:g}, "
+                             f"force, {pair.whose} (m {pair.modulus:g}, "
                              f"sigma_0 {pair.characteristic_MPa:g} MPa on "
                              f"{pair.reference_area_um2:g} um^2; {pair.source}); it reaches "
                              f"{pair.failure_probability_max:g} at {scale:.3g} x the rating "
@@ -235,7 +238,7 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
         scale = force_scale_at_probability(plan, on_stop, accepted)
         margins.append(scale - 1.0)  # in force, as the travels' margins
         words.append(f"the die's failure probability with every beam on its deepest stop "
-                     f"{p_stop:.3g} (accepted up to {accepted:g}, the lab's Weibull pair; "
+                     f"{p_stop:.3g} (accepted up to {accepted:g}, {plan.weibull.whose}; "
                      f"reached at {scale:.3g} x the stops' forces)")
     return {"requirement": "hard_stop",
             "target": f"engages past the rated travel (at {STOP_MULTIPLE:g} x) and before the "
