@@ -204,7 +204,7 @@ def test_a_die_for_the_5mm_jaw_from_the_wheel_exports_and_passes_its_check(insta
     bin_, env, _, _ = installed
     tactcad = str(bin_ / "tactcad")
     _run([tactcad, "design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
-          "--full-scale-force", "0.02", "--out", "insert", "--quiet"], tmp_path, env)
+          "--full-scale-force", "0.009", "--out", "insert", "--quiet"], tmp_path, env)
     folder = tmp_path / "insert"
     _run([tactcad, "export", "--quiet"], folder, env)
     made = sorted(p.name for p in (folder / "exports").iterdir())

@@ -17,7 +17,7 @@ from tactcad.studies.inverse_design import Targets
 
 @pytest.fixture(scope="module")
 def plan():
-    return die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"))
+    return die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5"))
 
 
 @pytest.fixture(scope="module")

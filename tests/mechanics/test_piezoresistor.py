@@ -159,7 +159,7 @@ def test_the_dies_readout_states_its_sensitivitys_drift_and_self_heating():
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
 
-    plan = die_plan(Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5"))
+    plan = die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5"))
     r = die_readout(plan, bias_V=2.0)
     beam = plan.beams[0]
     power = 1.0 / r["resistance_ohm"]  # (2 V / 2)^2 / R
