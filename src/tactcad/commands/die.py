@@ -374,6 +374,10 @@ def run(args: argparse.Namespace) -> int:
         shutil.rmtree(staging, ignore_errors=True)
     if args.json:
         print(dumps(record, indent=1))
+    elif getattr(args, "quiet", False):  # `export --quiet` of a die: only what failed
+        failed = [c.line() for c in checks if not c.passed]
+        if failed:
+            print("\n".join(failed))
     else:
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
                      modes, fe, budget, mount, record["fem3d"]))
@@ -540,7 +544,8 @@ def die_design_of(args: argparse.Namespace) -> Path | None:
 
 def _die_args(design: Path, args: argparse.Namespace, out: Path) -> argparse.Namespace:
     return argparse.Namespace(design=str(design), overrides=getattr(args, "overrides", []),
-                              out=str(out), json=getattr(args, "json", False), fe_check=False,
+                              out=str(out), json=getattr(args, "json", False),
+                              quiet=getattr(args, "quiet", False), fe_check=False,
                               fem3d=False,
                               **{k: None for k in (*TARGET_OPTIONS, *DEFAULTS)})
 
