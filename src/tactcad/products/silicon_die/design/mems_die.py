@@ -33,7 +33,8 @@ stock device-layer thickness and beam width, the L that has K (:func:`length_for
 of the pairs whose two beams, their posts and the gap between a unit's posts
 (:func:`tip_gap_um`) fit across the window, each beam at
 least :data:`SLENDERNESS` times as long as it is wide, the die takes the one with the lowest
-root stress at the rating, 6 F L_m / (w t^2) (the thicker layer on a tie: its +-tolerance
+root peak stress at the rating, K_t 6 F L_m / (w t^2) (K_t of the root's fillets,
+:func:`root_stress_concentration`; the thicker layer on a tie: its +-tolerance
 moves K by 3 dt / t). Each row's cavity is as deep as its beam's free end goes at
 :data:`STOP_MULTIPLE` x the beam's rated tip deflection, the cavity's depth tolerance
 taken off. Every choice is kept with its reason.
@@ -46,6 +47,7 @@ from __future__ import annotations
 import bisect
 import math
 import numbers
+import warnings
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
@@ -574,34 +576,81 @@ def shoulder_fillet_kt(radius_over_d: float, big_d_over_d: float,
     return cs[0] + cs[1] * x + cs[2] * x * x + cs[3] * x ** 3
 
 
-#: The root fillet's radii a die takes (um): above 0, at most this (the fit of
-#: :data:`ROOT_KT_OUT_OF_PLANE` spans r / w 0.03-0.125, r / t 0.1-0.4 on the example's
-#: section; a larger fillet is a taper, not a fillet); and beside each beam the fillets of
-#: neighbouring beams must leave the DRIE slot open (:func:`check_root_fillet`).
+#: The root fillet's radii a die takes (um): above 0, at most this (a larger fillet is a
+#: taper, not a fillet; its K_t is fitted over :data:`ROOT_KT_RANGE`); and beside each beam
+#: the fillets of neighbouring beams must leave the DRIE slot open (:func:`check_root_fillet`).
 ROOT_FILLET_RANGE_UM = (0.0, 20.0)
-#: The die's out-of-plane factor on the in-plane chart's concentration:
-#: K_t = 1 + c (K_t,chart - 1), fitted to the die's fem3d level
-#: (:func:`tactcad.products.silicon_die.mechanics.die_fem3d.root_peak_fem3d`, level 3, the
-#: arc's element edge r / 8) on the example die's reference beam (w 128, t 40, L 388 um) at
-#: r = 4, 8, 16 um: K_t 2.04, 1.69, 1.49, each c = 0.599, 0.560, 0.624 on the chart's
-#: 2.74, 2.23, 1.79; c = 0.60 reads them within +0.1, +2.9, -1.3 %, and the measuring beam
-#: (L 863 um, r 4 um: 2.02) within +0.9 % (level 4: 2.06 on both beams, -1.0 / -1.1 %). Only this section is fitted: at r = 4 um on
-#: beams 60 and 240 um wide in the 40 um layer fem3d reads 1.93 and 2.10 against the closed
-#: form's 1.71 and 2.42 (the concentration follows r / t more than r / w).
-ROOT_KT_OUT_OF_PLANE = 0.60
-#: The chart's wide section over the narrow (D / d): the frame is far wider than the beam;
-#: the in-plane charts' concentration has all but stopped growing with D / d by 2.
-ROOT_KT_D_OVER_D = 2.0
-#: Below the chart's smallest r / d (h / r = 20 at D / d = 2: r / w = 0.025), K_t,chart - 1
-#: is carried on as (r / d)^-1/2, the fits' own leading term (C1's sqrt(h / r)) as the
-#: shoulder deepens; untested against fem3d there (at r = 2 um on the example's beam, r / w
-#: 0.016, fem3d's level 3 reads 2.73 and still rising against the closed form's 2.44: past
-#: the chart the closed form reads low).
-BELOW_CHART_EXPONENT = -0.5
-ROOT_KT_SOURCE = (f"{SHOULDER_FILLET_SOURCE}, at D / d = {ROOT_KT_D_OVER_D:g} and r / d = "
-                  f"r / w, its concentration taken x {ROOT_KT_OUT_OF_PLANE:g} for bending out "
-                  "of the fillets' plane (no published chart covers it: the factor is fitted "
-                  "to the die's fem3d level on filleted roots)")
+#: The root fillets' K_t at the die's fem3d level
+#: (:func:`tactcad.products.silicon_die.mechanics.die_fem3d.root_peak_fem3d` at level 3, the
+#: arc's element edge r / 8, within about 1 % of level 4 on the example's beams): (w / t,
+#: r / t, t um, L um, K_t). A design grid over the sections the die's search explores: w / t
+#: 1.5, 4, 8; r / t 0.04, 0.12, 0.36; t 20 and 50 um (w / t 8 in the 20 um layer alone:
+#: its mesh is the largest); L = max(3 w, 10 t), the shortest reference beam the search
+#: takes (L >= 3 w); the rest of the die (stack, cavities) the example's, unscaled, so the
+#: two layers' points differ by up to 6 % at one (w / t, r / t), the fit's main residual.
+#: Last, the example's reference beam (w 128, t 40, L 388 um) at r = 4, 8, 16 um (the
+#: points the chart's factor was fitted to). Wall times 20-340 s a point on a core shared
+#: with other work, 670-1410 s at w / t 8 (270 k unknowns).
+ROOT_KT_FEM3D = (
+    (1.5, 0.04, 20.0, 200.0, 2.839),
+    (1.5, 0.12, 20.0, 200.0, 1.821),
+    (1.5, 0.36, 20.0, 200.0, 1.411),
+    (4.0, 0.04, 20.0, 240.0, 3.019),
+    (4.0, 0.12, 20.0, 240.0, 1.935),
+    (4.0, 0.36, 20.0, 240.0, 1.546),
+    (8.0, 0.04, 20.0, 480.0, 3.070),
+    (8.0, 0.12, 20.0, 480.0, 1.967),
+    (8.0, 0.36, 20.0, 480.0, 1.579),
+    (1.5, 0.04, 50.0, 500.0, 2.676),
+    (1.5, 0.12, 50.0, 500.0, 1.860),
+    (1.5, 0.36, 50.0, 500.0, 1.420),
+    (4.0, 0.04, 50.0, 600.0, 2.987),
+    (4.0, 0.12, 50.0, 600.0, 1.973),
+    (4.0, 0.36, 50.0, 600.0, 1.548),
+    (3.2, 0.1, 40.0, 388.0, 2.04),
+    (3.2, 0.2, 40.0, 388.0, 1.69),
+    (3.2, 0.4, 40.0, 388.0, 1.49),
+)
+ROOT_KT_FEM3D_SOURCE = ("tactcad's fem3d level on filleted roots (root_peak_fem3d, level 3; "
+                        "silicon's tensor, <110> on (100), the beam on its frame block)")
+#: ln(K_t - 1) = c0 + c1 x + c2 x^2 + c3 y, x = ln(r / t), y = ln(w / t): least squares on
+#: :data:`ROOT_KT_FEM3D` (each point weighted by (K_t - 1) / K_t, so the residual is K_t's
+#: relative error).
+ROOT_KT_COEFFICIENTS = (-1.2346, -0.3477, 0.0611, 0.1162)
+#: The (r / t, w / t) the fit covers: the grid's span.
+ROOT_KT_RANGE = {"r_over_t": (0.04, 0.4), "w_over_t": (1.5, 8.0)}
+#: The closed form's largest error against :data:`ROOT_KT_FEM3D` (3.7 %), rounded
+#: up; twice it outside :data:`ROOT_KT_RANGE`, where the fit is carried on (the last
+#: slope in ln(r / t), held in w / t) and :class:`RootKtRangeWarning` is issued.
+ROOT_KT_ERROR_REL = 0.04
+ROOT_KT_SOURCE = (f"fitted to {ROOT_KT_FEM3D_SOURCE} over r / t "
+                  f"{ROOT_KT_RANGE['r_over_t'][0]:g}-{ROOT_KT_RANGE['r_over_t'][1]:g}, w / t "
+                  f"{ROOT_KT_RANGE['w_over_t'][0]:g}-{ROOT_KT_RANGE['w_over_t'][1]:g}, within "
+                  f"{100 * ROOT_KT_ERROR_REL:g} % of it there")
+
+
+class RootKtRangeWarning(UserWarning):
+    """A die's root K_t taken outside the (r / t, w / t) its fit covers
+    (:data:`ROOT_KT_RANGE`)."""
+
+
+def root_kt_outside(radius_um: float, width_um: float, thickness_um: float) -> list[str]:
+    """The coordinates of :data:`ROOT_KT_RANGE` that ``r``, ``w``, ``t`` (um) leave, as
+    words ("r / t 0.02 (fitted 0.04 ... 0.4)"); empty inside."""
+    out = []
+    for name, label, value in (("r_over_t", "r / t", radius_um / thickness_um),
+                               ("w_over_t", "w / t", width_um / thickness_um)):
+        lo, hi = ROOT_KT_RANGE[name]
+        if not lo * (1 - 1e-9) <= value <= hi * (1 + 1e-9):
+            out.append(f"{label} {value:.3g} (fitted {lo:g} ... {hi:g})")
+    return out
+
+
+def root_kt_error_rel(radius_um: float, width_um: float, thickness_um: float) -> float:
+    """The closed form's K_t error estimate (relative): :data:`ROOT_KT_ERROR_REL` inside
+    :data:`ROOT_KT_RANGE`, twice it outside."""
+    outside = root_kt_outside(radius_um, width_um, thickness_um)
+    return ROOT_KT_ERROR_REL * (2.0 if outside else 1.0)
 
 
 def root_stress_concentration(radius_um: float, width_um: float, thickness_um: float) -> float:
@@ -609,13 +658,16 @@ def root_stress_concentration(radius_um: float, width_um: float, thickness_um: f
     the peak stress on the fillets' top edge over the root's nominal 6 F L / (w t^2).
 
     No published chart gives a shoulder fillet's factor for a bar bent out of the plane of
-    its fillets; the in-plane one (:func:`shoulder_fillet_kt`, bending, r / d = r / w at
-    D / d = :data:`ROOT_KT_D_OVER_D`) has the shape, and the die's fem3d level on filleted
-    roots sets its size: K_t = 1 + :data:`ROOT_KT_OUT_OF_PLANE` (K_t,chart - 1), within 3 %
-    of fem3d at r / w 0.03-0.125 on the example's section (w / t 3.2; other sections are
-    not fitted, see the factor's note). Below the chart's
-    smallest r / d (h / r = 20) its K_t - 1 is carried on as (r / d)^-1/2
-    (:data:`BELOW_CHART_EXPONENT`).
+    its fillets. The in-plane one (:func:`shoulder_fillet_kt`, r / d = r / w) follows the
+    fillet's radius over the beam's width, while the die's fem3d level finds the
+    concentration set by the radius over the layer's thickness, the width adding a few %
+    (at r = 4 um in the 40 um layer: K_t 1.93, 2.04, 2.10 at w 60, 128, 240 um, where the
+    chart's r / w moves it by -12 ... +15 %). So K_t is a surface fitted to fem3d
+    (:data:`ROOT_KT_FEM3D`): ln(K_t - 1) = c0 + c1 x + c2 x^2 + c3 y, x = ln(r / t),
+    y = ln(w / t) (:data:`ROOT_KT_COEFFICIENTS`), within :data:`ROOT_KT_ERROR_REL` of every
+    grid point. Outside :data:`ROOT_KT_RANGE` x is carried on along the last slope and y
+    held at its end (:func:`root_kt_error_rel` doubles there; the die's plan warns,
+    :class:`RootKtRangeWarning`).
 
     Args:
         radius_um: the fillet's radius r (um), > 0.
@@ -628,12 +680,13 @@ def root_stress_concentration(radius_um: float, width_um: float, thickness_um: f
         ValueError: a radius, width or thickness not a finite number above 0.
     """
     _positive(radius_um=radius_um, width_um=width_um, thickness_um=thickness_um)
-    r_over_d = radius_um / width_um
-    smallest = (ROOT_KT_D_OVER_D - 1.0) / (2.0 * SHOULDER_H_OVER_R_RANGE[1])
-    chart = shoulder_fillet_kt(max(r_over_d, smallest), ROOT_KT_D_OVER_D, "bending") - 1.0
-    if r_over_d < smallest:
-        chart *= (r_over_d / smallest) ** BELOW_CHART_EXPONENT
-    return 1.0 + ROOT_KT_OUT_OF_PLANE * chart
+    c0, c1, c2, c3 = ROOT_KT_COEFFICIENTS
+    lo, hi = (math.log(v) for v in ROOT_KT_RANGE["r_over_t"])
+    x = math.log(radius_um / thickness_um)
+    xc = min(max(x, lo), hi)  # the quadratic inside, its tangent beyond
+    y = min(max(math.log(width_um / thickness_um), math.log(ROOT_KT_RANGE["w_over_t"][0])),
+            math.log(ROOT_KT_RANGE["w_over_t"][1]))
+    return 1.0 + math.exp(c0 + c1 * x + c2 * xc * (2.0 * x - xc) + c3 * y)
 
 
 def check_root_fillet(root_fillet_um, width_um: float | None = None,
@@ -805,6 +858,14 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
     t = -neg_t
     check_root_fillet(root_fillet_um, w, pitch_um, slot)
     kt = root_stress_concentration(root_fillet_um, w, t)
+    kt_outside = root_kt_outside(root_fillet_um, w, t)
+    kt_error = root_kt_error_rel(root_fillet_um, w, t)
+    if kt_outside:
+        warnings.warn(f"the root fillets' K_t {kt:.3g} ({root_fillet_um:g} um fillets on the "
+                      f"{w:g} x {t:g} um beams) is taken outside its fit: "
+                      f"{'; '.join(kt_outside)}; estimated error up to "
+                      f"{100 * kt_error:.2g} % ({ROOT_KT_SOURCE})", RootKtRangeWarning,
+                      stacklevel=2)
     stack = SoiStack(t, box_um, handle_um, DEVICE_TOLERANCE_UM)
     beams = []
     for row, (role, l, y0, sign) in enumerate((("reference", l_r, FRAME_UM, +1),
@@ -828,19 +889,23 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                           "frame, drawn into the device etch's mask"
                           + (f" ({DRIE_MIN_RADIUS_SOURCE})" if root_fillet_um == DRIE_MIN_RADIUS_UM
                              else " (the design file's)")
-                          + f": K_t = {kt:.3g}, the root's peak stress over its nominal "
-                          f"6 F L / (w t^2) ({ROOT_KT_SOURCE}); the strength, the stops and "
-                          "the rating judge the peak",
+                          + f": K_t = {kt:.3g} (r / t {root_fillet_um / t:.3g}, w / t "
+                          f"{w / t:.3g}; +-{100 * kt_error:.2g} %"
+                          + (f", outside its fit: {'; '.join(kt_outside)}" if kt_outside
+                             else "")
+                          + "), the root's peak stress over its nominal "
+                          f"6 F L / (w t^2) ({ROOT_KT_SOURCE}); the search ranks sections by "
+                          "the peak, and the strength, the stops and the rating judge it",
         "device_um": f"of the stock device layers ({', '.join(f'{x:g}' for x in DEVICE_LAYER_CHOICES_UM)} um) and beam widths whose two beams, posts "
                      f"and the gap between a unit's posts (at least a post's width: the "
                      f"tissue between them couples them) fit across the {window:g} um "
                      "window, "
-                     f"the pair with the lowest root stress at the rating (the thicker "
-                     f"layer on a tie); its +-{DEVICE_TOLERANCE_UM:g} um "
+                     f"the pair with the lowest root peak stress (K_t x the nominal, on its "
+                     f"fillets) at the rating (the thicker layer on a tie); its +-{DEVICE_TOLERANCE_UM:g} um "
                      f"({DEVICE_TOLERANCE_SOURCE}) moves every K by +-{300 * tol:.2g} % "
                      "alike (R keeps it)",
-        "beam_width_um": f"with the layer: the pair with the lowest root stress (a wider "
-                         f"beam is stressed less), beside the {slot:.3g} um DRIE slot in the "
+        "beam_width_um": f"with the layer: the pair with the lowest root peak stress (a "
+                         f"wider beam is stressed less), beside the {slot:.3g} um DRIE slot in the "
                          f"{pitch_um:g} um pitch, at most 1/{SLENDERNESS:g} of the reference "
                          "beam's length (slender: Euler-Bernoulli), wide enough for the "
                          "resistor's two legs and at least as wide as the layer is thick",
@@ -1242,9 +1307,8 @@ def _widths(widest: float, narrowest: float) -> list[float]:
 
 class BeamPair(NamedTuple):
     """A reference and a measuring beam of one width in one device layer (um), ordered as
-    the search prefers them: the lowest nominal root stress per newton of the measuring beam
-    (6 L / (w t^2): the fillets' K_t, fitted on the example's section alone, does not rank
-    sections) first,
+    the search prefers them: the lowest root peak stress per newton of the measuring beam
+    (K_t 6 L / (w t^2), K_t of its fillets: :func:`root_stress_concentration`) first,
     then the thicker layer (``neg_t``: -t), then the narrower beam."""
 
     root_MPa_per_N: float
@@ -1277,7 +1341,8 @@ def _beam_pair(E: float, k_r: float, k_m: float, window: float, t: float, w: flo
     l_r = length_for_stiffness_um(E, w, t, k_r)
     l_m = length_for_stiffness_um(E, w, t, k_m)
     if l_r + l_m + post + tip_gap_um(slot, post) <= window and l_r >= SLENDERNESS * w:
-        return BeamPair(6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m, fillet_um)
+        kt = root_stress_concentration(fillet_um, w, t)
+        return BeamPair(kt * 6 * l_m / (w * t * t), -t, w, slot, post, l_r, l_m, fillet_um)
     return None
 
 
