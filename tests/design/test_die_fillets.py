@@ -97,7 +97,7 @@ def test_the_roots_kt_falls_with_the_radius_grows_with_the_width_and_is_continuo
 
 def test_a_die_whose_section_leaves_the_kt_fit_warns_and_states_the_doubled_error():
     with pytest.warns(md.RootKtRangeWarning, match="r / t"):
-        plan = md.die_plan(Targets(10.0, (0.5, 5.0), 0.01), jaw_room("5"), root_fillet_um=0.5)
+        plan = md.die_plan(Targets(10.0, (0.5, 5.0), 0.007), jaw_room("5"), root_fillet_um=0.5)
     assert "outside its fit" in plan.reasons["root_fillet_um"]
     t = plan.stack.device_um
     assert f"+-{100 * 2 * md.ROOT_KT_ERROR_REL:.2g} %" in plan.reasons["root_fillet_um"]
@@ -107,7 +107,7 @@ def test_a_die_whose_section_leaves_the_kt_fit_warns_and_states_the_doubled_erro
 def test_the_search_ranks_sections_by_the_roots_peak():
     from tactcad.vocabulary.crystal import SILICON, in_plane_direction
 
-    targets, room = Targets(10.0, (0.5, 5.0), 0.02), jaw_room("5")
+    targets, room = Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5")
     plan = md.die_plan(targets, room)
     E = float(SILICON.young_modulus_MPa(in_plane_direction(0.0)))
     window = round(room.across_mm * 1e3, 3) - 2 * md.FRAME_UM
