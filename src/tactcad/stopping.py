@@ -207,3 +207,33 @@ def end_child_processes(wait_s: float = 1.0) -> None:
         child.kill()
     for child in children:
         child.join(wait_s)
+
+
+def pool_shut_down(pool, wait_s: float = 5.0, kill: bool = False) -> None:
+    """Shut ``pool`` (a :class:`concurrent.futures.ProcessPoolExecutor`) down
+    without waiting on its processes, but wait, at most ``wait_s`` seconds,
+    for its manager thread to end. Given up with ``wait=False``, the pool's
+    queues are held only by that thread, so their named semaphores (``spawn``
+    pools) are freed there as it ends; a process that exits meanwhile
+    (``os._exit``) can have unlinked one without telling ``multiprocessing``'s
+    resource tracker, which then warns of a leaked semaphore as the run ends.
+    ``shutdown(wait=True)`` is not used: it joins the thread for as long as it
+    takes, and a worker killed in the middle of a transfer can leave it
+    waiting on a pipe.
+
+    Args:
+        pool: the executor.
+        wait_s: longest wait for the manager thread, s.
+        kill: SIGKILL the pool's processes first (a run interrupted while they
+            work: the thread would otherwise wait for their tasks to end).
+    """
+    thread = getattr(pool, "_executor_manager_thread", None)  # CPython's names, 3.9 ... 3.13
+    if kill:
+        for process in list((getattr(pool, "_processes", None) or {}).values()):
+            try:
+                process.kill()
+            except (OSError, ValueError, AttributeError):  # already ended, or never started
+                pass
+    pool.shutdown(wait=False, cancel_futures=True)
+    if thread is not None and thread is not threading.current_thread():
+        thread.join(wait_s)

@@ -236,6 +236,31 @@ def test_a_session_worker_killed_as_it_starts_is_gone_at_once():
     assert pid not in {p.pid for p in multiprocessing.active_children()}
 
 
+def test_a_killed_session_worker_frees_its_semaphores_before_kill_returns():
+    """Killing the worker waits for its pool's manager thread, which frees the
+    pool's named semaphores as it ends: a process that ends with ``os._exit``
+    right after (as the ``tactcad`` program does, its ``atexit`` handlers run first) leaves the resource
+    tracker nothing to warn of ("leaked semaphore"). Repeated, since without
+    the wait it is a race between the thread and the exit."""
+    import subprocess
+    import sys
+
+    script = (
+        "import os, threading\n"
+        "from tactcad.export.worker import SessionWorker\n"
+        "for _ in range(3):\n"
+        "    w = SessionWorker()\n"
+        "    thread = w._pool._executor_manager_thread\n"
+        "    w.kill()\n"
+        "    assert not thread.is_alive(), 'manager thread still running'\n"
+        "import atexit\n"
+        "w = SessionWorker(); w.kill(); atexit._run_exitfuncs(); os._exit(0)\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "leaked" not in done.stderr and "Traceback" not in done.stderr, done.stderr
+
+
 def test_ending_at_once_on_a_stop_is_undone_for_a_process_that_goes_on():
     """A watch run in-process (the API, the tests) that was stopped ends its
     clean-up with stop signals ending the process at once; when it returns,

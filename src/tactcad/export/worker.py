@@ -45,7 +45,8 @@ from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable, Collection, Mapping, Sequence
 
 from tactcad.export.job import Job, Run, solid_key
-from tactcad.stopping import spawn_ready, stop_signals_held, stop_signals_unblocked
+from tactcad.stopping import (pool_shut_down, spawn_ready, stop_signals_held,
+                              stop_signals_unblocked)
 
 #: The run and its jobs by name: set before the fork for a worker forked per
 #: run to inherit, or by each run's first message to a session worker.
@@ -130,7 +131,7 @@ class Worker:
 
     def kill(self) -> None:
         _kill(self._context.processes)
-        self._pool.shutdown(wait=False, cancel_futures=True)
+        pool_shut_down(self._pool, KILL_REAP_S)
 
 
 class _Started:
@@ -229,7 +230,7 @@ class SessionWorker:
         sent or no worker can be started (the run then makes every job)."""
         try:
             if self.broken:
-                self._pool.shutdown(wait=False, cancel_futures=True)
+                pool_shut_down(self._pool, KILL_REAP_S)
                 self._start()
             context = pickle.dumps((run.project, run.staging, run.store, run.dxf_version, planner))
             self._pool.submit(_begin_run, context)
@@ -251,7 +252,7 @@ class SessionWorker:
         """End the worker at once (its run was interrupted); the next run starts another."""
         self.broken = True
         _kill(self._context.processes)
-        self._pool.shutdown(wait=False, cancel_futures=True)
+        pool_shut_down(self._pool, KILL_REAP_S)
 
     def close(self) -> None:
         """End the worker (the session ends): at once, as :meth:`kill`."""

@@ -80,7 +80,7 @@ def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
     from concurrent.futures import ProcessPoolExecutor, wait
     import multiprocessing
 
-    from tactcad.stopping import spawn_ready, stop_signals_held
+    from tactcad.stopping import pool_shut_down, spawn_ready, stop_signals_held
     from tactcad.store import active_store
 
     store = active_store()
@@ -103,6 +103,8 @@ def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
         return 0
     try:
         wait([pool.submit(_solve, str(store.root), model, g, material) for g in geometries])
-    finally:
-        pool.shutdown(wait=False, cancel_futures=True)
+    except BaseException:  # a stop: the processes' solves are not waited for
+        pool_shut_down(pool, kill=True)
+        raise
+    pool_shut_down(pool)
     return n
