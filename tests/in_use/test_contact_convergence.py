@@ -127,7 +127,17 @@ def test_verify_judges_the_coupled_inversion_against_the_check_level():
     assert "another discretisation" in record["check_level"]
     worst = [abs(u["worst_corrected_rel"]) for u in record["units"]]
     assert 0 < max(worst) < req.kobj_resolution_rel  # two levels, not one: never exactly 0
-    assert record["coupled"]["verdict"] == "pass"
+    # the check level's own error on the bias is in the verdict: unit 1/3's bias lies
+    # within the resolution by less than that error, so the check cannot tell
+    target = req.kobj_resolution_rel
+    by_unit = {tuple(it["unit"]): it for it in record["coupled"]["items"]}
+    open_ = [u for u, it in by_unit.items() if it["verdict"] == "undecided"]
+    assert open_ and record["coupled"]["verdict"] == "undecided"
+    for unit in open_:
+        it = by_unit[unit]
+        assert abs(it["bias_rel"]) < target < abs(it["bias_rel"]) + it["bias_error_rel"]
+    assert all(abs(it["bias_rel"]) + it["bias_error_rel"] <= target
+               for it in by_unit.values() if it["verdict"] == "pass")
 
     k = ladder_stiffness_by_element(plan)
     working = coupled_sample(plan, Tissue(poisson_ratio=0.5))
@@ -179,3 +189,43 @@ def test_the_offset_table_gives_the_pairwise_influence_matrix(punches, monkeypat
     monkeypatch.setattr(np.linalg, "solve", lambda a, b, _solve=np.linalg.solve: (
         np.testing.assert_allclose(a, direct, rtol=1e-12, atol=0), _solve(a, b))[1])
     contact_uniform.uniform_compliance(punches, h)
+
+
+@pytest.mark.slow  # a 15 000-cell dense solve
+def test_an_undecided_tissue_row_is_judged_on_a_finer_check_where_the_cells_allow(monkeypatch):
+    """The macro array's tissue row is undecided on the default check (cells 0.25 / 0.125
+    mm). With a cell budget that holds the next mesh, the record refines the check (cells
+    halved once), whose bias moves by less than the default's error estimate said it could,
+    and decides."""
+    from tactcad.in_use.tissue_coupling import check_level, cross_level_bias
+    from tactcad.mechanics import contact_uniform
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.studies.verification import requirements_of, tissue_coupling_record
+
+    plan = _plan("macro_array")
+    req = requirements_of(plan)
+    default = check_level(plan)
+    assert not default.finer_fits
+    monkeypatch.setattr(contact_uniform, "MAX_CHECK_CELLS", 16000)
+    record = tissue_coupling_record(plan, req)
+    assert "halved 1 time" in record["check_level"]
+    assert record["coupled"]["verdict"] != "undecided"
+    k = ladder_stiffness_by_element(plan)
+    working, finer = coupled_sample(plan), check_level(plan, refinement=1)
+    points = np.geomspace(*req.kobj_range_N_per_mm, 5)
+    for unit in ((3, 1), (7, 8)):
+        coarse = cross_level_bias(working, default.sample, k, unit, points)
+        estimate = np.max(np.abs(coarse - cross_level_bias(working, default.coarser, k, unit,
+                                                           points)))
+        fine = cross_level_bias(working, finer.sample, k, unit, points)
+        assert np.max(np.abs(fine - coarse)) <= estimate  # the estimate held
+
+
+@pytest.mark.parametrize("bias, error, verdict", [
+    (0.001, 0.0004, "pass"), (-0.001, 0.0005, "pass"), (0.001, 0.0006, "undecided"),
+    (-0.0016, 0.0002, "undecided"), (0.0018, 0.0002, "fail"), (0.0, 0.002, "undecided"),
+    (0.0, 0.0, "pass")])
+def test_a_bias_is_judged_with_its_error_against_the_resolution(bias, error, verdict):
+    from tactcad.studies.verification import bias_verdict
+
+    assert bias_verdict(bias, error, 0.0015) == verdict

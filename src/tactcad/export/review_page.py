@@ -147,8 +147,9 @@ def _signed_pct(x) -> str:
 
 def tissue_coupling_view(record: dict | None) -> dict | None:
     """The manifest's tissue coupling record as the page's table: one row per sensing unit,
-    its worst K_obj bias over the range by eq. 3 and by the coupled inversion, each with its
-    verdict against the K_obj resolution (texts with their units); None without a unit."""
+    its worst K_obj bias over the range by eq. 3 and by the coupled inversion (with the check
+    level's error estimate on it), each with its verdict against the K_obj resolution (texts
+    with their units); None without a unit."""
     if not record or not record.get("units"):
         return None
     eq3 = {tuple(it["unit"]): it for it in record["eq3"]["items"]}
@@ -161,13 +162,19 @@ def tissue_coupling_view(record: dict | None) -> dict | None:
         rows.append({"unit": f"{key[0]}/{key[1]}", "coupling": f"{u['coupling']:.3g}",
                      "K_obj bias, eq. 3": _signed_pct(eq3[key]["bias_rel"]),
                      "eq. 3": eq3[key]["verdict"].upper(),
-                     "K_obj bias, coupled inversion": _signed_pct(coupled[key]["bias_rel"]),
+                     "K_obj bias, coupled inversion": _signed_pct(coupled[key]["bias_rel"])
+                     + _plus_minus_pct(coupled[key].get("bias_error_rel")),
                      "coupled inversion": coupled[key]["verdict"].upper()})
     title = (f"{record['tissue']}; worst K_obj bias over the K_obj range per unit "
              f"(reference/measuring element) against the {100 * record['target_rel']:.3g} % "
              f"K_obj resolution required (error estimate of the tissue model "
              f"{100 * record['eq3']['items'][0]['error_estimate_rel']:.3g} %)")
     return {"title": title, "columns": columns, "rows": rows}
+
+
+def _plus_minus_pct(error_rel: float | None) -> str:
+    """" +/- e %" of a bias's error estimate (relative), or nothing without one."""
+    return "" if error_rel is None else f" \u00b1 {100 * error_rel:.2g} %"
 
 
 def grasp_view(record: dict | None) -> dict | None:

@@ -190,22 +190,67 @@ def coupled_sample(plan, tissue: Tissue = Tissue()) -> CoupledSample:
     return coupled_sample_from_punches(numbers, punches, tissue)
 
 
-def check_level_sample(plan, tissue: Tissue = Tissue()) -> CoupledSample | None:
+@dataclass(frozen=True)
+class CheckLevel:
+    """The design's tips on the check model (:func:`check_level`).
+
+    Attributes:
+        sample: Ĉ extrapolated from cells h and h/2 (:class:`CoupledSample`).
+        coarser: Ĉ extrapolated one step coarser, from cells 2h and h: a result's change
+            between the two is its error estimate at this level.
+        refinement: k, the cells being the default check's halved k times.
+        finer_fits: whether the next refinement stays within the check's cell budget
+            (:data:`tactcad.mechanics.contact_uniform.MAX_CHECK_CELLS`).
+        cell_mm: h of the tips' mesh (mm).
+    """
+
+    sample: CoupledSample
+    coarser: CoupledSample
+    refinement: int
+    finer_fits: bool
+    cell_mm: float
+
+
+def check_level(plan, tissue: Tissue = Tissue(), refinement: int = 0) -> CheckLevel | None:
     """The design's tips on the check model of another discretisation
     (:mod:`tactcad.mechanics.contact_uniform`: uniform cells, point-load quadrature,
-    first-order extrapolation), normalised as :func:`coupled_sample`; None for a layer
-    (the check model is a half-space). Its ``error_rel`` is its own mesh error."""
-    from tactcad.mechanics.contact_uniform import uniform_check
+    first-order extrapolation), normalised as :func:`coupled_sample`, with the cells of
+    the default check halved ``refinement`` times; None for a layer (the check model is
+    a half-space).
 
+    Raises:
+        ContactError: ``refinement`` < 0, or as :func:`tip_punches`.
+    """
+    from tactcad.mechanics.contact_uniform import (check_cell_mm, finer_check_cell_mm,
+                                                   uniform_check)
+
+    if not (isinstance(refinement, int) and refinement >= 0):
+        raise ContactError("refinement", refinement, "an integer >= 0")
     if tissue.thickness_mm is not None:
         return None
     numbers, punches = tip_punches(plan)
-    face = indenter_face(tissue, punches)
-    alone = uniform_check([Punch(0.0, 0.0, *face)])
-    tips = uniform_check(punches)
-    return CoupledSample(tuple(int(n) for n in numbers),
-                         tips.compliance_mm_per_N / alone.compliance_mm_per_N[0, 0], tissue,
-                         face, max(alone.error_rel, tips.error_rel))
+    face = [Punch(0.0, 0.0, *indenter_face(tissue, punches))]
+    scale = 0.5 ** refinement
+    alone = uniform_check(face, check_cell_mm(face) * scale)
+    h = check_cell_mm(punches) * scale
+    tips = uniform_check(punches, h)
+    ids = tuple(int(n) for n in numbers)
+
+    def normalised(c_tips: np.ndarray, c_alone: np.ndarray, error: float) -> CoupledSample:
+        return CoupledSample(ids, c_tips / c_alone[0, 0], tissue, (face[0].width_x_mm,
+                                                                 face[0].depth_z_mm), error)
+
+    error = max(alone.error_rel, tips.error_rel)
+    return CheckLevel(normalised(tips.compliance_mm_per_N, alone.compliance_mm_per_N, error),
+                      normalised(tips.coarser_mm_per_N, alone.coarser_mm_per_N, error),
+                      refinement, finer_check_cell_mm(punches, h) is not None, h)
+
+
+def check_level_sample(plan, tissue: Tissue = Tissue()) -> CoupledSample | None:
+    """The design's tips on the default check level (:func:`check_level`'s ``sample``);
+    None for a layer. Its ``error_rel`` is its own mesh error on Ĉ."""
+    level = check_level(plan, tissue)
+    return None if level is None else level.sample
 
 
 def cross_level_bias(working: CoupledSample, check: CoupledSample,

@@ -186,11 +186,16 @@ class UniformCheck:
         error_rel: the largest relative change of a diagonal entry between the finer mesh
             and the extrapolation (its own mesh error, conservative at order 1).
         cell_mm: h (mm).
+        coarser_mm_per_N: C extrapolated one step coarser, from cells 2h and h, shape
+            (m, m) (mm/N): what a result read on the check changes by between the two
+            extrapolations is its error estimate (the extrapolations themselves were seen
+            to converge at about order 1, so the change bounds the remaining error).
     """
 
     compliance_mm_per_N: np.ndarray
     error_rel: float
     cell_mm: float
+    coarser_mm_per_N: np.ndarray | None = None
 
 
 def check_cell_mm(punches: Sequence[Punch]) -> float:
@@ -202,23 +207,32 @@ def check_cell_mm(punches: Sequence[Punch]) -> float:
     return max(h, 2 * float(np.sqrt(area / MAX_CHECK_CELLS)))
 
 
-def uniform_check(punches: Sequence[Punch]) -> UniformCheck:
+def finer_check_cell_mm(punches: Sequence[Punch], cell_mm: float) -> float | None:
+    """The next check's cell (``cell_mm`` / 2, mm) where its finer mesh (cells of a
+    quarter of ``cell_mm``) stays within :data:`MAX_CHECK_CELLS`; None where it would not."""
+    area = sum(p.width_x_mm * p.depth_z_mm for p in punches)
+    return cell_mm / 2 if area / (cell_mm / 4) ** 2 <= MAX_CHECK_CELLS else None
+
+
+def uniform_check(punches: Sequence[Punch], cell_mm: float | None = None) -> UniformCheck:
     """First-order Richardson of :func:`uniform_compliance` on cells h and h/2
-    (h: :func:`check_cell_mm`), kept in the result store (:func:`tactcad.store.kept_result`)
-    for the same punches: a re-export or verify of an unchanged design solves it once.
+    (h: ``cell_mm``, default :func:`check_cell_mm`), with the extrapolation one step
+    coarser (cells 2h and h) beside it, kept in the result store
+    (:func:`tactcad.store.kept_result`) for the same punches: a re-export or verify of
+    an unchanged design solves it once.
 
     Raises:
         ContactError: as :func:`uniform_compliance`.
     """
     from tactcad.store import kept_result
 
-    return kept_result("uniform contact check", lambda: _uniform_check(punches),
-                       tuple(punches))
+    h = check_cell_mm(punches) if cell_mm is None else float(cell_mm)
+    return kept_result("uniform contact check", lambda: _uniform_check(punches, h),
+                       tuple(punches), h)
 
 
-def _uniform_check(punches: Sequence[Punch]) -> UniformCheck:
-    h = check_cell_mm(punches)
-    coarse, fine = uniform_compliance(punches, h), uniform_compliance(punches, h / 2)
+def _uniform_check(punches: Sequence[Punch], h: float) -> UniformCheck:
+    coarsest, coarse, fine = (uniform_compliance(punches, x) for x in (2 * h, h, h / 2))
     best = 2 * fine - coarse
     error = float(np.max(np.abs(np.diag(fine) / np.diag(best) - 1.0)))
-    return UniformCheck(best, error, h)
+    return UniformCheck(best, error, h, 2 * coarse - coarsest)

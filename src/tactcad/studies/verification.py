@@ -953,6 +953,43 @@ TISSUE_MODEL_ERROR_REL = 0.05
 TISSUE_POINTS = 5
 
 
+def bias_verdict(bias_rel: float, error_rel: float, target_rel: float) -> str:
+    """A K_obj bias's verdict against the resolution: ``pass`` when even the bias
+    moved by its error estimate stays within the target (|bias| + error <= target),
+    ``fail`` when it leaves it whatever the error (|bias| - error > target), else
+    ``undecided`` (:mod:`tactcad.mechanics.verdicts`).
+
+    Args:
+        bias_rel: the K_obj bias (relative, signed).
+        error_rel: its error estimate (relative, >= 0).
+        target_rel: the K_obj resolution required (relative, > 0).
+    """
+    if abs(bias_rel) + error_rel <= target_rel:
+        return "pass"
+    return "fail" if abs(bias_rel) - error_rel > target_rel else "undecided"
+
+
+def _cross_level_items(working, level, k, units, points) -> list[dict]:
+    """Per unit, the coupled inversion's bias read on the check ``level`` and the bias's
+    error estimate there: the largest change of the bias, over ``points``, between the
+    level's extrapolation and the one a step coarser, with the tissue model's
+    :data:`TISSUE_MODEL_ERROR_REL` of the bias, root-sum-square."""
+    from tactcad.in_use.tissue_coupling import cross_level_bias
+
+    out = []
+    for unit in units:
+        bias = cross_level_bias(working, level.sample, k, unit, points)
+        coarser = cross_level_bias(working, level.coarser, k, unit, points)
+        finite = bool(np.all(np.isfinite(bias)) and np.all(np.isfinite(coarser)))
+        worst = float(max(bias, key=abs)) if finite else None
+        level_error = float(np.max(np.abs(bias - coarser))) if finite else None
+        out.append({"bias": [float(b) if np.isfinite(b) else None for b in bias],
+                    "worst": worst, "level_error": level_error,
+                    "error": None if worst is None else
+                    float(np.hypot(level_error, TISSUE_MODEL_ERROR_REL * worst))})
+    return out
+
+
 def tissue_coupling_record(plan: Plan, req: Requirements, tissue=None) -> dict:
     """The K_obj bias the tissue coupling causes, per unit, worst over the K_obj range, read by
     eq. 3 and by the coupled inversion (eq. 3 corrected), each judged against the K_obj
@@ -962,15 +999,18 @@ def tissue_coupling_record(plan: Plan, req: Requirements, tissue=None) -> dict:
 
     The coupled inversion is judged against another level, as the stiffness ladder is: R
     made on the check model of another discretisation
-    (:func:`tactcad.in_use.tissue_coupling.check_level_sample`) read back by the working model's
-    inversion; its bias is the two levels' disagreement (a layer has no check level: the
-    inversion is then read against its own R, which cannot fail, and says so).
+    (:func:`tactcad.in_use.tissue_coupling.check_level`) read back by the working model's
+    inversion; its bias is the two levels' disagreement, judged with the check level's own
+    error on it (:func:`bias_verdict`: undecided while the bias is within it). Where a unit
+    is undecided and the cell budget allows, the check is refined (cells halved) and the
+    finest check judges. A layer has no check level: the inversion is then read against its
+    own R, which cannot fail, and says so.
 
     Args:
         tissue: :class:`tactcad.in_use.tissue_coupling.Tissue` (default: half-space, ν 0.5).
     """
-    from tactcad.in_use.tissue_coupling import (Tissue, check_level_sample, coupled_sample,
-                                                coupling_report, cross_level_bias, design_units)
+    from tactcad.in_use.tissue_coupling import (Tissue, check_level, coupled_sample,
+                                                coupling_report, design_units)
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.verdicts import deciding_item, judged
 
@@ -979,29 +1019,35 @@ def tissue_coupling_record(plan: Plan, req: Requirements, tissue=None) -> dict:
     points = np.geomspace(*req.kobj_range_N_per_mm, TISSUE_POINTS)
     units = design_units(plan, k)
     rep = coupling_report(plan, k, units, points, tissue)
-    working, check = coupled_sample(plan, tissue), check_level_sample(plan, tissue)
-    if check is not None:
-        for unit, record in zip(units, rep["units"]):
-            bias = cross_level_bias(working, check, k, unit, points)
-            record["bias_corrected_rel"] = [float(b) if np.isfinite(b) else None for b in bias]
-            finite = [b for b in bias if np.isfinite(b)]
-            record["worst_corrected_rel"] = (max(finite, key=abs)
-                                             if len(finite) == len(bias) else None)
     target = req.kobj_resolution_rel
+    working, level = coupled_sample(plan, tissue), check_level(plan, tissue)
+    cross: list[dict] = []
+    while level is not None:
+        cross = _cross_level_items(working, level, k, units, points)
+        open_ = any(c["worst"] is not None and bias_verdict(c["worst"], c["error"], target)
+                    == "undecided" for c in cross)
+        if not (open_ and level.finer_fits):
+            break
+        level = check_level(plan, tissue, level.refinement + 1)
+    for record, c in zip(rep["units"], cross):
+        record["bias_corrected_rel"] = c["bias"]
+        record["worst_corrected_rel"] = c["worst"]
+        record["corrected_error_rel"] = c["error"]
 
     def item(unit: dict, key: str) -> dict:
         bias = unit[key]
         margin = None if bias is None else (target / abs(bias) - 1.0 if bias else None)
+        if key == "worst_corrected_rel" and bias is not None:
+            error = unit["corrected_error_rel"]
+            return {"unit": unit["unit"], "bias_rel": bias, "margin_rel": margin,
+                    "error_estimate_rel": error / abs(bias) if bias else None,
+                    "bias_error_rel": error, "pass": True,
+                    "verdict": bias_verdict(bias, error, target)}
         return judged({"unit": unit["unit"], "bias_rel": bias, "margin_rel": margin,
                        "error_estimate_rel": TISSUE_MODEL_ERROR_REL, "pass": bias is not None})
 
     out = {"tissue": rep["tissue"], "target_rel": target, "units": rep["units"],
-           "check_level": ("R made on a boundary-element model of another discretisation "
-                           "(uniform cells, point-load quadrature; mesh error "
-                           f"{check.error_rel:.2g}) read by the working model's inversion "
-                           f"(graded cells, mesh error {working.error_rel:.2g})")
-           if check is not None else "none for a layer: the inversion read against its own "
-                                     "R (it cannot fail)"}
+           "check_level": _check_level_words(working, level)}
     for key, name in (("worst_eq3_rel", "eq3"), ("worst_corrected_rel", "coupled")):
         items = [item(u, key) for u in rep["units"]]
         for it in items:
@@ -1009,3 +1055,16 @@ def tissue_coupling_record(plan: Plan, req: Requirements, tissue=None) -> dict:
                 it["verdict"] = "fail"  # no answer for the coupled R there
         out[name] = {"items": items, "verdict": deciding_item(items)["verdict"] if items else "pass"}
     return out
+
+
+def _check_level_words(working, level) -> str:
+    """What the tissue row's coupled inversion was judged against."""
+    if level is None:
+        return "none for a layer: the inversion read against its own R (it cannot fail)"
+    finer = f", cells halved {level.refinement} time(s) to decide" if level.refinement else ""
+    return ("R made on a boundary-element model of another discretisation (uniform cells of "
+            f"{level.cell_mm:.3g} and {level.cell_mm / 2:.3g} mm{finer}, point-load quadrature, "
+            f"first-order extrapolation; mesh error {level.sample.error_rel:.2g} on the "
+            "compliance; a bias's error is its change from the extrapolation a mesh coarser) "
+            "read by the working model's inversion (graded cells, mesh error "
+            f"{working.error_rel:.2g})")
