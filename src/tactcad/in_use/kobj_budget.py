@@ -657,9 +657,17 @@ def gauge_creep(ctx: Context, unit: Unit, op: Operating) -> Contribution:
 
 
 def gauge_hysteresis_rel(ctx: Context) -> tuple[float, str]:
-    """The bonded gauge's hysteresis (relative to the reading) and its source: the design's
-    ``readout.gauge_hysteresis_rel`` (a load-unload cycle at the rated force), else the
-    assumed default (:data:`tactcad.design.readout_section.DEFAULT_GAUGE_HYSTERESIS_REL`)."""
+    """The bonded gauge's hysteresis and where it comes from.
+
+    Args:
+        ctx: the budget's context (its plan's ``[readout]``).
+
+    Returns:
+        (hysteresis relative to the reading, its source): the design's
+        ``readout.gauge_hysteresis_rel`` ("design file", from a load-unload cycle at the rated
+        force; OIML R 60 defines a load cell's hysteresis error so), else the assumed
+        :data:`tactcad.design.readout_section.DEFAULT_GAUGE_HYSTERESIS_REL`, its source saying so.
+    """
     from tactcad.mechanics.readout_chain import readout_chain
 
     chain = ctx.once("readout_chain", lambda: readout_chain(ctx.plan))

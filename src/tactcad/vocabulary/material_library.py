@@ -238,6 +238,13 @@ def modulus_tc_from_points(temperatures_K: tuple[float, float], moduli: tuple[fl
 def modulus_tc_from_polynomial(coefficients: tuple[float, ...], at_K: float) -> float:
     """(1/E) dE/dT (1/K) of a fit E(T) = sum c_i T^i (lowest order first) at ``at_K`` (K).
 
+    Args:
+        coefficients: c_0, c_1, ... of the fit, E in any one unit, T in K.
+        at_K: the temperature to evaluate it at (K).
+
+    Returns:
+        (1/E) dE/dT at ``at_K`` (1/K).
+
     Raises:
         ValueError: no coefficients or E(at_K) not above 0.
 
