@@ -11,7 +11,7 @@ TI = str(ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
 MACRO = str(ROOT / "hardware" / "macro_array" / "macro_array.toml")
 SOURCES = {"readout_noise", "thermal_zero", "thermal_span", "manufacturing_tolerance",
            "stack_crosstalk", "tissue_coupling", "gauge_model", "calibration", "tip_coplanarity",
-           "gauge_creep"}
+           "gauge_creep", "gauge_hysteresis"}
 
 
 @pytest.mark.parametrize("design", [MACRO, TI])

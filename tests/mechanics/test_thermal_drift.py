@@ -286,6 +286,22 @@ def test_every_grade_carries_a_cte_and_a_modulus_coefficient_with_their_sources(
         assert g.provenance("youngs_modulus_tc_per_K")
 
 
+@pytest.mark.parametrize("grade", ["6061-T6", "17-4PH-H900", "Ti-6Al-4V-annealed",
+                                   "CuBe-C17200-TF00"])
+def test_the_report_names_a_document_for_every_sourced_grade(grade):
+    """Every grade but 7075-T6 carries a document for its modulus coefficient: the report
+    names it, and neither the source nor the text calls it a stand-in."""
+    data = json.loads(json.dumps(_load(EXAMPLE)))
+    data["material"] = {"name": grade, "grade": grade}
+    rep = _report(plan_from_dict(data))
+    where = rep.setting.sources["substrate_modulus_tc_per_K"]
+    assert rep.setting.modulus_tc_sourced and where.startswith(f"grade {grade}: ")
+    text = render(rep)
+    assert "UNSOURCED" not in text and "stand-in" not in where
+    tc = material_grades()[grade].youngs_modulus_tc_per_K
+    assert rep.span_terms_per_K["modulus"] == pytest.approx(-tc)
+
+
 def test_an_unsourced_modulus_coefficient_is_named_so_in_the_report():
     data = json.loads(json.dumps(_load(EXAMPLE)))
     data["material"] = {"name": "7075-T6", "grade": "7075-T6"}  # 6061's figure stands in

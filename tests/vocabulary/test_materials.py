@@ -117,6 +117,54 @@ def test_every_grade_has_a_modulus_coefficient_sourced_or_named_unsourced():
     assert material_grade("6061-T6").is_sourced("youngs_modulus_tc_per_K")
 
 
+#: Grades whose modulus coefficient no document was read for (a stand-in, named unsourced).
+STAND_IN_MODULUS_TC = {"7075-T6"}
+
+
+def test_every_sourced_modulus_coefficient_lies_within_what_its_own_points_give():
+    """Recomputed from the points (or fit, or stated figure) the data file records with the
+    source: a coefficient edited without its basis, or a basis misread, fails here. The
+    library rounds to 3 digits, hence the 0.5 % allowance."""
+    from tactcad.vocabulary.material_library import modulus_tc_bounds_per_K
+
+    for g in material_grades().values():
+        if g.name in STAND_IN_MODULUS_TC:
+            assert not g.is_sourced("youngs_modulus_tc_per_K"), g.name
+            continue
+        assert g.is_sourced("youngs_modulus_tc_per_K"), g.name
+        assert "stand-in" not in g.source("youngs_modulus_tc_per_K"), g.name
+        lo, hi = modulus_tc_bounds_per_K(g.name)
+        tc = g.youngs_modulus_tc_per_K
+        assert lo * 1.005 <= tc <= hi * 0.995, (g.name, tc, lo, hi)
+
+
+def test_the_range_of_use_sets_titanium_and_17_4ph_coefficients():
+    """Ti-6Al-4V over 296-381 K (not the 296-501 K line, -3.9e-4 /K); 17-4 PH from the
+    straight chromium steels row between 70 and 200 F (not the carbon-steel stand-in)."""
+    ti, ph = material_grade("Ti-6Al-4V-annealed"), material_grade("17-4PH-H900")
+    assert ti.youngs_modulus_tc_per_K == pytest.approx(-1.72e-4, rel=0.01)
+    assert "296.3 and 381.12 K" in ti.source("youngs_modulus_tc_per_K")
+    assert "Chromium steels, Cr 12%, 17%, 27%" in ph.source("youngs_modulus_tc_per_K")
+    assert ph.youngs_modulus_tc_per_K == pytest.approx((28.5 - 29.2) / 29.2 / (130 * 5 / 9),
+                                                       rel=0.01)
+
+
+@pytest.mark.parametrize("points, moduli", [((300.0, 300.0), (1.0, 0.9)),
+                                            ((300.0, 400.0), (0.0, 1.0))])
+def test_modulus_points_that_give_no_slope_are_refused(points, moduli):
+    from tactcad.vocabulary.material_library import modulus_tc_from_points
+
+    with pytest.raises(ValueError, match="two temperatures and E > 0"):
+        modulus_tc_from_points(points, moduli)
+
+
+def test_a_grade_without_a_recorded_basis_is_named():
+    from tactcad.vocabulary.material_library import modulus_tc_bounds_per_K
+
+    with pytest.raises(DesignError, match="grades.7075-T6.youngs_modulus_tc_basis"):
+        modulus_tc_bounds_per_K("7075-T6")
+
+
 @pytest.mark.parametrize("table, words", [
     ({"youngs_modulus_tc_per_K": 0.01}, "-0.002 ... 0.0001 1/K"),
     ({"youngs_modulus_tc_per_K": "soft"}, "youngs_modulus_tc_per_K"),

@@ -50,6 +50,9 @@ Keys (units in the names):
   ``gauge_heat_transfer_W_per_mm2_K`` (grid to substrate, self-heating),
   ``dummy_gauge``: ``"none"`` or ``"half-bridge"`` (an unstrained gauge of the
   same lot on the same material in the adjacent arm).
+* the gauge installation (:mod:`tactcad.in_use.kobj_budget`): ``gauge_hysteresis_rel``
+  (the bonded gauge's hysteresis relative to the reading, from a load-unload cycle at the
+  rated force; not stated: an assumed 0.1 %, said so in its source).
 
 Units: V, ohm, mm, Hz, K, ppm/K (1e-6 /K), W.
 """
@@ -187,6 +190,10 @@ def grid_power_density_W_per_mm2(excitation_V: float, resistance_ohm: float,
 #: Temperature compensation by a dummy gauge (``dummy_gauge``).
 DUMMY_GAUGES = ("none", "half-bridge")
 
+#: Hysteresis of a bonded gauge's reading when the design file states none (relative to the
+#: reading): an assumption, marked so in its source (``DEFAULTS["gauge_hysteresis_rel"]``).
+DEFAULT_GAUGE_HYSTERESIS_REL = 1e-3
+
 #: Defaults: value and source (datasheet) or stated assumption. Gauge factor
 #: and resistance come from the library gauge unless the file gives them.
 DEFAULTS: dict[str, tuple[Any, str]] = {
@@ -258,6 +265,16 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
                                         "0.127 mm diameter (ASTM B258), 1.724e-8 ohm m at 20 C "
                                         "(annealed copper, IEC 60028)"),
     "substrate_modulus_tc_per_K": (None, "the material grade's (1/E) dE/dT (materials library)"),
+    "gauge_hysteresis_rel": (
+        DEFAULT_GAUGE_HYSTERESIS_REL,
+        "assumption (a default, not measured): 0.1 % of the reading, the size of the "
+        "uncompensated creep beyond which a gauge maker calls an installation faulty (Vishay "
+        "Measurements Group, 'Creep Compensation'; creep and hysteresis both come from the glue "
+        "line and carrier). Measure it on the bonded element: load it in steps to its rated "
+        "force and back to zero, reading at each step; the largest difference between the "
+        "unloading and the loading reading at one force, over the reading at the rated force, "
+        "is its hysteresis (OIML R 60's hysteresis error of a load cell, defined so); state it "
+        "as readout.gauge_hysteresis_rel"),
 }
 
 
@@ -319,6 +336,9 @@ class ReadoutSection(Section):
                                       why="resistance of one lead conductor per metre") = None
     substrate_modulus_tc_per_K: number(-2e-3, 1e-4, unit="1/K",
                                        why="(1/E) dE/dT of the element under the gauge") = None
+    gauge_hysteresis_rel: number(0.0, 0.05, unit="", why="the bonded gauge's hysteresis: the "
+                                 "largest unloading minus loading reading at one force over "
+                                 "the reading at the rated force, from a load-unload cycle") = None
 
 
 def check_readout(d: Any, p: Problems) -> None:
@@ -380,6 +400,7 @@ class ReadoutChain(ResolvedSection):
     lead_length_mm: float = 500.0
     lead_resistance_ohm_per_m: float = LEAD_RESISTANCE_OHM_PER_M
     substrate_modulus_tc_per_K: float | None = None
+    gauge_hysteresis_rel: float = DEFAULT_GAUGE_HYSTERESIS_REL
     gauge_backing_thickness_mm: float = 0.0
     adhesive_thickness_mm: float = 0.0
     gauge_backing_modulus_MPa: float = 0.0

@@ -77,7 +77,15 @@ every K_obj of the grid, before and after the correction the lab applies):
     installation faulty), each element's independently (two installations), in
     quadrature; the same creep in both would cancel in R. Creep compensation (the end
     loops a gauge maker matches to the spring) brings it to :data:`COMPENSATED_CREEP_REL`,
-    which remains. Hysteresis is not sized: no gauge maker's figure for it was found.
+    which remains.
+(k) gauge hysteresis: a bonded gauge reads a force reached unloading differently from the
+    same force reached loading (glue line and carrier again). ``readout.gauge_hysteresis_rel``
+    states it from a load-unload cycle of the bonded element at its rated force (the largest
+    unloading minus loading reading at one force over the reading at the rated force, OIML
+    R 60's hysteresis error of a load cell); not stated, 0.1 % is assumed and its source says
+    so (no gauge maker's figure for a bonded foil gauge was found). Each element's reading is
+    off by that fraction of itself, the two independently (quadrature), as creep; nothing
+    corrects it.
 
 Totals: the RSS and the worst-case sum of the contributions after correction (as a
 calibrated, corrected sensor reads), and of those before. The budget's own relative
@@ -270,7 +278,8 @@ def thermal_zero(ctx: Context, unit: Unit, op: Operating) -> Contribution:
 def modulus_tc_per_K(plan: Plan) -> tuple[float, str]:
     """(1/E) dE/dT of the plan's elements (1/K) and its source, as the thermal model takes it
     (:func:`tactcad.mechanics.thermal_drift.thermal_setting`: ``[readout]``'s, else the
-    library grade's, a stand-in marked unsourced).
+    library grade's, with its source; a grade no document was found for is marked
+    unsourced).
 
     Raises:
         DesignError: the material names no grade and ``[readout]`` states no coefficient.
@@ -647,6 +656,33 @@ def gauge_creep(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     return Contribution(rel(GAUGE_CREEP_REL), rel(COMPENSATED_CREEP_REL))
 
 
+def gauge_hysteresis_rel(ctx: Context) -> tuple[float, str]:
+    """The bonded gauge's hysteresis and where it comes from.
+
+    Args:
+        ctx: the budget's context (its plan's ``[readout]``).
+
+    Returns:
+        (hysteresis relative to the reading, its source): the design's
+        ``readout.gauge_hysteresis_rel`` ("design file", from a load-unload cycle at the rated
+        force; OIML R 60 defines a load cell's hysteresis error so), else the assumed
+        :data:`tactcad.design.readout_section.DEFAULT_GAUGE_HYSTERESIS_REL`, its source saying so.
+    """
+    from tactcad.mechanics.readout_chain import readout_chain
+
+    chain = ctx.once("readout_chain", lambda: readout_chain(ctx.plan))
+    return chain.gauge_hysteresis_rel, dict(chain.sources)["gauge_hysteresis_rel"]
+
+
+def gauge_hysteresis(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+    """(k) Each element's reading off by the gauge's hysteresis (``readout.gauge_hysteresis_rel``
+    of itself: a reading taken unloading where the calibration loaded), the two installations
+    independent (quadrature), carried to K_obj as creep is; no correction removes it."""
+    h, _ = gauge_hysteresis_rel(ctx)
+    rel = quadrature_rel(op, de_m=h * op.e_m, de_r=h * op.e_r)
+    return Contribution(rel, rel)
+
+
 class Source(NamedTuple):
     """One source of the budget: its key, its words and its function."""
 
@@ -675,9 +711,9 @@ SOURCES = (
            "every unit zeroed on a rigid flat (tactcad calibrate --flat; lumped --flat takes "
            "the heights out): the offset read to the elements' deflection resolution and the "
            "flat's flatness remains"),
-    Source("gauge_creep", f"gauge creep ({GAUGE_CREEP_MINUTES:g} min hold; hysteresis not "
-           "sized)", gauge_creep,
+    Source("gauge_creep", f"gauge creep ({GAUGE_CREEP_MINUTES:g} min hold)", gauge_creep,
            "creep compensation matched to the spring: 0.02 % of the reading remains"),
+    Source("gauge_hysteresis", "gauge hysteresis (load-unload)", gauge_hysteresis, "none"),
 )
 SOURCE_KEYS = tuple(s.key for s in SOURCES)
 
@@ -856,6 +892,8 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         "temperature_step": f"{delta_T_K:g} K between tare and reading; the self-heating "
                             f"offset is constant at a fixed excitation and tared with the zero",
         "modulus_tc_per_K": tc_e, "modulus_tc_source": tc_source,
+        "gauge_hysteresis_rel": gauge_hysteresis_rel(ctx)[0],
+        "gauge_hysteresis_source": gauge_hysteresis_rel(ctx)[1],
         "gauge_model": "the grid strain's own error estimate at the level (the width "
                        "correction's fit residual at closed form and beam; a calibration "
                        "measures K_v, so none remains after it)",

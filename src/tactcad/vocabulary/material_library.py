@@ -205,6 +205,93 @@ def _grade_modulus_tc(name: str, t: Mapping[str, Any]) -> float:
     return tc
 
 
+#: How a sourced modulus coefficient's basis is recorded ([grades.X.youngs_modulus_tc_basis]).
+MODULUS_TC_BASIS_KINDS = ("points", "polynomial", "stated")
+
+
+def modulus_tc_from_points(temperatures_K: tuple[float, float], moduli: tuple[float, float]
+                           ) -> tuple[float, float]:
+    """(1/E) dE/dT of the line through two tabulated E(T) points, normalised by E at each end.
+
+    Args:
+        temperatures_K: the two temperatures (K), different.
+        moduli: E at them, in any one unit (it cancels), > 0.
+
+    Returns:
+        (by E at the first point, by E at the second) (1/K): a table's coefficient over
+        the interval lies between them.
+
+    Raises:
+        ValueError: equal temperatures or a modulus not above 0.
+
+    Source: the slope of a straight line through a table's rows (ASME B31.3 Table C-6
+    style E(T) tables are read this way between rows).
+    """
+    (t1, t2), (e1, e2) = temperatures_K, moduli
+    if t1 == t2 or min(e1, e2) <= 0:
+        raise ValueError(f"modulus points need two temperatures and E > 0; got "
+                         f"{temperatures_K!r}, {moduli!r}")
+    slope = (e2 - e1) / (t2 - t1)
+    return slope / e1, slope / e2
+
+
+def modulus_tc_from_polynomial(coefficients: tuple[float, ...], at_K: float) -> float:
+    """(1/E) dE/dT (1/K) of a fit E(T) = sum c_i T^i (lowest order first) at ``at_K`` (K).
+
+    Args:
+        coefficients: c_0, c_1, ... of the fit, E in any one unit, T in K.
+        at_K: the temperature to evaluate it at (K).
+
+    Returns:
+        (1/E) dE/dT at ``at_K`` (1/K).
+
+    Raises:
+        ValueError: no coefficients or E(at_K) not above 0.
+
+    Source: differentiation of the fit (e.g. NIST cryogenic material properties' E(T)).
+    """
+    if not coefficients:
+        raise ValueError("a modulus fit needs its coefficients")
+    e = sum(c * at_K ** i for i, c in enumerate(coefficients))
+    de = sum(i * c * at_K ** (i - 1) for i, c in enumerate(coefficients) if i)
+    if e <= 0:
+        raise ValueError(f"the modulus fit gives E = {e:g} at {at_K:g} K")
+    return de / e
+
+
+def modulus_tc_bounds_per_K(name: str) -> tuple[float, float]:
+    """The range of (1/E) dE/dT (1/K) the grade's recorded basis gives: every reading of
+    its points normalised at either end, its fit at its temperature, or the figure its
+    document states.
+
+    Args:
+        name: a library grade (as :func:`material_grade` matches it).
+
+    Returns:
+        (lowest, highest) coefficient (1/K).
+
+    Raises:
+        DesignError: the grade records no basis, or one of an unknown kind (naming
+            ``grades.<name>.youngs_modulus_tc_basis`` and the kinds allowed).
+    """
+    grade = material_grade(name, "grade")
+    basis = _library()["grades"][grade.name].get("youngs_modulus_tc_basis")
+    field = f"grades.{grade.name}.youngs_modulus_tc_basis"
+    kind = basis.get("kind") if isinstance(basis, Mapping) else None
+    if kind not in MODULUS_TC_BASIS_KINDS:
+        raise DesignError(field, kind, "a table whose kind is one of "
+                          + ", ".join(MODULUS_TC_BASIS_KINDS))
+    if kind == "stated":
+        values = [float(basis["per_K"])]
+    elif kind == "polynomial":
+        values = [modulus_tc_from_polynomial(tuple(basis["coefficients"]), float(basis["at_K"]))]
+    else:
+        temps = tuple(basis["temperatures_K"])
+        values = [v for reading in basis["readings"]
+                  for v in modulus_tc_from_points(temps, tuple(reading))]
+    return min(values), max(values)
+
+
 def fully_reversed_amplitude(datum_MPa: float, datum_stress: str, R_ratio: float,
                              ultimate_MPa: float) -> float:
     """The fully reversed (R = -1) stress amplitude equivalent to a fatigue datum.
