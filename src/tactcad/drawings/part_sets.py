@@ -185,8 +185,15 @@ PEN = SimpleNamespace(
 
 
 def tip_height_tolerance_mm(d: Drawing) -> float:
-    """The +/- mm a drawing holds the contact face's height to: the export's tip-height
-    decision (:attr:`Drawing.tip_height`), else ``[tolerances] tip_height_mm``."""
+    """The +/- mm a drawing holds the contact face's height to.
+
+    Args:
+        d: the drawing being made.
+
+    Returns:
+        The export's tip-height decision's tolerance (:attr:`Drawing.tip_height`, from the
+        K_obj budget), else ``[tolerances] tip_height_mm`` (mm).
+    """
     if d.tip_height is not None:
         return d.tip_height.drawn_mm
     return tolerances_of(d.plan.raw).tip_height_mm

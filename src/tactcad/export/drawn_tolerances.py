@@ -48,8 +48,16 @@ def tip_height_drawing(plan: Plan) -> TipHeightDrawing | None:
 
 
 def tip_height_for(plan: Plan, builder: str | None) -> TipHeightDrawing | None:
-    """:func:`tip_height_drawing` for a part of family ``builder`` that carries tips
-    (:data:`TIP_PARTS`), None for any other part."""
+    """The tip-height decision a part's drawing is handed.
+
+    Args:
+        plan: the validated design.
+        builder: the part's builder key (``PartSpec.builder``).
+
+    Returns:
+        :func:`tip_height_drawing` for a part that carries tips (:data:`TIP_PARTS`), None
+        for any other part.
+    """
     return tip_height_drawing(plan) if builder in TIP_PARTS else None
 
 

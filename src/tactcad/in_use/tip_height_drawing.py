@@ -96,6 +96,7 @@ class TipHeightDrawing:
                 f"{1e3 * self.residual_mm:.2g} um of mismatch.")
 
     def as_json(self) -> dict:
+        """The decision as verify's record and the JSON output carry it (mm)."""
         return {"stated_mm": self.stated_mm, "allowance_mm": self.allowance_mm,
                 "drawn_mm": self.drawn_mm, "residual_mm": self.residual_mm,
                 "kobj_accuracy_rel": self.kobj_accuracy_rel, "floor_mm": self.floor_mm,
@@ -137,8 +138,16 @@ def choose_tip_height_tolerance(stated_mm: float, tip_record: Mapping,
 
 
 def tip_height_from_budget(plan: Plan, budget) -> TipHeightDrawing | None:
-    """:func:`choose_tip_height_tolerance` on ``budget``'s tip-height record
-    (:class:`~tactcad.in_use.kobj_budget.KobjBudget`) with the plan's stated tolerance."""
+    """:func:`choose_tip_height_tolerance` on a budget's tip-height record with the plan's
+    stated tolerance.
+
+    Args:
+        plan: the design (its ``[tolerances] tip_height_mm``).
+        budget: its :class:`~tactcad.in_use.kobj_budget.KobjBudget`.
+
+    Returns:
+        :class:`TipHeightDrawing`, or None when the design states no ``kobj_accuracy_rel``.
+    """
     from tactcad.design.tolerances import tolerances_of
 
     return choose_tip_height_tolerance(tolerances_of(plan.raw).tip_height_mm, budget.tip_height)

@@ -589,8 +589,17 @@ def design_kobj_budget(plan: Plan, fig: Figures, req: Requirements):
 
 
 def accuracy_budget(plan: Plan, fig: Figures, req: Requirements):
-    """:func:`design_kobj_budget` when the design states ``kobj_accuracy_rel`` (the
-    records that judge it read one budget), else None."""
+    """The budget the accuracy's records read (one for both).
+
+    Args:
+        plan: the design. fig: the level's figures. req: its requirements.
+
+    Returns:
+        :func:`design_kobj_budget` when the design states ``kobj_accuracy_rel``, else None.
+
+    Raises:
+        DesignError: a source of the budget cannot be evaluated (unknown CTE).
+    """
     from tactcad.design.requirements_section import stated_kobj_accuracy
 
     return design_kobj_budget(plan, fig, req) if stated_kobj_accuracy(plan.raw) is not None \
