@@ -187,6 +187,23 @@ def test_the_verification_matrix_carries_the_row_only_with_the_accuracy(tmp_path
     assert all(r["requirement"] != TIP_HEIGHT_REQUIREMENT for r in plain)
 
 
+def test_the_verify_command_prints_and_returns_the_row(tmp_path):
+    import json
+
+    from conftest import run_cli
+
+    design = _copy_with_accuracy(TI, tmp_path / "ti", 0.1)
+    done = run_cli("verify", "--design", str(design), "--model", "closed-form", "--json")
+    rows = [r for r in json.loads(done.stdout)["matrix"]
+            if r["requirement"] == "tip_height_tolerance_mm"]
+    assert len(rows) == 1 and rows[0]["verdict"] == "pass"
+    assert rows[0]["tip_height"]["procedure"].startswith("tips zeroed on a rigid flat")
+    text = run_cli("verify", "--design", str(design), "--model", "closed-form").stdout
+    target = re.escape(f"{rows[0]['target']:.4g}")
+    assert re.search(rf"\| tip_height_tolerance_mm \| {target} \|.*\| PASS \| zeroed on a rigid "
+                     r"flat", text)
+
+
 def test_a_tightened_drawing_passes_by_its_tolerance():
     from tactcad.studies.verification import Figures, tip_height_tolerance_record
 
