@@ -57,6 +57,11 @@ def test_an_allowance_machining_holds_tightens_the_drawing_to_it():
     assert tip.procedure is None and tip.note is None
 
 
+def test_a_tightened_tolerance_is_rounded_down_to_what_the_drawing_prints():
+    tip = choose_tip_height_tolerance(0.02, _record(0.0057))
+    assert tip.drawn_mm == 0.005 and tip.holds_allowance
+
+
 def test_a_stated_tolerance_inside_the_allowance_stays():
     tip = choose_tip_height_tolerance(0.02, _record(0.03))
     assert tip.drawn_mm == 0.02 and tip.holds_allowance and tip.note is None

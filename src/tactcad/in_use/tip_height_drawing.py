@@ -8,7 +8,9 @@ drawing then prints:
 
 * the stated ``[tolerances] tip_height_mm`` already holds the allowance: it stays;
 * a machining process holds the allowance (it is no finer than
-  :data:`MACHINING_FLOOR_MM`): the drawing prints the allowance;
+  :data:`MACHINING_FLOOR_MM`): the drawing prints the allowance, rounded down to the
+  0.001 mm a drawing prints (:data:`DRAWN_STEP_MM`), so the printed figure never
+  loosens it;
 * no machining holds it: the drawing keeps its process tolerance and names the
   procedure that makes the tolerance unnecessary (every unit zeroed on a rigid flat,
   :data:`ZEROING_PROCEDURE`) with the mismatch that procedure leaves
@@ -25,6 +27,7 @@ Units: mm; the accuracy is relative.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Mapping
 
@@ -36,6 +39,9 @@ from tactcad.design.array_plan import Plan
 #: and wire EDM with several skim cuts in a temperature-held room reaches (machine makers
 #: quote a contour accuracy of about +/-2 um); production grinding holds IT5-IT6.
 MACHINING_FLOOR_MM = 0.002
+#: The step a drawing prints a tolerance to (mm): three decimals
+#: (:func:`tactcad.drawings.sheet.fmt_mm`).
+DRAWN_STEP_MM = 0.001
 #: Where :data:`MACHINING_FLOOR_MM` comes from, as the drawing's basis cites it.
 MACHINING_FLOOR_SOURCE = ("precision grinding or wire EDM with skim cuts: about half the "
                           "ISO 286-1 IT4 band at 6-18 mm")
@@ -130,8 +136,10 @@ def choose_tip_height_tolerance(stated_mm: float, tip_record: Mapping,
         return None
     allowance = tip_record.get("tolerance_for_accuracy_mm")
     drawn = stated_mm
-    if allowance is not None and floor_mm <= allowance < stated_mm:
-        drawn = float(allowance)  # a process holds it: the drawing tightens to it
+    # an allowance finer than machining holds, or than a drawing prints, is not drawn
+    if allowance is not None and max(floor_mm, DRAWN_STEP_MM) <= allowance < stated_mm:
+        # a process holds it: the drawing tightens to it, on the step it prints
+        drawn = round(math.floor(allowance / DRAWN_STEP_MM + 1e-9) * DRAWN_STEP_MM, 6)
     return TipHeightDrawing(float(stated_mm), None if allowance is None else float(allowance),
                             drawn, float(tip_record["mismatch_after_zeroing_mm"]),
                             float(accuracy), float(floor_mm))
