@@ -112,6 +112,25 @@ def test_the_planned_drawings_hold_the_budgets_allowance_or_carry_the_procedure(
     assert all(t.allowance_mm < MACHINING_FLOOR_MM and t.drawn_mm == 0.02 for t in with_tips)
 
 
+def test_a_loose_accuracy_on_the_ti_example_tightens_the_drawn_tolerance(tmp_path):
+    """At 100 % the allowance is microns that machining holds: the element drawing prints it
+    (rounded down) instead of +/-0.02 mm, with no zeroing note, and verify passes it as drawn."""
+    from tactcad.export.drawn_tolerances import tip_height_drawing
+    from tactcad.studies.verification import (accuracy_budget, element_figures,
+                                              requirements_of, tip_height_tolerance_record)
+
+    plan = _project(TI, tmp_path, 1.0).plan
+    tip = tip_height_drawing(plan)
+    assert MACHINING_FLOOR_MM <= tip.allowance_mm < 0.02
+    assert tip.drawn_mm <= tip.allowance_mm < tip.drawn_mm + 0.001 and tip.note is None
+    d = _compose(plan, "element", tip)
+    assert d.dimensions["overall_height"].endswith(f"±{tip.drawn_mm:g}")
+    assert not any("tactcad calibrate" in n for n in d.notes)
+    fig = element_figures(plan)
+    row = tip_height_tolerance_record(plan, fig, accuracy_budget(plan, fig, requirements_of(plan, fig)))
+    assert row["pass"] and row["binding_words"].startswith(f"drawn +/-{tip.drawn_mm:.3g} mm holds")
+
+
 def test_without_the_accuracy_no_drawing_gets_a_decision_and_its_hash_is_unchanged(tmp_path):
     from tactcad.catalogue.array_catalogue import array_parts
     from tactcad.drawings.compose import drawing_inputs
