@@ -40,7 +40,8 @@ class BookContext:
     """What the steps' notes read: the array's element count, the gauge's and
     the adhesive's catalogue texts, the clamp bolt (a
     :class:`~tactcad.vocabulary.standards.BoltSpec`), the terminal board's
-    hole pairs and each sample's stiffness (N/mm)."""
+    hole pairs, each sample's stiffness (N/mm) and, where the drawings rely on it for
+    the tips' coplanarity, the zeroing step's instruction (``tip_zeroing``)."""
 
     elements: int
     gauge_text: str
@@ -48,6 +49,7 @@ class BookContext:
     bolt: Any
     terminal_pairs: int
     sample_stiffness: Mapping[str, float]
+    tip_zeroing: str | None = None
 
 
 @dataclass(frozen=True)
@@ -128,7 +130,8 @@ BOUGHT_ITEM_STEPS = {
 READOUT_STEP = BuildStep(
     "array-readout", "Connect the read-out chain", tools=lambda book: ("multimeter",),
     notes=lambda book: ("One signal cable and one amplifier channel per element, then the DAQ; "
-                        "zero each channel unloaded.",))
+                        "zero each channel unloaded.",
+                        *((book.tip_zeroing,) if book.tip_zeroing else ())))
 _SAMPLES = "samples-cast"
 _ARRAY_SCENE = "array"
 
@@ -198,7 +201,8 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
                 gauge_text: str, adhesive_text: str, bolt, terminal_pairs: int,
                 scenes: Sequence[str], sample_stiffness: Mapping[str, float],
                 screws: Mapping | None = None, rigs: Mapping[str, str] | None = None,
-                spares: Mapping[str, int] | None = None) -> list[Step]:
+                spares: Mapping[str, int] | None = None,
+                tip_zeroing: str | None = None) -> list[Step]:
     """The ordered steps consuming ``items``.
 
     Args:
@@ -215,6 +219,9 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
             title and notes (the others: "Assemble the <scene>").
         spares: part -> units bought beyond those fitted (not in ``items``' quantities);
             the step that fits the part says how many stay in the kit.
+        tip_zeroing: the instruction to zero the tips on a rigid flat, when the drawings
+            rely on it for the tips' coplanarity (:func:`tip_zeroing_note`); the read-out's
+            step gives it.
 
     Returns:
         Steps in build order, each with the items it consumes; steps that
@@ -226,7 +233,7 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
     for part, qty, builder, first in items:
         by_step.setdefault(step_of_item(part, builder, first, modules), []).append((part, qty))
     book = BookContext(elements, gauge_text, adhesive_text, bolt, terminal_pairs,
-                       dict(sample_stiffness))
+                       dict(sample_stiffness), tip_zeroing)
     declared = {m.key: m for m in modules.values() if m.title}
     declared[READOUT_STEP.key] = READOUT_STEP
     consumable = {c.part for c in CONSUMABLES} | {"gauge_adhesive", "solder_wire", "lead_wire"}
@@ -258,3 +265,23 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
                           tuple(p for p, _ in parts if p in consumable), notes,
                           tuple(p for p, _ in parts), scene))
     return steps
+
+
+def tip_zeroing_note(tip_height) -> str | None:
+    """The build book's instruction to zero the tips on a rigid flat, when the drawings
+    rely on that procedure for the tips' coplanarity.
+
+    Args:
+        tip_height: the drawings' tip-height decision
+            (:class:`tactcad.in_use.tip_height_drawing.TipHeightDrawing`) or None.
+
+    Returns:
+        One sentence naming the procedure, the tolerance drawn and the mismatch the
+        procedure leaves (um); None without a decision or when the drawn tolerance alone
+        holds the K_obj budget's allowance.
+    """
+    if tip_height is None or tip_height.procedure is None:
+        return None
+    return (f"As the element drawings require: {tip_height.procedure}. They hold the tip "
+            f"height to +/-{tip_height.drawn_mm:g} mm only, so every K_obj reading relies on "
+            f"this zeroing (it leaves {1e3 * tip_height.residual_mm:.2g} um of mismatch).")

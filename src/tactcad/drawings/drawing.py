@@ -7,6 +7,7 @@ detail when the part has one."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -62,6 +63,9 @@ class Drawing:
     table_beside: bool = False   # the hole table right of the views, not under them
     table_blocks: int = 1        # the hole table's rows in this many blocks side by side
     notes_over_title: bool = False  # the notes over the title block, the table under the views
+    #: the tip-height decision the export hands a part with tips
+    #: (:class:`tactcad.in_use.tip_height_drawing.TipHeightDrawing`), None: the stated tolerance
+    tip_height: Any = None
 
     @property
     def table_block_rows(self) -> int:

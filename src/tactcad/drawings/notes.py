@@ -10,8 +10,10 @@ from tactcad.drawings.part_sets import drawing_of
 from tactcad.drawings.sheet import DIM_TEXT_MM, LABEL_TEXT_MM, text_box
 
 def notes_for(d: Drawing) -> list[str]:
-    """The part family's notes (:attr:`PartDrawing.notes`), then the general one."""
-    return drawing_of(d.spec).notes(d) + [
+    """The part family's notes (:attr:`PartDrawing.notes`), the tip-height procedure's
+    when the drawing relies on one (:attr:`Drawing.tip_height`), then the general one."""
+    procedure = getattr(d.tip_height, "note", None)
+    return drawing_of(d.spec).notes(d) + ([procedure] if procedure else []) + [
         f"Untoleranced dimensions: {general_tolerance(d.plan)}. Dimensions in mm (ISO 129-1), "
         f"first-angle projection. Break sharp edges 0.1 max unless noted."]
 

@@ -176,11 +176,27 @@ PEN = SimpleNamespace(
     plus_minus=plus_minus, arc_angles=arc_angles, holes_seen=holes_seen, hole_dims_linear=hole_dims_linear,
     hole_callout=hole_callout, web_text=web_text, part_thickness=part_thickness, sentence=sentence,
     tolerances=lambda plan: tolerances_of(plan.raw),
+    tip_height_tolerance=lambda d: tip_height_tolerance_mm(d),
     readout=lambda plan: readout_of(plan.raw, plan.strength.gauge),
     web_note=element_web_note, gauge_note=gauge_note, full_scale_note=full_scale_note,
     resonance_note=resonance_note,
     profile_dxf_name=profile_dxf_name, sheet_dxf_name=sheet_dxf_name,
     sheet_dxf_of=lambda plan, spec: sheet_dxf_of(plan, spec))
+
+
+def tip_height_tolerance_mm(d: Drawing) -> float:
+    """The +/- mm a drawing holds the contact face's height to.
+
+    Args:
+        d: the drawing being made.
+
+    Returns:
+        The export's tip-height decision's tolerance (:attr:`Drawing.tip_height`, from the
+        K_obj budget), else ``[tolerances] tip_height_mm`` (mm).
+    """
+    if d.tip_height is not None:
+        return d.tip_height.drawn_mm
+    return tolerances_of(d.plan.raw).tip_height_mm
 
 
 def sheet_dxf_of(plan: Plan, spec: PartSpec) -> str:

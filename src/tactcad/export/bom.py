@@ -294,7 +294,8 @@ def _element_count(rows: Sequence[BomRow], specs: Mapping[str, PartSpec]) -> int
 
 def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
     """The build book's steps (:func:`tactcad.assembly.build_steps.build_steps`) for BOM ``rows``."""
-    from tactcad.assembly.build_steps import build_steps
+    from tactcad.assembly.build_steps import build_steps, tip_zeroing_note
+    from tactcad.export.drawn_tolerances import tip_height_drawing
 
     assemblies = [a for a, _ in rows[0].per_assembly] if rows else ["array"]
     scenes = [a for a in assemblies if a not in ("array", "wirecut")]
@@ -320,7 +321,8 @@ def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
                        adhesive.process if adhesive else "the gauge adhesive",
                        project.plan.bolt, pairs, scenes, samples, screws,
                        {name: spec.rig for name, spec in project.scenes.items()},
-                       spares={r.part: r.spares for r in rows if r.spares})
+                       spares={r.part: r.spares for r in rows if r.spares},
+                       tip_zeroing=tip_zeroing_note(tip_height_drawing(project.plan)))
 
 
 def complete_kit(project, assembled, files=lambda spec: ()) -> list[BomRow]:

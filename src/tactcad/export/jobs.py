@@ -170,10 +170,11 @@ def drawing_jobs(run: Run, before: list[Job]) -> list[Job]:
     plan = run.plan
     parts, qty = fabricated_parts(run.project, run.inventory)
     jobs = []
-    for spec in parts:
+    for spec, tip in planned_drawings(plan, parts):
         jobs.append(Job(f"drawing:{spec.name}",
-                        content_key("drawing-svg", drawing_inputs(plan, spec), qty[spec.name]),
-                        _drawing(spec, qty[spec.name]), (spec,), worker=True))
+                        content_key("drawing-svg", drawing_inputs(plan, spec, tip),
+                                    qty[spec.name]),
+                        _drawing(spec, qty[spec.name], tip), (spec,), worker=True))
     svgs = [drawing_name(s.name) for s in parts]
     # --- the assembly sheet: last page of the PDF ---
     jobs.append(assembly_sheet_job(run))
@@ -191,13 +192,30 @@ def drawing_jobs(run: Run, before: list[Job]) -> list[Job]:
     return jobs
 
 
-def _drawing(spec, quantity: int):
+def planned_drawings(plan, parts) -> list[tuple]:
+    """(part spec, its tip-height decision or None) per fabricated part to draw: the
+    decision (:func:`tactcad.export.drawn_tolerances.tip_height_for`) worked out once here
+    from the K_obj budget and handed to the drawings of the parts with tips.
+
+    Args:
+        plan: the validated design.
+        parts: the fabricated parts' specs, in drawing order.
+
+    Returns:
+        [(spec, :class:`~tactcad.in_use.tip_height_drawing.TipHeightDrawing` or None)].
+    """
+    from tactcad.export.drawn_tolerances import tip_height_for
+
+    return [(spec, tip_height_for(plan, spec.builder)) for spec in parts]
+
+
+def _drawing(spec, quantity: int, tip_height=None):
     def make(run: Run) -> list[dict]:
         from tactcad.atomic import write_bytes_atomic
         from tactcad.drawings.compose import compose
         from tactcad.drawings.views import scale_text
 
-        d = compose(run.plan, spec, run.parts.solid(spec), quantity)
+        d = compose(run.plan, spec, run.parts.solid(spec), quantity, tip_height)
         rel = drawing_name(spec.name)
         write_bytes_atomic(run.staging / rel, d.sheet.svg().encode("utf-8"))
         run.log(f"  wrote {rel}")

@@ -60,7 +60,8 @@ every K_obj of the grid, before and after the correction the lab applies):
     deflection resolutions (the read-out chain's force resolution / K) and the flat's
     flatness, in quadrature, which is what remains. With ``requirements.kobj_accuracy_rel`` stated,
     :func:`tip_height_tolerance_for_accuracy_mm` gives the tolerance the drawing must hold
-    for the uncorrected term to fit in what the other terms leave.
+    for the uncorrected term to fit in what the other terms leave; the drawings print it
+    where machining holds it, else name the zeroing (:mod:`tactcad.in_use.tip_height_drawing`).
 (g) gauge model: each element's grid strain per newton at the budget's level against
     the next level that computes the strain anew (:func:`gauge_model_error_rel`); read
     with the predicted K_v it moves each deflection by that fraction. Calibration

@@ -560,7 +560,9 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     out.extend(resonance_records(plan, model, progress))
     out.extend(r for r in [thermal_record(plan, fig, req)] if r is not None)
     out += crosstalk_records(plan, F, units.force_resolution_N)
-    out.extend(r for r in [kobj_accuracy_record(plan, fig, req)] if r is not None)
+    budget = accuracy_budget(plan, fig, req)
+    out.extend(r for r in [kobj_accuracy_record(plan, fig, req, budget),
+                           tip_height_tolerance_record(plan, fig, budget)] if r is not None)
     out.extend(r for r in [max_grasp_force_record(plan, fig, req)] if r is not None)
     for r in out:
         r["stated"] = r["requirement"] in req.stated
@@ -586,7 +588,26 @@ def design_kobj_budget(plan: Plan, fig: Figures, req: Requirements):
                        DEFAULT_DELTA_T_K, fig.model, fig.k, fig.k_error)
 
 
-def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements) -> dict | None:
+def accuracy_budget(plan: Plan, fig: Figures, req: Requirements):
+    """The budget the accuracy's records read (one for both).
+
+    Args:
+        plan: the design. fig: the level's figures. req: its requirements.
+
+    Returns:
+        :func:`design_kobj_budget` when the design states ``kobj_accuracy_rel``, else None.
+
+    Raises:
+        DesignError: a source of the budget cannot be evaluated (unknown CTE).
+    """
+    from tactcad.design.requirements_section import stated_kobj_accuracy
+
+    return design_kobj_budget(plan, fig, req) if stated_kobj_accuracy(plan.raw) is not None \
+        else None
+
+
+def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements,
+                         budget=None) -> dict | None:
     """``kobj_accuracy_rel`` when the design states it (None otherwise): at each K_obj of
     the budget's grid the RSS after correction of the unit that reads it best, margin
     target / RSS - 1, error the budget's own uncertainty (gauge model plus K error of the
@@ -597,7 +618,7 @@ def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements) -> dict | 
     target = stated_kobj_accuracy(plan.raw)
     if target is None:
         return None
-    budget = design_kobj_budget(plan, fig, req)
+    budget = budget or design_kobj_budget(plan, fig, req)
     a = budget.array
     items = [judged({"K_obj_N_per_mm": k, "unit": u, "rss_rel": rss, "dominant": dom,
                      "error_estimate_rel": unc,
@@ -619,6 +640,58 @@ def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements) -> dict | 
                    delta_T_K=budget.delta_T_K,
                    basis="RSS of the K_obj error budget after correction (tactcad budget), "
                          "each K_obj read by its best unit")
+
+
+#: The verification matrix's name of the tip-height row.
+TIP_HEIGHT_REQUIREMENT = "tip_height_tolerance_mm"
+
+
+def tip_height_tolerance_record(plan: Plan, fig: Figures, budget) -> dict | None:
+    """"tip height: tolerance drawn vs tolerance needed", when the design states
+    ``kobj_accuracy_rel`` (None otherwise, or without a budget).
+
+    The drawings' tip-height decision
+    (:func:`tactcad.in_use.tip_height_drawing.tip_height_from_budget`, the one the export
+    hands the drawings) against the budget's coplanarity allowance (+/- mm). It passes when
+    the drawn tolerance holds the allowance (margin allowance / drawn - 1), or when the
+    drawing names the zeroing on a rigid flat and the mismatch that procedure leaves fits
+    the twice-the-allowance mismatch the accuracy permits (margin 2 allowance / residual -
+    1); ``binding_words`` names which. It fails where the other terms leave no room.
+    Error: the budget's largest own uncertainty (the allowance scales with the room).
+
+    Args:
+        plan: the design. fig: the level's figures. budget: :func:`accuracy_budget`'s.
+
+    Returns:
+        The record, or None.
+    """
+    from tactcad.in_use.tip_height_drawing import tip_height_from_budget
+
+    tip = tip_height_from_budget(plan, budget) if budget is not None else None
+    if tip is None:
+        return None
+    error = max((u["uncertainty_rel"] for u in budget.units), default=0.0)
+    needed = tip.allowance_mm
+    if needed is None:
+        return _record(TIP_HEIGHT_REQUIREMENT, None, tip.drawn_mm, error, -1.0, fig.model,
+                       False, verdict="fail", tip_height=tip.as_json(),
+                       binding_words="no tolerance fits: the other terms fill the accuracy",
+                       basis="the K_obj budget's coplanarity allowance (tactcad budget)")
+    if tip.holds_allowance:
+        margin = needed / tip.drawn_mm - 1.0 if tip.drawn_mm > 0 else math.inf
+        predicted, passed = tip.drawn_mm, True
+        words = f"drawn +/-{tip.drawn_mm:.3g} mm holds it"
+    else:
+        margin = 2 * needed / tip.residual_mm - 1.0
+        predicted, passed = tip.residual_mm / 2, tip.residual_fits
+        words = (f"zeroed on a rigid flat (tactcad calibrate --flat): "
+                 f"{1e3 * tip.residual_mm:.2g} um mismatch left; drawn +/-{tip.drawn_mm:g} mm, "
+                 f"machining holds +/-{tip.floor_mm:g} mm")
+    return _record(TIP_HEIGHT_REQUIREMENT, needed, predicted, error, margin, fig.model, passed,
+                   tip_height=tip.as_json(), binding_words=words,
+                   basis="tip height: tolerance drawn vs tolerance needed (the K_obj budget's "
+                         "coplanarity allowance, +/- mm); with the zeroing, half the mismatch "
+                         "it leaves")
 
 
 def grasp_error_rel(fig: Figures) -> float:

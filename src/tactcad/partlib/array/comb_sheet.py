@@ -294,6 +294,10 @@ def element_lines(d, pen) -> list[str]:
     if len(steps) == 1:
         lines.append(f"Tip centres at a pitch of {pen.fmt_mm(steps.pop())} mm "
                      f"({len(centres)} tips; general tolerance).")
+    if d.tip_height is not None:  # the K_obj budget sets the tips' coplanarity
+        top = max(e.tip_top_y_mm for e in sheet.elements)
+        lines.append(f"Contact faces {pen.plus_minus(top, pen.tip_height_tolerance(d))} above "
+                     f"the spine's underside, every tip.")
     return lines
 
 

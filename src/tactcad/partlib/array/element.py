@@ -234,7 +234,7 @@ def dimensions(d, solid, pen) -> None:
     pen.dim(d, f, (xr, H), (L, top), "v", "right", 0, pen.fmt_mm(g.tip_height_mm), "tip_height")
     # the tip face's height above the clamped edge sets the tips' coplanarity (K_obj budget)
     pen.dim(d, f, (g.base_length_mm, 0.0), (L, top), "v", "right", 1,
-            pen.plus_minus(top, tol.tip_height_mm), "overall_height")
+            pen.plus_minus(top, pen.tip_height_tolerance(d)), "overall_height")
     holes = pen.holes_seen(d.spec, solid, d.cameras)
     pen.hole_dims_linear(d, f, holes, (0.0, 0.0))
     pen.dim(d, f, (0.0, 0.0), (0.0, H), "v", "left", 1, pen.fmt_mm(H), "base_height")
