@@ -1,7 +1,7 @@
 """The K_obj budget's reading terms against the whole coupled chain: each term's perturbation
 made on the coupled sample (every tip pressing), its R inverted by the coupled inversion and
-the K_obj read compared with the true one. Eq. 3's slope at eq. 2's R misses these by up to
-a third on the paper's macro array."""
+the K_obj read compared with the true one. Eq. 3's slope at eq. 2's R misses these by as much
+as 36 % on the paper's macro array."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -39,7 +39,8 @@ class Chain:
         est = {n: estimate("closed-form", g, plan.material)
                for n, g in plan.distinct_elements.items()}
         force = req.get("full_scale_force_N", FORCE_N)
-        self.ctx = kb.Context(plan, "closed-form", {n: e.stiffness_N_per_mm for n, e in est.items()},
+        self.ctx = kb.Context(plan, "closed-form",
+                              {n: e.stiffness_N_per_mm for n, e in est.items()},
                               {n: e.error_estimate_rel for n, e in est.items()}, force, 5.0)
         self.k_obj = kb.kobj_grid(tuple(req["kobj_range_N_per_mm"]), 3)
         self.sample = coupled_sample(plan)

@@ -400,13 +400,13 @@ def coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndarray:
     return (up - down) / (np.log1p(SLOPE_STEP_REL) - np.log1p(-SLOPE_STEP_REL))
 
 
-def cached_coupled_ratio(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndarray:
+def _cached_coupled_ratio(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndarray:
     """The unit's coupled R over ``k_obj`` (N/mm), every unit's computed once per grid."""
     ratios = ctx.once(f"coupled {k_obj.tolist()}", lambda: _coupled_ratios(ctx, k_obj))
     return ratios[unit.measuring]
 
 
-def cached_coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndarray:
+def _cached_coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndarray:
     """:func:`coupled_slope` of the unit over ``k_obj`` (N/mm), computed once per grid."""
     key = f"coupled slope {unit.reference}/{unit.measuring} {k_obj.tolist()}"
     return ctx.once(key, lambda: coupled_slope(ctx, unit, k_obj))
@@ -414,9 +414,17 @@ def cached_coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndar
 
 def coupled_deflections_mm(ctx: Context, unit: Unit, op: Operating
                            ) -> tuple[np.ndarray, np.ndarray]:
-    """(e_m, e_r) of the unit on the coupled sample (mm) with the reference carrying
-    ``op.force_r``: e_r = F_r / K_r as in eq. 1, e_m = R_coupled e_r."""
-    return cached_coupled_ratio(ctx, unit, op.k_obj) * op.e_r, op.e_r
+    """The unit's deflections on the coupled sample (every tip pressing) with the reference
+    carrying ``op.force_r``: e_r = F_r / K_r as in eq. 1, e_m = R_coupled e_r.
+
+    Args:
+        ctx, unit: the design's context and the sensing unit.
+        op: its operating point (the K_obj grid, N/mm, and the reference force, N).
+
+    Returns:
+        (e_m over the grid, e_r over the grid), mm.
+    """
+    return _cached_coupled_ratio(ctx, unit, op.k_obj) * op.e_r, op.e_r
 
 
 def _per_coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray,
@@ -424,7 +432,7 @@ def _per_coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray,
     # the K_obj error of an R shift through the coupled inversion; inf where the coupled R
     # does not move with K_obj (no reading)
     with np.errstate(all="ignore"):
-        rel = shift / cached_coupled_slope(ctx, unit, k_obj)
+        rel = shift / _cached_coupled_slope(ctx, unit, k_obj)
     return np.where(np.isfinite(rel), rel, np.inf)
 
 
@@ -445,15 +453,24 @@ def reading_error_rel(ctx: Context, unit: Unit, k_obj: np.ndarray, de_m=0.0,
     Returns:
         dK_obj / K_obj over the grid (signed; inf where the coupled R does not move).
     """
-    shift = cached_coupled_ratio(ctx, unit, k_obj) * (np.asarray(de_m, float)
+    shift = _cached_coupled_ratio(ctx, unit, k_obj) * (np.asarray(de_m, float)
                                                       - np.asarray(de_r, float))
     return _per_coupled_slope(ctx, unit, k_obj, shift)
 
 
 def independent_reading_error_rel(ctx: Context, unit: Unit, k_obj: np.ndarray, de_m=0.0,
                                   de_r=0.0) -> np.ndarray:
-    """σ_K_obj / K_obj of independent relative standard errors ``de_m``, ``de_r`` of the two
-    deflection readings: :func:`reading_error_rel` of each, in quadrature."""
+    """σ_K_obj / K_obj of independent relative standard errors of the two deflection
+    readings: :func:`reading_error_rel` of each, in quadrature (GUM 5.1.2).
+
+    Args:
+        ctx, unit: the design's context and the sensing unit.
+        k_obj: K_obj (N/mm), the grid.
+        de_m, de_r: relative standard errors of e_m and e_r (scalars or arrays over the grid).
+
+    Returns:
+        σ_K_obj / K_obj over the grid (inf where the coupled R does not move).
+    """
     return np.hypot(reading_error_rel(ctx, unit, k_obj, de_m=de_m),
                     reading_error_rel(ctx, unit, k_obj, de_r=de_r))
 
@@ -503,14 +520,14 @@ def tissue_coupling(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     coupled inversion, the coupled model's error (:data:`COUPLING_MODEL_ERROR_REL` of the R
     shift plus the contact solver's mesh error) through the coupled slope
     (:func:`coupled_slope`)."""
-    R = cached_coupled_ratio(ctx, unit, op.k_obj)
+    R = _cached_coupled_ratio(ctx, unit, op.k_obj)
     inside = (R > 1.0) & (R < op.k_r / op.k_m)
     with np.errstate(all="ignore"):
         read = np.where(inside, (op.k_r - R * op.k_m) / (R - 1.0), np.nan)
     before = np.where(inside, np.abs(read / op.k_obj - 1.0), np.inf)
     model_error = COUPLING_MODEL_ERROR_REL + _tissue_sample(ctx).error_rel
     with np.errstate(all="ignore"):
-        after = np.abs(model_error * (R - op.ratio) / cached_coupled_slope(ctx, unit, op.k_obj))
+        after = np.abs(model_error * (R - op.ratio) / _cached_coupled_slope(ctx, unit, op.k_obj))
     return Contribution(before, np.where(np.isfinite(after), after, np.inf))
 
 
