@@ -47,3 +47,47 @@ def test_the_sum_leaves_out_the_uncoupled_bias_and_keeps_what_the_inversion_leav
     assert np.all(budget.terms[db.UNCOUPLED] > 0.1)
     assert np.all(budget.terms[db.COUPLED] < 0.1 * budget.terms[db.UNCOUPLED])
     assert set(budget.as_json()["terms_rel"]) == set(budget.terms)
+
+
+def test_the_reading_terms_are_the_coupled_inversions_of_the_perturbed_coupled_r(plan, budget):
+    """The read-out noise and the resistor zero drift perturb each deflection on the coupled
+    sample (every post pressing) and are read back by the coupled inversion, checked here
+    against the coupled model directly; eq. 3 on eq. 2's R (the former path) differs."""
+    from tactcad.in_use.tissue_coupling import Tissue, coupled_object_stiffness, coupled_ratio
+    from tactcad.in_use.tissue_coupling import coupled_sample_from_punches
+    from tactcad.mechanics.contact import Punch
+    from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
+
+    side = plan.post_um * 1e-3
+    sample = coupled_sample_from_punches(
+        [b.number for b in plan.beams],
+        [Punch(b.x_um * 1e-3, b.tip_y_um * 1e-3, side, side) for b in plan.beams], Tissue())
+    k = {b.number: plan.k_r_N_per_mm if b.role == "reference" else plan.k_m_N_per_mm
+         for b in plan.beams}
+    pair = (plan.beams[plan.columns + plan.columns // 2].number,
+            plan.beams[plan.columns // 2].number)
+    ks = budget.k_obj_N_per_mm
+    readout = die_readout(plan)
+    rows = readout["rows"]
+    e_r = plan.full_scale_force_N / plan.k_r_N_per_mm
+    r = np.atleast_1d(coupled_ratio(sample, k, pair, ks))
+    e_m = r * e_r
+    noise = np.hypot(rows["reference"]["force_resolution_N"] / plan.k_r_N_per_mm / e_r,
+                     rows["measuring"]["force_resolution_N"] / plan.k_m_N_per_mm / e_m)
+    step = db.TEMPERATURE_STEP_K / np.sqrt(3)
+    drifted = ((e_m + rows["measuring"]["zero_drift_N_per_K"] * step / plan.k_m_N_per_mm)
+               / (e_r + rows["reference"]["zero_drift_N_per_K"] * step / plan.k_r_N_per_mm))
+
+    def read(x):
+        return np.array([coupled_object_stiffness(sample, k, pair, float(v)) for v in x]) / ks - 1
+
+    assert budget.terms["read-out noise"] == pytest.approx(np.abs(read(r * (1 + noise))),
+                                                           rel=1e-6)
+    assert budget.terms["resistor zero drift"] == pytest.approx(np.abs(read(drifted)), rel=1e-6)
+    # the former path: eq. 3 on eq. 2's R, the noise over eq. 2's deflections
+    r2 = np.array([float(deflection_ratio(plan.k_m_N_per_mm, plan.k_r_N_per_mm, x)) for x in ks])
+    noise2 = np.hypot(rows["reference"]["force_resolution_N"] / plan.k_r_N_per_mm / e_r,
+                      rows["measuring"]["force_resolution_N"] / plan.k_m_N_per_mm / (r2 * e_r))
+    eq3 = np.abs(np.array([float(object_stiffness(float(x), plan.k_m_N_per_mm, plan.k_r_N_per_mm))
+                           for x in r2 * (1 + noise2)]) / ks - 1)
+    assert not np.allclose(budget.terms["read-out noise"], eq3, rtol=0.02)

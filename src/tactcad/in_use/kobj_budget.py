@@ -11,7 +11,7 @@ and the reading is eq. 3 on the deflection ratio R = e_m / e_r (paper eq. 2):
 
     K_obj = (K_r − R K_m) / (R − 1).
 
-Its derivatives (first order, GUM 5.1.2), used for every source below:
+Its derivatives (first order, GUM 5.1.2; :func:`eq3_partials`):
 
     ∂K_obj/∂R   = −(K_r − K_m) / (R − 1)²
     ∂K_obj/∂e_m = (∂K_obj/∂R) / e_r                 (R = e_m / e_r)
@@ -19,31 +19,41 @@ Its derivatives (first order, GUM 5.1.2), used for every source below:
     ∂K_obj/∂K_m = −R / (R − 1)
     ∂K_obj/∂K_r = 1 / (R − 1)
 
-so that a common scale on both deflections (e_m ∂/∂e_m + e_r ∂/∂e_r = 0) and a common
-scale on both stiffnesses (K_m ∂/∂K_m + K_r ∂/∂K_r = K_obj: K_obj moves by the same
-fraction) follow from the formulas, not from a special case.
+A grasp presses every tip into one sample, and a corrected sensor reads K_obj by the
+coupled inversion (:mod:`tactcad.in_use.tissue_coupling`), not by eq. 3. So every source
+that moves a reading or a spring is carried to K_obj on the coupled sample: the unit's
+coupled R (every tip pressing) moves by what the source does to it, and ln K_obj by that
+shift over the coupled slope ∂R/∂ln K_obj (:func:`coupled_slope`). A relative error
+(de_m, de_r) of the two deflection readings moves R by R (de_m − de_r)
+(:func:`reading_error_rel`): creep, noise and quantisation, the thermal zero, the gauge
+model, K_v's calibration error and the crosstalk take this path; a K error moves the
+coupled R of the true springs (:func:`stiffness_error_rel`). A common scale on both
+deflections cancels in R and a common scale on every K moves K_obj by the same fraction
+in both models. On the macro array the coupled slope is about half of eq. 3's, so eq. 3's
+partials understated these terms there by as much as 36 %.
 
 Sources (one function each, :data:`SOURCES`; each returns the relative K_obj error at
 every K_obj of the grid, before and after the correction the lab applies):
 
 (a) read-out noise and quantisation: each element's force resolution through the
     design's read-out chain (:func:`tactcad.mechanics.readout_chain.element_force_resolution_N`,
-    1 sigma) as a deflection resolution dF / K; the two are independent (quadrature).
+    1 sigma) as a deflection resolution dF / K over the element's deflection on the
+    coupled sample; the two are independent (quadrature).
 (b) thermal zero: each element's apparent tip force per kelvin (TN-504 thermal output
     over the grid strain per newton, :func:`tactcad.mechanics.thermal_drift.thermal_report`;
-    zero with a half-bridge dummy gauge) times the temperature step; both elements
-    share the step (signed sum). It scales as 1 / F_r.
+    zero with a half-bridge dummy gauge) times the temperature step over the element's
+    force on the coupled sample; both elements share the step (signed). It scales as 1 / F_r.
 (c) thermal span: the gauge factor's coefficient scales both deflections alike (cancels
-    in R); the modulus's coefficient (1/E) dE/dT scales K_m and K_r alike, and eq. 3
-    with the calibration's K then reads K_obj off by that fraction.
+    in R); the modulus's coefficient (1/E) dE/dT scales K_m and K_r alike, and eq. 3 or
+    the coupled inversion with the calibration's K then reads K_obj off by that fraction.
 (d) manufacturing tolerance: each element's K change over its web ± web tolerance
     (the ladder's closed form); signs taken worst. Calibration measures each K (eq. 5),
     so it removes this fixed error entirely: what remains is the calibration's own
     uncertainty, source (h). After calibration (d) is 0.
 (e) stack crosstalk: the neighbours' tip forces (every tip pressed by the same body
     travel Δ, eq. 1) times each gauge's crosstalk in newtons per newton of neighbour load
-    (S_ij / S_ii of :func:`tactcad.mechanics.stack_crosstalk.plan_crosstalk`); after
-    the decoupling matrix what remains is its model's error estimate times that.
+    (S_ij / S_ii of :func:`tactcad.mechanics.stack_crosstalk.plan_crosstalk`), over each
+    element's own force on the coupled sample; after the decoupling matrix what remains is its model's error estimate times that.
 (f) tissue coupling: the array's tips pressed into one half-space sample couple through
     it (:mod:`tactcad.in_use.tissue_coupling`: rigid flat punches of the design's own tip
     faces, the sample's modulus set so that one tip face alone reads K_obj, nu 0.5);
@@ -178,20 +188,6 @@ def kobj_from_deflections(e_m, e_r, k_m: float, k_r: float):
     return (k_r - R * k_m) / (R - 1.0)
 
 
-def signed_rel(op: Operating, de_m=0.0, de_r=0.0, dk_m=0.0, dk_r=0.0) -> np.ndarray:
-    """|dK_obj| / K_obj of correlated first-order changes of e_m, e_r (mm), K_m, K_r (N/mm)."""
-    p = eq3_partials(op)
-    d = p["de_m"] * de_m + p["de_r"] * de_r + p["dK_m"] * dk_m + p["dK_r"] * dk_r
-    return np.abs(d) / op.k_obj
-
-
-def quadrature_rel(op: Operating, de_m=0.0, de_r=0.0, dk_m=0.0, dk_r=0.0) -> np.ndarray:
-    """σ_K_obj / K_obj of independent standard uncertainties of e_m, e_r (mm), K_m, K_r (N/mm)."""
-    p = eq3_partials(op)
-    terms = [p["de_m"] * de_m, p["de_r"] * de_r, p["dK_m"] * dk_m, p["dK_r"] * dk_r]
-    return np.sqrt(sum(np.asarray(t) ** 2 for t in terms)) / op.k_obj
-
-
 # ---------------------------------------------------------------------------
 # The design's context: per-design inputs computed once, on demand
 # ---------------------------------------------------------------------------
@@ -238,9 +234,12 @@ class Contribution(NamedTuple):
 # ---------------------------------------------------------------------------
 def readout_noise(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(a) Each element's force resolution (1 sigma) through the read-out chain as a
-    deflection resolution dF / K, independent."""
-    rel = quadrature_rel(op, de_m=deflection_resolution_mm(ctx, unit.measuring),
-                         de_r=deflection_resolution_mm(ctx, unit.reference))
+    deflection resolution dF / K, independent, relative to its deflection on the coupled
+    sample and read by the coupled inversion (:func:`independent_reading_error_rel`)."""
+    e_m, e_r = coupled_deflections_mm(ctx, unit, op)
+    rel = independent_reading_error_rel(
+        ctx, unit, op.k_obj, de_m=deflection_resolution_mm(ctx, unit.measuring) / e_m,
+        de_r=deflection_resolution_mm(ctx, unit.reference) / e_r)
     return Contribution(rel, rel)
 
 
@@ -270,9 +269,16 @@ def _unit_thermal(ctx: Context, unit: Unit, op: Operating):
 
 def thermal_zero(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(b) The zero drift over the temperature step (thermal output, and two-wire leads
-    when the design has them; none with a half-bridge dummy gauge), through R and eq. 3
-    (signed; scales as 1 / force): :func:`tactcad.mechanics.thermal_drift.kobj_thermal_error`."""
-    rel = np.asarray(_unit_thermal(ctx, unit, op).zero_rel, float)
+    when the design has them; none with a half-bridge dummy gauge): each element's
+    apparent tip force per kelvin (:func:`tactcad.mechanics.thermal_drift.kobj_thermal_error`)
+    times the step over its force on the coupled sample, read by the coupled inversion
+    (signed, both elements share the step; scales as 1 / force)."""
+    thermal = _unit_thermal(ctx, unit, op)
+    e_m, e_r = coupled_deflections_mm(ctx, unit, op)
+    rel = reading_error_rel(
+        ctx, unit, op.k_obj,
+        de_m=thermal.zero_force_m_N_per_K * ctx.delta_T_K / (op.k_m * e_m),
+        de_r=thermal.zero_force_r_N_per_K * ctx.delta_T_K / (op.k_r * e_r))
     return Contribution(rel, rel)
 
 
@@ -295,7 +301,9 @@ def thermal_span(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(c) The springs' span drift over the temperature step: the modulus's coefficient and
     the thermal expansion change K_m and K_r alike, which R cannot see (the gauge factor's
     and the leads' span terms are common to both gauges and cancel in R); signed, the same at
-    every K_obj: :func:`tactcad.mechanics.thermal_drift.kobj_thermal_error`."""
+    every K_obj: :func:`tactcad.mechanics.thermal_drift.kobj_thermal_error`. Every K scaled
+    by s reads K_obj / s by eq. 3 and by the coupled inversion alike (the coupled R depends
+    on K and K_obj only through their ratios), so the one figure serves both."""
     rel = np.broadcast_to(np.asarray(_unit_thermal(ctx, unit, op).span_rel, float),
                           op.k_obj.shape).copy()
     return Contribution(rel, rel)
@@ -318,15 +326,15 @@ def web_tolerance_k_rel(geometry, material) -> float:
 
 
 def manufacturing_tolerance(ctx: Context, unit: Unit, op: Operating) -> Contribution:
-    """(d) Both K off by their web tolerance's change, signs worst; calibration measures
-    each K, so none remains after it (its own error is (h))."""
+    """(d) Both K off by their web tolerance's change, signs worst, read by the coupled
+    inversion (:func:`stiffness_error_rel`); calibration measures each K, so none remains
+    after it (its own error is (h))."""
     band = ctx.once("tolerance", lambda: {
         name: web_tolerance_k_rel(g, ctx.plan.material)
         for name, g in ctx.plan.distinct_elements.items()})
     part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
-    p = eq3_partials(op)
-    rel = (np.abs(p["dK_m"] * op.k_m * band[part(unit.measuring)])
-           + np.abs(p["dK_r"] * op.k_r * band[part(unit.reference)])) / op.k_obj
+    rel = (np.abs(stiffness_error_rel(ctx, unit, op.k_obj, dk_m=band[part(unit.measuring)]))
+           + np.abs(stiffness_error_rel(ctx, unit, op.k_obj, dk_r=band[part(unit.reference)])))
     return Contribution(rel, np.zeros_like(rel))
 
 
@@ -345,15 +353,18 @@ def _crosstalk(ctx: Context):
 
 def stack_crosstalk(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(e) The neighbours' tip forces (every tip pressed by the same travel Δ, eq. 1) times
-    each gauge's crosstalk in N per N of neighbour load; after the decoupling matrix, its
-    model's error estimate of that."""
+    each gauge's crosstalk in N per N of neighbour load, a fraction of each element's own
+    force, read by the coupled inversion; after the decoupling matrix, its model's error
+    estimate of that."""
     numbers, per_newton, error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     k = np.array([ctx.k_of(n) for n in numbers])
     # tip forces of every element at each K_obj: K_j K_obj Δ / (K_j + K_obj), shape (n, grid)
     forces = k[:, None] * op.k_obj * op.travel / (k[:, None] + op.k_obj)
     seen = per_newton @ forces  # equivalent force each gauge reads from its neighbours (N)
     i_m, i_r = numbers.index(unit.measuring), numbers.index(unit.reference)
-    rel = signed_rel(op, de_m=seen[i_m] / op.k_m, de_r=seen[i_r] / op.k_r)
+    e_m, e_r = coupled_deflections_mm(ctx, unit, op)
+    rel = np.abs(reading_error_rel(ctx, unit, op.k_obj, de_m=seen[i_m] / (op.k_m * e_m),
+                                   de_r=seen[i_r] / (op.k_r * e_r)))
     return Contribution(rel, rel * error)
 
 
@@ -399,22 +410,134 @@ def coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndarray:
     return (up - down) / (np.log1p(SLOPE_STEP_REL) - np.log1p(-SLOPE_STEP_REL))
 
 
+def _cached_coupled_ratio(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndarray:
+    """The unit's coupled R over ``k_obj`` (N/mm), every unit's computed once per grid."""
+    ratios = ctx.once(f"coupled {k_obj.tolist()}", lambda: _coupled_ratios(ctx, k_obj))
+    return ratios[unit.measuring]
+
+
+def _cached_coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray) -> np.ndarray:
+    """:func:`coupled_slope` of the unit over ``k_obj`` (N/mm), computed once per grid."""
+    key = f"coupled slope {unit.reference}/{unit.measuring} {k_obj.tolist()}"
+    return ctx.once(key, lambda: coupled_slope(ctx, unit, k_obj))
+
+
+def coupled_deflections_mm(ctx: Context, unit: Unit, op: Operating
+                           ) -> tuple[np.ndarray, np.ndarray]:
+    """The unit's deflections on the coupled sample (every tip pressing) with the reference
+    carrying ``op.force_r``: e_r = F_r / K_r as in eq. 1, e_m = R_coupled e_r.
+
+    Args:
+        ctx, unit: the design's context and the sensing unit.
+        op: its operating point (the K_obj grid, N/mm, and the reference force, N).
+
+    Returns:
+        (e_m over the grid, e_r over the grid), mm.
+    """
+    return _cached_coupled_ratio(ctx, unit, op.k_obj) * op.e_r, op.e_r
+
+
+def _per_coupled_slope(ctx: Context, unit: Unit, k_obj: np.ndarray,
+                       shift: np.ndarray) -> np.ndarray:
+    # the K_obj error of an R shift through the coupled inversion; inf where the coupled R
+    # does not move with K_obj (no reading)
+    with np.errstate(all="ignore"):
+        rel = shift / _cached_coupled_slope(ctx, unit, k_obj)
+    return np.where(np.isfinite(rel), rel, np.inf)
+
+
+def reading_error_rel(ctx: Context, unit: Unit, k_obj: np.ndarray, de_m=0.0,
+                      de_r=0.0) -> np.ndarray:
+    """The signed relative K_obj error when the measuring and reference deflection readings
+    are off by the relative errors ``de_m``, ``de_r``, read by the coupled inversion.
+
+    The coupled R moves by R (de_m − de_r), and ln K_obj by that shift over the coupled
+    slope ∂R/∂ln K_obj (:func:`coupled_slope`): first order (GUM 5.1.2), as eq. 3's
+    partials were.
+
+    Args:
+        ctx, unit: the design's context and the sensing unit.
+        k_obj: K_obj (N/mm), the grid.
+        de_m, de_r: relative errors of e_m and e_r (scalars or arrays over the grid).
+
+    Returns:
+        dK_obj / K_obj over the grid (signed; inf where the coupled R does not move).
+    """
+    shift = _cached_coupled_ratio(ctx, unit, k_obj) * (np.asarray(de_m, float)
+                                                      - np.asarray(de_r, float))
+    return _per_coupled_slope(ctx, unit, k_obj, shift)
+
+
+def independent_reading_error_rel(ctx: Context, unit: Unit, k_obj: np.ndarray, de_m=0.0,
+                                  de_r=0.0) -> np.ndarray:
+    """σ_K_obj / K_obj of independent relative standard errors of the two deflection
+    readings: :func:`reading_error_rel` of each, in quadrature (GUM 5.1.2).
+
+    Args:
+        ctx, unit: the design's context and the sensing unit.
+        k_obj: K_obj (N/mm), the grid.
+        de_m, de_r: relative standard errors of e_m and e_r (scalars or arrays over the grid).
+
+    Returns:
+        σ_K_obj / K_obj over the grid (inf where the coupled R does not move).
+    """
+    return np.hypot(reading_error_rel(ctx, unit, k_obj, de_m=de_m),
+                    reading_error_rel(ctx, unit, k_obj, de_r=de_r))
+
+
+def stiffness_error_rel(ctx: Context, unit: Unit, k_obj: np.ndarray, dk_m: float = 0.0,
+                        dk_r: float = 0.0) -> np.ndarray:
+    """The signed relative K_obj error when the unit's springs are stiffer than the K the
+    reading takes by the fractions ``dk_m``, ``dk_r``: the coupled R of the true springs
+    (every tip pressing) read by the coupled inversion with the taken K, first order
+    (GUM 5.1.2; ∂R/∂ln K by a central difference).
+
+    Args:
+        ctx, unit: the design's context and the sensing unit.
+        k_obj: K_obj (N/mm), the grid.
+        dk_m, dk_r: relative K errors of the measuring and the reference element.
+
+    Returns:
+        dK_obj / K_obj over the grid (signed; inf where the coupled R does not move).
+    """
+    shift = (dk_m * _ratio_per_ln_k(ctx, unit, k_obj, unit.measuring)
+             + dk_r * _ratio_per_ln_k(ctx, unit, k_obj, unit.reference))
+    return _per_coupled_slope(ctx, unit, k_obj, shift)
+
+
+def _ratio_per_ln_k(ctx: Context, unit: Unit, k_obj: np.ndarray, element: int) -> np.ndarray:
+    # ∂R/∂ln K_element of the unit on the coupled sample (central difference), once per grid
+    from tactcad.in_use.tissue_coupling import coupled_ratio
+
+    def compute() -> np.ndarray:
+        taken = _stiffness_by_number(ctx)
+        pair = (unit.measuring, unit.reference)
+
+        def ratio(scale: float) -> np.ndarray:
+            moved = {**taken, element: taken[element] * scale}
+            return np.atleast_1d(coupled_ratio(_tissue_sample(ctx), moved, pair, k_obj))
+
+        h = SLOPE_STEP_REL
+        return (ratio(1 + h) - ratio(1 - h)) / (np.log1p(h) - np.log1p(-h))
+
+    return ctx.once(f"R per ln K {unit.reference}/{unit.measuring} {element} "
+                    f"{k_obj.tolist()}", compute)
+
+
 def tissue_coupling(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(f) Eq. 3 on the R of tips coupled through a half-space sample against the true
     K_obj (inf where the coupled R leaves eq. 3's domain: eq. 3 cannot read it); after the
     coupled inversion, the coupled model's error (:data:`COUPLING_MODEL_ERROR_REL` of the R
     shift plus the contact solver's mesh error) through the coupled slope
     (:func:`coupled_slope`)."""
-    key = f"coupled {op.k_obj.tolist()}"
-    ratios = ctx.once(key, lambda: _coupled_ratios(ctx, op.k_obj))
-    R = ratios[unit.measuring]
+    R = _cached_coupled_ratio(ctx, unit, op.k_obj)
     inside = (R > 1.0) & (R < op.k_r / op.k_m)
     with np.errstate(all="ignore"):
         read = np.where(inside, (op.k_r - R * op.k_m) / (R - 1.0), np.nan)
     before = np.where(inside, np.abs(read / op.k_obj - 1.0), np.inf)
     model_error = COUPLING_MODEL_ERROR_REL + _tissue_sample(ctx).error_rel
     with np.errstate(all="ignore"):
-        after = np.abs(model_error * (R - op.ratio) / coupled_slope(ctx, unit, op.k_obj))
+        after = np.abs(model_error * (R - op.ratio) / _cached_coupled_slope(ctx, unit, op.k_obj))
     return Contribution(before, np.where(np.isfinite(after), after, np.inf))
 
 
@@ -543,12 +666,12 @@ def gauge_model_error_rel(plan: Plan, model: str) -> dict[str, float]:
 def gauge_model(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(g) Each deflection read with the predicted K_v off by its gauge-model error, the two
     elements' errors taken independent (in quadrature: the width correction's residual
-    differs from one web to the next, so it need not cancel in R); a calibration measures
-    K_v, so none remains after it."""
+    differs from one web to the next, so it need not cancel in R), read by the coupled
+    inversion; a calibration measures K_v, so none remains after it."""
     err = ctx.once("gauge", lambda: gauge_model_error_rel(ctx.plan, ctx.model))
     part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
-    rel = quadrature_rel(op, de_m=op.e_m * err[part(unit.measuring)],
-                         de_r=op.e_r * err[part(unit.reference)])
+    rel = independent_reading_error_rel(ctx, unit, op.k_obj, de_m=err[part(unit.measuring)],
+                                        de_r=err[part(unit.reference)])
     return Contribution(rel, np.zeros_like(rel))
 
 
@@ -627,11 +750,14 @@ def _calibration_stderr(ctx: Context) -> dict[int, tuple[float, float]]:
 def calibration(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(h) The standard errors of each element's fitted K (eq. 5) and K_v (eq. 4),
     independent: the calibration file's fits, else those a static calibration on the
-    catalogue gauge of :func:`calibration_force_gauge` is expected to leave."""
+    catalogue gauge of :func:`calibration_force_gauge` is expected to leave; each read by
+    the coupled inversion (a K_v error scales its deflection reading, a K error the coupled
+    R of the true springs)."""
     se = ctx.once("calibration", lambda: _calibration_stderr(ctx))
     (km, kvm), (kr, kvr) = se[unit.measuring], se[unit.reference]
-    rel = quadrature_rel(op, de_m=op.e_m * kvm, de_r=op.e_r * kvr, dk_m=op.k_m * km,
-                         dk_r=op.k_r * kr)
+    rel = np.sqrt(independent_reading_error_rel(ctx, unit, op.k_obj, de_m=kvm, de_r=kvr) ** 2
+                  + stiffness_error_rel(ctx, unit, op.k_obj, dk_m=km) ** 2
+                  + stiffness_error_rel(ctx, unit, op.k_obj, dk_r=kr) ** 2)
     return Contribution(rel, rel)
 
 
@@ -649,10 +775,11 @@ GAUGE_CREEP_MINUTES = 20.0
 
 def gauge_creep(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(j) Each element's reading creeping by :data:`GAUGE_CREEP_REL` of itself over a
-    held reading, the two independent (quadrature); after creep compensation
+    held reading, the two independent (quadrature), read by the coupled inversion
+    (:func:`independent_reading_error_rel`); after creep compensation
     :data:`COMPENSATED_CREEP_REL` remains."""
     def rel(creep: float) -> np.ndarray:
-        return quadrature_rel(op, de_m=creep * op.e_m, de_r=creep * op.e_r)
+        return independent_reading_error_rel(ctx, unit, op.k_obj, de_m=creep, de_r=creep)
 
     return Contribution(rel(GAUGE_CREEP_REL), rel(COMPENSATED_CREEP_REL))
 
@@ -678,9 +805,10 @@ def gauge_hysteresis_rel(ctx: Context) -> tuple[float, str]:
 def gauge_hysteresis(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(k) Each element's reading off by the gauge's hysteresis (``readout.gauge_hysteresis_rel``
     of itself: a reading taken unloading where the calibration loaded), the two installations
-    independent (quadrature), carried to K_obj as creep is; no correction removes it."""
+    independent (quadrature), read by the coupled inversion as creep is
+    (:func:`independent_reading_error_rel`); no correction removes it."""
     h, _ = gauge_hysteresis_rel(ctx)
-    rel = quadrature_rel(op, de_m=h * op.e_m, de_r=h * op.e_r)
+    rel = independent_reading_error_rel(ctx, unit, op.k_obj, de_m=h, de_r=h)
     return Contribution(rel, rel)
 
 

@@ -296,6 +296,8 @@ class KobjThermalError:
         zero_rel: relative K_obj error from the zero drift (signed, per K_obj).
         span_rel: relative K_obj error from the springs' span drift (signed; the same for
             every K_obj and force).
+        zero_force_m_N_per_K, zero_force_r_N_per_K: the apparent tip force per kelvin the
+            measuring and the reference element read at no load (N/K; 0 with a dummy gauge).
     """
 
     element: int
@@ -303,6 +305,8 @@ class KobjThermalError:
     k_obj_N_per_mm: np.ndarray
     zero_rel: np.ndarray
     span_rel: np.ndarray
+    zero_force_m_N_per_K: float = 0.0
+    zero_force_r_N_per_K: float = 0.0
 
     @property
     def total_rel(self) -> np.ndarray:
@@ -385,9 +389,10 @@ def kobj_thermal_error(plan: Plan, chain: ReadoutChain | None, force_N: float,
         d, r = parts[slot.geometry.part_name], parts[ref.geometry.part_name]
         if not d["K"] < r["K"] * (1 - 1e-9):
             continue
-        zero, span = _unit_error(d["K"], r["K"], zero_eps / d["eps"], zero_eps / r["eps"], k_obj,
-                                 force_N, delta_T_K, scale)
-        out.append(KobjThermalError(slot.number, ref.number, k_obj, zero, span))
+        f_m, f_r = zero_eps / d["eps"], zero_eps / r["eps"]
+        zero, span = _unit_error(d["K"], r["K"], f_m, f_r, k_obj, force_N, delta_T_K, scale)
+        out.append(KobjThermalError(slot.number, ref.number, k_obj, zero, span, float(f_m),
+                                    float(f_r)))
     return out
 
 
