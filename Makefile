@@ -67,7 +67,7 @@ system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd
 	@sh scripts/install-system-deps.sh
 
 test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included; one process per core, TEST_JOBS=0 for one)
-	$(ONE_THREAD) $(BIN)/python -m pytest -q -n $(TEST_JOBS) $(XDIST)
+	$(ONE_THREAD) $(BIN)/python -m pytest -q -n $(TEST_JOBS) $(XDIST) --durations=30
 
 test-deep: $(STAMP) system-deps ## make test with every random design the property tests were written with (30 exported, 30 designed; nightly or before a release)
 	TACTCAD_TEST_DEPTH=deep $(ONE_THREAD) $(BIN)/python -m pytest -q -n $(TEST_JOBS) $(XDIST)

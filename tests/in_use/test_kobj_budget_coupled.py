@@ -109,6 +109,15 @@ def test_gauge_creep_through_the_coupled_chain(chain):
                                      chain.of_deflections(unit, de_r=creep * e_r)))
 
 
+def test_gauge_hysteresis_through_the_coupled_chain(chain):
+    h, _ = kb.gauge_hysteresis_rel(chain.ctx)
+    for unit in chain.units:
+        got = kb.gauge_hysteresis(chain.ctx, unit, chain.op(unit))
+        e_m, e_r = chain.deflections(unit)
+        _agrees(got.after, np.hypot(chain.of_deflections(unit, de_m=h * e_m),
+                                    chain.of_deflections(unit, de_r=h * e_r)))
+
+
 def test_readout_noise_and_quantisation_through_the_coupled_chain(chain):
     from tactcad.mechanics.readout_chain import element_force_resolution_N
 

@@ -94,7 +94,7 @@ def test_the_sheets_drawing_and_the_build_book_name_each_shim(plan):
 
     sheet = plan.comb.sheets[0]
     spec = SimpleNamespace(geometry=sheet, process="wire EDM", material="Ti")
-    text = " ".join(notes(SimpleNamespace(spec=spec, plan=plan), PEN))
+    text = " ".join(notes(SimpleNamespace(spec=spec, plan=plan, tip_height=None), PEN))
     assert f"shim {sheet.shims_mm[0]:g}" in text and f"cut {sheet.cut_gaps_mm[0]:g}" in text
     assert "feeler" in " ".join(stacking_notes(None))
     # each run of like columns with its arm, web and tip, each with its tolerance

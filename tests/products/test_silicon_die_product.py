@@ -86,8 +86,11 @@ def test_design_for_a_5mm_jaw_writes_a_die_project_folder(tmp_path):
     r = run_cli(*argv, cwd=tmp_path)
     assert r.returncode == 0, r.stdout + r.stderr
     folder = tmp_path / "palp-die"
-    assert {p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file()} == {
+    written = {p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file()}
+    # besides the project's files, only the design's kept solves, for the export after it
+    assert {w for w in written if not w.startswith(".tactcad-cache/")} == {
         "README.md", ".gitignore", ".github/workflows/hardware.yml", "palp_die.toml"}
+    assert ".tactcad-cache" in (folder / ".gitignore").read_text()
     assert "palp_die.toml" in (folder / ".github/workflows/hardware.yml").read_text()
     again = run_cli(*argv, cwd=tmp_path)  # the folder holds the files: named, not searched
     assert again.returncode == 2 and "--out" in again.stderr and "comb" not in again.stderr
