@@ -13,15 +13,11 @@ from tactcad.design.readout_section import LEAD_WIRE
 
 from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
                                              DEFAULT_PIVOT_BEHIND_MM, DEFAULT_SLAB_MM,
-                                             DEFAULT_TISSUE_BASE,
+                                             DEFAULT_PROFILE, DEFAULT_TISSUE_BASE,
                                              LINEAR_TISSUE_STRAIN)
 
 #: Defaults, each stated where it is used (mm; the jaw's in in_use.grasp_experiment).
 DEFAULT_LEAD_CHANNEL_MM = 3.0
-#: The tissue's profile a grasp assumes unless told: tissue filling the open jaw, so that every
-#: unit reads; a flat slab loads the tips near the pin first (their stops before the far tips
-#: touch), the case verify's max_grasp_force_N judges.
-DEFAULT_PROFILE = "wedge"
 #: The grasp's fields and the options that set them (an error names the option).
 OPTION_OF = GRASP_OPTION_OF
 

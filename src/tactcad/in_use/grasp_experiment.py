@@ -46,6 +46,15 @@ from tactcad.mechanics.hard_stops import engagement_travel_mm
 
 #: Tissue profiles between the jaws (see the module docstring).
 PROFILES = ("slab", "wedge")
+#: The tissue's profile a grasp that reads the units assumes unless told (``tactcad grasp``,
+#: a die's grasp): tissue filling the open jaw, so that every unit reads (on a flat slab at
+#: the grasper example's default force only the unit nearest the pin touches).
+DEFAULT_PROFILE = "wedge"
+#: The profile verify's ``max_grasp_force_N`` judges an overload on: a flat slab loads the
+#: tips near the pin first and most (their stops engage before the far tips touch), the
+#: harder case for those tips (on ti_array_2x3 at 1 N the slab overloads elements the wedge
+#: does not).
+OVERLOAD_PROFILE = "slab"
 #: Tissue couplings: none (eq. 1), a half-space, a layer of the slab's thickness.
 COUPLINGS = ("none", "halfspace", "layer")
 #: What the travel correction leaves in a reading, by whether the tips are coupled.
@@ -378,7 +387,7 @@ def tissue_thickness_mm(radius_mm: np.ndarray, thickness_mm: float, profile: str
 
 
 def press(tips: Tips, compliance: np.ndarray, slab_mm: float, angle_deg: float,
-          profile: str = "slab") -> TipSolution:
+          profile: str = DEFAULT_PROFILE) -> TipSolution:
     """The tips' solution with the jaw closed to ``angle_deg`` on the tissue's profile."""
     thickness = tissue_thickness_mm(tips.radius_mm, slab_mm, profile)
     travel = np.array([indentation_mm(t, r, angle_deg)
@@ -387,7 +396,7 @@ def press(tips: Tips, compliance: np.ndarray, slab_mm: float, angle_deg: float,
 
 
 def angle_for_force(tips: Tips, compliance: np.ndarray, slab_mm: float, opening_deg: float,
-                    force_N: float, profile: str = "slab") -> float:
+                    force_N: float, profile: str = DEFAULT_PROFILE) -> float:
     """The closing angle (degrees) at which the tips' forces on the slab sum to ``force_N``.
 
     Raises:
@@ -526,7 +535,8 @@ class GraspResult:
 def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGeometry,
                  k_obj: float, coupling: str, rated_force_N: float,
                  angle_deg: float | None, force_N: float | None,
-                 profile: str = "slab", base: str = DEFAULT_TISSUE_BASE) -> LayoutGrasp:
+                 profile: str = DEFAULT_PROFILE,
+                 base: str = DEFAULT_TISSUE_BASE) -> LayoutGrasp:
     """One layout closed at ``angle_deg`` or to the grasp force ``force_N`` (one of them),
     the tissue a layer on ``base`` (:data:`TISSUE_BASES`) where it is coupled as one."""
     thickness = tissue_thickness_mm(tips.radius_mm, jaw.slab_thickness_mm, profile)
@@ -554,7 +564,7 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
 def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list[tuple[int, int]],
           k_obj_N_per_mm: float, rated_force_N: float, angle_deg: float | None = None,
           force_N: float | None = None, coupling: str = "layer",
-          profile: str = "slab", overload_N: dict[int, float] | None = None,
+          profile: str = DEFAULT_PROFILE, overload_N: dict[int, float] | None = None,
           tissue_base: str = DEFAULT_TISSUE_BASE) -> GraspResult:
     """The jaw closed on the slab: the design's layout, the equal-radius one and the units laid
     along the rows, side by side.
@@ -571,7 +581,8 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
         angle_deg: the closing angle (degrees), 0 ... the jaw's opening; or
         force_N: the grasp force (N) the tips put on the slab, > 0 (each layout finds its angle).
         coupling: ``layer`` (default), ``halfspace`` or ``none``.
-        profile: the tissue between the jaws, ``slab`` (default) or ``wedge``.
+        profile: the tissue between the jaws, ``wedge`` or ``slab`` (default
+            :data:`DEFAULT_PROFILE`).
         overload_N: element number -> its overload limit (N; e.g.
             :func:`tactcad.studies.verification.element_overload_limits_N`), judged per tip
             beside the rating; None: the rating alone.
@@ -685,7 +696,7 @@ def default_assumptions(k_obj_range: tuple[float, float], plan: Plan | None = No
     jaw = stated.words() if stated is not None else (
         f"pin {DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows, jaw "
         f"{DEFAULT_JAW_BEYOND_MM:g} mm beyond the last tip, {DEFAULT_OPENING_DEG:g} degrees "
-        f"open, a {DEFAULT_SLAB_MM:g} mm slab on a {DEFAULT_TISSUE_BASE} base")
+        f"open, a {DEFAULT_SLAB_MM:g} mm {OVERLOAD_PROFILE} on a {DEFAULT_TISSUE_BASE} base")
     return (f"{jaw} coupled as a layer on the opposing jaw (ν {TISSUE_POISSON_RATIO:g}), K_obj "
             f"the geometric mean of the range {lo:g} ... {hi:g} N/mm; the design's layout")
 
@@ -695,7 +706,7 @@ def design_grasp_at_force(plan: Plan, force_N: float, rated_force_N: float,
                           model: str = "closed-form") -> GraspResult:
     """The grasp of a design at a grasp force with its jaw and tissue (the design's stated
     grasper or the defaults: :func:`default_jaw`, :func:`default_assumptions`), the
-    elements' K at ``model``.
+    elements' K at ``model``, on the :data:`OVERLOAD_PROFILE` (the overload check's).
 
     Args:
         force_N: the grasp force the tips put on the slab (N), > 0.
@@ -712,7 +723,8 @@ def design_grasp_at_force(plan: Plan, force_N: float, rated_force_N: float,
     by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
     units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
     return grasp(plan, default_jaw(plan), k, units, math.sqrt(k_obj_range[0] * k_obj_range[1]),
-                 rated_force_N, force_N=force_N, tissue_base=tissue_base_of(plan))
+                 rated_force_N, force_N=force_N, profile=OVERLOAD_PROFILE,
+                 tissue_base=tissue_base_of(plan))
 
 
 def grasp_summary(result: GraspResult) -> dict:
