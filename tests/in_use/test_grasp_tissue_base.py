@@ -14,7 +14,7 @@ from tactcad.design.array_plan import load_design, plan_from_dict
 from tactcad.in_use.grasp_experiment import (DEFAULT_TISSUE_BASE, TISSUE_POISSON_RATIO,
                                              default_jaw, grasp, tips_as_laid_out,
                                              tissue_base_of)
-from tactcad.mechanics.contact import unit_punch_compliance
+from tactcad.mechanics.contact import BASES, unit_punch_compliance
 from tactcad.mechanics.evaluation import ladder_stiffness_by_element
 from tactcad.mechanics.readout_chain import row_units
 from tactcad.partlib import tissue_slab
@@ -63,7 +63,8 @@ def test_on_the_thinnest_tissue_a_bonded_base_couples_the_units_tips_more_than_s
 
 def test_the_design_states_its_tissues_base_and_the_grasp_names_it():
     data = tomllib.loads(GRASPER.read_text(encoding="utf-8"))
-    assert tissue_slab.DEFAULT_BASE == DEFAULT_TISSUE_BASE  # one default, two modules
+    # one default and one set of words, named by the part and solved by the contact model
+    assert tissue_slab.DEFAULT_BASE == DEFAULT_TISSUE_BASE and tissue_slab.BASES == BASES
     plan = plan_from_dict({**data, "tissue_slab": {**data.get("tissue_slab", {}),
                                                    "base": "frictionless"}})
     assert tissue_base_of(plan) == "frictionless"

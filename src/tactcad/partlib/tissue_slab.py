@@ -16,12 +16,14 @@ from tactcad.kernel.shapes import box
 from tactcad.partlib.base import PartData, RigPart, Seat
 from tactcad.partlib.grasper_jaw import part_from_table
 from tactcad.vocabulary.process import Method, Process
-from tactcad.mechanics.contact import BASES
 from tactcad.vocabulary.schema import Derived, Problems, Section, Text, choice, fmt, number
 
 COLOR = (0.86, 0.45, 0.45)
 
 
+#: How the opposing jaw can hold the tissue layer: the contact model's bases
+#: (tactcad.mechanics.contact.BASES, the same words; a part names them, the model solves them).
+BASES = ("bonded", "frictionless", "steinbrenner")
 #: The base the grasp assumes for the tissue unless ``[tissue_slab] base`` states one: tissue
 #: gripped on a jaw face does not slide on it (tactcad.in_use.grasp_experiment's
 #: DEFAULT_TISSUE_BASE, the same word).
