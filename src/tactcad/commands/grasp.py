@@ -81,7 +81,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         f"else {DEFAULT_OPENING_DEG:g}, assumed)")
     p.add_argument("--coupling", choices=COUPLINGS, default="layer",
                    help="the tissue between the tips: a layer of the slab's thickness on the "
-                        "opposing jaw, a half-space, or none (eq. 1; default %(default)s)")
+                        "opposing jaw (on the base the design's [tissue_slab] states, bonded "
+                        "unless it says), a half-space, or none (eq. 1; default %(default)s)")
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for the elements' K (default closed-form)")
     p.add_argument("--lead-channel-mm", type=number(0, 50, "mm", lo_open=True),
