@@ -79,3 +79,14 @@ def test_a_frictionless_base_is_softer_than_a_bonded_one_under_the_same_tip():
     c = [unit_punch_compliance(face, TISSUE_POISSON_RATIO, 0.576, b)[0, 0]
          for b in ("bonded", "steinbrenner", "frictionless")]
     assert c[0] < c[1] < c[2] and np.isfinite(c).all()
+
+
+def test_verifys_grasp_row_names_the_base_and_judges_on_the_slab():
+    from tactcad.studies.verification import (element_figures, max_grasp_force_record,
+                                              requirements_of)
+
+    plan = load_design(str(GRASPER))
+    fig = element_figures(plan)
+    row = max_grasp_force_record(plan, fig, requirements_of(plan, fig))
+    assert row["grasp"]["tissue_base"] == "bonded" and row["grasp"]["profile"] == "slab"
+    assert "slab on a bonded base" in row["binding_words"]

@@ -13,7 +13,8 @@ Model (units mm, N, N/mm, degrees):
 * Each tip is a rigid flat punch (the design's contact face) on a spring K (the element);
   the tissue couples the tips: its surface displacements are w = C P for the tip forces P
   (:func:`tissue_compliance`: rigid punches on a layer of the slab's thickness on the
-  opposing jaw, or a half-space, :mod:`tactcad.mechanics.contact`), its modulus set so that
+  opposing jaw, bonded to it unless the design's ``[tissue_slab] base`` says otherwise, or
+  a half-space, :mod:`tactcad.mechanics.contact`), its modulus set so that
   one tip face alone sees K_obj (the tissue's local stiffness per tip). Coupling "none" is
   eq. 1: C = I / K_obj.
 * A tip with deflection e: e + w = Δ, P = K e until its hard stop engages at the tip travel
