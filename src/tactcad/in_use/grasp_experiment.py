@@ -332,8 +332,15 @@ BASE_WORDS = {"none": "no base: each tip on its own spring K_obj (eq. 1)",
 
 
 def base_words(coupling: str, base: str) -> str:
-    """What the tissue rests on, in words (:data:`BASE_WORDS`): the base where the tissue is
-    coupled as a layer, else the coupling's."""
+    """What the tissue rests on, in words (:data:`BASE_WORDS`).
+
+    Args:
+        coupling: one of :data:`COUPLINGS`.
+        base: one of :data:`TISSUE_BASES` (read for the ``layer`` coupling only).
+
+    Returns:
+        The base's words where the tissue is coupled as a layer, else the coupling's.
+    """
     return BASE_WORDS[base if coupling == "layer" else coupling]
 
 
@@ -674,9 +681,15 @@ def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
 
 
 def tissue_base_of(plan: Plan) -> str:
-    """How the opposing jaw holds the design's tissue (:data:`TISSUE_BASES`): its
-    ``[tissue_slab] base`` where the design states its grasper
-    (:func:`tactcad.design.grasper_in_use.stated_grasper`), else :data:`DEFAULT_TISSUE_BASE`.
+    """How the opposing jaw holds the design's tissue.
+
+    Args:
+        plan: the design.
+
+    Returns:
+        One of :data:`TISSUE_BASES`: the design's ``[tissue_slab] base`` where it states
+        its grasper (:func:`tactcad.design.grasper_in_use.stated_grasper`), else
+        :data:`DEFAULT_TISSUE_BASE`.
 
     Raises:
         DesignErrors: the stated tables refused (each refusal names its field).

@@ -137,7 +137,15 @@ def check_sample(sample: Sample) -> None:
 
 
 def check_base(base: object) -> None:
-    """Raise :class:`ContactError` naming ``base`` unless it is one of :data:`BASES`."""
+    """Check a layer's base condition.
+
+    Args:
+        base: the base's name.
+
+    Raises:
+        ContactError: ``base`` not one of :data:`BASES`, naming the field and the allowed
+            words.
+    """
     if base not in BASES:
         raise ContactError("base", base, " | ".join(BASES))
 
