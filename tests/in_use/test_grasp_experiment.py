@@ -124,7 +124,8 @@ def test_under_a_wedge_each_unit_is_judged_on_its_own_thickness_with_one_modulus
     thickness, is K_obj), and its bias follows the local thickness; each unit reads as its
     two tips alone on a uniform layer of their thickness (an isolated two-face solve; the
     rest of the jaw moves it by < 1 %)."""
-    from tactcad.in_use.grasp_experiment import tips_as_laid_out
+    from tactcad.in_use.grasp_experiment import (DEFAULT_TISSUE_BASE, TISSUE_POISSON_RATIO,
+                                                 tips_as_laid_out)
     from tactcad.mechanics.contact import single_punch_unit_compliance, unit_punch_compliance
 
     plan, k, units = setup(COMB)
@@ -139,12 +140,14 @@ def test_under_a_wedge_each_unit_is_judged_on_its_own_thickness_with_one_modulus
     assert errors == sorted(errors) and errors[-1] - errors[0] > 0.05
     tips = tips_as_laid_out(plan, JAW, k)
     face = tips.punches[0]
-    E = 1.5 * single_punch_unit_compliance(face.width_x_mm, face.depth_z_mm, 0.49,
-                                           JAW.slab_thickness_mm)
+    E = 1.5 * single_punch_unit_compliance(face.width_x_mm, face.depth_z_mm,
+                                           TISSUE_POISSON_RATIO,
+                                           JAW.slab_thickness_mm, DEFAULT_TISSUE_BASE)
     for u in paired:
         i, j = (tips.labels.index(n) for n in (u["reference"], u["measuring"]))
-        c = unit_punch_compliance([tips.punches[i], tips.punches[j]], 0.49,
-                                  round(u["tissue_thickness_reference_mm"], 9)) / E
+        c = unit_punch_compliance([tips.punches[i], tips.punches[j]], TISSUE_POISSON_RATIO,
+                                  round(u["tissue_thickness_reference_mm"], 9),
+                                  DEFAULT_TISSUE_BASE) / E
         d = u["travel_reference_mm"]
         assert u["travel_measuring_mm"] == pytest.approx(d, rel=1e-9)
         kr, km = u["K_r_N_per_mm"], u["K_m_N_per_mm"]

@@ -61,6 +61,7 @@ def test_the_shaft_takes_the_jaws_class_unless_it_states_one(comb_data):
     ({"grasper_jaw": {"shaft_class_mm": 10}}, "grasper_jaw.shaft_class_mm"),
     ({"grasper_jaw": {"pocket_width": 5.0}}, "grasper_jaw.pocket_width"),
     ({"tissue_slab": {"thickness_mm": -1.0}}, "tissue_slab.thickness_mm"),
+    ({"tissue_slab": {"base": "glued"}}, "tissue_slab.base"),
     ({"grasper_shaft": "10"}, "grasper_shaft"),
 ])
 def test_a_bad_in_use_table_is_refused_at_load_naming_its_field(comb_data, tables, field):

@@ -13,14 +13,11 @@ from tactcad.design.readout_section import LEAD_WIRE
 
 from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
                                              DEFAULT_PIVOT_BEHIND_MM, DEFAULT_SLAB_MM,
+                                             DEFAULT_PROFILE, DEFAULT_TISSUE_BASE,
                                              LINEAR_TISSUE_STRAIN)
 
 #: Defaults, each stated where it is used (mm; the jaw's in in_use.grasp_experiment).
 DEFAULT_LEAD_CHANNEL_MM = 3.0
-#: The tissue's profile a grasp assumes unless told: tissue filling the open jaw, so that every
-#: unit reads; a flat slab loads the tips near the pin first (their stops before the far tips
-#: touch), the case verify's max_grasp_force_N judges.
-DEFAULT_PROFILE = "wedge"
 #: The grasp's fields and the options that set them (an error names the option).
 OPTION_OF = GRASP_OPTION_OF
 
@@ -84,7 +81,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         f"else {DEFAULT_OPENING_DEG:g}, assumed)")
     p.add_argument("--coupling", choices=COUPLINGS, default="layer",
                    help="the tissue between the tips: a layer of the slab's thickness on the "
-                        "opposing jaw, a half-space, or none (eq. 1; default %(default)s)")
+                        "opposing jaw (on the base the design's [tissue_slab] states, bonded "
+                        "unless it says), a half-space, or none (eq. 1; default %(default)s)")
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for the elements' K (default closed-form)")
     p.add_argument("--lead-channel-mm", type=number(0, 50, "mm", lo_open=True),
@@ -136,7 +134,7 @@ def design_plan_from_args(args: argparse.Namespace):
 def run(args: argparse.Namespace) -> int:
     from tactcad.design.grasper_in_use import stated_grasper
     from tactcad.errors import DesignError
-    from tactcad.in_use.grasp_experiment import default_jaw, grasp
+    from tactcad.in_use.grasp_experiment import default_jaw, grasp, tissue_base_of
     from tactcad.in_use.shaft_leads import leads_check
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.readout_chain import readout_chain, row_units
@@ -165,10 +163,11 @@ def run(args: argparse.Namespace) -> int:
         unused = "grasper_jaw" in plan.raw and not stated
         jaw = default_jaw(plan, args.pivot_mm, args.jaw_length_mm, args.opening_deg,
                           args.slab_thickness_mm)
+        base = tissue_base_of(plan)
         try:
             result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=args.angle_deg,
                            force_N=force, coupling=args.coupling, profile=args.profile,
-                           overload_N=overload)
+                           overload_N=overload, tissue_base=base)
         except DesignError as exc:
             if asked or exc.field != "force_N":
                 raise
@@ -176,7 +175,8 @@ def run(args: argparse.Namespace) -> int:
             # open (the grasp the jaw cannot make lighter), or above it closed flat (a
             # tissue too thin or soft for it)
             result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=jaw.opening_angle_deg,
-                           coupling=args.coupling, profile=args.profile, overload_N=overload)
+                           coupling=args.coupling, profile=args.profile, overload_N=overload,
+                           tissue_base=base)
             tissue = f"{jaw.slab_thickness_mm:g} mm {args.profile}"
             if result.as_laid_out.total_force_N > force:
                 force_why = (f"the jaw at its full opening: {force_why} ({force:g} N) is less "
@@ -185,7 +185,7 @@ def run(args: argparse.Namespace) -> int:
             else:
                 result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=0.0,
                                coupling=args.coupling, profile=args.profile,
-                               overload_N=overload)
+                               overload_N=overload, tissue_base=base)
                 force_why = (f"the jaw closed flat: {force_why} ({force:g} N) is more than "
                              f"the {result.as_laid_out.total_force_N:.4g} N the {tissue} "
                              f"takes with the jaw closed")
@@ -217,7 +217,11 @@ def run(args: argparse.Namespace) -> int:
                   "lead_channel_mm": channel_why,
                   "slab_thickness_mm": "--slab-thickness-mm" if args.slab_thickness_mm else
                   stated_table_words(plan, "tissue_slab") if stated else
-                  f"{DEFAULT_SLAB_MM:g} mm, assumed"}}
+                  f"{DEFAULT_SLAB_MM:g} mm, assumed",
+                  "tissue_base": (stated_table_words(plan, "tissue_slab") if stated and
+                                  "base" in (plan.raw.get("tissue_slab") or {}) else
+                                  f"{DEFAULT_TISSUE_BASE}, assumed: tissue gripped on the jaw's "
+                                  "face does not slip on it")}}
     print(dumps(record, indent=1) if args.json else render(record))
     return 0
 
@@ -288,7 +292,9 @@ def render(record: dict) -> str:
     lines = [f"Grasp of {record['design']} ({record['model']}): pin at "
              f"({j['pivot_u_mm']:g}, {j['pivot_v_mm']:g}) mm, jaw {j['jaw_length_mm']:.4g} mm, "
              f"{record['profile']} {j['slab_thickness_mm']:g} mm, K_obj "
-             f"{record['K_obj_N_per_mm']:.4g} N/mm, {record['coupling']} coupling, rated "
+             f"{record['K_obj_N_per_mm']:.4g} N/mm, {record['coupling']} coupling"
+             + (f" on a {record['tissue_base']} base" if record.get("tissue_base") else "")
+             + ", rated "
              f"{record['rated_force_N']:g} N per element"]
     for key in ("as_laid_out", "paired", "along_rows"):
         lay = record[key]

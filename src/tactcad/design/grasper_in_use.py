@@ -23,6 +23,7 @@ class StatedGrasper:
         jaw_length_mm: from the pin to the jaw's end.
         opening_angle_deg: the jaw's full opening.
         slab_thickness_mm: the tissue slab's thickness.
+        tissue_base: how the opposing jaw holds the tissue (``[tissue_slab] base``).
     """
 
     pivot_u_mm: float
@@ -30,13 +31,14 @@ class StatedGrasper:
     jaw_length_mm: float
     opening_angle_deg: float
     slab_thickness_mm: float
+    tissue_base: str = "bonded"
 
     def words(self) -> str:
         """The jaw and tissue in words, for a record that uses them."""
         return (f"the design's [grasper_jaw]: pin {-self.pivot_u_mm:.4g} mm behind the first "
                 f"tip along the rows, jaw {self.jaw_length_mm:.4g} mm from its pin, "
                 f"{self.opening_angle_deg:g} degrees open; a {self.slab_thickness_mm:g} mm slab "
-                f"([tissue_slab])")
+                f"on a {self.tissue_base} base ([tissue_slab])")
 
 
 def stated_grasper(plan: Any) -> StatedGrasper | None:
@@ -62,4 +64,4 @@ def stated_grasper(plan: Any) -> StatedGrasper | None:
     return StatedGrasper(pivot_u_mm=pivot_u, pivot_v_mm=pivot_v,
                          jaw_length_mm=jaw.length_mm - jaw.pin_x_mm,
                          opening_angle_deg=jaw.opening_angle_deg,
-                         slab_thickness_mm=slab.thickness_mm)
+                         slab_thickness_mm=slab.thickness_mm, tissue_base=slab.base)

@@ -13,7 +13,8 @@ Model (units mm, N, N/mm, degrees):
 * Each tip is a rigid flat punch (the design's contact face) on a spring K (the element);
   the tissue couples the tips: its surface displacements are w = C P for the tip forces P
   (:func:`tissue_compliance`: rigid punches on a layer of the slab's thickness on the
-  opposing jaw, or a half-space, :mod:`tactcad.mechanics.contact`), its modulus set so that
+  opposing jaw, bonded to it unless the design's ``[tissue_slab] base`` says otherwise, or
+  a half-space, :mod:`tactcad.mechanics.contact`), its modulus set so that
   one tip face alone sees K_obj (the tissue's local stiffness per tip). Coupling "none" is
   eq. 1: C = I / K_obj.
 * A tip with deflection e: e + w = Δ, P = K e until its hard stop engages at the tip travel
@@ -40,11 +41,21 @@ from tactcad.in_use.kobj_budget import kobj_from_deflections
 from tactcad.in_use.tissue_coupling import TISSUE_POISSON_RATIO as TISSUE_COUPLING_POISSON_RATIO
 from tactcad.in_use.radius_pairs import (PairedLayout, along_row_layout, insert_frame,
                                          paired_layout, unit_radii)
-from tactcad.mechanics.contact import Punch, single_punch_unit_compliance, unit_punch_compliance
+from tactcad.mechanics.contact import (BASES, Punch, single_punch_unit_compliance,
+                                       unit_punch_compliance)
 from tactcad.mechanics.hard_stops import engagement_travel_mm
 
 #: Tissue profiles between the jaws (see the module docstring).
 PROFILES = ("slab", "wedge")
+#: The tissue's profile a grasp that reads the units assumes unless told (``tactcad grasp``,
+#: a die's grasp): tissue filling the open jaw, so that every unit reads (on a flat slab at
+#: the grasper example's default force only the unit nearest the pin touches).
+DEFAULT_PROFILE = "wedge"
+#: The profile verify's ``max_grasp_force_N`` judges an overload on: a flat slab loads the
+#: tips near the pin first and most (their stops engage before the far tips touch), the
+#: harder case for those tips (on ti_array_2x3 at 1 N the slab overloads elements the wedge
+#: does not).
+OVERLOAD_PROFILE = "slab"
 #: Tissue couplings: none (eq. 1), a half-space, a layer of the slab's thickness.
 COUPLINGS = ("none", "halfspace", "layer")
 #: What the travel correction leaves in a reading, by whether the tips are coupled.
@@ -53,6 +64,14 @@ COUPLING_LEFT_IN = ("", "; the tissue's coupling between neighbouring tips stays
                         "source take it out)")
 #: Poisson's ratio of soft tissue: the tissue coupling's, one figure for every command.
 TISSUE_POISSON_RATIO = TISSUE_COUPLING_POISSON_RATIO
+#: What the tissue between the jaws rests on: the opposing jaw, a rigid base holding the layer
+#: by one of :data:`tactcad.mechanics.contact.BASES`.
+TISSUE_BASES = BASES
+#: The base a grasp assumes unless the design's ``[tissue_slab]`` states one: tissue gripped
+#: on a jaw face (serrated or profiled to hold it, Heijnsdijk et al. 2004) does not slide on
+#: it, so bonded; ``frictionless`` bounds it from the other side (a smooth, wet face), and
+#: Steinbrenner's approximation lies between the two.
+DEFAULT_TISSUE_BASE = "bonded"
 #: Bisection steps of the force mode (the angle to 90° / 2^60).
 BISECTION_STEPS = 60
 #: Active-set passes of the stops and lift-off before the solve is declared stuck.
@@ -69,7 +88,8 @@ DEFAULT_JAW_BEYOND_MM = 2.0
 def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thickness_mm: float,
                       coupling: str = "layer",
                       poisson_ratio: float = TISSUE_POISSON_RATIO,
-                      local_thickness_mm=None) -> np.ndarray:
+                      local_thickness_mm=None,
+                      base: str = DEFAULT_TISSUE_BASE) -> np.ndarray:
     """The tissue's compliance under the tips (mm/N), shape (m, m): the one place the grasp
     asks the tissue model (re-point it here for another).
 
@@ -78,63 +98,77 @@ def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thicknes
         k_obj_N_per_mm: the tissue's local stiffness under one tip face alone on the
             ``slab_thickness_mm`` layer (N/mm), > 0: it sets the one modulus of the tissue.
         slab_thickness_mm: the slab on the opposing jaw (mm), > 0 (``layer`` only).
-        coupling: ``none`` (I / K_obj), ``halfspace`` or ``layer`` (Steinbrenner's layer on a
-            rigid base, :mod:`tactcad.mechanics.contact`).
+        coupling: ``none`` (I / K_obj), ``halfspace`` or ``layer`` (a layer on the opposing
+            jaw, a rigid base, :mod:`tactcad.mechanics.contact`).
         poisson_ratio: ν of the tissue.
         local_thickness_mm: the layer's thickness under each tip (mm, shape (m,); a wedge),
             ``layer`` only; None: ``slab_thickness_mm`` under every tip
             (:func:`local_layer_compliance`).
+        base: how the opposing jaw holds the layer, one of :data:`TISSUE_BASES` (``layer``
+            only; default :data:`DEFAULT_TISSUE_BASE`).
+
+    Returns:
+        C (mm/N), symmetric, one face alone seeing 1/K_obj on the slab's thickness.
 
     Raises:
-        DesignError: K_obj <= 0 or an unknown coupling.
+        DesignError: K_obj <= 0, an unknown coupling or base.
     """
     if not (math.isfinite(k_obj_N_per_mm) and k_obj_N_per_mm > 0):
         raise DesignError("k_obj_N_per_mm", k_obj_N_per_mm, "> 0 N/mm")
     if coupling not in COUPLINGS:
         raise DesignError("coupling", coupling, " | ".join(COUPLINGS))
+    if base not in TISSUE_BASES:
+        raise DesignError("tissue_base", base, " | ".join(TISSUE_BASES))
     if coupling == "none":
         return np.eye(len(punches)) / k_obj_N_per_mm
     thickness = slab_thickness_mm if coupling == "layer" else None
-    unit = unit_punch_compliance(punches, poisson_ratio, thickness)  # converged in the mesh
+    unit = unit_punch_compliance(punches, poisson_ratio, thickness, base)  # converged
     # E such that one face alone sees K_obj: every compliance scales as 1/E
     own = np.mean([single_punch_unit_compliance(p.width_x_mm, p.depth_z_mm, poisson_ratio,
-                                                thickness) for p in punches])
+                                                thickness, base) for p in punches])
     if local_thickness_mm is not None and coupling == "layer":
         unit = local_layer_compliance(punches, slab_thickness_mm, local_thickness_mm,
-                                      poisson_ratio, unit)
+                                      poisson_ratio, unit, base)
     return unit / (k_obj_N_per_mm * own)
 
 
 def local_layer_compliance(punches: list[Punch], slab_thickness_mm: float, local_thickness_mm,
-                           poisson_ratio: float, slab_unit: np.ndarray) -> np.ndarray:
+                           poisson_ratio: float, slab_unit: np.ndarray,
+                           base: str = DEFAULT_TISSUE_BASE) -> np.ndarray:
     """The faces' compliance at E = 1 MPa (mm/N, shape (m, m)) on a layer whose thickness
     varies from tip to tip: faces on one thickness (a unit paired at equal radius under a
     wedge) are solved together on a uniform layer of that thickness; between faces on
     different thicknesses the slab's coupling is kept, scaled by each face's own softening,
     C_ij = C_ij(slab) sqrt(s_i s_j) (:func:`local_softening`; an approximation, small
-    where such faces are far apart)."""
+    where such faces are far apart), all on the one ``base``."""
     t = np.round(np.broadcast_to(np.asarray(local_thickness_mm, float), (len(punches),)), 9)
-    s = local_softening(punches, slab_thickness_mm, t, poisson_ratio)
+    s = local_softening(punches, slab_thickness_mm, t, poisson_ratio, base)
     out = slab_unit * np.sqrt(np.outer(s, s))
     for h in np.unique(t):
         group = np.flatnonzero(t == h)
         out[np.ix_(group, group)] = unit_punch_compliance([punches[i] for i in group],
-                                                          poisson_ratio, float(h))
+                                                          poisson_ratio, float(h), base)
     return out
 
 
 def local_softening(punches: list[Punch], slab_thickness_mm: float, local_thickness_mm,
-                    poisson_ratio: float = TISSUE_POISSON_RATIO) -> np.ndarray:
+                    poisson_ratio: float = TISSUE_POISSON_RATIO,
+                    base: str = DEFAULT_TISSUE_BASE) -> np.ndarray:
     """Each face's compliance alone on its own layer thickness over its compliance on the
     ``slab_thickness_mm`` layer (one modulus: below 1 where the tissue is thinner), shape
-    (m,). Each is a converged single-punch solve (:mod:`tactcad.mechanics.contact`)."""
+    (m,), on the layer's ``base``. Each is a converged single-punch solve
+    (:mod:`tactcad.mechanics.contact`).
+
+    Raises:
+        DesignError: a thickness <= 0.
+    """
     t = np.broadcast_to(np.asarray(local_thickness_mm, float), (len(punches),))
     if not np.all(np.isfinite(t) & (t > 0)):
         raise DesignError("local_thickness_mm", t.tolist(), "> 0 mm at every tip")
 
     def alone(p: Punch, h: float) -> float:
         return single_punch_unit_compliance(p.width_x_mm, p.depth_z_mm, poisson_ratio,
-                                            float(round(h, 9)))
+                                            float(round(h, 9)), base)
 
     return np.array([alone(p, h) / alone(p, slab_thickness_mm) for p, h in zip(punches, t)])
 
@@ -283,12 +317,31 @@ class LayoutGrasp:
                 "total_force_N": self.total_force_N, "tips": self.tips, "units": self.units}
 
 
-#: What the tissue rests on, by coupling (the layer model's own base condition).
+#: What the tissue rests on: by coupling where it has no base, else by the layer's base.
 BASE_WORDS = {"none": "no base: each tip on its own spring K_obj (eq. 1)",
               "halfspace": "no base: an elastic half-space",
-              "layer": "a rigid base under the layer, its shear condition not modelled "
-                       "(Steinbrenner's approximation: between a frictionless and a bonded "
-                       "base; a bonded, nearly incompressible thin layer is stiffer)"}
+              "bonded": "bonded to the opposing jaw (no slip at the base: tissue gripped on "
+                        "the jaw's face), the layer's exact solution (Burmister 1945; "
+                        "Hayes et al. 1972)",
+              "frictionless": "on a frictionless opposing jaw (the base slides freely: a "
+                              "smooth, wet face), the layer's exact solution (Burmister 1945)",
+              "steinbrenner": "a rigid base under the layer, its shear condition not modelled "
+                              "(Steinbrenner's approximation: between a frictionless and a "
+                              "bonded base; a bonded, nearly incompressible thin layer is "
+                              "stiffer)"}
+
+
+def base_words(coupling: str, base: str) -> str:
+    """What the tissue rests on, in words (:data:`BASE_WORDS`).
+
+    Args:
+        coupling: one of :data:`COUPLINGS`.
+        base: one of :data:`TISSUE_BASES` (read for the ``layer`` coupling only).
+
+    Returns:
+        The base's words where the tissue is coupled as a layer, else the coupling's.
+    """
+    return BASE_WORDS[base if coupling == "layer" else coupling]
 
 
 def wedge_words(jaw: JawGeometry, radius_mm) -> str:
@@ -342,7 +395,7 @@ def tissue_thickness_mm(radius_mm: np.ndarray, thickness_mm: float, profile: str
 
 
 def press(tips: Tips, compliance: np.ndarray, slab_mm: float, angle_deg: float,
-          profile: str = "slab") -> TipSolution:
+          profile: str = DEFAULT_PROFILE) -> TipSolution:
     """The tips' solution with the jaw closed to ``angle_deg`` on the tissue's profile."""
     thickness = tissue_thickness_mm(tips.radius_mm, slab_mm, profile)
     travel = np.array([indentation_mm(t, r, angle_deg)
@@ -351,7 +404,7 @@ def press(tips: Tips, compliance: np.ndarray, slab_mm: float, angle_deg: float,
 
 
 def angle_for_force(tips: Tips, compliance: np.ndarray, slab_mm: float, opening_deg: float,
-                    force_N: float, profile: str = "slab") -> float:
+                    force_N: float, profile: str = DEFAULT_PROFILE) -> float:
     """The closing angle (degrees) at which the tips' forces on the slab sum to ``force_N``.
 
     Raises:
@@ -469,6 +522,7 @@ class GraspResult:
     notes: dict = field(default_factory=dict)
     along_rows: LayoutGrasp | None = None
     along_rows_layout: dict | None = None
+    tissue_base: str = DEFAULT_TISSUE_BASE
 
     def as_json(self) -> dict:
         j = self.jaw
@@ -479,6 +533,7 @@ class GraspResult:
                         "slab_thickness_mm": j.slab_thickness_mm,
                         "axis_angle_deg": j.axis_angle_deg},
                 "K_obj_N_per_mm": self.k_obj_N_per_mm, "coupling": self.coupling,
+                "tissue_base": self.tissue_base if self.coupling == "layer" else None,
                 "profile": self.profile, "rated_force_N": self.rated_force_N, "as_laid_out": self.as_laid_out.as_json(),
                 "paired": self.paired.as_json(), "paired_layout": self.layout,
                 "along_rows": self.along_rows.as_json() if self.along_rows else None,
@@ -488,17 +543,20 @@ class GraspResult:
 def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGeometry,
                  k_obj: float, coupling: str, rated_force_N: float,
                  angle_deg: float | None, force_N: float | None,
-                 profile: str = "slab") -> LayoutGrasp:
-    """One layout closed at ``angle_deg`` or to the grasp force ``force_N`` (one of them)."""
+                 profile: str = DEFAULT_PROFILE,
+                 base: str = DEFAULT_TISSUE_BASE) -> LayoutGrasp:
+    """One layout closed at ``angle_deg`` or to the grasp force ``force_N`` (one of them),
+    the tissue a layer on ``base`` (:data:`TISSUE_BASES`) where it is coupled as one."""
     thickness = tissue_thickness_mm(tips.radius_mm, jaw.slab_thickness_mm, profile)
     if profile == "wedge":
         check_wedge_fits(jaw, float(np.max(tips.radius_mm)))
     local = thickness if profile != "slab" and coupling == "layer" else None
     c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling,
-                          local_thickness_mm=local)
+                          local_thickness_mm=local, base=base)
     # one modulus along the jaw: where the tissue is thinner, its true K_obj is higher
     k_local = (np.full(len(tips.labels), k_obj) if local is None else
-               k_obj / local_softening(tips.punches, jaw.slab_thickness_mm, local))
+               k_obj / local_softening(tips.punches, jaw.slab_thickness_mm, local,
+                                       base=base))
     if angle_deg is None:
         angle_deg = angle_for_force(tips, c, jaw.slab_thickness_mm, jaw.opening_angle_deg,
                                     float(force_N), profile)
@@ -514,7 +572,8 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
 def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list[tuple[int, int]],
           k_obj_N_per_mm: float, rated_force_N: float, angle_deg: float | None = None,
           force_N: float | None = None, coupling: str = "layer",
-          profile: str = "slab", overload_N: dict[int, float] | None = None) -> GraspResult:
+          profile: str = DEFAULT_PROFILE, overload_N: dict[int, float] | None = None,
+          tissue_base: str = DEFAULT_TISSUE_BASE) -> GraspResult:
     """The jaw closed on the slab: the design's layout, the equal-radius one and the units laid
     along the rows, side by side.
 
@@ -530,10 +589,13 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
         angle_deg: the closing angle (degrees), 0 ... the jaw's opening; or
         force_N: the grasp force (N) the tips put on the slab, > 0 (each layout finds its angle).
         coupling: ``layer`` (default), ``halfspace`` or ``none``.
-        profile: the tissue between the jaws, ``slab`` (default) or ``wedge``.
+        profile: the tissue between the jaws, ``wedge`` or ``slab`` (default
+            :data:`DEFAULT_PROFILE`).
         overload_N: element number -> its overload limit (N; e.g.
             :func:`tactcad.studies.verification.element_overload_limits_N`), judged per tip
             beside the rating; None: the rating alone.
+        tissue_base: how the opposing jaw holds the tissue layer, one of
+            :data:`TISSUE_BASES` (default :data:`DEFAULT_TISSUE_BASE`; ``layer`` only).
 
     Returns:
         :class:`GraspResult`; its ``along_rows`` (the units laid along the rows, the side the
@@ -551,13 +613,18 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
         raise DesignError("rated_force_N", rated_force_N, "> 0 N")
     if angle_deg is not None:  # refused before any contact is solved
         check_angle_deg(jaw, angle_deg)
+    if coupling not in COUPLINGS:
+        raise DesignError("coupling", coupling, " | ".join(COUPLINGS))
+    if tissue_base not in TISSUE_BASES:
+        raise DesignError("tissue_base", tissue_base, " | ".join(TISSUE_BASES))
     laid = tips_as_laid_out(plan, jaw, stiffness, overload_N)
     pairing = paired_layout(plan, units)
     paired, sites = tips_on(plan, jaw, stiffness, pairing, overload_N)
     along = along_row_layout(plan, units)
     if profile not in PROFILES:
         raise DesignError("profile", profile, " | ".join(PROFILES))
-    args = (jaw, k_obj_N_per_mm, coupling, rated_force_N, angle_deg, force_N, profile)
+    args = (jaw, k_obj_N_per_mm, coupling, rated_force_N, angle_deg, force_N, profile,
+            tissue_base)
     notes = {"profile": f"{profile}: " + ("uniform thickness h" if profile == "slab" else
                                           wedge_words(jaw, laid.radius_mm)),
              "tissue": f"{coupling} coupling, ν {TISSUE_POISSON_RATIO:g}, one modulus set so "
@@ -566,7 +633,7 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
                                   "on its own thickness, and each unit is judged against "
                                   "its tips' (the geometric mean)"
                                   if profile == "wedge" and coupling == "layer" else ""),
-             "base": BASE_WORDS.get(coupling, ""),
+             "base": base_words(coupling, tissue_base),
              "correction": "R corrected = R read x travel_r / travel_m (the jaw's angle and "
                            "the slab's thickness known)" + COUPLING_LEFT_IN[coupling != "none"],
              "paired_units": "each paired unit is the design unit named, laid on the two "
@@ -581,7 +648,8 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
                        float(rated_force_N),
                        grasp_layout("as laid out", laid, units, *args),
                        grasp_layout("paired", paired, sites, *args), layout_json(pairing),
-                       notes, along_rows, layout_json(along) if along_rows else None)
+                       notes, along_rows, layout_json(along) if along_rows else None,
+                       tissue_base)
 
 
 def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
@@ -612,6 +680,26 @@ def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
                        slab_mm or DEFAULT_SLAB_MM)
 
 
+def tissue_base_of(plan: Plan) -> str:
+    """How the opposing jaw holds the design's tissue.
+
+    Args:
+        plan: the design.
+
+    Returns:
+        One of :data:`TISSUE_BASES`: the design's ``[tissue_slab] base`` where it states
+        its grasper (:func:`tactcad.design.grasper_in_use.stated_grasper`), else
+        :data:`DEFAULT_TISSUE_BASE`.
+
+    Raises:
+        DesignErrors: the stated tables refused (each refusal names its field).
+    """
+    from tactcad.design.grasper_in_use import stated_grasper
+
+    stated = stated_grasper(plan)
+    return stated.tissue_base if stated is not None else DEFAULT_TISSUE_BASE
+
+
 def default_assumptions(k_obj_range: tuple[float, float], plan: Plan | None = None) -> str:
     """The grasp's jaw and tissue in words (for a record that uses them): the design's
     stated grasper (:func:`default_jaw`) or the defaults."""
@@ -622,7 +710,7 @@ def default_assumptions(k_obj_range: tuple[float, float], plan: Plan | None = No
     jaw = stated.words() if stated is not None else (
         f"pin {DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows, jaw "
         f"{DEFAULT_JAW_BEYOND_MM:g} mm beyond the last tip, {DEFAULT_OPENING_DEG:g} degrees "
-        f"open, a {DEFAULT_SLAB_MM:g} mm slab")
+        f"open, a {DEFAULT_SLAB_MM:g} mm {OVERLOAD_PROFILE} on a {DEFAULT_TISSUE_BASE} base")
     return (f"{jaw} coupled as a layer on the opposing jaw (ν {TISSUE_POISSON_RATIO:g}), K_obj "
             f"the geometric mean of the range {lo:g} ... {hi:g} N/mm; the design's layout")
 
@@ -632,7 +720,7 @@ def design_grasp_at_force(plan: Plan, force_N: float, rated_force_N: float,
                           model: str = "closed-form") -> GraspResult:
     """The grasp of a design at a grasp force with its jaw and tissue (the design's stated
     grasper or the defaults: :func:`default_jaw`, :func:`default_assumptions`), the
-    elements' K at ``model``.
+    elements' K at ``model``, on the :data:`OVERLOAD_PROFILE` (the overload check's).
 
     Args:
         force_N: the grasp force the tips put on the slab (N), > 0.
@@ -649,7 +737,8 @@ def design_grasp_at_force(plan: Plan, force_N: float, rated_force_N: float,
     by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
     units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
     return grasp(plan, default_jaw(plan), k, units, math.sqrt(k_obj_range[0] * k_obj_range[1]),
-                 rated_force_N, force_N=force_N)
+                 rated_force_N, force_N=force_N, profile=OVERLOAD_PROFILE,
+                 tissue_base=tissue_base_of(plan))
 
 
 def grasp_summary(result: GraspResult) -> dict:
@@ -669,5 +758,6 @@ def grasp_summary(result: GraspResult) -> dict:
 
     return {"rated_force_N": result.rated_force_N, "K_obj_N_per_mm": result.k_obj_N_per_mm,
             "slab_thickness_mm": result.jaw.slab_thickness_mm, "coupling": result.coupling,
+            "tissue_base": result.tissue_base if result.coupling == "layer" else None,
             "profile": result.profile, "opening_angle_deg": result.jaw.opening_angle_deg,
             "as_laid_out": layout(result.as_laid_out), "paired": layout(result.paired)}

@@ -10,7 +10,16 @@ model with piecewise-constant pressure cells (collocation at cell centres):
   boundary", Phil. Trans. R. Soc. A 228, 1929; K. L. Johnson, *Contact
   Mechanics*, 1985, sec. 3.3): with I = ∫∫ dA / r over the rectangle,
   w = (1 − ν²) p I / (π E);
-* layer of thickness h on a rigid base: Steinbrenner's approximation
+* layer of thickness h on a rigid base, by the base's condition (:data:`BASES`):
+
+  - ``bonded`` and ``frictionless``: the layer's exact surface response from its
+    Hankel-transform solution (D. M. Burmister, J. Appl. Phys. 16, 1945; the bonded
+    layer as W. C. Hayes, L. M. Keer, G. Herrmann and L. F. Mockros, J. Biomech. 5,
+    1972, use it for cartilage): a point load P gives
+    w(r) = P (1 − ν²)/(π E) ∫₀^∞ K(k h) J₀(k r) dk, K = 1 for the half-space
+    (:func:`layer_kernel`); the layer's influence is Love's rectangle formula less a
+    smooth correction tabulated once per base and ν (:func:`layer_correction`);
+  - ``steinbrenner``: Steinbrenner's approximation
   (W. Steinbrenner, *Die Strasse* 1, 1934; H. G. Poulos and E. H. Davis,
   *Elastic Solutions for Soil and Rock Mechanics*, 1974, ch. 5): the surface
   displacement of the layer is the half-space surface displacement minus the
@@ -18,7 +27,9 @@ model with piecewise-constant pressure cells (collocation at cell centres):
   u_z = P (1 + ν) / (2 π E) [z²/ρ³ + 2 (1 − ν)/ρ], ρ = √(r² + z²)). It is an
   engineering approximation: it ignores the base's shear condition and is
   least accurate for thin, nearly incompressible layers (h much smaller than
-  the punch and ν → 0.5), where a bonded layer is stiffer than it predicts.
+  the punch and ν → 0.5), where a bonded layer is stiffer than it predicts. It
+  stays the default base (:data:`DEFAULT_BASE`): the rig models, the budget and the
+  paper's comparisons were built on it; the grasp states its base.
 
 A rigid punch moves its whole face by one displacement; the cells' pressures
 follow from the collocation equations and the punch forces from their sum.
@@ -77,6 +88,16 @@ class Punch:
     depth_z_mm: float
 
 
+#: The conditions a layer's rigid base can hold it by: ``bonded`` (no slip: the layer's
+#: underside neither moves nor slides), ``frictionless`` (it slides freely, does not lift),
+#: ``steinbrenner`` (Steinbrenner's approximation, which states neither).
+BASES = ("bonded", "frictionless", "steinbrenner")
+#: The base a :class:`Sample` has unless told. Steinbrenner's, though a clamped tissue is
+#: closer to bonded: the rig models, the budget and the paper's comparisons were built and
+#: checked on it, and a caller that knows its base states it (the grasp does).
+DEFAULT_BASE = "steinbrenner"
+
+
 @dataclass(frozen=True)
 class Sample:
     """The elastic sample under the punches.
@@ -86,15 +107,25 @@ class Sample:
         poisson_ratio: ν, 0 <= ν <= 0.5 (rubber: about 0.5).
         thickness_mm: layer thickness h on a rigid base (mm), > 0, or None
             for a half-space.
+        base: how the rigid base holds the layer, one of :data:`BASES` (ignored for a
+            half-space). Default :data:`DEFAULT_BASE`, Steinbrenner's approximation, for
+            the models built on it; tissue gripped by a serrated jaw face is closer to
+            ``bonded``, tissue lying on a smooth wet plate closer to ``frictionless``.
     """
 
     youngs_modulus_MPa: float
     poisson_ratio: float
     thickness_mm: float | None = None
+    base: str = DEFAULT_BASE
 
 
 def check_sample(sample: Sample) -> None:
-    """Raise :class:`ContactError` for a modulus <= 0, ν outside [0, 0.5] or thickness <= 0."""
+    """Check a sample's fields.
+
+    Raises:
+        ContactError: a modulus <= 0, ν outside [0, 0.5], a thickness <= 0 or a base not
+            in :data:`BASES`, naming the field.
+    """
     if not (np.isfinite(sample.youngs_modulus_MPa) and sample.youngs_modulus_MPa > 0):
         raise ContactError("youngs_modulus_MPa", sample.youngs_modulus_MPa, "> 0 MPa")
     if not (np.isfinite(sample.poisson_ratio) and 0.0 <= sample.poisson_ratio <= 0.5):
@@ -102,6 +133,21 @@ def check_sample(sample: Sample) -> None:
     h = sample.thickness_mm
     if h is not None and not (np.isfinite(h) and h > 0):
         raise ContactError("thickness_mm", h, "> 0 mm (or none for a half-space)")
+    check_base(sample.base)
+
+
+def check_base(base: object) -> None:
+    """Check a layer's base condition.
+
+    Args:
+        base: the base's name.
+
+    Raises:
+        ContactError: ``base`` not one of :data:`BASES`, naming the field and the allowed
+            words.
+    """
+    if base not in BASES:
+        raise ContactError("base", base, " | ".join(BASES))
 
 
 # ---------------------------------------------------------------------------
@@ -150,6 +196,113 @@ def boussinesq_depth_displacement(r, depth_mm: float, youngs_modulus_MPa: float,
     rho = np.sqrt(np.asarray(r, float) ** 2 + depth_mm ** 2)
     return ((1 + poisson_ratio) / (2 * np.pi * youngs_modulus_MPa)
             * (depth_mm ** 2 / rho ** 3 + 2 * (1 - poisson_ratio) / rho))
+
+
+def layer_kernel(t, base: str, poisson_ratio: float) -> np.ndarray:
+    """The layer's surface-deflection kernel K(t), t = k h (k the Hankel wavenumber, 1/mm;
+    h the thickness, mm): w(r) = P (1 − ν²)/(π E) ∫₀^∞ K(k h) J₀(k r) dk under a point
+    load P; K = 1 is the half-space (Boussinesq).
+
+    With κ = 3 − 4ν (Burmister 1945; the bonded case as Hayes, Keer, Herrmann and
+    Mockros, J. Biomech. 5, 1972, use it):
+
+    * bonded: K = (2κ sinh 2t − 4t)/(2κ cosh 2t + 4t² + 1 + κ²), → t (1 − 2ν)/(2 (1 − ν)²)
+      as t → 0 (the constrained modulus of a thin layer);
+    * frictionless: K = (cosh 2t − 1)/(sinh 2t + 2t), → t/2 as t → 0.
+
+    Both → 1 as t → ∞ (short waves do not reach the base). Computed as 1 − (1 − K),
+    the latter in decaying exponentials (:func:`_one_minus_kernel`), so large t does not
+    overflow.
+
+    Args:
+        t: k h >= 0 (array).
+        base: ``bonded`` or ``frictionless``.
+        poisson_ratio: ν, 0 ... 0.5.
+
+    Returns:
+        K(t), the shape of ``t``.
+
+    Raises:
+        ContactError: another base (Steinbrenner's has no such kernel).
+    """
+    return 1.0 - _one_minus_kernel(np.asarray(t, float), base, float(poisson_ratio))
+
+
+#: The exact bases, those with a kernel (:func:`layer_kernel`).
+KERNEL_BASES = ("bonded", "frictionless")
+
+
+def _one_minus_kernel(t: np.ndarray, base: str, nu: float) -> np.ndarray:
+    """1 − K(t), numerator and denominator multiplied by e^(−2t): every term stays finite."""
+    if base not in KERNEL_BASES:
+        raise ContactError("base", base, " | ".join(KERNEL_BASES) + " (a layer kernel)")
+    e2 = np.exp(-2.0 * t)
+    e4 = e2 * e2
+    if base == "bonded":
+        kappa = 3.0 - 4.0 * nu
+        return ((2 * kappa * e4 + ((2 * t + 1) ** 2 + kappa ** 2) * e2)
+                / (kappa * (1 + e4) + (4 * t * t + 1 + kappa ** 2) * e2))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out = 2 * (1 + 2 * t - e2) * e2 / (1 - e4 + 4 * t * e2)
+    return np.where(t > 0, out, 1.0)
+
+
+#: The correction's table (in ρ = r/h): its spacing and end; past the end the correction
+#: is 1/ρ (the layer's own deflection there is below 1e-10 of the half-space's).
+CORRECTION_STEP = 0.01
+CORRECTION_END = 30.0
+#: Quadrature of the correction's t integral: panels of this width (a fraction of J₀'s
+#: period at the table's end, 2π/30), Gauss-Legendre points per panel, and the end of
+#: the t range (1 − K < 1e-23 there).
+_T_PANEL = 0.05
+_T_POINTS = 8
+_T_END = 36.0
+
+
+@functools.lru_cache(maxsize=16)
+def _correction_spline(base: str, poisson_ratio: float) -> np.ndarray:
+    """Cubic-spline coefficients of f(ρ) on [0, :data:`CORRECTION_END`], shape (4, n − 1)."""
+    from scipy.interpolate import CubicSpline
+    from scipy.special import j0
+
+    x, w = np.polynomial.legendre.leggauss(_T_POINTS)
+    starts = np.arange(0.0, _T_END, _T_PANEL)
+    t = (starts[:, None] + 0.5 * _T_PANEL * (x + 1)).ravel()
+    weighted = _one_minus_kernel(t, base, poisson_ratio) * np.tile(0.5 * _T_PANEL * w, len(starts))
+    rho = np.linspace(0.0, CORRECTION_END, int(round(CORRECTION_END / CORRECTION_STEP)) + 1)
+    f = np.concatenate([j0(np.outer(chunk, t)) @ weighted for chunk in np.array_split(rho, 12)])
+    # f is even in ρ: a clamped zero slope at the axis
+    return CubicSpline(rho, f, bc_type=((1, 0.0), "not-a-knot")).c
+
+
+def layer_correction(rho, base: str, poisson_ratio: float) -> np.ndarray:
+    """f(ρ) = ∫₀^∞ (1 − K(t)) J₀(t ρ) dt, ρ = r/h: the half-space's point-load deflection
+    less the layer's, in units of P (1 − ν²)/(π E h) (:func:`layer_kernel`).
+
+    1 − K decays as e^(−2t), so f is smooth; it is tabulated once per base and ν
+    (Gauss-Legendre over t, cubic spline over ρ, accurate to about 1e-9) and is 1/ρ past
+    :data:`CORRECTION_END` (K(0) = 0: the layer's own deflection decays exponentially).
+
+    Args:
+        rho: r/h >= 0 (array).
+        base: ``bonded`` or ``frictionless``.
+        poisson_ratio: ν, 0 ... 0.5.
+
+    Returns:
+        f(ρ), the shape of ``rho``.
+
+    Raises:
+        ContactError: a base without a kernel.
+    """
+    if base not in KERNEL_BASES:
+        raise ContactError("base", base, " | ".join(KERNEL_BASES) + " (a layer kernel)")
+    c = _correction_spline(base, float(poisson_ratio))
+    rho = np.asarray(rho, float)
+    i = np.minimum((rho / CORRECTION_STEP).astype(np.intp), c.shape[1] - 1)
+    s = rho - i * CORRECTION_STEP
+    inside = ((c[0, i] * s + c[1, i]) * s + c[2, i]) * s + c[3, i]
+    with np.errstate(divide="ignore"):
+        return np.where(rho <= CORRECTION_END, inside, 1.0 / rho)
 
 
 # ---------------------------------------------------------------------------
@@ -258,6 +411,26 @@ def _layer_depth_term(centres: np.ndarray, src_centres: np.ndarray, src_half: np
     return out
 
 
+def _layer_kernel_term(centres: np.ndarray, src_centres: np.ndarray, src_half: np.ndarray,
+                       sample: Sample, n_gauss: int) -> np.ndarray:
+    """The half-space's displacement less the layer's at each of ``centres`` per unit
+    pressure on each source cell, shape (n, m) (mm/MPa): (1 − ν²)/(π E h) ∫∫ f(ρ/h) dA
+    (:func:`layer_correction`), Gauss-Legendre over the loaded cell (f is smooth)."""
+    h = float(sample.thickness_mm)
+    pts, wts = np.polynomial.legendre.leggauss(n_gauss)
+    scale = (1 - sample.poisson_ratio ** 2) / (np.pi * sample.youngs_modulus_MPa * h)
+    area = src_half[:, 0] * src_half[:, 1]
+    out = np.zeros((len(centres), len(src_centres)))
+    for i, wi in enumerate(wts):
+        dx2 = (centres[:, None, 0] - (src_centres[:, 0] + src_half[:, 0] * pts[i])[None, :]) ** 2
+        for j, wj in enumerate(wts):
+            dz2 = (centres[:, None, 1]
+                   - (src_centres[:, 1] + src_half[:, 1] * pts[j])[None, :]) ** 2
+            out += (wi * wj) * layer_correction(np.sqrt(dx2 + dz2) / h, sample.base,
+                                                sample.poisson_ratio)
+    return out * (scale * area)[None, :]
+
+
 def _influence_block(centres: np.ndarray, src_centres: np.ndarray, src_half: np.ndarray,
                      sample: Sample, n_gauss: int) -> np.ndarray:
     """Displacement at ``centres`` per unit pressure on the source cells (mm/MPa)."""
@@ -267,7 +440,8 @@ def _influence_block(centres: np.ndarray, src_centres: np.ndarray, src_half: np.
                                     x2[None, :], z1[None, :], z2[None, :], 1.0,
                                     sample.youngs_modulus_MPa, sample.poisson_ratio)
     if sample.thickness_mm is not None:
-        a = a - _layer_depth_term(centres, src_centres, src_half, sample, n_gauss)
+        term = _layer_depth_term if sample.base == "steinbrenner" else _layer_kernel_term
+        a = a - term(centres, src_centres, src_half, sample, n_gauss)
     return a
 
 
@@ -284,8 +458,9 @@ def _block_key(local: np.ndarray, half_a: np.ndarray, src: np.ndarray,
 def influence_matrix(mesh: CellMesh, sample: Sample) -> np.ndarray:
     """Displacement at each cell centre per unit pressure on each cell, shape (n, n) (mm/MPa).
 
-    Half-space: Love's rectangle formula. Layer: Steinbrenner's difference
-    of the surface and depth-h half-space displacements. Assembled punch by punch:
+    Half-space: Love's rectangle formula. Layer: that less the layer's correction
+    (:func:`layer_correction`) on a bonded or frictionless base, or less the depth-h
+    half-space displacement (Steinbrenner's approximation). Assembled punch by punch:
     two punch pairs whose cells lie alike relative to each other (equal faces at equal
     offsets, as on an array's grid) share one computed block.
     """
@@ -530,7 +705,8 @@ def single_punch_compliance(width_x_mm: float, depth_z_mm: float, sample: Sample
 
 
 def modulus_from_punch_stiffness(k_obj_N_per_mm: float, width_x_mm: float, depth_z_mm: float,
-                                 poisson_ratio: float, thickness_mm: float | None = None) -> float:
+                                 poisson_ratio: float, thickness_mm: float | None = None,
+                                 base: str = DEFAULT_BASE) -> float:
     """Young's modulus E (MPa) of a sample whose single-punch stiffness is K_obj.
 
     The paper measures K_obj with a 2 x 3 mm flat indenter; the compliance of
@@ -543,11 +719,12 @@ def modulus_from_punch_stiffness(k_obj_N_per_mm: float, width_x_mm: float, depth
     if not (np.isfinite(k_obj_N_per_mm) and k_obj_N_per_mm > 0):
         raise ContactError("K_obj_N_per_mm", k_obj_N_per_mm, "> 0 N/mm")
     return float(k_obj_N_per_mm * single_punch_unit_compliance(
-        float(width_x_mm), float(depth_z_mm), float(poisson_ratio), thickness_mm))
+        float(width_x_mm), float(depth_z_mm), float(poisson_ratio), thickness_mm, base))
 
 
 def single_punch_unit_compliance(width_x_mm: float, depth_z_mm: float, poisson_ratio: float,
-                                 thickness_mm: float | None = None) -> float:
+                                 thickness_mm: float | None = None,
+                                 base: str = DEFAULT_BASE) -> float:
     """Compliance of one rigid face alone at E = 1 MPa (mm/N), converged in the mesh
     (:func:`unit_punch_compliance`, whose cache serves it: samples differ only in E).
 
@@ -555,23 +732,32 @@ def single_punch_unit_compliance(width_x_mm: float, depth_z_mm: float, poisson_r
         ContactError: a face edge <= 0 or a bad sample.
     """
     return float(unit_punch_compliance((Punch(0.0, 0.0, width_x_mm, depth_z_mm),),
-                                       poisson_ratio, thickness_mm)[0, 0])
+                                       poisson_ratio, thickness_mm, base)[0, 0])
 
 
 @functools.lru_cache(maxsize=64)
 def _converged_unit(punches: tuple[Punch, ...], poisson_ratio: float,
-                    thickness_mm: float | None) -> ConvergedPunches:
-    return converged_punches(punches, Sample(1.0, poisson_ratio, thickness_mm))
+                    thickness_mm: float | None, base: str) -> ConvergedPunches:
+    return converged_punches(punches, Sample(1.0, poisson_ratio, thickness_mm, base))
 
 
-def unit_punch_compliance(punches, poisson_ratio: float,
-                          thickness_mm: float | None = None) -> np.ndarray:
+def unit_punch_compliance(punches, poisson_ratio: float, thickness_mm: float | None = None,
+                          base: str = DEFAULT_BASE) -> np.ndarray:
     """The punches' compliance matrix at E = 1 MPa (mm/N), shape (m, m), converged in the
     mesh (:func:`converged_punches`); every compliance scales as 1/E. Cached: the rig
     models, the budget and the grasp ask the same tips at many K_obj.
 
+    Args:
+        punches: the faces (:class:`Punch`).
+        poisson_ratio: ν, 0 ... 0.5.
+        thickness_mm: the layer's thickness h (mm), or None for a half-space.
+        base: the layer's base, one of :data:`BASES` (a half-space has none).
+
     Raises:
         ContactError: bad punches or sample.
     """
-    return _converged_unit(tuple(punches), float(poisson_ratio), thickness_mm) \
+    check_base(base)
+    if thickness_mm is None:  # a half-space: one cache entry whatever base is named
+        base = DEFAULT_BASE
+    return _converged_unit(tuple(punches), float(poisson_ratio), thickness_mm, base) \
         .compliance_mm_per_N.copy()

@@ -16,18 +16,30 @@ from tactcad.kernel.shapes import box
 from tactcad.partlib.base import PartData, RigPart, Seat
 from tactcad.partlib.grasper_jaw import part_from_table
 from tactcad.vocabulary.process import Method, Process
-from tactcad.vocabulary.schema import Derived, Problems, Section, Text, fmt, number
+from tactcad.vocabulary.schema import Derived, Problems, Section, Text, choice, fmt, number
 
 COLOR = (0.86, 0.45, 0.45)
 
 
+#: How the opposing jaw can hold the tissue layer: the contact model's bases
+#: (tactcad.mechanics.contact.BASES, the same words; a part names them, the model solves them).
+BASES = ("bonded", "frictionless", "steinbrenner")
+#: The base the grasp assumes for the tissue unless ``[tissue_slab] base`` states one: tissue
+#: gripped on a jaw face does not slide on it (tactcad.in_use.grasp_experiment's
+#: DEFAULT_TISSUE_BASE, the same word).
+DEFAULT_BASE = "bonded"
+
+
 class TissueSlabSection(Section):
-    """``[tissue_slab]``: the slab (mm); a size left out covers the jaw's face."""
+    """``[tissue_slab]``: the slab (mm); a size left out covers the jaw's face; ``base``: how
+    the opposing jaw holds it (``bonded``: gripped, no slip; ``frictionless``: a smooth, wet
+    face; ``steinbrenner``: the approximation that states neither)."""
 
     thickness_mm: number(0.0, 100.0, lo_open=True) = 3.0  # assumed, as `tactcad grasp`'s default
     length_mm: Optional[number(1.0, 200.0)] = None
     width_mm: Optional[number(1.0, 200.0)] = None
     material: Text = "tissue (stand-in)"
+    base: choice(BASES, "how the opposing jaw holds the tissue layer") = DEFAULT_BASE
 
 
 @dataclass(frozen=True)
@@ -37,6 +49,7 @@ class TissueSlabGeometry:
     length_mm: float
     width_mm: float
     thickness_mm: float
+    base: str = DEFAULT_BASE
 
 
 def derive(s: TissueSlabSection, context, p: Problems) -> PartData:
@@ -55,7 +68,7 @@ def derive(s: TissueSlabSection, context, p: Problems) -> PartData:
     why = f"covers the jaw's {fmt(jaw.length_mm)} x {fmt(jaw.width_mm)} mm face"
     length = jaw.length_mm if s.length_mm is None else s.length_mm
     width = jaw.width_mm if s.width_mm is None else s.width_mm
-    g = TissueSlabGeometry(length, width, s.thickness_mm)
+    g = TissueSlabGeometry(length, width, s.thickness_mm, s.base)
     return PartData(
         name="tissue_slab", kind="purchased", process=Process("tissue or phantom", Method.BOUGHT),
         material=s.material, color=COLOR, expected_volume_mm3=length * width * s.thickness_mm,

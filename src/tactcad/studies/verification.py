@@ -755,8 +755,9 @@ def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict 
     over = [it for it in items if it["element_force_N"] > it["overload_limit_N"]]
     past_rating = [it for it in items if it["element_force_N"] > rated]
     # the predicted figure is an element's force, not the grasp's: said where it binds
-    words = (f"the {target:g} N grasp ({result.jaw.slab_thickness_mm:g} mm {result.profile}, "
-             f"jaw at {result.as_laid_out.angle_deg:.3g} degrees) puts "
+    words = (f"the {target:g} N grasp ({result.jaw.slab_thickness_mm:g} mm {result.profile} "
+             f"on a {result.tissue_base} base, jaw at {result.as_laid_out.angle_deg:.3g} "
+             "degrees) puts "
              f"{w['element_force_N']:.4g} N on the spring, overload limit "
              f"{w['overload_limit_N']:.4g} N")
     return _record("max_grasp_force_N", target, w["element_force_N"], error, w["margin_rel"],

@@ -32,7 +32,8 @@ import numpy as np
 
 from tactcad.products.silicon_die.design.die_mount import DieMount
 from tactcad.products.silicon_die.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, DiePlan
-from tactcad.in_use.grasp_experiment import (DEFAULT_SLAB_MM, LayoutGrasp, Tips, grasp_layout)
+from tactcad.in_use.grasp_experiment import (DEFAULT_PROFILE, DEFAULT_SLAB_MM, LayoutGrasp, Tips,
+                                             grasp_layout)
 from tactcad.in_use.jaw_kinematics import JawGeometry
 from tactcad.mechanics.contact import Punch
 
@@ -82,7 +83,7 @@ def die_jaw(mount: DieMount, opening_deg: float,
 
 def die_grasp(plan: DiePlan, mount: DieMount, jaw: JawGeometry, k_obj_N_per_mm: float,
               angle_deg: float | None = None, force_N: float | None = None,
-              coupling: str = "layer", profile: str = "wedge") -> LayoutGrasp:
+              coupling: str = "layer", profile: str = DEFAULT_PROFILE) -> LayoutGrasp:
     """The die in its jaw closed on the tissue at ``angle_deg`` or to the grasp force
     ``force_N`` (one of them): every post's travel, deflection and forces against the rating
     and its breaking force, every column's R and K_obj read (eq. 3) against the true one.
