@@ -39,7 +39,7 @@ AXES = ("kr_over_km", "kobj_centre_N_per_mm", "kobj_span", "full_scale_force_N",
 #: widest range design's options allow (``design``'s own option bounds; columns: the die's
 #: least 2, the comb's most 12).
 AXIS_LIMITS = {
-    "kr_over_km": ("--kr-over-km", True, (1.0, 1000.0)),
+    "kr_over_km": ("--kr-over-km-range", True, (1.0, 1000.0)),
     "kobj_centre_N_per_mm": ("--kobj-centre", True, (1e-4, 1e4)),
     "kobj_span": ("--kobj-span", True, (1.0, 1e4)),
     "full_scale_force_N": ("--force-range", True, (1e-4, 1000.0)),
