@@ -56,7 +56,7 @@ DEFAULT_RANGES = {"kr_over_km": (3.0, 30.0), "kobj_centre_N_per_mm": (0.1, 10.0)
 LIMIT_WORDS = (
     ("height", ("height", "too tall", "thickness_mm + tip_proud")),
     ("footprint", ("footprint", "pocket", "across its", "length ")),
-    ("resolution", ("resolution", "resolve", "kobj_range")),
+    ("resolution", ("resolution", "resolve", "kobj_range", "noise")),
     ("strength", ("failure probability",)),  # a die's, at its rating or on its stops
     ("stop", ("stop", "cavity", "post standing")),
     ("fatigue", ("fatigue",)),
@@ -256,7 +256,7 @@ def refusal_of(exc: DesignError) -> RefusedPoint:
     errors = getattr(exc, "errors", None) or (exc,)
     first = errors[0]
     words = first.why or first.allowed or str(first)
-    return RefusedPoint(first.field, f"{first.field}: " + words.split("; ")[0])
+    return RefusedPoint(first.field, words.split("; ")[0])
 
 
 def limit_kind(detail: str) -> str:
