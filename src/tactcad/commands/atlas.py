@@ -85,10 +85,30 @@ def ranges_of(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
     return out
 
 
-def jaw_atlas(jaw: str, materials: list[str] | None, least_columns: int):
+#: The words of a comb's misfit in a size that does not depend on its columns.
+COLUMN_FREE_MISFITS = ("height", "width")
+
+
+def comb_misfits(room, columns: range, base: dict, targets) -> list[dict]:
+    """The comb's misfits in the jaw in its height or its width across the rows (sizes its
+    columns do not change), at the first column count of ``columns`` whose screen names one
+    (:func:`tactcad.studies.comb_design.comb_misfit`; at few columns no sheet's comb has a
+    plan and the screen names nothing); empty when none does."""
+    from tactcad.studies.comb_design import comb_misfit
+
+    for n in columns:
+        missed = [m for m in comb_misfit(room, n, base, targets)
+                  if m.get("words", "").startswith(COLUMN_FREE_MISFITS)]
+        if missed:
+            return missed
+    return []
+
+
+def jaw_atlas(jaw: str, materials: list[str] | None, columns: tuple[int, int]):
     """The :class:`~tactcad.studies.atlas.JawAtlas` of ``--jaw``: its room and the products
-    whose smallest build of ``least_columns`` fits it (the comb in each of ``materials``,
-    default every library grade; the die).
+    that seat in it at some count of ``columns`` (low, high): the comb in each of
+    ``materials`` (default every library grade) unless it stands too tall or too wide for
+    the pocket (:func:`comb_misfits`), the die unless its smallest build misfits.
 
     Raises:
         DesignError: ``--jaw`` unreadable, or no product fits it (each one's misfit named).
@@ -99,7 +119,6 @@ def jaw_atlas(jaw: str, materials: list[str] | None, least_columns: int):
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.products.silicon_die.design.die_mount import die_misfit
     from tactcad.studies.atlas import COMB, DIE, SILICON, JawAtlas, targets_of
-    from tactcad.studies.comb_design import comb_misfit
     from tactcad.vocabulary.material_library import material_grades
 
     room = jaw_room(*jaw_of(jaw))
@@ -107,14 +126,14 @@ def jaw_atlas(jaw: str, materials: list[str] | None, least_columns: int):
     base = read_toml(EXAMPLES / comb.jaw_template, "design file")
     nominal = targets_of({"kr_over_km": 10.0, "kobj_lo_N_per_mm": 0.5, "kobj_hi_N_per_mm": 5.0,
                           "full_scale_force_N": 0.1})  # a comb's size does not depend on them
-    comb_miss = comb_misfit(room, least_columns, base, nominal)
-    die_miss = die_misfit(room, room.table or {}, max(2, least_columns))
+    comb_miss = comb_misfits(room, range(columns[0], columns[1] + 1), base, nominal)
+    die_miss = die_misfit(room, room.table or {}, columns[0])
     products = [] if comb_miss else [(COMB, g) for g in (materials or list(material_grades()))]
     products += [] if die_miss else [(DIE, SILICON)]
     if not products:
         words = "; ".join(m["words"] for m in comb_miss + die_miss if m.get("words"))
         raise DesignError("--jaw", jaw, "a jaw that holds a monolithic comb or a silicon die",
-                          f"neither fits at {least_columns} columns: {words}")
+                          f"neither fits at {columns[0]} ... {columns[1]} columns: {words}")
     return JawAtlas(jaw, room, None if comb_miss else base, array_envelope_mm, tuple(products))
 
 
@@ -172,7 +191,8 @@ def run(args: argparse.Namespace) -> int:
     ranges = ranges_of(args)
     bounds = checked_ranges(ranges)
     points = atlas_targets(args.points, ranges, args.seed)
-    atlas = jaw_atlas(args.jaw, args.material, int(bounds["columns"][0]))
+    atlas = jaw_atlas(args.jaw, args.material,
+                      (int(bounds["columns"][0]), int(bounds["columns"][1])))
     out = Path(args.out)
     if out.exists() and not out.is_dir():
         raise DesignError("--out", args.out, "a folder (new or existing)", "it is a file")
