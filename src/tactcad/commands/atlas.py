@@ -21,7 +21,7 @@ from tactcad.errors import DesignError
 DEFAULT_BATCH = 2
 #: The table, the figure and the summary written in ``--out``.
 TABLE_NAME, FIGURE_NAME, SUMMARY_NAME = "atlas.parquet", "atlas_front.svg", "atlas.json"
-#: Range options: option -> (the axis of :data:`tactcad.studies.atlas.AXES`, unit, type).
+#: Range options: option -> (the axis of :data:`tactcad.studies.design_atlas.AXES`, unit, type).
 RANGE_OPTIONS = {"--kr-over-km-range": ("kr_over_km", ""),
                  "--kobj-centre": ("kobj_centre_N_per_mm", "N/mm"),
                  "--kobj-span": ("kobj_span", ""),
@@ -30,7 +30,7 @@ RANGE_OPTIONS = {"--kr-over-km-range": ("kr_over_km", ""),
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    from tactcad.studies.atlas import DEFAULT_RANGES
+    from tactcad.studies.design_atlas import DEFAULT_RANGES
 
     p = sub.add_parser(
         "atlas", help="what fits a jaw: feasible targets and the Pareto front of every product "
@@ -105,8 +105,8 @@ def comb_misfits(room, columns: range, base: dict, targets) -> list[dict]:
 
 
 def jaw_atlas(jaw: str, materials: list[str] | None, columns: tuple[int, int]):
-    """The :class:`~tactcad.studies.atlas.JawAtlas` of ``--jaw``: its room and the products
-    that seat in it at some count of ``columns`` (low, high): the comb in each of
+    """The :class:`~tactcad.studies.design_atlas.JawAtlas` of ``--jaw``: its room and the
+    products that seat in it at some count of ``columns`` (low, high): the comb in each of
     ``materials`` (default every library grade) unless it stands too tall or too wide for
     the pocket (:func:`comb_misfits`), the die unless its smallest build misfits.
 
@@ -118,7 +118,7 @@ def jaw_atlas(jaw: str, materials: list[str] | None, columns: tuple[int, int]):
     from tactcad.design.construction_registry import construction
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.products.silicon_die.design.die_mount import die_misfit
-    from tactcad.studies.atlas import COMB, DIE, SILICON, JawAtlas, targets_of
+    from tactcad.studies.design_atlas import COMB, DIE, SILICON, JawAtlas, targets_of
     from tactcad.vocabulary.material_library import material_grades
 
     room = jaw_room(*jaw_of(jaw))
@@ -186,7 +186,7 @@ def read_table(path: Path) -> list[dict] | None:
 
 def run(args: argparse.Namespace) -> int:
     """``atlas``: the table (from the store when kept), the front, its figure and summary."""
-    from tactcad.studies.atlas import atlas_targets, checked_ranges
+    from tactcad.studies.design_atlas import atlas_targets, checked_ranges
 
     ranges = ranges_of(args)
     bounds = checked_ranges(ranges)
@@ -223,7 +223,7 @@ def run(args: argparse.Namespace) -> int:
 def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[dict], bool]:
     """Every point judged on Dask (``--scheduler``, else a new local cluster of
     ``--workers``, default two, single-threaded)."""
-    from tactcad.studies.atlas import run_atlas
+    from tactcad.studies.design_atlas import run_atlas
     from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client
 
     say = progress_from_args(args)
@@ -238,7 +238,7 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
     limits counted and the Pareto front (each point with its design command)."""
     from collections import Counter
 
-    from tactcad.studies.atlas import FRONT_OBJECTIVES, pareto_front
+    from tactcad.studies.design_atlas import FRONT_OBJECTIVES, pareto_front
 
     groups: dict[tuple[str, str], list[dict]] = {}
     for r in records:

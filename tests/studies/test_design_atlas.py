@@ -10,7 +10,7 @@ import pytest
 from conftest import run_cli
 
 from tactcad.errors import DesignError
-from tactcad.studies.atlas import (AXES, COMB, DEFAULT_RANGES, DIE, SILICON, JawAtlas,
+from tactcad.studies.design_atlas import (AXES, COMB, DEFAULT_RANGES, DIE, SILICON, JawAtlas,
                                    atlas_targets, batches, evaluate_batch, limit_kind,
                                    pareto_front)
 
