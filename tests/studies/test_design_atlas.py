@@ -155,8 +155,37 @@ def test_comb_points_of_an_atlas_are_the_verdicts_design_gives(tmp_path):
                 "kobj_hi_N_per_mm": 5.0, "full_scale_force_N": 0.01, "columns": 6}
     refused = {**feasible, "point": 1, "full_scale_force_N": 0.9, "kobj_lo_N_per_mm": 0.06,
                "kobj_hi_N_per_mm": 0.43}
-    records = evaluate_batch(atlas, [feasible, refused])
-    assert [r["feasible"] for r in records] == [True, False]
+    # too many columns for the pocket: no candidate has a plan, the refusal offers fewer
+    crowded = {"point": 2, "kr_over_km": 4.29128, "kobj_lo_N_per_mm": 0.400251,
+               "kobj_hi_N_per_mm": 5.65791, "full_scale_force_N": 0.026679, "columns": 7}
+    records = evaluate_batch(atlas, [feasible, refused, crowded])
+    assert [r["feasible"] for r in records] == [True, False, False]
     assert records[0]["sheet_mm"] > 0 and records[0]["max_force_N"] >= 0.01
+    assert [r["design_field"] for r in records[1:]] == ["--full-scale-force", "--columns"]
     for r in records:
         agrees_with_design(r, tmp_path)
+
+
+def test_ctrl_c_keeps_the_batches_that_finished_and_cancels_the_rest():
+    """Ctrl-C while the atlas waits (raised here as the first batch reports): the records
+    of the batches that finished are returned, the run marked incomplete."""
+    from distributed import Client
+
+    from tactcad.studies.design_atlas import run_atlas
+
+    atlas = jaw_atlas("5", [(DIE, SILICON)])
+    points = atlas_targets(6, {"full_scale_force_N": (0.001, 0.05)}, seed=2)
+
+    def interrupted(done: int, total: int) -> None:
+        raise KeyboardInterrupt
+
+    with Client(processes=False, n_workers=1, threads_per_worker=1,
+                dashboard_address=None) as client:
+        records, complete = run_atlas(atlas, points, client, batch_size=2,
+                                      progress=interrupted)
+        everything, finished = run_atlas(atlas, points, client, batch_size=2)
+    assert complete is False and finished is True
+    assert len(records) == 2 and len(everything) == 6
+    kept = {r["point"] for r in records}
+    same = [r for r in everything if r["point"] in kept]
+    assert json.dumps(same, sort_keys=True) == json.dumps(records, sort_keys=True)

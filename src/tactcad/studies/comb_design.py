@@ -414,6 +414,30 @@ def comb_of_candidates(tried: list[CombCandidate], targets: Targets, room: Any, 
     return CombDesign(data, plan_from_dict(data), room, tuple(tried), fasteners)
 
 
+def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, room: Any,
+                   columns: int, grade: str | None, envelope_of: Callable | None) -> str:
+    """The option :func:`comb_for_jaw`'s refusal names when no candidate of ``tried``
+    counts, found as it finds it but without the force it offers to paste: ``--jaw`` where
+    the pocket holds no sheet's comb (:func:`nearest_jaw`), ``--full-scale-force`` where some
+    candidate carries a force, ``--columns`` where fewer columns count
+    (:func:`nearest_columns`), else ``--full-scale-force``.
+
+    Args:
+        base: the tables as searched (:func:`comb_candidates`' first value).
+        tried: the candidates, none counting. targets, room, columns, grade, envelope_of:
+            as :func:`comb_for_jaw` takes them.
+
+    Returns:
+        The option's name.
+    """
+    if nearest_jaw(base, columns, room, targets, grade, {})[0]:
+        return "--jaw"
+    if any(c.rated_force_N for c in tried):
+        return "--full-scale-force"
+    fewer = nearest_columns(base, columns, room, targets, grade, envelope_of)
+    return "--columns" if fewer is not None else "--full-scale-force"
+
+
 def nearest_failure(tried: list[CombCandidate]) -> CombCandidate | None:
     """Of the candidates that fail, the nearest to counting (the most force margin, the
     stiffer pair on a tie: the refusal's rule for each sheet's line); None when none fails."""

@@ -274,18 +274,21 @@ def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
         RefusedPoint: no candidate counts (the nearest's first failure), or the columns are
             out of the comb's range.
     """
-    from tactcad.studies.comb_design import comb_candidates, comb_of_candidates, counting
+    from tactcad.studies.comb_design import (comb_candidates, comb_of_candidates, counting,
+                                             refusal_option)
     from tactcad.studies.inverse_design import InverseDesignError
 
     if atlas.comb_base is None:
         raise RefusedPoint("--jaw", "the comb's smallest build does not fit the jaw's pocket")
     try:
-        _, tried = comb_candidates(targets, atlas.room, columns, atlas.comb_base, grade=grade,
-                                   envelope_of=atlas.envelope_of)
+        base, tried = comb_candidates(targets, atlas.room, columns, atlas.comb_base,
+                                      grade=grade, envelope_of=atlas.envelope_of)
     except DesignError as exc:
         raise refusal_of(exc) from None
     if not counting(tried):
-        refused = InverseDesignError("no comb counts")
+        option = refusal_option(base, tried, targets, atlas.room, columns, grade,
+                                atlas.envelope_of)
+        refused = InverseDesignError("no comb counts", option)
         refused.candidates = tuple(tried)
         raise refusal_of(refused)
     design = comb_of_candidates(tried, targets, atlas.room, columns,
