@@ -76,7 +76,14 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def ranges_of(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
-    """The sampled ranges the options ask for (axis -> (low, high))."""
+    """The sampled ranges the options ask for.
+
+    Args:
+        args: the parsed options (:data:`RANGE_OPTIONS`).
+
+    Returns:
+        axis -> (low, high) of each range option given.
+    """
     out = {}
     for option, (axis, _) in RANGE_OPTIONS.items():
         value = getattr(args, option.lstrip("-").replace("-", "_"))
@@ -138,9 +145,15 @@ def jaw_atlas(jaw: str, materials: list[str] | None, columns: tuple[int, int]):
 
 
 def atlas_key(atlas, points: list[dict]) -> str:
-    """The store's key of an atlas: its jaw (the room), products, materials and every target
-    point (the sample's size, seed and ranges made them), with the tactcad version (and the
-    store's code salt)."""
+    """The store's key of an atlas (:func:`tactcad.store.content_key`).
+
+    Args:
+        atlas: the jaw (its room), its products and materials.
+        points: every target point (the sample's size, seed and ranges made them).
+
+    Returns:
+        The key: those inputs with the tactcad version and the store's code salt.
+    """
     from tactcad.store import content_key
     from tactcad.version import VERSION
 
@@ -148,13 +161,24 @@ def atlas_key(atlas, points: list[dict]) -> str:
 
 
 def stored_table(store, key: str) -> Path | None:
-    """Where the store keeps the atlas of ``key`` (None with ``--no-cache``)."""
+    """Where the store keeps an atlas.
+
+    Args:
+        store: the :class:`tactcad.store.Store` of the options. key: :func:`atlas_key`.
+
+    Returns:
+        The Parquet file's path; None with ``--no-cache``.
+    """
     return None if store.root is None else store.root / "atlas" / key[:2] / f"{key}.parquet"
 
 
 def write_table(path: Path, records: list[dict], inputs: dict) -> None:
-    """``records`` as a Parquet table at ``path`` (pyarrow), the inputs in its metadata,
-    written atomically."""
+    """Records as a Parquet table (pyarrow), written atomically.
+
+    Args:
+        path: the file. records: flat records, one row each.
+        inputs: the run's inputs, kept in the table's metadata (``tactcad.atlas``).
+    """
     import os
     import tempfile
 
@@ -175,7 +199,14 @@ def write_table(path: Path, records: list[dict], inputs: dict) -> None:
 
 
 def read_table(path: Path) -> list[dict] | None:
-    """The records of a Parquet table written by :func:`write_table`; None when unreadable."""
+    """A Parquet table's records.
+
+    Args:
+        path: a table :func:`write_table` wrote.
+
+    Returns:
+        Its rows as dicts; None when it cannot be read.
+    """
     import pyarrow.parquet as pq
 
     try:
@@ -221,8 +252,19 @@ def run(args: argparse.Namespace) -> int:
 
 
 def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[dict], bool]:
-    """Every point judged on Dask (``--scheduler``, else a new local cluster of
-    ``--workers``, default two, single-threaded)."""
+    """Every point judged on Dask.
+
+    Args:
+        atlas: the jaw. points: the targets.
+        args: ``--scheduler`` (else a new local cluster of ``--workers``, default two,
+            single-threaded), ``--batch`` and the progress options.
+
+    Returns:
+        (records, True when every batch ran; False when Ctrl-C stopped it).
+
+    Raises:
+        ClusterError: nothing answers at ``--scheduler``.
+    """
     from tactcad.studies.design_atlas import run_atlas
     from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client
 
@@ -234,8 +276,18 @@ def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[di
 
 def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: bool,
                   complete: bool, out: Path) -> dict:
-    """The summary: per product and material the points, the feasible ones, the binding
-    limits counted and the Pareto front (each point with its design command)."""
+    """The run's summary (``atlas.json``, ``--json``).
+
+    Args:
+        records: every verdict. inputs: the run's inputs (jaw, points, seed, ranges, key).
+        seconds: the run's wall time (s). reused: read from the store. complete: every
+            batch ran. out: the ``--out`` folder.
+
+    Returns:
+        Per product and material the points, the feasible ones, the binding limits counted
+        and the Pareto front (:func:`tactcad.studies.design_atlas.pareto_front`, each point
+        with its design command); the points judged per second; the files.
+    """
     from collections import Counter
 
     from tactcad.studies.design_atlas import FRONT_OBJECTIVES, pareto_front
@@ -266,7 +318,14 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
 
 
 def front_point(r: dict) -> dict:
-    """A front point's targets and figures (finite ones) and its design command."""
+    """A front point for the summary.
+
+    Args:
+        r: its record.
+
+    Returns:
+        Its targets, its finite figures and its design command.
+    """
     keys = ("product", "material", "point", "kr_over_km", "kobj_lo_N_per_mm",
             "kobj_hi_N_per_mm", "full_scale_force_N", "columns", "kobj_resolution_rel",
             "max_force_N", "f1_Hz", "sheet_mm", "layer_um", "command")
@@ -275,8 +334,15 @@ def front_point(r: dict) -> dict:
 
 
 def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -> None:
-    """The atlas drawn (SVG): each feasible point's K_obj span against its rated force,
-    coloured by product and material, the front ringed, the refused points in grey."""
+    """The atlas drawn (matplotlib, SVG).
+
+    Args:
+        records: every verdict. front: the front's points. path: the SVG file.
+        jaw: ``--jaw``, for the title.
+
+    Each feasible point's K_obj span against its rated force, coloured by product and
+    material; the front ringed; the refused points grey crosses.
+    """
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(7.0, 4.8))

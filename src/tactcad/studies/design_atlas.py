@@ -105,6 +105,12 @@ def atlas_targets(n: int, ranges: Mapping[str, tuple[float, float]] | None = Non
 def checked_ranges(ranges: Mapping[str, tuple[float, float]]) -> dict[str, tuple[float, float]]:
     """Every axis's (low, high), the defaults filled in, each held to :data:`AXIS_LIMITS`.
 
+    Args:
+        ranges: axis (:data:`AXES`) -> (low, high) asked for.
+
+    Returns:
+        axis -> (low, high) for every axis of :data:`AXES` (floats).
+
     Raises:
         DesignError: an unknown axis, or a range not low <= high inside its limits.
     """
@@ -131,8 +137,17 @@ def _finite(x: Any) -> bool:
 
 def target_of(index: int, unit_row: Sequence[float], bounds: Mapping[str, tuple[float, float]]
               ) -> dict:
-    """One sample point (``unit_row`` in the unit cube, :data:`AXES` order) scaled to the
-    target space ``bounds`` (see :func:`atlas_targets`' Returns)."""
+    """One sample point scaled to the target space.
+
+    Args:
+        index: the point's number in the sample.
+        unit_row: its coordinates in the unit cube, :data:`AXES` order.
+        bounds: axis -> (low, high) (:func:`checked_ranges`).
+
+    Returns:
+        The target (see :func:`atlas_targets`' Returns), rounded to the six digits the
+        design command line writes.
+    """
     value = {}
     for u, axis in zip(unit_row, AXES):
         lo, hi = bounds[axis]
@@ -186,8 +201,18 @@ def tissue_default():
 
 
 def targets_of(point: Mapping[str, Any]):
-    """The :class:`~tactcad.studies.inverse_design.Targets` ``design`` makes of a point's
-    options (tissue coupling on, its defaults)."""
+    """The targets ``design`` makes of a point's options.
+
+    Args:
+        point: a target of :func:`atlas_targets`.
+
+    Returns:
+        :class:`~tactcad.studies.inverse_design.Targets` with the tissue coupling on at its
+        defaults (:func:`tissue_default`).
+
+    Raises:
+        DesignError: a target out of design's own range (the option named).
+    """
     from tactcad.studies.inverse_design import Targets
 
     return Targets(point["kr_over_km"], (point["kobj_lo_N_per_mm"], point["kobj_hi_N_per_mm"]),
@@ -244,9 +269,17 @@ class RefusedPoint(Exception):
 
 
 def refusal_of(exc: DesignError) -> RefusedPoint:
-    """design's refusal ``exc`` as the atlas records it: a comb's refusal by its nearest
-    candidate's first failure (:func:`~tactcad.studies.comb_design.nearest_failure`, the
-    candidates it carries), any other by its first reason."""
+    """design's refusal as the atlas records it.
+
+    Args:
+        exc: the refusal: a comb's carries its candidates (``candidates``), any other its
+            fields and reasons.
+
+    Returns:
+        The option it names and its first reason: for a comb, the first failure of the
+        candidate nearest to counting (:func:`~tactcad.studies.comb_design.nearest_failure`,
+        the refusal's own rule for each sheet's line).
+    """
     from tactcad.studies.comb_design import nearest_failure
 
     tried = getattr(exc, "candidates", None)
@@ -260,8 +293,14 @@ def refusal_of(exc: DesignError) -> RefusedPoint:
 
 
 def limit_kind(detail: str) -> str:
-    """The kind of binding limit (:data:`LIMIT_WORDS`) a refusal's first reason names;
-    "other" when none of the words is in it."""
+    """The kind of binding limit a refusal's first reason names.
+
+    Args:
+        detail: the reason, in design's words.
+
+    Returns:
+        The first kind of :data:`LIMIT_WORDS` whose words it holds; "other" when none.
+    """
     text = detail.lower()
     return next((kind for kind, words in LIMIT_WORDS if any(w in text for w in words)),
                 "other")
@@ -298,9 +337,17 @@ def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
 
 
 def plan_figures(plan, envelope_of: Callable | None) -> dict:
-    """A metal plan's figures at the closed form: K_obj resolution (relative) and largest
-    full-scale force (N) as its verification matrix predicts them, and its lowest element's
-    first natural frequency (Hz, Rayleigh's quotient)."""
+    """A metal plan's figures at the closed form.
+
+    Args:
+        plan: the comb's plan. envelope_of: plan -> its footprint envelope (mm).
+
+    Returns:
+        ``kobj_resolution_rel`` and ``max_force_N`` (N) as its verification matrix predicts
+        them (what ``verify`` reads at the closed form), and ``f1_Hz``, the lowest first
+        natural frequency of its elements (Hz; Rayleigh's quotient,
+        :func:`tactcad.mechanics.modal_closed_form.estimate_modal_closed_form`).
+    """
     from tactcad.mechanics.modal_closed_form import estimate_modal_closed_form
     from tactcad.studies.verification import verification_matrix
 
@@ -341,8 +388,15 @@ def die_figures(atlas: JawAtlas, targets, columns: int) -> dict:
 
 
 def design_command(jaw: str, product: str, material: str, point: Mapping[str, Any]) -> str:
-    """The ``tactcad design`` line that answers ``point`` for ``product`` and ``material``
-    (for a feasible one: writes it)."""
+    """The ``tactcad design`` line that answers a point.
+
+    Args:
+        jaw: ``--jaw``. product: :data:`COMB` or :data:`DIE`. material: the comb's grade
+            (the die takes none). point: a target of :func:`atlas_targets`.
+
+    Returns:
+        The command line; for a feasible point it writes the design.
+    """
     import shlex
 
     words = ["tactcad design", f"--jaw {shlex.quote(jaw)}", f"--construction {product}",
@@ -356,8 +410,14 @@ def design_command(jaw: str, product: str, material: str, point: Mapping[str, An
 
 
 def evaluate_batch(atlas: JawAtlas, points: Sequence[Mapping[str, Any]]) -> list[dict]:
-    """Every point of ``points`` judged for every product and material of ``atlas`` (one
-    Dask task)."""
+    """One Dask task: every point judged for every product and material.
+
+    Args:
+        atlas: the jaw (:class:`JawAtlas`). points: targets of :func:`atlas_targets`.
+
+    Returns:
+        The records of :func:`evaluate_point`, point by point, products in their order.
+    """
     from tactcad.mechanics.correction import range_warnings_unsaid
 
     with range_warnings_unsaid(), warnings.catch_warnings():
@@ -367,7 +427,13 @@ def evaluate_batch(atlas: JawAtlas, points: Sequence[Mapping[str, Any]]) -> list
 
 
 def batches(points: Sequence[dict], size: int) -> list[list[dict]]:
-    """``points`` cut into batches of ``size`` (the last one shorter).
+    """``points`` cut into batches, each one Dask task.
+
+    Args:
+        points: the targets. size: points per batch (the last one shorter).
+
+    Returns:
+        The batches, in the points' order.
 
     Raises:
         DesignError: ``--batch`` below 1.
@@ -408,7 +474,14 @@ def run_atlas(atlas: JawAtlas, points: Sequence[dict], client, batch_size: int =
 
 
 def ordered(records: list[dict], atlas: JawAtlas) -> list[dict]:
-    """``records`` in point order, then in ``atlas.products``' order."""
+    """The records sorted.
+
+    Args:
+        records: records of :func:`evaluate_point`. atlas: the jaw, its products' order.
+
+    Returns:
+        ``records`` in point order, then in ``atlas.products``' order.
+    """
     rank = {pair: i for i, pair in enumerate(atlas.products)}
     return sorted(records, key=lambda r: (r["point"], rank[(r["product"], r["material"])]))
 
@@ -452,8 +525,15 @@ def pareto_front(records: Sequence[Mapping[str, Any]],
 
 
 def objective_value(record: Mapping[str, Any], key: str) -> float:
-    """A record's value of objective ``key`` (``kobj_span``: hi / lo of its K_obj range where
-    it does not state one); NaN when missing."""
+    """A record's value of one objective.
+
+    Args:
+        record: a flat record. key: the objective's field (``kobj_span``: hi / lo of the
+            K_obj range where the record states none).
+
+    Returns:
+        The value; NaN when missing or not a finite number.
+    """
     if key == "kobj_span" and key not in record:
         lo, hi = record.get("kobj_lo_N_per_mm"), record.get("kobj_hi_N_per_mm")
         return hi / lo if _finite(lo) and _finite(hi) and lo > 0 else math.nan
@@ -462,6 +542,12 @@ def objective_value(record: Mapping[str, Any], key: str) -> float:
 
 
 def dominates(a: Sequence[float], b: Sequence[float]) -> bool:
-    """True when ``a`` is at least ``b`` in every objective and above it in one (each
-    objective to be maximised)."""
+    """Pareto dominance (Deb 2001, ch. 2).
+
+    Args:
+        a, b: objective values, each to be maximised.
+
+    Returns:
+        True when ``a`` is at least ``b`` in every objective and above it in one.
+    """
     return all(x >= y for x, y in zip(a, b)) and any(x > y for x, y in zip(a, b))
