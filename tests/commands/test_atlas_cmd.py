@@ -61,9 +61,10 @@ def test_an_atlas_is_written_and_its_second_run_reuses_the_kept_table(tmp_path):
     (["--jaw", "7"], "--jaw"),
     (["--jaw", "5", "--force-range", "2", "1"], "--force-range"),
     (["--jaw", "5", "--columns-range", "1", "3"], "--columns-range"),
+    (["--jaw", "5", "--out", "/etc/atlas"], "--out"),
 ])
 def test_bad_atlas_options_are_refused_without_a_traceback(tmp_path, argv, field):
-    r = run_cli("atlas", *argv, "--out", tmp_path / "out", "--json")
+    r = run_cli("atlas", "--out", tmp_path / "out", *argv, "--json")
     assert r.returncode != 0
     error = json.loads(r.stdout)["error"]
     assert error["field"] == field and "Traceback" not in r.stdout + r.stderr

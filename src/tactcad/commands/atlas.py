@@ -224,9 +224,7 @@ def run(args: argparse.Namespace) -> int:
     points = atlas_targets(args.points, ranges, args.seed)
     atlas = jaw_atlas(args.jaw, args.material,
                       (int(bounds["columns"][0]), int(bounds["columns"][1])))
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise DesignError("--out", args.out, "a folder (new or existing)", "it is a file")
+    out = writable_folder(args.out)
     key = atlas_key(atlas, points)
     kept = stored_table(store_from_args(args), key)
     inputs = {"jaw": args.jaw, "points": args.points, "seed": args.seed, "ranges": bounds,
@@ -249,6 +247,36 @@ def run(args: argparse.Namespace) -> int:
     else:
         print_summary(summary)
     return 0 if complete else 130
+
+
+def writable_folder(out: str) -> Path:
+    """``--out`` made a folder, before anything is judged.
+
+    Args:
+        out: the folder asked for (new or existing).
+
+    Returns:
+        Its path.
+
+    Raises:
+        DesignError: naming ``--out``: a system folder, a file, or one that cannot be made
+            or written.
+    """
+    import os
+
+    from tactcad.commands.design import _check_not_system
+
+    folder = Path(os.path.abspath(os.path.expanduser(out)))
+    _check_not_system(out, folder)
+    if folder.exists() and not folder.is_dir():
+        raise DesignError("--out", out, "a folder (new or existing)", "it is a file")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise DesignError("--out", out, "a folder that can be made", str(exc)) from None
+    if not os.access(folder, os.W_OK):
+        raise DesignError("--out", out, "a writable folder")
+    return folder
 
 
 def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[dict], bool]:
