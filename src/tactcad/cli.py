@@ -52,6 +52,7 @@ COMMAND_MODULES = (
     "tactcad.commands.materials",
     "tactcad.commands.sweep",
     "tactcad.commands.design",
+    "tactcad.commands.atlas",
     "tactcad.commands.die",
     "tactcad.commands.diff",
     "tactcad.commands.watch",

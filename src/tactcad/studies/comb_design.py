@@ -341,18 +341,9 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
             where the pocket is too small for every sheet's comb, the pocket the smallest
             needs and a jaw of ``other_rooms`` that holds it (``--jaw``).
     """
-    if not 1 <= columns <= 12:
-        raise DesignError("--columns", columns, "1 ... 12 for a comb in a jaw")
-    from tactcad.mechanics.correction import range_warnings_unsaid
-
-    base = copy.deepcopy(dict(base))
-    base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
-    if process is not None:
-        base["element"]["process"] = process
-    with range_warnings_unsaid():  # the candidates are not the design asked about
-        tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
-                           progress) for sheet in sheets_of(base) for scale in KM_SCALES]
-    good = [c for c in tried if c.plan is not None and not c.failures]
+    base, tried = comb_candidates(targets, room, columns, base, grade=grade,
+                                  envelope_of=envelope_of, progress=progress, process=process)
+    good = counting(tried)
     if not good:
         rated = [c.rated_force_N for c in tried if c.rated_force_N]
         fewer = None if rated else \
@@ -364,13 +355,94 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
         frontier = None if not rated or jaw[0] else largest_comb_force(
             max(rated) * 0.99, lambda force: comb_counts(base, force, columns, room, targets,
                                                          grade, envelope_of, order))
-        raise refusal(tried, targets, room, columns, jaw, fewer, frontier)
+        refused = refusal(tried, targets, room, columns, jaw, fewer, frontier)
+        refused.candidates = tuple(tried)  # what binds, read by the design atlas
+        raise refused
+    return comb_of_candidates(tried, targets, room, columns, name=name,
+                              envelope_of=envelope_of, max_grasp_force_N=max_grasp_force_N)
+
+
+def comb_candidates(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
+                    grade: str | None = None, envelope_of: Callable | None = None,
+                    progress: Callable[[str], None] | None = None,
+                    process: str | None = None) -> tuple[dict, list[CombCandidate]]:
+    """Every sheet's comb at every K_m scale, judged: the search's verdict before any
+    refusal's alternatives are sought (:func:`comb_for_jaw`'s first step; its arguments).
+
+    Returns:
+        (the base tables as searched, the candidates in the order tried).
+
+    Raises:
+        DesignError: ``--columns`` out of 1 ... 12.
+    """
+    if not 1 <= columns <= 12:
+        raise DesignError("--columns", columns, "1 ... 12 for a comb in a jaw")
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    base = copy.deepcopy(dict(base))
+    base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
+    if process is not None:
+        base["element"]["process"] = process
+    with range_warnings_unsaid():  # the candidates are not the design asked about
+        tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
+                           progress) for sheet in sheets_of(base) for scale in KM_SCALES]
+    return base, tried
+
+
+def counting(tried: list[CombCandidate]) -> list[CombCandidate]:
+    """The candidates that count: a plan and no failure."""
+    return [c for c in tried if c.plan is not None and not c.failures]
+
+
+def comb_of_candidates(tried: list[CombCandidate], targets: Targets, room: Any, columns: int,
+                       *, name: str = "grasper_insert", envelope_of: Callable | None = None,
+                       max_grasp_force_N: float | None = None) -> CombDesign:
+    """The comb :func:`comb_for_jaw` writes from candidates some of which count: the one
+    :func:`chosen` (or the first :func:`surviving` the grasp), with its fasteners and reasons.
+
+    Raises:
+        InverseDesignError: with ``max_grasp_force_N``, no candidate survives the grasp.
+    """
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    good = counting(tried)
     with range_warnings_unsaid():
         first = chosen(good) if max_grasp_force_N is None else \
             surviving(good, max_grasp_force_N, room, envelope_of, targets, columns)
         best, fasteners = with_fasteners(first, room, envelope_of)
     data = named(best.data, name, targets, room, best, columns, fasteners)
     return CombDesign(data, plan_from_dict(data), room, tuple(tried), fasteners)
+
+
+def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, room: Any,
+                   columns: int, grade: str | None, envelope_of: Callable | None) -> str:
+    """The option :func:`comb_for_jaw`'s refusal names when no candidate of ``tried``
+    counts, found as it finds it but without the force it offers to paste: ``--jaw`` where
+    the pocket holds no sheet's comb (:func:`nearest_jaw`), ``--full-scale-force`` where some
+    candidate carries a force, ``--columns`` where fewer columns count
+    (:func:`nearest_columns`), else ``--full-scale-force``.
+
+    Args:
+        base: the tables as searched (:func:`comb_candidates`' first value).
+        tried: the candidates, none counting. targets, room, columns, grade, envelope_of:
+            as :func:`comb_for_jaw` takes them.
+
+    Returns:
+        The option's name.
+    """
+    if nearest_jaw(base, columns, room, targets, grade, {})[0]:
+        return "--jaw"
+    if any(c.rated_force_N for c in tried):
+        return "--full-scale-force"
+    fewer = nearest_columns(base, columns, room, targets, grade, envelope_of)
+    return "--columns" if fewer is not None else "--full-scale-force"
+
+
+def nearest_failure(tried: list[CombCandidate]) -> CombCandidate | None:
+    """Of the candidates that fail, the nearest to counting (the most force margin, the
+    stiffer pair on a tie: the refusal's rule for each sheet's line); None when none fails."""
+    failing = [c for c in tried if c.failures]
+    return max(failing, key=lambda c: (c.force_margin_rel, c.km_scale), default=None)
 
 
 def comb_counts(base: dict, force_N: float, columns: int, room: Any, targets: Targets,
@@ -747,9 +819,8 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
     jaw_line, jaw_alternatives = jaw
     lines = []
     for sheet in sorted({c.sheet_mm for c in tried}):  # each sheet's nearest: most margin
-        own = [c for c in tried if c.sheet_mm == sheet and c.failures]
-        if own:
-            c = max(own, key=lambda c: (c.force_margin_rel, c.km_scale))
+        c = nearest_failure([c for c in tried if c.sheet_mm == sheet])
+        if c is not None:
             lines.append(f"{sheet:g} mm sheet (nearest at K_m {c.km_scale:g} x eq. 2's centre): "
                          f"{c.failures[0]}")
     rated = [c.rated_force_N for c in tried if c.rated_force_N]

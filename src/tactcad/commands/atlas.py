@@ -1,0 +1,416 @@
+"""``tactcad atlas``: what fits a jaw: every product and material that seats in it judged
+over a Sobol sample of targets, on Dask; a Parquet table, the Pareto front and its figure."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+from tactcad.commands import add_cache_args, add_output_args, progress_from_args, store_from_args
+from tactcad.commands.design import jaw_classes, jaw_of
+from tactcad.commands.options import count, material_grade_name, number
+from tactcad.commands.tolerance import add_cluster_args
+from tactcad.errors import DesignError
+
+#: Points judged per Dask task (a comb's point costs seconds: small batches keep both
+#: workers busy to the end).
+DEFAULT_BATCH = 2
+#: The table, the figure and the summary written in ``--out``.
+TABLE_NAME, FIGURE_NAME, SUMMARY_NAME = "atlas.parquet", "atlas_front.svg", "atlas.json"
+#: Range options: option -> (the axis of :data:`tactcad.studies.design_atlas.AXES`, unit, type).
+RANGE_OPTIONS = {"--kr-over-km-range": ("kr_over_km", ""),
+                 "--kobj-centre": ("kobj_centre_N_per_mm", "N/mm"),
+                 "--kobj-span": ("kobj_span", ""),
+                 "--force-range": ("full_scale_force_N", "N"),
+                 "--columns-range": ("columns", "")}
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    from tactcad.studies.design_atlas import DEFAULT_RANGES
+
+    p = sub.add_parser(
+        "atlas", help="what fits a jaw: feasible targets and the Pareto front of every product "
+                      "and material, on Dask",
+        description="Judges a scrambled Sobol sample of targets (K_r/K_m, the K_obj range's "
+                    "centre and span, the rated full-scale force, the columns) for every "
+                    "product that seats in the jaw (the monolithic comb in each material of "
+                    "the library, the silicon die) as `tactcad design --jaw J --construction "
+                    "C` judges it: feasible or not, the limit that binds and the design's "
+                    "figures (K_obj resolution, largest force, f1, sheet or device layer). "
+                    "Writes atlas.parquet (kept in the store by its inputs, reused by a second "
+                    "run), atlas_front.svg and atlas.json (the Pareto front of force, K_obj "
+                    "span and K_obj resolution per product and material, each point with the "
+                    "design command that writes it). Runs on a new local Dask cluster, or an "
+                    "existing one with --scheduler. Units: N, N/mm, mm, Hz.")
+    p.add_argument("--jaw", required=True, metavar="CLASS|FILE",
+                   help="the grasper's jaw: a trocar class's default jaw (mm: "
+                        + ", ".join(jaw_classes()) + ") or a TOML file with a [grasper_jaw] "
+                        "table, as `tactcad design --jaw` takes it")
+    p.add_argument("--points", type=count(1, 100_000, "target points"), default=16,
+                   metavar="N", help="target points of the Sobol sample (default %(default)s; "
+                                     "a comb's point costs seconds per material)")
+    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0,
+                   help="seed of the sample's scramble (default %(default)s)")
+    p.add_argument("--material", type=material_grade_name, action="append", default=None,
+                   metavar="GRADE", help="a comb material judged (repeat for more; default: "
+                                         "every grade of the library)")
+    for option, (axis, unit) in RANGE_OPTIONS.items():
+        lo, hi = DEFAULT_RANGES[axis]
+        p.add_argument(option, type=count(1, 100) if axis == "columns" else
+                       number(0, 1e4, unit, lo_open=True), nargs=2, metavar=("LO", "HI"),
+                       default=None, help=f"range of {axis} sampled (default {lo:g} {hi:g}"
+                       + (f" {unit}" if unit else "") + ")")
+    p.add_argument("--batch", type=count(1, 10_000, "points per task"), default=DEFAULT_BATCH,
+                   metavar="N", help="target points per Dask task (default %(default)s)")
+    p.add_argument("--out", metavar="DIR", default="exports/atlas",
+                   help=f"folder for {TABLE_NAME}, {FIGURE_NAME} and {SUMMARY_NAME} "
+                        "(default %(default)s)")
+    add_cache_args(p)
+    add_cluster_args(p, local_default=True)
+    add_output_args(p, "print the summary as JSON")
+    p.set_defaults(func=run)
+
+
+def ranges_of(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
+    """The sampled ranges the options ask for.
+
+    Args:
+        args: the parsed options (:data:`RANGE_OPTIONS`).
+
+    Returns:
+        axis -> (low, high) of each range option given.
+    """
+    out = {}
+    for option, (axis, _) in RANGE_OPTIONS.items():
+        value = getattr(args, option.lstrip("-").replace("-", "_"))
+        if value is not None:
+            out[axis] = (value[0], value[1])
+    return out
+
+
+#: The words of a comb's misfit in a size that does not depend on its columns.
+COLUMN_FREE_MISFITS = ("height", "width")
+
+
+def comb_misfits(room, columns: range, base: dict, targets) -> list[dict]:
+    """The comb's misfits in the jaw in its height or its width across the rows (sizes its
+    columns do not change), at the first column count of ``columns`` whose screen names one
+    (:func:`tactcad.studies.comb_design.comb_misfit`; at few columns no sheet's comb has a
+    plan and the screen names nothing); empty when none does."""
+    from tactcad.studies.comb_design import comb_misfit
+
+    for n in columns:
+        missed = [m for m in comb_misfit(room, n, base, targets)
+                  if m.get("words", "").startswith(COLUMN_FREE_MISFITS)]
+        if missed:
+            return missed
+    return []
+
+
+def jaw_atlas(jaw: str, materials: list[str] | None, columns: tuple[int, int]):
+    """The :class:`~tactcad.studies.design_atlas.JawAtlas` of ``--jaw``: its room and the
+    products that seat in it at some count of ``columns`` (low, high): the comb in each of
+    ``materials`` (default every library grade) unless it stands too tall or too wide for
+    the pocket (:func:`comb_misfits`), the die unless its smallest build misfits.
+
+    Raises:
+        DesignError: ``--jaw`` unreadable, or no product fits it (each one's misfit named).
+    """
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.design.array_plan import EXAMPLES, read_toml
+    from tactcad.design.construction_registry import construction
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.products.silicon_die.design.die_mount import die_misfit
+    from tactcad.studies.design_atlas import COMB, DIE, SILICON, JawAtlas, targets_of
+    from tactcad.vocabulary.material_library import material_grades
+
+    room = jaw_room(*jaw_of(jaw))
+    comb = construction(COMB)
+    base = read_toml(EXAMPLES / comb.jaw_template, "design file")
+    nominal = targets_of({"kr_over_km": 10.0, "kobj_lo_N_per_mm": 0.5, "kobj_hi_N_per_mm": 5.0,
+                          "full_scale_force_N": 0.1})  # a comb's size does not depend on them
+    comb_miss = comb_misfits(room, range(columns[0], columns[1] + 1), base, nominal)
+    die_miss = die_misfit(room, room.table or {}, columns[0])
+    products = [] if comb_miss else [(COMB, g) for g in (materials or list(material_grades()))]
+    products += [] if die_miss else [(DIE, SILICON)]
+    if not products:
+        words = "; ".join(m["words"] for m in comb_miss + die_miss if m.get("words"))
+        raise DesignError("--jaw", jaw, "a jaw that holds a monolithic comb or a silicon die",
+                          f"neither fits at {columns[0]} ... {columns[1]} columns: {words}")
+    return JawAtlas(jaw, room, None if comb_miss else base, array_envelope_mm, tuple(products))
+
+
+def atlas_key(atlas, points: list[dict]) -> str:
+    """The store's key of an atlas (:func:`tactcad.store.content_key`).
+
+    Args:
+        atlas: the jaw (its room), its products and materials.
+        points: every target point (the sample's size, seed and ranges made them).
+
+    Returns:
+        The key: those inputs with the tactcad version and the store's code salt.
+    """
+    from tactcad.store import content_key
+    from tactcad.version import VERSION
+
+    return content_key("atlas", VERSION, atlas.room, list(atlas.products), points)
+
+
+def stored_table(store, key: str) -> Path | None:
+    """Where the store keeps an atlas.
+
+    Args:
+        store: the :class:`tactcad.store.Store` of the options. key: :func:`atlas_key`.
+
+    Returns:
+        The Parquet file's path; None with ``--no-cache``.
+    """
+    return None if store.root is None else store.root / "atlas" / key[:2] / f"{key}.parquet"
+
+
+def write_table(path: Path, records: list[dict], inputs: dict) -> None:
+    """Records as a Parquet table (pyarrow), written atomically.
+
+    Args:
+        path: the file. records: flat records, one row each.
+        inputs: the run's inputs, kept in the table's metadata (``tactcad.atlas``).
+    """
+    import os
+    import tempfile
+
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    table = pa.Table.from_pylist(records).replace_schema_metadata(
+        {"tactcad.atlas": json.dumps(inputs, sort_keys=True)})
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".parquet", dir=path.parent)
+    os.close(fd)
+    try:
+        pq.write_table(table, tmp)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+def read_table(path: Path) -> list[dict] | None:
+    """A Parquet table's records.
+
+    Args:
+        path: a table :func:`write_table` wrote.
+
+    Returns:
+        Its rows as dicts; None when it cannot be read.
+    """
+    import pyarrow.parquet as pq
+
+    try:
+        return pq.read_table(path).to_pylist()
+    except (OSError, ValueError):
+        return None
+
+
+def run(args: argparse.Namespace) -> int:
+    """``atlas``: the table (from the store when kept), the front, its figure and summary."""
+    from tactcad.studies.design_atlas import atlas_targets, checked_ranges
+
+    ranges = ranges_of(args)
+    bounds = checked_ranges(ranges)
+    points = atlas_targets(args.points, ranges, args.seed)
+    atlas = jaw_atlas(args.jaw, args.material,
+                      (int(bounds["columns"][0]), int(bounds["columns"][1])))
+    out = writable_folder(args.out)
+    key = atlas_key(atlas, points)
+    kept = stored_table(store_from_args(args), key)
+    inputs = {"jaw": args.jaw, "points": args.points, "seed": args.seed, "ranges": bounds,
+              "products": [list(p) for p in atlas.products], "key": key}
+    start = time.perf_counter()
+    records = read_table(kept) if kept is not None and kept.is_file() else None
+    reused, complete = records is not None, True
+    if records is None:
+        records, complete = judged(atlas, points, args)
+        if complete and kept is not None:
+            write_table(kept, records, inputs)
+    seconds = time.perf_counter() - start
+    write_table(out / TABLE_NAME, records, {**inputs, "complete": complete})
+    summary = atlas_summary(records, inputs, seconds, reused, complete, out)
+    front_figure(records, summary["front"], out / FIGURE_NAME, args.jaw)
+    (out / SUMMARY_NAME).write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n",
+                                    encoding="utf-8")
+    if args.json:
+        print(json.dumps(summary, indent=2, allow_nan=False))
+    else:
+        print_summary(summary)
+    return 0 if complete else 130
+
+
+def writable_folder(out: str) -> Path:
+    """``--out`` made a folder, before anything is judged.
+
+    Args:
+        out: the folder asked for (new or existing).
+
+    Returns:
+        Its path.
+
+    Raises:
+        DesignError: naming ``--out``: a system folder, a file, or one that cannot be made
+            or written.
+    """
+    import os
+
+    from tactcad.commands.design import _check_not_system
+
+    folder = Path(os.path.abspath(os.path.expanduser(out)))
+    _check_not_system(out, folder)
+    if folder.exists() and not folder.is_dir():
+        raise DesignError("--out", out, "a folder (new or existing)", "it is a file")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise DesignError("--out", out, "a folder that can be made", str(exc)) from None
+    if not os.access(folder, os.W_OK):
+        raise DesignError("--out", out, "a writable folder")
+    return folder
+
+
+def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[dict], bool]:
+    """Every point judged on Dask.
+
+    Args:
+        atlas: the jaw. points: the targets.
+        args: ``--scheduler`` (else a new local cluster of ``--workers``, default two,
+            single-threaded), ``--batch`` and the progress options.
+
+    Returns:
+        (records, True when every batch ran; False when Ctrl-C stopped it).
+
+    Raises:
+        ClusterError: nothing answers at ``--scheduler``.
+    """
+    from tactcad.studies.design_atlas import run_atlas
+    from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client
+
+    say = progress_from_args(args)
+    with dask_client(args.scheduler, args.workers or LOCAL_WORKERS) as client:
+        return run_atlas(atlas, points, client, args.batch,
+                         progress=lambda done, total: say(f"atlas: {done}/{total} batches"))
+
+
+def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: bool,
+                  complete: bool, out: Path) -> dict:
+    """The run's summary (``atlas.json``, ``--json``).
+
+    Args:
+        records: every verdict. inputs: the run's inputs (jaw, points, seed, ranges, key).
+        seconds: the run's wall time (s). reused: read from the store. complete: every
+            batch ran. out: the ``--out`` folder.
+
+    Returns:
+        Per product and material the points, the feasible ones, the binding limits counted
+        and the Pareto front (:func:`tactcad.studies.design_atlas.pareto_front`, each point
+        with its design command); the points judged per second; the files.
+    """
+    from collections import Counter
+
+    from tactcad.studies.design_atlas import FRONT_OBJECTIVES, pareto_front
+
+    groups: dict[tuple[str, str], list[dict]] = {}
+    for r in records:
+        groups.setdefault((r["product"], r["material"]), []).append(r)
+    per = []
+    front_rows = []
+    for (product, material), rows in groups.items():
+        feasible = [r for r in rows if r["feasible"]]
+        front = pareto_front(feasible, FRONT_OBJECTIVES)
+        front_rows += front
+        per.append({"product": product, "material": material, "points": len(rows),
+                    "feasible": len(feasible),
+                    "binding_limits": dict(Counter(r["binding_limit"] for r in rows
+                                                   if not r["feasible"])),
+                    "front": [front_point(r) for r in front]})
+    return {"jaw": inputs["jaw"], "points": inputs["points"], "seed": inputs["seed"],
+            "ranges": inputs["ranges"], "records": len(records), "complete": complete,
+            "reused": reused, "seconds": round(seconds, 3),
+            "points_per_s": (None if reused or seconds <= 0 else
+                             round(len({r["point"] for r in records}) / seconds, 4)),
+            "key": inputs["key"], "products": per,
+            "front": [front_point(r) for r in front_rows],
+            "files": {"table": str(out / TABLE_NAME), "figure": str(out / FIGURE_NAME),
+                      "summary": str(out / SUMMARY_NAME)}}
+
+
+def front_point(r: dict) -> dict:
+    """A front point for the summary.
+
+    Args:
+        r: its record.
+
+    Returns:
+        Its targets, its finite figures and its design command.
+    """
+    keys = ("product", "material", "point", "kr_over_km", "kobj_lo_N_per_mm",
+            "kobj_hi_N_per_mm", "full_scale_force_N", "columns", "kobj_resolution_rel",
+            "max_force_N", "f1_Hz", "sheet_mm", "layer_um", "command")
+    return {k: r[k] for k in keys
+            if not (isinstance(r[k], float) and not math.isfinite(r[k]))}
+
+
+def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -> None:
+    """The atlas drawn (matplotlib, SVG).
+
+    Args:
+        records: every verdict. front: the front's points. path: the SVG file.
+        jaw: ``--jaw``, for the title.
+
+    Each feasible point's K_obj span against its rated force, coloured by product and
+    material; the front ringed; the refused points grey crosses.
+    """
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(7.0, 4.8))
+    ax = fig.add_subplot()
+    refused = [r for r in records if not r["feasible"]]
+    ax.scatter([r["full_scale_force_N"] for r in refused], [span(r) for r in refused],
+               marker="x", s=12, color="0.75", label="refused")
+    for label in sorted({(r["product"], r["material"]) for r in records if r["feasible"]}):
+        rows = [r for r in records if r["feasible"] and (r["product"], r["material"]) == label]
+        ax.scatter([r["full_scale_force_N"] for r in rows], [span(r) for r in rows], s=18,
+                   label=f"{label[0]} {label[1]}")
+    ax.scatter([r["full_scale_force_N"] for r in front], [span(r) for r in front], s=70,
+               facecolors="none", edgecolors="k", label="Pareto front")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("rated full-scale force (N)")
+    ax.set_ylabel("K_obj span, high / low")
+    ax.set_title(f"design atlas of the jaw {Path(jaw).name}")
+    ax.legend(fontsize=7, loc="best")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, format="svg")
+
+
+def span(r: dict) -> float:
+    """A record's K_obj span (high / low)."""
+    return r["kobj_hi_N_per_mm"] / r["kobj_lo_N_per_mm"]
+
+
+def print_summary(s: dict) -> None:
+    rate = "" if s["points_per_s"] is None else f", {s['points_per_s']:.3g} points/s"
+    print(f"atlas of the jaw {s['jaw']}: {s['points']} target points, {s['records']} verdicts "
+          + ("(reused from the store)" if s["reused"] else f"in {s['seconds']:.1f} s{rate}")
+          + ("" if s["complete"] else " (stopped: the points that finished are kept)"))
+    for g in s["products"]:
+        limits = ", ".join(f"{k} {v}" for k, v in sorted(g["binding_limits"].items()))
+        print(f"  {g['product']} {g['material']}: {g['feasible']}/{g['points']} feasible"
+              + (f"; refused by {limits}" if limits else ""))
+        for f in g["front"]:
+            print(f"    front: {f['full_scale_force_N']:g} N, K_obj {f['kobj_lo_N_per_mm']:g}-"
+                  f"{f['kobj_hi_N_per_mm']:g} N/mm, resolution "
+                  f"{100 * f['kobj_resolution_rel']:.2g} %: {f['command']}")
+    for name, path in s["files"].items():
+        print(f"  wrote {name}: {path}")

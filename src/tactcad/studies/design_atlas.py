@@ -1,0 +1,553 @@
+"""The design atlas of a grasper's jaw: over the products that seat in it and the materials
+each allows, a scrambled Sobol sample of targets (K_r/K_m, the K_obj range's centre and
+span, the rated full-scale force, the columns), each point judged as ``tactcad design
+--jaw J --construction C`` judges it.
+
+Every point is design's own verdict, reached by design's own functions:
+
+* the monolithic comb: :func:`tactcad.studies.comb_design.comb_candidates` (every sheet
+  at every K_m scale, judged at the closed form); where one counts, the comb design writes
+  (:func:`~tactcad.studies.comb_design.comb_of_candidates`); where none does, the limit of
+  the candidate nearest to counting (:func:`~tactcad.studies.comb_design.nearest_failure`,
+  the refusal's own rule). The refusal's pasteable force, a bisection over the candidates
+  that costs ten times the verdict, is left out: it does not change the verdict;
+* the silicon die: :func:`tactcad.products.silicon_die.studies.die_doping.doped_die_plan`
+  and its mount in the jaw, refused or planned.
+
+Points are grouped in batches, each one Dask task (:func:`run_atlas`). Units: mm, N, N/mm,
+Hz, um (a die's layer).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
+
+from tactcad.errors import DesignError
+
+#: The comb construction and the die, as ``design --construction`` names them.
+COMB = "monolithic-comb"
+DIE = "mems-die"
+#: The die's material: single-crystal silicon (``design`` takes no ``--material`` for it).
+SILICON = "silicon"
+
+#: The target space's axes, in the sample's column order.
+AXES = ("kr_over_km", "kobj_centre_N_per_mm", "kobj_span", "full_scale_force_N", "columns")
+#: Each axis's option (named in errors), whether it is sampled on a log scale, and the
+#: widest range design's options allow (``design``'s own option bounds; columns: the die's
+#: least 2, the comb's most 12).
+AXIS_LIMITS = {
+    "kr_over_km": ("--kr-over-km-range", True, (1.0, 1000.0)),
+    "kobj_centre_N_per_mm": ("--kobj-centre", True, (1e-4, 1e4)),
+    "kobj_span": ("--kobj-span", True, (1.0, 1e4)),
+    "full_scale_force_N": ("--force-range", True, (1e-4, 1000.0)),
+    "columns": ("--columns-range", False, (2, 12)),
+}
+#: The default target space: ratios about the paper's 10, soft to firm tissue (N/mm), ranges
+#: of 2 ... 50 x, forces from a die's tens of mN to a comb's newtons, 2 ... 8 columns.
+DEFAULT_RANGES = {"kr_over_km": (3.0, 30.0), "kobj_centre_N_per_mm": (0.1, 10.0),
+                  "kobj_span": (2.0, 50.0), "full_scale_force_N": (0.005, 5.0),
+                  "columns": (2, 8)}
+
+#: The binding limits a refusal is sorted into, each with the words that mark it (searched in
+#: this order in the refusal's first reason, lower case).
+LIMIT_WORDS = (
+    ("height", ("height", "too tall", "thickness_mm + tip_proud")),
+    ("footprint", ("footprint", "pocket", "across its", "length ")),
+    ("resolution", ("resolution", "resolve", "kobj_range", "noise")),
+    ("strength", ("failure probability",)),  # a die's, at its rating or on its stops
+    ("stop", ("stop", "cavity", "post standing")),
+    ("fatigue", ("fatigue",)),
+    ("strength", ("yield", "failure probability", "strength")),
+    ("force", ("full_scale_force_n", "--full-scale-force")),
+    ("sheet", ("sheet", "web", "notch", "slot", "element.", "comb.", "arms.", "pitch")),
+    ("layer", ("device layer", "beam width", "--kr-over-km", "--kobj-range")),
+)
+
+
+def atlas_targets(n: int, ranges: Mapping[str, tuple[float, float]] | None = None,
+                  seed: int = 0) -> list[dict]:
+    """A scrambled Sobol sample of ``n`` targets over the target space (scipy.stats.qmc;
+    log-uniform on every axis but the columns, which are uniform integers).
+
+    Args:
+        n: points (1 ... 100 000).
+        ranges: axis (:data:`AXES`) -> (low, high); axes left out take
+            :data:`DEFAULT_RANGES`.
+        seed: the scramble's seed (an integer >= 0): the same seed, the same sample.
+
+    Returns:
+        ``n`` dicts: ``point`` (its index), ``kr_over_km``, ``kobj_lo_N_per_mm``,
+        ``kobj_hi_N_per_mm`` (the range, centred geometrically on ``kobj_centre_N_per_mm``
+        and ``kobj_span`` = high / low wide), ``full_scale_force_N`` (N) and ``columns``.
+
+    Raises:
+        DesignError: ``--points``, ``--seed`` or a range out of its bounds (the option, the
+            value and the allowed range named).
+
+    Source: Owen's scrambled Sobol' sequence (scipy.stats.qmc.Sobol, Owen 1998).
+    """
+    from scipy.stats import qmc
+
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 100_000:
+        raise DesignError("--points", n, "an integer 1 ... 100000")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise DesignError("--seed", seed, "an integer >= 0")
+    bounds = checked_ranges(ranges or {})
+    with warnings.catch_warnings():  # a count not a power of two loses balance, not validity
+        warnings.simplefilter("ignore", UserWarning)
+        unit = qmc.Sobol(len(AXES), scramble=True, seed=seed).random(n)
+    return [target_of(i, row, bounds) for i, row in enumerate(unit)]
+
+
+def checked_ranges(ranges: Mapping[str, tuple[float, float]]) -> dict[str, tuple[float, float]]:
+    """Every axis's (low, high), the defaults filled in, each held to :data:`AXIS_LIMITS`.
+
+    Args:
+        ranges: axis (:data:`AXES`) -> (low, high) asked for.
+
+    Returns:
+        axis -> (low, high) for every axis of :data:`AXES` (floats).
+
+    Raises:
+        DesignError: an unknown axis, or a range not low <= high inside its limits.
+    """
+    unknown = set(ranges) - set(AXES)
+    if unknown:
+        raise DesignError("ranges", sorted(unknown)[0], "one of " + ", ".join(AXES))
+    out = {}
+    for axis in AXES:
+        lo, hi = ranges.get(axis, DEFAULT_RANGES[axis])
+        option, _, (least, most) = AXIS_LIMITS[axis]
+        if not (_finite(lo) and _finite(hi) and least <= lo <= hi <= most):
+            raise DesignError(option, f"{lo:g} {hi:g}" if _finite(lo) and _finite(hi)
+                              else [lo, hi], f"LO <= HI within {least:g} ... {most:g}")
+        if axis == "kr_over_km" and lo <= 1.0:
+            raise DesignError(option, f"{lo:g} {hi:g}", "LO > 1 (a reference stiffer than "
+                              "the measuring element)")
+        out[axis] = (float(lo), float(hi))
+    return out
+
+
+def _finite(x: Any) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+def target_of(index: int, unit_row: Sequence[float], bounds: Mapping[str, tuple[float, float]]
+              ) -> dict:
+    """One sample point scaled to the target space.
+
+    Args:
+        index: the point's number in the sample.
+        unit_row: its coordinates in the unit cube, :data:`AXES` order.
+        bounds: axis -> (low, high) (:func:`checked_ranges`).
+
+    Returns:
+        The target (see :func:`atlas_targets`' Returns), rounded to the six digits the
+        design command line writes.
+    """
+    value = {}
+    for u, axis in zip(unit_row, AXES):
+        lo, hi = bounds[axis]
+        _, log, _ = AXIS_LIMITS[axis]
+        if axis == "columns":  # each integer an equal share of the unit interval
+            value[axis] = min(int(lo + math.floor(u * (hi - lo + 1))), int(hi))
+        elif log:
+            value[axis] = math.exp(math.log(lo) + u * (math.log(hi) - math.log(lo)))
+        else:
+            value[axis] = lo + u * (hi - lo)
+    centre, span = value["kobj_centre_N_per_mm"], value["kobj_span"]
+    # rounded as the design command line writes them (%g), so the line repeats the point
+    kr = _g(value["kr_over_km"])
+    lo_k, hi_k = _g(centre / math.sqrt(span)), _g(centre * math.sqrt(span))
+    return {"point": index, "kr_over_km": kr, "kobj_lo_N_per_mm": lo_k,
+            "kobj_hi_N_per_mm": hi_k, "full_scale_force_N": _g(value["full_scale_force_N"]),
+            "columns": int(value["columns"])}
+
+
+def _g(x: float) -> float:
+    """``x`` to the six significant digits ``%g`` writes."""
+    return float(f"{x:g}")
+
+
+@dataclass(frozen=True)
+class JawAtlas:
+    """What every point of one jaw's atlas is judged in (picklable: sent to each task).
+
+    Attributes:
+        jaw: the ``--jaw`` value (a trocar class or a jaw file's path).
+        room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
+        comb_base: the comb template's tables (the construction's ``jaw_template``), or
+            None when no comb seats in the jaw.
+        envelope_of: plan -> its footprint envelope (mm; the array's inventory).
+        products: (product, material) pairs judged at each point.
+    """
+
+    jaw: str
+    room: Any
+    comb_base: dict | None
+    envelope_of: Callable | None
+    products: tuple[tuple[str, str], ...] = field(default=())
+
+
+def tissue_default():
+    """The tissue ``design`` centres on by default (``--tissue-coupling on``, Poisson 0.5, a
+    half-space)."""
+    from tactcad.in_use.tissue_coupling import Tissue
+
+    return Tissue(poisson_ratio=0.5, thickness_mm=None)
+
+
+def targets_of(point: Mapping[str, Any]):
+    """The targets ``design`` makes of a point's options.
+
+    Args:
+        point: a target of :func:`atlas_targets`.
+
+    Returns:
+        :class:`~tactcad.studies.inverse_design.Targets` with the tissue coupling on at its
+        defaults (:func:`tissue_default`).
+
+    Raises:
+        DesignError: a target out of design's own range (the option named).
+    """
+    from tactcad.studies.inverse_design import Targets
+
+    return Targets(point["kr_over_km"], (point["kobj_lo_N_per_mm"], point["kobj_hi_N_per_mm"]),
+                   point["full_scale_force_N"], tissue=tissue_default())
+
+
+def evaluate_point(atlas: JawAtlas, product: str, material: str, point: Mapping[str, Any]
+                   ) -> dict:
+    """One target judged for one product and material as ``design --jaw`` judges it.
+
+    Args:
+        atlas: the jaw and what the products need (:class:`JawAtlas`).
+        product: :data:`COMB` or :data:`DIE`.
+        material: a library grade (the comb) or :data:`SILICON` (the die).
+        point: a target of :func:`atlas_targets`.
+
+    Returns:
+        A flat record: ``product``, ``material``, the point's fields, ``feasible``,
+        ``binding_limit`` (a kind of :data:`LIMIT_WORDS`, "" when feasible),
+        ``binding_detail`` (design's words), ``design_field`` (the option design's refusal
+        names) and, for a feasible point, the design's figures: ``kobj_resolution_rel``,
+        ``max_force_N`` (N), ``f1_Hz`` (Hz), ``sheet_mm`` or ``layer_um``; and ``command``,
+        the ``tactcad design`` line that writes it.
+
+    Raises:
+        DesignError: an unknown product.
+    """
+    record = {"product": product, "material": material, **dict(point),
+              "feasible": False, "binding_limit": "", "binding_detail": "", "design_field": "",
+              "kobj_resolution_rel": math.nan, "max_force_N": math.nan, "f1_Hz": math.nan,
+              "sheet_mm": math.nan, "layer_um": math.nan,
+              "command": design_command(atlas.jaw, product, material, point)}
+    try:
+        targets = targets_of(point)
+        if product == COMB:
+            figures = comb_figures(atlas, material, targets, point["columns"])
+        elif product == DIE:
+            figures = die_figures(atlas, targets, point["columns"])
+        else:
+            raise DesignError("product", product, f"{COMB} or {DIE}")
+    except RefusedPoint as refused:
+        return {**record, "binding_limit": limit_kind(refused.detail),
+                "binding_detail": refused.detail, "design_field": refused.field}
+    return {**record, "feasible": True, **figures}
+
+
+class RefusedPoint(Exception):
+    """design refuses a point: the option its refusal names and its first reason."""
+
+    def __init__(self, field_: str, detail: str):
+        super().__init__(detail)
+        self.field = field_
+        self.detail = detail
+
+
+def refusal_of(exc: DesignError) -> RefusedPoint:
+    """design's refusal as the atlas records it.
+
+    Args:
+        exc: the refusal: a comb's carries its candidates (``candidates``), any other its
+            fields and reasons.
+
+    Returns:
+        The option it names and its first reason: for a comb, the first failure of the
+        candidate nearest to counting (:func:`~tactcad.studies.comb_design.nearest_failure`,
+        the refusal's own rule for each sheet's line).
+    """
+    from tactcad.studies.comb_design import nearest_failure
+
+    tried = getattr(exc, "candidates", None)
+    if tried:
+        nearest = nearest_failure(list(tried))
+        return RefusedPoint(exc.field, nearest.failures[0] if nearest else "")
+    errors = getattr(exc, "errors", None) or (exc,)
+    first = errors[0]
+    words = first.why or first.allowed or str(first)
+    return RefusedPoint(first.field, words.split("; ")[0])
+
+
+def limit_kind(detail: str) -> str:
+    """The kind of binding limit a refusal's first reason names.
+
+    Args:
+        detail: the reason, in design's words.
+
+    Returns:
+        The first kind of :data:`LIMIT_WORDS` whose words it holds; "other" when none.
+    """
+    text = detail.lower()
+    return next((kind for kind, words in LIMIT_WORDS if any(w in text for w in words)),
+                "other")
+
+
+def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
+    """A feasible comb's figures, as design writes it; design's verdict otherwise.
+
+    Raises:
+        RefusedPoint: no candidate counts (the nearest's first failure), or the columns are
+            out of the comb's range.
+    """
+    from tactcad.studies.comb_design import (comb_candidates, comb_of_candidates, counting,
+                                             refusal_option)
+    from tactcad.studies.inverse_design import InverseDesignError
+
+    if atlas.comb_base is None:
+        raise RefusedPoint("--jaw", "the comb's smallest build does not fit the jaw's pocket")
+    try:
+        base, tried = comb_candidates(targets, atlas.room, columns, atlas.comb_base,
+                                      grade=grade, envelope_of=atlas.envelope_of)
+    except DesignError as exc:
+        raise refusal_of(exc) from None
+    if not counting(tried):
+        option = refusal_option(base, tried, targets, atlas.room, columns, grade,
+                                atlas.envelope_of)
+        refused = InverseDesignError("no comb counts", option)
+        refused.candidates = tuple(tried)
+        raise refusal_of(refused)
+    design = comb_of_candidates(tried, targets, atlas.room, columns,
+                                envelope_of=atlas.envelope_of)
+    return plan_figures(design.plan, atlas.envelope_of) | {
+        "sheet_mm": float(design.data["sheet"]["thickness_mm"])}
+
+
+def plan_figures(plan, envelope_of: Callable | None) -> dict:
+    """A metal plan's figures at the closed form.
+
+    Args:
+        plan: the comb's plan. envelope_of: plan -> its footprint envelope (mm).
+
+    Returns:
+        ``kobj_resolution_rel`` and ``max_force_N`` (N) as its verification matrix predicts
+        them (what ``verify`` reads at the closed form), and ``f1_Hz``, the lowest first
+        natural frequency of its elements (Hz; Rayleigh's quotient,
+        :func:`tactcad.mechanics.modal_closed_form.estimate_modal_closed_form`).
+    """
+    from tactcad.mechanics.modal_closed_form import estimate_modal_closed_form
+    from tactcad.studies.verification import verification_matrix
+
+    env = envelope_of(plan) if envelope_of is not None else None
+    predicted = {r["requirement"]: r["predicted"]
+                 for r in verification_matrix(plan, "closed-form", envelope_mm=env)}
+    parts = {slot.geometry.part_name: slot.geometry for slot in plan.slots}
+    f1 = min(estimate_modal_closed_form(g, plan.material).modes[0].frequency_Hz
+             for g in parts.values())
+    return {"kobj_resolution_rel": float(predicted.get("kobj_resolution_rel", math.nan)),
+            "max_force_N": float(predicted.get("full_scale_force_N", math.nan)),
+            "f1_Hz": float(f1)}
+
+
+def die_figures(atlas: JawAtlas, targets, columns: int) -> dict:
+    """A feasible die's figures, as design plans it; design's verdict otherwise: its K_obj
+    resolution (relative, the read-out noise term), the largest rating its limits allow
+    (N), its beams' lowest first resonance (Hz) and its SOI device layer (um).
+
+    Raises:
+        RefusedPoint: the die's own refusal.
+    """
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.design.mems_die import rating_limits
+    from tactcad.products.silicon_die.mechanics.die_dynamics import first_resonance_Hz
+    from tactcad.products.silicon_die.studies.die_doping import (doped_die_plan,
+                                                                 worst_readout_error_rel)
+
+    try:
+        plan = doped_die_plan(targets, atlas.room, columns=columns)
+        die_mount(plan, dict(atlas.room.table or {}))
+    except DesignError as exc:
+        raise refusal_of(exc) from None
+    return {"kobj_resolution_rel": float(worst_readout_error_rel(plan)),
+            "max_force_N": float(min(force for force, _ in rating_limits(plan))),
+            "f1_Hz": float(min(first_resonance_Hz(plan, b) for b in plan.beams)),
+            "layer_um": float(plan.stack.device_um)}
+
+
+def design_command(jaw: str, product: str, material: str, point: Mapping[str, Any]) -> str:
+    """The ``tactcad design`` line that answers a point.
+
+    Args:
+        jaw: ``--jaw``. product: :data:`COMB` or :data:`DIE`. material: the comb's grade
+            (the die takes none). point: a target of :func:`atlas_targets`.
+
+    Returns:
+        The command line; for a feasible point it writes the design.
+    """
+    import shlex
+
+    words = ["tactcad design", f"--jaw {shlex.quote(jaw)}", f"--construction {product}",
+             f"--kr-over-km {point['kr_over_km']:g}",
+             f"--kobj-range {point['kobj_lo_N_per_mm']:g} {point['kobj_hi_N_per_mm']:g}",
+             f"--full-scale-force {point['full_scale_force_N']:g}",
+             f"--columns {point['columns']}"]
+    if product == COMB:
+        words.append(f"--material {material}")
+    return " ".join(words + [f"--out atlas_{product.replace('-', '_')}_{point['point']}.toml"])
+
+
+def evaluate_batch(atlas: JawAtlas, points: Sequence[Mapping[str, Any]]) -> list[dict]:
+    """One Dask task: every point judged for every product and material.
+
+    Args:
+        atlas: the jaw (:class:`JawAtlas`). points: targets of :func:`atlas_targets`.
+
+    Returns:
+        The records of :func:`evaluate_point`, point by point, products in their order.
+    """
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    with range_warnings_unsaid(), warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the candidates' warnings are not the design's
+        return [evaluate_point(atlas, product, material, p)
+                for p in points for product, material in atlas.products]
+
+
+def batches(points: Sequence[dict], size: int) -> list[list[dict]]:
+    """``points`` cut into batches, each one Dask task.
+
+    Args:
+        points: the targets. size: points per batch (the last one shorter).
+
+    Returns:
+        The batches, in the points' order.
+
+    Raises:
+        DesignError: ``--batch`` below 1.
+    """
+    if isinstance(size, bool) or not isinstance(size, int) or size < 1:
+        raise DesignError("--batch", size, "an integer >= 1")
+    return [list(points[i:i + size]) for i in range(0, len(points), size)]
+
+
+def run_atlas(atlas: JawAtlas, points: Sequence[dict], client, batch_size: int = 1,
+              progress: Callable[[int, int], None] | None = None) -> tuple[list[dict], bool]:
+    """Every point judged on a Dask ``client``, one task per batch.
+
+    Args:
+        atlas: the jaw (:class:`JawAtlas`). points: targets of :func:`atlas_targets`.
+        client: a ``distributed.Client`` (a LocalCluster's or an existing scheduler's).
+        batch_size: points per task.
+        progress: called with (batches done, batches) as each finishes.
+
+    Returns:
+        (the records in point, product and material order; True when every batch ran,
+        False when Ctrl-C stopped the run: what finished is kept, the rest cancelled).
+    """
+    from distributed import as_completed
+
+    work = batches(points, batch_size)
+    futures = [client.submit(evaluate_batch, atlas, b, pure=False) for b in work]
+    done: list[dict] = []
+    try:
+        for count, future in enumerate(as_completed(futures), start=1):
+            done += future.result()
+            if progress:
+                progress(count, len(work))
+    except KeyboardInterrupt:
+        client.cancel(futures)
+        return ordered(done, atlas), False
+    return ordered(done, atlas), True
+
+
+def ordered(records: list[dict], atlas: JawAtlas) -> list[dict]:
+    """The records sorted.
+
+    Args:
+        records: records of :func:`evaluate_point`. atlas: the jaw, its products' order.
+
+    Returns:
+        ``records`` in point order, then in ``atlas.products``' order.
+    """
+    rank = {pair: i for i, pair in enumerate(atlas.products)}
+    return sorted(records, key=lambda r: (r["point"], rank[(r["product"], r["material"])]))
+
+
+#: The front's objectives: the rated force and the K_obj span the larger the better, the
+#: K_obj resolution (relative) the smaller.
+FRONT_OBJECTIVES = {"full_scale_force_N": "max", "kobj_span": "max",
+                    "kobj_resolution_rel": "min"}
+
+
+def pareto_front(records: Sequence[Mapping[str, Any]],
+                 objectives: Mapping[str, str] = FRONT_OBJECTIVES) -> list[dict]:
+    """The records no other record dominates (as good in every objective, better in one);
+    records with a missing or NaN objective are left out.
+
+    Args:
+        records: flat records (an objective's key read from each; a ``kobj_span`` not given
+            is hi / lo of the K_obj range).
+        objectives: field -> ``"max"`` or ``"min"``.
+
+    Returns:
+        The non-dominated records, in their given order.
+
+    Raises:
+        DesignError: an objective's sense not ``max`` or ``min``.
+
+    Source: the Pareto dominance of multi-objective optimisation (Deb, Multi-Objective
+    Optimization using Evolutionary Algorithms, 2001, ch. 2).
+    """
+    for key, sense in objectives.items():
+        if sense not in ("max", "min"):
+            raise DesignError("objectives", f"{key}={sense}", "max or min")
+    scored = []
+    for r in records:
+        row = [objective_value(r, key) for key in objectives]
+        if all(math.isfinite(v) for v in row):
+            signs = [1.0 if s == "max" else -1.0 for s in objectives.values()]
+            scored.append((dict(r), [s * v for s, v in zip(signs, row)]))
+    return [r for r, v in scored
+            if not any(dominates(w, v) for _, w in scored if w is not v)]
+
+
+def objective_value(record: Mapping[str, Any], key: str) -> float:
+    """A record's value of one objective.
+
+    Args:
+        record: a flat record. key: the objective's field (``kobj_span``: hi / lo of the
+            K_obj range where the record states none).
+
+    Returns:
+        The value; NaN when missing or not a finite number.
+    """
+    if key == "kobj_span" and key not in record:
+        lo, hi = record.get("kobj_lo_N_per_mm"), record.get("kobj_hi_N_per_mm")
+        return hi / lo if _finite(lo) and _finite(hi) and lo > 0 else math.nan
+    value = record.get(key)
+    return float(value) if _finite(value) else math.nan
+
+
+def dominates(a: Sequence[float], b: Sequence[float]) -> bool:
+    """Pareto dominance (Deb 2001, ch. 2).
+
+    Args:
+        a, b: objective values, each to be maximised.
+
+    Returns:
+        True when ``a`` is at least ``b`` in every objective and above it in one.
+    """
+    return all(x >= y for x, y in zip(a, b)) and any(x > y for x, y in zip(a, b))

@@ -1,0 +1,160 @@
+"""``tactcad atlas``: the table, figure and summary written, a second run reusing the kept
+table, clean refusals, and the same table on an existing Dask cluster as on a local one."""
+
+from __future__ import annotations
+
+import json
+import os
+import shlex
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from conftest import run_cli
+
+import tactcad
+
+#: The 5 mm jaw holds the die alone (the comb stands too tall): cheap points.
+DIE_ATLAS = ["atlas", "--jaw", "5", "--points", "6", "--force-range", "0.001", "0.05",
+             "--workers", "1", "--quiet"]
+
+
+def table(path: Path) -> list[dict]:
+    """The Parquet table's rows, NaN (a figure a refused point has not) read as None so that
+    two tables compare equal cell by cell."""
+    import math
+
+    import pyarrow.parquet as pq
+
+    return [{k: None if isinstance(v, float) and math.isnan(v) else v for k, v in r.items()}
+            for r in pq.read_table(path).to_pylist()]
+
+
+@pytest.mark.slow  # a local Dask cluster started (about 25 s)
+def test_an_atlas_is_written_and_its_second_run_reuses_the_kept_table(tmp_path):
+    out, cache = tmp_path / "out", tmp_path / "cache"
+    r = run_cli(*DIE_ATLAS, "--out", out, "--cache", cache, "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+    s = json.loads(r.stdout)
+    rows = table(out / "atlas.parquet")
+    assert len(rows) == 6 and {r["product"] for r in rows} == {"mems-die"}
+    assert s["reused"] is False and s["points_per_s"] > 0
+    feasible = [r for r in rows if r["feasible"]]
+    assert feasible and len(s["front"]) >= 1
+    assert all(f["command"].startswith("tactcad design --jaw 5 --construction mems-die")
+               for f in s["front"])
+    # every front point is feasible, and no feasible point beats it in force, span and
+    # resolution at once
+    for f in s["front"]:
+        assert any(r["point"] == f["point"] and r["feasible"] for r in rows)
+    assert (out / "atlas_front.svg").read_text(encoding="utf-8").lstrip().startswith("<?xml")
+    assert list(cache.rglob("*.parquet"))
+    again = run_cli(*DIE_ATLAS, "--out", out, "--cache", cache, "--json")
+    assert json.loads(again.stdout)["reused"] is True
+    assert table(out / "atlas.parquet") == rows
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["--jaw", "7"], "--jaw"),
+    (["--jaw", "5", "--force-range", "2", "1"], "--force-range"),
+    (["--jaw", "5", "--columns-range", "1", "3"], "--columns-range"),
+    (["--jaw", "5", "--out", "/etc/atlas"], "--out"),
+])
+def test_bad_atlas_options_are_refused_without_a_traceback(tmp_path, argv, field):
+    r = run_cli("atlas", "--out", tmp_path / "out", *argv, "--json")
+    assert r.returncode != 0
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == field and "Traceback" not in r.stdout + r.stderr
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def started(argv: list[str], env: dict) -> subprocess.Popen:
+    return subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True)
+
+
+def scheduler_answers(address: str, workers: int, timeout_s: float = 60.0) -> bool:
+    from distributed import Client
+
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        try:
+            with Client(address, timeout="5s") as client:
+                if len(client.scheduler_info()["workers"]) >= workers:
+                    return True
+        except (OSError, TimeoutError):
+            pass
+        time.sleep(1.0)
+    return False
+
+
+@pytest.mark.slow  # a scheduler and two worker processes started, a local cluster too
+def test_an_atlas_through_a_scheduler_address_gives_the_local_runs_table(tmp_path):
+    src = str(Path(tactcad.__file__).resolve().parents[1])
+    env = {**os.environ, "PYTHONPATH": src, "OMP_NUM_THREADS": "1"}
+    port = free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    dask = [sys.executable, "-m", "dask"]
+    procs = [started(dask + ["scheduler", "--host", "127.0.0.1", "--port", str(port),
+                             "--no-dashboard"], env)]
+    try:
+        for _ in range(2):
+            procs.append(started(dask + ["worker", address, "--nthreads", "1",
+                                         "--no-dashboard"], env))
+        assert scheduler_answers(address, 2), "the scheduler and its workers did not start"
+        remote = run_cli(*DIE_ATLAS, "--scheduler", address, "--no-cache",
+                         "--out", tmp_path / "remote")
+        assert remote.returncode == 0, remote.stderr
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+    local = run_cli(*DIE_ATLAS, "--no-cache", "--out", tmp_path / "local")
+    assert local.returncode == 0, local.stderr
+    assert table(tmp_path / "remote" / "atlas.parquet") == \
+        table(tmp_path / "local" / "atlas.parquet")
+    assert shlex.split(table(tmp_path / "local" / "atlas.parquet")[0]["command"])[:3] == \
+        ["tactcad", "design", "--jaw"]
+
+
+def verdict(point, product, feasible, force, span, res):
+    return {"product": product, "material": "m", "point": point, "kr_over_km": 10.0,
+            "kobj_lo_N_per_mm": 1.0, "kobj_hi_N_per_mm": span, "full_scale_force_N": force,
+            "columns": 4, "feasible": feasible, "binding_limit": "" if feasible else "stop",
+            "binding_detail": "", "design_field": "", "kobj_resolution_rel": res,
+            "max_force_N": force, "f1_Hz": 1e3, "sheet_mm": 1.0, "layer_um": float("nan"),
+            "command": f"tactcad design --point {point}"}
+
+
+def test_the_summary_counts_each_products_verdicts_and_fronts_its_own_points(tmp_path):
+    from tactcad.commands.atlas import atlas_summary, read_table, write_table
+
+    records = [verdict(0, "a", True, 1.0, 10.0, 0.1), verdict(1, "a", True, 0.5, 5.0, 0.2),
+               verdict(2, "a", False, 9.0, 90.0, float("nan")),
+               verdict(0, "b", True, 0.1, 2.0, 0.3)]
+    write_table(tmp_path / "t.parquet", records, {"jaw": "10"})
+    back = read_table(tmp_path / "t.parquet")
+    assert [r["point"] for r in back] == [0, 1, 2, 0] and back[2]["feasible"] is False
+    s = atlas_summary(back, {"jaw": "10", "points": 3, "seed": 0, "ranges": {}, "key": "k"},
+                      2.0, False, True, tmp_path)
+    per = {g["product"]: g for g in s["products"]}
+    assert (per["a"]["points"], per["a"]["feasible"]) == (3, 2)
+    assert per["a"]["binding_limits"] == {"stop": 1}
+    # a's front: point 0 alone (point 1 worse in all; point 2 refused, however strong);
+    # b's only point is its own front, though a's dominates it
+    assert [f["point"] for f in per["a"]["front"]] == [0]
+    assert [f["point"] for f in per["b"]["front"]] == [0]
+    assert s["points_per_s"] == 1.5 and "layer_um" not in per["a"]["front"][0]
+    json.dumps(s, allow_nan=False)  # the summary is JSON as it is written

@@ -1,0 +1,191 @@
+"""The design atlas: its target sample, its Pareto filter, the binding limits it sorts
+refusals into, and its honesty: every point is the verdict ``tactcad design`` gives."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from conftest import run_cli
+
+from tactcad.errors import DesignError
+from tactcad.studies.design_atlas import (AXES, COMB, DEFAULT_RANGES, DIE, SILICON, JawAtlas,
+                                   atlas_targets, batches, evaluate_batch, limit_kind,
+                                   pareto_front)
+
+
+def rec(force, lo, hi, res, name):
+    return {"name": name, "full_scale_force_N": force, "kobj_lo_N_per_mm": lo,
+            "kobj_hi_N_per_mm": hi, "kobj_resolution_rel": res}
+
+
+def test_pareto_front_keeps_exactly_the_non_dominated_records():
+    a = rec(1.0, 1.0, 10.0, 0.10, "a")    # span 10
+    b = rec(2.0, 1.0, 5.0, 0.10, "b")     # more force, less span: both on the front
+    c = rec(0.5, 1.0, 5.0, 0.20, "c")     # worse than a and b in every objective
+    d = rec(1.0, 1.0, 10.0, 0.05, "d")    # a with a finer resolution: dominates a
+    e = rec(2.0, 1.0, 5.0, 0.10, "e")     # equal to b: neither dominates the other
+    f = rec(9.0, 1.0, 50.0, math.nan, "f")  # no figure: left out, however good
+    front = pareto_front([a, b, c, d, e, f])
+    assert [r["name"] for r in front] == ["b", "d", "e"]
+
+
+def test_pareto_front_follows_each_objectives_sense():
+    a = rec(1.0, 1.0, 10.0, 0.10, "a")
+    b = rec(2.0, 1.0, 10.0, 0.10, "b")
+    assert [r["name"] for r in pareto_front([a, b], {"full_scale_force_N": "max"})] == ["b"]
+    assert [r["name"] for r in pareto_front([a, b], {"full_scale_force_N": "min"})] == ["a"]
+    with pytest.raises(DesignError, match="objectives"):
+        pareto_front([a], {"full_scale_force_N": "largest"})
+
+
+def test_the_sample_stays_in_its_ranges_and_repeats_with_its_seed():
+    ranges = {"full_scale_force_N": (0.01, 0.5), "columns": (3, 5)}
+    points = atlas_targets(64, ranges, seed=3)
+    assert len(points) == 64 and [p["point"] for p in points] == list(range(64))
+    for p in points:
+        centre = math.sqrt(p["kobj_lo_N_per_mm"] * p["kobj_hi_N_per_mm"])
+        span = p["kobj_hi_N_per_mm"] / p["kobj_lo_N_per_mm"]
+        assert 0.01 * (1 - 1e-5) <= p["full_scale_force_N"] <= 0.5 * (1 + 1e-5)
+        assert p["columns"] in (3, 4, 5)
+        lo, hi = DEFAULT_RANGES["kobj_centre_N_per_mm"]
+        assert lo * (1 - 1e-4) <= centre <= hi * (1 + 1e-4)
+        lo, hi = DEFAULT_RANGES["kobj_span"]
+        assert lo * (1 - 1e-4) <= span <= hi * (1 + 1e-4)
+    assert {p["columns"] for p in points} == {3, 4, 5}  # every count drawn
+    assert points == atlas_targets(64, ranges, seed=3)
+    assert points != atlas_targets(64, ranges, seed=4)
+    # log-uniform: about half the forces below the range's geometric centre
+    below = sum(p["full_scale_force_N"] < math.sqrt(0.01 * 0.5) for p in points)
+    assert 24 <= below <= 40
+
+
+@pytest.mark.parametrize("n, ranges, seed, option", [
+    (0, None, 0, "--points"),
+    (10, None, -1, "--seed"),
+    (10, {"full_scale_force_N": (2.0, 1.0)}, 0, "--force-range"),
+    (10, {"full_scale_force_N": (0.1, 5000.0)}, 0, "--force-range"),
+    (10, {"kr_over_km": (1.0, 5.0)}, 0, "--kr-over-km-range"),
+    (10, {"columns": (1, 4)}, 0, "--columns-range"),
+    (10, {"kobj_span": (0.5, 4.0)}, 0, "--kobj-span"),
+    (10, {"webs": (0.1, 0.2)}, 0, "ranges"),
+])
+def test_bad_sample_options_are_refused_naming_the_option(n, ranges, seed, option):
+    with pytest.raises(DesignError) as err:
+        atlas_targets(n, ranges, seed)
+    assert err.value.field == option
+    assert err.value.allowed
+
+
+def test_batches_cover_every_point_once():
+    points = [{"point": i} for i in range(7)]
+    cut = batches(points, 3)
+    assert [len(b) for b in cut] == [3, 3, 1]
+    assert [p for b in cut for p in b] == points
+    with pytest.raises(DesignError, match="--batch"):
+        batches(points, 0)
+
+
+@pytest.mark.parametrize("words, kind", [
+    ("the comb's height: 6.1 mm, the 10 mm jaw holds 5.9 mm", "height"),
+    ("requirements.footprint_mm[1] = 5.3: allowed >= 6.2 mm", "footprint"),
+    ("comb.stop_gaps_mm[7] = 2.025: allowed 0 < value <= 1 mm", "stop"),
+    ("past the die's failure probability, every beam on its deepest stop", "strength"),
+    ("full_scale_force_N: predicted 0.09935, target 2", "force"),
+    ("element.notch_radius_mm = 0.3: allowed 0.427 <= value <= 2 mm", "sheet"),
+    ("at 0.0023 N the bridges' noise moves K_obj by 1.62 %", "resolution"),
+    ("something new", "other"),
+])
+def test_refusals_are_sorted_by_the_limit_they_name(words, kind):
+    assert limit_kind(words) == kind
+
+
+def jaw_atlas(jaw: str, products) -> JawAtlas:
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.design.array_plan import EXAMPLES, read_toml
+    from tactcad.partlib.grasper_jaw import jaw_room
+
+    base = read_toml(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml", "design file")
+    return JawAtlas(jaw, jaw_room(jaw), base, array_envelope_mm, tuple(products))
+
+
+def design_verdict(record: dict, tmp_path) -> tuple[int, dict]:
+    """``tactcad design`` run on a record's own command line (its --out in ``tmp_path``)."""
+    import shlex
+
+    words = shlex.split(record["command"])[2:]  # less "tactcad design"
+    words[-1] = str(tmp_path / words[-1])
+    r = run_cli("design", *words, "--json")
+    return r.returncode, json.loads(r.stdout)
+
+
+def agrees_with_design(record: dict, tmp_path) -> None:
+    code, answer = design_verdict(record, tmp_path)
+    if record["feasible"]:
+        assert code == 0, (record["command"], answer)
+    else:
+        error = answer["error"]
+        assert code != 0
+        assert error["field"] == record["design_field"], record["command"]
+        assert record["binding_detail"] and record["binding_detail"] in error["message"]
+
+
+def test_every_die_point_of_an_atlas_is_the_verdict_design_gives(tmp_path):
+    """The honesty property on the 10 mm jaw's die: a handful of drawn points, feasible and
+    refused, each judged as ``tactcad design --construction mems-die`` judges it."""
+    atlas = jaw_atlas("10", [(DIE, SILICON)])
+    points = atlas_targets(8, {"full_scale_force_N": (0.002, 0.1)}, seed=1)
+    records = evaluate_batch(atlas, points)
+    assert len(records) == 8 and set(AXES[:1]) <= set(records[0])
+    assert {r["feasible"] for r in records} == {True, False}  # both kinds judged
+    for r in records:
+        agrees_with_design(r, tmp_path)
+        if r["feasible"]:
+            assert r["layer_um"] > 0 and r["f1_Hz"] > 0 and 0 < r["kobj_resolution_rel"] < 1
+            assert r["max_force_N"] >= r["full_scale_force_N"] * (1 - 1e-9)
+        else:
+            assert r["binding_limit"] != "other"
+
+
+@pytest.mark.slow  # each comb point is a search of every sheet, each refusal its frontier
+def test_comb_points_of_an_atlas_are_the_verdicts_design_gives(tmp_path):
+    atlas = jaw_atlas("10", [(COMB, "Ti-6Al-4V-annealed")])
+    feasible = {"point": 0, "kr_over_km": 10.0, "kobj_lo_N_per_mm": 0.5,
+                "kobj_hi_N_per_mm": 5.0, "full_scale_force_N": 0.01, "columns": 6}
+    refused = {**feasible, "point": 1, "full_scale_force_N": 0.9, "kobj_lo_N_per_mm": 0.06,
+               "kobj_hi_N_per_mm": 0.43}
+    # too many columns for the pocket: no candidate has a plan, the refusal offers fewer
+    crowded = {"point": 2, "kr_over_km": 4.29128, "kobj_lo_N_per_mm": 0.400251,
+               "kobj_hi_N_per_mm": 5.65791, "full_scale_force_N": 0.026679, "columns": 7}
+    records = evaluate_batch(atlas, [feasible, refused, crowded])
+    assert [r["feasible"] for r in records] == [True, False, False]
+    assert records[0]["sheet_mm"] > 0 and records[0]["max_force_N"] >= 0.01
+    assert [r["design_field"] for r in records[1:]] == ["--full-scale-force", "--columns"]
+    for r in records:
+        agrees_with_design(r, tmp_path)
+
+
+def test_ctrl_c_keeps_the_batches_that_finished_and_cancels_the_rest():
+    """Ctrl-C while the atlas waits (raised here as the first batch reports): the records
+    of the batches that finished are returned, the run marked incomplete."""
+    from distributed import Client
+
+    from tactcad.studies.design_atlas import run_atlas
+
+    atlas = jaw_atlas("5", [(DIE, SILICON)])
+    points = atlas_targets(6, {"full_scale_force_N": (0.001, 0.05)}, seed=2)
+
+    def interrupted(done: int, total: int) -> None:
+        raise KeyboardInterrupt
+
+    with Client(processes=False, n_workers=1, threads_per_worker=1,
+                dashboard_address=None) as client:
+        records, complete = run_atlas(atlas, points, client, batch_size=2,
+                                      progress=interrupted)
+        everything, finished = run_atlas(atlas, points, client, batch_size=2)
+    assert complete is False and finished is True
+    assert len(records) == 2 and len(everything) == 6
+    kept = {r["point"] for r in records}
+    same = [r for r in everything if r["point"] in kept]
+    assert json.dumps(same, sort_keys=True) == json.dumps(records, sort_keys=True)
