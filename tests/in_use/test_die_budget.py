@@ -41,7 +41,8 @@ def test_a_layer_held_exactly_leaves_no_device_layer_term(plan, budget):
 
 
 def test_the_sum_leaves_out_the_uncoupled_bias_and_keeps_what_the_inversion_leaves(budget):
-    summed = [v for k, v in budget.terms.items() if k != db.UNCOUPLED]
+    summed = [v for k, v in budget.terms.items() if k not in db.SHOWN_NOT_SUMMED]
+    assert db.UNCOUPLED in db.SHOWN_NOT_SUMMED
     assert np.allclose(budget.total_rel, np.sqrt(sum(np.asarray(v) ** 2 for v in summed)))
     # the unit's two posts stand a fraction of a millimetre apart: eq. 3 alone is far off
     assert np.all(budget.terms[db.UNCOUPLED] > 0.1)
@@ -91,3 +92,43 @@ def test_the_reading_terms_are_the_coupled_inversions_of_the_perturbed_coupled_r
     eq3 = np.abs(np.array([float(object_stiffness(float(x), plan.k_m_N_per_mm, plan.k_r_N_per_mm))
                            for x in r2 * (1 + noise2)]) / ks - 1)
     assert not np.allclose(budget.terms["read-out noise"], eq3, rtol=0.02)
+
+
+def test_the_posts_as_made_are_shown_and_what_the_zeroing_leaves_is_summed(plan, budget):
+    as_made, zeroed = budget.terms[db.AS_MADE], budget.terms[db.ZEROED]
+    summed = [v for k, v in budget.terms.items() if k not in (db.UNCOUPLED, db.AS_MADE)]
+    assert np.allclose(budget.total_rel, np.sqrt(sum(np.asarray(v) ** 2 for v in summed)))
+    assert np.all(zeroed > 0) and np.all(zeroed < as_made)
+    assert db.AS_MADE in budget.as_json()["rss_leaves_out"]
+    record = budget.tip_height
+    assert record["tolerance_mm"] == pytest.approx(plan.post_height_um * 1e-3 * 0.02)
+    assert record["tolerance_mm"] > record["mismatch_after_zeroing_mm"] > 0
+    assert record["tolerance_for_accuracy_mm"] is None  # no kobj_accuracy_rel stated
+
+
+def test_the_post_term_vanishes_without_a_mismatch_and_grows_linearly_while_small(plan, budget):
+    unit = db._die_unit(plan)
+    ks = budget.k_obj_N_per_mm
+    assert np.all(db.post_mismatch_rel(plan, unit, ks, 0.0) == 0.0)
+    small, double = (db.post_mismatch_rel(plan, unit, ks, d) for d in (2e-6, 4e-6))
+    assert np.all(small > 0)
+    assert double / small == pytest.approx(np.full(len(ks), 2.0), rel=0.05)
+
+
+def test_the_post_tolerance_the_accuracy_needs_fills_what_the_other_terms_leave(plan, budget):
+    others_sq = sum(np.asarray(v) ** 2 for k, v in budget.terms.items()
+                    if k not in (db.UNCOUPLED, db.AS_MADE, db.ZEROED))
+    accuracy = 1.5 * float(np.sqrt(np.max(others_sq)))
+    stated = db.die_budget(dataclasses.replace(plan, kobj_accuracy_rel=accuracy))
+    tol = stated.tip_height["tolerance_for_accuracy_mm"]
+    assert tol is not None and tol > 0
+    unit = db._die_unit(plan)
+    ks = budget.k_obj_N_per_mm
+
+    def worst(t):
+        return float(np.sqrt(np.max(others_sq + db.post_mismatch_rel(plan, unit, ks, 2 * t) ** 2)))
+
+    assert worst(tol) == pytest.approx(accuracy, rel=0.01)  # printed to three digits
+    assert worst(1.05 * tol) > accuracy
+    tight = db.die_budget(dataclasses.replace(plan, kobj_accuracy_rel=0.5 * accuracy / 1.5))
+    assert tight.tip_height["tolerance_for_accuracy_mm"] is None

@@ -303,7 +303,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.products.silicon_die.export.gds_masks import (write_die_gds, write_mask_picture,
                                                                write_wafer_gds)
     from tactcad.products.silicon_die.export.traveller import write_traveller
-    from tactcad.products.silicon_die.in_use.die_budget import die_budget
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget, post_height_drawing
     from tactcad.products.silicon_die.mechanics.die_dynamics import (calculix_beam_check,
                                                                      closed_form_k_N_per_mm,
                                                                      die_modes, first_resonance_Hz)
@@ -334,8 +334,10 @@ def run(args: argparse.Namespace) -> int:
         write_mount_step(solids, made["scene"], f"{name}_in_jaw")
         write_mount_picture(solids, made["scene_picture"], f"{name} in the {room.label}")
         write_mount_bom(mount_bom_rows(plan, mount, room.label), made["bom"])
-        made["drawing"].write_text(die_sheet(plan, mount).svg(), encoding="utf-8")
         readout = die_readout(plan)
+        budget = die_budget(plan, readout)
+        made["drawing"].write_text(die_sheet(plan, mount, post_height_drawing(budget)).svg(),
+                                   encoding="utf-8")
         write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
                         made["traveller"])
         checks = (gds_checks(made["masks"], plan)
@@ -344,7 +346,6 @@ def run(args: argparse.Namespace) -> int:
                   + sheet_file_results(made["drawing"]) + die_requirement_checks(plan, mount))
         counts = status_counts(checks)
         modes = die_modes(plan)
-        budget = die_budget(plan, readout)
         fe = [calculix_beam_check(plan, b) for b in plan.beams[:: plan.columns]] \
             if args.fe_check else []
         fem3d = [die_beam_fem3d_kept(plan, b) for b in plan.beams[:: plan.columns]] \
@@ -512,7 +513,7 @@ def budget_lines(budget) -> list[str]:
     for term, values in budget.terms.items():
         lines.append(f"  {term:<46} " + "  ".join(pct(v) for v in values)
                      + f"   ({budget.reasons[term]})")
-    lines.append(f"  {'root sum square (without eq. 3 uncoupled)':<46} "
+    lines.append(f"  {'root sum square (shown-only terms left out)':<46} "
                  + "  ".join(pct(v) for v in budget.total_rel))
     return lines
 

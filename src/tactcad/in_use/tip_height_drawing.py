@@ -62,7 +62,11 @@ class TipHeightDrawing:
         drawn_mm: the tolerance the drawing prints (+/- mm).
         residual_mm: the tip mismatch left after zeroing on a rigid flat (mm).
         kobj_accuracy_rel: ``requirements.kobj_accuracy_rel``.
-        floor_mm: the finest tolerance machining holds (+/- mm).
+        floor_mm: the finest tolerance the process holds (+/- mm).
+        feature: what the tolerance holds, as the note names it.
+        process: what holds ``floor_mm``, as the note names it.
+        zeroing: the procedure that makes the tolerance unnecessary, as the note and the
+            build book name it.
     """
 
     stated_mm: float
@@ -71,6 +75,9 @@ class TipHeightDrawing:
     residual_mm: float
     kobj_accuracy_rel: float
     floor_mm: float = MACHINING_FLOOR_MM
+    feature: str = "Tip height"
+    process: str = "machining"
+    zeroing: str = ZEROING_PROCEDURE
 
     @property
     def holds_allowance(self) -> bool:
@@ -80,7 +87,7 @@ class TipHeightDrawing:
     @property
     def procedure(self) -> str | None:
         """The procedure the drawing relies on (:data:`ZEROING_PROCEDURE`), or None."""
-        return None if self.holds_allowance else ZEROING_PROCEDURE
+        return None if self.holds_allowance else self.zeroing
 
     @property
     def residual_fits(self) -> bool:
@@ -95,10 +102,10 @@ class TipHeightDrawing:
         if self.allowance_mm is None:
             why = "the other terms of the K_obj budget leave no room for a tip mismatch"
         else:
-            why = (f"+/-{self.allowance_mm:.3g} mm would be needed, finer than machining holds "
-                   f"(+/-{self.floor_mm:g} mm)")
-        return (f"Tip height to +/-{self.stated_mm:g} mm (process tolerance): for K_obj within "
-                f"{100 * self.kobj_accuracy_rel:g} % {why}; {ZEROING_PROCEDURE}, which leaves "
+            why = (f"+/-{self.allowance_mm:.3g} mm would be needed, finer than {self.process} "
+                   f"holds (+/-{self.floor_mm:g} mm)")
+        return (f"{self.feature} to +/-{self.stated_mm:g} mm (process tolerance): for K_obj "
+                f"within {100 * self.kobj_accuracy_rel:g} % {why}; {self.zeroing}, which leaves "
                 f"{1e3 * self.residual_mm:.2g} um of mismatch.")
 
     def as_json(self) -> dict:
@@ -110,7 +117,8 @@ class TipHeightDrawing:
 
 
 def choose_tip_height_tolerance(stated_mm: float, tip_record: Mapping,
-                                floor_mm: float = MACHINING_FLOOR_MM) -> TipHeightDrawing | None:
+                                floor_mm: float = MACHINING_FLOOR_MM,
+                                **words: str) -> TipHeightDrawing | None:
     """The tolerance the drawing holds the tip height to (see the module docstring).
 
     Args:
@@ -120,6 +128,8 @@ def choose_tip_height_tolerance(stated_mm: float, tip_record: Mapping,
             ``kobj_accuracy_rel``, ``tolerance_for_accuracy_mm`` and
             ``mismatch_after_zeroing_mm``.
         floor_mm: the finest tolerance machining holds (+/- mm, > 0).
+        words: ``feature``, ``process`` and ``zeroing`` of :class:`TipHeightDrawing`, where
+            they differ from a machined tip's (a die's posts).
 
     Returns:
         :class:`TipHeightDrawing`, or None when the record states no accuracy.
@@ -142,7 +152,7 @@ def choose_tip_height_tolerance(stated_mm: float, tip_record: Mapping,
         drawn = round(math.floor(allowance / DRAWN_STEP_MM + 1e-9) * DRAWN_STEP_MM, 6)
     return TipHeightDrawing(float(stated_mm), None if allowance is None else float(allowance),
                             drawn, float(tip_record["mismatch_after_zeroing_mm"]),
-                            float(accuracy), float(floor_mm))
+                            float(accuracy), float(floor_mm), **words)
 
 
 def tip_height_from_budget(plan: Plan, budget) -> TipHeightDrawing | None:

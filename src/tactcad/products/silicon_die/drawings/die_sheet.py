@@ -50,7 +50,7 @@ NOTE_MM = 2.5
 DIE_DECIMALS = 4
 
 
-def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
+def die_sheet(plan: DiePlan, mount: DieMount, post_height=None) -> Sheet:
     """The die's and its carrier's sheet (see the module doc)."""
     sh = Sheet("A3", title=f"{plan.name}: die and carrier")
     sheet_frame(sh)
@@ -83,7 +83,7 @@ def die_sheet(plan: DiePlan, mount: DieMount) -> Sheet:
     _die_dimensions(sh, plan, at)
     bottom = at(0, 0)[1]  # the die's lower edge on paper; its dimensions 8 mm below
     _carrier_view(sh, plan, mount, x0, bottom + 45.0, carrier_scale)
-    _notes(sh, plan, mount, FRAME[0] + 235.0, bottom + 25.0)
+    _notes(sh, plan, mount, FRAME[0] + 235.0, bottom + 25.0, post_height)
     sh.text("title", (FRAME[2] - 5.0, FRAME[3] - 5.0),
             f"{plan.name}: die {die_scale:g}:1, carrier {carrier_scale:g}:1, mm", 3.5,
             anchor="end")
@@ -131,15 +131,19 @@ def _carrier_view(sh: Sheet, plan: DiePlan, m: DieMount, x0: float, y0: float,
                         fmt_mm(m.carrier_width_mm), "carrier-width")
 
 
-def _notes(sh: Sheet, plan: DiePlan, m: DieMount, x: float, y: float) -> None:
+def _notes(sh: Sheet, plan: DiePlan, m: DieMount, x: float, y: float,
+           post_height=None) -> None:
+    from tactcad.products.silicon_die.vocabulary.soi_process import POST_HEIGHT_TOLERANCE_REL
+
     st = plan.stack
+    post_tol_um = POST_HEIGHT_TOLERANCE_REL * plan.post_height_um
     lines = [
         "NOTES",
         "1. Die: SOI on a (100) wafer, beams along <110>; the GDS masks are the master.",
         f"2. Stack: device {st.device_um:g} um +-{st.device_tolerance_um:g} um (K as t^3), "
         f"buried oxide {st.box_um:g} um,",
-        f"   handle {st.handle_um:g} um; posts {plan.post_height_um:g} um high, "
-        f"{plan.post_um:g} um square.",
+        f"   handle {st.handle_um:g} um; posts {plan.post_height_um:g} um +-{post_tol_um:.3g} um "
+        f"high, {plan.post_um:g} um square.",
         f"3. Cavities (dashed) in the handle under each row, reference "
         f"{plan.cavity_depths_um[0]:g} um, measuring {plan.cavity_depths_um[1]:g} um deep",
         f"   +-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %: their floors are the hard stops; the "
@@ -153,6 +157,25 @@ def _notes(sh: Sheet, plan: DiePlan, m: DieMount, x: float, y: float) -> None:
         f"   cavities' marks), beam width +-{DRIE_WIDTH_TOLERANCE_UM:g} um (DRIE's bias), "
         f"die outline +-{DICING_TOLERANCE_UM:g} um (dicing);",
         "   the pitch and the posts as the masks draw them.",
+        *_post_height_note(post_height),
     ]
     for k, text in enumerate(lines):
         sh.text("notes", (x, y + k * (NOTE_MM + 2.0)), text, NOTE_MM, bold=k == 0)
+
+
+def _post_height_note(post_height) -> list[str]:
+    """Note 7, when the K_obj accuracy needs the posts flatter than their process holds: the
+    procedure the die then relies on and the mismatch it leaves
+    (:attr:`tactcad.in_use.tip_height_drawing.TipHeightDrawing.note`), wrapped to the notes'
+    width; none otherwise."""
+    import textwrap
+
+    note = None if post_height is None else post_height.note
+    if note is None:
+        return []
+    text = note.replace("+/-", "+-")
+    return textwrap.wrap(f"7. {text}", NOTE_WIDTH_CHARS, subsequent_indent="   ")
+
+
+#: The notes' width in characters (note 6's longest line).
+NOTE_WIDTH_CHARS = 92

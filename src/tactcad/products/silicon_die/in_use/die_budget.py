@@ -31,7 +31,18 @@ bound / sqrt 3):
 * tissue coupling: the tips press one tissue (rigid flat punches of the posts' faces on a
   half-space, :mod:`tactcad.in_use.tissue_coupling`), which eq. 2 alone leaves out: the
   bias of the uncoupled eq. 3 (shown, not summed: the coupled inversion removes it, as on
-  the metal arrays), and the coupled model's own error that remains.
+  the metal arrays), and the coupled model's own error that remains;
+* post coplanarity: a measuring post standing below its reference (or above it) by twice
+  the posts' height tolerance (the process's, :data:`~tactcad.products.silicon_die.
+  vocabulary.soi_process.POST_HEIGHT_TOLERANCE_REL` of their height) meets the tissue later
+  (sooner), through the coupled model with the tips offset
+  (:func:`tactcad.in_use.tissue_coupling.offset_ratio`). As made it is shown, not summed: a
+  post mismatch of a micron is as large as the reference's whole travel, so every die is
+  zeroed on a rigid flat, and what that leaves (each beam's deflection resolution and the
+  flat's flatness) is the term summed. With ``kobj_accuracy_rel`` stated, the record
+  :attr:`DieBudget.tip_height` carries the post-height tolerance the accuracy needs, which
+  the drawing and ``verify`` read as the metal arrays' tip height
+  (:mod:`tactcad.in_use.tip_height_drawing`).
 
 The first four are each beam's K measured in calibration (eq. 4-6) or the temperature
 held; they are given before any correction. Units: N/mm, N, um, K.
@@ -55,6 +66,17 @@ TEMPERATURE_STEP_K = 5.0
 #: inversion removes it; what it leaves is the next term).
 UNCOUPLED = "tissue coupling, eq. 3 uncoupled"
 COUPLED = "tissue coupling, after the coupled inversion"
+#: The posts' height mismatch as the process leaves it: shown, not summed (every die is
+#: zeroed on a rigid flat); what the zeroing leaves is the next term.
+AS_MADE = "post coplanarity, as made"
+ZEROED = "post coplanarity, zeroed on a flat"
+#: Flatness of the flat a die's posts are zeroed on (mm): an optical flat of the finest grade
+#: its makers list, lambda/20 at 633 nm (32 nm); the metal arrays' gauge block face
+#: (:data:`tactcad.in_use.tip_zeroing.ZEROING_FLAT_FLATNESS_MM`, 0.15 um) would alone be a
+#: sixth of a die's smallest travels.
+OPTICAL_FLAT_FLATNESS_MM = 633e-6 / 20
+#: The terms a budget shows and leaves out of its root sum square.
+SHOWN_NOT_SUMMED = (UNCOUPLED, AS_MADE)
 
 
 @dataclass(frozen=True)
@@ -70,17 +92,20 @@ class DieBudget:
     k_obj_N_per_mm: np.ndarray
     terms: dict
     reasons: dict
+    tip_height: dict | None = None
 
     @property
     def total_rel(self) -> np.ndarray:
         return np.sqrt(sum(np.asarray(v) ** 2 for k, v in self.terms.items()
-                           if k != UNCOUPLED))
+                           if k not in SHOWN_NOT_SUMMED))
 
     def as_json(self) -> dict:
         return {"k_obj_N_per_mm": self.k_obj_N_per_mm.tolist(),
                 "terms_rel": {k: np.asarray(v).tolist() for k, v in self.terms.items()},
-                "rss_rel": self.total_rel.tolist(), "rss_leaves_out": UNCOUPLED,
-                "reasons": dict(self.reasons)}
+                "rss_rel": self.total_rel.tolist(),
+                "rss_leaves_out": " and ".join(k for k in SHOWN_NOT_SUMMED if k in self.terms),
+                "reasons": dict(self.reasons),
+                **({} if self.tip_height is None else {"tip_height": dict(self.tip_height)})}
 
 
 class _DieUnit(NamedTuple):
@@ -233,7 +258,120 @@ def die_budget(plan, readout: dict | None = None) -> DieBudget:
     terms[COUPLED] = COUPLING_MODEL_ERROR_REL * np.abs(coupling) + mesh_error
     reasons[COUPLED] = (f"the punch model's own error ({COUPLING_MODEL_ERROR_REL:.0%} of the "
                         f"shift it predicts) and its mesh error ({mesh_error:.2%})")
-    return DieBudget(ks, terms, reasons)
+
+    tol_mm, residual_mm = post_height_tolerance_mm(plan), mismatch_after_zeroing_mm(plan, readout)
+    terms[AS_MADE] = post_mismatch_rel(plan, unit, ks, 2 * tol_mm)
+    reasons[AS_MADE] = (f"the posts {plan.post_height_um:g} um high to +-{1e3 * tol_mm:.3g} um "
+                        "(the process's), a measuring post up to twice that below or above its "
+                        "reference, through the coupled model (shown, not summed: every die "
+                        "is zeroed on an optical flat)")
+    terms[ZEROED] = post_mismatch_rel(plan, unit, ks, residual_mm)
+    reasons[ZEROED] = (f"zeroed on an optical flat: {1e3 * residual_mm:.3g} um of mismatch left "
+                       "(each beam's deflection resolution and the flat's flatness)")
+    budget = DieBudget(ks, terms, reasons)
+    return DieBudget(ks, terms, reasons,
+                     _tip_height_record(plan, unit, budget, tol_mm, residual_mm))
+
+
+def post_height_tolerance_mm(plan) -> float:
+    """The posts' height tolerance across the die (+- mm): the process's, a share
+    (:data:`~tactcad.products.silicon_die.vocabulary.soi_process.POST_HEIGHT_TOLERANCE_REL`)
+    of their height."""
+    from tactcad.products.silicon_die.vocabulary.soi_process import POST_HEIGHT_TOLERANCE_REL
+
+    return POST_HEIGHT_TOLERANCE_REL * plan.post_height_um * 1e-3
+
+
+def mismatch_after_zeroing_mm(plan, readout: dict) -> float:
+    """The post-height mismatch a zeroing on a rigid flat leaves (mm): each row's deflection
+    resolution (its bridge's force resolution over its K) and the flat's flatness
+    (:data:`OPTICAL_FLAT_FLATNESS_MM`), in quadrature."""
+    rows = readout["rows"]
+    return math.hypot(rows["reference"]["force_resolution_N"] / plan.k_r_N_per_mm,
+                      rows["measuring"]["force_resolution_N"] / plan.k_m_N_per_mm,
+                      OPTICAL_FLAT_FLATNESS_MM)
+
+
+def post_mismatch_rel(plan, unit: _DieUnit, ks, mismatch_mm: float) -> np.ndarray:
+    """The coupled inversion's worst |K_obj error| (either sign) at each true K_obj ``ks``
+    (N/mm) when the unit's measuring post stands ``mismatch_mm`` (mm) off its reference's
+    height, the reference at the rated force; inf where the reading has no answer (the
+    measuring post clear of the tissue, or R beyond the inversion's bracket).
+
+    Args:
+        plan: the die. unit: its :func:`_die_unit`. ks: true K_obj values (N/mm).
+        mismatch_mm: the two posts' height difference (mm, >= 0).
+
+    Returns:
+        |relative K_obj error| at each of ``ks``, shape (len(ks),).
+    """
+    from tactcad.in_use.tissue_coupling import coupled_object_stiffness, offset_ratio
+    from tactcad.mechanics.contact import ContactError
+
+    ks = np.atleast_1d(np.asarray(ks, float))
+    out = np.zeros_like(ks)
+    if mismatch_mm == 0:
+        return out
+    measuring, reference = unit.pair
+    for i, k in enumerate(ks):
+        for sign in (1.0, -1.0):
+            half = sign * mismatch_mm / 2
+            try:
+                r = offset_ratio(unit.sample, unit.stiffness, unit.pair, float(k),
+                                 plan.full_scale_force_N, {reference: half, measuring: -half})
+                read = coupled_object_stiffness(unit.sample, unit.stiffness, unit.pair, r)
+                out[i] = max(out[i], abs(read / k - 1.0))
+            except ContactError:
+                out[i] = np.inf
+    return out
+
+
+def _tip_height_record(plan, unit: _DieUnit, budget: DieBudget, tol_mm: float,
+                       residual_mm: float) -> dict:
+    """The budget's post-height record, read as the metal arrays' tip-height record is
+    (:func:`tactcad.in_use.tip_height_drawing.choose_tip_height_tolerance`): the process's
+    tolerance, the mismatch the zeroing leaves and, with ``kobj_accuracy_rel`` stated, the
+    largest tolerance (+- mm) whose as-made term fits, at every K_obj, in what the other
+    summed terms leave of the accuracy (None where they leave no room)."""
+    accuracy = plan.kobj_accuracy_rel
+    record = {"tolerance_mm": tol_mm, "mismatch_after_zeroing_mm": residual_mm,
+              "kobj_accuracy_rel": accuracy, "tolerance_for_accuracy_mm": None}
+    if accuracy is None:
+        return record
+    others_sq = sum(np.asarray(v) ** 2 for k, v in budget.terms.items()
+                    if k not in SHOWN_NOT_SUMMED and k != ZEROED)
+    room = accuracy ** 2 - others_sq
+    if np.any(room <= 0) or not np.all(np.isfinite(room)):
+        return record
+    ks = budget.k_obj_N_per_mm
+
+    def excess(tol: float) -> float:
+        # an unreadable mismatch (inf) counts as far too large, finite for the root find
+        return min(float(np.max(post_mismatch_rel(plan, unit, ks, 2 * tol) ** 2 / room)),
+                   1e12) - 1.0
+
+    record["tolerance_for_accuracy_mm"] = _largest_tolerance_mm(excess, residual_mm)
+    return record
+
+
+def _largest_tolerance_mm(excess, start_mm: float) -> float | None:
+    """The root of ``excess(t)`` (increasing in the tolerance t, mm), bracketed by halving and
+    doubling from ``start_mm``, to three digits as a drawing prints; None when no positive
+    tolerance fits."""
+    from scipy.optimize import brentq
+
+    hi = max(start_mm, 1e-9)
+    for _ in range(60):
+        if excess(hi) >= 0:
+            break
+        hi *= 2
+    lo = hi / 2
+    while excess(lo) > 0:
+        lo /= 2
+        if lo < 1e-12:
+            return None
+    found = float(brentq(excess, lo, hi, rtol=1e-3)) if excess(hi) > 0 else hi
+    return float(f"{found:.3g}")
 
 
 def _tissue_coupling(plan, unit: _DieUnit, ks: np.ndarray) -> tuple[np.ndarray, float, str]:
@@ -247,3 +385,38 @@ def _tissue_coupling(plan, unit: _DieUnit, ks: np.ndarray) -> tuple[np.ndarray, 
     return np.asarray(read) / ks - 1.0, float(unit.sample.error_rel), (
         "the middle unit, every post pressing one half-space (nu 0.5): eq. 3 alone reads the "
         "coupled R this far off (shown, not summed: the coupled inversion removes it)")
+
+
+#: The procedure that makes a post-height tolerance unnecessary, as the die's drawing and
+#: ``verify`` name it.
+DIE_ZEROING_PROCEDURE = ("posts zeroed on an optical flat before use (the flat pressed on "
+                         "every post in a few steps: each beam's deflection where all touch, "
+                         "less the others', is its post's height, which the reading then takes "
+                         "out, as tactcad calibrate --flat does for a metal array)")
+#: What holds the posts' height, as the drawing's note names it.
+POST_PROCESS_WORDS = "the posts' process (spun SU-8 or plating)"
+
+
+def post_height_drawing(budget: DieBudget):
+    """What the die's drawing holds the posts' height to, from the budget's post-height
+    record: the process's tolerance, held where it fits the accuracy, else the zeroing on
+    an optical flat named (:func:`tactcad.in_use.tip_height_drawing.
+    choose_tip_height_tolerance`, the process's tolerance its floor: a drawing cannot ask a
+    spun or plated post finer).
+
+    Args:
+        budget: the die's :class:`DieBudget`.
+
+    Returns:
+        :class:`tactcad.in_use.tip_height_drawing.TipHeightDrawing`, or None when the die
+        states no ``kobj_accuracy_rel``.
+    """
+    from tactcad.in_use.tip_height_drawing import choose_tip_height_tolerance
+
+    record = budget.tip_height or {}
+    if record.get("kobj_accuracy_rel") is None:
+        return None
+    tol = record["tolerance_mm"]
+    return choose_tip_height_tolerance(tol, record, floor_mm=tol, feature="Post height",
+                                       process=POST_PROCESS_WORDS,
+                                       zeroing=DIE_ZEROING_PROCEDURE)

@@ -61,8 +61,57 @@ def die_verification(plan, mount=None) -> list[dict]:
         _resolution_row(plan),
         *([_grasp_row(plan, mount)]
           if plan.max_grasp_force_N is not None and mount is not None else []),
-        *([accuracy_row(plan)] if plan.kobj_accuracy_rel is not None else []),
+        *(_accuracy_rows(plan) if plan.kobj_accuracy_rel is not None else []),
     ]
+
+
+def _accuracy_rows(plan) -> list[dict]:
+    """The accuracy row and the post-height row, on one budget."""
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget
+
+    budget = die_budget(plan)
+    return [accuracy_row(plan, float(max(budget.total_rel))), post_height_row(budget)]
+
+
+def post_height_row(budget) -> dict:
+    """``tip_height_tolerance_mm`` of a die: the posts' height tolerance the drawing holds
+    against the one the K_obj budget's accuracy needs
+    (:func:`tactcad.products.silicon_die.in_use.die_budget.post_height_drawing`). It passes
+    when the process's tolerance holds the allowance (margin allowance / drawn - 1), or when
+    the drawing names the zeroing on an optical flat and the mismatch it leaves fits the
+    twice-the-allowance mismatch the accuracy permits (margin 2 allowance / residual - 1);
+    it fails where the other terms leave no room.
+
+    Args:
+        budget: the die's :class:`~tactcad.products.silicon_die.in_use.die_budget.DieBudget`,
+            its ``kobj_accuracy_rel`` stated.
+
+    Returns:
+        The verification record.
+    """
+    from tactcad.products.silicon_die.in_use.die_budget import post_height_drawing
+    from tactcad.studies.verification import TIP_HEIGHT_REQUIREMENT
+
+    tip = post_height_drawing(budget)
+    base = {"requirement": TIP_HEIGHT_REQUIREMENT, "error_estimate_rel": None,
+            "model": "closed-form", "tip_height": tip.as_json(),
+            "basis": "post height: tolerance drawn vs tolerance needed (the die's K_obj "
+                     "budget, +/- mm); with the zeroing, half the mismatch it leaves"}
+    needed = tip.allowance_mm
+    if needed is None:
+        return {**base, "target": None, "predicted": tip.drawn_mm, "margin_rel": None,
+                "verdict": "fail",
+                "binding_words": "no post tolerance fits: the other terms fill the accuracy"}
+    if tip.holds_allowance:
+        return {**base, "target": needed, "predicted": tip.drawn_mm,
+                "margin_rel": needed / tip.drawn_mm - 1.0, "verdict": "pass",
+                "binding_words": f"the posts' +/-{1e3 * tip.drawn_mm:.3g} um holds it"}
+    return {**base, "target": needed, "predicted": tip.residual_mm / 2,
+            "margin_rel": 2 * needed / tip.residual_mm - 1.0,
+            "verdict": "pass" if tip.residual_fits else "fail",
+            "binding_words": f"zeroed on an optical flat: {1e3 * tip.residual_mm:.2g} um "
+                             f"mismatch left; the posts' process holds +/-"
+                             f"{1e3 * tip.drawn_mm:.3g} um, +/-{1e3 * needed:.3g} um needed"}
 
 
 def _grasp_row(plan, mount) -> dict:
@@ -144,7 +193,8 @@ def accuracy_row(plan, worst: float | None = None) -> dict:
             "model": "closed-form", "verdict": "pass" if worst <= target else "fail",
             "binding_words": "the root sum square of the die's K_obj budget (tactcad budget: "
                              "read-out noise, device layer, cavity alignment, temperature, "
-                             "resistor zero drift and the coupled inversion's residue), worst "
+                             "resistor zero drift, the coupled inversion's residue and the "
+                             "posts' mismatch after zeroing on a flat), worst "
                              "over the K_obj range, each term before calibration (an upper "
                              "bound)"}
 

@@ -137,6 +137,12 @@ DRIE_SOURCE = ("deep reactive-ion etching, Bosch process (Laermer and Schilp, US
 #: marks etched with the cavities, read through the bonded stack in infrared or opened
 #: in the device layer; a front-to-back aligner's +-1 to 2 um, the looser end).
 CAVITY_ALIGNMENT_UM = 2.0
+#: The posts' height across one die, +- relative to their height (assumption: a spun
+#: SU-8 film or a plated post varies by a few per cent of its thickness across a wafer and
+#: less across a die a few millimetres wide; 2 % taken). It is what the process holds: a
+#: drawing cannot ask it finer, so a die whose K_obj accuracy needs the posts flatter than
+#: this is zeroed on a rigid flat (:mod:`tactcad.products.silicon_die.in_use.die_budget`).
+POST_HEIGHT_TOLERANCE_REL = 0.02
 #: A DRIE'd feature's width across a wafer (um), +-: the etch's bias spread (assumption: a
 #: Bosch etch holds its critical dimension to about +-0.5 um, its sidewall scallops
 #: 0.1-0.3 um).
