@@ -113,6 +113,6 @@ def run_modal(args: argparse.Namespace) -> int:
         bare = (f"; {rec['bare_first_Hz']:.1f} Hz without the {1e3 * rec['added_mass_g']:.3g} mg"
                 if rec["bare_first_Hz"] is not None else "")
         print(f"  {rec['part']} (element {els}): {freqs} Hz{bare}; error estimate "
-              f"{100 * rec['error_estimate_rel']:.2f} %, {rec['wall_time_s']:.3g} s")
+              f"{100 * rec['first_Hz_error_rel']:.2f} %, {rec['wall_time_s']:.3g} s")
     print(f"lowest first frequency: {lowest['first_Hz']:.1f} Hz ({lowest['part']})")
     return 0

@@ -109,5 +109,5 @@ class ModalResult:
                 "first_out_of_plane_Hz": self.first_of("out-of-plane"),
                 "modes": [m.as_json() for m in self.modes],
                 "added_mass_g": self.added_mass_g, "bare_first_Hz": self.bare_first_Hz,
-                "error_estimate_rel": self.error_estimate_rel, "wall_time_s": self.wall_time_s,
+                "first_Hz_error_rel": self.error_estimate_rel, "wall_time_s": self.wall_time_s,
                 "basis": self.basis}
