@@ -11,7 +11,7 @@ from conftest import run_cli
 
 from tactcad.errors import DesignError
 from tactcad.studies.design_atlas import (AXES, COMB, DEFAULT_RANGES, DIE, SILICON, JawAtlas,
-                                   atlas_targets, batches, evaluate_batch, limit_kind,
+                                   atlas_targets, batches, evaluate_batch, refusal_of,
                                    pareto_front)
 
 
@@ -87,18 +87,43 @@ def test_batches_cover_every_point_once():
         batches(points, 0)
 
 
-@pytest.mark.parametrize("words, kind", [
-    ("the comb's height: 6.1 mm, the 10 mm jaw holds 5.9 mm", "height"),
-    ("requirements.footprint_mm[1] = 5.3: allowed >= 6.2 mm", "footprint"),
-    ("comb.stop_gaps_mm[7] = 2.025: allowed 0 < value <= 1 mm", "stop"),
-    ("past the die's failure probability, every beam on its deepest stop", "strength"),
-    ("full_scale_force_N: predicted 0.09935, target 2", "force"),
-    ("element.notch_radius_mm = 0.3: allowed 0.427 <= value <= 2 mm", "sheet"),
-    ("at 0.0023 N the bridges' noise moves K_obj by 1.62 %", "resolution"),
-    ("something new", "other"),
-])
-def test_refusals_are_sorted_by_the_limit_they_name(words, kind):
-    assert limit_kind(words) == kind
+def test_a_refusal_is_sorted_by_the_limit_code_it_carries_not_its_words():
+    """The code is read from the refusal; words that name another limit do not move it."""
+    from tactcad.vocabulary.binding_limits import BINDING_LIMITS, OTHER, STOP
+
+    coded = DesignError("--full-scale-force", 2.0, "at most 1 N",
+                        "the comb's height and its yield strength", limit=STOP)
+    assert refusal_of(coded).limit == STOP
+    assert refusal_of(DesignError("--columns", 1, "2 ... 50")).limit == OTHER
+    assert STOP in BINDING_LIMITS
+
+
+def test_a_die_rated_past_its_strength_carries_the_strength_code():
+    """The 5 mm jaw's die at 4 N: its roots' failure probability binds first."""
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
+    from tactcad.studies.design_atlas import targets_of
+    from tactcad.vocabulary.binding_limits import STRENGTH
+
+    point = {"kr_over_km": 10.0, "kobj_lo_N_per_mm": 0.5, "kobj_hi_N_per_mm": 5.0,
+             "full_scale_force_N": 4.0}
+    with pytest.raises(DesignError) as err:
+        doped_die_plan(targets_of(point), jaw_room("5"), columns=4)
+    assert err.value.field == "--full-scale-force" and err.value.limit == STRENGTH
+
+
+def test_a_comb_with_more_columns_than_its_pitch_holds_carries_the_sheet_code():
+    """Eight columns in the 10 mm jaw's pocket leave no measuring arm on any sheet."""
+    from tactcad.studies.comb_design import comb_candidates
+    from tactcad.studies.design_atlas import targets_of
+    from tactcad.vocabulary.binding_limits import SHEET
+
+    atlas = jaw_atlas("10", [(COMB, "Ti-6Al-4V-annealed")])
+    point = {"kr_over_km": 10.0, "kobj_lo_N_per_mm": 0.5, "kobj_hi_N_per_mm": 5.0,
+             "full_scale_force_N": 0.01}
+    _, tried = comb_candidates(targets_of(point), atlas.room, 8, atlas.comb_base,
+                               grade="Ti-6Al-4V-annealed")
+    assert tried and all(c.plan is None and c.limits == (SHEET,) for c in tried)
 
 
 def jaw_atlas(jaw: str, products) -> JawAtlas:
@@ -128,6 +153,7 @@ def agrees_with_design(record: dict, tmp_path) -> None:
         error = answer["error"]
         assert code != 0
         assert error["field"] == record["design_field"], record["command"]
+        assert error.get("limit") == record["binding_limit"], record["command"]
         assert record["binding_detail"] and record["binding_detail"] in error["message"]
 
 
