@@ -161,3 +161,21 @@ def test_the_sheets_reason_says_the_rule_that_chose_it(margin, words):
     from tactcad.studies.comb_design import sheet_rule_words
 
     assert words in sheet_rule_words(margin)
+
+
+def test_the_refusals_fewer_columns_check_stops_at_the_first_comb_that_carries_a_force():
+    """Eight columns crowd the 10 mm jaw's pocket; seven or fewer carry a light force, so a
+    refusal offers ``--columns``; a single column has no fewer count to offer."""
+    import copy
+
+    from tactcad.studies.comb_design import comb_candidates, fewer_columns_carry, refusal_option
+
+    targets = Targets(10.0, (0.5, 5.0), 0.01)
+    base = read_toml(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml", "design file")
+    room = jaw_room("10")
+    searched, tried = comb_candidates(targets, room, 8, copy.deepcopy(base))
+    assert all(c.plan is None for c in tried)  # the pitch binds every sheet
+    assert fewer_columns_carry(searched, 8, room, targets, None, array_envelope_mm)
+    assert refusal_option(searched, tried, targets, room, 8, None,
+                          array_envelope_mm) == "--columns"
+    assert not fewer_columns_carry(searched, 1, room, targets, None, array_envelope_mm)

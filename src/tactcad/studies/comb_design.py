@@ -449,7 +449,7 @@ def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, roo
     counts, found as it finds it but without the force it offers to paste: ``--jaw`` where
     the pocket holds no sheet's comb (:func:`nearest_jaw`), ``--full-scale-force`` where some
     candidate carries a force, ``--columns`` where fewer columns count
-    (:func:`nearest_columns`), else ``--full-scale-force``.
+    (:func:`fewer_columns_carry`), else ``--full-scale-force``.
 
     Args:
         base: the tables as searched (:func:`comb_candidates`' first value).
@@ -463,8 +463,33 @@ def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, roo
         return "--jaw"
     if any(c.rated_force_N for c in tried):
         return "--full-scale-force"
-    fewer = nearest_columns(base, columns, room, targets, grade, envelope_of)
-    return "--columns" if fewer is not None else "--full-scale-force"
+    fewer = fewer_columns_carry(base, columns, room, targets, grade, envelope_of)
+    return "--columns" if fewer else "--full-scale-force"
+
+
+def fewer_columns_carry(base: dict, columns: int, room: Any, targets: Targets,
+                        grade: str | None, envelope_of: Callable | None) -> bool:
+    """Whether :func:`nearest_columns` finds an answer (it is not None): some count below
+    ``columns`` has a candidate that counts or carries some force. Stops at the first such
+    candidate instead of bisecting the force it would carry: the refusal's option alone.
+
+    Args:
+        base, columns, room, targets, grade, envelope_of: as :func:`nearest_columns`.
+
+    Returns:
+        True when a fewer-column comb counts or is rated for some force.
+    """
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    with range_warnings_unsaid():
+        for fewer in range(columns - 1, 0, -1):
+            for sheet in sheets_of(base):
+                for scale in KM_SCALES:
+                    c = candidate(base, sheet, scale, fewer, room, targets, grade,
+                                  envelope_of, None)
+                    if (c.plan is not None and not c.failures) or c.rated_force_N:
+                        return True
+    return False
 
 
 def nearest_failure(tried: list[CombCandidate]) -> CombCandidate | None:
