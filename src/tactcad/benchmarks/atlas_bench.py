@@ -124,15 +124,15 @@ def drawn_records(records: Sequence[dict], count: int, seed: int) -> list[dict]:
     return sorted(picked, key=lambda r: (r["point"], r["product"], r["material"]))
 
 
-def atlas_bench_figures(jaw: str, points: int, materials: list[str] | None, agree: int,
-                        batch: int, seed: int = 0,
+def atlas_bench_figures(atlas, points: int, agree: int, batch: int, seed: int = 0,
                         say: Callable[[str], None] = lambda s: None) -> dict:
     """The benchmark's figures.
 
     Args:
-        jaw: ``--jaw``. points: target points of the sample. materials: comb grades (None:
-            every one). agree: records checked against ``tactcad design``. batch: points per
-            task. seed: the sample's and the draw's seed. say: progress lines.
+        atlas: the jaw and its products (:class:`tactcad.studies.design_atlas.JawAtlas`,
+            as ``tactcad atlas`` makes it). points: target points of the sample (>= 2).
+            agree: records checked against ``tactcad design``. batch: points per task.
+            seed: the sample's and the draw's seed. say: progress lines.
 
     Returns:
         ``points``, ``records``, ``one_worker_s``, ``two_workers_s``, ``points_per_s``
@@ -140,11 +140,9 @@ def atlas_bench_figures(jaw: str, points: int, materials: list[str] | None, agre
         ``same_records`` (both runs gave the same table), ``agreement`` (checked, agreed,
         rate, each disagreement) and the goals.
     """
-    from tactcad.commands.atlas import jaw_atlas
-    from tactcad.studies.design_atlas import atlas_targets, checked_ranges
+    from tactcad.studies.design_atlas import atlas_targets
 
-    bounds = checked_ranges({})
-    atlas = jaw_atlas(jaw, materials, (int(bounds["columns"][0]), int(bounds["columns"][1])))
+    jaw = atlas.jaw
     targets = atlas_targets(points, None, seed)
     say(f"tactcad bench atlas: jaw {jaw}, {points} points, one worker")
     one_s, one = timed_atlas(atlas, targets, 1, batch)

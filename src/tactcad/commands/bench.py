@@ -398,10 +398,13 @@ def run_atlas_bench(args: argparse.Namespace) -> int:
     ``design`` (:mod:`tactcad.benchmarks.atlas_bench`)."""
     from tactcad.benchmarks.atlas_bench import atlas_bench_figures, atlas_bench_lines
     from tactcad.benchmarks.bench_scale import load_average
+    from tactcad.commands.atlas import jaw_atlas
+    from tactcad.studies.design_atlas import checked_ranges
 
-    say = progress_from_args(args)
-    figures = atlas_bench_figures(args.jaw, args.points, args.material, args.agree,
-                                  args.batch, args.seed, say=say)
+    columns = checked_ranges({})["columns"]
+    atlas = jaw_atlas(args.jaw, args.material, (int(columns[0]), int(columns[1])))
+    figures = atlas_bench_figures(atlas, args.points, args.agree, args.batch, args.seed,
+                                  say=progress_from_args(args))
     if args.json:
         print(dumps({**figures, "load_average": load_average()}))
         return 0
