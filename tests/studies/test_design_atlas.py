@@ -157,6 +157,72 @@ def agrees_with_design(record: dict, tmp_path) -> None:
         assert record["binding_detail"] and record["binding_detail"] in error["message"]
 
 
+def written_die_figures(design_file) -> dict:
+    """The figures of the die ``design`` wrote, re-planned from its file as ``tactcad die``
+    plans it (the atlas's own figure functions on that plan)."""
+    import argparse
+    from pathlib import Path
+
+    from tactcad.commands.die import _die_args, die_asked, plan_of
+    from tactcad.products.silicon_die.design.mems_die import rating_limits
+    from tactcad.products.silicon_die.mechanics.die_dynamics import first_resonance_Hz
+    from tactcad.products.silicon_die.studies.die_doping import worst_readout_error_rel
+
+    args = _die_args(Path(design_file), argparse.Namespace(overrides=[]), Path("."))
+    plan = plan_of(die_asked(args)).plan
+    return {"kobj_resolution_rel": worst_readout_error_rel(plan),
+            "max_force_N": min(force for force, _ in rating_limits(plan)),
+            "f1_Hz": min(first_resonance_Hz(plan, b) for b in plan.beams),
+            "layer_um": plan.stack.device_um}
+
+
+def near_frontier(records: list[dict], count: int) -> list[dict]:
+    """Points a step each side of feasible records' own frontier: the rating 3 % under and
+    5 % over the largest force each allows (``max_force_N``; the limits grow a little with
+    the rating, the cavities' depths in steps, so the frontier lies a little above it)."""
+    from tactcad.studies.design_atlas import _g
+
+    out = []
+    for r in [r for r in records if r["feasible"]][:count]:
+        for step, factor in ((0, 0.97), (1, 1.05)):
+            out.append({k: r[k] for k in ("kr_over_km", "kobj_lo_N_per_mm",
+                                          "kobj_hi_N_per_mm", "columns")}
+                       | {"point": 1000 + 2 * r["point"] + step,
+                          "full_scale_force_N": _g(factor * r["max_force_N"])})
+    return out
+
+
+def test_drawn_die_points_and_their_frontier_are_the_verdicts_and_figures_design_gives(
+        tmp_path):
+    """The honesty property (issue 70): drawn atlas points of the 5 mm jaw's die, feasible
+    and refused, and points a step each side of the feasible ones' frontier, each run
+    through ``tactcad design``: the same verdict, option and limit code; a feasible one's
+    figures those of the die design wrote. ``make test`` draws a few,
+    ``TACTCAD_TEST_DEPTH=deep`` the issue's 50 (and exports and checks the feasible ones)."""
+    from depth import DEPTH, draws
+
+    atlas = jaw_atlas("5", [(DIE, SILICON)])
+    drawn = draws(4, 40)
+    points = atlas_targets(drawn, {"full_scale_force_N": (0.002, 0.05)}, seed=11)
+    records = evaluate_batch(atlas, points)
+    records += evaluate_batch(atlas, near_frontier(records, draws(1, 5)))
+    assert {r["feasible"] for r in records} == {True, False}
+    for r in records:
+        agrees_with_design(r, tmp_path)
+        if not r["feasible"]:
+            continue
+        written = tmp_path / r["command"].rsplit(" ", 1)[-1]
+        again = written_die_figures(written)
+        for key, value in again.items():
+            assert r[key] == pytest.approx(value, rel=1e-12), (key, r["command"])
+        if DEPTH == "deep":
+            out = tmp_path / f"export_{r['point']}"
+            e = run_cli("export", "--design", written, "--out", out)
+            assert e.returncode == 0, e.stdout + e.stderr
+            c = run_cli("check", "--design", written, "--out", out)
+            assert c.returncode == 0, c.stdout
+
+
 def test_every_die_point_of_an_atlas_is_the_verdict_design_gives(tmp_path):
     """The honesty property on the 10 mm jaw's die: a handful of drawn points, feasible and
     refused, each judged as ``tactcad design --construction mems-die`` judges it."""
