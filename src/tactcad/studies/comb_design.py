@@ -404,18 +404,62 @@ def comb_candidates(targets: Targets, room: Any, columns: int, base: Mapping[str
     Raises:
         DesignError: ``--columns`` out of 1 ... 12.
     """
-    if not 1 <= columns <= 12:
-        raise DesignError("--columns", columns, "1 ... 12 for a comb in a jaw")
     from tactcad.mechanics.correction import range_warnings_unsaid
 
-    base = copy.deepcopy(dict(base))
-    base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
-    if process is not None:
-        base["element"]["process"] = process
+    base = searched_base(base, columns, process)
     with range_warnings_unsaid():  # the candidates are not the design asked about
         tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                            progress) for sheet in sheets_of(base) for scale in KM_SCALES]
     return base, tried
+
+
+def searched_base(base: Mapping[str, Any], columns: int, process: str | None = None) -> dict:
+    """The base tables as the search takes them: a copy without the template's own
+    requirements, on ``process`` where one is given.
+
+    Raises:
+        DesignError: ``--columns`` out of 1 ... 12.
+    """
+    if not 1 <= columns <= 12:
+        raise DesignError("--columns", columns, "1 ... 12 for a comb in a jaw")
+    base = copy.deepcopy(dict(base))
+    base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
+    if process is not None:
+        base["element"]["process"] = process
+    return base
+
+
+def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
+                    grade: str | None = None, envelope_of: Callable | None = None
+                    ) -> CombCandidate | None:
+    """The candidate :func:`chosen` picks, found by judging the candidates in its order of
+    preference (the softest pair first, the thicker sheet on a tie) and stopping at the
+    first that counts with :data:`FORCE_MARGIN_REL` to spare: none softer or thicker can
+    come before it, so it is ``chosen(counting(comb_candidates(...)))`` without judging the
+    rest. None when no candidate has the margin (then only the whole search decides: the
+    one with the most margin, or a refusal).
+
+    Args:
+        targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
+
+    Returns:
+        The chosen candidate, or None.
+
+    Raises:
+        DesignError: ``--columns`` out of 1 ... 12.
+    """
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    base = searched_base(base, columns)
+    with range_warnings_unsaid():
+        for scale in KM_SCALES:
+            for sheet in sorted(sheets_of(base), reverse=True):
+                c = candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
+                              None)
+                if c.plan is not None and not c.failures \
+                        and c.force_margin_rel >= FORCE_MARGIN_REL:
+                    return c
+    return None
 
 
 def counting(tried: list[CombCandidate]) -> list[CombCandidate]:

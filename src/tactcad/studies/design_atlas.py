@@ -5,8 +5,11 @@ span, the rated full-scale force, the columns), each point judged as ``tactcad d
 
 Every point is design's own verdict, reached by design's own functions:
 
-* the monolithic comb: :func:`tactcad.studies.comb_design.comb_candidates` (every sheet
-  at every K_m scale, judged at the closed form); where one counts, the comb design writes
+* the monolithic comb: first the candidates in the order design prefers them, up to the
+  first that counts with margin (:func:`tactcad.studies.comb_design.first_preferred`: the
+  one design chooses, found without judging the rest); where none does,
+  :func:`~tactcad.studies.comb_design.comb_candidates` (every sheet at every K_m scale,
+  judged at the closed form); where one counts, the comb design writes
   (:func:`~tactcad.studies.comb_design.comb_of_candidates`); where none does, the limit of
   the candidate nearest to counting (:func:`~tactcad.studies.comb_design.nearest_failure`,
   the refusal's own rule). The refusal's pasteable force, a bisection over the candidates
@@ -294,7 +297,7 @@ def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
             out of the comb's range.
     """
     from tactcad.studies.comb_design import (comb_candidates, comb_of_candidates, counting,
-                                             refusal_option)
+                                             first_preferred, refusal_option)
     from tactcad.studies.inverse_design import InverseDesignError
     from tactcad.vocabulary.binding_limits import FOOTPRINT
 
@@ -302,8 +305,14 @@ def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
         raise RefusedPoint("--jaw", "the comb's smallest build does not fit the jaw's pocket",
                            FOOTPRINT)
     try:
-        base, tried = comb_candidates(targets, atlas.room, columns, atlas.comb_base,
-                                      grade=grade, envelope_of=atlas.envelope_of)
+        # a comb that counts with margin, in the chosen one's order, saves the full search
+        preferred = first_preferred(targets, atlas.room, columns, atlas.comb_base,
+                                    grade=grade, envelope_of=atlas.envelope_of)
+        if preferred is not None:
+            base, tried = None, [preferred]
+        else:
+            base, tried = comb_candidates(targets, atlas.room, columns, atlas.comb_base,
+                                          grade=grade, envelope_of=atlas.envelope_of)
     except DesignError as exc:
         raise refusal_of(exc) from None
     if not counting(tried):
