@@ -281,3 +281,22 @@ def test_ctrl_c_keeps_the_batches_that_finished_and_cancels_the_rest():
     kept = {r["point"] for r in records}
     same = [r for r in everything if r["point"] in kept]
     assert json.dumps(same, sort_keys=True) == json.dumps(records, sort_keys=True)
+
+
+def test_the_feasible_boundary_is_the_largest_feasible_force_in_each_span_step():
+    from tactcad.studies.design_atlas import feasible_boundary
+
+    def r(span, force, feasible):
+        return {"kobj_lo_N_per_mm": 1.0, "kobj_hi_N_per_mm": span,
+                "full_scale_force_N": force, "feasible": feasible}
+
+    records = [r(2.0, 0.1, True), r(2.5, 0.3, True), r(3.0, 9.0, False),
+               r(30.0, 0.02, True), r(50.0, 0.05, False)]
+    steps = feasible_boundary(records, bins=2)
+    # spans 2 ... 50 cut at sqrt(100) = 10: the refused 9 N and 0.05 N bound nothing
+    assert [round(s[2], 6) for s in steps] == [0.3, 0.02]
+    assert steps[0][0] == pytest.approx(2.0) and steps[0][1] == pytest.approx(10.0)
+    assert steps[1][1] == pytest.approx(50.0)
+    assert feasible_boundary([r(2.0, 0.1, False)], bins=3) == []
+    with pytest.raises(DesignError, match="bins"):
+        feasible_boundary(records, bins=0)

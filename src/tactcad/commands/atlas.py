@@ -369,9 +369,13 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
         jaw: ``--jaw``, for the title.
 
     Each feasible point's K_obj span against its rated force, coloured by product and
-    material; the front ringed; the refused points grey crosses.
+    material; the front ringed; the refused points grey crosses; each product and
+    material's feasible region bounded above by a dashed step line in its colour
+    (:func:`tactcad.studies.design_atlas.feasible_boundary`).
     """
     from matplotlib.figure import Figure
+
+    from tactcad.studies.design_atlas import feasible_boundary
 
     fig = Figure(figsize=(7.0, 4.8))
     ax = fig.add_subplot()
@@ -380,8 +384,12 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
                marker="x", s=12, color="0.75", label="refused")
     for label in sorted({(r["product"], r["material"]) for r in records if r["feasible"]}):
         rows = [r for r in records if r["feasible"] and (r["product"], r["material"]) == label]
-        ax.scatter([r["full_scale_force_N"] for r in rows], [span(r) for r in rows], s=18,
-                   label=f"{label[0]} {label[1]}")
+        dots = ax.scatter([r["full_scale_force_N"] for r in rows], [span(r) for r in rows],
+                          s=18, label=f"{label[0]} {label[1]}")
+        group = [r for r in records if (r["product"], r["material"]) == label]
+        edge = boundary_path(feasible_boundary(group))
+        ax.plot(edge[0], edge[1], linestyle="--", linewidth=1.0,
+                color=dots.get_facecolor()[0], label=f"feasible boundary, {label[1]}")
     ax.scatter([r["full_scale_force_N"] for r in front], [span(r) for r in front], s=70,
                facecolors="none", edgecolors="k", label="Pareto front")
     ax.set_xscale("log")
@@ -392,6 +400,24 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
     ax.legend(fontsize=7, loc="best")
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, format="svg")
+
+
+def boundary_path(steps: list[tuple[float, float, float]]) -> tuple[list[float], list[float]]:
+    """The feasible boundary's steps as a line in the figure's axes (force along x, span
+    along y): each step a vertical run at its largest force over its spans.
+
+    Args:
+        steps: (lowest span, highest span, largest feasible force N) per step.
+
+    Returns:
+        (forces, spans) of the line's vertices.
+    """
+    xs: list[float] = []
+    ys: list[float] = []
+    for low, high, force in steps:
+        xs += [force, force]
+        ys += [low, high]
+    return xs, ys
 
 
 def span(r: dict) -> float:

@@ -542,3 +542,39 @@ def dominates(a: Sequence[float], b: Sequence[float]) -> bool:
         True when ``a`` is at least ``b`` in every objective and above it in one.
     """
     return all(x >= y for x, y in zip(a, b)) and any(x > y for x, y in zip(a, b))
+
+
+def feasible_boundary(records: Sequence[Mapping[str, Any]], bins: int = 8
+                      ) -> list[tuple[float, float, float]]:
+    """The feasible region's upper boundary in the (K_obj span, rated force) plane: the
+    sampled spans cut into ``bins`` equal steps of log(span), and in each the largest rated
+    force of a feasible record (the limit above it is what refuses the points there).
+
+    Args:
+        records: flat records of one product and material (``feasible``,
+            ``full_scale_force_N`` in N, the K_obj range in N/mm).
+        bins: steps of log(span) (>= 1).
+
+    Returns:
+        (the step's lowest span, its highest span, the largest feasible force in it, N) for
+        each step holding a feasible record, in increasing span; empty when none is
+        feasible.
+
+    Raises:
+        DesignError: ``bins`` below 1.
+    """
+    if isinstance(bins, bool) or not isinstance(bins, int) or bins < 1:
+        raise DesignError("bins", bins, "an integer >= 1")
+    spans = [objective_value(r, "kobj_span") for r in records]
+    finite = [s for s in spans if math.isfinite(s) and s > 0]
+    if not finite:
+        return []
+    lo, hi = math.log(min(finite)), math.log(max(finite))
+    width = (hi - lo) / bins or 1.0
+    best: dict[int, float] = {}
+    for r, s in zip(records, spans):
+        if r.get("feasible") and math.isfinite(s) and s > 0:
+            i = min(int((math.log(s) - lo) / width), bins - 1)
+            best[i] = max(best.get(i, 0.0), float(r["full_scale_force_N"]))
+    return [(math.exp(lo + i * width), math.exp(lo + (i + 1) * width), best[i])
+            for i in sorted(best)]
