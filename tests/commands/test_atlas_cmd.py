@@ -168,5 +168,7 @@ def test_the_figure_draws_each_products_feasible_boundary(tmp_path):
     front_figure(records, records[:1], tmp_path / "f.svg", "10")
     text = (tmp_path / "f.svg").read_text(encoding="utf-8")
     assert "feasible boundary, m" in text and "Pareto front" in text
+    front_figure(records, records[:1], tmp_path / "f.png", "10")  # the docs' pictures
+    assert (tmp_path / "f.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert boundary_path([(2.0, 10.0, 0.3), (10.0, 50.0, 0.02)]) == \
         ([0.3, 0.3, 0.02, 0.02], [2.0, 10.0, 10.0, 50.0])

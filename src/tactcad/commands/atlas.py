@@ -362,10 +362,11 @@ def front_point(r: dict) -> dict:
 
 
 def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -> None:
-    """The atlas drawn (matplotlib, SVG).
+    """The atlas drawn (matplotlib, SVG or PNG).
 
     Args:
-        records: every verdict. front: the front's points. path: the SVG file.
+        records: every verdict. front: the front's points. path: the figure's file (SVG,
+            or PNG by its suffix).
         jaw: ``--jaw``, for the title.
 
     Each feasible point's K_obj span against its rated force, coloured by product and
@@ -399,7 +400,7 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
     ax.set_title(f"design atlas of the jaw {Path(jaw).name}")
     ax.legend(fontsize=7, loc="best")
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, format="svg")
+    fig.savefig(path, format=path.suffix.lstrip(".").lower() or "svg", dpi=110)
 
 
 def boundary_path(steps: list[tuple[float, float, float]]) -> tuple[list[float], list[float]]:
