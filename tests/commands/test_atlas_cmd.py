@@ -157,6 +157,9 @@ def test_the_summary_counts_each_products_verdicts_and_fronts_its_own_points(tmp
     assert [f["point"] for f in per["a"]["front"]] == [0]
     assert [f["point"] for f in per["b"]["front"]] == [0]
     assert s["points_per_s"] == 1.5 and "layer_um" not in per["a"]["front"][0]
+    # a's boundary: its feasible forces at spans 5 and 10, the refused 9 N bounding nothing
+    assert max(b["largest_feasible_force_N"] for b in per["a"]["boundary"]) == 1.0
+    assert [b["largest_feasible_force_N"] for b in per["b"]["boundary"]] == [0.1]
     json.dumps(s, allow_nan=False)  # the summary is JSON as it is written
 
 

@@ -312,13 +312,15 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
             batch ran. out: the ``--out`` folder.
 
     Returns:
-        Per product and material the points, the feasible ones, the binding limits counted
-        and the Pareto front (:func:`tactcad.studies.design_atlas.pareto_front`, each point
+        Per product and material the points, the feasible ones, the binding limits counted,
+        the feasible region's boundary (the largest feasible force, N, in each step of the
+        K_obj span; :func:`tactcad.studies.design_atlas.feasible_boundary`) and the Pareto
+        front (:func:`tactcad.studies.design_atlas.pareto_front`, each point
         with its design command); the points judged per second; the files.
     """
     from collections import Counter
 
-    from tactcad.studies.design_atlas import FRONT_OBJECTIVES, pareto_front
+    from tactcad.studies.design_atlas import FRONT_OBJECTIVES, feasible_boundary, pareto_front
 
     groups: dict[tuple[str, str], list[dict]] = {}
     for r in records:
@@ -333,7 +335,10 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
                     "feasible": len(feasible),
                     "binding_limits": dict(Counter(r["binding_limit"] for r in rows
                                                    if not r["feasible"])),
-                    "front": [front_point(r) for r in front]})
+                    "front": [front_point(r) for r in front],
+                    "boundary": [{"span_low": round(lo, 6), "span_high": round(hi, 6),
+                                  "largest_feasible_force_N": force}
+                                 for lo, hi, force in feasible_boundary(rows)]})
     return {"jaw": inputs["jaw"], "points": inputs["points"], "seed": inputs["seed"],
             "ranges": inputs["ranges"], "records": len(records), "complete": complete,
             "reused": reused, "seconds": round(seconds, 3),
