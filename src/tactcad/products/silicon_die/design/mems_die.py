@@ -1441,6 +1441,12 @@ def _chosen_beam_pair(E: float, k_r: float, k_m: float, window: float, pitch_um:
 
     Returns:
         The chosen :class:`BeamPair`, or None when no section fits.
+
+    Raises:
+        ValueError: a modulus or K not a finite number above 0.
+
+    Source: the beam model of :func:`beam_stiffness_N_per_mm` (Timoshenko and Gere),
+    inverted as :func:`length_for_stiffness_um` inverts it.
     """
     _positive(youngs_modulus_MPa=E, k_N_per_mm=k_r)
     _positive(k_N_per_mm=k_m)
