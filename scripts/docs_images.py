@@ -18,6 +18,10 @@ show is made by tactcad itself, from the export folder given:
   mount in the 5 mm jaw, its masks (KLayout) and its drawing (the SVG in headless
   Chromium; skipped with a note where none is installed), from ``tactcad die``.
 
+* ``atlas_jaw5.png`` and ``atlas_jaw10.png``: ``tactcad atlas`` of the 5 mm jaw (the die,
+  :data:`ATLAS_POINTS` [5] points) and of the 10 mm jaw (the die and the titanium comb,
+  :data:`ATLAS_POINTS` [10] points), drawn as the command draws its figure.
+
 The design chart (fem3d, minutes) and the diff overlay (two exports) are made
 by the commands their pages name.
 """
@@ -42,6 +46,8 @@ GRASPER = ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
 #: Grasper scenes shown in the pages: picture name -> scene.
 GRASPER_SCENES = {"grasper_open.png": "grasper-open", "grasper_closed.png": "grasper-closed"}
 DIE = ROOT / "hardware" / "grasper_jaw_5mm_mems" / "grasper_jaw_5mm_mems.toml"
+#: The tutorial's atlases: jaw -> (target points, the comb materials judged).
+ATLAS_POINTS = {"5": (96, []), "10": (12, ["Ti-6Al-4V-annealed"])}
 
 
 def sheet_page(pdf: Path, drawing_number: str) -> int:
@@ -141,6 +147,27 @@ def die_pictures(images: Path) -> None:
                        check=True, capture_output=True, timeout=120)
 
 
+def atlas_pictures(images: Path) -> None:
+    """The atlases of the 5 and 10 mm jaws (:data:`ATLAS_POINTS`), each run by ``tactcad
+    atlas`` on two local workers and drawn to PNG by the command's own figure function; the
+    run's summary printed, for the tutorial's figures."""
+    import tempfile
+
+    from tactcad.cli import main
+    from tactcad.commands.atlas import front_figure, read_table
+
+    for jaw, (points, materials) in ATLAS_POINTS.items():
+        with tempfile.TemporaryDirectory() as tmp:
+            argv = ["atlas", "--jaw", jaw, "--points", str(points), "--no-cache", "--out",
+                    tmp, "--quiet"] + [w for m in materials for w in ("--material", m)]
+            code = main(argv)
+            if code != 0:
+                raise SystemExit(f"docs_images: tactcad {' '.join(argv)} exited {code}")
+            summary = json.loads((Path(tmp) / "atlas.json").read_text(encoding="utf-8"))
+            records = read_table(Path(tmp) / "atlas.parquet") or []
+            front_figure(records, summary["front"], images / f"atlas_jaw{jaw}.png", jaw)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("exports", type=Path, help="an export folder of the paper's design")
@@ -156,6 +183,7 @@ def main(argv: list[str] | None = None) -> int:
     paper_plots(args.images)
     grasper_scenes(args.images)
     die_pictures(args.images)
+    atlas_pictures(args.images)
     print(f"docs_images: refreshed {args.images}")
     return 0
 

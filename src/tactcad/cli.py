@@ -363,12 +363,15 @@ def error_record(exc: BaseException, exit_code: int, message: str | None = None)
     where the error names none), what to ask instead (``alternatives``, each
     with the ``option`` to paste; empty where the error names none), every
     error of several (``errors``: field, value, allowed, why; only where there
-    are several) and the exit code."""
+    are several), the design limit's code where one refuses it (``limit``,
+    :data:`tactcad.vocabulary.binding_limits.BINDING_LIMITS`) and the exit code."""
     record = {"message": str(exc) if message is None else message,
               "field": getattr(exc, "field", None), "value": getattr(exc, "value", None),
               "allowed": getattr(exc, "allowed", None),
               "alternatives": list(getattr(exc, "alternatives", None) or ()),
               "exit_code": exit_code}
+    if getattr(exc, "limit", ""):  # the design limit that refuses it, as a code
+        record["limit"] = exc.limit
     several = getattr(exc, "errors", ())
     if len(several) > 1:
         record["errors"] = [{"field": e.field, "value": e.value, "allowed": e.allowed,

@@ -42,11 +42,15 @@ class DesignError(TactcadError, ValueError):
         alternatives: what to ask instead, each a dict with at least
             ``option`` (the options to paste, e.g. ``--full-scale-force 0.077``)
             and ``words`` (what it gives); empty when the error names none.
+        limit: the design limit that refuses it, a code of
+            :data:`tactcad.vocabulary.binding_limits.BINDING_LIMITS` ("" when the refusal
+            is of a value, not of a design limit).
     """
 
     def __init__(self, field: str, value: object, allowed: str, why: str = "", file: str = "",
-                 alternatives: Iterable[dict] = ()):
+                 alternatives: Iterable[dict] = (), limit: str = ""):
         self.field = field
+        self.limit = limit
         self.value = value
         self.allowed = allowed
         self.why = why

@@ -157,4 +157,21 @@ def test_the_summary_counts_each_products_verdicts_and_fronts_its_own_points(tmp
     assert [f["point"] for f in per["a"]["front"]] == [0]
     assert [f["point"] for f in per["b"]["front"]] == [0]
     assert s["points_per_s"] == 1.5 and "layer_um" not in per["a"]["front"][0]
+    # a's boundary: its feasible forces at spans 5 and 10, the refused 9 N bounding nothing
+    assert max(b["largest_feasible_force_N"] for b in per["a"]["boundary"]) == 1.0
+    assert [b["largest_feasible_force_N"] for b in per["b"]["boundary"]] == [0.1]
     json.dumps(s, allow_nan=False)  # the summary is JSON as it is written
+
+
+def test_the_figure_draws_each_products_feasible_boundary(tmp_path):
+    from tactcad.commands.atlas import boundary_path, front_figure
+
+    records = [verdict(0, "a", True, 1.0, 10.0, 0.1), verdict(1, "a", True, 0.5, 5.0, 0.2),
+               verdict(2, "a", False, 9.0, 90.0, float("nan"))]
+    front_figure(records, records[:1], tmp_path / "f.svg", "10")
+    text = (tmp_path / "f.svg").read_text(encoding="utf-8")
+    assert "feasible boundary, m" in text and "Pareto front" in text
+    front_figure(records, records[:1], tmp_path / "f.png", "10")  # the docs' pictures
+    assert (tmp_path / "f.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert boundary_path([(2.0, 10.0, 0.3), (10.0, 50.0, 0.02)]) == \
+        ([0.3, 0.3, 0.02, 0.02], [2.0, 10.0, 10.0, 50.0])

@@ -1273,3 +1273,24 @@ def test_the_robotic_jaw_example_seats_its_die_in_the_labs_own_pocket():
     verdicts = {r["requirement"]: r["verdict"] for r in project.verify()["matrix"]}
     assert "fail" not in verdicts.values() and verdicts["kr_over_km"] == "pass"
     assert verdicts["full_scale_force_N"] == "pass" and plan.weibull == md.DESIGN_STRENGTH
+
+
+@settings(max_examples=60, deadline=None)
+@given(k_m=st.floats(1e-3, 30.0), ratio=st.floats(1.5, 1000.0), window=st.floats(300.0, 9000.0),
+       pitch=st.sampled_from([md.DEFAULT_PITCH_UM, 800.0, 1500.0]))
+def test_the_screened_beam_search_chooses_the_whole_enumerations_pair(k_m, ratio, window, pitch):
+    """The vectorised search picks, field for field, the pair the scalar enumeration's
+    least is (None where nothing fits), including pairs whose lengths come out negative."""
+    fitting = md._fitting_beams(E_110_MPA, k_m * ratio, k_m, window, pitch)
+    expected = min(fitting) if fitting else None
+    assert md._chosen_beam_pair(E_110_MPA, k_m * ratio, k_m, window, pitch) == expected
+
+
+def test_the_screened_beam_search_finds_a_pair_for_soft_tissue_in_the_5mm_window():
+    """A die for soft tissue in the 5 mm jaw's window: a pair is found and it fits."""
+    pair = md._chosen_beam_pair(E_110_MPA, 5.0, 0.5, 4400.0, md.DEFAULT_PITCH_UM)
+    assert pair is not None
+    post = pair.post_um
+    assert pair.reference_length_um + pair.measuring_length_um + post \
+        + md.tip_gap_um(pair.slot_um, post) <= 4400.0
+    assert pair.reference_length_um >= md.SLENDERNESS * pair.width_um

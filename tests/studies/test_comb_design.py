@@ -161,3 +161,50 @@ def test_the_sheets_reason_says_the_rule_that_chose_it(margin, words):
     from tactcad.studies.comb_design import sheet_rule_words
 
     assert words in sheet_rule_words(margin)
+
+
+def test_the_refusals_fewer_columns_check_stops_at_the_first_comb_that_carries_a_force():
+    """Eight columns crowd the 10 mm jaw's pocket; seven or fewer carry a light force, so a
+    refusal offers ``--columns``; a single column has no fewer count to offer."""
+    import copy
+
+    from tactcad.studies.comb_design import comb_candidates, fewer_columns_carry, refusal_option
+
+    targets = Targets(10.0, (0.5, 5.0), 0.01)
+    base = read_toml(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml", "design file")
+    room = jaw_room("10")
+    searched, tried = comb_candidates(targets, room, 8, copy.deepcopy(base))
+    assert all(c.plan is None for c in tried)  # the pitch binds every sheet
+    assert fewer_columns_carry(searched, 8, room, targets, None, array_envelope_mm)
+    assert refusal_option(searched, tried, targets, room, 8, None,
+                          array_envelope_mm) == "--columns"
+    assert not fewer_columns_carry(searched, 1, room, targets, None, array_envelope_mm)
+
+
+@pytest.mark.parametrize("kr_over_km, kobj, force, columns", [
+    (21.267, (2.87533, 18.4831), 0.0620327, 2),
+    (10.0, (0.5, 5.0), 0.05, 6),
+])
+def test_the_first_preferred_comb_is_the_one_the_whole_search_chooses(kr_over_km, kobj, force,
+                                                                      columns):
+    """Judged in the chosen one's order and stopped at the first with margin, the search
+    finds the very comb that judging every sheet at every scale chooses."""
+    from tactcad.studies.comb_design import chosen, comb_candidates, counting, first_preferred
+
+    targets = Targets(kr_over_km, kobj, force)
+    lazy = first_preferred(targets, jaw_room("10"), columns, BASE, grade=TI,
+                           envelope_of=array_envelope_mm)
+    _, tried = comb_candidates(targets, jaw_room("10"), columns, BASE, grade=TI,
+                               envelope_of=array_envelope_mm)
+    best = chosen(counting(tried))
+    assert lazy is not None and best.force_margin_rel >= 0.2
+    assert (lazy.sheet_mm, lazy.km_scale) == (best.sheet_mm, best.km_scale)
+    assert lazy.data == best.data
+
+
+def test_no_first_preferred_comb_where_none_carries_the_force_with_margin():
+    """A force no comb carries: nothing is chosen early, the whole search decides."""
+    from tactcad.studies.comb_design import first_preferred
+
+    assert first_preferred(Targets(10.0, (0.06, 0.43), 0.9), jaw_room("10"), 6, BASE,
+                           grade=TI, envelope_of=array_envelope_mm) is None

@@ -11,7 +11,7 @@ from conftest import run_cli
 
 from tactcad.errors import DesignError
 from tactcad.studies.design_atlas import (AXES, COMB, DEFAULT_RANGES, DIE, SILICON, JawAtlas,
-                                   atlas_targets, batches, evaluate_batch, limit_kind,
+                                   atlas_targets, batches, evaluate_batch, refusal_of,
                                    pareto_front)
 
 
@@ -87,18 +87,43 @@ def test_batches_cover_every_point_once():
         batches(points, 0)
 
 
-@pytest.mark.parametrize("words, kind", [
-    ("the comb's height: 6.1 mm, the 10 mm jaw holds 5.9 mm", "height"),
-    ("requirements.footprint_mm[1] = 5.3: allowed >= 6.2 mm", "footprint"),
-    ("comb.stop_gaps_mm[7] = 2.025: allowed 0 < value <= 1 mm", "stop"),
-    ("past the die's failure probability, every beam on its deepest stop", "strength"),
-    ("full_scale_force_N: predicted 0.09935, target 2", "force"),
-    ("element.notch_radius_mm = 0.3: allowed 0.427 <= value <= 2 mm", "sheet"),
-    ("at 0.0023 N the bridges' noise moves K_obj by 1.62 %", "resolution"),
-    ("something new", "other"),
-])
-def test_refusals_are_sorted_by_the_limit_they_name(words, kind):
-    assert limit_kind(words) == kind
+def test_a_refusal_is_sorted_by_the_limit_code_it_carries_not_its_words():
+    """The code is read from the refusal; words that name another limit do not move it."""
+    from tactcad.vocabulary.binding_limits import BINDING_LIMITS, OTHER, STOP
+
+    coded = DesignError("--full-scale-force", 2.0, "at most 1 N",
+                        "the comb's height and its yield strength", limit=STOP)
+    assert refusal_of(coded).limit == STOP
+    assert refusal_of(DesignError("--columns", 1, "2 ... 50")).limit == OTHER
+    assert STOP in BINDING_LIMITS
+
+
+def test_a_die_rated_past_its_strength_carries_the_strength_code():
+    """The 5 mm jaw's die at 4 N: its roots' failure probability binds first."""
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
+    from tactcad.studies.design_atlas import targets_of
+    from tactcad.vocabulary.binding_limits import STRENGTH
+
+    point = {"kr_over_km": 10.0, "kobj_lo_N_per_mm": 0.5, "kobj_hi_N_per_mm": 5.0,
+             "full_scale_force_N": 4.0}
+    with pytest.raises(DesignError) as err:
+        doped_die_plan(targets_of(point), jaw_room("5"), columns=4)
+    assert err.value.field == "--full-scale-force" and err.value.limit == STRENGTH
+
+
+def test_a_comb_with_more_columns_than_its_pitch_holds_carries_the_sheet_code():
+    """Eight columns in the 10 mm jaw's pocket leave no measuring arm on any sheet."""
+    from tactcad.studies.comb_design import comb_candidates
+    from tactcad.studies.design_atlas import targets_of
+    from tactcad.vocabulary.binding_limits import SHEET
+
+    atlas = jaw_atlas("10", [(COMB, "Ti-6Al-4V-annealed")])
+    point = {"kr_over_km": 10.0, "kobj_lo_N_per_mm": 0.5, "kobj_hi_N_per_mm": 5.0,
+             "full_scale_force_N": 0.01}
+    _, tried = comb_candidates(targets_of(point), atlas.room, 8, atlas.comb_base,
+                               grade="Ti-6Al-4V-annealed")
+    assert tried and all(c.plan is None and c.limits == (SHEET,) for c in tried)
 
 
 def jaw_atlas(jaw: str, products) -> JawAtlas:
@@ -128,7 +153,74 @@ def agrees_with_design(record: dict, tmp_path) -> None:
         error = answer["error"]
         assert code != 0
         assert error["field"] == record["design_field"], record["command"]
+        assert error.get("limit") == record["binding_limit"], record["command"]
         assert record["binding_detail"] and record["binding_detail"] in error["message"]
+
+
+def written_die_figures(design_file) -> dict:
+    """The figures of the die ``design`` wrote, re-planned from its file as ``tactcad die``
+    plans it (the atlas's own figure functions on that plan)."""
+    import argparse
+    from pathlib import Path
+
+    from tactcad.commands.die import _die_args, die_asked, plan_of
+    from tactcad.products.silicon_die.design.mems_die import rating_limits
+    from tactcad.products.silicon_die.mechanics.die_dynamics import first_resonance_Hz
+    from tactcad.products.silicon_die.studies.die_doping import worst_readout_error_rel
+
+    args = _die_args(Path(design_file), argparse.Namespace(overrides=[]), Path("."))
+    plan = plan_of(die_asked(args)).plan
+    return {"kobj_resolution_rel": worst_readout_error_rel(plan),
+            "max_force_N": min(force for force, _ in rating_limits(plan)),
+            "f1_Hz": min(first_resonance_Hz(plan, b) for b in plan.beams),
+            "layer_um": plan.stack.device_um}
+
+
+def near_frontier(records: list[dict], count: int) -> list[dict]:
+    """Points a step each side of feasible records' own frontier: the rating 3 % under and
+    5 % over the largest force each allows (``max_force_N``; the limits grow a little with
+    the rating, the cavities' depths in steps, so the frontier lies a little above it)."""
+    from tactcad.studies.design_atlas import _g
+
+    out = []
+    for r in [r for r in records if r["feasible"]][:count]:
+        for step, factor in ((0, 0.97), (1, 1.05)):
+            out.append({k: r[k] for k in ("kr_over_km", "kobj_lo_N_per_mm",
+                                          "kobj_hi_N_per_mm", "columns")}
+                       | {"point": 1000 + 2 * r["point"] + step,
+                          "full_scale_force_N": _g(factor * r["max_force_N"])})
+    return out
+
+
+def test_drawn_die_points_and_their_frontier_are_the_verdicts_and_figures_design_gives(
+        tmp_path):
+    """The honesty property (issue 70): drawn atlas points of the 5 mm jaw's die, feasible
+    and refused, and points a step each side of the feasible ones' frontier, each run
+    through ``tactcad design``: the same verdict, option and limit code; a feasible one's
+    figures those of the die design wrote. ``make test`` draws a few,
+    ``TACTCAD_TEST_DEPTH=deep`` the issue's 50 (and exports and checks the feasible ones)."""
+    from depth import DEPTH, draws
+
+    atlas = jaw_atlas("5", [(DIE, SILICON)])
+    drawn = draws(4, 40)
+    points = atlas_targets(drawn, {"full_scale_force_N": (0.002, 0.05)}, seed=11)
+    records = evaluate_batch(atlas, points)
+    records += evaluate_batch(atlas, near_frontier(records, draws(1, 5)))
+    assert {r["feasible"] for r in records} == {True, False}
+    for r in records:
+        agrees_with_design(r, tmp_path)
+        if not r["feasible"]:
+            continue
+        written = tmp_path / r["command"].rsplit(" ", 1)[-1]
+        again = written_die_figures(written)
+        for key, value in again.items():
+            assert r[key] == pytest.approx(value, rel=1e-12), (key, r["command"])
+        if DEPTH == "deep":
+            out = tmp_path / f"export_{r['point']}"
+            e = run_cli("export", "--design", written, "--out", out)
+            assert e.returncode == 0, e.stdout + e.stderr
+            c = run_cli("check", "--design", written, "--out", out)
+            assert c.returncode == 0, c.stdout
 
 
 def test_every_die_point_of_an_atlas_is_the_verdict_design_gives(tmp_path):
@@ -189,3 +281,22 @@ def test_ctrl_c_keeps_the_batches_that_finished_and_cancels_the_rest():
     kept = {r["point"] for r in records}
     same = [r for r in everything if r["point"] in kept]
     assert json.dumps(same, sort_keys=True) == json.dumps(records, sort_keys=True)
+
+
+def test_the_feasible_boundary_is_the_largest_feasible_force_in_each_span_step():
+    from tactcad.studies.design_atlas import feasible_boundary
+
+    def r(span, force, feasible):
+        return {"kobj_lo_N_per_mm": 1.0, "kobj_hi_N_per_mm": span,
+                "full_scale_force_N": force, "feasible": feasible}
+
+    records = [r(2.0, 0.1, True), r(2.5, 0.3, True), r(3.0, 9.0, False),
+               r(30.0, 0.02, True), r(50.0, 0.05, False)]
+    steps = feasible_boundary(records, bins=2)
+    # spans 2 ... 50 cut at sqrt(100) = 10: the refused 9 N and 0.05 N bound nothing
+    assert [round(s[2], 6) for s in steps] == [0.3, 0.02]
+    assert steps[0][0] == pytest.approx(2.0) and steps[0][1] == pytest.approx(10.0)
+    assert steps[1][1] == pytest.approx(50.0)
+    assert feasible_boundary([r(2.0, 0.1, False)], bins=3) == []
+    with pytest.raises(DesignError, match="bins"):
+        feasible_boundary(records, bins=0)

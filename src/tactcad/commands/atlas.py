@@ -312,13 +312,15 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
             batch ran. out: the ``--out`` folder.
 
     Returns:
-        Per product and material the points, the feasible ones, the binding limits counted
-        and the Pareto front (:func:`tactcad.studies.design_atlas.pareto_front`, each point
+        Per product and material the points, the feasible ones, the binding limits counted,
+        the feasible region's boundary (the largest feasible force, N, in each step of the
+        K_obj span; :func:`tactcad.studies.design_atlas.feasible_boundary`) and the Pareto
+        front (:func:`tactcad.studies.design_atlas.pareto_front`, each point
         with its design command); the points judged per second; the files.
     """
     from collections import Counter
 
-    from tactcad.studies.design_atlas import FRONT_OBJECTIVES, pareto_front
+    from tactcad.studies.design_atlas import FRONT_OBJECTIVES, feasible_boundary, pareto_front
 
     groups: dict[tuple[str, str], list[dict]] = {}
     for r in records:
@@ -333,7 +335,10 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
                     "feasible": len(feasible),
                     "binding_limits": dict(Counter(r["binding_limit"] for r in rows
                                                    if not r["feasible"])),
-                    "front": [front_point(r) for r in front]})
+                    "front": [front_point(r) for r in front],
+                    "boundary": [{"span_low": round(lo, 6), "span_high": round(hi, 6),
+                                  "largest_feasible_force_N": force}
+                                 for lo, hi, force in feasible_boundary(rows)]})
     return {"jaw": inputs["jaw"], "points": inputs["points"], "seed": inputs["seed"],
             "ranges": inputs["ranges"], "records": len(records), "complete": complete,
             "reused": reused, "seconds": round(seconds, 3),
@@ -362,16 +367,21 @@ def front_point(r: dict) -> dict:
 
 
 def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -> None:
-    """The atlas drawn (matplotlib, SVG).
+    """The atlas drawn (matplotlib, SVG or PNG).
 
     Args:
-        records: every verdict. front: the front's points. path: the SVG file.
+        records: every verdict. front: the front's points. path: the figure's file (SVG,
+            or PNG by its suffix).
         jaw: ``--jaw``, for the title.
 
     Each feasible point's K_obj span against its rated force, coloured by product and
-    material; the front ringed; the refused points grey crosses.
+    material; the front ringed; the refused points grey crosses; each product and
+    material's feasible region bounded above by a dashed step line in its colour
+    (:func:`tactcad.studies.design_atlas.feasible_boundary`).
     """
     from matplotlib.figure import Figure
+
+    from tactcad.studies.design_atlas import feasible_boundary
 
     fig = Figure(figsize=(7.0, 4.8))
     ax = fig.add_subplot()
@@ -380,8 +390,12 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
                marker="x", s=12, color="0.75", label="refused")
     for label in sorted({(r["product"], r["material"]) for r in records if r["feasible"]}):
         rows = [r for r in records if r["feasible"] and (r["product"], r["material"]) == label]
-        ax.scatter([r["full_scale_force_N"] for r in rows], [span(r) for r in rows], s=18,
-                   label=f"{label[0]} {label[1]}")
+        dots = ax.scatter([r["full_scale_force_N"] for r in rows], [span(r) for r in rows],
+                          s=18, label=f"{label[0]} {label[1]}")
+        group = [r for r in records if (r["product"], r["material"]) == label]
+        edge = boundary_path(feasible_boundary(group))
+        ax.plot(edge[0], edge[1], linestyle="--", linewidth=1.0,
+                color=dots.get_facecolor()[0], label=f"feasible boundary, {label[1]}")
     ax.scatter([r["full_scale_force_N"] for r in front], [span(r) for r in front], s=70,
                facecolors="none", edgecolors="k", label="Pareto front")
     ax.set_xscale("log")
@@ -391,7 +405,25 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
     ax.set_title(f"design atlas of the jaw {Path(jaw).name}")
     ax.legend(fontsize=7, loc="best")
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, format="svg")
+    fig.savefig(path, format=path.suffix.lstrip(".").lower() or "svg", dpi=110)
+
+
+def boundary_path(steps: list[tuple[float, float, float]]) -> tuple[list[float], list[float]]:
+    """The feasible boundary's steps as a line in the figure's axes (force along x, span
+    along y): each step a vertical run at its largest force over its spans.
+
+    Args:
+        steps: (lowest span, highest span, largest feasible force N) per step.
+
+    Returns:
+        (forces, spans) of the line's vertices.
+    """
+    xs: list[float] = []
+    ys: list[float] = []
+    for low, high, force in steps:
+        xs += [force, force]
+        ys += [low, high]
+    return xs, ys
 
 
 def span(r: dict) -> float:

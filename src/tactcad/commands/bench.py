@@ -8,6 +8,8 @@
   ``tactcad.benchmarks.stiffness_bench.main(args)`` when that module is installed.
 * ``bench die``: a silicon die's beams, each stiffness level's cost and K error against
   fem3d on the frame (:mod:`tactcad.products.silicon_die.benchmarks.die_bench`).
+* ``bench atlas``: the design atlas on one and two workers, and its agreement with
+  ``design`` (:mod:`tactcad.benchmarks.atlas_bench`).
 * ``bench closed-form``, ``bench montecarlo``, ``bench sweep``: the design
   tools at scale (:mod:`tactcad.benchmarks.bench_scale`).
 """
@@ -20,7 +22,7 @@ import os
 
 from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
                                project_from_args)
-from tactcad.commands.options import count, number
+from tactcad.commands.options import count, material_grade_name, number
 from tactcad.commands.finite_json import dumps
 from tactcad.mechanics.ladder import models
 from tactcad.mechanics.modal_ladder import modal_models
@@ -36,7 +38,7 @@ MAX_LOAD_SECONDS = 600.0  # its duration at most (s)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("bench", help="speed benchmarks (export, stiffness, modal, die, closed-form, montecarlo, sweep)",
+    p = sub.add_parser("bench", help="speed benchmarks (export, stiffness, modal, die, atlas, closed-form, montecarlo, sweep)",
                        description="Print timings. Goals on two cores: cold export <= 8 s, "
                                    "no-change re-export <= 1.5 s, one changed arm <= 4 s, each "
                                    "distinct part built once; interference of the largest scene "
@@ -89,6 +91,26 @@ def register(sub: argparse._SubParsersAction) -> None:
                                            "(goal: an answer <= 60 s)")
     add_output_args(dj, "print one JSON object: each force's seconds and answer")
     dj.set_defaults(func=run_design_jaw)
+    at = bsub.add_parser("atlas", help="tactcad atlas on one worker and on two: points/s, "
+                                       "the scaling (goal >= 1.7x) and the agreement with "
+                                       "tactcad design on drawn records")
+    at.add_argument("--jaw", default="5", metavar="CLASS|FILE",
+                    help="the jaw, as `tactcad atlas --jaw` takes it (default %(default)s: the "
+                         "die alone)")
+    at.add_argument("--points", type=count(2, 100_000, "target points"), default=64,
+                    metavar="N", help="target points of the sample (default %(default)s)")
+    at.add_argument("--material", type=material_grade_name, action="append", default=None,
+                    metavar="GRADE", help="a comb material judged (repeat for more; default: "
+                                          "every grade of the library)")
+    at.add_argument("--agree", type=count(0, 1000, "records checked"), default=4, metavar="N",
+                    help="records drawn and run through `tactcad design` (default "
+                         "%(default)s; each costs seconds, a comb's refusal minutes)")
+    at.add_argument("--batch", type=count(1, 10_000, "points per task"), default=8,
+                    metavar="N", help="target points per Dask task (default %(default)s)")
+    at.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0,
+                    help="seed of the sample and of the draw (default %(default)s)")
+    add_output_args(at, "print one JSON object: seconds, points/s, scaling, agreement, goals")
+    at.set_defaults(func=run_atlas_bench)
     c = bsub.add_parser("closed-form", help="corrected closed-form K evaluations/s (goal >= 1e7)")
     add_design_arg(c)
     add_output_args(c, "print one JSON object: evaluations per second and the goal")
@@ -369,6 +391,25 @@ def run_crosstalk(args: argparse.Namespace) -> int:
     from tactcad.benchmarks.crosstalk_bench import main
 
     return int(main(args, plan_from_args(args)) or 0)
+
+
+def run_atlas_bench(args: argparse.Namespace) -> int:
+    """``bench atlas``: points/s on one and two workers, the scaling, the agreement with
+    ``design`` (:mod:`tactcad.benchmarks.atlas_bench`)."""
+    from tactcad.benchmarks.atlas_bench import atlas_bench_figures, atlas_bench_lines
+    from tactcad.benchmarks.bench_scale import load_average
+    from tactcad.commands.atlas import jaw_atlas
+    from tactcad.studies.design_atlas import checked_ranges
+
+    columns = checked_ranges({})["columns"]
+    atlas = jaw_atlas(args.jaw, args.material, (int(columns[0]), int(columns[1])))
+    figures = atlas_bench_figures(atlas, args.points, args.agree, args.batch, args.seed,
+                                  say=progress_from_args(args))
+    if args.json:
+        print(dumps({**figures, "load_average": load_average()}))
+        return 0
+    print("\n".join(atlas_bench_lines(figures, load_average())))
+    return 0
 
 
 def run_closed_form(args: argparse.Namespace) -> int:

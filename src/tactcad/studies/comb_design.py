@@ -80,6 +80,9 @@ class CombCandidate:
     failures: tuple[str, ...]
     force_margin_rel: float
     rated_force_N: float | None
+    #: the code of each failure's limit (:mod:`tactcad.vocabulary.binding_limits`), in
+    #: the failures' order
+    limits: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -264,35 +267,59 @@ def failure_line(record: dict) -> str:
 
 def judge(d: dict, envelope_of: Callable | None, room: Any = None
           ) -> tuple[Any, tuple[str, ...], float, float | None]:
-    """(plan, failures, full-scale-force margin, rated force) of a candidate's tables: the
-    design's validation, its verification matrix at the closed form, its gauge limits
-    clearing the closed form's strain error (as the stacked search's webs do), its hard
-    stops and, given the jaw's ``room``, its height (:func:`too_tall`)."""
+    """(plan, failures, full-scale-force margin, rated force) of a candidate's tables
+    (:func:`judge_limits` without the failures' limit codes)."""
+    plan, fails, _, margin, rated = judge_limits(d, envelope_of, room)
+    return plan, fails, margin, rated
+
+
+def refused_fields(exc: DesignErrors) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """A validation's refusal as failures and their limit codes
+    (:func:`tactcad.vocabulary.binding_limits.field_limit` of each field)."""
+    from tactcad.vocabulary.binding_limits import field_limit
+
+    return (tuple(f"{e.field} = {e.value}: allowed {e.allowed}" for e in exc.errors),
+            tuple(e.limit or field_limit(e.field) for e in exc.errors))
+
+
+def judge_limits(d: dict, envelope_of: Callable | None, room: Any = None
+                 ) -> tuple[Any, tuple[str, ...], tuple[str, ...], float, float | None]:
+    """(plan, failures, each failure's limit code, full-scale-force margin, rated force) of
+    a candidate's tables: the design's validation, its verification matrix at the closed
+    form, its gauge limits clearing the closed form's strain error (as the stacked search's
+    webs do), its hard stops and, given the jaw's ``room``, its height (:func:`too_tall`).
+    The codes are :mod:`tactcad.vocabulary.binding_limits`', set by the check that fails."""
     from tactcad.mechanics.hard_stops import stop_verdicts
     from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits, uncleared_gauge_limits
     from tactcad.studies.verification import rated_full_scale_force, verification_matrix
+    from tactcad.vocabulary.binding_limits import (HEIGHT, MECHANICS_LIMITS, STOP,
+                                                   requirement_limit)
 
     try:
         plan = plan_from_dict(d)
     except DesignErrors as exc:
-        return None, tuple(f"{e.field} = {e.value}: allowed {e.allowed}" for e in exc.errors), \
-            -math.inf, None
+        return (None, *refused_fields(exc), -math.inf, None)
     env = envelope_of(plan) if envelope_of is not None else None
     try:
         records = verification_matrix(plan, "closed-form", envelope_mm=env)
     except DesignErrors as exc:  # a table the plan holds refuses it (the jaw's, say)
-        return None, tuple(f"{e.field} = {e.value}: allowed {e.allowed}" for e in exc.errors), \
-            -math.inf, None
-    fails = [failure_line(r) for r in records if r["verdict"] == "fail"]
+        return (None, *refused_fields(exc), -math.inf, None)
+    failed = [r for r in records if r["verdict"] == "fail"]
+    fails = [failure_line(r) for r in failed]
+    codes = [requirement_limit(r["requirement"]) for r in failed]
     force = d["requirements"]["full_scale_force_N"]
+    stops = [v for v in stop_verdicts(plan, force) if not v.engages_between]
     fails += [f"hard stop of element {v.element}: engages at {v.multiple_of_rated:.2f} x the rated "
-              f"deflection, yield-limited at {v.yield_tip_mm:.4f} mm"
-              for v in stop_verdicts(plan, force) if not v.engages_between]
-    fails += too_tall(plan, room) if room is not None else ()
+              f"deflection, yield-limited at {v.yield_tip_mm:.4f} mm" for v in stops]
+    codes += [STOP] * len(stops)
+    tall = too_tall(plan, room) if room is not None else ()
+    fails += tall
+    codes += [HEIGHT] * len(tall)
+    gauges = uncleared_gauge_limits(plan_limits(plan, "closed-form"), force)
     fails += [f"{LIMIT_WORDS[lim.limit]} of element {lim.element}: {lim.force_N:.4g} N does not "
               f"clear {force:g} N by the closed form's {100 * lim.error_estimate_rel:.2g} % "
-              "error on the grid's strain"
-              for lim in uncleared_gauge_limits(plan_limits(plan, "closed-form"), force)]
+              "error on the grid's strain" for lim in gauges]
+    codes += [MECHANICS_LIMITS.get(lim.limit, "other") for lim in gauges]
     margin = next((r["margin_rel"] for r in records if r["requirement"] == "full_scale_force_N"),
                   0.0)
     probe = copy.deepcopy(d)
@@ -301,7 +328,7 @@ def judge(d: dict, envelope_of: Callable | None, room: Any = None
         rated = rated_full_scale_force(plan_from_dict(probe))
     except DesignErrors:
         rated = None
-    return plan, tuple(fails), float(margin if margin is not None else 0.0), rated
+    return plan, tuple(fails), tuple(codes), float(margin if margin is not None else 0.0), rated
 
 
 def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
@@ -357,6 +384,8 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
                                                          grade, envelope_of, order))
         refused = refusal(tried, targets, room, columns, jaw, fewer, frontier)
         refused.candidates = tuple(tried)  # what binds, read by the design atlas
+        nearest = nearest_failure(tried)
+        refused.limit = nearest.limits[0] if nearest and nearest.limits else ""
         raise refused
     return comb_of_candidates(tried, targets, room, columns, name=name,
                               envelope_of=envelope_of, max_grasp_force_N=max_grasp_force_N)
@@ -375,18 +404,62 @@ def comb_candidates(targets: Targets, room: Any, columns: int, base: Mapping[str
     Raises:
         DesignError: ``--columns`` out of 1 ... 12.
     """
-    if not 1 <= columns <= 12:
-        raise DesignError("--columns", columns, "1 ... 12 for a comb in a jaw")
     from tactcad.mechanics.correction import range_warnings_unsaid
 
-    base = copy.deepcopy(dict(base))
-    base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
-    if process is not None:
-        base["element"]["process"] = process
+    base = searched_base(base, columns, process)
     with range_warnings_unsaid():  # the candidates are not the design asked about
         tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                            progress) for sheet in sheets_of(base) for scale in KM_SCALES]
     return base, tried
+
+
+def searched_base(base: Mapping[str, Any], columns: int, process: str | None = None) -> dict:
+    """The base tables as the search takes them: a copy without the template's own
+    requirements, on ``process`` where one is given.
+
+    Raises:
+        DesignError: ``--columns`` out of 1 ... 12.
+    """
+    if not 1 <= columns <= 12:
+        raise DesignError("--columns", columns, "1 ... 12 for a comb in a jaw")
+    base = copy.deepcopy(dict(base))
+    base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
+    if process is not None:
+        base["element"]["process"] = process
+    return base
+
+
+def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
+                    grade: str | None = None, envelope_of: Callable | None = None
+                    ) -> CombCandidate | None:
+    """The candidate :func:`chosen` picks, found by judging the candidates in its order of
+    preference (the softest pair first, the thicker sheet on a tie) and stopping at the
+    first that counts with :data:`FORCE_MARGIN_REL` to spare: none softer or thicker can
+    come before it, so it is ``chosen(counting(comb_candidates(...)))`` without judging the
+    rest. None when no candidate has the margin (then only the whole search decides: the
+    one with the most margin, or a refusal).
+
+    Args:
+        targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
+
+    Returns:
+        The chosen candidate, or None.
+
+    Raises:
+        DesignError: ``--columns`` out of 1 ... 12.
+    """
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    base = searched_base(base, columns)
+    with range_warnings_unsaid():
+        for scale in KM_SCALES:
+            for sheet in sorted(sheets_of(base), reverse=True):
+                c = candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
+                              None)
+                if c.plan is not None and not c.failures \
+                        and c.force_margin_rel >= FORCE_MARGIN_REL:
+                    return c
+    return None
 
 
 def counting(tried: list[CombCandidate]) -> list[CombCandidate]:
@@ -420,7 +493,7 @@ def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, roo
     counts, found as it finds it but without the force it offers to paste: ``--jaw`` where
     the pocket holds no sheet's comb (:func:`nearest_jaw`), ``--full-scale-force`` where some
     candidate carries a force, ``--columns`` where fewer columns count
-    (:func:`nearest_columns`), else ``--full-scale-force``.
+    (:func:`fewer_columns_carry`), else ``--full-scale-force``.
 
     Args:
         base: the tables as searched (:func:`comb_candidates`' first value).
@@ -434,8 +507,33 @@ def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, roo
         return "--jaw"
     if any(c.rated_force_N for c in tried):
         return "--full-scale-force"
-    fewer = nearest_columns(base, columns, room, targets, grade, envelope_of)
-    return "--columns" if fewer is not None else "--full-scale-force"
+    fewer = fewer_columns_carry(base, columns, room, targets, grade, envelope_of)
+    return "--columns" if fewer else "--full-scale-force"
+
+
+def fewer_columns_carry(base: dict, columns: int, room: Any, targets: Targets,
+                        grade: str | None, envelope_of: Callable | None) -> bool:
+    """Whether :func:`nearest_columns` finds an answer (it is not None): some count below
+    ``columns`` has a candidate that counts or carries some force. Stops at the first such
+    candidate instead of bisecting the force it would carry: the refusal's option alone.
+
+    Args:
+        base, columns, room, targets, grade, envelope_of: as :func:`nearest_columns`.
+
+    Returns:
+        True when a fewer-column comb counts or is rated for some force.
+    """
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    with range_warnings_unsaid():
+        for fewer in range(columns - 1, 0, -1):
+            for sheet in sheets_of(base):
+                for scale in KM_SCALES:
+                    c = candidate(base, sheet, scale, fewer, room, targets, grade,
+                                  envelope_of, None)
+                    if (c.plan is not None and not c.failures) or c.rated_force_N:
+                        return True
+    return False
 
 
 def nearest_failure(tried: list[CombCandidate]) -> CombCandidate | None:
@@ -544,20 +642,26 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
     it first."""
     if progress:
         progress(f"comb on a {sheet:g} mm sheet, K_m {km_scale:g} x eq. 2's centre")
+    from tactcad.vocabulary.binding_limits import FOOTPRINT, SHEET
+
     if getattr(room, "outline", None) is not None:
         room, why = room_of_outline(base, sheet, columns, room, targets, grade)
         if why:
-            return CombCandidate(sheet, km_scale, None, None, (why,), -math.inf, None)
+            return CombCandidate(sheet, km_scale, None, None, (why,), -math.inf, None,
+                                 (FOOTPRINT,))
     d, binding = comb_tables(base, sheet, columns, room, targets, grade)
+    codes: tuple[str, ...] = (SHEET,) * len(binding)  # the pitch leaves no arm
     if not binding:
         try:
             d, binding = with_webs_and_stops(d, targets, km_scale)
+            codes = (SHEET,) * len(binding)  # no web the sheet's process cuts reaches K
         except DesignErrors as exc:
-            binding = [f"{e.field} = {e.value}: allowed {e.allowed}" for e in exc.errors]
+            binding, codes = refused_fields(exc)
     if binding:
-        return CombCandidate(sheet, km_scale, None, None, tuple(binding), -math.inf, None)
-    plan, fails, margin, rated = judge(d, envelope_of, room)
-    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated)
+        return CombCandidate(sheet, km_scale, None, None, tuple(binding), -math.inf, None,
+                             tuple(codes))
+    plan, fails, limits, margin, rated = judge_limits(d, envelope_of, room)
+    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, limits)
 
 
 def too_tall(plan: Any, room: Any) -> tuple[str, ...]:

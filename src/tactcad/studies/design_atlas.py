@@ -5,8 +5,11 @@ span, the rated full-scale force, the columns), each point judged as ``tactcad d
 
 Every point is design's own verdict, reached by design's own functions:
 
-* the monolithic comb: :func:`tactcad.studies.comb_design.comb_candidates` (every sheet
-  at every K_m scale, judged at the closed form); where one counts, the comb design writes
+* the monolithic comb: first the candidates in the order design prefers them, up to the
+  first that counts with margin (:func:`tactcad.studies.comb_design.first_preferred`: the
+  one design chooses, found without judging the rest); where none does,
+  :func:`~tactcad.studies.comb_design.comb_candidates` (every sheet at every K_m scale,
+  judged at the closed form); where one counts, the comb design writes
   (:func:`~tactcad.studies.comb_design.comb_of_candidates`); where none does, the limit of
   the candidate nearest to counting (:func:`~tactcad.studies.comb_design.nearest_failure`,
   the refusal's own rule). The refusal's pasteable force, a bisection over the candidates
@@ -50,22 +53,6 @@ AXIS_LIMITS = {
 DEFAULT_RANGES = {"kr_over_km": (3.0, 30.0), "kobj_centre_N_per_mm": (0.1, 10.0),
                   "kobj_span": (2.0, 50.0), "full_scale_force_N": (0.005, 5.0),
                   "columns": (2, 8)}
-
-#: The binding limits a refusal is sorted into, each with the words that mark it (searched in
-#: this order in the refusal's first reason, lower case).
-LIMIT_WORDS = (
-    ("height", ("height", "too tall", "thickness_mm + tip_proud")),
-    ("footprint", ("footprint", "pocket", "across its", "length ")),
-    ("resolution", ("resolution", "resolve", "kobj_range", "noise")),
-    ("strength", ("failure probability",)),  # a die's, at its rating or on its stops
-    ("stop", ("stop", "cavity", "post standing")),
-    ("fatigue", ("fatigue",)),
-    ("strength", ("yield", "failure probability", "strength")),
-    ("force", ("full_scale_force_n", "--full-scale-force")),
-    ("sheet", ("sheet", "web", "notch", "slot", "element.", "comb.", "arms.", "pitch")),
-    ("layer", ("device layer", "beam width", "--kr-over-km", "--kobj-range")),
-)
-
 
 def atlas_targets(n: int, ranges: Mapping[str, tuple[float, float]] | None = None,
                   seed: int = 0) -> list[dict]:
@@ -231,7 +218,8 @@ def evaluate_point(atlas: JawAtlas, product: str, material: str, point: Mapping[
 
     Returns:
         A flat record: ``product``, ``material``, the point's fields, ``feasible``,
-        ``binding_limit`` (a kind of :data:`LIMIT_WORDS`, "" when feasible),
+        ``binding_limit`` (the refusal's limit code,
+        :data:`tactcad.vocabulary.binding_limits.BINDING_LIMITS`; "" when feasible),
         ``binding_detail`` (design's words), ``design_field`` (the option design's refusal
         names) and, for a feasible point, the design's figures: ``kobj_resolution_rel``,
         ``max_force_N`` (N), ``f1_Hz`` (Hz), ``sheet_mm`` or ``layer_um``; and ``command``,
@@ -254,18 +242,20 @@ def evaluate_point(atlas: JawAtlas, product: str, material: str, point: Mapping[
         else:
             raise DesignError("product", product, f"{COMB} or {DIE}")
     except RefusedPoint as refused:
-        return {**record, "binding_limit": limit_kind(refused.detail),
+        return {**record, "binding_limit": refused.limit,
                 "binding_detail": refused.detail, "design_field": refused.field}
     return {**record, "feasible": True, **figures}
 
 
 class RefusedPoint(Exception):
-    """design refuses a point: the option its refusal names and its first reason."""
+    """design refuses a point: the option its refusal names, its first reason and that
+    reason's limit code (:mod:`tactcad.vocabulary.binding_limits`)."""
 
-    def __init__(self, field_: str, detail: str):
+    def __init__(self, field_: str, detail: str, limit: str):
         super().__init__(detail)
         self.field = field_
         self.detail = detail
+        self.limit = limit
 
 
 def refusal_of(exc: DesignError) -> RefusedPoint:
@@ -276,34 +266,27 @@ def refusal_of(exc: DesignError) -> RefusedPoint:
             fields and reasons.
 
     Returns:
-        The option it names and its first reason: for a comb, the first failure of the
-        candidate nearest to counting (:func:`~tactcad.studies.comb_design.nearest_failure`,
-        the refusal's own rule for each sheet's line).
+        The option it names, its first reason and that reason's limit code: for a comb,
+        the first failure of the candidate nearest to counting
+        (:func:`~tactcad.studies.comb_design.nearest_failure`, the refusal's own rule for
+        each sheet's line) and the code its check set; else the code the refusal carries
+        (:data:`~tactcad.vocabulary.binding_limits.OTHER` where it carries none).
     """
     from tactcad.studies.comb_design import nearest_failure
+    from tactcad.vocabulary.binding_limits import OTHER
 
     tried = getattr(exc, "candidates", None)
     if tried:
         nearest = nearest_failure(list(tried))
-        return RefusedPoint(exc.field, nearest.failures[0] if nearest else "")
+        if nearest is None:
+            return RefusedPoint(exc.field, "", OTHER)
+        return RefusedPoint(exc.field, nearest.failures[0],
+                            nearest.limits[0] if nearest.limits else OTHER)
     errors = getattr(exc, "errors", None) or (exc,)
     first = errors[0]
     words = first.why or first.allowed or str(first)
-    return RefusedPoint(first.field, words.split("; ")[0])
-
-
-def limit_kind(detail: str) -> str:
-    """The kind of binding limit a refusal's first reason names.
-
-    Args:
-        detail: the reason, in design's words.
-
-    Returns:
-        The first kind of :data:`LIMIT_WORDS` whose words it holds; "other" when none.
-    """
-    text = detail.lower()
-    return next((kind for kind, words in LIMIT_WORDS if any(w in text for w in words)),
-                "other")
+    return RefusedPoint(first.field, words.split("; ")[0],
+                        getattr(first, "limit", "") or OTHER)
 
 
 def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
@@ -314,14 +297,22 @@ def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
             out of the comb's range.
     """
     from tactcad.studies.comb_design import (comb_candidates, comb_of_candidates, counting,
-                                             refusal_option)
+                                             first_preferred, refusal_option)
     from tactcad.studies.inverse_design import InverseDesignError
+    from tactcad.vocabulary.binding_limits import FOOTPRINT
 
     if atlas.comb_base is None:
-        raise RefusedPoint("--jaw", "the comb's smallest build does not fit the jaw's pocket")
+        raise RefusedPoint("--jaw", "the comb's smallest build does not fit the jaw's pocket",
+                           FOOTPRINT)
     try:
-        base, tried = comb_candidates(targets, atlas.room, columns, atlas.comb_base,
-                                      grade=grade, envelope_of=atlas.envelope_of)
+        # a comb that counts with margin, in the chosen one's order, saves the full search
+        preferred = first_preferred(targets, atlas.room, columns, atlas.comb_base,
+                                    grade=grade, envelope_of=atlas.envelope_of)
+        if preferred is not None:
+            base, tried = None, [preferred]
+        else:
+            base, tried = comb_candidates(targets, atlas.room, columns, atlas.comb_base,
+                                          grade=grade, envelope_of=atlas.envelope_of)
     except DesignError as exc:
         raise refusal_of(exc) from None
     if not counting(tried):
@@ -551,3 +542,39 @@ def dominates(a: Sequence[float], b: Sequence[float]) -> bool:
         True when ``a`` is at least ``b`` in every objective and above it in one.
     """
     return all(x >= y for x, y in zip(a, b)) and any(x > y for x, y in zip(a, b))
+
+
+def feasible_boundary(records: Sequence[Mapping[str, Any]], bins: int = 8
+                      ) -> list[tuple[float, float, float]]:
+    """The feasible region's upper boundary in the (K_obj span, rated force) plane: the
+    sampled spans cut into ``bins`` equal steps of log(span), and in each the largest rated
+    force of a feasible record (the limit above it is what refuses the points there).
+
+    Args:
+        records: flat records of one product and material (``feasible``,
+            ``full_scale_force_N`` in N, the K_obj range in N/mm).
+        bins: steps of log(span) (>= 1).
+
+    Returns:
+        (the step's lowest span, its highest span, the largest feasible force in it, N) for
+        each step holding a feasible record, in increasing span; empty when none is
+        feasible.
+
+    Raises:
+        DesignError: ``bins`` below 1.
+    """
+    if isinstance(bins, bool) or not isinstance(bins, int) or bins < 1:
+        raise DesignError("bins", bins, "an integer >= 1")
+    spans = [objective_value(r, "kobj_span") for r in records]
+    finite = [s for s in spans if math.isfinite(s) and s > 0]
+    if not finite:
+        return []
+    lo, hi = math.log(min(finite)), math.log(max(finite))
+    width = (hi - lo) / bins or 1.0
+    best: dict[int, float] = {}
+    for r, s in zip(records, spans):
+        if r.get("feasible") and math.isfinite(s) and s > 0:
+            i = min(int((math.log(s) - lo) / width), bins - 1)
+            best[i] = max(best.get(i, 0.0), float(r["full_scale_force_N"]))
+    return [(math.exp(lo + i * width), math.exp(lo + (i + 1) * width), best[i])
+            for i in sorted(best)]

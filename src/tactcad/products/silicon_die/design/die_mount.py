@@ -26,6 +26,7 @@ from typing import Any, Mapping
 
 from tactcad.products.silicon_die.design.mems_die import BOND_SHELF_MM, DEFAULT_DIE_ATTACH, DiePlan
 from tactcad.errors import DesignError
+from tactcad.vocabulary.binding_limits import FOOTPRINT, HEIGHT
 
 #: The carrier's thickness (mm): a thin-film alumina substrate (assumption: a stock 0.25 mm
 #: substrate, the one thin ceramics vendors list first).
@@ -125,14 +126,15 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
         raise DesignError("grasper_jaw.width_mm", round(width, 4),
                           f">= {pocket_w + 2 * MIN_WALL_MM:.4g} mm",
                           f"the die is {die_w:g} mm across; its pocket ({c:g} mm clearance each "
-                          f"side) keeps {MIN_WALL_MM:g} mm side walls")
+                          f"side) keeps {MIN_WALL_MM:g} mm side walls", limit=FOOTPRINT)
     attach = plan.attach.thickness_um * 1e-3
     least = stack + attach + CARRIER_MM + DEVICE_RECESS_MM
     if j.thickness_mm < least + MIN_WALL_MM - 1e-9:
         raise DesignError("grasper_jaw.thickness_mm", j.thickness_mm,
                           f">= {least + MIN_WALL_MM:.4g} mm",
                           f"the die ({stack:.4g} mm), its attach and carrier ({CARRIER_MM:g} mm) "
-                          f"in a pocket {least:.4g} mm deep over {MIN_WALL_MM:g} mm of steel")
+                          f"in a pocket {least:.4g} mm deep over {MIN_WALL_MM:g} mm of steel",
+                          limit=HEIGHT)
     depth, carrier = least, CARRIER_MM
     if j.pocket_depth_mm is not None:  # the lab's pocket: the carrier fills what the die leaves
         most = j.thickness_mm - MIN_WALL_MM
@@ -142,7 +144,7 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
                               f"from the face: the die ({stack:.4g} mm), its attach "
                               f"({attach:g} mm) and at least the {CARRIER_MM:g} mm stock "
                               f"carrier, over {MIN_WALL_MM:g} mm of steel in the "
-                              f"{j.thickness_mm:g} mm jaw")
+                              f"{j.thickness_mm:g} mm jaw", limit=HEIGHT)
         depth = j.pocket_depth_mm
         carrier = depth - stack - attach - DEVICE_RECESS_MM
     carrier_l = die_l + BOND_SHELF_MM
@@ -154,7 +156,7 @@ def die_mount(plan: DiePlan, jaw_table: Mapping[str, Any]) -> DieMount:
         raise DesignError("grasper_jaw.length_mm", j.length_mm,
                           f">= {least + pocket_l + j.distal_wall_mm:.4g} mm",
                           f"the pin's steel, the {pocket_l:.4g} mm pocket and the "
-                          f"{j.distal_wall_mm:g} mm distal wall")
+                          f"{j.distal_wall_mm:g} mm distal wall", limit=FOOTPRINT)
     face = j.thickness_mm
     die_z0 = face - DEVICE_RECESS_MM - stack
     post_proud = plan.post_height_um * 1e-3 - DEVICE_RECESS_MM

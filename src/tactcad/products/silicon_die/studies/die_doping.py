@@ -145,6 +145,8 @@ def _too_light(targets, room, plan, worst: float, target: float, kwargs) -> Desi
     """The refusal of a rating too light to resolve K_obj: the read-out's error goes as one
     over the rating (the deflections as F, the force resolution fixed), so the rating that
     resolves it is F x worst / target (10 % more, two digits up), pasted where it designs."""
+    from tactcad.vocabulary.binding_limits import RESOLUTION
+
     import dataclasses
     import math
 
@@ -177,7 +179,7 @@ def _too_light(targets, room, plan, worst: float, target: float, kwargs) -> Desi
                 "the die's other limits resolves it",
                 alternatives=[{"option": f"--kr-over-km {wider:g}",
                                "words": "the least of 1.5, 2, 3, 5, 10 x the ratio that "
-                                        "designs and resolves K_obj"}])
+                                        "designs and resolves K_obj"}], limit=RESOLUTION)
     return DesignError("--full-scale-force", force,
                        f"a rating whose read-out resolves K_obj to {100 * target:g} % (1 sigma)",
                        f"at {force:g} N the bridges' noise {read} somewhere in "
@@ -185,4 +187,4 @@ def _too_light(targets, room, plan, worst: float, target: float, kwargs) -> Desi
                        f"{targets.k_obj_range_N_per_mm[1]:g} N/mm"
                        + ("" if alternatives else "; no heavier rating designs within the "
                           "die's other limits"),
-                       alternatives=alternatives)
+                       alternatives=alternatives, limit=RESOLUTION)
