@@ -4,6 +4,7 @@ table, clean refusals, and the same table on an existing Dask cluster as on a lo
 from __future__ import annotations
 
 import json
+import math
 import os
 import shlex
 import socket
@@ -175,3 +176,34 @@ def test_the_figure_draws_each_products_feasible_boundary(tmp_path):
     assert (tmp_path / "f.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert boundary_path([(2.0, 10.0, 0.3), (10.0, 50.0, 0.02)]) == \
         ([0.3, 0.3, 0.02, 0.02], [2.0, 10.0, 10.0, 50.0])
+
+
+def test_each_drawn_point_carries_its_figures_and_command_for_the_hover(tmp_path):
+    """The atlas's SVG: every marker has a <title> (a browser shows it on hover) with its
+    targets, its figures or the limit that refused it, and its design command."""
+    import re
+
+    from tactcad.commands.atlas import front_figure
+
+    def record(i, feasible, product="monolithic-comb", material="Ti-6Al-4V"):
+        return {"product": product, "material": material, "point": i, "kr_over_km": 5.0 + i,
+                "kobj_lo_N_per_mm": 0.5, "kobj_hi_N_per_mm": 5.0 + i,
+                "full_scale_force_N": 0.1 * (i + 1), "columns": 4, "feasible": feasible,
+                "binding_limit": None if feasible else "strength",
+                "binding_detail": None if feasible else f"detail {i}",
+                "kobj_resolution_rel": 0.001 if feasible else math.nan,
+                "max_force_N": 1.0 if feasible else math.nan, "f1_Hz": 900.0,
+                "sheet_mm": 1.0, "layer_um": math.nan, "command": f"tactcad design #{i}"}
+
+    records = [record(0, True), record(1, False), record(2, True, "mems-die", "silicon"),
+               record(3, False), record(4, True)]
+    path = tmp_path / "atlas.svg"
+    front_figure(records, [records[0]], path, "5")
+    titles = re.findall(r"<title>(.*?)</title>", path.read_text(encoding="utf-8"), re.S)
+    assert len(titles) == len(records)
+    for r in records:
+        (mine,) = [t for t in titles if t.endswith(r["command"])]
+        if r["feasible"]:
+            assert "designed: K_obj resolution 0.10%" in mine and "f1 900 Hz" in mine
+        else:
+            assert f"refused (strength): detail {r['point']}" in mine

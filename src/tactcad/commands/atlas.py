@@ -4,11 +4,12 @@ over a Sobol sample of targets, on Dask; a Parquet table, the Pareto front and i
 from __future__ import annotations
 
 import argparse
+import io
 import json
 import math
 import time
 from pathlib import Path
-from typing import Any
+from typing import Any, Mapping
 
 from tactcad.commands import add_cache_args, add_output_args, progress_from_args, store_from_args
 from tactcad.commands.design import jaw_classes, jaw_of
@@ -386,12 +387,15 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
     fig = Figure(figsize=(7.0, 4.8))
     ax = fig.add_subplot()
     refused = [r for r in records if not r["feasible"]]
+    hover: dict[str, list[dict]] = {"atlas-refused": refused}
     ax.scatter([r["full_scale_force_N"] for r in refused], [span(r) for r in refused],
-               marker="x", s=12, color="0.75", label="refused")
-    for label in sorted({(r["product"], r["material"]) for r in records if r["feasible"]}):
+               marker="x", s=12, color="0.75", label="refused", gid="atlas-refused")
+    for k, label in enumerate(sorted({(r["product"], r["material"]) for r in records
+                                      if r["feasible"]})):
         rows = [r for r in records if r["feasible"] and (r["product"], r["material"]) == label]
+        hover[f"atlas-feasible-{k}"] = rows
         dots = ax.scatter([r["full_scale_force_N"] for r in rows], [span(r) for r in rows],
-                          s=18, label=f"{label[0]} {label[1]}")
+                          s=18, label=f"{label[0]} {label[1]}", gid=f"atlas-feasible-{k}")
         group = [r for r in records if (r["product"], r["material"]) == label]
         edge = boundary_path(feasible_boundary(group))
         ax.plot(edge[0], edge[1], linestyle="--", linewidth=1.0,
@@ -405,7 +409,58 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
     ax.set_title(f"design atlas of the jaw {Path(jaw).name}")
     ax.legend(fontsize=7, loc="best")
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, format=path.suffix.lstrip(".").lower() or "svg", dpi=110)
+    kind = path.suffix.lstrip(".").lower() or "svg"
+    if kind != "svg":
+        fig.savefig(path, format=kind, dpi=110)
+        return
+    buffer = io.StringIO()
+    fig.savefig(buffer, format="svg")
+    path.write_text(with_point_titles(buffer.getvalue(), hover), encoding="utf-8")
+
+
+def point_title(r: dict) -> str:
+    """A point's hover text: its product, targets and verdict, the design's figures or the
+    limit that refused it, and the ``tactcad design`` command that writes or refuses it."""
+    head = (f"{r['product']} {r['material']}: K_r/K_m {r['kr_over_km']:.3g}, K_obj "
+            f"{r['kobj_lo_N_per_mm']:.3g}-{r['kobj_hi_N_per_mm']:.3g} N/mm, "
+            f"{r['full_scale_force_N']:.3g} N, {r['columns']} columns")
+    if r["feasible"]:
+        figs = [f"{name} {r[key]:{fmt}}{unit}" for key, name, fmt, unit in (
+            ("kobj_resolution_rel", "K_obj resolution", ".2%", ""),
+            ("max_force_N", "largest force", ".3g", " N"), ("f1_Hz", "f1", ".4g", " Hz"),
+            ("sheet_mm", "sheet", ".3g", " mm"), ("layer_um", "device layer", ".3g", " um"))
+            if isinstance(r.get(key), (int, float)) and math.isfinite(r[key])]
+        verdict = "designed: " + ", ".join(figs)
+    else:
+        verdict = f"refused ({r.get('binding_limit') or 'limit'}): {r.get('binding_detail') or ''}"
+    return f"{head}\n{verdict}\n{r['command']}"
+
+
+def with_point_titles(svg: str, hover: Mapping[str, list[dict]]) -> str:
+    """``svg`` (matplotlib's) with a <title> on every marker of the scatters named in
+    ``hover`` (gid -> the records drawn, in order): a browser shows it on hover.
+
+    Raises:
+        ValueError: a scatter's markers and its records differ in number (matplotlib
+            wrote it otherwise than one <use> per point).
+    """
+    import xml.etree.ElementTree as ET
+
+    ns = {"svg": "http://www.w3.org/2000/svg", "xlink": "http://www.w3.org/1999/xlink"}
+    for prefix, uri in ns.items():
+        ET.register_namespace("" if prefix == "svg" else prefix, uri)
+    root = ET.fromstring(svg)
+    for group in root.iter(f"{{{ns['svg']}}}g"):
+        rows = hover.get(group.get("id", ""))
+        if rows is None:
+            continue
+        marks = list(group.iter(f"{{{ns['svg']}}}use"))
+        if len(marks) != len(rows):
+            raise ValueError(f"scatter {group.get('id')}: {len(marks)} markers drawn for "
+                             f"{len(rows)} points")
+        for mark, r in zip(marks, rows):
+            ET.SubElement(mark, f"{{{ns['svg']}}}title").text = point_title(r)
+    return ET.tostring(root, encoding="unicode", xml_declaration=True)
 
 
 def boundary_path(steps: list[tuple[float, float, float]]) -> tuple[list[float], list[float]]:
