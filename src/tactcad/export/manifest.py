@@ -111,9 +111,11 @@ def design_facts(plan: Plan) -> dict:
     """
     from tactcad.store import kept_result
 
-    # the file's name and content hash are fields a plan's key leaves out, yet the head shows them
+    # the file's name is a field a plan's key leaves out, yet the head shows it; the sections
+    # registered (a plugin may add one) shape the facts as much as the design does
+    sections = [(s.key, s.function) for s in manifest_sections()]
     return kept_result("manifest facts", lambda: _facts_of(plan), plan, Path(plan.source).name,
-                       plan.design_hash)
+                       plan.design_hash, sections)
 
 
 def _facts_of(plan: Plan) -> dict:
