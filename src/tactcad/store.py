@@ -287,11 +287,20 @@ class ResultCounts:
     missing: dict[str, int] = dataclasses.field(default_factory=dict)
 
     def add(self, tally: dict[str, int], kind: str) -> None:
-        """One more of ``kind`` in ``tally`` (one of this object's three)."""
+        """One more of ``kind`` in ``tally``.
+
+        Args:
+            tally: one of this object's three counts.
+            kind: what was asked for, as :func:`kept_result` names it.
+        """
         tally[kind] = tally.get(kind, 0) + 1
 
     def solved(self) -> int:
-        """Values computed here or found missing (so solved in another process)."""
+        """How many values were solved.
+
+        Returns:
+            values computed here plus those found missing (so solved in another process).
+        """
         return sum(self.computed.values()) + sum(self.missing.values())
 
 
@@ -300,7 +309,11 @@ _COUNTS = ResultCounts()
 
 
 def result_counts() -> ResultCounts:
-    """What :func:`kept_result` computed and reused in this process so far (a copy)."""
+    """What :func:`kept_result` answered in this process so far.
+
+    Returns:
+        a copy of the counts (of the enclosing :func:`counting_results` block, if any).
+    """
     return ResultCounts(dict(_COUNTS.computed), dict(_COUNTS.reused), dict(_COUNTS.missing))
 
 
