@@ -276,6 +276,63 @@ def only_kept() -> Iterator[None]:
         _ONLY_KEPT.reset(token)
 
 
+@dataclass
+class ResultCounts:
+    """How often :func:`kept_result` answered in this process, per ``kind``: values it
+    computed, values it read back (from the store or the block's memory), and values
+    :func:`only_kept` asked for that were not kept (each then solved elsewhere)."""
+
+    computed: dict[str, int] = dataclasses.field(default_factory=dict)
+    reused: dict[str, int] = dataclasses.field(default_factory=dict)
+    missing: dict[str, int] = dataclasses.field(default_factory=dict)
+
+    def add(self, tally: dict[str, int], kind: str) -> None:
+        """One more of ``kind`` in ``tally``.
+
+        Args:
+            tally: one of this object's three counts.
+            kind: what was asked for, as :func:`kept_result` names it.
+        """
+        tally[kind] = tally.get(kind, 0) + 1
+
+    def solved(self) -> int:
+        """How many values were solved.
+
+        Returns:
+            values computed here plus those found missing (so solved in another process).
+        """
+        return sum(self.computed.values()) + sum(self.missing.values())
+
+
+#: The counts since this process started (or since :func:`counting_results` last began).
+_COUNTS = ResultCounts()
+
+
+def result_counts() -> ResultCounts:
+    """What :func:`kept_result` answered in this process so far.
+
+    Returns:
+        a copy of the counts (of the enclosing :func:`counting_results` block, if any).
+    """
+    return ResultCounts(dict(_COUNTS.computed), dict(_COUNTS.reused), dict(_COUNTS.missing))
+
+
+@contextlib.contextmanager
+def counting_results() -> Iterator[ResultCounts]:
+    """Within the block, count :func:`kept_result`'s answers from zero; the yielded
+    counts are filled in as the block runs (e.g. "verify after export solved nothing").
+
+    Yields:
+        the block's :class:`ResultCounts`.
+    """
+    global _COUNTS
+    outer, _COUNTS = _COUNTS, ResultCounts()
+    try:
+        yield _COUNTS
+    finally:
+        _COUNTS = outer
+
+
 def active_store() -> Store | None:
     """The store of the enclosing :func:`keeping_results` block, or None outside one."""
     block = _RESULTS.get()
@@ -315,11 +372,14 @@ def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
         return compute()
     found, value = (True, memory[key]) if key in memory else store.recall(key)
     if found:
+        _COUNTS.add(_COUNTS.reused, kind)
         if reused is not None:
             reused()
     elif _ONLY_KEPT.get():
+        _COUNTS.add(_COUNTS.missing, kind)
         raise NotKept(kind)
     else:
+        _COUNTS.add(_COUNTS.computed, kind)
         value = compute()
         store.remember(key, value)
     memory[key] = value

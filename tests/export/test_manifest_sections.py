@@ -45,6 +45,28 @@ def test_a_registered_section_and_a_kind_section_appear(monkeypatch):
     assert dxf.manifest_section[0] == "shop" and list(facts)[-1] == "shop"
 
 
+def test_the_facts_are_kept_in_the_store_and_a_new_section_is_not_missed(monkeypatch,
+                                                                        tmp_path):
+    from tactcad.store import Store, counting_results, keeping_results
+
+    plan = load_design(TI)
+    design_facts.cache_clear()
+    try:
+        with keeping_results(Store(tmp_path)), counting_results() as first:
+            kept = design_facts(plan)
+        design_facts.cache_clear()
+        with keeping_results(Store(tmp_path)), counting_results() as again:
+            assert design_facts(plan) == kept  # a later run: read back, nothing solved
+        assert first.computed["manifest facts"] == 1 and again.solved() == 0
+        monkeypatch.setattr(manifest, "MANIFEST_SECTIONS", dict(MANIFEST_SECTIONS))
+        register_section(ManifestSection("summary", f"{__name__}:front_matter"))
+        design_facts.cache_clear()
+        with keeping_results(Store(tmp_path)):
+            assert design_facts(plan)["summary"] == "ti_array_2x3: 6 elements"
+    finally:
+        design_facts.cache_clear()
+
+
 @pytest.mark.parametrize("key", ["parts", "files", "design"])
 def test_a_taken_key_is_refused(key):
     with pytest.raises(ValueError, match="registered already"):

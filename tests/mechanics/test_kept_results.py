@@ -199,3 +199,20 @@ def test_a_run_killed_while_keeping_a_result_leaves_no_entry(plan, tmp_path, cou
         ladder.estimate("fem2d", g, mat)
     assert len(solves) == 6
     assert len(list((tmp_path / "store").rglob("*.pickle"))) == 1
+
+
+def test_the_counts_tell_computed_reused_and_missing_apart(tmp_path):
+    from tactcad.store import NotKept, counting_results, kept_result, only_kept
+
+    with keeping_results(Store(tmp_path / "store")), counting_results() as counts:
+        assert kept_result("a product", lambda: 6 * 7, "six", "seven") == 42
+        assert kept_result("a product", lambda: -1, "six", "seven") == 42  # read back
+        with only_kept(), pytest.raises(NotKept):
+            kept_result("a product", lambda: 0, "other", "inputs")
+    assert counts.computed == {"a product": 1}
+    assert counts.reused == {"a product": 1}
+    assert counts.missing == {"a product": 1}
+    assert counts.solved() == 2
+    with keeping_results(Store(tmp_path / "store")), counting_results() as again:
+        kept_result("a product", lambda: -1, "six", "seven")  # a later run: from the store
+    assert again.solved() == 0 and again.reused == {"a product": 1}

@@ -66,3 +66,23 @@ def test_code_digest_follows_every_source_and_data_file_but_bytecode(tmp_path):
         (tmp_path / name).write_text((tmp_path / name).read_text() + " ")
         assert code_digest(tmp_path) != before
         before = code_digest(tmp_path)
+
+
+def test_a_part_mesh_is_kept_by_its_spec_and_read_back_without_a_build(tmp_path, plan):
+    import numpy as np
+
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.solids.cache import PartCache
+    from tactcad.store import Store, counting_results, keeping_results
+
+    spec = array_parts(plan)["spacer"]
+    with keeping_results(Store(tmp_path)), counting_results() as first:
+        made = PartCache(plan).mesh(spec)
+    with keeping_results(Store(tmp_path)), counting_results() as again:
+        cache = PartCache(plan)
+        read = cache.mesh(spec)
+    assert first.computed == {"part mesh": 1} and again.reused == {"part mesh": 1}
+    assert cache.builds == 0  # a kept mesh needs no solid
+    assert len(made[1]) > 0
+    np.testing.assert_array_equal(read[0], made[0])
+    np.testing.assert_array_equal(read[1], made[1])

@@ -27,9 +27,9 @@ from tactcad.commands.finite_json import dumps
 from tactcad.mechanics.ladder import models
 from tactcad.mechanics.modal_ladder import modal_models
 
-COLD_GOAL_S = 8.0  # on two cores
+COLD_GOAL_S = 6.0  # on two cores
 WARM_GOAL_S = 1.5
-ONE_CHANGE_GOAL_S = 4.0
+ONE_CHANGE_GOAL_OF_COLD = 0.5  # one changed arm: at most this fraction of the cold export
 MESH_GOAL_S = 1.0
 REVIEW_SIZE_GOAL_MB = 15.0  # the review page of the default design
 REVIEW_FIRST_FRAME_GOAL_S = 3.0
@@ -39,8 +39,9 @@ MAX_LOAD_SECONDS = 600.0  # its duration at most (s)
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("bench", help="speed benchmarks (export, stiffness, modal, die, atlas, closed-form, montecarlo, sweep)",
-                       description="Print timings. Goals on two cores: cold export <= 8 s, "
-                                   "no-change re-export <= 1.5 s, one changed arm <= 4 s, each "
+                       description="Print timings. Goals on two cores: cold export <= 6 s, "
+                                   "no-change re-export <= 1.5 s, one changed arm <= 0.5 x "
+                                   "the cold export, each "
                                    "distinct part built once; interference of the largest scene "
                                    "on meshes <= 1 s; closed form >= 1e7 evaluations/s, "
                                    "10 000-sample Monte Carlo <= 1 s, fem3d sweep on two workers "
@@ -482,10 +483,13 @@ def run_export(args: argparse.Namespace) -> int:
         print(json.dumps(figures, indent=1))
         return 0
     for key, label, goal in (("cold_s", "cold (empty cache, new process)", COLD_GOAL_S),
-                             ("warm_s", "warm (no change)", WARM_GOAL_S),
-                             ("one_change_s", "one arm length changed", ONE_CHANGE_GOAL_S)):
+                             ("warm_s", "warm (no change)", WARM_GOAL_S)):
         flag = "ok" if figures[key] <= goal else "over goal"
         print(f"  {label:<34} {figures[key]:6.2f} s   goal <= {goal:g} s: {flag}")
+    share = figures["one_change_s"] / figures["cold_s"]
+    flag = "ok" if share <= ONE_CHANGE_GOAL_OF_COLD else "over goal"
+    print(f"  {'one arm length changed':<34} {figures['one_change_s']:6.2f} s   "
+          f"{share:.2f} x cold, goal <= {ONE_CHANGE_GOAL_OF_COLD:g} x cold: {flag}")
     ok = "ok" if figures["builds"] == figures["distinct_parts"] else "over goal"
     print(f"  solid builds in the cold run       {figures['builds']:6d}     distinct parts "
           f"{figures['distinct_parts']}: {ok}")

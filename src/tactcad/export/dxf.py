@@ -34,9 +34,10 @@ import logging
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterator, Sequence
+from typing import TYPE_CHECKING, Iterator, Sequence
 
-import ezdxf
+if TYPE_CHECKING:  # loaded where a file is written: planning an export does not need it
+    import ezdxf
 
 from tactcad.atomic import write_atomic
 from tactcad.geometry.profile import Arc, Circle, Point, Profile, Segment, contour_bbox
@@ -174,6 +175,8 @@ def dxf_document(content: DxfFile, version: str = DEFAULT_DXF_VERSION) -> ezdxf.
     Raises:
         ValueError: ``version`` is not one of :data:`DXF_VERSIONS`.
     """
+    import ezdxf
+
     if version not in DXF_VERSIONS:
         raise ValueError(f"DXF version {version!r} is not one of {', '.join(DXF_VERSIONS)}")
     with _quiet_units_warning():
@@ -219,6 +222,8 @@ def _quiet_units_warning() -> Iterator[None]:
 def _fixed_metadata() -> Iterator[None]:
     """ezdxf's switch for constant time stamps and GUIDs; it must be on from
     document creation (the CREATED_BY marker) until the file is written."""
+    import ezdxf
+
     previous = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:
@@ -230,6 +235,8 @@ def _fixed_metadata() -> Iterator[None]:
 def _sort_classes(doc: ezdxf.document.Drawing) -> None:
     """ezdxf collects the CLASSES section from a set of type names, so its
     order follows Python's string hashing; register them now, in name order."""
+    import ezdxf
+
     if doc.dxfversion == ezdxf.const.DXF12:
         return
     doc.classes.add_required_classes(doc.dxfversion)

@@ -98,8 +98,28 @@ def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
 def design_facts(plan: Plan) -> dict:
     """The manifest without its files: computed once per plan (the requirements'
     verification matrix alone takes about 0.2 s, and a run, the review page
-    and ``tactcad watch``'s preview all ask for it). Shared: read it, do not
-    change it."""
+    and ``tactcad watch``'s preview all ask for it) and kept in the result store
+    (:func:`tactcad.store.kept_result`), so an export of an unchanged design reads it
+    back instead of solving the tissue coupling and the K_obj budget again. Shared:
+    read it, do not change it.
+
+    Args:
+        plan: the validated design.
+
+    Returns:
+        the manifest's keys but ``files``, in the manifest's order.
+    """
+    from tactcad.store import kept_result
+
+    # the file's name is a field a plan's key leaves out, yet the head shows it; the sections
+    # registered (a plugin may add one) shape the facts as much as the design does
+    sections = [(s.key, s.function) for s in manifest_sections()]
+    return kept_result("manifest facts", lambda: _facts_of(plan), plan, Path(plan.source).name,
+                       plan.design_hash, sections)
+
+
+def _facts_of(plan: Plan) -> dict:
+    """:func:`design_facts` worked out (every section's function run)."""
     head = {
         # the file's name only: an export names files relative to the project
         # folder, never by a path of the machine it was made on

@@ -40,7 +40,6 @@ from dataclasses import dataclass
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
-from scipy.optimize import brentq
 
 from tactcad.mechanics.contact import (CONVERGED_REL, ContactError, Punch, Sample, check_sample,
                                        converged_punches)
@@ -341,6 +340,8 @@ def _root_on_log_k(ratio: Callable[[float], float], r: float, bracket: tuple[flo
     if not (np.isfinite(r) and np.isfinite(f_lo) and np.isfinite(f_hi) and f_lo * f_hi <= 0):
         span = sorted((f_hi + r, f_lo + r))
         raise ContactError("R", r, f"{span[0]:.6g} ... {span[1]:.6g} ({spanned(lo, hi)})")
+    from scipy.optimize import brentq  # here: scipy.optimize costs every command ~0.3 s to load
+
     return float(np.exp(brentq(excess, np.log(lo), np.log(hi), rtol=INVERSION_RTOL,
                                xtol=INVERSION_XTOL)))
 
@@ -442,6 +443,8 @@ def offset_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: tu
     travel = (force_r_N - fixed[i_r]) / per_travel[i_r]
     force = travel * per_travel + fixed
     if force.min() < 0.0:  # a tip clear of the tissue: the travel that gives the reference F_r
+        from scipy.optimize import brentq
+
         def excess(t: float) -> float:
             return contact_forces(sample, k, d, float(k_obj), t)[i_r] - force_r_N
 

@@ -71,7 +71,6 @@ from dataclasses import dataclass, replace
 from typing import Mapping
 
 import numpy as np
-import scipy.linalg
 
 from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError, TactcadError
@@ -351,6 +350,8 @@ def solve_row(inputs: StackInputs, row: int, shear: bool) -> RowSolution:
     for j, (node, k) in enumerate(zip(at, idx)):
         Fb[2 * node, j] = 1.0
         Ft[node, j] = inputs.lever_mm[k]
+    import scipy.linalg  # here, not at the top: every command's start would pay its load
+
     Ub = np.zeros_like(Fb)
     Ub[free_b] = scipy.linalg.solve(Kb[np.ix_(free_b, free_b)], Fb[free_b], assume_a="pos")
     Ut = np.zeros_like(Ft)

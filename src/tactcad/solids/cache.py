@@ -8,8 +8,9 @@ from typing import Any
 
 from tactcad.catalogue.array_catalogue import PartSpec
 from tactcad.design.array_plan import Plan
-from tactcad.solids.tessellation import tessellate
+from tactcad.solids.tessellation import MESH_ANGULAR_TOLERANCE, MESH_TOLERANCE_MM, tessellate
 from tactcad.solids.build import build_part
+from tactcad.store import kept_result
 
 
 class PartCache:
@@ -35,7 +36,11 @@ class PartCache:
 
     def mesh(self, spec: PartSpec):
         """The part's triangle mesh (vertices (n, 3) float64 mm, triangles (m, 3)
-        int64) at :data:`tactcad.solids.tessellation.MESH_TOLERANCE_MM`, made once."""
+        int64) at :data:`tactcad.solids.tessellation.MESH_TOLERANCE_MM`, made once
+        and kept in the result store by the part's spec (:func:`tactcad.store.kept_result`),
+        so a run where one part changed meshes that part alone."""
         if spec.name not in self._meshes:
-            self._meshes[spec.name] = tessellate(self.solid(spec))
+            self._meshes[spec.name] = kept_result(
+                "part mesh", lambda: tessellate(self.solid(spec)), spec, MESH_TOLERANCE_MM,
+                MESH_ANGULAR_TOLERANCE)
         return self._meshes[spec.name]

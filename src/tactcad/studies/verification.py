@@ -35,6 +35,7 @@ Units: mm, N, MPa, N/mm.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping, Sequence
@@ -374,11 +375,33 @@ def smallest_row_ratio(plan: Plan, fig: Figures) -> float:
 def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
     """The design's requirements: stated values from ``[requirements]``,
     the rest derived from its nominal geometry (corrected closed form) with
-    the reason (see the module docstring).
+    the reason (see the module docstring). Worked out once per plan when no
+    ``figures`` are handed in (an export's manifest, drawings and budget all ask).
+
+    Args:
+        plan: the validated design.
+        figures: the closed form's :func:`element_figures`, when the caller has them.
+
+    Returns:
+        the :class:`Requirements` (shared: read them, do not change them).
 
     Raises:
         DesignError: the material has no yield strength.
     """
+    if figures is None:
+        return _plan_requirements(plan)
+    return _requirements_from(plan, figures)
+
+
+@functools.lru_cache(maxsize=8)
+def _plan_requirements(plan: Plan) -> Requirements:
+    """:func:`requirements_of` without figures, kept per plan (the plan's design hash is
+    part of its equality, so an edited design is another entry)."""
+    return _requirements_from(plan, None)
+
+
+def _requirements_from(plan: Plan, figures: Figures | None) -> Requirements:
+    """:func:`requirements_of` worked out."""
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
 
     stated = stated_requirements(plan.raw)
