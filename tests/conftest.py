@@ -22,6 +22,38 @@ def _test_key(nodeid: str) -> str:
     return path.removeprefix("tests/") + "::" + name.split("[")[0].split("@")[0]
 
 
+#: The longest tests of ``make test`` (a minute or more each, from its ``--durations``),
+#: longest first. pytest-xdist hands out tests in collection order (after its groups), so
+#: these start first, one per worker, instead of one of them starting last and running
+#: alone while the other worker idles.
+LONGEST_FIRST = (
+    "end_to_end/test_designed_invariant.py::test_the_palpation_strip_designs_and_passes_its_check",
+    "mechanics/test_die_dynamics.py::test_on_its_frame_the_dies_fem3d_agrees_with_calculix_to_one_percent",
+    "commands/test_grasp_cmd.py::test_a_default_grasp_heavier_than_the_closed_jaw_allows_is_the_jaw_closed_flat",
+    "end_to_end/test_designed_invariant.py::test_every_written_design_passes_its_own_check",
+    "design/test_example_design.py::test_example_meets_every_requirement_and_its_binding_limit_holds_at_fem3d",
+    "end_to_end/test_designed_invariant.py::test_a_refusals_frontier_is_the_searchs_whatever_force_was_asked",
+    "mechanics/test_bonded_layer.py::test_the_stated_layer_errors_hold_against_fem3d_with_the_layer_meshed",
+    "in_use/test_tissue_coupling_fem.py::test_two_punches_agree_with_an_elastic_block_within_5_percent",
+    "commands/test_design_jaw.py::test_a_comb_refusals_force_is_the_searchs_frontier_whatever_was_asked",
+    "design/test_die_fillets.py::test_the_closed_forms_root_peak_is_within_5_percent_of_fem3d_on_and_off_the_example",
+    "docs/test_code_blocks.py::test_page_code_runs[how-to/design-array.md]",
+    "docs/test_code_blocks.py::test_page_code_runs[tutorials/mems-die.md]",
+    "commands/test_watch.py::test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly",
+    "design/test_mems_die.py::test_every_die_designed_or_pasted_passes_its_own_checks",
+)
+
+
+def _start_rank(item) -> int:
+    """An item's place in :data:`LONGEST_FIRST`, by its id with or without its parameters
+    (every other test after them)."""
+    with_parameters = item.nodeid.removeprefix("tests/").split("@")[0]
+    for key in (with_parameters, _test_key(item.nodeid)):
+        if key in LONGEST_FIRST:
+            return LONGEST_FIRST.index(key)
+    return len(LONGEST_FIRST)
+
+
 def pytest_configure(config):
     """Refuse a ``TACTCAD_TEST_DEPTH`` that is neither depth (:mod:`depth`)."""
     from depth import DEPTH, DEPTHS
@@ -37,6 +69,7 @@ def pytest_collection_modifyitems(config, items):
     of :data:`BROWSER_TESTS` in one pytest-xdist group, and only those (the
     rest of their files is scheduled like any test). A test that uses the
     :func:`browser` fixture and is not listed there stops the run."""
+    items.sort(key=_start_rank)  # stable: the rest keep their collection order
     for item in items:
         if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
