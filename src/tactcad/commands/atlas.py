@@ -449,7 +449,8 @@ def with_point_titles(svg: str, hover: Mapping[str, list[dict]]) -> str:
     ns = {"svg": "http://www.w3.org/2000/svg", "xlink": "http://www.w3.org/1999/xlink"}
     for prefix, uri in ns.items():
         ET.register_namespace("" if prefix == "svg" else prefix, uri)
-    root = ET.fromstring(svg)
+    # keep matplotlib's comments: they carry the texts it draws as paths
+    root = ET.fromstring(svg, ET.XMLParser(target=ET.TreeBuilder(insert_comments=True)))
     for group in root.iter(f"{{{ns['svg']}}}g"):
         rows = hover.get(group.get("id", ""))
         if rows is None:
