@@ -13,10 +13,26 @@ import pytest
 from conftest import EXAMPLE_DESIGN, run_cli
 
 
+def clear_process_caches() -> int:
+    """Empty every in-memory cache of tactcad's functions (``functools.lru_cache``), as a
+    fresh process starts: an earlier test in this worker may have exported the same design,
+    and the export would then read its facts from memory and never fill this test's store.
+    Returns how many caches were emptied."""
+    import functools
+    import gc
+
+    caches = [f for f in gc.get_objects() if isinstance(f, functools._lru_cache_wrapper)
+              and str(getattr(f, "__module__", "")).startswith("tactcad")]
+    for f in caches:
+        f.cache_clear()
+    return len(caches)
+
+
 @pytest.mark.slow  # a cold export of the example (about 20 s on two quiet cores)
 def test_verify_after_export_solves_nothing(tmp_path):
     from tactcad.store import counting_results
 
+    assert clear_process_caches() > 0
     store = tmp_path / "store"
     with counting_results() as exported:
         done = run_cli("export", "--design", EXAMPLE_DESIGN, "--out", tmp_path / "out",
