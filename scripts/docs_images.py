@@ -175,6 +175,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="the folder the pictures go to (default docs/images)")
     parser.add_argument("--review", action="store_true",
                         help="also screenshot the review page (needs Chromium)")
+    parser.add_argument("--no-atlas", action="store_true",
+                        help="leave the two jaws' atlases (minutes of design judging) as they are")
     args = parser.parse_args(argv)
     copy_export_images(args.exports, args.images)
     render_sheets(args.exports, args.images)
@@ -183,7 +185,8 @@ def main(argv: list[str] | None = None) -> int:
     paper_plots(args.images)
     grasper_scenes(args.images)
     die_pictures(args.images)
-    atlas_pictures(args.images)
+    if not args.no_atlas:
+        atlas_pictures(args.images)
     print(f"docs_images: refreshed {args.images}")
     return 0
 
