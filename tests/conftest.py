@@ -333,6 +333,7 @@ BROWSER_TESTS = {
     "export/test_review_page.py::test_check_results_join_the_page",
     "export/test_review_page.py::test_an_undecided_requirement_shows_as_undecided_not_pass",
     "export/test_review_budget.py::test_the_exported_page_shows_the_budget_table",
+    "export/test_atlas_view.py::test_the_page_draws_the_atlas_and_a_click_shows_the_point",
 }
 
 

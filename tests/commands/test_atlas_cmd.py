@@ -71,6 +71,46 @@ def test_bad_atlas_options_are_refused_without_a_traceback(tmp_path, argv, field
     assert error["field"] == field and "Traceback" not in r.stdout + r.stderr
 
 
+EXAMPLES = Path(tactcad.__file__).parent / "examples"
+
+
+@pytest.mark.parametrize("project, why", [
+    ("macro_array/macro_array.toml", "names no grasper jaw"),
+    ("no_such_design.toml", "no such file"),
+])
+def test_a_project_without_a_jaw_is_refused_naming_the_option(tmp_path, project, why):
+    r = run_cli("atlas", "--project", EXAMPLES / project, "--json")
+    assert r.returncode != 0
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "--project" and why in error["message"]
+    assert "Traceback" not in r.stdout + r.stderr
+
+
+def test_a_jaw_and_a_project_together_are_refused(tmp_path):
+    r = run_cli("atlas", "--jaw", "5", "--project", EXAMPLES / "macro_array" / "macro_array.toml")
+    assert r.returncode == 2 and "not allowed with" in r.stderr
+
+
+@pytest.mark.slow  # a die judged at two points
+def test_a_projects_atlas_is_its_jaws_and_lands_in_its_folder_for_the_review_page(tmp_path):
+    import shutil
+
+    from tactcad.export.atlas_view import atlas_view
+
+    folder = tmp_path / "p5"
+    shutil.copytree(EXAMPLES / "grasper_jaw_5mm_mems", folder)
+    design = folder / "grasper_jaw_5mm_mems.toml"
+    r = run_cli("atlas", "--project", design, "--points", "2", "--force-range", "0.002",
+                "0.02", "--workers", "1", "--no-cache", "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+    summary = json.loads(r.stdout)
+    assert summary["jaw"] == "5"  # the die file's jaw
+    assert Path(summary["files"]["table"]).parent == folder / "atlas"
+    view = atlas_view(design)
+    assert len(view["points"]) == summary["records"] == 2
+    assert all(p["command"].startswith("tactcad design --jaw 5 ") for p in view["points"])
+
+
 def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))

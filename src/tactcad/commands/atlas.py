@@ -16,12 +16,13 @@ from tactcad.commands.design import jaw_classes, jaw_of
 from tactcad.commands.options import count, material_grade_name, number
 from tactcad.commands.tolerance import add_cluster_args
 from tactcad.errors import DesignError
+from tactcad.studies.atlas_files import (  # noqa: F401  (the command's names)
+    FIGURE_NAME, PROJECT_ATLAS_FOLDER, SUMMARY_NAME, TABLE_NAME, point_title, read_table,
+    span, write_table)
 
 #: Points judged per Dask task (a comb's point costs seconds: small batches keep both
 #: workers busy to the end).
 DEFAULT_BATCH = 2
-#: The table, the figure and the summary written in ``--out``.
-TABLE_NAME, FIGURE_NAME, SUMMARY_NAME = "atlas.parquet", "atlas_front.svg", "atlas.json"
 #: Range options: option -> (the axis of :data:`tactcad.studies.design_atlas.AXES`, unit, type).
 RANGE_OPTIONS = {"--kr-over-km-range": ("kr_over_km", ""),
                  "--kobj-centre": ("kobj_centre_N_per_mm", "N/mm"),
@@ -47,10 +48,16 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "span and K_obj resolution per product and material, each point with the "
                     "design command that writes it). Runs on a new local Dask cluster, or an "
                     "existing one with --scheduler. Units: N, N/mm, mm, Hz.")
-    p.add_argument("--jaw", required=True, metavar="CLASS|FILE",
-                   help="the grasper's jaw: a trocar class's default jaw (mm: "
-                        + ", ".join(jaw_classes()) + ") or a TOML file with a [grasper_jaw] "
-                        "table, as `tactcad design --jaw` takes it")
+    where = p.add_mutually_exclusive_group(required=True)
+    where.add_argument("--jaw", metavar="CLASS|FILE",
+                       help="the grasper's jaw: a trocar class's default jaw (mm: "
+                            + ", ".join(jaw_classes()) + ") or a TOML file with a "
+                            "[grasper_jaw] table, as `tactcad design --jaw` takes it")
+    where.add_argument("--project", metavar="DESIGN.toml",
+                       help="a sensor project's design file: the atlas of its jaw (its "
+                            "[grasper_jaw] table, or a die's jaw), written in the project's "
+                            f"{PROJECT_ATLAS_FOLDER}/ folder, where `tactcad export` finds "
+                            "it for the review page")
     p.add_argument("--points", type=count(1, 100_000, "target points"), default=16,
                    metavar="N", help="target points of the Sobol sample (default %(default)s; "
                                      "a comb's point costs seconds per material)")
@@ -67,9 +74,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                        + (f" {unit}" if unit else "") + ")")
     p.add_argument("--batch", type=count(1, 10_000, "points per task"), default=DEFAULT_BATCH,
                    metavar="N", help="target points per Dask task (default %(default)s)")
-    p.add_argument("--out", metavar="DIR", default="exports/atlas",
+    p.add_argument("--out", metavar="DIR", default=None,
                    help=f"folder for {TABLE_NAME}, {FIGURE_NAME} and {SUMMARY_NAME} "
-                        "(default %(default)s)")
+                        f"(default: exports/atlas; with --project, the project's "
+                        f"{PROJECT_ATLAS_FOLDER}/)")
     add_cache_args(p)
     add_cluster_args(p, local_default=True)
     add_output_args(p, "print the summary as JSON")
@@ -173,49 +181,6 @@ def stored_table(store, key: str) -> Path | None:
     return None if store.root is None else store.root / "atlas" / key[:2] / f"{key}.parquet"
 
 
-def write_table(path: Path, records: list[dict], inputs: dict) -> None:
-    """Records as a Parquet table (pyarrow), written atomically.
-
-    Args:
-        path: the file. records: flat records, one row each.
-        inputs: the run's inputs, kept in the table's metadata (``tactcad.atlas``).
-    """
-    import os
-    import tempfile
-
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-
-    table = pa.Table.from_pylist(records).replace_schema_metadata(
-        {"tactcad.atlas": json.dumps(inputs, sort_keys=True)})
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".parquet", dir=path.parent)
-    os.close(fd)
-    try:
-        pq.write_table(table, tmp)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-
-
-def read_table(path: Path) -> list[dict] | None:
-    """A Parquet table's records.
-
-    Args:
-        path: a table :func:`write_table` wrote.
-
-    Returns:
-        Its rows as dicts; None when it cannot be read.
-    """
-    import pyarrow.parquet as pq
-
-    try:
-        return pq.read_table(path).to_pylist()
-    except (OSError, ValueError):
-        return None
-
-
 def run(args: argparse.Namespace) -> int:
     """``atlas``: the table (from the store when kept), the front, its figure and summary."""
     from tactcad.studies.design_atlas import atlas_targets, checked_ranges
@@ -223,12 +188,13 @@ def run(args: argparse.Namespace) -> int:
     ranges = ranges_of(args)
     bounds = checked_ranges(ranges)
     points = atlas_targets(args.points, ranges, args.seed)
-    atlas = jaw_atlas(args.jaw, args.material,
-                      (int(bounds["columns"][0]), int(bounds["columns"][1])))
-    out = writable_folder(args.out)
+    jaw, default_out = ((args.jaw, "exports/atlas") if args.project is None
+                        else project_jaw(args.project))
+    atlas = jaw_atlas(jaw, args.material, (int(bounds["columns"][0]), int(bounds["columns"][1])))
+    out = writable_folder(args.out or default_out)
     key = atlas_key(atlas, points)
     kept = stored_table(store_from_args(args), key)
-    inputs = {"jaw": args.jaw, "points": args.points, "seed": args.seed, "ranges": bounds,
+    inputs = {"jaw": jaw, "points": args.points, "seed": args.seed, "ranges": bounds,
               "products": [list(p) for p in atlas.products], "key": key}
     start = time.perf_counter()
     records = read_table(kept) if kept is not None and kept.is_file() else None
@@ -240,7 +206,7 @@ def run(args: argparse.Namespace) -> int:
     seconds = time.perf_counter() - start
     write_table(out / TABLE_NAME, records, {**inputs, "complete": complete})
     summary = atlas_summary(records, inputs, seconds, reused, complete, out)
-    front_figure(records, summary["front"], out / FIGURE_NAME, args.jaw)
+    front_figure(records, summary["front"], out / FIGURE_NAME, jaw)
     (out / SUMMARY_NAME).write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n",
                                     encoding="utf-8")
     if args.json:
@@ -248,6 +214,38 @@ def run(args: argparse.Namespace) -> int:
     else:
         print_summary(summary)
     return 0 if complete else 130
+
+
+def project_jaw(design: str) -> tuple[str, str]:
+    """The jaw of a sensor project, as ``--jaw`` takes it, and its atlas folder.
+
+    Args:
+        design: ``--project``: a design file with a ``[grasper_jaw]`` table (a metal insert
+            for a grasper) or a die design file (its ``die.jaw``: a trocar class, or a jaw
+            file beside it).
+
+    Returns:
+        (``--jaw``'s value: the trocar class, or the file holding the jaw's table; the
+        folder ``PROJECT_ATLAS_FOLDER`` beside the design file).
+
+    Raises:
+        DesignError: naming ``--project``: no such file, not TOML, or a design with no jaw.
+    """
+    from tactcad.design.array_plan import read_toml
+    from tactcad.products.silicon_die.design.die_file import is_die_file, load_die_design
+
+    path = Path(design)
+    if not path.is_file():
+        raise DesignError("--project", design, "an existing design file (.toml)",
+                          "no such file")
+    table = read_toml(path, "--project")
+    folder = str(path.parent / PROJECT_ATLAS_FOLDER)
+    if is_die_file(table):
+        return load_die_design(path).jaw, folder
+    if isinstance(table.get("grasper_jaw"), dict):
+        return str(path), folder
+    raise DesignError("--project", design, "a design with a jaw: a [grasper_jaw] table or a "
+                      "die's jaw", "this design names no grasper jaw; give --jaw CLASS|FILE")
 
 
 def writable_folder(out: str) -> Path:
@@ -418,24 +416,6 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
     path.write_text(with_point_titles(buffer.getvalue(), hover), encoding="utf-8")
 
 
-def point_title(r: dict) -> str:
-    """A point's hover text: its product, targets and verdict, the design's figures or the
-    limit that refused it, and the ``tactcad design`` command that writes or refuses it."""
-    head = (f"{r['product']} {r['material']}: K_r/K_m {r['kr_over_km']:.3g}, K_obj "
-            f"{r['kobj_lo_N_per_mm']:.3g}-{r['kobj_hi_N_per_mm']:.3g} N/mm, "
-            f"{r['full_scale_force_N']:.3g} N, {r['columns']} columns")
-    if r["feasible"]:
-        figs = [f"{name} {r[key]:{fmt}}{unit}" for key, name, fmt, unit in (
-            ("kobj_resolution_rel", "K_obj resolution", ".2%", ""),
-            ("max_force_N", "largest force", ".3g", " N"), ("f1_Hz", "f1", ".4g", " Hz"),
-            ("sheet_mm", "sheet", ".3g", " mm"), ("layer_um", "device layer", ".3g", " um"))
-            if isinstance(r.get(key), (int, float)) and math.isfinite(r[key])]
-        verdict = "designed: " + ", ".join(figs)
-    else:
-        verdict = f"refused ({r.get('binding_limit') or 'limit'}): {r.get('binding_detail') or ''}"
-    return f"{head}\n{verdict}\n{r['command']}"
-
-
 def with_point_titles(svg: str, hover: Mapping[str, list[dict]]) -> str:
     """``svg`` (matplotlib's) with a <title> on every marker of the scatters named in
     ``hover`` (gid -> the records drawn, in order): a browser shows it on hover.
@@ -480,11 +460,6 @@ def boundary_path(steps: list[tuple[float, float, float]]) -> tuple[list[float],
         xs += [force, force]
         ys += [low, high]
     return xs, ys
-
-
-def span(r: dict) -> float:
-    """A record's K_obj span (high / low)."""
-    return r["kobj_hi_N_per_mm"] / r["kobj_lo_N_per_mm"]
 
 
 def print_summary(s: dict) -> None:

@@ -366,7 +366,7 @@ def run(args: argparse.Namespace) -> int:
                               "detail": c.detail} for c in checks], "counts": counts}
         made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
         _write_review_and_manifest(plan, planned.source, made, files, solids, budget, staging,
-                                   mount)
+                                   mount, getattr(args, "design", None))
         out.mkdir(parents=True, exist_ok=True)
         for k in sorted(made, key=lambda k: k == "manifest"):  # the manifest last
             files[k].parent.mkdir(parents=True, exist_ok=True)
@@ -386,9 +386,11 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dict, solids: dict,
-                               budget, staging: Path, mount) -> None:
+                               budget, staging: Path, mount, design_file: str | None) -> None:
     """The die's scene (GLB), review page and manifest, from the files made before them in
-    ``staging`` (:mod:`tactcad.products.silicon_die.export.die_review`)."""
+    ``staging`` (:mod:`tactcad.products.silicon_die.export.die_review`); the page shows the
+    atlas of the jaw when the design's folder has one (:mod:`tactcad.export.atlas_view`)."""
+    from tactcad.export.atlas_view import atlas_view
     from tactcad.products.silicon_die.studies.die_reports import (stiffness_report,
                                                                   strength_report)
     from tactcad.export.review_assets import import_map
@@ -405,7 +407,7 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
         head, die_verification(plan, mount),
         (files["drawing"].name, made["drawing"].read_text(encoding="utf-8")),
         made["glb"].read_bytes(), made["bom"].read_text(encoding="utf-8-sig"), elements,
-        budget.as_json())
+        budget.as_json(), atlas_view(design_file))
     write_review_page(made["review"], contents, import_map())
     listed = {k: made[k].relative_to(staging).as_posix() for k in made
               if k not in NOT_IN_MANIFEST}

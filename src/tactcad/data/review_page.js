@@ -459,6 +459,7 @@ function showTables() {
   for (const r of warned) box.append(el('p', `element ${r.element}: ${r.warnings.join('; ')}`, 'warn'));
   showVerification();
   showBudget();
+  showAtlas();
   showChecks();
   showProvenance();
 }
@@ -507,6 +508,99 @@ function showBudget() {  // the K_obj error budget, the tissue coupling, the gra
   showTableSection(DATA.kobj_budget, 'budget');
   showTableSection(DATA.tissue_coupling, 'tissue');
   showTableSection(DATA.grasp, 'grasp');
+}
+
+// the atlas's figure: each judged point over rated force (x) and K_obj span (y), both
+// logarithmic; designed points coloured by product and material, the front ringed, refused
+// points grey crosses. Hover: the point's figures; click: its design command, copied.
+const ATLAS_COLOURS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#17becf'];
+const SVG_NS = 'http://www.w3.org/2000/svg';
+
+function svgEl(tag, attrs, text) {
+  const e = document.createElementNS(SVG_NS, tag);
+  for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, String(v));
+  if (text !== undefined) e.textContent = text;
+  return e;
+}
+
+function logAxis(values, from, to) {  // value -> pixel on a log scale padded by 5 %
+  const logs = values.map(Math.log10);
+  let lo = Math.min(...logs), hi = Math.max(...logs);
+  if (!(hi > lo)) { lo -= 0.5; hi += 0.5; }
+  const pad = 0.05 * (hi - lo);
+  lo -= pad; hi += pad;
+  const at = (v) => from + (Math.log10(v) - lo) / (hi - lo) * (to - from);
+  const ticks = [];  // decades, and 2 and 5 between them on a short axis
+  const steps = hi - lo < 2.5 ? [1, 2, 5] : [1];
+  for (let d = Math.floor(lo); d <= Math.ceil(hi); d++) {
+    for (const m of steps) {
+      const t = m * 10 ** d;
+      if (Math.log10(t) >= lo && Math.log10(t) <= hi) ticks.push(Number(t.toPrecision(1)));
+    }
+  }
+  return { at, ticks };
+}
+
+function atlasPlot(a, picked) {
+  const W = 720, H = 440, L = 70, R = 20, T = 15, B = 50;
+  const svg = svgEl('svg', { id: 'atlas-plot', viewBox: `0 0 ${W} ${H}`, role: 'img',
+                             'aria-label': 'design atlas: K_obj span against rated force' });
+  const x = logAxis(a.points.map((p) => p.force_N), L, W - R);
+  const y = logAxis(a.points.map((p) => p.span), H - B, T);
+  svg.append(svgEl('rect', { x: L, y: T, width: W - L - R, height: H - T - B, fill: 'none', stroke: '#999' }));
+  for (const t of x.ticks) {
+    svg.append(svgEl('line', { x1: x.at(t), x2: x.at(t), y1: T, y2: H - B, stroke: '#eee' }));
+    svg.append(svgEl('text', { x: x.at(t), y: H - B + 16, 'text-anchor': 'middle', 'font-size': 11 }, String(t)));
+  }
+  for (const t of y.ticks) {
+    svg.append(svgEl('line', { x1: L, x2: W - R, y1: y.at(t), y2: y.at(t), stroke: '#eee' }));
+    svg.append(svgEl('text', { x: L - 6, y: y.at(t) + 4, 'text-anchor': 'end', 'font-size': 11 }, String(t)));
+  }
+  svg.append(svgEl('text', { x: (L + W - R) / 2, y: H - 12, 'text-anchor': 'middle', 'font-size': 12 }, 'rated full-scale force (N)'));
+  svg.append(svgEl('text', { x: 16, y: (T + H - B) / 2, 'text-anchor': 'middle', 'font-size': 12,
+                             transform: `rotate(-90 16 ${(T + H - B) / 2})` }, 'K_obj span, high / low'));
+  const pick = (p) => () => {
+    setText(picked, `${p.title}`);
+    if (navigator.clipboard) navigator.clipboard.writeText(p.command).catch(() => {});
+  };
+  // refused first, so the designed points and the front lie on top
+  for (const p of [...a.points].sort((u, v) => u.feasible - v.feasible)) {
+    const cx = x.at(p.force_N), cy = y.at(p.span);
+    const mark = p.feasible
+      ? svgEl('circle', { cx, cy, r: p.front ? 5 : 3.5, fill: ATLAS_COLOURS[p.group % ATLAS_COLOURS.length],
+                          stroke: p.front ? '#000' : 'none', 'stroke-width': p.front ? 1.5 : 0 })
+      : svgEl('path', { d: `M${cx - 3} ${cy - 3}L${cx + 3} ${cy + 3}M${cx - 3} ${cy + 3}L${cx + 3} ${cy - 3}`,
+                        stroke: '#bbb', 'stroke-width': 1.2, class: 'refused' });
+    mark.append(svgEl('title', {}, p.title));
+    mark.addEventListener('click', pick(p));
+    svg.append(mark);
+  }
+  return svg;
+}
+
+function atlasLegend(a) {
+  const legend = el('p');
+  a.groups.forEach((g, i) => {
+    const dot = el('span', '\u25cf ');
+    dot.style.color = ATLAS_COLOURS[i % ATLAS_COLOURS.length];
+    legend.append(dot, `${g} \u00b7 `);
+  });
+  legend.append('\u2715 refused \u00b7 \u25ef Pareto front (ringed)');
+  return legend;
+}
+
+function showAtlas() {  // the jaw's design atlas, when the project's folder has one
+  const a = DATA.atlas;
+  $('atlas').hidden = $('nav-atlas').hidden = !a;
+  if (!a) { $('atlas-body').replaceChildren(); return; }
+  const parts = [el('p', a.title), el('p', a.note, 'meta')];
+  if (a.points.length) {
+    const picked = el('div', 'Click a point: its figures here, its design command copied.');
+    picked.id = 'atlas-picked';
+    parts.push(atlasLegend(a), atlasPlot(a, picked), picked);
+  }
+  if (a.front) parts.push(el('h3', a.front.title), table(a.front.columns, a.front.rows));
+  $('atlas-body').replaceChildren(...parts);
 }
 
 function showChecks() {

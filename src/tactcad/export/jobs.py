@@ -361,6 +361,7 @@ def review_contents_of(run: Run, *folders: Path):
     import json
 
     from tactcad.drawings.compose import revision_and_date
+    from tactcad.export.atlas_view import atlas_view
     from tactcad.export.book_paths import BOOK_DATA
     from tactcad.export.manifest import design_facts
     from tactcad.export.review_assets import three_version
@@ -379,11 +380,13 @@ def review_contents_of(run: Run, *folders: Path):
     return review_contents(design_facts(run.plan), sheets, glbs,
                            bom.read_text(encoding="utf-8-sig") if bom else "",
                            strength_summary(run.plan), rev, date, three_version(),
-                           json.loads(book.read_text(encoding="utf-8")) if book else ())
+                           json.loads(book.read_text(encoding="utf-8")) if book else (),
+                           atlas_view(run.plan.source))
 
 
 def review_page_jobs(run: Run, before: list[Job]) -> list[Job]:
     """``review/index.html`` from the files of the jobs before it (its key holds theirs)."""
+    from tactcad.export.atlas_view import atlas_identity
     from tactcad.export.review_assets import assets_identity
 
     def make(run: Run) -> list[dict]:
@@ -397,7 +400,7 @@ def review_page_jobs(run: Run, before: list[Job]) -> list[Job]:
         return [{"path": REVIEW_PAGE, "part": "review", "kind": "review-page",
                  "scenes": len(contents.scenes), "sheets": len(contents.data["sheets"])}]
     return [Job("review:page", content_key("review-page", [j.key for j in before],
-                                           assets_identity()),
+                                           assets_identity(), atlas_identity(run.plan.source)),
                 make, after=tuple(j.name for j in before), prepare=_review_facts)]
 
 

@@ -78,7 +78,7 @@ def _sha256(data: bytes) -> str:
 def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
                     scenes: Mapping[str, bytes], bom_csv: str, elements: list[dict],
                     revision: str, date: str, three_version: str,
-                    book: Sequence[dict] = ()) -> ReviewContents:
+                    book: Sequence[dict] = (), atlas: dict | None = None) -> ReviewContents:
     """What the page shows (see :class:`ReviewContents`).
 
     Args:
@@ -91,6 +91,9 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
         book: the build book's steps (``instructions/steps.json``: title, parts,
             notes, the scene, its new parts and each moving instance's explosion,
             mm); the page lists them and plays a step's explosion in its 3D view.
+        atlas: the design atlas of the project's jaw
+            (:func:`tactcad.export.atlas_view.atlas_view`), drawn with its points' hover
+            texts and front; None: no atlas section.
     """
     manifest = {k: v for k, v in facts.items() if k != "files"}
     if "verification" not in manifest and manifest.get("requirements"):
@@ -108,6 +111,7 @@ def review_contents(facts: dict, sheets: Sequence[tuple[str, str, str]],
         "kobj_budget": kobj_budget_view(manifest.get("kobj_budget")),
         "tissue_coupling": tissue_coupling_view(manifest.get("tissue_coupling")),
         "grasp": grasp_view(manifest.get("grasp")),
+        "atlas": atlas,
     }
     return ReviewContents(data, dict(scenes), {_sha256(b): b for b in svgs.values()})
 

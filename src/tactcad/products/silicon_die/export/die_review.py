@@ -123,10 +123,12 @@ def budget_table(budget: Mapping[str, Any]) -> dict | None:
 
 def review_contents_of_die(head: Mapping[str, Any], verification: list[dict],
                            drawing: tuple[str, str], scene_glb: bytes, bom_csv: str,
-                           elements: list[dict], budget: Mapping[str, Any]):
+                           elements: list[dict], budget: Mapping[str, Any],
+                           atlas: dict | None = None):
     """The review page's contents (:class:`tactcad.export.review_page.ReviewContents`) of a
     die: ``drawing`` (export path, SVG text), the mount's GLB, the BOM's CSV text, the beams
-    as elements (:func:`beam_elements`), the verification records
+    as elements (:func:`beam_elements`), the jaw's atlas (:mod:`tactcad.export.atlas_view`;
+    None: none), the verification records
     (:func:`tactcad.products.silicon_die.studies.die_verification.die_verification`) and the K_obj budget; dated
     as the sheets are (``SOURCE_DATE_EPOCH``, else undated), never by the clock."""
     from tactcad.drawings.frame import epoch_date
@@ -136,7 +138,8 @@ def review_contents_of_die(head: Mapping[str, Any], verification: list[dict],
     facts = {**head, "requirements": {"closed_form_matrix": verification}}
     contents = review_contents(facts, [(drawing[0], "the die and its carrier", drawing[1])],
                                {SCENE: scene_glb}, bom_csv, elements, "A",
-                               epoch_date(os.environ) or "\u2014", three_version())
+                               epoch_date(os.environ) or "\u2014", three_version(),
+                               atlas=atlas)
     contents.data["kobj_budget"] = budget_table(budget)
     return contents
 
