@@ -63,6 +63,26 @@ def test_every_point_is_drawn_with_its_figures_and_command_and_the_front_is_its_
     assert "seed 7" in view["title"] and "3 designed" in view["title"]
 
 
+def test_the_projects_own_targets_are_marked_and_nonsense_targets_are_not(tmp_path):
+    design = _project(tmp_path)
+    mark = atlas_view(design, (0.03, 0.5, 6.0))["design"]
+    assert mark["force_N"] == 0.03 and mark["span"] == pytest.approx(12.0)
+    assert "0.03 N rated" in mark["title"] and "0.5-6 N/mm" in mark["title"]
+    assert atlas_view(design)["design"] is None
+    assert atlas_view(design, (0.03, 0.0, 6.0))["design"] is None
+    assert atlas_view(design, (math.nan, 0.5, 6.0))["design"] is None
+
+
+def test_the_exports_mark_is_what_the_designs_requirements_state():
+    from tactcad.export.jobs import design_targets
+
+    facts = {"requirements": {"values": {"full_scale_force_N": 0.2,
+                                         "kobj_range_N_per_mm": [1.0, 8.0]}}}
+    assert design_targets(facts) == (0.2, 1.0, 8.0)
+    assert design_targets({"requirements": {"values": {"full_scale_force_N": 0.2}}}) is None
+    assert design_targets({}) is None
+
+
 def test_a_stopped_run_says_only_the_finished_points_are_shown(tmp_path):
     view = atlas_view(_project(tmp_path, summary={"jaw": "5", "points": 9, "seed": 0,
                                                   "complete": False}))
@@ -114,7 +134,7 @@ def test_the_page_draws_the_atlas_and_a_click_shows_the_point(exported, browser,
     found = re.search(r'(<script type="application/json" id="review-data">)(.*?)(</script>)',
                       text, re.S)
     data = json.loads(found.group(2))
-    data["atlas"] = atlas_view(_project(tmp_path))
+    data["atlas"] = atlas_view(_project(tmp_path), (0.03, 0.5, 6.0))
     patched = tmp_path / "review" / "index.html"
     patched.parent.mkdir()
     patched.write_text(text[:found.start(2)] + json_in_html(data) + text[found.end(2):],
@@ -130,6 +150,7 @@ def test_the_page_draws_the_atlas_and_a_click_shows_the_point(exported, browser,
         assert page.locator("#atlas-plot circle").count() == feasible
         assert page.locator("#atlas-plot path.refused").count() == len(RECORDS) - feasible
         assert page.locator("#atlas-body tr").count() == 1 + 2
+        assert page.locator("#atlas-plot polygon.this-design").count() == 1
         page.locator("#atlas-plot path.refused").first.click()
         assert RECORDS[3]["command"] in page.locator("#atlas-picked").inner_text()
         assert page.errors == []

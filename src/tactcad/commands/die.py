@@ -407,7 +407,8 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
         head, die_verification(plan, mount),
         (files["drawing"].name, made["drawing"].read_text(encoding="utf-8")),
         made["glb"].read_bytes(), made["bom"].read_text(encoding="utf-8-sig"), elements,
-        budget.as_json(), atlas_view(design_file))
+        budget.as_json(), atlas_view(design_file, (plan.full_scale_force_N,
+                                                    *plan.kobj_range_N_per_mm)))
     write_review_page(made["review"], contents, import_map())
     listed = {k: made[k].relative_to(staging).as_posix() for k in made
               if k not in NOT_IN_MANIFEST}

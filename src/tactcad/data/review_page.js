@@ -545,8 +545,9 @@ function atlasPlot(a, picked) {
   const W = 720, H = 440, L = 70, R = 20, T = 15, B = 50;
   const svg = svgEl('svg', { id: 'atlas-plot', viewBox: `0 0 ${W} ${H}`, role: 'img',
                              'aria-label': 'design atlas: K_obj span against rated force' });
-  const x = logAxis(a.points.map((p) => p.force_N), L, W - R);
-  const y = logAxis(a.points.map((p) => p.span), H - B, T);
+  const marked = a.design ? [a.design] : [];
+  const x = logAxis([...a.points, ...marked].map((p) => p.force_N), L, W - R);
+  const y = logAxis([...a.points, ...marked].map((p) => p.span), H - B, T);
   svg.append(svgEl('rect', { x: L, y: T, width: W - L - R, height: H - T - B, fill: 'none', stroke: '#999' }));
   for (const t of x.ticks) {
     svg.append(svgEl('line', { x1: x.at(t), x2: x.at(t), y1: T, y2: H - B, stroke: '#eee' }));
@@ -575,6 +576,16 @@ function atlasPlot(a, picked) {
     mark.addEventListener('click', pick(p));
     svg.append(mark);
   }
+  for (const d of marked) {  // the project's own targets: a star on top
+    const cx = x.at(d.force_N), cy = y.at(d.span);
+    const star = [...Array(10).keys()].map((i) => {
+      const r = i % 2 ? 3.5 : 9, t = Math.PI / 2 + i * Math.PI / 5;
+      return `${(cx + r * Math.cos(t)).toFixed(1)},${(cy - r * Math.sin(t)).toFixed(1)}`;
+    }).join(' ');
+    const mark = svgEl('polygon', { points: star, fill: '#ffd33d', stroke: '#000', 'stroke-width': 1, class: 'this-design' });
+    mark.append(svgEl('title', {}, d.title));
+    svg.append(mark);
+  }
   return svg;
 }
 
@@ -586,6 +597,7 @@ function atlasLegend(a) {
     legend.append(dot, `${g} \u00b7 `);
   });
   legend.append('\u2715 refused \u00b7 \u25ef Pareto front (ringed)');
+  if (a.design) legend.append(' \u00b7 \u2605 this design');
   return legend;
 }
 

@@ -58,11 +58,14 @@ def atlas_identity(design_file: str | Path | None) -> str:
     return digest.hexdigest() if found else ""
 
 
-def atlas_view(design_file: str | Path | None) -> dict | None:
+def atlas_view(design_file: str | Path | None,
+               this_design: tuple[float, float, float] | None = None) -> dict | None:
     """The review page's atlas section of a project, or None when it has no atlas.
 
     Args:
         design_file: the project's design file (None: a design made in code, no atlas).
+        this_design: the project's own targets (rated full-scale force N, K_obj range's low
+            and high N/mm), marked on the figure; None: not marked.
 
     Returns:
         ``{"title", "note", "groups", "points", "front"}``: ``points`` are
@@ -70,7 +73,8 @@ def atlas_view(design_file: str | Path | None) -> dict | None:
         indexes ``groups``, "product material" names; ``title`` the hover text of
         :func:`tactcad.studies.atlas_files.point_title`); ``front`` a table (``title``,
         ``columns``, ``rows``) of the Pareto front. A table or summary that cannot be read
-        gives a section saying so (``points`` empty), never an error.
+        gives a section saying so (``points`` empty), never an error. ``design``:
+        ``{"force_N", "span", "title"}`` of ``this_design``, or None.
     """
     if not _is_design_file(design_file):
         return None
@@ -82,8 +86,18 @@ def atlas_view(design_file: str | Path | None) -> dict | None:
         return {"title": f"Design atlas ({PROJECT_ATLAS_FOLDER}/)",
                 "note": f"{PROJECT_ATLAS_FOLDER}/{TABLE_NAME} or {SUMMARY_NAME} could not be "
                         "read: run `tactcad atlas --project <design file>` again",
-                "groups": [], "points": [], "front": None}
-    return _view(records, summary)
+                "groups": [], "points": [], "front": None, "design": None}
+    return {**_view(records, summary), "design": _design_mark(this_design)}
+
+
+def _design_mark(this_design: tuple[float, float, float] | None) -> dict | None:
+    if this_design is None:
+        return None
+    force, lo, hi = (float(v) for v in this_design)
+    if not all(math.isfinite(v) and v > 0 for v in (force, lo, hi)):
+        return None
+    return {"force_N": force, "span": hi / lo,
+            "title": f"this design: {force:.3g} N rated, K_obj {lo:.3g}-{hi:.3g} N/mm"}
 
 
 def _is_design_file(design_file) -> bool:

@@ -377,11 +377,22 @@ def review_contents_of(run: Run, *folders: Path):
     bom = found("bom.csv")
     book = found(BOOK_DATA)
     rev, date = revision_and_date(run.plan)
-    return review_contents(design_facts(run.plan), sheets, glbs,
+    facts = design_facts(run.plan)
+    return review_contents(facts, sheets, glbs,
                            bom.read_text(encoding="utf-8-sig") if bom else "",
                            strength_summary(run.plan), rev, date, three_version(),
                            json.loads(book.read_text(encoding="utf-8")) if book else (),
-                           atlas_view(run.plan.source))
+                           atlas_view(run.plan.source, design_targets(facts)))
+
+
+def design_targets(facts: dict) -> tuple[float, float, float] | None:
+    """(rated full-scale force N, K_obj low, high N/mm) the design's requirements state, for
+    its mark on the atlas; None where it states no K_obj range."""
+    values = (facts.get("requirements") or {}).get("values") or {}
+    force, kobj = values.get("full_scale_force_N"), values.get("kobj_range_N_per_mm")
+    if force is None or not kobj:
+        return None
+    return float(force), float(kobj[0]), float(kobj[1])
 
 
 def review_page_jobs(run: Run, before: list[Job]) -> list[Job]:
