@@ -2,6 +2,8 @@
 
 import json
 
+import pytest
+
 from conftest import run_cli
 
 
@@ -35,6 +37,7 @@ def test_a_comb_has_no_stack_crosstalk_model_and_is_refused_by_its_construction(
 DIE = "hardware/grasper_jaw_5mm_mems/grasper_jaw_5mm_mems.toml"
 
 
+@pytest.mark.slow  # the example die's handle meshed and solved per unit (about 25 s)
 def test_a_dies_crosstalk_is_its_own_through_its_handle_and_an_arrays_options_are_refused():
     # the die was refused ("not modelled"); its crosstalk is now the handle-and-attach FE's
     r = run_cli("crosstalk", "--design", DIE, "--set", "die.columns=2", "--json")

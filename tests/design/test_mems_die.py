@@ -14,6 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import run_cli
+from depth import draws
 from tactcad.products.silicon_die.checks.gds_drc import gds_checks
 from tactcad.products.silicon_die.design import mems_die as md
 from tactcad.errors import DesignError
@@ -1133,7 +1134,10 @@ def _refused_or_designed(targets, room, weibull=None):
         return md.die_plan(Targets(ratio, kobj, force), room, weibull=weibull), exc
 
 
-@settings(max_examples=int(__import__("os").environ.get("DIE_EXAMPLES", "60")), deadline=None)
+# a die's masks, checks and verification per example (about a second each): make test draws
+# 12, make test-deep the 60 it was written with, DIE_EXAMPLES any count
+@settings(max_examples=int(__import__("os").environ.get("DIE_EXAMPLES", draws(12, 60))),
+          deadline=None)
 @given(ratio=st.floats(2.0, 300.0), lo=st.floats(0.01, 50.0), span=st.floats(2.0, 100.0),
        force=st.floats(1e-4, 0.2),
        pair=st.none() | st.tuples(st.floats(3.0, 20.0), st.floats(200.0, 6000.0)))

@@ -15,6 +15,9 @@ from tactcad.products.silicon_die.mechanics import die_crosstalk as dx
 from tactcad.partlib.grasper_jaw import jaw_room
 from tactcad.studies.inverse_design import Targets
 
+# one worker solves the small die's crosstalk (the module's fixture) for every test of it
+pytestmark = pytest.mark.xdist_group("die_crosstalk")
+
 
 def _isotropic(e_MPa: float, nu: float) -> np.ndarray:
     lam, mu = e_MPa * nu / ((1 + nu) * (1 - 2 * nu)), e_MPa / (2 * (1 + nu))
