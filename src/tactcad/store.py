@@ -193,7 +193,7 @@ class Store:
     def memo(self, key: str, compute: Callable[[], Any]) -> Any:
         """``compute()``, or its pickled result stored under ``key`` by an
         earlier run (for intermediate results too costly to redo, such as a
-        drawing sheet converted for the PDF). Unreadable entries are recomputed."""
+        part view's projected edges). Unreadable entries are recomputed."""
         found, value = self.recall(key)
         if found:
             return value
