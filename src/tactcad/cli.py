@@ -29,34 +29,40 @@ EXIT_INPUT = 2
 EXIT_OS = 3
 EXIT_INTERRUPTED = 130
 
-COMMAND_MODULES = (
-    "tactcad.commands.new",
-    "tactcad.commands.export",
-    "tactcad.commands.check",
-    "tactcad.commands.verify",
-    "tactcad.commands.scenes",
-    "tactcad.commands.bench",
-    "tactcad.commands.mechanics",
-    "tactcad.commands.modal",
-    "tactcad.commands.lumped",
-    "tactcad.commands.evaluate",
-    "tactcad.commands.table2",
-    "tactcad.commands.calibrate",
-    "tactcad.commands.strength",
-    "tactcad.commands.tolerance",
-    "tactcad.commands.readout",
-    "tactcad.commands.thermal",
-    "tactcad.commands.budget",
-    "tactcad.commands.grasp",
-    "tactcad.commands.crosstalk",
-    "tactcad.commands.materials",
-    "tactcad.commands.sweep",
-    "tactcad.commands.design",
-    "tactcad.commands.atlas",
-    "tactcad.commands.die",
-    "tactcad.commands.diff",
-    "tactcad.commands.watch",
-)
+#: Each command (its first word) and the module that registers it; ``bench``'s
+#: own sub-commands live in its module. Only the module of the command run is
+#: imported (a few seconds less start-up than importing all of them).
+COMMANDS: dict[str, str] = {
+    "new": "tactcad.commands.new",
+    "export": "tactcad.commands.export",
+    "check": "tactcad.commands.check",
+    "verify": "tactcad.commands.verify",
+    "scenes": "tactcad.commands.scenes",
+    "bench": "tactcad.commands.bench",
+    "stiffness": "tactcad.commands.mechanics",
+    "table1": "tactcad.commands.mechanics",
+    "modal": "tactcad.commands.modal",
+    "lumped": "tactcad.commands.lumped",
+    "evaluate": "tactcad.commands.evaluate",
+    "table2": "tactcad.commands.table2",
+    "calibrate": "tactcad.commands.calibrate",
+    "strength": "tactcad.commands.strength",
+    "tolerance": "tactcad.commands.tolerance",
+    "readout": "tactcad.commands.readout",
+    "thermal": "tactcad.commands.thermal",
+    "budget": "tactcad.commands.budget",
+    "grasp": "tactcad.commands.grasp",
+    "crosstalk": "tactcad.commands.crosstalk",
+    "materials": "tactcad.commands.materials",
+    "sweep": "tactcad.commands.sweep",
+    "design": "tactcad.commands.design",
+    "atlas": "tactcad.commands.atlas",
+    "die": "tactcad.commands.die",
+    "diff": "tactcad.commands.diff",
+    "watch": "tactcad.commands.watch",
+}
+#: Every command module, in the order ``tactcad --help`` lists their commands.
+COMMAND_MODULES = tuple(dict.fromkeys(COMMANDS.values()))
 
 #: Commands that run until they are stopped (Ctrl-C or an ending signal): a
 #: stop is their normal end (exit 0, a "stopped" line) whenever it comes,
@@ -183,14 +189,25 @@ class Parser(argparse.ArgumentParser):
         raise UsageError(self, message)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The command-line parser. Given the command line, it registers only the command it
+    names (:data:`COMMANDS`); without one, or for a word that is no command (help, a typo
+    argparse then refuses with the full list), every command.
+
+    Args:
+        argv: the command line (without the program name), or None for every command.
+
+    Returns:
+        the parser.
+    """
     parser = Parser(
         prog="tactcad",
         description="Generate CAD, wire-EDM DXF and stiffness estimates for spring-based "
                     "tactile sensor arrays. Units: mm, N, MPa, N/mm, s.")
     parser.add_argument("--version", action="version", version=f"tactcad {VERSION}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for name in COMMAND_MODULES:
+    named = COMMANDS.get(command_of(argv or []) or "")
+    for name in (named,) if named else COMMAND_MODULES:
         try:
             module = importlib.import_module(name)
         except ModuleNotFoundError as exc:
@@ -252,7 +269,7 @@ def parse_checked(argv: list[str]) -> argparse.Namespace:
     """
     from tactcad.commands.options import validate_options, warn_repeated
 
-    parser = build_parser()
+    parser = build_parser(argv)
     try:
         args = parser.parse_args(argv)
     except UsageError as exc:

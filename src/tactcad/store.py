@@ -13,7 +13,7 @@ renamed into place, so a killed run never leaves a half entry; a damaged
 entry counts as a miss. Nothing here imports the CAD kernel.
 
 The same store keeps costly intermediate values (``<root>/memo/<key[:2]>/<key>.pickle``,
-:meth:`Store.memo`): a drawing sheet converted for the PDF, and the heavy
+:meth:`Store.memo`): a part view's projected edges, and the heavy
 results of the estimators (a FEM level's stiffness, peak stress or modes,
 :func:`kept_result`), so ``design``, ``verify``, ``modal``, ``stiffness`` and
 ``check`` solve each once for all of them.
@@ -44,7 +44,7 @@ STORE_FOLDER = ".tactcad-cache"
 DEFAULT_STORE = Path(STORE_FOLDER)
 
 STACK_PACKAGES = ("build123d", "cadquery", "cadquery-ocp", "ezdxf", "trimesh", "manifold3d",
-                  "numpy", "scipy", "scikit-fem", "gmsh", "svglib", "reportlab", "pypdfium2",
+                  "numpy", "scipy", "scikit-fem", "gmsh", "reportlab", "pypdfium2",
                   "pillow")
 
 
@@ -193,7 +193,7 @@ class Store:
     def memo(self, key: str, compute: Callable[[], Any]) -> Any:
         """``compute()``, or its pickled result stored under ``key`` by an
         earlier run (for intermediate results too costly to redo, such as a
-        drawing sheet converted for the PDF). Unreadable entries are recomputed."""
+        part view's projected edges). Unreadable entries are recomputed."""
         found, value = self.recall(key)
         if found:
             return value

@@ -474,3 +474,32 @@ def test_json_says_when_it_worked_on_the_shipped_example(tmp_path):
     assert run_cli("new", str(tmp_path / "p" / "q"), cwd=tmp_path).returncode == 0
     own = run_cli("stiffness", "--element", "1", "--json", cwd=tmp_path / "p" / "q")
     assert "notices" not in json.loads(own.stdout)
+
+
+def test_each_command_module_registers_the_commands_the_table_gives_it():
+    import importlib
+
+    parser = cli.Parser(prog="tactcad")
+    sub = parser.add_subparsers(dest="command")
+    registered = {}
+    for name in cli.COMMAND_MODULES:
+        before = set(sub.choices)
+        importlib.import_module(name).register(sub)
+        registered.update({command: name for command in set(sub.choices) - before})
+    assert registered == cli.COMMANDS
+
+
+def test_a_command_line_imports_only_its_own_command_module():
+    code = ("import sys; from tactcad import cli; cli.build_parser(['lumped', '--help']); "
+            "print(sorted(m for m in sys.modules if m.startswith('tactcad.commands.') "
+            "and m.count('.') == 2 and m != 'tactcad.commands.options'))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    loaded = set(eval(out))
+    assert "tactcad.commands.lumped" in loaded
+    assert not loaded & {"tactcad.commands.grasp", "tactcad.commands.export",
+                         "tactcad.commands.bench", "tactcad.commands.watch"}, loaded
+    # a word that is no command still gets the full list to choose from
+    full = cli.build_parser(["exprt"])
+    sub = next(a for a in full._actions if isinstance(a, argparse._SubParsersAction))
+    assert set(sub.choices) == set(cli.COMMANDS)

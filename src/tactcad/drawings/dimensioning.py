@@ -241,7 +241,7 @@ def add_section(d: Drawing, solid, normal: tuple, up: tuple, length_mm: float,
     room_h = d.notes_top - top - FIRST_TIER - 2 * TIER - 12.0
     scale = next((s for s in ISO_5455_SCALES if s <= 4 * d.scale and length_mm * s <= room
                   and height_mm * s <= room_h), d.scale)
-    sv = section_view(solid, (0.0, 0.0, 0.0), normal, up, "A-A", scale)
+    sv = section_view(solid, (0.0, 0.0, 0.0), normal, up, "A-A", scale, spec=d.spec)
     sv.hidden = []  # ISO 128-40: no hidden edges in a section
     sv.place(left, lb[1] + 12.0)
     d.views["section"] = sv

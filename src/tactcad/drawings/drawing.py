@@ -16,7 +16,8 @@ from tactcad.catalogue.shop import material_designation, stock_size, surface_fin
 from tactcad.design.array_plan import ElementGeometry, Plan
 from tactcad.drawings.frame import FRAME, TITLE_H, TITLE_W
 from tactcad.drawings.sheet import LABEL_TEXT_MM, Sheet, fmt_mm
-from tactcad.drawings.views import (CAMERAS, ISO_5455_SCALES, View, detail, project, scale_text)
+from tactcad.drawings.views import (CAMERAS, ISO_5455_SCALES, View, detail, kept_projection,
+                                    scale_text)
 from tactcad.geometry.profile import Arc
 
 NOTES_TOP = 208.0                    # views stay above this line (higher if the notes need it):
@@ -195,8 +196,10 @@ def project_views(d: Drawing, solid) -> dict[str, View]:
 
     A part with a plan profile is drawn in its sketch plane (front view from
     +z); any other part from the axis of its smallest extent (see
-    :func:`tactcad.drawings.views.orientation`)."""
-    return {name: project(solid, name, cameras=d.cameras) for name in ("front", "top", "left")}
+    :func:`tactcad.drawings.views.orientation`). Each view is kept in the result store
+    by the part's spec (:func:`tactcad.drawings.views.kept_projection`)."""
+    return {name: kept_projection(d.spec, solid, name, d.cameras)
+            for name in ("front", "top", "left")}
 
 
 def largest_scale(views: dict[str, View], det: tuple | None, notes_top: float,

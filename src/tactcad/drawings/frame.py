@@ -7,11 +7,13 @@ from __future__ import annotations
 
 import datetime
 import os
-from typing import Mapping
+from typing import TYPE_CHECKING, Mapping
 
-from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
 from tactcad.drawings.sheet import Sheet, text_width
+
+if TYPE_CHECKING:  # the design model costs a second to import; the CLI reads epoch_date first
+    from tactcad.design.array_plan import Plan
 
 GENERAL_TOLERANCE = "ISO 2768-f"
 

@@ -8,6 +8,7 @@ Model millimetres in, a :class:`tactcad.drawings.views.View` out; its
 
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -44,18 +45,54 @@ def hatch_lines(loops: list[list[tuple[float, float]]], spacing: float,
     return out
 
 
-def section_view(solid, origin, normal, up, name: str, scale: float) -> View:
+#: The result store's name for a section's projected edges and cut face (:func:`section_view`).
+SECTION_KIND = "part section projection"
+
+
+def section_view(solid, origin, normal, up, name: str, scale: float, spec=None) -> View:
     """Section of ``solid`` by the plane through ``origin`` with unit
     ``normal`` pointing at the viewer, ``up`` upwards in the view; the view
     gets ``hatch`` (view coordinates) spaced :data:`HATCH_SPACING_MM` on paper.
 
+    Args:
+        solid: the part's solid (mm).
+        origin, normal, up: the cutting plane's point, its unit normal and the view's up (mm).
+        name: the view's name (``A-A``).
+        scale: paper mm per model mm (the hatching's spacing).
+        spec: the part's spec the solid is built from: with it, the cut's edges and
+            faces are kept in the result store (:func:`tactcad.store.kept_result`) by
+            the spec and the plane, so an unchanged part is not cut again.
+
+    Returns:
+        the section :class:`View`.
+
     Raises:
         ValueError: the plane misses the solid (no cut face).
     """
+    plane = tuple(tuple(float(c) for c in v) for v in (origin, normal, up))
+    if spec is None:
+        view, loops = _cut_and_project(solid, *plane)
+    else:
+        from tactcad.store import kept_result
+
+        view, loops = kept_result(SECTION_KIND, lambda: _cut_and_project(solid, *plane),
+                                  spec, plane)
+        view = copy.copy(view)  # the kept view stays as made
+    if not loops:
+        raise ValueError(f"section {name}: the plane misses the solid")
+    view.name = name
+    view.scale = scale
+    view.hatch = [h for lp in loops for h in hatch_lines(lp, HATCH_SPACING_MM / scale)]
+    return view
+
+
+def _cut_and_project(solid, origin, normal, up) -> tuple[View, list]:
+    """The part of ``solid`` behind the plane projected along ``-normal``, and the cut
+    face's loops in view coordinates (mm; none when the plane misses the solid)."""
     from tactcad.kernel.hlr import cut_away, cut_face_loops  # the kernel, only when drawn
 
     kept = cut_away(solid, origin, normal)
-    cams = cameras_for(tuple(float(c) for c in normal), tuple(float(c) for c in up))
+    cams = cameras_for(normal, up)
     view = project(kept, "front", cameras=cams)
     nv, uv = np.array(normal, float), np.array(up, float)
     rv = np.cross(uv, nv)
@@ -63,10 +100,4 @@ def section_view(solid, origin, normal, up, name: str, scale: float) -> View:
     def to_uv(p):
         return (float(p @ rv), float(p @ uv))
 
-    loops = cut_face_loops(kept, origin, normal, to_uv)
-    if not loops:
-        raise ValueError(f"section {name}: the plane misses the solid")
-    view.name = name
-    view.scale = scale
-    view.hatch = [h for lp in loops for h in hatch_lines(lp, HATCH_SPACING_MM / scale)]
-    return view
+    return view, cut_face_loops(kept, origin, normal, to_uv)

@@ -14,6 +14,7 @@ paper with its scale and origin.
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, field
 
@@ -171,6 +172,38 @@ def project(solid, view: str, step_mm: float | None = None,
     ys = [q[1] for q in allp]
     bbox = (min(xs), min(ys), max(xs), max(ys))
     return View(view, [list(p) for p in visible], [list(p) for p in hidden], bbox)
+
+
+#: The result store's name for one part view's projected edges (:func:`kept_projection`).
+PROJECTION_KIND = "part view projection"
+
+
+def kept_projection(spec, solid, view: str, cameras: dict[str, tuple] | None = None) -> View:
+    """:func:`project` of a part's solid, kept in the result store
+    (:func:`tactcad.store.kept_result`) by the part's spec, the view's name and its
+    camera: a solid is built from its spec alone (:func:`tactcad.solids.build.build_part`),
+    so a run where one part changed projects that part's views only, and a run of
+    the same design projects none. The sampling step follows from the solid, and
+    tactcad's code and the CAD stack's versions are in every key.
+
+    Args:
+        spec: the part's :class:`~tactcad.catalogue.array_catalogue.PartSpec`.
+        solid: its solid in the part frame (mm), built from ``spec``.
+        view: the view's name in ``cameras``.
+        cameras: view name -> (direction, up) (default :data:`CAMERAS`).
+
+    Returns:
+        a fresh :class:`View` (the caller may place and scale it; the kept one stays as made).
+
+    Raises:
+        KeyError: unknown view name.
+    """
+    from tactcad.store import kept_result
+
+    camera = (cameras or CAMERAS)[view]
+    kept = kept_result(PROJECTION_KIND, lambda: project(solid, view, cameras=cameras),
+                       spec, view, camera)
+    return copy.copy(kept)
 
 
 def _resampled(poly: Polyline, step: float) -> np.ndarray:

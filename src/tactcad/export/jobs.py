@@ -215,13 +215,32 @@ def _drawing(spec, quantity: int, tip_height=None):
         from tactcad.drawings.compose import compose
         from tactcad.drawings.views import scale_text
 
-        d = compose(run.plan, spec, run.parts.solid(spec), quantity, tip_height)
+        with keeping_run_results(run):  # each view's edges, kept by the part's spec
+            d = compose(run.plan, spec, run.parts.solid(spec), quantity, tip_height)
         rel = drawing_name(spec.name)
         write_bytes_atomic(run.staging / rel, d.sheet.svg().encode("utf-8"))
         run.log(f"  wrote {rel}")
         return [{"path": rel, "part": spec.name, "kind": "drawing-svg", "quantity": quantity,
                  "scale": scale_text(d.scale)}]
     return make
+
+
+def keeping_run_results(run: Run):
+    """A block in which :func:`tactcad.store.kept_result` keeps values in the run's store:
+    the enclosing block when it has that store (the command's ``--cache``), else a new
+    one (a worker, or a caller of the export without a block).
+
+    Args:
+        run: the export run.
+
+    Returns:
+        a context manager.
+    """
+    import contextlib
+
+    from tactcad.store import active_store, keeping_results
+
+    return contextlib.nullcontext() if active_store() == run.store else keeping_results(run.store)
 
 
 def assembly_sheet_job(run: Run) -> Job:

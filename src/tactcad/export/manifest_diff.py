@@ -14,8 +14,8 @@
 
 :func:`render_sheets` draws, for each changed sheet only, an overlay (old in
 red, new in blue, unchanged lines black) and the two side by side as PNG.
-Sheets are rasterised through the drawings' own path: SVG to PDF (svglib,
-reportlab), PDF to pixels (PDFium).
+Sheets are rasterised through the drawings' own path: SVG to PDF
+(:mod:`tactcad.drawings.pdf`), PDF to pixels (PDFium).
 
 Numbers are compared to a relative tolerance of :data:`REL_TOL`.
 """
