@@ -789,6 +789,29 @@ def test_the_drawing_dimensions_the_plans_die_and_carrier_clear_of_overlaps(die,
     assert all(r.passed for r in sheet_file_results(path))
 
 
+@pytest.mark.parametrize("columns, name", [
+    (2, "atlas_mems_die_1000"),          # the atlas's deep run found it over the carrier
+    (2, "A" + "w" * 31),                 # the longest cell name, in wide letters
+    (5, "d"),
+])
+def test_the_dies_name_stays_on_its_carrier_or_is_led_to_it_clear_of_the_outline(
+        tmp_path, columns, name):
+    from dataclasses import replace
+
+    from tactcad.checks.sheet_overlap import sheet_file_results
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.drawings.die_sheet import die_sheet
+
+    plan = replace(md.die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5"),
+                               columns=columns), name=name)
+    path = tmp_path / "die.svg"
+    path.write_text(die_sheet(plan, die_mount(plan, {"shaft_class_mm": "5"})).svg(),
+                    encoding="utf-8")
+    assert f"die {name}" in path.read_text(encoding="utf-8")
+    failed = [r.line() for r in sheet_file_results(path) if not r.passed]
+    assert not failed, failed
+
+
 # --- a die's folder: export and check, and the array commands' refusal ----------------------
 def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
     # in a die's folder, `export` silently made the paper's array (the folder "held no

@@ -121,14 +121,38 @@ def _carrier_view(sh: Sheet, plan: DiePlan, m: DieMount, x0: float, y0: float,
     sh.rect("carrier", x0, y0, w, h, "visible")
     shelf = (m.die_x0_mm - m.carrier_x0_mm) * s
     sh.line("carrier", (x0 + shelf, y0), (x0 + shelf, y0 + h), "thin")
-    sh.text("carrier", (x0 + (shelf + w) / 2, y0 + h / 2 + 1.2), f"die {plan.name}", NOTE_MM,
-            anchor="middle")
+    _die_label(sh, f"die {plan.name}", (x0 + (shelf + w) / 2, y0 + h / 2),
+               w - shelf - 2 * LABEL_MARGIN_MM, (y0, y0 - 14.0))
     sh.linear_dimension((x0, y0 + h), (x0 + w, y0 + h), "h", y0 + h + 10.0,
                         fmt_mm(m.carrier_length_mm), "carrier-length")
     sh.linear_dimension((x0, y0), (x0 + shelf, y0), "h", y0 - 6.0,
                         f"{fmt_mm(m.die_x0_mm - m.carrier_x0_mm)} bond shelf", "bond-shelf")
     sh.linear_dimension((x0 + w, y0), (x0 + w, y0 + h), "v", x0 + w + 10.0,
                         fmt_mm(m.carrier_width_mm), "carrier-width")
+
+
+#: Clear paper each side of the die's label inside the carrier's outline (mm).
+LABEL_MARGIN_MM = 1.0
+#: The smallest lettering a drawing carries (ISO 3098-1's smallest nominal height, mm).
+SMALLEST_TEXT_MM = 1.8
+
+
+def _die_label(sh: Sheet, text: str, centre: tuple[float, float], room_mm: float,
+               above: tuple[float, float]) -> None:
+    """The die's name on the carrier view: centred on the die at the notes' height where it
+    fits across the die, smaller (down to ISO 3098's 1.8 mm) where that fits, else above
+    the carrier (``above``: its top edge and the label's baseline, mm) with a leader down to
+    the die's edge (a long name on a small die)."""
+    from tactcad.drawings.sheet import text_width
+
+    full = text_width(text, NOTE_MM)
+    height = NOTE_MM * min(1.0, room_mm / full) if full > 0 else NOTE_MM
+    if height >= SMALLEST_TEXT_MM:
+        sh.text("carrier", (centre[0], centre[1] + height / 2), text, height, anchor="middle")
+        return
+    edge, baseline = above
+    sh.line("carrier", (centre[0], edge), (centre[0], baseline + 0.25 * NOTE_MM + 0.5), "thin")
+    sh.text("carrier", (centre[0], baseline), text, NOTE_MM, anchor="middle")
 
 
 def _notes(sh: Sheet, plan: DiePlan, m: DieMount, x: float, y: float,
