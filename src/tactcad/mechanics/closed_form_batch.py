@@ -102,6 +102,8 @@ def _work_buffers(n: int) -> list[np.ndarray]:
 
 def _checked(name: str, value) -> np.ndarray:
     """``value`` as floats, refused unless every element is finite and > 0."""
+    if isinstance(value, float) and 0 < value < math.inf:  # one number: no reductions
+        return np.asarray(value)
     arr = np.asarray(value, dtype=float)
     if not arr.size or (arr.min() > 0 and arr.max() < math.inf):  # NaN fails min > 0
         return arr
@@ -374,7 +376,7 @@ def corrected_stiffness_batch(web_mm, notch_radius_mm, arm_length_mm, youngs_mod
         raise ValueError(f"nu = {np.ravel(nu)[:3].tolist()}: allowed -1 < nu < 0.5")
     for name, v in (("arm_height_mm", g.arm_height_mm), ("tip_width_mm", g.tip_width_mm),
                     ("tip_height_mm", g.tip_height_mm), ("b", g.sheet_thickness_mm)):
-        _checked(name, v)
+        _checked(name, float(v))
     shape = np.broadcast_shapes(t.shape, R.shape, a.shape, E.shape, nu.shape)
     n = math.prod(shape)
 
@@ -382,7 +384,8 @@ def corrected_stiffness_batch(web_mm, notch_radius_mm, arm_length_mm, youngs_mod
         return float(v.reshape(-1)[0]) if v.size == 1 else \
             np.ascontiguousarray(np.broadcast_to(v, shape)).reshape(-1)
 
-    t, R, a = (np.ascontiguousarray(np.broadcast_to(v, shape)).reshape(-1) for v in (t, R, a))
+    t, R, a = (v.reshape(-1) if v.shape == shape and v.flags.c_contiguous else
+               np.ascontiguousarray(np.broadcast_to(v, shape)).reshape(-1) for v in (t, R, a))
     E, nu = flat(E), flat(nu)
     k = np.empty(n) if out is None else out.reshape(-1)
     for i in range(0, n, BLOCK):
