@@ -38,6 +38,8 @@ from tactcad.mechanics.correction import Correction
 #: caches, and the per-step call overhead is small against the step.
 BLOCK = 16_384
 _N_BUFFERS = 20
+# The ufuncs take their output as the third argument where numpy allows it: parsed
+# about 0.4 us faster than out=, some 200 calls a block.
 
 #: Cephes atan.c (S. L. Moshier, "Methods and Programs for Mathematical Functions", 1989):
 #: arctan(x) = x + x z P(z) / Q(z), z = x^2, for |x| <= 0.66 (relative error about 2e-16).
@@ -68,16 +70,16 @@ def arctan_unit(x2) -> np.ndarray:
 def _atan_half(x, x2, out, r, z, q):
     """arctan(x) into ``out`` (:func:`arctan_unit`) for x = sqrt(x2), with work buffers
     r, z, q."""
-    np.add(x2, 1.0, out=r)
-    np.sqrt(r, out=r)
+    np.add(x2, 1.0, r)
+    np.sqrt(r, r)
     r += 1.0
-    np.divide(x, r, out=out)  # the half angle's tangent, <= tan(pi/8)
-    np.multiply(out, out, out=z)
-    np.multiply(z, _ATAN_P[0], out=r)
+    np.divide(x, r, out)  # the half angle's tangent, <= tan(pi/8)
+    np.multiply(out, out, z)
+    np.multiply(z, _ATAN_P[0], r)
     for c in _ATAN_P[1:]:
         r += c
         r *= z
-    np.add(z, _ATAN_Q[0], out=q)
+    np.add(z, _ATAN_Q[0], q)
     for c in _ATAN_Q[1:]:
         q *= z
         q += c
@@ -117,8 +119,8 @@ def _flexibility_change_scaled(h, beta, layer_term, d, tmp):
     With u = E b h / (3 EA_l) = beta h, D' = (EI_c - EI_0) 4 / EA_l
     = (h + h_l)^2 u / (u + 1/3) + 4 EI_l / EA_l and E' = 4 EI_0 / EA_l = h^2 u:
     g = -(4 / EA_l) D' / (E' (E' + D'))."""
-    np.multiply(h, beta, out=tmp)  # u
-    np.add(h, layer_term[0], out=d)
+    np.multiply(h, beta, tmp)  # u
+    np.add(h, layer_term[0], d)
     d *= d
     d *= tmp
     h *= h
@@ -126,7 +128,7 @@ def _flexibility_change_scaled(h, beta, layer_term, d, tmp):
     tmp += 1.0 / 3.0
     d /= tmp
     d += layer_term[1]
-    np.add(h, d, out=tmp)
+    np.add(h, d, tmp)
     tmp *= h
     d /= tmp
     return d
@@ -158,26 +160,26 @@ def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry,
     ea_layer = st.modulus_MPa * carrier_width_mm(st.grid_width_mm, g.sheet_thickness_mm) * hl
     ei_layer = ea_layer * hl * hl / 12.0
     # the carrier's end on the notch in sigma = tan(psi / 2) (bonded_layer._sigma)
-    sn = np.divide(c, R, out=x)
+    sn = np.divide(c, R, x)
     np.minimum(sn, 1.0, out=sn)
-    tan_psi = np.multiply(sn, sn, out=p)
-    np.subtract(1.0, tan_psi, out=tan_psi)
-    np.sqrt(tan_psi, out=tan_psi)
+    tan_psi = np.multiply(sn, sn, p)
+    np.subtract(1.0, tan_psi, tan_psi)
+    np.sqrt(tan_psi, tan_psi)
     tan_psi += 1.0
     tan_psi *= k
-    np.divide(sn, tan_psi, out=tan_psi)
-    s1 = np.multiply(tan_psi, tan_psi, out=x)
+    np.divide(sn, tan_psi, tan_psi)
+    s1 = np.multiply(tan_psi, tan_psi, x)
     s1 += 1.0
-    np.sqrt(s1, out=s1)
+    np.sqrt(s1, s1)
     s1 += 1.0
-    np.divide(tan_psi, s1, out=s1)
-    np.multiply(s1, s1, out=S)
-    np.multiply(k2, S, out=KS)
+    np.divide(tan_psi, s1, s1)
+    np.multiply(s1, s1, S)
+    np.multiply(k2, S, KS)
     KS *= 4.0
-    np.multiply(k, s1, out=scale)
+    np.multiply(k, s1, scale)
     scale *= -16.0 / ea_layer  # -4 / EA_l of the scaled g, 4 k sigma_1 of du / dsigma / R
-    np.add(R, t, out=rt)
-    t2r = np.add(rt, R, out=p)  # t + 2 R
+    np.add(R, t, rt)
+    t2r = np.add(rt, R, p)  # t + 2 R
     beta = eb / (3.0 * ea_layer)
     layer_term = (hl, 4.0 * ei_layer / ea_layer)
     nodes, weights = gauss_legendre(NOTCH_POINTS)
@@ -188,19 +190,19 @@ def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry,
     # du = R cos(theta) dtheta = (R + t - h) A 4 k sigma_1 dz
     for z, wz in zip(nodes[keep], 2.0 * weights[keep]):
         z2 = z * z
-        np.multiply(S, z2, out=x)
-        np.multiply(KS, z2, out=tmp)
-        np.subtract(1.0, x, out=d)
+        np.multiply(S, z2, x)
+        np.multiply(KS, z2, tmp)
+        np.subtract(1.0, x, d)
         d *= d
         d += tmp
         x += 1.0
-        np.divide(x, d, out=a1)
-        np.multiply(x, a1, out=h)
+        np.divide(x, d, a1)
+        np.multiply(x, a1, h)
         h *= t
-        np.subtract(rt, h, out=jac)
+        np.subtract(rt, h, jac)
         jac *= a1
-        np.subtract(h, t, out=x)
-        np.subtract(t2r, h, out=tmp)
+        np.subtract(h, t, x)
+        np.subtract(t2r, h, tmp)
         x *= tmp
         x += a2  # a^2 + u^2
         jac *= x
@@ -213,16 +215,16 @@ def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry,
     gb = _flat_flexibility_change(g.base_height_mm, eb, ea_layer, ei_layer, hl)
     ga = _flat_flexibility_change(g.arm_height_mm, eb, ea_layer, ei_layer, hl)
     wn = np.minimum(R, c, out=x)
-    wn2 = np.multiply(wn, wn, out=p)
-    i0 = np.subtract(c, wn, out=d)
+    wn2 = np.multiply(wn, wn, p)
+    i0 = np.subtract(c, wn, d)
     i0 *= gb + ga
     i0 *= a2
-    i1 = np.subtract(c * c, wn2, out=h)
+    i1 = np.subtract(c * c, wn2, h)
     i1 *= a
     i1 *= ga - gb  # 2 a I1 = 2 a (ga - gb) (c^2 - wn^2) / 2
     i0 -= i1
     wn2 *= wn
-    i2 = np.subtract(c * c * c, wn2, out=jac)
+    i2 = np.subtract(c * c * c, wn2, jac)
     i2 *= (gb + ga) / 3.0
     i0 += i2
     acc += i0
@@ -237,36 +239,36 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
     x1, x2, x3, x4, x5, x6, x7, x8 = w[9:17]
     ha, htip, b = g.arm_height_mm, g.tip_height_mm, g.sheet_thickness_mm
     d2 = 0.5 * g.tip_width_mm
-    d1 = np.subtract(a, R, out=x8)  # lever at the arm root (notch front wall)
+    d1 = np.subtract(a, R, x8)  # lever at the arm root (notch front wall)
     if d1.min() < d2:
         raise ValueError("arm_length_mm must be >= notch_radius_mm + tip_width_mm / 2 "
                          "(the lever must reach past the notch and the tip root)")
     eb = E * b
     # notch integrals (closed_form._notch_integrals); k^2 = s / (2 + s) = t / (t + 2 R)
-    np.divide(t, R, out=s)
-    q = np.add(s, 2.0, out=x1)
-    np.divide(s, q, out=k2)
-    m2 = np.multiply(s, q, out=w[18])
-    m = np.sqrt(m2, out=x2)
-    k = np.divide(m, q, out=w[17])  # sqrt(s / q) = sqrt(s q) / q
+    np.divide(t, R, s)
+    q = np.add(s, 2.0, x1)
+    np.divide(s, q, k2)
+    m2 = np.multiply(s, q, w[18])
+    m = np.sqrt(m2, x2)
+    k = np.divide(m, q, w[17])  # sqrt(s / q) = sqrt(s q) / q
     pa = _atan_half(k, k2, x3, x4, x5, x6)
-    np.subtract(0.5 * np.pi, pa, out=pa)  # arctan(sqrt((2 + s) / s))
-    p = np.add(s, 1.0, out=x4)
+    np.subtract(0.5 * np.pi, pa, pa)  # arctan(sqrt((2 + s) / s))
+    p = np.add(s, 1.0, x4)
     pa *= p
-    pp = np.multiply(p, p, out=x5)
-    pm2 = np.multiply(p, m2, out=x4)
-    m3 = np.multiply(m2, m, out=x6)
-    inv_h3 = np.multiply(pp, 2.0, out=x7)
+    pp = np.multiply(p, p, x5)
+    pm2 = np.multiply(p, m2, x4)
+    m3 = np.multiply(m2, m, x6)
+    inv_h3 = np.multiply(pp, 2.0, x7)
     inv_h3 += 1.0
-    np.multiply(pm2, m2, out=nb)
+    np.multiply(pm2, m2, nb)
     inv_h3 /= nb
-    np.multiply(m2, m3, out=nb)
-    np.divide(pa, nb, out=nb)
+    np.multiply(m2, m3, nb)
+    np.divide(pa, nb, nb)
     nb *= 6.0
     inv_h3 += nb
-    np.multiply(R, R, out=nb)
+    np.multiply(R, R, nb)
     inv_h3 /= nb
-    u2_h3 = np.multiply(pp, -4.0, out=x1)
+    u2_h3 = np.multiply(pp, -4.0, x1)
     u2_h3 += 6.0
     u2_h3 *= pa
     u2_h3 /= m3
@@ -275,24 +277,24 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
     pp /= pm2
     u2_h3 += pp
     u2_h3 += np.pi
-    inv_h = np.divide(pa, m, out=x3)
+    inv_h = np.divide(pa, m, x3)
     inv_h *= 4.0
     inv_h -= np.pi
-    np.multiply(a, a, out=a2)
-    np.multiply(a2, inv_h3, out=nb)
+    np.multiply(a, a, a2)
+    np.multiply(a2, inv_h3, nb)
     nb += u2_h3
     nb *= 12.0 / eb
     shear = 2.4 * (1.0 + nu) / eb  # ALPHA_SHEAR / (G b), G = E / (2 (1 + nu))
-    np.multiply(inv_h, shear, out=ns)
+    np.multiply(inv_h, shear, ns)
     ht = ha + htip
     d2c = d2 * d2 * d2
-    np.multiply(d1, d1, out=ab)
+    np.multiply(d1, d1, ab)
     ab *= d1
     ab -= d2c
     ab *= 1.0 / (ha * ha * ha)
     ab += d2c / (ht * ht * ht)
     ab *= 4.0 / eb
-    np.subtract(d1, d2, out=tot)
+    np.subtract(d1, d2, tot)
     tot *= 1.0 / ha
     tot += d2 / ht
     tot *= shear  # the arm's shear
@@ -301,29 +303,29 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
     tot += ab
     # correction (correction.py): K = (1 + g) / (C + C_nb (c1 s + c2 s^2) + C_ns c6 + C_ab c7)
     c1, c2, c3, c4, c5, c6, c7, c8 = correction.coefficients
-    np.multiply(s, c2, out=den)
+    np.multiply(s, c2, den)
     den += c1
     den *= s
     den *= nb
     den += tot
     if c6:
-        den += np.multiply(ns, c6, out=x1)
+        den += np.multiply(ns, c6, x1)
     if c7:
-        den += np.multiply(ab, c7, out=x1)
+        den += np.multiply(ab, c7, x1)
     if not den.min() > 0:
         raise ValueError("correction factor not positive at t/R = "
                          f"{np.ravel(s[~(den > 0)])[:3].tolist()}")
     if c3:
-        wr = np.multiply(t, R, out=x1)
-        np.sqrt(wr, out=wr)
+        wr = np.multiply(t, R, x1)
+        np.sqrt(wr, wr)
         wr *= 1.0 / b  # sqrt(t R) / b
-        np.multiply(wr, c5, out=gain)
+        np.multiply(wr, c5, gain)
         gain += c4
         gain *= wr
         gain += 1.0
         if c8:
-            gain += np.multiply(t, c8 / b, out=x1)
-        np.divide(nu * nu / (1.0 - nu * nu) * c3, gain, out=gain)
+            gain += np.multiply(t, c8 / b, x1)
+        np.divide(nu * nu / (1.0 - nu * nu) * c3, gain, gain)
         gain += 1.0
         if not gain.min() > 0:
             raise ValueError("correction factor not positive at width ratio sqrt(t R) / b = "
@@ -335,7 +337,7 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
                                                                 x8, nb, ns, ab, tot])
         dc *= gain
         den += dc  # K = 1 / (1 / K_bare + dC) = (1 + g) / (den + (1 + g) dC)
-    np.divide(gain, den, out=out)
+    np.divide(gain, den, out)
     return out
 
 
