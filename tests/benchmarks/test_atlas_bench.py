@@ -59,6 +59,8 @@ def test_bench_atlas_prints_the_rate_the_scaling_and_the_agreement():
     f = json.loads(r.stdout)
     assert f["records"] == 4 and f["points_per_s"] > 0 and f["scaling"] > 0
     assert f["same_records"] is True
+    assert len(f["two_workers_cpu_s"]) == 2 and f["one_worker_cpu_s"] > 0
+    assert f["cpu_scaling"] == pytest.approx(f["one_worker_cpu_s"] / max(f["two_workers_cpu_s"]))
     assert f["agreement"]["checked"] == 1 and f["agreement"]["rate"] == 1.0
 
 

@@ -1,7 +1,7 @@
 """``tactcad bench atlas``: the design atlas's speed and honesty.
 
 Times one atlas on a local Dask cluster of one worker, then of two (one thread each; every
-worker has imported the design code and judged one point before the clock starts), prints
+worker has judged :data:`WARM_POINTS` points of another sample before the clock starts), prints
 the points judged per second and the two-worker scaling (goal >= 1.7x), and runs
 ``tactcad design`` itself on a few drawn records to count how many it answers as the atlas
 did: the same verdict, the same option named and the same binding limit.
@@ -27,40 +27,59 @@ ATLAS_SCALING_GOAL = 1.7
 ATLAS_RATE_GOAL_PER_S = 10_000 / 120.0
 
 
-def warm_worker(atlas, point: Mapping[str, Any]) -> int:
-    """Judge one point on a worker before the clock starts: its imports and the caches
-    every later point shares (the tissue's contact solve) are paid outside the timing.
+#: Points of another sample each worker judges before the clock starts: enough that the
+#: first feasible die's imports and per-process caches are paid outside the timing (at
+#: 128 points they were a third of one worker's CPU seconds; 10 000 points amortise them).
+WARM_POINTS = 16
+
+
+def warm_worker(atlas, points: Sequence[Mapping[str, Any]]) -> int:
+    """Judge a few points on a worker before the clock starts: its imports and the caches
+    every later point shares (the tissue's contact solve of one face) are paid outside the
+    timing.
 
     Args:
-        atlas: the jaw (:class:`tactcad.studies.design_atlas.JawAtlas`). point: a target.
+        atlas: the jaw (:class:`tactcad.studies.design_atlas.JawAtlas`). points: targets
+            not among those timed.
 
     Returns:
-        The records judged (one per product and material).
+        The records judged (one per point, product and material).
     """
     from tactcad.studies.design_atlas import evaluate_batch
 
-    return len(evaluate_batch(atlas, [dict(point)]))
+    return len(evaluate_batch(atlas, [dict(p) for p in points]))
 
 
-def timed_atlas(atlas, points: Sequence[dict], workers: int, batch: int
-                ) -> tuple[float, list[dict]]:
+def worker_cpu_s() -> float:
+    """This process's CPU time (s): a worker's, asked before and after the timed run."""
+    return time.process_time()
+
+
+def timed_atlas(atlas, points: Sequence[dict], workers: int, batch: int,
+                warm: Sequence[dict] = ()) -> tuple[float, list[dict], list[float]]:
     """One atlas on a new local cluster of ``workers`` single-threaded processes.
 
     Args:
         atlas: the jaw. points: the targets. workers: worker processes (1 ... 64).
-        batch: points per Dask task.
+        batch: points per Dask task. warm: targets each worker judges first (default: the
+            first of ``points``).
 
     Returns:
-        (wall seconds from submitting the batches to gathering them, the records).
+        (wall seconds from submitting the batches to gathering them, the records, the CPU
+        seconds each worker spent meanwhile: on a busy machine a worker gets a fraction of
+        a core, and the CPU time shows how the work split where the wall time cannot).
     """
     from tactcad.studies.design_atlas import run_atlas
     from tactcad.studies.sweeps import dask_client
 
     with dask_client(None, workers) as client:
-        client.run(warm_worker, atlas, points[0])
+        client.run(warm_worker, atlas, list(warm) or points[:1])
+        cpu0 = client.run(worker_cpu_s)
         start = time.perf_counter()
         records, _ = run_atlas(atlas, points, client, batch)
-        return time.perf_counter() - start, records
+        wall = time.perf_counter() - start
+        cpu1 = client.run(worker_cpu_s)
+        return wall, records, [cpu1[w] - cpu0[w] for w in sorted(cpu0)]
 
 
 def design_answer(record: Mapping[str, Any], folder: Path) -> tuple[int, dict]:
@@ -144,10 +163,11 @@ def atlas_bench_figures(atlas, points: int, agree: int, batch: int, seed: int = 
 
     jaw = atlas.jaw
     targets = atlas_targets(points, None, seed)
+    warm = atlas_targets(WARM_POINTS, None, seed + 1)  # another scramble: not timed points
     say(f"tactcad bench atlas: jaw {jaw}, {points} points, one worker")
-    one_s, one = timed_atlas(atlas, targets, 1, batch)
+    one_s, one, one_cpu = timed_atlas(atlas, targets, 1, batch, warm)
     say(f"  one worker {one_s:.1f} s; two workers")
-    two_s, two = timed_atlas(atlas, targets, 2, batch)
+    two_s, two, two_cpu = timed_atlas(atlas, targets, 2, batch, warm)
     checked = drawn_records(two, agree, seed)
     misses = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -162,6 +182,8 @@ def atlas_bench_figures(atlas, points: int, agree: int, batch: int, seed: int = 
             "one_worker_s": one_s, "two_workers_s": two_s,
             "points_per_s_one": points / one_s, "points_per_s": points / two_s,
             "scaling": one_s / two_s,
+            "one_worker_cpu_s": one_cpu[0], "two_workers_cpu_s": two_cpu,
+            "cpu_scaling": one_cpu[0] / max(two_cpu),
             "same_records": json.dumps(one, sort_keys=True) == json.dumps(two, sort_keys=True),
             "agreement": {"checked": len(checked), "agreed": agreed,
                           "rate": agreed / len(checked) if checked else None,
@@ -190,6 +212,9 @@ def atlas_bench_lines(f: Mapping[str, Any], load: str) -> list[str]:
             f"goal >= {ATLAS_RATE_GOAL_PER_S:.0f}: {rate}",
             f"  scaling {f['scaling']:.2f}x   goal >= {ATLAS_SCALING_GOAL:g}x: {scaling}; "
             f"same table both runs: {f['same_records']}",
+            f"  worker CPU: 1 worker {f['one_worker_cpu_s']:.1f} s, 2 workers "
+            f"{' + '.join(f'{c:.1f}' for c in f['two_workers_cpu_s'])} s: the work splits "
+            f"{f['cpu_scaling']:.2f}x (wall scaling needs the cores free)",
             f"  agreement with tactcad design: {agreed}",
             *[f"    differs: {m['why']}: {m['command']}" for m in a["disagreements"]],
             f"  load average {load}"]

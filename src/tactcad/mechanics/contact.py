@@ -156,12 +156,30 @@ def check_base(base: object) -> None:
 def _corner_primitive(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """F(u, v) with ∂²F/∂u∂v = 1/√(u² + v²), odd in u and in v, F = 0 on the axes.
 
-    F = u asinh(v/|u|) + v asinh(u/|v|) (each term 0 where its divisor is 0).
+    F = u asinh(v/|u|) + v asinh(u/|v|) (each term 0 where its divisor is 0), evaluated as
+    sign(u) sign(v) (|u| L(|v|, |u|) + |v| L(|u|, |v|)) with
+    L(p, q) = asinh(p/q) = log1p(p/q (1 + p/(ρ + q))), ρ = √(u² + v²) shared by the two
+    (ρ − q = p²/(ρ + q): no cancellation, and one root instead of two).
     """
-    with np.errstate(divide="ignore", invalid="ignore"):
-        a = np.where(u != 0, u * np.arcsinh(v / np.abs(u)), 0.0)
-        b = np.where(v != 0, v * np.arcsinh(u / np.abs(v)), 0.0)
-    return a + b
+    au, av = np.abs(u), np.abs(v)
+    rho = au * au
+    rho += av * av
+    np.sqrt(rho, out=rho)  # not np.hypot: libm's is five times slower, and no side overflows
+    # a nil |u| or |v| zeroes F by its sign; 1e-300 mm in its place keeps the logs finite
+    su, sv = np.maximum(au, 1e-300), np.maximum(av, 1e-300)
+    a = av / (rho + su)
+    a += 1.0
+    a *= av / su
+    np.log1p(a, out=a)
+    a *= au
+    b = au / (rho + sv)
+    b += 1.0
+    b *= au / sv
+    np.log1p(b, out=b)
+    b *= av
+    a += b
+    a *= np.sign(u) * np.sign(v)
+    return a
 
 
 def rectangle_inverse_distance_integral(x, z, x1, x2, z1, z2):
@@ -431,14 +449,53 @@ def _layer_kernel_term(centres: np.ndarray, src_centres: np.ndarray, src_half: n
     return out * (scale * area)[None, :]
 
 
+def _tensor_edges(src_centres: np.ndarray, src_half: np.ndarray):
+    """The cell edges (ex, ez) along x and z (mm) of source cells laid out as
+    :func:`mesh_punches` lays out one face (a tensor grid, x major), or None when they are
+    not: checked by rebuilding every cell's centre and half edge from them (to 1e-12 of the
+    face)."""
+    n = len(src_centres)
+    nz = int(np.argmax(src_centres[:, 0] != src_centres[0, 0])) or n
+    if nz < 1 or n % nz:
+        return None
+    nx = n // nz
+    lo, hi = src_centres - src_half, src_centres + src_half
+    ex = np.append(lo[::nz, 0], hi[-1, 0])
+    ez = np.append(lo[:nz, 1], hi[nz - 1, 1])
+    cx, hx = np.repeat((ex[1:] + ex[:-1]) / 2, nz), np.repeat(np.diff(ex) / 2, nz)
+    cz, hz = np.tile((ez[1:] + ez[:-1]) / 2, nx), np.tile(np.diff(ez) / 2, nx)
+    size = 1e-12 * float(max(ex[-1] - ex[0], ez[-1] - ez[0]))
+    rebuilt = np.column_stack([cx, cz, hx, hz])
+    if not np.allclose(rebuilt, np.hstack([src_centres, src_half]), rtol=0, atol=size):
+        return None
+    return ex, ez
+
+
+def _love_on_edges(centres: np.ndarray, ex: np.ndarray, ez: np.ndarray) -> np.ndarray:
+    """:func:`rectangle_inverse_distance_integral` at ``centres`` over every cell of the
+    tensor grid of edges ``ex`` x ``ez``, shape (n, cells) in x-major order (mm): the
+    corner primitive once per grid node, each cell's integral the difference across its
+    four corners (a node is the corner of up to four cells: four times fewer primitives)."""
+    u = ex[None, :, None] - centres[:, 0, None, None]
+    v = ez[None, None, :] - centres[:, 1, None, None]
+    f = _corner_primitive(*np.broadcast_arrays(u, v))
+    cells = f[:, 1:, 1:] - f[:, :-1, 1:] - f[:, 1:, :-1] + f[:, :-1, :-1]
+    return cells.reshape(len(centres), -1)
+
+
 def _influence_block(centres: np.ndarray, src_centres: np.ndarray, src_half: np.ndarray,
                      sample: Sample, n_gauss: int) -> np.ndarray:
     """Displacement at ``centres`` per unit pressure on the source cells (mm/MPa)."""
-    x1, x2 = src_centres[:, 0] - src_half[:, 0], src_centres[:, 0] + src_half[:, 0]
-    z1, z2 = src_centres[:, 1] - src_half[:, 1], src_centres[:, 1] + src_half[:, 1]
-    a = love_rectangle_displacement(centres[:, None, 0], centres[:, None, 1], x1[None, :],
-                                    x2[None, :], z1[None, :], z2[None, :], 1.0,
-                                    sample.youngs_modulus_MPa, sample.poisson_ratio)
+    edges = _tensor_edges(src_centres, src_half)
+    if edges is not None:
+        scale = (1.0 - sample.poisson_ratio ** 2) / (np.pi * sample.youngs_modulus_MPa)
+        a = scale * _love_on_edges(centres, *edges)
+    else:
+        x1, x2 = src_centres[:, 0] - src_half[:, 0], src_centres[:, 0] + src_half[:, 0]
+        z1, z2 = src_centres[:, 1] - src_half[:, 1], src_centres[:, 1] + src_half[:, 1]
+        a = love_rectangle_displacement(centres[:, None, 0], centres[:, None, 1], x1[None, :],
+                                        x2[None, :], z1[None, :], z2[None, :], 1.0,
+                                        sample.youngs_modulus_MPa, sample.poisson_ratio)
     if sample.thickness_mm is not None:
         term = _layer_depth_term if sample.base == "steinbrenner" else _layer_kernel_term
         a = a - term(centres, src_centres, src_half, sample, n_gauss)
@@ -469,11 +526,11 @@ def influence_matrix(mesh: CellMesh, sample: Sample) -> np.ndarray:
     if sample.thickness_mm is not None:
         cell = float(2 * mesh.half.max())
         n_gauss = int(min(12, max(3, np.ceil(4 * cell / sample.thickness_mm))))
-    owners = [np.flatnonzero(mesh.punch == k) for k in np.unique(mesh.punch)]
+    owners = [_as_slice(np.flatnonzero(mesh.punch == k)) for k in np.unique(mesh.punch)]
     out = np.empty((len(mesh.punch), len(mesh.punch)))
     done: dict[tuple, np.ndarray] = {}
     for ia in owners:
-        origin = mesh.centres[ia[0]]
+        origin = mesh.centres[ia][0]
         local = mesh.centres[ia] - origin
         for ib in owners:
             src = mesh.centres[ib] - origin
@@ -481,8 +538,23 @@ def influence_matrix(mesh: CellMesh, sample: Sample) -> np.ndarray:
             block = done.get(key)
             if block is None:
                 block = done[key] = _influence_block(local, src, mesh.half[ib], sample, n_gauss)
-            out[np.ix_(ia, ib)] = block
+            if isinstance(ia, slice) and isinstance(ib, slice):
+                out[ia, ib] = block
+            else:
+                out[np.ix_(_as_index(ia), _as_index(ib))] = block
     return out
+
+
+def _as_slice(index: np.ndarray):
+    """``index`` as a slice where it is a contiguous ascending run (a punch's cells as
+    :func:`mesh_punches` lays them out; a block is then written without fancy indexing)."""
+    if index.size and index[-1] - index[0] + 1 == index.size:
+        return slice(int(index[0]), int(index[-1]) + 1)
+    return index
+
+
+def _as_index(index) -> np.ndarray:
+    return np.arange(index.start, index.stop) if isinstance(index, slice) else index
 
 
 @dataclass(frozen=True, eq=False)
@@ -539,9 +611,11 @@ def mirror_maps(mesh: CellMesh, tol_mm: float = 1e-9) -> list[np.ndarray]:
     hi = (mesh.centres + mesh.half).max(axis=0)
     centre = (lo + hi) / 2
 
-    def keys(points: np.ndarray) -> list[tuple]:
-        return [tuple(np.round(np.concatenate([c, h]) / tol_mm).astype(np.int64))
-                for c, h in zip(points, mesh.half)]
+    def keys(points: np.ndarray) -> list[bytes]:
+        # each cell's (centre, half) in units of tol_mm, as the bytes of its int64 row
+        rows = np.round(np.concatenate([points, mesh.half], axis=1) / tol_mm).astype(np.int64)
+        raw, width = rows.tobytes(), rows.shape[1] * 8
+        return [raw[i:i + width] for i in range(0, len(raw), width)]
 
     index = {k: i for i, k in enumerate(keys(mesh.centres))}
     maps = []
@@ -585,12 +659,16 @@ def solve_by_symmetry(a: np.ndarray, rhs: np.ndarray, maps: list[np.ndarray]) ->
     reps = np.flatnonzero(orbits.min(axis=0) == np.arange(n))
     fixed = orbits[:, reps] == reps[None, :]  # (|G|, reps): g fixes the representative
     out = np.zeros((n, rhs.shape[1]))
+    # a's rows of the representatives at each image of them, gathered once for all characters
+    blocks = [a[np.ix_(reps, g[reps])] for g in group]
     for chi in signs:
-        valid = reps[np.all(~fixed | (chi[:, None] > 0), axis=0)]
+        keep = np.all(~fixed | (chi[:, None] > 0), axis=0)
+        valid = reps[keep]
         if valid.size == 0:
             continue
         stab = np.sum(orbits[:, valid] == valid[None, :], axis=0)
-        a_chi = sum(c * a[np.ix_(valid, g[valid])] for c, g in zip(chi, group)) / stab[None, :]
+        part = (lambda b: b) if keep.all() else (lambda b: b[np.ix_(keep, keep)])
+        a_chi = sum(c * part(b) for c, b in zip(chi, blocks)) / stab[None, :]
         b_chi = sum(c * rhs[g[valid]] for c, g in zip(chi, group)) / len(group)
         x = np.linalg.solve(a_chi, b_chi)
         for c, g in zip(chi, group):  # the solution at each image, summed over characters

@@ -44,6 +44,14 @@ THREADS_PER_WORKER = 1
 #: OpenMP read it once): one thread per worker.
 SINGLE_THREAD_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
                      "MKL_NUM_THREADS": "1"}
+#: glibc's allocator in a local worker. Dask's default sets MALLOC_TRIM_THRESHOLD_ to 64 kB,
+#: which also freezes the threshold above which an array gets its own mapping at 128 kB:
+#: every temporary of the contact solve and the closed form was then mapped, page-faulted
+#: and unmapped anew (an atlas's die point took 3.4 times as long in a worker as in the
+#: main process, most of it in the kernel, and a second worker added nothing). Arrays
+#: below 32 MiB come from the heap again, and it keeps up to 256 MiB free.
+WORKER_ALLOCATOR_ENV = {"MALLOC_MMAP_THRESHOLD_": str(32 * 2**20),
+                        "MALLOC_TRIM_THRESHOLD_": str(256 * 2**20)}
 _ADDRESS = re.compile(r"^(tcp|tls|inproc|ucx)://[^\s/]+(:\d+)?$")
 
 
@@ -93,7 +101,8 @@ def dask_client(scheduler: str | None = None, workers: int = LOCAL_WORKERS,
         return
     if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 64:
         raise DesignError("--workers", workers, "an integer 1 ... 64")
-    env = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}), **SINGLE_THREAD_ENV)
+    env = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}), **SINGLE_THREAD_ENV,
+               **WORKER_ALLOCATOR_ENV)
     with dask.config.set({"distributed.nanny.pre-spawn-environ": env}):
         with LocalCluster(n_workers=workers, threads_per_worker=threads_per_worker,
                           processes=True, dashboard_address=None,

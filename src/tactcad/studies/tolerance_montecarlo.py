@@ -50,8 +50,7 @@ import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.errors import DesignError
-from tactcad.mechanics.bonded_layer import with_gauge_layer
-from tactcad.mechanics.closed_form import closed_form_compliance, correction_coordinates
+from tactcad.mechanics.closed_form_batch import corrected_stiffness_batch
 from tactcad.mechanics.correction import Correction, load_correction
 from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
 
@@ -192,7 +191,7 @@ def draw_samples(plan: Plan, tol: Tolerances, n: int, rng: np.random.Generator) 
 
 def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_MPa,
                         g: ElementGeometry, poisson_ratio: float,
-                        correction: Correction) -> np.ndarray:
+                        correction: Correction, out: np.ndarray | None = None) -> np.ndarray:
     """Vectorised corrected closed-form tip stiffness K (N/mm).
 
     Args:
@@ -205,26 +204,21 @@ def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_M
             without the range check (a Monte Carlo straddles the range
             edges by design; the closed-form estimator warns for nominal
             designs).
+        out: optional C-contiguous float array of the broadcast shape for K.
 
     Returns:
         K of the broadcast shape (N/mm), with the bonded gauge ``g`` carries
         (:func:`~tactcad.mechanics.bonded_layer.with_gauge_layer`), as the
         closed-form level gives it (a modulus drawn per sample enters each
-        sample's layer term exactly).
+        sample's layer term exactly); the kernel is
+        :func:`~tactcad.mechanics.closed_form_batch.corrected_stiffness_batch`.
 
     Raises:
         ValueError: a non-positive or non-finite input (see
             :func:`~tactcad.mechanics.closed_form.closed_form_compliance`).
     """
-    b = g.sheet_thickness_mm
-    parts = closed_form_compliance(web_mm, notch_radius_mm, arm_length_mm,
-                                   arm_height_mm=g.arm_height_mm, tip_width_mm=g.tip_width_mm,
-                                   tip_height_mm=g.tip_height_mm, E=youngs_modulus_MPa,
-                                   nu=poisson_ratio, b=b)
-    factor = correction.factor(**correction_coordinates(parts, web_mm, notch_radius_mm, b,
-                                                         poisson_ratio))
-    return with_gauge_layer(factor / parts.total, g, web_mm, notch_radius_mm, arm_length_mm,
-                            youngs_modulus_MPa)
+    return corrected_stiffness_batch(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_MPa,
+                                     g, poisson_ratio, correction, out=out)
 
 
 def stiffness_samples(plan: Plan, s: Samples, correction: Correction) -> np.ndarray:
