@@ -431,7 +431,8 @@ def _root_peak(plan, beam, level: int) -> tuple[float, tuple, int]:
     f[2::3] = -spread.assemble(section)
     kk, ff, _, free = condense(k, f, D=np.unique(np.concatenate([held, mirror])))
     u = np.zeros(3 * scalar.N)
-    u[free] = spd_lu(kk).solve(ff)
+    # the mirror holds only y: dofs ordered one by one (nested dissection: 70 s -> 14 s at level 3)
+    u[free] = spd_lu(kk, dofs_per_node=1).solve(ff)
     corners = np.array([[0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
     at_vertices = Basis(mesh, ElementTetP2(), quadrature=(corners, np.full(4, 1 / 24)))
     grad = np.array([at_vertices.interpolate(u[a::3]).grad for a in range(3)])  # a, k, e, q
