@@ -10,7 +10,7 @@ from scipy.linalg import expm
 
 from tactcad.mechanics.contact import (BASES, CellMesh, ContactError, DEFAULT_BASE, Punch,
                                        Sample, influence_matrix, layer_correction, layer_kernel,
-                                       solve_punches, unit_punch_compliance)
+                                       mesh_punches, solve_punches, unit_punch_compliance)
 
 
 @pytest.mark.parametrize("nu", [0.0, 0.3, 0.45, 0.5])
@@ -65,6 +65,44 @@ def test_the_correction_is_the_half_spaces_far_field_and_smooth_near_the_load():
         assert np.all(np.isfinite(f)) and f[0] > 0  # finite under the load
         # far away the layer's own deflection is gone: f -> 1/rho, continuous at the table's end
         assert f[3:] == pytest.approx(1.0 / rho[3:], rel=1e-6)
+
+
+def _every_pair_by_quadrature(mesh: CellMesh, sample: Sample, points: int) -> np.ndarray:
+    """The layer's influence with the correction summed by Gauss-Legendre on every cell
+    pair, far or near (the rule the influence matrix takes on its near pairs only)."""
+    from tactcad.mechanics.contact import love_rectangle_displacement
+
+    h, nu, e = sample.thickness_mm, sample.poisson_ratio, sample.youngs_modulus_MPa
+    c, half = mesh.centres, mesh.half
+    love = love_rectangle_displacement(c[:, None, 0], c[:, None, 1], (c[:, 0] - half[:, 0])[None],
+                                       (c[:, 0] + half[:, 0])[None], (c[:, 1] - half[:, 1])[None],
+                                       (c[:, 1] + half[:, 1])[None], 1.0, e, nu)
+    x, w = np.polynomial.legendre.leggauss(points)
+    correction = np.zeros_like(love)
+    for xi, wi in zip(x, w):
+        for zj, wj in zip(x, w):
+            r = np.hypot(c[:, None, 0] - (c[:, 0] + half[:, 0] * xi)[None],
+                         c[:, None, 1] - (c[:, 1] + half[:, 1] * zj)[None])
+            correction += wi * wj * layer_correction(r / h, sample.base, nu)
+    area = half[:, 0] * half[:, 1]
+    return love - correction * ((1 - nu ** 2) / (np.pi * e * h) * area)[None, :]
+
+
+@pytest.mark.parametrize("base", ["bonded", "frictionless"])
+def test_a_thin_layers_far_cell_pairs_are_loves_closed_form_not_a_quadrature(base):
+    # past 30 h the correction is 1/rho, so the layer's part of a far pair is Love's integral
+    # less itself: zero, where the 12 x 12 rule on 1/rho left its own small error
+    punches = [Punch(0.0, 0.0, 1.0, 2.0), Punch(1.5, 0.0, 1.0, 2.0)]
+    sample = Sample(0.05, 0.49, 0.002, base)
+    mesh = mesh_punches(punches)
+    fast = influence_matrix(mesh, sample)
+    full = _every_pair_by_quadrature(mesh, sample, 12)
+    far = np.hypot(*np.maximum(np.abs(mesh.centres[:, None] - mesh.centres[None]) - mesh.half[None],
+                               0.0).transpose(2, 0, 1)) >= 30 * 0.002
+    assert far.mean() > 0.9 and np.all(fast[far] == 0.0)
+    assert np.abs(fast - full).max() < 1e-4 * np.abs(full).max()  # the rule's error on 1/rho
+    # near: the same sum (Love less the correction cancels to round-off of the largest entry)
+    assert np.abs(fast[~far] - full[~far]).max() < 1e-12 * np.abs(full).max()
 
 
 @pytest.mark.parametrize("base", ["bonded", "frictionless"])

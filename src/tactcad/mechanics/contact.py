@@ -429,24 +429,46 @@ def _layer_depth_term(centres: np.ndarray, src_centres: np.ndarray, src_half: np
     return out
 
 
+def _far_from_cell(centres: np.ndarray, src_centres: np.ndarray, src_half: np.ndarray,
+                   distance_mm: float) -> np.ndarray:
+    """Whether every point of each source cell lies at least ``distance_mm`` (mm) from each
+    of ``centres``, shape (n, m): the nearest point of a rectangle is its centre moved by
+    at most its half edges."""
+    gap_x = np.maximum(np.abs(centres[:, None, 0] - src_centres[None, :, 0])
+                       - src_half[None, :, 0], 0.0)
+    gap_z = np.maximum(np.abs(centres[:, None, 1] - src_centres[None, :, 1])
+                       - src_half[None, :, 1], 0.0)
+    return gap_x * gap_x + gap_z * gap_z >= distance_mm * distance_mm
+
+
 def _layer_kernel_term(centres: np.ndarray, src_centres: np.ndarray, src_half: np.ndarray,
-                       sample: Sample, n_gauss: int) -> np.ndarray:
+                       sample: Sample, n_gauss: int,
+                       half_space: np.ndarray) -> np.ndarray:
     """The half-space's displacement less the layer's at each of ``centres`` per unit
     pressure on each source cell, shape (n, m) (mm/MPa): (1 − ν²)/(π E h) ∫∫ f(ρ/h) dA
-    (:func:`layer_correction`), Gauss-Legendre over the loaded cell (f is smooth)."""
+    (:func:`layer_correction`), Gauss-Legendre over the loaded cell (f is smooth).
+
+    A cell pair whose every point lies past :data:`CORRECTION_END` h has f = 1/ρ on the
+    whole cell, so the integral is the half-space's own, ``half_space`` (Love's closed
+    form): it is taken from there, not summed (on a layer thin against its cells nearly
+    every pair is such, and the quadrature's n_gauss² kernel calls were the grasp's cost)."""
     h = float(sample.thickness_mm)
     pts, wts = np.polynomial.legendre.leggauss(n_gauss)
     scale = (1 - sample.poisson_ratio ** 2) / (np.pi * sample.youngs_modulus_MPa * h)
     area = src_half[:, 0] * src_half[:, 1]
-    out = np.zeros((len(centres), len(src_centres)))
+    out = np.array(half_space, dtype=float, copy=True)
+    rows, cols = np.nonzero(~_far_from_cell(centres, src_centres, src_half, CORRECTION_END * h))
+    if len(rows) == 0:
+        return out
+    near = np.zeros(len(rows))
     for i, wi in enumerate(wts):
-        dx2 = (centres[:, None, 0] - (src_centres[:, 0] + src_half[:, 0] * pts[i])[None, :]) ** 2
+        dx2 = (centres[rows, 0] - (src_centres[cols, 0] + src_half[cols, 0] * pts[i])) ** 2
         for j, wj in enumerate(wts):
-            dz2 = (centres[:, None, 1]
-                   - (src_centres[:, 1] + src_half[:, 1] * pts[j])[None, :]) ** 2
-            out += (wi * wj) * layer_correction(np.sqrt(dx2 + dz2) / h, sample.base,
-                                                sample.poisson_ratio)
-    return out * (scale * area)[None, :]
+            dz2 = (centres[rows, 1] - (src_centres[cols, 1] + src_half[cols, 1] * pts[j])) ** 2
+            near += (wi * wj) * layer_correction(np.sqrt(dx2 + dz2) / h, sample.base,
+                                                 sample.poisson_ratio)
+    out[rows, cols] = near * scale * area[cols]
+    return out
 
 
 def _tensor_edges(src_centres: np.ndarray, src_half: np.ndarray):
@@ -496,10 +518,11 @@ def _influence_block(centres: np.ndarray, src_centres: np.ndarray, src_half: np.
         a = love_rectangle_displacement(centres[:, None, 0], centres[:, None, 1], x1[None, :],
                                         x2[None, :], z1[None, :], z2[None, :], 1.0,
                                         sample.youngs_modulus_MPa, sample.poisson_ratio)
-    if sample.thickness_mm is not None:
-        term = _layer_depth_term if sample.base == "steinbrenner" else _layer_kernel_term
-        a = a - term(centres, src_centres, src_half, sample, n_gauss)
-    return a
+    if sample.thickness_mm is None:
+        return a
+    if sample.base == "steinbrenner":
+        return a - _layer_depth_term(centres, src_centres, src_half, sample, n_gauss)
+    return a - _layer_kernel_term(centres, src_centres, src_half, sample, n_gauss, a)
 
 
 #: Cell coordinates are compared to this (mm) when two punch pairs share one block.

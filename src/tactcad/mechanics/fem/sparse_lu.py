@@ -4,15 +4,91 @@ model here (plane, solid, a die on its attach).
 SuperLU under a minimum-degree ordering of the symmetric pattern A + A^T, no partial pivoting
 (the diagonal dominates) and symmetric mode: on 3D quadratic meshes scipy's default COLAMD
 ordering fills the factor several times more (76 000 unknowns: 51 s against 5 s).
+
+A 3D vector problem numbered node by node (the displacement's dofs ``3 s + a``) can ask for
+METIS's nested dissection of its node graph instead (G. Karypis and V. Kumar, "A fast and
+high quality multilevel scheme for partitioning irregular graphs", SIAM J. Sci. Comput. 20,
+1998; pymetis): on the die's beam on its frame (121 000 unknowns) it leaves two thirds of
+minimum degree's fill (167 M against 249 M entries) and factorises 3.5x faster.
 """
 
 from __future__ import annotations
 
+import numpy as np
 
-def spd_lu(a):
+
+class PermutedLU:
+    """A SuperLU factor of P A P^T, solving A x = b for ``b`` (n,) or (n, m)."""
+
+    def __init__(self, lu, order: np.ndarray):
+        self._lu = lu
+        self._order = order
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """x with A x = b (b of shape (n,) or (n, m))."""
+        x = np.empty_like(np.asarray(b, dtype=float))
+        x[self._order] = self._lu.solve(np.ascontiguousarray(b[self._order]))
+        return x
+
+
+def nested_dissection_order(a, dofs_per_node: int) -> np.ndarray:
+    """METIS's nested-dissection ordering of the sparse matrix ``a``'s dofs, found on its node
+    graph (``dofs_per_node`` consecutive dofs per node, each node's dofs kept together).
+
+    Args:
+        a: square scipy sparse matrix, n = nodes x ``dofs_per_node``, its x-x couplings
+            (every ``dofs_per_node``-th row and column) having the nodes' full pattern.
+        dofs_per_node: dofs per node, >= 1.
+
+    Returns:
+        The dofs in elimination order, shape (n,).
+
+    Raises:
+        ValueError: ``dofs_per_node`` below 1 or not dividing n.
+
+    Source: METIS_NodeND (Karypis and Kumar, SIAM J. Sci. Comput. 20, 1998) through pymetis.
+    """
+    import pymetis
+    import scipy.sparse as sp
+
+    n = a.shape[0]
+    if dofs_per_node < 1 or n % dofs_per_node:
+        raise ValueError(f"dofs_per_node = {dofs_per_node!r}: allowed a whole divisor >= 1 "
+                         f"of the matrix's {n} rows")
+    nodes = sp.csr_matrix(a[::dofs_per_node, ::dofs_per_node])
+    nodes = (abs(nodes) + abs(nodes).T).tocsr()
+    nodes.setdiag(0)  # METIS takes the graph without its loops
+    nodes.eliminate_zeros()
+    adjacency = pymetis.CSRAdjacency(nodes.indptr.astype(np.int64), nodes.indices.astype(np.int64))
+    node_order = np.asarray(pymetis.nested_dissection(adjacency=adjacency)[0], dtype=np.intp)
+    return (dofs_per_node * node_order[:, None] + np.arange(dofs_per_node)[None, :]).ravel()
+
+
+def spd_lu(a, dofs_per_node: int = 0):
     """SuperLU of the symmetric positive definite sparse matrix ``a`` (any scipy format);
-    ``.solve(b)`` takes one right-hand side (n,) or a block (n, m)."""
+    ``.solve(b)`` takes one right-hand side (n,) or a block (n, m).
+
+    Args:
+        a: the matrix.
+        dofs_per_node: 0 (default): SuperLU's minimum degree on A + A^T; k >= 1: the dofs
+            numbered k per node, ordered by METIS's nested dissection of the node graph
+            (:func:`nested_dissection_order`; the faster for 3D solids).
+
+    Returns:
+        The factor, with ``.solve``.
+
+    Raises:
+        ValueError: a ``dofs_per_node`` that does not divide the matrix's rows.
+
+    Source: SuperLU (X. S. Li, ACM TOMS 31, 2005) through scipy's ``splu``.
+    """
     from scipy.sparse.linalg import splu
 
-    return splu(a.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                options={"SymmetricMode": True})
+    options = {"SymmetricMode": True}
+    if dofs_per_node == 0:
+        return splu(a.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                    options=options)
+    order = nested_dissection_order(a, dofs_per_node)
+    permuted = a.tocsr()[order][:, order].tocsc()
+    return PermutedLU(splu(permuted, permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                           options=options), order)

@@ -266,7 +266,7 @@ def strains_on_springs(mesh, c: np.ndarray, springs_N_per_mm3: tuple[float, floa
         return u * v
 
     bed = sp.kron(area.assemble(bottom), sp.diags([k_t, k_t, k_n]))
-    lu = spd_lu(assemble_anisotropic(scalar, c) + bed)
+    lu = spd_lu(assemble_anisotropic(scalar, c) + bed, dofs_per_node=3)
     rhs = np.zeros((3 * scalar.N, len(loads)))
     for j, (facets, traction) in enumerate(loads):
         fb = FacetBasis(mesh, element, facets=facets)

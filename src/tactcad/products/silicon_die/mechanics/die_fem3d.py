@@ -24,8 +24,9 @@ its footprint on the top face (scipy ``eigsh``, shift-invert at 0). Each at two 
 the second twice as fine every way, Richardson-extrapolated (order 4 for the energy of
 quadratic elements on the clamped beam; :data:`FRAME_ORDER` on its frame, whose re-entrant
 corner at the cavity's edge is singular); the error estimate is the extrapolation's change.
-The factorisation (SuperLU under a minimum-degree ordering) serves both the static solve and
-the eigenvalue's shift-invert.
+The factorisation (SuperLU under METIS's nested dissection of the node graph,
+:func:`tactcad.mechanics.fem.sparse_lu.spd_lu`) serves both the static solve and the
+eigenvalue's shift-invert.
 
 The root's peak stress (:func:`root_peak_fem3d`) is a model of its own: the beam root to the
 post's centre, its filleted root (the plan's ``root_fillet_um``) and the frame block, half
@@ -199,7 +200,7 @@ def _solve(plan, beam, divisions: tuple[int, int, int],
     f = np.zeros(3 * scalar.N)
     f[2::3] = -spread.assemble(section)  # down (-z)
     kk, ff, _, free = condense(k, f, D=clamped)
-    lu = spd_lu(kk)
+    lu = spd_lu(kk, dofs_per_node=3)  # whole nodes held: kk stays numbered 3 s + a
     u = np.zeros(3 * scalar.N)
     u[free] = lu.solve(ff)
     k_N_per_mm = 1.0 / float(f @ u)
@@ -430,7 +431,8 @@ def _root_peak(plan, beam, level: int) -> tuple[float, tuple, int]:
     f[2::3] = -spread.assemble(section)
     kk, ff, _, free = condense(k, f, D=np.unique(np.concatenate([held, mirror])))
     u = np.zeros(3 * scalar.N)
-    u[free] = spd_lu(kk).solve(ff)
+    # the mirror holds only y: dofs ordered one by one (nested dissection: 70 s -> 14 s at level 3)
+    u[free] = spd_lu(kk, dofs_per_node=1).solve(ff)
     corners = np.array([[0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
     at_vertices = Basis(mesh, ElementTetP2(), quadrature=(corners, np.full(4, 1 / 24)))
     grad = np.array([at_vertices.interpolate(u[a::3]).grad for a in range(3)])  # a, k, e, q
