@@ -76,3 +76,20 @@ def test_a_block_on_a_faces_edge_grid_is_the_cell_by_cell_love_integral():
     # cells out of a grid's order take the cell-by-cell integral: the same numbers
     np.testing.assert_allclose(_influence_block(centres, src[::-1], half[::-1], sample, 0),
                                want[:, ::-1], rtol=1e-15)
+
+
+def test_the_rectangle_integral_takes_scalars_and_broadcasts_any_shapes_as_one_by_one():
+    """Points as a column against corners as a row, and plain floats: each value the same as
+    the point and rectangle taken alone."""
+    import numpy as np
+
+    from tactcad.mechanics.contact import rectangle_inverse_distance_integral as integral
+
+    xs = np.array([[-0.7], [0.0], [0.4], [2.5]])
+    x2 = np.array([[0.5, 1.0, 3.0]])
+    grid = integral(xs, 0.2, -0.5, x2, -0.3, 0.8)
+    assert grid.shape == (4, 3)
+    for i, x in enumerate(xs[:, 0]):
+        for j, right in enumerate(x2[0]):
+            alone = integral(float(x), 0.2, -0.5, float(right), -0.3, 0.8)
+            assert np.ndim(alone) == 0 and float(alone) == grid[i, j]

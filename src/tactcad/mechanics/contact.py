@@ -161,6 +161,10 @@ def _corner_primitive(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     L(p, q) = asinh(p/q) = log1p(p/q (1 + p/(ρ + q))), ρ = √(u² + v²) shared by the two
     (ρ − q = p²/(ρ + q): no cancellation, and one root instead of two).
     """
+    # arrays of one shape, at least 1-d: the in-place steps below need arrays, not scalars
+    u, v = np.broadcast_arrays(np.asarray(u, float), np.asarray(v, float))
+    shape = u.shape
+    u, v = np.atleast_1d(u), np.atleast_1d(v)
     au, av = np.abs(u), np.abs(v)
     rho = au * au
     rho += av * av
@@ -179,7 +183,7 @@ def _corner_primitive(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     b *= av
     a += b
     a *= np.sign(u) * np.sign(v)
-    return a
+    return a.reshape(shape)
 
 
 def rectangle_inverse_distance_integral(x, z, x1, x2, z1, z2):
