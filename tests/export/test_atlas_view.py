@@ -83,6 +83,22 @@ def test_the_exports_mark_is_what_the_designs_requirements_state():
     assert design_targets({}) is None
 
 
+def test_a_huge_atlas_draws_its_front_and_designed_points_first_and_says_so(tmp_path):
+    from tactcad.export.atlas_view import drawn_points
+
+    records = [_record(i, 0.001 * (1 + i % 50), 1.0, 2.0 + i % 7, i % 3 == 0, 0.01)
+               for i in range(900)]
+    view = atlas_view(_project(tmp_path, records=records))
+    assert len(view["points"]) == 900 and "drawn" not in view["title"]
+    points = view["points"]
+    kept = drawn_points(points, limit=400)
+    assert len(kept) == 400
+    assert [p for p in points if p["front"]] == [p for p in kept if p["front"]]
+    assert sum(p["feasible"] for p in kept) == sum(p["feasible"] for p in points) == 300
+    assert kept == [p for p in points if p in kept]  # table order kept
+    assert drawn_points(points, limit=10_000) == points
+
+
 def test_a_stopped_run_says_only_the_finished_points_are_shown(tmp_path):
     view = atlas_view(_project(tmp_path, summary={"jaw": "5", "points": 9, "seed": 0,
                                                   "complete": False}))

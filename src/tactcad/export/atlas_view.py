@@ -118,6 +118,38 @@ def _read(table: Path, summary_file: Path) -> tuple[list[dict] | None, dict | No
     return records, summary
 
 
+#: The most points the page draws (a page of an atlas of 10^5 targets in every material
+#: would weigh hundreds of MB): the front and the designed points first, then refused points
+#: evenly through the table; the title says how many of how many are drawn.
+MAX_DRAWN_POINTS = 5000
+
+
+def drawn_points(points: list[dict], limit: int = MAX_DRAWN_POINTS) -> list[dict]:
+    """The points the page draws: all when there are at most ``limit``, else the front's,
+    then the designed ones, then the refused ones, each kind taken evenly through its rows
+    (every k-th) to fill ``limit``.
+
+    Args:
+        points: the view's points (``front``, ``feasible``). limit: the most drawn, >= 1.
+
+    Returns:
+        The points kept, in their table order.
+    """
+    if len(points) <= limit:
+        return points
+    kinds = ([i for i, p in enumerate(points) if p["front"]],
+             [i for i, p in enumerate(points) if p["feasible"] and not p["front"]],
+             [i for i, p in enumerate(points) if not p["feasible"]])
+    kept: list[int] = []
+    for rows in kinds:
+        room = limit - len(kept)
+        if room <= 0:
+            break
+        step = max(1, math.ceil(len(rows) / room))
+        kept += rows[::step][:room]
+    return [points[i] for i in sorted(kept)]
+
+
 #: The record fields the view reads, with their types.
 _FIELDS = {"product": str, "material": str, "point": int, "feasible": bool,
            "full_scale_force_N": float, "kobj_lo_N_per_mm": float,
@@ -158,16 +190,19 @@ def _view(records: list[dict], summary: dict) -> dict:
                "front": (r["product"], r["material"], r["point"]) in on_front,
                "title": point_title(r), "command": r["command"]} for r in records]
     feasible = sum(p["feasible"] for p in points)
+    drawn = drawn_points(points)
     jaw = str(summary.get("jaw", "?"))
     title = (f"Design atlas of the jaw {Path(jaw).name}: {len(points)} verdicts "
              f"({summary.get('points', '?')} target points, seed {summary.get('seed', '?')}), "
-             f"{feasible} designed")
+             f"{feasible} designed"
+             + ("" if len(drawn) == len(points) else
+                f"; {len(drawn)} drawn (the front and the designed points first)"))
     note = ("Each point is a target judged as `tactcad design` judges it. Hover a point for "
             "its figures or the limit that refused it; click it to copy its design command."
             + ("" if summary.get("complete", True) else
                " The run was stopped: only the points that finished are shown."))
     columns = [heading for _, heading in FRONT_COLUMNS]
-    return {"title": title, "note": note, "groups": groups, "points": points,
+    return {"title": title, "note": note, "groups": groups, "points": drawn,
             "front": {"title": "Pareto front (rated force, K_obj span and K_obj resolution; "
                                "none beaten in all three) per product and material",
                       "columns": columns, "rows": front_rows}}
