@@ -237,7 +237,7 @@ def project_jaw(design: str) -> tuple[str, str]:
     path = Path(design)
     if not path.is_file():
         raise DesignError("--project", design, "an existing design file (.toml)",
-                          "no such file")
+                          "a folder, not a file" if path.is_dir() else "no such file")
     table = read_toml(path, "--project")
     folder = str(path.parent / PROJECT_ATLAS_FOLDER)
     if is_die_file(table):
