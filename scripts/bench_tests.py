@@ -36,6 +36,13 @@ def pytest_command(target: str, jobs: str) -> list[str]:
     return cmd + (["-m", "not slow"] if target == "test-fast" else [])
 
 
+def suite_env() -> dict[str, str]:
+    """The environment ``make`` gives the suite: one thread a process, the bytecode cache on."""
+    env = {**os.environ, **ONE_THREAD}
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    return env
+
+
 def counts_of(summary: str) -> dict[str, int]:
     """``{"passed": 950, "skipped": 1}`` from pytest's last line."""
     return {("errors" if k.startswith("error") else k): int(n) for n, k in COUNTS.findall(summary)}
@@ -56,8 +63,7 @@ def run(target: str, jobs: str) -> tuple[float, dict[str, int], int]:
     cmd = pytest_command(target, jobs)
     print(f"make {target}: {' '.join(cmd[1:])}   (load before {load()})", flush=True)
     t0 = time.perf_counter()
-    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True,
-                          env={**os.environ, **ONE_THREAD})
+    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, env=suite_env())
     wall = time.perf_counter() - t0
     lines = [ln for ln in proc.stdout.splitlines() if ln.strip()]
     last = lines[-1] if lines else ""
