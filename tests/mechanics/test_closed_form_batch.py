@@ -112,6 +112,30 @@ def test_two_threads_at_once_each_get_their_own_k():
     assert all(np.array_equal(x, y) for x, y in zip(got, want))
 
 
+def test_blocks_on_two_threads_give_the_same_k_to_the_bit_and_raise_a_blocks_error():
+    plan = _PLANS["grasper_jaw_10mm"]
+    g, mat, corr = plan.element(1).geometry, plan.material, load_correction()
+    t, R, a, E = random_designs(g, 3 * BLOCK + 11, 9, mat.youngs_modulus_MPa, True)
+    one = corrected_stiffness_batch(t, R, a, E, g, mat.poisson_ratio, corr)
+    two = corrected_stiffness_batch(t, R, a, E, g, mat.poisson_ratio, corr, threads=2)
+    assert np.array_equal(one, two)
+    np.testing.assert_allclose(two, element_path_k(t, R, a, E, g, mat.poisson_ratio, corr),
+                               rtol=1e-12, atol=0)
+    short = a.copy()
+    short[2 * BLOCK + 3] = R[2 * BLOCK + 3]  # a lever too short in the third block only
+    with pytest.raises(ValueError, match="arm_length_mm must be >= notch_radius_mm"):
+        corrected_stiffness_batch(t, R, short, E, g, mat.poisson_ratio, corr, threads=2)
+
+
+@pytest.mark.parametrize("threads", [0, -1, 65, 1.5, True, "2"])
+def test_a_thread_count_outside_its_range_is_refused(threads):
+    plan = _PLANS["macro_array"]
+    g, mat = plan.element(1).geometry, plan.material
+    with pytest.raises(ValueError, match=r"threads = .*allowed an integer from 1 to 64"):
+        corrected_stiffness_batch([0.2], [0.5], [6.0], mat.youngs_modulus_MPa, g,
+                                  mat.poisson_ratio, load_correction(), threads=threads)
+
+
 def test_the_arctan_holds_numpys_to_three_ulp():
     x2 = np.concatenate([np.linspace(0.0, 1.0, 100_001), np.geomspace(1e-12, 1.0, 1001)])
     want = np.arctan(np.sqrt(x2))
@@ -137,3 +161,13 @@ def test_bad_input_is_refused_naming_the_field(field, args, message):
     v.update(args)
     with pytest.raises(ValueError, match=re.escape(message)):
         corrected_stiffness_batch(v["t"], v["R"], v["a"], v["E"], g, v["nu"], load_correction())
+
+
+def test_the_benchs_two_thread_pass_gives_its_one_thread_pass_values():
+    from tactcad.benchmarks.bench_scale import closed_form_rate
+
+    plan = _PLANS["macro_array"]
+    rate_one, k_one = closed_form_rate(plan, n=2 * BLOCK + 5, repeat=1, threads=1)
+    rate_two, k_two = closed_form_rate(plan, n=2 * BLOCK + 5, repeat=1, threads=2)
+    assert rate_one > 0 and rate_two > 0
+    assert np.array_equal(k_one, k_two) and k_one.shape == (2 * BLOCK + 5,)

@@ -27,7 +27,9 @@ Units: mm, N, MPa, N/mm.
 from __future__ import annotations
 
 import math
+import os
 import threading
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -91,6 +93,21 @@ def _atan_half(x, x2, out, r, z, q):
 
 
 _local = threading.local()
+
+#: The most threads :func:`corrected_stiffness_batch` takes.
+MAX_THREADS = 64
+_POOLS: dict[tuple[int, int], ThreadPoolExecutor] = {}
+_POOLS_LOCK = threading.Lock()
+
+
+def _pool(threads: int) -> ThreadPoolExecutor:
+    """The process's pool of ``threads`` threads, made on first use and kept (keyed by
+    the process id too: a forked child has none of its parent's threads)."""
+    key = (os.getpid(), threads)
+    with _POOLS_LOCK:
+        if key not in _POOLS:
+            _POOLS[key] = ThreadPoolExecutor(threads, thread_name_prefix="closed-form")
+        return _POOLS[key]
 
 
 def _work_buffers(n: int) -> list[np.ndarray]:
@@ -343,7 +360,7 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
 
 def corrected_stiffness_batch(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_MPa,
                               g: ElementGeometry, poisson_ratio, correction: Correction,
-                              out: np.ndarray | None = None):
+                              out: np.ndarray | None = None, threads: int = 1):
     """Corrected closed-form tip stiffness K (N/mm) of many designs, vectorised.
 
     Args:
@@ -354,6 +371,10 @@ def corrected_stiffness_batch(web_mm, notch_radius_mm, arm_length_mm, youngs_mod
             sheet thickness, base height) and the bonded gauge.
         correction: the fem3d-fitted correction, applied without the range check.
         out: optional float array of the broadcast shape, C-contiguous, to write K into.
+        threads: blocks of :data:`BLOCK` designs worked on at once, 1 to :data:`MAX_THREADS`
+            (numpy's ufuncs release the GIL, so two threads use two cores; each thread
+            keeps its own work buffers). Leave it 1 inside a process pool or a Dask worker
+            that already fills the cores.
 
     Returns:
         K of the broadcast shape (N/mm; a numpy float for scalar inputs), with the
@@ -362,13 +383,17 @@ def corrected_stiffness_batch(web_mm, notch_radius_mm, arm_length_mm, youngs_mod
     Raises:
         ValueError: a non-finite or non-positive t, R, a or E (the field and the first
             values named), nu outside (-1, 0.5), a lever too short for notch and tip
-            (a < R + w/2), or a correction factor not positive.
+            (a < R + w/2), a correction factor not positive, or ``threads`` not an
+            integer from 1 to :data:`MAX_THREADS`.
 
     Source: the closed form of :mod:`tactcad.mechanics.closed_form` (Paros & Weisbord 1965;
     Lobontiu 2002, ch. 2; Timoshenko shear), its correction
     (:mod:`tactcad.mechanics.correction`) and the layer term of
     :mod:`tactcad.mechanics.bonded_layer`; the module docstring lists what is saved.
     """
+    if isinstance(threads, bool) or not isinstance(threads, int) \
+            or not 1 <= threads <= MAX_THREADS:
+        raise ValueError(f"threads = {threads!r}: allowed an integer from 1 to {MAX_THREADS}")
     t = _checked("web_mm", web_mm)
     R = _checked("notch_radius_mm", notch_radius_mm)
     a = _checked("arm_length_mm", arm_length_mm)
@@ -390,10 +415,19 @@ def corrected_stiffness_batch(web_mm, notch_radius_mm, arm_length_mm, youngs_mod
                np.ascontiguousarray(np.broadcast_to(v, shape)).reshape(-1) for v in (t, R, a))
     E, nu = flat(E), flat(nu)
     k = np.empty(n) if out is None else out.reshape(-1)
-    for i in range(0, n, BLOCK):
+
+    def block(i: int) -> None:
         j = min(i + BLOCK, n)
         _kernel(t[i:j], R[i:j], a[i:j], E if isinstance(E, float) else E[i:j],
                 nu if isinstance(nu, float) else nu[i:j], g, correction, k[i:j])
+
+    starts = range(0, n, BLOCK)
+    if threads > 1 and len(starts) > 1:
+        for done in _pool(threads).map(block, starts):  # a block's error is raised here
+            pass
+    else:
+        for i in starts:
+            block(i)
     if out is not None:
         return out
     return k.reshape(shape) if shape else k[0]
