@@ -562,6 +562,7 @@ def test_the_traveller_lists_every_mask_in_process_order_with_the_plans_figures(
     assert "324 ohm/sq" in text and "(assumption)" in text and "mems_die.gds" in text
 
 
+@pytest.mark.slow  # the die command and its checks on the shipped example
 def test_the_shipped_die_example_is_read_from_its_file_and_passes_its_checks(tmp_path):
     """hardware/grasper_jaw_5mm_mems: a [die] design file ``tactcad die --design`` reads
     (the jaw, targets and name from it), writing every file of the die and passing its
@@ -629,6 +630,7 @@ def test_design_for_the_5_mm_jaw_writes_a_die_file_the_die_command_reads(tmp_pat
     assert not (tmp_path / "x.toml").exists()
 
 
+@pytest.mark.slow  # the die command three times
 def test_a_die_files_value_is_overridden_by_set_and_checked_like_the_file(tmp_path):
     design = str(Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
                  / "grasper_jaw_5mm_mems.toml")
@@ -750,6 +752,7 @@ def test_a_jaw_that_cannot_hold_the_die_is_refused_by_its_key(die, key, value):
     assert err.value.field == f"grasper_jaw.{key}" and ">=" in err.value.allowed
 
 
+@pytest.mark.slow  # the die on its carrier as solids, checked twice
 def test_the_mount_checks_find_a_die_sunk_into_its_carrier(die):
     from dataclasses import replace
 

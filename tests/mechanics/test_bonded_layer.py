@@ -55,6 +55,7 @@ def test_a_design_whose_glue_line_is_thicker_gives_its_elements_a_taller_stack_a
     assert k1 > k0
 
 
+@pytest.mark.slow  # each example element at fem2d with and without its layer meshed
 @pytest.mark.parametrize("name", EXAMPLE_NAMES)
 def test_each_level_raises_k_and_the_closed_and_beam_terms_hold_against_the_meshed_layer(name):
     """The closed form's and the beam's layer terms against fem2d with the layer meshed
@@ -164,6 +165,7 @@ def test_a_gauge_stack_of_no_modulus_or_no_height_leaves_the_element_bare(stack)
         estimate("closed-form", base.element(1).geometry.bare(), base.material).stiffness_N_per_mm)
 
 
+@pytest.mark.slow  # five fem2d solves, the layer meshed
 def test_the_peak_stress_is_the_elements_not_the_layers():
     """With the layer meshed, the hinge's peak stress is read on the element's cells: the
     layer takes a little of the moment (a few per cent below the bare element's), and the

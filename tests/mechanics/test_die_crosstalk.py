@@ -47,6 +47,7 @@ def _hetenyi_top_strain(r: float, force: float, d: float, l: float, h: float):
     return h / 2 * w2, h / 2 * w1 / r
 
 
+@pytest.mark.slow  # a 3D FE plate of 120 x 120 elements
 def test_a_thin_plate_on_its_bed_bends_as_hetenyis_infinite_plate():
     from skfem import MeshHex
 

@@ -166,6 +166,7 @@ def test_the_structured_mesh_of_a_whole_box_is_the_brick(plan):
     assert not inside_cavity.any() and (centres[:, 0] < 0).any() and (centres[:, 2] < -0.1).any()
 
 
+@pytest.mark.slow  # four solves of the die on its frame (3D FE)
 def test_the_frame_gives_under_the_root_and_the_shorter_beam_loses_more(plan):
     """On its frame each beam is softer than clamped at its root; the root's compliance
     adds about a fixed length behind it, so the share it takes grows as t / L: the short

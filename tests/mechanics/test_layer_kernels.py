@@ -145,6 +145,7 @@ def disc_stiffness(sample: Sample, cells_across: int = 40) -> float:
     return float(mesh.area_mm2 @ pressure)
 
 
+@pytest.mark.slow  # a contact solve per table entry, eleven in all
 def test_a_disc_on_a_bonded_layer_has_hayes_correction_factor():
     """kappa = the disc's stiffness on the layer over its stiffness on the half-space, both
     on the same cells (their staircase edge cancels to about 0.3 %): within 1 % of the

@@ -183,7 +183,7 @@ def test_the_refusals_fewer_columns_check_stops_at_the_first_comb_that_carries_a
 
 @pytest.mark.parametrize("kr_over_km, kobj, force, columns", [
     (21.267, (2.87533, 18.4831), 0.0620327, 2),
-    (10.0, (0.5, 5.0), 0.05, 6),
+    pytest.param(10.0, (0.5, 5.0), 0.05, 6, marks=pytest.mark.slow),  # six columns: a long search
 ])
 def test_the_first_preferred_comb_is_the_one_the_whole_search_chooses(kr_over_km, kobj, force,
                                                                       columns):
