@@ -15,6 +15,7 @@ from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.design.project import Project, load_project, project_for_plan
 from tactcad.design.rig_plan import DEFAULT_RIGS
 from tactcad.design.scene_specs import DEFAULT_SCENES
+from source_trees import parsed
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "tactcad"
 #: Functions that open a design, rigs or scenes file.
@@ -111,7 +112,7 @@ def test_test_rigs_need_the_validated_rigs(plan):
 
 def _calls(path: Path) -> set[str]:
     names = set()
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+    for node in ast.walk(parsed(path)):
         if isinstance(node, ast.Call):
             f = node.func
             names.add(f.id if isinstance(f, ast.Name) else getattr(f, "attr", ""))

@@ -22,6 +22,7 @@ from pathlib import Path
 import pytest
 
 import tactcad
+from source_trees import one_reader, parsed
 
 SRC = Path(tactcad.__file__).resolve().parent
 LAYOUT_PAGE = SRC.parents[1] / "docs" / "reference" / "layout.md"
@@ -148,10 +149,8 @@ def _exists(module: str) -> bool:
         or (SRC / rel / "__init__.py").is_file()
 
 
-@functools.cache
 def _tree(path: Path) -> ast.Module:
-    # each source parsed once a process: four tests read the whole package
-    return ast.parse(path.read_text(encoding="utf-8"))
+    return parsed(path)  # each source parsed once a process: the house tests share it
 
 
 @functools.cache
@@ -161,7 +160,7 @@ def graph(types_too: bool = False) -> dict[str, frozenset[str]]:
 
 
 #: the tests that read the whole import graph run in one process, which builds it once
-one_graph = pytest.mark.xdist_group("import-graph")
+one_graph = one_reader
 
 
 #: Modules whose names for type checkers may go against the order: the

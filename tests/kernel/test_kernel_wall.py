@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 import tactcad
+from source_trees import one_reader, parsed
 
 SRC = Path(tactcad.__file__).resolve().parent
 KERNEL_PACKAGES = ("build123d", "OCP", "cadquery")
@@ -25,7 +26,7 @@ KERNEL_MAY_IMPORT = ("tactcad.kernel", "tactcad.atomic", "tactcad.errors")
 def _imports(path: Path) -> list[tuple[int, str]]:
     """(line, module) of every import in ``path``, anywhere in the file."""
     out = []
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+    for node in ast.walk(parsed(path)):
         if isinstance(node, ast.Import):
             out += [(node.lineno, a.name) for a in node.names]
         elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
@@ -42,6 +43,7 @@ def kernel_imports_outside_the_wall(src: Path) -> list[str]:
             for line, name in _imports(p) if name.split(".")[0] in KERNEL_PACKAGES]
 
 
+@one_reader
 def test_only_the_kernel_package_imports_the_cad_kernel():
     found = kernel_imports_outside_the_wall(SRC)
     assert found == [], "kernel imports outside tactcad/kernel:\n" + "\n".join(found)
@@ -72,7 +74,7 @@ def kernel_method_calls_outside_the_wall(src: Path) -> list[str]:
     return [f"{rel}:{node.lineno} .{node.attr}"
             for p in sorted(src.rglob("*.py")) if wall not in p.parents
             for rel in [p.relative_to(src).as_posix()]
-            for node in ast.walk(ast.parse(p.read_text(encoding="utf-8")))
+            for node in ast.walk(parsed(p))
             if isinstance(node, ast.Attribute) and node.attr in KERNEL_METHODS
             and not _own_attribute(node) and node.attr not in OTHER_LIBRARIES.get(rel, ())]
 
@@ -83,6 +85,7 @@ def _own_attribute(node: ast.Attribute) -> bool:
         "run", "self", "cache", "parts", "result", "res")
 
 
+@one_reader
 def test_code_above_the_wall_reads_solids_through_the_kernel():
     found = kernel_method_calls_outside_the_wall(SRC)
     assert found == [], "kernel objects used directly above the wall:\n" + "\n".join(found)
@@ -104,7 +107,7 @@ def test_the_kernel_imports_only_itself_and_the_foundation():
 
 
 def _for_type_checkers(path: Path, line: int) -> bool:
-    tree = ast.parse(path.read_text(encoding="utf-8"))
+    tree = parsed(path)
     return any(isinstance(n, ast.If) and isinstance(n.test, ast.Name)
                and n.test.id == "TYPE_CHECKING" and n.lineno < line <= n.end_lineno
                for n in ast.walk(tree))
