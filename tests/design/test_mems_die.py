@@ -407,6 +407,22 @@ def test_the_solid_is_built_from_the_masks_and_the_stack(die, tmp_path):
                                          ("device", "handle", "oxide", "posts")]
 
 
+def test_a_layers_openings_are_holes_in_its_face_only_when_they_lie_clear_inside_it():
+    from tactcad.products.silicon_die.export.die_solid import _through, holes_inside
+
+    outline = [(0.0, 0.0), (1000.0, 0.0), (1000.0, 500.0), (0.0, 500.0)]
+    inside = [[(100.0, 100.0), (300.0, 100.0), (300.0, 400.0), (100.0, 400.0)],
+              [(500.0, 100.0), (900.0, 100.0), (900.0, 200.0)]]
+    touching = [[(0.0, 100.0), (300.0, 100.0), (300.0, 400.0), (0.0, 400.0)]]
+    overlapping = [inside[0], [(200.0, 150.0), (400.0, 150.0), (400.0, 300.0)]]
+    assert holes_inside(outline, inside)
+    assert not holes_inside(outline, touching) and not holes_inside(outline, overlapping)
+    # either way the layer is the outline less its openings (um^2 x 10 um, in mm^3)
+    for holes, open_um2 in ((inside, 200 * 300 + 400 * 100 / 2), (touching, 300 * 300)):
+        layer = _through(outline, holes, 0.0, 10.0)
+        assert layer.volume == pytest.approx((1000 * 500 - open_um2) * 10 * 1e-9, rel=1e-9)
+
+
 def test_hole_mobility_follows_an_independent_fit_and_the_sheet_resistance_its_formula():
     """Masetti's boron mobility against Arora, Hauser and Roulston's (IEEE Trans. Electron
     Devices 29(2), 1982, 300 K: 54.3 + 407 / (1 + (N / 2.67e17)^0.88)) within 10 % over

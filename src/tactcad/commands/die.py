@@ -299,7 +299,7 @@ def run(args: argparse.Namespace) -> int:
                                                                write_mount_bom,
                                                                write_mount_picture,
                                                                write_mount_step)
-    from tactcad.products.silicon_die.export.die_solid import write_die_step
+    from tactcad.products.silicon_die.export.die_solid import die_layer_solids, write_die_step
     from tactcad.products.silicon_die.export.gds_masks import (write_die_gds, write_mask_picture,
                                                                write_wafer_gds)
     from tactcad.products.silicon_die.export.traveller import write_traveller
@@ -328,9 +328,10 @@ def run(args: argparse.Namespace) -> int:
             path.parent.mkdir(parents=True, exist_ok=True)
         write_die_gds(plan, made["masks"])
         _, dies = write_wafer_gds(plan, made["wafer"])
-        write_die_step(plan, made["step"])
+        layers = die_layer_solids(plan)  # built once: the die's STEP and its mount read them
+        write_die_step(plan, made["step"], layers)
         write_mask_picture(made["masks"], made["picture"])
-        solids = mount_solids(plan, mount)
+        solids = mount_solids(plan, mount, layers)
         write_mount_step(solids, made["scene"], f"{name}_in_jaw")
         write_mount_picture(solids, made["scene_picture"], f"{name} in the {room.label}")
         write_mount_bom(mount_bom_rows(plan, mount, room.label), made["bom"])

@@ -116,10 +116,16 @@ def disc_prism(radius: float, height: float, z0: float = 0.0) -> bd.Shape:
     return bd.Pos(0, 0, z0) * bd.extrude(bd.Circle(radius), height)
 
 
-def polygon_face(points: Sequence[Point3]) -> bd.Face:
-    """Planar face bounded by the closed polygon through ``points`` (mm)."""
+def polygon_face(points: Sequence[Point3],
+                 holes: Sequence[Sequence[Point3]] = ()) -> bd.Face:
+    """Planar face bounded by the closed polygon through ``points`` (mm), less the
+    polygons ``holes`` (each wholly inside it, none touching another or the boundary:
+    a face with holes, no boolean)."""
     bd = _bd()
-    return bd.Face(bd.Wire.make_polygon(points, close=True))
+    outer = bd.Wire.make_polygon(points, close=True)
+    if not holes:
+        return bd.Face(outer)
+    return bd.Face(outer, [bd.Wire.make_polygon(h, close=True) for h in holes])
 
 
 def rounded_rect_face(length: float, width: float, radius: float, z: float = 0.0) -> bd.Face:

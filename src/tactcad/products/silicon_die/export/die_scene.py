@@ -20,9 +20,12 @@ JAW_RGB = (0.70, 0.72, 0.76)
 CARRIER_RGB = (0.93, 0.91, 0.84)
 
 
-def mount_solids(plan: DiePlan, mount: DieMount) -> dict[str, tuple[object, tuple]]:
+def mount_solids(plan: DiePlan, mount: DieMount,
+                 layers: dict | None = None) -> dict[str, tuple[object, tuple]]:
     """Part name -> (solid in the jaw's frame, colour): ``jaw``, ``carrier`` and the die's
-    layers (``<die>_handle``, ``_oxide``, ``_device``, ``_posts``)."""
+    layers (``<die>_handle``, ``_oxide``, ``_device``, ``_posts``); ``layers``: the die's
+    :func:`~tactcad.products.silicon_die.export.die_solid.die_layer_solids` when already
+    built (they are moved, not changed)."""
     from tactcad.products.silicon_die.export.die_solid import COLOURS, die_layer_solids
     from tactcad.kernel.shapes import box, cut, cylinder, translated
 
@@ -42,7 +45,7 @@ def mount_solids(plan: DiePlan, mount: DieMount) -> dict[str, tuple[object, tupl
                                m.carrier_x0_mm + m.carrier_length_mm, m.carrier_width_mm / 2,
                                floor + m.carrier_mm), CARRIER_RGB)}
     at = (m.die_x0_mm, -m.die_width_mm / 2, m.die_z0_mm)
-    for layer, solid in die_layer_solids(plan).items():
+    for layer, solid in (die_layer_solids(plan) if layers is None else layers).items():
         out[f"{plan.name}_{layer}"] = (translated(solid, at), COLOURS[layer])
     return out
 

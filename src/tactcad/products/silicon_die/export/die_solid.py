@@ -22,11 +22,40 @@ COLOURS = {"handle": (0.45, 0.47, 0.52), "oxide": (0.80, 0.85, 0.95),
 UM = 1e-3  # mm per um
 
 
-def _prism(points, z0_um: float, height_um: float):
+def _prism(points, z0_um: float, height_um: float, holes=()):
     from tactcad.kernel.shapes import extrude, polygon_face
 
-    face = polygon_face([(x * UM, y * UM, z0_um * UM) for x, y in points])
+    def at_z(polygon):
+        return [(x * UM, y * UM, z0_um * UM) for x, y in polygon]
+
+    face = polygon_face(at_z(points), [at_z(h) for h in holes])
     return extrude(face, height_um * UM)
+
+
+def holes_inside(outline, holes) -> bool:
+    """True when every polygon of ``holes`` (um) lies inside ``outline`` clear of its
+    boundary and of each other: then the layer is one face with holes, extruded."""
+    import shapely
+
+    outer = shapely.Polygon(outline)
+    inner = [shapely.Polygon(h) for h in holes]
+    if not outer.is_valid or not all(h.is_valid for h in inner):
+        return False
+    if not all(outer.contains_properly(h) for h in inner):
+        return False
+    return all(not a.intersects(b) for i, a in enumerate(inner) for b in inner[i + 1:])
+
+
+def _through(outline, holes, z0_um: float, height_um: float):
+    """The layer ``outline`` less the through openings ``holes`` (um): a face with holes
+    extruded where they lie clear inside it (no boolean: the device etch's filleted
+    outline took the 3D cut a second), else the 3D cut."""
+    from tactcad.kernel.shapes import cut
+
+    if holes_inside(outline, holes):
+        return _prism(outline, z0_um, height_um, holes)
+    return cut(_prism(outline, z0_um, height_um),
+               *[_prism(h, z0_um - 1.0, height_um + 2.0) for h in holes])
 
 
 def die_layer_solids(plan: DiePlan) -> dict:
@@ -44,21 +73,19 @@ def die_layer_solids(plan: DiePlan) -> dict:
     z_top = z_device + s.device_um
     handle = cut(_prism(outline, 0.0, s.handle_um),
                  *[_prism(c, s.handle_um - depth, depth + 1.0) for c, depth in cavities])
-    oxide = cut(_prism(outline, z_oxide, s.box_um),
-                *[_prism(c, z_oxide - 1.0, s.box_um + 2.0) for c, _ in cavities])
-    device = cut(_prism(outline, z_device, s.device_um),
-                 *[_prism(p, z_device - 1.0, s.device_um + 2.0) for p in masks["device_etch"]])
+    oxide = _through(outline, [c for c, _ in cavities], z_oxide, s.box_um)
+    device = _through(outline, masks["device_etch"], z_device, s.device_um)
     posts = shapes.Compound([_prism(p, z_top, plan.post_height_um) for p in masks["tip"]])
     return {"handle": handle, "oxide": oxide, "device": device, "posts": posts}
 
 
-def write_die_step(plan: DiePlan, path: Path) -> Path:
+def write_die_step(plan: DiePlan, path: Path, layers: dict | None = None) -> Path:
     """The die's layers as one STEP assembly (AP214, mm), each layer a named, coloured part
-    at its place in the stack."""
+    at its place in the stack; ``layers``: :func:`die_layer_solids` when already built."""
     from tactcad.kernel.locations import offset
     from tactcad.kernel.step_writer import StepInstance, StepPart, write_step
 
-    solids = die_layer_solids(plan)
+    solids = die_layer_solids(plan) if layers is None else layers
     parts = [StepPart(f"{plan.name}_{k}", v, COLOURS[k]) for k, v in solids.items()]
     instances = [StepInstance(p.name, p.name, offset(0.0, 0.0, 0.0)) for p in parts]
     return write_step(path, parts, instances, assembly_name=plan.name)
