@@ -331,6 +331,29 @@ def layer_correction(rho, base: str, poisson_ratio: float) -> np.ndarray:
 # ---------------------------------------------------------------------------
 # Boundary-element model
 # ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class FaceGrid:
+    """One punch face and the graded cells :func:`mesh_punches` splits it into.
+
+    Attributes:
+        x_mm, z_mm: the face's centre (mm).
+        width_x_mm, depth_z_mm: its edges (mm).
+        cells_x, cells_z: cells along each edge (:func:`graded_edges`).
+    """
+
+    x_mm: float
+    z_mm: float
+    width_x_mm: float
+    depth_z_mm: float
+    cells_x: int
+    cells_z: int
+
+    @property
+    def shape(self) -> tuple[float, float, int, int]:
+        """What its cells relative to its centre depend on: edges (mm) and counts."""
+        return (self.width_x_mm, self.depth_z_mm, self.cells_x, self.cells_z)
+
+
 @dataclass(frozen=True, eq=False)
 class CellMesh:
     """Piecewise-constant pressure cells of a set of punches.
@@ -339,11 +362,14 @@ class CellMesh:
         centres: cell centres (x, z), shape (n, 2) (mm).
         half: half edge lengths (hx, hz) of each cell, shape (n, 2) (mm).
         punch: index of the punch each cell belongs to, shape (n,).
+        faces: each punch's face and graded grid (:class:`FaceGrid`), as
+            :func:`mesh_punches` lays them out; None for cells laid out otherwise.
     """
 
     centres: np.ndarray
     half: np.ndarray
     punch: np.ndarray
+    faces: tuple[FaceGrid, ...] | None = None
 
     @property
     def area_mm2(self) -> np.ndarray:
@@ -384,18 +410,37 @@ def mesh_punches(punches, cell_mm: float = DEFAULT_CELL_MM,
     _check_punches(punches)
     if not (np.isfinite(cell_mm) and cell_mm > 0):
         raise ContactError("cell_mm", cell_mm, "> 0 mm")
-    centres, half, owner = [], [], []
+    centres, half, owner, faces = [], [], [], []
     for k, p in enumerate(punches):
-        ex = p.x_mm - p.width_x_mm / 2 + p.width_x_mm * graded_edges(
-            cells_per_edge(p.width_x_mm, cell_mm, min_cells))
-        ez = p.z_mm - p.depth_z_mm / 2 + p.depth_z_mm * graded_edges(
-            cells_per_edge(p.depth_z_mm, cell_mm, min_cells))
+        nx = cells_per_edge(p.width_x_mm, cell_mm, min_cells)
+        nz = cells_per_edge(p.depth_z_mm, cell_mm, min_cells)
+        faces.append(FaceGrid(float(p.x_mm), float(p.z_mm), float(p.width_x_mm),
+                              float(p.depth_z_mm), nx, nz))
+        ex = p.x_mm - p.width_x_mm / 2 + p.width_x_mm * graded_edges(nx)
+        ez = p.z_mm - p.depth_z_mm / 2 + p.depth_z_mm * graded_edges(nz)
         gx, gz = np.meshgrid((ex[1:] + ex[:-1]) / 2, (ez[1:] + ez[:-1]) / 2, indexing="ij")
         hx, hz = np.meshgrid(np.diff(ex) / 2, np.diff(ez) / 2, indexing="ij")
         centres.append(np.column_stack([gx.ravel(), gz.ravel()]))
         half.append(np.column_stack([hx.ravel(), hz.ravel()]))
         owner.append(np.full(gx.size, k))
-    return CellMesh(np.vstack(centres), np.vstack(half), np.concatenate(owner))
+    return CellMesh(np.vstack(centres), np.vstack(half), np.concatenate(owner), tuple(faces))
+
+
+@functools.lru_cache(maxsize=256)
+def face_cells(width_x_mm: float, depth_z_mm: float, cells_x: int,
+               cells_z: int) -> tuple[np.ndarray, np.ndarray]:
+    """A face's graded cells relative to its centre, as :func:`mesh_punches` lays them out
+    (x major): (centres, half edges), each shape (cells, 2) (mm), read-only. A function of
+    the face alone: every face of an array shares one set of bits."""
+    ex = -width_x_mm / 2 + width_x_mm * graded_edges(cells_x)
+    ez = -depth_z_mm / 2 + depth_z_mm * graded_edges(cells_z)
+    gx, gz = np.meshgrid((ex[1:] + ex[:-1]) / 2, (ez[1:] + ez[:-1]) / 2, indexing="ij")
+    hx, hz = np.meshgrid(np.diff(ex) / 2, np.diff(ez) / 2, indexing="ij")
+    centres = np.column_stack([gx.ravel(), gz.ravel()])
+    half = np.column_stack([hx.ravel(), hz.ravel()])
+    centres.setflags(write=False)
+    half.setflags(write=False)
+    return centres, half
 
 
 def _layer_depth_term(centres: np.ndarray, src_centres: np.ndarray, src_half: np.ndarray,
@@ -532,12 +577,6 @@ def _influence_block(centres: np.ndarray, src_centres: np.ndarray, src_half: np.
 
 #: Cell coordinates are compared to this (mm) when two punch pairs share one block.
 _BLOCK_KEY_MM = 1e-9
-#: A block's cell coordinates, taken relative to its target face's first cell, are snapped
-#: to multiples of this (mm, a power of two: the snap is exact) before the block is built:
-#: the relative layout of two faces then has one set of bits wherever the pair lies, so a
-#: block is a function of that layout alone and can be kept across meshes. It moves a
-#: coordinate by under 2e-15 mm, 1e-11 of the smallest graded cell of a 0.1 mm face.
-BLOCK_SNAP_MM = 2.0 ** -48
 #: Bytes of influence blocks kept across meshes (:func:`kept_block`): the self and
 #: same-row blocks of an array recur from one design to the next.
 BLOCK_CACHE_BYTES = 256 * 2 ** 20
@@ -547,11 +586,6 @@ def _block_key(local: np.ndarray, half_a: np.ndarray, src: np.ndarray,
                half_b: np.ndarray) -> tuple:
     return tuple(np.round(arr / _BLOCK_KEY_MM).astype(np.int64).tobytes()
                  for arr in (local, half_a, src, half_b))
-
-
-def snapped(coordinates_mm: np.ndarray) -> np.ndarray:
-    """``coordinates_mm`` rounded to multiples of :data:`BLOCK_SNAP_MM` (mm)."""
-    return np.round(coordinates_mm / BLOCK_SNAP_MM) * BLOCK_SNAP_MM
 
 
 class _BlockCache:
@@ -590,24 +624,26 @@ class _BlockCache:
 _BLOCKS = _BlockCache(BLOCK_CACHE_BYTES)
 
 
-def kept_block(local: np.ndarray, src: np.ndarray, src_half: np.ndarray, sample: Sample,
-               n_gauss: int) -> np.ndarray:
-    """:func:`_influence_block` of snapped inputs, kept across calls (read-only).
+def face_block(target: FaceGrid, source: FaceGrid, sample: Sample, n_gauss: int) -> np.ndarray:
+    """Displacement at the cells of face ``target`` per unit pressure on those of ``source``
+    (mm/MPa), read-only; computed in ``target``'s frame from the faces' shapes and their
+    offset alone, and kept across calls: the next design's array has the same faces at the
+    same pitch, and a block is the same bits wherever its pair lies.
 
     Args:
-        local: target cell centres relative to the target face's first cell (mm), snapped
-            (:func:`snapped`). src, src_half: source cell centres in the same frame and
-            their half edges (mm), snapped.
-        sample: the sample (its E, ν, layer). n_gauss: the layer's quadrature order.
+        target, source: the faces and their grids (:class:`FaceGrid`).
+        sample: the sample (its E, nu, layer). n_gauss: the layer's quadrature order.
 
     Returns:
-        The block (mm/MPa), shape (len(local), len(src)); the same array for equal inputs.
+        The block, shape (target's cells, source's cells).
     """
-    key = (sample, n_gauss, local.shape, src.shape, local.tobytes(), src.tobytes(),
-           src_half.tobytes())
+    offset = (source.x_mm - target.x_mm, source.z_mm - target.z_mm)
+    key = (sample, n_gauss, target.shape, source.shape, offset)
     block = _BLOCKS.get(key)
     if block is None:
-        block = _influence_block(local, src, src_half, sample, n_gauss)
+        local, _ = face_cells(*target.shape)
+        cells, half = face_cells(*source.shape)
+        block = _influence_block(local, cells + np.array(offset), half, sample, n_gauss)
         _BLOCKS.put(key, block)
     return block
 
@@ -619,12 +655,12 @@ def influence_matrix(mesh: CellMesh, sample: Sample,
     Half-space: Love's rectangle formula. Layer: that less the layer's correction
     (:func:`layer_correction`) on a bonded or frictionless base, or less the depth-h
     half-space displacement (Steinbrenner's approximation). Assembled punch by punch:
-    two punch pairs whose cells lie alike relative to each other (equal faces at equal
-    offsets, as on an array's grid) share one computed block, and blocks are kept across
-    calls (:func:`kept_block`: the next design's array has the same faces at the same pitch).
+    on :func:`mesh_punches`' grids a block is a function of the two faces and their offset
+    (:func:`face_block`, kept across calls); on other cells, two punch pairs whose cells
+    lie alike relative to each other share one computed block.
 
     Args:
-        mesh: the cells (:func:`mesh_punches`). sample: the sample.
+        mesh: the cells. sample: the sample.
         targets: the punches whose cells' rows are built, in ascending order (default every
             punch): the rows of the cells :func:`target_cells` lists, in that order.
 
@@ -641,27 +677,42 @@ def influence_matrix(mesh: CellMesh, sample: Sample,
         n_gauss = int(min(12, max(3, np.ceil(4 * cell / sample.thickness_mm))))
     punches = np.unique(mesh.punch)
     owners = [_as_slice(np.flatnonzero(mesh.punch == k)) for k in punches]
-    halves = [snapped(mesh.half[ib]) for ib in owners]
     wanted = punches if targets is None else np.asarray(targets)
     out = np.empty((len(target_cells(mesh, wanted)), len(mesh.punch)))
     done: dict[tuple, np.ndarray] = {}
     row = 0
-    for ia in (owners[int(np.searchsorted(punches, k))] for k in wanted):
-        origin = mesh.centres[ia][0]
-        local = snapped(mesh.centres[ia] - origin)
-        rows = slice(row, row + len(local))
-        row += len(local)
-        for ib, half_b in zip(owners, halves):
-            src = snapped(mesh.centres[ib] - origin)
-            key = _block_key(local, mesh.half[ia], src, half_b)
-            block = done.get(key)
-            if block is None:
-                block = done[key] = kept_block(local, src, half_b, sample, n_gauss)
+    for a in wanted:
+        ia = owners[int(np.searchsorted(punches, a))]
+        rows = slice(row, row + _size(ia))
+        row += _size(ia)
+        for b, ib in zip(punches, owners):
+            if mesh.faces is not None:
+                block = face_block(mesh.faces[a], mesh.faces[b], sample, n_gauss)
+            else:
+                block = _shared_block(mesh, ia, ib, sample, n_gauss, done)
             if isinstance(ib, slice):
                 out[rows, ib] = block
             else:
                 out[rows, _as_index(ib)] = block
     return out
+
+
+def _shared_block(mesh: CellMesh, ia, ib, sample: Sample, n_gauss: int,
+                  done: dict[tuple, np.ndarray]) -> np.ndarray:
+    """The block of cells ``ia`` from cells ``ib`` in ``ia``'s first cell's frame, shared
+    with an earlier pair of ``done`` whose cells lie alike (to :data:`_BLOCK_KEY_MM`)."""
+    origin = mesh.centres[ia][0]
+    local = mesh.centres[ia] - origin
+    src = mesh.centres[ib] - origin
+    key = _block_key(local, mesh.half[ia], src, mesh.half[ib])
+    block = done.get(key)
+    if block is None:
+        block = done[key] = _influence_block(local, src, mesh.half[ib], sample, n_gauss)
+    return block
+
+
+def _size(index) -> int:
+    return index.stop - index.start if isinstance(index, slice) else len(index)
 
 
 def target_cells(mesh: CellMesh, targets: Sequence[int]) -> np.ndarray:
