@@ -590,35 +590,41 @@ def _block_key(local: np.ndarray, half_a: np.ndarray, src: np.ndarray,
 
 class _BlockCache:
     """Influence blocks keyed by their exact inputs, least recently used dropped first past
-    :data:`BLOCK_CACHE_BYTES`."""
+    :data:`BLOCK_CACHE_BYTES` (locked: a threaded Dask worker shares it)."""
 
     def __init__(self, budget_bytes: int):
+        import threading
         from collections import OrderedDict
 
         self.budget = budget_bytes
         self.kept: OrderedDict = OrderedDict()
         self.bytes = 0
         self.hits = self.misses = 0
+        self.lock = threading.Lock()
 
     def get(self, key):
-        block = self.kept.get(key)
-        if block is not None:
-            self.kept.move_to_end(key)
-            self.hits += 1
-        return block
+        with self.lock:
+            block = self.kept.get(key)
+            if block is not None:
+                self.kept.move_to_end(key)
+                self.hits += 1
+            return block
 
     def put(self, key, block: np.ndarray) -> None:
-        self.misses += 1
         block.setflags(write=False)
-        self.kept[key] = block
-        self.bytes += block.nbytes
-        while self.bytes > self.budget and len(self.kept) > 1:
-            _, dropped = self.kept.popitem(last=False)
-            self.bytes -= dropped.nbytes
+        with self.lock:
+            self.misses += 1
+            if key not in self.kept:
+                self.bytes += block.nbytes
+            self.kept[key] = block
+            while self.bytes > self.budget and len(self.kept) > 1:
+                _, dropped = self.kept.popitem(last=False)
+                self.bytes -= dropped.nbytes
 
     def clear(self) -> None:
-        self.kept.clear()
-        self.bytes = self.hits = self.misses = 0
+        with self.lock:
+            self.kept.clear()
+            self.bytes = self.hits = self.misses = 0
 
 
 _BLOCKS = _BlockCache(BLOCK_CACHE_BYTES)
@@ -881,7 +887,8 @@ def solve_by_symmetry(a: np.ndarray, rhs: np.ndarray, maps: list[np.ndarray],
     out = np.zeros((n, rhs.shape[1]))
     # a's rows of the representatives at each image of them, gathered once for all characters
     # (a row take, then column takes: twice as fast as one np.ix_ gather)
-    rep_rows = a.take(at, axis=0)
+    every_row = len(at) == len(a) and np.array_equal(at, np.arange(len(a)))
+    rep_rows = a if every_row else a.take(at, axis=0)
     blocks = [rep_rows.take(g[reps], axis=1) for g in group]
     for chi in signs:
         keep = np.all(~fixed | (chi[:, None] > 0), axis=0)
