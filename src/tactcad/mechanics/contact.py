@@ -430,8 +430,14 @@ def mesh_punches(punches, cell_mm: float = DEFAULT_CELL_MM,
 def face_cells(width_x_mm: float, depth_z_mm: float, cells_x: int,
                cells_z: int) -> tuple[np.ndarray, np.ndarray]:
     """A face's graded cells relative to its centre, as :func:`mesh_punches` lays them out
-    (x major): (centres, half edges), each shape (cells, 2) (mm), read-only. A function of
-    the face alone: every face of an array shares one set of bits."""
+    (x major). A function of the face alone: every face of an array shares one set of bits.
+
+    Args:
+        width_x_mm, depth_z_mm: the face's edges (mm). cells_x, cells_z: cells along each.
+
+    Returns:
+        (centres, half edges), each shape (cells, 2) (mm), read-only.
+    """
     ex = -width_x_mm / 2 + width_x_mm * graded_edges(cells_x)
     ez = -depth_z_mm / 2 + depth_z_mm * graded_edges(cells_z)
     gx, gz = np.meshgrid((ex[1:] + ex[:-1]) / 2, (ez[1:] + ez[:-1]) / 2, indexing="ij")
@@ -722,8 +728,14 @@ def _size(index) -> int:
 
 
 def target_cells(mesh: CellMesh, targets: Sequence[int]) -> np.ndarray:
-    """The cells of the punches ``targets`` (ascending), punch by punch: the rows
-    :func:`influence_matrix` builds for them."""
+    """The cells of some punches: the rows :func:`influence_matrix` builds for them.
+
+    Args:
+        mesh: the cells. targets: punch indices, ascending.
+
+    Returns:
+        Cell indices, punch by punch.
+    """
     return np.concatenate([np.flatnonzero(mesh.punch == k) for k in targets])
 
 
@@ -818,6 +830,9 @@ def mirror_maps(mesh: CellMesh, tol_mm: float = 1e-9) -> list[np.ndarray]:
 def mirror_group(maps: list[np.ndarray], n: int) -> tuple[list[np.ndarray], list[np.ndarray]]:
     """The group the commuting mirrors ``maps`` generate on ``n`` cells, and its characters.
 
+    Args:
+        maps: the mirrors (:func:`mirror_maps`), involutions that commute. n: the cells.
+
     Returns:
         (the elements as index arrays, identity first; the characters, each a sign per
         element in that order).
@@ -832,16 +847,28 @@ def mirror_group(maps: list[np.ndarray], n: int) -> tuple[list[np.ndarray], list
 
 
 def representatives(maps: list[np.ndarray], n: int) -> np.ndarray:
-    """The cells that represent their orbits under the mirrors (the least index of each),
-    ascending; every cell without ``maps``."""
+    """The cells that represent their orbits under the mirrors: the least index of each.
+
+    Args:
+        maps: the mirrors (:func:`mirror_maps`). n: the cells.
+
+    Returns:
+        Their indices, ascending; every cell without ``maps``.
+    """
     group, _ = mirror_group(maps, n)
     return np.flatnonzero(np.stack(group).min(axis=0) == np.arange(n))
 
 
 def signed_sum(signs: np.ndarray, arrays: list[np.ndarray]) -> np.ndarray:
-    """sum(s * a) over signs of +-1 and equal-shaped arrays, in their order, in one new
-    array (added or subtracted in place: the same bits as the products' sum, a quarter of
-    the memory passes)."""
+    """sum(s * a) over signs of +-1 and equal-shaped arrays, in their order, added or
+    subtracted in place: the same bits as the products' sum, a quarter of the memory passes.
+
+    Args:
+        signs: +1 or -1 per array. arrays: equal shapes.
+
+    Returns:
+        The sum, a new array.
+    """
     out = arrays[0] * signs[0]
     for sign, array in zip(signs[1:], arrays[1:]):
         if sign > 0:

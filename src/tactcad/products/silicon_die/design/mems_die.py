@@ -1226,7 +1226,11 @@ _PASTE_LIGHTER = contextvars.ContextVar("paste the lighter rating", default=True
 def lighter_rating_unsaid() -> Iterator[None]:
     """Inside, a rating past a limit is refused without the lighter rating to paste: the
     same option, reasons and limit code, none of the bisection. For a design atlas, which
-    records the verdict and not the rating to paste."""
+    records the verdict and not the rating to paste.
+
+    Yields:
+        None; on leaving, refusals paste the lighter rating again.
+    """
     token = _PASTE_LIGHTER.set(False)
     try:
         yield
