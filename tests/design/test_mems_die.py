@@ -276,6 +276,28 @@ def test_a_rating_past_a_limit_is_refused_with_one_below_every_limit(monkeypatch
     assert max(plan.cavity_depths_um) * 1.05 <= md.CAVITY_DEPTH_MAX_UM
 
 
+def test_without_the_lighter_rating_a_refusal_is_the_same_verdict_without_the_paste(
+        monkeypatch):
+    """Inside ``lighter_rating_unsaid`` (a design atlas records the verdict only), a rating
+    past a limit is refused naming the same option, reasons and limit code, with no rating
+    to paste and none of the bisection that finds it."""
+    monkeypatch.setattr(md, "CAVITY_DEPTH_MAX_UM", 8.0)
+    asked = Targets(10.0, (0.5, 5.0), RATING_N)
+    with pytest.raises(DesignError) as pasted:
+        md.die_plan(asked, jaw_room("5"))
+    bisections = []
+    monkeypatch.setattr(md, "_lighter_rating", lambda *a: bisections.append(a))
+    with md.lighter_rating_unsaid(), pytest.raises(DesignError) as bare:
+        md.die_plan(asked, jaw_room("5"))
+    full, short = pasted.value, bare.value
+    assert (short.field, short.value, short.why, short.limit) == (
+        full.field, full.value, full.why, full.limit)
+    assert full.alternatives and not short.alternatives and not bisections
+    with pytest.raises(DesignError) as again:  # outside, the paste is back
+        md.die_plan(asked, jaw_room("5"))
+    assert bisections and again.value.field == "--full-scale-force"
+
+
 def test_the_posts_stand_proud_of_the_face_when_their_beams_rest_on_their_stops():
     """A soft range's measuring post goes a long way to its stop: the post is made taller
     than that travel and its clearance, so that the face never meets the tissue first (at a

@@ -93,3 +93,74 @@ def test_the_rectangle_integral_takes_scalars_and_broadcasts_any_shapes_as_one_b
         for j, right in enumerate(x2[0]):
             alone = integral(float(x), 0.2, -0.5, float(right), -0.3, 0.8)
             assert np.ndim(alone) == 0 and float(alone) == grid[i, j]
+
+
+def _two_rows(columns: int, x0_mm: float = 0.75, z0_mm: float = 0.7, face_mm: float = 0.1,
+              row_mm: float = 0.25) -> list:
+    """A die-like layout: two rows of square tips at a 1 mm pitch."""
+    return [Punch(x0_mm + c, z0_mm + r * row_mm, face_mm, face_mm)
+            for r in range(2) for c in range(columns)]
+
+
+def test_the_representatives_rows_solve_as_the_whole_matrix_does():
+    """The symmetric solve reads only the representatives' rows: built for the punches
+    holding them, they are the whole matrix's rows and give its solution."""
+    from tactcad.mechanics.contact import (influence_matrix, mesh_punches, mirror_maps,
+                                           representatives, solve_by_symmetry, target_cells)
+
+    punches = _two_rows(5)
+    mesh = mesh_punches(punches, 1.0, 8)
+    sample = Sample(1.0, 0.5)
+    maps = mirror_maps(mesh)
+    targets = np.unique(mesh.punch[representatives(maps, len(mesh.punch))])
+    assert 0 < len(targets) < len(punches)  # the odd column's tip holds some, not all
+    rows = target_cells(mesh, targets)
+    full = influence_matrix(mesh, sample)
+    part = influence_matrix(mesh, sample, targets)
+    assert part.shape == (len(rows), len(mesh.punch))
+    assert np.array_equal(part, full[rows])
+    rhs = np.zeros((len(mesh.punch), len(punches)))
+    rhs[np.arange(len(mesh.punch)), mesh.punch] = 1.0
+    want = np.linalg.solve(full, rhs)
+    got = solve_by_symmetry(part, rhs, maps, rows)
+    assert np.allclose(got, want, rtol=0, atol=1e-10 * abs(want).max())
+
+
+def test_a_kept_block_is_the_block_computed_afresh_wherever_the_array_lies():
+    """Blocks kept across meshes: the same layout moved across the plane (its cells'
+    relative coordinates differ in their last bits) has the same influence matrix to the
+    bit, whether its blocks were kept or computed afresh, and the matrix is Love's
+    integral cell by cell."""
+    from tactcad.mechanics import contact
+    from tactcad.mechanics.contact import (influence_matrix, mesh_punches,
+                                           rectangle_inverse_distance_integral)
+
+    sample = Sample(1.0, 0.5)
+    # binary fractions: the faces' offsets are exact, wherever the layout lies
+    here = mesh_punches(_two_rows(3, x0_mm=0.5, z0_mm=0.5), 1.0, 8)
+    there = mesh_punches(_two_rows(3, x0_mm=6.25, z0_mm=-3.75), 1.0, 8)
+    assert not np.array_equal(here.centres - here.centres[0], there.centres - there.centres[0])
+    contact._BLOCKS.clear()
+    fresh = influence_matrix(here, sample)
+    computed = contact._BLOCKS.misses
+    kept = influence_matrix(there, sample)
+    assert contact._BLOCKS.hits > 0 and contact._BLOCKS.misses == computed  # none recomputed
+    assert np.array_equal(fresh, kept)
+    contact._BLOCKS.clear()
+    assert np.array_equal(influence_matrix(there, sample), kept)
+    c, h = here.centres, here.half
+    love = rectangle_inverse_distance_integral(c[:, None, 0], c[:, None, 1],
+                                               (c[:, 0] - h[:, 0])[None], (c[:, 0] + h[:, 0])[None],
+                                               (c[:, 1] - h[:, 1])[None], (c[:, 1] + h[:, 1])[None])
+    assert np.allclose(fresh, 0.75 / np.pi * love, rtol=1e-9, atol=1e-12 * abs(love).max())
+
+
+def test_the_block_cache_keeps_within_its_budget():
+    from tactcad.mechanics.contact import _BlockCache
+
+    cache = _BlockCache(3 * 800)
+    for k in range(5):
+        cache.put(k, np.full(100, float(k)))  # 800 bytes each
+    assert cache.bytes <= 3 * 800 and cache.get(0) is None and cache.get(4)[0] == 4.0
+    with pytest.raises(ValueError):
+        cache.get(4)[0] = 1.0  # kept blocks are read-only

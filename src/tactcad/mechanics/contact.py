@@ -48,6 +48,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 
@@ -330,6 +331,29 @@ def layer_correction(rho, base: str, poisson_ratio: float) -> np.ndarray:
 # ---------------------------------------------------------------------------
 # Boundary-element model
 # ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class FaceGrid:
+    """One punch face and the graded cells :func:`mesh_punches` splits it into.
+
+    Attributes:
+        x_mm, z_mm: the face's centre (mm).
+        width_x_mm, depth_z_mm: its edges (mm).
+        cells_x, cells_z: cells along each edge (:func:`graded_edges`).
+    """
+
+    x_mm: float
+    z_mm: float
+    width_x_mm: float
+    depth_z_mm: float
+    cells_x: int
+    cells_z: int
+
+    @property
+    def shape(self) -> tuple[float, float, int, int]:
+        """What its cells relative to its centre depend on: edges (mm) and counts."""
+        return (self.width_x_mm, self.depth_z_mm, self.cells_x, self.cells_z)
+
+
 @dataclass(frozen=True, eq=False)
 class CellMesh:
     """Piecewise-constant pressure cells of a set of punches.
@@ -338,11 +362,14 @@ class CellMesh:
         centres: cell centres (x, z), shape (n, 2) (mm).
         half: half edge lengths (hx, hz) of each cell, shape (n, 2) (mm).
         punch: index of the punch each cell belongs to, shape (n,).
+        faces: each punch's face and graded grid (:class:`FaceGrid`), as
+            :func:`mesh_punches` lays them out; None for cells laid out otherwise.
     """
 
     centres: np.ndarray
     half: np.ndarray
     punch: np.ndarray
+    faces: tuple[FaceGrid, ...] | None = None
 
     @property
     def area_mm2(self) -> np.ndarray:
@@ -383,18 +410,43 @@ def mesh_punches(punches, cell_mm: float = DEFAULT_CELL_MM,
     _check_punches(punches)
     if not (np.isfinite(cell_mm) and cell_mm > 0):
         raise ContactError("cell_mm", cell_mm, "> 0 mm")
-    centres, half, owner = [], [], []
+    centres, half, owner, faces = [], [], [], []
     for k, p in enumerate(punches):
-        ex = p.x_mm - p.width_x_mm / 2 + p.width_x_mm * graded_edges(
-            cells_per_edge(p.width_x_mm, cell_mm, min_cells))
-        ez = p.z_mm - p.depth_z_mm / 2 + p.depth_z_mm * graded_edges(
-            cells_per_edge(p.depth_z_mm, cell_mm, min_cells))
+        nx = cells_per_edge(p.width_x_mm, cell_mm, min_cells)
+        nz = cells_per_edge(p.depth_z_mm, cell_mm, min_cells)
+        faces.append(FaceGrid(float(p.x_mm), float(p.z_mm), float(p.width_x_mm),
+                              float(p.depth_z_mm), nx, nz))
+        ex = p.x_mm - p.width_x_mm / 2 + p.width_x_mm * graded_edges(nx)
+        ez = p.z_mm - p.depth_z_mm / 2 + p.depth_z_mm * graded_edges(nz)
         gx, gz = np.meshgrid((ex[1:] + ex[:-1]) / 2, (ez[1:] + ez[:-1]) / 2, indexing="ij")
         hx, hz = np.meshgrid(np.diff(ex) / 2, np.diff(ez) / 2, indexing="ij")
         centres.append(np.column_stack([gx.ravel(), gz.ravel()]))
         half.append(np.column_stack([hx.ravel(), hz.ravel()]))
         owner.append(np.full(gx.size, k))
-    return CellMesh(np.vstack(centres), np.vstack(half), np.concatenate(owner))
+    return CellMesh(np.vstack(centres), np.vstack(half), np.concatenate(owner), tuple(faces))
+
+
+@functools.lru_cache(maxsize=256)
+def face_cells(width_x_mm: float, depth_z_mm: float, cells_x: int,
+               cells_z: int) -> tuple[np.ndarray, np.ndarray]:
+    """A face's graded cells relative to its centre, as :func:`mesh_punches` lays them out
+    (x major). A function of the face alone: every face of an array shares one set of bits.
+
+    Args:
+        width_x_mm, depth_z_mm: the face's edges (mm). cells_x, cells_z: cells along each.
+
+    Returns:
+        (centres, half edges), each shape (cells, 2) (mm), read-only.
+    """
+    ex = -width_x_mm / 2 + width_x_mm * graded_edges(cells_x)
+    ez = -depth_z_mm / 2 + depth_z_mm * graded_edges(cells_z)
+    gx, gz = np.meshgrid((ex[1:] + ex[:-1]) / 2, (ez[1:] + ez[:-1]) / 2, indexing="ij")
+    hx, hz = np.meshgrid(np.diff(ex) / 2, np.diff(ez) / 2, indexing="ij")
+    centres = np.column_stack([gx.ravel(), gz.ravel()])
+    half = np.column_stack([hx.ravel(), hz.ravel()])
+    centres.setflags(write=False)
+    half.setflags(write=False)
+    return centres, half
 
 
 def _layer_depth_term(centres: np.ndarray, src_centres: np.ndarray, src_half: np.ndarray,
@@ -531,6 +583,9 @@ def _influence_block(centres: np.ndarray, src_centres: np.ndarray, src_half: np.
 
 #: Cell coordinates are compared to this (mm) when two punch pairs share one block.
 _BLOCK_KEY_MM = 1e-9
+#: Bytes of influence blocks kept across meshes (:func:`kept_block`): the self and
+#: same-row blocks of an array recur from one design to the next.
+BLOCK_CACHE_BYTES = 256 * 2 ** 20
 
 
 def _block_key(local: np.ndarray, half_a: np.ndarray, src: np.ndarray,
@@ -539,37 +594,149 @@ def _block_key(local: np.ndarray, half_a: np.ndarray, src: np.ndarray,
                  for arr in (local, half_a, src, half_b))
 
 
-def influence_matrix(mesh: CellMesh, sample: Sample) -> np.ndarray:
+class _BlockCache:
+    """Influence blocks keyed by their exact inputs, least recently used dropped first past
+    :data:`BLOCK_CACHE_BYTES` (locked: a threaded Dask worker shares it)."""
+
+    def __init__(self, budget_bytes: int):
+        import threading
+        from collections import OrderedDict
+
+        self.budget = budget_bytes
+        self.kept: OrderedDict = OrderedDict()
+        self.bytes = 0
+        self.hits = self.misses = 0
+        self.lock = threading.Lock()
+
+    def get(self, key):
+        with self.lock:
+            block = self.kept.get(key)
+            if block is not None:
+                self.kept.move_to_end(key)
+                self.hits += 1
+            return block
+
+    def put(self, key, block: np.ndarray) -> None:
+        block.setflags(write=False)
+        with self.lock:
+            self.misses += 1
+            if key not in self.kept:
+                self.bytes += block.nbytes
+            self.kept[key] = block
+            while self.bytes > self.budget and len(self.kept) > 1:
+                _, dropped = self.kept.popitem(last=False)
+                self.bytes -= dropped.nbytes
+
+    def clear(self) -> None:
+        with self.lock:
+            self.kept.clear()
+            self.bytes = self.hits = self.misses = 0
+
+
+_BLOCKS = _BlockCache(BLOCK_CACHE_BYTES)
+
+
+def face_block(target: FaceGrid, source: FaceGrid, sample: Sample, n_gauss: int) -> np.ndarray:
+    """Displacement at the cells of face ``target`` per unit pressure on those of ``source``
+    (mm/MPa), read-only; computed in ``target``'s frame from the faces' shapes and their
+    offset alone, and kept across calls: the next design's array has the same faces at the
+    same pitch, and a block is the same bits wherever its pair lies.
+
+    Args:
+        target, source: the faces and their grids (:class:`FaceGrid`).
+        sample: the sample (its E, nu, layer). n_gauss: the layer's quadrature order.
+
+    Returns:
+        The block, shape (target's cells, source's cells).
+    """
+    offset = (source.x_mm - target.x_mm, source.z_mm - target.z_mm)
+    key = (sample, n_gauss, target.shape, source.shape, offset)
+    block = _BLOCKS.get(key)
+    if block is None:
+        local, _ = face_cells(*target.shape)
+        cells, half = face_cells(*source.shape)
+        block = _influence_block(local, cells + np.array(offset), half, sample, n_gauss)
+        _BLOCKS.put(key, block)
+    return block
+
+
+def influence_matrix(mesh: CellMesh, sample: Sample,
+                     targets: Sequence[int] | None = None) -> np.ndarray:
     """Displacement at each cell centre per unit pressure on each cell, shape (n, n) (mm/MPa).
 
     Half-space: Love's rectangle formula. Layer: that less the layer's correction
     (:func:`layer_correction`) on a bonded or frictionless base, or less the depth-h
     half-space displacement (Steinbrenner's approximation). Assembled punch by punch:
-    two punch pairs whose cells lie alike relative to each other (equal faces at equal
-    offsets, as on an array's grid) share one computed block.
+    on :func:`mesh_punches`' grids a block is a function of the two faces and their offset
+    (:func:`face_block`, kept across calls); on other cells, two punch pairs whose cells
+    lie alike relative to each other share one computed block.
+
+    Args:
+        mesh: the cells. sample: the sample.
+        targets: the punches whose cells' rows are built, in ascending order (default every
+            punch): the rows of the cells :func:`target_cells` lists, in that order.
+
+    Returns:
+        The matrix, shape (rows, n) (mm/MPa).
+
+    Raises:
+        ContactError: a bad sample.
     """
     check_sample(sample)
     n_gauss = 0
     if sample.thickness_mm is not None:
         cell = float(2 * mesh.half.max())
         n_gauss = int(min(12, max(3, np.ceil(4 * cell / sample.thickness_mm))))
-    owners = [_as_slice(np.flatnonzero(mesh.punch == k)) for k in np.unique(mesh.punch)]
-    out = np.empty((len(mesh.punch), len(mesh.punch)))
+    punches = np.unique(mesh.punch)
+    owners = [_as_slice(np.flatnonzero(mesh.punch == k)) for k in punches]
+    wanted = punches if targets is None else np.asarray(targets)
+    out = np.empty((len(target_cells(mesh, wanted)), len(mesh.punch)))
     done: dict[tuple, np.ndarray] = {}
-    for ia in owners:
-        origin = mesh.centres[ia][0]
-        local = mesh.centres[ia] - origin
-        for ib in owners:
-            src = mesh.centres[ib] - origin
-            key = _block_key(local, mesh.half[ia], src, mesh.half[ib])
-            block = done.get(key)
-            if block is None:
-                block = done[key] = _influence_block(local, src, mesh.half[ib], sample, n_gauss)
-            if isinstance(ia, slice) and isinstance(ib, slice):
-                out[ia, ib] = block
+    row = 0
+    for a in wanted:
+        ia = owners[int(np.searchsorted(punches, a))]
+        rows = slice(row, row + _size(ia))
+        row += _size(ia)
+        for b, ib in zip(punches, owners):
+            if mesh.faces is not None:
+                block = face_block(mesh.faces[a], mesh.faces[b], sample, n_gauss)
             else:
-                out[np.ix_(_as_index(ia), _as_index(ib))] = block
+                block = _shared_block(mesh, ia, ib, sample, n_gauss, done)
+            if isinstance(ib, slice):
+                out[rows, ib] = block
+            else:
+                out[rows, _as_index(ib)] = block
     return out
+
+
+def _shared_block(mesh: CellMesh, ia, ib, sample: Sample, n_gauss: int,
+                  done: dict[tuple, np.ndarray]) -> np.ndarray:
+    """The block of cells ``ia`` from cells ``ib`` in ``ia``'s first cell's frame, shared
+    with an earlier pair of ``done`` whose cells lie alike (to :data:`_BLOCK_KEY_MM`)."""
+    origin = mesh.centres[ia][0]
+    local = mesh.centres[ia] - origin
+    src = mesh.centres[ib] - origin
+    key = _block_key(local, mesh.half[ia], src, mesh.half[ib])
+    block = done.get(key)
+    if block is None:
+        block = done[key] = _influence_block(local, src, mesh.half[ib], sample, n_gauss)
+    return block
+
+
+def _size(index) -> int:
+    return index.stop - index.start if isinstance(index, slice) else len(index)
+
+
+def target_cells(mesh: CellMesh, targets: Sequence[int]) -> np.ndarray:
+    """The cells of some punches: the rows :func:`influence_matrix` builds for them.
+
+    Args:
+        mesh: the cells. targets: punch indices, ascending.
+
+    Returns:
+        Cell indices, punch by punch.
+    """
+    return np.concatenate([np.flatnonzero(mesh.punch == k) for k in targets])
 
 
 def _as_slice(index: np.ndarray):
@@ -621,10 +788,15 @@ def solve_punches(punches, sample: Sample, cell_mm: float = DEFAULT_CELL_MM,
         ContactError: bad punch, sample or cell size.
     """
     mesh = mesh_punches(punches, cell_mm, min_cells)
-    a = influence_matrix(mesh, sample)
+    maps = mirror_maps(mesh)
+    # the symmetric solve reads only the rows of the cells that represent their mirror
+    # orbits: the rows of the punches holding them are all that is built
+    targets = np.unique(mesh.punch[representatives(maps, len(mesh.punch))])
+    rows = target_cells(mesh, targets)
+    a = influence_matrix(mesh, sample, targets)
     incidence = np.zeros((len(mesh.punch), len(punches)))
     incidence[np.arange(len(mesh.punch)), mesh.punch] = 1.0
-    pressure = solve_by_symmetry(a, incidence, mirror_maps(mesh))
+    pressure = solve_by_symmetry(a, incidence, maps, rows)
     stiffness = incidence.T @ (mesh.area_mm2[:, None] * pressure)
     stiffness = 0.5 * (stiffness + stiffness.T)  # symmetric by reciprocity; remove round-off
     return PunchSolution(stiffness, np.linalg.inv(stiffness), pressure, mesh)
@@ -655,7 +827,59 @@ def mirror_maps(mesh: CellMesh, tol_mm: float = 1e-9) -> list[np.ndarray]:
     return maps
 
 
-def solve_by_symmetry(a: np.ndarray, rhs: np.ndarray, maps: list[np.ndarray]) -> np.ndarray:
+def mirror_group(maps: list[np.ndarray], n: int) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """The group the commuting mirrors ``maps`` generate on ``n`` cells, and its characters.
+
+    Args:
+        maps: the mirrors (:func:`mirror_maps`), involutions that commute. n: the cells.
+
+    Returns:
+        (the elements as index arrays, identity first; the characters, each a sign per
+        element in that order).
+    """
+    group = [np.arange(n)]
+    for m in maps:  # the mirrors commute: 2 or 4 elements
+        group += [m[g] for g in group]
+    signs = [np.array([1.0])]
+    for _ in maps:
+        signs = [np.concatenate([s, t * s]) for s in signs for t in (1.0, -1.0)]
+    return group, signs
+
+
+def representatives(maps: list[np.ndarray], n: int) -> np.ndarray:
+    """The cells that represent their orbits under the mirrors: the least index of each.
+
+    Args:
+        maps: the mirrors (:func:`mirror_maps`). n: the cells.
+
+    Returns:
+        Their indices, ascending; every cell without ``maps``.
+    """
+    group, _ = mirror_group(maps, n)
+    return np.flatnonzero(np.stack(group).min(axis=0) == np.arange(n))
+
+
+def signed_sum(signs: np.ndarray, arrays: list[np.ndarray]) -> np.ndarray:
+    """sum(s * a) over signs of +-1 and equal-shaped arrays, in their order, added or
+    subtracted in place: the same bits as the products' sum, a quarter of the memory passes.
+
+    Args:
+        signs: +1 or -1 per array. arrays: equal shapes.
+
+    Returns:
+        The sum, a new array.
+    """
+    out = arrays[0] * signs[0]
+    for sign, array in zip(signs[1:], arrays[1:]):
+        if sign > 0:
+            out += array
+        else:
+            out -= array
+    return out
+
+
+def solve_by_symmetry(a: np.ndarray, rhs: np.ndarray, maps: list[np.ndarray],
+                      rows: np.ndarray | None = None) -> np.ndarray:
     """``solve(a, rhs)`` for a matrix that commutes with the cell permutations ``maps``
     (mirror images: commuting involutions), one smaller system per character of their group.
 
@@ -666,28 +890,33 @@ def solve_by_symmetry(a: np.ndarray, rhs: np.ndarray, maps: list[np.ndarray]) ->
     Without ``maps`` it is ``numpy.linalg.solve``.
 
     Args:
-        a: (n, n) with ``a[g i, g j] == a[i, j]`` for every map g.
+        a: (n, n) with ``a[g i, g j] == a[i, j]`` for every map g; or, with ``rows``, the
+            rows of ``a`` at those cells (they must hold :func:`representatives`).
         rhs: (n, k).
         maps: index arrays of length n (see :func:`mirror_maps`).
+        rows: the cell of each row of ``a`` (default: row i is cell i).
 
     Returns:
         (n, k) solution.
     """
     if not maps:
         return np.linalg.solve(a, rhs)
-    n = len(a)
-    group = [np.arange(n)]
-    for m in maps:  # the group the mirrors generate (they commute): 2 or 4 elements
-        group += [m[g] for g in group]
-    signs = [np.array([1.0])]
-    for _ in maps:
-        signs = [np.concatenate([s, t * s]) for s in signs for t in (1.0, -1.0)]
+    n = len(rhs)
+    group, signs = mirror_group(maps, n)
     orbits = np.stack(group)  # (|G|, n): g(i)
     reps = np.flatnonzero(orbits.min(axis=0) == np.arange(n))
+    at = reps
+    if rows is not None:  # the row of a holding each representative
+        row_of = np.full(n, -1)
+        row_of[np.asarray(rows)] = np.arange(len(rows))
+        at = row_of[reps]
     fixed = orbits[:, reps] == reps[None, :]  # (|G|, reps): g fixes the representative
     out = np.zeros((n, rhs.shape[1]))
     # a's rows of the representatives at each image of them, gathered once for all characters
-    blocks = [a[np.ix_(reps, g[reps])] for g in group]
+    # (a row take, then column takes: twice as fast as one np.ix_ gather)
+    every_row = len(at) == len(a) and np.array_equal(at, np.arange(len(a)))
+    rep_rows = a if every_row else a.take(at, axis=0)
+    blocks = [rep_rows.take(g[reps], axis=1) for g in group]
     for chi in signs:
         keep = np.all(~fixed | (chi[:, None] > 0), axis=0)
         valid = reps[keep]
@@ -695,7 +924,9 @@ def solve_by_symmetry(a: np.ndarray, rhs: np.ndarray, maps: list[np.ndarray]) ->
             continue
         stab = np.sum(orbits[:, valid] == valid[None, :], axis=0)
         part = (lambda b: b) if keep.all() else (lambda b: b[np.ix_(keep, keep)])
-        a_chi = sum(c * part(b) for c, b in zip(chi, blocks)) / stab[None, :]
+        a_chi = signed_sum(chi, [part(b) for b in blocks])
+        if np.any(stab != 1):
+            a_chi /= stab[None, :]
         b_chi = sum(c * rhs[g[valid]] for c, g in zip(chi, group)) / len(group)
         x = np.linalg.solve(a_chi, b_chi)
         for c, g in zip(chi, group):  # the solution at each image, summed over characters

@@ -21,6 +21,7 @@ grasping face at z = thickness. Units: mm, degrees.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from pathlib import PurePath
@@ -853,6 +854,13 @@ def part_from_table(key: str, section: type[Section], derive, table: Mapping[str
     return out
 
 
+@functools.lru_cache(maxsize=64)
+def _file_model(key: str, section: type[Section]) -> type[Section]:
+    """A file model holding ``[key]`` of ``section`` (built once: pydantic's model
+    construction costs milliseconds, and a design atlas asks it for every point)."""
+    return create_model(f"{section.__name__}File", __base__=Section, **{key: (section, section())})
+
+
 def validated_table(key: str, section: type[Section], table: Mapping[str, Any] | None,
                     file: str = "") -> Any:
     """The table ``[key]`` validated as a design or rigs file validates it (defaults where
@@ -862,8 +870,7 @@ def validated_table(key: str, section: type[Section], table: Mapping[str, Any] |
         DesignErrors: every refusal, each naming the field, value and allowed range.
     """
     p = Problems(file)
-    model = create_model(f"{section.__name__}File", __base__=Section, **{key: (section, section())})
-    t = validate(model, {key: dict(table or {})}, p)
+    t = validate(_file_model(key, section), {key: dict(table or {})}, p)
     p.raise_if_any()
     return getattr(t, key)
 

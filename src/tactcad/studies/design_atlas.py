@@ -410,8 +410,10 @@ def evaluate_batch(atlas: JawAtlas, points: Sequence[Mapping[str, Any]]) -> list
         The records of :func:`evaluate_point`, point by point, products in their order.
     """
     from tactcad.mechanics.correction import range_warnings_unsaid
+    from tactcad.products.silicon_die.design.mems_die import lighter_rating_unsaid
 
-    with range_warnings_unsaid(), warnings.catch_warnings():
+    # a refused rating's pasteable lighter one does not change the verdict a record keeps
+    with range_warnings_unsaid(), lighter_rating_unsaid(), warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the candidates' warnings are not the design's
         return [evaluate_point(atlas, product, material, p)
                 for p in points for product, material in atlas.products]

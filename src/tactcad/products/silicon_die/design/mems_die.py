@@ -45,12 +45,14 @@ Units: um for the layout, mm and N/mm for the mechanics' interfaces as named.
 from __future__ import annotations
 
 import bisect
+import contextlib
+import contextvars
 import functools
 import math
 import numbers
 import warnings
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import Iterator, NamedTuple
 
 import numpy as np
 
@@ -1215,6 +1217,27 @@ def _round_down_3(value: float) -> float:
     return float(f"{math.floor(value / 10 ** exponent) * 10 ** exponent:.3g}")
 
 
+#: Whether a refused rating's refusal pastes the lighter rating that designs (a bisection
+#: costing tens of plans); off inside :func:`lighter_rating_unsaid`.
+_PASTE_LIGHTER = contextvars.ContextVar("paste the lighter rating", default=True)
+
+
+@contextlib.contextmanager
+def lighter_rating_unsaid() -> Iterator[None]:
+    """Inside, a rating past a limit is refused without the lighter rating to paste: the
+    same option, reasons and limit code, none of the bisection. For a design atlas, which
+    records the verdict and not the rating to paste.
+
+    Yields:
+        None; on leaving, refusals paste the lighter rating again.
+    """
+    token = _PASTE_LIGHTER.set(False)
+    try:
+        yield
+    finally:
+        _PASTE_LIGHTER.reset(token)
+
+
 def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_range) -> None:
     """Refuse a rating past any of :func:`_rating_limits`: the refusal names every limit
     passed and pastes the rating below all of them (:func:`_lighter_rating`), or says that
@@ -1231,6 +1254,8 @@ def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_
     code = next(c for (limit, _), c in zip(limits, _rating_limit_codes(rating))
                 if force_N >= limit)
     why = "past " + "; past ".join(why for _, why in passed)
+    if not _PASTE_LIGHTER.get():
+        raise DesignError("--full-scale-force", force_N, "a lighter rating", why, limit=code)
     below = _lighter_rating(pair, k_r, k_m, rating, kobj_range)
     if below is None:
         raise DesignError("--full-scale-force", force_N, "no rating of these beams",

@@ -20,6 +20,8 @@ Units: cm^-2 (dose), cm^-3 (concentration), 1/K.
 
 from __future__ import annotations
 
+import functools
+
 from tactcad.errors import DesignError
 
 from tactcad.products.silicon_die.design.mems_die import JUNCTION_DEPTH_UM
@@ -46,8 +48,9 @@ def drift_per_sensitivity_per_K(dose_per_cm2: float,
     return resistor_tcr_per_K(n, temperature_K) / piezoresistance_factor(n, temperature_K)
 
 
-def chosen_implant_dose(doses=STOCK_DOSES_PER_CM2) -> tuple[float, str]:
-    """(dose cm^-2, why): of ``doses``, the one with the least
+@functools.lru_cache(maxsize=8)  # every die plan asks it; the stock does not change
+def chosen_implant_dose(doses: tuple[float, ...] = STOCK_DOSES_PER_CM2) -> tuple[float, str]:
+    """(dose cm^-2, why): of ``doses`` (a tuple), the one with the least
     :func:`drift_per_sensitivity_per_K`, with the runner-up and the worst in the reason.
 
     Raises:
