@@ -378,7 +378,7 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
     """
     from tactcad.mechanics.hard_stops import stop_verdicts
     from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits, uncleared_gauge_limits
-    from tactcad.studies.verification import rated_full_scale_force, verification_matrix
+    from tactcad.studies.verification import verification_matrix
     from tactcad.vocabulary.binding_limits import (HEIGHT, MECHANICS_LIMITS, STOP,
                                                    requirement_limit)
 
@@ -410,14 +410,30 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
     codes += [MECHANICS_LIMITS.get(lim.limit, "other") for lim in gauges]
     margin = next((r["margin_rel"] for r in records if r["requirement"] == "full_scale_force_N"),
                   0.0)
+    bound = force_bound(records, limits)
+    return (plan, tuple(fails), tuple(codes), float(margin if margin is not None else 0.0),
+            rated_force_N(d, bound), bound)
+
+
+def rated_force_N(d: dict, bound: ForceBound) -> float | None:
+    """The full-scale force (N) a candidate's tables ``d`` are rated for when they state
+    none (:func:`tactcad.studies.verification.rated_full_scale_force`: the binding limit's
+    force rounded down); None when the tables without the force are refused.
+
+    The binding limit is the full-scale-force record's (``bound``): the rating derives it
+    again from the same plan less its stated force, so it is read from there rather than
+    worked out a second time with every other derived requirement.
+    """
+    from tactcad.studies.verification import rated_full_scale_force, round_down
+
+    if bound.binding_force_N is not None and math.isfinite(bound.binding_force_N):
+        return float(round_down(bound.binding_force_N))
     probe = copy.deepcopy(d)
     probe["requirements"].pop("full_scale_force_N")
     try:
-        rated = rated_full_scale_force(plan_from_dict(probe))
+        return rated_full_scale_force(plan_from_dict(probe))
     except DesignErrors:
-        rated = None
-    return (plan, tuple(fails), tuple(codes), float(margin if margin is not None else 0.0),
-            rated, force_bound(records, limits))
+        return None
 
 
 def force_bound(records: list[dict], limits: list) -> ForceBound:
