@@ -64,7 +64,8 @@ KM_SCALES = (1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0)
 #: chosen; a stiffer one trades K_obj resolution for force).
 FORCE_MARGIN_REL = 0.2
 #: Bisections of a refusal's force bracket (a 1.25 x bracket to within 2.8 %: a force 5 %
-#: above the answer is refused, one below it designs); each costs a search of every sheet.
+#: above the answer is refused, one below it designs); each judges again only the sheets
+#: and K_m scales whose :class:`ForceBound` does not already fail the force.
 FRONTIER_STEPS = 3
 
 
