@@ -220,8 +220,9 @@ def test_a_force_bound_fails_a_force_by_the_full_scale_record_or_a_gauge_limit()
     # a gauge limit of 0.15 N known to 5 % is not cleared above 0.15 / 1.05 = 0.1429 N
     gauged = dataclasses.replace(bound, gauge_limits=((0.15, 0.05),))
     assert not gauged.fails_at(0.142) and gauged.fails_at(0.143)
-    # without an error estimate the record's nominal verdict decides
+    # without an error estimate the record's nominal verdict decides, past the slack
     assert ForceBound(binding_force_N=0.2).fails_at(0.2001)
+    assert not ForceBound(binding_force_N=0.2).fails_at(0.2 * (1 + 1e-7))
     assert not ForceBound().fails_at(1e6)  # nothing known: the comb must be judged
     assert REFUSED_AT_ANY_FORCE.fails_at(1e-6)
 
@@ -248,7 +249,13 @@ def test_a_candidates_bound_does_not_move_with_the_force_and_foretells_its_failu
     base, room = searched_base(BASE, 6), jaw_room("10")
     at = {f: candidate(base, 0.8, 4.0, 6, room, Targets(10.0, (0.5, 5.0), f), TI,
                        array_envelope_mm, None) for f in (0.05, 0.3)}
-    assert at[0.05].force_bound == at[0.3].force_bound  # only the stops read the force
+    # only the stops read the force (their widest gap moves the arms' underside, and the
+    # limits' error estimates by parts in 1e9: far inside the bound's slack)
+    low, high = at[0.05].force_bound, at[0.3].force_bound
+    assert low.binding_force_N == pytest.approx(high.binding_force_N, rel=1e-7)
+    assert len(low.gauge_limits) == len(high.gauge_limits)
+    for (f, e), (f2, e2) in zip(low.gauge_limits, high.gauge_limits):
+        assert f == pytest.approx(f2, rel=1e-7) and e == pytest.approx(e2, rel=1e-7)
     assert at[0.05].force_bound.fails_at(0.3) and at[0.3].failures  # and 0.3 N fails
     assert not at[0.05].force_bound.fails_at(0.05)
     refused = candidate(base, 1.5, 1.0, 6, room, Targets(10.0, (0.5, 5.0), 0.3), TI,

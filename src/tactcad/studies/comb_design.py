@@ -92,9 +92,11 @@ class CombCandidate:
 @dataclass(frozen=True)
 class ForceBound:
     """What a sheet's comb at one K_m scale fails at whatever full-scale force its stops
-    are set for: its webs, plan and limits do not depend on the force asked (only its stop
-    gaps do), so a refusal before the stops, its full-scale-force record and its gauge
-    limits' clearances judge another force without judging the comb again.
+    are set for: its webs and plan do not depend on the force asked, only its stop gaps
+    do (and through the widest, the arms' underside: the limits' error estimates move by
+    a few parts in 1e9), so a refusal before the stops, its full-scale-force record and
+    its gauge limits' clearances judge another force without judging the comb again,
+    where they fail it by more than :data:`BOUND_SLACK_REL`.
 
     Attributes:
         refused: refused before any force was read (the pitch, a web, the plan): fails at
@@ -123,16 +125,22 @@ class ForceBound:
 
         if self.refused:
             return True
-        if any(f < force_N * (1.0 + e) for f, e in self.gauge_limits):
+        slack = 1.0 + BOUND_SLACK_REL
+        if any(f * slack < force_N * (1.0 + e) for f, e in self.gauge_limits):
             return True
         if self.binding_force_N is None:
             return False
-        margin = self.binding_force_N / force_N - 1.0
+        margin = self.binding_force_N * slack / force_N - 1.0
         margin_or_none = margin if math.isfinite(margin) else None
-        return verdict(margin_or_none, self.binding_error_rel, 0.0,
-                       self.binding_force_N >= force_N) == "fail"
+        error = None if self.binding_error_rel is None else \
+            self.binding_error_rel + BOUND_SLACK_REL
+        return verdict(margin_or_none, error, 0.0,
+                       self.binding_force_N * slack >= force_N) == "fail"
 
 
+#: How far (relative) a :class:`ForceBound` must fail a force to skip judging the comb:
+#: a thousand times the drift of its figures with the stop gaps.
+BOUND_SLACK_REL = 1e-6
 #: The bound of a comb refused before any force was read.
 REFUSED_AT_ANY_FORCE = ForceBound(refused=True)
 
