@@ -33,7 +33,8 @@ import numpy as np
 from tactcad.errors import DesignError
 from tactcad.studies.inverse_design import (InverseDesign, InverseDesignError, Targets,
                                             design_from_tables, design_tables,
-                                            max_full_scale_force_N, search_webs)
+                                            max_full_scale_force_N, search_webs,
+                                            web_searches_kept)
 
 #: Sheet thicknesses tried as an alternative (mm): plate and sheet gauges
 #: commonly stocked for wire EDM of flexures (0.5 mm steps to 3 mm, then 1 mm).
@@ -137,13 +138,16 @@ def evaluations_kept():
     """Within it, each whole design a refusal's alternatives judge (:func:`_feasible`,
     :func:`_largest_force`) on the same tables and targets is judged once: a scan's
     neighbour already tried, or the largest force sought again on the same layout, is
-    read back. Nested uses share the outer one's answers."""
+    read back; the web searches of one plan are worked out once for every force asked
+    (:func:`~tactcad.studies.inverse_design.web_searches_kept`). Nested uses share the
+    outer one's answers."""
     if _KEPT.get() is not None:
         yield
         return
     token = _KEPT.set({})
     try:
-        yield
+        with web_searches_kept():
+            yield
     finally:
         _KEPT.reset(token)
 
