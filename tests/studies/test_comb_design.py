@@ -208,3 +208,56 @@ def test_no_first_preferred_comb_where_none_carries_the_force_with_margin():
 
     assert first_preferred(Targets(10.0, (0.06, 0.43), 0.9), jaw_room("10"), 6, BASE,
                            grade=TI, envelope_of=array_envelope_mm) is None
+
+
+def test_a_force_bound_fails_a_force_by_the_full_scale_record_or_a_gauge_limit():
+    from tactcad.studies.comb_design import REFUSED_AT_ANY_FORCE, ForceBound
+
+    # binding 0.2 N known to 10 %: the record fails only below 0.2 / 1.1 ... above 0.2 / 0.9
+    bound = ForceBound(binding_force_N=0.2, binding_error_rel=0.1)
+    assert not bound.fails_at(0.2) and not bound.fails_at(0.22)
+    assert bound.fails_at(0.23)
+    # a gauge limit of 0.15 N known to 5 % is not cleared above 0.15 / 1.05 = 0.1429 N
+    gauged = dataclasses.replace(bound, gauge_limits=((0.15, 0.05),))
+    assert not gauged.fails_at(0.142) and gauged.fails_at(0.143)
+    # without an error estimate the record's nominal verdict decides, past the slack
+    assert ForceBound(binding_force_N=0.2).fails_at(0.2001)
+    assert not ForceBound(binding_force_N=0.2).fails_at(0.2 * (1 + 1e-7))
+    assert not ForceBound().fails_at(1e6)  # nothing known: the comb must be judged
+    assert REFUSED_AT_ANY_FORCE.fails_at(1e-6)
+
+
+def test_a_frontier_force_no_pair_can_carry_is_refused_without_judging_a_comb(monkeypatch):
+    import tactcad.studies.comb_design as comb
+    from tactcad.studies.comb_design import ForceBound, comb_counts
+
+    def judged(*args):
+        raise AssertionError("a pair its bound already fails was judged again")
+
+    monkeypatch.setattr(comb, "candidate", judged)
+    pairs = [(0.5, 1.0), (0.8, 2.0)]
+    bounds = {pairs[0]: comb.REFUSED_AT_ANY_FORCE,
+              pairs[1]: ForceBound(binding_force_N=0.1, binding_error_rel=0.05)}
+    assert not comb_counts(BASE, 0.3, 6, jaw_room("10"), Targets(10.0, (0.5, 5.0), 0.3), TI,
+                           None, pairs, bounds)
+
+
+@pytest.mark.slow  # four candidates judged at the closed form
+def test_a_candidates_bound_does_not_move_with_the_force_and_foretells_its_failure():
+    from tactcad.studies.comb_design import candidate, searched_base
+
+    base, room = searched_base(BASE, 6), jaw_room("10")
+    at = {f: candidate(base, 0.8, 4.0, 6, room, Targets(10.0, (0.5, 5.0), f), TI,
+                       array_envelope_mm, None) for f in (0.05, 0.3)}
+    # only the stops read the force (their widest gap moves the arms' underside, and the
+    # limits' error estimates by parts in 1e9: far inside the bound's slack)
+    low, high = at[0.05].force_bound, at[0.3].force_bound
+    assert low.binding_force_N == pytest.approx(high.binding_force_N, rel=1e-7)
+    assert len(low.gauge_limits) == len(high.gauge_limits)
+    for (f, e), (f2, e2) in zip(low.gauge_limits, high.gauge_limits):
+        assert f == pytest.approx(f2, rel=1e-7) and e == pytest.approx(e2, rel=1e-7)
+    assert at[0.05].force_bound.fails_at(0.3) and at[0.3].failures  # and 0.3 N fails
+    assert not at[0.05].force_bound.fails_at(0.05)
+    refused = candidate(base, 1.5, 1.0, 6, room, Targets(10.0, (0.5, 5.0), 0.3), TI,
+                        array_envelope_mm, None)
+    assert refused.plan is None and refused.force_bound.refused  # the pocket, at any force

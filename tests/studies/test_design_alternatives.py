@@ -88,3 +88,27 @@ def test_the_refusal_reaches_the_command_line_as_its_json_error(tmp_path, capsys
     assert err["exit_code"] == 2 and err["field"] == "--full-scale-force" and err["value"] == 1.5
     assert [a["option"].split()[0] for a in err["alternatives"]][0] == "--full-scale-force"
     assert not (tmp_path / "x.toml").exists()
+
+
+def test_a_refusals_alternatives_judge_each_design_once(monkeypatch):
+    import tactcad.studies.design_alternatives as alternatives
+
+    calls = []
+
+    def counted(data, targets, **kwargs):
+        calls.append(targets.full_scale_force_N)
+        if targets.full_scale_force_N > 1.0:
+            raise InverseDesignError("too much")
+
+    monkeypatch.setattr(alternatives, "design_from_tables", counted)
+    tables = {"sheet": {"thickness_mm": 1.0}, "arms": {"lengths_mm": [2.0, 3.0]}}
+    asked = [TOO_MUCH, Targets(6.0, (5.0, 50.0), 0.5), TOO_MUCH]
+    assert [alternatives._feasible(tables, t, None) for t in asked] == [False, True, False]
+    assert len(calls) == 3  # outside a refusal every call judges
+    calls.clear()
+    with alternatives.evaluations_kept():
+        same = {"arms": {"lengths_mm": [2.0, 3.0]}, "sheet": {"thickness_mm": 1.0}}
+        assert [alternatives._feasible(same, t, None) for t in asked] == [False, True, False]
+        other = {"sheet": {"thickness_mm": 1.0}, "arms": {"lengths_mm": (2.0, 3.0)}}
+        alternatives._feasible(other, TOO_MUCH, None)  # a tuple is not the list
+    assert calls == [1.5, 0.5, 1.5]

@@ -429,3 +429,30 @@ def test_a_reason_kept_from_the_base_quotes_no_value_the_new_design_does_not_vou
     for key, text in why.items():  # every kept reason quotes only its own value
         if not text.startswith(("Kept from the base design", "tactcad design", "Raised to")):
             assert quotes_not_its_own(key, text, read_toml(tmp_path / "face.toml", "d")) == [], key
+
+
+def test_a_kept_web_search_judges_each_force_as_a_fresh_one_and_works_its_arms_out_once(
+        plan, monkeypatch):
+    import dataclasses
+
+    import tactcad.studies.inverse_design as inverse
+    from tactcad.studies.inverse_design import web_searches_kept
+
+    heavier = dataclasses.replace(FEASIBLE, full_scale_force_N=3.0)
+    fresh = [search_webs(plan, t) for t in (FEASIBLE, heavier)]
+    worked = []
+    whole = inverse.web_candidates
+    monkeypatch.setattr(inverse, "web_candidates",
+                        lambda *args: worked.append(args[1]) or whole(*args))
+    with web_searches_kept():
+        kept = [search_webs(plan, t) for t in (FEASIBLE, heavier)]
+        kept[0].arm_r_mm[:] = 0.0  # a search's arrays are its own, not the kept ones
+        again = search_webs(plan, FEASIBLE)
+    assert len(worked) == 1  # the force is read after the arms, limits and errors
+    for a, b in zip(fresh, (again, kept[1])):
+        assert np.array_equal(a.margin, b.margin) and np.array_equal(a.arm_m_mm, b.arm_m_mm,
+                                                                     equal_nan=True)
+        assert [(lim.allowed.tolist(), lim.detail) for lim in a.limits] == \
+            [(lim.allowed.tolist(), lim.detail) for lim in b.limits]
+    assert np.array_equal(again.arm_r_mm, fresh[0].arm_r_mm, equal_nan=True)
+    assert not np.array_equal(fresh[0].margin, fresh[1].margin)  # ten times the force

@@ -64,7 +64,8 @@ KM_SCALES = (1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0)
 #: chosen; a stiffer one trades K_obj resolution for force).
 FORCE_MARGIN_REL = 0.2
 #: Bisections of a refusal's force bracket (a 1.25 x bracket to within 2.8 %: a force 5 %
-#: above the answer is refused, one below it designs); each costs a search of every sheet.
+#: above the answer is refused, one below it designs); each judges again only the sheets
+#: and K_m scales whose :class:`ForceBound` does not already fail the force.
 FRONTIER_STEPS = 3
 
 
@@ -83,6 +84,65 @@ class CombCandidate:
     #: the code of each failure's limit (:mod:`tactcad.vocabulary.binding_limits`), in
     #: the failures' order
     limits: tuple[str, ...] = ()
+    #: what fails this sheet and K_m scale at any full-scale force (:class:`ForceBound`);
+    #: None when nothing is known beyond the force it was judged at
+    force_bound: "ForceBound | None" = None
+
+
+@dataclass(frozen=True)
+class ForceBound:
+    """What a sheet's comb at one K_m scale fails at whatever full-scale force its stops
+    are set for: its webs and plan do not depend on the force asked, only its stop gaps
+    do (and through the widest, the arms' underside: the limits' error estimates move by
+    a few parts in 1e9), so a refusal before the stops, its full-scale-force record and
+    its gauge limits' clearances judge another force without judging the comb again,
+    where they fail it by more than :data:`BOUND_SLACK_REL`.
+
+    Attributes:
+        refused: refused before any force was read (the pitch, a web, the plan): fails at
+            every force.
+        binding_force_N: the force (N) of the binding limit (the full-scale-force record's
+            prediction, closed form); None when refused.
+        binding_error_rel: its relative error estimate (None: infinite).
+        gauge_limits: (force N, error estimate) of each gauge limit
+            (:func:`tactcad.mechanics.limits.uncleared_gauge_limits`' rule).
+    """
+
+    refused: bool = False
+    binding_force_N: float | None = None
+    binding_error_rel: float | None = None
+    gauge_limits: tuple[tuple[float, float], ...] = ()
+
+    def fails_at(self, force_N: float) -> bool:
+        """True when the comb fails at a full-scale force of ``force_N`` (N) by what this
+        bound holds (a False says only that the comb must be judged at that force).
+
+        The full-scale-force record's verdict (:func:`tactcad.mechanics.verdicts.verdict`
+        of margin F_binding / F - 1 and its error) and the gauge rule F_limit < F (1 + e),
+        as :func:`judge_limits` applies them.
+        """
+        from tactcad.mechanics.verdicts import verdict
+
+        if self.refused:
+            return True
+        slack = 1.0 + BOUND_SLACK_REL
+        if any(f * slack < force_N * (1.0 + e) for f, e in self.gauge_limits):
+            return True
+        if self.binding_force_N is None:
+            return False
+        margin = self.binding_force_N * slack / force_N - 1.0
+        margin_or_none = margin if math.isfinite(margin) else None
+        error = None if self.binding_error_rel is None else \
+            self.binding_error_rel + BOUND_SLACK_REL
+        return verdict(margin_or_none, error, 0.0,
+                       self.binding_force_N * slack >= force_N) == "fail"
+
+
+#: How far (relative) a :class:`ForceBound` must fail a force to skip judging the comb:
+#: a thousand times the drift of its figures with the stop gaps.
+BOUND_SLACK_REL = 1e-6
+#: The bound of a comb refused before any force was read.
+REFUSED_AT_ANY_FORCE = ForceBound(refused=True)
 
 
 @dataclass(frozen=True)
@@ -195,10 +255,19 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
 def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, list[str]]:
     """``d`` with every web solved for its K target and every stop gap set (see the module
     doc); the binding limits when a web or the plan is refused."""
-    from tactcad.design.comb_plan import MIN_SET_GAP_MM
-    from tactcad.mechanics.element_strength import plan_strength
-    from tactcad.mechanics.hard_stops import engagement_force_N, fatigue_limit_N, stop_gap_for
+    d, plan, binding = with_webs(d, targets, km_scale)
+    return (d, binding) if binding else (with_stops(d, plan, targets), [])
 
+
+def with_webs(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, Any, list[str]]:
+    """``d`` with every web solved for its K target (K_m = ``km_scale`` x eq. 2's centre,
+    K_r = K_r/K_m x K_m, at the closed form), its plan at the default stop gaps, and the
+    binding limits when a web is out of reach: nothing here reads the full-scale force
+    (its stops are :func:`with_stops`').
+
+    Raises:
+        DesignErrors: the plan with its webs is refused.
+    """
     plan = plan_from_dict(d)
     columns = plan.columns
     k_m = km_scale * centred_km(targets)
@@ -209,17 +278,28 @@ def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tup
         g = plan.element(number).geometry
         web = solve_web(g, plan.material, k, 0.02, min(2 * r, d["sheet"]["thickness_mm"] * 2))
         if web is None:
-            return d, [f"no web of element {number} ({g.arm_length_mm:g} mm arm) reaches "
-                       f"K = {k:.4g} N/mm at the closed form"]
+            return d, None, [f"no web of element {number} ({g.arm_length_mm:g} mm arm) reaches "
+                             f"K = {k:.4g} N/mm at the closed form"]
         thinnest = web_floor(d)
         if web < thinnest.value_mm - 1e-9:
-            return d, [f"web {web:g} mm of element {number} (K = {k:.4g} N/mm), below the "
-                       f"{thinnest.value_mm:g} mm {process_name(d)} holds in a "
-                       f"{d['sheet']['thickness_mm']:g} mm sheet ({thinnest.rule})"]
+            return d, None, [f"web {web:g} mm of element {number} (K = {k:.4g} N/mm), below "
+                             f"the {thinnest.value_mm:g} mm {process_name(d)} holds in a "
+                             f"{d['sheet']['thickness_mm']:g} mm sheet ({thinnest.rule})"]
         webs.append(web)
     d = copy.deepcopy(d)
     d["comb"]["web_thicknesses_mm"] = [webs[0]] * columns + [webs[1]] * columns
-    plan = plan_from_dict(d)
+    return d, plan_from_dict(d), []
+
+
+def with_stops(d: dict, plan: Any, targets: Targets) -> dict:
+    """``d`` (webs solved, ``plan`` its plan) with every stop gap set for the full-scale
+    force: engaging at :data:`STOP_MULTIPLE` x the rated deflection, or midway to the
+    element's lowest fatigue limit where that comes first, no smaller than the least gap
+    set by hand (mm)."""
+    from tactcad.design.comb_plan import MIN_SET_GAP_MM
+    from tactcad.mechanics.element_strength import plan_strength
+    from tactcad.mechanics.hard_stops import engagement_force_N, fatigue_limit_N, stop_gap_for
+
     gaps = []
     force = targets.full_scale_force_N
     strength = {r.element: r for r in plan_strength(plan, force, "closed-form")}
@@ -231,7 +311,7 @@ def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tup
         gap = stop_gap_for(engage_N / force, force / k, stop, g.arm_length_mm)
         gaps.append(max(math.ceil(gap / WEB_STEP_MM - 1e-9) * WEB_STEP_MM, MIN_SET_GAP_MM))
     d["comb"]["stop_gaps_mm"] = [round(x, 6) for x in gaps]
-    return d, []
+    return d
 
 
 def process_name(d: Mapping[str, Any]) -> str:
@@ -289,21 +369,37 @@ def judge_limits(d: dict, envelope_of: Callable | None, room: Any = None
     form, its gauge limits clearing the closed form's strain error (as the stacked search's
     webs do), its hard stops and, given the jaw's ``room``, its height (:func:`too_tall`).
     The codes are :mod:`tactcad.vocabulary.binding_limits`', set by the check that fails."""
+    return judge_bounded(d, envelope_of, room)[:5]
+
+
+def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
+                  ) -> tuple[Any, tuple[str, ...], tuple[str, ...], float, float | None,
+                             ForceBound | None]:
+    """:func:`judge_limits`' answer and the candidate's :class:`ForceBound` (None when the
+    plan or its matrix is refused: a refusal after the stops are set may hang on them).
+
+    Args:
+        d: the candidate's tables (webs and stops set). envelope_of, room: as
+            :func:`judge_limits`.
+
+    Returns:
+        (plan, failures, limit codes, full-scale-force margin, rated force N, bound).
+    """
     from tactcad.mechanics.hard_stops import stop_verdicts
     from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits, uncleared_gauge_limits
-    from tactcad.studies.verification import rated_full_scale_force, verification_matrix
+    from tactcad.studies.verification import verification_matrix
     from tactcad.vocabulary.binding_limits import (HEIGHT, MECHANICS_LIMITS, STOP,
                                                    requirement_limit)
 
     try:
         plan = plan_from_dict(d)
     except DesignErrors as exc:
-        return (None, *refused_fields(exc), -math.inf, None)
+        return (None, *refused_fields(exc), -math.inf, None, None)
     env = envelope_of(plan) if envelope_of is not None else None
     try:
         records = verification_matrix(plan, "closed-form", envelope_mm=env)
     except DesignErrors as exc:  # a table the plan holds refuses it (the jaw's, say)
-        return (None, *refused_fields(exc), -math.inf, None)
+        return (None, *refused_fields(exc), -math.inf, None, None)
     failed = [r for r in records if r["verdict"] == "fail"]
     fails = [failure_line(r) for r in failed]
     codes = [requirement_limit(r["requirement"]) for r in failed]
@@ -315,20 +411,51 @@ def judge_limits(d: dict, envelope_of: Callable | None, room: Any = None
     tall = too_tall(plan, room) if room is not None else ()
     fails += tall
     codes += [HEIGHT] * len(tall)
-    gauges = uncleared_gauge_limits(plan_limits(plan, "closed-form"), force)
+    limits = plan_limits(plan, "closed-form")
+    gauges = uncleared_gauge_limits(limits, force)
     fails += [f"{LIMIT_WORDS[lim.limit]} of element {lim.element}: {lim.force_N:.4g} N does not "
               f"clear {force:g} N by the closed form's {100 * lim.error_estimate_rel:.2g} % "
               "error on the grid's strain" for lim in gauges]
     codes += [MECHANICS_LIMITS.get(lim.limit, "other") for lim in gauges]
     margin = next((r["margin_rel"] for r in records if r["requirement"] == "full_scale_force_N"),
                   0.0)
+    bound = force_bound(records, limits)
+    return (plan, tuple(fails), tuple(codes), float(margin if margin is not None else 0.0),
+            rated_force_N(d, bound), bound)
+
+
+def rated_force_N(d: dict, bound: ForceBound) -> float | None:
+    """The full-scale force (N) a candidate's tables ``d`` are rated for when they state
+    none (:func:`tactcad.studies.verification.rated_full_scale_force`: the binding limit's
+    force rounded down); None when the tables without the force are refused.
+
+    The binding limit is the full-scale-force record's (``bound``): the rating derives it
+    again from the same plan less its stated force, so it is read from there rather than
+    worked out a second time with every other derived requirement.
+    """
+    from tactcad.studies.verification import rated_full_scale_force, round_down
+
+    if bound.binding_force_N is not None and math.isfinite(bound.binding_force_N):
+        return float(round_down(bound.binding_force_N))
     probe = copy.deepcopy(d)
     probe["requirements"].pop("full_scale_force_N")
     try:
-        rated = rated_full_scale_force(plan_from_dict(probe))
+        return rated_full_scale_force(plan_from_dict(probe))
     except DesignErrors:
-        rated = None
-    return plan, tuple(fails), tuple(codes), float(margin if margin is not None else 0.0), rated
+        return None
+
+
+def force_bound(records: list[dict], limits: list) -> ForceBound:
+    """A judged candidate's :class:`ForceBound`: its full-scale-force record's binding
+    force and error, and its gauge limits (``limits``: :func:`plan_limits` at the closed
+    form), none of which depend on the force its stops were set for."""
+    from tactcad.mechanics.limits import GAUGE_LIMITS
+
+    full = next((r for r in records if r["requirement"] == "full_scale_force_N"), None)
+    return ForceBound(binding_force_N=None if full is None else full["predicted"],
+                      binding_error_rel=None if full is None else full["error_estimate_rel"],
+                      gauge_limits=tuple((lim.force_N, lim.error_estimate_rel) for lim in limits
+                                         if lim.limit in GAUGE_LIMITS))
 
 
 def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
@@ -379,9 +506,10 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
         # the best-rated candidates first: the one that counts is found soonest
         order = [(c.sheet_mm, c.km_scale) for c in
                  sorted(tried, key=lambda c: -(c.rated_force_N or 0.0))]
+        bounds = bounds_of(tried)
         frontier = None if not rated or jaw[0] else largest_comb_force(
             max(rated) * 0.99, lambda force: comb_counts(base, force, columns, room, targets,
-                                                         grade, envelope_of, order))
+                                                         grade, envelope_of, order, bounds))
         refused = refusal(tried, targets, room, columns, jaw, fewer, frontier)
         refused.candidates = tuple(tried)  # what binds, read by the design atlas
         nearest = nearest_failure(tried)
@@ -545,18 +673,36 @@ def nearest_failure(tried: list[CombCandidate]) -> CombCandidate | None:
 
 def comb_counts(base: dict, force_N: float, columns: int, room: Any, targets: Targets,
                 grade: str | None, envelope_of: Callable | None,
-                order: list[tuple[float, float]] | None = None) -> bool:
+                order: list[tuple[float, float]] | None = None,
+                bounds: dict[tuple[float, float], ForceBound | None] | None = None) -> bool:
     """True when some sheet's comb at some K_m scale counts at a full-scale force of
     ``force_N`` (N); tried in ``order`` ((sheet mm, K_m scale) pairs; default every sheet
-    of :func:`sheets_of` at every scale), stopping at the first that counts."""
+    of :func:`sheets_of` at every scale), stopping at the first that counts.
+
+    ``bounds`` ((sheet, scale) -> :class:`ForceBound`, kept over one refusal's calls):
+    a pair whose bound fails at ``force_N`` is not judged again (the answer is the same,
+    its webs and limits do not depend on the force); each pair judged adds its bound."""
     from tactcad.mechanics.correction import range_warnings_unsaid
 
     at = replace(targets, full_scale_force_N=force_N)
     pairs = order or [(sheet, scale) for sheet in sheets_of(base) for scale in KM_SCALES]
+    known = {} if bounds is None else bounds
     with range_warnings_unsaid():
-        return any(c.plan is not None and not c.failures
-                   for c in (candidate(base, sheet, scale, columns, room, at, grade,
-                                       envelope_of, None) for sheet, scale in pairs))
+        for sheet, scale in pairs:
+            bound = known.get((sheet, scale))
+            if bound is not None and bound.fails_at(force_N):
+                continue
+            c = candidate(base, sheet, scale, columns, room, at, grade, envelope_of, None)
+            known[(sheet, scale)] = c.force_bound
+            if c.plan is not None and not c.failures:
+                return True
+    return False
+
+
+def bounds_of(tried: list[CombCandidate]) -> dict[tuple[float, float], ForceBound | None]:
+    """(sheet mm, K_m scale) -> :class:`ForceBound` of candidates judged (one column
+    count): what :func:`comb_counts` need not judge again."""
+    return {(c.sheet_mm, c.km_scale): c.force_bound for c in tried}
 
 
 def largest_comb_force(estimate_N: float, counts: Callable[[float], bool]) -> float:
@@ -648,20 +794,34 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
         room, why = room_of_outline(base, sheet, columns, room, targets, grade)
         if why:
             return CombCandidate(sheet, km_scale, None, None, (why,), -math.inf, None,
-                                 (FOOTPRINT,))
+                                 (FOOTPRINT,), REFUSED_AT_ANY_FORCE)
     d, binding = comb_tables(base, sheet, columns, room, targets, grade)
     codes: tuple[str, ...] = (SHEET,) * len(binding)  # the pitch leaves no arm
+    bound: ForceBound | None = REFUSED_AT_ANY_FORCE  # until the stops read the force
     if not binding:
         try:
-            d, binding = with_webs_and_stops(d, targets, km_scale)
+            d, plan, binding = with_webs(d, targets, km_scale)
             codes = (SHEET,) * len(binding)  # no web the sheet's process cuts reaches K
+            if not binding:
+                bound = None
+                d = with_stops(d, plan, targets)
         except DesignErrors as exc:
             binding, codes = refused_fields(exc)
+            if not force_free(exc):
+                bound = None
     if binding:
         return CombCandidate(sheet, km_scale, None, None, tuple(binding), -math.inf, None,
-                             tuple(codes))
-    plan, fails, limits, margin, rated = judge_limits(d, envelope_of, room)
-    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, limits)
+                             tuple(codes), bound)
+    plan, fails, limits, margin, rated, bound = judge_bounded(d, envelope_of, room)
+    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, limits, bound)
+
+
+def force_free(exc: DesignErrors) -> bool:
+    """Whether a plan's refusal (its webs solved, its stops not yet set) holds at any
+    full-scale force: some refused field is not the force (every field is validated, and
+    the force is read only as ``requirements.full_scale_force_N``)."""
+    return any(not str(e.field).startswith("requirements.full_scale_force_N")
+               for e in exc.errors)
 
 
 def too_tall(plan: Any, room: Any) -> tuple[str, ...]:
@@ -890,25 +1050,27 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
     pitch or the arms bind before any force is judged)."""
     from tactcad.mechanics.correction import range_warnings_unsaid
 
-    carrying: tuple[int, float, list] | None = None
+    carrying: tuple[int, float, list, dict] | None = None
     with range_warnings_unsaid():
         for fewer in range(columns - 1, 0, -1):
-            rated = []
+            rated, judged = [], []
             for sheet in sheets_of(base):
                 for scale in KM_SCALES:
                     c = candidate(base, sheet, scale, fewer, room, targets, grade,
                                   envelope_of, None)
                     if c.plan is not None and not c.failures:
                         return fewer, None
+                    judged.append(c)
                     rated += [(c.rated_force_N, sheet, scale)] if c.rated_force_N else []
             if rated and carrying is None:
                 best = sorted(rated, reverse=True)
-                carrying = (fewer, best[0][0], [(sheet, scale) for _, sheet, scale in best])
+                carrying = (fewer, best[0][0], [(sheet, scale) for _, sheet, scale in best],
+                            bounds_of(judged))
     if carrying is None:
         return None
-    fewer, estimate, order = carrying
+    fewer, estimate, order, bounds = carrying
     return fewer, largest_comb_force(estimate, lambda force: comb_counts(
-        base, force, fewer, room, targets, grade, envelope_of, order))
+        base, force, fewer, room, targets, grade, envelope_of, order, bounds))
 
 
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,

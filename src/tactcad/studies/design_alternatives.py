@@ -23,6 +23,8 @@ from __future__ import annotations
 import copy
 import math
 import warnings
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from typing import Any, Callable, Mapping
 
@@ -31,7 +33,8 @@ import numpy as np
 from tactcad.errors import DesignError
 from tactcad.studies.inverse_design import (InverseDesign, InverseDesignError, Targets,
                                             design_from_tables, design_tables,
-                                            max_full_scale_force_N, search_webs)
+                                            max_full_scale_force_N, search_webs,
+                                            web_searches_kept)
 
 #: Sheet thicknesses tried as an alternative (mm): plate and sheet gauges
 #: commonly stocked for wire EDM of flexures (0.5 mm steps to 3 mm, then 1 mm).
@@ -103,8 +106,8 @@ def refusal_with_alternatives(exc: InverseDesignError, data: Mapping[str, Any],
                               targets: Targets, correction=None) -> InverseDesignError:
     """``exc`` (the binding limits) with the nearest feasible targets and the
     relaxing changes appended to its text and kept in ``.alternatives``."""
-    with warnings.catch_warnings():  # the candidates are explored, not the user's design:
-        warnings.simplefilter("ignore")  # their range warnings would only mislead
+    with warnings.catch_warnings(), evaluations_kept():  # the candidates are explored, not
+        warnings.simplefilter("ignore")  # the user's design: their range warnings would mislead
         nearest = nearest_targets(data, targets, correction)
         now = max((a.largest_force_N for a in nearest if a.field == "--full-scale-force"),
                   default=0.0)
@@ -125,12 +128,67 @@ def refusal_with_alternatives(exc: InverseDesignError, data: Mapping[str, Any],
     return out
 
 
-def _feasible(data: Mapping[str, Any], targets: Targets, correction) -> bool:
+#: The whole designs judged inside :func:`evaluations_kept`: (kind, tables, targets,
+#: correction) -> answer; None outside it.
+_KEPT: ContextVar[dict | None] = ContextVar("tactcad_alternative_evaluations", default=None)
+
+
+@contextmanager
+def evaluations_kept():
+    """Within it, each whole design a refusal's alternatives judge (:func:`_feasible`,
+    :func:`_largest_force`) on the same tables and targets is judged once: a scan's
+    neighbour already tried, or the largest force sought again on the same layout, is
+    read back; the web searches of one plan are worked out once for every force asked
+    (:func:`~tactcad.studies.inverse_design.web_searches_kept`). Nested uses share the
+    outer one's answers."""
+    if _KEPT.get() is not None:
+        yield
+        return
+    token = _KEPT.set({})
     try:
-        design_from_tables(copy.deepcopy(dict(data)), targets, correction=correction)
-    except (InverseDesignError, DesignError):
-        return False
-    return True
+        with web_searches_kept():
+            yield
+    finally:
+        _KEPT.reset(token)
+
+
+def _frozen(value: Any) -> Any:
+    """``value`` (nested tables) as a hashable key: tables by sorted key, lists and
+    tuples told apart, leaves as they are (their repr when unhashable)."""
+    if isinstance(value, Mapping):
+        return ("table", tuple(sorted((str(k), _frozen(v)) for k, v in value.items())))
+    if isinstance(value, (list, tuple)):
+        return (type(value).__name__, tuple(_frozen(v) for v in value))
+    try:
+        hash(value)
+    except TypeError:
+        return ("repr", repr(value))
+    return value
+
+
+def _kept(kind: str, data: Mapping[str, Any], targets: Targets, correction,
+          judge: Callable[[], Any]) -> Any:
+    """``judge()``, or its answer already kept for the same tables, targets and correction
+    inside :func:`evaluations_kept` (the correction by identity: it is one object there)."""
+    kept = _KEPT.get()
+    if kept is None:
+        return judge()
+    key = (kind, _frozen(data), repr(targets), id(correction))
+    if key not in kept:
+        kept[key] = judge()
+    return kept[key]
+
+
+def _feasible(data: Mapping[str, Any], targets: Targets, correction) -> bool:
+    """Whether the whole inverse design meets ``targets`` on ``data``."""
+    def judge() -> bool:
+        try:
+            design_from_tables(copy.deepcopy(dict(data)), targets, correction=correction)
+        except (InverseDesignError, DesignError):
+            return False
+        return True
+
+    return _kept("feasible", data, targets, correction, judge)
 
 
 def _largest_force(data: Mapping[str, Any], targets: Targets, correction) -> float:
@@ -139,12 +197,15 @@ def _largest_force(data: Mapping[str, Any], targets: Targets, correction) -> flo
     tables break a rule)."""
     from tactcad.design.array_plan import plan_from_dict
 
-    try:
-        plan = plan_from_dict(copy.deepcopy(dict(data)), source="<alternative>")
-        search = search_webs(plan, targets, correction)
-    except DesignError:
-        return 0.0
-    return max_full_scale_force_N(search, targets.full_scale_force_N)
+    def judge() -> float:
+        try:
+            plan = plan_from_dict(copy.deepcopy(dict(data)), source="<alternative>")
+            search = search_webs(plan, targets, correction)
+        except DesignError:
+            return 0.0
+        return max_full_scale_force_N(search, targets.full_scale_force_N)
+
+    return _kept("largest force", data, targets, correction, judge)
 
 
 #: Factor by which the bracket above a feasible force grows until a force fails.

@@ -62,6 +62,8 @@ from __future__ import annotations
 import copy
 import math
 import re
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
@@ -487,24 +489,62 @@ def webs_the_process_cuts(plan: Plan, webs_mm: np.ndarray) -> np.ndarray:
     return kept
 
 
-def search_webs(plan: Plan, targets: Targets, correction=None,
-                webs_mm: Sequence[float] | None = None,
-                arm_max_mm: float | None = None) -> WebSearch:
-    """Evaluate every candidate web (default: the web range in 0.005 mm
-    steps plus the design's own web) against the targets' limits; the arms
-    are searched up to ``arm_max_mm`` (default the arm range's end; a
-    footprint's shorter elements ask less).
+#: Inside :func:`web_searches_kept`: (plan's design hash, K_r, K_m, correction's id, webs,
+#: arm bound) -> (correction, :func:`web_candidates`' arrays); None outside it.
+_WEB_SEARCHES: ContextVar[dict | None] = ContextVar("tactcad_web_searches", default=None)
 
-    Raises:
-        DesignError: the plan's material has no yield strength.
+
+@contextmanager
+def web_searches_kept():
+    """Within it, :func:`search_webs` works out the candidates of one plan at one K_r and
+    K_m once (:func:`web_candidates`: the arms, limits and errors do not read the force)
+    and judges every full-scale force asked of them on those: a refusal's alternatives
+    seek the largest force of the same tables force after force. Range warnings are not
+    said again for a search read back (a refusal's searches say none). Nested uses share
+    the outer one's searches."""
+    if _WEB_SEARCHES.get() is not None:
+        yield
+        return
+    token = _WEB_SEARCHES.set({})
+    try:
+        yield
+    finally:
+        _WEB_SEARCHES.reset(token)
+
+
+def _kept_web_candidates(plan: Plan, targets: Targets, corr, webs_mm, arm_max_mm
+                         ) -> dict[str, Any]:
+    """:func:`web_candidates`, read back inside :func:`web_searches_kept` for the same
+    plan tables, stiffness targets, correction (the same object: it is kept with the
+    answer, so its id is not another's), webs and arm bound."""
+    kept = _WEB_SEARCHES.get()
+    if kept is None:
+        return web_candidates(plan, targets, corr, webs_mm, arm_max_mm)
+    key = (plan.design_hash, plan.source, targets.k_r, targets.k_m, id(corr),
+           None if webs_mm is None else tuple(float(v) for v in webs_mm), arm_max_mm)
+    if key not in kept:
+        kept[key] = (corr, web_candidates(plan, targets, corr, webs_mm, arm_max_mm))
+    return kept[key][1]
+
+
+def web_candidates(plan: Plan, targets: Targets, corr, webs_mm: Sequence[float] | None,
+                   arm_max_mm: float | None) -> dict[str, Any]:
+    """What :func:`search_webs` works out before it reads the full-scale force: the
+    candidate webs and notch radii (mm), the arm bounds and the arms for K_r and K_m (mm,
+    corrected closed form), K at the shortest and longest arms (N/mm), each web's yield,
+    gauge and fatigue force limits (N, the smaller of the two arms'), the closed form's
+    gauge-strain error per web and the plan's closed-form limits.
+
+    Args:
+        plan: the design. targets: its K_r and K_m are read (N/mm). corr: the correction.
+        webs_mm, arm_max_mm: as :func:`search_webs`.
+
+    Returns:
+        The arrays by name (shared when kept: read them, do not change them).
     """
+    from tactcad.mechanics.limits import plan_limits
 
-    corr = load_correction() if correction is None else correction
     g, mat = plan.element(1).geometry, plan.material
-    if mat.yield_strength_MPa is None:
-        raise DesignError("material.yield_strength_MPa", None,
-                          "a value in MPa, or a material.grade",
-                          "the full-scale force limit needs the yield strength")
     if webs_mm is None:
         lo, hi = WEB_RANGE_MM
         grid = np.round(np.arange(lo, hi + WEB_STEP_MM / 2, WEB_STEP_MM), 6)
@@ -524,14 +564,12 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     a_r = arm_for_stiffness(targets.k_r, webs, radii, g, mat, corr, arm_lo, arm_hi)
     a_m = arm_for_stiffness(targets.k_m, webs, radii, g, mat, corr, arm_lo, arm_hi)
 
-
     def k(a):
         return corrected_stiffness(webs, radii, a, mat.youngs_modulus_MPa, g, mat.poisson_ratio,
                                    corr)
 
     k_short, k_long = k(arm_lo), k(arm_hi)
-    F, b = targets.full_scale_force_N, g.sheet_thickness_mm
-    sf, gauge = plan.strength.safety_factor, plan.strength.gauge
+    b = g.sheet_thickness_mm
     # Stress and gauge limits on the arms the stiffness targets ask for, held
     # to the arm range where a target leaves it (those webs fail there anyway).
     arms = [np.where(np.isnan(a), np.where(k_short < k_t, arm_lo, arm_hi), a)
@@ -540,18 +578,47 @@ def search_webs(plan: Plan, targets: Targets, correction=None,
     limits_r, limits_m = (force_limits(webs, radii, a, b, mat, plan.strength,
                                        closed_form_grid_read_per_N(webs, radii, a, g, mat, chain))
                           for a in arms)
-    f_yield = np.minimum(limits_r["yield"], limits_m["yield"])
-    f_gauge = np.minimum(limits_r["gauge_fatigue"], limits_m["gauge_fatigue"])
-    f_gauge_max = np.minimum(limits_r["gauge_max"], limits_m["gauge_max"])
-    f_fatigue = np.fmin(limits_r["fatigue"], limits_m["fatigue"])  # NaN: no fatigue strength
     # a gauge limit holds when its margin clears the closed form's error on the grid's
     # strain (two-sided: a level of the ladder within it may read more), each web's own
     # (a thinner web may lie further outside the grid factor's fit); the stress limits'
     # plane-stress bound is one-sided, the 3D stress lower, so they hold at 1
-    from tactcad.mechanics.limits import plan_limits
+    return {"webs": webs, "radii": radii, "arm_lo": arm_lo, "arm_hi": arm_hi, "a_r": a_r,
+            "a_m": a_m, "k_short": k_short, "k_long": k_long,
+            "f_yield": np.minimum(limits_r["yield"], limits_m["yield"]),
+            "f_gauge": np.minimum(limits_r["gauge_fatigue"], limits_m["gauge_fatigue"]),
+            "f_gauge_max": np.minimum(limits_r["gauge_max"], limits_m["gauge_max"]),
+            "f_fatigue": np.fmin(limits_r["fatigue"], limits_m["fatigue"]),  # NaN: none
+            "cf_limits": plan_limits(plan, "closed-form"),
+            "web_err": web_strain_errors(g, mat, chain, webs, radii, arms)}
 
-    cf_limits = plan_limits(plan, "closed-form")
-    web_err = web_strain_errors(g, mat, chain, webs, radii, arms)
+
+def search_webs(plan: Plan, targets: Targets, correction=None,
+                webs_mm: Sequence[float] | None = None,
+                arm_max_mm: float | None = None) -> WebSearch:
+    """Evaluate every candidate web (default: the web range in 0.005 mm
+    steps plus the design's own web) against the targets' limits; the arms
+    are searched up to ``arm_max_mm`` (default the arm range's end; a
+    footprint's shorter elements ask less).
+
+    Raises:
+        DesignError: the plan's material has no yield strength.
+    """
+
+    corr = load_correction() if correction is None else correction
+    g, mat = plan.element(1).geometry, plan.material
+    if mat.yield_strength_MPa is None:
+        raise DesignError("material.yield_strength_MPa", None,
+                          "a value in MPa, or a material.grade",
+                          "the full-scale force limit needs the yield strength")
+    w = _kept_web_candidates(plan, targets, corr, webs_mm, arm_max_mm)
+    webs, radii, arm_lo, arm_hi, a_r, a_m = (np.array(w[k]) for k in (
+        "webs", "radii", "arm_lo", "arm_hi", "a_r", "a_m"))
+    k_short, k_long, web_err = w["k_short"], w["k_long"], w["web_err"]
+    f_yield, f_gauge, f_gauge_max, f_fatigue = (w[k] for k in (
+        "f_yield", "f_gauge", "f_gauge_max", "f_fatigue"))
+    cf_limits = w["cf_limits"]
+    F = targets.full_scale_force_N
+    sf, gauge = plan.strength.safety_factor, plan.strength.gauge
     clear = 1.0 + web_err
     err = float(web_err[int(np.argmax(f_gauge / clear))])
     y_margin, g_margin = f_yield / F, f_gauge / (F * clear)

@@ -54,8 +54,8 @@ from tactcad.design.domain import longest_grip_mm
 from tactcad.errors import DesignError, RequirementFailure
 from tactcad.mechanics.correction import range_warnings_unsaid
 from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, cut_process
-from tactcad.studies.design_alternatives import (nearest_on_scan, largest_feasible_force,
-                                                 nearest_targets,
+from tactcad.studies.design_alternatives import (evaluations_kept, nearest_on_scan,
+                                                 largest_feasible_force, nearest_targets,
                                                  relaxing_changes)
 from tactcad.studies.footprint_fit import design_in_footprint, fits, stated_footprint
 from tactcad.studies.inverse_design import (STIFFNESS_LIMITS, InverseDesign, InverseDesignError,
@@ -460,7 +460,7 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
     errors: list[DesignError] = []
     alternatives: list[dict] = []
     columns = int(data["array"]["columns"])
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), evaluations_kept():  # one layout's force is sought twice
         warnings.simplefilter("ignore")
         if not seen.stack_fit:
             most = most_columns(data, candidate_layouts(start, fixed))
