@@ -64,7 +64,8 @@ KERNEL_METHODS = ("wrapped", "faces", "edges", "vertices", "solids", "bounding_b
 
 #: Other libraries' objects that share a name with a kernel method, per file.
 OTHER_LIBRARIES = {"checks/dxf_readback.py": {"vertices"},  # ezdxf POLYLINE entities
-                   "mechanics/fem/fem2d.py": {"edges"}}  # scikit-fem meshes
+                   "mechanics/fem/fem2d.py": {"edges"},  # scikit-fem meshes
+                   "products/silicon_die/export/die_solid.py": {"is_valid"}}  # shapely
 
 
 def kernel_method_calls_outside_the_wall(src: Path) -> list[str]:

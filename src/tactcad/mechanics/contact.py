@@ -362,14 +362,14 @@ class CellMesh:
         centres: cell centres (x, z), shape (n, 2) (mm).
         half: half edge lengths (hx, hz) of each cell, shape (n, 2) (mm).
         punch: index of the punch each cell belongs to, shape (n,).
-        faces: each punch's face and graded grid (:class:`FaceGrid`), as
+        face_grids: each punch's face and graded grid (:class:`FaceGrid`), as
             :func:`mesh_punches` lays them out; None for cells laid out otherwise.
     """
 
     centres: np.ndarray
     half: np.ndarray
     punch: np.ndarray
-    faces: tuple[FaceGrid, ...] | None = None
+    face_grids: tuple[FaceGrid, ...] | None = None
 
     @property
     def area_mm2(self) -> np.ndarray:
@@ -698,8 +698,8 @@ def influence_matrix(mesh: CellMesh, sample: Sample,
         rows = slice(row, row + _size(ia))
         row += _size(ia)
         for b, ib in zip(punches, owners):
-            if mesh.faces is not None:
-                block = face_block(mesh.faces[a], mesh.faces[b], sample, n_gauss)
+            if mesh.face_grids is not None:
+                block = face_block(mesh.face_grids[a], mesh.face_grids[b], sample, n_gauss)
             else:
                 block = _shared_block(mesh, ia, ib, sample, n_gauss, done)
             if isinstance(ib, slice):
