@@ -27,6 +27,8 @@ pytestmark = pytest.mark.xdist_group("die_crosstalk")
 COARSE = (200.0, 400.0, 2)
 #: One handle layer at the command's edges: the attach's tests.
 ONE_LAYER = (80.0, 400.0, 1)
+#: the tests that read the die's solve (3D FE of its handle on the attach, four meshes)
+needs_the_solve = pytest.mark.slow
 
 
 def _isotropic(e_MPa: float, nu: float) -> np.ndarray:
@@ -106,6 +108,7 @@ def result(small_die):
     return dx.die_crosstalk(small_die, mesh=COARSE)
 
 
+@needs_the_solve
 def test_the_dies_crosstalk_is_each_units_own_reading_and_the_frames_share(small_die, result):
     from tactcad.products.silicon_die.mechanics.piezoresistor import die_resistor
 
@@ -124,6 +127,7 @@ def test_the_dies_crosstalk_is_each_units_own_reading_and_the_frames_share(small
     assert 0 < result.error_estimate_rel and result.dofs > 1000 and result.seconds > 0
 
 
+@needs_the_solve
 def test_a_units_reading_falls_with_the_loaded_posts_distance_along_its_row(small_die, result):
     s = np.abs(result.reading_per_N)
     columns = small_die.columns
@@ -144,6 +148,7 @@ def test_a_stiffer_attach_holds_the_frame_closer_and_the_mesh_is_stated(small_di
         dx.die_crosstalk(small_die, mesh=one_layer)
 
 
+@needs_the_solve
 def test_the_worst_crosstalk_in_newtons_is_the_ratio_times_the_loaded_posts_force(small_die,
                                                                                  result):
     resolution = {"reference": 1e-6, "measuring": 2e-6}
