@@ -561,8 +561,15 @@ def p_multigrid(mesh, nscalar: int, A_free, free: np.ndarray):
 
 
 def vertex_graph(mesh):
-    """The mesh's vertices joined when they share a cell (``scipy.sparse.csr_matrix``,
-    vertices x vertices, ones on the edges of the cells and the diagonal)."""
+    """The mesh's vertices joined when they share a cell: the node graph of its P1 functions.
+
+    Args:
+        mesh: scikit-fem mesh (any cell type; ``mesh.t`` its cells' vertices).
+
+    Returns:
+        ``scipy.sparse.csr_matrix``, vertices x vertices, nonzero where two vertices share a
+        cell (the diagonal included).
+    """
     import scipy.sparse as sp
 
     t = mesh.t

@@ -9,7 +9,10 @@ A 3D vector problem numbered node by node (the displacement's dofs ``3 s + a``) 
 METIS's nested dissection of its node graph instead (G. Karypis and V. Kumar, "A fast and
 high quality multilevel scheme for partitioning irregular graphs", SIAM J. Sci. Comput. 20,
 1998; pymetis): on the die's beam on its frame (121 000 unknowns) it leaves two thirds of
-minimum degree's fill (167 M against 249 M entries) and factorises 3.5x faster.
+minimum degree's fill (167 M against 249 M entries) and factorises 3.5x faster. A system
+whose fixed dofs were removed takes the order of its mesh's node graph restricted to the
+free dofs (:func:`node_dof_order`, ``spd_lu(..., order=...)``), as the coarse factor of the
+fem3d multigrid does.
 """
 
 from __future__ import annotations
@@ -69,6 +72,9 @@ def node_dof_order(node_order: np.ndarray, dofs_per_node: int,
     Returns:
         The kept dofs in elimination order, numbered 0 .. kept.sum() - 1 as they come in the
         node numbering.
+
+    Source: the interleaved numbering of scikit-fem's ``ElementVector``; the removal of the
+    fixed dofs as in :func:`tactcad.mechanics.fem.fem2d.free_block`.
     """
     order = (dofs_per_node * node_order[:, None] + np.arange(dofs_per_node)[None, :]).ravel()
     if kept is None:
