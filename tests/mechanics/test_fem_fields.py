@@ -140,3 +140,48 @@ def test_top_face_strain_of_a_fem3d_solve_meets_its_gauge_point(plan):
     tiny = face_rectangle_average(face, (x - 0.005, x + 0.005), (b / 2 - 0.01, b / 2 + 0.01))
     assert tiny == pytest.approx(sol.gauge_strain / sol.force_N, rel=0.02)
     assert face.sym_plane_z == b / 2
+
+
+def _quadratic_field_on_p2_tetrahedra():
+    """A scalar P2 basis on a small tetrahedral box and the three components of the quadratic
+    displacement u = (x^2 + y z, x y - z^2, 3 x z + y), which P2 holds exactly (mm)."""
+    from skfem import Basis, ElementTetP2, MeshTet
+
+    mesh = MeshTet.init_tensor(np.linspace(0, 1, 4), np.linspace(0, 0.5, 3),
+                               np.linspace(0, 0.3, 3))
+    sb = Basis(mesh, ElementTetP2())
+    x, y, z = sb.doflocs
+    return sb, [x ** 2 + y * z, x * y - z ** 2, 3 * x * z + y]
+
+
+def _exact_gradient(p: np.ndarray) -> np.ndarray:
+    x, y, z = p
+    return np.array([[2 * x, z, y], [y, x, -2 * z], [3 * z, 1.0, 3 * x]])
+
+
+def test_vertex_gradient_of_a_quadratic_field_is_exact_at_every_vertex_tried():
+    from tactcad.mechanics.fem.fem2d import vertex_gradient
+
+    sb, u = _quadratic_field_on_p2_tetrahedra()
+    for v in (0, 7, sb.mesh.nvertices // 2, sb.mesh.nvertices - 1):
+        assert vertex_gradient(sb, u, v) == pytest.approx(_exact_gradient(sb.mesh.p[:, v]),
+                                                          abs=1e-12)
+
+
+def test_basis_gradients_agree_with_scikit_fem_interpolation_on_a_subset_of_cells():
+    from skfem import CellBasis
+
+    from tactcad.mechanics.fem.fem2d import basis_gradients
+
+    sb, u = _quadratic_field_on_p2_tetrahedra()
+    cells = np.array([3, 0, 11, 5])
+    points = np.array([[0.1, 0.25, 0.6], [0.2, 0.25, 0.1], [0.3, 0.25, 0.2]])  # (dim, q)
+    ours = basis_gradients(sb, u, cells, points)
+    cb = CellBasis(sb.mesh, sb.elem, elements=cells, quadrature=(points, np.ones(3)))
+    theirs = np.array([np.array(cb.interpolate(c).grad) for c in u])
+    assert ours.shape == (3, 3, len(cells), 3)
+    assert ours == pytest.approx(theirs, abs=1e-12)
+    # and the field's exact gradient at the mapped points
+    xq = np.array(cb.global_coordinates())  # (dim, cells, q)
+    exact = np.array([[_exact_gradient(xq[:, e, q]) for q in range(3)] for e in range(4)])
+    assert ours == pytest.approx(exact.transpose(2, 3, 0, 1), abs=1e-12)

@@ -26,7 +26,10 @@ face, ``tip_width x b``).
 
 Solver: conjugate gradients preconditioned by a symmetric two-level
 p-multigrid cycle (Chebyshev–Jacobi smoothing on P2, exact coarse solve on
-the P1 functions of the same mesh), see
+the P1 functions of the same mesh, factorised once under METIS's nested
+dissection of the vertex graph: on the 19.6 mm titanium arm's finest mesh,
+21 700 coarse unknowns, 0.9 s of CPU to factorise and 20 ms per cycle
+against 2.1 s and 32 ms under minimum degree), see
 :func:`tactcad.mechanics.fem.fem2d.solve_elasticity`. Measured on two cores:
 SuperLU (symmetric mode, minimum-degree ordering) needs about 20 s and
 2.5 GiB at 7.6 x 10^4 unknowns and minutes and over 5 GiB at 1.4 x 10^5, as

@@ -48,16 +48,15 @@ def cell_vertex_gradients(field: DisplacementField, cells: np.ndarray | None = N
         ``grad[i, j, e, k] = d u_i / d x_j`` at local vertex k of cell e (of ``cells``),
         shape (dim, dim, n_cells, dim + 1), under the field's force.
     """
-    from skfem import CellBasis
+    from tactcad.mechanics.fem.fem2d import basis_gradients
 
     sb = field.basis
     mesh = sb.mesh
     dim = mesh.dim()
     ref = mesh.init_refdom().p  # (dim, dim + 1): local vertex k of every cell
-    cb = CellBasis(mesh, sb.elem, elements=cells,
-                   quadrature=(ref, np.full(dim + 1, 1.0 / (dim + 1))))
+    cells = np.arange(mesh.nelements) if cells is None else np.asarray(cells)
     u = field.displacement
-    return np.array([np.array(cb.interpolate(u[c::dim]).grad) for c in range(dim)])
+    return basis_gradients(sb, [u[c::dim] for c in range(dim)], cells, ref)
 
 
 def vertex_stress(field: DisplacementField) -> np.ndarray:
