@@ -10,9 +10,9 @@ import pytest
 from tactcad.mechanics.fem.sparse_lu import nested_dissection_order, spd_lu
 
 
-def _clamped_block_stiffness():
-    """The stiffness (N/mm) of an isotropic 4 x 1 x 1 mm block of triquadratic hexahedra,
-    its x = 0 face held, numbered 3 s + a."""
+def _block():
+    """(scalar basis, full stiffness N/mm numbered 3 s + a) of an isotropic steel-like
+    4 x 1 x 1 mm block of triquadratic hexahedra (E 200 GPa, nu 0.3), nothing held."""
     from skfem import Basis, ElementHex2, MeshHex
 
     from tactcad.products.silicon_die.mechanics.die_fem3d import assemble_anisotropic
@@ -24,10 +24,17 @@ def _clamped_block_stiffness():
     eye = np.eye(3)
     c = (lam * np.einsum("ij,kl->ijkl", eye, eye)
          + mu * (np.einsum("ik,jl->ijkl", eye, eye) + np.einsum("il,jk->ijkl", eye, eye)))
+    return scalar, assemble_anisotropic(scalar, c).tocsr()
+
+
+def _clamped_block_stiffness():
+    """The stiffness (N/mm) of an isotropic 4 x 1 x 1 mm block of triquadratic hexahedra,
+    its x = 0 face held, numbered 3 s + a."""
+    scalar, k = _block()
     held = scalar.get_dofs(lambda x: np.isclose(x[0], 0.0)).all()
     clamped = (3 * held[:, None] + np.arange(3)).ravel()
     free = np.setdiff1d(np.arange(3 * scalar.N), clamped)
-    return assemble_anisotropic(scalar, c).tocsr()[free][:, free]
+    return k[free][:, free]
 
 
 def test_nested_dissection_solves_as_minimum_degree_does_and_keeps_each_nodes_dofs_together():
@@ -54,22 +61,12 @@ def test_a_node_size_that_does_not_divide_the_matrix_is_refused(dofs_per_node):
 def _held_and_rolled_block():
     """The 4 x 1 x 1 mm block's full stiffness (numbered 3 s + a) and the mask of its free
     dofs: the x = 0 face held, u_z = 0 on z = 1 (a mid-plane), so nodes keep 3, 2 or 0 dofs."""
-    from skfem import Basis, ElementHex2, MeshHex
-
-    from tactcad.products.silicon_die.mechanics.die_fem3d import assemble_anisotropic
-
-    mesh = MeshHex.init_tensor(np.linspace(0, 4, 9), np.linspace(0, 1, 3), np.linspace(0, 1, 3))
-    scalar = Basis(mesh, ElementHex2())
-    e, nu = 200e3, 0.3
-    lam, mu = e * nu / ((1 + nu) * (1 - 2 * nu)), e / (2 * (1 + nu))
-    eye = np.eye(3)
-    c = (lam * np.einsum("ij,kl->ijkl", eye, eye)
-         + mu * (np.einsum("ik,jl->ijkl", eye, eye) + np.einsum("il,jk->ijkl", eye, eye)))
+    scalar, k = _block()
     kept = np.ones(3 * scalar.N, dtype=bool)
     kept[(3 * scalar.get_dofs(lambda x: np.isclose(x[0], 0.0)).all()[:, None]
           + np.arange(3)).ravel()] = False
     kept[3 * scalar.get_dofs(lambda x: np.isclose(x[2], 1.0)).all() + 2] = False
-    return assemble_anisotropic(scalar, c).tocsr(), kept
+    return k, kept
 
 
 def test_a_node_order_restricted_to_the_free_dofs_solves_the_reduced_system():
