@@ -564,7 +564,7 @@ def test_a_run_that_fails_midway_leaves_the_folder_as_it_was(tmp_path, monkeypat
     assert run_cli(*args).returncode == 0
     before = {p: p.read_bytes() for p in (tmp_path / "die").rglob("*") if p.is_file()}
 
-    def full_disk(plan, path):
+    def full_disk(plan, path, layers=None):
         raise OSError(errno.ENOSPC, "No space left on device", str(path))
 
     monkeypatch.setattr(die_solid, "write_die_step", full_disk)
