@@ -296,14 +296,32 @@ def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
         RefusedPoint: no candidate counts (the nearest's first failure), or the columns are
             out of the comb's range.
     """
-    from tactcad.studies.comb_design import (comb_candidates, comb_of_candidates, counting,
-                                             first_preferred, refusal_option)
-    from tactcad.studies.inverse_design import InverseDesignError
+    from tactcad.studies.comb_design import web_solves_kept
     from tactcad.vocabulary.binding_limits import FOOTPRINT
 
     if atlas.comb_base is None:
         raise RefusedPoint("--jaw", "the comb's smallest build does not fit the jaw's pocket",
                            FOOTPRINT)
+    with web_solves_kept():  # the full search and the refusal meet the same webs again
+        return searched_comb_figures(atlas, grade, targets, columns)
+
+
+def searched_comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
+    """:func:`comb_figures` inside its kept web solves.
+
+    Args:
+        atlas, grade, targets, columns: as :func:`comb_figures`.
+
+    Returns:
+        The feasible comb's figures.
+
+    Raises:
+        RefusedPoint: as :func:`comb_figures`.
+    """
+    from tactcad.studies.comb_design import (comb_candidates, comb_of_candidates, counting,
+                                             first_preferred, refusal_option)
+    from tactcad.studies.inverse_design import InverseDesignError
+
     try:
         # a comb that counts with margin, in the chosen one's order, saves the full search
         preferred = first_preferred(targets, atlas.room, columns, atlas.comb_base,
