@@ -247,15 +247,37 @@ def solved_web(geometry, material, k_target: float, lo: float, hi: float) -> flo
     ``k_target`` (N/mm) on [lo, hi] (mm), rounded to :data:`WEB_STEP_MM`."""
     from scipy.optimize import brentq
 
-    from tactcad.mechanics.closed_form import estimate_closed_form
-
     def k_minus(t: float) -> float:
-        g = replace(geometry, web_thickness_mm=t)
-        return estimate_closed_form(g, material).stiffness_N_per_mm - k_target
+        return closed_form_k(replace(geometry, web_thickness_mm=t), material) - k_target
 
     if k_minus(lo) * k_minus(hi) > 0:
         return None
     return round(brentq(k_minus, lo, hi, xtol=1e-7) / WEB_STEP_MM) * WEB_STEP_MM
+
+
+def closed_form_k(geometry, material) -> float:
+    """The closed form's K (N/mm) of ``geometry`` (mm) in ``material``
+    (:func:`tactcad.mechanics.closed_form.estimate_closed_form`); inside
+    :func:`web_solves_kept`, a K already found is reused: every web solve of one element
+    and sheet starts at the same bracket ends, and Brent's method reads them once more.
+
+    Args:
+        geometry: the element (:class:`~tactcad.partlib.array.element.ElementGeometry`, mm).
+        material: its material.
+
+    Returns:
+        K (N/mm).
+    """
+    from tactcad.mechanics.closed_form import estimate_closed_form
+
+    kept = _KEPT_WEBS.get()
+    key = ("K", geometry, material)
+    if kept is not None and key in kept:
+        return kept[key]
+    k = estimate_closed_form(geometry, material).stiffness_N_per_mm
+    if kept is not None:
+        kept[key] = k
+    return k
 
 
 def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
