@@ -630,8 +630,8 @@ def searched_base(base: Mapping[str, Any], columns: int, process: str | None = N
 
 
 def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
-                    grade: str | None = None, envelope_of: Callable | None = None
-                    ) -> CombCandidate | None:
+                    grade: str | None = None, envelope_of: Callable | None = None,
+                    judged: list[CombCandidate] | None = None) -> CombCandidate | None:
     """The candidate :func:`chosen` picks, found by judging the candidates in its order of
     preference (the softest pair first, the thicker sheet on a tie) and stopping at the
     first that counts with :data:`FORCE_MARGIN_REL` to spare: none softer or thicker can
@@ -641,6 +641,8 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
 
     Args:
         targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
+        judged: where given, every candidate judged is appended to it (all of them when
+            the answer is None: :func:`in_search_order` makes them the full search's).
 
     Returns:
         The chosen candidate, or None.
@@ -656,10 +658,28 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
             for sheet in sorted(sheets_of(base), reverse=True):
                 c = candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                               None)
+                if judged is not None:
+                    judged.append(c)
                 if c.plan is not None and not c.failures \
                         and c.force_margin_rel >= FORCE_MARGIN_REL:
                     return c
     return None
+
+
+def in_search_order(judged: list[CombCandidate], base: Mapping[str, Any]
+                    ) -> list[CombCandidate]:
+    """Candidates of every sheet and K_m scale in :func:`comb_candidates`' order (sheet by
+    sheet of :func:`sheets_of`, each at every scale of :data:`KM_SCALES`): the refusal's
+    ties go to the first, so the order of the full search is kept.
+
+    Args:
+        judged: the candidates, one per sheet (mm) and scale. base: the tables searched.
+
+    Returns:
+        The same candidates, reordered.
+    """
+    sheets = list(sheets_of(base))
+    return sorted(judged, key=lambda c: (sheets.index(c.sheet_mm), KM_SCALES.index(c.km_scale)))
 
 
 def counting(tried: list[CombCandidate]) -> list[CombCandidate]:
