@@ -261,3 +261,35 @@ def test_a_candidates_bound_does_not_move_with_the_force_and_foretells_its_failu
     refused = candidate(base, 1.5, 1.0, 6, room, Targets(10.0, (0.5, 5.0), 0.3), TI,
                         array_envelope_mm, None)
     assert refused.plan is None and refused.force_bound.refused  # the pocket, at any force
+
+
+def test_kept_web_solves_give_a_fresh_solves_web_and_read_each_closed_form_once(monkeypatch):
+    """Inside ``web_solves_kept`` each element's web is the one a fresh Brent solve finds,
+    at every K target; a second solve of the same K reads no closed form, and a new K on
+    the same element reads its bracket ends no more."""
+    import tactcad.mechanics.closed_form as closed_form
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.studies import comb_design
+
+    plan = plan_from_dict(BASE)
+    geometry, material = plan.element(1).geometry, plan.material
+    k_here = estimate_closed_form(geometry, material).stiffness_N_per_mm
+    targets = [0.7 * k_here, 1.3 * k_here, 0.9 * k_here]
+    fresh = [comb_design.solved_web(geometry, material, k, 0.02, 0.6) for k in targets]
+    assert all(w is not None for w in fresh)
+    reads: list[float] = []
+    counted = closed_form.estimate_closed_form
+
+    def counting(g, m):
+        reads.append(g.web_thickness_mm)
+        return counted(g, m)
+
+    monkeypatch.setattr(closed_form, "estimate_closed_form", counting)
+    with comb_design.web_solves_kept():
+        kept = [comb_design.solve_web(geometry, material, k, 0.02, 0.6) for k in targets]
+        first_reads = len(reads)
+        again = comb_design.solve_web(geometry, material, targets[0], 0.02, 0.6)
+        assert len(reads) == first_reads  # the same K again: no closed form read
+    assert kept == fresh and again == fresh[0]
+    assert reads.count(0.02) == 1 and reads.count(0.6) == 1  # each bracket end read once
+    assert comb_design._KEPT_WEBS.get() is None  # nothing kept once the search is over

@@ -41,9 +41,11 @@ from __future__ import annotations
 
 import copy
 import math
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from pathlib import PurePath
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Iterator, Mapping
 
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError, DesignErrors
@@ -194,20 +196,88 @@ def _floor(x: float, step: float) -> float:
     return math.floor(x / step + 1e-9) * step
 
 
+#: Web solves already made inside :func:`web_solves_kept` (None outside it): a refusal's
+#: searches meet the same element, sheet and K target again (the reference's arm does not
+#: change with the column count; the atlas judges a point's candidates twice).
+_KEPT_WEBS: ContextVar[dict | None] = ContextVar("kept_web_solves", default=None)
+
+
+@contextmanager
+def web_solves_kept() -> Iterator[None]:
+    """Keep every :func:`solve_web` answer while inside (one command's search): the same
+    geometry, material, K target (N/mm) and bracket (mm) give the same web, so each is
+    solved once. Nested uses share the outer one's answers.
+
+    Returns:
+        A context manager; the answers are dropped on leaving the outermost.
+    """
+    token = _KEPT_WEBS.set({}) if _KEPT_WEBS.get() is None else None
+    try:
+        yield
+    finally:
+        if token is not None:
+            _KEPT_WEBS.reset(token)
+
+
 def solve_web(geometry, material, k_target: float, lo: float, hi: float) -> float | None:
     """The web (mm, to :data:`WEB_STEP_MM`) giving ``geometry`` the closed form's K
-    ``k_target`` (N/mm), or None when no web in [lo, hi] does."""
+    ``k_target`` (N/mm), or None when no web in [lo, hi] does; inside
+    :func:`web_solves_kept`, an answer already found is reused.
+
+    Args:
+        geometry: the element (:class:`~tactcad.partlib.array.element.ElementGeometry`, mm).
+        material: its material. k_target: the stiffness sought (N/mm). lo, hi: the webs
+            searched (mm).
+
+    Returns:
+        The web (mm) or None.
+    """
+    kept = _KEPT_WEBS.get()
+    key = (geometry, material, k_target, lo, hi)
+    if kept is not None and key in kept:
+        return kept[key]
+    web = solved_web(geometry, material, k_target, lo, hi)
+    if kept is not None:
+        kept[key] = web
+    return web
+
+
+def solved_web(geometry, material, k_target: float, lo: float, hi: float) -> float | None:
+    """:func:`solve_web` without the kept answers: Brent's root of the closed form's K less
+    ``k_target`` (N/mm) on [lo, hi] (mm), rounded to :data:`WEB_STEP_MM`."""
     from scipy.optimize import brentq
 
-    from tactcad.mechanics.closed_form import estimate_closed_form
-
     def k_minus(t: float) -> float:
-        g = replace(geometry, web_thickness_mm=t)
-        return estimate_closed_form(g, material).stiffness_N_per_mm - k_target
+        return closed_form_k(replace(geometry, web_thickness_mm=t), material) - k_target
 
     if k_minus(lo) * k_minus(hi) > 0:
         return None
     return round(brentq(k_minus, lo, hi, xtol=1e-7) / WEB_STEP_MM) * WEB_STEP_MM
+
+
+def closed_form_k(geometry, material) -> float:
+    """The closed form's K (N/mm) of ``geometry`` (mm) in ``material``
+    (:func:`tactcad.mechanics.closed_form.estimate_closed_form`); inside
+    :func:`web_solves_kept`, a K already found is reused: every web solve of one element
+    and sheet starts at the same bracket ends, and Brent's method reads them once more.
+
+    Args:
+        geometry: the element (:class:`~tactcad.partlib.array.element.ElementGeometry`, mm).
+        material: its material.
+
+    Returns:
+        K (N/mm).
+    """
+    from tactcad.mechanics.closed_form import estimate_closed_form
+
+    kept = _KEPT_WEBS.get()
+    key = ("K", geometry, material)
+    if kept is not None and key in kept:
+        return kept[key]
+    k = estimate_closed_form(geometry, material).stiffness_N_per_mm
+    if kept is not None:
+        kept[key] = k
+    return k
 
 
 def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
@@ -495,28 +565,30 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
             where the pocket is too small for every sheet's comb, the pocket the smallest
             needs and a jaw of ``other_rooms`` that holds it (``--jaw``).
     """
-    base, tried = comb_candidates(targets, room, columns, base, grade=grade,
-                                  envelope_of=envelope_of, progress=progress, process=process)
-    good = counting(tried)
-    if not good:
-        rated = [c.rated_force_N for c in tried if c.rated_force_N]
-        fewer = None if rated else \
-            nearest_columns(base, columns, room, targets, grade, envelope_of)
-        jaw = nearest_jaw(base, columns, room, targets, grade, other_rooms or {})
-        # the best-rated candidates first: the one that counts is found soonest
-        order = [(c.sheet_mm, c.km_scale) for c in
-                 sorted(tried, key=lambda c: -(c.rated_force_N or 0.0))]
-        bounds = bounds_of(tried)
-        frontier = None if not rated or jaw[0] else largest_comb_force(
-            max(rated) * 0.99, lambda force: comb_counts(base, force, columns, room, targets,
-                                                         grade, envelope_of, order, bounds))
-        refused = refusal(tried, targets, room, columns, jaw, fewer, frontier)
-        refused.candidates = tuple(tried)  # what binds, read by the design atlas
-        nearest = nearest_failure(tried)
-        refused.limit = nearest.limits[0] if nearest and nearest.limits else ""
-        raise refused
-    return comb_of_candidates(tried, targets, room, columns, name=name,
-                              envelope_of=envelope_of, max_grasp_force_N=max_grasp_force_N)
+    with web_solves_kept():  # the refusal's searches meet the same webs again
+        base, tried = comb_candidates(targets, room, columns, base, grade=grade,
+                                      envelope_of=envelope_of, progress=progress,
+                                      process=process)
+        good = counting(tried)
+        if not good:
+            rated = [c.rated_force_N for c in tried if c.rated_force_N]
+            fewer = None if rated else \
+                nearest_columns(base, columns, room, targets, grade, envelope_of)
+            jaw = nearest_jaw(base, columns, room, targets, grade, other_rooms or {})
+            # the best-rated candidates first: the one that counts is found soonest
+            order = [(c.sheet_mm, c.km_scale) for c in
+                     sorted(tried, key=lambda c: -(c.rated_force_N or 0.0))]
+            bounds = bounds_of(tried)
+            frontier = None if not rated or jaw[0] else largest_comb_force(
+                max(rated) * 0.99, lambda force: comb_counts(
+                    base, force, columns, room, targets, grade, envelope_of, order, bounds))
+            refused = refusal(tried, targets, room, columns, jaw, fewer, frontier)
+            refused.candidates = tuple(tried)  # what binds, read by the design atlas
+            nearest = nearest_failure(tried)
+            refused.limit = nearest.limits[0] if nearest and nearest.limits else ""
+            raise refused
+        return comb_of_candidates(tried, targets, room, columns, name=name,
+                                  envelope_of=envelope_of, max_grasp_force_N=max_grasp_force_N)
 
 
 def comb_candidates(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
@@ -558,8 +630,8 @@ def searched_base(base: Mapping[str, Any], columns: int, process: str | None = N
 
 
 def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
-                    grade: str | None = None, envelope_of: Callable | None = None
-                    ) -> CombCandidate | None:
+                    grade: str | None = None, envelope_of: Callable | None = None,
+                    judged: list[CombCandidate] | None = None) -> CombCandidate | None:
     """The candidate :func:`chosen` picks, found by judging the candidates in its order of
     preference (the softest pair first, the thicker sheet on a tie) and stopping at the
     first that counts with :data:`FORCE_MARGIN_REL` to spare: none softer or thicker can
@@ -569,6 +641,8 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
 
     Args:
         targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
+        judged: where given, every candidate judged is appended to it (all of them when
+            the answer is None: :func:`in_search_order` makes them the full search's).
 
     Returns:
         The chosen candidate, or None.
@@ -584,10 +658,28 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
             for sheet in sorted(sheets_of(base), reverse=True):
                 c = candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                               None)
+                if judged is not None:
+                    judged.append(c)
                 if c.plan is not None and not c.failures \
                         and c.force_margin_rel >= FORCE_MARGIN_REL:
                     return c
     return None
+
+
+def in_search_order(judged: list[CombCandidate], base: Mapping[str, Any]
+                    ) -> list[CombCandidate]:
+    """Candidates of every sheet and K_m scale in :func:`comb_candidates`' order (sheet by
+    sheet of :func:`sheets_of`, each at every scale of :data:`KM_SCALES`): the refusal's
+    ties go to the first, so the order of the full search is kept.
+
+    Args:
+        judged: the candidates, one per sheet (mm) and scale. base: the tables searched.
+
+    Returns:
+        The same candidates, reordered.
+    """
+    sheets = list(sheets_of(base))
+    return sorted(judged, key=lambda c: (sheets.index(c.sheet_mm), KM_SCALES.index(c.km_scale)))
 
 
 def counting(tried: list[CombCandidate]) -> list[CombCandidate]:

@@ -7,9 +7,10 @@ Every point is design's own verdict, reached by design's own functions:
 
 * the monolithic comb: first the candidates in the order design prefers them, up to the
   first that counts with margin (:func:`tactcad.studies.comb_design.first_preferred`: the
-  one design chooses, found without judging the rest); where none does,
-  :func:`~tactcad.studies.comb_design.comb_candidates` (every sheet at every K_m scale,
-  judged at the closed form); where one counts, the comb design writes
+  one design chooses, found without judging the rest); where none does, every sheet at
+  every K_m scale has been judged at the closed form, taken in
+  :func:`~tactcad.studies.comb_design.comb_candidates`' order
+  (:func:`~tactcad.studies.comb_design.in_search_order`); where one counts, the comb design writes
   (:func:`~tactcad.studies.comb_design.comb_of_candidates`); where none does, the limit of
   the candidate nearest to counting (:func:`~tactcad.studies.comb_design.nearest_failure`,
   the refusal's own rule). The refusal's pasteable force, a bisection over the candidates
@@ -296,23 +297,42 @@ def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
         RefusedPoint: no candidate counts (the nearest's first failure), or the columns are
             out of the comb's range.
     """
-    from tactcad.studies.comb_design import (comb_candidates, comb_of_candidates, counting,
-                                             first_preferred, refusal_option)
-    from tactcad.studies.inverse_design import InverseDesignError
+    from tactcad.studies.comb_design import web_solves_kept
     from tactcad.vocabulary.binding_limits import FOOTPRINT
 
     if atlas.comb_base is None:
         raise RefusedPoint("--jaw", "the comb's smallest build does not fit the jaw's pocket",
                            FOOTPRINT)
+    with web_solves_kept():  # the full search and the refusal meet the same webs again
+        return searched_comb_figures(atlas, grade, targets, columns)
+
+
+def searched_comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
+    """:func:`comb_figures` inside its kept web solves.
+
+    Args:
+        atlas, grade, targets, columns: as :func:`comb_figures`.
+
+    Returns:
+        The feasible comb's figures.
+
+    Raises:
+        RefusedPoint: as :func:`comb_figures`.
+    """
+    from tactcad.studies.comb_design import (comb_of_candidates, counting, first_preferred,
+                                             in_search_order, refusal_option, searched_base)
+    from tactcad.studies.inverse_design import InverseDesignError
+
     try:
         # a comb that counts with margin, in the chosen one's order, saves the full search
+        judged: list = []
         preferred = first_preferred(targets, atlas.room, columns, atlas.comb_base,
-                                    grade=grade, envelope_of=atlas.envelope_of)
+                                    grade=grade, envelope_of=atlas.envelope_of, judged=judged)
         if preferred is not None:
             base, tried = None, [preferred]
-        else:
-            base, tried = comb_candidates(targets, atlas.room, columns, atlas.comb_base,
-                                          grade=grade, envelope_of=atlas.envelope_of)
+        else:  # every candidate was judged: the full search's, in its order
+            base = searched_base(atlas.comb_base, columns)
+            tried = in_search_order(judged, base)
     except DesignError as exc:
         raise refusal_of(exc) from None
     if not counting(tried):
