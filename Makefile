@@ -70,8 +70,8 @@ unexport PYTHONDONTWRITEBYTECODE
 system-deps: ## install the system packages the tests need (FreeCAD's freecadcmd, via apt as root)
 	@sh scripts/install-system-deps.sh
 
-test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included; one process per core, TEST_JOBS=0 for one)
-	$(ONE_THREAD) $(BIN)/python -m pytest -q -n $(TEST_JOBS) $(XDIST) --durations=30
+test: $(STAMP) system-deps ## run the whole test suite (FreeCAD review included; one process per core, TEST_JOBS=0 for one; lists every test over 5 s)
+	$(ONE_THREAD) $(BIN)/python -m pytest -q -n $(TEST_JOBS) $(XDIST) --durations=0 --durations-min=5
 
 test-deep: $(STAMP) system-deps ## make test with every random design the property tests were written with (30 exported, 30 designed; nightly or before a release)
 	TACTCAD_TEST_DEPTH=deep $(ONE_THREAD) $(BIN)/python -m pytest -q -n $(TEST_JOBS) $(XDIST)
