@@ -1199,7 +1199,10 @@ def _refused_or_designed(targets, room, weibull=None):
 
 
 # a die's masks, checks and verification per example (about a second each): make test draws
-# 12, make test-deep the 60 it was written with, DIE_EXAMPLES any count
+# 12, make test-deep the 60 it was written with, DIE_EXAMPLES any count. The inner loop keeps
+# the same path on the example die (its masks' read-back, its verification's rating and stops)
+# and the refusals' pasted alternatives designing (test_targets_out_of_reach_...)
+@pytest.mark.slow
 @settings(max_examples=int(__import__("os").environ.get("DIE_EXAMPLES", draws(12, 60))),
           deadline=None)
 @given(ratio=st.floats(2.0, 300.0), lo=st.floats(0.01, 50.0), span=st.floats(2.0, 100.0),
