@@ -1291,19 +1291,15 @@ def test_a_ratio_too_close_to_one_for_any_rating_is_refused_by_the_ratio():
     assert wider > 1.001 and worst_readout_error_rel(plan) <= 0.01
 
 
-def test_the_fe_check_without_calculix_is_refused_in_one_line_and_writes_nothing(tmp_path):
+def test_the_fe_check_without_calculix_is_refused_in_one_line_and_writes_nothing(tmp_path,
+                                                                                 monkeypatch):
     """A lab PC without CalculiX: ``--fe-check`` is refused by name, before any file."""
-    import os
-    import subprocess
-    import sys
-
     design = str(Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
                  / "grasper_jaw_5mm_mems.toml")
-    bare = tmp_path / "bin"  # a PATH with no ccx on it
+    bare = tmp_path / "bin"  # a PATH with no ccx on it (the command looks ccx up on PATH)
     bare.mkdir()
-    r = subprocess.run([sys.executable, "-m", "tactcad", "die", "--design", design,
-                        "--out", str(tmp_path / "die"), "--fe-check", "--json"],
-                       capture_output=True, text=True, env={**os.environ, "PATH": str(bare)})
+    monkeypatch.setenv("PATH", str(bare))
+    r = run_cli("die", "--design", design, "--out", str(tmp_path / "die"), "--fe-check", "--json")
     assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
     error = json.loads(r.stdout)["error"]
     assert error["field"] == "--fe-check" and "ccx" in error["message"], error
