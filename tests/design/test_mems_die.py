@@ -370,7 +370,10 @@ def test_targets_out_of_reach_are_refused_with_a_range_that_designs(kobj, words)
         md.die_plan(Targets(10.0, kobj, RATING_N), narrow)
 
 
-def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(tmp_path):
+@pytest.mark.slow  # the die command's every file (its STEP solids, scene and review page)
+def test_the_command_writes_masks_wafer_and_record(tmp_path):
+    """The inner loop keeps each writer on the example die (masks and their read-back, the
+    wafer, the layered solid, the mount's sheet and BOM rows) and the refusals below."""
     r = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
                 "--full-scale-force", "0.009", "--out", str(tmp_path / "die"), "--json")
     assert r.returncode == 0, r.stdout + r.stderr
@@ -387,6 +390,9 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     assert bom[0] == "item,qty,kind,description,source" and bom[1].startswith("mems_die,1,")
     # each beam's half bridge is completed off the die by two fixed arms
     assert any(line.startswith("bridge_completion_resistor,20,") for line in bom)
+
+
+def test_a_refused_die_command_writes_nothing_and_pastes_its_alternative(tmp_path):
     bad = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "50", "5000",
                   "--full-scale-force", "0.009", "--out", str(tmp_path / "none"), "--json")
     assert bad.returncode == 2
@@ -399,7 +405,6 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     named = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
                     "--full-scale-force", "0.009", "--name", "../x", "--out", str(tmp_path))
     assert named.returncode == 2 and "--name" in named.stderr
-
 
 def test_the_solid_is_built_from_the_masks_and_the_stack(die, tmp_path):
     """Each layer's volume from the masks' areas and the stack's thicknesses, computed here
