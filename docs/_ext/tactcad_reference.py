@@ -97,11 +97,11 @@ def command_parsers() -> list[tuple[tuple[str, ...], argparse.ArgumentParser]]:
     return list(options_of(cli.build_parser()))
 
 
-def _summary(parser: argparse.ArgumentParser, path: tuple[str, ...]) -> str:
-    """The one-line help a command has in its parent's list (else its description)."""
-    from tactcad import cli
-
-    parent = cli.build_parser()
+def _summary(parser: argparse.ArgumentParser, path: tuple[str, ...],
+             top: argparse.ArgumentParser) -> str:
+    """The one-line help a command has in its parent's list under ``top`` (else its
+    description)."""
+    parent = top
     for word in path[:-1]:
         parent = _subparsers(parent).choices[word]
     for choice in _subparsers(parent)._choices_actions:
@@ -148,8 +148,9 @@ def cli_markdown() -> str:
     for path, parser in command_parsers():
         words = " ".join(path)
         out.append(f"### `tactcad {words}`\n")
-        out.append(text(_summary(parser, path)) + "\n")
-        if parser.description and parser.description != _summary(parser, path):
+        summary = _summary(parser, path, top)  # the parser is built once: it costs ~50 ms
+        out.append(text(summary) + "\n")
+        if parser.description and parser.description != summary:
             out.append(text(parser.description) + "\n")
         usage = " ".join(parser.format_usage().split()).removeprefix("usage: ")
         out.append("Usage: " + code(usage) + "\n")

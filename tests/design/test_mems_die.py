@@ -370,7 +370,10 @@ def test_targets_out_of_reach_are_refused_with_a_range_that_designs(kobj, words)
         md.die_plan(Targets(10.0, kobj, RATING_N), narrow)
 
 
-def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(tmp_path):
+@pytest.mark.slow  # the die command's every file (its STEP solids, scene and review page)
+def test_the_command_writes_masks_wafer_and_record(tmp_path):
+    """The inner loop keeps each writer on the example die (masks and their read-back, the
+    wafer, the layered solid, the mount's sheet and BOM rows) and the refusals below."""
     r = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
                 "--full-scale-force", "0.009", "--out", str(tmp_path / "die"), "--json")
     assert r.returncode == 0, r.stdout + r.stderr
@@ -387,6 +390,9 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     assert bom[0] == "item,qty,kind,description,source" and bom[1].startswith("mems_die,1,")
     # each beam's half bridge is completed off the die by two fixed arms
     assert any(line.startswith("bridge_completion_resistor,20,") for line in bom)
+
+
+def test_a_refused_die_command_writes_nothing_and_pastes_its_alternative(tmp_path):
     bad = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "50", "5000",
                   "--full-scale-force", "0.009", "--out", str(tmp_path / "none"), "--json")
     assert bad.returncode == 2
@@ -399,7 +405,6 @@ def test_the_command_writes_masks_wafer_and_record_and_a_refusal_writes_nothing(
     named = run_cli("die", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
                     "--full-scale-force", "0.009", "--name", "../x", "--out", str(tmp_path))
     assert named.returncode == 2 and "--name" in named.stderr
-
 
 def test_the_solid_is_built_from_the_masks_and_the_stack(die, tmp_path):
     """Each layer's volume from the masks' areas and the stack's thicknesses, computed here
@@ -1199,7 +1204,10 @@ def _refused_or_designed(targets, room, weibull=None):
 
 
 # a die's masks, checks and verification per example (about a second each): make test draws
-# 12, make test-deep the 60 it was written with, DIE_EXAMPLES any count
+# 12, make test-deep the 60 it was written with, DIE_EXAMPLES any count. The inner loop keeps
+# the same path on the example die (its masks' read-back, its verification's rating and stops)
+# and the refusals' pasted alternatives designing (test_targets_out_of_reach_...)
+@pytest.mark.slow
 @settings(max_examples=int(__import__("os").environ.get("DIE_EXAMPLES", draws(12, 60))),
           deadline=None)
 @given(ratio=st.floats(2.0, 300.0), lo=st.floats(0.01, 50.0), span=st.floats(2.0, 100.0),
@@ -1288,19 +1296,15 @@ def test_a_ratio_too_close_to_one_for_any_rating_is_refused_by_the_ratio():
     assert wider > 1.001 and worst_readout_error_rel(plan) <= 0.01
 
 
-def test_the_fe_check_without_calculix_is_refused_in_one_line_and_writes_nothing(tmp_path):
+def test_the_fe_check_without_calculix_is_refused_in_one_line_and_writes_nothing(tmp_path,
+                                                                                 monkeypatch):
     """A lab PC without CalculiX: ``--fe-check`` is refused by name, before any file."""
-    import os
-    import subprocess
-    import sys
-
     design = str(Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
                  / "grasper_jaw_5mm_mems.toml")
-    bare = tmp_path / "bin"  # a PATH with no ccx on it
+    bare = tmp_path / "bin"  # a PATH with no ccx on it (the command looks ccx up on PATH)
     bare.mkdir()
-    r = subprocess.run([sys.executable, "-m", "tactcad", "die", "--design", design,
-                        "--out", str(tmp_path / "die"), "--fe-check", "--json"],
-                       capture_output=True, text=True, env={**os.environ, "PATH": str(bare)})
+    monkeypatch.setenv("PATH", str(bare))
+    r = run_cli("die", "--design", design, "--out", str(tmp_path / "die"), "--fe-check", "--json")
     assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
     error = json.loads(r.stdout)["error"]
     assert error["field"] == "--fe-check" and "ccx" in error["message"], error

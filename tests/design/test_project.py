@@ -15,7 +15,7 @@ from tactcad.design.array_plan import DEFAULT_DESIGN
 from tactcad.design.project import Project, load_project, project_for_plan
 from tactcad.design.rig_plan import DEFAULT_RIGS
 from tactcad.design.scene_specs import DEFAULT_SCENES
-from source_trees import parsed
+from source_trees import one_reader, parsed
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "tactcad"
 #: Functions that open a design, rigs or scenes file.
@@ -126,6 +126,7 @@ def in_its_room(rel: str) -> str:
     return "/".join(parts[2:]) if parts[0] == "products" and len(parts) > 3 else rel
 
 
+@one_reader  # in the process that parsed every source for the house tests
 def test_nothing_below_the_commands_reads_a_design_file():
     offenders = []
     for path in sorted(SRC.rglob("*.py")):

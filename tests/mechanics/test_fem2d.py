@@ -32,6 +32,19 @@ def _elem(plan, arm):
     return next(g for g in plan.distinct_elements.values() if g.arm_length_mm == arm)
 
 
+@pytest.fixture(scope="module")
+def plane_stress_estimate(plan):
+    """estimate_fem2d's default (plane stress, three meshes) of the default plan's element
+    with a given arm (mm), solved once a module: three tests read the same two estimates."""
+    kept = {}
+
+    def estimate(arm):
+        if arm not in kept:
+            kept[arm] = estimate_fem2d(_elem(plan, arm), plan.material)
+        return kept[arm]
+    return estimate
+
+
 def _polygon(segments, n_arc=400):
     """Dense polygon of a chain of lines and arcs (independent of the code's
     own area formula)."""
@@ -128,7 +141,7 @@ def test_richardson_recovers_a_known_expansion():
 # Convergence at the P2 rate
 # ---------------------------------------------------------------------------
 @pytest.mark.parametrize("arm", [4.0, 8.0])
-def test_p2_convergence_rate_and_error(plan, arm):
+def test_p2_convergence_rate_and_error(plan, arm, plane_stress_estimate):
     g = _elem(plan, arm)
     conv = fem2d_convergence(g, plan.material, levels=4)
     ks = [s.stiffness_N_per_mm for s in conv.solutions]
@@ -138,7 +151,7 @@ def test_p2_convergence_rate_and_error(plan, arm):
         p = richardson(ks[i:i + 3], conv.stiffness.ratio).order
         assert ORDER_BAND[0] <= p <= ORDER_BAND[1], (ks, p)
     # default settings: three meshes, estimated error within the goal
-    res = estimate_fem2d(g, plan.material)
+    res = plane_stress_estimate(arm)
     assert res.model == "fem2d"
     assert 0 < res.error_estimate_rel - plane_model_error(g, plan.material) < ERROR_GOAL
     assert res.stiffness_N_per_mm == pytest.approx(ks[-1], rel=1e-9)
@@ -210,9 +223,9 @@ def test_extremes_are_monotonic(extremes):
 # Plane stress vs plane strain
 # ---------------------------------------------------------------------------
 @pytest.mark.parametrize("arm", [4.0, 8.0])
-def test_plane_strain_is_stiffer_than_plane_stress(plan, arm):
+def test_plane_strain_is_stiffer_than_plane_stress(plan, arm, plane_stress_estimate):
     g = _elem(plan, arm)
-    ps = estimate_fem2d(g, plan.material, plane="stress")
+    ps = plane_stress_estimate(arm)
     pe = estimate_fem2d(g, plan.material, plane="strain")
     assert pe.model == "fem2d-plane-strain"
     assert pe.stiffness_N_per_mm > ps.stiffness_N_per_mm
@@ -296,13 +309,14 @@ def test_grid_rule_corners_are_valid_designs(t, a, R, b):
 
 
 @pytest.mark.parametrize("arm", [4.0, 8.0])
-def test_error_estimate_covers_the_plane_stress_model_error_against_3d(plan, arm):
+def test_error_estimate_covers_the_plane_stress_model_error_against_3d(plan, arm,
+                                                                      plane_stress_estimate):
     """The closed form is fitted to fem3d within 1.6 %: fem2d's estimate must
     reach its distance to that 3D stand-in, less the fit's error."""
     from tactcad.mechanics.closed_form import estimate_closed_form
 
     g = _elem(plan, arm)
-    res = estimate_fem2d(g, plan.material)
+    res = plane_stress_estimate(arm)
     k3d = estimate_closed_form(g, plan.material).stiffness_N_per_mm
     assert res.stiffness_N_per_mm < k3d  # plane stress is softer than the wide 3D element
     assert res.error_estimate_rel >= abs(res.stiffness_N_per_mm / k3d - 1.0) - 0.016

@@ -174,10 +174,10 @@ def fredholm_kappa(a_over_h: float, nu: float, points: int = 64) -> float:
     t = (starts[:, None] + 0.5 * panel * (sx + 1)).ravel()
     weights = (1 - layer_kernel(t, "bonded", nu)) * np.tile(0.5 * panel * sw, len(starts))
 
-    def k(u):
-        return (np.cos(np.outer(u.ravel(), t / h)) @ weights / h).reshape(u.shape)
-
-    m = (k(x[:, None] - x[None, :]) + k(x[:, None] + x[None, :])) / np.pi * w[None, :]
+    # k(x - t) + k(x + t) by cos(a - b) + cos(a + b) = 2 cos(a) cos(b): one cosine per
+    # point and wavenumber instead of one per pair of points and wavenumber
+    c = np.cos(np.outer(x, t / h))
+    m = 2.0 * (c * weights) @ c.T / h / np.pi * w[None, :]
     return float(w @ np.linalg.solve(np.eye(points) - m, np.ones(points)))
 
 

@@ -497,9 +497,19 @@ def _positive(**values: float) -> None:
         ValueError: naming the argument, its value and the allowed range.
     """
     for name, value in values.items():
-        if isinstance(value, bool) or not isinstance(value, numbers.Real) \
-                or not math.isfinite(value) or value <= 0:
-            raise ValueError(f"{name} = {value!r}: allowed a finite number above 0")
+        if type(value) is float:  # the search's own numbers: no abstract-class test per call
+            if 0 < value < math.inf:
+                continue
+        elif not isinstance(value, bool) and isinstance(value, numbers.Real) \
+                and math.isfinite(value) and value > 0:
+            continue
+        raise ValueError(f"{name} = {value!r}: allowed a finite number above 0")
+
+
+@functools.lru_cache(maxsize=4)
+def _root_extension_table(table: tuple) -> tuple[list[float], list[float]]:
+    """(log(w / t), c) of :data:`ROOT_EXTENSION_OVER_T`, worked out once per table."""
+    return [math.log(ratio) for ratio, _ in table], [c for _, c in table]
 
 
 def root_extension_um(width_um: float, thickness_um: float) -> float:
@@ -518,8 +528,7 @@ def root_extension_um(width_um: float, thickness_um: float) -> float:
         ValueError: a width or thickness not finite and above 0.
     """
     _positive(width_um=width_um, thickness_um=thickness_um)
-    logs = [math.log(ratio) for ratio, _ in ROOT_EXTENSION_OVER_T]
-    cs = [c for _, c in ROOT_EXTENSION_OVER_T]
+    logs, cs = _root_extension_table(ROOT_EXTENSION_OVER_T)
     at = min(max(math.log(width_um / thickness_um), logs[0]), logs[-1])
     i = min(max(bisect.bisect_right(logs, at), 1), len(logs) - 1)
     share = (at - logs[i - 1]) / (logs[i] - logs[i - 1])
