@@ -745,15 +745,68 @@ def fewer_columns_carry(base: dict, columns: int, room: Any, targets: Targets,
     """
     from tactcad.mechanics.correction import range_warnings_unsaid
 
+    scales = stop_fitting_scales(targets)  # the others carry at no column count
     with range_warnings_unsaid():
         for fewer in range(columns - 1, 0, -1):
             for sheet in sheets_of(base):
-                for scale in KM_SCALES:
+                for scale in scales:
                     c = candidate(base, sheet, scale, fewer, room, targets, grade,
                                   envelope_of, None)
                     if (c.plan is not None and not c.failures) or c.rated_force_N:
                         return True
     return False
+
+
+#: How far above its K target (N/mm) a solved web may leave an element's closed-form K in
+#: :func:`stops_can_fit`: a web rounded to :data:`WEB_STEP_MM` in a bracket from 0.02 mm
+#: moves K (at most as t^3) by under 8 %; twice the target is a wide margin on that.
+STOP_BOUND_K_SLACK = 2.0
+
+
+def least_stop_gap_mm(full_scale_force_N: float, stiffness_N_per_mm: float) -> float:
+    """A lower bound (mm) of the stop gap :func:`with_stops` sets for an element of closed-
+    form K ``stiffness_N_per_mm`` (N/mm) at a full-scale force ``full_scale_force_N`` (N):
+    the rated tip deflection F / K, since a stop engages above the rating
+    (:func:`tactcad.mechanics.hard_stops.engagement_force_N` exceeds F) and its lever, the
+    arm plus half the tip, is longer than the arm
+    (:func:`tactcad.mechanics.hard_stops.stop_gap_for`).
+
+    Args:
+        full_scale_force_N: the rated force (N). stiffness_N_per_mm: the element's K (N/mm).
+
+    Returns:
+        The gap's lower bound (mm).
+    """
+    return full_scale_force_N / stiffness_N_per_mm
+
+
+def stops_can_fit(targets: Targets, km_scale: float) -> bool:
+    """Whether a comb at K_m scale ``km_scale`` can have stop gaps the tables take
+    (:data:`~tactcad.partlib.array.comb_sheet.MAX_STOP_GAP_MM`) on some sheet at some column
+    count: False when the softer element's gap, at :data:`STOP_BOUND_K_SLACK` x its K target
+    (K_m or K_r = K_r/K_m x K_m), already exceeds it. Then every such candidate is refused
+    with its stops set and carries no force, whatever its sheet, pitch or material, so a
+    refusal's search for fewer columns skips it (a necessary condition, not a judgement).
+
+    Args:
+        targets: K_r/K_m, the K_obj range (N/mm) and the full-scale force (N).
+        km_scale: K_m over eq. 2's centre (:data:`KM_SCALES`).
+
+    Returns:
+        False only when no candidate at that scale can carry.
+    """
+    from tactcad.partlib.array.comb_sheet import MAX_STOP_GAP_MM
+
+    k_m = km_scale * centred_km(targets)
+    softest = min(k_m, targets.kr_over_km * k_m)
+    gap = least_stop_gap_mm(targets.full_scale_force_N, STOP_BOUND_K_SLACK * softest)
+    return gap <= MAX_STOP_GAP_MM
+
+
+def stop_fitting_scales(targets: Targets) -> tuple[float, ...]:
+    """The K_m scales of :data:`KM_SCALES` whose stops can fit (:func:`stops_can_fit`), in
+    their order."""
+    return tuple(s for s in KM_SCALES if stops_can_fit(targets, s))
 
 
 def nearest_failure(tried: list[CombCandidate]) -> CombCandidate | None:
@@ -1143,11 +1196,12 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
     from tactcad.mechanics.correction import range_warnings_unsaid
 
     carrying: tuple[int, float, list, dict] | None = None
+    scales = stop_fitting_scales(targets)  # the others neither count nor rate: not judged
     with range_warnings_unsaid():
         for fewer in range(columns - 1, 0, -1):
             rated, judged = [], []
             for sheet in sheets_of(base):
-                for scale in KM_SCALES:
+                for scale in scales:
                     c = candidate(base, sheet, scale, fewer, room, targets, grade,
                                   envelope_of, None)
                     if c.plan is not None and not c.failures:
