@@ -631,7 +631,8 @@ def searched_base(base: Mapping[str, Any], columns: int, process: str | None = N
 
 def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
                     grade: str | None = None, envelope_of: Callable | None = None,
-                    judged: list[CombCandidate] | None = None) -> CombCandidate | None:
+                    judged: list[CombCandidate] | None = None,
+                    scales: tuple[float, ...] = KM_SCALES) -> CombCandidate | None:
     """The candidate :func:`chosen` picks, found by judging the candidates in its order of
     preference (the softest pair first, the thicker sheet on a tie) and stopping at the
     first that counts with :data:`FORCE_MARGIN_REL` to spare: none softer or thicker can
@@ -643,6 +644,8 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
         targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
         judged: where given, every candidate judged is appended to it (all of them when
             the answer is None: :func:`in_search_order` makes them the full search's).
+        scales: the K_m scales walked (default :data:`KM_SCALES`); a caller leaves out only
+            scales none of whose candidates can count (:func:`atlas_scales`).
 
     Returns:
         The chosen candidate, or None.
@@ -654,7 +657,7 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
 
     base = searched_base(base, columns)
     with range_warnings_unsaid():
-        for scale in KM_SCALES:
+        for scale in scales:
             for sheet in sorted(sheets_of(base), reverse=True):
                 c = candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                               None)
@@ -807,6 +810,24 @@ def stop_fitting_scales(targets: Targets) -> tuple[float, ...]:
     """The K_m scales of :data:`KM_SCALES` whose stops can fit (:func:`stops_can_fit`), in
     their order."""
     return tuple(s for s in KM_SCALES if stops_can_fit(targets, s))
+
+
+def atlas_scales(targets: Targets) -> tuple[float, ...]:
+    """The K_m scales whose candidates can change a verdict, its binding limit or its option:
+    those whose stops can fit (:func:`stop_fitting_scales`), else the stiffest alone.
+
+    A scale whose stops cannot fit is refused on every sheet (force margin -inf, no rating),
+    so it neither counts nor rates, and :func:`nearest_failure` (most margin, then the
+    stiffer pair) takes it only when no scale fits: then the stiffest scale's first sheet,
+    which judging the stiffest scale alone finds as well.
+
+    Args:
+        targets: K_r/K_m, the K_obj range (N/mm) and the full-scale force (N).
+
+    Returns:
+        The scales, in :data:`KM_SCALES`' order.
+    """
+    return stop_fitting_scales(targets) or KM_SCALES[-1:]
 
 
 def nearest_failure(tried: list[CombCandidate]) -> CombCandidate | None:
