@@ -785,7 +785,7 @@ def least_stop_gap_mm(full_scale_force_N: float, stiffness_N_per_mm: float) -> f
 
 def stops_can_fit(targets: Targets, km_scale: float) -> bool:
     """Whether a comb at K_m scale ``km_scale`` can have stop gaps the tables take
-    (:data:`~tactcad.partlib.array.comb_sheet.MAX_STOP_GAP_MM`) on some sheet at some column
+    (:data:`~tactcad.design.comb_plan.MAX_STOP_GAP_MM`) on some sheet at some column
     count: False when the softer element's gap, at :data:`STOP_BOUND_K_SLACK` x its K target
     (K_m or K_r = K_r/K_m x K_m), already exceeds it. Then every such candidate is refused
     with its stops set and carries no force, whatever its sheet, pitch or material, so a
@@ -798,7 +798,7 @@ def stops_can_fit(targets: Targets, km_scale: float) -> bool:
     Returns:
         False only when no candidate at that scale can carry.
     """
-    from tactcad.partlib.array.comb_sheet import MAX_STOP_GAP_MM
+    from tactcad.design.comb_plan import MAX_STOP_GAP_MM
 
     k_m = km_scale * centred_km(targets)
     softest = min(k_m, targets.kr_over_km * k_m)
