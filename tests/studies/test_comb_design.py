@@ -181,6 +181,73 @@ def test_the_refusals_fewer_columns_check_stops_at_the_first_comb_that_carries_a
     assert not fewer_columns_carry(searched, 1, room, targets, None, array_envelope_mm)
 
 
+#: Targets whose softer element's stop cannot fit at some K_m scales: a 1.5 N and a 3 N
+#: force on eq. 2's centre K_m of 0.5 N/mm (scale 1 and scales 1 ... 2 skipped), and an
+#: atlas point whose K_m of 0.025 N/mm fits no stop at any scale.
+STOPLESS = [Targets(10.0, (0.5, 5.0), 1.5), Targets(10.0, (0.5, 5.0), 3.0),
+            Targets(15.7126, (0.0183033, 0.551098), 3.77821)]
+
+
+@pytest.mark.parametrize("targets", STOPLESS)
+def test_a_scale_whose_stops_cannot_fit_carries_on_no_sheet_at_any_column_count(targets):
+    """Every candidate at a scale the stop bound skips is refused and rated for no force,
+    on each sheet and at one to four columns, its widest stop gap past the tables' range:
+    the bound leaves out only what the search would not carry."""
+    from tactcad.partlib.array.comb_sheet import MAX_STOP_GAP_MM
+    from tactcad.studies.comb_design import (KM_SCALES, candidate, searched_base,
+                                             stop_fitting_scales, web_solves_kept)
+
+    skipped = [s for s in KM_SCALES if s not in stop_fitting_scales(targets)]
+    assert skipped and skipped == list(KM_SCALES[:len(skipped)])  # the softest pairs
+    base, room = searched_base(BASE, 4), jaw_room("10")
+    with web_solves_kept():
+        for scale in (skipped[0], skipped[-1]):  # the softest and the one nearest the bound
+            for sheet in (0.5, 0.8, 1.0):
+                for columns in (1, 2, 4):
+                    c = candidate(base, sheet, scale, columns, room, targets, TI,
+                                  array_envelope_mm, None)
+                    assert c.plan is None and not c.rated_force_N, (scale, sheet, columns)
+                    if c.data is not None:  # the stops were set: they are what refuses it
+                        assert max(c.data["comb"]["stop_gaps_mm"]) > MAX_STOP_GAP_MM
+
+
+def test_the_stop_bound_skips_no_scale_whose_stop_gaps_fit():
+    """A force whose rated deflection of K_m x 2 is 1 mm sits at the bound's edge: its scale
+    is kept, the next softer one skipped; a light force keeps every scale."""
+    from tactcad.studies.comb_design import (KM_SCALES, STOP_BOUND_K_SLACK, centred_km,
+                                             stop_fitting_scales, stops_can_fit)
+
+    light = Targets(10.0, (0.5, 5.0), 0.01)
+    assert stop_fitting_scales(light) == KM_SCALES
+    edge = Targets(10.0, (0.5, 5.0), 2.0 * STOP_BOUND_K_SLACK * centred_km(light))
+    assert stops_can_fit(edge, 2.0) and not stops_can_fit(edge, 1.5)
+
+
+@pytest.mark.parametrize("targets, columns, carries", [
+    (STOPLESS[1], 8, True),  # the pitch binds 8 columns; fewer carry at the stiffer scales
+    (STOPLESS[2], 4, False),  # no scale fits a stop: nothing to judge
+])
+def test_fewer_columns_are_found_as_the_unbounded_search_finds_them(targets, columns, carries,
+                                                                    monkeypatch):
+    """The refusal's search for fewer columns gives the same answer with the stop bound as
+    judging every sheet at every scale of every fewer count."""
+    from tactcad.studies import comb_design
+
+    base, room = comb_design.searched_base(BASE, columns), jaw_room("10")
+
+    def fewer():
+        with comb_design.web_solves_kept():
+            return (comb_design.fewer_columns_carry(base, columns, room, targets, TI,
+                                                    array_envelope_mm),
+                    comb_design.nearest_columns(base, columns, room, targets, TI,
+                                                array_envelope_mm) if not carries else None)
+
+    bounded = fewer()
+    monkeypatch.setattr(comb_design, "stop_fitting_scales", lambda t: comb_design.KM_SCALES)
+    assert bounded == fewer()
+    assert bounded[0] is carries
+
+
 @pytest.mark.parametrize("kr_over_km, kobj, force, columns", [
     (21.267, (2.87533, 18.4831), 0.0620327, 2),
     pytest.param(10.0, (0.5, 5.0), 0.05, 6, marks=pytest.mark.slow),  # six columns: a long search

@@ -126,6 +126,33 @@ def test_a_comb_with_more_columns_than_its_pitch_holds_carries_the_sheet_code():
     assert tried and all(c.plan is None and c.limits == (SHEET,) for c in tried)
 
 
+@pytest.mark.parametrize("point", [
+    # K_m of 0.025 N/mm at 3.8 N: no scale's stops fit, the stiffest alone is judged
+    {"point": 3, "kr_over_km": 15.7126, "kobj_lo_N_per_mm": 0.0183033,
+     "kobj_hi_N_per_mm": 0.551098, "full_scale_force_N": 3.77821, "columns": 4},
+    # K_m of 0.058 N/mm at 0.88 N: the two stiffest scales judged, six left out
+    pytest.param({"point": 3, "kr_over_km": 9.06395, "kobj_lo_N_per_mm": 0.0639312,
+                  "kobj_hi_N_per_mm": 0.428655, "full_scale_force_N": 0.87967, "columns": 6},
+                 marks=pytest.mark.slow),  # every sheet at every scale, twice
+])
+def test_a_comb_point_judged_at_the_scales_whose_stops_fit_is_the_whole_searchs_record(
+        point, monkeypatch):
+    """Leaving out the K_m scales whose stops cannot fit changes no comb record: its
+    verdict, binding limit and words and the option it names are those of judging every
+    sheet at every scale."""
+    from tactcad.studies import comb_design
+    from tactcad.studies.design_atlas import targets_of
+
+    atlas = jaw_atlas("10", [(COMB, "Ti-6Al-4V-annealed"), (COMB, "17-4PH-H900")])
+    assert len(comb_design.atlas_scales(targets_of(point))) < len(comb_design.KM_SCALES)
+    skipping = evaluate_batch(atlas, [point])
+    monkeypatch.setattr(comb_design, "atlas_scales", lambda targets: comb_design.KM_SCALES)
+    whole = evaluate_batch(atlas, [point])
+    assert [r["feasible"] for r in whole] == [False, False]
+    assert all(r["binding_detail"] for r in whole)
+    assert json.dumps(skipping, sort_keys=True) == json.dumps(whole, sort_keys=True)
+
+
 def jaw_atlas(jaw: str, products) -> JawAtlas:
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.design.array_plan import EXAMPLES, read_toml

@@ -42,6 +42,8 @@ from tactcad.design.requirements_section import (RequirementsSection, check_requ
 from tactcad.design.tolerances import TolerancesSection, check_tolerances, tolerances_of
 from tactcad.errors import DesignError
 from tactcad.partlib.array.comb_sheet import CombGeometry, CombSection, CombSheet
+# the widest stop gap, here for the studies (they do not read the part library)
+from tactcad.partlib.array.comb_sheet import MAX_STOP_GAP_MM  # noqa: F401
 from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN, NOTCH_RADIUS_MAX_MM,
                                            WEB_TOLERANCE_RANGE_MM,
                                            WEB_RANGE_MM, ElementGeometry)

@@ -631,7 +631,8 @@ def searched_base(base: Mapping[str, Any], columns: int, process: str | None = N
 
 def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
                     grade: str | None = None, envelope_of: Callable | None = None,
-                    judged: list[CombCandidate] | None = None) -> CombCandidate | None:
+                    judged: list[CombCandidate] | None = None,
+                    scales: tuple[float, ...] = KM_SCALES) -> CombCandidate | None:
     """The candidate :func:`chosen` picks, found by judging the candidates in its order of
     preference (the softest pair first, the thicker sheet on a tie) and stopping at the
     first that counts with :data:`FORCE_MARGIN_REL` to spare: none softer or thicker can
@@ -643,6 +644,8 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
         targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
         judged: where given, every candidate judged is appended to it (all of them when
             the answer is None: :func:`in_search_order` makes them the full search's).
+        scales: the K_m scales walked (default :data:`KM_SCALES`); a caller leaves out only
+            scales none of whose candidates can count (:func:`atlas_scales`).
 
     Returns:
         The chosen candidate, or None.
@@ -654,7 +657,7 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
 
     base = searched_base(base, columns)
     with range_warnings_unsaid():
-        for scale in KM_SCALES:
+        for scale in scales:
             for sheet in sorted(sheets_of(base), reverse=True):
                 c = candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                               None)
@@ -745,15 +748,86 @@ def fewer_columns_carry(base: dict, columns: int, room: Any, targets: Targets,
     """
     from tactcad.mechanics.correction import range_warnings_unsaid
 
+    scales = stop_fitting_scales(targets)  # the others carry at no column count
     with range_warnings_unsaid():
         for fewer in range(columns - 1, 0, -1):
             for sheet in sheets_of(base):
-                for scale in KM_SCALES:
+                for scale in scales:
                     c = candidate(base, sheet, scale, fewer, room, targets, grade,
                                   envelope_of, None)
                     if (c.plan is not None and not c.failures) or c.rated_force_N:
                         return True
     return False
+
+
+#: How far above its K target (N/mm) a solved web may leave an element's closed-form K in
+#: :func:`stops_can_fit`: a web rounded to :data:`WEB_STEP_MM` in a bracket from 0.02 mm
+#: moves K (at most as t^3) by under 8 %; twice the target is a wide margin on that.
+STOP_BOUND_K_SLACK = 2.0
+
+
+def least_stop_gap_mm(full_scale_force_N: float, stiffness_N_per_mm: float) -> float:
+    """A lower bound (mm) of the stop gap :func:`with_stops` sets for an element of closed-
+    form K ``stiffness_N_per_mm`` (N/mm) at a full-scale force ``full_scale_force_N`` (N):
+    the rated tip deflection F / K, since a stop engages above the rating
+    (:func:`tactcad.mechanics.hard_stops.engagement_force_N` exceeds F) and its lever, the
+    arm plus half the tip, is longer than the arm
+    (:func:`tactcad.mechanics.hard_stops.stop_gap_for`).
+
+    Args:
+        full_scale_force_N: the rated force (N). stiffness_N_per_mm: the element's K (N/mm).
+
+    Returns:
+        The gap's lower bound (mm).
+    """
+    return full_scale_force_N / stiffness_N_per_mm
+
+
+def stops_can_fit(targets: Targets, km_scale: float) -> bool:
+    """Whether a comb at K_m scale ``km_scale`` can have stop gaps the tables take
+    (:data:`~tactcad.design.comb_plan.MAX_STOP_GAP_MM`) on some sheet at some column
+    count: False when the softer element's gap, at :data:`STOP_BOUND_K_SLACK` x its K target
+    (K_m or K_r = K_r/K_m x K_m), already exceeds it. Then every such candidate is refused
+    with its stops set and carries no force, whatever its sheet, pitch or material, so a
+    refusal's search for fewer columns skips it (a necessary condition, not a judgement).
+
+    Args:
+        targets: K_r/K_m, the K_obj range (N/mm) and the full-scale force (N).
+        km_scale: K_m over eq. 2's centre (:data:`KM_SCALES`).
+
+    Returns:
+        False only when no candidate at that scale can carry.
+    """
+    from tactcad.design.comb_plan import MAX_STOP_GAP_MM
+
+    k_m = km_scale * centred_km(targets)
+    softest = min(k_m, targets.kr_over_km * k_m)
+    gap = least_stop_gap_mm(targets.full_scale_force_N, STOP_BOUND_K_SLACK * softest)
+    return gap <= MAX_STOP_GAP_MM
+
+
+def stop_fitting_scales(targets: Targets) -> tuple[float, ...]:
+    """The K_m scales of :data:`KM_SCALES` whose stops can fit (:func:`stops_can_fit`), in
+    their order."""
+    return tuple(s for s in KM_SCALES if stops_can_fit(targets, s))
+
+
+def atlas_scales(targets: Targets) -> tuple[float, ...]:
+    """The K_m scales whose candidates can change a verdict, its binding limit or its option:
+    those whose stops can fit (:func:`stop_fitting_scales`), else the stiffest alone.
+
+    A scale whose stops cannot fit is refused on every sheet (force margin -inf, no rating),
+    so it neither counts nor rates, and :func:`nearest_failure` (most margin, then the
+    stiffer pair) takes it only when no scale fits: then the stiffest scale's first sheet,
+    which judging the stiffest scale alone finds as well.
+
+    Args:
+        targets: K_r/K_m, the K_obj range (N/mm) and the full-scale force (N).
+
+    Returns:
+        The scales, in :data:`KM_SCALES`' order.
+    """
+    return stop_fitting_scales(targets) or KM_SCALES[-1:]
 
 
 def nearest_failure(tried: list[CombCandidate]) -> CombCandidate | None:
@@ -1143,11 +1217,12 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
     from tactcad.mechanics.correction import range_warnings_unsaid
 
     carrying: tuple[int, float, list, dict] | None = None
+    scales = stop_fitting_scales(targets)  # the others neither count nor rate: not judged
     with range_warnings_unsaid():
         for fewer in range(columns - 1, 0, -1):
             rated, judged = [], []
             for sheet in sheets_of(base):
-                for scale in KM_SCALES:
+                for scale in scales:
                     c = candidate(base, sheet, scale, fewer, room, targets, grade,
                                   envelope_of, None)
                     if c.plan is not None and not c.failures:

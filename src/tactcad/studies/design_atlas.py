@@ -8,7 +8,9 @@ Every point is design's own verdict, reached by design's own functions:
 * the monolithic comb: first the candidates in the order design prefers them, up to the
   first that counts with margin (:func:`tactcad.studies.comb_design.first_preferred`: the
   one design chooses, found without judging the rest); where none does, every sheet at
-  every K_m scale has been judged at the closed form, taken in
+  every K_m scale whose stops can fit (:func:`~tactcad.studies.comb_design.atlas_scales`:
+  the others are refused on every sheet and change no record) has been judged at the
+  closed form, taken in
   :func:`~tactcad.studies.comb_design.comb_candidates`' order
   (:func:`~tactcad.studies.comb_design.in_search_order`); where one counts, the comb design writes
   (:func:`~tactcad.studies.comb_design.comb_of_candidates`); where none does, the limit of
@@ -319,15 +321,18 @@ def searched_comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) ->
     Raises:
         RefusedPoint: as :func:`comb_figures`.
     """
-    from tactcad.studies.comb_design import (comb_of_candidates, counting, first_preferred,
-                                             in_search_order, refusal_option, searched_base)
+    from tactcad.studies.comb_design import (atlas_scales, comb_of_candidates, counting,
+                                             first_preferred, in_search_order, refusal_option,
+                                             searched_base)
     from tactcad.studies.inverse_design import InverseDesignError
 
     try:
         # a comb that counts with margin, in the chosen one's order, saves the full search
         judged: list = []
+        # scales whose stops cannot fit change no verdict, limit or option: not judged
         preferred = first_preferred(targets, atlas.room, columns, atlas.comb_base,
-                                    grade=grade, envelope_of=atlas.envelope_of, judged=judged)
+                                    grade=grade, envelope_of=atlas.envelope_of, judged=judged,
+                                    scales=atlas_scales(targets))
         if preferred is not None:
             base, tried = None, [preferred]
         else:  # every candidate was judged: the full search's, in its order

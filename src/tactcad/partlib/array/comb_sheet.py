@@ -44,6 +44,8 @@ def sheet_shade(row: int) -> RGB:
     return tuple(round(max(c - 0.1 * row, 0.0), 4) for c in COLOR)  # type: ignore[return-value]
 #: Most elements one comb carries (two rows of twelve, as the stacked array).
 MAX_COMB_ELEMENTS = 24
+#: Widest stop gap a comb's tables take (mm; the range of ``comb.stop_gaps_mm``).
+MAX_STOP_GAP_MM = 1.0
 
 
 class CombSection(Section):
@@ -59,7 +61,7 @@ class CombSection(Section):
                               "ISO 8734 dowel pin diameters (mm), as text")
     #: each element's stop travel at its arm's free end (element order); left
     #: out: the process's minimum slot for every element
-    stop_gaps_mm: listing(number(0.0, 1.0, lo_open=True), 2, MAX_COMB_ELEMENTS,
+    stop_gaps_mm: listing(number(0.0, MAX_STOP_GAP_MM, lo_open=True), 2, MAX_COMB_ELEMENTS,
                           "one gap per element (mm), rows x columns") = None
     #: each element's web (element order); left out: ``element.web_thickness_mm``
     web_thicknesses_mm: listing(number(*WEB_RANGE_MM, why=FITTED_DOMAIN), 2, MAX_COMB_ELEMENTS,
