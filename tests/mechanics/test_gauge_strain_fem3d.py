@@ -74,8 +74,8 @@ def test_closed_form_gauge_strain_within_3_percent_of_fem3d(design, which):
 #: fem3d's ``face_strain_per_N`` (1/N) on the examples' elements as installed (the gauge's
 #: glue line and carrier meshed), default meshes, Richardson error < 0.05 %: measured with
 #: ``tactcad stiffness --model fem3d --json`` (macro_array elements 1 and 4, ti_array_2x3
-#: elements 1 and 2); :func:`test_installed_face_strain_within_3_percent_of_fem3d` solves
-#: them again.
+#: elements 1 and 2); :func:`test_installed_face_strain_within_3_percent_of_fem3d` holds
+#: them to this run's fem3d solves (kept for the run: :mod:`shared_solves`).
 FEM3D_FACE_STRAIN_PER_N = {
     ("hardware/macro_array/macro_array.toml", "element_a4mm"): 1.45633e-3,
     ("hardware/macro_array/macro_array.toml", "element_a8mm"): 2.91282e-3,
