@@ -201,17 +201,21 @@ def test_an_undecided_tissue_row_is_judged_on_a_finer_check_where_the_cells_allo
     from tactcad.mechanics import contact_uniform
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.studies.verification import requirements_of, tissue_coupling_record
+    from tactcad.store import Store, keeping_results
 
     plan = _plan("macro_array")
     req = requirements_of(plan)
-    default = check_level(plan)
-    assert not default.finer_fits
-    monkeypatch.setattr(contact_uniform, "MAX_CHECK_CELLS", 16000)
-    record = tissue_coupling_record(plan, req)
+    # one block, as `tactcad verify` opens: the checks the record solved are read back
+    with keeping_results(Store(None)):
+        default = check_level(plan)
+        assert not default.finer_fits
+        monkeypatch.setattr(contact_uniform, "MAX_CHECK_CELLS", 16000)
+        record = tissue_coupling_record(plan, req)
+        finer = check_level(plan, refinement=1)
     assert "halved 1 time" in record["check_level"]
     assert record["coupled"]["verdict"] != "undecided"
     k = ladder_stiffness_by_element(plan)
-    working, finer = coupled_sample(plan), check_level(plan, refinement=1)
+    working = coupled_sample(plan)
     points = np.geomspace(*req.kobj_range_N_per_mm, 5)
     for unit in ((3, 1), (7, 8)):
         coarse = cross_level_bias(working, default.sample, k, unit, points)

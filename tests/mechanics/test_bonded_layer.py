@@ -22,6 +22,8 @@ from tactcad.mechanics.ladder import estimate, gauge_k_rise
 from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 from tactcad.studies.tolerance_montecarlo import corrected_stiffness
 
+from shared_solves import ONE_WORKER, shared_store
+
 EXAMPLE_NAMES = ("macro_array", "ti_array_2x3", "grasper_jaw_10mm")
 
 
@@ -130,18 +132,19 @@ def test_the_modal_fem_levels_mesh_the_layer_and_give_it_no_mass_of_its_own():
 
 
 @pytest.mark.slow  # fem3d with and without the layer on four elements (about 2 min)
+@ONE_WORKER  # its fem3d solves are test_gauge_strain_fem3d's and the CalculiX test's
 @pytest.mark.parametrize("name,part", [("macro_array", "element_a4mm"),
                                        ("ti_array_2x3", "element_a19p605mm"),
                                        ("grasper_jaw_10mm", "element_a2mm"),
                                        ("grasper_jaw_10mm", "element_a3mm")])
 def test_the_stated_layer_errors_hold_against_fem3d_with_the_layer_meshed(name, part):
-    from tactcad.store import Store, keeping_results
+    from tactcad.store import keeping_results
 
     plan = _plan(name)
     g, m = plan.distinct_elements[part], plan.material
     chain = readout_chain(plan)
     # one block, as a command opens: the grid strain reads the solves of the K rise
-    with keeping_results(Store(None)):
+    with keeping_results(shared_store()):
         rises = {model: gauge_k_rise(model, g, m) for model in ("closed-form", "beam", "fem2d",
                                                                 "fem3d")}
         fem = grid_strain_per_N(g, m, chain, "fem3d")

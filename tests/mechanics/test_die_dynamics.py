@@ -107,6 +107,24 @@ def test_the_dies_fem3d_agrees_with_calculix_to_one_percent(plan):
         assert ours.f1_Hz == pytest.approx(ccx.f1_fe_Hz, rel=0.01)
 
 
+def test_three_gauss_points_a_side_integrate_the_box_cells_as_scikit_fems_seven_do(plan,
+                                                                                   monkeypatch):
+    """Every cell of the die's hexahedra is a box, so 3^3 Gauss points integrate the
+    triquadratic stiffness and mass exactly: K and f1 as with scikit-fem's own 7^3 (its
+    default order for ``ElementHex2``, 12), on the clamped beam's cells of several aspect
+    ratios (the frame block's graded cells are boxes as well)."""
+    from tactcad.products.silicon_die.mechanics import die_fem3d
+
+    beam, chosen = plan.beams[0], die_fem3d.HEX_QUADRATURE_ORDER
+    assert chosen < 12
+    solved = {}
+    for order in (12, chosen):
+        monkeypatch.setattr(die_fem3d, "HEX_QUADRATURE_ORDER", order)
+        solved[order] = die_fem3d._solve(plan, beam, (12, 2, 2), frame=False)[:2]
+    (k_full, f1_full), (k, f1) = solved[12], solved[chosen]
+    assert k == pytest.approx(k_full, rel=1e-9) and f1 == pytest.approx(f1_full, rel=1e-9)
+
+
 # --- the beam on its frame ----------------------------------------------------------------------
 @pytest.mark.slow  # scikit-fem and CalculiX on the frame block, both rows (minutes)
 @pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (calculix-ccx) not installed")

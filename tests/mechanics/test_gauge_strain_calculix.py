@@ -28,6 +28,7 @@ import pytest
 
 from calculix_jobs import mesh_element, write_mesh
 from conftest import run_cli
+from shared_solves import ONE_WORKER, shared_store
 
 #: The paper's stiffest element and the Ti example's softest.
 CASES = (("hardware/macro_array/macro_array.toml", "element_a4mm"),
@@ -84,13 +85,14 @@ def grid_mean_strain(top_xyz: np.ndarray, ux: np.ndarray, x_span, z_span, n: int
 
 
 @pytest.mark.slow
+@ONE_WORKER  # its fem3d solves are test_bonded_layer's and test_gauge_strain_fem3d's
 @pytest.mark.parametrize("design, part", CASES)
 def test_fem3d_grid_strain_agrees_with_calculix(design, part, ccx, tmp_path):
     from tactcad.api import load
     from tactcad.mechanics.fem.fem_mesh import fem_region
     from tactcad.mechanics.readout_chain import (grid_span_mm, readout_chain,
                                                  face_mean_strain_as_cut_per_N)
-    from tactcad.store import Store, keeping_results
+    from tactcad.store import keeping_results
 
     root = Path(__file__).resolve().parents[2]
     plan = load(root / design).plan
@@ -121,7 +123,7 @@ def test_fem3d_grid_strain_agrees_with_calculix(design, part, ccx, tmp_path):
     w = min(chain.grid_width_mm, g.sheet_thickness_mm)
     ccx_eps = grid_mean_strain(top, ux, grid_span_mm(g, chain.grid_length_mm),
                                (zc - w / 2, zc + w / 2)) / FORCE_N
-    with keeping_results(Store(None)):
+    with keeping_results(shared_store()):
         ours = face_mean_strain_as_cut_per_N(g, mat, chain.grid_length_mm, chain.grid_width_mm,
                                          "fem3d")
     print(f"{design} {part}: fem3d grid {ours['surface']:.6e}, ccx {ccx_eps:.6e} "

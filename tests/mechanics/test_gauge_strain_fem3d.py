@@ -14,6 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from shared_solves import ONE_WORKER, shared_store
+
 ROOT = Path(__file__).resolve().parents[2]
 DESIGNS = ("hardware/macro_array/macro_array.toml", "hardware/ti_array_2x3/ti_array_2x3.toml")
 
@@ -27,13 +29,14 @@ def _extremes(design: str):
 
 
 @pytest.mark.slow
+@ONE_WORKER  # its fem3d solves are test_bonded_layer's and the CalculiX test's
 @pytest.mark.parametrize("design", DESIGNS)
 @pytest.mark.parametrize("which", ("stiffest", "softest"))
 def test_closed_form_gauge_strain_within_3_percent_of_fem3d(design, which):
     from tactcad.mechanics.ladder import estimate
     from tactcad.mechanics.readout_chain import (grid_strain_per_N, readout_chain,
                                                  face_mean_strain_as_cut_per_N)
-    from tactcad.store import Store, keeping_results
+    from tactcad.store import keeping_results
 
     plan, (stiff, soft) = _extremes(design)
     # the element as cut: the fitted strain factors' subject, and the face the read-out's
@@ -42,7 +45,7 @@ def test_closed_form_gauge_strain_within_3_percent_of_fem3d(design, which):
     mat, chain = plan.material, readout_chain(plan)
     L, W = chain.grid_length_mm, chain.grid_width_mm
     solved = []
-    with keeping_results(Store(None)):
+    with keeping_results(shared_store()):
         ref = estimate("fem3d", g, mat)
         import tactcad.mechanics.fem.fem3d as fem3d
 
@@ -71,8 +74,8 @@ def test_closed_form_gauge_strain_within_3_percent_of_fem3d(design, which):
 #: fem3d's ``face_strain_per_N`` (1/N) on the examples' elements as installed (the gauge's
 #: glue line and carrier meshed), default meshes, Richardson error < 0.05 %: measured with
 #: ``tactcad stiffness --model fem3d --json`` (macro_array elements 1 and 4, ti_array_2x3
-#: elements 1 and 2); :func:`test_installed_face_strain_within_3_percent_of_fem3d` solves
-#: them again.
+#: elements 1 and 2); :func:`test_installed_face_strain_within_3_percent_of_fem3d` holds
+#: them to this run's fem3d solves (kept for the run: :mod:`shared_solves`).
 FEM3D_FACE_STRAIN_PER_N = {
     ("hardware/macro_array/macro_array.toml", "element_a4mm"): 1.45633e-3,
     ("hardware/macro_array/macro_array.toml", "element_a8mm"): 2.91282e-3,
@@ -102,6 +105,7 @@ def test_installed_face_strain_is_fem3d_s_quantity(design, part):
 
 
 @pytest.mark.slow  # fem3d with the layer meshed on four elements (about 15-35 s each)
+@ONE_WORKER  # its fem3d solves are test_bonded_layer's
 @pytest.mark.parametrize("design", DESIGNS)
 @pytest.mark.parametrize("which", ("stiffest", "softest"))
 def test_installed_face_strain_within_3_percent_of_fem3d(design, which):
@@ -109,13 +113,13 @@ def test_installed_face_strain_within_3_percent_of_fem3d(design, which):
     gauge's layer against fem3d's with the layer meshed, on the element as installed; and
     the recorded figures of :data:`FEM3D_FACE_STRAIN_PER_N` still fem3d's."""
     from tactcad.mechanics.ladder import estimate
-    from tactcad.store import Store, keeping_results
+    from tactcad.store import keeping_results
 
     plan, (stiff, soft) = _extremes(design)
     g = stiff if which == "stiffest" else soft
     assert g.gauge is not None
     mat = plan.material
-    with keeping_results(Store(None)):
+    with keeping_results(shared_store()):
         ref = estimate("fem3d", g, mat).face_strain_per_N
     assert ref == pytest.approx(FEM3D_FACE_STRAIN_PER_N[(design, g.part_name)], rel=1e-4)
     for model in ("closed-form", "beam"):
