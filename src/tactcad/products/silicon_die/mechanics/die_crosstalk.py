@@ -252,14 +252,18 @@ def strains_on_springs(mesh, c: np.ndarray, springs_N_per_mm3: tuple[float, floa
     import scipy.sparse as sp
     from skfem import Basis, BilinearForm, ElementHex2, FacetBasis, LinearForm
 
-    from tactcad.products.silicon_die.mechanics.die_fem3d import assemble_anisotropic
+    from tactcad.products.silicon_die.mechanics.die_fem3d import (HEX_QUADRATURE_ORDER,
+                                                                   assemble_anisotropic)
     from tactcad.mechanics.fem.sparse_lu import spd_lu
 
+    # the block's cells are boxes and its loads linear in x: 3 x 3 x 3 Gauss points
+    # integrate the stiffness, the bed and the loads exactly (see HEX_QUADRATURE_ORDER)
+    order = HEX_QUADRATURE_ORDER
     element = ElementHex2()
-    scalar = Basis(mesh, element)
+    scalar = Basis(mesh, element, intorder=order)
     k_n, k_t = springs_N_per_mm3
     bottom = FacetBasis(mesh, element, facets=mesh.facets_satisfying(
-        lambda x: np.isclose(x[2], 0.0), boundaries_only=True))
+        lambda x: np.isclose(x[2], 0.0), boundaries_only=True), intorder=order)
 
     @BilinearForm
     def area(u, v, w):
@@ -269,7 +273,7 @@ def strains_on_springs(mesh, c: np.ndarray, springs_N_per_mm3: tuple[float, floa
     lu = spd_lu(assemble_anisotropic(scalar, c) + bed, dofs_per_node=3)
     rhs = np.zeros((3 * scalar.N, len(loads)))
     for j, (facets, traction) in enumerate(loads):
-        fb = FacetBasis(mesh, element, facets=facets)
+        fb = FacetBasis(mesh, element, facets=facets, intorder=order)
         for a in range(3):
             @LinearForm
             def component(v, p, a=a):
@@ -283,7 +287,7 @@ def strains_on_springs(mesh, c: np.ndarray, springs_N_per_mm3: tuple[float, floa
     for w_index, (x0, y0, x1, y1) in enumerate(windows):
         fb = FacetBasis(mesh, element, facets=mesh.facets_satisfying(
             lambda x: np.isclose(x[2], top_z) & (x[0] > x0 - eps_) & (x[0] < x1 + eps_)
-            & (x[1] > y0 - eps_) & (x[1] < y1 + eps_), boundaries_only=True))
+            & (x[1] > y0 - eps_) & (x[1] < y1 + eps_), boundaries_only=True), intorder=order)
         weights = fb.dx / np.sum(fb.dx)
         for j in range(len(loads)):
             grad = np.array([fb.interpolate(u[a::3, j]).grad for a in range(3)])
