@@ -522,3 +522,25 @@ def test_a_kept_search_works_a_plans_limits_and_an_elements_strain_error_out_onc
         assert a.force_error_rel == b.force_error_rel
         assert [(lim.allowed.tolist(), lim.detail) for lim in a.limits] == \
             [(lim.allowed.tolist(), lim.detail) for lim in b.limits]
+
+
+def test_a_kept_search_centres_one_layouts_tips_once_for_every_force(plan, monkeypatch):
+    import dataclasses
+
+    import tactcad.in_use.tissue_coupling as coupling
+    from tactcad.in_use.tissue_coupling import Tissue
+    from tactcad.studies.inverse_design import centred_for_tissue, web_searches_kept
+
+    soft = dataclasses.replace(FEASIBLE, tissue=Tissue())
+    forces = [dataclasses.replace(soft, full_scale_force_N=f) for f in (0.3, 0.6)]
+    fresh = [centred_for_tissue(plan, t) for t in forces]
+    calls = []
+    whole = coupling.centred_seen_factor
+    monkeypatch.setattr(coupling, "centred_seen_factor",
+                        lambda *args: calls.append(args[2]) or whole(*args))
+    with web_searches_kept():
+        kept = [centred_for_tissue(plan, t) for t in forces]
+        wider = centred_for_tissue(plan, dataclasses.replace(soft, k_obj_range_N_per_mm=(2.0, 50.0)))
+    assert len(calls) == 2  # the forces share one factor; another range is its own
+    assert kept == fresh and kept[0].kobj_seen_factor != 1.0
+    assert wider.kobj_seen_factor != kept[0].kobj_seen_factor

@@ -558,8 +558,9 @@ def _kept_web_candidates(plan: Plan, targets: Targets, corr, webs_mm, arm_max_mm
 
 def _kept_in_searches(key: tuple, compute: Callable[[], Any]) -> Any:
     """``compute()``, or inside :func:`web_searches_kept` its value kept under ``key`` (a
-    tag first, so it meets no search's key): the same plan's closed-form limits and the same
-    element's strain error are asked again by every target a refusal's scan tries."""
+    tag first, so it meets no search's key): the same plan's closed-form limits, the same
+    element's strain error and the same tips' K_obj seen factor are asked again by every
+    target a refusal's scan tries."""
     kept = _WEB_SEARCHES.get()
     if kept is None:
         return compute()
@@ -1092,11 +1093,23 @@ def centred_for_tissue(plan: Plan, targets: Targets) -> Targets:
     (:func:`tactcad.in_use.tissue_coupling.centred_seen_factor`); unchanged without a tissue."""
     if targets.tissue is None:
         return targets
-    from tactcad.in_use.tissue_coupling import centred_seen_factor
+    from tactcad.in_use.tissue_coupling import centred_seen_factor, tip_punches
 
-    s = centred_seen_factor(plan, sensing_unit_numbers(plan), targets.kr_over_km,
-                            targets.k_obj_range_N_per_mm, targets.tissue)
-    return replace(targets, kobj_seen_factor=s)
+    units = sensing_unit_numbers(plan)
+
+    def factor() -> float:
+        return centred_seen_factor(plan, units, targets.kr_over_km,
+                                   targets.k_obj_range_N_per_mm, targets.tissue)
+
+    # the factor reads the plan only through its tips: a refusal's force bisection on one
+    # layout asks it again for every force
+    key = ("seen factor", tip_punches(plan), tuple(units), targets.kr_over_km,
+           tuple(targets.k_obj_range_N_per_mm), targets.tissue)
+    try:
+        hash(key)
+    except TypeError:
+        return replace(targets, kobj_seen_factor=factor())
+    return replace(targets, kobj_seen_factor=_kept_in_searches(key, factor))
 
 
 def coupled_span_misses(plan: Plan, targets: Targets) -> list[str]:
