@@ -489,3 +489,21 @@ def test_the_corrections_range_covers_every_library_material_and_is_checked_at_f
     assert beyond and all(p["set"].startswith("check") for p in beyond)
     assert max(p["poisson_ratio"] for p in beyond) == hi
     assert max(abs(p["residual_rel"]) for p in beyond) <= doc["holdout"]["max"]
+
+
+@pytest.mark.parametrize("web, radius, arm, bare", [(0.25, 1.0, 8.0, False), (0.6, 0.6, 14.0, False),
+                                                     (0.12, 2.5, 30.0, False), (0.25, 1.0, 8.0, True)])
+def test_the_error_estimate_alone_is_the_closed_form_levels_to_the_bit(plan, web, radius, arm,
+                                                                        bare):
+    from tactcad.mechanics.closed_form import closed_form_error_estimate_rel
+    from tactcad.mechanics.ladder import estimate
+
+    g = dataclasses.replace(plan.element(1).geometry, web_thickness_mm=web,
+                            notch_radius_mm=radius, arm_length_mm=arm)
+    if bare:
+        g = g.bare()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # some of these lie outside the fitted range
+        whole = estimate("closed-form", g, plan.material).error_estimate_rel
+        alone = closed_form_error_estimate_rel(g, plan.material)
+    assert alone == whole and alone > 0

@@ -456,3 +456,91 @@ def test_a_kept_web_search_judges_each_force_as_a_fresh_one_and_works_its_arms_o
             [(lim.allowed.tolist(), lim.detail) for lim in b.limits]
     assert np.array_equal(again.arm_r_mm, fresh[0].arm_r_mm, equal_nan=True)
     assert not np.array_equal(fresh[0].margin, fresh[1].margin)  # ten times the force
+
+
+def test_arms_for_two_stiffnesses_in_one_root_find_are_each_targets_own_to_the_bit(plan):
+    from tactcad.mechanics.correction import load_correction
+    from tactcad.studies.inverse_design import arm_for_stiffness, arms_for_stiffnesses
+
+    g, mat, corr = plan.element(1).geometry, plan.material, load_correction()
+    webs = np.round(np.arange(0.2, 0.8, 0.005), 6)
+    radii = np.maximum(g.notch_radius_mm, webs)
+    lo, hi = np.full_like(webs, 3.0), np.full_like(webs, 20.0)
+    k_targets = (40.0, 6.5, 1e6)  # the last beyond every web: NaN throughout
+    stacked = arms_for_stiffnesses(k_targets, webs, radii, g, mat, corr, lo, hi)
+    alone = [arm_for_stiffness(k, webs, radii, g, mat, corr, lo, hi) for k in k_targets]
+    for a, b in zip(stacked, alone):
+        assert a.shape == webs.shape
+        assert np.array_equal(a, b, equal_nan=True)
+    assert np.isfinite(stacked[0]).any() and np.isfinite(stacked[1]).any()
+    assert np.isnan(stacked[2]).all()
+    # the arms meet their targets: K at each found arm is the target
+    found = np.isfinite(stacked[1])
+    from tactcad.studies.tolerance_montecarlo import corrected_stiffness
+    k = corrected_stiffness(webs[found], radii[found], stacked[1][found], mat.youngs_modulus_MPa,
+                            g, mat.poisson_ratio, corr)
+    assert np.allclose(k, 6.5, rtol=1e-9)
+
+
+def test_a_kept_search_works_a_plans_limits_and_an_elements_strain_error_out_once(
+        plan, monkeypatch):
+    import dataclasses
+
+    import tactcad.mechanics.limits as limits
+    import tactcad.studies.inverse_design as inverse
+    from tactcad.studies.inverse_design import web_searches_kept
+
+    other = dataclasses.replace(FEASIBLE, kr_over_km=4.0)  # other arms, the same plan
+    fresh = [search_webs(plan, t) for t in (FEASIBLE, other)]
+    calls = {"limits": 0, "errors": 0}
+    whole_limits, whole_error = limits.plan_limits, limits.closed_form_gauge_error_rel
+
+    def counted(name, f):
+        def wrapped(*args, **kw):
+            calls[name] += 1
+            return f(*args, **kw)
+        return wrapped
+
+    monkeypatch.setattr(limits, "plan_limits", counted("limits", whole_limits))
+    monkeypatch.setattr(limits, "closed_form_gauge_error_rel", counted("errors", whole_error))
+    with web_searches_kept():
+        kept = [search_webs(plan, t) for t in (FEASIBLE, other)]
+        g, mat = plan.element(1).geometry, plan.material
+        chain = inverse.readout_chain(plan)
+        w = kept[0]
+        arms = [np.where(np.isnan(a), w.arm_hi_mm, a) for a in (w.arm_r_mm, w.arm_m_mm)]
+        first = inverse.web_strain_errors(g, mat, chain, w.webs_mm, w.radii_mm, arms)
+        n_errors = calls["errors"]
+        again = inverse.web_strain_errors(g, mat, chain, w.webs_mm, w.radii_mm, arms)
+    assert calls["limits"] == 1  # the second target's search reads the plan's limits back
+    assert n_errors > 0 and calls["errors"] == n_errors  # the same elements: none again
+    assert np.array_equal(first, again)
+    alone = inverse.web_strain_errors(g, mat, chain, w.webs_mm, w.radii_mm, arms)
+    assert np.array_equal(again, alone) and calls["errors"] > n_errors
+    for a, b in zip(fresh, kept):
+        assert np.array_equal(a.margin, b.margin)
+        assert a.force_error_rel == b.force_error_rel
+        assert [(lim.allowed.tolist(), lim.detail) for lim in a.limits] == \
+            [(lim.allowed.tolist(), lim.detail) for lim in b.limits]
+
+
+def test_a_kept_search_centres_one_layouts_tips_once_for_every_force(plan, monkeypatch):
+    import dataclasses
+
+    import tactcad.in_use.tissue_coupling as coupling
+    from tactcad.in_use.tissue_coupling import Tissue
+    from tactcad.studies.inverse_design import centred_for_tissue, web_searches_kept
+
+    soft = dataclasses.replace(FEASIBLE, tissue=Tissue())
+    forces = [dataclasses.replace(soft, full_scale_force_N=f) for f in (0.3, 0.6)]
+    fresh = [centred_for_tissue(plan, t) for t in forces]
+    calls = []
+    whole = coupling.centred_seen_factor
+    monkeypatch.setattr(coupling, "centred_seen_factor",
+                        lambda *args: calls.append(args[2]) or whole(*args))
+    with web_searches_kept():
+        kept = [centred_for_tissue(plan, t) for t in forces]
+        wider = centred_for_tissue(plan, dataclasses.replace(soft, k_obj_range_N_per_mm=(2.0, 50.0)))
+    assert len(calls) == 2  # the forces share one factor; another range is its own
+    assert kept == fresh and kept[0].kobj_seen_factor != 1.0
+    assert wider.kobj_seen_factor != kept[0].kobj_seen_factor

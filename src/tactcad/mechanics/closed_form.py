@@ -337,6 +337,37 @@ def width_gain(g: ElementGeometry, material: Material,
     return float(gain)
 
 
+def closed_form_error_estimate_rel(g: ElementGeometry, material: Material) -> float:
+    """The error estimate :func:`estimate_closed_form` gives element ``g`` (corrected by
+    the correction file), relative, without the gauge strain it also works out: the
+    stiffness correction's error plus the bonded layer's share of the rise, by the same
+    steps, so the number is the same to the bit.
+
+    Args:
+        g: element geometry (mm). material: its material (MPa).
+
+    Returns:
+        The relative error estimate of the corrected closed-form K (dimensionless).
+
+    Warns:
+        CorrectionRangeWarning: the geometry lies outside the correction's fitted range.
+
+    Source: the fem3d-fitted correction's residual and extrapolation
+    (:meth:`~tactcad.mechanics.correction.Correction.error_estimate_rel`) and
+    :data:`~tactcad.mechanics.bonded_layer.CLOSED_FORM_LAYER_ERROR_REL`.
+    """
+    corr = _resolve(True, None)
+    t = g.web_thickness_mm
+    k, err = _corrected(_parts(g, material, t), g, material, t, corr, warn=True)
+    layer = layer_of(g)
+    if layer is not None:
+        from tactcad.mechanics.bonded_layer import CLOSED_FORM_LAYER_ERROR_REL, closed_form_layer_k
+
+        err += CLOSED_FORM_LAYER_ERROR_REL * (
+            closed_form_layer_k(k, g, material.youngs_modulus_MPa, layer) / k - 1.0)
+    return err
+
+
 def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int | None = None,
                          corrected: bool = True,
                          correction: Correction | None = None) -> StiffnessResult:

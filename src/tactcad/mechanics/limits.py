@@ -170,9 +170,10 @@ def closed_form_gauge_error_rel(g: ElementGeometry, material, chain) -> float:
         g: the element; material: its material; chain: the design's read-out chain
             (:func:`tactcad.mechanics.readout_chain.readout_chain`: the grid's size).
     """
-    from tactcad.mechanics.ladder import estimate
+    from tactcad.mechanics.closed_form import closed_form_error_estimate_rel
 
-    k_err = estimate("closed-form", g, material).error_estimate_rel
+    # the closed-form level's own error estimate, without the face strain it also works out
+    k_err = closed_form_error_estimate_rel(g, material)
     return max(k_err, 0.0) + grid_strain_factor(g, material, chain.grid_length_mm,
                                                 chain.grid_width_mm).error_rel
 

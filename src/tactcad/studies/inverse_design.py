@@ -65,7 +65,7 @@ import re
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field, replace
-from typing import Any, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -381,30 +381,59 @@ def _web_span(webs: np.ndarray, mask: np.ndarray) -> str:
 # ---------------------------------------------------------------------------
 def arm_for_stiffness(k_target: float, webs, radii, g, material, correction,
                       arm_lo, arm_hi) -> np.ndarray:
-    """Arm length (mm) giving corrected closed-form K = ``k_target`` at each
+    """Arm length (mm) giving corrected closed-form K = ``k_target`` (N/mm) at each
     web, NaN where the target lies outside [K(arm_hi), K(arm_lo)].
 
     K falls monotonically with the arm, so the root is unique in the bracket
     (scipy ``elementwise.find_root``, Chandrupatla's method, on ln K).
+
+    Args:
+        k_target: the stiffness sought, N/mm. webs, radii: web and notch radius per
+            candidate (mm). g, material, correction: the element, its material and the
+            closed form's correction. arm_lo, arm_hi: the arm bracket per candidate (mm).
+
+    Returns:
+        The arm per candidate (mm), NaN outside the bracket.
+    """
+    return arms_for_stiffnesses((k_target,), webs, radii, g, material, correction,
+                                arm_lo, arm_hi)[0]
+
+
+def arms_for_stiffnesses(k_targets: Sequence[float], webs, radii, g, material, correction,
+                         arm_lo, arm_hi) -> list[np.ndarray]:
+    """:func:`arm_for_stiffness` for several targets (N/mm) in one root find: the
+    candidates of every target are stacked, so the solver's iterations are paid once
+    (each element's iterates are its own, so every arm is the one a separate find gives).
+
+    Args:
+        k_targets: the stiffnesses sought (N/mm), e.g. K_r and K_m. The rest: as
+            :func:`arm_for_stiffness`.
+
+    Returns:
+        Per target, the arm per candidate (mm), NaN where the target lies outside
+        [K(arm_hi), K(arm_lo)]. Source: Chandrupatla (1997), as scipy implements it.
     """
     from scipy.optimize.elementwise import find_root
 
-
     webs, radii, lo, hi = np.broadcast_arrays(*(np.asarray(v, float)
                                                 for v in (webs, radii, arm_lo, arm_hi)))
+    n = len(k_targets)
+    webs, radii, lo, hi = (np.tile(v, (n,) + (1,) * v.ndim) for v in (webs, radii, lo, hi))
+    k = np.broadcast_to(np.asarray(k_targets, float).reshape((n,) + (1,) * (webs.ndim - 1)),
+                        webs.shape)
 
-    def f(a, t, R):
+    def f(a, t, R, k_t):
         return np.log(corrected_stiffness(t, R, a, material.youngs_modulus_MPa, g,
-                                          material.poisson_ratio, correction) / k_target)
+                                          material.poisson_ratio, correction) / k_t)
 
-    f_lo, f_hi = f(lo, webs, radii), f(hi, webs, radii)
+    f_lo, f_hi = f(lo, webs, radii, k), f(hi, webs, radii, k)
     ok = (f_lo >= 0) & (f_hi <= 0) & (lo < hi)
     out = np.full(webs.shape, np.nan)
     if ok.any():
-        res = find_root(f, (lo[ok], hi[ok]), args=(webs[ok], radii[ok]),
+        res = find_root(f, (lo[ok], hi[ok]), args=(webs[ok], radii[ok], k[ok]),
                         tolerances={"xatol": 1e-9, "xrtol": 1e-12})
         out[ok] = res.x
-    return out
+    return list(out)
 
 
 @dataclass(frozen=True)
@@ -527,6 +556,19 @@ def _kept_web_candidates(plan: Plan, targets: Targets, corr, webs_mm, arm_max_mm
     return kept[key][1]
 
 
+def _kept_in_searches(key: tuple, compute: Callable[[], Any]) -> Any:
+    """``compute()``, or inside :func:`web_searches_kept` its value kept under ``key`` (a
+    tag first, so it meets no search's key): the same plan's closed-form limits, the same
+    element's strain error and the same tips' K_obj seen factor are asked again by every
+    target a refusal's scan tries."""
+    kept = _WEB_SEARCHES.get()
+    if kept is None:
+        return compute()
+    if key not in kept:
+        kept[key] = compute()
+    return kept[key]
+
+
 def web_candidates(plan: Plan, targets: Targets, corr, webs_mm: Sequence[float] | None,
                    arm_max_mm: float | None) -> dict[str, Any]:
     """What :func:`search_webs` works out before it reads the full-scale force: the
@@ -561,8 +603,8 @@ def web_candidates(plan: Plan, targets: Targets, corr, webs_mm: Sequence[float] 
                                                     plan.pitch_mm, radii)])
     arm_hi = np.full_like(webs, ARM_RANGE_MM[1] if arm_max_mm is None
                           else min(ARM_RANGE_MM[1], arm_max_mm))
-    a_r = arm_for_stiffness(targets.k_r, webs, radii, g, mat, corr, arm_lo, arm_hi)
-    a_m = arm_for_stiffness(targets.k_m, webs, radii, g, mat, corr, arm_lo, arm_hi)
+    a_r, a_m = arms_for_stiffnesses((targets.k_r, targets.k_m), webs, radii, g, mat, corr,
+                                    arm_lo, arm_hi)
 
     def k(a):
         return corrected_stiffness(webs, radii, a, mat.youngs_modulus_MPa, g, mat.poisson_ratio,
@@ -588,7 +630,8 @@ def web_candidates(plan: Plan, targets: Targets, corr, webs_mm: Sequence[float] 
             "f_gauge": np.minimum(limits_r["gauge_fatigue"], limits_m["gauge_fatigue"]),
             "f_gauge_max": np.minimum(limits_r["gauge_max"], limits_m["gauge_max"]),
             "f_fatigue": np.fmin(limits_r["fatigue"], limits_m["fatigue"]),  # NaN: none
-            "cf_limits": plan_limits(plan, "closed-form"),
+            "cf_limits": _kept_in_searches(("closed-form limits", plan.design_hash, plan.source),
+                                           lambda: plan_limits(plan, "closed-form")),
             "web_err": web_strain_errors(g, mat, chain, webs, radii, arms)}
 
 
@@ -696,9 +739,18 @@ def web_strain_errors(g, material, chain, webs: np.ndarray, radii: np.ndarray,
     picks = np.unique(np.linspace(0, len(webs) - 1, min(ERROR_SAMPLES, len(webs))).round()
                       .astype(int))
     sampled = order[picks]
-    at = np.array([max(closed_form_gauge_error_rel(
-        replace(g, web_thickness_mm=float(webs[i]), notch_radius_mm=float(radii[i]),
-                arm_length_mm=float(a[i])), material, chain) for a in arms) for i in sampled])
+    def error(element) -> float:
+        try:
+            key = ("gauge strain error", element, material, chain)
+            hash(key)
+        except TypeError:  # a table the key cannot hold: worked out each time
+            return closed_form_gauge_error_rel(element, material, chain)
+        return _kept_in_searches(key, lambda: closed_form_gauge_error_rel(element, material,
+                                                                          chain))
+
+    at = np.array([max(error(replace(g, web_thickness_mm=float(webs[i]),
+                                     notch_radius_mm=float(radii[i]), arm_length_mm=float(a[i])))
+                       for a in arms) for i in sampled])
     t = webs[sampled]
     right = np.clip(np.searchsorted(t, webs), 0, len(t) - 1)
     left = np.clip(right - 1, 0, len(t) - 1)
@@ -1041,11 +1093,23 @@ def centred_for_tissue(plan: Plan, targets: Targets) -> Targets:
     (:func:`tactcad.in_use.tissue_coupling.centred_seen_factor`); unchanged without a tissue."""
     if targets.tissue is None:
         return targets
-    from tactcad.in_use.tissue_coupling import centred_seen_factor
+    from tactcad.in_use.tissue_coupling import centred_seen_factor, tip_punches
 
-    s = centred_seen_factor(plan, sensing_unit_numbers(plan), targets.kr_over_km,
-                            targets.k_obj_range_N_per_mm, targets.tissue)
-    return replace(targets, kobj_seen_factor=s)
+    units = sensing_unit_numbers(plan)
+
+    def factor() -> float:
+        return centred_seen_factor(plan, units, targets.kr_over_km,
+                                   targets.k_obj_range_N_per_mm, targets.tissue)
+
+    # the factor reads the plan only through its tips: a refusal's force bisection on one
+    # layout asks it again for every force
+    key = ("seen factor", tip_punches(plan), tuple(units), targets.kr_over_km,
+           tuple(targets.k_obj_range_N_per_mm), targets.tissue)
+    try:
+        hash(key)
+    except TypeError:
+        return replace(targets, kobj_seen_factor=factor())
+    return replace(targets, kobj_seen_factor=_kept_in_searches(key, factor))
 
 
 def coupled_span_misses(plan: Plan, targets: Targets) -> list[str]:
