@@ -248,3 +248,48 @@ def test_each_drawn_point_carries_its_figures_and_command_for_the_hover(tmp_path
             assert "designed: K_obj resolution 0.10%" in mine and "f1 900 Hz" in mine
         else:
             assert f"refused (strength): detail {r['point']}" in mine
+
+
+def test_without_batch_the_tasks_are_about_32_a_worker_thread_and_at_most_32_points():
+    from tactcad.commands.atlas import MAX_AUTO_BATCH, TASKS_PER_WORKER, auto_batch
+
+    assert auto_batch(10_000, 2) == MAX_AUTO_BATCH  # a die atlas: few, full tasks
+    assert auto_batch(16, 2) == 1 and auto_batch(1, 0) == 1  # a comb's handful: one a task
+    for points in (1, 63, 64, 65, 640, 2047, 2048, 5000, 100_000):
+        for threads in (1, 2, 3, 8):
+            size = auto_batch(points, threads)
+            assert 1 <= size <= MAX_AUTO_BATCH
+            tasks = math.ceil(points / size)
+            # enough tasks to even out the workers, unless the batches are full or single
+            assert tasks >= min(points, threads * TASKS_PER_WORKER) or size == MAX_AUTO_BATCH
+
+
+def test_without_batch_the_run_takes_the_automatic_size(tmp_path, monkeypatch):
+    import contextlib
+
+    import tactcad.studies.design_atlas as design_atlas
+    import tactcad.studies.sweeps as sweeps
+
+    sizes = []
+    real = design_atlas.run_atlas
+
+    def recorded(atlas, points, client, batch_size=1, **kwargs):
+        sizes.append(batch_size)
+        return real(atlas, points, client, batch_size, **kwargs)
+
+    @contextlib.contextmanager
+    def threads_here(scheduler, workers):  # one worker thread in this process: no spawn
+        from distributed import Client
+
+        with Client(processes=False, n_workers=1, threads_per_worker=1,
+                    dashboard_address=None) as client:
+            yield client
+
+    monkeypatch.setattr(design_atlas, "run_atlas", recorded)
+    monkeypatch.setattr(sweeps, "dask_client", threads_here)
+    from tactcad.commands.atlas import auto_batch
+
+    from tactcad.cli import main
+
+    assert main([*DIE_ATLAS, "--points", "70", "--out", str(tmp_path / "a"), "--no-cache"]) == 0
+    assert sizes == [auto_batch(70, 1)] and sizes[0] == 2

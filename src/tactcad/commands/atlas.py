@@ -20,9 +20,13 @@ from tactcad.studies.atlas_files import (  # noqa: F401  (the command's names)
     FIGURE_NAME, PROJECT_ATLAS_FOLDER, SUMMARY_NAME, TABLE_NAME, point_title, read_table,
     span, write_table)
 
-#: Points judged per Dask task (a comb's point costs seconds: small batches keep both
-#: workers busy to the end).
-DEFAULT_BATCH = 2
+#: Tasks each worker thread is handed on average when ``--batch`` is not given: enough that
+#: the last ones even out the workers' finish (a comb's point costs seconds).
+TASKS_PER_WORKER = 32
+#: Most points a task takes when ``--batch`` is not given: each task carries the jaw and
+#: its records over the wire, so a die's points (milliseconds each) go in batches, but one
+#: Ctrl-C loses at most this many points' work a worker.
+MAX_AUTO_BATCH = 32
 #: Range options: option -> (the axis of :data:`tactcad.studies.design_atlas.AXES`, unit, type).
 RANGE_OPTIONS = {"--kr-over-km-range": ("kr_over_km", ""),
                  "--kobj-centre": ("kobj_centre_N_per_mm", "N/mm"),
@@ -72,8 +76,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                        number(0, 1e4, unit, lo_open=True), nargs=2, metavar=("LO", "HI"),
                        default=None, help=f"range of {axis} sampled (default {lo:g} {hi:g}"
                        + (f" {unit}" if unit else "") + ")")
-    p.add_argument("--batch", type=count(1, 10_000, "points per task"), default=DEFAULT_BATCH,
-                   metavar="N", help="target points per Dask task (default %(default)s)")
+    p.add_argument("--batch", type=count(1, 10_000, "points per task"), default=None,
+                   metavar="N", help="target points per Dask task (default: the points over "
+                   f"{TASKS_PER_WORKER} tasks a worker thread, 1 to {MAX_AUTO_BATCH})")
     p.add_argument("--out", metavar="DIR", default=None,
                    help=f"folder for {TABLE_NAME}, {FIGURE_NAME} and {SUMMARY_NAME} "
                         f"(default: exports/atlas; with --project, the project's "
@@ -297,8 +302,26 @@ def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[di
 
     say = progress_from_args(args)
     with dask_client(args.scheduler, args.workers or LOCAL_WORKERS) as client:
-        return run_atlas(atlas, points, client, args.batch,
+        size = args.batch or auto_batch(len(points), sum(client.nthreads().values()))
+        return run_atlas(atlas, points, client, size,
                          progress=lambda done, total: say(f"atlas: {done}/{total} batches"))
+
+
+def auto_batch(points: int, threads: int) -> int:
+    """Points per Dask task when ``--batch`` is not given: about :data:`TASKS_PER_WORKER`
+    tasks for each worker thread, 1 to :data:`MAX_AUTO_BATCH` points each. (On two workers,
+    10 000 die points took 131 s judged two to a task and 102 s 32 to a task: a task's
+    overhead is several of a die's points.)
+
+    Args:
+        points: target points of the run. threads: the cluster's worker threads (0 is
+            taken as 1).
+
+    Returns:
+        Points per task, an integer >= 1.
+    """
+    share = points // (max(1, threads) * TASKS_PER_WORKER)
+    return max(1, min(MAX_AUTO_BATCH, share))
 
 
 def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: bool,
