@@ -16,6 +16,8 @@ from tactcad.design.array_plan import read_toml
 from tactcad.design.project import load_project
 from tactcad.studies.verification import requirements_of, verification_matrix
 
+from shared_solves import ONE_WORKER, shared_store
+
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
 #: The paper's words; DXF's own block name ``*Paper_Space`` is a format keyword, not a citation.
@@ -140,6 +142,7 @@ def test_tolerance_reports_the_designs_range_not_the_papers_samples(capsys):
 
 
 @pytest.mark.slow
+@ONE_WORKER  # its binding element's fem3d solves are the read-out tests' Ti element's
 def test_example_meets_every_requirement_and_its_binding_limit_holds_at_fem3d():
     """The inverse design's closed-form geometry holds: `verify --model auto`
     decides every requirement ``pass`` (each margin beyond its level's error),
@@ -152,12 +155,12 @@ def test_example_meets_every_requirement_and_its_binding_limit_holds_at_fem3d():
     from tactcad.mechanics.limits import binding, element_limits
     from tactcad.studies.strength_studies import element_stress, fem_peak_stress
     from tactcad.studies.verification import verification_auto
-    from tactcad.store import Store, keeping_results
+    from tactcad.store import keeping_results
 
     plan = load_project(EXAMPLE).plan
     # one block, as `tactcad verify` opens: a level's solves of an element serve each
-    # question asked of it
-    with keeping_results(Store(None)):
+    # question asked of it (on the store the read-out tests of the same element share)
+    with keeping_results(shared_store()):
         records, _ = verification_auto(plan, stress=element_stress)
         assert [r["verdict"] for r in records] == ["pass"] * len(records), records
         cf = verification_matrix(plan, "closed-form")[0]
