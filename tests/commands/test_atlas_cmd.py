@@ -264,18 +264,21 @@ def test_without_batch_the_tasks_are_about_32_a_worker_thread_and_at_most_32_poi
             assert tasks >= min(points, threads * TASKS_PER_WORKER) or size == MAX_AUTO_BATCH
 
 
-def test_without_batch_the_run_takes_the_automatic_size(tmp_path, monkeypatch):
+def test_without_batch_the_run_takes_the_automatic_size(monkeypatch):
+    # the command line as parsed, on a one-thread cluster in this process; the judging
+    # itself is the run's (recorded here, not run: the sizes are what is asked)
     import contextlib
 
     import tactcad.studies.design_atlas as design_atlas
     import tactcad.studies.sweeps as sweeps
+    from tactcad.cli import parse_checked
+    from tactcad.commands.atlas import auto_batch, judged
 
     sizes = []
-    real = design_atlas.run_atlas
 
     def recorded(atlas, points, client, batch_size=1, **kwargs):
         sizes.append(batch_size)
-        return real(atlas, points, client, batch_size, **kwargs)
+        return [], True
 
     @contextlib.contextmanager
     def threads_here(scheduler, workers):  # one worker thread in this process: no spawn
@@ -287,9 +290,7 @@ def test_without_batch_the_run_takes_the_automatic_size(tmp_path, monkeypatch):
 
     monkeypatch.setattr(design_atlas, "run_atlas", recorded)
     monkeypatch.setattr(sweeps, "dask_client", threads_here)
-    from tactcad.commands.atlas import auto_batch
-
-    from tactcad.cli import main
-
-    assert main([*DIE_ATLAS, "--points", "70", "--out", str(tmp_path / "a"), "--no-cache"]) == 0
-    assert sizes == [auto_batch(70, 1)] and sizes[0] == 2
+    points = [{}] * 70
+    judged(None, points, parse_checked(DIE_ATLAS))
+    judged(None, points, parse_checked([*DIE_ATLAS, "--batch", "5"]))
+    assert sizes == [auto_batch(70, 1), 5] and sizes[0] == 2
