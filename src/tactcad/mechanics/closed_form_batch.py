@@ -40,7 +40,7 @@ from tactcad.mechanics.correction import Correction
 #: Designs per pass of the kernel: its ~20 work buffers of 128 kB stay in the CPU's
 #: caches, and the per-step call overhead is small against the step.
 BLOCK = 16_384
-_N_BUFFERS = 20
+_N_BUFFERS = 18
 _N_NODE_BUFFERS = 4
 # The ufuncs take their output as the third argument where numpy allows it: parsed
 # about 0.4 us faster than out=, some 200 calls a block.
@@ -230,7 +230,10 @@ def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry, lay: _L
     np.multiply(k, s1, scale)
     scale *= -16.0 / ea_layer  # -4 / EA_l of the scaled g, 4 k sigma_1 of du / dsigma / R
     np.add(R, t, rt)
-    np.add(rt, R, t2r)  # t + 2 R
+    two_rt = np.add(rt, rt, t2r)
+    c0 = np.add(rt, R, p)  # t + 2 R
+    np.multiply(c0, t, c0)
+    np.subtract(a2, c0, c0)  # a^2 - t (t + 2 R): a^2 + u^2 = c0 + h (2 (R + t) - h)
     beta = eb / (3.0 * ea_layer)
     # at a node X = sigma^2, D = (1 - X)^2 + 4 k^2 X, A = (1 + X) / D: the height
     # h = t + 2 R sin^2(theta / 2) = t (1 + X) A, u^2 = (h - t) (t + 2 R - h), and
@@ -248,10 +251,9 @@ def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry, lay: _L
     tmp = np.subtract(rt, h, d)
     tmp *= a1
     jac = tmp  # (R + t - h) A
-    np.subtract(h, t, xn)
-    tmp = np.subtract(t2r, h, a1)
-    xn *= tmp
-    xn += a2  # a^2 + u^2
+    np.subtract(two_rt, h, xn)
+    xn *= h
+    xn += c0  # a^2 + u^2
     jac *= xn
     term = _flexibility_change_scaled(h, beta, (hl, 4.0 * ei_layer / ea_layer), xn, a1)
     term *= jac
@@ -284,8 +286,8 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
     :data:`BLOCK`, E and nu scalars or of that length; K (N/mm) into ``out``; ``layer``
     the :func:`_layer_setup` of ``g`` (worked out here when not given)."""
     w = _work_buffers(t.shape[0])
-    s, k2, a2, nb, ns, ab, tot, den, gain = w[:9]
-    x1, x2, x3, x4, x5, x6, x7, x8 = w[9:17]
+    s, k2, a2, nb, ns, ab, den, gain = w[:8]
+    x1, x2, x3, x4, x5, x6, x7, x8 = w[8:16]
     ha, htip, b = g.arm_height_mm, g.tip_height_mm, g.sheet_thickness_mm
     d2 = 0.5 * g.tip_width_mm
     d1 = np.subtract(a, R, x8)  # lever at the arm root (notch front wall)
@@ -297,9 +299,9 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
     np.divide(t, R, s)
     q = np.add(s, 2.0, x1)
     np.divide(s, q, k2)
-    m2 = np.multiply(s, q, w[18])
+    m2 = np.multiply(s, q, w[17])
     m = np.sqrt(m2, x2)
-    k = np.divide(m, q, w[17])  # sqrt(s / q) = sqrt(s q) / q
+    k = np.divide(m, q, w[16])  # sqrt(s / q) = sqrt(s q) / q
     pa = _atan_half(k, k2, x3, x4, x5, x6)
     np.subtract(0.5 * np.pi, pa, pa)  # arctan(sqrt((2 + s) / s))
     p = np.add(s, 1.0, x4)
@@ -329,47 +331,40 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
     inv_h = np.divide(pa, m, x3)
     inv_h *= 4.0
     inv_h -= np.pi
-    np.multiply(a, a, a2)
-    np.multiply(a2, inv_h3, nb)
-    nb += u2_h3
-    nb *= 12.0 / eb
+    # the correction on the compliance sum (correction.py): K = (1 + g) / (C + C_nb (c1 s
+    # + c2 s^2) + C_ns c6 + C_ab c7), each part's factor folded into its coefficient, the
+    # lever's two parts (C_ab = 4 / (E b) ((d1^3 - d2^3) / ha^3 + d2^3 / ht^3) and the arm's
+    # shear ((d1 - d2) / ha + d2 / ht) shear) as d1 (A d1^2 + B) and one constant
+    c1, c2, c3, c4, c5, c6, c7, c8 = correction.coefficients
     shear = 2.4 * (1.0 + nu) / eb  # ALPHA_SHEAR / (G b), G = E / (2 (1 + nu))
-    np.multiply(inv_h, shear, ns)
     ht = ha + htip
     d2c = d2 * d2 * d2
-    np.multiply(d1, d1, ab)
-    ab *= d1
-    ab -= d2c
-    ab *= 1.0 / (ha * ha * ha)
-    ab += d2c / (ht * ht * ht)
-    ab *= 4.0 / eb
-    np.subtract(d1, d2, tot)
-    tot *= 1.0 / ha
-    tot += d2 / ht
-    tot *= shear  # the arm's shear
-    tot += nb
-    tot += ns
-    tot += ab
-    # correction (correction.py): K = (1 + g) / (C + C_nb (c1 s + c2 s^2) + C_ns c6 + C_ab c7)
-    c1, c2, c3, c4, c5, c6, c7, c8 = correction.coefficients
+    ab_scale = 4.0 * (1.0 + c7) / eb
+    np.multiply(a, a, a2)
     np.multiply(s, c2, den)
     den += c1
     den *= s
-    den *= nb
-    den += tot
-    if c6:
-        den += np.multiply(ns, c6, x1)
-    if c7:
-        den += np.multiply(ab, c7, x1)
+    den += 1.0
+    den *= 12.0 / eb
+    np.multiply(a2, inv_h3, nb)
+    nb += u2_h3
+    den *= nb  # C_nb (1 + c1 s + c2 s^2)
+    den += np.multiply(inv_h, shear * (1.0 + c6), ns)  # C_ns (1 + c6)
+    np.multiply(d1, d1, ab)
+    ab *= ab_scale / (ha * ha * ha)
+    ab += shear / ha
+    ab *= d1
+    den += ab
+    den += shear * (d2 / ht - d2 / ha) + ab_scale * d2c * (1.0 / (ht * ht * ht)
+                                                          - 1.0 / (ha * ha * ha))
     if not den.min() > 0:
         raise ValueError("correction factor not positive at t/R = "
                          f"{np.ravel(s[~(den > 0)])[:3].tolist()}")
     if c3:
         wr = np.multiply(t, R, x1)
-        np.sqrt(wr, wr)
-        wr *= 1.0 / b  # sqrt(t R) / b
-        np.multiply(wr, c5, gain)
-        gain += c4
+        np.sqrt(wr, wr)  # sqrt(t R), b of the width ratio sqrt(t R) / b in c4 and c5
+        np.multiply(wr, c5 / (b * b), gain)
+        gain += c4 / b
         gain *= wr
         gain += 1.0
         if c8:
