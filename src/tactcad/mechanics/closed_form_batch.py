@@ -126,7 +126,8 @@ def _node_buffers(rows: int, n: int) -> list[np.ndarray]:
     thread: the layer's quadrature, one row per node."""
     bufs = getattr(_local, "node_buffers", None)
     if bufs is None or bufs[0].size < rows * BLOCK:
-        bufs = _local.node_buffers = [np.empty(rows * BLOCK) for _ in range(_N_NODE_BUFFERS)]
+        bufs = _local.node_buffers = [np.empty(rows * BLOCK)
+                                      for _ in range(_N_NODE_BUFFERS)]
     return [b[:rows * n].reshape(rows, n) for b in bufs]
 
 
@@ -201,6 +202,35 @@ def _layer_setup(g: ElementGeometry) -> _Layer | None:
                   (nodes[keep] * nodes[keep])[:, None], (2.0 * weights[keep])[:, None])
 
 
+def _notch_quadrature(S, KS, t, rt, two_rt, c0, beta, lay: _Layer, acc):
+    """The notch's Gauss sum of g (a^2 + u^2) du / dz, scaled as
+    :func:`_flexibility_change_scaled`, into ``acc`` for up to :data:`BLOCK` designs:
+    S = sigma_1^2, KS = 4 k^2 S, rt = R + t, two_rt = 2 rt, c0 = a^2 - t (t + 2 R)."""
+    hl, ea_layer, ei_layer = lay.height_mm, lay.ea_N, lay.ei_N_mm2
+    xn, d, h, jac = _node_buffers(lay.nodes2.shape[0], t.shape[0])
+    np.multiply(S, lay.nodes2, xn)
+    np.multiply(KS, lay.nodes2, h)
+    np.subtract(1.0, xn, d)
+    d *= d
+    d += h
+    xn += 1.0
+    a1 = np.divide(xn, d, jac)
+    np.multiply(xn, a1, h)
+    h *= t
+    tmp = np.subtract(rt, h, d)
+    tmp *= a1
+    jac = tmp  # (R + t - h) A
+    np.subtract(two_rt, h, xn)
+    xn *= h
+    xn += c0  # a^2 + u^2
+    jac *= xn
+    term = _flexibility_change_scaled(h, beta, (hl, 4.0 * ei_layer / ea_layer), xn, a1)
+    term *= jac
+    term *= lay.weights
+    np.add.reduce(term, axis=0, out=acc)  # the nodes in order, as a running sum
+    return acc
+
+
 def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry, lay: _Layer,
                               w: list[np.ndarray]):
     """The compliance the gauge's layer takes away (mm/N, <= 0), as
@@ -238,27 +268,7 @@ def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry, lay: _L
     # at a node X = sigma^2, D = (1 - X)^2 + 4 k^2 X, A = (1 + X) / D: the height
     # h = t + 2 R sin^2(theta / 2) = t (1 + X) A, u^2 = (h - t) (t + 2 R - h), and
     # du = R cos(theta) dtheta = (R + t - h) A 4 k sigma_1 dz
-    xn, d, h, jac = _node_buffers(lay.nodes2.shape[0], t.shape[0])
-    np.multiply(S, lay.nodes2, xn)
-    np.multiply(KS, lay.nodes2, h)
-    np.subtract(1.0, xn, d)
-    d *= d
-    d += h
-    xn += 1.0
-    a1 = np.divide(xn, d, jac)
-    np.multiply(xn, a1, h)
-    h *= t
-    tmp = np.subtract(rt, h, d)
-    tmp *= a1
-    jac = tmp  # (R + t - h) A
-    np.subtract(two_rt, h, xn)
-    xn *= h
-    xn += c0  # a^2 + u^2
-    jac *= xn
-    term = _flexibility_change_scaled(h, beta, (hl, 4.0 * ei_layer / ea_layer), xn, a1)
-    term *= jac
-    term *= lay.weights
-    np.add.reduce(term, axis=0, out=acc)  # the nodes in order, as a running sum
+    _notch_quadrature(S, KS, t, rt, two_rt, c0, beta, lay, acc)
     acc *= scale
     # the flat pieces, g constant: behind the notch (-c ... -wn), in front (wn ... c)
     gb = _flat_flexibility_change(g.base_height_mm, eb, ea_layer, ei_layer, hl)
