@@ -18,7 +18,10 @@ about half the time:
 * the layer's notch quadrature (:func:`~tactcad.mechanics.bonded_layer._layer_moments`,
   the same nodes and weights) takes the section height at a node as h = t (1 + X)^2 / D
   (X = sigma^2, D = (1 - X)^2 + 4 k^2 X), shares k^2 = t / (t + 2 R) with the notch
-  integrals' s / (2 + s), and sums g (a^2 + u^2) dtheta once instead of two moments;
+  integrals' s / (2 + s), and sums g (a^2 + u^2) dtheta once instead of two moments,
+  its five nodes as the rows of one (5, n) array (:func:`_notch_quadrature`) and its
+  constants once a call: about 160 ufunc calls a block instead of 290, each of which
+  holds the GIL while numpy parses it, so two threads wait less for each other;
 * inputs are checked by two reductions each (min > 0, max < inf).
 
 Units: mm, N, MPa, N/mm.
@@ -37,13 +40,14 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry
 from tactcad.mechanics.correction import Correction
 
-#: Designs per pass of the kernel: its ~20 work buffers of 128 kB stay in the CPU's
-#: caches, and the per-step call overhead is small against the step.
+#: Designs per pass of the kernel: its 18 work buffers of 128 kB and four of the notch
+#: quadrature's 640 kB stay in the CPU's caches, and the per-step call overhead is small
+#: against the step.
 BLOCK = 16_384
 _N_BUFFERS = 18
 _N_NODE_BUFFERS = 4
 # The ufuncs take their output as the third argument where numpy allows it: parsed
-# about 0.4 us faster than out=, some 200 calls a block.
+# about 0.4 us faster than out=, some 160 calls a block.
 
 #: Cephes atan.c (S. L. Moshier, "Methods and Programs for Mathematical Functions", 1989):
 #: arctan(x) = x + x z P(z) / Q(z), z = x^2, for |x| <= 0.66 (relative error about 2e-16).
