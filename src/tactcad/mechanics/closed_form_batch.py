@@ -40,9 +40,9 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry
 from tactcad.mechanics.correction import Correction
 
-#: Designs per pass of the kernel: its 18 work buffers of 128 kB and four of the notch
-#: quadrature's 640 kB stay in the CPU's caches, and the per-step call overhead is small
-#: against the step.
+#: Designs per pass of the kernel: its 18 work buffers of 128 kB and the notch
+#: quadrature's four of 640 kB (about 5 MB a thread) stay in the last-level cache, and
+#: the per-step call overhead is small against the step.
 BLOCK = 16_384
 _N_BUFFERS = 18
 _N_NODE_BUFFERS = 4
@@ -240,8 +240,8 @@ def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry, lay: _L
     """The compliance the gauge's layer takes away (mm/N, <= 0), as
     :func:`~tactcad.mechanics.bonded_layer.layer_compliance_change` with the carrier
     centred over the notch, into ``w[0]``; k2 = t / (t + 2 R), k its root, a2 = a^2; ``w`` holds
-    eight free work buffers. The notch's nodes go as the rows of (nodes, n) arrays: five
-    times fewer ufunc calls, each over five times the designs."""
+    eight free work buffers. The notch's nodes go as the rows of (nodes, n) arrays: the
+    quadrature makes five times fewer ufunc calls, each over five times the elements."""
     acc, scale, S, KS, rt, t2r, x, p = w[:8]
     c, hl, ea_layer, ei_layer = lay.half_length_mm, lay.height_mm, lay.ea_N, lay.ei_N_mm2
     # the carrier's end on the notch in sigma = tan(psi / 2) (bonded_layer._sigma)
