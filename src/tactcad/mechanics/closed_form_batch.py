@@ -18,7 +18,10 @@ about half the time:
 * the layer's notch quadrature (:func:`~tactcad.mechanics.bonded_layer._layer_moments`,
   the same nodes and weights) takes the section height at a node as h = t (1 + X)^2 / D
   (X = sigma^2, D = (1 - X)^2 + 4 k^2 X), shares k^2 = t / (t + 2 R) with the notch
-  integrals' s / (2 + s), and sums g (a^2 + u^2) dtheta once instead of two moments;
+  integrals' s / (2 + s), and sums g (a^2 + u^2) dtheta once instead of two moments,
+  its five nodes as the rows of one (5, n) array (:func:`_notch_quadrature`) and its
+  constants once a call: about 160 ufunc calls a block instead of 290, each of which
+  holds the GIL while numpy parses it, so two threads wait less for each other;
 * inputs are checked by two reductions each (min > 0, max < inf).
 
 Units: mm, N, MPa, N/mm.
@@ -30,18 +33,21 @@ import math
 import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
 
 import numpy as np
 
 from tactcad.design.array_plan import ElementGeometry
 from tactcad.mechanics.correction import Correction
 
-#: Designs per pass of the kernel: its ~20 work buffers of 128 kB stay in the CPU's
-#: caches, and the per-step call overhead is small against the step.
+#: Designs per pass of the kernel: its 18 work buffers of 128 kB and the notch
+#: quadrature's four of 640 kB (about 5 MB a thread) stay in the last-level cache, and
+#: the per-step call overhead is small against the step.
 BLOCK = 16_384
-_N_BUFFERS = 20
+_N_BUFFERS = 18
+_N_NODE_BUFFERS = 4
 # The ufuncs take their output as the third argument where numpy allows it: parsed
-# about 0.4 us faster than out=, some 200 calls a block.
+# about 0.4 us faster than out=, some 160 calls a block.
 
 #: Cephes atan.c (S. L. Moshier, "Methods and Programs for Mathematical Functions", 1989):
 #: arctan(x) = x + x z P(z) / Q(z), z = x^2, for |x| <= 0.66 (relative error about 2e-16).
@@ -119,6 +125,16 @@ def _work_buffers(n: int) -> list[np.ndarray]:
     return [b[:n] for b in bufs]
 
 
+def _node_buffers(rows: int, n: int) -> list[np.ndarray]:
+    """:data:`_N_NODE_BUFFERS` C-contiguous (rows, n) arrays, n <= :data:`BLOCK`, kept per
+    thread: the layer's quadrature, one row per node."""
+    bufs = getattr(_local, "node_buffers", None)
+    if bufs is None or bufs[0].size < rows * BLOCK:
+        bufs = _local.node_buffers = [np.empty(rows * BLOCK)
+                                      for _ in range(_N_NODE_BUFFERS)]
+    return [b[:rows * n].reshape(rows, n) for b in bufs]
+
+
 def _checked(name: str, value) -> np.ndarray:
     """``value`` as floats, refused unless every element is finite and > 0."""
     if isinstance(value, float) and 0 < value < math.inf:  # one number: no reductions
@@ -160,22 +176,74 @@ def _flat_flexibility_change(h: float, eb, ea_layer, ei_layer, layer_height_mm):
     return -12.0 * d12 / (e12 * (e12 + d12))
 
 
-def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry,
-                              w: list[np.ndarray]):
-    """The compliance the gauge's layer takes away (mm/N, <= 0), as
-    :func:`~tactcad.mechanics.bonded_layer.layer_compliance_change` with the carrier
-    centred over the notch, into ``w[0]``; k2 = t / (t + 2 R), k its root, a2 = a^2; ``w`` holds
-    twelve free work buffers."""
+@dataclass(frozen=True)
+class _Layer:
+    """What the layer term takes from the element, worked out once a call: the carrier's
+    half length c (mm), the layer's height h_l (mm), E A (N) and E I (N mm^2), and the
+    notch quadrature's positive nodes squared and doubled weights as (nodes, 1) columns."""
+    half_length_mm: float
+    height_mm: float
+    ea_N: float
+    ei_N_mm2: float
+    nodes2: np.ndarray
+    weights: np.ndarray
+
+
+def _layer_setup(g: ElementGeometry) -> _Layer | None:
+    """The :class:`_Layer` of ``g``'s bonded gauge, None for a bare element."""
     from tactcad.design.readout_section import CARRIER_SIDE_MM, carrier_width_mm
     from tactcad.mechanics.bonded_layer import NOTCH_POINTS
     from tactcad.mechanics.notch_profile import gauss_legendre
 
-    acc, scale, S, KS, rt, x, p, d, a1, h, jac, tmp = w[:12]
     st = g.gauge
-    c = st.grid_length_mm / 2 + CARRIER_SIDE_MM  # the carrier's half length
+    if st is None:
+        return None
     hl = st.height_mm
-    ea_layer = st.modulus_MPa * carrier_width_mm(st.grid_width_mm, g.sheet_thickness_mm) * hl
-    ei_layer = ea_layer * hl * hl / 12.0
+    ea = st.modulus_MPa * carrier_width_mm(st.grid_width_mm, g.sheet_thickness_mm) * hl
+    nodes, weights = gauss_legendre(NOTCH_POINTS)
+    keep = nodes > 0  # the integrand is even in sigma: the positive nodes, twice weighted
+    return _Layer(st.grid_length_mm / 2 + CARRIER_SIDE_MM, hl, ea, ea * hl * hl / 12.0,
+                  (nodes[keep] * nodes[keep])[:, None], (2.0 * weights[keep])[:, None])
+
+
+def _notch_quadrature(S, KS, t, rt, two_rt, c0, beta, lay: _Layer, acc):
+    """The notch's Gauss sum of g (a^2 + u^2) du / dz, scaled as
+    :func:`_flexibility_change_scaled`, into ``acc`` for up to :data:`BLOCK` designs:
+    S = sigma_1^2, KS = 4 k^2 S, rt = R + t, two_rt = 2 rt, c0 = a^2 - t (t + 2 R)."""
+    hl, ea_layer, ei_layer = lay.height_mm, lay.ea_N, lay.ei_N_mm2
+    xn, d, h, jac = _node_buffers(lay.nodes2.shape[0], t.shape[0])
+    np.multiply(S, lay.nodes2, xn)
+    np.multiply(KS, lay.nodes2, h)
+    np.subtract(1.0, xn, d)
+    d *= d
+    d += h
+    xn += 1.0
+    a1 = np.divide(xn, d, jac)
+    np.multiply(xn, a1, h)
+    h *= t
+    tmp = np.subtract(rt, h, d)
+    tmp *= a1
+    jac = tmp  # (R + t - h) A
+    np.subtract(two_rt, h, xn)
+    xn *= h
+    xn += c0  # a^2 + u^2
+    jac *= xn
+    term = _flexibility_change_scaled(h, beta, (hl, 4.0 * ei_layer / ea_layer), xn, a1)
+    term *= jac
+    term *= lay.weights
+    np.add.reduce(term, axis=0, out=acc)  # the nodes in order, as a running sum
+    return acc
+
+
+def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry, lay: _Layer,
+                              w: list[np.ndarray]):
+    """The compliance the gauge's layer takes away (mm/N, <= 0), as
+    :func:`~tactcad.mechanics.bonded_layer.layer_compliance_change` with the carrier
+    centred over the notch, into ``w[0]``; k2 = t / (t + 2 R), k its root, a2 = a^2; ``w`` holds
+    eight free work buffers. The notch's nodes go as the rows of (nodes, n) arrays: the
+    quadrature makes five times fewer ufunc calls, each over five times the elements."""
+    acc, scale, S, KS, rt, t2r, x, p = w[:8]
+    c, hl, ea_layer, ei_layer = lay.half_length_mm, lay.height_mm, lay.ea_N, lay.ei_N_mm2
     # the carrier's end on the notch in sigma = tan(psi / 2) (bonded_layer._sigma)
     sn = np.divide(c, R, x)
     np.minimum(sn, 1.0, out=sn)
@@ -196,64 +264,44 @@ def _layer_compliance_change(t, R, a, a2, k, k2, eb, g: ElementGeometry,
     np.multiply(k, s1, scale)
     scale *= -16.0 / ea_layer  # -4 / EA_l of the scaled g, 4 k sigma_1 of du / dsigma / R
     np.add(R, t, rt)
-    t2r = np.add(rt, R, p)  # t + 2 R
+    two_rt = np.add(rt, rt, t2r)
+    c0 = np.add(rt, R, p)  # t + 2 R
+    np.multiply(c0, t, c0)
+    np.subtract(a2, c0, c0)  # a^2 - t (t + 2 R): a^2 + u^2 = c0 + h (2 (R + t) - h)
     beta = eb / (3.0 * ea_layer)
-    layer_term = (hl, 4.0 * ei_layer / ea_layer)
-    nodes, weights = gauss_legendre(NOTCH_POINTS)
-    keep = nodes > 0  # the integrand is even in sigma: the positive nodes, twice weighted
-    acc[...] = 0.0
     # at a node X = sigma^2, D = (1 - X)^2 + 4 k^2 X, A = (1 + X) / D: the height
     # h = t + 2 R sin^2(theta / 2) = t (1 + X) A, u^2 = (h - t) (t + 2 R - h), and
     # du = R cos(theta) dtheta = (R + t - h) A 4 k sigma_1 dz
-    for z, wz in zip(nodes[keep], 2.0 * weights[keep]):
-        z2 = z * z
-        np.multiply(S, z2, x)
-        np.multiply(KS, z2, tmp)
-        np.subtract(1.0, x, d)
-        d *= d
-        d += tmp
-        x += 1.0
-        np.divide(x, d, a1)
-        np.multiply(x, a1, h)
-        h *= t
-        np.subtract(rt, h, jac)
-        jac *= a1
-        np.subtract(h, t, x)
-        np.subtract(t2r, h, tmp)
-        x *= tmp
-        x += a2  # a^2 + u^2
-        jac *= x
-        term = _flexibility_change_scaled(h, beta, layer_term, d, tmp)
-        term *= jac
-        term *= wz
-        acc += term
+    _notch_quadrature(S, KS, t, rt, two_rt, c0, beta, lay, acc)
     acc *= scale
     # the flat pieces, g constant: behind the notch (-c ... -wn), in front (wn ... c)
     gb = _flat_flexibility_change(g.base_height_mm, eb, ea_layer, ei_layer, hl)
     ga = _flat_flexibility_change(g.arm_height_mm, eb, ea_layer, ei_layer, hl)
     wn = np.minimum(R, c, out=x)
     wn2 = np.multiply(wn, wn, p)
-    i0 = np.subtract(c, wn, d)
+    i0 = np.subtract(c, wn, S)
     i0 *= gb + ga
     i0 *= a2
-    i1 = np.subtract(c * c, wn2, h)
+    i1 = np.subtract(c * c, wn2, KS)
     i1 *= a
     i1 *= ga - gb  # 2 a I1 = 2 a (ga - gb) (c^2 - wn^2) / 2
     i0 -= i1
     wn2 *= wn
-    i2 = np.subtract(c * c * c, wn2, jac)
+    i2 = np.subtract(c * c * c, wn2, rt)
     i2 *= (gb + ga) / 3.0
     i0 += i2
     acc += i0
     return acc
 
 
-def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.ndarray):
+def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.ndarray,
+            layer: _Layer | None = None):
     """:func:`corrected_stiffness_batch` of one block: 1-d t, R, a of one length n <=
-    :data:`BLOCK`, E and nu scalars or of that length; K (N/mm) into ``out``."""
+    :data:`BLOCK`, E and nu scalars or of that length; K (N/mm) into ``out``; ``layer``
+    the :func:`_layer_setup` of ``g`` (worked out here when not given)."""
     w = _work_buffers(t.shape[0])
-    s, k2, a2, nb, ns, ab, tot, den, gain = w[:9]
-    x1, x2, x3, x4, x5, x6, x7, x8 = w[9:17]
+    s, k2, a2, nb, ns, ab, den, gain = w[:8]
+    x1, x2, x3, x4, x5, x6, x7, x8 = w[8:16]
     ha, htip, b = g.arm_height_mm, g.tip_height_mm, g.sheet_thickness_mm
     d2 = 0.5 * g.tip_width_mm
     d1 = np.subtract(a, R, x8)  # lever at the arm root (notch front wall)
@@ -265,9 +313,9 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
     np.divide(t, R, s)
     q = np.add(s, 2.0, x1)
     np.divide(s, q, k2)
-    m2 = np.multiply(s, q, w[18])
+    m2 = np.multiply(s, q, w[17])
     m = np.sqrt(m2, x2)
-    k = np.divide(m, q, w[17])  # sqrt(s / q) = sqrt(s q) / q
+    k = np.divide(m, q, w[16])  # sqrt(s / q) = sqrt(s q) / q
     pa = _atan_half(k, k2, x3, x4, x5, x6)
     np.subtract(0.5 * np.pi, pa, pa)  # arctan(sqrt((2 + s) / s))
     p = np.add(s, 1.0, x4)
@@ -297,47 +345,40 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
     inv_h = np.divide(pa, m, x3)
     inv_h *= 4.0
     inv_h -= np.pi
-    np.multiply(a, a, a2)
-    np.multiply(a2, inv_h3, nb)
-    nb += u2_h3
-    nb *= 12.0 / eb
+    # the correction on the compliance sum (correction.py): K = (1 + g) / (C + C_nb (c1 s
+    # + c2 s^2) + C_ns c6 + C_ab c7), each part's factor folded into its coefficient, the
+    # lever's two parts (C_ab = 4 / (E b) ((d1^3 - d2^3) / ha^3 + d2^3 / ht^3) and the arm's
+    # shear ((d1 - d2) / ha + d2 / ht) shear) as d1 (A d1^2 + B) and one constant
+    c1, c2, c3, c4, c5, c6, c7, c8 = correction.coefficients
     shear = 2.4 * (1.0 + nu) / eb  # ALPHA_SHEAR / (G b), G = E / (2 (1 + nu))
-    np.multiply(inv_h, shear, ns)
     ht = ha + htip
     d2c = d2 * d2 * d2
-    np.multiply(d1, d1, ab)
-    ab *= d1
-    ab -= d2c
-    ab *= 1.0 / (ha * ha * ha)
-    ab += d2c / (ht * ht * ht)
-    ab *= 4.0 / eb
-    np.subtract(d1, d2, tot)
-    tot *= 1.0 / ha
-    tot += d2 / ht
-    tot *= shear  # the arm's shear
-    tot += nb
-    tot += ns
-    tot += ab
-    # correction (correction.py): K = (1 + g) / (C + C_nb (c1 s + c2 s^2) + C_ns c6 + C_ab c7)
-    c1, c2, c3, c4, c5, c6, c7, c8 = correction.coefficients
+    ab_scale = 4.0 * (1.0 + c7) / eb
+    np.multiply(a, a, a2)
     np.multiply(s, c2, den)
     den += c1
     den *= s
-    den *= nb
-    den += tot
-    if c6:
-        den += np.multiply(ns, c6, x1)
-    if c7:
-        den += np.multiply(ab, c7, x1)
+    den += 1.0
+    den *= 12.0 / eb
+    np.multiply(a2, inv_h3, nb)
+    nb += u2_h3
+    den *= nb  # C_nb (1 + c1 s + c2 s^2)
+    den += np.multiply(inv_h, shear * (1.0 + c6), ns)  # C_ns (1 + c6)
+    np.multiply(d1, d1, ab)
+    ab *= ab_scale / (ha * ha * ha)
+    ab += shear / ha
+    ab *= d1
+    den += ab
+    den += shear * (d2 / ht - d2 / ha) + ab_scale * d2c * (1.0 / (ht * ht * ht)
+                                                          - 1.0 / (ha * ha * ha))
     if not den.min() > 0:
         raise ValueError("correction factor not positive at t/R = "
                          f"{np.ravel(s[~(den > 0)])[:3].tolist()}")
     if c3:
         wr = np.multiply(t, R, x1)
-        np.sqrt(wr, wr)
-        wr *= 1.0 / b  # sqrt(t R) / b
-        np.multiply(wr, c5, gain)
-        gain += c4
+        np.sqrt(wr, wr)  # sqrt(t R), b of the width ratio sqrt(t R) / b in c4 and c5
+        np.multiply(wr, c5 / (b * b), gain)
+        gain += c4 / b
         gain *= wr
         gain += 1.0
         if c8:
@@ -350,8 +391,9 @@ def _kernel(t, R, a, E, nu, g: ElementGeometry, correction: Correction, out: np.
     else:
         gain[...] = 1.0
     if g.gauge is not None:
-        dc = _layer_compliance_change(t, R, a, a2, k, k2, eb, g, [x1, x2, x3, x4, x5, x6, x7,
-                                                                x8, nb, ns, ab, tot])
+        lay = layer if layer is not None else _layer_setup(g)
+        dc = _layer_compliance_change(t, R, a, a2, k, k2, eb, g, lay, [x1, x2, x3, x4, x5, x6,
+                                                                     x7, x8])
         dc *= gain
         den += dc  # K = 1 / (1 / K_bare + dC) = (1 + g) / (den + (1 + g) dC)
     np.divide(gain, den, out)
@@ -415,11 +457,12 @@ def corrected_stiffness_batch(web_mm, notch_radius_mm, arm_length_mm, youngs_mod
                np.ascontiguousarray(np.broadcast_to(v, shape)).reshape(-1) for v in (t, R, a))
     E, nu = flat(E), flat(nu)
     k = np.empty(n) if out is None else out.reshape(-1)
+    layer = _layer_setup(g)
 
     def block(i: int) -> None:
         j = min(i + BLOCK, n)
         _kernel(t[i:j], R[i:j], a[i:j], E if isinstance(E, float) else E[i:j],
-                nu if isinstance(nu, float) else nu[i:j], g, correction, k[i:j])
+                nu if isinstance(nu, float) else nu[i:j], g, correction, k[i:j], layer)
 
     starts = range(0, n, BLOCK)
     if threads > 1 and len(starts) > 1:
