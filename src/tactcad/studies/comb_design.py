@@ -257,7 +257,9 @@ def solved_web(geometry, material, k_target: float, lo: float, hi: float) -> flo
 
 def closed_form_k(geometry, material) -> float:
     """The closed form's K (N/mm) of ``geometry`` (mm) in ``material``
-    (:func:`tactcad.mechanics.closed_form.estimate_closed_form`); inside
+    (:func:`tactcad.mechanics.closed_form.corrected_element_k`: the K of
+    :func:`~tactcad.mechanics.closed_form.estimate_closed_form` to the bit, without its
+    gauge strain and range warning, which a trial web does not need); inside
     :func:`web_solves_kept`, a K already found is reused: every web solve of one element
     and sheet starts at the same bracket ends, and Brent's method reads them once more.
 
@@ -268,13 +270,13 @@ def closed_form_k(geometry, material) -> float:
     Returns:
         K (N/mm).
     """
-    from tactcad.mechanics.closed_form import estimate_closed_form
+    from tactcad.mechanics.closed_form import corrected_element_k
 
     kept = _KEPT_WEBS.get()
     key = ("K", geometry, material)
     if kept is not None and key in kept:
         return kept[key]
-    k = estimate_closed_form(geometry, material).stiffness_N_per_mm
+    k = corrected_element_k(geometry, material)
     if kept is not None:
         kept[key] = k
     return k
