@@ -345,13 +345,13 @@ def test_kept_web_solves_give_a_fresh_solves_web_and_read_each_closed_form_once(
     fresh = [comb_design.solved_web(geometry, material, k, 0.02, 0.6) for k in targets]
     assert all(w is not None for w in fresh)
     reads: list[float] = []
-    counted = closed_form.estimate_closed_form
+    counted = closed_form.corrected_element_k
 
     def counting(g, m):
         reads.append(g.web_thickness_mm)
         return counted(g, m)
 
-    monkeypatch.setattr(closed_form, "estimate_closed_form", counting)
+    monkeypatch.setattr(closed_form, "corrected_element_k", counting)
     with comb_design.web_solves_kept():
         kept = [comb_design.solve_web(geometry, material, k, 0.02, 0.6) for k in targets]
         first_reads = len(reads)
