@@ -360,3 +360,46 @@ def test_kept_web_solves_give_a_fresh_solves_web_and_read_each_closed_form_once(
     assert kept == fresh and again == fresh[0]
     assert reads.count(0.02) == 1 and reads.count(0.6) == 1  # each bracket end read once
     assert comb_design._KEPT_WEBS.get() is None  # nothing kept once the search is over
+
+
+@pytest.mark.parametrize("kr_over_km, kobj, force, columns", [
+    (21.267, (2.87533, 18.4831), 0.12, 2),  # feasible: the softest pairs lack the margin
+    (10.0, (0.5, 5.0), 0.6, 2),  # refused: every rated pair falls short of the force
+])
+def test_a_candidate_short_of_the_margin_by_its_limits_never_has_the_margin(
+        kr_over_km, kobj, force, columns):
+    """The bound that holds back a candidate's verification matrix: every candidate it
+    names falls short of the force margin when judged in full, and it names some."""
+    from tactcad.studies.comb_design import (FORCE_MARGIN_REL, comb_candidates,
+                                             prepared_candidate, searched_base,
+                                             short_of_margin)
+
+    targets = Targets(kr_over_km, kobj, force)
+    base = searched_base(BASE, columns)
+    _, tried = comb_candidates(targets, jaw_room("10"), columns, BASE, grade=TI,
+                               envelope_of=array_envelope_mm)
+    named = []
+    for c in tried:
+        _, d, _ = prepared_candidate(base, c.sheet_mm, c.km_scale, columns, jaw_room("10"),
+                                     targets, TI)
+        if d is not None and short_of_margin(d):
+            named.append(c)
+    assert named and len(named) < len(tried)
+    assert all(c.force_margin_rel < FORCE_MARGIN_REL for c in named)
+
+
+def test_without_an_answer_the_first_preferred_search_judges_every_candidate_as_the_whole():
+    """Held back or not, every candidate ends up judged, each the whole search's own."""
+    from tactcad.studies.comb_design import (comb_candidates, first_preferred,
+                                             in_search_order, searched_base)
+
+    targets = Targets(10.0, (0.5, 5.0), 0.6)
+    judged: list = []
+    assert first_preferred(targets, jaw_room("10"), 2, BASE, grade=TI,
+                           envelope_of=array_envelope_mm, judged=judged) is None
+    _, tried = comb_candidates(targets, jaw_room("10"), 2, BASE, grade=TI,
+                               envelope_of=array_envelope_mm)
+    lazy = in_search_order(judged, searched_base(BASE, 2))
+    assert [(c.sheet_mm, c.km_scale, c.failures, c.force_margin_rel, c.rated_force_N, c.data)
+            for c in lazy] == [(c.sheet_mm, c.km_scale, c.failures, c.force_margin_rel,
+                                c.rated_force_N, c.data) for c in tried]

@@ -639,13 +639,16 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
     preference (the softest pair first, the thicker sheet on a tie) and stopping at the
     first that counts with :data:`FORCE_MARGIN_REL` to spare: none softer or thicker can
     come before it, so it is ``chosen(counting(comb_candidates(...)))`` without judging the
-    rest. None when no candidate has the margin (then only the whole search decides: the
-    one with the most margin, or a refusal).
+    rest. A candidate whose binding limit already falls short of the margin
+    (:func:`short_of_margin`) cannot be that one, so its verification matrix waits until
+    no candidate has the margin. None when no candidate has the margin (then only the
+    whole search decides: the one with the most margin, or a refusal).
 
     Args:
         targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
         judged: where given, every candidate judged is appended to it (all of them when
-            the answer is None: :func:`in_search_order` makes them the full search's).
+            the answer is None: :func:`in_search_order` makes them the full search's). A
+            candidate :func:`short_of_margin` is judged only then, after the others.
         scales: the K_m scales walked (default :data:`KM_SCALES`); a caller leaves out only
             scales none of whose candidates can count (:func:`atlas_scales`).
 
@@ -658,16 +661,23 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
     from tactcad.mechanics.correction import range_warnings_unsaid
 
     base = searched_base(base, columns)
+    judged = [] if judged is None else judged
+    short: list[tuple[dict, float, float, Any]] = []  # judged only when none has the margin
     with range_warnings_unsaid():
         for scale in scales:
             for sheet in sorted(sheets_of(base), reverse=True):
-                c = candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
-                              None)
-                if judged is not None:
-                    judged.append(c)
+                c, d, at = prepared_candidate(base, sheet, scale, columns, room, targets,
+                                              grade)
+                if c is None and short_of_margin(d):
+                    short.append((d, sheet, scale, at))
+                    continue
+                c = c or judged_candidate(d, sheet, scale, envelope_of, at)
+                judged.append(c)
                 if c.plan is not None and not c.failures \
                         and c.force_margin_rel >= FORCE_MARGIN_REL:
                     return c
+        judged += [judged_candidate(d, sheet, scale, envelope_of, at)
+                   for d, sheet, scale, at in short]
     return None
 
 
@@ -956,13 +966,47 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
     it first."""
     if progress:
         progress(f"comb on a {sheet:g} mm sheet, K_m {km_scale:g} x eq. 2's centre")
+    refused, d, room = prepared_candidate(base, sheet, km_scale, columns, room, targets, grade)
+    return refused if refused is not None else \
+        judged_candidate(d, sheet, km_scale, envelope_of, room)
+
+
+def judged_candidate(d: dict, sheet: float, km_scale: float, envelope_of: Callable | None,
+                     room: Any) -> CombCandidate:
+    """A candidate whose tables ``d`` (webs and stops set, :func:`prepared_candidate`) are
+    judged (:func:`judge_bounded`) on a ``sheet`` (mm) at ``km_scale``.
+
+    Args:
+        d: the tables. sheet: the sheet (mm). km_scale: K_m over eq. 2's centre.
+        envelope_of, room: as :func:`judge_limits`.
+
+    Returns:
+        The :class:`CombCandidate`.
+    """
+    plan, fails, limits, margin, rated, bound = judge_bounded(d, envelope_of, room)
+    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, limits, bound)
+
+
+def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any,
+                       targets: Targets, grade: str | None
+                       ) -> tuple[CombCandidate | None, dict | None, Any]:
+    """One sheet's comb at one K_m scale up to its judgement: its tables with the webs
+    solved and the stops set, or the candidate refused before (the pitch, a web, the plan).
+
+    Args:
+        base, sheet, km_scale, columns, room, targets, grade: as :func:`candidate`.
+
+    Returns:
+        (the refused candidate or None, the tables or None, the room it is judged in: an
+        outline's room narrowed to the sheet's comb).
+    """
     from tactcad.vocabulary.binding_limits import FOOTPRINT, SHEET
 
     if getattr(room, "outline", None) is not None:
         room, why = room_of_outline(base, sheet, columns, room, targets, grade)
         if why:
             return CombCandidate(sheet, km_scale, None, None, (why,), -math.inf, None,
-                                 (FOOTPRINT,), REFUSED_AT_ANY_FORCE)
+                                 (FOOTPRINT,), REFUSED_AT_ANY_FORCE), None, room
     d, binding = comb_tables(base, sheet, columns, room, targets, grade)
     codes: tuple[str, ...] = (SHEET,) * len(binding)  # the pitch leaves no arm
     bound: ForceBound | None = REFUSED_AT_ANY_FORCE  # until the stops read the force
@@ -979,9 +1023,41 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
                 bound = None
     if binding:
         return CombCandidate(sheet, km_scale, None, None, tuple(binding), -math.inf, None,
-                             tuple(codes), bound)
-    plan, fails, limits, margin, rated, bound = judge_bounded(d, envelope_of, room)
-    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, limits, bound)
+                             tuple(codes), bound), None, room
+    return None, d, room
+
+
+#: How far (relative) a candidate's closed-form binding force, worked out before its
+#: verification matrix, must fall short of the margin's force to be judged last in
+#: :func:`first_preferred`: a thousand times the drift of the limits with the stop gaps.
+MARGIN_BOUND_SLACK_REL = 1e-6
+
+
+def short_of_margin(d: dict) -> bool:
+    """Whether a candidate's tables ``d`` (webs and stops set) surely lack
+    :data:`FORCE_MARGIN_REL`: the force its binding limit allows at the closed form
+    (:func:`tactcad.mechanics.limits.plan_limits`, the limits the verification matrix's
+    full-scale-force record takes its least of) falls short of (1 + margin) x the
+    full-scale force by more than :data:`MARGIN_BOUND_SLACK_REL`. The candidate's force
+    margin is that force over the full-scale force less 1, so such a candidate cannot be
+    :func:`first_preferred`'s answer; False when the plan or its limits are refused (the
+    judgement says why).
+
+    Args:
+        d: the candidate's tables (N for the full-scale force).
+
+    Returns:
+        True only when the candidate cannot count with the margin.
+    """
+    from tactcad.mechanics.limits import binding, plan_limits
+
+    try:
+        limits = plan_limits(plan_from_dict(d), "closed-form")
+    except DesignError:  # the plan or its material refused: judged in full
+        return False
+    force = d["requirements"]["full_scale_force_N"]
+    allowed = binding(limits).force_N * (1.0 + MARGIN_BOUND_SLACK_REL)
+    return allowed < (1.0 + FORCE_MARGIN_REL) * force
 
 
 def force_free(exc: DesignErrors) -> bool:
