@@ -371,8 +371,8 @@ def test_a_candidate_short_of_the_margin_by_its_limits_never_has_the_margin(
     """The bound that holds back a candidate's verification matrix: every candidate it
     names falls short of the force margin when judged in full, and it names some."""
     from tactcad.studies.comb_design import (FORCE_MARGIN_REL, comb_candidates,
-                                             prepared_candidate, searched_base,
-                                             short_of_margin)
+                                             planned_limits, prepared_candidate,
+                                             searched_base, short_of_margin)
 
     targets = Targets(kr_over_km, kobj, force)
     base = searched_base(BASE, columns)
@@ -382,7 +382,8 @@ def test_a_candidate_short_of_the_margin_by_its_limits_never_has_the_margin(
     for c in tried:
         _, d, _ = prepared_candidate(base, c.sheet_mm, c.km_scale, columns, jaw_room("10"),
                                      targets, TI)
-        if d is not None and short_of_margin(d):
+        limits = planned_limits(d)[1] if d is not None else None
+        if limits is not None and short_of_margin(d, limits):
             named.append(c)
     assert named and len(named) < len(tried)
     assert all(c.force_margin_rel < FORCE_MARGIN_REL for c in named)

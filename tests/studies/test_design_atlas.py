@@ -344,7 +344,7 @@ def test_comb_records_are_the_same_whether_pairs_short_of_the_margin_wait_or_not
               {"point": 2, "kr_over_km": 6.0, "kobj_lo_N_per_mm": 0.8,
                "kobj_hi_N_per_mm": 8.0, "full_scale_force_N": 0.2, "columns": 3}]
     waiting = evaluate_batch(atlas, points)
-    monkeypatch.setattr(comb_design, "short_of_margin", lambda d: False)
+    monkeypatch.setattr(comb_design, "short_of_margin", lambda d, limits: False)
     judged_in_turn = evaluate_batch(atlas, points)
     assert any(r["feasible"] for r in waiting) and not all(r["feasible"] for r in waiting)
     assert json.dumps(waiting, sort_keys=True) == json.dumps(judged_in_turn, sort_keys=True)

@@ -444,7 +444,8 @@ def judge_limits(d: dict, envelope_of: Callable | None, room: Any = None
     return judge_bounded(d, envelope_of, room)[:5]
 
 
-def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
+def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None,
+                  plan: Any = None, limits: list | None = None
                   ) -> tuple[Any, tuple[str, ...], tuple[str, ...], float, float | None,
                              ForceBound | None]:
     """:func:`judge_limits`' answer and the candidate's :class:`ForceBound` (None when the
@@ -452,7 +453,8 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
 
     Args:
         d: the candidate's tables (webs and stops set). envelope_of, room: as
-            :func:`judge_limits`.
+            :func:`judge_limits`. plan, limits: ``d``'s plan and its closed-form limits
+            where already worked out (:func:`planned_limits`), else worked out here.
 
     Returns:
         (plan, failures, limit codes, full-scale-force margin, rated force N, bound).
@@ -464,7 +466,7 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
                                                    requirement_limit)
 
     try:
-        plan = plan_from_dict(d)
+        plan = plan if plan is not None else plan_from_dict(d)
     except DesignErrors as exc:
         return (None, *refused_fields(exc), -math.inf, None, None)
     env = envelope_of(plan) if envelope_of is not None else None
@@ -483,7 +485,7 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
     tall = too_tall(plan, room) if room is not None else ()
     fails += tall
     codes += [HEIGHT] * len(tall)
-    limits = plan_limits(plan, "closed-form")
+    limits = limits if limits is not None else plan_limits(plan, "closed-form")
     gauges = uncleared_gauge_limits(limits, force)
     fails += [f"{LIMIT_WORDS[lim.limit]} of element {lim.element}: {lim.force_N:.4g} N does not "
               f"clear {force:g} N by the closed form's {100 * lim.error_estimate_rel:.2g} % "
@@ -662,22 +664,24 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
 
     base = searched_base(base, columns)
     judged = [] if judged is None else judged
-    short: list[tuple[dict, float, float, Any]] = []  # judged only when none has the margin
+    short: list[tuple] = []  # judged only when none has the margin
     with range_warnings_unsaid():
         for scale in scales:
             for sheet in sorted(sheets_of(base), reverse=True):
                 c, d, at = prepared_candidate(base, sheet, scale, columns, room, targets,
                                               grade)
-                if c is None and short_of_margin(d):
-                    short.append((d, sheet, scale, at))
-                    continue
-                c = c or judged_candidate(d, sheet, scale, envelope_of, at)
+                if c is None:
+                    plan, limits = planned_limits(d)
+                    if limits is not None and short_of_margin(d, limits):
+                        short.append((d, sheet, scale, at, plan, limits))
+                        continue
+                    c = judged_candidate(d, sheet, scale, envelope_of, at, plan, limits)
                 judged.append(c)
                 if c.plan is not None and not c.failures \
                         and c.force_margin_rel >= FORCE_MARGIN_REL:
                     return c
-        judged += [judged_candidate(d, sheet, scale, envelope_of, at)
-                   for d, sheet, scale, at in short]
+        judged += [judged_candidate(d, sheet, scale, envelope_of, at, plan, limits)
+                   for d, sheet, scale, at, plan, limits in short]
     return None
 
 
@@ -972,19 +976,21 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
 
 
 def judged_candidate(d: dict, sheet: float, km_scale: float, envelope_of: Callable | None,
-                     room: Any) -> CombCandidate:
+                     room: Any, plan: Any = None, limits: list | None = None) -> CombCandidate:
     """A candidate whose tables ``d`` (webs and stops set, :func:`prepared_candidate`) are
     judged (:func:`judge_bounded`) on a ``sheet`` (mm) at ``km_scale``.
 
     Args:
         d: the tables. sheet: the sheet (mm). km_scale: K_m over eq. 2's centre.
-        envelope_of, room: as :func:`judge_limits`.
+        envelope_of, room: as :func:`judge_limits`. plan, limits: ``d``'s plan and
+            closed-form limits where already worked out (:func:`planned_limits`).
 
     Returns:
         The :class:`CombCandidate`.
     """
-    plan, fails, limits, margin, rated, bound = judge_bounded(d, envelope_of, room)
-    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, limits, bound)
+    plan, fails, codes, margin, rated, bound = judge_bounded(d, envelope_of, room, plan,
+                                                             limits)
+    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, codes, bound)
 
 
 def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any,
@@ -1033,28 +1039,47 @@ def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, 
 MARGIN_BOUND_SLACK_REL = 1e-6
 
 
-def short_of_margin(d: dict) -> bool:
-    """Whether a candidate's tables ``d`` (webs and stops set) surely lack
-    :data:`FORCE_MARGIN_REL`: the force its binding limit allows at the closed form
-    (:func:`tactcad.mechanics.limits.plan_limits`, the limits the verification matrix's
-    full-scale-force record takes its least of) falls short of (1 + margin) x the
-    full-scale force by more than :data:`MARGIN_BOUND_SLACK_REL`. The candidate's force
-    margin is that force over the full-scale force less 1, so such a candidate cannot be
-    :func:`first_preferred`'s answer; False when the plan or its limits are refused (the
-    judgement says why).
+def planned_limits(d: dict) -> tuple[Any, list | None]:
+    """A candidate's plan and its closed-form limits
+    (:func:`tactcad.mechanics.limits.plan_limits`), as :func:`judge_bounded` works them out,
+    so that a bound read first and the judgement share them.
 
     Args:
-        d: the candidate's tables (N for the full-scale force).
+        d: the candidate's tables (webs and stops set).
+
+    Returns:
+        (plan, limits); (None, None) when the plan is refused, (plan, None) when its
+        limits are (the judgement says why).
+    """
+    from tactcad.mechanics.limits import plan_limits
+
+    try:
+        plan = plan_from_dict(d)
+    except DesignErrors:
+        return None, None
+    try:
+        return plan, plan_limits(plan, "closed-form")
+    except DesignError:
+        return plan, None
+
+
+def short_of_margin(d: dict, limits: list) -> bool:
+    """Whether a candidate's tables ``d`` (webs and stops set) surely lack
+    :data:`FORCE_MARGIN_REL`: the force its binding limit allows at the closed form
+    (``limits``, :func:`planned_limits`'; the verification matrix's full-scale-force
+    record takes the least of these) falls short of (1 + margin) x the full-scale force by
+    more than :data:`MARGIN_BOUND_SLACK_REL`. The candidate's force margin is that force
+    over the full-scale force less 1, so such a candidate cannot be
+    :func:`first_preferred`'s answer.
+
+    Args:
+        d: the candidate's tables (N for the full-scale force). limits: its limits.
 
     Returns:
         True only when the candidate cannot count with the margin.
     """
-    from tactcad.mechanics.limits import binding, plan_limits
+    from tactcad.mechanics.limits import binding
 
-    try:
-        limits = plan_limits(plan_from_dict(d), "closed-form")
-    except DesignError:  # the plan or its material refused: judged in full
-        return False
     force = d["requirements"]["full_scale_force_N"]
     allowed = binding(limits).force_N * (1.0 + MARGIN_BOUND_SLACK_REL)
     return allowed < (1.0 + FORCE_MARGIN_REL) * force
