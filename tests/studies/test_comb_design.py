@@ -404,3 +404,34 @@ def test_without_an_answer_the_first_preferred_search_judges_every_candidate_as_
     assert [(c.sheet_mm, c.km_scale, c.failures, c.force_margin_rel, c.rated_force_N, c.data)
             for c in lazy] == [(c.sheet_mm, c.km_scale, c.failures, c.force_margin_rel,
                                 c.rated_force_N, c.data) for c in tried]
+
+
+def test_a_sheets_starting_plan_is_planned_once_for_all_its_scales(monkeypatch):
+    """Inside one search the tables a sheet starts from are planned once: every K_m scale
+    gets that plan (a fresh plan's elements), or the same refusal."""
+    from tactcad.design import array_plan
+    from tactcad.studies import comb_design
+    from tactcad.studies.comb_design import comb_tables, searched_base, starting_plan
+
+    targets = Targets(10.0, (0.5, 5.0), 0.05)
+    d, _ = comb_tables(searched_base(BASE, 2), 1.0, 2, jaw_room("10"), targets, TI)
+    fresh = array_plan.plan_from_dict(d)
+    refused = {**d, "sheet": {"thickness_mm": -1.0}}
+    builds: list[int] = []
+    real = comb_design.plan_from_dict
+
+    def counted(tables):
+        builds.append(1)
+        return real(tables)
+
+    monkeypatch.setattr(comb_design, "plan_from_dict", counted)
+    with comb_design.web_solves_kept():
+        first, again = starting_plan(d), starting_plan(d)
+        errors = []
+        for _ in range(2):
+            with pytest.raises(DesignError) as exc:
+                starting_plan(refused)
+            errors.append([e.field for e in exc.value.errors])
+    assert first is again and len(builds) == 2  # one plan, one refusal
+    assert [s.geometry for s in first.slots] == [s.geometry for s in fresh.slots]
+    assert errors[0] == errors[1] and errors[0]

@@ -340,7 +340,7 @@ def with_webs(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, A
     Raises:
         DesignErrors: the plan with its webs is refused.
     """
-    plan = plan_from_dict(d)
+    plan = starting_plan(d)
     columns = plan.columns
     k_m = km_scale * centred_km(targets)
     k_r = targets.kr_over_km * k_m
@@ -361,6 +361,39 @@ def with_webs(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, A
     d = copy.deepcopy(d)
     d["comb"]["web_thicknesses_mm"] = [webs[0]] * columns + [webs[1]] * columns
     return d, plan_from_dict(d), []
+
+
+def starting_plan(d: dict) -> Any:
+    """The plan of a sheet's comb tables before its webs are solved
+    (:func:`comb_tables`' ``d``, which no K_m scale changes); inside
+    :func:`web_solves_kept` each distinct table is planned once, its refusal kept as well,
+    so the scales of one sheet share it.
+
+    Args:
+        d: the comb's tables at their starting webs.
+
+    Returns:
+        The plan.
+
+    Raises:
+        DesignErrors: the tables are refused (the same refusal each time).
+    """
+    import json
+
+    kept = _KEPT_WEBS.get()
+    key = ("plan", json.dumps(d, sort_keys=True, default=repr)) if kept is not None else None
+    if key is not None and key in kept:
+        plan, refused = kept[key]
+    else:
+        try:
+            plan, refused = plan_from_dict(d), None
+        except DesignErrors as exc:
+            plan, refused = None, exc
+        if key is not None:
+            kept[key] = (plan, refused)
+    if refused is not None:
+        raise refused
+    return plan
 
 
 def with_stops(d: dict, plan: Any, targets: Targets) -> dict:
