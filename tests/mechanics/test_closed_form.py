@@ -507,3 +507,23 @@ def test_the_error_estimate_alone_is_the_closed_form_levels_to_the_bit(plan, web
         whole = estimate("closed-form", g, plan.material).error_estimate_rel
         alone = closed_form_error_estimate_rel(g, plan.material)
     assert alone == whole and alone > 0
+
+
+@pytest.mark.parametrize("web_mm", [0.02, 0.05, 0.08, 0.164, 0.4, 1.0])
+def test_the_corrected_k_alone_is_the_estimators_to_the_bit(web_mm):
+    """A web search reads K alone: the 10 mm jaw's comb elements (each with its bonded
+    gauge) and their bare sections give the estimator's K exactly at every trial web."""
+    from tactcad.design.array_plan import EXAMPLES, plan_from_dict, read_toml
+    from tactcad.mechanics.closed_form import corrected_element_k
+
+    comb = plan_from_dict(read_toml(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml",
+                                    "design file"))
+    geometries = {s.geometry for s in comb.slots}
+    geometries |= {g.bare() for g in geometries}
+    assert any(g.gauge for g in geometries) and any(not g.gauge for g in geometries)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the thinnest webs leave the fitted range
+        for g in geometries:
+            trial = dataclasses.replace(g, web_thickness_mm=web_mm)
+            expected = estimate_closed_form(trial, comb.material).stiffness_N_per_mm
+            assert corrected_element_k(trial, comb.material) == expected

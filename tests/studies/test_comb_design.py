@@ -345,13 +345,13 @@ def test_kept_web_solves_give_a_fresh_solves_web_and_read_each_closed_form_once(
     fresh = [comb_design.solved_web(geometry, material, k, 0.02, 0.6) for k in targets]
     assert all(w is not None for w in fresh)
     reads: list[float] = []
-    counted = closed_form.estimate_closed_form
+    counted = closed_form.corrected_element_k
 
     def counting(g, m):
         reads.append(g.web_thickness_mm)
         return counted(g, m)
 
-    monkeypatch.setattr(closed_form, "estimate_closed_form", counting)
+    monkeypatch.setattr(closed_form, "corrected_element_k", counting)
     with comb_design.web_solves_kept():
         kept = [comb_design.solve_web(geometry, material, k, 0.02, 0.6) for k in targets]
         first_reads = len(reads)
@@ -360,3 +360,78 @@ def test_kept_web_solves_give_a_fresh_solves_web_and_read_each_closed_form_once(
     assert kept == fresh and again == fresh[0]
     assert reads.count(0.02) == 1 and reads.count(0.6) == 1  # each bracket end read once
     assert comb_design._KEPT_WEBS.get() is None  # nothing kept once the search is over
+
+
+@pytest.mark.parametrize("kr_over_km, kobj, force, columns", [
+    (21.267, (2.87533, 18.4831), 0.12, 2),  # feasible: the softest pairs lack the margin
+    (10.0, (0.5, 5.0), 0.6, 2),  # refused: every rated pair falls short of the force
+])
+def test_a_candidate_short_of_the_margin_by_its_limits_never_has_the_margin(
+        kr_over_km, kobj, force, columns):
+    """The bound that holds back a candidate's verification matrix: every candidate it
+    names falls short of the force margin when judged in full, and it names some."""
+    from tactcad.studies.comb_design import (FORCE_MARGIN_REL, comb_candidates,
+                                             planned_limits, prepared_candidate,
+                                             searched_base, short_of_margin)
+
+    targets = Targets(kr_over_km, kobj, force)
+    base = searched_base(BASE, columns)
+    _, tried = comb_candidates(targets, jaw_room("10"), columns, BASE, grade=TI,
+                               envelope_of=array_envelope_mm)
+    named = []
+    for c in tried:
+        _, d, _ = prepared_candidate(base, c.sheet_mm, c.km_scale, columns, jaw_room("10"),
+                                     targets, TI)
+        limits = planned_limits(d)[1] if d is not None else None
+        if limits is not None and short_of_margin(d, limits):
+            named.append(c)
+    assert named and len(named) < len(tried)
+    assert all(c.force_margin_rel < FORCE_MARGIN_REL for c in named)
+
+
+def test_without_an_answer_the_first_preferred_search_judges_every_candidate_as_the_whole():
+    """Held back or not, every candidate ends up judged, each the whole search's own."""
+    from tactcad.studies.comb_design import (comb_candidates, first_preferred,
+                                             in_search_order, searched_base)
+
+    targets = Targets(10.0, (0.5, 5.0), 0.6)
+    judged: list = []
+    assert first_preferred(targets, jaw_room("10"), 2, BASE, grade=TI,
+                           envelope_of=array_envelope_mm, judged=judged) is None
+    _, tried = comb_candidates(targets, jaw_room("10"), 2, BASE, grade=TI,
+                               envelope_of=array_envelope_mm)
+    lazy = in_search_order(judged, searched_base(BASE, 2))
+    assert [(c.sheet_mm, c.km_scale, c.failures, c.force_margin_rel, c.rated_force_N, c.data)
+            for c in lazy] == [(c.sheet_mm, c.km_scale, c.failures, c.force_margin_rel,
+                                c.rated_force_N, c.data) for c in tried]
+
+
+def test_a_sheets_starting_plan_is_planned_once_for_all_its_scales(monkeypatch):
+    """Inside one search the tables a sheet starts from are planned once: every K_m scale
+    gets that plan (a fresh plan's elements), or the same refusal."""
+    from tactcad.design import array_plan
+    from tactcad.studies import comb_design
+    from tactcad.studies.comb_design import comb_tables, searched_base, starting_plan
+
+    targets = Targets(10.0, (0.5, 5.0), 0.05)
+    d, _ = comb_tables(searched_base(BASE, 2), 1.0, 2, jaw_room("10"), targets, TI)
+    fresh = array_plan.plan_from_dict(d)
+    refused = {**d, "sheet": {"thickness_mm": -1.0}}
+    builds: list[int] = []
+    real = comb_design.plan_from_dict
+
+    def counted(tables):
+        builds.append(1)
+        return real(tables)
+
+    monkeypatch.setattr(comb_design, "plan_from_dict", counted)
+    with comb_design.web_solves_kept():
+        first, again = starting_plan(d), starting_plan(d)
+        errors = []
+        for _ in range(2):
+            with pytest.raises(DesignError) as exc:
+                starting_plan(refused)
+            errors.append([e.field for e in exc.value.errors])
+    assert first is again and len(builds) == 2  # one plan, one refusal
+    assert [s.geometry for s in first.slots] == [s.geometry for s in fresh.slots]
+    assert errors[0] == errors[1] and errors[0]

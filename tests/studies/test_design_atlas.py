@@ -327,3 +327,24 @@ def test_the_feasible_boundary_is_the_largest_feasible_force_in_each_span_step()
     assert feasible_boundary([r(2.0, 0.1, False)], bins=3) == []
     with pytest.raises(DesignError, match="bins"):
         feasible_boundary(records, bins=0)
+
+
+@pytest.mark.slow  # six comb searches, half of them judging every candidate
+def test_comb_records_are_the_same_whether_pairs_short_of_the_margin_wait_or_not(monkeypatch):
+    """Holding back the verification of candidates whose limits fall short of the force
+    margin changes no record: feasible points keep their figures, refused ones their limit,
+    words and option."""
+    from tactcad.studies import comb_design
+
+    atlas = jaw_atlas("10", [(COMB, "Ti-6Al-4V-annealed")])
+    points = [{"point": 0, "kr_over_km": 21.267, "kobj_lo_N_per_mm": 2.87533,
+               "kobj_hi_N_per_mm": 18.4831, "full_scale_force_N": 0.12, "columns": 2},
+              {"point": 1, "kr_over_km": 10.0, "kobj_lo_N_per_mm": 0.5,
+               "kobj_hi_N_per_mm": 5.0, "full_scale_force_N": 0.6, "columns": 2},
+              {"point": 2, "kr_over_km": 6.0, "kobj_lo_N_per_mm": 0.8,
+               "kobj_hi_N_per_mm": 8.0, "full_scale_force_N": 0.2, "columns": 3}]
+    waiting = evaluate_batch(atlas, points)
+    monkeypatch.setattr(comb_design, "short_of_margin", lambda d, limits: False)
+    judged_in_turn = evaluate_batch(atlas, points)
+    assert any(r["feasible"] for r in waiting) and not all(r["feasible"] for r in waiting)
+    assert json.dumps(waiting, sort_keys=True) == json.dumps(judged_in_turn, sort_keys=True)

@@ -142,3 +142,20 @@ def test_vectorised_stiffness_equals_the_closed_form_estimator(plan):
     for slot, kv in zip(plan.slots, k):
         ref = estimate("closed-form", slot.geometry, plan.material).stiffness_N_per_mm
         assert kv == pytest.approx(ref, rel=1e-12)
+
+
+def test_the_element_band_report_draws_run_tolerances_element_figures(plan):
+    """The K band check reads the elements alone; drawn on their own they are the full
+    report's numbers exactly, and the band record judges the same band."""
+    from tactcad.studies.tolerance_budget import mc_band, toleranced_band_record
+    from tactcad.studies.tolerance_montecarlo import (MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED,
+                                                      element_band_report)
+
+    full = run_tolerance(plan, 6000, seed=4, k_obj=[1.0])
+    alone = element_band_report(plan, 6000, seed=4)
+    assert alone.elements == full.elements and alone.tolerances == full.tolerances
+    assert alone.units == [] and alone.web_tolerance == []
+    assert element_band_report(plan, 6000, seed=5).elements != full.elements
+    record = toleranced_band_record(plan, 0.05, 0.01)
+    expected = mc_band(run_tolerance(plan, MONTE_CARLO_SAMPLES, seed=MONTE_CARLO_SEED))[0]
+    assert record["predicted"] == expected

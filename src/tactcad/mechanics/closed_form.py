@@ -89,7 +89,7 @@ WEB_BRACKET_MM = (0.05, 1.0)
 
 __all__ = ["ALPHA_SHEAR", "ComplianceParts", "Correction", "CorrectionRangeWarning",
            "IDENTITY", "NotchIntegrals", "closed_form_compliance", "closed_form_stiffness",
-           "correction_factor", "corrected_point_strain",
+           "correction_factor", "corrected_element_k", "corrected_point_strain",
            "estimate_closed_form", "face_strain_factor", "gauge_strain_per_newton", "notch_integrals",
            "web_for_stiffness"]
 
@@ -366,6 +366,45 @@ def closed_form_error_estimate_rel(g: ElementGeometry, material: Material) -> fl
         err += CLOSED_FORM_LAYER_ERROR_REL * (
             closed_form_layer_k(k, g, material.youngs_modulus_MPa, layer) / k - 1.0)
     return err
+
+
+def corrected_element_k(g: ElementGeometry, material: Material,
+                        correction: Correction | None = None) -> float:
+    """The corrected closed-form K (N/mm) of one element, alone: the number
+    :func:`estimate_closed_form` gives as ``stiffness_N_per_mm``, by the same steps (the
+    bare compliance, the fem3d-fitted correction, the bonded gauge's layer), so it is the
+    same to the bit; without the gauge strain, the error estimate or the range warning,
+    which a web search's trial webs need none of (a root finder reads K alone).
+
+    Args:
+        g: element geometry (mm). material: its material (MPa).
+        correction: explicit correction (default: the file of
+            :func:`~tactcad.mechanics.correction.load_correction`).
+
+    Returns:
+        K (N/mm).
+
+    Raises:
+        ValueError: a non-positive dimension, or a correction factor not positive there.
+
+    Source: the closed form of this module (Tseytlin's notch compliance and the arm's
+    Euler-Bernoulli bending) with its fem3d-fitted correction.
+    """
+    corr = _resolve(True, correction)
+    t = g.web_thickness_mm
+    parts = _parts(g, material, t)
+    c = {key: float(v) for key, v in correction_coordinates(
+        parts, t, g.notch_radius_mm, g.sheet_thickness_mm, material.poisson_ratio).items()}
+    # apply_correction's product, less its range check (it does not move K)
+    k = float(np.asarray(1.0 / float(parts.total), dtype=float) * corr.factor(
+        c["t_over_R"], c["width_ratio"], c["poisson_ratio"], c["notch_share"],
+        c["shear_share"], c["arm_share"], c["web_over_sheet"]))
+    layer = layer_of(g)
+    if layer is not None:
+        from tactcad.mechanics.bonded_layer import closed_form_layer_k
+
+        k = closed_form_layer_k(k, g, material.youngs_modulus_MPa, layer)
+    return k
 
 
 def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int | None = None,

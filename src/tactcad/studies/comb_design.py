@@ -257,7 +257,9 @@ def solved_web(geometry, material, k_target: float, lo: float, hi: float) -> flo
 
 def closed_form_k(geometry, material) -> float:
     """The closed form's K (N/mm) of ``geometry`` (mm) in ``material``
-    (:func:`tactcad.mechanics.closed_form.estimate_closed_form`); inside
+    (:func:`tactcad.mechanics.closed_form.corrected_element_k`: the K of
+    :func:`~tactcad.mechanics.closed_form.estimate_closed_form` to the bit, without its
+    gauge strain and range warning, which a trial web does not need); inside
     :func:`web_solves_kept`, a K already found is reused: every web solve of one element
     and sheet starts at the same bracket ends, and Brent's method reads them once more.
 
@@ -268,13 +270,13 @@ def closed_form_k(geometry, material) -> float:
     Returns:
         K (N/mm).
     """
-    from tactcad.mechanics.closed_form import estimate_closed_form
+    from tactcad.mechanics.closed_form import corrected_element_k
 
     kept = _KEPT_WEBS.get()
     key = ("K", geometry, material)
     if kept is not None and key in kept:
         return kept[key]
-    k = estimate_closed_form(geometry, material).stiffness_N_per_mm
+    k = corrected_element_k(geometry, material)
     if kept is not None:
         kept[key] = k
     return k
@@ -338,7 +340,7 @@ def with_webs(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, A
     Raises:
         DesignErrors: the plan with its webs is refused.
     """
-    plan = plan_from_dict(d)
+    plan = starting_plan(d)
     columns = plan.columns
     k_m = km_scale * centred_km(targets)
     k_r = targets.kr_over_km * k_m
@@ -359,6 +361,39 @@ def with_webs(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, A
     d = copy.deepcopy(d)
     d["comb"]["web_thicknesses_mm"] = [webs[0]] * columns + [webs[1]] * columns
     return d, plan_from_dict(d), []
+
+
+def starting_plan(d: dict) -> Any:
+    """The plan of a sheet's comb tables before its webs are solved
+    (:func:`comb_tables`' ``d``, which no K_m scale changes); inside
+    :func:`web_solves_kept` each distinct table is planned once, its refusal kept as well,
+    so the scales of one sheet share it.
+
+    Args:
+        d: the comb's tables at their starting webs.
+
+    Returns:
+        The plan.
+
+    Raises:
+        DesignErrors: the tables are refused (the same refusal each time).
+    """
+    import json
+
+    kept = _KEPT_WEBS.get()
+    key = ("plan", json.dumps(d, sort_keys=True, default=repr)) if kept is not None else None
+    if key is not None and key in kept:
+        plan, refused = kept[key]
+    else:
+        try:
+            plan, refused = plan_from_dict(d), None
+        except DesignErrors as exc:
+            plan, refused = None, exc
+        if key is not None:
+            kept[key] = (plan, refused)
+    if refused is not None:
+        raise refused
+    return plan
 
 
 def with_stops(d: dict, plan: Any, targets: Targets) -> dict:
@@ -442,7 +477,8 @@ def judge_limits(d: dict, envelope_of: Callable | None, room: Any = None
     return judge_bounded(d, envelope_of, room)[:5]
 
 
-def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
+def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None,
+                  plan: Any = None, limits: list | None = None
                   ) -> tuple[Any, tuple[str, ...], tuple[str, ...], float, float | None,
                              ForceBound | None]:
     """:func:`judge_limits`' answer and the candidate's :class:`ForceBound` (None when the
@@ -450,7 +486,8 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
 
     Args:
         d: the candidate's tables (webs and stops set). envelope_of, room: as
-            :func:`judge_limits`.
+            :func:`judge_limits`. plan, limits: ``d``'s plan and its closed-form limits
+            where already worked out (:func:`planned_limits`), else worked out here.
 
     Returns:
         (plan, failures, limit codes, full-scale-force margin, rated force N, bound).
@@ -462,7 +499,7 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
                                                    requirement_limit)
 
     try:
-        plan = plan_from_dict(d)
+        plan = plan if plan is not None else plan_from_dict(d)
     except DesignErrors as exc:
         return (None, *refused_fields(exc), -math.inf, None, None)
     env = envelope_of(plan) if envelope_of is not None else None
@@ -481,7 +518,7 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None
     tall = too_tall(plan, room) if room is not None else ()
     fails += tall
     codes += [HEIGHT] * len(tall)
-    limits = plan_limits(plan, "closed-form")
+    limits = limits if limits is not None else plan_limits(plan, "closed-form")
     gauges = uncleared_gauge_limits(limits, force)
     fails += [f"{LIMIT_WORDS[lim.limit]} of element {lim.element}: {lim.force_N:.4g} N does not "
               f"clear {force:g} N by the closed form's {100 * lim.error_estimate_rel:.2g} % "
@@ -637,13 +674,16 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
     preference (the softest pair first, the thicker sheet on a tie) and stopping at the
     first that counts with :data:`FORCE_MARGIN_REL` to spare: none softer or thicker can
     come before it, so it is ``chosen(counting(comb_candidates(...)))`` without judging the
-    rest. None when no candidate has the margin (then only the whole search decides: the
-    one with the most margin, or a refusal).
+    rest. A candidate whose binding limit already falls short of the margin
+    (:func:`short_of_margin`) cannot be that one, so its verification matrix waits until
+    no candidate has the margin. None when no candidate has the margin (then only the
+    whole search decides: the one with the most margin, or a refusal).
 
     Args:
         targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
         judged: where given, every candidate judged is appended to it (all of them when
-            the answer is None: :func:`in_search_order` makes them the full search's).
+            the answer is None: :func:`in_search_order` makes them the full search's). A
+            candidate :func:`short_of_margin` is judged only then, after the others.
         scales: the K_m scales walked (default :data:`KM_SCALES`); a caller leaves out only
             scales none of whose candidates can count (:func:`atlas_scales`).
 
@@ -656,16 +696,25 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
     from tactcad.mechanics.correction import range_warnings_unsaid
 
     base = searched_base(base, columns)
+    judged = [] if judged is None else judged
+    short: list[tuple] = []  # judged only when none has the margin
     with range_warnings_unsaid():
         for scale in scales:
             for sheet in sorted(sheets_of(base), reverse=True):
-                c = candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
-                              None)
-                if judged is not None:
-                    judged.append(c)
+                c, d, at = prepared_candidate(base, sheet, scale, columns, room, targets,
+                                              grade)
+                if c is None:
+                    plan, limits = planned_limits(d)
+                    if limits is not None and short_of_margin(d, limits):
+                        short.append((d, sheet, scale, at, plan, limits))
+                        continue
+                    c = judged_candidate(d, sheet, scale, envelope_of, at, plan, limits)
+                judged.append(c)
                 if c.plan is not None and not c.failures \
                         and c.force_margin_rel >= FORCE_MARGIN_REL:
                     return c
+        judged += [judged_candidate(d, sheet, scale, envelope_of, at, plan, limits)
+                   for d, sheet, scale, at, plan, limits in short]
     return None
 
 
@@ -954,13 +1003,49 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
     it first."""
     if progress:
         progress(f"comb on a {sheet:g} mm sheet, K_m {km_scale:g} x eq. 2's centre")
+    refused, d, room = prepared_candidate(base, sheet, km_scale, columns, room, targets, grade)
+    return refused if refused is not None else \
+        judged_candidate(d, sheet, km_scale, envelope_of, room)
+
+
+def judged_candidate(d: dict, sheet: float, km_scale: float, envelope_of: Callable | None,
+                     room: Any, plan: Any = None, limits: list | None = None) -> CombCandidate:
+    """A candidate whose tables ``d`` (webs and stops set, :func:`prepared_candidate`) are
+    judged (:func:`judge_bounded`) on a ``sheet`` (mm) at ``km_scale``.
+
+    Args:
+        d: the tables. sheet: the sheet (mm). km_scale: K_m over eq. 2's centre.
+        envelope_of, room: as :func:`judge_limits`. plan, limits: ``d``'s plan and
+            closed-form limits where already worked out (:func:`planned_limits`).
+
+    Returns:
+        The :class:`CombCandidate`.
+    """
+    plan, fails, codes, margin, rated, bound = judge_bounded(d, envelope_of, room, plan,
+                                                             limits)
+    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, codes, bound)
+
+
+def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any,
+                       targets: Targets, grade: str | None
+                       ) -> tuple[CombCandidate | None, dict | None, Any]:
+    """One sheet's comb at one K_m scale up to its judgement: its tables with the webs
+    solved and the stops set, or the candidate refused before (the pitch, a web, the plan).
+
+    Args:
+        base, sheet, km_scale, columns, room, targets, grade: as :func:`candidate`.
+
+    Returns:
+        (the refused candidate or None, the tables or None, the room it is judged in: an
+        outline's room narrowed to the sheet's comb).
+    """
     from tactcad.vocabulary.binding_limits import FOOTPRINT, SHEET
 
     if getattr(room, "outline", None) is not None:
         room, why = room_of_outline(base, sheet, columns, room, targets, grade)
         if why:
             return CombCandidate(sheet, km_scale, None, None, (why,), -math.inf, None,
-                                 (FOOTPRINT,), REFUSED_AT_ANY_FORCE)
+                                 (FOOTPRINT,), REFUSED_AT_ANY_FORCE), None, room
     d, binding = comb_tables(base, sheet, columns, room, targets, grade)
     codes: tuple[str, ...] = (SHEET,) * len(binding)  # the pitch leaves no arm
     bound: ForceBound | None = REFUSED_AT_ANY_FORCE  # until the stops read the force
@@ -977,9 +1062,60 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
                 bound = None
     if binding:
         return CombCandidate(sheet, km_scale, None, None, tuple(binding), -math.inf, None,
-                             tuple(codes), bound)
-    plan, fails, limits, margin, rated, bound = judge_bounded(d, envelope_of, room)
-    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, limits, bound)
+                             tuple(codes), bound), None, room
+    return None, d, room
+
+
+#: How far (relative) a candidate's closed-form binding force, worked out before its
+#: verification matrix, must fall short of the margin's force to be judged last in
+#: :func:`first_preferred`: a thousand times the drift of the limits with the stop gaps.
+MARGIN_BOUND_SLACK_REL = 1e-6
+
+
+def planned_limits(d: dict) -> tuple[Any, list | None]:
+    """A candidate's plan and its closed-form limits
+    (:func:`tactcad.mechanics.limits.plan_limits`), as :func:`judge_bounded` works them out,
+    so that a bound read first and the judgement share them.
+
+    Args:
+        d: the candidate's tables (webs and stops set).
+
+    Returns:
+        (plan, limits); (None, None) when the plan is refused, (plan, None) when its
+        limits are (the judgement says why).
+    """
+    from tactcad.mechanics.limits import plan_limits
+
+    try:
+        plan = plan_from_dict(d)
+    except DesignErrors:
+        return None, None
+    try:
+        return plan, plan_limits(plan, "closed-form")
+    except DesignError:
+        return plan, None
+
+
+def short_of_margin(d: dict, limits: list) -> bool:
+    """Whether a candidate's tables ``d`` (webs and stops set) surely lack
+    :data:`FORCE_MARGIN_REL`: the force its binding limit allows at the closed form
+    (``limits``, :func:`planned_limits`'; the verification matrix's full-scale-force
+    record takes the least of these) falls short of (1 + margin) x the full-scale force by
+    more than :data:`MARGIN_BOUND_SLACK_REL`. The candidate's force margin is that force
+    over the full-scale force less 1, so such a candidate cannot be
+    :func:`first_preferred`'s answer.
+
+    Args:
+        d: the candidate's tables (N for the full-scale force). limits: its limits.
+
+    Returns:
+        True only when the candidate cannot count with the margin.
+    """
+    from tactcad.mechanics.limits import binding
+
+    force = d["requirements"]["full_scale_force_N"]
+    allowed = binding(limits).force_N * (1.0 + MARGIN_BOUND_SLACK_REL)
+    return allowed < (1.0 + FORCE_MARGIN_REL) * force
 
 
 def force_free(exc: DesignErrors) -> bool:

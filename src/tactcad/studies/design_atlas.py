@@ -7,7 +7,8 @@ Every point is design's own verdict, reached by design's own functions:
 
 * the monolithic comb: first the candidates in the order design prefers them, up to the
   first that counts with margin (:func:`tactcad.studies.comb_design.first_preferred`: the
-  one design chooses, found without judging the rest); where none does, every sheet at
+  one design chooses, found without judging the rest, nor the verification matrices of
+  those whose closed-form limits already fall short of the margin); where none does, every sheet at
   every K_m scale whose stops can fit (:func:`~tactcad.studies.comb_design.atlas_scales`:
   the others are refused on every sheet and change no record) has been judged at the
   closed form, taken in

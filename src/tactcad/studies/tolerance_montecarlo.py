@@ -393,13 +393,7 @@ def summarise(plan: Plan, chunks: Sequence[dict[str, np.ndarray]], tol: Toleranc
     k_nom = nominal_stiffness(plan, correction)
     numbers = [s.number for s in plan.slots]
     col = {num: i for i, num in enumerate(numbers)}
-    elements = []
-    for num, kn in zip(numbers, k_nom):
-        stats = _percentiles(k[:, col[num]])
-        elements.append({"element": num, "arm_length_mm": plan.element(num).geometry.arm_length_mm,
-                         "K_nominal_N_per_mm": float(kn),
-                         "K_rel_std": stats["std"] / float(kn),
-                         **{f"K_{key}_N_per_mm": v for key, v in stats.items()}})
+    elements = element_statistics(plan, k, k_nom)
     units = []
     k_obj = [_check_k_obj(x) for x in k_obj]
     for m, r in sensing_units(plan, k_nom, reference):
@@ -429,6 +423,56 @@ def summarise(plan: Plan, chunks: Sequence[dict[str, np.ndarray]], tol: Toleranc
     return ToleranceReport(samples=int(k.shape[0]), seed=seed, tolerances=tol, elements=elements,
                            units=units, web_tolerance=webs,
                            correction_source=correction.source, notes=notes)
+
+
+def element_statistics(plan: Plan, k: np.ndarray, k_nominal: np.ndarray) -> list[dict]:
+    """Each element's K statistics over the drawn arrays, as :func:`summarise` reports them.
+
+    Args:
+        plan: the design. k: K (N/mm) of every sample and element, array (n, m), element
+            order. k_nominal: nominal K (N/mm) per element, array (m,).
+
+    Returns:
+        One dict per element: its number, arm (mm), nominal K, relative std and the mean,
+        std and 2.5/97.5 % percentiles of K (N/mm).
+    """
+    elements = []
+    for i, (slot, kn) in enumerate(zip(plan.slots, k_nominal)):
+        stats = _percentiles(k[:, i])
+        elements.append({"element": slot.number,
+                         "arm_length_mm": plan.element(slot.number).geometry.arm_length_mm,
+                         "K_nominal_N_per_mm": float(kn),
+                         "K_rel_std": stats["std"] / float(kn),
+                         **{f"K_{key}_N_per_mm": v for key, v in stats.items()}})
+    return elements
+
+
+def element_band_report(plan: Plan, samples: int = MONTE_CARLO_SAMPLES,
+                        seed: int = MONTE_CARLO_SEED, tolerances: Tolerances | None = None,
+                        correction: Correction | None = None) -> ToleranceReport:
+    """:func:`run_tolerance`'s report with its elements' K statistics alone (no sensing
+    units, no web tolerance for a 5 % band: a K band check reads neither), drawn and
+    evaluated as :func:`run_tolerance` draws them, so each element's figures are the same
+    numbers.
+
+    Args:
+        plan: the design. samples, seed, tolerances, correction: as :func:`run_tolerance`.
+
+    Returns:
+        :class:`ToleranceReport` with ``units`` and ``web_tolerance`` empty.
+
+    Raises:
+        DesignError: bad samples or seed (field named).
+
+    Source: JCGM 101:2008 (95 % coverage interval from the 2.5 and 97.5 percentiles).
+    """
+    tol = Tolerances.of_plan(plan) if tolerances is None else tolerances
+    specs = chunk_specs(plan, tol, samples, seed, correction)
+    k = np.concatenate([run_chunk(spec)["K"] for spec in specs], axis=0)
+    elements = element_statistics(plan, k, nominal_stiffness(plan, specs[0].correction))
+    return ToleranceReport(samples=int(k.shape[0]), seed=seed, tolerances=tol,
+                           elements=elements, units=[], web_tolerance=[],
+                           correction_source=specs[0].correction.source)
 
 
 def _check_k_obj(x) -> float:
