@@ -647,7 +647,7 @@ def _solve_elasticity(mesh, lam, mu, *, thickness, x_clamp, contact, traction_MP
     if intorder is None:
         intorder = 4 if dim == 2 else 2
     sb = Basis(mesh, p2, intorder=intorder)
-    n = dim * sb.N
+    n = dim * int(sb.N)
 
     x0, x1, yc = contact
     tol = 1e-7
