@@ -103,7 +103,7 @@ def test_the_free_block_assembled_is_the_rows_and_columns_kept(kind):
 
 
 def test_each_cell_entry_lands_on_its_rows_and_columns():
-    from tactcad.mechanics.fem.assembly import scalar_pattern
+    from tactcad.mechanics.fem.fem_assembly import scalar_pattern
 
     sb = _basis("tet-p2")
     pattern = scalar_pattern(sb.element_dofs, sb.N)
@@ -119,7 +119,7 @@ def test_each_cell_entry_lands_on_its_rows_and_columns():
 
 
 def test_bad_free_unknowns_and_dofs_are_refused_by_name():
-    from tactcad.mechanics.fem.assembly import scalar_pattern
+    from tactcad.mechanics.fem.fem_assembly import scalar_pattern
     from tactcad.mechanics.fem.fem2d import assemble_elasticity
 
     sb = _basis("tri-p2")

@@ -180,7 +180,7 @@ def assemble_elasticity(sb, lam, mu, chunk: int | None = None, free: np.ndarray 
     contractions per chunk of cells:
     ``K[ia, jb] = sum_q w (lam g_ia g_jb + mu g_ib g_ja + mu delta_ab g_i . g_j)``,
     and summed on the scalar pattern a component pair at a time
-    (:mod:`tactcad.mechanics.fem.assembly`). This is scikit-fem's ``asm`` of
+    (:mod:`tactcad.mechanics.fem.fem_assembly`). This is scikit-fem's ``asm`` of
     the same form without a Python call per pair of basis functions.
 
     Args:
@@ -203,7 +203,7 @@ def assemble_elasticity(sb, lam, mu, chunk: int | None = None, free: np.ndarray 
     lam div u div v (e.g. Hughes, "The Finite Element Method", ch. 2), with
     the gradients of scikit-fem's basis.
     """
-    from tactcad.mechanics.fem.assembly import component_blocks, interleaved_csr, scalar_pattern
+    from tactcad.mechanics.fem.fem_assembly import component_blocks, interleaved_csr, scalar_pattern
 
     pattern = scalar_pattern(sb.element_dofs, sb.N)
     blocks = component_blocks(sb, lam, mu, pattern, chunk)
