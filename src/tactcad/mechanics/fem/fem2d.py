@@ -448,12 +448,13 @@ def _two_level_preconditioner(A, P, smooth_degree: int = 3,
     """
     from tactcad.mechanics.fem.sparse_lu import spd_lu
 
-    lu = spd_lu(P.T @ A @ P, order=coarse_order)
+    restrict = P.T.tocsr()  # CSR by CSR: P^T A P of 573 000 unknowns 1.0 s, not 1.6-1.9 s
+    lu = spd_lu(restrict @ A @ P, order=coarse_order)
     smooth = chebyshev_smoother(A, smooth_degree)
 
     def apply(r):
         x, res = smooth(r, True)
-        e = P @ lu.solve(P.T @ res)
+        e = P @ lu.solve(restrict @ res)
         x += e
         res -= A @ e
         x += smooth(res, False)[0]

@@ -89,14 +89,13 @@ def scalar_pattern(element_dofs: np.ndarray, n_scalar: int) -> ScalarPattern:
     rows = np.repeat(cells, nbf, axis=1).ravel()  # entry (e, i, j): row cells[e, i]
     cols = np.tile(cells, (1, nbf)).ravel()  # column cells[e, j]
     count = rows.size
-    numbers = np.arange(count, dtype=np.float64)  # exact below 2**53
+    numbers = np.arange(count, dtype=np.int64)  # integer values: carried, never summed
     one_a_row = sp.csr_matrix((numbers, rows, np.arange(count + 1)), shape=(count, n_scalar))
     by_row = one_a_row.tocsc()
-    order = by_row.data.astype(np.int64)
-    grouped = sp.csr_matrix((by_row.data, cols[order], by_row.indptr),
+    grouped = sp.csr_matrix((by_row.data, cols[by_row.data], by_row.indptr),
                             shape=(n_scalar, n_scalar))
     grouped.sort_indices()
-    order = grouped.data.astype(np.int64)  # the entries by row, then column
+    order = grouped.data  # the entries by row, then column
     sorted_cols = grouped.indices
     starts = np.zeros(count, dtype=bool)
     starts[grouped.indptr[:-1][np.diff(grouped.indptr) > 0]] = True
@@ -108,11 +107,11 @@ def scalar_pattern(element_dofs: np.ndarray, n_scalar: int) -> ScalarPattern:
     indices = sorted_cols[starts]
     nnz = len(indices)
     # each entry's mirror: the transpose of a matrix holding the entries' numbers
-    numbered = sp.csr_matrix((np.arange(nnz, dtype=np.float64), indices, indptr),
+    numbered = sp.csr_matrix((np.arange(nnz, dtype=np.int64), indices, indptr),
                              shape=(n_scalar, n_scalar))
     transpose = numbered.T.tocsr()
     transpose.sort_indices()
-    mirror = transpose.data.astype(np.int64)
+    mirror = transpose.data
     return ScalarPattern(indptr, indices, entry.reshape(nel, nbf, nbf), mirror)
 
 
