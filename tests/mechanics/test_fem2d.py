@@ -459,14 +459,3 @@ def test_meshing_leaves_the_host_process_its_signal_handlers():
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, f"ended by signal {-proc.returncode}: {proc.stderr[-2000:]}"
     assert proc.stdout.split("\n")[:2] == ["broken pipe raised", "SIGTERM handled True"]
-
-
-@pytest.mark.parametrize("count", [1, 2, 5])
-def test_the_pairwise_sum_of_sparse_chunks_is_their_sum(count):
-    import scipy.sparse as sp
-
-    from tactcad.mechanics.fem.fem2d import pairwise_sum
-
-    chunks = [sp.random(40, 40, density=0.1, format="csr", random_state=k) for k in range(count)]
-    dense = sum(c.toarray() for c in chunks)
-    assert np.allclose(pairwise_sum(chunks).toarray(), dense, rtol=1e-14, atol=0)

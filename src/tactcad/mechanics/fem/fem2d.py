@@ -169,103 +169,53 @@ def skfem_mesh(rm: RegionMesh, curved: bool = True):
     return quad_cls(doflocs, quad.t)
 
 
-#: Local-matrix entries per contraction chunk (memory: about 8 bytes each, times
-#: three arrays): 4000 cells of P2 tetrahedra, 548 of triquadratic hexahedra.
-CHUNK_ENTRIES = 3_600_000
-
-
-def assemble_elasticity(sb, lam, mu, chunk: int | None = None):
+def assemble_elasticity(sb, lam, mu, chunk: int | None = None, free: np.ndarray | None = None):
     """Stiffness matrix of isotropic linear elasticity for the vector space
     built on the scalar Lagrange basis ``sb`` (P2 triangles and tetrahedra,
-    triquadratic hexahedra, ...).
+    triquadratic hexahedra, ...), optionally only its block on the free unknowns.
 
     Global numbering is interleaved, ``dim * s + c`` for scalar dof s and
     component c, which is scikit-fem's numbering for ``ElementVector``. The
     local matrices are formed from the scalar basis gradients by tensor
     contractions per chunk of cells:
-    ``K[ia, jb] = sum_q w (lam g_ia g_jb + mu g_ib g_ja + mu delta_ab g_i . g_j)``.
-    This is scikit-fem's ``asm`` of the same form without a Python call per
-    pair of basis functions (for triquadratic hexahedra, 81 x 81 calls per
-    matrix).
+    ``K[ia, jb] = sum_q w (lam g_ia g_jb + mu g_ib g_ja + mu delta_ab g_i . g_j)``,
+    and summed on the scalar pattern a component pair at a time
+    (:mod:`tactcad.mechanics.fem.fem_assembly`). This is scikit-fem's ``asm`` of
+    the same form without a Python call per pair of basis functions.
 
     Args:
         sb: scikit-fem ``CellBasis`` of a scalar element.
         lam, mu: Lamé parameters (MPa): numbers, or arrays of shape
             (cells, quadrature points) of ``sb`` for a body of several materials.
-        chunk: cells per contraction; ``None``: :data:`CHUNK_ENTRIES` local
-            entries, at most 4000 cells.
+        chunk: cells per contraction; ``None``: about 450 000 local entries
+            (500 P2 tetrahedra), small enough to stay in the cache.
+        free: the unknowns kept, ascending; the others (fixed at zero) are left
+            out of rows and columns, as ``free_block(A, free)`` would. None: all.
 
     Returns:
-        ``scipy.sparse.csr_matrix`` of shape (dim N, dim N) (N = sb.N), N/mm
-        per unit thickness in 2D.
+        ``scipy.sparse.csr_matrix`` of shape (dim N, dim N) (N = sb.N), or
+        (len(free), len(free)), N/mm per unit thickness in 2D.
+
+    Raises:
+        ValueError: ``free`` not ascending distinct unknowns, ``chunk`` below 1.
 
     Source: the isotropic elasticity bilinear form 2 mu eps(u):eps(v) +
     lam div u div v (e.g. Hughes, "The Finite Element Method", ch. 2), with
     the gradients of scikit-fem's basis.
     """
-    import scipy.sparse as sp
+    from tactcad.mechanics.fem.fem_assembly import component_blocks, interleaved_csr, scalar_pattern
 
-    dim = sb.mesh.dim()
-    nbf = sb.Nbfun
-    G = np.array([sb.basis[i][0].grad for i in range(nbf)])  # (nbf, dim, nel, nq)
-    W = sb.dx  # (nel, nq)
-    edofs = sb.element_dofs  # (nbf, nel)
-    nel = edofs.shape[1]
-    n = dim * sb.N
-    fields = np.ndim(lam) > 0 or np.ndim(mu) > 0
-    if fields:
-        lam_q = np.broadcast_to(np.asarray(lam, dtype=float), W.shape)
-        mu_q = np.broadcast_to(np.asarray(mu, dtype=float), W.shape)
-    if chunk is None:
-        chunk = max(1, min(4000, CHUNK_ENTRIES // (nbf * dim) ** 2))
-    chunks = []
-    eye = np.eye(dim)
-    for e0 in range(0, nel, chunk):
-        sl = slice(e0, min(nel, e0 + chunk))
-        g = G[:, :, sl, :]
-        # M_x[e, i, a, j, b] = sum_q w x g_ia g_jb, one contraction when lam, mu are numbers
-        if fields:
-            M_lam = np.einsum("iaeq,jbeq,eq->eiajb", g, g, W[sl] * lam_q[sl], optimize=True)
-            M_mu = np.einsum("iaeq,jbeq,eq->eiajb", g, g, W[sl] * mu_q[sl], optimize=True)
-        else:
-            M = np.einsum("iaeq,jbeq,eq->eiajb", g, g, W[sl], optimize=True)
-            M_lam, M_mu = lam * M, mu * M
-        lap = np.einsum("eicjc->eij", M_mu)
-        Kl = M_lam + M_mu.transpose(0, 1, 4, 3, 2) \
-            + lap[:, :, None, :, None] * eye[None, None, :, None, :]
-        gd = (dim * edofs[:, sl].T[:, :, None] + np.arange(dim)[None, None, :])
-        gd = gd.reshape(-1, nbf * dim)
-        ne = gd.shape[0]
-        rows = np.broadcast_to(gd[:, :, None], (ne, nbf * dim, nbf * dim)).ravel()
-        cols = np.broadcast_to(gd[:, None, :], (ne, nbf * dim, nbf * dim)).ravel()
-        chunks.append(sp.csr_matrix((Kl.reshape(-1), (rows.astype(np.int32),
-                                                      cols.astype(np.int32))), shape=(n, n)))
-    return pairwise_sum(chunks) if chunks else sp.csr_matrix((n, n))
-
-
-def pairwise_sum(matrices: list):
-    """The sum of sparse matrices added in pairs, then the pairs' sums in pairs, ...
-
-    Adding k chunks of a stiffness matrix one by one to a growing total passes over the
-    total k times; in pairs each entry is passed over about log2(k) times (a 573 000-unknown
-    mesh: 34 chunks, the assembly 14.9 s of CPU with the additions one by one, 12.3 s in pairs).
-
-    Args:
-        matrices: scipy sparse matrices of one shape, at least one.
-
-    Returns:
-        Their sum (the format scipy's addition gives, CSR for CSR terms).
-    """
-    while len(matrices) > 1:
-        matrices = [sum(matrices[i:i + 2][1:], matrices[i]) for i in range(0, len(matrices), 2)]
-    return matrices[0]
+    pattern = scalar_pattern(sb.element_dofs, sb.N)
+    blocks = component_blocks(sb, lam, mu, pattern, chunk)
+    return interleaved_csr(pattern, blocks, sb.mesh.dim(), free)
 
 
 def free_block(A, free: np.ndarray):
     """The block ``A[free][:, free]`` of a sparse matrix, in one pass over the rows kept.
 
     What scikit-fem's ``condense`` forms for homogeneous fixed values, without its
-    column selection by a sparse product (most of a 3D solve's set-up on fine meshes).
+    column selection by a sparse product. The solves ask ``assemble_elasticity(...,
+    free=...)`` for this block directly; this cuts it from a matrix already formed.
 
     Args:
         A: sparse matrix, shape (n, n).
@@ -499,12 +449,13 @@ def _two_level_preconditioner(A, P, smooth_degree: int = 3,
     """
     from tactcad.mechanics.fem.sparse_lu import spd_lu
 
-    lu = spd_lu(P.T @ A @ P, order=coarse_order)
+    restrict = P.T.tocsr()  # CSR by CSR: P^T A P of 573 000 unknowns 1.0 s, not 1.6-1.9 s
+    lu = spd_lu(restrict @ A @ P, order=coarse_order)
     smooth = chebyshev_smoother(A, smooth_degree)
 
     def apply(r):
         x, res = smooth(r, True)
-        e = P @ lu.solve(P.T @ res)
+        e = P @ lu.solve(restrict @ res)
         x += e
         res -= A @ e
         x += smooth(res, False)[0]
@@ -545,19 +496,55 @@ def p_multigrid(mesh, nscalar: int, A_free, free: np.ndarray):
     Returns:
         ``apply(r)``: approximately ``A_free^-1 r`` for a residual (n,) or a block (n, m).
     """
+    dim = mesh.dim()
+    P, coarse_kept = free_p1_embedding(mesh, nscalar, free)
+    order = coarse_nested_dissection(mesh, coarse_kept) if dim == 3 else None
+    return _two_level_preconditioner(A_free, P, coarse_order=order)
+
+
+def free_p1_embedding(mesh, nscalar: int, free: np.ndarray):
+    """The vector P1-to-P2 embedding (:func:`p1_embedding` per component, interleaved
+    ``dim * s + a``) on the kept unknowns only: rows ``free``, columns the vertex unknowns
+    that are not fixed, formed directly instead of from the full embedding.
+
+    Args:
+        mesh: scikit-fem triangle or tetrahedron mesh (P2 dofs: vertices, then edges).
+        nscalar: scalar P2 dofs (vertices + edges).
+        free: kept vector unknowns, ascending, shape (m,).
+
+    Returns:
+        ``(P, coarse_kept)``: ``scipy.sparse.csr_matrix`` (m x kept vertex unknowns; 1 on a
+        vertex's own unknowns, 1/2 on an edge's from each end), and the boolean mask of the
+        kept vertex unknowns ``dim * v + a``.
+
+    Raises:
+        RuntimeError: the dofs are not the P2 layout (vertices, then edges).
+    """
     import scipy.sparse as sp
 
     dim = mesh.dim()
-    Pv = sp.kron(p1_embedding(mesh, nscalar), sp.eye(dim), format="csr")  # interleaved
+    nv = int(mesh.nvertices)
+    edges = mesh.facets if dim == 2 else mesh.edges
+    ne = edges.shape[1]
+    if nv + ne != nscalar:
+        raise RuntimeError("unexpected P2 dof layout")
     kept = np.zeros(dim * nscalar, dtype=bool)
     kept[free] = True
-    # coarse (vertex) unknowns that are themselves fixed are dropped
-    nv = int(mesh.nvertices)
-    vert_dofs = (dim * np.arange(nv)[:, None] + np.arange(dim)).ravel()
-    coarse_kept = kept[vert_dofs]
-    P = Pv[free][:, np.nonzero(coarse_kept)[0]]
-    order = coarse_nested_dissection(mesh, coarse_kept) if dim == 3 else None
-    return _two_level_preconditioner(A_free, P.tocsr(), coarse_order=order)
+    coarse_kept = kept[:dim * nv]  # vertex v's unknowns come first, dim v + a
+    fine = np.full(dim * nscalar, -1, dtype=np.int64)
+    fine[kept] = np.arange(kept.sum())
+    coarse = np.full(dim * nv, -1, dtype=np.int64)
+    coarse[coarse_kept] = np.arange(coarse_kept.sum())
+    comp = np.arange(dim)
+    edge_rows = (dim * (nv + np.arange(ne))[:, None] + comp).ravel()
+    rows = np.concatenate([np.arange(dim * nv), edge_rows, edge_rows])
+    cols = np.concatenate([np.arange(dim * nv), (dim * edges[0][:, None] + comp).ravel(),
+                           (dim * edges[1][:, None] + comp).ravel()])
+    vals = np.concatenate([np.ones(dim * nv), np.full(2 * dim * ne, 0.5)])
+    r, c = fine[rows], coarse[cols]
+    on = (r >= 0) & (c >= 0)
+    P = sp.csr_matrix((vals[on], (r[on], c[on])), shape=(len(free), int(coarse_kept.sum())))
+    return P, coarse_kept
 
 
 def vertex_graph(mesh):
@@ -662,8 +649,7 @@ def _solve_elasticity(mesh, lam, mu, *, thickness, x_clamp, contact, traction_MP
     if intorder is None:
         intorder = 4 if dim == 2 else 2
     sb = Basis(mesh, p2, intorder=intorder)
-    A = assemble_elasticity(sb, lam, mu) * thickness
-    n = A.shape[0]
+    n = dim * int(sb.N)
 
     x0, x1, yc = contact
     tol = 1e-7
@@ -686,7 +672,9 @@ def _solve_elasticity(mesh, lam, mu, *, thickness, x_clamp, contact, traction_MP
         D = np.union1d(D, dim * sb.get_dofs(sym).all() + 2)
     u = np.zeros(n)
     I = np.setdiff1d(np.arange(n), D)  # the fixed values are zero: f[I] is the load left
-    Ac, fc = free_block(A, I), f[I]
+    Ac, fc = assemble_elasticity(sb, lam, mu, free=I), f[I]
+    if thickness != 1.0:
+        Ac = Ac * thickness
     iters = 0
     if solver == "direct":
         from tactcad.mechanics.fem.sparse_lu import spd_lu
