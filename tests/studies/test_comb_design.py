@@ -223,9 +223,71 @@ def test_the_stop_bound_skips_no_scale_whose_stop_gaps_fit():
     assert stops_can_fit(edge, 2.0) and not stops_can_fit(edge, 1.5)
 
 
+#: Atlas points (seed 0: points 9, 21 and 23) whose fewer-column combs set stop gaps of 1.3
+#: to 2.7 mm at the one scale the bound kept while its slack was 2: now none is kept.
+WIDE_GAPS = [Targets(4.78643, (0.103724, 0.30022), 1.82081),
+             Targets(6.71764, (0.25943, 0.96323), 4.06206),
+             Targets(24.4017, (0.0624859, 0.302583), 0.628008)]
+
+
+@pytest.mark.parametrize("targets", WIDE_GAPS)
+def test_the_stiffest_scale_the_tighter_stop_bound_skips_sets_gaps_past_the_tables(targets):
+    """At the stiffest K_m scale, skipped since the bound's slack is 1.25, every sheet's comb
+    of one to three columns whose webs are solved sets a stop gap past the tables' 1 mm and
+    is rated for no force: the bound leaves out only what the search would not carry."""
+    from tactcad.partlib.array.comb_sheet import MAX_STOP_GAP_MM
+    from tactcad.studies.comb_design import (KM_SCALES, candidate, searched_base,
+                                             stop_fitting_scales, web_solves_kept)
+
+    assert stop_fitting_scales(targets) == ()
+    base, room = searched_base(BASE, 3), jaw_room("10")
+    stopped = 0
+    with web_solves_kept():
+        for sheet in (0.5, 0.8, 1.0):
+            for columns in (1, 2, 3):
+                c = candidate(base, sheet, KM_SCALES[-1], columns, room, targets, TI,
+                              array_envelope_mm, None)
+                assert c.plan is None and not c.rated_force_N, (sheet, columns)
+                if c.data is not None:
+                    assert max(c.data["comb"]["stop_gaps_mm"]) > MAX_STOP_GAP_MM
+                    stopped += 1
+    assert stopped  # some reached their stops: the bound, not the webs, is what is tested
+
+
+def test_a_solved_web_leaves_its_element_within_the_stop_bounds_slack_of_its_target():
+    """The stop bound reads K at most STOP_BOUND_K_SLACK x its target: the solved webs'
+    elements, as the stops read them (the plan's closed-form strength), stay within the 1 um
+    rounding's 8 % of their targets on every sheet, scale and column count tried."""
+    from tactcad.mechanics.element_strength import plan_strength
+    from tactcad.studies.comb_design import (STOP_BOUND_K_SLACK, centred_km, comb_tables,
+                                             searched_base, with_webs)
+
+    targets = Targets(10.0, (0.5, 5.0), 0.05)
+    base, room = searched_base(BASE, 4), jaw_room("10")
+    ratios = []
+    for sheet in (0.5, 1.0):
+        for scale in (1.0, 4.0, 12.0):
+            for columns in (2, 4):
+                d, binding = comb_tables(base, sheet, columns, room, targets, TI)
+                try:
+                    d, plan, binding = with_webs(d, targets, scale)
+                except DesignError:  # the tables refused before any web: nothing to read
+                    continue
+                if binding:
+                    continue
+                k_m = scale * centred_km(targets)
+                for r in plan_strength(plan, targets.full_scale_force_N, "closed-form"):
+                    target = targets.kr_over_km * k_m if r.element <= columns else k_m
+                    ratios.append(r.stiffness_N_per_mm / target)
+    assert len(ratios) >= 8
+    assert max(ratios) < 1.08 < STOP_BOUND_K_SLACK
+
+
 @pytest.mark.parametrize("targets, columns, carries", [
     (STOPLESS[1], 8, True),  # the pitch binds 8 columns; fewer carry at the stiffer scales
     (STOPLESS[2], 4, False),  # no scale fits a stop: nothing to judge
+    (WIDE_GAPS[0], 3, False),  # stop gaps of 2.6 mm at the stiffest scale: none judged
+    (WIDE_GAPS[2], 4, False),
 ])
 def test_fewer_columns_are_found_as_the_unbounded_search_finds_them(targets, columns, carries,
                                                                     monkeypatch):
@@ -435,3 +497,4 @@ def test_a_sheets_starting_plan_is_planned_once_for_all_its_scales(monkeypatch):
     assert first is again and len(builds) == 2  # one plan, one refusal
     assert [s.geometry for s in first.slots] == [s.geometry for s in fresh.slots]
     assert errors[0] == errors[1] and errors[0]
+
