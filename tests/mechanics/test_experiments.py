@@ -337,6 +337,25 @@ def test_evaluate_and_calibrate_run_on_another_design(tmp_path, capsys):
     assert cal_out["audit"]["flags"] == []
 
 
+def test_calibrate_a_design_without_rigs_takes_the_catalogue_gauge_for_its_rating(capsys):
+    # a comb for the 10 mm jaw has no rigs: the gauge in series is the catalogue's for its
+    # rated force, said in the report (it crashed reading the rigs' gauge)
+    from tactcad.design.array_plan import EXAMPLES
+    from tactcad.vocabulary.force_gauge_catalogue import force_gauges
+
+    design = str(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")
+    assert main(["calibrate", "--design", design, "--simulate", "--json"]) == 0
+    out = strict_json(capsys.readouterr().out)
+    gauge = out["force_gauge"]
+    rated = out["full_scale_force_N"]
+    chosen = next(g for g in force_gauges() if g.model == gauge["model"])
+    assert "no rigs" in gauge["source"] and gauge["stiffness_N_per_mm"] == chosen.stiffness_N_per_mm
+    assert chosen.range_N >= rated  # sized for the rating
+    assert out["simulated_noise"]["force_N"] == chosen.resolution_N
+    assert main(["calibrate", "--design", design, "--simulate"]) == 0
+    assert f"force gauge in series: {chosen.model}" in capsys.readouterr().out
+
+
 def six_element_design(tmp_path) -> Path:
     text = DEFAULT_TOML.read_text(encoding="utf-8")
     text = text.replace("columns = 5\n", "columns = 3\n")

@@ -10,6 +10,7 @@ Examples::
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from tactcad.mechanics.ladder import models
 
@@ -30,8 +31,8 @@ def simulated_noise(args: argparse.Namespace, project) -> tuple[tuple[float, str
     if args.noise_force is not None:
         force = (float(args.noise_force), "--noise-force")
     else:
-        gauge = project.rigs.part("force_gauge")
-        force = (float(gauge.resolution_N), f"the rigs' force gauge {gauge.model}, read to "
+        gauge, _ = calibration_gauge(project)
+        force = (float(gauge.resolution_N), f"the force gauge {gauge.model}, read to "
                                             f"{gauge.resolution_N:g} N")
     if args.noise_signal is not None:
         signal = (float(args.noise_signal), "--noise-signal")
@@ -167,8 +168,11 @@ def run(args: argparse.Namespace) -> int:
     if args.flat:
         return _run_flat(args, plan)
     # the force gauge in series: the data file's (its k_sensor comment), else the rigs'
-    k_sensor = project.rigs.part("force_gauge").stiffness_N_per_mm
-    report: dict = {"design": plan.name, "model": args.model}
+    gauge, source = calibration_gauge(project)
+    k_sensor = float(gauge.stiffness_N_per_mm)
+    report: dict = {"design": plan.name, "model": args.model,
+                    "force_gauge": {"model": gauge.model, "stiffness_N_per_mm": k_sensor,
+                                    "source": source}}
     if args.data or args.simulate:
         if args.simulate:
             gain = args.gain
@@ -209,6 +213,9 @@ def run(args: argparse.Namespace) -> int:
             data, info = read_measured(args.data, args.encoding, parse_mapping(args.map),
                                        default_k_sensor=k_sensor)
             k_sensor = next(iter(data.values())).k_sensor_N_per_mm
+            if k_sensor != float(gauge.stiffness_N_per_mm):  # the file states its own gauge
+                report["force_gauge"] = {"model": None, "stiffness_N_per_mm": k_sensor,
+                                         "source": "the data file's k_sensor_N_per_mm"}
             report["input"] = f"{info.format}:{args.data}"
             report["data_file"] = {**info.as_dict(), "read_as": info.describe()}
         fits = ca.fit_all(data)
@@ -245,6 +252,31 @@ def run(args: argparse.Namespace) -> int:
         return 0
     _print_text(report)
     return 0
+
+
+def calibration_gauge(project) -> tuple[Any, str]:
+    """The force gauge in series with each element on the calibration rig: the rigs' own, or,
+    for a project without rigs (a comb or a stacked array for a grasper's jaw), the catalogue
+    gauge the rigs would choose for the design's rated full-scale force alone
+    (:func:`tactcad.studies.rig_sizing.calibration_gauge_need`). A data file's
+    ``k_sensor_N_per_mm`` still overrides its stiffness.
+
+    Args:
+        project: the loaded project.
+
+    Returns:
+        (the gauge: ``model``, ``range_N``, ``resolution_N`` (N), ``stiffness_N_per_mm``
+        (N/mm); where it comes from, in words).
+    """
+    if project.rigs is not None:
+        return project.rigs.part("force_gauge"), "the design's rigs ([force_gauge])"
+    from tactcad.studies.rig_sizing import calibration_gauge_need, choose_force_gauge
+    from tactcad.studies.verification import requirements_of
+
+    rated = requirements_of(project.plan).full_scale_force_N
+    gauge, _ = choose_force_gauge(calibration_gauge_need(rated))
+    return gauge, (f"the catalogue's gauge for the rated {rated:.3g} N: the project has no "
+                   "rigs; a data file's k_sensor_N_per_mm overrides it")
 
 
 def flat_report(plan, path: str, encoding: str | None, contact_um: float) -> dict:
@@ -305,6 +337,9 @@ def _print_text(report: dict) -> None:
     print(f"design {report['design']}, input {report['input']}, ladder {report['model']}")
     if "data_file" in report:
         print(f"read as {report['data_file']['read_as']}")
+    gauge = report["force_gauge"]
+    print(f"force gauge in series: {gauge['model'] or 'stated'}, "
+          f"{gauge['stiffness_N_per_mm']:g} N/mm ({gauge['source']})")
     if "fits" in report:
         print("fits (eq. 4-5, deflection = Z - F/K_s):")
         print("  elem     K N/mm   ±       K_v V/mm   V0 V     lin F %  lin V %  amplif.")

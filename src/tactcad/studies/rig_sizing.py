@@ -98,6 +98,19 @@ def gauge_need(rated_N: float, samples_N_per_mm) -> GaugeNeed:
     return GaugeNeed(rated_N, depth, sample, max(rated_N, sample), RESOLUTION_SHARE * rated_N)
 
 
+def calibration_gauge_need(rated_N: float) -> GaugeNeed:
+    """The force gauge a calibration alone needs (no sample rig): the rated force's range
+    and :data:`RESOLUTION_SHARE` of it.
+
+    Args:
+        rated_N: the design's rated full-scale force (N), > 0.
+
+    Returns:
+        the need, with no sample (depth and sample force 0).
+    """
+    return GaugeNeed(rated_N, 0.0, 0.0, rated_N, RESOLUTION_SHARE * rated_N)
+
+
 def gauge_shortfalls(range_N: float, resolution_N: float, need: GaugeNeed) -> list[str]:
     """How a gauge of ``range_N`` and ``resolution_N`` (N) misses ``need``, in
     words (empty when it fits)."""
