@@ -87,6 +87,20 @@ def test_a_project_without_a_jaw_is_refused_naming_the_option(tmp_path, project,
     assert "Traceback" not in r.stdout + r.stderr
 
 
+def test_a_metal_projects_jaw_is_its_class_or_the_labs_table_it_states(tmp_path):
+    # the comb example describes its trocar class's own jaw: read as a jaw file, every key of a
+    # lab's jaw was "not given" and no comb project had an atlas
+    from tactcad.commands.atlas import PROJECT_ATLAS_FOLDER, project_jaw
+
+    comb = EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+    assert project_jaw(str(comb)) == ("10", str(comb.parent / PROJECT_ATLAS_FOLDER))
+    lab = tmp_path / "lab.toml"
+    lab.write_text(comb.read_text(encoding="utf-8").replace("length_mm = 34.0",
+                                                           "length_mm = 36.0"), encoding="utf-8")
+    assert "length_mm = 36.0" in lab.read_text(encoding="utf-8")
+    assert project_jaw(str(lab))[0] == str(lab)  # a lab's own jaw: the table it states
+
+
 def test_a_jaw_and_a_project_together_are_refused(tmp_path):
     r = run_cli("atlas", "--jaw", "5", "--project", EXAMPLES / "macro_array" / "macro_array.toml")
     assert r.returncode == 2 and "not allowed with" in r.stderr

@@ -226,8 +226,9 @@ def project_jaw(design: str) -> tuple[str, str]:
 
     Args:
         design: ``--project``: a design file with a ``[grasper_jaw]`` table (a metal insert
-            for a grasper) or a die design file (its ``die.jaw``: a trocar class, or a jaw
-            file beside it).
+            for a grasper: a trocar class's jaw where the table describes the class's default
+            jaw, else the lab's jaw the table states) or a die design file (its ``die.jaw``: a
+            trocar class, or a jaw file beside it).
 
     Returns:
         (``--jaw``'s value: the trocar class, or the file holding the jaw's table; the
@@ -247,10 +248,33 @@ def project_jaw(design: str) -> tuple[str, str]:
     folder = str(path.parent / PROJECT_ATLAS_FOLDER)
     if is_die_file(table):
         return load_die_design(path).jaw, folder
-    if isinstance(table.get("grasper_jaw"), dict):
-        return str(path), folder
+    jaw = table.get("grasper_jaw")
+    if isinstance(jaw, dict):
+        return class_of_default_jaw(jaw) or str(path), folder
     raise DesignError("--project", design, "a design with a jaw: a [grasper_jaw] table or a "
                       "die's jaw", "this design names no grasper jaw; give --jaw CLASS|FILE")
+
+
+def class_of_default_jaw(table: dict) -> str | None:
+    """The trocar class whose default jaw a design's ``[grasper_jaw]`` table describes (it
+    states the class and at most values equal to the class's own: ``design --jaw 10``
+    writes it so), or None: a lab's own jaw, which the atlas reads as a jaw file.
+
+    Args:
+        table: the design's ``[grasper_jaw]`` table as read.
+
+    Returns:
+        the class (a key of :data:`tactcad.partlib.grasper_jaw.SHAFT_CLASSES_MM`) or None
+        (also for a table that does not validate: the jaw file's reading names its faults).
+    """
+    from tactcad.partlib.grasper_jaw import GrasperJawSection, with_class_defaults
+
+    try:
+        stated = with_class_defaults(GrasperJawSection(**table))
+    except (ValueError, TypeError):  # pydantic's ValidationError is a ValueError
+        return None
+    default = with_class_defaults(GrasperJawSection(shaft_class_mm=stated.shaft_class_mm))
+    return stated.shaft_class_mm if stated == default else None
 
 
 def writable_folder(out: str) -> Path:
