@@ -444,3 +444,22 @@ def test_a_hysteresis_outside_its_range_is_refused_naming_the_key(ti_plan, value
     with pytest.raises(DesignError) as e:
         plan_from_dict(with_overrides(ti_plan.raw, {"readout.gauge_hysteresis_rel": value}))
     assert "readout.gauge_hysteresis_rel" in str(e.value) and "0.05" in str(e.value)
+
+
+def test_a_comb_has_no_stack_crosstalk_model_and_its_budget_says_so(ti_plan):
+    # a monolithic comb has no clamped stack: the term was printed as 0 %, as if modelled
+    from tactcad.api import load
+    from tactcad.commands.budget import render
+    from tactcad.design.construction_registry import stack_crosstalk_reason
+
+    comb = load(str(ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")).plan
+    why = stack_crosstalk_reason(comb)
+    assert why and not stack_crosstalk_reason(ti_plan)
+    b = kb.kobj_budget(comb, (1.0, 5.0), 0.05, 5.0, points=3)
+    for u in b.units:
+        assert u["sources"]["stack_crosstalk"]["not_modelled"] == why
+        assert u["sources"]["stack_crosstalk"]["after_rel"] == [0.0] * 3  # not in the sums
+    assert b.notes["stack_crosstalk_basis"].startswith("not modelled")
+    assert "| stack crosstalk | not modelled |" in render(b)
+    stacked = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0, points=3)
+    assert all("not_modelled" not in u["sources"]["stack_crosstalk"] for u in stacked.units)

@@ -128,8 +128,9 @@ def render(budget) -> str:
                   "| --- |" + " --- |" * len(budget.k_obj)]
         for s in SOURCES:
             v = u["sources"][s.key]
-            cells = [_pct(a) if a == b else f"{_pct(a)} ({_pct(b)})"
-                     for a, b in zip(v["after_rel"], v["before_rel"])]
+            cells = (["not modelled"] * len(budget.k_obj) if "not_modelled" in v else
+                     [_pct(a) if a == b else f"{_pct(a)} ({_pct(b)})"
+                      for a, b in zip(v["after_rel"], v["before_rel"])])
             lines.append(f"| {s.words} | " + " | ".join(cells) + " |")
         lines.append("| RSS | " + " | ".join(_pct(x) for x in u["rss_rel"]) + " |")
         lines.append("| worst case | " + " | ".join(_pct(x) for x in u["worst_case_rel"]) + " |")

@@ -135,7 +135,8 @@ def kobj_budget_view(budget: dict | None) -> dict | None:
     for i, k in enumerate(budget["K_obj_N_per_mm"]):
         u = units[a["unit"][i]]
         rows.append({"K_obj": f"{k:.3g} N/mm", "unit": a["unit"][i],
-                     **{s.words: pct(u["sources"][s.key]["after_rel"][i]) for s in SOURCES},
+                     **{s.words: "not modelled" if "not_modelled" in u["sources"][s.key]
+                        else pct(u["sources"][s.key]["after_rel"][i]) for s in SOURCES},
                      "RSS": pct(a["rss_rel"][i]), "worst case": pct(a["worst_case_rel"][i]),
                      "dominant": a["dominant"][i].replace("_", " ")})
     title = (f"{budget['model']}, {budget['force_N']:.4g} N on the reference, "

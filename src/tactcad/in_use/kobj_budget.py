@@ -110,7 +110,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import Callable, Mapping, NamedTuple
+from typing import Any, Callable, Mapping, NamedTuple
 
 import numpy as np
 
@@ -349,6 +349,13 @@ def _crosstalk(ctx: Context):
     per_newton = r.sensitivity / np.diag(r.sensitivity)[:, None]  # N on gauge i per N on tip j
     np.fill_diagonal(per_newton, 0.0)
     return r.elements, per_newton, r.error_estimate_rel
+
+
+def _stack_crosstalk_reason(plan) -> str:
+    """Why no stack crosstalk model describes ``plan``'s construction ("" where one does)."""
+    from tactcad.design.construction_registry import stack_crosstalk_reason
+
+    return stack_crosstalk_reason(plan) or ""
 
 
 def stack_crosstalk(ctx: Context, unit: Unit, op: Operating) -> Contribution:
@@ -813,12 +820,15 @@ def gauge_hysteresis(ctx: Context, unit: Unit, op: Operating) -> Contribution:
 
 
 class Source(NamedTuple):
-    """One source of the budget: its key, its words and its function."""
+    """One source of the budget: its key, its words and its function; ``unmodelled`` gives,
+    for a design, why no model of the source describes its construction ("" where one
+    does): such a source adds nothing to the sums and its record says so."""
 
     key: str
     words: str
     function: Callable[[Context, Unit, Operating], Contribution]
     correction: str
+    unmodelled: Callable[[Any], str] = lambda plan: ""  # a model for every construction
 
 
 #: The sources, in the order of the module docstring's list.
@@ -830,7 +840,7 @@ SOURCES = (
     Source("manufacturing_tolerance", "manufacturing tolerance", manufacturing_tolerance,
            "calibration measures each K: none remains (its error is the calibration's)"),
     Source("stack_crosstalk", "stack crosstalk", stack_crosstalk,
-           "the decoupling matrix: its model's error estimate remains"),
+           "the decoupling matrix: its model's error estimate remains", _stack_crosstalk_reason),
     Source("tissue_coupling", "tissue coupling", tissue_coupling,
            "the coupled inversion: the coupled model's error remains"),
     Source("gauge_model", "gauge model", gauge_model,
@@ -895,14 +905,22 @@ def unit_budget(ctx: Context, unit: Unit, k_obj: np.ndarray) -> dict:
     return {"reference_element": unit.reference, "measuring_element": unit.measuring,
             "K_r_N_per_mm": op.k_r, "K_m_N_per_mm": op.k_m,
             "R": listed(op.ratio), "force_measuring_N": listed(op.force_m),
-            "sources": {k: {"before_rel": listed(parts[k].before),
-                            "after_rel": listed(parts[k].after)} for k in SOURCE_KEYS},
+            "sources": {s.key: {"before_rel": listed(parts[s.key].before),
+                                "after_rel": listed(parts[s.key].after),
+                                **unmodelled_record(s, ctx.plan)} for s in SOURCES},
             "rss_rel": listed(np.sqrt(np.sum(after ** 2, axis=0))),
             "worst_case_rel": listed(np.sum(np.abs(after), axis=0)),
             "rss_before_rel": listed(np.sqrt(np.sum(before ** 2, axis=0))),
             "worst_case_before_rel": listed(np.sum(np.abs(before), axis=0)),
             "dominant": [SOURCE_KEYS[i] for i in np.argmax(np.abs(after), axis=0)],
             "uncertainty_rel": budget_uncertainty_rel(ctx, unit)}
+
+
+def unmodelled_record(source: Source, plan) -> dict:
+    """``{"not_modelled": why}`` for a source no model describes for ``plan``'s
+    construction (its contributions are zeros, left out of every sum), else ``{}``."""
+    why = source.unmodelled(plan)
+    return {"not_modelled": why} if why else {}
 
 
 @dataclass(frozen=True)
@@ -1013,9 +1031,12 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
     _, per_newton, xt_error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     notes = {
         "stack_crosstalk_N_per_N": float(np.max(np.abs(per_newton))) if per_newton.size else 0.0,
-        "stack_crosstalk_basis": f"the largest force a gauge reads per newton on a neighbour's "
-                                 f"tip (stack-timoshenko); the decoupling matrix leaves "
-                                 f"{xt_error:.3g} of it (its error estimate)",
+        "stack_crosstalk_basis": (
+            f"not modelled, left out of the sums: {_stack_crosstalk_reason(plan)}"
+            if _stack_crosstalk_reason(plan) else
+            f"the largest force a gauge reads per newton on a neighbour's tip "
+            f"(stack-timoshenko); the decoupling matrix leaves {xt_error:.3g} of it (its "
+            f"error estimate)"),
         "operating_point": f"each unit pressed until its reference carries {force_N:.4g} N "
                            f"(eq. 1); the zero terms scale as 1/force",
         "temperature_step": f"{delta_T_K:g} K between tare and reading; the self-heating "
