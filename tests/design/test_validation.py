@@ -104,6 +104,15 @@ def test_non_utf8_file_is_a_named_error(tmp_path):
     assert proc.returncode == 2 and "UTF-8" in proc.stderr and "Traceback" not in proc.stderr
 
 
+def test_a_design_file_saved_with_a_byte_order_mark_reads_as_without(tmp_path):
+    # an editor's UTF-8 BOM was refused as "Invalid statement (at line 1, column 1)"
+    from tactcad.vocabulary.schema import read_toml
+
+    marked = tmp_path / "marked.toml"
+    marked.write_bytes(b"\xef\xbb\xbf" + DEFAULT_DESIGN.read_bytes())
+    assert read_toml(marked, "design file") == read_toml(DEFAULT_DESIGN, "design file")
+
+
 @pytest.mark.parametrize("edit, field", [
     (lambda t: t.replace("[scene.wirecut]", '[scene."../../escaped"]'), 'scene.../../escaped'),
     (lambda t: t.replace("sample_stiffness_N_per_mm = 10.01", "sample_stiffness_N_per_mm = 0"),

@@ -383,7 +383,8 @@ def nesting(value: Any, limit: int = MAX_NESTING + 1) -> int:
 # Files
 # ---------------------------------------------------------------------------
 def read_toml(path: Path, what: str) -> dict[str, Any]:
-    """Parse a TOML file (UTF-8).
+    """Parse a TOML file (UTF-8; a leading byte order mark, as some editors write one, is
+    read past).
 
     Raises:
         DesignError: naming ``what`` (e.g. "design file") and the path, when the
@@ -394,7 +395,7 @@ def read_toml(path: Path, what: str) -> dict[str, Any]:
     except OSError as exc:
         raise DesignError(what, str(path), "a readable TOML file", exc.strerror or str(exc)) from None
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         raise DesignError(what, str(path), "a UTF-8 text file",
                           f"byte {exc.start} is not UTF-8") from None
