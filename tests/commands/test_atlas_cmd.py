@@ -203,6 +203,14 @@ def test_the_summary_counts_each_products_verdicts_and_fronts_its_own_points(tmp
     write_table(tmp_path / "t.parquet", records, {"jaw": "10"})
     back = read_table(tmp_path / "t.parquet")
     assert [r["point"] for r in back] == [0, 1, 2, 0] and back[2]["feasible"] is False
+    # readable by whoever reads the folder, as the figure and the summary beside it
+    from tactcad.atomic import write_bytes_atomic
+
+    sibling = write_bytes_atomic(tmp_path / "atlas.json", b"{}")
+    assert (tmp_path / "t.parquet").stat().st_mode & 0o777 == sibling.stat().st_mode & 0o777
+    assert sibling.stat().st_mode & 0o044  # (not private to its writer)
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporary left
+    (tmp_path / "atlas.json").unlink()
     s = atlas_summary(back, {"jaw": "10", "points": 3, "seed": 0, "ranges": {}, "key": "k"},
                       2.0, False, True, tmp_path)
     per = {g["product"]: g for g in s["products"]}

@@ -22,23 +22,16 @@ def write_table(path: Path, records: list[dict], inputs: dict) -> None:
         path: the file. records: flat records, one row each.
         inputs: the run's inputs, kept in the table's metadata (``tactcad.atlas``).
     """
-    import os
-    import tempfile
-
     import pyarrow as pa
     import pyarrow.parquet as pq
+
+    from tactcad.atomic import write_atomic
 
     table = pa.Table.from_pylist(records).replace_schema_metadata(
         {"tactcad.atlas": json.dumps(inputs, sort_keys=True)})
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".parquet", dir=path.parent)
-    os.close(fd)
-    try:
-        pq.write_table(table, tmp)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    # the house's atomic write: a whole file or none, with the mode its siblings get
+    write_atomic(path, lambda tmp: pq.write_table(table, str(tmp)))
 
 
 def read_table(path: Path) -> list[dict] | None:
