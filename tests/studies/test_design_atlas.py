@@ -348,3 +348,18 @@ def test_comb_records_are_the_same_whether_pairs_short_of_the_margin_wait_or_not
     judged_in_turn = evaluate_batch(atlas, points)
     assert any(r["feasible"] for r in waiting) and not all(r["feasible"] for r in waiting)
     assert json.dumps(waiting, sort_keys=True) == json.dumps(judged_in_turn, sort_keys=True)
+
+
+def test_each_materials_command_at_a_point_writes_its_own_file():
+    # every comb material's line at a point wrote atlas_monolithic_comb_<point>.toml, so the
+    # second pasted was refused as "a file that does not exist yet"
+    from tactcad.studies.design_atlas import design_command
+
+    point = {"point": 6, "kr_over_km": 8.0, "kobj_lo_N_per_mm": 0.5, "kobj_hi_N_per_mm": 5.0,
+             "full_scale_force_N": 0.1, "columns": 4}
+    outs = {m: design_command("10", COMB, m, point).split("--out ")[1]
+            for m in ("Ti-6Al-4V-annealed", "17-4PH-H900", "7075-T6")}
+    assert len(set(outs.values())) == 3
+    assert all(o.endswith("_6.toml") and o.replace("_", "").replace(".", "").isalnum()
+               for o in outs.values())
+    assert design_command("5", DIE, SILICON, point).endswith("--out atlas_mems_die_6.toml")

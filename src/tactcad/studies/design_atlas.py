@@ -423,7 +423,25 @@ def design_command(jaw: str, product: str, material: str, point: Mapping[str, An
              f"--columns {point['columns']}"]
     if product == COMB:
         words.append(f"--material {material}")
-    return " ".join(words + [f"--out atlas_{product.replace('-', '_')}_{point['point']}.toml"])
+    return " ".join(words + [f"--out {written_name(product, material, point['point'])}"])
+
+
+def written_name(product: str, material: str, point: int) -> str:
+    """The design file a point's command writes: one name per product, material and point,
+    so the commands of one point's materials can all be pasted in one folder.
+
+    Args:
+        product: :data:`COMB` or :data:`DIE`. material: the comb's grade (the die's is
+            :data:`SILICON`, left out of the name). point: the point's index.
+
+    Returns:
+        ``atlas_<product>[_<grade>]_<point>.toml``, in letters, digits and underscores.
+    """
+    import re
+
+    parts = [product] + ([] if product == DIE else [material]) + [str(point)]
+    return "atlas_" + "_".join(re.sub(r"[^a-z0-9]+", "_", p.lower()).strip("_")
+                               for p in parts) + ".toml"
 
 
 def evaluate_batch(atlas: JawAtlas, points: Sequence[Mapping[str, Any]]) -> list[dict]:
