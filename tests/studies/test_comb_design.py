@@ -102,6 +102,20 @@ def test_a_force_no_comb_carries_is_refused_with_a_nearest_force_that_one_does()
     assert search(nearest).plan is not None
 
 
+@pytest.mark.slow  # whole design searches at three forces
+def test_a_force_whose_stops_fit_no_sheet_is_refused_with_a_lighter_force_that_designs():
+    # at 5 N every candidate's stop gaps exceeded 1 mm, so none was rated and the refusal
+    # said no comb carries any force in this jaw, though 0.14 N designs
+    with pytest.raises(InverseDesignError) as caught:
+        search(5.0)
+    text = caught.value.line()
+    assert "stop_gaps_mm" in text and "none to paste" not in text
+    nearest = float(re.search(r"--full-scale-force ([\d.]+)", text).group(1))
+    assert nearest < 5.0 and search(nearest).plan is not None
+    with pytest.raises(InverseDesignError):
+        search(round(nearest * 1.05, 4))  # the frontier: a little more is refused
+
+
 def test_the_5_mm_class_names_the_pocket_too_narrow_for_any_sheet():
     with pytest.raises(InverseDesignError) as caught:
         search(0.05, "5")

@@ -612,10 +612,17 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
             fewer = None if rated else \
                 nearest_columns(base, columns, room, targets, grade, envelope_of)
             jaw = nearest_jaw(base, columns, room, targets, grade, other_rooms or {})
+            rating = tried
+            if not rated and fewer is None and not jaw[0]:
+                # every candidate refused at this force, some by a limit the force sets
+                # (stop gaps a lighter rating closes): a lighter force may carry
+                rating = rated_at_a_lighter_force(base, columns, room, targets, grade,
+                                                  envelope_of)
+                rated = [c.rated_force_N for c in rating if c.rated_force_N]
             # the best-rated candidates first: the one that counts is found soonest
             order = [(c.sheet_mm, c.km_scale) for c in
-                     sorted(tried, key=lambda c: -(c.rated_force_N or 0.0))]
-            bounds = bounds_of(tried)
+                     sorted(rating, key=lambda c: -(c.rated_force_N or 0.0))]
+            bounds = bounds_of(rating)
             frontier = None if not rated or jaw[0] else largest_comb_force(
                 max(rated) * 0.99, lambda force: comb_counts(
                     base, force, columns, room, targets, grade, envelope_of, order, bounds))
@@ -921,6 +928,40 @@ def bounds_of(tried: list[CombCandidate]) -> dict[tuple[float, float], ForceBoun
     """(sheet mm, K_m scale) -> :class:`ForceBound` of candidates judged (one column
     count): what :func:`comb_counts` need not judge again."""
     return {(c.sheet_mm, c.km_scale): c.force_bound for c in tried}
+
+
+#: The lightest full-scale force (N) a refusal's search for a lighter rating tries: the
+#: least ``design --full-scale-force`` and the atlas take.
+LIGHTEST_SEARCHED_FORCE_N = 1e-4
+
+
+def rated_at_a_lighter_force(base: dict, columns: int, room: Any, targets: Targets,
+                             grade: str | None, envelope_of: Callable | None
+                             ) -> list[CombCandidate]:
+    """Every sheet's comb at every K_m scale judged at the first of a tenth, a hundredth
+    ... of the asked force (down to :data:`LIGHTEST_SEARCHED_FORCE_N`) at which one is rated
+    for some force: what a refusal's frontier starts from when every candidate at the asked
+    force was refused by a limit that force sets (the stop gaps grow with it).
+
+    Args:
+        base, columns, room, targets, grade, envelope_of: as :func:`comb_counts`.
+
+    Returns:
+        The candidates at that force (each with its rating), or [] when none is rated at
+        any force tried.
+    """
+    from tactcad.mechanics.correction import range_warnings_unsaid
+
+    force = targets.full_scale_force_N / 10.0
+    with range_warnings_unsaid():
+        while force >= LIGHTEST_SEARCHED_FORCE_N:
+            at = replace(targets, full_scale_force_N=force)
+            tried = [candidate(base, sheet, scale, columns, room, at, grade, envelope_of, None)
+                     for sheet in sheets_of(base) for scale in KM_SCALES]
+            if any(c.rated_force_N for c in tried):
+                return tried
+            force /= 10.0
+    return []
 
 
 def largest_comb_force(estimate_N: float, counts: Callable[[float], bool]) -> float:
