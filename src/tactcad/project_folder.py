@@ -609,7 +609,8 @@ def default_design(folder: str | Path = ".") -> Path:
     die's), else the shipped example ``macro_array`` (the paper's 2 x 5 array).
 
     Raises:
-        DesignError: the folder holds several design files (``--design`` must choose).
+        DesignError: the folder holds several design files (``--design`` must choose), or
+            none and a ``*.toml`` file that cannot be read (:func:`refuse_unreadable_tomls`).
     """
     from tactcad.design.array_plan import DEFAULT_DESIGN
 
@@ -618,10 +619,29 @@ def default_design(folder: str | Path = ".") -> Path:
         raise DesignError("--design", None, "one of " + ", ".join(p.name for p in found),
                           f"{len(found)} design files in {Path(folder).resolve().name or '/'}")
     if not found:
+        refuse_unreadable_tomls(Path(folder))
         for where in _export_folders(Path(folder)):
             if (export := export_in(where)) is not None:
                 raise _not_in_an_export(Path(folder), where, *export)
     return found[0] if found else DEFAULT_DESIGN
+
+
+def refuse_unreadable_tomls(folder: Path) -> None:
+    """Refuse a folder whose ``*.toml`` files include one that cannot be read as TOML: it
+    may be the project's design file with a slip in it, and a command must not work on the
+    shipped example in its place (and overwrite the project's exports with it).
+
+    Args:
+        folder: the working folder, where no design file was found.
+
+    Raises:
+        DesignError: the first such file, named with its fault, as ``--design FILE`` names it.
+    """
+    from tactcad.vocabulary.schema import read_toml
+
+    for path in sorted(folder.glob("*.toml")):
+        if path.is_file():
+            read_toml(path, "design file")
 
 
 #: How far up from the working folder an export is looked for (``exports/step`` is two).

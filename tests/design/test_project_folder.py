@@ -155,6 +155,20 @@ def test_without_design_a_command_takes_the_project_folders_one_design(tmp_path,
         default_design()
 
 
+def test_a_project_whose_design_file_does_not_parse_is_refused_not_replaced(tmp_path,
+                                                                          monkeypatch, capsys):
+    # a slip in the file made it no design file, so commands took the shipped example and
+    # export overwrote the project's exports with the paper's array, exit 0
+    made = new_project(tmp_path / "p")
+    with open(made.design, "a", encoding="utf-8") as f:
+        f.write("x =\n")
+    monkeypatch.chdir(made.folder)
+    with pytest.raises(DesignError, match="p.toml.*valid TOML"):
+        default_design()
+    assert main(["export", "--quiet"]) == 2
+    assert "p.toml" in capsys.readouterr().err and not (made.folder / "exports").exists()
+
+
 def test_new_on_the_command_line_says_what_it_wrote(tmp_path, capsys):
     assert main(["new", str(tmp_path / "p"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
