@@ -113,6 +113,7 @@ def test_installed_face_strain_within_3_percent_of_fem3d(design, which):
     gauge's layer against fem3d's with the layer meshed, on the element as installed; and
     the recorded figures of :data:`FEM3D_FACE_STRAIN_PER_N` still fem3d's."""
     from tactcad.mechanics.ladder import estimate
+    from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
     from tactcad.store import keeping_results
 
     plan, (stiff, soft) = _extremes(design)
@@ -120,8 +121,13 @@ def test_installed_face_strain_within_3_percent_of_fem3d(design, which):
     assert g.gauge is not None
     mat = plan.material
     with keeping_results(shared_store()):
-        ref = estimate("fem3d", g, mat).face_strain_per_N
+        fem3d = estimate("fem3d", g, mat)
+        read = grid_strain_per_N(g, mat, readout_chain(plan), "fem3d")
+    ref = fem3d.face_strain_per_N
     assert ref == pytest.approx(FEM3D_FACE_STRAIN_PER_N[(design, g.part_name)], rel=1e-4)
+    # one name, one quantity: stiffness's grid strain at fem3d is the read-out's (and
+    # strength's) mean over the grid's area, not the strain along its centre line
+    assert fem3d.grid_strain_per_N == pytest.approx(abs(read["grid"]), rel=1e-12)
     for model in ("closed-form", "beam"):
         got = estimate(model, g, mat).face_strain_per_N
         print(f"{design} {g.part_name} {model}: face strain under the layer {got:.5e} vs "

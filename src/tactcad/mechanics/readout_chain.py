@@ -326,13 +326,9 @@ def meshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain: Read
     if not is_meshed(model) or layer is None or layer != chain_layer(g, chain):
         return None
     if model == "fem3d":
-        from tactcad.mechanics.fem.fem3d import fem3d_convergence
-        from tactcad.mechanics.fem.fields import face_rectangle_average
+        from tactcad.mechanics.fem.fem3d import fem3d_convergence, grid_area_strains_per_N
 
-        conv = fem3d_convergence(g, material)
-        b, w = g.sheet_thickness_mm, min(chain.grid_width_mm, g.sheet_thickness_mm)
-        span, across = (layer.grid_x0_mm, layer.grid_x1_mm), (b / 2 - w / 2, b / 2 + w / 2)
-        vals = [face_rectangle_average(f, span, across) for f in conv.grid_plane_strains]
+        vals = grid_area_strains_per_N(fem3d_convergence(g, material), g, chain.grid_width_mm)
         return {"grid": vals[-1], "grid_error_rel": richardson(vals, REFINEMENT_RATIO).error_rel,
                 "grid_source": "fem3d with the glue line and carrier meshed: the grid's "
                                "plane averaged over its area"}
