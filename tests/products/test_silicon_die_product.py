@@ -144,6 +144,8 @@ def test_a_dies_check_exports_again_what_changed_since_the_export(die_folder):
     c = run_cli("check", "--out", "exports", cwd=die_folder)  # now as listed: taken as it is
     assert c.returncode == 0 and "checking the export in exports (same design" in c.stderr
     assert "exporting" not in c.stderr
+    report = json.loads(run_cli("check", "--out", "exports", "--json", cwd=die_folder).stdout)
+    assert report["reused_export"] and report["export_refusal"] is None
 
 
 def test_a_die_takes_a_grasp_force_judged_as_grasp_computes_it(die_folder):

@@ -565,14 +565,17 @@ def export_die(design: Path, args: argparse.Namespace) -> int:
 
 
 def check_die(design: Path, args: argparse.Namespace) -> int:
-    """``tactcad check`` of a die's design file: its export in ``--out`` (made there first when
-    that folder holds no whole export of this die; a temporary folder without ``--out``) read
-    back:
-    the masks against the process's rules and the plan, the mount's solids, the drawing, and
-    the record's plan against the design's.
+    """``tactcad check`` of a die's design file: its export in ``--out`` (exported there first,
+    said in one line, unless the export is the one the design writes now, as an array's
+    check decides it: :func:`_die_export_refusal`; a temporary folder without ``--out``) read
+    back: the masks against the process's rules and the plan, the mount's solids, the
+    drawing, and the record's plan against the design's.
 
     Returns:
         0, or 1 when a check fails.
+
+    Raises:
+        DesignError: ``--scene`` given, or ``--out`` holding another design's export.
     """
     import json as json_module
     import tempfile
@@ -632,6 +635,7 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
             write_junit(junit, [(name, checks)], [name])
         if args.json:
             print(dumps({"design": str(design), "out": str(out), "junit": junit,
+                         "reused_export": refusal is None, "export_refusal": refusal,
                          "checks": [{"check": c.check, "subject": c.subject,
                                      "status": c.status, "detail": c.detail} for c in checks],
                          "counts": counts}, indent=1))
