@@ -540,7 +540,7 @@ class DieProject:
             progress: told when the export starts and ends.
 
         Raises:
-            DesignError: ``out`` holds other files than this die's.
+            DesignError: ``out`` holds another design's export or files no export wrote.
         """
         import contextlib
         import io

@@ -199,11 +199,13 @@ def companion_tables(plan: Plan) -> dict[str, Mapping[str, Any]]:
 # --- a new project folder -----------------------------------------------------------------
 @dataclass(frozen=True)
 class NewProject:
-    """What :func:`new_project` wrote: the folder, its design file and every file (relative)."""
+    """What :func:`new_project` wrote: the folder, its design file and every file (relative),
+    and the files of the project the folder held that it removed (``--force``)."""
 
     folder: Path
     design: Path
     files: tuple[str, ...]
+    removed: tuple[str, ...] = ()
 
 
 _FILES_TABLE = re.compile(r"^\s*\[files\]\s*(#.*)?$", re.MULTILINE)
@@ -296,10 +298,11 @@ def purchased_parts_of(design: Path) -> str:
     return purchased_parts_markdown(load_project(design))
 
 
-def _move_in(staging: Path, folder: Path, rels: list[str]) -> None:
+def _move_in(staging: Path, folder: Path, rels: list[str], stale: list[str] = ()) -> None:
     """Move each of ``rels`` from ``staging`` into the existing ``folder``, the last
-    (the design file) last; a move that fails puts the folder back as it was (the
-    files it held restored, the files and folders made removed) and raises.
+    (the design file) last, then take the ``stale`` files out of it; a move that fails puts
+    the folder back as it was (the files it held restored, the files and folders made
+    removed) and raises.
 
     Raises:
         OSError: a file could not be moved in (the folder is as it was).
@@ -318,6 +321,10 @@ def _move_in(staging: Path, folder: Path, rels: list[str]) -> None:
                 os.replace(target, kept / rel)
             placed.append((Path(rel), had))
             os.replace(staging / rel, target)
+        for rel in stale:  # kept until every move has gone through, as a replaced file is
+            (kept / rel).parent.mkdir(parents=True, exist_ok=True)
+            os.replace(folder / rel, kept / rel)
+            placed.append((Path(rel), True))
     except OSError:
         _put_back(folder, kept, placed, made_dirs)
         raise
@@ -388,6 +395,9 @@ def _write_files(folder: Path, files: dict[str, str], force: bool, option: str,
     design_name = list(files)[-1]
     listed = [PURCHASED_PARTS, *files] if parts_of is not None else list(files)
     _check_target(folder, list(dict.fromkeys(listed)), force, option)
+    # --force: the files tactcad wrote for the project the folder held go, those it keeps
+    # writing are replaced; files of the user's own are kept
+    stale = sorted(set(old_project_files(folder / design_name)) - set(listed)) if force else []
     staging = staging_dir(folder)
     os.chmod(staging, 0o777 & ~_umask())  # a project folder, not a private temporary one
     try:
@@ -400,13 +410,50 @@ def _write_files(folder: Path, files: dict[str, str], force: bool, option: str,
         if not folder.exists():
             os.rename(staging, folder)
         else:
-            _move_in(staging, folder, list(files))
+            _move_in(staging, folder, list(files), stale)
     except OSError as exc:  # name the file in the folder asked for, not in the staging one
         raise in_target(exc, staging, folder) from exc
     finally:
         if staging.exists():
             warn_left_behind(remove_tree(staging))
-    return NewProject(folder, folder / design_name, tuple(files))
+    return NewProject(folder, folder / design_name, tuple(files), tuple(stale))
+
+
+def old_project_files(design: Path) -> list[str]:
+    """The files tactcad wrote for the project of the design file ``design`` as its writer
+    recorded them: the design file, the README, .gitignore and CI workflow, and the files
+    the design names (an array's ``[files]`` table: its rigs and scenes, with its
+    ``purchased-parts.md``; a die's jaw file), each relative to the design's folder and
+    present there.
+
+    Args:
+        design: a design file in a project folder (need not exist).
+
+    Returns:
+        Relative paths (POSIX) of the files present; none when ``design`` is no readable
+        design file.
+    """
+    from tactcad.design.file_kind import DIE_TABLE
+
+    try:
+        tables = tomllib.loads(design.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return []
+    named = [design.name, *EXTRA_FILES.values()]
+    die = tables.get(DIE_TABLE)
+    if isinstance(die, Mapping):
+        named.append(die.get("jaw"))
+    else:
+        files = tables.get("files")
+        named += [PURCHASED_PARTS, *(files.values() if isinstance(files, Mapping) else ())]
+    return [rel for rel in dict.fromkeys(n for n in named if isinstance(n, str) and n)
+            if _inside_folder(design.parent, rel) and (design.parent / rel).is_file()]
+
+
+def _inside_folder(folder: Path, rel: str) -> bool:
+    """True when ``rel`` names a path inside ``folder`` (not absolute, no way out of it)."""
+    return not Path(rel).is_absolute() and \
+        (folder / rel).resolve().is_relative_to(folder.resolve())
 
 
 #: ``name = "..."`` in a TOML table (a basic or literal string, a comment after it).

@@ -173,6 +173,22 @@ def test_the_masks_read_back_clean_and_equal_the_plan(die, tmp_path):
             "resistors", "stops", "cavity_reference.width", "cavity_measuring.width"} <= names
 
 
+def test_a_cut_short_gds_is_one_failed_check_naming_it_and_so_is_its_traveller(die, tmp_path):
+    from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
+    from tactcad.products.silicon_die.export.traveller import write_traveller
+
+    path = write_die_gds(die, tmp_path / "die.gds")
+    traveller = tmp_path / "die_traveller.md"
+    write_traveller(die, 300.0, path.name, traveller)
+    with open(path, "r+b") as fh:  # as `truncate -s 100` leaves it
+        fh.truncate(100)
+    for results in (gds_checks(path, die), traveller_checks(traveller, path)):
+        assert len(results) == 1 and not results[0].passed
+        assert "die.gds" in results[0].detail and "unreadable" in results[0].detail
+    missing = gds_checks(tmp_path / "gone.gds", die)
+    assert len(missing) == 1 and not missing[0].passed and "gone.gds" in missing[0].detail
+
+
 def test_the_read_back_finds_a_beam_the_mechanics_did_not_assume(die, tmp_path):
     path = write_die_gds(die, tmp_path / "die.gds")
     longer = dataclasses.replace(die, beams=tuple(

@@ -404,6 +404,35 @@ def test_new_from_a_die_design_file_keeps_its_labs_jaw_file_beside_it(tmp_path):
     assert load_die_design(made.design).jaw == str((made.folder / "lab_jaw.toml").resolve())
 
 
+def _files_in(folder: Path) -> list[str]:
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())
+
+
+def test_force_over_another_products_project_leaves_only_the_new_projects_and_the_users_files(
+        tmp_path):
+    folder = tmp_path / "mix"
+    new_project(folder, example="ti_array_2x3")  # rigs, scenes, bought parts: the array's
+    (folder / "notes.md").write_text("the lab's own\n", encoding="utf-8")
+    made = new_project(folder, example="grasper_jaw_5mm_mems", force=True)
+    assert _files_in(folder) == sorted([*made.files, "notes.md"])
+    assert sorted(made.removed) == ["purchased-parts.md", "rigs.toml", "scenes.toml"]
+
+
+def test_force_over_a_die_project_removes_the_jaw_file_its_design_named(tmp_path):
+    source = tmp_path / "src"
+    source.mkdir()
+    text = (EXAMPLES / "grasper_jaw_5mm_mems" / "grasper_jaw_5mm_mems.toml").read_text(
+        encoding="utf-8").replace('jaw = "5"', 'jaw = "lab_jaw.toml"')
+    (source / "die.toml").write_text(text, encoding="utf-8")
+    (source / "lab_jaw.toml").write_text("[grasper_jaw]\njaw_length_mm = 20.0\n",
+                                         encoding="utf-8")
+    folder = tmp_path / "insert"
+    new_project(folder, from_design=source / "die.toml")
+    assert (folder / "lab_jaw.toml").is_file()
+    made = new_project(folder, example="grasper_jaw_10mm", force=True)
+    assert "lab_jaw.toml" in made.removed and _files_in(folder) == sorted(made.files)
+
+
 @pytest.mark.parametrize("kind", ["array", "die"])
 def test_a_command_run_among_an_exports_files_names_the_design_not_the_shipped_example(
         tmp_path, kind):

@@ -121,6 +121,33 @@ def test_a_dies_export_has_its_review_page_and_manifest_and_checks(die_folder):
     assert d.returncode == 0 and json.loads(d.stdout)["changed"] is False, d.stdout
 
 
+@pytest.mark.slow
+def test_a_dies_check_exports_again_what_changed_since_the_export(die_folder):
+    """As an array's check: a file whose sha256 is not the manifest's is exported again
+    first, said in one line, then checked (a cut-short GDS is no traceback)."""
+    assert run_cli("export", "--out", "exports", "--quiet", cwd=die_folder).returncode == 0
+    out = die_folder / "exports"
+    gds = out / "grasper_jaw_5mm_mems.gds"
+    whole = gds.read_bytes()
+    with open(gds, "r+b") as fh:
+        fh.truncate(100)
+    c = run_cli("check", "--out", "exports", cwd=die_folder)
+    assert c.returncode == 0, c.stdout + c.stderr
+    assert "exporting to exports first: grasper_jaw_5mm_mems.gds changed since the export" \
+        in c.stderr
+    assert gds.read_bytes() == whole  # exported again, as it was
+    with open(out / "grasper_jaw_5mm_mems_traveller.md", "a", encoding="utf-8") as fh:
+        fh.write("a step of our own\n")
+    c = run_cli("check", "--out", "exports", cwd=die_folder)
+    assert c.returncode == 0 and "grasper_jaw_5mm_mems_traveller.md changed since the " \
+        "export" in c.stderr, c.stderr
+    c = run_cli("check", "--out", "exports", cwd=die_folder)  # now as listed: taken as it is
+    assert c.returncode == 0 and "checking the export in exports (same design" in c.stderr
+    assert "exporting" not in c.stderr
+    report = json.loads(run_cli("check", "--out", "exports", "--json", cwd=die_folder).stdout)
+    assert report["reused_export"] and report["export_refusal"] is None
+
+
 def test_a_die_takes_a_grasp_force_judged_as_grasp_computes_it(die_folder):
     """`max_grasp_force_N` in a die's file: verify closes the die's jaw to it on the
     default tissue (the grasp command's own defaults) and judges each beam against its

@@ -137,7 +137,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "scenes, README, .gitignore and CI workflow); any writable folder but "
                         "system folders")
     p.add_argument("--force", action="store_true",
-                   help="overwrite an existing file (default: refuse)")
+                   help="overwrite an existing file (default: refuse); for a project folder, "
+                        "the files tactcad wrote for the project it held (its design, README, "
+                        ".gitignore, CI workflow, the rigs, scenes and bought-parts list or the "
+                        "jaw file its design names) are replaced or removed, so the folder "
+                        "holds what the new design writes; files of your own are kept")
     p.add_argument("--tissue-coupling", choices=("on", "off"), default="on",
                    help="on (default): K_r and K_m centred on the K_obj range as the units see it "
                         "through one sample under all tips (rigid flat punches of the tip faces on "

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from tactcad.commands import add_design_arg, add_output_args
+from tactcad.commands import add_design_arg, add_output_args, progress_from_args
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number
 from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME,
@@ -318,7 +318,7 @@ def run(args: argparse.Namespace) -> int:
                           "the check solves each beam in CalculiX (apt-get install calculix-ccx)")
     out = Path(args.out)
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
-    refuse_a_foreign_folder(out, files["record"])
+    refuse_a_foreign_folder(out, name)
     # every file made in a staging folder beside OUT, then moved in: a failed or
     # interrupted run leaves OUT's previous files as they were
     staging = staging_dir(out)
@@ -565,14 +565,17 @@ def export_die(design: Path, args: argparse.Namespace) -> int:
 
 
 def check_die(design: Path, args: argparse.Namespace) -> int:
-    """``tactcad check`` of a die's design file: its export in ``--out`` (made there first when
-    that folder holds no whole export of this die; a temporary folder without ``--out``) read
-    back:
-    the masks against the process's rules and the plan, the mount's solids, the drawing, and
-    the record's plan against the design's.
+    """``tactcad check`` of a die's design file: its export in ``--out`` (exported there first,
+    said in one line, unless the export is the one the design writes now, as an array's
+    check decides it: :func:`_die_export_refusal`; a temporary folder without ``--out``) read
+    back: the masks against the process's rules and the plan, the mount's solids, the
+    drawing, and the record's plan against the design's.
 
     Returns:
         0, or 1 when a check fails.
+
+    Raises:
+        DesignError: ``--scene`` given, or ``--out`` holding another design's export.
     """
     import json as json_module
     import tempfile
@@ -589,19 +592,21 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
         raise DesignError("--scene", args.scene, "left out for a die",
                           f"{design.name} is a silicon die's design: it has no scenes to choose")
     junit = getattr(args, "junit", None)  # its path refused before, by check's own rule
+    report = progress_from_args(args)
     planned = plan_of(die_asked(_die_args(design, args, Path("."))))
     plan, name = planned.plan, planned.plan.name
     with tempfile.TemporaryDirectory(prefix="tactcad-die-check-") as temp:
         out = Path(args.out) if args.out else Path(temp)
         files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
-        record = _record_of(files["record"])
-        current = (record is not None and all(p.is_file() for p in files.values())
-                   and record.get("die") == json_module.loads(dumps(plan.as_json())))
-        if not current:  # as an array's check does: exported there first
+        refusal = _die_export_refusal(out, planned, files["record"])
+        if refusal is None:
+            report(f"checking the export in {out} (same design, every file as listed)")
+        else:  # as an array's check does: exported there first, said in one line
+            report(f"exporting to {out} first: {refusal}")
             quiet = argparse.Namespace(**{**vars(args), "json": True})
             with contextlib.redirect_stdout(io.StringIO()):
                 run(_die_args(design, quiet, out))
-            record = _record_of(files["record"])
+        record = _record_of(files["record"])
         missing = [p.name for p in files.values() if not p.is_file()]
         mount = die_mount(plan, planned.jaw_stated)
         # the requirements first, as the array's check and the die's export order them
@@ -630,6 +635,7 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
             write_junit(junit, [(name, checks)], [name])
         if args.json:
             print(dumps({"design": str(design), "out": str(out), "junit": junit,
+                         "reused_export": refusal is None, "export_refusal": refusal,
                          "checks": [{"check": c.check, "subject": c.subject,
                                      "status": c.status, "detail": c.detail} for c in checks],
                          "counts": counts}, indent=1))
@@ -640,19 +646,36 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
     return 1 if counts["failed"] else 0
 
 
-def refuse_a_foreign_folder(out: Path, record: Path) -> None:
-    """A die's files go into an empty or new folder, or one holding this die's own record:
-    never beside another's files (an array's export, another die), a mixed set.
+def _die_export_refusal(out: Path, planned: PlannedDie, record: Path) -> str | None:
+    """Why the die's export in ``out`` is not the one its design writes now (the array's
+    rule, :func:`tactcad.export.reuse.export_refusal`: the manifest's design file sha256 and
+    ``--set`` values, versions, every listed file's sha256), or None when it is; a record
+    of another plan (a jaw file changed since) is refused too."""
+    import json as json_module
+
+    from tactcad.export.reuse import export_refusal
+
+    source = planned.source or {}
+    refusal = export_refusal(out, {"sha256": source.get("sha256"),
+                                   "overrides": source.get("overrides", {})})
+    if refusal is None and (_record_of(record) or {}).get("die") != \
+            json_module.loads(dumps(planned.plan.as_json())):
+        return f"{record.name} holds another plan than the design makes"
+    return refusal
+
+
+def refuse_a_foreign_folder(out: Path, name: str) -> None:
+    """A die's files go into an empty or new folder, or one holding this die's own export:
+    never beside another design's export (an array's, another die's), a mixed set; the rule
+    every product's export keeps (:mod:`tactcad.export.export_owner`).
 
     Raises:
-        DesignError: ``--out`` a file, or a folder with files but no record of this die.
+        DesignError: ``--out`` a file, or a folder with files but no export of this die.
     """
-    if out.exists() and not out.is_dir():
-        raise DesignError("--out", str(out), "a folder", f"{out} is a file")
-    if out.is_dir() and any(out.iterdir()) and "die" not in (_record_of(record) or {}):
-        raise DesignError("--out", str(out), "an empty or new folder, or one holding this "
-                          f"die's {record.name}",
-                          f"{out} holds other files: the die's would be mixed with them")
+    from tactcad.export.export_owner import refuse_another_designs_export
+    from tactcad.products.silicon_die.export.die_review import PRODUCT_NAME
+
+    refuse_another_designs_export(out, PRODUCT_NAME, name)
 
 
 def _record_of(path: Path) -> dict | None:

@@ -35,7 +35,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                        help="start from this design file; its rigs and scenes files are "
                             "copied where it has them, else made for it")
     p.add_argument("--force", action="store_true",
-                   help="overwrite the project's files where DIR has them (default: refuse)")
+                   help="overwrite the project's files where DIR has them (default: refuse); "
+                        "those tactcad wrote for the project DIR held and the new one does not "
+                        "write are removed, files of your own are kept")
     add_output_args(p, "print JSON: the folder, the design file and every file written")
     p.set_defaults(func=run)
 
@@ -47,11 +49,13 @@ def run(args: argparse.Namespace) -> int:
                        force=args.force)
     if args.json:
         print(json.dumps({"folder": str(made.folder), "design": str(made.design),
-                          "files": list(made.files)}))
+                          "files": list(made.files), "removed": list(made.removed)}))
         return 0
     print(f"made {made.folder}/ with {len(made.files)} files:")
     for rel in made.files:
         print(f"  {rel}")
+    if made.removed:  # --force: the earlier project's files the new one does not write
+        print(f"removed the earlier project's {', '.join(made.removed)}")
     design = made.design.name
     folder = str(made.folder)
     folder = f"./{folder}" if folder.startswith("-") else folder  # not an option of cd

@@ -12,6 +12,7 @@ from __future__ import annotations
 import hashlib
 import json
 from pathlib import Path
+from typing import Any, Mapping
 
 from tactcad.version import VERSION
 from tactcad.catalogue.files import MANIFEST
@@ -28,16 +29,33 @@ def file_sha256(path: Path) -> str:
 def reuse_refusal(plan: Plan, out_dir: str | Path) -> str | None:
     """Why the export in ``out_dir`` is not the one ``plan`` would write now,
     or ``None`` when it is (see module doc)."""
+    return export_refusal(out_dir, {"sha256": plan.design_hash})
+
+
+def export_refusal(out_dir: str | Path, design: Mapping[str, Any]) -> str | None:
+    """Why the export in ``out_dir`` is not the one a design would write now, or ``None``
+    when it is (see module doc): every product's check asks this before it reads an export.
+
+    Args:
+        out_dir: the export folder.
+        design: what its manifest's ``design`` table must hold (key -> value, compared as
+            JSON reads them back), e.g. ``{"sha256": ...}`` for an array, the design file's
+            sha256 and its ``--set`` values for a die.
+
+    Returns:
+        One line naming the first difference (a file by its path), or None.
+    """
     out = Path(out_dir)
     try:
         man = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
-        sha, files = man["design"]["sha256"], man["files"]
+        stated, files = man["design"], man["files"]
         listed = [(f["path"], f["sha256"]) for f in files]
+        same = all(stated.get(k) == v for k, v in json.loads(json.dumps(dict(design))).items())
     except FileNotFoundError:
         return f"no {MANIFEST} in {out}"
-    except (OSError, ValueError, KeyError, TypeError) as exc:
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
         return f"{MANIFEST} unreadable ({type(exc).__name__})"
-    if sha != plan.design_hash:
+    if not same:
         return "made from another design"
     if "partial" in man:
         return "a partial export (--only/--part)"

@@ -31,6 +31,7 @@ from tactcad.atomic import (carry_over, disk_full_error, in_target, leftover_sta
                             write_bytes_atomic)
 from tactcad.design.project import Project
 from tactcad.errors import ExportPathError, TactcadError
+from tactcad.export.export_owner import default_product_name, refuse_another_designs_export
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rig_models import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
@@ -245,6 +246,7 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
     (``with_manifest`` False) keeps every old file it does not rewrite."""
     t0 = time.perf_counter()
     out = check_out_dir(out_dir)
+    refuse_another_designs_export(out, default_product_name(), project.plan.name)
     stuck = [p for old in leftover_staging(out) for p in remove_tree(old)]  # a killed run's
     warn_left_behind(stuck)
     staging = staging_dir(out)

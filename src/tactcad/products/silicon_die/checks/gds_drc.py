@@ -25,11 +25,22 @@ MARKERS_QUOTED = 3
 
 
 def _regions(path: Path):
-    """(layout, top cell, mask name -> merged region) of a die GDS."""
+    """(layout, top cell, mask name -> merged region) of a die GDS.
+
+    Raises:
+        ValueError: the file is no GDS KLayout can read (cut short, another format), or
+            holds other than one top cell; the message names the file.
+        OSError: the file cannot be opened.
+    """
     import klayout.db as kdb
 
+    if not Path(path).is_file():
+        raise FileNotFoundError(2, "no such file", str(path))
     layout = kdb.Layout()
-    layout.read(str(path))
+    try:
+        layout.read(str(path))
+    except RuntimeError as exc:  # KLayout says a bad file as a RuntimeError
+        raise ValueError(f"{Path(path).name}: unreadable GDS ({exc})") from None
     tops = layout.top_cells()
     if len(tops) != 1:
         raise ValueError(f"{path.name}: one top cell (the die) expected, found "
@@ -138,7 +149,20 @@ def outline_results(path: Path, plan) -> list[CheckResult]:
 
 
 def gds_checks(path: Path, plan) -> list[CheckResult]:
-    """:func:`rule_results` and :func:`outline_results` of the die GDS at ``path``."""
+    """:func:`rule_results` and :func:`outline_results` of the die GDS at ``path``; a file
+    that cannot be read is one failed check naming it.
+
+    Args:
+        path: the die's GDS file.
+        plan: the die's plan (:class:`tactcad.products.silicon_die.design.mems_die.DiePlan`).
+
+    Returns:
+        The checks' results (dimensions in um).
+    """
+    try:
+        _regions(path)
+    except (OSError, ValueError) as exc:
+        return [CheckResult("gds_read", Path(path).name, False, str(exc))]
     return rule_results(path, plan) + outline_results(path, plan)
 
 

@@ -139,4 +139,9 @@ def traveller_checks(traveller_path: Path, gds_path: Path) -> list[CheckResult]:
     except (OSError, ValueError, KeyError) as exc:
         return [CheckResult("traveller_masks", traveller_path.name, False,
                             f"unreadable traveller: {exc}")]
-    return traveller_results(steps, drawn_masks(gds_path), traveller_path.name)
+    try:
+        drawn = drawn_masks(gds_path)
+    except (OSError, ValueError) as exc:
+        return [CheckResult("traveller_masks", traveller_path.name, False,
+                            f"its masks unreadable: {exc}")]
+    return traveller_results(steps, drawn, traveller_path.name)
