@@ -120,3 +120,22 @@ def test_plane_stress_levels_carry_the_plane_strain_bound_in_stress_and_strain_l
             assert strain_fit <= lim.error_estimate_rel < nu2
         else:
             assert lim.error_estimate_rel < nu2
+
+
+def test_a_unit_whose_k_error_spans_its_reference_gets_an_unbounded_resolution_error():
+    """K_r / K_m of 1.03 with a 9 % reference error: moved by it, the measuring element is as
+    stiff as its reference, where eq. 2 has no answer (this raised 'cannot convert float NaN
+    to integer' inside a comb design search)."""
+    import math
+
+    from tactcad.mechanics.resolution import ReadUnit
+    from tactcad.studies.verification import (SensingUnits, kobj_resolution_requirement,
+                                              resolution_error_rel)
+
+    unit = ReadUnit(3.21, 2e-5, 3.12, 2.5e-5)
+    units = SensingUnits((unit,), ((0.09, 0.043),), {1: 2e-5, 2: 2.5e-5})
+    assert math.isinf(resolution_error_rel(units, (0.5, 5.0), 0.005))
+    requirement, worst = kobj_resolution_requirement(units, (0.5, 5.0), 0.005)
+    assert math.isfinite(worst) and math.isinf(requirement)
+    tight = SensingUnits((unit,), ((0.001, 0.001),), {1: 2e-5, 2: 2.5e-5})
+    assert math.isfinite(kobj_resolution_requirement(tight, (0.5, 5.0), 0.005)[0])
