@@ -26,7 +26,10 @@ def _plan(requirements=None, drop=False):
 
 
 @pytest.mark.parametrize("table, field, allowed", [
-    ({"full_scale_force_N": -1.0}, "requirements.full_scale_force_N", "0 < value <= 1000 N"),
+    ({"full_scale_force_N": -1.0}, "requirements.full_scale_force_N", "1e-09 <= value <= 1000 N"),
+    ({"full_scale_force_N": 1e-13}, "requirements.full_scale_force_N", "1e-09 <= value <= 1000 N"),
+    ({"kobj_range_N_per_mm": [1e-20, 5.0]}, "requirements.kobj_range_N_per_mm[1]",
+     "1e-06 <= value <= 10000 N/mm"),
     ({"kr_over_km": True}, "requirements.kr_over_km", "1 < value <= 1000"),
     ({"kobj_range_N_per_mm": [5.0, 2.0]}, "requirements.kobj_range_N_per_mm", "LO < HI"),
     ({"kobj_range_N_per_mm": [1.0]}, "requirements.kobj_range_N_per_mm", "[LO, HI]"),
