@@ -362,3 +362,15 @@ def test_a_force_or_stiffness_below_the_least_a_design_takes_is_refused_naming_i
     assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
     assert option in r.stderr and f"{least} " in r.stderr
     assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.parametrize("ratio", ["1.05", "1.01"])
+def test_a_ratio_near_one_on_the_comb_designs_where_a_candidates_k_error_spans_it(tmp_path, ratio):
+    # a candidate whose K error could make its measuring element as stiff as its reference
+    # stopped the search on NaN ("cannot convert float NaN to integer")
+    out = tmp_path / "q9"
+    r = run_cli("design", "--jaw", "10", "--kr-over-km", ratio, "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.005", "--out", str(out))
+    assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
+    written = tomllib.loads((out / "q9.toml").read_text("utf-8"))
+    assert written["requirements"]["kr_over_km"] == float(ratio)
