@@ -54,6 +54,10 @@ AXIS_LIMITS = {
     "full_scale_force_N": ("--force-range", True, (1e-4, 1000.0)),
     "columns": ("--columns-range", False, (2, 12)),
 }
+#: Why an axis's limits are what they are, where it is not design's own option range.
+AXIS_WHY = {"kobj_span": "a span of 1 is one K_obj, and design reads a range (--kobj-range LO < "
+                         "HI); the least span keeps its ends apart in the six digits design "
+                         "writes"}
 #: The default target space: ratios about the paper's 10, soft to firm tissue (N/mm), ranges
 #: of 2 ... 50 x, forces from a die's tens of mN to a comb's newtons, 2 ... 8 columns.
 DEFAULT_RANGES = {"kr_over_km": (3.0, 30.0), "kobj_centre_N_per_mm": (0.1, 10.0),
@@ -116,7 +120,8 @@ def checked_ranges(ranges: Mapping[str, tuple[float, float]]) -> dict[str, tuple
         option, _, (least, most) = AXIS_LIMITS[axis]
         if not (_finite(lo) and _finite(hi) and least <= lo <= hi <= most):
             raise DesignError(option, f"{lo:g} {hi:g}" if _finite(lo) and _finite(hi)
-                              else [lo, hi], f"LO <= HI within {least:g} ... {most:g}")
+                              else [lo, hi], f"LO <= HI within {least:g} ... {most:g}",
+                              AXIS_WHY.get(axis, ""))
         if axis == "kr_over_km" and _g(lo) <= 1.0:  # a point's ratio is written to 6 digits
             raise DesignError(option, f"{lo:.10g} {hi:.10g}", "LO > 1 (a reference stiffer than "
                               "the measuring element) in the six digits design writes, "
