@@ -129,6 +129,11 @@ class RepeatedOptionWarning(UserWarning):
     (a pasted alternative appended to the command line replaces the value before it)."""
 
 
+class PastRatingWarning(UserWarning):
+    """A force asked of a command lies past the design's rated full-scale force (a reading
+    past full scale), or past an element's overload limit (named in the message)."""
+
+
 class LeftoverWarning(UserWarning):
     """Files of an earlier or failed run that could not be removed (named in the message)."""
 

@@ -63,12 +63,17 @@ def test_an_atlas_is_written_and_its_second_run_reuses_the_kept_table(tmp_path):
     (["--jaw", "5", "--force-range", "2", "1"], "--force-range"),
     (["--jaw", "5", "--columns-range", "1", "3"], "--columns-range"),
     (["--jaw", "5", "--out", "/etc/atlas"], "--out"),
+    # each point's targets are design's: refused before any task, not inside every task
+    (["--jaw", "5", "--kobj-span", "1", "1"], "--kobj-span"),
+    (["--jaw", "5", "--kr-over-km-range", "1.000001", "2"], "--kr-over-km-range"),
+    (["--jaw", "5", "--kobj-centre", "1e4", "1e4"], "--kobj-centre"),
 ])
 def test_bad_atlas_options_are_refused_without_a_traceback(tmp_path, argv, field):
     r = run_cli("atlas", "--out", tmp_path / "out", *argv, "--json")
     assert r.returncode != 0
     error = json.loads(r.stdout)["error"]
     assert error["field"] == field and "Traceback" not in r.stdout + r.stderr
+    assert "Compute Failed" not in r.stderr and not (tmp_path / "out").exists()
 
 
 EXAMPLES = Path(tactcad.__file__).parent / "examples"

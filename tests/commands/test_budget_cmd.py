@@ -105,3 +105,28 @@ def test_a_material_of_unknown_cte_is_named_by_budget_and_reported_by_verify(tmp
     v = run_cli("verify", "--design", str(design), "--model", "closed-form")
     assert v.returncode == 0, v.stderr
     assert "K_obj error budget not evaluated: readout.substrate_cte_ppm_per_K" in v.stdout
+
+
+COMB = str(ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")
+
+
+def test_a_force_past_the_rating_or_an_overload_limit_is_warned_in_the_text_and_json():
+    from tactcad.design.array_plan import load_design
+    from tactcad.studies.verification import requirements_of
+
+    rated = requirements_of(load_design(COMB)).full_scale_force_N
+
+    def warned(force):
+        r = run_cli("budget", "--design", COMB, "--force", force, "--json")
+        assert r.returncode == 0, r.stderr
+        return json.loads(r.stdout)["warnings"]
+
+    assert warned(f"{rated:g}") == []
+    past = warned(f"{1.2 * rated:g}")
+    assert len(past) == 1 and past[0].startswith(f"--force = {1.2 * rated:g} N")
+    assert f"rated full-scale force {rated:g} N" in past[0] and "overload" not in past[0]
+    broken = warned("1000")
+    assert len(broken) == 1 and "--force = 1000 N" in broken[0]
+    assert "overload limit" in broken[0] and "damaged" in broken[0]
+    text = run_cli("budget", "--design", COMB, "--force", "1000")
+    assert "warning: --force = 1000 N" in text.stdout and "warning: --force" in text.stderr

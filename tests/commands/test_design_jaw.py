@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import tomllib
+from pathlib import Path
 
 import pytest
 from conftest import run_cli
@@ -336,3 +337,40 @@ def test_a_design_stopped_after_its_solves_began_leaves_no_folder_it_made(tmp_pa
     (tmp_path / "strip" / "notes.txt").write_text("mine", encoding="utf-8")
     assert cli.main(args) == 2
     assert (tmp_path / "strip" / "notes.txt").read_text(encoding="utf-8") == "mine"
+
+
+HARDWARE = Path(__file__).resolve().parents[2] / "hardware"
+JAW_TARGETS = ["--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5"]
+
+
+@pytest.mark.parametrize("argv, option, least", [
+    # a die's cavity depth rounded to zero below about 1e-13 N: ZeroDivisionError
+    (["design", *JAW_TARGETS, "--full-scale-force", "1e-13"], "--full-scale-force", "1e-09"),
+    (["die", *JAW_TARGETS, "--full-scale-force", "1e-14"], "--full-scale-force", "1e-09"),
+    (["design", "--jaw", "10", "--kr-over-km", "10", "--kobj-range", "1e-20", "5",
+      "--full-scale-force", "0.14"], "--kobj-range", "1e-06"),
+    (["verify", "--design", str(HARDWARE / "grasper_jaw_5mm_mems" / "grasper_jaw_5mm_mems.toml"),
+      "--set", "die.full_scale_force_N=1e-20"], "die.full_scale_force_N", "1e-09"),
+    # K_obj lost in K_m + K_obj's rounding: eq. 3 had no answer (NaN)
+    (["verify", "--design", str(HARDWARE / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"),
+      "--model", "closed-form", "--set", "requirements.kobj_range_N_per_mm=[1e-20,5]"],
+     "requirements.kobj_range_N_per_mm", "1e-06"),
+])
+def test_a_force_or_stiffness_below_the_least_a_design_takes_is_refused_naming_it(
+        tmp_path, argv, option, least):
+    r = run_cli(*argv, *(["--out", str(tmp_path / "x")] if argv[0] != "verify" else []))
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+    assert option in r.stderr and f"{least} " in r.stderr
+    assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.parametrize("ratio", ["1.05", "1.01"])
+def test_a_ratio_near_one_on_the_comb_designs_where_a_candidates_k_error_spans_it(tmp_path, ratio):
+    # a candidate whose K error could make its measuring element as stiff as its reference
+    # stopped the search on NaN ("cannot convert float NaN to integer")
+    out = tmp_path / "q9"
+    r = run_cli("design", "--jaw", "10", "--kr-over-km", ratio, "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.005", "--out", str(out))
+    assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
+    written = tomllib.loads((out / "q9.toml").read_text("utf-8"))
+    assert written["requirements"]["kr_over_km"] == float(ratio)

@@ -1382,3 +1382,12 @@ def test_the_screened_beam_search_finds_a_pair_for_soft_tissue_in_the_5mm_window
     assert pair.reference_length_um + pair.measuring_length_um + post \
         + md.tip_gap_um(pair.slot_um, post) <= 4400.0
     assert pair.reference_length_um >= md.SLENDERNESS * pair.width_um
+
+
+@pytest.mark.parametrize("rated_um", [1e-12, 1e-6, 0.3])
+def test_a_cavity_is_one_etch_step_deep_at_the_least(rated_um):
+    # a rated travel within the rounding's slack made a 0 um cavity: ZeroDivisionError in
+    # the rating's limits at about 1e-13 N
+    depth = md.cavity_depth_um(rated_um, 800.0, 60.0)
+    assert depth >= md.CAVITY_STEP_UM
+    assert depth / md.CAVITY_STEP_UM == pytest.approx(round(depth / md.CAVITY_STEP_UM))

@@ -112,3 +112,24 @@ def test_a_refusals_alternatives_judge_each_design_once(monkeypatch):
         other = {"sheet": {"thickness_mm": 1.0}, "arms": {"lengths_mm": (2.0, 3.0)}}
         alternatives._feasible(other, TOO_MUCH, None)  # a tuple is not the list
     assert calls == [1.5, 0.5, 1.5]
+
+
+def test_the_nearest_kobj_range_is_sought_only_within_the_bounds_a_design_takes(monkeypatch):
+    """A range near the stiff bound, shifted stiffer on the scan, leaves what Targets takes:
+    such shifts are infeasible, not an error that ends the refusal."""
+    import tactcad.studies.design_alternatives as alternatives
+
+    seen = []
+
+    def soft_only(data, targets, **kwargs):  # meets only ranges at least 10 x softer
+        seen.append(targets.k_obj_range_N_per_mm)
+        if targets.k_obj_range_N_per_mm[1] > 500.0:
+            raise InverseDesignError("too stiff")
+
+    monkeypatch.setattr(alternatives, "design_from_tables", soft_only)
+    monkeypatch.setattr(alternatives, "_largest_force", lambda *a: 0.0)
+    tables = {"sheet": {"thickness_mm": 1.0}, "arms": {"lengths_mm": [2.0, 3.0]}}
+    found = alternatives.nearest_targets(tables, Targets(6.0, (500.0, 5000.0), 0.5))
+    ranges = [a.value for a in found if a.field == "--kobj-range"]
+    assert len(ranges) == 1 and ranges[0][1] <= 500.0
+    assert seen and all(hi <= 1e4 for _, hi in seen)

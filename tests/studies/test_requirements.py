@@ -26,7 +26,10 @@ def _plan(requirements=None, drop=False):
 
 
 @pytest.mark.parametrize("table, field, allowed", [
-    ({"full_scale_force_N": -1.0}, "requirements.full_scale_force_N", "0 < value <= 1000 N"),
+    ({"full_scale_force_N": -1.0}, "requirements.full_scale_force_N", "1e-09 <= value <= 1000 N"),
+    ({"full_scale_force_N": 1e-13}, "requirements.full_scale_force_N", "1e-09 <= value <= 1000 N"),
+    ({"kobj_range_N_per_mm": [1e-20, 5.0]}, "requirements.kobj_range_N_per_mm[1]",
+     "1e-06 <= value <= 10000 N/mm"),
     ({"kr_over_km": True}, "requirements.kr_over_km", "1 < value <= 1000"),
     ({"kobj_range_N_per_mm": [5.0, 2.0]}, "requirements.kobj_range_N_per_mm", "LO < HI"),
     ({"kobj_range_N_per_mm": [1.0]}, "requirements.kobj_range_N_per_mm", "[LO, HI]"),
@@ -120,3 +123,22 @@ def test_plane_stress_levels_carry_the_plane_strain_bound_in_stress_and_strain_l
             assert strain_fit <= lim.error_estimate_rel < nu2
         else:
             assert lim.error_estimate_rel < nu2
+
+
+def test_a_unit_whose_k_error_spans_its_reference_gets_an_unbounded_resolution_error():
+    """K_r / K_m of 1.03 with a 9 % reference error: moved by it, the measuring element is as
+    stiff as its reference, where eq. 2 has no answer (this raised 'cannot convert float NaN
+    to integer' inside a comb design search)."""
+    import math
+
+    from tactcad.mechanics.resolution import ReadUnit
+    from tactcad.studies.verification import (SensingUnits, kobj_resolution_requirement,
+                                              resolution_error_rel)
+
+    unit = ReadUnit(3.21, 2e-5, 3.12, 2.5e-5)
+    units = SensingUnits((unit,), ((0.09, 0.043),), {1: 2e-5, 2: 2.5e-5})
+    assert math.isinf(resolution_error_rel(units, (0.5, 5.0), 0.005))
+    requirement, worst = kobj_resolution_requirement(units, (0.5, 5.0), 0.005)
+    assert math.isfinite(worst) and math.isinf(requirement)
+    tight = SensingUnits((unit,), ((0.001, 0.001),), {1: 2e-5, 2: 2.5e-5})
+    assert math.isfinite(kobj_resolution_requirement(tight, (0.5, 5.0), 0.005)[0])

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import warnings
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               product_view, progress_from_args)
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number, output_file, keep_option_defaults
+from tactcad.errors import PastRatingWarning
 from tactcad.mechanics.ladder import models
 
 
@@ -94,11 +96,65 @@ def run(args: argparse.Namespace) -> int:
               "force_reason": "--force" if args.force is not None
               else f"full-scale force: {req.reasons['full_scale_force_N']}"}
     text = render(budget)
+    past = past_rating_words(force, req.full_scale_force_N, overload_forces(plan, budget))
+    if past:  # a budget at a force the design is not rated for: said, in the text and --json
+        warnings.warn(PastRatingWarning(past))
+        text = f"{text}\n  warning: {past}"
     if args.out:
         body = dumps(record, indent=1) if args.out.lower().endswith(".json") else text
         write_bytes_atomic(args.out, (body + "\n").encode("utf-8"))
     print(dumps(record, indent=1) if args.json else text)
     return 0
+
+
+def overload_forces(plan, budget) -> dict[int, tuple[float, float]]:
+    """Each pressed element -> (the ``--force`` at which it reaches its overload limit, that
+    limit) (N; yield with the design's safety factor or the gauge's largest strain, closed
+    form, :func:`tactcad.studies.verification.element_overload_limits_N`). A reference
+    carries the force itself; its measuring element F R K_m / K_r (eq. 1), the most at the
+    K_obj range's soft end."""
+    from tactcad.studies.verification import element_figures, element_overload_limits_N
+
+    limits = element_overload_limits_N(plan, element_figures(plan))
+    soft = budget.kobj_range_N_per_mm[0]
+    out: dict[int, tuple[float, float]] = {}
+    for u in budget.units:
+        k_r, k_m = u["K_r_N_per_mm"], u["K_m_N_per_mm"]
+        share = (1 + (k_r - k_m) / (k_m + soft)) * k_m / k_r  # F_m / F at the soft end
+        for element, per_force in ((u["reference_element"], 1.0),
+                                   (u["measuring_element"], share)):
+            if element in limits:
+                at = limits[element] / per_force
+                out[element] = min(out.get(element, (at, limits[element])), (at, limits[element]))
+    return out
+
+
+def past_rating_words(force_N: float, rated_N: float,
+                      overload: dict[int, tuple[float, float]]) -> str:
+    """What a budget at ``force_N`` past the design's rating means, or "" within it.
+
+    Args:
+        force_N: the force on each unit's reference (N), as ``--force`` asks.
+        rated_N: the design's rated full-scale force (N).
+        overload: element -> (the force at which it reaches its overload limit, that limit)
+            (N, :func:`overload_forces`).
+
+    Returns:
+        One sentence naming ``--force``, its value, the rating and, when the force is past
+        an element's overload, the least such force and its element; "" at or below the
+        rating.
+    """
+    if force_N <= rated_N * (1 + 1e-9):
+        return ""
+    words = (f"--force = {force_N:g} N is past the design's rated full-scale force "
+             f"{rated_N:g} N: the budget is of a reading past full scale")
+    if overload:
+        element, (at, limit) = min(overload.items(), key=lambda item: item[1])
+        if force_N > at * (1 + 1e-9):
+            words += (f", and past {at:.4g} N, where element {element} reaches its overload "
+                      f"limit {limit:.4g} N (yield with the safety factor, or the gauge's "
+                      f"largest strain): it is damaged before it reads")
+    return words + f" (allowed without this warning: --force <= {rated_N:g})"
 
 
 def _pct(x) -> str:

@@ -15,7 +15,8 @@ from tactcad.mechanics.ladder import is_meshed, models
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, progress_from_args
 from tactcad.commands.options import count, material_grade_name, number
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
-                                                 MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM)
+                                                 MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM,
+                                                 MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
 from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 
 
@@ -88,10 +89,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                    metavar="X",
                    help="stiffness ratio K_r/K_m of a sensing unit (> 1; about 10 reads soft "
                         "objects with high sensitivity)")
-    p.add_argument("--kobj-range", type=number(0, MAX_KOBJ_N_PER_MM, "N/mm", lo_open=True), nargs=2,
-                   required=True, metavar=("LO", "HI"),
+    p.add_argument("--kobj-range", type=number(MIN_KOBJ_N_PER_MM, MAX_KOBJ_N_PER_MM, "N/mm"),
+                   nargs=2, required=True, metavar=("LO", "HI"),
                    help="object stiffnesses to read (N/mm)")
-    p.add_argument("--full-scale-force", type=number(0, MAX_FULL_SCALE_FORCE_N, "N", lo_open=True),
+    p.add_argument("--full-scale-force", type=number(MIN_FULL_SCALE_FORCE_N,
+                                                     MAX_FULL_SCALE_FORCE_N, "N"),
                    required=True, metavar="F",
                    help="force every element must carry (N)")
     p.add_argument("--max-grasp-force", type=number(0, MAX_GRASP_FORCE_N, "N", lo_open=True),

@@ -20,7 +20,8 @@ from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number
 from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME,
                                                           DEFAULT_PITCH_UM, LEAST_PITCH_UM)
-from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM
+from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM,
+                                                 MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
 from tactcad.errors import DesignError, DesignErrors
 
 #: The written files, by what they hold ({name}: the die's name).
@@ -59,11 +60,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "a [grasper_jaw] table (its pocket bounds the die)")
     p.add_argument("--kr-over-km", type=number(1, 1000, lo_open=True),
                    metavar="X", help="stiffness ratio K_r/K_m of a unit (> 1; about 10)")
-    p.add_argument("--kobj-range", type=number(0, MAX_KOBJ_N_PER_MM, "N/mm", lo_open=True),
+    p.add_argument("--kobj-range", type=number(MIN_KOBJ_N_PER_MM, MAX_KOBJ_N_PER_MM, "N/mm"),
                    nargs=2, metavar=("LO", "HI"),
                    help="object stiffnesses to read (N/mm)")
-    p.add_argument("--full-scale-force", type=number(0, MAX_FULL_SCALE_FORCE_N, "N",
-                                                     lo_open=True),
+    p.add_argument("--full-scale-force", type=number(MIN_FULL_SCALE_FORCE_N,
+                                                     MAX_FULL_SCALE_FORCE_N, "N"),
                    metavar="F", help="the rated force on each beam (N)")
     p.add_argument("--columns", type=count(2, 50), default=None, metavar="N",
                    help=f"units along the die (2 ... 50; default {DEFAULT_COLUMNS})")

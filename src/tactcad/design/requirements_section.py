@@ -63,6 +63,12 @@ STATED_ONLY_KEYS = ("min_first_resonance_Hz", "max_thermal_drift_N_per_K", "max_
 #: The largest targets a design file states (the design command's options take the same).
 MAX_FULL_SCALE_FORCE_N = 1000.0
 MAX_KOBJ_N_PER_MM = 1e4
+#: The least full-scale force a design file or option states (N): no read-out chain resolves
+#: a force near it, and far below it a die's cavity depth rounds to zero.
+MIN_FULL_SCALE_FORCE_N = 1e-9
+#: The least object stiffness a K_obj range states (N/mm): the atlas's softest range end;
+#: far below it K_obj is lost in K_m + K_obj's rounding and eq. 3 has no answer.
+MIN_KOBJ_N_PER_MM = 1e-6
 MAX_KR_OVER_KM = 1000.0
 MAX_GRASP_FORCE_N = 100.0
 
@@ -70,10 +76,11 @@ MAX_GRASP_FORCE_N = 100.0
 class RequirementsSection(Section):
     """``[requirements]``: every key optional (derived from the design when absent)."""
 
-    full_scale_force_N: number(0.0, MAX_FULL_SCALE_FORCE_N, lo_open=True, unit="N",
+    full_scale_force_N: number(MIN_FULL_SCALE_FORCE_N, MAX_FULL_SCALE_FORCE_N, unit="N",
                                why="tip force every element must carry") = None
-    kobj_range_N_per_mm: listing(number(0.0, MAX_KOBJ_N_PER_MM, lo_open=True, unit="N/mm"), 2, 2,
-                                 f"[LO, HI] with 0 < LO < HI <= {MAX_KOBJ_N_PER_MM:g} N/mm",
+    kobj_range_N_per_mm: listing(number(MIN_KOBJ_N_PER_MM, MAX_KOBJ_N_PER_MM, unit="N/mm"), 2, 2,
+                                 f"[LO, HI] with {MIN_KOBJ_N_PER_MM:g} <= LO < HI <= "
+                                 f"{MAX_KOBJ_N_PER_MM:g} N/mm",
                                  "object stiffnesses the array must read") = None
     kr_over_km: number(1.0, MAX_KR_OVER_KM, lo_open=True, unit="",
                        why="eq. 2 needs a reference stiffer than the measuring element") = None

@@ -191,6 +191,17 @@ def _feasible(data: Mapping[str, Any], targets: Targets, correction) -> bool:
     return _kept("feasible", data, targets, correction, judge)
 
 
+def _feasible_range(data: Mapping[str, Any], targets: Targets, rng: tuple[float, float],
+                    correction) -> bool:
+    """:func:`_feasible` with the K_obj range ``rng`` (N/mm); False for a range the targets
+    refuse (a shifted range past the K_obj bounds a design takes)."""
+    try:
+        shifted = replace(targets, k_obj_range_N_per_mm=rng)
+    except DesignError:
+        return False
+    return _feasible(data, shifted, correction)
+
+
 def _largest_force(data: Mapping[str, Any], targets: Targets, correction) -> float:
     """The largest full-scale force some web carries at the targets' ratio and
     range on ``data`` (0 when the stiffness targets are out of reach or the
@@ -294,15 +305,15 @@ def nearest_targets(data: Mapping[str, Any], targets: Targets, correction=None
             out.append(Alternative("target", "--kr-over-km", ratio, True, 0.0))
     lo, hi = targets.k_obj_range_N_per_mm
     shifts = np.geomspace(1e-2, 1e2, SCAN_POINTS)
-    shift = nearest_on_scan(shifts, 1.0, lambda c: _feasible(
-        data, replace(targets, k_obj_range_N_per_mm=(lo * c, hi * c)), correction))
+    shift = nearest_on_scan(shifts, 1.0, lambda c: _feasible_range(
+        data, targets, (lo * c, hi * c), correction))
     if shift is not None:
         # three digits, the nearest first, then rounded away from the asked range (it does
         # not hold), so that the rounded range stays on the feasible side of the edge
         away = _round_up if shift > 1.0 else _round_down
         for rng in ((float(f"{lo * shift:.3g}"), float(f"{hi * shift:.3g}")),
                     (float(f"{away(lo * shift):.12g}"), float(f"{away(hi * shift):.12g}"))):
-            if _feasible(data, replace(targets, k_obj_range_N_per_mm=rng), correction):
+            if _feasible_range(data, targets, rng, correction):
                 out.append(Alternative("target", "--kobj-range", rng, True, 0.0))
                 break
     return out

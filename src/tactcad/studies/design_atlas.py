@@ -48,10 +48,16 @@ AXES = ("kr_over_km", "kobj_centre_N_per_mm", "kobj_span", "full_scale_force_N",
 AXIS_LIMITS = {
     "kr_over_km": ("--kr-over-km-range", True, (1.0, 1000.0)),
     "kobj_centre_N_per_mm": ("--kobj-centre", True, (1e-4, 1e4)),
-    "kobj_span": ("--kobj-span", True, (1.0, 1e4)),
+    # a span of 1 is one K_obj, which design refuses (LO < HI); the least keeps the
+    # range's ends apart in the six digits design's command line writes
+    "kobj_span": ("--kobj-span", True, (1.001, 1e4)),
     "full_scale_force_N": ("--force-range", True, (1e-4, 1000.0)),
     "columns": ("--columns-range", False, (2, 12)),
 }
+#: Why an axis's limits are what they are, where it is not design's own option range.
+AXIS_WHY = {"kobj_span": "a span of 1 is one K_obj, and design reads a range (--kobj-range LO < "
+                         "HI); the least span keeps its ends apart in the six digits design "
+                         "writes"}
 #: The default target space: ratios about the paper's 10, soft to firm tissue (N/mm), ranges
 #: of 2 ... 50 x, forces from a die's tens of mN to a comb's newtons, 2 ... 8 columns.
 DEFAULT_RANGES = {"kr_over_km": (3.0, 30.0), "kobj_centre_N_per_mm": (0.1, 10.0),
@@ -114,12 +120,38 @@ def checked_ranges(ranges: Mapping[str, tuple[float, float]]) -> dict[str, tuple
         option, _, (least, most) = AXIS_LIMITS[axis]
         if not (_finite(lo) and _finite(hi) and least <= lo <= hi <= most):
             raise DesignError(option, f"{lo:g} {hi:g}" if _finite(lo) and _finite(hi)
-                              else [lo, hi], f"LO <= HI within {least:g} ... {most:g}")
-        if axis == "kr_over_km" and lo <= 1.0:
-            raise DesignError(option, f"{lo:g} {hi:g}", "LO > 1 (a reference stiffer than "
-                              "the measuring element)")
+                              else [lo, hi], f"LO <= HI within {least:g} ... {most:g}",
+                              AXIS_WHY.get(axis, ""))
+        if axis == "kr_over_km" and _g(lo) <= 1.0:  # a point's ratio is written to 6 digits
+            raise DesignError(option, f"{lo:.10g} {hi:.10g}", "LO > 1 (a reference stiffer than "
+                              "the measuring element) in the six digits design writes, "
+                              "at least 1.00001")
         out[axis] = (float(lo), float(hi))
+    check_kobj_reach(out)
     return out
+
+
+def check_kobj_reach(bounds: Mapping[str, tuple[float, float]]) -> None:
+    """Refuse a K_obj centre and span whose ranges reach past what design takes: the
+    softest low end, centre / sqrt(span), and the stiffest high end, centre x sqrt(span),
+    within ``MIN_KOBJ_N_PER_MM ... MAX_KOBJ_N_PER_MM`` (N/mm), so that no point is refused
+    inside a task.
+
+    Args:
+        bounds: axis -> (low, high), every axis of :data:`AXES`.
+
+    Raises:
+        DesignError: ``--kobj-centre``, with the K_obj ends it reaches and the allowed range.
+    """
+    from tactcad.design.requirements_section import MAX_KOBJ_N_PER_MM, MIN_KOBJ_N_PER_MM
+
+    (c_lo, c_hi), (_, span) = bounds["kobj_centre_N_per_mm"], bounds["kobj_span"]
+    softest, stiffest = _g(c_lo / math.sqrt(span)), _g(c_hi * math.sqrt(span))
+    if softest < MIN_KOBJ_N_PER_MM or stiffest > MAX_KOBJ_N_PER_MM:
+        raise DesignError("--kobj-centre", f"{c_lo:g} {c_hi:g}",
+                          f"centres whose ranges, at the widest --kobj-span {span:g}, lie within "
+                          f"{MIN_KOBJ_N_PER_MM:g} ... {MAX_KOBJ_N_PER_MM:g} N/mm (design's "
+                          f"--kobj-range)", f"they reach {softest:g} ... {stiffest:g} N/mm")
 
 
 def _finite(x: Any) -> bool:

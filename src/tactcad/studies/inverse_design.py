@@ -73,6 +73,8 @@ from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_BASE_BELOW_ARM_M
                                        MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, element_process_limits,
                                        plan_from_dict)
 from tactcad.design.tolerances import WEB_DEFAULT_MM
+from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM,
+                                                 MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
 from tactcad.errors import DesignError
 from tactcad.mechanics.correction import load_correction, range_warnings_unsaid
 from tactcad.mechanics.resolution import FORCE_RESOLUTION_N, unit_resolution  # noqa: F401 (API)
@@ -294,12 +296,16 @@ class Targets:
             raise DesignError("--kr-over-km", x, "1 < value <= 1000",
                               "eq. 2 needs a reference stiffer than the measuring element")
         rng = tuple(self.k_obj_range_N_per_mm)
-        if len(rng) != 2 or not all(_finite(k) and k > 0 for k in rng) or not rng[0] < rng[1]:
-            raise DesignError("--kobj-range", list(rng), "two stiffnesses 0 < LO < HI (N/mm)")
+        if len(rng) != 2 or not all(_finite(k) and MIN_KOBJ_N_PER_MM <= k <= MAX_KOBJ_N_PER_MM
+                                    for k in rng) or not rng[0] < rng[1]:
+            raise DesignError("--kobj-range", list(rng),
+                              f"two stiffnesses {MIN_KOBJ_N_PER_MM:g} <= LO < HI <= "
+                              f"{MAX_KOBJ_N_PER_MM:g} (N/mm)")
         object.__setattr__(self, "k_obj_range_N_per_mm", (float(rng[0]), float(rng[1])))
         f = self.full_scale_force_N
-        if not _finite(f) or not 0.0 < f <= 1000.0:
-            raise DesignError("--full-scale-force", f, "0 < value <= 1000 N")
+        if not _finite(f) or not MIN_FULL_SCALE_FORCE_N <= f <= MAX_FULL_SCALE_FORCE_N:
+            raise DesignError("--full-scale-force", f, f"{MIN_FULL_SCALE_FORCE_N:g} <= value <= "
+                                                       f"{MAX_FULL_SCALE_FORCE_N:g} N")
         s = self.kobj_seen_factor
         if not _finite(s) or not 0.01 <= s <= 100.0:
             raise DesignError("--tissue-coupling", s, "a K_obj factor 0.01 ... 100 seen through the tissue")

@@ -99,16 +99,16 @@ class Requirements:
 
 
 def round_down(x: float, digits: int = 2) -> float:
-    """``x`` rounded down to ``digits`` significant digits (x > 0)."""
-    if x <= 0:
+    """``x`` rounded down to ``digits`` significant digits (x > 0; any other x as it is)."""
+    if x <= 0 or not math.isfinite(x):
         return x
     e = math.floor(math.log10(x)) - digits + 1
     return _clean(math.floor(x / 10 ** e + 1e-9) * 10 ** e)
 
 
 def round_up(x: float, digits: int = 2) -> float:
-    """``x`` rounded up to ``digits`` significant digits (x > 0)."""
-    if x <= 0:
+    """``x`` rounded up to ``digits`` significant digits (x > 0; any other x as it is)."""
+    if x <= 0 or not math.isfinite(x):
         return x
     e = math.floor(math.log10(x)) - digits + 1
     return _clean(math.ceil(x / 10 ** e - 1e-9) * 10 ** e)
@@ -291,12 +291,15 @@ def worst_resolution(units: SensingUnits, rng, force_N: float) -> float:
 def resolution_error_rel(units: SensingUnits, rng, force_N: float) -> float:
     """The worst K_obj resolution's relative error from the K errors of the references and
     the measuring elements: its largest change with each K moved by its own error, every
-    sign combination."""
+    sign combination; inf when a move leaves a unit unreadable (its measuring element as
+    stiff as its reference or stiffer: eq. 2 then has no answer, so the error is unbounded)."""
     from tactcad.mechanics.resolution import worst_resolution_rel
 
     worst = worst_resolution(units, rng, force_N)
     moved = [worst_resolution_rel(units.shifted_by_error(sr, sm), rng, force_N)
              for sr in (-1, 1) for sm in (-1, 1)]
+    if not all(math.isfinite(w) for w in moved):
+        return math.inf
     return max(abs(w / worst - 1.0) for w in moved)
 
 
@@ -458,19 +461,22 @@ def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float) -> tu
     :data:`UNREADABLE_RESOLUTION_REL`, the largest a design may state (a design that reads
     worse fails it: its full-scale force is too small for its read-out chain)."""
     units = sensing_units(plan, fig)
-    value, worst = kobj_resolution_requirement(units, rng, force_N)
-    value = min(value, UNREADABLE_RESOLUTION_REL)
+    padded, worst = kobj_resolution_requirement(units, rng, force_N)
+    value = min(padded, UNREADABLE_RESOLUTION_REL)
     if not math.isfinite(worst):
         return value, ("not stated: no element is softer than its row's reference, so no K_obj "
                        "can be read")
     forces = units.force_resolution_N.values()
+    why = ("a measuring element's K within its error may reach its reference's, where eq. 2 "
+           "has no answer" if math.isinf(padded) else
+           "the full-scale force is too small for the read-out chain")
     return value, (f"not stated: the worst K_obj resolution over the range at the full-scale "
                    f"force, {100 * worst:.3g} % ({fig.model}, each element read through the "
                    f"design's [readout] chain to {1e3 * min(forces):.3g}-{1e3 * max(forces):.3g} "
                    f"mN), padded by its error and rounded up"
                    + ("" if value < UNREADABLE_RESOLUTION_REL else
                       f", at most {UNREADABLE_RESOLUTION_REL:g} (the largest a design may state: "
-                      f"the full-scale force is too small for the read-out chain)"))
+                      f"{why})"))
 
 
 #: The requirements on reading K_obj (eq. 3), which apply where a row has a measuring element.

@@ -23,7 +23,8 @@ from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAU
                                                           WeibullPair)
 from tactcad.products.silicon_die.vocabulary.soi_process import DRIE_MIN_RADIUS_UM
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
-                                                 MAX_KOBJ_N_PER_MM)
+                                                 MAX_KOBJ_N_PER_MM, MIN_FULL_SCALE_FORCE_N,
+                                                 MIN_KOBJ_N_PER_MM)
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
 from tactcad.errors import DesignError
 from tactcad.vocabulary.schema import (Problems, Section, Text, described_text, integer,
@@ -42,10 +43,11 @@ class DieSection(Section):
                         'folder', "the jaw whose pocket the die fills")
     kr_over_km: number(1.0, 1000.0, lo_open=True, unit="",
                        why="the reference beam stiffer than the measuring one")
-    kobj_range_N_per_mm: listing(number(0.0, MAX_KOBJ_N_PER_MM, lo_open=True, unit="N/mm"), 2, 2,
-                                 f"[LO, HI] with 0 < LO < HI <= {MAX_KOBJ_N_PER_MM:g} N/mm",
+    kobj_range_N_per_mm: listing(number(MIN_KOBJ_N_PER_MM, MAX_KOBJ_N_PER_MM, unit="N/mm"), 2, 2,
+                                 f"[LO, HI] with {MIN_KOBJ_N_PER_MM:g} <= LO < HI <= "
+                                 f"{MAX_KOBJ_N_PER_MM:g} N/mm",
                                  "object stiffnesses the die must read")
-    full_scale_force_N: number(0.0, MAX_FULL_SCALE_FORCE_N, lo_open=True, unit="N",
+    full_scale_force_N: number(MIN_FULL_SCALE_FORCE_N, MAX_FULL_SCALE_FORCE_N, unit="N",
                                why="the rated force on each beam")
     columns: integer(2, 50, why="units along the die") = DEFAULT_COLUMNS
     pitch_um: number(LEAST_PITCH_UM, 5000.0, unit="um",

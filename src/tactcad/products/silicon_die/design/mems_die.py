@@ -1324,10 +1324,12 @@ def rated_tip_deflections_um(k_r: float, k_m: float, force_N: float,
 def cavity_depth_um(rated_um: float, length_um: float, post_um: float) -> float:
     """A row's cavity depth (um): its beam's end meets the floor when the post has
     travelled :data:`STOP_MULTIPLE` x ``rated_um`` in the shallowest cavity the depth
-    tolerance allows; rounded up to :data:`CAVITY_STEP_UM`."""
+    tolerance allows; rounded up to :data:`CAVITY_STEP_UM`, one step at the least (a
+    travel within the rounding's slack made it 0 um, and every limit scaled by it
+    divided by zero)."""
     need = (STOP_MULTIPLE * rated_um * end_over_post(length_um, post_um)
             / (1.0 - CAVITY_DEPTH_TOLERANCE_REL))
-    return CAVITY_STEP_UM * math.ceil(need / CAVITY_STEP_UM - 1e-9)
+    return CAVITY_STEP_UM * max(1, math.ceil(need / CAVITY_STEP_UM - 1e-9))
 
 
 def pads_span_um() -> float:
