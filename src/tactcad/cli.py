@@ -243,14 +243,16 @@ def run_command(argv: list[str] | None) -> int:
 
     argv = sys.argv[1:] if argv is None else list(argv)
     as_json, quiet = "--json" in argv, "--quiet" in argv
-    notes = WarningLines(echo=not (as_json or quiet))
+    # a stream of JSON lines goes out as it happens; its warnings go to stderr
+    streams = as_json and streams_json_lines(argv)
+    notes = WarningLines(echo=not (as_json or quiet) or (streams and not quiet))
     captured = io.StringIO()
-    with notes.capture(), (contextlib.redirect_stdout(captured) if as_json
+    with notes.capture(), (contextlib.redirect_stdout(captured) if as_json and not streams
                            else contextlib.nullcontext()):
         code = dispatch(argv, as_json)
     # the design a run worked on heads its stderr; an error stays one line
     heads = print_heads(echo=not (as_json or quiet) and code in (0, 1))
-    if as_json:
+    if as_json and not streams:
         text = captured.getvalue()
         merged = json_with_warnings(text, notes.lines, heads if code in (0, 1) else [])
         sys.stdout.write(text if merged is None else merged + "\n")
@@ -258,6 +260,18 @@ def run_command(argv: list[str] | None) -> int:
             for line in notes.lines:
                 print(f"tactcad: warning: {line}", file=sys.stderr)
     return code
+
+
+#: Commands whose ``--json`` is a stream of JSON lines, one event a line as it happens
+#: (``watch``): their stdout is not held back to merge the warnings into one object.
+STREAMING_JSON_COMMANDS = frozenset({"watch"})
+
+
+def streams_json_lines(argv: list[str]) -> bool:
+    """True when ``argv``'s command writes its ``--json`` as a stream of JSON lines
+    (:data:`STREAMING_JSON_COMMANDS`): the first word that is not an option names it."""
+    command = next((a for a in argv if not a.startswith("-")), None)
+    return command in STREAMING_JSON_COMMANDS
 
 
 def parse_checked(argv: list[str]) -> argparse.Namespace:

@@ -632,3 +632,28 @@ def test_a_watch_stopped_at_random_moments_ends_with_its_status(tmp_path, defaul
         assert got.ended_s is not None, got  # it ended at all
         assert got.exit_code == 0 and got.stopped_line and not got.traceback, got
         assert got.left_behind == 0, got
+
+
+@pytest.mark.parametrize("argv, streams", [
+    (["watch", "--json", "--poll"], True),
+    (["--quiet", "watch", "--json"], True),
+    (["verify", "--json"], False),
+])
+def test_watch_json_lines_go_out_as_they_happen_not_held_for_one_object(monkeypatch, argv,
+                                                                        streams):
+    # every event of `watch --json | consumer` arrived at once when the watch stopped:
+    # stdout was held to merge warnings into one JSON object, as for the other commands
+    import io
+
+    from tactcad import cli
+
+    seen = []
+
+    def dispatch(argv, as_json):
+        seen.append(isinstance(sys.stdout, io.StringIO))
+        print('{"event": "x"}')
+        return 0
+
+    monkeypatch.setattr(cli, "dispatch", dispatch)
+    assert cli.run_command(argv) == 0
+    assert seen == [not streams] and cli.streams_json_lines(argv) is streams
