@@ -278,3 +278,12 @@ def test_max_grasp_force_out_of_range_is_refused_naming_it(design_data, value, w
     line = next(e.line() for e in info.value.errors
                 if e.field == "requirements.max_grasp_force_N")
     assert words in line and repr(value) in line, line
+
+
+def test_a_pitch_no_tip_fits_is_refused_as_the_pitch_alone(tmp_path):
+    # the tip width's refusal followed with "allowed value <= -0.1 mm"
+    proc = _cli("scenes", "--design", str(_project_dir(tmp_path)), "--set", "array.pitch_mm=0.1")
+    assert proc.returncode == 2 and "array.pitch_mm = 0.1" in proc.stderr
+    assert "tip_width_mm" not in proc.stderr and "<= -" not in proc.stderr
+    near = _cli("scenes", "--design", str(_project_dir(tmp_path)), "--set", "array.pitch_mm=2.0")
+    assert "element.tip_width_mm" in near.stderr  # a pitch a narrower tip fits: still named

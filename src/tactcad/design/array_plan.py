@@ -480,10 +480,11 @@ def _check_array(d: DesignFile, p: Problems) -> None:
     p.within("array.pitch_mm", d.array.pitch_mm, sheet + MIN_SPACER_MM,
              why=f"pitch must exceed sheet.thickness_mm = {fmt(sheet)} mm by a spacer of at least "
                  f"{fmt(MIN_SPACER_MM)} mm")
-    p.within("element.tip_width_mm", d.element.tip_width_mm,
-             hi=d.array.pitch_mm - MIN_TIP_GAP_MM,
-             why=f"tips of the two rows need a {fmt(MIN_TIP_GAP_MM)} mm gap at pitch "
-                 f"{fmt(d.array.pitch_mm)} mm")
+    widest_tip = d.array.pitch_mm - MIN_TIP_GAP_MM
+    if widest_tip > 0:  # else no tip fits the pitch: the pitch's own refusal says why
+        p.within("element.tip_width_mm", d.element.tip_width_mm, hi=widest_tip,
+                 why=f"tips of the two rows need a {fmt(MIN_TIP_GAP_MM)} mm gap at pitch "
+                     f"{fmt(d.array.pitch_mm)} mm")
 
 
 def _check_element(d: DesignFile, p: Problems) -> None:
