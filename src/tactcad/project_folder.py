@@ -533,6 +533,10 @@ def new_project(folder: str | Path, *, example: str | None = None,
     data = read_toml(source, "design file")
     if from_design is not None and is_die_file(data):
         return new_die_project(folder, source, force=force)
+    if from_design is not None and not isinstance(data.get("design"), dict):
+        # a companion (rigs, scenes) or another TOML: not a design to start from
+        raise DesignError("--from-design", str(from_design), "a design file (a [design] "
+                          "table, or a die's [die])", f"{source.name} has no [design] table")
     # the design named for the project (``new palp`` writes palp.toml), where its text allows
     text, name = named_for_project(source.read_text(encoding="utf-8"),
                                    Path(folder).resolve().name)

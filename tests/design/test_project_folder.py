@@ -482,3 +482,11 @@ def test_a_new_project_is_not_written_beside_another_design_file(tmp_path):
     assert sorted(p.name for p in folder.iterdir()) == ["old.toml"]
     made = new_project(tmp_path / "x.toml")  # a folder named like a file: no x.toml.toml
     assert made.design.name == "x.toml"
+
+
+def test_new_from_a_file_that_is_no_design_is_refused_as_such(tmp_path):
+    # a project's rigs.toml gave 112 errors, one for each design table it lacks
+    rigs = EXAMPLES / "ti_array_2x3" / "rigs.toml"
+    with pytest.raises(DesignError, match="--from-design.*a design file.*no \\[design\\] table"):
+        new_project(tmp_path / "x", from_design=rigs)
+    assert not (tmp_path / "x").exists()
