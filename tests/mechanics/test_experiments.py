@@ -435,3 +435,18 @@ def test_the_sample_modulus_comes_from_the_designs_own_tip_face():
     for face in ((1.0, 3.0), (2.0, 3.0), (0.6, 1.0)):
         lone = [ArrayElement(1, 10.0, Punch(0.0, 0.0, *face))]
         assert sample_compliance(lone, 4.0, SampleSpec("halfspace"))[0, 0] == pytest.approx(1 / 4.0, rel=1e-9)
+
+
+def test_a_reading_file_that_leaves_out_an_element_flags_it(tmp_path, capsys):
+    # one element's rows missing: the rest were fitted and the report said "flags (0)"
+    source = REPO / "hardware" / "macro_array" / "calibration_example.csv"
+    lines = source.read_text(encoding="utf-8").splitlines(keepends=True)
+    short = tmp_path / "short.csv"
+    short.write_text("".join(l for l in lines if not l.startswith("3,")), encoding="utf-8")
+    assert main(["calibrate", "--data", str(source), "--json"]) == 0
+    whole = strict_json(capsys.readouterr().out)["elements_without_readings"]
+    assert whole == [5]  # the paper's element 5 did not work: the example has no rows of it
+    assert main(["calibrate", "--data", str(short), "--json"]) == 0
+    out = strict_json(capsys.readouterr().out)
+    assert out["elements_without_readings"] == [3, 5]
+    assert any(f["text"].startswith("element 3: no readings") for f in out["audit"]["flags"])

@@ -242,6 +242,10 @@ def run(args: argparse.Namespace) -> int:
         report["skipped_elements"] = sorted({c.element for c in ca.from_table1()} - present)
     report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance, k_sensor,
                                paper_criteria=cites_paper(plan.raw))
+    if args.data:  # a reading file that leaves out an element of the design says so
+        unread, flags = ca.unread_elements(plan, calibrations, args.data)
+        report["elements_without_readings"] = unread
+        report["audit"]["flags"] += flags
     if args.plot:
         from tactcad.paper.figures import plot_calibration
 

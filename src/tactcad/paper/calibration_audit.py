@@ -232,6 +232,22 @@ def _flag(elements, check: str, value: float, limit: float, text: str) -> dict:
             "limit": float(limit), "text": text}
 
 
+def unread_elements(plan, calibrations: list[ElementCalibration], source: str
+                    ) -> tuple[list[int], list[dict]]:
+    """The design's elements a reading file left out, and a flag for each.
+
+    Args:
+        plan: the design. calibrations: the fitted elements. source: the file, for the words.
+
+    Returns:
+        (the element numbers without readings, ascending; their flags, as :func:`audit`'s).
+    """
+    unread = sorted({slot.number for slot in plan.slots} - {c.element for c in calibrations})
+    return unread, [_flag([e], "readings", 0.0, 1.0,
+                          f"element {e}: no readings in {source}; not calibrated")
+                    for e in unread]
+
+
 def audit(plan, calibrations: list[ElementCalibration], model: str = "closed-form",
           gain_tolerance: float = DEFAULT_GAIN_TOLERANCE,
           k_sensor: float = paper_data.K_SENSOR_N_PER_MM,
