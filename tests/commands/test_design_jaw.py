@@ -336,3 +336,68 @@ def test_a_design_stopped_after_its_solves_began_leaves_no_folder_it_made(tmp_pa
     (tmp_path / "strip" / "notes.txt").write_text("mine", encoding="utf-8")
     assert cli.main(args) == 2
     assert (tmp_path / "strip" / "notes.txt").read_text(encoding="utf-8") == "mine"
+
+
+def test_several_constructions_refusing_offer_each_ones_nearest_the_nearest_first():
+    """Two constructions refuse a force: each one's own lighter force is offered with its
+    ``--construction``, the larger force (the nearer the asked one) first, and the headline
+    is that construction's refusal, whatever order they were tried in."""
+    import argparse
+
+    from tactcad.commands.design import constructions_refusal
+    from tactcad.errors import DesignError
+    from tactcad.vocabulary.binding_limits import STOP, STRENGTH
+
+    args = argparse.Namespace(full_scale_force=1.0, kobj_range=[0.5, 5.0], columns=None)
+    low = DesignError("--full-scale-force", 1.0, "at most 0.03 N", "the die's roots",
+                      alternatives=[{"option": "--full-scale-force 0.03", "words": "lighter"}],
+                      limit=STRENGTH)
+    high = DesignError("--full-scale-force", 1.0, "at most 0.14 N", "the comb's stops",
+                       alternatives=[{"option": "--full-scale-force 0.14", "words": "largest"}],
+                       limit=STOP)
+    for tried in ([("mems-die", "silicon die", low), ("monolithic-comb", "comb", high)],
+                  [("monolithic-comb", "comb", high), ("mems-die", "silicon die", low)]):
+        err = constructions_refusal(tried, args)
+        assert [a["option"] for a in err.alternatives] == [
+            "--construction monolithic-comb --full-scale-force 0.14",
+            "--construction mems-die --full-scale-force 0.03"]
+        assert err.field == "--full-scale-force" and err.limit == STOP
+        assert str(err).startswith("--full-scale-force = 1.0: allowed at most 0.14 N (comb")
+        assert str(err).index("comb: ") < str(err).index("silicon die: ")
+
+
+def test_a_pasted_options_distance_is_its_numbers_log_ratio_to_the_asked_ones():
+    import argparse
+    import math
+
+    from tactcad.commands.design import paste_distance
+
+    args = argparse.Namespace(full_scale_force=1.0, kobj_range=[0.5, 5.0], columns=None,
+                              jaw="10")
+    assert paste_distance("--full-scale-force 0.14", args) < \
+        paste_distance("--full-scale-force 0.03", args)
+    assert paste_distance("--construction mems-die --kobj-range 1 5", args) == \
+        pytest.approx(math.log(2))
+    assert paste_distance("--jaw 12", args) == math.inf  # a jaw is no number
+    assert paste_distance("--columns 5", args) == math.inf  # the columns were not asked
+
+
+@pytest.mark.slow  # a comb search and a die plan, then the pasted comb designed
+def test_auto_refused_by_comb_and_die_leads_with_the_force_that_designs(tmp_path):
+    """The 10 mm jaw at 1 N: the comb carries 0.14 N, the die 0.03 N; the comb's force is
+    offered first with --construction monolithic-comb (the die's led, with no --construction),
+    and pasted, it designs."""
+    argv = ["design", "--jaw", "10", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+            "--out", str(tmp_path / "q.toml")]
+    r = run_cli(*argv, "--full-scale-force", "1", "--json")
+    assert r.returncode == 2 and not (tmp_path / "q.toml").exists()
+    error = json.loads(r.stdout)["error"]
+    options = [a["option"].split() for a in error["alternatives"]]
+    assert [o[:2] for o in options] == [["--construction", "monolithic-comb"],
+                                        ["--construction", "mems-die"]]
+    forces = [float(o[o.index("--full-scale-force") + 1]) for o in options]
+    assert forces == sorted(forces, reverse=True)
+    assert f"{forces[0]:g}" in error["allowed"]
+    r = run_cli(*argv, *options[0], "--json")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["construction"] == "monolithic-comb"
