@@ -401,3 +401,36 @@ def test_auto_refused_by_comb_and_die_leads_with_the_force_that_designs(tmp_path
     r = run_cli(*argv, *options[0], "--json")
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout)["construction"] == "monolithic-comb"
+
+
+def test_a_check_groups_undecided_result_is_counted_undecided_not_passed():
+    from tactcad.checks.check_result import CheckResult
+    from tactcad.commands.design import check_group_summary
+
+    results = [CheckResult("requirement", "kr_over_km", True, "pass"),
+               CheckResult("requirement", "footprint_mm", True, "undecided", undecided=True),
+               CheckResult("requirement", "full_scale_force_N", False, "fail")]
+    summary = check_group_summary(results)
+    assert summary["passed"] == 1
+    assert summary["undecided"] == [results[1].line()]
+    assert summary["failed"] == [results[2].line()]
+
+
+def test_design_reports_the_requirements_verify_leaves_undecided_as_undecided(tmp_path):
+    """A comb whose envelope lies within its tolerance of the pocket: design's requirements
+    check counts the footprint undecided, as verify and check do for the file it wrote (it
+    counted it passed), and the design is written (an undecided row fails nothing)."""
+    out = tmp_path / "a.toml"
+    r = run_cli("design", "--jaw", "10", "--construction", "monolithic-comb", "--kr-over-km",
+                "6.29177", "--kobj-range", "2.13003", "28.1203", "--full-scale-force",
+                "0.109457", "--columns", "5", "--material", "Ti-6Al-4V-annealed", "--out",
+                str(out), "--json")
+    assert r.returncode == 0, r.stderr
+    designed = json.loads(r.stdout)["checks"]["requirements"]
+    v = run_cli("verify", "--design", str(out), "--model", "closed-form", "--json")
+    matrix = json.loads(v.stdout)["matrix"]
+    open_ = sorted(x["requirement"] for x in matrix if x["verdict"] == "undecided")
+    assert open_, "the case no longer leaves a requirement undecided"
+    assert sorted(line.split()[2] for line in designed["undecided"]) == open_
+    assert designed["passed"] == sum(x["verdict"] == "pass" for x in matrix)
+    assert not designed["failed"]

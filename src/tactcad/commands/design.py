@@ -913,7 +913,8 @@ def check_design_name(name: str, out: str) -> None:
 
 def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
     """What ``design --jaw`` found: the room, the chosen design, every candidate, the checks
-    that run without the CAD kernel on the written design."""
+    that run without the CAD kernel on the written design (each group's
+    :func:`check_group_summary`)."""
     from tactcad.design.project import load_project
     from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
 
@@ -922,8 +923,7 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
     checks = {}
 
     def done(label: str, results: list) -> None:
-        checks[label] = {"passed": sum(r.passed for r in results),
-                         "failed": [r.line() for r in results if not r.passed]}
+        checks[label] = check_group_summary(results)
 
     run_groups(groups, CheckContext(project.plan, path.parent, None, project), done)
     d, room = result.data, result.room
@@ -947,6 +947,25 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
         "processes": processes, "checks": checks}
 
 
+def check_group_summary(results: list) -> dict:
+    """One check group's results as ``check`` counts them: an undecided result (a requirement
+    whose margin lies inside its error estimate) is no pass and no failure.
+
+    Args:
+        results: the group's :class:`~tactcad.checks.check_result.CheckResult`.
+
+    Returns:
+        ``passed`` (how many passed), ``undecided`` and ``failed`` (each one's line, as
+        ``check`` prints it).
+    """
+    from tactcad.checks.check_result import status_of
+
+    found = [(status_of(r), r.line()) for r in results]
+    return {"passed": sum(status == "pass" for status, _ in found),
+            "undecided": [line for status, line in found if status == "undecided"],
+            "failed": [line for status, line in found if status == "fail"]}
+
+
 def row_process_verdicts(plan) -> dict[str, list[str]]:
     """Each cut process (:data:`tactcad.vocabulary.process.CUT_PROCESSES`) against the
     written comb's row sheets: the rules it breaks (``process`` check group's lines; empty
@@ -968,6 +987,8 @@ def row_process_verdicts(plan) -> dict[str, list[str]]:
 
 
 def print_jaw_report(r: dict) -> None:
+    from tactcad.checks.check_result import counts_text
+
     j = r["jaw"]
     print(f"{shown_path(r['out'])}: {r['construction']} for the {j['jaw']} (pocket "
           f"{j['pocket_across_mm']:g} x {j['pocket_along_mm']:g} mm, {j['height_mm']:g} mm high)")
@@ -990,8 +1011,10 @@ def print_jaw_report(r: dict) -> None:
         print(f"  rows by {name}: " + ("its rules hold" if not broken else
                                        f"{len(broken)} rules broken (first: {first})"))
     for label, c in r["checks"].items():
-        print(f"  check {label}: {c['passed']} passed, {len(c['failed'])} failed")
-        for line in c["failed"]:
+        print(f"  check {label}: " + counts_text({"passed": c["passed"],
+                                                  "undecided": len(c["undecided"]),
+                                                  "failed": len(c["failed"])}))
+        for line in c["failed"] + c["undecided"]:  # as check prints them
             print(f"    {line}")
 
 
