@@ -9,7 +9,7 @@ import math
 import os
 import shlex
 from pathlib import Path
-from typing import Any
+from typing import Any, Sequence
 
 from tactcad.mechanics.ladder import is_meshed, models
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, progress_from_args
@@ -447,7 +447,7 @@ def paste_distance(option: str, args: argparse.Namespace) -> float:
 
 
 def constructions_refusal(refused: list[tuple[str, str, DesignError]], args: argparse.Namespace,
-                          after: list[str] = (), more: list[dict] = ()) -> DesignError:
+                          after: Sequence[str] = (), more: Sequence[dict] = ()) -> DesignError:
     """The refusal of ``design --jaw`` when several constructions were tried and none designs.
 
     Each construction's own nearest option (the first alternative of its refusal) is offered
