@@ -374,3 +374,101 @@ def test_a_ratio_near_one_on_the_comb_designs_where_a_candidates_k_error_spans_i
     assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
     written = tomllib.loads((out / "q9.toml").read_text("utf-8"))
     assert written["requirements"]["kr_over_km"] == float(ratio)
+
+
+def test_several_constructions_refusing_offer_each_ones_nearest_the_nearest_first():
+    """Two constructions refuse a force: each one's own lighter force is offered with its
+    ``--construction``, the larger force (the nearer the asked one) first, and the headline
+    is that construction's refusal, whatever order they were tried in."""
+    import argparse
+
+    from tactcad.commands.design import constructions_refusal
+    from tactcad.errors import DesignError
+    from tactcad.vocabulary.binding_limits import STOP, STRENGTH
+
+    args = argparse.Namespace(full_scale_force=1.0, kobj_range=[0.5, 5.0], columns=None)
+    low = DesignError("--full-scale-force", 1.0, "at most 0.03 N", "the die's roots",
+                      alternatives=[{"option": "--full-scale-force 0.03", "words": "lighter"}],
+                      limit=STRENGTH)
+    high = DesignError("--full-scale-force", 1.0, "at most 0.14 N", "the comb's stops",
+                       alternatives=[{"option": "--full-scale-force 0.14", "words": "largest"}],
+                       limit=STOP)
+    for tried in ([("mems-die", "silicon die", low), ("monolithic-comb", "comb", high)],
+                  [("monolithic-comb", "comb", high), ("mems-die", "silicon die", low)]):
+        err = constructions_refusal(tried, args)
+        assert [a["option"] for a in err.alternatives] == [
+            "--construction monolithic-comb --full-scale-force 0.14",
+            "--construction mems-die --full-scale-force 0.03"]
+        assert err.field == "--full-scale-force" and err.limit == STOP
+        assert str(err).startswith("--full-scale-force = 1.0: allowed at most 0.14 N (comb")
+        assert str(err).index("comb: ") < str(err).index("silicon die: ")
+
+
+def test_a_pasted_options_distance_is_its_numbers_log_ratio_to_the_asked_ones():
+    import argparse
+    import math
+
+    from tactcad.commands.design import paste_distance
+
+    args = argparse.Namespace(full_scale_force=1.0, kobj_range=[0.5, 5.0], columns=None,
+                              jaw="10")
+    assert paste_distance("--full-scale-force 0.14", args) < \
+        paste_distance("--full-scale-force 0.03", args)
+    assert paste_distance("--construction mems-die --kobj-range 1 5", args) == \
+        pytest.approx(math.log(2))
+    assert paste_distance("--jaw 12", args) == math.inf  # a jaw is no number
+    assert paste_distance("--columns 5", args) == math.inf  # the columns were not asked
+
+
+@pytest.mark.slow  # a comb search and a die plan, then the pasted comb designed
+def test_auto_refused_by_comb_and_die_leads_with_the_force_that_designs(tmp_path):
+    """The 10 mm jaw at 1 N: the comb carries 0.14 N, the die 0.03 N; the comb's force is
+    offered first with --construction monolithic-comb (the die's led, with no --construction),
+    and pasted, it designs."""
+    argv = ["design", "--jaw", "10", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+            "--out", str(tmp_path / "q.toml")]
+    r = run_cli(*argv, "--full-scale-force", "1", "--json")
+    assert r.returncode == 2 and not (tmp_path / "q.toml").exists()
+    error = json.loads(r.stdout)["error"]
+    options = [a["option"].split() for a in error["alternatives"]]
+    assert [o[:2] for o in options] == [["--construction", "monolithic-comb"],
+                                        ["--construction", "mems-die"]]
+    forces = [float(o[o.index("--full-scale-force") + 1]) for o in options]
+    assert forces == sorted(forces, reverse=True)
+    assert f"{forces[0]:g}" in error["allowed"]
+    r = run_cli(*argv, *options[0], "--json")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["construction"] == "monolithic-comb"
+
+
+def test_a_check_groups_undecided_result_is_counted_undecided_not_passed():
+    from tactcad.checks.check_result import CheckResult
+    from tactcad.commands.design import check_group_summary
+
+    results = [CheckResult("requirement", "kr_over_km", True, "pass"),
+               CheckResult("requirement", "footprint_mm", True, "undecided", undecided=True),
+               CheckResult("requirement", "full_scale_force_N", False, "fail")]
+    summary = check_group_summary(results)
+    assert summary["passed"] == 1
+    assert summary["undecided"] == [results[1].line()]
+    assert summary["failed"] == [results[2].line()]
+
+
+def test_design_reports_the_requirements_verify_leaves_undecided_as_undecided(tmp_path):
+    """A comb whose envelope lies within its tolerance of the pocket: design's requirements
+    check counts the footprint undecided, as verify and check do for the file it wrote (it
+    counted it passed), and the design is written (an undecided row fails nothing)."""
+    out = tmp_path / "a.toml"
+    r = run_cli("design", "--jaw", "10", "--construction", "monolithic-comb", "--kr-over-km",
+                "6.29177", "--kobj-range", "2.13003", "28.1203", "--full-scale-force",
+                "0.109457", "--columns", "5", "--material", "Ti-6Al-4V-annealed", "--out",
+                str(out), "--json")
+    assert r.returncode == 0, r.stderr
+    designed = json.loads(r.stdout)["checks"]["requirements"]
+    v = run_cli("verify", "--design", str(out), "--model", "closed-form", "--json")
+    matrix = json.loads(v.stdout)["matrix"]
+    open_ = sorted(x["requirement"] for x in matrix if x["verdict"] == "undecided")
+    assert open_, "the case no longer leaves a requirement undecided"
+    assert sorted(line.split()[2] for line in designed["undecided"]) == open_
+    assert designed["passed"] == sum(x["verdict"] == "pass" for x in matrix)
+    assert not designed["failed"]

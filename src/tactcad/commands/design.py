@@ -9,7 +9,7 @@ import math
 import os
 import shlex
 from pathlib import Path
-from typing import Any
+from typing import Any, Sequence
 
 from tactcad.mechanics.ladder import is_meshed, models
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, progress_from_args
@@ -409,6 +409,88 @@ def one_refusal_line(construction: str, exc: DesignError | str) -> str:
         " " + "; ".join(lines[1:]) if len(lines) > 1 else "")
 
 
+def paste_distance(option: str, args: argparse.Namespace) -> float:
+    """How far a pasted option moves what was asked.
+
+    Args:
+        option: the options to paste (``--full-scale-force 0.14``, ``--columns 5
+            --full-scale-force 0.02``); ``--construction`` in it is not counted.
+        args: the options asked.
+
+    Returns:
+        The sum, over each number pasted, of ``|ln(pasted / asked)|`` (scale-free, so a
+        force in N and a K_obj range in N/mm add up; for a lower force, the larger the
+        nearer); ``math.inf`` where it pastes a value asked as no number or not asked at
+        all (a jaw, a jaw file's key, a default's columns): nearness is not measured then.
+    """
+    distance, flag = 0.0, None
+    pasted: dict[str, list[str]] = {}
+    for word in shlex.split(option):
+        if word.startswith("--"):
+            flag = word
+            pasted.setdefault(flag, [])
+        elif flag is not None:
+            pasted[flag].append(word)
+    for flag, words in pasted.items():
+        if flag == "--construction":
+            continue
+        asked = getattr(args, flag[2:].replace("-", "_"), None)
+        asked = list(asked) if isinstance(asked, (list, tuple)) else [asked]
+        if not all(isinstance(a, (int, float)) and not isinstance(a, bool) for a in asked):
+            return math.inf  # asked as no number (a jaw's class or file), or not asked
+        try:
+            pairs = [(float(w), float(a)) for w, a in zip(words, asked, strict=True)]
+        except ValueError:  # a word pasted, or another count of values
+            return math.inf
+        if not words or any(not (p > 0 and a > 0) for p, a in pairs):
+            return math.inf
+        distance += sum(abs(math.log(p / a)) for p, a in pairs)
+    return distance if pasted else math.inf
+
+
+def constructions_refusal(refused: list[tuple[str, str, DesignError]], args: argparse.Namespace,
+                          after: Sequence[str] = (), more: Sequence[dict] = ()) -> DesignError:
+    """The refusal of ``design --jaw`` when several constructions were tried and none designs.
+
+    Each construction's own nearest option (the first alternative of its refusal) is offered
+    with ``--construction`` so that pasting it designs that construction, the one nearest
+    what was asked first (:func:`paste_distance`; for a force the largest that designs), and
+    the headline is that construction's refusal (its option, value, allowed range and limit).
+
+    Args:
+        refused: (its ``--construction`` name, the name its line reads, its refusal), in the
+            order tried.
+        args: the options asked.
+        after: lines said after the refusals (the constructions that do not fit the jaw).
+        more: alternatives offered after the refusals' (a jaw that one of them fits).
+
+    Returns:
+        One :class:`~tactcad.errors.DesignError` naming every refusal, nearest first.
+    """
+    def nearest_of(entry: tuple[str, str, DesignError]) -> float:
+        alternatives = [a for a in entry[2].alternatives if a.get("option")]
+        return paste_distance(alternatives[0]["option"], args) if alternatives else math.inf
+
+    order = sorted(refused, key=nearest_of)  # stable: tied ones in the order tried
+    pasted, seen = [], set()
+    for name, shown, exc in order:
+        for a in exc.alternatives:
+            if a.get("option"):
+                option = f"--construction {name} {a['option']}"
+                if option not in seen:
+                    seen.add(option)
+                    words = a.get("words") or ""
+                    pasted.append({**a, "option": option,
+                                   "words": f"the {shown}: {words}" if words else f"the {shown}"})
+    _, shown, head = order[0]
+    lines = [one_refusal_line(s, e) for _, s, e in order] + list(after)
+    which = shown if len(order) == 1 else (f"{shown}, the nearest of the {len(order)} "
+                                           "constructions that refuse; each one's to paste below")
+    return DesignError(head.field, head.value, f"{head.allowed or 'a design'} ({which})",
+                       "; ".join(lines), alternatives=[*pasted, *more],
+                       limit=getattr(head, "limit", ""))
+
+
 def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder: Path | None,
                      refusals: list, left: list[str]) -> int:
     """``design --jaw`` where only a silicon die fits (or ``--construction mems-die``): the
@@ -748,16 +830,14 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
         # refusals stand, each with what binds and what to paste
         try:
             return write_die_design(args, targets, room, path, folder, told, left)
-        except DesignError as die_refusal:  # neither fits: both say why, the die's first
+        except DesignError as die_refusal:  # neither designs: each says why, the nearest first
             if die_refusal.field in ("--out", "--max-grasp-force", "--kobj-accuracy"):
                 raise  # the die fits the targets: its folder or a requirement is refused
-            raise DesignError(
-                die_refusal.field, die_refusal.value, die_refusal.allowed,
-                f"a silicon die: {die_refusal.why or die_refusal.allowed}; "
-                + "; ".join(one_refusal_line(n, e) for n, e in told),
-                alternatives=[*die_refusal.alternatives,
-                              *(a for _, e in refusals for a in e.alternatives),
-                              *misfit_alternatives(misfits)]) from None
+            raise constructions_refusal(
+                [(n, n, e) for n, e in refusals] + [(DIE_CONSTRUCTION, "silicon die",
+                                                     die_refusal)], args,
+                after=[one_refusal_line(n, misfit_words(m)) for n, m in misfits],
+                more=misfit_alternatives(misfits)) from None
     if result is None and misfits:  # nothing fits the jaw: each product's binding size
         pasted = [*misfit_alternatives(misfits),
                   *(a for _, e in refusals for a in e.alternatives)]
@@ -774,8 +854,10 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     if result is None:
         if len(refusals) == 1:
             raise refusals[0][1]
+        if refusals:
+            raise constructions_refusal([(n, n, e) for n, e in refusals], args)
         raise DesignError("--jaw", args.jaw, "a jaw some construction fits",
-                          "; ".join(f"{n}: {e}" for n, e in refusals) or "no construction seats in a jaw")
+                          "no construction seats in a jaw")
     if args.kobj_accuracy is not None:
         result = with_kobj_accuracy(result, args.kobj_accuracy, refuse=True)
     data = dict(result.data)
@@ -833,7 +915,8 @@ def check_design_name(name: str, out: str) -> None:
 
 def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
     """What ``design --jaw`` found: the room, the chosen design, every candidate, the checks
-    that run without the CAD kernel on the written design."""
+    that run without the CAD kernel on the written design (each group's
+    :func:`check_group_summary`)."""
     from tactcad.design.project import load_project
     from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
 
@@ -842,8 +925,7 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
     checks = {}
 
     def done(label: str, results: list) -> None:
-        checks[label] = {"passed": sum(r.passed for r in results),
-                         "failed": [r.line() for r in results if not r.passed]}
+        checks[label] = check_group_summary(results)
 
     run_groups(groups, CheckContext(project.plan, path.parent, None, project), done)
     d, room = result.data, result.room
@@ -867,6 +949,25 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
         "processes": processes, "checks": checks}
 
 
+def check_group_summary(results: list) -> dict:
+    """One check group's results as ``check`` counts them: an undecided result (a requirement
+    whose margin lies inside its error estimate) is no pass and no failure.
+
+    Args:
+        results: the group's :class:`~tactcad.checks.check_result.CheckResult`.
+
+    Returns:
+        ``passed`` (how many passed), ``undecided`` and ``failed`` (each one's line, as
+        ``check`` prints it).
+    """
+    from tactcad.checks.check_result import status_of
+
+    found = [(status_of(r), r.line()) for r in results]
+    return {"passed": sum(status == "pass" for status, _ in found),
+            "undecided": [line for status, line in found if status == "undecided"],
+            "failed": [line for status, line in found if status == "fail"]}
+
+
 def row_process_verdicts(plan) -> dict[str, list[str]]:
     """Each cut process (:data:`tactcad.vocabulary.process.CUT_PROCESSES`) against the
     written comb's row sheets: the rules it breaks (``process`` check group's lines; empty
@@ -888,6 +989,8 @@ def row_process_verdicts(plan) -> dict[str, list[str]]:
 
 
 def print_jaw_report(r: dict) -> None:
+    from tactcad.checks.check_result import counts_text
+
     j = r["jaw"]
     print(f"{shown_path(r['out'])}: {r['construction']} for the {j['jaw']} (pocket "
           f"{j['pocket_across_mm']:g} x {j['pocket_along_mm']:g} mm, {j['height_mm']:g} mm high)")
@@ -910,8 +1013,10 @@ def print_jaw_report(r: dict) -> None:
         print(f"  rows by {name}: " + ("its rules hold" if not broken else
                                        f"{len(broken)} rules broken (first: {first})"))
     for label, c in r["checks"].items():
-        print(f"  check {label}: {c['passed']} passed, {len(c['failed'])} failed")
-        for line in c["failed"]:
+        print(f"  check {label}: " + counts_text({"passed": c["passed"],
+                                                  "undecided": len(c["undecided"]),
+                                                  "failed": len(c["failed"])}))
+        for line in c["failed"] + c["undecided"]:  # as check prints them
             print(f"    {line}")
 
 
