@@ -72,3 +72,17 @@ def test_gauge_note_names_the_stc_and_the_thermal_drift_when_required():
     stated = note(**{"requirements.max_thermal_drift_N_per_K": 0.5,
                      "readout.gauge_stc_ppm_per_K": 10.8})
     assert "Gauge STC 10.8 ppm/K" in stated and "required <= 0.5 N/K" in stated
+
+
+def test_the_web_note_states_the_k_change_verify_reads_not_the_thin_hinge_law():
+    # the drawing printed +34 % / -28 % (t^2.5) where verify's K band read +31.2 % / -26.4 %
+    from tactcad.api import load
+    from tactcad.drawings.design_notes import element_web_note
+    from tactcad.in_use.kobj_budget import web_tolerance_k_change, web_tolerance_k_rel
+    from tactcad.design.array_plan import EXAMPLES
+
+    plan = load(str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")).plan
+    for g in plan.distinct_elements.values():
+        up, dn = web_tolerance_k_change(g, plan.material)
+        assert max(up, dn) == web_tolerance_k_rel(g, plan.material)
+        assert f"+{up * 100:.0f} % / -{dn * 100:.0f} %" in element_web_note(plan, g)

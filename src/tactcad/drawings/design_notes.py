@@ -75,8 +75,8 @@ def web_tolerance_note(plan: Plan, g: ElementGeometry, web: str, up: float, dn: 
                        spread: tuple[float, float, float, float] | None) -> str:
     """The web-tolerance note; the paper's as-built spread (``spread``: arm,
     K low, K high, ratio) only for a design that cites the paper."""
-    text = (f"Web thickness {web} is the critical dimension: hinge stiffness scales with t^2.5, "
-            f"so the tolerance alone moves stiffness by +{up * 100:.0f} % / -{dn * 100:.0f} %. ")
+    text = (f"Web thickness {web} is the critical dimension: its tolerance alone moves "
+            f"stiffness by +{up * 100:.0f} % / -{dn * 100:.0f} % (closed form, as verify's K band). ")
     if spread is not None and cites_paper(plan.raw):
         a, k0, k1, ratio = spread
         text += (f"The paper's as-built elements (Table 1) of equal {a:g} mm arm measured "
@@ -85,12 +85,13 @@ def web_tolerance_note(plan: Plan, g: ElementGeometry, web: str, up: float, dn: 
 
 
 def element_web_note(plan: Plan, g: ElementGeometry) -> str:
-    """The web-tolerance note of element ``g``: its web's stiffness change by
-    the thin-hinge law (:func:`tactcad.mechanics.closed_form.web_tolerance_stiffness_change`)
-    and the paper's Table 1 spread (:mod:`tactcad.paper.data`)."""
-    from tactcad.mechanics.closed_form import web_tolerance_stiffness_change
+    """The web-tolerance note of element ``g``: its K's change over its web tolerance at the
+    corrected closed form (:func:`tactcad.in_use.kobj_budget.web_tolerance_k_change`, the
+    figures ``verify``'s K band reads) and the paper's Table 1 spread
+    (:mod:`tactcad.paper.data`)."""
+    from tactcad.in_use.kobj_budget import web_tolerance_k_change
 
-    up, dn = web_tolerance_stiffness_change(g.web_thickness_mm, g.web_tolerance_mm)
+    up, dn = web_tolerance_k_change(g, plan.material)
     spread = None
     if cites_paper(plan.raw):  # the paper's data only for the paper's design
         from tactcad.paper.data import largest_equal_arm_spread

@@ -312,17 +312,30 @@ def thermal_span(ctx: Context, unit: Unit, op: Operating) -> Contribution:
 def web_tolerance_k_rel(geometry, material) -> float:
     """Largest relative K change of one element over its web ± web tolerance (the
     ladder's closed form; a web that would vanish is skipped)."""
+    return max(web_tolerance_k_change(geometry, material))
+
+
+def web_tolerance_k_change(geometry, material) -> tuple[float, float]:
+    """One element's relative K rise at its web + web tolerance and fall at its web - web
+    tolerance (the ladder's corrected closed form, the figures ``verify``'s K band reads;
+    dimensionless, each >= 0; a web that would vanish gives a fall of 0, not judged).
+
+    Args:
+        geometry: the element (mm). material: its material (MPa).
+
+    Returns:
+        (rise, fall), relative to the nominal web's K.
+    """
     from tactcad.mechanics.ladder import estimate
 
     k0 = estimate("closed-form", geometry, material).stiffness_N_per_mm
-    worst = 0.0
-    for sign in (-1, 1):
+    change = []
+    for sign in (1, -1):
         t = geometry.web_thickness_mm + sign * geometry.web_tolerance_mm
-        if t > 0:
-            k = estimate("closed-form", replace(geometry, web_thickness_mm=t),
-                         material).stiffness_N_per_mm
-            worst = max(worst, abs(k / k0 - 1.0))
-    return worst
+        k = estimate("closed-form", replace(geometry, web_thickness_mm=t),
+                     material).stiffness_N_per_mm if t > 0 else k0
+        change.append(abs(k / k0 - 1.0))
+    return change[0], change[1]
 
 
 def manufacturing_tolerance(ctx: Context, unit: Unit, op: Operating) -> Contribution:
