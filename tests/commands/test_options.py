@@ -192,3 +192,20 @@ def test_the_input_fuzz_runs_and_counts_tracebacks():
     lines = proc.stdout.splitlines()
     assert lines[0].startswith("fuzz data files: 30 tried") and "0 tracebacks" in lines[0]
     assert lines[1].startswith("fuzz options: ") and "0 tracebacks" in lines[1]
+
+
+def test_a_key_set_twice_is_said_as_a_repeated_option_is():
+    # a repeated --kobj-range warned which value is taken; a repeated --set key said nothing
+    from tactcad.commands import parse_overrides
+    from tactcad.errors import RepeatedOptionWarning
+
+    with pytest.warns(RepeatedOptionWarning, match=r"--set element.web_thickness_mm given 2 "
+                                                   r"times \(0.3, 0.35\): the last, 0.35"):
+        taken = parse_overrides(["element.web_thickness_mm=0.3", "array.pitch_mm=4.0",
+                                 "element.web_thickness_mm = 0.35"])
+    assert taken == {"element.web_thickness_mm": 0.35, "array.pitch_mm": 4.0}
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        parse_overrides(["element.web_thickness_mm=0.3", "array.pitch_mm=4.0"])  # no word

@@ -84,9 +84,26 @@ def parse_override(text: str, example: str = SET_EXAMPLE) -> tuple[str, Any]:
 
 
 def parse_overrides(texts: list[str] | None, example: str = SET_EXAMPLE) -> dict[str, Any]:
-    """Every ``--set`` in order (a later one for the same key wins); ``example`` as
-    :func:`parse_override` takes it."""
-    return dict(parse_override(t, example) for t in texts or ())
+    """Every ``--set`` in order (a later one for the same key wins, as a repeated option's
+    last value does, and is said the same way); ``example`` as :func:`parse_override`
+    takes it.
+
+    Warns:
+        RepeatedOptionWarning: a key set more than once, naming every value and the one taken.
+    """
+    import warnings
+
+    from tactcad.errors import RepeatedOptionWarning
+
+    pairs = [parse_override(t, example) for t in texts or ()]
+    for key in dict.fromkeys(k for k, _ in pairs):
+        given = [text.partition("=")[2].strip() for text, (k, _) in zip(texts or (), pairs)
+                 if k == key]
+        if len(given) > 1:
+            warnings.warn(RepeatedOptionWarning(
+                f"--set {key} given {len(given)} times ({', '.join(given)}): the last, "
+                f"{given[-1]}, is taken"))
+    return dict(pairs)
 
 
 def plan_from_args(args: argparse.Namespace):

@@ -184,7 +184,8 @@ def warn_repeated(parser: argparse.ArgumentParser, args: argparse.Namespace,
     """Say which value is taken when an option of one value is given twice
     (``--verify fem3d --verify auto``): the last, as argparse takes it, so that an
     alternative a refusal names can be pasted at the end of the command line. Options that
-    gather (``--set``) and flags may repeat without a word.
+    gather (``--set``: a key it sets twice is said by :func:`tactcad.commands.parse_overrides`)
+    and flags may repeat without a word.
 
     Warns:
         RepeatedOptionWarning: naming the option, every value given and the one taken.
