@@ -450,3 +450,13 @@ def test_a_reading_file_that_leaves_out_an_element_flags_it(tmp_path, capsys):
     out = strict_json(capsys.readouterr().out)
     assert out["elements_without_readings"] == [3, 5]
     assert any(f["text"].startswith("element 3: no readings") for f in out["audit"]["flags"])
+
+
+@pytest.mark.parametrize("command", ["table1", "table2"])
+def test_a_design_that_does_not_cite_the_paper_is_refused_with_the_command_to_run(command,
+                                                                                  capsys):
+    # table2's refusal told the lab to run table1 in the paper's project
+    ti = str(REPO / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
+    assert main([command, "--design", ti, "--json"]) == 2
+    error = strict_json(capsys.readouterr().out)["error"]
+    assert error["alternatives"][0]["words"].endswith(f"run {command} in it")

@@ -45,7 +45,8 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.paper.table1 import require_table1
 
     plan = plan_from_args(args)
-    require_table1(plan)  # the paper's measurements: the paper's design, or a refusal saying why
+    # the paper's measurements: the paper's design, or a refusal saying why
+    require_table1(plan, command="table2")
     report = table2_report(plan, args.model)
     if args.plot:
         report["plot"] = str(write_plot(report, args.plot))

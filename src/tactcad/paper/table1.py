@@ -139,8 +139,14 @@ def table1_not_applicable(plan: Plan) -> str | None:
     return None
 
 
-def require_table1(plan: Plan, option: str = "--design") -> None:
-    """Refuse a design Table 1 cannot be compared with (:func:`table1_not_applicable`).
+def require_table1(plan: Plan, option: str = "--design", command: str = "table1") -> None:
+    """Refuse a design the paper's measurements cannot be compared with
+    (:func:`table1_not_applicable`): its Table 1 (``table1``) and the Table 2 built on it
+    (``table2``).
+
+    Args:
+        plan: the design. option: the option the refusal names. command: the command
+            refused, named in the alternative it pastes.
 
     Raises:
         DesignError: naming ``option``, the design and why.
@@ -155,7 +161,7 @@ def require_table1(plan: Plan, option: str = "--design") -> None:
                           "a design that cites the paper and can reproduce its Table 1", why,
                           alternatives=[{"option": "tactcad new paper --example macro_array",
                                          "words": "the paper's 2 x 5 array as a project of "
-                                                  "its own; run table1 in it"}])
+                                                  f"its own; run {command} in it"}])
 
 
 def as_built_webs(plan: Plan) -> list[dict]:
