@@ -67,45 +67,6 @@ def test_the_facts_are_kept_in_the_store_and_a_new_section_is_not_missed(monkeyp
         design_facts.cache_clear()
 
 
-def test_facts_kept_ahead_are_read_back_as_design_facts_works_them_out(tmp_path):
-    from tactcad.store import Store, counting_results, keeping_results
-
-    plan = load_design(TI)
-    design_facts.cache_clear()
-    try:
-        with keeping_results(Store(tmp_path)):
-            assert manifest.keep_design_facts_ahead(plan)
-        with keeping_results(Store(tmp_path)), counting_results() as later:
-            read = design_facts(plan)
-        design_facts.cache_clear()
-        assert later.reused["manifest facts"] == 1 and later.solved() == 0
-        assert read == design_facts(plan)  # the same facts as worked out afresh
-    finally:
-        design_facts.cache_clear()
-
-
-def said_once(plan) -> str:
-    warnings.warn("a section's caveat", UserWarning)
-    return "said"
-
-
-def test_facts_whose_working_out_warns_are_not_kept_ahead_so_the_run_says_it(monkeypatch,
-                                                                            tmp_path):
-    from tactcad.store import Store, keeping_results
-
-    monkeypatch.setattr(manifest, "MANIFEST_SECTIONS", dict(MANIFEST_SECTIONS))
-    register_section(ManifestSection("caveat", f"{__name__}:said_once"))
-    plan = load_design(TI)
-    design_facts.cache_clear()
-    try:
-        with keeping_results(Store(tmp_path)):
-            assert not manifest.keep_design_facts_ahead(plan)
-            with pytest.warns(UserWarning, match="a section's caveat"):
-                assert design_facts(plan)["caveat"] == "said"  # worked out here, said here
-    finally:
-        design_facts.cache_clear()
-
-
 @pytest.mark.parametrize("key", ["parts", "files", "design"])
 def test_a_taken_key_is_refused(key):
     with pytest.raises(ValueError, match="registered already"):

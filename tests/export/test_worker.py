@@ -39,19 +39,6 @@ SCRIPT = textwrap.dedent('''
             return [{"path": name, "part": name, "kind": "test", "pid": os.getpid()}]
         return make
 
-    if sys.argv[2] == "facts":  # the run's own worker, started with no job yet
-        from tactcad.export.manifest import design_facts
-        from tactcad.export.worker import Worker
-        from tactcad.store import counting_results, keeping_results
-
-        store = Store(staging / "store")
-        run = Run(load_project(), staging, print, store)
-        with keeping_results(store):
-            Worker(run, []).close()  # its start done (the pool's first task waits for it)
-            with counting_results() as counts:
-                design_facts(run.plan)
-        print(json.dumps({"reused": counts.reused, "computed": counts.computed}))
-        sys.exit(0)
     jobs = [Job("a", "ka", writer("a")),
             Job("w1", "k1", writer("w1"), worker=True),
             Job("w2", "k2", writer("w2", ("w1",)), after=("w1",), worker=True),
@@ -117,12 +104,6 @@ def test_this_process_works_while_the_worker_makes_what_its_next_job_reads(tmp_p
     assert rec["w1"]["pid"] != rec["x"]["pid"] == rec["y"]["pid"]
     assert rec["x"]["end"] < rec["w1"]["end"]  # x did not wait behind y
     assert out["prepared"] < rec["w1"]["end"] <= rec["y"]["start"]
-
-
-@pytest.mark.slow
-def test_a_runs_worker_keeps_the_design_facts_while_the_run_loads_the_kernel(tmp_path):
-    out = run_script(tmp_path, "facts")
-    assert out["reused"] == {"manifest facts": 1} and "manifest facts" not in out["computed"]
 
 
 @pytest.mark.slow

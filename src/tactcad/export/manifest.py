@@ -111,44 +111,11 @@ def design_facts(plan: Plan) -> dict:
     """
     from tactcad.store import kept_result
 
-    return kept_result("manifest facts", lambda: _facts_of(plan), *_facts_inputs(plan))
-
-
-def keep_design_facts_ahead(plan: Plan) -> bool:
-    """Work out :func:`design_facts` and keep them in the active result store
-    (:func:`tactcad.store.keeping_results`), unless working them out warns: a warning is the
-    user's to read, and a value read back from the store would not say it again, so those
-    facts are left to the run that prints its warnings. An export's second process calls
-    this while the run's process loads the CAD kernel (:mod:`tactcad.export.worker`).
-
-    Args:
-        plan: the validated design.
-
-    Returns:
-        True when the facts were kept, False when working them out warned (nothing kept).
-
-    Raises:
-        Exception: whatever a manifest section raises (the run's process raises it again).
-    """
-    import warnings
-
-    from tactcad.store import kept_result
-
-    with warnings.catch_warnings(record=True) as issued:
-        warnings.simplefilter("always")
-        facts = _facts_of(plan)
-    if issued:
-        return False
-    kept_result("manifest facts", lambda: facts, *_facts_inputs(plan))
-    return True
-
-
-def _facts_inputs(plan: Plan) -> tuple:
-    """What the design facts depend on, as their store key reads them: the file's name is a
-    field a plan's key leaves out, yet the head shows it; the sections registered (a plugin
-    may add one) shape the facts as much as the design does."""
+    # the file's name is a field a plan's key leaves out, yet the head shows it; the sections
+    # registered (a plugin may add one) shape the facts as much as the design does
     sections = [(s.key, s.function) for s in manifest_sections()]
-    return plan, Path(plan.source).name, plan.design_hash, sections
+    return kept_result("manifest facts", lambda: _facts_of(plan), plan, Path(plan.source).name,
+                       plan.design_hash, sections)
 
 
 def _facts_of(plan: Plan) -> dict:

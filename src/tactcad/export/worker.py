@@ -330,27 +330,8 @@ def _start() -> None:
         pass
     import importlib
 
-    run = _INHERITED.get("run")
-    if run is not None:  # a run's own worker, forked before the run loads the kernel
-        _design_facts_ahead(run)
     for module in PRELOAD:
         importlib.import_module(module)
-
-
-def _design_facts_ahead(run: Run) -> None:
-    """The manifest's design facts (kernel-free: the requirements, the tissue coupling, the
-    K_obj budget) worked out here and kept in the run's store while the run's process loads
-    the kernel and builds the solids; its review page and manifest then read them back
-    (:func:`tactcad.export.manifest.keep_design_facts_ahead`). Facts whose working-out warns
-    or fails are left to the run's process, which says why."""
-    from tactcad.export.jobs import keeping_run_results
-    from tactcad.export.manifest import keep_design_facts_ahead
-
-    try:
-        with keeping_run_results(run):
-            keep_design_facts_ahead(run.plan)
-    except Exception:  # the run's process works them out again and raises it
-        pass
 
 
 def _hand_over(solids: Mapping[str, Any], blobs: dict[str, bytes | None]) -> bytes:
