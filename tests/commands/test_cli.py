@@ -179,10 +179,14 @@ def test_an_option_of_one_value_given_twice_takes_the_last_and_says_so(capsys, r
     doc = json.loads(capsys.readouterr().out)
     assert doc["model"] == "beam"
     assert "--model given 2 times (fem2d, beam): the last, beam, is taken" in doc["warnings"]
-    # options that gather may repeat without a word
+    # an option that gathers may repeat without a word, but a --set key set twice is said
+    assert cli.main(["stiffness", "--element", "1", "--set", "element.web_thickness_mm=0.3",
+                     "--set", "element.notch_radius_mm=1.0", "--json"]) == 0
+    assert not [w for w in json.loads(capsys.readouterr().out)["warnings"] if "given" in w]
     assert cli.main(["stiffness", "--element", "1", "--set", "element.web_thickness_mm=0.3",
                      "--set", "element.web_thickness_mm=0.31", "--json"]) == 0
-    assert not [w for w in json.loads(capsys.readouterr().out)["warnings"] if "given" in w]
+    assert ("--set element.web_thickness_mm given 2 times (0.3, 0.31): the last, 0.31, is "
+            "taken") in json.loads(capsys.readouterr().out)["warnings"]
 
 
 def test_os_error_is_json_with_exit_3(capsys, tmp_path):
