@@ -218,3 +218,16 @@ def test_every_iso_bolt_gets_the_dimensions_it_needs_under_the_tallest_arm(bolt)
     plan = plan_from_dict(tables)
     assert plan.bolt.size == bolt
     assert plan.element(1).geometry.base_height_mm >= 5.0 + plan.bolt.clearance_hole_mm + 2.0
+
+
+def test_a_process_whose_sheets_all_break_a_rule_is_refused_naming_the_grid(tmp_path, capsys):
+    """Photochemical etching cuts no sheet both thick enough for the default gauge grid and
+    thin enough for its tolerance: the refusal names the grid rule, not only a sheet the
+    process cannot cut."""
+    code, doc = _run(["design", "--kr-over-km", "8", "--kobj-range", "0.5", "4",
+                      "--full-scale-force", "0.05", "--process", "photochemical-etching",
+                      "--material", "7075-T6", "--out", str(tmp_path / "pce")], capsys)
+    assert code == 2
+    message = doc["error"]["message"]
+    assert "readout.grid_width_mm" in message and "sheet" in message
+    assert not (tmp_path / "pce").exists()

@@ -341,15 +341,44 @@ class ReadoutSection(Section):
                                  "the reading at the rated force, from a load-unload cycle") = None
 
 
+def effective_grid_size(ro: Any, key: str) -> tuple[float, str]:
+    """The grid size the read-out chain uses (mm): the design file's, else the default.
+
+    Args:
+        ro: the validated ``[readout]`` section, or None when the file has none.
+        key: ``"grid_width_mm"`` or ``"grid_length_mm"``.
+
+    Returns:
+        (size in mm, "design file" or the default's source).
+    """
+    stated = getattr(ro, key, None) if ro is not None else None
+    if stated is not None:
+        return float(stated), "design file"
+    value, source = DEFAULTS[key]
+    return float(value), source
+
+
 def check_readout(d: Any, p: Problems) -> None:
     """Cross-field rule: the gauge grid fits on the element's top face over the web."""
     ro = getattr(d, "readout", None)
+    sheet = d.sheet.thickness_mm
+    width, width_source = effective_grid_size(ro, "grid_width_mm")
+    if width > sheet:
+        p.add("readout.grid_width_mm", width, f"<= sheet.thickness_mm = {fmt(sheet)} mm",
+              "the grid lies on the element's top face, one sheet thick"
+              + ("" if width_source == "design file" else
+                 "; not stated, so the library default's: state the narrower grid of the gauge "
+                 "bonded, or a thicker sheet"))
+    shortest = min(d.arms.lengths_mm)
+    length, length_source = effective_grid_size(ro, "grid_length_mm")
+    if length > shortest:
+        p.add("readout.grid_length_mm", length, f"<= {fmt(shortest)} mm (shortest arm)",
+              "the grid is centred over the web and must stay on the arm's top face"
+              + ("" if length_source == "design file" else
+                 "; not stated, so the library default's: state the shorter grid of the gauge "
+                 "bonded, or longer arms"))
     if ro is None:
         return
-    sheet = d.sheet.thickness_mm
-    if ro.grid_width_mm is not None and ro.grid_width_mm > sheet:
-        p.add("readout.grid_width_mm", ro.grid_width_mm, f"<= sheet.thickness_mm = {fmt(sheet)} mm",
-              "the grid lies on the element's top face, one sheet thick")
     if ro.filter_corner_Hz is not None and ro.filter_order == 0:
         p.add("readout.filter_corner_Hz", ro.filter_corner_Hz, "no corner with filter_order = 0",
               "order 0 means no anti-alias filter; give an order of 1 ... 8 for the corner")
@@ -360,10 +389,6 @@ def check_readout(d: Any, p: Problems) -> None:
               f"readout.amplifier = {ro.amplifier!r}: the noise defaults are the "
               f"{DEFAULT_AMPLIFIER}'s data sheet's, not this amplifier's (state its 1/f "
               "density at 1 Hz too, amplifier_flicker_nV_per_rtHz_at_1Hz, or it is left out)")
-    shortest = min(d.arms.lengths_mm)
-    if ro.grid_length_mm is not None and ro.grid_length_mm > shortest:
-        p.add("readout.grid_length_mm", ro.grid_length_mm, f"<= {fmt(shortest)} mm (shortest arm)",
-              "the grid is centred over the web and must stay on the arm's top face")
 
 
 @dataclass(frozen=True)
