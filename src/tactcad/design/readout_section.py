@@ -146,6 +146,10 @@ TN502_POWER_DENSITY_W_PER_MM2 = 1.0 / 645.16
 #: TN-502's range for thin steel sections, 1-2 W/in^2, in W/mm^2: above its top the thermal
 #: report flags the excitation.
 TN502_THIN_SECTION_W_PER_MM2 = (1.0 / 645.16, 2.0 / 645.16)
+#: The most TN-502 says a gauge's backing is derated under high excitation (it names 10-30 C
+#: off a backing's +120 C rating: the grid runs that much above its substrate), in K: a grid
+#: warmer than this above the element is past what the gauge maker's note covers.
+TN502_HIGH_EXCITATION_DERATING_K = 30.0
 #: The lead wire of every quarter bridge, one wire for the thermal report's lead resistance,
 #: the BOM and the bundle through a grasper's shaft: AWG 36 copper (ASTM B258: 0.127 mm) in
 #: PTFE insulation to 0.25 mm outside diameter, the wire the gauge catalogue's lead mass
