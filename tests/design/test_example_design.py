@@ -14,7 +14,8 @@ import pytest
 from tactcad.cli import main
 from tactcad.design.array_plan import read_toml
 from tactcad.design.project import load_project
-from tactcad.studies.verification import requirements_of, verification_matrix
+from tactcad.studies.verification import (GRID_POWER_REQUIREMENT, requirements_of,
+                                          verification_matrix)
 
 from shared_solves import ONE_WORKER, shared_store
 
@@ -42,7 +43,11 @@ def test_example_is_an_inverse_design_with_its_own_requirements():
     assert req.kr_over_km == stated["kr_over_km"] == 10.0 and not req.cites_paper
     # the rigs beside it carry samples inside its own K_obj range, not the paper's
     assert all(1.0 <= k <= 5.0 for k in rigs.sample_stiffness_N_per_mm)
-    assert all(r["pass"] for r in verification_matrix(plan))
+    rows = verification_matrix(plan)
+    assert all(r["pass"] for r in rows if r["requirement"] != GRID_POWER_REQUIREMENT)
+    # its 2.5 V is above TN-502's thin-section guidance, as its note says, a few K only
+    assert next(r for r in rows if r["requirement"] == GRID_POWER_REQUIREMENT)["verdict"] \
+        == "undecided"
 
 
 def test_arm_over_arm_height_stays_inside_the_corrections_fit():
