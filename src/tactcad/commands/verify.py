@@ -102,10 +102,12 @@ def kobj_budget_section(plan, req, model: str):
     when a source cannot be evaluated (a material of unknown CTE)."""
     from tactcad.errors import DesignError
     from tactcad.in_use.kobj_budget import DEFAULT_DELTA_T_K, kobj_budget
+    from tactcad.studies.verification import calibration_gauge
 
     try:
         return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
-                           DEFAULT_DELTA_T_K, "closed-form" if model == "auto" else model)
+                           DEFAULT_DELTA_T_K, "closed-form" if model == "auto" else model,
+                           force_gauge=calibration_gauge(plan))
     except DesignError as exc:
         return str(exc)
 

@@ -242,6 +242,11 @@ class Plan:
     strength: StrengthSettings = field(default_factory=default_strength_settings)
     #: the construction that derived it (:mod:`tactcad.design.construction_registry`)
     construction: str = DEFAULT_CONSTRUCTION
+    #: the force gauge of the project's rigs file (``[force_gauge]``), which its elements are
+    #: calibrated on; None for a plan without rigs (made in code, or a construction with no
+    #: test rigs): :func:`tactcad.studies.verification.calibration_gauge` then takes the
+    #: catalogue's for the rated force
+    rigs_force_gauge: Any = None
     raw: Mapping[str, Any] = field(repr=False, compare=False, hash=False, default_factory=dict)
 
     def element(self, number: int) -> ElementSlot:

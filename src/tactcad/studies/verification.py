@@ -510,6 +510,32 @@ def rated_full_scale_force(plan: Plan) -> float:
     return requirements_of(plan).full_scale_force_N
 
 
+def calibration_gauge(plan: Plan) -> tuple[Any, str]:
+    """The force gauge in series with each element on the calibration rig: the project's rigs'
+    own (``plan.rigs_force_gauge``, set where the project is loaded with its rigs), or, for a
+    plan without rigs (a comb or a stacked array for a grasper's jaw, a plan made in code),
+    the catalogue gauge the rigs would choose for the design's rated full-scale force alone
+    (:func:`tactcad.vocabulary.force_gauge_catalogue.calibration_gauge_need`). ``calibrate``
+    and every caller of the K_obj budget read this one gauge.
+
+    Args:
+        plan: the design.
+
+    Returns:
+        (the gauge: ``model``, ``range_N``, ``resolution_N`` (N), ``stiffness_N_per_mm``
+        (N/mm); where it comes from, in words).
+    """
+    from tactcad.vocabulary.force_gauge_catalogue import (calibration_gauge_need,
+                                                          choose_force_gauge)
+
+    if plan.rigs_force_gauge is not None:
+        return plan.rigs_force_gauge, "the design's rigs ([force_gauge])"
+    rated = rated_full_scale_force(plan)
+    gauge, _ = choose_force_gauge(calibration_gauge_need(rated))
+    return gauge, (f"the catalogue's gauge for the rated {rated:.3g} N: the project has no "
+                   "rigs; a data file's k_sensor_N_per_mm overrides it")
+
+
 # ---------------------------------------------------------------------------
 # The verification matrix
 # ---------------------------------------------------------------------------
@@ -677,7 +703,8 @@ def design_kobj_budget(plan: Plan, fig: Figures, req: Requirements):
     from tactcad.in_use.kobj_budget import DEFAULT_DELTA_T_K, kobj_budget
 
     return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
-                       DEFAULT_DELTA_T_K, fig.model, fig.k, fig.k_error)
+                       DEFAULT_DELTA_T_K, fig.model, fig.k, fig.k_error,
+                       force_gauge=calibration_gauge(plan))
 
 
 def accuracy_budget(plan: Plan, fig: Figures, req: Requirements):
