@@ -575,8 +575,9 @@ def check_in_use(d: Any, p: Problems) -> None:
               "shaft_diameter_mm), or left out", "the jaw and its shaft pass one trocar")
 
 
+# the grid on the sheet after the sheet's own rules: a sheet refused is named first
 DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,
-                check_readout, check_tolerances, check_clamp_materials, check_sheet_process,
+                check_tolerances, check_clamp_materials, check_sheet_process, check_readout,
                 check_spacer_process, check_web_tolerance_held, check_in_use)
 
 
