@@ -322,7 +322,7 @@ def test_the_calibration_term_reads_the_projects_rigs_force_gauge(ti_plan):
     takes the catalogue's gauge for its rated force, and says so."""
     from dataclasses import replace
 
-    from tactcad.studies.rig_sizing import calibration_gauge_need, choose_force_gauge
+    from tactcad.vocabulary.force_gauge_catalogue import calibration_gauge_need, choose_force_gauge
     from tactcad.studies.verification import requirements_of
 
     rigs_gauge = ti_plan.rigs_force_gauge

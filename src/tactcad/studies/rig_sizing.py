@@ -35,9 +35,7 @@ from dataclasses import dataclass
 from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
 from tactcad.mechanics.evaluation import STANDARD_GRAVITY, SampleSpec, ladder_stiffness_by_element
-from tactcad.vocabulary.force_gauge_catalogue import (RESOLUTION_SHARE, ForceGaugeModel, GaugeNeed,
-                                                     calibration_gauge_need, choose_force_gauge,
-                                                     force_gauges, gauge_shortfalls)
+from tactcad.vocabulary.force_gauge_catalogue import RESOLUTION_SHARE, GaugeNeed
 
 #: How many weights the evaluation rig stacks (at least, at most) above its preload.
 WEIGHT_COUNT_RANGE = (4, 10)

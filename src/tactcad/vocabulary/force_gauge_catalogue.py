@@ -1,5 +1,7 @@
 """Digital force gauges a rig may carry: the catalogue the rigs made for a
-design choose from (:mod:`tactcad.studies.rig_sizing`).
+design choose from (:mod:`tactcad.studies.rig_sizing`), what a rig asks of its
+gauge (:class:`GaugeNeed`) and the catalogue gauge that meets it
+(:func:`choose_force_gauge`), one rule for the rigs and the calibration.
 
 Data: ``tactcad/data/force_gauges.toml``; each model carries its maker's
 range (capacity) and resolution and the document they come from, its own
