@@ -191,6 +191,8 @@ def grid_power_density_W_per_mm2(excitation_V: float, resistance_ohm: float,
                                  grid_area_mm2: float) -> float:
     """Power per grid area of a quarter-bridge gauge (equal arms: V_ex^2 / (4 R_g A_g))."""
     return excitation_V ** 2 / (4.0 * resistance_ohm * grid_area_mm2)
+#: The grid widths a design file may state (mm).
+GRID_WIDTH_RANGE_MM = (0.1, 20.0)
 #: Temperature compensation by a dummy gauge (``dummy_gauge``).
 DUMMY_GAUGES = ("none", "half-bridge")
 
@@ -288,7 +290,7 @@ class ReadoutSection(Section):
     gauge_factor: number(0.5, 10.0, unit="", why="foil gauges 2 ... 2.2, semiconductor more") = None
     gauge_resistance_ohm: number(10.0, 10000.0, unit="ohm") = None
     grid_length_mm: number(0.1, 20.0, why="active grid length along the arm") = None
-    grid_width_mm: number(0.1, 20.0, why="active grid width across the sheet") = None
+    grid_width_mm: number(*GRID_WIDTH_RANGE_MM, why="active grid width across the sheet") = None
     gauge_backing_thickness_mm: number(0.0, 0.5, why="carrier under the foil grid") = None
     adhesive_thickness_mm: number(0.0, 0.5, why="cured glue line under the carrier") = None
     gauge_backing_modulus_MPa: number(0.0, 200000.0, unit="MPa",

@@ -60,7 +60,7 @@ from tactcad.studies.design_alternatives import (evaluations_kept, nearest_on_sc
 from tactcad.studies.footprint_fit import design_in_footprint, fits, stated_footprint
 from tactcad.studies.inverse_design import (STIFFNESS_LIMITS, InverseDesign, InverseDesignError,
                                             Targets, binding_limits, centred_for_tissue, design_from_tables,
-                                            design_variant, held_to_process,
+                                            design_variant, grid_fitted_to_sheet, held_to_process,
                                             max_full_scale_force_N,
                                             mounting_min_arm_mm,
                                             required_overall_length_mm, search_webs,
@@ -148,8 +148,8 @@ def with_layout(data: Mapping[str, Any], layout: FreeLayout) -> dict[str, Any]:
     # the arms are the design's to choose: until then each at least the shortest the
     # layout allows, so that the tables are a design to start from
     start_arm = max(shortest, max(arms)) if arms else shortest
-    return held_to_process(design_variant(out, arms_mm=[math.ceil(start_arm * 100 - 1e-9) / 100]
-                                          * len(arms)))
+    return grid_fitted_to_sheet(held_to_process(design_variant(
+        out, arms_mm=[math.ceil(start_arm * 100 - 1e-9) / 100] * len(arms))))
 
 
 def process_sheets_mm(process: str | None) -> list[float]:
