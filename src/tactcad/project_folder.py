@@ -119,9 +119,9 @@ def rig_sizing_words(plan: Plan, samples: list[float]) -> dict[str, str]:
     Raises:
         DesignError: no weight of the 1-2-5 series fits the rating.
     """
-    from tactcad.studies.rig_sizing import (choose_force_gauge, element_loads_per_newton,
-                                            gauge_need, weights_for)
+    from tactcad.studies.rig_sizing import element_loads_per_newton, gauge_need, weights_for
     from tactcad.studies.verification import rated_full_scale_force
+    from tactcad.vocabulary.force_gauge_catalogue import choose_force_gauge
 
     rated = rated_full_scale_force(plan)
     need = gauge_need(rated, samples)

@@ -204,6 +204,7 @@ def _etched(data):
     arms = [min(a, 2.9) for a in data["arms"]["lengths_mm"]]
     return with_overrides(data, {"element.process": "photochemical-etching",
                                  "sheet.thickness_mm": 0.15, "element.web_tolerance_mm": 0.03,
+                                 "readout.grid_width_mm": 0.15,  # the grid fits the foil's face
                                  "comb.web_thicknesses_mm": [0.2] * n, "arms.lengths_mm": arms})
 
 

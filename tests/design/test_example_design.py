@@ -14,7 +14,8 @@ import pytest
 from tactcad.cli import main
 from tactcad.design.array_plan import read_toml
 from tactcad.design.project import load_project
-from tactcad.studies.verification import requirements_of, verification_matrix
+from tactcad.studies.verification import (GRID_POWER_REQUIREMENT, requirements_of,
+                                          verification_matrix)
 
 from shared_solves import ONE_WORKER, shared_store
 
@@ -42,7 +43,11 @@ def test_example_is_an_inverse_design_with_its_own_requirements():
     assert req.kr_over_km == stated["kr_over_km"] == 10.0 and not req.cites_paper
     # the rigs beside it carry samples inside its own K_obj range, not the paper's
     assert all(1.0 <= k <= 5.0 for k in rigs.sample_stiffness_N_per_mm)
-    assert all(r["pass"] for r in verification_matrix(plan))
+    rows = verification_matrix(plan)
+    assert all(r["pass"] for r in rows if r["requirement"] != GRID_POWER_REQUIREMENT)
+    # its 2.5 V is above TN-502's thin-section guidance, as its note says, a few K only
+    assert next(r for r in rows if r["requirement"] == GRID_POWER_REQUIREMENT)["verdict"] \
+        == "undecided"
 
 
 def test_arm_over_arm_height_stays_inside_the_corrections_fit():
@@ -162,7 +167,10 @@ def test_example_meets_every_requirement_and_its_binding_limit_holds_at_fem3d():
     # question asked of it (on the store the read-out tests of the same element share)
     with keeping_results(shared_store()):
         records, _ = verification_auto(plan, stress=element_stress)
-        assert [r["verdict"] for r in records] == ["pass"] * len(records), records
+        # every requirement but the excitation, whose 2.5 V is above TN-502's guidance
+        # (undecided: no level computes it anew)
+        decided = [r for r in records if r["requirement"] != GRID_POWER_REQUIREMENT]
+        assert [r["verdict"] for r in decided] == ["pass"] * len(decided), records
         cf = verification_matrix(plan, "closed-form")[0]
         assert cf["binding_limit"] == "gauge_fatigue"
         number = cf["binding_element"]

@@ -98,7 +98,10 @@ def test_rigs_file_changed_after_validation_leaves_the_export_unchanged(tmp_path
 def test_a_plan_made_in_code_gets_its_rigs_and_scenes_named(plan):
     project = project_for_plan(plan)
     assert project.rigs_file == DEFAULT_RIGS.name and project.scenes_file == DEFAULT_SCENES.name
-    assert project.plan is plan
+    # the plan, with the force gauge of the rigs it is calibrated on
+    assert project.plan.rigs_force_gauge == project.rigs.part("force_gauge")
+    assert dataclasses.replace(project.plan, rigs_force_gauge=plan.rigs_force_gauge) == plan
+    assert project_for_plan(project.plan).plan is project.plan
 
 
 def test_test_rigs_need_the_validated_rigs(plan):

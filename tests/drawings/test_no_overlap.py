@@ -103,7 +103,8 @@ def test_the_2x6_titanium_grasper_insert_draws_clear(tmp_path):
 
 
 #: The 2 x 8 palpation strip (a lab's design): 32 terminal holes and a 17-row slot map.
-PALPATION_STRIP = {"array.columns": 8, "sheet.thickness_mm": 0.8, "array.pitch_mm": 1.0,
+PALPATION_STRIP = {"array.columns": 8, "sheet.thickness_mm": 0.8, "readout.grid_width_mm": 0.8,
+                   "array.pitch_mm": 1.0,
                    "element.tip_width_mm": 0.8, "clamp.bolt_size": "M1.6",
                    "element.arm_height_mm": 4.9, "element.overall_length_mm": 31.0,
                    "arms.lengths_mm": [19.543] * 3 + [6.905] + [19.543] * 7 + [6.905]

@@ -94,11 +94,13 @@ def test_the_planned_drawings_hold_the_budgets_allowance_or_carry_the_procedure(
     from tactcad.catalogue.array_catalogue import array_parts
     from tactcad.export.jobs import planned_drawings
     from tactcad.in_use.kobj_budget import kobj_budget
+    from tactcad.studies.verification import calibration_gauge
     from tactcad.studies.verification import requirements_of
 
     plan = _project(folder, tmp_path, 0.1).plan
     req = requirements_of(plan)
-    record = kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N).tip_height
+    record = kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
+                         force_gauge=calibration_gauge(plan)).tip_height
     planned = planned_drawings(plan, list(array_parts(plan).values()))
     with_tips = [tip for spec, tip in planned if spec.builder == tip_builder]
     assert with_tips and all(tip is not None for tip in with_tips)

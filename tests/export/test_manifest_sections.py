@@ -79,7 +79,7 @@ def test_the_shop_section_states_the_etch_compensation_with_its_source():
         warnings.simplefilter("ignore")
         plan = plan_from_dict(with_overrides(read_toml(TI, "design file"), {
             "element.process": "photochemical-etching", "sheet.thickness_mm": 0.3,
-            "element.web_tolerance_mm": 0.045}))
+            "element.web_tolerance_mm": 0.045, "readout.grid_width_mm": 0.3}))
         shop = design_facts(plan)["shop"]
     element = shop["element_a6p196mm"]
     comp = element["figures"]["compensation_per_side_mm"]

@@ -17,7 +17,8 @@ from tactcad.design.array_plan import EXAMPLES
 
 TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
 ETCH = ["--set", 'element.process="photochemical-etching"', "--set", "sheet.thickness_mm=0.3",
-        "--set", "element.web_tolerance_mm=0.045"]
+        "--set", "element.web_tolerance_mm=0.045",
+        "--set", "readout.grid_width_mm=0.3"]  # the gauge grid fits the 0.3 mm face
 
 
 @pytest.mark.slow  # a whole chain through the command line or an export

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from tactcad.in_use import kobj_budget as kb
+from tactcad.studies.verification import calibration_gauge
 
 ROOT = Path(__file__).resolve().parents[2]
 TI = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
@@ -29,7 +30,7 @@ def _context(plan, force=0.5, delta_T=5.0, calibrations=None):
     est = {n: estimate("closed-form", g, plan.material) for n, g in plan.distinct_elements.items()}
     return kb.Context(plan, "closed-form", {n: e.stiffness_N_per_mm for n, e in est.items()},
                       {n: e.error_estimate_rel for n, e in est.items()}, force, delta_T,
-                      calibrations or {})
+                      calibrations or {}, calibration_gauge(plan))
 
 
 def _uncoupled(ctx):
@@ -269,7 +270,7 @@ def test_calibration_takes_a_files_fit_for_its_elements(plan):
 
 
 def test_totals_are_the_rss_and_the_sum_and_the_dominant_source_is_the_largest(ti_plan):
-    b = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0)
+    b = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0, force_gauge=calibration_gauge(ti_plan))
     assert len(b.k_obj) == kb.BUDGET_POINTS and b.k_obj[0] == 1.0 and b.k_obj[-1] == 5.0
     for u in b.units:
         after = np.array([u["sources"][k]["after_rel"] for k in kb.SOURCE_KEYS])
@@ -285,7 +286,7 @@ def test_a_design_of_four_columns_has_its_budget():
     from tactcad.api import load
 
     plan = load(str(TI), set={"array.columns": 4, "arms.lengths_mm": FOUR_COLUMNS}).plan
-    b = kb.kobj_budget(plan, (1.0, 5.0), 0.1)
+    b = kb.kobj_budget(plan, (1.0, 5.0), 0.1, force_gauge=calibration_gauge(plan))
     assert b.units and all(np.all(np.isfinite(u["rss_rel"])) for u in b.units)
 
 
@@ -298,7 +299,7 @@ def test_bad_inputs_are_named(ti_plan, kwargs, field):
 
     args = {"kobj_range": (1.0, 5.0), "force_N": 0.1, **kwargs}
     with pytest.raises(DesignError, match=field):
-        kb.kobj_budget(ti_plan, **args)
+        kb.kobj_budget(ti_plan, **args, force_gauge=calibration_gauge(ti_plan))
 
 
 def test_the_modulus_coefficient_is_the_readout_sections_when_it_states_one(ti_plan):
@@ -315,16 +316,62 @@ def test_the_modulus_coefficient_is_the_readout_sections_when_it_states_one(ti_p
                                     rel=2e-2)
 
 
-def test_the_calibration_default_is_a_catalogue_gauge_that_holds_the_force(ti_plan):
-    from tactcad.vocabulary.force_gauge_catalogue import force_gauges
+def test_the_calibration_term_reads_the_projects_rigs_force_gauge(ti_plan):
+    """The budget's calibration term is on the rigs' force gauge (the one ``calibrate`` uses),
+    named with its source; a coarser gauge in the rigs makes it larger; a plan without rigs
+    takes the catalogue's gauge for its rated force, and says so."""
+    from dataclasses import replace
 
-    small, large = kb.calibration_force_gauge(0.1), kb.calibration_force_gauge(40.0)
-    assert small.range_N >= 0.1 and large.range_N >= 40.0
-    assert all(g.range_N >= small.range_N for g in force_gauges() if g.range_N >= 0.1)
-    assert small.resolution_N <= large.resolution_N
-    b = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0).as_json()
-    text = str(b)
-    assert small.model in text and "paper" not in text
+    from tactcad.vocabulary.force_gauge_catalogue import calibration_gauge_need, choose_force_gauge
+    from tactcad.studies.verification import requirements_of
+
+    rigs_gauge = ti_plan.rigs_force_gauge
+    assert rigs_gauge is not None and calibration_gauge(ti_plan)[0] == rigs_gauge
+
+    def budget(plan):
+        return kb.kobj_budget(plan, (1.0, 5.0), 0.1, 5.0, points=3,
+                              force_gauge=calibration_gauge(plan)).as_json()
+
+    def calibration_rel(b):
+        return max(max(u["sources"]["calibration"]["after_rel"]) for u in b["units"])
+
+    own = budget(ti_plan)
+    assert own["notes"]["calibration_force_gauge"] == rigs_gauge.model
+    assert "rigs" in own["notes"]["calibration_force_gauge_source"]
+    assert rigs_gauge.model in own["notes"]["calibration"]
+    coarse = replace(rigs_gauge, model="coarse lab gauge",
+                     resolution_N=20 * rigs_gauge.resolution_N)
+    theirs = budget(replace(ti_plan, rigs_force_gauge=coarse))
+    assert theirs["notes"]["calibration_force_gauge"] == "coarse lab gauge"
+    assert calibration_rel(theirs) > calibration_rel(own)
+    bare = replace(ti_plan, rigs_force_gauge=None)
+    want, _ = choose_force_gauge(calibration_gauge_need(requirements_of(bare).full_scale_force_N))
+    none = budget(bare)
+    assert none["notes"]["calibration_force_gauge"] == want.model
+    assert "no rigs" in none["notes"]["calibration_force_gauge_source"]
+
+
+def test_budget_and_calibrate_name_the_gauge_written_in_the_projects_rigs(tmp_path, capsys):
+    """``tactcad budget --json`` follows a gauge changed in rigs.toml, as ``calibrate`` does."""
+    import json
+    import shutil
+
+    from tactcad.cli import main
+
+    folder = tmp_path / "ti"
+    shutil.copytree(TI.parent, folder)
+    rigs = folder / "rigs.toml"
+    text = rigs.read_text(encoding="utf-8")
+    model = next(line.split("=", 1)[1].strip().strip('"') for line in text.splitlines()
+                 if line.startswith("model ="))
+    rigs.write_text(text.replace(f'model = "{model}"', 'model = "Lab gauge 7"', 1),
+                    encoding="utf-8")
+    design = str(folder / TI.name)
+    assert main(["budget", "--design", design, "--json", "--points", "2"]) == 0
+    notes = json.loads(capsys.readouterr().out)["notes"]
+    assert notes["calibration_force_gauge"] == "Lab gauge 7"
+    assert main(["calibrate", "--design", design, "--simulate", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["force_gauge"]["model"] == "Lab gauge 7"
 
 
 def test_an_offset_tip_on_an_uncoupled_sample_is_eq_1_with_the_offset():
@@ -349,7 +396,8 @@ def test_tip_coplanarity_is_in_the_budget_from_the_drawings_tolerance(ti_plan):
     drawing's +/-0.02 mm cannot be read uncorrected; zeroing on a rigid flat leaves the
     flat's flatness and the deflection resolution."""
     req = ti_plan.raw["requirements"]
-    budget = kb.kobj_budget(ti_plan, tuple(req["kobj_range_N_per_mm"]), req["full_scale_force_N"])
+    budget = kb.kobj_budget(ti_plan, tuple(req["kobj_range_N_per_mm"]), req["full_scale_force_N"],
+                            force_gauge=calibration_gauge(ti_plan))
     assert "tip_coplanarity" in kb.SOURCE_KEYS
     ctx = _context(ti_plan, force=req["full_scale_force_N"])
     unit = _first_unit(ctx)
@@ -376,10 +424,11 @@ def test_a_stated_accuracy_gives_the_tip_tolerance_the_drawing_must_hold(ti_plan
     req = ti_plan.raw["requirements"]
     rng, force = tuple(req["kobj_range_N_per_mm"]), req["full_scale_force_N"]
     stated = plan_from_dict(with_overrides(ti_plan.raw, {"requirements.kobj_accuracy_rel": 0.1}))
-    needed = kb.kobj_budget(stated, rng, force).tip_height["tolerance_for_accuracy_mm"]
+    needed = kb.kobj_budget(stated, rng, force, force_gauge=calibration_gauge(stated)
+                            ).tip_height["tolerance_for_accuracy_mm"]
     assert needed is not None and 1e-5 < needed < 0.01  # microns: below what wire EDM holds
     drawn = plan_from_dict(with_overrides(stated.raw, {"tolerances.tip_height_mm": needed}))
-    budget = kb.kobj_budget(drawn, rng, force)
+    budget = kb.kobj_budget(drawn, rng, force, force_gauge=calibration_gauge(drawn))
     worst = 0.0
     for u in budget.units:
         before = np.array(u["sources"]["tip_coplanarity"]["before_rel"])
@@ -455,11 +504,13 @@ def test_a_comb_has_no_stack_crosstalk_model_and_its_budget_says_so(ti_plan):
     comb = load(str(ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")).plan
     why = stack_crosstalk_reason(comb)
     assert why and not stack_crosstalk_reason(ti_plan)
-    b = kb.kobj_budget(comb, (1.0, 5.0), 0.05, 5.0, points=3)
+    b = kb.kobj_budget(comb, (1.0, 5.0), 0.05, 5.0, points=3,
+                       force_gauge=calibration_gauge(comb))
     for u in b.units:
         assert u["sources"]["stack_crosstalk"]["not_modelled"] == why
         assert u["sources"]["stack_crosstalk"]["after_rel"] == [0.0] * 3  # not in the sums
     assert b.notes["stack_crosstalk_basis"].startswith("not modelled")
     assert "| stack crosstalk | not modelled |" in render(b)
-    stacked = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0, points=3)
+    stacked = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0, points=3,
+                             force_gauge=calibration_gauge(ti_plan))
     assert all("not_modelled" not in u["sources"]["stack_crosstalk"] for u in stacked.units)

@@ -33,6 +33,7 @@ class Chain:
         from tactcad.in_use.tissue_coupling import coupled_sample
         from tactcad.mechanics.ladder import estimate
         from tactcad.mechanics.readout_chain import row_units
+        from tactcad.studies.verification import calibration_gauge
 
         self.plan = plan = load(str(DESIGNS[name])).plan
         req = plan.raw["requirements"]
@@ -41,7 +42,8 @@ class Chain:
         force = req.get("full_scale_force_N", FORCE_N)
         self.ctx = kb.Context(plan, "closed-form",
                               {n: e.stiffness_N_per_mm for n, e in est.items()},
-                              {n: e.error_estimate_rel for n, e in est.items()}, force, 5.0)
+                              {n: e.error_estimate_rel for n, e in est.items()}, force, 5.0,
+                              force_gauge=calibration_gauge(plan))
         self.k_obj = kb.kobj_grid(tuple(req["kobj_range_N_per_mm"]), 3)
         self.sample = coupled_sample(plan)
         self.k = {s.number: self.ctx.k_of(s.number) for s in plan.slots}

@@ -12,6 +12,7 @@ import pytest
 
 from tactcad.cli import main
 from tactcad.design.array_plan import default_design_data, load_design, plan_from_dict, with_overrides
+from tactcad.design.readout_section import DEFAULTS
 from tactcad.errors import DesignError
 from tactcad.paper.data import table1
 from tactcad.mechanics.readout_chain import (beam_face_mean_strain_per_N,
@@ -415,3 +416,26 @@ def test_another_amplifier_without_its_noise_is_refused_by_the_key_it_needs():
         _plan(**{"readout.amplifier": "INA128"})
     assert "readout.amplifier_noise_nV_per_rtHz" in str(refused.value)
     assert "INA128" in str(refused.value)
+
+
+@pytest.mark.parametrize("drop_readout_table", [False, True])
+def test_the_default_grid_wider_than_the_sheet_is_refused_as_a_stated_one(drop_readout_table):
+    """The grid-on-the-sheet rule holds for the library default's width, not only a stated
+    one, with or without a [readout] table."""
+    data = with_overrides(default_design_data(), {"sheet.thickness_mm": 0.8})
+    if drop_readout_table:
+        data.pop("readout", None)
+    default_width = DEFAULTS["grid_width_mm"][0]
+    assert default_width > 0.8
+    with pytest.raises(DesignError) as exc:
+        plan_from_dict(data)
+    errors = {e.field: e for e in getattr(exc.value, "errors", (exc.value,))}
+    assert "readout.grid_width_mm" in errors
+    refusal = errors["readout.grid_width_mm"]
+    assert refusal.value == default_width and "0.8 mm" in refusal.allowed
+    assert "not stated" in refusal.why
+    stated = with_overrides(data, {"readout.grid_width_mm": 0.8})
+    try:
+        plan_from_dict(stated)
+    except DesignError as other:
+        assert "readout.grid_width_mm" not in {e.field for e in getattr(other, "errors", (other,))}

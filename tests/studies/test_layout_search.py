@@ -218,3 +218,23 @@ def test_every_iso_bolt_gets_the_dimensions_it_needs_under_the_tallest_arm(bolt)
     plan = plan_from_dict(tables)
     assert plan.bolt.size == bolt
     assert plan.element(1).geometry.base_height_mm >= 5.0 + plan.bolt.clearance_hole_mm + 2.0
+
+
+def test_a_searched_sheet_thinner_than_the_default_grid_gets_a_grid_that_fits(tmp_path, capsys):
+    """Photochemical etching's sheets are thinner than the library default's gauge grid: the
+    search writes a grid as wide as its sheet, with the gauge to bond as its reason, so the
+    written design keeps the grid on the element's face (it wrote the default's 1 mm grid on a
+    0.4 mm sheet)."""
+    from tactcad.design.readout_section import DEFAULTS
+
+    out = tmp_path / "pce.toml"
+    code, doc = _run(["design", "--kr-over-km", "8", "--kobj-range", "0.5", "4",
+                      "--full-scale-force", "0.05", "--process", "photochemical-etching",
+                      "--material", "7075-T6", "--verify", "none", "--out", str(out)], capsys)
+    assert code == 0, doc
+    written = tomllib.loads(out.read_text(encoding="utf-8"))
+    sheet = written["sheet"]["thickness_mm"]
+    assert sheet < DEFAULTS["grid_width_mm"][0]
+    assert written["readout"]["grid_width_mm"] <= sheet
+    assert "bond a gauge" in written["assumptions"]["readout.grid_width_mm"]
+    assert load_design(out).sheet_thickness_mm == sheet  # the rule passes it

@@ -10,7 +10,8 @@ from tactcad.cli import main
 from tactcad.design.array_plan import default_design_data, plan_from_dict
 from tactcad.errors import DesignErrors
 from tactcad.mechanics.limits import LIMIT_NAMES
-from tactcad.studies.verification import requirements_of, verification_matrix
+from tactcad.studies.verification import (GRID_POWER_REQUIREMENT, matrix_passed, requirements_of,
+                                          verification_matrix)
 
 KEYS = {"requirement", "target", "predicted", "error_estimate_rel", "margin_rel", "model", "pass"}
 PAPER_SAMPLES = (2.34, 10.01)
@@ -52,7 +53,10 @@ def test_a_design_without_the_section_gets_derived_requirements_not_the_papers()
     assert req.kobj_range_N_per_mm != PAPER_SAMPLES
     assert req.full_scale_force_N != 2.0
     # the derived full-scale force is the binding limit rounded down: the matrix passes
-    assert all(r["pass"] for r in verification_matrix(plan))
+    # (but for the paper's 2.5 V excitation, above TN-502's guidance: undecided, not failed)
+    rows = verification_matrix(plan)
+    assert all(r["pass"] for r in rows if r["requirement"] != GRID_POWER_REQUIREMENT)
+    assert matrix_passed(rows)
 
 
 def test_the_papers_design_states_the_papers_samples_with_their_source():
@@ -67,7 +71,7 @@ def test_matrix_has_one_record_per_requirement_with_every_limit_and_the_binding_
     records = verification_matrix(plan)
     assert [r["requirement"] for r in records] == [
         "full_scale_force_N", "kr_over_km", "k_tolerance_rel", "kobj_resolution_rel",
-        "kobj_range_N_per_mm", "k_tolerance_rel_toleranced"]
+        "kobj_range_N_per_mm", "k_tolerance_rel_toleranced", GRID_POWER_REQUIREMENT]
     for r in records:
         assert KEYS <= set(r)
     force = records[0]

@@ -89,7 +89,7 @@ def test_a_thin_sheet_is_verified_at_fem3d_whatever_the_level():
     from tactcad.studies.resonance import out_of_plane_may_lead, resonance_summary
 
     plan = plan_from_dict(with_overrides(default_design_data(), {
-        "sheet.thickness_mm": 0.6, "arms.lengths_mm": [4.0] * 10,
+        "sheet.thickness_mm": 0.6, "readout.grid_width_mm": 0.6, "arms.lengths_mm": [4.0] * 10,
         "requirements.min_first_resonance_Hz": 100.0}))
     (g,) = plan.distinct_elements.values()
     assert out_of_plane_may_lead(g)

@@ -12,12 +12,11 @@ import pytest
 import tactcad
 from tactcad.design.rig_plan import rigs_from_dict
 from tactcad.project_folder import companion_tables
-from tactcad.studies.rig_sizing import (RESOLUTION_SHARE, WEIGHT_COUNT_RANGE,
-                                        choose_force_gauge, element_loads_per_newton,
-                                        gauge_need, gauge_shortfalls, weight_series_g,
-                                        weights_for)
+from tactcad.studies.rig_sizing import (WEIGHT_COUNT_RANGE, element_loads_per_newton, gauge_need,
+                                        weight_series_g, weights_for)
 from tactcad.studies.verification import rated_full_scale_force
-from tactcad.vocabulary.force_gauge_catalogue import force_gauges
+from tactcad.vocabulary.force_gauge_catalogue import (RESOLUTION_SHARE, choose_force_gauge,
+                                                      force_gauges, gauge_shortfalls)
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
 TWO_BY_SIX = {"array.columns": 6, "sheet.thickness_mm": 2.0, "array.pitch_mm": 3.0,

@@ -239,3 +239,31 @@ def test_kr_over_km_is_judged_by_its_own_band_not_the_manufacturing_one():
     rec = next(r for r in verification_matrix(wide) if r["requirement"] == "kr_over_km")
     assert rec["verdict"] == "pass" and rec["allowed_margin_rel"] == -0.2
     assert requirements_of(wide).reasons["kr_over_km_tolerance_rel"] == "stated in the design file"
+
+
+def _power_row(plan) -> dict:
+    from tactcad.studies.verification import GRID_POWER_REQUIREMENT
+
+    return next(r for r in verification_matrix(plan)
+                if r["requirement"] == GRID_POWER_REQUIREMENT)
+
+
+def test_an_excitation_that_overheats_the_gauge_fails_verification_by_tn502():
+    """The gauge's excitation is a row: within TN-502's thin-section power density it passes,
+    above it undecided, and a grid heated past TN-502's largest backing derating fails."""
+    from tactcad.design.readout_section import (TN502_HIGH_EXCITATION_DERATING_K,
+                                                TN502_THIN_SECTION_W_PER_MM2)
+    from tactcad.studies.verification import matrix_passed
+
+    low = _power_row(example(**{"readout.excitation_V": 0.5}))
+    assert low["predicted"] <= TN502_THIN_SECTION_W_PER_MM2[1] and low["verdict"] == "pass"
+    high_plan = example(**{"readout.excitation_V": 15.0})
+    high = _power_row(high_plan)
+    assert high["grid_rise_K"] > TN502_HIGH_EXCITATION_DERATING_K
+    assert high["verdict"] == "fail" and "TN-502" in high["basis"]
+    assert high["predicted"] == pytest.approx(low["predicted"] * (15.0 / 0.5) ** 2)
+    assert not matrix_passed(verification_matrix(high_plan))
+    between = _power_row(example(**{"readout.excitation_V": 2.5}))
+    assert between["predicted"] > TN502_THIN_SECTION_W_PER_MM2[1]
+    assert between["grid_rise_K"] <= TN502_HIGH_EXCITATION_DERATING_K
+    assert between["verdict"] == "undecided" and between["level_fixed"]

@@ -20,8 +20,8 @@ def requirement_checks(plan, model: str = "closed-form") -> list[CheckResult]:
     error estimate) passes, marked undecided (``status``), with a note that
     ``tactcad verify`` decides it."""
     from tactcad.assembly.inventory import array_envelope_mm
-    from tactcad.studies.verification import (binding_text, margin_text, percent_text, value_text,
-                                              verification_matrix)
+    from tactcad.studies.verification import (GRID_POWER_REQUIREMENT, binding_text, margin_text,
+                                              percent_text, value_text, verification_matrix)
 
     out = []
     for r in verification_matrix(plan, model, envelope_mm=array_envelope_mm(plan)):
@@ -30,7 +30,9 @@ def requirement_checks(plan, model: str = "closed-form") -> list[CheckResult]:
                   f"(error {percent_text(r['error_estimate_rel'], sign=False)}, {r['model']})")
         if binding_text(r):
             detail += f", binds: {binding_text(r)}"
-        if r["verdict"] == "undecided":
+        if r["requirement"] == GRID_POWER_REQUIREMENT and r["verdict"] != "pass":
+            detail += f"; {r['basis']}"
+        elif r["verdict"] == "undecided":
             detail += ("; no level computes it closer" if r["level_fixed"] else
                        "; tactcad verify --model auto decides it up the ladder")
         out.append(CheckResult("requirement", r["requirement"], r["verdict"] != "fail", detail,

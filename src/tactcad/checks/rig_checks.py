@@ -68,7 +68,8 @@ def force_gauge_check(rigs, rated_N: float) -> CheckResult:
     the catalogue does better, so whether the calibration resolves the rating
     is left to the lab (a finer instrument, or calibration by dead weights);
     a range that is short always fails (the gauge would be overloaded)."""
-    from tactcad.studies.rig_sizing import choose_force_gauge, gauge_need, gauge_shortfalls
+    from tactcad.studies.rig_sizing import gauge_need
+    from tactcad.vocabulary.force_gauge_catalogue import choose_force_gauge, gauge_shortfalls
 
     g = rigs.part("force_gauge")
     need = gauge_need(rated_N, rigs.sample_stiffness_N_per_mm)

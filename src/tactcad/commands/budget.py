@@ -82,6 +82,7 @@ def run(args: argparse.Namespace) -> int:
         return shown
     from tactcad.atomic import write_bytes_atomic
     from tactcad.in_use.kobj_budget import kobj_budget
+    from tactcad.studies.verification import calibration_gauge
     from tactcad.studies.verification import requirements_of
 
     plan = plan_from_args(args)
@@ -91,7 +92,8 @@ def run(args: argparse.Namespace) -> int:
     force = req.full_scale_force_N if args.force is None else args.force
     progress(f"budget of {plan.name} at {force:g} N, {args.delta_T:g} K ({args.model})")
     budget = kobj_budget(plan, req.kobj_range_N_per_mm, force, args.delta_T, args.model,
-                         calibrations=cal, points=args.points)
+                         calibrations=cal, points=args.points,
+                         force_gauge=calibration_gauge(plan))
     record = {**budget.as_json(), "kobj_range_reason": req.reasons["kobj_range_N_per_mm"],
               "force_reason": "--force" if args.force is not None
               else f"full-scale force: {req.reasons['full_scale_force_N']}"}

@@ -10,9 +10,8 @@ Examples::
 from __future__ import annotations
 
 import argparse
-from typing import Any
-
 from tactcad.mechanics.ladder import models
+from tactcad.studies.verification import calibration_gauge
 
 
 #: Signal noise (V, one sigma) of a simulated rig read with an explicit ``--gain`` (no
@@ -31,7 +30,7 @@ def simulated_noise(args: argparse.Namespace, project) -> tuple[tuple[float, str
     if args.noise_force is not None:
         force = (float(args.noise_force), "--noise-force")
     else:
-        gauge, _ = calibration_gauge(project)
+        gauge, _ = calibration_gauge(project.plan)
         force = (float(gauge.resolution_N), f"the force gauge {gauge.model}, read to "
                                             f"{gauge.resolution_N:g} N")
     if args.noise_signal is not None:
@@ -168,7 +167,7 @@ def run(args: argparse.Namespace) -> int:
     if args.flat:
         return _run_flat(args, plan)
     # the force gauge in series: the data file's (its k_sensor comment), else the rigs'
-    gauge, source = calibration_gauge(project)
+    gauge, source = calibration_gauge(project.plan)
     k_sensor = float(gauge.stiffness_N_per_mm)
     report: dict = {"design": plan.name, "model": args.model,
                     "force_gauge": {"model": gauge.model, "stiffness_N_per_mm": k_sensor,
@@ -256,31 +255,6 @@ def run(args: argparse.Namespace) -> int:
         return 0
     _print_text(report)
     return 0
-
-
-def calibration_gauge(project) -> tuple[Any, str]:
-    """The force gauge in series with each element on the calibration rig: the rigs' own, or,
-    for a project without rigs (a comb or a stacked array for a grasper's jaw), the catalogue
-    gauge the rigs would choose for the design's rated full-scale force alone
-    (:func:`tactcad.studies.rig_sizing.calibration_gauge_need`). A data file's
-    ``k_sensor_N_per_mm`` still overrides its stiffness.
-
-    Args:
-        project: the loaded project.
-
-    Returns:
-        (the gauge: ``model``, ``range_N``, ``resolution_N`` (N), ``stiffness_N_per_mm``
-        (N/mm); where it comes from, in words).
-    """
-    if project.rigs is not None:
-        return project.rigs.part("force_gauge"), "the design's rigs ([force_gauge])"
-    from tactcad.studies.rig_sizing import calibration_gauge_need, choose_force_gauge
-    from tactcad.studies.verification import requirements_of
-
-    rated = requirements_of(project.plan).full_scale_force_N
-    gauge, _ = choose_force_gauge(calibration_gauge_need(rated))
-    return gauge, (f"the catalogue's gauge for the rated {rated:.3g} N: the project has no "
-                   "rigs; a data file's k_sensor_N_per_mm overrides it")
 
 
 def flat_report(plan, path: str, encoding: str | None, contact_um: float) -> dict:

@@ -40,7 +40,7 @@ def run(args: argparse.Namespace) -> int:
     shown = product_view("verify", args)  # a silicon die's design: its own matrix
     if shown is not None:
         return shown
-    from tactcad.studies.verification import (matrix_passed, matrix_table,
+    from tactcad.studies.verification import (GRID_POWER_REQUIREMENT, matrix_passed, matrix_table,
                                                 prefetch_top_level, requirements_of,
                                                 undecided, verification_auto,
                                                 verification_matrix)
@@ -80,9 +80,13 @@ def run(args: argparse.Namespace) -> int:
         grasp = next((r for r in records if r["requirement"] == "max_grasp_force_N"), None)
         if grasp:
             print(grasp_text(grasp))
-        if open_:
+        power = next(r for r in records if r["requirement"] == GRID_POWER_REQUIREMENT)
+        if power["verdict"] != "pass":
+            print(f"gauge excitation: {power['verdict'].upper()}: {power['basis']}")
+        by_margin = [k for k in open_ if k != GRID_POWER_REQUIREMENT]
+        if by_margin:
             top = records[0].get("levels_tried", [args.model])[-1]
-            print(f"undecided at {top} (margin inside its error estimate): {', '.join(open_)}"
+            print(f"undecided at {top} (margin inside its error estimate): {', '.join(by_margin)}"
                   + ("" if args.model == "auto" else "; --model auto climbs the ladder"))
         from tactcad.commands.budget import render_array
 
@@ -98,10 +102,12 @@ def kobj_budget_section(plan, req, model: str):
     when a source cannot be evaluated (a material of unknown CTE)."""
     from tactcad.errors import DesignError
     from tactcad.in_use.kobj_budget import DEFAULT_DELTA_T_K, kobj_budget
+    from tactcad.studies.verification import calibration_gauge
 
     try:
         return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
-                           DEFAULT_DELTA_T_K, "closed-form" if model == "auto" else model)
+                           DEFAULT_DELTA_T_K, "closed-form" if model == "auto" else model,
+                           force_gauge=calibration_gauge(plan))
     except DesignError as exc:
         return str(exc)
 

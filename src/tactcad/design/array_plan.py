@@ -242,6 +242,11 @@ class Plan:
     strength: StrengthSettings = field(default_factory=default_strength_settings)
     #: the construction that derived it (:mod:`tactcad.design.construction_registry`)
     construction: str = DEFAULT_CONSTRUCTION
+    #: the force gauge of the project's rigs file (``[force_gauge]``), which its elements are
+    #: calibrated on; None for a plan without rigs (made in code, or a construction with no
+    #: test rigs): :func:`tactcad.studies.verification.calibration_gauge` then takes the
+    #: catalogue's for the rated force
+    rigs_force_gauge: Any = None
     raw: Mapping[str, Any] = field(repr=False, compare=False, hash=False, default_factory=dict)
 
     def element(self, number: int) -> ElementSlot:
@@ -571,8 +576,9 @@ def check_in_use(d: Any, p: Problems) -> None:
               "shaft_diameter_mm), or left out", "the jaw and its shaft pass one trocar")
 
 
+# the grid on the sheet after the sheet's own rules: a sheet refused is named first
 DESIGN_RULES = (_check_array, _check_element, _check_clamp, _check_arms, check_requirements,
-                check_readout, check_tolerances, check_clamp_materials, check_sheet_process,
+                check_tolerances, check_clamp_materials, check_sheet_process, check_readout,
                 check_spacer_process, check_web_tolerance_held, check_in_use)
 
 

@@ -19,6 +19,7 @@ from tactcad.design.array_plan import (ARM_RANGE_MM, MAX_COLUMNS, MIN_ARM_STEP_M
                                   MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, MIN_SPACER_MM,
                                   MIN_TIP_GAP_MM, MIN_TIP_WALL_MM, NOTCH_RADIUS_MAX_MM,
                                   WEB_RANGE_MM, default_design_data)
+from tactcad.design.readout_section import DEFAULTS, GRID_WIDTH_RANGE_MM
 from tactcad.design.rig_plan import default_rigs_data
 from tactcad.partlib.array.element import WEB_TOLERANCE_RANGE_MM
 from tactcad.partlib.bracket import EAR_HEAD_CLEARANCE_MM
@@ -107,6 +108,8 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
     data["material"].update(youngs_modulus_MPa=pick(1e3, 1e6),
                             poisson_ratio=min(0.499, max(0.001, pick(0.0, 0.5))))
     data["sheet"]["thickness_mm"] = sheet
+    if sheet < DEFAULTS["grid_width_mm"][0]:  # the gauge grid lies on the sheet's face
+        data.setdefault("readout", {})["grid_width_mm"] = pick(GRID_WIDTH_RANGE_MM[0], sheet)
     data["array"].update(columns=columns, pitch_mm=pitch)
     data["element"].update(web_thickness_mm=web, notch_radius_mm=notch, tip_width_mm=tip_w,
                            tip_height_mm=pick(max(0.3, corner + MIN_TIP_WALL_MM), 5.0),

@@ -121,6 +121,9 @@ def project_of(plan: Plan, rigs: RigDesign | None, scenes: Mapping[str, SceneSpe
                                else {n: repr(s) for n, s in scenes.items()})
     if rigs is None:
         return Project(plan, None, scenes, plan.design_hash, "", scenes_hash, "", scenes_file)
+    # the rigs' force gauge goes with the plan: every figure of its calibration reads it
+    if plan.rigs_force_gauge != rigs.part("force_gauge"):
+        plan = replace(plan, rigs_force_gauge=rigs.part("force_gauge"))
     return Project(plan, rigs, scenes, plan.design_hash, rigs.rigs_hash, scenes_hash,
                    rigs.source, scenes_file)
 

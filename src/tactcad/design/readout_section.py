@@ -146,6 +146,10 @@ TN502_POWER_DENSITY_W_PER_MM2 = 1.0 / 645.16
 #: TN-502's range for thin steel sections, 1-2 W/in^2, in W/mm^2: above its top the thermal
 #: report flags the excitation.
 TN502_THIN_SECTION_W_PER_MM2 = (1.0 / 645.16, 2.0 / 645.16)
+#: The most TN-502 says a gauge's backing is derated under high excitation (it names 10-30 C
+#: off a backing's +120 C rating: the grid runs that much above its substrate), in K: a grid
+#: warmer than this above the element is past what the gauge maker's note covers.
+TN502_HIGH_EXCITATION_DERATING_K = 30.0
 #: The lead wire of every quarter bridge, one wire for the thermal report's lead resistance,
 #: the BOM and the bundle through a grasper's shaft: AWG 36 copper (ASTM B258: 0.127 mm) in
 #: PTFE insulation to 0.25 mm outside diameter, the wire the gauge catalogue's lead mass
@@ -187,6 +191,8 @@ def grid_power_density_W_per_mm2(excitation_V: float, resistance_ohm: float,
                                  grid_area_mm2: float) -> float:
     """Power per grid area of a quarter-bridge gauge (equal arms: V_ex^2 / (4 R_g A_g))."""
     return excitation_V ** 2 / (4.0 * resistance_ohm * grid_area_mm2)
+#: The grid widths a design file may state (mm).
+GRID_WIDTH_RANGE_MM = (0.1, 20.0)
 #: Temperature compensation by a dummy gauge (``dummy_gauge``).
 DUMMY_GAUGES = ("none", "half-bridge")
 
@@ -284,7 +290,7 @@ class ReadoutSection(Section):
     gauge_factor: number(0.5, 10.0, unit="", why="foil gauges 2 ... 2.2, semiconductor more") = None
     gauge_resistance_ohm: number(10.0, 10000.0, unit="ohm") = None
     grid_length_mm: number(0.1, 20.0, why="active grid length along the arm") = None
-    grid_width_mm: number(0.1, 20.0, why="active grid width across the sheet") = None
+    grid_width_mm: number(*GRID_WIDTH_RANGE_MM, why="active grid width across the sheet") = None
     gauge_backing_thickness_mm: number(0.0, 0.5, why="carrier under the foil grid") = None
     adhesive_thickness_mm: number(0.0, 0.5, why="cured glue line under the carrier") = None
     gauge_backing_modulus_MPa: number(0.0, 200000.0, unit="MPa",
@@ -341,15 +347,44 @@ class ReadoutSection(Section):
                                  "the reading at the rated force, from a load-unload cycle") = None
 
 
+def effective_grid_size(ro: Any, key: str) -> tuple[float, str]:
+    """The grid size the read-out chain uses (mm): the design file's, else the default.
+
+    Args:
+        ro: the validated ``[readout]`` section, or None when the file has none.
+        key: ``"grid_width_mm"`` or ``"grid_length_mm"``.
+
+    Returns:
+        (size in mm, "design file" or the default's source).
+    """
+    stated = getattr(ro, key, None) if ro is not None else None
+    if stated is not None:
+        return float(stated), "design file"
+    value, source = DEFAULTS[key]
+    return float(value), source
+
+
 def check_readout(d: Any, p: Problems) -> None:
     """Cross-field rule: the gauge grid fits on the element's top face over the web."""
     ro = getattr(d, "readout", None)
+    sheet = d.sheet.thickness_mm
+    width, width_source = effective_grid_size(ro, "grid_width_mm")
+    if width > sheet:
+        p.add("readout.grid_width_mm", width, f"<= sheet.thickness_mm = {fmt(sheet)} mm",
+              "the grid lies on the element's top face, one sheet thick"
+              + ("" if width_source == "design file" else
+                 "; not stated, so the library default's: state the narrower grid of the gauge "
+                 "bonded, or a thicker sheet"))
+    shortest = min(d.arms.lengths_mm)
+    length, length_source = effective_grid_size(ro, "grid_length_mm")
+    if length > shortest:
+        p.add("readout.grid_length_mm", length, f"<= {fmt(shortest)} mm (shortest arm)",
+              "the grid is centred over the web and must stay on the arm's top face"
+              + ("" if length_source == "design file" else
+                 "; not stated, so the library default's: state the shorter grid of the gauge "
+                 "bonded, or longer arms"))
     if ro is None:
         return
-    sheet = d.sheet.thickness_mm
-    if ro.grid_width_mm is not None and ro.grid_width_mm > sheet:
-        p.add("readout.grid_width_mm", ro.grid_width_mm, f"<= sheet.thickness_mm = {fmt(sheet)} mm",
-              "the grid lies on the element's top face, one sheet thick")
     if ro.filter_corner_Hz is not None and ro.filter_order == 0:
         p.add("readout.filter_corner_Hz", ro.filter_corner_Hz, "no corner with filter_order = 0",
               "order 0 means no anti-alias filter; give an order of 1 ... 8 for the corner")
@@ -360,10 +395,6 @@ def check_readout(d: Any, p: Problems) -> None:
               f"readout.amplifier = {ro.amplifier!r}: the noise defaults are the "
               f"{DEFAULT_AMPLIFIER}'s data sheet's, not this amplifier's (state its 1/f "
               "density at 1 Hz too, amplifier_flicker_nV_per_rtHz_at_1Hz, or it is left out)")
-    shortest = min(d.arms.lengths_mm)
-    if ro.grid_length_mm is not None and ro.grid_length_mm > shortest:
-        p.add("readout.grid_length_mm", ro.grid_length_mm, f"<= {fmt(shortest)} mm (shortest arm)",
-              "the grid is centred over the web and must stay on the arm's top face")
 
 
 @dataclass(frozen=True)

@@ -41,7 +41,9 @@ def tip_height_drawing(plan: Plan) -> TipHeightDrawing | None:
 
     if stated_kobj_accuracy(plan.raw) is None:
         return None
-    key = hashlib.sha256(repr(sorted(_flat(plan.raw))).encode()).hexdigest()
+    # the rigs' force gauge sets the calibration term the budget's tolerance rests on
+    key = hashlib.sha256(repr((sorted(_flat(plan.raw)), plan.rigs_force_gauge)).encode()
+                         ).hexdigest()
     if key not in _CHOSEN:
         _CHOSEN[key] = _from_closed_form_budget(plan)
     return _CHOSEN[key]
@@ -75,12 +77,13 @@ def _flat(table: Mapping, prefix: str = "") -> list[tuple[str, str]]:
 def _from_closed_form_budget(plan: Plan) -> TipHeightDrawing | None:
     from tactcad.errors import DesignError
     from tactcad.in_use.kobj_budget import DEFAULT_DELTA_T_K, kobj_budget
+    from tactcad.studies.verification import calibration_gauge
     from tactcad.studies.verification import requirements_of
 
     req = requirements_of(plan)
     try:
         budget = kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
-                             DEFAULT_DELTA_T_K)
+                             DEFAULT_DELTA_T_K, force_gauge=calibration_gauge(plan))
     except DesignError:
         return None
     return tip_height_from_budget(plan, budget)

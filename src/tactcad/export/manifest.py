@@ -192,12 +192,13 @@ def kobj_budget_section(plan: Plan) -> dict | None:
     None when a source cannot be evaluated (no CTE known for the material)."""
     from tactcad.errors import DesignError
     from tactcad.in_use.kobj_budget import DEFAULT_DELTA_T_K, kobj_budget
+    from tactcad.studies.verification import calibration_gauge
     from tactcad.studies.verification import requirements_of
 
     req = requirements_of(plan)
     try:
         return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
-                           DEFAULT_DELTA_T_K).as_json()
+                           DEFAULT_DELTA_T_K, force_gauge=calibration_gauge(plan)).as_json()
     except DesignError:
         return None
 

@@ -80,7 +80,9 @@ every K_obj of the grid, before and after the correction the lab applies):
 (h) calibration uncertainty: the standard errors of the fitted K and K_v (eq. 4-6,
     :func:`tactcad.mechanics.calibration.fit_calibration`) of each element, from a
     calibration file when given, else the expected standard errors of the paper's
-    procedure (:func:`expected_calibration_stderr_rel`: the force read to 0.001 N, the
+    procedure (:func:`expected_calibration_stderr_rel`: the force read by the design's
+    calibration gauge, the project's rigs' force gauge where it has rigs
+    (:func:`tactcad.studies.verification.calibration_gauge`, the one ``calibrate`` uses), the
     signal through the design's read-out chain), all independent.
 (j) gauge creep: a bonded gauge's reading under a held load creeps by a fraction of the
     reading (glue line and carrier relaxing; :data:`GAUGE_CREEP_REL` over
@@ -204,6 +206,9 @@ class Context:
     force_N: float
     delta_T_K: float
     calibrations: Mapping[int, object] = field(default_factory=dict)
+    #: (the calibration rig's force gauge, where it comes from): ``model``, ``range_N``,
+    #: ``resolution_N`` (N), ``stiffness_N_per_mm`` (N/mm)
+    force_gauge: tuple[Any, str] | None = None
     cache: dict = field(default_factory=dict)
 
     def once(self, key: str, compute: Callable[[], object]):
@@ -695,22 +700,10 @@ def gauge_model(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     return Contribution(rel, np.zeros_like(rel))
 
 
-def calibration_force_gauge(force_N: float):
-    """The force gauge a static calibration up to ``force_N`` (N) is expected on: of the
-    catalogue's (:func:`tactcad.vocabulary.force_gauge_catalogue.force_gauges`) the smallest
-    range that holds the force, finest resolution first (the rule the rigs' sizing follows);
-    the largest range when none holds it."""
-    from tactcad.vocabulary.force_gauge_catalogue import force_gauges
-
-    gauges = force_gauges()
-    holding = [g for g in gauges if g.range_N >= force_N]
-    return min(holding, key=lambda g: (g.range_N, g.resolution_N)) if holding else gauges[-1]
-
-
 def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
                                     signal_noise_V: float | None = None,
-                                    k_sensor_N_per_mm: float | None = None,
-                                    force_noise_N: float | None = None) -> tuple[float, float]:
+                                    k_sensor_N_per_mm: float | None = None, *,
+                                    force_noise_N: float) -> tuple[float, float]:
     """(σ_K / K, σ_K_v / |K_v|) a static calibration (eq. 4-6) leaves on one element.
 
     Ordinary least squares over the Z steps of
@@ -729,8 +722,11 @@ def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
             its read-out chain's, the calibration reads through the same chain.
         k_sensor_N_per_mm: the force gauge's stiffness (N/mm), default
             :data:`~tactcad.mechanics.calibration.K_SENSOR_N_PER_MM`.
-        force_noise_N: the force gauge's resolution (N), default that of
-            :func:`calibration_force_gauge` at 1 N.
+        force_noise_N: the force gauge's resolution (N): the budget passes that of the
+            design's calibration gauge (:func:`tactcad.studies.verification.calibration_gauge`).
+
+    Returns:
+        (σ_K / K, σ_K_v / |K_v|), relative.
     """
     from tactcad.mechanics.calibration import (CALIBRATION_STEPS_UM, DEFAULT_NOISE_SIGNAL_V,
                                                K_SENSOR_N_PER_MM, series_error_amplification)
@@ -739,7 +735,7 @@ def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
     z = np.tile(np.asarray(CALIBRATION_STEPS_UM, float) * 1e-3, CALIBRATION_REPEATS)
     defl = z * k_s / (k_element + k_s)
     sxx = math.sqrt(float(np.sum((defl - defl.mean()) ** 2)))
-    n = calibration_force_gauge(1.0).resolution_N if force_noise_N is None else force_noise_N
+    n = force_noise_N
     force_residual = n * series_error_amplification(k_element, k_s).from_k_apparent
     v_noise = DEFAULT_NOISE_SIGNAL_V if signal_noise_V is None else signal_noise_V
     signal_residual = math.hypot(v_noise, k_v_V_per_mm * n / k_s)
@@ -760,17 +756,18 @@ def _calibration_stderr(ctx: Context) -> dict[int, tuple[float, float]]:
                              c.stderr_K_v_V_per_mm / abs(c.K_v_V_per_mm))
         else:
             k = ctx.k_of(s.number)
-            gauge = calibration_force_gauge(ctx.force_N)
+            gauge, _ = ctx.force_gauge
             out[s.number] = expected_calibration_stderr_rel(
                 k, per_part[s.geometry.part_name]["S"] * k, noise, gauge.stiffness_N_per_mm,
-                gauge.resolution_N)
+                force_noise_N=gauge.resolution_N)
     return out
 
 
 def calibration(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(h) The standard errors of each element's fitted K (eq. 5) and K_v (eq. 4),
     independent: the calibration file's fits, else those a static calibration on the
-    catalogue gauge of :func:`calibration_force_gauge` is expected to leave; each read by
+    design's calibration gauge (``force_gauge`` of :func:`kobj_budget`: the project's rigs'
+    force gauge) is expected to leave; each read by
     the coupled inversion (a K_v error scales its deflection reading, a K error the coupled
     R of the true springs)."""
     se = ctx.once("calibration", lambda: _calibration_stderr(ctx))
@@ -992,7 +989,8 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
                 stiffness: Mapping[str, float] | None = None,
                 errors: Mapping[str, float] | None = None,
                 calibrations: Mapping[int, object] | None = None,
-                points: int = BUDGET_POINTS) -> KobjBudget:
+                points: int = BUDGET_POINTS, *,
+                force_gauge: tuple[Any, str]) -> KobjBudget:
     """The K_obj error budget of every sensing unit of ``plan`` over ``kobj_range``.
 
     Args:
@@ -1009,6 +1007,9 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
             the others take the expected standard errors of a static calibration
             (:func:`expected_calibration_stderr_rel`).
         points: K_obj grid points (log-spaced), 2 ... 101.
+        force_gauge: (the force gauge the elements are calibrated on, where it comes from):
+            :func:`tactcad.studies.verification.calibration_gauge` of ``plan``, the gauge
+            ``calibrate`` uses, so that every caller's budget reads one gauge.
 
     Returns:
         :class:`KobjBudget`.
@@ -1034,13 +1035,13 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         stiffness = {n: e.stiffness_N_per_mm for n, e in est.items()}
         errors = {n: e.error_estimate_rel for n, e in est.items()}
     ctx = Context(plan, model, stiffness, errors, float(force_N), float(delta_T_K),
-                  dict(calibrations or {}))
+                  dict(calibrations or {}), force_gauge)
     k_obj = kobj_grid((lo, hi), points)
     pairs = [Unit(r.number, m.number) for r, m in row_units(plan, dict(stiffness))]
     units = [unit_budget(ctx, u, k_obj) for u in pairs]
     tip = tip_height_record(ctx, pairs, units, k_obj)
     tc_e, tc_source = modulus_tc_per_K(plan)
-    gauge = calibration_force_gauge(float(force_N))
+    gauge, gauge_source = force_gauge
     _, per_newton, xt_error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     notes = {
         "stack_crosstalk_N_per_N": float(np.max(np.abs(per_newton))) if per_newton.size else 0.0,
@@ -1063,9 +1064,12 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         "calibration": "fitted standard errors of the calibration file" if calibrations
         else (f"expected standard errors of a static calibration on the {gauge.model} "
               f"force gauge (range {gauge.range_N:g} N, read to "
-              f"{gauge.resolution_N:g} N, {gauge.stiffness_N_per_mm:g} N/mm): Z steps of "
+              f"{gauge.resolution_N:g} N, {gauge.stiffness_N_per_mm:g} N/mm; "
+              f"{gauge_source}, as tactcad calibrate): Z steps of "
               f"25 um to 150 um, {CALIBRATION_REPEATS} runs, the signal to the read-out "
               f"chain's noise of one averaged reading, 1 sigma"),
+        "calibration_force_gauge": gauge.model,
+        "calibration_force_gauge_source": gauge_source,
         "totals": "RSS and worst-case sum of the contributions after correction (as a "
                   "calibrated, corrected sensor reads); *_before_rel without correction",
         "manufacturing_tolerance": "calibration measures each element's K (eq. 5), so the "

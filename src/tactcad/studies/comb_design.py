@@ -49,7 +49,8 @@ from typing import Any, Callable, Iterator, Mapping
 
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError, DesignErrors
-from tactcad.studies.inverse_design import InverseDesignError, Targets, held_to_process
+from tactcad.studies.inverse_design import (InverseDesignError, Targets, grid_fitted_to_sheet,
+                                            held_to_process)
 
 #: Sheet thicknesses searched (mm): Ti-6Al-4V and steel sheet of common stock.
 SHEETS_MM = (0.5, 0.6, 0.8, 1.0, 1.2, 1.5)
@@ -293,7 +294,8 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     d["sheet"] = {"thickness_mm": sheet_mm}
     if e.get("process"):  # the process's tolerance, notch and corner radii on this sheet
         d = held_to_process(d)
-        e, comb = d["element"], d["comb"]
+    d = grid_fitted_to_sheet(d)
+    e, comb = d["element"], d["comb"]
     # a starting web the process leaves (each is solved next); the notch keeps t/R <= 1
     e["web_thickness_mm"] = max(e["web_thickness_mm"], round(web_floor(d).value_mm, 6))
     e["notch_radius_mm"] = max(e["notch_radius_mm"], e["web_thickness_mm"])
@@ -1518,6 +1520,8 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
            or (not fasteners and k in ("comb.screw_size", "comb.dowel_diameter_mm"))}
     if fasteners:
         why.update(fastener_reasons(fasteners))
+    if "readout.grid_width_mm" in d.get("assumptions", {}):  # the grid fitted to the sheet
+        why["readout.grid_width_mm"] = d["assumptions"]["readout.grid_width_mm"]
     searched = sheets_of(d)
     others = [c for c in searched if c != best.sheet_mm]
     why.update({

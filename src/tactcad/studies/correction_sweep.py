@@ -54,6 +54,7 @@ from typing import Iterable, Sequence
 
 from tactcad.design.array_plan import (ElementGeometry, Material, default_design_data, plan_from_dict,
                       with_overrides)
+from tactcad.design.readout_section import DEFAULTS
 from tactcad.mechanics.closed_form import closed_form_compliance
 from tactcad.mechanics.correction import CORRECTION_FILE
 from tactcad.studies.correction_fit import build_document
@@ -127,7 +128,9 @@ def grid_geometry(web_mm: float, arm_mm: float, notch_radius_mm: float, *,
             "arms.lengths_mm": [a, a], "array.columns": 1, "sheet.thickness_mm": b,
             "array.pitch_mm": max(6.0, b + 1.0), "edm.wire_diameter_mm": 0.02,
             "edm.spark_gap_mm": 0.0, "material.poisson_ratio": float(poisson_ratio),
-            "material.youngs_modulus_MPa": float(youngs_modulus_MPa)}
+            "material.youngs_modulus_MPa": float(youngs_modulus_MPa),
+            # the bare element carries no gauge; a grid that fits the sheet passes its rule
+            "readout.grid_width_mm": min(b, DEFAULTS["grid_width_mm"][0])}
     plan = plan_from_dict(with_overrides(data, over), source="<correction grid>")
     return plan.element(1).geometry.bare(), plan.material
 

@@ -158,6 +158,40 @@ def design_variant(data: Mapping[str, Any], *, web_mm: float | None = None,
 
 
 #: Dimensions raised to hold a bolt are rounded up to this step (mm).
+def grid_fitted_to_sheet(data: Mapping[str, Any]) -> dict[str, Any]:
+    """Raw design tables whose gauge grid fits the element's top face, one sheet thick.
+
+    A searched sheet thinner than the library default's grid width
+    (:data:`tactcad.design.readout_section.DEFAULTS`) would be refused by the grid rule
+    (:func:`tactcad.design.readout_section.check_readout`); where the tables state no
+    ``readout.grid_width_mm``, the search takes a grid as wide as the sheet instead, its reason
+    under ``[assumptions]`` (the gauge to bond). A stated grid is kept (the rule judges it), and
+    a sheet narrower than the narrowest grid the schema allows gets none.
+
+    Args:
+        data: raw tables (``sheet``, ``readout`` optional); not modified.
+
+    Returns:
+        A new dict of raw tables (not validated).
+    """
+    from tactcad.design.readout_section import DEFAULTS, GRID_WIDTH_RANGE_MM
+
+    out = copy.deepcopy(dict(data))
+    readout = dict(out.get("readout") or {})
+    sheet = float(out["sheet"]["thickness_mm"])
+    default = float(DEFAULTS["grid_width_mm"][0])
+    narrowest = GRID_WIDTH_RANGE_MM[0]
+    if "grid_width_mm" in readout or sheet >= default or sheet < narrowest:
+        return out
+    out["readout"] = {**readout, "grid_width_mm": sheet}
+    out.setdefault("assumptions", {})["readout.grid_width_mm"] = (
+        f"{sheet:g} mm, as wide as the sheet: the library default's grid (readout's "
+        f"grid_width_mm) is wider than the sheet the search chose, and the grid lies on the "
+        f"element's top face: bond a gauge whose grid is at most {sheet:g} mm wide (the grid "
+        f"strain was read over the face either way).")
+    return out
+
+
 def held_to_process(data: Mapping[str, Any]) -> dict[str, Any]:
     """Raw design tables whose element the cut process can make on the design's sheet:
     the web's drawn tolerance raised to what the process holds, the notch radius to half

@@ -51,7 +51,7 @@ import numpy as np
 from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_SPACER_MM, MIN_TIP_GAP_MM, Plan,
                                        plan_from_dict)
 from tactcad.design.domain import longest_grip_mm
-from tactcad.errors import DesignError, RequirementFailure
+from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 from tactcad.mechanics.correction import range_warnings_unsaid
 from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, cut_process
 from tactcad.studies.design_alternatives import (evaluations_kept, nearest_on_scan,
@@ -60,7 +60,7 @@ from tactcad.studies.design_alternatives import (evaluations_kept, nearest_on_sc
 from tactcad.studies.footprint_fit import design_in_footprint, fits, stated_footprint
 from tactcad.studies.inverse_design import (STIFFNESS_LIMITS, InverseDesign, InverseDesignError,
                                             Targets, binding_limits, centred_for_tissue, design_from_tables,
-                                            design_variant, held_to_process,
+                                            design_variant, grid_fitted_to_sheet, held_to_process,
                                             max_full_scale_force_N,
                                             mounting_min_arm_mm,
                                             required_overall_length_mm, search_webs,
@@ -148,8 +148,8 @@ def with_layout(data: Mapping[str, Any], layout: FreeLayout) -> dict[str, Any]:
     # the arms are the design's to choose: until then each at least the shortest the
     # layout allows, so that the tables are a design to start from
     start_arm = max(shortest, max(arms)) if arms else shortest
-    return held_to_process(design_variant(out, arms_mm=[math.ceil(start_arm * 100 - 1e-9) / 100]
-                                          * len(arms)))
+    return grid_fitted_to_sheet(held_to_process(design_variant(
+        out, arms_mm=[math.ceil(start_arm * 100 - 1e-9) / 100] * len(arms))))
 
 
 def process_sheets_mm(process: str | None) -> list[float]:
@@ -476,7 +476,7 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
         mechs = [(c, _mechanics(seen, data, c, targets, correction)) for c in seen.stack_fit]
         mechs = [(c, m) for c, m in mechs if m is not None]
         if not mechs:  # the values the user fixed break a rule no free value mends
-            return _rule_error(with_layout(data, seen.stack_fit[0]))
+            return fewest_rule_errors(data, seen.stack_fit)
         stiff = [(c, m) for c, m in mechs if m.largest_force_N > 0]
         if not stiff:
             errors.append(_stiffness_error(data, targets, mechs))
@@ -710,6 +710,38 @@ def _round_away(x: float, asked: float) -> float:
     offer stays on the feasible side of the edge between them)."""
     e = 10.0 ** (math.floor(math.log10(x)) - 2)
     return (math.ceil(x / e - 1e-9) if x > asked else math.floor(x / e + 1e-9)) * e
+
+
+def fewest_rule_errors(data: Mapping[str, Any], layouts: Sequence[FreeLayout]) -> DesignError:
+    """Every rule that bars the sheets searched, each as the nearest sheet breaks it.
+
+    When every layout breaks a rule, the start's own refusal may name only what a sheet the
+    process cannot cut breaks (a notch too large for it), not the rule that bars every
+    sheet it can cut (a gauge grid wider than the sheet). Of the layouts that break fewest
+    rules (the nearest of each sheet), each rule broken is named once, with its sheet.
+
+    Args:
+        data: the start's raw tables. layouts: the candidates, nearest the start first.
+
+    Returns:
+        The :class:`DesignError` (or :class:`~tactcad.errors.DesignErrors`) to raise.
+    """
+    first_per_sheet: dict[float, FreeLayout] = {}
+    for layout in layouts:
+        first_per_sheet.setdefault(layout.sheet_mm, layout)
+    broken = [(sheet, getattr(e, "errors", (e,))) for sheet, e in
+              ((s, _rule_error(with_layout(data, c))) for s, c in first_per_sheet.items())]
+    fewest = min(len(errs) for _, errs in broken)
+    named: dict[str, DesignError] = {}
+    for sheet, errs in broken:
+        for e in errs if len(errs) == fewest else ():
+            named.setdefault(e.field, DesignError(
+                e.field, e.value, e.allowed,
+                f"{e.why}; on the {sheet:g} mm sheet" if e.why else f"on the {sheet:g} mm sheet",
+                e.file))
+    found = list(named.values())
+    return found[0] if len(found) == 1 else DesignErrors(
+        found, what=f"every sheet searched ({', '.join(f'{t:g}' for t in sorted(first_per_sheet))} mm)")
 
 
 def _rule_error(tables: Mapping[str, Any]) -> DesignError:

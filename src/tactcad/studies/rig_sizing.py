@@ -35,11 +35,8 @@ from dataclasses import dataclass
 from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
 from tactcad.mechanics.evaluation import STANDARD_GRAVITY, SampleSpec, ladder_stiffness_by_element
-from tactcad.vocabulary.force_gauge_catalogue import ForceGaugeModel, force_gauges
+from tactcad.vocabulary.force_gauge_catalogue import RESOLUTION_SHARE, GaugeNeed
 
-#: The gauge resolves this share of the rated full-scale force (1 %: the first of
-#: the calibration's six steps to full scale is read to 6 %).
-RESOLUTION_SHARE = 0.01
 #: How many weights the evaluation rig stacks (at least, at most) above its preload.
 WEIGHT_COUNT_RANGE = (4, 10)
 #: The weights' steel (g/cm^3).
@@ -59,33 +56,6 @@ def evaluation_sample_spec() -> SampleSpec:
 # ---------------------------------------------------------------------------
 # Force gauge
 # ---------------------------------------------------------------------------
-@dataclass(frozen=True)
-class GaugeNeed:
-    """What the rigs ask of their force gauge.
-
-    Attributes:
-        rated_N: the design's rated full-scale force F (N).
-        sample_depth_mm: the sample rig's depth, F / K_lo (mm).
-        sample_force_N: the stiffest sample at that depth (N).
-        range_N: the largest force read, max(F, sample force) (N).
-        resolution_N: the coarsest resolution allowed, :data:`RESOLUTION_SHARE` x F (N).
-    """
-
-    rated_N: float
-    sample_depth_mm: float
-    sample_force_N: float
-    range_N: float
-    resolution_N: float
-
-    def words(self) -> str:
-        """The need in words, with its reasons."""
-        return (f"range >= {self.range_N:.3g} N (the rated full-scale force {self.rated_N:.3g} N, "
-                f"the stiffest sample {self.sample_force_N:.3g} N at the softest's "
-                f"{self.sample_depth_mm:.3g} mm), "
-                f"resolution <= {self.resolution_N:.3g} N ({100 * RESOLUTION_SHARE:g} % of "
-                f"{self.rated_N:.3g} N)")
-
-
 def gauge_need(rated_N: float, samples_N_per_mm) -> GaugeNeed:
     """The force gauge a design's rigs need (see the module docstring).
 
@@ -96,44 +66,6 @@ def gauge_need(rated_N: float, samples_N_per_mm) -> GaugeNeed:
     depth = rated_N / min(samples_N_per_mm)
     sample = max(samples_N_per_mm) * depth
     return GaugeNeed(rated_N, depth, sample, max(rated_N, sample), RESOLUTION_SHARE * rated_N)
-
-
-def calibration_gauge_need(rated_N: float) -> GaugeNeed:
-    """The force gauge a calibration alone needs (no sample rig): the rated force's range
-    and :data:`RESOLUTION_SHARE` of it.
-
-    Args:
-        rated_N: the design's rated full-scale force (N), > 0.
-
-    Returns:
-        the need, with no sample (depth and sample force 0).
-    """
-    return GaugeNeed(rated_N, 0.0, 0.0, rated_N, RESOLUTION_SHARE * rated_N)
-
-
-def gauge_shortfalls(range_N: float, resolution_N: float, need: GaugeNeed) -> list[str]:
-    """How a gauge of ``range_N`` and ``resolution_N`` (N) misses ``need``, in
-    words (empty when it fits)."""
-    out = []
-    if range_N < need.range_N * (1 - 1e-9):
-        out.append(f"range {range_N:g} N < {need.range_N:.3g} N")
-    if resolution_N > need.resolution_N * (1 + 1e-9):
-        out.append(f"resolution {resolution_N:g} N > {need.resolution_N:.3g} N")
-    return out
-
-
-def choose_force_gauge(need: GaugeNeed) -> tuple[ForceGaugeModel, list[str]]:
-    """The catalogue gauge of smallest range that meets ``need`` (of equal
-    ranges the finest resolution), with no shortfalls; when none meets it,
-    the finest of those with the range (else the largest range) with its
-    shortfalls in words, for ``check`` to fail and the rigs file to say."""
-    gauges = force_gauges()
-    fits = [g for g in gauges if not gauge_shortfalls(g.range_N, g.resolution_N, need)]
-    if fits:
-        return fits[0], []
-    ranged = [g for g in gauges if g.range_N >= need.range_N]
-    best = min(ranged, key=lambda g: g.resolution_N) if ranged else gauges[-1]
-    return best, gauge_shortfalls(best.range_N, best.resolution_N, need)
 
 
 # ---------------------------------------------------------------------------

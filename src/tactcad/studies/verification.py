@@ -516,6 +516,32 @@ def rated_full_scale_force(plan: Plan) -> float:
     return requirements_of(plan).full_scale_force_N
 
 
+def calibration_gauge(plan: Plan) -> tuple[Any, str]:
+    """The force gauge in series with each element on the calibration rig: the project's rigs'
+    own (``plan.rigs_force_gauge``, set where the project is loaded with its rigs), or, for a
+    plan without rigs (a comb or a stacked array for a grasper's jaw, a plan made in code),
+    the catalogue gauge the rigs would choose for the design's rated full-scale force alone
+    (:func:`tactcad.vocabulary.force_gauge_catalogue.calibration_gauge_need`). ``calibrate``
+    and every caller of the K_obj budget read this one gauge.
+
+    Args:
+        plan: the design.
+
+    Returns:
+        (the gauge: ``model``, ``range_N``, ``resolution_N`` (N), ``stiffness_N_per_mm``
+        (N/mm); where it comes from, in words).
+    """
+    from tactcad.vocabulary.force_gauge_catalogue import (calibration_gauge_need,
+                                                          choose_force_gauge)
+
+    if plan.rigs_force_gauge is not None:
+        return plan.rigs_force_gauge, "the design's rigs ([force_gauge])"
+    rated = rated_full_scale_force(plan)
+    gauge, _ = choose_force_gauge(calibration_gauge_need(rated))
+    return gauge, (f"the catalogue's gauge for the rated {rated:.3g} N: the project has no "
+                   "rigs; a data file's k_sensor_N_per_mm overrides it")
+
+
 # ---------------------------------------------------------------------------
 # The verification matrix
 # ---------------------------------------------------------------------------
@@ -588,6 +614,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
         out.append(footprint_record(req.footprint_mm, envelope_mm, tolerances_of(plan.raw).general))
     out.extend(resonance_records(plan, model, progress))
     out.extend(r for r in [thermal_record(plan, fig, req)] if r is not None)
+    out.append(grid_power_density_record(plan))
     out += crosstalk_records(plan, F, units.force_resolution_N)
     budget = accuracy_budget(plan, fig, req)
     out.extend(r for r in [kobj_accuracy_record(plan, fig, req, budget),
@@ -597,9 +624,77 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
         r["stated"] = r["requirement"] in req.stated
         # the K band is the closed form's derivative at every level: no level decides it anew
         r["level_fixed"] = r["model"] != model or r["requirement"] in LEVEL_FIXED
-        r["verdict"] = verdict(r["margin_rel"], r["error_estimate_rel"],
-                               r.get("allowed_margin_rel", 0.0), r["pass"])
+        if "verdict" not in r:  # a record with a rule of its own states its verdict
+            r["verdict"] = verdict(r["margin_rel"], r["error_estimate_rel"],
+                                   r.get("allowed_margin_rel", 0.0), r["pass"])
     return out
+
+
+#: The verification row of the gauge grid's power density (TN-502).
+GRID_POWER_REQUIREMENT = "grid_power_density_W_per_mm2"
+
+
+def grid_power_density_verdict(density_W_per_mm2: float, grid_rise_K: float) -> str:
+    """The verdict on a gauge's excitation by Micro-Measurements TN-502.
+
+    Args:
+        density_W_per_mm2: the grid's power density (W/mm^2).
+        grid_rise_K: the grid's temperature rise above the element (K).
+
+    Returns:
+        ``pass`` within TN-502's thin-section guidance (at most 2 W/in^2, the sections these
+        webs are); ``fail`` when the grid runs more than
+        :data:`~tactcad.design.readout_section.TN502_HIGH_EXCITATION_DERATING_K` above the
+        element (past the largest backing derating TN-502 names for high excitation);
+        otherwise ``undecided`` (above the guidance: whether the element sinks the heat as a
+        heavier section would is not modelled).
+    """
+    from tactcad.design.readout_section import (TN502_HIGH_EXCITATION_DERATING_K,
+                                                TN502_THIN_SECTION_W_PER_MM2)
+
+    if density_W_per_mm2 <= TN502_THIN_SECTION_W_PER_MM2[1] * (1 + 1e-9):
+        return "pass"
+    return "fail" if grid_rise_K > TN502_HIGH_EXCITATION_DERATING_K else "undecided"
+
+
+def grid_power_density_record(plan: Plan) -> dict:
+    """The gauge's excitation against Micro-Measurements TN-502 ("Optimizing Strain Gage
+    Excitation Levels"), for every design read through a bonded foil gauge.
+
+    The quarter-bridge grid dissipates V_ex^2 / (4 R_g) over its area and warms above the
+    element by that power over the grid-to-element heat transfer
+    (:func:`tactcad.mechanics.thermal_drift.self_heating_K`, what ``tactcad thermal`` prints).
+    Target: TN-502's top for thin sections, 2 W/in^2; margin target / density - 1; the verdict
+    is :func:`grid_power_density_verdict`'s (the rise decides a failure). Exact in the chain's
+    values: error estimate 0, the same at every level.
+
+    Args:
+        plan: the design.
+
+    Returns:
+        The record: ``predicted`` the grid's power density (W/mm^2), ``grid_rise_K`` and its
+        limit ``grid_rise_limit_K`` (K), ``excitation_V`` (V), ``basis`` the sources.
+    """
+    from tactcad.design.readout_section import (TN502_HIGH_EXCITATION_DERATING_K,
+                                                TN502_THIN_SECTION_W_PER_MM2)
+    from tactcad.mechanics.readout_chain import readout_chain
+    from tactcad.mechanics.thermal_drift import self_heating_K
+
+    chain = readout_chain(plan)
+    density = chain.grid_power_density_W_per_mm2
+    _, rise = self_heating_K(chain)
+    target = TN502_THIN_SECTION_W_PER_MM2[1]
+    rec = _record(GRID_POWER_REQUIREMENT, target, density, 0.0, target / density - 1.0,
+                  "closed-form", density <= target * (1 + 1e-9),
+                  excitation_V=chain.excitation_V, grid_rise_K=rise,
+                  grid_rise_limit_K=TN502_HIGH_EXCITATION_DERATING_K,
+                  verdict=grid_power_density_verdict(density, rise),
+                  basis=(f"Micro-Measurements TN-502: {645.16 * density:.3g} W/in^2 in the grid at "
+                         f"{chain.excitation_V:g} V (thin sections 1-2 W/in^2); the grid "
+                         f"{rise:.3g} K above the element (tactcad thermal), fails past "
+                         f"{TN502_HIGH_EXCITATION_DERATING_K:g} K, the largest backing derating "
+                         f"TN-502 names for high excitation, undecided above the guidance short of that"))
+    return rec
 
 
 #: How the K_obj resolution records read each force.
@@ -614,7 +709,8 @@ def design_kobj_budget(plan: Plan, fig: Figures, req: Requirements):
     from tactcad.in_use.kobj_budget import DEFAULT_DELTA_T_K, kobj_budget
 
     return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
-                       DEFAULT_DELTA_T_K, fig.model, fig.k, fig.k_error)
+                       DEFAULT_DELTA_T_K, fig.model, fig.k, fig.k_error,
+                       force_gauge=calibration_gauge(plan))
 
 
 def accuracy_budget(plan: Plan, fig: Figures, req: Requirements):
@@ -877,7 +973,7 @@ def least_footprint_mm(envelope_mm: Sequence[float], axes: int = 2,
 
 #: Requirements computed the same way at every level (the K band over the web tolerance).
 LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm",
-               "max_crosstalk_rel")
+               "max_crosstalk_rel", GRID_POWER_REQUIREMENT)
 
 def prefetch_top_level(plan: Plan, model: str, progress: Callable[[str], None] | None = None
                        ) -> int:
