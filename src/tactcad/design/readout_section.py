@@ -364,25 +364,29 @@ def effective_grid_size(ro: Any, key: str) -> tuple[float, str]:
     return float(value), source
 
 
+def _grid_fits(p: Problems, ro: Any, key: str, most_mm: float, allowed: str, why: str,
+               remedy: str) -> None:
+    """Refuse the grid's ``key`` (its width or length, mm) beyond ``most_mm``, stated or the
+    library default's (:func:`effective_grid_size`); a default's refusal says what to state
+    (``remedy``)."""
+    value, source = effective_grid_size(ro, key)
+    if value > most_mm:
+        p.add(f"readout.{key}", value, allowed, why + (
+            "" if source == "design file" else
+            f"; not stated, so the library default's: state {remedy}"))
+
+
 def check_readout(d: Any, p: Problems) -> None:
     """Cross-field rule: the gauge grid fits on the element's top face over the web."""
     ro = getattr(d, "readout", None)
     sheet = d.sheet.thickness_mm
-    width, width_source = effective_grid_size(ro, "grid_width_mm")
-    if width > sheet:
-        p.add("readout.grid_width_mm", width, f"<= sheet.thickness_mm = {fmt(sheet)} mm",
-              "the grid lies on the element's top face, one sheet thick"
-              + ("" if width_source == "design file" else
-                 "; not stated, so the library default's: state the narrower grid of the gauge "
-                 "bonded, or a thicker sheet"))
+    _grid_fits(p, ro, "grid_width_mm", sheet, f"<= sheet.thickness_mm = {fmt(sheet)} mm",
+               "the grid lies on the element's top face, one sheet thick",
+               "the narrower grid of the gauge bonded, or a thicker sheet")
     shortest = min(d.arms.lengths_mm)
-    length, length_source = effective_grid_size(ro, "grid_length_mm")
-    if length > shortest:
-        p.add("readout.grid_length_mm", length, f"<= {fmt(shortest)} mm (shortest arm)",
-              "the grid is centred over the web and must stay on the arm's top face"
-              + ("" if length_source == "design file" else
-                 "; not stated, so the library default's: state the shorter grid of the gauge "
-                 "bonded, or longer arms"))
+    _grid_fits(p, ro, "grid_length_mm", shortest, f"<= {fmt(shortest)} mm (shortest arm)",
+               "the grid is centred over the web and must stay on the arm's top face",
+               "the shorter grid of the gauge bonded, or longer arms")
     if ro is None:
         return
     if ro.filter_corner_Hz is not None and ro.filter_order == 0:
