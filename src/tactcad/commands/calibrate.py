@@ -10,8 +10,8 @@ Examples::
 from __future__ import annotations
 
 import argparse
+
 from tactcad.mechanics.ladder import models
-from tactcad.studies.verification import calibration_gauge
 
 
 #: Signal noise (V, one sigma) of a simulated rig read with an explicit ``--gain`` (no
@@ -30,6 +30,8 @@ def simulated_noise(args: argparse.Namespace, project) -> tuple[tuple[float, str
     if args.noise_force is not None:
         force = (float(args.noise_force), "--noise-force")
     else:
+        from tactcad.studies.verification import calibration_gauge
+
         gauge, _ = calibration_gauge(project.plan)
         force = (float(gauge.resolution_N), f"the force gauge {gauge.model}, read to "
                                             f"{gauge.resolution_N:g} N")
@@ -167,6 +169,8 @@ def run(args: argparse.Namespace) -> int:
     if args.flat:
         return _run_flat(args, plan)
     # the force gauge in series: the data file's (its k_sensor comment), else the rigs'
+    from tactcad.studies.verification import calibration_gauge
+
     gauge, source = calibration_gauge(project.plan)
     k_sensor = float(gauge.stiffness_N_per_mm)
     report: dict = {"design": plan.name, "model": args.model,
