@@ -14,6 +14,7 @@ from tactcad.mechanics.gauge_strain import (GAUGE_STRAIN_FILE, StrainCorrection,
                                             bonded_grid_factor, face_under_layer_factor,
                                             grid_strain_factor, load_strain_correction,
                                             point_strain_factor)
+from tactcad.mechanics.notch_profile import notched_height_mm
 from tactcad.studies.gauge_strain_sweep import _residuals, samples
 
 
@@ -150,7 +151,25 @@ def test_readout_grid_strain_is_the_corrected_face_times_the_bonded_layer(plan):
     layer = bonded_grid_factor(g.web_thickness_mm, g.sheet_thickness_mm, mat.youngs_modulus_MPa,
                                chain.grid_height_mm, chain.gauge_backing_modulus_MPa,
                                min(chain.grid_width_mm + 1.0, g.sheet_thickness_mm))
-    assert got["grid"] == pytest.approx(got["surface"] * layer.read_factor, rel=1e-12)
+    # section by section along the span: below the web's factor, above the thickest section's
+    ends = notched_height_mm(chain.grid_length_mm / 2, g.web_thickness_mm, g.notch_radius_mm,
+                             g.base_height_mm, g.arm_height_mm)
+    thick = bonded_grid_factor(float(ends), g.sheet_thickness_mm, mat.youngs_modulus_MPa,
+                               chain.grid_height_mm, chain.gauge_backing_modulus_MPa,
+                               min(chain.grid_width_mm + 1.0, g.sheet_thickness_mm))
+    assert thick.read_factor < got["read_factor"] < layer.read_factor
+    assert got["grid"] == pytest.approx(got["surface"] * got["read_factor"], rel=1e-12)
+    # the weighted mean by a plain midpoint sum over the span, apart from Gauss-Legendre's
+    u = (np.arange(4000) + 0.5) / 4000 * chain.grid_length_mm - chain.grid_length_mm / 2
+    h = notched_height_mm(u, g.web_thickness_mm, g.notch_radius_mm, g.base_height_mm,
+                          g.arm_height_mm)
+    face = (g.arm_length_mm - u) / h ** 2
+    read = np.array([bonded_grid_factor(float(hi), g.sheet_thickness_mm,
+                                        mat.youngs_modulus_MPa, chain.grid_height_mm,
+                                        chain.gauge_backing_modulus_MPa,
+                                        min(chain.grid_width_mm + 1.0, g.sheet_thickness_mm)
+                                        ).read_factor for hi in h])
+    assert got["read_factor"] == pytest.approx((face * read).sum() / face.sum(), rel=1e-5)
     assert got["error_rel"] == c.error_rel and got["outside_fit"] == ()
     # the catalogue gauge lifts the grid 55 um: more than the surface, less than without stiffness
     assert 1.0 < got["read_factor"] < got["height_factor"]

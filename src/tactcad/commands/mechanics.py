@@ -71,14 +71,16 @@ def run_stiffness(args: argparse.Namespace) -> int:
         vtu = write_element_vtu(args.vtk, slot.geometry, plan.material, args.model).path
         progress_from_args(args)(f"wrote {vtu} (displacement, von Mises stress under 1 N)")
     with_gauge = slot.geometry.gauge is not None
-    grid = r.grid_strain_per_N
-    if grid is None and with_gauge:  # what the grid reads, as `readout` gives it at this level
+    grid, grid_error = r.grid_strain_per_N, None
+    if with_gauge:  # what the grid reads, as `readout` gives it at this level, with its error
         from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
-        grid = abs(grid_strain_per_N(slot.geometry, plan.material, readout_chain(plan),
-                                     args.model)["grid"])
+        read = grid_strain_per_N(slot.geometry, plan.material, readout_chain(plan), args.model)
+        grid = abs(read["grid"]) if grid is None else grid
+        grid_error = float(read.get("grid_error_rel", read["error_rel"]))
     if args.json:
-        out = {**r.as_json(), "grid_strain_per_N": grid, "with_gauge": with_gauge}
+        out = {**r.as_json(), "grid_strain_per_N": grid, "grid_strain_error_rel": grid_error,
+               "with_gauge": with_gauge}
         if vtu is not None:
             out["vtu"] = str(vtu)
         print(json.dumps(out, indent=2))
@@ -93,7 +95,9 @@ def run_stiffness(args: argparse.Namespace) -> int:
         if grid is not None:
             print(f"  grid strain         {grid * 1e6:10.2f} microstrain/N"
                   "  (what the gauge reads: its grid's plane averaged over the grid)")
-        print(f"  error estimate      {100 * r.error_estimate_rel:10.3f} %")
+        print(f"  error estimate      {100 * r.error_estimate_rel:10.3f} %  (K)")
+        if grid_error is not None:
+            print(f"                      {100 * grid_error:10.3f} %  (grid strain)")
         print(f"  wall time           {r.wall_time_s:10.4f} s")
     return 0
 

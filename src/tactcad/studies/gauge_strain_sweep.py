@@ -18,7 +18,8 @@ arm 4-20 mm, sheet b 1.5-6 mm (b/t about 3-60), nu 0.27-0.342, and a second
 Sobol set on the thin sheets a design searches, b 0.5-1.5 mm (:data:`THIN_SHEET_MM`,
 b/t down to 1, the width ratio sqrt(t R) / b up to about 1); grids
 L_g 0.3, 0.6, 1.0, 1.5 mm (<= arm), W 0.5, 1.0, 2.0 mm (<= b), fitted where
-the grid stays over the notch's inner part, L_g / (2 R) <= :data:`XI_MAX`.
+the grid stays over the notch, L_g / (2 R) <= :data:`XI_MAX` (the notch's
+diameter: the grid of a notch as long as the gauge is inside).
 
 The fit set adds two designs at each end of the Poisson range
 (:func:`poisson_edge_designs`).
@@ -53,7 +54,7 @@ POISSON = (0.27, 0.342)
 GRID_LENGTHS_MM = (0.3, 0.6, 1.0, 1.5)
 GRID_WIDTHS_MM = (0.5, 1.0, 2.0)
 #: Largest grid length over notch diameter fitted.
-XI_MAX = 0.8
+XI_MAX = 1.0
 FIT_SEED, HOLDOUT_SEED = 1, 2
 THIN_FIT_SEED, THIN_HOLDOUT_SEED = 3, 4
 
