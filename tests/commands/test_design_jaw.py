@@ -472,3 +472,40 @@ def test_design_reports_the_requirements_verify_leaves_undecided_as_undecided(tm
     assert sorted(line.split()[2] for line in designed["undecided"]) == open_
     assert designed["passed"] == sum(x["verdict"] == "pass" for x in matrix)
     assert not designed["failed"]
+
+
+@pytest.mark.slow  # a whole comb search
+def test_a_missed_kobj_accuracy_names_the_accuracy_asked_and_reached_not_a_force(tmp_path):
+    """A --kobj-accuracy the comb cannot meet: the refusal names the option, the accuracy
+    asked and the best reached (relative and in %), and pastes one that the same design
+    meets; it never names a force."""
+    out = tmp_path / "insert.toml"
+    ask = [*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10", "--out", str(out)]
+    r = run_cli(*ask, "--kobj-accuracy", "0.01", "--json")
+    assert r.returncode == 2 and not out.exists(), r.stderr
+    err = json.loads(r.stdout)["error"]
+    assert err["field"] == "--kobj-accuracy"
+    assert "asked 0.01 (1 %)" in err["message"], err["message"]
+    assert " N " not in err["message"] and "at most" not in err["message"]
+    reached = float(err["message"].split("reaches is ")[1].split()[0])
+    assert reached > 0.01
+    assert f"({100 * reached:.3g} %)" in err["message"]
+    paste = err["alternatives"][0]["option"].split()
+    assert paste[0] == "--kobj-accuracy" and float(paste[1]) >= reached
+    r = run_cli(*ask, *paste, "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_a_missed_kobj_accuracy_in_a_stacked_design_says_what_it_reaches():
+    """The stacked design's report on a failed kobj_accuracy_rel names the accuracy asked,
+    the best reached in % and the option to paste."""
+    from tactcad.commands.design import verification_lines
+
+    lines = verification_lines({"asked": "auto", "level": "closed-form", "passed": False,
+                                "requirements": [{"requirement": "kobj_accuracy_rel",
+                                                  "verdict": "fail", "margin_rel": -0.5,
+                                                  "decided_by": "closed-form",
+                                                  "target": 0.01, "predicted": 0.0234}]})
+    text = "\n".join(lines)
+    assert "asked 0.01 (1 %)" in text and "0.0234 (2.34 %)" in text
+    assert "to paste: --kobj-accuracy 0.024" in text

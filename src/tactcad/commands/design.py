@@ -620,10 +620,8 @@ def _die_reads_to(plan, accuracy_rel: float) -> None:
 
     row = accuracy_row(replace(plan, kobj_accuracy_rel=float(accuracy_rel)))
     if row["verdict"] == "fail":
-        raise DesignError("--kobj-accuracy", accuracy_rel,
-                          f">= {_up2(row['predicted'])} for this die",
-                          row["binding_words"] + f": {row['predicted']:.3g}",
-                          alternatives=_accuracy_paste(row["predicted"]))
+        raise accuracy_refusal(accuracy_rel, row["predicted"], "this die",
+                               row["binding_words"])
 
 
 def _up2(value: float) -> str:
@@ -632,6 +630,46 @@ def _up2(value: float) -> str:
         return f"{value:g}"
     step = 10 ** (math.floor(math.log10(value)) - 1)
     return f"{math.ceil(value / step - 1e-9) * step:.2g}"
+
+
+def _percent(rel: float) -> str:
+    """A relative accuracy as ``0.069 (6.9 %)`` ("inf" when nothing reads K_obj)."""
+    if not math.isfinite(rel):
+        return f"{rel:g} (no unit reads K_obj)"
+    return f"{rel:.3g} ({100 * rel:.3g} %)"
+
+
+def accuracy_refusal(asked_rel: float, reached_rel: float, what: str,
+                     basis: str) -> DesignError:
+    """The refusal of a ``--kobj-accuracy`` tighter than a design reaches: the accuracy
+    asked, the best one reached (relative and in %) and the option to paste, so that it
+    never names a force or contradicts itself.
+
+    Args:
+        asked_rel: ``--kobj-accuracy`` (relative).
+        reached_rel: the best accuracy the design reaches (relative; inf when none).
+        what: the design's words ("this design", "this die").
+        basis: what the accuracy is (the budget's words).
+
+    Returns:
+        The :class:`DesignError` naming ``--kobj-accuracy``.
+    """
+    allowed = (f">= {_up2(reached_rel)} for {what}" if math.isfinite(reached_rel)
+               else f"none for {what}")
+    return DesignError("--kobj-accuracy", asked_rel, allowed,
+                       f"asked {_percent(asked_rel)}; the best {what} reaches is "
+                       f"{_percent(reached_rel)}: {basis}",
+                       alternatives=_accuracy_paste(reached_rel))
+
+
+def accuracy_words(asked_rel: float | None, reached_rel: float | None) -> str:
+    """A missed ``--kobj-accuracy`` in words: the accuracy asked, the best one reached (in
+    %) and the option to paste (none when nothing reads K_obj)."""
+    reached = math.inf if reached_rel is None else float(reached_rel)
+    paste = _accuracy_paste(reached)
+    return (f"--kobj-accuracy asked {_percent(asked_rel) if asked_rel is not None else '?'}; "
+            f"the best this design reaches is {_percent(reached)}"
+            + (f"; to paste: {paste[0]['option']}" if paste else ""))
 
 
 def _accuracy_paste(reached: float) -> list[dict]:
@@ -681,11 +719,9 @@ def with_kobj_accuracy(result, accuracy_rel: float, refuse: bool = False):
         if row is not None and row["verdict"] == "fail":
             reached = row.get("predicted")
             reached = math.inf if reached is None else float(reached)
-            raise DesignError("--kobj-accuracy", accuracy_rel,
-                              f">= {_up2(reached)} for this design",
-                              "the root sum square of its K_obj error budget after correction, "
-                              "worst over the K_obj range (tactcad budget)",
-                              alternatives=_accuracy_paste(reached))
+            raise accuracy_refusal(accuracy_rel, reached, "this design",
+                                   "the root sum square of its K_obj error budget after "
+                                   "correction, worst over the K_obj range (tactcad budget)")
     return replace(result, data=data, plan=plan)
 
 
@@ -1300,7 +1336,8 @@ def verification_summary(asked: str, level: str | None, records: list[dict]) -> 
     return {"asked": asked, "level": level, "passed": matrix_passed(records),
             "requirements": [{"requirement": r["requirement"], "verdict": r["verdict"],
                               "margin_rel": r.get("margin_rel"),
-                              "decided_by": r.get("decided_by", r.get("model", level))}
+                              "decided_by": r.get("decided_by", r.get("model", level)),
+                              "target": r.get("target"), "predicted": r.get("predicted")}
                              for r in records]}
 
 
@@ -1448,6 +1485,8 @@ def verification_lines(v: dict | None) -> list[str]:
             margin = "" if q["margin_rel"] is None else f" {100 * q['margin_rel']:+.1f} %"
             out.append(f"  {q['requirement']}: {q['verdict'].upper()}{margin} "
                        f"({q['decided_by'] or 'no level decides it'})")
+            if q["requirement"] == "kobj_accuracy_rel" and q["verdict"] == "fail":
+                out.append("    " + accuracy_words(q.get("target"), q.get("predicted")))
     out.append("verify: no requirement fails" if v["passed"] else
                "verify: a requirement FAILS: the design is written, and `tactcad verify` "
                "reports the same")
