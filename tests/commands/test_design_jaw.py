@@ -509,3 +509,34 @@ def test_a_missed_kobj_accuracy_in_a_stacked_design_says_what_it_reaches():
     text = "\n".join(lines)
     assert "asked 0.01 (1 %)" in text and "0.0234 (2.34 %)" in text
     assert "to paste: --kobj-accuracy 0.024" in text
+
+
+def test_design_columns_has_one_range_the_option_and_the_design_file_share(tmp_path):
+    """--columns past the grid's range is refused by the option itself, naming the option,
+    the value and the same range the design file's array.columns states."""
+    from tactcad.design.array_plan import COLUMNS_RANGE
+
+    lo, hi = COLUMNS_RANGE
+    for asked in (hi + 1, lo - 1):
+        r = run_cli(*GRASPER_CASE[:-2], "--full-scale-force", "0.05", "--columns", str(asked),
+                    "--out", str(tmp_path / "x.toml"))
+        assert r.returncode == 2 and not (tmp_path / "x.toml").exists()
+        assert "--columns" in r.stderr and f"'{asked}'" in r.stderr, r.stderr
+        assert f"{lo} ... {hi}" in r.stderr, r.stderr
+        assert "Traceback" not in r.stderr
+
+
+def test_design_one_column_on_a_stacked_array_names_the_columns_and_why(tmp_path):
+    """A stacked array of one column: refused as --columns (each row pairs a reference with
+    a measuring element), not as an unrelated target."""
+    from tactcad.commands.design import MIN_PAIRED_COLUMNS
+
+    r = run_cli("design", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.05", "--columns", "1", "--out",
+                str(tmp_path / "x.toml"), "--json", cwd=tmp_path)
+    assert r.returncode == 2 and not (tmp_path / "x.toml").exists()
+    err = json.loads(r.stdout)["error"]
+    assert err["field"] == "--columns" and err["value"] == 1, err
+    assert err["allowed"].startswith(f"{MIN_PAIRED_COLUMNS} ... "), err
+    assert "measure" in err["message"]
+    assert err["alternatives"][0]["option"] == f"--columns {MIN_PAIRED_COLUMNS}"

@@ -17,8 +17,35 @@ from tactcad.commands.options import count, material_grade_name, number
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
                                                  MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM,
                                                  MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
+from tactcad.design.array_plan import COLUMNS_RANGE
 from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 
+
+
+#: Fewest columns where each row (a stacked array paired by row) or the die pairs a
+#: reference with an element of its own that measures.
+MIN_PAIRED_COLUMNS = 2
+
+
+def check_paired_columns(columns: int, what: str, why: str) -> None:
+    """Refuse ``--columns`` too few to pair a reference with a measuring element.
+
+    Args:
+        columns: the columns asked.
+        what: the design's words ("a stacked array", "a silicon die").
+        why: why it needs :data:`MIN_PAIRED_COLUMNS` columns.
+
+    Raises:
+        DesignError: ``--columns`` below :data:`MIN_PAIRED_COLUMNS`, naming the range
+            :data:`MIN_PAIRED_COLUMNS` ... the most of
+            :data:`tactcad.design.array_plan.COLUMNS_RANGE` and why.
+    """
+    if columns >= MIN_PAIRED_COLUMNS:
+        return
+    lo, hi = MIN_PAIRED_COLUMNS, COLUMNS_RANGE[1]
+    raise DesignError("--columns", columns, f"{lo} ... {hi} for {what}", why,
+                      alternatives=[{"option": f"--columns {lo}",
+                                     "words": f"the fewest columns {what} reads with"}])
 
 
 #: How a searched design is checked (``--verify``), without ``--jaw``: ``auto`` climbs the
@@ -120,8 +147,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "stock that process cuts a flexure from, and every web, hole and slot "
                         "held to its rules (element.process; with --jaw, the comb's rows: "
                         "its slots, notch and corner radii, webs and tolerance)")
-    p.add_argument("--columns", type=count(1, 100, "columns"), metavar="N", default=None,
-                   help="columns of the new grid (2 rows x N; default: the base design's)")
+    p.add_argument("--columns", type=count(*COLUMNS_RANGE, "columns"), metavar="N",
+                   default=None,
+                   help=f"columns of the new grid (2 rows x N, {COLUMNS_RANGE[0]} <= N <= "
+                        f"{COLUMNS_RANGE[1]}; a stacked array and a silicon die at least "
+                        f"{MIN_PAIRED_COLUMNS}; default: the base design's)")
     p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
                    help="rows of the new grid (the model holds two clamped rows facing each "
                         "other: 2)")
@@ -311,6 +341,9 @@ def _run(args: argparse.Namespace) -> int:
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
     data, design = start_from_args(args, name=path.stem.replace("-", "_") or "inverse_design",
                                    out=path)
+    check_paired_columns(int(data["array"]["columns"]), "a stacked array",
+                         "each row pairs its reference with the row's other elements: a row "
+                         "of one column has no element left to measure")
     kwargs = {}
     if args.footprint is not None:
         from tactcad.assembly.inventory import array_envelope_mm
@@ -518,6 +551,8 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     name = re.sub(r"[^A-Za-z0-9_]", "_", path.stem)
     name = name if re.match(r"[A-Za-z]", name) else f"die_{name}"
     columns = args.columns or DEFAULT_COLUMNS
+    check_paired_columns(columns, "a silicon die", "each unit pairs a reference beam with "
+                         "a measuring beam along the die")
     plan = doped_die_plan(targets, room, columns=columns, name=name[:32])
     jaw, jaw_file = jaw_of(args.jaw)
     from tactcad.products.silicon_die.design.die_mount import die_mount
