@@ -540,3 +540,52 @@ def test_design_one_column_on_a_stacked_array_names_the_columns_and_why(tmp_path
     assert err["allowed"].startswith(f"{MIN_PAIRED_COLUMNS} ... "), err
     assert "measure" in err["message"]
     assert err["alternatives"][0]["option"] == f"--columns {MIN_PAIRED_COLUMNS}"
+
+
+def test_a_written_design_keeps_lengths_to_a_nanometre_not_float_noise():
+    """A length the search computes in steps (43 x 0.001 mm) is written 0.043, not with the
+    float's noise; what is no length (a force) is written as it is."""
+    from tactcad.commands.design import WRITTEN_MM_PLACES, design_text
+
+    noisy = 43 * 0.001
+    assert repr(noisy) != "0.043"  # the noise the file must not show
+    force = 0.1 + 0.2
+    tables = {"comb": {"stop_gaps_mm": [noisy, 0.02], "web_thicknesses_mm": [noisy]},
+              "array": {"pitch_mm": 4 * 1.2, "columns": 6},
+              "requirements": {"full_scale_force_N": force},
+              "assumptions": {"comb.stop_gaps_mm": "why"}}
+    text = design_text("# header\n", tables)
+    assert text.startswith("# header\n") and repr(noisy) not in text
+    written = tomllib.loads(text)
+    assert written["comb"]["stop_gaps_mm"] == [round(noisy, WRITTEN_MM_PLACES), 0.02]
+    assert written["comb"]["web_thicknesses_mm"] == [round(noisy, WRITTEN_MM_PLACES)]
+    assert written["array"] == {"pitch_mm": round(4 * 1.2, WRITTEN_MM_PLACES), "columns": 6}
+    assert written["requirements"]["full_scale_force_N"] == force  # not a length: as computed
+    assert tables["comb"]["stop_gaps_mm"][0] == noisy  # the tables themselves untouched
+
+
+def test_a_jaw_designs_file_and_report_carry_no_float_noise(tmp_path):
+    """Every length of the grasper case's written design and its report's webs and stop
+    gaps are held to the written resolution."""
+    from tactcad.commands.design import WRITTEN_MM_PLACES
+
+    out = tmp_path / "insert.toml"
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10", "--out", str(out),
+                "--json")
+    assert r.returncode == 0, r.stderr
+    report = json.loads(r.stdout)
+    for key in ("webs_mm", "stop_gaps_mm", "arms_mm"):
+        assert all(v == round(v, WRITTEN_MM_PLACES) for v in report[key]), report[key]
+
+    def lengths(value, key=""):
+        if isinstance(value, dict):
+            for k, v in value.items():
+                yield from lengths(v, k)
+        elif isinstance(value, list):
+            for v in value:
+                yield from lengths(v, key)
+        elif isinstance(value, float) and key.endswith("_mm"):
+            yield value
+
+    written = list(lengths(tomllib.loads(out.read_text(encoding="utf-8"))))
+    assert written and all(v == round(v, WRITTEN_MM_PLACES) for v in written)

@@ -48,6 +48,41 @@ def check_paired_columns(columns: int, what: str, why: str) -> None:
                                      "words": f"the fewest columns {what} reads with"}])
 
 
+#: Decimal places a written design keeps of a length (mm): 1 nm, far below any tolerance,
+#: so a value the search computes as 43 x 0.001 mm is written 0.043, not
+#: 0.043000000000000003; the plan itself is computed unrounded.
+WRITTEN_MM_PLACES = 6
+
+
+def rounded_lengths(value: Any, key: str = "") -> Any:
+    """``value`` (a design's tables, or one of their values under ``key``) with every float
+    of a key ending in ``_mm``, alone or in a list, rounded to :data:`WRITTEN_MM_PLACES`;
+    anything else as it is.
+
+    Args:
+        value: the tables (nested mappings and lists) or a value of them.
+        key: the key ``value`` is under ("" at the top).
+
+    Returns:
+        A copy with the lengths rounded (mappings as dicts, lists as lists).
+    """
+    if isinstance(value, dict):
+        return {k: rounded_lengths(v, str(k)) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [rounded_lengths(v, key) for v in value]
+    if isinstance(value, float) and key.endswith("_mm") and math.isfinite(value):
+        return round(value, WRITTEN_MM_PLACES)
+    return value
+
+
+def design_text(header: str, data: dict) -> str:
+    """A design file's text: ``header`` and the tables as TOML, each length rounded to
+    :data:`WRITTEN_MM_PLACES` (:func:`rounded_lengths`) where the file is written."""
+    import tomli_w
+
+    return header + tomli_w.dumps(rounded_lengths(data))
+
+
 #: How a searched design is checked (``--verify``), without ``--jaw``: ``auto`` climbs the
 #: ladder only for a requirement the closed form leaves undecided, as ``verify`` does.
 DEFAULT_VERIFY = "auto"
@@ -322,8 +357,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    import tomli_w
-
     from tactcad.atomic import write_bytes_atomic
     from tactcad.studies.inverse_design import Targets
     from tactcad.studies.layout_search import searched_design
@@ -368,7 +401,7 @@ def _run(args: argparse.Namespace) -> int:
     header = (f"# Written by tactcad {VERSION}: "
               f"`tactcad design {' '.join(design_options(args))}`.\n"
               f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
-    text = header + tomli_w.dumps(result.data)
+    text = design_text(header, result.data)
     if folder is None:
         write_bytes_atomic(path, text.encode("utf-8"))
     else:
@@ -842,8 +875,6 @@ def refuse_options_a_jaw_sets(args: argparse.Namespace) -> None:
 def run_jaw(args: argparse.Namespace, targets) -> int:
     """``design --jaw``: every construction that seats in the jaw searched; the design of
     the one that counts (written with its scenes), or every binding limit."""
-    import tomli_w
-
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.atomic import write_bytes_atomic
     from tactcad.project_folder import scenes_without_rigs_text, write_project
@@ -941,7 +972,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     grid = f"{result.plan.rows} x {result.plan.columns}"
     scenes = scenes_without_rigs_text(name, grid)
     if folder is not None:  # a project folder, as `tactcad new` makes (its [files] table added)
-        write_project(folder, header + tomli_w.dumps(data), path.name, result.plan,
+        write_project(folder, design_text(header, data), path.name, result.plan,
                       companions={"scenes": scenes}, force=args.force, option="--out")
     else:
         scenes_path = path.parent / f"{path.stem}-scenes.toml"
@@ -951,7 +982,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
                               "the design's scenes file would be overwritten")
         # the scenes first, the design last: a set cut short has no design file
         write_bytes_atomic(scenes_path, scenes.encode("utf-8"))
-        write_bytes_atomic(path, (header + tomli_w.dumps(data)).encode("utf-8"))
+        write_bytes_atomic(path, design_text(header, data).encode("utf-8"))
     report = jaw_report(result, used, left, path)
     if args.json:
         print(json.dumps(report, indent=2, allow_nan=False))
@@ -999,7 +1030,7 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
         checks[label] = check_group_summary(results)
 
     run_groups(groups, CheckContext(project.plan, path.parent, None, project), done)
-    d, room = result.data, result.room
+    d, room = rounded_lengths(dict(result.data)), result.room  # as the file has them
     processes = row_process_verdicts(project.plan)
     return {
         "out": str(path), "construction": construction, "left_out": left,
