@@ -7,7 +7,9 @@ torque, the sample kit's casting, each with its module's title, tools and
 notes), a bought or consumable item by the step named here, and any other
 rig part by the step of the first scene whose rig shows it; so a design with
 other parts, rigs or samples gets its own steps and no step names a part the
-design lacks.
+design lacks. A nut is the one exception: the BOM's count of it is shared over the
+steps that fit bolts of its size, each as many as its bolts
+(:func:`nuts_with_their_bolts`), so the book's nuts follow the BOM's fasteners.
 
 Step order: the array (gauges bonded and cured; leads wired to the terminal
 board; elements, spacers and clamp plates stacked; bolts torqued; read-out
