@@ -67,6 +67,32 @@ def disk_full_error(path: str | Path) -> OSError | None:
     return None
 
 
+def unmakeable_folder(target: str | Path) -> str | None:
+    """Why the folder ``target`` (or the staging folder beside it, :func:`staging_dir`)
+    cannot be made, in words, or None when it can: the nearest existing folder on its way
+    is a file, or takes no new folder (a probe folder is made there and removed at once,
+    so a refusal leaves nothing behind).
+
+    Args:
+        target: the folder asked for (absolute or relative).
+
+    Returns:
+        The reason (naming the folder that refuses it and the system's words), or None.
+    """
+    target = Path(os.path.abspath(os.path.expanduser(str(target))))
+    above = next(p for p in target.parents if p.exists() or p == p.parent)
+    if not above.is_dir():
+        return f"{above} is a file, not a folder"
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=".tactcad-probe-", dir=above))
+    except OSError as exc:
+        words = {errno.EROFS: "a read-only file system", errno.EACCES: "permission denied",
+                 errno.EPERM: "permission denied", errno.ENOSPC: "the disk is full"}
+        cause = words.get(exc.errno, (exc.strerror or type(exc).__name__).lower())
+        return f"no folder can be made in {above}: {cause}"
+    return None
+
+
 def write_failed(path: str | Path, what: str) -> OSError:
     """The error for a writer that reported failure at ``path``: a full disk
     when it is one (:func:`disk_full_error`), else an I/O error naming ``what``."""

@@ -472,3 +472,120 @@ def test_design_reports_the_requirements_verify_leaves_undecided_as_undecided(tm
     assert sorted(line.split()[2] for line in designed["undecided"]) == open_
     assert designed["passed"] == sum(x["verdict"] == "pass" for x in matrix)
     assert not designed["failed"]
+
+
+@pytest.mark.slow  # a whole comb search
+def test_a_missed_kobj_accuracy_names_the_accuracy_asked_and_reached_not_a_force(tmp_path):
+    """A --kobj-accuracy the comb cannot meet: the refusal names the option, the accuracy
+    asked and the best reached (relative and in %), and pastes one that the same design
+    meets; it never names a force."""
+    out = tmp_path / "insert.toml"
+    ask = [*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10", "--out", str(out)]
+    r = run_cli(*ask, "--kobj-accuracy", "0.01", "--json")
+    assert r.returncode == 2 and not out.exists(), r.stderr
+    err = json.loads(r.stdout)["error"]
+    assert err["field"] == "--kobj-accuracy"
+    assert "asked 0.01 (1 %)" in err["message"], err["message"]
+    assert " N " not in err["message"] and "at most" not in err["message"]
+    reached = float(err["message"].split("reaches is ")[1].split()[0])
+    assert reached > 0.01
+    assert f"({100 * reached:.3g} %)" in err["message"]
+    paste = err["alternatives"][0]["option"].split()
+    assert paste[0] == "--kobj-accuracy" and float(paste[1]) >= reached
+    r = run_cli(*ask, *paste, "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_a_missed_kobj_accuracy_in_a_stacked_design_says_what_it_reaches():
+    """The stacked design's report on a failed kobj_accuracy_rel names the accuracy asked,
+    the best reached in % and the option to paste."""
+    from tactcad.commands.design import verification_lines
+
+    lines = verification_lines({"asked": "auto", "level": "closed-form", "passed": False,
+                                "requirements": [{"requirement": "kobj_accuracy_rel",
+                                                  "verdict": "fail", "margin_rel": -0.5,
+                                                  "decided_by": "closed-form",
+                                                  "target": 0.01, "predicted": 0.0234}]})
+    text = "\n".join(lines)
+    assert "asked 0.01 (1 %)" in text and "0.0234 (2.34 %)" in text
+    assert "to paste: --kobj-accuracy 0.024" in text
+
+
+def test_design_columns_has_one_range_the_option_and_the_design_file_share(tmp_path):
+    """--columns past the grid's range is refused by the option itself, naming the option,
+    the value and the same range the design file's array.columns states."""
+    from tactcad.design.array_plan import COLUMNS_RANGE
+
+    lo, hi = COLUMNS_RANGE
+    for asked in (hi + 1, lo - 1):
+        r = run_cli(*GRASPER_CASE[:-2], "--full-scale-force", "0.05", "--columns", str(asked),
+                    "--out", str(tmp_path / "x.toml"))
+        assert r.returncode == 2 and not (tmp_path / "x.toml").exists()
+        assert "--columns" in r.stderr and f"'{asked}'" in r.stderr, r.stderr
+        assert f"{lo} ... {hi}" in r.stderr, r.stderr
+        assert "Traceback" not in r.stderr
+
+
+def test_design_one_column_on_a_stacked_array_names_the_columns_and_why(tmp_path):
+    """A stacked array of one column: refused as --columns (each row pairs a reference with
+    a measuring element), not as an unrelated target."""
+    from tactcad.commands.design import MIN_PAIRED_COLUMNS
+
+    r = run_cli("design", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.05", "--columns", "1", "--out",
+                str(tmp_path / "x.toml"), "--json", cwd=tmp_path)
+    assert r.returncode == 2 and not (tmp_path / "x.toml").exists()
+    err = json.loads(r.stdout)["error"]
+    assert err["field"] == "--columns" and err["value"] == 1, err
+    assert err["allowed"].startswith(f"{MIN_PAIRED_COLUMNS} ... "), err
+    assert "measure" in err["message"]
+    assert err["alternatives"][0]["option"] == f"--columns {MIN_PAIRED_COLUMNS}"
+
+
+def test_a_written_design_keeps_lengths_to_a_nanometre_not_float_noise():
+    """A length the search computes in steps (43 x 0.001 mm) is written 0.043, not with the
+    float's noise; what is no length (a force) is written as it is."""
+    from tactcad.commands.design import WRITTEN_MM_PLACES, design_text
+
+    noisy = 43 * 0.001
+    assert repr(noisy) != "0.043"  # the noise the file must not show
+    force = 0.1 + 0.2
+    tables = {"comb": {"stop_gaps_mm": [noisy, 0.02], "web_thicknesses_mm": [noisy]},
+              "array": {"pitch_mm": 4 * 1.2, "columns": 6},
+              "requirements": {"full_scale_force_N": force},
+              "assumptions": {"comb.stop_gaps_mm": "why"}}
+    text = design_text("# header\n", tables)
+    assert text.startswith("# header\n") and repr(noisy) not in text
+    written = tomllib.loads(text)
+    assert written["comb"]["stop_gaps_mm"] == [round(noisy, WRITTEN_MM_PLACES), 0.02]
+    assert written["comb"]["web_thicknesses_mm"] == [round(noisy, WRITTEN_MM_PLACES)]
+    assert written["array"] == {"pitch_mm": round(4 * 1.2, WRITTEN_MM_PLACES), "columns": 6}
+    assert written["requirements"]["full_scale_force_N"] == force  # not a length: as computed
+    assert tables["comb"]["stop_gaps_mm"][0] == noisy  # the tables themselves untouched
+
+
+def test_a_jaw_designs_file_and_report_carry_no_float_noise(tmp_path):
+    """Every length of the grasper case's written design and its report's webs and stop
+    gaps are held to the written resolution."""
+    from tactcad.commands.design import WRITTEN_MM_PLACES
+
+    out = tmp_path / "insert.toml"
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10", "--out", str(out),
+                "--json")
+    assert r.returncode == 0, r.stderr
+    report = json.loads(r.stdout)
+    for key in ("webs_mm", "stop_gaps_mm", "arms_mm"):
+        assert all(v == round(v, WRITTEN_MM_PLACES) for v in report[key]), report[key]
+
+    def lengths(value, key=""):
+        if isinstance(value, dict):
+            for k, v in value.items():
+                yield from lengths(v, k)
+        elif isinstance(value, list):
+            for v in value:
+                yield from lengths(v, key)
+        elif isinstance(value, float) and key.endswith("_mm"):
+            yield value
+
+    written = list(lengths(tomllib.loads(out.read_text(encoding="utf-8"))))
+    assert written and all(v == round(v, WRITTEN_MM_PLACES) for v in written)

@@ -39,14 +39,51 @@ def test_sample_kit_lists_every_stiffness_the_rigs_name(kit):
 def test_every_row_names_its_step_and_every_step_part_is_a_row(kit):
     _, rows, steps = kit
     step_keys = {s.key for s in steps}
-    consumed = {p: s.key for s in steps for p, _ in s.parts}
+    consumed: dict[str, list[str]] = {}
+    counted: dict[str, int] = {}
+    for s in steps:
+        for p, q in s.parts:
+            consumed.setdefault(p, []).append(s.key)
+            counted[p] = counted.get(p, 0) + q
     for r in rows:
         assert r.step in step_keys, r.part
-        assert consumed[r.part] == r.step
+        assert consumed[r.part][0] == r.step  # a nut shared over steps: its first one's
     assert set(consumed) == {r.part for r in rows}
     fitted = {r.part: r.quantity - r.spares for r in rows}  # the spares stay in the kit
-    assert all(fitted[p] == q for s in steps for p, q in s.parts)
-    assert len(consumed) == sum(len(s.parts) for s in steps)  # one step per item
+    assert counted == fitted  # every fitted unit in some step, none counted twice
+    # one step per item, but a nut, fitted where the bolts of its size are
+    assert all(len(keys) == 1 or p.startswith("nut_") for p, keys in consumed.items())
+
+
+def test_each_steps_nuts_follow_the_bolts_it_fits_as_the_bom_counts_them(kit):
+    """The build book's nuts are the BOM's, each step fitting as many of a size as the
+    bolts of that size it fits (the stack's clamp bolts and a rig's through bolts alike)."""
+    from tactcad.assembly.build_steps import fastener_sizes
+    from tactcad.assembly.inventory import design_assemblies
+
+    project, rows, steps = kit
+    sizes = fastener_sizes(design_assemblies(project)[0])
+    bom_nuts = {r.part: r.quantity - r.spares for r in rows if sizes.get(r.part, ("",))[0] == "nut"}
+    assert bom_nuts
+    for s in steps:
+        for nut, q in s.parts:
+            kind, size = sizes.get(nut, ("", ""))
+            if kind == "nut":
+                bolts = sum(n for p, n in s.parts if sizes.get(p) == ("bolt", size))
+                assert 0 < q <= bolts, (s.key, nut, q, bolts)
+    assert {n: sum(q for s in steps for p, q in s.parts if p == n) for n in bom_nuts} == bom_nuts
+
+
+def test_nuts_are_shared_over_the_steps_that_fit_bolts_of_their_size():
+    from tactcad.assembly.build_steps import nuts_with_their_bolts
+
+    fasteners = {"bolt_M2x20": ("bolt", "M2"), "bolt_M2x25": ("bolt", "M2"),
+                 "bolt_M4x12": ("bolt", "M4"), "nut_M2": ("nut", "M2")}
+    by_step = {"array-bolts": [("bolt_M2x20", 4), ("nut_M2", 7)],
+               "rig-a": [("plate", 1), ("bolt_M2x25", 2), ("bolt_M4x12", 4)]}
+    out = nuts_with_their_bolts(by_step, fasteners, ["array-bolts", "rig-a"])
+    assert dict(out["array-bolts"])["nut_M2"] == 5  # 4 with the bolts, the odd one left
+    assert dict(out["rig-a"]) == {"plate": 1, "bolt_M2x25": 2, "bolt_M4x12": 4, "nut_M2": 2}
 
 
 def test_kit_has_consumables_and_step_column(kit):

@@ -139,12 +139,40 @@ def test_refused_out_folders_write_nothing(tmp_path, target):
     assert sorted(p.name for p in tmp_path.rglob("*")) == before
 
 
-def test_an_os_error_is_one_line_naming_the_path(tmp_path):
+def test_an_out_folder_under_a_file_is_one_line_naming_out_and_the_path(tmp_path):
     (tmp_path / "plain_file").write_text("x")
     proc = run("export", "--no-cache", "--out", str(tmp_path / "plain_file" / "out"))
-    assert proc.returncode == 3, proc.stderr
+    assert proc.returncode == 2, proc.stderr
     assert proc.stderr.count("\n") == 1 and "Traceback" not in proc.stderr
-    assert "plain_file" in proc.stderr and "Not a directory" in proc.stderr
+    assert proc.stderr.startswith("tactcad: error: --out ")
+    assert "plain_file" in proc.stderr and "is a file, not a folder" in proc.stderr
+
+
+@pytest.mark.parametrize("command", [("export",), ("check",)])
+def test_an_out_folder_that_cannot_be_made_is_refused_in_words_before_any_work(
+        tmp_path, monkeypatch, command):
+    """A folder the file system will not make (as /proc takes none): one line naming --out,
+    the path and the reason, no traceback, nothing written beside it."""
+    import errno
+    import tempfile
+
+    parent = tmp_path / "refuses"
+    parent.mkdir()
+    made = tempfile.mkdtemp
+
+    def mkdtemp(suffix=None, prefix=None, dir=None):  # the folder takes no new folder
+        if dir is not None and Path(dir) == parent:
+            raise OSError(errno.EROFS, "Read-only file system", str(dir))
+        return made(suffix, prefix, dir)
+
+    monkeypatch.setattr(tempfile, "mkdtemp", mkdtemp)
+    out = parent / "x"
+    proc = run_cli(*command, "--out", str(out), cwd=tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    last = proc.stderr.strip().splitlines()[-1]
+    assert last.startswith("tactcad: error: --out ") and str(out) in last, proc.stderr
+    assert "read-only file system" in last and "Traceback" not in proc.stderr
+    assert list(parent.iterdir()) == []
 
 
 def test_the_store_is_best_effort(tmp_path):
@@ -182,3 +210,37 @@ def test_an_output_path_cannot_leave_the_export_folder(tmp_path):
     for bad in ("../escaped.step", "scenes/../../x", "/etc/passwd"):
         with pytest.raises(ExportPathError, match="would leave"):
             _inside(tmp_path / "out", bad)
+
+
+@pytest.mark.parametrize("argv", [
+    ("die", "--kr-over-km", "10", "--kobj-range", "0.5", "5", "--full-scale-force", "0.009",
+     "--jaw", "5"),
+    ("atlas", "--jaw", "10", "--points", "2"),
+    ("diff", "OLD", "OLD"),
+    ("sweep", "montecarlo", "--samples", "2"),
+])
+def test_other_commands_refuse_an_out_folder_that_cannot_be_made_in_words(tmp_path, argv):
+    """Each command that writes into --out DIR: a folder under a file is refused on one line
+    naming --out, the path and why, with no traceback and nothing made."""
+    from tactcad.atomic import unmakeable_folder
+
+    (tmp_path / "plain_file").write_text("x")
+    out = tmp_path / "plain_file" / "out"
+    design = Path(__file__).resolve().parents[2] / "hardware" / "macro_array" / "macro_array.toml"
+    argv = [str(design) if a == "OLD" else a for a in argv]
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    proc = run_cli(*argv, "--out", str(out), "--json", cwd=tmp_path)
+    assert proc.returncode == 2, proc.stdout + proc.stderr
+    err = json.loads(proc.stdout)["error"]
+    assert err["field"] == "--out" and err["value"] == str(out)
+    assert unmakeable_folder(out) in err["message"]
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before
+
+
+def test_unmakeable_folder_says_why_and_leaves_nothing(tmp_path):
+    from tactcad.atomic import unmakeable_folder
+
+    (tmp_path / "f").write_text("x")
+    assert unmakeable_folder(tmp_path / "new" / "deeper") is None
+    assert unmakeable_folder(tmp_path / "f" / "x") == f"{tmp_path / 'f'} is a file, not a folder"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f"]

@@ -26,11 +26,17 @@ def book(request, tmp_path_factory):
 
 
 def test_book_lists_every_bom_row_in_one_step(book):
+    """Every BOM row in one step, its fitted count there; a nut in the steps that fit the
+    bolts of its size, its counts adding up to the BOM's."""
     _, rows, out, records = book
     steps = json.loads((out / BOOK_DATA).read_text())
     assert records[0]["steps"] == len(steps)
     in_steps = [p["part"] for s in steps for p in s["parts"]]
-    assert sorted(in_steps) == sorted(r.part for r in rows)
+    assert sorted(set(in_steps)) == sorted(r.part for r in rows)
+    assert all(in_steps.count(p) == 1 or p.startswith("nut_") for p in in_steps)
+    counted = {r.part: sum(p["quantity"] for s in steps for p in s["parts"] if p["part"] == r.part)
+               for r in rows}
+    assert counted == {r.part: r.quantity - r.spares for r in rows}
     page = (out / BOOK_PAGE).read_text()
     assert all(f'data-step="{s["key"]}"' in page for s in steps)
     assert "<script" not in page and "http" not in page  # nothing to fetch: opens offline

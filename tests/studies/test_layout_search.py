@@ -238,3 +238,26 @@ def test_a_searched_sheet_thinner_than_the_default_grid_gets_a_grid_that_fits(tm
     assert written["readout"]["grid_width_mm"] <= sheet
     assert "bond a gauge" in written["assumptions"]["readout.grid_width_mm"]
     assert load_design(out).sheet_thickness_mm == sheet  # the rule passes it
+
+
+@pytest.mark.parametrize("whole, estimate", [(0.08159, 0.07), (0.0, 0.08158)])
+def test_a_force_refusal_never_allows_the_force_it_refuses(whole, estimate):
+    """A largest force just under the force asked is not rounded up to it: the refusal
+    says less than the force asked, never "at most" that force."""
+    from tactcad.studies.layout_search import force_refusal
+
+    asked = 0.0816
+    e = force_refusal(asked, whole, estimate, "the targets", "bound by a limit")
+    assert e is not None and e.field == "--full-scale-force"
+    numbers = [float(x) for x in re.findall(r"\d+\.\d+", e.allowed)]
+    assert numbers and (e.allowed.startswith("less than") or numbers[0] < asked), e.allowed
+
+
+def test_a_force_whole_designs_meet_is_not_refused_as_the_binding_force():
+    """When whole designs meet the force asked, the refusal does not name the force (another
+    rule refused the layouts), so it never reads "at most" the force asked."""
+    from tactcad.studies.layout_search import force_refusal
+
+    assert force_refusal(0.0816, 0.0816, 0.07, "the targets", "bound by a limit") is None
+    e = force_refusal(0.0816, 0.0731, 0.07, "the targets", "bound by a limit")
+    assert e.allowed.startswith("at most 0.0731 N")

@@ -7,7 +7,9 @@ torque, the sample kit's casting, each with its module's title, tools and
 notes), a bought or consumable item by the step named here, and any other
 rig part by the step of the first scene whose rig shows it; so a design with
 other parts, rigs or samples gets its own steps and no step names a part the
-design lacks.
+design lacks. A nut is the one exception: the BOM's count of it is shared over the
+steps that fit bolts of its size, each as many as its bolts
+(:func:`nuts_with_their_bolts`), so the book's nuts follow the BOM's fasteners.
 
 Step order: the array (gauges bonded and cured; leads wired to the terminal
 board; elements, spacers and clamp plates stacked; bolts torqued; read-out
@@ -197,12 +199,66 @@ RIG_STEPS: dict[str, tuple[str, tuple[str, ...]]] = {
 }
 
 
+def nuts_with_their_bolts(by_step: Mapping[str, Sequence[tuple[str, int]]],
+                          fasteners: Mapping[str, tuple[str, str]],
+                          order: Sequence[str]) -> dict[str, list[tuple[str, int]]]:
+    """The steps' parts with each nut fitted where the bolts of its size are: a nut row's
+    count (the BOM's) is shared over the steps in build order, each taking as many as the
+    bolts of that size it fits; what is left stays in the nut's own step. The nuts counted
+    are the BOM's, so no step counts nuts for bolts it does not fit and none is lost.
+
+    Args:
+        by_step: step key -> (part, quantity) it consumes, each nut in one step.
+        fasteners: part -> (``"bolt"`` or ``"nut"``, its thread size, e.g. ``"M2"``).
+        order: the step keys in build order.
+
+    Returns:
+        step key -> (part, quantity), nuts shared out; a step's other parts unchanged.
+    """
+    out = {k: [pq for pq in v if fasteners.get(pq[0], ("",))[0] != "nut"]
+           for k, v in by_step.items()}
+    keys = [k for k in order if k in by_step] + [k for k in by_step if k not in order]
+    for home in keys:
+        for part, qty in by_step[home]:
+            kind, size = fasteners.get(part, ("", ""))
+            if kind != "nut":
+                continue
+            left = qty
+            for key in keys:
+                bolts = sum(q for p, q in by_step[key] if fasteners.get(p) == ("bolt", size))
+                given = min(bolts, left)
+                if given > 0:
+                    out[key].append((part, given))
+                    left -= given
+            if left > 0:  # nuts no bolt of the steps takes stay where the BOM puts them
+                shared = dict(out[home])
+                shared[part] = shared.get(part, 0) + left
+                out[home] = list(shared.items())
+    return out
+
+
+def fastener_sizes(specs: Mapping[str, Any]) -> dict[str, tuple[str, str]]:
+    """Part -> (``"bolt"`` or ``"nut"``, thread size) of the screws and nuts among ``specs``
+    (part name -> spec): a screw's geometry is (BoltSpec, length), a nut's its BoltSpec."""
+    from tactcad.vocabulary.standards import BoltSpec
+
+    out: dict[str, tuple[str, str]] = {}
+    for name, spec in specs.items():
+        geometry = getattr(spec, "geometry", None)
+        if isinstance(geometry, BoltSpec):
+            out[name] = ("nut", geometry.size)
+        elif isinstance(geometry, tuple) and geometry and isinstance(geometry[0], BoltSpec):
+            out[name] = ("bolt", geometry[0].size)
+    return out
+
+
 def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int,
                 gauge_text: str, adhesive_text: str, bolt, terminal_pairs: int,
                 scenes: Sequence[str], sample_stiffness: Mapping[str, float],
                 screws: Mapping | None = None, rigs: Mapping[str, str] | None = None,
                 spares: Mapping[str, int] | None = None,
-                tip_zeroing: str | None = None) -> list[Step]:
+                tip_zeroing: str | None = None,
+                fasteners: Mapping[str, tuple[str, str]] | None = None) -> list[Step]:
     """The ordered steps consuming ``items``.
 
     Args:
@@ -222,6 +278,9 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
         tip_zeroing: the instruction to zero the tips on a rigid flat, when the drawings
             rely on it for the tips' coplanarity (:func:`tip_zeroing_note`); the read-out's
             step gives it.
+        fasteners: part -> (``"bolt"`` or ``"nut"``, thread size) (:func:`fastener_sizes`);
+            given, each nut is fitted in the steps that fit the bolts of its size
+            (:func:`nuts_with_their_bolts`), its spares said in its own step.
 
     Returns:
         Steps in build order, each with the items it consumes; steps that
@@ -239,6 +298,9 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
     consumable = {c.part for c in CONSUMABLES} | {"gauge_adhesive", "solder_wire", "lead_wire"}
     order = list(ARRAY_STEP_ORDER) + [f"rig-{s}" for s in scenes] + [_SAMPLES]
     order += [k for k in by_step if k not in order]
+    home = {p: k for k, parts in by_step.items() for p, _ in parts}  # the BOM's step
+    if fasteners:
+        by_step = nuts_with_their_bolts(by_step, fasteners, order)
     steps = []
     for key in order:
         parts = by_step.get(key)
@@ -260,7 +322,7 @@ def build_steps(items: Sequence[tuple[str, int, str | None, str]], elements: int
                 scene = next((s for s in scenes if "sample" in s), _ARRAY_SCENE)
         notes = tuple(notes) + tuple(
             f"{spares[p]} spare {p} beyond the {q} fitted here stay in the kit "
-            f"(bom.csv: spares)." for p, q in parts if spares.get(p))
+            f"(bom.csv: spares)." for p, q in parts if spares.get(p) and home.get(p) == key)
         steps.append(Step(key, title, sub, tuple(parts), tool,
                           tuple(p for p, _ in parts if p in consumable), notes,
                           tuple(p for p, _ in parts), scene))

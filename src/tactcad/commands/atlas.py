@@ -292,16 +292,21 @@ def writable_folder(out: str) -> Path:
     """
     import os
 
+    from tactcad.atomic import unmakeable_folder
     from tactcad.commands.design import _check_not_system
 
     folder = Path(os.path.abspath(os.path.expanduser(out)))
     _check_not_system(out, folder)
     if folder.exists() and not folder.is_dir():
         raise DesignError("--out", out, "a folder (new or existing)", "it is a file")
+    reason = None if folder.is_dir() else unmakeable_folder(folder)
+    if reason is not None:  # said in words, before anything is made
+        raise DesignError("--out", out, "a folder that can be made", reason)
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise DesignError("--out", out, "a folder that can be made", str(exc)) from None
+        raise DesignError("--out", out, "a folder that can be made",
+                          exc.strerror or type(exc).__name__) from None
     if not os.access(folder, os.W_OK):
         raise DesignError("--out", out, "a writable folder")
     return folder

@@ -17,8 +17,70 @@ from tactcad.commands.options import count, material_grade_name, number
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
                                                  MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM,
                                                  MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
+from tactcad.design.array_plan import COLUMNS_RANGE
 from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 
+
+
+#: Fewest columns where each row (a stacked array paired by row) or the die pairs a
+#: reference with an element of its own that measures.
+MIN_PAIRED_COLUMNS = 2
+
+
+def check_paired_columns(columns: int, what: str, why: str) -> None:
+    """Refuse ``--columns`` too few to pair a reference with a measuring element.
+
+    Args:
+        columns: the columns asked.
+        what: the design's words ("a stacked array", "a silicon die").
+        why: why it needs :data:`MIN_PAIRED_COLUMNS` columns.
+
+    Raises:
+        DesignError: ``--columns`` below :data:`MIN_PAIRED_COLUMNS`, naming the range
+            :data:`MIN_PAIRED_COLUMNS` ... the most of
+            :data:`tactcad.design.array_plan.COLUMNS_RANGE` and why.
+    """
+    if columns >= MIN_PAIRED_COLUMNS:
+        return
+    lo, hi = MIN_PAIRED_COLUMNS, COLUMNS_RANGE[1]
+    raise DesignError("--columns", columns, f"{lo} ... {hi} for {what}", why,
+                      alternatives=[{"option": f"--columns {lo}",
+                                     "words": f"the fewest columns {what} reads with"}])
+
+
+#: Decimal places a written design keeps of a length (mm): 1 nm, far below any tolerance,
+#: so a value the search computes as 43 x 0.001 mm is written 0.043, not
+#: 0.043000000000000003; the plan itself is computed unrounded.
+WRITTEN_MM_PLACES = 6
+
+
+def rounded_lengths(value: Any, key: str = "") -> Any:
+    """``value`` (a design's tables, or one of their values under ``key``) with every float
+    of a key ending in ``_mm``, alone or in a list, rounded to :data:`WRITTEN_MM_PLACES`;
+    anything else as it is.
+
+    Args:
+        value: the tables (nested mappings and lists) or a value of them.
+        key: the key ``value`` is under ("" at the top).
+
+    Returns:
+        A copy with the lengths rounded (mappings as dicts, lists as lists).
+    """
+    if isinstance(value, dict):
+        return {k: rounded_lengths(v, str(k)) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [rounded_lengths(v, key) for v in value]
+    if isinstance(value, float) and key.endswith("_mm") and math.isfinite(value):
+        return round(value, WRITTEN_MM_PLACES)
+    return value
+
+
+def design_text(header: str, data: dict) -> str:
+    """A design file's text: ``header`` and the tables as TOML, each length rounded to
+    :data:`WRITTEN_MM_PLACES` (:func:`rounded_lengths`) where the file is written."""
+    import tomli_w
+
+    return header + tomli_w.dumps(rounded_lengths(data))
 
 
 #: How a searched design is checked (``--verify``), without ``--jaw``: ``auto`` climbs the
@@ -120,8 +182,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "stock that process cuts a flexure from, and every web, hole and slot "
                         "held to its rules (element.process; with --jaw, the comb's rows: "
                         "its slots, notch and corner radii, webs and tolerance)")
-    p.add_argument("--columns", type=count(1, 100, "columns"), metavar="N", default=None,
-                   help="columns of the new grid (2 rows x N; default: the base design's)")
+    p.add_argument("--columns", type=count(*COLUMNS_RANGE, "columns"), metavar="N",
+                   default=None,
+                   help=f"columns of the new grid (2 rows x N, {COLUMNS_RANGE[0]} <= N <= "
+                        f"{COLUMNS_RANGE[1]}; a stacked array and a silicon die at least "
+                        f"{MIN_PAIRED_COLUMNS}; default: the base design's)")
     p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
                    help="rows of the new grid (the model holds two clamped rows facing each "
                         "other: 2)")
@@ -292,8 +357,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    import tomli_w
-
     from tactcad.atomic import write_bytes_atomic
     from tactcad.studies.inverse_design import Targets
     from tactcad.studies.layout_search import searched_design
@@ -311,6 +374,9 @@ def _run(args: argparse.Namespace) -> int:
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
     data, design = start_from_args(args, name=path.stem.replace("-", "_") or "inverse_design",
                                    out=path)
+    check_paired_columns(int(data["array"]["columns"]), "a stacked array",
+                         "each row pairs its reference with the row's other elements: a row "
+                         "of one column has no element left to measure")
     kwargs = {}
     if args.footprint is not None:
         from tactcad.assembly.inventory import array_envelope_mm
@@ -335,7 +401,7 @@ def _run(args: argparse.Namespace) -> int:
     header = (f"# Written by tactcad {VERSION}: "
               f"`tactcad design {' '.join(design_options(args))}`.\n"
               f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
-    text = header + tomli_w.dumps(result.data)
+    text = design_text(header, result.data)
     if folder is None:
         write_bytes_atomic(path, text.encode("utf-8"))
     else:
@@ -518,6 +584,8 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     name = re.sub(r"[^A-Za-z0-9_]", "_", path.stem)
     name = name if re.match(r"[A-Za-z]", name) else f"die_{name}"
     columns = args.columns or DEFAULT_COLUMNS
+    check_paired_columns(columns, "a silicon die", "each unit pairs a reference beam with "
+                         "a measuring beam along the die")
     plan = doped_die_plan(targets, room, columns=columns, name=name[:32])
     jaw, jaw_file = jaw_of(args.jaw)
     from tactcad.products.silicon_die.design.die_mount import die_mount
@@ -620,10 +688,8 @@ def _die_reads_to(plan, accuracy_rel: float) -> None:
 
     row = accuracy_row(replace(plan, kobj_accuracy_rel=float(accuracy_rel)))
     if row["verdict"] == "fail":
-        raise DesignError("--kobj-accuracy", accuracy_rel,
-                          f">= {_up2(row['predicted'])} for this die",
-                          row["binding_words"] + f": {row['predicted']:.3g}",
-                          alternatives=_accuracy_paste(row["predicted"]))
+        raise accuracy_refusal(accuracy_rel, row["predicted"], "this die",
+                               row["binding_words"])
 
 
 def _up2(value: float) -> str:
@@ -632,6 +698,46 @@ def _up2(value: float) -> str:
         return f"{value:g}"
     step = 10 ** (math.floor(math.log10(value)) - 1)
     return f"{math.ceil(value / step - 1e-9) * step:.2g}"
+
+
+def _percent(rel: float) -> str:
+    """A relative accuracy as ``0.069 (6.9 %)`` ("inf" when nothing reads K_obj)."""
+    if not math.isfinite(rel):
+        return f"{rel:g} (no unit reads K_obj)"
+    return f"{rel:.3g} ({100 * rel:.3g} %)"
+
+
+def accuracy_refusal(asked_rel: float, reached_rel: float, what: str,
+                     basis: str) -> DesignError:
+    """The refusal of a ``--kobj-accuracy`` tighter than a design reaches: the accuracy
+    asked, the best one reached (relative and in %) and the option to paste, so that it
+    never names a force or contradicts itself.
+
+    Args:
+        asked_rel: ``--kobj-accuracy`` (relative).
+        reached_rel: the best accuracy the design reaches (relative; inf when none).
+        what: the design's words ("this design", "this die").
+        basis: what the accuracy is (the budget's words).
+
+    Returns:
+        The :class:`DesignError` naming ``--kobj-accuracy``.
+    """
+    allowed = (f">= {_up2(reached_rel)} for {what}" if math.isfinite(reached_rel)
+               else f"none for {what}")
+    return DesignError("--kobj-accuracy", asked_rel, allowed,
+                       f"asked {_percent(asked_rel)}; the best {what} reaches is "
+                       f"{_percent(reached_rel)}: {basis}",
+                       alternatives=_accuracy_paste(reached_rel))
+
+
+def accuracy_words(asked_rel: float | None, reached_rel: float | None) -> str:
+    """A missed ``--kobj-accuracy`` in words: the accuracy asked, the best one reached (in
+    %) and the option to paste (none when nothing reads K_obj)."""
+    reached = math.inf if reached_rel is None else float(reached_rel)
+    paste = _accuracy_paste(reached)
+    return (f"--kobj-accuracy asked {_percent(asked_rel) if asked_rel is not None else '?'}; "
+            f"the best this design reaches is {_percent(reached)}"
+            + (f"; to paste: {paste[0]['option']}" if paste else ""))
 
 
 def _accuracy_paste(reached: float) -> list[dict]:
@@ -681,11 +787,9 @@ def with_kobj_accuracy(result, accuracy_rel: float, refuse: bool = False):
         if row is not None and row["verdict"] == "fail":
             reached = row.get("predicted")
             reached = math.inf if reached is None else float(reached)
-            raise DesignError("--kobj-accuracy", accuracy_rel,
-                              f">= {_up2(reached)} for this design",
-                              "the root sum square of its K_obj error budget after correction, "
-                              "worst over the K_obj range (tactcad budget)",
-                              alternatives=_accuracy_paste(reached))
+            raise accuracy_refusal(accuracy_rel, reached, "this design",
+                                   "the root sum square of its K_obj error budget after "
+                                   "correction, worst over the K_obj range (tactcad budget)")
     return replace(result, data=data, plan=plan)
 
 
@@ -771,8 +875,6 @@ def refuse_options_a_jaw_sets(args: argparse.Namespace) -> None:
 def run_jaw(args: argparse.Namespace, targets) -> int:
     """``design --jaw``: every construction that seats in the jaw searched; the design of
     the one that counts (written with its scenes), or every binding limit."""
-    import tomli_w
-
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.atomic import write_bytes_atomic
     from tactcad.project_folder import scenes_without_rigs_text, write_project
@@ -870,7 +972,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     grid = f"{result.plan.rows} x {result.plan.columns}"
     scenes = scenes_without_rigs_text(name, grid)
     if folder is not None:  # a project folder, as `tactcad new` makes (its [files] table added)
-        write_project(folder, header + tomli_w.dumps(data), path.name, result.plan,
+        write_project(folder, design_text(header, data), path.name, result.plan,
                       companions={"scenes": scenes}, force=args.force, option="--out")
     else:
         scenes_path = path.parent / f"{path.stem}-scenes.toml"
@@ -880,7 +982,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
                               "the design's scenes file would be overwritten")
         # the scenes first, the design last: a set cut short has no design file
         write_bytes_atomic(scenes_path, scenes.encode("utf-8"))
-        write_bytes_atomic(path, (header + tomli_w.dumps(data)).encode("utf-8"))
+        write_bytes_atomic(path, design_text(header, data).encode("utf-8"))
     report = jaw_report(result, used, left, path)
     if args.json:
         print(json.dumps(report, indent=2, allow_nan=False))
@@ -928,7 +1030,7 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
         checks[label] = check_group_summary(results)
 
     run_groups(groups, CheckContext(project.plan, path.parent, None, project), done)
-    d, room = result.data, result.room
+    d, room = rounded_lengths(dict(result.data)), result.room  # as the file has them
     processes = row_process_verdicts(project.plan)
     return {
         "out": str(path), "construction": construction, "left_out": left,
@@ -1300,7 +1402,8 @@ def verification_summary(asked: str, level: str | None, records: list[dict]) -> 
     return {"asked": asked, "level": level, "passed": matrix_passed(records),
             "requirements": [{"requirement": r["requirement"], "verdict": r["verdict"],
                               "margin_rel": r.get("margin_rel"),
-                              "decided_by": r.get("decided_by", r.get("model", level))}
+                              "decided_by": r.get("decided_by", r.get("model", level)),
+                              "target": r.get("target"), "predicted": r.get("predicted")}
                              for r in records]}
 
 
@@ -1448,6 +1551,8 @@ def verification_lines(v: dict | None) -> list[str]:
             margin = "" if q["margin_rel"] is None else f" {100 * q['margin_rel']:+.1f} %"
             out.append(f"  {q['requirement']}: {q['verdict'].upper()}{margin} "
                        f"({q['decided_by'] or 'no level decides it'})")
+            if q["requirement"] == "kobj_accuracy_rel" and q["verdict"] == "fail":
+                out.append("    " + accuracy_words(q.get("target"), q.get("predicted")))
     out.append("verify: no requirement fails" if v["passed"] else
                "verify: a requirement FAILS: the design is written, and `tactcad verify` "
                "reports the same")

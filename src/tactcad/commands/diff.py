@@ -40,6 +40,13 @@ def run(args: argparse.Namespace) -> int:
         from tactcad.errors import DesignError
 
         raise DesignError("--out", args.out, "a folder (new or existing)")
+    if args.out is not None and not Path(args.out).is_dir():
+        from tactcad.atomic import unmakeable_folder
+        from tactcad.errors import DesignError
+
+        reason = unmakeable_folder(args.out)
+        if reason is not None:  # said before the exports it compares are made
+            raise DesignError("--out", args.out, "a folder that can be made", reason)
     with tempfile.TemporaryDirectory() as tmp:
         folders = []
         for (kind, path), label in zip(inputs, ("old", "new")):

@@ -77,10 +77,29 @@ def _workers(args) -> int:
     return args.workers or LOCAL_WORKERS
 
 
+def check_out_folder(out: str | Path) -> None:
+    """Refuse ``--out`` before a sweep's work when its folder cannot be made.
+
+    Args:
+        out: the folder the sweep writes into.
+
+    Raises:
+        DesignError: naming ``--out``, the path and why it cannot be made
+            (:func:`tactcad.atomic.unmakeable_folder`).
+    """
+    from tactcad.atomic import unmakeable_folder
+    from tactcad.errors import DesignError
+
+    reason = None if Path(out).is_dir() else unmakeable_folder(out)
+    if reason is not None:
+        raise DesignError("--out", str(out), "a folder that can be made", reason)
+
+
 def run_grid_cmd(args: argparse.Namespace) -> int:
     from tactcad.studies.sweeps import (dask_client, dask_mapper, design_grid, plot_design_chart,
                           rows_as_json, write_grid_csv)
 
+    check_out_folder(args.out)
     plan = plan_from_args(args)
     with dask_client(args.scheduler, _workers(args)) as client:
         rows = design_grid(plan, args.webs, args.arms, args.model, args.radii,
@@ -113,6 +132,7 @@ def run_refit_cmd(args: argparse.Namespace) -> int:
     from tactcad.atomic import write_bytes_atomic
     from tactcad.studies.sweeps import correction_refit, dask_client, dask_mapper
 
+    check_out_folder(Path(args.out).parent)
     with dask_client(args.scheduler, _workers(args)) as client:
         res = correction_refit(dask_mapper(client, progress=_bar(args)), args.fit, args.holdout, args.points)
     doc = res["document"]
@@ -138,6 +158,7 @@ def run_montecarlo_cmd(args: argparse.Namespace) -> int:
     from tactcad.studies.tolerance_montecarlo import run_tolerance
     from tactcad.studies.sweeps import dask_client, dask_mapper
 
+    check_out_folder(args.out)
     plan = plan_from_args(args)
     t0 = time.perf_counter()
     with dask_client(args.scheduler, _workers(args)) as client:

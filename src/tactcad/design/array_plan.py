@@ -81,7 +81,11 @@ MIN_ARM_STEP_MM = 0.01
 MIN_TIP_WALL_MM = 0.1
 #: Shortest base below the arm underside, mm (room for the clamp bolts and a gauge pad).
 MIN_BASE_BELOW_ARM_MM = 2.0
+#: Most columns of a grid: the one range of ``array.columns`` and of ``design --columns``
+#: (an element count the closed form and the drawings have been checked over).
 MAX_COLUMNS = 12
+#: The allowed range of the columns of a grid (inclusive), wherever they are asked.
+COLUMNS_RANGE = (1, MAX_COLUMNS)
 #: How a sensing unit pairs its elements: "row" (each row's reference against the
 #: row's other elements) or "column" (one row of references, each against the element
 #: beside it across the rows: the two tips at one distance along the row).
@@ -373,7 +377,7 @@ class ArraySection(Section):
     #: ``row`` when left out
     pairing: choice(PAIRINGS) = None
     rows: integer(2, 2, why="the model is two clamped rows facing each other")
-    columns: integer(1, MAX_COLUMNS)
+    columns: integer(*COLUMNS_RANGE)
     pitch_mm: number(0.0, 20.0, lo_open=True)
 
 

@@ -294,7 +294,7 @@ def _element_count(rows: Sequence[BomRow], specs: Mapping[str, PartSpec]) -> int
 
 def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
     """The build book's steps (:func:`tactcad.assembly.build_steps.build_steps`) for BOM ``rows``."""
-    from tactcad.assembly.build_steps import build_steps, tip_zeroing_note
+    from tactcad.assembly.build_steps import build_steps, fastener_sizes, tip_zeroing_note
     from tactcad.export.drawn_tolerances import tip_height_drawing
 
     assemblies = [a for a, _ in rows[0].per_assembly] if rows else ["array"]
@@ -322,7 +322,8 @@ def kit_steps(project, rows: Sequence[BomRow], specs: Mapping[str, PartSpec]):
                        project.plan.bolt, pairs, scenes, samples, screws,
                        {name: spec.rig for name, spec in project.scenes.items()},
                        spares={r.part: r.spares for r in rows if r.spares},
-                       tip_zeroing=tip_zeroing_note(tip_height_drawing(project.plan)))
+                       tip_zeroing=tip_zeroing_note(tip_height_drawing(project.plan)),
+                       fasteners=fastener_sizes(specs))
 
 
 def complete_kit(project, assembled, files=lambda spec: ()) -> list[BomRow]:
@@ -351,7 +352,10 @@ def complete_kit(project, assembled, files=lambda spec: ()) -> list[BomRow]:
     fabricated = [r for r in rows if r.kind == "fabricated"]
     rows = fabricated + samples + [r for r in rows if r.kind != "fabricated"] + consumables
     rows = [replace(r, item=i) for i, r in enumerate(rows, start=1)]
-    step_of = {p: s.key for s in kit_steps(project, rows, specs) for p, _ in s.parts}
+    step_of: dict[str, str] = {}
+    for s in kit_steps(project, rows, specs):  # a nut shared over steps: its first one's
+        for p, _ in s.parts:
+            step_of.setdefault(p, s.key)
     return [replace(r, step=step_of.get(r.part, "")) for r in rows]
 
 

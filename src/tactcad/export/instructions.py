@@ -269,7 +269,10 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
     explode: dict[str, dict[str, list[float]]] = {}
     records = []
     if mesh is not None:
-        order = {part: n for n, s in enumerate(steps) for part, _ in s.parts}
+        order: dict[str, int] = {}
+        for n, s in enumerate(steps):  # a part shared over steps (a nut) is placed at its first
+            for part, _ in s.parts:
+                order.setdefault(part, n)
         models = {}
         for n, s in enumerate(steps):
             model = _step_model(s.scene, array, scene_of, mesh, models)

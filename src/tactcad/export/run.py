@@ -17,7 +17,6 @@ are gone with the old folder, files tactcad never wrote are kept.
 
 from __future__ import annotations
 
-import errno
 import json
 import os
 import time
@@ -27,8 +26,8 @@ from pathlib import Path
 from typing import Callable, Sequence
 
 from tactcad.atomic import (carry_over, disk_full_error, in_target, leftover_staging, publish_dir,
-                            remove_partial_files, remove_tree, staging_dir, warn_left_behind,
-                            write_bytes_atomic)
+                            remove_partial_files, remove_tree, staging_dir, unmakeable_folder,
+                            warn_left_behind, write_bytes_atomic)
 from tactcad.design.project import Project
 from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.export_owner import default_product_name, refuse_another_designs_export
@@ -185,17 +184,19 @@ def check_out_dir(out_dir: str | Path) -> Path:
     """The export folder, resolved, once it is shown safe to replace.
 
     Raises:
-        NotADirectoryError: a folder on the way is a file.
         ExportPathError: a system folder, the home folder or the working folder
-            (or one above it), a file, a mount point, or a non-empty folder that is not a
+            (or one above it), a file, a mount point, a non-empty folder that is not a
             tactcad export (no ``manifest.json``): an export replaces its
-            folder as a whole, keeping only files it did not write.
+            folder as a whole, keeping only files it did not write; or a folder that cannot
+            be made (a file on its way, a folder that takes no new one:
+            :func:`tactcad.atomic.unmakeable_folder`).
     """
     out = Path(os.path.abspath(os.path.expanduser(str(out_dir))))
     real = out.resolve()
     above = next(p for p in (real, *real.parents) if p.exists())
-    if above != real and not above.is_dir():  # an OS condition, said as the OS says it
-        raise NotADirectoryError(errno.ENOTDIR, os.strerror(errno.ENOTDIR), str(above))
+    if above != real and not above.is_dir():
+        raise ExportPathError(f"--out {out_dir}: the folder cannot be made ({above} is a file, "
+                              "not a folder)")
     protected = {Path(d) for d in SYSTEM_DIRS} | {Path.home().resolve()}
     if real in protected or real in Path.cwd().resolve().parents or real == Path.cwd().resolve():
         raise ExportPathError(f"--out {out_dir}: refused, a system, home or working folder "
@@ -210,6 +211,11 @@ def check_out_dir(out_dir: str | Path) -> Path:
     if real.is_dir() and any(real.iterdir()) and not (real / MANIFEST).is_file():
         raise ExportPathError(f"--out {out_dir}: {real} holds files but no {MANIFEST}, so it is no "
                               "tactcad export folder; name an empty or new folder")
+    # the export is staged beside the folder and renamed into place: checked before any work,
+    # so a folder that cannot be made is said in words and nothing is half written
+    reason = unmakeable_folder(real)
+    if reason is not None:
+        raise ExportPathError(f"--out {out_dir}: the folder cannot be made ({reason})")
     return real
 
 

@@ -664,10 +664,13 @@ def searched_base(base: Mapping[str, Any], columns: int, process: str | None = N
     requirements, on ``process`` where one is given.
 
     Raises:
-        DesignError: ``--columns`` out of 1 ... 12.
+        DesignError: ``--columns`` out of :data:`tactcad.design.array_plan.COLUMNS_RANGE`.
     """
-    if not 1 <= columns <= 12:
-        raise DesignError("--columns", columns, "1 ... 12 for a comb in a jaw")
+    from tactcad.design.array_plan import COLUMNS_RANGE
+
+    lo, hi = COLUMNS_RANGE
+    if not lo <= columns <= hi:
+        raise DesignError("--columns", columns, f"{lo} ... {hi}")
     base = copy.deepcopy(dict(base))
     base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
     if process is not None:

@@ -448,6 +448,31 @@ def _ceil_step(x: float, step: float) -> float:
     return math.ceil(x / step - 1e-9) * step
 
 
+def force_refusal(asked_N: float, whole_N: float, estimate_N: float, asked: str,
+                  why: str) -> DesignError | None:
+    """The refusal of ``--full-scale-force`` as the force that binds, or None when it does
+    not: whole designs meet the force asked (``whole_N`` >= ``asked_N``), so another rule
+    refused the layouts, and an "at most" the asked force itself would contradict itself.
+
+    Args:
+        asked_N: the force asked (N).
+        whole_N: the largest force whole designs meet (N, rounded down; 0 when none).
+        estimate_N: the web search's estimate of it (N), said when no whole design meets one.
+        asked: the targets in words. why: what binds, in words.
+
+    Returns:
+        The :class:`DesignError` naming ``--full-scale-force``, or None.
+    """
+    if whole_N >= asked_N:
+        return None
+    most = whole_N or estimate_N
+    shown = _fmt(most) if float(_fmt(most)) < asked_N else f"{most:.4g}"
+    if float(shown) >= asked_N:  # no digits show it below the force asked: say so
+        return DesignError("--full-scale-force", asked_N, f"less than {asked_N:g} N for "
+                           f"{asked}", why)
+    return DesignError("--full-scale-force", asked_N, f"at most {shown} N for {asked}", why)
+
+
 def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, footprint_mm,
             envelope_of, validate, name, correction) -> InverseDesignError:
     """The error of a search that found no design: each asked target that
@@ -485,13 +510,13 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
         best_c, best_m = max(stiff, key=lambda cm: (cm[1].largest_force_N, -cm[0].distance(start)))
         force_binds = best_m.largest_force_N < F
         if force_binds:
-            limits = _force_limits(best_m, targets)
             f_best = largest_feasible_force(with_layout(data, best_c), targets, correction)
-            errors.append(DesignError(
-                "--full-scale-force", F,
-                f"at most {_fmt(f_best or best_m.largest_force_N)} N for {asked}",
-                f"bound by {limits}; at {best_c.words()}, the layout whose elements carry most"))
-            if f_best > 0 and footprint_mm is None:
+            error = force_refusal(F, f_best, best_m.largest_force_N, asked,
+                                  f"bound by {_force_limits(best_m, targets)}; at "
+                                  f"{best_c.words()}, the layout whose elements carry most")
+            force_binds = error is not None
+            errors += [error] if force_binds else []
+            if force_binds and f_best > 0 and footprint_mm is None:
                 alternatives.append(_alt(f"--full-scale-force {_fmt(f_best)}",
                                          f"the largest full-scale force ({best_c.words()})",
                                          "target", largest_force_N=f_best))
