@@ -86,8 +86,10 @@ def unmakeable_folder(target: str | Path) -> str | None:
     try:
         os.rmdir(tempfile.mkdtemp(prefix=".tactcad-probe-", dir=above))
     except OSError as exc:
+        if exc.errno in (errno.ENOSPC, errno.EDQUOT):
+            return None  # a full disk is the writer's to report (disk_full_error), exit 3
         words = {errno.EROFS: "a read-only file system", errno.EACCES: "permission denied",
-                 errno.EPERM: "permission denied", errno.ENOSPC: "the disk is full"}
+                 errno.EPERM: "permission denied"}
         cause = words.get(exc.errno, (exc.strerror or type(exc).__name__).lower())
         return f"no folder can be made in {above}: {cause}"
     return None

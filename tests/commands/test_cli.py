@@ -189,13 +189,16 @@ def test_an_option_of_one_value_given_twice_takes_the_last_and_says_so(capsys, r
             "taken") in json.loads(capsys.readouterr().out)["warnings"]
 
 
-def test_os_error_is_json_with_exit_3(capsys, tmp_path):
+def test_an_out_folder_under_a_file_is_json_with_exit_2(capsys, tmp_path):
+    """A folder that cannot be made is the option's fault (exit 2), said in the JSON error
+    with the option and the file in the way."""
     blocker = tmp_path / "file"
     blocker.write_text("x")
     code = cli.main(["export", "--json", "--only", "bom", "--no-cache",
                      "--out", str(blocker / "sub")])
     err = json.loads(capsys.readouterr().out)["error"]
-    assert code == 3 and err["exit_code"] == 3 and str(blocker) in err["message"]
+    assert code == 2 and err["exit_code"] == 2 and str(blocker) in err["message"]
+    assert "--out" in err["message"] and not (blocker / "sub").exists()
 
 
 @pytest.mark.parametrize("argv", [["scenes"], ["scenes", "array"], ["strength"],

@@ -511,19 +511,34 @@ def test_a_missed_kobj_accuracy_in_a_stacked_design_says_what_it_reaches():
     assert "to paste: --kobj-accuracy 0.024" in text
 
 
-def test_design_columns_has_one_range_the_option_and_the_design_file_share(tmp_path):
-    """--columns past the grid's range is refused by the option itself, naming the option,
-    the value and the same range the design file's array.columns states."""
+def test_design_columns_name_each_products_own_range(tmp_path):
+    """--columns is held to the range of the product asked for, named with it: a comb's and a
+    stacked array's are the grid's (array.columns), a die's its own, and the option takes
+    the widest of them, so a die of more columns than a comb takes is not refused."""
+    from tactcad.commands.design import MIN_PAIRED_COLUMNS
     from tactcad.design.array_plan import COLUMNS_RANGE
+    from tactcad.products.silicon_die.design.mems_die import COLUMNS_RANGE as DIE_COLUMNS
 
     lo, hi = COLUMNS_RANGE
-    for asked in (hi + 1, lo - 1):
-        r = run_cli(*GRASPER_CASE[:-2], "--full-scale-force", "0.05", "--columns", str(asked),
-                    "--out", str(tmp_path / "x.toml"))
-        assert r.returncode == 2 and not (tmp_path / "x.toml").exists()
-        assert "--columns" in r.stderr and f"'{asked}'" in r.stderr, r.stderr
-        assert f"{lo} ... {hi}" in r.stderr, r.stderr
-        assert "Traceback" not in r.stderr
+    r = run_cli(*GRASPER_CASE[:-2], "--full-scale-force", "0.05", "--columns", str(hi + 1),
+                "--jaw", "10", "--construction", "monolithic-comb", "--out",
+                str(tmp_path / "c.toml"))
+    assert r.returncode == 2 and not (tmp_path / "c.toml").exists()
+    assert f"--columns = {hi + 1}: allowed {lo} ... {hi} for a monolithic comb" in r.stderr
+    r = run_cli("design", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.05", "--columns", str(hi + 1), "--out",
+                str(tmp_path / "s.toml"), cwd=tmp_path)
+    assert r.returncode == 2 and not (tmp_path / "s.toml").exists()
+    assert (f"--columns = {hi + 1}: allowed {MIN_PAIRED_COLUMNS} ... {hi} for a stacked array"
+            in r.stderr), r.stderr
+    assert f"--columns {hi}" in r.stderr  # the nearest to paste
+    r = run_cli(*JAW_TARGETS, "--full-scale-force", "0.001", "--columns", str(hi + 8),
+                "--construction", "mems-die", "--out", str(tmp_path / "d.toml"), cwd=tmp_path)
+    assert "--columns" not in r.stderr, r.stderr  # a die of 20 columns is the die's to judge
+    r = run_cli(*GRASPER_CASE[:-2], "--full-scale-force", "0.05", "--columns",
+                str(DIE_COLUMNS[1] + 1), "--out", str(tmp_path / "x.toml"))
+    assert r.returncode == 2 and f"1 ... {DIE_COLUMNS[1]}" in r.stderr, r.stderr
+    assert "Traceback" not in r.stderr
 
 
 def test_design_one_column_on_a_stacked_array_names_the_columns_and_why(tmp_path):

@@ -27,25 +27,32 @@ from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 MIN_PAIRED_COLUMNS = 2
 
 
-def check_paired_columns(columns: int, what: str, why: str) -> None:
-    """Refuse ``--columns`` too few to pair a reference with a measuring element.
+def check_columns(columns: int, allowed: tuple[int, int], what: str, why: str) -> None:
+    """Refuse ``--columns`` outside the range of the product asked for.
 
     Args:
         columns: the columns asked.
-        what: the design's words ("a stacked array", "a silicon die").
-        why: why it needs :data:`MIN_PAIRED_COLUMNS` columns.
+        allowed: (fewest, most) columns of that product, inclusive.
+        what: the product's words ("a stacked array", "a silicon die").
+        why: why the range is what it is.
 
     Raises:
-        DesignError: ``--columns`` below :data:`MIN_PAIRED_COLUMNS`, naming the range
-            :data:`MIN_PAIRED_COLUMNS` ... the most of
-            :data:`tactcad.design.array_plan.COLUMNS_RANGE` and why.
+        DesignError: ``--columns`` outside ``allowed``, naming the range, the product and
+            why, with the nearest count in range to paste.
     """
-    if columns >= MIN_PAIRED_COLUMNS:
+    lo, hi = allowed
+    if lo <= columns <= hi:
         return
-    lo, hi = MIN_PAIRED_COLUMNS, COLUMNS_RANGE[1]
+    nearest = min(max(columns, lo), hi)
     raise DesignError("--columns", columns, f"{lo} ... {hi} for {what}", why,
-                      alternatives=[{"option": f"--columns {lo}",
-                                     "words": f"the fewest columns {what} reads with"}])
+                      alternatives=[{"option": f"--columns {nearest}",
+                                     "words": f"the nearest count {what} takes"}])
+
+
+#: Why a stacked array's columns are what they are (the grid's range, and a pair per row).
+STACKED_COLUMNS_WHY = ("each row pairs its reference with the row's other elements, so a row "
+                       "of one column has no element left to measure; the most is the grid's "
+                       "(array.columns)")
 
 
 #: Decimal places a written design keeps of a length (mm): 1 nm, far below any tolerance,
@@ -182,11 +189,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "stock that process cuts a flexure from, and every web, hole and slot "
                         "held to its rules (element.process; with --jaw, the comb's rows: "
                         "its slots, notch and corner radii, webs and tolerance)")
-    p.add_argument("--columns", type=count(*COLUMNS_RANGE, "columns"), metavar="N",
-                   default=None,
-                   help=f"columns of the new grid (2 rows x N, {COLUMNS_RANGE[0]} <= N <= "
-                        f"{COLUMNS_RANGE[1]}; a stacked array and a silicon die at least "
-                        f"{MIN_PAIRED_COLUMNS}; default: the base design's)")
+    from tactcad.products.silicon_die.design.mems_die import COLUMNS_RANGE as DIE_COLUMNS
+
+    p.add_argument("--columns", type=count(1, max(COLUMNS_RANGE[1], DIE_COLUMNS[1]), "columns"),
+                   metavar="N", default=None,
+                   help=f"columns of the new grid (2 rows x N): {MIN_PAIRED_COLUMNS} ... "
+                        f"{COLUMNS_RANGE[1]} for a stacked array, {COLUMNS_RANGE[0]} ... "
+                        f"{COLUMNS_RANGE[1]} for a comb, {DIE_COLUMNS[0]} ... {DIE_COLUMNS[1]} "
+                        "for a silicon die; default: the base design's")
     p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
                    help="rows of the new grid (the model holds two clamped rows facing each "
                         "other: 2)")
@@ -372,11 +382,12 @@ def _run(args: argparse.Namespace) -> int:
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
+    stacked = (MIN_PAIRED_COLUMNS, COLUMNS_RANGE[1])
+    if args.columns is not None:
+        check_columns(args.columns, stacked, "a stacked array", STACKED_COLUMNS_WHY)
     data, design = start_from_args(args, name=path.stem.replace("-", "_") or "inverse_design",
                                    out=path)
-    check_paired_columns(int(data["array"]["columns"]), "a stacked array",
-                         "each row pairs its reference with the row's other elements: a row "
-                         "of one column has no element left to measure")
+    check_columns(int(data["array"]["columns"]), stacked, "a stacked array", STACKED_COLUMNS_WHY)
     kwargs = {}
     if args.footprint is not None:
         from tactcad.assembly.inventory import array_envelope_mm
@@ -573,6 +584,7 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
 
     from tactcad.atomic import write_bytes_atomic
     from tactcad.products.silicon_die.design.die_file import die_file_text
+    from tactcad.products.silicon_die.design.mems_die import COLUMNS_RANGE as DIE_COLUMNS
     from tactcad.products.silicon_die.design.mems_die import DEFAULT_COLUMNS
     from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
 
@@ -584,8 +596,8 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     name = re.sub(r"[^A-Za-z0-9_]", "_", path.stem)
     name = name if re.match(r"[A-Za-z]", name) else f"die_{name}"
     columns = args.columns or DEFAULT_COLUMNS
-    check_paired_columns(columns, "a silicon die", "each unit pairs a reference beam with "
-                         "a measuring beam along the die")
+    check_columns(columns, DIE_COLUMNS, "a silicon die", "each unit pairs a reference beam "
+                  "with a measuring beam along the die (die.columns)")
     plan = doped_die_plan(targets, room, columns=columns, name=name[:32])
     jaw, jaw_file = jaw_of(args.jaw)
     from tactcad.products.silicon_die.design.die_mount import die_mount

@@ -670,7 +670,8 @@ def searched_base(base: Mapping[str, Any], columns: int, process: str | None = N
 
     lo, hi = COLUMNS_RANGE
     if not lo <= columns <= hi:
-        raise DesignError("--columns", columns, f"{lo} ... {hi}")
+        raise DesignError("--columns", columns, f"{lo} ... {hi} for a monolithic comb",
+                          "the grid's range (array.columns)")
     base = copy.deepcopy(dict(base))
     base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
     if process is not None:

@@ -15,7 +15,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_ATTACH,
+from tactcad.products.silicon_die.design.mems_die import (COLUMNS_RANGE, DEFAULT_COLUMNS,
+                                                          DEFAULT_DIE_ATTACH,
                                                           DEFAULT_DIE_NAME,
                                                           DEFAULT_KOBJ_RESOLUTION_REL,
                                                           DEFAULT_PITCH_UM, LEAST_PITCH_UM,
@@ -49,7 +50,7 @@ class DieSection(Section):
                                  "object stiffnesses the die must read")
     full_scale_force_N: number(MIN_FULL_SCALE_FORCE_N, MAX_FULL_SCALE_FORCE_N, unit="N",
                                why="the rated force on each beam")
-    columns: integer(2, 50, why="units along the die") = DEFAULT_COLUMNS
+    columns: integer(*COLUMNS_RANGE, why="units along the die") = DEFAULT_COLUMNS
     pitch_um: number(LEAST_PITCH_UM, 5000.0, unit="um",
                      why="the units' spacing along the die: each beam's three bond pads and its "
                          "reference resistor lie on the frame within one pitch") = DEFAULT_PITCH_UM

@@ -161,6 +161,8 @@ BOSCH_STRENGTH_SOURCE = ("Uesugi, Hirai, Sugano, Tsuchiya and Tabata, IEEJ Trans
 #: Columns per row, pitch along the die and the die's name when the caller states none
 #: (the design file's, the die command's and design's defaults).
 DEFAULT_COLUMNS, DEFAULT_PITCH_UM, DEFAULT_DIE_NAME = 5, 1000.0, "mems_die"
+#: Fewest and most units along a die (inclusive): a reference and a measuring beam each.
+COLUMNS_RANGE = (2, 50)
 #: Beam widths searched (um): from the slot rule's smallest beam to the pitch's widest.
 WIDTH_STEP_UM = 5.0
 #: A row's hard stop, its cavity's floor, engages at this multiple of its beam's rated tip
