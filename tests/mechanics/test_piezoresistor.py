@@ -170,3 +170,22 @@ def test_the_dies_readout_states_its_sensitivitys_drift_and_self_heating():
     assert any("self-heating" in a for a in r["assumptions"])
     doubled = die_readout(plan, bias_V=4.0)  # heating goes as the bias squared
     assert doubled["self_heating_K"] == pytest.approx(4 * r["self_heating_K"], rel=1e-12)
+
+
+def test_each_rows_full_scale_signal_is_at_the_force_strength_rates_it_for():
+    """One name, one quantity: a row's full-scale signal is its sensitivity times the most its
+    beam carries in use, strength's ``rated_force_N`` (a measuring beam carries less than the
+    die's rated force while its reference reads up to it)."""
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.products.silicon_die.design.mems_die import die_plan
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.studies.die_reports import strength_report
+    from tactcad.studies.inverse_design import Targets
+
+    plan = die_plan(Targets(6.0, (1.0, 8.0), 0.008), jaw_room("5"))
+    rows = die_readout(plan)["rows"]
+    rated = {r["role"]: r["rated_force_N"] for r in strength_report(plan)[0]["rows"]}
+    assert rated["measuring"] < 0.9 * rated["reference"]  # the two differ: the check can fail
+    for role, row in rows.items():
+        assert row["full_scale_signal_V"] == pytest.approx(
+            row["sensitivity_V_per_N"] * rated[role], rel=1e-12), role

@@ -470,7 +470,8 @@ def die_readout(plan, bias_V: float = 2.0, f_lo_Hz: float = 0.1, f_hi_Hz: float 
         rows[beam.role] = {"resistance_change_per_N": c.resistance_change_per_N(),
                            "sensitivity_V_per_N": sens,
                            "force_resolution_N": total / abs(sens),
-                           "full_scale_signal_V": sens * plan.full_scale_force_N,
+                           # at the most the beam carries in use (strength's rated force)
+                           "full_scale_signal_V": sens * plan.rated_force_N(beam),
                            "zero_drift_N_per_K": zero_V / sens}
     return {"resistance_ohm": r, "reference_resistance_ohm": r_ref,
             "uncancelled_zero_drift_V_per_K": uncancelled_V,
