@@ -79,6 +79,27 @@ def test_a_stop_gap_below_the_thinnest_shim_is_refused(data):
     assert caught.value.field == "comb.stop_gaps_mm[1]"
 
 
+def test_a_comb_gives_its_webs_one_way_not_both(data):
+    """A shared web beside each element's would be read by nothing: refused, naming it; each
+    element's alone, or one web for all alone, is a comb."""
+    import copy
+
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"element.web_thickness_mm": 0.3}))
+    assert caught.value.field == "element.web_thickness_mm"
+    assert "comb.web_thicknesses_mm" in str(caught.value)
+    shared = copy.deepcopy(data)
+    del shared["comb"]["web_thicknesses_mm"]
+    shared["element"]["web_thickness_mm"] = 0.12
+    assert {g.web_thickness_mm for g in plan_from_dict(shared).distinct_elements.values()} \
+        == {0.12}
+    neither = copy.deepcopy(shared)
+    del neither["element"]["web_thickness_mm"]
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(neither)
+    assert caught.value.field == "comb.web_thicknesses_mm"
+
+
 def test_the_stacked_tables_are_refused_under_the_comb(data):
     stacked = read_toml(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml", "design file")
     with pytest.raises(DesignErrors) as caught:

@@ -100,6 +100,17 @@ def test_a_hard_stop_takes_the_force_beyond_its_engagement():
     # the stops keep every element of the grasper insert below its overload limit at 5 N,
     # though past its rated force
     assert r["pass"] and r["verdict"] == "pass" and r["past_rating"]
+    # yet its references' stops engage past their fatigue limits (the thinnest shim sets
+    # them): each such grasp is a cycle beyond them, listed beside the overload verdict
+    from tactcad.studies.verification import FATIGUE_LIMITS, element_overload_limits_N
+
+    fatigue = element_overload_limits_N(plan, fig, FATIGUE_LIMITS)
+    beyond = {it["element"] for it in r["elements"]
+              if it["element_force_N"] > fatigue[it["element"]]}
+    assert beyond and beyond == {int(s.split(":")[0].split()[1])
+                                 for s in r["fatigue_at_max_grasp"]}
+    assert f"{len(beyond)} of {len(r['elements'])} elements past their fatigue" \
+        in r["binding_words"]
 
 
 @pytest.mark.slow  # a whole chain through the command line or an export

@@ -114,10 +114,14 @@ def kobj_budget_section(plan, req, model: str):
 
 def grasp_text(record: dict) -> str:
     """The grasp at the maximum grasp force: the jaw and tissue assumed, the elements beyond
-    their overload limit with force and limit, those past the rated force (on a stop or not)."""
+    their overload limit with force and limit, those past their fatigue limit (each grasp a
+    cycle beyond it, not judged by the overload verdict) and those past the rated force (on
+    a stop or not)."""
     over = "; ".join(record.get("over_limit") or []) or "every element within its overload limit"
+    fatigue = "; ".join(record.get("fatigue_at_max_grasp") or [])
     past = "; ".join(record.get("past_rating") or [])
     return (f"grasp at {record['target']:g} N: {record['verdict'].upper()}: {over}"
+            + (f"; past a fatigue limit at every such grasp: {fatigue}" if fatigue else "")
             + (f"; past the rated force: {past}" if past else "") + f" ({record['basis']})")
 
 

@@ -68,7 +68,9 @@ class CombElementSection(Section):
     base is each element's post (``[comb] post_length_mm``) and its height
     follows from the spine and the stop gaps, so neither is given here."""
 
-    web_thickness_mm: number(*WEB_RANGE_MM, why=FITTED_DOMAIN)
+    #: every element's web, where ``[comb] web_thicknesses_mm`` does not give each its own
+    #: (one of the two, not both: a web the other overrides would be read by nothing)
+    web_thickness_mm: number(*WEB_RANGE_MM, why=FITTED_DOMAIN) = None
     notch_radius_mm: number(0.0, NOTCH_RADIUS_MAX_MM, lo_open=True)
     tip_width_mm: number(0.3, 20.0)
     tip_height_mm: number(0.3, 5.0)
@@ -405,6 +407,22 @@ def _check_element(d: CombTables, p: Problems) -> None:
                  "below the contact face")
 
 
+def _check_one_web_source(d: CombTables, p: Problems) -> bool:
+    """The webs come from one place: ``[comb] web_thicknesses_mm`` (each element's) or
+    ``[element] web_thickness_mm`` (every element's); False when neither or both."""
+    shared, each = d.element.web_thickness_mm, d.comb.web_thicknesses_mm
+    if shared is None and each is None:
+        p.add("comb.web_thicknesses_mm", None, "each element's web (mm), a list of rows x "
+              "columns values; or element.web_thickness_mm, one web for every element")
+        return False
+    if shared is not None and each is not None:
+        p.add("element.web_thickness_mm", shared, "left out where comb.web_thicknesses_mm "
+              "gives each element's web", "nothing would read it: change "
+              "comb.web_thicknesses_mm, or leave that out to give every element this web")
+        return False
+    return True
+
+
 def _check_lists(d: CombTables, p: Problems) -> bool:
     """Every per-element list has rows x columns entries; False when one has not."""
     n, ok = element_count(d), True
@@ -549,7 +567,7 @@ def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[CombTables
         if grade_error is None:
             p.extend([exc])
     check_references(model, p)
-    if not _check_lists(model, p):
+    if not (_check_one_web_source(model, p) and _check_lists(model, p)):
         return model, p
     for rule in COMB_RULES:
         rule(model, p)

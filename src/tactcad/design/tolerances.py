@@ -76,6 +76,13 @@ class TolerancesSection(Section):
     general: choice(tuple(GENERAL_CLASSES), "ISO 2768-1 tolerance class") = None
 
 
+def thinnest_web_mm(d: Any) -> float:
+    """The thinnest web of a validated design model (mm): ``[element] web_thickness_mm``, or
+    where a comb gives each element's (``[comb] web_thicknesses_mm``), the least of those."""
+    shared = d.element.web_thickness_mm
+    return shared if shared is not None else min(d.comb.web_thicknesses_mm)
+
+
 def check_tolerances(d: Any, p: Problems) -> None:
     """Cross-field rules: one web tolerance, and tolerances smaller than what they tolerance."""
     e = d.element
@@ -85,9 +92,10 @@ def check_tolerances(d: Any, p: Problems) -> None:
         p.add("tolerances.web_thickness_mm", tol.web_thickness_mm,
               f"{fmt(e.web_tolerance_mm)} mm (element.web_tolerance_mm) or leave one of them out",
               "one web tolerance for the drawing and the study")
-    bounded = [("element.web_tolerance_mm", e.web_tolerance_mm, e.web_thickness_mm, "web")]
+    web = thinnest_web_mm(d)
+    bounded = [("element.web_tolerance_mm", e.web_tolerance_mm, web, "thinnest web")]
     if tol is not None:
-        bounded += [("tolerances.web_thickness_mm", tol.web_thickness_mm, e.web_thickness_mm, "web"),
+        bounded += [("tolerances.web_thickness_mm", tol.web_thickness_mm, web, "thinnest web"),
                     ("tolerances.notch_radius_mm", tol.notch_radius_mm, e.notch_radius_mm,
                      "notch radius")]
     for field, v, nominal, what in bounded:

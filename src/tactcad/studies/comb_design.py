@@ -296,9 +296,11 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
         d = held_to_process(d)
     d = grid_fitted_to_sheet(d)
     e, comb = d["element"], d["comb"]
-    # a starting web the process leaves (each is solved next); the notch keeps t/R <= 1
-    e["web_thickness_mm"] = max(e["web_thickness_mm"], round(web_floor(d).value_mm, 6))
-    e["notch_radius_mm"] = max(e["notch_radius_mm"], e["web_thickness_mm"])
+    # a starting web the process leaves (each is solved next): the base's shared web, else
+    # its thinnest; the notch keeps t/R <= 1
+    base_web = e.pop("web_thickness_mm", None) or min(comb.get("web_thicknesses_mm") or [0.0])
+    start_web = max(base_web, round(web_floor(d).value_mm, 6))
+    e["notch_radius_mm"] = max(e["notch_radius_mm"], start_web)
     pitch = _floor(min(room.along_mm / columns, 20.0), 0.1)
     arm_r = 2.0
     arm_m = _floor(pitch - slot_of(d) - comb["post_length_mm"] - e["notch_radius_mm"]
@@ -308,7 +310,8 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
                   "columns": columns, "pitch_mm": round(pitch, 6)}
     d["arms"] = {"lengths_mm": [arm_r] * columns + [round(arm_m, 6)] * columns,
                  "reference_elements": list(range(1, columns + 1))}
-    comb["web_thicknesses_mm"] = [e["web_thickness_mm"]] * n
+    # each element's web from here on (the file gives webs one way, not both)
+    comb["web_thicknesses_mm"] = [start_web] * n
     comb["stop_gaps_mm"] = [0.05] * n
     lo, hi = targets.k_obj_range_N_per_mm
     grasp = (base.get("requirements") or {}).get("max_grasp_force_N")  # asked, else none
@@ -1518,10 +1521,10 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
     comb, arms = d["comb"], d["arms"]["lengths_mm"]
     # the template's own reasons name its sizes (its jaw, its spine): not this design's
     why = {k: f"Not searched: the comb template's value ({template}); check it for this jaw."
-           for k in d.get("assumptions", {})
-           if k.split(".")[0] in ("strength", "element", "edm") or k in (
+           for k in d.get("assumptions", {}) if k != "element.web_thickness_mm"  # solved
+           and (k.split(".")[0] in ("strength", "element", "edm") or k in (
                "comb.post_length_mm", "comb.spacer_thickness_mm")
-           or (not fasteners and k in ("comb.screw_size", "comb.dowel_diameter_mm"))}
+           or (not fasteners and k in ("comb.screw_size", "comb.dowel_diameter_mm")))}
     if fasteners:
         why.update(fastener_reasons(fasteners))
     if "readout.grid_width_mm" in d.get("assumptions", {}):  # the grid fitted to the sheet

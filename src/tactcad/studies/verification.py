@@ -545,8 +545,8 @@ def calibration_gauge(plan: Plan) -> tuple[Any, str]:
 # ---------------------------------------------------------------------------
 # The verification matrix
 # ---------------------------------------------------------------------------
-def _finite_or_none(x: float) -> float | None:
-    return float(x) if math.isfinite(x) else None
+def _finite_or_none(x: float | None) -> float | None:
+    return float(x) if x is not None and math.isfinite(x) else None
 
 
 def _record(requirement: str, target, predicted, error: float, margin: float, model: str,
@@ -666,7 +666,8 @@ def grid_power_density_record(plan: Plan) -> dict:
     (:func:`tactcad.mechanics.thermal_drift.self_heating_K`, what ``tactcad thermal`` prints).
     Target: TN-502's top for thin sections, 2 W/in^2; margin target / density - 1; the verdict
     is :func:`grid_power_density_verdict`'s (the rise decides a failure). Exact in the chain's
-    values: error estimate 0, the same at every level.
+    values and the same at every level: no error estimate (None); an ``undecided`` verdict is
+    the band between the guidance and the failure, not a margin inside an error.
 
     Args:
         plan: the design.
@@ -684,7 +685,10 @@ def grid_power_density_record(plan: Plan) -> dict:
     density = chain.grid_power_density_W_per_mm2
     _, rise = self_heating_K(chain)
     target = TN502_THIN_SECTION_W_PER_MM2[1]
-    rec = _record(GRID_POWER_REQUIREMENT, target, density, 0.0, target / density - 1.0,
+    # no error estimate: the figures are exact in the chain's values, and the band between
+    # the guidance and the failure is the rule's own (how well the element sinks the heat is
+    # not modelled), not a margin inside a model's error
+    rec = _record(GRID_POWER_REQUIREMENT, target, density, None, target / density - 1.0,
                   "closed-form", density <= target * (1 + 1e-9),
                   excitation_V=chain.excitation_V, grid_rise_K=rise,
                   grid_rise_limit_K=TN502_HIGH_EXCITATION_DERATING_K,
@@ -829,16 +833,20 @@ def grasp_error_rel(fig: Figures) -> float:
 #: design's safety factor) and the gauge's largest strain; fatigue and the rated reading
 #: range are the sensor's duty, not a grasp's (the hard stop exists to exceed the rating).
 OVERLOAD_LIMITS = ("yield", "gauge_max")
+#: The limits a load repeated at every grasp is held to.
+FATIGUE_LIMITS = ("fatigue", "gauge_fatigue")
 
 
-def element_overload_limits_N(plan: Plan, fig: Figures) -> dict[int, float]:
-    """Each element's overload limit (N): the smallest of :data:`OVERLOAD_LIMITS` at
-    ``fig``'s level (:func:`tactcad.mechanics.limits.plan_limits`)."""
+def element_overload_limits_N(plan: Plan, fig: Figures,
+                              names: Sequence[str] = OVERLOAD_LIMITS) -> dict[int, float]:
+    """Each element's least force limit (N) of ``names`` (default :data:`OVERLOAD_LIMITS`) at
+    ``fig``'s level (:func:`tactcad.mechanics.limits.plan_limits`); an element with none of
+    them is left out."""
     from tactcad.mechanics.limits import plan_limits
 
     out: dict[int, float] = {}
     for lim in plan_limits(plan, fig.model, fig.stresses, fig.k_error):
-        if lim.limit in OVERLOAD_LIMITS:
+        if lim.limit in names:
             out[lim.element] = min(out.get(lim.element, math.inf), lim.force_N)
     return out
 
@@ -879,12 +887,23 @@ def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict 
     w = deciding_item(items)
     over = [it for it in items if it["element_force_N"] > it["overload_limit_N"]]
     past_rating = [it for it in items if it["element_force_N"] > rated]
+    # not an overload, yet a grasp is repeated: each one past a fatigue limit is a cycle
+    # beyond it, which the overload verdict does not judge; said beside it
+    fatigue = element_overload_limits_N(plan, fig, FATIGUE_LIMITS)
+    past_fatigue = [f"element {it['element']}: {it['element_force_N']:.4g} N over its fatigue "
+                    f"limit {fatigue[it['element']]:.4g} N"
+                    + (" (on its stop)" if it["on_stop"] else "")
+                    for it in items if it["element"] in fatigue
+                    and it["element_force_N"] > fatigue[it["element"]]]
     # the predicted figure is an element's force, not the grasp's: said where it binds
     words = (f"the {target:g} N grasp ({result.jaw.slab_thickness_mm:g} mm {result.profile} "
              f"on a {result.tissue_base} base, jaw at {result.as_laid_out.angle_deg:.3g} "
              "degrees) puts "
              f"{w['element_force_N']:.4g} N on the spring, overload limit "
-             f"{w['overload_limit_N']:.4g} N")
+             f"{w['overload_limit_N']:.4g} N"
+             + (f"; {len(past_fatigue)} of {len(items)} elements past their fatigue limits, "
+                "each such grasp a cycle beyond them (not judged here: fatigue_at_max_grasp "
+                "lists them)" if past_fatigue else ""))
     return _record("max_grasp_force_N", target, w["element_force_N"], error, w["margin_rel"],
                    fig.model, not over, verdict=w["verdict"], binding_element=w["element"],
                    binding_words=words,
@@ -892,6 +911,7 @@ def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict 
                    over_limit=[f"element {it['element']}: {it['element_force_N']:.4g} N over "
                                f"its overload limit {it['overload_limit_N']:.4g} N"
                                for it in over],
+                   fatigue_at_max_grasp=past_fatigue,
                    past_rating=[f"element {it['element']}: {it['element_force_N']:.4g} N "
                                 f"(rated {rated:.4g} N{', on its stop' if it['on_stop'] else ''})"
                                 for it in past_rating],
