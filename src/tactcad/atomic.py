@@ -95,6 +95,54 @@ def unmakeable_folder(target: str | Path) -> str | None:
     return None
 
 
+#: Folders tactcad never writes into itself (``--out`` of every command): the system's
+#: top folders and the root; below the ones users write in (``/home``, ``/tmp``, ``/var``,
+#: ``/opt``, ``/mnt`` ...) any folder is allowed.
+SYSTEM_DIRS = ("/", "/bin", "/boot", "/dev", "/etc", "/home", "/lib", "/lib64", "/media",
+               "/mnt", "/opt", "/proc", "/root", "/run", "/sbin", "/srv", "/sys", "/tmp", "/usr",
+               "/var")
+#: System folders whose whole tree tactcad never writes into.
+SYSTEM_TREES = ("/bin", "/boot", "/dev", "/etc", "/lib", "/lib64", "/proc", "/run", "/sbin",
+                "/sys", "/usr")
+#: The folders the rule refuses, as ``--help`` and the refusal say them.
+SYSTEM_RULE = (f"outside the system folders ({', '.join(d for d in SYSTEM_DIRS if d != '/tmp')} "
+               f"and anything below {', '.join(SYSTEM_TREES)})")
+
+
+def in_system_folder(folder: str | Path) -> bool:
+    """True when tactcad must not write into ``folder``: one of :data:`SYSTEM_DIRS` (but
+    ``/tmp``, where users write) or anything below one of :data:`SYSTEM_TREES`.
+
+    Args:
+        folder: the folder a command would write into (made absolute, links followed).
+
+    Returns:
+        Whether the rule refuses it.
+    """
+    real = Path(os.path.abspath(os.path.expanduser(str(folder)))).resolve()
+    return (str(real) in SYSTEM_DIRS and str(real) != "/tmp") \
+        or any(real.is_relative_to(t) for t in SYSTEM_TREES)
+
+
+def refuse_system_folder(option: str, given: object, folder: str | Path,
+                         what: str = "a folder") -> None:
+    """Refuse an output in a system folder: the one rule of every ``--out``.
+
+    Args:
+        option: the option named in the refusal, e.g. ``--out``.
+        given: the value as the user gave it.
+        folder: the folder that would be written into (for a file, its folder).
+        what: what the option names (``a folder``, ``a file``).
+
+    Raises:
+        DesignError: naming ``option``, the value and :data:`SYSTEM_RULE`.
+    """
+    from tactcad.errors import DesignError
+
+    if in_system_folder(folder):
+        raise DesignError(option, str(given), f"{what} {SYSTEM_RULE}")
+
+
 def write_failed(path: str | Path, what: str) -> OSError:
     """The error for a writer that reported failure at ``path``: a full disk
     when it is one (:func:`disk_full_error`), else an I/O error naming ``what``."""

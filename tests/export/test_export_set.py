@@ -139,6 +139,41 @@ def test_refused_out_folders_write_nothing(tmp_path, target):
     assert sorted(p.name for p in tmp_path.rglob("*")) == before
 
 
+@pytest.mark.parametrize("argv", [
+    ("export", "--out", "/usr/tactcad-test-exp"), ("export", "--out", "/etc/tactcad-test-exp"),
+    ("check", "--out", "/usr/tactcad-test-exp"), ("diff", "OLD", "NEW", "--out", "/usr/tactcad-test-exp"),
+    ("sweep", "grid", "--out", "/usr/tactcad-test-exp"),
+    ("die", "--jaw", "5", "--kr-over-km", "6", "--kobj-range", "1", "8", "--full-scale-force",
+     "0.008", "--out", "/usr/tactcad-test-exp")])
+def test_every_out_folder_below_a_system_folder_is_refused_by_the_one_rule(tmp_path, argv):
+    from tactcad.atomic import SYSTEM_RULE
+
+    (tmp_path / "OLD").mkdir()
+    (tmp_path / "NEW").mkdir()
+    for name in ("OLD", "NEW"):
+        (tmp_path / name / "manifest.json").write_text('{"files": []}')
+    out = argv[-1]
+    proc = run_cli(*argv, cwd=tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr == f"tactcad: error: --out = '{out}': allowed a folder {SYSTEM_RULE}\n"
+    assert not Path(out).exists()
+
+
+def test_the_system_folder_rule_refuses_the_trees_and_allows_users_folders(tmp_path):
+    from tactcad.atomic import in_system_folder
+
+    assert all(in_system_folder(p) for p in ("/", "/etc", "/usr/x", "/etc/a/b", "/var", "/home"))
+    assert not any(in_system_folder(p) for p in ("/tmp/x", "/home/x", "/var/tmp/x", tmp_path))
+
+
+def test_export_help_says_which_out_folders_are_refused(capsys):
+    from tactcad.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["export", "--help"])
+    assert "anything below /bin, /boot, /dev, /etc" in " ".join(capsys.readouterr().out.split())
+
+
 def test_an_out_folder_under_a_file_is_one_line_naming_out_and_the_path(tmp_path):
     (tmp_path / "plain_file").write_text("x")
     proc = run("export", "--no-cache", "--out", str(tmp_path / "plain_file" / "out"))

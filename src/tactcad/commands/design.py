@@ -259,23 +259,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run, default_store=project_store)
 
 
-#: Folders whose whole tree a design file is never written into (the
-#: export's system folders, less the ones that hold users' files).
-SYSTEM_TREES = ("/bin", "/boot", "/dev", "/etc", "/lib", "/lib64", "/proc", "/run", "/sbin",
-                "/sys", "/usr")
-
-
-def _check_not_system(out: str, folder: Path) -> None:
-    from tactcad.errors import DesignError
-    from tactcad.export.run import SYSTEM_DIRS
-
-    if (str(folder) in SYSTEM_DIRS and str(folder) != "/tmp") \
-            or any(folder.is_relative_to(t) for t in SYSTEM_TREES):
-        raise DesignError("--out", out, "a file outside the system folders "
-                          f"({', '.join(d for d in SYSTEM_DIRS if d != '/tmp')} and below "
-                          f"{', '.join(SYSTEM_TREES)})")
-
-
 #: ``--out`` names ending so are taken for a mistyped design file, not a new folder.
 FILE_LIKE_SUFFIXES = (".toml", ".tml", ".tom", ".json", ".yaml", ".yml", ".txt", ".cfg", ".ini")
 
@@ -289,10 +272,11 @@ def check_project_folder(out: str) -> Path:
         DesignError: naming ``--out``, the value and what is allowed.
     """
     from tactcad import __file__ as package_init
+    from tactcad.atomic import refuse_system_folder
     from tactcad.errors import DesignError
 
     folder = Path(os.path.abspath(os.path.expanduser(out))).resolve()
-    _check_not_system(out, folder)
+    refuse_system_folder("--out", out, folder)
     if folder.is_relative_to(Path(package_init).resolve().parent):
         raise DesignError("--out", out, "a folder outside the installed package")
     if folder.exists() and not folder.is_dir():
@@ -311,14 +295,14 @@ def check_project_folder(out: str) -> Path:
 
 def check_output_path(out: str, force: bool) -> Path:
     """The resolved output path: any ``.toml`` file in a writable folder, refused
-    in a system folder (the export's list, :data:`tactcad.export.run.SYSTEM_DIRS`,
-    and the trees of :data:`SYSTEM_TREES`), as the default design or inside the
-    installed package, or when it exists without ``--force``.
+    in a system folder (:func:`tactcad.atomic.refuse_system_folder`), as the default
+    design or inside the installed package, or when it exists without ``--force``.
 
     Raises:
         DesignError: naming ``--out``, the value and what is allowed.
     """
     from tactcad import __file__ as package_init
+    from tactcad.atomic import refuse_system_folder
     from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.errors import DesignError
 
@@ -326,7 +310,7 @@ def check_output_path(out: str, force: bool) -> Path:
     folder = path.parent
     if path.suffix != ".toml":
         raise DesignError("--out", out, "a file name ending in .toml, or a project folder")
-    _check_not_system(out, folder)
+    refuse_system_folder("--out", out, folder, "a file")
     if path == DEFAULT_DESIGN.resolve() or path.is_relative_to(Path(package_init).parent):
         raise DesignError("--out", out, "a new file, not the default design or a package file")
     if not folder.is_dir():

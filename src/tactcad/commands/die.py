@@ -671,13 +671,15 @@ def refuse_a_foreign_folder(out: Path, name: str) -> None:
     every product's export keeps (:mod:`tactcad.export.export_owner`).
 
     Raises:
-        DesignError: ``--out`` a file, a folder with files but no export of this die, or a
-            folder that cannot be made (:func:`tactcad.atomic.unmakeable_folder`).
+        DesignError: ``--out`` in a system folder (:func:`tactcad.atomic.refuse_system_folder`),
+            a file, a folder with files but no export of this die, or a folder that cannot be
+            made (:func:`tactcad.atomic.unmakeable_folder`).
     """
-    from tactcad.atomic import unmakeable_folder
+    from tactcad.atomic import refuse_system_folder, unmakeable_folder
     from tactcad.export.export_owner import refuse_another_designs_export
     from tactcad.products.silicon_die.export.die_review import PRODUCT_NAME
 
+    refuse_system_folder("--out", out, out)
     refuse_another_designs_export(out, PRODUCT_NAME, name)
     reason = None if out.is_dir() else unmakeable_folder(out)
     if reason is not None:  # before the staging folder beside it is made

@@ -25,7 +25,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Sequence
 
-from tactcad.atomic import (carry_over, disk_full_error, in_target, leftover_staging, publish_dir,
+from tactcad.atomic import (SYSTEM_DIRS, carry_over, disk_full_error, in_target,
+                            leftover_staging, publish_dir, refuse_system_folder,
                             remove_partial_files, remove_tree, staging_dir, unmakeable_folder,
                             warn_left_behind, write_bytes_atomic)
 from tactcad.design.project import Project
@@ -174,16 +175,11 @@ def _next_here(here: list[Job], futures: dict, done: dict, run: Run, prepared: s
     return next((job for job in here if not _waits(job, futures, done)), here[0])
 
 
-#: Folders an export never replaces, whatever ``--out`` says.
-SYSTEM_DIRS = ("/", "/bin", "/boot", "/dev", "/etc", "/home", "/lib", "/lib64", "/media",
-               "/mnt", "/opt", "/proc", "/root", "/run", "/sbin", "/srv", "/sys", "/tmp", "/usr",
-               "/var")
-
-
 def check_out_dir(out_dir: str | Path) -> Path:
     """The export folder, resolved, once it is shown safe to replace.
 
     Raises:
+        DesignError: in a system folder (:func:`tactcad.atomic.refuse_system_folder`).
         ExportPathError: a system folder, the home folder or the working folder
             (or one above it), a file, a mount point, a non-empty folder that is not a
             tactcad export (no ``manifest.json``): an export replaces its
@@ -197,6 +193,8 @@ def check_out_dir(out_dir: str | Path) -> Path:
     if above != real and not above.is_dir():
         raise ExportPathError(f"--out {out_dir}: the folder cannot be made ({above} is a file, "
                               "not a folder)")
+    refuse_system_folder("--out", out_dir, real)  # the rule of every command's --out
+    # an export replaces its folder as a whole: no top folder users write below either
     protected = {Path(d) for d in SYSTEM_DIRS} | {Path.home().resolve()}
     if real in protected or real in Path.cwd().resolve().parents or real == Path.cwd().resolve():
         raise ExportPathError(f"--out {out_dir}: refused, a system, home or working folder "
