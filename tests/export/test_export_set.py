@@ -141,7 +141,8 @@ def test_refused_out_folders_write_nothing(tmp_path, target):
 
 @pytest.mark.parametrize("argv", [
     ("export", "--out", "/usr/tactcad-test-exp"), ("export", "--out", "/etc/tactcad-test-exp"),
-    ("check", "--out", "/usr/tactcad-test-exp"), ("diff", "OLD", "NEW", "--out", "/usr/tactcad-test-exp"),
+    ("check", "--out", "/usr/tactcad-test-exp"),
+    ("diff", "OLD", "NEW", "--out", "/usr/tactcad-test-exp"),
     ("sweep", "grid", "--out", "/usr/tactcad-test-exp"),
     ("die", "--jaw", "5", "--kr-over-km", "6", "--kobj-range", "1", "8", "--full-scale-force",
      "0.008", "--out", "/usr/tactcad-test-exp")])
