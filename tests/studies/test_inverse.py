@@ -157,6 +157,18 @@ def test_cli_refuses_system_folders_and_not_toml(tmp_path, monkeypatch, capsys, 
     assert not Path(out).exists() and not (tmp_path / out).exists()
 
 
+@pytest.mark.parametrize("out, paste", [("my sensor", "--out my_sensor"),
+                                        ("ünï cødé.toml", "--out uni_code.toml")])
+def test_cli_refuses_an_out_that_names_no_design_with_one_to_paste(tmp_path, monkeypatch, capsys,
+                                                                   out, paste):
+    monkeypatch.chdir(tmp_path)
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                 "--full-scale-force", "0.3", "--verify", "none", "--out", out]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"tactcad: error: --out = {out!r}: allowed 1-64 characters")
+    assert f"e.g. {paste} " in err and list(tmp_path.iterdir()) == []
+
+
 def test_cli_refuses_a_file_that_is_no_design_or_folder(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     Path("notes.txt").write_text("mine")

@@ -366,6 +366,7 @@ def _run(args: argparse.Namespace) -> int:
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
+    check_design_name(args.out, folder, path)
     stacked = (MIN_PAIRED_COLUMNS, COLUMNS_RANGE[1])
     if args.columns is not None:
         check_columns(args.columns, stacked, "a stacked array", STACKED_COLUMNS_WHY)
@@ -882,8 +883,8 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'grasper_insert'}.toml"
+    check_design_name(args.out, folder, path)
     name = path.stem.replace("-", "_") or "grasper_insert"
-    check_design_name(name, args.out)
     from tactcad.design.array_plan import EXAMPLES, read_toml
     from tactcad.partlib.grasper_jaw import jaw_room
 
@@ -996,19 +997,21 @@ def shown_path(path: str) -> str:
         return path
 
 
-def check_design_name(name: str, out: str) -> None:
-    """Refuse, before any search, an ``--out`` whose stem is no design name.
+def check_design_name(out: str, folder: Path | None, path: Path) -> None:
+    """Refuse, before any search, an ``--out`` whose file or folder name is no design name
+    (:func:`tactcad.project_folder.refuse_no_design_name`, the rule ``tactcad new`` keeps).
+
+    Args:
+        out: ``--out`` as given.
+        folder: the project folder asked for, or None for a design file.
+        path: the design file to write.
 
     Raises:
-        DesignError: naming ``--out``, its value and the names allowed.
+        DesignError: naming ``--out``, its value, the names allowed and one to paste.
     """
-    import re
+    from tactcad.project_folder import refuse_no_design_name
 
-    from tactcad.vocabulary.schema import NAME_ALLOWED, NAME_PATTERN
-
-    if not re.fullmatch(NAME_PATTERN, name):
-        raise DesignError("--out", out, NAME_ALLOWED + " (its file or folder name is the "
-                          "design's name)", "names end up in file names, DXF headers and drawings")
+    refuse_no_design_name("--out", out, folder.name if folder is not None else path.name)
 
 
 def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
