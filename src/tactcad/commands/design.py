@@ -1178,17 +1178,23 @@ def fixed_fields(args: argparse.Namespace) -> set[str]:
 
 def base_design(out: Path | None) -> Path:
     """The design a search without ``--design`` starts from, named on stderr: the working
-    folder's design, or the shipped example where the folder has none or its design is
-    ``out``, the file this run replaces (``--force``)."""
+    folder's design, or the shipped example where the folder has none, its design is
+    ``out``, the file this run replaces (``--force``), or another product's (a die's)."""
     from tactcad.commands import announce_shipped_example
     from tactcad.commands.notices import announce
     from tactcad.design.array_plan import DEFAULT_DESIGN
-    from tactcad.project_folder import default_design
+    from tactcad.project_folder import default_design, product_of
 
     found = default_design()  # the folder scanned once
     if found != DEFAULT_DESIGN and out is not None and found.resolve() == out.resolve():
         announce(f"design: starts from the shipped example {DEFAULT_DESIGN.stem}, not "
                  f"{found.name}, the file this run replaces; --design names a base")
+        return DEFAULT_DESIGN
+    if found != DEFAULT_DESIGN and not product_of(found).is_default:
+        # a die's design has no stack to search: the array starts from the shipped one
+        announce(f"design: starts from the shipped example {DEFAULT_DESIGN.stem}, not "
+                 f"{found.name}, this folder's {product_of(found).name} design (a stacked "
+                 "array is not made from it); --design names a base")
         return DEFAULT_DESIGN
     if found != DEFAULT_DESIGN:
         announce(f"design: starts from {found.name}, this folder's design; --design names "
