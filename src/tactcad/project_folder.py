@@ -241,6 +241,25 @@ def _check_target(folder: Path, names: list[str], force: bool, option: str = "DI
                           "(move it away, or choose another folder)")
 
 
+def check_project_target(folder: Path, design_name: str, force: bool,
+                         option: str = "--out") -> None:
+    """Refuse, before a design is searched for it, a project folder that
+    :func:`write_project` would refuse: one holding the design file, its README, .gitignore,
+    CI workflow or bought-parts list (without ``force``), or another design file. The
+    rigs and scenes, named by the design to come, are checked again when it is written.
+
+    Args:
+        folder: the project folder asked for.
+        design_name: the design file's name in it (``NAME.toml``).
+        force: the project's files may be replaced.
+        option: the argument named by a refusal.
+
+    Raises:
+        DesignError: as :func:`write_project`'s, naming ``option``.
+    """
+    _check_target(folder, [design_name, *EXTRA_FILES.values(), PURCHASED_PARTS], force, option)
+
+
 def _named_files(plan: Plan) -> dict[str, str]:
     """kind -> the path relative to the project folder that the design's
     ``[files]`` table gives (else the default name)."""

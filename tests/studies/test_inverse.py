@@ -205,6 +205,26 @@ def test_cli_writes_a_project_folder(tmp_path, monkeypatch, capsys):
     assert "--out = " in err and "allowed a folder without the project's files, or --force" in err
 
 
+@pytest.mark.parametrize("jaw", [("--verify", "none"), ("--jaw", "10")])
+def test_cli_refuses_an_existing_project_folder_before_any_search(tmp_path, monkeypatch, capsys,
+                                                                  jaw):
+    """design --out PROJECT searched for a minute (fem3d) before refusing the folder."""
+    import tactcad.studies.layout_search as layout_search
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["new", "finger-tip", "--quiet"]) == 0
+    capsys.readouterr()
+
+    def searched(*args, **kwargs):
+        raise AssertionError("searched before --out was checked")
+
+    monkeypatch.setattr(layout_search, "searched_design", searched)
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20", *jaw,
+                 "--full-scale-force", "0.3", "--out", "finger-tip"]) == 2
+    err = capsys.readouterr().err
+    assert "--out = " in err and "allowed a folder without the project's files, or --force" in err
+
+
 def test_cli_writes_outside_the_working_folder(tmp_path, monkeypatch, capsys):
     work = tmp_path / "work"
     work.mkdir()

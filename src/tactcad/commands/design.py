@@ -352,6 +352,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from tactcad.atomic import write_bytes_atomic
+    from tactcad.project_folder import check_project_target
     from tactcad.studies.inverse_design import Targets
     from tactcad.studies.layout_search import searched_design
 
@@ -367,6 +368,8 @@ def _run(args: argparse.Namespace) -> int:
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
     check_design_name(args.out, folder, path)
+    if folder is not None:  # an existing project is refused now, not after the search
+        check_project_target(folder, path.name, args.force)
     stacked = (MIN_PAIRED_COLUMNS, COLUMNS_RANGE[1])
     if args.columns is not None:
         check_columns(args.columns, stacked, "a stacked array", STACKED_COLUMNS_WHY)
@@ -874,7 +877,8 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     the one that counts (written with its scenes), or every binding limit."""
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.project_folder import scenes_without_rigs_text, write_project
+    from tactcad.project_folder import (check_project_target, scenes_without_rigs_text,
+                                        write_project)
 
     if args.rows not in (None, 2):
         raise DesignError("--rows", args.rows, "2", "the model holds two rows facing each other")
@@ -884,6 +888,8 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'grasper_insert'}.toml"
     check_design_name(args.out, folder, path)
+    if folder is not None:  # an existing project is refused now, not after the search
+        check_project_target(folder, path.name, args.force)
     name = path.stem.replace("-", "_") or "grasper_insert"
     from tactcad.design.array_plan import EXAMPLES, read_toml
     from tactcad.partlib.grasper_jaw import jaw_room
