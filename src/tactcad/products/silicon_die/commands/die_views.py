@@ -175,10 +175,9 @@ def _crosstalk_kept(plan, dofs: int, report: Callable[[str], None]) -> tuple[Any
                "minute on two cores)")
         return die_crosstalk(plan)
 
-    def on_reuse() -> None:
+    def on_reuse(where: str) -> None:
         reused.append(True)
-        report(f"crosstalk of die {plan.name}: reused from the result store (the same die "
-               "and mesh)")
+        report(f"crosstalk of die {plan.name}: {where} (the same die and mesh)")
 
     return kept_result("die crosstalk", solve, plan, MESH, reused=on_reuse), bool(reused)
 
