@@ -212,6 +212,58 @@ def _exchange(a: Path, b: Path) -> bool:
     raise OSError(err, os.strerror(err), str(b))
 
 
+@contextlib.contextmanager
+def writing_lock(target: Path, option: str = "--out") -> Iterator[Path]:
+    """Hold, for the block, the lock of the folder ``target``: one run at a time writes it
+    (a second one's clean-up would delete the first's staging folder under it). The lock
+    is ``flock`` on ``.<target>.lock`` beside the folder, never in it; the system frees it
+    when the process ends, killed or not, and the file is removed on the way out.
+
+    Args:
+        target: the folder about to be written (its parent is made when missing).
+        option: the option that named it, for the refusal (``--out``).
+
+    Yields:
+        The lock file's path.
+
+    Raises:
+        ExportPathError: another run holds the lock (refused at once, naming ``option``
+            and the folder).
+        OSError: the lock file cannot be made (naming ``target``).
+    """
+    import fcntl
+
+    from tactcad.errors import ExportPathError
+
+    lock = target.parent / f".{target.name}.lock"
+    while True:
+        try:
+            target.parent.mkdir(parents=True, exist_ok=True)
+            fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise OSError(exc.errno, exc.strerror, str(target)) from exc
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            raise ExportPathError(f"{option} {target}: another tactcad run is writing this "
+                                  "folder now; wait for it to end, or name another folder") \
+                from None
+        try:  # the run that held it may have removed the file: hold the one on disk
+            held = os.path.samestat(os.fstat(fd), os.stat(lock))
+        except FileNotFoundError:
+            held = False
+        if held:
+            break
+        os.close(fd)
+    try:
+        yield lock
+    finally:
+        with contextlib.suppress(OSError):
+            os.unlink(lock)  # removed while still held: a waiting run makes a new one
+        os.close(fd)
+
+
 def staging_dir(target: Path) -> Path:
     """A new empty folder beside ``target`` (same file system, so it can take
     its place in one rename), named ``.<target>.staging-*``.

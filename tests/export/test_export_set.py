@@ -280,3 +280,42 @@ def test_unmakeable_folder_says_why_and_leaves_nothing(tmp_path):
     assert unmakeable_folder(tmp_path / "new" / "deeper") is None
     assert unmakeable_folder(tmp_path / "f" / "x") == f"{tmp_path / 'f'} is a file, not a folder"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["f"]
+
+
+def test_a_second_export_to_a_folder_being_written_is_refused_and_the_lock_goes(tmp_path):
+    """Two exports to one --out at once: the second removed the first's staging folder
+    (".../review/wirecut.FCStd: No such file or directory", exit 3)."""
+    from tactcad.atomic import writing_lock
+
+    out = tmp_path / "exports"
+    with writing_lock(out) as lock:  # as a run writing it holds it
+        assert lock.parent == tmp_path and lock.name == ".exports.lock"
+        proc = run_cli("export", "--no-cache", "--out", out, cwd=tmp_path)
+        assert proc.returncode == 2, proc.stderr
+        assert proc.stderr == (f"tactcad: error: --out {out}: another tactcad run is writing "
+                               "this folder now; wait for it to end, or name another folder\n")
+        assert not out.exists() and [p.name for p in tmp_path.iterdir()] == [".exports.lock"]
+    assert list(tmp_path.iterdir()) == []  # no lock file left beside it, none in it
+
+
+def test_a_killed_run_leaves_the_folder_unlocked(tmp_path):
+    from tactcad.atomic import writing_lock
+    from tactcad.errors import ExportPathError
+
+    out = tmp_path / "exports"
+    holder = subprocess.Popen(
+        [sys.executable, "-c", "import sys, time; from pathlib import Path; "
+         "from tactcad.atomic import writing_lock\n"
+         f"with writing_lock(Path({str(out)!r})):\n print('held', flush=True); time.sleep(60)"],
+        stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "held"
+        with pytest.raises(ExportPathError, match="another tactcad run is writing"):
+            with writing_lock(out):
+                pass
+    finally:
+        holder.kill()
+        holder.wait()
+    with writing_lock(out):  # the killed holder's lock freed with its process
+        pass
+    assert list(tmp_path.iterdir()) == []

@@ -288,7 +288,7 @@ def with_attach(plan, attach):
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.atomic import staging_dir
+    from tactcad.atomic import staging_dir, writing_lock
     from tactcad.checks.check_result import counts_text, status_counts
     from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.checks.sheet_overlap import sheet_file_results
@@ -320,10 +320,13 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
     refuse_a_foreign_folder(out, name)
+    held = contextlib.ExitStack()
+    held.enter_context(writing_lock(out, "--out"))  # one run at a time moves its files in
     # every file made in a staging folder beside OUT, then moved in: a failed or
     # interrupted run leaves OUT's previous files as they were
-    staging = staging_dir(out)
+    staging = None
     try:
+        staging = staging_dir(out)
         made = {k: staging / p.relative_to(out) for k, p in files.items()}
         for path in made.values():
             path.parent.mkdir(parents=True, exist_ok=True)
@@ -374,7 +377,9 @@ def run(args: argparse.Namespace) -> int:
             files[k].parent.mkdir(parents=True, exist_ok=True)
             os.replace(made[k], files[k])
     finally:
-        shutil.rmtree(staging, ignore_errors=True)
+        if staging is not None:
+            shutil.rmtree(staging, ignore_errors=True)
+        held.close()
     if args.json:
         print(dumps(record, indent=1))
     elif getattr(args, "quiet", False):  # `export --quiet` of a die: only what failed

@@ -28,7 +28,7 @@ from typing import Callable, Sequence
 from tactcad.atomic import (SYSTEM_DIRS, carry_over, disk_full_error, in_target,
                             leftover_staging, publish_dir, refuse_system_folder,
                             remove_partial_files, remove_tree, staging_dir, unmakeable_folder,
-                            warn_left_behind, write_bytes_atomic)
+                            warn_left_behind, write_bytes_atomic, writing_lock)
 from tactcad.design.project import Project
 from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.export_owner import default_product_name, refuse_another_designs_export
@@ -250,6 +250,16 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
     (``with_manifest`` False) keeps every old file it does not rewrite."""
     t0 = time.perf_counter()
     out = check_out_dir(out_dir)
+    with writing_lock(out, "--out"):  # a second run at once would remove this one's staging
+        return _write_locked(out, Path(out_dir), t0, jobs_of, project, log, store,
+                             with_manifest, parts, dxf_version, partial, session)
+
+
+def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], list[Job]],
+                  project: Project, log: Log, store: Store, with_manifest: bool, parts,
+                  dxf_version: str | None, partial: dict | None,
+                  session: SessionWorker | None) -> ExportResult:
+    """:func:`_write_set`'s work, once ``out`` is checked and its lock held."""
     refuse_another_designs_export(out, default_product_name(), project.plan.name)
     stuck = [p for old in leftover_staging(out) for p in remove_tree(old)]  # a killed run's
     warn_left_behind(stuck)
