@@ -105,7 +105,7 @@ def die_asked(args: argparse.Namespace) -> dict:
     Raises:
         DesignError: a target option missing without ``--design``, or given with it.
     """
-    from tactcad.commands import parse_overrides
+    from tactcad.commands import parse_overrides, set_sources
     from tactcad.products.silicon_die.design.die_file import load_die_design
 
     if args.design is None and not _any_option_given(args):
@@ -130,7 +130,10 @@ def die_asked(args: argparse.Namespace) -> dict:
         raise DesignError(given[0], getattr(args, given[0].lstrip("-").replace("-", "_")),
                           "only without --design", f"{args.design} states it")
     overrides = parse_overrides(args.overrides, example=DIE_SET_EXAMPLE)
-    d = load_die_design(args.design, overrides)
+    try:
+        d = load_die_design(args.design, overrides)
+    except DesignErrors as exc:  # a refused --set value is named as typed, as an array's is
+        raise exc.sourced(set_sources(args.overrides, DIE_SET_EXAMPLE)) from None
     return {"jaw": d.jaw, "kr_over_km": d.die.kr_over_km,
             "kobj_range": tuple(d.die.kobj_range_N_per_mm),
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,

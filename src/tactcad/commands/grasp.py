@@ -126,9 +126,9 @@ def design_plan_from_args(args: argparse.Namespace):
     try:
         return plan_from_dict(data, source=str(path), file=path.name)
     except DesignErrors as exc:  # a refused --set value is named as typed
-        from tactcad.commands import parse_override
+        from tactcad.commands import set_sources
 
-        raise exc.sourced({parse_override(t)[0]: f"--set {t}" for t in texts}) from None
+        raise exc.sourced(set_sources(texts)) from None
 
 
 def run(args: argparse.Namespace) -> int:
