@@ -95,6 +95,54 @@ def unmakeable_folder(target: str | Path) -> str | None:
     return None
 
 
+#: Folders tactcad never writes into itself (``--out`` of every command): the system's
+#: top folders and the root; below the ones users write in (``/home``, ``/tmp``, ``/var``,
+#: ``/opt``, ``/mnt`` ...) any folder is allowed.
+SYSTEM_DIRS = ("/", "/bin", "/boot", "/dev", "/etc", "/home", "/lib", "/lib64", "/media",
+               "/mnt", "/opt", "/proc", "/root", "/run", "/sbin", "/srv", "/sys", "/tmp", "/usr",
+               "/var")
+#: System folders whose whole tree tactcad never writes into.
+SYSTEM_TREES = ("/bin", "/boot", "/dev", "/etc", "/lib", "/lib64", "/proc", "/run", "/sbin",
+                "/sys", "/usr")
+#: The folders the rule refuses, as ``--help`` and the refusal say them.
+SYSTEM_RULE = (f"outside the system folders ({', '.join(d for d in SYSTEM_DIRS if d != '/tmp')} "
+               f"and anything below {', '.join(SYSTEM_TREES)})")
+
+
+def in_system_folder(folder: str | Path) -> bool:
+    """True when tactcad must not write into ``folder``: one of :data:`SYSTEM_DIRS` (but
+    ``/tmp``, where users write) or anything below one of :data:`SYSTEM_TREES`.
+
+    Args:
+        folder: the folder a command would write into (made absolute, links followed).
+
+    Returns:
+        Whether the rule refuses it.
+    """
+    real = Path(os.path.abspath(os.path.expanduser(str(folder)))).resolve()
+    return (str(real) in SYSTEM_DIRS and str(real) != "/tmp") \
+        or any(real.is_relative_to(t) for t in SYSTEM_TREES)
+
+
+def refuse_system_folder(option: str, given: object, folder: str | Path,
+                         what: str = "a folder") -> None:
+    """Refuse an output in a system folder: the one rule of every ``--out``.
+
+    Args:
+        option: the option named in the refusal, e.g. ``--out``.
+        given: the value as the user gave it.
+        folder: the folder that would be written into (for a file, its folder).
+        what: what the option names (``a folder``, ``a file``).
+
+    Raises:
+        DesignError: naming ``option``, the value and :data:`SYSTEM_RULE`.
+    """
+    from tactcad.errors import DesignError
+
+    if in_system_folder(folder):
+        raise DesignError(option, str(given), f"{what} {SYSTEM_RULE}")
+
+
 def write_failed(path: str | Path, what: str) -> OSError:
     """The error for a writer that reported failure at ``path``: a full disk
     when it is one (:func:`disk_full_error`), else an I/O error naming ``what``."""
@@ -162,6 +210,58 @@ def _exchange(a: Path, b: Path) -> bool:
     if err in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP, errno.EXDEV):
         return False
     raise OSError(err, os.strerror(err), str(b))
+
+
+@contextlib.contextmanager
+def writing_lock(target: Path, option: str = "--out") -> Iterator[Path]:
+    """Hold, for the block, the lock of the folder ``target``: one run at a time writes it
+    (a second one's clean-up would delete the first's staging folder under it). The lock
+    is ``flock`` on ``.<target>.lock`` beside the folder, never in it; the system frees it
+    when the process ends, killed or not, and the file is removed on the way out.
+
+    Args:
+        target: the folder about to be written (its parent is made when missing).
+        option: the option that named it, for the refusal (``--out``).
+
+    Yields:
+        The lock file's path.
+
+    Raises:
+        ExportPathError: another run holds the lock (refused at once, naming ``option``
+            and the folder).
+        OSError: the lock file cannot be made (naming ``target``).
+    """
+    import fcntl
+
+    from tactcad.errors import ExportPathError
+
+    lock = target.parent / f".{target.name}.lock"
+    while True:
+        try:
+            target.parent.mkdir(parents=True, exist_ok=True)
+            fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise OSError(exc.errno, exc.strerror, str(target)) from exc
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            raise ExportPathError(f"{option} {target}: another tactcad run is writing this "
+                                  "folder now; wait for it to end, or name another folder") \
+                from None
+        try:  # the run that held it may have removed the file: hold the one on disk
+            held = os.path.samestat(os.fstat(fd), os.stat(lock))
+        except FileNotFoundError:
+            held = False
+        if held:
+            break
+        os.close(fd)
+    try:
+        yield lock
+    finally:
+        with contextlib.suppress(OSError):
+            os.unlink(lock)  # removed while still held: a waiting run makes a new one
+        os.close(fd)
 
 
 def staging_dir(target: Path) -> Path:

@@ -241,6 +241,25 @@ def _check_target(folder: Path, names: list[str], force: bool, option: str = "DI
                           "(move it away, or choose another folder)")
 
 
+def check_project_target(folder: Path, design_name: str, force: bool,
+                         option: str = "--out") -> None:
+    """Refuse, before a design is searched for it, a project folder that
+    :func:`write_project` would refuse: one holding the design file, its README, .gitignore,
+    CI workflow or bought-parts list (without ``force``), or another design file. The
+    rigs and scenes, named by the design to come, are checked again when it is written.
+
+    Args:
+        folder: the project folder asked for.
+        design_name: the design file's name in it (``NAME.toml``).
+        force: the project's files may be replaced.
+        option: the argument named by a refusal.
+
+    Raises:
+        DesignError: as :func:`write_project`'s, naming ``option``.
+    """
+    _check_target(folder, [design_name, *EXTRA_FILES.values(), PURCHASED_PARTS], force, option)
+
+
 def _named_files(plan: Plan) -> dict[str, str]:
     """kind -> the path relative to the project folder that the design's
     ``[files]`` table gives (else the default name)."""
@@ -470,6 +489,59 @@ def project_design_name(folder_name: str) -> str | None:
     return name if re.fullmatch(NAME_PATTERN, name) else None
 
 
+#: Letters NFKD does not take apart, spelt in ASCII for a suggested name.
+_ASCII_SPELLING = {"ø": "o", "Ø": "O", "æ": "ae", "Æ": "AE", "œ": "oe", "Œ": "OE", "ß": "ss",
+                   "đ": "d", "Đ": "D", "ł": "l", "Ł": "L", "þ": "th", "Þ": "Th"}
+
+
+def suggested_design_name(text: str, fallback: str = "sensor") -> str:
+    """A design name (:data:`~tactcad.vocabulary.schema.NAME_PATTERN`) close to ``text``
+    for a user to paste: accents dropped (``ü`` -> ``u``), every other character outside
+    the allowed ones (a space, say) an ``_``, cut to 64 characters.
+
+    Args:
+        text: the name asked for (a folder or file name).
+        fallback: the name when nothing of ``text`` is left.
+
+    Returns:
+        A name :func:`project_design_name` accepts.
+    """
+    import unicodedata
+
+    spelt = "".join(_ASCII_SPELLING.get(c, c) for c in text.removesuffix(".toml"))
+    folded = unicodedata.normalize("NFKD", spelt).encode("ascii", "ignore").decode()
+    name = re.sub(r"[^A-Za-z0-9_.-]+", "_", folded).strip("_.-")[:64].rstrip("_.-")
+    return name if project_design_name(name) is not None else fallback
+
+
+def refuse_no_design_name(option: str, value: str, folder_name: str) -> None:
+    """Refuse a project folder (or design file) whose name names no design: the project's
+    design takes its name, which ends up in file names, DXF headers and drawings.
+
+    Args:
+        option: the argument named in the refusal (``DIR``, ``--out``).
+        value: the value as given.
+        folder_name: the folder's (or file's) own name, the design's name to be.
+
+    Raises:
+        DesignError: naming ``option``, the value, the characters allowed and a name to
+            paste (:func:`suggested_design_name`).
+    """
+    from tactcad.vocabulary.schema import NAME_ALLOWED
+
+    if project_design_name(folder_name) is not None:
+        return
+    parent = os.path.dirname(value.rstrip("/"))
+    suggestion = os.path.join(parent, suggested_design_name(folder_name)
+                              + (".toml" if folder_name.endswith(".toml") else ""))
+    paste = f"{option} {shlex.quote(suggestion)}" if option.startswith("-") else \
+        shlex.quote(suggestion)  # a positional argument is pasted alone
+    raise DesignError(option, value, NAME_ALLOWED + " (its file or folder name is the design's "
+                      f"name), e.g. {paste}", "names end up in file names, DXF headers and "
+                      "drawings", alternatives=[{"option": paste, "words": "the name with "
+                                                 "accents dropped and other characters as _"}])
+
+
 def named_for_project(design_text: str, folder_name: str, table: str = "design"
                       ) -> tuple[str, str | None]:
     """(text, name): the design file's text with its ``[design]`` (or a die's ``[die]``,
@@ -509,8 +581,9 @@ def new_project(folder: str | Path, *, example: str | None = None,
         :class:`NewProject`.
 
     Raises:
-        DesignError: both or an unknown ``example``; a design that does not
-            validate (every refusal); ``folder`` unusable.
+        DesignError: both or an unknown ``example``; a folder whose name names no
+            design (:func:`refuse_no_design_name`); a design that does not validate (every
+            refusal); ``folder`` unusable.
         OSError: the folder cannot be written.
     """
     from tactcad.design.array_plan import read_toml
@@ -520,6 +593,8 @@ def new_project(folder: str | Path, *, example: str | None = None,
 
     if example is not None and from_design is not None:
         raise DesignError("--example", example, "either --example or --from-design, not both")
+    # the design takes the folder's name: refused here, not swapped for the example's
+    refuse_no_design_name("DIR", str(folder), Path(folder).resolve().name)
     if from_design is None:
         name = example or DEFAULT_EXAMPLE
         if name in die_examples():

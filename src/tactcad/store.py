@@ -339,8 +339,13 @@ def active_store() -> Store | None:
     return None if block is None else block[0]
 
 
+#: Where :func:`kept_result` found a kept value, as a progress line says it.
+REUSED_FROM_STORE = "reused from the result store"
+REUSED_IN_RUN = "reused from this run's earlier solve"
+
+
 def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
-                reused: Callable[[], None] | None = None) -> T:
+                reused: Callable[[str], None] | None = None) -> T:
     """``compute()``, or the value an earlier call (in this block, or an
     earlier run) of the same ``kind`` with equal ``inputs`` kept in the
     store of :func:`keeping_results`.
@@ -357,7 +362,8 @@ def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
         kind: what is computed, e.g. ``"fem3d convergence"``.
         compute: makes the value (picklable).
         inputs: everything the value depends on.
-        reused: called once when a kept value is returned (a progress line).
+        reused: called once when a kept value is returned (a progress line), with where
+            it came from: :data:`REUSED_FROM_STORE` or :data:`REUSED_IN_RUN`.
 
     Returns:
         the value.
@@ -370,11 +376,12 @@ def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
         key = content_key(kind, *inputs)
     except TypeError:
         return compute()
-    found, value = (True, memory[key]) if key in memory else store.recall(key)
+    in_memory = key in memory
+    found, value = (True, memory[key]) if in_memory else store.recall(key)
     if found:
         _COUNTS.add(_COUNTS.reused, kind)
-        if reused is not None:
-            reused()
+        if reused is not None:  # said as it is: a run without a store (--no-cache) reads none
+            reused(REUSED_IN_RUN if in_memory else REUSED_FROM_STORE)
     elif _ONLY_KEPT.get():
         _COUNTS.add(_COUNTS.missing, kind)
         raise NotKept(kind)

@@ -52,3 +52,26 @@ def test_a_simulated_calibration_takes_the_noise_of_the_designs_own_rig(tmp_path
     assert noise["signal_V"] == noise_budget_V(readout_chain(project.plan))["reading"]
     assert cli.main(["calibrate", "--simulate", "--json", "--noise-force", "0.002"]) == 0
     assert json.loads(capsys.readouterr().out)["simulated_noise"]["force_N"] == 0.002
+
+
+def test_design_in_a_die_folder_starts_from_the_shipped_example_and_says_so(tmp_path,
+                                                                           monkeypatch, capsys):
+    """design of a stacked array in a die's project folder read the die's file as an array's
+    base: fifteen errors naming die5.toml's missing tables."""
+    from tactcad.commands.design import base_design
+    from tactcad.commands.notices import print_heads
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["new", "die5", "--example", "grasper_jaw_5mm_mems", "--quiet"]) == 0
+    monkeypatch.chdir(tmp_path / "die5")
+    capsys.readouterr()
+    assert base_design(None) == DEFAULT_DESIGN
+    said = " ".join(print_heads(echo=False))
+    assert "starts from the shipped example" in said and "not die5.toml" in said
+    # a refusal before the search is the user's own value, once, not the die file's tables
+    assert cli.main(["design", "--kr-over-km", "10", "--kobj-range", "1", "5",
+                     "--full-scale-force", "0.1", "--out", "arr.toml", "--verify", "none",
+                     "--set", "sheet.thickness_mm=-1"]) == 2
+    err = capsys.readouterr().err
+    assert "die5.toml" not in err and "errors in" not in err and "sheet.thickness_mm" in err

@@ -105,6 +105,13 @@ def test_bad_options_name_the_option_the_value_and_the_range(options, words):
     assert words in r.stderr and "allowed" in r.stderr and "Traceback" not in r.stderr
 
 
+def test_an_option_of_two_values_is_refused_with_both_as_given():
+    """--pivot-mm 0 0 was said "--pivot-mm = 0.0", one coordinate of the two."""
+    r = run_cli("grasp", "--design", TI, "--pivot-mm", "0", "0")
+    assert r.returncode == 2
+    assert r.stderr.startswith("tactcad: error: --pivot-mm = [0.0, 0.0]: allowed ")
+
+
 def test_a_default_grasp_lighter_than_the_open_jaw_allows_is_the_jaw_fully_open():
     # the example's jaw opens 30 degrees: a 3 mm slab near its pin is pressed already
     r = run_cli("grasp", "--design", COMB, "--profile", "slab", "--json")

@@ -657,3 +657,17 @@ def test_watch_json_lines_go_out_as_they_happen_not_held_for_one_object(monkeypa
     monkeypatch.setattr(cli, "dispatch", dispatch)
     assert cli.run_command(argv) == 0
     assert seen == [not streams] and cli.streams_json_lines(argv) is streams
+
+
+def test_the_files_said_watched_are_those_the_project_has_or_names(tmp_path):
+    """watch in a comb project said it watched rigs.toml, a file a comb has not."""
+    from tactcad.commands.watch import named_files
+    from tactcad.project_folder import new_project
+
+    comb = new_project(tmp_path / "comb", example="grasper_jaw_10mm").design
+    folder = comb.parent.resolve()
+    assert named_files(comb) == [folder / "comb.toml", folder / "scenes.toml"]
+    assert folder / "rigs.toml" in watched_files(comb)  # still watched for, never said
+    design = tmp_path / "d.toml"
+    design.write_text('[files]\nrigs = "mine.toml"\n', encoding="utf-8")
+    assert [p.name for p in named_files(design)] == ["d.toml", "mine.toml"]  # named: said

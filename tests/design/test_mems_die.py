@@ -709,6 +709,19 @@ def test_a_die_files_value_is_overridden_by_set_and_checked_like_the_file(tmp_pa
     assert not (tmp_path / "bad").exists() and not (tmp_path / "x").exists()
 
 
+@pytest.mark.parametrize("command", ["die", "export", "check"])
+def test_a_refused_set_of_a_die_is_named_as_typed_not_as_the_files(tmp_path, command):
+    """A die's --set refusal was said as the die file's ("die5.toml: die.columns = 999")."""
+    design = str(Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+                 / "grasper_jaw_5mm_mems.toml")
+    bad = run_cli(command, "--design", design, "--set", "die.columns=999", "--out",
+                  str(tmp_path / "bad"))
+    assert bad.returncode == 2, bad.stderr
+    assert bad.stderr.startswith("tactcad: error: --set die.columns=999: die.columns = 999: "
+                                 "allowed 2 ... 50")
+    assert "grasper_jaw_5mm_mems.toml" not in bad.stderr and not (tmp_path / "bad").exists()
+
+
 ATTACH_TABLE = ('\n[attach]\nmaterial = "a lab\'s silicone adhesive"\nmodulus_MPa = 5.0\n'
                 'thickness_um = 60.0\nsource = "its data sheet, cured 1 h at 150 C"\n')
 

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import run_cli
+
 import tactcad
 from tactcad.cli import main
 from tactcad.design.array_plan import DEFAULT_DESIGN, EXAMPLES
@@ -292,10 +294,11 @@ def test_the_projects_gitignore_keeps_every_folder_the_docs_write_out_of_git(tmp
 def test_the_next_step_new_prints_can_be_pasted_for_a_folder_with_a_space(tmp_path, capsys):
     import shlex
 
-    assert main(["new", str(tmp_path / "my proj")]) == 0
+    (tmp_path / "my work").mkdir()  # the space in a folder above it: its own name is a design's
+    assert main(["new", str(tmp_path / "my work" / "proj")]) == 0
     line = [x for x in capsys.readouterr().out.splitlines() if x.startswith("next: ")][0]
     words = shlex.split(line.removeprefix("next: "))
-    assert words[:2] == ["cd", str(tmp_path / "my proj")] and words[2] == "&&"
+    assert words[:2] == ["cd", str(tmp_path / "my work" / "proj")] and words[2] == "&&"
 
 
 def test_new_names_the_design_for_its_project_folder(tmp_path):
@@ -309,9 +312,18 @@ def test_new_names_the_design_for_its_project_folder(tmp_path):
     assert tactcad.load(made.design).plan.name == "palp_strip"
 
 
-def test_a_folder_whose_name_is_no_design_name_keeps_the_examples(tmp_path):
-    made = new_project(tmp_path / "my sensor", example="ti_array_2x3")
-    assert made.design.name == "ti_array_2x3.toml"
+@pytest.mark.parametrize("folder, paste", [("my sensor", "my_sensor"),
+                                           ("ünï cødé", "uni_code")])
+def test_a_folder_whose_name_is_no_design_name_is_refused_with_one_to_paste(
+        tmp_path, folder, paste):
+    from tactcad.vocabulary.schema import NAME_ALLOWED
+
+    proc = run_cli("new", folder, cwd=tmp_path)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert proc.stderr.startswith(f"tactcad: error: DIR = {folder!r}: allowed {NAME_ALLOWED}")
+    assert f"e.g. {paste} " in proc.stderr
+    assert list(tmp_path.iterdir()) == []  # no project with the example's name
+    assert new_project(tmp_path / paste, example="ti_array_2x3").design.name == f"{paste}.toml"
 
 
 def test_a_new_projects_bought_parts_are_its_own_boms(tmp_path):

@@ -139,6 +139,42 @@ def test_refused_out_folders_write_nothing(tmp_path, target):
     assert sorted(p.name for p in tmp_path.rglob("*")) == before
 
 
+@pytest.mark.parametrize("argv", [
+    ("export", "--out", "/usr/tactcad-test-exp"), ("export", "--out", "/etc/tactcad-test-exp"),
+    ("check", "--out", "/usr/tactcad-test-exp"),
+    ("diff", "OLD", "NEW", "--out", "/usr/tactcad-test-exp"),
+    ("sweep", "grid", "--out", "/usr/tactcad-test-exp"),
+    ("die", "--jaw", "5", "--kr-over-km", "6", "--kobj-range", "1", "8", "--full-scale-force",
+     "0.008", "--out", "/usr/tactcad-test-exp")])
+def test_every_out_folder_below_a_system_folder_is_refused_by_the_one_rule(tmp_path, argv):
+    from tactcad.atomic import SYSTEM_RULE
+
+    (tmp_path / "OLD").mkdir()
+    (tmp_path / "NEW").mkdir()
+    for name in ("OLD", "NEW"):
+        (tmp_path / name / "manifest.json").write_text('{"files": []}')
+    out = argv[-1]
+    proc = run_cli(*argv, cwd=tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr == f"tactcad: error: --out = '{out}': allowed a folder {SYSTEM_RULE}\n"
+    assert not Path(out).exists()
+
+
+def test_the_system_folder_rule_refuses_the_trees_and_allows_users_folders(tmp_path):
+    from tactcad.atomic import in_system_folder
+
+    assert all(in_system_folder(p) for p in ("/", "/etc", "/usr/x", "/etc/a/b", "/var", "/home"))
+    assert not any(in_system_folder(p) for p in ("/tmp/x", "/home/x", "/var/tmp/x", tmp_path))
+
+
+def test_export_help_says_which_out_folders_are_refused(capsys):
+    from tactcad.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["export", "--help"])
+    assert "anything below /bin, /boot, /dev, /etc" in " ".join(capsys.readouterr().out.split())
+
+
 def test_an_out_folder_under_a_file_is_one_line_naming_out_and_the_path(tmp_path):
     (tmp_path / "plain_file").write_text("x")
     proc = run("export", "--no-cache", "--out", str(tmp_path / "plain_file" / "out"))
@@ -244,3 +280,42 @@ def test_unmakeable_folder_says_why_and_leaves_nothing(tmp_path):
     assert unmakeable_folder(tmp_path / "new" / "deeper") is None
     assert unmakeable_folder(tmp_path / "f" / "x") == f"{tmp_path / 'f'} is a file, not a folder"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["f"]
+
+
+def test_a_second_export_to_a_folder_being_written_is_refused_and_the_lock_goes(tmp_path):
+    """Two exports to one --out at once: the second removed the first's staging folder
+    (".../review/wirecut.FCStd: No such file or directory", exit 3)."""
+    from tactcad.atomic import writing_lock
+
+    out = tmp_path / "exports"
+    with writing_lock(out) as lock:  # as a run writing it holds it
+        assert lock.parent == tmp_path and lock.name == ".exports.lock"
+        proc = run_cli("export", "--no-cache", "--out", out, cwd=tmp_path)
+        assert proc.returncode == 2, proc.stderr
+        assert proc.stderr == (f"tactcad: error: --out {out}: another tactcad run is writing "
+                               "this folder now; wait for it to end, or name another folder\n")
+        assert not out.exists() and [p.name for p in tmp_path.iterdir()] == [".exports.lock"]
+    assert list(tmp_path.iterdir()) == []  # no lock file left beside it, none in it
+
+
+def test_a_killed_run_leaves_the_folder_unlocked(tmp_path):
+    from tactcad.atomic import writing_lock
+    from tactcad.errors import ExportPathError
+
+    out = tmp_path / "exports"
+    holder = subprocess.Popen(
+        [sys.executable, "-c", "import sys, time; from pathlib import Path; "
+         "from tactcad.atomic import writing_lock\n"
+         f"with writing_lock(Path({str(out)!r})):\n print('held', flush=True); time.sleep(60)"],
+        stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "held"
+        with pytest.raises(ExportPathError, match="another tactcad run is writing"):
+            with writing_lock(out):
+                pass
+    finally:
+        holder.kill()
+        holder.wait()
+    with writing_lock(out):  # the killed holder's lock freed with its process
+        pass
+    assert list(tmp_path.iterdir()) == []

@@ -216,3 +216,17 @@ def test_the_counts_tell_computed_reused_and_missing_apart(tmp_path):
     with keeping_results(Store(tmp_path / "store")), counting_results() as again:
         kept_result("a product", lambda: -1, "six", "seven")  # a later run: from the store
     assert again.solved() == 0 and again.reused == {"a product": 1}
+
+
+def test_a_reused_result_says_whether_a_store_was_read(tmp_path):
+    """--no-cache said "reused from the result store" for a solve kept in the run's memory."""
+    from tactcad.store import REUSED_FROM_STORE, REUSED_IN_RUN, kept_result
+
+    said = []
+    for store in (Store(None), Store(tmp_path / "store"), Store(tmp_path / "store")):
+        with keeping_results(store):
+            for _ in range(2):
+                kept_result("probe", lambda: 42, "inputs", reused=said.append)
+    # no store: the second call reuses the first's solve; a store: the third block reads it
+    assert said == [REUSED_IN_RUN, REUSED_IN_RUN, REUSED_FROM_STORE, REUSED_IN_RUN]
+    assert "store" not in REUSED_IN_RUN

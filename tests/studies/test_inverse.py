@@ -157,6 +157,18 @@ def test_cli_refuses_system_folders_and_not_toml(tmp_path, monkeypatch, capsys, 
     assert not Path(out).exists() and not (tmp_path / out).exists()
 
 
+@pytest.mark.parametrize("out, paste", [("my sensor", "--out my_sensor"),
+                                        ("ünï cødé.toml", "--out uni_code.toml")])
+def test_cli_refuses_an_out_that_names_no_design_with_one_to_paste(tmp_path, monkeypatch, capsys,
+                                                                   out, paste):
+    monkeypatch.chdir(tmp_path)
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                 "--full-scale-force", "0.3", "--verify", "none", "--out", out]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"tactcad: error: --out = {out!r}: allowed 1-64 characters")
+    assert f"e.g. {paste} " in err and list(tmp_path.iterdir()) == []
+
+
 def test_cli_refuses_a_file_that_is_no_design_or_folder(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     Path("notes.txt").write_text("mine")
@@ -189,6 +201,26 @@ def test_cli_writes_a_project_folder(tmp_path, monkeypatch, capsys):
     assert "stiffness_N_per_mm = [20.0, 10.0, 5.0]" in rigs
     assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
                  "--full-scale-force", "0.3", "--verify", "none", "--out", "finger-tip"]) == 2
+    err = capsys.readouterr().err
+    assert "--out = " in err and "allowed a folder without the project's files, or --force" in err
+
+
+@pytest.mark.parametrize("jaw", [("--verify", "none"), ("--jaw", "10")])
+def test_cli_refuses_an_existing_project_folder_before_any_search(tmp_path, monkeypatch, capsys,
+                                                                  jaw):
+    """design --out PROJECT searched for a minute (fem3d) before refusing the folder."""
+    import tactcad.studies.layout_search as layout_search
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["new", "finger-tip", "--quiet"]) == 0
+    capsys.readouterr()
+
+    def searched(*args, **kwargs):
+        raise AssertionError("searched before --out was checked")
+
+    monkeypatch.setattr(layout_search, "searched_design", searched)
+    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20", *jaw,
+                 "--full-scale-force", "0.3", "--out", "finger-tip"]) == 2
     err = capsys.readouterr().err
     assert "--out = " in err and "allowed a folder without the project's files, or --force" in err
 

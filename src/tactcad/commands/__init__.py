@@ -106,6 +106,21 @@ def parse_overrides(texts: list[str] | None, example: str = SET_EXAMPLE) -> dict
     return dict(pairs)
 
 
+def set_sources(texts: list[str] | None, example: str = SET_EXAMPLE) -> dict[str, str]:
+    """Key -> ``--set KEY=VALUE`` as typed (the last of a key), for
+    :meth:`tactcad.errors.DesignErrors.sourced`: a refused value is named as the user gave it,
+    not as the design file's.
+
+    Args:
+        texts: the ``--set`` texts, in order.
+        example: as :func:`parse_override` takes it.
+
+    Returns:
+        The source of each key set.
+    """
+    return {parse_override(t, example)[0]: f"--set {t}" for t in texts or ()}
+
+
 def plan_from_args(args: argparse.Namespace):
     """The validated :class:`~tactcad.design.array_plan.Plan` of ``--design`` with every ``--set``.
 
@@ -186,7 +201,7 @@ def load_from_args(args: argparse.Namespace):
     try:
         return load(design, set=parse_overrides(texts))
     except DesignErrors as exc:  # a refused --set value is named as typed (the last of a key)
-        raise exc.sourced({parse_override(t)[0]: f"--set {t}" for t in texts}) from None
+        raise exc.sourced(set_sources(texts)) from None
 
 
 def add_cache_args(p: argparse.ArgumentParser,

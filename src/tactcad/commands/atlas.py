@@ -292,11 +292,10 @@ def writable_folder(out: str) -> Path:
     """
     import os
 
-    from tactcad.atomic import unmakeable_folder
-    from tactcad.commands.design import _check_not_system
+    from tactcad.atomic import refuse_system_folder, unmakeable_folder
 
     folder = Path(os.path.abspath(os.path.expanduser(out)))
-    _check_not_system(out, folder)
+    refuse_system_folder("--out", out, folder)
     if folder.exists() and not folder.is_dir():
         raise DesignError("--out", out, "a folder (new or existing)", "it is a file")
     reason = None if folder.is_dir() else unmakeable_folder(folder)

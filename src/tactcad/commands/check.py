@@ -45,6 +45,10 @@ def run(args: argparse.Namespace) -> int:
 
     if args.junit is not None:
         junit_target(args.junit)  # a bad path is refused before the checks run
+    if args.out:  # every product's export folder: refused before anything is read
+        from tactcad.atomic import refuse_system_folder
+
+        refuse_system_folder("--out", args.out, args.out)
     found = design_and_product(args)
     if found is not None and not found[1].is_default:  # another product's check (a die's)
         return found[1].hook("check")(found[0], args)

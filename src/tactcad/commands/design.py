@@ -259,23 +259,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run, default_store=project_store)
 
 
-#: Folders whose whole tree a design file is never written into (the
-#: export's system folders, less the ones that hold users' files).
-SYSTEM_TREES = ("/bin", "/boot", "/dev", "/etc", "/lib", "/lib64", "/proc", "/run", "/sbin",
-                "/sys", "/usr")
-
-
-def _check_not_system(out: str, folder: Path) -> None:
-    from tactcad.errors import DesignError
-    from tactcad.export.run import SYSTEM_DIRS
-
-    if (str(folder) in SYSTEM_DIRS and str(folder) != "/tmp") \
-            or any(folder.is_relative_to(t) for t in SYSTEM_TREES):
-        raise DesignError("--out", out, "a file outside the system folders "
-                          f"({', '.join(d for d in SYSTEM_DIRS if d != '/tmp')} and below "
-                          f"{', '.join(SYSTEM_TREES)})")
-
-
 #: ``--out`` names ending so are taken for a mistyped design file, not a new folder.
 FILE_LIKE_SUFFIXES = (".toml", ".tml", ".tom", ".json", ".yaml", ".yml", ".txt", ".cfg", ".ini")
 
@@ -289,10 +272,11 @@ def check_project_folder(out: str) -> Path:
         DesignError: naming ``--out``, the value and what is allowed.
     """
     from tactcad import __file__ as package_init
+    from tactcad.atomic import refuse_system_folder
     from tactcad.errors import DesignError
 
     folder = Path(os.path.abspath(os.path.expanduser(out))).resolve()
-    _check_not_system(out, folder)
+    refuse_system_folder("--out", out, folder)
     if folder.is_relative_to(Path(package_init).resolve().parent):
         raise DesignError("--out", out, "a folder outside the installed package")
     if folder.exists() and not folder.is_dir():
@@ -311,14 +295,14 @@ def check_project_folder(out: str) -> Path:
 
 def check_output_path(out: str, force: bool) -> Path:
     """The resolved output path: any ``.toml`` file in a writable folder, refused
-    in a system folder (the export's list, :data:`tactcad.export.run.SYSTEM_DIRS`,
-    and the trees of :data:`SYSTEM_TREES`), as the default design or inside the
-    installed package, or when it exists without ``--force``.
+    in a system folder (:func:`tactcad.atomic.refuse_system_folder`), as the default
+    design or inside the installed package, or when it exists without ``--force``.
 
     Raises:
         DesignError: naming ``--out``, the value and what is allowed.
     """
     from tactcad import __file__ as package_init
+    from tactcad.atomic import refuse_system_folder
     from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.errors import DesignError
 
@@ -326,7 +310,7 @@ def check_output_path(out: str, force: bool) -> Path:
     folder = path.parent
     if path.suffix != ".toml":
         raise DesignError("--out", out, "a file name ending in .toml, or a project folder")
-    _check_not_system(out, folder)
+    refuse_system_folder("--out", out, folder, "a file")
     if path == DEFAULT_DESIGN.resolve() or path.is_relative_to(Path(package_init).parent):
         raise DesignError("--out", out, "a new file, not the default design or a package file")
     if not folder.is_dir():
@@ -368,6 +352,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from tactcad.atomic import write_bytes_atomic
+    from tactcad.project_folder import check_project_target
     from tactcad.studies.inverse_design import Targets
     from tactcad.studies.layout_search import searched_design
 
@@ -382,6 +367,9 @@ def _run(args: argparse.Namespace) -> int:
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
+    check_design_name(args.out, folder, path)
+    if folder is not None:  # an existing project is refused now, not after the search
+        check_project_target(folder, path.name, args.force)
     stacked = (MIN_PAIRED_COLUMNS, COLUMNS_RANGE[1])
     if args.columns is not None:
         check_columns(args.columns, stacked, "a stacked array", STACKED_COLUMNS_WHY)
@@ -889,7 +877,8 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     the one that counts (written with its scenes), or every binding limit."""
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.project_folder import scenes_without_rigs_text, write_project
+    from tactcad.project_folder import (check_project_target, scenes_without_rigs_text,
+                                        write_project)
 
     if args.rows not in (None, 2):
         raise DesignError("--rows", args.rows, "2", "the model holds two rows facing each other")
@@ -898,8 +887,10 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'grasper_insert'}.toml"
+    check_design_name(args.out, folder, path)
+    if folder is not None:  # an existing project is refused now, not after the search
+        check_project_target(folder, path.name, args.force)
     name = path.stem.replace("-", "_") or "grasper_insert"
-    check_design_name(name, args.out)
     from tactcad.design.array_plan import EXAMPLES, read_toml
     from tactcad.partlib.grasper_jaw import jaw_room
 
@@ -1012,19 +1003,21 @@ def shown_path(path: str) -> str:
         return path
 
 
-def check_design_name(name: str, out: str) -> None:
-    """Refuse, before any search, an ``--out`` whose stem is no design name.
+def check_design_name(out: str, folder: Path | None, path: Path) -> None:
+    """Refuse, before any search, an ``--out`` whose file or folder name is no design name
+    (:func:`tactcad.project_folder.refuse_no_design_name`, the rule ``tactcad new`` keeps).
+
+    Args:
+        out: ``--out`` as given.
+        folder: the project folder asked for, or None for a design file.
+        path: the design file to write.
 
     Raises:
-        DesignError: naming ``--out``, its value and the names allowed.
+        DesignError: naming ``--out``, its value, the names allowed and one to paste.
     """
-    import re
+    from tactcad.project_folder import refuse_no_design_name
 
-    from tactcad.vocabulary.schema import NAME_ALLOWED, NAME_PATTERN
-
-    if not re.fullmatch(NAME_PATTERN, name):
-        raise DesignError("--out", out, NAME_ALLOWED + " (its file or folder name is the "
-                          "design's name)", "names end up in file names, DXF headers and drawings")
+    refuse_no_design_name("--out", out, folder.name if folder is not None else path.name)
 
 
 def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
@@ -1191,17 +1184,23 @@ def fixed_fields(args: argparse.Namespace) -> set[str]:
 
 def base_design(out: Path | None) -> Path:
     """The design a search without ``--design`` starts from, named on stderr: the working
-    folder's design, or the shipped example where the folder has none or its design is
-    ``out``, the file this run replaces (``--force``)."""
+    folder's design, or the shipped example where the folder has none, its design is
+    ``out``, the file this run replaces (``--force``), or another product's (a die's)."""
     from tactcad.commands import announce_shipped_example
     from tactcad.commands.notices import announce
     from tactcad.design.array_plan import DEFAULT_DESIGN
-    from tactcad.project_folder import default_design
+    from tactcad.project_folder import default_design, product_of
 
     found = default_design()  # the folder scanned once
     if found != DEFAULT_DESIGN and out is not None and found.resolve() == out.resolve():
         announce(f"design: starts from the shipped example {DEFAULT_DESIGN.stem}, not "
                  f"{found.name}, the file this run replaces; --design names a base")
+        return DEFAULT_DESIGN
+    if found != DEFAULT_DESIGN and not product_of(found).is_default:
+        # a die's design has no stack to search: the array starts from the shipped one
+        announce(f"design: starts from the shipped example {DEFAULT_DESIGN.stem}, not "
+                 f"{found.name}, this folder's {product_of(found).name} design (a stacked "
+                 "array is not made from it); --design names a base")
         return DEFAULT_DESIGN
     if found != DEFAULT_DESIGN:
         announce(f"design: starts from {found.name}, this folder's design; --design names "

@@ -105,7 +105,7 @@ def die_asked(args: argparse.Namespace) -> dict:
     Raises:
         DesignError: a target option missing without ``--design``, or given with it.
     """
-    from tactcad.commands import parse_overrides
+    from tactcad.commands import parse_overrides, set_sources
     from tactcad.products.silicon_die.design.die_file import load_die_design
 
     if args.design is None and not _any_option_given(args):
@@ -130,7 +130,10 @@ def die_asked(args: argparse.Namespace) -> dict:
         raise DesignError(given[0], getattr(args, given[0].lstrip("-").replace("-", "_")),
                           "only without --design", f"{args.design} states it")
     overrides = parse_overrides(args.overrides, example=DIE_SET_EXAMPLE)
-    d = load_die_design(args.design, overrides)
+    try:
+        d = load_die_design(args.design, overrides)
+    except DesignErrors as exc:  # a refused --set value is named as typed, as an array's is
+        raise exc.sourced(set_sources(args.overrides, DIE_SET_EXAMPLE)) from None
     return {"jaw": d.jaw, "kr_over_km": d.die.kr_over_km,
             "kobj_range": tuple(d.die.kobj_range_N_per_mm),
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
@@ -288,7 +291,7 @@ def with_attach(plan, attach):
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.atomic import staging_dir
+    from tactcad.atomic import staging_dir, writing_lock
     from tactcad.checks.check_result import counts_text, status_counts
     from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.checks.sheet_overlap import sheet_file_results
@@ -320,10 +323,13 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
     refuse_a_foreign_folder(out, name)
+    held = contextlib.ExitStack()
+    held.enter_context(writing_lock(out, "--out"))  # one run at a time moves its files in
     # every file made in a staging folder beside OUT, then moved in: a failed or
     # interrupted run leaves OUT's previous files as they were
-    staging = staging_dir(out)
+    staging = None
     try:
+        staging = staging_dir(out)
         made = {k: staging / p.relative_to(out) for k, p in files.items()}
         for path in made.values():
             path.parent.mkdir(parents=True, exist_ok=True)
@@ -374,7 +380,9 @@ def run(args: argparse.Namespace) -> int:
             files[k].parent.mkdir(parents=True, exist_ok=True)
             os.replace(made[k], files[k])
     finally:
-        shutil.rmtree(staging, ignore_errors=True)
+        if staging is not None:
+            shutil.rmtree(staging, ignore_errors=True)
+        held.close()
     if args.json:
         print(dumps(record, indent=1))
     elif getattr(args, "quiet", False):  # `export --quiet` of a die: only what failed
@@ -671,13 +679,15 @@ def refuse_a_foreign_folder(out: Path, name: str) -> None:
     every product's export keeps (:mod:`tactcad.export.export_owner`).
 
     Raises:
-        DesignError: ``--out`` a file, a folder with files but no export of this die, or a
-            folder that cannot be made (:func:`tactcad.atomic.unmakeable_folder`).
+        DesignError: ``--out`` in a system folder (:func:`tactcad.atomic.refuse_system_folder`),
+            a file, a folder with files but no export of this die, or a folder that cannot be
+            made (:func:`tactcad.atomic.unmakeable_folder`).
     """
-    from tactcad.atomic import unmakeable_folder
+    from tactcad.atomic import refuse_system_folder, unmakeable_folder
     from tactcad.export.export_owner import refuse_another_designs_export
     from tactcad.products.silicon_die.export.die_review import PRODUCT_NAME
 
+    refuse_system_folder("--out", out, out)
     refuse_another_designs_export(out, PRODUCT_NAME, name)
     reason = None if out.is_dir() else unmakeable_folder(out)
     if reason is not None:  # before the staging folder beside it is made

@@ -36,6 +36,10 @@ def run(args: argparse.Namespace) -> int:
 
     report = progress_from_args(args)
     inputs = [_input(args.old, "OLD"), _input(args.new, "NEW")]
+    if args.out is not None:
+        from tactcad.atomic import refuse_system_folder
+
+        refuse_system_folder("--out", args.out, args.out)  # before any export is made
     if args.out is not None and Path(args.out).exists() and not Path(args.out).is_dir():
         from tactcad.errors import DesignError
 

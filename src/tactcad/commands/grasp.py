@@ -7,7 +7,8 @@ import math
 
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, parse_overrides
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.options import GRASP_OPTION_OF, keep_option_defaults, number
+from tactcad.commands.options import (GRASP_OPTION_OF, grasp_option_error,
+                                      keep_option_defaults, number)
 from tactcad.mechanics.ladder import models
 from tactcad.design.readout_section import LEAD_WIRE
 
@@ -96,15 +97,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
-def _option_error(exc):
-    """A grasp error re-worded to name the command-line option that set the field."""
-    from tactcad.errors import DesignError
-
-    option = OPTION_OF.get(exc.field)
-    return (DesignError(option, exc.value, exc.allowed, exc.why, alternatives=exc.alternatives)
-            if option else exc)
-
-
 def design_plan_from_args(args: argparse.Namespace):
     """The plan of ``--design`` with every ``--set``: the design file alone, since the grasp
     needs neither the test rigs nor the scenes (a construction the rigs cannot hold yet is
@@ -126,9 +118,9 @@ def design_plan_from_args(args: argparse.Namespace):
     try:
         return plan_from_dict(data, source=str(path), file=path.name)
     except DesignErrors as exc:  # a refused --set value is named as typed
-        from tactcad.commands import parse_override
+        from tactcad.commands import set_sources
 
-        raise exc.sourced({parse_override(t)[0]: f"--set {t}" for t in texts}) from None
+        raise exc.sourced(set_sources(texts)) from None
 
 
 def run(args: argparse.Namespace) -> int:
@@ -193,7 +185,7 @@ def run(args: argparse.Namespace) -> int:
         leads = leads_check(len(plan.slots), channel,
                             readout_chain(plan).lead_wires)
     except DesignError as exc:
-        raise _option_error(exc) from None
+        raise grasp_option_error(exc, args) from None
     record = {**result.as_json(), "model": args.model, "leads": leads.as_json(),
               "reasons": {
                   "rated_force_N": req.reasons["full_scale_force_N"],

@@ -236,6 +236,28 @@ GRASP_OPTION_OF = {"force_N": "--force-N", "angle_deg": "--angle-deg",
                    "jaw.slab_thickness_mm": "--slab-thickness-mm", "k_obj_N_per_mm": "--kobj",
                    "channel_diameter_mm": "--lead-channel-mm"}
 
+def grasp_option_error(exc, args: argparse.Namespace):
+    """A grasp error re-worded to name the command-line option that set its field
+    (:data:`GRASP_OPTION_OF`); an option of several values (``--pivot-mm X Y``) is said with
+    all of them as given, not with the one coordinate its field holds.
+
+    Args:
+        exc: the :class:`~tactcad.errors.DesignError` of a grasp field.
+        args: the command line, whose option gave the value.
+
+    Returns:
+        The error naming the option, or ``exc`` when no option sets its field.
+    """
+    from tactcad.errors import DesignError
+
+    option = GRASP_OPTION_OF.get(exc.field)
+    if option is None:
+        return exc
+    given = getattr(args, option.removeprefix("--").replace("-", "_"), None)
+    value = list(given) if isinstance(given, (list, tuple)) else exc.value
+    return DesignError(option, value, exc.allowed, exc.why, alternatives=exc.alternatives)
+
+
 COMMON_OPTIONS = frozenset({"design", "overrides", "json", "quiet", "cache", "no_cache", "func",
                             "command"})
 

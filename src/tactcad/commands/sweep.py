@@ -78,18 +78,21 @@ def _workers(args) -> int:
 
 
 def check_out_folder(out: str | Path) -> None:
-    """Refuse ``--out`` before a sweep's work when its folder cannot be made.
+    """Refuse ``--out`` before a sweep's work when its folder is a system one or cannot be
+    made.
 
     Args:
         out: the folder the sweep writes into.
 
     Raises:
-        DesignError: naming ``--out``, the path and why it cannot be made
+        DesignError: naming ``--out``, the path and the system folder rule
+            (:func:`tactcad.atomic.refuse_system_folder`) or why it cannot be made
             (:func:`tactcad.atomic.unmakeable_folder`).
     """
-    from tactcad.atomic import unmakeable_folder
+    from tactcad.atomic import refuse_system_folder, unmakeable_folder
     from tactcad.errors import DesignError
 
+    refuse_system_folder("--out", out, out)
     reason = None if Path(out).is_dir() else unmakeable_folder(out)
     if reason is not None:
         raise DesignError("--out", str(out), "a folder that can be made", reason)

@@ -71,20 +71,44 @@ def note_stop_signals(stop: threading.Event) -> Callable[[], None]:
     return restore
 
 
+def _design_tables(design: Path) -> dict:
+    """The design file's tables, or none when it cannot be read (the loader says why)."""
+    import tomllib
+
+    try:
+        return tomllib.loads(design.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return {}
+
+
 def watched_files(design: Path) -> list[Path]:
     """The design file and the rigs and scenes files it names (else
     ``rigs.toml`` and ``scenes.toml`` beside it), as the loader picks them;
     a file that does not exist yet is watched for."""
-    import tomllib
-
     from tactcad.design.project import companion_paths
 
-    try:
-        tables = tomllib.loads(design.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
-        tables = {}
     # realpath, not Path.resolve: Python 3.11's resolve raises on a symbolic link loop
-    return [Path(os.path.realpath(p)) for p in (design, *companion_paths(design, tables).values())]
+    return [Path(os.path.realpath(p)) for p in
+            (design, *companion_paths(design, _design_tables(design)).values())]
+
+
+def named_files(design: Path) -> list[Path]:
+    """The watched files a user is told of: the design file, the companions its ``[files]``
+    table names, and the default ones only where they exist (a comb has no ``rigs.toml``).
+
+    Args:
+        design: the design file watched.
+
+    Returns:
+        The files, as :func:`watched_files` gives them.
+    """
+    from tactcad.design.project import companion_paths
+
+    tables = _design_tables(design)
+    named = tables.get("files") if isinstance(tables.get("files"), dict) else {}
+    kinds = list(companion_paths(design, tables))
+    first, *companions = watched_files(design)
+    return [first, *(f for kind, f in zip(kinds, companions) if named.get(kind) or f.exists())]
 
 
 def run(args: argparse.Namespace) -> int:
@@ -199,7 +223,7 @@ def watch(args: argparse.Namespace, log: Callable[[str], None], stop: threading.
         started.callback(server.close)
     log(f"review page at {' and '.join(servers.urls())} (Ctrl-C stops)")
     files = watched_files(design)
-    log("watching " + ", ".join(str(f) for f in files))
+    log("watching " + ", ".join(str(f) for f in named_files(design)))
     # the first: the files are watched; the watcher also ends once ``stop`` is set
     for k, _ in enumerate(changes(files, args.poll, stop)):
         if k:

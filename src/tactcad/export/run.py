@@ -25,9 +25,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Sequence
 
-from tactcad.atomic import (carry_over, disk_full_error, in_target, leftover_staging, publish_dir,
+from tactcad.atomic import (SYSTEM_DIRS, carry_over, disk_full_error, in_target,
+                            leftover_staging, publish_dir, refuse_system_folder,
                             remove_partial_files, remove_tree, staging_dir, unmakeable_folder,
-                            warn_left_behind, write_bytes_atomic)
+                            warn_left_behind, write_bytes_atomic, writing_lock)
 from tactcad.design.project import Project
 from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.export_owner import default_product_name, refuse_another_designs_export
@@ -174,16 +175,11 @@ def _next_here(here: list[Job], futures: dict, done: dict, run: Run, prepared: s
     return next((job for job in here if not _waits(job, futures, done)), here[0])
 
 
-#: Folders an export never replaces, whatever ``--out`` says.
-SYSTEM_DIRS = ("/", "/bin", "/boot", "/dev", "/etc", "/home", "/lib", "/lib64", "/media",
-               "/mnt", "/opt", "/proc", "/root", "/run", "/sbin", "/srv", "/sys", "/tmp", "/usr",
-               "/var")
-
-
 def check_out_dir(out_dir: str | Path) -> Path:
     """The export folder, resolved, once it is shown safe to replace.
 
     Raises:
+        DesignError: in a system folder (:func:`tactcad.atomic.refuse_system_folder`).
         ExportPathError: a system folder, the home folder or the working folder
             (or one above it), a file, a mount point, a non-empty folder that is not a
             tactcad export (no ``manifest.json``): an export replaces its
@@ -197,6 +193,8 @@ def check_out_dir(out_dir: str | Path) -> Path:
     if above != real and not above.is_dir():
         raise ExportPathError(f"--out {out_dir}: the folder cannot be made ({above} is a file, "
                               "not a folder)")
+    refuse_system_folder("--out", out_dir, real)  # the rule of every command's --out
+    # an export replaces its folder as a whole: no top folder users write below either
     protected = {Path(d) for d in SYSTEM_DIRS} | {Path.home().resolve()}
     if real in protected or real in Path.cwd().resolve().parents or real == Path.cwd().resolve():
         raise ExportPathError(f"--out {out_dir}: refused, a system, home or working folder "
@@ -252,6 +250,16 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
     (``with_manifest`` False) keeps every old file it does not rewrite."""
     t0 = time.perf_counter()
     out = check_out_dir(out_dir)
+    with writing_lock(out, "--out"):  # a second run at once would remove this one's staging
+        return _write_locked(out, Path(out_dir), t0, jobs_of, project, log, store,
+                             with_manifest, parts, dxf_version, partial, session)
+
+
+def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], list[Job]],
+                  project: Project, log: Log, store: Store, with_manifest: bool, parts,
+                  dxf_version: str | None, partial: dict | None,
+                  session: SessionWorker | None) -> ExportResult:
+    """:func:`_write_set`'s work, once ``out`` is checked and its lock held."""
     refuse_another_designs_export(out, default_product_name(), project.plan.name)
     stuck = [p for old in leftover_staging(out) for p in remove_tree(old)]  # a killed run's
     warn_left_behind(stuck)

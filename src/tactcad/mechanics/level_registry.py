@@ -103,6 +103,6 @@ class LevelRegistry(Generic[L]):
         shaping = {k: v for k, v in sorted(options.items()) if k not in UNKEYED_OPTIONS}
         progress = options.get("progress")
         reused = None if progress is None else (
-            lambda: progress(f"{name} {label}: reused from the result store (same inputs)"))
+            lambda where: progress(f"{name} {label}: {where} (same inputs)"))
         return kept_result(f"{self.what} level", lambda: estimator(*inputs, **options), name,
                            *inputs, shaping, reused=reused)

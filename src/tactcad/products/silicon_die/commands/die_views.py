@@ -175,10 +175,9 @@ def _crosstalk_kept(plan, dofs: int, report: Callable[[str], None]) -> tuple[Any
                "minute on two cores)")
         return die_crosstalk(plan)
 
-    def on_reuse() -> None:
+    def on_reuse(where: str) -> None:
         reused.append(True)
-        report(f"crosstalk of die {plan.name}: reused from the result store (the same die "
-               "and mesh)")
+        report(f"crosstalk of die {plan.name}: {where} (the same die and mesh)")
 
     return kept_result("die crosstalk", solve, plan, MESH, reused=on_reuse), bool(reused)
 
@@ -239,7 +238,7 @@ def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.products.silicon_die.design.die_mount import die_mount
     from tactcad.products.silicon_die.in_use.die_grasp import die_grasp, die_jaw
-    from tactcad.commands.options import GRASP_OPTION_OF as OPTION_OF
+    from tactcad.commands.options import grasp_option_error
 
     planned = _planned(design, args)
     plan = planned.plan
@@ -269,9 +268,7 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
             force_why = (f"{force_why} ({force:g} N) is out of the tissue's reach: the jaw at "
                          f"{result.angle_deg:g} degrees takes {result.total_force_N:.4g} N")
     except DesignError as exc:
-        option = OPTION_OF.get(exc.field)
-        raise (DesignError(option, exc.value, exc.allowed, exc.why,
-                           alternatives=exc.alternatives) if option else exc) from None
+        raise grasp_option_error(exc, args) from None
     record = {"design": str(design), "die": plan.name,
               "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": jaw.jaw_length_mm,
                       "opening_angle_deg": jaw.opening_angle_deg,
