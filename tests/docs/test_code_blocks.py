@@ -1,7 +1,8 @@
 """Every code block of the documentation runs, or says why not (docs/about.md).
 
-Each page runs in a fresh folder holding a copy of the checkout's
-``hardware/``; its blocks run in order and share that folder (a tutorial's
+Each page runs in a fresh, empty folder (a page marked ``% runs: in a checkout
+(REASON)`` with a copy of the checkout's ``hardware/``); its blocks run in order
+and share that folder (a tutorial's
 ``cd fingertip`` holds for its next block). ``tactcad`` lines run in this
 process (:func:`conftest.run_cli`), so a page costs its commands, not an
 interpreter start each; a slow page's exports start from the run's store of the
@@ -22,7 +23,7 @@ from pathlib import Path
 import pytest
 
 from conftest import EXAMPLE_DESIGN, _filled_store, run_cli, warm_store_copy
-from doc_pages import DOCS, ROOT, RUNNABLE, Block, blocks, is_slow, pages
+from doc_pages import DOCS, ROOT, RUNNABLE, Block, blocks, in_checkout, is_slow, pages
 
 #: Commands whose exit 1 is an answer, not a failure: ``diff`` found a change, ``verify``
 #: found a requirement not met (a page may show a design that fails one).
@@ -73,9 +74,17 @@ def test_a_toml_block_marked_with_a_file_name_is_saved_for_the_next_commands(tmp
 
 def test_a_marked_slow_page_says_why():
     for page in pages():
-        marked = re.search(r"^% runs:", page.read_text(encoding="utf-8"), re.M)
-        if marked:
-            assert is_slow(page), f"{page}: write '% runs: slow (REASON)'"
+        for marked in re.findall(r"^% runs:.*$", page.read_text(encoding="utf-8"), re.M):
+            assert re.fullmatch(r"% runs: (slow|in a checkout) \(.+\)", marked), (
+                f"{page}: write '% runs: slow (REASON)' or '% runs: in a checkout (REASON)'")
+
+
+def test_a_page_that_says_it_runs_in_an_empty_folder_is_run_in_one():
+    # the die tutorial said so, but ran beside a copy of hardware/ and read from it
+    for page in pages():
+        text = " ".join(page.read_text(encoding="utf-8").split())
+        if "in an empty folder" in text:
+            assert not in_checkout(page), page
 
 
 # --- running a page -----------------------------------------------------------------------------
@@ -169,7 +178,8 @@ def test_page_code_runs(page, tmp_path, tmp_path_factory, monkeypatch):
                             warm_store_copy(store, tmp_path / "store"))
     work = tmp_path / "work"
     work.mkdir()
-    shutil.copytree(ROOT / "hardware", work / "hardware")
+    if in_checkout(page):  # else the page runs as a reader who installed tactcad meets it
+        shutil.copytree(ROOT / "hardware", work / "hardware")
     cwd = work
     for block in blocks(page):
         if block.not_run or block.language not in RUNNERS:
