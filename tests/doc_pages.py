@@ -6,6 +6,9 @@ conventions of ``docs/about.md``:
 * a block whose first line is ``# not run: REASON`` is not run;
 * a page that starts with the MyST comment ``% runs: slow (REASON)`` is run by
   the slow tests only;
+* a page runs in an empty folder, as a reader who installed tactcad meets it,
+  unless it carries the MyST comment ``% runs: in a checkout (REASON)``: its
+  commands read the checkout's ``hardware/``, copied into its folder;
 * ``sh``, ``console``, ``python`` and ``toml`` blocks run; ``text`` blocks are
   pictures of trees or output and hold no command;
 * a ``toml`` block whose first line is ``# file: NAME`` is a file the reader
@@ -27,6 +30,7 @@ RUNNABLE = ("sh", "console", "python", "toml")
 NOT_RUN = re.compile(r"^# not run: \S")
 SAVED_AS = re.compile(r"^# file: ([\w.-]+)[ \t]*$", re.M)
 SLOW = re.compile(r"^% runs: slow \(.+\)$", re.M)
+CHECKOUT = re.compile(r"^% runs: in a checkout \(.+\)$", re.M)
 _FENCE = re.compile(r"^(`{3,})([^`\n]*)\n(.*?)^\1[ \t]*$", re.M | re.S)
 
 
@@ -74,6 +78,11 @@ def blocks(page: Path) -> list[Block]:
 
 def is_slow(page: Path) -> bool:
     return bool(SLOW.search(page.read_text(encoding="utf-8")))
+
+
+def in_checkout(page: Path) -> bool:
+    """True when ``page`` says its commands read the checkout's ``hardware/``."""
+    return bool(CHECKOUT.search(page.read_text(encoding="utf-8")))
 
 
 def reference_extension():

@@ -502,3 +502,13 @@ def test_new_from_a_file_that_is_no_design_is_refused_as_such(tmp_path):
     with pytest.raises(DesignError, match="--from-design.*a design file.*no \\[design\\] table"):
         new_project(tmp_path / "x", from_design=rigs)
     assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.parametrize("example", sorted(set(examples()) - {"macro_array"}))
+def test_a_new_project_from_another_example_names_not_the_papers_design(tmp_path, example):
+    # ti_array_2x3 carried 13 reasons "Kept from the base design macro_array, ..." into
+    # every project made from it
+    made = new_project(tmp_path / "gripsense", example=example)
+    for name in made.files:
+        text = (made.folder / name).read_text(encoding="utf-8").lower()
+        assert "macro_array" not in text and "macro array" not in text, name

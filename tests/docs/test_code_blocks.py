@@ -1,7 +1,8 @@
 """Every code block of the documentation runs, or says why not (docs/about.md).
 
-Each page runs in a fresh folder holding a copy of the checkout's
-``hardware/``; its blocks run in order and share that folder (a tutorial's
+Each page runs in a fresh, empty folder (a page marked ``% runs: in a checkout
+(REASON)`` with a copy of the checkout's ``hardware/``); its blocks run in order
+and share that folder (a tutorial's
 ``cd fingertip`` holds for its next block). ``tactcad`` lines run in this
 process (:func:`conftest.run_cli`), so a page costs its commands, not an
 interpreter start each; a slow page's exports start from the run's store of the
@@ -22,7 +23,7 @@ from pathlib import Path
 import pytest
 
 from conftest import EXAMPLE_DESIGN, _filled_store, run_cli, warm_store_copy
-from doc_pages import DOCS, ROOT, RUNNABLE, Block, blocks, is_slow, pages
+from doc_pages import DOCS, ROOT, RUNNABLE, Block, blocks, in_checkout, is_slow, pages
 
 #: Commands whose exit 1 is an answer, not a failure: ``diff`` found a change, ``verify``
 #: found a requirement not met (a page may show a design that fails one).
@@ -71,11 +72,27 @@ def test_a_toml_block_marked_with_a_file_name_is_saved_for_the_next_commands(tmp
     assert not (tmp_path / "bad.toml").exists()
 
 
+def test_an_excerpt_is_checked_line_by_line_against_the_output():
+    printed = "targets: K_r 17.25\n  check requirements: 8 passed, 0 failed\n  not searched: a (b)\n"
+    assert shown_but_not_printed(["targets:  K_r 17.25", "...", "  not searched: a (...)"],
+                                 printed) == []
+    assert shown_but_not_printed(["  check requirements: 7 passed, 0 failed"], printed) == [
+        "check requirements: 7 passed, 0 failed"]
+
+
 def test_a_marked_slow_page_says_why():
     for page in pages():
-        marked = re.search(r"^% runs:", page.read_text(encoding="utf-8"), re.M)
-        if marked:
-            assert is_slow(page), f"{page}: write '% runs: slow (REASON)'"
+        for marked in re.findall(r"^% runs:.*$", page.read_text(encoding="utf-8"), re.M):
+            assert re.fullmatch(r"% runs: (slow|in a checkout) \(.+\)", marked), (
+                f"{page}: write '% runs: slow (REASON)' or '% runs: in a checkout (REASON)'")
+
+
+def test_a_page_that_says_it_runs_in_an_empty_folder_is_run_in_one():
+    # the die tutorial said so, but ran beside a copy of hardware/ and read from it
+    for page in pages():
+        text = " ".join(page.read_text(encoding="utf-8").split())
+        if "in an empty folder" in text:
+            assert not in_checkout(page), page
 
 
 # --- running a page -----------------------------------------------------------------------------
@@ -93,6 +110,41 @@ def commands_of(code: str) -> list[list[str]]:
     return out
 
 
+def run_tactcad(words: list[str], cwd: Path, where: str,
+                expect: int | None = None) -> subprocess.CompletedProcess:
+    """Run one ``tactcad`` command of a block in ``cwd``; its exit code checked."""
+    try:
+        result = run_cli(*words[1:], cwd=cwd)
+    except SystemExit as exc:  # argparse's own --version and --help end the program
+        result = subprocess.CompletedProcess(words, exc.code or 0, "", "")
+    allowed = {expect} if expect is not None else (
+        {0, 1} if words[1:2] and words[1] in EXIT_ONE_IS_AN_ANSWER else {0})
+    assert result.returncode in allowed, (
+        f"{where}: {shlex.join(words)}: exit {result.returncode}\n{result.stderr[-2000:]}")
+    return result
+
+
+#: Pages whose ``console`` blocks are checked against what their commands print now:
+#: every line shown under a ``$`` line is a line of its output (``...`` alone stands for
+#: lines left out, a line ending ``(...)`` for the rest of a line).
+EXCERPTS_CHECKED = {"how-to/design-array.md"}
+
+
+def shown_but_not_printed(shown: list[str], printed: str) -> list[str]:
+    """The lines of ``shown`` (a block's excerpt of one command) that ``printed`` (its
+    stdout and stderr) has not, spaces collapsed."""
+    flat = lambda line: " ".join(line.split())  # noqa: E731
+    lines = [flat(line) for line in printed.splitlines()]
+    missing = []
+    for line in map(flat, shown):
+        if line in ("", "..."):
+            continue
+        head, cut, _ = line.partition("(...)")
+        if not any(out.startswith(head) if cut else out == line for out in lines):
+            missing.append(line)
+    return missing
+
+
 def run_command(words: list[str], cwd: Path, where: str, expect: int | None = None) -> Path:
     """Run one command of a block in ``cwd``; the folder the next one runs in."""
     if words[0] == "cd":
@@ -104,14 +156,7 @@ def run_command(words: list[str], cwd: Path, where: str, expect: int | None = No
         assert not missing, f"{where}: ls: {missing} not there"
         return cwd
     if words[0] in ("tactcad", "./tactcad"):
-        try:
-            result = run_cli(*words[1:], cwd=cwd)
-        except SystemExit as exc:  # argparse's own --version and --help end the program
-            result = subprocess.CompletedProcess(words, exc.code or 0, "", "")
-        allowed = {expect} if expect is not None else (
-            {0, 1} if words[1:2] and words[1] in EXIT_ONE_IS_AN_ANSWER else {0})
-        assert result.returncode in allowed, (
-            f"{where}: {shlex.join(words)}: exit {result.returncode}\n{result.stderr[-2000:]}")
+        run_tactcad(words, cwd, where, expect)
         return cwd
     raise AssertionError(f"{where}: {shlex.join(words)}: the runner runs tactcad, cd and ls "
                          "only; mark the block '# not run: REASON'")
@@ -124,12 +169,23 @@ def run_sh(block: Block, cwd: Path) -> Path:
 
 
 def run_console(block: Block, cwd: Path) -> Path:
-    """``$ `` lines run; a block that shows ``tactcad: error:`` must exit 2."""
+    """``$ `` lines run; a block that shows ``tactcad: error:`` must exit 2. On a page of
+    :data:`EXCERPTS_CHECKED`, the lines shown under a command are lines it prints."""
     expect = 2 if "tactcad: error:" in block.code else None
-    for line in block.code.splitlines():
-        if line.startswith("$ "):
-            for words in commands_of(line[2:]):
-                cwd = run_command(words, cwd, block.where(), expect)
+    lines = block.code.splitlines()
+    for k, line in enumerate(lines):
+        if not line.startswith("$ "):
+            continue
+        commands = commands_of(line[2:])
+        if block.page in EXCERPTS_CHECKED and len(commands) == 1 and commands[0][0] == "tactcad":
+            result = run_tactcad(commands[0], cwd, block.where(), expect)
+            after = lines[k + 1:]
+            shown = after[:next((j for j, s in enumerate(after) if s.startswith("$ ")), None)]
+            missing = shown_but_not_printed(shown, result.stdout + result.stderr)
+            assert not missing, f"{block.where()}: shown, not printed now:\n" + "\n".join(missing)
+            continue
+        for words in commands:
+            cwd = run_command(words, cwd, block.where(), expect)
     return cwd
 
 
@@ -169,7 +225,8 @@ def test_page_code_runs(page, tmp_path, tmp_path_factory, monkeypatch):
                             warm_store_copy(store, tmp_path / "store"))
     work = tmp_path / "work"
     work.mkdir()
-    shutil.copytree(ROOT / "hardware", work / "hardware")
+    if in_checkout(page):  # else the page runs as a reader who installed tactcad meets it
+        shutil.copytree(ROOT / "hardware", work / "hardware")
     cwd = work
     for block in blocks(page):
         if block.not_run or block.language not in RUNNERS:

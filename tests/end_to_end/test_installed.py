@@ -32,7 +32,7 @@ pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("installed_wheel")]
 
 ROOT = Path(__file__).resolve().parents[2]
 #: What only the paper's design may carry: its samples (N/mm), the evaluation
-#: rig's load (N), the force gauge's 57.04 N/mm is a rig value a project may keep.
+#: rig's load (N), its text.
 PAPER_MARKS = ("10.01", "7.26", "6.28", "5.41", "4.51", "3.57", "2.34", "3.235",
                "Spring-based tactile", "paper", "macro_array", "Table 1", "Table 2")
 #: Files whose numbers are geometry (coordinates can match a sample by chance).

@@ -578,3 +578,18 @@ def test_a_kept_search_centres_one_layouts_tips_once_for_every_force(plan, monke
     assert len(calls) == 2  # the forces share one factor; another range is its own
     assert kept == fresh and kept[0].kobj_seen_factor != 1.0
     assert wider.kobj_seen_factor != kept[0].kobj_seen_factor
+
+
+def test_a_reason_the_base_carried_from_the_papers_design_keeps_its_words_not_the_chain():
+    from tactcad.studies.inverse_design import neutral_assumptions
+
+    base = {"assumptions": {
+        "a.x": "Kept from the base design macro_array, where it is an assumption: 2.5 V is hot.",
+        "a.y": "Kept from the base design macro_array, where it is an assumption.",
+        "a.z": "1.5 mm lifts the face."}}
+    why = neutral_assumptions(base, "ti_array_2x3")
+    assert why == {"a.x": "2.5 V is hot.",
+                   "a.y": "Kept from the base design ti_array_2x3, where it is an assumption.",
+                   "a.z": "1.5 mm lifts the face."}
+    # the paper's design, as a base, is never named
+    assert "macro_array" not in neutral_assumptions(base, "macro_array")["a.y"]

@@ -124,3 +124,25 @@ def test_correction_refit_plans_stores_and_fits_without_rerunning(tmp_path):
     again = correction_refit(mapper, n_fit=8, n_holdout=2, points_path=points)
     assert calls[1] == 0 and again["new_points"] == 0
     assert len(points.read_text().splitlines()) == calls[0]
+
+
+def test_the_default_grid_is_the_designs_own_not_the_papers_study(capsys):
+    # every design got the paper's arms 4-8 mm and webs 0.15-0.4 mm, and its chart
+    # Table 1's measured elements
+    from tactcad.commands.sweep import _measured
+    from tactcad.design.array_plan import EXAMPLES, element_process_limits, load_design
+    from tactcad.studies.sweeps import default_grid_axes
+
+    ti = load_design(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
+    webs, arms = default_grid_axes(ti)
+    assert (arms[0], arms[-1], len(arms)) == (6.196, 19.605, 5)
+    web = ti.element(1).geometry.web_thickness_mm
+    thinnest = element_process_limits(ti.raw).min_web_mm.value_mm
+    assert webs[0] == pytest.approx(max(web / 2, thinnest), abs=1e-4)
+    assert webs[-1] == pytest.approx(1.5 * web, abs=1e-4) and len(webs) == 5
+    assert _measured(ti) == {} and _measured(load_design())["measured"]
+    with pytest.raises(SystemExit):
+        main(["sweep", "grid", "--help"])
+    words = " ".join(capsys.readouterr().out.split())
+    assert "design's shortest arm to its longest" in words and "design's web" in words
+    assert "[4.0, 5.0" not in words

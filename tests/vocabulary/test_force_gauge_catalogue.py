@@ -24,3 +24,22 @@ def test_a_bad_entry_is_refused_naming_model_and_field():
                          "shaft_length_mm": 1, "source": "s"})
     with pytest.raises(ValueError, match="has no resolution_N"):
         cat._gauge("X", {"maker": "m", "range_N": 1})
+
+
+def test_a_new_designs_gauge_stiffness_is_the_catalogues_not_the_papers_measurement(
+        tmp_path, monkeypatch):
+    # a designed project's rigs quoted "57.04 N/mm as measured ... (the macro array's
+    # calibration)": the paper's own FH 5, measured in its lab
+    from tactcad.cli import main
+    from tactcad.mechanics.calibration import K_SENSOR_N_PER_MM
+
+    for g in cat.force_gauges():
+        assert g.stiffness_N_per_mm != K_SENSOR_N_PER_MM
+        assert "macro" not in g.source.lower() and "paper" not in g.source.lower()
+    monkeypatch.chdir(tmp_path)
+    assert main(["design", "--kr-over-km", "5", "--kobj-range", "2", "20", "--full-scale-force",
+                 "0.3", "--material", "7075-T6", "--columns", "4", "--out", "al7075",
+                 "--verify", "none", "--quiet"]) == 0
+    rigs = (tmp_path / "al7075" / "rigs.toml").read_text(encoding="utf-8")
+    assert 'model = "Sauter FH 5"' in rigs  # the gauge the report was about
+    assert "57.04" not in rigs and "macro" not in rigs.lower() and "to be measured" in rigs

@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
+from tactcad.commands import add_cache_args, add_design_arg, add_output_args, project_from_args
 from tactcad.commands.options import PLOT_SUFFIXES, count, number, output_file
 
 from tactcad.mechanics.ladder import models
@@ -24,12 +24,14 @@ def register(subparsers) -> None:
         "evaluate", help="simulate the array evaluation rig: R per element, sample and load step",
         description="The array evaluation rig, simulated: the array pressed into rubber samples "
                     "(the paper's design: by 3.235 N then 100 g steps, its eight samples; any "
-                    "other design: in equal steps until the most loaded element carries the "
-                    "design's full-scale force, samples over its K_obj range); each element's "
-                    "deflection over the reference "
-                    "(stiffest) element's gives R. Sample: independent springs (eq. 1-2) or rigid "
-                    "punches at the tips on an elastic half-space or layer (modulus from K_obj "
-                    "through a 2 x 3 mm punch). Units: N/mm, N, mm, um.")
+                    "other design: by its rigs file's evaluation rig, the preload then each "
+                    "weight added, or with --steps, or where the rigs state no preload, in "
+                    "equal steps until the most loaded element carries the design's full-scale "
+                    "force; samples over its K_obj range); each element's deflection over the "
+                    "reference (stiffest) element's gives R. Sample: independent springs "
+                    "(eq. 1-2) or rigid punches at the tips on an elastic half-space or layer "
+                    "(modulus from K_obj through a punch of the design's own tip face). Units: "
+                    "N/mm, N, mm, um.")
     add_design_arg(p)
     add_cache_args(p)
     p.add_argument("--samples", default=None, metavar="K1,K2,...",
@@ -46,14 +48,53 @@ def register(subparsers) -> None:
                         "default %(default)s")
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level of the element stiffness (default %(default)s)")
-    p.add_argument("--steps", type=count(1, 1000, "load steps"), default=6,
-                   help="load steps up to the full-scale force (>= 1; default %(default)s)")
+    p.add_argument("--steps", type=count(1, 1000, "load steps"), default=None,
+                   help="equal load steps up to the full-scale force (>= 1) instead of the "
+                        "rig's; default: the rigs file's evaluation rig (preload, then each "
+                        "weight), else 6 (the paper's design: 6 of its steps)")
     p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write a Fig. 7-like plot (R against K_m/K_obj per K_r/K_m) here")
     p.add_argument("--plot-fig6", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write a Fig. 6-like plot (R against grasping force, sample nearest 3.85 N/mm)")
     add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)
+
+
+#: Equal load steps of a design whose rigs state no evaluation rig, and of the paper's.
+DEFAULT_STEPS = 6
+
+
+def design_load_steps(project, steps: int | None, force_N: float,
+                      equal_steps) -> tuple[list[float], str]:
+    """The grasping forces (N) ``evaluate`` loads a design that does not cite the
+    paper with, and where they come from: the project's evaluation rig as its
+    rigs file states it (preload, then each weight added:
+    :func:`tactcad.studies.rig_sizing.evaluation_rig_steps`) unless ``--steps``
+    asks for equal ones; equal steps up to the full-scale force also where the
+    rigs state no preload, or the project has no test rigs.
+
+    Args:
+        project: the validated project (its ``rigs`` may be None).
+        steps: ``--steps``, or None.
+        force_N: the design's full-scale force (N).
+        equal_steps: n -> n equal grasping forces up to the full-scale load (N).
+
+    Returns:
+        (loads, words saying where they come from).
+    """
+    from tactcad.studies.rig_sizing import evaluation_rig_steps
+
+    rig = None if steps is not None or project.rigs is None else evaluation_rig_steps(project.rigs)
+    if rig is not None:
+        loads, how = rig
+        where = project.rigs_file or "the rigs made for the design"
+        return loads, f"the project's evaluation rig ({where}): {how}, one weight per step"
+    n = DEFAULT_STEPS if steps is None else steps
+    why = ("--steps" if steps is not None else "no test rigs" if project.rigs is None
+           else "the rigs state no [evaluation] preload_N")
+    return [float(v) for v in equal_steps(n)], (
+        f"{n} equal steps up to the load at which the most loaded element carries the "
+        f"full-scale force {force_N:g} N ({why})")
 
 
 def parse_stiffness_list(field: str, text: str) -> list[float]:
@@ -89,7 +130,8 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.studies.design_loads import design_samples, loads_to_full_scale
     from tactcad.studies.verification import requirements_of
 
-    plan = plan_from_args(args)
+    project = project_from_args(args)
+    plan = project.plan
     paper = cites_paper(plan.raw)
     if args.stiffness == "table1" and not paper:
         from tactcad.errors import DesignError
@@ -103,18 +145,21 @@ def run(args: argparse.Namespace) -> int:
                          args.thickness if args.coupling == "layer" else None)
     stiffness = (paper_stiffness_by_element(plan, args.model) if args.stiffness == "table1"
                  else ev.ladder_stiffness_by_element(plan, args.model))
-    if args.steps < 1:
-        raise ev.ContactError("--steps", args.steps, ">= 1")
-    loads = None
-    if not paper:  # the paper's rig loads only its design; others go up to their full scale
+    steps = DEFAULT_STEPS if args.steps is None else args.steps
+    if steps < 1:
+        raise ev.ContactError("--steps", steps, ">= 1")
+    loads, source = None, (f"the paper's rig: 3.235 N, then 100 g per step ({steps} steps)")
+    if not paper:  # the paper's rig loads only its design; others load as their own rig does
         force = requirements_of(plan).full_scale_force_N
-        loads = loads_to_full_scale(plan, stiffness, samples, spec, args.steps, force)
+        loads, source = design_load_steps(project, args.steps, force, lambda n: (
+            loads_to_full_scale(plan, stiffness, samples, spec, n, force)))
     middle = samples[len(samples) // 2]
     # each row reads against its own reference; the paper's rig read one for both rows
     rows = None if paper else {s.number: plan.reference_for(s).number for s in plan.slots}
-    report = ev.evaluation_report(plan, stiffness, samples, spec, n_steps=args.steps,
+    report = ev.evaluation_report(plan, stiffness, samples, spec, n_steps=steps,
                                   loads_N=loads, references=rows,
                                   **({} if paper else {"fig6_sample": middle}))
+    report["load_steps_from"] = source
     if not paper:
         report["full_scale_force_N"] = force
     if args.plot:
@@ -146,6 +191,7 @@ def _print_text(report: dict) -> None:
     print(f"design {report['design']}: sample model {report['coupling']}, {which}")
     numbers = [e["element"] for e in report["elements"]]
     first = report["fig6"]["loads_N"][0]
+    print(f"load steps: {report['load_steps_from']}")
     print(f"R at the first load step ({first:.4g} N); rows: K_obj (N/mm), columns: element")
     print("  K_obj  " + "".join(f"{n:>8d}" for n in numbers) + "   E (MPa)")
     for s in report["samples"]:

@@ -12,8 +12,6 @@ from tactcad.commands.options import count, number
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.tolerance import add_cluster_args
 
-DEFAULT_WEBS_MM = (0.15, 0.2, 0.25, 0.3, 0.4)
-DEFAULT_ARMS_MM = (4.0, 5.0, 6.0, 7.0, 8.0)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -27,10 +25,14 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_cache_args(g)
     g.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level of every point (default %(default)s)")
-    g.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=list(DEFAULT_WEBS_MM), metavar="MM",
-                   help="web thicknesses (mm; default %(default)s)")
-    g.add_argument("--arms", type=number(0, 1000, "mm", lo_open=True), nargs="+", default=list(DEFAULT_ARMS_MM), metavar="MM",
-                   help="arm lengths (mm; default %(default)s)")
+    g.add_argument("--webs", type=number(0, 100, "mm", lo_open=True), nargs="+", default=None,
+                   metavar="MM", help="web thicknesses (mm; default: five from half to 1.5 "
+                                      "times the design's web, no thinner than its cut "
+                                      "process leaves on its sheet)")
+    g.add_argument("--arms", type=number(0, 1000, "mm", lo_open=True), nargs="+", default=None,
+                   metavar="MM", help="arm lengths (mm; default: five from the design's "
+                                      "shortest arm to its longest; one arm length: half "
+                                      "to 1.5 times it)")
     g.add_argument("--radii", type=number(0, 100, "mm", lo_open=True), nargs="+", default=None, metavar="MM",
                    help="notch radii (default: the design's, raised to the web where thinner)")
     g.add_argument("--out", metavar="DIR", default="exports/sweeps",
@@ -98,26 +100,36 @@ def check_out_folder(out: str | Path) -> None:
         raise DesignError("--out", str(out), "a folder that can be made", reason)
 
 
+def _measured(plan) -> dict:
+    """The chart's measured crosses: the paper's Table 1 for a design that cites the
+    paper, none for another (the paper's samples are not a new design's)."""
+    from tactcad.design.requirements_section import cites_paper
+    from tactcad.paper.data import table1
+
+    if not cites_paper(plan.raw):
+        return {}
+    return {"measured": [(m.element, m.flexing_arm_length_mm, m.stiffness_N_per_mm)
+                         for m in table1()], "measured_label": "Table 1 (measured)"}
+
+
 def run_grid_cmd(args: argparse.Namespace) -> int:
-    from tactcad.studies.sweeps import (dask_client, dask_mapper, design_grid, plot_design_chart,
-                          rows_as_json, write_grid_csv)
+    from tactcad.studies.sweeps import (dask_client, dask_mapper, default_grid_axes, design_grid,
+                                        plot_design_chart, rows_as_json, write_grid_csv)
 
     check_out_folder(args.out)
     plan = plan_from_args(args)
+    own_webs, own_arms = default_grid_axes(plan)
+    webs, arms = args.webs or own_webs, args.arms or own_arms
     with dask_client(args.scheduler, _workers(args)) as client:
-        rows = design_grid(plan, args.webs, args.arms, args.model, args.radii,
+        rows = design_grid(plan, webs, arms, args.model, args.radii,
                            mapper=dask_mapper(client, progress=_bar(args)))
         if args.model != "closed-form":  # the chart's lines: closed form, finer in arm
-            lo, hi = min(args.arms), max(args.arms)
+            lo, hi = min(arms), max(arms)
             fine = [lo + (hi - lo) * k / 16 for k in range(17)]
-            rows = design_grid(plan, args.webs, fine, "closed-form", args.radii) + rows
+            rows = design_grid(plan, webs, fine, "closed-form", args.radii) + rows
     out = Path(args.out)
     csv_path = write_grid_csv(out / "design_grid.csv", rows)
-    from tactcad.paper.data import table1
-
-    measured = [(m.element, m.flexing_arm_length_mm, m.stiffness_N_per_mm) for m in table1()]
-    png_path = plot_design_chart(out / "design_chart.png", rows, plan, measured=measured,
-                                 measured_label="Table 1 (measured)")
+    png_path = plot_design_chart(out / "design_chart.png", rows, plan, **_measured(plan))
     if args.json:
         print(json.dumps(rows_as_json(rows), indent=2, allow_nan=False))
         return 0

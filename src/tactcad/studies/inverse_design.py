@@ -69,9 +69,9 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_BASE_BELOW_ARM_MM, MIN_FASTENER_GAP_MM,
-                                       MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan, element_process_limits,
-                                       plan_from_dict)
+from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, DEFAULT_DESIGN, MIN_BASE_BELOW_ARM_MM,
+                                       MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan,
+                                       element_process_limits, plan_from_dict)
 from tactcad.design.tolerances import WEB_DEFAULT_MM
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM,
                                                  MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
@@ -948,22 +948,41 @@ def arm_height_for(longest_arm_mm: float, arm_height_mm: float) -> float | None:
 
 
 def _mentions_paper(text: str) -> bool:
+    """True when ``text`` names the paper, its tables or its design (the
+    shipped ``macro_array``, the "macro array"), which no new design may carry."""
     low = text.lower()
-    return "paper" in low or "table 1" in low or "table 2" in low
+    return any(word in low for word in ("paper", "table 1", "table 2", DEFAULT_DESIGN.stem,
+                                        DEFAULT_DESIGN.stem.replace("_", " ")))
+
+
+#: The pointer a reason carried from an earlier base design starts with
+#: (:func:`neutral_assumptions`); its own words, if any, follow the colon.
+_KEPT_FROM = re.compile(r"^Kept from the base design[^,:]*, where it is an assumption[.:]\s*")
 
 
 def neutral_assumptions(data: Mapping[str, Any], base_name: str) -> dict[str, str]:
     """The base design's ``[assumptions]`` for a new design that does not
-    cite the paper: a reason that says the value is not in the paper keeps
-    its own argument; one that still mentions the paper or its tables is
-    replaced by a neutral pointer (the base, when it is the paper's design, is
-    not named)."""
+    cite the paper.
+
+    A reason that says the value is not in the paper keeps its own argument,
+    as does one the base itself carried from its own base (the older pointer
+    dropped: a reason does not pass on a chain of designs). One that still
+    mentions the paper, its tables or its design is replaced by a neutral
+    pointer (the base, when it is the paper's design, is not named).
+
+    Args:
+        data: the base design's raw tables.
+        base_name: the base design's name, named in the pointer.
+
+    Returns:
+        The new design's reasons by key.
+    """
     from tactcad.design.requirements_section import cites_paper
 
-    named = "" if cites_paper(data) else f" {base_name}"
+    named = "" if cites_paper(data) or _mentions_paper(base_name) else f" {base_name}"
     out = {}
     for key, why in dict(data.get("assumptions", {})).items():
-        text = str(why)
+        text = _KEPT_FROM.sub("", str(why)) or str(why)
         if text.startswith("Not in the paper."):
             text = text[len("Not in the paper."):].strip() or text
         if _mentions_paper(text):

@@ -169,17 +169,34 @@ class RigLoad:
         return self.element_load_N <= self.rated_N * (1 + 1e-9)
 
 
+def evaluation_rig_steps(rigs) -> tuple[list[float], str] | None:
+    """The evaluation rig's load steps as its rigs file states them: the
+    preload (``[evaluation] preload_N``), then each of the ``[weights]`` added
+    one at a time (N), and those words ("0.1961 N preload + 4 x 20 g").
+
+    Args:
+        rigs: the project's :class:`~tactcad.design.rig_plan.RigDesign`.
+
+    Returns:
+        (loads, words), or None when the rigs state no preload.
+    """
+    if rigs.evaluation_preload_N is None:
+        return None
+    w = rigs.part("weights")
+    step = w.mass_g / 1000.0 * STANDARD_GRAVITY
+    loads = [rigs.evaluation_preload_N + k * step for k in range(w.count + 1)]
+    return loads, f"{rigs.evaluation_preload_N:.4g} N preload + {w.count} x {w.mass_g:g} g"
+
+
 def evaluation_rig_load(plan: Plan, rigs, rated_N: float) -> RigLoad | None:
     """The evaluation rig's top load (preload and every weight) and the most
     loaded element's tip force there over the rig's samples; None when the
     rigs state no preload (``[evaluation] preload_N``)."""
-    if rigs.evaluation_preload_N is None:
+    steps = evaluation_rig_steps(rigs)
+    if steps is None:
         return None
-    w = rigs.part("weights")
+    loads, how = steps
     per_newton = element_loads_per_newton(plan, rigs.sample_stiffness_N_per_mm)
     element, share = max(per_newton.items(), key=lambda kv: (kv[1], -kv[0]))
-    step = w.mass_g / 1000.0 * STANDARD_GRAVITY
-    load = rigs.evaluation_preload_N + w.count * step
-    return RigLoad("array evaluation rig", rigs.library["weights"].name, load, element,
-                   load * share, rated_N,
-                   f"{rigs.evaluation_preload_N:.4g} N preload + {w.count} x {w.mass_g:g} g")
+    return RigLoad("array evaluation rig", rigs.library["weights"].name, loads[-1], element,
+                   loads[-1] * share, rated_N, how)

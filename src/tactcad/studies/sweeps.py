@@ -178,6 +178,46 @@ def evaluate_point(p: GridPoint) -> GridRow:
                    r.wall_time_s)
 
 
+#: Points of a default grid axis, and the default web axis's span around the
+#: design's web (+/- this fraction of it).
+GRID_AXIS_POINTS = 5
+GRID_WEB_SPAN_REL = 0.5
+
+
+def _axis(lo: float, hi: float) -> list[float]:
+    """:data:`GRID_AXIS_POINTS` evenly spaced values lo ... hi (mm, 4 decimals), one when equal."""
+    if hi - lo < 1e-9:
+        return [round(lo, 4)]
+    n = GRID_AXIS_POINTS - 1
+    return [round(lo + (hi - lo) * k / n, 4) for k in range(n + 1)]
+
+
+def default_grid_axes(plan: Plan) -> tuple[list[float], list[float]]:
+    """The design's own grid (mm): webs within +/- :data:`GRID_WEB_SPAN_REL` of
+    the design's web, kept within the web range of the design file and at least
+    the cut process's minimum web on the design's sheet; arms from the design's
+    shortest to its longest arm (one arm length: +/- half of it, within the arm
+    range of the design file).
+
+    Args:
+        plan: the design swept.
+
+    Returns:
+        (webs, arms), each :data:`GRID_AXIS_POINTS` values from low to high.
+    """
+    from tactcad.design.array_plan import ARM_RANGE_MM, WEB_RANGE_MM, element_process_limits
+
+    web = plan.element(1).geometry.web_thickness_mm
+    thinnest = max(WEB_RANGE_MM[0], element_process_limits(plan.raw).min_web_mm.value_mm)
+    webs = _axis(max(thinnest, web * (1 - GRID_WEB_SPAN_REL)),
+                 min(WEB_RANGE_MM[1], web * (1 + GRID_WEB_SPAN_REL)))
+    arms = [s.geometry.arm_length_mm for s in plan.slots]
+    lo, hi = min(arms), max(arms)
+    if hi - lo < 1e-9:  # one arm length: a span around it
+        lo, hi = max(ARM_RANGE_MM[0], lo / 2), min(ARM_RANGE_MM[1], hi * 1.5)
+    return webs, _axis(lo, hi)
+
+
 def grid_points(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
                 model: str = "closed-form",
                 notch_radii_mm: Sequence[float] | None = None) -> list[GridPoint]:
