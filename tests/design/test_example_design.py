@@ -113,7 +113,9 @@ def test_the_papers_design_keeps_its_citations(tmp_path):
 
 
 def test_evaluate_loads_to_the_full_scale_force_over_the_designs_range(capsys):
-    assert main(["evaluate", "--design", str(EXAMPLE), "--coupling", "none", "--json"]) == 0
+    # equal steps (--steps) go to the full-scale force; by default the rig's weights load it
+    assert main(["evaluate", "--design", str(EXAMPLE), "--coupling", "none", "--steps", "6",
+                 "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     lo, hi = _stated()["kobj_range_N_per_mm"]
     ks = [s["K_obj_N_per_mm"] for s in out["samples"]]
