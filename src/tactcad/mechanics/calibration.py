@@ -30,6 +30,8 @@ from tactcad.errors import TactcadError
 K_SENSOR_N_PER_MM = 57.04
 #: Calibration Z travel: 25 um steps from 0 to 150 um (the paper's "Calibration").
 CALIBRATION_STEPS_UM = (0.0, 25.0, 50.0, 75.0, 100.0, 125.0, 150.0)
+#: Equal Z steps of a design's calibration up to the travel at its full-scale force.
+FULL_SCALE_STEPS = 6
 #: Default noise of the synthetic bridge signal (V): about three LSB of a
 #: 16-bit DAQ on its +-10 V range (assumption; the paper gives no figure).
 DEFAULT_NOISE_SIGNAL_V = 0.001
@@ -431,3 +433,24 @@ def format_calibration_csv(data: dict[int, CalibrationData], comments: tuple[str
             previous = z
             lines.append(f"{element},{run},{z:g},{f:.4f},{v:.4f}")
     return "\n".join(lines) + "\n"
+
+
+def calibration_steps_um(k_element: float, k_sensor_N_per_mm: float,
+                         full_scale_force_N: float | None) -> np.ndarray:
+    """The Z steps (um) a static calibration of one element drives: the paper's
+    (:data:`CALIBRATION_STEPS_UM`) for its own design (``full_scale_force_N`` None); any
+    other design :data:`FULL_SCALE_STEPS` equal steps up to the travel at which the element,
+    in series with the force gauge, carries its full-scale force (past it an element
+    would run onto its stop or past its fatigue limit).
+
+    Args:
+        k_element: the element's K (N/mm). k_sensor_N_per_mm: the force gauge's (N/mm).
+        full_scale_force_N: the design's rated force (N), or None for the paper's steps.
+
+    Returns:
+        The steps, from 0 (um), shape (7,).
+    """
+    if full_scale_force_N is None:
+        return np.asarray(CALIBRATION_STEPS_UM, float)
+    z_max = full_scale_force_N / apparent_stiffness(k_element, k_sensor_N_per_mm) * 1e3
+    return np.linspace(0.0, z_max, FULL_SCALE_STEPS + 1)

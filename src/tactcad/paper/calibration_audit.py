@@ -157,10 +157,6 @@ def _signal_web(plan, g, signal_per_N: float, gain: float, model: str) -> float 
 # ---------------------------------------------------------------------------
 # Simulated calibration of a design
 # ---------------------------------------------------------------------------
-#: Z steps of a simulated calibration up to the full-scale force.
-FULL_SCALE_STEPS = 6
-
-
 def simulate_design_calibration(plan, model: str = "closed-form",
                                 gauge_gain_V_per_strain: float | None = None,
                                 noise_force_N: float = 0.001,
@@ -207,15 +203,12 @@ def simulate_design_calibration(plan, model: str = "closed-form",
         # the grid's strain, as the read-out reports its volts per newton
         eps = grid_strain_per_N(slot.geometry, plan.material, chain, model)
         k_v = gain * eps["grid"] * r.stiffness_N_per_mm
-        steps = {}
-        if full_scale_force_N is not None:  # Z travel (um) at which the element carries F
-            z_max = full_scale_force_N / cal.apparent_stiffness(
-                r.stiffness_N_per_mm, k_sensor_N_per_mm) * 1e3
-            steps = {"steps_um": np.linspace(0.0, z_max, FULL_SCALE_STEPS + 1)}
+        steps = cal.calibration_steps_um(r.stiffness_N_per_mm, k_sensor_N_per_mm,
+                                         full_scale_force_N)
         out[slot.number] = cal.synthetic_calibration(
             r.stiffness_N_per_mm, k_v, 0.0, noise_force_N=noise_force_N,
             noise_signal_V=noise_signal_V, seed=int(rng.integers(2 ** 31)),
-            k_sensor_N_per_mm=k_sensor_N_per_mm, **steps)
+            k_sensor_N_per_mm=k_sensor_N_per_mm, steps_um=steps)
     return out
 
 
