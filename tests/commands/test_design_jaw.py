@@ -604,3 +604,15 @@ def test_a_jaw_designs_file_and_report_carry_no_float_noise(tmp_path):
 
     written = list(lengths(tomllib.loads(out.read_text(encoding="utf-8"))))
     assert written and all(v == round(v, WRITTEN_MM_PLACES) for v in written)
+
+
+def test_a_jaw_reports_each_kind_of_element_with_its_own_arm_web_and_stop_gap():
+    """The report's arms, webs and stop gaps are paired by position in element order: the
+    stiff references' short arm with their thick web, not the webs sorted apart."""
+    from tactcad.commands.design import distinct_elements_lengths
+
+    d = {"arms": {"lengths_mm": [2.0, 2.0, 4.0, 4.0]},
+         "comb": {"web_thicknesses_mm": [0.116, 0.116, 0.084, 0.084],
+                  "stop_gaps_mm": [0.02, 0.02, 0.033, 0.033]}}
+    assert distinct_elements_lengths(d) == {"arms_mm": [2.0, 4.0], "webs_mm": [0.116, 0.084],
+                                            "stop_gaps_mm": [0.02, 0.033]}

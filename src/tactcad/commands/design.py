@@ -1043,9 +1043,7 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
                 "pocket_across_mm": round(room.across_mm, 6),
                 "pocket_along_mm": round(room.along_mm, 6), "height_mm": round(room.height_mm, 6)},
         "sheet_mm": d["sheet"]["thickness_mm"], "pitch_mm": d["array"]["pitch_mm"],
-        "arms_mm": sorted(set(d["arms"]["lengths_mm"])),
-        "webs_mm": sorted(set(d["comb"]["web_thicknesses_mm"])),
-        "stop_gaps_mm": sorted(set(d["comb"]["stop_gaps_mm"])),
+        **distinct_elements_lengths(d),
         "candidates": [{"sheet_mm": c.sheet_mm, "km_scale": c.km_scale,
                         "counts": c.plan is not None and not c.failures,
                         "force_margin_rel": None if math.isinf(c.force_margin_rel) else c.force_margin_rel,
@@ -1402,6 +1400,21 @@ def design_verification(plan, asked: str, margins: list[dict], progress=None
     prefetch_top_level(plan, asked, progress)
     return asked, verification_matrix(plan, asked, progress, stress=element_stress,
                                       envelope_mm=envelope)
+
+
+def distinct_elements_lengths(d: dict) -> dict[str, list[float]]:
+    """A comb's distinct elements in element order, as three lists paired by position:
+    ``arms_mm``, ``webs_mm``, ``stop_gaps_mm`` (mm; the i-th of each is one kind of
+    element's), so a report line reads each arm with its own web and stop gap.
+
+    Args:
+        d: the comb's tables (``[arms] lengths_mm``, ``[comb] web_thicknesses_mm`` and
+            ``stop_gaps_mm``, one value per element).
+    """
+    kinds = list(dict.fromkeys(zip(d["arms"]["lengths_mm"], d["comb"]["web_thicknesses_mm"],
+                                   d["comb"]["stop_gaps_mm"])))
+    return {"arms_mm": [k[0] for k in kinds], "webs_mm": [k[1] for k in kinds],
+            "stop_gaps_mm": [k[2] for k in kinds]}
 
 
 def verification_summary(asked: str, level: str | None, records: list[dict]) -> dict:

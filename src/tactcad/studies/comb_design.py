@@ -1495,12 +1495,14 @@ def stop_reason(plan: Any, force_N: float) -> str:
     from tactcad.mechanics.hard_stops import stop_verdicts
 
     verdicts = stop_verdicts(plan, force_N)
-    multiples = sorted({round(v.multiple_of_rated, 2) for v in verdicts})
+    # in element order, as the arms and webs are listed, not sorted apart from them
+    multiples = list(dict.fromkeys(round(v.multiple_of_rated, 2) for v in verdicts))
     over = [v for v in verdicts if not v.below_fatigue]
     words = (f"Each stop engages at {STOP_MULTIPLE:g} x its element's rated deflection, or "
              f"midway to the element's lowest fatigue limit where that comes first, rounded up "
              f"to 1 µm and no thinner than the {MIN_SET_GAP_MM:g} mm a shim sets: "
-             f"{', '.join(f'{m:g}' for m in multiples)} x the rating as built.")
+             f"{', '.join(f'{m:g}' for m in multiples)} x the rating as built (in element "
+             f"order).")
     if over:
         words += (" Past a fatigue limit (the least gap binds): " + "; ".join(
             f"element {v.element} at {v.engage_force_N:.4g} N ({v.fatigue_limit} "
