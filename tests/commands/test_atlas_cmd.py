@@ -321,3 +321,43 @@ def test_without_batch_the_run_takes_the_automatic_size(monkeypatch):
     judged(None, points, parse_checked(DIE_ATLAS))
     judged(None, points, parse_checked([*DIE_ATLAS, "--batch", "5"]))
     assert sizes == [auto_batch(70, 1), 5] and sizes[0] == 2
+
+
+@pytest.fixture
+def strangers():
+    """Two local services that are not Dask schedulers, on ephemeral ports: one replies a
+    few bytes of HTTP and hangs up, one is an HTTP server that waits for a request line."""
+    import http.server
+    import socketserver
+    import threading
+
+    class Junk(socketserver.BaseRequestHandler):
+        def handle(self):
+            self.request.sendall(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n")
+
+    servers = [socketserver.ThreadingTCPServer(("127.0.0.1", 0), Junk),
+               http.server.ThreadingHTTPServer(("127.0.0.1", 0),
+                                               http.server.SimpleHTTPRequestHandler)]
+    for server in servers:
+        server.daemon_threads = True
+        threading.Thread(target=server.serve_forever, daemon=True).start()
+    yield [f"tcp://127.0.0.1:{server.server_address[1]}" for server in servers]
+    for server in servers:
+        server.shutdown()
+        server.server_close()
+
+
+def test_a_service_that_is_not_a_scheduler_is_refused_in_time_naming_the_address(
+        strangers, monkeypatch):
+    from tactcad.studies import sweeps
+
+    monkeypatch.setattr(sweeps, "SCHEDULER_TIMEOUT_S", 3.0)
+    junk, http_server = strangers
+    for address, words in ((junk, "not a Dask scheduler"), (http_server, "no Dask scheduler answers")):
+        start = time.monotonic()
+        r = run_cli("atlas", "--jaw", "5", "--scheduler", address, "--json")
+        assert time.monotonic() - start < 8.0, address
+        assert r.returncode == 2, r.stdout + r.stderr
+        message = json.loads(r.stdout)["error"]["message"]
+        assert message.startswith(f"--scheduler {address}: ") and words in message
+        assert "Traceback" not in r.stderr
