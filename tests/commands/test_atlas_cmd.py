@@ -58,6 +58,24 @@ def test_an_atlas_is_written_and_its_second_run_reuses_the_kept_table(tmp_path):
     assert table(out / "atlas.parquet") == rows
 
 
+def allowed_text(r) -> str:
+    """The allowed range a refusal states (after "allowed ")."""
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stdout + r.stderr
+    return r.stderr.split("allowed ", 1)[1].split(" (see ", 1)[0].strip()
+
+
+@pytest.mark.parametrize("command, option, outside, inside_parser_range", [
+    ("atlas", "--force-range", ["0", "0"], ["2000", "5000"]),
+    ("atlas", "--kobj-span", ["0", "1"], ["0.5", "2"]),
+    ("tolerance", "--samples", ["0"], ["1"]),
+])
+def test_an_option_states_one_range(command, option, outside, inside_parser_range):
+    extra = ["--jaw", "5"] if command == "atlas" else []
+    first = allowed_text(run_cli(command, *extra, option, *outside))
+    second = allowed_text(run_cli(command, *extra, option, *inside_parser_range))
+    assert first == second
+
+
 @pytest.mark.parametrize("argv, field", [
     (["--jaw", "7"], "--jaw"),
     (["--jaw", "5", "--force-range", "2", "1"], "--force-range"),
@@ -353,7 +371,8 @@ def test_a_service_that_is_not_a_scheduler_is_refused_in_time_naming_the_address
 
     monkeypatch.setattr(sweeps, "SCHEDULER_TIMEOUT_S", 3.0)
     junk, http_server = strangers
-    for address, words in ((junk, "not a Dask scheduler"), (http_server, "no Dask scheduler answers")):
+    for address, words in ((junk, "not a Dask scheduler"),
+                           (http_server, "no Dask scheduler answers")):
         start = time.monotonic()
         r = run_cli("atlas", "--jaw", "5", "--scheduler", address, "--json")
         assert time.monotonic() - start < 8.0, address

@@ -117,7 +117,8 @@ def test_cli_json_keys(capsys):
 
 def test_cli_refuses_bad_input(capsys):
     assert main(["tolerance", "--samples", "1"]) == 2
-    assert "tactcad: error: samples" in capsys.readouterr().err
+    assert "argument --samples: '1': allowed an integer 2 ... 10000000" in \
+        capsys.readouterr().err
 
 
 def test_runs_on_a_design_other_than_the_paper(design_data):

@@ -36,7 +36,7 @@ RANGE_OPTIONS = {"--kr-over-km-range": ("kr_over_km", ""),
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    from tactcad.studies.design_atlas import DEFAULT_RANGES
+    from tactcad.studies.design_atlas import AXIS_LIMITS, DEFAULT_RANGES
 
     p = sub.add_parser(
         "atlas", help="what fits a jaw: feasible targets and the Pareto front of every product "
@@ -72,8 +72,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                                          "every grade of the library)")
     for option, (axis, unit) in RANGE_OPTIONS.items():
         lo, hi = DEFAULT_RANGES[axis]
-        p.add_argument(option, type=count(1, 100) if axis == "columns" else
-                       number(0, 1e4, unit, lo_open=True), nargs=2, metavar=("LO", "HI"),
+        least, most = AXIS_LIMITS[axis][2]  # the study's own limits, stated once
+        # a ratio of 1 is no reference at all: the study asks LO > 1
+        p.add_argument(option, type=count(int(least), int(most)) if axis == "columns" else
+                       number(least, most, unit, lo_open=axis == "kr_over_km"), nargs=2, metavar=("LO", "HI"),
                        default=None, help=f"range of {axis} sampled (default {lo:g} {hi:g}"
                        + (f" {unit}" if unit else "") + ")")
     p.add_argument("--batch", type=count(1, 10_000, "points per task"), default=None,

@@ -8,7 +8,8 @@ import json
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.options import count, number
-from tactcad.studies.tolerance_montecarlo import MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED
+from tactcad.studies.tolerance_montecarlo import (
+    MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED, SAMPLES_RANGE)
 
 
 def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) -> None:
@@ -34,7 +35,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "whether the K band holds [requirements] k_tolerance_rel and which "
                     "tolerance to tighten to what. Units: mm, N/mm.")
     add_design_arg(p)
-    p.add_argument("--samples", type=count(1, 10**7, "samples"), default=MONTE_CARLO_SAMPLES,
+    p.add_argument("--samples", type=count(*SAMPLES_RANGE, "samples"),
+                   default=MONTE_CARLO_SAMPLES,
                    help="as-built arrays drawn (default %(default)s, as verify draws)")
     p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=MONTE_CARLO_SEED,
                    help="seed of the draw (default %(default)s, as verify)")

@@ -58,6 +58,8 @@ from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
 #: ``verify``'s toleranced band), so both print the same band.
 MONTE_CARLO_SAMPLES = 10_000
 MONTE_CARLO_SEED = 0
+#: Sample counts a Monte Carlo takes (a spread needs two; ``tolerance --samples`` too).
+SAMPLES_RANGE = (2, 10_000_000)
 
 #: Samples per independently seeded chunk (the unit of work of a Dask run).
 CHUNK_SAMPLES = 2500
@@ -307,10 +309,11 @@ def chunk_specs(plan: Plan, tol: Tolerances, n: int, seed: int,
     and ``chunk`` only, never on where the chunks run.
 
     Raises:
-        DesignError: ``n`` < 2 or > 10^7, or a negative seed.
+        DesignError: ``n`` outside :data:`SAMPLES_RANGE`, or a negative seed.
     """
-    if isinstance(n, bool) or not isinstance(n, int) or not 2 <= n <= 10_000_000:
-        raise DesignError("samples", n, "an integer 2 ... 10000000")
+    least, most = SAMPLES_RANGE
+    if isinstance(n, bool) or not isinstance(n, int) or not least <= n <= most:
+        raise DesignError("samples", n, f"an integer {least} ... {most}")
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise DesignError("seed", seed, "an integer >= 0")
     corr = load_correction() if correction is None else correction
