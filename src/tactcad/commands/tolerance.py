@@ -47,8 +47,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "5.41, 10.01 N/mm samples)")
     p.add_argument("--reference", type=count(1, 10_000, "an element number"),
                    default=None, metavar="ELEMENT",
-                   help="one reference element for every unit (default: the nominally stiffest, "
-                        "nearest one)")
+                   help="one reference element for every unit, one of the design's reference "
+                        "elements (the nominally stiffest; default: each unit the nearest "
+                        "one)")
     p.add_argument("--distribution", choices=("normal", "uniform"), default="normal",
                    help="normal with tolerance = 3 sigma (default) or uniform over +/-tolerance")
     p.add_argument("--notch-radius-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
