@@ -380,3 +380,26 @@ def test_a_service_that_is_not_a_scheduler_is_refused_in_time_naming_the_address
         message = json.loads(r.stdout)["error"]["message"]
         assert message.startswith(f"--scheduler {address}: ") and words in message
         assert "Traceback" not in r.stderr
+
+
+@pytest.mark.slow  # a die judged at four points, one front point designed
+def test_a_projects_front_commands_pasted_in_its_folder_leave_it_one_design(tmp_path):
+    import shutil
+
+    folder = tmp_path / "p5"
+    shutil.copytree(EXAMPLES / "grasper_jaw_5mm_mems", folder)
+    design = folder / "grasper_jaw_5mm_mems.toml"
+    r = run_cli("atlas", "--project", design, "--points", "4", "--force-range", "0.002",
+                "0.02", "--workers", "1", "--no-cache", "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+    front = json.loads(r.stdout)["front"]
+    assert front
+    for point in front:
+        words = shlex.split(point["command"])
+        out = (folder / words[words.index("--out") + 1]).resolve()
+        assert not out.is_relative_to(folder.resolve()), point["command"]
+    pasted = shlex.split(front[0]["command"])[1:]  # without the program's name
+    assert run_cli(*pasted, cwd=folder).returncode == 0
+    assert sorted(p.name for p in folder.glob("*.toml")) == [design.name]
+    out = (folder / pasted[pasted.index("--out") + 1]).resolve()
+    assert (out / f"{out.name}.toml").is_file()  # a project of its own beside this one

@@ -211,6 +211,8 @@ def run(args: argparse.Namespace) -> int:
         if complete and kept is not None:
             write_table(kept, records, inputs)
     seconds = time.perf_counter() - start
+    if args.project is not None:  # the front's commands are pasted in the project's folder
+        records = project_records(records, args.project)
     write_table(out / TABLE_NAME, records, {**inputs, "complete": complete})
     summary = atlas_summary(records, inputs, seconds, reused, complete, out)
     front_figure(records, summary["front"], out / FIGURE_NAME, jaw)
@@ -221,6 +223,22 @@ def run(args: argparse.Namespace) -> int:
     else:
         print_summary(summary)
     return 0 if complete else 130
+
+
+def project_records(records: list[dict], design: str) -> list[dict]:
+    """``records`` with each design command writing a new project folder beside the
+    project of ``design`` (:func:`~tactcad.studies.design_atlas.command_beside_project`).
+
+    Args:
+        records: the atlas table's rows. design: ``--project``.
+
+    Returns:
+        New rows; the kept table in the store is left as the jaw's.
+    """
+    from tactcad.studies.design_atlas import command_beside_project
+
+    project = Path(design).resolve().parent.name
+    return [{**r, "command": command_beside_project(r["command"], project)} for r in records]
 
 
 def project_jaw(design: str) -> tuple[str, str]:

@@ -476,6 +476,25 @@ def written_name(product: str, material: str, point: int) -> str:
                                for p in parts) + ".toml"
 
 
+def command_beside_project(command: str, project: str) -> str:
+    """A point's design command to paste in a sensor project's folder: its ``--out`` a new
+    project folder beside that one (``../<project>_atlas_...``), since a second design file
+    in the project's folder would leave every later command there refused.
+
+    Args:
+        command: a line of :func:`design_command` (ending ``--out atlas_....toml``).
+        project: the project folder's name.
+
+    Returns:
+        The line with its ``--out`` a folder beside the project, named after it and the point.
+    """
+    import shlex
+
+    head, _, name = command.rpartition(" --out ")
+    folder = f"{project}_{name.removesuffix('.toml')}"
+    return f"{head} --out {shlex.quote('../' + folder)}"
+
+
 def evaluate_batch(atlas: JawAtlas, points: Sequence[Mapping[str, Any]]) -> list[dict]:
     """One Dask task: every point judged for every product and material.
 
