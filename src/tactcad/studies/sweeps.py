@@ -101,10 +101,14 @@ def probe_scheduler(address: str, timeout: float | None = None) -> None:
             answers is not a Dask scheduler.
     """
     import asyncio
+    from concurrent.futures import ThreadPoolExecutor
 
     timeout = SCHEDULER_TIMEOUT_S if timeout is None else timeout
     try:
-        reply = asyncio.run(asyncio.wait_for(_identity(address, timeout), timeout))
+        # in a thread of its own: its own event loop, even where the caller runs one
+        with ThreadPoolExecutor(1) as pool:
+            reply = pool.submit(asyncio.run, asyncio.wait_for(_identity(address, timeout),
+                                                              timeout)).result()
     except (OSError, asyncio.TimeoutError, TimeoutError) as exc:
         detail = f": {exc}" if str(exc) else ""
         raise ClusterError(f"--scheduler {address}: no Dask scheduler answers after "
