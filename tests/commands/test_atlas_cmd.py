@@ -403,3 +403,26 @@ def test_a_projects_front_commands_pasted_in_its_folder_leave_it_one_design(tmp_
     assert sorted(p.name for p in folder.glob("*.toml")) == [design.name]
     out = (folder / pasted[pasted.index("--out") + 1]).resolve()
     assert (out / f"{out.name}.toml").is_file()  # a project of its own beside this one
+
+
+def test_a_projects_commands_name_its_jaw_file_from_its_folder(tmp_path):
+    # a lab's jaw is the project's design file, named as --project gave it (from elsewhere)
+    from tactcad.commands.atlas import project_records
+    from tactcad.studies.design_atlas import design_command
+
+    design = tmp_path / "lab" / "lab.toml"
+    design.parent.mkdir()
+    design.write_text("", encoding="utf-8")
+    given = str(design.relative_to(tmp_path.parent))  # as typed in the folder above
+    point = {"point": 3, "kr_over_km": 8, "kobj_lo_N_per_mm": 0.4, "kobj_hi_N_per_mm": 4,
+             "full_scale_force_N": 0.06, "columns": 5}
+    record = {"command": design_command(given, "monolithic-comb", "17-4PH-H900", point)}
+    old_cwd = Path.cwd()
+    os.chdir(tmp_path.parent)
+    try:
+        [row] = project_records([record], given, given)
+    finally:
+        os.chdir(old_cwd)
+    words = shlex.split(row["command"])
+    assert words[words.index("--jaw") + 1] == "lab.toml"
+    assert words[words.index("--out") + 1] == "../lab_atlas_monolithic_comb_17_4ph_h900_3"

@@ -212,7 +212,7 @@ def run(args: argparse.Namespace) -> int:
             write_table(kept, records, inputs)
     seconds = time.perf_counter() - start
     if args.project is not None:  # the front's commands are pasted in the project's folder
-        records = project_records(records, args.project)
+        records = project_records(records, args.project, jaw)
     write_table(out / TABLE_NAME, records, {**inputs, "complete": complete})
     summary = atlas_summary(records, inputs, seconds, reused, complete, out)
     front_figure(records, summary["front"], out / FIGURE_NAME, jaw)
@@ -225,20 +225,27 @@ def run(args: argparse.Namespace) -> int:
     return 0 if complete else 130
 
 
-def project_records(records: list[dict], design: str) -> list[dict]:
-    """``records`` with each design command writing a new project folder beside the
-    project of ``design`` (:func:`~tactcad.studies.design_atlas.command_beside_project`).
+def project_records(records: list[dict], design: str, jaw: str) -> list[dict]:
+    """``records`` with each design command pasted in the project's folder: writing a new
+    project folder beside it, a jaw file named from there
+    (:func:`~tactcad.studies.design_atlas.command_beside_project`).
 
     Args:
-        records: the atlas table's rows. design: ``--project``.
+        records: the atlas table's rows. design: ``--project``. jaw: the atlas's ``--jaw``.
 
     Returns:
         New rows; the kept table in the store is left as the jaw's.
     """
+    import os
+
     from tactcad.studies.design_atlas import command_beside_project
 
-    project = Path(design).resolve().parent.name
-    return [{**r, "command": command_beside_project(r["command"], project)} for r in records]
+    folder = Path(design).resolve().parent
+    jaw_file = Path(jaw)
+    jaw_here = (os.path.relpath(jaw_file.resolve(), folder)
+                if jaw_file.suffix.lower() == ".toml" and jaw_file.is_file() else "")
+    return [{**r, "command": command_beside_project(r["command"], folder.name, jaw, jaw_here)}
+            for r in records]
 
 
 def project_jaw(design: str) -> tuple[str, str]:
