@@ -58,6 +58,24 @@ def test_an_atlas_is_written_and_its_second_run_reuses_the_kept_table(tmp_path):
     assert table(out / "atlas.parquet") == rows
 
 
+def allowed_text(r) -> str:
+    """The allowed range a refusal states (after "allowed ")."""
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stdout + r.stderr
+    return r.stderr.split("allowed ", 1)[1].split(" (see ", 1)[0].strip()
+
+
+@pytest.mark.parametrize("command, option, outside, inside_parser_range", [
+    ("atlas", "--force-range", ["0", "0"], ["2000", "5000"]),
+    ("atlas", "--kobj-span", ["0", "1"], ["0.5", "2"]),
+    ("tolerance", "--samples", ["0"], ["1"]),
+])
+def test_an_option_states_one_range(command, option, outside, inside_parser_range):
+    extra = ["--jaw", "5"] if command == "atlas" else []
+    first = allowed_text(run_cli(command, *extra, option, *outside))
+    second = allowed_text(run_cli(command, *extra, option, *inside_parser_range))
+    assert first == second
+
+
 @pytest.mark.parametrize("argv, field", [
     (["--jaw", "7"], "--jaw"),
     (["--jaw", "5", "--force-range", "2", "1"], "--force-range"),
@@ -321,3 +339,90 @@ def test_without_batch_the_run_takes_the_automatic_size(monkeypatch):
     judged(None, points, parse_checked(DIE_ATLAS))
     judged(None, points, parse_checked([*DIE_ATLAS, "--batch", "5"]))
     assert sizes == [auto_batch(70, 1), 5] and sizes[0] == 2
+
+
+@pytest.fixture
+def strangers():
+    """Two local services that are not Dask schedulers, on ephemeral ports: one replies a
+    few bytes of HTTP and hangs up, one is an HTTP server that waits for a request line."""
+    import http.server
+    import socketserver
+    import threading
+
+    class Junk(socketserver.BaseRequestHandler):
+        def handle(self):
+            self.request.sendall(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n")
+
+    servers = [socketserver.ThreadingTCPServer(("127.0.0.1", 0), Junk),
+               http.server.ThreadingHTTPServer(("127.0.0.1", 0),
+                                               http.server.SimpleHTTPRequestHandler)]
+    for server in servers:
+        server.daemon_threads = True
+        threading.Thread(target=server.serve_forever, daemon=True).start()
+    yield [f"tcp://127.0.0.1:{server.server_address[1]}" for server in servers]
+    for server in servers:
+        server.shutdown()
+        server.server_close()
+
+
+def test_a_service_that_is_not_a_scheduler_is_refused_in_time_naming_the_address(
+        strangers, monkeypatch):
+    from tactcad.studies import sweeps
+
+    monkeypatch.setattr(sweeps, "SCHEDULER_TIMEOUT_S", 3.0)
+    junk, http_server = strangers
+    for address, words in ((junk, "not a Dask scheduler"),
+                           (http_server, "no Dask scheduler answers")):
+        start = time.monotonic()
+        r = run_cli("atlas", "--jaw", "5", "--scheduler", address, "--json")
+        assert time.monotonic() - start < 8.0, address
+        assert r.returncode == 2, r.stdout + r.stderr
+        message = json.loads(r.stdout)["error"]["message"]
+        assert message.startswith(f"--scheduler {address}: ") and words in message
+        assert "Traceback" not in r.stderr
+
+
+@pytest.mark.slow  # a die judged at four points, one front point designed
+def test_a_projects_front_commands_pasted_in_its_folder_leave_it_one_design(tmp_path):
+    import shutil
+
+    folder = tmp_path / "p5"
+    shutil.copytree(EXAMPLES / "grasper_jaw_5mm_mems", folder)
+    design = folder / "grasper_jaw_5mm_mems.toml"
+    r = run_cli("atlas", "--project", design, "--points", "4", "--force-range", "0.002",
+                "0.02", "--workers", "1", "--no-cache", "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+    front = json.loads(r.stdout)["front"]
+    assert front
+    for point in front:
+        words = shlex.split(point["command"])
+        out = (folder / words[words.index("--out") + 1]).resolve()
+        assert not out.is_relative_to(folder.resolve()), point["command"]
+    pasted = shlex.split(front[0]["command"])[1:]  # without the program's name
+    assert run_cli(*pasted, cwd=folder).returncode == 0
+    assert sorted(p.name for p in folder.glob("*.toml")) == [design.name]
+    out = (folder / pasted[pasted.index("--out") + 1]).resolve()
+    assert (out / f"{out.name}.toml").is_file()  # a project of its own beside this one
+
+
+def test_a_projects_commands_name_its_jaw_file_from_its_folder(tmp_path):
+    # a lab's jaw is the project's design file, named as --project gave it (from elsewhere)
+    from tactcad.commands.atlas import project_records
+    from tactcad.studies.design_atlas import design_command
+
+    design = tmp_path / "lab" / "lab.toml"
+    design.parent.mkdir()
+    design.write_text("", encoding="utf-8")
+    given = str(design.relative_to(tmp_path.parent))  # as typed in the folder above
+    point = {"point": 3, "kr_over_km": 8, "kobj_lo_N_per_mm": 0.4, "kobj_hi_N_per_mm": 4,
+             "full_scale_force_N": 0.06, "columns": 5}
+    record = {"command": design_command(given, "monolithic-comb", "17-4PH-H900", point)}
+    old_cwd = Path.cwd()
+    os.chdir(tmp_path.parent)
+    try:
+        [row] = project_records([record], given, given)
+    finally:
+        os.chdir(old_cwd)
+    words = shlex.split(row["command"])
+    assert words[words.index("--jaw") + 1] == "lab.toml"
+    assert words[words.index("--out") + 1] == "../lab_atlas_monolithic_comb_17_4ph_h900_3"

@@ -130,3 +130,14 @@ def test_a_force_past_the_rating_or_an_overload_limit_is_warned_in_the_text_and_
     assert "overload limit" in broken[0] and "damaged" in broken[0]
     text = run_cli("budget", "--design", COMB, "--force", "1000")
     assert "warning: --force = 1000 N" in text.stdout and "warning: --force" in text.stderr
+
+
+def test_a_combs_zero_terms_read_0_not_minus_0(tmp_path):
+    # a comb of one material has no thermal zero: its terms are -0.0, printed "-0 %"
+    made = run_cli("design", "--kr-over-km", "8", "--kobj-range", "0.4", "4",
+                   "--full-scale-force", "0.06", "--material", "17-4PH-H900", "--columns", "5",
+                   "--jaw", "10", "--out", "c", "--quiet", cwd=tmp_path)
+    assert made.returncode == 0, made.stdout + made.stderr
+    r = run_cli("budget", cwd=tmp_path / "c")
+    assert r.returncode == 0, r.stderr
+    assert "| thermal zero | 0 % |" in r.stdout and "-0 %" not in r.stdout

@@ -93,3 +93,5 @@ def test_a_dies_crosstalk_is_kept_in_the_result_store_and_says_what_it_solves(tm
     # each says whether it was reused: a reused result's cost is the earlier solve's
     assert (first, again, other) == ((1, False), (1, True), (2, False)) and solved == [plan, softer]
     assert "3D FE" in heard[0] and "reused" in heard[1] and "3D FE" in heard[2]
+    # the count is the mesh's bound before the windows are cut, not the solve's own
+    assert "at most 1000 degrees of freedom" in heard[0]

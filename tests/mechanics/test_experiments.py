@@ -460,6 +460,10 @@ def test_a_design_that_does_not_cite_the_paper_is_refused_with_the_command_to_ru
     assert main([command, "--design", ti, "--json"]) == 2
     error = strict_json(capsys.readouterr().out)["error"]
     assert error["alternatives"][0]["words"].endswith(f"run {command} in it")
+    # table2's refusal said the design could not reproduce the paper's Table 1
+    table = {"table1": "Table 1", "table2": "Table 2"}[command]
+    assert error["allowed"].startswith(f"a design that cites the paper and can reproduce its "
+                                       f"{table}")
 
 
 def test_evaluate_loads_a_design_as_its_own_rig_states(tmp_path, monkeypatch, capsys):

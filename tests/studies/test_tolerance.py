@@ -95,8 +95,28 @@ def test_units_pair_each_element_with_the_nearest_stiffest(plan):
     units = dict(sensing_units(plan, k))
     assert set(units.values()) == {1, 8}  # both 4 mm arms
     assert units[3] == 8 and units[2] == 1  # 3 faces 8 across the rows; 2 is next to 1
-    with pytest.raises(DesignError, match="reference"):
-        sensing_units(plan, k, reference=8)  # element 1 is as stiff as 8
+    # element 1 is as stiff as 8: either is a valid reference of every unit, the other
+    # none's measuring element
+    assert sensing_units(plan, k, reference=8) == [(n, 8) for n in (2, 3, 4, 5, 6, 7, 9, 10)]
+    with pytest.raises(DesignError, match="--reference 1 or --reference 8") as refused:
+        sensing_units(plan, k, reference=2)
+    assert [a["option"] for a in refused.value.alternatives] == ["--reference 1", "--reference 8"]
+
+
+def test_a_combs_reference_is_any_of_its_stiff_elements(capsys):
+    from tactcad.design.array_plan import EXAMPLES
+
+    comb = str(EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")
+    assert main(["tolerance", "--design", comb, "--samples", "200", "--reference", "3",
+                 "--json"]) == 0
+    units = json.loads(capsys.readouterr().out)["units"]
+    assert {u["measuring"] for u in units} == set(range(7, 13))
+    assert {u["reference"] for u in units} == {3}
+    assert main(["tolerance", "--design", comb, "--samples", "200", "--reference", "9",
+                 "--json"]) == 2
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert [a["option"] for a in error["alternatives"]] == [f"--reference {n}"
+                                                            for n in range(1, 7)]
 
 
 def test_bad_tolerance_and_samples_are_refused(plan):
@@ -117,7 +137,8 @@ def test_cli_json_keys(capsys):
 
 def test_cli_refuses_bad_input(capsys):
     assert main(["tolerance", "--samples", "1"]) == 2
-    assert "tactcad: error: samples" in capsys.readouterr().err
+    assert "argument --samples: '1': allowed an integer 2 ... 10000000" in \
+        capsys.readouterr().err
 
 
 def test_runs_on_a_design_other_than_the_paper(design_data):

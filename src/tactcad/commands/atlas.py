@@ -36,7 +36,7 @@ RANGE_OPTIONS = {"--kr-over-km-range": ("kr_over_km", ""),
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    from tactcad.studies.design_atlas import DEFAULT_RANGES
+    from tactcad.studies.design_atlas import AXIS_LIMITS, DEFAULT_RANGES
 
     p = sub.add_parser(
         "atlas", help="what fits a jaw: feasible targets and the Pareto front of every product "
@@ -72,8 +72,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                                          "every grade of the library)")
     for option, (axis, unit) in RANGE_OPTIONS.items():
         lo, hi = DEFAULT_RANGES[axis]
-        p.add_argument(option, type=count(1, 100) if axis == "columns" else
-                       number(0, 1e4, unit, lo_open=True), nargs=2, metavar=("LO", "HI"),
+        least, most = AXIS_LIMITS[axis][2]  # the study's own limits, stated once
+        # a ratio of 1 is no reference at all: the study asks LO > 1
+        p.add_argument(option, type=count(int(least), int(most)) if axis == "columns" else
+                       number(least, most, unit, lo_open=axis == "kr_over_km"), nargs=2, metavar=("LO", "HI"),
                        default=None, help=f"range of {axis} sampled (default {lo:g} {hi:g}"
                        + (f" {unit}" if unit else "") + ")")
     p.add_argument("--batch", type=count(1, 10_000, "points per task"), default=None,
@@ -209,6 +211,8 @@ def run(args: argparse.Namespace) -> int:
         if complete and kept is not None:
             write_table(kept, records, inputs)
     seconds = time.perf_counter() - start
+    if args.project is not None:  # the front's commands are pasted in the project's folder
+        records = project_records(records, args.project, jaw)
     write_table(out / TABLE_NAME, records, {**inputs, "complete": complete})
     summary = atlas_summary(records, inputs, seconds, reused, complete, out)
     front_figure(records, summary["front"], out / FIGURE_NAME, jaw)
@@ -219,6 +223,29 @@ def run(args: argparse.Namespace) -> int:
     else:
         print_summary(summary)
     return 0 if complete else 130
+
+
+def project_records(records: list[dict], design: str, jaw: str) -> list[dict]:
+    """``records`` with each design command pasted in the project's folder: writing a new
+    project folder beside it, a jaw file named from there
+    (:func:`~tactcad.studies.design_atlas.command_beside_project`).
+
+    Args:
+        records: the atlas table's rows. design: ``--project``. jaw: the atlas's ``--jaw``.
+
+    Returns:
+        New rows; the kept table in the store is left as the jaw's.
+    """
+    import os
+
+    from tactcad.studies.design_atlas import command_beside_project
+
+    folder = Path(design).resolve().parent
+    jaw_file = Path(jaw)
+    jaw_here = (os.path.relpath(jaw_file.resolve(), folder)
+                if jaw_file.suffix.lower() == ".toml" and jaw_file.is_file() else "")
+    return [{**r, "command": command_beside_project(r["command"], folder.name, jaw, jaw_here)}
+            for r in records]
 
 
 def project_jaw(design: str) -> tuple[str, str]:

@@ -160,9 +160,11 @@ def past_rating_words(force_N: float, rated_N: float,
 
 
 def _pct(x) -> str:
+    """A relative error as a percentage to 3 digits; "unreadable" when there is none."""
     import math
 
-    return "unreadable" if x is None or not math.isfinite(x) else f"{100 * x:.3g} %"
+    # + 0.0: a zero term of a negative coefficient is -0.0, printed "-0 %"
+    return "unreadable" if x is None or not math.isfinite(x) else f"{100 * x + 0.0:.3g} %"
 
 
 def render(budget) -> str:

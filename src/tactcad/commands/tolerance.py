@@ -8,7 +8,8 @@ import json
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args
 from tactcad.commands.options import count, number
-from tactcad.studies.tolerance_montecarlo import MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED
+from tactcad.studies.tolerance_montecarlo import (
+    MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED, SAMPLES_RANGE)
 
 
 def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) -> None:
@@ -34,7 +35,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "whether the K band holds [requirements] k_tolerance_rel and which "
                     "tolerance to tighten to what. Units: mm, N/mm.")
     add_design_arg(p)
-    p.add_argument("--samples", type=count(1, 10**7, "samples"), default=MONTE_CARLO_SAMPLES,
+    p.add_argument("--samples", type=count(*SAMPLES_RANGE, "samples"),
+                   default=MONTE_CARLO_SAMPLES,
                    help="as-built arrays drawn (default %(default)s, as verify draws)")
     p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=MONTE_CARLO_SEED,
                    help="seed of the draw (default %(default)s, as verify)")
@@ -45,8 +47,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "5.41, 10.01 N/mm samples)")
     p.add_argument("--reference", type=count(1, 10_000, "an element number"),
                    default=None, metavar="ELEMENT",
-                   help="one reference element for every unit (default: the nominally stiffest, "
-                        "nearest one)")
+                   help="one reference element for every unit, one of the design's reference "
+                        "elements (the nominally stiffest; default: each unit the nearest "
+                        "one)")
     p.add_argument("--distribution", choices=("normal", "uniform"), default="normal",
                    help="normal with tolerance = 3 sigma (default) or uniform over +/-tolerance")
     p.add_argument("--notch-radius-tol", type=number(0, 10, "mm"), default=None, metavar="MM",

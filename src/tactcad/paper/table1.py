@@ -139,6 +139,10 @@ def table1_not_applicable(plan: Plan) -> str | None:
     return None
 
 
+#: What each command refused by :func:`require_table1` reproduces of the paper.
+_TABLES = {"table1": "its Table 1", "table2": "its Table 2 (built on its Table 1)"}
+
+
 def require_table1(plan: Plan, option: str = "--design", command: str = "table1") -> None:
     """Refuse a design the paper's measurements cannot be compared with
     (:func:`table1_not_applicable`): its Table 1 (``table1``) and the Table 2 built on it
@@ -158,7 +162,8 @@ def require_table1(plan: Plan, option: str = "--design", command: str = "table1"
     why = table1_not_applicable(plan)
     if why is not None:
         raise DesignError(option, Path(plan.source).name,
-                          "a design that cites the paper and can reproduce its Table 1", why,
+                          "a design that cites the paper and can reproduce "
+                          + _TABLES.get(command, _TABLES["table1"]), why,
                           alternatives=[{"option": "tactcad new paper --example macro_array",
                                          "words": "the paper's 2 x 5 array as a project of "
                                                   f"its own; run {command} in it"}])

@@ -476,6 +476,31 @@ def written_name(product: str, material: str, point: int) -> str:
                                for p in parts) + ".toml"
 
 
+def command_beside_project(command: str, project: str, jaw: str = "",
+                           jaw_here: str = "") -> str:
+    """A point's design command to paste in a sensor project's folder: its ``--out`` a new
+    project folder beside that one (``../<project>_atlas_...``), since a second design file
+    in the project's folder would leave every later command there refused.
+
+    Args:
+        command: a line of :func:`design_command` (ending ``--out atlas_....toml``).
+        project: the project folder's name.
+        jaw: the line's ``--jaw``; jaw_here: the same jaw named from the project's folder
+            (a jaw file's path); either empty: the line's ``--jaw`` is kept.
+
+    Returns:
+        The line with its ``--out`` a folder beside the project, named after it and the point.
+    """
+    import shlex
+
+    head, _, name = command.rpartition(" --out ")
+    given = f"tactcad design --jaw {shlex.quote(jaw)} "
+    if jaw and jaw_here and head.startswith(given):
+        head = f"tactcad design --jaw {shlex.quote(jaw_here)} " + head[len(given):]
+    folder = f"{project}_{name.removesuffix('.toml')}"
+    return f"{head} --out {shlex.quote('../' + folder)}"
+
+
 def evaluate_batch(atlas: JawAtlas, points: Sequence[Mapping[str, Any]]) -> list[dict]:
     """One Dask task: every point judged for every product and material.
 

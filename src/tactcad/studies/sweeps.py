@@ -53,6 +53,8 @@ SINGLE_THREAD_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
 WORKER_ALLOCATOR_ENV = {"MALLOC_MMAP_THRESHOLD_": str(32 * 2**20),
                         "MALLOC_TRIM_THRESHOLD_": str(256 * 2**20)}
 _ADDRESS = re.compile(r"^(tcp|tls|inproc|ucx)://[^\s/]+(:\d+)?$")
+#: Longest wait for an existing scheduler's answer, s.
+SCHEDULER_TIMEOUT_S = 10.0
 
 
 class ClusterError(TactcadError):
@@ -68,6 +70,54 @@ def check_scheduler_address(address: str) -> str:
     if not isinstance(address, str) or not _ADDRESS.match(address.strip()):
         raise DesignError("--scheduler", address, "a scheduler address tcp://HOST:PORT")
     return address.strip()
+
+
+async def _identity(address: str, timeout: float) -> Any:
+    """The answer of whatever listens at ``address`` to the scheduler's
+    ``identity`` request, sent with distributed's own framing."""
+    from distributed.comm import connect
+
+    comm = await connect(address, timeout=timeout)
+    try:
+        await comm.write({"op": "identity", "reply": True})
+        return await comm.read()
+    finally:
+        comm.abort()
+
+
+def probe_scheduler(address: str, timeout: float | None = None) -> None:
+    """Check that a Dask scheduler answers at ``address`` within ``timeout``.
+
+    ``distributed.Client`` alone waits forever on a service that never replies (an HTTP
+    server) and reads a stranger's reply as a frame length of exabytes, so the address is
+    asked for the scheduler's identity first, with a hard time limit.
+
+    Args:
+        address: a checked scheduler address (:func:`check_scheduler_address`).
+        timeout: longest wait, s (``None``: :data:`SCHEDULER_TIMEOUT_S`).
+
+    Raises:
+        ClusterError: naming ``--scheduler`` and the address: nothing answers, or what
+            answers is not a Dask scheduler.
+    """
+    import asyncio
+    from concurrent.futures import ThreadPoolExecutor
+
+    timeout = SCHEDULER_TIMEOUT_S if timeout is None else timeout
+    try:
+        # in a thread of its own: its own event loop, even where the caller runs one
+        with ThreadPoolExecutor(1) as pool:
+            reply = pool.submit(asyncio.run, asyncio.wait_for(_identity(address, timeout),
+                                                              timeout)).result()
+    except (OSError, asyncio.TimeoutError, TimeoutError) as exc:
+        detail = f": {exc}" if str(exc) else ""
+        raise ClusterError(f"--scheduler {address}: no Dask scheduler answers after "
+                           f"{timeout:g} s (no answer{detail})") from None
+    except Exception as exc:  # noqa: BLE001 - a stranger's bytes fail in any way, even MemoryError
+        reply = exc
+    if not (isinstance(reply, dict) and reply.get("type") == "Scheduler"):
+        raise ClusterError(f"--scheduler {address}: the service there is not a Dask "
+                           "scheduler (its answer is not a scheduler's identity)")
 
 
 @contextlib.contextmanager
@@ -90,8 +140,9 @@ def dask_client(scheduler: str | None = None, workers: int = LOCAL_WORKERS,
 
     if scheduler:
         address = check_scheduler_address(scheduler)
+        probe_scheduler(address)
         try:
-            client = Client(address, timeout="10s")
+            client = Client(address, timeout=f"{SCHEDULER_TIMEOUT_S:g}s")
         except (OSError, TimeoutError) as exc:
             raise ClusterError(f"--scheduler {address}: no Dask scheduler answers ({exc})") from None
         try:

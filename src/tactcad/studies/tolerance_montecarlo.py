@@ -44,7 +44,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Callable, Iterable, Sequence
+from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -58,6 +58,8 @@ from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
 #: ``verify``'s toleranced band), so both print the same band.
 MONTE_CARLO_SAMPLES = 10_000
 MONTE_CARLO_SEED = 0
+#: Sample counts a Monte Carlo takes (a spread needs two; ``tolerance --samples`` too).
+SAMPLES_RANGE = (2, 10_000_000)
 
 #: Samples per independently seeded chunk (the unit of work of a Dask run).
 CHUNK_SAMPLES = 2500
@@ -242,6 +244,20 @@ def nominal_stiffness(plan: Plan, correction: Correction) -> np.ndarray:
                                geoms[0], plan.material.poisson_ratio, correction)
 
 
+def reference_elements(numbers: Sequence[int], k: Mapping[int, float]) -> list[int]:
+    """The design's reference elements: the nominally stiffest ones, ties all counted.
+
+    Args:
+        numbers: element numbers, element order.
+        k: nominal K (N/mm) per element number.
+
+    Returns:
+        the numbers of every element within 1e-9 (relative) of the stiffest K, in order.
+    """
+    k_max = max(k[n] for n in numbers)
+    return [n for n in numbers if k[n] >= k_max * (1 - 1e-9)]
+
+
 def sensing_units(plan: Plan, k_nominal: np.ndarray,
                   reference: int | None = None) -> list[tuple[int, int]]:
     """(measuring element, reference element) pairs, paper numbering.
@@ -249,31 +265,36 @@ def sensing_units(plan: Plan, k_nominal: np.ndarray,
     Args:
         plan: the design.
         k_nominal: nominal K per element (N/mm), element order.
-        reference: one element to serve as the reference of every unit;
-            ``None``: the nominally stiffest element(s), each measuring element
-            paired with the nearest one (see the module docstring).
+        reference: one of the design's reference elements (:func:`reference_elements`)
+            to serve as the reference of every unit; ``None``: each measuring element
+            paired with the nearest reference (see the module docstring).
+
+    Returns:
+        one (measuring, reference) pair per element that is no reference.
 
     Raises:
-        DesignError: ``reference`` is no element, or not stiffer than some
-            element it would be paired with.
+        DesignError: ``reference`` is no element, or not one of the reference elements
+            (the refusal names those it accepts).
     """
     numbers = [s.number for s in plan.slots]
     k = dict(zip(numbers, np.asarray(k_nominal, float)))
+    refs = reference_elements(numbers, k)
+    measuring = [n for n in numbers if n not in refs]
     if reference is not None:
         plan.element(reference)
-        softer = [n for n in numbers if n != reference and k[n] < k[reference]]
-        if len(softer) != len(numbers) - 1:
-            stiff = [n for n in numbers if n != reference and n not in softer]
-            raise DesignError("reference", reference, "an element stiffer than every other one",
-                              f"elements {stiff} are at least as stiff")
-        return [(n, reference) for n in softer]
-    k_max = max(k.values())
-    refs = [n for n in numbers if k[n] >= k_max * (1 - 1e-9)]
+        if reference not in refs:
+            raise DesignError(
+                "reference", reference,
+                "one of the design's reference elements (the nominally stiffest): "
+                + " or ".join(f"--reference {r}" for r in refs),
+                f"element {reference} is softer than element {refs[0]}",
+                alternatives=[{"option": f"--reference {r}",
+                               "words": f"element {r} the reference of every unit"}
+                              for r in refs])
+        return [(n, reference) for n in measuring]
     tips = {s.number: np.array(s.tip_centre_world_mm) for s in plan.slots}
     units = []
-    for n in numbers:
-        if n in refs:
-            continue
+    for n in measuring:
         nearest = min(refs, key=lambda r: (round(float(np.linalg.norm(tips[n] - tips[r])), 9), r))
         units.append((n, nearest))
     return units
@@ -307,10 +328,11 @@ def chunk_specs(plan: Plan, tol: Tolerances, n: int, seed: int,
     and ``chunk`` only, never on where the chunks run.
 
     Raises:
-        DesignError: ``n`` < 2 or > 10^7, or a negative seed.
+        DesignError: ``n`` outside :data:`SAMPLES_RANGE`, or a negative seed.
     """
-    if isinstance(n, bool) or not isinstance(n, int) or not 2 <= n <= 10_000_000:
-        raise DesignError("samples", n, "an integer 2 ... 10000000")
+    least, most = SAMPLES_RANGE
+    if isinstance(n, bool) or not isinstance(n, int) or not least <= n <= most:
+        raise DesignError("samples", n, f"an integer {least} ... {most}")
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise DesignError("seed", seed, "an integer >= 0")
     corr = load_correction() if correction is None else correction

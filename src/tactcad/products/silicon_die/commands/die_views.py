@@ -146,7 +146,7 @@ def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
         raise DesignError("die.columns", plan.columns,
                           f"a die whose crosstalk mesh stays within {MAX_DOFS} degrees of "
                           f"freedom (about {most} columns at {plan.pitch_um:g} um pitch)",
-                          f"the die's 3D FE would have about {dofs} (its memory grows "
+                          f"the die's 3D FE would have up to {dofs} (its memory grows "
                           "faster than that); its units couple only with their nearest neighbours, "
                           f"so a die of {most} columns gives the same worst pair",
                           alternatives=[{"option": f"--set die.columns={most}",
@@ -170,7 +170,8 @@ def _crosstalk_kept(plan, dofs: int, report: Callable[[str], None]) -> tuple[Any
     reused = []
 
     def solve():
-        report(f"crosstalk of die {plan.name}: 3D FE of the die on its attach, about {dofs} "
+        # mesh_dofs bounds the mesh before the windows are cut: the run reports fewer
+        report(f"crosstalk of die {plan.name}: 3D FE of the die on its attach, at most {dofs} "
                "degrees of freedom, and three coarser meshes for the error estimate (about a "
                "minute on two cores)")
         return die_crosstalk(plan)
