@@ -228,7 +228,8 @@ def solve_tips(travel_mm, stiffness_N_per_mm, engage_mm, compliance) -> TipSolut
 @dataclass(frozen=True)
 class Tips:
     """The tips of one layout: label, radius, face, stiffness, stop and overload limit
-    (N; inf where none is given) per tip."""
+    (N; inf where none is given) per tip, and each tip's own rated force (N; None: every
+    tip is rated at the layout's one rated force)."""
 
     labels: tuple[int, ...]
     radius_mm: np.ndarray
@@ -236,6 +237,7 @@ class Tips:
     stiffness_N_per_mm: np.ndarray
     engage_mm: np.ndarray
     overload_N: np.ndarray
+    rated_N: np.ndarray | None = None
 
 
 def tips_as_laid_out(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float],
@@ -479,14 +481,16 @@ LINEAR_TISSUE_STRAIN = 0.2
 def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float,
                 thickness_mm=None) -> list[dict]:
     """Each tip's travel, deflection, forces (element, stop, on the slab), its verdicts on
-    the rating (a reading past full scale) and on the overload limit (damage; None where
-    no limit is given), and the tissue's compression under it (travel less deflection over
-    the tissue's thickness there, ``thickness_mm``; None without it) with whether it passes
+    its rating (a reading past full scale: the tip's own ``tips.rated_N`` where given, else
+    ``rated_force_N``) and on the overload limit (damage; None where no limit is given),
+    and the tissue's compression under it (travel less deflection over the tissue's
+    thickness there, ``thickness_mm``; None without it) with whether it passes
     :data:`LINEAR_TISSUE_STRAIN`."""
     out = []
     for i, n in enumerate(tips.labels):
         f = float(sol.element_force_N[i])
         limit = float(tips.overload_N[i])
+        rated = rated_force_N if tips.rated_N is None else float(tips.rated_N[i])
         out.append({"site": n, "radius_mm": float(tips.radius_mm[i]),
                     "K_N_per_mm": float(tips.stiffness_N_per_mm[i]),
                     "travel_mm": float(sol.travel_mm[i]),
@@ -496,7 +500,7 @@ def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float,
                     "stop_engage_mm": float(tips.engage_mm[i]) if math.isfinite(tips.engage_mm[i])
                     else None,
                     "on_stop": bool(sol.engaged[i]), "in_contact": bool(sol.in_contact[i]),
-                    "over_rating": f > rated_force_N * (1 + 1e-9),
+                    "rated_force_N": rated, "over_rating": f > rated * (1 + 1e-9),
                     "overload_limit_N": limit if math.isfinite(limit) else None,
                     "over_overload_limit": f > limit * (1 + 1e-9)})
         if thickness_mm is not None:

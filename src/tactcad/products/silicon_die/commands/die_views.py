@@ -237,7 +237,8 @@ def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.products.silicon_die.design.die_mount import die_mount
-    from tactcad.products.silicon_die.in_use.die_grasp import die_grasp, die_jaw
+    from tactcad.products.silicon_die.in_use.die_grasp import (default_grasp_force_N, die_grasp,
+                                                                die_jaw)
     from tactcad.commands.options import grasp_option_error
 
     planned = _planned(design, args)
@@ -247,11 +248,12 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     k_obj = args.kobj if args.kobj is not None else math.sqrt(lo * hi)
     opening = args.opening_deg if args.opening_deg is not None else mount.opening_angle_deg
     asked = args.angle_deg is not None or args.force_N is not None
-    force = args.force_N if asked else round(0.5 * plan.full_scale_force_N * len(plan.beams), 12)
+    force = args.force_N if asked else default_grasp_force_N(plan)
+    rated = role_ratings_N(plan)
     force_why = ("--force-N" if args.force_N is not None else "--angle-deg"
                  if args.angle_deg is not None else
-                 f"half the rated {plan.full_scale_force_N:g} N on each of {len(plan.beams)} "
-                 "beams")
+                 f"half each beam's own rated force ({rated_words(rated)}) summed over its "
+                 f"{len(plan.beams)} beams")
     try:
         jaw = die_jaw(mount, opening, args.slab_thickness_mm)
         shut = dict(coupling=args.coupling, profile=args.profile)
@@ -274,13 +276,18 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
                       "opening_angle_deg": jaw.opening_angle_deg,
                       "slab_thickness_mm": jaw.slab_thickness_mm},
               "K_obj_N_per_mm": k_obj, "coupling": args.coupling, "profile": args.profile,
-              "rated_force_N": plan.full_scale_force_N, "post_proud_mm": mount.post_proud_mm,
+              "full_scale_force_N": plan.full_scale_force_N, "rated_force_N_by_role": rated,
+              "post_proud_mm": mount.post_proud_mm,
               "grasp": result.as_json(),
               "reasons": {"force_N": force_why,
                           "K_obj": "--kobj" if args.kobj is not None else
                           f"the geometric mean of the die's K_obj range {lo:g} ... {hi:g} N/mm",
                           "opening": "--opening-deg" if args.opening_deg is not None else
                           "the jaw's opening_angle_deg",
+                          "rated_force_N": "each beam's own: the most it carries in use "
+                                           "(the full-scale force on a reference beam, K_m "
+                                           "x its rated travel on a measuring beam), as "
+                                           "strength and verify rate it",
                           "overload_limit_N": "each beam's root at the mean strength of "
                                               "etched silicon bars (no Weibull modulus)",
                           "error": "eq. 3 on the read R: the tissue's coupling between "
@@ -325,7 +332,8 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
     crushed = [t for t in result.tips if t.get("past_linear_tissue")]
     top = max(result.tips, key=lambda t: t["element_force_N"])
     lines += [f"largest beam force {1e3 * top['element_force_N']:.3g} mN (beam {top['site']}, "
-              f"rated {1e3 * plan.full_scale_force_N:g} mN); over the rating: "
+              f"rated {1e3 * top['rated_force_N']:.3g} mN); over its own beam's rating "
+              f"({rated_words(record['rated_force_N_by_role'])}): "
               f"{', '.join(str(t['site']) for t in over) or 'none'}; on their stops: "
               f"{', '.join(str(t['site']) for t in stopped) or 'none'}; past the breaking "
               f"force: {', '.join(str(t['site']) for t in broken) or 'none'}; the face in "
@@ -339,6 +347,17 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
                      f"posts {', '.join(str(t['site']) for t in crushed)}: past the linear "
                      "tissue model")
     return lines
+
+
+def role_ratings_N(plan) -> dict[str, float]:
+    """Each beam role's rated force (N), as :meth:`DiePlan.rated_force_N` gives it (every
+    beam of a role carries one rating)."""
+    return {b.role: plan.rated_force_N(b) for b in plan.beams}
+
+
+def rated_words(rated: dict[str, float]) -> str:
+    """The roles' ratings in words (mN), e.g. ``9 mN reference, 4.95 mN measuring``."""
+    return ", ".join(f"{1e3 * f:.3g} mN {role}" for role, f in rated.items())
 
 
 def _strength(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
