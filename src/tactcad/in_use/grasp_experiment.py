@@ -631,7 +631,9 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
             tissue_base)
     notes = {"profile": f"{profile}: " + ("uniform thickness h" if profile == "slab" else
                                           wedge_words(jaw, laid.radius_mm)),
-             "tissue": f"{coupling} coupling, ν {TISSUE_POISSON_RATIO:g}, one modulus set so "
+             "tissue": "none coupling: each tip on its own spring K_obj (eq. 1), no tissue "
+                       "between the tips" if coupling == "none" else
+                       f"{coupling} coupling, ν {TISSUE_POISSON_RATIO:g}, one modulus set so "
                        f"one tip face alone on the {jaw.slab_thickness_mm:g} mm layer sees "
                        "K_obj" + ("; under the wedge each tip's true K_obj is its face alone "
                                   "on its own thickness, and each unit is judged against "

@@ -290,11 +290,19 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
                                            "strength and verify rate it",
                           "overload_limit_N": "each beam's root at the mean strength of "
                                               "etched silicon bars (no Weibull modulus)",
-                          "error": "eq. 3 on the read R: the tissue's coupling between "
-                                   "neighbouring posts stays in it (the die's budget: the "
-                                   "coupled inversion removes it); a unit's two posts share "
-                                   "one radius, so the travel correction changes nothing"}}
+                          "error": error_words(args.coupling)}}
     return record, grasp_lines(plan, record, result)
+
+
+def error_words(coupling: str) -> str:
+    """What the die's grasp error holds, by the tissue's ``coupling``: uncoupled (``none``,
+    eq. 1) no coupling between the posts is in the read R to name."""
+    caveat = ("the tissue is not coupled between the posts (--coupling none, eq. 1)"
+              if coupling == "none" else
+              "the tissue's coupling between neighbouring posts stays in it (the die's "
+              "budget: the coupled inversion removes it)")
+    return (f"eq. 3 on the read R: {caveat}; a unit's two posts share one radius, so the "
+            "travel correction changes nothing")
 
 
 def grasp_lines(plan, record: dict, result) -> list[str]:
