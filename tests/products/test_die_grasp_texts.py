@@ -30,3 +30,19 @@ def test_no_coupling_caveat_without_coupling(die_folder):
     record = json.loads(run_cli("grasp", "--coupling", "none", "--json",
                                 cwd=die_folder).stdout)
     assert "stays in it" not in record["reasons"]["error"]
+
+
+@pytest.mark.parametrize("kobj", ["1000", "0.01"])
+def test_a_kobj_outside_the_dies_range_is_warned_and_not_read(die_folder, kobj):
+    import tactcad
+
+    lo, hi = tactcad.load(die_folder / EXAMPLE.name).plan.kobj_range_N_per_mm
+    r = run_cli("grasp", "--kobj", kobj, cwd=die_folder)
+    assert r.returncode == 0, r.stdout + r.stderr
+    warning = next(line for line in r.stdout.splitlines() if line.startswith("warning:"))
+    assert f"--kobj {float(kobj):g} N/mm" in warning and f"{lo:g} ... {hi:g} N/mm" in warning
+    assert not any(line.endswith("| yes |") for line in r.stdout.splitlines())
+    record = json.loads(run_cli("grasp", "--kobj", kobj, "--json", cwd=die_folder).stdout)
+    assert record["warnings"] and not any(u["reads"] for u in record["grasp"]["units"])
+    inside = json.loads(run_cli("grasp", "--json", cwd=die_folder).stdout)
+    assert not inside["warnings"] and all(u["in_kobj_range"] for u in inside["grasp"]["units"])

@@ -126,7 +126,8 @@ def design_plan_from_args(args: argparse.Namespace):
 def run(args: argparse.Namespace) -> int:
     from tactcad.design.grasper_in_use import stated_grasper
     from tactcad.errors import DesignError
-    from tactcad.in_use.grasp_experiment import default_jaw, grasp, tissue_base_of
+    from tactcad.in_use.grasp_experiment import (default_jaw, grasp, kobj_range_warning,
+                                                 result_with_kobj_range, tissue_base_of)
     from tactcad.in_use.shaft_leads import leads_check
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.readout_chain import readout_chain, row_units
@@ -186,7 +187,10 @@ def run(args: argparse.Namespace) -> int:
                             readout_chain(plan).lead_wires)
     except DesignError as exc:
         raise grasp_option_error(exc, args) from None
+    result = result_with_kobj_range(result, (lo, hi))
+    warning = kobj_range_warning(k_obj, (lo, hi))
     record = {**result.as_json(), "model": args.model, "leads": leads.as_json(),
+              "K_obj_range_N_per_mm": [lo, hi], "warnings": [warning] if warning else [],
               "reasons": {
                   "rated_force_N": req.reasons["full_scale_force_N"],
                   "overload_limit_N": "each element's yield with the design's safety factor "
@@ -274,8 +278,15 @@ def unit_table(layout: dict) -> list[str]:
             f"{_f(u['R_true'])} | {_f(u['R_read'])} | "
             f"{_f(u['K_obj_read_N_per_mm'])} | {_pct(u['error_rel'])} | "
             f"{_f(u['K_obj_corrected_N_per_mm'])} | {_pct(u['error_corrected_rel'])} | "
-            f"{u['why'] or ('equal radius' if abs(u['radius_ratio'] - 1) <= 0.02 else 'radii differ')} |")
+            f"{unit_note(u)} |")
     return lines
+
+
+def unit_note(unit: dict) -> str:
+    """A unit's note: why it does not read (its tips, or a true K_obj outside the design's
+    range), else whether its radii are equal (within 2 %)."""
+    why = "; ".join(filter(None, [unit["why"], unit.get("out_of_range")]))
+    return why or ("equal radius" if abs(unit["radius_ratio"] - 1) <= 0.02 else "radii differ")
 
 
 def render(record: dict) -> str:
@@ -287,7 +298,7 @@ def render(record: dict) -> str:
              f"{record['K_obj_N_per_mm']:.4g} N/mm, {record['coupling']} coupling"
              + (f" on a {record['tissue_base']} base" if record.get("tissue_base") else "")
              + ", rated "
-             f"{record['rated_force_N']:g} N per element"]
+             f"{record['rated_force_N']:g} N per element", *record.get("warnings", [])]
     for key in ("as_laid_out", "paired", "along_rows"):
         lay = record[key]
         if lay is None:

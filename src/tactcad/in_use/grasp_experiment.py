@@ -747,6 +747,62 @@ def design_grasp_at_force(plan: Plan, force_N: float, rated_force_N: float,
                  tissue_base=tissue_base_of(plan))
 
 
+def in_kobj_range(k_obj_N_per_mm: float, kobj_range: tuple[float, float]) -> bool:
+    """Whether a K_obj (N/mm) lies in the design's required K_obj range (N/mm, its ends
+    included to 1e-9 relative): the range the design is made to read."""
+    lo, hi = kobj_range
+    return lo * (1 - 1e-9) <= k_obj_N_per_mm <= hi * (1 + 1e-9)
+
+
+def kobj_range_warning(k_obj_N_per_mm: float, kobj_range: tuple[float, float],
+                       option: str = "--kobj") -> str | None:
+    """The warning a grasp prints where the tissue's K_obj is outside the design's range.
+
+    Args:
+        k_obj_N_per_mm: the tissue's K_obj (N/mm).
+        kobj_range: the design's required K_obj range (N/mm).
+        option: the option that set it.
+
+    Returns:
+        One line naming the option, the value and the range; None inside the range.
+    """
+    if in_kobj_range(k_obj_N_per_mm, kobj_range):
+        return None
+    lo, hi = kobj_range
+    return (f"warning: {option} {k_obj_N_per_mm:g} N/mm is outside the design's K_obj range "
+            f"{lo:g} ... {hi:g} N/mm: the design is not made to read it; a unit whose true "
+            "K_obj is outside that range does not read (its R and K_obj read are shown, not "
+            "rated)")
+
+
+def with_kobj_range(layout: LayoutGrasp, kobj_range: tuple[float, float]) -> LayoutGrasp:
+    """``layout`` with each unit's ``in_kobj_range`` (its true K_obj in the design's range,
+    :func:`in_kobj_range`) and ``reads``: its tips give a reading (``valid``) of a K_obj
+    the design is made to read; ``out_of_range`` says why not where it is outside."""
+    from dataclasses import replace
+
+    lo, hi = kobj_range
+    units = []
+    for u in layout.units:
+        inside = in_kobj_range(u["K_obj_true_N_per_mm"], kobj_range)
+        units.append({**u, "in_kobj_range": inside, "reads": bool(u["valid"] and inside),
+                      "out_of_range": "" if inside else
+                      f"true K_obj {u['K_obj_true_N_per_mm']:.4g} N/mm outside the design's "
+                      f"range {lo:g} ... {hi:g} N/mm"})
+    return replace(layout, units=units)
+
+
+def result_with_kobj_range(result: GraspResult,
+                           kobj_range: tuple[float, float]) -> GraspResult:
+    """``result`` with :func:`with_kobj_range` on each of its layouts."""
+    from dataclasses import replace
+
+    return replace(result, as_laid_out=with_kobj_range(result.as_laid_out, kobj_range),
+                   paired=with_kobj_range(result.paired, kobj_range),
+                   along_rows=None if result.along_rows is None else
+                   with_kobj_range(result.along_rows, kobj_range))
+
+
 def grasp_summary(result: GraspResult) -> dict:
     """One layout per key (``as_laid_out``, ``paired``): its angle, grasp force, the largest
     element force and its element, the elements over their rating and those on a stop (N,

@@ -240,6 +240,7 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.products.silicon_die.in_use.die_grasp import (default_grasp_force_N, die_grasp,
                                                                 die_jaw)
     from tactcad.commands.options import grasp_option_error
+    from tactcad.in_use.grasp_experiment import kobj_range_warning, with_kobj_range
 
     planned = _planned(design, args)
     plan = planned.plan
@@ -271,7 +272,10 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
                          f"{result.angle_deg:g} degrees takes {result.total_force_N:.4g} N")
     except DesignError as exc:
         raise grasp_option_error(exc, args) from None
+    result = with_kobj_range(result, (lo, hi))
+    warning = kobj_range_warning(k_obj, (lo, hi))
     record = {"design": str(design), "die": plan.name,
+              "K_obj_range_N_per_mm": [lo, hi], "warnings": [warning] if warning else [],
               "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": jaw.jaw_length_mm,
                       "opening_angle_deg": jaw.opening_angle_deg,
                       "slab_thickness_mm": jaw.slab_thickness_mm},
@@ -305,6 +309,12 @@ def error_words(coupling: str) -> str:
             "travel correction changes nothing")
 
 
+def reads_why(unit: dict) -> str:
+    """Why a unit does not read: its posts (``why``) and a true K_obj outside the die's
+    range (``out_of_range``)."""
+    return "; ".join(filter(None, [unit["why"], unit["out_of_range"]]))
+
+
 def grasp_lines(plan, record: dict, result) -> list[str]:
     """The die's grasp as text: the jaw and tissue, each unit's reading, each post's force."""
     jaw = record["jaw"]
@@ -315,6 +325,7 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
              f"(tissue coupling: {record['coupling']})",
              f"closed to {result.angle_deg:.4g} degrees: grasp force "
              f"{result.total_force_N:.4g} N ({record['reasons']['force_N']})",
+             *record["warnings"],
              "| unit | radius mm | travel r/m um | deflection r/m um | R read | K_obj read | "
              "error | corrected | error | reads |", "| --- | --- | --- | --- | --- | --- | --- "
              "| --- | --- | --- |"]
@@ -332,7 +343,7 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
                      f"{um * u['deflection_measuring_mm']:.3g} | {num(u['R_read'])} | "
                      f"{num(u['K_obj_read_N_per_mm'])} | {pct(u['error_rel'])} | "
                      f"{num(u['K_obj_corrected_N_per_mm'])} | {pct(u['error_corrected_rel'])} | "
-                     f"{'yes' if u['valid'] else u['why']} |")
+                     f"{'yes' if u['reads'] else reads_why(u)} |")
     over = [t for t in result.tips if t["over_rating"]]
     broken = [t for t in result.tips if t["over_overload_limit"]]
     stopped = [t for t in result.tips if t["on_stop"]]
