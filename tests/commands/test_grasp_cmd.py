@@ -98,7 +98,7 @@ def test_a_non_paper_design_and_the_text_table():
                                              "--angle-deg"),
                                             (["--slab-thickness-mm", "-1"],
                                              "--slab-thickness-mm"),
-                                            (["--jaw-length-mm", "1"], "--jaw-length-mm")])
+                                            (["--pin-to-tip-mm", "1"], "--pin-to-tip-mm")])
 def test_bad_options_name_the_option_the_value_and_the_range(options, words):
     r = run_cli("grasp", "--design", TI, *options)
     assert r.returncode == 2
@@ -158,9 +158,9 @@ def test_a_default_grasp_heavier_than_the_closed_jaw_allows_is_the_jaw_closed_fl
 
 
 def test_a_jaw_too_short_is_refused_for_the_length_its_farthest_tip_needs():
-    r = run_cli("grasp", "--design", COMB, "--jaw-length-mm", "1")
+    r = run_cli("grasp", "--design", COMB, "--pin-to-tip-mm", "1")
     assert r.returncode == 2 and "--pivot-mm" not in r.stderr
-    assert "--jaw-length-mm = 1" in r.stderr and "at least 29.7 mm from the pin" in r.stderr
+    assert "--pin-to-tip-mm = 1" in r.stderr and "at least 29.7 mm from the pin" in r.stderr
 
 
 def test_a_kobj_outside_the_designs_range_is_warned_and_not_read():

@@ -73,8 +73,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "from the first element's tip centre (default the design's "
                         f"[grasper_jaw], else -{DEFAULT_PIVOT_BEHIND_MM:g} 0: "
                         f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip)")
-    p.add_argument("--jaw-length-mm", type=number(1, 200, "mm"), default=None,
-                   help="the jaw from pin to end (mm; default the design's [grasper_jaw], "
+    p.add_argument("--pin-to-tip-mm", type=number(1, 200, "mm"), default=None,
+                   help="the jaw from its pin to its tip (mm; default the design's [grasper_jaw], "
                         f"else the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm)")
     p.add_argument("--opening-deg", type=number(0, 90, "degrees", lo_open=True),
                    default=None,
@@ -154,7 +154,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         stated = stated_grasper(plan) is not None
         unused = "grasper_jaw" in plan.raw and not stated
-        jaw = default_jaw(plan, args.pivot_mm, args.jaw_length_mm, args.opening_deg,
+        jaw = default_jaw(plan, args.pivot_mm, args.pin_to_tip_mm, args.opening_deg,
                           args.slab_thickness_mm)
         base = tissue_base_of(plan)
         try:
@@ -204,7 +204,7 @@ def run(args: argparse.Namespace) -> int:
                   f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows"
                   + (f" (the design's [grasper_jaw] is not used: the {plan.construction} "
                      "construction's envelope needs the CAD kernel)" if unused else ""),
-                  "jaw_length_mm": "--jaw-length-mm" if args.jaw_length_mm else
+                  "pin_to_tip_mm": "--pin-to-tip-mm" if args.pin_to_tip_mm else
                   "the design's [grasper_jaw]" if stated else
                   f"the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm",
                   "opening_angle_deg": "--opening-deg" if args.opening_deg else
@@ -293,7 +293,7 @@ def render(record: dict) -> str:
     """The grasp and the leads as text."""
     j = record["jaw"]
     lines = [f"Grasp of {record['design']} ({record['model']}): pin at "
-             f"({j['pivot_u_mm']:g}, {j['pivot_v_mm']:g}) mm, jaw {j['jaw_length_mm']:.4g} mm, "
+             f"({j['pivot_u_mm']:g}, {j['pivot_v_mm']:g}) mm, pin to tip {j['pin_to_tip_mm']:.4g} mm, "
              f"{record['profile']} {j['slab_thickness_mm']:g} mm, K_obj "
              f"{record['K_obj_N_per_mm']:.4g} N/mm, {record['coupling']} coupling"
              + (f" on a {record['tissue_base']} base" if record.get("tissue_base") else "")

@@ -532,7 +532,7 @@ class GraspResult:
         j = self.jaw
         return {"design": self.design,
                 "jaw": {"pivot_u_mm": j.pivot_u_mm, "pivot_v_mm": j.pivot_v_mm,
-                        "jaw_length_mm": j.jaw_length_mm,
+                        "pin_to_tip_mm": j.pin_to_tip_mm,
                         "opening_angle_deg": j.opening_angle_deg,
                         "slab_thickness_mm": j.slab_thickness_mm,
                         "axis_angle_deg": j.axis_angle_deg},
@@ -659,7 +659,7 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
 
 
 def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
-                jaw_length_mm: float | None = None, opening_deg: float | None = None,
+                pin_to_tip_mm: float | None = None, opening_deg: float | None = None,
                 slab_mm: float | None = None) -> JawGeometry:
     """The jaw of a design's grasp, each value not given taken from the grasper the design
     states (``[grasper_jaw]``, ``[tissue_slab]``: :func:`tactcad.design.grasper_in_use.stated_grasper`),
@@ -676,12 +676,12 @@ def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
     stated = stated_grasper(plan)
     if stated is not None:
         pivot = pivot_mm or (stated.pivot_u_mm, stated.pivot_v_mm)
-        length = jaw_length_mm or stated.jaw_length_mm
+        length = pin_to_tip_mm or stated.pin_to_tip_mm
         opening = opening_deg or stated.opening_angle_deg
         return JawGeometry(pivot[0], pivot[1], length, opening, slab_mm or stated.slab_thickness_mm)
     pivot = pivot_mm or (-DEFAULT_PIVOT_BEHIND_MM, 0.0)
     last = max(u for u, _ in insert_frame(plan).values())
-    length = jaw_length_mm or (last - pivot[0] + DEFAULT_JAW_BEYOND_MM)
+    length = pin_to_tip_mm or (last - pivot[0] + DEFAULT_JAW_BEYOND_MM)
     return JawGeometry(pivot[0], pivot[1], length, opening_deg or DEFAULT_OPENING_DEG,
                        slab_mm or DEFAULT_SLAB_MM)
 

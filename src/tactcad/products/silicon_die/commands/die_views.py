@@ -276,7 +276,8 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     warning = kobj_range_warning(k_obj, (lo, hi))
     record = {"design": str(design), "die": plan.name,
               "K_obj_range_N_per_mm": [lo, hi], "warnings": [warning] if warning else [],
-              "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": jaw.jaw_length_mm,
+              "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": mount.jaw_length_mm,
+                      "pin_to_tip_mm": jaw.pin_to_tip_mm,
                       "opening_angle_deg": jaw.opening_angle_deg,
                       "slab_thickness_mm": jaw.slab_thickness_mm},
               "K_obj_N_per_mm": k_obj, "coupling": args.coupling, "profile": args.profile,
@@ -319,7 +320,8 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
     """The die's grasp as text: the jaw and tissue, each unit's reading, each post's force."""
     jaw = record["jaw"]
     um = 1e3
-    lines = [f"die {plan.name} in its jaw: pin at {jaw['pin_x_mm']:g} mm from the heel, "
+    lines = [f"die {plan.name} in its jaw: jaw {jaw['jaw_length_mm']:g} mm, pin at "
+             f"{jaw['pin_x_mm']:g} mm from the heel, pin to tip {jaw['pin_to_tip_mm']:.4g} mm, "
              f"{jaw['opening_angle_deg']:g} degrees open, {record['profile']} of tissue "
              f"{jaw['slab_thickness_mm']:g} mm thick, K_obj {record['K_obj_N_per_mm']:.4g} N/mm "
              f"(tissue coupling: {record['coupling']})",

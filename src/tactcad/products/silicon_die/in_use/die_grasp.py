@@ -23,9 +23,10 @@ the jaw from its heel, y across it from its axis):
   punch model does not carry, and the units whose posts it reaches do not read
   (:func:`with_face_contact`).
 
-The jaw: the pin of the mount's jaw (the jaw's ``pin_inset_mm``), the jaw's length from the
-pin, its opening (the jaw's ``opening_angle_deg``) and the tissue's thickness (the grasp's
-default unless given). Units: mm, N, N/mm, degrees.
+The jaw: the pin of the mount's jaw (the jaw's ``pin_inset_mm``), the jaw from the pin to its
+tip (``pin_to_tip_mm``; the jaw's own ``jaw_length_mm`` runs from its heel), its opening
+(the jaw's ``opening_angle_deg``) and the tissue's thickness (the grasp's default unless
+given). Units: mm, N, N/mm, degrees.
 """
 
 from __future__ import annotations
@@ -82,7 +83,8 @@ def die_units(plan: DiePlan) -> list[tuple[int, int]]:
 def die_jaw(mount: DieMount, opening_deg: float,
             slab_mm: float | None = None) -> JawGeometry:
     """The jaw the die is mounted in as the grasp's: the pin at the mount's ``pin_x_mm`` on
-    the jaw's axis, the jaw from the pin to its end, ``opening_deg`` open, the tissue
+    the jaw's axis, the jaw from the pin to its tip (``pin_to_tip_mm``: the jaw's own length
+    less the pin's inset), ``opening_deg`` open, the tissue
     ``slab_mm`` thick (default :data:`~tactcad.in_use.grasp_experiment.DEFAULT_SLAB_MM`).
 
     Raises:
