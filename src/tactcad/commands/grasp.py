@@ -74,7 +74,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         f"[grasper_jaw], else -{DEFAULT_PIVOT_BEHIND_MM:g} 0: "
                         f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip)")
     p.add_argument("--pin-to-tip-mm", type=number(1, 200, "mm"), default=None,
-                   help="the jaw from its pin to its tip (mm; default the design's [grasper_jaw], "
+                   help="the jaw from its pin to its tip (mm; default the design's "
+                        "[grasper_jaw], "
                         f"else the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm)")
     p.add_argument("--opening-deg", type=number(0, 90, "degrees", lo_open=True),
                    default=None,
@@ -293,7 +294,8 @@ def render(record: dict) -> str:
     """The grasp and the leads as text."""
     j = record["jaw"]
     lines = [f"Grasp of {record['design']} ({record['model']}): pin at "
-             f"({j['pivot_u_mm']:g}, {j['pivot_v_mm']:g}) mm, pin to tip {j['pin_to_tip_mm']:.4g} mm, "
+             f"({j['pivot_u_mm']:g}, {j['pivot_v_mm']:g}) mm, pin to tip "
+             f"{j['pin_to_tip_mm']:.4g} mm, "
              f"{record['profile']} {j['slab_thickness_mm']:g} mm, K_obj "
              f"{record['K_obj_N_per_mm']:.4g} N/mm, {record['coupling']} coupling"
              + (f" on a {record['tissue_base']} base" if record.get("tissue_base") else "")

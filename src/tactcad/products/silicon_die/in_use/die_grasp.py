@@ -99,7 +99,8 @@ def die_grasp(plan: DiePlan, mount: DieMount, jaw: JawGeometry, k_obj_N_per_mm: 
               coupling: str = "layer", profile: str = DEFAULT_PROFILE) -> LayoutGrasp:
     """The die in its jaw closed on the tissue at ``angle_deg`` or to the grasp force
     ``force_N`` (one of them): every post's travel, deflection and forces against its own
-    beam's rated force (:meth:`DiePlan.rated_force_N`) and its breaking force, every column's R and K_obj read (eq. 3) against the true one.
+    beam's rated force (:meth:`DiePlan.rated_force_N`) and its breaking force, every
+    column's R and K_obj read (eq. 3) against the true one.
 
     Args:
         plan, mount: the die and its place in the jaw.
