@@ -448,7 +448,8 @@ def load_die(path: str | Path, set: Mapping[str, Any] | None = None) -> "DieProj
 class DieProject:
     """A silicon die's validated design and what tactcad computes for it: the same reports
     (the same numbers) ``tactcad stiffness``, ``strength``, ``readout``, ``modal``,
-    ``budget`` and ``verify`` print with ``--json`` on its file, and its export and check.
+    ``budget``, ``verify``, ``thermal``, ``crosstalk`` and ``grasp`` print with ``--json``
+    on its file, its :attr:`design_hash` (the export manifest's), and its export and check.
 
     Build with :func:`load`. Units: um for the die's dimensions, N/mm, N, MPa, Hz.
 
@@ -526,6 +527,65 @@ class DieProject:
     def verify(self) -> dict:
         """The verification matrix, as ``tactcad verify --json`` (``passed``, ``matrix``)."""
         return self._report("verify")
+
+    def thermal(self) -> dict:
+        """The die's thermal drift, as ``tactcad thermal --json``."""
+        return self._report("thermal")
+
+    def crosstalk(self) -> dict:
+        """Each beam's reading under a force on every post, as ``tactcad crosstalk
+        --json``."""
+        return self._report("crosstalk")
+
+    def grasp(self, force_N: float | None = None, angle_deg: float | None = None,
+              kobj: float | None = None, coupling: str = "layer",
+              profile: str | None = None, slab_thickness_mm: float | None = None,
+              opening_deg: float | None = None) -> dict:
+        """The die's jaw closed on tissue, as ``tactcad grasp --json`` on its file (mm, N,
+        N/mm, degrees); each option as the command's (None: its default).
+
+        Raises:
+            DesignError: a value out of range, or both a force and an angle (named by the
+                command's option).
+        """
+        from tactcad.in_use.grasp_experiment import DEFAULT_PROFILE
+
+        return self._report("grasp", force_N=force_N, angle_deg=angle_deg, kobj=kobj,
+                            coupling=coupling, profile=profile or DEFAULT_PROFILE,
+                            slab_thickness_mm=slab_thickness_mm, opening_deg=opening_deg)
+
+    @property
+    def design_hash(self) -> str:
+        """sha256 of the die's design file, as in its export's manifest (a die asked by
+        options has no file: the manifest's stand-in)."""
+        from tactcad.products.silicon_die.export.die_review import design_head
+
+        return design_head(self.name, self.planned.source)["design"]["sha256"]
+
+    def check(self, out: str | Path | None = None,
+              progress: Progress | None = None) -> "CheckReport":
+        """Run every check of ``tactcad check`` on the die's export, as the command does
+        (:func:`tactcad.commands.die.die_check`).
+
+        Args:
+            out: an export folder. It is checked as it is when it holds the export the
+                design writes now; otherwise the die is exported there first. ``None``: a
+                temporary folder, removed afterwards.
+            progress: told whether the export was reused or written first.
+
+        Returns:
+            :class:`CheckReport`: one group, ``die NAME``, with every result in order.
+
+        Raises:
+            DesignError: ``out`` holds another design's export or files no export wrote.
+        """
+        from tactcad.commands.die import die_check
+
+        found = die_check(self.source, self._args(out=None if out is None else str(out),
+                                                  junit=None, scene=None),
+                          progress or _quiet)
+        return CheckReport(((f"die {found.name}", found.checks),), found.export_refusal is None,
+                           found.export_refusal, None if out is None else str(out))
 
     def export(self, out: str | Path = "exports", cache: Any = None,
                progress: Progress | None = None) -> int:

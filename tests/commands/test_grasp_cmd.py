@@ -98,7 +98,7 @@ def test_a_non_paper_design_and_the_text_table():
                                              "--angle-deg"),
                                             (["--slab-thickness-mm", "-1"],
                                              "--slab-thickness-mm"),
-                                            (["--jaw-length-mm", "1"], "--jaw-length-mm")])
+                                            (["--pin-to-tip-mm", "1"], "--pin-to-tip-mm")])
 def test_bad_options_name_the_option_the_value_and_the_range(options, words):
     r = run_cli("grasp", "--design", TI, *options)
     assert r.returncode == 2
@@ -158,6 +158,24 @@ def test_a_default_grasp_heavier_than_the_closed_jaw_allows_is_the_jaw_closed_fl
 
 
 def test_a_jaw_too_short_is_refused_for_the_length_its_farthest_tip_needs():
-    r = run_cli("grasp", "--design", COMB, "--jaw-length-mm", "1")
+    r = run_cli("grasp", "--design", COMB, "--pin-to-tip-mm", "1")
     assert r.returncode == 2 and "--pivot-mm" not in r.stderr
-    assert "--jaw-length-mm = 1" in r.stderr and "at least 29.7 mm from the pin" in r.stderr
+    assert "--pin-to-tip-mm = 1" in r.stderr and "at least 29.7 mm from the pin" in r.stderr
+
+
+def test_a_kobj_outside_the_designs_range_is_warned_and_not_read():
+    """`--kobj` outside the design's K_obj range: a warning naming the option, the value and
+    the range, and no unit claims to read it."""
+    r = run_cli("grasp", "--design", COMB, "--kobj", "1000")
+    assert r.returncode == 0, r.stdout + r.stderr
+    lines = r.stdout.splitlines()
+    warning = next(line for line in lines if line.startswith("warning:"))
+    assert "--kobj 1000 N/mm" in warning and "K_obj range" in warning
+    d = json.loads(run_cli("grasp", "--design", COMB, "--kobj", "1000", "--json").stdout)
+    lo, hi = d["K_obj_range_N_per_mm"]
+    assert f"{lo:g} ... {hi:g} N/mm" in warning
+    assert not any(u["reads"] for u in d["as_laid_out"]["units"])
+    assert all("outside the design's range" in u["out_of_range"]
+               for u in d["as_laid_out"]["units"])
+    inside = json.loads(run_cli("grasp", "--design", COMB, "--json").stdout)
+    assert not inside["warnings"]

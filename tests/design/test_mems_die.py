@@ -1198,7 +1198,7 @@ def test_the_grasp_on_a_die_presses_each_post_by_the_jaws_wedge_and_reads_each_c
 
 def test_grasp_in_a_dies_folder_prints_the_grasp_in_its_jaw_and_refuses_the_pin(tmp_path):
     """`tactcad grasp` in a die's folder closes the die's own jaw (its pin, its opening) on
-    the default wedge at half the rating on every beam, writes nothing, and refuses the
+    the default wedge at half each beam's own rating, writes nothing, and refuses the
     options the die's mount decides (the pin, a ladder level) by name."""
     design = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
               / "grasper_jaw_5mm_mems.toml")
@@ -1206,11 +1206,15 @@ def test_grasp_in_a_dies_folder_prints_the_grasp_in_its_jaw_and_refuses_the_pin(
     r = run_cli("grasp", "--json", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     record = json.loads(r.stdout)
-    assert record["grasp"]["total_force_N"] == pytest.approx(0.5 * 0.009 * 10, rel=1e-6)
+    import tactcad
+
+    plan = tactcad.load(tmp_path / design.name).plan  # half each beam's own rating
+    rated = sum(plan.rated_force_N(b) for b in plan.beams)
+    assert record["grasp"]["total_force_N"] == pytest.approx(0.5 * rated, rel=1e-6)
     assert record["jaw"]["opening_angle_deg"] > 0 and record["profile"] == "wedge"
     assert len(record["grasp"]["units"]) == 5 and all(u["valid"] for u in record["grasp"]["units"])
     assert sorted(p.name for p in tmp_path.iterdir()) == [design.name]
-    for argv in (("--pivot-mm", "1", "2"), ("--model", "fem3d"), ("--jaw-length-mm", "20")):
+    for argv in (("--pivot-mm", "1", "2"), ("--model", "fem3d"), ("--pin-to-tip-mm", "20")):
         refused = run_cli("grasp", *argv, "--json", cwd=tmp_path)
         assert refused.returncode == 2
         assert json.loads(refused.stdout)["error"]["field"] == argv[0]

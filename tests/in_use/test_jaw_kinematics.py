@@ -9,7 +9,7 @@ from tactcad.in_use.jaw_kinematics import (JawGeometry, corrected_ratio, indenta
 
 
 def jaw(**kw):
-    base = dict(pivot_u_mm=-5.0, pivot_v_mm=0.0, jaw_length_mm=40.0, opening_angle_deg=30.0,
+    base = dict(pivot_u_mm=-5.0, pivot_v_mm=0.0, pin_to_tip_mm=40.0, opening_angle_deg=30.0,
                 slab_thickness_mm=3.0)
     return JawGeometry(**{**base, **kw})
 
@@ -31,7 +31,7 @@ def test_a_tip_behind_the_pin_is_refused_with_the_field():
     assert e.value.field == "jaw.pivot_u_mm"
 
 
-@pytest.mark.parametrize("field,value", [("jaw_length_mm", 0.0), ("opening_angle_deg", 0.0),
+@pytest.mark.parametrize("field,value", [("pin_to_tip_mm", 0.0), ("opening_angle_deg", 0.0),
                                          ("opening_angle_deg", 120.0), ("slab_thickness_mm", -1.0),
                                          ("pivot_u_mm", float("nan")), ("axis_angle_deg", 95.0)])
 def test_bad_jaw_fields_name_field_value_and_range(field, value):

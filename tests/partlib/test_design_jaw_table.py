@@ -147,12 +147,12 @@ def test_the_grasp_runs_on_the_jaw_the_design_states(comb_data):
     plain = plan_from_dict(comb_data | {"grasper_jaw": {}})
     base = stated_grasper(plain)
     jaw = default_jaw(plain)
-    assert (jaw.pivot_u_mm, jaw.jaw_length_mm) == (base.pivot_u_mm, base.jaw_length_mm)
+    assert (jaw.pivot_u_mm, jaw.pin_to_tip_mm) == (base.pivot_u_mm, base.pin_to_tip_mm)
     # the pin 0.5 mm nearer the jaw's heel is 0.5 mm further from the tips; a 2 mm longer
     # jaw moves the pocket (held at the distal wall) and the tips 2 mm away from the pin
     moved = stated_grasper(plan_from_dict(comb_data | {"grasper_jaw": {"pin_inset_mm": 2.0}}))
     assert moved.pivot_u_mm - base.pivot_u_mm == pytest.approx(-0.5)
-    assert moved.jaw_length_mm - base.jaw_length_mm == pytest.approx(0.5)
+    assert moved.pin_to_tip_mm - base.pin_to_tip_mm == pytest.approx(0.5)
     longer = stated_grasper(plan_from_dict(comb_data | {"grasper_jaw": {"length_mm": 36.0}}))
     assert longer.pivot_u_mm - base.pivot_u_mm == pytest.approx(-(36.0 - 34.0))
     wide = default_jaw(plan_from_dict(comb_data | {"grasper_jaw": {"opening_angle_deg": 45.0},

@@ -641,7 +641,7 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
         b_r, b_m = plan.beams[0], plan.beams[plan.columns]
         print(f"{shown_path(str(path))}: silicon die for the {room.label} "
               f"({plan.die_length_um:g} x "
-              f"{plan.die_width_um:g} x {plan.thickness_um:g} um)")
+              f"{plan.die_width_um:g} um, {plan.thickness_words()})")
         for line in report["left_out"]:
             print(f"  not searched: {line}")
         print(f"  SOI device layer {plan.stack.device_um:g} um, beams {b_r.width_um:g} um wide: "

@@ -13,7 +13,7 @@ import os
 import shutil
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 from tactcad.commands import add_design_arg, add_output_args, progress_from_args
 from tactcad.commands.finite_json import dumps
@@ -573,12 +573,22 @@ def export_die(design: Path, args: argparse.Namespace) -> int:
     return run(_die_args(design, args, Path(args.out)))
 
 
+@dataclass(frozen=True)
+class DieCheck:
+    """A die's check: the die's name, the folder checked (a temporary one, gone since,
+    without ``--out``), why its export was not reused (None: it was), every result in order
+    and their counts by status."""
+
+    name: str
+    out: str
+    export_refusal: str | None
+    checks: tuple
+    counts: dict
+
+
 def check_die(design: Path, args: argparse.Namespace) -> int:
-    """``tactcad check`` of a die's design file: its export in ``--out`` (exported there first,
-    said in one line, unless the export is the one the design writes now, as an array's
-    check decides it: :func:`_die_export_refusal`; a temporary folder without ``--out``) read
-    back: the masks against the process's rules and the plan, the mount's solids, the
-    drawing, and the record's plan against the design's.
+    """``tactcad check`` of a die's design file (:func:`die_check`), printed as text or,
+    with ``--json``, as one JSON object.
 
     Returns:
         0, or 1 when a check fails.
@@ -586,10 +596,48 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
     Raises:
         DesignError: ``--scene`` given, or ``--out`` holding another design's export.
     """
+    from tactcad.checks.check_result import counts_text
+
+    found = die_check(design, args, progress_from_args(args))
+    checks, counts, out = found.checks, found.counts, found.out
+    if args.json:
+        print(dumps({"design": str(design), "out": out, "junit": getattr(args, "junit", None),
+                     "reused_export": found.export_refusal is None,
+                     "export_refusal": found.export_refusal,
+                     "checks": [{"check": c.check, "subject": c.subject,
+                                 "status": c.status, "detail": c.detail} for c in checks],
+                     "counts": counts}, indent=1))
+    else:
+        shown = [c for c in checks if not (args.failures_only and c.status == "pass")]
+        print("\n".join([f"checking the die {found.name} in {out}",
+                         *[c.line() for c in shown], counts_text(counts)]))
+    return 1 if counts["failed"] else 0
+
+
+def die_check(design: Path, args: argparse.Namespace,
+              report: Callable[[str], None]) -> DieCheck:
+    """A die's export in ``args.out`` (exported there first, said in one line to ``report``,
+    unless the export is the one the design writes now, as an array's check decides it:
+    :func:`_die_export_refusal`; a temporary folder without ``--out``) read back: the
+    masks against the process's rules and the plan, the mount's solids, the drawing, and the
+    record's plan against the design's; the results written to the export's review page and
+    to ``args.junit`` where given.
+
+    Args:
+        design: the die's design file.
+        args: the check's options (``out``, ``junit``, ``overrides``, ``scene``).
+        report: told the export's reuse or refusal.
+
+    Returns:
+        :class:`DieCheck`.
+
+    Raises:
+        DesignError: ``--scene`` given, or ``--out`` holding another design's export.
+    """
     import json as json_module
     import tempfile
 
-    from tactcad.checks.check_result import CheckResult, counts_text, status_counts
+    from tactcad.checks.check_result import CheckResult, status_counts
     from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.products.silicon_die.checks.gds_drc import gds_checks
     from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
@@ -601,7 +649,6 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
         raise DesignError("--scene", args.scene, "left out for a die",
                           f"{design.name} is a silicon die's design: it has no scenes to choose")
     junit = getattr(args, "junit", None)  # its path refused before, by check's own rule
-    report = progress_from_args(args)
     planned = plan_of(die_asked(_die_args(design, args, Path("."))))
     plan, name = planned.plan, planned.plan.name
     with tempfile.TemporaryDirectory(prefix="tactcad-die-check-") as temp:
@@ -642,17 +689,7 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
             from tactcad.checks.junit import write_junit
 
             write_junit(junit, [(name, checks)], [name])
-        if args.json:
-            print(dumps({"design": str(design), "out": str(out), "junit": junit,
-                         "reused_export": refusal is None, "export_refusal": refusal,
-                         "checks": [{"check": c.check, "subject": c.subject,
-                                     "status": c.status, "detail": c.detail} for c in checks],
-                         "counts": counts}, indent=1))
-        else:
-            shown = [c for c in checks if not (args.failures_only and c.status == "pass")]
-            print("\n".join([f"checking the die {name} in {out}", *[c.line() for c in shown],
-                             counts_text(counts)]))
-    return 1 if counts["failed"] else 0
+        return DieCheck(name, str(out), refusal, tuple(checks), counts)
 
 
 def _die_export_refusal(out: Path, planned: PlannedDie, record: Path) -> str | None:

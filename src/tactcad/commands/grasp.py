@@ -73,8 +73,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "from the first element's tip centre (default the design's "
                         f"[grasper_jaw], else -{DEFAULT_PIVOT_BEHIND_MM:g} 0: "
                         f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip)")
-    p.add_argument("--jaw-length-mm", type=number(1, 200, "mm"), default=None,
-                   help="the jaw from pin to end (mm; default the design's [grasper_jaw], "
+    p.add_argument("--pin-to-tip-mm", type=number(1, 200, "mm"), default=None,
+                   help="the jaw from its pin to its tip (mm; default the design's "
+                        "[grasper_jaw], "
                         f"else the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm)")
     p.add_argument("--opening-deg", type=number(0, 90, "degrees", lo_open=True),
                    default=None,
@@ -126,7 +127,8 @@ def design_plan_from_args(args: argparse.Namespace):
 def run(args: argparse.Namespace) -> int:
     from tactcad.design.grasper_in_use import stated_grasper
     from tactcad.errors import DesignError
-    from tactcad.in_use.grasp_experiment import default_jaw, grasp, tissue_base_of
+    from tactcad.in_use.grasp_experiment import (default_jaw, grasp, kobj_range_warning,
+                                                 result_with_kobj_range, tissue_base_of)
     from tactcad.in_use.shaft_leads import leads_check
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.readout_chain import readout_chain, row_units
@@ -153,7 +155,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         stated = stated_grasper(plan) is not None
         unused = "grasper_jaw" in plan.raw and not stated
-        jaw = default_jaw(plan, args.pivot_mm, args.jaw_length_mm, args.opening_deg,
+        jaw = default_jaw(plan, args.pivot_mm, args.pin_to_tip_mm, args.opening_deg,
                           args.slab_thickness_mm)
         base = tissue_base_of(plan)
         try:
@@ -186,7 +188,10 @@ def run(args: argparse.Namespace) -> int:
                             readout_chain(plan).lead_wires)
     except DesignError as exc:
         raise grasp_option_error(exc, args) from None
+    result = result_with_kobj_range(result, (lo, hi))
+    warning = kobj_range_warning(k_obj, (lo, hi))
     record = {**result.as_json(), "model": args.model, "leads": leads.as_json(),
+              "K_obj_range_N_per_mm": [lo, hi], "warnings": [warning] if warning else [],
               "reasons": {
                   "rated_force_N": req.reasons["full_scale_force_N"],
                   "overload_limit_N": "each element's yield with the design's safety factor "
@@ -200,7 +205,7 @@ def run(args: argparse.Namespace) -> int:
                   f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows"
                   + (f" (the design's [grasper_jaw] is not used: the {plan.construction} "
                      "construction's envelope needs the CAD kernel)" if unused else ""),
-                  "jaw_length_mm": "--jaw-length-mm" if args.jaw_length_mm else
+                  "pin_to_tip_mm": "--pin-to-tip-mm" if args.pin_to_tip_mm else
                   "the design's [grasper_jaw]" if stated else
                   f"the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm",
                   "opening_angle_deg": "--opening-deg" if args.opening_deg else
@@ -274,20 +279,28 @@ def unit_table(layout: dict) -> list[str]:
             f"{_f(u['R_true'])} | {_f(u['R_read'])} | "
             f"{_f(u['K_obj_read_N_per_mm'])} | {_pct(u['error_rel'])} | "
             f"{_f(u['K_obj_corrected_N_per_mm'])} | {_pct(u['error_corrected_rel'])} | "
-            f"{u['why'] or ('equal radius' if abs(u['radius_ratio'] - 1) <= 0.02 else 'radii differ')} |")
+            f"{unit_note(u)} |")
     return lines
+
+
+def unit_note(unit: dict) -> str:
+    """A unit's note: why it does not read (its tips, or a true K_obj outside the design's
+    range), else whether its radii are equal (within 2 %)."""
+    why = "; ".join(filter(None, [unit["why"], unit.get("out_of_range")]))
+    return why or ("equal radius" if abs(unit["radius_ratio"] - 1) <= 0.02 else "radii differ")
 
 
 def render(record: dict) -> str:
     """The grasp and the leads as text."""
     j = record["jaw"]
     lines = [f"Grasp of {record['design']} ({record['model']}): pin at "
-             f"({j['pivot_u_mm']:g}, {j['pivot_v_mm']:g}) mm, jaw {j['jaw_length_mm']:.4g} mm, "
+             f"({j['pivot_u_mm']:g}, {j['pivot_v_mm']:g}) mm, pin to tip "
+             f"{j['pin_to_tip_mm']:.4g} mm, "
              f"{record['profile']} {j['slab_thickness_mm']:g} mm, K_obj "
              f"{record['K_obj_N_per_mm']:.4g} N/mm, {record['coupling']} coupling"
              + (f" on a {record['tissue_base']} base" if record.get("tissue_base") else "")
              + ", rated "
-             f"{record['rated_force_N']:g} N per element"]
+             f"{record['rated_force_N']:g} N per element", *record.get("warnings", [])]
     for key in ("as_laid_out", "paired", "along_rows"):
         lay = record[key]
         if lay is None:

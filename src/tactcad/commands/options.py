@@ -231,7 +231,7 @@ def options_of(parser: argparse.ArgumentParser,
 #: The grasp's fields and the options that set them (an error names the option).
 GRASP_OPTION_OF = {"force_N": "--force-N", "angle_deg": "--angle-deg",
                    "jaw.pivot_u_mm": "--pivot-mm", "jaw.pivot_v_mm": "--pivot-mm",
-                   "jaw.jaw_length_mm": "--jaw-length-mm",
+                   "jaw.pin_to_tip_mm": "--pin-to-tip-mm",
                    "jaw.opening_angle_deg": "--opening-deg",
                    "jaw.slab_thickness_mm": "--slab-thickness-mm", "k_obj_N_per_mm": "--kobj",
                    "channel_diameter_mm": "--lead-channel-mm"}

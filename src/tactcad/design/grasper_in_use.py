@@ -20,7 +20,8 @@ class StatedGrasper:
 
     Attributes:
         pivot_u_mm, pivot_v_mm: the jaw's pin (along the rows, across them).
-        jaw_length_mm: from the pin to the jaw's end.
+        pin_to_tip_mm: from the pin to the jaw's tip (its end; the jaw's own
+            ``length_mm`` less the pin's ``pin_x_mm``).
         opening_angle_deg: the jaw's full opening.
         slab_thickness_mm: the tissue slab's thickness.
         tissue_base: how the opposing jaw holds the tissue (``[tissue_slab] base``).
@@ -28,7 +29,7 @@ class StatedGrasper:
 
     pivot_u_mm: float
     pivot_v_mm: float
-    jaw_length_mm: float
+    pin_to_tip_mm: float
     opening_angle_deg: float
     slab_thickness_mm: float
     tissue_base: str = "bonded"
@@ -36,7 +37,7 @@ class StatedGrasper:
     def words(self) -> str:
         """The jaw and tissue in words, for a record that uses them."""
         return (f"the design's [grasper_jaw]: pin {-self.pivot_u_mm:.4g} mm behind the first "
-                f"tip along the rows, jaw {self.jaw_length_mm:.4g} mm from its pin, "
+                f"tip along the rows, pin to tip {self.pin_to_tip_mm:.4g} mm, "
                 f"{self.opening_angle_deg:g} degrees open; a {self.slab_thickness_mm:g} mm slab "
                 f"on a {self.tissue_base} base ([tissue_slab])")
 
@@ -62,6 +63,6 @@ def stated_grasper(plan: Any) -> StatedGrasper | None:
     # distance from the pocket's centre along the jaw's x, which is the array's z
     pivot_u, pivot_v = plan.in_insert_frame(cx, cz + jaw.pin_x_mm - jaw.pocket_centre_x_mm)
     return StatedGrasper(pivot_u_mm=pivot_u, pivot_v_mm=pivot_v,
-                         jaw_length_mm=jaw.length_mm - jaw.pin_x_mm,
+                         pin_to_tip_mm=jaw.length_mm - jaw.pin_x_mm,
                          opening_angle_deg=jaw.opening_angle_deg,
                          slab_thickness_mm=slab.thickness_mm, tissue_base=slab.base)

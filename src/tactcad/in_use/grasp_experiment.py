@@ -228,7 +228,8 @@ def solve_tips(travel_mm, stiffness_N_per_mm, engage_mm, compliance) -> TipSolut
 @dataclass(frozen=True)
 class Tips:
     """The tips of one layout: label, radius, face, stiffness, stop and overload limit
-    (N; inf where none is given) per tip."""
+    (N; inf where none is given) per tip, and each tip's own rated force (N; None: every
+    tip is rated at the layout's one rated force)."""
 
     labels: tuple[int, ...]
     radius_mm: np.ndarray
@@ -236,6 +237,7 @@ class Tips:
     stiffness_N_per_mm: np.ndarray
     engage_mm: np.ndarray
     overload_N: np.ndarray
+    rated_N: np.ndarray | None = None
 
 
 def tips_as_laid_out(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float],
@@ -479,14 +481,16 @@ LINEAR_TISSUE_STRAIN = 0.2
 def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float,
                 thickness_mm=None) -> list[dict]:
     """Each tip's travel, deflection, forces (element, stop, on the slab), its verdicts on
-    the rating (a reading past full scale) and on the overload limit (damage; None where
-    no limit is given), and the tissue's compression under it (travel less deflection over
-    the tissue's thickness there, ``thickness_mm``; None without it) with whether it passes
+    its rating (a reading past full scale: the tip's own ``tips.rated_N`` where given, else
+    ``rated_force_N``) and on the overload limit (damage; None where no limit is given),
+    and the tissue's compression under it (travel less deflection over the tissue's
+    thickness there, ``thickness_mm``; None without it) with whether it passes
     :data:`LINEAR_TISSUE_STRAIN`."""
     out = []
     for i, n in enumerate(tips.labels):
         f = float(sol.element_force_N[i])
         limit = float(tips.overload_N[i])
+        rated = rated_force_N if tips.rated_N is None else float(tips.rated_N[i])
         out.append({"site": n, "radius_mm": float(tips.radius_mm[i]),
                     "K_N_per_mm": float(tips.stiffness_N_per_mm[i]),
                     "travel_mm": float(sol.travel_mm[i]),
@@ -496,7 +500,7 @@ def tip_records(tips: Tips, sol: TipSolution, rated_force_N: float,
                     "stop_engage_mm": float(tips.engage_mm[i]) if math.isfinite(tips.engage_mm[i])
                     else None,
                     "on_stop": bool(sol.engaged[i]), "in_contact": bool(sol.in_contact[i]),
-                    "over_rating": f > rated_force_N * (1 + 1e-9),
+                    "rated_force_N": rated, "over_rating": f > rated * (1 + 1e-9),
                     "overload_limit_N": limit if math.isfinite(limit) else None,
                     "over_overload_limit": f > limit * (1 + 1e-9)})
         if thickness_mm is not None:
@@ -528,7 +532,7 @@ class GraspResult:
         j = self.jaw
         return {"design": self.design,
                 "jaw": {"pivot_u_mm": j.pivot_u_mm, "pivot_v_mm": j.pivot_v_mm,
-                        "jaw_length_mm": j.jaw_length_mm,
+                        "pin_to_tip_mm": j.pin_to_tip_mm,
                         "opening_angle_deg": j.opening_angle_deg,
                         "slab_thickness_mm": j.slab_thickness_mm,
                         "axis_angle_deg": j.axis_angle_deg},
@@ -627,7 +631,9 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
             tissue_base)
     notes = {"profile": f"{profile}: " + ("uniform thickness h" if profile == "slab" else
                                           wedge_words(jaw, laid.radius_mm)),
-             "tissue": f"{coupling} coupling, ν {TISSUE_POISSON_RATIO:g}, one modulus set so "
+             "tissue": "none coupling: each tip on its own spring K_obj (eq. 1), no tissue "
+                       "between the tips" if coupling == "none" else
+                       f"{coupling} coupling, ν {TISSUE_POISSON_RATIO:g}, one modulus set so "
                        f"one tip face alone on the {jaw.slab_thickness_mm:g} mm layer sees "
                        "K_obj" + ("; under the wedge each tip's true K_obj is its face alone "
                                   "on its own thickness, and each unit is judged against "
@@ -653,7 +659,7 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
 
 
 def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
-                jaw_length_mm: float | None = None, opening_deg: float | None = None,
+                pin_to_tip_mm: float | None = None, opening_deg: float | None = None,
                 slab_mm: float | None = None) -> JawGeometry:
     """The jaw of a design's grasp, each value not given taken from the grasper the design
     states (``[grasper_jaw]``, ``[tissue_slab]``: :func:`tactcad.design.grasper_in_use.stated_grasper`),
@@ -670,12 +676,12 @@ def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
     stated = stated_grasper(plan)
     if stated is not None:
         pivot = pivot_mm or (stated.pivot_u_mm, stated.pivot_v_mm)
-        length = jaw_length_mm or stated.jaw_length_mm
+        length = pin_to_tip_mm or stated.pin_to_tip_mm
         opening = opening_deg or stated.opening_angle_deg
         return JawGeometry(pivot[0], pivot[1], length, opening, slab_mm or stated.slab_thickness_mm)
     pivot = pivot_mm or (-DEFAULT_PIVOT_BEHIND_MM, 0.0)
     last = max(u for u, _ in insert_frame(plan).values())
-    length = jaw_length_mm or (last - pivot[0] + DEFAULT_JAW_BEYOND_MM)
+    length = pin_to_tip_mm or (last - pivot[0] + DEFAULT_JAW_BEYOND_MM)
     return JawGeometry(pivot[0], pivot[1], length, opening_deg or DEFAULT_OPENING_DEG,
                        slab_mm or DEFAULT_SLAB_MM)
 
@@ -739,6 +745,62 @@ def design_grasp_at_force(plan: Plan, force_N: float, rated_force_N: float,
     return grasp(plan, default_jaw(plan), k, units, math.sqrt(k_obj_range[0] * k_obj_range[1]),
                  rated_force_N, force_N=force_N, profile=OVERLOAD_PROFILE,
                  tissue_base=tissue_base_of(plan))
+
+
+def in_kobj_range(k_obj_N_per_mm: float, kobj_range: tuple[float, float]) -> bool:
+    """Whether a K_obj (N/mm) lies in the design's required K_obj range (N/mm, its ends
+    included to 1e-9 relative): the range the design is made to read."""
+    lo, hi = kobj_range
+    return lo * (1 - 1e-9) <= k_obj_N_per_mm <= hi * (1 + 1e-9)
+
+
+def kobj_range_warning(k_obj_N_per_mm: float, kobj_range: tuple[float, float],
+                       option: str = "--kobj") -> str | None:
+    """The warning a grasp prints where the tissue's K_obj is outside the design's range.
+
+    Args:
+        k_obj_N_per_mm: the tissue's K_obj (N/mm).
+        kobj_range: the design's required K_obj range (N/mm).
+        option: the option that set it.
+
+    Returns:
+        One line naming the option, the value and the range; None inside the range.
+    """
+    if in_kobj_range(k_obj_N_per_mm, kobj_range):
+        return None
+    lo, hi = kobj_range
+    return (f"warning: {option} {k_obj_N_per_mm:g} N/mm is outside the design's K_obj range "
+            f"{lo:g} ... {hi:g} N/mm: the design is not made to read it; a unit whose true "
+            "K_obj is outside that range does not read (its R and K_obj read are shown, not "
+            "rated)")
+
+
+def with_kobj_range(layout: LayoutGrasp, kobj_range: tuple[float, float]) -> LayoutGrasp:
+    """``layout`` with each unit's ``in_kobj_range`` (its true K_obj in the design's range,
+    :func:`in_kobj_range`) and ``reads``: its tips give a reading (``valid``) of a K_obj
+    the design is made to read; ``out_of_range`` says why not where it is outside."""
+    from dataclasses import replace
+
+    lo, hi = kobj_range
+    units = []
+    for u in layout.units:
+        inside = in_kobj_range(u["K_obj_true_N_per_mm"], kobj_range)
+        units.append({**u, "in_kobj_range": inside, "reads": bool(u["valid"] and inside),
+                      "out_of_range": "" if inside else
+                      f"true K_obj {u['K_obj_true_N_per_mm']:.4g} N/mm outside the design's "
+                      f"range {lo:g} ... {hi:g} N/mm"})
+    return replace(layout, units=units)
+
+
+def result_with_kobj_range(result: GraspResult,
+                           kobj_range: tuple[float, float]) -> GraspResult:
+    """``result`` with :func:`with_kobj_range` on each of its layouts."""
+    from dataclasses import replace
+
+    return replace(result, as_laid_out=with_kobj_range(result.as_laid_out, kobj_range),
+                   paired=with_kobj_range(result.paired, kobj_range),
+                   along_rows=None if result.along_rows is None else
+                   with_kobj_range(result.along_rows, kobj_range))
 
 
 def grasp_summary(result: GraspResult) -> dict:

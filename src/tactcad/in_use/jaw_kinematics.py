@@ -34,7 +34,7 @@ from tactcad.errors import DesignError
 
 #: Ranges of the jaw's fields (mm, degrees).
 PIVOT_RANGE_MM = (-500.0, 500.0)
-JAW_LENGTH_RANGE_MM = (1.0, 200.0)
+PIN_TO_TIP_RANGE_MM = (1.0, 200.0)
 OPENING_ANGLE_RANGE_DEG = (0.0, 90.0)
 SLAB_THICKNESS_RANGE_MM = (0.0, 100.0)
 AXIS_ANGLE_RANGE_DEG = (-90.0, 90.0)
@@ -54,7 +54,7 @@ class JawGeometry:
     Attributes:
         pivot_u_mm, pivot_v_mm: the pin's position in the insert's frame (mm), each
             −500 ... 500.
-        jaw_length_mm: from the pin to the jaw's end (mm), 1 ... 200; every tip lies on it.
+        pin_to_tip_mm: from the pin to the jaw's end (mm), 1 ... 200; every tip lies on it.
         opening_angle_deg: the jaw's full opening (degrees), > 0 ... 90.
         slab_thickness_mm: the tissue slab's thickness (mm), > 0 ... 100.
         axis_angle_deg: the jaw's axis against the rows (degrees), −90 ... 90; 0: along them.
@@ -65,7 +65,7 @@ class JawGeometry:
 
     pivot_u_mm: float
     pivot_v_mm: float
-    jaw_length_mm: float
+    pin_to_tip_mm: float
     opening_angle_deg: float
     slab_thickness_mm: float
     axis_angle_deg: float = 0.0
@@ -73,7 +73,7 @@ class JawGeometry:
     def __post_init__(self):
         _within("jaw.pivot_u_mm", self.pivot_u_mm, *PIVOT_RANGE_MM, "mm")
         _within("jaw.pivot_v_mm", self.pivot_v_mm, *PIVOT_RANGE_MM, "mm")
-        _within("jaw.jaw_length_mm", self.jaw_length_mm, *JAW_LENGTH_RANGE_MM, "mm")
+        _within("jaw.pin_to_tip_mm", self.pin_to_tip_mm, *PIN_TO_TIP_RANGE_MM, "mm")
         _within("jaw.opening_angle_deg", self.opening_angle_deg, *OPENING_ANGLE_RANGE_DEG,
                 "degrees", lo_open=True)
         _within("jaw.slab_thickness_mm", self.slab_thickness_mm, *SLAB_THICKNESS_RANGE_MM, "mm",
@@ -112,8 +112,8 @@ def tip_radius_mm(jaw: JawGeometry, u_mm: float, v_mm: float) -> float:
     if r <= 0.0:
         raise DesignError("jaw.pivot_u_mm", round(jaw.pivot_u_mm, 9),
                           "a pin behind every tip (0 < r)", where)
-    if r > jaw.jaw_length_mm:
-        raise DesignError("jaw.jaw_length_mm", round(jaw.jaw_length_mm, 9),
+    if r > jaw.pin_to_tip_mm:
+        raise DesignError("jaw.pin_to_tip_mm", round(jaw.pin_to_tip_mm, 9),
                           f"a jaw that reaches every tip, at least {r:.4g} mm from the pin",
                           where)
     return r
@@ -137,7 +137,7 @@ def indentation_mm(slab_thickness_mm: float, radius_mm: float, angle_deg: float)
         DesignError: an argument outside its range.
     """
     _within("slab_thickness_mm", slab_thickness_mm, *SLAB_THICKNESS_RANGE_MM, "mm", lo_open=True)
-    _within("radius_mm", radius_mm, 0.0, JAW_LENGTH_RANGE_MM[1], "mm", lo_open=True)
+    _within("radius_mm", radius_mm, 0.0, PIN_TO_TIP_RANGE_MM[1], "mm", lo_open=True)
     _within("angle_deg", angle_deg, *OPENING_ANGLE_RANGE_DEG, "degrees")
     return max(0.0, slab_thickness_mm - radius_mm * math.sin(math.radians(angle_deg)))
 

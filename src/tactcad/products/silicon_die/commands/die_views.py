@@ -238,8 +238,10 @@ def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.products.silicon_die.design.die_mount import die_mount
-    from tactcad.products.silicon_die.in_use.die_grasp import die_grasp, die_jaw
+    from tactcad.products.silicon_die.in_use.die_grasp import (default_grasp_force_N, die_grasp,
+                                                                die_jaw)
     from tactcad.commands.options import grasp_option_error
+    from tactcad.in_use.grasp_experiment import kobj_range_warning, with_kobj_range
 
     planned = _planned(design, args)
     plan = planned.plan
@@ -248,11 +250,12 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     k_obj = args.kobj if args.kobj is not None else math.sqrt(lo * hi)
     opening = args.opening_deg if args.opening_deg is not None else mount.opening_angle_deg
     asked = args.angle_deg is not None or args.force_N is not None
-    force = args.force_N if asked else round(0.5 * plan.full_scale_force_N * len(plan.beams), 12)
+    force = args.force_N if asked else default_grasp_force_N(plan)
+    rated = role_ratings_N(plan)
     force_why = ("--force-N" if args.force_N is not None else "--angle-deg"
                  if args.angle_deg is not None else
-                 f"half the rated {plan.full_scale_force_N:g} N on each of {len(plan.beams)} "
-                 "beams")
+                 f"half each beam's own rated force ({rated_words(rated)}) summed over its "
+                 f"{len(plan.beams)} beams")
     try:
         jaw = die_jaw(mount, opening, args.slab_thickness_mm)
         shut = dict(coupling=args.coupling, profile=args.profile)
@@ -270,37 +273,62 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
                          f"{result.angle_deg:g} degrees takes {result.total_force_N:.4g} N")
     except DesignError as exc:
         raise grasp_option_error(exc, args) from None
+    result = with_kobj_range(result, (lo, hi))
+    warning = kobj_range_warning(k_obj, (lo, hi))
     record = {"design": str(design), "die": plan.name,
-              "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": jaw.jaw_length_mm,
+              "K_obj_range_N_per_mm": [lo, hi], "warnings": [warning] if warning else [],
+              "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": mount.jaw_length_mm,
+                      "pin_to_tip_mm": jaw.pin_to_tip_mm,
                       "opening_angle_deg": jaw.opening_angle_deg,
                       "slab_thickness_mm": jaw.slab_thickness_mm},
               "K_obj_N_per_mm": k_obj, "coupling": args.coupling, "profile": args.profile,
-              "rated_force_N": plan.full_scale_force_N, "post_proud_mm": mount.post_proud_mm,
+              "full_scale_force_N": plan.full_scale_force_N, "rated_force_N_by_role": rated,
+              "post_proud_mm": mount.post_proud_mm,
               "grasp": result.as_json(),
               "reasons": {"force_N": force_why,
                           "K_obj": "--kobj" if args.kobj is not None else
                           f"the geometric mean of the die's K_obj range {lo:g} ... {hi:g} N/mm",
                           "opening": "--opening-deg" if args.opening_deg is not None else
                           "the jaw's opening_angle_deg",
+                          "rated_force_N": "each beam's own: the most it carries in use "
+                                           "(the full-scale force on a reference beam, K_m "
+                                           "x its rated travel on a measuring beam), as "
+                                           "strength and verify rate it",
                           "overload_limit_N": "each beam's root at the mean strength of "
                                               "etched silicon bars (no Weibull modulus)",
-                          "error": "eq. 3 on the read R: the tissue's coupling between "
-                                   "neighbouring posts stays in it (the die's budget: the "
-                                   "coupled inversion removes it); a unit's two posts share "
-                                   "one radius, so the travel correction changes nothing"}}
+                          "error": error_words(args.coupling)}}
     return record, grasp_lines(plan, record, result)
+
+
+def error_words(coupling: str) -> str:
+    """What the die's grasp error holds, by the tissue's ``coupling``: uncoupled (``none``,
+    eq. 1) no coupling between the posts is in the read R to name."""
+    caveat = ("the tissue is not coupled between the posts (--coupling none, eq. 1)"
+              if coupling == "none" else
+              "the tissue's coupling between neighbouring posts stays in it (the die's "
+              "budget: the coupled inversion removes it)")
+    return (f"eq. 3 on the read R: {caveat}; a unit's two posts share one radius, so the "
+            "travel correction changes nothing")
+
+
+def reads_why(unit: dict) -> str:
+    """Why a unit does not read: its posts (``why``) and a true K_obj outside the die's
+    range (``out_of_range``)."""
+    return "; ".join(filter(None, [unit["why"], unit["out_of_range"]]))
 
 
 def grasp_lines(plan, record: dict, result) -> list[str]:
     """The die's grasp as text: the jaw and tissue, each unit's reading, each post's force."""
     jaw = record["jaw"]
     um = 1e3
-    lines = [f"die {plan.name} in its jaw: pin at {jaw['pin_x_mm']:g} mm from the heel, "
+    lines = [f"die {plan.name} in its jaw: jaw {jaw['jaw_length_mm']:g} mm, pin at "
+             f"{jaw['pin_x_mm']:g} mm from the heel, pin to tip {jaw['pin_to_tip_mm']:.4g} mm, "
              f"{jaw['opening_angle_deg']:g} degrees open, {record['profile']} of tissue "
              f"{jaw['slab_thickness_mm']:g} mm thick, K_obj {record['K_obj_N_per_mm']:.4g} N/mm "
              f"(tissue coupling: {record['coupling']})",
              f"closed to {result.angle_deg:.4g} degrees: grasp force "
              f"{result.total_force_N:.4g} N ({record['reasons']['force_N']})",
+             *record["warnings"],
              "| unit | radius mm | travel r/m um | deflection r/m um | R read | K_obj read | "
              "error | corrected | error | reads |", "| --- | --- | --- | --- | --- | --- | --- "
              "| --- | --- | --- |"]
@@ -318,7 +346,7 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
                      f"{um * u['deflection_measuring_mm']:.3g} | {num(u['R_read'])} | "
                      f"{num(u['K_obj_read_N_per_mm'])} | {pct(u['error_rel'])} | "
                      f"{num(u['K_obj_corrected_N_per_mm'])} | {pct(u['error_corrected_rel'])} | "
-                     f"{'yes' if u['valid'] else u['why']} |")
+                     f"{'yes' if u['reads'] else reads_why(u)} |")
     over = [t for t in result.tips if t["over_rating"]]
     broken = [t for t in result.tips if t["over_overload_limit"]]
     stopped = [t for t in result.tips if t["on_stop"]]
@@ -326,7 +354,8 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
     crushed = [t for t in result.tips if t.get("past_linear_tissue")]
     top = max(result.tips, key=lambda t: t["element_force_N"])
     lines += [f"largest beam force {1e3 * top['element_force_N']:.3g} mN (beam {top['site']}, "
-              f"rated {1e3 * plan.full_scale_force_N:g} mN); over the rating: "
+              f"rated {1e3 * top['rated_force_N']:.3g} mN); over its own beam's rating "
+              f"({rated_words(record['rated_force_N_by_role'])}): "
               f"{', '.join(str(t['site']) for t in over) or 'none'}; on their stops: "
               f"{', '.join(str(t['site']) for t in stopped) or 'none'}; past the breaking "
               f"force: {', '.join(str(t['site']) for t in broken) or 'none'}; the face in "
@@ -340,6 +369,17 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
                      f"posts {', '.join(str(t['site']) for t in crushed)}: past the linear "
                      "tissue model")
     return lines
+
+
+def role_ratings_N(plan) -> dict[str, float]:
+    """Each beam role's rated force (N), as :meth:`DiePlan.rated_force_N` gives it (every
+    beam of a role carries one rating)."""
+    return {b.role: plan.rated_force_N(b) for b in plan.beams}
+
+
+def rated_words(rated: dict[str, float]) -> str:
+    """The roles' ratings in words (mN), e.g. ``9 mN reference, 4.95 mN measuring``."""
+    return ", ".join(f"{1e3 * f:.3g} mN {role}" for role, f in rated.items())
 
 
 def _strength(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:

@@ -393,6 +393,12 @@ class DiePlan:
         """The die's thickness with its posts (um)."""
         return self.stack.total_um + self.post_height_um
 
+    def thickness_words(self) -> str:
+        """The die's two thicknesses in words, each named: with its posts
+        (:attr:`thickness_um`) and the bonded stack without them (um)."""
+        return (f"{self.thickness_um:g} um with its {self.post_height_um:g} um posts, "
+                f"{self.stack.total_um:g} um stack without them")
+
     def rated_force_N(self, beam: Beam) -> float:
         """The most ``beam`` carries in use (N): the rated force on a reference beam; on a
         measuring beam K_m x its rated travel (:meth:`rated_tip_um`), the most it carries

@@ -94,9 +94,10 @@ def mount_bom_rows(plan: DiePlan, mount: DieMount, jaw_label: str) -> list[dict[
     return [
         {"item": plan.name, "qty": "1", "kind": "fabricated (SOI MEMS process)",
          "description": f"silicon die {m.die_length_mm:g} x {m.die_width_mm:g} x "
-                        f"{m.die_stack_mm:.4g} mm, 2 x {plan.columns} beams, posts "
-                        f"{plan.post_height_um:g} um", "source": f"{plan.name}.gds, "
-                        f"{plan.name}_traveller.md"},
+                        f"{m.die_stack_mm:.4g} mm without its posts "
+                        f"({1e-3 * plan.thickness_um:.4g} mm with its "
+                        f"{plan.post_height_um:g} um posts), 2 x {plan.columns} beams",
+         "source": f"{plan.name}.gds, {plan.name}_traveller.md"},
         {"item": "die_carrier", "qty": "1", "kind": "bought, cut to size",
          "description": f"alumina {m.carrier_length_mm:.4g} x {m.carrier_width_mm:g} x "
                         f"{m.carrier_mm:.4g} mm, thin-film pads on its {m.carrier_length_mm - m.die_length_mm:.4g} mm "

@@ -96,7 +96,8 @@ def traveller_steps(plan: DiePlan, sheet_resistance_ohm_per_sq: float) -> list[S
         Step("bond and thin", "", f"fusion-bonded in vacuum, flat along <110>, annealed "
              f"{BOND_ANNEAL_C:g} C {BOND_ANNEAL_H:g} h in N2{a}, ground and polished to "
              f"{s.device_um:g} +-{s.device_tolerance_um:g} um",
-             f"{s.total_um:g} um stack over sealed cavities, buried oxide {s.box_um:g} um "
+             f"{s.total_um:g} um stack (the die without its posts) over sealed cavities, "
+             f"buried oxide {s.box_um:g} um "
              "(the device layer bows into the cavities under the atmosphere until the release)",
              ("bond",)),
         Step("mark windows", "mark_window", f"resist, aligned in infrared through the stack "

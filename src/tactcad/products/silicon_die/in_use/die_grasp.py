@@ -12,6 +12,10 @@ the jaw from its heel, y across it from its axis):
   so each unit is paired at equal radius by construction;
 * its hard stop engages when the beam's free end meets its cavity's floor
   (:meth:`tactcad.products.silicon_die.design.mems_die.DiePlan.stop_engagement_um`, the nominal depth);
+* its rating is the most the beam carries in use
+  (:meth:`tactcad.products.silicon_die.design.mems_die.DiePlan.rated_force_N`: the die's
+  full-scale force on a reference beam, less on a measuring beam), as strength and verify
+  rate it;
 * its overload limit is the force at which its root reaches the mean strength of etched
   silicon (:data:`tactcad.products.silicon_die.design.mems_die.BOSCH_MEAN_STRENGTH_MPA`);
 * the die's face stays out of the tissue while every post's travel less its deflection is
@@ -19,9 +23,10 @@ the jaw from its heel, y across it from its axis):
   punch model does not carry, and the units whose posts it reaches do not read
   (:func:`with_face_contact`).
 
-The jaw: the pin of the mount's jaw (the jaw's ``pin_inset_mm``), the jaw's length from the
-pin, its opening (the jaw's ``opening_angle_deg``) and the tissue's thickness (the grasp's
-default unless given). Units: mm, N, N/mm, degrees.
+The jaw: the pin of the mount's jaw (the jaw's ``pin_inset_mm``), the jaw from the pin to its
+tip (``pin_to_tip_mm``; the jaw's own ``jaw_length_mm`` runs from its heel), its opening
+(the jaw's ``opening_angle_deg``) and the tissue's thickness (the grasp's default unless
+given). Units: mm, N, N/mm, degrees.
 """
 
 from __future__ import annotations
@@ -51,7 +56,8 @@ def die_tips(plan: DiePlan, mount: DieMount) -> Tips:
                 [Punch(xi, yi, post, post) for xi, yi in zip(x, y)],
                 np.array([stiffness[b.role] for b in plan.beams]),
                 np.array([plan.stop_engagement_um(b)[0] * UM for b in plan.beams]),
-                np.array([breaking_force_N(plan, b) for b in plan.beams]))
+                np.array([breaking_force_N(plan, b) for b in plan.beams]),
+                np.array([plan.rated_force_N(b) for b in plan.beams]))
 
 
 def breaking_force_N(plan: DiePlan, beam) -> float:
@@ -60,6 +66,12 @@ def breaking_force_N(plan: DiePlan, beam) -> float:
     strength over the root's peak stress at it."""
     return (plan.full_scale_force_N * BOSCH_MEAN_STRENGTH_MPA
             / plan.peak_stress_MPa_at_rating(beam))
+
+
+def default_grasp_force_N(plan: DiePlan) -> float:
+    """The grasp force a die's grasp closes to unless told (N): half of each beam's own
+    rated force (:meth:`DiePlan.rated_force_N`), summed over the beams."""
+    return round(0.5 * sum(plan.rated_force_N(b) for b in plan.beams), 12)
 
 
 def die_units(plan: DiePlan) -> list[tuple[int, int]]:
@@ -71,7 +83,8 @@ def die_units(plan: DiePlan) -> list[tuple[int, int]]:
 def die_jaw(mount: DieMount, opening_deg: float,
             slab_mm: float | None = None) -> JawGeometry:
     """The jaw the die is mounted in as the grasp's: the pin at the mount's ``pin_x_mm`` on
-    the jaw's axis, the jaw from the pin to its end, ``opening_deg`` open, the tissue
+    the jaw's axis, the jaw from the pin to its tip (``pin_to_tip_mm``: the jaw's own length
+    less the pin's inset), ``opening_deg`` open, the tissue
     ``slab_mm`` thick (default :data:`~tactcad.in_use.grasp_experiment.DEFAULT_SLAB_MM`).
 
     Raises:
@@ -85,8 +98,9 @@ def die_grasp(plan: DiePlan, mount: DieMount, jaw: JawGeometry, k_obj_N_per_mm: 
               angle_deg: float | None = None, force_N: float | None = None,
               coupling: str = "layer", profile: str = DEFAULT_PROFILE) -> LayoutGrasp:
     """The die in its jaw closed on the tissue at ``angle_deg`` or to the grasp force
-    ``force_N`` (one of them): every post's travel, deflection and forces against the rating
-    and its breaking force, every column's R and K_obj read (eq. 3) against the true one.
+    ``force_N`` (one of them): every post's travel, deflection and forces against its own
+    beam's rated force (:meth:`DiePlan.rated_force_N`) and its breaking force, every
+    column's R and K_obj read (eq. 3) against the true one.
 
     Args:
         plan, mount: the die and its place in the jaw.

@@ -1,0 +1,53 @@
+"""A die's Python object offers what its docstring promises, through the commands' own
+functions: its design hash as its export's manifest gives it, its check as `tactcad check`
+runs it, and the die views the command line runs on it."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from conftest import run_cli
+
+EXAMPLE = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+           / "grasper_jaw_5mm_mems.toml")
+
+
+@pytest.fixture
+def die_folder(tmp_path):
+    (tmp_path / EXAMPLE.name).write_bytes(EXAMPLE.read_bytes())
+    return tmp_path
+
+
+@pytest.mark.slow  # exports a die and checks it, about a minute
+def test_a_die_projects_hash_and_check_are_the_commands(die_folder, monkeypatch):
+    import tactcad
+    from tactcad.api import CheckReport, DieProject
+
+    monkeypatch.chdir(die_folder)
+    die = tactcad.load(die_folder / EXAMPLE.name)
+    assert isinstance(die, DieProject)
+    out = Path("exports")  # as the command line below names it
+    assert die.export(out) == 0
+    manifest = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
+    assert die.design_hash == manifest["design"]["sha256"]
+    report = die.check(out)
+    assert isinstance(report, CheckReport) and report.reused_export and report.passed
+    cli = json.loads(run_cli("check", "--out", "exports", "--json", cwd=die_folder).stdout)
+    assert [(r.check, r.subject, r.status) for r in report.results] == \
+        [(c["check"], c["subject"], c["status"]) for c in cli["checks"]]
+
+
+@pytest.mark.slow  # the die's crosstalk solve, about 20 s
+def test_a_die_project_runs_the_die_views_the_cli_runs(die_folder):
+    import tactcad
+
+    die = tactcad.load(die_folder / EXAMPLE.name)
+    grasp = json.loads(run_cli("grasp", "--force-N", "1", "--json", cwd=die_folder).stdout)
+    mine = die.grasp(force_N=1)
+    assert mine["grasp"]["tips"] == grasp["grasp"]["tips"]
+    assert die.crosstalk()["beams"] == [b.number for b in die.plan.beams]
+    thermal = json.loads(run_cli("thermal", "--json", cwd=die_folder).stdout)
+    assert die.thermal()["self_heating_K"] == thermal["self_heating_K"]

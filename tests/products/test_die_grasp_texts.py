@@ -1,0 +1,48 @@
+"""What a die's grasp says follows what it was asked: without tissue coupling it names no
+coupling left in the reading."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from conftest import run_cli
+
+EXAMPLE = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+           / "grasper_jaw_5mm_mems.toml")
+
+
+@pytest.fixture
+def die_folder(tmp_path):
+    (tmp_path / EXAMPLE.name).write_bytes(EXAMPLE.read_bytes())
+    return tmp_path
+
+
+def test_no_coupling_caveat_without_coupling(die_folder):
+    off = run_cli("grasp", "--coupling", "none", cwd=die_folder)
+    assert off.returncode == 0, off.stdout + off.stderr
+    assert "coupling between neighbouring posts stays in it" not in off.stdout
+    assert "not coupled between the posts" in off.stdout
+    on = run_cli("grasp", cwd=die_folder).stdout
+    assert "coupling between neighbouring posts stays in it" in on
+    record = json.loads(run_cli("grasp", "--coupling", "none", "--json",
+                                cwd=die_folder).stdout)
+    assert "stays in it" not in record["reasons"]["error"]
+
+
+@pytest.mark.parametrize("kobj", ["1000", "0.01"])
+def test_a_kobj_outside_the_dies_range_is_warned_and_not_read(die_folder, kobj):
+    import tactcad
+
+    lo, hi = tactcad.load(die_folder / EXAMPLE.name).plan.kobj_range_N_per_mm
+    r = run_cli("grasp", "--kobj", kobj, cwd=die_folder)
+    assert r.returncode == 0, r.stdout + r.stderr
+    warning = next(line for line in r.stdout.splitlines() if line.startswith("warning:"))
+    assert f"--kobj {float(kobj):g} N/mm" in warning and f"{lo:g} ... {hi:g} N/mm" in warning
+    assert not any(line.endswith("| yes |") for line in r.stdout.splitlines())
+    record = json.loads(run_cli("grasp", "--kobj", kobj, "--json", cwd=die_folder).stdout)
+    assert record["warnings"] and not any(u["reads"] for u in record["grasp"]["units"])
+    inside = json.loads(run_cli("grasp", "--json", cwd=die_folder).stdout)
+    assert not inside["warnings"] and all(u["in_kobj_range"] for u in inside["grasp"]["units"])
