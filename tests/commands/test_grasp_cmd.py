@@ -179,3 +179,15 @@ def test_a_kobj_outside_the_designs_range_is_warned_and_not_read():
                for u in d["as_laid_out"]["units"])
     inside = json.loads(run_cli("grasp", "--design", COMB, "--json").stdout)
     assert not inside["warnings"]
+
+
+def test_the_options_earlier_name_is_refused_with_its_new_one():
+    """--jaw-length-mm was the pin-to-tip length under the jaw's own length's name: it is
+    refused, naming --pin-to-tip-mm and the value to give it, not as an unknown argument."""
+    import subprocess
+    import sys
+
+    r = subprocess.run([sys.executable, "-m", "tactcad", "grasp", "--jaw-length-mm", "30"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "--pin-to-tip-mm 30" in r.stderr, r.stderr
+    assert "unrecognized" not in r.stderr and "Traceback" not in r.stderr

@@ -8,7 +8,7 @@ import math
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, parse_overrides
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import (GRASP_OPTION_OF, grasp_option_error,
-                                      keep_option_defaults, number)
+                                      keep_option_defaults, number, renamed_option)
 from tactcad.mechanics.ladder import models
 from tactcad.design.readout_section import LEAD_WIRE
 
@@ -77,6 +77,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="the jaw from its pin to its tip (mm; default the design's "
                         "[grasper_jaw], "
                         f"else the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm)")
+    # the option's earlier name: refused with its new one, not as an unknown argument
+    p.add_argument("--jaw-length-mm", type=renamed_option("--jaw-length-mm", "--pin-to-tip-mm",
+                                                          "the jaw from its pin to its tip; "
+                                                          "jaw_length_mm is the jaw's own "
+                                                          "length"),
+                   default=None, help=argparse.SUPPRESS)
     p.add_argument("--opening-deg", type=number(0, 90, "degrees", lo_open=True),
                    default=None,
                    help="the jaw's full opening (degrees; default the design's [grasper_jaw], "

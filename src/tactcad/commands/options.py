@@ -19,7 +19,7 @@ from __future__ import annotations
 import argparse
 import math
 import unicodedata
-from typing import Callable, Iterator, Sequence
+from typing import Any, Callable, Iterator, Sequence
 
 from tactcad.errors import DesignError
 
@@ -30,6 +30,20 @@ PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 
 def _fmt(x: float) -> str:
     return f"{x:g}"
+
+
+def renamed_option(old: str, new: str, meaning: str) -> Callable[[str], Any]:
+    """An argparse type for an option's earlier name: every value is refused, naming the
+    option it was renamed to and what that one means.
+
+    Raises (when called by argparse):
+        argparse.ArgumentTypeError: always.
+    """
+    def parse(text: str) -> Any:
+        raise argparse.ArgumentTypeError(f"{text[:40]!r}: {old} is now {new} ({meaning}); "
+                                         f"give {new} {text[:40]}")
+
+    return parse
 
 
 def number(lo: float | None = None, hi: float | None = None, unit: str = "", *,
