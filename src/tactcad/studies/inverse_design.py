@@ -1278,7 +1278,7 @@ def _design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "
         data["element"]["arm_height_mm"] = raised
         fit_to_bolt(data)  # a taller arm asks a taller base below it
         data.setdefault("assumptions", {})["element.arm_height_mm"] = (
-            f"tactcad design: raised to {raised:g} mm so the longest arm ({longest:.3g} mm) keeps "
+            f"tactcad design: raised to {raised:g} mm so the longest arm ({longest:g} mm) keeps "
             f"arm / arm height <= {MAX_ARM_OVER_HEIGHT:g}, inside the range the closed form's "
             "fem3d correction was fitted over.")
     if refusal is not None:
