@@ -189,10 +189,6 @@ def check_out_dir(out_dir: str | Path) -> Path:
     """
     out = Path(os.path.abspath(os.path.expanduser(str(out_dir))))
     real = out.resolve()
-    above = next(p for p in (real, *real.parents) if p.exists())
-    if above != real and not above.is_dir():
-        raise ExportPathError(f"--out {out_dir}: the folder cannot be made ({above} is a file, "
-                              "not a folder)")
     refuse_system_folder("--out", out_dir, real)  # the rule of every command's --out
     # an export replaces its folder as a whole: no top folder users write below either
     protected = {Path(d) for d in SYSTEM_DIRS} | {Path.home().resolve()}

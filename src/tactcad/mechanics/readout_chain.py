@@ -346,14 +346,12 @@ def grid_strain_per_N(g: ElementGeometry, material: Material, chain: ReadoutChai
     layer = bonded_grid_factor(g.web_thickness_mm, b, material.youngs_modulus_MPa,
                                chain.grid_height_mm, chain.gauge_backing_modulus_MPa,
                                carrier_width_mm(chain.grid_width_mm, b))
-    read = beam_grid_read_factor(g.bare(), material, chain)
-    out = {**face, "grid": face["surface"] * read,
-           "read_factor": read, "height_factor": layer.height_factor,
-           "stiffening_rel": layer.stiffening_rel}
+    out = {**face, "height_factor": layer.height_factor, "stiffening_rel": layer.stiffening_rel}
     meshed = meshed_grid_strain_per_N(g, material, chain, model)
     if meshed is not None:  # the layer meshed: the grid's own plane, not the section's factor
-        out.update(meshed, read_factor=meshed["grid"] / face["surface"])
-    return out
+        return {**out, **meshed, "read_factor": meshed["grid"] / face["surface"]}
+    read = beam_grid_read_factor(g, material, chain)
+    return {**out, "grid": face["surface"] * read, "read_factor": read}
 
 
 def meshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain: ReadoutChain,
