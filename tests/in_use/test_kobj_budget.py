@@ -241,10 +241,12 @@ def test_gauge_model_is_the_levels_own_strain_error(plan):
 
 
 def test_expected_calibration_error_matches_fits_of_simulated_runs():
-    from tactcad.mechanics.calibration import fit_calibration, synthetic_calibration
+    from tactcad.mechanics.calibration import (CALIBRATION_STEPS_UM, fit_calibration,
+                                               synthetic_calibration)
 
     k, k_v, noise_v = 30.0, -40.0, 3e-4
-    want_k, want_kv = kb.expected_calibration_stderr_rel(k, k_v, noise_v, force_noise_N=0.001)
+    want_k, want_kv = kb.expected_calibration_stderr_rel(k, k_v, noise_v, force_noise_N=0.001,
+                                                         steps_um=CALIBRATION_STEPS_UM)
     fits = [fit_calibration(d.z_travel_um, d.force_N, d.signal_V)
             for d in (synthetic_calibration(k, k_v, 0.1, noise_signal_V=noise_v,
                                             noise_force_N=0.001, seed=s)

@@ -44,8 +44,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--calibration", metavar="FILE", default=None,
                    help="measured calibration readings (as tactcad calibrate --data: CSV, LVM "
                         "or TDMS): their fitted standard errors of K and K_v; default the "
-                        "expected errors of a static calibration on the catalogue force gauge "
-                        "whose range holds the force")
+                        "expected errors of the static calibration tactcad calibrate drives (its "
+                        "steps, on the rigs' force gauge, else the catalogue gauge that leaves "
+                        "the least error)")
     p.add_argument("--out", metavar="FILE", type=output_file(".json", ".md"), default=None,
                    help="also write the budget: .json as --json prints it, .md as the text")
     add_output_args(p, "print one JSON object: the budget of every unit and of the array")
@@ -215,4 +216,15 @@ def render_array(budget) -> list[str]:
             "| unit | " + " | ".join(a["unit"]) + " |",
             "| RSS | " + " | ".join(_pct(x) for x in a["rss_rel"]) + " |",
             "| worst case | " + " | ".join(_pct(x) for x in a["worst_case_rel"]) + " |",
-            "| dominant | " + " | ".join(d.replace("_", " ") for d in a["dominant"]) + " |"]
+            "| dominant | " + " | ".join(d.replace("_", " ") for d in a["dominant"]) + " |",
+            *calibration_need_lines(budget)]
+
+
+def calibration_need_lines(budget) -> list[str]:
+    """The calibration's verdict on its force gauge as a text line, when the calibration
+    term exceeds its allowance (the budget's ``calibration_allowance`` note), else none."""
+    if budget.notes.get("calibration_gauge_fits", True):
+        return []
+    needed = budget.notes["calibration_gauge_resolution_needed_N"]
+    head = f"resolution {needed:.2g} N needed; " if needed is not None else ""
+    return [f"calibration force gauge: {head}{budget.notes['calibration_allowance']}"]

@@ -32,7 +32,7 @@ def simulated_noise(args: argparse.Namespace, project) -> tuple[tuple[float, str
     else:
         from tactcad.studies.verification import calibration_gauge
 
-        gauge, _ = calibration_gauge(project.plan)
+        gauge = calibration_gauge(project.plan).gauge
         force = (float(gauge.resolution_N), f"the force gauge {gauge.model}, read to "
                                             f"{gauge.resolution_N:g} N")
     if args.noise_signal is not None:
@@ -171,7 +171,8 @@ def run(args: argparse.Namespace) -> int:
     # the force gauge in series: the data file's (its k_sensor comment), else the rigs'
     from tactcad.studies.verification import calibration_gauge
 
-    gauge, source = calibration_gauge(project.plan)
+    rig = calibration_gauge(project.plan)
+    gauge, source = rig.gauge, rig.source
     k_sensor = float(gauge.stiffness_N_per_mm)
     report: dict = {"design": plan.name, "model": args.model,
                     "force_gauge": {"model": gauge.model, "stiffness_N_per_mm": k_sensor,
@@ -179,10 +180,9 @@ def run(args: argparse.Namespace) -> int:
     if args.data or args.simulate:
         if args.simulate:
             gain = args.gain
-            from tactcad.studies.verification import requirements_of
-
             # the paper's Z steps for its design; any other is loaded to its full-scale force
-            force = None if cites_paper(plan.raw) else requirements_of(plan).full_scale_force_N
+            # (the rig's, as the K_obj budget's calibration term takes it)
+            force = rig.full_scale_force_N
             noise_force, noise_signal = simulated_noise(args, project)
             report["simulated_noise"] = {"force_N": noise_force[0], "force_source": noise_force[1],
                                          "signal_V": noise_signal[0],

@@ -79,11 +79,14 @@ every K_obj of the grid, before and after the correction the lab applies):
     the budget's own uncertainty (it scales (a) and (b)).
 (h) calibration uncertainty: the standard errors of the fitted K and K_v (eq. 4-6,
     :func:`tactcad.mechanics.calibration.fit_calibration`) of each element, from a
-    calibration file when given, else the expected standard errors of the paper's
-    procedure (:func:`expected_calibration_stderr_rel`: the force read by the design's
-    calibration gauge, the project's rigs' force gauge where it has rigs
-    (:func:`tactcad.studies.verification.calibration_gauge`, the one ``calibrate`` uses), the
-    signal through the design's read-out chain), all independent.
+    calibration file when given, else the expected standard errors of the static
+    calibration ``calibrate`` drives (:func:`expected_calibration_stderr_rel` at its Z steps:
+    the paper's for the paper's design, else six equal steps to each element's travel at the
+    full-scale force; the force read by the design's calibration gauge, the project's rigs'
+    force gauge where it has rigs (:func:`tactcad.studies.verification.calibration_gauge`,
+    the one ``calibrate`` uses); the signal through the design's read-out chain), all
+    independent. :func:`calibration_resolution_need` says how much of the term the force
+    gauge's resolution makes and which resolution would bring it within its allowance.
 (j) gauge creep: a bonded gauge's reading under a held load creeps by a fraction of the
     reading (glue line and carrier relaxing; :data:`GAUGE_CREEP_REL` over
     :data:`GAUGE_CREEP_MINUTES`, the figure beyond which a gauge maker calls an
@@ -206,9 +209,10 @@ class Context:
     force_N: float
     delta_T_K: float
     calibrations: Mapping[int, object] = field(default_factory=dict)
-    #: (the calibration rig's force gauge, where it comes from): ``model``, ``range_N``,
-    #: ``resolution_N`` (N), ``stiffness_N_per_mm`` (N/mm)
-    force_gauge: tuple[Any, str] | None = None
+    #: the calibration rig (:class:`~tactcad.mechanics.calibration.CalibrationGauge`): its
+    #: force gauge (``model``, ``range_N``, ``resolution_N`` (N), ``stiffness_N_per_mm``
+    #: (N/mm)), where it comes from, and the force its Z steps load each element to
+    force_gauge: Any = None
     cache: dict = field(default_factory=dict)
 
     def once(self, key: str, compute: Callable[[], object]):
@@ -703,11 +707,11 @@ def gauge_model(ctx: Context, unit: Unit, op: Operating) -> Contribution:
 def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
                                     signal_noise_V: float | None = None,
                                     k_sensor_N_per_mm: float | None = None, *,
-                                    force_noise_N: float) -> tuple[float, float]:
+                                    force_noise_N: float, steps_um) -> tuple[float, float]:
     """(σ_K / K, σ_K_v / |K_v|) a static calibration (eq. 4-6) leaves on one element.
 
-    Ordinary least squares over the Z steps of
-    :data:`~tactcad.mechanics.calibration.CALIBRATION_STEPS_UM`, :data:`CALIBRATION_REPEATS`
+    Ordinary least squares over the Z steps ``steps_um`` (the ones ``calibrate`` drives:
+    :meth:`tactcad.mechanics.calibration.CalibrationGauge.steps_um`), :data:`CALIBRATION_REPEATS`
     runs, deflection Δ = z K_s / (K + K_s), the force read to
     ``force_noise_N`` (n, the force gauge's resolution) and the signal to ``signal_noise_V`` (1 sigma;
     default :data:`~tactcad.mechanics.calibration.DEFAULT_NOISE_SIGNAL_V`): σ_slope =
@@ -724,15 +728,22 @@ def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
             :data:`~tactcad.mechanics.calibration.K_SENSOR_N_PER_MM`.
         force_noise_N: the force gauge's resolution (N): the budget passes that of the
             design's calibration gauge (:func:`tactcad.studies.verification.calibration_gauge`).
+        steps_um: the Z steps of one run (um), at least two different.
 
     Returns:
         (σ_K / K, σ_K_v / |K_v|), relative.
+
+    Raises:
+        DesignError: fewer than two different steps.
     """
-    from tactcad.mechanics.calibration import (CALIBRATION_STEPS_UM, DEFAULT_NOISE_SIGNAL_V,
-                                               K_SENSOR_N_PER_MM, series_error_amplification)
+    from tactcad.mechanics.calibration import (DEFAULT_NOISE_SIGNAL_V, K_SENSOR_N_PER_MM,
+                                               series_error_amplification)
 
     k_s = K_SENSOR_N_PER_MM if k_sensor_N_per_mm is None else k_sensor_N_per_mm
-    z = np.tile(np.asarray(CALIBRATION_STEPS_UM, float) * 1e-3, CALIBRATION_REPEATS)
+    steps = np.asarray(steps_um, float)
+    if steps.ndim != 1 or not np.ptp(steps) > 0:
+        raise DesignError("steps_um", steps.tolist(), "two or more different Z steps (um)")
+    z = np.tile(steps * 1e-3, CALIBRATION_REPEATS)
     defl = z * k_s / (k_element + k_s)
     sxx = math.sqrt(float(np.sum((defl - defl.mean()) ** 2)))
     n = force_noise_N
@@ -742,39 +753,184 @@ def expected_calibration_stderr_rel(k_element: float, k_v_V_per_mm: float,
     return force_residual / sxx / k_element, signal_residual / sxx / abs(k_v_V_per_mm)
 
 
-def _calibration_stderr(ctx: Context) -> dict[int, tuple[float, float]]:
+def calibration_stderr_by_part(plan: Plan, model: str, stiffness: Mapping[str, float],
+                               rig, force_noise_N: float | None = None,
+                               readout: Mapping[str, Mapping[str, float]] | None = None
+                               ) -> dict[str, tuple[float, float]]:
+    """(σ_K / K, σ_K_v / |K_v|) a static calibration on ``rig`` is expected to leave on each
+    distinct part of ``plan`` (:func:`expected_calibration_stderr_rel` at the steps the
+    calibration drives on it, the signal through the design's read-out chain).
+
+    Args:
+        plan: the design. model: the ladder level of the gauge strain.
+        stiffness: K per distinct part (N/mm).
+        rig: the :class:`~tactcad.mechanics.calibration.CalibrationGauge`.
+        force_noise_N: the force read to (N); default the rig's gauge's resolution.
+        readout: :func:`tactcad.mechanics.readout_chain.element_force_resolution_N` of
+            ``plan`` at ``model``, when the caller has it.
+
+    Returns:
+        part name -> (σ_K / K, σ_K_v / |K_v|).
+    """
     from tactcad.mechanics.readout_chain import (element_force_resolution_N, noise_budget_V,
                                                  readout_chain)
 
-    per_part = ctx.once("readout", lambda: element_force_resolution_N(ctx.plan, ctx.model))
-    noise = noise_budget_V(readout_chain(ctx.plan))["reading"]
+    per_part = readout if readout is not None else element_force_resolution_N(plan, model)
+    noise = noise_budget_V(readout_chain(plan))["reading"]
+    n = rig.gauge.resolution_N if force_noise_N is None else force_noise_N
+    out = {}
+    for part in plan.distinct_elements:
+        k = float(stiffness[part])
+        out[part] = expected_calibration_stderr_rel(
+            k, per_part[part]["S"] * k, noise, rig.gauge.stiffness_N_per_mm,
+            force_noise_N=n, steps_um=rig.steps_um(k))
+    return out
+
+
+def _calibration_stderr(ctx: Context, force_noise_N: float | None = None
+                        ) -> dict[int, tuple[float, float]]:
+    """Element number -> (σ_K / K, σ_K_v / |K_v|): the calibration file's fit where it has
+    one, else what the design's calibration is expected to leave (force read to
+    ``force_noise_N``, N; default the calibration gauge's resolution)."""
+    per_part = ctx.once("readout", lambda: _readout(ctx))
+    expected = calibration_stderr_by_part(ctx.plan, ctx.model, ctx.k, ctx.force_gauge,
+                                          force_noise_N, per_part)
     out = {}
     for s in ctx.plan.slots:
         c = ctx.calibrations.get(s.number)
-        if c is not None:
-            out[s.number] = (c.stderr_K_N_per_mm / abs(c.K_N_per_mm),
-                             c.stderr_K_v_V_per_mm / abs(c.K_v_V_per_mm))
-        else:
-            k = ctx.k_of(s.number)
-            gauge, _ = ctx.force_gauge
-            out[s.number] = expected_calibration_stderr_rel(
-                k, per_part[s.geometry.part_name]["S"] * k, noise, gauge.stiffness_N_per_mm,
-                force_noise_N=gauge.resolution_N)
+        out[s.number] = ((c.stderr_K_N_per_mm / abs(c.K_N_per_mm),
+                          c.stderr_K_v_V_per_mm / abs(c.K_v_V_per_mm)) if c is not None
+                         else expected[s.geometry.part_name])
     return out
+
+
+def _readout(ctx: Context):
+    from tactcad.mechanics.readout_chain import element_force_resolution_N
+
+    return element_force_resolution_N(ctx.plan, ctx.model)
+
+
+def _calibration_term(ctx: Context, unit: Unit, k_obj: np.ndarray,
+                      se: Mapping[int, tuple[float, float]]) -> np.ndarray:
+    # the unit's K_obj error of the elements' K and K_v standard errors ``se``, independent
+    (km, kvm), (kr, kvr) = se[unit.measuring], se[unit.reference]
+    return np.sqrt(independent_reading_error_rel(ctx, unit, k_obj, de_m=kvm, de_r=kvr) ** 2
+                   + stiffness_error_rel(ctx, unit, k_obj, dk_m=km) ** 2
+                   + stiffness_error_rel(ctx, unit, k_obj, dk_r=kr) ** 2)
+
+
+def calibration_steps_words(ctx: Context) -> str:
+    """The Z steps the calibration drives, in words: the paper's, or each element's
+    :data:`~tactcad.mechanics.calibration.FULL_SCALE_STEPS` equal steps to its full-scale
+    travel with the range of those travels (um)."""
+    from tactcad.mechanics.calibration import FULL_SCALE_STEPS
+
+    rig = ctx.force_gauge
+    if rig.full_scale_force_N is None:
+        return "the paper's Z steps, 25 um to 150 um"
+    tops = [float(rig.steps_um(ctx.k_of(s.number))[-1]) for s in ctx.plan.slots]
+    return (f"{FULL_SCALE_STEPS} equal Z steps to each element's travel at the full-scale "
+            f"{rig.full_scale_force_N:.4g} N ({min(tops):.3g} ... {max(tops):.3g} um)")
+
+
+class CalibrationNeed(NamedTuple):
+    """What the budget asks of the calibration's force gauge (:func:`calibration_resolution_need`).
+
+    Attributes:
+        force_share_rel: the share of the calibration term's variance the force gauge's
+            resolution makes, where the term is largest (0 ... 1).
+        resolution_needed_N: the resolution (N) at which a gauge of the same stiffness
+            brings the term within its allowance; None when it is within already, or when no
+            resolution can (``words`` says which).
+        fits: the term is within its allowance at every K_obj.
+        words: the allowance and the verdict, in words.
+    """
+
+    force_share_rel: float
+    resolution_needed_N: float | None
+    fits: bool
+    words: str
+
+
+def calibration_resolution_need(ctx: Context, pairs: list[Unit], units: list[dict],
+                                k_obj: np.ndarray) -> CalibrationNeed:
+    """The calibration term of the array's best unit at each K_obj against its allowance,
+    and the force gauge resolution that would bring it within.
+
+    The allowance is what the other terms (after correction) leave of
+    ``requirements.kobj_accuracy_rel`` in RSS where the design states it, else the RSS of
+    those terms (a calibration should not be the budget's largest error). Every term of the
+    calibration is linear in the elements' standard errors, and σ_K grows as the force
+    resolution n, σ_K_v as the root of a constant plus n², so the term squared is A + B n²
+    (A: the bridge noise alone, n = 0): the resolution needed is n sqrt((T² − A) / (c² − A))
+    for a term c and allowance T; none helps where A alone exceeds T.
+
+    Args:
+        ctx: the budget's context. pairs, units: its units and their records.
+        k_obj: the grid (N/mm).
+
+    Returns:
+        :class:`CalibrationNeed`.
+    """
+    from tactcad.design.requirements_section import stated_kobj_accuracy
+
+    n = float(ctx.force_gauge.gauge.resolution_N)
+    if not units:
+        return CalibrationNeed(0.0, None, True, "no sensing unit")
+    rss = np.array([finite_or_inf(u["rss_rel"]) for u in units])
+    best = np.argmin(rss, axis=0)
+    quiet = _calibration_stderr(ctx, force_noise_N=0.0)
+    accuracy = stated_kobj_accuracy(ctx.plan.raw)
+    share, worst, needed, full, noisy = 0.0, -1.0, [], False, False
+    for i, b in enumerate(best):
+        if not math.isfinite(rss[b, i]):
+            continue
+        c = finite_or_inf(units[b]["sources"]["calibration"]["after_rel"])[i]
+        a = float(_calibration_term(ctx, pairs[b], k_obj[i:i + 1], quiet)[0])
+        others_sq = max(rss[b, i] ** 2 - c ** 2, 0.0)
+        allowance_sq = accuracy ** 2 - others_sq if accuracy is not None else others_sq
+        if c > worst:
+            worst, share = c, (1.0 - a ** 2 / c ** 2 if c > 0 else 0.0)
+        if c ** 2 <= allowance_sq * (1 + 1e-9):
+            continue
+        if allowance_sq <= 0.0:
+            full = True
+        elif allowance_sq <= a ** 2 or c ** 2 <= a ** 2:
+            noisy = True
+        else:
+            needed.append(n * math.sqrt((allowance_sq - a ** 2) / (c ** 2 - a ** 2)))
+    allowance = (f"within what the other terms leave of the stated accuracy "
+                 f"{100 * accuracy:g} %" if accuracy is not None
+                 else "no larger than the other terms' RSS")
+    gauge = ctx.force_gauge.gauge
+    head = (f"the calibration term, at most {100 * worst:.3g} % ({100 * share:.0f} % of its "
+            f"variance from the force gauge read to {n:g} N), should be {allowance}")
+    if full:
+        return CalibrationNeed(share, None, False, (
+            f"{head}: no force gauge resolution brings it there, the other terms alone fill "
+            f"the accuracy"))
+    if noisy:
+        return CalibrationNeed(share, None, False, (
+            f"{head}: no force gauge resolution brings it there, the bridge noise over the "
+            f"calibration's deflection span alone exceeds it; more runs, longer averaging "
+            f"or a quieter read-out would"))
+    if needed:
+        res = listed([min(needed)])[0]
+        return CalibrationNeed(share, res, False, (
+            f"{head}: {gauge.model} misses it; a gauge of its stiffness "
+            f"({gauge.stiffness_N_per_mm:g} N/mm) read to {res:.2g} N would bring it there"))
+    return CalibrationNeed(share, None, True, f"{head}: it is")
 
 
 def calibration(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(h) The standard errors of each element's fitted K (eq. 5) and K_v (eq. 4),
     independent: the calibration file's fits, else those a static calibration on the
-    design's calibration gauge (``force_gauge`` of :func:`kobj_budget`: the project's rigs'
-    force gauge) is expected to leave; each read by
+    design's calibration rig (``force_gauge`` of :func:`kobj_budget`: its force gauge, and
+    the Z steps ``calibrate`` drives) is expected to leave; each read by
     the coupled inversion (a K_v error scales its deflection reading, a K error the coupled
     R of the true springs)."""
     se = ctx.once("calibration", lambda: _calibration_stderr(ctx))
-    (km, kvm), (kr, kvr) = se[unit.measuring], se[unit.reference]
-    rel = np.sqrt(independent_reading_error_rel(ctx, unit, op.k_obj, de_m=kvm, de_r=kvr) ** 2
-                  + stiffness_error_rel(ctx, unit, op.k_obj, dk_m=km) ** 2
-                  + stiffness_error_rel(ctx, unit, op.k_obj, dk_r=kr) ** 2)
+    rel = _calibration_term(ctx, unit, op.k_obj, se)
     return Contribution(rel, rel)
 
 
@@ -990,7 +1146,7 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
                 errors: Mapping[str, float] | None = None,
                 calibrations: Mapping[int, object] | None = None,
                 points: int = BUDGET_POINTS, *,
-                force_gauge: tuple[Any, str]) -> KobjBudget:
+                force_gauge: Any) -> KobjBudget:
     """The K_obj error budget of every sensing unit of ``plan`` over ``kobj_range``.
 
     Args:
@@ -1007,9 +1163,11 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
             the others take the expected standard errors of a static calibration
             (:func:`expected_calibration_stderr_rel`).
         points: K_obj grid points (log-spaced), 2 ... 101.
-        force_gauge: (the force gauge the elements are calibrated on, where it comes from):
-            :func:`tactcad.studies.verification.calibration_gauge` of ``plan``, the gauge
-            ``calibrate`` uses, so that every caller's budget reads one gauge.
+        force_gauge: the calibration rig
+            (:class:`~tactcad.mechanics.calibration.CalibrationGauge`: the force gauge the
+            elements are calibrated on, where it comes from, the force its Z steps reach):
+            :func:`tactcad.studies.verification.calibration_gauge` of ``plan``, the gauge and
+            steps ``calibrate`` uses, so that every caller's budget reads one calibration.
 
     Returns:
         :class:`KobjBudget`.
@@ -1041,7 +1199,9 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
     units = [unit_budget(ctx, u, k_obj) for u in pairs]
     tip = tip_height_record(ctx, pairs, units, k_obj)
     tc_e, tc_source = modulus_tc_per_K(plan)
-    gauge, gauge_source = force_gauge
+    gauge, gauge_source = force_gauge.gauge, force_gauge.source
+    need = (calibration_resolution_need(ctx, pairs, units, k_obj) if not calibrations
+            else None)
     _, per_newton, xt_error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     notes = {
         "stack_crosstalk_N_per_N": float(np.max(np.abs(per_newton))) if per_newton.size else 0.0,
@@ -1065,11 +1225,15 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         else (f"expected standard errors of a static calibration on the {gauge.model} "
               f"force gauge (range {gauge.range_N:g} N, read to "
               f"{gauge.resolution_N:g} N, {gauge.stiffness_N_per_mm:g} N/mm; "
-              f"{gauge_source}, as tactcad calibrate): Z steps of "
-              f"25 um to 150 um, {CALIBRATION_REPEATS} runs, the signal to the read-out "
-              f"chain's noise of one averaged reading, 1 sigma"),
+              f"{gauge_source}, as tactcad calibrate): {calibration_steps_words(ctx)}, "
+              f"{CALIBRATION_REPEATS} runs, the force read to the gauge's resolution and the "
+              f"signal to the read-out chain's noise of one averaged reading, 1 sigma"),
         "calibration_force_gauge": gauge.model,
         "calibration_force_gauge_source": gauge_source,
+        **({"calibration_force_share_rel": listed([need.force_share_rel])[0],
+            "calibration_gauge_resolution_needed_N": need.resolution_needed_N,
+            "calibration_gauge_fits": need.fits,
+            "calibration_allowance": need.words} if need is not None else {}),
         "totals": "RSS and worst-case sum of the contributions after correction (as a "
                   "calibrated, corrected sensor reads); *_before_rel without correction",
         "manufacturing_tolerance": "calibration measures each element's K (eq. 5), so the "

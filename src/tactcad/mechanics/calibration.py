@@ -19,7 +19,7 @@ mm, force in N, stiffness in N/mm, signal in V, K_v in V/mm.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple, Protocol
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
@@ -433,6 +433,30 @@ def format_calibration_csv(data: dict[int, CalibrationData], comments: tuple[str
             previous = z
             lines.append(f"{element},{run},{z:g},{f:.4f},{v:.4f}")
     return "\n".join(lines) + "\n"
+
+
+class CalibrationGauge(NamedTuple):
+    """The force gauge a design's elements are calibrated on, and how far the calibration
+    drives them: what ``calibrate`` and the K_obj budget both read, so that the budget's
+    expected standard errors are those of the steps the calibration drives.
+
+    Attributes:
+        gauge: the force gauge: ``model``, ``range_N``, ``resolution_N`` (N),
+            ``stiffness_N_per_mm`` (N/mm).
+        source: where the gauge comes from, and why it, in words.
+        full_scale_force_N: the force (N) the Z steps load each element to, or None for
+            the paper's own design (its steps, :data:`CALIBRATION_STEPS_UM`).
+    """
+
+    gauge: Any
+    source: str
+    full_scale_force_N: float | None
+
+    def steps_um(self, k_element: float) -> np.ndarray:
+        """The Z steps (um) the calibration drives on an element of K ``k_element`` (N/mm):
+        :func:`calibration_steps_um` with this gauge's stiffness."""
+        return calibration_steps_um(k_element, self.gauge.stiffness_N_per_mm,
+                                    self.full_scale_force_N)
 
 
 def calibration_steps_um(k_element: float, k_sensor_N_per_mm: float,

@@ -516,30 +516,106 @@ def rated_full_scale_force(plan: Plan) -> float:
     return requirements_of(plan).full_scale_force_N
 
 
-def calibration_gauge(plan: Plan) -> tuple[Any, str]:
-    """The force gauge in series with each element on the calibration rig: the project's rigs'
-    own (``plan.rigs_force_gauge``, set where the project is loaded with its rigs), or, for a
-    plan without rigs (a comb or a stacked array for a grasper's jaw, a plan made in code),
-    the catalogue gauge the rigs would choose for the design's rated full-scale force alone
-    (:func:`tactcad.vocabulary.force_gauge_catalogue.calibration_gauge_need`). ``calibrate``
-    and every caller of the K_obj budget read this one gauge.
+def calibration_full_scale_force(plan: Plan) -> float | None:
+    """The force (N) a static calibration's Z steps load each element to: None for the
+    paper's own design (a design file citing the paper: the paper's 25 um steps to 150 um,
+    :data:`tactcad.mechanics.calibration.CALIBRATION_STEPS_UM`), else the rated full-scale
+    force (:func:`rated_full_scale_force`). ``calibrate`` and the K_obj budget both read it
+    (:func:`calibration_gauge`).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    return None if cites_paper(plan.raw) else rated_full_scale_force(plan)
+
+
+def calibration_gauge(plan: Plan):
+    """The calibration rig: the force gauge in series with each element, where it comes
+    from, and the force its Z steps load each element to (:func:`calibration_full_scale_force`).
+    The gauge is the project's rigs' own (``plan.rigs_force_gauge``, set where the project is
+    loaded with its rigs), or, for a plan without rigs (a comb or a stacked array for a
+    grasper's jaw, a plan made in code), the catalogue gauge that leaves the smallest
+    expected calibration error (:func:`catalogue_calibration_gauge`). ``calibrate`` and every
+    caller of the K_obj budget read this one rig, so the budget's calibration term is that
+    of the steps ``calibrate`` drives.
 
     Args:
         plan: the design.
 
     Returns:
-        (the gauge: ``model``, ``range_N``, ``resolution_N`` (N), ``stiffness_N_per_mm``
-        (N/mm); where it comes from, in words).
-    """
-    from tactcad.vocabulary.force_gauge_catalogue import (calibration_gauge_need,
-                                                          choose_force_gauge)
+        :class:`tactcad.mechanics.calibration.CalibrationGauge`: ``gauge`` (``model``,
+        ``range_N``, ``resolution_N`` (N), ``stiffness_N_per_mm`` (N/mm)), ``source`` (in
+        words), ``full_scale_force_N`` (N, or None for the paper's steps).
 
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    from tactcad.mechanics.calibration import CalibrationGauge
+
+    force = calibration_full_scale_force(plan)
     if plan.rigs_force_gauge is not None:
-        return plan.rigs_force_gauge, "the design's rigs ([force_gauge])"
+        return CalibrationGauge(plan.rigs_force_gauge, "the design's rigs ([force_gauge])", force)
+    gauge, why = catalogue_calibration_gauge(plan)
+    return CalibrationGauge(gauge, f"{why}: the project has no rigs; a data file's "
+                                   f"k_sensor_N_per_mm overrides it", force)
+
+
+@functools.lru_cache(maxsize=8)
+def catalogue_calibration_gauge(plan: Plan) -> tuple[Any, str]:
+    """The catalogue force gauge a design without rigs is calibrated on: of those whose range
+    holds the largest force the calibration reads (the rated full-scale force, or the force
+    the paper's steps reach), the one that leaves the smallest expected calibration error,
+    the largest over the design's elements of σ_K/K and σ_K_v/|K_v| in quadrature
+    (:func:`tactcad.in_use.kobj_budget.calibration_stderr_by_part` at the closed form, each
+    at the steps a calibration on that gauge drives); of equal errors the smaller range.
+
+    A gauge's resolution share of the rated force alone does not decide it: a stiff element
+    on a soft gauge leaves the element a small share of the Z travel, so the force's
+    resolution, amplified by 1 + K/K_s, dominates the fit (short full-scale travels of a
+    stiff, low-force design), and a stiffer gauge of coarser resolution can leave less.
+    Kept per plan (a plan's equality includes its design hash).
+
+    Args:
+        plan: the design (without rigs).
+
+    Returns:
+        (the gauge, why it, in words).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    from tactcad.in_use.kobj_budget import calibration_stderr_by_part
+    from tactcad.mechanics.calibration import CalibrationGauge, apparent_stiffness
+    from tactcad.mechanics.ladder import estimate
+    from tactcad.mechanics.readout_chain import element_force_resolution_N
+    from tactcad.vocabulary.force_gauge_catalogue import (calibration_gauge_need,
+                                                          choose_force_gauge, force_gauges)
+
     rated = rated_full_scale_force(plan)
-    gauge, _ = choose_force_gauge(calibration_gauge_need(rated))
-    return gauge, (f"the catalogue's gauge for the rated {rated:.3g} N: the project has no "
-                   "rigs; a data file's k_sensor_N_per_mm overrides it")
+    force = calibration_full_scale_force(plan)
+    k = {n: estimate("closed-form", g, plan.material).stiffness_N_per_mm
+         for n, g in plan.distinct_elements.items()}
+    readout = element_force_resolution_N(plan, "closed-form")
+    scored = []
+    for gauge in force_gauges():
+        rig = CalibrationGauge(gauge, "", force)
+        reach = max(apparent_stiffness(kk, gauge.stiffness_N_per_mm) * rig.steps_um(kk)[-1]
+                    * 1e-3 for kk in k.values())
+        if gauge.range_N < max(rated, reach) * (1 - 1e-9):
+            continue
+        se = calibration_stderr_by_part(plan, "closed-form", k, rig, readout=readout)
+        scored.append((max(math.hypot(*v) for v in se.values()), gauge.range_N, gauge))
+    if not scored:
+        gauge, _ = choose_force_gauge(calibration_gauge_need(rated))
+        return gauge, (f"no catalogue gauge's range holds the calibration's force; the "
+                       f"largest, {gauge.range_N:g} N")
+    scored.sort(key=lambda t: (t[0], t[1]))
+    error, _, gauge = scored[0]
+    runner = (f"; the next best, {scored[1][2].model}, {100 * scored[1][0]:.3g} %"
+              if len(scored) > 1 else "")
+    return gauge, (f"of the catalogue gauges whose range holds the calibration's force, the one "
+                   f"that leaves the least expected calibration error (sigma_K/K and "
+                   f"sigma_Kv/|Kv| in quadrature, worst element): {100 * error:.3g} %{runner}")
 
 
 # ---------------------------------------------------------------------------

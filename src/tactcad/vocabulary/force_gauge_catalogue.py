@@ -1,7 +1,9 @@
 """Digital force gauges a rig may carry: the catalogue the rigs made for a
 design choose from (:mod:`tactcad.studies.rig_sizing`), what a rig asks of its
 gauge (:class:`GaugeNeed`) and the catalogue gauge that meets it
-(:func:`choose_force_gauge`), one rule for the rigs and the calibration.
+(:func:`choose_force_gauge`), the rule of the rigs; a design without rigs is
+calibrated on the catalogue gauge that leaves the least expected calibration error
+(:func:`tactcad.studies.verification.catalogue_calibration_gauge`).
 
 Data: ``tactcad/data/force_gauges.toml``; each model carries its maker's
 range (capacity) and resolution and the document they come from, its own
@@ -114,8 +116,10 @@ class GaugeNeed:
 
 
 def calibration_gauge_need(rated_N: float) -> GaugeNeed:
-    """The force gauge a calibration alone needs (no sample rig): the rated force's range
-    and :data:`RESOLUTION_SHARE` of it.
+    """The force gauge a calibration alone needs (no sample rig) by the rigs' rule: the
+    rated force's range and :data:`RESOLUTION_SHARE` of it (the fallback of
+    :func:`tactcad.studies.verification.catalogue_calibration_gauge` when no catalogue
+    gauge's range holds the calibration's force).
 
     Args:
         rated_N: the design's rated full-scale force (N), > 0.
