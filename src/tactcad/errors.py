@@ -131,7 +131,8 @@ class RepeatedOptionWarning(UserWarning):
 
 class PastRatingWarning(UserWarning):
     """A force asked of a command lies past the design's rated full-scale force (a reading
-    past full scale), or past an element's overload limit (named in the message)."""
+    past full scale), or past an element's overload limit (named in the message); or a
+    sample's K_obj outside the design's required K_obj range."""
 
 
 class LeftoverWarning(UserWarning):

@@ -128,6 +128,39 @@ def test_evaluate_loads_to_the_full_scale_force_over_the_designs_range(capsys):
     assert last == pytest.approx(force, rel=1e-9)  # the most loaded element reaches full scale
 
 
+def test_evaluate_warns_of_samples_outside_the_designs_range_and_prints_them_readably(capsys):
+    lo, hi = _stated()["kobj_range_N_per_mm"]
+    inside, tiny, huge = (lo * hi) ** 0.5, lo * 1e-6, hi * 1e9
+    assert main(["evaluate", "--design", str(EXAMPLE), "--coupling", "none",
+                 "--samples", f"{tiny!r},{inside!r},{huge!r}"]) == 0
+    captured = capsys.readouterr()
+    warned = [line for line in captured.err.splitlines() if "outside the design's K_obj" in line]
+    assert len(warned) == 2 and f"{tiny:g}" in warned[0] and f"{huge:g}" in warned[1]
+    rows = [line.split() for line in captured.out.splitlines()
+            if line.strip() and line.split()[0] in (f"{tiny:.4g}", f"{inside:.4g}", f"{huge:.4g}")]
+    assert len(rows) == 3  # a tiny sample is not printed as 0.00; every row keeps its columns
+    assert len({len(r) for r in rows}) == 1
+
+
+def test_ratio_map_tells_apart_elements_of_one_design_ratio(tmp_path, monkeypatch):
+    from tactcad.paper import figures
+
+    drawn = []
+    plt = figures._pyplot()
+    real = plt.Axes.plot
+
+    def record(ax, *args, **kwargs):
+        drawn.append((args[2] if len(args) > 2 else None, kwargs.get("label")))
+        return real(ax, *args, **kwargs)
+
+    monkeypatch.setattr(plt.Axes, "plot", record)
+    series = [{"label": f"element {n}", "K_r_over_K_m": 4.0, "K_m_over_K_obj": [0.1, 1.0],
+               "R": [1.2 + n / 10, 3.0]} for n in (1, 3, 4)]
+    figures.plot_ratio_map(series, tmp_path / "fig7.png", "three elements of one ratio")
+    styles = [style for style, label in drawn if label]
+    assert len(styles) == 3 and len(set(styles)) == 3
+
+
 def test_calibrate_simulate_goes_to_the_full_scale_force(tmp_path, capsys):
     from tactcad.mechanics.measured_io import read_measured
 

@@ -55,7 +55,9 @@ def register(subparsers) -> None:
     p.add_argument("--plot", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
                    help="write a Fig. 7-like plot (R against K_m/K_obj per K_r/K_m) here")
     p.add_argument("--plot-fig6", metavar="PNG", type=output_file(*PLOT_SUFFIXES), default=None,
-                   help="write a Fig. 6-like plot (R against grasping force, sample nearest 3.85 N/mm)")
+                   help="write a Fig. 6-like plot (R against grasping force) of one sample: "
+                        "the middle of --samples (the paper's design: its sample nearest "
+                        "3.85 N/mm)")
     add_output_args(p, "print one JSON object")
     p.set_defaults(func=run)
 
@@ -95,6 +97,29 @@ def design_load_steps(project, steps: int | None, force_N: float,
     return [float(v) for v in equal_steps(n)], (
         f"{n} equal steps up to the load at which the most loaded element carries the "
         f"full-scale force {force_N:g} N ({why})")
+
+
+def warn_samples_outside_range(samples: list[float], kobj_range) -> None:
+    """Warn (one line per sample) where a ``--samples`` stiffness lies outside the design's
+    required K_obj range: the design is not made to read it, so its R is shown, not rated.
+
+    Args:
+        samples: the samples' K_obj (N/mm).
+        kobj_range: the design's required K_obj range (N/mm), or None (no range stated).
+    """
+    import warnings
+
+    from tactcad.errors import PastRatingWarning
+    from tactcad.in_use.grasp_experiment import in_kobj_range
+
+    if not kobj_range:
+        return
+    lo, hi = kobj_range
+    for k in samples:
+        if not in_kobj_range(k, (lo, hi)):
+            warnings.warn(f"--samples {k:g} N/mm is outside the design's K_obj range "
+                          f"{lo:g} ... {hi:g} N/mm: the design is not made to read it (its R "
+                          "is shown, not rated)", PastRatingWarning, stacklevel=2)
 
 
 def parse_stiffness_list(field: str, text: str) -> list[float]:
@@ -141,6 +166,8 @@ def run(args: argparse.Namespace) -> int:
     samples = (parse_stiffness_list("samples", args.samples) if args.samples
                else list(paper_data.SAMPLE_STIFFNESSES_N_PER_MM) if paper
                else design_samples(plan))
+    if args.samples and not paper:
+        warn_samples_outside_range(samples, requirements_of(plan).kobj_range_N_per_mm)
     spec = ev.SampleSpec(args.coupling, args.poisson,
                          args.thickness if args.coupling == "layer" else None)
     stiffness = (paper_stiffness_by_element(plan, args.model) if args.stiffness == "table1"
@@ -193,11 +220,11 @@ def _print_text(report: dict) -> None:
     first = report["fig6"]["loads_N"][0]
     print(f"load steps: {report['load_steps_from']}")
     print(f"R at the first load step ({first:.4g} N); rows: K_obj (N/mm), columns: element")
-    print("  K_obj  " + "".join(f"{n:>8d}" for n in numbers) + "   E (MPa)")
+    print("    K_obj  " + "".join(f"{n:>9d}" for n in numbers) + "    E (MPa)")
     for s in report["samples"]:
-        cells = "".join(f"{e['R'][0]:8.3f}" for e in s["elements"])
+        cells = "".join(f"{e['R'][0]:9.4g}" for e in s["elements"])
         modulus = "-" if s["youngs_modulus_MPa"] is None else f"{s['youngs_modulus_MPa']:.3g}"
-        print(f"{s['K_obj_N_per_mm']:7.2f}  {cells}   {modulus:>7s}")
+        print(f"{s['K_obj_N_per_mm']:9.4g}  {cells}   {modulus:>8s}")
     spread = max(max(e["R"]) - min(e["R"]) for s in report["samples"] for e in s["elements"])
     print(f"largest change of R over the load steps: {spread:.2e} (the model is linear)")
     lost = [e["element"] for s in report["samples"] for e in s["elements"] if e["contact_lost"]]

@@ -20,14 +20,21 @@ def _pyplot():
     return plt
 
 
+#: Line styles of the series that share a colour (one K_r/K_m), in turn: the elements of
+#: one design ratio differ only by where they sit in the array (the sample's coupling).
+SHARED_COLOUR_STYLES = ("-", "--", ":", "-.", "-o", "--s", ":^", "-.v")
+
+
 def plot_ratio_map(series: list[dict], path: str | Path, title: str,
                    measured: list[dict] | None = None) -> Path:
     """Write R against K_m/K_obj, one line per element, to a PNG file.
 
     Args:
         series: records {"label", "K_r_over_K_m", "K_m_over_K_obj": [...], "R": [...]}
-            and optional "style" (matplotlib line style, default "-"); series
-            with equal K_r/K_m (2 decimals) share a colour.
+            and optional "style" (matplotlib line style); series with equal K_r/K_m
+            (2 decimals) share a colour, and those without a style of their own take
+            the next of :data:`SHARED_COLOUR_STYLES` within it, so each stays told
+            apart in the legend.
         path: output PNG path; parent directories are created.
         title: plot title.
         measured: optional records of the same form drawn as markers in the
@@ -38,12 +45,17 @@ def plot_ratio_map(series: list[dict], path: str | Path, title: str,
     """
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(7.0, 4.8), dpi=120)
-    colours = {}
+    colours: dict[float, str] = {}
+    unstyled: dict[float, int] = {}  # series of one K_r/K_m drawn without a style of their own
     for s in sorted(series, key=lambda s: s["K_r_over_K_m"]):
         order = sorted(range(len(s["R"])), key=lambda i: s["K_m_over_K_obj"][i])
         key = round(s["K_r_over_K_m"], 2)
+        style = s.get("style")
+        if style is None:
+            style = SHARED_COLOUR_STYLES[unstyled.get(key, 0) % len(SHARED_COLOUR_STYLES)]
+            unstyled[key] = unstyled.get(key, 0) + 1
         (line,) = ax.plot([s["K_m_over_K_obj"][i] for i in order], [s["R"][i] for i in order],
-                          s.get("style", "-"), label=s["label"], color=colours.get(key))
+                          style, label=s["label"], color=colours.get(key))
         colours.setdefault(key, line.get_color())
     for m in measured or []:
         ax.plot(m["K_m_over_K_obj"], m["R"], "o", ms=4,
