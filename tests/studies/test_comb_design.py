@@ -57,7 +57,22 @@ def test_the_grasper_case_gives_a_comb_that_fits_reaches_the_ratio_and_stops_in_
     assert all(v.engages_between for v in stop_verdicts(plan, 0.05))
     records = verification_matrix(plan, "closed-form", envelope_mm=array_envelope_mm(plan))
     assert not [r["requirement"] for r in records if r["verdict"] == "fail"]
+    assert [r["verdict"] for r in records if r["requirement"] == "footprint_mm"] == ["pass"]
     assert "sheet.thickness_mm" in found.data["assumptions"]
+
+
+@pytest.mark.parametrize("columns", [2, 3, 5, 6])
+def test_the_combs_length_and_its_iso_2768_deviation_stay_within_the_pocket(columns):
+    # a comb as long as the pocket would leave its own footprint requirement undecided
+    from tactcad.design.tolerances import general_linear_tolerance_mm, tolerances_of
+    from tactcad.studies.comb_design import comb_tables, sheets_of
+
+    room = jaw_room("10")
+    for sheet in sheets_of(BASE):
+        d, _ = comb_tables(BASE, sheet, columns, room, Targets(10.0, (0.5, 5.0), 0.05), TI)
+        along = d["array"]["pitch_mm"] * columns
+        deviation = general_linear_tolerance_mm(along, tolerances_of(d).general)
+        assert along + deviation <= room.along_mm + 1e-9
 
 
 @pytest.mark.slow  # a whole comb search (the module's fixture)

@@ -283,6 +283,16 @@ def closed_form_k(geometry, material) -> float:
     return k
 
 
+def usable_length_mm(d: Mapping[str, Any], along_mm: float) -> float:
+    """The length (mm) a comb may fill of a pocket ``along_mm`` long: less the ISO 2768-1
+    deviation of the design's general class on that length, so that the comb's length plus
+    its deviation stays within the pocket and its own footprint requirement passes, not
+    undecided (:func:`tactcad.studies.verification.footprint_record`)."""
+    from tactcad.design.tolerances import general_linear_tolerance_mm, tolerances_of
+
+    return along_mm - general_linear_tolerance_mm(along_mm, tolerances_of(d).general)
+
+
 def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
                 targets: Targets, grade: str | None) -> tuple[dict, list[str]]:
     """The comb's tables for one sheet, before its webs and stops (see the module doc), and
@@ -301,7 +311,7 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     base_web = e.pop("web_thickness_mm", None) or min(comb.get("web_thicknesses_mm") or [0.0])
     start_web = max(base_web, round(web_floor(d).value_mm, 6))
     e["notch_radius_mm"] = max(e["notch_radius_mm"], start_web)
-    pitch = _floor(min(room.along_mm / columns, 20.0), 0.1)
+    pitch = _floor(min(usable_length_mm(d, room.along_mm) / columns, 20.0), 0.1)
     arm_r = 2.0
     arm_m = _floor(pitch - slot_of(d) - comb["post_length_mm"] - e["notch_radius_mm"]
                    - e["tip_width_mm"] / 2, 0.1)
