@@ -455,13 +455,13 @@ def test_a_check_groups_undecided_result_is_counted_undecided_not_passed():
 
 
 def test_design_reports_the_requirements_verify_leaves_undecided_as_undecided(tmp_path):
-    """A comb whose envelope lies within its tolerance of the pocket: design's requirements
-    check counts the footprint undecided, as verify and check do for the file it wrote (it
-    counted it passed), and the design is written (an undecided row fails nothing)."""
+    """A comb whose rated force lies within the closed form's error of its fatigue limit:
+    design's requirements check counts it undecided, as verify and check do for the file it
+    wrote, and the design is written (an undecided row fails nothing)."""
     out = tmp_path / "a.toml"
     r = run_cli("design", "--jaw", "10", "--construction", "monolithic-comb", "--kr-over-km",
-                "6.29177", "--kobj-range", "2.13003", "28.1203", "--full-scale-force",
-                "0.109457", "--columns", "5", "--material", "Ti-6Al-4V-annealed", "--out",
+                "18.423", "--kobj-range", "0.3441", "1.4272", "--full-scale-force",
+                "0.0681", "--columns", "5", "--material", "Ti-6Al-4V-annealed", "--out",
                 str(out), "--json")
     assert r.returncode == 0, r.stderr
     designed = json.loads(r.stdout)["checks"]["requirements"]

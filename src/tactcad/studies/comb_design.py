@@ -293,6 +293,18 @@ def usable_length_mm(d: Mapping[str, Any], along_mm: float) -> float:
     return along_mm - general_linear_tolerance_mm(along_mm, tolerances_of(d).general)
 
 
+def pocket_for_length_mm(d: Mapping[str, Any], length_mm: float) -> float:
+    """The shortest pocket (mm) whose usable length (:func:`usable_length_mm`) holds a comb
+    ``length_mm`` long: the length plus its ISO 2768-1 deviation (that of the longer size
+    where the sum crosses into the standard's next range)."""
+    pocket = length_mm
+    for _ in range(4):  # the deviation steps at a range's end: settles in one or two steps
+        if usable_length_mm(d, pocket) >= length_mm - 1e-9:
+            return pocket
+        pocket = length_mm + (pocket - usable_length_mm(d, pocket))
+    return pocket
+
+
 def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
                 targets: Targets, grade: str | None) -> tuple[dict, list[str]]:
     """The comb's tables for one sheet, before its webs and stops (see the module doc), and
@@ -1309,12 +1321,13 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
     smallest = None
     for sheet in sheets_of(tables):
         pitch = least_pitch_mm(tables, sheet, columns, roomy, targets, grade)
-        env = comb_envelope_mm(tables, sheet, columns, replace(roomy, along_mm=pitch * columns),
+        along = pitch * columns
+        env = comb_envelope_mm(tables, sheet, columns,
+                               replace(roomy, along_mm=pocket_for_length_mm(tables, along)),
                                targets, grade)
         if env is None:
             continue
-        along = pitch * columns
-        misses = _misses(env, along, room)
+        misses = _misses(env, pocket_for_length_mm(tables, along), room)
         if not misses:
             return []
         if smallest is None or (len(misses), env[0]) < (len(smallest[2]), smallest[1][0]):
@@ -1339,17 +1352,21 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
                                  f"({keys['across']})", "option": paste})
             paste = ""
         else:
-            fit = int((room.along_mm + 1e-9) // pitch)
+            fit = next((n for n in range(columns - 1, 0, -1)
+                        if pocket_for_length_mm(tables, n * pitch) <= room.along_mm + 1e-9), 0)
+            deviation = pocket_for_length_mm(tables, pitch * columns) - pitch * columns
             out.append({"words": f"length {pitch * columns:.3g} mm ({columns} columns at its "
                                  f"least pitch {pitch:g} mm) vs the pocket's "
-                                 f"{room.along_mm:.3g} mm ({keys['along']})",
+                                 f"{room.along_mm:.3g} mm ({keys['along']}), which holds the "
+                                 f"length with its ISO 2768-1 deviation (+/-{deviation:.3g} mm)",
                         "option": f"--columns {fit}" if fit >= 1 and len(misses) == 1 else ""})
     return out
 
 
 def _misses(env: tuple[float, float, float], along: float, room: Any) -> list[str]:
-    """Which of a comb's height, width across its rows and length (``env``, ``along``; mm)
-    the jaw's ``room`` does not hold (an outline's room: its height alone)."""
+    """Which of a comb's height, width across its rows and length (``env``; ``along``: the
+    pocket length it needs, its deviation included; mm) the jaw's ``room`` does not hold (an
+    outline's room: its height alone)."""
     misses = ["height"] if env[2] > room.height_mm + 1e-9 else []
     if room.outline is None:
         misses += ["across"] if env[0] > room.across_mm + 1e-9 else []
